@@ -1,0 +1,81 @@
+// The processed 2-D geometry (thesis ch. 4, "Geometry Processing"): segmented curves joined into
+// closed loops, critical points, segments, arc lengths, extents and the even-odd domain area.
+// Plain data: readers fill RawCurve lists, build_geometry() validates them and derives the rest.
+#pragma once
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "core/vec2.hpp"
+
+namespace pdmesh {
+
+// A curve as read from a file, before validation.
+struct RawCurve {
+  std::string name;          // may be empty; build_geometry names it "curve<k>"
+  std::vector<Vec2> points;  // as read
+  std::string file;          // source file, for messages
+  int line = 0;              // line of the curve's first point (or of its header), for messages
+};
+
+// One validated segmented boundary curve: an ordered polyline of >= 2 distinct consecutive points.
+struct Curve {
+  std::string name;
+  std::vector<Vec2> points;
+  std::vector<double> arc;         // cumulative arc length; arc[0] = 0, arc.back() = length
+  std::vector<std::uint8_t> critical;  // per point: 1 if it is a critical point (joint or sharp corner)
+  int first_segment = 0;           // index of its first segment in Geometry::segments
+  std::string file;                // where it came from
+  int line = 0;
+  double length() const { return arc.empty() ? 0.0 : arc.back(); }
+  int segment_count() const { return static_cast<int>(points.size()) - 1; }
+};
+
+// Segment k of curve c joins curves[c].points[k] -> points[k+1].
+struct Segment {
+  Vec2 a, b;
+  int curve = 0;
+  int index = 0;       // k within the curve
+  double length = 0.0;
+};
+
+// A closed loop: curves chained end to start (a curve may be traversed reversed).
+struct Loop {
+  std::vector<int> curves;
+  std::vector<std::uint8_t> reversed;
+  double signed_area = 0.0;  // > 0 counter-clockwise
+  int depth = 0;             // how many other loops contain it; even depth = outer boundary of a region
+};
+
+// A critical point: a fixed node of the initial distribution. Either where curves join
+// or a vertex whose turning angle exceeds the corner threshold.
+struct CriticalPoint {
+  Vec2 p;
+  std::vector<int> curves;   // curves meeting here
+  std::vector<int> indices;  // the point index within each of those curves
+};
+
+struct GeometryOptions {
+  // Curve end points closer than join_tolerance * (extents diagonal) are the same point.
+  double join_tolerance = 1e-9;
+  // A vertex inside a curve whose turning angle exceeds this (degrees) is a critical point.
+  double corner_angle_deg = 30.0;
+};
+
+struct Geometry {
+  std::vector<Curve> curves;
+  std::vector<Segment> segments;  // curve-major order; curves[c].first_segment indexes here
+  std::vector<Loop> loops;
+  std::vector<CriticalPoint> critical;
+  Box extents;
+  double area = 0.0;  // even-odd interior area of all loops
+  // Hole points from .poly files: accepted, checked to lie in a hole, otherwise unused (even-odd rule).
+  std::vector<Vec2> hole_points;
+};
+
+// Validates raw curves and derives everything else. Throws GeometryError naming the file, line,
+// curve and segment on: fewer than 2 points, non-finite coordinates, zero-length segments,
+// repeated consecutive points, loops that do not close, curves that intersect themselves or each other.
+Geometry build_geometry(std::vector<RawCurve> raw, const GeometryOptions& options = {});
+
+}  // namespace pdmesh

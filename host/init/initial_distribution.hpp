@@ -1,0 +1,42 @@
+// The initial node distribution (thesis ch. 4, "Initial Node Distribution"): boundary nodes from
+// the geometry, then interior nodes filled quad by quad over a 2:1-balanced initialization tree.
+#pragma once
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+#include "geometry/geometry_tree.hpp"
+#include "nodes/node_set.hpp"
+#include "spacing/spacing_field.hpp"
+
+namespace pdmesh {
+
+enum class InitMethod { Structured, Random };
+
+struct InitOptions {
+  InitMethod method = InitMethod::Structured;
+  std::uint64_t seed = 1;
+  // If set and larger than what the tree fill produced, the remainder is added as random
+  // interior points (the thesis' "overloading").
+  std::optional<std::size_t> total;
+};
+
+struct InitialDistribution {
+  NodeSet nodes;
+  std::vector<Box> tree_quads;  // leaves of the initialization tree that are not fully outside
+  double estimate = 0.0;        // integral of 2 / (sqrt(3) q^2) dA over the domain (hexagonal packing)
+  std::size_t tree_nodes = 0;   // interior nodes from the tree fill
+  std::size_t overload_nodes = 0;  // interior nodes added to reach `total`
+};
+
+// Boundary nodes only: critical points as Fixed nodes, the other geometry points as Boundary nodes,
+// with NodeSet::curve_nodes filled. q is set from `spacing`.
+NodeSet make_boundary_nodes(const Geometry& geometry, const SpacingField& spacing);
+
+InitialDistribution make_initial_distribution(const GeometryTree& tree, const SpacingField& spacing,
+                                              const InitOptions& options);
+
+// The hexagonal-packing node-count estimate alone (also used to refuse unreasonable inputs).
+double estimate_node_count(const GeometryTree& tree, const SpacingField& spacing);
+
+}  // namespace pdmesh

@@ -1,0 +1,25 @@
+// A triangle mesh: points, counter-clockwise triangles, and the boundary edges per curve.
+#pragma once
+#include <array>
+#include <string>
+#include <vector>
+
+#include "core/vec2.hpp"
+#include "nodes/node_set.hpp"
+
+namespace pdmesh {
+
+struct BoundaryEdge {
+  int a = 0, b = 0;  // point indices, in curve order
+  int curve = 0;     // index into Mesh::curve_names
+};
+
+struct Mesh {
+  std::vector<Vec2> points;
+  std::vector<std::array<int, 3>> triangles;  // counter-clockwise
+  std::vector<BoundaryEdge> boundary_edges;
+  std::vector<std::string> curve_names;
+  std::vector<NodeKind> kind;  // per point, when known (empty for meshes read from files)
+};
+
+}  // namespace pdmesh

@@ -1,0 +1,45 @@
+// Spacing fields q(x): the desired node spacing everywhere in the domain.
+// BoundarySpacing is thesis eq. 3.6 (inverse-distance weighting of the closest segment of each
+// curve); ExpressionSpacing evaluates a user expression in x and y (muParser), e.g. eq. 7.2.
+#pragma once
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/vec2.hpp"
+#include "geometry/geometry_tree.hpp"
+
+namespace pdmesh {
+
+class SpacingField {
+ public:
+  virtual ~SpacingField() = default;
+  virtual double at(Vec2 p) const = 0;
+  // Evaluates many points (the simulation's spacing update); the default loops over at().
+  virtual void at_many(const std::vector<Vec2>& p, std::vector<double>& q) const;
+};
+
+// q(x) = sum_s (l_s / d_s) / sum_s (1 / d_s) over the closest segment s of each curve (eq. 3.6).
+class BoundarySpacing final : public SpacingField {
+ public:
+  explicit BoundarySpacing(const GeometryTree& tree);
+  double at(Vec2 p) const override;
+
+ private:
+  const GeometryTree& tree_;
+};
+
+// q(x, y) from an expression; throws InputError naming the expression on a syntax error
+// or when it does not evaluate to a finite positive number.
+class ExpressionSpacing final : public SpacingField {
+ public:
+  explicit ExpressionSpacing(const std::string& expression);
+  ~ExpressionSpacing() override;
+  double at(Vec2 p) const override;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace pdmesh
