@@ -16,64 +16,13 @@
 
 namespace pdmesh {
 
-// TEMPORARY private fallback for the exact predicates until host/core/predicates.cpp lands on
-// the triangulate branch; removed at that merge. Exact sign by expansion arithmetic (Shewchuk).
-namespace fallback {
-namespace {
-void two_sum(double a, double b, double& x, double& y) {
-  x = a + b;
-  const double bv = x - a;
-  y = (a - (x - bv)) + (b - bv);
-}
-double fb_orient2d(Vec2 a, Vec2 b, Vec2 c) {
-  const double left = (a.x - c.x) * (b.y - c.y);
-  const double right = (a.y - c.y) * (b.x - c.x);
-  const double det = left - right;
-  if (std::fabs(det) > 3.3306690738754716e-16 * (std::fabs(left) + std::fabs(right))) return det;
-  // det = ax*by - ax*cy - cx*by - ay*bx + ay*cx + cy*bx, each product split exactly by fma.
-  const double f[6][2] = {{a.x, b.y}, {-a.x, c.y}, {-c.x, b.y}, {-a.y, b.x}, {a.y, c.x}, {c.y, b.x}};
-  std::vector<double> e;
-  const auto grow = [&e](double v) {
-    std::vector<double> h;
-    double q = v;
-    for (const double x : e) {
-      double s, r;
-      two_sum(q, x, s, r);
-      if (r != 0.0) h.push_back(r);
-      q = s;
-    }
-    if (q != 0.0) h.push_back(q);
-    e.swap(h);
-  };
-  for (const auto& pr : f) {
-    const double x = pr[0] * pr[1];
-    grow(std::fma(pr[0], pr[1], -x));
-    grow(x);
-  }
-  return e.empty() ? 0.0 : (e.back() > 0 ? 1.0 : -1.0);
-}
-bool on_closed(Vec2 p, Vec2 a, Vec2 b) {
-  return p.x >= std::fmin(a.x, b.x) && p.x <= std::fmax(a.x, b.x) && p.y >= std::fmin(a.y, b.y) &&
-         p.y <= std::fmax(a.y, b.y);
-}
-int sign(double v) { return (v > 0) - (v < 0); }
-bool fb_segments_intersect(Vec2 a, Vec2 b, Vec2 c, Vec2 d) {
-  const int o1 = sign(fb_orient2d(a, b, c)), o2 = sign(fb_orient2d(a, b, d));
-  const int o3 = sign(fb_orient2d(c, d, a)), o4 = sign(fb_orient2d(c, d, b));
-  if (o1 * o2 < 0 && o3 * o4 < 0) return true;
-  return (o1 == 0 && on_closed(c, a, b)) || (o2 == 0 && on_closed(d, a, b)) ||
-         (o3 == 0 && on_closed(a, c, d)) || (o4 == 0 && on_closed(b, c, d));
-}
-}  // namespace
-}  // namespace fallback
-
 // ---------------------------------------------------------------------------------------------
 // Per-segment primitives (shared with the brute-force oracle).
 
 bool point_on_segment(Vec2 p, Vec2 a, Vec2 b) {
   if (p.x < std::fmin(a.x, b.x) || p.x > std::fmax(a.x, b.x)) return false;
   if (p.y < std::fmin(a.y, b.y) || p.y > std::fmax(a.y, b.y)) return false;
-  return fallback::fb_orient2d(a, b, p) == 0.0;
+  return orient2d(a, b, p) == 0.0;
 }
 
 ClosestHit closest_on_segment(Vec2 p, const Segment& s, int index) {
@@ -104,15 +53,15 @@ int ray_crossing(Vec2 p, Vec2 a, Vec2 b) {
   if (a_above == b_above) return 0;
   // The segment spans p.y and p is not on it, so orient2d is non-zero: p left of an upward
   // segment (or right of a downward one) means the +x ray crosses it.
-  const double o = fallback::fb_orient2d(a, b, p);
+  const double o = orient2d(a, b, p);
   return (b_above ? o > 0.0 : o < 0.0) ? 1 : 0;
 }
 
 bool move_touches_segment(Vec2 a, Vec2 b, Vec2 c, Vec2 d) {
-  if (!fallback::fb_segments_intersect(a, b, c, d)) return false;
+  if (!segments_intersect(a, b, c, d)) return false;
   if (!point_on_segment(a, c, d)) return true;  // they meet, and not at a
   if (a == b) return false;
-  if (fallback::fb_orient2d(c, d, b) != 0.0) return false;  // different lines through a: they meet only at a
+  if (orient2d(c, d, b) != 0.0) return false;  // different lines through a: they meet only at a
   // Collinear and a lies on cd: cd goes on beyond a towards b iff one of its ends lies on b's side.
   // For collinear points the side is decided exactly by comparing one coordinate.
   const auto towards_b = [&](Vec2 e) {
@@ -127,8 +76,8 @@ bool segment_touches_box(Vec2 a, Vec2 b, const Box& box) {
   if (std::fmax(a.y, b.y) < box.lo.y || std::fmin(a.y, b.y) > box.hi.y) return false;
   // Bounding boxes overlap; the segment misses the box only if its line has all four corners
   // strictly on one side.
-  const double o[4] = {fallback::fb_orient2d(a, b, box.lo), fallback::fb_orient2d(a, b, {box.hi.x, box.lo.y}),
-                       fallback::fb_orient2d(a, b, box.hi), fallback::fb_orient2d(a, b, {box.lo.x, box.hi.y})};
+  const double o[4] = {orient2d(a, b, box.lo), orient2d(a, b, {box.hi.x, box.lo.y}),
+                       orient2d(a, b, box.hi), orient2d(a, b, {box.lo.x, box.hi.y})};
   const bool all_pos = o[0] > 0 && o[1] > 0 && o[2] > 0 && o[3] > 0;
   const bool all_neg = o[0] < 0 && o[1] < 0 && o[2] < 0 && o[3] < 0;
   return !(all_pos || all_neg);
