@@ -1,35 +1,21 @@
 // Atomic text writes and the line scanner used by the mesh readers.
 #include "io/text_file.hpp"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <fstream>
 #include <sstream>
-#include <system_error>
 
 #include <fmt/format.h>
 
+#include "core/atomic_file.hpp"
 #include "core/errors.hpp"
 
 namespace pdmesh {
 
 void write_text_file(const std::filesystem::path& path, const std::string& content) {
-  // TODO(integration): switch to core/atomic_file.hpp write_file_atomically once the app branch lands.
-  std::filesystem::path tmp = path;
-  tmp += ".tmp";
-  {
-    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    if (!out) throw InputError(fmt::format("cannot open '{}' for writing", tmp.string()));
-    out.write(content.data(), static_cast<std::streamsize>(content.size()));
-    out.flush();
-    if (!out) throw InputError(fmt::format("writing '{}' failed", tmp.string()));
-  }
-  std::error_code ec;
-  std::filesystem::rename(tmp, path, ec);
-  if (ec) {
-    std::filesystem::remove(tmp, ec);
-    throw InputError(fmt::format("cannot rename '{}' to '{}'", tmp.string(), path.string()));
-  }
+  write_file_atomically(path, content);
 }
 
 std::string read_text_file(const std::filesystem::path& path) {
@@ -56,6 +42,7 @@ LineScanner::LineScanner(std::string file_label, std::string content)
     : file_(std::move(file_label)), content_(std::move(content)) {}
 
 bool LineScanner::next_line(std::string_view& line) {
+  pending_ = {};  // line mode: whatever was left of the previous line is dropped
   if (pos_ >= content_.size()) return false;
   const std::size_t end = content_.find('\n', pos_);
   const std::size_t stop = end == std::string::npos ? content_.size() : end;
@@ -66,7 +53,31 @@ bool LineScanner::next_line(std::string_view& line) {
   return true;
 }
 
+std::string_view LineScanner::token(std::string_view what) {
+  for (;;) {
+    const std::size_t first = pending_.find_first_not_of(" \t\r");
+    if (first != std::string_view::npos) {
+      pending_.remove_prefix(first);
+      const std::size_t stop = std::min(pending_.find_first_of(" \t\r"), pending_.size());
+      const std::string_view tok = pending_.substr(0, stop);
+      pending_.remove_prefix(stop);
+      return tok;
+    }
+    if (!next_line(pending_)) fail(fmt::format("unexpected end of file, expected {}", what));
+  }
+}
+
+std::string_view LineScanner::rest_of_line() {
+  std::string_view rest = pending_;
+  pending_ = {};
+  const std::size_t first = rest.find_first_not_of(" \t\r");
+  if (first == std::string_view::npos) return {};
+  rest.remove_prefix(first);
+  return rest.substr(0, rest.find_last_not_of(" \t\r") + 1);
+}
+
 std::string_view LineScanner::expect_line(std::string_view what, char comment) {
+  pending_ = {};
   std::string_view line;
   while (next_line(line)) {
     const std::size_t first = line.find_first_not_of(" \t");

@@ -9,7 +9,7 @@
 
 namespace pdmesh {
 
-// Writes `content` to `path` atomically (temporary file in the same directory, then rename).
+// Writes `content` to `path` atomically (core/atomic_file.hpp: temporary beside it, then rename).
 // Throws InputError naming the path when the directory is missing or not writable.
 void write_text_file(const std::filesystem::path& path, const std::string& content);
 
@@ -30,6 +30,12 @@ class LineScanner {
   // Tokens of the next significant line (see expect_line).
   std::vector<std::string_view> expect_tokens(std::string_view what, char comment = '\0');
 
+  // Token mode (files whose records may wrap lines): the next whitespace-separated token,
+  // reading further lines as needed; fails "unexpected end of file, expected WHAT" at the end.
+  std::string_view token(std::string_view what);
+  // The unread remainder of the line the last token came from (trimmed); that line is then done.
+  std::string_view rest_of_line();
+
   int line() const { return line_; }
   const std::string& file() const { return file_; }
 
@@ -47,6 +53,7 @@ class LineScanner {
   std::string content_;
   std::size_t pos_ = 0;
   int line_ = 0;
+  std::string_view pending_;  // unread part of the current line in token mode
 };
 
 std::vector<std::string_view> split_tokens(std::string_view line);
