@@ -6,9 +6,14 @@
 #include <cstdint>
 #include <filesystem>
 #include <random>
+#include <sstream>
 #include <string>
 
+#include <fmt/format.h>
+
+#include "app/quality_command.hpp"
 #include "core/errors.hpp"
+#include "io/mesh_formats.hpp"
 #include "io/text_file.hpp"
 #include "mesh/quality.hpp"
 #include "mesh/quality_report.hpp"
@@ -255,5 +260,39 @@ TEST_CASE("quality.json holds the documented keys and is written atomically", "[
   }
   CHECK(j.find("inf") == std::string::npos);
   CHECK(j.find("nan") == std::string::npos);
+  std::filesystem::remove_all(dir);
+}
+
+TEST_CASE("quality command reads a mesh file, prints the table and writes the JSON", "[quality]") {
+  const auto dir = std::filesystem::temp_directory_path() / "pdmesh_test_quality_command";
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  // Unit square split along its diagonal; the geometry is the square as four one-segment curves,
+  // so the boundary spacing (eq. 3.6, every closest segment has length 1) is q = 1 everywhere.
+  Mesh m;
+  m.points = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+  m.triangles = {{0, 1, 2}, {0, 2, 3}};
+  m.curve_names = {"bottom", "right", "top", "left"};
+  m.boundary_edges = {{0, 1, 0}, {1, 2, 1}, {2, 3, 2}, {3, 0, 3}};
+  write_mesh(m, dir, "square", {"su2"});
+  write_text_file(dir / "square.crv", "2\n0 0\n1 0\n2\n1 0\n1 1\n2\n1 1\n0 1\n2\n0 1\n0 0\n");
+  write_text_file(dir / "case.toml", "[geometry]\nfiles = [\"square.crv\"]\n[spacing]\nfield = \"expression\"\n"
+                                     "expression = \"2\"\n");
+  std::ostringstream out, err;
+  CHECK(run_quality((dir / "square.su2").string(), (dir / "square.crv").string(), dir.string(), out, err) == 0);
+  CHECK(out.str().find("Number of Triangles") != std::string::npos);
+  CHECK(out.str().find("square.su2") != std::string::npos);
+  const std::string j = read_text_file(dir / "quality.json");
+  const double mean = (4.0 + kSqrt2) / 5.0;  // edges 1, 1, 1, 1, sqrt2 over q = 1
+  CHECK(j.find(fmt::format("\"mean\": {}", mean)) != std::string::npos);
+
+  std::ostringstream out2, err2;
+  run_quality((dir / "square.su2").string(), (dir / "case.toml").string(), std::string("-"), out2, err2);
+  CHECK(out2.str().find(fmt::format("\"mean\": {}", mean / 2.0)) != std::string::npos);  // q = 2
+
+  std::ostringstream out3, err3;
+  run_quality((dir / "square.su2").string(), std::nullopt, (dir / "q.json").string(), out3, err3);
+  CHECK(read_text_file(dir / "q.json").find("\"spacing_conformance\": null") != std::string::npos);
+  CHECK_THROWS_AS(run_quality((dir / "nope.msh").string(), std::nullopt, std::nullopt, out3, err3), InputError);
   std::filesystem::remove_all(dir);
 }
