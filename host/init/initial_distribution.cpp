@@ -24,25 +24,55 @@ constexpr double kEstimateNodesPerQuad = 64.0;
 constexpr int kEstimateSamples = 4;
 constexpr int kEstimateMaxDepth = 30;
 
+// Extra levels a leaf that segments touch is split for the estimate, so that its samples resolve
+// the boundary within 1/32 of the leaf side instead of 1/4.
+constexpr int kEstimateCutDepth = 3;
+
+// Integral of the hexagonal density over the inside part of quad b. Leaf-sized quads take 4x4
+// spacing samples (q may vary over a large leaf); the sub-quads of a cut leaf, which are at most
+// a fraction of the local spacing wide, take q once at their centre and 4x4 inside samples.
 double estimate_quad(const GeometryTree& tree, const SpacingField& spacing, const Box& b,
-                     bool known_inside, int depth) {
+                     const std::vector<int>& segments, bool known_inside, int depth) {
   const double q_mid = spacing.at(b.centre());
   const double area = b.width() * b.height();
-  if (q_mid > 0.0 && area * hex_density(q_mid) > kEstimateNodesPerQuad && depth < kEstimateMaxDepth) {
+  const bool crowded = q_mid > 0.0 && area * hex_density(q_mid) > kEstimateNodesPerQuad;
+  const bool cut = !known_inside && !segments.empty() && depth < kEstimateCutDepth;
+  if ((crowded || cut) && depth < kEstimateMaxDepth) {
+    const auto& segs = tree.geometry().segments;
     const Vec2 c = b.centre();
-    return estimate_quad(tree, spacing, Box{b.lo, c}, known_inside, depth + 1) +
-           estimate_quad(tree, spacing, Box{{c.x, b.lo.y}, {b.hi.x, c.y}}, known_inside, depth + 1) +
-           estimate_quad(tree, spacing, Box{{b.lo.x, c.y}, {c.x, b.hi.y}}, known_inside, depth + 1) +
-           estimate_quad(tree, spacing, Box{c, b.hi}, known_inside, depth + 1);
+    const Box children[4] = {Box{b.lo, c}, Box{{c.x, b.lo.y}, {b.hi.x, c.y}},
+                             Box{{b.lo.x, c.y}, {c.x, b.hi.y}}, Box{c, b.hi}};
+    double sum = 0.0;
+    for (const Box& child : children) {
+      if (known_inside) {
+        sum += estimate_quad(tree, spacing, child, segments, true, depth + 1);
+        continue;
+      }
+      std::vector<int> touching;
+      for (int s : segments)
+        if (segment_touches_box(segs[s].a, segs[s].b, child)) touching.push_back(s);
+      // No segment touches the child: it lies wholly on one side, which its centre tells.
+      if (touching.empty()) {
+        if (!tree.inside(child.centre())) continue;
+        if (!crowded) {
+          const double q = spacing.at(child.centre());
+          if (q > 0.0 && std::isfinite(q)) sum += child.width() * child.height() * hex_density(q);
+          continue;
+        }
+      }
+      sum += estimate_quad(tree, spacing, child, touching, touching.empty(), depth + 1);
+    }
+    return sum;
   }
   const double cell = area / (kEstimateSamples * kEstimateSamples);
+  const bool sub_quad = depth > 0 && !crowded;
   double sum = 0.0;
   for (int j = 0; j < kEstimateSamples; ++j) {
     for (int i = 0; i < kEstimateSamples; ++i) {
       const Vec2 p{b.lo.x + (i + 0.5) / kEstimateSamples * b.width(),
                    b.lo.y + (j + 0.5) / kEstimateSamples * b.height()};
       if (!known_inside && !tree.inside(p)) continue;
-      const double q = spacing.at(p);
+      const double q = sub_quad ? q_mid : spacing.at(p);
       if (q > 0.0 && std::isfinite(q)) sum += cell * hex_density(q);
     }
   }
@@ -53,7 +83,7 @@ double estimate_over(const GeometryTree& tree, const SpacingField& spacing, cons
   double sum = 0.0;
   for (int k : init.kept()) {
     const InitLeaf& leaf = init.leaves()[k];
-    sum += estimate_quad(tree, spacing, leaf.box, leaf.segments.empty(), 0);
+    sum += estimate_quad(tree, spacing, leaf.box, leaf.segments, leaf.segments.empty(), 0);
   }
   return sum;
 }
