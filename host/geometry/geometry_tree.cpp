@@ -1,0 +1,413 @@
+// The geometry quadtree (thesis ch. 4, figs 4.1-4.3): one region quadtree over all segments and one
+// per curve, with closest-point, point-in-domain and move-crosses-boundary queries.
+#include "geometry/geometry_tree.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "core/errors.hpp"
+#include "core/predicates.hpp"
+
+namespace pdmesh {
+
+// TEMPORARY private fallback for the exact predicates until host/core/predicates.cpp lands on
+// the triangulate branch; removed at that merge. Exact sign by expansion arithmetic (Shewchuk).
+namespace fallback {
+namespace {
+void two_sum(double a, double b, double& x, double& y) {
+  x = a + b;
+  const double bv = x - a;
+  y = (a - (x - bv)) + (b - bv);
+}
+double fb_orient2d(Vec2 a, Vec2 b, Vec2 c) {
+  const double left = (a.x - c.x) * (b.y - c.y);
+  const double right = (a.y - c.y) * (b.x - c.x);
+  const double det = left - right;
+  if (std::fabs(det) > 3.3306690738754716e-16 * (std::fabs(left) + std::fabs(right))) return det;
+  // det = ax*by - ax*cy - cx*by - ay*bx + ay*cx + cy*bx, each product split exactly by fma.
+  const double f[6][2] = {{a.x, b.y}, {-a.x, c.y}, {-c.x, b.y}, {-a.y, b.x}, {a.y, c.x}, {c.y, b.x}};
+  std::vector<double> e;
+  const auto grow = [&e](double v) {
+    std::vector<double> h;
+    double q = v;
+    for (const double x : e) {
+      double s, r;
+      two_sum(q, x, s, r);
+      if (r != 0.0) h.push_back(r);
+      q = s;
+    }
+    if (q != 0.0) h.push_back(q);
+    e.swap(h);
+  };
+  for (const auto& pr : f) {
+    const double x = pr[0] * pr[1];
+    grow(std::fma(pr[0], pr[1], -x));
+    grow(x);
+  }
+  return e.empty() ? 0.0 : (e.back() > 0 ? 1.0 : -1.0);
+}
+bool on_closed(Vec2 p, Vec2 a, Vec2 b) {
+  return p.x >= std::fmin(a.x, b.x) && p.x <= std::fmax(a.x, b.x) && p.y >= std::fmin(a.y, b.y) &&
+         p.y <= std::fmax(a.y, b.y);
+}
+int sign(double v) { return (v > 0) - (v < 0); }
+bool fb_segments_intersect(Vec2 a, Vec2 b, Vec2 c, Vec2 d) {
+  const int o1 = sign(fb_orient2d(a, b, c)), o2 = sign(fb_orient2d(a, b, d));
+  const int o3 = sign(fb_orient2d(c, d, a)), o4 = sign(fb_orient2d(c, d, b));
+  if (o1 * o2 < 0 && o3 * o4 < 0) return true;
+  return (o1 == 0 && on_closed(c, a, b)) || (o2 == 0 && on_closed(d, a, b)) ||
+         (o3 == 0 && on_closed(a, c, d)) || (o4 == 0 && on_closed(b, c, d));
+}
+}  // namespace
+}  // namespace fallback
+
+// ---------------------------------------------------------------------------------------------
+// Per-segment primitives (shared with the brute-force oracle).
+
+bool point_on_segment(Vec2 p, Vec2 a, Vec2 b) {
+  if (p.x < std::fmin(a.x, b.x) || p.x > std::fmax(a.x, b.x)) return false;
+  if (p.y < std::fmin(a.y, b.y) || p.y > std::fmax(a.y, b.y)) return false;
+  return fallback::fb_orient2d(a, b, p) == 0.0;
+}
+
+ClosestHit closest_on_segment(Vec2 p, const Segment& s, int index) {
+  const Vec2 ab = s.b - s.a;
+  const double len2 = norm2(ab);
+  double t = len2 > 0.0 ? dot(p - s.a, ab) / len2 : 0.0;
+  t = std::clamp(t, 0.0, 1.0);
+  const Vec2 q = t == 0.0 ? s.a : t == 1.0 ? s.b : s.a + t * ab;
+  ClosestHit hit{index, q, norm(p - q), t};
+  // The projection rounds, so a point exactly on the segment would get a distance of a few ulps.
+  // Snap it to exactly 0 (decided by the exact predicate) so that "on the boundary" means d == 0.
+  if (hit.distance != 0.0) {
+    const double scale = std::fmax(std::fmax(std::fabs(p.x), std::fabs(p.y)),
+                                   std::fmax(std::fmax(std::fabs(s.a.x), std::fabs(s.a.y)),
+                                             std::fmax(std::fabs(s.b.x), std::fabs(s.b.y))));
+    if (hit.distance <= 1e-12 * scale && point_on_segment(p, s.a, s.b)) {
+      hit.point = p;
+      hit.distance = 0.0;
+    }
+  }
+  return hit;
+}
+
+int ray_crossing(Vec2 p, Vec2 a, Vec2 b) {
+  if (point_on_segment(p, a, b)) return 2;
+  const bool a_above = a.y > p.y;
+  const bool b_above = b.y > p.y;
+  if (a_above == b_above) return 0;
+  // The segment spans p.y and p is not on it, so orient2d is non-zero: p left of an upward
+  // segment (or right of a downward one) means the +x ray crosses it.
+  const double o = fallback::fb_orient2d(a, b, p);
+  return (b_above ? o > 0.0 : o < 0.0) ? 1 : 0;
+}
+
+bool move_touches_segment(Vec2 a, Vec2 b, Vec2 c, Vec2 d) {
+  if (!fallback::fb_segments_intersect(a, b, c, d)) return false;
+  if (!point_on_segment(a, c, d)) return true;  // they meet, and not at a
+  if (a == b) return false;
+  if (fallback::fb_orient2d(c, d, b) != 0.0) return false;  // different lines through a: they meet only at a
+  // Collinear and a lies on cd: cd goes on beyond a towards b iff one of its ends lies on b's side.
+  // For collinear points the side is decided exactly by comparing one coordinate.
+  const auto towards_b = [&](Vec2 e) {
+    if (b.x != a.x) return e.x != a.x && (e.x > a.x) == (b.x > a.x);
+    return e.y != a.y && (e.y > a.y) == (b.y > a.y);
+  };
+  return towards_b(c) || towards_b(d);
+}
+
+bool segment_touches_box(Vec2 a, Vec2 b, const Box& box) {
+  if (std::fmax(a.x, b.x) < box.lo.x || std::fmin(a.x, b.x) > box.hi.x) return false;
+  if (std::fmax(a.y, b.y) < box.lo.y || std::fmin(a.y, b.y) > box.hi.y) return false;
+  // Bounding boxes overlap; the segment misses the box only if its line has all four corners
+  // strictly on one side.
+  const double o[4] = {fallback::fb_orient2d(a, b, box.lo), fallback::fb_orient2d(a, b, {box.hi.x, box.lo.y}),
+                       fallback::fb_orient2d(a, b, box.hi), fallback::fb_orient2d(a, b, {box.lo.x, box.hi.y})};
+  const bool all_pos = o[0] > 0 && o[1] > 0 && o[2] > 0 && o[3] > 0;
+  const bool all_neg = o[0] < 0 && o[1] < 0 && o[2] < 0 && o[3] < 0;
+  return !(all_pos || all_neg);
+}
+
+// ---------------------------------------------------------------------------------------------
+// The quadtree.
+
+namespace {
+
+struct Node {
+  Box box;
+  int first_child = -1;  // children are first_child .. first_child + 3; -1 for a leaf
+  int begin = 0;         // leaf: its segment ids are items[begin, begin + count)
+  int count = 0;
+  int depth = 0;
+};
+
+double box_distance(Vec2 p, const Box& b) {
+  const double dx = std::fmax(std::fmax(b.lo.x - p.x, p.x - b.hi.x), 0.0);
+  const double dy = std::fmax(std::fmax(b.lo.y - p.y, p.y - b.hi.y), 0.0);
+  return std::sqrt(dx * dx + dy * dy);
+}
+
+// A square box around the given segments (square so that leaves stay square, whatever the
+// aspect ratio of the geometry), never smaller than their bounding box despite rounding.
+Box square_box(const std::vector<Segment>& segments, const std::vector<int>& ids) {
+  Box b;
+  for (const int id : ids) {
+    b.add(segments[id].a);
+    b.add(segments[id].b);
+  }
+  const Vec2 c = b.centre();
+  const double half = 0.5 * std::fmax(b.width(), b.height());
+  Box s;
+  s.lo = {std::fmin(c.x - half, b.lo.x), std::fmin(c.y - half, b.lo.y)};
+  s.hi = {std::fmax(c.x + half, b.hi.x), std::fmax(c.y + half, b.hi.y)};
+  return s;
+}
+
+class Quadtree {
+ public:
+  Quadtree(const std::vector<Segment>& segments, std::vector<int> ids) : segments_(&segments) {
+    if (ids.empty()) return;
+    nodes_.push_back(Node{square_box(segments, ids), -1, 0, 0, 0});
+    bounds_ = Box{};
+    for (const int id : ids) {
+      bounds_.add(segments[id].a);
+      bounds_.add(segments[id].b);
+    }
+    build(0, std::move(ids));
+    const Box& r = nodes_[0].box;
+    slack_ = 1e-12 * std::fmax(r.width(), r.height());
+  }
+
+  bool empty() const { return nodes_.empty(); }
+  const Box& bounds() const { return bounds_; }
+
+  ClosestHit closest(Vec2 p) const {
+    ClosestHit best;
+    best.distance = std::numeric_limits<double>::infinity();
+    if (nodes_.empty()) return ClosestHit{};
+    // Depth-first, nearest child first, with an explicit stack: each internal node pops one entry
+    // and pushes at most four, so depth * 3 + 1 entries suffice.
+    std::array<std::pair<double, int>, 3 * GeometryTree::kMaxDepth + 8> stack;
+    int top = 0;
+    stack[top++] = {box_distance(p, nodes_[0].box), 0};
+    while (top > 0) {
+      const auto [d, n] = stack[--top];
+      if (d > bound(best.distance)) continue;
+      const Node& node = nodes_[n];
+      if (node.first_child < 0) {
+        for (int i = node.begin; i < node.begin + node.count; ++i) {
+          const int id = items_[i];
+          const ClosestHit h = closest_on_segment(p, (*segments_)[id], id);
+          if (h.distance < best.distance || (h.distance == best.distance && id < best.segment)) best = h;
+        }
+        continue;
+      }
+      std::array<std::pair<double, int>, 4> kids;
+      for (int k = 0; k < 4; ++k) {
+        const int c = node.first_child + k;
+        kids[k] = {box_distance(p, nodes_[c].box), c};
+      }
+      // Push the farthest first so the nearest is popped next.
+      std::sort(kids.begin(), kids.end(), [](const auto& x, const auto& y) { return x.first > y.first; });
+      for (const auto& kid : kids)
+        if (kid.first <= bound(best.distance)) stack[top++] = kid;
+    }
+    return best;
+  }
+
+  // Calls visit(node) for every leaf whose box satisfies wanted(box), stopping when visit returns true.
+  template <class Wanted, class Visit>
+  bool any_leaf(Wanted wanted, Visit visit) const {
+    if (nodes_.empty()) return false;
+    std::array<int, 3 * GeometryTree::kMaxDepth + 8> stack;
+    int top = 0;
+    if (!wanted(nodes_[0].box)) return false;
+    stack[top++] = 0;
+    while (top > 0) {
+      const Node& node = nodes_[stack[--top]];
+      if (node.first_child < 0) {
+        if (visit(node)) return true;
+        continue;
+      }
+      for (int k = 0; k < 4; ++k)
+        if (wanted(nodes_[node.first_child + k].box)) stack[top++] = node.first_child + k;
+    }
+    return false;
+  }
+
+  const std::vector<int>& items() const { return items_; }
+
+  std::vector<Box> leaf_boxes() const {
+    std::vector<Box> out;
+    for (const Node& n : nodes_)
+      if (n.first_child < 0) out.push_back(n.box);
+    return out;
+  }
+
+  GeometryTreeStats stats() const {
+    GeometryTreeStats s;
+    s.nodes = static_cast<int>(nodes_.size());
+    for (const Node& n : nodes_) {
+      if (n.first_child >= 0) continue;
+      ++s.leaves;
+      s.max_depth = std::max(s.max_depth, n.depth);
+      s.stored_segments += n.count;
+    }
+    return s;
+  }
+
+ private:
+  // Candidates within a small relative and absolute slack of the best distance are still visited,
+  // so that rounding in box_distance can never hide an exactly tied segment with a lower index.
+  double bound(double best) const { return best * (1.0 + 1e-9) + slack_; }
+
+  void build(int n, std::vector<int> ids) {
+    const Box box = nodes_[n].box;
+    const int depth = nodes_[n].depth;
+    if (static_cast<int>(ids.size()) <= GeometryTree::kLeafCapacity || depth >= GeometryTree::kMaxDepth) {
+      make_leaf(n, ids);
+      return;
+    }
+    const Vec2 c = box.centre();
+    const Box kid_boxes[4] = {Box{box.lo, c}, Box{{c.x, box.lo.y}, {box.hi.x, c.y}},
+                              Box{{box.lo.x, c.y}, {c.x, box.hi.y}}, Box{c, box.hi}};
+    std::vector<int> kid_ids[4];
+    for (int k = 0; k < 4; ++k)
+      for (const int id : ids)
+        if (segment_touches_box((*segments_)[id].a, (*segments_)[id].b, kid_boxes[k])) kid_ids[k].push_back(id);
+    // Many segments meeting at one vertex on the child corner go to every child: splitting then
+    // never helps, so keep the node a leaf.
+    bool reduces = false;
+    for (const auto& k : kid_ids) reduces = reduces || k.size() < ids.size();
+    if (!reduces) {
+      make_leaf(n, ids);
+      return;
+    }
+    const int first = static_cast<int>(nodes_.size());
+    nodes_[n].first_child = first;
+    for (int k = 0; k < 4; ++k) nodes_.push_back(Node{kid_boxes[k], -1, 0, 0, depth + 1});
+    for (int k = 0; k < 4; ++k) {
+      if (kid_ids[k].size() == ids.size()) {
+        make_leaf(first + k, kid_ids[k]);  // this child would not shrink either
+      } else {
+        build(first + k, std::move(kid_ids[k]));
+      }
+    }
+  }
+
+  void make_leaf(int n, const std::vector<int>& ids) {
+    nodes_[n].begin = static_cast<int>(items_.size());
+    nodes_[n].count = static_cast<int>(ids.size());
+    items_.insert(items_.end(), ids.begin(), ids.end());
+  }
+
+  const std::vector<Segment>* segments_;
+  std::vector<Node> nodes_;
+  std::vector<int> items_;
+  Box bounds_;
+  double slack_ = 0.0;
+};
+
+}  // namespace
+
+struct GeometryTree::Impl {
+  Quadtree all;
+  std::vector<Quadtree> per_curve;
+};
+
+namespace {
+
+std::vector<int> all_ids(std::size_t n) {
+  std::vector<int> ids(n);
+  for (std::size_t i = 0; i < n; ++i) ids[i] = static_cast<int>(i);
+  return ids;
+}
+
+}  // namespace
+
+GeometryTree::GeometryTree(const Geometry& geometry) : geometry_(geometry) {
+  const auto& segs = geometry.segments;
+  const int curves = static_cast<int>(geometry.curves.size());
+  std::vector<std::vector<int>> by_curve(curves);
+  for (std::size_t i = 0; i < segs.size(); ++i) {
+    const Segment& s = segs[i];
+    if (s.curve < 0 || s.curve >= curves)
+      throw GeometryError("geometry tree: segment " + std::to_string(i) + " names curve " + std::to_string(s.curve) +
+                          " but the geometry has " + std::to_string(curves) + " curves");
+    if (!std::isfinite(s.a.x) || !std::isfinite(s.a.y) || !std::isfinite(s.b.x) || !std::isfinite(s.b.y))
+      throw GeometryError("geometry tree: segment " + std::to_string(i) + " of curve " + std::to_string(s.curve) +
+                          " has a non-finite end point");
+    by_curve[s.curve].push_back(static_cast<int>(i));
+  }
+  impl_ = std::make_unique<Impl>(Impl{Quadtree(segs, all_ids(segs.size())), {}});
+  impl_->per_curve.reserve(curves);
+  for (int c = 0; c < curves; ++c) impl_->per_curve.emplace_back(segs, std::move(by_curve[c]));
+}
+
+GeometryTree::~GeometryTree() = default;
+
+ClosestHit GeometryTree::closest(Vec2 p) const { return impl_->all.closest(p); }
+
+ClosestHit GeometryTree::closest_on_curve(Vec2 p, int curve) const {
+  if (curve < 0 || curve >= static_cast<int>(impl_->per_curve.size()))
+    throw std::out_of_range("GeometryTree::closest_on_curve: no curve " + std::to_string(curve));
+  return impl_->per_curve[curve].closest(p);
+}
+
+void GeometryTree::closest_per_curve(Vec2 p, std::vector<ClosestHit>& out) const {
+  out.resize(impl_->per_curve.size());
+  for (std::size_t c = 0; c < out.size(); ++c) out[c] = impl_->per_curve[c].closest(p);
+}
+
+bool GeometryTree::inside(Vec2 p) const {
+  const Quadtree& tree = impl_->all;
+  // Segments straddling several leaves along the ray must be counted once: gather, sort, unique.
+  thread_local std::vector<int> candidates;
+  candidates.clear();
+  const auto on_ray = [p](const Box& b) { return b.lo.y <= p.y && p.y <= b.hi.y && p.x <= b.hi.x; };
+  tree.any_leaf(on_ray, [&](const auto& leaf) {
+    candidates.insert(candidates.end(), tree.items().begin() + leaf.begin,
+                      tree.items().begin() + leaf.begin + leaf.count);
+    return false;
+  });
+  std::sort(candidates.begin(), candidates.end());
+  candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
+  bool in = false;
+  for (const int id : candidates) {
+    const Segment& s = geometry_.segments[id];
+    const int r = ray_crossing(p, s.a, s.b);
+    if (r == 2) return true;
+    if (r == 1) in = !in;
+  }
+  return in;
+}
+
+bool GeometryTree::crosses_boundary(Vec2 a, Vec2 b) const {
+  const Quadtree& tree = impl_->all;
+  return tree.any_leaf([&](const Box& box) { return segment_touches_box(a, b, box); },
+                       [&](const auto& leaf) {
+                         for (int i = leaf.begin; i < leaf.begin + leaf.count; ++i) {
+                           const Segment& s = geometry_.segments[tree.items()[i]];
+                           if (move_touches_segment(a, b, s.a, s.b)) return true;
+                         }
+                         return false;
+                       });
+}
+
+std::vector<Box> GeometryTree::leaf_boxes() const { return impl_->all.leaf_boxes(); }
+
+Box GeometryTree::curve_box(int curve) const {
+  if (curve < 0 || curve >= static_cast<int>(impl_->per_curve.size()))
+    throw std::out_of_range("GeometryTree::curve_box: no curve " + std::to_string(curve));
+  return impl_->per_curve[curve].bounds();
+}
+
+GeometryTreeStats GeometryTree::stats() const { return impl_->all.stats(); }
+
+}  // namespace pdmesh
