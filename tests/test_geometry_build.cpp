@@ -212,3 +212,22 @@ TEST_CASE("geometry errors: T-junction and shared vertices", "[geometry]") {
   CHECK_THROWS_WITH(build_geometry({curve({{0, 0}, {2, 0}}, "x"), curve({{2, 0}, {1, 0}, {0, 0}}, "y")}),
                     Contains("curves intersect") && Contains("'x'") && Contains("'y'"));
 }
+
+TEST_CASE("hole points must lie in a hole", "[geometry]") {
+  const std::vector<RawCurve> raw = {square(0, 0, 4, "outer"), square(1, 1, 1, "hole")};
+  const Geometry g = build_geometry(raw, {{{1.5, 1.5}, "h.poly", 3}, {{9, 9}, "h.poly", 4}});
+  CHECK(g.hole_points.size() == 2);
+  CHECK_THROWS_WITH(build_geometry(raw, {{{3, 3}, "h.poly", 5}}),
+                    Contains("h.poly:5") && Contains("(3, 3)") && Contains("inside the domain"));
+  CHECK_THROWS_WITH(build_geometry(raw, {{{1.5, 1}, "h.poly", 6}}),
+                    Contains("h.poly:6") && Contains("on the boundary"));
+}
+
+TEST_CASE("geometry options are checked", "[geometry]") {
+  GeometryOptions bad;
+  bad.join_tolerance = 2;
+  CHECK_THROWS_WITH(build_geometry(unit_square_of_four(), bad), Contains("join tolerance 2"));
+  bad = {};
+  bad.corner_angle_deg = std::nan("");
+  CHECK_THROWS_WITH(build_geometry(unit_square_of_four(), bad), Contains("corner angle nan"));
+}

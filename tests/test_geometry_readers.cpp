@@ -6,6 +6,8 @@
 #include "core/errors.hpp"
 #include "geometry/curve_reader.hpp"
 #include "geometry/geometry.hpp"
+#include "geometry/geometry_files.hpp"
+#include "geometry/poly_reader.hpp"
 
 using namespace pdmesh;
 using Catch::Matchers::Contains;
@@ -88,4 +90,73 @@ TEST_CASE("crv reader: the 30P30N flap excerpt is one clockwise loop", "[geometr
   CHECK(g.loops[0].signed_area < 0);
   CHECK(g.segments.size() == 100u + 100u + 4u);
   CHECK(g.critical.size() >= 3);
+}
+
+TEST_CASE("poly reader: square with a hole, hole point and ignored regional attributes", "[geometry]") {
+  const PolyFile poly = read_poly_file(data("square_with_hole.poly"));
+  REQUIRE(poly.curves.size() == 2);
+  CHECK(poly.curves[0].points.size() == 5);
+  CHECK(poly.curves[0].points.front() == poly.curves[0].points.back());
+  CHECK(poly.curves[1].points[1] == Vec2{2, 1});
+  CHECK(poly.curves[1].lines == std::vector<int>{7, 8, 9, 10, 7});
+  REQUIRE(poly.holes.size() == 1);
+  CHECK(poly.holes[0].p == Vec2{1.5, 1.5});
+  CHECK(poly.holes[0].line == 21);
+  const Geometry g = read_geometry({data("square_with_hole.poly")}, {"outer", "hole"});
+  CHECK(g.area == 15.0);
+  CHECK(g.curves[1].name == "hole");
+  CHECK(g.hole_points.size() == 1);
+  CHECK(g.loops[1].depth == 1);
+}
+
+TEST_CASE("poly reader: one curve per boundary marker, chained in loop order", "[geometry]") {
+  const PolyFile poly = read_poly_file(data("square_sides.poly"));
+  REQUIRE(poly.curves.size() == 4);
+  CHECK(poly.curves[0].points == std::vector<Vec2>{{1, 1}, {0, 1}});  // marker 12, first in the file
+  CHECK(poly.curves[1].points == std::vector<Vec2>{{0, 0}, {1, 0}});  // marker 10
+  const Geometry g = build_geometry(poly.curves);
+  CHECK(g.loops[0].curves == std::vector<int>{0, 2, 1, 3});
+  CHECK(g.loops[0].signed_area == 1.0);
+  CHECK(g.critical.size() == 4);
+}
+
+TEST_CASE("poly reader: segments of one marker forming a cycle make one closed curve", "[geometry]") {
+  const PolyFile poly = read_poly_file(data("two_chains.poly"));
+  REQUIRE(poly.curves.size() == 1);
+  CHECK(poly.curves[0].points == std::vector<Vec2>{{0, 0}, {1, 0}, {2, 0}, {2, 2}, {0, 2}, {0, 0}});
+  const Geometry g = build_geometry(poly.curves);
+  CHECK(g.area == 4.0);
+  CHECK(g.critical.size() == 4);  // the straight vertex (1, 0) is no corner
+}
+
+TEST_CASE("poly reader errors", "[geometry]") {
+  CHECK_THROWS_WITH(read_poly_file(data("missing_vertex.poly")),
+                    Contains("missing_vertex.poly:7") && Contains("segment 2 refers to vertex 9") &&
+                        Contains("1 to 3"));
+  CHECK_THROWS_WITH(read_poly_file(data("node_file.poly")),
+                    Contains("node_file.poly:1") && Contains(".node") && Contains("not support"));
+  CHECK_THROWS_WITH(read_poly_file(data("three_d.poly")), Contains("three_d.poly:1") && Contains("dimension '3'"));
+  CHECK_THROWS_WITH(read_poly_file(data("short_vertices.poly")),
+                    Contains("short_vertices.poly:6") && Contains("a vertex line should have 3 values, found 2"));
+  CHECK_THROWS_WITH(read_poly_file(data("no_hole_line.poly")),
+                    Contains("no_hole_line.poly:10") && Contains("hole count line"));
+  CHECK_THROWS_WITH(read_poly_file(data("empty.crv")), Contains("empty"));
+  CHECK_THROWS_WITH(read_geometry({data("hole_in_domain.poly")}, {}),
+                    Contains("hole_in_domain.poly:12") && Contains("hole point (0.5, 0.5)") &&
+                        Contains("inside the domain"));
+}
+
+TEST_CASE("read_geometry: extensions and curve names", "[geometry]") {
+  const Geometry g = read_geometry({data("unit_square.crv")}, {"bottom", "right", "top", "left"});
+  CHECK(g.curves[3].name == "left");
+  CHECK(read_geometry({data("unit_square.crv")}, {}).curves[0].name == "curve0");
+  CHECK_THROWS_WITH(read_geometry({data("unit_square.crv")}, {"a", "b"}),
+                    Contains("2 curve names given") && Contains("4 curves") && Contains("unit_square.crv: 4 curves"));
+  CHECK_THROWS_WITH(read_geometry({data("unit_square.crv")}, {"a", "b", "a", "c"}), Contains("'a' is given twice"));
+  CHECK_THROWS_WITH(read_geometry({data("square.stl")}, {}),
+                    Contains("square.stl") && Contains("'.stl'") && Contains(".crv, .dat, .poly"));
+  CHECK_THROWS_AS(read_geometry({}, {}), InputError);
+  // Two files together: the unit square shares the corner (0, 0) with the square with a hole.
+  CHECK_THROWS_WITH(read_geometry({data("square_with_hole.poly"), data("unit_square.crv")}, {}),
+                    Contains("4 curve ends meet at (0, 0)") && Contains("unit_square.crv:15"));
 }

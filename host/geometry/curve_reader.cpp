@@ -2,6 +2,7 @@
 #include "geometry/curve_reader.hpp"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include "core/errors.hpp"
 #include "geometry/reader_text.hpp"

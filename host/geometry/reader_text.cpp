@@ -104,4 +104,13 @@ long long parse_count(const std::string& file, int line, const std::string& toke
   return value;
 }
 
+long long parse_integer(const std::string& file, int line, const std::string& token, const char* what) {
+  long long value = 0;
+  const auto [ptr, ec] = std::from_chars(token.data(), token.data() + token.size(), value);
+  if (ec != std::errc() || ptr != token.data() + token.size()) {
+    throw InputError(fmt::format("{}:{}: {} '{}' is not an integer", file, line, what, token));
+  }
+  return value;
+}
+
 }  // namespace pdmesh::detail

@@ -20,4 +20,7 @@ double parse_coordinate(const std::string& file, int line, const std::string& to
 // A non-negative integer (a count or an index); InputError naming the token otherwise.
 long long parse_count(const std::string& file, int line, const std::string& token, const char* what);
 
+// Any integer (a boundary marker); InputError naming the token otherwise.
+long long parse_integer(const std::string& file, int line, const std::string& token, const char* what);
+
 }  // namespace pdmesh::detail
