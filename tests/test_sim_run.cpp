@@ -133,10 +133,10 @@ TEST_CASE("default initial dt_GM rule", "[sim]") {
   nodes.add({0, 0}, 0.5, NodeKind::Interior, -1);
   nodes.add({1, 0}, 2.0, NodeKind::Interior, -1);
   nodes.add({2, 0}, 1.0, NodeKind::Interior, -1);
-  // dt^2 = 2 (q/30) / (4 a q (0.9^-12 - 0.9^-6)): q cancels.
+  // dt^2 = 2 (q/200) / (4 a q (0.9^-12 - 0.9^-6)): q cancels.
   const double g = std::pow(0.9, -12) - std::pow(0.9, -6);
-  CHECK(default_dt_initial(nodes, 15.0) == Approx(std::sqrt(2.0 / 30.0 / (60.0 * g))).epsilon(1e-14));
-  CHECK(default_dt_initial(nodes, 15.0) == Approx(0.02588).epsilon(1e-3));
+  CHECK(default_dt_initial(nodes, 15.0) == Approx(std::sqrt(2.0 / 200.0 / (60.0 * g))).epsilon(1e-14));
+  CHECK(default_dt_initial(nodes, 15.0) == Approx(0.01002).epsilon(1e-3));
   CHECK(default_dt_initial(nodes, 60.0) == Approx(0.5 * default_dt_initial(nodes, 15.0)).epsilon(1e-14));
 }
 

@@ -32,13 +32,13 @@ double closed_form_fx(double q0, double q1, double r, double a) {
   return -4.0 * a * s * (std::pow(s / r, 12) - std::pow(s / r, 6));
 }
 
-ForceResult forces_of(const SimParticles& p, double cutoff = 1.5, double a = 15.0) {
+ForceResult forces_of(const SimParticles& p, double cutoff = 1.5, double a = 15.0, bool r0_any = false) {
   auto backend = make_reference_backend();
   NeighbourList list;
   NeighbourFlags flags;
   build_neighbours_growing(*backend, p, cutoff, list, flags);
   ForceResult f;
-  backend->compute_forces(p, list, {cutoff, a}, f);
+  backend->compute_forces(p, list, {cutoff, a, r0_any}, f);
   return f;
 }
 
@@ -115,6 +115,8 @@ TEST_CASE("r0 is the nearest neighbour in the force direction", "[sim]") {
   REQUIRE(f.fx[0] > 0.0);
   REQUIRE(f.fy[0] == 0.0);
   CHECK(f.r0[0] == 1.2);
+  // The alternative rule takes the nearest neighbour in any direction.
+  CHECK(forces_of(p, 1.5, 15.0, true).r0[0] == 0.7);
   // A node whose force points to empty space has no r0.
   SimParticles two;
   add(two, 0.0, 0.0, 1.0);
@@ -123,6 +125,7 @@ TEST_CASE("r0 is the nearest neighbour in the force direction", "[sim]") {
   CHECK(g.fx[0] < 0.0);
   CHECK(g.r0[0] == 0.0);
   CHECK(g.r0[1] == 0.0);
+  CHECK(forces_of(two, 1.5, 15.0, true).r0[1] == 0.9);
 }
 
 TEST_CASE("boundary nodes feel only their curve neighbours, projected on the tangent", "[sim]") {

@@ -41,6 +41,9 @@ void check_node_set(const NodeSet& nodes) {
                                       nodes.q.size(), nodes.kind.size(), nodes.curve.size()));
 }
 
+// The default dt moves a node at 0.9 sigma by this fraction of q (calibrated: docs/simulation.md).
+constexpr double kDefaultMoveFraction = 1.0 / 200.0;
+
 }  // namespace
 
 double default_dt_initial(const NodeSet& nodes, double lj_a) {
@@ -56,7 +59,7 @@ double default_dt_initial(const NodeSet& nodes, double lj_a) {
   // |f(r)| = 4 a sigma ((sigma/r)^12 - (sigma/r)^6) at r = 0.9 sigma, sigma = median.
   const double s6 = std::pow(1.0 / 0.9, 6);
   const double force = 4.0 * lj_a * median * (s6 * s6 - s6);
-  return std::sqrt(2.0 * (median / 30.0) / force);
+  return std::sqrt(2.0 * (median * kDefaultMoveFraction) / force);
 }
 
 SimResult run_simulation(NodeSet& nodes, const GeometryTree& tree, const SpacingField& spacing,
@@ -83,7 +86,7 @@ SimResult run_simulation(NodeSet& nodes, const GeometryTree& tree, const Spacing
   NeighbourFlags flags;
   ForceResult forces;
   MoveResult moves;
-  const ForceParams params{options.cutoff, options.lj_a};
+  const ForceParams params{options.cutoff, options.lj_a, options.r0_any_direction};
   result.history.reserve(static_cast<std::size_t>(std::max(0, options.iterations)));
   for (int iteration = 1; iteration <= options.iterations; ++iteration) {
     load_particles(nodes, boundary, particles);

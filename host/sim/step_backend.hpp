@@ -53,7 +53,8 @@ struct NeighbourFlags {
 // Per-node results of the force step (eq. 5.11 summed, eq. 5.3).
 struct ForceResult {
   std::vector<double> fx, fy;  // net force; Boundary nodes: projected onto (tx, ty); Fixed: 0
-  std::vector<double> r0;      // distance to the nearest neighbour j with F_i . r_ij > 0; 0 if none
+  std::vector<double> r0;      // distance to the nearest neighbour j with F_i . r_ij > 0 (see
+                               // ForceParams::r0_any_direction); 0 if none or F_i = 0
   std::uint64_t coincident_pairs = 0;  // neighbour pairs at distance 0 (skipped: no direction)
 };
 
@@ -74,6 +75,9 @@ struct StepSums {
 struct ForceParams {
   double cutoff = 1.5;  // cut-off distance factor: neighbours within cutoff * q_i
   double lj_a = 15.0;   // a of eq. 5.11
+  // false (thesis eq. 5.3): r0 = nearest neighbour with F . r_ij > 0. true: nearest neighbour in any
+  // direction (r0 = 0 still when F = 0), which damps the period-2 oscillation of crowded pairs.
+  bool r0_any_direction = false;
 };
 
 // One operation per simulation step. Implementations must give the same neighbour sets and

@@ -44,13 +44,15 @@ void compute_forces(const SimParticles& p, const NeighbourList& list, const Forc
     }
     out.fx[i] = fx;
     out.fy[i] = fy;
-    // r0: nearest neighbour strictly in the half-plane the force points into (0 = none).
+    // r0: nearest neighbour strictly in the half-plane the force points into (0 = none), or with
+    // r0_any_direction the nearest neighbour at all (see docs/simulation.md, "r0 rule").
+    const bool any_direction = params.r0_any_direction && (fx != 0.0 || fy != 0.0);
     double best2 = HUGE_VAL;
     for (std::size_t k = 0; k < count; ++k) {
       const auto j = static_cast<std::size_t>(list.index[base + k]);
       const double dx = p.x[j] - xi, dy = p.y[j] - yi;
       const double r2 = dx * dx + dy * dy;
-      if (r2 > 0.0 && fx * dx + fy * dy > 0.0 && r2 < best2) best2 = r2;
+      if (r2 > 0.0 && (any_direction || fx * dx + fy * dy > 0.0) && r2 < best2) best2 = r2;
     }
     out.r0[i] = best2 < HUGE_VAL ? std::sqrt(best2) : 0.0;
   }
