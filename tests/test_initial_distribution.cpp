@@ -237,7 +237,8 @@ TEST_CASE("node counts follow the estimate (square and circle in circle, both me
   const double tolerance = 0.25;
   for (InitMethod method : {InitMethod::Structured, InitMethod::Random}) {
     {
-      const Geometry g = square(7.3, 13);
+      // The thesis' fig 7.1 square: 200 x 200 with 40 boundary points, q = 20.
+      const Geometry g = square(200.0, 10);
       const GeometryTree tree(g);
       const BoundarySpacing spacing(tree);
       const InitialDistribution d = make_initial_distribution(tree, spacing, {method, 42, {}});

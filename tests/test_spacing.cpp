@@ -7,6 +7,7 @@
 #include <string>
 
 #include "core/errors.hpp"
+#include "geometry/brute_force_queries.hpp"
 #include "geometry_fixtures.hpp"
 #include "spacing/spacing_field.hpp"
 
@@ -90,6 +91,27 @@ TEST_CASE("BoundarySpacing with several curves: weights follow each curve's clos
   const BoundarySpacing q2(tree2);
   // Outer segments length 2 at distance 0.5 (from (0.5, 2)), hole segments length 0.25 at distance 1.
   CHECK(q2.at({0.5, 2.0}) == Approx((2 / 0.5 + 0.25 / 1) / (1 / 0.5 + 1 / 1.0)).epsilon(1e-14));
+}
+
+TEST_CASE("BoundarySpacing equals eq. 3.6 from brute-force closest segments", "[spacing]") {
+  for (const Geometry& g : {fixtures::circle_in_circle(), fixtures::multiscale(), fixtures::jagged_polygon(97, 5)}) {
+    const GeometryTree tree(g);
+    const BoundarySpacing q(tree);
+    std::mt19937_64 rng(11);
+    std::vector<ClosestHit> hits;
+    for (int i = 0; i < 2000; ++i) {
+      const Box& e = g.extents;
+      const Vec2 p{e.lo.x + e.width() * fixtures::unit(rng), e.lo.y + e.height() * fixtures::unit(rng)};
+      brute_force::closest_per_curve(g, p, hits);
+      double num = 0, den = 0;
+      for (const ClosestHit& h : hits) {
+        num += g.segments[h.segment].length / h.distance;
+        den += 1 / h.distance;
+      }
+      INFO("p = (" << p.x << ", " << p.y << ")");
+      REQUIRE(q.at(p) == Approx(num / den).epsilon(1e-12));
+    }
+  }
 }
 
 TEST_CASE("SpacingField::at_many loops over at", "[spacing]") {
