@@ -5,7 +5,7 @@
 #include <vector>
 
 #include "core/vec2.hpp"
-#include "geometry/geometry_tree.hpp"
+#include "geometry/geometry_tree.hpp"  // also segment_touches_box (exact)
 #include "spacing/spacing_field.hpp"
 
 namespace pdmesh {
@@ -62,8 +62,5 @@ class InitTree {
   std::vector<InitLeaf> leaves_;
   std::vector<int> kept_;
 };
-
-// True when segment ab shares at least one point with the closed box (exact, via predicates).
-bool segment_touches_box(Vec2 a, Vec2 b, const Box& box);
 
 }  // namespace pdmesh
