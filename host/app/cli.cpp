@@ -122,12 +122,13 @@ CaseConfig config_from(const MeshArguments& a) {
 
 void add_mesh_options(CLI::App& mesh, MeshArguments& a) {
   mesh.add_option("INPUT", a.input, "Case file (.toml) or geometry file (.crv, .dat, .poly; default settings)")
-      ->required();
+      ->required()
+      ->type_name("FILE");
   mesh.add_option("--out,-o", a.out, "Output directory (created if missing)")->required()->type_name("DIR");
   mesh.add_option("--set", a.sets,
                   "Override a case-file key: section.key=VALUE (TOML value; a bare word is a string). Repeatable")
       ->type_name("KEY=VALUE")
-      ->take_all();
+      ->allow_extra_args(false);
   mesh.add_option("--iterations", a.iterations, "simulation.iterations: number of time steps (>= 0)")->type_name("N");
   mesh.add_option("--dt", a.dt, "simulation.dt_initial: initial global maximum time step (> 0)")->type_name("DT");
   mesh.add_option("--cutoff", a.cutoff, "simulation.cutoff: cut-off distance factor times q_i (> 0)")->type_name("F");
