@@ -191,7 +191,8 @@ TEST_CASE("--set overrides are applied before validation", "[app][case]") {
                                           parse_set_option("init.method=random"),
                                           parse_set_option("output.formats=[\"png\",\"svg\"]"),
                                           parse_set_option("simulation.dt_initial.structured=0.5"),
-                                          parse_set_option("name=renamed")};
+                                          parse_set_option("name=renamed"),
+                                          parse_set_option("spacing.expression=0.25")};
   const CaseConfig c = parse_case_text(std::string(kMinimal) + "[simulation]\niterations = 99\n", kCase, sets);
   CHECK(c.simulation.iterations == 10);
   CHECK(c.init.method == InitMethod::Random);
@@ -199,6 +200,8 @@ TEST_CASE("--set overrides are applied before validation", "[app][case]") {
   CHECK(c.simulation.dt_structured == 0.5);
   CHECK_FALSE(c.simulation.dt_random.has_value());
   CHECK(c.name == "renamed");
+  CHECK(c.spacing.field == SpacingKind::Expression);
+  CHECK(c.spacing.expression == "0.25");  // a number given to a string key is its text
 }
 
 TEST_CASE("errors in overrides name the option, not the case file", "[app][case]") {
