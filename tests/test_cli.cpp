@@ -41,6 +41,8 @@ fs::path fresh_dir(const std::string& tag) {
   return d;
 }
 
+std::size_t read_node_file_size(const fs::path& p) { return pdmesh::read_node_file(p).nodes.size(); }
+
 bool contains(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
 
 // A 2 x 1 rectangle as one closed .crv curve with points every 0.25.
@@ -148,9 +150,11 @@ TEST_CASE("pdmesh mesh writes the initial node file and pictures", "[cli]") {
   CHECK(nodes.nodes.count(pdmesh::NodeKind::Interior) > 0);
   CHECK(nodes.nodes.count(pdmesh::NodeKind::Fixed) + nodes.nodes.count(pdmesh::NodeKind::Boundary) == 24);
   CHECK(nodes.curve_names == std::vector<std::string>{"curve0"});
-  // --quiet silences progress.
-  const Result quiet = run("mesh '" + (dir / "rect.crv").string() + "' --out '" + out.string() + "' -q");
+  // A case directory stands for its case.toml; --quiet silences progress.
+  std::ofstream(dir / "case.toml") << "name = \"rect\"\n[geometry]\nfiles = [\"rect.crv\"]\n";
+  const Result quiet = run("mesh '" + dir.string() + "' --out '" + out.string() + "' -q");
   CHECK(quiet.status == 0);
   CHECK(quiet.output.empty());
+  CHECK(read_node_file_size(out / "initial.nodes") == nodes.nodes.size());
   fs::remove_all(dir);
 }

@@ -98,10 +98,17 @@ std::string lower_extension(const fs::path& p) {
 }
 
 CaseConfig config_from(const MeshArguments& a) {
-  const fs::path input(a.input);
+  fs::path input(a.input);
   std::error_code ec;
   if (!fs::exists(input, ec)) {
     throw InputError(fmt::format("cannot read '{}': {}", a.input, std::strerror(ENOENT)));
+  }
+  // A case directory stands for the case.toml inside it.
+  if (fs::is_directory(input, ec)) {
+    if (!fs::is_regular_file(input / "case.toml", ec)) {
+      throw InputError(fmt::format("'{}' is a directory without a case.toml", a.input));
+    }
+    input /= "case.toml";
   }
   const std::vector<CaseOverride> overrides = overrides_from(a);
   const std::string ext = lower_extension(input);
@@ -111,8 +118,8 @@ CaseConfig config_from(const MeshArguments& a) {
   } else if (ext == ".crv" || ext == ".dat" || ext == ".poly") {
     config = case_for_geometry_file(input, overrides);
   } else {
-    throw InputError(fmt::format("{}: unknown input type '{}' (expected a case .toml or a .crv, .dat or .poly geometry "
-                                 "file)", a.input, ext));
+    throw InputError(fmt::format("{}: unknown input type '{}' (expected a case .toml, a case directory or a .crv, "
+                                 ".dat or .poly geometry file)", a.input, ext));
   }
   config.out_dir = a.out;
   config.quiet = a.quiet;
@@ -121,7 +128,7 @@ CaseConfig config_from(const MeshArguments& a) {
 }
 
 void add_mesh_options(CLI::App& mesh, MeshArguments& a) {
-  mesh.add_option("INPUT", a.input, "Case file (.toml) or geometry file (.crv, .dat, .poly; default settings)")
+  mesh.add_option("INPUT", a.input, "Case file (.toml), case directory (holding case.toml), or geometry file (.crv, .dat, .poly; default settings)")
       ->required()
       ->type_name("FILE");
   mesh.add_option("--out,-o", a.out, "Output directory (created if missing)")->required()->type_name("DIR");
