@@ -119,7 +119,7 @@ TEST_CASE("case-file errors exit 2 with FILE:LINE and the suggestion, before any
   fs::remove_all(dir);
 }
 
-TEST_CASE("--max-nodes refuses a case by its estimate", "[cli]") {
+TEST_CASE("the node limit (--max-nodes) refuses a case by its estimate", "[cli]") {
   const fs::path dir = fresh_dir("limit");
   write_rectangle(dir / "rect.crv");
   const Result r = run("mesh '" + (dir / "rect.crv").string() + "' --out '" + (dir / "out").string() +
