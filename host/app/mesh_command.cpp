@@ -20,6 +20,10 @@ namespace fs = std::filesystem;
 
 namespace {
 
+// Every node is an element in an SVG; beyond this many the file would run to hundreds of
+// megabytes, so only the PNG pictures (and zoomed views) are written.
+constexpr std::size_t kSvgNodeLimit = 500'000;
+
 const char* method_name(InitMethod m) { return m == InitMethod::Structured ? "structured" : "random"; }
 
 template <class... Args>
@@ -98,14 +102,20 @@ void write_initial_outputs(const CaseConfig& config, const MeshInputs& inputs, c
   picture.title = fmt::format("{} - initial distribution ({})", config.name, method_name(config.init.method));
   picture.tree_quads = config.output.tree_overlay ? &initial.tree_quads : nullptr;
   write_node_picture(dir / "initial.png", inputs.geometry, initial.nodes, picture);
-  write_node_picture(dir / "initial.svg", inputs.geometry, initial.nodes, picture);
+  const bool svg = initial.nodes.size() <= kSvgNodeLimit;
+  if (svg) {
+    write_node_picture(dir / "initial.svg", inputs.geometry, initial.nodes, picture);
+  } else {
+    progress(config, "initial.svg skipped: {} nodes is more than {} (the PNG pictures are written)",
+             initial.nodes.size(), kSvgNodeLimit);
+  }
   for (const ViewWindow& view : config.output.views) {
     NodePictureOptions zoomed = picture;
     zoomed.title += " - " + view.name;
     zoomed.window = view.window;
     write_node_picture(dir / fmt::format("initial_{}.png", view.name), inputs.geometry, initial.nodes, zoomed);
   }
-  progress(config, "wrote {}/initial.nodes, initial.png, initial.svg{}", dir.string(),
+  progress(config, "wrote {}/initial.nodes, initial.png{}{}", dir.string(), svg ? ", initial.svg" : "",
            config.output.views.empty() ? "" : fmt::format(" and {} view(s)", config.output.views.size()));
 }
 
