@@ -57,6 +57,18 @@ TEST_CASE("BoundarySpacing on the boundary is the segment length", "[spacing]") 
   }
 }
 
+TEST_CASE("BoundarySpacing at a joint of two curves is the mean of their segment lengths", "[spacing]") {
+  const Geometry g = fixtures::make_geometry({{{0, 0}, {1, 0}}, {{1, 0}, {1, 3}}});
+  const GeometryTree tree(g);
+  const BoundarySpacing q(tree);
+  CHECK(q.at({1.0, 0.0}) == 2.0);
+  // Just off the joint both curves stay close, so q stays near the mean, not 1 or 3: outside the
+  // corner both distances are sqrt(2)e-9; below curve 0 they are 1e-9 and sqrt(2)e-9.
+  CHECK(q.at({1.0 + 1e-9, -1e-9}) == Approx(2.0).epsilon(1e-12));
+  const double r2 = std::sqrt(2.0);
+  CHECK(q.at({1.0 - 1e-9, -1e-9}) == Approx((1 + 3 / r2) / (1 + 1 / r2)).epsilon(1e-6));
+}
+
 TEST_CASE("BoundarySpacing at a shared vertex uses the lowest-index segment", "[spacing]") {
   // One curve: segment 0 of length 1, segment 1 of length 2, meeting at (1,0).
   const Geometry g = fixtures::make_geometry({{{0, 0}, {1, 0}, {1, 2}}});
