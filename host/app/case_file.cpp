@@ -204,11 +204,17 @@ void check_keys(const Reader& r, const toml::table& t, const std::string& prefix
   }
 }
 
+// Keys whose value is a string: an override such as "spacing.expression=2" means the text.
+bool is_string_key(const std::string& key) {
+  return key == "name" || key == "spacing.field" || key == "spacing.expression" || key == "init.method" ||
+         key == "simulation.device" || key == "simulation.precision";
+}
+
 // Parses an override's value as TOML; a bare word that is not TOML (random, a.crv) is a string.
 toml::table override_value(const CaseOverride& o) {
   try {
     toml::table t = toml::parse("v = " + o.value, o.label);
-    if (t.size() == 1 && t.contains("v")) return t;
+    if (t.size() == 1 && t.contains("v") && (t.get("v")->is_string() || !is_string_key(o.key))) return t;
   } catch (const toml::parse_error&) {
   }
   toml::table t;
