@@ -16,6 +16,16 @@ struct RawCurve {
   std::vector<Vec2> points;  // as read
   std::string file;          // source file, for messages
   int line = 0;              // line of the curve's first point (or of its header), for messages
+  // Optional: the source line of each point (same size as points). When empty, point k is taken
+  // to be on line `line + k`, which is right for one-point-per-line formats such as .crv.
+  std::vector<int> lines;
+};
+
+// A hole point as read from a .poly file (Triangle's convention), before validation.
+struct RawHolePoint {
+  Vec2 p;
+  std::string file;
+  int line = 0;
 };
 
 // One validated segmented boundary curve: an ordered polyline of >= 2 distinct consecutive points.
@@ -77,5 +87,9 @@ struct Geometry {
 // curve and segment on: fewer than 2 points, non-finite coordinates, zero-length segments,
 // repeated consecutive points, loops that do not close, curves that intersect themselves or each other.
 Geometry build_geometry(std::vector<RawCurve> raw, const GeometryOptions& options = {});
+// The same, with hole points: each must lie outside the even-odd domain (in a hole or outside every
+// loop), otherwise GeometryError naming its file and line. They end up in Geometry::hole_points.
+Geometry build_geometry(std::vector<RawCurve> raw, const std::vector<RawHolePoint>& holes,
+                        const GeometryOptions& options = {});
 
 }  // namespace pdmesh

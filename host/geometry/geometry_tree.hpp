@@ -15,8 +15,22 @@ struct ClosestHit {
   double t = 0;         // parameter along the segment, 0 at a, 1 at b
 };
 
+// Shape of a built tree, for documentation, drawing and tests.
+struct GeometryTreeStats {
+  int nodes = 0;
+  int leaves = 0;
+  int max_depth = 0;        // deepest leaf (root = 0)
+  int stored_segments = 0;  // sum over leaves; > segment count where segments straddle leaves
+};
+
 class GeometryTree {
  public:
+  // A leaf is split when it holds more than kLeafCapacity segments, unless it is at kMaxDepth or
+  // splitting would not reduce its count (many segments meeting at one vertex on a child corner).
+  static constexpr int kLeafCapacity = 8;
+  static constexpr int kMaxDepth = 20;
+
+  // Keeps a reference to geometry: it must outlive the tree and not change.
   explicit GeometryTree(const Geometry& geometry);
   ~GeometryTree();
   GeometryTree(const GeometryTree&) = delete;
@@ -24,23 +38,49 @@ class GeometryTree {
 
   const Geometry& geometry() const { return geometry_; }
 
+  // All queries are const and thread-safe. A geometry without segments gives ClosestHit{} (segment
+  // -1), inside() false and crosses_boundary() false.
+
   // Closest point over all segments. Ties are broken by the lowest segment index.
   ClosestHit closest(Vec2 p) const;
-  // Closest point on one curve.
+  // Closest point on one curve (ties: lowest segment index). Throws std::out_of_range on a bad curve.
   ClosestHit closest_on_curve(Vec2 p, int curve) const;
   // For every curve, its closest segment (out[c] for curve c). Used by the boundary spacing field.
+  // Costs O(curves * log segments): each curve has its own quadtree.
   void closest_per_curve(Vec2 p, std::vector<ClosestHit>& out) const;
   // Even-odd point-in-domain test. Points exactly on a segment count as inside.
   bool inside(Vec2 p) const;
-  // True when the open move a->b touches or crosses any boundary segment (a on the boundary is allowed).
+  // True when the move a->b touches or crosses any boundary segment at a point other than a
+  // (a on the boundary is allowed; b on the boundary counts as touching).
   bool crosses_boundary(Vec2 a, Vec2 b) const;
   // Leaf boxes of the tree, for drawing.
   std::vector<Box> leaf_boxes() const;
+  // Bounding box of one curve's points.
+  Box curve_box(int curve) const;
+  GeometryTreeStats stats() const;
 
  private:
   const Geometry& geometry_;
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };
+
+// Per-segment primitives shared by the tree and the brute-force oracle, so that both compute
+// bit-identical distances and the tie rule (lowest index) decides the same way.
+
+// Closest point on segment s (index `index`) to p. When p lies exactly on s (exact predicate) the
+// hit is p itself with distance 0.
+ClosestHit closest_on_segment(Vec2 p, const Segment& s, int index);
+// Exact: p lies on the closed segment ab.
+bool point_on_segment(Vec2 p, Vec2 a, Vec2 b);
+// Exact crossing-number contribution of segment ab for the horizontal ray from p, with the
+// half-open rule (ab spans the ray's row when exactly one end is strictly above p.y), so a vertex
+// on the ray is counted once. Returns 2 when p lies on ab, 1 when ab crosses the ray, 0 otherwise.
+enum class RayDirection { PlusX, MinusX };
+int ray_crossing(Vec2 p, Vec2 a, Vec2 b, RayDirection direction = RayDirection::PlusX);
+// Exact: the move a->b shares a point other than a with the closed segment cd.
+bool move_touches_segment(Vec2 a, Vec2 b, Vec2 c, Vec2 d);
+// Exact: the closed segment ab shares a point with the closed box.
+bool segment_touches_box(Vec2 a, Vec2 b, const Box& box);
 
 }  // namespace pdmesh

@@ -1,0 +1,312 @@
+// build_geometry(): validates raw curves, snaps curve ends into joints, chains curves into loops and
+// derives segments, arc lengths, critical points, loop areas, nesting depths and the domain area.
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <map>
+#include <numbers>
+#include <utility>
+
+#include <fmt/format.h>
+
+#include "core/errors.hpp"
+#include "geometry/geometry.hpp"
+#include "geometry/geometry_detail.hpp"
+
+namespace pdmesh {
+namespace {
+
+using detail::format_point;
+using detail::PointLines;
+using detail::where;
+
+// One end of a curve: end 0 is its first point, end 1 its last.
+struct CurveEnd {
+  int curve = 0;
+  int end = 0;
+};
+
+int end_point_index(const Curve& c, int end) { return end == 0 ? 0 : static_cast<int>(c.points.size()) - 1; }
+
+// Names, point counts and finite coordinates; fills the per-point source lines.
+void check_points(std::vector<RawCurve>& raw, PointLines& lines) {
+  lines.resize(raw.size());
+  for (std::size_t k = 0; k < raw.size(); ++k) {
+    RawCurve& r = raw[k];
+    if (r.name.empty()) r.name = fmt::format("curve{}", k);
+    auto& ln = lines[k];
+    if (r.lines.size() == r.points.size()) {
+      ln = r.lines;
+    } else {
+      ln.resize(r.points.size());
+      for (std::size_t i = 0; i < ln.size(); ++i) ln[i] = r.line + static_cast<int>(i);
+    }
+    if (r.points.size() < 2) {
+      throw GeometryError(fmt::format("{}: curve '{}' has {} point{}; a curve needs at least 2",
+                                      where(r.file, r.line), r.name, r.points.size(),
+                                      r.points.size() == 1 ? "" : "s"));
+    }
+    for (std::size_t i = 0; i < r.points.size(); ++i) {
+      const Vec2 p = r.points[i];
+      if (!std::isfinite(p.x) || !std::isfinite(p.y)) {
+        throw GeometryError(fmt::format("{}: curve '{}' point {} has a non-finite coordinate ({}, {})",
+                                        where(r.file, ln[i]), r.name, i, p.x, p.y));
+      }
+    }
+  }
+}
+
+// Snaps every curve end to the first end seen within `tolerance`; returns the joint id of each end
+// (ends[c][e]) and the joint locations. Exactly equal ends always join, even with zero tolerance.
+std::vector<Vec2> snap_ends(std::vector<Curve>& curves, double tolerance, std::vector<std::array<int, 2>>& ends) {
+  std::vector<Vec2> joints;
+  std::multimap<double, int> by_x;  // joint ids keyed by x, for a range query around each end
+  ends.assign(curves.size(), std::array<int, 2>{-1, -1});
+  for (std::size_t c = 0; c < curves.size(); ++c) {
+    for (int e = 0; e < 2; ++e) {
+      Vec2& p = curves[c].points[end_point_index(curves[c], e)];
+      int best = -1;
+      double best_d = 0.0;
+      for (auto it = by_x.lower_bound(p.x - tolerance); it != by_x.end() && it->first <= p.x + tolerance; ++it) {
+        const double d = dist(p, joints[it->second]);
+        if (d <= tolerance && (best < 0 || d < best_d)) {
+          best = it->second;
+          best_d = d;
+        }
+      }
+      if (best < 0) {
+        best = static_cast<int>(joints.size());
+        joints.push_back(p);
+        by_x.emplace(p.x, best);
+      }
+      p = joints[best];
+      ends[c][e] = best;
+    }
+  }
+  return joints;
+}
+
+void check_zero_length(const std::vector<Curve>& curves, const PointLines& lines) {
+  for (std::size_t c = 0; c < curves.size(); ++c) {
+    const auto& pts = curves[c].points;
+    for (std::size_t k = 0; k + 1 < pts.size(); ++k) {
+      if (pts[k] == pts[k + 1]) {
+        throw GeometryError(fmt::format(
+            "{}: curve '{}' segment {} has zero length: points {} and {} are both {} (repeated point{})",
+            where(curves[c].file, lines[c][k + 1]), curves[c].name, k, k, k + 1, format_point(pts[k]),
+            pts.size() == 2 ? ", or curve ends closer than the join tolerance" : ""));
+      }
+    }
+  }
+}
+
+// Every joint must hold exactly two curve ends.
+std::vector<std::vector<CurveEnd>> check_joints(const std::vector<Curve>& curves, const PointLines& lines,
+                                                const std::vector<Vec2>& joints,
+                                                const std::vector<std::array<int, 2>>& ends) {
+  std::vector<std::vector<CurveEnd>> at(joints.size());
+  for (std::size_t c = 0; c < curves.size(); ++c)
+    for (int e = 0; e < 2; ++e) at[ends[c][e]].push_back({static_cast<int>(c), e});
+  auto end_where = [&](CurveEnd ce) {
+    return where(curves[ce.curve].file, lines[ce.curve][end_point_index(curves[ce.curve], ce.end)]);
+  };
+  for (std::size_t j = 0; j < joints.size(); ++j) {
+    if (at[j].size() == 1) {
+      const CurveEnd ce = at[j][0];
+      throw GeometryError(fmt::format("loop does not close: {} of curve '{}' ({}) at {} meets no other curve",
+                                      ce.end == 0 ? "start" : "end", curves[ce.curve].name, end_where(ce),
+                                      format_point(joints[j])));
+    }
+    if (at[j].size() > 2) {
+      std::string list;
+      for (const CurveEnd ce : at[j]) {
+        if (!list.empty()) list += ", ";
+        list += fmt::format("{} of curve '{}' ({})", ce.end == 0 ? "start" : "end", curves[ce.curve].name,
+                            end_where(ce));
+      }
+      throw GeometryError(fmt::format("{} curve ends meet at {}: {}; exactly two curve ends may meet at a joint",
+                                      at[j].size(), format_point(joints[j]), list));
+    }
+  }
+  return at;
+}
+
+// Chains curves into loops; each joint joins exactly two ends, so the curves form disjoint cycles.
+std::vector<Loop> chain_loops(const std::vector<Curve>& curves, const std::vector<std::array<int, 2>>& ends,
+                              const std::vector<std::vector<CurveEnd>>& at) {
+  std::vector<Loop> loops;
+  std::vector<std::uint8_t> used(curves.size(), 0);
+  for (int c0 = 0; c0 < static_cast<int>(curves.size()); ++c0) {
+    if (used[c0]) continue;
+    Loop loop;
+    int c = c0;
+    bool reversed = false;
+    while (true) {
+      loop.curves.push_back(c);
+      loop.reversed.push_back(reversed ? 1 : 0);
+      used[c] = 1;
+      const int exit_end = reversed ? 0 : 1;
+      const auto& pair = at[ends[c][exit_end]];
+      const CurveEnd next = (pair[0].curve == c && pair[0].end == exit_end) ? pair[1] : pair[0];
+      if (next.curve == c0) break;
+      c = next.curve;
+      reversed = next.end == 1;
+    }
+    loops.push_back(std::move(loop));
+  }
+  return loops;
+}
+
+// Shoelace formula relative to the loop's first vertex, which keeps the sum accurate far from 0.
+double signed_area(const std::vector<Curve>& curves, const Loop& loop) {
+  const Vec2 ref = curves[loop.curves[0]].points[0];
+  double twice = 0.0;
+  for (std::size_t i = 0; i < loop.curves.size(); ++i) {
+    const auto& pts = curves[loop.curves[i]].points;
+    double sum = 0.0;
+    for (std::size_t k = 0; k + 1 < pts.size(); ++k) sum += cross(pts[k] - ref, pts[k + 1] - ref);
+    twice += loop.reversed[i] ? -sum : sum;
+  }
+  return 0.5 * twice;
+}
+
+// Joints, then sharp interior corners, in curve order; one entry per distinct location.
+void find_critical_points(Geometry& g, const std::vector<Vec2>& joints, const std::vector<std::array<int, 2>>& ends,
+                          const std::vector<std::vector<CurveEnd>>& at, double corner_angle_deg) {
+  std::vector<int> joint_entry(joints.size(), -1);
+  const double limit = corner_angle_deg * std::numbers::pi / 180.0;
+  for (int c = 0; c < static_cast<int>(g.curves.size()); ++c) {
+    Curve& curve = g.curves[c];
+    const int n = static_cast<int>(curve.points.size());
+    curve.critical.assign(n, 0);
+    for (int k = 0; k < n; ++k) {
+      if (k == 0 || k == n - 1) {
+        curve.critical[k] = 1;
+        const int j = ends[c][k == 0 ? 0 : 1];
+        if (joint_entry[j] >= 0) continue;
+        joint_entry[j] = static_cast<int>(g.critical.size());
+        CriticalPoint cp{joints[j], {}, {}};
+        for (const CurveEnd ce : at[j]) {
+          cp.curves.push_back(ce.curve);
+          cp.indices.push_back(end_point_index(g.curves[ce.curve], ce.end));
+        }
+        g.critical.push_back(std::move(cp));
+        continue;
+      }
+      const Vec2 in = curve.points[k] - curve.points[k - 1];
+      const Vec2 out = curve.points[k + 1] - curve.points[k];
+      const double turn = std::atan2(std::fabs(cross(in, out)), dot(in, out));
+      if (turn > limit) {
+        curve.critical[k] = 1;
+        g.critical.push_back({curve.points[k], {c}, {k}});
+      }
+    }
+  }
+}
+
+void fill_segments(Geometry& g) {
+  for (int c = 0; c < static_cast<int>(g.curves.size()); ++c) {
+    Curve& curve = g.curves[c];
+    curve.first_segment = static_cast<int>(g.segments.size());
+    curve.arc.assign(curve.points.size(), 0.0);
+    for (int k = 0; k + 1 < static_cast<int>(curve.points.size()); ++k) {
+      const double len = dist(curve.points[k], curve.points[k + 1]);
+      curve.arc[k + 1] = curve.arc[k] + len;
+      g.segments.push_back({curve.points[k], curve.points[k + 1], c, k, len});
+    }
+  }
+}
+
+// Depth of each loop = number of other loops containing its first vertex. Loops do not intersect
+// (checked before), so one vertex decides and it lies on no other loop.
+void find_depths(Geometry& g) {
+  std::vector<std::vector<int>> loop_segments(g.loops.size());
+  std::vector<Box> boxes(g.loops.size());
+  for (std::size_t l = 0; l < g.loops.size(); ++l) {
+    for (const int c : g.loops[l].curves) {
+      const Curve& curve = g.curves[c];
+      for (int k = 0; k < curve.segment_count(); ++k) loop_segments[l].push_back(curve.first_segment + k);
+      for (const Vec2 p : curve.points) boxes[l].add(p);
+    }
+  }
+  for (std::size_t i = 0; i < g.loops.size(); ++i) {
+    const Vec2 p = g.curves[g.loops[i].curves[0]].points[0];
+    int depth = 0;
+    for (std::size_t j = 0; j < g.loops.size(); ++j) {
+      if (j == i || !boxes[j].contains(p)) continue;
+      if (detail::ray_crossings(g.segments, loop_segments[j], p) % 2 == 1) ++depth;
+    }
+    g.loops[i].depth = depth;
+  }
+}
+
+void check_holes(Geometry& g, const std::vector<RawHolePoint>& holes) {
+  std::vector<int> all(g.segments.size());
+  for (std::size_t s = 0; s < all.size(); ++s) all[s] = static_cast<int>(s);
+  for (const RawHolePoint& h : holes) {
+    if (!std::isfinite(h.p.x) || !std::isfinite(h.p.y)) {
+      throw GeometryError(fmt::format("{}: hole point ({}, {}) has a non-finite coordinate", where(h.file, h.line),
+                                      h.p.x, h.p.y));
+    }
+    if (detail::on_any_segment(g.segments, h.p)) {
+      throw GeometryError(fmt::format("{}: hole point {} lies on the boundary; it must lie inside a hole",
+                                      where(h.file, h.line), format_point(h.p)));
+    }
+    if (detail::ray_crossings(g.segments, all, h.p) % 2 == 1) {
+      throw GeometryError(fmt::format(
+          "{}: hole point {} lies inside the domain, not in a hole (the domain is the even-odd interior "
+          "of the loops)",
+          where(h.file, h.line), format_point(h.p)));
+    }
+    g.hole_points.push_back(h.p);
+  }
+}
+
+}  // namespace
+
+Geometry build_geometry(std::vector<RawCurve> raw, const GeometryOptions& options) {
+  return build_geometry(std::move(raw), {}, options);
+}
+
+Geometry build_geometry(std::vector<RawCurve> raw, const std::vector<RawHolePoint>& holes,
+                        const GeometryOptions& options) {
+  if (raw.empty()) throw GeometryError("the geometry has no curves");
+  if (!std::isfinite(options.join_tolerance) || options.join_tolerance < 0 || options.join_tolerance >= 1) {
+    throw GeometryError(fmt::format("join tolerance {} must be >= 0 and < 1", options.join_tolerance));
+  }
+  if (!std::isfinite(options.corner_angle_deg) || options.corner_angle_deg < 0 || options.corner_angle_deg > 180) {
+    throw GeometryError(fmt::format("corner angle {} degrees must be in [0, 180]", options.corner_angle_deg));
+  }
+  PointLines lines;
+  check_points(raw, lines);
+
+  Geometry g;
+  g.curves.reserve(raw.size());
+  for (RawCurve& r : raw) {
+    Curve c;
+    c.name = std::move(r.name);
+    c.points = std::move(r.points);
+    c.file = std::move(r.file);
+    c.line = r.line;
+    for (const Vec2 p : c.points) g.extents.add(p);
+    g.curves.push_back(std::move(c));
+  }
+
+  std::vector<std::array<int, 2>> ends;
+  const std::vector<Vec2> joints = snap_ends(g.curves, options.join_tolerance * g.extents.diagonal(), ends);
+  check_zero_length(g.curves, lines);
+  const auto at = check_joints(g.curves, lines, joints, ends);
+  g.loops = chain_loops(g.curves, ends, at);
+  find_critical_points(g, joints, ends, at, options.corner_angle_deg);
+  fill_segments(g);
+  detail::check_intersections(g, lines);
+
+  for (Loop& loop : g.loops) loop.signed_area = signed_area(g.curves, loop);
+  find_depths(g);
+  g.area = 0.0;
+  for (const Loop& loop : g.loops) g.area += std::fabs(loop.signed_area) * (loop.depth % 2 == 0 ? 1.0 : -1.0);
+  check_holes(g, holes);
+  return g;
+}
+
+}  // namespace pdmesh

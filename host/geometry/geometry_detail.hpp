@@ -1,0 +1,30 @@
+// Internal helpers shared by the build_geometry source files (not part of the public interface):
+// source locations for messages, the even-odd crossing test and the intersection check.
+#pragma once
+#include <string>
+#include <vector>
+
+#include "geometry/geometry.hpp"
+
+namespace pdmesh::detail {
+
+// Source line of every point of every curve, kept beside Geometry only while building it.
+using PointLines = std::vector<std::vector<int>>;
+
+// "FILE:LINE" (or "curve input" when the curve has no file).
+std::string where(const std::string& file, int line);
+// "(x, y)" with the shortest round-trip representation of each coordinate.
+std::string format_point(Vec2 p);
+
+// Number of boundary segments crossed by the ray from p towards +x (exact, via orient2d).
+// Only meaningful when p lies on no segment; odd means inside the even-odd domain.
+int ray_crossings(const std::vector<Segment>& segments, const std::vector<int>& which, Vec2 p);
+// True when p lies on one of the segments (exactly).
+bool on_any_segment(const std::vector<Segment>& segments, Vec2 p);
+
+// Throws GeometryError for the first (lowest-index) pair of segments that share a point they may
+// not share: anything but consecutive segments of one curve at their common vertex, or two curve
+// ends meeting at a joint. Uses a uniform grid so the cost is about linear in the segment count.
+void check_intersections(const Geometry& geometry, const PointLines& lines);
+
+}  // namespace pdmesh::detail

@@ -1,0 +1,393 @@
+// The geometry quadtree (thesis ch. 4, figs 4.1-4.3): one region quadtree over all segments and one
+// per curve, with closest-point, point-in-domain and move-crosses-boundary queries.
+#include "geometry/geometry_tree.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "core/errors.hpp"
+#include "core/predicates.hpp"
+
+namespace pdmesh {
+
+// ---------------------------------------------------------------------------------------------
+// Per-segment primitives (shared with the brute-force oracle).
+
+bool point_on_segment(Vec2 p, Vec2 a, Vec2 b) {
+  if (p.x < std::fmin(a.x, b.x) || p.x > std::fmax(a.x, b.x)) return false;
+  if (p.y < std::fmin(a.y, b.y) || p.y > std::fmax(a.y, b.y)) return false;
+  return orient2d(a, b, p) == 0.0;
+}
+
+ClosestHit closest_on_segment(Vec2 p, const Segment& s, int index) {
+  const Vec2 ab = s.b - s.a;
+  const double len2 = norm2(ab);
+  double t = len2 > 0.0 ? dot(p - s.a, ab) / len2 : 0.0;
+  t = std::clamp(t, 0.0, 1.0);
+  const Vec2 q = t == 0.0 ? s.a : t == 1.0 ? s.b : s.a + t * ab;
+  ClosestHit hit{index, q, norm(p - q), t};
+  // The projection rounds, so a point exactly on the segment would get a distance of a few ulps.
+  // Snap it to exactly 0 (decided by the exact predicate) so that "on the boundary" means d == 0.
+  if (hit.distance != 0.0) {
+    const double scale = std::fmax(std::fmax(std::fabs(p.x), std::fabs(p.y)),
+                                   std::fmax(std::fmax(std::fabs(s.a.x), std::fabs(s.a.y)),
+                                             std::fmax(std::fabs(s.b.x), std::fabs(s.b.y))));
+    if (hit.distance <= 1e-12 * scale && point_on_segment(p, s.a, s.b)) {
+      hit.point = p;
+      hit.distance = 0.0;
+    }
+  }
+  return hit;
+}
+
+int ray_crossing(Vec2 p, Vec2 a, Vec2 b, RayDirection direction) {
+  if (point_on_segment(p, a, b)) return 2;
+  const bool a_above = a.y > p.y;
+  const bool b_above = b.y > p.y;
+  if (a_above == b_above) return 0;
+  // The segment spans p.y and p is not on it, so orient2d is non-zero. p left of an upward segment
+  // (or right of a downward one) means the segment crosses the row to the right of p.
+  const double o = orient2d(a, b, p);
+  const bool crosses_right_of_p = b_above ? o > 0.0 : o < 0.0;
+  return crosses_right_of_p == (direction == RayDirection::PlusX) ? 1 : 0;
+}
+
+bool move_touches_segment(Vec2 a, Vec2 b, Vec2 c, Vec2 d) {
+  if (!segments_intersect(a, b, c, d)) return false;
+  if (!point_on_segment(a, c, d)) return true;  // they meet, and not at a
+  if (a == b) return false;
+  if (orient2d(c, d, b) != 0.0) return false;  // different lines through a: they meet only at a
+  // Collinear and a lies on cd: cd goes on beyond a towards b iff one of its ends lies on b's side.
+  // For collinear points the side is decided exactly by comparing one coordinate.
+  const auto towards_b = [&](Vec2 e) {
+    if (b.x != a.x) return e.x != a.x && (e.x > a.x) == (b.x > a.x);
+    return e.y != a.y && (e.y > a.y) == (b.y > a.y);
+  };
+  return towards_b(c) || towards_b(d);
+}
+
+bool segment_touches_box(Vec2 a, Vec2 b, const Box& box) {
+  if (std::fmax(a.x, b.x) < box.lo.x || std::fmin(a.x, b.x) > box.hi.x) return false;
+  if (std::fmax(a.y, b.y) < box.lo.y || std::fmin(a.y, b.y) > box.hi.y) return false;
+  // Bounding boxes overlap; the segment misses the box only if its line has all four corners
+  // strictly on one side.
+  const double o[4] = {orient2d(a, b, box.lo), orient2d(a, b, {box.hi.x, box.lo.y}),
+                       orient2d(a, b, box.hi), orient2d(a, b, {box.lo.x, box.hi.y})};
+  const bool all_pos = o[0] > 0 && o[1] > 0 && o[2] > 0 && o[3] > 0;
+  const bool all_neg = o[0] < 0 && o[1] < 0 && o[2] < 0 && o[3] < 0;
+  return !(all_pos || all_neg);
+}
+
+// ---------------------------------------------------------------------------------------------
+// The quadtree.
+
+namespace {
+
+struct Node {
+  Box box;      // the quadrant
+  Box content;  // box ∩ bounding box of its segments: a tighter lower bound for closest()
+  int first_child = -1;  // children are first_child .. first_child + 3; -1 for a leaf
+  int begin = 0;         // leaf: its segment ids are items[begin, begin + count)
+  int count = 0;
+  int depth = 0;
+};
+
+double box_distance(Vec2 p, const Box& b) {
+  const double dx = std::fmax(std::fmax(b.lo.x - p.x, p.x - b.hi.x), 0.0);
+  const double dy = std::fmax(std::fmax(b.lo.y - p.y, p.y - b.hi.y), 0.0);
+  return std::sqrt(dx * dx + dy * dy);
+}
+
+// A square box around the given segments (square so that leaves stay square, whatever the
+// aspect ratio of the geometry), never smaller than their bounding box despite rounding.
+Box square_box(const std::vector<Segment>& segments, const std::vector<int>& ids) {
+  Box b;
+  for (const int id : ids) {
+    b.add(segments[id].a);
+    b.add(segments[id].b);
+  }
+  const Vec2 c = b.centre();
+  const double half = 0.5 * std::fmax(b.width(), b.height());
+  Box s;
+  s.lo = {std::fmin(c.x - half, b.lo.x), std::fmin(c.y - half, b.lo.y)};
+  s.hi = {std::fmax(c.x + half, b.hi.x), std::fmax(c.y + half, b.hi.y)};
+  return s;
+}
+
+class Quadtree {
+ public:
+  Quadtree(const std::vector<Segment>& segments, std::vector<int> ids) : segments_(&segments) {
+    if (ids.empty()) return;
+    nodes_.push_back(Node{square_box(segments, ids), Box{}, -1, 0, 0, 0});
+    bounds_ = Box{};
+    for (const int id : ids) {
+      bounds_.add(segments[id].a);
+      bounds_.add(segments[id].b);
+    }
+    build(0, std::move(ids));
+    const Box& r = nodes_[0].box;
+    slack_ = 1e-12 * std::fmax(r.width(), r.height());
+  }
+
+  bool empty() const { return nodes_.empty(); }
+  const Box& root_box() const { return nodes_[0].box; }
+  const Box& bounds() const { return bounds_; }
+
+  ClosestHit closest(Vec2 p) const {
+    ClosestHit best;
+    best.distance = std::numeric_limits<double>::infinity();
+    if (nodes_.empty()) return ClosestHit{};
+    // Best-first: nodes are popped in order of their box distance, so the search stops at the
+    // first node farther than the best hit and never descends into a far subtree first. The heap
+    // lives in a thread-local buffer to avoid an allocation per query.
+    thread_local std::vector<std::pair<double, int>> heap;
+    heap.clear();
+    const auto farther = [](const std::pair<double, int>& x, const std::pair<double, int>& y) {
+      return x.first > y.first;
+    };
+    heap.push_back({box_distance(p, nodes_[0].content), 0});
+    while (!heap.empty()) {
+      std::pop_heap(heap.begin(), heap.end(), farther);
+      const auto [d, n] = heap.back();
+      heap.pop_back();
+      if (d > bound(best.distance)) break;
+      const Node& node = nodes_[n];
+      if (node.first_child < 0) {
+        for (int i = node.begin; i < node.begin + node.count; ++i) {
+          const int id = items_[i];
+          const ClosestHit h = closest_on_segment(p, (*segments_)[id], id);
+          if (h.distance < best.distance || (h.distance == best.distance && id < best.segment)) best = h;
+        }
+        continue;
+      }
+      for (int c = node.first_child; c < node.first_child + 4; ++c) {
+        const Node& kid = nodes_[c];
+        if (kid.first_child < 0 && kid.count == 0) continue;  // empty leaf
+        const double kd = box_distance(p, kid.content);
+        if (kd <= bound(best.distance)) {
+          heap.push_back({kd, c});
+          std::push_heap(heap.begin(), heap.end(), farther);
+        }
+      }
+    }
+    return best;
+  }
+
+  // Calls visit(node) for every leaf whose box satisfies wanted(box), stopping when visit returns true.
+  template <class Wanted, class Visit>
+  bool any_leaf(Wanted wanted, Visit visit) const {
+    if (nodes_.empty()) return false;
+    std::array<int, 3 * GeometryTree::kMaxDepth + 8> stack;
+    int top = 0;
+    if (!wanted(nodes_[0].box)) return false;
+    stack[top++] = 0;
+    while (top > 0) {
+      const Node& node = nodes_[stack[--top]];
+      if (node.first_child < 0) {
+        if (visit(node)) return true;
+        continue;
+      }
+      for (int k = 0; k < 4; ++k)
+        if (wanted(nodes_[node.first_child + k].box)) stack[top++] = node.first_child + k;
+    }
+    return false;
+  }
+
+  const std::vector<int>& items() const { return items_; }
+
+  std::vector<Box> leaf_boxes() const {
+    std::vector<Box> out;
+    for (const Node& n : nodes_)
+      if (n.first_child < 0) out.push_back(n.box);
+    return out;
+  }
+
+  GeometryTreeStats stats() const {
+    GeometryTreeStats s;
+    s.nodes = static_cast<int>(nodes_.size());
+    for (const Node& n : nodes_) {
+      if (n.first_child >= 0) continue;
+      ++s.leaves;
+      s.max_depth = std::max(s.max_depth, n.depth);
+      s.stored_segments += n.count;
+    }
+    return s;
+  }
+
+ private:
+  // Candidates within a small relative and absolute slack of the best distance are still visited,
+  // so that rounding in box_distance can never hide an exactly tied segment with a lower index.
+  double bound(double best) const { return best * (1.0 + 1e-9) + slack_; }
+
+  void build(int n, std::vector<int> ids) {
+    const Box box = nodes_[n].box;
+    const int depth = nodes_[n].depth;
+    if (static_cast<int>(ids.size()) <= GeometryTree::kLeafCapacity || depth >= GeometryTree::kMaxDepth) {
+      make_leaf(n, ids);
+      return;
+    }
+    const Vec2 c = box.centre();
+    const Box kid_boxes[4] = {Box{box.lo, c}, Box{{c.x, box.lo.y}, {box.hi.x, c.y}},
+                              Box{{box.lo.x, c.y}, {c.x, box.hi.y}}, Box{c, box.hi}};
+    std::vector<int> kid_ids[4];
+    for (int k = 0; k < 4; ++k)
+      for (const int id : ids)
+        if (segment_touches_box((*segments_)[id].a, (*segments_)[id].b, kid_boxes[k])) kid_ids[k].push_back(id);
+    // Many segments meeting at one vertex on the child corner go to every child: splitting then
+    // never helps, so keep the node a leaf.
+    bool reduces = false;
+    for (const auto& k : kid_ids) reduces = reduces || k.size() < ids.size();
+    if (!reduces) {
+      make_leaf(n, ids);
+      return;
+    }
+    const int first = static_cast<int>(nodes_.size());
+    nodes_[n].first_child = first;
+    for (int k = 0; k < 4; ++k) nodes_.push_back(Node{kid_boxes[k], Box{}, -1, 0, 0, depth + 1});
+    for (int k = 0; k < 4; ++k) {
+      if (kid_ids[k].size() == ids.size()) {
+        make_leaf(first + k, kid_ids[k]);  // this child would not shrink either
+      } else {
+        build(first + k, std::move(kid_ids[k]));
+      }
+      const Box& kid = nodes_[first + k].content;
+      if (kid.lo.x <= kid.hi.x) {
+        nodes_[n].content.add(kid.lo);
+        nodes_[n].content.add(kid.hi);
+      }
+    }
+  }
+
+  void make_leaf(int n, const std::vector<int>& ids) {
+    nodes_[n].begin = static_cast<int>(items_.size());
+    nodes_[n].count = static_cast<int>(ids.size());
+    items_.insert(items_.end(), ids.begin(), ids.end());
+    Box bb;
+    for (const int id : ids) {
+      bb.add((*segments_)[id].a);
+      bb.add((*segments_)[id].b);
+    }
+    const Box& q = nodes_[n].box;
+    if (!ids.empty())
+      nodes_[n].content = Box{{std::fmax(bb.lo.x, q.lo.x), std::fmax(bb.lo.y, q.lo.y)},
+                              {std::fmin(bb.hi.x, q.hi.x), std::fmin(bb.hi.y, q.hi.y)}};
+  }
+
+  const std::vector<Segment>* segments_;
+  std::vector<Node> nodes_;
+  std::vector<int> items_;
+  Box bounds_;
+  double slack_ = 0.0;
+};
+
+}  // namespace
+
+struct GeometryTree::Impl {
+  Quadtree all;
+  std::vector<Quadtree> per_curve;
+};
+
+namespace {
+
+std::vector<int> all_ids(std::size_t n) {
+  std::vector<int> ids(n);
+  for (std::size_t i = 0; i < n; ++i) ids[i] = static_cast<int>(i);
+  return ids;
+}
+
+}  // namespace
+
+GeometryTree::GeometryTree(const Geometry& geometry) : geometry_(geometry) {
+  const auto& segs = geometry.segments;
+  const int curves = static_cast<int>(geometry.curves.size());
+  std::vector<std::vector<int>> by_curve(curves);
+  for (std::size_t i = 0; i < segs.size(); ++i) {
+    const Segment& s = segs[i];
+    if (s.curve < 0 || s.curve >= curves)
+      throw GeometryError("geometry tree: segment " + std::to_string(i) + " names curve " + std::to_string(s.curve) +
+                          " but the geometry has " + std::to_string(curves) + " curves");
+    if (!std::isfinite(s.a.x) || !std::isfinite(s.a.y) || !std::isfinite(s.b.x) || !std::isfinite(s.b.y))
+      throw GeometryError("geometry tree: segment " + std::to_string(i) + " of curve " + std::to_string(s.curve) +
+                          " has a non-finite end point");
+    by_curve[s.curve].push_back(static_cast<int>(i));
+  }
+  impl_ = std::make_unique<Impl>(Impl{Quadtree(segs, all_ids(segs.size())), {}});
+  impl_->per_curve.reserve(curves);
+  for (int c = 0; c < curves; ++c) impl_->per_curve.emplace_back(segs, std::move(by_curve[c]));
+}
+
+GeometryTree::~GeometryTree() = default;
+
+ClosestHit GeometryTree::closest(Vec2 p) const { return impl_->all.closest(p); }
+
+ClosestHit GeometryTree::closest_on_curve(Vec2 p, int curve) const {
+  if (curve < 0 || curve >= static_cast<int>(impl_->per_curve.size()))
+    throw std::out_of_range("GeometryTree::closest_on_curve: no curve " + std::to_string(curve));
+  return impl_->per_curve[curve].closest(p);
+}
+
+void GeometryTree::closest_per_curve(Vec2 p, std::vector<ClosestHit>& out) const {
+  out.resize(impl_->per_curve.size());
+  for (std::size_t c = 0; c < out.size(); ++c) out[c] = impl_->per_curve[c].closest(p);
+}
+
+bool GeometryTree::inside(Vec2 p) const {
+  const Quadtree& tree = impl_->all;
+  // Segments straddling several leaves along the ray must be counted once: gather, sort, unique.
+  thread_local std::vector<int> candidates;
+  candidates.clear();
+  if (tree.empty()) return false;
+  // Cast the ray towards the nearer side of the root box: fewer leaves to visit. With the
+  // half-open rule both directions give the same parity (every closed loop crosses the whole row
+  // an even number of times), which the brute-force tests (always +x) check.
+  const Box& root = tree.root_box();
+  const RayDirection dir = p.x - root.lo.x < root.hi.x - p.x ? RayDirection::MinusX : RayDirection::PlusX;
+  const auto on_ray = [p, dir](const Box& b) {
+    return b.lo.y <= p.y && p.y <= b.hi.y && (dir == RayDirection::PlusX ? p.x <= b.hi.x : b.lo.x <= p.x);
+  };
+  tree.any_leaf(on_ray, [&](const auto& leaf) {
+    candidates.insert(candidates.end(), tree.items().begin() + leaf.begin,
+                      tree.items().begin() + leaf.begin + leaf.count);
+    return false;
+  });
+  std::sort(candidates.begin(), candidates.end());
+  candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
+  bool in = false;
+  for (const int id : candidates) {
+    const Segment& s = geometry_.segments[id];
+    const int r = ray_crossing(p, s.a, s.b, dir);
+    if (r == 2) return true;
+    if (r == 1) in = !in;
+  }
+  return in;
+}
+
+bool GeometryTree::crosses_boundary(Vec2 a, Vec2 b) const {
+  const Quadtree& tree = impl_->all;
+  return tree.any_leaf([&](const Box& box) { return segment_touches_box(a, b, box); },
+                       [&](const auto& leaf) {
+                         for (int i = leaf.begin; i < leaf.begin + leaf.count; ++i) {
+                           const Segment& s = geometry_.segments[tree.items()[i]];
+                           if (move_touches_segment(a, b, s.a, s.b)) return true;
+                         }
+                         return false;
+                       });
+}
+
+std::vector<Box> GeometryTree::leaf_boxes() const { return impl_->all.leaf_boxes(); }
+
+Box GeometryTree::curve_box(int curve) const {
+  if (curve < 0 || curve >= static_cast<int>(impl_->per_curve.size()))
+    throw std::out_of_range("GeometryTree::curve_box: no curve " + std::to_string(curve));
+  return impl_->per_curve[curve].bounds();
+}
+
+GeometryTreeStats GeometryTree::stats() const { return impl_->all.stats(); }
+
+}  // namespace pdmesh

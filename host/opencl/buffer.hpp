@@ -1,0 +1,63 @@
+// A typed, named device buffer (RAII through cl::Buffer). Uploads and downloads check sizes and
+// every error names the buffer, so a failure reads "download of 'forces' failed: CL_OUT_OF_RESOURCES (-5)".
+#pragma once
+#include <string>
+#include <vector>
+
+#include <fmt/format.h>
+
+#include "core/errors.hpp"
+#include "opencl/cl_errors.hpp"
+#include "opencl/context.hpp"
+
+namespace pdmesh::ocl {
+
+template <typename T>
+class Buffer {
+ public:
+  Buffer() = default;
+  Buffer(Context& ctx, std::string name, std::size_t count, cl_mem_flags flags = CL_MEM_READ_WRITE)
+      : name_(std::move(name)), count_(count) {
+    cl_int err = CL_SUCCESS;
+    // A zero-sized cl::Buffer is invalid; keep one element so kernels always get a valid pointer.
+    std::size_t bytes = sizeof(T) * (count_ ? count_ : 1);
+    if (bytes > ctx.device().max_allocation)
+      throw DeviceError(fmt::format("buffer '{}' needs {} bytes, more than the device's largest allocation ({} bytes) "
+                                    "on {}: use fewer nodes or --precision float",
+                                    name_, bytes, ctx.device().max_allocation, ctx.device().name));
+    buffer_ = cl::Buffer(ctx.context(), flags, bytes, nullptr, &err);
+    check(err, fmt::format("allocating buffer '{}' ({} bytes)", name_, bytes));
+  }
+
+  const std::string& name() const { return name_; }
+  std::size_t size() const { return count_; }
+  std::size_t bytes() const { return sizeof(T) * count_; }
+  cl::Buffer& get() { return buffer_; }
+
+  void upload(cl::CommandQueue& q, const std::vector<T>& host, bool blocking = true) {
+    upload(q, host.data(), host.size(), blocking);
+  }
+  void upload(cl::CommandQueue& q, const T* data, std::size_t count, bool blocking = true) {
+    if (count > count_)
+      throw DeviceError(fmt::format("upload of {} elements into buffer '{}' of {}", count, name_, count_));
+    if (count == 0) return;
+    check(q.enqueueWriteBuffer(buffer_, blocking ? CL_TRUE : CL_FALSE, 0, sizeof(T) * count, data),
+          fmt::format("upload to '{}'", name_));
+  }
+  void download(cl::CommandQueue& q, std::vector<T>& host, std::size_t count) {
+    if (count > count_)
+      throw DeviceError(fmt::format("download of {} elements from buffer '{}' of {}", count, name_, count_));
+    host.resize(count);
+    if (count == 0) return;
+    check(q.enqueueReadBuffer(buffer_, CL_TRUE, 0, sizeof(T) * count, host.data()),
+          fmt::format("download from '{}'", name_));
+  }
+  void download(cl::CommandQueue& q, std::vector<T>& host) { download(q, host, count_); }
+
+ private:
+  std::string name_;
+  std::size_t count_ = 0;
+  cl::Buffer buffer_;
+};
+
+}  // namespace pdmesh::ocl

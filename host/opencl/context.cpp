@@ -1,0 +1,77 @@
+// OpenCL context, queue, program builder (shared defines + common.cl + embedded kernels) and launch helper.
+#include "opencl/context.hpp"
+
+#include <fmt/format.h>
+
+#include "core/embedded_kernels.hpp"
+#include "core/errors.hpp"
+#include "opencl/cl_errors.hpp"
+
+namespace pdmesh::ocl {
+
+Context::Context(const DeviceInfo& device) : device_(device) {
+  cl_int err = CL_SUCCESS;
+  context_ = cl::Context(device_.handle, nullptr, nullptr, nullptr, &err);
+  check(err, fmt::format("clCreateContext on {}", device_.name));
+  queue_ = cl::CommandQueue(context_, device_.handle, 0, &err);
+  check(err, fmt::format("clCreateCommandQueue on {}", device_.name));
+}
+
+const std::string& kernel_source(const std::string& file) {
+  for (const auto& k : embedded_kernels())
+    if (k.file == file) return k.source;
+  throw DeviceError(fmt::format("kernel file '{}' is not embedded in this binary", file));
+}
+
+std::map<std::string, std::string> precision_defines(Precision precision, std::size_t work_group) {
+  const bool dbl = precision == Precision::Double;
+  // emplace from literals: GCC 12 warns falsely (-Wrestrict) on operator= of a ternary of literals.
+  std::map<std::string, std::string> d;
+  d.emplace("REAL", dbl ? "double" : "float");
+  d.emplace("REAL2", dbl ? "double2" : "float2");
+  d.emplace("PDMESH_DOUBLE", dbl ? "1" : "0");
+  d.emplace("WG_SIZE", std::to_string(work_group));
+  return d;
+}
+
+cl::Program Context::build(const std::vector<std::string>& files, const std::map<std::string, std::string>& defines,
+                           const std::string& extra_options) {
+  std::string source;
+  for (const auto& [name, value] : defines) source += fmt::format("#define {} {}\n", name, value);
+  if (defines.count("PDMESH_DOUBLE") && defines.at("PDMESH_DOUBLE") == "1")
+    source += "#pragma OPENCL EXTENSION cl_khr_fp64 : enable\n";
+  source += kernel_source("common.cl");
+  std::string label = "common.cl";
+  for (const auto& f : files) {
+    source += fmt::format("\n// ---- {} ----\n", f);
+    source += kernel_source(f);
+    label += ", " + f;
+  }
+  std::string options = "-cl-std=CL1.2";
+  if (!extra_options.empty()) options += " " + extra_options;
+  return build_source(label, source, options);
+}
+
+cl::Program Context::build_source(const std::string& label, const std::string& source, const std::string& options) {
+  cl_int err = CL_SUCCESS;
+  cl::Program program(context_, source, false, &err);
+  check(err, fmt::format("clCreateProgramWithSource({})", label));
+  err = program.build(std::vector<cl::Device>{device_.handle}, options.c_str());
+  if (err != CL_SUCCESS) {
+    std::string log;
+    program.getBuildInfo(device_.handle, CL_PROGRAM_BUILD_LOG, &log);
+    throw DeviceError(fmt::format("building OpenCL program from {} with options '{}' failed: {} ({})\nbuild log:\n{}",
+                                  label, options, error_name(err), err, log.c_str()));
+  }
+  return program;
+}
+
+void launch(cl::CommandQueue& queue, cl::Kernel& kernel, const std::string& name, std::size_t count,
+            std::size_t local) {
+  if (count == 0) return;
+  std::size_t global = (count + local - 1) / local * local;
+  check(queue.enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange(global), cl::NDRange(local)),
+        fmt::format("enqueue '{}' ({} work-items, local size {})", name, global, local));
+}
+
+}  // namespace pdmesh::ocl

@@ -1,0 +1,49 @@
+// One OpenCL device in use: its context, in-order queue and capabilities, plus the program builder
+// that prepends pdmesh's shared defines to the embedded kernels/*.cl sources.
+#pragma once
+#include <map>
+#include <string>
+#include <vector>
+
+#include "opencl/cl_include.hpp"
+#include "opencl/devices.hpp"
+
+namespace pdmesh::ocl {
+
+enum class Precision { Double, Float };
+
+class Context {
+ public:
+  explicit Context(const DeviceInfo& device);
+
+  const DeviceInfo& device() const { return device_; }
+  cl::Context& context() { return context_; }
+  cl::CommandQueue& queue() { return queue_; }
+
+  // Builds kernels/common.cl followed by the named kernels/*.cl files (embedded at build time), with
+  // "#define NAME VALUE" lines for every entry of `defines` prepended, and -cl-std=CL1.2.
+  // Throws DeviceError naming the files, the options and the build log on failure.
+  cl::Program build(const std::vector<std::string>& files, const std::map<std::string, std::string>& defines,
+                    const std::string& extra_options = "");
+
+  // Builds a program from literal source text (for tests of the builder itself).
+  cl::Program build_source(const std::string& label, const std::string& source, const std::string& options);
+
+ private:
+  DeviceInfo device_;
+  cl::Context context_;
+  cl::CommandQueue queue_;
+};
+
+// The text of one embedded kernel file; throws DeviceError if it was not embedded.
+const std::string& kernel_source(const std::string& file);
+
+// "#define REAL double" etc.: the common defines for a precision and work-group size.
+std::map<std::string, std::string> precision_defines(Precision precision, std::size_t work_group);
+
+// Runs `kernel` over `count` work-items in groups of `local` (the global size is rounded up to a multiple
+// of `local`; kernels skip the extra items). Errors name the kernel.
+void launch(cl::CommandQueue& queue, cl::Kernel& kernel, const std::string& name, std::size_t count,
+            std::size_t local);
+
+}  // namespace pdmesh::ocl

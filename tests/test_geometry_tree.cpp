@@ -1,0 +1,292 @@
+// GeometryTree against the brute-force oracle (thousands of seeded queries per geometry, including
+// points exactly on segments, at vertices, on vertex rows and far away), and the oracle itself
+// against closed forms.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "core/errors.hpp"
+#include "geometry/brute_force_queries.hpp"
+#include "geometry/geometry_tree.hpp"
+#include "geometry_fixtures.hpp"
+
+using namespace pdmesh;
+using fixtures::unit;
+
+namespace {
+
+struct Named {
+  std::string name;
+  Geometry geometry;
+};
+
+std::vector<Named> all_geometries() {
+  return {{"circle in circle", fixtures::circle_in_circle()},
+          {"square with hole", fixtures::square_with_hole()},
+          {"jagged 1501", fixtures::jagged_polygon(1501, 7)},
+          {"multiscale", fixtures::multiscale()}};
+}
+
+// Query points of every awkward kind, seeded: uniform around the extents, exactly at vertices,
+// on segments (exactly where the segment is axis-aligned), on the horizontal row of a vertex
+// (the crossing-number corner case), just off vertices, near the tiny features, and far away.
+Vec2 query_point(const Geometry& g, std::mt19937_64& rng) {
+  const Box& e = g.extents;
+  const double diag = e.diagonal();
+  const Segment& s = g.segments[rng() % g.segments.size()];
+  const double t = unit(rng);
+  switch (rng() % 8) {
+    case 0:
+    case 1:
+      return {e.lo.x - 0.2 * e.width() + 1.4 * e.width() * unit(rng),
+              e.lo.y - 0.2 * e.height() + 1.4 * e.height() * unit(rng)};
+    case 2:
+      return (rng() & 1) ? s.a : s.b;
+    case 3:
+      if (s.a.y == s.b.y) return {s.a.x + t * (s.b.x - s.a.x), s.a.y};
+      if (s.a.x == s.b.x) return {s.a.x, s.a.y + t * (s.b.y - s.a.y)};
+      return s.a + t * (s.b - s.a);
+    case 4:
+      return {e.lo.x - 0.2 * e.width() + 1.4 * e.width() * unit(rng), s.a.y};
+    case 5:
+      return s.a + Vec2{(unit(rng) - 0.5) * 1e-9 * diag, (unit(rng) - 0.5) * 1e-9 * diag};
+    case 6:
+      return s.a + Vec2{(unit(rng) - 0.5) * 4 * s.length, (unit(rng) - 0.5) * 4 * s.length};
+    default:
+      return {(unit(rng) - 0.5) * 2e6 * diag, (unit(rng) - 0.5) * 2e6 * diag};
+  }
+}
+
+void require_same(const ClosestHit& tree, const ClosestHit& brute, Vec2 p) {
+  INFO("query (" << p.x << ", " << p.y << ") tree segment " << tree.segment << " at " << tree.distance
+                 << ", brute force segment " << brute.segment << " at " << brute.distance);
+  REQUIRE(tree.segment == brute.segment);
+  REQUIRE(tree.distance == brute.distance);
+  REQUIRE(tree.point == brute.point);
+  REQUIRE(tree.t == brute.t);
+}
+
+}  // namespace
+
+TEST_CASE("GeometryTree queries equal brute force", "[tree]") {
+  for (const Named& n : all_geometries()) {
+    SECTION(n.name) {
+      const Geometry& g = n.geometry;
+      const GeometryTree tree(g);
+      const int curves = static_cast<int>(g.curves.size());
+      std::mt19937_64 rng(20240607);
+      std::vector<ClosestHit> per_tree, per_brute;
+      int inside_count = 0, crossing_count = 0;
+      for (int i = 0; i < 4000; ++i) {
+        const Vec2 p = query_point(g, rng);
+        require_same(tree.closest(p), brute_force::closest(g, p), p);
+        const int c = static_cast<int>(rng() % curves);
+        require_same(tree.closest_on_curve(p, c), brute_force::closest_on_curve(g, p, c), p);
+        tree.closest_per_curve(p, per_tree);
+        brute_force::closest_per_curve(g, p, per_brute);
+        REQUIRE(per_tree.size() == per_brute.size());
+        for (int k = 0; k < curves; ++k) require_same(per_tree[k], per_brute[k], p);
+        const bool in = tree.inside(p);
+        INFO("inside query (" << p.x << ", " << p.y << ")");
+        REQUIRE(in == brute_force::inside(g, p));
+        inside_count += in;
+        const Vec2 q = (rng() & 1) ? query_point(g, rng) : p + (0.5 + unit(rng)) * (query_point(g, rng) - p) * 0.01;
+        const bool crosses = tree.crosses_boundary(p, q);
+        INFO("move to (" << q.x << ", " << q.y << ")");
+        REQUIRE(crosses == brute_force::crosses_boundary(g, p, q));
+        crossing_count += crosses;
+      }
+      // The mix exercises both answers of each yes/no query.
+      CHECK(inside_count > 400);
+      CHECK(inside_count < 3600);
+      CHECK(crossing_count > 400);
+      CHECK(crossing_count < 3600);
+    }
+  }
+}
+
+TEST_CASE("GeometryTree: every point on the boundary is inside", "[tree]") {
+  for (const Named& n : all_geometries()) {
+    const Geometry& g = n.geometry;
+    const GeometryTree tree(g);
+    INFO(n.name);
+    for (std::size_t i = 0; i < g.segments.size(); ++i) {
+      const Segment& s = g.segments[i];
+      REQUIRE(tree.inside(s.a));
+      REQUIRE(tree.inside(s.b));
+      REQUIRE(tree.closest(s.a).distance == 0.0);
+      if (s.a.y == s.b.y || s.a.x == s.b.x) {
+        const Vec2 mid = 0.5 * (s.a + s.b);  // exact for axis-aligned segments
+        REQUIRE(tree.inside(mid));
+        REQUIRE(tree.closest(mid).distance == 0.0);
+      }
+    }
+  }
+}
+
+TEST_CASE("Brute force matches closed forms on the square with a hole", "[tree]") {
+  const Geometry g = fixtures::square_with_hole();
+  const GeometryTree tree(g);
+  std::mt19937_64 rng(42);
+  for (int i = 0; i < 3000; ++i) {
+    // Coordinates on a 1/1024 grid offset by 1/2048 never lie on the boundary lines 0, 1.5, 2.5, 4.
+    const Vec2 p{-1 + (static_cast<int>(rng() % 6144) + 0.5) / 1024.0, -1 + (static_cast<int>(rng() % 6144) + 0.5) / 1024.0};
+    const bool in_outer = p.x > 0 && p.x < 4 && p.y > 0 && p.y < 4;
+    const bool in_hole = p.x > 1.5 && p.x < 2.5 && p.y > 1.5 && p.y < 2.5;
+    INFO("p = (" << p.x << ", " << p.y << ")");
+    REQUIRE(brute_force::inside(g, p) == (in_outer && !in_hole));
+    // Distance to the outer square boundary (point inside or outside it), and to the hole.
+    const auto box_boundary_distance = [](Vec2 q, double lo, double hi) {
+      const double dx = std::fmax(std::fmax(lo - q.x, q.x - hi), 0.0), dy = std::fmax(std::fmax(lo - q.y, q.y - hi), 0.0);
+      if (dx > 0 || dy > 0) return std::hypot(dx, dy);
+      return std::fmin(std::fmin(q.x - lo, hi - q.x), std::fmin(q.y - lo, hi - q.y));
+    };
+    const double expected = std::fmin(box_boundary_distance(p, 0, 4), box_boundary_distance(p, 1.5, 2.5));
+    REQUIRE(brute_force::closest(g, p).distance == Approx(expected).epsilon(1e-14));
+    REQUIRE(brute_force::closest_on_curve(g, p, 1).distance == Approx(box_boundary_distance(p, 1.5, 2.5)).epsilon(1e-14));
+  }
+}
+
+TEST_CASE("Crossing number counts a vertex on the ray once", "[tree]") {
+  // Diamond: the ray from the centre passes exactly through the right vertex (1, 0), and the ray from
+  // (-2, 0) passes through both side vertices: exactly once each.
+  const Geometry g = fixtures::make_geometry({{{1, 0}, {0, 1}, {-1, 0}, {0, -1}, {1, 0}}});
+  const GeometryTree tree(g);
+  CHECK(tree.inside({0, 0}));
+  CHECK(brute_force::inside(g, {0, 0}));
+  CHECK_FALSE(tree.inside({-2, 0}));
+  CHECK_FALSE(tree.inside({2, 0}));
+  CHECK(tree.inside({0.5, 0.5}));  // on an edge
+  CHECK(tree.inside({-1, 0}));     // a vertex
+  CHECK_FALSE(tree.inside({0.5, 0.5 + 1e-16}));
+  // A horizontal edge on the ray row: the U-shape (0,0)-(3,0)-(3,2)-(2,2)-(2,1)-(1,1)-(1,2)-(0,2).
+  const Geometry u = fixtures::make_geometry({{{0, 0}, {3, 0}, {3, 2}, {2, 2}, {2, 1}, {1, 1}, {1, 2}, {0, 2}, {0, 0}}});
+  const GeometryTree ut(u);
+  CHECK(ut.inside({0.5, 1}));
+  CHECK(ut.inside({1.5, 1}));  // on the horizontal edge
+  CHECK_FALSE(ut.inside({1.5, 1.5}));
+  CHECK(ut.inside({2.5, 1}));
+  CHECK_FALSE(ut.inside({-0.5, 1}));
+  CHECK(ut.inside({0.5, 2}));  // on the top edge
+  CHECK_FALSE(ut.inside({1.5, 2}));
+}
+
+TEST_CASE("crosses_boundary by hand", "[tree]") {
+  const Geometry g = fixtures::square_with_hole();  // [0,4]^2 minus [1.5,2.5]^2
+  const GeometryTree tree(g);
+  CHECK_FALSE(tree.crosses_boundary({0.5, 0.5}, {1.0, 1.0}));
+  CHECK(tree.crosses_boundary({0.5, 0.5}, {-1.0, 0.5}));   // leaves through the outer square
+  CHECK(tree.crosses_boundary({0.5, 0.5}, {0.0, 0.5}));    // ends on the boundary: touches
+  CHECK(tree.crosses_boundary({1.0, 2.0}, {3.0, 2.0}));    // through the hole
+  CHECK(tree.crosses_boundary({1.0, 1.0}, {3.0, 3.0}));    // through the hole's corners
+  CHECK(tree.crosses_boundary({1.0, 1.5}, {2.0, 1.5}));    // along the hole's edge
+  CHECK_FALSE(tree.crosses_boundary({0.0, 0.5}, {0.5, 0.5}));  // starts on the boundary, moves in
+  CHECK_FALSE(tree.crosses_boundary({0.0, 0.0}, {0.5, 0.5}));  // starts at a corner, moves in
+  CHECK(tree.crosses_boundary({0.0, 0.5}, {0.0, 0.7}));    // slides along the boundary
+  // Leaves straight out from a boundary point: it meets the boundary only at a, which is allowed;
+  // callers detect this by inside(b).
+  CHECK_FALSE(tree.crosses_boundary({0.0, 0.5}, {-0.5, 0.5}));
+  CHECK_FALSE(tree.inside({-0.5, 0.5}));
+  CHECK_FALSE(tree.crosses_boundary({0.5, 0.5}, {0.5, 0.5}));  // no move
+  CHECK_FALSE(tree.crosses_boundary({0.0, 4.0}, {0.0, 5.0}));  // from the corner away along the side's line
+  CHECK(tree.crosses_boundary({0.0, 4.0}, {0.0, 3.0}));    // from the corner along the side
+}
+
+TEST_CASE("GeometryTree shape and leaf boxes", "[tree]") {
+  for (const Named& n : all_geometries()) {
+    const Geometry& g = n.geometry;
+    const GeometryTree tree(g);
+    INFO(n.name);
+    const GeometryTreeStats s = tree.stats();
+    CHECK(s.max_depth <= GeometryTree::kMaxDepth);
+    CHECK(s.leaves == static_cast<int>(tree.leaf_boxes().size()));
+    CHECK(s.nodes == 1 + 4 * ((s.leaves - 1) / 3));
+    CHECK(s.stored_segments >= static_cast<int>(g.segments.size()));
+    // Every segment end point lies in some leaf box; leaves tile the root without overlap of area.
+    double area = 0;
+    Box root;
+    for (const Box& b : tree.leaf_boxes()) {
+      area += b.width() * b.height();
+      root.add(b.lo);
+      root.add(b.hi);
+    }
+    CHECK(area == Approx(root.width() * root.height()).epsilon(1e-9));
+    for (const Segment& seg : g.segments) CHECK(root.contains(seg.a));
+    for (int c = 0; c < static_cast<int>(g.curves.size()); ++c) {
+      Box expected;
+      for (const Vec2 p : g.curves[c].points) expected.add(p);
+      const Box got = tree.curve_box(c);
+      CHECK((got.lo == expected.lo && got.hi == expected.hi));
+    }
+  }
+}
+
+TEST_CASE("GeometryTree edge cases", "[tree]") {
+  SECTION("many segments meeting at the root centre") {
+    // A fan of 24 segments from the centre of a square: splitting cannot separate them there.
+    std::vector<std::vector<Vec2>> fan;
+    for (int i = 0; i < 24; ++i) {
+      const double a = 2 * M_PI * i / 24;
+      fan.push_back({{0, 0}, {std::cos(a), std::sin(a)}});
+    }
+    const Geometry g = fixtures::make_geometry(fan);
+    const GeometryTree tree(g);
+    CHECK(tree.stats().nodes < 2000);
+    std::mt19937_64 rng(3);
+    for (int i = 0; i < 500; ++i) {
+      const Vec2 p = query_point(g, rng);
+      require_same(tree.closest(p), brute_force::closest(g, p), p);
+    }
+    CHECK(tree.closest({0, 0}).segment == 0);  // all 24 tie at distance 0
+  }
+  SECTION("no segments") {
+    const Geometry g;
+    const GeometryTree tree(g);
+    CHECK(tree.closest({1, 2}).segment == -1);
+    CHECK_FALSE(tree.inside({1, 2}));
+    CHECK_FALSE(tree.crosses_boundary({0, 0}, {1, 1}));
+    CHECK(tree.leaf_boxes().empty());
+  }
+  SECTION("bad curve index and bad segment data") {
+    const Geometry g = fixtures::square_with_hole();
+    const GeometryTree tree(g);
+    CHECK_THROWS_AS(tree.closest_on_curve({0, 0}, 2), std::out_of_range);
+    CHECK_THROWS_AS(tree.closest_on_curve({0, 0}, -1), std::out_of_range);
+    Geometry bad = fixtures::square_with_hole();
+    bad.segments[3].curve = 7;
+    CHECK_THROWS_AS(GeometryTree(bad), GeometryError);
+    Geometry nan = fixtures::square_with_hole();
+    nan.segments[5].b.x = std::nan("");
+    CHECK_THROWS_WITH(GeometryTree(nan), Catch::Matchers::Contains("segment 5"));
+  }
+}
+
+TEST_CASE("GeometryTree on a geometry from build_geometry", "[tree]") {
+  // The fixture's curves, validated and processed by build_geometry (joints, loops, critical points).
+  std::vector<RawCurve> raw;
+  for (const Curve& c : fixtures::circle_in_circle().curves) {
+    RawCurve r;
+    r.name = c.name;
+    r.points = c.points;
+    r.file = "fixture";
+    r.line = 1;
+    raw.push_back(r);
+  }
+  const Geometry g = build_geometry(raw);
+  const GeometryTree tree(g);
+  std::mt19937_64 rng(99);
+  std::vector<ClosestHit> per_tree, per_brute;
+  for (int i = 0; i < 3000; ++i) {
+    const Vec2 p = query_point(g, rng);
+    require_same(tree.closest(p), brute_force::closest(g, p), p);
+    tree.closest_per_curve(p, per_tree);
+    brute_force::closest_per_curve(g, p, per_brute);
+    for (std::size_t k = 0; k < per_tree.size(); ++k) require_same(per_tree[k], per_brute[k], p);
+    REQUIRE(tree.inside(p) == brute_force::inside(g, p));
+    // Away from the polygons (which lie within 0.05 of the circles) the annulus 3 < r < 10 decides.
+    const double r = norm(p);
+    if (std::fabs(r - 3) > 0.05 && std::fabs(r - 10) > 0.05) REQUIRE(tree.inside(p) == (r > 3 && r < 10));
+  }
+}
