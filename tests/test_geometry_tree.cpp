@@ -262,3 +262,31 @@ TEST_CASE("GeometryTree edge cases", "[tree]") {
     CHECK_THROWS_WITH(GeometryTree(nan), Catch::Matchers::Contains("segment 5"));
   }
 }
+
+TEST_CASE("GeometryTree on a geometry from build_geometry", "[tree]") {
+  // The fixture's curves, validated and processed by build_geometry (joints, loops, critical points).
+  std::vector<RawCurve> raw;
+  for (const Curve& c : fixtures::circle_in_circle().curves) {
+    RawCurve r;
+    r.name = c.name;
+    r.points = c.points;
+    r.file = "fixture";
+    r.line = 1;
+    raw.push_back(r);
+  }
+  const Geometry g = build_geometry(raw);
+  const GeometryTree tree(g);
+  std::mt19937_64 rng(99);
+  std::vector<ClosestHit> per_tree, per_brute;
+  for (int i = 0; i < 3000; ++i) {
+    const Vec2 p = query_point(g, rng);
+    require_same(tree.closest(p), brute_force::closest(g, p), p);
+    tree.closest_per_curve(p, per_tree);
+    brute_force::closest_per_curve(g, p, per_brute);
+    for (std::size_t k = 0; k < per_tree.size(); ++k) require_same(per_tree[k], per_brute[k], p);
+    REQUIRE(tree.inside(p) == brute_force::inside(g, p));
+    // Away from the polygons (which lie within 0.05 of the circles) the annulus 3 < r < 10 decides.
+    const double r = norm(p);
+    if (std::fabs(r - 3) > 0.05 && std::fabs(r - 10) > 0.05) REQUIRE(tree.inside(p) == (r > 3 && r < 10));
+  }
+}

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "core/errors.hpp"
+#include "geometry/brute_force_queries.hpp"
 #include "geometry_fixtures.hpp"
 #include "spacing/spacing_field.hpp"
 
@@ -56,6 +57,18 @@ TEST_CASE("BoundarySpacing on the boundary is the segment length", "[spacing]") 
   }
 }
 
+TEST_CASE("BoundarySpacing at a joint of two curves is the mean of their segment lengths", "[spacing]") {
+  const Geometry g = fixtures::make_geometry({{{0, 0}, {1, 0}}, {{1, 0}, {1, 3}}});
+  const GeometryTree tree(g);
+  const BoundarySpacing q(tree);
+  CHECK(q.at({1.0, 0.0}) == 2.0);
+  // Just off the joint both curves stay close, so q stays near the mean, not 1 or 3: outside the
+  // corner both distances are sqrt(2)e-9; below curve 0 they are 1e-9 and sqrt(2)e-9.
+  CHECK(q.at({1.0 + 1e-9, -1e-9}) == Approx(2.0).epsilon(1e-12));
+  const double r2 = std::sqrt(2.0);
+  CHECK(q.at({1.0 - 1e-9, -1e-9}) == Approx((1 + 3 / r2) / (1 + 1 / r2)).epsilon(1e-6));
+}
+
 TEST_CASE("BoundarySpacing at a shared vertex uses the lowest-index segment", "[spacing]") {
   // One curve: segment 0 of length 1, segment 1 of length 2, meeting at (1,0).
   const Geometry g = fixtures::make_geometry({{{0, 0}, {1, 0}, {1, 2}}});
@@ -90,6 +103,27 @@ TEST_CASE("BoundarySpacing with several curves: weights follow each curve's clos
   const BoundarySpacing q2(tree2);
   // Outer segments length 2 at distance 0.5 (from (0.5, 2)), hole segments length 0.25 at distance 1.
   CHECK(q2.at({0.5, 2.0}) == Approx((2 / 0.5 + 0.25 / 1) / (1 / 0.5 + 1 / 1.0)).epsilon(1e-14));
+}
+
+TEST_CASE("BoundarySpacing equals eq. 3.6 from brute-force closest segments", "[spacing]") {
+  for (const Geometry& g : {fixtures::circle_in_circle(), fixtures::multiscale(), fixtures::jagged_polygon(97, 5)}) {
+    const GeometryTree tree(g);
+    const BoundarySpacing q(tree);
+    std::mt19937_64 rng(11);
+    std::vector<ClosestHit> hits;
+    for (int i = 0; i < 2000; ++i) {
+      const Box& e = g.extents;
+      const Vec2 p{e.lo.x + e.width() * fixtures::unit(rng), e.lo.y + e.height() * fixtures::unit(rng)};
+      brute_force::closest_per_curve(g, p, hits);
+      double num = 0, den = 0;
+      for (const ClosestHit& h : hits) {
+        num += g.segments[h.segment].length / h.distance;
+        den += 1 / h.distance;
+      }
+      INFO("p = (" << p.x << ", " << p.y << ")");
+      REQUIRE(q.at(p) == Approx(num / den).epsilon(1e-12));
+    }
+  }
 }
 
 TEST_CASE("SpacingField::at_many loops over at", "[spacing]") {

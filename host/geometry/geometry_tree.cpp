@@ -46,15 +46,16 @@ ClosestHit closest_on_segment(Vec2 p, const Segment& s, int index) {
   return hit;
 }
 
-int ray_crossing(Vec2 p, Vec2 a, Vec2 b) {
+int ray_crossing(Vec2 p, Vec2 a, Vec2 b, RayDirection direction) {
   if (point_on_segment(p, a, b)) return 2;
   const bool a_above = a.y > p.y;
   const bool b_above = b.y > p.y;
   if (a_above == b_above) return 0;
-  // The segment spans p.y and p is not on it, so orient2d is non-zero: p left of an upward
-  // segment (or right of a downward one) means the +x ray crosses it.
+  // The segment spans p.y and p is not on it, so orient2d is non-zero. p left of an upward segment
+  // (or right of a downward one) means the segment crosses the row to the right of p.
   const double o = orient2d(a, b, p);
-  return (b_above ? o > 0.0 : o < 0.0) ? 1 : 0;
+  const bool crosses_right_of_p = b_above ? o > 0.0 : o < 0.0;
+  return crosses_right_of_p == (direction == RayDirection::PlusX) ? 1 : 0;
 }
 
 bool move_touches_segment(Vec2 a, Vec2 b, Vec2 c, Vec2 d) {
@@ -89,7 +90,8 @@ bool segment_touches_box(Vec2 a, Vec2 b, const Box& box) {
 namespace {
 
 struct Node {
-  Box box;
+  Box box;      // the quadrant
+  Box content;  // box ∩ bounding box of its segments: a tighter lower bound for closest()
   int first_child = -1;  // children are first_child .. first_child + 3; -1 for a leaf
   int begin = 0;         // leaf: its segment ids are items[begin, begin + count)
   int count = 0;
@@ -122,7 +124,7 @@ class Quadtree {
  public:
   Quadtree(const std::vector<Segment>& segments, std::vector<int> ids) : segments_(&segments) {
     if (ids.empty()) return;
-    nodes_.push_back(Node{square_box(segments, ids), -1, 0, 0, 0});
+    nodes_.push_back(Node{square_box(segments, ids), Box{}, -1, 0, 0, 0});
     bounds_ = Box{};
     for (const int id : ids) {
       bounds_.add(segments[id].a);
@@ -134,20 +136,27 @@ class Quadtree {
   }
 
   bool empty() const { return nodes_.empty(); }
+  const Box& root_box() const { return nodes_[0].box; }
   const Box& bounds() const { return bounds_; }
 
   ClosestHit closest(Vec2 p) const {
     ClosestHit best;
     best.distance = std::numeric_limits<double>::infinity();
     if (nodes_.empty()) return ClosestHit{};
-    // Depth-first, nearest child first, with an explicit stack: each internal node pops one entry
-    // and pushes at most four, so depth * 3 + 1 entries suffice.
-    std::array<std::pair<double, int>, 3 * GeometryTree::kMaxDepth + 8> stack;
-    int top = 0;
-    stack[top++] = {box_distance(p, nodes_[0].box), 0};
-    while (top > 0) {
-      const auto [d, n] = stack[--top];
-      if (d > bound(best.distance)) continue;
+    // Best-first: nodes are popped in order of their box distance, so the search stops at the
+    // first node farther than the best hit and never descends into a far subtree first. The heap
+    // lives in a thread-local buffer to avoid an allocation per query.
+    thread_local std::vector<std::pair<double, int>> heap;
+    heap.clear();
+    const auto farther = [](const std::pair<double, int>& x, const std::pair<double, int>& y) {
+      return x.first > y.first;
+    };
+    heap.push_back({box_distance(p, nodes_[0].content), 0});
+    while (!heap.empty()) {
+      std::pop_heap(heap.begin(), heap.end(), farther);
+      const auto [d, n] = heap.back();
+      heap.pop_back();
+      if (d > bound(best.distance)) break;
       const Node& node = nodes_[n];
       if (node.first_child < 0) {
         for (int i = node.begin; i < node.begin + node.count; ++i) {
@@ -157,15 +166,15 @@ class Quadtree {
         }
         continue;
       }
-      std::array<std::pair<double, int>, 4> kids;
-      for (int k = 0; k < 4; ++k) {
-        const int c = node.first_child + k;
-        kids[k] = {box_distance(p, nodes_[c].box), c};
+      for (int c = node.first_child; c < node.first_child + 4; ++c) {
+        const Node& kid = nodes_[c];
+        if (kid.first_child < 0 && kid.count == 0) continue;  // empty leaf
+        const double kd = box_distance(p, kid.content);
+        if (kd <= bound(best.distance)) {
+          heap.push_back({kd, c});
+          std::push_heap(heap.begin(), heap.end(), farther);
+        }
       }
-      // Push the farthest first so the nearest is popped next.
-      std::sort(kids.begin(), kids.end(), [](const auto& x, const auto& y) { return x.first > y.first; });
-      for (const auto& kid : kids)
-        if (kid.first <= bound(best.distance)) stack[top++] = kid;
     }
     return best;
   }
@@ -240,12 +249,17 @@ class Quadtree {
     }
     const int first = static_cast<int>(nodes_.size());
     nodes_[n].first_child = first;
-    for (int k = 0; k < 4; ++k) nodes_.push_back(Node{kid_boxes[k], -1, 0, 0, depth + 1});
+    for (int k = 0; k < 4; ++k) nodes_.push_back(Node{kid_boxes[k], Box{}, -1, 0, 0, depth + 1});
     for (int k = 0; k < 4; ++k) {
       if (kid_ids[k].size() == ids.size()) {
         make_leaf(first + k, kid_ids[k]);  // this child would not shrink either
       } else {
         build(first + k, std::move(kid_ids[k]));
+      }
+      const Box& kid = nodes_[first + k].content;
+      if (kid.lo.x <= kid.hi.x) {
+        nodes_[n].content.add(kid.lo);
+        nodes_[n].content.add(kid.hi);
       }
     }
   }
@@ -254,6 +268,15 @@ class Quadtree {
     nodes_[n].begin = static_cast<int>(items_.size());
     nodes_[n].count = static_cast<int>(ids.size());
     items_.insert(items_.end(), ids.begin(), ids.end());
+    Box bb;
+    for (const int id : ids) {
+      bb.add((*segments_)[id].a);
+      bb.add((*segments_)[id].b);
+    }
+    const Box& q = nodes_[n].box;
+    if (!ids.empty())
+      nodes_[n].content = Box{{std::fmax(bb.lo.x, q.lo.x), std::fmax(bb.lo.y, q.lo.y)},
+                              {std::fmin(bb.hi.x, q.hi.x), std::fmin(bb.hi.y, q.hi.y)}};
   }
 
   const std::vector<Segment>* segments_;
@@ -319,7 +342,15 @@ bool GeometryTree::inside(Vec2 p) const {
   // Segments straddling several leaves along the ray must be counted once: gather, sort, unique.
   thread_local std::vector<int> candidates;
   candidates.clear();
-  const auto on_ray = [p](const Box& b) { return b.lo.y <= p.y && p.y <= b.hi.y && p.x <= b.hi.x; };
+  if (tree.empty()) return false;
+  // Cast the ray towards the nearer side of the root box: fewer leaves to visit. With the
+  // half-open rule both directions give the same parity (every closed loop crosses the whole row
+  // an even number of times), which the brute-force tests (always +x) check.
+  const Box& root = tree.root_box();
+  const RayDirection dir = p.x - root.lo.x < root.hi.x - p.x ? RayDirection::MinusX : RayDirection::PlusX;
+  const auto on_ray = [p, dir](const Box& b) {
+    return b.lo.y <= p.y && p.y <= b.hi.y && (dir == RayDirection::PlusX ? p.x <= b.hi.x : b.lo.x <= p.x);
+  };
   tree.any_leaf(on_ray, [&](const auto& leaf) {
     candidates.insert(candidates.end(), tree.items().begin() + leaf.begin,
                       tree.items().begin() + leaf.begin + leaf.count);
@@ -330,7 +361,7 @@ bool GeometryTree::inside(Vec2 p) const {
   bool in = false;
   for (const int id : candidates) {
     const Segment& s = geometry_.segments[id];
-    const int r = ray_crossing(p, s.a, s.b);
+    const int r = ray_crossing(p, s.a, s.b, dir);
     if (r == 2) return true;
     if (r == 1) in = !in;
   }

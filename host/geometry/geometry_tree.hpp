@@ -73,10 +73,11 @@ class GeometryTree {
 ClosestHit closest_on_segment(Vec2 p, const Segment& s, int index);
 // Exact: p lies on the closed segment ab.
 bool point_on_segment(Vec2 p, Vec2 a, Vec2 b);
-// Exact crossing-number contribution of segment ab for the ray from p towards +x, with the
-// half-open rule (an end point counts when it is strictly above p.y). Returns 2 when p lies on
-// ab, 1 when ab crosses the ray, 0 otherwise.
-int ray_crossing(Vec2 p, Vec2 a, Vec2 b);
+// Exact crossing-number contribution of segment ab for the horizontal ray from p, with the
+// half-open rule (ab spans the ray's row when exactly one end is strictly above p.y), so a vertex
+// on the ray is counted once. Returns 2 when p lies on ab, 1 when ab crosses the ray, 0 otherwise.
+enum class RayDirection { PlusX, MinusX };
+int ray_crossing(Vec2 p, Vec2 a, Vec2 b, RayDirection direction = RayDirection::PlusX);
 // Exact: the move a->b shares a point other than a with the closed segment cd.
 bool move_touches_segment(Vec2 a, Vec2 b, Vec2 c, Vec2 d);
 // Exact: the closed segment ab shares a point with the closed box.

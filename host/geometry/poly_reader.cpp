@@ -67,6 +67,10 @@ std::vector<PolyVertex> read_vertices(const std::string& path, Cursor& cursor, i
     throw InputError(fmt::format("{}:{}: dimension '{}' is not supported; only 2-D geometry (2)", path,
                                  header.number, header.tokens[1]));
   }
+  if (attributes > 1000) {
+    throw InputError(fmt::format("{}:{}: attribute count '{}' is implausibly large", path, header.number,
+                                 header.tokens[2]));
+  }
   if (markers > 1) {
     throw InputError(fmt::format("{}:{}: vertex marker count '{}' must be 0 or 1", path, header.number,
                                  header.tokens[3]));

@@ -19,7 +19,9 @@ class SpacingField {
   virtual void at_many(const std::vector<Vec2>& p, std::vector<double>& q) const;
 };
 
-// q(x) = sum_s (l_s / d_s) / sum_s (1 / d_s) over the closest segment s of each curve (eq. 3.6).
+// q(x) = sum_s (l_s / d_s) / sum_s (1 / d_s) over the closest segment s of each curve (eq. 3.6);
+// on the boundary (some d_s == 0 exactly) the limit: the mean l_s of the curves at distance 0.
+// at() is thread-safe. Keeps a reference to the tree, which must outlive it. See docs/spacing.md.
 class BoundarySpacing final : public SpacingField {
  public:
   explicit BoundarySpacing(const GeometryTree& tree);
@@ -30,7 +32,8 @@ class BoundarySpacing final : public SpacingField {
 };
 
 // q(x, y) from an expression; throws InputError naming the expression on a syntax error
-// or when it does not evaluate to a finite positive number.
+// or when it does not evaluate to a finite positive number. Variables x, y; constant pi.
+// Not thread-safe: at() drives one muParser instance (give each thread its own field).
 class ExpressionSpacing final : public SpacingField {
  public:
   explicit ExpressionSpacing(const std::string& expression);
