@@ -49,12 +49,13 @@ void trace_step(std::FILE* out, int iteration, const SimParticles& p, const Neig
       const auto j = static_cast<std::size_t>(list.index[base + static_cast<std::size_t>(k)]);
       nearest = std::min(nearest, std::hypot(p.x[j] - p.x[i], p.y[j] - p.y[i]));
     }
-    const bool capped = moves.dt2[i] < dt_gm2;
+    const bool stiff = !forces.dt2_limit.empty() && moves.dt2[i] == forces.dt2_limit[i] && moves.dt2[i] < dt_gm2;
+    const char* limit = stiff ? " (stiffness)" : moves.dt2[i] < dt_gm2 ? " (r0-capped)" : " (dtGM)";
     fmt::print(out,
                "it {} #{} node {} {} ({:.5f},{:.5f}) q {:.4f} |F| {:.4g} r0 {:.4f} nearest {:.4f} dt2 {:.4g}{} "
                "step {:.4g} step/q {:.4f} step/nearest {:.3f}\n",
                iteration, t, i, kind_name(p.kind[i]), p.x[i], p.y[i], p.q[i], f, forces.r0[i], nearest,
-               moves.dt2[i], capped ? " (r0-capped)" : " (dtGM)", step, step / p.q[i],
+               moves.dt2[i], limit, step, step / p.q[i],
                nearest < HUGE_VAL ? step / nearest : 0.0);
     for (int k = 0; k < cnt; ++k) {
       const auto j = static_cast<std::size_t>(list.index[base + static_cast<std::size_t>(k)]);
@@ -72,6 +73,7 @@ void trace_step(std::FILE* out, int iteration, const SimParticles& p, const Neig
 }  // namespace pdmesh
 
 namespace pdmesh {
+// Experiment switches until the case file has a key for them (docs/simulation.md, "Stability").
 void debug_overrides(ForceParams& params) {
   if (const char* c = std::getenv("PDMESH_SIM_STABILITY")) params.stability_factor = std::atof(c);
   if (const char* r = std::getenv("PDMESH_SIM_R0_ANY")) params.r0_any_direction = std::atoi(r) != 0;
