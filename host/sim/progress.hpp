@@ -20,6 +20,7 @@ class ProgressLine {
   std::FILE* stream_;
   Clock::time_point start_;
   Clock::time_point last_draw_;
+  bool terminal_;
   bool drawn_ = false;
 };
 

@@ -24,6 +24,9 @@ struct SimOptions {
   bool r0_any_direction = false;     // ForceParams::r0_any_direction (false = thesis eq. 5.3)
   double stability_factor = 0.0;     // ForceParams::stability_factor (0 = off, the thesis)
   bool quiet = false;                // no progress line on stderr
+  // false: the per-iteration spacing update reads a BackgroundSpacing built once from the given field
+  // (tolerance 1e-3, docs/spacing.md); true: evaluate the given field exactly every iteration.
+  bool exact_spacing = false;
   StepBackend* backend = nullptr;    // nullptr: the reference backend
 };
 
