@@ -172,10 +172,12 @@ SimResult simulate(const CaseConfig& config, const MeshInputs& inputs, NodeSet& 
   options.cutoff = config.simulation.cutoff;
   options.lj_a = config.simulation.lj_a;
   options.r0_any_direction = config.simulation.r0_any_direction;
+  options.stability_factor = config.simulation.stability_factor;
   options.quiet = config.quiet;
-  progress(config, "simulation: {} iterations on the host reference (double), cutoff {}, a = {}, r0 rule {}",
+  progress(config, "simulation: {} iterations on the host reference (double), cutoff {}, a = {}, r0 rule {}, "
+           "stability factor {}",
            options.iterations, options.cutoff, options.lj_a,
-           options.r0_any_direction ? "any_direction" : "force_direction");
+           options.r0_any_direction ? "any_direction" : "force_direction", options.stability_factor);
   SimResult result = run_simulation(nodes, *inputs.tree, *inputs.spacing, options);
   const SimStats& st = result.stats;
   const double per_iteration = options.iterations > 0 ? st.seconds / options.iterations : 0.0;

@@ -96,7 +96,6 @@ SimResult run_simulation(NodeSet& nodes, const GeometryTree& tree, const Spacing
   MoveResult moves;
   const TraceRange trace = TraceRange::from_environment();
   ForceParams params{options.cutoff, options.lj_a, options.r0_any_direction, options.stability_factor};
-  debug_overrides(params);
   result.history.reserve(static_cast<std::size_t>(std::max(0, options.iterations)));
   for (int iteration = 1; iteration <= options.iterations; ++iteration) {
     load_particles(nodes, boundary, particles);

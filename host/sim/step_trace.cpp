@@ -71,11 +71,3 @@ void trace_step(std::FILE* out, int iteration, const SimParticles& p, const Neig
 }
 
 }  // namespace pdmesh
-
-namespace pdmesh {
-// Experiment switches until the case file has a key for them (docs/simulation.md, "Stability").
-void debug_overrides(ForceParams& params) {
-  if (const char* c = std::getenv("PDMESH_SIM_STABILITY")) params.stability_factor = std::atof(c);
-  if (const char* r = std::getenv("PDMESH_SIM_R0_ANY")) params.r0_any_direction = std::atoi(r) != 0;
-}
-}  // namespace pdmesh

@@ -1,6 +1,6 @@
 // Debug aids of the simulation driver: a trace of chosen iterations (PDMESH_SIM_TRACE=FIRST-LAST, on
 // stderr: the 3 nodes with the largest |F|, their kind, r0, dt_i and what limited it, and every
-// neighbour with r/sigma and whether it sees them back) and environment overrides for experiments.
+// neighbour with r/sigma and whether it sees them back).
 #pragma once
 #include <cstdio>
 
@@ -13,10 +13,6 @@ struct TraceRange {
   static TraceRange from_environment();
   bool covers(int iteration) const { return iteration >= first && iteration <= last; }
 };
-
-// Experiment switches read from the environment (documented in docs/simulation.md, "Stability"):
-// PDMESH_SIM_STABILITY=c sets ForceParams::stability_factor, PDMESH_SIM_R0_ANY=1 the any-direction r0.
-void debug_overrides(ForceParams& params);
 
 void trace_step(std::FILE* out, int iteration, const SimParticles& p, const NeighbourList& list,
                 const ForceResult& forces, const MoveResult& moves, double dt_gm2, double cutoff, int top);
