@@ -13,6 +13,11 @@ namespace pdmesh {
 
 enum class InitMethod { Structured, Random };
 
+// A quad is split into four while its area / (pi q_mid^2 / 4) exceeds this (thesis: 9.5).
+inline constexpr double kInitSplitRatio = 9.5;
+// An interior candidate closer than this times q(candidate) to the boundary is dropped.
+inline constexpr double kInitBoundaryClearance = 0.5;
+
 struct InitOptions {
   InitMethod method = InitMethod::Structured;
   std::uint64_t seed = 1;

@@ -1,0 +1,104 @@
+// The case file (case.toml, see CASE_SCHEMA.md and docs/cli.md): parsed, overridden from the
+// command line and validated into a CaseConfig before anything runs or is written.
+#pragma once
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/vec2.hpp"
+#include "init/initial_distribution.hpp"
+
+namespace pdmesh {
+
+enum class SpacingKind { Boundary, Expression };
+enum class Precision { Double, Float };
+
+// A zoom window: an extra picture NAME_VIEW.png of the region [x0, x1] x [y0, y1].
+struct ViewWindow {
+  std::string name;
+  Box window;
+};
+
+// One "--set section.key=VALUE" (or a direct option translated into one). `label` is how
+// messages name it, e.g. "--set simulation.iterations=abc" or "--iterations abc".
+struct CaseOverride {
+  std::string key;    // dotted key, e.g. "simulation.iterations"
+  std::string value;  // TOML value syntax; a bare word that is not valid TOML is taken as a string
+  std::string label;
+  bool append = false;  // append the value to the array at `key` instead of replacing it (--view)
+};
+
+struct CaseConfig {
+  std::filesystem::path source;  // the case file, or the geometry file when meshing one directly
+  std::string name;              // for titles; default: the case directory name (or geometry file stem)
+
+  struct Geometry {
+    std::vector<std::filesystem::path> files;  // resolved relative to the case file
+    std::vector<std::string> curve_names;      // optional, in file/curve order
+    double join_tolerance = 1e-9;
+    double corner_angle = 30.0;  // degrees
+  } geometry;
+
+  struct Spacing {
+    SpacingKind field = SpacingKind::Boundary;
+    std::string expression;  // muParser expression in x and y when field == Expression
+  } spacing;
+
+  struct Init {
+    InitMethod method = InitMethod::Structured;
+    std::uint64_t seed = 1;
+    std::uint64_t total = 0;  // 0 = no overloading
+  } init;
+
+  struct Simulation {
+    std::int64_t iterations = 2000;
+    // Initial global maximum time step per init method; empty = the automatic rule.
+    std::optional<double> dt_structured;
+    std::optional<double> dt_random;
+    double cutoff = 1.5;
+    double lj_a = 15.0;
+    std::string device = "auto";  // auto | host | opencl | opencl:P:D
+    Precision precision = Precision::Double;
+    std::optional<double> dt_for(InitMethod m) const {
+      return m == InitMethod::Structured ? dt_structured : dt_random;
+    }
+  } simulation;
+
+  struct Output {
+    std::vector<std::string> formats{"msh", "vtu", "png"};
+    bool tree_overlay = false;
+    std::vector<ViewWindow> views;
+    bool wants(const std::string& format) const;
+  } output;
+
+  // Command-line only (not case-file keys).
+  std::filesystem::path out_dir;
+  bool quiet = false;
+  std::uint64_t max_nodes = 20'000'000;
+};
+
+// Every valid dotted key, for docs and suggestions.
+const std::vector<std::string>& case_file_keys();
+
+// Parses and validates a case file. Throws InputError "FILE:LINE:COL: ..." on TOML syntax errors,
+// unknown keys (with the nearest valid key suggested), wrong types and out-of-range values.
+CaseConfig load_case_file(const std::filesystem::path& case_file,
+                          const std::vector<CaseOverride>& overrides = {});
+
+// The same from TOML text; `source` names it in messages and anchors relative paths.
+CaseConfig parse_case_text(std::string_view text, const std::filesystem::path& source,
+                           const std::vector<CaseOverride>& overrides = {});
+
+// A case for one geometry file (.crv, .dat, .poly) with every other key at its default.
+CaseConfig case_for_geometry_file(const std::filesystem::path& geometry_file,
+                                  const std::vector<CaseOverride>& overrides = {});
+
+// Splits "section.key=VALUE" into an override; throws InputError when there is no '=' or key.
+CaseOverride parse_set_option(const std::string& text);
+
+// Levenshtein distance, used to suggest the nearest valid key.
+std::size_t edit_distance(std::string_view a, std::string_view b);
+
+}  // namespace pdmesh

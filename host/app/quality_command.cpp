@@ -1,0 +1,85 @@
+// `pdmesh quality`: mesh file in, quality table (and JSON) out.
+#include "app/quality_command.hpp"
+
+#include <filesystem>
+#include <iostream>
+#include <memory>
+
+#include <fmt/format.h>
+
+#include "app/case_file.hpp"
+#include "geometry/geometry_files.hpp"
+#include "geometry/geometry_tree.hpp"
+#include "io/mesh_formats.hpp"
+#include "io/text_file.hpp"
+#include "mesh/quality.hpp"
+#include "mesh/quality_report.hpp"
+#include "spacing/spacing_field.hpp"
+
+namespace pdmesh {
+namespace {
+
+// The spacing field of a case, with the geometry and tree it refers to kept alive alongside.
+struct CaseSpacing {
+  Geometry geometry;
+  std::unique_ptr<GeometryTree> tree;
+  std::unique_ptr<SpacingField> field;
+};
+
+std::unique_ptr<CaseSpacing> load_spacing(const std::filesystem::path& path) {
+  std::string ext = path.extension().string();
+  for (auto& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  const CaseConfig config = ext == ".toml" ? load_case_file(path) : case_for_geometry_file(path);
+  auto s = std::make_unique<CaseSpacing>();
+  if (config.spacing.field == SpacingKind::Expression) {
+    s->field = std::make_unique<ExpressionSpacing>(config.spacing.expression);
+    return s;
+  }
+  std::vector<std::string> files;
+  for (const auto& f : config.geometry.files) files.push_back(f.string());
+  GeometryOptions options;
+  options.join_tolerance = config.geometry.join_tolerance;
+  options.corner_angle_deg = config.geometry.corner_angle;
+  s->geometry = read_geometry(files, config.geometry.curve_names, options);
+  s->tree = std::make_unique<GeometryTree>(s->geometry);
+  s->field = std::make_unique<BoundarySpacing>(*s->tree);
+  return s;
+}
+
+}  // namespace
+
+int run_quality(const std::string& mesh_path, const std::optional<std::string>& geometry_path,
+                const std::optional<std::string>& out_json, std::ostream& out, std::ostream& err) {
+  MeshReadReport report;
+  const Mesh mesh = read_mesh(mesh_path, report);
+  for (const auto& note : report.notes) err << note << '\n';
+
+  std::unique_ptr<CaseSpacing> spacing;
+  SpacingCallback q;
+  if (geometry_path) {
+    spacing = load_spacing(*geometry_path);
+    const SpacingField* field = spacing->field.get();
+    q = [field](Vec2 p) { return field->at(p); };
+  }
+  const QualitySummary summary = summarize_quality(mesh, q);
+  out << format_quality_table(summary, std::filesystem::path(mesh_path).filename().string());
+
+  if (out_json) {
+    if (*out_json == "-") {
+      out << quality_json(summary, mesh_path);
+    } else if (std::filesystem::is_directory(*out_json)) {
+      err << "wrote " << write_quality_json(summary, *out_json, mesh_path).string() << '\n';
+    } else {
+      write_text_file(*out_json, quality_json(summary, mesh_path));
+      err << "wrote " << *out_json << '\n';
+    }
+  }
+  return 0;
+}
+
+int run_quality(const std::string& mesh_path, const std::optional<std::string>& geometry_path,
+                const std::optional<std::string>& out_json) {
+  return run_quality(mesh_path, geometry_path, out_json, std::cout, std::cerr);
+}
+
+}  // namespace pdmesh

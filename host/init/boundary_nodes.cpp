@@ -1,0 +1,66 @@
+// Boundary nodes of the initial distribution (thesis ch. 4, "Boundary Nodes"): one Fixed node per
+// critical location, the other geometry points duplicated as Boundary nodes, curve_nodes in order.
+#include <map>
+#include <utility>
+
+#include "init/initial_distribution.hpp"
+
+namespace pdmesh {
+
+NodeSet make_boundary_nodes(const Geometry& geometry, const SpacingField& spacing) {
+  NodeSet nodes;
+  const std::size_t curve_count = geometry.curves.size();
+  // node_of[c][i]: the node for point i of curve c, -1 until assigned.
+  std::vector<std::vector<int>> node_of(curve_count);
+  for (std::size_t c = 0; c < curve_count; ++c) node_of[c].assign(geometry.curves[c].points.size(), -1);
+  // Fixed nodes by exact location, so that a location is never given two Fixed nodes.
+  std::map<std::pair<double, double>, int> fixed_at;
+
+  auto fixed_node = [&](Vec2 p, int curve) {
+    const auto key = std::make_pair(p.x, p.y);
+    const auto found = fixed_at.find(key);
+    if (found != fixed_at.end()) return found->second;
+    const int id = nodes.add(p, spacing.at(p), NodeKind::Fixed, curve);
+    fixed_at.emplace(key, id);
+    return id;
+  };
+
+  // 1. The critical points, in Geometry::critical order: each is one node shared by its curves.
+  for (const CriticalPoint& cp : geometry.critical) {
+    const int id = fixed_node(cp.p, cp.curves.empty() ? -1 : cp.curves.front());
+    for (std::size_t k = 0; k < cp.curves.size() && k < cp.indices.size(); ++k) {
+      const int c = cp.curves[k], i = cp.indices[k];
+      if (c >= 0 && static_cast<std::size_t>(c) < curve_count && i >= 0 &&
+          static_cast<std::size_t>(i) < node_of[c].size())
+        node_of[c][i] = id;
+    }
+  }
+
+  // 2. Walk each curve from its first point to its last. Curve end points and points flagged
+  // critical are Fixed even if Geometry::critical missed them (the curve_nodes contract needs
+  // Fixed ends); a closed curve's last point is its first point's node.
+  nodes.curve_nodes.resize(curve_count);
+  for (std::size_t c = 0; c < curve_count; ++c) {
+    const Curve& curve = geometry.curves[c];
+    const std::size_t n = curve.points.size();
+    std::vector<int>& list = nodes.curve_nodes[c];
+    list.reserve(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      int& id = node_of[c][i];
+      if (id < 0) {
+        const Vec2 p = curve.points[i];
+        const bool is_end = (i == 0 || i + 1 == n);
+        const bool flagged = i < curve.critical.size() && curve.critical[i] != 0;
+        if (is_end || flagged) {
+          id = fixed_node(p, static_cast<int>(c));
+        } else {
+          id = nodes.add(p, spacing.at(p), NodeKind::Boundary, static_cast<int>(c));
+        }
+      }
+      list.push_back(id);
+    }
+  }
+  return nodes;
+}
+
+}  // namespace pdmesh

@@ -1,0 +1,127 @@
+// The initial distribution driver: boundary nodes, tree fill of the interior, overloading to a
+// requested total, and the hexagonal-packing node-count estimate over the initialization tree.
+#include "init/initial_distribution.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "core/errors.hpp"
+#include "fmt/format.h"
+#include "init/init_tree.hpp"
+#include "init/quad_fill.hpp"
+
+namespace pdmesh {
+
+namespace {
+
+// Nodes per unit area in hexagonal packing at spacing q: one node per equilateral-triangle pair.
+double hex_density(double q) { return 2.0 / (std::sqrt(3.0) * q * q); }
+
+// A quad is sub-divided for the estimate while it would hold more than this many nodes, so that
+// each of its 4x4 samples stands for a handful of nodes at most.
+constexpr double kEstimateNodesPerQuad = 64.0;
+constexpr int kEstimateSamples = 4;
+constexpr int kEstimateMaxDepth = 30;
+
+double estimate_quad(const GeometryTree& tree, const SpacingField& spacing, const Box& b,
+                     bool known_inside, int depth) {
+  const double q_mid = spacing.at(b.centre());
+  const double area = b.width() * b.height();
+  if (q_mid > 0.0 && area * hex_density(q_mid) > kEstimateNodesPerQuad && depth < kEstimateMaxDepth) {
+    const Vec2 c = b.centre();
+    return estimate_quad(tree, spacing, Box{b.lo, c}, known_inside, depth + 1) +
+           estimate_quad(tree, spacing, Box{{c.x, b.lo.y}, {b.hi.x, c.y}}, known_inside, depth + 1) +
+           estimate_quad(tree, spacing, Box{{b.lo.x, c.y}, {c.x, b.hi.y}}, known_inside, depth + 1) +
+           estimate_quad(tree, spacing, Box{c, b.hi}, known_inside, depth + 1);
+  }
+  const double cell = area / (kEstimateSamples * kEstimateSamples);
+  double sum = 0.0;
+  for (int j = 0; j < kEstimateSamples; ++j) {
+    for (int i = 0; i < kEstimateSamples; ++i) {
+      const Vec2 p{b.lo.x + (i + 0.5) / kEstimateSamples * b.width(),
+                   b.lo.y + (j + 0.5) / kEstimateSamples * b.height()};
+      if (!known_inside && !tree.inside(p)) continue;
+      const double q = spacing.at(p);
+      if (q > 0.0 && std::isfinite(q)) sum += cell * hex_density(q);
+    }
+  }
+  return sum;
+}
+
+double estimate_over(const GeometryTree& tree, const SpacingField& spacing, const InitTree& init) {
+  double sum = 0.0;
+  for (int k : init.kept()) {
+    const InitLeaf& leaf = init.leaves()[k];
+    sum += estimate_quad(tree, spacing, leaf.box, leaf.segments.empty(), 0);
+  }
+  return sum;
+}
+
+// Adds `count` random interior points: a kept leaf drawn with probability proportional to its
+// area, a uniform point in it, kept by the same rule as the tree fill (rejection sampling).
+void overload(const GeometryTree& tree, const SpacingField& spacing, const InitTree& init,
+              std::size_t count, UnitRandom& rng, NodeSet& nodes) {
+  const auto& kept = init.kept();
+  std::vector<double> cumulative;
+  cumulative.reserve(kept.size());
+  double total_area = 0.0;
+  for (int k : kept) {
+    const Box& b = init.leaves()[k].box;
+    total_area += b.width() * b.height();
+    cumulative.push_back(total_area);
+  }
+  // Generous, but finite: a domain where nearly every point is within the clearance of the
+  // boundary must end in an error, not in an endless loop.
+  const std::size_t max_attempts = 1000 * count + 1000000;
+  std::size_t added = 0;
+  for (std::size_t attempt = 0; added < count; ++attempt) {
+    if (attempt >= max_attempts || kept.empty())
+      throw LimitError(fmt::format(
+          "initial distribution: could only place {} of {} overloading nodes in {} attempts "
+          "(the domain leaves too little room away from the boundary)",
+          added, count, attempt));
+    const double pick = rng.next() * total_area;
+    const std::size_t idx = std::min<std::size_t>(
+        static_cast<std::size_t>(std::upper_bound(cumulative.begin(), cumulative.end(), pick) - cumulative.begin()),
+        kept.size() - 1);
+    const InitLeaf& leaf = init.leaves()[kept[idx]];
+    const double u = rng.next();
+    const double v = rng.next();
+    const Vec2 p{leaf.box.lo.x + u * leaf.box.width(), leaf.box.lo.y + v * leaf.box.height()};
+    double q = 0.0;
+    if (keep_interior_candidate(tree, spacing, p, leaf.segments.empty(), q)) {
+      nodes.add(p, q, NodeKind::Interior, -1);
+      ++added;
+    }
+  }
+}
+
+}  // namespace
+
+InitialDistribution make_initial_distribution(const GeometryTree& tree, const SpacingField& spacing,
+                                              const InitOptions& options) {
+  InitialDistribution out;
+  out.nodes = make_boundary_nodes(tree.geometry(), spacing);
+  const InitTree init(tree, spacing);
+  out.estimate = estimate_over(tree, spacing, init);
+
+  UnitRandom rng(options.seed);
+  for (int k : init.kept()) {
+    const InitLeaf& leaf = init.leaves()[k];
+    out.tree_quads.push_back(leaf.box);
+    out.tree_nodes += fill_leaf(tree, spacing, leaf, options.method, rng, out.nodes);
+  }
+  if (options.total && *options.total > out.nodes.size()) {
+    out.overload_nodes = *options.total - out.nodes.size();
+    overload(tree, spacing, init, out.overload_nodes, rng, out.nodes);
+  }
+  return out;
+}
+
+double estimate_node_count(const GeometryTree& tree, const SpacingField& spacing) {
+  const InitTree init(tree, spacing);
+  return estimate_over(tree, spacing, init);
+}
+
+}  // namespace pdmesh

@@ -1,0 +1,123 @@
+// Recursive structured/random filling of one initialization-tree leaf and the keep rule.
+#include "init/quad_fill.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "core/errors.hpp"
+#include "fmt/format.h"
+
+namespace pdmesh {
+
+namespace {
+
+// Levels a fill may split below its leaf; deeper quads are filled as they are (9 nodes at most),
+// so a pathological spacing cannot recurse without end.
+constexpr int kMaxFillDepth = 30;
+
+struct FillContext {
+  const GeometryTree& tree;
+  const SpacingField& spacing;
+  InitMethod method;
+  UnitRandom& rng;
+  NodeSet& nodes;
+  std::size_t added = 0;
+};
+
+void place(FillContext& ctx, Vec2 p, bool known_inside) {
+  double q = 0.0;
+  if (keep_interior_candidate(ctx.tree, ctx.spacing, p, known_inside, q)) {
+    ctx.nodes.add(p, q, NodeKind::Interior, -1);
+    ++ctx.added;
+  }
+}
+
+void place_structured(FillContext& ctx, const Box& b, int count, bool known_inside) {
+  const double w = b.width(), h = b.height();
+  auto at = [&](double u, double v) { return Vec2{b.lo.x + u * w, b.lo.y + v * h}; };
+  if (count == 1 || count == 5) place(ctx, at(0.5, 0.5), known_inside);
+  if (count == 4 || count == 5) {
+    for (int j = 0; j < 2; ++j)
+      for (int i = 0; i < 2; ++i) place(ctx, at((i + 0.5) / 2.0, (j + 0.5) / 2.0), known_inside);
+  }
+  if (count == 9) {
+    for (int j = 0; j < 3; ++j)
+      for (int i = 0; i < 3; ++i) place(ctx, at((i + 0.5) / 3.0, (j + 0.5) / 3.0), known_inside);
+  }
+}
+
+void fill_quad(FillContext& ctx, const Box& b, const std::vector<int>& segments, bool known_inside,
+               int depth) {
+  const double q_mid = ctx.spacing.at(b.centre());
+  if (!(q_mid > 0.0) || !std::isfinite(q_mid))
+    throw LimitError(fmt::format("initial distribution: spacing q({}, {}) = {} is not a positive finite number",
+                                 b.centre().x, b.centre().y, q_mid));
+  const double ratio = b.width() * b.height() / (std::numbers::pi * q_mid * q_mid / 4.0);
+  if (ratio > kInitSplitRatio && depth < kMaxFillDepth) {
+    const auto& segs = ctx.tree.geometry().segments;
+    const Vec2 c = b.centre();
+    const Box children[4] = {Box{b.lo, c}, Box{{c.x, b.lo.y}, {b.hi.x, c.y}},
+                             Box{{b.lo.x, c.y}, {c.x, b.hi.y}}, Box{c, b.hi}};
+    for (const Box& child : children) {
+      if (known_inside) {
+        fill_quad(ctx, child, segments, true, depth + 1);
+        continue;
+      }
+      std::vector<int> touching;
+      for (int s : segments)
+        if (segment_touches_box(segs[s].a, segs[s].b, child)) touching.push_back(s);
+      // A sub-quad no segment touches is wholly inside or wholly outside: skip the outside ones.
+      bool inside = false;
+      if (touching.empty()) {
+        if (!ctx.tree.inside(child.centre())) continue;
+        inside = true;
+      }
+      fill_quad(ctx, child, touching, inside, depth + 1);
+    }
+    return;
+  }
+  if (ctx.method == InitMethod::Structured) {
+    place_structured(ctx, b, structured_count(ratio), known_inside);
+    return;
+  }
+  const int count = random_count(ratio);
+  for (int k = 0; k < count; ++k) {
+    const double u = ctx.rng.next();
+    const double v = ctx.rng.next();
+    place(ctx, Vec2{b.lo.x + u * b.width(), b.lo.y + v * b.height()}, known_inside);
+  }
+}
+
+}  // namespace
+
+int structured_count(double ratio) {
+  // Nearest of {1, 4, 5, 9}: the midpoints 2.5, 4.5 and 7 are the thresholds.
+  if (!(ratio >= 2.5)) return 1;
+  if (ratio < 4.5) return 4;
+  if (ratio < 7.0) return 5;
+  return 9;
+}
+
+int random_count(double ratio) {
+  if (!(ratio >= 1.0)) return 1;
+  return static_cast<int>(std::clamp(std::round(ratio), 1.0, 9.0));
+}
+
+bool keep_interior_candidate(const GeometryTree& tree, const SpacingField& spacing, Vec2 p,
+                             bool known_inside, double& q) {
+  if (!known_inside && !tree.inside(p)) return false;
+  q = spacing.at(p);
+  if (!(q > 0.0) || !std::isfinite(q)) return false;
+  return tree.closest(p).distance >= kInitBoundaryClearance * q;
+}
+
+std::size_t fill_leaf(const GeometryTree& tree, const SpacingField& spacing, const InitLeaf& leaf,
+                      InitMethod method, UnitRandom& rng, NodeSet& nodes) {
+  FillContext ctx{tree, spacing, method, rng, nodes};
+  // Kept leaves without segments lie wholly inside (InitTree keeps only those whose centre is inside).
+  fill_quad(ctx, leaf.box, leaf.segments, leaf.segments.empty(), 0);
+  return ctx.added;
+}
+
+}  // namespace pdmesh

@@ -1,0 +1,43 @@
+// Filling one initialization-tree leaf with interior nodes (thesis ch. 4, "Structured Quad
+// Distribution" and "Random Quad Distribution"), plus the keep rule and the seeded unit RNG.
+#pragma once
+#include <cstdint>
+#include <random>
+#include <vector>
+
+#include "geometry/geometry_tree.hpp"
+#include "init/init_tree.hpp"
+#include "init/initial_distribution.hpp"
+#include "nodes/node_set.hpp"
+#include "spacing/spacing_field.hpp"
+
+namespace pdmesh {
+
+// Uniform doubles in [0, 1) from the top 53 bits of mt19937_64: the same on every platform,
+// unlike std::uniform_real_distribution.
+class UnitRandom {
+ public:
+  explicit UnitRandom(std::uint64_t seed) : engine_(seed) {}
+  double next() { return static_cast<double>(engine_() >> 11) * 0x1.0p-53; }
+
+ private:
+  std::mt19937_64 engine_;
+};
+
+// Nodes a structured fill puts in a quad with the given area ratio: the nearest of {1, 4, 5, 9}.
+int structured_count(double ratio);
+// Nodes a random fill puts in a quad: clamp(round(ratio), 1, 9).
+int random_count(double ratio);
+
+// The keep rule for an interior candidate p: inside the domain and at least
+// kInitBoundaryClearance * q(p) from the closest boundary point. `known_inside` skips the
+// point-in-domain test for quads that no segment touches. On success q is set to q(p).
+bool keep_interior_candidate(const GeometryTree& tree, const SpacingField& spacing, Vec2 p,
+                             bool known_inside, double& q);
+
+// Fills one kept leaf, splitting it into four while its area ratio exceeds kInitSplitRatio.
+// Kept nodes are appended to `nodes` as Interior nodes. Returns how many were added.
+std::size_t fill_leaf(const GeometryTree& tree, const SpacingField& spacing, const InitLeaf& leaf,
+                      InitMethod method, UnitRandom& rng, NodeSet& nodes);
+
+}  // namespace pdmesh

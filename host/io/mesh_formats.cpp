@@ -1,0 +1,86 @@
+// Dispatch of the mesh writers by format name and of the readers by file extension.
+#include "io/mesh_formats.hpp"
+
+#include <algorithm>
+
+#include <fmt/format.h>
+
+#include "core/errors.hpp"
+#include "io/msh_reader.hpp"
+#include "io/msh_writer.hpp"
+#include "io/su2_reader.hpp"
+#include "io/su2_writer.hpp"
+#include "io/text_file.hpp"
+#include "io/triangle_reader.hpp"
+#include "io/triangle_writer.hpp"
+#include "io/vtu_reader.hpp"
+#include "io/vtu_writer.hpp"
+
+namespace pdmesh {
+
+const std::vector<std::string>& mesh_format_names() {
+  static const std::vector<std::string> names = {"msh", "msh22", "vtu", "su2", "triangle"};
+  return names;
+}
+
+bool is_mesh_format(const std::string& name) {
+  const auto& n = mesh_format_names();
+  return std::find(n.begin(), n.end(), name) != n.end();
+}
+
+std::vector<std::filesystem::path> write_mesh(const Mesh& mesh, const std::filesystem::path& dir, const std::string& stem,
+                                              const std::vector<std::string>& formats) {
+  for (const auto& f : formats) {
+    if (!is_mesh_format(f)) {
+      throw InputError(fmt::format("unknown mesh format '{}' (known: {})", f, fmt::join(mesh_format_names(), ", ")));
+    }
+  }
+  const auto asked = [&](const char* name) { return std::find(formats.begin(), formats.end(), name) != formats.end(); };
+  if (asked("msh") && asked("msh22")) {
+    throw InputError("mesh formats 'msh' and 'msh22' both write STEM.msh; ask for one of them");
+  }
+  std::vector<std::filesystem::path> written;
+  const auto put = [&](const std::string& ext, const std::string& content) {
+    const auto path = dir / (stem + ext);
+    write_text_file(path, content);
+    written.push_back(path);
+  };
+  for (const auto& f : formats) {
+    if (f == "msh") {
+      put(".msh", msh41_string(mesh));
+    } else if (f == "msh22") {
+      put(".msh", msh22_string(mesh));
+    } else if (f == "vtu") {
+      put(".vtu", vtu_string(mesh));
+    } else if (f == "su2") {
+      put(".su2", su2_string(mesh));
+    } else if (f == "triangle") {
+      const auto files = triangle_strings(mesh);
+      put(".node", files.node);
+      put(".ele", files.ele);
+      put(".poly", files.poly);
+    }
+  }
+  return written;
+}
+
+Mesh read_mesh(const std::filesystem::path& path, MeshReadReport& report) {
+  std::string ext = path.extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  if (ext == ".msh") return read_msh(path, report);
+  if (ext == ".vtu") return read_vtu(path, report);
+  if (ext == ".su2") return read_su2(path, report);
+  if (ext == ".ele" || ext == ".node" || ext == ".poly") {
+    auto ele = path;
+    ele.replace_extension(".ele");
+    return read_triangle(ele, report);
+  }
+  throw InputError(fmt::format("{}: unknown mesh file extension '{}' (known: .msh, .vtu, .su2, .ele)", path.string(), ext));
+}
+
+Mesh read_mesh(const std::filesystem::path& path) {
+  MeshReadReport report;
+  return read_mesh(path, report);
+}
+
+}  // namespace pdmesh

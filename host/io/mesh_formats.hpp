@@ -1,0 +1,29 @@
+// Mesh file formats by name (writing) and by extension (reading): msh (Gmsh 4.1), msh22
+// (Gmsh 2.2), vtu (VTK XML), su2 (SU2 native) and triangle (.node/.ele/.poly).
+#pragma once
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "io/mesh_io_common.hpp"
+#include "mesh/mesh.hpp"
+
+namespace pdmesh {
+
+// The format names write_mesh accepts, in documentation order.
+const std::vector<std::string>& mesh_format_names();
+// True for a name write_mesh accepts.
+bool is_mesh_format(const std::string& name);
+
+// Writes DIR/STEM.msh (msh and msh22 cannot both be asked for: same file), .vtu, .su2 or
+// STEM.node/.ele/.poly, each atomically, and returns the paths written. Throws InputError on an
+// unknown format name (listing the known ones) or an unwritable directory.
+std::vector<std::filesystem::path> write_mesh(const Mesh& mesh, const std::filesystem::path& dir, const std::string& stem,
+                                              const std::vector<std::string>& formats);
+
+// Reads a mesh by extension: .msh (2.2 or 4.1, from $MeshFormat), .vtu, .su2, .ele (with its
+// .node and optional .poly; a .node or .poly path is taken to mean the same stem).
+Mesh read_mesh(const std::filesystem::path& path, MeshReadReport& report);
+Mesh read_mesh(const std::filesystem::path& path);
+
+}  // namespace pdmesh

@@ -1,0 +1,72 @@
+// Shared checks and helpers of the mesh writers and readers.
+#include "io/mesh_io_common.hpp"
+
+#include <algorithm>
+#include <numeric>
+
+#include <fmt/format.h>
+
+#include "core/errors.hpp"
+#include "core/predicates.hpp"
+
+namespace pdmesh {
+
+std::string curve_label(const Mesh& mesh, std::size_t c, bool no_blanks) {
+  std::string name = c < mesh.curve_names.size() ? mesh.curve_names[c] : std::string();
+  if (name.empty()) name = fmt::format("curve{}", c);
+  for (char& ch : name) {
+    if (ch == '"' || ch == '\n' || ch == '\r' || (no_blanks && (ch == ' ' || ch == '\t'))) ch = '_';
+  }
+  return name;
+}
+
+void check_mesh_for_writing(const Mesh& mesh, const std::string& what) {
+  const auto n = static_cast<long long>(mesh.points.size());
+  for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
+    for (int v : mesh.triangles[t]) {
+      if (v < 0 || v >= n) {
+        throw InputError(fmt::format("{}: triangle {} refers to point {} but the mesh has {} points", what, t, v, n));
+      }
+    }
+  }
+  const auto curves = static_cast<long long>(mesh.curve_names.size());
+  for (std::size_t e = 0; e < mesh.boundary_edges.size(); ++e) {
+    const auto& be = mesh.boundary_edges[e];
+    if (be.a < 0 || be.a >= n || be.b < 0 || be.b >= n) {
+      throw InputError(fmt::format("{}: boundary edge {} ({}-{}) refers to a point outside 0..{}", what, e, be.a, be.b,
+                                   n - 1));
+    }
+    if (be.curve < 0 || be.curve >= curves) {
+      throw InputError(fmt::format("{}: boundary edge {} is on curve {} but the mesh has {} curve names", what, e,
+                                   be.curve, curves));
+    }
+  }
+  if (!mesh.kind.empty() && mesh.kind.size() != mesh.points.size()) {
+    throw InputError(fmt::format("{}: {} node kinds for {} points", what, mesh.kind.size(), n));
+  }
+}
+
+std::vector<std::size_t> boundary_edges_by_curve(const Mesh& mesh) {
+  std::vector<std::size_t> order(mesh.boundary_edges.size());
+  std::iota(order.begin(), order.end(), std::size_t{0});
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t i, std::size_t j) {
+    return mesh.boundary_edges[i].curve < mesh.boundary_edges[j].curve;
+  });
+  return order;
+}
+
+std::string coord(double v) { return fmt::format("{:.17g}", v); }
+
+void orient_triangles_ccw(Mesh& mesh, MeshReadReport& report) {
+  std::size_t flipped = 0;
+  for (auto& t : mesh.triangles) {
+    if (orient2d(mesh.points[t[0]], mesh.points[t[1]], mesh.points[t[2]]) < 0.0) {
+      std::swap(t[1], t[2]);
+      ++flipped;
+    }
+  }
+  report.reoriented_triangles += flipped;
+  if (flipped > 0) report.notes.push_back(fmt::format("turned {} clockwise triangles counter-clockwise", flipped));
+}
+
+}  // namespace pdmesh

@@ -1,0 +1,38 @@
+// Pieces every mesh writer and reader shares: curve labels as files can hold them, the checks
+// a mesh passes before it is written, and what a reader reports besides the mesh.
+#pragma once
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "mesh/mesh.hpp"
+
+namespace pdmesh {
+
+// What a reader saw besides the mesh: elements it skipped (unsupported types, counted per reader)
+// and clockwise triangles it turned counter-clockwise (Mesh promises counter-clockwise).
+struct MeshReadReport {
+  std::size_t skipped_elements = 0;
+  std::size_t reoriented_triangles = 0;
+  std::vector<std::string> notes;  // one line each, e.g. "skipped 4 elements of type 3 (quadrangle)"
+};
+
+// The name of curve c as written: its name, or "curve<c>" when empty; double quotes and line
+// breaks become '_' (MSH quotes names), and with `no_blanks` also spaces and tabs (SU2 markers).
+std::string curve_label(const Mesh& mesh, std::size_t c, bool no_blanks = false);
+
+// Throws InputError naming the triangle/edge/curve when an index is out of range or when
+// `kind` is neither empty nor one per point. Every writer calls this first.
+void check_mesh_for_writing(const Mesh& mesh, const std::string& what);
+
+// Boundary edge indices grouped by curve (stable: curve order, then file order within a curve).
+std::vector<std::size_t> boundary_edges_by_curve(const Mesh& mesh);
+
+// Coordinates are written with 17 significant digits, which reads back to the same double.
+std::string coord(double v);
+
+// Reader post-processing: turns clockwise triangles counter-clockwise (exact orientation test),
+// counting them in `report`.
+void orient_triangles_ccw(Mesh& mesh, MeshReadReport& report);
+
+}  // namespace pdmesh

@@ -1,0 +1,300 @@
+// Gmsh MSH 4.1 / 2.2 ASCII reader.
+// Format: https://gmsh.info/doc/texinfo/gmsh.html#MSH-file-format (section 10.1) and
+// https://gmsh.info/doc/texinfo/gmsh.html#MSH-file-format-version-2-_0028Legacy_0029.
+#include "io/msh_reader.hpp"
+
+#include <map>
+#include <unordered_map>
+
+#include <fmt/format.h>
+
+#include "core/errors.hpp"
+#include "io/text_file.hpp"
+
+namespace pdmesh {
+namespace {
+
+// An element as read, resolved into point indices once all nodes are known.
+struct RawElement {
+  long long nodes[3] = {0, 0, 0};
+  int line = 0;
+  long long physical = 0;  // 0 = none
+  long long entity = 0;
+};
+
+struct MshData {
+  bool v41 = true;
+  std::map<long long, std::string> line_names;       // dim-1 physical tag -> name
+  std::map<long long, long long> curve_entity_phys;  // 4.1 curve entity -> first physical tag (0 none)
+  std::unordered_map<long long, int> node_index;     // node tag -> point index
+  std::vector<Vec2> points;
+  std::vector<RawElement> lines, triangles;
+  std::map<int, std::size_t> skipped;  // element type -> count
+};
+
+const char* element_name(int type) {
+  switch (type) {
+    case 3: return "quadrangle";
+    case 4: return "tetrahedron";
+    case 5: return "hexahedron";
+    case 8: return "3-node line";
+    case 9: return "6-node triangle";
+    case 15: return "point";
+    default: return "unsupported";
+  }
+}
+
+void expect_end(LineScanner& s, std::string_view section) {
+  const std::string want = fmt::format("$End{}", section);
+  const auto tok = s.token(want);
+  if (tok != want) s.fail(fmt::format("expected {} (a count in this section is wrong or the file is truncated)", want), tok);
+}
+
+std::size_t count(LineScanner& s, std::string_view what) {
+  const long long n = s.to_int(s.token(what), what);
+  if (n < 0) s.fail(fmt::format("negative {}", what), fmt::format("{}", n));
+  return static_cast<std::size_t>(n);
+}
+
+void read_format(LineScanner& s, MshData& d) {
+  const auto version = s.token("MSH version");
+  if (version == "4.1") {
+    d.v41 = true;
+  } else if (version.size() >= 2 && version.substr(0, 2) == "2.") {
+    d.v41 = false;
+  } else {
+    s.fail("unsupported MSH version (this reader reads 4.1 and 2.x ASCII)", version);
+  }
+  const auto type = s.token("file type");
+  if (type != "0") s.fail("binary MSH files are not supported (file type must be 0)", type);
+  s.token("data size");
+  expect_end(s, "MeshFormat");
+}
+
+void read_physical_names(LineScanner& s, MshData& d) {
+  const std::size_t n = count(s, "number of physical names");
+  for (std::size_t i = 0; i < n; ++i) {
+    const long long dim = s.to_int(s.token("physical dimension"), "physical dimension");
+    const long long tag = s.to_int(s.token("physical tag"), "physical tag");
+    std::string_view name = s.rest_of_line();
+    if (name.size() < 2 || name.front() != '"' || name.back() != '"') s.fail("expected a quoted physical name", name);
+    if (dim == 1) d.line_names[tag] = std::string(name.substr(1, name.size() - 2));
+  }
+  expect_end(s, "PhysicalNames");
+}
+
+// 4.1 $Entities: remember the physical tag of each curve entity.
+void read_entities(LineScanner& s, MshData& d) {
+  std::size_t counts[4];
+  for (auto& c : counts) c = count(s, "number of entities");
+  for (int dim = 0; dim < 4; ++dim) {
+    for (std::size_t i = 0; i < counts[dim]; ++i) {
+      const long long tag = s.to_int(s.token("entity tag"), "entity tag");
+      for (int k = 0; k < (dim == 0 ? 3 : 6); ++k) s.to_double(s.token("entity coordinate"), "entity coordinate");
+      const std::size_t nphys = count(s, "number of physical tags");
+      long long first = 0;
+      for (std::size_t k = 0; k < nphys; ++k) {
+        const long long p = s.to_int(s.token("physical tag"), "physical tag");
+        if (k == 0) first = p;
+      }
+      if (dim == 1) d.curve_entity_phys[tag] = first;
+      if (dim > 0) {
+        const std::size_t nb = count(s, "number of bounding entities");
+        for (std::size_t k = 0; k < nb; ++k) s.to_int(s.token("bounding entity tag"), "bounding entity tag");
+      }
+    }
+  }
+  expect_end(s, "Entities");
+}
+
+void add_node(LineScanner& s, MshData& d, long long tag, double x, double y) {
+  if (!d.node_index.emplace(tag, static_cast<int>(d.points.size())).second) {
+    s.fail("duplicate node tag", fmt::format("{}", tag));
+  }
+  d.points.push_back({x, y});
+}
+
+void read_nodes(LineScanner& s, MshData& d) {
+  if (!d.v41) {
+    const std::size_t n = count(s, "number of nodes");
+    for (std::size_t i = 0; i < n; ++i) {
+      const long long tag = s.to_int(s.token("node tag"), "node tag");
+      const double x = s.to_double(s.token("x"), "x");
+      const double y = s.to_double(s.token("y"), "y");
+      s.to_double(s.token("z"), "z");
+      add_node(s, d, tag, x, y);
+    }
+    expect_end(s, "Nodes");
+    return;
+  }
+  const std::size_t blocks = count(s, "number of node blocks");
+  const std::size_t total = count(s, "number of nodes");
+  s.token("minimum node tag");
+  s.token("maximum node tag");
+  std::size_t seen = 0;
+  std::vector<long long> tags;
+  for (std::size_t b = 0; b < blocks; ++b) {
+    const long long dim = s.to_index(s.token("entity dimension"), 0, 3, "entity dimension");
+    s.token("entity tag");
+    const long long parametric = s.to_index(s.token("parametric flag"), 0, 1, "parametric flag");
+    const std::size_t n = count(s, "number of nodes in block");
+    tags.resize(n);
+    for (auto& t : tags) t = s.to_int(s.token("node tag"), "node tag");
+    const long long extra = parametric ? dim : 0;
+    for (std::size_t i = 0; i < n; ++i) {
+      const double x = s.to_double(s.token("x"), "x");
+      const double y = s.to_double(s.token("y"), "y");
+      s.to_double(s.token("z"), "z");
+      for (long long k = 0; k < extra; ++k) s.to_double(s.token("parametric coordinate"), "parametric coordinate");
+      add_node(s, d, tags[i], x, y);
+    }
+    seen += n;
+  }
+  if (seen != total) s.fail(fmt::format("the node blocks hold {} nodes but the header says {}", seen, total));
+  expect_end(s, "Nodes");
+}
+
+// One element: `nodes` is the rest of its line; type 1 and 2 are kept, the rest counted.
+void add_element(LineScanner& s, MshData& d, int type, std::string_view nodes, long long physical, long long entity) {
+  const std::size_t need = type == 1 ? 2 : type == 2 ? 3 : 0;
+  if (need == 0) {
+    d.skipped[type]++;
+    return;
+  }
+  const auto toks = split_tokens(nodes);
+  if (toks.size() != need) {
+    s.fail(fmt::format("element of type {} needs {} node tags, found {}", type, need, toks.size()), nodes);
+  }
+  RawElement e;
+  e.line = s.line();
+  e.physical = physical;
+  e.entity = entity;
+  for (std::size_t k = 0; k < need; ++k) e.nodes[k] = s.to_int(toks[k], "node tag");
+  (type == 1 ? d.lines : d.triangles).push_back(e);
+}
+
+void read_elements(LineScanner& s, MshData& d) {
+  if (!d.v41) {
+    const std::size_t n = count(s, "number of elements");
+    for (std::size_t i = 0; i < n; ++i) {
+      s.to_int(s.token("element tag"), "element tag");
+      const std::string_view rest = s.rest_of_line();
+      const auto toks = split_tokens(rest);
+      if (toks.size() < 2) s.fail("expected element type and number of tags", rest);
+      const auto type = static_cast<int>(s.to_int(toks[0], "element type"));
+      const long long ntags = s.to_int(toks[1], "number of tags");
+      if (ntags < 0 || static_cast<std::size_t>(ntags) + 2 > toks.size()) s.fail("bad number of element tags", rest);
+      const long long physical = ntags > 0 ? s.to_int(toks[2], "physical tag") : 0;
+      const long long entity = ntags > 1 ? s.to_int(toks[3], "elementary tag") : 0;
+      const std::size_t skip = static_cast<std::size_t>(ntags) + 2;
+      // The node tags are the rest of the line after the type, count and tags.
+      const std::string_view nodes =
+          toks.size() > skip ? rest.substr(static_cast<std::size_t>(toks[skip].data() - rest.data())) : std::string_view();
+      add_element(s, d, type, nodes, physical, entity);
+    }
+    expect_end(s, "Elements");
+    return;
+  }
+  const std::size_t blocks = count(s, "number of element blocks");
+  const std::size_t total = count(s, "number of elements");
+  s.token("minimum element tag");
+  s.token("maximum element tag");
+  std::size_t seen = 0;
+  for (std::size_t b = 0; b < blocks; ++b) {
+    const long long dim = s.to_index(s.token("entity dimension"), 0, 3, "entity dimension");
+    const long long entity = s.to_int(s.token("entity tag"), "entity tag");
+    const auto type = static_cast<int>(s.to_int(s.token("element type"), "element type"));
+    const std::size_t n = count(s, "number of elements in block");
+    long long physical = 0;
+    if (dim == 1) {
+      const auto it = d.curve_entity_phys.find(entity);
+      physical = it == d.curve_entity_phys.end() ? 0 : it->second;
+    }
+    for (std::size_t i = 0; i < n; ++i) {
+      s.to_int(s.token("element tag"), "element tag");
+      add_element(s, d, type, s.rest_of_line(), physical, entity);
+    }
+    seen += n;
+  }
+  if (seen != total) s.fail(fmt::format("the element blocks hold {} elements but the header says {}", seen, total));
+  expect_end(s, "Elements");
+}
+
+int resolve(const MshData& d, const std::string& file, const RawElement& e, long long tag) {
+  const auto it = d.node_index.find(tag);
+  if (it == d.node_index.end()) throw InputError(fmt::format("{}:{}: element refers to unknown node tag {}", file, e.line, tag));
+  return it->second;
+}
+
+Mesh assemble(const std::string& file, MshData& d, MeshReadReport& report) {
+  Mesh mesh;
+  mesh.points = std::move(d.points);
+  // Curve keys: physical groups first (named ones, then unnamed ones in use), then entities.
+  std::map<std::pair<int, long long>, int> curve_of;  // (0 physical / 1 entity, tag) -> curve index
+  for (const auto& [tag, name] : d.line_names) {
+    curve_of[{0, tag}] = 0;
+  }
+  for (const auto& e : d.lines) curve_of[e.physical > 0 ? std::pair<int, long long>{0, e.physical}
+                                                        : std::pair<int, long long>{1, e.entity}] = 0;
+  for (auto& [key, index] : curve_of) {
+    index = static_cast<int>(mesh.curve_names.size());
+    const auto named = key.first == 0 ? d.line_names.find(key.second) : d.line_names.end();
+    mesh.curve_names.push_back(named != d.line_names.end() ? named->second
+                               : key.first == 0       ? fmt::format("physical{}", key.second)
+                                                      : fmt::format("entity{}", key.second));
+  }
+  for (const auto& e : d.lines) {
+    const int c = curve_of[e.physical > 0 ? std::pair<int, long long>{0, e.physical} : std::pair<int, long long>{1, e.entity}];
+    mesh.boundary_edges.push_back({resolve(d, file, e, e.nodes[0]), resolve(d, file, e, e.nodes[1]), c});
+  }
+  for (const auto& e : d.triangles) {
+    mesh.triangles.push_back({resolve(d, file, e, e.nodes[0]), resolve(d, file, e, e.nodes[1]), resolve(d, file, e, e.nodes[2])});
+  }
+  for (const auto& [type, n] : d.skipped) {
+    report.skipped_elements += n;
+    report.notes.push_back(fmt::format("{}: skipped {} elements of type {} ({})", file, n, type, element_name(type)));
+  }
+  orient_triangles_ccw(mesh, report);
+  return mesh;
+}
+
+}  // namespace
+
+Mesh parse_msh(const std::string& file_label, std::string content, MeshReadReport& report) {
+  LineScanner s(file_label, std::move(content));
+  MshData d;
+  const auto first = s.token("$MeshFormat");
+  if (first != "$MeshFormat") s.fail("an MSH file starts with $MeshFormat", first);
+  read_format(s, d);
+  std::string_view line;
+  while (s.next_line(line)) {
+    const auto toks = split_tokens(line);
+    if (toks.empty()) continue;
+    const std::string_view section = toks[0];
+    if (section == "$PhysicalNames") {
+      read_physical_names(s, d);
+    } else if (section == "$Entities" && d.v41) {
+      read_entities(s, d);
+    } else if (section == "$Nodes") {
+      read_nodes(s, d);
+    } else if (section == "$Elements") {
+      read_elements(s, d);
+    } else if (!section.empty() && section[0] == '$') {
+      // A section we do not use ($PartitionedEntities, $NodeData, ...): skip to its end marker.
+      const std::string end = fmt::format("$End{}", section.substr(1));
+      std::string_view skip;
+      bool closed = false;
+      while (!closed && s.next_line(skip)) closed = !split_tokens(skip).empty() && split_tokens(skip)[0] == end;
+      if (!closed) s.fail(fmt::format("unexpected end of file, expected {}", end));
+    } else {
+      s.fail("expected a section header starting with '$'", line);
+    }
+  }
+  return assemble(file_label, d, report);
+}
+
+Mesh read_msh(const std::filesystem::path& path, MeshReadReport& report) {
+  return parse_msh(path.string(), read_text_file(path), report);
+}
+
+}  // namespace pdmesh

@@ -1,0 +1,116 @@
+// Gmsh MSH 4.1 and 2.2 ASCII writers.
+// Format: Gmsh reference manual, https://gmsh.info/doc/texinfo/gmsh.html#MSH-file-format
+// (section 10.1 "MSH file format", version 4.1) and
+// https://gmsh.info/doc/texinfo/gmsh.html#MSH-file-format-version-2-_0028Legacy_0029
+// (section 10.5 "MSH file format version 2 (Legacy)").
+#include "io/msh_writer.hpp"
+
+#include <fmt/format.h>
+
+#include "io/mesh_io_common.hpp"
+
+namespace pdmesh {
+namespace {
+
+Box box_of(const Mesh& mesh) {
+  Box b;
+  for (const auto& p : mesh.points) b.add(p);
+  if (mesh.points.empty()) b.add({0.0, 0.0});
+  return b;
+}
+
+std::string physical_names(const Mesh& mesh) {
+  const std::size_t curves = mesh.curve_names.size();
+  std::string out = fmt::format("$PhysicalNames\n{}\n", curves + 1);
+  for (std::size_t c = 0; c < curves; ++c) out += fmt::format("1 {} \"{}\"\n", c + 1, curve_label(mesh, c));
+  out += fmt::format("2 {} \"domain\"\n$EndPhysicalNames\n", curves + 1);
+  return out;
+}
+
+}  // namespace
+
+std::string msh41_string(const Mesh& mesh) {
+  check_mesh_for_writing(mesh, "MSH 4.1 writer");
+  const std::size_t curves = mesh.curve_names.size();
+  const std::size_t n = mesh.points.size();
+  std::string out = "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n";
+  out += physical_names(mesh);
+
+  // Entities: no points; curve entity c + 1 carries physical tag c + 1; surface 1 carries the
+  // domain tag. Bounding boxes are per curve (its edges) and the mesh box for the surface.
+  std::vector<Box> curve_box(curves);
+  for (const auto& e : mesh.boundary_edges) {
+    curve_box[static_cast<std::size_t>(e.curve)].add(mesh.points[static_cast<std::size_t>(e.a)]);
+    curve_box[static_cast<std::size_t>(e.curve)].add(mesh.points[static_cast<std::size_t>(e.b)]);
+  }
+  const Box all = box_of(mesh);
+  out += fmt::format("$Entities\n0 {} 1 0\n", curves);
+  for (std::size_t c = 0; c < curves; ++c) {
+    const Box b = curve_box[c].lo.x <= curve_box[c].hi.x ? curve_box[c] : all;
+    out += fmt::format("{} {} {} 0 {} {} 0 1 {} 0\n", c + 1, coord(b.lo.x), coord(b.lo.y), coord(b.hi.x),
+                       coord(b.hi.y), c + 1);
+  }
+  out += fmt::format("1 {} {} 0 {} {} 0 1 {} 0\n$EndEntities\n", coord(all.lo.x), coord(all.lo.y), coord(all.hi.x),
+                     coord(all.hi.y), curves + 1);
+
+  // Nodes: all in the surface entity, not parametric (gmsh looks nodes up by tag, so the
+  // boundary elements may use them from another entity).
+  if (n == 0) {
+    out += "$Nodes\n0 0 0 0\n$EndNodes\n";
+  } else {
+    out += fmt::format("$Nodes\n1 {} 1 {}\n2 1 0 {}\n", n, n, n);
+    for (std::size_t i = 0; i < n; ++i) out += fmt::format("{}\n", i + 1);
+    for (const auto& p : mesh.points) out += fmt::format("{} {} 0\n", coord(p.x), coord(p.y));
+    out += "$EndNodes\n";
+  }
+
+  // Elements: one block of 2-node lines (type 1) per curve with edges, then the triangles (type 2).
+  const auto order = boundary_edges_by_curve(mesh);
+  std::size_t blocks = mesh.triangles.empty() ? 0 : 1;
+  std::vector<std::size_t> per_curve(curves, 0);
+  for (const auto& e : mesh.boundary_edges) per_curve[static_cast<std::size_t>(e.curve)]++;
+  for (auto k : per_curve) blocks += (k > 0);
+  const std::size_t total = mesh.boundary_edges.size() + mesh.triangles.size();
+  out += fmt::format("$Elements\n{} {} {} {}\n", blocks, total, total ? 1 : 0, total);
+  std::size_t tag = 1, next = 0;
+  for (std::size_t c = 0; c < curves; ++c) {
+    if (per_curve[c] == 0) continue;
+    out += fmt::format("1 {} 1 {}\n", c + 1, per_curve[c]);
+    for (std::size_t k = 0; k < per_curve[c]; ++k, ++next) {
+      const auto& e = mesh.boundary_edges[order[next]];
+      out += fmt::format("{} {} {}\n", tag++, e.a + 1, e.b + 1);
+    }
+  }
+  if (!mesh.triangles.empty()) {
+    out += fmt::format("2 1 2 {}\n", mesh.triangles.size());
+    for (const auto& t : mesh.triangles) out += fmt::format("{} {} {} {}\n", tag++, t[0] + 1, t[1] + 1, t[2] + 1);
+  }
+  out += "$EndElements\n";
+  return out;
+}
+
+std::string msh22_string(const Mesh& mesh) {
+  check_mesh_for_writing(mesh, "MSH 2.2 writer");
+  const std::size_t curves = mesh.curve_names.size();
+  std::string out = "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n";
+  out += physical_names(mesh);
+  out += fmt::format("$Nodes\n{}\n", mesh.points.size());
+  for (std::size_t i = 0; i < mesh.points.size(); ++i) {
+    out += fmt::format("{} {} {} 0\n", i + 1, coord(mesh.points[i].x), coord(mesh.points[i].y));
+  }
+  out += "$EndNodes\n";
+  // Each element: tag, type, 2 tags (physical, elementary), nodes. Curve c is elementary entity c + 1.
+  out += fmt::format("$Elements\n{}\n", mesh.boundary_edges.size() + mesh.triangles.size());
+  std::size_t tag = 1;
+  for (auto k : boundary_edges_by_curve(mesh)) {
+    const auto& e = mesh.boundary_edges[k];
+    out += fmt::format("{} 1 2 {} {} {} {}\n", tag++, e.curve + 1, e.curve + 1, e.a + 1, e.b + 1);
+  }
+  for (const auto& t : mesh.triangles) {
+    out += fmt::format("{} 2 2 {} 1 {} {} {}\n", tag++, curves + 1, t[0] + 1, t[1] + 1, t[2] + 1);
+  }
+  out += "$EndElements\n";
+  return out;
+}
+
+}  // namespace pdmesh

@@ -1,0 +1,35 @@
+// SU2 native mesh writer.
+// Format: SU2 documentation, "Mesh File", https://su2code.github.io/docs_v7/Mesh-File/
+// (section "SU2 Native Format (.su2)"): NDIME=, NELEM= (VTK type ids, 0-based point indices),
+// NPOIN=, NMARK=, MARKER_TAG=, MARKER_ELEMS=.
+#include "io/su2_writer.hpp"
+
+#include <fmt/format.h>
+
+namespace pdmesh {
+
+std::string su2_string(const Mesh& mesh) {
+  check_mesh_for_writing(mesh, "SU2 writer");
+  std::string out = "% Written by pdmesh\nNDIME= 2\n";
+  out += fmt::format("NELEM= {}\n", mesh.triangles.size());
+  for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
+    const auto& tri = mesh.triangles[t];
+    out += fmt::format("5 {} {} {} {}\n", tri[0], tri[1], tri[2], t);
+  }
+  out += fmt::format("NPOIN= {}\n", mesh.points.size());
+  for (std::size_t i = 0; i < mesh.points.size(); ++i) {
+    out += fmt::format("{} {} {}\n", coord(mesh.points[i].x), coord(mesh.points[i].y), i);
+  }
+  std::vector<std::vector<std::size_t>> per_curve(mesh.curve_names.size());
+  for (std::size_t e = 0; e < mesh.boundary_edges.size(); ++e) {
+    per_curve[static_cast<std::size_t>(mesh.boundary_edges[e].curve)].push_back(e);
+  }
+  out += fmt::format("NMARK= {}\n", mesh.curve_names.size());
+  for (std::size_t c = 0; c < per_curve.size(); ++c) {
+    out += fmt::format("MARKER_TAG= {}\nMARKER_ELEMS= {}\n", curve_label(mesh, c, true), per_curve[c].size());
+    for (auto e : per_curve[c]) out += fmt::format("3 {} {}\n", mesh.boundary_edges[e].a, mesh.boundary_edges[e].b);
+  }
+  return out;
+}
+
+}  // namespace pdmesh

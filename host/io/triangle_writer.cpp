@@ -1,0 +1,49 @@
+// Triangle .node/.ele/.poly writer.
+// Format: https://www.cs.cmu.edu/~quake/triangle.node.html, https://www.cs.cmu.edu/~quake/triangle.ele.html
+// and https://www.cs.cmu.edu/~quake/triangle.poly.html ("# comments" are allowed on any line).
+#include "io/triangle_writer.hpp"
+
+#include <fmt/format.h>
+
+#include "io/mesh_io_common.hpp"
+
+namespace pdmesh {
+
+TriangleFiles triangle_strings(const Mesh& mesh) {
+  check_mesh_for_writing(mesh, "Triangle writer");
+  TriangleFiles f;
+  std::vector<char> on_boundary(mesh.points.size(), 0);
+  for (const auto& e : mesh.boundary_edges) {
+    on_boundary[static_cast<std::size_t>(e.a)] = on_boundary[static_cast<std::size_t>(e.b)] = 1;
+  }
+  const bool kinds = !mesh.kind.empty();
+  f.node = "# Written by pdmesh (Triangle .node format)\n";
+  if (kinds) f.node += "# pdmesh: attribute 1 = node kind (0 fixed, 1 boundary, 2 interior)\n";
+  f.node += fmt::format("{} 2 {} 1\n", mesh.points.size(), kinds ? 1 : 0);
+  for (std::size_t i = 0; i < mesh.points.size(); ++i) {
+    f.node += fmt::format("{} {} {}", i + 1, coord(mesh.points[i].x), coord(mesh.points[i].y));
+    if (kinds) f.node += fmt::format(" {}", static_cast<int>(mesh.kind[i]));
+    f.node += fmt::format(" {}\n", static_cast<int>(on_boundary[i]));
+  }
+
+  f.ele = fmt::format("# Written by pdmesh (Triangle .ele format)\n{} 3 0\n", mesh.triangles.size());
+  for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
+    const auto& tri = mesh.triangles[t];
+    f.ele += fmt::format("{} {} {} {}\n", t + 1, tri[0] + 1, tri[1] + 1, tri[2] + 1);
+  }
+
+  f.poly = "# Written by pdmesh (Triangle .poly format); the points are in the .node file\n";
+  for (std::size_t c = 0; c < mesh.curve_names.size(); ++c) {
+    f.poly += fmt::format("# pdmesh curve {} {}\n", c + 1, curve_label(mesh, c));
+  }
+  f.poly += fmt::format("0 2 0 1\n{} 1\n", mesh.boundary_edges.size());
+  std::size_t k = 1;
+  for (auto e : boundary_edges_by_curve(mesh)) {
+    const auto& be = mesh.boundary_edges[e];
+    f.poly += fmt::format("{} {} {} {}\n", k++, be.a + 1, be.b + 1, be.curve + 1);
+  }
+  f.poly += "0\n";
+  return f;
+}
+
+}  // namespace pdmesh

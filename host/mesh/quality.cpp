@@ -1,0 +1,207 @@
+// Mesh quality metrics of the thesis appendix, per triangle and summarised over a mesh.
+#include "mesh/quality.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <string>
+#include <unordered_set>
+
+#include <fmt/format.h>
+
+#include "core/errors.hpp"
+
+namespace pdmesh {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+// 2x2 matrix [[a, b], [c, d]] (row-major), just enough for K_W.
+struct Mat2 {
+  double a, b, c, d;
+};
+
+Mat2 mul(const Mat2& m, const Mat2& n) {
+  return {m.a * n.a + m.b * n.c, m.a * n.b + m.b * n.d, m.c * n.a + m.d * n.c, m.c * n.b + m.d * n.d};
+}
+double det(const Mat2& m) { return m.a * m.d - m.b * m.c; }
+Mat2 inverse(const Mat2& m) {
+  const double dt = det(m);
+  return {m.d / dt, -m.b / dt, -m.c / dt, m.a / dt};
+}
+// ||M|| = sqrt(tr(M^T M)), the Frobenius norm.
+double frobenius(const Mat2& m) { return std::sqrt(m.a * m.a + m.b * m.b + m.c * m.c + m.d * m.d); }
+
+// Included angle at `corner` in degrees; atan2 of |cross| and dot is accurate near 0 and 180.
+double angle_deg(Vec2 corner, Vec2 p, Vec2 q) {
+  const Vec2 u = p - corner, v = q - corner;
+  return std::atan2(std::fabs(cross(u, v)), dot(u, v)) * 180.0 / kPi;
+}
+
+}  // namespace
+
+double weighted_condition_number(Vec2 a, Vec2 b, Vec2 c) {
+  const Vec2 u = b - a, v = c - a;
+  const Mat2 A{u.x, v.x, u.y, v.y};
+  if (det(A) == 0.0) return kInf;
+  const Mat2 W{1.0, 0.5, 0.0, std::sqrt(3.0) / 2.0};
+  return frobenius(mul(A, inverse(W))) * frobenius(mul(W, inverse(A))) / 2.0;
+}
+
+double corner_jacobian(Vec2 corner, Vec2 next, Vec2 prev) {
+  const Vec2 u = next - corner, v = prev - corner;
+  const double lu = norm(u), lv = norm(v);
+  if (lu == 0.0 || lv == 0.0) return 0.0;
+  return cross((1.0 / lu) * u, (1.0 / lv) * v);
+}
+
+TriangleQuality triangle_quality(Vec2 a, Vec2 b, Vec2 c) {
+  TriangleQuality t;
+  const double angles[3] = {angle_deg(a, b, c), angle_deg(b, c, a), angle_deg(c, a, b)};
+  t.min_angle = std::min({angles[0], angles[1], angles[2]});
+  t.max_angle = std::max({angles[0], angles[1], angles[2]});
+
+  // Edge lengths: la opposite a, and so on.
+  const double la = dist(b, c), lb = dist(c, a), lc = dist(a, b);
+  const double lmin = std::min({la, lb, lc}), lmax = std::max({la, lb, lc});
+  t.skewness = lmin > 0.0 ? lmax / lmin : kInf;
+
+  // R = la lb lc / (4 area), r = area / s with s the half perimeter, so
+  // R / (2 r) = la lb lc s / (8 area^2).
+  const double area = 0.5 * std::fabs(cross(b - a, c - a));
+  const double s = 0.5 * (la + lb + lc);
+  t.aspect_ratio = area > 0.0 ? la * lb * lc * s / (8.0 * area * area) : kInf;
+
+  t.condition_number = weighted_condition_number(a, b, c);
+  t.min_jacobian = std::min({corner_jacobian(a, b, c), corner_jacobian(b, c, a), corner_jacobian(c, a, b)});
+  return t;
+}
+
+std::vector<TriangleQuality> triangle_qualities(const Mesh& mesh) {
+  std::vector<TriangleQuality> out;
+  out.reserve(mesh.triangles.size());
+  const auto n = static_cast<int>(mesh.points.size());
+  for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
+    const auto& tri = mesh.triangles[t];
+    for (int v : tri) {
+      if (v < 0 || v >= n) {
+        throw InputError(fmt::format("mesh triangle {} refers to point {} but the mesh has {} points", t, v, n));
+      }
+    }
+    out.push_back(triangle_quality(mesh.points[tri[0]], mesh.points[tri[1]], mesh.points[tri[2]]));
+  }
+  return out;
+}
+
+void Histogram::add(double value) {
+  if (counts.empty()) return;
+  const double k = std::floor((value - lo) / width);
+  if (!(k < static_cast<double>(counts.size()))) {
+    ++overflow;  // also NaN and +infinity
+  } else {
+    counts[k < 0.0 ? 0 : static_cast<std::size_t>(k)]++;
+  }
+}
+
+double percentile_sorted(const std::vector<double>& sorted, double p) {
+  if (sorted.empty()) return 0.0;
+  const double pos = std::clamp(p, 0.0, 1.0) * static_cast<double>(sorted.size() - 1);
+  const auto lo = static_cast<std::size_t>(std::floor(pos));
+  const std::size_t hi = std::min(lo + 1, sorted.size() - 1);
+  const double frac = pos - static_cast<double>(lo);
+  return sorted[lo] + frac * (sorted[hi] - sorted[lo]);
+}
+
+QualitySummary summarize_quality(const std::vector<TriangleQuality>& per_triangle, const QualityOptions& options) {
+  QualitySummary s;
+  s.small_angle_deg = options.small_angle_deg;
+  // Min angles never exceed 60 degrees; the 60-degree edge itself falls in the last bin.
+  const auto angle_bins = static_cast<std::size_t>(std::ceil(60.0 / options.angle_bin_width));
+  s.min_angle_histogram = Histogram{0.0, options.angle_bin_width, std::vector<std::size_t>(angle_bins, 0), 0};
+  s.aspect_ratio_histogram =
+      Histogram{1.0, options.aspect_bin_width, std::vector<std::size_t>(static_cast<std::size_t>(options.aspect_bins), 0), 0};
+  s.triangles = per_triangle.size();
+  if (per_triangle.empty()) return s;
+
+  s.min_angle = kInf;
+  s.max_angle = -kInf;
+  s.min_jacobian = kInf;
+  s.aspect_ratio_max = s.skewness_max = s.condition_number_max = -kInf;
+  double ar_sum = 0.0, skew_sum = 0.0, k_sum = 0.0;
+  for (const auto& t : per_triangle) {
+    s.min_angle = std::min(s.min_angle, t.min_angle);
+    s.max_angle = std::max(s.max_angle, t.max_angle);
+    s.min_jacobian = std::min(s.min_jacobian, t.min_jacobian);
+    s.aspect_ratio_max = std::max(s.aspect_ratio_max, t.aspect_ratio);
+    s.skewness_max = std::max(s.skewness_max, t.skewness);
+    s.condition_number_max = std::max(s.condition_number_max, t.condition_number);
+    ar_sum += t.aspect_ratio;
+    skew_sum += t.skewness;
+    k_sum += t.condition_number;
+    s.small_angle_triangles += (t.min_angle < options.small_angle_deg);
+    // The 60-degree edge belongs to the last bin (an equilateral triangle is not "overflow").
+    s.min_angle_histogram.add(std::min(t.min_angle, 60.0 - 0.5 * options.angle_bin_width));
+    s.aspect_ratio_histogram.add(t.aspect_ratio);
+  }
+  const auto n = static_cast<double>(per_triangle.size());
+  s.aspect_ratio_avg = ar_sum / n;
+  s.skewness_avg = skew_sum / n;
+  s.condition_number_avg = k_sum / n;
+  s.small_angle_share = static_cast<double>(s.small_angle_triangles) / n;
+  return s;
+}
+
+SpacingConformance spacing_conformance(const Mesh& mesh, const SpacingCallback& q) {
+  // Unique undirected edges, keyed by (min, max) point index.
+  std::unordered_set<std::uint64_t> seen;
+  seen.reserve(mesh.triangles.size() * 2);
+  std::vector<double> ratios;
+  ratios.reserve(mesh.triangles.size() * 3 / 2 + 8);
+  for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
+    const auto& tri = mesh.triangles[t];
+    for (int e = 0; e < 3; ++e) {
+      const int i = tri[e], j = tri[(e + 1) % 3];
+      const auto lo = static_cast<std::uint64_t>(static_cast<std::uint32_t>(std::min(i, j)));
+      const auto hi = static_cast<std::uint64_t>(static_cast<std::uint32_t>(std::max(i, j)));
+      if (!seen.insert((lo << 32) | hi).second) continue;
+      const Vec2 a = mesh.points.at(static_cast<std::size_t>(i)), b = mesh.points.at(static_cast<std::size_t>(j));
+      const Vec2 mid = 0.5 * (a + b);
+      const double qm = q(mid);
+      if (!(std::isfinite(qm) && qm > 0.0)) {
+        throw InputError(fmt::format("spacing q({:.17g}, {:.17g}) = {} at the midpoint of edge {}-{} is not a "
+                                     "finite positive number",
+                                     mid.x, mid.y, qm, i, j));
+      }
+      ratios.push_back(dist(a, b) / qm);
+    }
+  }
+  SpacingConformance c;
+  c.edges = ratios.size();
+  if (ratios.empty()) return c;
+  double sum = 0.0;
+  for (double r : ratios) sum += r;
+  c.mean = sum / static_cast<double>(ratios.size());
+  double sq = 0.0;
+  for (double r : ratios) sq += (r - c.mean) * (r - c.mean);
+  c.stddev = std::sqrt(sq / static_cast<double>(ratios.size()));
+  std::sort(ratios.begin(), ratios.end());
+  c.p05 = percentile_sorted(ratios, 0.05);
+  c.p95 = percentile_sorted(ratios, 0.95);
+  c.min = ratios.front();
+  c.max = ratios.back();
+  return c;
+}
+
+QualitySummary summarize_quality(const Mesh& mesh, const SpacingCallback& q, const QualityOptions& options) {
+  QualitySummary s = summarize_quality(triangle_qualities(mesh), options);
+  s.points = mesh.points.size();
+  if (q) {
+    s.has_spacing = true;
+    s.spacing = spacing_conformance(mesh, q);
+  }
+  return s;
+}
+
+}  // namespace pdmesh

@@ -1,0 +1,185 @@
+// Formats a QualitySummary as the thesis-style table and as quality.json (written atomically).
+#include "mesh/quality_report.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+
+#include <fmt/format.h>
+
+#include "io/text_file.hpp"
+
+namespace pdmesh {
+namespace {
+
+using Cell = std::function<std::string(const QualitySummary&)>;
+
+struct Row {
+  std::string name;  // first column, as in the thesis ("Included Angle", "(degrees)", ...)
+  std::string sub;   // second column ("MIN", "Average", ...)
+  Cell value;
+};
+
+Cell fixed(double QualitySummary::*field, int decimals) {
+  return [field, decimals](const QualitySummary& s) { return fmt::format("{:.{}f}", s.*field, decimals); };
+}
+
+Cell spacing_cell(double SpacingConformance::*field) {
+  return [field](const QualitySummary& s) {
+    return s.has_spacing && s.spacing.edges > 0 ? fmt::format("{:.3f}", s.spacing.*field) : std::string("-");
+  };
+}
+
+std::string histogram_label(const Histogram& h, std::size_t k, int decimals) {
+  return fmt::format("[{:.{}f},{:.{}f})", h.edge(k), decimals, h.edge(k + 1), decimals);
+}
+
+std::vector<Row> table_rows(const QualitySummary& first) {
+  std::vector<Row> rows = {
+      {"Number of Triangles", "", [](const QualitySummary& s) { return fmt::format("{}", s.triangles); }},
+      {"Included Angle", "MIN", fixed(&QualitySummary::min_angle, 2)},
+      {"(degrees)", "MAX", fixed(&QualitySummary::max_angle, 2)},
+      {"Aspect ratio", "Average", fixed(&QualitySummary::aspect_ratio_avg, 3)},
+      {"(1,inf)", "MAX", fixed(&QualitySummary::aspect_ratio_max, 3)},
+      {"Skewness", "Average", fixed(&QualitySummary::skewness_avg, 3)},
+      {"(1,inf)", "MAX", fixed(&QualitySummary::skewness_max, 3)},
+      {"Weighted Condition Number", "Average", fixed(&QualitySummary::condition_number_avg, 3)},
+      {"(1,inf)", "MAX", fixed(&QualitySummary::condition_number_max, 3)},
+      {"Minimum Corner Jacobian", "", fixed(&QualitySummary::min_jacobian, 3)},
+      {"", "", nullptr},  // separator: the thesis rows end here
+      {"Number of Points", "", [](const QualitySummary& s) { return fmt::format("{}", s.points); }},
+      {fmt::format("Min angle < {:g} deg", first.small_angle_deg), "count",
+       [](const QualitySummary& s) { return fmt::format("{}", s.small_angle_triangles); }},
+      {"", "share %", [](const QualitySummary& s) { return fmt::format("{:.2f}", 100.0 * s.small_angle_share); }},
+      {"Edge length / q(midpoint)", "mean", spacing_cell(&SpacingConformance::mean)},
+      {"", "std dev", spacing_cell(&SpacingConformance::stddev)},
+      {"", "P05", spacing_cell(&SpacingConformance::p05)},
+      {"", "P95", spacing_cell(&SpacingConformance::p95)},
+  };
+  const Histogram& ha = first.min_angle_histogram;
+  for (std::size_t k = 0; k < ha.counts.size(); ++k) {
+    rows.push_back({k == 0 ? "Min angle histogram" : "", histogram_label(ha, k, 0), [k](const QualitySummary& s) {
+                      const auto& c = s.min_angle_histogram.counts;
+                      return k < c.size() ? fmt::format("{}", c[k]) : std::string("-");
+                    }});
+  }
+  const Histogram& hr = first.aspect_ratio_histogram;
+  for (std::size_t k = 0; k < hr.counts.size(); ++k) {
+    rows.push_back({k == 0 ? "Aspect ratio histogram" : "", histogram_label(hr, k, 1), [k](const QualitySummary& s) {
+                      const auto& c = s.aspect_ratio_histogram.counts;
+                      return k < c.size() ? fmt::format("{}", c[k]) : std::string("-");
+                    }});
+  }
+  rows.push_back({hr.counts.empty() ? "Aspect ratio histogram" : "", fmt::format(">={:.1f}", hr.edge(hr.counts.size())),
+                  [](const QualitySummary& s) { return fmt::format("{}", s.aspect_ratio_histogram.overflow); }});
+  return rows;
+}
+
+// JSON number; JSON has no infinity or NaN, so those become null.
+std::string num(double v) { return std::isfinite(v) ? fmt::format("{}", v) : std::string("null"); }
+
+std::string histogram_json(const Histogram& h) {
+  std::string counts;
+  for (std::size_t k = 0; k < h.counts.size(); ++k) counts += fmt::format("{}{}", k ? ", " : "", h.counts[k]);
+  return fmt::format("{{\"lo\": {}, \"width\": {}, \"counts\": [{}], \"overflow\": {}}}", num(h.lo), num(h.width),
+                     counts, h.overflow);
+}
+
+}  // namespace
+
+std::string format_quality_table(const std::vector<std::pair<std::string, QualitySummary>>& columns) {
+  if (columns.empty()) return {};
+  const auto rows = table_rows(columns.front().second);
+  std::size_t name_width = 0, sub_width = 0;
+  for (const auto& r : rows) {
+    name_width = std::max(name_width, r.name.size());
+    sub_width = std::max(sub_width, r.sub.size());
+  }
+  std::vector<std::size_t> widths;
+  for (const auto& [label, summary] : columns) {
+    std::size_t w = std::max<std::size_t>(label.size(), 8);
+    for (const auto& r : rows) {
+      if (r.value) w = std::max(w, r.value(summary).size());
+    }
+    widths.push_back(w);
+  }
+  std::string out = fmt::format("{:<{}}  {:<{}}", "", name_width, "", sub_width);
+  for (std::size_t c = 0; c < columns.size(); ++c) out += fmt::format("  {:>{}}", columns[c].first, widths[c]);
+  out += '\n';
+  std::size_t total = name_width + 2 + sub_width;
+  for (auto w : widths) total += 2 + w;
+  for (const auto& r : rows) {
+    if (!r.value) {
+      out += std::string(total, '-') + '\n';
+      continue;
+    }
+    out += fmt::format("{:<{}}  {:<{}}", r.name, name_width, r.sub, sub_width);
+    for (std::size_t c = 0; c < columns.size(); ++c) out += fmt::format("  {:>{}}", r.value(columns[c].second), widths[c]);
+    out += '\n';
+  }
+  return out;
+}
+
+std::string format_quality_table(const QualitySummary& summary, const std::string& label) {
+  return format_quality_table({{label, summary}});
+}
+
+std::string json_string(const std::string& text) {
+  std::string out = "\"";
+  for (const char ch : text) {
+    const auto c = static_cast<unsigned char>(ch);
+    switch (ch) {
+      case '"': out += "\\\""; break;
+      case '\\': out += "\\\\"; break;
+      case '\n': out += "\\n"; break;
+      case '\r': out += "\\r"; break;
+      case '\t': out += "\\t"; break;
+      case '\b': out += "\\b"; break;
+      case '\f': out += "\\f"; break;
+      default:
+        if (c < 0x20 || c == 0x7f) {
+          out += fmt::format("\\u{:04x}", c);
+        } else {
+          out += ch;  // UTF-8 bytes pass through unchanged
+        }
+    }
+  }
+  return out + "\"";
+}
+
+std::string quality_json(const QualitySummary& s, const std::string& source) {
+  std::string spacing = "null";
+  if (s.has_spacing) {
+    const auto& c = s.spacing;
+    spacing = fmt::format(
+        "{{\"edges\": {}, \"mean\": {}, \"stddev\": {}, \"p05\": {}, \"p95\": {}, \"min\": {}, \"max\": {}}}", c.edges,
+        num(c.mean), num(c.stddev), num(c.p05), num(c.p95), num(c.min), num(c.max));
+  }
+  std::string out = "{\n";
+  out += "  \"format\": \"pdmesh-quality\",\n  \"version\": 1,\n";
+  out += fmt::format("  \"source\": {},\n", json_string(source));
+  out += fmt::format("  \"triangles\": {},\n  \"points\": {},\n", s.triangles, s.points);
+  out += fmt::format("  \"included_angle\": {{\"min\": {}, \"max\": {}}},\n", num(s.min_angle), num(s.max_angle));
+  out += fmt::format("  \"aspect_ratio\": {{\"average\": {}, \"max\": {}}},\n", num(s.aspect_ratio_avg),
+                     num(s.aspect_ratio_max));
+  out += fmt::format("  \"skewness\": {{\"average\": {}, \"max\": {}}},\n", num(s.skewness_avg), num(s.skewness_max));
+  out += fmt::format("  \"weighted_condition_number\": {{\"average\": {}, \"max\": {}}},\n",
+                     num(s.condition_number_avg), num(s.condition_number_max));
+  out += fmt::format("  \"minimum_corner_jacobian\": {},\n", num(s.min_jacobian));
+  out += fmt::format("  \"small_angle\": {{\"threshold_deg\": {}, \"triangles\": {}, \"share\": {}}},\n",
+                     num(s.small_angle_deg), s.small_angle_triangles, num(s.small_angle_share));
+  out += fmt::format("  \"histograms\": {{\n    \"min_angle\": {},\n    \"aspect_ratio\": {}\n  }},\n",
+                     histogram_json(s.min_angle_histogram), histogram_json(s.aspect_ratio_histogram));
+  out += fmt::format("  \"spacing_conformance\": {}\n", spacing);
+  out += "}\n";
+  return out;
+}
+
+std::filesystem::path write_quality_json(const QualitySummary& summary, const std::filesystem::path& dir,
+                                         const std::string& source) {
+  const auto path = dir / "quality.json";
+  write_text_file(path, quality_json(summary, source));
+  return path;
+}
+
+}  // namespace pdmesh

@@ -1,0 +1,29 @@
+// The printed quality table (rows of thesis tables 6.2-6.6 plus ours) and quality.json.
+// Key names and rows are documented in docs/quality.md.
+#pragma once
+#include <filesystem>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "mesh/quality.hpp"
+
+namespace pdmesh {
+
+// One table column per (label, summary), like the thesis' JP Str / JP Ran / PW Del / PW AF.
+// Angles get 2 decimals, ratios and the Jacobian 3, as in the thesis.
+std::string format_quality_table(const std::vector<std::pair<std::string, QualitySummary>>& columns);
+std::string format_quality_table(const QualitySummary& summary, const std::string& label = "mesh");
+
+// The summary as a JSON document; `source` (e.g. the mesh file) is recorded under "source".
+// Non-finite numbers (degenerate triangles) are written as null.
+std::string quality_json(const QualitySummary& summary, const std::string& source = "");
+
+// Writes DIR/quality.json atomically and returns its path.
+std::filesystem::path write_quality_json(const QualitySummary& summary, const std::filesystem::path& dir,
+                                         const std::string& source = "");
+
+// A JSON string literal (quotes included) with ", \ and control characters escaped.
+std::string json_string(const std::string& text);
+
+}  // namespace pdmesh

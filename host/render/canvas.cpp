@@ -1,0 +1,208 @@
+// Canvas: cairo surfaces (image or SVG), the world-to-pixel transform, clipping, decorations.
+#include "render/canvas.hpp"
+
+#include <cairo-svg.h>
+
+#include <algorithm>
+#include <cmath>
+#include <fmt/format.h>
+
+#include "core/atomic_file.hpp"
+#include "core/errors.hpp"
+
+namespace pdmesh {
+
+namespace fs = std::filesystem;
+
+ImageFormat image_format_for(const fs::path& path) {
+  const std::string ext = path.extension().string();
+  if (ext == ".png") return ImageFormat::Png;
+  if (ext == ".svg") return ImageFormat::Svg;
+  throw InputError(fmt::format("cannot draw '{}': pictures are .png or .svg", path.string()));
+}
+
+Box padded_window(const Box& extents, double margin) {
+  Box w = extents;
+  if (!(w.lo.x <= w.hi.x && w.lo.y <= w.hi.y)) w = Box{{0, 0}, {0, 0}};
+  double span = std::max(w.width(), w.height());
+  if (!(span > 0)) span = 1.0;
+  const double pad = margin * span;
+  // A very thin geometry still gets a visible band across its short side.
+  const double min_half = 0.05 * span;
+  const Vec2 c = w.centre();
+  const double hx = std::max(0.5 * w.width(), min_half) + pad;
+  const double hy = std::max(0.5 * w.height(), min_half) + pad;
+  return Box{{c.x - hx, c.y - hy}, {c.x + hx, c.y + hy}};
+}
+
+Canvas::Canvas(const CanvasOptions& options, ImageFormat format, const fs::path& file)
+    : file_(file), format_(format), window_(options.window) {
+  const double ww = window_.width(), wh = window_.height();
+  if (!(ww > 0 && wh > 0) || !std::isfinite(ww) || !std::isfinite(wh)) {
+    throw InputError(fmt::format("cannot draw '{}': empty or non-finite window [{}, {}] x [{}, {}]", file.string(),
+                                 window_.lo.x, window_.hi.x, window_.lo.y, window_.hi.y));
+  }
+  const int long_side = std::clamp(options.long_side, 64, 20000);
+  // The short side follows the window's aspect ratio, but never so thin that the title is lost.
+  const double aspect = ww / wh;
+  plot_w_ = aspect >= 1 ? long_side : std::max(160.0, std::round(long_side * aspect));
+  plot_h_ = aspect >= 1 ? std::max(160.0, std::round(long_side / aspect)) : long_side;
+  plot_x0_ = 0;
+  plot_y0_ = options.title_height;
+  width_ = static_cast<int>(plot_w_) + options.side_width;
+  height_ = static_cast<int>(plot_h_) + options.title_height;
+  scale_ = std::min(plot_w_ / ww, plot_h_ / wh);
+  offset_x_ = plot_x0_ + 0.5 * (plot_w_ - scale_ * ww);
+  offset_y_ = plot_y0_ + 0.5 * (plot_h_ - scale_ * wh);
+
+  surface_ = format == ImageFormat::Png ? cairo_image_surface_create(CAIRO_FORMAT_RGB24, width_, height_)
+                                        : cairo_svg_surface_create(file.c_str(), width_, height_);
+  cr_ = cairo_create(surface_);
+  try {
+    check("create the surface");
+  } catch (...) {
+    // The destructor does not run for a half-built object.
+    cairo_destroy(cr_);
+    cairo_surface_destroy(surface_);
+    throw;
+  }
+  cairo_set_source_rgb(cr_, 1, 1, 1);
+  cairo_paint(cr_);
+  cairo_set_line_cap(cr_, CAIRO_LINE_CAP_ROUND);
+  cairo_set_line_join(cr_, CAIRO_LINE_JOIN_ROUND);
+  cairo_select_font_face(cr_, "sans-serif", CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_NORMAL);
+  cairo_save(cr_);
+  cairo_rectangle(cr_, plot_x0_, plot_y0_, plot_w_, plot_h_);
+  cairo_clip(cr_);
+  clipped_ = true;
+}
+
+Canvas::~Canvas() {
+  if (cr_ != nullptr) cairo_destroy(cr_);
+  if (surface_ != nullptr) cairo_surface_destroy(surface_);
+}
+
+void Canvas::check(const char* what) const {
+  const cairo_status_t s = cr_ != nullptr ? cairo_status(cr_) : cairo_surface_status(surface_);
+  const cairo_status_t ss = cairo_surface_status(surface_);
+  const cairo_status_t bad = s != CAIRO_STATUS_SUCCESS ? s : ss;
+  if (bad != CAIRO_STATUS_SUCCESS) {
+    throw Error(fmt::format("cannot draw '{}': cairo could not {}: {}", file_.string(), what,
+                            cairo_status_to_string(bad)));
+  }
+}
+
+Vec2 Canvas::to_pixel(Vec2 w) const {
+  return {offset_x_ + (w.x - window_.lo.x) * scale_, offset_y_ + (window_.hi.y - w.y) * scale_};
+}
+
+bool Canvas::visible(const Box& b) const {
+  const double slack = 8.0 / scale_;  // line widths and dot radii reach a few pixels beyond
+  return b.hi.x >= window_.lo.x - slack && b.lo.x <= window_.hi.x + slack && b.hi.y >= window_.lo.y - slack &&
+         b.lo.y <= window_.hi.y + slack;
+}
+
+bool Canvas::visible(Vec2 p, double radius_px) const {
+  const double r = radius_px / scale_;
+  return p.x >= window_.lo.x - r && p.x <= window_.hi.x + r && p.y >= window_.lo.y - r && p.y <= window_.hi.y + r;
+}
+
+void Canvas::line(Vec2 a, Vec2 b, Rgb c, double width_px) {
+  const Vec2 pa = to_pixel(a), pb = to_pixel(b);
+  cairo_set_source_rgb(cr_, c.r, c.g, c.b);
+  cairo_set_line_width(cr_, width_px);
+  cairo_move_to(cr_, pa.x, pa.y);
+  cairo_line_to(cr_, pb.x, pb.y);
+  cairo_stroke(cr_);
+}
+
+void Canvas::dot(Vec2 centre, double radius_px, Rgb c) {
+  const Vec2 p = to_pixel(centre);
+  cairo_set_source_rgb(cr_, c.r, c.g, c.b);
+  cairo_new_sub_path(cr_);
+  cairo_arc(cr_, p.x, p.y, radius_px, 0, 2 * M_PI);
+  cairo_fill(cr_);
+}
+
+void Canvas::rectangle(const Box& b, Rgb c, double width_px) {
+  const Vec2 p0 = to_pixel(b.lo), p1 = to_pixel(b.hi);
+  cairo_set_source_rgb(cr_, c.r, c.g, c.b);
+  cairo_set_line_width(cr_, width_px);
+  cairo_rectangle(cr_, p0.x, p1.y, p1.x - p0.x, p0.y - p1.y);
+  cairo_stroke(cr_);
+}
+
+void Canvas::fill_triangle(Vec2 a, Vec2 b, Vec2 c, Rgb colour) {
+  const Vec2 pa = to_pixel(a), pb = to_pixel(b), pc = to_pixel(c);
+  cairo_set_source_rgb(cr_, colour.r, colour.g, colour.b);
+  cairo_move_to(cr_, pa.x, pa.y);
+  cairo_line_to(cr_, pb.x, pb.y);
+  cairo_line_to(cr_, pc.x, pc.y);
+  cairo_close_path(cr_);
+  // A hairline stroke in the fill colour closes the anti-aliasing seams between neighbours.
+  cairo_fill_preserve(cr_);
+  cairo_set_line_width(cr_, 0.5);
+  cairo_stroke(cr_);
+}
+
+void Canvas::text(double px, double py, const std::string& s, double size, Rgb c) {
+  cairo_set_source_rgb(cr_, c.r, c.g, c.b);
+  cairo_set_font_size(cr_, size);
+  cairo_move_to(cr_, px, py);
+  cairo_show_text(cr_, s.c_str());
+}
+
+void Canvas::title(const std::string& s) {
+  if (clipped_) cairo_restore(cr_);
+  text(12, plot_y0_ * 0.7, s, std::min(18.0, plot_y0_ * 0.5), colours::kBlack);
+  cairo_save(cr_);
+  cairo_rectangle(cr_, plot_x0_, plot_y0_, plot_w_, plot_h_);
+  cairo_clip(cr_);
+}
+
+void Canvas::scale_bar() {
+  // The longest 1, 2 or 5 times a power of ten that fits in a fifth of the plot width.
+  const double target = 0.2 * plot_w_ / scale_;
+  const double power = std::pow(10.0, std::floor(std::log10(target)));
+  double length = power;
+  for (double m : {2.0, 5.0}) {
+    if (m * power <= target) length = m * power;
+  }
+  const double px = length * scale_;
+  const double x0 = plot_x0_ + 20, y0 = plot_y0_ + plot_h_ - 20;
+  cairo_set_source_rgba(cr_, 1, 1, 1, 0.8);
+  cairo_rectangle(cr_, x0 - 8, y0 - 30, px + 16, 40);
+  cairo_fill(cr_);
+  cairo_set_source_rgb(cr_, 0, 0, 0);
+  cairo_set_line_width(cr_, 2);
+  cairo_move_to(cr_, x0, y0 - 6);
+  cairo_line_to(cr_, x0, y0);
+  cairo_line_to(cr_, x0 + px, y0);
+  cairo_line_to(cr_, x0 + px, y0 - 6);
+  cairo_stroke(cr_);
+  text(x0, y0 - 10, fmt::format("{:g}", length), 14, colours::kBlack);
+}
+
+void Canvas::finish() {
+  check("draw");
+  if (format_ == ImageFormat::Png) {
+    const cairo_status_t s = cairo_surface_write_to_png(surface_, file_.c_str());
+    if (s != CAIRO_STATUS_SUCCESS) {
+      throw InputError(fmt::format("cannot write '{}': {}", file_.string(), cairo_status_to_string(s)));
+    }
+  } else {
+    cairo_surface_finish(surface_);
+    check("write the SVG");
+  }
+}
+
+void render_picture(const fs::path& path, const CanvasOptions& options, const std::function<void(Canvas&)>& draw) {
+  const ImageFormat format = image_format_for(path);
+  write_atomically(path, [&](const fs::path& tmp) {
+    Canvas canvas(options, format, tmp);
+    draw(canvas);
+    canvas.finish();
+  });
+}
+
+}  // namespace pdmesh

@@ -1,0 +1,127 @@
+// Mesh pictures: value fill, edges, boundary edges, then the colour bar in a band on the right.
+#include "render/mesh_picture.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <fmt/format.h>
+
+#include "core/errors.hpp"
+
+namespace pdmesh {
+
+namespace {
+
+constexpr int kColourBarBand = 150;
+constexpr Rgb kNoValue{0.75, 0.75, 0.75};  // non-finite values
+
+// Samples of matplotlib's viridis at t = 0, 1/8, ..., 1, interpolated linearly in between.
+constexpr std::array<Rgb, 9> kViridis = {{{0.267, 0.005, 0.329},
+                                          {0.283, 0.141, 0.458},
+                                          {0.254, 0.265, 0.530},
+                                          {0.207, 0.372, 0.553},
+                                          {0.164, 0.471, 0.558},
+                                          {0.128, 0.567, 0.551},
+                                          {0.135, 0.659, 0.518},
+                                          {0.478, 0.821, 0.318},
+                                          {0.993, 0.906, 0.144}}};
+
+void draw_colour_bar(Canvas& canvas, double lo, double hi, const std::string& label) {
+  cairo_t* cr = canvas.context();
+  cairo_reset_clip(cr);
+  const double x = canvas.plot_right() + 30, width = 30;
+  const double top = canvas.plot_top() + 40, height = std::max(60.0, canvas.plot_height() - 80);
+  // Drawn as thin bands so that the SVG needs no gradient support to look right.
+  const int bands = 128;
+  for (int k = 0; k < bands; ++k) {
+    const Rgb c = colour_ramp(1.0 - (k + 0.5) / bands);
+    cairo_set_source_rgb(cr, c.r, c.g, c.b);
+    cairo_rectangle(cr, x, top + height * k / bands, width, height / bands + 0.5);
+    cairo_fill(cr);
+  }
+  cairo_set_source_rgb(cr, 0, 0, 0);
+  cairo_set_line_width(cr, 1);
+  cairo_rectangle(cr, x, top, width, height);
+  cairo_stroke(cr);
+  canvas.text(x + width + 6, top + 5, fmt::format("{:.4g}", hi), 14, colours::kBlack);
+  canvas.text(x + width + 6, top + height + 5, fmt::format("{:.4g}", lo), 14, colours::kBlack);
+  canvas.text(x - 20, top - 14, label, 14, colours::kBlack);
+}
+
+}  // namespace
+
+Rgb colour_ramp(double t) {
+  if (!std::isfinite(t)) return kNoValue;
+  t = std::clamp(t, 0.0, 1.0) * (kViridis.size() - 1);
+  const auto k = std::min<std::size_t>(static_cast<std::size_t>(t), kViridis.size() - 2);
+  const double f = t - static_cast<double>(k);
+  const Rgb& a = kViridis[k];
+  const Rgb& b = kViridis[k + 1];
+  return {a.r + f * (b.r - a.r), a.g + f * (b.g - a.g), a.b + f * (b.b - a.b)};
+}
+
+void write_mesh_picture(const std::filesystem::path& path, const Mesh& mesh, const MeshPictureOptions& options) {
+  const std::vector<double>* values = options.triangle_values;
+  if (values != nullptr && values->size() != mesh.triangles.size()) {
+    throw Error(fmt::format("mesh picture '{}': {} values for {} triangles", path.string(), values->size(),
+                            mesh.triangles.size()));
+  }
+  const auto n = static_cast<int>(mesh.points.size());
+  for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
+    for (int v : mesh.triangles[t]) {
+      if (v < 0 || v >= n) throw Error(fmt::format("mesh picture: triangle {} has point index {} of {}", t, v, n));
+    }
+  }
+  for (const BoundaryEdge& e : mesh.boundary_edges) {
+    if (e.a < 0 || e.a >= n || e.b < 0 || e.b >= n) {
+      throw Error(fmt::format("mesh picture: boundary edge {}-{} is outside the {} points", e.a, e.b, n));
+    }
+  }
+  double lo = INFINITY, hi = -INFINITY;
+  if (values != nullptr) {
+    for (double v : *values) {
+      if (std::isfinite(v)) {
+        lo = std::min(lo, v);
+        hi = std::max(hi, v);
+      }
+    }
+  }
+  Box extents;
+  for (const Vec2& p : mesh.points) extents.add(p);
+  CanvasOptions layout;
+  layout.window = options.window ? *options.window : padded_window(extents);
+  layout.long_side = options.long_side;
+  layout.side_width = values != nullptr ? kColourBarBand : 0;
+
+  render_picture(path, layout, [&](Canvas& canvas) {
+    const double edge_width = 0.6;
+    for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
+      const auto& tri = mesh.triangles[t];
+      const Vec2 a = mesh.points[tri[0]], b = mesh.points[tri[1]], c = mesh.points[tri[2]];
+      Box box;
+      box.add(a);
+      box.add(b);
+      box.add(c);
+      if (!canvas.visible(box)) continue;
+      if (values != nullptr) {
+        // Equal extremes: every triangle has the same value; show it mid-ramp.
+        const double v = (*values)[t];
+        const double u = hi > lo ? (v - lo) / (hi - lo) : (std::isfinite(v) ? 0.5 : NAN);
+        canvas.fill_triangle(a, b, c, colour_ramp(u));
+      }
+      canvas.line(a, b, colours::kBlack, edge_width);
+      canvas.line(b, c, colours::kBlack, edge_width);
+      canvas.line(c, a, colours::kBlack, edge_width);
+    }
+    for (const BoundaryEdge& e : mesh.boundary_edges) {
+      canvas.line(mesh.points[e.a], mesh.points[e.b], colours::kBlack, 2.0);
+    }
+    canvas.scale_bar();
+    canvas.title(fmt::format("{}   {} points, {} triangles", options.title, mesh.points.size(), mesh.triangles.size()));
+    if (values != nullptr) {
+      draw_colour_bar(canvas, std::isfinite(lo) ? lo : 0.0, std::isfinite(hi) ? hi : 0.0, options.value_label);
+    }
+  });
+}
+
+}  // namespace pdmesh

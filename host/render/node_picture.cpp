@@ -1,0 +1,52 @@
+// Node distribution pictures: tree overlay, then geometry, then interior and boundary nodes on top.
+#include "render/node_picture.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <fmt/format.h>
+
+#include "render/canvas.hpp"
+
+namespace pdmesh {
+
+double node_dot_radius(double q, double scale, bool fixed) {
+  double r = std::isfinite(q) && q > 0 ? 0.12 * q * scale : 1.5;
+  r = std::clamp(r, 0.8, 5.0);
+  return fixed ? 1.5 * r + 0.5 : r;
+}
+
+void write_node_picture(const std::filesystem::path& path, const Geometry& geometry, const NodeSet& nodes,
+                        const NodePictureOptions& options) {
+  CanvasOptions layout;
+  layout.window = options.window ? *options.window : padded_window(geometry.extents);
+  layout.long_side = options.long_side;
+  render_picture(path, layout, [&](Canvas& canvas) {
+    if (options.tree_quads != nullptr) {
+      for (const Box& b : *options.tree_quads) {
+        if (canvas.visible(b)) canvas.rectangle(b, colours::kTree, 0.6);
+      }
+    }
+    for (const Segment& s : geometry.segments) {
+      Box b;
+      b.add(s.a);
+      b.add(s.b);
+      if (canvas.visible(b)) canvas.line(s.a, s.b, colours::kGeometry, 1.5);
+    }
+    // Interior nodes first so that boundary nodes stay visible where they overlap.
+    for (NodeKind pass : {NodeKind::Interior, NodeKind::Boundary, NodeKind::Fixed}) {
+      const Rgb colour = pass == NodeKind::Interior ? colours::kInteriorNode : colours::kBoundaryNode;
+      for (std::size_t i = 0; i < nodes.size(); ++i) {
+        if (nodes.kind[i] != pass) continue;
+        const double q = i < nodes.q.size() ? nodes.q[i] : 0.0;
+        const double r = node_dot_radius(q, canvas.scale(), pass == NodeKind::Fixed);
+        if (canvas.visible(nodes.x[i], r)) canvas.dot(nodes.x[i], r, colour);
+      }
+    }
+    canvas.scale_bar();
+    canvas.title(fmt::format("{}   {} nodes: {} fixed, {} boundary, {} interior", options.title, nodes.size(),
+                             nodes.count(NodeKind::Fixed), nodes.count(NodeKind::Boundary),
+                             nodes.count(NodeKind::Interior)));
+  });
+}
+
+}  // namespace pdmesh

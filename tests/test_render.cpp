@@ -1,0 +1,222 @@
+// Tests of the pictures: valid PNG/SVG files of the right size, colours where things were drawn,
+// no temporary files left behind.
+#include <catch2/catch.hpp>
+
+#include <cairo.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "core/errors.hpp"
+#include "render/canvas.hpp"
+#include "render/mesh_picture.hpp"
+#include "render/node_picture.hpp"
+
+namespace fs = std::filesystem;
+using namespace pdmesh;
+
+namespace {
+
+fs::path fresh_dir(const std::string& tag) {
+  fs::path d = fs::temp_directory_path() / ("pdmesh_test_render_" + tag + "_" + std::to_string(::getpid()));
+  fs::remove_all(d);
+  fs::create_directories(d);
+  return d;
+}
+
+std::string slurp(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+std::size_t entries(const fs::path& d) {
+  return static_cast<std::size_t>(std::distance(fs::directory_iterator(d), fs::directory_iterator()));
+}
+
+// A PNG read back through cairo; pixel() gives 0-255 channels.
+struct Png {
+  cairo_surface_t* s;
+  explicit Png(const fs::path& p) : s(cairo_image_surface_create_from_png(p.c_str())) {}
+  ~Png() { cairo_surface_destroy(s); }
+  bool ok() const { return cairo_surface_status(s) == CAIRO_STATUS_SUCCESS; }
+  int width() const { return cairo_image_surface_get_width(s); }
+  int height() const { return cairo_image_surface_get_height(s); }
+  Rgb pixel(int x, int y) const {
+    cairo_surface_flush(s);
+    const unsigned char* row = cairo_image_surface_get_data(s) + y * cairo_image_surface_get_stride(s);
+    const auto v = *reinterpret_cast<const std::uint32_t*>(row + 4 * x);
+    return {static_cast<double>((v >> 16) & 255), static_cast<double>((v >> 8) & 255), static_cast<double>(v & 255)};
+  }
+};
+
+// The unit square [0, 2] x [0, 1] as four segments (only what pictures use).
+Geometry rectangle_geometry() {
+  Geometry g;
+  const Vec2 c[4] = {{0, 0}, {2, 0}, {2, 1}, {0, 1}};
+  for (int k = 0; k < 4; ++k) {
+    Segment s;
+    s.a = c[k];
+    s.b = c[(k + 1) % 4];
+    s.curve = 0;
+    s.index = k;
+    s.length = dist(s.a, s.b);
+    g.segments.push_back(s);
+    g.extents.add(c[k]);
+  }
+  return g;
+}
+
+const char kPngSignature[] = "\x89PNG\r\n\x1a\n";
+
+}  // namespace
+
+TEST_CASE("padded windows add 3% of the longer side", "[render]") {
+  const Box w = padded_window(Box{{0, 0}, {2, 1}});
+  CHECK(w.lo.x == Approx(-0.06));
+  CHECK(w.hi.x == Approx(2.06));
+  CHECK(w.lo.y == Approx(-0.06));
+  CHECK(w.hi.y == Approx(1.06));
+  const Box point = padded_window(Box{{3, 3}, {3, 3}});
+  CHECK(point.width() > 0);
+  CHECK(point.contains({3, 3}));
+}
+
+TEST_CASE("node pictures are PNGs of the documented size with nodes and geometry in their colours", "[render]") {
+  const fs::path dir = fresh_dir("nodes");
+  const Geometry g = rectangle_geometry();
+  NodeSet n;
+  n.add({0, 0}, 0.2, NodeKind::Fixed, 0);
+  n.add({1, 0}, 0.2, NodeKind::Boundary, 0);
+  n.add({1, 0.5}, 0.2, NodeKind::Interior, -1);
+  std::vector<Box> quads = {Box{{0, 0}, {1, 1}}, Box{{1, 0}, {2, 1}}};
+  NodePictureOptions o;
+  o.title = "rectangle - initial";
+  o.tree_quads = &quads;
+  write_node_picture(dir / "initial.png", g, n, o);
+  write_node_picture(dir / "initial.svg", g, n, o);
+  CHECK(entries(dir) == 2);  // no temporaries
+
+  const std::string bytes = slurp(dir / "initial.png");
+  REQUIRE(bytes.size() > 8);
+  CHECK(bytes.compare(0, 8, std::string(kPngSignature, 8)) == 0);
+  Png png(dir / "initial.png");
+  REQUIRE(png.ok());
+  // Window [-0.06, 2.06] x [-0.06, 1.06]: 1600 px wide, 1600 * 1.12 / 2.12 = 845 px plot + 40 px title.
+  CHECK(png.width() == 1600);
+  CHECK(png.height() == 845 + 40);
+  const double scale = 1600 / 2.12;
+  auto px = [&](Vec2 w) { return std::pair<int, int>(static_cast<int>((w.x + 0.06) * scale), static_cast<int>(40 + (1.06 - w.y) * scale)); };
+  const auto [ix, iy] = px({1, 0.5});
+  const Rgb interior = png.pixel(ix, iy);
+  CHECK(interior.r > 200);
+  CHECK(interior.g < 60);
+  const auto [bx, by] = px({1, 0});
+  const Rgb boundary = png.pixel(bx, by);
+  CHECK(boundary.b > 200);
+  CHECK(boundary.r < 60);
+  const auto [gx, gy] = px({0.5, 0});  // on the bottom segment, between nodes
+  // The 1.5 px line straddles pixel rows; take the greenest of the rows around it.
+  Rgb segment = png.pixel(gx, gy - 1);
+  for (int dy = 0; dy <= 1; ++dy) {
+    if (png.pixel(gx, gy + dy).g - png.pixel(gx, gy + dy).r > segment.g - segment.r) segment = png.pixel(gx, gy + dy);
+  }
+  CHECK(segment.g > 120);
+  CHECK(segment.r < 60);
+  const auto [wx, wy] = px({0.5, 0.5});  // empty interior
+  CHECK(png.pixel(wx, wy).r == 255);
+  CHECK(png.pixel(wx, wy).b == 255);
+
+  const std::string svg = slurp(dir / "initial.svg");
+  CHECK(svg.find("<svg") != std::string::npos);
+  CHECK(svg.find("</svg>") != std::string::npos);
+  fs::remove_all(dir);
+}
+
+TEST_CASE("a view window zooms in and a tall window makes a tall image", "[render]") {
+  const fs::path dir = fresh_dir("view");
+  NodeSet n;
+  n.add({0.5, 0.5}, 0.2, NodeKind::Interior, -1);
+  NodePictureOptions o;
+  o.window = Box{{0.4, 0.0}, {0.6, 1.0}};
+  o.long_side = 500;
+  write_node_picture(dir / "initial_zoom.png", rectangle_geometry(), n, o);
+  Png png(dir / "initial_zoom.png");
+  REQUIRE(png.ok());
+  CHECK(png.height() == 500 + 40);
+  CHECK(png.width() == 160);  // 100 px by aspect ratio, raised to the minimum short side
+  // The dot is in the middle of the plot and, zoomed 5x, larger than in the full view.
+  CHECK(png.pixel(80, 40 + 250).r > 200);
+  CHECK(png.pixel(80, 40 + 250).g < 60);
+  CHECK(node_dot_radius(0.2, 500.0, false) > node_dot_radius(0.2, 100.0, false));
+  CHECK(node_dot_radius(1e-9, 1.0, false) == 0.8);
+  CHECK(node_dot_radius(1e9, 1.0, false) == 5.0);
+  CHECK(node_dot_radius(0.2, 100.0, true) > node_dot_radius(0.2, 100.0, false));
+  fs::remove_all(dir);
+}
+
+TEST_CASE("mesh pictures fill triangles by value and draw a colour bar", "[render]") {
+  const fs::path dir = fresh_dir("mesh");
+  Mesh m;
+  m.points = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+  m.triangles = {{0, 1, 2}, {0, 2, 3}};
+  m.boundary_edges = {{0, 1, 0}, {1, 2, 0}, {2, 3, 0}, {3, 0, 0}};
+  m.curve_names = {"square"};
+  const std::vector<double> values = {0.25, 1.0};
+  MeshPictureOptions o;
+  o.title = "square";
+  o.triangle_values = &values;
+  o.value_label = "quality";
+  o.long_side = 400;
+  write_mesh_picture(dir / "final.png", m, o);
+  write_mesh_picture(dir / "final.svg", m, o);
+  CHECK(entries(dir) == 2);
+  Png png(dir / "final.png");
+  REQUIRE(png.ok());
+  CHECK(png.width() == 400 + 150);
+  CHECK(png.height() == 400 + 40);
+  const double scale = 400 / 1.06;
+  auto px = [&](Vec2 w) { return std::pair<int, int>(static_cast<int>((w.x + 0.03) * scale), static_cast<int>(40 + (1.03 - w.y) * scale)); };
+  // Lower-right triangle has the minimum (ramp start), upper-left the maximum (ramp end).
+  const auto [lx, ly] = px({0.8, 0.2});
+  const Rgb low = png.pixel(lx, ly);
+  CHECK(low.r == Approx(255 * colour_ramp(0).r).margin(3));
+  CHECK(low.b == Approx(255 * colour_ramp(0).b).margin(3));
+  const auto [hx, hy] = px({0.2, 0.8});
+  const Rgb high = png.pixel(hx, hy);
+  CHECK(high.r == Approx(255 * colour_ramp(1).r).margin(3));
+  CHECK(high.g == Approx(255 * colour_ramp(1).g).margin(3));
+  // The colour bar: yellow near its top, dark purple near its bottom.
+  CHECK(png.pixel(400 + 45, 40 + 45).r > 200);
+  CHECK(png.pixel(400 + 45, 440 - 45).b > 60);
+  CHECK(png.pixel(400 + 45, 440 - 45).g < 40);
+  fs::remove_all(dir);
+}
+
+TEST_CASE("colour ramp end points and clamping", "[render]") {
+  CHECK(colour_ramp(-1).r == colour_ramp(0).r);
+  CHECK(colour_ramp(2).g == colour_ramp(1).g);
+  CHECK(colour_ramp(0.5).g == Approx(0.471));
+  CHECK(colour_ramp(NAN).r == 0.75);
+}
+
+TEST_CASE("picture errors: bad extension, bad values, missing directory", "[render]") {
+  const fs::path dir = fresh_dir("errors");
+  Mesh m;
+  m.points = {{0, 0}, {1, 0}, {0, 1}};
+  m.triangles = {{0, 1, 2}};
+  CHECK_THROWS_AS(write_mesh_picture(dir / "x.jpg", m, {}), InputError);
+  const std::vector<double> wrong = {1, 2};
+  MeshPictureOptions o;
+  o.triangle_values = &wrong;
+  CHECK_THROWS_AS(write_mesh_picture(dir / "x.png", m, o), Error);
+  m.triangles = {{0, 1, 3}};
+  CHECK_THROWS_AS(write_mesh_picture(dir / "x.png", m, {}), Error);
+  CHECK(entries(dir) == 0);
+  CHECK_THROWS_AS(write_node_picture(dir / "missing" / "x.png", rectangle_geometry(), NodeSet{}, {}), InputError);
+  CHECK_THROWS_AS(write_node_picture(dir / "missing" / "x.svg", rectangle_geometry(), NodeSet{}, {}), Error);
+  fs::remove_all(dir);
+}
