@@ -33,7 +33,12 @@ std::vector<Vec2> line(Vec2 a, Vec2 b, int segments) {
 Geometry square(double L, int m) {
   const Vec2 c[4] = {{0, 0}, {L, 0}, {L, L}, {0, L}};
   std::vector<RawCurve> raw;
-  for (int k = 0; k < 4; ++k) raw.push_back({"side" + std::to_string(k), line(c[k], c[(k + 1) % 4], m), "square", 0});
+  for (int k = 0; k < 4; ++k) {
+    RawCurve curve;
+    curve.name = "side" + std::to_string(k);
+    curve.points = line(c[k], c[(k + 1) % 4], m);
+    raw.push_back(std::move(curve));
+  }
   return build_geometry(std::move(raw));
 }
 
@@ -41,7 +46,8 @@ Geometry square(double L, int m) {
 void add_circle(std::vector<RawCurve>& raw, double r, int points, const std::string& name) {
   const int n = points - 1;
   for (int half = 0; half < 2; ++half) {
-    RawCurve curve{name + (half == 0 ? "_upper" : "_lower"), {}, "circles", 0};
+    RawCurve curve;
+    curve.name = name + (half == 0 ? "_upper" : "_lower");
     for (int i = 0; i <= n; ++i) {
       const double t = kPi * (half + static_cast<double>(i) / n);
       Vec2 p{r * std::cos(t), r * std::sin(t)};
@@ -237,7 +243,8 @@ TEST_CASE("node counts follow the estimate (square and circle in circle, both me
   const double tolerance = 0.25;
   for (InitMethod method : {InitMethod::Structured, InitMethod::Random}) {
     {
-      const Geometry g = square(7.3, 13);
+      // The thesis' fig 7.1 square: 200 x 200 with 40 boundary points, q = 20.
+      const Geometry g = square(200.0, 10);
       const GeometryTree tree(g);
       const BoundarySpacing spacing(tree);
       const InitialDistribution d = make_initial_distribution(tree, spacing, {method, 42, {}});

@@ -6,21 +6,9 @@
 #include <cmath>
 
 #include "core/errors.hpp"
-#include "core/predicates.hpp"
 #include "fmt/format.h"
 
 namespace pdmesh {
-
-bool segment_touches_box(Vec2 a, Vec2 b, const Box& box) {
-  // Bounding boxes disjoint: no common point. Exact comparisons only.
-  if (std::fmax(a.x, b.x) < box.lo.x || std::fmin(a.x, b.x) > box.hi.x) return false;
-  if (std::fmax(a.y, b.y) < box.lo.y || std::fmin(a.y, b.y) > box.hi.y) return false;
-  if (box.contains(a) || box.contains(b)) return true;
-  // Both ends outside the box: the segment touches it only by meeting one of its edges.
-  const Vec2 c00 = box.lo, c10{box.hi.x, box.lo.y}, c11 = box.hi, c01{box.lo.x, box.hi.y};
-  return segments_intersect(a, b, c00, c10) || segments_intersect(a, b, c10, c11) ||
-         segments_intersect(a, b, c11, c01) || segments_intersect(a, b, c01, c00);
-}
 
 InitTree::InitTree(const GeometryTree& tree, const SpacingField& spacing, const InitTreeOptions& options)
     : tree_(tree) {

@@ -5,7 +5,7 @@
 #include <vector>
 
 #include "core/vec2.hpp"
-#include "geometry/geometry_tree.hpp"
+#include "geometry/geometry_tree.hpp"  // also segment_touches_box (exact)
 #include "spacing/spacing_field.hpp"
 
 namespace pdmesh {
@@ -22,8 +22,9 @@ struct InitLeaf {
 
 struct InitTreeOptions {
   // A leaf touching segments is split while its side exceeds
-  // refine_factor * min(shortest touching segment, q at the leaf centre).
-  double refine_factor = 1.0;
+  // refine_factor * min(shortest touching segment, q at the leaf centre). The default 2 gives boundary leaves
+  // of side in (h, 2h] for local resolution h, i.e. 1 to 5 nodes each (docs/initialization.md).
+  double refine_factor = 2.0;
   // Deepest level the geometry refinement and the balancing may create (2^-40 of the root side).
   int max_level = 40;
 };
@@ -61,8 +62,5 @@ class InitTree {
   std::vector<InitLeaf> leaves_;
   std::vector<int> kept_;
 };
-
-// True when segment ab shares at least one point with the closed box (exact, via predicates).
-bool segment_touches_box(Vec2 a, Vec2 b, const Box& box);
 
 }  // namespace pdmesh

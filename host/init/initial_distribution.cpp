@@ -24,16 +24,35 @@ constexpr double kEstimateNodesPerQuad = 64.0;
 constexpr int kEstimateSamples = 4;
 constexpr int kEstimateMaxDepth = 30;
 
+// Extra levels a quad that segments touch is split for the estimate, so that the samples resolve
+// the boundary within 1/64 of a leaf side instead of 1/4.
+constexpr int kEstimateCutDepth = 4;
+
 double estimate_quad(const GeometryTree& tree, const SpacingField& spacing, const Box& b,
-                     bool known_inside, int depth) {
+                     const std::vector<int>& segments, bool known_inside, int depth) {
   const double q_mid = spacing.at(b.centre());
   const double area = b.width() * b.height();
-  if (q_mid > 0.0 && area * hex_density(q_mid) > kEstimateNodesPerQuad && depth < kEstimateMaxDepth) {
+  const bool crowded = q_mid > 0.0 && area * hex_density(q_mid) > kEstimateNodesPerQuad;
+  const bool cut = !known_inside && !segments.empty() && depth < kEstimateCutDepth;
+  if ((crowded || cut) && depth < kEstimateMaxDepth) {
+    const auto& segs = tree.geometry().segments;
     const Vec2 c = b.centre();
-    return estimate_quad(tree, spacing, Box{b.lo, c}, known_inside, depth + 1) +
-           estimate_quad(tree, spacing, Box{{c.x, b.lo.y}, {b.hi.x, c.y}}, known_inside, depth + 1) +
-           estimate_quad(tree, spacing, Box{{b.lo.x, c.y}, {c.x, b.hi.y}}, known_inside, depth + 1) +
-           estimate_quad(tree, spacing, Box{c, b.hi}, known_inside, depth + 1);
+    const Box children[4] = {Box{b.lo, c}, Box{{c.x, b.lo.y}, {b.hi.x, c.y}},
+                             Box{{b.lo.x, c.y}, {c.x, b.hi.y}}, Box{c, b.hi}};
+    double sum = 0.0;
+    for (const Box& child : children) {
+      if (known_inside) {
+        sum += estimate_quad(tree, spacing, child, segments, true, depth + 1);
+        continue;
+      }
+      std::vector<int> touching;
+      for (int s : segments)
+        if (segment_touches_box(segs[s].a, segs[s].b, child)) touching.push_back(s);
+      // No segment touches the child: it lies wholly on one side, which its centre tells.
+      if (touching.empty() && !tree.inside(child.centre())) continue;
+      sum += estimate_quad(tree, spacing, child, touching, touching.empty(), depth + 1);
+    }
+    return sum;
   }
   const double cell = area / (kEstimateSamples * kEstimateSamples);
   double sum = 0.0;
@@ -53,7 +72,7 @@ double estimate_over(const GeometryTree& tree, const SpacingField& spacing, cons
   double sum = 0.0;
   for (int k : init.kept()) {
     const InitLeaf& leaf = init.leaves()[k];
-    sum += estimate_quad(tree, spacing, leaf.box, leaf.segments.empty(), 0);
+    sum += estimate_quad(tree, spacing, leaf.box, leaf.segments, leaf.segments.empty(), 0);
   }
   return sum;
 }

@@ -1,0 +1,37 @@
+// The pdmesh command line (CLI11): the top-level app with --version and one subcommand per
+// command. Parsing and running are separate so that main() decides how errors become exit codes.
+#pragma once
+#include <functional>
+#include <memory>
+#include <utility>
+#include <vector>
+
+namespace CLI {
+class App;
+}
+
+namespace pdmesh {
+
+struct MeshArguments;
+
+class Cli {
+ public:
+  Cli();
+  ~Cli();
+  Cli(const Cli&) = delete;
+  Cli& operator=(const Cli&) = delete;
+
+  // Throws CLI::ParseError (including CallForHelp and CallForVersion); main() hands it to app().exit().
+  void parse(int argc, const char* const* argv);
+  // Runs the subcommand that was parsed. Throws pdmesh errors. Returns the exit status.
+  int run();
+  CLI::App& app() { return *app_; }
+
+ private:
+  std::unique_ptr<CLI::App> app_;
+  // Each command: its CLI11 subcommand and what runs it. New commands add one entry.
+  std::vector<std::pair<CLI::App*, std::function<int()>>> commands_;
+  std::unique_ptr<MeshArguments> mesh_;
+};
+
+}  // namespace pdmesh

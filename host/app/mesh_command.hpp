@@ -1,0 +1,43 @@
+// `pdmesh mesh`: the pipeline for one validated case, in stages that each finish before the next
+// begins, so that nothing is written until every input has been read and checked.
+#pragma once
+#include <memory>
+
+#include "app/case_file.hpp"
+#include "geometry/geometry.hpp"
+#include "geometry/geometry_tree.hpp"
+#include "init/initial_distribution.hpp"
+#include "spacing/spacing_field.hpp"
+
+namespace pdmesh {
+
+// Stage 1: the geometry, its tree and the spacing field. Not movable: the tree and the boundary
+// spacing field refer to the geometry.
+struct MeshInputs {
+  explicit MeshInputs(const CaseConfig& config);
+  MeshInputs(const MeshInputs&) = delete;
+  MeshInputs& operator=(const MeshInputs&) = delete;
+
+  Geometry geometry;
+  std::unique_ptr<GeometryTree> tree;
+  std::unique_ptr<SpacingField> spacing;
+  std::vector<std::string> curve_names() const;
+};
+
+// Stage 2: refuses, with LimitError naming the numbers, a case whose hexagonal-packing estimate
+// (or requested total) exceeds config.max_nodes. Returns the estimate.
+double check_node_limit(const CaseConfig& config, const MeshInputs& inputs);
+
+// Stage 3: the initial distribution (boundary nodes and the tree fill).
+InitialDistribution make_initial(const CaseConfig& config, const MeshInputs& inputs);
+
+// Stage 4: creates config.out_dir; InputError naming it when that fails.
+void prepare_output_directory(const CaseConfig& config);
+
+// Stage 5: DIR/initial.nodes, initial.png, initial.svg and initial_<view>.png per view, each atomic.
+void write_initial_outputs(const CaseConfig& config, const MeshInputs& inputs, const InitialDistribution& initial);
+
+// All stages in order; progress on stderr unless config.quiet. Returns the exit status.
+int run_mesh(const CaseConfig& config);
+
+}  // namespace pdmesh

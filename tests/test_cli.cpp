@@ -1,0 +1,156 @@
+// Tests of the pdmesh command itself (PDMESH_BINARY): help, exit codes, messages, and that a
+// failed run leaves no output behind while a good run writes every initial output atomically.
+#include <catch2/catch.hpp>
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "nodes/node_file.hpp"
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct Result {
+  int status = -1;
+  std::string output;  // stdout and stderr together
+};
+
+Result run(const std::string& arguments) {
+  const std::string command = std::string("'") + PDMESH_BINARY + "' " + arguments + " 2>&1";
+  Result r;
+  FILE* pipe = ::popen(command.c_str(), "r");
+  REQUIRE(pipe != nullptr);
+  char buffer[4096];
+  std::size_t n = 0;
+  while ((n = std::fread(buffer, 1, sizeof buffer, pipe)) > 0) r.output.append(buffer, n);
+  const int raw = ::pclose(pipe);
+  r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+  return r;
+}
+
+fs::path fresh_dir(const std::string& tag) {
+  fs::path d = fs::temp_directory_path() / ("pdmesh_test_cli_" + tag + "_" + std::to_string(::getpid()));
+  fs::remove_all(d);
+  fs::create_directories(d);
+  return d;
+}
+
+bool contains(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
+
+// A 2 x 1 rectangle as one closed .crv curve with points every 0.25.
+void write_rectangle(const fs::path& file) {
+  std::ofstream out(file);
+  out << "# rectangle\n25\n";
+  for (int k = 0; k <= 8; ++k) out << 0.25 * k << " 0\n";
+  for (int k = 1; k <= 4; ++k) out << "2 " << 0.25 * k << "\n";
+  for (int k = 7; k >= 0; --k) out << 0.25 * k << " 1\n";
+  for (int k = 3; k >= 0; --k) out << "0 " << 0.25 * k << "\n";
+}
+
+}  // namespace
+
+TEST_CASE("pdmesh --help and pdmesh mesh --help list the commands and every option", "[cli]") {
+  const Result top = run("--help");
+  CHECK(top.status == 0);
+  CHECK(contains(top.output, "mesh"));
+  CHECK(contains(top.output, "--version"));
+  const Result mesh = run("mesh --help");
+  CHECK(mesh.status == 0);
+  for (const char* option : {"INPUT", "--out", "--set", "--iterations", "--dt", "--cutoff", "--method", "--seed",
+                             "--total", "--device", "--precision", "--formats", "--view", "--tree", "--quiet",
+                             "--max-nodes"}) {
+    INFO(option);
+    CHECK(contains(mesh.output, option));
+  }
+}
+
+TEST_CASE("pdmesh --version prints the version", "[cli]") {
+  const Result r = run("--version");
+  CHECK(r.status == 0);
+  CHECK(contains(r.output, std::string("pdmesh ") + PDMESH_VERSION));
+}
+
+TEST_CASE("command-line errors exit with status 2", "[cli]") {
+  const Result unknown = run("mesh x.toml --out /tmp/x --no-such-option");
+  CHECK(unknown.status == 2);
+  CHECK(contains(unknown.output, "--no-such-option"));
+  CHECK(run("").status == 2);                     // no command
+  CHECK(run("frobnicate").status == 2);           // no such command
+  CHECK(run("mesh x.crv").status == 2);           // --out missing
+  CHECK(run("mesh --out /tmp/x").status == 2);    // INPUT missing
+}
+
+TEST_CASE("a missing input file exits 2 naming the file and writes nothing", "[cli]") {
+  const fs::path dir = fresh_dir("missing");
+  const fs::path out = dir / "out";
+  const Result r = run("mesh '" + (dir / "no_such_case.toml").string() + "' --out '" + out.string() + "'");
+  CHECK(r.status == 2);
+  CHECK(contains(r.output, "pdmesh: error: "));
+  CHECK(contains(r.output, "no_such_case.toml"));
+  CHECK_FALSE(fs::exists(out));
+  CHECK(std::distance(fs::directory_iterator(dir), fs::directory_iterator()) == 0);
+  fs::remove_all(dir);
+}
+
+TEST_CASE("case-file errors exit 2 with FILE:LINE and the suggestion, before any output", "[cli]") {
+  const fs::path dir = fresh_dir("badcase");
+  write_rectangle(dir / "rect.crv");
+  std::ofstream(dir / "case.toml") << "[geometry]\nfiles = [\"rect.crv\"]\n[simulation]\niteratons = 4\n";
+  const fs::path out = dir / "out";
+  Result r = run("mesh '" + (dir / "case.toml").string() + "' --out '" + out.string() + "'");
+  CHECK(r.status == 2);
+  CHECK(contains(r.output, "case.toml:4:1: unknown key 'simulation.iteratons'; did you mean 'simulation.iterations'?"));
+  CHECK_FALSE(fs::exists(out));
+  r = run("mesh '" + (dir / "rect.crv").string() + "' --out '" + out.string() + "' --iterations -3");
+  CHECK(r.status == 2);
+  CHECK(contains(r.output, "--iterations -3: simulation.iterations must be >= 0, got -3"));
+  r = run("mesh '" + (dir / "rect.crv").string() + "' --out '" + out.string() + "' --view 0,0,1");
+  CHECK(r.status == 2);
+  CHECK(contains(r.output, "window must have 4 numbers, got 3"));
+  CHECK_FALSE(fs::exists(out));
+  fs::remove_all(dir);
+}
+
+TEST_CASE("--max-nodes refuses a case by its estimate", "[cli]") {
+  const fs::path dir = fresh_dir("limit");
+  write_rectangle(dir / "rect.crv");
+  const Result r = run("mesh '" + (dir / "rect.crv").string() + "' --out '" + (dir / "out").string() +
+                       "' --max-nodes 3");
+  CHECK(r.status == 2);
+  CHECK(contains(r.output, "estimate"));
+  CHECK(contains(r.output, "--max-nodes 3"));
+  CHECK_FALSE(fs::exists(dir / "out"));
+  fs::remove_all(dir);
+}
+
+TEST_CASE("pdmesh mesh writes the initial node file and pictures", "[cli]") {
+  const fs::path dir = fresh_dir("good");
+  write_rectangle(dir / "rect.crv");
+  const fs::path out = dir / "out" / "nested";
+  const Result r = run("mesh '" + (dir / "rect.crv").string() + "' --out '" + out.string() +
+                       "' --tree --view corner=0,0,0.5,0.5 --view 1,0,2,1");
+  INFO(r.output);
+  REQUIRE(r.status == 0);
+  CHECK(contains(r.output, "initial distribution: "));
+  CHECK(contains(r.output, "by hexagonal packing"));
+  for (const char* f : {"initial.nodes", "initial.png", "initial.svg", "initial_corner.png", "initial_view2.png"}) {
+    INFO(f);
+    CHECK(fs::is_regular_file(out / f));
+  }
+  CHECK(std::distance(fs::directory_iterator(out), fs::directory_iterator()) == 5);  // and no temporaries
+  const pdmesh::NodeFile nodes = pdmesh::read_node_file(out / "initial.nodes");
+  CHECK(nodes.nodes.count(pdmesh::NodeKind::Interior) > 0);
+  CHECK(nodes.nodes.count(pdmesh::NodeKind::Fixed) + nodes.nodes.count(pdmesh::NodeKind::Boundary) == 24);
+  CHECK(nodes.curve_names == std::vector<std::string>{"curve0"});
+  // --quiet silences progress.
+  const Result quiet = run("mesh '" + (dir / "rect.crv").string() + "' --out '" + out.string() + "' -q");
+  CHECK(quiet.status == 0);
+  CHECK(quiet.output.empty());
+  fs::remove_all(dir);
+}
