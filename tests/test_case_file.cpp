@@ -186,12 +186,13 @@ TEST_CASE("out-of-range values are rejected with the value", "[app][case]") {
   CHECK(error_of("[geometry]\nfiles = []\n").find("at least one file") != std::string::npos);
 }
 
-TEST_CASE("--set overrides are applied before validation", "[app][case]") {
+TEST_CASE("overrides (--set) are applied before validation", "[app][case]") {
   const std::vector<CaseOverride> sets = {parse_set_option("simulation.iterations=10"),
                                           parse_set_option("init.method=random"),
                                           parse_set_option("output.formats=[\"png\",\"svg\"]"),
                                           parse_set_option("simulation.dt_initial.structured=0.5"),
-                                          parse_set_option("name=renamed")};
+                                          parse_set_option("name=renamed"),
+                                          parse_set_option("spacing.expression=0.25")};
   const CaseConfig c = parse_case_text(std::string(kMinimal) + "[simulation]\niterations = 99\n", kCase, sets);
   CHECK(c.simulation.iterations == 10);
   CHECK(c.init.method == InitMethod::Random);
@@ -199,6 +200,8 @@ TEST_CASE("--set overrides are applied before validation", "[app][case]") {
   CHECK(c.simulation.dt_structured == 0.5);
   CHECK_FALSE(c.simulation.dt_random.has_value());
   CHECK(c.name == "renamed");
+  CHECK(c.spacing.field == SpacingKind::Expression);
+  CHECK(c.spacing.expression == "0.25");  // a number given to a string key is its text
 }
 
 TEST_CASE("errors in overrides name the option, not the case file", "[app][case]") {
@@ -214,7 +217,7 @@ TEST_CASE("errors in overrides name the option, not the case file", "[app][case]
   CHECK_THROWS_AS(parse_set_option("novalue"), InputError);
 }
 
-TEST_CASE("--view style overrides append views", "[app][case]") {
+TEST_CASE("appending overrides (--view) append views", "[app][case]") {
   CaseOverride view{"output.views", "{ window = [0, 0, 1, 2] }", "--view 0,0,1,2", true};
   const CaseConfig c = parse_case_text(std::string(kMinimal) + "[output]\nviews = [{ name = \"a\", window = [0,0,1,1] }]\n",
                                        kCase, {view});

@@ -10,6 +10,7 @@
 #include <fstream>
 #include <string>
 
+#include "io/mesh_formats.hpp"
 #include "nodes/node_file.hpp"
 
 namespace fs = std::filesystem;
@@ -40,6 +41,8 @@ fs::path fresh_dir(const std::string& tag) {
   fs::create_directories(d);
   return d;
 }
+
+std::size_t read_node_file_size(const fs::path& p) { return pdmesh::read_node_file(p).nodes.size(); }
 
 bool contains(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
 
@@ -117,7 +120,7 @@ TEST_CASE("case-file errors exit 2 with FILE:LINE and the suggestion, before any
   fs::remove_all(dir);
 }
 
-TEST_CASE("--max-nodes refuses a case by its estimate", "[cli]") {
+TEST_CASE("the node limit (--max-nodes) refuses a case by its estimate", "[cli]") {
   const fs::path dir = fresh_dir("limit");
   write_rectangle(dir / "rect.crv");
   const Result r = run("mesh '" + (dir / "rect.crv").string() + "' --out '" + (dir / "out").string() +
@@ -129,28 +132,42 @@ TEST_CASE("--max-nodes refuses a case by its estimate", "[cli]") {
   fs::remove_all(dir);
 }
 
-TEST_CASE("pdmesh mesh writes the initial node file and pictures", "[cli]") {
+TEST_CASE("pdmesh mesh writes every stage's files: initial, history, final, mesh, quality", "[cli]") {
   const fs::path dir = fresh_dir("good");
   write_rectangle(dir / "rect.crv");
   const fs::path out = dir / "out" / "nested";
   const Result r = run("mesh '" + (dir / "rect.crv").string() + "' --out '" + out.string() +
-                       "' --tree --view corner=0,0,0.5,0.5 --view 1,0,2,1");
+                       "' --tree --view corner=0,0,0.5,0.5 --view 1,0,2,1 --iterations 20 --check");
   INFO(r.output);
   REQUIRE(r.status == 0);
   CHECK(contains(r.output, "initial distribution: "));
   CHECK(contains(r.output, "by hexagonal packing"));
-  for (const char* f : {"initial.nodes", "initial.png", "initial.svg", "initial_corner.png", "initial_view2.png"}) {
+  CHECK(contains(r.output, "mesh check: passed"));
+  CHECK(contains(r.output, "Minimum Corner Jacobian"));  // the quality table
+  const std::vector<std::string> expected = {
+      "initial.nodes", "initial.png", "initial.svg", "initial_corner.png", "initial_view2.png",
+      "history.csv",   "history.png", "final.nodes", "final.png",          "final.svg",
+      "final_corner.png", "final_view2.png", "mesh.msh", "mesh.vtu",     "quality.json",
+      "mesh.png",      "mesh_corner.png", "mesh_view2.png"};
+  for (const std::string& f : expected) {
     INFO(f);
     CHECK(fs::is_regular_file(out / f));
   }
-  CHECK(std::distance(fs::directory_iterator(out), fs::directory_iterator()) == 5);  // and no temporaries
+  // Exactly those files: no temporaries left behind.
+  CHECK(std::distance(fs::directory_iterator(out), fs::directory_iterator()) ==
+        static_cast<std::ptrdiff_t>(expected.size()));
+  const pdmesh::Mesh mesh = pdmesh::read_mesh(out / "mesh.msh");
+  CHECK(mesh.triangles.size() > 0);
+  CHECK(mesh.curve_names == std::vector<std::string>{"curve0"});
   const pdmesh::NodeFile nodes = pdmesh::read_node_file(out / "initial.nodes");
   CHECK(nodes.nodes.count(pdmesh::NodeKind::Interior) > 0);
   CHECK(nodes.nodes.count(pdmesh::NodeKind::Fixed) + nodes.nodes.count(pdmesh::NodeKind::Boundary) == 24);
   CHECK(nodes.curve_names == std::vector<std::string>{"curve0"});
-  // --quiet silences progress.
-  const Result quiet = run("mesh '" + (dir / "rect.crv").string() + "' --out '" + out.string() + "' -q");
+  // A case directory stands for its case.toml; --quiet silences progress.
+  std::ofstream(dir / "case.toml") << "name = \"rect\"\n[geometry]\nfiles = [\"rect.crv\"]\n";
+  const Result quiet = run("mesh '" + dir.string() + "' --out '" + out.string() + "' -q");
   CHECK(quiet.status == 0);
   CHECK(quiet.output.empty());
+  CHECK(read_node_file_size(out / "initial.nodes") == nodes.nodes.size());
   fs::remove_all(dir);
 }

@@ -6,6 +6,8 @@
 #include <cmath>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
+#include <sstream>
 #include <limits>
 
 #include "core/errors.hpp"
@@ -111,6 +113,20 @@ TEST_CASE("malformed node files are rejected naming file and line", "[nodes][app
         "bad.nodes:6: curve 'c' lists interior node 1");
   CHECK(error_of(kGood + "extra 1\n") == "bad.nodes:8: unexpected content after the last curve line");
   CHECK(error_of("# pdmesh nodes v1\n-1\n") == "bad.nodes:2: node count -1 is out of range [0, 1000000000]");
+}
+
+TEST_CASE("the example in docs/node-file.md is a valid node file", "[nodes][app]") {
+  std::ifstream in(std::string(PDMESH_SOURCE_DIR) + "/docs/node-file.md");
+  std::ostringstream s;
+  s << in.rdbuf();
+  const std::string doc = s.str();
+  const auto start = doc.find("```\n# pdmesh nodes v1\n5");
+  REQUIRE(start != std::string::npos);
+  const auto end = doc.find("```", start + 3);
+  const NodeFile f = parse_node_file(doc.substr(start + 4, end - start - 4), "docs/node-file.md");
+  CHECK(f.nodes.size() == 5);
+  CHECK(f.curve_names == std::vector<std::string>{"bottom", "right", "top", "left"});
+  CHECK(f.nodes.curve_nodes[3] == std::vector<int>{3, 0});
 }
 
 TEST_CASE("a missing node file names the path", "[nodes][app]") {

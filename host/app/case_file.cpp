@@ -204,11 +204,18 @@ void check_keys(const Reader& r, const toml::table& t, const std::string& prefix
   }
 }
 
+// Keys whose value is a string: an override such as "spacing.expression=2" means the text.
+bool is_string_key(const std::string& key) {
+  return key == "name" || key == "spacing.field" || key == "spacing.expression" || key == "init.method" ||
+         key == "simulation.device" || key == "simulation.precision" || key == "simulation.r0_rule" ||
+         key == "output.color_by";
+}
+
 // Parses an override's value as TOML; a bare word that is not TOML (random, a.crv) is a string.
 toml::table override_value(const CaseOverride& o) {
   try {
     toml::table t = toml::parse("v = " + o.value, o.label);
-    if (t.size() == 1 && t.contains("v")) return t;
+    if (t.size() == 1 && t.contains("v") && (t.get("v")->is_string() || !is_string_key(o.key))) return t;
   } catch (const toml::parse_error&) {
   }
   toml::table t;
@@ -376,6 +383,9 @@ void read_simulation_section(const Reader& r, const toml::table& root, CaseConfi
   if (const toml::node* n = find(root, "simulation", "precision")) {
     s.precision = choose<Precision>(r, "simulation.precision", *n, {{"double", Precision::Double}, {"float", Precision::Float}});
   }
+  if (const toml::node* n = find(root, "simulation", "r0_rule")) {
+    s.r0_any_direction = choose<bool>(r, "simulation.r0_rule", *n, {{"force_direction", false}, {"any_direction", true}});
+  }
 }
 
 ViewWindow read_view(const Reader& r, const toml::node& entry, std::size_t i) {
@@ -422,6 +432,12 @@ void read_output_section(const Reader& r, const toml::table& root, CaseConfig& c
       }
     }
   }
+  if (const toml::node* n = find(root, "output", "color_by")) {
+    c.output.color_by = choose<std::string>(r, "output.color_by", *n,
+                                            {{"none", "none"}, {"min_angle", "min_angle"}, {"max_angle", "max_angle"},
+                                             {"aspect_ratio", "aspect_ratio"}, {"skewness", "skewness"},
+                                             {"condition_number", "condition_number"}, {"min_jacobian", "min_jacobian"}});
+  }
   if (const toml::node* n = find(root, "output", "tree_overlay")) c.output.tree_overlay = r.boolean("output.tree_overlay", *n);
   if (const toml::node* n = find(root, "output", "views")) {
     const toml::array& a = r.array("output.views", *n);
@@ -466,8 +482,8 @@ const std::vector<std::string>& case_file_keys() {
       "init.method", "init.seed", "init.total",
       "simulation.iterations", "simulation.dt_initial", "simulation.dt_initial.structured",
       "simulation.dt_initial.random", "simulation.cutoff", "simulation.lj_a", "simulation.device",
-      "simulation.precision",
-      "output.formats", "output.tree_overlay", "output.views",
+      "simulation.precision", "simulation.r0_rule",
+      "output.formats", "output.tree_overlay", "output.views", "output.color_by",
   };
   return keys;
 }

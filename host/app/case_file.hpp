@@ -61,6 +61,9 @@ struct CaseConfig {
     double lj_a = 15.0;
     std::string device = "auto";  // auto | host | opencl | opencl:P:D
     Precision precision = Precision::Double;
+    // true: r0 is the nearest neighbour in any direction ("any_direction"); false: in the force
+    // direction, thesis eq. 5.3 ("force_direction", the default).
+    bool r0_any_direction = false;
     std::optional<double> dt_for(InitMethod m) const {
       return m == InitMethod::Structured ? dt_structured : dt_random;
     }
@@ -70,12 +73,14 @@ struct CaseConfig {
     std::vector<std::string> formats{"msh", "vtu", "png"};
     bool tree_overlay = false;
     std::vector<ViewWindow> views;
+    std::string color_by = "none";  // mesh.png fill: none or a per-triangle quality metric
     bool wants(const std::string& format) const;
   } output;
 
   // Command-line only (not case-file keys).
   std::filesystem::path out_dir;
   bool quiet = false;
+  bool check = false;  // run the mesh invariant checker and fail when it finds a problem
   std::uint64_t max_nodes = 20'000'000;
 };
 

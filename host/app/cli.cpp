@@ -13,21 +13,30 @@
 #include <toml++/toml.h>
 
 #include "app/case_file.hpp"
+#include "app/devices_command.hpp"
 #include "app/mesh_command.hpp"
+#include "app/quality_command.hpp"
 #include "core/errors.hpp"
 
 namespace pdmesh {
 
 namespace fs = std::filesystem;
 
+struct QualityArguments {
+  std::string mesh;
+  std::optional<std::string> geometry, json;
+};
+
 struct MeshArguments {
   std::string input;
   std::string out;
   std::vector<std::string> sets;
-  std::optional<std::string> iterations, dt, cutoff, method, seed, total, device, precision, formats;
+  std::optional<std::string> iterations, dt, cutoff, method, seed, total, device, precision, formats, r0_rule,
+      color_by;
   std::vector<std::string> views;
   bool tree = false;
   bool quiet = false;
+  bool check = false;
   std::uint64_t max_nodes = 20'000'000;
 };
 
@@ -85,6 +94,8 @@ std::vector<CaseOverride> overrides_from(const MeshArguments& a) {
   direct(a.total, "--total", "init.total");
   direct(a.device, "--device", "simulation.device");
   direct(a.precision, "--precision", "simulation.precision");
+  direct(a.r0_rule, "--r0-rule", "simulation.r0_rule");
+  direct(a.color_by, "--color-by", "output.color_by");
   if (a.formats) out.push_back({"output.formats", formats_value(*a.formats), "--formats " + *a.formats});
   if (a.tree) out.push_back({"output.tree_overlay", "true", "--tree"});
   for (const std::string& v : a.views) out.push_back({"output.views", view_value(v), "--view " + v, true});
@@ -98,10 +109,17 @@ std::string lower_extension(const fs::path& p) {
 }
 
 CaseConfig config_from(const MeshArguments& a) {
-  const fs::path input(a.input);
+  fs::path input(a.input);
   std::error_code ec;
   if (!fs::exists(input, ec)) {
     throw InputError(fmt::format("cannot read '{}': {}", a.input, std::strerror(ENOENT)));
+  }
+  // A case directory stands for the case.toml inside it.
+  if (fs::is_directory(input, ec)) {
+    if (!fs::is_regular_file(input / "case.toml", ec)) {
+      throw InputError(fmt::format("'{}' is a directory without a case.toml", a.input));
+    }
+    input /= "case.toml";
   }
   const std::vector<CaseOverride> overrides = overrides_from(a);
   const std::string ext = lower_extension(input);
@@ -111,23 +129,25 @@ CaseConfig config_from(const MeshArguments& a) {
   } else if (ext == ".crv" || ext == ".dat" || ext == ".poly") {
     config = case_for_geometry_file(input, overrides);
   } else {
-    throw InputError(fmt::format("{}: unknown input type '{}' (expected a case .toml or a .crv, .dat or .poly geometry "
-                                 "file)", a.input, ext));
+    throw InputError(fmt::format("{}: unknown input type '{}' (expected a case .toml, a case directory or a .crv, "
+                                 ".dat or .poly geometry file)", a.input, ext));
   }
   config.out_dir = a.out;
   config.quiet = a.quiet;
+  config.check = a.check;
   config.max_nodes = a.max_nodes;
   return config;
 }
 
 void add_mesh_options(CLI::App& mesh, MeshArguments& a) {
-  mesh.add_option("INPUT", a.input, "Case file (.toml) or geometry file (.crv, .dat, .poly; default settings)")
-      ->required();
+  mesh.add_option("INPUT", a.input, "Case file (.toml), case directory (holding case.toml), or geometry file (.crv, .dat, .poly; default settings)")
+      ->required()
+      ->type_name("FILE");
   mesh.add_option("--out,-o", a.out, "Output directory (created if missing)")->required()->type_name("DIR");
   mesh.add_option("--set", a.sets,
                   "Override a case-file key: section.key=VALUE (TOML value; a bare word is a string). Repeatable")
       ->type_name("KEY=VALUE")
-      ->take_all();
+      ->allow_extra_args(false);
   mesh.add_option("--iterations", a.iterations, "simulation.iterations: number of time steps (>= 0)")->type_name("N");
   mesh.add_option("--dt", a.dt, "simulation.dt_initial: initial global maximum time step (> 0)")->type_name("DT");
   mesh.add_option("--cutoff", a.cutoff, "simulation.cutoff: cut-off distance factor times q_i (> 0)")->type_name("F");
@@ -137,6 +157,13 @@ void add_mesh_options(CLI::App& mesh, MeshArguments& a) {
       ->type_name("N");
   mesh.add_option("--device", a.device, "simulation.device: auto | host | opencl | opencl:P:D")->type_name("DEV");
   mesh.add_option("--precision", a.precision, "simulation.precision: double | float")->type_name("P");
+  mesh.add_option("--r0-rule", a.r0_rule,
+                  "simulation.r0_rule: force_direction (thesis eq. 5.3) | any_direction (nearest neighbour limits the step)")
+      ->type_name("RULE");
+  mesh.add_option("--color-by", a.color_by,
+                  "output.color_by: fill mesh.png by a quality metric: none | min_angle | max_angle | aspect_ratio | "
+                  "skewness | condition_number | min_jacobian")
+      ->type_name("METRIC");
   mesh.add_option("--formats", a.formats, "output.formats, comma-separated: msh,msh22,vtu,su2,triangle,png,svg")
       ->type_name("LIST");
   mesh.add_option("--view", a.views,
@@ -145,7 +172,10 @@ void add_mesh_options(CLI::App& mesh, MeshArguments& a) {
       ->type_name("[NAME=]x0,y0,x1,y1")
       ->allow_extra_args(false);
   mesh.add_flag("--tree", a.tree, "output.tree_overlay: draw the initialization tree on the initial pictures");
-  mesh.add_flag("--quiet,-q", a.quiet, "No progress messages on stderr");
+  mesh.add_flag("--quiet,-q", a.quiet, "No progress messages on stderr and no quality table on stdout");
+  mesh.add_flag("--check", a.check,
+                "Check the mesh invariants (topology, orientation, constrained Delaunay, boundary edges, area); "
+                "exit 1 listing the problems if any fails");
   mesh.add_option("--max-nodes", a.max_nodes,
                   "Refuse cases whose estimated node count exceeds this (default 20000000)")
       ->type_name("N");
@@ -156,12 +186,27 @@ void add_mesh_options(CLI::App& mesh, MeshArguments& a) {
 }  // namespace
 
 Cli::Cli() : app_(std::make_unique<CLI::App>("pdmesh: physics-based point placement and triangle meshing", "pdmesh")),
-             mesh_(std::make_unique<MeshArguments>()) {
+             mesh_(std::make_unique<MeshArguments>()), quality_(std::make_unique<QualityArguments>()) {
   app_->set_version_flag("--version", std::string("pdmesh ") + PDMESH_VERSION);
   app_->require_subcommand(1);
   CLI::App* mesh = app_->add_subcommand("mesh", "Distribute nodes for a case and write them and their pictures");
   add_mesh_options(*mesh, *mesh_);
   commands_.emplace_back(mesh, [this] { return run_mesh(config_from(*mesh_)); });
+
+  CLI::App* quality = app_->add_subcommand("quality", "Print the quality table of an existing mesh file");
+  quality->add_option("MESH", quality_->mesh, "Mesh file: .msh (Gmsh 2.2 or 4.1), .vtu, .su2, or Triangle .ele/.node")
+      ->required()
+      ->type_name("FILE");
+  quality->add_option("--geometry,-g", quality_->geometry,
+                      "Case file or geometry file giving the desired spacing q (for spacing conformance)")
+      ->type_name("FILE");
+  quality->add_option("--json", quality_->json, "Also write the JSON summary: a file, a directory, or - for stdout")
+      ->type_name("PATH");
+  commands_.emplace_back(quality, [this] { return run_quality(quality_->mesh, quality_->geometry, quality_->json); });
+
+  CLI::App* devices = app_->add_subcommand("devices", "List the OpenCL platforms and devices (--device opencl:P:D)");
+  devices->add_flag("--check", devices_check_, "Also build and run a small kernel on each device");
+  commands_.emplace_back(devices, [this] { return run_devices(devices_check_); });
 }
 
 Cli::~Cli() = default;

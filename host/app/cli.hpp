@@ -13,6 +13,7 @@ class App;
 namespace pdmesh {
 
 struct MeshArguments;
+struct QualityArguments;
 
 class Cli {
  public:
@@ -32,6 +33,8 @@ class Cli {
   // Each command: its CLI11 subcommand and what runs it. New commands add one entry.
   std::vector<std::pair<CLI::App*, std::function<int()>>> commands_;
   std::unique_ptr<MeshArguments> mesh_;
+  std::unique_ptr<QualityArguments> quality_;
+  bool devices_check_ = false;
 };
 
 }  // namespace pdmesh

@@ -11,14 +11,27 @@
 #include "app/exit_codes.hpp"
 #include "core/errors.hpp"
 #include "geometry/geometry_files.hpp"
+#include "io/mesh_formats.hpp"
+#include "mesh/mesh_check.hpp"
+#include "mesh/quality.hpp"
+#include "mesh/quality_report.hpp"
+#include "mesh/triangulate_nodes.hpp"
+#include "nodes/node_domain.hpp"
 #include "nodes/node_file.hpp"
+#include "render/history_plot.hpp"
+#include "render/mesh_picture.hpp"
 #include "render/node_picture.hpp"
+#include "sim/history.hpp"
 
 namespace pdmesh {
 
 namespace fs = std::filesystem;
 
 namespace {
+
+// Every node is an element in an SVG; beyond this many the file would run to hundreds of
+// megabytes, so only the PNG pictures (and zoomed views) are written.
+constexpr std::size_t kSvgNodeLimit = 500'000;
 
 const char* method_name(InitMethod m) { return m == InitMethod::Structured ? "structured" : "random"; }
 
@@ -91,22 +104,150 @@ void prepare_output_directory(const CaseConfig& config) {
   }
 }
 
-void write_initial_outputs(const CaseConfig& config, const MeshInputs& inputs, const InitialDistribution& initial) {
+namespace {
+
+// STAGE.nodes, STAGE.png, STAGE.svg and STAGE_<view>.png for one node distribution.
+void write_node_outputs(const CaseConfig& config, const MeshInputs& inputs, const NodeSet& nodes,
+                        const std::string& stage, const std::string& title, const std::vector<Box>* tree_quads) {
   const fs::path& dir = config.out_dir;
-  write_node_file(dir / "initial.nodes", initial.nodes, inputs.curve_names());
+  write_node_file(dir / (stage + ".nodes"), nodes, inputs.curve_names());
   NodePictureOptions picture;
-  picture.title = fmt::format("{} - initial distribution ({})", config.name, method_name(config.init.method));
-  picture.tree_quads = config.output.tree_overlay ? &initial.tree_quads : nullptr;
-  write_node_picture(dir / "initial.png", inputs.geometry, initial.nodes, picture);
-  write_node_picture(dir / "initial.svg", inputs.geometry, initial.nodes, picture);
+  picture.title = title;
+  picture.tree_quads = tree_quads;
+  write_node_picture(dir / (stage + ".png"), inputs.geometry, nodes, picture);
+  const bool svg = nodes.size() <= kSvgNodeLimit;
+  if (svg) {
+    write_node_picture(dir / (stage + ".svg"), inputs.geometry, nodes, picture);
+  } else {
+    progress(config, "{}.svg skipped: {} nodes is more than {} (the PNG pictures are written)", stage, nodes.size(),
+             kSvgNodeLimit);
+  }
   for (const ViewWindow& view : config.output.views) {
     NodePictureOptions zoomed = picture;
     zoomed.title += " - " + view.name;
     zoomed.window = view.window;
-    write_node_picture(dir / fmt::format("initial_{}.png", view.name), inputs.geometry, initial.nodes, zoomed);
+    write_node_picture(dir / fmt::format("{}_{}.png", stage, view.name), inputs.geometry, nodes, zoomed);
   }
-  progress(config, "wrote {}/initial.nodes, initial.png, initial.svg{}", dir.string(),
+  progress(config, "wrote {}/{}.nodes, {}.png{}{}", dir.string(), stage, stage, svg ? fmt::format(", {}.svg", stage) : "",
            config.output.views.empty() ? "" : fmt::format(" and {} view(s)", config.output.views.size()));
+}
+
+// The per-triangle values of one metric, for colouring mesh pictures.
+std::vector<double> metric_values(const std::vector<TriangleQuality>& q, const std::string& metric) {
+  std::vector<double> v;
+  v.reserve(q.size());
+  for (const TriangleQuality& t : q) {
+    if (metric == "min_angle") v.push_back(t.min_angle);
+    else if (metric == "max_angle") v.push_back(t.max_angle);
+    else if (metric == "aspect_ratio") v.push_back(t.aspect_ratio);
+    else if (metric == "skewness") v.push_back(t.skewness);
+    else if (metric == "condition_number") v.push_back(t.condition_number);
+    else v.push_back(t.min_jacobian);
+  }
+  return v;
+}
+
+}  // namespace
+
+void write_initial_outputs(const CaseConfig& config, const MeshInputs& inputs, const InitialDistribution& initial) {
+  write_node_outputs(config, inputs, initial.nodes, "initial",
+                     fmt::format("{} - initial distribution ({})", config.name, method_name(config.init.method)),
+                     config.output.tree_overlay ? &initial.tree_quads : nullptr);
+}
+
+SimResult simulate(const CaseConfig& config, const MeshInputs& inputs, NodeSet& nodes) {
+  const std::string& device = config.simulation.device;
+  // The OpenCL simulation backend is not part of this build yet: auto and host run the reference.
+  if (device != "auto" && device != "host") {
+    throw InputError(fmt::format("--device {}: this build simulates on the host reference only; use --device host "
+                                 "or auto (`pdmesh devices` lists the OpenCL devices)",
+                                 device));
+  }
+  if (config.simulation.precision == Precision::Float) {
+    progress(config, "note: the host reference computes in double precision; --precision float is ignored");
+  }
+  SimOptions options;
+  options.iterations = static_cast<int>(config.simulation.iterations);
+  options.dt_initial = config.simulation.dt_for(config.init.method);
+  options.cutoff = config.simulation.cutoff;
+  options.lj_a = config.simulation.lj_a;
+  options.r0_any_direction = config.simulation.r0_any_direction;
+  options.quiet = config.quiet;
+  progress(config, "simulation: {} iterations on the host reference (double), cutoff {}, a = {}, r0 rule {}",
+           options.iterations, options.cutoff, options.lj_a,
+           options.r0_any_direction ? "any_direction" : "force_direction");
+  SimResult result = run_simulation(nodes, *inputs.tree, *inputs.spacing, options);
+  const SimStats& st = result.stats;
+  const double per_iteration = options.iterations > 0 ? st.seconds / options.iterations : 0.0;
+  progress(config,
+           "simulation: {:.2f} s ({:.3f} ms/iteration), initial dt_GM {:.4g}, {:.3g} pair interactions/s, "
+           "{:.2f} pairs examined per pair within cutoff, {} nodes snapped",
+           st.seconds, 1e3 * per_iteration, st.dt_initial,
+           st.seconds > 0 ? static_cast<double>(st.pairs_within) / st.seconds : 0.0,
+           st.pairs_within ? static_cast<double>(st.pairs_examined) / static_cast<double>(st.pairs_within) : 0.0,
+           st.snapped);
+  const fs::path& dir = config.out_dir;
+  write_history_csv(dir / "history.csv", result.history);
+  write_history_plot(dir / "history.png", result.history, fmt::format("{} ({})", config.name, method_name(config.init.method)));
+  write_node_outputs(config, inputs, nodes, "final",
+                     fmt::format("{} - final distribution ({}, {} iterations)", config.name,
+                                 method_name(config.init.method), options.iterations),
+                     nullptr);
+  return result;
+}
+
+Mesh mesh_and_measure(const CaseConfig& config, const MeshInputs& inputs, const NodeSet& nodes) {
+  Mesh mesh = triangulate(nodes, inputs.curve_names());
+  if (config.check) {
+    // The mesh covers the polygons through the boundary nodes, which cut the curves' corners
+    // where nodes have slid off geometry vertices; that area is what the check compares against.
+    const double node_area = node_domain_area(nodes, inputs.geometry);
+    const CheckReport report = check_mesh(mesh, node_area);
+    if (!report.ok()) throw SimulationError("the mesh failed its invariant check:\n" + report.summary());
+    progress(config, "mesh check: passed (topology, orientation, constrained Delaunay, boundary edges, area {:.10g}; "
+             "the geometry's area is {:.10g}, relative difference {:.2g})",
+             node_area, inputs.geometry.area, std::fabs(node_area - inputs.geometry.area) / inputs.geometry.area);
+  }
+  const SpacingField& spacing = *inputs.spacing;
+  const QualitySummary summary = summarize_quality(mesh, [&spacing](Vec2 p) { return spacing.at(p); });
+  if (!config.quiet) fmt::print("{}", format_quality_table(summary, config.name));
+  const fs::path& dir = config.out_dir;
+  write_quality_json(summary, dir, config.name);
+  std::vector<std::string> mesh_formats;
+  for (const std::string& f : config.output.formats)
+    if (is_mesh_format(f)) mesh_formats.push_back(f);
+  const auto written = write_mesh(mesh, dir, "mesh", mesh_formats);
+  // Pictures: png is always drawn when asked for; svg likewise.
+  const std::vector<TriangleQuality> per_triangle = triangle_qualities(mesh);
+  std::vector<double> values;
+  MeshPictureOptions picture;
+  picture.title = fmt::format("{} - mesh ({} triangles)", config.name, mesh.triangles.size());
+  if (config.output.color_by != "none") {
+    values = metric_values(per_triangle, config.output.color_by);
+    picture.triangle_values = &values;
+    picture.value_label = config.output.color_by;
+  }
+  std::size_t pictures = 0;
+  for (const char* ext : {"png", "svg"}) {
+    if (!config.output.wants(ext)) continue;
+    if (std::string(ext) == "svg" && mesh.triangles.size() > 2 * kSvgNodeLimit) continue;
+    write_mesh_picture(dir / fmt::format("mesh.{}", ext), mesh, picture);
+    ++pictures;
+  }
+  if (config.output.wants("png")) {
+    for (const ViewWindow& view : config.output.views) {
+      MeshPictureOptions zoomed = picture;
+      zoomed.title += " - " + view.name;
+      zoomed.window = view.window;
+      write_mesh_picture(dir / fmt::format("mesh_{}.png", view.name), mesh, zoomed);
+      ++pictures;
+    }
+  }
+  std::string names;
+  for (const auto& p : written) names += (names.empty() ? "" : ", ") + p.filename().string();
+  progress(config, "mesh: {} triangles; wrote {}/quality.json{}{} and {} picture(s)", mesh.triangles.size(), dir.string(),
+           names.empty() ? "" : ", ", names, pictures);
+  return mesh;
 }
 
 int run_mesh(const CaseConfig& config) {
@@ -126,6 +267,11 @@ int run_mesh(const CaseConfig& config) {
   // compute, then write atomically into the directory prepared here.
   prepare_output_directory(config);
   write_initial_outputs(config, inputs, initial);
+  // Stage 5: the simulation (none with --iterations 0: the initial distribution is meshed).
+  NodeSet nodes = initial.nodes;
+  if (config.simulation.iterations > 0) simulate(config, inputs, nodes);
+  // Stage 6: the mesh, its quality and its files.
+  mesh_and_measure(config, inputs, nodes);
   return kExitOk;
 }
 

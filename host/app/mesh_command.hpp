@@ -7,6 +7,8 @@
 #include "geometry/geometry.hpp"
 #include "geometry/geometry_tree.hpp"
 #include "init/initial_distribution.hpp"
+#include "mesh/mesh.hpp"
+#include "sim/simulation.hpp"
 #include "spacing/spacing_field.hpp"
 
 namespace pdmesh {
@@ -36,6 +38,15 @@ void prepare_output_directory(const CaseConfig& config);
 
 // Stage 5: DIR/initial.nodes, initial.png, initial.svg and initial_<view>.png per view, each atomic.
 void write_initial_outputs(const CaseConfig& config, const MeshInputs& inputs, const InitialDistribution& initial);
+
+// Stage 6: the particle dynamics simulation on the chosen backend, updating `nodes` in place;
+// writes DIR/history.csv, history.png, final.nodes, final.png (.svg) and final_<view>.png.
+SimResult simulate(const CaseConfig& config, const MeshInputs& inputs, NodeSet& nodes);
+
+// Stage 7: triangulates `nodes`, checks the mesh when config.check (SimulationError listing the
+// problems if it fails), measures quality, prints the table, and writes DIR/quality.json, the mesh
+// files of config.output.formats, mesh.png (.svg) and mesh_<view>.png.
+Mesh mesh_and_measure(const CaseConfig& config, const MeshInputs& inputs, const NodeSet& nodes);
 
 // All stages in order; progress on stderr unless config.quiet. Returns the exit status.
 int run_mesh(const CaseConfig& config);

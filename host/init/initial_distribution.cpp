@@ -24,10 +24,13 @@ constexpr double kEstimateNodesPerQuad = 64.0;
 constexpr int kEstimateSamples = 4;
 constexpr int kEstimateMaxDepth = 30;
 
-// Extra levels a quad that segments touch is split for the estimate, so that the samples resolve
-// the boundary within 1/64 of a leaf side instead of 1/4.
-constexpr int kEstimateCutDepth = 4;
+// Extra levels a leaf that segments touch is split for the estimate, so that its samples resolve
+// the boundary within 1/32 of the leaf side instead of 1/4.
+constexpr int kEstimateCutDepth = 3;
 
+// Integral of the hexagonal density over the inside part of quad b. Leaf-sized quads take 4x4
+// spacing samples (q may vary over a large leaf); the sub-quads of a cut leaf, which are at most
+// a fraction of the local spacing wide, take q once at their centre and 4x4 inside samples.
 double estimate_quad(const GeometryTree& tree, const SpacingField& spacing, const Box& b,
                      const std::vector<int>& segments, bool known_inside, int depth) {
   const double q_mid = spacing.at(b.centre());
@@ -49,19 +52,27 @@ double estimate_quad(const GeometryTree& tree, const SpacingField& spacing, cons
       for (int s : segments)
         if (segment_touches_box(segs[s].a, segs[s].b, child)) touching.push_back(s);
       // No segment touches the child: it lies wholly on one side, which its centre tells.
-      if (touching.empty() && !tree.inside(child.centre())) continue;
+      if (touching.empty()) {
+        if (!tree.inside(child.centre())) continue;
+        if (!crowded) {
+          const double q = spacing.at(child.centre());
+          if (q > 0.0 && std::isfinite(q)) sum += child.width() * child.height() * hex_density(q);
+          continue;
+        }
+      }
       sum += estimate_quad(tree, spacing, child, touching, touching.empty(), depth + 1);
     }
     return sum;
   }
   const double cell = area / (kEstimateSamples * kEstimateSamples);
+  const bool sub_quad = depth > 0 && !crowded;
   double sum = 0.0;
   for (int j = 0; j < kEstimateSamples; ++j) {
     for (int i = 0; i < kEstimateSamples; ++i) {
       const Vec2 p{b.lo.x + (i + 0.5) / kEstimateSamples * b.width(),
                    b.lo.y + (j + 0.5) / kEstimateSamples * b.height()};
       if (!known_inside && !tree.inside(p)) continue;
-      const double q = spacing.at(p);
+      const double q = sub_quad ? q_mid : spacing.at(p);
       if (q > 0.0 && std::isfinite(q)) sum += cell * hex_density(q);
     }
   }

@@ -31,9 +31,10 @@ int random_count(double ratio);
 
 // The keep rule for an interior candidate p: inside the domain and at least
 // kInitBoundaryClearance * q(p) from the closest boundary point. `known_inside` skips the
-// point-in-domain test for quads that no segment touches. On success q is set to q(p).
+// point-in-domain test for quads that no segment touches; a `distance_lower_bound` that already
+// clears the rule skips the closest-point query. q is set to q(p).
 bool keep_interior_candidate(const GeometryTree& tree, const SpacingField& spacing, Vec2 p,
-                             bool known_inside, double& q);
+                             bool known_inside, double& q, double distance_lower_bound = -1.0);
 
 // Fills one kept leaf, splitting it into four while its area ratio exceeds kInitSplitRatio.
 // Kept nodes are appended to `nodes` as Interior nodes. Returns how many were added.

@@ -1,0 +1,167 @@
+// Constrained edge recovery by flipping crossed edges, and parity flood fill removing the
+// triangles outside the domain and in holes.
+#include "mesh/constrain.hpp"
+
+#include <fmt/format.h>
+
+#include <deque>
+
+#include "core/errors.hpp"
+#include "core/predicates.hpp"
+
+namespace pdmesh {
+namespace {
+
+// Local index of `value`, which the caller knows is in the triangle.
+int index_of(const std::array<int, 3>& a, int value) { return a[0] == value ? 0 : (a[1] == value ? 1 : 2); }
+
+// Index of the vertex of a triangle that is neither x nor y.
+int third_index(const std::array<int, 3>& tv, int x, int y) {
+  return (tv[0] != x && tv[0] != y) ? 0 : ((tv[1] != x && tv[1] != y) ? 1 : 2);
+}
+
+std::string describe(const Triangulation& tri, const ConstrainedEdge& e) {
+  const Vec2 pa = tri.points[e.a], pb = tri.points[e.b];
+  std::string curve = e.curve >= 0 ? fmt::format(" of curve {}", e.curve) : std::string();
+  return fmt::format("edge{} from point {} ({}, {}) to point {} ({}, {})", curve, tri.input_index[e.a], pa.x, pa.y,
+                     tri.input_index[e.b], pb.x, pb.y);
+}
+
+[[noreturn]] void throw_point_on_edge(const Triangulation& tri, const ConstrainedEdge& e, int point) {
+  const Vec2 p = tri.points[point];
+  throw GeometryError(fmt::format("point {} ({}, {}) lies inside boundary {}; boundary points may only be edge end points",
+                                  tri.input_index[point], p.x, p.y, describe(tri, e)));
+}
+
+// The crossed edges of the triangulation along segment a-b, as (right, left) vertex pairs,
+// found by walking from a towards b.
+std::vector<std::array<int, 2>> crossed_edges(const Triangulation& tri, const ConstrainedEdge& e) {
+  const auto& P = tri.points;
+  const Vec2 pa = P[e.a], pb = P[e.b];
+  auto on_segment_side = [&](int c) {  // c collinear with a-b and on b's side of a: inside a-b
+    if (tri.is_super(c) || orient2d(pa, pb, P[c]) != 0.0) return false;
+    return dot(P[c] - pa, pb - pa) > 0.0;  // signs of collinear differences are exact
+  };
+  int t = -1, right = -1, left = -1;
+  for (int f : tri.triangles_around(e.a)) {
+    const int k = index_of(tri.v[f], e.a);
+    const int c = tri.v[f][(k + 1) % 3], d = tri.v[f][(k + 2) % 3];
+    if (on_segment_side(c)) throw_point_on_edge(tri, e, c);
+    if (orient2d(pa, P[c], pb) > 0.0 && orient2d(pa, P[d], pb) < 0.0) {
+      t = f;
+      right = c;
+      left = d;
+    }
+  }
+  if (t < 0) throw GeometryError(fmt::format("cannot start recovery of boundary {}", describe(tri, e)));
+  std::vector<std::array<int, 2>> crossed;
+  for (;;) {
+    if (tri.is_constrained(right, left)) {
+      throw GeometryError(fmt::format("boundary {} crosses the boundary edge from point {} ({}, {}) to point {} ({}, {})",
+                                      describe(tri, e), tri.input_index[right], P[right].x, P[right].y,
+                                      tri.input_index[left], P[left].x, P[left].y));
+    }
+    crossed.push_back({right, left});
+    const int u = tri.n[t][third_index(tri.v[t], right, left)];
+    const int opposite = tri.v[u][third_index(tri.v[u], right, left)];
+    if (opposite == e.b) break;
+    const double side = orient2d(pa, pb, P[opposite]);
+    if (side == 0.0) throw_point_on_edge(tri, e, opposite);
+    (side < 0.0 ? right : left) = opposite;
+    t = u;
+  }
+  return crossed;
+}
+
+// Sloan's recovery: flip crossed edges whose quadrilateral is strictly convex; a new edge that
+// still crosses a-b goes back into the queue. Terminates (Sloan 1993); the guard only turns a
+// bug into an error instead of a hang.
+void recover_edge(Triangulation& tri, const ConstrainedEdge& e) {
+  if (e.a == e.b) throw GeometryError(fmt::format("boundary {} has zero length", describe(tri, e)));
+  if (tri.find_edge(e.a, e.b)[0] >= 0 || tri.find_edge(e.b, e.a)[0] >= 0) {
+    tri.constrained.insert(Triangulation::edge_key(e.a, e.b));
+    return;
+  }
+  const auto& P = tri.points;
+  const auto crossed = crossed_edges(tri, e);
+  std::deque<std::array<int, 2>> queue(crossed.begin(), crossed.end());
+  const std::size_t limit = 1000 + 100 * crossed.size() * crossed.size();
+  for (std::size_t step = 0; !queue.empty(); ++step) {
+    if (step > limit) throw GeometryError(fmt::format("recovery of boundary {} did not terminate", describe(tri, e)));
+    const auto [c, d] = queue.front();
+    queue.pop_front();
+    auto found = tri.find_edge(c, d);
+    if (found[0] < 0) found = tri.find_edge(d, c);
+    const auto [t, i] = found;
+    const int u = tri.n[t][i];
+    const int p = tri.v[t][i], a = tri.v[t][(i + 1) % 3], b = tri.v[t][(i + 2) % 3];
+    const int q = tri.v[u][index_of(tri.n[u], t)];
+    if (orient2d(P[p], P[a], P[q]) > 0.0 && orient2d(P[q], P[b], P[p]) > 0.0) {
+      tri.flip(t, i);
+      if (segments_cross_properly(P[p], P[q], P[e.a], P[e.b])) queue.push_back({p, q});
+    } else {
+      queue.push_back({c, d});
+    }
+  }
+  tri.constrained.insert(Triangulation::edge_key(e.a, e.b));
+}
+
+}  // namespace
+
+void recover_edges(Triangulation& tri, const std::vector<ConstrainedEdge>& edges) {
+  for (const auto& e : edges) {
+    if (e.a < 0 || e.b < 0 || e.a >= tri.input_count || e.b >= tri.input_count)
+      throw InputError(fmt::format("boundary edge {}-{} names a point outside 0..{}", e.a, e.b, tri.input_count - 1));
+  }
+  // Work in the triangulation's vertex numbering; messages translate back to input indices.
+  for (const auto& e : edges) recover_edge(tri, {tri.vertex_of[e.a], tri.vertex_of[e.b], e.curve});
+  tri.make_delaunay();
+}
+
+std::vector<std::array<int, 3>> inside_triangles(const Triangulation& tri) {
+  const int count = static_cast<int>(tri.v.size());
+  std::vector<int> layer(count, -1);
+  std::vector<int> current, stack, next;
+  for (int t = 0; t < count; ++t) {
+    const auto& tv = tri.v[t];
+    if (tri.is_super(tv[0]) || tri.is_super(tv[1]) || tri.is_super(tv[2])) {
+      layer[t] = 0;
+      current.push_back(t);
+    }
+  }
+  // Layer k: reachable from layer k-1 by crossing exactly one more constrained edge.
+  for (int depth = 0; !current.empty(); ++depth) {
+    stack = current;
+    while (!stack.empty()) {
+      const int t = stack.back();
+      stack.pop_back();
+      for (int i = 0; i < 3; ++i) {
+        const int u = tri.n[t][i];
+        if (u < 0 || layer[u] != -1) continue;
+        if (tri.is_constrained(tri.v[t][(i + 1) % 3], tri.v[t][(i + 2) % 3])) {
+          next.push_back(u);
+        } else {
+          layer[u] = depth;
+          stack.push_back(u);
+        }
+      }
+    }
+    current.clear();
+    for (int u : next) {
+      if (layer[u] == -1) {
+        layer[u] = depth + 1;
+        current.push_back(u);
+      }
+    }
+    next.clear();
+  }
+  std::vector<std::array<int, 3>> inside;
+  for (int t = 0; t < count; ++t)
+    if (layer[t] % 2 == 1) {
+      const auto& tv = tri.v[t];
+      inside.push_back({tri.input_index[tv[0]], tri.input_index[tv[1]], tri.input_index[tv[2]]});
+    }
+  return inside;
+}
+
+}  // namespace pdmesh

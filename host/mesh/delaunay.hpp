@@ -1,0 +1,65 @@
+// Incremental Delaunay triangulation (Hilbert-ordered insertion, remembering walk, Lawson flips
+// from an explicit stack) inside a super-triangle; the data structure the constraint step edits.
+#pragma once
+#include <array>
+#include <cstdint>
+#include <unordered_set>
+#include <vector>
+
+#include "core/vec2.hpp"
+
+namespace pdmesh {
+
+// Triangle t has vertices v[t] in counter-clockwise order and neighbours n[t], where n[t][i] is
+// the triangle across the edge opposite v[t][i] (-1 outside the super-triangle).
+// Vertices are stored in Hilbert order (so neighbouring triangles touch nearby memory):
+// vertex k is input point input_index[k], input point i is vertex vertex_of[i]; the three
+// super-triangle vertices follow the input_count input points. The super-triangle is finite (a box 100 times the input's extent), so the
+// triangles kept after removing it are Delaunay, but near the convex hull a few hull edges may be
+// missing; domain meshing constrains its boundary, so that never matters there.
+class Triangulation {
+ public:
+  // Throws InputError for fewer than 3 points, non-finite coordinates or a duplicate point
+  // (naming both indices and the coordinates), GeometryError when all points are collinear.
+  explicit Triangulation(const std::vector<Vec2>& input);
+
+  std::vector<Vec2> points;                 // input points in Hilbert order, then the 3 super vertices
+  std::vector<int> input_index;             // vertex -> input point index
+  std::vector<int> vertex_of;               // input point index -> vertex
+  std::vector<std::array<int, 3>> v;        // triangle vertices, counter-clockwise
+  std::vector<std::array<int, 3>> n;        // neighbours, n[t][i] opposite v[t][i]
+  std::vector<int> vertex_triangle;         // one triangle incident to each vertex
+  std::unordered_set<std::uint64_t> constrained;  // edge_key of edges Lawson must not flip
+  int input_count = 0;
+
+  bool is_super(int vertex) const { return vertex >= input_count; }
+  static std::uint64_t edge_key(int a, int b);
+  bool is_constrained(int a, int b) const { return !constrained.empty() && constrained.count(edge_key(a, b)) > 0; }
+
+  // Flips the edge opposite v[t][i] (the quadrilateral must be strictly convex); see the diagram
+  // in delaunay.cpp for the names. Afterwards t = (p, a, q) and the old neighbour u = (q, b, p).
+  void flip(int t, int i);
+  // The triangle t and index i with edge a-b opposite v[t][i] and a -> b counter-clockwise in t,
+  // found by rotating around a; {-1, -1} when no such edge exists.
+  std::array<int, 2> find_edge(int a, int b) const;
+  // Triangles around vertex a, counter-clockwise, starting at vertex_triangle[a].
+  std::vector<int> triangles_around(int a) const;
+  // Restores the (constrained) Delaunay property by Lawson flips of every non-constrained edge,
+  // driven by an explicit stack. Used after edge recovery.
+  void make_delaunay();
+  // Triangles not touching the super-triangle, in input point indices (unconstrained use).
+  std::vector<std::array<int, 3>> inner_triangles() const;
+
+ private:
+  void build();
+  int locate(Vec2 p, int start) const;
+  void insert(int vertex, int t);
+  void legalize(std::vector<std::array<int, 2>>& stack);
+  void replace_neighbour(int t, int old_neighbour, int new_neighbour);
+  std::vector<std::array<int, 2>> flip_stack_;  // reused by every insertion
+};
+
+// Delaunay triangles of the points (without constraints); see Triangulation for the hull caveat.
+std::vector<std::array<int, 3>> delaunay_triangles(const std::vector<Vec2>& points);
+
+}  // namespace pdmesh

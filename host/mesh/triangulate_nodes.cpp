@@ -1,0 +1,49 @@
+// Node set -> constrained Delaunay mesh: Delaunay, boundary recovery, outside removal.
+#include "mesh/triangulate_nodes.hpp"
+
+#include <fmt/format.h>
+
+#include <unordered_map>
+
+#include "core/errors.hpp"
+#include "mesh/constrain.hpp"
+#include "mesh/delaunay.hpp"
+
+namespace pdmesh {
+
+Mesh triangulate(const NodeSet& nodes, const std::vector<std::string>& curve_names) {
+  if (curve_names.size() != nodes.curve_nodes.size()) {
+    throw InputError(fmt::format("triangulate: {} curve names for {} node curves", curve_names.size(),
+                                 nodes.curve_nodes.size()));
+  }
+  std::vector<ConstrainedEdge> edges;
+  std::unordered_map<std::uint64_t, int> edge_curve;  // catches an edge claimed by two curves
+  for (std::size_t c = 0; c < nodes.curve_nodes.size(); ++c) {
+    const auto& list = nodes.curve_nodes[c];
+    for (std::size_t k = 0; k + 1 < list.size(); ++k) {
+      const ConstrainedEdge e{list[k], list[k + 1], static_cast<int>(c)};
+      const auto [it, fresh] = edge_curve.emplace(Triangulation::edge_key(e.a, e.b), e.curve);
+      if (!fresh) {
+        throw GeometryError(fmt::format("boundary edge between nodes {} and {} belongs to curve {} ('{}') and curve {} ('{}')",
+                                        e.a, e.b, it->second, curve_names[it->second], c, curve_names[c]));
+      }
+      edges.push_back(e);
+    }
+  }
+  Triangulation tri(nodes.x);
+  Mesh mesh;
+  if (edges.empty()) {
+    mesh.triangles = tri.inner_triangles();
+  } else {
+    recover_edges(tri, edges);
+    mesh.triangles = inside_triangles(tri);
+  }
+  mesh.points = nodes.x;
+  mesh.kind = nodes.kind;
+  mesh.curve_names = curve_names;
+  mesh.boundary_edges.reserve(edges.size());
+  for (const auto& e : edges) mesh.boundary_edges.push_back({e.a, e.b, e.curve});
+  return mesh;
+}
+
+}  // namespace pdmesh

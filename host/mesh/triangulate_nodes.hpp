@@ -1,0 +1,19 @@
+// Node set -> boundary-conforming constrained Delaunay mesh of the domain.
+#pragma once
+#include <string>
+#include <vector>
+
+#include "mesh/mesh.hpp"
+#include "nodes/node_set.hpp"
+
+namespace pdmesh {
+
+// Triangulates the nodes; consecutive nodes of each NodeSet::curve_nodes list are constrained
+// edges, which become Mesh::boundary_edges (with their curve index). Triangles outside the
+// domain and in holes are removed (even-odd rule). Point indices and kinds are the node set's.
+// With no curves at all, the Delaunay triangulation of the points is returned without boundary.
+// Throws InputError (duplicate points, curve name count mismatch) and GeometryError (collinear
+// points, a node inside a boundary edge, crossing boundary edges, an edge used by two curves).
+Mesh triangulate(const NodeSet& nodes, const std::vector<std::string>& curve_names);
+
+}  // namespace pdmesh

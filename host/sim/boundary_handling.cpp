@@ -1,0 +1,167 @@
+// Boundary handling after each move: re-snapping boundary nodes within their allowed arc range
+// and snapping escaped interior nodes onto the closest curve (see boundary_handling.hpp).
+#include "sim/boundary_handling.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include "core/errors.hpp"
+
+namespace pdmesh {
+namespace {
+
+Vec2 unit(Vec2 v) {
+  const double n = norm(v);
+  return n > 0.0 ? (1.0 / n) * v : Vec2{};
+}
+
+Vec2 segment_tangent(const Curve& curve, int k) {
+  const auto i = static_cast<std::size_t>(k);
+  return unit(curve.points[i + 1] - curve.points[i]);
+}
+
+}  // namespace
+
+CurvePoint closest_on_curve_range(const Curve& curve, Vec2 p, double arc_lo, double arc_hi) {
+  const int segments = curve.segment_count();
+  CurvePoint best;
+  double best2 = HUGE_VAL;
+  // First segment that reaches arc_lo.
+  int k = static_cast<int>(std::upper_bound(curve.arc.begin(), curve.arc.end(), arc_lo) - curve.arc.begin()) - 1;
+  k = std::clamp(k, 0, segments - 1);
+  for (; k < segments && curve.arc[static_cast<std::size_t>(k)] <= arc_hi; ++k) {
+    const auto i = static_cast<std::size_t>(k);
+    const double s0 = curve.arc[i], len = curve.arc[i + 1] - s0;
+    const double t_lo = std::max(0.0, (arc_lo - s0) / len), t_hi = std::min(1.0, (arc_hi - s0) / len);
+    if (t_lo > t_hi) continue;
+    const Vec2 a = curve.points[i], b = curve.points[i + 1], d = b - a;
+    const double t = std::clamp(dot(p - a, d) / dot(d, d), t_lo, t_hi);
+    const Vec2 on = t == 0.0 ? a : t == 1.0 ? b : a + t * d;
+    const double dist2 = norm2(p - on);
+    if (dist2 < best2) {
+      best2 = dist2;
+      best.p = on;
+      best.arc = t == 1.0 ? curve.arc[i + 1] : s0 + t * len;
+      best.distance = std::sqrt(dist2);
+      // At a vertex the node slides along the mean direction of both segments.
+      Vec2 tangent = segment_tangent(curve, k);
+      if (t == 0.0 && k > 0) tangent = unit(tangent + segment_tangent(curve, k - 1));
+      if (t == 1.0 && k + 1 < segments) tangent = unit(tangent + segment_tangent(curve, k + 1));
+      best.tangent = tangent;
+    }
+  }
+  return best;
+}
+
+BoundaryHandler::BoundaryHandler(const GeometryTree& tree, const NodeSet& nodes) : tree_(tree) {
+  const Geometry& geometry = tree.geometry();
+  if (nodes.curve_nodes.size() != geometry.curves.size())
+    throw SimulationError(fmt::format("the node set has boundary node lists for {} curves, the geometry has {}",
+                                      nodes.curve_nodes.size(), geometry.curves.size()));
+  tangent_.assign(nodes.size(), Vec2{});
+  arcs_.resize(geometry.curves.size());
+  for (std::size_t c = 0; c < geometry.curves.size(); ++c) {
+    const Curve& curve = geometry.curves[c];
+    const std::vector<int>& list = nodes.curve_nodes[c];
+    if (list.size() < 2)
+      throw SimulationError(fmt::format("curve {} ('{}') has {} boundary nodes; it needs its two end points",
+                                        c, curve.name, list.size()));
+    std::vector<double>& arcs = arcs_[c];
+    arcs.assign(list.size(), 0.0);
+    arcs.back() = curve.length();
+    for (std::size_t k = 1; k + 1 < list.size(); ++k) {
+      const auto node = static_cast<std::size_t>(list[k]);
+      const CurvePoint cp = closest_on_curve_range(curve, nodes.x[node], arcs[k - 1], curve.length());
+      arcs[k] = cp.arc;
+      if (nodes.kind[node] == NodeKind::Boundary) tangent_[node] = cp.tangent;
+    }
+  }
+}
+
+void BoundaryHandler::curve_neighbours(const NodeSet& nodes, std::vector<int>& prev, std::vector<int>& next) const {
+  prev.assign(nodes.size(), -1);
+  next.assign(nodes.size(), -1);
+  for (const std::vector<int>& list : nodes.curve_nodes) {
+    for (std::size_t k = 1; k + 1 < list.size(); ++k) {
+      const auto node = static_cast<std::size_t>(list[k]);
+      if (nodes.kind[node] != NodeKind::Boundary) continue;
+      prev[node] = list[k - 1];
+      next[node] = list[k + 1];
+    }
+  }
+}
+
+BoundaryCounts BoundaryHandler::apply(NodeSet& nodes, const std::vector<double>& dx, const std::vector<double>& dy) {
+  const Geometry& geometry = tree_.geometry();
+  BoundaryCounts counts;
+  tangent_.resize(nodes.size());
+
+  // 1. Boundary nodes: every new arc position from the old ones (Jacobi), then commit.
+  for (std::size_t c = 0; c < geometry.curves.size(); ++c) {
+    const Curve& curve = geometry.curves[c];
+    const std::vector<int>& list = nodes.curve_nodes[c];
+    std::vector<double>& arcs = arcs_[c];
+    const std::vector<double> old_arcs = arcs;
+    for (std::size_t k = 1; k + 1 < list.size(); ++k) {
+      const auto node = static_cast<std::size_t>(list[k]);
+      if (nodes.kind[node] != NodeKind::Boundary) continue;
+      const double lo = old_arcs[k] - kMaxGapFraction * (old_arcs[k] - old_arcs[k - 1]);
+      const double hi = old_arcs[k] + kMaxGapFraction * (old_arcs[k + 1] - old_arcs[k]);
+      const Vec2 target{nodes.x[node].x + dx[node], nodes.x[node].y + dy[node]};
+      const CurvePoint cp = closest_on_curve_range(curve, target, lo, hi);
+      if (cp.arc == lo || cp.arc == hi) ++counts.clamped;
+      nodes.x[node] = cp.p;
+      arcs[k] = cp.arc;
+      tangent_[node] = cp.tangent;
+    }
+  }
+
+  // 2. Interior nodes, in index order (snapped nodes change curve_nodes for the ones after them).
+  for (std::size_t i = 0; i < nodes.size(); ++i) {
+    if (nodes.kind[i] != NodeKind::Interior) continue;
+    const Vec2 from = nodes.x[i];
+    const Vec2 target{from.x + dx[i], from.y + dy[i]};
+    if (!std::isfinite(target.x) || !std::isfinite(target.y))
+      throw SimulationError(fmt::format("node {} moved from ({}, {}) to a non-finite position ({}, {})", i, from.x,
+                                        from.y, target.x, target.y));
+    if (tree_.inside(target) && !tree_.crosses_boundary(from, target)) {
+      nodes.x[i] = target;
+      continue;
+    }
+    insert_snapped(nodes, static_cast<int>(i), target);
+    ++counts.snapped;
+  }
+  return counts;
+}
+
+void BoundaryHandler::insert_snapped(NodeSet& nodes, int node, Vec2 target) {
+  const Geometry& geometry = tree_.geometry();
+  const ClosestHit hit = tree_.closest(target);
+  if (hit.segment < 0)
+    throw SimulationError(fmt::format("node {} left the domain at ({}, {}) and there is no boundary to snap it to",
+                                      node, target.x, target.y));
+  const Segment& segment = geometry.segments[static_cast<std::size_t>(hit.segment)];
+  const auto c = static_cast<std::size_t>(segment.curve);
+  const Curve& curve = geometry.curves[c];
+  const auto k = static_cast<std::size_t>(segment.index);
+  const double arc = curve.arc[k] + hit.t * (curve.arc[k + 1] - curve.arc[k]);
+  // The gap [arcs[pos - 1], arcs[pos]] the point falls in; end points are never passed.
+  std::vector<double>& arcs = arcs_[c];
+  std::vector<int>& list = nodes.curve_nodes[c];
+  auto pos = static_cast<std::size_t>(std::upper_bound(arcs.begin(), arcs.end(), arc) - arcs.begin());
+  pos = std::clamp<std::size_t>(pos, 1, arcs.size() - 1);
+  const double gap = arcs[pos] - arcs[pos - 1];
+  const CurvePoint cp = closest_on_curve_range(curve, target, arcs[pos - 1] + kInsertMargin * gap,
+                                               arcs[pos] - kInsertMargin * gap);
+  const auto i = static_cast<std::size_t>(node);
+  nodes.x[i] = cp.p;
+  nodes.kind[i] = NodeKind::Boundary;
+  nodes.curve[i] = static_cast<int>(c);
+  tangent_[i] = cp.tangent;
+  list.insert(list.begin() + static_cast<std::ptrdiff_t>(pos), node);
+  arcs.insert(arcs.begin() + static_cast<std::ptrdiff_t>(pos), cp.arc);
+}
+
+}  // namespace pdmesh

@@ -1,0 +1,62 @@
+// Boundary handling after each move (thesis ch. 5, "New Node Locations", fig. 5.7), host only:
+// boundary nodes are re-snapped to their own curve without passing a neighbour or a critical
+// point; interior nodes that leave the domain are snapped to the closest curve and join it.
+#pragma once
+#include <cstddef>
+#include <vector>
+
+#include "geometry/geometry_tree.hpp"
+#include "nodes/node_set.hpp"
+
+namespace pdmesh {
+
+// A point on one curve, found by a restricted closest-point search.
+struct CurvePoint {
+  Vec2 p;
+  double arc = 0.0;  // arc-length position from the curve's first point
+  Vec2 tangent;      // unit tangent (at a vertex: the normalised mean of both segments' tangents)
+  double distance = 0.0;
+};
+
+// Closest point of curve `curve` to p among the points with arc position in [arc_lo, arc_hi]
+// (ties: lowest segment). Exposed for tests.
+CurvePoint closest_on_curve_range(const Curve& curve, Vec2 p, double arc_lo, double arc_hi);
+
+struct BoundaryCounts {
+  std::size_t snapped = 0;   // interior nodes that left the domain and became boundary nodes
+  std::size_t clamped = 0;   // boundary nodes whose move was cut short at the allowed arc range
+};
+
+class BoundaryHandler {
+ public:
+  // A boundary node may move at most this fraction of the arc gap to each curve neighbour, so
+  // neighbours can neither cross nor meet even when both move towards each other.
+  static constexpr double kMaxGapFraction = 0.45;
+  // A snapped interior node is placed in the middle part of the gap it lands in: at least this
+  // fraction of the gap away from both nodes, so it never coincides with one (or a critical point).
+  static constexpr double kInsertMargin = 0.25;
+
+  // Computes the arc position of every curve_nodes entry. Throws SimulationError when a list does
+  // not start/end with the curve's end points or a Boundary node is off its curve's order.
+  BoundaryHandler(const GeometryTree& tree, const NodeSet& nodes);
+
+  // Moves every node by (dx, dy) (Fixed nodes ignore it) and handles the boundary: updates
+  // nodes.x, kind, curve and curve_nodes. Nodes are processed in index order (reproducible).
+  BoundaryCounts apply(NodeSet& nodes, const std::vector<double>& dx, const std::vector<double>& dy);
+
+  // Unit tangent of a Boundary node (zero for other kinds).
+  Vec2 tangent(int node) const { return tangent_[static_cast<std::size_t>(node)]; }
+  // Arc positions parallel to NodeSet::curve_nodes.
+  const std::vector<std::vector<double>>& arcs() const { return arcs_; }
+  // Previous and next node along the curve of each Boundary node (-1 for other kinds).
+  void curve_neighbours(const NodeSet& nodes, std::vector<int>& prev, std::vector<int>& next) const;
+
+ private:
+  void insert_snapped(NodeSet& nodes, int node, Vec2 target);
+
+  const GeometryTree& tree_;
+  std::vector<std::vector<double>> arcs_;
+  std::vector<Vec2> tangent_;  // per node
+};
+
+}  // namespace pdmesh

@@ -1,0 +1,36 @@
+// The global maximum time step rule (thesis ch. 5, "The Global Maximum Time Step"): grow by 1.01
+// after the maximum force sum decreases 5 consecutive iterations, shrink by 0.99 when it
+// increases 5 times (not necessarily consecutively) before it decreases 5 times consecutively.
+#pragma once
+#include <optional>
+
+namespace pdmesh {
+
+class GlobalTimeStep {
+ public:
+  static constexpr int kRunLength = 5;
+  static constexpr double kGrow = 1.01;
+  static constexpr double kShrink = 0.99;
+
+  explicit GlobalTimeStep(double dt_initial) : dt_(dt_initial) {}
+
+  double dt() const { return dt_; }
+  double dt2() const { return dt_ * dt_; }
+  // Counters, explicit for tests and the history.
+  int consecutive_decreases() const { return consecutive_decreases_; }
+  int increases() const { return increases_; }
+
+  // Feeds this iteration's maximum |F|. The first value only sets the reference.
+  // A decrease extends the consecutive-decrease run; an increase counts once and breaks the run;
+  // an equal value breaks the run and is not an increase. Both counters reset after each change.
+  // Returns +1 when dt grew, -1 when it shrank, 0 otherwise.
+  int update(double max_force);
+
+ private:
+  double dt_;
+  std::optional<double> previous_;
+  int consecutive_decreases_ = 0;
+  int increases_ = 0;
+};
+
+}  // namespace pdmesh

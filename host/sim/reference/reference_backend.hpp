@@ -1,0 +1,31 @@
+// The plain double-precision C++ reference implementation of each simulation step
+// (host/sim/step_backend.hpp). Each function is named after the OpenCL kernel that mirrors it.
+#pragma once
+#include "sim/step_backend.hpp"
+
+namespace pdmesh::reference {
+
+// Step 1 (binning.cpp): multi-level hashed cell grids, O(N) with bounded work per node.
+void build_neighbours(const SimParticles& p, double cutoff, NeighbourList& list, NeighbourFlags& flags);
+
+// Brute-force O(N^2) neighbour list with the same criterion; the oracle for the tests.
+void build_neighbours_brute_force(const SimParticles& p, double cutoff, NeighbourList& list,
+                                  NeighbourFlags& flags);
+
+// Steps 2 and 3 (forces.cpp).
+void compute_forces(const SimParticles& p, const NeighbourList& list, const ForceParams& params,
+                    ForceResult& out);
+
+// Step 4 and the reductions (time_step.cpp).
+void time_step_and_move(const SimParticles& p, const ForceResult& forces, double dt_gm2, MoveResult& out);
+StepSums reduce(const SimParticles& p, const ForceResult& forces, const MoveResult& moves);
+
+// The pair force of eq. 5.11 as a signed magnitude along +r_ij/r_ij (negative = repulsion),
+// written as the kernels write it: 1/r^2 once, powers by multiplication.
+inline double lj_pair_magnitude(double sigma, double inv_r2, double lj_a) {
+  const double s2 = sigma * sigma * inv_r2;
+  const double s6 = s2 * s2 * s2;
+  return -4.0 * lj_a * sigma * (s6 * s6 - s6);
+}
+
+}  // namespace pdmesh::reference

@@ -1,0 +1,284 @@
+// Triangulation tests: Delaunay against brute force, degenerate inputs, boundary recovery,
+// hole removal and typed errors; every mesh is re-checked by check_mesh.
+#include <algorithm>
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <cstdint>
+#include <numeric>
+#include <random>
+#include <set>
+
+#include "core/errors.hpp"
+#include "core/predicates.hpp"
+#include "mesh/constrain.hpp"
+#include "mesh/delaunay.hpp"
+#include "mesh/hilbert.hpp"
+#include "mesh/mesh_check.hpp"
+#include "mesh/triangulate_nodes.hpp"
+
+using namespace pdmesh;
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+double unit(std::mt19937_64& rng) { return static_cast<double>(rng() >> 11) * 0x1p-53; }
+
+// Hilbert index by the textbook algorithm (rotating the coordinates), as an oracle.
+std::uint32_t reference_hilbert(std::uint32_t x, std::uint32_t y) {
+  const std::uint32_t n = 1u << 16;
+  std::uint32_t d = 0;
+  for (std::uint32_t s = n / 2; s > 0; s /= 2) {
+    const std::uint32_t rx = (x & s) > 0, ry = (y & s) > 0;
+    d += s * s * ((3 * rx) ^ ry);
+    if (ry == 0) {
+      if (rx == 1) {
+        x = n - 1 - x;
+        y = n - 1 - y;
+      }
+      std::swap(x, y);
+    }
+  }
+  return d;
+}
+
+// Every triangle counter-clockwise and no input point strictly inside any circumcircle.
+void require_delaunay_brute_force(const std::vector<Vec2>& pts, const std::vector<std::array<int, 3>>& tris) {
+  for (std::size_t t = 0; t < tris.size(); ++t) {
+    const auto& tv = tris[t];
+    REQUIRE(orient2d(pts[tv[0]], pts[tv[1]], pts[tv[2]]) > 0);
+    for (std::size_t k = 0; k < pts.size(); ++k) {
+      INFO("triangle " << t << " point " << k);
+      REQUIRE(incircle(pts[tv[0]], pts[tv[1]], pts[tv[2]], pts[k]) <= 0);
+    }
+  }
+}
+
+double polygon_area(const std::vector<Vec2>& pts, const std::vector<int>& loop) {
+  double area = 0;
+  for (std::size_t k = 0; k + 1 < loop.size(); ++k) area += 0.5 * cross(pts[loop[k]], pts[loop[k + 1]]);
+  return area;
+}
+
+// Adds a closed polygon loop as one curve (first node repeated at the end).
+std::vector<int> add_loop(NodeSet& nodes, const std::vector<Vec2>& corners, int curve) {
+  std::vector<int> loop;
+  for (const Vec2& p : corners) loop.push_back(nodes.add(p, 0.1, NodeKind::Boundary, curve));
+  loop.push_back(loop.front());
+  nodes.curve_nodes.push_back(loop);
+  return loop;
+}
+
+// The boundary of the axis-aligned square [lo, hi]^2 with `per_side` segments per side,
+// counter-clockwise (reverse = clockwise, for holes: parity does not care, but test both).
+std::vector<Vec2> square_loop(double lo, double hi, int per_side, bool reverse) {
+  std::vector<Vec2> out;
+  const double h = (hi - lo) / per_side;
+  for (int k = 0; k < per_side; ++k) out.push_back({lo + k * h, lo});
+  for (int k = 0; k < per_side; ++k) out.push_back({hi, lo + k * h});
+  for (int k = 0; k < per_side; ++k) out.push_back({hi - k * h, hi});
+  for (int k = 0; k < per_side; ++k) out.push_back({lo, hi - k * h});
+  if (reverse) std::reverse(out.begin(), out.end());
+  return out;
+}
+
+std::vector<Vec2> circle_loop(double r, int count) {
+  std::vector<Vec2> out;
+  for (int k = 0; k < count; ++k) out.push_back({r * std::cos(2 * kPi * k / count), r * std::sin(2 * kPi * k / count)});
+  return out;
+}
+
+}  // namespace
+
+TEST_CASE("hilbert_key matches the textbook algorithm; hilbert_order is a permutation", "[mesh]") {
+  std::mt19937_64 rng(3);
+  for (int i = 0; i < 20000; ++i) {
+    const auto x = static_cast<std::uint32_t>(rng() & 0xffff), y = static_cast<std::uint32_t>(rng() & 0xffff);
+    REQUIRE(hilbert_key(x, y) == reference_hilbert(x, y));
+  }
+  std::vector<Vec2> pts;
+  for (int k = 0; k < 1001; ++k) pts.push_back({unit(rng), unit(rng)});
+  auto order = hilbert_order(pts);
+  std::sort(order.begin(), order.end());
+  std::vector<int> identity(pts.size());
+  std::iota(identity.begin(), identity.end(), 0);
+  CHECK(order == identity);
+}
+
+TEST_CASE("random points: Delaunay by brute force", "[mesh]") {
+  for (int n : {3, 4, 7, 93, 400}) {
+    std::mt19937_64 rng(42 + n);
+    std::vector<Vec2> pts;
+    for (int k = 0; k < n; ++k) pts.push_back({unit(rng), unit(rng)});
+    const auto tris = delaunay_triangles(pts);
+    INFO("n = " << n);
+    REQUIRE(tris.size() >= static_cast<std::size_t>(n) - 2);
+    REQUIRE(tris.size() <= 2 * static_cast<std::size_t>(n) - 5);
+    require_delaunay_brute_force(pts, tris);
+  }
+}
+
+TEST_CASE("random points in a square domain: checker passes, area is 1", "[mesh]") {
+  for (int n : {1, 17, 1000}) {
+    NodeSet nodes;
+    add_loop(nodes, square_loop(0, 1, 11, false), 0);
+    std::mt19937_64 rng(7 + n);
+    for (int k = 0; k < n; ++k) nodes.add({0.01 + 0.98 * unit(rng), 0.01 + 0.98 * unit(rng)}, 0.1, NodeKind::Interior, -1);
+    const Mesh mesh = triangulate(nodes, {"square"});
+    const auto report = check_mesh(mesh, 1.0);
+    INFO(report.summary());
+    REQUIRE(report.ok());
+    // Euler for a disk: T = 2V - 2 - B with B boundary nodes.
+    CHECK(mesh.triangles.size() == 2 * nodes.size() - 2 - 44);
+    CHECK(mesh.kind == nodes.kind);
+    CHECK(mesh.boundary_edges.size() == 44);
+  }
+}
+
+TEST_CASE("grid points (all cocircular quadruples) give a valid mesh", "[mesh]") {
+  const int m = 21;  // 20 x 20 cells
+  NodeSet nodes;
+  std::vector<Vec2> pts;
+  add_loop(nodes, square_loop(0, 2, m - 1, false), 0);
+  for (int i = 1; i < m - 1; ++i)
+    for (int j = 1; j < m - 1; ++j) nodes.add({2.0 * i / (m - 1), 2.0 * j / (m - 1)}, 0.1, NodeKind::Interior, -1);
+  const Mesh mesh = triangulate(nodes, {"box"});
+  const auto report = check_mesh(mesh, 4.0);
+  INFO(report.summary());
+  REQUIRE(report.ok());
+  CHECK(mesh.triangles.size() == 2u * (m - 1) * (m - 1));
+  // Unconstrained too: every triangle of the plain Delaunay triangulation is a half grid cell.
+  std::vector<Vec2> grid;
+  for (int i = 0; i < 9; ++i)
+    for (int j = 0; j < 9; ++j) grid.push_back({0.1 * i, 0.1 * j});
+  require_delaunay_brute_force(grid, delaunay_triangles(grid));
+}
+
+TEST_CASE("points on a circle: polygon triangulated, area is the polygon's", "[mesh]") {
+  for (int count : {3, 5, 64, 257}) {
+    NodeSet nodes;
+    const auto loop = add_loop(nodes, circle_loop(3.0, count), 0);
+    const Mesh mesh = triangulate(nodes, {"circle"});
+    const auto report = check_mesh(mesh, polygon_area(nodes.x, loop));
+    INFO("count " << count << "\n" << report.summary());
+    REQUIRE(report.ok());
+    CHECK(mesh.triangles.size() == static_cast<std::size_t>(count) - 2);
+  }
+}
+
+TEST_CASE("degenerate input: collinear, duplicates, too few points, NaN", "[mesh]") {
+  std::vector<Vec2> line;
+  for (int k = 0; k < 10; ++k) line.push_back({0.5 * k, 1.5 * k});  // exactly collinear
+  CHECK_THROWS_AS(delaunay_triangles(line), GeometryError);
+  CHECK_THROWS_WITH(delaunay_triangles(line), Catch::Contains("collinear"));
+  // 0.1 k and 0.3 k round differently: not exactly collinear, so no error.
+  std::vector<Vec2> almost_line;
+  for (int k = 0; k < 10; ++k) almost_line.push_back({0.1 * k, 0.3 * k});
+  CHECK_NOTHROW(Triangulation(almost_line));
+  std::vector<Vec2> dup = {{0, 0}, {1, 0}, {0.5, 0.25}, {0, 1}, {1, 0}};
+  CHECK_THROWS_WITH(delaunay_triangles(dup), Catch::Contains("points 1 and 4") && Catch::Contains("(1, 0)"));
+  CHECK_THROWS_AS(delaunay_triangles(dup), InputError);
+  CHECK_THROWS_AS(delaunay_triangles({{0, 0}, {1, 1}}), InputError);
+  CHECK_THROWS_AS(delaunay_triangles({{0, 0}, {0, 0}, {0, 0}}), InputError);
+  CHECK_THROWS_AS(delaunay_triangles({{0, 0}, {1, 0}, {0, std::nan("")}}), InputError);
+}
+
+TEST_CASE("square with a square hole: hole removed, area right", "[mesh]") {
+  for (bool reverse_hole : {false, true}) {
+    NodeSet nodes;
+    add_loop(nodes, square_loop(0, 1, 10, false), 0);
+    add_loop(nodes, square_loop(0.4, 0.6, 2, reverse_hole), 1);
+    std::mt19937_64 rng(17);
+    for (int k = 0; k < 300; ++k) {
+      const Vec2 p{0.02 + 0.96 * unit(rng), 0.02 + 0.96 * unit(rng)};
+      if (p.x > 0.38 && p.x < 0.62 && p.y > 0.38 && p.y < 0.62) continue;
+      nodes.add(p, 0.1, NodeKind::Interior, -1);
+    }
+    const Mesh mesh = triangulate(nodes, {"outer", "hole"});
+    const auto report = check_mesh(mesh, 1.0 - 0.04);
+    INFO(report.summary());
+    REQUIRE(report.ok());
+    for (const auto& t : mesh.triangles) {
+      const Vec2 c = (1.0 / 3.0) * (mesh.points[t[0]] + mesh.points[t[1]] + mesh.points[t[2]]);
+      REQUIRE_FALSE((c.x > 0.4 && c.x < 0.6 && c.y > 0.4 && c.y < 0.6));
+    }
+    for (const auto& e : mesh.boundary_edges) CHECK(e.curve == (nodes.curve[e.a] == 0 ? 0 : 1));
+  }
+}
+
+TEST_CASE("circle in a circle: annulus area, boundary edges present", "[mesh]") {
+  NodeSet nodes;
+  const auto outer = add_loop(nodes, circle_loop(1.0, 96), 0);
+  const auto inner = add_loop(nodes, circle_loop(0.5, 48), 1);
+  std::mt19937_64 rng(23);
+  while (nodes.size() < 600) {
+    const Vec2 p{2 * unit(rng) - 1, 2 * unit(rng) - 1};
+    if (norm(p) > 0.55 && norm(p) < 0.95) nodes.add(p, 0.1, NodeKind::Interior, -1);
+  }
+  const Mesh mesh = triangulate(nodes, {"outer", "inner"});
+  const auto report = check_mesh(mesh, polygon_area(nodes.x, outer) - polygon_area(nodes.x, inner));
+  INFO(report.summary());
+  REQUIRE(report.ok());
+  CHECK(mesh.boundary_edges.size() == 96 + 48);
+}
+
+TEST_CASE("thin domain: non-Delaunay boundary edges are recovered", "[mesh]") {
+  // A 10 x 0.02 strip with staggered nodes on the long sides: the long bottom and top edges
+  // between far-apart nodes are not in the Delaunay triangulation of the points.
+  NodeSet nodes;
+  std::vector<Vec2> loop = {{0, 0}, {10, 0}, {10, 0.02}};
+  for (int k = 1; k < 40; ++k) loop.push_back({10 - 0.25 * k - 0.01, 0.02});
+  loop.push_back({0, 0.02});
+  add_loop(nodes, loop, 0);
+  // Interior nodes just above the bottom edge make its Delaunay circle non-empty.
+  for (int k = 1; k < 40; ++k) nodes.add({0.25 * k, 0.001}, 0.1, NodeKind::Interior, -1);
+  Triangulation raw(nodes.x);
+  CHECK(raw.find_edge(raw.vertex_of[0], raw.vertex_of[1])[0] < 0);
+  CHECK(raw.find_edge(raw.vertex_of[1], raw.vertex_of[0])[0] < 0);
+  const Mesh mesh = triangulate(nodes, {"strip"});
+  const auto report = check_mesh(mesh, 10 * 0.02);
+  INFO(report.summary());
+  REQUIRE(report.ok());
+}
+
+TEST_CASE("boundary errors: point inside a boundary edge, crossing edges, zero length", "[mesh]") {
+  {
+    NodeSet nodes;
+    add_loop(nodes, {{0, 0}, {1, 0}, {1, 1}, {0, 1}}, 0);
+    nodes.add({0.5, 0.0}, 0.1, NodeKind::Interior, -1);  // exactly on edge 0-1
+    nodes.add({0.5, 0.5}, 0.1, NodeKind::Interior, -1);
+    CHECK_THROWS_AS(triangulate(nodes, {"box"}), GeometryError);
+    CHECK_THROWS_WITH(triangulate(nodes, {"box"}), Catch::Contains("point 4 (0.5, 0)"));
+  }
+  {
+    NodeSet nodes;  // a bow tie: edges 0-1 and 2-3 cross
+    add_loop(nodes, {{0, 0}, {1, 1}, {1, 0}, {0, 1}}, 0);
+    CHECK_THROWS_AS(triangulate(nodes, {"bow tie"}), GeometryError);
+  }
+  {
+    NodeSet nodes;
+    add_loop(nodes, {{0, 0}, {1, 0}, {1, 1}}, 0);
+    nodes.curve_nodes[0].insert(nodes.curve_nodes[0].begin() + 1, 0);  // 0 -> 0
+    CHECK_THROWS_AS(triangulate(nodes, {"box"}), GeometryError);
+  }
+  {
+    NodeSet nodes;
+    add_loop(nodes, {{0, 0}, {1, 0}, {1, 1}}, 0);
+    CHECK_THROWS_AS(triangulate(nodes, {}), InputError);  // curve name count mismatch
+  }
+}
+
+TEST_CASE("large random domain mesh passes the checker", "[mesh]") {
+  NodeSet nodes;
+  add_loop(nodes, circle_loop(1.0, 500), 0);
+  std::mt19937_64 rng(1234);
+  while (nodes.size() < 30000) {
+    const Vec2 p{2 * unit(rng) - 1, 2 * unit(rng) - 1};
+    if (norm(p) < 0.99) nodes.add(p, 0.1, NodeKind::Interior, -1);
+  }
+  const Mesh mesh = triangulate(nodes, {"disk"});
+  const auto report = check_mesh(mesh, polygon_area(nodes.x, nodes.curve_nodes[0]));
+  INFO(report.summary());
+  REQUIRE(report.ok());
+  CHECK(mesh.triangles.size() == 2 * nodes.size() - 2 - 500);
+}
