@@ -183,3 +183,38 @@ TEST_CASE("reference backend: lists through build_neighbours_growing equal the e
     jiggle(p, rng, 0.01, 0.01);
   }
 }
+
+TEST_CASE("neighbour cache: pairs moving together by just under the skin while q grows stay exact",
+          "[sim][perf]") {
+  // Pairs on a line at distances spread over [R, M + 2a] (R = cutoff q, M = R (1 + growth), a = skin R):
+  // the worst case of the completeness argument. Each pair closes by just under 2a while one node's
+  // q grows by just under the growth bound, so pairs up to M + 2a apart become neighbours without
+  // a rebuild; then q grows past the bound and the cache must rebuild.
+  const double cutoff = 1.5, skin = 0.1, growth = 0.05;
+  const double r = cutoff, a = skin * r, m = r * (1.0 + growth);
+  SimParticles p;
+  const int pairs = 64;
+  for (int k = 0; k < pairs; ++k) {
+    const double d = r + (m - r + 2.0 * a) * (k + 0.5) / pairs;
+    add(p, 10.0 * k, 0.0, 1.0);
+    add(p, 10.0 * k + d, 0.0, 1.0);
+  }
+  reference::NeighbourCache cache(skin, growth);
+  require_same(p, cutoff, cache, 8);
+  require_same(p, cutoff, cache, 8);
+  REQUIRE(cache.rebuilds() == 1);
+  for (int k = 0; k < pairs; ++k) {
+    p.x[2 * k] += 0.999 * a;
+    p.x[2 * k + 1] -= 0.999 * a;
+    p.q[2 * k] *= 1.0 + 0.999 * growth;
+  }
+  NeighbourList list;
+  NeighbourFlags flags;
+  reference::build_neighbours(p, cutoff, list, flags);
+  CHECK(flags.pairs_within > 2 * pairs / 2);  // most pairs (all of one side) are neighbours now
+  require_same(p, cutoff, cache, 8);
+  CHECK(cache.rebuilds() == 1);
+  for (int k = 0; k < pairs; ++k) p.q[2 * k + 1] *= 1.0 + 2.0 * growth;
+  require_same(p, cutoff, cache, 8);
+  CHECK(cache.rebuilds() == 2);
+}

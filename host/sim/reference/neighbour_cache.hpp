@@ -13,7 +13,7 @@ class NeighbourCache {
  public:
   // skin: each node may move skin * cutoff * q (its spacing at the last rebuild) before a rebuild;
   // growth: each interior node's cut-off radius may grow by this fraction before a rebuild.
-  explicit NeighbourCache(double skin = 0.2, double growth = 0.1);
+  explicit NeighbourCache(double skin = 0.1, double growth = 0.05);
   // Same contract and results as reference::build_neighbours, except pairs_examined (it counts
   // the candidates re-filtered, plus the pairs examined by a rebuild).
   void build(const SimParticles& p, double cutoff, NeighbourList& list, NeighbourFlags& flags);

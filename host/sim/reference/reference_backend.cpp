@@ -6,7 +6,6 @@
 #include "core/errors.hpp"
 #include "sim/reference/neighbour_cache.hpp"
 #include "sim/reference/reference_backend.hpp"
-#include <cstdlib>
 
 namespace pdmesh {
 namespace {
@@ -31,8 +30,7 @@ class ReferenceBackend final : public StepBackend {
   }
 
  private:
-  reference::NeighbourCache cache_{std::getenv("PDMESH_SKIN") ? std::atof(std::getenv("PDMESH_SKIN")) : 0.2,
-                                   std::getenv("PDMESH_GROWTH") ? std::atof(std::getenv("PDMESH_GROWTH")) : 0.1};
+  reference::NeighbourCache cache_;  // skin 0.1, growth 0.05: measured best on circle_circle/naca0012
 };
 
 }  // namespace
