@@ -20,24 +20,16 @@ void compute_forces(const SimParticles& p, const NeighbourList& list, const Forc
     out.dt2_limit.assign(n, HUGE_VAL);
   else
     out.dt2_limit.clear();
-  std::vector<double> pair_dx, pair_dy, pair_r2;
   for (std::size_t i = 0; i < n; ++i) {
     if (p.kind[i] == kSimFixed) continue;
     const double xi = p.x[i], yi = p.y[i], qi = p.q[i];
     const std::size_t base = i * stride;
     const std::size_t count = std::min(static_cast<std::size_t>(list.count[i]), stride);
     double fx = 0.0, fy = 0.0, stiffness = 0.0;
-    // The pair vectors are kept for the r0 pass (same values, so the same results as recomputing).
-    pair_dx.resize(std::max(pair_dx.size(), count));
-    pair_dy.resize(pair_dx.size());
-    pair_r2.resize(pair_dx.size());
     for (std::size_t k = 0; k < count; ++k) {
       const auto j = static_cast<std::size_t>(list.index[base + k]);
       const double dx = p.x[j] - xi, dy = p.y[j] - yi;
       const double r2 = dx * dx + dy * dy;
-      pair_dx[k] = dx;
-      pair_dy[k] = dy;
-      pair_r2[k] = r2;
       // Coincident nodes give no direction; they are skipped and counted (the pair is reported).
       if (r2 == 0.0) {
         ++out.coincident_pairs;
@@ -64,7 +56,9 @@ void compute_forces(const SimParticles& p, const NeighbourList& list, const Forc
     const bool any_direction = params.r0_any_direction && (fx != 0.0 || fy != 0.0);
     double best2 = HUGE_VAL;
     for (std::size_t k = 0; k < count; ++k) {
-      const double dx = pair_dx[k], dy = pair_dy[k], r2 = pair_r2[k];
+      const auto j = static_cast<std::size_t>(list.index[base + k]);
+      const double dx = p.x[j] - xi, dy = p.y[j] - yi;
+      const double r2 = dx * dx + dy * dy;
       if (r2 > 0.0 && (any_direction || fx * dx + fy * dy > 0.0) && r2 < best2) best2 = r2;
     }
     out.r0[i] = best2 < HUGE_VAL ? std::sqrt(best2) : 0.0;
