@@ -200,6 +200,19 @@ class Quadtree {
   }
 
   const std::vector<int>& items() const { return items_; }
+  const std::vector<Node>& nodes() const { return nodes_; }
+
+  // The leaf whose closed box contains p (a point on a shared edge may go to either side), or -1
+  // when p is outside the root box.
+  int locate(Vec2 p) const {
+    if (nodes_.empty() || !nodes_[0].box.contains(p)) return -1;
+    int n = 0;
+    while (nodes_[n].first_child >= 0) {
+      const Vec2 c = nodes_[n].box.centre();
+      n = nodes_[n].first_child + (p.x >= c.x ? 1 : 0) + (p.y >= c.y ? 2 : 0);
+    }
+    return n;
+  }
 
   std::vector<Box> leaf_boxes() const {
     std::vector<Box> out;
@@ -291,6 +304,9 @@ class Quadtree {
 struct GeometryTree::Impl {
   Quadtree all;
   std::vector<Quadtree> per_curve;
+  // Per node of `all` (leaves only): whether the leaf's centre is inside (1), outside (0), or on
+  // the boundary (-1: the local test below cannot start from it).
+  std::vector<signed char> centre_inside;
 };
 
 namespace {
@@ -317,9 +333,21 @@ GeometryTree::GeometryTree(const Geometry& geometry) : geometry_(geometry) {
                           " has a non-finite end point");
     by_curve[s.curve].push_back(static_cast<int>(i));
   }
-  impl_ = std::make_unique<Impl>(Impl{Quadtree(segs, all_ids(segs.size())), {}});
+  impl_ = std::make_unique<Impl>(Impl{Quadtree(segs, all_ids(segs.size())), {}, {}});
   impl_->per_curve.reserve(curves);
   for (int c = 0; c < curves; ++c) impl_->per_curve.emplace_back(segs, std::move(by_curve[c]));
+  const auto& nodes = impl_->all.nodes();
+  impl_->centre_inside.assign(nodes.size(), -1);
+  for (std::size_t n = 0; n < nodes.size(); ++n) {
+    if (nodes[n].first_child >= 0) continue;
+    const Vec2 c = nodes[n].box.centre();
+    bool on_boundary = false;
+    for (int i = nodes[n].begin; i < nodes[n].begin + nodes[n].count; ++i) {
+      const Segment& seg = segs[impl_->all.items()[i]];
+      on_boundary = on_boundary || point_on_segment(c, seg.a, seg.b);
+    }
+    if (!on_boundary) impl_->centre_inside[n] = ray_inside(c) ? 1 : 0;
+  }
 }
 
 GeometryTree::~GeometryTree() = default;
@@ -338,6 +366,35 @@ void GeometryTree::closest_per_curve(Vec2 p, std::vector<ClosestHit>& out) const
 }
 
 bool GeometryTree::inside(Vec2 p) const {
+  // Local test: p and its leaf's centre c lie in the same closed leaf box, so every boundary
+  // segment that could cross the segment pc touches the leaf and is in its list. inside(p) is
+  // inside(c) flipped once per proper crossing; anything degenerate (pc through a vertex or along
+  // a segment) falls back to the ray cast. An empty leaf has no crossings: its centre decides.
+  const Quadtree& tree = impl_->all;
+  const int leaf = tree.locate(p);
+  if (leaf < 0) return false;  // outside the root box, which holds every segment
+  const signed char centre = impl_->centre_inside[static_cast<std::size_t>(leaf)];
+  if (centre >= 0) {
+    const Node& node = tree.nodes()[static_cast<std::size_t>(leaf)];
+    const Vec2 c = node.box.centre();
+    bool in = centre == 1;
+    bool degenerate = false;
+    for (int i = node.begin; i < node.begin + node.count && !degenerate; ++i) {
+      const Segment& s = geometry_.segments[tree.items()[i]];
+      if (point_on_segment(p, s.a, s.b)) return true;  // on the boundary counts as inside
+      if (orient2d(p, c, s.a) == 0.0 || orient2d(p, c, s.b) == 0.0) {
+        // A vertex on the line through p and c: fine when it is off the segment pc.
+        if (segments_intersect(p, c, s.a, s.b) && !segments_cross_properly(p, c, s.a, s.b)) degenerate = true;
+        continue;
+      }
+      if (segments_cross_properly(p, c, s.a, s.b)) in = !in;
+    }
+    if (!degenerate) return in;
+  }
+  return ray_inside(p);
+}
+
+bool GeometryTree::ray_inside(Vec2 p) const {
   const Quadtree& tree = impl_->all;
   // Segments straddling several leaves along the ray must be counted once: gather, sort, unique.
   thread_local std::vector<int> candidates;
@@ -370,6 +427,12 @@ bool GeometryTree::inside(Vec2 p) const {
 
 bool GeometryTree::crosses_boundary(Vec2 a, Vec2 b) const {
   const Quadtree& tree = impl_->all;
+  // Both ends in one empty leaf: the move stays in a closed box that no segment touches.
+  const int leaf = tree.locate(a);
+  if (leaf >= 0) {
+    const Node& node = tree.nodes()[static_cast<std::size_t>(leaf)];
+    if (node.count == 0 && node.box.contains(b)) return false;
+  }
   return tree.any_leaf([&](const Box& box) { return segment_touches_box(a, b, box); },
                        [&](const auto& leaf) {
                          for (int i = leaf.begin; i < leaf.begin + leaf.count; ++i) {

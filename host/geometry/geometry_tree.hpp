@@ -60,6 +60,9 @@ class GeometryTree {
   GeometryTreeStats stats() const;
 
  private:
+  // The even-odd test by casting a ray through the tree (the fallback of inside()).
+  bool ray_inside(Vec2 p) const;
+
   const Geometry& geometry_;
   struct Impl;
   std::unique_ptr<Impl> impl_;
