@@ -67,7 +67,8 @@ void device_step(const int n, const int stride, const REAL cutoff, const REAL lj
     } else if (kind_i == 2) {
       const int tag_to = BG_TAG(xn, yn);
       const REAL xm = xi + (REAL)0.5 * dx, ym = yi + (REAL)0.5 * dy;
-      if (tag[i] != 0 || tag_to != 0 || BG_TAG(xm, ym) != 0 || !isfinite(xn) || !isfinite(yn)) {
+      const int tag_mid = BG_TAG(xm, ym);
+      if (tag[i] != 0 || tag_to != 0 || tag_mid != 0 || !isfinite(xn) || !isfinite(yn)) {
         const int s = atomic_inc(&counters[0]);
         cand_index[s] = i;
         cand_rec[4 * s] = xi;

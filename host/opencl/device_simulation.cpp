@@ -194,6 +194,7 @@ void DeviceRun<Real>::rebuild() {
   stats_.bytes_up += neighbours_.uploaded_bytes;
   stats_.launches += 1;
   pairs_examined_ += flags.pairs_examined;
+  stats_.pairs_listed += flags.pairs_within;
   // The build state the skin is measured from.
   for (auto [from, to] : {std::pair{&x_[cur_], &x_build_}, {&y_[cur_], &y_build_}, {&q_[cur_], &q_build_}})
     check(ctx_.queue().enqueueCopyBuffer(from->get(), to->get(), 0, 0, n * sizeof(Real)), "copy to the build state");
