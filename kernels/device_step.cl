@@ -24,7 +24,7 @@
 // q_build), maximised per group (interior nodes the host does not touch; the host covers the rest).
 __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1)))
 void device_step(const int n, const int stride, const REAL cutoff, const REAL lj_a, const int r0_any_direction,
-                 const REAL dt_gm2, const REAL skin_cutoff, __global const REAL* x, __global const REAL* y,
+                 const REAL stability_factor, const REAL dt_gm2, const REAL skin_cutoff, __global const REAL* x, __global const REAL* y,
                  __global const REAL* q, __global const uchar* kind, __global const REAL* tx,
                  __global const REAL* ty, __global const int* count, __global const int* index,
                  __global const REAL* x_build, __global const REAL* y_build, __global const REAL* q_build,
@@ -44,11 +44,11 @@ void device_step(const int n, const int stride, const REAL cutoff, const REAL lj
     const REAL xi = x[i], yi = y[i], qi = q[i];
     REAL dx = (REAL)0, dy = (REAL)0;
     if (kind_i != 0) {
-      REAL fx, fy, r0;
+      REAL fx, fy, r0, limit;
       const REAL rc = cutoff * qi;
       node_forces(i, loop_count, row, i * stride, xi, yi, qi, kind_i, rc * rc, tx[i], ty[i], lj_a, r0_any_direction,
-                  x, y, q, index, &fx, &fy, &r0, &coincident, &within);
-      const REAL dt2 = local_dt2(fx, fy, r0, dt_gm2);
+                  stability_factor, x, y, q, index, &fx, &fy, &r0, &limit, &coincident, &within);
+      const REAL dt2 = local_dt2(fx, fy, r0, dt_gm2, limit);
       dx = (REAL)0.5 * dt2 * fx;
       dy = (REAL)0.5 * dt2 * fy;
       const REAL f2 = fx * fx + fy * fy;

@@ -49,7 +49,7 @@ inline void round_to_float(SimParticles& p) {
     for (double& e : *v) e = static_cast<double>(static_cast<float>(e));
 }
 inline void round_to_float(ForceResult& f) {
-  for (auto* v : {&f.fx, &f.fy, &f.r0})
+  for (auto* v : {&f.fx, &f.fy, &f.r0, &f.dt2_limit})
     for (double& e : *v) e = static_cast<double>(static_cast<float>(e));
 }
 

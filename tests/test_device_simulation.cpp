@@ -42,6 +42,7 @@ SimOptions options_for(const Case& c, int iterations) {
   o.cutoff = c.config.simulation.cutoff;
   o.lj_a = c.config.simulation.lj_a;
   o.r0_any_direction = c.config.simulation.r0_any_direction;
+  o.stability_factor = c.config.simulation.stability_factor;
   o.quiet = true;
   return o;
 }
@@ -137,11 +138,8 @@ TEST_CASE("device run: a whole circle_circle run gives the host's mesh quality",
   CHECK(std::fabs(qd.min_angle - qh.min_angle) <= 0.5);
   CHECK(qd.aspect_ratio_avg == Approx(qh.aspect_ratio_avg).epsilon(0.01));
   CHECK(dev.result.stats.snapped == host.result.stats.snapped);
-  WARN("rebuilds " << dev.stats.rebuilds << " candidates " << dev.stats.candidates << " down " << dev.stats.bytes_down
-       << " up " << dev.stats.bytes_up << " launches " << dev.stats.launches << " host s " << host.result.stats.seconds
-       << " dev s " << dev.result.stats.seconds << " step " << dev.stats.step_seconds << " bin "
-       << dev.stats.bin_seconds << " gather " << dev.stats.gather_seconds << " hostb " << dev.stats.host_seconds
-       << " dl " << dev.stats.download_seconds << " ul " << dev.stats.upload_seconds);
+  // The Verlet skin: lists are rebuilt far less often than every iteration (measured: 23 of 300).
+  CHECK(dev.stats.rebuilds < 100);
 }
 
 TEST_CASE("device run refuses the exact spacing field", "[opencl][device_sim]") {

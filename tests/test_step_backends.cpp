@@ -1,7 +1,7 @@
 // One test body per simulation step, run against every StepBackend (the C++ reference, OpenCL in
 // double and in float on the first OpenCL device: PoCL's CPU device in CI), with identical inputs
 // and the oracle (brute-force lists, the reference functions) computed on the same (rounded) inputs.
-// Tolerances (require_close: |device - oracle| <= tol * max(|oracle|, floor)):
+// Stability bound: off (thesis) and c = 1. Tolerances (require_close: |device - oracle| <= tol * max(|oracle|, floor)):
 //   double: 1e-12 (the kernels repeat the reference's expressions; only sum order may differ)
 //   float:  forces 1e-4 of the node's sum of |pair forces|, everything else 1e-5 relative.
 // Integer outputs (counts, neighbour sets, flags, pairs) must match exactly; in float a pair may
@@ -44,6 +44,7 @@ void require_close(const char* what, const std::vector<double>& oracle, const st
   REQUIRE(got.size() == oracle.size());
   std::size_t bad = 0;
   for (std::size_t i = 0; i < oracle.size(); ++i) {
+    if (std::isinf(oracle[i]) && got[i] == oracle[i]) continue;  // "no bound" (HUGE_VAL) on both sides
     const double scale = std::max(std::fabs(oracle[i]), floor.empty() ? 0.0 : floor[i]);
     if (!(std::fabs(got[i] - oracle[i]) <= tol * scale)) {
       if (++bad <= 5) FAIL_CHECK(what << "[" << i << "]: oracle " << oracle[i] << ", backend " << got[i] << ", tol "
@@ -95,14 +96,15 @@ void check_neighbours(const Input& in) {
 }
 
 template <class B>
-void check_forces(const Input& in, bool r0_any) {
-  INFO("input " << in.name << ", " << in.p.size() << " nodes, r0_any_direction " << r0_any);
+void check_forces(const Input& in, bool r0_any, double stability) {
+  INFO("input " << in.name << ", " << in.p.size() << " nodes, r0_any_direction " << r0_any << ", stability "
+                << stability);
   NeighbourList list;
   NeighbourFlags flags;
   list.stride = 64;
   reference::build_neighbours_brute_force(in.p, in.cutoff, list, flags);
   REQUIRE(flags.overflow == 0);
-  const ForceParams params{in.cutoff, 15.0, r0_any};
+  const ForceParams params{in.cutoff, 15.0, r0_any, stability};
   ForceResult oracle, got;
   reference::compute_forces(in.p, list, params, oracle);
   B::make()->compute_forces(in.p, list, params, got);
@@ -110,18 +112,21 @@ void check_forces(const Input& in, bool r0_any) {
   require_close("fx", oracle.fx, got.fx, scale, B::force_tol);
   require_close("fy", oracle.fy, got.fy, scale, B::force_tol);
   require_close("r0", oracle.r0, got.r0, {}, B::tol);
+  REQUIRE(got.dt2_limit.size() == oracle.dt2_limit.size());
+  // The bound is 2c / (sum of stiffnesses): a sum of positive terms, relative error like the forces'.
+  require_close("dt2_limit", oracle.dt2_limit, got.dt2_limit, {}, B::force_tol);
   REQUIRE(got.coincident_pairs == oracle.coincident_pairs);
 }
 
 template <class B>
-void check_time_step_and_reduce(const Input& in) {
-  INFO("input " << in.name << ", " << in.p.size() << " nodes");
+void check_time_step_and_reduce(const Input& in, double stability) {
+  INFO("input " << in.name << ", " << in.p.size() << " nodes, stability " << stability);
   NeighbourList list;
   NeighbourFlags flags;
   list.stride = 64;
   reference::build_neighbours_brute_force(in.p, in.cutoff, list, flags);
   ForceResult forces;
-  reference::compute_forces(in.p, list, {in.cutoff, 15.0, false}, forces);
+  reference::compute_forces(in.p, list, {in.cutoff, 15.0, false, stability}, forces);
   if (B::is_float) round_to_float(forces);
   auto backend = B::make();
   for (double dt_gm : {1e-4, 0.01, 10.0}) {  // the global maximum binding for none, some, all nodes
@@ -148,14 +153,18 @@ TEMPLATE_TEST_CASE("build_neighbours matches brute force on every input", "[open
 TEMPLATE_TEST_CASE("compute_forces matches the reference on every input", "[opencl][backend]", HostReference,
                    OpenclDouble, OpenclFloat) {
   for (const Input& in : all_inputs(TestType::is_float)) {
-    check_forces<TestType>(in, false);
-    check_forces<TestType>(in, true);
+    check_forces<TestType>(in, false, 0.0);
+    check_forces<TestType>(in, true, 0.0);
+    check_forces<TestType>(in, false, 1.0);
   }
 }
 
 TEMPLATE_TEST_CASE("time_step_and_move and reduce match the reference on every input", "[opencl][backend]",
                    HostReference, OpenclDouble, OpenclFloat) {
-  for (const Input& in : all_inputs(TestType::is_float)) check_time_step_and_reduce<TestType>(in);
+  for (const Input& in : all_inputs(TestType::is_float)) {
+    check_time_step_and_reduce<TestType>(in, 0.0);
+    check_time_step_and_reduce<TestType>(in, 1.0);
+  }
 }
 
 TEMPLATE_TEST_CASE("a node over capacity sets the overflow flag and the host retry grows the stride",

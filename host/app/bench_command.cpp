@@ -94,6 +94,7 @@ std::unique_ptr<BenchCase> generated_case(std::size_t target) {
     h *= std::sqrt(estimate / static_cast<double>(target));
   }
   c->initial = make_initial_distribution(*c->tree, *c->spacing, {}).nodes;
+  c->options.stability_factor = 1.0;  // as pdmesh mesh
   return c;
 }
 
@@ -118,6 +119,7 @@ std::unique_ptr<BenchCase> file_case(const std::string& dir, const std::string& 
   c->options.cutoff = config.simulation.cutoff;
   c->options.lj_a = config.simulation.lj_a;
   c->options.r0_any_direction = config.simulation.r0_any_direction;
+  c->options.stability_factor = config.simulation.stability_factor;
   return c;
 }
 

@@ -383,6 +383,14 @@ void read_simulation_section(const Reader& r, const toml::table& root, CaseConfi
   if (const toml::node* n = find(root, "simulation", "precision")) {
     s.precision = choose<Precision>(r, "simulation.precision", *n, {{"double", Precision::Double}, {"float", Precision::Float}});
   }
+  if (const toml::node* n = find(root, "simulation", "stability_factor")) {
+    s.stability_factor = r.number("simulation.stability_factor", *n);
+    if (!(s.stability_factor >= 0.0 && s.stability_factor <= 1.0)) {
+      r.fail("simulation.stability_factor", n,
+             fmt::format("simulation.stability_factor must be in [0, 1] (0 = the thesis' time step), got {}",
+                         s.stability_factor));
+    }
+  }
   if (const toml::node* n = find(root, "simulation", "r0_rule")) {
     s.r0_any_direction = choose<bool>(r, "simulation.r0_rule", *n, {{"force_direction", false}, {"any_direction", true}});
   }
@@ -482,7 +490,7 @@ const std::vector<std::string>& case_file_keys() {
       "init.method", "init.seed", "init.total",
       "simulation.iterations", "simulation.dt_initial", "simulation.dt_initial.structured",
       "simulation.dt_initial.random", "simulation.cutoff", "simulation.lj_a", "simulation.device",
-      "simulation.precision", "simulation.r0_rule",
+      "simulation.precision", "simulation.r0_rule", "simulation.stability_factor",
       "output.formats", "output.tree_overlay", "output.views", "output.color_by",
   };
   return keys;

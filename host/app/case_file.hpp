@@ -64,6 +64,9 @@ struct CaseConfig {
     // true: r0 is the nearest neighbour in any direction ("any_direction"); false: in the force
     // direction, thesis eq. 5.3 ("force_direction", the default).
     bool r0_any_direction = false;
+    // Stiffness bound on each node's time step (docs/simulation.md, "Stability"): 0 = off, the
+    // thesis' rule exactly; c in (0, 1] keeps every step within the forward-Euler stability limit.
+    double stability_factor = 1.0;
     std::optional<double> dt_for(InitMethod m) const {
       return m == InitMethod::Structured ? dt_structured : dt_random;
     }

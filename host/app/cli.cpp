@@ -33,7 +33,7 @@ struct MeshArguments {
   std::string out;
   std::vector<std::string> sets;
   std::optional<std::string> iterations, dt, cutoff, method, seed, total, device, precision, formats, r0_rule,
-      color_by;
+      color_by, stability;
   std::vector<std::string> views;
   bool tree = false;
   bool quiet = false;
@@ -96,6 +96,7 @@ std::vector<CaseOverride> overrides_from(const MeshArguments& a) {
   direct(a.device, "--device", "simulation.device");
   direct(a.precision, "--precision", "simulation.precision");
   direct(a.r0_rule, "--r0-rule", "simulation.r0_rule");
+  direct(a.stability, "--stability", "simulation.stability_factor");
   direct(a.color_by, "--color-by", "output.color_by");
   if (a.formats) out.push_back({"output.formats", formats_value(*a.formats), "--formats " + *a.formats});
   if (a.tree) out.push_back({"output.tree_overlay", "true", "--tree"});
@@ -161,6 +162,10 @@ void add_mesh_options(CLI::App& mesh, MeshArguments& a) {
   mesh.add_option("--r0-rule", a.r0_rule,
                   "simulation.r0_rule: force_direction (thesis eq. 5.3) | any_direction (nearest neighbour limits the step)")
       ->type_name("RULE");
+  mesh.add_option("--stability", a.stability,
+                  "simulation.stability_factor in [0, 1]: bound each step by the local stiffness (default 1; "
+                  "0 = the thesis' time step exactly, which can oscillate late in a run)")
+      ->type_name("C");
   mesh.add_option("--color-by", a.color_by,
                   "output.color_by: fill mesh.png by a quality metric: none | min_angle | max_angle | aspect_ratio | "
                   "skewness | condition_number | min_jacobian")

@@ -181,6 +181,7 @@ SimResult simulate(const CaseConfig& config, const MeshInputs& inputs, NodeSet& 
   options.cutoff = config.simulation.cutoff;
   options.lj_a = config.simulation.lj_a;
   options.r0_any_direction = config.simulation.r0_any_direction;
+  options.stability_factor = config.simulation.stability_factor;
   options.quiet = config.quiet;
   options.device = context.get();
   options.device_float = use_float;
@@ -188,8 +189,9 @@ SimResult simulate(const CaseConfig& config, const MeshInputs& inputs, NodeSet& 
                                                  chosen->device, chosen->name, chosen->type,
                                                  use_float ? "float" : "double")
                                    : std::string("the host reference (double)");
-  progress(config, "simulation: {} iterations on {}, cutoff {}, a = {}, r0 rule {}", options.iterations, where,
-           options.cutoff, options.lj_a, options.r0_any_direction ? "any_direction" : "force_direction");
+  progress(config, "simulation: {} iterations on {}, cutoff {}, a = {}, r0 rule {}, stability factor {}",
+           options.iterations, where, options.cutoff, options.lj_a,
+           options.r0_any_direction ? "any_direction" : "force_direction", options.stability_factor);
   SimResult result = run_simulation(nodes, *inputs.tree, *inputs.spacing, options);
   const SimStats& st = result.stats;
   const double per_iteration = options.iterations > 0 ? st.seconds / options.iterations : 0.0;

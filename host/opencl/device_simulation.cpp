@@ -210,7 +210,7 @@ void DeviceRun<Real>::step_kernel(double dt_gm2) {
   ArgSetter a(program_.device_step, "device_step");
   a(static_cast<cl_int>(n_))(static_cast<cl_int>(stride_))(static_cast<Real>(options_.cutoff))(
       static_cast<Real>(options_.lj_a))(static_cast<cl_int>(options_.r0_any_direction ? 1 : 0))(
-      static_cast<Real>(dt_gm2))(static_cast<Real>(options_.verlet_skin * options_.cutoff))(x_[cur_])(y_[cur_])(
+      static_cast<Real>(options_.stability_factor))(static_cast<Real>(dt_gm2))(static_cast<Real>(options_.verlet_skin * options_.cutoff))(x_[cur_])(y_[cur_])(
       q_[cur_])(kind_)(tx_)(ty_)(neighbours_.count())(neighbours_.index())(x_build_)(y_build_)(q_build_)(bslot_)(
       x_[next])(y_[next])(q_[next])(tag_)(brec_)(cand_index_)(cand_rec_)(counters_)(partials_);
   bg_args(a);

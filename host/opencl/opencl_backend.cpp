@@ -2,6 +2,7 @@
 #include "opencl/opencl_backend.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 #include "opencl/device_neighbours.hpp"
 #include "opencl/step_program.hpp"
@@ -54,14 +55,23 @@ class OpenclBackend final : public StepBackend {
     ensure_size(ctx_, fy_, "fy", n);
     ensure_size(ctx_, r0_, "r0", n);
     ensure_size(ctx_, coincident_, "coincident", n);
+    ensure_size(ctx_, limit_, "dt2_limit", n);
     ArgSetter args(program_.compute_forces, "compute_forces");
     args(static_cast<cl_int>(n))(static_cast<cl_int>(list.stride))(static_cast<Real>(params.lj_a))(
-        static_cast<cl_int>(params.r0_any_direction ? 1 : 0))(x_)(y_)(q_)(kind_)(tx_)(ty_)(count_)(index_)(fx_)(fy_)(
-        r0_)(coincident_);
+        static_cast<cl_int>(params.r0_any_direction ? 1 : 0))(static_cast<Real>(params.stability_factor))(x_)(y_)(q_)(
+        kind_)(tx_)(ty_)(count_)(index_)(fx_)(fy_)(r0_)(limit_)(coincident_);
     launch(ctx_.queue(), program_.compute_forces, "compute_forces", n, program_.work_group);
     out.fx = download(fx_, n);
     out.fy = download(fy_, n);
     out.r0 = download(r0_, n);
+    if (params.stability_factor > 0.0) {
+      out.dt2_limit = download(limit_, n);
+      // Fixed nodes keep the reference's HUGE_VAL (the kernel skips them).
+      for (std::size_t i = 0; i < n; ++i)
+        if (p.kind[i] == kSimFixed) out.dt2_limit[i] = HUGE_VAL;
+    } else {
+      out.dt2_limit.clear();
+    }
     std::vector<std::int32_t> c;
     coincident_.download(ctx_.queue(), c, n);
     out.coincident_pairs = 0;
@@ -73,11 +83,15 @@ class OpenclBackend final : public StepBackend {
     upload_forces(p, forces);
     ensure_size(ctx_, r0_, "r0", n);
     r0_.upload(ctx_.queue(), to_real<Real>(forces.r0));
+    const bool has_limit = !forces.dt2_limit.empty();
+    ensure_size(ctx_, limit_, "dt2_limit", n);
+    if (has_limit) limit_.upload(ctx_.queue(), to_real<Real>(forces.dt2_limit));
     ensure_size(ctx_, dx_, "dx", n);
     ensure_size(ctx_, dy_, "dy", n);
     ensure_size(ctx_, dt2_, "dt2", n);
     ArgSetter args(program_.time_step_and_move, "time_step_and_move");
-    args(static_cast<cl_int>(n))(static_cast<Real>(dt_gm2))(kind_)(fx_)(fy_)(r0_)(dx_)(dy_)(dt2_);
+    args(static_cast<cl_int>(n))(static_cast<Real>(dt_gm2))(static_cast<cl_int>(has_limit ? 1 : 0))(kind_)(fx_)(fy_)(
+        r0_)(limit_)(dx_)(dy_)(dt2_);
     launch(ctx_.queue(), program_.time_step_and_move, "time_step_and_move", n, program_.work_group);
     out.dx = download(dx_, n);
     out.dy = download(dy_, n);
@@ -145,7 +159,7 @@ class OpenclBackend final : public StepBackend {
   Context& ctx_;
   StepProgram program_;
   DeviceNeighbours<Real> neighbours_;
-  Buffer<Real> x_, y_, q_, tx_, ty_, fx_, fy_, r0_, dx_, dy_, dt2_, partials_;
+  Buffer<Real> x_, y_, q_, tx_, ty_, fx_, fy_, r0_, limit_, dx_, dy_, dt2_, partials_;
   Buffer<std::uint8_t> kind_;
   Buffer<std::int32_t> prev_, next_, count_, index_, coincident_;
 };

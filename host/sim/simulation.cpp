@@ -13,6 +13,7 @@
 #include "sim/global_time_step.hpp"
 #include "sim/progress.hpp"
 #include "opencl/device_simulation.hpp"
+#include "sim/step_trace.hpp"
 #include "spacing/background_field.hpp"
 
 namespace pdmesh {
@@ -95,7 +96,8 @@ SimResult run_simulation(NodeSet& nodes, const GeometryTree& tree, const Spacing
   NeighbourFlags flags;
   ForceResult forces;
   MoveResult moves;
-  const ForceParams params{options.cutoff, options.lj_a, options.r0_any_direction};
+  const TraceRange trace = TraceRange::from_environment();
+  ForceParams params{options.cutoff, options.lj_a, options.r0_any_direction, options.stability_factor};
   result.history.reserve(static_cast<std::size_t>(std::max(0, options.iterations)));
   for (int iteration = 1; iteration <= options.iterations; ++iteration) {
     load_particles(nodes, boundary, particles);
@@ -104,6 +106,7 @@ SimResult run_simulation(NodeSet& nodes, const GeometryTree& tree, const Spacing
     const double dt_gm = gm.dt();
     backend->time_step_and_move(particles, forces, gm.dt2(), moves);
     const StepSums sums = backend->reduce(particles, forces, moves);
+    if (trace.covers(iteration)) trace_step(stderr, iteration, particles, list, forces, moves, gm.dt2(), options.cutoff, 3);
     if (!std::isfinite(sums.sum_force) || !std::isfinite(sums.sum_kinetic)) {
       std::size_t bad = 0;
       while (bad < nodes.size() && std::isfinite(forces.fx[bad]) && std::isfinite(forces.fy[bad])) ++bad;

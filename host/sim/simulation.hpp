@@ -26,6 +26,7 @@ struct SimOptions {
   double cutoff = 1.5;               // cut-off distance factor (neighbours within cutoff * q_i)
   double lj_a = 15.0;                // a of eq. 5.11
   bool r0_any_direction = false;     // ForceParams::r0_any_direction (false = thesis eq. 5.3)
+  double stability_factor = 0.0;     // ForceParams::stability_factor (0 = off, the thesis)
   bool quiet = false;                // no progress line on stderr
   // false: the per-iteration spacing update reads a BackgroundSpacing built once from the given field
   // (tolerance 1e-3, docs/spacing.md); true: evaluate the given field exactly every iteration.

@@ -56,12 +56,16 @@ struct ForceResult {
   std::vector<double> r0;      // distance to the nearest neighbour j with F_i . r_ij > 0 (see
                                // ForceParams::r0_any_direction); 0 if none or F_i = 0
   std::uint64_t coincident_pairs = 0;  // neighbour pairs at distance 0 (skipped: no direction)
+  // Only when ForceParams::stability_factor > 0 (else empty): the per-node stability bound on dt_i^2,
+  // 2 c / K_i with K_i = sum_j max(|df/dr|, |f|/r) over i's list (HUGE_VAL when K_i = 0).
+  std::vector<double> dt2_limit;
 };
 
 // Per-node results of the time-step/move step (eqs. 5.6, 5.8, 5.9).
 struct MoveResult {
   std::vector<double> dx, dy;  // displacement
-  std::vector<double> dt2;     // local dt_i^2 used (dt_GM^2 when r0 = 0 or |F| = 0); 0 for Fixed
+  std::vector<double> dt2;     // local dt_i^2 used (dt_GM^2 when r0 = 0 or |F| = 0, each capped by
+                               // ForceResult::dt2_limit when that is filled); 0 for Fixed
 };
 
 // Reductions over moving (Boundary + Interior) nodes, summed in node order by the reference.
@@ -78,6 +82,10 @@ struct ForceParams {
   // false (thesis eq. 5.3): r0 = nearest neighbour with F . r_ij > 0. true: nearest neighbour in any
   // direction (r0 = 0 still when F = 0), which damps the period-2 oscillation of crowded pairs.
   bool r0_any_direction = false;
+  // c of the stability bound dt_i^2 <= 2 c / K_i (ForceResult::dt2_limit); 0 = off (thesis eqs. 5.8,
+  // 5.9 only). The explicit step dx = dt^2/2 F is stable for modes of node i when dt_i^2 K_i / 2 <= c
+  // with c <= 1 (Gershgorin); see docs/simulation.md, "Stability".
+  double stability_factor = 0.0;
 };
 
 // One operation per simulation step. Implementations must give the same neighbour sets and

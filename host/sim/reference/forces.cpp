@@ -15,12 +15,17 @@ void compute_forces(const SimParticles& p, const NeighbourList& list, const Forc
   out.fy.assign(n, 0.0);
   out.r0.assign(n, 0.0);
   out.coincident_pairs = 0;
+  const bool stability = params.stability_factor > 0.0;
+  if (stability)
+    out.dt2_limit.assign(n, HUGE_VAL);
+  else
+    out.dt2_limit.clear();
   for (std::size_t i = 0; i < n; ++i) {
     if (p.kind[i] == kSimFixed) continue;
     const double xi = p.x[i], yi = p.y[i], qi = p.q[i];
     const std::size_t base = i * stride;
     const std::size_t count = std::min(static_cast<std::size_t>(list.count[i]), stride);
-    double fx = 0.0, fy = 0.0;
+    double fx = 0.0, fy = 0.0, stiffness = 0.0;
     for (std::size_t k = 0; k < count; ++k) {
       const auto j = static_cast<std::size_t>(list.index[base + k]);
       const double dx = p.x[j] - xi, dy = p.y[j] - yi;
@@ -35,7 +40,9 @@ void compute_forces(const SimParticles& p, const NeighbourList& list, const Forc
       const double f = lj_pair_magnitude(0.5 * (qi + p.q[j]), inv_r2, params.lj_a) * inv_r;
       fx += f * dx;
       fy += f * dy;
+      if (stability) stiffness += lj_pair_stiffness(0.5 * (qi + p.q[j]), inv_r2, inv_r, params.lj_a);
     }
+    if (stability && stiffness > 0.0) out.dt2_limit[i] = 2.0 * params.stability_factor / stiffness;
     if (p.kind[i] == kSimBoundary) {
       // Boundary nodes slide along their curve: keep the tangential component only.
       const double ft = fx * p.tx[i] + fy * p.ty[i];

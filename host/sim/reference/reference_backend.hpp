@@ -1,6 +1,8 @@
 // The plain double-precision C++ reference implementation of each simulation step
 // (host/sim/step_backend.hpp). Each function is named after the OpenCL kernel that mirrors it.
 #pragma once
+#include <cmath>
+
 #include "sim/step_backend.hpp"
 
 namespace pdmesh::reference {
@@ -26,6 +28,17 @@ inline double lj_pair_magnitude(double sigma, double inv_r2, double lj_a) {
   const double s2 = sigma * sigma * inv_r2;
   const double s6 = s2 * s2 * s2;
   return -4.0 * lj_a * sigma * (s6 * s6 - s6);
+}
+
+// |df/dr| and |f|/r of eq. 5.11 for the stability bound: the larger of the two is the norm of the
+// pair's 2x2 force Jacobian (radial and transverse parts). Returns max(|df/dr|, |f|/r).
+inline double lj_pair_stiffness(double sigma, double inv_r2, double inv_r, double lj_a) {
+  const double s2 = sigma * sigma * inv_r2;
+  const double s6 = s2 * s2 * s2;
+  const double scale = 4.0 * lj_a * sigma * inv_r;
+  const double radial = std::fabs(scale * (12.0 * s6 * s6 - 6.0 * s6));
+  const double transverse = std::fabs(scale * (s6 * s6 - s6));
+  return radial > transverse ? radial : transverse;
 }
 
 }  // namespace pdmesh::reference

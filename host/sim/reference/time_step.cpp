@@ -20,6 +20,9 @@ void time_step_and_move(const SimParticles& p, const ForceResult& forces, double
     // No neighbour in the force direction (r0 = 0): nothing limits the step but the global maximum.
     double dt2 = dt_gm2;
     if (f2 > 0.0 && forces.r0[i] > 0.0) dt2 = std::min(2.0 * forces.r0[i] / (3.0 * std::sqrt(f2)), dt_gm2);
+    // Optional stability bound (ForceParams::stability_factor): keeps stiff (compressed) clusters
+    // from the period-2 oscillation that a too large dt_GM starts.
+    if (!forces.dt2_limit.empty()) dt2 = std::min(dt2, forces.dt2_limit[i]);
     out.dt2[i] = dt2;
     out.dx[i] = 0.5 * dt2 * fx;
     out.dy[i] = 0.5 * dt2 * fy;
