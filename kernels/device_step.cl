@@ -12,9 +12,20 @@
   const REAL bg_origin_x, const REAL bg_origin_y, const REAL bg_inv_root, const int bg_grid,          \
       __global const int *bg_root, __global const int *bg_child, __global const int *bg_corner,      \
       __global const int *bg_tag, __global const REAL *bg_q
-#define BG_SPACING(px, py) \
-  spacing_at(px, py, bg_origin_x, bg_origin_y, bg_inv_root, bg_grid, bg_root, bg_child, bg_corner, bg_q)
 #define BG_TAG(px, py) domain_tag_at(px, py, bg_origin_x, bg_origin_y, bg_inv_root, bg_grid, bg_root, bg_child, bg_tag)
+
+// Spacing and domain tag at (px, py) from one descent: spacing_at's expression, domain_tag_at's tag.
+REAL bg_spacing_and_tag(const REAL px, const REAL py, int* tag_out, BG_ARGS) {
+  REAL u, v;
+  const int leaf = bg_locate(px, py, bg_origin_x, bg_origin_y, bg_inv_root, bg_grid, bg_root, bg_child, &u, &v);
+  *tag_out = bg_tag[leaf];
+  const REAL q00 = bg_q[bg_corner[4 * leaf + 0]];
+  const REAL q10 = bg_q[bg_corner[4 * leaf + 1]];
+  const REAL q01 = bg_q[bg_corner[4 * leaf + 2]];
+  const REAL q11 = bg_q[bg_corner[4 * leaf + 3]];
+  return ((REAL)1 - v) * (((REAL)1 - u) * q00 + u * q10) + v * (((REAL)1 - u) * q01 + u * q11);
+}
+#define BG_PASS bg_origin_x, bg_origin_y, bg_inv_root, bg_grid, bg_root, bg_child, bg_corner, bg_tag, bg_q
 
 // Inputs x, y, q (current), outputs x_next, y_next, q_next. tag[i]: the domain tag of node i's current
 // position (updated here for the next iteration). Interior nodes whose move starts, ends or has its
@@ -56,6 +67,8 @@ void device_step(const int n, const int stride, const REAL cutoff, const REAL lj
       kinetic = (REAL)0.125 * dt2 * f2;
     }
     const REAL xn = xi + dx, yn = yi + dy;
+    int tag_to;
+    const REAL qn = bg_spacing_and_tag(xn, yn, &tag_to, BG_PASS);
     int host = 0;
     if (kind_i == 1) {
       const int s = bslot[i];
@@ -65,10 +78,9 @@ void device_step(const int n, const int stride, const REAL cutoff, const REAL lj
       brec[4 * s + 3] = dy;
       host = 1;
     } else if (kind_i == 2) {
-      const int tag_to = BG_TAG(xn, yn);
       const REAL xm = xi + (REAL)0.5 * dx, ym = yi + (REAL)0.5 * dy;
-      const int tag_mid = BG_TAG(xm, ym);
-      if (tag[i] != 0 || tag_to != 0 || tag_mid != 0 || !isfinite(xn) || !isfinite(yn)) {
+      // The midpoint only matters when both ends are surely inside.
+      if (tag[i] != 0 || tag_to != 0 || BG_TAG(xm, ym) != 0 || !isfinite(xn) || !isfinite(yn)) {
         const int s = atomic_inc(&counters[0]);
         cand_index[s] = i;
         cand_rec[4 * s] = xi;
@@ -81,7 +93,6 @@ void device_step(const int n, const int stride, const REAL cutoff, const REAL lj
     }
     x_next[i] = xn;
     y_next[i] = yn;
-    const REAL qn = BG_SPACING(xn, yn);
     q_next[i] = qn;
     if (!host && kind_i == 2) {
       const REAL ex = xn - x_build[i], ey = yn - y_build[i];
@@ -115,6 +126,7 @@ void apply_host_moves(const int m, __global const int* rec_index, __global const
   y[i] = py;
   tx[i] = rec[4 * k + 2];
   ty[i] = rec[4 * k + 3];
-  q[i] = BG_SPACING(px, py);
-  tag[i] = (uchar)BG_TAG(px, py);
+  int t;
+  q[i] = bg_spacing_and_tag(px, py, &t, BG_PASS);
+  tag[i] = (uchar)t;
 }
