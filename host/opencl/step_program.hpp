@@ -35,14 +35,16 @@ class ArgSetter {
   ArgSetter(cl::Kernel& kernel, const char* name) : kernel_(kernel), name_(name) {}
   template <typename T>
   ArgSetter& operator()(Buffer<T>& b) {
-    check(kernel_.setArg(index_, b.get()), fmt::format("setting argument {} ('{}') of '{}'", index_, b.name(), name_));
+    const cl_int err = kernel_.setArg(index_, b.get());
+    if (err != CL_SUCCESS) check(err, fmt::format("setting argument {} ('{}') of '{}'", index_, b.name(), name_));
     ++index_;
     return *this;
   }
   template <typename T>
   ArgSetter& operator()(const T& value) {
     static_assert(std::is_arithmetic_v<T>);
-    check(kernel_.setArg(index_, value), fmt::format("setting argument {} of '{}'", index_, name_));
+    const cl_int err = kernel_.setArg(index_, value);
+    if (err != CL_SUCCESS) check(err, fmt::format("setting argument {} of '{}'", index_, name_));
     ++index_;
     return *this;
   }
