@@ -12,28 +12,14 @@
 
 #include "io/mesh_formats.hpp"
 #include "nodes/node_file.hpp"
+#include "run_pdmesh.hpp"
 
 namespace fs = std::filesystem;
 
 namespace {
 
-struct Result {
-  int status = -1;
-  std::string output;  // stdout and stderr together
-};
-
-Result run(const std::string& arguments) {
-  const std::string command = std::string("'") + PDMESH_BINARY + "' " + arguments + " 2>&1";
-  Result r;
-  FILE* pipe = ::popen(command.c_str(), "r");
-  REQUIRE(pipe != nullptr);
-  char buffer[4096];
-  std::size_t n = 0;
-  while ((n = std::fread(buffer, 1, sizeof buffer, pipe)) > 0) r.output.append(buffer, n);
-  const int raw = ::pclose(pipe);
-  r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
-  return r;
-}
+using pdmesh_test::Result;
+Result run(const std::string& arguments) { return pdmesh_test::run_pdmesh(arguments); }
 
 fs::path fresh_dir(const std::string& tag) {
   fs::path d = fs::temp_directory_path() / ("pdmesh_test_cli_" + tag + "_" + std::to_string(::getpid()));

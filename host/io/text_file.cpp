@@ -80,7 +80,7 @@ std::string_view LineScanner::expect_line(std::string_view what, char comment) {
   pending_ = {};
   std::string_view line;
   while (next_line(line)) {
-    const std::size_t first = line.find_first_not_of(" \t");
+    const std::size_t first = line.find_first_not_of(" \t\r");  // '\r'-only is blank, as in split_tokens
     if (first == std::string_view::npos) continue;
     if (comment != '\0' && line[first] == comment) continue;
     return line;

@@ -148,6 +148,8 @@ Mesh parse_vtu(const std::string& file, const std::string& content, MeshReadRepo
   for (long long c = 0; c < ncells; ++c) {
     const auto stop = static_cast<std::size_t>(as_index(offs.values[c], static_cast<long long>(conn.values.size()) + 1, offs, file));
     if (stop < start) throw InputError(fmt::format("{}:{}: offsets decrease at cell {}", file, offs.line, c));
+    // VTK cell types are small integers (a UInt8 array); anything else would overflow the cast.
+    if (!(types.values[c] >= 0 && types.values[c] <= 255)) throw InputError(fmt::format("{}:{}: cell {} has type {}", file, types.line, c, types.values[c]));
     const auto type = static_cast<int>(types.values[c]);
     if (type == 5) {
       if (stop - start != 3) throw InputError(fmt::format("{}:{}: triangle cell {} has {} points", file, offs.line, c, stop - start));
@@ -185,6 +187,7 @@ Mesh parse_vtu(const std::string& file, const std::string& content, MeshReadRepo
         mesh.curve_names.push_back(name);
         name.clear();
       } else {
+        if (!(v >= 1 && v <= 255)) throw InputError(fmt::format("{}:{}: curve_names holds {}, not a character code", file, it->second.line, v));
         name += static_cast<char>(static_cast<unsigned char>(v));
       }
     }

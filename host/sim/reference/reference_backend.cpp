@@ -1,8 +1,10 @@
-// The reference StepBackend: forwards each step to its plain C++ function; and the stride-growing
+// The reference StepBackend: forwards each step to its plain C++ function (the neighbour build
+// through a Verlet candidate cache, neighbour_cache.hpp); and the stride-growing
 // neighbour build shared by all backends.
 #include <fmt/format.h>
 
 #include "core/errors.hpp"
+#include "sim/reference/neighbour_cache.hpp"
 #include "sim/reference/reference_backend.hpp"
 
 namespace pdmesh {
@@ -13,7 +15,7 @@ class ReferenceBackend final : public StepBackend {
   std::string name() const override { return "host"; }
   void build_neighbours(const SimParticles& p, double cutoff, NeighbourList& list,
                         NeighbourFlags& flags) override {
-    reference::build_neighbours(p, cutoff, list, flags);
+    cache_.build(p, cutoff, list, flags);
   }
   void compute_forces(const SimParticles& p, const NeighbourList& list, const ForceParams& params,
                       ForceResult& out) override {
@@ -26,6 +28,9 @@ class ReferenceBackend final : public StepBackend {
   StepSums reduce(const SimParticles& p, const ForceResult& forces, const MoveResult& moves) override {
     return reference::reduce(p, forces, moves);
   }
+
+ private:
+  reference::NeighbourCache cache_;  // skin 0.1, growth 0.05: measured best on circle_circle/naca0012
 };
 
 }  // namespace

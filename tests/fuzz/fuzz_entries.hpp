@@ -1,0 +1,164 @@
+// Fuzz entry points shared by the libFuzzer targets (tests/fuzz/fuzz_*.cpp) and the corpus-replay
+// test (tests/test_fuzz_corpus.cpp): bytes -> a scratch file with the right extension -> the reader.
+#pragma once
+#include <unistd.h>
+
+#include <algorithm>
+#include <cstddef>
+#include <cstdint>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "app/case_file.hpp"
+#include "core/errors.hpp"
+#include "geometry/curve_reader.hpp"
+#include "geometry/geometry_files.hpp"
+#include "geometry/poly_reader.hpp"
+#include "io/mesh_formats.hpp"
+#include "nodes/node_file.hpp"
+
+namespace pdmesh::fuzz {
+
+// One scratch directory per process, so that parallel fuzzers and test runs never share files;
+// removed at normal exit.
+class ScratchDir {
+ public:
+  ScratchDir() : path_(std::filesystem::temp_directory_path() / ("pdmesh_fuzz_" + std::to_string(::getpid()))) {
+    std::filesystem::create_directories(path_);
+  }
+  ~ScratchDir() {
+    std::error_code ignored;
+    std::filesystem::remove_all(path_, ignored);
+  }
+  ScratchDir(const ScratchDir&) = delete;
+  ScratchDir& operator=(const ScratchDir&) = delete;
+  const std::filesystem::path& path() const { return path_; }
+
+ private:
+  std::filesystem::path path_;
+};
+
+inline const std::filesystem::path& scratch_dir() {
+  static const ScratchDir dir;
+  return dir.path();
+}
+
+// Writes the bytes to scratch_dir()/name (replacing it) and returns the path.
+inline std::filesystem::path write_scratch(const std::string& name, std::string_view bytes) {
+  const auto path = scratch_dir() / name;
+  std::ofstream out(path, std::ios::binary | std::ios::trunc);
+  out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+  return path;
+}
+
+inline std::string_view as_text(const std::uint8_t* data, std::size_t size) {
+  return {reinterpret_cast<const char*>(data), size};
+}
+
+// Each entry runs one reader on the bytes. InputError (and its subclasses GeometryError and
+// LimitError) is the documented answer to bad input and is swallowed; anything else escapes.
+
+// .crv reader, then the same file through read_geometry so build_geometry sees what parsed.
+inline void curve_reader(const std::uint8_t* data, std::size_t size) {
+  const auto path = write_scratch("input.crv", as_text(data, size));
+  try {
+    read_curve_file(path.string());
+    read_geometry({path.string()}, {});
+  } catch (const InputError&) {
+  }
+}
+
+// .poly reader, then read_geometry (build_geometry with hole points).
+inline void poly_reader(const std::uint8_t* data, std::size_t size) {
+  const auto path = write_scratch("input.poly", as_text(data, size));
+  try {
+    read_poly_file(path.string());
+    read_geometry({path.string()}, {});
+  } catch (const InputError&) {
+  }
+}
+
+// case.toml: TOML syntax, keys, types and ranges (geometry files are named, not read).
+inline void case_file(const std::uint8_t* data, std::size_t size) {
+  const auto path = write_scratch("case.toml", as_text(data, size));
+  try {
+    load_case_file(path);
+  } catch (const InputError&) {
+  }
+}
+
+inline void node_file(const std::uint8_t* data, std::size_t size) {
+  const auto path = write_scratch("input.nodes", as_text(data, size));
+  try {
+    read_node_file(path);
+  } catch (const InputError&) {
+  }
+}
+
+inline void read_mesh_file(const std::filesystem::path& path) {
+  try {
+    MeshReadReport report;
+    read_mesh(path, report);
+  } catch (const InputError&) {
+  }
+}
+
+// .msh: both Gmsh 2.2 and 4.1 (the reader picks the version from $MeshFormat).
+inline void mesh_reader_msh(const std::uint8_t* data, std::size_t size) {
+  read_mesh_file(write_scratch("input.msh", as_text(data, size)));
+}
+
+inline void mesh_reader_vtu(const std::uint8_t* data, std::size_t size) {
+  read_mesh_file(write_scratch("input.vtu", as_text(data, size)));
+}
+
+inline void mesh_reader_su2(const std::uint8_t* data, std::size_t size) {
+  read_mesh_file(write_scratch("input.su2", as_text(data, size)));
+}
+
+// Triangle needs several files: the input is split at form feeds ('\f') into STEM.node, STEM.ele
+// and, when a third part is present, STEM.poly. Missing parts are empty files (or no .poly).
+inline constexpr char kTriangleSeparator = '\f';
+inline void mesh_reader_triangle(const std::uint8_t* data, std::size_t size) {
+  const std::string_view text = as_text(data, size);
+  std::vector<std::string_view> parts;
+  std::size_t start = 0;
+  while (parts.size() < 2) {
+    const std::size_t cut = text.find(kTriangleSeparator, start);
+    if (cut == std::string_view::npos) break;
+    parts.push_back(text.substr(start, cut - start));
+    start = cut + 1;
+  }
+  parts.push_back(text.substr(start));
+  parts.resize(std::max<std::size_t>(parts.size(), 2));
+  write_scratch("input.node", parts[0]);
+  const auto ele = write_scratch("input.ele", parts[1]);
+  const auto poly = scratch_dir() / "input.poly";
+  if (parts.size() > 2) {
+    write_scratch("input.poly", parts[2]);
+  } else {
+    std::error_code ignored;
+    std::filesystem::remove(poly, ignored);
+  }
+  read_mesh_file(ele);
+}
+
+struct Target {
+  const char* name;  // the corpus folder under tests/fuzz/corpus/ and tests/fuzz/regressions/
+  void (*run)(const std::uint8_t*, std::size_t);
+};
+
+inline const std::vector<Target>& targets() {
+  static const std::vector<Target> all{
+      {"fuzz_curve_reader", curve_reader},          {"fuzz_poly_reader", poly_reader},
+      {"fuzz_case_file", case_file},                {"fuzz_node_file", node_file},
+      {"fuzz_mesh_reader_msh", mesh_reader_msh},    {"fuzz_mesh_reader_vtu", mesh_reader_vtu},
+      {"fuzz_mesh_reader_su2", mesh_reader_su2},    {"fuzz_mesh_reader_triangle", mesh_reader_triangle},
+  };
+  return all;
+}
+
+}  // namespace pdmesh::fuzz

@@ -1,0 +1,86 @@
+// Writes the seed corpora of the mesh and node-file fuzz targets with pdmesh's own writers:
+// fuzz_make_seeds CORPUS_DIR (normally tests/fuzz/corpus). Geometry and case seeds are copied
+// from tests/data/ and cases/ by hand; see docs/robustness.md.
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include "core/errors.hpp"
+#include "io/mesh_formats.hpp"
+#include "mesh/mesh.hpp"
+#include "nodes/node_file.hpp"
+
+namespace fs = std::filesystem;
+using namespace pdmesh;
+
+namespace {
+
+std::string slurp(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+void put(const fs::path& path, const std::string& bytes) {
+  fs::create_directories(path.parent_path());
+  std::ofstream(path, std::ios::binary) << bytes;
+  std::printf("%s (%zu bytes)\n", path.string().c_str(), bytes.size());
+}
+
+// The unit square cut into four triangles around its centre; two boundary curves, one of
+// them with a blank and a quote in its name (writers must escape it).
+Mesh small_mesh() {
+  Mesh m;
+  m.points = {{0, 0}, {1, 0}, {1, 1}, {0, 1}, {0.5, 0.5}};
+  m.triangles = {{{0, 1, 4}}, {{1, 2, 4}}, {{2, 3, 4}}, {{3, 0, 4}}};
+  m.boundary_edges = {{0, 1, 0}, {1, 2, 0}, {2, 3, 1}, {3, 0, 1}};
+  m.curve_names = {"bottom_right", "top \"left\""};
+  return m;
+}
+
+NodeSet small_nodes() {
+  NodeSet n;
+  n.add({0, 0}, 0.5, NodeKind::Fixed, 0);
+  n.add({1, 0}, 0.5, NodeKind::Boundary, 0);
+  n.add({1, 1}, 0.5, NodeKind::Fixed, 0);
+  n.add({0, 1}, 0.25, NodeKind::Boundary, 1);
+  n.add({0.5, 0.5}, 0.125, NodeKind::Interior, -1);
+  n.curve_nodes = {{0, 1, 2}, {2, 3, 0}};
+  return n;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc != 2) {
+    std::fprintf(stderr, "usage: fuzz_make_seeds CORPUS_DIR\n");
+    return 2;
+  }
+  const fs::path corpus = argv[1];
+  const fs::path work = fs::temp_directory_path() / "pdmesh_fuzz_seeds";
+  fs::remove_all(work);
+  fs::create_directories(work / "a");
+  fs::create_directories(work / "b");
+  try {
+    const Mesh mesh = small_mesh();
+    write_mesh(mesh, work / "a", "m", {"msh", "vtu", "su2", "triangle"});
+    write_mesh(mesh, work / "b", "m", {"msh22"});
+    put(corpus / "fuzz_mesh_reader_msh" / "square_41.msh", slurp(work / "a" / "m.msh"));
+    put(corpus / "fuzz_mesh_reader_msh" / "square_22.msh", slurp(work / "b" / "m.msh"));
+    put(corpus / "fuzz_mesh_reader_vtu" / "square.vtu", slurp(work / "a" / "m.vtu"));
+    put(corpus / "fuzz_mesh_reader_su2" / "square.su2", slurp(work / "a" / "m.su2"));
+    const std::string node = slurp(work / "a" / "m.node"), ele = slurp(work / "a" / "m.ele");
+    const std::string poly = slurp(work / "a" / "m.poly");
+    put(corpus / "fuzz_mesh_reader_triangle" / "square_with_poly", node + '\f' + ele + '\f' + poly);
+    put(corpus / "fuzz_mesh_reader_triangle" / "square_no_poly", node + '\f' + ele);
+    put(corpus / "fuzz_node_file" / "square.nodes", format_node_file(small_nodes(), {"bottom_right", "top_left"}));
+  } catch (const Error& e) {
+    std::fprintf(stderr, "fuzz_make_seeds: %s\n", e.what());
+    return 1;
+  }
+  fs::remove_all(work);
+  return 0;
+}

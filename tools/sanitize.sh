@@ -1,0 +1,20 @@
+#!/usr/bin/env bash
+# Builds pdmesh with AddressSanitizer + UndefinedBehaviorSanitizer in build-asan/ and runs the
+# whole test suite there: tools/sanitize.sh [extra ctest arguments]. Exit status: ctest's.
+# Leak reports from inside PoCL/LLVM and fontconfig (process-lifetime caches) are suppressed by
+# tests/lsan.supp; see docs/robustness.md for what was found and why.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+build=build-asan
+# PDMESH_SANITIZE adds float-cast-overflow too: GCC leaves it out of -fsanitize=undefined, and
+# readers cast parsed doubles to integers.
+cmake -S . -B "$build" -DPDMESH_SANITIZE=ON -DCMAKE_BUILD_TYPE=RelWithDebInfo ${PDMESH_CMAKE_ARGS:-} >/dev/null
+cmake --build "$build" -j "$(nproc 2>/dev/null || echo 2)"
+
+# halt_on_error: the first report fails the test; UB already aborts (-fno-sanitize-recover).
+export ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=1:halt_on_error=1:strict_string_checks=1:detect_stack_use_after_return=1}
+export LSAN_OPTIONS=${LSAN_OPTIONS:-suppressions=$PWD/tests/lsan.supp:print_suppressions=0}
+export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}
+
+ctest --test-dir "$build" --output-on-failure -j "$(nproc 2>/dev/null || echo 2)" "$@"
