@@ -13,6 +13,7 @@
 #include <toml++/toml.h>
 
 #include "app/case_file.hpp"
+#include "app/bench_command.hpp"
 #include "app/devices_command.hpp"
 #include "app/mesh_command.hpp"
 #include "app/quality_command.hpp"
@@ -191,7 +192,8 @@ void add_mesh_options(CLI::App& mesh, MeshArguments& a) {
 }  // namespace
 
 Cli::Cli() : app_(std::make_unique<CLI::App>("pdmesh: physics-based point placement and triangle meshing", "pdmesh")),
-             mesh_(std::make_unique<MeshArguments>()), quality_(std::make_unique<QualityArguments>()) {
+             mesh_(std::make_unique<MeshArguments>()), quality_(std::make_unique<QualityArguments>()),
+             bench_(std::make_unique<BenchArguments>()) {
   app_->set_version_flag("--version", std::string("pdmesh ") + PDMESH_VERSION);
   app_->require_subcommand(1);
   CLI::App* mesh = app_->add_subcommand("mesh", "Distribute nodes for a case and write them and their pictures");
@@ -208,6 +210,20 @@ Cli::Cli() : app_(std::make_unique<CLI::App>("pdmesh: physics-based point placem
   quality->add_option("--json", quality_->json, "Also write the JSON summary: a file, a directory, or - for stdout")
       ->type_name("PATH");
   commands_.emplace_back(quality, [this] { return run_quality(quality_->mesh, quality_->geometry, quality_->json); });
+
+  CLI::App* bench = app_->add_subcommand("bench", "Time the simulation on the host reference and on each OpenCL device");
+  bench->add_option("--cases", bench_->cases, "Cases to run (graded_1m is generated in code)")->type_name("NAME...");
+  bench->add_option("--cases-dir", bench_->cases_dir, "Directory holding the named cases")->type_name("DIR");
+  bench->add_option("--iterations", bench_->iterations, "Iterations per case and backend")->type_name("N");
+  bench->add_option("--large-iterations", bench_->large_iterations, "Iterations for graded_1m")->type_name("N");
+  bench->add_option("--large-nodes", bench_->large_nodes, "Target node count of graded_1m")->type_name("N");
+  bench->add_option("--precision", bench_->precision, "double | float (devices without fp64 run float)")->type_name("P");
+  bench->add_option("--warmup", bench_->warmup, "Untimed iterations before timing, every backend from that state")->type_name("N");
+  bench->add_option("--large-warmup", bench_->large_warmup, "The same for graded_1m")->type_name("N");
+  bench->add_flag("--skip-host", bench_->skip_host, "Do not run the host reference");
+  bench->add_flag("--skip-host-large", bench_->skip_host_large, "Do not run the host reference on graded_1m");
+  bench->add_option("--out", bench_->out, "Also write the table (Markdown) to this file")->type_name("FILE");
+  commands_.emplace_back(bench, [this] { return run_bench(*bench_); });
 
   CLI::App* devices = app_->add_subcommand("devices", "List the OpenCL platforms and devices (--device opencl:P:D)");
   devices->add_flag("--check", devices_check_, "Also build and run a small kernel on each device");

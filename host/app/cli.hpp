@@ -14,6 +14,7 @@ namespace pdmesh {
 
 struct MeshArguments;
 struct QualityArguments;
+struct BenchArguments;
 
 class Cli {
  public:
@@ -34,6 +35,7 @@ class Cli {
   std::vector<std::pair<CLI::App*, std::function<int()>>> commands_;
   std::unique_ptr<MeshArguments> mesh_;
   std::unique_ptr<QualityArguments> quality_;
+  std::unique_ptr<BenchArguments> bench_;
   bool devices_check_ = false;
 };
 

@@ -18,6 +18,8 @@
 #include "mesh/triangulate_nodes.hpp"
 #include "nodes/node_domain.hpp"
 #include "nodes/node_file.hpp"
+#include "opencl/context.hpp"
+#include "opencl/devices.hpp"
 #include "render/history_plot.hpp"
 #include "render/mesh_picture.hpp"
 #include "render/node_picture.hpp"
@@ -157,15 +159,22 @@ void write_initial_outputs(const CaseConfig& config, const MeshInputs& inputs, c
 
 SimResult simulate(const CaseConfig& config, const MeshInputs& inputs, NodeSet& nodes) {
   const std::string& device = config.simulation.device;
-  // The OpenCL simulation backend is not part of this build yet: auto and host run the reference.
-  if (device != "auto" && device != "host") {
-    throw InputError(fmt::format("--device {}: this build simulates on the host reference only; use --device host "
-                                 "or auto (`pdmesh devices` lists the OpenCL devices)",
-                                 device));
+  // auto: the first GPU, else the first CPU OpenCL device, else the host reference. An explicit
+  // opencl spec that cannot be met throws InputError listing the devices (exit 2).
+  std::optional<ocl::DeviceInfo> chosen;
+  if (device != "host") {
+    chosen = ocl::select_device(device);
+    if (!chosen) progress(config, "note: no OpenCL platform or device found; simulating on the host reference");
   }
-  if (config.simulation.precision == Precision::Float) {
+  bool use_float = config.simulation.precision == Precision::Float;
+  if (!chosen && use_float)
     progress(config, "note: the host reference computes in double precision; --precision float is ignored");
+  if (chosen && !use_float && !chosen->fp64) {
+    progress(config, "note: {} has no double precision (cl_khr_fp64); simulating in float", chosen->name);
+    use_float = true;
   }
+  std::unique_ptr<ocl::Context> context;
+  if (chosen) context = std::make_unique<ocl::Context>(*chosen);
   SimOptions options;
   options.iterations = static_cast<int>(config.simulation.iterations);
   options.dt_initial = config.simulation.dt_for(config.init.method);
@@ -174,9 +183,14 @@ SimResult simulate(const CaseConfig& config, const MeshInputs& inputs, NodeSet& 
   options.r0_any_direction = config.simulation.r0_any_direction;
   options.stability_factor = config.simulation.stability_factor;
   options.quiet = config.quiet;
-  progress(config, "simulation: {} iterations on the host reference (double), cutoff {}, a = {}, r0 rule {}, "
-           "stability factor {}",
-           options.iterations, options.cutoff, options.lj_a,
+  options.device = context.get();
+  options.device_float = use_float;
+  const std::string where = chosen ? fmt::format("opencl:{}:{} ({}, {}, {}, device-resident)", chosen->platform,
+                                                 chosen->device, chosen->name, chosen->type,
+                                                 use_float ? "float" : "double")
+                                   : std::string("the host reference (double)");
+  progress(config, "simulation: {} iterations on {}, cutoff {}, a = {}, r0 rule {}, stability factor {}",
+           options.iterations, where, options.cutoff, options.lj_a,
            options.r0_any_direction ? "any_direction" : "force_direction", options.stability_factor);
   SimResult result = run_simulation(nodes, *inputs.tree, *inputs.spacing, options);
   const SimStats& st = result.stats;

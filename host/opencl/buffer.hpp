@@ -41,16 +41,17 @@ class Buffer {
     if (count > count_)
       throw DeviceError(fmt::format("upload of {} elements into buffer '{}' of {}", count, name_, count_));
     if (count == 0) return;
-    check(q.enqueueWriteBuffer(buffer_, blocking ? CL_TRUE : CL_FALSE, 0, sizeof(T) * count, data),
-          fmt::format("upload to '{}'", name_));
+    // The message is formatted only on failure: transfers run every iteration.
+    const cl_int err = q.enqueueWriteBuffer(buffer_, blocking ? CL_TRUE : CL_FALSE, 0, sizeof(T) * count, data);
+    if (err != CL_SUCCESS) check(err, fmt::format("upload to '{}'", name_));
   }
   void download(cl::CommandQueue& q, std::vector<T>& host, std::size_t count) {
     if (count > count_)
       throw DeviceError(fmt::format("download of {} elements from buffer '{}' of {}", count, name_, count_));
     host.resize(count);
     if (count == 0) return;
-    check(q.enqueueReadBuffer(buffer_, CL_TRUE, 0, sizeof(T) * count, host.data()),
-          fmt::format("download from '{}'", name_));
+    const cl_int err = q.enqueueReadBuffer(buffer_, CL_TRUE, 0, sizeof(T) * count, host.data());
+    if (err != CL_SUCCESS) check(err, fmt::format("download from '{}'", name_));
   }
   void download(cl::CommandQueue& q, std::vector<T>& host) { download(q, host, count_); }
 

@@ -70,8 +70,9 @@ void launch(cl::CommandQueue& queue, cl::Kernel& kernel, const std::string& name
             std::size_t local) {
   if (count == 0) return;
   std::size_t global = (count + local - 1) / local * local;
-  check(queue.enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange(global), cl::NDRange(local)),
-        fmt::format("enqueue '{}' ({} work-items, local size {})", name, global, local));
+  // The message is formatted only on failure: launches run every iteration.
+  const cl_int err = queue.enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange(global), cl::NDRange(local));
+  if (err != CL_SUCCESS) check(err, fmt::format("enqueue '{}' ({} work-items, local size {})", name, global, local));
 }
 
 }  // namespace pdmesh::ocl

@@ -94,10 +94,29 @@ void BoundaryHandler::curve_neighbours(const NodeSet& nodes, std::vector<int>& p
 }
 
 BoundaryCounts BoundaryHandler::apply(NodeSet& nodes, const std::vector<double>& dx, const std::vector<double>& dy) {
-  const Geometry& geometry = tree_.geometry();
   BoundaryCounts counts;
-  tangent_.resize(nodes.size());
+  move_boundary_nodes(nodes, dx, dy, counts);
+  // 2. Interior nodes, in index order (snapped nodes change curve_nodes for the ones after them).
+  for (std::size_t i = 0; i < nodes.size(); ++i)
+    if (nodes.kind[i] == NodeKind::Interior) move_interior_node(nodes, i, dx, dy, counts);
+  return counts;
+}
 
+BoundaryCounts BoundaryHandler::apply_subset(NodeSet& nodes, const std::vector<double>& dx,
+                                             const std::vector<double>& dy, const std::vector<int>& interior) {
+  BoundaryCounts counts;
+  move_boundary_nodes(nodes, dx, dy, counts);
+  for (int node : interior) {
+    const auto i = static_cast<std::size_t>(node);
+    if (nodes.kind[i] == NodeKind::Interior) move_interior_node(nodes, i, dx, dy, counts);
+  }
+  return counts;
+}
+
+void BoundaryHandler::move_boundary_nodes(NodeSet& nodes, const std::vector<double>& dx, const std::vector<double>& dy,
+                                          BoundaryCounts& counts) {
+  const Geometry& geometry = tree_.geometry();
+  tangent_.resize(nodes.size());
   // 1. Boundary nodes: every new arc position from the old ones (Jacobi), then commit.
   for (std::size_t c = 0; c < geometry.curves.size(); ++c) {
     const Curve& curve = geometry.curves[c];
@@ -117,23 +136,21 @@ BoundaryCounts BoundaryHandler::apply(NodeSet& nodes, const std::vector<double>&
       tangent_[node] = cp.tangent;
     }
   }
+}
 
-  // 2. Interior nodes, in index order (snapped nodes change curve_nodes for the ones after them).
-  for (std::size_t i = 0; i < nodes.size(); ++i) {
-    if (nodes.kind[i] != NodeKind::Interior) continue;
-    const Vec2 from = nodes.x[i];
-    const Vec2 target{from.x + dx[i], from.y + dy[i]};
-    if (!std::isfinite(target.x) || !std::isfinite(target.y))
-      throw SimulationError(fmt::format("node {} moved from ({}, {}) to a non-finite position ({}, {})", i, from.x,
-                                        from.y, target.x, target.y));
-    if (tree_.inside(target) && !tree_.crosses_boundary(from, target)) {
-      nodes.x[i] = target;
-      continue;
-    }
-    insert_snapped(nodes, static_cast<int>(i), target);
-    ++counts.snapped;
+void BoundaryHandler::move_interior_node(NodeSet& nodes, std::size_t i, const std::vector<double>& dx,
+                                         const std::vector<double>& dy, BoundaryCounts& counts) {
+  const Vec2 from = nodes.x[i];
+  const Vec2 target{from.x + dx[i], from.y + dy[i]};
+  if (!std::isfinite(target.x) || !std::isfinite(target.y))
+    throw SimulationError(fmt::format("node {} moved from ({}, {}) to a non-finite position ({}, {})", i, from.x,
+                                      from.y, target.x, target.y));
+  if (tree_.inside(target) && !tree_.crosses_boundary(from, target)) {
+    nodes.x[i] = target;
+    return;
   }
-  return counts;
+  insert_snapped(nodes, static_cast<int>(i), target);
+  ++counts.snapped;
 }
 
 void BoundaryHandler::insert_snapped(NodeSet& nodes, int node, Vec2 target) {

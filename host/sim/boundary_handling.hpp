@@ -43,6 +43,11 @@ class BoundaryHandler {
   // Moves every node by (dx, dy) (Fixed nodes ignore it) and handles the boundary: updates
   // nodes.x, kind, curve and curve_nodes. Nodes are processed in index order (reproducible).
   BoundaryCounts apply(NodeSet& nodes, const std::vector<double>& dx, const std::vector<double>& dy);
+  // apply() with the interior step restricted to `interior` (ascending node indices): for the
+  // device-resident run, whose device already moved every other interior node (surely inside).
+  // dx, dy are read only at Boundary nodes and at `interior`.
+  BoundaryCounts apply_subset(NodeSet& nodes, const std::vector<double>& dx, const std::vector<double>& dy,
+                              const std::vector<int>& interior);
 
   // Unit tangent of a Boundary node (zero for other kinds).
   Vec2 tangent(int node) const { return tangent_[static_cast<std::size_t>(node)]; }
@@ -53,6 +58,10 @@ class BoundaryHandler {
 
  private:
   void insert_snapped(NodeSet& nodes, int node, Vec2 target);
+  void move_boundary_nodes(NodeSet& nodes, const std::vector<double>& dx, const std::vector<double>& dy,
+                           BoundaryCounts& counts);
+  void move_interior_node(NodeSet& nodes, std::size_t i, const std::vector<double>& dx, const std::vector<double>& dy,
+                          BoundaryCounts& counts);
 
   const GeometryTree& tree_;
   std::vector<std::vector<double>> arcs_;

@@ -12,6 +12,7 @@
 #include "sim/boundary_handling.hpp"
 #include "sim/global_time_step.hpp"
 #include "sim/progress.hpp"
+#include "opencl/device_simulation.hpp"
 #include "sim/step_trace.hpp"
 #include "spacing/background_field.hpp"
 
@@ -68,6 +69,7 @@ double default_dt_initial(const NodeSet& nodes, double lj_a) {
 SimResult run_simulation(NodeSet& nodes, const GeometryTree& tree, const SpacingField& spacing,
                          const SimOptions& options, const SimCallbacks& callbacks) {
   check_node_set(nodes);
+  if (options.device) return ocl::run_device_simulation(nodes, tree, spacing, options, *options.device, callbacks);
   std::unique_ptr<StepBackend> own_backend;
   StepBackend* backend = options.backend;
   if (!backend) {

@@ -16,6 +16,10 @@
 
 namespace pdmesh {
 
+namespace ocl {
+class Context;
+}  // namespace ocl
+
 struct SimOptions {
   int iterations = 2000;
   std::optional<double> dt_initial;  // initial global maximum time step; empty: default_dt_initial()
@@ -28,6 +32,11 @@ struct SimOptions {
   // (tolerance 1e-3, docs/spacing.md); true: evaluate the given field exactly every iteration.
   bool exact_spacing = false;
   StepBackend* backend = nullptr;    // nullptr: the reference backend
+  // Non-null: run device-resident on this OpenCL device instead (host/opencl/device_simulation.hpp;
+  // needs the background spacing field, so exact_spacing must be false). backend is then unused.
+  ocl::Context* device = nullptr;
+  bool device_float = false;  // device run in float (default double)
+  double verlet_skin = 0.3;  // device run: list radius cutoff q (1 + skin); 0 rebuilds every iteration
 };
 
 struct SimCallbacks {

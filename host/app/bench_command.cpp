@@ -1,0 +1,236 @@
+// `pdmesh bench`: times run_simulation on the host reference and the device-resident run on every
+// OpenCL device, per case, and prints one table row per (case, backend). See bench_command.hpp.
+#include "app/bench_command.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <fstream>
+#include <optional>
+
+#include <fmt/format.h>
+
+#include "app/case_file.hpp"
+#include "app/mesh_command.hpp"
+#include "core/atomic_file.hpp"
+#include "core/errors.hpp"
+#include "geometry/geometry.hpp"
+#include "init/initial_distribution.hpp"
+#include "opencl/context.hpp"
+#include "opencl/device_simulation.hpp"
+#include "opencl/devices.hpp"
+
+namespace pdmesh {
+namespace {
+
+// Peak resident set of this process (VmHWM), bytes; 0 where /proc is missing.
+std::size_t peak_rss() {
+  std::ifstream f("/proc/self/status");
+  std::string key;
+  while (f >> key) {
+    if (key == "VmHWM:") {
+      std::size_t kb = 0;
+      f >> kb;
+      return kb * 1024;
+    }
+    std::getline(f, key);
+  }
+  return 0;
+}
+
+struct BenchCase {
+  std::string name;
+  Geometry geometry;
+  std::unique_ptr<GeometryTree> tree;
+  std::unique_ptr<SpacingField> spacing;
+  NodeSet initial;
+  SimOptions options;
+};
+
+void add_polyline(std::vector<RawCurve>& raw, const std::string& name, Vec2 a, Vec2 b, int segments) {
+  RawCurve c{name, {}, "generated", 0, {}};
+  for (int i = 0; i <= segments; ++i) {
+    const double t = static_cast<double>(i) / segments;
+    c.points.push_back(i == segments ? b : Vec2{a.x + t * (b.x - a.x), a.y + t * (b.y - a.y)});
+  }
+  raw.push_back(std::move(c));
+}
+
+// A square of side 20 around a circle of 256 segments 1000x shorter than the square's: q (eq. 3.6)
+// is graded 1000x, from h_out / 1000 on the circle (radius ~ 41 h_out / 1000) to h_out far away.
+// N ~ 400 * 2 / (sqrt(3) h_out^2) if the far field were at spacing h_out; the circle's pull keeps q
+// smaller over much of the square: measured 5.51x that, hence the factor below.
+Geometry graded_geometry(double h_out) {
+  const double L = 10.0, h_in = h_out / 1000.0;
+  const int side = std::max(1, static_cast<int>(std::lround(2.0 * L / h_out)));
+  const int half = 128;
+  const double r = 2.0 * half * h_in / (2.0 * M_PI);
+  std::vector<RawCurve> raw;
+  add_polyline(raw, "bottom", {-L, -L}, {L, -L}, side);
+  add_polyline(raw, "right", {L, -L}, {L, L}, side);
+  add_polyline(raw, "top", {L, L}, {-L, L}, side);
+  add_polyline(raw, "left", {-L, L}, {-L, -L}, side);
+  for (int k = 0; k < 2; ++k) {
+    RawCurve c{k == 0 ? "circle_upper" : "circle_lower", {}, "generated", 0, {}};
+    for (int i = 0; i <= half; ++i) {
+      const double t = M_PI * (k + static_cast<double>(i) / half);
+      Vec2 p{r * std::cos(t), r * std::sin(t)};
+      if (i == 0) p = {k == 0 ? r : -r, 0.0};
+      if (i == half) p = {k == 0 ? -r : r, 0.0};
+      c.points.push_back(p);
+    }
+    raw.push_back(std::move(c));
+  }
+  return build_geometry(std::move(raw));
+}
+
+std::unique_ptr<BenchCase> generated_case(std::size_t target) {
+  auto c = std::make_unique<BenchCase>();
+  c->name = fmt::format("graded_{}k", target / 1000);
+  const double h = std::sqrt(5.51 * 400.0 * 2.0 / (std::sqrt(3.0) * static_cast<double>(target)));
+  c->geometry = graded_geometry(h);
+  c->tree = std::make_unique<GeometryTree>(c->geometry);
+  c->spacing = std::make_unique<BoundarySpacing>(*c->tree);
+  c->initial = make_initial_distribution(*c->tree, *c->spacing, {}).nodes;
+  c->options.stability_factor = 1.0;  // as pdmesh mesh
+  return c;
+}
+
+std::unique_ptr<BenchCase> file_case(const std::string& dir, const std::string& name) {
+  auto c = std::make_unique<BenchCase>();
+  c->name = name;
+  CaseConfig config = load_case_file(std::filesystem::path(dir) / name / "case.toml");
+  config.quiet = true;
+  MeshInputs inputs(config);
+  c->geometry = inputs.geometry;
+  c->tree = std::make_unique<GeometryTree>(c->geometry);
+  if (config.spacing.field == SpacingKind::Expression)
+    c->spacing = std::make_unique<ExpressionSpacing>(config.spacing.expression);
+  else
+    c->spacing = std::make_unique<BoundarySpacing>(*c->tree);
+  InitOptions init;
+  init.method = config.init.method;
+  init.seed = config.init.seed;
+  if (config.init.total > 0) init.total = static_cast<std::size_t>(config.init.total);
+  c->initial = make_initial_distribution(*c->tree, *c->spacing, init).nodes;
+  c->options.dt_initial = config.simulation.dt_for(config.init.method);
+  c->options.cutoff = config.simulation.cutoff;
+  c->options.lj_a = config.simulation.lj_a;
+  c->options.r0_any_direction = config.simulation.r0_any_direction;
+  c->options.stability_factor = config.simulation.stability_factor;
+  return c;
+}
+
+struct Row {
+  std::string case_name, backend;
+  std::size_t nodes = 0;
+  int iterations = 0;
+  double seconds = 0.0;
+  std::uint64_t pairs_within = 0, pairs_examined = 0;
+  std::optional<ocl::DeviceRunStats> device;
+  std::size_t peak_rss = 0;
+  double host_ms = 0.0;  // the host reference's ms/iteration in the same run (for the ratio)
+};
+
+std::string format_row(const Row& r) {
+  const double per_it = r.seconds / r.iterations;
+  const double node_its = static_cast<double>(r.nodes) * r.iterations / r.seconds;
+  const double pairs = static_cast<double>(r.pairs_within) / r.seconds;
+  std::string split = "-", traffic = "-", device_mem = "-", launches = "-", examined = "-";
+  if (r.device) {
+    const ocl::DeviceRunStats& d = *r.device;
+    const double it = d.iterations;
+    split = fmt::format("bin {:.2f} / gather {:.2f} / step {:.2f} / host {:.2f} / down {:.2f} / up {:.2f} ({} rebuilds)",
+                        1e3 * d.bin_seconds / it, 1e3 * d.gather_seconds / it, 1e3 * d.step_seconds / it,
+                        1e3 * d.host_seconds / it, 1e3 * d.download_seconds / it, 1e3 * d.upload_seconds / it,
+                        d.rebuilds);
+    traffic = fmt::format("{:.0f}", static_cast<double>(d.bytes_down + d.bytes_up) / it);
+    device_mem = fmt::format("{:.0f}", static_cast<double>(d.device_bytes) / static_cast<double>(r.nodes));
+    launches = fmt::format("{:.1f} + {:.1f}", static_cast<double>(d.launches) / it, static_cast<double>(d.transfers) / it);
+    if (d.pairs_listed > 0)
+      examined = fmt::format("{:.2f} (x{:.2f} skin)", static_cast<double>(r.pairs_examined) / d.pairs_listed,
+                             static_cast<double>(d.pairs_listed) * it / d.rebuilds / static_cast<double>(r.pairs_within));
+  } else if (r.pairs_within > 0) {
+    examined = fmt::format("{:.2f}", static_cast<double>(r.pairs_examined) / static_cast<double>(r.pairs_within));
+  }
+  const std::string ratio = r.device && r.host_ms > 0.0 ? fmt::format("{:.2f}", r.host_ms / (1e3 * per_it)) : "-";
+  return fmt::format("| {} | {} | {} | {} | {:.3f} | {:.3g} | {:.3g} | {:.0f} | {} | {} | {} | {} | {} | {} |\n",
+                     r.case_name, r.backend, r.nodes, r.iterations, 1e3 * per_it, node_its, pairs,
+                     1e9 * per_it / static_cast<double>(r.nodes), examined, split, traffic, launches,
+                     fmt::format("{:.0f} / {}", static_cast<double>(r.peak_rss) / static_cast<double>(r.nodes), device_mem),
+                     ratio);
+}
+
+}  // namespace
+
+int run_bench(const BenchArguments& args) {
+  if (args.warmup < 0 || args.large_warmup < 0)
+    throw InputError(fmt::format("bench: --warmup must be >= 0, got {}", args.warmup));
+  if (args.iterations < 1 || args.large_iterations < 1)
+    throw InputError(fmt::format("bench: --iterations and --large-iterations must be >= 1, got {} and {}",
+                                 args.iterations, args.large_iterations));
+  if (args.precision != "double" && args.precision != "float")
+    throw InputError(fmt::format("bench: --precision must be double or float, got '{}'", args.precision));
+  const std::vector<ocl::DeviceInfo> devices = ocl::list_devices();
+  std::string table =
+      "| case | backend | nodes | iterations | ms/iteration | node-iterations/s | pair interactions/s | ns per "
+      "node-iteration | pairs examined per pair | device split, ms/iteration | bytes/iteration | launches + transfers "
+      "/iteration | peak host RSS / device bytes per node | host/device time |\n"
+      "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+  fmt::print("{}", table);
+  for (const std::string& name : args.cases) {
+    const bool large = name == "graded_1m";
+    std::unique_ptr<BenchCase> c = large ? generated_case(args.large_nodes) : file_case(args.cases_dir, name);
+    SimOptions options = c->options;
+    options.iterations = large ? args.large_iterations : args.iterations;
+    options.quiet = true;
+    {
+      const int warm = large ? args.large_warmup : args.warmup;
+      SimOptions w = options;
+      w.iterations = warm;
+      std::optional<ocl::Context> ctx;
+      if (!devices.empty()) {
+        ctx.emplace(devices.front());
+        w.device = &*ctx;
+        w.device_float = args.precision == "float" || !devices.front().fp64;
+      }
+      if (warm > 0) {
+        const SimResult r = run_simulation(c->initial, *c->tree, *c->spacing, w);
+        // Continue with the dt_GM the warm-up ended with.
+        if (!r.history.empty()) options.dt_initial = r.history.back().dt_gm;
+      }
+    }
+    double host_ms = 0.0;
+    auto emit = [&](const Row& row) {
+      const std::string line = format_row(row);
+      fmt::print("{}", line);
+      std::fflush(stdout);
+      table += line;
+    };
+    if (!args.skip_host && !(large && args.skip_host_large)) {
+      NodeSet nodes = c->initial;
+      const SimResult r = run_simulation(nodes, *c->tree, *c->spacing, options);
+      Row row{c->name, "host reference", nodes.size(), options.iterations, r.stats.seconds, r.stats.pairs_within,
+              r.stats.pairs_examined, std::nullopt, peak_rss(), 0.0};
+      host_ms = 1e3 * r.stats.seconds / options.iterations;
+      emit(row);
+    }
+    for (const ocl::DeviceInfo& info : devices) {
+      ocl::Context ctx(info);
+      SimOptions o = options;
+      o.device = &ctx;
+      o.device_float = args.precision == "float" || !info.fp64;
+      NodeSet nodes = c->initial;
+      ocl::DeviceRunStats stats;
+      const SimResult r = ocl::run_device_simulation(nodes, *c->tree, *c->spacing, o, ctx, {}, &stats);
+      Row row{c->name,
+              fmt::format("opencl:{}:{} {} ({})", info.platform, info.device, info.type, o.device_float ? "float" : "double"),
+              nodes.size(), o.iterations, r.stats.seconds, r.stats.pairs_within, r.stats.pairs_examined, stats,
+              peak_rss(), host_ms};
+      emit(row);
+    }
+  }
+  if (!args.out.empty()) write_file_atomically(args.out, table);
+  return 0;
+}
+
+}  // namespace pdmesh

@@ -1,0 +1,30 @@
+// `pdmesh bench`: the simulation's speed on the host reference and on each OpenCL device, over
+// naca0012, rods_fine, 30p30n and a generated ~1M-node case graded 1000x (docs/performance.md).
+#pragma once
+#include <cstddef>
+#include <string>
+#include <vector>
+
+namespace pdmesh {
+
+struct BenchArguments {
+  std::vector<std::string> cases = {"naca0012", "rods_fine", "30p30n", "graded_1m"};
+  std::string cases_dir = "cases";  // where the named cases live
+  int iterations = 50;              // per case and backend
+  int large_iterations = 10;        // for graded_1m
+  std::size_t large_nodes = 1'000'000;
+  // Untimed iterations from the initial distribution (on the first OpenCL device, else the host)
+  // before every backend is timed from the same warmed-up state: the first ~100 iterations of a
+  // run move nodes far (lists rebuilt every iteration) and are not what most of a 2000-iteration run costs.
+  int warmup = 200;
+  int large_warmup = 20;
+  std::string precision = "double";
+  bool skip_host = false;           // devices only
+  bool skip_host_large = false;     // the host reference takes seconds per iteration at 1M nodes
+  std::string out;                  // the table as Markdown (atomic write); empty: stdout only
+};
+
+// Runs the benchmark and prints the table; returns the exit status.
+int run_bench(const BenchArguments& args);
+
+}  // namespace pdmesh

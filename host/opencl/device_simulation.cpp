@@ -1,0 +1,408 @@
+// The device-resident simulation loop; see device_simulation.hpp and docs/opencl.md. Per iteration:
+// [rebuild the Verlet lists when the skin is used up] -> device_step (forces, r0, time step, move,
+// spacing, tags, partial sums) -> download partials, boundary and flagged records -> host boundary
+// handling on those nodes only -> upload their positions -> apply_host_moves -> dt rule on the host.
+#include "opencl/device_simulation.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+#include "core/errors.hpp"
+#include "opencl/device_neighbours.hpp"
+#include "opencl/step_program.hpp"
+#include "sim/boundary_handling.hpp"
+#include "sim/global_time_step.hpp"
+#include "sim/progress.hpp"
+#include "spacing/background_field.hpp"
+
+namespace pdmesh::ocl {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+// A node pair can only be missing from a Verlet list built with radius cutoff q_b (1 + skin) once
+// d_i + d_j + cutoff (q_i - q_b,i) reaches skin cutoff q_b,i. Each node's own use of its skin is
+// kept below this fraction, so the sum stays below the skin while neighbouring spacings differ by
+// less than 3x (the spacing fields here vary by far less over a cut-off distance).
+constexpr double kSkinUseLimit = 0.25;
+
+template <typename Real>
+class DeviceRun {
+ public:
+  DeviceRun(NodeSet& nodes, const GeometryTree& tree, const SpacingField& spacing, const SimOptions& options,
+            Context& ctx, DeviceRunStats& stats)
+      : nodes_(nodes), options_(options), ctx_(ctx), stats_(stats), boundary_(tree, nodes),
+        background_(spacing, tree), program_(ctx, std::is_same_v<Real, double> ? Precision::Double : Precision::Float),
+        neighbours_(ctx, program_), n_(nodes.size()) {}
+
+  SimResult run(const SimCallbacks& callbacks);
+
+ private:
+  void upload_initial();
+  void upload_topology();  // kind, prev, next, boundary slots (start and after snapping)
+  void rebuild();
+  void step_kernel(double dt_gm2);
+  BoundaryCounts host_boundary(double& skin_use);
+  void bg_args(ArgSetter& a) {
+    const BackgroundFieldData& d = background_.data();
+    a(static_cast<Real>(d.origin_x))(static_cast<Real>(d.origin_y))(static_cast<Real>(d.inv_root_size))(
+        static_cast<cl_int>(d.grid))(bg_root_)(bg_child_)(bg_corner_)(bg_tag_)(bg_q_);
+  }
+  template <typename T>
+  void read(Buffer<T>& b, std::vector<T>& host, std::size_t count) {
+    b.download(ctx_.queue(), host, count);
+    ++stats_.transfers;
+    stats_.bytes_down += count * sizeof(T);
+  }
+  template <typename T>
+  void write(Buffer<T>& b, const std::vector<T>& host) {
+    b.upload(ctx_.queue(), host);
+    ++stats_.transfers;
+    stats_.bytes_up += host.size() * sizeof(T);
+  }
+  std::size_t groups() const { return (n_ + program_.work_group - 1) / program_.work_group; }
+
+  NodeSet& nodes_;
+  const SimOptions& options_;
+  Context& ctx_;
+  DeviceRunStats& stats_;
+  BoundaryHandler boundary_;
+  BackgroundSpacing background_;
+  StepProgram program_;
+  DeviceNeighbours<Real> neighbours_;
+  std::size_t n_;
+  int stride_ = 16;
+  int cur_ = 0;  // which of the double-buffered x, y, q is current
+  Buffer<Real> x_[2], y_[2], q_[2], tx_, ty_, x_build_, y_build_, q_build_, brec_, cand_rec_, partials_, rec_, bg_q_;
+  Buffer<std::uint8_t> kind_, tag_;
+  Buffer<std::int32_t> prev_, next_, bslot_, cand_index_, counters_, rec_index_, bg_root_, bg_child_, bg_corner_,
+      bg_tag_;
+  // Host mirrors.
+  std::vector<std::uint8_t> kind_host_;
+  std::vector<std::int32_t> boundary_nodes_;  // Boundary nodes in slot order
+  std::vector<double> build_x_, build_y_, build_q_;  // positions and spacings at the last build
+  std::vector<double> dx_, dy_;                      // host displacement scratch (full size, sparse use)
+  std::vector<std::int32_t> candidates_;
+  std::vector<Real> part_, brec_host_, cand_rec_host_;
+  double skin_use_ = HUGE_VAL;                       // since the last build; HUGE_VAL forces a build
+  std::uint64_t pairs_examined_ = 0;
+  std::size_t within_ = 0, coincident_ = 0, sum_moving_ = 0;
+  double sum_force_ = 0, sum_kinetic_ = 0, max_force_ = 0, device_skin_use_ = 0;
+};
+
+template <typename Real>
+void DeviceRun<Real>::upload_initial() {
+  const std::size_t n = n_;
+  std::vector<double> x(n), y(n), tx(n), ty(n);
+  std::vector<std::uint8_t> tag(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    x[i] = nodes_.x[i].x;
+    y[i] = nodes_.x[i].y;
+    const Vec2 t = boundary_.tangent(static_cast<int>(i));
+    tx[i] = t.x;
+    ty[i] = t.y;
+    tag[i] = static_cast<std::uint8_t>(background_.tag_at(nodes_.x[i]));
+  }
+  for (int b = 0; b < 2; ++b) {
+    x_[b] = Buffer<Real>(ctx_, "x", n);
+    y_[b] = Buffer<Real>(ctx_, "y", n);
+    q_[b] = Buffer<Real>(ctx_, "q", n);
+  }
+  for (auto* b : {&tx_, &ty_, &x_build_, &y_build_, &q_build_}) *b = Buffer<Real>(ctx_, "node_array", n);
+  tag_ = Buffer<std::uint8_t>(ctx_, "tag", n);
+  write(x_[0], to_real<Real>(x));
+  write(y_[0], to_real<Real>(y));
+  write(q_[0], to_real<Real>(nodes_.q));
+  write(tx_, to_real<Real>(tx));
+  write(ty_, to_real<Real>(ty));
+  write(tag_, tag);
+  cand_index_ = Buffer<std::int32_t>(ctx_, "cand_index", n);
+  cand_rec_ = Buffer<Real>(ctx_, "cand_rec", 4 * n);
+  counters_ = Buffer<std::int32_t>(ctx_, "step_counters", 1);
+  partials_ = Buffer<Real>(ctx_, "partials", kStepPartials * groups());
+  const BackgroundFieldData& d = background_.data();
+  bg_root_ = Buffer<std::int32_t>(ctx_, "bg_root_node", d.root_node.size());
+  bg_child_ = Buffer<std::int32_t>(ctx_, "bg_node_child", d.node_child.size());
+  bg_corner_ = Buffer<std::int32_t>(ctx_, "bg_leaf_corner", d.leaf_corner.size());
+  bg_tag_ = Buffer<std::int32_t>(ctx_, "bg_leaf_tag", d.leaf_tag.size());
+  bg_q_ = Buffer<Real>(ctx_, "bg_corner_q", d.corner_q.size());
+  write(bg_root_, d.root_node);
+  write(bg_child_, d.node_child);
+  write(bg_corner_, d.leaf_corner);
+  write(bg_tag_, d.leaf_tag);
+  write(bg_q_, to_real<Real>(d.corner_q));
+  kind_host_.resize(n);
+  upload_topology();
+  dx_.assign(n, 0.0);
+  dy_.assign(n, 0.0);
+  build_x_ = x;
+  build_y_ = y;
+  build_q_ = nodes_.q;
+}
+
+template <typename Real>
+void DeviceRun<Real>::upload_topology() {
+  const std::size_t n = n_;
+  std::vector<int> prev, next;
+  boundary_.curve_neighbours(nodes_, prev, next);
+  std::vector<std::int32_t> bslot(n, -1);
+  boundary_nodes_.clear();
+  for (std::size_t i = 0; i < n; ++i) {
+    kind_host_[i] = static_cast<std::uint8_t>(nodes_.kind[i]);
+    if (nodes_.kind[i] == NodeKind::Boundary) {
+      bslot[i] = static_cast<std::int32_t>(boundary_nodes_.size());
+      boundary_nodes_.push_back(static_cast<std::int32_t>(i));
+    }
+  }
+  ensure_size(ctx_, kind_, "kind", n);
+  ensure_size(ctx_, prev_, "prev", n);
+  ensure_size(ctx_, next_, "next", n);
+  ensure_size(ctx_, bslot_, "bslot", n);
+  ensure_size(ctx_, brec_, "brec", 4 * boundary_nodes_.size());
+  write(kind_, kind_host_);
+  write(prev_, std::vector<std::int32_t>(prev.begin(), prev.end()));
+  write(next_, std::vector<std::int32_t>(next.begin(), next.end()));
+  write(bslot_, bslot);
+}
+
+template <typename Real>
+void DeviceRun<Real>::rebuild() {
+  const std::size_t n = n_;
+  if (stats_.rebuilds > 0) {
+    // The host needs every position only here (rare with the skin): to bin.
+    std::vector<Real> v;
+    for (auto [buf, host] : {std::pair{&x_[cur_], &build_x_}, {&y_[cur_], &build_y_}, {&q_[cur_], &build_q_}}) {
+      read(*buf, v, n);
+      host->assign(v.begin(), v.end());
+    }
+  }
+  const double radius = options_.cutoff * (1.0 + options_.verlet_skin);
+  NeighbourFlags flags = neighbours_.build(build_x_.data(), build_y_.data(), build_q_.data(), kind_host_.data(), n,
+                                           radius, x_[cur_], y_[cur_], q_[cur_], kind_, prev_, next_, stride_, true);
+  if (flags.first_invalid >= 0) {
+    const auto i = static_cast<std::size_t>(flags.first_invalid);
+    throw SimulationError(fmt::format("node {} is invalid before binning: x = ({}, {}), q = {}", i, build_x_[i],
+                                      build_y_[i], build_q_[i]));
+  }
+  if (flags.overflow)
+    throw SimulationError(fmt::format("neighbour list still overflows at stride {} (max count {})", stride_,
+                                      flags.max_count));
+  stats_.bin_seconds += neighbours_.bin_seconds;
+  stats_.gather_seconds += neighbours_.gather_seconds;
+  stats_.bytes_up += neighbours_.uploaded_bytes;
+  stats_.launches += 1;
+  pairs_examined_ += flags.pairs_examined;
+  stats_.pairs_listed += flags.pairs_within;
+  // The build state the skin is measured from.
+  for (auto [from, to] : {std::pair{&x_[cur_], &x_build_}, {&y_[cur_], &y_build_}, {&q_[cur_], &q_build_}})
+    check(ctx_.queue().enqueueCopyBuffer(from->get(), to->get(), 0, 0, n * sizeof(Real)), "copy to the build state");
+  ++stats_.rebuilds;
+  skin_use_ = 0.0;
+}
+
+template <typename Real>
+void DeviceRun<Real>::step_kernel(double dt_gm2) {
+  const int next = 1 - cur_;
+  const std::vector<std::int32_t> zero(1, 0);
+  write(counters_, zero);
+  ArgSetter a(program_.device_step, "device_step");
+  a(static_cast<cl_int>(n_))(static_cast<cl_int>(stride_))(static_cast<Real>(options_.cutoff))(
+      static_cast<Real>(options_.lj_a))(static_cast<cl_int>(options_.r0_any_direction ? 1 : 0))(
+      static_cast<Real>(options_.stability_factor))(static_cast<Real>(dt_gm2))(static_cast<Real>(options_.verlet_skin * options_.cutoff))(x_[cur_])(y_[cur_])(
+      q_[cur_])(kind_)(tx_)(ty_)(neighbours_.count())(neighbours_.index())(x_build_)(y_build_)(q_build_)(bslot_)(
+      x_[next])(y_[next])(q_[next])(tag_)(brec_)(cand_index_)(cand_rec_)(counters_)(partials_);
+  bg_args(a);
+  launch(ctx_.queue(), program_.device_step, "device_step", n_, program_.work_group);
+  ++stats_.launches;
+  auto t0 = Clock::now();
+  check(ctx_.queue().finish(), "device_step");
+  stats_.step_seconds += since(t0);
+  t0 = Clock::now();
+  read(partials_, part_, kStepPartials * groups());
+  std::vector<std::int32_t> count;
+  read(counters_, count, 1);
+  const auto m = static_cast<std::size_t>(count[0]);
+  read(brec_, brec_host_, 4 * boundary_nodes_.size());
+  std::vector<std::int32_t> cand;
+  if (m > 0) {
+    read(cand_index_, cand, m);
+    read(cand_rec_, cand_rec_host_, 4 * m);
+  }
+  stats_.download_seconds += since(t0);
+  // Sums in group order.
+  sum_force_ = sum_kinetic_ = max_force_ = device_skin_use_ = 0.0;
+  sum_moving_ = within_ = coincident_ = 0;
+  for (std::size_t g = 0; g < groups(); ++g) {
+    const Real* p = part_.data() + kStepPartials * g;
+    sum_force_ += static_cast<double>(p[0]);
+    sum_kinetic_ += static_cast<double>(p[1]);
+    sum_moving_ += static_cast<std::size_t>(p[2]);
+    within_ += static_cast<std::size_t>(p[3]);
+    coincident_ += static_cast<std::size_t>(p[4]);
+    max_force_ = std::max(max_force_, static_cast<double>(p[5]));
+    device_skin_use_ = std::max(device_skin_use_, static_cast<double>(p[6]));
+  }
+  // Candidates in index order (the reference handles interior nodes in index order).
+  std::vector<std::size_t> order(m);
+  for (std::size_t k = 0; k < m; ++k) order[k] = k;
+  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return cand[a] < cand[b]; });
+  candidates_.resize(m);
+  for (std::size_t k = 0; k < m; ++k) {
+    const std::size_t r = order[k];
+    const auto i = static_cast<std::size_t>(cand[r]);
+    candidates_[k] = cand[r];
+    nodes_.x[i] = {static_cast<double>(cand_rec_host_[4 * r]), static_cast<double>(cand_rec_host_[4 * r + 1])};
+    dx_[i] = static_cast<double>(cand_rec_host_[4 * r + 2]);
+    dy_[i] = static_cast<double>(cand_rec_host_[4 * r + 3]);
+  }
+  stats_.candidates += m;
+  for (std::size_t s = 0; s < boundary_nodes_.size(); ++s) {
+    const auto i = static_cast<std::size_t>(boundary_nodes_[s]);
+    dx_[i] = static_cast<double>(brec_host_[4 * s + 2]);
+    dy_[i] = static_cast<double>(brec_host_[4 * s + 3]);
+  }
+}
+
+template <typename Real>
+BoundaryCounts DeviceRun<Real>::host_boundary(double& skin_use) {
+  auto t0 = Clock::now();
+  const BoundaryCounts counts = boundary_.apply_subset(nodes_, dx_, dy_, candidates_);
+  if (counts.snapped > 0) upload_topology();  // kinds and curve neighbours changed (rare)
+  // Records: every boundary node (re-snapped, with its tangent) and every candidate still interior.
+  std::vector<std::int32_t> index;
+  std::vector<Real> rec;
+  index.reserve(boundary_nodes_.size() + candidates_.size());
+  rec.reserve(4 * index.capacity());
+  auto add = [&](std::int32_t node) {
+    const auto i = static_cast<std::size_t>(node);
+    const Vec2 p = nodes_.x[i], t = boundary_.tangent(node);
+    index.push_back(node);
+    for (double v : {p.x, p.y, t.x, t.y}) rec.push_back(static_cast<Real>(v));
+    const double ex = p.x - build_x_[i], ey = p.y - build_y_[i];
+    const double q = background_.at(p);
+    const double grow = q > build_q_[i] ? options_.cutoff * (q - build_q_[i]) : 0.0;
+    skin_use = std::max(skin_use, (std::sqrt(ex * ex + ey * ey) + grow) / (options_.verlet_skin * options_.cutoff *
+                                                                            build_q_[i]));
+  };
+  for (std::int32_t node : boundary_nodes_) add(node);
+  for (std::int32_t node : candidates_)
+    if (nodes_.kind[static_cast<std::size_t>(node)] == NodeKind::Interior) add(node);
+  stats_.host_seconds += since(t0);
+  t0 = Clock::now();
+  if (!index.empty()) {
+    ensure_size(ctx_, rec_index_, "rec_index", index.size());
+    ensure_size(ctx_, rec_, "rec", rec.size());
+    write(rec_index_, index);
+    write(rec_, rec);
+    const int next = 1 - cur_;
+    ArgSetter a(program_.apply_host_moves, "apply_host_moves");
+    a(static_cast<cl_int>(index.size()))(rec_index_)(rec_)(x_[next])(y_[next])(q_[next])(tx_)(ty_)(tag_);
+    bg_args(a);
+    launch(ctx_.queue(), program_.apply_host_moves, "apply_host_moves", index.size(), program_.work_group);
+    ++stats_.launches;
+    check(ctx_.queue().finish(), "apply_host_moves");
+  }
+  stats_.upload_seconds += since(t0);
+  return counts;
+}
+
+template <typename Real>
+SimResult DeviceRun<Real>::run(const SimCallbacks& callbacks) {
+  SimResult result;
+  result.stats.backend = fmt::format("opencl:{}:{} ({}, {}, device-resident)", ctx_.device().platform,
+                                     ctx_.device().device, ctx_.device().name,
+                                     std::is_same_v<Real, double> ? "double" : "float");
+  result.stats.dt_initial = options_.dt_initial ? *options_.dt_initial : default_dt_initial(nodes_, options_.lj_a);
+  if (!(result.stats.dt_initial > 0.0) || !std::isfinite(result.stats.dt_initial))
+    throw InputError(fmt::format("simulation.dt_initial must be a positive number, got {}", result.stats.dt_initial));
+  if (!(options_.verlet_skin >= 0.0))
+    throw InputError(fmt::format("the Verlet skin must be >= 0, got {}", options_.verlet_skin));
+  GlobalTimeStep gm(result.stats.dt_initial);
+  ProgressLine progress(options_.quiet);
+  upload_initial();  // setup, like the host path's, is not part of the timed iterations
+  stats_.setup_bytes = stats_.bytes_up;
+  stats_.bytes_up = 0;
+  stats_.transfers = 0;
+  const auto start = Clock::now();
+  std::size_t fixed = nodes_.count(NodeKind::Fixed), on_boundary = nodes_.count(NodeKind::Boundary);
+  std::size_t interior = nodes_.count(NodeKind::Interior);
+  result.history.reserve(static_cast<std::size_t>(std::max(0, options_.iterations)));
+  for (int iteration = 1; iteration <= options_.iterations; ++iteration) {
+    // A zero skin rebuilds every iteration (the reference's behaviour).
+    if (skin_use_ > kSkinUseLimit || options_.verlet_skin == 0.0) rebuild();
+    const double dt_gm = gm.dt();
+    step_kernel(gm.dt2());
+    if (!std::isfinite(sum_force_) || !std::isfinite(sum_kinetic_)) {
+      std::size_t bad = candidates_.empty() ? 0 : static_cast<std::size_t>(candidates_.front());
+      throw SimulationError(fmt::format("iteration {}: non-finite force near node {} at ({}, {})", iteration, bad,
+                                        bad < n_ ? nodes_.x[bad].x : 0.0, bad < n_ ? nodes_.x[bad].y : 0.0));
+    }
+    double skin_use = device_skin_use_;
+    const BoundaryCounts counts = host_boundary(skin_use);
+    cur_ = 1 - cur_;
+    skin_use_ = std::max(skin_use_, skin_use);
+
+    HistoryRow row;
+    row.iteration = iteration;
+    const double moving = sum_moving_ > 0 ? static_cast<double>(sum_moving_) : 1.0;
+    row.average_force = sum_force_ / moving;
+    row.average_kinetic = sum_kinetic_ / moving;
+    row.max_force = max_force_;
+    row.dt_gm = dt_gm;
+    row.snapped = counts.snapped;
+    row.clamped = counts.clamped;
+    on_boundary += counts.snapped;
+    interior -= counts.snapped;
+    row.fixed = fixed;
+    row.boundary = on_boundary;
+    row.interior = interior;
+    gm.update(max_force_);
+    result.stats.pairs_within += within_;
+    result.stats.coincident_pairs += coincident_;
+    result.stats.snapped += counts.snapped;
+    result.history.push_back(row);
+    ++stats_.iterations;
+    if (callbacks.on_iteration) callbacks.on_iteration(row);
+    progress.update(iteration, options_.iterations, row.average_force, dt_gm);
+  }
+  progress.finish();
+  // Final state: interior positions and every q from the device; boundary positions stay the host's.
+  std::vector<Real> x, y, q;
+  const std::uint64_t down = stats_.bytes_down, transfers = stats_.transfers;  // the final download is not per iteration
+  read(x_[cur_], x, n_);
+  read(y_[cur_], y, n_);
+  read(q_[cur_], q, n_);
+  stats_.bytes_down = down;
+  stats_.transfers = transfers;
+  for (std::size_t i = 0; i < n_; ++i) {
+    if (nodes_.kind[i] == NodeKind::Interior) nodes_.x[i] = {static_cast<double>(x[i]), static_cast<double>(y[i])};
+    nodes_.q[i] = static_cast<double>(q[i]);
+  }
+  result.stats.pairs_examined = pairs_examined_;
+  result.stats.seconds = since(start);
+  stats_.stride = stride_;
+  stats_.device_bytes = neighbours_.device_bytes() + partials_.bytes() + cand_index_.bytes() + cand_rec_.bytes() +
+                        brec_.bytes() + kind_.bytes() + tag_.bytes() + prev_.bytes() + next_.bytes() +
+                        bslot_.bytes() + bg_q_.bytes() + bg_root_.bytes() + bg_child_.bytes() + bg_corner_.bytes() +
+                        bg_tag_.bytes() + rec_.bytes() + rec_index_.bytes() +
+                        (6 + 5) * n_ * sizeof(Real);
+  return result;
+}
+
+}  // namespace
+
+SimResult run_device_simulation(NodeSet& nodes, const GeometryTree& tree, const SpacingField& spacing,
+                                const SimOptions& options, Context& ctx, const SimCallbacks& callbacks,
+                                DeviceRunStats* stats) {
+  if (options.exact_spacing)
+    throw InputError("the device-resident simulation reads the background spacing field; exact_spacing needs --device host");
+  DeviceRunStats local;
+  DeviceRunStats& s = stats ? *stats : local;
+  s = DeviceRunStats{};
+  if (options.device_float) return DeviceRun<float>(nodes, tree, spacing, options, ctx, s).run(callbacks);
+  return DeviceRun<double>(nodes, tree, spacing, options, ctx, s).run(callbacks);
+}
+
+}  // namespace pdmesh::ocl

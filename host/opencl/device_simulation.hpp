@@ -1,0 +1,39 @@
+// The device-resident simulation: positions, q, kinds and neighbour lists stay on the OpenCL device
+// across iterations; per iteration the host downloads only the boundary nodes (to re-snap them), the
+// interior nodes the device flagged as near the boundary (domain tag != 0: the exact inside test),
+// and per-work-group partial sums. See docs/opencl.md.
+#pragma once
+#include <cstdint>
+
+#include "opencl/context.hpp"
+#include "sim/simulation.hpp"
+
+namespace pdmesh::ocl {
+
+// Where the time and the bytes went (benchmarks, docs/performance.md). Seconds are wall times.
+struct DeviceRunStats {
+  int iterations = 0;
+  int rebuilds = 0;                  // neighbour-list builds (Verlet skin)
+  int stride = 0;                    // final row stride
+  std::uint64_t launches = 0;        // kernel launches
+  std::uint64_t transfers = 0;       // reads + writes enqueued
+  std::uint64_t bytes_down = 0, bytes_up = 0;  // all iterations, including rebuilds, excluding setup
+  std::uint64_t setup_bytes = 0;     // the initial upload (nodes, background field), not in bytes_up
+  std::uint64_t pairs_listed = 0;    // list entries within the skin radius, summed over builds
+  std::uint64_t candidates = 0;      // interior nodes handed to the host's exact test, all iterations
+  double bin_seconds = 0.0;          // host binning at rebuilds
+  double gather_seconds = 0.0;       // device neighbour gather at rebuilds (with its transfers)
+  double step_seconds = 0.0;         // the fused device_step kernel
+  double download_seconds = 0.0;     // partials, boundary and candidate records
+  double host_seconds = 0.0;         // boundary handling on the host
+  double upload_seconds = 0.0;       // host positions back + apply_host_moves
+  std::size_t device_bytes = 0;      // device buffers at the end
+};
+
+// Same contract as run_simulation (which calls it when options.device is set): updates nodes, returns
+// the history. Throws InputError when options.exact_spacing is set (the device reads the background field).
+SimResult run_device_simulation(NodeSet& nodes, const GeometryTree& tree, const SpacingField& spacing,
+                                const SimOptions& options, Context& ctx, const SimCallbacks& callbacks = {},
+                                DeviceRunStats* stats = nullptr);
+
+}  // namespace pdmesh::ocl

@@ -1,0 +1,174 @@
+// The OpenCL StepBackend; see opencl_backend.hpp. Float results are widened to double on download.
+#include "opencl/opencl_backend.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "opencl/device_neighbours.hpp"
+#include "opencl/step_program.hpp"
+
+namespace pdmesh::ocl {
+namespace {
+
+template <typename Real>
+class OpenclBackend final : public StepBackend {
+ public:
+  OpenclBackend(Context& ctx, Precision precision) : ctx_(ctx), program_(ctx, precision), neighbours_(ctx, program_) {}
+
+  std::string name() const override {
+    return fmt::format("opencl:{}:{} ({}, {})", ctx_.device().platform, ctx_.device().device, ctx_.device().name,
+                       std::is_same_v<Real, double> ? "double" : "float");
+  }
+
+  void build_neighbours(const SimParticles& p, double cutoff, NeighbourList& list, NeighbourFlags& flags) override {
+    upload_particles(p);
+    const std::size_t n = p.size();
+    int stride = std::max(list.stride, 2);
+    flags = neighbours_.build(p.x.data(), p.y.data(), p.q.data(), p.kind.data(), n, cutoff, x_, y_, q_, kind_, prev_,
+                              next_, stride, false);
+    list.stride = stride;
+    if (flags.first_invalid >= 0) {
+      // As the reference: boundary rows only.
+      list.count.assign(n, 0);
+      list.index.assign(n * static_cast<std::size_t>(stride), -1);
+      for (std::size_t i = 0; i < n; ++i)
+        if (p.kind[i] == kSimBoundary) {
+          list.count[i] = 2;
+          list.index[i * static_cast<std::size_t>(stride)] = p.prev[i];
+          list.index[i * static_cast<std::size_t>(stride) + 1] = p.next[i];
+        }
+      return;
+    }
+    neighbours_.count().download(ctx_.queue(), list.count, n);
+    neighbours_.index().download(ctx_.queue(), list.index, n * static_cast<std::size_t>(stride));
+  }
+
+  void compute_forces(const SimParticles& p, const NeighbourList& list, const ForceParams& params,
+                      ForceResult& out) override {
+    upload_particles(p);
+    const std::size_t n = p.size();
+    ensure_size(ctx_, count_, "count", n);
+    ensure_size(ctx_, index_, "index", list.index.size());
+    count_.upload(ctx_.queue(), list.count);
+    index_.upload(ctx_.queue(), list.index);
+    ensure_size(ctx_, fx_, "fx", n);
+    ensure_size(ctx_, fy_, "fy", n);
+    ensure_size(ctx_, r0_, "r0", n);
+    ensure_size(ctx_, coincident_, "coincident", n);
+    ensure_size(ctx_, limit_, "dt2_limit", n);
+    ArgSetter args(program_.compute_forces, "compute_forces");
+    args(static_cast<cl_int>(n))(static_cast<cl_int>(list.stride))(static_cast<Real>(params.lj_a))(
+        static_cast<cl_int>(params.r0_any_direction ? 1 : 0))(static_cast<Real>(params.stability_factor))(x_)(y_)(q_)(
+        kind_)(tx_)(ty_)(count_)(index_)(fx_)(fy_)(r0_)(limit_)(coincident_);
+    launch(ctx_.queue(), program_.compute_forces, "compute_forces", n, program_.work_group);
+    out.fx = download(fx_, n);
+    out.fy = download(fy_, n);
+    out.r0 = download(r0_, n);
+    if (params.stability_factor > 0.0) {
+      out.dt2_limit = download(limit_, n);
+      // Fixed nodes keep the reference's HUGE_VAL (the kernel skips them).
+      for (std::size_t i = 0; i < n; ++i)
+        if (p.kind[i] == kSimFixed) out.dt2_limit[i] = HUGE_VAL;
+    } else {
+      out.dt2_limit.clear();
+    }
+    std::vector<std::int32_t> c;
+    coincident_.download(ctx_.queue(), c, n);
+    out.coincident_pairs = 0;
+    for (auto v : c) out.coincident_pairs += static_cast<std::uint64_t>(v);
+  }
+
+  void time_step_and_move(const SimParticles& p, const ForceResult& forces, double dt_gm2, MoveResult& out) override {
+    const std::size_t n = p.size();
+    upload_forces(p, forces);
+    ensure_size(ctx_, r0_, "r0", n);
+    r0_.upload(ctx_.queue(), to_real<Real>(forces.r0));
+    const bool has_limit = !forces.dt2_limit.empty();
+    ensure_size(ctx_, limit_, "dt2_limit", n);
+    if (has_limit) limit_.upload(ctx_.queue(), to_real<Real>(forces.dt2_limit));
+    ensure_size(ctx_, dx_, "dx", n);
+    ensure_size(ctx_, dy_, "dy", n);
+    ensure_size(ctx_, dt2_, "dt2", n);
+    ArgSetter args(program_.time_step_and_move, "time_step_and_move");
+    args(static_cast<cl_int>(n))(static_cast<Real>(dt_gm2))(static_cast<cl_int>(has_limit ? 1 : 0))(kind_)(fx_)(fy_)(
+        r0_)(limit_)(dx_)(dy_)(dt2_);
+    launch(ctx_.queue(), program_.time_step_and_move, "time_step_and_move", n, program_.work_group);
+    out.dx = download(dx_, n);
+    out.dy = download(dy_, n);
+    out.dt2 = download(dt2_, n);
+  }
+
+  StepSums reduce(const SimParticles& p, const ForceResult& forces, const MoveResult& moves) override {
+    const std::size_t n = p.size();
+    upload_forces(p, forces);
+    ensure_size(ctx_, dt2_, "dt2", n);
+    dt2_.upload(ctx_.queue(), to_real<Real>(moves.dt2));
+    const std::size_t groups = (n + program_.work_group - 1) / program_.work_group;
+    ensure_size(ctx_, partials_, "partials", 4 * groups);
+    ArgSetter args(program_.reduce, "reduce");
+    args(static_cast<cl_int>(n))(kind_)(fx_)(fy_)(dt2_)(partials_);
+    launch(ctx_.queue(), program_.reduce, "reduce", n, program_.work_group);
+    const std::vector<double> part = download(partials_, 4 * groups);
+    StepSums s;
+    for (std::size_t g = 0; g < groups; ++g) {
+      s.sum_force += part[4 * g];
+      s.sum_kinetic += part[4 * g + 1];
+      s.moving += static_cast<std::size_t>(part[4 * g + 2]);
+      s.max_force = std::max(s.max_force, part[4 * g + 3]);
+    }
+    return s;
+  }
+
+ private:
+  std::vector<double> download(Buffer<Real>& b, std::size_t n) {
+    std::vector<Real> v;
+    b.download(ctx_.queue(), v, n);
+    return std::vector<double>(v.begin(), v.end());
+  }
+
+  void upload_particles(const SimParticles& p) {
+    const std::size_t n = p.size();
+    ensure_size(ctx_, x_, "x", n);
+    ensure_size(ctx_, y_, "y", n);
+    ensure_size(ctx_, q_, "q", n);
+    ensure_size(ctx_, tx_, "tx", n);
+    ensure_size(ctx_, ty_, "ty", n);
+    ensure_size(ctx_, kind_, "kind", n);
+    ensure_size(ctx_, prev_, "prev", n);
+    ensure_size(ctx_, next_, "next", n);
+    x_.upload(ctx_.queue(), to_real<Real>(p.x));
+    y_.upload(ctx_.queue(), to_real<Real>(p.y));
+    q_.upload(ctx_.queue(), to_real<Real>(p.q));
+    tx_.upload(ctx_.queue(), to_real<Real>(p.tx));
+    ty_.upload(ctx_.queue(), to_real<Real>(p.ty));
+    kind_.upload(ctx_.queue(), p.kind);
+    prev_.upload(ctx_.queue(), p.prev);
+    next_.upload(ctx_.queue(), p.next);
+  }
+
+  void upload_forces(const SimParticles& p, const ForceResult& forces) {
+    const std::size_t n = p.size();
+    ensure_size(ctx_, kind_, "kind", n);
+    ensure_size(ctx_, fx_, "fx", n);
+    ensure_size(ctx_, fy_, "fy", n);
+    kind_.upload(ctx_.queue(), p.kind);
+    fx_.upload(ctx_.queue(), to_real<Real>(forces.fx));
+    fy_.upload(ctx_.queue(), to_real<Real>(forces.fy));
+  }
+
+  Context& ctx_;
+  StepProgram program_;
+  DeviceNeighbours<Real> neighbours_;
+  Buffer<Real> x_, y_, q_, tx_, ty_, fx_, fy_, r0_, limit_, dx_, dy_, dt2_, partials_;
+  Buffer<std::uint8_t> kind_;
+  Buffer<std::int32_t> prev_, next_, count_, index_, coincident_;
+};
+
+}  // namespace
+
+std::unique_ptr<StepBackend> make_opencl_backend(Context& ctx, Precision precision) {
+  if (precision == Precision::Double) return std::make_unique<OpenclBackend<double>>(ctx, precision);
+  return std::make_unique<OpenclBackend<float>>(ctx, precision);
+}
+
+}  // namespace pdmesh::ocl

@@ -1,0 +1,126 @@
+// Step 1 on the device (mirror of host/sim/reference/binning.cpp, build_neighbours): each interior
+// node gathers its neighbours from the multi-level hashed cell grids the host flattened
+// (host/opencl/neighbour_grids.cpp): the cumulative grid of its own level, then the exact grid of
+// every coarser level. Rows are kept sorted by node index with a bounded insertion, so on overflow the
+// row holds the `stride` smallest indices, exactly as the reference's sorted-then-truncated row.
+#pragma OPENCL FP_CONTRACT OFF
+
+// splitmix64 finaliser over both cell coordinates (the reference's hash_key).
+ulong nb_hash(long cx, long cy) {
+  ulong h = ((ulong)cx * 0x9E3779B97F4A7C15UL) ^ (ulong)cy;
+  h ^= h >> 30;
+  h *= 0xBF58476D1CE4E5B9UL;
+  h ^= h >> 27;
+  h *= 0x94D049BB133111EBUL;
+  h ^= h >> 31;
+  return h;
+}
+
+long nb_cell_coord(REAL v, REAL inv_cell) {
+  const REAL c = floor(v * inv_cell);
+  return (long)clamp(c, (REAL)-4.0e18, (REAL)4.0e18);
+}
+
+// Dense cell id of (cx, cy) in grid g, -1 when the cell is empty.
+int nb_find(int g, long cx, long cy, __global const int* grid_table_offset, __global const int* grid_table_mask,
+            __global const long* table_cx, __global const long* table_cy, __global const int* table_id) {
+  const int off = grid_table_offset[g];
+  const ulong mask = (ulong)grid_table_mask[g];
+  for (ulong s = nb_hash(cx, cy) & mask;; s = (s + 1) & mask) {
+    const int id = table_id[off + (int)s];
+    if (id < 0) return -1;
+    if (table_cx[off + (int)s] == cx && table_cy[off + (int)s] == cy) return id;
+  }
+}
+
+// Kernel arguments: per grid g (2 per occupied level: cumulative C_L at 2L, exact E_L at 2L+1; absent
+// grids have inv_cell 0): inverse cell size, hash-table offset and mask, offsets into cell_start
+// (cells + 1 entries per grid) and cell_nodes. Outputs: count (true count), index (stride per row,
+// -1 padded); counters[2] = max count (atomic max), counters[3] = pairs examined, counters[4] = pairs
+// within (atomic adds, one per work-group after a local reduction).
+__kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1)))
+void build_neighbours(const int n, const int stride, const int levels, const REAL radius_factor,
+                      __global const REAL* x, __global const REAL* y, __global const REAL* q,
+                      __global const uchar* kind, __global const int* prev, __global const int* next,
+                      __global const int* level, __global const REAL* grid_inv_cell,
+                      __global const int* grid_table_offset, __global const int* grid_table_mask,
+                      __global const int* grid_start_offset, __global const int* grid_nodes_offset,
+                      __global const long* table_cx, __global const long* table_cy, __global const int* table_id,
+                      __global const int* cell_start, __global const int* cell_nodes, __global int* count_out,
+                      __global int* index, __global uint* counters) {
+  __local uint local_examined, local_within;
+  __local int local_max;
+  if (get_local_id(0) == 0) {
+    local_examined = 0;
+    local_within = 0;
+    local_max = 0;
+  }
+  barrier(CLK_LOCAL_MEM_FENCE);
+  const int i = get_global_id(0);
+  if (i < n) {
+    const int base = i * stride;
+    int count = 0;
+    uint examined = 0;
+    if (kind[i] == 1) {
+      index[base] = prev[i];
+      index[base + 1] = next[i];
+      count = 2;
+    } else if (kind[i] == 2) {
+      const REAL xi = x[i], yi = y[i];
+      const REAL r = radius_factor * q[i], r2 = r * r;
+#if PDMESH_DOUBLE
+      const REAL box = r;
+#else
+      // Cells were assigned on the host in double: widen the box so float rounding cannot drop a cell.
+      const REAL box = r * (REAL)1.0001f + (fabs(xi) + fabs(yi)) * (REAL)1e-6f;
+#endif
+      const int own = level[i];
+      for (int lv = own; lv < levels; ++lv) {
+        const int g = lv == own ? 2 * lv : 2 * lv + 1;
+        const REAL inv_cell = grid_inv_cell[g];
+        if (inv_cell == (REAL)0) continue;
+        const long x0 = nb_cell_coord(xi - box, inv_cell), x1 = nb_cell_coord(xi + box, inv_cell);
+        const long y0 = nb_cell_coord(yi - box, inv_cell), y1 = nb_cell_coord(yi + box, inv_cell);
+        const int start_off = grid_start_offset[g], nodes_off = grid_nodes_offset[g];
+        for (long cy = y0; cy <= y1; ++cy) {
+          for (long cx = x0; cx <= x1; ++cx) {
+            const int id = nb_find(g, cx, cy, grid_table_offset, grid_table_mask, table_cx, table_cy, table_id);
+            if (id < 0) continue;
+            const int end = cell_start[start_off + id + 1];
+            for (int k = cell_start[start_off + id]; k < end; ++k) {
+              const int j = cell_nodes[nodes_off + k];
+              if (j == i) continue;
+              ++examined;
+              const REAL dx = x[j] - xi, dy = y[j] - yi;
+              if (dx * dx + dy * dy > r2) continue;
+              // Bounded sorted insertion: keep the `stride` smallest indices in ascending order.
+              int slot = min(count, stride);
+              if (slot == stride && j > index[base + stride - 1]) {
+                ++count;
+                continue;
+              }
+              if (slot == stride) --slot;
+              while (slot > 0 && index[base + slot - 1] > j) {
+                index[base + slot] = index[base + slot - 1];
+                --slot;
+              }
+              index[base + slot] = j;
+              ++count;
+            }
+          }
+        }
+      }
+      atomic_add(&local_within, (uint)count);
+    }
+    for (int k = min(count, stride); k < stride; ++k) index[base + k] = -1;
+    count_out[i] = count;
+    atomic_add(&local_examined, examined);
+    atomic_max(&local_max, count);
+  }
+  barrier(CLK_LOCAL_MEM_FENCE);
+  if (get_local_id(0) == 0) {
+    atomic_max((__global int*)&counters[2], local_max);
+    atomic_add(&counters[3], local_examined);
+    atomic_add(&counters[4], local_within);
+  }
+}

@@ -1,0 +1,37 @@
+// The step sums on the device (mirror of host/sim/reference/time_step.cpp, reduce): per work-group
+// partial sums in local memory (a fixed tree order, no float atomics); the host adds the partials in
+// group order. WG_SIZE must be a power of two.
+#pragma OPENCL FP_CONTRACT OFF
+
+// Tree-reduces v over the work-group into v[0]: sums for slot < sum_slots, maxima after.
+// values: REAL[PARTIALS * WG_SIZE] in local memory, laid out slot-major.
+void group_reduce(__local REAL* values, const int slots, const int sum_slots) {
+  const int l = get_local_id(0);
+  for (int width = WG_SIZE / 2; width > 0; width /= 2) {
+    barrier(CLK_LOCAL_MEM_FENCE);
+    if (l < width) {
+      for (int s = 0; s < slots; ++s) {
+        const REAL a = values[s * WG_SIZE + l], b = values[s * WG_SIZE + l + width];
+        values[s * WG_SIZE + l] = s < sum_slots ? a + b : (b > a ? b : a);
+      }
+    }
+  }
+  barrier(CLK_LOCAL_MEM_FENCE);
+}
+
+// partials[4 g + k]: k = 0 sum |F|, 1 sum kinetic, 2 moving count, 3 max |F| of group g.
+__kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1)))
+void reduce(const int n, __global const uchar* kind, __global const REAL* fx, __global const REAL* fy,
+            __global const REAL* dt2, __global REAL* partials) {
+  __local REAL values[4 * WG_SIZE];
+  const int i = get_global_id(0), l = get_local_id(0);
+  const int moving = i < n && kind[i] != 0;
+  const REAL f2 = moving ? fx[i] * fx[i] + fy[i] * fy[i] : (REAL)0;
+  const REAL f = sqrt(f2);
+  values[l] = f;
+  values[WG_SIZE + l] = moving ? (REAL)0.125 * dt2[i] * f2 : (REAL)0;
+  values[2 * WG_SIZE + l] = moving ? (REAL)1 : (REAL)0;
+  values[3 * WG_SIZE + l] = f;
+  group_reduce(values, 4, 3);
+  if (l < 4) partials[4 * get_group_id(0) + l] = values[l * WG_SIZE];
+}

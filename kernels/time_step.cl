@@ -1,0 +1,34 @@
+// Step 4 on the device (mirror of host/sim/reference/time_step.cpp, time_step_and_move): the local
+// time step of eqs. 5.8/5.9 and the displacement of eq. 5.6, same expressions as the reference.
+#pragma OPENCL FP_CONTRACT OFF
+
+// dt_i^2 for a moving node: min(2 r0 / (3 |F|), dt_GM^2), or dt_GM^2 when F = 0 or r0 = 0; then
+// capped by the stability bound (INFINITY when off).
+REAL local_dt2(const REAL fx, const REAL fy, const REAL r0, const REAL dt_gm2, const REAL stability_limit) {
+  const REAL f2 = fx * fx + fy * fy;
+  REAL dt2 = dt_gm2;
+  if (f2 > (REAL)0 && r0 > (REAL)0) {
+    const REAL limit = (REAL)2 * r0 / ((REAL)3 * sqrt(f2));
+    dt2 = dt_gm2 < limit ? dt_gm2 : limit;
+  }
+  return stability_limit < dt2 ? stability_limit : dt2;
+}
+
+__kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1)))
+void time_step_and_move(const int n, const REAL dt_gm2, const int has_limit, __global const uchar* kind,
+                        __global const REAL* fx, __global const REAL* fy, __global const REAL* r0,
+                        __global const REAL* dt2_limit, __global REAL* dx_out,
+                        __global REAL* dy_out, __global REAL* dt2_out) {
+  const int i = get_global_id(0);
+  if (i >= n) return;
+  if (kind[i] == 0) {
+    dx_out[i] = (REAL)0;
+    dy_out[i] = (REAL)0;
+    dt2_out[i] = (REAL)0;
+    return;
+  }
+  const REAL dt2 = local_dt2(fx[i], fy[i], r0[i], dt_gm2, has_limit ? dt2_limit[i] : INFINITY);
+  dt2_out[i] = dt2;
+  dx_out[i] = (REAL)0.5 * dt2 * fx[i];
+  dy_out[i] = (REAL)0.5 * dt2 * fy[i];
+}
