@@ -1,0 +1,108 @@
+// Regression runs over the thesis' cases (ctest label `cases`): `pdmesh mesh` on every case with
+// both initializations, a reduced iteration count that fits CI, `--check`, and quality floors.
+#include <catch2/catch.hpp>
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <string>
+
+#include "io/mesh_formats.hpp"
+#include "mesh/quality.hpp"
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// What a reduced run must reach. The floors sit a little below what the runs reached when they
+// were chosen (host reference, double; measured values in the comments of kFloors and in
+// docs/cases.md). Never loosen a floor without saying why in the commit message.
+struct Floors {
+  const char* case_name;
+  const char* method;
+  int iterations;             // reduced from the thesis' 2000 so the label runs in CI
+  std::size_t min_points;     // node count lower bound ...
+  std::size_t max_points;     // ... and upper bound (the initialization is deterministic)
+  double min_angle_deg;       // smallest included angle over the mesh must be at least this
+  double max_aspect_avg;      // average aspect ratio R/(2r) must be at most this
+  double max_small_share;     // share of triangles with min angle < 30 degrees at most this
+};
+
+// clang-format off
+// Measured at commit df183d6 (host, double): points; min angle; average aspect ratio; share of
+// triangles under 30 degrees. 30P30N's sub-2-degree triangles sit at the thin trailing edges and
+// coves after only 50 iterations (the full 2000-iteration run is in report/README.md).
+const Floors kFloors[] = {
+  // case          method        iters  points         min angle  AR avg  small share    measured
+  {"circle_circle", "structured", 150,  2230,  2380,  25.0,      1.075,  0.003},  // 2304  27.14 1.0623 0.0009
+  {"circle_circle", "random",     150,  2170,  2310,  27.0,      1.055,  0.002},  // 2240  30.27 1.0411 0
+  {"naca0012",      "structured", 100,  6420,  6830,  24.0,      1.090,  0.002},  // 6626  26.67 1.0789 0.0004
+  {"naca0012",      "random",     100,  6280,  6680,  23.5,      1.085,  0.004},  // 6483  25.95 1.0712 0.0013
+  {"30p30n",        "structured",  50, 13310, 14140,   1.0,      1.145,  0.020},  // 13728  1.58 1.1326 0.0145
+  {"30p30n",        "random",      50, 13250, 14080,   1.0,      1.120,  0.015},  // 13670  1.73 1.1081 0.0104
+  {"rods_coarse",   "structured", 150,  1020,  1085,  22.0,      1.190,  0.050},  // 1052  24.07 1.1777 0.0402
+  {"rods_coarse",   "random",     150,  1340,  1430,  20.0,      1.140,  0.020},  // 1388  22.03 1.1269 0.0116
+  {"rods_fine",     "structured",  50, 11130, 11830,  27.0,      1.145,  0.003},  // 11480 29.29 1.1350 0.0013
+  {"rods_fine",     "random",      50, 11110, 11800,  22.5,      1.100,  0.006},  // 11454 24.62 1.0895 0.0039
+};
+// clang-format on
+
+int run_pdmesh(const std::string& arguments, std::string& output) {
+  const std::string command = std::string("'") + PDMESH_BINARY + "' " + arguments + " 2>&1";
+  FILE* pipe = ::popen(command.c_str(), "r");
+  REQUIRE(pipe != nullptr);
+  char buffer[4096];
+  std::size_t n = 0;
+  while ((n = std::fread(buffer, 1, sizeof buffer, pipe)) > 0) output.append(buffer, n);
+  const int raw = ::pclose(pipe);
+  return WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+}
+
+void check_case(const Floors& f) {
+  const fs::path dir = fs::temp_directory_path() /
+                       (std::string("pdmesh_test_cases_") + f.case_name + "_" + f.method + "_" +
+                        std::to_string(::getpid()));
+  fs::remove_all(dir);
+  const std::string arguments = std::string("mesh '") + PDMESH_SOURCE_DIR + "/cases/" + f.case_name +
+                                "' --out '" + dir.string() + "' --method " + f.method +
+                                " --iterations " + std::to_string(f.iterations) +
+                                " --device host --check -q --formats msh --set 'output.views=[]'";
+  std::string output;
+  const int status = run_pdmesh(arguments, output);
+  INFO("pdmesh " << arguments << "\n" << output);
+  REQUIRE(status == 0);  // --check passed: valid topology, CCW, constrained Delaunay, area
+
+  const pdmesh::Mesh mesh = pdmesh::read_mesh(dir / "mesh.msh");
+  const pdmesh::QualitySummary q = pdmesh::summarize_quality(mesh);
+  INFO("points " << q.points << ", triangles " << q.triangles << ", min angle " << q.min_angle
+                 << ", aspect ratio average " << q.aspect_ratio_avg << ", small-angle share "
+                 << q.small_angle_share);
+  CHECK(q.points >= f.min_points);
+  CHECK(q.points <= f.max_points);
+  CHECK(q.min_angle >= f.min_angle_deg);
+  CHECK(q.aspect_ratio_avg <= f.max_aspect_avg);
+  CHECK(q.small_angle_share <= f.max_small_share);
+  CHECK(q.min_jacobian > 0.0);  // no inverted or degenerate triangle
+  fs::remove_all(dir);
+}
+
+void check_case(const std::string& case_name, const std::string& method) {
+  for (const Floors& f : kFloors)
+    if (case_name == f.case_name && method == f.method) return check_case(f);
+  FAIL("no floors for " << case_name << " " << method);
+}
+
+}  // namespace
+
+TEST_CASE("circle_circle structured meets its floors", "[cases]") { check_case("circle_circle", "structured"); }
+TEST_CASE("circle_circle random meets its floors", "[cases]") { check_case("circle_circle", "random"); }
+TEST_CASE("naca0012 structured meets its floors", "[cases]") { check_case("naca0012", "structured"); }
+TEST_CASE("naca0012 random meets its floors", "[cases]") { check_case("naca0012", "random"); }
+TEST_CASE("30p30n structured meets its floors", "[cases]") { check_case("30p30n", "structured"); }
+TEST_CASE("30p30n random meets its floors", "[cases]") { check_case("30p30n", "random"); }
+TEST_CASE("rods_coarse structured meets its floors", "[cases]") { check_case("rods_coarse", "structured"); }
+TEST_CASE("rods_coarse random meets its floors", "[cases]") { check_case("rods_coarse", "random"); }
+TEST_CASE("rods_fine structured meets its floors", "[cases]") { check_case("rods_fine", "structured"); }
+TEST_CASE("rods_fine random meets its floors", "[cases]") { check_case("rods_fine", "random"); }
