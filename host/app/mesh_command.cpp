@@ -2,6 +2,7 @@
 #include "app/mesh_command.hpp"
 
 #include <cerrno>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -213,7 +214,10 @@ SimResult simulate(const CaseConfig& config, const MeshInputs& inputs, NodeSet& 
 }
 
 Mesh mesh_and_measure(const CaseConfig& config, const MeshInputs& inputs, const NodeSet& nodes) {
+  const auto start = std::chrono::steady_clock::now();
   Mesh mesh = triangulate(nodes, inputs.curve_names());
+  progress(config, "triangulation: {:.3f} s ({} triangles)",
+           std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), mesh.triangles.size());
   if (config.check) {
     // The mesh covers the polygons through the boundary nodes, which cut the curves' corners
     // where nodes have slid off geometry vertices; that area is what the check compares against.
@@ -274,7 +278,10 @@ int run_mesh(const CaseConfig& config) {
   // Stage 2: limits, before any large allocation.
   const double estimate = check_node_limit(config, inputs);
   // Stage 3: initial distribution.
+  const auto init_start = std::chrono::steady_clock::now();
   const InitialDistribution initial = make_initial(config, inputs);
+  progress(config, "initialization: {:.3f} s",
+           std::chrono::duration<double>(std::chrono::steady_clock::now() - init_start).count());
   progress(config, "initial distribution: {} nodes (estimate {:.0f} by hexagonal packing; {} fixed, {} boundary, "
            "{} interior of which {} by overloading)",
            initial.nodes.size(), estimate, initial.nodes.count(NodeKind::Fixed),
