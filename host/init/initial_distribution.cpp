@@ -31,11 +31,32 @@ constexpr int kEstimateCutDepth = 3;
 // Integral of the hexagonal density over the inside part of quad b. Leaf-sized quads take 4x4
 // spacing samples (q may vary over a large leaf); the sub-quads of a cut leaf, which are at most
 // a fraction of the local spacing wide, take q once at their centre and 4x4 inside samples.
+// A quad whose centre sits in a coarse region can still hold a narrow band of fine spacing (the
+// shock field of eq. 7.2): it is split while it would hold many nodes at the smallest spacing of its
+// centre and 4x4 samples, or while that spacing varies by more than kEstimateSpread over it and
+// it would hold more than a few nodes.
+constexpr double kEstimateSpread = 1.5;
+constexpr double kEstimateSpreadNodes = 4.0;
+
+bool estimate_needs_split(const SpacingField& spacing, const Box& b, double q_mid) {
+  double q_min = q_mid, q_max = q_mid;
+  for (int j = 0; j < kEstimateSamples; ++j)
+    for (int i = 0; i < kEstimateSamples; ++i) {
+      const double q = spacing.at({b.lo.x + (i + 0.5) / kEstimateSamples * b.width(),
+                                   b.lo.y + (j + 0.5) / kEstimateSamples * b.height()});
+      if (!(q > 0.0) || !std::isfinite(q)) continue;
+      q_min = std::fmin(q_min, q);
+      q_max = std::fmax(q_max, q);
+    }
+  const double nodes = b.width() * b.height() * hex_density(q_min);
+  return nodes > kEstimateNodesPerQuad || (q_max > kEstimateSpread * q_min && nodes > kEstimateSpreadNodes);
+}
+
 double estimate_quad(const GeometryTree& tree, const SpacingField& spacing, const Box& b,
                      const std::vector<int>& segments, bool known_inside, int depth) {
   const double q_mid = spacing.at(b.centre());
   const double area = b.width() * b.height();
-  const bool crowded = q_mid > 0.0 && area * hex_density(q_mid) > kEstimateNodesPerQuad;
+  const bool crowded = q_mid > 0.0 && estimate_needs_split(spacing, b, q_mid);
   const bool cut = !known_inside && !segments.empty() && depth < kEstimateCutDepth;
   if ((crowded || cut) && depth < kEstimateMaxDepth) {
     const auto& segs = tree.geometry().segments;
