@@ -11,6 +11,7 @@
 #include "opencl/context.hpp"
 #include "opencl/devices.hpp"
 #include "sim/reference/reference_backend.hpp"
+#include "sim_fixtures.hpp"
 
 namespace pdmesh::test {
 
@@ -32,16 +33,6 @@ inline ocl::Context& test_context() {
 
 inline double unit_random(std::mt19937_64& rng) { return static_cast<double>(rng() >> 11) * 0x1.0p-53; }
 
-inline void add_node(SimParticles& p, double x, double y, double q, std::uint8_t kind = kSimInterior) {
-  p.x.push_back(x);
-  p.y.push_back(y);
-  p.q.push_back(q);
-  p.kind.push_back(kind);
-  p.prev.push_back(-1);
-  p.next.push_back(-1);
-  p.tx.push_back(0.0);
-  p.ty.push_back(0.0);
-}
 
 // Float backends see float inputs: the oracle gets the same rounded values.
 inline void round_to_float(SimParticles& p) {
@@ -75,7 +66,7 @@ inline Input random_input(std::size_t n, std::uint64_t seed, bool is_float) {
   std::mt19937_64 rng(seed);
   const double side = std::sqrt(static_cast<double>(n) + 1.0) * 0.08;
   for (std::size_t i = 0; i < n; ++i)
-    add_node(in.p, side * unit_random(rng), side * unit_random(rng), 0.06 + 0.06 * unit_random(rng));
+    pdmesh_test::add(in.p, side * unit_random(rng), side * unit_random(rng), 0.06 + 0.06 * unit_random(rng));
   mix_kinds(in.p, rng, 10);
   if (is_float) round_to_float(in.p);
   return in;
@@ -87,7 +78,7 @@ inline Input graded_input(bool is_float) {
   std::mt19937_64 rng(42);
   for (int i = 0; i < 600; ++i) {
     const double r = std::pow(10.0, -3.0 * unit_random(rng)), a = 2.0 * M_PI * unit_random(rng);
-    add_node(in.p, r * std::cos(a), r * std::sin(a), 0.2 * r);
+    pdmesh_test::add(in.p, r * std::cos(a), r * std::sin(a), 0.2 * r);
   }
   mix_kinds(in.p, rng, 25);
   if (is_float) round_to_float(in.p);
@@ -98,7 +89,7 @@ inline Input graded_input(bool is_float) {
 inline Input coincident_input(bool is_float) {
   Input in = random_input(50, 7, is_float);
   in.name = "coincident";
-  for (std::size_t k : {3u, 8u, 20u, 31u, 44u, 44u}) add_node(in.p, in.p.x[k], in.p.y[k], in.p.q[k]);
+  for (std::size_t k : {3u, 8u, 20u, 31u, 44u, 44u}) pdmesh_test::add(in.p, in.p.x[k], in.p.y[k], in.p.q[k]);
   return in;
 }
 
@@ -107,7 +98,7 @@ inline Input coincident_input(bool is_float) {
 inline Input lattice_input() {
   Input in{"lattice on cell edges", {}, 2.0};
   for (int j = 0; j < 10; ++j)
-    for (int i = 0; i < 10; ++i) add_node(in.p, i, j, 0.5);
+    for (int i = 0; i < 10; ++i) pdmesh_test::add(in.p, i, j, 0.5);
   return in;
 }
 
@@ -115,8 +106,8 @@ inline Input lattice_input() {
 inline Input crowded_input(bool is_float) {
   Input in{"crowded", {}, 1.5};
   std::mt19937_64 rng(5);
-  for (int i = 0; i < 40; ++i) add_node(in.p, 0.01 * unit_random(rng), 0.01 * unit_random(rng), 0.1);
-  for (int i = 0; i < 20; ++i) add_node(in.p, 10.0 + 3.0 * i, 5.0, 0.1);
+  for (int i = 0; i < 40; ++i) pdmesh_test::add(in.p, 0.01 * unit_random(rng), 0.01 * unit_random(rng), 0.1);
+  for (int i = 0; i < 20; ++i) pdmesh_test::add(in.p, 10.0 + 3.0 * i, 5.0, 0.1);
   if (is_float) round_to_float(in.p);
   return in;
 }

@@ -9,6 +9,7 @@
 #include "init/initial_distribution.hpp"
 #include "sim/boundary_handling.hpp"
 #include "spacing/spacing_field.hpp"
+#include "sim_fixtures.hpp"
 
 using namespace pdmesh;
 
@@ -34,27 +35,7 @@ Geometry square() {
   return build_geometry(std::move(raw));
 }
 
-void add_circle(std::vector<RawCurve>& raw, double r, int points, const std::string& name) {
-  const int n = points - 1;
-  for (int half = 0; half < 2; ++half) {
-    RawCurve curve{name + (half == 0 ? "_upper" : "_lower"), {}, "circles", 0, {}};
-    for (int i = 0; i <= n; ++i) {
-      const double t = M_PI * (half + static_cast<double>(i) / n);
-      Vec2 p{r * std::cos(t), r * std::sin(t)};
-      if (i == 0) p = {half == 0 ? r : -r, 0.0};
-      if (i == n) p = {half == 0 ? -r : r, 0.0};
-      curve.points.push_back(p);
-    }
-    raw.push_back(std::move(curve));
-  }
-}
-
-Geometry circle_in_circle() {
-  std::vector<RawCurve> raw;
-  add_circle(raw, 10.0, 31, "outer");
-  add_circle(raw, 0.5, 31, "inner");
-  return build_geometry(std::move(raw));
-}
+Geometry circle_in_circle() { return pdmesh_test::circle_circle(); }
 
 int curve_named(const Geometry& g, const std::string& name) {
   for (std::size_t c = 0; c < g.curves.size(); ++c)

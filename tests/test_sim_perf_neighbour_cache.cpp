@@ -8,6 +8,7 @@
 
 #include "sim/reference/neighbour_cache.hpp"
 #include "sim/reference/reference_backend.hpp"
+#include "sim_fixtures.hpp"
 
 using namespace pdmesh;
 
@@ -15,16 +16,7 @@ namespace {
 
 double uniform(std::mt19937_64& rng) { return static_cast<double>(rng() >> 11) * 0x1.0p-53; }
 
-void add(SimParticles& p, double x, double y, double q, std::uint8_t kind = kSimInterior) {
-  p.x.push_back(x);
-  p.y.push_back(y);
-  p.q.push_back(q);
-  p.kind.push_back(kind);
-  p.prev.push_back(-1);
-  p.next.push_back(-1);
-  p.tx.push_back(0.0);
-  p.ty.push_back(0.0);
-}
+using pdmesh_test::add;
 
 // Both builders at the same stride; lists, counts and flags (but pairs_examined, a cost) equal.
 void require_same(const SimParticles& p, double cutoff, reference::NeighbourCache& cache, int stride) {

@@ -17,33 +17,13 @@
 #include "sim/boundary_handling.hpp"
 #include "sim/simulation.hpp"
 #include "spacing/spacing_field.hpp"
+#include "sim_fixtures.hpp"
 
 using namespace pdmesh;
 
 namespace {
 
-void add_circle(std::vector<RawCurve>& raw, double r, int points, const std::string& name) {
-  const int n = points - 1;
-  for (int half = 0; half < 2; ++half) {
-    RawCurve curve{name + (half == 0 ? "_upper" : "_lower"), {}, "circles", 0, {}};
-    for (int i = 0; i <= n; ++i) {
-      const double t = M_PI * (half + static_cast<double>(i) / n);
-      Vec2 p{r * std::cos(t), r * std::sin(t)};
-      if (i == 0) p = {half == 0 ? r : -r, 0.0};
-      if (i == n) p = {half == 0 ? -r : r, 0.0};
-      curve.points.push_back(p);
-    }
-    raw.push_back(std::move(curve));
-  }
-}
-
-// Outer radius 10, inner 0.5, four semicircles of 31 equally spaced points (thesis ch. 6).
-Geometry circle_circle() {
-  std::vector<RawCurve> raw;
-  add_circle(raw, 10.0, 31, "outer");
-  add_circle(raw, 0.5, 31, "inner");
-  return build_geometry(std::move(raw));
-}
+using pdmesh_test::circle_circle;
 
 struct Run {
   NodeSet initial;

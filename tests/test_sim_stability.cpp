@@ -7,21 +7,13 @@
 #include <vector>
 
 #include "sim/reference/reference_backend.hpp"
+#include "sim_fixtures.hpp"
 
 using namespace pdmesh;
 
 namespace {
 
-void add(SimParticles& p, double x, double y, double q, std::uint8_t kind) {
-  p.x.push_back(x);
-  p.y.push_back(y);
-  p.q.push_back(q);
-  p.kind.push_back(kind);
-  p.prev.push_back(-1);
-  p.next.push_back(-1);
-  p.tx.push_back(0.0);
-  p.ty.push_back(0.0);
-}
+using pdmesh_test::add;
 
 // d/dr of the signed pair magnitude of eq. 5.11 (sigma = 1), closed form.
 double lj_derivative(double r, double a) { return 4.0 * a * (12.0 * std::pow(r, -13) - 6.0 * std::pow(r, -7)); }

@@ -6,21 +6,13 @@
 #include <random>
 
 #include "sim/reference/reference_backend.hpp"
+#include "sim_fixtures.hpp"
 
 using namespace pdmesh;
 
 namespace {
 
-void add(SimParticles& p, double x, double y, double q, std::uint8_t kind = kSimInterior) {
-  p.x.push_back(x);
-  p.y.push_back(y);
-  p.q.push_back(q);
-  p.kind.push_back(kind);
-  p.prev.push_back(-1);
-  p.next.push_back(-1);
-  p.tx.push_back(0.0);
-  p.ty.push_back(0.0);
-}
+using pdmesh_test::add;
 
 double norm2_of(double x, double y) { return x * x + y * y; }
 
