@@ -85,6 +85,8 @@ struct CaseConfig {
   bool quiet = false;
   bool check = false;  // run the mesh invariant checker and fail when it finds a problem
   std::uint64_t max_nodes = 20'000'000;
+  std::optional<std::filesystem::path> resume;  // --resume: continue from this checkpoint (file or directory)
+  std::int64_t stop_after = 0;  // --stop-after (testing aid): act as if interrupted after this iteration; 0 = off
 };
 
 // Every valid dotted key, for docs and suggestions.

@@ -39,6 +39,8 @@ struct MeshArguments {
   bool quiet = false;
   bool check = false;
   std::uint64_t max_nodes = 20'000'000;
+  std::optional<std::string> resume;
+  std::int64_t stop_after = 0;
 };
 
 namespace {
@@ -138,6 +140,9 @@ CaseConfig config_from(const MeshArguments& a) {
   config.quiet = a.quiet;
   config.check = a.check;
   config.max_nodes = a.max_nodes;
+  if (a.resume) config.resume = fs::path(*a.resume);
+  if (a.stop_after < 0) throw InputError(fmt::format("--stop-after {}: expected an iteration number >= 1", a.stop_after));
+  config.stop_after = a.stop_after;
   return config;
 }
 
@@ -185,6 +190,12 @@ void add_mesh_options(CLI::App& mesh, MeshArguments& a) {
   mesh.add_option("--max-nodes", a.max_nodes,
                   "Refuse cases whose estimated node count exceeds this (default 20000000)")
       ->type_name("N");
+  mesh.add_option("--resume", a.resume,
+                  "Continue an interrupted run from its checkpoint: DIR/checkpoint.pdmesh (or that file); the case "
+                  "must be the same (--iterations may differ)")
+      ->type_name("DIR");
+  // Testing aid (docs/cli.md): behave as if interrupted after iteration N. Hidden from --help.
+  mesh.add_option("--stop-after", a.stop_after, "")->group("")->type_name("N");
   mesh.footer("Options other than --out, --quiet and --max-nodes override keys of the case file; every key can be\n"
               "set with --set (see docs/cli.md). Direct options are applied after --set.");
 }

@@ -10,6 +10,8 @@
 #include <fmt/format.h>
 
 #include "app/exit_codes.hpp"
+#include "app/interrupt.hpp"
+#include "app/resume.hpp"
 #include "core/errors.hpp"
 #include "geometry/geometry_files.hpp"
 #include "io/mesh_formats.hpp"
@@ -158,7 +160,7 @@ void write_initial_outputs(const CaseConfig& config, const MeshInputs& inputs, c
                      config.output.tree_overlay ? &initial.tree_quads : nullptr);
 }
 
-SimResult simulate(const CaseConfig& config, const MeshInputs& inputs, NodeSet& nodes) {
+SimResult simulate(const CaseConfig& config, const MeshInputs& inputs, NodeSet& nodes, const SimState* resume) {
   const std::string& device = config.simulation.device;
   // auto: the first GPU, else the first CPU OpenCL device, else the host reference. An explicit
   // opencl spec that cannot be met throws InputError listing the devices (exit 2).
@@ -186,6 +188,8 @@ SimResult simulate(const CaseConfig& config, const MeshInputs& inputs, NodeSet& 
   options.quiet = config.quiet;
   options.device = context.get();
   options.device_float = use_float;
+  options.stop = &InterruptGuard::flag();
+  options.resume = resume;
   const std::string where = chosen ? fmt::format("opencl:{}:{} ({}, {}, {}, device-resident)", chosen->platform,
                                                  chosen->device, chosen->name, chosen->type,
                                                  use_float ? "float" : "double")
@@ -193,9 +197,32 @@ SimResult simulate(const CaseConfig& config, const MeshInputs& inputs, NodeSet& 
   progress(config, "simulation: {} iterations on {}, cutoff {}, a = {}, r0 rule {}, stability factor {}",
            options.iterations, where, options.cutoff, options.lj_a,
            options.r0_any_direction ? "any_direction" : "force_direction", options.stability_factor);
-  SimResult result = run_simulation(nodes, *inputs.tree, *inputs.spacing, options);
+  if (resume) progress(config, "simulation: resuming after iteration {}", resume->iterations_done);
+  const fs::path checkpoint_file = checkpoint_path(config.out_dir);
+  SimCallbacks callbacks;
+  if (config.stop_after > 0) {
+    callbacks.on_iteration = [&config](const HistoryRow& row) {
+      if (row.iteration == config.stop_after) InterruptGuard::flag().store(true);
+    };
+  }
+  callbacks.on_failure = [&](const SimState& state) {
+    write_checkpoint(checkpoint_file, Checkpoint{case_identity(config), nodes, state});
+    progress(config, "simulation failed after iteration {}; wrote {} (the last good state)", state.iterations_done,
+             checkpoint_file.string());
+  };
+  SimResult result = run_simulation(nodes, *inputs.tree, *inputs.spacing, options, callbacks);
+  if (result.stopped || InterruptGuard::flag().load()) {
+    write_checkpoint(checkpoint_file, Checkpoint{case_identity(config), nodes, result.state});
+    progress(config, "simulation: stopped after iteration {} of {}; wrote {} (continue with --resume {})",
+             result.state.iterations_done, options.iterations, checkpoint_file.string(), config.out_dir.string());
+  } else {
+    // A checkpoint in DIR means the run there is unfinished; this one finished.
+    std::error_code ec;
+    fs::remove(checkpoint_file, ec);
+  }
   const SimStats& st = result.stats;
-  const double per_iteration = options.iterations > 0 ? st.seconds / options.iterations : 0.0;
+  const int iterations_run = result.state.iterations_done - (resume ? resume->iterations_done : 0);
+  const double per_iteration = iterations_run > 0 ? st.seconds / iterations_run : 0.0;
   progress(config,
            "simulation: {:.2f} s ({:.3f} ms/iteration), initial dt_GM {:.4g}, {:.3g} pair interactions/s, "
            "{:.2f} pairs examined per pair within cutoff, {} nodes snapped",
@@ -208,7 +235,7 @@ SimResult simulate(const CaseConfig& config, const MeshInputs& inputs, NodeSet& 
   write_history_plot(dir / "history.png", result.history, fmt::format("{} ({})", config.name, method_name(config.init.method)));
   write_node_outputs(config, inputs, nodes, "final",
                      fmt::format("{} - final distribution ({}, {} iterations)", config.name,
-                                 method_name(config.init.method), options.iterations),
+                                 method_name(config.init.method), result.state.iterations_done),
                      nullptr);
   return result;
 }
@@ -270,9 +297,28 @@ Mesh mesh_and_measure(const CaseConfig& config, const MeshInputs& inputs, const 
   return mesh;
 }
 
+namespace {
+
+// `--resume`: the node set and driver state come from the checkpoint instead of the initialization
+// (whose outputs the interrupted run already wrote).
+int resume_mesh(const CaseConfig& config, const MeshInputs& inputs) {
+  Checkpoint checkpoint = read_checkpoint_for(*config.resume, config);
+  check_node_limit(config, inputs);
+  prepare_output_directory(config);
+  NodeSet nodes = std::move(checkpoint.nodes);
+  simulate(config, inputs, nodes, &checkpoint.state);
+  mesh_and_measure(config, inputs, nodes);
+  return InterruptGuard::flag().load() ? kExitInterrupted : kExitOk;
+}
+
+}  // namespace
+
 int run_mesh(const CaseConfig& config) {
+  // SIGINT/SIGTERM from here on stop the simulation after its current iteration (exit 130).
+  InterruptGuard interrupt;
   // Stage 1: inputs.
   const MeshInputs inputs(config);
+  if (config.resume) return resume_mesh(config, inputs);
   progress(config, "geometry: {} curves, {} segments, {} loops, area {:.6g}", inputs.geometry.curves.size(),
            inputs.geometry.segments.size(), inputs.geometry.loops.size(), inputs.geometry.area);
   // Stage 2: limits, before any large allocation.
@@ -295,7 +341,7 @@ int run_mesh(const CaseConfig& config) {
   if (config.simulation.iterations > 0) simulate(config, inputs, nodes);
   // Stage 6: the mesh, its quality and its files.
   mesh_and_measure(config, inputs, nodes);
-  return kExitOk;
+  return InterruptGuard::flag().load() ? kExitInterrupted : kExitOk;
 }
 
 }  // namespace pdmesh

@@ -41,14 +41,20 @@ void write_initial_outputs(const CaseConfig& config, const MeshInputs& inputs, c
 
 // Stage 6: the particle dynamics simulation on the chosen backend, updating `nodes` in place;
 // writes DIR/history.csv, history.png, final.nodes, final.png (.svg) and final_<view>.png.
-SimResult simulate(const CaseConfig& config, const MeshInputs& inputs, NodeSet& nodes);
+// With `resume`, continues that state (nodes must be its node set). Stops early when
+// InterruptGuard::flag() is set (a signal, or config.stop_after); then, or when the simulation fails,
+// writes DIR/checkpoint.pdmesh; a finished run removes a stale one.
+SimResult simulate(const CaseConfig& config, const MeshInputs& inputs, NodeSet& nodes,
+                   const SimState* resume = nullptr);
 
 // Stage 7: triangulates `nodes`, checks the mesh when config.check (SimulationError listing the
 // problems if it fails), measures quality, prints the table, and writes DIR/quality.json, the mesh
 // files of config.output.formats, mesh.png (.svg) and mesh_<view>.png.
 Mesh mesh_and_measure(const CaseConfig& config, const MeshInputs& inputs, const NodeSet& nodes);
 
-// All stages in order; progress on stderr unless config.quiet. Returns the exit status.
+// All stages in order (or, with config.resume, from the checkpoint on); progress on stderr unless
+// config.quiet. Returns the exit status: 0, or 130 when interrupted (outputs of the state reached
+// and a checkpoint written).
 int run_mesh(const CaseConfig& config);
 
 }  // namespace pdmesh

@@ -319,7 +319,12 @@ SimResult DeviceRun<Real>::run(const SimCallbacks& callbacks) {
     throw InputError(fmt::format("simulation.dt_initial must be a positive number, got {}", result.stats.dt_initial));
   if (!(options_.verlet_skin >= 0.0))
     throw InputError(fmt::format("the Verlet skin must be >= 0, got {}", options_.verlet_skin));
-  GlobalTimeStep gm(result.stats.dt_initial);
+  const SimState* resume = options_.resume;
+  if (resume) {
+    result.stats.dt_initial = resume->dt_initial;
+    boundary_.restore(nodes_, resume->arcs, resume->tangents);  // before upload_initial reads the tangents
+  }
+  GlobalTimeStep gm = resume ? GlobalTimeStep(resume->time_step) : GlobalTimeStep(result.stats.dt_initial);
   ProgressLine progress(options_.quiet);
   upload_initial();  // setup, like the host path's, is not part of the timed iterations
   stats_.setup_bytes = stats_.bytes_up;
@@ -329,7 +334,10 @@ SimResult DeviceRun<Real>::run(const SimCallbacks& callbacks) {
   std::size_t fixed = nodes_.count(NodeKind::Fixed), on_boundary = nodes_.count(NodeKind::Boundary);
   std::size_t interior = nodes_.count(NodeKind::Interior);
   result.history.reserve(static_cast<std::size_t>(std::max(0, options_.iterations)));
-  for (int iteration = 1; iteration <= options_.iterations; ++iteration) {
+  if (resume) result.history = resume->history;
+  const int first = resume ? resume->iterations_done + 1 : 1;
+  int done = first - 1;
+  for (int iteration = first; iteration <= options_.iterations; ++iteration) {
     // A zero skin rebuilds every iteration (the reference's behaviour).
     if (skin_use_ > kSkinUseLimit || options_.verlet_skin == 0.0) rebuild();
     const double dt_gm = gm.dt();
@@ -366,6 +374,11 @@ SimResult DeviceRun<Real>::run(const SimCallbacks& callbacks) {
     ++stats_.iterations;
     if (callbacks.on_iteration) callbacks.on_iteration(row);
     progress.update(iteration, options_.iterations, row.average_force, dt_gm);
+    done = iteration;
+    if (options_.stop && options_.stop->load() && iteration < options_.iterations) {
+      result.stopped = true;
+      break;
+    }
   }
   progress.finish();
   // Final state: interior positions and every q from the device; boundary positions stay the host's.
@@ -380,6 +393,8 @@ SimResult DeviceRun<Real>::run(const SimCallbacks& callbacks) {
     if (nodes_.kind[i] == NodeKind::Interior) nodes_.x[i] = {static_cast<double>(x[i]), static_cast<double>(y[i])};
     nodes_.q[i] = static_cast<double>(q[i]);
   }
+  result.state = SimState{done, result.stats.dt_initial, gm.state(), boundary_.arcs(), boundary_.tangents(),
+                          result.history};
   result.stats.pairs_examined = pairs_examined_;
   result.stats.seconds = since(start);
   stats_.stride = stride_;

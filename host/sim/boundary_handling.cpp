@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 #include <fmt/format.h>
 
@@ -78,6 +79,20 @@ BoundaryHandler::BoundaryHandler(const GeometryTree& tree, const NodeSet& nodes)
       if (nodes.kind[node] == NodeKind::Boundary) tangent_[node] = cp.tangent;
     }
   }
+}
+
+void BoundaryHandler::restore(const NodeSet& nodes, std::vector<std::vector<double>> arcs, std::vector<Vec2> tangents) {
+  if (tangents.size() != nodes.size())
+    throw InputError(fmt::format("saved boundary state has {} tangents for {} nodes", tangents.size(), nodes.size()));
+  if (arcs.size() != nodes.curve_nodes.size())
+    throw InputError(fmt::format("saved boundary state has arc positions for {} curves, the node set has {}",
+                                 arcs.size(), nodes.curve_nodes.size()));
+  for (std::size_t c = 0; c < arcs.size(); ++c)
+    if (arcs[c].size() != nodes.curve_nodes[c].size())
+      throw InputError(fmt::format("saved boundary state has {} arc positions on curve {}, the node set {} nodes",
+                                   arcs[c].size(), c, nodes.curve_nodes[c].size()));
+  arcs_ = std::move(arcs);
+  tangent_ = std::move(tangents);
 }
 
 void BoundaryHandler::curve_neighbours(const NodeSet& nodes, std::vector<int>& prev, std::vector<int>& next) const {

@@ -53,6 +53,12 @@ class BoundaryHandler {
   Vec2 tangent(int node) const { return tangent_[static_cast<std::size_t>(node)]; }
   // Arc positions parallel to NodeSet::curve_nodes.
   const std::vector<std::vector<double>>& arcs() const { return arcs_; }
+  // Per-node tangents (zero except at Boundary nodes).
+  const std::vector<Vec2>& tangents() const { return tangent_; }
+  // Replaces the arc positions and tangents with saved ones (a checkpoint): they are updated
+  // incrementally, so recomputing them from the node positions would not continue bit-identically.
+  // Throws InputError when the sizes do not match nodes.
+  void restore(const NodeSet& nodes, std::vector<std::vector<double>> arcs, std::vector<Vec2> tangents);
   // Previous and next node along the curve of each Boundary node (-1 for other kinds).
   void curve_neighbours(const NodeSet& nodes, std::vector<int>& prev, std::vector<int>& next) const;
 

@@ -12,7 +12,18 @@ class GlobalTimeStep {
   static constexpr double kGrow = 1.01;
   static constexpr double kShrink = 0.99;
 
+  // Everything the rule remembers, for checkpoints (restoring it continues bit-identically).
+  struct State {
+    double dt = 0.0;
+    std::optional<double> previous;  // the last max |F| fed; empty before the first
+    int consecutive_decreases = 0;
+    int increases = 0;
+  };
+
   explicit GlobalTimeStep(double dt_initial) : dt_(dt_initial) {}
+  explicit GlobalTimeStep(const State& s)
+      : dt_(s.dt), previous_(s.previous), consecutive_decreases_(s.consecutive_decreases), increases_(s.increases) {}
+  State state() const { return {dt_, previous_, consecutive_decreases_, increases_}; }
 
   double dt() const { return dt_; }
   double dt2() const { return dt_ * dt_; }

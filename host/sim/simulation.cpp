@@ -81,8 +81,11 @@ SimResult run_simulation(NodeSet& nodes, const GeometryTree& tree, const Spacing
   result.stats.dt_initial = options.dt_initial ? *options.dt_initial : default_dt_initial(nodes, options.lj_a);
   if (!(result.stats.dt_initial > 0.0) || !std::isfinite(result.stats.dt_initial))
     throw InputError(fmt::format("simulation.dt_initial must be a positive number, got {}", result.stats.dt_initial));
-  GlobalTimeStep gm(result.stats.dt_initial);
+  const SimState* resume = options.resume;
+  if (resume) result.stats.dt_initial = resume->dt_initial;
+  GlobalTimeStep gm = resume ? GlobalTimeStep(resume->time_step) : GlobalTimeStep(result.stats.dt_initial);
   BoundaryHandler boundary(tree, nodes);
+  if (resume) boundary.restore(nodes, resume->arcs, resume->tangents);
   // The exact field costs microseconds per node (eq. 3.6 queries every curve); the background field
   // a lookup, so it is built once here and read every iteration.
   std::unique_ptr<BackgroundSpacing> background;
@@ -99,7 +102,14 @@ SimResult run_simulation(NodeSet& nodes, const GeometryTree& tree, const Spacing
   const TraceRange trace = TraceRange::from_environment();
   ForceParams params{options.cutoff, options.lj_a, options.r0_any_direction, options.stability_factor};
   result.history.reserve(static_cast<std::size_t>(std::max(0, options.iterations)));
-  for (int iteration = 1; iteration <= options.iterations; ++iteration) {
+  if (resume) result.history = resume->history;
+  const int first = resume ? resume->iterations_done + 1 : 1;
+  int done = first - 1;
+  // The state after `done` iterations; nodes must hold that iteration's positions.
+  const auto snapshot = [&] {
+    return SimState{done, result.stats.dt_initial, gm.state(), boundary.arcs(), boundary.tangents(), result.history};
+  };
+  for (int iteration = first; iteration <= options.iterations; ++iteration) {
     load_particles(nodes, boundary, particles);
     build_neighbours_growing(*backend, particles, options.cutoff, list, flags);
     backend->compute_forces(particles, list, params, forces);
@@ -110,6 +120,8 @@ SimResult run_simulation(NodeSet& nodes, const GeometryTree& tree, const Spacing
     if (!std::isfinite(sums.sum_force) || !std::isfinite(sums.sum_kinetic)) {
       std::size_t bad = 0;
       while (bad < nodes.size() && std::isfinite(forces.fx[bad]) && std::isfinite(forces.fy[bad])) ++bad;
+      // Nothing has moved yet in this iteration: the nodes still hold the last good state.
+      if (callbacks.on_failure) callbacks.on_failure(snapshot());
       throw SimulationError(fmt::format("iteration {}: non-finite force on node {} at ({}, {})", iteration, bad,
                                         bad < nodes.size() ? nodes.x[bad].x : 0.0,
                                         bad < nodes.size() ? nodes.x[bad].y : 0.0));
@@ -138,8 +150,14 @@ SimResult run_simulation(NodeSet& nodes, const GeometryTree& tree, const Spacing
     result.history.push_back(row);
     if (callbacks.on_iteration) callbacks.on_iteration(row);
     progress.update(iteration, options.iterations, row.average_force, dt_gm);
+    done = iteration;
+    if (options.stop && options.stop->load() && iteration < options.iterations) {
+      result.stopped = true;
+      break;
+    }
   }
   progress.finish();
+  result.state = snapshot();
   result.stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;
 }

@@ -2,6 +2,7 @@
 // local time steps and moves on a StepBackend, then boundary handling and the spacing update on the
 // host, and the global maximum time step rule. Reproducible bit for bit on the reference backend.
 #pragma once
+#include <atomic>
 #include <cstdint>
 #include <functional>
 #include <optional>
@@ -10,6 +11,7 @@
 
 #include "geometry/geometry_tree.hpp"
 #include "nodes/node_set.hpp"
+#include "sim/global_time_step.hpp"
 #include "sim/history.hpp"
 #include "sim/step_backend.hpp"
 #include "spacing/spacing_field.hpp"
@@ -19,6 +21,17 @@ namespace pdmesh {
 namespace ocl {
 class Context;
 }  // namespace ocl
+
+// The driver's state between iterations beyond the NodeSet itself: with the NodeSet, enough to
+// continue a run bit-identically on the host reference (host/sim/checkpoint.hpp stores it).
+struct SimState {
+  int iterations_done = 0;
+  double dt_initial = 0.0;                 // the run's initial dt_GM (for the statistics)
+  GlobalTimeStep::State time_step;         // the global maximum time step rule
+  std::vector<std::vector<double>> arcs;   // BoundaryHandler arc positions, parallel to curve_nodes
+  std::vector<Vec2> tangents;              // BoundaryHandler tangent per node
+  std::vector<HistoryRow> history;         // rows 1 .. iterations_done
+};
 
 struct SimOptions {
   int iterations = 2000;
@@ -37,11 +50,21 @@ struct SimOptions {
   ocl::Context* device = nullptr;
   bool device_float = false;  // device run in float (default double)
   double verlet_skin = 0.3;  // device run: list radius cutoff q (1 + skin); 0 rebuilds every iteration
+  // Polled once after every iteration (both backends); when it reads true the run stops there,
+  // with SimResult::stopped set. Set from a signal handler, so it must be lock-free.
+  const std::atomic<bool>* stop = nullptr;
+  // Non-null: continue from this state (the NodeSet passed must be the one saved with it) with
+  // iterations resume->iterations_done + 1 .. iterations; dt_initial is then unused.
+  const SimState* resume = nullptr;
 };
 
 struct SimCallbacks {
   // After every iteration, with that iteration's history row.
   std::function<void(const HistoryRow&)> on_iteration;
+  // Host reference only: called with the last good state (the NodeSet passed to run_simulation
+  // still holds it) just before a SimulationError for non-finite forces is thrown, so the caller
+  // can save a checkpoint.
+  std::function<void(const SimState&)> on_failure;
 };
 
 struct SimStats {
@@ -55,8 +78,10 @@ struct SimStats {
 };
 
 struct SimResult {
-  std::vector<HistoryRow> history;
+  std::vector<HistoryRow> history;  // every row, including those of a resumed run's earlier part
   SimStats stats;
+  bool stopped = false;  // SimOptions::stop ended the run early
+  SimState state;        // the state after the last iteration run (history included)
 };
 
 // The default initial dt_GM: a node at r = 0.9 sigma from one neighbour with the median interior
@@ -65,7 +90,7 @@ struct SimResult {
 // (the thesis' 0.01 for circle_circle; see docs/simulation.md for the calibration).
 double default_dt_initial(const NodeSet& nodes, double lj_a);
 
-// Runs options.iterations iterations, updating nodes (positions, q, kinds, curve_nodes) in place.
+// Runs options.iterations iterations (or the remaining ones of options.resume), updating nodes (positions, q, kinds, curve_nodes) in place.
 // Throws SimulationError on non-finite forces or positions (naming the iteration and node).
 SimResult run_simulation(NodeSet& nodes, const GeometryTree& tree, const SpacingField& spacing,
                          const SimOptions& options, const SimCallbacks& callbacks = {});

@@ -1,0 +1,174 @@
+// Checkpoint files: writer and strict reader; see checkpoint.hpp and docs/checkpoint.md.
+#include "sim/checkpoint.hpp"
+
+#include <charconv>
+#include <cmath>
+#include <system_error>
+
+#include <fmt/format.h>
+
+#include "core/errors.hpp"
+#include "io/text_file.hpp"
+
+namespace pdmesh {
+namespace {
+
+constexpr const char* kHeader = "pdmesh-checkpoint 1";
+
+// Hexadecimal floating point without the 0x prefix (std::to_chars): exact and locale-free.
+std::string hex(double v) {
+  char buffer[64];
+  const auto [end, ec] = std::to_chars(buffer, buffer + sizeof buffer, v, std::chars_format::hex);
+  return std::string(buffer, ec == std::errc() ? end : buffer);
+}
+
+double parse_hex(const LineScanner& in, std::string_view token, std::string_view what) {
+  double v = 0.0;
+  const auto [p, ec] = std::from_chars(token.data(), token.data() + token.size(), v, std::chars_format::hex);
+  if (ec != std::errc() || p != token.data() + token.size() || !std::isfinite(v))
+    in.fail(fmt::format("expected a finite hexadecimal number {}", what), token);
+  return v;
+}
+
+// The next line's tokens, which must start with `keyword` and have `count` tokens (0: any).
+std::vector<std::string_view> keyword_line(LineScanner& in, std::string_view keyword, std::size_t count,
+                                           std::string_view what) {
+  std::vector<std::string_view> t = in.expect_tokens(what);
+  if (t.empty() || t[0] != keyword) in.fail(fmt::format("expected {}", what), t.empty() ? "" : t[0]);
+  if (count != 0 && t.size() != count) in.fail(fmt::format("expected {} ({} fields)", what, count));
+  return t;
+}
+
+std::size_t parse_count(const LineScanner& in, std::string_view token, std::string_view what) {
+  return static_cast<std::size_t>(in.to_index(token, 0, 1'000'000'000, what));
+}
+
+}  // namespace
+
+std::string format_checkpoint(const Checkpoint& c) {
+  const NodeSet& nodes = c.nodes;
+  const SimState& s = c.state;
+  std::string out = fmt::format("{}\n", kHeader);
+  for (const auto& [key, value] : c.case_keys) {
+    if (key.empty() || key.find_first_of(" \t\r\n") != std::string::npos || value.find_first_of("\r\n") != std::string::npos)
+      throw InputError(fmt::format("checkpoint case key '{}' = '{}' has white space in the key or a line break", key, value));
+    out += fmt::format("case {} {}\n", key, value);
+  }
+  out += fmt::format("iterations_done {}\n", s.iterations_done);
+  out += fmt::format("dt_initial {}\n", hex(s.dt_initial));
+  out += fmt::format("time_step {} {} {} {}\n", hex(s.time_step.dt),
+                     s.time_step.previous ? hex(*s.time_step.previous) : std::string("none"),
+                     s.time_step.consecutive_decreases, s.time_step.increases);
+  out += fmt::format("nodes {}\n", nodes.size());
+  for (std::size_t i = 0; i < nodes.size(); ++i) {
+    const Vec2 t = i < s.tangents.size() ? s.tangents[i] : Vec2{};
+    out += fmt::format("{} {} {} {} {} {} {}\n", hex(nodes.x[i].x), hex(nodes.x[i].y), hex(nodes.q[i]),
+                       static_cast<int>(nodes.kind[i]), nodes.curve[i], hex(t.x), hex(t.y));
+  }
+  out += fmt::format("curves {}\n", nodes.curve_nodes.size());
+  for (std::size_t k = 0; k < nodes.curve_nodes.size(); ++k) {
+    const std::vector<int>& list = nodes.curve_nodes[k];
+    out += fmt::format("curve {} {}", k, list.size());
+    for (std::size_t j = 0; j < list.size(); ++j)
+      out += fmt::format(" {}:{}", list[j], k < s.arcs.size() && j < s.arcs[k].size() ? hex(s.arcs[k][j]) : hex(0.0));
+    out += '\n';
+  }
+  out += fmt::format("history {}\n", s.history.size());
+  for (const HistoryRow& r : s.history)
+    out += fmt::format("{} {} {} {} {} {} {} {} {} {}\n", r.iteration, hex(r.average_force), hex(r.average_kinetic),
+                       hex(r.max_force), hex(r.dt_gm), r.snapped, r.clamped, r.fixed, r.boundary, r.interior);
+  out += "end\n";
+  return out;
+}
+
+void write_checkpoint(const std::filesystem::path& path, const Checkpoint& checkpoint) {
+  write_text_file(path, format_checkpoint(checkpoint));
+}
+
+Checkpoint parse_checkpoint(const std::string& text, const std::string& source_name) {
+  LineScanner in(source_name, text);
+  Checkpoint c;
+  std::string_view line = in.expect_line("the header line");
+  if (line != kHeader) in.fail(fmt::format("expected the header '{}'", kHeader), line);
+  std::vector<std::string_view> t = in.expect_tokens("a case line or iterations_done");
+  while (!t.empty() && t[0] == "case") {
+    if (t.size() < 2) in.fail("expected 'case KEY VALUE'");
+    // The value is the rest of the line after the key (it may hold spaces).
+    const std::size_t key_end = static_cast<std::size_t>(t[1].data() - t[0].data()) + t[1].size();
+    const std::string_view whole(t[0].data(), static_cast<std::size_t>(t.back().data() + t.back().size() - t[0].data()));
+    std::string value = key_end < whole.size() ? std::string(whole.substr(key_end + 1)) : std::string();
+    c.case_keys.emplace_back(std::string(t[1]), std::move(value));
+    t = in.expect_tokens("a case line or iterations_done");
+  }
+  SimState& s = c.state;
+  if (t.size() != 2 || t[0] != "iterations_done") in.fail("expected 'iterations_done N'", t.empty() ? "" : t[0]);
+  s.iterations_done = static_cast<int>(in.to_index(t[1], 0, 2'000'000'000, "iterations_done"));
+  t = keyword_line(in, "dt_initial", 2, "'dt_initial DT'");
+  s.dt_initial = parse_hex(in, t[1], "dt_initial");
+  t = keyword_line(in, "time_step", 5, "'time_step DT PREVIOUS DECREASES INCREASES'");
+  s.time_step.dt = parse_hex(in, t[1], "time step dt");
+  if (t[2] != "none") s.time_step.previous = parse_hex(in, t[2], "previous maximum force");
+  s.time_step.consecutive_decreases = static_cast<int>(in.to_index(t[3], 0, 1000, "consecutive decreases"));
+  s.time_step.increases = static_cast<int>(in.to_index(t[4], 0, 1000, "increases"));
+
+  t = keyword_line(in, "nodes", 2, "'nodes N'");
+  const std::size_t n = parse_count(in, t[1], "node count");
+  NodeSet& nodes = c.nodes;
+  const long long last_node = static_cast<long long>(n) - 1;
+  s.tangents.resize(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    t = in.expect_tokens("a node line 'x y q kind curve tx ty'");
+    if (t.size() != 7) in.fail("expected a node line 'x y q kind curve tx ty' (7 fields)");
+    const Vec2 p{parse_hex(in, t[0], "x"), parse_hex(in, t[1], "y")};
+    const double q = parse_hex(in, t[2], "q");
+    const auto kind = static_cast<NodeKind>(in.to_index(t[3], 0, 2, "node kind"));
+    const int curve = static_cast<int>(in.to_index(t[4], -1, 1'000'000'000, "curve"));
+    nodes.add(p, q, kind, curve);
+    s.tangents[i] = {parse_hex(in, t[5], "tangent x"), parse_hex(in, t[6], "tangent y")};
+  }
+  t = keyword_line(in, "curves", 2, "'curves C'");
+  const std::size_t curves = parse_count(in, t[1], "curve count");
+  nodes.curve_nodes.resize(curves);
+  s.arcs.resize(curves);
+  for (std::size_t k = 0; k < curves; ++k) {
+    t = keyword_line(in, "curve", 0, "'curve K M NODE:ARC...'");
+    if (t.size() < 3 || static_cast<std::size_t>(in.to_index(t[1], 0, 1'000'000'000, "curve index")) != k)
+      in.fail(fmt::format("expected 'curve {} M NODE:ARC...'", k));
+    const std::size_t m = parse_count(in, t[2], "curve node count");
+    if (t.size() != 3 + m) in.fail(fmt::format("expected {} NODE:ARC pairs, got {}", m, t.size() - 3));
+    for (std::size_t j = 0; j < m; ++j) {
+      const std::string_view pair = t[3 + j];
+      const std::size_t colon = pair.find(':');
+      if (colon == std::string_view::npos) in.fail("expected NODE:ARC", pair);
+      nodes.curve_nodes[k].push_back(static_cast<int>(in.to_index(pair.substr(0, colon), 0, last_node, "node")));
+      s.arcs[k].push_back(parse_hex(in, pair.substr(colon + 1), "arc position"));
+    }
+  }
+  t = keyword_line(in, "history", 2, "'history R'");
+  const std::size_t rows = parse_count(in, t[1], "history row count");
+  if (rows != static_cast<std::size_t>(s.iterations_done))
+    in.fail(fmt::format("expected {} history rows (iterations_done)", s.iterations_done), t[1]);
+  s.history.reserve(rows);
+  for (std::size_t r = 0; r < rows; ++r) {
+    t = in.expect_tokens("a history row");
+    if (t.size() != 10) in.fail("expected a history row (10 fields)");
+    HistoryRow row;
+    row.iteration = static_cast<int>(in.to_index(t[0], 1, 2'000'000'000, "iteration"));
+    row.average_force = parse_hex(in, t[1], "average force");
+    row.average_kinetic = parse_hex(in, t[2], "average kinetic energy");
+    row.max_force = parse_hex(in, t[3], "maximum force");
+    row.dt_gm = parse_hex(in, t[4], "dt_GM");
+    std::size_t* counts[] = {&row.snapped, &row.clamped, &row.fixed, &row.boundary, &row.interior};
+    for (std::size_t f = 0; f < 5; ++f) *counts[f] = parse_count(in, t[5 + f], "history count");
+    s.history.push_back(row);
+  }
+  t = in.expect_tokens("'end' (the file is truncated)");
+  if (t.size() != 1 || t[0] != "end") in.fail("expected 'end'", t.empty() ? "" : t[0]);
+  return c;
+}
+
+Checkpoint read_checkpoint(const std::filesystem::path& path) {
+  return parse_checkpoint(read_text_file(path), path.string());
+}
+
+}  // namespace pdmesh

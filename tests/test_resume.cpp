@@ -1,0 +1,170 @@
+// Interrupted runs and restart (thesis ch. 7, "Restart Capability"): checkpoints round-trip exactly,
+// a stopped and resumed run ends bit-identical to an uninterrupted one on the host reference, a
+// checkpoint of another case is refused, and a real SIGINT leaves a checkpoint and exit status 130.
+#include <catch2/catch.hpp>
+
+#include <fcntl.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <string>
+
+#include "core/errors.hpp"
+#include "io/text_file.hpp"
+#include "run_pdmesh.hpp"
+#include "sim/checkpoint.hpp"
+
+namespace fs = std::filesystem;
+using pdmesh_test::run_pdmesh;
+
+namespace {
+
+const std::string kCase = std::string(PDMESH_SOURCE_DIR) + "/cases/circle_circle";
+
+fs::path fresh_dir(const std::string& name) {
+  const fs::path dir = fs::temp_directory_path() / ("pdmesh_test_resume_" + name + "_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  return dir;
+}
+
+std::string mesh_command(const fs::path& out, const std::string& extra) {
+  return "mesh '" + kCase + "' --out '" + out.string() + "' --device host --formats msh --iterations 60 " + extra;
+}
+
+bool has_temporaries(const fs::path& dir) {
+  for (const auto& e : fs::directory_iterator(dir))
+    if (e.path().filename().string().find(".tmp") != std::string::npos) return true;
+  return false;
+}
+
+}  // namespace
+
+TEST_CASE("a checkpoint survives format and parse exactly", "[resume]") {
+  pdmesh::Checkpoint c;
+  c.case_keys = {{"geometry.file.0", "a b.crv (12 bytes)"}, {"spacing.expression", ""}, {"init.seed", "7"}};
+  c.nodes.add({0.1, -0.0}, 0.3, pdmesh::NodeKind::Fixed, 0);
+  c.nodes.add({1.0 / 3.0, 2.5e-310}, 0.7, pdmesh::NodeKind::Boundary, 0);
+  c.nodes.add({1.0, 0.0}, 0.3, pdmesh::NodeKind::Fixed, 0);
+  c.nodes.add({0.5, 0.25}, 1e-17, pdmesh::NodeKind::Interior, -1);
+  c.nodes.curve_nodes = {{0, 1, 2}};
+  c.state.iterations_done = 2;
+  c.state.dt_initial = 0.01;
+  c.state.time_step = {0.0101, 3.25, 2, 1};
+  c.state.arcs = {{0.0, 1.0 / 7.0, 1.0}};
+  c.state.tangents = {{0, 0}, {0.6, 0.8}, {0, 0}, {0, 0}};
+  pdmesh::HistoryRow row;
+  row.iteration = 1;
+  row.average_force = 1.0 / 3.0;
+  row.max_force = 1e300;
+  c.state.history = {row, row};
+  c.state.history[1].iteration = 2;
+  const std::string text = pdmesh::format_checkpoint(c);
+  const pdmesh::Checkpoint back = pdmesh::parse_checkpoint(text, "mem");
+  CHECK(pdmesh::format_checkpoint(back) == text);
+  CHECK(back.case_keys == c.case_keys);
+  CHECK(back.nodes.x[1].x == 1.0 / 3.0);
+  CHECK(back.nodes.x[1].y == 2.5e-310);
+  CHECK(std::signbit(back.nodes.x[0].y));
+  CHECK(back.state.arcs[0][1] == 1.0 / 7.0);
+  CHECK(back.state.time_step.previous == 3.25);
+  CHECK(back.state.history[0].average_force == 1.0 / 3.0);
+  // A truncated file (no end line) is refused with its line.
+  const std::string truncated = text.substr(0, text.rfind("end"));
+  CHECK_THROWS_AS(pdmesh::parse_checkpoint(truncated, "mem"), pdmesh::InputError);
+  CHECK_THROWS_WITH(pdmesh::parse_checkpoint("pdmesh-checkpoint 2\n", "mem"), Catch::Contains("mem:1"));
+}
+
+TEST_CASE("a stopped and resumed run ends bit-identical to an uninterrupted one", "[resume][cli]") {
+  const fs::path whole = fresh_dir("whole"), parts = fresh_dir("parts");
+  const auto full = run_pdmesh(mesh_command(whole, "-q"));
+  REQUIRE(full.status == 0);
+  CHECK_FALSE(fs::exists(whole / "checkpoint.pdmesh"));
+
+  const auto stopped = run_pdmesh(mesh_command(parts, "-q --stop-after 23"));
+  INFO(stopped.output);
+  REQUIRE(stopped.status == 130);
+  REQUIRE(fs::exists(parts / "checkpoint.pdmesh"));
+  CHECK(fs::exists(parts / "final.nodes"));
+  CHECK(fs::exists(parts / "mesh.msh"));
+  CHECK_FALSE(has_temporaries(parts));
+  const pdmesh::Checkpoint c = pdmesh::read_checkpoint(parts / "checkpoint.pdmesh");
+  CHECK(c.state.iterations_done == 23);
+  CHECK(c.state.history.size() == 23);
+  CHECK(pdmesh::read_text_file(parts / "final.nodes") != pdmesh::read_text_file(whole / "final.nodes"));
+
+  const auto resumed = run_pdmesh(mesh_command(parts, "-q --resume '" + parts.string() + "'"));
+  INFO(resumed.output);
+  REQUIRE(resumed.status == 0);
+  CHECK(pdmesh::read_text_file(parts / "final.nodes") == pdmesh::read_text_file(whole / "final.nodes"));
+  CHECK(pdmesh::read_text_file(parts / "history.csv") == pdmesh::read_text_file(whole / "history.csv"));
+  CHECK(pdmesh::read_text_file(parts / "mesh.msh") == pdmesh::read_text_file(whole / "mesh.msh"));
+  CHECK_FALSE(fs::exists(parts / "checkpoint.pdmesh"));  // the run there is finished
+  fs::remove_all(whole);
+  fs::remove_all(parts);
+}
+
+TEST_CASE("a checkpoint of another case or other settings is refused with exit 2", "[resume][cli]") {
+  const fs::path dir = fresh_dir("other");
+  REQUIRE(run_pdmesh(mesh_command(dir, "-q --stop-after 3")).status == 130);
+  const auto other_settings = run_pdmesh(mesh_command(fresh_dir("o2"), "--cutoff 1.6 --resume '" + dir.string() + "'"));
+  CHECK(other_settings.status == 2);
+  CHECK_THAT(other_settings.output, Catch::Contains("another case") && Catch::Contains("simulation.cutoff"));
+  const std::string square = std::string(PDMESH_SOURCE_DIR) + "/cases/square200";
+  const auto other_case = run_pdmesh("mesh '" + square + "' --out '" + fresh_dir("o3").string() +
+                                     "' --device host --resume '" + (dir / "checkpoint.pdmesh").string() + "'");
+  CHECK(other_case.status == 2);
+  CHECK_THAT(other_case.output, Catch::Contains("another case") && Catch::Contains("geometry.file.0"));
+  const auto missing = run_pdmesh(mesh_command(fresh_dir("o4"), "--resume '" + fresh_dir("none").string() + "'"));
+  CHECK(missing.status == 2);
+  CHECK_THAT(missing.output, Catch::Contains("no checkpoint"));
+  fs::remove_all(dir);
+}
+
+TEST_CASE("SIGINT stops a running mesh command with exit 130 and a readable checkpoint", "[resume][cli][signal]") {
+  const fs::path dir = fresh_dir("sigint");
+  int err[2];
+  REQUIRE(::pipe(err) == 0);
+  const pid_t pid = ::fork();
+  REQUIRE(pid >= 0);
+  if (pid == 0) {
+    ::dup2(err[1], STDERR_FILENO);
+    ::close(err[0]);
+    ::close(err[1]);
+    const int null = ::open("/dev/null", O_WRONLY);
+    ::dup2(null, STDOUT_FILENO);
+    const std::string out = dir.string();
+    ::execl(PDMESH_BINARY, PDMESH_BINARY, "mesh", kCase.c_str(), "--out", out.c_str(), "--device", "host",
+            "--formats", "msh", "--iterations", "100000", static_cast<char*>(nullptr));
+    ::_exit(127);
+  }
+  ::close(err[1]);
+  // Wait until the simulation has started (its first progress line), however loaded the machine.
+  std::string seen;
+  char buffer[256];
+  while (seen.find("simulation:") == std::string::npos) {
+    const ssize_t n = ::read(err[0], buffer, sizeof buffer);
+    if (n <= 0) break;
+    seen.append(buffer, static_cast<std::size_t>(n));
+  }
+  REQUIRE(seen.find("simulation:") != std::string::npos);
+  REQUIRE(::kill(pid, SIGINT) == 0);
+  // Keep draining stderr so that the child never blocks on a full pipe.
+  while (::read(err[0], buffer, sizeof buffer) > 0) {
+  }
+  ::close(err[0]);
+  int status = 0;
+  REQUIRE(::waitpid(pid, &status, 0) == pid);
+  REQUIRE(WIFEXITED(status));
+  CHECK(WEXITSTATUS(status) == 130);
+  REQUIRE(fs::exists(dir / "checkpoint.pdmesh"));
+  const pdmesh::Checkpoint c = pdmesh::read_checkpoint(dir / "checkpoint.pdmesh");
+  CHECK(c.state.iterations_done >= 1);
+  CHECK(c.state.iterations_done < 100000);
+  CHECK(c.state.history.size() == static_cast<std::size_t>(c.state.iterations_done));
+  CHECK(fs::exists(dir / "final.nodes"));
+  CHECK(fs::exists(dir / "mesh.msh"));
+  CHECK_FALSE(has_temporaries(dir));
+  fs::remove_all(dir);
+}
