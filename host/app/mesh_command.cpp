@@ -318,9 +318,9 @@ int run_mesh(const CaseConfig& config) {
   InterruptGuard interrupt;
   // Stage 1: inputs.
   const MeshInputs inputs(config);
-  if (config.resume) return resume_mesh(config, inputs);
   progress(config, "geometry: {} curves, {} segments, {} loops, area {:.6g}", inputs.geometry.curves.size(),
            inputs.geometry.segments.size(), inputs.geometry.loops.size(), inputs.geometry.area);
+  if (config.resume) return resume_mesh(config, inputs);
   // Stage 2: limits, before any large allocation.
   const double estimate = check_node_limit(config, inputs);
   // Stage 3: initial distribution.
