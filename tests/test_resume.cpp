@@ -16,7 +16,12 @@
 
 #include "core/errors.hpp"
 #include "io/text_file.hpp"
+#include "geometry/geometry_tree.hpp"
+#include "init/initial_distribution.hpp"
 #include "run_pdmesh.hpp"
+#include "sim/simulation.hpp"
+#include "sim_fixtures.hpp"
+#include "spacing/spacing_field.hpp"
 #include "sim/checkpoint.hpp"
 
 namespace fs = std::filesystem;
@@ -204,4 +209,32 @@ TEST_CASE("a stopped and resumed device run continues the same run", "[resume][c
   }
   fs::remove_all(whole);
   fs::remove_all(parts);
+}
+
+TEST_CASE("a failing simulation hands the last good state to on_failure before throwing", "[resume][sim]") {
+  using namespace pdmesh;
+  const Geometry geometry = pdmesh_test::circle_circle();
+  const GeometryTree tree(geometry);
+  const BoundarySpacing spacing(tree);
+  NodeSet nodes = make_initial_distribution(tree, spacing, {InitMethod::Structured, 1, {}}).nodes;
+  std::size_t interior = 0;
+  while (nodes.kind[interior] != NodeKind::Interior) ++interior;
+  SimOptions options;
+  options.iterations = 30;
+  options.dt_initial = 0.01;
+  options.quiet = true;
+  SimCallbacks callbacks;
+  // After iteration 10 one spacing turns NaN: iteration 11's forces are non-finite.
+  callbacks.on_iteration = [&](const HistoryRow& row) {
+    if (row.iteration == 10) nodes.q[interior] = std::nan("");
+  };
+  std::optional<SimState> saved;
+  callbacks.on_failure = [&](const SimState& state) { saved = state; };
+  CHECK_THROWS_AS(run_simulation(nodes, tree, spacing, options, callbacks), SimulationError);
+  REQUIRE(saved);
+  CHECK(saved->iterations_done == 10);
+  CHECK(saved->history.size() == 10);
+  CHECK(saved->history.back().iteration == 10);
+  CHECK(saved->arcs.size() == nodes.curve_nodes.size());
+  CHECK(saved->tangents.size() == nodes.size());
 }

@@ -110,21 +110,27 @@ SimResult run_simulation(NodeSet& nodes, const GeometryTree& tree, const Spacing
     return SimState{done, result.stats.dt_initial, gm.state(), boundary.arcs(), boundary.tangents(), result.history};
   };
   for (int iteration = first; iteration <= options.iterations; ++iteration) {
-    load_particles(nodes, boundary, particles);
-    build_neighbours_growing(*backend, particles, options.cutoff, list, flags);
-    backend->compute_forces(particles, list, params, forces);
     const double dt_gm = gm.dt();
-    backend->time_step_and_move(particles, forces, gm.dt2(), moves);
-    const StepSums sums = backend->reduce(particles, forces, moves);
-    if (trace.covers(iteration)) trace_step(stderr, iteration, particles, list, forces, moves, gm.dt2(), options.cutoff, 3);
-    if (!std::isfinite(sums.sum_force) || !std::isfinite(sums.sum_kinetic)) {
-      std::size_t bad = 0;
-      while (bad < nodes.size() && std::isfinite(forces.fx[bad]) && std::isfinite(forces.fy[bad])) ++bad;
+    StepSums sums;
+    try {
+      load_particles(nodes, boundary, particles);
+      build_neighbours_growing(*backend, particles, options.cutoff, list, flags);
+      backend->compute_forces(particles, list, params, forces);
+      backend->time_step_and_move(particles, forces, gm.dt2(), moves);
+      sums = backend->reduce(particles, forces, moves);
+      if (trace.covers(iteration))
+        trace_step(stderr, iteration, particles, list, forces, moves, gm.dt2(), options.cutoff, 3);
+      if (!std::isfinite(sums.sum_force) || !std::isfinite(sums.sum_kinetic)) {
+        std::size_t bad = 0;
+        while (bad < nodes.size() && std::isfinite(forces.fx[bad]) && std::isfinite(forces.fy[bad])) ++bad;
+        throw SimulationError(fmt::format("iteration {}: non-finite force on node {} at ({}, {})", iteration, bad,
+                                          bad < nodes.size() ? nodes.x[bad].x : 0.0,
+                                          bad < nodes.size() ? nodes.x[bad].y : 0.0));
+      }
+    } catch (const SimulationError&) {
       // Nothing has moved yet in this iteration: the nodes still hold the last good state.
       if (callbacks.on_failure) callbacks.on_failure(snapshot());
-      throw SimulationError(fmt::format("iteration {}: non-finite force on node {} at ({}, {})", iteration, bad,
-                                        bad < nodes.size() ? nodes.x[bad].x : 0.0,
-                                        bad < nodes.size() ? nodes.x[bad].y : 0.0));
+      throw;
     }
     const BoundaryCounts counts = boundary.apply(nodes, moves.dx, moves.dy);
     iteration_spacing.at_many(nodes.x, nodes.q);

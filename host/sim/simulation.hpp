@@ -62,7 +62,8 @@ struct SimCallbacks {
   // After every iteration, with that iteration's history row.
   std::function<void(const HistoryRow&)> on_iteration;
   // Host reference only: called with the last good state (the NodeSet passed to run_simulation
-  // still holds it) just before a SimulationError for non-finite forces is thrown, so the caller
+  // still holds it) just before a SimulationError from the neighbour build or for non-finite forces
+  // propagates (not one from the move itself, which has changed the nodes), so the caller
   // can save a checkpoint.
   std::function<void(const SimState&)> on_failure;
 };
