@@ -13,9 +13,11 @@ struct Result {
   std::string output;  // stdout and stderr together
 };
 
-// `arguments` is pasted into a shell command line: quote paths.
-inline Result run_pdmesh(const std::string& arguments) {
-  const std::string command = std::string("'") + PDMESH_BINARY + "' " + arguments + " 2>&1";
+// `arguments` is pasted into a shell command line: quote paths. `environment` (e.g. "VAR=value")
+// is set for this run only.
+inline Result run_pdmesh(const std::string& arguments, const std::string& environment = "") {
+  const std::string command =
+      (environment.empty() ? "" : "env " + environment + " ") + "'" + PDMESH_BINARY + "' " + arguments + " 2>&1";
   Result r;
   FILE* pipe = ::popen(command.c_str(), "r");
   if (pipe == nullptr) return r;

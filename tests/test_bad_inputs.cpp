@@ -61,3 +61,33 @@ TEST_CASE("every broken input exits 2 with a clear message and writes nothing", 
   }
   fs::remove_all(out_root);
 }
+
+TEST_CASE("an OpenCL device that is not there is refused before anything is written", "[cli][bad][opencl]") {
+  const fs::path out = fs::temp_directory_path() / ("pdmesh_bad_device_" + std::to_string(::getpid()));
+  fs::remove_all(out);
+  const std::string args = "mesh '" PDMESH_SOURCE_DIR "/cases/square200' --out '" + out.string() + "' --iterations 5";
+  // A device index that does not exist: exit 2, the available devices listed.
+  auto r = pdmesh_test::run_pdmesh(args + " --device opencl:7:0");
+  INFO(r.output);
+  CHECK(r.status == 2);
+  CHECK(r.output.find("no such OpenCL device") != std::string::npos);
+  CHECK(r.output.find("Available") != std::string::npos);
+  CHECK_FALSE(fs::exists(out));
+  // No OpenCL platform at all (the ICD loader pointed at an empty directory).
+  const fs::path empty_icd = out.string() + "_icd";
+  fs::create_directories(empty_icd);
+  const std::string no_icd = "OCL_ICD_VENDORS='" + empty_icd.string() + "'";
+  r = pdmesh_test::run_pdmesh(args + " --device opencl", no_icd);
+  INFO(r.output);
+  CHECK(r.status == 2);
+  CHECK(r.output.find("no OpenCL device is available") != std::string::npos);
+  CHECK_FALSE(fs::exists(out));
+  // auto falls back to the host reference with a notice and succeeds.
+  r = pdmesh_test::run_pdmesh(args + " --device auto --formats png", no_icd);
+  INFO(r.output);
+  CHECK(r.status == 0);
+  CHECK(r.output.find("simulating on the host reference") != std::string::npos);
+  CHECK(fs::exists(out / "final.nodes"));
+  fs::remove_all(out);
+  fs::remove_all(empty_icd);
+}

@@ -320,6 +320,9 @@ int run_mesh(const CaseConfig& config) {
   const MeshInputs inputs(config);
   progress(config, "geometry: {} curves, {} segments, {} loops, area {:.6g}", inputs.geometry.curves.size(),
            inputs.geometry.segments.size(), inputs.geometry.loops.size(), inputs.geometry.area);
+  // An explicit OpenCL device that is not there is bad input: refuse it before anything is written.
+  if (config.simulation.iterations > 0 && config.simulation.device != "host" && config.simulation.device != "auto")
+    (void)ocl::select_device(config.simulation.device);
   if (config.resume) return resume_mesh(config, inputs);
   // Stage 2: limits, before any large allocation.
   const double estimate = check_node_limit(config, inputs);
