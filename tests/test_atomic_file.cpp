@@ -10,29 +10,16 @@
 
 #include "core/atomic_file.hpp"
 #include "core/errors.hpp"
+#include "temp_files.hpp"
 
 namespace fs = std::filesystem;
 using namespace pdmesh;
 
 namespace {
 
-fs::path fresh_dir(const std::string& tag) {
-  fs::path d = fs::temp_directory_path() / ("pdmesh_test_atomic_" + tag + "_" + std::to_string(::getpid()));
-  fs::remove_all(d);
-  fs::create_directories(d);
-  return d;
-}
-
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-std::size_t entries(const fs::path& d) {
-  return static_cast<std::size_t>(std::distance(fs::directory_iterator(d), fs::directory_iterator()));
-}
+fs::path fresh_dir(const std::string& tag) { return pdmesh_test::fresh_dir("atomic_" + tag); }
+using pdmesh_test::entries;
+using pdmesh_test::slurp;
 
 }  // namespace
 

@@ -157,3 +157,12 @@ TEST_CASE("pdmesh mesh writes every stage's files: initial, history, final, mesh
   CHECK(read_node_file_size(out / "initial.nodes") == nodes.nodes.size());
   fs::remove_all(dir);
 }
+
+TEST_CASE("pdmesh devices lists the OpenCL devices and checks each with a kernel", "[cli][opencl]") {
+  const Result r = run("devices --check");
+  INFO(r.output);
+  CHECK(r.status == 0);
+  CHECK(contains(r.output, "opencl:0:0"));
+  CHECK(contains(r.output, "--device auto picks: opencl:"));
+  CHECK(contains(r.output, "check opencl:0:0: ok"));
+}

@@ -13,29 +13,16 @@
 #include "render/canvas.hpp"
 #include "render/mesh_picture.hpp"
 #include "render/node_picture.hpp"
+#include "temp_files.hpp"
 
 namespace fs = std::filesystem;
 using namespace pdmesh;
 
 namespace {
 
-fs::path fresh_dir(const std::string& tag) {
-  fs::path d = fs::temp_directory_path() / ("pdmesh_test_render_" + tag + "_" + std::to_string(::getpid()));
-  fs::remove_all(d);
-  fs::create_directories(d);
-  return d;
-}
-
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-std::size_t entries(const fs::path& d) {
-  return static_cast<std::size_t>(std::distance(fs::directory_iterator(d), fs::directory_iterator()));
-}
+fs::path fresh_dir(const std::string& tag) { return pdmesh_test::fresh_dir("render_" + tag); }
+using pdmesh_test::entries;
+using pdmesh_test::slurp;
 
 // A PNG read back through cairo; pixel() gives 0-255 channels.
 struct Png {

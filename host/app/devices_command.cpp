@@ -13,7 +13,26 @@
 namespace pdmesh {
 namespace {
 
-// y = 2x + i on a few elements; returns an empty string on success, else what went wrong.
+// y = 2x + i on a few elements in REAL = T; returns an empty string on success, else what is wrong.
+template <typename T>
+std::string run_axpy(ocl::Context& ctx, cl::Kernel& k, std::size_t wg) {
+  const int n = 13;
+  std::vector<T> x(n, T(1.5)), y;
+  ocl::Buffer<T> bx(ctx, "x", n), by(ctx, "y", n);
+  bx.upload(ctx.queue(), x);
+  k.setArg(0, n);
+  k.setArg(1, T(2));
+  k.setArg(2, bx.get());
+  k.setArg(3, by.get());
+  ocl::launch(ctx.queue(), k, "selftest_axpy", n, wg);
+  by.download(ctx.queue(), y);
+  for (int i = 0; i < n; ++i)
+    if (y[i] != T(3) + static_cast<T>(i))
+      return fmt::format("wrong result y[{}] = {} (expected {})", i, y[i], 3 + i);
+  return "";
+}
+
+// Builds and runs the selftest kernel, in double where the device has fp64.
 std::string self_test(const ocl::DeviceInfo& info) {
   try {
     ocl::Context ctx(info);
@@ -23,33 +42,7 @@ std::string self_test(const ocl::DeviceInfo& info) {
     cl_int err = CL_SUCCESS;
     cl::Kernel k(program, "selftest_axpy", &err);
     ocl::check(err, "clCreateKernel(selftest_axpy)");
-    const int n = 13;
-    if (precision == ocl::Precision::Double) {
-      std::vector<double> x(n, 1.5), y;
-      ocl::Buffer<double> bx(ctx, "x", n), by(ctx, "y", n);
-      bx.upload(ctx.queue(), x);
-      k.setArg(0, n);
-      k.setArg(1, 2.0);
-      k.setArg(2, bx.get());
-      k.setArg(3, by.get());
-      ocl::launch(ctx.queue(), k, "selftest_axpy", n, wg);
-      by.download(ctx.queue(), y);
-      for (int i = 0; i < n; ++i)
-        if (y[i] != 3.0 + i) return fmt::format("wrong result y[{}] = {} (expected {})", i, y[i], 3.0 + i);
-    } else {
-      std::vector<float> x(n, 1.5f), y;
-      ocl::Buffer<float> bx(ctx, "x", n), by(ctx, "y", n);
-      bx.upload(ctx.queue(), x);
-      k.setArg(0, n);
-      k.setArg(1, 2.0f);
-      k.setArg(2, bx.get());
-      k.setArg(3, by.get());
-      ocl::launch(ctx.queue(), k, "selftest_axpy", n, wg);
-      by.download(ctx.queue(), y);
-      for (int i = 0; i < n; ++i)
-        if (y[i] != 3.0f + static_cast<float>(i)) return fmt::format("wrong result y[{}] = {}", i, y[i]);
-    }
-    return "";
+    return precision == ocl::Precision::Double ? run_axpy<double>(ctx, k, wg) : run_axpy<float>(ctx, k, wg);
   } catch (const Error& e) {
     return e.what();
   }

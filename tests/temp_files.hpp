@@ -1,0 +1,33 @@
+// File helpers of the tests that write outputs: a fresh per-process temporary directory, a file's
+// whole content, and the number of entries in a directory (to see that no temporaries are left).
+#pragma once
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <sstream>
+#include <string>
+
+namespace pdmesh_test {
+
+inline std::filesystem::path fresh_dir(const std::string& tag) {
+  const auto d = std::filesystem::temp_directory_path() / ("pdmesh_test_" + tag + "_" + std::to_string(::getpid()));
+  std::filesystem::remove_all(d);
+  std::filesystem::create_directories(d);
+  return d;
+}
+
+inline std::string slurp(const std::filesystem::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+inline std::size_t entries(const std::filesystem::path& d) {
+  return static_cast<std::size_t>(
+      std::distance(std::filesystem::directory_iterator(d), std::filesystem::directory_iterator()));
+}
+
+}  // namespace pdmesh_test
