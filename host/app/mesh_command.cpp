@@ -275,8 +275,10 @@ Mesh mesh_and_measure(const CaseConfig& config, const MeshInputs& inputs, const 
     picture.value_label = config.output.color_by;
   }
   std::size_t pictures = 0;
+  // Pictures come as PNG and SVG, like the node pictures; either format name asks for both.
+  const bool pictures_wanted = config.output.wants("png") || config.output.wants("svg");
   for (const char* ext : {"png", "svg"}) {
-    if (!config.output.wants(ext)) continue;
+    if (!pictures_wanted) continue;
     if (std::string(ext) == "svg" && mesh.triangles.size() > 2 * kSvgNodeLimit) continue;
     write_mesh_picture(dir / fmt::format("mesh.{}", ext), mesh, picture);
     ++pictures;
