@@ -3,6 +3,7 @@
 #pragma once
 #include <cmath>
 #include <cstdint>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -10,6 +11,9 @@
 #include "sim/step_backend.hpp"
 
 namespace pdmesh_test {
+
+// A double in [0, 1) from the top 53 bits (reproducible across standard libraries).
+inline double uniform(std::mt19937_64& rng) { return static_cast<double>(rng() >> 11) * 0x1.0p-53; }
 
 inline void add(pdmesh::SimParticles& p, double x, double y, double q,
                 std::uint8_t kind = pdmesh::kSimInterior) {
@@ -44,6 +48,23 @@ inline pdmesh::Geometry circle_circle() {
   add_circle(raw, 10.0, 31, "outer");
   add_circle(raw, 0.5, 31, "inner");
   return pdmesh::build_geometry(std::move(raw));
+}
+
+// Rings of 24 nodes, radius and spacing growing geometrically from 0.001 to 1 (an airfoil's
+// leading edge in miniature), jittered: spacing graded 1000x.
+inline pdmesh::SimParticles graded_rings(std::mt19937_64& rng) {
+  pdmesh::SimParticles p;
+  const int per_ring = 24;
+  const double growth = 1.0 + 2.0 * M_PI / per_ring;
+  for (double rho = 0.001 / (2.0 * M_PI / per_ring); rho < 1.3 / (2.0 * M_PI / per_ring); rho *= growth) {
+    const double q = rho * 2.0 * M_PI / per_ring;
+    for (int k = 0; k < per_ring; ++k) {
+      const double t = 2.0 * M_PI * (k + 0.2 * uniform(rng)) / per_ring;
+      const double rr = rho * (1.0 + 0.1 * (uniform(rng) - 0.5));
+      add(p, rr * std::cos(t), rr * std::sin(t), q);
+    }
+  }
+  return p;
 }
 
 }  // namespace pdmesh_test

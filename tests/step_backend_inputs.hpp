@@ -31,7 +31,7 @@ inline ocl::Context& test_context() {
   return ctx;
 }
 
-inline double unit_random(std::mt19937_64& rng) { return static_cast<double>(rng() >> 11) * 0x1.0p-53; }
+using pdmesh_test::uniform;
 
 
 // Float backends see float inputs: the oracle gets the same rounded values.
@@ -54,7 +54,7 @@ inline void mix_kinds(SimParticles& p, std::mt19937_64& rng, std::size_t every) 
       p.kind[i] = kSimBoundary;
       p.prev[i] = static_cast<std::int32_t>((i + n - 1) % n);
       p.next[i] = static_cast<std::int32_t>((i + 1) % n);
-      const double a = 2.0 * M_PI * unit_random(rng);
+      const double a = 2.0 * M_PI * uniform(rng);
       p.tx[i] = std::cos(a);
       p.ty[i] = std::sin(a);
     }
@@ -66,7 +66,7 @@ inline Input random_input(std::size_t n, std::uint64_t seed, bool is_float) {
   std::mt19937_64 rng(seed);
   const double side = std::sqrt(static_cast<double>(n) + 1.0) * 0.08;
   for (std::size_t i = 0; i < n; ++i)
-    pdmesh_test::add(in.p, side * unit_random(rng), side * unit_random(rng), 0.06 + 0.06 * unit_random(rng));
+    pdmesh_test::add(in.p, side * uniform(rng), side * uniform(rng), 0.06 + 0.06 * uniform(rng));
   mix_kinds(in.p, rng, 10);
   if (is_float) round_to_float(in.p);
   return in;
@@ -77,7 +77,7 @@ inline Input graded_input(bool is_float) {
   Input in{"graded 1000x", {}, 1.5};
   std::mt19937_64 rng(42);
   for (int i = 0; i < 600; ++i) {
-    const double r = std::pow(10.0, -3.0 * unit_random(rng)), a = 2.0 * M_PI * unit_random(rng);
+    const double r = std::pow(10.0, -3.0 * uniform(rng)), a = 2.0 * M_PI * uniform(rng);
     pdmesh_test::add(in.p, r * std::cos(a), r * std::sin(a), 0.2 * r);
   }
   mix_kinds(in.p, rng, 25);
@@ -106,7 +106,7 @@ inline Input lattice_input() {
 inline Input crowded_input(bool is_float) {
   Input in{"crowded", {}, 1.5};
   std::mt19937_64 rng(5);
-  for (int i = 0; i < 40; ++i) pdmesh_test::add(in.p, 0.01 * unit_random(rng), 0.01 * unit_random(rng), 0.1);
+  for (int i = 0; i < 40; ++i) pdmesh_test::add(in.p, 0.01 * uniform(rng), 0.01 * uniform(rng), 0.1);
   for (int i = 0; i < 20; ++i) pdmesh_test::add(in.p, 10.0 + 3.0 * i, 5.0, 0.1);
   if (is_float) round_to_float(in.p);
   return in;

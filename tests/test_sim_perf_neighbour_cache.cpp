@@ -14,7 +14,7 @@ using namespace pdmesh;
 
 namespace {
 
-double uniform(std::mt19937_64& rng) { return static_cast<double>(rng() >> 11) * 0x1.0p-53; }
+using pdmesh_test::uniform;
 
 using pdmesh_test::add;
 
@@ -58,22 +58,7 @@ SimParticles random_uniform(std::mt19937_64& rng, std::size_t n) {
   return p;
 }
 
-// Rings of 24 nodes, radius and spacing growing geometrically from 0.001 to 1 (an airfoil's
-// leading edge in miniature), jittered.
-SimParticles graded(std::mt19937_64& rng) {
-  SimParticles p;
-  const int per_ring = 24;
-  const double growth = 1.0 + 2.0 * M_PI / per_ring;
-  for (double rho = 0.001 / (2.0 * M_PI / per_ring); rho < 1.3 / (2.0 * M_PI / per_ring); rho *= growth) {
-    const double q = rho * 2.0 * M_PI / per_ring;
-    for (int k = 0; k < per_ring; ++k) {
-      const double t = 2.0 * M_PI * (k + 0.2 * uniform(rng)) / per_ring;
-      const double rr = rho * (1.0 + 0.1 * (uniform(rng) - 0.5));
-      add(p, rr * std::cos(t), rr * std::sin(t), q);
-    }
-  }
-  return p;
-}
+SimParticles graded(std::mt19937_64& rng) { return pdmesh_test::graded_rings(rng); }
 
 }  // namespace
 

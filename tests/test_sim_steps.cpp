@@ -16,7 +16,7 @@ using pdmesh_test::add;
 
 double norm2_of(double x, double y) { return x * x + y * y; }
 
-double uniform(std::mt19937_64& rng) { return static_cast<double>(rng() >> 11) * 0x1.0p-53; }
+using pdmesh_test::uniform;
 
 // Closed form of eq. 5.11 along +x for node 0 at the origin and node 1 at (r, 0).
 double closed_form_fx(double q0, double q1, double r, double a) {
@@ -205,20 +205,8 @@ TEST_CASE("neighbour lists equal brute force: random uniform input", "[sim]") {
 }
 
 TEST_CASE("neighbour lists equal brute force: spacing graded 1000x, bounded work", "[sim]") {
-  // Rings of 24 nodes with radius and spacing growing geometrically from 0.001 to 1 (an airfoil's
-  // leading edge in miniature), jittered.
   std::mt19937_64 rng(7);
-  SimParticles p;
-  const int per_ring = 24;
-  const double growth = 1.0 + 2.0 * M_PI / per_ring;
-  for (double rho = 0.001 / (2.0 * M_PI / per_ring); rho < 1.3 / (2.0 * M_PI / per_ring); rho *= growth) {
-    const double q = rho * 2.0 * M_PI / per_ring;
-    for (int k = 0; k < per_ring; ++k) {
-      const double t = 2.0 * M_PI * (k + 0.2 * uniform(rng)) / per_ring;
-      const double rr = rho * (1.0 + 0.1 * (uniform(rng) - 0.5));
-      add(p, rr * std::cos(t), rr * std::sin(t), q);
-    }
-  }
+  SimParticles p = pdmesh_test::graded_rings(rng);
   add(p, p.x[100], p.y[100], p.q[100]);  // coincident pair
   double q_min = HUGE_VAL, q_max = 0;
   for (double q : p.q) q_min = std::min(q_min, q), q_max = std::max(q_max, q);

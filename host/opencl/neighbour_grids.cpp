@@ -76,16 +76,6 @@ void append_grid(const double* x, const double* y, const std::vector<std::int32_
 
 }  // namespace
 
-std::uint64_t cell_hash(std::int64_t cx, std::int64_t cy) {
-  std::uint64_t h = static_cast<std::uint64_t>(cx) * 0x9E3779B97F4A7C15ULL ^ static_cast<std::uint64_t>(cy);
-  h ^= h >> 30;
-  h *= 0xBF58476D1CE4E5B9ULL;
-  h ^= h >> 27;
-  h *= 0x94D049BB133111EBULL;
-  h ^= h >> 31;
-  return h;
-}
-
 std::size_t NeighbourGrids::bytes() const {
   return level.size() * 4 + inv_cell.size() * 8 + table_offset.size() * 16 + table_cx.size() * 16 +
          table_id.size() * 4 + cell_start.size() * 4 + cell_nodes.size() * 4;

@@ -4,6 +4,8 @@
 #include <cstdint>
 #include <vector>
 
+#include "sim/cell_hash.hpp"
+
 namespace pdmesh::ocl {
 
 // Grid g = 2L is the cumulative grid C_L (nodes of level <= L), g = 2L + 1 the exact grid E_L (level L
@@ -30,7 +32,7 @@ struct NeighbourGrids {
 void build_neighbour_grids(const double* x, const double* y, const double* q, std::size_t n, double radius_factor,
                            NeighbourGrids& grids);
 
-// The hash of a cell (splitmix64 finaliser), shared with the kernel's nb_hash.
-std::uint64_t cell_hash(std::int64_t cx, std::int64_t cy);
+// The hash of a cell (sim/cell_hash.hpp), which the kernel's nb_hash repeats.
+using pdmesh::cell_hash;
 
 }  // namespace pdmesh::ocl

@@ -4,21 +4,9 @@
 #include <algorithm>
 #include <cmath>
 
+#include "sim/cell_hash.hpp"
+
 namespace pdmesh::reference {
-namespace {
-
-std::uint64_t hash_cell(std::int64_t cx, std::int64_t cy) {
-  // splitmix64 finaliser over both coordinates.
-  std::uint64_t h = static_cast<std::uint64_t>(cx) * 0x9E3779B97F4A7C15ULL ^ static_cast<std::uint64_t>(cy);
-  h ^= h >> 30;
-  h *= 0xBF58476D1CE4E5B9ULL;
-  h ^= h >> 27;
-  h *= 0x94D049BB133111EBULL;
-  h ^= h >> 31;
-  return h;
-}
-
-}  // namespace
 
 // Cell coordinate of a coordinate; clamped so that absurd coordinates cannot overflow.
 std::int64_t cell_coord(double v, double inv_cell) {
@@ -27,7 +15,7 @@ std::int64_t cell_coord(double v, double inv_cell) {
 }
 
 int LevelGrids::Grid::find(std::int64_t cx, std::int64_t cy) const {
-  for (std::size_t s = hash_cell(cx, cy) & mask;; s = (s + 1) & mask) {
+  for (std::size_t s = cell_hash(cx, cy) & mask;; s = (s + 1) & mask) {
     const int id = slot_id[s];
     if (id < 0) return -1;
     if (key_x[s] == cx && key_y[s] == cy) return id;
@@ -47,7 +35,7 @@ void LevelGrids::Grid::build(const SimParticles& p, const std::vector<std::int32
   for (std::size_t m = 0; m < members.size(); ++m) {
     const auto j = static_cast<std::size_t>(members[m]);
     const std::int64_t cx = cell_coord(p.x[j], inv_cell), cy = cell_coord(p.y[j], inv_cell);
-    std::size_t s = hash_cell(cx, cy) & mask;
+    std::size_t s = cell_hash(cx, cy) & mask;
     while (slot_id[s] >= 0 && !(key_x[s] == cx && key_y[s] == cy)) s = (s + 1) & mask;
     if (slot_id[s] < 0) {
       key_x[s] = cx;
