@@ -22,9 +22,10 @@ class Buffer {
     // A zero-sized cl::Buffer is invalid; keep one element so kernels always get a valid pointer.
     std::size_t bytes = sizeof(T) * (count_ ? count_ : 1);
     if (bytes > ctx.device().max_allocation)
-      throw DeviceError(fmt::format("buffer '{}' needs {} bytes, more than the device's largest allocation ({} bytes) "
-                                    "on {}: use fewer nodes or --precision float",
-                                    name_, bytes, ctx.device().max_allocation, ctx.device().name));
+      throw LimitError(fmt::format("buffer '{}' needs {} bytes, more than the largest allocation {} allows "
+                                   "(CL_DEVICE_MAX_MEM_ALLOC_SIZE, {} bytes): use --precision float (half the bytes), "
+                                   "--device host (the host reference) or a coarser spacing (fewer nodes)",
+                                   name_, bytes, ctx.device().name, ctx.device().max_allocation));
     buffer_ = cl::Buffer(ctx.context(), flags, bytes, nullptr, &err);
     check(err, fmt::format("allocating buffer '{}' ({} bytes)", name_, bytes));
   }
@@ -42,7 +43,7 @@ class Buffer {
       throw DeviceError(fmt::format("upload of {} elements into buffer '{}' of {}", count, name_, count_));
     if (count == 0) return;
     // The message is formatted only on failure: transfers run every iteration.
-    const cl_int err = q.enqueueWriteBuffer(buffer_, blocking ? CL_TRUE : CL_FALSE, 0, sizeof(T) * count, data);
+    const cl_int err = injected_fault(q.enqueueWriteBuffer(buffer_, blocking ? CL_TRUE : CL_FALSE, 0, sizeof(T) * count, data));
     if (err != CL_SUCCESS) check(err, fmt::format("upload to '{}'", name_));
   }
   void download(cl::CommandQueue& q, std::vector<T>& host, std::size_t count) {
@@ -50,7 +51,7 @@ class Buffer {
       throw DeviceError(fmt::format("download of {} elements from buffer '{}' of {}", count, name_, count_));
     host.resize(count);
     if (count == 0) return;
-    const cl_int err = q.enqueueReadBuffer(buffer_, CL_TRUE, 0, sizeof(T) * count, host.data());
+    const cl_int err = injected_fault(q.enqueueReadBuffer(buffer_, CL_TRUE, 0, sizeof(T) * count, host.data()));
     if (err != CL_SUCCESS) check(err, fmt::format("download from '{}'", name_));
   }
   void download(cl::CommandQueue& q, std::vector<T>& host) { download(q, host, count_); }

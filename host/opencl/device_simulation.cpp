@@ -7,11 +7,13 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <optional>
 
 #include "core/errors.hpp"
 #include "opencl/device_neighbours.hpp"
 #include "opencl/step_program.hpp"
 #include "sim/boundary_handling.hpp"
+#include "sim/failure_report.hpp"
 #include "sim/global_time_step.hpp"
 #include "sim/progress.hpp"
 #include "spacing/background_field.hpp"
@@ -40,6 +42,11 @@ class DeviceRun {
   SimResult run(const SimCallbacks& callbacks);
 
  private:
+  void check_memory() const;
+  void remember(int done, double dt_initial, const GlobalTimeStep& gm, std::size_t rows);
+  SimState last_good_state(int done, double dt_initial, const GlobalTimeStep& gm,
+                           const std::vector<HistoryRow>& history);
+  SimulationError non_finite_error(int iteration, const SimState& good);
   void upload_initial();
   void upload_topology();  // kind, prev, next, boundary slots (start and after snapping)
   void rebuild();
@@ -90,7 +97,95 @@ class DeviceRun {
   std::uint64_t pairs_examined_ = 0;
   std::size_t within_ = 0, coincident_ = 0, sum_moving_ = 0;
   double sum_force_ = 0, sum_kinetic_ = 0, max_force_ = 0, device_skin_use_ = 0;
+  // The state to fall back on when the device cannot be read after a failure: saved before the first
+  // iteration and after every neighbour-list build (which reads every position anyway). Its history
+  // is the first saved_rows_ rows of the run's.
+  NodeSet saved_nodes_;
+  SimState saved_state_;
+  std::size_t saved_rows_ = 0;
+  // host_boundary has moved nodes on the host that x_[cur_] does not hold yet (until the iteration ends).
+  bool host_ahead_ = false;
+  bool moves_finite_ = true;  // every move the host reads in step_kernel is finite
 };
+
+// Device memory of a run (device_simulation.hpp); the neighbour list at its initial row stride.
+constexpr std::size_t kInitialStride = 16;
+
+template <typename Real>
+void DeviceRun<Real>::check_memory() const {
+  const BackgroundFieldData& d = background_.data();
+  const std::uint64_t field = 4 * (d.root_node.size() + d.node_child.size() + d.leaf_corner.size() + d.leaf_tag.size()) +
+                              sizeof(Real) * d.corner_q.size();
+  check_device_memory(ctx_.device(), n_, nodes_.count(NodeKind::Boundary), field, sizeof(Real));
+}
+
+template <typename Real>
+void DeviceRun<Real>::remember(int done, double dt_initial, const GlobalTimeStep& gm, std::size_t rows) {
+  // Interior positions and every q as the build read them from the device; boundary nodes the host's.
+  saved_nodes_ = nodes_;
+  for (std::size_t i = 0; i < n_; ++i) {
+    if (saved_nodes_.kind[i] == NodeKind::Interior) saved_nodes_.x[i] = {build_x_[i], build_y_[i]};
+    saved_nodes_.q[i] = build_q_[i];
+  }
+  saved_state_ = SimState{done, dt_initial, gm.state(), boundary_.arcs(), boundary_.tangents(), {}};
+  saved_rows_ = rows;
+}
+
+// Puts the last good state into nodes_ and returns the driver state that goes with it: the state
+// after iteration `done` read back from the device, or, when the host is already ahead of it, the
+// device cannot be read or what it holds is not finite, the state saved at the last build.
+template <typename Real>
+SimState DeviceRun<Real>::last_good_state(int done, double dt_initial, const GlobalTimeStep& gm,
+                                          const std::vector<HistoryRow>& history) {
+  if (!host_ahead_) {
+    try {
+      std::vector<Real> x, y, q;
+      x_[cur_].download(ctx_.queue(), x, n_);
+      y_[cur_].download(ctx_.queue(), y, n_);
+      q_[cur_].download(ctx_.queue(), q, n_);
+      bool finite = true;
+      for (std::size_t i = 0; i < n_; ++i)
+        finite = finite && std::isfinite(static_cast<double>(x[i])) && std::isfinite(static_cast<double>(y[i])) &&
+                 q[i] > 0 && std::isfinite(static_cast<double>(q[i]));
+      if (finite) {
+        for (std::size_t i = 0; i < n_; ++i) {
+          if (nodes_.kind[i] == NodeKind::Interior) nodes_.x[i] = {static_cast<double>(x[i]), static_cast<double>(y[i])};
+          nodes_.q[i] = static_cast<double>(q[i]);
+        }
+        return SimState{done, dt_initial, gm.state(), boundary_.arcs(), boundary_.tangents(), history};
+      }
+    } catch (const Error&) {
+      // The device cannot be read: the saved state below.
+    }
+  }
+  nodes_ = saved_nodes_;
+  SimState state = saved_state_;
+  state.history.assign(history.begin(), history.begin() + static_cast<std::ptrdiff_t>(saved_rows_));
+  return state;
+}
+
+// The device's new positions (x_[1 - cur_]) name the first node whose move was not finite; its
+// neighbourhood is described at the last good positions (nodes_ holds them).
+template <typename Real>
+SimulationError DeviceRun<Real>::non_finite_error(int iteration, const SimState& good) {
+  std::size_t bad = n_;
+  try {
+    std::vector<Real> x, y;
+    x_[1 - cur_].download(ctx_.queue(), x, n_);
+    y_[1 - cur_].download(ctx_.queue(), y, n_);
+    for (std::size_t i = 0; i < n_ && bad == n_; ++i)
+      if (!std::isfinite(static_cast<double>(x[i])) || !std::isfinite(static_cast<double>(y[i]))) bad = i;
+  } catch (const Error&) {
+  }
+  const std::string sums = fmt::format("sum |F| {}, sum kinetic {}", sum_force_, sum_kinetic_);
+  if (bad == n_)
+    return SimulationError(fmt::format("iteration {}: non-finite force sums ({}); no node's new position is "
+                                       "non-finite (last good state: after iteration {})",
+                                       iteration, sums, good.iterations_done));
+  return SimulationError(fmt::format("iteration {}: non-finite force or move ({}) on {} (positions after iteration {})",
+                                     iteration, sums, describe_neighbourhood(nodes_, bad, options_.cutoff * nodes_.q[bad]),
+                                     good.iterations_done));
+}
 
 template <typename Real>
 void DeviceRun<Real>::upload_initial() {
@@ -263,11 +358,20 @@ void DeviceRun<Real>::step_kernel(double dt_gm2) {
     dx_[i] = static_cast<double>(brec_host_[4 * s + 2]);
     dy_[i] = static_cast<double>(brec_host_[4 * s + 3]);
   }
+  // The moves the host applies must be finite (the sums may not show a single NaN move).
+  moves_finite_ = true;
+  for (std::int32_t node : boundary_nodes_)
+    moves_finite_ = moves_finite_ && std::isfinite(dx_[static_cast<std::size_t>(node)]) &&
+                    std::isfinite(dy_[static_cast<std::size_t>(node)]);
+  for (std::int32_t node : candidates_)
+    moves_finite_ = moves_finite_ && std::isfinite(dx_[static_cast<std::size_t>(node)]) &&
+                    std::isfinite(dy_[static_cast<std::size_t>(node)]);
 }
 
 template <typename Real>
 BoundaryCounts DeviceRun<Real>::host_boundary(double& skin_use) {
   auto t0 = Clock::now();
+  host_ahead_ = true;
   const BoundaryCounts counts = boundary_.apply_subset(nodes_, dx_, dy_, candidates_);
   if (counts.snapped > 0) upload_topology();  // kinds and curve neighbours changed (rare)
   // Records: every boundary node (re-snapped, with its tangent) and every candidate still interior.
@@ -325,6 +429,7 @@ SimResult DeviceRun<Real>::run(const SimCallbacks& callbacks) {
     boundary_.restore(nodes_, resume->arcs, resume->tangents);  // before upload_initial reads the tangents
   }
   GlobalTimeStep gm = resume ? GlobalTimeStep(resume->time_step) : GlobalTimeStep(result.stats.dt_initial);
+  check_memory();  // before the first device allocation
   ProgressLine progress(options_.quiet);
   upload_initial();  // setup, like the host path's, is not part of the timed iterations
   stats_.setup_bytes = stats_.bytes_up;
@@ -333,52 +438,75 @@ SimResult DeviceRun<Real>::run(const SimCallbacks& callbacks) {
   const auto start = Clock::now();
   std::size_t fixed = nodes_.count(NodeKind::Fixed), on_boundary = nodes_.count(NodeKind::Boundary);
   std::size_t interior = nodes_.count(NodeKind::Interior);
-  result.history.reserve(static_cast<std::size_t>(std::max(0, options_.iterations)));
+  result.history.reserve(history_reserve(options_.iterations));
   if (resume) result.history = resume->history;
   const int first = resume ? resume->iterations_done + 1 : 1;
   int done = first - 1;
-  for (int iteration = first; iteration <= options_.iterations; ++iteration) {
-    // A zero skin rebuilds every iteration (the reference's behaviour).
-    if (skin_use_ > kSkinUseLimit || options_.verlet_skin == 0.0) rebuild();
-    const double dt_gm = gm.dt();
-    step_kernel(gm.dt2());
-    if (!std::isfinite(sum_force_) || !std::isfinite(sum_kinetic_)) {
-      std::size_t bad = candidates_.empty() ? 0 : static_cast<std::size_t>(candidates_.front());
-      throw SimulationError(fmt::format("iteration {}: non-finite force near node {} at ({}, {})", iteration, bad,
-                                        bad < n_ ? nodes_.x[bad].x : 0.0, bad < n_ ? nodes_.x[bad].y : 0.0));
-    }
-    double skin_use = device_skin_use_;
-    const BoundaryCounts counts = host_boundary(skin_use);
-    cur_ = 1 - cur_;
-    skin_use_ = std::max(skin_use_, skin_use);
+  remember(done, result.stats.dt_initial, gm, result.history.size());
+  // On any failure from here on the caller gets the last good state (SimCallbacks::on_failure).
+  int iteration = first;
+  std::optional<SimState> failed_at;  // set where the failure computed it already
+  const auto hand_over = [&] {
+    if (!failed_at) failed_at = last_good_state(done, result.stats.dt_initial, gm, result.history);
+    if (callbacks.on_failure) callbacks.on_failure(*failed_at);
+  };
+  try {
+    for (; iteration <= options_.iterations; ++iteration) {
+      // A zero skin rebuilds every iteration (the reference's behaviour).
+      if (skin_use_ > kSkinUseLimit || options_.verlet_skin == 0.0) {
+        rebuild();
+        remember(done, result.stats.dt_initial, gm, result.history.size());
+      }
+      const double dt_gm = gm.dt();
+      step_kernel(gm.dt2());
+      // Before the host moves anything: the last good state is still whole on the device.
+      if (!std::isfinite(sum_force_) || !std::isfinite(sum_kinetic_) || !moves_finite_) {
+        failed_at = last_good_state(done, result.stats.dt_initial, gm, result.history);
+        throw non_finite_error(iteration, *failed_at);
+      }
+      double skin_use = device_skin_use_;
+      const BoundaryCounts counts = host_boundary(skin_use);
+      cur_ = 1 - cur_;
+      skin_use_ = std::max(skin_use_, skin_use);
 
-    HistoryRow row;
-    row.iteration = iteration;
-    const double moving = sum_moving_ > 0 ? static_cast<double>(sum_moving_) : 1.0;
-    row.average_force = sum_force_ / moving;
-    row.average_kinetic = sum_kinetic_ / moving;
-    row.max_force = max_force_;
-    row.dt_gm = dt_gm;
-    row.snapped = counts.snapped;
-    row.clamped = counts.clamped;
-    on_boundary += counts.snapped;
-    interior -= counts.snapped;
-    row.fixed = fixed;
-    row.boundary = on_boundary;
-    row.interior = interior;
-    gm.update(max_force_);
-    result.stats.pairs_within += within_;
-    result.stats.coincident_pairs += coincident_;
-    result.stats.snapped += counts.snapped;
-    result.history.push_back(row);
-    ++stats_.iterations;
-    if (callbacks.on_iteration) callbacks.on_iteration(row);
-    progress.update(iteration, options_.iterations, row.average_force, dt_gm);
-    done = iteration;
-    if (options_.stop && options_.stop->load() && iteration < options_.iterations) {
-      result.stopped = true;
-      break;
+      HistoryRow row;
+      row.iteration = iteration;
+      const double moving = sum_moving_ > 0 ? static_cast<double>(sum_moving_) : 1.0;
+      row.average_force = sum_force_ / moving;
+      row.average_kinetic = sum_kinetic_ / moving;
+      row.max_force = max_force_;
+      row.dt_gm = dt_gm;
+      row.snapped = counts.snapped;
+      row.clamped = counts.clamped;
+      on_boundary += counts.snapped;
+      interior -= counts.snapped;
+      row.fixed = fixed;
+      row.boundary = on_boundary;
+      row.interior = interior;
+      gm.update(max_force_);
+      result.stats.pairs_within += within_;
+      result.stats.coincident_pairs += coincident_;
+      result.stats.snapped += counts.snapped;
+      result.history.push_back(row);
+      ++stats_.iterations;
+      if (callbacks.on_iteration) callbacks.on_iteration(row);
+      progress.update(iteration, options_.iterations, row.average_force, dt_gm);
+      done = iteration;
+      host_ahead_ = false;
+      if (options_.stop && options_.stop->load() && iteration < options_.iterations) {
+        result.stopped = true;
+        break;
+      }
     }
+  } catch (const DeviceError& e) {
+    progress.finish();
+    hand_over();
+    // The iteration that failed, for the message; the error itself names the call and the CL code.
+    throw DeviceError(fmt::format("iteration {}: {}", iteration, e.what()));
+  } catch (const Error&) {
+    progress.finish();
+    hand_over();
+    throw;
   }
   progress.finish();
   // Final state: interior positions and every q from the device; boundary positions stay the host's.
@@ -407,6 +535,34 @@ SimResult DeviceRun<Real>::run(const SimCallbacks& callbacks) {
 }
 
 }  // namespace
+
+DeviceMemoryNeed device_memory_need(std::size_t nodes, std::size_t boundary_nodes, std::uint64_t field_bytes,
+                                    std::size_t real_bytes) {
+  DeviceMemoryNeed need;
+  const std::uint64_t n = nodes, r = real_bytes;
+  // Per node: x, y, q twice, tx, ty, the build copies of x, y, q and a 4-value candidate record
+  // (15 reals); kind and tag (2 bytes); prev, next, bslot, candidate index, neighbour count (5 ints);
+  // the neighbour index (kInitialStride ints). Per boundary node a 4-value record. Lower bounds:
+  // the neighbour binning adds its grids and the rows grow when a node has more neighbours.
+  need.largest = 4 * n * kInitialStride;
+  need.total = n * (15 * r + 2 + 5 * 4) + need.largest + 4 * r * boundary_nodes + field_bytes;
+  return need;
+}
+
+void check_device_memory(const DeviceInfo& device, std::size_t nodes, std::size_t boundary_nodes,
+                         std::uint64_t field_bytes, std::size_t real_bytes) {
+  const DeviceMemoryNeed need = device_memory_need(nodes, boundary_nodes, field_bytes, real_bytes);
+  if (need.total <= device.global_memory && need.largest <= device.max_allocation) return;
+  const DeviceMemoryNeed in_float = device_memory_need(nodes, boundary_nodes, field_bytes, 4);
+  throw LimitError(fmt::format(
+      "{} nodes need at least {} bytes of device memory in {} (the largest buffer, the neighbour list, {} bytes), "
+      "but {} has {} bytes of global memory (CL_DEVICE_GLOBAL_MEM_SIZE) and allows {} bytes per buffer "
+      "(CL_DEVICE_MAX_MEM_ALLOC_SIZE): {}use --device host (the host reference, in host memory) or a coarser "
+      "spacing (fewer nodes)",
+      nodes, need.total, real_bytes == 4 ? "float" : "double", need.largest, device.name, device.global_memory,
+      device.max_allocation,
+      real_bytes == 4 ? "" : fmt::format("use --precision float (at least {} bytes), ", in_float.total)));
+}
 
 SimResult run_device_simulation(NodeSet& nodes, const GeometryTree& tree, const SpacingField& spacing,
                                 const SimOptions& options, Context& ctx, const SimCallbacks& callbacks,
