@@ -1,8 +1,9 @@
 // Step 1 on the device (mirror of host/sim/reference/binning.cpp, build_neighbours): each interior
 // node gathers its neighbours from the multi-level hashed cell grids the host flattened
 // (host/opencl/neighbour_grids.cpp): the cumulative grid of its own level, then the exact grid of
-// every coarser level. Rows are kept sorted by node index with a bounded insertion, so on overflow the
-// row holds the `stride` smallest indices, exactly as the reference's sorted-then-truncated row.
+// every coarser level. Rows end sorted by node index: neighbours are appended and the row sorted once
+// (a bounded insertion per neighbour cost ~30% more); a row that overflows is scanned again with the
+// bounded insertion, so it holds the `stride` smallest indices, as the reference's sorted-then-truncated row.
 #pragma OPENCL FP_CONTRACT OFF
 
 // splitmix64 finaliser over both cell coordinates (the reference's hash_key).
@@ -31,6 +32,56 @@ int nb_find(int g, long cx, long cy, __global const int* grid_table_offset, __gl
     if (id < 0) return -1;
     if (table_cx[off + (int)s] == cx && table_cy[off + (int)s] == cy) return id;
   }
+}
+
+// Appends (insert == 0) or inserts in order, keeping the `stride` smallest (insert == 1), every node
+// within r2 of (xi, yi) over the node's grids into index[base ..]; returns the true count.
+int nb_scan(const int i, const REAL xi, const REAL yi, const REAL box, const REAL r2, const int own,
+            const int levels, const int stride, const int base, const int insert, uint* examined,
+            __global const REAL* x, __global const REAL* y, __global const REAL* grid_inv_cell,
+            __global const int* grid_table_offset, __global const int* grid_table_mask,
+            __global const int* grid_start_offset, __global const int* grid_nodes_offset,
+            __global const long* table_cx, __global const long* table_cy, __global const int* table_id,
+            __global const int* cell_start, __global const int* cell_nodes, __global int* index) {
+  int count = 0;
+  for (int lv = own; lv < levels; ++lv) {
+    const int g = lv == own ? 2 * lv : 2 * lv + 1;
+    const REAL inv_cell = grid_inv_cell[g];
+    if (inv_cell == (REAL)0) continue;
+    const long x0 = nb_cell_coord(xi - box, inv_cell), x1 = nb_cell_coord(xi + box, inv_cell);
+    const long y0 = nb_cell_coord(yi - box, inv_cell), y1 = nb_cell_coord(yi + box, inv_cell);
+    const int start_off = grid_start_offset[g], nodes_off = grid_nodes_offset[g];
+    for (long cy = y0; cy <= y1; ++cy) {
+      for (long cx = x0; cx <= x1; ++cx) {
+        const int id = nb_find(g, cx, cy, grid_table_offset, grid_table_mask, table_cx, table_cy, table_id);
+        if (id < 0) continue;
+        const int end = cell_start[start_off + id + 1];
+        for (int k = cell_start[start_off + id]; k < end; ++k) {
+          const int j = cell_nodes[nodes_off + k];
+          if (j == i) continue;
+          ++*examined;
+          const REAL dx = x[j] - xi, dy = y[j] - yi;
+          if (dx * dx + dy * dy > r2) continue;
+          if (!insert) {
+            if (count < stride) index[base + count] = j;
+            ++count;
+            continue;
+          }
+          // Bounded sorted insertion: keep the `stride` smallest indices in ascending order.
+          int slot = min(count, stride);
+          ++count;
+          if (slot == stride && j > index[base + stride - 1]) continue;
+          if (slot == stride) --slot;
+          while (slot > 0 && index[base + slot - 1] > j) {
+            index[base + slot] = index[base + slot - 1];
+            --slot;
+          }
+          index[base + slot] = j;
+        }
+      }
+    }
+  }
+  return count;
 }
 
 // Kernel arguments: per grid g (2 per occupied level: cumulative C_L at 2L, exact E_L at 2L+1; absent
@@ -74,40 +125,23 @@ void build_neighbours(const int n, const int stride, const int levels, const REA
       // Cells were assigned on the host in double: widen the box so float rounding cannot drop a cell.
       const REAL box = r * (REAL)1.0001f + (fabs(xi) + fabs(yi)) * (REAL)1e-6f;
 #endif
-      const int own = level[i];
-      for (int lv = own; lv < levels; ++lv) {
-        const int g = lv == own ? 2 * lv : 2 * lv + 1;
-        const REAL inv_cell = grid_inv_cell[g];
-        if (inv_cell == (REAL)0) continue;
-        const long x0 = nb_cell_coord(xi - box, inv_cell), x1 = nb_cell_coord(xi + box, inv_cell);
-        const long y0 = nb_cell_coord(yi - box, inv_cell), y1 = nb_cell_coord(yi + box, inv_cell);
-        const int start_off = grid_start_offset[g], nodes_off = grid_nodes_offset[g];
-        for (long cy = y0; cy <= y1; ++cy) {
-          for (long cx = x0; cx <= x1; ++cx) {
-            const int id = nb_find(g, cx, cy, grid_table_offset, grid_table_mask, table_cx, table_cy, table_id);
-            if (id < 0) continue;
-            const int end = cell_start[start_off + id + 1];
-            for (int k = cell_start[start_off + id]; k < end; ++k) {
-              const int j = cell_nodes[nodes_off + k];
-              if (j == i) continue;
-              ++examined;
-              const REAL dx = x[j] - xi, dy = y[j] - yi;
-              if (dx * dx + dy * dy > r2) continue;
-              // Bounded sorted insertion: keep the `stride` smallest indices in ascending order.
-              int slot = min(count, stride);
-              if (slot == stride && j > index[base + stride - 1]) {
-                ++count;
-                continue;
-              }
-              if (slot == stride) --slot;
-              while (slot > 0 && index[base + slot - 1] > j) {
-                index[base + slot] = index[base + slot - 1];
-                --slot;
-              }
-              index[base + slot] = j;
-              ++count;
-            }
+      count = nb_scan(i, xi, yi, box, r2, level[i], levels, stride, base, 0, &examined, x, y, grid_inv_cell,
+                      grid_table_offset, grid_table_mask, grid_start_offset, grid_nodes_offset, table_cx, table_cy,
+                      table_id, cell_start, cell_nodes, index);
+      if (count > stride) {
+        uint again = 0;  // overflow (rare: the host grows the stride and builds again)
+        nb_scan(i, xi, yi, box, r2, level[i], levels, stride, base, 1, &again, x, y, grid_inv_cell,
+                grid_table_offset, grid_table_mask, grid_start_offset, grid_nodes_offset, table_cx, table_cy,
+                table_id, cell_start, cell_nodes, index);
+      } else {
+        for (int a = 1; a < count; ++a) {  // insertion sort of the appended row
+          const int v = index[base + a];
+          int b = a;
+          while (b > 0 && index[base + b - 1] > v) {
+            index[base + b] = index[base + b - 1];
+            --b;
           }
+          index[base + b] = v;
         }
       }
       atomic_add(&local_within, (uint)count);

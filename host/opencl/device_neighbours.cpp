@@ -1,6 +1,7 @@
 // Host binning + device gather of the neighbour rows; see device_neighbours.hpp.
 #include "opencl/device_neighbours.hpp"
 
+#include <array>
 #include <chrono>
 #include <cmath>
 
@@ -11,12 +12,16 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
+// Non-blocking: `host` must stay unchanged until the queue is synchronised (the counters download
+// after the gather does that), so one rebuild waits on the device once, not once per array.
 template <typename T>
 std::size_t put(Context& ctx, Buffer<T>& b, const char* name, const std::vector<T>& host) {
   ensure_size(ctx, b, name, host.size());
-  b.upload(ctx.queue(), host);
+  b.upload(ctx.queue(), host, false);
   return host.size() * sizeof(T);
 }
+
+constexpr std::array<std::uint32_t, 5> kZeroCounters{};
 
 }  // namespace
 
@@ -44,7 +49,8 @@ NeighbourFlags DeviceNeighbours<Real>::build(const double* hx, const double* hy,
   uploaded_bytes = 0;
   if (flags.first_invalid < 0) {
     uploaded_bytes += put(ctx_, level_, "level", grids_.level);
-    uploaded_bytes += put(ctx_, inv_cell_, "grid_inv_cell", to_real<Real>(grids_.inv_cell));
+    inv_cell_host_ = to_real<Real>(grids_.inv_cell);
+    uploaded_bytes += put(ctx_, inv_cell_, "grid_inv_cell", inv_cell_host_);
     uploaded_bytes += put(ctx_, table_offset_, "grid_table_offset", grids_.table_offset);
     uploaded_bytes += put(ctx_, table_mask_, "grid_table_mask", grids_.table_mask);
     uploaded_bytes += put(ctx_, start_offset_, "grid_start_offset", grids_.start_offset);
@@ -59,8 +65,7 @@ NeighbourFlags DeviceNeighbours<Real>::build(const double* hx, const double* hy,
   for (int attempt = 0; attempt < 3; ++attempt) {
     ensure_size(ctx_, count_, "neighbour_count", n);
     ensure_size(ctx_, index_, "neighbour_index", n * static_cast<std::size_t>(stride));
-    const std::vector<std::uint32_t> zero(5, 0);
-    counters_.upload(ctx_.queue(), zero);
+    counters_.upload(ctx_.queue(), kZeroCounters.data(), kZeroCounters.size(), false);
     if (flags.first_invalid >= 0) {
       // Lists of an invalid node set are not built; the caller throws naming the node.
       flags.max_count = 0;

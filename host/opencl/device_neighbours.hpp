@@ -39,6 +39,7 @@ class DeviceNeighbours {
       cell_start_, cell_nodes_;
   Buffer<std::uint32_t> counters_;
   Buffer<Real> inv_cell_;
+  std::vector<Real> inv_cell_host_;  // kept alive for the non-blocking upload
   Buffer<std::int64_t> table_cx_, table_cy_;
 };
 
