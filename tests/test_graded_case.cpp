@@ -20,7 +20,7 @@ std::size_t initial_nodes(std::size_t target) {
 
 }  // namespace
 
-TEST_CASE("graded case spacing inverts the node estimate", "[bench]") {
+TEST_CASE("bench graded case: spacing inverts the node estimate", "[bench]") {
   for (std::size_t target : {1UL, 999UL, 10'000UL, 1'000'000UL, 5'000'000UL}) {
     const double h = pdmesh::graded_case_spacing(target);
     REQUIRE(h > 0.0);
@@ -30,7 +30,7 @@ TEST_CASE("graded case spacing inverts the node estimate", "[bench]") {
   CHECK(pdmesh::graded_case_spacing(20'000) > pdmesh::graded_case_spacing(1'000'000));
 }
 
-TEST_CASE("graded case has the requested node count", "[bench]") {
+TEST_CASE("bench graded case: the initial distribution has the requested node count", "[bench]") {
   // 1M nodes take a minute to place; the fit's terms are checked at two sizes where each dominates
   // differently (the 1/h term is ~10% of the count at 25k, ~6% at 60k, ~2% at 1M); below ~20k nodes the fit overshoots.
   for (std::size_t target : {25'000UL, 60'000UL}) {
