@@ -50,30 +50,31 @@ int bg_locate(REAL px, REAL py, REAL origin_x, REAL origin_y, REAL inv_root_size
 
 // bg_locate with a guess: *leaf_io is a leaf index whose cell (leaf_cell: top-grid cell, level L,
 // integer cell coordinates ix, iy below the root) is tested first; only on a miss does it descend.
-// Why the shortcut returns bit-identical (u, v): with root coordinates u0 in [0, 1) the descent's
-// u_k = 2 u_{k-1} - c_k is exact at every level (doubling is exact; 2 u - 1 for 2 u in [1, 2) is
-// exact by Sterbenz), so u_L = 2^L u0 - ix exactly, with ix = floor(2^L u0) (the bits c_1..c_L);
-// 2^L u0 is exact (a power-of-two scaling) and the difference is representable (it is u_L), so one
-// rounded subtraction gives it exactly. u0 = 1 descends to ix = 2^L - 1 with u_L = 1: the min() below.
+// Why the shortcut returns bit-identical (u, v): for t = (px - origin) / root_size in [gx, gx + 1)
+// bg_root_cell's floor gives gx and u0 = t - gx exactly (Sterbenz, or gx = 0), no clamping. The
+// descent's u_k = 2 u_{k-1} - c_k is exact at every level (doubling is exact; 2 u - 1 for 2 u in
+// [1, 2) is exact by Sterbenz), so u_L = 2^L u0 - ix exactly, with ix = floor(2^L u0) (the bits
+// c_1..c_L); 2^L u0 is exact (a power-of-two scaling) and the difference is representable (it is
+// u_L), so one rounded subtraction gives it exactly. The test ix <= 2^L u0 < ix + 1 is that floor.
+// Points on the grid's far edges or off it (clamped there), and NaN, fail the test and descend.
 int bg_locate_cached(REAL px, REAL py, int* leaf_io, REAL origin_x, REAL origin_y, REAL inv_root_size, int grid,
                      __global const int* root_node, __global const int* node_child, __global const int* leaf_cell,
                      REAL* u_out, REAL* v_out) {
-  REAL u0, v0;
-  const int root = bg_root_cell(px, py, origin_x, origin_y, inv_root_size, grid, &u0, &v0);
   const int guess = *leaf_io;
   const int4 cell = vload4(guess, leaf_cell);
+  const REAL t = (px - origin_x) * inv_root_size;
+  const REAL s = (py - origin_y) * inv_root_size;
+  const REAL gx = (REAL)(cell.x % grid), gy = (REAL)(cell.x / grid);
   const REAL cells = (REAL)(1 << cell.y);
-  const REAL wu = u0 * cells, wv = v0 * cells;
-  REAL iu = floor(wu), iv = floor(wv);
-  iu = iu > cells - (REAL)1 ? cells - (REAL)1 : iu;
-  iv = iv > cells - (REAL)1 ? cells - (REAL)1 : iv;
-  if (root == cell.x && iu == (REAL)cell.z && iv == (REAL)cell.w) {
-    *u_out = wu - iu;
-    *v_out = wv - iv;
+  const REAL wu = (t - gx) * cells, wv = (s - gy) * cells;
+  const REAL ix = (REAL)cell.z, iy = (REAL)cell.w;
+  if (t >= gx && t < gx + (REAL)1 && s >= gy && s < gy + (REAL)1 && wu >= ix && wu < ix + (REAL)1 && wv >= iy &&
+      wv < iy + (REAL)1) {
+    *u_out = wu - ix;
+    *v_out = wv - iy;
     return guess;
   }
-  *u_out = u0;
-  *v_out = v0;
+  const int root = bg_root_cell(px, py, origin_x, origin_y, inv_root_size, grid, u_out, v_out);
   const int leaf = bg_descend(root_node[root], node_child, u_out, v_out);
   *leaf_io = leaf;
   return leaf;
