@@ -59,7 +59,7 @@ void device_step(const int n, const int stride, const REAL cutoff, const REAL lj
   __local REAL values[STEP_PARTIALS * WG_SIZE];
   const int i = get_global_id(0), l = get_local_id(0);
   const int active = i < n;
-  // Everything up to the force loops is branch-free, so their entry is uniform (see forces.cl).
+  // Every work-item runs the same code up to the group reduction; padding ones are masked.
   const int ic = active ? i : 0;  // padding work-items compute node 0 and write nothing
   const int kind_i = active ? (int)kind[ic] : 0;
   const int moving = kind_i != 0;
