@@ -37,6 +37,10 @@ class DeviceRun {
       : nodes_(nodes), options_(options), ctx_(ctx), stats_(stats), boundary_(tree, nodes),
         background_(spacing, tree), program_(ctx, std::is_same_v<Real, double> ? Precision::Double : Precision::Float),
         neighbours_(ctx, program_), n_(nodes.size()) {}
+  // Non-blocking uploads read host vectors of this object: wait for them (errors are moot here).
+  ~DeviceRun() { ctx_.queue().finish(); }
+  DeviceRun(const DeviceRun&) = delete;
+  DeviceRun& operator=(const DeviceRun&) = delete;
 
   SimResult run(const SimCallbacks& callbacks);
 
@@ -51,15 +55,18 @@ class DeviceRun {
     a(static_cast<Real>(d.origin_x))(static_cast<Real>(d.origin_y))(static_cast<Real>(d.inv_root_size))(
         static_cast<cl_int>(d.grid))(bg_root_)(bg_child_)(bg_corner_)(bg_cell_)(bg_q_);
   }
+  // Transfers with blocking = false are enqueued only: the host data must stay untouched until the
+  // next synchronisation (finish or a blocking transfer). Per iteration the host waits on the
+  // device twice (after the step and its records, and for the candidates when there are any).
   template <typename T>
-  void read(Buffer<T>& b, std::vector<T>& host, std::size_t count) {
-    b.download(ctx_.queue(), host, count);
+  void read(Buffer<T>& b, std::vector<T>& host, std::size_t count, bool blocking = true) {
+    b.download(ctx_.queue(), host, count, blocking);
     ++stats_.transfers;
     stats_.bytes_down += count * sizeof(T);
   }
   template <typename T>
-  void write(Buffer<T>& b, const std::vector<T>& host) {
-    b.upload(ctx_.queue(), host);
+  void write(Buffer<T>& b, const std::vector<T>& host, bool blocking = true) {
+    b.upload(ctx_.queue(), host, blocking);
     ++stats_.transfers;
     stats_.bytes_up += host.size() * sizeof(T);
   }
@@ -94,7 +101,9 @@ class DeviceRun {
   std::vector<double> build_x_, build_y_, build_q_;  // positions and spacings at the last build
   std::vector<double> dx_, dy_;                      // host displacement scratch (full size, sparse use)
   std::vector<std::int32_t> candidates_;
-  std::vector<Real> part_, brec_host_, cand_rec_host_;
+  std::vector<Real> part_, brec_host_, cand_rec_host_, rec_host_;
+  std::vector<std::int32_t> count_host_, rec_index_host_;
+  const std::vector<std::int32_t> zero_counter_ = std::vector<std::int32_t>(1, 0);
   double skin_use_ = HUGE_VAL;                       // since the last build; HUGE_VAL forces a build
   std::uint64_t pairs_examined_ = 0;
   std::size_t within_ = 0, coincident_ = 0, sum_moving_ = 0;
@@ -191,11 +200,14 @@ void DeviceRun<Real>::rebuild() {
   const std::size_t n = n_;
   if (stats_.rebuilds > 0) {
     // The host needs every position only here (rare with the skin): to bin.
-    std::vector<Real> v;
-    for (auto [buf, host] : {std::pair{&x_[cur_], &build_x_}, {&y_[cur_], &build_y_}, {&q_[cur_], &build_q_}}) {
-      read(*buf, v, n);
-      host->assign(v.begin(), v.end());
-    }
+    std::vector<Real> v[3];
+    read(x_[cur_], v[0], n, false);
+    read(y_[cur_], v[1], n, false);
+    read(q_[cur_], v[2], n, false);
+    check(ctx_.queue().finish(), "positions for binning");
+    build_x_.assign(v[0].begin(), v[0].end());
+    build_y_.assign(v[1].begin(), v[1].end());
+    build_q_.assign(v[2].begin(), v[2].end());
   }
   const double radius = options_.cutoff * (1.0 + options_.verlet_skin);
   NeighbourFlags flags = neighbours_.build(build_x_.data(), build_y_.data(), build_q_.data(), kind_host_.data(), n,
@@ -211,7 +223,7 @@ void DeviceRun<Real>::rebuild() {
   stats_.bin_seconds += neighbours_.bin_seconds;
   stats_.gather_seconds += neighbours_.gather_seconds;
   stats_.bytes_up += neighbours_.uploaded_bytes;
-  stats_.launches += 1;
+  stats_.launches += 2;  // build_neighbours + finish_neighbours (+ the fill of the scatter counts)
   pairs_examined_ += flags.pairs_examined;
   stats_.pairs_listed += flags.pairs_within;
   // The build state the skin is measured from.
@@ -224,8 +236,7 @@ void DeviceRun<Real>::rebuild() {
 template <typename Real>
 void DeviceRun<Real>::step_kernel(double dt_gm2) {
   const int next = 1 - cur_;
-  const std::vector<std::int32_t> zero(1, 0);
-  write(counters_, zero);
+  write(counters_, zero_counter_, false);
   ArgSetter a(program_.device_step, "device_step");
   a(static_cast<cl_int>(n_))(static_cast<cl_int>(stride_))(static_cast<Real>(options_.cutoff))(
       static_cast<Real>(options_.lj_a))(static_cast<cl_int>(options_.r0_any_direction ? 1 : 0))(
@@ -235,19 +246,20 @@ void DeviceRun<Real>::step_kernel(double dt_gm2) {
   bg_args(a);
   launch(ctx_.queue(), program_.device_step, "device_step", n_, program_.work_group);
   ++stats_.launches;
+  // One wait for the kernel (and the previous iteration's apply_host_moves) and its small records.
   auto t0 = Clock::now();
+  read(partials_, part_, kStepPartials * groups(), false);
+  read(counters_, count_host_, 1, false);
+  read(brec_, brec_host_, 4 * boundary_nodes_.size(), false);
   check(ctx_.queue().finish(), "device_step");
   stats_.step_seconds += since(t0);
   t0 = Clock::now();
-  read(partials_, part_, kStepPartials * groups());
-  std::vector<std::int32_t> count;
-  read(counters_, count, 1);
-  const auto m = static_cast<std::size_t>(count[0]);
-  read(brec_, brec_host_, 4 * boundary_nodes_.size());
+  const auto m = static_cast<std::size_t>(count_host_[0]);
   std::vector<std::int32_t> cand;
   if (m > 0) {
-    read(cand_index_, cand, m);
-    read(cand_rec_, cand_rec_host_, 4 * m);
+    read(cand_index_, cand, m, false);
+    read(cand_rec_, cand_rec_host_, 4 * m, false);
+    check(ctx_.queue().finish(), "device_step candidates");
   }
   stats_.download_seconds += since(t0);
   // Sums in group order.
@@ -290,8 +302,11 @@ BoundaryCounts DeviceRun<Real>::host_boundary(double& skin_use) {
   const BoundaryCounts counts = boundary_.apply_subset(nodes_, dx_, dy_, candidates_);
   if (counts.snapped > 0) upload_topology();  // kinds and curve neighbours changed (rare)
   // Records: every boundary node (re-snapped, with its tangent) and every candidate still interior.
-  std::vector<std::int32_t> index;
-  std::vector<Real> rec;
+  // Members: their uploads are non-blocking and complete before the next step's records arrive.
+  std::vector<std::int32_t>& index = rec_index_host_;
+  std::vector<Real>& rec = rec_host_;
+  index.clear();
+  rec.clear();
   index.reserve(boundary_nodes_.size() + candidates_.size());
   rec.reserve(5 * index.capacity());
   auto add = [&](std::int32_t node) {
@@ -315,15 +330,14 @@ BoundaryCounts DeviceRun<Real>::host_boundary(double& skin_use) {
   if (!index.empty()) {
     ensure_size(ctx_, rec_index_, "rec_index", index.size());
     ensure_size(ctx_, rec_, "rec", rec.size());
-    write(rec_index_, index);
-    write(rec_, rec);
+    write(rec_index_, index, false);
+    write(rec_, rec, false);
     const int next = 1 - cur_;
     ArgSetter a(program_.apply_host_moves, "apply_host_moves");
     a(static_cast<cl_int>(index.size()))(rec_index_)(rec_)(x_[next])(y_[next])(q_[next])(tx_)(ty_)(budget_)(node_leaf_);
     bg_args(a);
     launch(ctx_.queue(), program_.apply_host_moves, "apply_host_moves", index.size(), program_.work_group);
-    ++stats_.launches;
-    check(ctx_.queue().finish(), "apply_host_moves");
+    ++stats_.launches;  // not waited on: the next device_step follows it in the in-order queue
   }
   stats_.upload_seconds += since(t0);
   return counts;
