@@ -197,6 +197,35 @@ TEST_CASE("a lost OpenCL device leaves a checkpoint of a good state that resumes
   }
 }
 
+TEST_CASE("a device lost at any call: exit 1, and a checkpoint that resumes once the iterations began", "[failures][opencl][cli]") {
+  // Every 53rd OpenCL call from the first until a run gets through: setup, first build, steps,
+  // rebuilds, the final read-back. Failures before the first iteration leave no checkpoint.
+  const std::string kase = PDMESH_SOURCE_DIR "/cases/circle_circle";
+  const fs::path dir = fresh_dir("sweep");
+  int with_checkpoint = 0;
+  for (int at = 1;; at += 53) {
+    INFO("PDMESH_TEST_FAIL_CL_AT=" << at);
+    fs::remove_all(dir);
+    const std::string args = "mesh '" + kase + "' --out '" + dir.string() + "' --formats msh -q --iterations 30";
+    const auto r = run_pdmesh(args + " --device opencl", "PDMESH_TEST_FAIL_CL_AT=" + std::to_string(at));
+    INFO(r.output);
+    if (r.status == 0) break;  // past the last call
+    REQUIRE(r.status == 1);
+    CHECK_THAT(r.output, Contains("pdmesh: error: ") && Contains("CL_OUT_OF_RESOURCES (-5)"));
+    if (!fs::exists(dir / "checkpoint.pdmesh")) {
+      CHECK_THAT(r.output, !Contains("iteration"));
+      continue;
+    }
+    ++with_checkpoint;
+    CHECK_THAT(r.output, Contains("the last good state (after iteration "));
+    const auto resumed = run_pdmesh(args + " --device host --resume '" + dir.string() + "'");
+    INFO(resumed.output);
+    CHECK(resumed.status == 0);
+  }
+  CHECK(with_checkpoint >= 5);
+  fs::remove_all(dir);
+}
+
 TEST_CASE("device memory: the need is counted per node and refused with the figures", "[failures][opencl]") {
   // 1000 nodes, 100 on curves, no field, double: 1000 (16 * 8 + 1 + 24) + 1000 * 16 * 4 + 100 * 32.
   const ocl::DeviceMemoryNeed need = ocl::device_memory_need(1000, 100, 0, 8);

@@ -110,6 +110,10 @@ class DeviceRun {
   std::vector<std::int32_t> candidates_;
   std::vector<Real> part_, brec_host_, cand_rec_host_, rec_host_;
   std::vector<std::int32_t> count_host_, rec_index_host_;
+  // Targets of non-blocking downloads are members too: when a wait fails and the error unwinds, a
+  // read still in flight must not write into freed memory (~DeviceRun waits for the queue first).
+  std::vector<Real> positions_host_[3];
+  std::vector<std::int32_t> cand_index_host_;
   const std::vector<std::int32_t> zero_counter_ = std::vector<std::int32_t>(1, 0);
   double skin_use_ = HUGE_VAL;                       // since the last build; HUGE_VAL forces a build
   std::uint64_t pairs_examined_ = 0;
@@ -295,7 +299,7 @@ void DeviceRun<Real>::rebuild() {
   const std::size_t n = n_;
   if (stats_.rebuilds > 0) {
     // The host needs every position only here (rare with the skin): to bin.
-    std::vector<Real> v[3];
+    std::vector<Real>* v = positions_host_;
     read(x_[cur_], v[0], n, false);
     read(y_[cur_], v[1], n, false);
     read(q_[cur_], v[2], n, false);
@@ -350,7 +354,7 @@ void DeviceRun<Real>::step_kernel(double dt_gm2) {
   stats_.step_seconds += since(t0);
   t0 = Clock::now();
   const auto m = static_cast<std::size_t>(count_host_[0]);
-  std::vector<std::int32_t> cand;
+  std::vector<std::int32_t>& cand = cand_index_host_;
   if (m > 0) {
     read(cand_index_, cand, m, false);
     read(cand_rec_, cand_rec_host_, 4 * m, false);
@@ -481,6 +485,7 @@ SimResult DeviceRun<Real>::run(const SimCallbacks& callbacks) {
   // On any failure from here on the caller gets the last good state (SimCallbacks::on_failure).
   int iteration = first;
   std::optional<SimState> failed_at;  // set where the failure computed it already
+  bool in_loop = true;                 // false once the iterations are done (the final read-back)
   const auto hand_over = [&] {
     if (!failed_at) failed_at = last_good_state(done, result.stats.dt_initial, gm, result.history);
     if (callbacks.on_failure) callbacks.on_failure(*failed_at);
@@ -533,28 +538,30 @@ SimResult DeviceRun<Real>::run(const SimCallbacks& callbacks) {
         break;
       }
     }
+    progress.finish();
+    in_loop = false;
+    // Final state: interior positions and every q from the device; boundary positions stay the host's.
+    std::vector<Real> x, y, q;
+    const std::uint64_t down = stats_.bytes_down, transfers = stats_.transfers;  // not per iteration
+    read(x_[cur_], x, n_);
+    read(y_[cur_], y, n_);
+    read(q_[cur_], q, n_);
+    stats_.bytes_down = down;
+    stats_.transfers = transfers;
+    for (std::size_t i = 0; i < n_; ++i) {
+      if (nodes_.kind[i] == NodeKind::Interior) nodes_.x[i] = {static_cast<double>(x[i]), static_cast<double>(y[i])};
+      nodes_.q[i] = static_cast<double>(q[i]);
+    }
   } catch (const DeviceError& e) {
     progress.finish();
     hand_over();
-    // The iteration that failed, for the message; the error itself names the call and the CL code.
-    throw DeviceError(fmt::format("iteration {}: {}", iteration, e.what()));
+    // Where it failed, for the message; the error itself names the call and the CL code.
+    throw DeviceError(in_loop ? fmt::format("iteration {}: {}", iteration, e.what())
+                              : fmt::format("reading back the state after iteration {}: {}", done, e.what()));
   } catch (const Error&) {
     progress.finish();
     hand_over();
     throw;
-  }
-  progress.finish();
-  // Final state: interior positions and every q from the device; boundary positions stay the host's.
-  std::vector<Real> x, y, q;
-  const std::uint64_t down = stats_.bytes_down, transfers = stats_.transfers;  // the final download is not per iteration
-  read(x_[cur_], x, n_);
-  read(y_[cur_], y, n_);
-  read(q_[cur_], q, n_);
-  stats_.bytes_down = down;
-  stats_.transfers = transfers;
-  for (std::size_t i = 0; i < n_; ++i) {
-    if (nodes_.kind[i] == NodeKind::Interior) nodes_.x[i] = {static_cast<double>(x[i]), static_cast<double>(y[i])};
-    nodes_.q[i] = static_cast<double>(q[i]);
   }
   result.state = SimState{done, result.stats.dt_initial, gm.state(), boundary_.arcs(), boundary_.tangents(),
                           result.history};
