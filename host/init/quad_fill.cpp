@@ -100,13 +100,14 @@ void fill_quad(FillContext& ctx, const Box& b, const std::vector<int>& segments,
 }  // namespace
 
 int structured_count(double ratio) {
-  // The thesis only says the ratio "is used to determine how many points" go into the quad. A
-  // quad with room for round(ratio) >= 2 bubbles gets at least the 2x2 square (threshold 1.5, not
-  // the midpoint 2.5 between 1 and 4); above that the nearest of {4, 5, 9}. With this rule the
-  // circle within a circle, the one thesis case whose geometry is fully given, starts with 2560
-  // nodes (thesis Table 6.1: 2536; the midpoint rule gave 2304), and structured starts hold more
-  // nodes than random ones, as in every row of Table 6.1 (docs/initialization.md).
-  if (!(ratio >= 1.5)) return 1;
+  // The thesis only says the ratio "is used to determine how many points" go into the quad. One
+  // node while fewer than two bubbles fit (ratio < 2), then the nearest of {4, 5, 9} (thresholds
+  // 4.5 and 7). Evidence (docs/initialization.md): the thesis' 200 x 200 square (fig. 7.1, leaves
+  // of 25, ratio 1.99) got one node per leaf, 64 in all, so the threshold is above 1.99; the
+  // nearest-of-{1, 4, 5, 9} rule (threshold 2.5) gave the circle within a circle, the one thesis
+  // case whose geometry is fully given, 2304 nodes against Table 6.1's 2536 (now 2448) and gave
+  // structured starts fewer nodes than random ones, where every row of Table 6.1 has more.
+  if (!(ratio >= 2.0)) return 1;
   if (ratio < 4.5) return 4;
   if (ratio < 7.0) return 5;
   return 9;
