@@ -1,5 +1,6 @@
 // Inputs for the StepBackend tests (test_step_backends.cpp): random, graded 1000x, degenerate, and
-// awkward sizes around the work-group size 64 (0, 1, 63, 65, 101), all from fixed seeds.
+// awkward sizes around the work-group size 64 (0, 1, 63, 64, 65, 101), all from fixed seeds; and the
+// shared OpenCL context of the device tests, with a canary tail on every buffer.
 #pragma once
 #include <catch2/catch.hpp>
 
@@ -21,12 +22,19 @@ struct Input {
   double cutoff = 1.5;
 };
 
+// Sentinel elements after the end of every device buffer the tests' backends allocate: at least
+// one work-group, so a kernel that lets the rounded-up items (global size rounded to WG_SIZE) write
+// lands in it. Every download checks the tail and throws DeviceError naming the buffer.
+inline constexpr std::size_t kCanaryTail = 64;
+
 // CI always has PoCL: no device must fail loudly, not skip.
 inline ocl::Context& test_context() {
   static ocl::Context ctx = [] {
     auto d = ocl::select_device("auto");
     REQUIRE(d.has_value());
-    return ocl::Context(*d);
+    ocl::Context c(*d);
+    c.set_canary_tail(kCanaryTail);
+    return c;
   }();
   return ctx;
 }
@@ -112,12 +120,29 @@ inline Input crowded_input(bool is_float) {
   return in;
 }
 
+// A cell over capacity at sane distances: 40 nodes on a jittered 7 x 6 lattice of pitch 1/60 (q = 0.1,
+// every pair within the cut-off 0.15, so each row holds 39 > the default stride 16; nearest pairs
+// >= 0.01 apart, so forces stay within float range), 5 nodes far away, empty cells between.
+inline Input dense_cluster_input(bool is_float) {
+  Input in{"dense cluster", {}, 1.5};
+  std::mt19937_64 rng(11);
+  const double pitch = 1.0 / 60.0;
+  for (int i = 0; i < 40; ++i)
+    pdmesh_test::add(in.p, pitch * (i % 7 + 0.4 * (uniform(rng) - 0.5)), pitch * (i / 7 + 0.4 * (uniform(rng) - 0.5)),
+                     0.1);
+  for (int i = 0; i < 5; ++i) pdmesh_test::add(in.p, 7.0 + 2.0 * i, -3.0, 0.1);
+  mix_kinds(in.p, rng, 9);
+  if (is_float) round_to_float(in.p);
+  return in;
+}
+
 inline std::vector<Input> all_inputs(bool is_float) {
   std::vector<Input> v;
-  for (std::size_t n : {0u, 1u, 63u, 65u, 101u}) v.push_back(random_input(n, 1000 + n, is_float));
+  for (std::size_t n : {0u, 1u, 63u, 64u, 65u, 101u}) v.push_back(random_input(n, 1000 + n, is_float));
   v.push_back(graded_input(is_float));
   v.push_back(coincident_input(is_float));
   v.push_back(lattice_input());
+  v.push_back(dense_cluster_input(is_float));
   return v;
 }
 

@@ -8,64 +8,17 @@
 
 #include <cmath>
 
-#include "app/case_file.hpp"
 #include "core/errors.hpp"
-#include "app/mesh_command.hpp"
 #include "mesh/quality.hpp"
 #include "mesh/triangulate_nodes.hpp"
-#include "opencl/device_simulation.hpp"
-#include "step_backend_inputs.hpp"
+#include "device_run_fixtures.hpp"
 
 using namespace pdmesh;
+using pdmesh::test::Case;
+using pdmesh::test::Outcome;
+using pdmesh::test::options_for;
 
 namespace {
-
-struct Case {
-  CaseConfig config;
-  std::unique_ptr<MeshInputs> inputs;
-  NodeSet initial;
-};
-
-Case load(const std::string& name) {
-  Case c;
-  c.config = load_case_file(std::string(PDMESH_SOURCE_DIR) + "/cases/" + name + "/case.toml");
-  c.config.quiet = true;
-  c.inputs = std::make_unique<MeshInputs>(c.config);
-  c.initial = make_initial(c.config, *c.inputs).nodes;
-  return c;
-}
-
-SimOptions options_for(const Case& c, int iterations) {
-  SimOptions o;
-  o.iterations = iterations;
-  o.dt_initial = c.config.simulation.dt_for(c.config.init.method);
-  o.cutoff = c.config.simulation.cutoff;
-  o.lj_a = c.config.simulation.lj_a;
-  o.r0_any_direction = c.config.simulation.r0_any_direction;
-  o.stability_factor = c.config.simulation.stability_factor;
-  o.quiet = true;
-  return o;
-}
-
-struct Outcome {
-  NodeSet nodes;
-  SimResult result;
-  ocl::DeviceRunStats stats;
-};
-
-Outcome run(const Case& c, int iterations, bool device, bool use_float = false, double skin = 0.3) {
-  Outcome out{c.initial, {}, {}};
-  SimOptions o = options_for(c, iterations);
-  if (device) {
-    o.device = &test::test_context();
-    o.device_float = use_float;
-    o.verlet_skin = skin;
-    out.result = ocl::run_device_simulation(out.nodes, *c.inputs->tree, *c.inputs->spacing, o, *o.device, {}, &out.stats);
-  } else {
-    out.result = run_simulation(out.nodes, *c.inputs->tree, *c.inputs->spacing, o);
-  }
-  return out;
-}
 
 void require_same_nodes(const NodeSet& host, const NodeSet& dev, double tol_q) {
   REQUIRE(dev.size() == host.size());
@@ -90,11 +43,11 @@ void require_same_nodes(const NodeSet& host, const NodeSet& dev, double tol_q) {
 TEST_CASE("device run: 10 iterations agree with the host node by node (double)", "[opencl][device_sim]") {
   for (const char* name : {"circle_circle", "naca0012"}) {
     INFO(name);
-    const Case c = load(name);
-    const Outcome host = run(c, 10, false);
+    const Case c = test::load_case(name);
+    const Outcome host = test::run_case(c, 10, false);
     for (double skin : {0.0, 0.3}) {
       INFO("skin " << skin);
-      const Outcome dev = run(c, 10, true, false, skin);
+      const Outcome dev = test::run_case(c, 10, true, false, skin);
       require_same_nodes(host.nodes, dev.nodes, 1e-9);
       REQUIRE(dev.result.history.size() == host.result.history.size());
       for (std::size_t k = 0; k < host.result.history.size(); ++k) {
@@ -120,17 +73,17 @@ TEST_CASE("device run: 10 iterations agree with the host node by node (double)",
 }
 
 TEST_CASE("device run in float stays close to the host for 10 iterations", "[opencl][device_sim]") {
-  const Case c = load("circle_circle");
-  const Outcome host = run(c, 10, false);
-  const Outcome dev = run(c, 10, true, true);
+  const Case c = test::load_case("circle_circle");
+  const Outcome host = test::run_case(c, 10, false);
+  const Outcome dev = test::run_case(c, 10, true, true);
   require_same_nodes(host.nodes, dev.nodes, 2e-2);
 }
 
 TEST_CASE("device run: a whole circle_circle run gives the host's mesh quality", "[opencl][device_sim]") {
   // 300 iterations (the settled regime starts at ~120; 2000 would take minutes on CI's 2 cores).
-  const Case c = load("circle_circle");
-  const Outcome host = run(c, 300, false);
-  const Outcome dev = run(c, 300, true);
+  const Case c = test::load_case("circle_circle");
+  const Outcome host = test::run_case(c, 300, false);
+  const Outcome dev = test::run_case(c, 300, true);
   const auto names = c.inputs->curve_names();
   const QualitySummary qh = summarize_quality(triangulate(host.nodes, names));
   const QualitySummary qd = summarize_quality(triangulate(dev.nodes, names));
@@ -143,7 +96,7 @@ TEST_CASE("device run: a whole circle_circle run gives the host's mesh quality",
 }
 
 TEST_CASE("device run refuses the exact spacing field", "[opencl][device_sim]") {
-  const Case c = load("circle_circle");
+  const Case c = test::load_case("circle_circle");
   NodeSet nodes = c.initial;
   SimOptions o = options_for(c, 1);
   o.exact_spacing = true;

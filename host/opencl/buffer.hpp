@@ -1,6 +1,8 @@
 // A typed, named device buffer (RAII through cl::Buffer). Uploads and downloads check sizes and
 // every error names the buffer, so a failure reads "download of 'forces' failed: CL_OUT_OF_RESOURCES (-5)".
+// With Context::set_canary_tail (tests) each buffer carries a sentinel tail checked on every download.
 #pragma once
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -17,16 +19,22 @@ class Buffer {
  public:
   Buffer() = default;
   Buffer(Context& ctx, std::string name, std::size_t count, cl_mem_flags flags = CL_MEM_READ_WRITE)
-      : name_(std::move(name)), count_(count) {
+      : name_(std::move(name)), count_(count), tail_(ctx.canary_tail()) {
     cl_int err = CL_SUCCESS;
-    // A zero-sized cl::Buffer is invalid; keep one element so kernels always get a valid pointer.
-    std::size_t bytes = sizeof(T) * (count_ ? count_ : 1);
+    // A zero-sized cl::Buffer is invalid; keep one element so kernels always get a valid pointer
+    // (with a canary tail the tail starts right at count_, so even a 0-element buffer detects a write).
+    std::size_t bytes = sizeof(T) * (tail_ ? count_ + tail_ : count_ ? count_ : 1);
     if (bytes > ctx.device().max_allocation)
       throw DeviceError(fmt::format("buffer '{}' needs {} bytes, more than the device's largest allocation ({} bytes) "
                                     "on {}: use fewer nodes or --precision float",
                                     name_, bytes, ctx.device().max_allocation, ctx.device().name));
     buffer_ = cl::Buffer(ctx.context(), flags, bytes, nullptr, &err);
     check(err, fmt::format("allocating buffer '{}' ({} bytes)", name_, bytes));
+    if (tail_) {
+      const std::vector<std::uint8_t> sentinel(sizeof(T) * tail_, kCanaryByte);
+      check(ctx.queue().enqueueWriteBuffer(buffer_, CL_TRUE, sizeof(T) * count_, sentinel.size(), sentinel.data()),
+            fmt::format("writing the canary tail of '{}'", name_));
+    }
   }
 
   const std::string& name() const { return name_; }
@@ -49,15 +57,32 @@ class Buffer {
     if (count > count_)
       throw DeviceError(fmt::format("download of {} elements from buffer '{}' of {}", count, name_, count_));
     host.resize(count);
+    if (tail_) check_canary(q);
     if (count == 0) return;
     const cl_int err = q.enqueueReadBuffer(buffer_, CL_TRUE, 0, sizeof(T) * count, host.data());
     if (err != CL_SUCCESS) check(err, fmt::format("download from '{}'", name_));
   }
   void download(cl::CommandQueue& q, std::vector<T>& host) { download(q, host, count_); }
 
+  // Throws DeviceError naming the buffer and the first overwritten element past its end when the
+  // canary tail (Context::set_canary_tail) is no longer the sentinel; no-op without a tail.
+  void check_canary(cl::CommandQueue& q) {
+    if (!tail_) return;
+    std::vector<std::uint8_t> got(sizeof(T) * tail_);
+    check(q.enqueueReadBuffer(buffer_, CL_TRUE, sizeof(T) * count_, got.size(), got.data()),
+          fmt::format("reading the canary tail of '{}'", name_));
+    for (std::size_t b = 0; b < got.size(); ++b)
+      if (got[b] != kCanaryByte)
+        throw DeviceError(fmt::format("buffer '{}' of {} elements: element {} past its end was overwritten", name_,
+                                      count_, count_ + b / sizeof(T)));
+  }
+  std::size_t canary_tail() const { return tail_; }
+
  private:
+  static constexpr std::uint8_t kCanaryByte = 0xA5;
   std::string name_;
   std::size_t count_ = 0;
+  std::size_t tail_ = 0;  // canary elements after count_ (tests only)
   cl::Buffer buffer_;
 };
 

@@ -20,6 +20,12 @@ class Context {
   cl::Context& context() { return context_; }
   cl::CommandQueue& queue() { return queue_; }
 
+  // Test hook (0, off, in production): every Buffer allocated afterwards gets this many extra
+  // elements after its end, filled with a sentinel and checked on each download, so a kernel that
+  // writes past an output's end fails the call with a DeviceError naming the buffer (buffer.hpp).
+  void set_canary_tail(std::size_t elements) { canary_tail_ = elements; }
+  std::size_t canary_tail() const { return canary_tail_; }
+
   // Builds kernels/common.cl followed by the named kernels/*.cl files (embedded at build time), with
   // "#define NAME VALUE" lines for every entry of `defines` prepended, and -cl-std=CL1.2.
   // Throws DeviceError naming the files, the options and the build log on failure.
@@ -33,6 +39,7 @@ class Context {
   DeviceInfo device_;
   cl::Context context_;
   cl::CommandQueue queue_;
+  std::size_t canary_tail_ = 0;
 };
 
 // The text of one embedded kernel file; throws DeviceError if it was not embedded.

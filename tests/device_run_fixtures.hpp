@@ -1,0 +1,65 @@
+// Shared fixtures of the device-resident run tests (test_device_simulation.cpp, test_device_cases.cpp):
+// a case from cases/ loaded and initialized, and one run of it on the host reference or the device.
+#pragma once
+#include <catch2/catch.hpp>
+
+#include <memory>
+#include <string>
+
+#include "app/case_file.hpp"
+#include "app/mesh_command.hpp"
+#include "opencl/device_simulation.hpp"
+#include "step_backend_inputs.hpp"
+
+namespace pdmesh::test {
+
+struct Case {
+  CaseConfig config;
+  std::unique_ptr<MeshInputs> inputs;
+  NodeSet initial;
+};
+
+inline Case load_case(const std::string& name) {
+  Case c;
+  c.config = load_case_file(std::string(PDMESH_SOURCE_DIR) + "/cases/" + name + "/case.toml");
+  c.config.quiet = true;
+  c.inputs = std::make_unique<MeshInputs>(c.config);
+  c.initial = make_initial(c.config, *c.inputs).nodes;
+  return c;
+}
+
+inline SimOptions options_for(const Case& c, int iterations) {
+  SimOptions o;
+  o.iterations = iterations;
+  o.dt_initial = c.config.simulation.dt_for(c.config.init.method);
+  o.cutoff = c.config.simulation.cutoff;
+  o.lj_a = c.config.simulation.lj_a;
+  o.r0_any_direction = c.config.simulation.r0_any_direction;
+  o.stability_factor = c.config.simulation.stability_factor;
+  o.quiet = true;
+  return o;
+}
+
+struct Outcome {
+  NodeSet nodes;
+  SimResult result;
+  ocl::DeviceRunStats stats;
+};
+
+// `iterations` of the case from its initial distribution: on the host reference, or device-resident
+// on test_context() (double unless use_float; Verlet skin `skin`).
+inline Outcome run_case(const Case& c, int iterations, bool device, bool use_float = false, double skin = 0.3) {
+  Outcome out{c.initial, {}, {}};
+  SimOptions o = options_for(c, iterations);
+  if (device) {
+    o.device = &test_context();
+    o.device_float = use_float;
+    o.verlet_skin = skin;
+    out.result = ocl::run_device_simulation(out.nodes, *c.inputs->tree, *c.inputs->spacing, o, *o.device, {}, &out.stats);
+  } else {
+    out.result = run_simulation(out.nodes, *c.inputs->tree, *c.inputs->spacing, o);
+  }
+  return out;
+}
+
+}  // namespace pdmesh::test
