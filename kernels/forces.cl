@@ -1,80 +1,120 @@
 // Steps 2 and 3 on the device (mirror of host/sim/reference/forces.cpp, compute_forces): the net
 // Lennard-Jones force of eq. 5.11 gathered per node over its padded neighbour row, the tangential
-// projection for boundary nodes, and r0 (eq. 5.3). Written for PoCL's CPU device, which vectorizes
-// across work-items: every work-item of a group runs the same trip count (the group's largest row,
-// shorter rows masked), and the inner loop has one division (1/r^2), one sqrt and no pow/length.
+// projection for boundary nodes, and r0 (eq. 5.3). Each work-item walks its row 8 entries at a time
+// in vector types: PoCL's CPU device did not vectorize these loops across work-items (measured,
+// docs/performance.md), explicit vectors give AVX code directly and are plain OpenCL C 1.2 for GPUs.
+// One division (1/r^2), one sqrt and no pow/length per entry.
 #pragma OPENCL FP_CONTRACT OFF
 
-// The group's largest row length; every work-item must call it (it holds barriers).
-int group_loop_count(int count, __local int* scratch) {
-  if (get_local_id(0) == 0) *scratch = 0;
-  barrier(CLK_LOCAL_MEM_FENCE);
-  atomic_max(scratch, count);
-  barrier(CLK_LOCAL_MEM_FENCE);
-  const int loop = *scratch;
-  barrier(CLK_LOCAL_MEM_FENCE);
-  return loop;
+#if PDMESH_DOUBLE
+#define REAL8 double8
+#define MASK8 long8  // what comparing two REAL8 gives
+#define CONVERT_MASK8 convert_long8
+#else
+#define REAL8 float8
+#define MASK8 int8
+#define CONVERT_MASK8 convert_int8
+#endif
+#define GATHER8(a, j) \
+  (REAL8)(a[j.s0], a[j.s1], a[j.s2], a[j.s3], a[j.s4], a[j.s5], a[j.s6], a[j.s7])
+// Components in order: sums over a row add its entries in index order, as the reference does.
+#define ADD8_IN_ORDER(sum, v) \
+  sum = (((((((sum + v.s0) + v.s1) + v.s2) + v.s3) + v.s4) + v.s5) + v.s6) + v.s7
+#define COUNT8(m) (-((m).s0 + (m).s1 + (m).s2 + (m).s3 + (m).s4 + (m).s5 + (m).s6 + (m).s7))
+
+// Entries k0 .. k0 + 7 of a row as node indices; entries at or past `count` (padding, -1) become i.
+int8 row_chunk(const int i, const int stride, const int count, const int base, const int k0,
+               __global const int* index, int8* valid_out) {
+  const int8 k = (int8)(k0) + (int8)(0, 1, 2, 3, 4, 5, 6, 7);
+  const int8 valid = k < (int8)(count);
+  int8 raw;
+  if (k0 + 8 <= stride) {
+    raw = vload8(0, index + base + k0);
+  } else {  // a last, partial chunk (stride not a multiple of 8): only entries inside the row
+    raw = (int8)(i);
+    for (int c = 0; k0 + c < stride; ++c) ((int*)&raw)[c] = index[base + k0 + c];
+  }
+  *valid_out = valid;
+  return select((int8)(i), raw, valid);
 }
 
-// Net force and r0 of node i. rc2 >= 0: interior rows are a Verlet list and only entries with
-// r^2 <= rc2 count (the reference's exact cut-off test); rc2 < 0: every row entry counts.
-// Same expressions, in the same order, as the reference, so double results match it bit for bit.
-void node_forces(const int i, const int loop_count, const int count, const int base, const REAL xi, const REAL yi,
-                 const REAL qi, const uchar kind_i, const REAL rc2, const REAL tx, const REAL ty, const REAL lj_a,
+// Net force and r0 of node i over row entries [base, base + stride), of which the first `count`
+// are valid. rc2 >= 0: interior rows are a Verlet list and only entries with r^2 <= rc2 count (the
+// reference's exact cut-off test); rc2 < 0: every row entry counts. count = 0 (fixed or padding
+// work-items) gives F = 0, r0 = 0, no stiffness. Eight entries at a time in vector types (PoCL does
+// not vectorize these loops across work-items; explicit vectors give AVX code directly), only as
+// many chunks as the row needs (boundary rows: one), with the
+// reference's expressions per entry and its summation order, so double results match it bit for
+// bit (a masked entry adds +0).
+void node_forces(const int i, const int stride, const int count, const int base, const REAL xi, const REAL yi,
+                 const REAL qi, const int kind_i, const REAL rc2, const REAL tx, const REAL ty, const REAL lj_a,
                  const int r0_any_direction, const REAL stability_factor, __global const REAL* x,
                  __global const REAL* y, __global const REAL* q, __global const int* index, REAL* fx_out,
                  REAL* fy_out, REAL* r0_out, REAL* dt2_limit_out, int* coincident_out, int* within_out) {
-  const int filter = kind_i == 2 && rc2 >= (REAL)0;
-  const REAL four_a = (REAL)-4 * lj_a;
-  const REAL four_a_pos = (REAL)4 * lj_a;
+  const MASK8 filter = (MASK8)(kind_i == 2 && rc2 >= (REAL)0 ? -1 : 0);
+  const REAL8 four_a = (REAL8)((REAL)-4 * lj_a);
+  const REAL8 four_a_pos = (REAL8)((REAL)4 * lj_a);
+  const REAL8 zero = (REAL8)((REAL)0), one = (REAL8)((REAL)1);
   REAL fx = (REAL)0, fy = (REAL)0, stiffness = (REAL)0;
   int coincident = 0, within = 0;
-  for (int k = 0; k < loop_count; ++k) {
-    const int valid = k < count;
-    const int j = valid ? index[base + k] : i;
-    const REAL dx = x[j] - xi, dy = y[j] - yi;
-    const REAL r2 = dx * dx + dy * dy;
-    const int in_range = valid && (!filter || r2 <= rc2);
-    within += in_range;
-    coincident += in_range && r2 == (REAL)0;
-    const int use = in_range && r2 > (REAL)0;
-    const REAL inv_r2 = (REAL)1 / (use ? r2 : (REAL)1);
-    const REAL inv_r = sqrt(inv_r2);
-    const REAL sigma = (REAL)0.5 * (qi + q[j]);
-    const REAL s2 = sigma * sigma * inv_r2;
-    const REAL s6 = s2 * s2 * s2;
-    const REAL f = four_a * sigma * (s6 * s6 - s6) * inv_r;
-    fx += use ? f * dx : (REAL)0;
-    fy += use ? f * dy : (REAL)0;
+  for (int k0 = 0; k0 < count; k0 += 8) {
+    int8 valid_i;
+    const int8 j = row_chunk(i, stride, count, base, k0, index, &valid_i);
+    const MASK8 valid = CONVERT_MASK8(valid_i);
+    const REAL8 dx = GATHER8(x, j) - (REAL8)(xi), dy = GATHER8(y, j) - (REAL8)(yi);
+    const REAL8 r2 = dx * dx + dy * dy;
+    const MASK8 in_range = valid & (~filter | (r2 <= (REAL8)(rc2)));
+    within += (int)COUNT8(in_range);
+    coincident += (int)COUNT8(in_range & (r2 == zero));
+    const MASK8 use = in_range & (r2 > zero);
+    const REAL8 inv_r2 = one / select(one, r2, use);
+    const REAL8 inv_r = sqrt(inv_r2);
+    const REAL8 sigma = (REAL)0.5 * ((REAL8)(qi) + GATHER8(q, j));
+    const REAL8 s2 = sigma * sigma * inv_r2;
+    const REAL8 s6 = s2 * s2 * s2;
+    const REAL8 f = four_a * sigma * (s6 * s6 - s6) * inv_r;
+    const REAL8 cx = select(zero, f * dx, use), cy = select(zero, f * dy, use);
+    ADD8_IN_ORDER(fx, cx);
+    ADD8_IN_ORDER(fy, cy);
     // The stability bound's pair stiffness max(|df/dr|, |f|/r) (reference::lj_pair_stiffness).
-    const REAL scale = four_a_pos * sigma * inv_r;
-    const REAL radial = fabs(scale * ((REAL)12 * s6 * s6 - (REAL)6 * s6));
-    const REAL transverse = fabs(scale * (s6 * s6 - s6));
-    stiffness += use ? (radial > transverse ? radial : transverse) : (REAL)0;
+    const REAL8 scale = four_a_pos * sigma * inv_r;
+    const REAL8 radial = fabs(scale * ((REAL)12 * s6 * s6 - (REAL)6 * s6));
+    const REAL8 transverse = fabs(scale * (s6 * s6 - s6));
+    const REAL8 cs = select(zero, select(transverse, radial, radial > transverse), use);
+    ADD8_IN_ORDER(stiffness, cs);
   }
   *dt2_limit_out = stability_factor > (REAL)0 && stiffness > (REAL)0 ? (REAL)2 * stability_factor / stiffness : INFINITY;
-  if (kind_i == 1) {
-    // Boundary nodes slide along their curve: keep the tangential component only.
-    const REAL ft = fx * tx + fy * ty;
-    fx = ft * tx;
-    fy = ft * ty;
+  // Boundary nodes slide along their curve: keep the tangential component only.
+  const REAL ft = fx * tx + fy * ty;
+  fx = kind_i == 1 ? ft * tx : fx;
+  fy = kind_i == 1 ? ft * ty : fy;
+  const MASK8 any_direction = (MASK8)(r0_any_direction && (fx != (REAL)0 || fy != (REAL)0) ? -1 : 0);
+  // r0: the smallest r^2 among the qualifying entries (a minimum: the order does not matter).
+  REAL8 best2 = (REAL8)(INFINITY);
+  MASK8 found = (MASK8)(0);
+  for (int k0 = 0; k0 < count; k0 += 8) {
+    int8 valid_i;
+    const int8 j = row_chunk(i, stride, count, base, k0, index, &valid_i);
+    const MASK8 valid = CONVERT_MASK8(valid_i);
+    const REAL8 dx = GATHER8(x, j) - (REAL8)(xi), dy = GATHER8(y, j) - (REAL8)(yi);
+    const REAL8 r2 = dx * dx + dy * dy;
+    const MASK8 ok = valid & (~filter | (r2 <= (REAL8)(rc2))) & (r2 > zero) &
+                     (any_direction | ((REAL8)(fx) * dx + (REAL8)(fy) * dy > zero));
+    best2 = select(best2, r2, ok & (r2 < best2));
+    found |= ok;
   }
-  const int any_direction = r0_any_direction && (fx != (REAL)0 || fy != (REAL)0);
-  REAL best2 = (REAL)0;
-  int found = 0;
-  for (int k = 0; k < loop_count; ++k) {
-    const int valid = k < count;
-    const int j = valid ? index[base + k] : i;
-    const REAL dx = x[j] - xi, dy = y[j] - yi;
-    const REAL r2 = dx * dx + dy * dy;
-    const int ok = valid && (!filter || r2 <= rc2) && r2 > (REAL)0 && (any_direction || fx * dx + fy * dy > (REAL)0);
-    const int better = ok && (!found || r2 < best2);
-    best2 = better ? r2 : best2;
-    found = found || ok;
-  }
+  REAL b = best2.s0;
+  b = best2.s1 < b ? best2.s1 : b;
+  b = best2.s2 < b ? best2.s2 : b;
+  b = best2.s3 < b ? best2.s3 : b;
+  b = best2.s4 < b ? best2.s4 : b;
+  b = best2.s5 < b ? best2.s5 : b;
+  b = best2.s6 < b ? best2.s6 : b;
+  b = best2.s7 < b ? best2.s7 : b;
   *fx_out = fx;
   *fy_out = fy;
-  *r0_out = found ? sqrt(best2) : (REAL)0;
+  // An entry found with r^2 = INFINITY (overflow) gives r0 = INFINITY, as in the reference.
+  *r0_out = any(found) ? sqrt(b) : (REAL)0;
   *coincident_out = coincident;
   *within_out = kind_i == 2 ? within : 0;
 }
@@ -89,19 +129,17 @@ void compute_forces(const int n, const int stride, const REAL lj_a, const int r0
                     __global const int* count, __global const int* index, __global REAL* fx_out,
                     __global REAL* fy_out, __global REAL* r0_out, __global REAL* limit_out,
                     __global int* coincident_out) {
-  __local int scratch;
   const int i = get_global_id(0);
   const int active = i < n;
-  const uchar kind_i = active ? kind[i] : (uchar)0;
-  const int row = active && kind_i != 0 ? min(count[i], stride) : 0;
-  const int loop_count = group_loop_count(row, &scratch);
+  const int ic = active ? i : 0;  // padding work-items read node 0 and write nothing
+  const int kind_i = active ? (int)kind[ic] : 0;
+  const int row = kind_i != 0 ? min(count[ic], stride) : 0;
+  REAL fx, fy, r0, limit;
+  int coincident, within;
+  node_forces(ic, stride, row, ic * stride, x[ic], y[ic], q[ic], kind_i, (REAL)-1, tx[ic], ty[ic], lj_a,
+              r0_any_direction, stability_factor, x, y, q, index, &fx, &fy, &r0, &limit, &coincident, &within);
   if (!active) return;
-  REAL fx = (REAL)0, fy = (REAL)0, r0 = (REAL)0, limit = INFINITY;
-  int coincident = 0, within = 0;
-  if (kind_i != 0)
-    node_forces(i, loop_count, row, i * stride, x[i], y[i], q[i], kind_i, (REAL)-1, tx[i], ty[i], lj_a,
-                r0_any_direction, stability_factor, x, y, q, index, &fx, &fy, &r0, &limit, &coincident, &within);
-  limit_out[i] = limit;
+  limit_out[i] = kind_i != 0 ? limit : INFINITY;
   fx_out[i] = fx;
   fy_out[i] = fy;
   r0_out[i] = r0;

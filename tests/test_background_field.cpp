@@ -399,3 +399,118 @@ TEST_CASE("background field: device lookup equals host lookup (double and float)
     check_device<float>(ctx, bg, points);
   }
 }
+
+namespace {
+
+// The cached lookup against the plain descent on the device, bit for bit (leaf, u, v), from right,
+// wrong and neighbouring guesses; in double also against the host's leaf.
+template <typename Real>
+void check_cached_locate(ocl::Context& ctx, const BackgroundSpacing& bg, const std::vector<Vec2>& points,
+                         const std::vector<std::int32_t>& guesses) {
+  const bool dbl = std::is_same_v<Real, double>;
+  const std::size_t wg = 16, n = points.size();
+  auto program = ctx.build({"spacing_field.cl"}, ocl::precision_defines(dbl ? ocl::Precision::Double
+                                                                             : ocl::Precision::Float, wg));
+  cl_int err = CL_SUCCESS;
+  cl::Kernel kernel(program, "locate_cached_lookup", &err);
+  ocl::check(err, "clCreateKernel(locate_cached_lookup)");
+  const auto& d = bg.data();
+  auto& queue = ctx.queue();
+  ocl::Buffer<std::int32_t> roots(ctx, "root_node", d.root_node.size()), child(ctx, "node_child", d.node_child.size()),
+      cell(ctx, "leaf_cell", d.leaf_cell.size()), guess(ctx, "guess", n), out_leaf(ctx, "out_leaf", 2 * n);
+  ocl::Buffer<Real> bx(ctx, "px", n), by(ctx, "py", n), out_uv(ctx, "out_uv", 4 * n);
+  roots.upload(queue, d.root_node);
+  child.upload(queue, d.node_child);
+  cell.upload(queue, d.leaf_cell);
+  guess.upload(queue, guesses);
+  std::vector<Real> px(n), py(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    px[i] = static_cast<Real>(points[i].x);
+    py[i] = static_cast<Real>(points[i].y);
+  }
+  bx.upload(queue, px);
+  by.upload(queue, py);
+  int arg = 0;
+  kernel.setArg(arg++, static_cast<int>(n));
+  kernel.setArg(arg++, bx.get());
+  kernel.setArg(arg++, by.get());
+  kernel.setArg(arg++, static_cast<Real>(d.origin_x));
+  kernel.setArg(arg++, static_cast<Real>(d.origin_y));
+  kernel.setArg(arg++, static_cast<Real>(d.inv_root_size));
+  kernel.setArg(arg++, d.grid);
+  for (auto* b : {&roots, &child, &cell, &guess, &out_leaf}) kernel.setArg(arg++, b->get());
+  kernel.setArg(arg++, out_uv.get());
+  ocl::launch(queue, kernel, "locate_cached_lookup", n, wg);
+  std::vector<std::int32_t> leaf;
+  std::vector<Real> uv;
+  out_leaf.download(queue, leaf);
+  out_uv.download(queue, uv);
+  std::size_t hits = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    INFO("point " << i << " (" << points[i].x << ", " << points[i].y << "), guess " << guesses[i]);
+    REQUIRE(leaf[2 * i + 1] == leaf[2 * i]);
+    REQUIRE(uv[4 * i + 2] == uv[4 * i]);
+    REQUIRE(uv[4 * i + 3] == uv[4 * i + 1]);
+    hits += guesses[i] == leaf[2 * i] ? 1 : 0;
+    if (dbl) {
+      double u, v;
+      REQUIRE(leaf[2 * i] == background_locate(d, points[i], u, v));
+      REQUIRE(static_cast<double>(uv[4 * i]) == u);
+      REQUIRE(static_cast<double>(uv[4 * i + 1]) == v);
+    }
+  }
+  // The shortcut itself was exercised (in float, rounding moves face points into other leaves).
+  CHECK(hits * (dbl ? 3 : 6) >= n);
+}
+
+}  // namespace
+
+TEST_CASE("background field: the cached leaf lookup equals the descent bit for bit", "[spacing][opencl]") {
+  auto device = ocl::select_device("auto");
+  REQUIRE(device.has_value());
+  ocl::Context ctx(*device);
+  for (const Geometry& g : {circle_circle(), naca_graded()}) {
+    const GeometryTree tree(g);
+    const BoundarySpacing exact(tree);
+    const BackgroundSpacing bg(exact, tree);
+    const auto& d = bg.data();
+    REQUIRE(d.leaf_cell.size() == 4 * d.leaves());
+    Box square;
+    square.add({d.origin_x - 0.5, d.origin_y - 0.5});
+    square.add({d.origin_x + d.root_size * d.grid + 0.5, d.origin_y + d.root_size * d.grid + 0.5});
+    const auto random = random_points(square, 3000, kSeed + 5);
+    // Random points, the corners and edge midpoints of their leaves (on the faces between leaves,
+    // where a rounding error would pick the wrong one), off-grid and non-finite points.
+    std::vector<Vec2> points;
+    for (const Vec2 p : random) {
+      const Box b = background_leaf_box(d, p);
+      const Vec2 m = b.centre();
+      for (const Vec2 s : {p, b.lo, b.hi, Vec2{b.lo.x, b.hi.y}, Vec2{b.hi.x, b.lo.y}, Vec2{m.x, b.lo.y}, Vec2{b.lo.x, m.y}})
+        points.push_back(s);
+    }
+    points.push_back({NAN, NAN});
+    points.push_back({1e300, -1e300});
+    // Guesses: the right leaf, a wrong one, the leaf of the previous point (often a neighbour).
+    std::mt19937_64 rng(kSeed + 6);
+    std::vector<std::int32_t> guesses(points.size());
+    for (std::size_t i = 0; i < points.size(); ++i) {
+      double u, v;
+      const int right = background_locate(d, points[i], u, v);
+      const int previous = background_locate(d, points[i > 0 ? i - 1 : 0], u, v);
+      const auto wrong = static_cast<std::int32_t>(rng() % d.leaves());
+      guesses[i] = i % 3 == 0 ? right : i % 3 == 1 ? wrong : previous;
+    }
+    // The host's leaf cells describe the leaf boxes.
+    for (std::size_t i = 0; i < random.size(); ++i) {
+      double u, v;
+      const auto leaf = static_cast<std::size_t>(background_locate(d, random[i], u, v));
+      const Box b = background_leaf_box(d, random[i]);
+      const double side = std::ldexp(d.root_size, -d.leaf_cell[4 * leaf + 1]);
+      const int root = d.leaf_cell[4 * leaf];
+      CHECK(b.lo.x == d.origin_x + d.root_size * ((root % d.grid) + std::ldexp(d.leaf_cell[4 * leaf + 2], -d.leaf_cell[4 * leaf + 1])));
+      CHECK(b.hi.y - b.lo.y == Approx(side).epsilon(1e-9));
+    }
+    if (device->fp64) check_cached_locate<double>(ctx, bg, points, guesses);
+    check_cached_locate<float>(ctx, bg, points, guesses);
+  }
+}

@@ -2,7 +2,10 @@
 // nodes that leave the domain (convex and concave boundaries, corners, the closer of two curves).
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
+#include <numbers>
+#include <random>
 
 #include "geometry/geometry.hpp"
 #include "geometry/geometry_tree.hpp"
@@ -220,4 +223,69 @@ TEST_CASE("closest point in an arc range", "[sim]") {
   CHECK(cp.p.x == 7.25);
   cp = closest_on_curve_range(bottom, {-4.0, 0.0}, 2.5, 7.25);
   CHECK(cp.arc == 2.5);
+}
+
+TEST_CASE("clearance budget: a lower bound of the distance, and skipped moves stay inside", "[sim][boundary]") {
+  for (const Geometry& g : {square(), circle_in_circle()}) {
+    const GeometryTree tree(g);
+    const NodeSet nodes = make_boundary_nodes(g, ConstantSpacing{});
+    const BoundaryHandler handler(tree, nodes);
+    std::mt19937_64 rng(20261121);
+    const Box& e = g.extents;
+    int inside = 0, walked = 0;
+    for (int trial = 0; trial < 400; ++trial) {
+      Vec2 p{e.lo.x + pdmesh_test::uniform(rng) * e.width(), e.lo.y + pdmesh_test::uniform(rng) * e.height()};
+      if (!tree.inside(p)) continue;
+      ++inside;
+      // Brute force over every segment.
+      double d = HUGE_VAL;
+      for (std::size_t s = 0; s < g.segments.size(); ++s)
+        d = std::min(d, closest_on_segment(p, g.segments[s], static_cast<int>(s)).distance);
+      const double c = handler.clearance_from(p);
+      REQUIRE(c <= d);
+      CHECK(c >= d * (1.0 - 1e-5));
+      // A random walk spending the budget: every move the budget admits is one the exact test accepts.
+      double budget = c;
+      for (int step = 0; step < 50; ++step) {
+        const double angle = 2.0 * std::numbers::pi * pdmesh_test::uniform(rng);
+        const double length = (step % 7 == 6 ? 2.0 : 0.3) * pdmesh_test::uniform(rng) * c;
+        const Vec2 to{p.x + length * std::cos(angle), p.y + length * std::sin(angle)};
+        const double cost = BoundaryHandler::move_cost(to.x - p.x, to.y - p.y, to.x, to.y, budget);
+        if (!(cost < budget)) break;
+        REQUIRE(tree.inside(to));
+        REQUIRE_FALSE(tree.crosses_boundary(p, to));
+        budget -= cost;
+        p = to;
+        ++walked;
+      }
+    }
+    CHECK(inside > 100);
+    CHECK(walked > 1000);
+  }
+}
+
+TEST_CASE("clearance budget: a node walking out is snapped in the same iteration as by the exact test", "[sim][boundary]") {
+  // Steps of 0.07 from y = 0.9 towards the bottom side: every position is tested, the move from
+  // y_12 = 0.9 - 12 * 0.07 (> 0) to y_13 (< 0) crosses, and only that one.
+  const Geometry g = square();
+  const GeometryTree tree(g);
+  NodeSet nodes = make_boundary_nodes(g, ConstantSpacing{});
+  const int node = nodes.add({5.5, 0.9}, 1.0, NodeKind::Interior, -1);
+  BoundaryHandler handler(tree, nodes);
+  double y = 0.9;
+  for (int iteration = 1; iteration <= 13; ++iteration) {
+    move_one(handler, nodes, node, {0.0, -0.07});
+    const auto i = static_cast<std::size_t>(node);
+    y = y - 0.07;
+    INFO("iteration " << iteration);
+    if (iteration < 13) {
+      REQUIRE(nodes.kind[i] == NodeKind::Interior);
+      REQUIRE(nodes.x[i].y == y);
+      // The budget shrinks as the node approaches the side: it never exceeds the distance.
+      REQUIRE(handler.clearance_budget(node) <= nodes.x[i].y);
+    } else {
+      REQUIRE(nodes.kind[i] == NodeKind::Boundary);
+      REQUIRE(nodes.x[i].y == 0.0);
+    }
+  }
 }

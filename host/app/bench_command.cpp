@@ -10,6 +10,7 @@
 #include <fmt/format.h>
 
 #include "app/case_file.hpp"
+#include "app/graded_case.hpp"
 #include "app/mesh_command.hpp"
 #include "core/atomic_file.hpp"
 #include "core/errors.hpp"
@@ -46,48 +47,10 @@ struct BenchCase {
   SimOptions options;
 };
 
-void add_polyline(std::vector<RawCurve>& raw, const std::string& name, Vec2 a, Vec2 b, int segments) {
-  RawCurve c{name, {}, "generated", 0, {}};
-  for (int i = 0; i <= segments; ++i) {
-    const double t = static_cast<double>(i) / segments;
-    c.points.push_back(i == segments ? b : Vec2{a.x + t * (b.x - a.x), a.y + t * (b.y - a.y)});
-  }
-  raw.push_back(std::move(c));
-}
-
-// A square of side 20 around a circle of 256 segments 1000x shorter than the square's: q (eq. 3.6)
-// is graded 1000x, from h_out / 1000 on the circle (radius ~ 41 h_out / 1000) to h_out far away.
-// N ~ 400 * 2 / (sqrt(3) h_out^2) if the far field were at spacing h_out; the circle's pull keeps q
-// smaller over much of the square: measured 5.51x that, hence the factor below.
-Geometry graded_geometry(double h_out) {
-  const double L = 10.0, h_in = h_out / 1000.0;
-  const int side = std::max(1, static_cast<int>(std::lround(2.0 * L / h_out)));
-  const int half = 128;
-  const double r = 2.0 * half * h_in / (2.0 * M_PI);
-  std::vector<RawCurve> raw;
-  add_polyline(raw, "bottom", {-L, -L}, {L, -L}, side);
-  add_polyline(raw, "right", {L, -L}, {L, L}, side);
-  add_polyline(raw, "top", {L, L}, {-L, L}, side);
-  add_polyline(raw, "left", {-L, L}, {-L, -L}, side);
-  for (int k = 0; k < 2; ++k) {
-    RawCurve c{k == 0 ? "circle_upper" : "circle_lower", {}, "generated", 0, {}};
-    for (int i = 0; i <= half; ++i) {
-      const double t = M_PI * (k + static_cast<double>(i) / half);
-      Vec2 p{r * std::cos(t), r * std::sin(t)};
-      if (i == 0) p = {k == 0 ? r : -r, 0.0};
-      if (i == half) p = {k == 0 ? -r : r, 0.0};
-      c.points.push_back(p);
-    }
-    raw.push_back(std::move(c));
-  }
-  return build_geometry(std::move(raw));
-}
-
 std::unique_ptr<BenchCase> generated_case(std::size_t target) {
   auto c = std::make_unique<BenchCase>();
   c->name = fmt::format("graded_{}k", target / 1000);
-  const double h = std::sqrt(5.51 * 400.0 * 2.0 / (std::sqrt(3.0) * static_cast<double>(target)));
-  c->geometry = graded_geometry(h);
+  c->geometry = graded_case_geometry(graded_case_spacing(target));
   c->tree = std::make_unique<GeometryTree>(c->geometry);
   c->spacing = std::make_unique<BoundarySpacing>(*c->tree);
   c->initial = make_initial_distribution(*c->tree, *c->spacing, {}).nodes;
@@ -147,8 +110,9 @@ std::string format_row(const Row& r) {
     device_mem = fmt::format("{:.0f}", static_cast<double>(d.device_bytes) / static_cast<double>(r.nodes));
     launches = fmt::format("{:.1f} + {:.1f}", static_cast<double>(d.launches) / it, static_cast<double>(d.transfers) / it);
     if (d.pairs_listed > 0)
-      examined = fmt::format("{:.2f} (x{:.2f} skin)", static_cast<double>(r.pairs_examined) / d.pairs_listed,
-                             static_cast<double>(d.pairs_listed) * it / d.rebuilds / static_cast<double>(r.pairs_within));
+      examined = fmt::format("{:.2f} (x{:.2f} skin, stride {})", static_cast<double>(r.pairs_examined) / d.pairs_listed,
+                             static_cast<double>(d.pairs_listed) * it / d.rebuilds / static_cast<double>(r.pairs_within),
+                             d.stride);
   } else if (r.pairs_within > 0) {
     examined = fmt::format("{:.2f}", static_cast<double>(r.pairs_examined) / static_cast<double>(r.pairs_within));
   }
@@ -168,6 +132,8 @@ int run_bench(const BenchArguments& args) {
   if (args.iterations < 1 || args.large_iterations < 1)
     throw InputError(fmt::format("bench: --iterations and --large-iterations must be >= 1, got {} and {}",
                                  args.iterations, args.large_iterations));
+  if (!(args.verlet_skin >= 0.0 && args.verlet_skin <= 4.0))
+    throw InputError(fmt::format("bench: --skin must be in [0, 4], got {}", args.verlet_skin));
   if (args.precision != "double" && args.precision != "float")
     throw InputError(fmt::format("bench: --precision must be double or float, got '{}'", args.precision));
   const std::vector<ocl::DeviceInfo> devices = ocl::list_devices();
@@ -183,6 +149,7 @@ int run_bench(const BenchArguments& args) {
     SimOptions options = c->options;
     options.iterations = large ? args.large_iterations : args.iterations;
     options.quiet = true;
+    options.verlet_skin = args.verlet_skin;
     {
       const int warm = large ? args.large_warmup : args.warmup;
       SimOptions w = options;

@@ -19,6 +19,7 @@ struct BenchArguments {
   int warmup = 200;
   int large_warmup = 20;
   std::string precision = "double";
+  double verlet_skin = 0.3;         // device runs: Verlet list radius cutoff q (1 + skin), as pdmesh mesh
   bool skip_host = false;           // devices only
   bool skip_host_large = false;     // the host reference takes seconds per iteration at 1M nodes
   std::string out;                  // the table as Markdown (atomic write); empty: stdout only

@@ -231,6 +231,7 @@ Cli::Cli() : app_(std::make_unique<CLI::App>("pdmesh: physics-based point placem
   bench->add_option("--precision", bench_->precision, "double | float (devices without fp64 run float)")->type_name("P");
   bench->add_option("--warmup", bench_->warmup, "Untimed iterations before timing, every backend from that state")->type_name("N");
   bench->add_option("--large-warmup", bench_->large_warmup, "The same for graded_1m")->type_name("N");
+  bench->add_option("--skin", bench_->verlet_skin, "Verlet skin of the device runs (list radius cutoff q (1 + skin))")->type_name("S");
   bench->add_flag("--skip-host", bench_->skip_host, "Do not run the host reference");
   bench->add_flag("--skip-host-large", bench_->skip_host_large, "Do not run the host reference on graded_1m");
   bench->add_option("--out", bench_->out, "Also write the table (Markdown) to this file")->type_name("FILE");

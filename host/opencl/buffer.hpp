@@ -53,13 +53,14 @@ class Buffer {
     const cl_int err = q.enqueueWriteBuffer(buffer_, blocking ? CL_TRUE : CL_FALSE, 0, sizeof(T) * count, data);
     if (err != CL_SUCCESS) check(err, fmt::format("upload to '{}'", name_));
   }
-  void download(cl::CommandQueue& q, std::vector<T>& host, std::size_t count) {
+  // Non-blocking (blocking = false): `host` is sized now and filled once the queue is synchronised.
+  void download(cl::CommandQueue& q, std::vector<T>& host, std::size_t count, bool blocking = true) {
     if (count > count_)
       throw DeviceError(fmt::format("download of {} elements from buffer '{}' of {}", count, name_, count_));
     host.resize(count);
     if (tail_) check_canary(q);
     if (count == 0) return;
-    const cl_int err = q.enqueueReadBuffer(buffer_, CL_TRUE, 0, sizeof(T) * count, host.data());
+    const cl_int err = q.enqueueReadBuffer(buffer_, blocking ? CL_TRUE : CL_FALSE, 0, sizeof(T) * count, host.data());
     if (err != CL_SUCCESS) check(err, fmt::format("download from '{}'", name_));
   }
   void download(cl::CommandQueue& q, std::vector<T>& host) { download(q, host, count_); }

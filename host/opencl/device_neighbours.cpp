@@ -1,6 +1,7 @@
 // Host binning + device gather of the neighbour rows; see device_neighbours.hpp.
 #include "opencl/device_neighbours.hpp"
 
+#include <array>
 #include <chrono>
 #include <cmath>
 
@@ -11,18 +12,22 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
+// Non-blocking: `host` must stay unchanged until the queue is synchronised (the counters download
+// after the gather does that), so one rebuild waits on the device once, not once per array.
 template <typename T>
 std::size_t put(Context& ctx, Buffer<T>& b, const char* name, const std::vector<T>& host) {
   ensure_size(ctx, b, name, host.size());
-  b.upload(ctx.queue(), host);
+  b.upload(ctx.queue(), host, false);
   return host.size() * sizeof(T);
 }
+
+constexpr std::array<std::uint32_t, 5> kZeroCounters{};
 
 }  // namespace
 
 template <typename Real>
 std::size_t DeviceNeighbours<Real>::device_bytes() const {
-  return count_.bytes() + index_.bytes() + level_.bytes() + table_id_.bytes() + table_cx_.bytes() +
+  return count_.bytes() + scatter_count_.bytes() + index_.bytes() + level_.bytes() + table_id_.bytes() + table_cx_.bytes() +
          table_cy_.bytes() + cell_start_.bytes() + cell_nodes_.bytes();
 }
 
@@ -44,7 +49,8 @@ NeighbourFlags DeviceNeighbours<Real>::build(const double* hx, const double* hy,
   uploaded_bytes = 0;
   if (flags.first_invalid < 0) {
     uploaded_bytes += put(ctx_, level_, "level", grids_.level);
-    uploaded_bytes += put(ctx_, inv_cell_, "grid_inv_cell", to_real<Real>(grids_.inv_cell));
+    inv_cell_host_ = to_real<Real>(grids_.inv_cell);
+    uploaded_bytes += put(ctx_, inv_cell_, "grid_inv_cell", inv_cell_host_);
     uploaded_bytes += put(ctx_, table_offset_, "grid_table_offset", grids_.table_offset);
     uploaded_bytes += put(ctx_, table_mask_, "grid_table_mask", grids_.table_mask);
     uploaded_bytes += put(ctx_, start_offset_, "grid_start_offset", grids_.start_offset);
@@ -59,21 +65,29 @@ NeighbourFlags DeviceNeighbours<Real>::build(const double* hx, const double* hy,
   for (int attempt = 0; attempt < 3; ++attempt) {
     ensure_size(ctx_, count_, "neighbour_count", n);
     ensure_size(ctx_, index_, "neighbour_index", n * static_cast<std::size_t>(stride));
-    const std::vector<std::uint32_t> zero(5, 0);
-    counters_.upload(ctx_.queue(), zero);
+    counters_.upload(ctx_.queue(), kZeroCounters.data(), kZeroCounters.size(), false);
     if (flags.first_invalid >= 0) {
       // Lists of an invalid node set are not built; the caller throws naming the node.
       flags.max_count = 0;
       break;
     }
-    const float radius = static_cast<float>(radius_factor);
-    ArgSetter args(program_.build_neighbours, "build_neighbours");
-    args(static_cast<cl_int>(n))(static_cast<cl_int>(stride))(static_cast<cl_int>(grids_.levels));
-    if constexpr (std::is_same_v<Real, double>) args(radius_factor);
-    else args(radius);
-    args(x)(y)(q)(kind)(prev)(next)(level_)(inv_cell_)(table_offset_)(table_mask_)(start_offset_)(nodes_offset_)(
-        table_cx_)(table_cy_)(table_id_)(cell_start_)(cell_nodes_)(count_)(index_)(counters_);
+    const Real radius = static_cast<Real>(radius_factor);
+    // Pass 1: own cumulative grid, scattering to finer rows (scatter counts start at 0).
+    ensure_size(ctx_, scatter_count_, "neighbour_scatter_count", n);
+    if (n > 0)  // a zero-sized fill is invalid OpenCL
+      check(ctx_.queue().enqueueFillBuffer(scatter_count_.get(), cl_int{0}, 0, n * sizeof(cl_int)),
+            "clearing 'neighbour_scatter_count'");
+    ArgSetter a(program_.build_neighbours, "build_neighbours");
+    a(static_cast<cl_int>(n))(static_cast<cl_int>(stride))(radius)(x)(y)(q)(kind)(prev)(next)(level_)(inv_cell_)(
+        table_offset_)(table_mask_)(start_offset_)(nodes_offset_)(table_cx_)(table_cy_)(table_id_)(cell_start_)(
+        cell_nodes_)(count_)(scatter_count_)(index_)(counters_);
     launch(ctx_.queue(), program_.build_neighbours, "build_neighbours", n, program_.work_group);
+    // Pass 2: join, sort, pad; overflowing rows rescanned in reference order.
+    ArgSetter b(program_.finish_neighbours, "finish_neighbours");
+    b(static_cast<cl_int>(n))(static_cast<cl_int>(stride))(static_cast<cl_int>(grids_.levels))(radius)(x)(y)(q)(
+        kind)(level_)(inv_cell_)(table_offset_)(table_mask_)(start_offset_)(nodes_offset_)(table_cx_)(table_cy_)(
+        table_id_)(cell_start_)(cell_nodes_)(scatter_count_)(count_)(index_)(counters_);
+    launch(ctx_.queue(), program_.finish_neighbours, "finish_neighbours", n, program_.work_group);
     std::vector<std::uint32_t> c;
     counters_.download(ctx_.queue(), c, 5);
     flags.max_count = static_cast<std::int32_t>(c[2]);

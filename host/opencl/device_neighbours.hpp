@@ -1,5 +1,5 @@
 // Neighbour lists on the device: the host bins (O(N) flat grids, neighbour_grids.hpp), the device
-// gathers each row (kernels/neighbours.cl). Used by the StepBackend and the device-resident run.
+// gathers each row in two passes (kernels/neighbours.cl: own-level scan with scatter, then join + sort). Used by the StepBackend and the device-resident run.
 #pragma once
 #include <cstdint>
 
@@ -35,10 +35,11 @@ class DeviceNeighbours {
   Context& ctx_;
   StepProgram& program_;
   NeighbourGrids grids_;
-  Buffer<std::int32_t> count_, index_, level_, table_offset_, table_mask_, start_offset_, nodes_offset_, table_id_,
+  Buffer<std::int32_t> count_, scatter_count_, index_, level_, table_offset_, table_mask_, start_offset_, nodes_offset_, table_id_,
       cell_start_, cell_nodes_;
   Buffer<std::uint32_t> counters_;
   Buffer<Real> inv_cell_;
+  std::vector<Real> inv_cell_host_;  // kept alive for the non-blocking upload
   Buffer<std::int64_t> table_cx_, table_cy_;
 };
 

@@ -1,12 +1,13 @@
 // The device-resident simulation loop; see device_simulation.hpp and docs/opencl.md. Per iteration:
 // [rebuild the Verlet lists when the skin is used up] -> device_step (forces, r0, time step, move,
-// spacing, tags, partial sums) -> download partials, boundary and flagged records -> host boundary
+// spacing, clearance budgets, partial sums) -> download partials, boundary and flagged records -> host boundary
 // handling on those nodes only -> upload their positions -> apply_host_moves -> dt rule on the host.
 #include "opencl/device_simulation.hpp"
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 
 #include "core/errors.hpp"
 #include "opencl/device_neighbours.hpp"
@@ -36,6 +37,10 @@ class DeviceRun {
       : nodes_(nodes), options_(options), ctx_(ctx), stats_(stats), boundary_(tree, nodes),
         background_(spacing, tree), program_(ctx, std::is_same_v<Real, double> ? Precision::Double : Precision::Float),
         neighbours_(ctx, program_), n_(nodes.size()) {}
+  // Non-blocking uploads read host vectors of this object: wait for them (errors are moot here).
+  ~DeviceRun() { ctx_.queue().finish(); }
+  DeviceRun(const DeviceRun&) = delete;
+  DeviceRun& operator=(const DeviceRun&) = delete;
 
   SimResult run(const SimCallbacks& callbacks);
 
@@ -48,21 +53,31 @@ class DeviceRun {
   void bg_args(ArgSetter& a) {
     const BackgroundFieldData& d = background_.data();
     a(static_cast<Real>(d.origin_x))(static_cast<Real>(d.origin_y))(static_cast<Real>(d.inv_root_size))(
-        static_cast<cl_int>(d.grid))(bg_root_)(bg_child_)(bg_corner_)(bg_tag_)(bg_q_);
+        static_cast<cl_int>(d.grid))(bg_root_)(bg_child_)(bg_corner_)(bg_cell_)(bg_q_);
   }
+  // Transfers with blocking = false are enqueued only: the host data must stay untouched until the
+  // next synchronisation (finish or a blocking transfer). Per iteration the host waits on the
+  // device twice (after the step and its records, and for the candidates when there are any).
   template <typename T>
-  void read(Buffer<T>& b, std::vector<T>& host, std::size_t count) {
-    b.download(ctx_.queue(), host, count);
+  void read(Buffer<T>& b, std::vector<T>& host, std::size_t count, bool blocking = true) {
+    b.download(ctx_.queue(), host, count, blocking);
     ++stats_.transfers;
     stats_.bytes_down += count * sizeof(T);
   }
   template <typename T>
-  void write(Buffer<T>& b, const std::vector<T>& host) {
-    b.upload(ctx_.queue(), host);
+  void write(Buffer<T>& b, const std::vector<T>& host, bool blocking = true) {
+    b.upload(ctx_.queue(), host, blocking);
     ++stats_.transfers;
     stats_.bytes_up += host.size() * sizeof(T);
   }
   std::size_t groups() const { return (n_ + program_.work_group - 1) / program_.work_group; }
+  // A host clearance budget for the device's copy of p: in float the stored position is p rounded,
+  // up to eps (|p.x| + |p.y|) away, which comes off the budget.
+  static double device_budget(Vec2 p, double budget) {
+    if constexpr (std::is_same_v<Real, double>) return budget;
+    const double b = budget - std::numeric_limits<Real>::epsilon() * (std::fabs(p.x) + std::fabs(p.y));
+    return b > 0.0 ? b : 0.0;
+  }
 
   NodeSet& nodes_;
   const SimOptions& options_;
@@ -75,17 +90,20 @@ class DeviceRun {
   std::size_t n_;
   int stride_ = 16;
   int cur_ = 0;  // which of the double-buffered x, y, q is current
-  Buffer<Real> x_[2], y_[2], q_[2], tx_, ty_, x_build_, y_build_, q_build_, brec_, cand_rec_, partials_, rec_, bg_q_;
-  Buffer<std::uint8_t> kind_, tag_;
+  Buffer<Real> x_[2], y_[2], q_[2], tx_, ty_, x_build_, y_build_, q_build_, brec_, cand_rec_, partials_, rec_, bg_q_,
+      budget_;
+  Buffer<std::uint8_t> kind_;
   Buffer<std::int32_t> prev_, next_, bslot_, cand_index_, counters_, rec_index_, bg_root_, bg_child_, bg_corner_,
-      bg_tag_;
+      bg_cell_, node_leaf_;
   // Host mirrors.
   std::vector<std::uint8_t> kind_host_;
   std::vector<std::int32_t> boundary_nodes_;  // Boundary nodes in slot order
   std::vector<double> build_x_, build_y_, build_q_;  // positions and spacings at the last build
   std::vector<double> dx_, dy_;                      // host displacement scratch (full size, sparse use)
   std::vector<std::int32_t> candidates_;
-  std::vector<Real> part_, brec_host_, cand_rec_host_;
+  std::vector<Real> part_, brec_host_, cand_rec_host_, rec_host_;
+  std::vector<std::int32_t> count_host_, rec_index_host_;
+  const std::vector<std::int32_t> zero_counter_ = std::vector<std::int32_t>(1, 0);
   double skin_use_ = HUGE_VAL;                       // since the last build; HUGE_VAL forces a build
   std::uint64_t pairs_examined_ = 0;
   std::size_t within_ = 0, coincident_ = 0, sum_moving_ = 0;
@@ -95,29 +113,31 @@ class DeviceRun {
 template <typename Real>
 void DeviceRun<Real>::upload_initial() {
   const std::size_t n = n_;
-  std::vector<double> x(n), y(n), tx(n), ty(n);
-  std::vector<std::uint8_t> tag(n);
+  std::vector<double> x(n), y(n), tx(n), ty(n), budget(n, 0.0);
   for (std::size_t i = 0; i < n; ++i) {
     x[i] = nodes_.x[i].x;
     y[i] = nodes_.x[i].y;
     const Vec2 t = boundary_.tangent(static_cast<int>(i));
     tx[i] = t.x;
     ty[i] = t.y;
-    tag[i] = static_cast<std::uint8_t>(background_.tag_at(nodes_.x[i]));
   }
+  // Clearance budgets of the interior nodes (exact test once, as the host reference's first iteration).
+  for (std::size_t i = 0; i < n; ++i)
+    if (nodes_.kind[i] == NodeKind::Interior && boundary_.tree().inside(nodes_.x[i]))
+      budget[i] = device_budget(nodes_.x[i], boundary_.clearance_from(nodes_.x[i]));
   for (int b = 0; b < 2; ++b) {
     x_[b] = Buffer<Real>(ctx_, "x", n);
     y_[b] = Buffer<Real>(ctx_, "y", n);
     q_[b] = Buffer<Real>(ctx_, "q", n);
   }
   for (auto* b : {&tx_, &ty_, &x_build_, &y_build_, &q_build_}) *b = Buffer<Real>(ctx_, "node_array", n);
-  tag_ = Buffer<std::uint8_t>(ctx_, "tag", n);
+  budget_ = Buffer<Real>(ctx_, "clearance_budget", n);
   write(x_[0], to_real<Real>(x));
   write(y_[0], to_real<Real>(y));
   write(q_[0], to_real<Real>(nodes_.q));
   write(tx_, to_real<Real>(tx));
   write(ty_, to_real<Real>(ty));
-  write(tag_, tag);
+  write(budget_, to_real<Real>(budget));
   cand_index_ = Buffer<std::int32_t>(ctx_, "cand_index", n);
   cand_rec_ = Buffer<Real>(ctx_, "cand_rec", 4 * n);
   counters_ = Buffer<std::int32_t>(ctx_, "step_counters", 1);
@@ -126,12 +146,20 @@ void DeviceRun<Real>::upload_initial() {
   bg_root_ = Buffer<std::int32_t>(ctx_, "bg_root_node", d.root_node.size());
   bg_child_ = Buffer<std::int32_t>(ctx_, "bg_node_child", d.node_child.size());
   bg_corner_ = Buffer<std::int32_t>(ctx_, "bg_leaf_corner", d.leaf_corner.size());
-  bg_tag_ = Buffer<std::int32_t>(ctx_, "bg_leaf_tag", d.leaf_tag.size());
+  bg_cell_ = Buffer<std::int32_t>(ctx_, "bg_leaf_cell", d.leaf_cell.size());
   bg_q_ = Buffer<Real>(ctx_, "bg_corner_q", d.corner_q.size());
   write(bg_root_, d.root_node);
   write(bg_child_, d.node_child);
   write(bg_corner_, d.leaf_corner);
-  write(bg_tag_, d.leaf_tag);
+  write(bg_cell_, d.leaf_cell);
+  // Each node's leaf: the guess the step kernel tests before descending.
+  std::vector<std::int32_t> leaf(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    double u, v;
+    leaf[i] = background_locate(d, nodes_.x[i], u, v);
+  }
+  node_leaf_ = Buffer<std::int32_t>(ctx_, "node_leaf", n);
+  write(node_leaf_, leaf);
   write(bg_q_, to_real<Real>(d.corner_q));
   kind_host_.resize(n);
   upload_topology();
@@ -172,11 +200,14 @@ void DeviceRun<Real>::rebuild() {
   const std::size_t n = n_;
   if (stats_.rebuilds > 0) {
     // The host needs every position only here (rare with the skin): to bin.
-    std::vector<Real> v;
-    for (auto [buf, host] : {std::pair{&x_[cur_], &build_x_}, {&y_[cur_], &build_y_}, {&q_[cur_], &build_q_}}) {
-      read(*buf, v, n);
-      host->assign(v.begin(), v.end());
-    }
+    std::vector<Real> v[3];
+    read(x_[cur_], v[0], n, false);
+    read(y_[cur_], v[1], n, false);
+    read(q_[cur_], v[2], n, false);
+    check(ctx_.queue().finish(), "positions for binning");
+    build_x_.assign(v[0].begin(), v[0].end());
+    build_y_.assign(v[1].begin(), v[1].end());
+    build_q_.assign(v[2].begin(), v[2].end());
   }
   const double radius = options_.cutoff * (1.0 + options_.verlet_skin);
   NeighbourFlags flags = neighbours_.build(build_x_.data(), build_y_.data(), build_q_.data(), kind_host_.data(), n,
@@ -192,7 +223,7 @@ void DeviceRun<Real>::rebuild() {
   stats_.bin_seconds += neighbours_.bin_seconds;
   stats_.gather_seconds += neighbours_.gather_seconds;
   stats_.bytes_up += neighbours_.uploaded_bytes;
-  stats_.launches += 1;
+  stats_.launches += 2;  // build_neighbours + finish_neighbours (+ the fill of the scatter counts)
   pairs_examined_ += flags.pairs_examined;
   stats_.pairs_listed += flags.pairs_within;
   // The build state the skin is measured from.
@@ -205,30 +236,30 @@ void DeviceRun<Real>::rebuild() {
 template <typename Real>
 void DeviceRun<Real>::step_kernel(double dt_gm2) {
   const int next = 1 - cur_;
-  const std::vector<std::int32_t> zero(1, 0);
-  write(counters_, zero);
+  write(counters_, zero_counter_, false);
   ArgSetter a(program_.device_step, "device_step");
   a(static_cast<cl_int>(n_))(static_cast<cl_int>(stride_))(static_cast<Real>(options_.cutoff))(
       static_cast<Real>(options_.lj_a))(static_cast<cl_int>(options_.r0_any_direction ? 1 : 0))(
       static_cast<Real>(options_.stability_factor))(static_cast<Real>(dt_gm2))(static_cast<Real>(options_.verlet_skin * options_.cutoff))(x_[cur_])(y_[cur_])(
       q_[cur_])(kind_)(tx_)(ty_)(neighbours_.count())(neighbours_.index())(x_build_)(y_build_)(q_build_)(bslot_)(
-      x_[next])(y_[next])(q_[next])(tag_)(brec_)(cand_index_)(cand_rec_)(counters_)(partials_);
+      x_[next])(y_[next])(q_[next])(budget_)(node_leaf_)(brec_)(cand_index_)(cand_rec_)(counters_)(partials_);
   bg_args(a);
   launch(ctx_.queue(), program_.device_step, "device_step", n_, program_.work_group);
   ++stats_.launches;
+  // One wait for the kernel (and the previous iteration's apply_host_moves) and its small records.
   auto t0 = Clock::now();
+  read(partials_, part_, kStepPartials * groups(), false);
+  read(counters_, count_host_, 1, false);
+  read(brec_, brec_host_, 4 * boundary_nodes_.size(), false);
   check(ctx_.queue().finish(), "device_step");
   stats_.step_seconds += since(t0);
   t0 = Clock::now();
-  read(partials_, part_, kStepPartials * groups());
-  std::vector<std::int32_t> count;
-  read(counters_, count, 1);
-  const auto m = static_cast<std::size_t>(count[0]);
-  read(brec_, brec_host_, 4 * boundary_nodes_.size());
+  const auto m = static_cast<std::size_t>(count_host_[0]);
   std::vector<std::int32_t> cand;
   if (m > 0) {
-    read(cand_index_, cand, m);
-    read(cand_rec_, cand_rec_host_, 4 * m);
+    read(cand_index_, cand, m, false);
+    read(cand_rec_, cand_rec_host_, 4 * m, false);
+    check(ctx_.queue().finish(), "device_step candidates");
   }
   stats_.download_seconds += since(t0);
   // Sums in group order.
@@ -271,15 +302,20 @@ BoundaryCounts DeviceRun<Real>::host_boundary(double& skin_use) {
   const BoundaryCounts counts = boundary_.apply_subset(nodes_, dx_, dy_, candidates_);
   if (counts.snapped > 0) upload_topology();  // kinds and curve neighbours changed (rare)
   // Records: every boundary node (re-snapped, with its tangent) and every candidate still interior.
-  std::vector<std::int32_t> index;
-  std::vector<Real> rec;
+  // Members: their uploads are non-blocking and complete before the next step's records arrive.
+  std::vector<std::int32_t>& index = rec_index_host_;
+  std::vector<Real>& rec = rec_host_;
+  index.clear();
+  rec.clear();
   index.reserve(boundary_nodes_.size() + candidates_.size());
-  rec.reserve(4 * index.capacity());
+  rec.reserve(5 * index.capacity());
   auto add = [&](std::int32_t node) {
     const auto i = static_cast<std::size_t>(node);
     const Vec2 p = nodes_.x[i], t = boundary_.tangent(node);
+    const double budget =
+        nodes_.kind[i] == NodeKind::Interior ? device_budget(p, boundary_.clearance_budget(node)) : 0.0;
     index.push_back(node);
-    for (double v : {p.x, p.y, t.x, t.y}) rec.push_back(static_cast<Real>(v));
+    for (double v : {p.x, p.y, t.x, t.y, budget}) rec.push_back(static_cast<Real>(v));
     const double ex = p.x - build_x_[i], ey = p.y - build_y_[i];
     const double q = background_.at(p);
     const double grow = q > build_q_[i] ? options_.cutoff * (q - build_q_[i]) : 0.0;
@@ -294,15 +330,14 @@ BoundaryCounts DeviceRun<Real>::host_boundary(double& skin_use) {
   if (!index.empty()) {
     ensure_size(ctx_, rec_index_, "rec_index", index.size());
     ensure_size(ctx_, rec_, "rec", rec.size());
-    write(rec_index_, index);
-    write(rec_, rec);
+    write(rec_index_, index, false);
+    write(rec_, rec, false);
     const int next = 1 - cur_;
     ArgSetter a(program_.apply_host_moves, "apply_host_moves");
-    a(static_cast<cl_int>(index.size()))(rec_index_)(rec_)(x_[next])(y_[next])(q_[next])(tx_)(ty_)(tag_);
+    a(static_cast<cl_int>(index.size()))(rec_index_)(rec_)(x_[next])(y_[next])(q_[next])(tx_)(ty_)(budget_)(node_leaf_);
     bg_args(a);
     launch(ctx_.queue(), program_.apply_host_moves, "apply_host_moves", index.size(), program_.work_group);
-    ++stats_.launches;
-    check(ctx_.queue().finish(), "apply_host_moves");
+    ++stats_.launches;  // not waited on: the next device_step follows it in the in-order queue
   }
   stats_.upload_seconds += since(t0);
   return counts;
@@ -399,9 +434,9 @@ SimResult DeviceRun<Real>::run(const SimCallbacks& callbacks) {
   result.stats.seconds = since(start);
   stats_.stride = stride_;
   stats_.device_bytes = neighbours_.device_bytes() + partials_.bytes() + cand_index_.bytes() + cand_rec_.bytes() +
-                        brec_.bytes() + kind_.bytes() + tag_.bytes() + prev_.bytes() + next_.bytes() +
+                        brec_.bytes() + kind_.bytes() + budget_.bytes() + prev_.bytes() + next_.bytes() +
                         bslot_.bytes() + bg_q_.bytes() + bg_root_.bytes() + bg_child_.bytes() + bg_corner_.bytes() +
-                        bg_tag_.bytes() + rec_.bytes() + rec_index_.bytes() +
+                        bg_cell_.bytes() + node_leaf_.bytes() + rec_.bytes() + rec_index_.bytes() +
                         (6 + 5) * n_ * sizeof(Real);
   return result;
 }

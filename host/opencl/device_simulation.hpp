@@ -23,10 +23,11 @@ struct DeviceRunStats {
   std::uint64_t candidates = 0;      // interior nodes handed to the host's exact test, all iterations
   double bin_seconds = 0.0;          // host binning at rebuilds
   double gather_seconds = 0.0;       // device neighbour gather at rebuilds (with its transfers)
-  double step_seconds = 0.0;         // the fused device_step kernel
-  double download_seconds = 0.0;     // partials, boundary and candidate records
+  double step_seconds = 0.0;         // the fused device_step kernel (+ the previous apply_host_moves,
+                                     // partials and boundary records: one wait)
+  double download_seconds = 0.0;     // candidate records
   double host_seconds = 0.0;         // boundary handling on the host
-  double upload_seconds = 0.0;       // host positions back + apply_host_moves
+  double upload_seconds = 0.0;       // enqueueing host positions back + apply_host_moves (not waited on)
   std::size_t device_bytes = 0;      // device buffers at the end
 };
 

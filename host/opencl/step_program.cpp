@@ -19,6 +19,7 @@ StepProgram::StepProgram(Context& ctx, Precision p, std::size_t wg) : precision(
   program = ctx.build({"spacing_field.cl", "reduce.cl", "forces.cl", "time_step.cl", "neighbours.cl", "device_step.cl"},
                       precision_defines(p, wg));
   build_neighbours = make_kernel(program, "build_neighbours");
+  finish_neighbours = make_kernel(program, "finish_neighbours");
   compute_forces = make_kernel(program, "compute_forces");
   time_step_and_move = make_kernel(program, "time_step_and_move");
   reduce = make_kernel(program, "reduce");

@@ -26,7 +26,7 @@ struct StepProgram {
   Precision precision;
   std::size_t work_group;
   cl::Program program;
-  cl::Kernel build_neighbours, compute_forces, time_step_and_move, reduce, device_step, apply_host_moves;
+  cl::Kernel build_neighbours, finish_neighbours, compute_forces, time_step_and_move, reduce, device_step, apply_host_moves;
 };
 
 // Sets arguments 0.. of `kernel` in order; Buffer<T> arguments pass their cl::Buffer.

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <utility>
 
 #include <fmt/format.h>
@@ -62,6 +63,7 @@ BoundaryHandler::BoundaryHandler(const GeometryTree& tree, const NodeSet& nodes)
     throw SimulationError(fmt::format("the node set has boundary node lists for {} curves, the geometry has {}",
                                       nodes.curve_nodes.size(), geometry.curves.size()));
   tangent_.assign(nodes.size(), Vec2{});
+  budget_.assign(nodes.size(), 0.0);
   arcs_.resize(geometry.curves.size());
   for (std::size_t c = 0; c < geometry.curves.size(); ++c) {
     const Curve& curve = geometry.curves[c];
@@ -123,6 +125,8 @@ BoundaryCounts BoundaryHandler::apply_subset(NodeSet& nodes, const std::vector<d
   move_boundary_nodes(nodes, dx, dy, counts);
   for (int node : interior) {
     const auto i = static_cast<std::size_t>(node);
+    // The device moved this node since the host last saw it: the host's budget no longer holds.
+    budget_[i] = 0.0;
     if (nodes.kind[i] == NodeKind::Interior) move_interior_node(nodes, i, dx, dy, counts);
   }
   return counts;
@@ -160,12 +164,40 @@ void BoundaryHandler::move_interior_node(NodeSet& nodes, std::size_t i, const st
   if (!std::isfinite(target.x) || !std::isfinite(target.y))
     throw SimulationError(fmt::format("node {} moved from ({}, {}) to a non-finite position ({}, {})", i, from.x,
                                       from.y, target.x, target.y));
-  if (tree_.inside(target) && !tree_.crosses_boundary(from, target)) {
+  // The disc of radius budget_[i] around the last exactly tested position holds from (the costs of
+  // the moves since then are subtracted) and, when this move's cost is below what is left, target and
+  // the whole move: no exact test needed (see clearance_budget in the header).
+  const double cost = move_cost(target.x - from.x, target.y - from.y, target.x, target.y, budget_[i]);
+  if (cost < budget_[i]) {
     nodes.x[i] = target;
+    budget_[i] -= cost;
     return;
   }
+  if (tree_.inside(target) && !tree_.crosses_boundary(from, target)) {
+    nodes.x[i] = target;
+    budget_[i] = clearance_from(target);
+    return;
+  }
+  budget_[i] = 0.0;
   insert_snapped(nodes, static_cast<int>(i), target);
   ++counts.snapped;
+}
+
+double BoundaryHandler::clearance_from(Vec2 p) const {
+  const ClosestHit hit = tree_.closest(p);
+  if (hit.segment < 0 || !std::isfinite(hit.distance)) return 0.0;
+  // The computed distance is within a few ulps of |p| + d of the true one; 1e-6 more covers the
+  // rounding of a float device's copy of the budget.
+  constexpr double eps = std::numeric_limits<double>::epsilon();
+  const double d = hit.distance - 16.0 * eps * (std::fabs(p.x) + std::fabs(p.y) + hit.distance);
+  return d > 0.0 ? d * (1.0 - 1e-6) : 0.0;
+}
+
+double BoundaryHandler::move_cost(double ex, double ey, double px, double py, double budget) {
+  // sqrt(e^2) is within 3 ulps of |e| and e within 1 ulp of the true difference; the absolute term
+  // covers e's rounding near coordinates of size |p| and the rounding of budget - cost.
+  constexpr double eps = std::numeric_limits<double>::epsilon();
+  return std::sqrt(ex * ex + ey * ey) * (1.0 + 64.0 * eps) + 8.0 * eps * (std::fabs(px) + std::fabs(py) + budget);
 }
 
 void BoundaryHandler::insert_snapped(NodeSet& nodes, int node, Vec2 target) {

@@ -49,6 +49,7 @@ class BoundaryHandler {
   BoundaryCounts apply_subset(NodeSet& nodes, const std::vector<double>& dx, const std::vector<double>& dy,
                               const std::vector<int>& interior);
 
+  const GeometryTree& tree() const { return tree_; }
   // Unit tangent of a Boundary node (zero for other kinds).
   Vec2 tangent(int node) const { return tangent_[static_cast<std::size_t>(node)]; }
   // Arc positions parallel to NodeSet::curve_nodes.
@@ -62,6 +63,20 @@ class BoundaryHandler {
   // Previous and next node along the curve of each Boundary node (-1 for other kinds).
   void curve_neighbours(const NodeSet& nodes, std::vector<int>& prev, std::vector<int>& next) const;
 
+  // The exact shortcut for interior moves (see move_interior_node): an interior node whose exact
+  // test accepted position p gets the budget clearance_from(p), a lower bound of the distance from p
+  // to the boundary; each later move whose move_cost is below the remaining budget stays in the open
+  // disc around p, which is inside the domain, so the exact test would accept it: it is skipped and
+  // the cost is subtracted. The result is the same as always running the exact test.
+  // Remaining budget of node i (0 when none; for the device-resident run's uploads).
+  double clearance_budget(int node) const { return budget_[static_cast<std::size_t>(node)]; }
+  // Lower bound of the distance from p to the boundary (0 on or near it); p must be inside.
+  double clearance_from(Vec2 p) const;
+  // Upper bound, with margins for rounding, of what a move by (ex, ey) ending at (px, py) uses of a
+  // budget b: |e| (1 + 64 eps) + 8 eps (|px| + |py| + b), eps the precision's unit roundoff x 2.
+  // The same formula in kernels/device_step.cl.
+  static double move_cost(double ex, double ey, double px, double py, double budget);
+
  private:
   void insert_snapped(NodeSet& nodes, int node, Vec2 target);
   void move_boundary_nodes(NodeSet& nodes, const std::vector<double>& dx, const std::vector<double>& dy,
@@ -72,6 +87,7 @@ class BoundaryHandler {
   const GeometryTree& tree_;
   std::vector<std::vector<double>> arcs_;
   std::vector<Vec2> tangent_;  // per node
+  std::vector<double> budget_;  // per node: remaining clearance budget (0: none, run the exact test)
 };
 
 }  // namespace pdmesh

@@ -13,7 +13,8 @@
 namespace pdmesh {
 
 std::size_t BackgroundFieldData::bytes() const {
-  return sizeof(std::int32_t) * (root_node.size() + node_child.size() + leaf_corner.size() + leaf_tag.size()) +
+  return sizeof(std::int32_t) *
+             (root_node.size() + node_child.size() + leaf_corner.size() + leaf_tag.size() + leaf_cell.size()) +
          sizeof(double) * corner_q.size();
 }
 
@@ -215,6 +216,12 @@ class Builder {
     if (!needs_split(c, q, tag)) {
       d_.node_child[static_cast<std::size_t>(node)] = -1 - static_cast<std::int32_t>(d_.leaf_tag.size());
       d_.leaf_tag.push_back(tag);
+      const std::uint32_t below_root = (std::uint32_t{1} << resolution_) - 1;
+      d_.leaf_cell.push_back(static_cast<std::int32_t>((c.y >> resolution_) * static_cast<std::uint32_t>(d_.grid) +
+                                                       (c.x >> resolution_)));
+      d_.leaf_cell.push_back(c.level);
+      d_.leaf_cell.push_back(static_cast<std::int32_t>((c.x & below_root) >> (resolution_ - c.level)));
+      d_.leaf_cell.push_back(static_cast<std::int32_t>((c.y & below_root) >> (resolution_ - c.level)));
       for (const auto& [dx, dy] : {std::pair{0u, 0u}, {s, 0u}, {0u, s}, {s, s}})
         d_.leaf_corner.push_back(corner(c.x + dx, c.y + dy));
       return;

@@ -38,6 +38,10 @@ struct BackgroundFieldData {
   std::vector<std::int32_t> node_child;
   std::vector<std::int32_t> leaf_corner;  // 4 per leaf, same order as children: indices into corner_q
   std::vector<std::int32_t> leaf_tag;     // per leaf: a DomainTag
+  // 4 per leaf: top-grid cell (gy * G + gx), level L below the root, integer cell coordinates
+  // (ix, iy) in [0, 2^L) of the leaf within its root cell. Lets a lookup test a guessed leaf without
+  // descending (kernels/spacing_field.cl, bg_locate_cached).
+  std::vector<std::int32_t> leaf_cell;
   std::vector<double> corner_q;           // exact q at every distinct leaf corner (shared corners once)
 
   std::size_t bytes() const;
