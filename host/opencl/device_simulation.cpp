@@ -105,7 +105,8 @@ class DeviceRun {
   std::vector<std::int32_t> count_host_, rec_index_host_;
   const std::vector<std::int32_t> zero_counter_ = std::vector<std::int32_t>(1, 0);
   double skin_use_ = HUGE_VAL;                       // since the last build; HUGE_VAL forces a build
-  std::uint64_t pairs_examined_ = 0;
+  std::uint64_t pairs_examined_ = 0;  // rebuild candidates plus, every iteration, the entries of the current lists
+  std::uint64_t list_entries_ = 0;    // entries of the current lists (within the skin radius)
   std::size_t within_ = 0, coincident_ = 0, sum_moving_ = 0;
   double sum_force_ = 0, sum_kinetic_ = 0, max_force_ = 0, device_skin_use_ = 0;
 };
@@ -225,7 +226,9 @@ void DeviceRun<Real>::rebuild() {
   stats_.bytes_up += neighbours_.uploaded_bytes;
   stats_.launches += 2;  // build_neighbours + finish_neighbours (+ the fill of the scatter counts)
   pairs_examined_ += flags.pairs_examined;
+  stats_.rebuild_candidates += flags.pairs_examined;
   stats_.pairs_listed += flags.pairs_within;
+  list_entries_ = flags.pairs_within;
   // The build state the skin is measured from.
   for (auto [from, to] : {std::pair{&x_[cur_], &x_build_}, {&y_[cur_], &y_build_}, {&q_[cur_], &q_build_}})
     check(ctx_.queue().enqueueCopyBuffer(from->get(), to->get(), 0, 0, n * sizeof(Real)), "copy to the build state");
@@ -403,6 +406,7 @@ SimResult DeviceRun<Real>::run(const SimCallbacks& callbacks) {
     row.interior = interior;
     gm.update(max_force_);
     result.stats.pairs_within += within_;
+    pairs_examined_ += list_entries_;  // the step kernel computes the distance of every list entry
     result.stats.coincident_pairs += coincident_;
     result.stats.snapped += counts.snapped;
     result.history.push_back(row);
