@@ -19,6 +19,21 @@ void group_reduce(__local REAL* values, const int slots, const int sum_slots) {
   barrier(CLK_LOCAL_MEM_FENCE);
 }
 
+// |F| = sqrt(fx^2 + fy^2). Double: that expression (the reference's). Float: fx^2 overflows past
+// |F| ~ 1.8e19 (a node closer than ~q/30 to another), so large forces are scaled by the exact power
+// of two 2^-64 before squaring and the root scaled back: no overflow below |F| = FLT_MAX.
+REAL force_norm(const REAL fx, const REAL fy) {
+#if PDMESH_DOUBLE
+  return sqrt(fx * fx + fy * fy);
+#else
+  if (fmax(fabs(fx), fabs(fy)) > 0x1p60f) {
+    const float sx = fx * 0x1p-64f, sy = fy * 0x1p-64f;
+    return sqrt(sx * sx + sy * sy) * 0x1p64f;
+  }
+  return sqrt(fx * fx + fy * fy);
+#endif
+}
+
 // partials[4 g + k]: k = 0 sum |F|, 1 sum kinetic, 2 moving count, 3 max |F| of group g.
 __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1)))
 void reduce(const int n, __global const uchar* kind, __global const REAL* fx, __global const REAL* fy,
@@ -26,10 +41,13 @@ void reduce(const int n, __global const uchar* kind, __global const REAL* fx, __
   __local REAL values[4 * WG_SIZE];
   const int i = get_global_id(0), l = get_local_id(0);
   const int moving = i < n && kind[i] != 0;
-  const REAL f2 = moving ? fx[i] * fx[i] + fy[i] * fy[i] : (REAL)0;
-  const REAL f = sqrt(f2);
+  const REAL f = moving ? force_norm(fx[i], fy[i]) : (REAL)0;
   values[l] = f;
-  values[WG_SIZE + l] = moving ? (REAL)0.125 * dt2[i] * f2 : (REAL)0;
+#if PDMESH_DOUBLE
+  values[WG_SIZE + l] = moving ? (REAL)0.125 * dt2[i] * (fx[i] * fx[i] + fy[i] * fy[i]) : (REAL)0;  // the reference's
+#else
+  values[WG_SIZE + l] = moving ? (REAL)0.125 * dt2[i] * f * f : (REAL)0;  // f^2 could overflow in float
+#endif
   values[2 * WG_SIZE + l] = moving ? (REAL)1 : (REAL)0;
   values[3 * WG_SIZE + l] = f;
   group_reduce(values, 4, 3);

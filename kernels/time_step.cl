@@ -1,14 +1,15 @@
 // Step 4 on the device (mirror of host/sim/reference/time_step.cpp, time_step_and_move): the local
-// time step of eqs. 5.8/5.9 and the displacement of eq. 5.6, same expressions as the reference.
+// time step of eqs. 5.8/5.9 and the displacement of eq. 5.6, same expressions as the reference
+// (force_norm: reduce.cl).
 #pragma OPENCL FP_CONTRACT OFF
 
 // dt_i^2 for a moving node: min(2 r0 / (3 |F|), dt_GM^2), or dt_GM^2 when F = 0 or r0 = 0; then
 // capped by the stability bound (INFINITY when off).
 REAL local_dt2(const REAL fx, const REAL fy, const REAL r0, const REAL dt_gm2, const REAL stability_limit) {
-  const REAL f2 = fx * fx + fy * fy;
+  const REAL f = force_norm(fx, fy);
   REAL dt2 = dt_gm2;
-  if (f2 > (REAL)0 && r0 > (REAL)0) {
-    const REAL limit = (REAL)2 * r0 / ((REAL)3 * sqrt(f2));
+  if (f > (REAL)0 && r0 > (REAL)0) {  // double: f > 0 exactly when fx^2 + fy^2 > 0
+    const REAL limit = (REAL)2 * r0 / ((REAL)3 * f);
     dt2 = dt_gm2 < limit ? dt_gm2 : limit;
   }
   return stability_limit < dt2 ? stability_limit : dt2;

@@ -4,6 +4,7 @@
 
 #include <toml++/toml.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -105,10 +106,37 @@ TEST_CASE("cases hold the thesis' boundary point counts", "[cases]") {
   CHECK(sizes(load_case("rods_coarse")) == coarse);
   CHECK(sizes(load_case("rods_fine")) == fine);
 
-  const std::vector<std::size_t> hlpw4 = {33, 9, 201, 401, 5, 101, 101, 5, 9, 101, 101};
+  // The HLPW-4 file's blocks have 33, 9, 201, 401, 5, 101, 101, 5, 9, 101, 101 points; the
+  // trailing edges keep 2, 3 and 2 of theirs, and main_cove / main_upper are graded from the main
+  // TE (docs/cases.md).
+  const std::vector<std::size_t> hlpw4 = {42, 9, 201, 406, 2, 101, 101, 3, 2, 101, 101};
   const auto p30n = sizes(load_case("30p30n"));
   REQUIRE(p30n.size() == 15);
   CHECK(std::vector<std::size_t>(p30n.begin(), p30n.begin() + 11) == hlpw4);
+  CHECK(std::vector<std::size_t>(p30n.begin() + 11, p30n.end()) == std::vector<std::size_t>(4, 11));
+  CHECK(sizes(load_case("naca0012")) == std::vector<std::size_t>({109, 109, 27, 27, 27, 27}));
+}
+
+TEST_CASE("30p30n: neighbouring boundary segments differ by at most a factor 2", "[cases]") {
+  // The file's main trailing edge had 9.3e-5 segments beside 2.1e-3 ones (factor 23), which left
+  // 1-degree slivers; the re-spaced TEs and graded surfaces keep every jump below 2 (largest: the
+  // main element's cove wall against its lower surface, 1.85).
+  const Case c = load_case("30p30n");
+  auto length = [](const Point& a, const Point& b) { return std::hypot(b.first - a.first, b.second - a.second); };
+  // Loops in file order: main 0-4, flap 5-7, slat 8-10; the last segment of a curve meets the
+  // first of the next one in its loop.
+  const std::vector<std::vector<std::size_t>> loops = {{0, 1, 2, 3, 4}, {5, 6, 7}, {8, 9, 10}};
+  for (const auto& loop : loops) {
+    std::vector<double> segments;
+    for (std::size_t k : loop)
+      for (std::size_t i = 0; i + 1 < c.curves[k].size(); ++i)
+        segments.push_back(length(c.curves[k][i], c.curves[k][i + 1]));
+    for (std::size_t i = 0; i < segments.size(); ++i) {
+      const double a = segments[i], b = segments[(i + 1) % segments.size()];
+      INFO("loop starting with " << c.names[loop.front()] << ", segment " << i << ": " << a << " then " << b);
+      CHECK(std::max(a, b) / std::min(a, b) <= 2.0);
+    }
+  }
 }
 
 TEST_CASE("case geometry matches its closed-form description", "[cases]") {

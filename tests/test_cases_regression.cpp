@@ -31,21 +31,22 @@ struct Floors {
 };
 
 // clang-format off
-// Measured at commit df183d6 (host, double): points; min angle; average aspect ratio; share of
-// triangles under 30 degrees. 30P30N's sub-2-degree triangles sit at the thin trailing edges and
-// coves after only 50 iterations (the full 2000-iteration run is in report/README.md).
+// Measured at the cases2 revision (host, double; docs/cases.md, "Regression runs"): points; min
+// angle; average aspect ratio; share of triangles under 30 degrees. 30P30N's worst triangles after
+// only 50 iterations sit along the airfoil surfaces, where q jumps from the surface segment length
+// to about 1.5x that one row out (the full 2000-iteration runs are in report/README.md).
 const Floors kFloors[] = {
   // case          method        iters  points         min angle  AR avg  small share    measured
-  {"circle_circle", "structured", 150,  2230,  2380,  25.0,      1.075,  0.003},  // 2304  27.14 1.0623 0.0009
-  {"circle_circle", "random",     150,  2170,  2310,  27.0,      1.055,  0.002},  // 2240  30.27 1.0411 0
-  {"naca0012",      "structured", 100,  6420,  6830,  24.0,      1.090,  0.002},  // 6626  26.67 1.0789 0.0004
-  {"naca0012",      "random",     100,  6280,  6680,  23.5,      1.085,  0.004},  // 6483  25.95 1.0712 0.0013
-  {"30p30n",        "structured",  50, 13310, 14140,   1.0,      1.145,  0.020},  // 13728  1.58 1.1326 0.0145
-  {"30p30n",        "random",      50, 13250, 14080,   1.0,      1.120,  0.015},  // 13670  1.73 1.1081 0.0104
-  {"rods_coarse",   "structured", 150,  1020,  1085,  22.0,      1.190,  0.050},  // 1052  24.07 1.1777 0.0402
-  {"rods_coarse",   "random",     150,  1340,  1430,  20.0,      1.140,  0.020},  // 1388  22.03 1.1269 0.0116
-  {"rods_fine",     "structured",  50, 11130, 11830,  27.0,      1.145,  0.003},  // 11480 29.29 1.1350 0.0013
-  {"rods_fine",     "random",      50, 11110, 11800,  22.5,      1.100,  0.006},  // 11454 24.62 1.0895 0.0039
+  {"circle_circle", "structured", 150,  2360,  2510,  26.0,      1.065,  0.003},  // 2436  28.49 1.0544 0.0008
+  {"circle_circle", "random",     150,  2170,  2310,  27.0,      1.055,  0.002},  // 2240  29.98 1.0411 0.0002
+  {"naca0012",      "structured", 100,  5590,  5935,  26.5,      1.078,  0.002},  // 5761  29.02 1.0672 0.0004
+  {"naca0012",      "random",     100,  5095,  5410,  23.5,      1.085,  0.004},  // 5254  24.82 1.0723 0.0014
+  {"30p30n",        "structured",  50, 10760, 11430,  15.0,      1.125,  0.014},  // 11093 17.21 1.1154 0.0113
+  {"30p30n",        "random",      50, 10060, 10690,  12.0,      1.120,  0.019},  // 10376 14.07 1.1137 0.0163
+  {"rods_coarse",   "structured", 150,  1950,  2075,  32.0,      1.090,  0.001},  // 2012  34.67 1.0802 0
+  {"rods_coarse",   "random",     150,  1340,  1430,  20.0,      1.140,  0.020},  // 1388  22.05 1.1272 0.0116
+  {"rods_fine",     "structured",  50, 11130, 11830,  27.0,      1.145,  0.003},  // 11480 29.27 1.1351 0.0013
+  {"rods_fine",     "random",      50, 11110, 11800,  22.5,      1.100,  0.006},  // 11454 24.65 1.0895 0.0039
 };
 // clang-format on
 

@@ -172,6 +172,36 @@ TEMPLATE_TEST_CASE("time_step_and_move and reduce match the reference on every i
   }
 }
 
+// Forces whose square is past FLT_MAX (|F| > ~1.8e19: a node closer than ~q/30 to another in float)
+// still give dt^2 = 2 r0 / (3 |F|) and a move of r0 / 3; before the float norm was scaled, dt^2 was 0.
+TEMPLATE_TEST_CASE("time_step_and_move and reduce stay finite for forces past float's squared range",
+                   "[opencl][backend]", HostReference, OpenclDouble, OpenclFloat) {
+  Input in = random_input(6, 11, TestType::is_float);
+  for (auto& k : in.p.kind) k = kSimInterior;
+  ForceResult forces;
+  forces.fx = {3e20, -1e25, 2e19, 0.0, 1e30, 5.0};
+  forces.fy = {-1e20, 4e24, 0.0, -7e33, 1e30, -2.0};
+  forces.r0 = {0.01, 0.003, 0.02, 0.5, 1e-4, 0.1};
+  if (TestType::is_float) round_to_float(forces);
+  auto backend = TestType::make();
+  MoveResult oracle, got;
+  reference::time_step_and_move(in.p, forces, 1.0, oracle);
+  backend->time_step_and_move(in.p, forces, 1.0, got);
+  for (std::size_t i = 0; i + 1 < in.p.size(); ++i) {  // the large forces: each moves by r0 / 3 exactly
+    INFO("node " << i);
+    CHECK(std::hypot(oracle.dx[i], oracle.dy[i]) == Approx(forces.r0[i] / 3.0).epsilon(1e-12));
+    CHECK(got.dt2[i] > 0.0);
+  }
+  require_close("dx", oracle.dx, got.dx, {}, TestType::tol);
+  require_close("dy", oracle.dy, got.dy, {}, TestType::tol);
+  require_close("dt2", oracle.dt2, got.dt2, {}, TestType::tol);
+  const StepSums o = reference::reduce(in.p, forces, oracle), g = backend->reduce(in.p, forces, oracle);
+  REQUIRE(std::isfinite(g.sum_force));
+  REQUIRE(std::isfinite(g.sum_kinetic));
+  require_close("sums", {o.sum_force, o.sum_kinetic, o.max_force}, {g.sum_force, g.sum_kinetic, g.max_force}, {},
+                TestType::tol);
+}
+
 TEMPLATE_TEST_CASE("a node over capacity sets the overflow flag and the host retry grows the stride",
                    "[opencl][backend]", HostReference, OpenclDouble, OpenclFloat) {
   const Input in = crowded_input(TestType::is_float);

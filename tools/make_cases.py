@@ -14,10 +14,14 @@ THIRTY_P_THIRTY_N_SOURCE = "/work/shared/data/30p30n/2010_30p30n_thik_te_18inche
 
 # Parameters chosen with --estimate so that the hexagonal-packing estimates land near the thesis'
 # final node counts (Table 6.1); see docs/cases.md.
-NACA_SEGMENTS_PER_SURFACE = 100     # upper and lower surface each
+NACA_SEGMENTS_PER_SURFACE = 108     # upper and lower surface each
 NACA_COSINE_WEIGHT = 0.85           # 1 = pure cosine spacing in x, 0 = uniform in x
-NACA_FARFIELD_SEGMENTS = 30         # per side of the 30 x 30 square
-P30N_FARFIELD_SEGMENTS = 12         # per side of the 20 x 20 square (90 would give ~320k nodes)
+NACA_FARFIELD_SEGMENTS = 26         # per side of the 30 x 30 square
+P30N_FARFIELD_SEGMENTS = 10         # per side of the 20 x 20 square (90 would give ~320k nodes)
+# 30P30N blunt trailing edges: points kept of the file's (5, 5, 9): one main TE segment (3.7e-4),
+# two flap TE segments (2.9e-3, beside 3.1e-3), one slat TE segment (1.7e-3, beside 1.4e-3 and 2.2e-3).
+P30N_TE_POINTS = {"main_te": 2, "flap_te": 3, "slat_te": 2}
+P30N_TE_GROWTH = 1.2                # segment growth away from the main element's TE
 
 ROD_PITCH = 1.26                    # PWR-like 17x17 assembly pitch (cm)
 ROD_DIAMETER = 0.95                 # PWR fuel rod outer diameter (cm)
@@ -111,8 +115,46 @@ def read_point_blocks(path):
     return blocks
 
 
+def arc_lengths(pts):
+    s = [0.0]
+    for a, b in zip(pts, pts[1:]):
+        s.append(s[-1] + math.hypot(b[0] - a[0], b[1] - a[1]))
+    return s
+
+
+def point_at(pts, s_of, s):
+    """The point at arc length s on the polyline pts (linear interpolation on its segments)."""
+    k = max(0, min(len(pts) - 2, next((i for i in range(1, len(pts)) if s_of[i] >= s), len(pts) - 1) - 1))
+    t = (s - s_of[k]) / (s_of[k + 1] - s_of[k])
+    a, b = pts[k], pts[k + 1]
+    return (clean(a[0] + t * (b[0] - a[0])), clean(a[1] + t * (b[1] - a[1])))
+
+
+def grade_end(pts, first_step, growth):
+    """Re-spaces the end of a uniformly spaced polyline so that its segments grow geometrically
+    (factor `growth`) from `first_step` at the last point up to the polyline's own spacing.
+
+    The last k original segments (k = the graded run's length in original segments, rounded) are
+    replaced by the graded run scaled to fit them exactly; the new points lie on the original
+    polyline, every other original vertex and both end points are kept bit for bit."""
+    s_of = arc_lengths(pts)
+    h = s_of[-1] / (len(pts) - 1)
+    steps = []
+    while first_step * growth ** len(steps) < h:
+        steps.append(first_step * growth ** len(steps))
+    k = max(1, round(sum(steps) / h))
+    zone_start = s_of[-1 - k]
+    scale = (s_of[-1] - zone_start) / sum(steps)
+    graded, s = [], s_of[-1]
+    for step in steps[:-1]:
+        s -= step * scale
+        graded.append(point_at(pts, s_of, s))
+    return pts[:len(pts) - k] + list(reversed(graded)) + [pts[-1]]
+
+
 def thirty_p_thirty_n_curves():
-    """The 11 HLPW-4 blocks scaled from inches to unit stowed chord (1/18), joints made identical."""
+    """The 11 HLPW-4 blocks scaled from inches to unit stowed chord (1/18), joints made identical,
+    with the blunt trailing edges re-spaced (P30N_TE_POINTS, grade_end; docs/cases.md)."""
     blocks = read_point_blocks(THIRTY_P_THIRTY_N_SOURCE)
     if len(blocks) != 11:
         sys.exit(f"{THIRTY_P_THIRTY_N_SOURCE}: expected 11 blocks, found {len(blocks)}")
@@ -124,7 +166,23 @@ def thirty_p_thirty_n_curves():
                 sys.exit(f"30P30N blocks {a + 1} and {b + 1} do not join: "
                          f"{blocks[a][-1]} vs {blocks[b][0]}")
             scaled[b][0] = scaled[a][-1]
-    return list(zip(P30N_CURVE_NAMES, scaled))
+    curves = dict(zip(P30N_CURVE_NAMES, scaled))
+    # Trailing edges: keep only every k-th of the file's points (original vertices, ends kept), so
+    # each TE segment is about as long as its neighbours' (the file's 9e-5 main TE segments beside
+    # 2e-3 surface segments made 1-degree slivers).
+    for name, keep in P30N_TE_POINTS.items():
+        pts = curves[name]
+        step = (len(pts) - 1) // (keep - 1)
+        curves[name] = pts[::step]
+        assert len(curves[name]) == keep and curves[name][-1] == pts[-1]
+    # The main element's TE (one segment of 3.7e-4) is still 6x and 15x shorter than the upper
+    # surface and cove segments beside it: grade those from the TE.
+    te = curves["main_te"]
+    te_length = math.hypot(te[1][0] - te[0][0], te[1][1] - te[0][1])
+    curves["main_upper"] = grade_end(curves["main_upper"], te_length * P30N_TE_GROWTH, P30N_TE_GROWTH)
+    curves["main_cove"] = list(reversed(grade_end(list(reversed(curves["main_cove"])),
+                                                  te_length * P30N_TE_GROWTH, P30N_TE_GROWTH)))
+    return [(name, curves[name]) for name in P30N_CURVE_NAMES]
 
 
 # ----------------------------------------------------------------------------------------------

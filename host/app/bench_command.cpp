@@ -110,7 +110,9 @@ std::string format_row(const Row& r) {
     device_mem = fmt::format("{:.0f}", static_cast<double>(d.device_bytes) / static_cast<double>(r.nodes));
     launches = fmt::format("{:.1f} + {:.1f}", static_cast<double>(d.launches) / it, static_cast<double>(d.transfers) / it);
     if (d.pairs_listed > 0)
-      examined = fmt::format("{:.2f} (x{:.2f} skin, stride {})", static_cast<double>(r.pairs_examined) / d.pairs_listed,
+      examined = fmt::format("{:.2f} (rebuilds {:.2f} per listed entry, x{:.2f} skin, stride {})",
+                             static_cast<double>(r.pairs_examined) / static_cast<double>(r.pairs_within),
+                             static_cast<double>(d.rebuild_candidates) / d.pairs_listed,
                              static_cast<double>(d.pairs_listed) * it / d.rebuilds / static_cast<double>(r.pairs_within),
                              d.stride);
   } else if (r.pairs_within > 0) {

@@ -11,8 +11,8 @@ namespace {
 
 // N h^2 = a + b h: the far field contributes a / h^2 (hexagonal packing at spacing ~h, lowered by
 // the circle's pull on q), the graded region around the circle a count growing like 1 / h.
-constexpr double kAreaTerm = 2514.8;
-constexpr double kGradedTerm = 1180.6;
+constexpr double kAreaTerm = 2529.7;
+constexpr double kGradedTerm = 1694.4;
 
 void add_polyline(std::vector<RawCurve>& raw, const std::string& name, Vec2 a, Vec2 b, int segments) {
   RawCurve c{name, {}, "generated", 0, {}};

@@ -24,7 +24,8 @@ class UnitRandom {
   std::mt19937_64 engine_;
 };
 
-// Nodes a structured fill puts in a quad with the given area ratio: the nearest of {1, 4, 5, 9}.
+// Nodes a structured fill puts in a quad with the given area ratio: 1 below 2.05, else the nearest
+// of {4, 5, 9} (thresholds 4.5 and 7).
 int structured_count(double ratio);
 // Nodes a random fill puts in a quad: clamp(round(ratio), 1, 9).
 int random_count(double ratio);

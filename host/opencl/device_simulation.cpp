@@ -95,7 +95,7 @@ class DeviceRun {
   StepProgram program_;
   DeviceNeighbours<Real> neighbours_;
   std::size_t n_;
-  int stride_ = 16;
+  int stride_ = 16;  // device_memory.cpp counts the neighbour list at this initial stride
   int cur_ = 0;  // which of the double-buffered x, y, q is current
   Buffer<Real> x_[2], y_[2], q_[2], tx_, ty_, x_build_, y_build_, q_build_, brec_, cand_rec_, partials_, rec_, bg_q_,
       budget_;
@@ -116,7 +116,8 @@ class DeviceRun {
   std::vector<std::int32_t> cand_index_host_;
   const std::vector<std::int32_t> zero_counter_ = std::vector<std::int32_t>(1, 0);
   double skin_use_ = HUGE_VAL;                       // since the last build; HUGE_VAL forces a build
-  std::uint64_t pairs_examined_ = 0;
+  std::uint64_t pairs_examined_ = 0;  // rebuild candidates plus, every iteration, the entries of the current lists
+  std::uint64_t list_entries_ = 0;    // entries of the current lists (within the skin radius)
   std::size_t within_ = 0, coincident_ = 0, sum_moving_ = 0;
   double sum_force_ = 0, sum_kinetic_ = 0, max_force_ = 0, device_skin_use_ = 0;
   // The state to fall back on when the device cannot be read after a failure: saved before the first
@@ -129,9 +130,6 @@ class DeviceRun {
   bool host_ahead_ = false;
   bool moves_finite_ = true;  // every move the host reads in step_kernel is finite
 };
-
-// Device memory of a run (device_simulation.hpp); the neighbour list at its initial row stride.
-constexpr std::size_t kInitialStride = 16;
 
 template <typename Real>
 void DeviceRun<Real>::check_memory() const {
@@ -324,7 +322,9 @@ void DeviceRun<Real>::rebuild() {
   stats_.bytes_up += neighbours_.uploaded_bytes;
   stats_.launches += 2;  // build_neighbours + finish_neighbours (+ the fill of the scatter counts)
   pairs_examined_ += flags.pairs_examined;
+  stats_.rebuild_candidates += flags.pairs_examined;
   stats_.pairs_listed += flags.pairs_within;
+  list_entries_ = flags.pairs_within;
   // The build state the skin is measured from.
   for (auto [from, to] : {std::pair{&x_[cur_], &x_build_}, {&y_[cur_], &y_build_}, {&q_[cur_], &q_build_}})
     check(ctx_.queue().enqueueCopyBuffer(from->get(), to->get(), 0, 0, n * sizeof(Real)), "copy to the build state");
@@ -525,6 +525,7 @@ SimResult DeviceRun<Real>::run(const SimCallbacks& callbacks) {
       row.interior = interior;
       gm.update(max_force_);
       result.stats.pairs_within += within_;
+      pairs_examined_ += list_entries_;  // the step kernel computes the distance of every list entry
       result.stats.coincident_pairs += coincident_;
       result.stats.snapped += counts.snapped;
       result.history.push_back(row);
@@ -577,35 +578,6 @@ SimResult DeviceRun<Real>::run(const SimCallbacks& callbacks) {
 }
 
 }  // namespace
-
-DeviceMemoryNeed device_memory_need(std::size_t nodes, std::size_t boundary_nodes, std::uint64_t field_bytes,
-                                    std::size_t real_bytes) {
-  DeviceMemoryNeed need;
-  const std::uint64_t n = nodes, r = real_bytes;
-  // Per node: x, y, q twice, tx, ty, the build copies of x, y, q, the clearance budget and a 4-value
-  // candidate record (16 reals); kind (1 byte); prev, next, bslot, candidate index, leaf, neighbour
-  // count (6 ints); the neighbour index (kInitialStride ints). Per boundary node a 4-value record.
-  // Lower bounds: the neighbour binning adds its grids, the host records their buffers, and the
-  // rows grow when a node has more neighbours.
-  need.largest = 4 * n * kInitialStride;
-  need.total = n * (16 * r + 1 + 6 * 4) + need.largest + 4 * r * boundary_nodes + field_bytes;
-  return need;
-}
-
-void check_device_memory(const DeviceInfo& device, std::size_t nodes, std::size_t boundary_nodes,
-                         std::uint64_t field_bytes, std::size_t real_bytes) {
-  const DeviceMemoryNeed need = device_memory_need(nodes, boundary_nodes, field_bytes, real_bytes);
-  if (need.total <= device.global_memory && need.largest <= device.max_allocation) return;
-  const DeviceMemoryNeed in_float = device_memory_need(nodes, boundary_nodes, field_bytes, 4);
-  throw LimitError(fmt::format(
-      "{} nodes need at least {} bytes of device memory in {} (the largest buffer, the neighbour list, {} bytes), "
-      "but {} has {} bytes of global memory (CL_DEVICE_GLOBAL_MEM_SIZE) and allows {} bytes per buffer "
-      "(CL_DEVICE_MAX_MEM_ALLOC_SIZE): {}use --device host (the host reference, in host memory) or a coarser "
-      "spacing (fewer nodes)",
-      nodes, need.total, real_bytes == 4 ? "float" : "double", need.largest, device.name, device.global_memory,
-      device.max_allocation,
-      real_bytes == 4 ? "" : fmt::format("use --precision float (at least {} bytes), ", in_float.total)));
-}
 
 SimResult run_device_simulation(NodeSet& nodes, const GeometryTree& tree, const SpacingField& spacing,
                                 const SimOptions& options, Context& ctx, const SimCallbacks& callbacks,

@@ -20,6 +20,7 @@ struct DeviceRunStats {
   std::uint64_t bytes_down = 0, bytes_up = 0;  // all iterations, including rebuilds, excluding setup
   std::uint64_t setup_bytes = 0;     // the initial upload (nodes, background field), not in bytes_up
   std::uint64_t pairs_listed = 0;    // list entries within the skin radius, summed over builds
+  std::uint64_t rebuild_candidates = 0;  // candidate pairs whose distance the rebuilds computed
   std::uint64_t candidates = 0;      // interior nodes handed to the host's exact test, all iterations
   double bin_seconds = 0.0;          // host binning at rebuilds
   double gather_seconds = 0.0;       // device neighbour gather at rebuilds (with its transfers)
