@@ -35,9 +35,12 @@ ClosestHit closest_on_segment(Vec2 p, const Segment& s, int index) {
   // The projection rounds, so a point exactly on the segment would get a distance of a few ulps.
   // Snap it to exactly 0 (decided by the exact predicate) so that "on the boundary" means d == 0.
   if (hit.distance != 0.0) {
-    const double scale = std::fmax(std::fmax(std::fabs(p.x), std::fabs(p.y)),
-                                   std::fmax(std::fmax(std::fabs(s.a.x), std::fabs(s.a.y)),
-                                             std::fmax(std::fabs(s.b.x), std::fabs(s.b.y))));
+    // std::max, not std::fmax (a library call, not inlined, on the hot path of every spacing
+    // evaluation): the tree's segments are finite, and a NaN in p makes hit.distance NaN, which
+    // fails the test below whatever scale is.
+    const double scale = std::max(std::max(std::fabs(p.x), std::fabs(p.y)),
+                                  std::max(std::max(std::fabs(s.a.x), std::fabs(s.a.y)),
+                                           std::max(std::fabs(s.b.x), std::fabs(s.b.y))));
     if (hit.distance <= 1e-12 * scale && point_on_segment(p, s.a, s.b)) {
       hit.point = p;
       hit.distance = 0.0;
@@ -98,11 +101,18 @@ struct Node {
   int depth = 0;
 };
 
-double box_distance(Vec2 p, const Box& b) {
-  const double dx = std::fmax(std::fmax(b.lo.x - p.x, p.x - b.hi.x), 0.0);
-  const double dy = std::fmax(std::fmax(b.lo.y - p.y, p.y - b.hi.y), 0.0);
-  return std::sqrt(dx * dx + dy * dy);
+// fmax(v, 0) without the library call: NaN (a NaN query point) gives 0, as fmax does.
+inline double positive_part(double v) { return v > 0.0 ? v : 0.0; }
+
+// Squared distance from p to the closed box b (0 inside).
+inline double box_distance2(Vec2 p, const Box& b) {
+  // Both differences are NaN together (NaN p) or both are numbers, so std::max agrees with fmax.
+  const double dx = positive_part(std::max(b.lo.x - p.x, p.x - b.hi.x));
+  const double dy = positive_part(std::max(b.lo.y - p.y, p.y - b.hi.y));
+  return dx * dx + dy * dy;
 }
+
+inline double box_distance(Vec2 p, const Box& b) { return std::sqrt(box_distance2(p, b)); }
 
 // A square box around the given segments (square so that leaves stay square, whatever the
 // aspect ratio of the geometry), never smaller than their bounding box despite rounding.

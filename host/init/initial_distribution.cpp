@@ -155,7 +155,7 @@ InitialDistribution make_initial_distribution(const GeometryTree& tree, const Sp
   InitialDistribution out;
   out.nodes = make_boundary_nodes(tree.geometry(), spacing);
   const InitTree init(tree, spacing);
-  out.estimate = estimate_over(tree, spacing, init);
+  out.estimate = options.with_estimate ? estimate_over(tree, spacing, init) : std::nan("");
 
   UnitRandom rng(options.seed);
   for (int k : init.kept()) {
