@@ -97,6 +97,7 @@ InitialDistribution make_initial(const CaseConfig& config, const MeshInputs& inp
   options.method = config.init.method;
   options.seed = config.init.seed;
   if (config.init.total > 0) options.total = static_cast<std::size_t>(config.init.total);
+  options.with_estimate = false;  // check_node_limit computed it just before
   return make_initial_distribution(*inputs.tree, *inputs.spacing, options);
 }
 
