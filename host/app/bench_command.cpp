@@ -74,6 +74,7 @@ std::unique_ptr<BenchCase> file_case(const std::string& dir, const std::string& 
   init.method = config.init.method;
   init.seed = config.init.seed;
   if (config.init.total > 0) init.total = static_cast<std::size_t>(config.init.total);
+  init.with_estimate = false;
   c->initial = make_initial_distribution(*c->tree, *c->spacing, init).nodes;
   c->options.dt_initial = config.simulation.dt_for(config.init.method);
   c->options.cutoff = config.simulation.cutoff;

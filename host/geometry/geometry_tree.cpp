@@ -35,9 +35,12 @@ ClosestHit closest_on_segment(Vec2 p, const Segment& s, int index) {
   // The projection rounds, so a point exactly on the segment would get a distance of a few ulps.
   // Snap it to exactly 0 (decided by the exact predicate) so that "on the boundary" means d == 0.
   if (hit.distance != 0.0) {
-    const double scale = std::fmax(std::fmax(std::fabs(p.x), std::fabs(p.y)),
-                                   std::fmax(std::fmax(std::fabs(s.a.x), std::fabs(s.a.y)),
-                                             std::fmax(std::fabs(s.b.x), std::fabs(s.b.y))));
+    // std::max, not std::fmax (a library call, not inlined, on the hot path of every spacing
+    // evaluation): the tree's segments are finite, and a NaN in p makes hit.distance NaN, which
+    // fails the test below whatever scale is.
+    const double scale = std::max(std::max(std::fabs(p.x), std::fabs(p.y)),
+                                  std::max(std::max(std::fabs(s.a.x), std::fabs(s.a.y)),
+                                           std::max(std::fabs(s.b.x), std::fabs(s.b.y))));
     if (hit.distance <= 1e-12 * scale && point_on_segment(p, s.a, s.b)) {
       hit.point = p;
       hit.distance = 0.0;
@@ -98,10 +101,24 @@ struct Node {
   int depth = 0;
 };
 
-double box_distance(Vec2 p, const Box& b) {
-  const double dx = std::fmax(std::fmax(b.lo.x - p.x, p.x - b.hi.x), 0.0);
-  const double dy = std::fmax(std::fmax(b.lo.y - p.y, p.y - b.hi.y), 0.0);
-  return std::sqrt(dx * dx + dy * dy);
+// fmax(v, 0) without the library call: NaN (a NaN query point) gives 0, as fmax does.
+inline double positive_part(double v) { return v > 0.0 ? v : 0.0; }
+
+// Squared distance from p to the closed box b (0 inside).
+inline double box_distance2(Vec2 p, const Box& b) {
+  // Both differences are NaN together (NaN p) or both are numbers, so std::max agrees with fmax.
+  const double dx = positive_part(std::max(b.lo.x - p.x, p.x - b.hi.x));
+  const double dy = positive_part(std::max(b.lo.y - p.y, p.y - b.hi.y));
+  return dx * dx + dy * dy;
+}
+
+inline double box_distance(Vec2 p, const Box& b) { return std::sqrt(box_distance2(p, b)); }
+
+// Squared distance from p to the bounding box of segment s.
+inline double segment_box_distance2(Vec2 p, const Segment& s) {
+  const double dx = positive_part(std::max(std::min(s.a.x, s.b.x) - p.x, p.x - std::max(s.a.x, s.b.x)));
+  const double dy = positive_part(std::max(std::min(s.a.y, s.b.y) - p.y, p.y - std::max(s.a.y, s.b.y)));
+  return dx * dx + dy * dy;
 }
 
 // A square box around the given segments (square so that leaves stay square, whatever the
@@ -161,7 +178,15 @@ class Quadtree {
       if (node.first_child < 0) {
         for (int i = node.begin; i < node.begin + node.count; ++i) {
           const int id = items_[i];
-          const ClosestHit h = closest_on_segment(p, (*segments_)[id], id);
+          const Segment& seg = (*segments_)[id];
+          // The segment's bounding box is a lower bound on its distance, with the same margin as
+          // the node boxes: a segment skipped here could neither beat nor tie the best hit.
+          // Skips most of the divisions and square roots of closest_on_segment.
+          if (best.segment >= 0) {
+            const double limit = bound(best.distance);
+            if (segment_box_distance2(p, seg) > limit * limit) continue;
+          }
+          const ClosestHit h = closest_on_segment(p, seg, id);
           if (h.distance < best.distance || (h.distance == best.distance && id < best.segment)) best = h;
         }
         continue;
@@ -379,8 +404,15 @@ bool GeometryTree::inside(Vec2 p) const {
     const Vec2 c = node.box.centre();
     bool in = centre == 1;
     bool degenerate = false;
+    // A segment whose bounding box misses the bounding box of pc can neither hold p nor meet pc:
+    // it changes nothing below, and skipping it spares the exact predicates.
+    const double lo_x = std::min(p.x, c.x), hi_x = std::max(p.x, c.x);
+    const double lo_y = std::min(p.y, c.y), hi_y = std::max(p.y, c.y);
     for (int i = node.begin; i < node.begin + node.count && !degenerate; ++i) {
       const Segment& s = geometry_.segments[tree.items()[i]];
+      if (std::max(s.a.x, s.b.x) < lo_x || std::min(s.a.x, s.b.x) > hi_x || std::max(s.a.y, s.b.y) < lo_y ||
+          std::min(s.a.y, s.b.y) > hi_y)
+        continue;
       if (point_on_segment(p, s.a, s.b)) return true;  // on the boundary counts as inside
       if (orient2d(p, c, s.a) == 0.0 || orient2d(p, c, s.b) == 0.0) {
         // A vertex on the line through p and c: fine when it is off the segment pc.

@@ -3,6 +3,7 @@
 #include "init/initial_distribution.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <numbers>
 
@@ -38,16 +39,24 @@ constexpr int kEstimateCutDepth = 3;
 constexpr double kEstimateSpread = 1.5;
 constexpr double kEstimateSpreadNodes = 4.0;
 
-bool estimate_needs_split(const SpacingField& spacing, const Box& b, double q_mid) {
+using EstimateSamples = std::array<double, kEstimateSamples * kEstimateSamples>;
+
+// The k-th (row-major) of the 4x4 sample points of b.
+Vec2 estimate_sample(const Box& b, int k) {
+  const int i = k % kEstimateSamples, j = k / kEstimateSamples;
+  return {b.lo.x + (i + 0.5) / kEstimateSamples * b.width(), b.lo.y + (j + 0.5) / kEstimateSamples * b.height()};
+}
+
+// Also returns the 4x4 samples in `samples`, which an unsplit quad reuses (the same points).
+bool estimate_needs_split(const SpacingField& spacing, const Box& b, double q_mid, EstimateSamples& samples) {
   double q_min = q_mid, q_max = q_mid;
-  for (int j = 0; j < kEstimateSamples; ++j)
-    for (int i = 0; i < kEstimateSamples; ++i) {
-      const double q = spacing.at({b.lo.x + (i + 0.5) / kEstimateSamples * b.width(),
-                                   b.lo.y + (j + 0.5) / kEstimateSamples * b.height()});
-      if (!(q > 0.0) || !std::isfinite(q)) continue;
-      q_min = std::fmin(q_min, q);
-      q_max = std::fmax(q_max, q);
-    }
+  for (int k = 0; k < kEstimateSamples * kEstimateSamples; ++k) {
+    const double q = spacing.at(estimate_sample(b, k));
+    samples[k] = q;
+    if (!(q > 0.0) || !std::isfinite(q)) continue;
+    q_min = std::fmin(q_min, q);
+    q_max = std::fmax(q_max, q);
+  }
   const double nodes = b.width() * b.height() * hex_density(q_min);
   return nodes > kEstimateNodesPerQuad || (q_max > kEstimateSpread * q_min && nodes > kEstimateSpreadNodes);
 }
@@ -56,7 +65,9 @@ double estimate_quad(const GeometryTree& tree, const SpacingField& spacing, cons
                      const std::vector<int>& segments, bool known_inside, int depth) {
   const double q_mid = spacing.at(b.centre());
   const double area = b.width() * b.height();
-  const bool crowded = q_mid > 0.0 && estimate_needs_split(spacing, b, q_mid);
+  EstimateSamples samples;
+  const bool sampled = q_mid > 0.0;
+  const bool crowded = sampled && estimate_needs_split(spacing, b, q_mid, samples);
   const bool cut = !known_inside && !segments.empty() && depth < kEstimateCutDepth;
   if ((crowded || cut) && depth < kEstimateMaxDepth) {
     const auto& segs = tree.geometry().segments;
@@ -88,14 +99,11 @@ double estimate_quad(const GeometryTree& tree, const SpacingField& spacing, cons
   const double cell = area / (kEstimateSamples * kEstimateSamples);
   const bool sub_quad = depth > 0 && !crowded;
   double sum = 0.0;
-  for (int j = 0; j < kEstimateSamples; ++j) {
-    for (int i = 0; i < kEstimateSamples; ++i) {
-      const Vec2 p{b.lo.x + (i + 0.5) / kEstimateSamples * b.width(),
-                   b.lo.y + (j + 0.5) / kEstimateSamples * b.height()};
-      if (!known_inside && !tree.inside(p)) continue;
-      const double q = sub_quad ? q_mid : spacing.at(p);
-      if (q > 0.0 && std::isfinite(q)) sum += cell * hex_density(q);
-    }
+  for (int k = 0; k < kEstimateSamples * kEstimateSamples; ++k) {
+    const Vec2 p = estimate_sample(b, k);
+    if (!known_inside && !tree.inside(p)) continue;
+    const double q = sub_quad ? q_mid : sampled ? samples[k] : spacing.at(p);
+    if (q > 0.0 && std::isfinite(q)) sum += cell * hex_density(q);
   }
   return sum;
 }
@@ -155,7 +163,7 @@ InitialDistribution make_initial_distribution(const GeometryTree& tree, const Sp
   InitialDistribution out;
   out.nodes = make_boundary_nodes(tree.geometry(), spacing);
   const InitTree init(tree, spacing);
-  out.estimate = estimate_over(tree, spacing, init);
+  out.estimate = options.with_estimate ? estimate_over(tree, spacing, init) : std::nan("");
 
   UnitRandom rng(options.seed);
   for (int k : init.kept()) {

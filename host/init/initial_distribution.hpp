@@ -24,12 +24,16 @@ struct InitOptions {
   // If set and larger than what the tree fill produced, the remainder is added as random
   // interior points (the thesis' "overloading").
   std::optional<std::size_t> total;
+  // Compute InitialDistribution::estimate (it costs more than the fill itself: 4x4 spacing samples
+  // per leaf and more near the boundary). The mesh command already has it from its limit check.
+  bool with_estimate = true;
 };
 
 struct InitialDistribution {
   NodeSet nodes;
   std::vector<Box> tree_quads;  // leaves of the initialization tree that are not fully outside
-  double estimate = 0.0;        // integral of 2 / (sqrt(3) q^2) dA over the domain (hexagonal packing)
+  double estimate = 0.0;        // integral of 2 / (sqrt(3) q^2) dA over the domain (hexagonal packing);
+                                // NaN when InitOptions::with_estimate was false
   std::size_t tree_nodes = 0;   // interior nodes from the tree fill
   std::size_t overload_nodes = 0;  // interior nodes added to reach `total`
 };
