@@ -100,6 +100,19 @@ TEST_CASE("fuzz corpus: the well-formed seeds parse", "[fuzz]") {
   CHECK(full.simulation.precision == pdmesh::Precision::Float);
   CHECK(pdmesh::read_geometry({(corpus / "fuzz_poly_reader/square_with_hole.poly").string()}, {}).loops.size() == 2);
   CHECK(pdmesh::read_geometry({(corpus / "fuzz_curve_reader/unit_square.crv").string()}, {}).loops.size() == 1);
+  // The checkpoint seeds fit the entry's case and continue from it (the fuzzer reaches the simulation).
+  auto& world = pdmesh::fuzz::checkpoint_case();
+  for (const char* seed : {"square_initial.pdmesh", "square_3_iterations.pdmesh"}) {
+    INFO(seed);
+    pdmesh::Checkpoint c = pdmesh::read_checkpoint(corpus / "fuzz_checkpoint" / seed);
+    CHECK(c.nodes.size() > 8);
+    CHECK(c.nodes.curve_nodes.size() == 2);
+    CHECK_NOTHROW(pdmesh::check_checkpoint_fits(c, *world.tree, seed));
+    const pdmesh::SimResult r = pdmesh::run_simulation(c.nodes, *world.tree, world.spacing, pdmesh::fuzz::continue_options(c));
+    CHECK(r.history.size() == static_cast<std::size_t>(c.state.iterations_done) + 2);
+  }
+  CHECK(pdmesh::read_checkpoint(corpus / "fuzz_checkpoint/square_3_iterations.pdmesh").state.iterations_done == 3);
+  CHECK_THROWS_AS(pdmesh::read_checkpoint(corpus / "fuzz_checkpoint/square_truncated.pdmesh"), pdmesh::InputError);
 }
 
 TEST_CASE("fuzz corpus: curve reader and read_geometry", "[fuzz][geometry]") { CHECK(replay("fuzz_curve_reader") >= 10); }
@@ -110,3 +123,6 @@ TEST_CASE("fuzz corpus: Gmsh reader", "[fuzz][io]") { CHECK(replay("fuzz_mesh_re
 TEST_CASE("fuzz corpus: VTU reader", "[fuzz][io]") { CHECK(replay("fuzz_mesh_reader_vtu") >= 1); }
 TEST_CASE("fuzz corpus: SU2 reader", "[fuzz][io]") { CHECK(replay("fuzz_mesh_reader_su2") >= 1); }
 TEST_CASE("fuzz corpus: Triangle reader", "[fuzz][io]") { CHECK(replay("fuzz_mesh_reader_triangle") >= 2); }
+TEST_CASE("fuzz corpus: checkpoint reader, fit check and resumed simulation", "[fuzz][resume]") {
+  CHECK(replay("fuzz_checkpoint") >= 3);
+}

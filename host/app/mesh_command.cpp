@@ -7,11 +7,13 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
+#include <optional>
 #include <fmt/format.h>
 
 #include "app/exit_codes.hpp"
 #include "app/interrupt.hpp"
 #include "app/resume.hpp"
+#include "core/atomic_file.hpp"
 #include "core/errors.hpp"
 #include "geometry/geometry_files.hpp"
 #include "io/mesh_formats.hpp"
@@ -27,6 +29,7 @@
 #include "render/mesh_picture.hpp"
 #include "render/node_picture.hpp"
 #include "sim/history.hpp"
+#include "spacing/resolution_check.hpp"
 
 namespace pdmesh {
 
@@ -69,6 +72,9 @@ MeshInputs::MeshInputs(const CaseConfig& config) {
   } else {
     spacing = std::make_unique<BoundarySpacing>(*tree);
   }
+  // Before anything else uses them: with unresolvable coordinates the node estimate's tree could
+  // refine without end.
+  check_coordinate_resolution(geometry, *spacing);
 }
 
 std::vector<std::string> MeshInputs::curve_names() const {
@@ -108,6 +114,11 @@ void prepare_output_directory(const CaseConfig& config) {
     throw InputError(fmt::format("cannot create output directory '{}': {}", config.out_dir.string(),
                                  ec ? ec.message() : std::string("a file of that name exists")));
   }
+  // A run killed while writing leaves its temporary beside the file it was writing.
+  const std::size_t stale = remove_stale_temporaries(config.out_dir);
+  if (stale > 0)
+    progress(config, "removed {} temporary file(s) left in {} by a run that was killed while writing", stale,
+             config.out_dir.string());
 }
 
 namespace {
@@ -206,12 +217,26 @@ SimResult simulate(const CaseConfig& config, const MeshInputs& inputs, NodeSet& 
       if (row.iteration == config.stop_after) InterruptGuard::flag().store(true);
     };
   }
+  std::optional<int> saved_after;  // the iteration of the last good state, once saved
   callbacks.on_failure = [&](const SimState& state) {
     write_checkpoint(checkpoint_file, Checkpoint{case_identity(config), nodes, state});
-    progress(config, "simulation failed after iteration {}; wrote {} (the last good state)", state.iterations_done,
-             checkpoint_file.string());
+    saved_after = state.iterations_done;
   };
-  SimResult result = run_simulation(nodes, *inputs.tree, *inputs.spacing, options, callbacks);
+  // A failed run's message says where its last good state went and how to continue from it.
+  const auto saved_note = [&] {
+    return fmt::format("; the last good state (after iteration {}) is in {}: continue with --resume {}", *saved_after,
+                       checkpoint_file.string(), config.out_dir.string());
+  };
+  SimResult result;
+  try {
+    result = run_simulation(nodes, *inputs.tree, *inputs.spacing, options, callbacks);
+  } catch (const DeviceError& e) {
+    if (!saved_after) throw;
+    throw DeviceError(e.what() + saved_note() + " (with --device host if the device stays unusable)");
+  } catch (const SimulationError& e) {
+    if (!saved_after) throw;
+    throw SimulationError(e.what() + saved_note());
+  }
   if (result.stopped || InterruptGuard::flag().load()) {
     write_checkpoint(checkpoint_file, Checkpoint{case_identity(config), nodes, result.state});
     progress(config, "simulation: stopped after iteration {} of {}; wrote {} (continue with --resume {})",
@@ -305,7 +330,7 @@ namespace {
 // `--resume`: the node set and driver state come from the checkpoint instead of the initialization
 // (whose outputs the interrupted run already wrote).
 int resume_mesh(const CaseConfig& config, const MeshInputs& inputs) {
-  Checkpoint checkpoint = read_checkpoint_for(*config.resume, config);
+  Checkpoint checkpoint = read_checkpoint_for(*config.resume, config, *inputs.tree);
   check_node_limit(config, inputs);
   prepare_output_directory(config);
   NodeSet nodes = std::move(checkpoint.nodes);

@@ -13,8 +13,9 @@
 
 namespace pdmesh {
 
-// Stage 1: the geometry, its tree and the spacing field. Not movable: the tree and the boundary
-// spacing field refer to the geometry.
+// Stage 1: the geometry, its tree and the spacing field; throws LimitError for coordinates too
+// large to resolve at the segment lengths or the spacing (check_coordinate_resolution). Not
+// movable: the tree and the boundary spacing field refer to the geometry.
 struct MeshInputs {
   explicit MeshInputs(const CaseConfig& config);
   MeshInputs(const MeshInputs&) = delete;

@@ -70,7 +70,7 @@ std::vector<std::pair<std::string, std::string>> case_identity(const CaseConfig&
   return keys;
 }
 
-Checkpoint read_checkpoint_for(const fs::path& resume, const CaseConfig& config) {
+Checkpoint read_checkpoint_for(const fs::path& resume, const CaseConfig& config, const GeometryTree& tree) {
   std::error_code ec;
   const fs::path file = fs::is_directory(resume, ec) ? checkpoint_path(resume) : resume;
   if (!fs::exists(file, ec))
@@ -96,6 +96,7 @@ Checkpoint read_checkpoint_for(const fs::path& resume, const CaseConfig& config)
   if (checkpoint.state.iterations_done > config.simulation.iterations)
     throw InputError(fmt::format("{}: the checkpoint is after {} iterations, more than --iterations {}",
                                  file.string(), checkpoint.state.iterations_done, config.simulation.iterations));
+  check_checkpoint_fits(checkpoint, tree, file.string());
   return checkpoint;
 }
 

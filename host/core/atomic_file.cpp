@@ -1,11 +1,14 @@
 // Atomic output files: write to ".NAME.tmp.PID" beside the destination, then rename(2) over it.
 #include "core/atomic_file.hpp"
 
+#include <signal.h>
 #include <unistd.h>
 
 #include <cerrno>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
+#include <string>
 #include <fmt/format.h>
 
 #include "core/errors.hpp"
@@ -75,8 +78,30 @@ void write_atomically(const fs::path& path, const std::function<void(const fs::p
     throw InputError(fmt::format("cannot write '{}': the writer did not create '{}'", path.string(),
                                  tmp.string()));
   }
+  if (const char* stop = std::getenv("PDMESH_TEST_STOP_BEFORE_RENAME"); stop && path.filename() == stop)
+    ::raise(SIGSTOP);
   rename_into_place(tmp, path);
   guard.release();
+}
+
+std::size_t remove_stale_temporaries(const fs::path& dir) {
+  std::size_t removed = 0;
+  std::error_code ec;
+  for (const auto& entry : fs::directory_iterator(dir, ec)) {
+    const std::string name = entry.path().filename().string();
+    // ".NAME.tmp.PID": a leading dot, and digits after the last ".tmp.".
+    const std::size_t mark = name.rfind(".tmp.");
+    if (name.size() < 2 || name[0] != '.' || mark == std::string::npos || mark == 0) continue;
+    const std::string digits = name.substr(mark + 5);
+    if (digits.empty() || digits.size() > 9 || digits.find_first_not_of("0123456789") != std::string::npos) continue;
+    const auto pid = static_cast<pid_t>(std::stol(digits));
+    if (pid == ::getpid() || pid <= 0) continue;
+    // kill(pid, 0) fails with ESRCH only when no such process exists (EPERM: it exists).
+    if (::kill(pid, 0) == 0 || errno != ESRCH) continue;
+    std::error_code ignored;
+    if (entry.is_regular_file(ignored) && fs::remove(entry.path(), ignored)) ++removed;
+  }
+  return removed;
 }
 
 }  // namespace pdmesh

@@ -20,4 +20,13 @@ void write_atomically(const std::filesystem::path& path,
 // The temporary name used for `path`: ".NAME.tmp.PID" beside it (exposed for tests).
 std::filesystem::path temporary_path_for(const std::filesystem::path& path);
 
+// Removes the temporaries ".NAME.tmp.PID" in `dir` (not its subdirectories) whose process PID no
+// longer exists: what a run killed between writing and renaming leaves behind. Returns how many.
+// Those of live processes (another run writing there now) are kept.
+std::size_t remove_stale_temporaries(const std::filesystem::path& dir);
+
+// Test-only hook (docs/robustness.md): with PDMESH_TEST_STOP_BEFORE_RENAME=NAME in the environment,
+// the process stops itself (SIGSTOP) after writing the temporary of the file named NAME and before
+// renaming it, so that a test can kill it at exactly that point.
+
 }  // namespace pdmesh

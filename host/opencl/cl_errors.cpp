@@ -2,6 +2,10 @@
 // "enqueue 'sum_forces' failed: CL_OUT_OF_RESOURCES (-5)".
 #include "opencl/cl_errors.hpp"
 
+#include <atomic>
+#include <cstdio>
+#include <cstdlib>
+
 #include <fmt/format.h>
 
 #include "core/errors.hpp"
@@ -77,7 +81,35 @@ const char* error_name(cl_int code) {
   }
 }
 
+namespace {
+
+struct FaultPlan {
+  long long at = 0;  // 0: no injection
+  cl_int code = CL_OUT_OF_RESOURCES;
+};
+
+FaultPlan read_fault_plan() {
+  FaultPlan plan;
+  if (const char* v = std::getenv("PDMESH_TEST_FAIL_CL_AT")) {
+    int code = CL_OUT_OF_RESOURCES;
+    const int fields = std::sscanf(v, "%lld:%d", &plan.at, &code);
+    if (fields < 1 || plan.at < 1) plan.at = 0;
+    if (fields == 2) plan.code = code;
+  }
+  return plan;
+}
+
+}  // namespace
+
+cl_int injected_fault(cl_int code) {
+  static const FaultPlan plan = read_fault_plan();
+  if (plan.at == 0) return code;
+  static std::atomic<long long> calls{0};
+  return ++calls >= plan.at ? plan.code : code;
+}
+
 void check(cl_int code, std::string_view what) {
+  code = injected_fault(code);
   if (code != CL_SUCCESS)
     throw DeviceError(fmt::format("{} failed: {} ({})", what, error_name(code), code));
 }

@@ -71,7 +71,8 @@ void launch(cl::CommandQueue& queue, cl::Kernel& kernel, const std::string& name
   if (count == 0) return;
   std::size_t global = (count + local - 1) / local * local;
   // The message is formatted only on failure: launches run every iteration.
-  const cl_int err = queue.enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange(global), cl::NDRange(local));
+  const cl_int err =
+      injected_fault(queue.enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange(global), cl::NDRange(local)));
   if (err != CL_SUCCESS) check(err, fmt::format("enqueue '{}' ({} work-items, local size {})", name, global, local));
 }
 

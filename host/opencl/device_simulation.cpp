@@ -8,11 +8,13 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <optional>
 
 #include "core/errors.hpp"
 #include "opencl/device_neighbours.hpp"
 #include "opencl/step_program.hpp"
 #include "sim/boundary_handling.hpp"
+#include "sim/failure_report.hpp"
 #include "sim/global_time_step.hpp"
 #include "sim/progress.hpp"
 #include "spacing/background_field.hpp"
@@ -45,6 +47,11 @@ class DeviceRun {
   SimResult run(const SimCallbacks& callbacks);
 
  private:
+  void check_memory() const;
+  void remember(int done, double dt_initial, const GlobalTimeStep& gm, std::size_t rows);
+  SimState last_good_state(int done, double dt_initial, const GlobalTimeStep& gm,
+                           const std::vector<HistoryRow>& history);
+  SimulationError non_finite_error(int iteration, const SimState& good);
   void upload_initial();
   void upload_topology();  // kind, prev, next, boundary slots (start and after snapping)
   void rebuild();
@@ -88,7 +95,7 @@ class DeviceRun {
   StepProgram program_;
   DeviceNeighbours<Real> neighbours_;
   std::size_t n_;
-  int stride_ = 16;
+  int stride_ = 16;  // device_memory.cpp counts the neighbour list at this initial stride
   int cur_ = 0;  // which of the double-buffered x, y, q is current
   Buffer<Real> x_[2], y_[2], q_[2], tx_, ty_, x_build_, y_build_, q_build_, brec_, cand_rec_, partials_, rec_, bg_q_,
       budget_;
@@ -103,13 +110,102 @@ class DeviceRun {
   std::vector<std::int32_t> candidates_;
   std::vector<Real> part_, brec_host_, cand_rec_host_, rec_host_;
   std::vector<std::int32_t> count_host_, rec_index_host_;
+  // Targets of non-blocking downloads are members too: when a wait fails and the error unwinds, a
+  // read still in flight must not write into freed memory (~DeviceRun waits for the queue first).
+  std::vector<Real> positions_host_[3];
+  std::vector<std::int32_t> cand_index_host_;
   const std::vector<std::int32_t> zero_counter_ = std::vector<std::int32_t>(1, 0);
   double skin_use_ = HUGE_VAL;                       // since the last build; HUGE_VAL forces a build
   std::uint64_t pairs_examined_ = 0;  // rebuild candidates plus, every iteration, the entries of the current lists
   std::uint64_t list_entries_ = 0;    // entries of the current lists (within the skin radius)
   std::size_t within_ = 0, coincident_ = 0, sum_moving_ = 0;
   double sum_force_ = 0, sum_kinetic_ = 0, max_force_ = 0, device_skin_use_ = 0;
+  // The state to fall back on when the device cannot be read after a failure: saved before the first
+  // iteration and after every neighbour-list build (which reads every position anyway). Its history
+  // is the first saved_rows_ rows of the run's.
+  NodeSet saved_nodes_;
+  SimState saved_state_;
+  std::size_t saved_rows_ = 0;
+  // host_boundary has moved nodes on the host that x_[cur_] does not hold yet (until the iteration ends).
+  bool host_ahead_ = false;
+  bool moves_finite_ = true;  // every move the host reads in step_kernel is finite
 };
+
+template <typename Real>
+void DeviceRun<Real>::check_memory() const {
+  const BackgroundFieldData& d = background_.data();
+  const std::uint64_t field = 4 * (d.root_node.size() + d.node_child.size() + d.leaf_corner.size() + d.leaf_cell.size()) +
+                              sizeof(Real) * d.corner_q.size();
+  check_device_memory(ctx_.device(), n_, nodes_.count(NodeKind::Boundary), field, sizeof(Real));
+}
+
+template <typename Real>
+void DeviceRun<Real>::remember(int done, double dt_initial, const GlobalTimeStep& gm, std::size_t rows) {
+  // Interior positions and every q as the build read them from the device; boundary nodes the host's.
+  saved_nodes_ = nodes_;
+  for (std::size_t i = 0; i < n_; ++i) {
+    if (saved_nodes_.kind[i] == NodeKind::Interior) saved_nodes_.x[i] = {build_x_[i], build_y_[i]};
+    saved_nodes_.q[i] = build_q_[i];
+  }
+  saved_state_ = SimState{done, dt_initial, gm.state(), boundary_.arcs(), boundary_.tangents(), {}};
+  saved_rows_ = rows;
+}
+
+// Puts the last good state into nodes_ and returns the driver state that goes with it: the state
+// after iteration `done` read back from the device, or, when the host is already ahead of it, the
+// device cannot be read or what it holds is not finite, the state saved at the last build.
+template <typename Real>
+SimState DeviceRun<Real>::last_good_state(int done, double dt_initial, const GlobalTimeStep& gm,
+                                          const std::vector<HistoryRow>& history) {
+  if (!host_ahead_) {
+    try {
+      std::vector<Real> x, y, q;
+      x_[cur_].download(ctx_.queue(), x, n_);
+      y_[cur_].download(ctx_.queue(), y, n_);
+      q_[cur_].download(ctx_.queue(), q, n_);
+      bool finite = true;
+      for (std::size_t i = 0; i < n_; ++i)
+        finite = finite && std::isfinite(static_cast<double>(x[i])) && std::isfinite(static_cast<double>(y[i])) &&
+                 q[i] > 0 && std::isfinite(static_cast<double>(q[i]));
+      if (finite) {
+        for (std::size_t i = 0; i < n_; ++i) {
+          if (nodes_.kind[i] == NodeKind::Interior) nodes_.x[i] = {static_cast<double>(x[i]), static_cast<double>(y[i])};
+          nodes_.q[i] = static_cast<double>(q[i]);
+        }
+        return SimState{done, dt_initial, gm.state(), boundary_.arcs(), boundary_.tangents(), history};
+      }
+    } catch (const Error&) {
+      // The device cannot be read: the saved state below.
+    }
+  }
+  nodes_ = saved_nodes_;
+  SimState state = saved_state_;
+  state.history.assign(history.begin(), history.begin() + static_cast<std::ptrdiff_t>(saved_rows_));
+  return state;
+}
+
+// The device's new positions (x_[1 - cur_]) name the first node whose move was not finite; its
+// neighbourhood is described at the last good positions (nodes_ holds them).
+template <typename Real>
+SimulationError DeviceRun<Real>::non_finite_error(int iteration, const SimState& good) {
+  std::size_t bad = n_;
+  try {
+    std::vector<Real> x, y;
+    x_[1 - cur_].download(ctx_.queue(), x, n_);
+    y_[1 - cur_].download(ctx_.queue(), y, n_);
+    for (std::size_t i = 0; i < n_ && bad == n_; ++i)
+      if (!std::isfinite(static_cast<double>(x[i])) || !std::isfinite(static_cast<double>(y[i]))) bad = i;
+  } catch (const Error&) {
+  }
+  const std::string sums = fmt::format("sum |F| {}, sum kinetic {}", sum_force_, sum_kinetic_);
+  if (bad == n_)
+    return SimulationError(fmt::format("iteration {}: non-finite force sums ({}); no node's new position is "
+                                       "non-finite (last good state: after iteration {})",
+                                       iteration, sums, good.iterations_done));
+  return SimulationError(fmt::format("iteration {}: non-finite force or move ({}) on {} (positions after iteration {})",
+                                     iteration, sums, describe_neighbourhood(nodes_, bad, options_.cutoff * nodes_.q[bad]),
+                                     good.iterations_done));
+}
 
 template <typename Real>
 void DeviceRun<Real>::upload_initial() {
@@ -201,7 +297,7 @@ void DeviceRun<Real>::rebuild() {
   const std::size_t n = n_;
   if (stats_.rebuilds > 0) {
     // The host needs every position only here (rare with the skin): to bin.
-    std::vector<Real> v[3];
+    std::vector<Real>* v = positions_host_;
     read(x_[cur_], v[0], n, false);
     read(y_[cur_], v[1], n, false);
     read(q_[cur_], v[2], n, false);
@@ -258,7 +354,7 @@ void DeviceRun<Real>::step_kernel(double dt_gm2) {
   stats_.step_seconds += since(t0);
   t0 = Clock::now();
   const auto m = static_cast<std::size_t>(count_host_[0]);
-  std::vector<std::int32_t> cand;
+  std::vector<std::int32_t>& cand = cand_index_host_;
   if (m > 0) {
     read(cand_index_, cand, m, false);
     read(cand_rec_, cand_rec_host_, 4 * m, false);
@@ -297,11 +393,20 @@ void DeviceRun<Real>::step_kernel(double dt_gm2) {
     dx_[i] = static_cast<double>(brec_host_[4 * s + 2]);
     dy_[i] = static_cast<double>(brec_host_[4 * s + 3]);
   }
+  // The moves the host applies must be finite (the sums may not show a single NaN move).
+  moves_finite_ = true;
+  for (std::int32_t node : boundary_nodes_)
+    moves_finite_ = moves_finite_ && std::isfinite(dx_[static_cast<std::size_t>(node)]) &&
+                    std::isfinite(dy_[static_cast<std::size_t>(node)]);
+  for (std::int32_t node : candidates_)
+    moves_finite_ = moves_finite_ && std::isfinite(dx_[static_cast<std::size_t>(node)]) &&
+                    std::isfinite(dy_[static_cast<std::size_t>(node)]);
 }
 
 template <typename Real>
 BoundaryCounts DeviceRun<Real>::host_boundary(double& skin_use) {
   auto t0 = Clock::now();
+  host_ahead_ = true;
   const BoundaryCounts counts = boundary_.apply_subset(nodes_, dx_, dy_, candidates_);
   if (counts.snapped > 0) upload_topology();  // kinds and curve neighbours changed (rare)
   // Records: every boundary node (re-snapped, with its tangent) and every candidate still interior.
@@ -363,6 +468,7 @@ SimResult DeviceRun<Real>::run(const SimCallbacks& callbacks) {
     boundary_.restore(nodes_, resume->arcs, resume->tangents);  // before upload_initial reads the tangents
   }
   GlobalTimeStep gm = resume ? GlobalTimeStep(resume->time_step) : GlobalTimeStep(result.stats.dt_initial);
+  check_memory();  // before the first device allocation
   ProgressLine progress(options_.quiet);
   upload_initial();  // setup, like the host path's, is not part of the timed iterations
   stats_.setup_bytes = stats_.bytes_up;
@@ -371,66 +477,92 @@ SimResult DeviceRun<Real>::run(const SimCallbacks& callbacks) {
   const auto start = Clock::now();
   std::size_t fixed = nodes_.count(NodeKind::Fixed), on_boundary = nodes_.count(NodeKind::Boundary);
   std::size_t interior = nodes_.count(NodeKind::Interior);
-  result.history.reserve(static_cast<std::size_t>(std::max(0, options_.iterations)));
+  result.history.reserve(history_reserve(options_.iterations));
   if (resume) result.history = resume->history;
   const int first = resume ? resume->iterations_done + 1 : 1;
   int done = first - 1;
-  for (int iteration = first; iteration <= options_.iterations; ++iteration) {
-    // A zero skin rebuilds every iteration (the reference's behaviour).
-    if (skin_use_ > kSkinUseLimit || options_.verlet_skin == 0.0) rebuild();
-    const double dt_gm = gm.dt();
-    step_kernel(gm.dt2());
-    if (!std::isfinite(sum_force_) || !std::isfinite(sum_kinetic_)) {
-      std::size_t bad = candidates_.empty() ? 0 : static_cast<std::size_t>(candidates_.front());
-      throw SimulationError(fmt::format("iteration {}: non-finite force near node {} at ({}, {})", iteration, bad,
-                                        bad < n_ ? nodes_.x[bad].x : 0.0, bad < n_ ? nodes_.x[bad].y : 0.0));
-    }
-    double skin_use = device_skin_use_;
-    const BoundaryCounts counts = host_boundary(skin_use);
-    cur_ = 1 - cur_;
-    skin_use_ = std::max(skin_use_, skin_use);
+  remember(done, result.stats.dt_initial, gm, result.history.size());
+  // On any failure from here on the caller gets the last good state (SimCallbacks::on_failure).
+  int iteration = first;
+  std::optional<SimState> failed_at;  // set where the failure computed it already
+  bool in_loop = true;                 // false once the iterations are done (the final read-back)
+  const auto hand_over = [&] {
+    if (!failed_at) failed_at = last_good_state(done, result.stats.dt_initial, gm, result.history);
+    if (callbacks.on_failure) callbacks.on_failure(*failed_at);
+  };
+  try {
+    for (; iteration <= options_.iterations; ++iteration) {
+      // A zero skin rebuilds every iteration (the reference's behaviour).
+      if (skin_use_ > kSkinUseLimit || options_.verlet_skin == 0.0) {
+        rebuild();
+        remember(done, result.stats.dt_initial, gm, result.history.size());
+      }
+      const double dt_gm = gm.dt();
+      step_kernel(gm.dt2());
+      // Before the host moves anything: the last good state is still whole on the device.
+      if (!std::isfinite(sum_force_) || !std::isfinite(sum_kinetic_) || !moves_finite_) {
+        failed_at = last_good_state(done, result.stats.dt_initial, gm, result.history);
+        throw non_finite_error(iteration, *failed_at);
+      }
+      double skin_use = device_skin_use_;
+      const BoundaryCounts counts = host_boundary(skin_use);
+      cur_ = 1 - cur_;
+      skin_use_ = std::max(skin_use_, skin_use);
 
-    HistoryRow row;
-    row.iteration = iteration;
-    const double moving = sum_moving_ > 0 ? static_cast<double>(sum_moving_) : 1.0;
-    row.average_force = sum_force_ / moving;
-    row.average_kinetic = sum_kinetic_ / moving;
-    row.max_force = max_force_;
-    row.dt_gm = dt_gm;
-    row.snapped = counts.snapped;
-    row.clamped = counts.clamped;
-    on_boundary += counts.snapped;
-    interior -= counts.snapped;
-    row.fixed = fixed;
-    row.boundary = on_boundary;
-    row.interior = interior;
-    gm.update(max_force_);
-    result.stats.pairs_within += within_;
-    pairs_examined_ += list_entries_;  // the step kernel computes the distance of every list entry
-    result.stats.coincident_pairs += coincident_;
-    result.stats.snapped += counts.snapped;
-    result.history.push_back(row);
-    ++stats_.iterations;
-    if (callbacks.on_iteration) callbacks.on_iteration(row);
-    progress.update(iteration, options_.iterations, row.average_force, dt_gm);
-    done = iteration;
-    if (options_.stop && options_.stop->load() && iteration < options_.iterations) {
-      result.stopped = true;
-      break;
+      HistoryRow row;
+      row.iteration = iteration;
+      const double moving = sum_moving_ > 0 ? static_cast<double>(sum_moving_) : 1.0;
+      row.average_force = sum_force_ / moving;
+      row.average_kinetic = sum_kinetic_ / moving;
+      row.max_force = max_force_;
+      row.dt_gm = dt_gm;
+      row.snapped = counts.snapped;
+      row.clamped = counts.clamped;
+      on_boundary += counts.snapped;
+      interior -= counts.snapped;
+      row.fixed = fixed;
+      row.boundary = on_boundary;
+      row.interior = interior;
+      gm.update(max_force_);
+      result.stats.pairs_within += within_;
+      pairs_examined_ += list_entries_;  // the step kernel computes the distance of every list entry
+      result.stats.coincident_pairs += coincident_;
+      result.stats.snapped += counts.snapped;
+      result.history.push_back(row);
+      ++stats_.iterations;
+      if (callbacks.on_iteration) callbacks.on_iteration(row);
+      progress.update(iteration, options_.iterations, row.average_force, dt_gm);
+      done = iteration;
+      host_ahead_ = false;
+      if (options_.stop && options_.stop->load() && iteration < options_.iterations) {
+        result.stopped = true;
+        break;
+      }
     }
-  }
-  progress.finish();
-  // Final state: interior positions and every q from the device; boundary positions stay the host's.
-  std::vector<Real> x, y, q;
-  const std::uint64_t down = stats_.bytes_down, transfers = stats_.transfers;  // the final download is not per iteration
-  read(x_[cur_], x, n_);
-  read(y_[cur_], y, n_);
-  read(q_[cur_], q, n_);
-  stats_.bytes_down = down;
-  stats_.transfers = transfers;
-  for (std::size_t i = 0; i < n_; ++i) {
-    if (nodes_.kind[i] == NodeKind::Interior) nodes_.x[i] = {static_cast<double>(x[i]), static_cast<double>(y[i])};
-    nodes_.q[i] = static_cast<double>(q[i]);
+    progress.finish();
+    in_loop = false;
+    // Final state: interior positions and every q from the device; boundary positions stay the host's.
+    std::vector<Real> x, y, q;
+    const std::uint64_t down = stats_.bytes_down, transfers = stats_.transfers;  // not per iteration
+    read(x_[cur_], x, n_);
+    read(y_[cur_], y, n_);
+    read(q_[cur_], q, n_);
+    stats_.bytes_down = down;
+    stats_.transfers = transfers;
+    for (std::size_t i = 0; i < n_; ++i) {
+      if (nodes_.kind[i] == NodeKind::Interior) nodes_.x[i] = {static_cast<double>(x[i]), static_cast<double>(y[i])};
+      nodes_.q[i] = static_cast<double>(q[i]);
+    }
+  } catch (const DeviceError& e) {
+    progress.finish();
+    hand_over();
+    // Where it failed, for the message; the error itself names the call and the CL code.
+    throw DeviceError(in_loop ? fmt::format("iteration {}: {}", iteration, e.what())
+                              : fmt::format("reading back the state after iteration {}: {}", done, e.what()));
+  } catch (const Error&) {
+    progress.finish();
+    hand_over();
+    throw;
   }
   result.state = SimState{done, result.stats.dt_initial, gm.state(), boundary_.arcs(), boundary_.tangents(),
                           result.history};

@@ -32,8 +32,24 @@ struct DeviceRunStats {
   std::size_t device_bytes = 0;      // device buffers at the end
 };
 
+// Device memory a run needs before its first iteration (a lower bound; docs/opencl.md): in total, and
+// for its largest buffer (the neighbour list at its initial row stride).
+struct DeviceMemoryNeed {
+  std::uint64_t total = 0, largest = 0;
+};
+DeviceMemoryNeed device_memory_need(std::size_t nodes, std::size_t boundary_nodes, std::uint64_t field_bytes,
+                                    std::size_t real_bytes);
+
+// Throws LimitError (exit 2) naming the bytes needed, the device's global memory and largest
+// allocation, and what to do instead (--precision float, --device host, a coarser spacing), when
+// device_memory_need exceeds either. Run before the first allocation of a device run.
+void check_device_memory(const DeviceInfo& device, std::size_t nodes, std::size_t boundary_nodes,
+                         std::uint64_t field_bytes, std::size_t real_bytes);
+
 // Same contract as run_simulation (which calls it when options.device is set): updates nodes, returns
-// the history. Throws InputError when options.exact_spacing is set (the device reads the background field).
+// the history. Throws InputError when options.exact_spacing is set (the device reads the background field),
+// LimitError from check_device_memory. Any error after the setup first hands the last good state to
+// callbacks.on_failure; an OpenCL error is rethrown as DeviceError "iteration K: <call> failed: CL_NAME (code)".
 SimResult run_device_simulation(NodeSet& nodes, const GeometryTree& tree, const SpacingField& spacing,
                                 const SimOptions& options, Context& ctx, const SimCallbacks& callbacks = {},
                                 DeviceRunStats* stats = nullptr);

@@ -1,6 +1,9 @@
 // Enumerates OpenCL platforms and devices and applies the --device rule (auto: first GPU, else first CPU).
 #include "opencl/devices.hpp"
 
+#include <algorithm>
+#include <cstdlib>
+
 #include <fmt/format.h>
 
 #include "core/errors.hpp"
@@ -47,6 +50,15 @@ std::vector<DeviceInfo> list_devices() {
       i.compute_units = info<CL_DEVICE_MAX_COMPUTE_UNITS, cl_uint>(devices[d], "CL_DEVICE_MAX_COMPUTE_UNITS");
       i.global_memory = info<CL_DEVICE_GLOBAL_MEM_SIZE, cl_ulong>(devices[d], "CL_DEVICE_GLOBAL_MEM_SIZE");
       i.max_allocation = info<CL_DEVICE_MAX_MEM_ALLOC_SIZE, cl_ulong>(devices[d], "CL_DEVICE_MAX_MEM_ALLOC_SIZE");
+      // Test-only (docs/robustness.md): PDMESH_TEST_DEVICE_MEMORY=BYTES caps both memory figures, to
+      // exercise the out-of-device-memory refusal on a device that has plenty.
+      if (const char* cap = std::getenv("PDMESH_TEST_DEVICE_MEMORY")) {
+        const std::uint64_t bytes = std::strtoull(cap, nullptr, 10);
+        if (bytes > 0) {
+          i.global_memory = std::min<std::uint64_t>(i.global_memory, bytes);
+          i.max_allocation = std::min<std::uint64_t>(i.max_allocation, bytes);
+        }
+      }
       i.max_work_group = info<CL_DEVICE_MAX_WORK_GROUP_SIZE, std::size_t>(devices[d], "CL_DEVICE_MAX_WORK_GROUP_SIZE");
       i.fp64 = info<CL_DEVICE_DOUBLE_FP_CONFIG, cl_device_fp_config>(devices[d], "CL_DEVICE_DOUBLE_FP_CONFIG") != 0;
       out.push_back(std::move(i));

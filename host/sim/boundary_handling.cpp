@@ -148,6 +148,10 @@ void BoundaryHandler::move_boundary_nodes(NodeSet& nodes, const std::vector<doub
       const double lo = old_arcs[k] - kMaxGapFraction * (old_arcs[k] - old_arcs[k - 1]);
       const double hi = old_arcs[k] + kMaxGapFraction * (old_arcs[k + 1] - old_arcs[k]);
       const Vec2 target{nodes.x[node].x + dx[node], nodes.x[node].y + dy[node]};
+      // The drivers check the moves before calling apply(); this keeps a NaN out of the curve search.
+      if (!std::isfinite(target.x) || !std::isfinite(target.y))
+        throw SimulationError(fmt::format("boundary node {} of curve {} moved from ({}, {}) to a non-finite position "
+                                          "({}, {})", node, c, nodes.x[node].x, nodes.x[node].y, target.x, target.y));
       const CurvePoint cp = closest_on_curve_range(curve, target, lo, hi);
       if (cp.arc == lo || cp.arc == hi) ++counts.clamped;
       nodes.x[node] = cp.p;

@@ -6,6 +6,7 @@
 #include <utility>
 #include <vector>
 
+#include "geometry/geometry_tree.hpp"
 #include "nodes/node_set.hpp"
 #include "sim/simulation.hpp"
 
@@ -30,5 +31,14 @@ void write_checkpoint(const std::filesystem::path& path, const Checkpoint& check
 // missing end line (a truncated file).
 Checkpoint parse_checkpoint(const std::string& text, const std::string& source_name);
 Checkpoint read_checkpoint(const std::filesystem::path& path);
+
+// Throws InputError "SOURCE: the checkpoint does not fit the case's geometry: ..." unless the state
+// can be continued on this geometry: one node list per curve, each from a Fixed node to a Fixed node
+// with only Fixed and Boundary nodes between, every Boundary node listed once on its own curve,
+// arc positions strictly increasing from 0 to the curve's length, positive spacings and time steps,
+// every node within the geometry's extents, tangents no longer than 1, history rows numbered 1, 2, ...
+// (host/sim/checkpoint_check.cpp). An interior node outside the domain is not refused: a float
+// device run can round one just across the boundary, and the next move snaps it onto a curve.
+void check_checkpoint_fits(const Checkpoint& checkpoint, const GeometryTree& tree, const std::string& source);
 
 }  // namespace pdmesh

@@ -10,6 +10,7 @@
 
 #include "core/errors.hpp"
 #include "sim/boundary_handling.hpp"
+#include "sim/failure_report.hpp"
 #include "sim/global_time_step.hpp"
 #include "sim/progress.hpp"
 #include "opencl/device_simulation.hpp"
@@ -45,10 +46,25 @@ void check_node_set(const NodeSet& nodes) {
                                       nodes.q.size(), nodes.kind.size(), nodes.curve.size()));
 }
 
+// The first node with a non-finite force or move component (the node count if none).
+std::size_t first_non_finite(const ForceResult& forces, const MoveResult& moves) {
+  const std::size_t n = moves.dx.size();
+  for (std::size_t i = 0; i < n; ++i)
+    if (!std::isfinite(forces.fx[i]) || !std::isfinite(forces.fy[i]) || !std::isfinite(moves.dx[i]) ||
+        !std::isfinite(moves.dy[i]))
+      return i;
+  return n;
+}
+
 // The default dt moves a node at 0.9 sigma by this fraction of q (calibrated: docs/simulation.md).
 constexpr double kDefaultMoveFraction = 1.0 / 200.0;
 
 }  // namespace
+
+std::size_t history_reserve(int iterations) {
+  // A row is 80 bytes; --iterations 2000000000 must not ask for 160 GB before the first iteration.
+  return static_cast<std::size_t>(std::clamp(iterations, 0, 1 << 20));
+}
 
 double default_dt_initial(const NodeSet& nodes, double lj_a) {
   std::vector<double> q;
@@ -101,7 +117,7 @@ SimResult run_simulation(NodeSet& nodes, const GeometryTree& tree, const Spacing
   MoveResult moves;
   const TraceRange trace = TraceRange::from_environment();
   ForceParams params{options.cutoff, options.lj_a, options.r0_any_direction, options.stability_factor};
-  result.history.reserve(static_cast<std::size_t>(std::max(0, options.iterations)));
+  result.history.reserve(history_reserve(options.iterations));
   if (resume) result.history = resume->history;
   const int first = resume ? resume->iterations_done + 1 : 1;
   int done = first - 1;
@@ -120,12 +136,18 @@ SimResult run_simulation(NodeSet& nodes, const GeometryTree& tree, const Spacing
       sums = backend->reduce(particles, forces, moves);
       if (trace.covers(iteration))
         trace_step(stderr, iteration, particles, list, forces, moves, gm.dt2(), options.cutoff, 3);
-      if (!std::isfinite(sums.sum_force) || !std::isfinite(sums.sum_kinetic)) {
-        std::size_t bad = 0;
-        while (bad < nodes.size() && std::isfinite(forces.fx[bad]) && std::isfinite(forces.fy[bad])) ++bad;
-        throw SimulationError(fmt::format("iteration {}: non-finite force on node {} at ({}, {})", iteration, bad,
-                                          bad < nodes.size() ? nodes.x[bad].x : 0.0,
-                                          bad < nodes.size() ? nodes.x[bad].y : 0.0));
+      // Before boundary handling moves anything: a non-finite move would otherwise be turned into a
+      // non-finite position there (boundary nodes) or stop it half done (interior nodes).
+      const std::size_t bad = first_non_finite(forces, moves);
+      if (bad < nodes.size() || !std::isfinite(sums.sum_force) || !std::isfinite(sums.sum_kinetic)) {
+        if (bad >= nodes.size())
+          throw SimulationError(fmt::format("iteration {}: the force sums overflowed (sum |F| {}, sum kinetic {})",
+                                            iteration, sums.sum_force, sums.sum_kinetic));
+        const bool force = !std::isfinite(forces.fx[bad]) || !std::isfinite(forces.fy[bad]);
+        throw SimulationError(fmt::format("iteration {}: non-finite {} (force ({}, {}), move ({}, {})) on {}",
+                                          iteration, force ? "force" : "move", forces.fx[bad], forces.fy[bad],
+                                          moves.dx[bad], moves.dy[bad],
+                                          describe_neighbourhood(nodes, bad, options.cutoff * nodes.q[bad])));
       }
     } catch (const SimulationError&) {
       // Nothing has moved yet in this iteration: the nodes still hold the last good state.

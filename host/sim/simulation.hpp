@@ -61,10 +61,12 @@ struct SimOptions {
 struct SimCallbacks {
   // After every iteration, with that iteration's history row.
   std::function<void(const HistoryRow&)> on_iteration;
-  // Host reference only: called with the last good state (the NodeSet passed to run_simulation
-  // still holds it) just before a SimulationError from the neighbour build or for non-finite forces
-  // propagates (not one from the move itself, which has changed the nodes), so the caller
-  // can save a checkpoint.
+  // Called with the last good state (the NodeSet passed to run_simulation then holds it) just before
+  // an error from the iterations propagates, so that the caller can save a checkpoint. Host
+  // reference: a SimulationError from the neighbour build or for non-finite forces or moves (not one
+  // from boundary handling itself, which has moved nodes). Device run: any pdmesh::Error after the
+  // setup (OpenCL errors included); the state is the one after the last complete iteration when the
+  // device can still be read, else the one saved at the last neighbour-list build.
   std::function<void(const SimState&)> on_failure;
 };
 
@@ -91,8 +93,12 @@ struct SimResult {
 // (the thesis' 0.01 for circle_circle; see docs/simulation.md for the calibration).
 double default_dt_initial(const NodeSet& nodes, double lj_a);
 
+// How many history rows to reserve for a run of `iterations` (capped: rows are added as they come).
+std::size_t history_reserve(int iterations);
+
 // Runs options.iterations iterations (or the remaining ones of options.resume), updating nodes (positions, q, kinds, curve_nodes) in place.
-// Throws SimulationError on non-finite forces or positions (naming the iteration and node).
+// Throws SimulationError on non-finite forces or moves, before anything moves in that iteration,
+// naming the iteration, the node and its neighbourhood (callbacks.on_failure gets the last good state).
 SimResult run_simulation(NodeSet& nodes, const GeometryTree& tree, const SpacingField& spacing,
                          const SimOptions& options, const SimCallbacks& callbacks = {});
 

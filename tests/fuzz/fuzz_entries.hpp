@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
+#include <memory>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -19,6 +20,9 @@
 #include "geometry/poly_reader.hpp"
 #include "io/mesh_formats.hpp"
 #include "nodes/node_file.hpp"
+#include "sim/checkpoint.hpp"
+#include "sim/simulation.hpp"
+#include "spacing/spacing_field.hpp"
 
 namespace pdmesh::fuzz {
 
@@ -146,6 +150,59 @@ inline void mesh_reader_triangle(const std::uint8_t* data, std::size_t size) {
   read_mesh_file(ele);
 }
 
+// The fixed case the checkpoint entry continues: the unit square as two curves (so that a
+// checkpoint has two node lists joined at Fixed nodes), points every 0.25 along the sides (they
+// become the Boundary nodes), uniform spacing 0.25. Also used by make_seeds.cpp to write the seeds,
+// which then fit it.
+struct CheckpointCase {
+  Geometry geometry;
+  std::unique_ptr<GeometryTree> tree;
+  ExpressionSpacing spacing{"0.25"};
+  CheckpointCase() {
+    // Two sides of the square from `from` by unit steps along d1, then d2, in quarters.
+    const auto sides = [](Vec2 from, Vec2 d1, Vec2 d2) {
+      std::vector<Vec2> points{from};
+      for (const Vec2 d : {d1, d2})
+        for (int k = 1; k <= 4; ++k) points.push_back(points.back() + 0.25 * d);
+      return points;
+    };
+    RawCurve a{"bottom_right", sides({0, 0}, {1, 0}, {0, 1}), "square", 1, {}};
+    RawCurve b{"top_left", sides({1, 1}, {-1, 0}, {0, -1}), "square", 10, {}};
+    geometry = build_geometry({a, b});
+    tree = std::make_unique<GeometryTree>(geometry);
+  }
+};
+inline CheckpointCase& checkpoint_case() {
+  static CheckpointCase c;
+  return c;
+}
+
+// Two more iterations from a checkpoint's state, as `--resume` would run them.
+inline SimOptions continue_options(const Checkpoint& c) {
+  SimOptions o;
+  o.iterations = c.state.iterations_done + 2;
+  o.quiet = true;
+  o.exact_spacing = true;  // the background field would be rebuilt on every input
+  o.resume = &c.state;
+  return o;
+}
+
+// Checkpoint: parse_checkpoint (from memory: read_checkpoint only adds reading the file), then
+// check_checkpoint_fits on checkpoint_case(), and when it fits, two iterations of the host
+// simulation from it. A SimulationError from those is a documented outcome, like an InputError.
+inline void checkpoint_reader(const std::uint8_t* data, std::size_t size) {
+  try {
+    Checkpoint c = parse_checkpoint(std::string(as_text(data, size)), "input.pdmesh");
+    CheckpointCase& world = checkpoint_case();
+    check_checkpoint_fits(c, *world.tree, "input.pdmesh");
+    try {
+      run_simulation(c.nodes, *world.tree, world.spacing, continue_options(c));
+    } catch (const SimulationError&) {
+    }
+  } catch (const InputError&) {
+  }
+}
+
 struct Target {
   const char* name;  // the corpus folder under tests/fuzz/corpus/ and tests/fuzz/regressions/
   void (*run)(const std::uint8_t*, std::size_t);
@@ -157,6 +214,7 @@ inline const std::vector<Target>& targets() {
       {"fuzz_case_file", case_file},                {"fuzz_node_file", node_file},
       {"fuzz_mesh_reader_msh", mesh_reader_msh},    {"fuzz_mesh_reader_vtu", mesh_reader_vtu},
       {"fuzz_mesh_reader_su2", mesh_reader_su2},    {"fuzz_mesh_reader_triangle", mesh_reader_triangle},
+      {"fuzz_checkpoint", checkpoint_reader},
   };
   return all;
 }

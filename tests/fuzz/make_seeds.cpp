@@ -1,4 +1,4 @@
-// Writes the seed corpora of the mesh and node-file fuzz targets with pdmesh's own writers:
+// Writes the seed corpora of the mesh, node-file and checkpoint fuzz targets with pdmesh's own writers:
 // fuzz_make_seeds CORPUS_DIR (normally tests/fuzz/corpus). Geometry and case seeds are copied
 // from tests/data/ and cases/ by hand; see docs/robustness.md.
 #include <cstdio>
@@ -8,6 +8,8 @@
 #include <string>
 
 #include "core/errors.hpp"
+#include "fuzz_entries.hpp"
+#include "init/initial_distribution.hpp"
 #include "io/mesh_formats.hpp"
 #include "mesh/mesh.hpp"
 #include "nodes/node_file.hpp"
@@ -52,6 +54,28 @@ NodeSet small_nodes() {
   return n;
 }
 
+// Checkpoints of fuzz::checkpoint_case() (so that they fit it and the entry runs the simulation):
+// the initial state, the state after 3 iterations, and that one cut in half (truncated).
+void checkpoint_seeds(const fs::path& corpus) {
+  fuzz::CheckpointCase& world = fuzz::checkpoint_case();
+  NodeSet nodes = make_initial_distribution(*world.tree, world.spacing, {InitMethod::Structured, 1, {}}).nodes;
+  const std::vector<std::pair<std::string, std::string>> keys = {
+      {"geometry.file.0", "square.crv (60 bytes, FNV-1a 0123456789abcdef)"},
+      {"spacing.field", "expression"},
+      {"spacing.expression", "0.25"}};
+  SimOptions options;
+  options.iterations = 0;
+  options.quiet = true;
+  options.exact_spacing = true;
+  const SimResult initial = run_simulation(nodes, *world.tree, world.spacing, options);
+  put(corpus / "fuzz_checkpoint" / "square_initial.pdmesh", format_checkpoint({keys, nodes, initial.state}));
+  options.iterations = 3;
+  const SimResult after = run_simulation(nodes, *world.tree, world.spacing, options);
+  const std::string text = format_checkpoint({keys, nodes, after.state});
+  put(corpus / "fuzz_checkpoint" / "square_3_iterations.pdmesh", text);
+  put(corpus / "fuzz_checkpoint" / "square_truncated.pdmesh", text.substr(0, text.size() / 2));
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -77,6 +101,7 @@ int main(int argc, char** argv) {
     put(corpus / "fuzz_mesh_reader_triangle" / "square_with_poly", node + '\f' + ele + '\f' + poly);
     put(corpus / "fuzz_mesh_reader_triangle" / "square_no_poly", node + '\f' + ele);
     put(corpus / "fuzz_node_file" / "square.nodes", format_node_file(small_nodes(), {"bottom_right", "top_left"}));
+    checkpoint_seeds(corpus);
   } catch (const Error& e) {
     std::fprintf(stderr, "fuzz_make_seeds: %s\n", e.what());
     return 1;

@@ -1,0 +1,60 @@
+// Coordinates that double precision cannot resolve at the segment and spacing scale; see
+// resolution_check.hpp.
+#include "spacing/resolution_check.hpp"
+
+#include <cfloat>
+#include <cmath>
+#include <string>
+
+#include <fmt/format.h>
+
+#include "core/errors.hpp"
+
+namespace pdmesh {
+
+void check_coordinate_resolution(const Geometry& geometry, const SpacingField& spacing) {
+  double largest = 0.0;
+  std::string largest_where;
+  for (const Curve& c : geometry.curves)
+    for (std::size_t k = 0; k < c.points.size(); ++k) {
+      const double m = std::fmax(std::fabs(c.points[k].x), std::fabs(c.points[k].y));
+      if (m > largest) {
+        largest = m;
+        largest_where = fmt::format("{}:{} (curve '{}', point {})", c.file, c.line + static_cast<int>(k), c.name, k);
+      }
+    }
+  const double quantum = largest * DBL_EPSILON;  // 2^-52
+  const double needed = kResolutionQuanta * quantum;
+  if (!(needed > 0.0)) return;
+  const auto refuse = [&](const std::string& what, double value) {
+    throw LimitError(fmt::format(
+        "{} is {:.6g}, but the coordinates reach {:.6g} at {}, where doubles are {:.3g} apart; the simulation "
+        "needs segments and spacings of at least {:g} times that ({:.3g}): move the geometry nearer the origin "
+        "(subtract a common offset) or use a coarser spacing",
+        what, value, largest, largest_where, quantum, kResolutionQuanta, needed));
+  };
+  for (const Segment& s : geometry.segments)
+    if (s.length < needed) {
+      const Curve& c = geometry.curves[static_cast<std::size_t>(s.curve)];
+      refuse(fmt::format("{}:{}: the segment {} of curve '{}' from ({}, {}) to ({}, {})", c.file, c.line + s.index,
+                         s.index, c.name, s.a.x, s.a.y, s.b.x, s.b.y),
+             s.length);
+    }
+  // The spacing where nodes are placed first: at the curve points (where the boundary field takes
+  // its extremes) and, for expression fields, the middle of the domain.
+  const Vec2 centre{0.5 * (geometry.extents.lo.x + geometry.extents.hi.x),
+                    0.5 * (geometry.extents.lo.y + geometry.extents.hi.y)};
+  double smallest = spacing.at(centre);
+  Vec2 where = centre;
+  for (const Curve& c : geometry.curves)
+    for (const Vec2& p : c.points) {
+      const double q = spacing.at(p);
+      if (q < smallest) {
+        smallest = q;
+        where = p;
+      }
+    }
+  if (smallest < needed) refuse(fmt::format("the spacing at ({}, {})", where.x, where.y), smallest);
+}
+
+}  // namespace pdmesh

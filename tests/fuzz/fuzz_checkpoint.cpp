@@ -1,0 +1,10 @@
+// libFuzzer target: pdmesh::fuzz::checkpoint_reader (see fuzz_entries.hpp; run with tools/fuzz.sh).
+#include <cstddef>
+#include <cstdint>
+
+#include "fuzz_entries.hpp"
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  pdmesh::fuzz::checkpoint_reader(data, size);
+  return 0;
+}
