@@ -38,6 +38,23 @@ int8 row_chunk(const int i, const int stride, const int count, const int base, c
   return select((int8)(i), raw, valid);
 }
 
+// Chunk k0 of the row: node indices (*j_out), offsets from (xi, yi) and squared distances; returns
+// the mask of the entries that count (inside the row and, where `filter` is set, within rc2).
+MASK8 row_chunk_offsets(const int i, const int stride, const int count, const int base, const int k0,
+                        const REAL xi, const REAL yi, const MASK8 filter, const REAL rc2,
+                        __global const REAL* x, __global const REAL* y, __global const int* index, int8* j_out,
+                        REAL8* dx_out, REAL8* dy_out, REAL8* r2_out) {
+  int8 valid_i;
+  const int8 j = row_chunk(i, stride, count, base, k0, index, &valid_i);
+  const REAL8 dx = GATHER8(x, j) - (REAL8)(xi), dy = GATHER8(y, j) - (REAL8)(yi);
+  const REAL8 r2 = dx * dx + dy * dy;
+  *j_out = j;
+  *dx_out = dx;
+  *dy_out = dy;
+  *r2_out = r2;
+  return CONVERT_MASK8(valid_i) & (~filter | (r2 <= (REAL8)(rc2)));
+}
+
 // Net force and r0 of node i over row entries [base, base + stride), of which the first `count`
 // are valid. rc2 >= 0: interior rows are a Verlet list and only entries with r^2 <= rc2 count (the
 // reference's exact cut-off test); rc2 < 0: every row entry counts. count = 0 (fixed or padding
@@ -58,12 +75,9 @@ void node_forces(const int i, const int stride, const int count, const int base,
   REAL fx = (REAL)0, fy = (REAL)0, stiffness = (REAL)0;
   int coincident = 0, within = 0;
   for (int k0 = 0; k0 < count; k0 += 8) {
-    int8 valid_i;
-    const int8 j = row_chunk(i, stride, count, base, k0, index, &valid_i);
-    const MASK8 valid = CONVERT_MASK8(valid_i);
-    const REAL8 dx = GATHER8(x, j) - (REAL8)(xi), dy = GATHER8(y, j) - (REAL8)(yi);
-    const REAL8 r2 = dx * dx + dy * dy;
-    const MASK8 in_range = valid & (~filter | (r2 <= (REAL8)(rc2)));
+    int8 j;
+    REAL8 dx, dy, r2;
+    const MASK8 in_range = row_chunk_offsets(i, stride, count, base, k0, xi, yi, filter, rc2, x, y, index, &j, &dx, &dy, &r2);
     within += (int)COUNT8(in_range);
     coincident += (int)COUNT8(in_range & (r2 == zero));
     const MASK8 use = in_range & (r2 > zero);
@@ -93,12 +107,10 @@ void node_forces(const int i, const int stride, const int count, const int base,
   REAL8 best2 = (REAL8)(INFINITY);
   MASK8 found = (MASK8)(0);
   for (int k0 = 0; k0 < count; k0 += 8) {
-    int8 valid_i;
-    const int8 j = row_chunk(i, stride, count, base, k0, index, &valid_i);
-    const MASK8 valid = CONVERT_MASK8(valid_i);
-    const REAL8 dx = GATHER8(x, j) - (REAL8)(xi), dy = GATHER8(y, j) - (REAL8)(yi);
-    const REAL8 r2 = dx * dx + dy * dy;
-    const MASK8 ok = valid & (~filter | (r2 <= (REAL8)(rc2))) & (r2 > zero) &
+    int8 j;
+    REAL8 dx, dy, r2;
+    const MASK8 ok = row_chunk_offsets(i, stride, count, base, k0, xi, yi, filter, rc2, x, y, index, &j, &dx, &dy, &r2) &
+                     (r2 > zero) &
                      (any_direction | ((REAL8)(fx) * dx + (REAL8)(fy) * dy > zero));
     best2 = select(best2, r2, ok & (r2 < best2));
     found |= ok;
