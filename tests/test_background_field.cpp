@@ -1,5 +1,6 @@
 // Background spacing field: accuracy against the exact fields (eq. 3.6 and eq. 7.2) on 10,000 seeded
 // points, domain tags against the exact inside test, and the OpenCL lookup against the host lookup.
+#include <string>
 #include <catch2/catch.hpp>
 
 #include <algorithm>
@@ -291,6 +292,16 @@ TEST_CASE("background field: options are checked", "[spacing]") {
 
 namespace {
 
+// A kernel of spacing_field.cl built for the precision and work-group size.
+cl::Kernel spacing_field_kernel(ocl::Context& ctx, const char* name, bool dbl, std::size_t wg) {
+  auto program = ctx.build({"spacing_field.cl"}, ocl::precision_defines(dbl ? ocl::Precision::Double
+                                                                             : ocl::Precision::Float, wg));
+  cl_int err = CL_SUCCESS;
+  cl::Kernel kernel(program, name, &err);
+  ocl::check(err, std::string("clCreateKernel(") + name + ")");
+  return kernel;
+}
+
 // Device lookup against the host lookup: double must agree to 1e-12 relative with equal tags; in
 // float the point and the grid origin are rounded, so a float answer must be a host answer at some
 // point within float rounding of p (checked when it differs from the host at p by more than 1e-5).
@@ -298,11 +309,7 @@ template <typename Real>
 void check_device(ocl::Context& ctx, const BackgroundSpacing& bg, const std::vector<Vec2>& all) {
   const bool dbl = std::is_same_v<Real, double>;
   const std::size_t wg = 16;
-  auto program = ctx.build({"spacing_field.cl"}, ocl::precision_defines(dbl ? ocl::Precision::Double
-                                                                             : ocl::Precision::Float, wg));
-  cl_int err = CL_SUCCESS;
-  cl::Kernel kernel(program, "spacing_lookup", &err);
-  ocl::check(err, "clCreateKernel(spacing_lookup)");
+  cl::Kernel kernel = spacing_field_kernel(ctx, "spacing_lookup", dbl, wg);
   const auto& d = bg.data();
   auto& queue = ctx.queue();
   ocl::Buffer<std::int32_t> roots(ctx, "root_node", d.root_node.size()), child(ctx, "node_child", d.node_child.size()),
@@ -409,11 +416,7 @@ void check_cached_locate(ocl::Context& ctx, const BackgroundSpacing& bg, const s
                          const std::vector<std::int32_t>& guesses) {
   const bool dbl = std::is_same_v<Real, double>;
   const std::size_t wg = 16, n = points.size();
-  auto program = ctx.build({"spacing_field.cl"}, ocl::precision_defines(dbl ? ocl::Precision::Double
-                                                                             : ocl::Precision::Float, wg));
-  cl_int err = CL_SUCCESS;
-  cl::Kernel kernel(program, "locate_cached_lookup", &err);
-  ocl::check(err, "clCreateKernel(locate_cached_lookup)");
+  cl::Kernel kernel = spacing_field_kernel(ctx, "locate_cached_lookup", dbl, wg);
   const auto& d = bg.data();
   auto& queue = ctx.queue();
   ocl::Buffer<std::int32_t> roots(ctx, "root_node", d.root_node.size()), child(ctx, "node_child", d.node_child.size()),
