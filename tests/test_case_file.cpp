@@ -233,6 +233,28 @@ TEST_CASE("a geometry file alone makes a default case", "[app][case]") {
   CHECK(c.init.seed == 3);
 }
 
+TEST_CASE("several geometry files alone make one default case, named after the first", "[app][case]") {
+  const CaseConfig c = case_for_geometry_files({"/data/airfoil.crv", "/data/farfield.crv"});
+  CHECK(c.name == "airfoil");
+  CHECK(c.geometry.files == std::vector<fs::path>{"/data/airfoil.crv", "/data/farfield.crv"});
+  CHECK(c.preset == Preset::Best);
+}
+
+TEST_CASE("the preset key selects the defaults; keys the file sets win over it", "[app][case]") {
+  CHECK(parse_case_text(kMinimal, kCase).preset == Preset::Best);
+  CHECK(parse_case_text(std::string("preset = \"best\"\n") + kMinimal, kCase).preset == Preset::Best);
+  const CaseConfig thesis = parse_case_text(std::string("preset = \"thesis\"\n") + kMinimal, kCase);
+  CHECK(thesis.preset == Preset::Thesis);
+  CaseConfig by_hand;
+  apply_preset(by_hand, Preset::Thesis);
+  CHECK(by_hand.preset == Preset::Thesis);
+  // An override selects it too, and a bad value names the key and the choices.
+  CHECK(parse_case_text(kMinimal, kCase, {parse_set_option("preset=thesis")}).preset == Preset::Thesis);
+  CHECK_THAT(error_of(std::string("preset = \"fast\"\n") + kMinimal),
+             Catch::Contains("preset must be one of best, thesis, got 'fast'"));
+  CHECK_THAT(error_of(std::string("preset = 3\n") + kMinimal), Catch::Contains("preset must be a string"));
+}
+
 TEST_CASE("edit distance", "[app][case]") {
   CHECK(edit_distance("", "abc") == 3);
   CHECK(edit_distance("kitten", "sitting") == 3);

@@ -106,6 +106,30 @@ TEST_CASE("case-file errors exit 2 with FILE:LINE and the suggestion, before any
   fs::remove_all(dir);
 }
 
+TEST_CASE("several geometry files make one geometry; a case file takes no second input", "[cli]") {
+  const fs::path dir = fresh_dir("multi");
+  write_rectangle(dir / "rect.crv");
+  // A hole: a 0.5 x 0.5 square inside the rectangle, in its own file.
+  std::ofstream(dir / "hole.crv") << "5\n0.75 0.25\n1.25 0.25\n1.25 0.75\n0.75 0.75\n0.75 0.25\n";
+  std::ofstream(dir / "case.toml") << "[geometry]\nfiles = [\"rect.crv\"]\n";
+  const fs::path out = dir / "out";
+  Result r = run("mesh '" + (dir / "rect.crv").string() + "' '" + (dir / "hole.crv").string() + "' --out '" +
+                 out.string() + "' --iterations 0 --formats msh");
+  CHECK(r.status == 0);
+  CHECK(contains(r.output, "geometry: 2 curves"));
+  CHECK(contains(r.output, "2 loops"));
+  r = run("mesh '" + (dir / "case.toml").string() + "' '" + (dir / "hole.crv").string() + "' --out '" +
+          (dir / "out2").string() + "'");
+  CHECK(r.status == 2);
+  CHECK(contains(r.output, "a case file is meshed alone"));
+  r = run("mesh '" + (dir / "rect.crv").string() + "' '" + (dir / "case.toml").string() + "' --out '" +
+          (dir / "out2").string() + "'");
+  CHECK(r.status == 2);
+  CHECK(contains(r.output, "expected a .crv, .dat or .poly geometry file"));
+  CHECK_FALSE(fs::exists(dir / "out2"));
+  fs::remove_all(dir);
+}
+
 TEST_CASE("the node limit (--max-nodes) refuses a case by its estimate", "[cli]") {
   const fs::path dir = fresh_dir("limit");
   write_rectangle(dir / "rect.crv");

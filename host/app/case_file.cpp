@@ -206,7 +206,7 @@ void check_keys(const Reader& r, const toml::table& t, const std::string& prefix
 
 // Keys whose value is a string: an override such as "spacing.expression=2" means the text.
 bool is_string_key(const std::string& key) {
-  return key == "name" || key == "spacing.field" || key == "spacing.expression" || key == "init.method" ||
+  return key == "name" || key == "preset" || key == "spacing.field" || key == "spacing.expression" || key == "init.method" ||
          key == "simulation.device" || key == "simulation.precision" || key == "simulation.r0_rule" ||
          key == "output.color_by";
 }
@@ -464,6 +464,10 @@ void read_output_section(const Reader& r, const toml::table& root, CaseConfig& c
 CaseConfig validate(toml::table& root, Reader& r, const std::vector<CaseOverride>& overrides, CaseConfig c) {
   for (const CaseOverride& o : overrides) apply_override(root, o, r);
   check_keys(r, root, "");
+  // The preset first: it sets the defaults that every other key then overrides.
+  if (const toml::node* n = root.get("preset")) {
+    apply_preset(c, choose<Preset>(r, "preset", *n, {{"best", Preset::Best}, {"thesis", Preset::Thesis}}));
+  }
   if (const toml::node* n = root.get("name")) {
     c.name = r.string("name", *n);
     if (c.name.empty()) r.fail("name", n, "name must not be empty");
@@ -484,7 +488,7 @@ bool CaseConfig::Output::wants(const std::string& format) const {
 
 const std::vector<std::string>& case_file_keys() {
   static const std::vector<std::string> keys = {
-      "name",
+      "name", "preset",
       "geometry.files", "geometry.curve_names", "geometry.join_tolerance", "geometry.corner_angle",
       "spacing.field", "spacing.expression",
       "init.method", "init.seed", "init.total",
@@ -547,12 +551,20 @@ CaseConfig load_case_file(const fs::path& case_file, const std::vector<CaseOverr
 }
 
 CaseConfig case_for_geometry_file(const fs::path& geometry_file, const std::vector<CaseOverride>& overrides) {
+  return case_for_geometry_files({geometry_file}, overrides);
+}
+
+CaseConfig case_for_geometry_files(const std::vector<fs::path>& geometry_files,
+                                   const std::vector<CaseOverride>& overrides) {
+  if (geometry_files.empty()) throw InputError("no geometry file given");
+  toml::array files;
+  for (const fs::path& f : geometry_files) files.push_back(fs::absolute(f).string());
   toml::table root;
-  root.insert_or_assign("geometry", toml::table{{"files", toml::array{fs::absolute(geometry_file).string()}}});
-  Reader r(geometry_file.string(), fs::current_path());
+  root.insert_or_assign("geometry", toml::table{{"files", std::move(files)}});
+  Reader r(geometry_files.front().string(), fs::current_path());
   CaseConfig c;
-  c.source = geometry_file;
-  c.name = geometry_file.stem().string();
+  c.source = geometry_files.front();
+  c.name = geometry_files.front().stem().string();
   return validate(root, r, overrides, std::move(c));
 }
 

@@ -15,6 +15,13 @@ namespace pdmesh {
 enum class SpacingKind { Boundary, Expression };
 enum class Precision { Double, Float };
 
+// Which defaults the keys a case file leaves out take (top-level key `preset`).
+//   Best:   the settings that give the best meshes; what a geometry given alone runs with.
+//   Thesis: Fackler's settings, so that the thesis case files reproduce chapter 6 (report/).
+// The member initializers of CaseConfig below are the Best values; apply_preset() (app/presets.cpp)
+// changes the keys whose thesis value differs. Keys the file sets always win over the preset.
+enum class Preset { Best, Thesis };
+
 // A zoom window: an extra picture NAME_VIEW.png of the region [x0, x1] x [y0, y1].
 struct ViewWindow {
   std::string name;
@@ -33,6 +40,7 @@ struct CaseOverride {
 struct CaseConfig {
   std::filesystem::path source;  // the case file, or the geometry file when meshing one directly
   std::string name;              // for titles; default: the case directory name (or geometry file stem)
+  Preset preset = Preset::Best;  // top-level key `preset`: "best" (default) or "thesis"
 
   struct Geometry {
     std::vector<std::filesystem::path> files;  // resolved relative to the case file
@@ -104,6 +112,15 @@ CaseConfig parse_case_text(std::string_view text, const std::filesystem::path& s
 // A case for one geometry file (.crv, .dat, .poly) with every other key at its default.
 CaseConfig case_for_geometry_file(const std::filesystem::path& geometry_file,
                                   const std::vector<CaseOverride>& overrides = {});
+// The same for several geometry files that together make one geometry (curves taken in file order);
+// the case is named after the first file's stem.
+CaseConfig case_for_geometry_files(const std::vector<std::filesystem::path>& geometry_files,
+                                   const std::vector<CaseOverride>& overrides = {});
+
+// Sets every key whose default differs between presets to `preset`'s value (and config.preset).
+void apply_preset(CaseConfig& config, Preset preset);
+// "best" or "thesis".
+const char* to_string(Preset preset);
 
 // Splits "section.key=VALUE" into an override; throws InputError when there is no '=' or key.
 CaseOverride parse_set_option(const std::string& text);

@@ -29,7 +29,7 @@ struct QualityArguments {
 };
 
 struct MeshArguments {
-  std::string input;
+  std::vector<std::string> inputs;
   std::string out;
   std::vector<std::string> sets;
   std::optional<std::string> iterations, dt, cutoff, method, seed, total, device, precision, formats, r0_rule,
@@ -112,16 +112,18 @@ std::string lower_extension(const fs::path& p) {
   return ext;
 }
 
+bool is_geometry_extension(const std::string& ext) { return ext == ".crv" || ext == ".dat" || ext == ".poly"; }
+
 CaseConfig config_from(const MeshArguments& a) {
-  fs::path input(a.input);
   std::error_code ec;
-  if (!fs::exists(input, ec)) {
-    throw InputError(fmt::format("cannot read '{}': {}", a.input, std::strerror(ENOENT)));
+  for (const std::string& name : a.inputs) {
+    if (!fs::exists(fs::path(name), ec)) throw InputError(fmt::format("cannot read '{}': {}", name, std::strerror(ENOENT)));
   }
+  fs::path input(a.inputs.front());
   // A case directory stands for the case.toml inside it.
   if (fs::is_directory(input, ec)) {
     if (!fs::is_regular_file(input / "case.toml", ec)) {
-      throw InputError(fmt::format("'{}' is a directory without a case.toml", a.input));
+      throw InputError(fmt::format("'{}' is a directory without a case.toml", a.inputs.front()));
     }
     input /= "case.toml";
   }
@@ -129,12 +131,26 @@ CaseConfig config_from(const MeshArguments& a) {
   const std::string ext = lower_extension(input);
   CaseConfig config;
   if (ext == ".toml") {
+    if (a.inputs.size() > 1) {
+      throw InputError(fmt::format("{}: a case file is meshed alone; '{}' would be a second input (name geometry "
+                                   "files in the case file's geometry.files)", a.inputs.front(), a.inputs[1]));
+    }
     config = load_case_file(input, overrides);
-  } else if (ext == ".crv" || ext == ".dat" || ext == ".poly") {
-    config = case_for_geometry_file(input, overrides);
+  } else if (is_geometry_extension(ext)) {
+    // Several geometry files make one geometry, as geometry.files does in a case file.
+    std::vector<fs::path> files;
+    for (const std::string& name : a.inputs) {
+      const std::string e = lower_extension(fs::path(name));
+      if (!is_geometry_extension(e) || fs::is_directory(fs::path(name), ec)) {
+        throw InputError(fmt::format("{}: expected a .crv, .dat or .poly geometry file after '{}', got '{}'", name,
+                                     a.inputs.front(), e.empty() ? name : e));
+      }
+      files.emplace_back(name);
+    }
+    config = case_for_geometry_files(files, overrides);
   } else {
     throw InputError(fmt::format("{}: unknown input type '{}' (expected a case .toml, a case directory or a .crv, "
-                                 ".dat or .poly geometry file)", a.input, ext));
+                                 ".dat or .poly geometry file)", a.inputs.front(), ext));
   }
   config.out_dir = a.out;
   config.quiet = a.quiet;
@@ -147,9 +163,11 @@ CaseConfig config_from(const MeshArguments& a) {
 }
 
 void add_mesh_options(CLI::App& mesh, MeshArguments& a) {
-  mesh.add_option("INPUT", a.input, "Case file (.toml), case directory (holding case.toml), or geometry file (.crv, .dat, .poly; default settings)")
+  mesh.add_option("INPUT", a.inputs,
+                  "Case file (.toml), case directory (holding case.toml), or one or more geometry files (.crv, .dat, "
+                  ".poly) that together make one geometry, meshed with the best settings (preset = \"best\")")
       ->required()
-      ->type_name("FILE");
+      ->type_name("FILE...");
   mesh.add_option("--out,-o", a.out, "Output directory (created if missing)")->required()->type_name("DIR");
   mesh.add_option("--set", a.sets,
                   "Override a case-file key: section.key=VALUE (TOML value; a bare word is a string). Repeatable")
