@@ -287,12 +287,16 @@ bool is_plain_name(const std::string& s) {
 
 void read_geometry_section(const Reader& r, const toml::table& root, CaseConfig& c) {
   const toml::node* files = find(root, "geometry", "files");
-  if (files == nullptr) {
+  if (!c.geometry.curves.empty()) {
+    // Curves given in memory (case_for_curves) are the geometry; files would be a second one.
+    if (files != nullptr) r.fail("geometry.files", files, "geometry.files cannot be set: the geometry is given as curves");
+  } else if (files == nullptr) {
     throw InputError(fmt::format("{}: geometry.files is required (the .crv/.dat/.poly files to mesh)", r.file()));
+  } else {
+    const std::vector<std::string> names = r.strings("geometry.files", *files);
+    if (names.empty()) r.fail("geometry.files", files, "geometry.files must name at least one file");
+    for (const std::string& f : names) c.geometry.files.push_back(r.resolve("geometry.files", f));
   }
-  const std::vector<std::string> names = r.strings("geometry.files", *files);
-  if (names.empty()) r.fail("geometry.files", files, "geometry.files must name at least one file");
-  for (const std::string& f : names) c.geometry.files.push_back(r.resolve("geometry.files", f));
   if (const toml::node* n = find(root, "geometry", "curve_names")) {
     c.geometry.curve_names = r.strings("geometry.curve_names", *n);
     for (const std::string& name : c.geometry.curve_names) {
@@ -565,6 +569,18 @@ CaseConfig case_for_geometry_files(const std::vector<fs::path>& geometry_files,
   CaseConfig c;
   c.source = geometry_files.front();
   c.name = geometry_files.front().stem().string();
+  return validate(root, r, overrides, std::move(c));
+}
+
+CaseConfig case_for_curves(std::vector<RawCurve> curves, const std::string& source,
+                           const std::vector<CaseOverride>& overrides) {
+  if (curves.empty()) throw InputError(fmt::format("{}: the geometry has no curves", source));
+  toml::table root;
+  Reader r(source, fs::current_path());
+  CaseConfig c;
+  c.source = source;
+  c.name = source;
+  c.geometry.curves = std::move(curves);
   return validate(root, r, overrides, std::move(c));
 }
 

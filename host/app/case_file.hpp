@@ -3,14 +3,18 @@
 #pragma once
 #include <cstdint>
 #include <filesystem>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "core/vec2.hpp"
+#include "geometry/geometry.hpp"
 #include "init/initial_distribution.hpp"
 
 namespace pdmesh {
+
+class SpacingField;
 
 enum class SpacingKind { Boundary, Expression };
 enum class Precision { Double, Float };
@@ -47,11 +51,17 @@ struct CaseConfig {
     std::vector<std::string> curve_names;      // optional, in file/curve order
     double join_tolerance = 1e-9;
     double corner_angle = 30.0;  // degrees
+    // Curves given in memory (the Python API) instead of files; see case_for_curves().
+    std::vector<RawCurve> curves;
   } geometry;
 
   struct Spacing {
     SpacingKind field = SpacingKind::Boundary;
     std::string expression;  // muParser expression in x and y when field == Expression
+    // A field given by the caller (the Python API: a size callable), not a case key. When set it
+    // replaces `field`; MeshInputs samples it once into a background field, so that nothing later
+    // evaluates it per point.
+    std::shared_ptr<const SpacingField> given;
   } spacing;
 
   struct Init {
@@ -95,6 +105,8 @@ struct CaseConfig {
   std::uint64_t max_nodes = 20'000'000;
   std::optional<std::filesystem::path> resume;  // --resume: continue from this checkpoint (file or directory)
   std::int64_t stop_after = 0;  // --stop-after (testing aid): act as if interrupted after this iteration; 0 = off
+  // false (the Python API): the stages compute only; nothing is written into out_dir.
+  bool write_outputs = true;
 };
 
 // Every valid dotted key, for docs and suggestions.
@@ -116,6 +128,12 @@ CaseConfig case_for_geometry_file(const std::filesystem::path& geometry_file,
 // the case is named after the first file's stem.
 CaseConfig case_for_geometry_files(const std::vector<std::filesystem::path>& geometry_files,
                                    const std::vector<CaseOverride>& overrides = {});
+
+// A case for curves given in memory (the Python API) with every key at its default but those the
+// overrides set; `source` names the geometry in messages and the case (its name) unless `name` is set.
+// geometry.files may not be set (InputError); geometry.curve_names names the curves as for files.
+CaseConfig case_for_curves(std::vector<RawCurve> curves, const std::string& source,
+                           const std::vector<CaseOverride>& overrides = {});
 
 // Sets every key whose default differs between presets to `preset`'s value (and config.preset).
 void apply_preset(CaseConfig& config, Preset preset);

@@ -13,6 +13,7 @@
 #include <toml++/toml.h>
 
 #include "app/case_file.hpp"
+#include "app/exit_codes.hpp"
 #include "app/bench_command.hpp"
 #include "app/devices_command.hpp"
 #include "app/mesh_command.hpp"
@@ -269,6 +270,28 @@ int Cli::run() {
     if (command->parsed()) return runner();
   }
   throw Error("no command was selected");
+}
+
+int run_command_line(int argc, const char* const* argv) {
+  try {
+    Cli cli;
+    try {
+      cli.parse(argc, argv);
+    } catch (const CLI::ParseError& e) {
+      // --help and --version arrive here too, with exit code 0.
+      return cli.app().exit(e) == 0 ? kExitOk : kExitInput;
+    }
+    return cli.run();
+  } catch (const InputError& e) {
+    fmt::print(stderr, "pdmesh: error: {}\n", e.what());
+    return kExitInput;
+  } catch (const Error& e) {
+    fmt::print(stderr, "pdmesh: error: {}\n", e.what());
+    return kExitFailure;
+  } catch (const std::exception& e) {
+    fmt::print(stderr, "pdmesh: internal error: {}\n", e.what());
+    return kExitFailure;
+  }
 }
 
 }  // namespace pdmesh

@@ -39,4 +39,9 @@ class Cli {
   bool devices_check_ = false;
 };
 
+// The whole command line: parses, runs, and turns typed errors into exit statuses and
+// "pdmesh: error: ..." on stderr (bad input 2, other pdmesh errors 1, anything unexpected 1 as an
+// internal error). host/main.cpp and the Python console script (python/src/bind_cli.cpp) call it.
+int run_command_line(int argc, const char* const* argv);
+
 }  // namespace pdmesh

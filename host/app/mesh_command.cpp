@@ -29,6 +29,7 @@
 #include "render/mesh_picture.hpp"
 #include "render/node_picture.hpp"
 #include "sim/history.hpp"
+#include "spacing/background_field.hpp"
 #include "spacing/resolution_check.hpp"
 
 namespace pdmesh {
@@ -56,7 +57,8 @@ MeshInputs::MeshInputs(const CaseConfig& config) {
   GeometryOptions options;
   options.join_tolerance = config.geometry.join_tolerance;
   options.corner_angle_deg = config.geometry.corner_angle;
-  geometry = read_geometry(files, config.geometry.curve_names, options);
+  geometry = config.geometry.curves.empty() ? read_geometry(files, config.geometry.curve_names, options)
+                                            : geometry_from_curves(config.geometry.curves, config.geometry.curve_names, options);
   // Curve names are fields in node and mesh files; one with white space would break them later.
   for (std::size_t c = 0; c < geometry.curves.size(); ++c) {
     const std::string& name = geometry.curves[c].name;
@@ -67,7 +69,10 @@ MeshInputs::MeshInputs(const CaseConfig& config) {
     }
   }
   tree = std::make_unique<GeometryTree>(geometry);
-  if (config.spacing.field == SpacingKind::Expression) {
+  if (config.spacing.given) {
+    // A caller's field (a Python size callable) is sampled once, in batches, into a background field.
+    spacing = std::make_unique<BackgroundSpacing>(*config.spacing.given, *tree);
+  } else if (config.spacing.field == SpacingKind::Expression) {
     spacing = std::make_unique<ExpressionSpacing>(config.spacing.expression);
   } else {
     spacing = std::make_unique<BoundarySpacing>(*tree);
@@ -172,7 +177,8 @@ void write_initial_outputs(const CaseConfig& config, const MeshInputs& inputs, c
                      config.output.tree_overlay ? &initial.tree_quads : nullptr);
 }
 
-SimResult simulate(const CaseConfig& config, const MeshInputs& inputs, NodeSet& nodes, const SimState* resume) {
+SimResult simulate(const CaseConfig& config, const MeshInputs& inputs, NodeSet& nodes, const SimState* resume,
+                   const SimulateHooks* hooks) {
   const std::string& device = config.simulation.device;
   // auto: the first GPU, else the first CPU OpenCL device, else the host reference. An explicit
   // opencl spec that cannot be met throws InputError listing the devices (exit 2).
@@ -200,7 +206,7 @@ SimResult simulate(const CaseConfig& config, const MeshInputs& inputs, NodeSet& 
   options.quiet = config.quiet;
   options.device = context.get();
   options.device_float = use_float;
-  options.stop = &InterruptGuard::flag();
+  options.stop = hooks && hooks->stop ? hooks->stop : &InterruptGuard::flag();
   options.resume = resume;
   const std::string where = chosen ? fmt::format("opencl:{}:{} ({}, {}, {}, device-resident)", chosen->platform,
                                                  chosen->device, chosen->name, chosen->type,
@@ -212,13 +218,14 @@ SimResult simulate(const CaseConfig& config, const MeshInputs& inputs, NodeSet& 
   if (resume) progress(config, "simulation: resuming after iteration {}", resume->iterations_done);
   const fs::path checkpoint_file = checkpoint_path(config.out_dir);
   SimCallbacks callbacks;
-  if (config.stop_after > 0) {
-    callbacks.on_iteration = [&config](const HistoryRow& row) {
-      if (row.iteration == config.stop_after) InterruptGuard::flag().store(true);
+  if (config.stop_after > 0 || (hooks && hooks->on_iteration)) {
+    callbacks.on_iteration = [&config, hooks](const HistoryRow& row) {
+      if (config.stop_after > 0 && row.iteration == config.stop_after) InterruptGuard::flag().store(true);
+      if (hooks && hooks->on_iteration) hooks->on_iteration(row);
     };
   }
   std::optional<int> saved_after;  // the iteration of the last good state, once saved
-  callbacks.on_failure = [&](const SimState& state) {
+  if (config.write_outputs) callbacks.on_failure = [&](const SimState& state) {
     write_checkpoint(checkpoint_file, Checkpoint{case_identity(config), nodes, state});
     saved_after = state.iterations_done;
   };
@@ -237,6 +244,7 @@ SimResult simulate(const CaseConfig& config, const MeshInputs& inputs, NodeSet& 
     if (!saved_after) throw;
     throw SimulationError(e.what() + saved_note());
   }
+  if (!config.write_outputs) return result;  // the Python API keeps the state in memory
   if (result.stopped || InterruptGuard::flag().load()) {
     write_checkpoint(checkpoint_file, Checkpoint{case_identity(config), nodes, result.state});
     progress(config, "simulation: stopped after iteration {} of {}; wrote {} (continue with --resume {})",
@@ -281,6 +289,7 @@ Mesh mesh_and_measure(const CaseConfig& config, const MeshInputs& inputs, const 
              "the geometry's area is {:.10g}, relative difference {:.2g})",
              node_area, inputs.geometry.area, std::fabs(node_area - inputs.geometry.area) / inputs.geometry.area);
   }
+  if (!config.write_outputs) return mesh;  // the Python API measures on demand (Mesh.quality())
   const SpacingField& spacing = *inputs.spacing;
   const QualitySummary summary = summarize_quality(mesh, [&spacing](Vec2 p) { return spacing.at(p); });
   if (!config.quiet) fmt::print("{}", format_quality_table(summary, config.name));

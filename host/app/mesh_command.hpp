@@ -1,6 +1,8 @@
 // `pdmesh mesh`: the pipeline for one validated case, in stages that each finish before the next
 // begins, so that nothing is written until every input has been read and checked.
 #pragma once
+#include <atomic>
+#include <functional>
 #include <memory>
 
 #include "app/case_file.hpp"
@@ -40,17 +42,26 @@ void prepare_output_directory(const CaseConfig& config);
 // Stage 5: DIR/initial.nodes, initial.png, initial.svg and initial_<view>.png per view, each atomic.
 void write_initial_outputs(const CaseConfig& config, const MeshInputs& inputs, const InitialDistribution& initial);
 
+// For callers that drive the stages themselves (the Python API, python/src/): a callback after every
+// iteration, on top of the command's own, and the stop flag to poll instead of InterruptGuard::flag().
+struct SimulateHooks {
+  std::function<void(const HistoryRow&)> on_iteration;
+  const std::atomic<bool>* stop = nullptr;
+};
+
 // Stage 6: the particle dynamics simulation on the chosen backend, updating `nodes` in place;
 // writes DIR/history.csv, history.png, final.nodes, final.png (.svg) and final_<view>.png.
 // With `resume`, continues that state (nodes must be its node set). Stops early when
 // InterruptGuard::flag() is set (a signal, or config.stop_after); then, or when the simulation fails,
-// writes DIR/checkpoint.pdmesh; a finished run removes a stale one.
+// writes DIR/checkpoint.pdmesh; a finished run removes a stale one. With config.write_outputs false
+// nothing is written (no checkpoint either: the caller keeps the returned state).
 SimResult simulate(const CaseConfig& config, const MeshInputs& inputs, NodeSet& nodes,
-                   const SimState* resume = nullptr);
+                   const SimState* resume = nullptr, const SimulateHooks* hooks = nullptr);
 
 // Stage 7: triangulates `nodes`, checks the mesh when config.check (SimulationError listing the
 // problems if it fails), measures quality, prints the table, and writes DIR/quality.json, the mesh
-// files of config.output.formats, mesh.png (.svg) and mesh_<view>.png.
+// files of config.output.formats, mesh.png (.svg) and mesh_<view>.png. With config.write_outputs
+// false it stops after the check: no table, no quality summary, no files.
 Mesh mesh_and_measure(const CaseConfig& config, const MeshInputs& inputs, const NodeSet& nodes);
 
 // All stages in order (or, with config.resume, from the checkpoint on); progress on stderr unless

@@ -15,6 +15,31 @@
 
 namespace pdmesh {
 
+namespace {
+
+// Applies curve_names (empty: keep the default names) with the checks both entry points share;
+// `per_file` describes where the curves came from, for the count message.
+void name_curves(std::vector<RawCurve>& curves, const std::vector<std::string>& curve_names,
+                 const std::string& per_file) {
+  if (!curve_names.empty()) {
+    if (curve_names.size() != curves.size()) {
+      throw InputError(fmt::format("{} curve names given, but the geometry has {} curve{} ({}); give one name per "
+                                   "curve in file order, or none",
+                                   curve_names.size(), curves.size(), curves.size() == 1 ? "" : "s", per_file));
+    }
+    std::set<std::string> seen;
+    for (std::size_t k = 0; k < curves.size(); ++k) {
+      if (curve_names[k].empty()) throw InputError(fmt::format("curve name {} is empty", k));
+      if (!seen.insert(curve_names[k]).second) {
+        throw InputError(fmt::format("curve name '{}' is given twice (curve {})", curve_names[k], k));
+      }
+      curves[k].name = curve_names[k];
+    }
+  }
+}
+
+}  // namespace
+
 Geometry read_geometry(const std::vector<std::string>& paths, const std::vector<std::string>& curve_names,
                        const GeometryOptions& options) {
   if (paths.empty()) throw InputError("no geometry files given");
@@ -38,22 +63,15 @@ Geometry read_geometry(const std::vector<std::string>& paths, const std::vector<
     const std::size_t n = curves.size() - before;
     per_file += fmt::format("{}{}: {} curve{}", per_file.empty() ? "" : ", ", path, n, n == 1 ? "" : "s");
   }
-  if (!curve_names.empty()) {
-    if (curve_names.size() != curves.size()) {
-      throw InputError(fmt::format("{} curve names given, but the geometry has {} curve{} ({}); give one name per "
-                                   "curve in file order, or none",
-                                   curve_names.size(), curves.size(), curves.size() == 1 ? "" : "s", per_file));
-    }
-    std::set<std::string> seen;
-    for (std::size_t k = 0; k < curves.size(); ++k) {
-      if (curve_names[k].empty()) throw InputError(fmt::format("curve name {} is empty", k));
-      if (!seen.insert(curve_names[k]).second) {
-        throw InputError(fmt::format("curve name '{}' is given twice (curve {})", curve_names[k], k));
-      }
-      curves[k].name = curve_names[k];
-    }
-  }
+  name_curves(curves, curve_names, per_file);
   return build_geometry(std::move(curves), holes, options);
+}
+
+Geometry geometry_from_curves(std::vector<RawCurve> curves, const std::vector<std::string>& curve_names,
+                              const GeometryOptions& options) {
+  if (curves.empty()) throw InputError("the geometry has no curves");
+  name_curves(curves, curve_names, "given in memory");
+  return build_geometry(std::move(curves), options);
 }
 
 }  // namespace pdmesh

@@ -1,5 +1,5 @@
-// Reading the geometry of a case: one or more .crv/.dat/.poly files, optional curve names,
-// validated and processed by build_geometry().
+// Reading the geometry of a case: one or more .crv/.dat/.poly files (or curves given in memory),
+// optional curve names, validated and processed by build_geometry().
 #pragma once
 #include <string>
 #include <vector>
@@ -14,5 +14,10 @@ namespace pdmesh {
 // reader and build_geometry errors pass through.
 Geometry read_geometry(const std::vector<std::string>& paths, const std::vector<std::string>& curve_names,
                        const GeometryOptions& options = {});
+
+// The same for curves given in memory (the Python API): names them from curve_names like
+// read_geometry() (the same errors) and builds the geometry.
+Geometry geometry_from_curves(std::vector<RawCurve> curves, const std::vector<std::string>& curve_names,
+                              const GeometryOptions& options = {});
 
 }  // namespace pdmesh

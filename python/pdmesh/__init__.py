@@ -1,0 +1,31 @@
+"""pdmesh: physics-based point placement and triangle meshing (Fackler's method), from Python.
+
+    import pdmesh
+    geo = pdmesh.Geometry.from_file("airfoil.crv", "farfield.crv")
+    mesh = pdmesh.generate(geo, size=lambda xy: 0.01 + 0.05 * abs(xy[:, 1]), seed=1, progress=True)
+    mesh.points, mesh.triangles, mesh.boundary_edges, mesh.quality()
+    mesh.write("out.msh")
+
+See docs/python.md. The C++ core is the same as the ``pdmesh`` command's: the same validation,
+messages, results (bit-identical on the host device for the same case and seed) and writers.
+"""
+
+from . import _core, size
+from ._progress import Progress
+from .errors import Cancelled, DeviceError, Error, GeometryError, InputError, LimitError, SimulationError
+from .geometry import Geometry
+from .mesh import Mesh
+from .mesher import Case, Mesher, State, generate
+
+__version__ = _core.version
+
+
+def case_keys() -> list[str]:
+    """Every valid case-file key (what settings= and keywords accept)."""
+    return list(_core.case_keys())
+
+
+__all__ = [
+    "Cancelled", "Case", "DeviceError", "Error", "Geometry", "GeometryError", "InputError", "LimitError", "Mesh",
+    "Mesher", "Progress", "SimulationError", "State", "case_keys", "generate", "size", "__version__",
+]

@@ -1,0 +1,62 @@
+"""Progress of a run: the state handed to a progress callable, and the bar that ``progress=True`` draws."""
+
+from __future__ import annotations
+
+import sys
+from dataclasses import dataclass
+from typing import Any, Callable
+
+
+@dataclass(frozen=True)
+class Progress:
+    """Where a run is, as given to a ``progress`` callable (about every 0.1 s, and after the last
+    iteration of each step). Return False from the callable to cancel the run."""
+
+    iteration: int        #: iterations done, counted from the start of the run
+    iterations: int       #: the total this step runs to
+    average_force: float  #: average |F| over the moving nodes (history.csv's column)
+    max_force: float      #: largest |F|
+    dt: float             #: the global maximum time step dt_GM of this iteration
+    seconds: float        #: time since this step began
+
+    @property
+    def fraction(self) -> float:
+        return self.iteration / self.iterations if self.iterations else 1.0
+
+
+class Bar:
+    """A one-line progress bar on stderr, redrawn in place on a terminal (and in Jupyter)."""
+
+    def __init__(self, stream=None, width: int = 30):
+        self.stream = stream or sys.stderr
+        self.width = width
+        self.drawn = False
+
+    def __call__(self, p: Progress) -> None:
+        filled = int(round(self.width * p.fraction))
+        line = (f"\rpdmesh: [{'#' * filled}{'.' * (self.width - filled)}] {p.iteration}/{p.iterations} "
+                f"avg |F| {p.average_force:.3g}  dt {p.dt:.3g}  {p.seconds:.1f} s")
+        self.stream.write(line)
+        self.stream.flush()
+        self.drawn = True
+
+    def close(self) -> None:
+        if self.drawn:
+            self.stream.write("\n")
+            self.stream.flush()
+            self.drawn = False
+
+
+def callback(progress: Any) -> tuple[Callable | None, Bar | None]:
+    """(the callable the core calls with its six numbers, the bar to close afterwards)."""
+    if progress is None or progress is False:
+        return None, None
+    bar = Bar() if progress is True else None
+    user = bar if bar is not None else progress
+    if not callable(user):
+        raise TypeError(f"progress: expected True, False or a callable, got {type(progress).__name__}")
+
+    def report(iteration, iterations, average_force, max_force, dt, seconds):
+        return user(Progress(int(iteration), int(iterations), average_force, max_force, dt, seconds))
+
+    return report, bar

@@ -1,0 +1,169 @@
+"""pdmesh.Geometry: the boundary curves to mesh, from files, numpy rings, curves, or anything with
+a ``__geo_interface__`` (shapely polygons)."""
+
+from __future__ import annotations
+
+import os
+from typing import Any, Iterable, Mapping, Sequence
+
+import numpy as np
+
+from . import _core
+from . import _settings
+from .errors import InputError
+
+
+def _as_xy(a: Any, what: str) -> np.ndarray:
+    try:
+        xy = np.ascontiguousarray(np.asarray(a, dtype=np.float64))
+    except (TypeError, ValueError) as e:
+        raise InputError(f"{what}: not an array of numbers ({e})") from None
+    if xy.ndim != 2 or xy.shape[1] not in (2, 3):
+        raise InputError(f"{what}: expected an (N, 2) array of x, y, got shape {xy.shape}")
+    return np.ascontiguousarray(xy[:, :2])
+
+
+class Geometry:
+    """The boundary of the domain: curves that join at their ends into closed loops; the domain is
+    their even-odd interior (holes need no marking).
+
+    ``Geometry(rings, names=None)`` takes closed rings, (N, 2) arrays (a ring whose last point is
+    not its first is closed for you), one curve each. ``Geometry.from_file(*paths)`` reads
+    .crv/.dat/.poly files, ``Geometry.from_curves(curves)`` takes open polylines that join at their
+    end points (as the curves of a .crv file), and ``Geometry.from_geo_interface(obj)`` (or passing
+    a shapely Polygon/MultiPolygon to the constructor) takes the rings of a GeoJSON-like polygon.
+    ``names`` names the curves (the boundary markers of the mesh files and ``Mesh.boundary_edges``).
+    """
+
+    def __init__(self, rings: Iterable[Any] | Any, names: Sequence[str] | None = None):
+        if hasattr(rings, "__geo_interface__"):
+            other = Geometry.from_geo_interface(rings, names)
+            self._init(other._files, other._curves, other._names, other._label)
+            return
+        curves = []
+        for k, ring in enumerate(rings):
+            xy = _as_xy(ring, f"rings[{k}]")
+            if len(xy) >= 2 and not np.array_equal(xy[0], xy[-1]):
+                xy = np.vstack([xy, xy[:1]])
+            curves.append(xy)
+        self._init(None, curves, names, "rings")
+
+    def _init(self, files, curves, names, label) -> None:
+        self._files = files
+        self._curves = curves
+        self._label = label
+        self._names = list(names) if names is not None else None
+        self._info = None
+
+    @classmethod
+    def from_file(cls, *paths: str | os.PathLike, names: Sequence[str] | None = None) -> "Geometry":
+        """Curves read from .crv/.dat/.poly files, in file order (the command's readers)."""
+        if not paths:
+            raise InputError("Geometry.from_file: no geometry file given")
+        g = cls.__new__(cls)
+        g._init([os.fspath(p) for p in paths], None, names, None)
+        return g
+
+    @classmethod
+    def from_curves(cls, curves: Iterable[Any], names: Sequence[str] | None = None) -> "Geometry":
+        """Open polylines, (N, 2) arrays, joined where their end points coincide (like a .crv file)."""
+        g = cls.__new__(cls)
+        g._init(None, [_as_xy(c, f"curves[{k}]") for k, c in enumerate(curves)], names, "curves")
+        return g
+
+    @classmethod
+    def from_geo_interface(cls, obj: Any, names: Sequence[str] | None = None) -> "Geometry":
+        """The rings of a Polygon or MultiPolygon given by ``__geo_interface__`` (shapely) or as a
+        GeoJSON-like mapping: every exterior and interior ring becomes one closed curve."""
+        geo = obj.__geo_interface__ if hasattr(obj, "__geo_interface__") else obj
+        if not isinstance(geo, Mapping) or "type" not in geo:
+            raise InputError(f"{type(obj).__name__} has no GeoJSON-like __geo_interface__")
+        if geo["type"] == "Polygon":
+            polygons = [geo["coordinates"]]
+        elif geo["type"] == "MultiPolygon":
+            polygons = list(geo["coordinates"])
+        else:
+            raise InputError(f"__geo_interface__ type '{geo['type']}': a Polygon or MultiPolygon is needed")
+        rings = [ring for polygon in polygons for ring in polygon]
+        return cls(rings, names)
+
+    # The case the geometry makes with `settings` (dotted keys with TOML values, see _settings).
+    def _config(self, settings: list[tuple[str, str, str]]):
+        extra = []
+        if self._names is not None:
+            extra = _settings.overrides([("geometry.curve_names", list(self._names))])
+        if self._files is not None:
+            return _core.case_for_files(self._files, extra + settings)
+        labels = [f"{self._label}[{k}]" for k in range(len(self._curves))]
+        return _core.case_for_curves(self._curves, labels, self._label, extra + settings)
+
+    def _geometry(self) -> dict:
+        if self._info is None:
+            self._info = self._config([]).geometry()
+        return self._info
+
+    @property
+    def files(self) -> list[str] | None:
+        """The geometry files, when read from files."""
+        return None if self._files is None else list(self._files)
+
+    @property
+    def curves(self) -> dict[str, np.ndarray]:
+        """Every curve by name, (N, 2) float64, as validated (ends joined)."""
+        info = self._geometry()
+        return dict(zip(info["names"], info["curves"]))
+
+    @property
+    def rings(self) -> list[np.ndarray]:
+        """The closed loops as (N, 2) rings (first point repeated at the end)."""
+        return [loop["ring"] for loop in self._geometry()["loops"]]
+
+    @property
+    def area(self) -> float:
+        """The even-odd area of the domain."""
+        return float(self._geometry()["area"])
+
+    @property
+    def bounds(self) -> tuple[float, float, float, float]:
+        """(xmin, ymin, xmax, ymax)."""
+        return tuple(self._geometry()["extents"])
+
+    @property
+    def __geo_interface__(self) -> dict:
+        """A GeoJSON-like Polygon (or MultiPolygon): outer loops counter-clockwise, holes clockwise,
+        each hole in the outer loop that holds it (shapely.geometry.shape() reads it)."""
+        loops = self._geometry()["loops"]
+        outers = [i for i, loop in enumerate(loops) if loop["depth"] % 2 == 0]
+        holes: dict[int, list[int]] = {i: [] for i in outers}
+        for i, loop in enumerate(loops):
+            if loop["depth"] % 2 == 1:
+                parent = next((o for o in outers if loops[o]["depth"] == loop["depth"] - 1
+                               and _inside(loop["ring"][0], loops[o]["ring"])), None)
+                if parent is not None:
+                    holes[parent].append(i)
+
+        def oriented(i: int, ccw: bool) -> list:
+            ring = loops[i]["ring"]
+            if (loops[i]["signed_area"] > 0) != ccw:
+                ring = ring[::-1]
+            return ring.tolist()
+
+        polygons = [[oriented(o, True)] + [oriented(h, False) for h in holes[o]] for o in outers]
+        if len(polygons) == 1:
+            return {"type": "Polygon", "coordinates": polygons[0]}
+        return {"type": "MultiPolygon", "coordinates": polygons}
+
+    def __repr__(self) -> str:
+        if self._files is not None:
+            return f"Geometry.from_file({', '.join(map(repr, self._files))})"
+        return f"Geometry({len(self._curves)} {self._label})"
+
+
+def _inside(p: np.ndarray, ring: np.ndarray) -> bool:
+    """Even-odd point-in-ring test (a hole's vertex never lies on its parent's boundary)."""
+    x, y = p
+    a, b = ring[:-1], ring[1:]
+    crosses = (a[:, 1] > y) != (b[:, 1] > y)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        xs = a[:, 0] + (y - a[:, 1]) * (b[:, 0] - a[:, 0]) / (b[:, 1] - a[:, 1])
+    return bool(np.count_nonzero(crosses & (x < xs)) % 2)

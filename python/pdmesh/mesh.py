@@ -1,0 +1,161 @@
+"""pdmesh.Mesh: a triangle mesh as numpy arrays (no copies), its boundary edges by curve name, its
+quality, the command's writers and pictures, and adapters to meshio and matplotlib."""
+
+from __future__ import annotations
+
+import json
+import os
+import tempfile
+from typing import Any, Sequence
+
+import numpy as np
+
+from . import _core
+from .errors import InputError
+
+# Mesh formats by file suffix (the command's writers); .msh is Gmsh 4.1, format="msh22" for 2.2.
+_SUFFIX_FORMATS = {".msh": "msh", ".vtu": "vtu", ".su2": "su2", ".node": "triangle", ".ele": "triangle",
+                   ".poly": "triangle"}
+_PICTURES = (".png", ".svg")
+# Jupyter: SVG for meshes up to this many triangles (each is an element), PNG beyond.
+_SVG_REPR_LIMIT = 20_000
+
+
+class Mesh:
+    """A triangle mesh. ``points`` (N, 2) float64 and ``triangles`` (M, 3) int32 (0-based,
+    counter-clockwise) are read-only views of the mesh's own memory: no copy is made."""
+
+    def __init__(self, core: Any):
+        self._core = core
+        self._edges = None
+
+    @classmethod
+    def read(cls, path: str | os.PathLike) -> "Mesh":
+        """Reads a mesh file (.msh 2.2/4.1, .vtu, .su2, Triangle .ele), as ``pdmesh quality`` does."""
+        return cls(_core.read_mesh(os.fspath(path)))
+
+    @property
+    def points(self) -> np.ndarray:
+        return self._core.points
+
+    @property
+    def triangles(self) -> np.ndarray:
+        return self._core.triangles
+
+    @property
+    def kinds(self) -> np.ndarray:
+        """(N,) uint8 per point: 0 fixed (a critical point), 1 boundary, 2 interior (empty when read)."""
+        return self._core.kinds
+
+    @property
+    def curve_names(self) -> list[str]:
+        return list(self._core.curve_names)
+
+    @property
+    def boundary_edges(self) -> dict[str, np.ndarray]:
+        """Boundary edges by curve name: (K, 2) int32 point indices, in curve order."""
+        if self._edges is None:
+            self._edges = self._core.boundary_edges()
+        return self._edges
+
+    def quality(self, per_triangle: bool = True) -> dict[str, Any]:
+        """The quality.json content (thesis tables 6.2-6.6 measures, histograms and spacing
+        conformance edge/q), and with ``per_triangle`` a "per_triangle" dict of (M,) arrays:
+        min_angle, max_angle, aspect_ratio, skewness, condition_number, min_jacobian."""
+        summary = json.loads(self._core.quality_json())
+        if per_triangle:
+            summary["per_triangle"] = self._core.triangle_metrics()
+        return summary
+
+    def write(self, path: str | os.PathLike, format: str | None = None) -> list[str]:
+        """Writes the mesh with the command's writers, the format from the suffix (.msh Gmsh 4.1,
+        .vtu, .su2, .node/.ele/.poly Triangle; .png/.svg a picture) or ``format`` (msh, msh22, vtu,
+        su2, triangle). Atomic, as the command's files. Returns the paths written."""
+        path = os.fspath(path)
+        suffix = os.path.splitext(path)[1].lower()
+        if format is None and suffix in _PICTURES:
+            self.picture(path)
+            return [path]
+        if format is None:
+            if suffix not in _SUFFIX_FORMATS:
+                raise InputError(f"{path}: unknown mesh suffix '{suffix}' (.msh, .vtu, .su2, .node/.ele/.poly, "
+                                 ".png, .svg; or give format=)")
+            format = _SUFFIX_FORMATS[suffix]
+        return list(self._core.write(path, format))
+
+    def picture(self, path: str | os.PathLike, color_by: str | None = None, title: str | None = None,
+                window: Sequence[float] | None = None, long_side: int = 1600) -> None:
+        """Draws the mesh (the command's mesh.png/.svg): boundary edges thicker, triangles filled by
+        a quality metric with ``color_by``; ``window`` = (x0, y0, x1, y1) zooms."""
+        if title is None:
+            title = f"{self._core.name} - mesh ({len(self.triangles)} triangles)"
+        self._core.picture(os.fspath(path), color_by or "none", title,
+                           None if window is None else [float(v) for v in window], int(long_side))
+
+    def to_meshio(self):
+        """A meshio.Mesh (the ``io`` extra): triangles, and one "line" block per boundary curve with
+        a cell set named after the curve."""
+        try:
+            import meshio
+        except ImportError as e:
+            raise ImportError("Mesh.to_meshio needs meshio: pip install 'pdmesh[io]'") from e
+        cells = [("triangle", np.asarray(self.triangles))]
+        sets: dict[str, list[np.ndarray]] = {}
+        edges = self.boundary_edges
+        for k, (name, e) in enumerate(edges.items()):
+            cells.append(("line", np.asarray(e)))
+        for k, name in enumerate(edges):
+            sets[name] = [np.arange(len(e)) if j == k + 1 else np.zeros(0, dtype=int)
+                          for j, e in enumerate([self.triangles] + list(edges.values()))]
+        return meshio.Mesh(np.asarray(self.points), cells, cell_sets=sets)
+
+    def plot(self, ax: Any = None, color_by: str | None = None, boundary: bool = True, **triplot: Any):
+        """Draws the mesh with matplotlib (the ``plot`` extra) into ``ax`` (a new one if None):
+        triplot edges, boundary curves thicker in colours with a legend, or triangles filled by a
+        quality metric with ``color_by``. Returns the axes."""
+        try:
+            import matplotlib.pyplot as plt
+        except ImportError as e:
+            raise ImportError("Mesh.plot needs matplotlib: pip install 'pdmesh[plot]'") from e
+        if ax is None:
+            _, ax = plt.subplots(figsize=(8, 8))
+        x, y = self.points[:, 0], self.points[:, 1]
+        if color_by:
+            values = self.quality()["per_triangle"][color_by]
+            shaded = ax.tripcolor(x, y, self.triangles, facecolors=values, cmap="viridis")
+            ax.figure.colorbar(shaded, ax=ax, label=color_by)
+        triplot.setdefault("color", "black")
+        triplot.setdefault("linewidth", 0.3)
+        ax.triplot(x, y, self.triangles, **triplot)
+        if boundary:
+            for name, e in self.boundary_edges.items():
+                seg = self.points[e]
+                xs = np.column_stack([seg[:, 0, 0], seg[:, 1, 0], np.full(len(e), np.nan)]).ravel()
+                ys = np.column_stack([seg[:, 0, 1], seg[:, 1, 1], np.full(len(e), np.nan)]).ravel()
+                ax.plot(xs, ys, linewidth=1.5, label=name)
+            if self.boundary_edges:
+                ax.legend(loc="best", fontsize="small")
+        ax.set_aspect("equal")
+        return ax
+
+    def _render(self, suffix: str, long_side: int) -> bytes:
+        fd, path = tempfile.mkstemp(suffix=suffix)
+        os.close(fd)
+        try:
+            self.picture(path, long_side=long_side)
+            with open(path, "rb") as f:
+                return f.read()
+        finally:
+            os.unlink(path)
+
+    def _repr_png_(self) -> bytes:
+        return self._render(".png", 800)
+
+    def _repr_svg_(self) -> str | None:
+        if len(self.triangles) > _SVG_REPR_LIMIT:
+            return None  # Jupyter then shows the PNG
+        return self._render(".svg", 800).decode("utf-8")
+
+    def __repr__(self) -> str:
+        return (f"<pdmesh.Mesh {self._core.name!r}: {len(self.points)} points, {len(self.triangles)} triangles, "
+                f"curves {self.curve_names}>")

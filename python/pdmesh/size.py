@@ -1,0 +1,84 @@
+"""Size fields (the desired node spacing q): a number, an expression, a vectorised callable, or data.
+
+``generate(geo, size=...)`` and ``Mesher(geo, size=...)`` accept:
+
+- ``None``: the case's field (by default thesis eq. 3.6, from the boundary segment lengths);
+- a number: a uniform size;
+- a string: a muParser expression in ``x`` and ``y`` (the case key ``spacing.expression``);
+- a callable ``h(xy) -> sizes``: called with an (N, 2) float64 array, returning N sizes. It is called
+  vectorised, once per sampling pass, while pdmesh samples it into its own background field
+  (an adaptive quadtree); it is never called per point nor during the iterations;
+- ``Background.read(path, array)``: sizes from data, a triangle mesh with a point-data array.
+"""
+
+from __future__ import annotations
+
+import numbers
+import os
+from typing import Any, Callable
+
+import numpy as np
+
+from .errors import InputError
+
+
+class Background:
+    """Sizes read from a background mesh: a .vtu or .msh triangle mesh with a point-data scalar,
+    interpolated linearly (the case keys ``spacing.field = "mesh"``, ``spacing.file``,
+    ``spacing.array``)."""
+
+    def __init__(self, path: str | os.PathLike, array: str = "h"):
+        self.path = os.path.abspath(os.fspath(path))
+        self.array = str(array)
+
+    @classmethod
+    def read(cls, path: str | os.PathLike, array: str = "h") -> "Background":
+        """The field of array ``array`` in mesh file ``path`` (read and checked when the run starts)."""
+        return cls(path, array)
+
+    def settings(self) -> dict[str, Any]:
+        return {"spacing.field": "mesh", "spacing.file": self.path, "spacing.array": self.array}
+
+    def __repr__(self) -> str:
+        return f"Background.read({self.path!r}, {self.array!r})"
+
+
+def sampler(function: Callable[[np.ndarray], Any]) -> Callable[[np.ndarray], np.ndarray]:
+    """Wraps a user's size callable: one call per batch, the result as N contiguous float64 values
+    (a scalar result means the same size everywhere). The core checks the values themselves."""
+
+    def sample(xy: np.ndarray) -> np.ndarray:
+        h = np.asarray(function(xy), dtype=np.float64)
+        if h.ndim == 0:
+            return np.full(len(xy), float(h))
+        if h.shape != (len(xy),):
+            h = h.reshape(-1) if h.size == len(xy) else h
+            if h.shape != (len(xy),):
+                raise InputError(f"size: the callable returned shape {h.shape} for {len(xy)} points; "
+                                 f"it must return one size per point, shape ({len(xy)},)")
+        return np.ascontiguousarray(h)
+
+    return sample
+
+
+def resolve(size: Any) -> tuple[dict[str, Any], Callable | None]:
+    """(case settings, sampler or None) for a ``size`` argument."""
+    if size is None:
+        return {}, None
+    if isinstance(size, Background):
+        return size.settings(), None
+    if isinstance(size, bool):
+        raise InputError(f"size: {size!r} is not a size")
+    if isinstance(size, numbers.Real):
+        value = float(size)
+        if not (np.isfinite(value) and value > 0):
+            raise InputError(f"size: a size must be finite and > 0, got {value!r}")
+        return {"spacing.expression": repr(value)}, None
+    if isinstance(size, str):
+        return {"spacing.expression": size}, None
+    if callable(size):
+        return {}, sampler(size)
+    raise InputError(f"size: expected a number, an expression, a callable or a Background, got {type(size).__name__}")
+
+
+__all__ = ["Background", "resolve", "sampler"]

@@ -1,0 +1,154 @@
+// pdmesh._core.Config: a validated case (CaseConfig) made from a case file, geometry files or curves
+// in memory, with settings applied through the same validator as the command's --set.
+#include <algorithm>
+#include <fmt/format.h>
+#include <nanobind/stl/string.h>
+#include <nanobind/stl/tuple.h>
+#include <nanobind/stl/vector.h>
+
+#include "bindings.hpp"
+#include "callable_spacing.hpp"
+#include "core/errors.hpp"
+#include "geometry/geometry_files.hpp"
+
+namespace pdmesh::py {
+
+namespace {
+
+// (key, TOML value, label) as the Python layer (pdmesh/_settings.py) writes them.
+using Setting = std::tuple<std::string, std::string, std::string>;
+using Ring = nb::ndarray<const double, nb::shape<-1, 2>, nb::c_contig, nb::device::cpu>;
+
+std::vector<CaseOverride> overrides_from(const std::vector<Setting>& settings) {
+  std::vector<CaseOverride> out;
+  for (const auto& [key, value, label] : settings) out.push_back({key, value, label});
+  return out;
+}
+
+const char* method_name(InitMethod m) { return m == InitMethod::Structured ? "structured" : "random"; }
+
+nb::ndarray<nb::numpy, double> points_array(const std::vector<Vec2>& points) {
+  auto* v = new std::vector<Vec2>(points);
+  nb::capsule owner(v, [](void* p) noexcept { delete static_cast<std::vector<Vec2>*>(p); });
+  return nb::ndarray<nb::numpy, double>(v->empty() ? nullptr : &(*v)[0].x, {v->size(), 2}, owner);
+}
+
+// The validated geometry of a case, as MeshInputs reads it: curves, loops (closed rings with their
+// nesting depth: even = an outer boundary, odd = a hole), area and extents.
+nb::dict geometry_of(const CaseConfig& c) {
+  Geometry g;
+  {
+    nb::gil_scoped_release release;
+    GeometryOptions options;
+    options.join_tolerance = c.geometry.join_tolerance;
+    options.corner_angle_deg = c.geometry.corner_angle;
+    std::vector<std::string> files;
+    for (const auto& f : c.geometry.files) files.push_back(f.string());
+    g = c.geometry.curves.empty() ? read_geometry(files, c.geometry.curve_names, options)
+                                  : geometry_from_curves(c.geometry.curves, c.geometry.curve_names, options);
+  }
+  nb::list names, curves, loops;
+  for (const Curve& curve : g.curves) {
+    names.append(curve.name);
+    curves.append(points_array(curve.points));
+  }
+  for (const Loop& loop : g.loops) {
+    std::vector<Vec2> ring;
+    for (std::size_t k = 0; k < loop.curves.size(); ++k) {
+      std::vector<Vec2> pts = g.curves[loop.curves[k]].points;
+      if (loop.reversed[k]) std::reverse(pts.begin(), pts.end());
+      // Consecutive curves share their joint: keep it once; the ring ends where it starts.
+      ring.insert(ring.end(), pts.begin() + (ring.empty() ? 0 : 1), pts.end());
+    }
+    nb::dict d;
+    d["ring"] = points_array(ring);
+    d["curves"] = std::vector<int>(loop.curves);
+    d["depth"] = loop.depth;
+    d["signed_area"] = loop.signed_area;
+    loops.append(d);
+  }
+  nb::dict d;
+  d["names"] = names;
+  d["curves"] = curves;
+  d["loops"] = loops;
+  d["area"] = g.area;
+  d["extents"] = std::vector<double>{g.extents.lo.x, g.extents.lo.y, g.extents.hi.x, g.extents.hi.y};
+  return d;
+}
+
+}  // namespace
+
+void bind_config(nb::module_& m) {
+  nb::class_<CaseConfig>(m, "Config", "A validated case: every key of the case file, checked as the command checks it.")
+      .def_prop_ro("name", [](const CaseConfig& c) { return c.name; })
+      .def_prop_ro("source", [](const CaseConfig& c) { return c.source.string(); })
+      .def_prop_ro("preset", [](const CaseConfig& c) { return std::string(to_string(c.preset)); })
+      .def_prop_ro("geometry_files",
+                   [](const CaseConfig& c) {
+                     std::vector<std::string> files;
+                     for (const auto& f : c.geometry.files) files.push_back(f.string());
+                     return files;
+                   })
+      .def_prop_ro("curve_names", [](const CaseConfig& c) { return c.geometry.curve_names; })
+      .def_prop_ro("iterations", [](const CaseConfig& c) { return c.simulation.iterations; })
+      .def_prop_ro("device", [](const CaseConfig& c) { return c.simulation.device; })
+      .def_prop_ro("seed", [](const CaseConfig& c) { return c.init.seed; })
+      .def_prop_ro("method", [](const CaseConfig& c) { return std::string(method_name(c.init.method)); })
+      .def_prop_ro("formats", [](const CaseConfig& c) { return c.output.formats; })
+      .def("geometry", &geometry_of, "The validated geometry: curves, loops, area, extents.")
+      .def_prop_ro("has_size_callable", [](const CaseConfig& c) { return c.spacing.given != nullptr; })
+      .def(
+          "with_size_callable",
+          [](const CaseConfig& c, nb::object sample) {
+            CaseConfig copy = c;
+            copy.spacing.given = std::make_shared<CallableSpacing>(std::move(sample));
+            return copy;
+          },
+          nb::arg("sample"), "A copy whose spacing field is `sample(xy[N,2]) -> h[N]` (sampled once, vectorised).")
+      .def_prop_ro(
+          "size_callable_calls",
+          [](const CaseConfig& c) -> std::size_t {
+            const auto* f = dynamic_cast<const CallableSpacing*>(c.spacing.given.get());
+            return f ? f->calls() : 0;
+          },
+          "How often the size callable has been called (one call per sampling pass).");
+
+  m.def(
+      "case_keys", [] { return case_file_keys(); }, "Every valid dotted case-file key.");
+  m.def(
+      "load_case",
+      [](const std::string& path, const std::vector<Setting>& settings) {
+        return load_case_file(path, overrides_from(settings));
+      },
+      nb::arg("path"), nb::arg("settings"), "Reads and validates a case file (TOML); settings as --set.");
+  m.def(
+      "case_for_files",
+      [](const std::vector<std::string>& paths, const std::vector<Setting>& settings) {
+        std::vector<std::filesystem::path> files(paths.begin(), paths.end());
+        return case_for_geometry_files(files, overrides_from(settings));
+      },
+      nb::arg("paths"), nb::arg("settings"), "A case for geometry files (.crv/.dat/.poly) with the preset's defaults.");
+  m.def(
+      "case_for_curves",
+      [](const std::vector<Ring>& curves, const std::vector<std::string>& labels, const std::string& source,
+         const std::vector<Setting>& settings) {
+        if (labels.size() != curves.size())
+          throw InputError(fmt::format("{} curves but {} labels", curves.size(), labels.size()));
+        std::vector<RawCurve> raw;
+        for (std::size_t k = 0; k < curves.size(); ++k) {
+          RawCurve c;
+          c.file = labels[k];
+          const Ring& a = curves[k];
+          for (std::size_t i = 0; i < a.shape(0); ++i) {
+            c.points.push_back({a(i, 0), a(i, 1)});
+            c.lines.push_back(static_cast<int>(i));  // messages say "LABEL:i" for point i
+          }
+          raw.push_back(std::move(c));
+        }
+        return case_for_curves(std::move(raw), source, overrides_from(settings));
+      },
+      nb::arg("curves"), nb::arg("labels"), nb::arg("source"), nb::arg("settings"),
+      "A case for curves given as (N, 2) arrays; labels name each in messages.");
+}
+
+}  // namespace pdmesh::py

@@ -1,0 +1,173 @@
+// pdmesh._core.Mesh: a triangle mesh with zero-copy numpy views, its boundary edges by curve name,
+// the quality measures of `pdmesh quality`, and the command's writers and pictures.
+#include <filesystem>
+#include <fmt/format.h>
+#include <nanobind/stl/optional.h>
+#include <nanobind/stl/string.h>
+#include <nanobind/stl/vector.h>
+
+#include "bindings.hpp"
+#include "core/errors.hpp"
+#include "io/mesh_formats.hpp"
+#include "mesh/quality.hpp"
+#include "mesh/quality_report.hpp"
+#include "render/mesh_picture.hpp"
+
+namespace pdmesh::py {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// One metric of every triangle, as a new array.
+template <class Get>
+nb::ndarray<nb::numpy, double> metric(const std::vector<TriangleQuality>& q, Get get) {
+  auto* v = new std::vector<double>(q.size());
+  for (std::size_t t = 0; t < q.size(); ++t) (*v)[t] = get(q[t]);
+  nb::capsule owner(v, [](void* p) noexcept { delete static_cast<std::vector<double>*>(p); });
+  return nb::ndarray<nb::numpy, double>(v->data(), {v->size()}, owner);
+}
+
+std::vector<double> metric_values(const std::vector<TriangleQuality>& q, const std::string& name) {
+  std::vector<double> v;
+  v.reserve(q.size());
+  for (const TriangleQuality& t : q) {
+    if (name == "min_angle") v.push_back(t.min_angle);
+    else if (name == "max_angle") v.push_back(t.max_angle);
+    else if (name == "aspect_ratio") v.push_back(t.aspect_ratio);
+    else if (name == "skewness") v.push_back(t.skewness);
+    else if (name == "condition_number") v.push_back(t.condition_number);
+    else if (name == "min_jacobian") v.push_back(t.min_jacobian);
+    else
+      throw InputError(fmt::format("color_by: unknown metric '{}' (min_angle, max_angle, aspect_ratio, skewness, "
+                                   "condition_number, min_jacobian)",
+                                   name));
+  }
+  return v;
+}
+
+std::string quality_json_of(const MeshHandle& h) {
+  nb::gil_scoped_release release;
+  if (!h.session) return quality_json(summarize_quality(*h.mesh), h.name);
+  std::lock_guard lock(h.session->mutex);
+  const SpacingField& spacing = *h.session->inputs->spacing;
+  return quality_json(summarize_quality(*h.mesh, [&spacing](Vec2 p) { return spacing.at(p); }), h.name);
+}
+
+nb::dict triangle_metrics(const MeshHandle& h) {
+  std::vector<TriangleQuality> q;
+  {
+    nb::gil_scoped_release release;
+    q = triangle_qualities(*h.mesh);
+  }
+  nb::dict d;
+  d["min_angle"] = metric(q, [](const TriangleQuality& t) { return t.min_angle; });
+  d["max_angle"] = metric(q, [](const TriangleQuality& t) { return t.max_angle; });
+  d["aspect_ratio"] = metric(q, [](const TriangleQuality& t) { return t.aspect_ratio; });
+  d["skewness"] = metric(q, [](const TriangleQuality& t) { return t.skewness; });
+  d["condition_number"] = metric(q, [](const TriangleQuality& t) { return t.condition_number; });
+  d["min_jacobian"] = metric(q, [](const TriangleQuality& t) { return t.min_jacobian; });
+  return d;
+}
+
+// Boundary edges grouped by curve name, (K, 2) int32 each, in curve order.
+nb::dict boundary_edges(const MeshHandle& h) {
+  const Mesh& mesh = *h.mesh;
+  std::vector<std::vector<std::int32_t>> per(mesh.curve_names.size());
+  for (const BoundaryEdge& e : mesh.boundary_edges) {
+    if (e.curve < 0 || static_cast<std::size_t>(e.curve) >= per.size()) continue;
+    per[e.curve].push_back(e.a);
+    per[e.curve].push_back(e.b);
+  }
+  nb::dict d;
+  for (std::size_t c = 0; c < per.size(); ++c) {
+    auto* v = new std::vector<std::int32_t>(std::move(per[c]));
+    nb::capsule owner(v, [](void* p) noexcept { delete static_cast<std::vector<std::int32_t>*>(p); });
+    d[nb::str(mesh.curve_names[c].c_str())] = nb::ndarray<nb::numpy, std::int32_t>(v->data(), {v->size() / 2, 2}, owner);
+  }
+  return d;
+}
+
+// `format` is a write_mesh name (msh, msh22, vtu, su2, triangle); the file is DIR/STEM.<ext>.
+std::vector<std::string> write(const MeshHandle& h, const std::string& path, const std::string& format) {
+  const fs::path p(path);
+  const fs::path dir = p.parent_path().empty() ? fs::path(".") : p.parent_path();
+  std::vector<fs::path> written;
+  {
+    nb::gil_scoped_release release;
+    written = write_mesh(*h.mesh, dir, p.stem().string(), {format});
+  }
+  std::vector<std::string> out;
+  for (const fs::path& w : written) out.push_back(w.string());
+  return out;
+}
+
+void picture(const MeshHandle& h, const std::string& path, const std::string& color_by, const std::string& title,
+             std::optional<std::vector<double>> window, int long_side) {
+  MeshPictureOptions options;
+  options.title = title;
+  options.long_side = long_side;
+  if (window) {
+    if (window->size() != 4 || !((*window)[0] < (*window)[2] && (*window)[1] < (*window)[3]))
+      throw InputError("window must be [x0, y0, x1, y1] with x0 < x1 and y0 < y1");
+    options.window = Box{{(*window)[0], (*window)[1]}, {(*window)[2], (*window)[3]}};
+  }
+  nb::gil_scoped_release release;
+  std::vector<double> values;
+  if (color_by != "none") {
+    values = metric_values(triangle_qualities(*h.mesh), color_by);
+    options.triangle_values = &values;
+    options.value_label = color_by;
+  }
+  write_mesh_picture(path, *h.mesh, options);
+}
+
+}  // namespace
+
+void bind_mesh(nb::module_& m) {
+  nb::class_<MeshHandle>(m, "Mesh", "A triangle mesh (use pdmesh.Mesh).")
+      .def_prop_ro(
+          "points",
+          [](const MeshHandle& h) {
+            const auto& p = h.mesh->points;
+            return shared_view<double, 2>(p.empty() ? nullptr : &p[0].x, p.size(), h.mesh);
+          },
+          nb::rv_policy::automatic, "(N, 2) float64 points, read-only, no copy.")
+      .def_prop_ro(
+          "triangles",
+          [](const MeshHandle& h) {
+            const auto& t = h.mesh->triangles;
+            static_assert(sizeof(t[0]) == 3 * sizeof(int));
+            return shared_view<int, 3>(t.empty() ? nullptr : t[0].data(), t.size(), h.mesh);
+          },
+          nb::rv_policy::automatic, "(M, 3) int32 counter-clockwise triangles, 0-based, read-only, no copy.")
+      .def_prop_ro(
+          "kinds",
+          [](const MeshHandle& h) {
+            const auto* k = reinterpret_cast<const std::uint8_t*>(h.mesh->kind.data());
+            return shared_view<std::uint8_t, 1>(k, h.mesh->kind.size(), h.mesh);
+          },
+          nb::rv_policy::automatic, "(N,) uint8 point kinds (0 fixed, 1 boundary, 2 interior); empty for a mesh read from a file.")
+      .def_prop_ro("curve_names", [](const MeshHandle& h) { return h.mesh->curve_names; })
+      .def_prop_ro("name", [](const MeshHandle& h) { return h.name; })
+      .def("boundary_edges", &boundary_edges, "Boundary edges by curve name, (K, 2) int32 each.")
+      .def("quality_json", &quality_json_of, "The quality.json document of this mesh.")
+      .def("triangle_metrics", &triangle_metrics, "Per-triangle quality arrays.")
+      .def("write", &write, nb::arg("path"), nb::arg("format"), "Writes the mesh; returns the paths written.")
+      .def("picture", &picture, nb::arg("path"), nb::arg("color_by") = "none", nb::arg("title") = "",
+           nb::arg("window").none() = nb::none(), nb::arg("long_side") = 1600, "Draws the mesh into a .png or .svg.");
+
+  m.def(
+      "read_mesh",
+      [](const std::string& path) {
+        Mesh mesh;
+        {
+          nb::gil_scoped_release release;
+          mesh = read_mesh(path);
+        }
+        return MeshHandle{std::make_shared<const Mesh>(std::move(mesh)), nullptr, fs::path(path).stem().string()};
+      },
+      nb::arg("path"), "Reads a .msh (2.2/4.1), .vtu, .su2 or Triangle .ele mesh.");
+}
+
+}  // namespace pdmesh::py

@@ -1,0 +1,203 @@
+// pdmesh._core.Mesher: one case's run held in memory, stepped in chunks through the command's own
+// stages (MeshInputs, check_node_limit, make_initial, simulate, mesh_and_measure). The GIL is
+// released while C++ works; about every `interval` seconds the run takes it back to check for
+// signals (Ctrl-C) and to call the progress callable, and either can stop the run at the end of the
+// current iteration, leaving the Mesher able to continue.
+#include <atomic>
+#include <chrono>
+#include <cstring>
+#include <exception>
+#include <optional>
+
+#include <nanobind/stl/string.h>
+#include <nanobind/stl/vector.h>
+
+#include "bindings.hpp"
+#include "core/errors.hpp"
+#include "init/initial_distribution.hpp"
+#include "opencl/devices.hpp"
+#include "sim/simulation.hpp"
+
+namespace pdmesh::py {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+class Mesher {
+ public:
+  Mesher(const CaseConfig& config, const std::string& out_dir) : session_(std::make_shared<Session>()) {
+    CaseConfig& c = session_->config;
+    c = config;
+    c.quiet = true;  // the Python layer reports progress itself
+    c.write_outputs = !out_dir.empty();
+    if (!out_dir.empty()) c.out_dir = out_dir;
+    nb::gil_scoped_release release;
+    std::lock_guard lock(session_->mutex);
+    const auto start = Clock::now();
+    session_->inputs = std::make_unique<MeshInputs>(c);
+    const MeshInputs& inputs = *session_->inputs;
+    // As the command: an explicit OpenCL device that is not there is refused before anything runs.
+    if (c.simulation.iterations > 0 && c.simulation.device != "host" && c.simulation.device != "auto")
+      (void)ocl::select_device(c.simulation.device);
+    estimate_ = check_node_limit(c, inputs);
+    InitialDistribution initial = make_initial(c, inputs);
+    if (c.write_outputs) {
+      prepare_output_directory(c);
+      write_initial_outputs(c, inputs, initial);
+    }
+    nodes_ = std::make_shared<NodeSet>(std::move(initial.nodes));
+    init_seconds_ = std::chrono::duration<double>(Clock::now() - start).count();
+  }
+
+  // Runs iterations up to `target` (a total, counted from the start). Returns "done", or "cancelled"
+  // when `progress` returned False; a signal's exception (KeyboardInterrupt) and the callable's own
+  // exceptions are raised after the run has stopped, with the state of the last finished iteration kept.
+  std::string step(std::int64_t target, nb::object progress, double interval) {
+    if (failed_) throw SimulationError("this Mesher's run failed earlier; make a new one");
+    if (target <= iterations_done()) return "done";
+    // Copy on write: arrays handed to Python keep the node set they view alive and unchanged.
+    if (nodes_.use_count() > 1) nodes_ = std::make_shared<NodeSet>(*nodes_);
+    CaseConfig config = session_->config;
+    config.simulation.iterations = target;
+    std::atomic<bool> stop{false};
+    std::exception_ptr pending;
+    bool cancelled = false;
+    const auto start = Clock::now();
+    auto last = start;
+    const auto every = std::chrono::duration<double>(interval);
+    SimulateHooks hooks;
+    hooks.stop = &stop;
+    hooks.on_iteration = [&](const HistoryRow& row) {
+      const auto now = Clock::now();
+      if (now - last < every && row.iteration < target) return;
+      last = now;
+      nb::gil_scoped_acquire gil;
+      try {
+        if (PyErr_CheckSignals() != 0) throw nb::python_error();
+        if (progress.is_valid() && !progress.is_none()) {
+          nb::object r = progress(row.iteration, target, row.average_force, row.max_force, row.dt_gm,
+                                  std::chrono::duration<double>(now - start).count());
+          if (r.ptr() == Py_False) {
+            cancelled = true;
+            stop.store(true);
+          }
+        }
+      } catch (...) {
+        // Raised once the run has stopped cleanly (device queue finished, state consistent).
+        pending = std::current_exception();
+        stop.store(true);
+      }
+    };
+    SimResult result;
+    try {
+      nb::gil_scoped_release release;
+      std::lock_guard lock(session_->mutex);
+      result = simulate(config, *session_->inputs, *nodes_, state_ ? &*state_ : nullptr, &hooks);
+    } catch (...) {
+      // The node set holds the last good state (SimCallbacks::on_failure), but the driver state
+      // that goes with it is not kept: the Mesher can be triangulated, not continued.
+      failed_ = true;
+      throw;
+    }
+    state_ = std::move(result.state);
+    seconds_ += result.stats.seconds;
+    backend_ = result.stats.backend;
+    if (pending) std::rethrow_exception(pending);
+    return cancelled ? "cancelled" : "done";
+  }
+
+  MeshHandle triangulate() {
+    CaseConfig config = session_->config;
+    config.simulation.iterations = iterations_done();
+    std::shared_ptr<const NodeSet> nodes = nodes_;
+    Mesh mesh;
+    {
+      nb::gil_scoped_release release;
+      std::lock_guard lock(session_->mutex);
+      mesh = mesh_and_measure(config, *session_->inputs, *nodes);
+    }
+    return MeshHandle{std::make_shared<const Mesh>(std::move(mesh)), session_, config.name};
+  }
+
+  int iterations_done() const { return state_ ? state_->iterations_done : 0; }
+  const std::shared_ptr<NodeSet>& nodes() const { return nodes_; }
+  const std::optional<SimState>& state() const { return state_; }
+  const CaseConfig& config() const { return session_->config; }
+  double estimate() const { return estimate_; }
+  double init_seconds() const { return init_seconds_; }
+  double sim_seconds() const { return seconds_; }
+  const std::string& backend() const { return backend_; }
+
+ private:
+  std::shared_ptr<Session> session_;
+  std::shared_ptr<NodeSet> nodes_;
+  std::optional<SimState> state_;
+  double estimate_ = 0.0;
+  double init_seconds_ = 0.0;
+  double seconds_ = 0.0;
+  std::string backend_;
+  bool failed_ = false;
+};
+
+// The history rows as columns (copies: a history is small next to the nodes).
+nb::dict history_columns(const std::vector<HistoryRow>& rows) {
+  auto column = [&rows](auto member) {
+    auto* v = new std::vector<double>();
+    for (const HistoryRow& r : rows) v->push_back(static_cast<double>(r.*member));
+    nb::capsule owner(v, [](void* p) noexcept { delete static_cast<std::vector<double>*>(p); });
+    return nb::ndarray<nb::numpy, double>(v->data(), {v->size()}, owner);
+  };
+  nb::dict d;
+  d["iteration"] = column(&HistoryRow::iteration);
+  d["average_force"] = column(&HistoryRow::average_force);
+  d["max_force"] = column(&HistoryRow::max_force);
+  d["average_kinetic"] = column(&HistoryRow::average_kinetic);
+  d["dt_gm"] = column(&HistoryRow::dt_gm);
+  d["snapped"] = column(&HistoryRow::snapped);
+  return d;
+}
+
+}  // namespace
+
+void bind_mesher(nb::module_& m) {
+  nb::class_<Mesher>(m, "Mesher", "One case's run in memory (use pdmesh.Mesher).")
+      .def(nb::init<const CaseConfig&, const std::string&>(), nb::arg("config"), nb::arg("out_dir") = "",
+           "Reads the geometry, builds the spacing field and the initial distribution; with out_dir, writes the "
+           "command's outputs there as the run goes.")
+      .def("step", &Mesher::step, nb::arg("target"), nb::arg("progress").none(), nb::arg("interval") = 0.1,
+           "Runs up to `target` iterations in all; 'done' or 'cancelled'.")
+      .def("triangulate", &Mesher::triangulate, "The mesh of the current nodes.")
+      .def_prop_ro("iterations_done", &Mesher::iterations_done)
+      .def_prop_ro("iterations", [](const Mesher& s) { return s.config().simulation.iterations; })
+      .def_prop_ro("name", [](const Mesher& s) { return s.config().name; })
+      .def_prop_ro("estimate", &Mesher::estimate, "The hexagonal-packing node-count estimate.")
+      .def_prop_ro("init_seconds", &Mesher::init_seconds)
+      .def_prop_ro("sim_seconds", &Mesher::sim_seconds)
+      .def_prop_ro("backend", &Mesher::backend)
+      .def_prop_ro("size", [](const Mesher& s) { return s.nodes()->size(); })
+      .def_prop_ro(
+          "points",
+          [](const Mesher& s) {
+            const auto& n = s.nodes();
+            return shared_view<double, 2>(n->size() ? &n->x[0].x : nullptr, n->size(), n);
+          },
+          nb::rv_policy::automatic, "(N, 2) float64 node positions, read-only, no copy.")
+      .def_prop_ro(
+          "spacing",
+          [](const Mesher& s) { return shared_view<double, 1>(s.nodes()->q.data(), s.nodes()->size(), s.nodes()); },
+          nb::rv_policy::automatic, "(N,) float64 desired spacing q at each node, read-only, no copy.")
+      .def_prop_ro(
+          "kinds",
+          [](const Mesher& s) {
+            static_assert(sizeof(NodeKind) == 1);
+            const auto* k = reinterpret_cast<const std::uint8_t*>(s.nodes()->kind.data());
+            return shared_view<std::uint8_t, 1>(k, s.nodes()->size(), s.nodes());
+          },
+          nb::rv_policy::automatic, "(N,) uint8 node kinds: 0 fixed, 1 boundary, 2 interior; read-only, no copy.")
+      .def_prop_ro("history", [](const Mesher& s) {
+        return history_columns(s.state() ? s.state()->history : std::vector<HistoryRow>{});
+      });
+}
+
+}  // namespace pdmesh::py

@@ -1,0 +1,58 @@
+// Shared declarations of the pdmesh._core extension (nanobind): the objects the binding files
+// hand to each other, and one registration function per file.
+#pragma once
+#include <memory>
+#include <mutex>
+#include <string>
+#include <vector>
+
+#include <nanobind/nanobind.h>
+#include <nanobind/ndarray.h>
+
+#include "app/case_file.hpp"
+#include "app/mesh_command.hpp"
+#include "mesh/mesh.hpp"
+
+namespace pdmesh::py {
+
+namespace nb = nanobind;
+
+// A validated case and the inputs built from it (geometry, tree, spacing field), shared by a Mesher
+// and every mesh it makes: a mesh measures its spacing conformance with the same field.
+struct Session {
+  CaseConfig config;
+  std::unique_ptr<MeshInputs> inputs;
+  // Held (with the GIL released) while C++ uses the inputs: ExpressionSpacing is not thread-safe,
+  // and two Python threads may drive one Mesher or measure its meshes at once.
+  std::mutex mutex;
+};
+
+// A finished mesh and the session it came from (nullptr for a mesh read from a file).
+struct MeshHandle {
+  std::shared_ptr<const Mesh> mesh;
+  std::shared_ptr<Session> session;
+  std::string name;  // picture titles
+};
+
+// A read-only numpy view of `count` rows of `Cols` values at `data`, kept alive by `keep` (a
+// shared_ptr to whatever owns the memory): no copy is made.
+template <class T, std::size_t Cols, class Keep>
+nb::ndarray<nb::numpy, const T> shared_view(const T* data, std::size_t count, std::shared_ptr<Keep> keep) {
+  auto* holder = new std::shared_ptr<Keep>(std::move(keep));
+  nb::capsule owner(holder, [](void* p) noexcept { delete static_cast<std::shared_ptr<Keep>*>(p); });
+  if constexpr (Cols == 1) {
+    return nb::ndarray<nb::numpy, const T>(data, {count}, owner);
+  } else {
+    return nb::ndarray<nb::numpy, const T>(data, {count, Cols}, owner);
+  }
+}
+
+// Python's pdmesh.errors module (imported on first use).
+nb::object errors_module();
+
+void bind_config(nb::module_& m);
+void bind_mesher(nb::module_& m);
+void bind_mesh(nb::module_& m);
+void bind_cli(nb::module_& m);
+
+}  // namespace pdmesh::py

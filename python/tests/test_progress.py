@@ -1,0 +1,103 @@
+"""Long runs: progress is reported, a cancel is honoured at the next check, and SIGINT during a run
+raises KeyboardInterrupt with the Mesher able to continue to the result of an uninterrupted run."""
+
+from __future__ import annotations
+
+import os
+import signal
+import threading
+import time
+
+import numpy as np
+import pytest
+
+import pdmesh
+import pdmesh.mesher
+
+
+def test_progress_is_reported(rings):
+    seen = []
+    mesh = pdmesh.generate(rings, device="host", iterations=300, progress=seen.append)
+    assert len(mesh.triangles) > 0
+    assert seen and all(isinstance(p, pdmesh.Progress) for p in seen)
+    assert seen[-1].iteration == seen[-1].iterations == 300  # the last iteration is always reported
+    assert [p.iteration for p in seen] == sorted({p.iteration for p in seen})
+    assert all(p.average_force > 0 and p.dt > 0 for p in seen)
+
+
+def test_progress_bar_on_stderr(rings, capsys):
+    pdmesh.generate(rings, device="host", iterations=20, progress=True)
+    err = capsys.readouterr().err
+    assert "pdmesh: [" in err and "20/20" in err
+
+
+def test_cancel_is_honoured_at_the_next_check(rings, monkeypatch):
+    monkeypatch.setattr(pdmesh.mesher, "CHECK_INTERVAL", 0.0)  # a check after every iteration
+    m = pdmesh.Mesher(rings, device="host", iterations=200, seed=1)
+    seen = []
+
+    def stop_at_25(p):
+        seen.append(p.iteration)
+        return p.iteration < 25
+
+    with pytest.raises(pdmesh.Cancelled) as e:
+        m.run(progress=stop_at_25)
+    assert e.value.mesher is m
+    assert seen[-1] == 25 and m.iteration == 25
+    m.run()  # and it goes on
+    assert m.iteration == 200
+
+
+def test_exception_in_progress_stops_the_run_and_propagates(rings):
+    m = pdmesh.Mesher(rings, device="host", iterations=50)
+
+    def broken(p):
+        raise RuntimeError("from the callback")
+
+    with pytest.raises(RuntimeError, match="from the callback"):
+        m.run(progress=broken)
+    assert 0 < m.iteration <= 50
+    m.run()
+    assert m.iteration == 50
+
+
+def test_sigint_raises_keyboard_interrupt_and_the_mesher_continues(rings):
+    # Long enough that the signal (sent from another thread 0.3 s in) arrives during the run.
+    settings = dict(size=0.03, device="host", iterations=3000, seed=4)
+    reference = pdmesh.Mesher(rings, **settings)
+    start = time.perf_counter()
+    reference.run()
+    duration = time.perf_counter() - start
+    assert duration > 0.6, f"the run took {duration:.2f} s: too short to interrupt reliably"
+
+    m = pdmesh.Mesher(rings, **settings)
+    killer = threading.Timer(0.3, os.kill, (os.getpid(), signal.SIGINT))
+    killer.start()
+    try:
+        with pytest.raises(KeyboardInterrupt):
+            m.run()
+    finally:
+        killer.join()
+    assert 0 < m.iteration < 3000
+    assert signal.getsignal(signal.SIGINT) is signal.default_int_handler  # no handler of ours left behind
+    m.run()
+    assert m.iteration == 3000
+    assert np.array_equal(m.points, reference.points)  # bit-identical to the uninterrupted run
+    assert np.array_equal(m.triangulate().triangles, reference.triangulate().triangles)
+
+
+def test_iterate_yields_views_that_stay_valid(rings):
+    m = pdmesh.Mesher(rings, device="host", iterations=90, seed=2)
+    states = list(m.iterate(every=30))
+    assert [s.iteration for s in states] == [30, 60, 90]
+    assert not states[0].points.flags.writeable
+    assert not np.array_equal(states[0].points, states[2].points)  # copy-on-write: old views kept
+    assert np.array_equal(states[2].points, m.points)
+    assert states[2].points.ctypes.data == m.points.ctypes.data  # the latest state is the run's memory
+    one_go = pdmesh.Mesher(rings, device="host", iterations=90, seed=2)
+    one_go.run()
+    assert np.array_equal(one_go.points, m.points)  # stepping in chunks changes nothing on the host
+    mid = pdmesh.Mesher(rings, device="host", iterations=90, seed=2)
+    mid.step(45)
+    assert len(mid.triangulate().triangles) > 0  # a mesh of the state at any point
+    assert len(m.history["iteration"]) == 90
