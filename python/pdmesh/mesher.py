@@ -52,12 +52,13 @@ class Mesher:
     the end of an iteration; the Mesher then continues from there, on the host device to the same
     result as a run that was never interrupted. ``geo`` is a Geometry, anything Geometry() accepts,
     or a Case. Keywords are case-file settings (see ``generate``). With ``out`` (a directory) the
-    run also writes the command's outputs there.
+    run also writes the command's outputs there. ``max_nodes`` refuses (LimitError) a case whose
+    node-count estimate is larger (the command's --max-nodes, default 20,000,000).
     """
 
     def __init__(self, geo: Any, size: Any = None, *, device: str | None = None, seed: int | None = None,
                  settings: Mapping[str, Any] | None = None, out: str | os.PathLike | None = None,
-                 **keywords: Any):
+                 max_nodes: int | None = None, **keywords: Any):
         overrides, sampler = _settings_for(size, device, seed, settings, keywords)
         if isinstance(geo, Case):
             config = geo._with(overrides)
@@ -68,7 +69,9 @@ class Mesher:
         if sampler is not None:
             config = config.with_size_callable(sampler)
         self._config = config
-        self._core = _core.Mesher(config, os.fspath(out) if out is not None else "")
+        if max_nodes is not None and int(max_nodes) < 1:
+            raise InputError(f"max_nodes must be >= 1, got {max_nodes}")
+        self._core = _core.Mesher(config, os.fspath(out) if out is not None else "", int(max_nodes or 0))
 
     @property
     def name(self) -> str:
@@ -160,7 +163,8 @@ class Mesher:
 
 
 def generate(geometry: Any, size: Any = None, *, device: str | None = None, seed: int | None = None,
-             progress: Any = False, settings: Mapping[str, Any] | None = None, **keywords: Any) -> Mesh:
+             progress: Any = False, settings: Mapping[str, Any] | None = None, max_nodes: int | None = None,
+             **keywords: Any) -> Mesh:
     """Meshes a geometry: places the nodes by the particle simulation and triangulates them.
 
     ``geometry``: a Geometry, a list of (N, 2) rings, a shapely polygon, or a path (a case file or a
@@ -170,11 +174,12 @@ def generate(geometry: Any, size: Any = None, *, device: str | None = None, seed
     ``iterations=500``, ``method="random"``, a section as a dict (``simulation={"cutoff": 1.6}``),
     or ``settings={"simulation.cutoff": 1.6}``; the values are checked exactly as the command
     checks a case file. A geometry alone runs with preset "best", as the command does.
+    ``max_nodes``: see Mesher.
     """
     if isinstance(geometry, (str, os.PathLike)):
         path = os.fspath(geometry)
         geometry = Case.from_toml(path) if path.lower().endswith(".toml") else Geometry.from_file(path)
-    mesher = Mesher(geometry, size, device=device, seed=seed, settings=settings, **keywords)
+    mesher = Mesher(geometry, size, device=device, seed=seed, settings=settings, max_nodes=max_nodes, **keywords)
     mesher.run(progress=progress)
     return mesher.triangulate()
 

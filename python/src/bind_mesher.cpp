@@ -26,9 +26,11 @@ using Clock = std::chrono::steady_clock;
 
 class Mesher {
  public:
-  Mesher(const CaseConfig& config, const std::string& out_dir) : session_(std::make_shared<Session>()) {
+  Mesher(const CaseConfig& config, const std::string& out_dir, std::uint64_t max_nodes)
+      : session_(std::make_shared<Session>()) {
     CaseConfig& c = session_->config;
     c = config;
+    if (max_nodes > 0) c.max_nodes = max_nodes;
     c.quiet = true;  // the Python layer reports progress itself
     c.write_outputs = !out_dir.empty();
     if (!out_dir.empty()) c.out_dir = out_dir;
@@ -162,9 +164,10 @@ nb::dict history_columns(const std::vector<HistoryRow>& rows) {
 
 void bind_mesher(nb::module_& m) {
   nb::class_<Mesher>(m, "Mesher", "One case's run in memory (use pdmesh.Mesher).")
-      .def(nb::init<const CaseConfig&, const std::string&>(), nb::arg("config"), nb::arg("out_dir") = "",
+      .def(nb::init<const CaseConfig&, const std::string&, std::uint64_t>(), nb::arg("config"),
+           nb::arg("out_dir") = "", nb::arg("max_nodes") = 0,
            "Reads the geometry, builds the spacing field and the initial distribution; with out_dir, writes the "
-           "command's outputs there as the run goes.")
+           "command's outputs there as the run goes; max_nodes > 0 replaces the --max-nodes limit.")
       .def("step", &Mesher::step, nb::arg("target"), nb::arg("progress").none(), nb::arg("interval") = 0.1,
            "Runs up to `target` iterations in all; 'done' or 'cancelled'.")
       .def("triangulate", &Mesher::triangulate, "The mesh of the current nodes.")

@@ -77,6 +77,6 @@ def test_size_errors(rings):
 def test_device_and_limit_errors(rings):
     with pytest.raises(pdmesh.InputError, match="opencl:9:9"):
         pdmesh.generate(rings, device="opencl:9:9")
-    with pytest.raises(pdmesh.LimitError, match="more than --max-nodes") as e:
-        pdmesh.generate(rings, size=1e-4)
+    with pytest.raises(pdmesh.LimitError, match="more than --max-nodes 100;") as e:
+        pdmesh.generate(rings, size=0.02, max_nodes=100)
     assert isinstance(e.value, pdmesh.InputError)
