@@ -25,20 +25,31 @@ class Progress:
 
 
 class Bar:
-    """A one-line progress bar on stderr, redrawn in place on a terminal (and in Jupyter)."""
+    """A one-line progress bar on stderr: redrawn in place on a terminal and in Jupyter; in a log
+    (not a terminal) one line every 5 s and the last one, as the command does."""
+
+    LOG_INTERVAL = 5.0
 
     def __init__(self, stream=None, width: int = 30):
         self.stream = stream or sys.stderr
         self.width = width
         self.drawn = False
+        isatty = getattr(self.stream, "isatty", None)
+        # ipykernel's streams are no terminals but redraw "\r" lines like one.
+        self.in_place = bool(isatty and isatty()) or type(self.stream).__module__.startswith("ipykernel")
+        self.logged_at = None
 
     def __call__(self, p: Progress) -> None:
         filled = int(round(self.width * p.fraction))
-        line = (f"\rpdmesh: [{'#' * filled}{'.' * (self.width - filled)}] {p.iteration}/{p.iterations} "
+        line = (f"pdmesh: [{'#' * filled}{'.' * (self.width - filled)}] {p.iteration}/{p.iterations} "
                 f"avg |F| {p.average_force:.3g}  dt {p.dt:.3g}  {p.seconds:.1f} s")
-        self.stream.write(line)
+        if self.in_place:
+            self.stream.write("\r" + line)
+            self.drawn = True
+        elif p.iteration == p.iterations or self.logged_at is None or p.seconds - self.logged_at >= self.LOG_INTERVAL:
+            self.stream.write(line + "\n")
+            self.logged_at = p.seconds
         self.stream.flush()
-        self.drawn = True
 
     def close(self) -> None:
         if self.drawn:

@@ -67,8 +67,7 @@ class Mesher:
                 geo = Geometry(geo)
             config = geo._config(overrides)
         if sampler is not None:
-            config = config.with_size_callable(sampler)
-        self._config = config
+            config = config.with_size_callable(sampler)  # sampled, then let go, by the core's Mesher
         if max_nodes is not None and int(max_nodes) < 1:
             raise InputError(f"max_nodes must be >= 1, got {max_nodes}")
         self._core = _core.Mesher(config, os.fspath(out) if out is not None else "", int(max_nodes or 0))
@@ -108,9 +107,14 @@ class Mesher:
         return self._core.history
 
     @property
+    def backend(self) -> str:
+        """Where the last step ran: "reference" (the host) or "opencl:P:D (device, precision, ...)"."""
+        return self._core.backend
+
+    @property
     def size_calls(self) -> int:
         """How often a size callable was called (once per sampling pass); 0 without one."""
-        return self._config.size_callable_calls
+        return self._core.size_calls
 
     @property
     def timings(self) -> dict[str, float]:

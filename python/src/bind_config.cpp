@@ -104,14 +104,7 @@ void bind_config(nb::module_& m) {
             copy.spacing.given = std::make_shared<CallableSpacing>(std::move(sample));
             return copy;
           },
-          nb::arg("sample"), "A copy whose spacing field is `sample(xy[N,2]) -> h[N]` (sampled once, vectorised).")
-      .def_prop_ro(
-          "size_callable_calls",
-          [](const CaseConfig& c) -> std::size_t {
-            const auto* f = dynamic_cast<const CallableSpacing*>(c.spacing.given.get());
-            return f ? f->calls() : 0;
-          },
-          "How often the size callable has been called (one call per sampling pass).");
+          nb::arg("sample"), "A copy whose spacing field is `sample(xy[N,2]) -> h[N]` (sampled once, vectorised).");
 
   m.def(
       "case_keys", [] { return case_file_keys(); }, "Every valid dotted case-file key.");

@@ -13,6 +13,7 @@
 #include <nanobind/stl/vector.h>
 
 #include "bindings.hpp"
+#include "callable_spacing.hpp"
 #include "core/errors.hpp"
 #include "init/initial_distribution.hpp"
 #include "opencl/devices.hpp"
@@ -39,6 +40,11 @@ class Mesher {
     const auto start = Clock::now();
     session_->inputs = std::make_unique<MeshInputs>(c);
     const MeshInputs& inputs = *session_->inputs;
+    // The size callable has been sampled into the inputs' background field; letting it go here keeps
+    // no Python object alive from C++ (a callable that refers to its Mesher would make a cycle that
+    // Python's collector cannot see).
+    if (const auto* f = dynamic_cast<const CallableSpacing*>(c.spacing.given.get())) size_calls_ = f->calls();
+    c.spacing.given.reset();
     // As the command: an explicit OpenCL device that is not there is refused before anything runs.
     if (c.simulation.iterations > 0 && c.simulation.device != "host" && c.simulation.device != "auto")
       (void)ocl::select_device(c.simulation.device);
@@ -127,6 +133,7 @@ class Mesher {
   const std::optional<SimState>& state() const { return state_; }
   const CaseConfig& config() const { return session_->config; }
   double estimate() const { return estimate_; }
+  std::size_t size_calls() const { return size_calls_; }
   double init_seconds() const { return init_seconds_; }
   double sim_seconds() const { return seconds_; }
   const std::string& backend() const { return backend_; }
@@ -136,6 +143,7 @@ class Mesher {
   std::shared_ptr<NodeSet> nodes_;
   std::optional<SimState> state_;
   double estimate_ = 0.0;
+  std::size_t size_calls_ = 0;
   double init_seconds_ = 0.0;
   double seconds_ = 0.0;
   std::string backend_;
@@ -175,6 +183,7 @@ void bind_mesher(nb::module_& m) {
       .def_prop_ro("iterations", [](const Mesher& s) { return s.config().simulation.iterations; })
       .def_prop_ro("name", [](const Mesher& s) { return s.config().name; })
       .def_prop_ro("estimate", &Mesher::estimate, "The hexagonal-packing node-count estimate.")
+      .def_prop_ro("size_calls", &Mesher::size_calls, "How often the size callable was called.")
       .def_prop_ro("init_seconds", &Mesher::init_seconds)
       .def_prop_ro("sim_seconds", &Mesher::sim_seconds)
       .def_prop_ro("backend", &Mesher::backend)
