@@ -40,6 +40,8 @@ class Geometry:
             other = Geometry.from_geo_interface(rings, names)
             self._init(other._files, other._curves, other._names, other._label)
             return
+        if isinstance(rings, np.ndarray) and rings.ndim == 2:
+            rings = [rings]  # one ring given as an (N, 2) array
         curves = []
         for k, ring in enumerate(rings):
             xy = _as_xy(ring, f"rings[{k}]")

@@ -117,9 +117,15 @@ class Mesher:
         return self._core.size_calls
 
     @property
+    def size_points(self) -> int:
+        """How many points the size callable was given in all its calls."""
+        return self._core.size_points
+
+    @property
     def timings(self) -> dict[str, float]:
-        """Seconds spent: initialization (geometry, spacing, initial nodes) and simulation."""
-        return {"init": self._core.init_seconds, "simulation": self._core.sim_seconds}
+        """Seconds spent: initialization (geometry, spacing, initial nodes), of which sampling the
+        size callable (its calls and the hand-over of the arrays), and simulation."""
+        return {"init": self._core.init_seconds, "size": self._core.size_seconds, "simulation": self._core.sim_seconds}
 
     def state(self) -> State:
         h = self._core.history
@@ -191,18 +197,17 @@ def generate(geometry: Any, size: Any = None, *, device: str | None = None, seed
 class Case:
     """A case file (TOML) as the command reads it: ``Case.from_toml("cases/naca0012/case.toml").run()``."""
 
-    def __init__(self, config):
-        self._config_obj = config
+    def __init__(self, path: str | os.PathLike, settings: Mapping[str, Any] | None = None, **keywords: Any):
+        """The same as Case.from_toml(path, settings, **keywords)."""
+        self._path = os.fspath(path)
+        self._overrides = _settings.overrides(_settings.flatten(settings) + _settings.flatten(keywords))
+        self._config_obj = _core.load_case(self._path, self._overrides)
 
     @classmethod
     def from_toml(cls, path: str | os.PathLike, settings: Mapping[str, Any] | None = None,
                   **keywords: Any) -> "Case":
-        """Reads and validates a case file; settings override its keys like --set."""
-        pairs = _settings.flatten(settings) + _settings.flatten(keywords)
-        case = cls(_core.load_case(os.fspath(path), _settings.overrides(pairs)))
-        case._path = os.fspath(path)
-        case._overrides = _settings.overrides(pairs)
-        return case
+        """Reads and validates a case file; settings and keywords override its keys as in generate()."""
+        return cls(path, settings, **keywords)
 
     def _with(self, overrides: list) -> Any:
         if not overrides:

@@ -8,6 +8,7 @@
 #include <cstring>
 #include <exception>
 #include <optional>
+#include <stdexcept>
 
 #include <nanobind/stl/string.h>
 #include <nanobind/stl/vector.h>
@@ -43,7 +44,11 @@ class Mesher {
     // The size callable has been sampled into the inputs' background field; letting it go here keeps
     // no Python object alive from C++ (a callable that refers to its Mesher would make a cycle that
     // Python's collector cannot see).
-    if (const auto* f = dynamic_cast<const CallableSpacing*>(c.spacing.given.get())) size_calls_ = f->calls();
+    if (const auto* f = dynamic_cast<const CallableSpacing*>(c.spacing.given.get())) {
+      size_calls_ = f->calls();
+      size_points_ = f->points();
+      size_seconds_ = f->seconds();
+    }
     c.spacing.given.reset();
     // As the command: an explicit OpenCL device that is not there is refused before anything runs.
     if (c.simulation.iterations > 0 && c.simulation.device != "host" && c.simulation.device != "auto")
@@ -63,6 +68,7 @@ class Mesher {
   // exceptions are raised after the run has stopped, with the state of the last finished iteration kept.
   std::string step(std::int64_t target, nb::object progress, double interval) {
     if (failed_) throw SimulationError("this Mesher's run failed earlier; make a new one");
+    const Busy busy(*this);
     if (target <= iterations_done()) return "done";
     // Copy on write: arrays handed to Python keep the node set they view alive and unchanged.
     if (nodes_.use_count() > 1) nodes_ = std::make_shared<NodeSet>(*nodes_);
@@ -116,6 +122,7 @@ class Mesher {
   }
 
   MeshHandle triangulate() {
+    const Busy busy(*this);
     CaseConfig config = session_->config;
     config.simulation.iterations = iterations_done();
     std::shared_ptr<const NodeSet> nodes = nodes_;
@@ -134,20 +141,41 @@ class Mesher {
   const CaseConfig& config() const { return session_->config; }
   double estimate() const { return estimate_; }
   std::size_t size_calls() const { return size_calls_; }
+  std::size_t size_points() const { return size_points_; }
+  double size_seconds() const { return size_seconds_; }
   double init_seconds() const { return init_seconds_; }
   double sim_seconds() const { return seconds_; }
   const std::string& backend() const { return backend_; }
 
  private:
+  // Marks the Mesher busy while a step or a triangulation runs with the GIL released: a second call
+  // from another thread would replace the node set under the first (checked and set under the GIL).
+  class Busy {
+   public:
+    explicit Busy(Mesher& m) : m_(m) {
+      if (m_.busy_) throw std::runtime_error("this Mesher is already running (in another thread)");
+      m_.busy_ = true;
+    }
+    ~Busy() { m_.busy_ = false; }
+    Busy(const Busy&) = delete;
+    Busy& operator=(const Busy&) = delete;
+
+   private:
+    Mesher& m_;
+  };
+
   std::shared_ptr<Session> session_;
   std::shared_ptr<NodeSet> nodes_;
   std::optional<SimState> state_;
   double estimate_ = 0.0;
   std::size_t size_calls_ = 0;
+  std::size_t size_points_ = 0;
+  double size_seconds_ = 0.0;
   double init_seconds_ = 0.0;
   double seconds_ = 0.0;
   std::string backend_;
   bool failed_ = false;
+  bool busy_ = false;
 };
 
 // The history rows as columns (copies: a history is small next to the nodes).
@@ -184,6 +212,8 @@ void bind_mesher(nb::module_& m) {
       .def_prop_ro("name", [](const Mesher& s) { return s.config().name; })
       .def_prop_ro("estimate", &Mesher::estimate, "The hexagonal-packing node-count estimate.")
       .def_prop_ro("size_calls", &Mesher::size_calls, "How often the size callable was called.")
+      .def_prop_ro("size_points", &Mesher::size_points, "How many points the size callable was given in all.")
+      .def_prop_ro("size_seconds", &Mesher::size_seconds, "Seconds spent sampling the size callable.")
       .def_prop_ro("init_seconds", &Mesher::init_seconds)
       .def_prop_ro("sim_seconds", &Mesher::sim_seconds)
       .def_prop_ro("backend", &Mesher::backend)

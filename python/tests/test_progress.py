@@ -101,3 +101,28 @@ def test_iterate_yields_views_that_stay_valid(rings):
     mid.step(45)
     assert len(mid.triangulate().triangles) > 0  # a mesh of the state at any point
     assert len(m.history["iteration"]) == 90
+
+
+def test_other_threads_run_while_the_core_works_and_a_second_step_is_refused(rings):
+    m = pdmesh.Mesher(rings, device="host", iterations=400, seed=3)
+    ticks, refused = [0], []
+    started = threading.Event()
+
+    def progress(p):
+        started.set()
+
+    def other():
+        started.wait(30)
+        try:
+            m.step(1)
+        except RuntimeError as e:
+            refused.append(str(e))
+        while m.iteration < 400 and ticks[0] < 10**7:  # Python code runs while the step holds no GIL
+            ticks[0] += 1
+
+    t = threading.Thread(target=other)
+    t.start()
+    m.run(progress=progress)
+    t.join()
+    assert refused == ["this Mesher is already running (in another thread)"]
+    assert ticks[0] > 100
