@@ -121,7 +121,10 @@ class Mesh:
             _, ax = plt.subplots(figsize=(8, 8))
         x, y = self.points[:, 0], self.points[:, 1]
         if color_by:
-            values = self.quality()["per_triangle"][color_by]
+            per_triangle = self.quality()["per_triangle"]
+            if color_by not in per_triangle:
+                raise InputError(f"color_by: unknown metric '{color_by}' ({', '.join(per_triangle)})")
+            values = per_triangle[color_by]
             shaded = ax.tripcolor(x, y, self.triangles, facecolors=values, cmap="viridis")
             ax.figure.colorbar(shaded, ax=ax, label=color_by)
         triplot.setdefault("color", "black")

@@ -19,31 +19,26 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// One metric of every triangle, as a new array.
-template <class Get>
-nb::ndarray<nb::numpy, double> metric(const std::vector<TriangleQuality>& q, Get get) {
-  auto* v = new std::vector<double>(q.size());
-  for (std::size_t t = 0; t < q.size(); ++t) (*v)[t] = get(q[t]);
-  nb::capsule owner(v, [](void* p) noexcept { delete static_cast<std::vector<double>*>(p); });
-  return nb::ndarray<nb::numpy, double>(v->data(), {v->size()}, owner);
+// The per-triangle measures by their names (docs/quality.md; the command's --color-by names).
+const std::vector<std::pair<const char*, double TriangleQuality::*>> kMetrics = {
+    {"min_angle", &TriangleQuality::min_angle},       {"max_angle", &TriangleQuality::max_angle},
+    {"aspect_ratio", &TriangleQuality::aspect_ratio}, {"skewness", &TriangleQuality::skewness},
+    {"condition_number", &TriangleQuality::condition_number}, {"min_jacobian", &TriangleQuality::min_jacobian},
+};
+
+std::vector<double> metric_values(const std::vector<TriangleQuality>& q, double TriangleQuality::*member) {
+  std::vector<double> v(q.size());
+  for (std::size_t t = 0; t < q.size(); ++t) v[t] = q[t].*member;
+  return v;
 }
 
-std::vector<double> metric_values(const std::vector<TriangleQuality>& q, const std::string& name) {
-  std::vector<double> v;
-  v.reserve(q.size());
-  for (const TriangleQuality& t : q) {
-    if (name == "min_angle") v.push_back(t.min_angle);
-    else if (name == "max_angle") v.push_back(t.max_angle);
-    else if (name == "aspect_ratio") v.push_back(t.aspect_ratio);
-    else if (name == "skewness") v.push_back(t.skewness);
-    else if (name == "condition_number") v.push_back(t.condition_number);
-    else if (name == "min_jacobian") v.push_back(t.min_jacobian);
-    else
-      throw InputError(fmt::format("color_by: unknown metric '{}' (min_angle, max_angle, aspect_ratio, skewness, "
-                                   "condition_number, min_jacobian)",
-                                   name));
+double TriangleQuality::*metric_named(const std::string& name) {
+  std::string names;
+  for (const auto& [n, member] : kMetrics) {
+    if (name == n) return member;
+    names += (names.empty() ? "" : ", ") + std::string(n);
   }
-  return v;
+  throw InputError(fmt::format("color_by: unknown metric '{}' ({})", name, names));
 }
 
 std::string quality_json_of(const MeshHandle& h) {
@@ -61,12 +56,11 @@ nb::dict triangle_metrics(const MeshHandle& h) {
     q = triangle_qualities(*h.mesh);
   }
   nb::dict d;
-  d["min_angle"] = metric(q, [](const TriangleQuality& t) { return t.min_angle; });
-  d["max_angle"] = metric(q, [](const TriangleQuality& t) { return t.max_angle; });
-  d["aspect_ratio"] = metric(q, [](const TriangleQuality& t) { return t.aspect_ratio; });
-  d["skewness"] = metric(q, [](const TriangleQuality& t) { return t.skewness; });
-  d["condition_number"] = metric(q, [](const TriangleQuality& t) { return t.condition_number; });
-  d["min_jacobian"] = metric(q, [](const TriangleQuality& t) { return t.min_jacobian; });
+  for (const auto& [name, member] : kMetrics) {
+    auto* v = new std::vector<double>(metric_values(q, member));
+    nb::capsule owner(v, [](void* p) noexcept { delete static_cast<std::vector<double>*>(p); });
+    d[name] = nb::ndarray<nb::numpy, double>(v->data(), {v->size()}, owner);
+  }
   return d;
 }
 
@@ -112,10 +106,11 @@ void picture(const MeshHandle& h, const std::string& path, const std::string& co
       throw InputError("window must be [x0, y0, x1, y1] with x0 < x1 and y0 < y1");
     options.window = Box{{(*window)[0], (*window)[1]}, {(*window)[2], (*window)[3]}};
   }
+  double TriangleQuality::*member = color_by == "none" ? nullptr : metric_named(color_by);
   nb::gil_scoped_release release;
   std::vector<double> values;
-  if (color_by != "none") {
-    values = metric_values(triangle_qualities(*h.mesh), color_by);
+  if (member != nullptr) {
+    values = metric_values(triangle_qualities(*h.mesh), member);
     options.triangle_values = &values;
     options.value_label = color_by;
   }

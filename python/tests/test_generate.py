@@ -111,6 +111,10 @@ def test_quality_write_and_read_back(rings, tmp_path):
     assert (tmp_path / "m22.msh").read_text().startswith("$MeshFormat\n2.2")
     mesh.write(tmp_path / "m.png")
     assert (tmp_path / "m.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    mesh.picture(tmp_path / "q.png", color_by="min_angle", window=(-0.5, -0.5, 0.5, 0.5))
+    assert (tmp_path / "q.png").stat().st_size > 1000
+    with pytest.raises(pdmesh.InputError, match="unknown metric 'angle'"):
+        mesh.picture(tmp_path / "bad.png", color_by="angle")
     assert mesh._repr_png_()[:4] == b"\x89PNG"
     assert "<svg" in mesh._repr_svg_()
     with pytest.raises(pdmesh.InputError, match="unknown mesh suffix"):
