@@ -59,6 +59,17 @@ Geometry rectangle_geometry() {
 
 const char kPngSignature[] = "\x89PNG\r\n\x1a\n";
 
+// The unit square as two triangles split along its diagonal from (0, 0) to (1, 1): the first one
+// lower right, the second upper left.
+Mesh unit_square_mesh() {
+  Mesh m;
+  m.points = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+  m.triangles = {{0, 1, 2}, {0, 2, 3}};
+  m.boundary_edges = {{0, 1, 0}, {1, 2, 0}, {2, 3, 0}, {3, 0, 0}};
+  m.curve_names = {"square"};
+  return m;
+}
+
 }  // namespace
 
 TEST_CASE("padded windows add 3% of the longer side", "[render]") {
@@ -147,11 +158,7 @@ TEST_CASE("a view window zooms in and a tall window makes a tall image", "[rende
 
 TEST_CASE("mesh pictures fill triangles by value and draw a colour bar", "[render]") {
   const fs::path dir = fresh_dir("mesh");
-  Mesh m;
-  m.points = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
-  m.triangles = {{0, 1, 2}, {0, 2, 3}};
-  m.boundary_edges = {{0, 1, 0}, {1, 2, 0}, {2, 3, 0}, {3, 0, 0}};
-  m.curve_names = {"square"};
+  const Mesh m = unit_square_mesh();
   const std::vector<double> values = {0.25, 1.0};
   MeshPictureOptions o;
   o.title = "square";
@@ -185,11 +192,7 @@ TEST_CASE("mesh pictures fill triangles by value and draw a colour bar", "[rende
 
 TEST_CASE("a fixed value range places values on the ramp and clamps those outside it", "[render]") {
   const fs::path dir = fresh_dir("range");
-  Mesh m;
-  m.points = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
-  m.triangles = {{0, 1, 2}, {0, 2, 3}};
-  m.boundary_edges = {{0, 1, 0}, {1, 2, 0}, {2, 3, 0}, {3, 0, 0}};
-  m.curve_names = {"square"};
+  const Mesh m = unit_square_mesh();
   const std::vector<double> values = {30.0, 100.0};  // lower-right, upper-left
   MeshPictureOptions o;
   o.triangle_values = &values;
