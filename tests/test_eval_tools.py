@@ -9,7 +9,7 @@ import os
 import tempfile
 import unittest
 
-from pdmesh_eval.angles import angle_report
+from pdmesh_eval.angles import angle_report, has_triangle
 from pdmesh_eval.geometry import domain_corners, sharpest_corner
 from pdmesh_eval.gmsh import write_geo, write_pos
 from pdmesh_eval.meshfiles import boundary_loops, corner_angles, read_msh
@@ -113,6 +113,23 @@ class Angles(unittest.TestCase):
         self.assertEqual(r["triangles_below_target"], 2)
         self.assertEqual(r["triangles_below_target_away_from_sharp_corners"], 1)
 
+    def test_boundary_vertices_are_found_within_the_tolerance(self):
+        points, triangles = self.mesh()
+        # The boundary as Gmsh writes it back: 16 significant digits, not always bit-identical.
+        boundary = [(float(f"{x:.16g}") + 1e-17, float(f"{y:.16g}")) for x, y in points[:3]]
+        r = angle_report(points, triangles, [], target=30.0, boundary=boundary)
+        self.assertEqual(r["worst"]["boundary_vertices"], 2)  # the 18-degree triangle (1, 3, 2)
+        self.assertEqual(angle_report(points, triangles, [], boundary=[(0.5, 0.5)])["worst"]["boundary_vertices"], 0)
+
+    def test_interior_vertex_minimum_and_triangle_lookup(self):
+        points, triangles = self.mesh()
+        # Points 0-2 on the boundary: the 20-degree triangle has no interior vertex, the other one has.
+        r = angle_report(points, triangles, [], boundary=points[:3])
+        self.assertAlmostEqual(r["min_angle_with_interior_vertex"], min(corner_angles(points, triangles[1])))
+        self.assertIsNone(angle_report(points, triangles, [], boundary=points)["min_angle_with_interior_vertex"])
+        self.assertTrue(has_triangle(points, triangles, [points[2], points[1], points[3]]))
+        self.assertFalse(has_triangle(points, triangles, [points[0], points[1], points[3]]))
+
     def test_without_sharp_corners_away_equals_overall(self):
         points, triangles = self.mesh()
         r = angle_report(points, triangles, [], target=30.0)
@@ -140,7 +157,8 @@ class Verdict(unittest.TestCase):
 
     def result(self, ours, gmsh, corner=None, away=None):
         def mesh(label, angle, corner_angle, away_angle, sharp):
-            return {"label": label, "angles": {"min_angle": angle, "worst": {"input_corner_angle": corner_angle},
+            return {"label": label, "angles": {"min_angle": angle, "worst": {"input_corner_angle": corner_angle,
+                                                                              "boundary_vertices": 1},
                                                "min_angle_away_from_sharp_corners": away_angle,
                                                "sharp_corner_vertices": sharp}}
         sharp = 1 if corner is not None else 0
