@@ -106,7 +106,7 @@ TEST_CASE("case-file errors exit 2 with FILE:LINE and the suggestion, before any
   fs::remove_all(dir);
 }
 
-TEST_CASE("several geometry files make one geometry; a case file takes no second input", "[cli]") {
+TEST_CASE("several geometry files make one geometry, and a case file takes no second input", "[cli]") {
   const fs::path dir = fresh_dir("multi");
   write_rectangle(dir / "rect.crv");
   // A hole: a 0.5 x 0.5 square inside the rectangle, in its own file.
@@ -182,7 +182,7 @@ TEST_CASE("pdmesh mesh writes every stage's files: initial, history, final, mesh
   fs::remove_all(dir);
 }
 
-TEST_CASE("pdmesh quality draws a picture; bad picture options exit 2 before writing anything", "[cli]") {
+TEST_CASE("pdmesh quality draws a picture, and bad picture options exit 2 before writing anything", "[cli]") {
   const fs::path dir = fresh_dir("quality_picture");
   pdmesh::Mesh m;
   m.points = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};

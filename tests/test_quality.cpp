@@ -297,7 +297,7 @@ TEST_CASE("quality command reads a mesh file, prints the table and writes the JS
   std::filesystem::remove_all(dir);
 }
 
-TEST_CASE("metric values by name are the per-triangle fields; unknown names are refused", "[quality]") {
+TEST_CASE("metric values by name are the per-triangle fields and unknown names are refused", "[quality]") {
   const Mesh m = two_triangle_mesh();
   const auto per = triangle_qualities(m);
   CHECK(metric_values(per, "min_angle") == std::vector<double>{per[0].min_angle, per[1].min_angle});
