@@ -28,9 +28,10 @@ if [ -z "${PDMESH_NO_PYTHON:-}" ]; then
   venv=$PWD/.venv
   [ -x "$venv/bin/python" ] || python3 -m venv "$venv"
   # The build requirements of pyproject.toml (installed here so that the package builds from build/
-  # without a second compile), numpy and pytest; pip leaves what is already there.
+  # without a second compile), numpy, pytest and the extras the tests use (meshio, matplotlib,
+  # shapely); pip leaves what is already there.
   "$venv/bin/python" -m pip install -q --disable-pip-version-check \
-    "scikit-build-core>=0.10" "nanobind>=2.0" "numpy>=1.21" "pytest>=7"
+    "scikit-build-core>=0.10" "nanobind>=2.0" "numpy>=1.21" "pytest>=7" "meshio>=5" "matplotlib>=3.5" "shapely>=1.8"
   python_args=(-DPDMESH_PYTHON=ON "-DPython_EXECUTABLE=$venv/bin/python")
 fi
 
