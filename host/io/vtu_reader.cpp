@@ -82,11 +82,11 @@ class VtuFile {
 
   void scan() {
     // Raw appended data may hold any byte, '<' included: the markup ends where it begins.
-    std::size_t markup_end = text_.size();
     if (const auto a = text_.find("<AppendedData"); a != std::string::npos) {
-      markup_end = a;
+      markup_end_ = a;
       read_appended(a);
     }
+    const std::size_t markup_end = markup_end_;
     std::string section;
     bool piece = false;
     bool root = false;
@@ -213,10 +213,15 @@ class VtuFile {
         if (end != std::string::npos) next = end + 12;
       }
     } else if (a.format == "ascii" || a.format == "binary") {
+      // The values are the text up to the first child element (VTK writes <InformationKey> elements
+      // after them) or the end tag.
       a.begin = close + 1;
-      a.end = self_closing ? a.begin : text_.find("</DataArray>", close);
-      if (a.end == std::string::npos) fail(pos, "DataArray without </DataArray> (file truncated?)");
-      if (!self_closing) next = a.end + 12;
+      a.end = self_closing ? a.begin : std::min(text_.find('<', a.begin), markup_end_);
+      if (!self_closing) {
+        const auto end = text_.find("</DataArray>", a.end);
+        if (end == std::string::npos || end > markup_end_) fail(pos, "DataArray without </DataArray> (file truncated?)");
+        next = end + 12;
+      }
     } else {
       fail(pos, fmt::format("DataArray '{}' has unknown format '{}' (ascii, binary or appended)", a.name, a.format));
     }
@@ -259,6 +264,7 @@ class VtuFile {
   std::string compressor_error_;
   bool appended_base64_ = false;
   std::size_t appended_begin_ = std::string::npos, appended_end_ = std::string::npos;
+  std::size_t markup_end_ = std::string::npos;  // where <AppendedData> begins (raw bytes may follow)
 };
 
 int as_index(double v, long long n, const ArrayInfo& a, const VtuFile& f) {

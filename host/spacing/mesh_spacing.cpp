@@ -32,11 +32,15 @@ MeshSpacing::MeshSpacing(MeshFieldData data) : data_(std::move(data)) {
       return fmt::format("({}, {}, {})", point_label(v[0]), point_label(v[1]), point_label(v[2]));
     };
     const auto pa = data_.points[static_cast<std::size_t>(c.a)], pb = data_.points[static_cast<std::size_t>(c.b)];
-    throw InputError(fmt::format(
-        "{}: {} edge {} - {} ({}, {}) - ({}, {}) {}: triangles {} and {} (an inverted or folded triangle, or two "
-        "overlapping meshes); a spacing background mesh must not overlap itself",
-        data_.file, c.same_side ? "the triangles of" : "the", point_label(c.a), point_label(c.b), pa.x, pa.y, pb.x, pb.y,
-        c.same_side ? "lie on the same side of it" : "belongs to more than two triangles", tri(c.first), tri(c.second)));
+    const std::string edge = fmt::format("{} - {} (({}, {}) - ({}, {}))", point_label(c.a), point_label(c.b), pa.x,
+                                         pa.y, pb.x, pb.y);
+    const std::string what =
+        c.same_side ? fmt::format("the triangles {} and {} lie on the same side of their shared edge {} (an inverted or "
+                                  "folded triangle, or two overlapping meshes)",
+                                  tri(c.first), tri(c.second), edge)
+                    : fmt::format("the edge {} belongs to more than two triangles, among them {} and {}", edge,
+                                  tri(c.first), tri(c.second));
+    throw InputError(fmt::format("{}: {}; a spacing background mesh must not overlap itself", data_.file, what));
   }
   check_overlaps();
 }
