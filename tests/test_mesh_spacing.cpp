@@ -65,15 +65,21 @@ MeshFieldData grid(int n, std::uint64_t seed, bool dyadic, const std::function<d
   return d;
 }
 
-// The lowest-index triangle whose closed area holds p, by scanning all of them.
-int brute_locate(const MeshFieldData& d, Vec2 p) {
+// Every triangle whose closed area holds p, by scanning all of them.
+std::vector<int> brute_locate_all(const MeshFieldData& d, Vec2 p) {
+  std::vector<int> out;
   for (std::size_t t = 0; t < d.triangles.size(); ++t) {
     const auto& v = d.triangles[t];
     const Vec2 a = d.points[static_cast<std::size_t>(v[0])], b = d.points[static_cast<std::size_t>(v[1])],
                c = d.points[static_cast<std::size_t>(v[2])];
-    if (orient2d(b, c, p) >= 0 && orient2d(c, a, p) >= 0 && orient2d(a, b, p) >= 0) return static_cast<int>(t);
+    if (orient2d(b, c, p) >= 0 && orient2d(c, a, p) >= 0 && orient2d(a, b, p) >= 0) out.push_back(static_cast<int>(t));
   }
-  return -1;
+  return out;
+}
+
+int brute_locate(const MeshFieldData& d, Vec2 p) {
+  const auto all = brute_locate_all(d, p);
+  return all.empty() ? -1 : all.front();
 }
 
 // The distance from p to the nearest boundary edge, by scanning all of them.
@@ -117,15 +123,23 @@ TEST_CASE("TriangleLocator agrees with a brute-force scan, on edges and vertices
       ++on_edges;
     }
   }
-  std::size_t inside = 0;
+  std::size_t inside = 0, shared = 0;
   for (const Vec2 p : points) {
     INFO("(" << p.x << ", " << p.y << ")");
-    const int want = brute_locate(d, p);
+    const std::vector<int> want = brute_locate_all(d, p);
     const Located got = loc.locate(p);
-    REQUIRE(got.triangle == want);
-    inside += want >= 0;
+    // None: outside. One: that one. Several (p on a shared edge or vertex): one of them, always the same.
+    if (want.empty()) {
+      REQUIRE(got.triangle == -1);
+      continue;
+    }
+    REQUIRE(std::find(want.begin(), want.end(), got.triangle) != want.end());
+    REQUIRE(loc.locate(p).triangle == got.triangle);
+    ++inside;
+    shared += want.size() > 1;
   }
   CHECK(inside > d.points.size() + on_edges + 2000);  // vertices, midpoints and most random points are inside
+  CHECK(shared >= on_edges - 4 * 23);                 // the midpoints of interior edges are in two triangles
   CHECK(loc.stats().boundary_edges == 4u * 23u);
   // Outside: the nearest boundary point is as near as the nearest of all boundary edges.
   for (int i = 0; i < 300; ++i) {

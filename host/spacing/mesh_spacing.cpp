@@ -24,7 +24,7 @@ MeshSpacing::MeshSpacing(MeshFieldData data) : data_(std::move(data)) {
   }
   check_values();
   check_triangles();
-  locator_ = std::make_unique<TriangleLocator>(data_.points, data_.triangles);
+  locator_ = std::make_unique<TriangleLocator>(data_.points, data_.triangles, data_.q);
   const EdgeConflict& c = locator_->edge_conflict();
   if (c.first >= 0) {
     auto tri = [&](int t) {
@@ -89,18 +89,22 @@ void MeshSpacing::check_triangles() const {
 // inside their own triangle (exactly) count, so a sliver whose rounded centroid crossed an edge
 // cannot raise a false alarm.
 void MeshSpacing::check_overlaps() const {
-  double w[3];
+  Located l;
   for (std::size_t t = 0; t < data_.triangles.size(); ++t) {
     const auto& v = data_.triangles[t];
     const Vec2 a = data_.points[static_cast<std::size_t>(v[0])];
     const Vec2 b = data_.points[static_cast<std::size_t>(v[1])];
     const Vec2 c = data_.points[static_cast<std::size_t>(v[2])];
     const Vec2 centroid{(a.x + b.x + c.x) / 3.0, (a.y + b.y + c.y) / 3.0};
-    if (!locator_->strictly_inside(static_cast<int>(t), centroid, w)) continue;
-    const auto [begin, end] = locator_->triangles_near(centroid);
-    for (const std::int32_t* u = begin; u != end; ++u) {
-      if (static_cast<std::size_t>(*u) == t || !locator_->strictly_inside(*u, centroid, w)) continue;
-      const auto& o = data_.triangles[static_cast<std::size_t>(*u)];
+    if (!locator_->strictly_inside(locator_->position_of(static_cast<int>(t)), centroid, l)) continue;
+    int other = -1;
+    locator_->for_each_triangle_near(centroid, [&](int u) {
+      if (other < 0 && static_cast<std::size_t>(u) != t && locator_->strictly_inside(locator_->position_of(u), centroid, l)) {
+        other = u;
+      }
+    });
+    if (other >= 0) {
+      const auto& o = data_.triangles[static_cast<std::size_t>(other)];
       throw InputError(fmt::format("{}: the triangles ({}, {}, {}) and ({}, {}, {}) overlap (the centroid ({}, {}) of "
                                    "the first lies inside the second); a spacing background mesh must not overlap itself",
                                    data_.file, point_label(v[0]), point_label(v[1]), point_label(v[2]),
@@ -109,17 +113,7 @@ void MeshSpacing::check_overlaps() const {
   }
 }
 
-// w are the orient2d weights of the triangle's vertices (sum > 0: the triangle has positive area
-// and holds the point). The clamp keeps rounding from leaving the vertices' range (so q stays > 0).
-double MeshSpacing::interpolate(int t, const double w[3]) const {
-  const auto& v = data_.triangles[static_cast<std::size_t>(t)];
-  const double qa = data_.q[static_cast<std::size_t>(v[0])];
-  const double qb = data_.q[static_cast<std::size_t>(v[1])];
-  const double qc = data_.q[static_cast<std::size_t>(v[2])];
-  const double q = (w[0] * qa + w[1] * qb + w[2] * qc) / (w[0] + w[1] + w[2]);
-  return std::clamp(q, std::min({qa, qb, qc}), std::max({qa, qb, qc}));
-}
-
+// The value at the nearest point of the nearest boundary edge (clamped to its ends' range).
 double MeshSpacing::outside(Vec2 p) const {
   const BoundaryHit hit = locator_->nearest_boundary(p);
   const auto& e = locator_->boundary_edges()[static_cast<std::size_t>(hit.edge)];
@@ -130,27 +124,21 @@ double MeshSpacing::outside(Vec2 p) const {
 
 double MeshSpacing::at(Vec2 p) const {
   const Located l = locator_->locate(p);
-  return l.triangle >= 0 ? interpolate(l.triangle, l.w) : outside(p);
+  return l.triangle >= 0 ? locator_->interpolate(l) : outside(p);
 }
 
 void MeshSpacing::at_many(const std::vector<Vec2>& p, std::vector<double>& q) const {
   q.resize(p.size());
-  int last = -1;
-  double w[3];
+  Located l;
   for (std::size_t i = 0; i < p.size(); ++i) {
     // Strictly inside the last triangle: no other triangle holds the point, so at() would pick it too
     // (and compute the same weights).
-    if (last >= 0 && locator_->strictly_inside(last, p[i], w)) {
-      q[i] = interpolate(last, w);
+    if (l.position >= 0 && locator_->strictly_inside(l.position, p[i], l)) {
+      q[i] = locator_->interpolate(l);
       continue;
     }
-    const Located l = locator_->locate(p[i]);
-    if (l.triangle >= 0) {
-      last = l.triangle;
-      q[i] = interpolate(l.triangle, l.w);
-    } else {
-      q[i] = outside(p[i]);
-    }
+    l = locator_->locate(p[i]);
+    q[i] = l.triangle >= 0 ? locator_->interpolate(l) : outside(p[i]);
   }
 }
 

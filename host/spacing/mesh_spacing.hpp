@@ -60,7 +60,6 @@ class MeshSpacing final : public SpacingField {
   const MeshFieldData& data() const { return data_; }
 
  private:
-  double interpolate(int t, const double w[3]) const;
   double outside(Vec2 p) const;
   std::string point_label(int i) const;
   void check_values() const;
