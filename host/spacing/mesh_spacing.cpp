@@ -129,17 +129,19 @@ double MeshSpacing::at(Vec2 p) const {
 
 void MeshSpacing::at_many(const std::vector<Vec2>& p, std::vector<double>& q) const {
   q.resize(p.size());
-  Located l;
-  for (std::size_t i = 0; i < p.size(); ++i) {
-    // Strictly inside the last triangle: no other triangle holds the point, so at() would pick it too
-    // (and compute the same weights).
-    if (l.position >= 0 && locator_->strictly_inside(l.position, p[i], l)) {
-      q[i] = locator_->interpolate(l);
-      continue;
+  for_chunks(p.size(), kMaxThreads, [&](std::size_t begin, std::size_t end) {
+    Located l;
+    for (std::size_t i = begin; i < end; ++i) {
+      // Strictly inside the last triangle: no other triangle holds the point, so at() would pick it
+      // too (and compute the same weights).
+      if (l.position >= 0 && locator_->strictly_inside(l.position, p[i], l)) {
+        q[i] = locator_->interpolate(l);
+        continue;
+      }
+      l = locator_->locate(p[i]);
+      q[i] = l.triangle >= 0 ? locator_->interpolate(l) : outside(p[i]);
     }
-    l = locator_->locate(p[i]);
-    q[i] = l.triangle >= 0 ? locator_->interpolate(l) : outside(p[i]);
-  }
+  });
 }
 
 void MeshSpacing::check_covers(const Geometry& geometry) const {

@@ -48,9 +48,10 @@ class MeshSpacing final : public SpacingField {
   // Linear interpolation in the triangle holding p; outside the mesh (or in a hole of it) the value
   // at the nearest point of its boundary. Always within the range of the data. Thread-safe.
   double at(Vec2 p) const override;
-  // The same for many points; remembers the last triangle, so coherent batches skip most lookups.
-  // Gives bit-identical results to at().
+  // The same for many points; remembers the last triangle, so coherent batches skip most lookups,
+  // and splits large batches among up to kMaxThreads threads. Bit-identical to at().
   void at_many(const std::vector<Vec2>& p, std::vector<double>& q) const override;
+  static constexpr std::size_t kMaxThreads = 8;
 
   // Throws InputError naming the first geometry point (curve, index, coordinates, file) that lies
   // outside the mesh by more than allowed (kMeshCoverTolerance, kMeshCoverEdgeFraction above).
