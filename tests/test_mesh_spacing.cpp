@@ -14,8 +14,10 @@
 #include <random>
 #include <string>
 
+#include "app/case_file.hpp"
 #include "core/errors.hpp"
 #include "core/predicates.hpp"
+#include "geometry/geometry_files.hpp"
 #include "geometry_fixtures.hpp"
 #include "io/msh_writer.hpp"
 #include "io/vtu_writer.hpp"
@@ -446,4 +448,21 @@ TEST_CASE("pdmesh mesh runs with a background-mesh field and writes it back as p
   const auto left = std::count_if(w.points.begin(), w.points.end(), [](Vec2 p) { return p.x < 0.5; });
   CHECK(static_cast<double>(left) > 1.5 * static_cast<double>(w.points.size() - static_cast<std::size_t>(left)));
   fs::remove_all(dir);
+}
+
+TEST_CASE("the shock_data example reads as thesis eq. 7.2 and covers its square", "[mesh_spacing]") {
+  const CaseConfig c = load_case_file(fs::path(PDMESH_SOURCE_DIR) / "cases/shock_data/case.toml");
+  REQUIRE(c.spacing.field == SpacingKind::Mesh);
+  const auto field = load_mesh_spacing(c.spacing.file, c.spacing.array);
+  const Geometry g = read_geometry({c.geometry.files[0].string()}, c.geometry.curve_names);
+  CHECK_NOTHROW(field->check_covers(g));
+  std::mt19937_64 rng(4);
+  double worst = 0;
+  for (int i = 0; i < 5000; ++i) {
+    const Vec2 p{200 * unit(rng) - 100, 200 * unit(rng) - 100};
+    const double exact = 0.5 + 19.5 * std::pow(std::tanh(p.x / 16), 2);
+    worst = std::max(worst, std::fabs(field->at(p) - exact) / exact);
+  }
+  INFO("worst relative difference from eq. 7.2: " << worst);
+  CHECK(worst < 0.05);
 }
