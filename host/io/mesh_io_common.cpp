@@ -58,10 +58,6 @@ std::vector<std::size_t> boundary_edges_by_curve(const Mesh& mesh) {
   return order;
 }
 
-std::string MeshPointData::point_label(std::size_t i) const {
-  return i < point_ids.size() ? fmt::format("node {}", point_ids[i]) : fmt::format("point {}", i);
-}
-
 std::string msh_spacing_node_data(const Mesh& mesh) {
   if (mesh.spacing.empty()) return {};
   // One view "q": time 0, time step 0, 1 component, a value per node (node tag = point index + 1).

@@ -37,9 +37,8 @@ struct MeshPointData {
   std::optional<PointDataArray> array;     // out: that array, when the file has it
   std::vector<std::string> point_arrays;   // out: the name of every point-data array, in file order
   std::vector<std::string> other_arrays;   // out: other data ("NAME (cell data)"), for messages
-  std::vector<long long> point_ids;        // out: MSH node tag of each point; empty for VTU
-  // How messages name point i: "node TAG" (MSH) or "point i" (VTU, ParaView's point id).
-  std::string point_label(std::size_t i) const;
+  std::vector<long long> point_ids;        // out: MSH node tag of each point (messages name nodes by
+                                           // tag); empty for VTU (points by index, ParaView's point id)
 };
 
 // The name of curve c as written: its name, or "curve<c>" when empty; double quotes and line

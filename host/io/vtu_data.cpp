@@ -184,6 +184,12 @@ std::vector<double> decode_vtu_binary(VtuBytes& bytes, const VtuEncoding& encodi
       compressed.clear();
       bytes.read(static_cast<std::size_t>(csize), compressed, fmt::format("the end of compressed block {}", b));
       const std::uint64_t want = b + 1 == blocks ? last_size : block_size;
+      // Deflate expands at most about 1032:1: a larger claim is a damaged header, refused before
+      // anything that large is allocated.
+      if (want > 1032 * csize + 1024) {
+        throw InputError(fmt::format("{}: compressed block {} of {} bytes cannot hold the {} bytes its header says",
+                                     bytes.where(), b, csize, want));
+      }
       const std::size_t at = payload.size();
       payload.resize(at + static_cast<std::size_t>(want));
       uLongf got = static_cast<uLongf>(want);
