@@ -262,7 +262,7 @@ TEST_CASE("edit distance", "[app][case]") {
   CHECK(edit_distance("same", "same") == 0);
 }
 
-TEST_CASE("spacing.file selects a background-mesh field; its keys are checked", "[app][case]") {
+TEST_CASE("spacing.file selects a background-mesh field and its keys are checked", "[app][case]") {
   const std::string base = kMinimal;
   // A file alone selects the mesh field; the path is relative to the case file; the array defaults to q.
   CaseConfig c = parse_case_text(base + "[spacing]\nfile = \"data/flow.vtu\"\n", kCase);
