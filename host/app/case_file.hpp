@@ -16,7 +16,7 @@ namespace pdmesh {
 
 class SpacingField;
 
-enum class SpacingKind { Boundary, Expression };
+enum class SpacingKind { Boundary, Expression, Mesh };
 enum class Precision { Double, Float };
 
 // Which defaults the keys a case file leaves out take (top-level key `preset`).
@@ -58,6 +58,10 @@ struct CaseConfig {
   struct Spacing {
     SpacingKind field = SpacingKind::Boundary;
     std::string expression;  // muParser expression in x and y when field == Expression
+    // field == Mesh: a .vtu or .msh triangle mesh (resolved relative to the case file, or to the current
+    // directory when given by --set) and the name of its point-data array that holds q.
+    std::filesystem::path file;
+    std::string array = "q";
     // A field given by the caller (the Python API: a size callable), not a case key. When set it
     // replaces `field`; MeshInputs samples it once into a background field, so that nothing later
     // evaluates it per point.

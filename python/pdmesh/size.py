@@ -23,16 +23,17 @@ from .errors import InputError
 
 
 class Background:
-    """Sizes read from a background mesh: a .vtu or .msh triangle mesh with a point-data scalar,
-    interpolated linearly (the case keys ``spacing.field = "mesh"``, ``spacing.file``,
-    ``spacing.array``)."""
+    """Sizes read from a background mesh: a .vtu or .msh triangle mesh with a point-data scalar
+    (default "q", what pdmesh writes into its own mesh files), interpolated linearly in the triangle
+    that holds each point (the case keys ``spacing.field = "mesh"``, ``spacing.file``,
+    ``spacing.array``; docs/spacing.md, "Spacing from data")."""
 
-    def __init__(self, path: str | os.PathLike, array: str = "h"):
+    def __init__(self, path: str | os.PathLike, array: str = "q"):
         self.path = os.path.abspath(os.fspath(path))
         self.array = str(array)
 
     @classmethod
-    def read(cls, path: str | os.PathLike, array: str = "h") -> "Background":
+    def read(cls, path: str | os.PathLike, array: str = "q") -> "Background":
         """The field of array ``array`` in mesh file ``path`` (read and checked when the run starts)."""
         return cls(path, array)
 
