@@ -48,6 +48,11 @@ class Mesh:
         return self._core.kinds
 
     @property
+    def spacing(self) -> np.ndarray:
+        """(N,) float64: the spacing field q at each point, written as point data "q" (empty when read)."""
+        return self._core.spacing
+
+    @property
     def curve_names(self) -> list[str]:
         return list(self._core.curve_names)
 

@@ -143,6 +143,13 @@ void bind_mesh(nb::module_& m) {
             return shared_view<std::uint8_t, 1>(k, h.mesh->kind.size(), h.mesh);
           },
           nb::rv_policy::automatic, "(N,) uint8 point kinds (0 fixed, 1 boundary, 2 interior); empty for a mesh read from a file.")
+      .def_prop_ro(
+          "spacing",
+          [](const MeshHandle& h) {
+            const auto& q = h.mesh->spacing;
+            return shared_view<double, 1>(q.data(), q.size(), h.mesh);
+          },
+          nb::rv_policy::automatic, "(N,) float64 spacing field q at each point (empty for a mesh read from a file).")
       .def_prop_ro("curve_names", [](const MeshHandle& h) { return h.mesh->curve_names; })
       .def_prop_ro("name", [](const MeshHandle& h) { return h.name; })
       .def("boundary_edges", &boundary_edges, "Boundary edges by curve name, (K, 2) int32 each.")

@@ -6,6 +6,7 @@ from __future__ import annotations
 import os
 import signal
 import threading
+import time
 
 import numpy as np
 import pytest
@@ -103,26 +104,52 @@ def test_iterate_yields_views_that_stay_valid(rings):
     assert len(m.history["iteration"]) == 90
 
 
-def test_other_threads_run_while_the_core_works_and_a_second_step_is_refused(rings):
-    m = pdmesh.Mesher(rings, device="host", iterations=400, seed=3)
-    ticks, refused = [0], []
-    started = threading.Event()
+def test_a_second_step_from_another_thread_is_refused(rings, monkeypatch):
+    monkeypatch.setattr(pdmesh.mesher, "CHECK_INTERVAL", 0.0)
+    m = pdmesh.Mesher(rings, device="host", iterations=20, seed=3)
+    refused = []
 
-    def progress(p):
-        started.set()
-
-    def other():
-        started.wait(30)
+    def attempt():
         try:
             m.step(1)
         except RuntimeError as e:
             refused.append(str(e))
-        while m.iteration < 400 and ticks[0] < 10**7:  # Python code runs while the step holds no GIL
-            ticks[0] += 1
 
-    t = threading.Thread(target=other)
-    t.start()
+    def progress(p):
+        if p.iteration == 5:  # the run is paused in its check: the Mesher is busy
+            t = threading.Thread(target=attempt)
+            t.start()
+            t.join()
+
     m.run(progress=progress)
-    t.join()
     assert refused == ["this Mesher is already running (in another thread)"]
-    assert ticks[0] > 100
+    assert m.iteration == 20
+
+
+def test_other_threads_run_while_the_core_works(rings):
+    # Between two progress calls only C++ runs on the main thread: a Python thread can run inside
+    # such a window (well away from its ends) only if the core released the GIL.
+    m = pdmesh.Mesher(rings, size=0.03, device="host", iterations=1000, seed=3)
+    stamps, calls, done = [], [], threading.Event()
+
+    def tick():
+        n = 0
+        while not done.is_set():
+            n += 1
+            if n % 1000 == 0:
+                stamps.append(time.perf_counter())
+
+    def progress(p):
+        start = time.perf_counter()
+        calls.append((start, start))
+
+    t = threading.Thread(target=tick)
+    t.start()
+    try:
+        m.run(progress=progress)
+    finally:
+        done.set()
+        t.join()
+    windows = [(a[1] + 0.01, b[0] - 0.01) for a, b in zip(calls, calls[1:]) if b[0] - a[1] > 0.05]
+    assert windows, "the run was too short to have two progress calls 0.05 s apart"
+    assert any(lo < s < hi for lo, hi in windows for s in stamps)

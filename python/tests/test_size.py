@@ -54,12 +54,17 @@ def test_scalar_result_and_expression(rings):
     assert abs(len(a.points) - len(b.points)) <= 0.02 * len(b.points)
 
 
-def test_background_size_uses_the_case_keys(rings, tmp_path):
-    bg = pdmesh.size.Background.read(tmp_path / "bg.vtu", "h")
-    assert bg.settings() == {"spacing.field": "mesh", "spacing.file": str(tmp_path / "bg.vtu"), "spacing.array": "h"}
-    if "spacing.file" in pdmesh.case_keys():
-        with pytest.raises(pdmesh.InputError, match="bg.vtu"):
-            pdmesh.generate(rings, size=bg)
-    else:  # until the data-driven field is in the core, the validator names the key it lacks
-        with pytest.raises(pdmesh.InputError, match=r"unknown key 'spacing\.(file|array)'"):
-            pdmesh.generate(rings, size=bg)
+def test_background_mesh_field_from_a_written_mesh(rings, tmp_path):
+    # A run's mesh carries its field as point data "q": read back as a background mesh it gives the
+    # same field, so the same node count (within the interpolation's difference).
+    first = pdmesh.generate(rings, size=lambda xy: 0.05 + 0.05 * np.abs(xy[:, 0]), device="host", iterations=30)
+    assert first.spacing.shape == (len(first.points),) and first.spacing.min() > 0.04
+    first.write(tmp_path / "field.vtu")
+    bg = pdmesh.size.Background.read(tmp_path / "field.vtu")
+    assert bg.settings() == {"spacing.field": "mesh", "spacing.file": str(tmp_path / "field.vtu"), "spacing.array": "q"}
+    again = pdmesh.generate(rings, size=bg, device="host", iterations=30)
+    assert abs(len(again.points) - len(first.points)) <= 0.05 * len(first.points)
+    with pytest.raises(pdmesh.InputError, match="h"):
+        pdmesh.generate(rings, size=pdmesh.size.Background.read(tmp_path / "field.vtu", "h"))
+    with pytest.raises(pdmesh.InputError, match="missing.vtu"):
+        pdmesh.generate(rings, size=pdmesh.size.Background.read(tmp_path / "missing.vtu"))
