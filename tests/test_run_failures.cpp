@@ -152,11 +152,11 @@ TEST_CASE("two nodes 1e-30 apart: the device run stops too and hands over its la
   const auto [a, b] = c.collide();
   const NodeSet before = c.nodes;
   SimOptions options = quiet_options(10);
-  options.device = &test::test_context();
+  ocl::DeviceSimulator device(test::test_context(), ocl::Precision::Double);
   std::optional<SimState> saved;
   SimCallbacks callbacks;
   callbacks.on_failure = [&](const SimState& s) { saved = s; };
-  CHECK_THROWS_WITH(run_simulation(c.nodes, *c.tree, c.spacing, options, callbacks),
+  CHECK_THROWS_WITH(device.run(c.nodes, *c.tree, c.spacing, options, callbacks),
                     Contains("iteration 1: non-finite force or move") && Contains(fmt::format("node {} (interior)", a)) &&
                         Contains(fmt::format("node {} (interior)", b)) && Contains("distance 1e-30"));
   REQUIRE(saved);

@@ -381,7 +381,7 @@ void read_simulation_section(const Reader& r, const toml::table& root, CaseConfi
     }
   }
   if (const toml::node* n = find(root, "simulation", "precision")) {
-    s.precision = choose<Precision>(r, "simulation.precision", *n, {{"double", Precision::Double}, {"float", Precision::Float}});
+    s.precision = choose<Precision>(r, "simulation.precision", *n, {{"double", Precision::Double}, {"float", Precision::Float}, {"auto", Precision::Auto}});
   }
   if (const toml::node* n = find(root, "simulation", "stability_factor")) {
     s.stability_factor = r.number("simulation.stability_factor", *n);

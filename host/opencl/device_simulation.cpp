@@ -35,10 +35,9 @@ template <typename Real>
 class DeviceRun {
  public:
   DeviceRun(NodeSet& nodes, const GeometryTree& tree, const SpacingField& spacing, const SimOptions& options,
-            Context& ctx, DeviceRunStats& stats)
+            Context& ctx, StepProgram& program, DeviceRunStats& stats)
       : nodes_(nodes), options_(options), ctx_(ctx), stats_(stats), boundary_(tree, nodes),
-        background_(spacing, tree), program_(ctx, std::is_same_v<Real, double> ? Precision::Double : Precision::Float),
-        neighbours_(ctx, program_), n_(nodes.size()) {}
+        background_(spacing, tree), program_(program), neighbours_(ctx, program_), n_(nodes.size()) {}
   // Non-blocking uploads read host vectors of this object: wait for them (errors are moot here).
   ~DeviceRun() { ctx_.queue().finish(); }
   DeviceRun(const DeviceRun&) = delete;
@@ -92,7 +91,7 @@ class DeviceRun {
   DeviceRunStats& stats_;
   BoundaryHandler boundary_;
   BackgroundSpacing background_;
-  StepProgram program_;
+  StepProgram& program_;
   DeviceNeighbours<Real> neighbours_;
   std::size_t n_;
   int stride_ = 16;  // device_memory.cpp counts the neighbour list at this initial stride
@@ -408,7 +407,7 @@ BoundaryCounts DeviceRun<Real>::host_boundary(double& skin_use) {
   auto t0 = Clock::now();
   host_ahead_ = true;
   const BoundaryCounts counts = boundary_.apply_subset(nodes_, dx_, dy_, candidates_);
-  if (counts.snapped > 0) upload_topology();  // kinds and curve neighbours changed (rare)
+  if (counts.snapped > 0) upload_topology();  // kinds and curve neighbours changed (rare); run() rebuilds
   // Records: every boundary node (re-snapped, with its tangent) and every candidate still interior.
   // Members: their uploads are non-blocking and complete before the next step's records arrive.
   std::vector<std::int32_t>& index = rec_index_host_;
@@ -508,6 +507,13 @@ SimResult DeviceRun<Real>::run(const SimCallbacks& callbacks) {
       const BoundaryCounts counts = host_boundary(skin_use);
       cur_ = 1 - cur_;
       skin_use_ = std::max(skin_use_, skin_use);
+      if (counts.snapped > 0) {
+        // The rows are stale after a snap: the snapped node still holds its interior row (node_forces
+        // does not filter a boundary node's row) and its new curve neighbours their old [prev, next].
+        // The host reference rebuilds on any kind change (NeighbourCache), so the next step must too.
+        if (skin_use_ <= kSkinUseLimit) ++stats_.snap_rebuilds;
+        skin_use_ = HUGE_VAL;
+      }
 
       HistoryRow row;
       row.iteration = iteration;
@@ -579,16 +585,42 @@ SimResult DeviceRun<Real>::run(const SimCallbacks& callbacks) {
 
 }  // namespace
 
-SimResult run_device_simulation(NodeSet& nodes, const GeometryTree& tree, const SpacingField& spacing,
-                                const SimOptions& options, Context& ctx, const SimCallbacks& callbacks,
-                                DeviceRunStats* stats) {
+DeviceSimulator::DeviceSimulator(Context& ctx, Precision precision)
+    : ctx_(ctx), program_(std::make_unique<StepProgram>(ctx, precision)) {}
+
+DeviceSimulator::~DeviceSimulator() = default;
+
+Precision DeviceSimulator::precision() const { return program_->precision; }
+
+std::string DeviceSimulator::describe() const {
+  const DeviceInfo& d = ctx_.device();
+  return fmt::format("opencl:{}:{} ({}, {}, {}, device-resident)", d.platform, d.device, d.name, d.type,
+                     precision() == Precision::Double ? "double" : "float");
+}
+
+SimResult DeviceSimulator::run(NodeSet& nodes, const GeometryTree& tree, const SpacingField& spacing,
+                               const SimOptions& options, const SimCallbacks& callbacks) {
+  check_node_set(nodes);
   if (options.exact_spacing)
     throw InputError("the device-resident simulation reads the background spacing field; exact_spacing needs --device host");
-  DeviceRunStats local;
-  DeviceRunStats& s = stats ? *stats : local;
-  s = DeviceRunStats{};
-  if (options.device_float) return DeviceRun<float>(nodes, tree, spacing, options, ctx, s).run(callbacks);
-  return DeviceRun<double>(nodes, tree, spacing, options, ctx, s).run(callbacks);
+  stats_ = DeviceRunStats{};
+  if (precision() == Precision::Float)
+    return DeviceRun<float>(nodes, tree, spacing, options, ctx_, *program_, stats_).run(callbacks);
+  return DeviceRun<double>(nodes, tree, spacing, options, ctx_, *program_, stats_).run(callbacks);
+}
+
+SimResult run_device_simulation(NodeSet& nodes, const GeometryTree& tree, const SpacingField& spacing,
+                                const SimOptions& options, Context& ctx, Precision precision,
+                                const SimCallbacks& callbacks, DeviceRunStats* stats) {
+  DeviceSimulator simulator(ctx, precision);
+  try {
+    SimResult result = simulator.run(nodes, tree, spacing, options, callbacks);
+    if (stats) *stats = simulator.stats();
+    return result;
+  } catch (...) {
+    if (stats) *stats = simulator.stats();
+    throw;
+  }
 }
 
 }  // namespace pdmesh::ocl
