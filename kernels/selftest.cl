@@ -24,3 +24,12 @@ void selftest_rate(const int rounds, const REAL b, const REAL c, __global REAL* 
   }
   out[i] = (a0 + a1) + (a2 + a3);
 }
+
+// out[k] = row_base(node[k], stride) (common.cl): the 64-bit row offsets every kernel uses, checked
+// on the device's own compiler past 2^31 (tests/test_device_row_offsets.cpp).
+__kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1)))
+void selftest_row_base(const int n, const int stride, __global const int* node, __global long* out) {
+  const int k = get_global_id(0);
+  if (k >= n) return;
+  out[k] = row_base(node[k], stride);
+}

@@ -46,7 +46,7 @@ class DeviceRun {
   SimResult run(const SimCallbacks& callbacks);
 
  private:
-  void check_memory() const;
+  void check_memory(int stride) const;
   void remember(int done, double dt_initial, const GlobalTimeStep& gm, std::size_t rows);
   SimState last_good_state(int done, double dt_initial, const GlobalTimeStep& gm,
                            const std::vector<HistoryRow>& history);
@@ -94,7 +94,7 @@ class DeviceRun {
   StepProgram& program_;
   DeviceNeighbours<Real> neighbours_;
   std::size_t n_;
-  int stride_ = 16;  // device_memory.cpp counts the neighbour list at this initial stride
+  int stride_ = kInitialStride;  // entries per neighbour row: grows to the largest row a build finds
   int cur_ = 0;  // which of the double-buffered x, y, q is current
   Buffer<Real> x_[2], y_[2], q_[2], tx_, ty_, x_build_, y_build_, q_build_, brec_, cand_rec_, partials_, rec_, bg_q_,
       budget_;
@@ -131,11 +131,11 @@ class DeviceRun {
 };
 
 template <typename Real>
-void DeviceRun<Real>::check_memory() const {
+void DeviceRun<Real>::check_memory(int stride) const {
   const BackgroundFieldData& d = background_.data();
   const std::uint64_t field = 4 * (d.root_node.size() + d.node_child.size() + d.leaf_corner.size() + d.leaf_cell.size()) +
                               sizeof(Real) * d.corner_q.size();
-  check_device_memory(ctx_.device(), n_, nodes_.count(NodeKind::Boundary), field, sizeof(Real));
+  check_device_memory(ctx_.device(), n_, nodes_.count(NodeKind::Boundary), field, sizeof(Real), stride);
 }
 
 template <typename Real>
@@ -467,7 +467,8 @@ SimResult DeviceRun<Real>::run(const SimCallbacks& callbacks) {
     boundary_.restore(nodes_, resume->arcs, resume->tangents);  // before upload_initial reads the tangents
   }
   GlobalTimeStep gm = resume ? GlobalTimeStep(resume->time_step) : GlobalTimeStep(result.stats.dt_initial);
-  check_memory();  // before the first device allocation
+  check_memory(stride_);  // before the first device allocation
+  neighbours_.check_stride = [this](int stride) { check_memory(stride); };  // and before the rows grow
   ProgressLine progress(options_.quiet);
   upload_initial();  // setup, like the host path's, is not part of the timed iterations
   stats_.setup_bytes = stats_.bytes_up;

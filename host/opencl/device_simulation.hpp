@@ -35,19 +35,24 @@ struct DeviceRunStats {
   std::size_t device_bytes = 0;      // device buffers at the end
 };
 
-// Device memory a run needs before its first iteration (a lower bound; docs/opencl.md): in total, and
-// for its largest buffer (the neighbour list at its initial row stride).
+// The neighbour rows' initial stride (entries per row); it grows to the largest row a build finds.
+inline constexpr int kInitialStride = 16;
+
+// Device memory a run needs with neighbour rows of `stride` entries (a lower bound; docs/opencl.md):
+// in total, and for its largest buffer (the neighbour list).
 struct DeviceMemoryNeed {
   std::uint64_t total = 0, largest = 0;
 };
 DeviceMemoryNeed device_memory_need(std::size_t nodes, std::size_t boundary_nodes, std::uint64_t field_bytes,
-                                    std::size_t real_bytes);
+                                    std::size_t real_bytes, int stride = kInitialStride);
 
 // Throws LimitError (exit 2) naming the bytes needed, the device's global memory and largest
 // allocation, and what to do instead (--precision float, --device host, a coarser spacing), when
-// device_memory_need exceeds either. Run before the first allocation of a device run.
+// device_memory_need exceeds either, or when there are more nodes than the device's 32-bit node
+// indices allow. Run before the first allocation of a device run (initial stride) and before the
+// neighbour rows grow (the new stride).
 void check_device_memory(const DeviceInfo& device, std::size_t nodes, std::size_t boundary_nodes,
-                         std::uint64_t field_bytes, std::size_t real_bytes);
+                         std::uint64_t field_bytes, std::size_t real_bytes, int stride = kInitialStride);
 
 struct StepProgram;
 
