@@ -123,7 +123,7 @@ TEST_CASE("an overflowing device row keeps the stride smallest indices, ascendin
 TEST_CASE("graded rows overflowing small strides with scattered entries equal the reference", "[opencl][neighbour]") {
   const Input in = graded_input(false);
   int overflowing = 0;
-  for (int stride = 2; stride <= 24; ++stride) {
+  for (int stride : {2, 3, 4, 5, 6, 7, 8, 9, 12, 16, 24}) {
     check_against_reference(in, stride, in.p.size() + 70);  // the device's overflow flag is the reference's
     NeighbourList oracle;
     oracle.stride = stride;
