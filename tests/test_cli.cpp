@@ -195,4 +195,9 @@ TEST_CASE("pdmesh devices lists the OpenCL devices and checks each with a kernel
   CHECK(contains(r.output, "opencl:0:0"));
   CHECK(contains(r.output, "--device auto picks: opencl:"));
   CHECK(contains(r.output, "check opencl:0:0: ok"));
+  // The check builds the simulation program, runs a short case against the host reference and
+  // measures the fp64 rate (PoCL's double is bit-identical to the host).
+  CHECK(contains(r.output, "program: built in double; work-groups of 64 fit every kernel"));
+  CHECK(contains(r.output, "equal the host reference bit for bit"));
+  CHECK(contains(r.output, "--precision auto picks double"));
 }
