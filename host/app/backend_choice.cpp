@@ -27,38 +27,29 @@ ocl::Precision device_precision(Precision requested, const ocl::DeviceInfo& devi
   return choice.precision;
 }
 
+
+ChosenBackend host_backend(Precision precision, const std::function<void(const std::string&)>& note) {
+  if (precision == Precision::Float)
+    note("note: the host reference computes in double precision; --precision float is ignored");
+  ChosenBackend chosen;
+  chosen.simulator = make_host_simulator();
+  return chosen;
+}
+
 }  // namespace
 
-ChosenBackend choose_backend(const std::string& device, Precision precision,
-                             const std::function<void(const std::string&)>& note) {
-  ChosenBackend chosen;
-  const auto host = [&] {
-    if (precision == Precision::Float)
-      note("note: the host reference computes in double precision; --precision float is ignored");
-    chosen.context.reset();
-    chosen.simulator = make_host_simulator();
-    return std::move(chosen);
-  };
-  if (device == "host") return host();
-  std::vector<ocl::DeviceInfo> candidates;
-  if (device == "auto") {
-    candidates = ocl::auto_order(ocl::list_devices());
-    if (candidates.empty()) {
-      note("note: no OpenCL platform or device found; simulating on the host reference");
-      return host();
-    }
-  } else {
-    candidates.push_back(*ocl::select_device(device));  // InputError when it is not there
-  }
+ChosenBackend choose_among(const std::vector<ocl::DeviceInfo>& candidates, bool fall_back, Precision precision,
+                           const std::function<void(const std::string&)>& note) {
   for (std::size_t k = 0; k < candidates.size(); ++k) {
     const ocl::DeviceInfo& d = candidates[k];
+    ChosenBackend chosen;
     try {
       chosen.context = std::make_unique<ocl::Context>(d);
       const ocl::Precision p = device_precision(precision, d, *chosen.context, note);
       chosen.simulator = std::make_unique<ocl::DeviceSimulator>(*chosen.context, p);
       return chosen;
     } catch (const DeviceError& e) {
-      if (device != "auto") throw;
+      if (!fall_back) throw;
       // A driver that cannot build the program (or run its work-group size) must not end a run that
       // another device or the host can do.
       const std::string next = k + 1 < candidates.size()
@@ -69,7 +60,19 @@ ChosenBackend choose_backend(const std::string& device, Precision precision,
                        d.device, d.name, first_line(e.what()), next));
     }
   }
-  return host();
+  return host_backend(precision, note);
+}
+
+ChosenBackend choose_backend(const std::string& device, Precision precision,
+                             const std::function<void(const std::string&)>& note) {
+  if (device == "host") return host_backend(precision, note);
+  if (device != "auto") return choose_among({*ocl::select_device(device)}, false, precision, note);  // InputError when absent
+  const std::vector<ocl::DeviceInfo> candidates = ocl::auto_order(ocl::list_devices());
+  if (candidates.empty()) {
+    note("note: no OpenCL platform or device found; simulating on the host reference");
+    return host_backend(precision, note);
+  }
+  return choose_among(candidates, true, precision, note);
 }
 
 }  // namespace pdmesh

@@ -5,9 +5,11 @@
 #include <functional>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "app/case_file.hpp"
 #include "opencl/context.hpp"
+#include "opencl/devices.hpp"
 #include "sim/simulation.hpp"
 
 namespace pdmesh {
@@ -25,5 +27,10 @@ struct ChosenBackend {
 // (ocl::choose_precision_auto, noted). `note` gets one line per remark.
 ChosenBackend choose_backend(const std::string& device, Precision precision,
                              const std::function<void(const std::string&)>& note);
+
+// The first of `candidates` (tried in order; each failure noted) on which the program builds, else
+// the host reference. `fall_back` false: the first candidate's DeviceError propagates.
+ChosenBackend choose_among(const std::vector<ocl::DeviceInfo>& candidates, bool fall_back, Precision precision,
+                           const std::function<void(const std::string&)>& note);
 
 }  // namespace pdmesh

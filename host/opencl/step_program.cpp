@@ -1,6 +1,9 @@
 // Builds the simulation program, creates its kernels and checks their work-group limits; see step_program.hpp.
 #include "opencl/step_program.hpp"
 
+#include <atomic>
+#include <cstdlib>
+
 #include "core/errors.hpp"
 
 namespace pdmesh::ocl {
@@ -41,9 +44,27 @@ std::string work_group_advice(const std::vector<KernelLimits>& limits, std::size
   return advice;
 }
 
+namespace {
+
+// Test-only (docs/robustness.md): PDMESH_TEST_FAIL_BUILD=N makes simulation-program builds fail as a
+// driver's would until N have failed in this process, to exercise --device auto's fallback.
+bool injected_build_failure() {
+  static std::atomic<long> failed{0};
+  const char* v = std::getenv("PDMESH_TEST_FAIL_BUILD");
+  const long wanted = v ? std::strtol(v, nullptr, 10) : 0L;
+  if (failed.load() >= wanted) return false;
+  ++failed;
+  return true;
+}
+
+}  // namespace
+
 StepProgram::StepProgram(Context& ctx, Precision p, std::size_t wg) : precision(p), work_group(wg) {
   if (p == Precision::Double && !ctx.device().fp64)
     throw DeviceError(fmt::format("{} has no double precision (cl_khr_fp64): use --precision float", ctx.device().name));
+  if (injected_build_failure())
+    throw DeviceError(fmt::format("building OpenCL program on {} failed: CL_BUILD_PROGRAM_FAILURE (-11) (injected by "
+                                  "PDMESH_TEST_FAIL_BUILD)\nbuild log:\n(none)", ctx.device().name));
   program = ctx.build({"spacing_field.cl", "reduce.cl", "forces.cl", "time_step.cl", "neighbours.cl", "device_step.cl"},
                       precision_defines(p, wg));
   const std::pair<cl::Kernel*, const char*> kernels[] = {
