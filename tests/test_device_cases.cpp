@@ -76,14 +76,16 @@ TEST_CASE("device run: circle_circle over 2000 iterations in float gives the hos
   compare_whole_run("circle_circle", true);
 }
 
-// Every case in cases/ from both starts, 200 iterations, node by node: the device run (PoCL, double)
+// Every case in cases/ (the thesis cases and the corpus) from both starts, 200 iterations, node by node: the device run (PoCL, double)
 // repeats the host reference bit for bit, snaps, boundary order and history included. 200 iterations
 // cover the transient (most snaps, rebuilds every iteration) and the start of the settled regime
 // (skin rebuilds, snaps the skin alone would not rebuild for).
 namespace {
 
-const std::vector<std::string> kBitIdenticalCases = {"30p30n", "circle_circle", "naca0012", "rods_coarse",
-                                                     "rods_fine", "shock", "square200"};
+const std::vector<std::string> kBitIdenticalCases = {
+    "30p30n",      "circle_circle",     "corpus/bracket",         "corpus/coastline", "corpus/flap_airfoil",
+    "corpus/gear", "corpus/heatsink_channel", "corpus/plate", "naca0012",         "rods_coarse",
+    "rods_fine",   "shock",             "square200"};
 
 void compare_bit_for_bit(const std::string& name) {
   for (const char* method : {"structured", "random"}) {
@@ -117,8 +119,10 @@ void compare_bit_for_bit(const std::string& name) {
 
 TEST_CASE("the bit-identity list names every case in cases/", "[cases]") {
   std::vector<std::string> dirs;
-  for (const auto& e : std::filesystem::directory_iterator(PDMESH_SOURCE_DIR "/cases"))
-    if (e.is_directory() && std::filesystem::exists(e.path() / "case.toml")) dirs.push_back(e.path().filename().string());
+  const std::filesystem::path root = PDMESH_SOURCE_DIR "/cases";
+  for (const auto& e : std::filesystem::recursive_directory_iterator(root))
+    if (e.is_directory() && std::filesystem::exists(e.path() / "case.toml"))
+      dirs.push_back(e.path().lexically_relative(root).generic_string());
   std::sort(dirs.begin(), dirs.end());
   CHECK(dirs == kBitIdenticalCases);
 }
@@ -143,4 +147,22 @@ TEST_CASE("device run: shock is bit-identical to the host over 200 iterations fr
 }
 TEST_CASE("device run: square200 is bit-identical to the host over 200 iterations from both starts", "[opencl][device_sim][cases]") {
   compare_bit_for_bit("square200");
+}
+TEST_CASE("device run: corpus/bracket is bit-identical to the host over 200 iterations from both starts", "[opencl][device_sim][cases]") {
+  compare_bit_for_bit("corpus/bracket");
+}
+TEST_CASE("device run: corpus/coastline is bit-identical to the host over 200 iterations from both starts", "[opencl][device_sim][cases]") {
+  compare_bit_for_bit("corpus/coastline");
+}
+TEST_CASE("device run: corpus/flap_airfoil is bit-identical to the host over 200 iterations from both starts", "[opencl][device_sim][cases]") {
+  compare_bit_for_bit("corpus/flap_airfoil");
+}
+TEST_CASE("device run: corpus/gear is bit-identical to the host over 200 iterations from both starts", "[opencl][device_sim][cases]") {
+  compare_bit_for_bit("corpus/gear");
+}
+TEST_CASE("device run: corpus/heatsink_channel is bit-identical to the host over 200 iterations from both starts", "[opencl][device_sim][cases]") {
+  compare_bit_for_bit("corpus/heatsink_channel");
+}
+TEST_CASE("device run: corpus/plate is bit-identical to the host over 200 iterations from both starts", "[opencl][device_sim][cases]") {
+  compare_bit_for_bit("corpus/plate");
 }
