@@ -586,42 +586,13 @@ SimResult DeviceRun<Real>::run(const SimCallbacks& callbacks) {
 
 }  // namespace
 
-DeviceSimulator::DeviceSimulator(Context& ctx, Precision precision)
-    : ctx_(ctx), program_(std::make_unique<StepProgram>(ctx, precision)) {}
-
-DeviceSimulator::~DeviceSimulator() = default;
-
-Precision DeviceSimulator::precision() const { return program_->precision; }
-
-std::string DeviceSimulator::describe() const {
-  const DeviceInfo& d = ctx_.device();
-  return fmt::format("opencl:{}:{} ({}, {}, {}, device-resident)", d.platform, d.device, d.name, d.type,
-                     precision() == Precision::Double ? "double" : "float");
-}
-
-SimResult DeviceSimulator::run(NodeSet& nodes, const GeometryTree& tree, const SpacingField& spacing,
-                               const SimOptions& options, const SimCallbacks& callbacks) {
-  check_node_set(nodes);
-  if (options.exact_spacing)
-    throw InputError("the device-resident simulation reads the background spacing field; exact_spacing needs --device host");
-  stats_ = DeviceRunStats{};
-  if (precision() == Precision::Float)
-    return DeviceRun<float>(nodes, tree, spacing, options, ctx_, *program_, stats_).run(callbacks);
-  return DeviceRun<double>(nodes, tree, spacing, options, ctx_, *program_, stats_).run(callbacks);
-}
-
-SimResult run_device_simulation(NodeSet& nodes, const GeometryTree& tree, const SpacingField& spacing,
-                                const SimOptions& options, Context& ctx, Precision precision,
-                                const SimCallbacks& callbacks, DeviceRunStats* stats) {
-  DeviceSimulator simulator(ctx, precision);
-  try {
-    SimResult result = simulator.run(nodes, tree, spacing, options, callbacks);
-    if (stats) *stats = simulator.stats();
-    return result;
-  } catch (...) {
-    if (stats) *stats = simulator.stats();
-    throw;
-  }
+SimResult run_device_resident(NodeSet& nodes, const GeometryTree& tree, const SpacingField& spacing,
+                              const SimOptions& options, Context& ctx, StepProgram& program,
+                              const SimCallbacks& callbacks, DeviceRunStats& stats) {
+  stats = DeviceRunStats{};
+  if (program.precision == Precision::Float)
+    return DeviceRun<float>(nodes, tree, spacing, options, ctx, program, stats).run(callbacks);
+  return DeviceRun<double>(nodes, tree, spacing, options, ctx, program, stats).run(callbacks);
 }
 
 }  // namespace pdmesh::ocl

@@ -83,6 +83,11 @@ class DeviceSimulator final : public Simulator {
   DeviceRunStats stats_;
 };
 
+// The run itself on a built program (what DeviceSimulator::run calls after its checks; device_simulation.cpp).
+SimResult run_device_resident(NodeSet& nodes, const GeometryTree& tree, const SpacingField& spacing,
+                              const SimOptions& options, Context& ctx, StepProgram& program,
+                              const SimCallbacks& callbacks, DeviceRunStats& stats);
+
 // One run on a DeviceSimulator built for it (tests, bench).
 SimResult run_device_simulation(NodeSet& nodes, const GeometryTree& tree, const SpacingField& spacing,
                                 const SimOptions& options, Context& ctx, Precision precision = Precision::Double,
