@@ -62,7 +62,10 @@ std::vector<DeviceInfo> list_devices() {
       }
       i.max_work_group = info<CL_DEVICE_MAX_WORK_GROUP_SIZE, std::size_t>(devices[d], "CL_DEVICE_MAX_WORK_GROUP_SIZE");
       i.fp64 = info<CL_DEVICE_DOUBLE_FP_CONFIG, cl_device_fp_config>(devices[d], "CL_DEVICE_DOUBLE_FP_CONFIG") != 0;
-      i.unified_memory = info<CL_DEVICE_HOST_UNIFIED_MEMORY, cl_bool>(devices[d], "CL_DEVICE_HOST_UNIFIED_MEMORY") != 0;
+      // Deprecated since OpenCL 2.0 (still answered by the drivers we know): a device that does not
+      // answer counts as discrete, which only affects auto's order.
+      cl_bool unified = CL_FALSE;
+      i.unified_memory = devices[d].getInfo(CL_DEVICE_HOST_UNIFIED_MEMORY, &unified) == CL_SUCCESS && unified != CL_FALSE;
       out.push_back(std::move(i));
     }
   }
