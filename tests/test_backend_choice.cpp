@@ -55,7 +55,7 @@ TEST_CASE("auto falls back to the next device, saying so, when the program does 
   CHECK(chosen.simulator->describe().find("double, device-resident") != std::string::npos);
 }
 
-TEST_CASE("auto ends on the host when no device builds the program; an explicit device does not fall back",
+TEST_CASE("auto ends on the host when no device builds the program, an explicit device does not fall back",
           "[opencl][backend]") {
   const ocl::DeviceInfo d = first_device();
   Notes notes;
@@ -69,7 +69,7 @@ TEST_CASE("auto ends on the host when no device builds the program; an explicit 
   ::unsetenv("PDMESH_TEST_FAIL_BUILD");
 }
 
-TEST_CASE("precision: double without fp64 runs float; auto follows choose_precision_auto", "[opencl][backend]") {
+TEST_CASE("precision: double without fp64 runs float, auto follows choose_precision_auto", "[opencl][backend]") {
   ocl::DeviceInfo d = first_device();
   Notes notes;
   const ChosenBackend host = choose_backend("host", Precision::Auto, notes.sink());
