@@ -90,7 +90,7 @@ TEST_CASE("precision: double without fp64 runs float, auto follows choose_precis
   d.type = "GPU";
   CHECK(ocl::choose_precision_auto(d, measure(32.0)).precision == ocl::Precision::Float);
   CHECK(ocl::choose_precision_auto(d, measure(2.0)).precision == ocl::Precision::Double);
-  CHECK(ocl::choose_precision_auto(d, measure(32.0)).reason.find("double measured 32.0x slower than float") !=
+  CHECK(ocl::choose_precision_auto(d, measure(32.0)).reason.find("double took 32.0x as long as float") !=
         std::string::npos);
   CHECK(measured == 3);
   d.fp64 = false;

@@ -106,7 +106,7 @@ DeviceCheck check_device(const ocl::DeviceInfo& device) {
     if (device.fp64) {
       const double slowdown = ocl::measure_fp64_slowdown(ctx);
       const ocl::PrecisionChoice choice = ocl::choose_precision_auto(device, [slowdown] { return slowdown; });
-      check.lines.push_back(fmt::format("fp64: double measured {:.1f}x slower than float; --precision auto picks {}",
+      check.lines.push_back(fmt::format("fp64: double took {:.1f}x as long as float (measured); --precision auto picks {}",
                                         slowdown, choice.reason));
     } else {
       check.lines.push_back("fp64: none; --precision auto (and double) simulate in float");

@@ -75,7 +75,7 @@ PrecisionChoice choose_precision_auto(const DeviceInfo& device, const std::funct
   const double slowdown = measure();
   const bool slow = slowdown > kFp64SlowdownLimit;
   return {slow ? Precision::Float : Precision::Double,
-          fmt::format("{} (double measured {:.1f}x slower than float on {}; the limit is {:g}x)",
+          fmt::format("{} (double took {:.1f}x as long as float on {}, measured; float past {:g}x)",
                       slow ? "float" : "double", slowdown, device.name, kFp64SlowdownLimit)};
 }
 
