@@ -85,7 +85,7 @@ namespace {
 const std::vector<std::string> kBitIdenticalCases = {
     "30p30n",      "circle_circle",     "corpus/bracket",         "corpus/coastline", "corpus/flap_airfoil",
     "corpus/gear", "corpus/heatsink_channel", "corpus/plate", "naca0012",         "rods_coarse",
-    "rods_fine",   "shock",             "square200"};
+    "rods_fine",   "shock",             "shock_data", "square200"};
 
 void compare_bit_for_bit(const std::string& name) {
   for (const char* method : {"structured", "random"}) {
@@ -144,6 +144,9 @@ TEST_CASE("device run: rods_fine is bit-identical to the host over 200 iteration
 }
 TEST_CASE("device run: shock is bit-identical to the host over 200 iterations from both starts", "[opencl][device_sim][cases]") {
   compare_bit_for_bit("shock");
+}
+TEST_CASE("device run: shock_data is bit-identical to the host over 200 iterations from both starts", "[opencl][device_sim][cases]") {
+  compare_bit_for_bit("shock_data");
 }
 TEST_CASE("device run: square200 is bit-identical to the host over 200 iterations from both starts", "[opencl][device_sim][cases]") {
   compare_bit_for_bit("square200");

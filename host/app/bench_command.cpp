@@ -10,6 +10,7 @@
 #include <fmt/format.h>
 
 #include "app/case_file.hpp"
+#include "app/case_spacing.hpp"
 #include "app/graded_case.hpp"
 #include "app/mesh_command.hpp"
 #include "core/atomic_file.hpp"
@@ -66,10 +67,7 @@ std::unique_ptr<BenchCase> file_case(const std::string& dir, const std::string& 
   MeshInputs inputs(config);
   c->geometry = inputs.geometry;
   c->tree = std::make_unique<GeometryTree>(c->geometry);
-  if (config.spacing.field == SpacingKind::Expression)
-    c->spacing = std::make_unique<ExpressionSpacing>(config.spacing.expression);
-  else
-    c->spacing = std::make_unique<BoundarySpacing>(*c->tree);
+  c->spacing = make_case_spacing(config, *c->tree);
   InitOptions init;
   init.method = config.init.method;
   init.seed = config.init.seed;

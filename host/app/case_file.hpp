@@ -12,7 +12,7 @@
 
 namespace pdmesh {
 
-enum class SpacingKind { Boundary, Expression };
+enum class SpacingKind { Boundary, Expression, Mesh };
 // simulation.precision. Auto: float where the device lacks fp64 or runs it far slower (opencl/precision_probe).
 enum class Precision { Double, Float, Auto };
 
@@ -53,6 +53,10 @@ struct CaseConfig {
   struct Spacing {
     SpacingKind field = SpacingKind::Boundary;
     std::string expression;  // muParser expression in x and y when field == Expression
+    // field == Mesh: a .vtu or .msh triangle mesh (resolved relative to the case file, or to the current
+    // directory when given by --set) and the name of its point-data array that holds q.
+    std::filesystem::path file;
+    std::string array = "q";
   } spacing;
 
   struct Init {

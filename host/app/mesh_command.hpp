@@ -24,6 +24,8 @@ struct MeshInputs {
   Geometry geometry;
   std::unique_ptr<GeometryTree> tree;
   std::unique_ptr<SpacingField> spacing;
+  // One line about a spacing field read from a file (spacing.field = "mesh"); empty otherwise.
+  std::string spacing_summary;
   std::vector<std::string> curve_names() const;
 };
 
