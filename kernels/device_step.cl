@@ -68,16 +68,16 @@ void device_step(const int n, const int stride, const REAL cutoff, const REAL lj
   const REAL rc = cutoff * qi;
   REAL fx, fy, r0, limit;
   int coincident, within;
-  node_forces(ic, stride, row, ic * stride, xi, yi, qi, kind_i, rc * rc, tx[ic], ty[ic], lj_a, r0_any_direction,
+  node_forces(ic, stride, row, row_base(ic, stride), xi, yi, qi, kind_i, rc * rc, tx[ic], ty[ic], lj_a, r0_any_direction,
               stability_factor, x, y, q, index, &fx, &fy, &r0, &limit, &coincident, &within);
   const REAL dt2 = local_dt2(fx, fy, r0, dt_gm2, limit);
-  const REAL dx = moving ? (REAL)0.5 * dt2 * fx : (REAL)0;
-  const REAL dy = moving ? (REAL)0.5 * dt2 * fy : (REAL)0;
+  const REAL dx = moving ? REAL_C(0.5) * dt2 * fx : (REAL)0;
+  const REAL dy = moving ? REAL_C(0.5) * dt2 * fy : (REAL)0;
   const REAL f = moving ? force_norm(fx, fy) : (REAL)0;  // reduce.cl: float-safe |F|
 #if PDMESH_DOUBLE
-  const REAL kinetic = moving ? (REAL)0.125 * dt2 * (fx * fx + fy * fy) : (REAL)0;  // the reference's expression
+  const REAL kinetic = moving ? REAL_C(0.125) * dt2 * (fx * fx + fy * fy) : (REAL)0;  // the reference's expression
 #else
-  const REAL kinetic = moving ? (REAL)0.125 * dt2 * f * f : (REAL)0;  // f^2 could overflow in float
+  const REAL kinetic = moving ? REAL_C(0.125) * dt2 * f * f : (REAL)0;  // f^2 could overflow in float
 #endif
   REAL skin_use = (REAL)0;
   if (active) {

@@ -23,7 +23,7 @@
 #define COUNT8(m) (-((m).s0 + (m).s1 + (m).s2 + (m).s3 + (m).s4 + (m).s5 + (m).s6 + (m).s7))
 
 // Entries k0 .. k0 + 7 of a row as node indices; entries at or past `count` (padding, -1) become i.
-int8 row_chunk(const int i, const int stride, const int count, const int base, const int k0,
+int8 row_chunk(const int i, const int stride, const int count, const long base, const int k0,
                __global const int* index, int8* valid_out) {
   const int8 k = (int8)(k0) + (int8)(0, 1, 2, 3, 4, 5, 6, 7);
   const int8 valid = k < (int8)(count);
@@ -40,7 +40,7 @@ int8 row_chunk(const int i, const int stride, const int count, const int base, c
 
 // Chunk k0 of the row: node indices (*j_out), offsets from (xi, yi) and squared distances; returns
 // the mask of the entries that count (inside the row and, where `filter` is set, within rc2).
-MASK8 row_chunk_offsets(const int i, const int stride, const int count, const int base, const int k0,
+MASK8 row_chunk_offsets(const int i, const int stride, const int count, const long base, const int k0,
                         const REAL xi, const REAL yi, const MASK8 filter, const REAL rc2,
                         __global const REAL* x, __global const REAL* y, __global const int* index, int8* j_out,
                         REAL8* dx_out, REAL8* dy_out, REAL8* r2_out) {
@@ -63,7 +63,7 @@ MASK8 row_chunk_offsets(const int i, const int stride, const int count, const in
 // many chunks as the row needs (boundary rows: one), with the
 // reference's expressions per entry and its summation order, so double results match it bit for
 // bit (a masked entry adds +0).
-void node_forces(const int i, const int stride, const int count, const int base, const REAL xi, const REAL yi,
+void node_forces(const int i, const int stride, const int count, const long base, const REAL xi, const REAL yi,
                  const REAL qi, const int kind_i, const REAL rc2, const REAL tx, const REAL ty, const REAL lj_a,
                  const int r0_any_direction, const REAL stability_factor, __global const REAL* x,
                  __global const REAL* y, __global const REAL* q, __global const int* index, REAL* fx_out,
@@ -83,7 +83,7 @@ void node_forces(const int i, const int stride, const int count, const int base,
     const MASK8 use = in_range & (r2 > zero);
     const REAL8 inv_r2 = one / select(one, r2, use);
     const REAL8 inv_r = sqrt(inv_r2);
-    const REAL8 sigma = (REAL)0.5 * ((REAL8)(qi) + GATHER8(q, j));
+    const REAL8 sigma = REAL_C(0.5) * ((REAL8)(qi) + GATHER8(q, j));
     const REAL8 s2 = sigma * sigma * inv_r2;
     const REAL8 s6 = s2 * s2 * s2;
     const REAL8 f = four_a * sigma * (s6 * s6 - s6) * inv_r;
@@ -148,7 +148,7 @@ void compute_forces(const int n, const int stride, const REAL lj_a, const int r0
   const int row = kind_i != 0 ? min(count[ic], stride) : 0;
   REAL fx, fy, r0, limit;
   int coincident, within;
-  node_forces(ic, stride, row, ic * stride, x[ic], y[ic], q[ic], kind_i, (REAL)-1, tx[ic], ty[ic], lj_a,
+  node_forces(ic, stride, row, row_base(ic, stride), x[ic], y[ic], q[ic], kind_i, (REAL)-1, tx[ic], ty[ic], lj_a,
               r0_any_direction, stability_factor, x, y, q, index, &fx, &fy, &r0, &limit, &coincident, &within);
   if (!active) return;
   limit_out[i] = kind_i != 0 ? limit : INFINITY;

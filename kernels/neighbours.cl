@@ -1,14 +1,18 @@
 // Step 1 on the device (mirror of host/sim/reference/binning.cpp, build_neighbours) over the
 // multi-level hashed cell grids the host flattened (host/opencl/neighbour_grids.cpp), in two passes:
 //   build_neighbours: every node m scans only the cumulative grid C_L of its own level L (levels <= L).
-//     An interior m appends the j within its radius r_m to the front of its row; and m appends itself
-//     to the back of the row of every finer interior j (level < L) within r_j (atomic count), since
-//     r_j < r_m puts m inside j's search box but in no grid j scans. This replaces j's lookups in the
-//     exact grid of every coarser level (13 levels on 30P30N: a third of the gather's time).
+//     An interior m writes the j within its radius r_m to its own row (index); and m appends itself
+//     to the scatter row of every finer interior j (level < L) within r_j (scatter_index, slot from an
+//     atomic count), since r_j < r_m puts m inside j's search box but in no grid j scans. This replaces
+//     j's lookups in the exact grid of every coarser level (13 levels on 30P30N: a third of the gather's
+//     time). The two parts live in separate buffers, so no two work-items ever write the same slot
+//     (they once shared the row, owner from the front and scatters from the back, and collided in
+//     rows that overflowed: a data race, undefined in the OpenCL memory model).
 //   finish_neighbours: joins the two parts and sorts the row by node index; a row whose parts
 //     overflow the stride is scanned again the reference way (own cumulative grid, then the exact grid
 //     of every coarser level) with a bounded sorted insertion, so it holds the `stride` smallest
 //     indices, as the reference's sorted-then-truncated row.
+// Row offsets are 64-bit (row_base, common.cl).
 #pragma OPENCL FP_CONTRACT OFF
 
 // splitmix64 finaliser over both cell coordinates (the reference's hash_key).
@@ -24,7 +28,7 @@ ulong nb_hash(long cx, long cy) {
 
 long nb_cell_coord(REAL v, REAL inv_cell) {
   const REAL c = floor(v * inv_cell);
-  return (long)clamp(c, (REAL)-4.0e18, (REAL)4.0e18);
+  return (long)clamp(c, -REAL_C(4.0e18), REAL_C(4.0e18));
 }
 
 // Dense cell id of (cx, cy) in grid g, -1 when the cell is empty.
@@ -43,7 +47,7 @@ int nb_find(int g, long cx, long cy, __global const int* grid_table_offset, __gl
 // own cumulative grid and every coarser exact grid, inserted in order keeping the `stride` smallest
 // indices in index[base ..]; returns the true count.
 int nb_scan(const int i, const REAL xi, const REAL yi, const REAL box, const REAL r2, const int own,
-            const int levels, const int stride, const int base, uint* examined,
+            const int levels, const int stride, const long base, uint* examined,
             __global const REAL* x, __global const REAL* y, __global const REAL* grid_inv_cell,
             __global const int* grid_table_offset, __global const int* grid_table_mask,
             __global const int* grid_start_offset, __global const int* grid_nodes_offset,
@@ -87,8 +91,9 @@ int nb_scan(const int i, const REAL xi, const REAL yi, const REAL box, const REA
 
 // Kernel arguments: per grid g (2 per occupied level: cumulative C_L at 2L, exact E_L at 2L+1; absent
 // grids have inv_cell 0): inverse cell size, hash-table offset and mask, offsets into cell_start
-// (cells + 1 entries per grid) and cell_nodes. Outputs: own_count (entries at the row's front),
-// scatter_count (entries at its back; zeroed by the host), index; counters[3] += pairs examined.
+// (cells + 1 entries per grid) and cell_nodes. Outputs: own_count and index (the node's own part of its
+// row), scatter_count (zeroed by the host) and scatter_index (the part other nodes scattered, in
+// slot order); counters[3] += pairs examined.
 __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1)))
 void build_neighbours(const int n, const int stride, const REAL radius_factor,
                       __global const REAL* x, __global const REAL* y, __global const REAL* q,
@@ -98,13 +103,14 @@ void build_neighbours(const int n, const int stride, const REAL radius_factor,
                       __global const int* grid_start_offset, __global const int* grid_nodes_offset,
                       __global const long* table_cx, __global const long* table_cy, __global const int* table_id,
                       __global const int* cell_start, __global const int* cell_nodes, __global int* own_count,
-                      __global volatile int* scatter_count, __global int* index, __global uint* counters) {
+                      __global volatile int* scatter_count, __global int* scatter_index, __global int* index,
+                      __global uint* counters) {
   __local uint local_examined;
   if (get_local_id(0) == 0) local_examined = 0;
   barrier(CLK_LOCAL_MEM_FENCE);
   const int i = get_global_id(0);
   if (i < n) {
-    const int base = i * stride;
+    const long base = row_base(i, stride);
     const int kind_i = kind[i];
     int count = 0;
     uint examined = 0;
@@ -119,7 +125,7 @@ void build_neighbours(const int n, const int stride, const REAL radius_factor,
       const REAL box = r;
 #else
       // Cells were assigned on the host in double: widen the box so float rounding cannot drop a cell.
-      const REAL box = r * (REAL)1.0001f + (fabs(xi) + fabs(yi)) * (REAL)1e-6f;
+      const REAL box = r * REAL_C(1.0001) + (fabs(xi) + fabs(yi)) * REAL_C(1e-6);
 #endif
       const int own = level[i], g = 2 * own;
       const REAL inv_cell = grid_inv_cell[g];
@@ -145,7 +151,7 @@ void build_neighbours(const int n, const int stride, const REAL radius_factor,
               const REAL rj = radius_factor * q[j];
               if (d2 <= rj * rj) {
                 const int s = atomic_inc(&scatter_count[j]);
-                if (s < stride) index[j * stride + stride - 1 - s] = i;
+                if (s < stride) scatter_index[row_base(j, stride) + s] = i;
               }
             }
           }
@@ -170,8 +176,8 @@ void finish_neighbours(const int n, const int stride, const int levels, const RE
                        __global const int* grid_start_offset, __global const int* grid_nodes_offset,
                        __global const long* table_cx, __global const long* table_cy, __global const int* table_id,
                        __global const int* cell_start, __global const int* cell_nodes,
-                       __global const int* scatter_count, __global int* count_out, __global int* index,
-                       __global uint* counters) {
+                       __global const int* scatter_count, __global const int* scatter_index,
+                       __global int* count_out, __global int* index, __global uint* counters) {
   __local uint local_within;
   __local int local_max;
   if (get_local_id(0) == 0) {
@@ -181,7 +187,7 @@ void finish_neighbours(const int n, const int stride, const int levels, const RE
   barrier(CLK_LOCAL_MEM_FENCE);
   const int i = get_global_id(0);
   if (i < n) {
-    const int base = i * stride;
+    const long base = row_base(i, stride);
     int count = count_out[i];
     if (kind[i] == 2) {
       const int scattered = scatter_count[i];
@@ -194,15 +200,14 @@ void finish_neighbours(const int n, const int stride, const int levels, const RE
 #if PDMESH_DOUBLE
         const REAL box = r;
 #else
-        const REAL box = r * (REAL)1.0001f + (fabs(xi) + fabs(yi)) * (REAL)1e-6f;
+        const REAL box = r * REAL_C(1.0001) + (fabs(xi) + fabs(yi)) * REAL_C(1e-6);
 #endif
         nb_scan(i, xi, yi, box, r * r, level[i], levels, stride, base, &again, x, y, grid_inv_cell,
                 grid_table_offset, grid_table_mask, grid_start_offset, grid_nodes_offset, table_cx, table_cy,
                 table_id, cell_start, cell_nodes, index);
       } else {
-        // The scattered block [stride - scattered, stride) moves down behind the own block (forward
-        // copy, destination never after source), then one insertion sort of the row.
-        for (int t = 0; t < scattered; ++t) index[base + own_part + t] = index[base + stride - scattered + t];
+        // The scattered part goes behind the own part, then one insertion sort of the row.
+        for (int t = 0; t < scattered; ++t) index[base + own_part + t] = scatter_index[base + t];
         for (int a = 1; a < count; ++a) {
           const int v = index[base + a];
           int b = a;

@@ -44,9 +44,9 @@ void reduce(const int n, __global const uchar* kind, __global const REAL* fx, __
   const REAL f = moving ? force_norm(fx[i], fy[i]) : (REAL)0;
   values[l] = f;
 #if PDMESH_DOUBLE
-  values[WG_SIZE + l] = moving ? (REAL)0.125 * dt2[i] * (fx[i] * fx[i] + fy[i] * fy[i]) : (REAL)0;  // the reference's
+  values[WG_SIZE + l] = moving ? REAL_C(0.125) * dt2[i] * (fx[i] * fx[i] + fy[i] * fy[i]) : (REAL)0;  // the reference's
 #else
-  values[WG_SIZE + l] = moving ? (REAL)0.125 * dt2[i] * f * f : (REAL)0;  // f^2 could overflow in float
+  values[WG_SIZE + l] = moving ? REAL_C(0.125) * dt2[i] * f * f : (REAL)0;  // f^2 could overflow in float
 #endif
   values[2 * WG_SIZE + l] = moving ? (REAL)1 : (REAL)0;
   values[3 * WG_SIZE + l] = f;

@@ -29,8 +29,8 @@ int bg_descend(int node, __global const int* node_child, REAL* u_io, REAL* v_io)
   int child = node_child[node];
   // A valid tree ends within 20 levels; the bound only guards against corrupt data.
   for (int level = 0; child >= 0 && level < 32; ++level) {
-    const int cx = u >= (REAL)0.5 ? 1 : 0;
-    const int cy = v >= (REAL)0.5 ? 1 : 0;
+    const int cx = u >= REAL_C(0.5) ? 1 : 0;
+    const int cy = v >= REAL_C(0.5) ? 1 : 0;
     u = (REAL)2 * u - (REAL)cx;
     v = (REAL)2 * v - (REAL)cy;
     node = child + cx + 2 * cy;

@@ -30,6 +30,6 @@ void time_step_and_move(const int n, const REAL dt_gm2, const int has_limit, __g
   }
   const REAL dt2 = local_dt2(fx[i], fy[i], r0[i], dt_gm2, has_limit ? dt2_limit[i] : INFINITY);
   dt2_out[i] = dt2;
-  dx_out[i] = (REAL)0.5 * dt2 * fx[i];
-  dy_out[i] = (REAL)0.5 * dt2 * fy[i];
+  dx_out[i] = REAL_C(0.5) * dt2 * fx[i];
+  dy_out[i] = REAL_C(0.5) * dt2 * fy[i];
 }

@@ -5,6 +5,7 @@
 
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "app/case_file.hpp"
 #include "app/mesh_command.hpp"
@@ -19,9 +20,9 @@ struct Case {
   NodeSet initial;
 };
 
-inline Case load_case(const std::string& name) {
+inline Case load_case(const std::string& name, const std::vector<CaseOverride>& overrides = {}) {
   Case c;
-  c.config = load_case_file(std::string(PDMESH_SOURCE_DIR) + "/cases/" + name + "/case.toml");
+  c.config = load_case_file(std::string(PDMESH_SOURCE_DIR) + "/cases/" + name + "/case.toml", overrides);
   c.config.quiet = true;
   c.inputs = std::make_unique<MeshInputs>(c.config);
   c.initial = make_initial(c.config, *c.inputs).nodes;
@@ -46,20 +47,25 @@ struct Outcome {
   ocl::DeviceRunStats stats;
 };
 
-// `iterations` of the case from its initial distribution: on the host reference, or device-resident
-// on test_context() (double unless use_float; Verlet skin `skin`).
-inline Outcome run_case(const Case& c, int iterations, bool device, bool use_float = false, double skin = 0.3) {
-  Outcome out{c.initial, {}, {}};
-  SimOptions o = options_for(c, iterations);
+// A run with options `o` from `start`: on the host reference, or device-resident on test_context()
+// (double unless use_float).
+inline Outcome run_from(const Case& c, const NodeSet& start, const SimOptions& o, bool device, bool use_float = false) {
+  Outcome out{start, {}, {}};
   if (device) {
-    o.device = &test_context();
-    o.device_float = use_float;
-    o.verlet_skin = skin;
-    out.result = ocl::run_device_simulation(out.nodes, *c.inputs->tree, *c.inputs->spacing, o, *o.device, {}, &out.stats);
+    out.result = ocl::run_device_simulation(out.nodes, *c.inputs->tree, *c.inputs->spacing, o, test_context(),
+                                            use_float ? ocl::Precision::Float : ocl::Precision::Double, {}, &out.stats);
   } else {
     out.result = run_simulation(out.nodes, *c.inputs->tree, *c.inputs->spacing, o);
   }
   return out;
+}
+
+// `iterations` of the case from its initial distribution: on the host reference, or device-resident
+// on test_context() (double unless use_float; Verlet skin `skin`).
+inline Outcome run_case(const Case& c, int iterations, bool device, bool use_float = false, double skin = 0.3) {
+  SimOptions o = options_for(c, iterations);
+  o.verlet_skin = skin;
+  return run_from(c, c.initial, o, device, use_float);
 }
 
 }  // namespace pdmesh::test

@@ -1,18 +1,21 @@
 // Inputs for the StepBackend tests (test_step_backends.cpp): random, graded 1000x, degenerate, and
 // awkward sizes around the work-group size 64 (0, 1, 63, 64, 65, 101), all from fixed seeds; and the
-// shared OpenCL context of the device tests, with a canary tail on every buffer.
+// shared OpenCL context of the device tests, with a canary tail on every buffer, released when the run ends.
 #pragma once
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <memory>
 #include <random>
 #include <string>
 #include <vector>
 
 #include "opencl/context.hpp"
 #include "opencl/devices.hpp"
+#include "opencl/step_program.hpp"
 #include "sim/reference/reference_backend.hpp"
 #include "sim_fixtures.hpp"
+#include "test_run_end.hpp"
 
 namespace pdmesh::test {
 
@@ -27,16 +30,40 @@ struct Input {
 // lands in it. Every download checks the tail and throws DeviceError naming the buffer.
 inline constexpr std::size_t kCanaryTail = 64;
 
+// The context and the programs tests share: released when the test run ends (test_run_end.hpp), not
+// by static destructors after main.
+struct TestDevice {
+  std::unique_ptr<ocl::Context> context;
+  std::unique_ptr<ocl::StepProgram> programs[2];  // double, float
+};
+inline TestDevice& test_device() {
+  static TestDevice d;
+  return d;
+}
+
 // CI always has PoCL: no device must fail loudly, not skip.
 inline ocl::Context& test_context() {
-  static ocl::Context ctx = [] {
-    auto d = ocl::select_device("auto");
-    REQUIRE(d.has_value());
-    ocl::Context c(*d);
-    c.set_canary_tail(kCanaryTail);
-    return c;
-  }();
-  return ctx;
+  TestDevice& d = test_device();
+  if (!d.context) {
+    auto info = ocl::select_device("auto");
+    REQUIRE(info.has_value());
+    d.context = std::make_unique<ocl::Context>(*info);
+    d.context->set_canary_tail(kCanaryTail);
+    on_test_run_end([] {
+      TestDevice& t = test_device();
+      for (auto& p : t.programs) p.reset();
+      t.context.reset();
+    });
+  }
+  return *d.context;
+}
+
+// The simulation program on test_context(), built once per precision.
+inline ocl::StepProgram& test_program(ocl::Precision precision) {
+  ocl::Context& ctx = test_context();
+  auto& p = test_device().programs[precision == ocl::Precision::Double ? 0 : 1];
+  if (!p) p = std::make_unique<ocl::StepProgram>(ctx, precision);
+  return *p;
 }
 
 using pdmesh_test::uniform;

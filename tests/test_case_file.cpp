@@ -112,7 +112,7 @@ TEST_CASE("omitted keys take the documented defaults", "[app][case]") {
   CHECK(c.simulation.cutoff == 1.5);
   CHECK(c.simulation.lj_a == 15.0);
   CHECK(c.simulation.device == "auto");
-  CHECK(c.simulation.precision == Precision::Double);
+  CHECK(c.simulation.precision == Precision::Auto);
   CHECK(c.output.formats == std::vector<std::string>{"msh", "vtu", "png"});
   CHECK_FALSE(c.output.tree_overlay);
   CHECK(c.output.views.empty());
@@ -204,6 +204,23 @@ TEST_CASE("overrides (--set) are applied before validation", "[app][case]") {
   CHECK(c.spacing.expression == "0.25");  // a number given to a string key is its text
 }
 
+TEST_CASE("a case file is checked whole, also where an override replaces a value", "[app][case]") {
+  const std::vector<CaseOverride> iterations = {{"simulation.iterations", "5", "--iterations 5"}};
+  CHECK(error_of(std::string(kMinimal) + "[simulation]\niterations = \"many\"\n", iterations) ==
+        "/cases/demo/case.toml:4:14: simulation.iterations must be an integer, got string");
+  CHECK(error_of(std::string(kMinimal) + "[simulation]\ncutoff = -1\n", {parse_set_option("simulation.cutoff=2")}) ==
+        "/cases/demo/case.toml:4:10: simulation.cutoff must be > 0, got -1");
+  CHECK(error_of(std::string(kMinimal) + "[simulation]\nprecision = \"half\"\n", {{"simulation.precision", "float", "--precision float"}})
+            .find("simulation.precision must be one of double, float, auto, got 'half'") != std::string::npos);
+  // What only the whole configuration decides is left to it: overrides may complete a file.
+  const CaseConfig c = parse_case_text("[spacing]\nfield = \"expression\"\n",
+                                       kCase, {parse_set_option("geometry.files=[\"b.crv\"]"),
+                                               parse_set_option("spacing.expression=0.5")});
+  CHECK(c.spacing.expression == "0.5");
+  CHECK(c.geometry.files.size() == 1);
+  CHECK(parse_case_text(std::string(kMinimal) + "[simulation]\niterations = 7\n", kCase, iterations).simulation.iterations == 5);
+}
+
 TEST_CASE("errors in overrides name the option, not the case file", "[app][case]") {
   CHECK(error_of(kMinimal, {parse_set_option("simulation.iterations=abc")}) ==
         "--set simulation.iterations=abc: simulation.iterations must be an integer, got string");
@@ -248,6 +265,15 @@ TEST_CASE("the preset key selects the defaults, and keys the file sets win over 
   CaseConfig by_hand;
   apply_preset(by_hand, Preset::Thesis);
   CHECK(by_hand.preset == Preset::Thesis);
+  // simulation.precision: auto for best, double for the thesis (its runs repeat the host's where a
+  // device can); a file's value wins over either.
+  CHECK(parse_case_text(kMinimal, kCase).simulation.precision == Precision::Auto);
+  CHECK(thesis.simulation.precision == Precision::Double);
+  CHECK(by_hand.simulation.precision == Precision::Double);
+  CHECK(parse_case_text(std::string("preset = \"thesis\"\n") + kMinimal + "[simulation]\nprecision = \"auto\"\n", kCase)
+            .simulation.precision == Precision::Auto);
+  CHECK(parse_case_text(std::string(kMinimal) + "[simulation]\nprecision = \"float\"\n", kCase).simulation.precision ==
+        Precision::Float);
   // An override selects it too, and a bad value names the key and the choices.
   CHECK(parse_case_text(kMinimal, kCase, {parse_set_option("preset=thesis")}).preset == Preset::Thesis);
   CHECK_THAT(error_of(std::string("preset = \"fast\"\n") + kMinimal),

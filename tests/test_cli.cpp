@@ -96,6 +96,12 @@ TEST_CASE("case-file errors exit 2 with FILE:LINE and the suggestion, before any
   CHECK(r.status == 2);
   CHECK(contains(r.output, "case.toml:4:1: unknown key 'simulation.iteratons'; did you mean 'simulation.iterations'?"));
   CHECK_FALSE(fs::exists(out));
+  // The file is checked whole: a wrong value in it is an error even where an option replaces it.
+  std::ofstream(dir / "typed.toml") << "[geometry]\nfiles = [\"rect.crv\"]\n[simulation]\niterations = \"many\"\n";
+  r = run("mesh '" + (dir / "typed.toml").string() + "' --out '" + out.string() + "' --iterations 2");
+  CHECK(r.status == 2);
+  CHECK(contains(r.output, "typed.toml:4:14: simulation.iterations must be an integer, got string"));
+  CHECK_FALSE(fs::exists(out));
   r = run("mesh '" + (dir / "rect.crv").string() + "' --out '" + out.string() + "' --iterations -3");
   CHECK(r.status == 2);
   CHECK(contains(r.output, "--iterations -3: simulation.iterations must be >= 0, got -3"));
@@ -217,4 +223,9 @@ TEST_CASE("pdmesh devices lists the OpenCL devices and checks each with a kernel
   CHECK(contains(r.output, "opencl:0:0"));
   CHECK(contains(r.output, "--device auto picks: opencl:"));
   CHECK(contains(r.output, "check opencl:0:0: ok"));
+  // The check builds the simulation program, runs a short case against the host reference and
+  // measures the fp64 rate (PoCL's double is bit-identical to the host).
+  CHECK(contains(r.output, "program: built in double; work-groups of 64 fit every kernel"));
+  CHECK(contains(r.output, "equal the host reference bit for bit"));
+  CHECK(contains(r.output, "--precision auto picks double"));
 }

@@ -7,6 +7,7 @@
 #include "opencl/cl_errors.hpp"
 #include "opencl/context.hpp"
 #include "opencl/devices.hpp"
+#include "opencl/step_program.hpp"
 
 using namespace pdmesh;
 using namespace pdmesh::ocl;
@@ -118,4 +119,25 @@ TEST_CASE("buffers check sizes and names", "[opencl]") {
   std::vector<int> out;
   REQUIRE_THROWS_AS(b.download(ctx.queue(), out, 9), DeviceError);
   REQUIRE_THROWS_WITH(ocl::kernel_source("no_such.cl"), Catch::Contains("no_such.cl"));
+}
+
+TEST_CASE("the simulation program's work-group size is checked against every kernel's limit", "[opencl]") {
+  Context ctx(require_device());
+  const StepProgram program(ctx, ctx.device().fp64 ? Precision::Double : Precision::Float);
+  REQUIRE(program.limits.size() == 7);
+  for (const KernelLimits& k : program.limits) {
+    INFO(k.name);
+    CHECK(k.max_work_group >= program.work_group);
+    CHECK(k.preferred_multiple > 0);
+  }
+  CHECK(work_group_advice(program.limits, program.work_group).empty());  // PoCL prefers multiples of 8
+  // A device whose kernel allows fewer work-items than pdmesh's groups: a clear error, not a launch failure.
+  REQUIRE_THROWS_AS(check_work_group("device_step", "Some GPU", 64, 32), DeviceError);
+  REQUIRE_THROWS_WITH(check_work_group("device_step", "Some GPU", 64, 32),
+                      Catch::Contains("kernel 'device_step' runs at most 32 work-items per group on Some GPU "
+                                      "(CL_KERNEL_WORK_GROUP_SIZE") &&
+                          Catch::Contains("need groups of 64") && Catch::Contains("--device host"));
+  REQUIRE_NOTHROW(check_work_group("device_step", "Some GPU", 64, 64));
+  CHECK(work_group_advice({{"reduce", 256, 48}}, 64).find("kernel 'reduce' prefers multiples of 48") !=
+        std::string::npos);
 }

@@ -25,6 +25,7 @@
 #include "sim/simulation.hpp"
 #include "spacing/resolution_check.hpp"
 #include "spacing/spacing_field.hpp"
+#include "device_run_fixtures.hpp"
 #include "step_backend_inputs.hpp"
 
 namespace fs = std::filesystem;
@@ -152,11 +153,11 @@ TEST_CASE("two nodes 1e-30 apart: the device run stops too and hands over its la
   const auto [a, b] = c.collide();
   const NodeSet before = c.nodes;
   SimOptions options = quiet_options(10);
-  options.device = &test::test_context();
+  ocl::DeviceSimulator device(test::test_context(), ocl::Precision::Double);
   std::optional<SimState> saved;
   SimCallbacks callbacks;
   callbacks.on_failure = [&](const SimState& s) { saved = s; };
-  CHECK_THROWS_WITH(run_simulation(c.nodes, *c.tree, c.spacing, options, callbacks),
+  CHECK_THROWS_WITH(device.run(c.nodes, *c.tree, c.spacing, options, callbacks),
                     Contains("iteration 1: non-finite force or move") && Contains(fmt::format("node {} (interior)", a)) &&
                         Contains(fmt::format("node {} (interior)", b)) && Contains("distance 1e-30"));
   REQUIRE(saved);
@@ -227,10 +228,14 @@ TEST_CASE("a device lost at any call: exit 1, and a checkpoint that resumes once
 }
 
 TEST_CASE("device memory: the need is counted per node and refused with the figures", "[failures][opencl]") {
-  // 1000 nodes, 100 on curves, no field, double: 1000 (16 * 8 + 1 + 24) + 1000 * 16 * 4 + 100 * 32.
+  // 1000 nodes, 100 on curves, no field, double: 1000 (16 * 8 + 1 + 32) + 2 (rows and scatter rows)
+  // 1000 * 16 * 4 + 100 * 32.
   const ocl::DeviceMemoryNeed need = ocl::device_memory_need(1000, 100, 0, 8);
   CHECK(need.largest == 64000);
-  CHECK(need.total == 153000 + 64000 + 3200);
+  CHECK(need.total == 161000 + 128000 + 3200);
+  // The rows at the stride they grew to (856 on shock).
+  CHECK(ocl::device_memory_need(1000, 100, 0, 8, 856).largest == 4 * 1000 * 856);
+  CHECK(ocl::device_memory_need(1000, 100, 0, 8, 856).total == 161000 + 2 * 4 * 1000 * 856 + 3200);
   ocl::DeviceInfo device;
   device.name = "test device";
   device.global_memory = need.total;
@@ -239,9 +244,9 @@ TEST_CASE("device memory: the need is counted per node and refused with the figu
   device.global_memory = need.total - 1;
   CHECK_THROWS_AS(ocl::check_device_memory(device, 1000, 100, 0, 8), LimitError);
   CHECK_THROWS_WITH(ocl::check_device_memory(device, 1000, 100, 0, 8),
-                    Contains("1000 nodes need at least 220200 bytes of device memory in double") &&
-                        Contains("test device has 220199 bytes") && Contains("allows 64000 bytes per buffer") &&
-                        Contains("--precision float (at least 154600 bytes)") && Contains("--device host") &&
+                    Contains("1000 nodes need at least 292200 bytes of device memory in double") &&
+                        Contains("test device has 292199 bytes") && Contains("allows 64000 bytes per buffer") &&
+                        Contains("--precision float (at least 226600 bytes)") && Contains("--device host") &&
                         Contains("coarser spacing"));
   device.global_memory = need.total;
   device.max_allocation = need.largest - 1;
@@ -251,15 +256,36 @@ TEST_CASE("device memory: the need is counted per node and refused with the figu
                     Contains("in float") && !Contains("--precision float"));
 }
 
+TEST_CASE("device memory: neighbour rows that outgrow the device's largest buffer are refused", "[failures][opencl]") {
+  // circle_circle's first build overflows the initial stride 16 (its largest row holds 22 entries):
+  // a device that holds rows of 16 but not of 24 passes the first check and must refuse the growth.
+  const test::Case c = test::load_case("circle_circle");
+  const std::uint64_t n = c.initial.size();
+  ocl::DeviceInfo info = test::test_context().device();
+  info.max_allocation = 4 * n * 20;
+  ocl::Context small(info);
+  NodeSet nodes = c.initial;
+  std::optional<SimState> saved;
+  SimCallbacks callbacks;
+  callbacks.on_failure = [&](const SimState& s) { saved = s; };
+  CHECK_THROWS_WITH(ocl::run_device_simulation(nodes, *c.inputs->tree, *c.inputs->spacing, test::options_for(c, 3),
+                                               small, ocl::Precision::Double, callbacks),
+                    Contains("the neighbour list at 24 entries per row") &&
+                        Contains("a node has that many neighbours within the list radius") &&
+                        Contains(fmt::format("allows {} bytes per buffer", 4 * n * 20)));
+  REQUIRE(saved);
+  CHECK(saved->iterations_done == 0);
+}
+
 TEST_CASE("a device with too little memory is refused before allocating, exit 2", "[failures][opencl][cli]") {
   const fs::path dir = fresh_dir("memory");
   const auto r = run_pdmesh("mesh '" PDMESH_SOURCE_DIR "/cases/square200' --out '" + dir.string() +
                                 "' --device opencl --iterations 5 --formats msh -q",
-                            "PDMESH_TEST_DEVICE_MEMORY=20000");
+                            "PDMESH_TEST_DEVICE_MEMORY=35000");  // float would fit: the message says so
   INFO(r.output);
   CHECK(r.status == 2);
   CHECK_THAT(r.output, Contains("pdmesh: error: ") && Contains("nodes need at least") && Contains("bytes of device memory in double") &&
-                           Contains("has 20000 bytes of global memory") && Contains("--precision float") &&
+                           Contains("has 35000 bytes of global memory") && Contains("--precision float") &&
                            Contains("--device host"));
   CHECK_FALSE(fs::exists(dir / "checkpoint.pdmesh"));
   fs::remove_all(dir);

@@ -138,6 +138,9 @@ int run_bench(const BenchArguments& args) {
   if (args.precision != "double" && args.precision != "float")
     throw InputError(fmt::format("bench: --precision must be double or float, got '{}'", args.precision));
   const std::vector<ocl::DeviceInfo> devices = ocl::list_devices();
+  const auto precision_on = [&args](const ocl::DeviceInfo& d) {
+    return args.precision == "float" || !d.fp64 ? ocl::Precision::Float : ocl::Precision::Double;
+  };
   std::string table =
       "| case | backend | nodes | iterations | ms/iteration | node-iterations/s | pair interactions/s | ns per "
       "node-iteration | pairs examined per pair | device split, ms/iteration | bytes/iteration | launches + transfers "
@@ -156,13 +159,13 @@ int run_bench(const BenchArguments& args) {
       SimOptions w = options;
       w.iterations = warm;
       std::optional<ocl::Context> ctx;
-      if (!devices.empty()) {
+      std::unique_ptr<Simulator> warm_up = make_host_simulator();
+      if (!devices.empty() && warm > 0) {
         ctx.emplace(devices.front());
-        w.device = &*ctx;
-        w.device_float = args.precision == "float" || !devices.front().fp64;
+        warm_up = std::make_unique<ocl::DeviceSimulator>(*ctx, precision_on(devices.front()));
       }
       if (warm > 0) {
-        const SimResult r = run_simulation(c->initial, *c->tree, *c->spacing, w);
+        const SimResult r = warm_up->run(c->initial, *c->tree, *c->spacing, w);
         // Continue with the dt_GM the warm-up ended with.
         if (!r.history.empty()) options.dt_initial = r.history.back().dt_gm;
       }
@@ -184,14 +187,14 @@ int run_bench(const BenchArguments& args) {
     }
     for (const ocl::DeviceInfo& info : devices) {
       ocl::Context ctx(info);
-      SimOptions o = options;
-      o.device = &ctx;
-      o.device_float = args.precision == "float" || !info.fp64;
+      const SimOptions& o = options;
+      const ocl::Precision precision = precision_on(info);
       NodeSet nodes = c->initial;
       ocl::DeviceRunStats stats;
-      const SimResult r = ocl::run_device_simulation(nodes, *c->tree, *c->spacing, o, ctx, {}, &stats);
+      const SimResult r = ocl::run_device_simulation(nodes, *c->tree, *c->spacing, o, ctx, precision, {}, &stats);
       Row row{c->name,
-              fmt::format("opencl:{}:{} {} ({})", info.platform, info.device, info.type, o.device_float ? "float" : "double"),
+              fmt::format("opencl:{}:{} {} ({})", info.platform, info.device, info.type,
+                          precision == ocl::Precision::Float ? "float" : "double"),
               nodes.size(), o.iterations, r.stats.seconds, r.stats.pairs_within, r.stats.pairs_examined, stats,
               peak_rss(), host_ms};
       emit(row);

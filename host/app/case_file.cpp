@@ -46,6 +46,11 @@ class Reader {
  public:
   Reader(std::string file, fs::path base_dir) : file_(std::move(file)), base_dir_(std::move(base_dir)) {}
 
+  // Partial: the file alone, before the overrides. Every value it holds is checked; what only the
+  // whole configuration decides (a required key, keys that must agree) is left to the full check.
+  void set_partial(bool partial) { partial_ = partial; }
+  bool partial() const { return partial_; }
+
   void mark_override(const std::string& key, const std::string& label) { labels_[key] = label; }
 
   // The override that set `key` (or one of its parents), if any.
@@ -143,6 +148,7 @@ class Reader {
   std::string file_;
   fs::path base_dir_;
   std::map<std::string, std::string> labels_;
+  bool partial_ = false;
 };
 
 std::string nearest_key(const std::string& key) {
@@ -291,9 +297,10 @@ void read_geometry_section(const Reader& r, const toml::table& root, CaseConfig&
   if (!c.geometry.curves.empty()) {
     // Curves given in memory (case_for_curves) are the geometry; files would be a second one.
     if (files != nullptr) r.fail("geometry.files", files, "geometry.files cannot be set: the geometry is given as curves");
-  } else if (files == nullptr) {
+  } else if (files == nullptr && !r.partial()) {
     throw InputError(fmt::format("{}: geometry.files is required (the .crv/.dat/.poly files to mesh)", r.file()));
-  } else {
+  }
+  if (files != nullptr && c.geometry.curves.empty()) {
     const std::vector<std::string> names = r.strings("geometry.files", *files);
     if (names.empty()) r.fail("geometry.files", files, "geometry.files must name at least one file");
     for (const std::string& f : names) c.geometry.files.push_back(r.resolve("geometry.files", f));
@@ -344,9 +351,11 @@ void read_spacing_section(const Reader& r, const toml::table& root, CaseConfig& 
     c.spacing.field = choose<SpacingKind>(
         r, "spacing.field", *field,
         {{"boundary", SpacingKind::Boundary}, {"expression", SpacingKind::Expression}, {"mesh", SpacingKind::Mesh}});
-  } else if (expression != nullptr && file != nullptr) {
-    r.fail("spacing.file", file, "spacing.expression and spacing.file are both set; choose one with spacing.field");
-  } else {
+  }
+  if (r.partial()) return;  // the rest is how the keys agree: the whole configuration decides
+  if (field == nullptr) {
+    if (expression != nullptr && file != nullptr)
+      r.fail("spacing.file", file, "spacing.expression and spacing.file are both set; choose one with spacing.field");
     c.spacing.field = expression != nullptr ? SpacingKind::Expression : file != nullptr ? SpacingKind::Mesh : SpacingKind::Boundary;
   }
   const char* name = c.spacing.field == SpacingKind::Boundary ? "boundary" : c.spacing.field == SpacingKind::Expression ? "expression" : "mesh";
@@ -415,7 +424,7 @@ void read_simulation_section(const Reader& r, const toml::table& root, CaseConfi
     }
   }
   if (const toml::node* n = find(root, "simulation", "precision")) {
-    s.precision = choose<Precision>(r, "simulation.precision", *n, {{"double", Precision::Double}, {"float", Precision::Float}});
+    s.precision = choose<Precision>(r, "simulation.precision", *n, {{"double", Precision::Double}, {"float", Precision::Float}, {"auto", Precision::Auto}});
   }
   if (const toml::node* n = find(root, "simulation", "stability_factor")) {
     s.stability_factor = r.number("simulation.stability_factor", *n);
@@ -495,8 +504,7 @@ void read_output_section(const Reader& r, const toml::table& root, CaseConfig& c
   }
 }
 
-CaseConfig validate(toml::table& root, Reader& r, const std::vector<CaseOverride>& overrides, CaseConfig c) {
-  for (const CaseOverride& o : overrides) apply_override(root, o, r);
+CaseConfig check_values(const toml::table& root, const Reader& r, CaseConfig c) {
   check_keys(r, root, "");
   // The preset first: it sets the defaults that every other key then overrides.
   if (const toml::node* n = root.get("preset")) {
@@ -512,6 +520,18 @@ CaseConfig validate(toml::table& root, Reader& r, const std::vector<CaseOverride
   read_simulation_section(r, root, c);
   read_output_section(r, root, c);
   return c;
+}
+
+CaseConfig validate(toml::table& root, Reader& r, const std::vector<CaseOverride>& overrides, const CaseConfig& c) {
+  if (!overrides.empty()) {
+    // The file is checked whole first: a wrong value in it (iterations = "many") is an error even when
+    // an option replaces it, since the file is wrong for every other run.
+    Reader file_only = r;
+    file_only.set_partial(true);
+    (void)check_values(root, file_only, c);
+  }
+  for (const CaseOverride& o : overrides) apply_override(root, o, r);
+  return check_values(root, r, c);
 }
 
 }  // namespace

@@ -17,7 +17,8 @@ namespace pdmesh {
 class SpacingField;
 
 enum class SpacingKind { Boundary, Expression, Mesh };
-enum class Precision { Double, Float };
+// simulation.precision. Auto: float where the device lacks fp64 or runs it far slower (opencl/precision_probe).
+enum class Precision { Double, Float, Auto };
 
 // Which defaults the keys a case file leaves out take (top-level key `preset`).
 //   Best:   the settings that give the best meshes; what a geometry given alone runs with.
@@ -82,7 +83,7 @@ struct CaseConfig {
     double cutoff = 1.5;
     double lj_a = 15.0;
     std::string device = "auto";  // auto | host | opencl | opencl:P:D
-    Precision precision = Precision::Double;
+    Precision precision = Precision::Auto;  // the host reference always computes in double
     // true: r0 is the nearest neighbour in any direction ("any_direction"); false: in the force
     // direction, thesis eq. 5.3 ("force_direction", the default).
     bool r0_any_direction = false;

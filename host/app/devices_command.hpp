@@ -3,8 +3,9 @@
 
 namespace pdmesh {
 
-// Prints the device list (and which one `--device auto` picks). With `check`, builds and runs the
-// selftest kernel on each device and prints ok or the error. Returns the exit status (1 if a check failed).
+// Prints the device list (and which one `--device auto` picks). With `check`, checks each device
+// (check_device: program build, a short run against the host reference, the fp64 rate) and prints
+// what it found. Returns the exit status (1 if a device failed its check).
 int run_devices(bool check);
 
 }  // namespace pdmesh

@@ -11,6 +11,7 @@
 #include <optional>
 #include <fmt/format.h>
 
+#include "app/backend_choice.hpp"
 #include "app/case_spacing.hpp"
 #include "app/exit_codes.hpp"
 #include "app/interrupt.hpp"
@@ -25,7 +26,6 @@
 #include "mesh/triangulate_nodes.hpp"
 #include "nodes/node_domain.hpp"
 #include "nodes/node_file.hpp"
-#include "opencl/context.hpp"
 #include "opencl/devices.hpp"
 #include "render/history_plot.hpp"
 #include "render/mesh_picture.hpp"
@@ -168,23 +168,10 @@ void write_initial_outputs(const CaseConfig& config, const MeshInputs& inputs, c
 
 SimResult simulate(const CaseConfig& config, const MeshInputs& inputs, NodeSet& nodes, const SimState* resume,
                    const SimulateHooks* hooks) {
-  const std::string& device = config.simulation.device;
-  // auto: the first GPU, else the first CPU OpenCL device, else the host reference. An explicit
-  // opencl spec that cannot be met throws InputError listing the devices (exit 2).
-  std::optional<ocl::DeviceInfo> chosen;
-  if (device != "host") {
-    chosen = ocl::select_device(device);
-    if (!chosen) progress(config, "note: no OpenCL platform or device found; simulating on the host reference");
-  }
-  bool use_float = config.simulation.precision == Precision::Float;
-  if (!chosen && use_float)
-    progress(config, "note: the host reference computes in double precision; --precision float is ignored");
-  if (chosen && !use_float && !chosen->fp64) {
-    progress(config, "note: {} has no double precision (cl_khr_fp64); simulating in float", chosen->name);
-    use_float = true;
-  }
-  std::unique_ptr<ocl::Context> context;
-  if (chosen) context = std::make_unique<ocl::Context>(*chosen);
+  // auto: the best OpenCL device whose program builds, else the host reference. An explicit opencl
+  // spec that cannot be met throws InputError listing the devices (exit 2).
+  const ChosenBackend backend = choose_backend(config.simulation.device, config.simulation.precision,
+                                               [&config](const std::string& line) { progress(config, "{}", line); });
   SimOptions options;
   options.iterations = static_cast<int>(config.simulation.iterations);
   options.dt_initial = config.simulation.dt_for(config.init.method);
@@ -193,16 +180,10 @@ SimResult simulate(const CaseConfig& config, const MeshInputs& inputs, NodeSet& 
   options.r0_any_direction = config.simulation.r0_any_direction;
   options.stability_factor = config.simulation.stability_factor;
   options.quiet = config.quiet;
-  options.device = context.get();
-  options.device_float = use_float;
   options.stop = hooks && hooks->stop ? hooks->stop : &InterruptGuard::flag();
   options.resume = resume;
-  const std::string where = chosen ? fmt::format("opencl:{}:{} ({}, {}, {}, device-resident)", chosen->platform,
-                                                 chosen->device, chosen->name, chosen->type,
-                                                 use_float ? "float" : "double")
-                                   : std::string("the host reference (double)");
   progress(config, "simulation: {} iterations on {}, cutoff {}, a = {}, r0 rule {}, stability factor {}",
-           options.iterations, where, options.cutoff, options.lj_a,
+           options.iterations, backend.simulator->describe(), options.cutoff, options.lj_a,
            options.r0_any_direction ? "any_direction" : "force_direction", options.stability_factor);
   if (resume) progress(config, "simulation: resuming after iteration {}", resume->iterations_done);
   const fs::path checkpoint_file = checkpoint_path(config.out_dir);
@@ -225,7 +206,7 @@ SimResult simulate(const CaseConfig& config, const MeshInputs& inputs, NodeSet& 
   };
   SimResult result;
   try {
-    result = run_simulation(nodes, *inputs.tree, *inputs.spacing, options, callbacks);
+    result = backend.simulator->run(nodes, *inputs.tree, *inputs.spacing, options, callbacks);
   } catch (const DeviceError& e) {
     if (!saved_after) throw;
     throw DeviceError(e.what() + saved_note() + " (with --device host if the device stays unusable)");

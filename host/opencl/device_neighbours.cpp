@@ -27,7 +27,7 @@ constexpr std::array<std::uint32_t, 5> kZeroCounters{};
 
 template <typename Real>
 std::size_t DeviceNeighbours<Real>::device_bytes() const {
-  return count_.bytes() + scatter_count_.bytes() + index_.bytes() + level_.bytes() + table_id_.bytes() + table_cx_.bytes() +
+  return count_.bytes() + scatter_count_.bytes() + scatter_index_.bytes() + index_.bytes() + level_.bytes() + table_id_.bytes() + table_cx_.bytes() +
          table_cy_.bytes() + cell_start_.bytes() + cell_nodes_.bytes();
 }
 
@@ -63,8 +63,10 @@ NeighbourFlags DeviceNeighbours<Real>::build(const double* hx, const double* hy,
   }
   ensure_size(ctx_, counters_, "neighbour_counters", 5);
   for (int attempt = 0; attempt < 3; ++attempt) {
+    if (check_stride) check_stride(stride);
+    const std::size_t entries = n * static_cast<std::size_t>(stride);
     ensure_size(ctx_, count_, "neighbour_count", n);
-    ensure_size(ctx_, index_, "neighbour_index", n * static_cast<std::size_t>(stride));
+    ensure_size(ctx_, index_, "neighbour_index", entries);
     counters_.upload(ctx_.queue(), kZeroCounters.data(), kZeroCounters.size(), false);
     if (flags.first_invalid >= 0) {
       // Lists of an invalid node set are not built; the caller throws naming the node.
@@ -74,19 +76,20 @@ NeighbourFlags DeviceNeighbours<Real>::build(const double* hx, const double* hy,
     const Real radius = static_cast<Real>(radius_factor);
     // Pass 1: own cumulative grid, scattering to finer rows (scatter counts start at 0).
     ensure_size(ctx_, scatter_count_, "neighbour_scatter_count", n);
+    ensure_size(ctx_, scatter_index_, "neighbour_scatter_index", entries);
     if (n > 0)  // a zero-sized fill is invalid OpenCL
       check(ctx_.queue().enqueueFillBuffer(scatter_count_.get(), cl_int{0}, 0, n * sizeof(cl_int)),
             "clearing 'neighbour_scatter_count'");
     ArgSetter a(program_.build_neighbours, "build_neighbours");
     a(static_cast<cl_int>(n))(static_cast<cl_int>(stride))(radius)(x)(y)(q)(kind)(prev)(next)(level_)(inv_cell_)(
         table_offset_)(table_mask_)(start_offset_)(nodes_offset_)(table_cx_)(table_cy_)(table_id_)(cell_start_)(
-        cell_nodes_)(count_)(scatter_count_)(index_)(counters_);
+        cell_nodes_)(count_)(scatter_count_)(scatter_index_)(index_)(counters_);
     launch(ctx_.queue(), program_.build_neighbours, "build_neighbours", n, program_.work_group);
     // Pass 2: join, sort, pad; overflowing rows rescanned in reference order.
     ArgSetter b(program_.finish_neighbours, "finish_neighbours");
     b(static_cast<cl_int>(n))(static_cast<cl_int>(stride))(static_cast<cl_int>(grids_.levels))(radius)(x)(y)(q)(
         kind)(level_)(inv_cell_)(table_offset_)(table_mask_)(start_offset_)(nodes_offset_)(table_cx_)(table_cy_)(
-        table_id_)(cell_start_)(cell_nodes_)(scatter_count_)(count_)(index_)(counters_);
+        table_id_)(cell_start_)(cell_nodes_)(scatter_count_)(scatter_index_)(count_)(index_)(counters_);
     launch(ctx_.queue(), program_.finish_neighbours, "finish_neighbours", n, program_.work_group);
     std::vector<std::uint32_t> c;
     counters_.download(ctx_.queue(), c, 5);

@@ -35,10 +35,9 @@ template <typename Real>
 class DeviceRun {
  public:
   DeviceRun(NodeSet& nodes, const GeometryTree& tree, const SpacingField& spacing, const SimOptions& options,
-            Context& ctx, DeviceRunStats& stats)
+            Context& ctx, StepProgram& program, DeviceRunStats& stats)
       : nodes_(nodes), options_(options), ctx_(ctx), stats_(stats), boundary_(tree, nodes),
-        background_(spacing, tree), program_(ctx, std::is_same_v<Real, double> ? Precision::Double : Precision::Float),
-        neighbours_(ctx, program_), n_(nodes.size()) {}
+        background_(spacing, tree), program_(program), neighbours_(ctx, program_), n_(nodes.size()) {}
   // Non-blocking uploads read host vectors of this object: wait for them (errors are moot here).
   ~DeviceRun() { ctx_.queue().finish(); }
   DeviceRun(const DeviceRun&) = delete;
@@ -47,7 +46,7 @@ class DeviceRun {
   SimResult run(const SimCallbacks& callbacks);
 
  private:
-  void check_memory() const;
+  void check_memory(int stride) const;
   void remember(int done, double dt_initial, const GlobalTimeStep& gm, std::size_t rows);
   SimState last_good_state(int done, double dt_initial, const GlobalTimeStep& gm,
                            const std::vector<HistoryRow>& history);
@@ -92,10 +91,10 @@ class DeviceRun {
   DeviceRunStats& stats_;
   BoundaryHandler boundary_;
   BackgroundSpacing background_;
-  StepProgram program_;
+  StepProgram& program_;
   DeviceNeighbours<Real> neighbours_;
   std::size_t n_;
-  int stride_ = 16;  // device_memory.cpp counts the neighbour list at this initial stride
+  int stride_ = kInitialStride;  // entries per neighbour row: grows to the largest row a build finds
   int cur_ = 0;  // which of the double-buffered x, y, q is current
   Buffer<Real> x_[2], y_[2], q_[2], tx_, ty_, x_build_, y_build_, q_build_, brec_, cand_rec_, partials_, rec_, bg_q_,
       budget_;
@@ -132,11 +131,11 @@ class DeviceRun {
 };
 
 template <typename Real>
-void DeviceRun<Real>::check_memory() const {
+void DeviceRun<Real>::check_memory(int stride) const {
   const BackgroundFieldData& d = background_.data();
   const std::uint64_t field = 4 * (d.root_node.size() + d.node_child.size() + d.leaf_corner.size() + d.leaf_cell.size()) +
                               sizeof(Real) * d.corner_q.size();
-  check_device_memory(ctx_.device(), n_, nodes_.count(NodeKind::Boundary), field, sizeof(Real));
+  check_device_memory(ctx_.device(), n_, nodes_.count(NodeKind::Boundary), field, sizeof(Real), stride);
 }
 
 template <typename Real>
@@ -408,7 +407,7 @@ BoundaryCounts DeviceRun<Real>::host_boundary(double& skin_use) {
   auto t0 = Clock::now();
   host_ahead_ = true;
   const BoundaryCounts counts = boundary_.apply_subset(nodes_, dx_, dy_, candidates_);
-  if (counts.snapped > 0) upload_topology();  // kinds and curve neighbours changed (rare)
+  if (counts.snapped > 0) upload_topology();  // kinds and curve neighbours changed (rare); run() rebuilds
   // Records: every boundary node (re-snapped, with its tangent) and every candidate still interior.
   // Members: their uploads are non-blocking and complete before the next step's records arrive.
   std::vector<std::int32_t>& index = rec_index_host_;
@@ -468,7 +467,8 @@ SimResult DeviceRun<Real>::run(const SimCallbacks& callbacks) {
     boundary_.restore(nodes_, resume->arcs, resume->tangents);  // before upload_initial reads the tangents
   }
   GlobalTimeStep gm = resume ? GlobalTimeStep(resume->time_step) : GlobalTimeStep(result.stats.dt_initial);
-  check_memory();  // before the first device allocation
+  check_memory(stride_);  // before the first device allocation
+  neighbours_.check_stride = [this](int stride) { check_memory(stride); };  // and before the rows grow
   ProgressLine progress(options_.quiet);
   upload_initial();  // setup, like the host path's, is not part of the timed iterations
   stats_.setup_bytes = stats_.bytes_up;
@@ -508,6 +508,13 @@ SimResult DeviceRun<Real>::run(const SimCallbacks& callbacks) {
       const BoundaryCounts counts = host_boundary(skin_use);
       cur_ = 1 - cur_;
       skin_use_ = std::max(skin_use_, skin_use);
+      if (counts.snapped > 0) {
+        // The rows are stale after a snap: the snapped node still holds its interior row (node_forces
+        // does not filter a boundary node's row) and its new curve neighbours their old [prev, next].
+        // The host reference rebuilds on any kind change (NeighbourCache), so the next step must too.
+        if (skin_use_ <= kSkinUseLimit) ++stats_.snap_rebuilds;
+        skin_use_ = HUGE_VAL;
+      }
 
       HistoryRow row;
       row.iteration = iteration;
@@ -579,16 +586,13 @@ SimResult DeviceRun<Real>::run(const SimCallbacks& callbacks) {
 
 }  // namespace
 
-SimResult run_device_simulation(NodeSet& nodes, const GeometryTree& tree, const SpacingField& spacing,
-                                const SimOptions& options, Context& ctx, const SimCallbacks& callbacks,
-                                DeviceRunStats* stats) {
-  if (options.exact_spacing)
-    throw InputError("the device-resident simulation reads the background spacing field; exact_spacing needs --device host");
-  DeviceRunStats local;
-  DeviceRunStats& s = stats ? *stats : local;
-  s = DeviceRunStats{};
-  if (options.device_float) return DeviceRun<float>(nodes, tree, spacing, options, ctx, s).run(callbacks);
-  return DeviceRun<double>(nodes, tree, spacing, options, ctx, s).run(callbacks);
+SimResult run_device_resident(NodeSet& nodes, const GeometryTree& tree, const SpacingField& spacing,
+                              const SimOptions& options, Context& ctx, StepProgram& program,
+                              const SimCallbacks& callbacks, DeviceRunStats& stats) {
+  stats = DeviceRunStats{};
+  if (program.precision == Precision::Float)
+    return DeviceRun<float>(nodes, tree, spacing, options, ctx, program, stats).run(callbacks);
+  return DeviceRun<double>(nodes, tree, spacing, options, ctx, program, stats).run(callbacks);
 }
 
 }  // namespace pdmesh::ocl

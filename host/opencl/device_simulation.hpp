@@ -5,6 +5,8 @@
 #pragma once
 #include <cstdint>
 
+#include <memory>
+
 #include "opencl/context.hpp"
 #include "sim/simulation.hpp"
 
@@ -14,6 +16,7 @@ namespace pdmesh::ocl {
 struct DeviceRunStats {
   int iterations = 0;
   int rebuilds = 0;                  // neighbour-list builds (Verlet skin)
+  int snap_rebuilds = 0;             // of those, forced by a snap alone (the skin had room left)
   int stride = 0;                    // final row stride
   std::uint64_t launches = 0;        // kernel launches
   std::uint64_t transfers = 0;       // reads + writes enqueued
@@ -32,26 +35,62 @@ struct DeviceRunStats {
   std::size_t device_bytes = 0;      // device buffers at the end
 };
 
-// Device memory a run needs before its first iteration (a lower bound; docs/opencl.md): in total, and
-// for its largest buffer (the neighbour list at its initial row stride).
+// The neighbour rows' initial stride (entries per row); it grows to the largest row a build finds.
+inline constexpr int kInitialStride = 16;
+
+// Device memory a run needs with neighbour rows of `stride` entries (a lower bound; docs/opencl.md):
+// in total, and for its largest buffer (the neighbour list).
 struct DeviceMemoryNeed {
   std::uint64_t total = 0, largest = 0;
 };
 DeviceMemoryNeed device_memory_need(std::size_t nodes, std::size_t boundary_nodes, std::uint64_t field_bytes,
-                                    std::size_t real_bytes);
+                                    std::size_t real_bytes, int stride = kInitialStride);
 
 // Throws LimitError (exit 2) naming the bytes needed, the device's global memory and largest
 // allocation, and what to do instead (--precision float, --device host, a coarser spacing), when
-// device_memory_need exceeds either. Run before the first allocation of a device run.
+// device_memory_need exceeds either, or when there are more nodes than the device's 32-bit node
+// indices allow. Run before the first allocation of a device run (initial stride) and before the
+// neighbour rows grow (the new stride).
 void check_device_memory(const DeviceInfo& device, std::size_t nodes, std::size_t boundary_nodes,
-                         std::uint64_t field_bytes, std::size_t real_bytes);
+                         std::uint64_t field_bytes, std::size_t real_bytes, int stride = kInitialStride);
 
-// Same contract as run_simulation (which calls it when options.device is set): updates nodes, returns
-// the history. Throws InputError when options.exact_spacing is set (the device reads the background field),
-// LimitError from check_device_memory. Any error after the setup first hands the last good state to
+struct StepProgram;
+
+// The device-resident run as a Simulator (the contract of sim/simulation.hpp). Same contract as
+// run_simulation: updates nodes, returns the history; starts from options.resume when set (a SimState:
+// everything is uploaded from the host at the start, so a run can begin from any node set and state).
+// Throws InputError when options.exact_spacing is set (the device reads the background field),
+// LimitError from check_device_memory (before the first allocation, and when the neighbour rows grow
+// past what the device allows). Any error after the setup first hands the last good state to
 // callbacks.on_failure; an OpenCL error is rethrown as DeviceError "iteration K: <call> failed: CL_NAME (code)".
+class DeviceSimulator final : public Simulator {
+ public:
+  // Builds the step program on ctx (which must outlive this) now, so that a DeviceError from the build
+  // or from the work-group check (StepProgram) comes before anything runs: a caller that picked the
+  // device itself can try the next one.
+  DeviceSimulator(Context& ctx, Precision precision);
+  ~DeviceSimulator() override;
+  std::string describe() const override;
+  SimResult run(NodeSet& nodes, const GeometryTree& tree, const SpacingField& spacing, const SimOptions& options,
+                const SimCallbacks& callbacks = {}) override;
+  // Of the last run.
+  const DeviceRunStats& stats() const { return stats_; }
+  Precision precision() const;
+
+ private:
+  Context& ctx_;
+  std::unique_ptr<StepProgram> program_;
+  DeviceRunStats stats_;
+};
+
+// The run itself on a built program (what DeviceSimulator::run calls after its checks; device_simulation.cpp).
+SimResult run_device_resident(NodeSet& nodes, const GeometryTree& tree, const SpacingField& spacing,
+                              const SimOptions& options, Context& ctx, StepProgram& program,
+                              const SimCallbacks& callbacks, DeviceRunStats& stats);
+
+// One run on a DeviceSimulator built for it (tests, bench).
 SimResult run_device_simulation(NodeSet& nodes, const GeometryTree& tree, const SpacingField& spacing,
-                                const SimOptions& options, Context& ctx, const SimCallbacks& callbacks = {},
-                                DeviceRunStats* stats = nullptr);
+                                const SimOptions& options, Context& ctx, Precision precision = Precision::Double,
+                                const SimCallbacks& callbacks = {}, DeviceRunStats* stats = nullptr);
 
 }  // namespace pdmesh::ocl

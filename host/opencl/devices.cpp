@@ -1,8 +1,9 @@
-// Enumerates OpenCL platforms and devices and applies the --device rule (auto: first GPU, else first CPU).
+// Enumerates OpenCL platforms and devices and applies the --device rule (auto: auto_order's first).
 #include "opencl/devices.hpp"
 
 #include <algorithm>
 #include <cstdlib>
+#include <tuple>
 
 #include <fmt/format.h>
 
@@ -61,6 +62,10 @@ std::vector<DeviceInfo> list_devices() {
       }
       i.max_work_group = info<CL_DEVICE_MAX_WORK_GROUP_SIZE, std::size_t>(devices[d], "CL_DEVICE_MAX_WORK_GROUP_SIZE");
       i.fp64 = info<CL_DEVICE_DOUBLE_FP_CONFIG, cl_device_fp_config>(devices[d], "CL_DEVICE_DOUBLE_FP_CONFIG") != 0;
+      // Deprecated since OpenCL 2.0 (still answered by the drivers we know): a device that does not
+      // answer counts as discrete, which only affects auto's order.
+      cl_bool unified = CL_FALSE;
+      i.unified_memory = devices[d].getInfo(CL_DEVICE_HOST_UNIFIED_MEMORY, &unified) == CL_SUCCESS && unified != CL_FALSE;
       out.push_back(std::move(i));
     }
   }
@@ -68,10 +73,11 @@ std::vector<DeviceInfo> list_devices() {
 }
 
 std::string describe(const DeviceInfo& d) {
-  return fmt::format("opencl:{}:{}  {:<4} {} [{}] ({} compute units, {:.1f} GiB, max work-group {}, {})", d.platform,
+  return fmt::format("opencl:{}:{}  {:<4} {} [{}] ({} compute units, {:.1f} GiB{}, max work-group {}, {})", d.platform,
                      d.device, d.type, d.name, d.platform_name, d.compute_units,
-                     static_cast<double>(d.global_memory) / (1024.0 * 1024.0 * 1024.0), d.max_work_group,
-                     d.fp64 ? "fp64" : "no fp64");
+                     static_cast<double>(d.global_memory) / (1024.0 * 1024.0 * 1024.0),
+                     d.type == "GPU" ? (d.unified_memory ? " shared with the host" : " of its own") : "",
+                     d.max_work_group, d.fp64 ? "fp64" : "no fp64");
 }
 
 std::string describe_all(const std::vector<DeviceInfo>& devices) {
@@ -81,21 +87,27 @@ std::string describe_all(const std::vector<DeviceInfo>& devices) {
   return s;
 }
 
+std::vector<DeviceInfo> auto_order(std::vector<DeviceInfo> devices) {
+  // A discrete GPU has its own memory and, on a laptop, is the fast one beside an integrated GPU that
+  // often lacks fp64; CPU devices come after every GPU.
+  const auto rank = [](const DeviceInfo& d) {
+    const int type = d.type == "GPU" ? 0 : d.type == "CPU" ? 1 : 2;
+    return std::make_tuple(type, d.unified_memory ? 1 : 0, d.fp64 ? 0 : 1, -static_cast<long long>(d.compute_units));
+  };
+  std::stable_sort(devices.begin(), devices.end(),
+                   [&](const DeviceInfo& a, const DeviceInfo& b) { return rank(a) < rank(b); });
+  return devices;
+}
+
 std::optional<DeviceInfo> select_device(const std::string& spec) {
-  auto devices = list_devices();
+  auto devices = auto_order(list_devices());
   if (spec == "auto") {
-    for (const auto& d : devices)
-      if (d.type == "GPU") return d;
-    for (const auto& d : devices)
-      if (d.type == "CPU") return d;
     if (!devices.empty()) return devices.front();
     return std::nullopt;
   }
   if (spec == "opencl") {
     if (devices.empty())
       throw InputError("--device opencl: no OpenCL device is available.\n" + describe_all(devices));
-    for (const auto& d : devices)
-      if (d.type == "GPU") return d;
     return devices.front();
   }
   int p = -1, d = -1;

@@ -21,6 +21,7 @@ struct DeviceInfo {
   std::uint64_t max_allocation = 0;  // bytes
   std::size_t max_work_group = 0;
   bool fp64 = false;
+  bool unified_memory = false;  // CL_DEVICE_HOST_UNIFIED_MEMORY: an integrated GPU or a CPU device
   cl::Device handle;
 };
 
@@ -31,7 +32,12 @@ std::vector<DeviceInfo> list_devices();
 std::string describe(const DeviceInfo& d);
 std::string describe_all(const std::vector<DeviceInfo>& devices);
 
-// Resolves an "opencl" or "opencl:P:D" spec, or "auto" (first GPU, else first CPU device).
+// The devices in the order `--device auto` tries them, best first: GPUs, then CPU devices, then the
+// rest. Among GPUs a discrete one (no host-unified memory) comes first, then one with fp64, then the
+// one with the most compute units; platform order breaks ties (stable).
+std::vector<DeviceInfo> auto_order(std::vector<DeviceInfo> devices);
+
+// Resolves an "opencl" or "opencl:P:D" spec, or "auto" (the first of auto_order; "opencl" likewise).
 // Returns nothing for "auto" when no device exists; throws InputError (exit 2) listing what is available when
 // an explicit opencl spec cannot be met, InputError when the spec is malformed.
 std::optional<DeviceInfo> select_device(const std::string& spec);

@@ -1,5 +1,10 @@
-// Builds the simulation program and creates its kernels; see step_program.hpp.
+// Builds the simulation program, creates its kernels and checks their work-group limits; see step_program.hpp.
 #include "opencl/step_program.hpp"
+
+#include <atomic>
+#include <cstdlib>
+
+#include "core/errors.hpp"
 
 namespace pdmesh::ocl {
 namespace {
@@ -11,20 +16,73 @@ cl::Kernel make_kernel(cl::Program& program, const char* name) {
   return k;
 }
 
+template <cl_kernel_work_group_info Name>
+std::size_t group_info(cl::Kernel& k, const cl::Device& device, const char* kernel, const char* what) {
+  std::size_t v = 0;
+  check(k.getWorkGroupInfo(device, Name, &v), fmt::format("clGetKernelWorkGroupInfo({}, {})", kernel, what));
+  return v;
+}
+
+}  // namespace
+
+void check_work_group(const std::string& kernel, const std::string& device, std::size_t work_group,
+                      std::size_t kernel_limit) {
+  if (work_group <= kernel_limit) return;
+  throw DeviceError(fmt::format("kernel '{}' runs at most {} work-items per group on {} (CL_KERNEL_WORK_GROUP_SIZE: "
+                                "too many registers or too much local memory for this device), but pdmesh's kernels "
+                                "need groups of {}: simulate on another device or with --device host",
+                                kernel, kernel_limit, device, work_group));
+}
+
+std::string work_group_advice(const std::vector<KernelLimits>& limits, std::size_t work_group) {
+  std::string advice;
+  for (const KernelLimits& k : limits)
+    if (k.preferred_multiple > 0 && work_group % k.preferred_multiple != 0)
+      advice += fmt::format("{}kernel '{}' prefers multiples of {} work-items (CL_KERNEL_PREFERRED_WORK_GROUP_SIZE_"
+                            "MULTIPLE), the group size {} is not one: part of each group idles",
+                            advice.empty() ? "" : "; ", k.name, k.preferred_multiple, work_group);
+  return advice;
+}
+
+namespace {
+
+// Test-only (docs/robustness.md): PDMESH_TEST_FAIL_BUILD=N makes simulation-program builds fail as a
+// driver's would until N have failed in this process, to exercise --device auto's fallback.
+bool injected_build_failure() {
+  static std::atomic<long> failed{0};
+  const char* v = std::getenv("PDMESH_TEST_FAIL_BUILD");
+  const long wanted = v ? std::strtol(v, nullptr, 10) : 0L;
+  if (failed.load() >= wanted) return false;
+  ++failed;
+  return true;
+}
+
 }  // namespace
 
 StepProgram::StepProgram(Context& ctx, Precision p, std::size_t wg) : precision(p), work_group(wg) {
   if (p == Precision::Double && !ctx.device().fp64)
     throw DeviceError(fmt::format("{} has no double precision (cl_khr_fp64): use --precision float", ctx.device().name));
+  if (injected_build_failure())
+    throw DeviceError(fmt::format("building OpenCL program on {} failed: CL_BUILD_PROGRAM_FAILURE (-11) (injected by "
+                                  "PDMESH_TEST_FAIL_BUILD)\nbuild log:\n(none)", ctx.device().name));
   program = ctx.build({"spacing_field.cl", "reduce.cl", "forces.cl", "time_step.cl", "neighbours.cl", "device_step.cl"},
                       precision_defines(p, wg));
-  build_neighbours = make_kernel(program, "build_neighbours");
-  finish_neighbours = make_kernel(program, "finish_neighbours");
-  compute_forces = make_kernel(program, "compute_forces");
-  time_step_and_move = make_kernel(program, "time_step_and_move");
-  reduce = make_kernel(program, "reduce");
-  device_step = make_kernel(program, "device_step");
-  apply_host_moves = make_kernel(program, "apply_host_moves");
+  const std::pair<cl::Kernel*, const char*> kernels[] = {
+      {&build_neighbours, "build_neighbours"}, {&finish_neighbours, "finish_neighbours"},
+      {&compute_forces, "compute_forces"},     {&time_step_and_move, "time_step_and_move"},
+      {&reduce, "reduce"},                     {&device_step, "device_step"},
+      {&apply_host_moves, "apply_host_moves"}};
+  // Every kernel declares reqd_work_group_size(WG_SIZE): a device that cannot run a group that size
+  // (registers, local memory) would fail at the first enqueue with CL_INVALID_WORK_GROUP_SIZE or
+  // CL_OUT_OF_RESOURCES; checked here, it fails before the run with the reason.
+  for (const auto& [kernel, name] : kernels) {
+    *kernel = make_kernel(program, name);
+    KernelLimits k{name, group_info<CL_KERNEL_WORK_GROUP_SIZE>(*kernel, ctx.device().handle, name, "CL_KERNEL_WORK_GROUP_SIZE"),
+                   group_info<CL_KERNEL_PREFERRED_WORK_GROUP_SIZE_MULTIPLE>(
+                       *kernel, ctx.device().handle, name, "CL_KERNEL_PREFERRED_WORK_GROUP_SIZE_MULTIPLE")};
+    check_work_group(name, ctx.device().name, wg, std::min(k.max_work_group, ctx.device().max_work_group));
+    limits.push_back(k);
+  }
 }
 
 }  // namespace pdmesh::ocl

@@ -21,12 +21,29 @@ inline constexpr std::size_t kStepWorkGroup = 64;
 // Partial sums per group written by the device_step kernel (STEP_PARTIALS in device_step.cl).
 inline constexpr std::size_t kStepPartials = 7;
 
+// What the device allows one kernel of the program (clGetKernelWorkGroupInfo).
+struct KernelLimits {
+  std::string name;
+  std::size_t max_work_group = 0;      // CL_KERNEL_WORK_GROUP_SIZE
+  std::size_t preferred_multiple = 0;  // CL_KERNEL_PREFERRED_WORK_GROUP_SIZE_MULTIPLE
+};
+
+// Throws DeviceError naming the kernel, the device and both sizes when work_group > kernel_limit.
+void check_work_group(const std::string& kernel, const std::string& device, std::size_t work_group,
+                      std::size_t kernel_limit);
+// "" when work_group is a multiple of every kernel's preferred multiple, else what idles (a note, not an error).
+std::string work_group_advice(const std::vector<KernelLimits>& limits, std::size_t work_group);
+
+// Builds the program for `precision` (DeviceError when the device has no fp64 for Double, or the
+// build fails, with the build log) and checks every kernel's CL_KERNEL_WORK_GROUP_SIZE against
+// work_group (check_work_group).
 struct StepProgram {
   StepProgram(Context& ctx, Precision precision, std::size_t work_group = kStepWorkGroup);
   Precision precision;
   std::size_t work_group;
   cl::Program program;
   cl::Kernel build_neighbours, finish_neighbours, compute_forces, time_step_and_move, reduce, device_step, apply_host_moves;
+  std::vector<KernelLimits> limits;  // per kernel, in the order above
 };
 
 // Sets arguments 0.. of `kernel` in order; Buffer<T> arguments pass their cl::Buffer.

@@ -13,7 +13,6 @@
 #include "sim/failure_report.hpp"
 #include "sim/global_time_step.hpp"
 #include "sim/progress.hpp"
-#include "opencl/device_simulation.hpp"
 #include "sim/step_trace.hpp"
 #include "spacing/background_field.hpp"
 
@@ -39,12 +38,16 @@ void load_particles(const NodeSet& nodes, const BoundaryHandler& boundary, SimPa
   }
 }
 
+}  // namespace
+
 void check_node_set(const NodeSet& nodes) {
   const std::size_t n = nodes.size();
   if (nodes.q.size() != n || nodes.kind.size() != n || nodes.curve.size() != n)
     throw SimulationError(fmt::format("inconsistent node set: {} positions, {} spacings, {} kinds, {} curves", n,
                                       nodes.q.size(), nodes.kind.size(), nodes.curve.size()));
 }
+
+namespace {
 
 // The first node with a non-finite force or move component (the node count if none).
 std::size_t first_non_finite(const ForceResult& forces, const MoveResult& moves) {
@@ -85,7 +88,6 @@ double default_dt_initial(const NodeSet& nodes, double lj_a) {
 SimResult run_simulation(NodeSet& nodes, const GeometryTree& tree, const SpacingField& spacing,
                          const SimOptions& options, const SimCallbacks& callbacks) {
   check_node_set(nodes);
-  if (options.device) return ocl::run_device_simulation(nodes, tree, spacing, options, *options.device, callbacks);
   std::unique_ptr<StepBackend> own_backend;
   StepBackend* backend = options.backend;
   if (!backend) {
@@ -189,5 +191,20 @@ SimResult run_simulation(NodeSet& nodes, const GeometryTree& tree, const Spacing
   result.stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;
 }
+
+namespace {
+
+class HostSimulator final : public Simulator {
+ public:
+  std::string describe() const override { return "the host reference (double)"; }
+  SimResult run(NodeSet& nodes, const GeometryTree& tree, const SpacingField& spacing, const SimOptions& options,
+                const SimCallbacks& callbacks) override {
+    return run_simulation(nodes, tree, spacing, options, callbacks);
+  }
+};
+
+}  // namespace
+
+std::unique_ptr<Simulator> make_host_simulator() { return std::make_unique<HostSimulator>(); }
 
 }  // namespace pdmesh

@@ -5,6 +5,7 @@
 #include <atomic>
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -17,10 +18,6 @@
 #include "spacing/spacing_field.hpp"
 
 namespace pdmesh {
-
-namespace ocl {
-class Context;
-}  // namespace ocl
 
 // The driver's state between iterations beyond the NodeSet itself: with the NodeSet, enough to
 // continue a run bit-identically on the host reference (host/sim/checkpoint.hpp stores it).
@@ -44,11 +41,7 @@ struct SimOptions {
   // false: the per-iteration spacing update reads a BackgroundSpacing built once from the given field
   // (tolerance 1e-3, docs/spacing.md); true: evaluate the given field exactly every iteration.
   bool exact_spacing = false;
-  StepBackend* backend = nullptr;    // nullptr: the reference backend
-  // Non-null: run device-resident on this OpenCL device instead (host/opencl/device_simulation.hpp;
-  // needs the background spacing field, so exact_spacing must be false). backend is then unused.
-  ocl::Context* device = nullptr;
-  bool device_float = false;  // device run in float (default double)
+  StepBackend* backend = nullptr;    // host driver: the step implementation; nullptr: the reference backend
   double verlet_skin = 0.3;  // device run: list radius cutoff q (1 + skin); 0 rebuilds every iteration
   // Polled once after every iteration (both backends); when it reads true the run stops there,
   // with SimResult::stopped set. Set from a signal handler, so it must be lock-free.
@@ -96,7 +89,30 @@ double default_dt_initial(const NodeSet& nodes, double lj_a);
 // How many history rows to reserve for a run of `iterations` (capped: rows are added as they come).
 std::size_t history_reserve(int iterations);
 
-// Runs options.iterations iterations (or the remaining ones of options.resume), updating nodes (positions, q, kinds, curve_nodes) in place.
+// Throws SimulationError when the node set's arrays differ in length (every Simulator checks first).
+void check_node_set(const NodeSet& nodes);
+
+// The simulation contract: one whole run, whatever computes it. Implemented by the host driver below
+// (make_host_simulator: run_simulation over a StepBackend) and by the device-resident run
+// (host/opencl/device_simulation.hpp: ocl::DeviceSimulator); the app chooses one (app/backend_choice),
+// so sim/ knows nothing of OpenCL. run() has run_simulation's contract: it runs options.iterations
+// iterations (or the remaining ones of options.resume, a SimState from a checkpoint or an earlier run),
+// updates nodes in place, hands the last good state to callbacks.on_failure before an error propagates,
+// and returns the history and the state reached.
+class Simulator {
+ public:
+  virtual ~Simulator() = default;
+  // Where the run computes, for messages: "the host reference (double)", "opencl:0:0 (..., double, device-resident)".
+  virtual std::string describe() const = 0;
+  virtual SimResult run(NodeSet& nodes, const GeometryTree& tree, const SpacingField& spacing,
+                        const SimOptions& options, const SimCallbacks& callbacks = {}) = 0;
+};
+
+// The host driver as a Simulator (run_simulation).
+std::unique_ptr<Simulator> make_host_simulator();
+
+// The host driver: runs options.iterations iterations (or the remaining ones of options.resume) on
+// options.backend (the reference when null), updating nodes (positions, q, kinds, curve_nodes) in place.
 // Throws SimulationError on non-finite forces or moves, before anything moves in that iteration,
 // naming the iteration, the node and its neighbourhood (callbacks.on_failure gets the last good state).
 SimResult run_simulation(NodeSet& nodes, const GeometryTree& tree, const SpacingField& spacing,
