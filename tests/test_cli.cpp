@@ -182,6 +182,36 @@ TEST_CASE("pdmesh mesh writes every stage's files: initial, history, final, mesh
   fs::remove_all(dir);
 }
 
+TEST_CASE("--plot-spacing writes spacing.png and one picture per view, and the field is reported", "[cli]") {
+  const fs::path dir = fresh_dir("spacing");
+  write_rectangle(dir / "rect.crv");
+  const fs::path out = dir / "out";
+  const Result r = run("mesh '" + (dir / "rect.crv").string() + "' --out '" + out.string() +
+                       "' --iterations 0 --plot-spacing --view corner=0,0,0.5,0.5 --formats msh");
+  INFO(r.output);
+  REQUIRE(r.status == 0);
+  CHECK(contains(r.output, "spacing field: "));
+  CHECK(contains(r.output, "gradation 0.2, rows in gap 2"));
+  for (const char* f : {"spacing.png", "spacing_corner.png"}) {
+    INFO(f);
+    REQUIRE(fs::is_regular_file(out / f));
+    std::ifstream png(out / f, std::ios::binary);
+    char magic[8] = {};
+    png.read(magic, 8);
+    CHECK(std::string(magic + 1, 3) == "PNG");
+  }
+  // The thesis preset reports eq. 3.6 used exactly; a bad key value is refused before any output.
+  const Result thesis = run("mesh '" + (dir / "rect.crv").string() + "' --out '" + (dir / "thesis").string() +
+                            "' --iterations 0 --set preset=thesis --formats msh");
+  CHECK(contains(thesis.output, "spacing field: eq. 3.6 (thesis), evaluated exactly"));
+  const Result bad = run("mesh '" + (dir / "rect.crv").string() + "' --out '" + (dir / "bad").string() +
+                         "' --set spacing.gradation=-1");
+  CHECK(bad.status == 2);
+  CHECK(contains(bad.output, "spacing.gradation must be in [0, 10]"));
+  CHECK_FALSE(fs::exists(dir / "bad"));
+  fs::remove_all(dir);
+}
+
 TEST_CASE("pdmesh devices lists the OpenCL devices and checks each with a kernel", "[cli][opencl]") {
   const Result r = run("devices --check");
   INFO(r.output);

@@ -12,7 +12,10 @@ void apply_preset(CaseConfig& c, Preset preset) {
   const bool thesis = preset == Preset::Thesis;
   // One line per key whose default differs between the presets; CaseConfig's member initializers
   // hold the best values. Each line says what the thesis does instead.
-  (void)thesis;
+  // Eq. 3.6 alone: no gradation limit, no feature size, no curvature rule.
+  if (thesis) c.spacing.gradation = 0.0;
+  if (thesis) c.spacing.rows_in_gap = 0.0;
+  if (thesis) c.spacing.curvature_angle = 0.0;
 }
 
 }  // namespace pdmesh

@@ -5,6 +5,7 @@
 #include <atomic>
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -21,6 +22,8 @@ namespace pdmesh {
 namespace ocl {
 class Context;
 }  // namespace ocl
+
+class BackgroundSpacing;
 
 // The driver's state between iterations beyond the NodeSet itself: with the NodeSet, enough to
 // continue a run bit-identically on the host reference (host/sim/checkpoint.hpp stores it).
@@ -44,6 +47,9 @@ struct SimOptions {
   // false: the per-iteration spacing update reads a BackgroundSpacing built once from the given field
   // (tolerance 1e-3, docs/spacing.md); true: evaluate the given field exactly every iteration.
   bool exact_spacing = false;
+  // Non-null (and exact_spacing false): the spacing update (host) or the device's field reads this
+  // quadtree instead of one built from the given field (the spacing pipeline's, built once per run).
+  const BackgroundSpacing* background = nullptr;
   StepBackend* backend = nullptr;    // nullptr: the reference backend
   // Non-null: run device-resident on this OpenCL device instead (host/opencl/device_simulation.hpp;
   // needs the background spacing field, so exact_spacing must be false). backend is then unused.
@@ -95,6 +101,10 @@ double default_dt_initial(const NodeSet& nodes, double lj_a);
 
 // How many history rows to reserve for a run of `iterations` (capped: rows are added as they come).
 std::size_t history_reserve(int iterations);
+
+// options.background, or a BackgroundSpacing of `spacing` built into `own` (default options).
+const BackgroundSpacing& background_for(const SimOptions& options, const SpacingField& spacing, const GeometryTree& tree,
+                                        std::unique_ptr<BackgroundSpacing>& own);
 
 // Runs options.iterations iterations (or the remaining ones of options.resume), updating nodes (positions, q, kinds, curve_nodes) in place.
 // Throws SimulationError on non-finite forces or moves, before anything moves in that iteration,
