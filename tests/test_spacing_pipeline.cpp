@@ -65,6 +65,7 @@ std::vector<Vec2> corner_positions(const BackgroundFieldData& d) {
   return pos;
 }
 
+// A geometry, its base field (an expression, or eq. 3.6 when the expression is empty) and the pipeline.
 struct Field {
   Geometry geometry;
   std::unique_ptr<GeometryTree> tree;
@@ -73,7 +74,8 @@ struct Field {
   Field(std::vector<RawCurve> curves, const std::string& base_expression, const SpacingOptions& options)
       : geometry(build_geometry(std::move(curves))),
         tree(std::make_unique<GeometryTree>(geometry)),
-        base(std::make_unique<ExpressionSpacing>(base_expression)),
+        base(base_expression.empty() ? std::unique_ptr<SpacingField>(std::make_unique<BoundarySpacing>(*tree))
+                                     : std::make_unique<ExpressionSpacing>(base_expression)),
         pipeline(std::make_unique<SpacingPipeline>(*base, *tree, options)) {}
   double at(Vec2 p) const { return pipeline->field().at(p); }
 };
@@ -257,4 +259,37 @@ TEST_CASE("spacing pipeline: invalid options are input errors naming the key", "
   bad([](SpacingOptions& o) { o.rows_in_gap = 0.5; }, "spacing.rows_in_gap = 0.5");
   bad([](SpacingOptions& o) { o.curvature_angle = 120; }, "spacing.curvature_angle = 120");
   bad([](SpacingOptions& o) { o.points = {{{0.5, 0.5}, 0.01}}; }, "need spacing.gradation > 0");
+}
+
+TEST_CASE("input boundary floor: q rises back to the input spacing next to coarse segments", "[spacing]") {
+  // A 10 x 10 box of 1-long segments with a fine hole (radius 0.2, 0.01-long segments) 1.3 above its
+  // bottom wall. The gradation limit alone lowers q at the wall below the hole to 0.01 + 0.2 x 1.3.
+  const std::vector<RawCurve> curves = {polygon({{0, 0}, {10, 0}, {10, 10}, {0, 10}}, 1.0, "box"),
+                                        circle({5, 1.5}, 0.2, 126, "hole", false)};
+  SpacingOptions o;
+  o.gradation = 0.2;
+  const Field limited(curves, "", o);
+  o.input_boundary_floor = 1.0;
+  const Field floored(curves, "", o);
+  const double d = 1.3;
+  CHECK(limited.at({5, 0}) == Approx(0.01 + 0.2 * d).epsilon(2e-2));
+  // With the floor: at most the hole's own segments plus 0.5 per unit distance from them, at most
+  // the wall's segments; the hole itself keeps its spacing; far walls keep theirs.
+  CHECK(floored.at({5, 0}) == Approx(0.01 + 0.5 * d).epsilon(2e-2));
+  CHECK(floored.at({5, 1.3}) == Approx(0.01).epsilon(5e-2));
+  CHECK(floored.at({2, 10}) == Approx(1.0).epsilon(1e-2));
+  CHECK(floored.at({0, 6.5}) == Approx(1.0).epsilon(1e-2));
+  // Inside, no lower than the limited field; the floor falls off at 0.5 per unit distance, so beyond
+  // 2 (plus a leaf) from the walls the two fields are the same.
+  std::mt19937_64 rng(11);
+  std::size_t far = 0;
+  for (int i = 0; i < 2000; ++i) {
+    const Vec2 p{10 * unit(rng), 10 * unit(rng)};
+    CHECK(floored.at(p) >= limited.at(p) * (1 - 1e-2));
+    if (std::min({p.x, p.y, 10 - p.x, 10 - p.y}) > 3.0) {
+      ++far;
+      CHECK(floored.at(p) == Approx(limited.at(p)).epsilon(1e-2));
+    }
+  }
+  CHECK(far > 200);
 }

@@ -81,16 +81,18 @@ FeatureSize::FeatureSize(const Geometry& geometry) : geometry_(geometry) {
 void FeatureSize::build(std::int32_t node, std::int32_t begin, std::int32_t end) {
   const auto& segs = geometry_.segments;
   Box box, mids;
-  double max_length = 0.0;
+  double max_length = 0.0, min_length = std::numeric_limits<double>::infinity();
   for (std::int32_t i = begin; i < end; ++i) {
     const Segment& s = segs[static_cast<std::size_t>(order_[static_cast<std::size_t>(i)])];
     box.add(s.a);
     box.add(s.b);
     mids.add(0.5 * (s.a + s.b));
     max_length = std::max(max_length, s.length);
+    min_length = std::min(min_length, s.length);
   }
   nodes_[static_cast<std::size_t>(node)].box = box;
   nodes_[static_cast<std::size_t>(node)].max_length = max_length;
+  nodes_[static_cast<std::size_t>(node)].min_length = min_length;
   if (end - begin <= kLeafSize) {
     nodes_[static_cast<std::size_t>(node)].first = begin;
     nodes_[static_cast<std::size_t>(node)].count = end - begin;
@@ -170,6 +172,30 @@ double FeatureSize::segment_envelope(Vec2 x, double fraction, double slope, doub
       const std::int32_t si = order_[static_cast<std::size_t>(i)];
       const Segment& s = segs[static_cast<std::size_t>(si)];
       best = std::max(best, fraction * s.length - slope * closest_on_segment(x, s, si).distance);
+    }
+  }
+  return best;
+}
+
+double FeatureSize::segment_lower_envelope(Vec2 x, double fraction, double slope) const {
+  double best = std::numeric_limits<double>::infinity();
+  if (nodes_.empty()) return best;
+  const auto& segs = geometry_.segments;
+  std::int32_t stack[64];
+  int top = 0;
+  stack[top++] = 0;
+  while (top > 0) {
+    const Node& node = nodes_[static_cast<std::size_t>(stack[--top])];
+    if (fraction * node.min_length + slope * std::sqrt(box_distance2(node.box, x)) >= best) continue;
+    if (node.count == 0) {
+      stack[top++] = node.first + 1;
+      stack[top++] = node.first;
+      continue;
+    }
+    for (std::int32_t i = node.first; i < node.first + node.count; ++i) {
+      const std::int32_t si = order_[static_cast<std::size_t>(i)];
+      const Segment& s = segs[static_cast<std::size_t>(si)];
+      best = std::min(best, fraction * s.length + slope * closest_on_segment(x, s, si).distance);
     }
   }
   return best;

@@ -37,6 +37,9 @@ class FeatureSize {
   // segment changes). The input-boundary floor of the spacing pipeline.
   // Values at or below `at_least` are not searched for (the result is then at_least).
   double segment_envelope(Vec2 x, double fraction, double slope, double at_least = 0.0) const;
+  // min over segments s of (fraction * length(s) + slope * distance(x, s)): the lower envelope of
+  // upward cones, also slope-Lipschitz; at most fraction * length on every segment.
+  double segment_lower_envelope(Vec2 x, double fraction, double slope) const;
 
   // Inward unit normal of a segment (the domain's side).
   Vec2 inward_normal(int segment) const { return normal_[static_cast<std::size_t>(segment)]; }
@@ -49,6 +52,7 @@ class FeatureSize {
     std::int32_t first = 0;   // leaf: first index into order_; inner: first child (second is first + 1)
     std::int32_t count = 0;   // leaf: number of segments; inner: 0
     double max_length = 0.0;  // longest segment below
+    double min_length = 0.0;  // shortest segment below
   };
   void build(std::int32_t node, std::int32_t begin, std::int32_t end);
 

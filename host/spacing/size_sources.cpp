@@ -52,7 +52,11 @@ bool SizeSources::inside(Vec2 p, const ClosestHit& hit) const {
 double SizeSources::floor_at(Vec2 p, double q) const {
   if (!has_floor()) return q;
   const double slope = kFloorSlope;
-  const double floor = feature_->segment_envelope(p, options_.input_boundary_floor, slope, q);
+  // Between the upper envelope of downward cones and the lower envelope of upward ones: at the
+  // boundary exactly the segment's own length unless a shorter segment is near, and slope-Lipschitz.
+  double floor = feature_->segment_envelope(p, options_.input_boundary_floor, slope, q);
+  if (!(floor > q)) return q;
+  floor = std::min(floor, feature_->segment_lower_envelope(p, options_.input_boundary_floor, slope));
   if (!(floor > q)) return q;
   const ClosestHit hit = feature_->closest(p);
   // Not above the gap: at least one node spacing fits across any gap.
