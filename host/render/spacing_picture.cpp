@@ -36,32 +36,18 @@ std::vector<double> log_ticks(double lo, double hi) {
 }
 
 void draw_log_colour_bar(Canvas& canvas, double lo, double hi) {
+  const ColourBarBox b = draw_colour_ramp_bar(canvas);
   cairo_t* cr = canvas.context();
-  cairo_reset_clip(cr);
-  const double x = canvas.plot_right() + 30, width = 30;
-  const double top = canvas.plot_top() + 40, height = std::max(60.0, canvas.plot_height() - 80);
-  const int bands = 128;
-  for (int k = 0; k < bands; ++k) {
-    const Rgb c = colour_ramp(1.0 - (k + 0.5) / bands);
-    cairo_set_source_rgb(cr, c.r, c.g, c.b);
-    cairo_rectangle(cr, x, top + height * k / bands, width, height / bands + 0.5);
-    cairo_fill(cr);
-  }
-  cairo_set_source_rgb(cr, 0, 0, 0);
-  cairo_set_line_width(cr, 1);
-  cairo_rectangle(cr, x, top, width, height);
-  cairo_stroke(cr);
   const double span = hi > lo ? std::log(hi / lo) : 1.0;
-  auto y_of = [&](double q) { return top + height * (1.0 - (hi > lo ? std::log(q / lo) / span : 0.5)); };
   for (const double t : log_ticks(lo, hi)) {
-    const double y = y_of(t);
-    cairo_move_to(cr, x + width, y);
-    cairo_line_to(cr, x + width + 5, y);
+    const double y = b.top + b.height * (1.0 - (hi > lo ? std::log(t / lo) / span : 0.5));
+    cairo_move_to(cr, b.x + b.width, y);
+    cairo_line_to(cr, b.x + b.width + 5, y);
     cairo_stroke(cr);
-    canvas.text(x + width + 8, y + 5, fmt::format("{:g}", t), 13, colours::kBlack);
+    canvas.text(b.x + b.width + 8, y + 5, fmt::format("{:g}", t), 13, colours::kBlack);
   }
-  canvas.text(x - 10, top - 24, "q (log scale)", 14, colours::kBlack);
-  canvas.text(x - 10, top - 8, fmt::format("{:.3g} .. {:.3g}", lo, hi), 12, colours::kBlack);
+  canvas.text(b.x - 10, b.top - 24, "q (log scale)", 14, colours::kBlack);
+  canvas.text(b.x - 10, b.top - 8, fmt::format("{:.3g} .. {:.3g}", lo, hi), 12, colours::kBlack);
 }
 
 }  // namespace

@@ -120,90 +120,73 @@ double FeatureSize::loop_arc(int segment, double t) const {
   return arc_a_[s] + arc_sign_[s] * t * geometry_.segments[s].length;
 }
 
-ClosestHit FeatureSize::closest(Vec2 x) const {
-  ClosestHit best;
-  if (nodes_.empty()) return best;
-  double best2 = std::numeric_limits<double>::infinity();
-  const auto& segs = geometry_.segments;
-  std::int32_t stack[64];
+// Depth first over the hierarchy, the child whose box is nearer to x first: skip(node) prunes a node
+// (it may use what `segment` found so far); segment(index) sees every segment of the leaves reached.
+template <class Skip, class Visit>
+void FeatureSize::traverse(Vec2 x, const Skip& skip, const Visit& segment) const {
+  if (nodes_.empty()) return;
+  std::int32_t stack[64];  // the depth is about log2(segments / kLeafSize); 64 is far beyond it
   int top = 0;
   stack[top++] = 0;
   while (top > 0) {
     const Node& node = nodes_[static_cast<std::size_t>(stack[--top])];
-    if (box_distance2(node.box, x) > best2) continue;  // equal: a tie to a lower index may lie there
+    if (skip(node)) continue;
     if (node.count == 0) {
-      const Node& a = nodes_[static_cast<std::size_t>(node.first)];
-      const Node& b = nodes_[static_cast<std::size_t>(node.first + 1)];
-      const bool a_first = box_distance2(a.box, x) <= box_distance2(b.box, x);
+      const bool a_first = box_distance2(nodes_[static_cast<std::size_t>(node.first)].box, x) <=
+                           box_distance2(nodes_[static_cast<std::size_t>(node.first + 1)].box, x);
       stack[top++] = a_first ? node.first + 1 : node.first;
       stack[top++] = a_first ? node.first : node.first + 1;
       continue;
     }
-    for (std::int32_t i = node.first; i < node.first + node.count; ++i) {
-      const std::int32_t si = order_[static_cast<std::size_t>(i)];
-      const ClosestHit h = closest_on_segment(x, segs[static_cast<std::size_t>(si)], si);
-      const double d2 = h.distance * h.distance;
-      if (d2 < best2 || (d2 == best2 && si < best.segment)) {
-        best2 = d2;
-        best = h;
-      }
-    }
+    for (std::int32_t i = node.first; i < node.first + node.count; ++i) segment(order_[static_cast<std::size_t>(i)]);
   }
+}
+
+ClosestHit FeatureSize::closest(Vec2 x) const {
+  ClosestHit best;
+  double best2 = std::numeric_limits<double>::infinity();
+  const auto& segs = geometry_.segments;
+  traverse(
+      x, [&](const Node& n) { return box_distance2(n.box, x) > best2; },  // equal: a tie to a lower index
+      [&](std::int32_t si) {
+        const ClosestHit h = closest_on_segment(x, segs[static_cast<std::size_t>(si)], si);
+        const double d2 = h.distance * h.distance;
+        if (d2 < best2 || (d2 == best2 && si < best.segment)) {
+          best2 = d2;
+          best = h;
+        }
+      });
   return best;
 }
 
 double FeatureSize::segment_envelope(Vec2 x, double fraction, double slope, double at_least) const {
   double best = std::max(0.0, at_least);
-  if (nodes_.empty()) return best;
   const auto& segs = geometry_.segments;
-  std::int32_t stack[64];
-  int top = 0;
-  stack[top++] = 0;
-  while (top > 0) {
-    const Node& node = nodes_[static_cast<std::size_t>(stack[--top])];
-    // No segment below can beat `best`: its length is at most max_length, its distance at least the box's.
-    if (fraction * node.max_length - slope * std::sqrt(box_distance2(node.box, x)) <= best) continue;
-    if (node.count == 0) {
-      stack[top++] = node.first + 1;
-      stack[top++] = node.first;
-      continue;
-    }
-    for (std::int32_t i = node.first; i < node.first + node.count; ++i) {
-      const std::int32_t si = order_[static_cast<std::size_t>(i)];
-      const Segment& s = segs[static_cast<std::size_t>(si)];
-      best = std::max(best, fraction * s.length - slope * closest_on_segment(x, s, si).distance);
-    }
-  }
+  // No segment below a node can beat `best`: its length is at most max_length, its distance at least the box's.
+  traverse(
+      x, [&](const Node& n) { return fraction * n.max_length - slope * std::sqrt(box_distance2(n.box, x)) <= best; },
+      [&](std::int32_t si) {
+        const Segment& s = segs[static_cast<std::size_t>(si)];
+        best = std::max(best, fraction * s.length - slope * closest_on_segment(x, s, si).distance);
+      });
   return best;
 }
 
 double FeatureSize::segment_lower_envelope(Vec2 x, double fraction, double slope) const {
   double best = std::numeric_limits<double>::infinity();
-  if (nodes_.empty()) return best;
   const auto& segs = geometry_.segments;
-  std::int32_t stack[64];
-  int top = 0;
-  stack[top++] = 0;
-  while (top > 0) {
-    const Node& node = nodes_[static_cast<std::size_t>(stack[--top])];
-    if (fraction * node.min_length + slope * std::sqrt(box_distance2(node.box, x)) >= best) continue;
-    if (node.count == 0) {
-      stack[top++] = node.first + 1;
-      stack[top++] = node.first;
-      continue;
-    }
-    for (std::int32_t i = node.first; i < node.first + node.count; ++i) {
-      const std::int32_t si = order_[static_cast<std::size_t>(i)];
-      const Segment& s = segs[static_cast<std::size_t>(si)];
-      best = std::min(best, fraction * s.length + slope * closest_on_segment(x, s, si).distance);
-    }
-  }
+  traverse(
+      x, [&](const Node& n) { return fraction * n.min_length + slope * std::sqrt(box_distance2(n.box, x)) >= best; },
+      [&](std::int32_t si) {
+        const Segment& s = segs[static_cast<std::size_t>(si)];
+        best = std::min(best, fraction * s.length + slope * closest_on_segment(x, s, si).distance);
+      });
   return best;
 }
 
 double FeatureSize::width(Vec2 x, const ClosestHit& nearest, bool inside, double max_width) const {
   constexpr double kNone = std::numeric_limits<double>::infinity();
-  if (nearest.segment < 0 || nodes_.empty() || !(max_width > 0.0)) return kNone;
+  if (nearest.segment < 0 || !(max_width > 0.0)) return kNone;
   const Vec2 p1 = nearest.point;
   // Ahead: inside, away from p1 through x; otherwise from p1 along its segment's inward normal.
   Vec2 from = x, ahead;
@@ -223,49 +206,35 @@ double FeatureSize::width(Vec2 x, const ClosestHit& nearest, bool inside, double
   const auto& segs = geometry_.segments;
   double best2 = radius * radius;
   bool found = false;
-  // Depth first, nearer child first, pruned by distance and by the half-plane.
-  std::int32_t stack[64];
-  int top = 0;
-  stack[top++] = 0;
-  while (top > 0) {
-    const Node& node = nodes_[static_cast<std::size_t>(stack[--top])];
-    if (box_distance2(node.box, from) >= best2 || box_behind(node.box, from, ahead)) continue;
-    if (node.count == 0) {
-      const Node& a = nodes_[static_cast<std::size_t>(node.first)];
-      const Node& b = nodes_[static_cast<std::size_t>(node.first + 1)];
-      const bool a_first = box_distance2(a.box, from) <= box_distance2(b.box, from);
-      stack[top++] = a_first ? node.first + 1 : node.first;
-      stack[top++] = a_first ? node.first : node.first + 1;
-      continue;
-    }
-    for (std::int32_t i = node.first; i < node.first + node.count; ++i) {
-      const std::int32_t si = order_[static_cast<std::size_t>(i)];
-      if (si == nearest.segment) continue;  // a straight segment never faces itself
-      const Segment& s = segs[static_cast<std::size_t>(si)];
-      // The part of the segment strictly ahead: h(t) = ahead . (a + t (b - a) - from) > 0.
-      const double ha = dot(ahead, s.a - from), hb = dot(ahead, s.b - from);
-      if (ha <= 0.0 && hb <= 0.0) continue;
-      double t0 = 0.0, t1 = 1.0;
-      if (ha <= 0.0) t0 = ha / (ha - hb);
-      if (hb <= 0.0) t1 = ha / (ha - hb);
-      const Vec2 d = s.b - s.a;
-      const double len2 = norm2(d);
-      const double t = std::clamp(len2 > 0.0 ? dot(from - s.a, d) / len2 : 0.0, t0, t1);
-      const Vec2 p2 = s.a + t * d;
-      const double d2 = norm2(p2 - from);
-      if (d2 >= best2) continue;
-      // Facing: another loop, or far enough along this one (decided at the candidate point).
-      if (loop_[static_cast<std::size_t>(si)] == loop1) {
-        // p2 == p1 (a neighbour segment's shared vertex) is no gap, however the two arc positions round.
-        const double chord = dist(p1, p2);
-        const double along = std::fabs(loop_arc(si, t) - arc1);
-        const double arc = std::min(along, length1 - along);
-        if (!(chord > 0.0) || !(arc > kArcRatio * chord)) continue;
-      }
-      best2 = d2;
-      found = true;
-    }
-  }
+  // Pruned by distance and by the half-plane.
+  traverse(
+      from, [&](const Node& n) { return box_distance2(n.box, from) >= best2 || box_behind(n.box, from, ahead); },
+      [&](std::int32_t si) {
+        if (si == nearest.segment) return;  // a straight segment never faces itself
+        const Segment& s = segs[static_cast<std::size_t>(si)];
+        // The part of the segment strictly ahead: h(t) = ahead . (a + t (b - a) - from) > 0.
+        const double ha = dot(ahead, s.a - from), hb = dot(ahead, s.b - from);
+        if (ha <= 0.0 && hb <= 0.0) return;
+        double t0 = 0.0, t1 = 1.0;
+        if (ha <= 0.0) t0 = ha / (ha - hb);
+        if (hb <= 0.0) t1 = ha / (ha - hb);
+        const Vec2 d = s.b - s.a;
+        const double len2 = norm2(d);
+        const double t = std::clamp(len2 > 0.0 ? dot(from - s.a, d) / len2 : 0.0, t0, t1);
+        const Vec2 p2 = s.a + t * d;
+        const double d2 = norm2(p2 - from);
+        if (d2 >= best2) return;
+        // Facing: another loop, or far enough along this one (decided at the candidate point).
+        if (loop_[static_cast<std::size_t>(si)] == loop1) {
+          // p2 == p1 (a neighbour segment's shared vertex) is no gap, however the two arc positions round.
+          const double chord = dist(p1, p2);
+          const double along = std::fabs(loop_arc(si, t) - arc1);
+          const double arc = std::min(along, length1 - along);
+          if (!(chord > 0.0) || !(arc > kArcRatio * chord)) return;
+        }
+        best2 = d2;
+        found = true;
+      });
   return found ? d1 + std::sqrt(best2) : kNone;
 }
 

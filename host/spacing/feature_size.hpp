@@ -55,6 +55,8 @@ class FeatureSize {
     double min_length = 0.0;  // shortest segment below
   };
   void build(std::int32_t node, std::int32_t begin, std::int32_t end);
+  template <class Skip, class Visit>
+  void traverse(Vec2 x, const Skip& skip, const Visit& segment) const;
 
   const Geometry& geometry_;
   std::vector<Vec2> normal_;         // per segment: inward unit normal
