@@ -37,8 +37,7 @@ double SizeSources::at(Vec2 p, double limit) const {
     const double k = options_.rows_in_gap;
     // Only gaps narrower than k * limit / scale can ask for less than the limit.
     const double w = feature_->width(p, hit, inside(p, hit), k * std::min(limit, q * s) / s);
-    // The floor yields to the gap itself: at least one node spacing fits across any gap.
-    if (std::isfinite(w)) q = std::min(q, std::max(w / k, std::min(floor / s, w)));
+    if (std::isfinite(w)) q = std::min(q, std::max(w / k, floor / s));
   }
   return s * q;
 }
@@ -56,12 +55,8 @@ double SizeSources::floor_at(Vec2 p, double q) const {
   // boundary exactly the segment's own length unless a shorter segment is near, and slope-Lipschitz.
   double floor = feature_->segment_envelope(p, options_.input_boundary_floor, slope, q);
   if (!(floor > q)) return q;
-  floor = std::min(floor, feature_->segment_lower_envelope(p, options_.input_boundary_floor, slope));
-  if (!(floor > q)) return q;
-  const ClosestHit hit = feature_->closest(p);
-  // Not above the gap: at least one node spacing fits across any gap.
-  const double w = feature_->width(p, hit, inside(p, hit), floor);
-  return std::max(q, std::min(floor, w));
+  const double lower = feature_->segment_lower_envelope(p, options_.input_boundary_floor, slope);
+  return std::max(q, std::min(floor, lower));
 }
 
 }  // namespace pdmesh

@@ -16,8 +16,8 @@ struct SizeSourceOptions {
   // While the boundary nodes are the input points: the sources ask for no less than this fraction of
   // the closest input segment's length, and next to the boundary the final field keeps to at least
   // floor_at(): this fraction of each segment's length, falling off at kFloorSlope per unit distance
-  // from it (the upper envelope over the segments). Neither goes above the local gap width: one node
-  // spacing fits in any gap. 0 = none.
+  // from it (the upper envelope over the segments), but not above what the shortest segment nearby
+  // allows (the lower envelope of upward cones). 0 = none.
   double input_boundary_floor = 0.0;
   double scale = 1.0;            // multiplies every value (spacing.scale)
   bool active() const { return rows_in_gap > 0.0 || curvature_angle > 0.0; }
