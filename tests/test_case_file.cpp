@@ -322,3 +322,39 @@ TEST_CASE("spacing.file selects a background-mesh field and its keys are checked
   CHECK(error_of(base + "[spacing]\nfield = \"data\"\n").find("spacing.field must be one of boundary, expression, mesh") !=
         std::string::npos);
 }
+
+TEST_CASE("spacing pipeline keys: best and thesis defaults, values and ranges", "[app][case]") {
+  const CaseConfig best = parse_case_text(kMinimal, kCase);
+  CHECK(best.spacing.scale == 1.0);
+  CHECK(best.spacing.gradation == 0.2);
+  CHECK(best.spacing.rows_in_gap == 2.0);
+  CHECK(best.spacing.curvature_angle == 10.0);
+  CHECK_FALSE(best.output.spacing_picture);
+  // The thesis' field is eq. 3.6 alone.
+  const CaseConfig thesis = parse_case_text(std::string("preset = \"thesis\"\n") + kMinimal, kCase);
+  CHECK(thesis.spacing.scale == 1.0);
+  CHECK(thesis.spacing.gradation == 0.0);
+  CHECK(thesis.spacing.rows_in_gap == 0.0);
+  CHECK(thesis.spacing.curvature_angle == 0.0);
+  // Keys the file sets win over the preset.
+  const CaseConfig set = parse_case_text(std::string("preset = \"thesis\"\n") + kMinimal +
+                                             "[spacing]\nscale = 0.5\ngradation = 0.3\nrows_in_gap = 3\n"
+                                             "curvature_angle = 12.5\n[output]\nspacing_picture = true\n",
+                                         kCase);
+  CHECK(set.spacing.scale == 0.5);
+  CHECK(set.spacing.gradation == 0.3);
+  CHECK(set.spacing.rows_in_gap == 3.0);
+  CHECK(set.spacing.curvature_angle == 12.5);
+  CHECK(set.output.spacing_picture);
+  const std::string base = std::string(kMinimal) + "[spacing]\n";
+  CHECK_THAT(error_of(base + "scale = 0\n"), Catch::Contains(":4:9: spacing.scale must be > 0, got 0"));
+  CHECK_THAT(error_of(base + "gradation = -0.1\n"), Catch::Contains("spacing.gradation must be in [0, 10] (0 = off), got -0.1"));
+  CHECK_THAT(error_of(base + "rows_in_gap = 0.5\n"),
+             Catch::Contains("spacing.rows_in_gap must be 0 (off) or in [1, 100], got 0.5"));
+  CHECK_THAT(error_of(base + "curvature_angle = 91\n"),
+             Catch::Contains("spacing.curvature_angle must be in [0, 90] degrees (0 = off), got 91"));
+  CHECK_THAT(error_of(base + "gradation = \"steep\"\n"), Catch::Contains("spacing.gradation must be a number, got string"));
+  CHECK_THAT(error_of(std::string(kMinimal) + "[output]\nspacing_picture = 1\n"),
+             Catch::Contains("output.spacing_picture must be a boolean"));
+  CHECK_THAT(error_of(base + "gradiation = 0.2\n"), Catch::Contains("did you mean 'spacing.gradation'?"));
+}

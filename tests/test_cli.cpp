@@ -8,7 +8,9 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <string>
+#include <vector>
 
 #include "io/mesh_formats.hpp"
 #include "nodes/node_file.hpp"
@@ -185,6 +187,74 @@ TEST_CASE("pdmesh mesh writes every stage's files: initial, history, final, mesh
   CHECK(quiet.status == 0);
   CHECK(quiet.output.empty());
   CHECK(read_node_file_size(out / "initial.nodes") == nodes.nodes.size());
+  fs::remove_all(dir);
+}
+
+TEST_CASE("pdmesh mesh --plot-spacing writes spacing.png and one picture per view, and the field is reported", "[cli]") {
+  const fs::path dir = fresh_dir("spacing");
+  write_rectangle(dir / "rect.crv");
+  const fs::path out = dir / "out";
+  const Result r = run("mesh '" + (dir / "rect.crv").string() + "' --out '" + out.string() +
+                       "' --iterations 0 --plot-spacing --view corner=0,0,0.5,0.5 --formats msh");
+  INFO(r.output);
+  REQUIRE(r.status == 0);
+  CHECK(contains(r.output, "spacing field: "));
+  CHECK(contains(r.output, "gradation 0.2, rows in gap 2"));
+  for (const char* f : {"spacing.png", "spacing_corner.png"}) {
+    INFO(f);
+    REQUIRE(fs::is_regular_file(out / f));
+    std::ifstream png(out / f, std::ios::binary);
+    char magic[8] = {};
+    png.read(magic, 8);
+    CHECK(std::string(magic + 1, 3) == "PNG");
+  }
+  // The thesis preset reports eq. 3.6 used exactly; a bad key value is refused before any output.
+  const Result thesis = run("mesh '" + (dir / "rect.crv").string() + "' --out '" + (dir / "thesis").string() +
+                            "' --iterations 0 --set preset=thesis --formats msh");
+  CHECK(contains(thesis.output, "spacing field: eq. 3.6 (thesis), evaluated exactly"));
+  const Result bad = run("mesh '" + (dir / "rect.crv").string() + "' --out '" + (dir / "bad").string() +
+                         "' --set spacing.gradation=-1");
+  CHECK(bad.status == 2);
+  CHECK(contains(bad.output, "spacing.gradation must be in [0, 10]"));
+  CHECK_FALSE(fs::exists(dir / "bad"));
+  fs::remove_all(dir);
+}
+
+TEST_CASE("pdmesh quality --geometry judges a mesh against the field pdmesh mesh built for it", "[cli]") {
+  // A 4 x 1 rectangle whose left side is segmented 0.01 and the rest 0.25: the gradation limit and
+  // the floors make the best field differ from eq. 3.6.
+  const fs::path dir = fresh_dir("quality_field");
+  {
+    std::ofstream crv(dir / "strip.crv");
+    std::vector<std::pair<double, double>> pts;
+    for (int k = 0; k < 16; ++k) pts.push_back({0.25 * k, 0.0});
+    for (int k = 0; k < 4; ++k) pts.push_back({4.0, 0.25 * k});
+    for (int k = 16; k > 0; --k) pts.push_back({0.25 * k, 1.0});
+    for (int k = 0; k < 100; ++k) pts.push_back({0.0, 1.0 - 0.01 * k});
+    pts.push_back({0.0, 0.0});
+    crv << pts.size() << "\n";
+    for (const auto& [x, y] : pts) crv << x << " " << y << "\n";
+  }
+  const fs::path out = dir / "out";
+  const Result r = run("mesh '" + (dir / "strip.crv").string() + "' --out '" + out.string() +
+                       "' --iterations 0 --formats msh -q");
+  REQUIRE(r.status == 0);
+  auto conformance = [](const std::string& json) {
+    const auto at = json.find("\"spacing_conformance\"");
+    return at == std::string::npos ? std::string() : json.substr(at, json.find('}', at) - at);
+  };
+  std::ifstream mesh_json(out / "quality.json");
+  const std::string from_mesh = conformance(std::string(std::istreambuf_iterator<char>(mesh_json), {}));
+  REQUIRE_FALSE(from_mesh.empty());
+  const Result best = run("quality '" + (out / "mesh.msh").string() + "' --geometry '" + (dir / "strip.crv").string() +
+                          "' --json -");
+  REQUIRE(best.status == 0);
+  CHECK(conformance(best.output) == from_mesh);
+  std::ofstream(dir / "case.toml") << "preset = \"thesis\"\n[geometry]\nfiles = [\"strip.crv\"]\n";
+  const Result thesis = run("quality '" + (out / "mesh.msh").string() + "' --geometry '" + (dir / "case.toml").string() +
+                            "' --json -");
+  REQUIRE(thesis.status == 0);
+  CHECK(conformance(thesis.output) != from_mesh);
   fs::remove_all(dir);
 }
 

@@ -15,6 +15,7 @@
 #include <string>
 
 #include "app/case_file.hpp"
+#include "app/mesh_command.hpp"
 #include "core/errors.hpp"
 #include "core/predicates.hpp"
 #include "geometry/geometry_files.hpp"
@@ -438,8 +439,10 @@ TEST_CASE("pdmesh mesh runs with a background-mesh field and writes it back as p
   INFO(r.output);
   REQUIRE(r.status == 0);
   CHECK(r.output.find("spacing: 'q' on ") != std::string::npos);
-  // The output's point data q is the background field at the nodes.
-  const MeshSpacing field(d);
+  // The output's point data q is the run's final field at the nodes: the background data through the
+  // spacing pipeline (its floor lifts q toward the 0.1 segments next to the boundary).
+  const MeshInputs inputs(load_case_file(dir / "case.toml"));
+  const SpacingField& field = inputs.field();
   const auto written = load_mesh_spacing(out / "mesh.vtu", "q");
   const MeshFieldData& w = written->data();
   REQUIRE(w.points.size() > 100);  // about 154 by hexagonal packing

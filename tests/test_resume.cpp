@@ -137,6 +137,11 @@ TEST_CASE("a checkpoint of another case or other settings is refused with exit 2
   const auto other_settings = run_pdmesh(mesh_command(fresh_dir("o2"), "--cutoff 1.6 --resume '" + dir.string() + "'"));
   CHECK(other_settings.status == 2);
   CHECK_THAT(other_settings.output, Catch::Contains("another case") && Catch::Contains("simulation.cutoff"));
+  // The spacing pipeline's keys change the field the run follows.
+  const auto other_field =
+      run_pdmesh(mesh_command(fresh_dir("o5"), "--set spacing.gradation=0.3 --resume '" + dir.string() + "'"));
+  CHECK(other_field.status == 2);
+  CHECK_THAT(other_field.output, Catch::Contains("another case") && Catch::Contains("spacing.gradation"));
   const std::string square = std::string(PDMESH_SOURCE_DIR) + "/cases/square200";
   const auto other_case = run_pdmesh("mesh '" + square + "' --out '" + fresh_dir("o3").string() +
                                      "' --device host --resume '" + (dir / "checkpoint.pdmesh").string() + "'");

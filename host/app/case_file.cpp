@@ -374,6 +374,24 @@ void read_spacing_section(const Reader& r, const toml::table& root, CaseConfig& 
   if (c.spacing.field != SpacingKind::Mesh && array != nullptr) {
     r.fail("spacing.array", array, fmt::format("spacing.array is set but spacing.field is '{}'", name));
   }
+  if (const toml::node* n = find(root, "spacing", "scale")) c.spacing.scale = r.positive("spacing.scale", *n);
+  if (const toml::node* n = find(root, "spacing", "gradation")) {
+    c.spacing.gradation = r.number("spacing.gradation", *n);
+    if (!(c.spacing.gradation >= 0.0 && c.spacing.gradation <= 10.0))
+      r.fail("spacing.gradation", n, fmt::format("spacing.gradation must be in [0, 10] (0 = off), got {}", c.spacing.gradation));
+  }
+  if (const toml::node* n = find(root, "spacing", "rows_in_gap")) {
+    c.spacing.rows_in_gap = r.number("spacing.rows_in_gap", *n);
+    if (!(c.spacing.rows_in_gap == 0.0 || (c.spacing.rows_in_gap >= 1.0 && c.spacing.rows_in_gap <= 100.0)))
+      r.fail("spacing.rows_in_gap", n,
+             fmt::format("spacing.rows_in_gap must be 0 (off) or in [1, 100], got {}", c.spacing.rows_in_gap));
+  }
+  if (const toml::node* n = find(root, "spacing", "curvature_angle")) {
+    c.spacing.curvature_angle = r.number("spacing.curvature_angle", *n);
+    if (!(c.spacing.curvature_angle >= 0.0 && c.spacing.curvature_angle <= 90.0))
+      r.fail("spacing.curvature_angle", n,
+             fmt::format("spacing.curvature_angle must be in [0, 90] degrees (0 = off), got {}", c.spacing.curvature_angle));
+  }
 }
 
 std::uint64_t non_negative(const Reader& r, const std::string& key, const toml::node& n) {
@@ -490,6 +508,8 @@ void read_output_section(const Reader& r, const toml::table& root, CaseConfig& c
                                              {"condition_number", "condition_number"}, {"min_jacobian", "min_jacobian"}});
   }
   if (const toml::node* n = find(root, "output", "tree_overlay")) c.output.tree_overlay = r.boolean("output.tree_overlay", *n);
+  if (const toml::node* n = find(root, "output", "spacing_picture"))
+    c.output.spacing_picture = r.boolean("output.spacing_picture", *n);
   if (const toml::node* n = find(root, "output", "views")) {
     const toml::array& a = r.array("output.views", *n);
     for (std::size_t i = 0; i < a.size(); ++i) {
@@ -544,12 +564,13 @@ const std::vector<std::string>& case_file_keys() {
   static const std::vector<std::string> keys = {
       "name", "preset",
       "geometry.files", "geometry.curve_names", "geometry.join_tolerance", "geometry.corner_angle",
-      "spacing.field", "spacing.expression", "spacing.file", "spacing.array",
+      "spacing.field", "spacing.expression", "spacing.file", "spacing.array", "spacing.scale", "spacing.gradation",
+      "spacing.rows_in_gap", "spacing.curvature_angle",
       "init.method", "init.seed", "init.total",
       "simulation.iterations", "simulation.dt_initial", "simulation.dt_initial.structured",
       "simulation.dt_initial.random", "simulation.cutoff", "simulation.lj_a", "simulation.device",
       "simulation.precision", "simulation.r0_rule", "simulation.stability_factor",
-      "output.formats", "output.tree_overlay", "output.views", "output.color_by",
+      "output.formats", "output.tree_overlay", "output.views", "output.color_by", "output.spacing_picture",
   };
   return keys;
 }

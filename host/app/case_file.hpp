@@ -67,6 +67,13 @@ struct CaseConfig {
     // replaces `field`; MeshInputs samples it once into a background field, so that nothing later
     // evaluates it per point.
     std::shared_ptr<const SpacingField> given;
+    // The pipeline on top of the base field (docs/spacing.md): base x scale, min with the feature size
+    // (rows_in_gap node spacings across every gap) and the curvature rule (q <= R theta), then the
+    // gradation limit |grad q| <= gradation. 0 turns each off; the thesis preset turns all off.
+    double scale = 1.0;
+    double gradation = 0.2;
+    double rows_in_gap = 2.0;
+    double curvature_angle = 10.0;  // degrees
   } spacing;
 
   struct Init {
@@ -100,6 +107,7 @@ struct CaseConfig {
     bool tree_overlay = false;
     std::vector<ViewWindow> views;
     std::string color_by = "none";  // mesh.png fill: none or a per-triangle quality metric
+    bool spacing_picture = false;   // DIR/spacing.png: the final spacing field (--plot-spacing)
     bool wants(const std::string& format) const;
   } output;
 

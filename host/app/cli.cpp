@@ -39,6 +39,7 @@ struct MeshArguments {
       color_by, stability;
   std::vector<std::string> views;
   bool tree = false;
+  bool plot_spacing = false;
   bool quiet = false;
   bool check = false;
   std::uint64_t max_nodes = 20'000'000;
@@ -156,6 +157,7 @@ std::vector<CaseOverride> overrides_from(const MeshArguments& a) {
   direct(a.color_by, "--color-by", "output.color_by");
   if (a.formats) out.push_back({"output.formats", formats_value(*a.formats), "--formats " + *a.formats});
   if (a.tree) out.push_back({"output.tree_overlay", "true", "--tree"});
+  if (a.plot_spacing) out.push_back({"output.spacing_picture", "true", "--plot-spacing"});
   for (const std::string& v : a.views) out.push_back({"output.views", view_value(v), "--view " + v, true});
   return out;
 }
@@ -255,6 +257,8 @@ void add_mesh_options(CLI::App& mesh, MeshArguments& a) {
       ->type_name("[NAME=]x0,y0,x1,y1")
       ->allow_extra_args(false);
   mesh.add_flag("--tree", a.tree, "output.tree_overlay: draw the initialization tree on the initial pictures");
+  mesh.add_flag("--plot-spacing", a.plot_spacing,
+                "output.spacing_picture: draw the final spacing field as DIR/spacing.png (log colour scale, boundary drawn)");
   mesh.add_flag("--quiet,-q", a.quiet, "No progress messages on stderr and no quality table on stdout");
   mesh.add_flag("--check", a.check,
                 "Check the mesh invariants (topology, orientation, constrained Delaunay, boundary edges, area); "

@@ -30,6 +30,7 @@
 #include "render/history_plot.hpp"
 #include "render/mesh_picture.hpp"
 #include "render/node_picture.hpp"
+#include "render/spacing_picture.hpp"
 #include "sim/history.hpp"
 #include "spacing/mesh_spacing.hpp"
 #include "spacing/resolution_check.hpp"
@@ -71,6 +72,10 @@ MeshInputs::MeshInputs(const CaseConfig& config) {
     }
   }
   tree = std::make_unique<GeometryTree>(geometry);
+  spacing_options = pdmesh::spacing_options(config);
+  check_spacing_options(spacing_options);
+  source_ = config.source.string();
+  max_nodes_ = config.max_nodes;
   const auto spacing_start = std::chrono::steady_clock::now();
   spacing = make_case_spacing(config, *tree);
   if (const auto* m = dynamic_cast<const MeshSpacing*>(spacing.get())) {
@@ -86,6 +91,43 @@ MeshInputs::MeshInputs(const CaseConfig& config) {
   check_coordinate_resolution(geometry, *spacing);
 }
 
+SpacingOptions spacing_options(const CaseConfig& config) {
+  SpacingOptions o;
+  o.scale = config.spacing.scale;
+  o.gradation = config.spacing.gradation;
+  o.rows_in_gap = config.spacing.rows_in_gap;
+  o.curvature_angle = config.spacing.curvature_angle;
+  o.input_boundary_floor = kInputBoundaryFloor;
+  return o;
+}
+
+namespace {
+
+// The hexagonal-packing estimate against --max-nodes.
+void refuse_above_limit(const std::string& source, std::uint64_t max_nodes, double estimate, const char* which) {
+  if (!std::isfinite(estimate) || estimate > static_cast<double>(max_nodes)) {
+    throw LimitError(fmt::format("{}: the {} asks for about {:.0f} nodes (hexagonal-packing estimate), "
+                                 "more than --max-nodes {}; coarsen the spacing or raise --max-nodes",
+                                 source, which, estimate, max_nodes));
+  }
+}
+
+}  // namespace
+
+const SpacingPipeline& MeshInputs::pipeline() const {
+  if (!pipeline_) {
+    // The base field's quadtree is checked before the limits refine it (they only lower q).
+    const auto check_base = [this](const SpacingField& base_tree) {
+      refuse_above_limit(source_, max_nodes_, estimate_node_count(*tree, base_tree), "spacing field before its limits");
+    };
+    pipeline_ = std::make_unique<SpacingPipeline>(*spacing, *tree, spacing_options,
+                                                  spacing_options.modifies() ? check_base : SpacingPipeline::BaseCheck{});
+    // The sources lower q: the final field must be resolvable too.
+    if (!pipeline_->exact()) check_coordinate_resolution(geometry, pipeline_->field());
+  }
+  return *pipeline_;
+}
+
 std::vector<std::string> MeshInputs::curve_names() const {
   std::vector<std::string> names;
   for (const Curve& c : geometry.curves) names.push_back(c.name);
@@ -93,13 +135,8 @@ std::vector<std::string> MeshInputs::curve_names() const {
 }
 
 double check_node_limit(const CaseConfig& config, const MeshInputs& inputs) {
-  const double estimate = estimate_node_count(*inputs.tree, *inputs.spacing);
-  const auto limit = static_cast<double>(config.max_nodes);
-  if (!std::isfinite(estimate) || estimate > limit) {
-    throw LimitError(fmt::format("{}: the spacing field asks for about {:.0f} nodes (hexagonal-packing estimate), "
-                                 "more than --max-nodes {}; coarsen the spacing or raise --max-nodes",
-                                 config.source.string(), estimate, config.max_nodes));
-  }
+  const double estimate = estimate_node_count(*inputs.tree, inputs.field());
+  refuse_above_limit(config.source.string(), config.max_nodes, estimate, "spacing field");
   if (config.init.total > config.max_nodes) {
     throw LimitError(fmt::format("{}: init.total = {} is more than --max-nodes {}", config.source.string(),
                                  config.init.total, config.max_nodes));
@@ -113,7 +150,7 @@ InitialDistribution make_initial(const CaseConfig& config, const MeshInputs& inp
   options.seed = config.init.seed;
   if (config.init.total > 0) options.total = static_cast<std::size_t>(config.init.total);
   options.with_estimate = false;  // check_node_limit computed it just before
-  return make_initial_distribution(*inputs.tree, *inputs.spacing, options);
+  return make_initial_distribution(*inputs.tree, inputs.field(), options);
 }
 
 void prepare_output_directory(const CaseConfig& config) {
@@ -160,6 +197,21 @@ void write_node_outputs(const CaseConfig& config, const MeshInputs& inputs, cons
 
 }  // namespace
 
+void write_spacing_picture(const CaseConfig& config, const MeshInputs& inputs) {
+  const BackgroundSpacing& field = inputs.pipeline().background();
+  SpacingPictureOptions picture;
+  picture.title = fmt::format("{} - spacing field", config.name);
+  write_spacing_picture(config.out_dir / "spacing.png", *inputs.tree, field, picture);
+  for (const ViewWindow& view : config.output.views) {
+    SpacingPictureOptions zoomed = picture;
+    zoomed.title += " - " + view.name;
+    zoomed.window = view.window;
+    write_spacing_picture(config.out_dir / fmt::format("spacing_{}.png", view.name), *inputs.tree, field, zoomed);
+  }
+  progress(config, "wrote {}/spacing.png{}", config.out_dir.string(),
+           config.output.views.empty() ? "" : fmt::format(" and {} view(s)", config.output.views.size()));
+}
+
 void write_initial_outputs(const CaseConfig& config, const MeshInputs& inputs, const InitialDistribution& initial) {
   write_node_outputs(config, inputs, initial.nodes, "initial",
                      fmt::format("{} - initial distribution ({})", config.name, method_name(config.init.method)),
@@ -182,6 +234,14 @@ SimResult simulate(const CaseConfig& config, const MeshInputs& inputs, NodeSet& 
   options.quiet = config.quiet;
   options.stop = hooks && hooks->stop ? hooks->stop : &InterruptGuard::flag();
   options.resume = resume;
+  // The pipeline's quadtree: the final field itself, or (thesis) eq. 3.6's lookup table, built here.
+  const SpacingPipeline& pipeline = inputs.pipeline();
+  const auto field_start = std::chrono::steady_clock::now();
+  options.background = &pipeline.background();
+  if (pipeline.exact())
+    progress(config, "spacing field: eq. 3.6 sampled for the simulation in {:.3f} s ({} leaves)",
+             std::chrono::duration<double>(std::chrono::steady_clock::now() - field_start).count(),
+             options.background->stats().leaves);
   progress(config, "simulation: {} iterations on {}, cutoff {}, a = {}, r0 rule {}, stability factor {}",
            options.iterations, backend.simulator->describe(), options.cutoff, options.lj_a,
            options.r0_any_direction ? "any_direction" : "force_direction", options.stability_factor);
@@ -206,7 +266,7 @@ SimResult simulate(const CaseConfig& config, const MeshInputs& inputs, NodeSet& 
   };
   SimResult result;
   try {
-    result = backend.simulator->run(nodes, *inputs.tree, *inputs.spacing, options, callbacks);
+    result = backend.simulator->run(nodes, *inputs.tree, inputs.field(), options, callbacks);
   } catch (const DeviceError& e) {
     if (!saved_after) throw;
     throw DeviceError(e.what() + saved_note() + " (with --device host if the device stays unusable)");
@@ -259,7 +319,7 @@ Mesh mesh_and_measure(const CaseConfig& config, const MeshInputs& inputs, const 
              "the geometry's area is {:.10g}, relative difference {:.2g})",
              node_area, inputs.geometry.area, std::fabs(node_area - inputs.geometry.area) / inputs.geometry.area);
   }
-  const SpacingField& spacing = *inputs.spacing;
+  const SpacingField& spacing = inputs.field();
   // The field at every node goes into the mesh files (point data "q"): a run's field can be read back
   // with spacing.field = "mesh", or edited (e.g. scaled by a solution's error indicator) first.
   spacing.at_many(mesh.points, mesh.spacing);
@@ -309,11 +369,30 @@ Mesh mesh_and_measure(const CaseConfig& config, const MeshInputs& inputs, const 
 
 namespace {
 
+// One line on what the spacing pipeline built (nothing in the thesis' case: eq. 3.6 is used exactly).
+void report_spacing(const CaseConfig& config, const MeshInputs& inputs) {
+  const SpacingPipeline& p = inputs.pipeline();
+  const SpacingOptions& o = p.options();
+  if (p.exact()) {
+    progress(config, "spacing field: eq. 3.6 (thesis), evaluated exactly");
+    return;
+  }
+  const SpacingStats& s = p.stats();
+  const BackgroundStats& b = p.background().stats();
+  progress(config,
+           "spacing field: {:.3f} s (base {:.3f} s, sources {:.3f} s, gradation {:.3f} s, refinement {:.3f} s in {} "
+           "rounds); scale {}, gradation {}, rows in gap {}, curvature angle {} deg; {} leaves ({} before the limits), "
+           "q lowered at {} of {} corners",
+           s.seconds, s.base_seconds, s.source_seconds, s.limit_seconds, s.refine_seconds, s.rounds, o.scale, o.gradation,
+           o.rows_in_gap, o.curvature_angle, b.leaves, s.base_leaves, s.reduced_corners, b.corners);
+}
+
 // `--resume`: the node set and driver state come from the checkpoint instead of the initialization
 // (whose outputs the interrupted run already wrote).
 int resume_mesh(const CaseConfig& config, const MeshInputs& inputs) {
   Checkpoint checkpoint = read_checkpoint_for(*config.resume, config, *inputs.tree);
   check_node_limit(config, inputs);
+  report_spacing(config, inputs);
   prepare_output_directory(config);
   NodeSet nodes = std::move(checkpoint.nodes);
   simulate(config, inputs, nodes, &checkpoint.state);
@@ -339,6 +418,7 @@ int run_mesh(const CaseConfig& config) {
   // (the thesis' initialization also estimates the node count), so the timer starts here.
   const auto init_start = std::chrono::steady_clock::now();
   const double estimate = check_node_limit(config, inputs);
+  report_spacing(config, inputs);
   // Stage 3: initial distribution.
   const auto fill_start = std::chrono::steady_clock::now();
   const InitialDistribution initial = make_initial(config, inputs);
@@ -354,6 +434,7 @@ int run_mesh(const CaseConfig& config) {
   // Stage 4: outputs. Later stages (simulation, triangulation, mesh files) follow the same pattern:
   // compute, then write atomically into the directory prepared here.
   prepare_output_directory(config);
+  if (config.output.spacing_picture) write_spacing_picture(config, inputs);
   write_initial_outputs(config, inputs, initial);
   // Stage 5: the simulation (none with --iterations 0: the initial distribution is meshed).
   NodeSet nodes = initial.nodes;

@@ -12,8 +12,13 @@
 #include "mesh/mesh.hpp"
 #include "sim/simulation.hpp"
 #include "spacing/spacing_field.hpp"
+#include "spacing/spacing_pipeline.hpp"
 
 namespace pdmesh {
+
+// The case's spacing keys as pipeline options (boundary nodes are the input points: the sources
+// keep to kInputBoundaryFloor of the input segments next to them, docs/spacing.md).
+SpacingOptions spacing_options(const CaseConfig& config);
 
 // Stage 1: the geometry, its tree and the spacing field; throws LimitError for coordinates too
 // large to resolve at the segment lengths or the spacing (check_coordinate_resolution). Not
@@ -25,14 +30,27 @@ struct MeshInputs {
 
   Geometry geometry;
   std::unique_ptr<GeometryTree> tree;
-  std::unique_ptr<SpacingField> spacing;
+  std::unique_ptr<SpacingField> spacing;  // the base field (eq. 3.6, an expression), exact
+  SpacingOptions spacing_options;
+  // The spacing pipeline, built on first use (then also the resolution check of the final field):
+  // field() is what the initialization, quality and pictures read, pipeline().background() what both
+  // simulation backends sample. Built once; not thread-safe on the first call.
+  const SpacingPipeline& pipeline() const;
+  const SpacingField& field() const { return pipeline().field(); }
   // One line about a spacing field read from a file (spacing.field = "mesh"); empty otherwise.
   std::string spacing_summary;
   std::vector<std::string> curve_names() const;
+
+ private:
+  mutable std::unique_ptr<SpacingPipeline> pipeline_;
+  std::string source_;          // the case file, for messages
+  std::uint64_t max_nodes_ = 0; // the node limit the base field's quadtree is checked against
 };
 
 // Stage 2: refuses, with LimitError naming the numbers, a case whose hexagonal-packing estimate
-// (or requested total) exceeds config.max_nodes. Returns the estimate.
+// (or requested total) exceeds config.max_nodes. Returns the estimate of the final field. When the
+// pipeline modifies the base field, the base field's quadtree is checked first, inside the pipeline
+// (the sources only lower q), so that an absurd case is refused before the limits refine it further.
 double check_node_limit(const CaseConfig& config, const MeshInputs& inputs);
 
 // Stage 3: the initial distribution (boundary nodes and the tree fill).
@@ -40,6 +58,9 @@ InitialDistribution make_initial(const CaseConfig& config, const MeshInputs& inp
 
 // Stage 4: creates config.out_dir; InputError naming it when that fails.
 void prepare_output_directory(const CaseConfig& config);
+
+// DIR/spacing.png (and spacing_<view>.png per view): the final field (pipeline().background()).
+void write_spacing_picture(const CaseConfig& config, const MeshInputs& inputs);
 
 // Stage 5: DIR/initial.nodes, initial.png, initial.svg and initial_<view>.png per view, each atomic.
 void write_initial_outputs(const CaseConfig& config, const MeshInputs& inputs, const InitialDistribution& initial);

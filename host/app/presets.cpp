@@ -15,6 +15,10 @@ void apply_preset(CaseConfig& c, Preset preset) {
   // Double on every device: the thesis runs reproduce the host reference where a device can (best: auto,
   // float on GPUs whose fp64 is slow).
   c.simulation.precision = thesis ? Precision::Double : Precision::Auto;
+  // Eq. 3.6 alone: no gradation limit, no feature size, no curvature rule.
+  if (thesis) c.spacing.gradation = 0.0;
+  if (thesis) c.spacing.rows_in_gap = 0.0;
+  if (thesis) c.spacing.curvature_angle = 0.0;
 }
 
 }  // namespace pdmesh

@@ -8,7 +8,7 @@
 #include <fmt/format.h>
 
 #include "app/case_file.hpp"
-#include "app/case_spacing.hpp"
+#include "app/mesh_command.hpp"
 #include "geometry/geometry_files.hpp"
 #include "geometry/geometry_tree.hpp"
 #include "io/mesh_formats.hpp"
@@ -21,27 +21,17 @@
 namespace pdmesh {
 namespace {
 
-// The spacing field of a case, with the geometry and tree it refers to kept alive alongside.
-struct CaseSpacing {
-  Geometry geometry;
-  std::unique_ptr<GeometryTree> tree;
-  std::unique_ptr<SpacingField> field;
-};
-
-std::unique_ptr<CaseSpacing> load_spacing(const std::filesystem::path& path) {
+// The final spacing field of a case (or of a geometry file alone, with the best preset): the same
+// pipeline `pdmesh mesh` builds, so that meshes from elsewhere (Gmsh) are judged against the field
+// pdmesh's own meshes are.
+std::unique_ptr<MeshInputs> load_spacing(const std::filesystem::path& path) {
   std::string ext = path.extension().string();
   for (auto& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  const CaseConfig config = ext == ".toml" ? load_case_file(path) : case_for_geometry_file(path);
-  auto s = std::make_unique<CaseSpacing>();
-  std::vector<std::string> files;
-  for (const auto& f : config.geometry.files) files.push_back(f.string());
-  GeometryOptions options;
-  options.join_tolerance = config.geometry.join_tolerance;
-  options.corner_angle_deg = config.geometry.corner_angle;
-  s->geometry = read_geometry(files, config.geometry.curve_names, options);
-  s->tree = std::make_unique<GeometryTree>(s->geometry);
-  s->field = make_case_spacing(config, *s->tree);
-  return s;
+  CaseConfig config = ext == ".toml" ? load_case_file(path) : case_for_geometry_file(path);
+  config.quiet = true;
+  auto inputs = std::make_unique<MeshInputs>(config);
+  (void)inputs->field();  // builds the pipeline
+  return inputs;
 }
 
 void write_picture(const Mesh& mesh, const std::string& mesh_path, const QualityPicture& picture) {
@@ -73,11 +63,11 @@ int run_quality(const std::string& mesh_path, const std::optional<std::string>& 
   const Mesh mesh = read_mesh(mesh_path, report);
   for (const auto& note : report.notes) err << note << '\n';
 
-  std::unique_ptr<CaseSpacing> spacing;
+  std::unique_ptr<MeshInputs> spacing;
   SpacingCallback q;
   if (geometry_path) {
     spacing = load_spacing(*geometry_path);
-    const SpacingField* field = spacing->field.get();
+    const SpacingField* field = &spacing->field();
     q = [field](Vec2 p) { return field->at(p); };
   }
   const QualitySummary summary = summarize_quality(mesh, q);

@@ -63,6 +63,11 @@ std::vector<std::pair<std::string, std::string>> case_identity(const CaseConfig&
                                                   content.size(), fnv1a64(content)));
     keys.emplace_back("spacing.array", config.spacing.array);
   }
+  // The pipeline's keys change the field the run follows.
+  keys.emplace_back("spacing.scale", fmt::format("{}", config.spacing.scale));
+  keys.emplace_back("spacing.gradation", fmt::format("{}", config.spacing.gradation));
+  keys.emplace_back("spacing.rows_in_gap", fmt::format("{}", config.spacing.rows_in_gap));
+  keys.emplace_back("spacing.curvature_angle", fmt::format("{}", config.spacing.curvature_angle));
   keys.emplace_back("init.method", config.init.method == InitMethod::Structured ? "structured" : "random");
   keys.emplace_back("init.seed", fmt::format("{}", config.init.seed));
   keys.emplace_back("init.total", fmt::format("{}", config.init.total));

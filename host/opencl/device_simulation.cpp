@@ -37,7 +37,8 @@ class DeviceRun {
   DeviceRun(NodeSet& nodes, const GeometryTree& tree, const SpacingField& spacing, const SimOptions& options,
             Context& ctx, StepProgram& program, DeviceRunStats& stats)
       : nodes_(nodes), options_(options), ctx_(ctx), stats_(stats), boundary_(tree, nodes),
-        background_(spacing, tree), program_(program), neighbours_(ctx, program_), n_(nodes.size()) {}
+        background_(background_for(options, spacing, tree, own_background_)), program_(program), neighbours_(ctx, program_),
+        n_(nodes.size()) {}
   // Non-blocking uploads read host vectors of this object: wait for them (errors are moot here).
   ~DeviceRun() { ctx_.queue().finish(); }
   DeviceRun(const DeviceRun&) = delete;
@@ -90,7 +91,8 @@ class DeviceRun {
   Context& ctx_;
   DeviceRunStats& stats_;
   BoundaryHandler boundary_;
-  BackgroundSpacing background_;
+  std::unique_ptr<BackgroundSpacing> own_background_;  // when options.background is null
+  const BackgroundSpacing& background_;
   StepProgram& program_;
   DeviceNeighbours<Real> neighbours_;
   std::size_t n_;

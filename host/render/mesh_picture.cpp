@@ -28,28 +28,32 @@ constexpr std::array<Rgb, 9> kViridis = {{{0.267, 0.005, 0.329},
                                           {0.993, 0.906, 0.144}}};
 
 void draw_colour_bar(Canvas& canvas, double lo, double hi, const std::string& label) {
+  const ColourBarBox b = draw_colour_ramp_bar(canvas);
+  canvas.text(b.x + b.width + 6, b.top + 5, fmt::format("{:.4g}", hi), 14, colours::kBlack);
+  canvas.text(b.x + b.width + 6, b.top + b.height + 5, fmt::format("{:.4g}", lo), 14, colours::kBlack);
+  canvas.text(b.x - 20, b.top - 14, label, 14, colours::kBlack);
+}
+
+}  // namespace
+
+ColourBarBox draw_colour_ramp_bar(Canvas& canvas) {
   cairo_t* cr = canvas.context();
   cairo_reset_clip(cr);
-  const double x = canvas.plot_right() + 30, width = 30;
-  const double top = canvas.plot_top() + 40, height = std::max(60.0, canvas.plot_height() - 80);
+  ColourBarBox b{canvas.plot_right() + 30, canvas.plot_top() + 40, 30, std::max(60.0, canvas.plot_height() - 80)};
   // Drawn as thin bands so that the SVG needs no gradient support to look right.
   const int bands = 128;
   for (int k = 0; k < bands; ++k) {
     const Rgb c = colour_ramp(1.0 - (k + 0.5) / bands);
     cairo_set_source_rgb(cr, c.r, c.g, c.b);
-    cairo_rectangle(cr, x, top + height * k / bands, width, height / bands + 0.5);
+    cairo_rectangle(cr, b.x, b.top + b.height * k / bands, b.width, b.height / bands + 0.5);
     cairo_fill(cr);
   }
   cairo_set_source_rgb(cr, 0, 0, 0);
   cairo_set_line_width(cr, 1);
-  cairo_rectangle(cr, x, top, width, height);
+  cairo_rectangle(cr, b.x, b.top, b.width, b.height);
   cairo_stroke(cr);
-  canvas.text(x + width + 6, top + 5, fmt::format("{:.4g}", hi), 14, colours::kBlack);
-  canvas.text(x + width + 6, top + height + 5, fmt::format("{:.4g}", lo), 14, colours::kBlack);
-  canvas.text(x - 20, top - 14, label, 14, colours::kBlack);
+  return b;
 }
-
-}  // namespace
 
 Rgb colour_ramp(double t) {
   if (!std::isfinite(t)) return kNoValue;

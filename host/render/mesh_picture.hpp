@@ -26,6 +26,13 @@ struct MeshPictureOptions {
 // Viridis-like ramp: t in [0, 1] (clamped) from dark purple through teal to yellow.
 Rgb colour_ramp(double t);
 
+// Where a colour bar was drawn (pixels), for its caller's labels.
+struct ColourBarBox {
+  double x = 0, top = 0, width = 0, height = 0;
+};
+// Draws the ramp as a framed vertical bar in the canvas' side band, the ramp's top (t = 1) at the top.
+ColourBarBox draw_colour_ramp_bar(Canvas& canvas);
+
 // Writes a .png or .svg atomically. Throws Error when triangle_values has the wrong size.
 void write_mesh_picture(const std::filesystem::path& path, const Mesh& mesh, const MeshPictureOptions& options);
 

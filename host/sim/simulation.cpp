@@ -85,6 +85,13 @@ double default_dt_initial(const NodeSet& nodes, double lj_a) {
   return std::sqrt(2.0 * (median * kDefaultMoveFraction) / force);
 }
 
+const BackgroundSpacing& background_for(const SimOptions& options, const SpacingField& spacing, const GeometryTree& tree,
+                                        std::unique_ptr<BackgroundSpacing>& own) {
+  if (options.background) return *options.background;
+  own = std::make_unique<BackgroundSpacing>(spacing, tree);
+  return *own;
+}
+
 SimResult run_simulation(NodeSet& nodes, const GeometryTree& tree, const SpacingField& spacing,
                          const SimOptions& options, const SimCallbacks& callbacks) {
   check_node_set(nodes);
@@ -106,9 +113,9 @@ SimResult run_simulation(NodeSet& nodes, const GeometryTree& tree, const Spacing
   if (resume) boundary.restore(nodes, resume->arcs, resume->tangents);
   // The exact field costs microseconds per node (eq. 3.6 queries every curve); the background field
   // a lookup, so it is built once here and read every iteration.
-  std::unique_ptr<BackgroundSpacing> background;
-  if (!options.exact_spacing) background = std::make_unique<BackgroundSpacing>(spacing, tree);
-  const SpacingField& iteration_spacing = background ? static_cast<const SpacingField&>(*background) : spacing;
+  std::unique_ptr<BackgroundSpacing> own_background;
+  const SpacingField& iteration_spacing =
+      options.exact_spacing ? spacing : static_cast<const SpacingField&>(background_for(options, spacing, tree, own_background));
   ProgressLine progress(options.quiet);
   const auto start = std::chrono::steady_clock::now();
 

@@ -19,6 +19,8 @@
 
 namespace pdmesh {
 
+class BackgroundSpacing;
+
 // The driver's state between iterations beyond the NodeSet itself: with the NodeSet, enough to
 // continue a run bit-identically on the host reference (host/sim/checkpoint.hpp stores it).
 struct SimState {
@@ -41,6 +43,9 @@ struct SimOptions {
   // false: the per-iteration spacing update reads a BackgroundSpacing built once from the given field
   // (tolerance 1e-3, docs/spacing.md); true: evaluate the given field exactly every iteration.
   bool exact_spacing = false;
+  // Non-null (and exact_spacing false): the spacing update (host) or the device's field reads this
+  // quadtree instead of one built from the given field (the spacing pipeline's, built once per run).
+  const BackgroundSpacing* background = nullptr;
   StepBackend* backend = nullptr;    // host driver: the step implementation; nullptr: the reference backend
   double verlet_skin = 0.3;  // device run: list radius cutoff q (1 + skin); 0 rebuilds every iteration
   // Polled once after every iteration (both backends); when it reads true the run stops there,
@@ -110,6 +115,10 @@ class Simulator {
 
 // The host driver as a Simulator (run_simulation).
 std::unique_ptr<Simulator> make_host_simulator();
+
+// options.background, or a BackgroundSpacing of `spacing` built into `own` (default options).
+const BackgroundSpacing& background_for(const SimOptions& options, const SpacingField& spacing, const GeometryTree& tree,
+                                        std::unique_ptr<BackgroundSpacing>& own);
 
 // The host driver: runs options.iterations iterations (or the remaining ones of options.resume) on
 // options.backend (the reference when null), updating nodes (positions, q, kinds, curve_nodes) in place.

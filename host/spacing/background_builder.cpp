@@ -11,7 +11,7 @@ namespace pdmesh {
 
 BackgroundBuilder::BackgroundBuilder(const SpacingField& exact, const GeometryTree& tree,
                                      const BackgroundOptions& options)
-    : exact_(exact), tree_(tree), opt_(options), resolution_(options.max_depth + 2) {}
+    : exact_(&exact), tree_(tree), opt_(options), resolution_(options.max_depth + 2) {}
 
 // Level R = max_depth + 2 resolves the quarter points of the finest cells, so every sample point has
 // integer lattice coordinates and a 64-bit key; samples shared by neighbouring cells are evaluated once.
@@ -33,7 +33,7 @@ void BackgroundBuilder::sample_all(const std::vector<std::uint64_t>& keys) {
   }
   if (points.empty()) return;
   std::vector<double> q;
-  exact_.at_many(points, q);
+  exact_->at_many(points, q);
   ++batches_;
   for (std::size_t i = 0; i < fresh.size(); ++i) samples_[fresh[i]] = q[i];
 }
@@ -54,7 +54,7 @@ void BackgroundBuilder::choose_grid() {
   for (int i = 0; i <= 8; ++i)
     for (int j = 0; j <= 8; ++j) points.push_back({centre.x + side * (i / 8.0 - 0.5), centre.y + side * (j / 8.0 - 0.5)});
   std::vector<double> q;
-  exact_.at_many(points, q);
+  exact_->at_many(points, q);
   ++batches_;
   double q_max = 0.0;
   for (const double v : q) q_max = std::max(q_max, v);
@@ -123,7 +123,7 @@ void BackgroundBuilder::build() {
   refine(
       std::move(roots), [this](const Cell& c, const double q[4]) { return default_decide(c, q); },
       [this](const Cell&, const double q[4], const double exact[9], int count) { return default_test(q, exact, count); },
-      [this](std::uint32_t x, std::uint32_t y) { return sample(x, y); });
+      [this](const Cell&, std::uint32_t x, std::uint32_t y) { return sample(x, y); });
 }
 
 BackgroundBuilder::Decision BackgroundBuilder::default_decide(const Cell& c, const double q[4]) const {
@@ -147,7 +147,7 @@ bool BackgroundBuilder::default_test(const double q[4], const double exact[9], i
 }
 
 std::size_t BackgroundBuilder::refine(std::vector<int> level_cells, const DecideFn& decide, const TestFn& test,
-                                      const CornerFn& corner_value) {
+                                      const CornerFn& corner_value, const SampledFn& sampled) {
   std::size_t splits = 0;
   std::vector<std::uint64_t> keys;
   std::vector<int> tested, next;
@@ -162,6 +162,7 @@ std::size_t BackgroundBuilder::refine(std::vector<int> level_cells, const Decide
         for (const std::uint32_t dx : {0u, s}) keys.push_back(key(c.x + dx, c.y + dy));
     }
     sample_all(keys);
+    if (sampled) sampled(keys);
     corners.resize(4 * level_cells.size());
     std::vector<Decision> decision(level_cells.size());
     keys.clear();
@@ -170,10 +171,10 @@ std::size_t BackgroundBuilder::refine(std::vector<int> level_cells, const Decide
       const Cell& c = cells_[static_cast<std::size_t>(level_cells[n])];
       const std::uint32_t s = span(c.level);
       double* q = &corners[4 * n];
-      q[0] = corner_value(c.x, c.y);
-      q[1] = corner_value(c.x + s, c.y);
-      q[2] = corner_value(c.x, c.y + s);
-      q[3] = corner_value(c.x + s, c.y + s);
+      q[0] = corner_value(c, c.x, c.y);
+      q[1] = corner_value(c, c.x + s, c.y);
+      q[2] = corner_value(c, c.x, c.y + s);
+      q[3] = corner_value(c, c.x + s, c.y + s);
       decision[n] = decide(c, q);
       if (decision[n] != Decision::Test) continue;
       tested.push_back(static_cast<int>(n));
@@ -200,6 +201,7 @@ std::size_t BackgroundBuilder::refine(std::vector<int> level_cells, const Decide
         }
       }
       sample_all(keys);
+      if (sampled) sampled(keys);
       for (std::size_t m = 0; m < tested.size(); ++m) {
         const auto n = static_cast<std::size_t>(tested[m]);
         if (round == 1 && decision[n] == Decision::Split) continue;
@@ -251,6 +253,11 @@ std::size_t BackgroundBuilder::refine(std::vector<int> level_cells, const Decide
   return splits;
 }
 
+const std::vector<int>& BackgroundBuilder::segments(const Cell& c) const {
+  static const std::vector<int> none;
+  return c.segments >= 0 ? segment_lists_[static_cast<std::size_t>(c.segments)] : none;
+}
+
 std::vector<int> BackgroundBuilder::leaves() const {
   std::vector<int> out;
   for (std::size_t i = 0; i < cells_.size(); ++i)
@@ -258,7 +265,23 @@ std::vector<int> BackgroundBuilder::leaves() const {
   return out;
 }
 
-BackgroundFieldData BackgroundBuilder::emit(const CornerFn& corner_value) const {
+int BackgroundBuilder::locate(Vec2 p) const {
+  // The lattice coordinates of p, clamped onto the grid; then the descent by the children's midlines.
+  const double scale = std::ldexp(1.0 / root_size_, resolution_);
+  const double top = std::ldexp(static_cast<double>(grid_), resolution_) - 1.0;
+  const double fx = std::clamp(std::floor((p.x - origin_x_) * scale), 0.0, top);
+  const double fy = std::clamp(std::floor((p.y - origin_y_) * scale), 0.0, top);
+  const auto x = static_cast<std::uint32_t>(fx), y = static_cast<std::uint32_t>(fy);
+  int cell = static_cast<int>((y >> resolution_) * static_cast<std::uint32_t>(grid_) + (x >> resolution_));
+  while (cells_[static_cast<std::size_t>(cell)].first_child >= 0) {
+    const Cell& c = cells_[static_cast<std::size_t>(cell)];
+    const std::uint32_t h = span(c.level) / 2;
+    cell = c.first_child + (x >= c.x + h ? 1 : 0) + (y >= c.y + h ? 2 : 0);
+  }
+  return cell;
+}
+
+BackgroundFieldData BackgroundBuilder::emit(const ValueFn& corner_value) const {
   BackgroundFieldData d;
   d.origin_x = origin_x_;
   d.origin_y = origin_y_;

@@ -30,20 +30,26 @@ class BackgroundBuilder {
   // Chooses the top grid and refines by the exact field: the tree BackgroundSpacing always had.
   void build();
 
-  // Refines the given leaves further, level by level, by a caller's rule: `decide` sees a cell and its
-  // four corner values and says Leaf, Split or Test; for Test, `test` then sees the cell, its corners
-  // and the exact field at its first `count` test points (5, then all 9 unless the 5 split it) and
-  // says whether to split. Corner values come from
-  // `corner_value` (called with the corner's lattice coordinates after the exact samples of the level
-  // are in). Returns the number of cells split.
+  // Refines the given cells (leaves) further, level by level, by a caller's rule: `decide` sees a cell
+  // and its four corner values and says Leaf, Split or Test; for Test, `test` then sees the cell, its
+  // corners and the exact field at its first `count` test points (5, then all 9 unless the 5 split
+  // it) and says whether to split. Per level, the exact samples of all corners are taken first (one
+  // batch), then `corner_value` gives each cell's corner values (cell, lattice x, y). `sampled` (if
+  // set) sees the keys of every batch (corners, then test points) as soon as its samples are in, so a
+  // caller can compute its own values at those points in bulk. Returns the number of cells split.
   using DecideFn = std::function<Decision(const Cell&, const double q[4])>;
   using TestFn = std::function<bool(const Cell&, const double q[4], const double exact[9], int count)>;
-  using CornerFn = std::function<double(std::uint32_t, std::uint32_t)>;
-  std::size_t refine(std::vector<int> cells, const DecideFn& decide, const TestFn& test, const CornerFn& corner_value);
+  using CornerFn = std::function<double(const Cell&, std::uint32_t, std::uint32_t)>;
+  using SampledFn = std::function<void(const std::vector<std::uint64_t>& keys)>;
+  std::size_t refine(std::vector<int> cells, const DecideFn& decide, const TestFn& test, const CornerFn& corner_value,
+                     const SampledFn& sampled = {});
 
   // The flat arrays, nodes and leaves numbered depth first. corner_q holds `corner_value` at each
   // distinct leaf corner (the exact sample when empty).
-  BackgroundFieldData emit(const CornerFn& corner_value = {}) const;
+  using ValueFn = std::function<double(std::uint32_t, std::uint32_t)>;
+  BackgroundFieldData emit(const ValueFn& corner_value = {}) const;
+  // The leaf holding p (points off the grid are clamped onto it), by the lookup's descent.
+  int locate(Vec2 p) const;
 
   // The rules of BackgroundSpacing's own refinement (docs/spacing.md), for a caller to reuse.
   Decision default_decide(const Cell& c, const double q[4]) const;
@@ -52,7 +58,11 @@ class BackgroundBuilder {
   // Lattice and geometry of the tree.
   const std::vector<Cell>& cells() const { return cells_; }
   std::vector<int> leaves() const;
+  // The boundary segments that touch a leaf (empty for inside and outside leaves).
+  const std::vector<int>& segments(const Cell& c) const;
   int grid() const { return grid_; }
+  const Geometry& geometry() const { return tree_.geometry(); }
+  const BackgroundOptions& options() const { return opt_; }
   int resolution() const { return resolution_; }
   std::uint32_t span(int level) const { return std::uint32_t{1} << (resolution_ - level); }
   Vec2 point(std::uint32_t x, std::uint32_t y) const { return {coord(origin_x_, x), coord(origin_y_, y)}; }
@@ -62,6 +72,9 @@ class BackgroundBuilder {
   double sample(std::uint32_t x, std::uint32_t y) const;
   // Evaluates the exact field at all the given lattice points not yet sampled, in one at_many call.
   void sample_all(const std::vector<std::uint64_t>& keys);
+  // Takes later samples from `field` instead (kept by reference): the pipeline refines for the
+  // limited field with the base tree's own interpolation, not new exact evaluations.
+  void sample_from(const SpacingField& field) { exact_ = &field; }
   // The 9 test points of a cell in lattice quarters: centre, edge midpoints, quarter points.
   static constexpr int kTests[9][2] = {{2, 2}, {2, 0}, {2, 4}, {0, 2}, {4, 2}, {1, 1}, {3, 1}, {1, 3}, {3, 3}};
   static constexpr int kFirstQuarterTest = 5;  // tests 0-4 are the children's corners
@@ -76,7 +89,7 @@ class BackgroundBuilder {
   // Sets a new cell's tag from its segment list (exact inside test of the centre when empty).
   void set_tag(Cell& c, std::vector<int> segments);
 
-  const SpacingField& exact_;
+  const SpacingField* exact_;
   const GeometryTree& tree_;
   const BackgroundOptions& opt_;
   const int resolution_;

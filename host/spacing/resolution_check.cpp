@@ -5,6 +5,7 @@
 #include <cfloat>
 #include <cmath>
 #include <string>
+#include <vector>
 
 #include <fmt/format.h>
 
@@ -44,15 +45,17 @@ void check_coordinate_resolution(const Geometry& geometry, const SpacingField& s
   // its extremes) and, for expression fields, the middle of the domain.
   const Vec2 centre{0.5 * (geometry.extents.lo.x + geometry.extents.hi.x),
                     0.5 * (geometry.extents.lo.y + geometry.extents.hi.y)};
-  double smallest = spacing.at(centre);
+  // One batch (a field backed by an interpreter is not called per point).
+  std::vector<Vec2> points{centre};
+  for (const Curve& c : geometry.curves) points.insert(points.end(), c.points.begin(), c.points.end());
+  std::vector<double> q;
+  spacing.at_many(points, q);
+  double smallest = q[0];
   Vec2 where = centre;
-  for (const Curve& c : geometry.curves)
-    for (const Vec2& p : c.points) {
-      const double q = spacing.at(p);
-      if (q < smallest) {
-        smallest = q;
-        where = p;
-      }
+  for (std::size_t i = 1; i < points.size(); ++i)
+    if (q[i] < smallest) {
+      smallest = q[i];
+      where = points[i];
     }
   if (smallest < needed) refuse(fmt::format("the spacing at ({}, {})", where.x, where.y), smallest);
 }

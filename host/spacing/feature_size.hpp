@@ -1,0 +1,71 @@
+// Local feature size: the width of the gap through a point, between the closest boundary point and the
+// closest boundary point that faces it (docs/spacing.md, "Feature size").
+#pragma once
+#include <cstdint>
+#include <vector>
+
+#include "geometry/geometry.hpp"
+#include "geometry/geometry_tree.hpp"
+
+namespace pdmesh {
+
+class FeatureSize {
+ public:
+  // Two boundary points of one loop face each other only when the shorter way between them along the
+  // loop is longer than kArcRatio times their distance: a corner of interior angle alpha has
+  // arc/chord = cot(alpha/2) for points at equal distance from it, so corners of 53 degrees and more
+  // (cot 26.6 deg = 2) are never gaps, while a slot of width w, deeper than w/2, is.
+  static constexpr double kArcRatio = 2.0;
+
+  // Needs the loops of build_geometry (the inward side of each segment and arc positions along loops).
+  explicit FeatureSize(const Geometry& geometry);
+
+  // The gap width W through x. nearest: the closest boundary point of x (GeometryTree::closest);
+  // inside: x is in the domain. Inside, W = |x - p1| + |x - p2| with p1 = nearest.point and p2 the
+  // closest boundary point ahead of x (on the far side of the line through x perpendicular to
+  // x - p1) that faces p1. On the boundary or outside, x is replaced by p1 and "ahead" is along the
+  // inward normal of p1's segment, so W = |p1 - p2|. Returns +inf when no such p2 makes W < max_width
+  // (max_width bounds the search: wider gaps do not matter to the caller).
+  double width(Vec2 x, const ClosestHit& nearest, bool inside, double max_width) const;
+
+  // The closest boundary point to x (as GeometryTree::closest: ties to the lowest segment index), by this
+  // hierarchy, which prunes far-away segments faster than the geometry quadtree for points far from them.
+  ClosestHit closest(Vec2 x) const;
+
+  // max over segments s of (fraction * length(s) - slope * distance(x, s)), or 0 if all are below: the
+  // upper envelope of one cone per segment, so it is slope-Lipschitz (no jump where the closest
+  // segment changes). The input-boundary floor of the spacing pipeline.
+  // Values at or below `at_least` are not searched for (the result is then at_least).
+  double segment_envelope(Vec2 x, double fraction, double slope, double at_least = 0.0) const;
+  // min over segments s of (fraction * length(s) + slope * distance(x, s)): the lower envelope of
+  // upward cones, also slope-Lipschitz; at most fraction * length on every segment.
+  double segment_lower_envelope(Vec2 x, double fraction, double slope) const;
+
+  // Inward unit normal of a segment (the domain's side).
+  Vec2 inward_normal(int segment) const { return normal_[static_cast<std::size_t>(segment)]; }
+  // Position of a point of a segment along its loop (arc length from the loop's start).
+  double loop_arc(int segment, double t) const;
+
+ private:
+  struct Node {
+    Box box;
+    std::int32_t first = 0;   // leaf: first index into order_; inner: first child (second is first + 1)
+    std::int32_t count = 0;   // leaf: number of segments; inner: 0
+    double max_length = 0.0;  // longest segment below
+    double min_length = 0.0;  // shortest segment below
+  };
+  void build(std::int32_t node, std::int32_t begin, std::int32_t end);
+  template <class Skip, class Visit>
+  void traverse(Vec2 x, const Skip& skip, const Visit& segment) const;
+
+  const Geometry& geometry_;
+  std::vector<Vec2> normal_;         // per segment: inward unit normal
+  std::vector<std::int32_t> loop_;   // per segment: its loop
+  std::vector<double> arc_a_;        // per segment: loop arc at its point a ...
+  std::vector<double> arc_sign_;     // ... and +1 / -1 as the loop runs a->b / b->a
+  std::vector<double> loop_length_;  // per loop
+  std::vector<Node> nodes_;          // bounding-volume hierarchy over segments; root is nodes_[0]
+  std::vector<std::int32_t> order_;  // segment indices, leaf by leaf
+};
+
+}  // namespace pdmesh

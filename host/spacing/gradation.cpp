@@ -1,0 +1,111 @@
+// GradationGraph: the leaf-corner graph and the source-carrying Dijkstra sweep that limits the
+// spacing field's gradient (Persson 2006; OceanMesh2D's limgrad and JIGSAW's marche do the same on grids).
+#include "spacing/gradation.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <queue>
+#include <utility>
+
+#include <fmt/format.h>
+
+#include "core/errors.hpp"
+
+namespace pdmesh {
+
+GradationGraph::GradationGraph(std::vector<Vec2> corners, const std::vector<std::int32_t>& leaf_corner)
+    : corners_(std::move(corners)) {
+  const std::size_t n = corners_.size();
+  if (leaf_corner.size() % 4 != 0) throw Error(fmt::format("gradation graph: {} leaf corners is not 4 per leaf", leaf_corner.size()));
+  for (const std::int32_t c : leaf_corner)
+    if (c < 0 || static_cast<std::size_t>(c) >= n) throw Error(fmt::format("gradation graph: corner {} of {}", c, n));
+  // Each leaf joins its 4 corners pairwise (sides and diagonals); a corner shared by several leaves
+  // gets a neighbour twice at most, which costs a repeated relaxation and nothing else.
+  std::vector<std::int32_t> count(n + 1, 0);
+  for (std::size_t l = 0; l < leaf_corner.size(); l += 4)
+    for (int a = 0; a < 4; ++a) count[static_cast<std::size_t>(leaf_corner[l + a]) + 1] += 3;
+  for (std::size_t i = 0; i < n; ++i) count[i + 1] += count[i];
+  neighbour_start_ = count;
+  neighbours_.resize(static_cast<std::size_t>(count[n]));
+  for (std::size_t l = 0; l < leaf_corner.size(); l += 4)
+    for (int a = 0; a < 4; ++a) {
+      const auto from = static_cast<std::size_t>(leaf_corner[l + a]);
+      for (int b = 0; b < 4; ++b)
+        if (b != a) neighbours_[static_cast<std::size_t>(count[from]++)] = leaf_corner[l + b];
+    }
+}
+
+void GradationGraph::limit(double g, const std::vector<double>& q0, std::vector<double>& q,
+                           std::vector<std::int32_t>& source, const std::vector<PointSource>& points,
+                           const std::vector<std::vector<std::int32_t>>& point_corners) const {
+  const std::size_t n = corners_.size();
+  if (q0.size() != n) throw Error(fmt::format("gradation: {} values for {} corners", q0.size(), n));
+  if (point_corners.size() != points.size())
+    throw Error(fmt::format("gradation: {} point sources but {} corner lists", points.size(), point_corners.size()));
+  q = q0;
+  source.resize(n);
+  for (std::size_t i = 0; i < n; ++i) source[i] = static_cast<std::int32_t>(i);
+  if (!(g > 0.0)) return;
+  // A point source's cone enters at the corners of the leaf that holds it.
+  for (std::size_t k = 0; k < points.size(); ++k)
+    for (const std::int32_t c : point_corners[k]) {
+      const double v = points[k].q + g * dist(corners_[static_cast<std::size_t>(c)], points[k].p);
+      if (v < q[static_cast<std::size_t>(c)]) {
+        q[static_cast<std::size_t>(c)] = v;
+        source[static_cast<std::size_t>(c)] = static_cast<std::int32_t>(n + k);
+      }
+    }
+  sweep(g, q0, q, source, nullptr, points);
+}
+
+void GradationGraph::relimit(double g, const std::vector<double>& q0, std::vector<double>& q,
+                             std::vector<std::int32_t>& source, const std::vector<std::int32_t>& seeds,
+                             const std::vector<PointSource>& points) const {
+  const std::size_t n = corners_.size();
+  if (q0.size() != n || q.size() != n || source.size() != n)
+    throw Error(fmt::format("gradation: {} / {} / {} values for {} corners", q0.size(), q.size(), source.size(), n));
+  if (!(g > 0.0)) return;
+  sweep(g, q0, q, source, &seeds, points);
+}
+
+void GradationGraph::sweep(double g, const std::vector<double>& q0, std::vector<double>& q,
+                           std::vector<std::int32_t>& source, const std::vector<std::int32_t>* seeds,
+                           const std::vector<PointSource>& points) const {
+  const std::size_t n = corners_.size();
+  auto source_point = [&](std::int32_t s) {
+    return static_cast<std::size_t>(s) < n ? corners_[static_cast<std::size_t>(s)] : points[static_cast<std::size_t>(s) - n].p;
+  };
+  auto source_q = [&](std::int32_t s) {
+    return static_cast<std::size_t>(s) < n ? q0[static_cast<std::size_t>(s)] : points[static_cast<std::size_t>(s) - n].q;
+  };
+  // Min-heap on (value, corner); stale entries (value above the corner's current q) are skipped.
+  using Entry = std::pair<double, std::int32_t>;
+  std::vector<Entry> start;
+  if (seeds) {
+    for (const std::int32_t i : *seeds) start.push_back({q[static_cast<std::size_t>(i)], i});
+  } else {
+    start.resize(n);
+    for (std::size_t i = 0; i < n; ++i) start[i] = {q[i], static_cast<std::int32_t>(i)};
+  }
+  std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>> heap(std::greater<Entry>(), std::move(start));
+  while (!heap.empty()) {
+    const auto [value, i] = heap.top();
+    heap.pop();
+    if (value > q[static_cast<std::size_t>(i)]) continue;
+    const std::int32_t s = source[static_cast<std::size_t>(i)];
+    const Vec2 sp = source_point(s);
+    const double sq = source_q(s);
+    for (std::int32_t e = neighbour_start_[static_cast<std::size_t>(i)]; e < neighbour_start_[static_cast<std::size_t>(i) + 1]; ++e) {
+      const auto j = static_cast<std::size_t>(neighbours_[static_cast<std::size_t>(e)]);
+      const double v = sq + g * dist(corners_[j], sp);
+      if (v < q[j]) {
+        q[j] = v;
+        source[j] = s;
+        heap.push({v, static_cast<std::int32_t>(j)});
+      }
+    }
+  }
+}
+
+}  // namespace pdmesh

@@ -1,0 +1,53 @@
+// Gradation limit (Persson's gradient limiting) on the background quadtree's leaf corners:
+// q(x) = min over sources y of q0(y) + g |x - y|, so that q(x) <= q(y) + g |x - y| for every pair.
+#pragma once
+#include <cstdint>
+#include <vector>
+
+#include "core/vec2.hpp"
+
+namespace pdmesh {
+
+// A size constraint at a point that need not be a corner (tests; sizes given at points).
+struct PointSource {
+  Vec2 p;
+  double q = 0.0;
+};
+
+// The corner graph of a quadtree: corners joined when they are corners of one leaf (its four sides
+// and two diagonals). Leaves of different sizes meet at corners that lie on a larger leaf's side;
+// those corners are joined through the smaller leaves.
+class GradationGraph {
+ public:
+  // corners: every distinct leaf corner; leaf_corner: 4 indices into corners per leaf.
+  GradationGraph(std::vector<Vec2> corners, const std::vector<std::int32_t>& leaf_corner);
+
+  std::size_t size() const { return corners_.size(); }
+  const std::vector<Vec2>& corners() const { return corners_; }
+
+  // The limited field. In: q0 at every corner. Out: q at every corner and its source: an index < size()
+  // for a corner (whose q0 made the value), or size() + k for points[k]. The search is Dijkstra's in the
+  // order of q, carrying each corner's source along the graph and measuring the Euclidean distance to it
+  // (not the path length), so the result is the exact min over the sources that reach a corner through
+  // its neighbours: the continuous formula at the corners, not an 8-neighbour stencil's approximation.
+  // points[k] enters at the corners listed in point_corners[k] (those of the leaf holding it).
+  // g <= 0: q = q0 and every corner is its own source.
+  void limit(double g, const std::vector<double>& q0, std::vector<double>& q, std::vector<std::int32_t>& source,
+             const std::vector<PointSource>& points = {},
+             const std::vector<std::vector<std::int32_t>>& point_corners = {}) const;
+  // The same sweep continued from a state (q, source: a previous result, extended to new corners with
+  // any values not below the limit) from `seeds` only: after refinement only the new corners and
+  // their neighbours can change anything. Sources index corners (< size()) or points as above.
+  void relimit(double g, const std::vector<double>& q0, std::vector<double>& q, std::vector<std::int32_t>& source,
+               const std::vector<std::int32_t>& seeds, const std::vector<PointSource>& points = {}) const;
+
+ private:
+  void sweep(double g, const std::vector<double>& q0, std::vector<double>& q, std::vector<std::int32_t>& source,
+             const std::vector<std::int32_t>* seeds, const std::vector<PointSource>& points) const;
+
+  std::vector<Vec2> corners_;
+  std::vector<std::int32_t> neighbour_start_;  // CSR: corner -> its graph neighbours
+  std::vector<std::int32_t> neighbours_;
+};
+
+}  // namespace pdmesh

@@ -1,0 +1,279 @@
+// build_limited_field: corner bookkeeping (positions, base and source values, limited values and the
+// source each came from), the limit-refine rounds, and the flat arrays of the final field.
+#include "spacing/limited_field.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <unordered_map>
+
+#include "core/parallel.hpp"
+
+namespace pdmesh {
+
+namespace {
+
+using Cell = BackgroundBuilder::Cell;
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+
+// Safety net: each round refines where the last limit lowered q; a handful of rounds converge.
+constexpr int kMaxRounds = 12;
+// A later round re-examines the leaves whose corners the limit lowered by more than this fraction of
+// the interpolation tolerance (smaller changes cannot change a refinement decision much).
+constexpr double kLowered = 0.25;
+
+class LimitedField {
+ public:
+  LimitedField(BackgroundBuilder& b, const SizeSources& sources, double g, const std::vector<PointSource>& points,
+               LimitedFieldStats& stats)
+      : b_(b), sources_(sources), g_(g), points_(points), stats_(stats) {}
+
+  BackgroundFieldData run() {
+    segment_sources();
+    for (int round = 1; round <= kMaxRounds; ++round) {
+      stats_.rounds = round;
+      std::vector<int> leaves = b_.leaves();
+      std::vector<std::int32_t> leaf_corner;
+      leaf_corner.reserve(4 * leaves.size());
+      std::vector<std::uint64_t> keys;
+      for (const int l : leaves) {
+        const Cell& c = b_.cells()[static_cast<std::size_t>(l)];
+        const std::uint32_t s = b_.span(c.level);
+        for (const auto& [dx, dy] : {std::pair{0u, 0u}, {s, 0u}, {0u, s}, {s, s}}) keys.push_back(BackgroundBuilder::key(c.x + dx, c.y + dy));
+      }
+      add_corners(keys);  // the base tree's corners in round 1; afterwards all known already
+      for (const std::uint64_t k : keys) leaf_corner.push_back(id_.at(k));
+      const std::vector<double> before = q_;
+      const double tolerance = b_.options().tolerance;
+      limit(leaf_corner, round == 1);
+      // Refine the leaves whose corners the limit lowered this round (round 1: below the base field).
+      std::vector<int> candidates;
+      for (std::size_t n = 0; n < leaves.size(); ++n) {
+        bool lowered = false;
+        for (int a = 0; a < 4 && !lowered; ++a) {
+          const auto i = static_cast<std::size_t>(leaf_corner[4 * n + static_cast<std::size_t>(a)]);
+          lowered = round == 1 ? q_[i] < base_[i] : q_[i] < (1.0 - kLowered * tolerance) * before[i];
+        }
+        // Round 1 also takes the boundary leaves where a segment asks for less than the corners do:
+        // a gap or a curve narrower than the leaf may lie between its corners and test points.
+        if (!lowered && round == 1) {
+          const Cell& c = b_.cells()[static_cast<std::size_t>(leaves[n])];
+          double q_max = 0.0;
+          for (int a = 0; a < 4; ++a) q_max = std::max(q_max, q_[static_cast<std::size_t>(leaf_corner[4 * n + static_cast<std::size_t>(a)])]);
+          lowered = segment_minimum(c) < q_max;
+        }
+        if (lowered) candidates.push_back(leaves[n]);
+      }
+      if (candidates.empty()) break;
+      const auto start = Clock::now();
+      const std::size_t splits = b_.refine(
+          std::move(candidates), [this](const Cell& c, const double q[4]) { return decide(c, q); },
+          [this](const Cell& c, const double q[4], const double exact[9], int count) { return test(c, q, exact, count); },
+          [this](const Cell& c, std::uint32_t x, std::uint32_t y) { return corner_value(c, x, y); },
+          [this](const std::vector<std::uint64_t>& sampled) { add_sources(sampled); });
+      stats_.refine_seconds += seconds_since(start);
+      if (splits == 0) break;
+    }
+    if (sources_.has_floor()) {
+      // Next to input boundary points the field may not fall far below their spacing (the first node
+      // row would not match the boundary row); the floor is g-Lipschitz like the limited field, so the
+      // max of the two still is.
+      const auto start = Clock::now();
+      parallel_for(q_.size(), [&](std::size_t i) { q_[i] = sources_.floor_at(pos_[i], q_[i]); }, 256);
+      stats_.source_seconds += seconds_since(start);
+    }
+    for (std::size_t i = 0; i < q_.size(); ++i)
+      if (q_[i] < base_[i]) ++stats_.reduced_corners;
+    return b_.emit([this](std::uint32_t x, std::uint32_t y) { return q_[static_cast<std::size_t>(id_.at(BackgroundBuilder::key(x, y)))]; });
+  }
+
+ private:
+  static Vec2 lattice(const BackgroundBuilder& b, std::uint64_t k) {
+    return b.point(static_cast<std::uint32_t>(k >> 32), static_cast<std::uint32_t>(k & 0xffffffffu));
+  }
+
+  // The sources at lattice points not seen yet, in parallel (they are thread-safe), each searching no
+  // further than the base field there asks.
+  void add_sources(const std::vector<std::uint64_t>& keys) {
+    std::vector<std::uint64_t> fresh;
+    for (const std::uint64_t k : keys)
+      if (source_at_.try_emplace(k, 0.0).second) fresh.push_back(k);
+    std::vector<double> value(fresh.size());
+    const auto start = Clock::now();
+    parallel_for(fresh.size(), [&](std::size_t i) {
+      value[i] = sources_.at(lattice(b_, fresh[i]), b_.sample(static_cast<std::uint32_t>(fresh[i] >> 32),
+                                                              static_cast<std::uint32_t>(fresh[i] & 0xffffffffu)));
+    }, 256);
+    stats_.source_seconds += seconds_since(start);
+    for (std::size_t i = 0; i < fresh.size(); ++i) source_at_[fresh[i]] = value[i];
+  }
+
+  // Registers new corners: position, base sample and min(base, sources); their limited value is set
+  // when a cell first asks for it (corner_value).
+  void add_corners(const std::vector<std::uint64_t>& keys) {
+    add_sources(keys);
+    const std::size_t first = pos_.size();
+    for (const std::uint64_t k : keys) {
+      if (!id_.try_emplace(k, static_cast<std::int32_t>(pos_.size())).second) continue;
+      const auto x = static_cast<std::uint32_t>(k >> 32), y = static_cast<std::uint32_t>(k & 0xffffffffu);
+      pos_.push_back(b_.point(x, y));
+      base_.push_back(b_.sample(x, y));
+      q0_.push_back(std::min(base_.back(), source_at_.at(k)));
+    }
+    const std::size_t n = pos_.size();
+    q_.resize(n, std::numeric_limits<double>::quiet_NaN());  // NaN: not yet limited
+    source_.resize(n, 0);
+    for (std::size_t i = first; i < n; ++i) source_[i] = static_cast<std::int32_t>(i);
+  }
+
+  // The sources at each segment's midpoint, seen from the boundary (so a gap narrower than the leaves
+  // around it is still found).
+  void segment_sources() {
+    const auto& segs = b_.geometry().segments;
+    segment_q_.resize(segs.size());
+    const auto start = Clock::now();
+    parallel_for(segs.size(), [&](std::size_t s) {
+      segment_q_[s] = sources_.at(0.5 * (segs[s].a + segs[s].b), std::numeric_limits<double>::max());
+    }, 256);
+    stats_.source_seconds += seconds_since(start);
+  }
+  double segment_minimum(const Cell& c) const {
+    double m = std::numeric_limits<double>::infinity();
+    for (const int s : b_.segments(c)) m = std::min(m, segment_q_[static_cast<std::size_t>(s)]);
+    return m;
+  }
+  // The base rules; a boundary leaf is also split while its side exceeds size_factor times the least
+  // its segments ask for.
+  BackgroundBuilder::Decision decide(const Cell& c, const double q[4]) const {
+    const BackgroundBuilder::Decision d = b_.default_decide(c, q);
+    if (d != BackgroundBuilder::Decision::Split && c.tag == kTagBoundary && c.level < b_.options().max_depth &&
+        b_.side(c.level) > b_.options().size_factor * segment_minimum(c))
+      return BackgroundBuilder::Decision::Split;
+    return d;
+  }
+
+  // Sources: >= 0 a corner (its q0), < 0 the point source -1 - s.
+  Vec2 source_point(std::int32_t s) const {
+    return s >= 0 ? pos_[static_cast<std::size_t>(s)] : points_[static_cast<std::size_t>(-1 - s)].p;
+  }
+  double source_q(std::int32_t s) const {
+    return s >= 0 ? q0_[static_cast<std::size_t>(s)] : points_[static_cast<std::size_t>(-1 - s)].q;
+  }
+  double cone(std::int32_t s, Vec2 p) const {
+    return g_ > 0.0 ? source_q(s) + g_ * dist(p, source_point(s)) : std::numeric_limits<double>::infinity();
+  }
+
+  // Round 1: the whole sweep. Later rounds continue it from the corners of the leaves that have a
+  // corner added since the last sweep (only those can lower anything).
+  void limit(const std::vector<std::int32_t>& leaf_corner, bool first) {
+    const auto start = Clock::now();
+    const GradationGraph graph(pos_, leaf_corner);
+    const auto n = static_cast<std::int32_t>(pos_.size());
+    // The graph's numbering of sources: corners, then point k as n + k.
+    std::vector<std::int32_t> source(source_.size());
+    for (std::size_t i = 0; i < source.size(); ++i) source[i] = source_[i] >= 0 ? source_[i] : n + (-1 - source_[i]);
+    if (first) {
+      std::vector<std::vector<std::int32_t>> point_corners;
+      for (const PointSource& p : points_) {
+        const Cell& c = b_.cells()[static_cast<std::size_t>(b_.locate(p.p))];
+        const std::uint32_t s = b_.span(c.level);
+        std::vector<std::int32_t> ids;
+        for (const auto& [dx, dy] : {std::pair{0u, 0u}, {s, 0u}, {0u, s}, {s, s}})
+          ids.push_back(id_.at(BackgroundBuilder::key(c.x + dx, c.y + dy)));
+        point_corners.push_back(std::move(ids));
+      }
+      graph.limit(g_, q0_, q_, source, points_, point_corners);
+    } else {
+      std::vector<std::int32_t> seeds;
+      for (std::size_t l = 0; l < leaf_corner.size(); l += 4) {
+        const bool fresh = std::any_of(leaf_corner.begin() + static_cast<std::ptrdiff_t>(l),
+                                       leaf_corner.begin() + static_cast<std::ptrdiff_t>(l) + 4,
+                                       [&](std::int32_t c) { return static_cast<std::size_t>(c) >= limited_; });
+        if (fresh) seeds.insert(seeds.end(), leaf_corner.begin() + static_cast<std::ptrdiff_t>(l),
+                                leaf_corner.begin() + static_cast<std::ptrdiff_t>(l) + 4);
+      }
+      graph.relimit(g_, q0_, q_, source, seeds, points_);
+    }
+    for (std::size_t i = 0; i < source.size(); ++i) source_[i] = source[i] < n ? source[i] : -1 - (source[i] - n);
+    limited_ = pos_.size();
+    stats_.limit_seconds += seconds_since(start);
+  }
+
+  // The 4 corner ids of a cell's parent (whose corners are known when the cell is new).
+  void parent_corners(const Cell& c, std::int32_t out[4]) const {
+    const std::uint32_t ps = b_.span(c.level - 1);
+    const std::uint32_t px = c.x & ~(ps - 1), py = c.y & ~(ps - 1);
+    int k = 0;
+    for (const auto& [dx, dy] : {std::pair{0u, 0u}, {ps, 0u}, {0u, ps}, {ps, ps}}) out[k++] = id_.at(BackgroundBuilder::key(px + dx, py + dy));
+  }
+
+  // A known corner keeps its limited value; a new one (a child's) takes min(base, sources) and the
+  // cones of its parent's corners' sources, the same min the next limit would give it locally.
+  double corner_value(const Cell& c, std::uint32_t x, std::uint32_t y) {
+    const std::uint64_t k = BackgroundBuilder::key(x, y);
+    if (id_.find(k) == id_.end()) add_corners({k});
+    const auto i = static_cast<std::size_t>(id_.at(k));
+    if (!std::isnan(q_[i])) return q_[i];
+    q_[i] = q0_[i];
+    if (c.level > 0) {
+      std::int32_t parent[4];
+      parent_corners(c, parent);
+      for (const std::int32_t p : parent) {
+        const std::int32_t s = source_[static_cast<std::size_t>(p)];
+        const double v = cone(s, pos_[i]);
+        if (v < q_[i]) {
+          q_[i] = v;
+          source_[i] = s;
+        }
+      }
+    }
+    return q_[i];
+  }
+
+  // Interpolation test against the limited field at the test points: min of the base sample, the
+  // sources there and the cones of the cell's corners' sources.
+  bool test(const Cell& c, const double q[4], const double exact[9], int count) const {
+    const std::uint32_t s = b_.span(c.level), quarter = s / 4;
+    std::int32_t corner_source[4];
+    int k = 0;
+    for (const auto& [dx, dy] : {std::pair{0u, 0u}, {s, 0u}, {0u, s}, {s, s}})
+      corner_source[k++] = source_[static_cast<std::size_t>(id_.at(BackgroundBuilder::key(c.x + dx, c.y + dy)))];
+    const double tolerance = b_.options().tolerance;
+    for (int t = 0; t < count; ++t) {
+      const std::uint32_t x = c.x + quarter * static_cast<std::uint32_t>(BackgroundBuilder::kTests[t][0]);
+      const std::uint32_t y = c.y + quarter * static_cast<std::uint32_t>(BackgroundBuilder::kTests[t][1]);
+      const Vec2 p = b_.point(x, y);
+      double target = std::min(exact[t], source_at_.at(BackgroundBuilder::key(x, y)));
+      for (const std::int32_t cs : corner_source) target = std::min(target, cone(cs, p));
+      const double u = BackgroundBuilder::kTests[t][0] / 4.0, v = BackgroundBuilder::kTests[t][1] / 4.0;
+      const double bilinear = (1.0 - v) * ((1.0 - u) * q[0] + u * q[1]) + v * ((1.0 - u) * q[2] + u * q[3]);
+      if (std::fabs(bilinear - target) > 0.5 * tolerance * target) return true;
+    }
+    return false;
+  }
+
+  BackgroundBuilder& b_;
+  const SizeSources& sources_;
+  const double g_;
+  const std::vector<PointSource>& points_;
+  LimitedFieldStats& stats_;
+  std::unordered_map<std::uint64_t, std::int32_t> id_;
+  std::unordered_map<std::uint64_t, double> source_at_;  // the sources at lattice points
+  std::vector<Vec2> pos_;
+  std::vector<double> base_, q0_, q_;
+  std::vector<std::int32_t> source_;
+  std::vector<double> segment_q_;  // the sources at each segment's midpoint
+  std::size_t limited_ = 0;  // corners [0, limited_) took part in the last sweep
+};
+
+}  // namespace
+
+BackgroundFieldData build_limited_field(BackgroundBuilder& builder, const SizeSources& sources, double g,
+                                        const std::vector<PointSource>& points, LimitedFieldStats& stats) {
+  return LimitedField(builder, sources, g, points, stats).run();
+}
+
+}  // namespace pdmesh

@@ -1,0 +1,62 @@
+// SizeSources: feature size and curvature evaluated at a point from its closest boundary point.
+#include "spacing/size_sources.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "spacing/curvature.hpp"
+
+namespace pdmesh {
+
+SizeSources::SizeSources(const GeometryTree& tree, const SizeSourceOptions& options) : tree_(tree), options_(options) {
+  feature_ = std::make_unique<FeatureSize>(tree.geometry());
+  if (options_.curvature_angle > 0.0) {
+    radius_ = segment_radii(tree.geometry());
+    theta_ = options_.curvature_angle * M_PI / 180.0;
+  }
+}
+
+double SizeSources::at(Vec2 p, double limit) const {
+  constexpr double kNone = std::numeric_limits<double>::infinity();
+  if (!options_.active()) return kNone;
+  const ClosestHit hit = feature_->closest(p);
+  if (hit.segment < 0) return kNone;
+  const double s = options_.scale;
+  // With input boundary points, no source asks for less than (a fraction of) the closest segment:
+  // the first node row could not match the boundary row.
+  const double floor = options_.input_boundary_floor * tree_.geometry().segments[static_cast<std::size_t>(hit.segment)].length;
+  double q = kNone;
+  if (theta_ > 0.0) {
+    // The concentric circle at distance d from a curve of radius R has radius R + d: the same angle
+    // theta there is (R + d) theta, a growth of theta per unit distance.
+    const double r = radius_[static_cast<std::size_t>(hit.segment)];
+    if (std::isfinite(r)) q = std::max(theta_ * (r + hit.distance), floor / s);
+  }
+  if (options_.rows_in_gap > 0.0) {
+    const double k = options_.rows_in_gap;
+    // Only gaps narrower than k * limit / scale can ask for less than the limit.
+    const double w = feature_->width(p, hit, inside(p, hit), k * std::min(limit, q * s) / s);
+    if (std::isfinite(w)) q = std::min(q, std::max(w / k, floor / s));
+  }
+  return s * q;
+}
+
+bool SizeSources::inside(Vec2 p, const ClosestHit& hit) const {
+  if (hit.distance > 0.0 && hit.t > 0.0 && hit.t < 1.0)
+    return dot(p - hit.point, feature_->inward_normal(hit.segment)) > 0.0;
+  return tree_.inside(p);
+}
+
+double SizeSources::floor_at(Vec2 p, double q) const {
+  if (!has_floor()) return q;
+  const double slope = kFloorSlope;
+  // Between the upper envelope of downward cones and the lower envelope of upward ones: at the
+  // boundary exactly the segment's own length unless a shorter segment is near, and slope-Lipschitz.
+  double floor = feature_->segment_envelope(p, options_.input_boundary_floor, slope, q);
+  if (!(floor > q)) return q;
+  const double lower = feature_->segment_lower_envelope(p, options_.input_boundary_floor, slope);
+  return std::max(q, std::min(floor, lower));
+}
+
+}  // namespace pdmesh
