@@ -23,7 +23,7 @@ namespace fs = std::filesystem;
 namespace {
 
 // Tables that may hold further keys; every other key is a leaf.
-const std::vector<std::string> kSections = {"geometry", "spacing", "init", "simulation", "output"};
+const std::vector<std::string> kSections = {"geometry", "spacing", "boundary", "init", "simulation", "output"};
 const std::vector<std::string> kFormats = {"msh", "msh22", "vtu", "su2", "triangle", "png", "svg"};
 
 const char* type_name(const toml::node& n) {
@@ -206,7 +206,8 @@ void check_keys(const Reader& r, const toml::table& t, const std::string& prefix
 
 // Keys whose value is a string: an override such as "spacing.expression=2" means the text.
 bool is_string_key(const std::string& key) {
-  return key == "name" || key == "preset" || key == "spacing.field" || key == "spacing.expression" || key == "init.method" ||
+  return key == "name" || key == "preset" || key == "geometry.curves" || key == "boundary.nodes" ||
+         key == "spacing.field" || key == "spacing.expression" || key == "init.method" ||
          key == "simulation.device" || key == "simulation.precision" || key == "simulation.r0_rule" ||
          key == "output.color_by";
 }
@@ -312,6 +313,17 @@ void read_geometry_section(const Reader& r, const toml::table& root, CaseConfig&
       r.fail("geometry.corner_angle", n, fmt::format("geometry.corner_angle must be in (0, 180) degrees, got {}", a));
     }
     c.geometry.corner_angle = a;
+  }
+  if (const toml::node* n = find(root, "geometry", "curves")) {
+    c.geometry.curves =
+        choose<CurveKind>(r, "geometry.curves", *n, {{"polyline", CurveKind::Polyline}, {"smooth", CurveKind::Smooth}});
+  }
+}
+
+void read_boundary_section(const Reader& r, const toml::table& root, CaseConfig& c) {
+  if (const toml::node* n = find(root, "boundary", "nodes")) {
+    c.boundary.nodes = choose<BoundaryNodeRule>(r, "boundary.nodes", *n,
+                                                {{"input", BoundaryNodeRule::Input}, {"spacing", BoundaryNodeRule::Spacing}});
   }
 }
 
@@ -474,6 +486,7 @@ CaseConfig validate(toml::table& root, Reader& r, const std::vector<CaseOverride
   }
   read_geometry_section(r, root, c);
   read_spacing_section(r, root, c);
+  read_boundary_section(r, root, c);
   read_init_section(r, root, c);
   read_simulation_section(r, root, c);
   read_output_section(r, root, c);
@@ -490,7 +503,7 @@ const std::vector<std::string>& case_file_keys() {
   static const std::vector<std::string> keys = {
       "name", "preset",
       "geometry.files", "geometry.curve_names", "geometry.join_tolerance", "geometry.corner_angle",
-      "spacing.field", "spacing.expression",
+      "geometry.curves", "spacing.field", "spacing.expression", "boundary.nodes",
       "init.method", "init.seed", "init.total",
       "simulation.iterations", "simulation.dt_initial", "simulation.dt_initial.structured",
       "simulation.dt_initial.random", "simulation.cutoff", "simulation.lj_a", "simulation.device",

@@ -13,6 +13,8 @@
 namespace pdmesh {
 
 enum class SpacingKind { Boundary, Expression };
+// geometry.curves: the curve the points describe (docs/geometry-input.md, "Smooth curves").
+enum class CurveKind { Polyline, Smooth };
 enum class Precision { Double, Float };
 
 // Which defaults the keys a case file leaves out take (top-level key `preset`).
@@ -47,12 +49,17 @@ struct CaseConfig {
     std::vector<std::string> curve_names;      // optional, in file/curve order
     double join_tolerance = 1e-9;
     double corner_angle = 30.0;  // degrees
+    CurveKind curves = CurveKind::Smooth;  // thesis: Polyline
   } geometry;
 
   struct Spacing {
     SpacingKind field = SpacingKind::Boundary;
     std::string expression;  // muParser expression in x and y when field == Expression
   } spacing;
+
+  struct Boundary {
+    BoundaryNodeRule nodes = BoundaryNodeRule::Spacing;  // thesis: Input (every geometry point is a node)
+  } boundary;
 
   struct Init {
     InitMethod method = InitMethod::Structured;

@@ -75,6 +75,30 @@ MeshInputs::MeshInputs(const CaseConfig& config) {
   // Before anything else uses them: with unresolvable coordinates the node estimate's tree could
   // refine without end.
   check_coordinate_resolution(geometry, *spacing);
+  boundary_rule = config.boundary.nodes;
+  if (config.geometry.curves == CurveKind::Smooth) {
+    DenseOptions options;
+    options.join_tolerance = config.geometry.join_tolerance;
+    try {
+      dense = std::make_unique<DenseGeometry>(
+          make_dense_geometry(SmoothCurves(geometry, config.geometry.corner_angle), *spacing, options));
+    } catch (const GeometryError& e) {
+      // Smooth curves through coarse points can cross where the polylines pass close to each other.
+      smooth_fallback = e.what();
+    }
+    if (dense) {
+      check_coordinate_resolution(dense->geometry, *spacing);
+      dense_tree = std::make_unique<GeometryTree>(dense->geometry);
+    }
+  }
+  // The boundary nodes set the resolution along the curves: the input segments' when the input
+  // points are the nodes (on the polyline: the thesis' rule, the segment lengths themselves), q
+  // alone when the spacing field places them.
+  if (boundary_rule == BoundaryNodeRule::Spacing) {
+    resolution_.assign(node_geometry().segments.size(), INFINITY);
+  } else if (dense) {
+    for (const int s : dense->source) resolution_.push_back(geometry.segments[static_cast<std::size_t>(s)].length);
+  }
 }
 
 std::vector<std::string> MeshInputs::curve_names() const {
@@ -84,7 +108,7 @@ std::vector<std::string> MeshInputs::curve_names() const {
 }
 
 double check_node_limit(const CaseConfig& config, const MeshInputs& inputs) {
-  const double estimate = estimate_node_count(*inputs.tree, *inputs.spacing);
+  const double estimate = estimate_node_count(inputs.node_tree(), *inputs.spacing, inputs.segment_resolution());
   const auto limit = static_cast<double>(config.max_nodes);
   if (!std::isfinite(estimate) || estimate > limit) {
     throw LimitError(fmt::format("{}: the spacing field asks for about {:.0f} nodes (hexagonal-packing estimate), "
@@ -104,7 +128,17 @@ InitialDistribution make_initial(const CaseConfig& config, const MeshInputs& inp
   options.seed = config.init.seed;
   if (config.init.total > 0) options.total = static_cast<std::size_t>(config.init.total);
   options.with_estimate = false;  // check_node_limit computed it just before
-  return make_initial_distribution(*inputs.tree, *inputs.spacing, options);
+  // The thesis' rule on the input polyline needs nothing more (make_boundary_nodes).
+  std::optional<NodeSet> boundary;
+  if (inputs.dense || inputs.boundary_rule == BoundaryNodeRule::Spacing) {
+    PlacementOptions placement;
+    placement.max_nodes = config.max_nodes;
+    boundary = place_boundary_nodes(inputs.node_geometry(), *inputs.spacing, inputs.boundary_rule,
+                                    inputs.dense ? &inputs.dense->vertex : nullptr, placement);
+    options.boundary = &*boundary;
+  }
+  options.segment_resolution = inputs.segment_resolution();
+  return make_initial_distribution(inputs.node_tree(), *inputs.spacing, options);
 }
 
 void prepare_output_directory(const CaseConfig& config) {
@@ -131,10 +165,11 @@ void write_node_outputs(const CaseConfig& config, const MeshInputs& inputs, cons
   NodePictureOptions picture;
   picture.title = title;
   picture.tree_quads = tree_quads;
-  write_node_picture(dir / (stage + ".png"), inputs.geometry, nodes, picture);
+  const Geometry& geometry = inputs.node_geometry();
+  write_node_picture(dir / (stage + ".png"), geometry, nodes, picture);
   const bool svg = nodes.size() <= kSvgNodeLimit;
   if (svg) {
-    write_node_picture(dir / (stage + ".svg"), inputs.geometry, nodes, picture);
+    write_node_picture(dir / (stage + ".svg"), geometry, nodes, picture);
   } else {
     progress(config, "{}.svg skipped: {} nodes is more than {} (the PNG pictures are written)", stage, nodes.size(),
              kSvgNodeLimit);
@@ -143,7 +178,7 @@ void write_node_outputs(const CaseConfig& config, const MeshInputs& inputs, cons
     NodePictureOptions zoomed = picture;
     zoomed.title += " - " + view.name;
     zoomed.window = view.window;
-    write_node_picture(dir / fmt::format("{}_{}.png", stage, view.name), inputs.geometry, nodes, zoomed);
+    write_node_picture(dir / fmt::format("{}_{}.png", stage, view.name), geometry, nodes, zoomed);
   }
   progress(config, "wrote {}/{}.nodes, {}.png{}{}", dir.string(), stage, stage, svg ? fmt::format(", {}.svg", stage) : "",
            config.output.views.empty() ? "" : fmt::format(" and {} view(s)", config.output.views.size()));
@@ -229,7 +264,7 @@ SimResult simulate(const CaseConfig& config, const MeshInputs& inputs, NodeSet& 
   };
   SimResult result;
   try {
-    result = run_simulation(nodes, *inputs.tree, *inputs.spacing, options, callbacks);
+    result = run_simulation(nodes, inputs.node_tree(), *inputs.spacing, options, callbacks);
   } catch (const DeviceError& e) {
     if (!saved_after) throw;
     throw DeviceError(e.what() + saved_note() + " (with --device host if the device stays unusable)");
@@ -274,7 +309,7 @@ Mesh mesh_and_measure(const CaseConfig& config, const MeshInputs& inputs, const 
   if (config.check) {
     // The mesh covers the polygons through the boundary nodes, which cut the curves' corners
     // where nodes have slid off geometry vertices; that area is what the check compares against.
-    const double node_area = node_domain_area(nodes, inputs.geometry);
+    const double node_area = node_domain_area(nodes, inputs.node_geometry());
     const CheckReport report = check_mesh(mesh, node_area);
     if (!report.ok()) throw SimulationError("the mesh failed its invariant check:\n" + report.summary());
     progress(config, "mesh check: passed (topology, orientation, constrained Delaunay, boundary edges, area {:.10g}; "
@@ -330,7 +365,7 @@ namespace {
 // `--resume`: the node set and driver state come from the checkpoint instead of the initialization
 // (whose outputs the interrupted run already wrote).
 int resume_mesh(const CaseConfig& config, const MeshInputs& inputs) {
-  Checkpoint checkpoint = read_checkpoint_for(*config.resume, config, *inputs.tree);
+  Checkpoint checkpoint = read_checkpoint_for(*config.resume, config, inputs.node_tree());
   check_node_limit(config, inputs);
   prepare_output_directory(config);
   NodeSet nodes = std::move(checkpoint.nodes);
@@ -348,6 +383,11 @@ int run_mesh(const CaseConfig& config) {
   const MeshInputs inputs(config);
   progress(config, "geometry: {} curves, {} segments, {} loops, area {:.6g}", inputs.geometry.curves.size(),
            inputs.geometry.segments.size(), inputs.geometry.loops.size(), inputs.geometry.area);
+  if (inputs.dense)
+    progress(config, "geometry: smooth curves (centripetal Catmull-Rom) as a dense polyline of {} segments, area {:.6g}",
+             inputs.dense->geometry.segments.size(), inputs.dense->geometry.area);
+  if (!inputs.smooth_fallback.empty())
+    progress(config, "note: geometry.curves = \"smooth\" fell back to the input polylines: {}", inputs.smooth_fallback);
   // An explicit OpenCL device that is not there is bad input: refuse it before anything is written.
   if (config.simulation.iterations > 0 && config.simulation.device != "host" && config.simulation.device != "auto")
     (void)ocl::select_device(config.simulation.device);

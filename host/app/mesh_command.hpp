@@ -6,6 +6,7 @@
 #include "app/case_file.hpp"
 #include "geometry/geometry.hpp"
 #include "geometry/geometry_tree.hpp"
+#include "geometry/smooth_curve.hpp"
 #include "init/initial_distribution.hpp"
 #include "mesh/mesh.hpp"
 #include "sim/simulation.hpp"
@@ -16,15 +17,37 @@ namespace pdmesh {
 // Stage 1: the geometry, its tree and the spacing field; throws LimitError for coordinates too
 // large to resolve at the segment lengths or the spacing (check_coordinate_resolution). Not
 // movable: the tree and the boundary spacing field refer to the geometry.
+//
+// Two geometries (docs/geometry-input.md, "Smooth curves"): `geometry` is the input as read; its
+// segments define the spacing field (eq. 3.6's l_s; a dense polyline would shrink q). The node
+// geometry is the curve the nodes live on: with geometry.curves = "smooth", the dense polyline of
+// the smooth curves (same curves, loops and critical points); with "polyline", `geometry` itself.
+// Everything but the spacing field uses the node geometry: boundary nodes, the node-count estimate
+// and the fill, sliding and snapping, inside tests, the mesh check's area and the pictures.
 struct MeshInputs {
   explicit MeshInputs(const CaseConfig& config);
   MeshInputs(const MeshInputs&) = delete;
   MeshInputs& operator=(const MeshInputs&) = delete;
 
-  Geometry geometry;
-  std::unique_ptr<GeometryTree> tree;
+  Geometry geometry;                   // the input geometry (spacing field)
+  std::unique_ptr<GeometryTree> tree;  // over `geometry`
   std::unique_ptr<SpacingField> spacing;
+  std::unique_ptr<DenseGeometry> dense;     // smooth curves; null for "polyline" (or after a fallback)
+  std::unique_ptr<GeometryTree> dense_tree;  // over dense->geometry
+  BoundaryNodeRule boundary_rule = BoundaryNodeRule::Input;
+  // Why geometry.curves = "smooth" fell back to the polylines (the smooth curves intersect); empty
+  // when it did not.
+  std::string smooth_fallback;
+
+  const Geometry& node_geometry() const { return dense ? dense->geometry : geometry; }
+  const GeometryTree& node_tree() const { return dense ? *dense_tree : *tree; }
+  // What the initialization tree refines to along each node-geometry segment
+  // (InitTreeOptions::segment_resolution): null for the thesis' rule (segment lengths).
+  const std::vector<double>* segment_resolution() const { return resolution_.empty() ? nullptr : &resolution_; }
   std::vector<std::string> curve_names() const;
+
+ private:
+  std::vector<double> resolution_;
 };
 
 // Stage 2: refuses, with LimitError naming the numbers, a case whose hexagonal-packing estimate

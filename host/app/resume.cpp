@@ -52,6 +52,8 @@ std::vector<std::pair<std::string, std::string>> case_identity(const CaseConfig&
   keys.emplace_back("geometry.curve_names", names);
   keys.emplace_back("geometry.join_tolerance", fmt::format("{}", config.geometry.join_tolerance));
   keys.emplace_back("geometry.corner_angle", fmt::format("{}", config.geometry.corner_angle));
+  keys.emplace_back("geometry.curves", config.geometry.curves == CurveKind::Smooth ? "smooth" : "polyline");
+  keys.emplace_back("boundary.nodes", config.boundary.nodes == BoundaryNodeRule::Spacing ? "spacing" : "input");
   keys.emplace_back("spacing.field", config.spacing.field == SpacingKind::Expression ? "expression" : "boundary");
   keys.emplace_back("spacing.expression", config.spacing.expression);
   keys.emplace_back("init.method", config.init.method == InitMethod::Structured ? "structured" : "random");
