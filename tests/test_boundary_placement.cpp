@@ -6,6 +6,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 #include <memory>
 #include <numbers>
 
@@ -15,9 +17,12 @@
 #include "geometry/smooth_curve.hpp"
 #include "init/boundary_placement.hpp"
 #include "init/initial_distribution.hpp"
+#include "nodes/node_file.hpp"
 #include "sim/boundary_handling.hpp"
 #include "sim/simulation.hpp"
 #include "spacing/spacing_field.hpp"
+#include "run_pdmesh.hpp"
+#include "temp_files.hpp"
 
 using namespace pdmesh;
 
@@ -252,4 +257,58 @@ TEST_CASE("spacing nodes on smooth curves: the fill matches the estimate and a s
   // plus the dense tolerance.
   CHECK(worst_smooth <= 0.03 * 3.0 * (1.0 - std::cos(std::numbers::pi / 16)) + tol);
   CHECK(nodes.count(NodeKind::Boundary) > 0);
+}
+
+namespace {
+
+void write_crv(const std::filesystem::path& file, const std::vector<std::vector<Vec2>>& curves) {
+  std::ofstream out(file);
+  out.precision(17);
+  for (const auto& c : curves) {
+    out << c.size() << "\n";
+    for (const Vec2 p : c) out << p.x << " " << p.y << "\n";
+  }
+}
+
+}  // namespace
+
+TEST_CASE("pdmesh mesh: smooth curves with spacing nodes pass --check; crossing smooth curves fall back",
+          "[placement][smooth][cli]") {
+  const auto dir = pdmesh_test::fresh_dir("boundary_modes");
+  // A 16-point circle of radius 1 in a box with one point per corner: both far coarser than q = 0.1.
+  const RawCurve hole = circle(1.0, 16, "hole");
+  write_crv(dir / "coarse.crv", {{{-2, -2}, {2, -2}, {2, 2}, {-2, 2}, {-2, -2}}, hole.points});
+  const auto r = pdmesh_test::run_pdmesh("mesh '" + (dir / "coarse.crv").string() + "' --out '" +
+                                         (dir / "out").string() +
+                                         "' --iterations 20 --device host --check --formats msh "
+                                         "--set spacing.expression=0.1");
+  INFO(r.output);
+  REQUIRE(r.status == 0);
+  CHECK_THAT(r.output, Catch::Contains("smooth curves (centripetal Catmull-Rom) as a dense polyline"));
+  CHECK_THAT(r.output, Catch::Contains("mesh check: passed"));
+  // The best preset placed the boundary nodes by the field: about 2 pi / 0.1 on the circle and
+  // 4 / 0.1 a side on the box, where the input gives 16 + 4.
+  const NodeFile initial = read_node_file(dir / "out" / "initial.nodes");
+  const std::size_t on_boundary = initial.nodes.count(NodeKind::Boundary) + initial.nodes.count(NodeKind::Fixed);
+  CHECK(on_boundary >= 63 + 160 - 4);
+  CHECK(on_boundary <= 63 + 160 + 4);
+
+  // Two coarse curves whose smooth versions cross (test_smooth_curve.cpp): a note, then polylines.
+  const RawCurve hole16 = [] {
+    RawCurve c{"hole", {}, "test", 1, {}};
+    for (int i = 0; i < 16; ++i) {
+      const double a = std::numbers::pi / 16 + 2.0 * std::numbers::pi * i / 16;
+      c.points.push_back({std::cos(a), std::sin(a)});
+    }
+    c.points.push_back(c.points.front());
+    return c;
+  }();
+  write_crv(dir / "crossing.crv", {{{-2, -2}, {0.99, -2}, {0.99, 2}, {-2, 2}, {-2, -2}}, hole16.points});
+  const auto f = pdmesh_test::run_pdmesh("mesh '" + (dir / "crossing.crv").string() + "' --out '" +
+                                         (dir / "out2").string() +
+                                         "' --iterations 5 --device host --check --formats msh");
+  INFO(f.output);
+  CHECK(f.status == 0);
+  CHECK_THAT(f.output, Catch::Contains("note: geometry.curves = \"smooth\" fell back to the input polylines"));
+  std::filesystem::remove_all(dir);
 }
