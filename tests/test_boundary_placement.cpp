@@ -198,10 +198,12 @@ TEST_CASE("input nodes through the station assembly are the thesis' rule", "[pla
     CHECK(a.kind[i] == b.kind[i]);
   }
   CHECK(a.curve_nodes == b.curve_nodes);
-  // With the segment lengths given explicitly, the initialization tree is the thesis' one.
+  // The boundary-node spacing per segment is then the segment length, and with it given
+  // explicitly the initialization tree is the thesis' one.
   const GeometryTree tree(g);
-  std::vector<double> lengths;
-  for (const Segment& s : g.segments) lengths.push_back(s.length);
+  const std::vector<double> lengths = station_resolution(g, vertex_stations(g));
+  REQUIRE(lengths.size() == g.segments.size());
+  for (std::size_t k = 0; k < lengths.size(); ++k) CHECK(lengths[k] == g.segments[k].length);
   InitOptions plain{InitMethod::Random, 5, {}};
   InitOptions given = plain;
   given.segment_resolution = &lengths;
@@ -221,8 +223,11 @@ TEST_CASE("spacing nodes on smooth curves: the fill matches the estimate and a s
   const SmoothCurves smooth(g, 30.0);
   const DenseGeometry dense = make_dense_geometry(smooth, q);
   const GeometryTree tree(dense.geometry);
-  const NodeSet boundary = place_boundary_nodes(dense.geometry, q, BoundaryNodeRule::Spacing, nullptr);
-  const std::vector<double> resolution(dense.geometry.segments.size(), INFINITY);
+  const CurveStations stations = spacing_stations(dense.geometry, q);
+  const NodeSet boundary = assemble_boundary_nodes(dense.geometry, q, stations);
+  const std::vector<double> resolution = station_resolution(dense.geometry, stations);
+  // Every dense segment lies under a boundary edge of about q.
+  for (const double r : resolution) CHECK(std::fabs(r / 0.5 - 1.0) < 0.1);
   InitOptions init{InitMethod::Structured, 1, {}};
   init.boundary = &boundary;
   init.segment_resolution = &resolution;

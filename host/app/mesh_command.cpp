@@ -91,13 +91,18 @@ MeshInputs::MeshInputs(const CaseConfig& config) {
       dense_tree = std::make_unique<GeometryTree>(dense->geometry);
     }
   }
-  // The boundary nodes set the resolution along the curves: the input segments' when the input
-  // points are the nodes (on the polyline: the thesis' rule, the segment lengths themselves), q
-  // alone when the spacing field places them.
-  if (boundary_rule == BoundaryNodeRule::Spacing) {
-    resolution_.assign(node_geometry().segments.size(), INFINITY);
-  } else if (dense) {
-    for (const int s : dense->source) resolution_.push_back(geometry.segments[static_cast<std::size_t>(s)].length);
+  // The boundary nodes, unless they are the thesis' (every point of the input polyline), which the
+  // initialization makes itself. They set the resolution the initialization tree refines to along
+  // the curves (the thesis: the segment lengths).
+  if (dense || boundary_rule == BoundaryNodeRule::Spacing) {
+    const Geometry& on = node_geometry();
+    PlacementOptions placement;
+    placement.max_nodes = config.max_nodes;
+    const CurveStations stations = boundary_rule == BoundaryNodeRule::Spacing
+                                       ? spacing_stations(on, *spacing, placement)
+                                       : vertex_stations(on, &dense->vertex);
+    boundary = assemble_boundary_nodes(on, *spacing, stations);
+    resolution_ = station_resolution(on, stations);
   }
 }
 
@@ -128,15 +133,7 @@ InitialDistribution make_initial(const CaseConfig& config, const MeshInputs& inp
   options.seed = config.init.seed;
   if (config.init.total > 0) options.total = static_cast<std::size_t>(config.init.total);
   options.with_estimate = false;  // check_node_limit computed it just before
-  // The thesis' rule on the input polyline needs nothing more (make_boundary_nodes).
-  std::optional<NodeSet> boundary;
-  if (inputs.dense || inputs.boundary_rule == BoundaryNodeRule::Spacing) {
-    PlacementOptions placement;
-    placement.max_nodes = config.max_nodes;
-    boundary = place_boundary_nodes(inputs.node_geometry(), *inputs.spacing, inputs.boundary_rule,
-                                    inputs.dense ? &inputs.dense->vertex : nullptr, placement);
-    options.boundary = &*boundary;
-  }
+  if (inputs.boundary) options.boundary = &*inputs.boundary;
   options.segment_resolution = inputs.segment_resolution();
   return make_initial_distribution(inputs.node_tree(), *inputs.spacing, options);
 }

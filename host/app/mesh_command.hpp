@@ -2,6 +2,7 @@
 // begins, so that nothing is written until every input has been read and checked.
 #pragma once
 #include <memory>
+#include <optional>
 
 #include "app/case_file.hpp"
 #include "geometry/geometry.hpp"
@@ -35,6 +36,10 @@ struct MeshInputs {
   std::unique_ptr<DenseGeometry> dense;     // smooth curves; null for "polyline" (or after a fallback)
   std::unique_ptr<GeometryTree> dense_tree;  // over dense->geometry
   BoundaryNodeRule boundary_rule = BoundaryNodeRule::Input;
+  // The boundary nodes on the node geometry (boundary.nodes = "spacing", or the input points of
+  // smooth curves); empty for the thesis' rule, which make_initial_distribution applies itself.
+  // LimitError when the field asks for more than config.max_nodes of them.
+  std::optional<NodeSet> boundary;
   // Why geometry.curves = "smooth" fell back to the polylines (the smooth curves intersect); empty
   // when it did not.
   std::string smooth_fallback;
@@ -42,7 +47,8 @@ struct MeshInputs {
   const Geometry& node_geometry() const { return dense ? dense->geometry : geometry; }
   const GeometryTree& node_tree() const { return dense ? *dense_tree : *tree; }
   // What the initialization tree refines to along each node-geometry segment
-  // (InitTreeOptions::segment_resolution): null for the thesis' rule (segment lengths).
+  // (InitTreeOptions::segment_resolution: the boundary-node spacing there); null for the thesis'
+  // rule (the segment lengths).
   const std::vector<double>* segment_resolution() const { return resolution_.empty() ? nullptr : &resolution_; }
   std::vector<std::string> curve_names() const;
 

@@ -83,10 +83,12 @@ CurveStations vertex_stations(const Geometry& geometry, const std::vector<std::v
   for (std::size_t c = 0; c < geometry.curves.size(); ++c) {
     const Curve& curve = geometry.curves[c];
     if (vertices == nullptr) {
-      for (std::size_t i = 0; i < curve.points.size(); ++i) stations[c].push_back({curve.points[i], static_cast<int>(i)});
+      for (std::size_t i = 0; i < curve.points.size(); ++i)
+        stations[c].push_back({curve.points[i], static_cast<int>(i), curve.arc[i]});
       continue;
     }
-    for (const int i : (*vertices)[c]) stations[c].push_back({curve.points[static_cast<std::size_t>(i)], i});
+    for (const int i : (*vertices)[c])
+      stations[c].push_back({curve.points[static_cast<std::size_t>(i)], i, curve.arc[static_cast<std::size_t>(i)]});
   }
   return stations;
 }

@@ -148,7 +148,7 @@ CurveStations spacing_stations(const Geometry& geometry, const SpacingField& spa
   for (std::size_t c = 0; c < geometry.curves.size(); ++c) {
     const Curve& curve = geometry.curves[c];
     std::vector<BoundaryStation>& out = stations[c];
-    out.push_back({curve.points[0], 0});
+    out.push_back({curve.points[0], 0, 0.0});
     for (Section& s : sections[c]) {
       std::vector<double> arcs;
       for (int round = 0;; ++round) {
@@ -173,11 +173,30 @@ CurveStations spacing_stations(const Geometry& geometry, const SpacingField& spa
         }
         if (!breached) break;
       }
-      for (std::size_t j = 1; j + 1 < arcs.size(); ++j) out.push_back({point_at_arc(curve, arcs[j]), -1});
-      out.push_back({curve.points[static_cast<std::size_t>(s.last)], s.last});
+      for (std::size_t j = 1; j + 1 < arcs.size(); ++j) out.push_back({point_at_arc(curve, arcs[j]), -1, arcs[j]});
+      out.push_back({curve.points[static_cast<std::size_t>(s.last)], s.last, curve.arc[static_cast<std::size_t>(s.last)]});
     }
   }
   return stations;
+}
+
+std::vector<double> station_resolution(const Geometry& geometry, const CurveStations& stations) {
+  std::vector<double> resolution(geometry.segments.size(), INFINITY);
+  for (std::size_t c = 0; c < geometry.curves.size(); ++c) {
+    const Curve& curve = geometry.curves[c];
+    const auto& st = stations[c];
+    std::size_t k = 0;  // the segment holding the current edge's start
+    for (std::size_t e = 0; e + 1 < st.size(); ++e) {
+      const double length = dist(st[e].p, st[e + 1].p);
+      while (k + 1 < curve.arc.size() - 1 && curve.arc[k + 1] <= st[e].arc) ++k;
+      // Segments k, k+1, ... up to the one holding the edge's end.
+      for (std::size_t j = k; j + 1 < curve.arc.size() && curve.arc[j] < st[e + 1].arc; ++j) {
+        double& r = resolution[static_cast<std::size_t>(curve.first_segment) + j];
+        r = std::min(r, length);
+      }
+    }
+  }
+  return resolution;
 }
 
 NodeSet place_boundary_nodes(const Geometry& node_geometry, const SpacingField& spacing, BoundaryNodeRule rule,

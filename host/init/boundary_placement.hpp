@@ -14,10 +14,11 @@ namespace pdmesh {
 enum class BoundaryNodeRule { Input, Spacing };
 
 // One boundary node position on a curve, in curve order. `vertex` is the index of the curve point it
-// sits on, or -1 for a point between curve points.
+// sits on, or -1 for a point between curve points; `arc` its arc-length position on the curve.
 struct BoundaryStation {
   Vec2 p;
   int vertex = -1;
+  double arc = 0.0;
 };
 // Per curve, its stations from its first point to its last; each list starts at vertex 0, ends at
 // the last vertex and holds every critical vertex of the curve.
@@ -57,6 +58,11 @@ CurveStations spacing_stations(const Geometry& geometry, const SpacingField& spa
 // rule Spacing at spacing_stations().
 NodeSet place_boundary_nodes(const Geometry& node_geometry, const SpacingField& spacing, BoundaryNodeRule rule,
                              const std::vector<std::vector<int>>* input_vertices, const PlacementOptions& options = {});
+
+// Per segment of the geometry: the length of the shortest boundary edge (chord between consecutive
+// stations) that covers part of it, i.e. the boundary-node spacing there, for the initialization
+// tree (InitTreeOptions::segment_resolution).
+std::vector<double> station_resolution(const Geometry& geometry, const CurveStations& stations);
 
 // The largest distance from the chord between the curve's points at arc positions arc_a < arc_b to
 // the curve between them (a polyline: the largest over its vertices strictly between).
