@@ -91,19 +91,31 @@ MeshInputs::MeshInputs(const CaseConfig& config) {
       dense_tree = std::make_unique<GeometryTree>(dense->geometry);
     }
   }
-  // The boundary nodes, unless they are the thesis' (every point of the input polyline), which the
-  // initialization makes itself. They set the resolution the initialization tree refines to along
-  // the curves (the thesis: the segment lengths).
-  if (dense || boundary_rule == BoundaryNodeRule::Spacing) {
-    const Geometry& on = node_geometry();
-    PlacementOptions placement;
-    placement.max_nodes = config.max_nodes;
-    const CurveStations stations = boundary_rule == BoundaryNodeRule::Spacing
-                                       ? spacing_stations(on, *spacing, placement)
-                                       : vertex_stations(on, &dense->vertex);
-    boundary = assemble_boundary_nodes(on, *spacing, stations);
-    resolution_ = station_resolution(on, stations);
-  }
+  max_nodes_ = config.max_nodes;
+}
+
+void MeshInputs::place_boundary() const {
+  if (boundary_placed_) return;
+  boundary_placed_ = true;
+  // The thesis' rule (every point of the input polyline) is applied by the initialization itself.
+  if (!dense && boundary_rule == BoundaryNodeRule::Input) return;
+  const Geometry& on = node_geometry();
+  PlacementOptions placement;
+  placement.max_nodes = max_nodes_;
+  const CurveStations stations = boundary_rule == BoundaryNodeRule::Spacing ? spacing_stations(on, *spacing, placement)
+                                                                            : vertex_stations(on, &dense->vertex);
+  boundary_ = assemble_boundary_nodes(on, *spacing, stations);
+  resolution_ = station_resolution(on, stations);
+}
+
+const NodeSet* MeshInputs::boundary_nodes() const {
+  place_boundary();
+  return boundary_ ? &*boundary_ : nullptr;
+}
+
+const std::vector<double>* MeshInputs::segment_resolution() const {
+  place_boundary();
+  return resolution_.empty() ? nullptr : &resolution_;
 }
 
 std::vector<std::string> MeshInputs::curve_names() const {
@@ -133,7 +145,7 @@ InitialDistribution make_initial(const CaseConfig& config, const MeshInputs& inp
   options.seed = config.init.seed;
   if (config.init.total > 0) options.total = static_cast<std::size_t>(config.init.total);
   options.with_estimate = false;  // check_node_limit computed it just before
-  if (inputs.boundary) options.boundary = &*inputs.boundary;
+  options.boundary = inputs.boundary_nodes();
   options.segment_resolution = inputs.segment_resolution();
   return make_initial_distribution(inputs.node_tree(), *inputs.spacing, options);
 }

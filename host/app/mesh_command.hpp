@@ -36,24 +36,29 @@ struct MeshInputs {
   std::unique_ptr<DenseGeometry> dense;     // smooth curves; null for "polyline" (or after a fallback)
   std::unique_ptr<GeometryTree> dense_tree;  // over dense->geometry
   BoundaryNodeRule boundary_rule = BoundaryNodeRule::Input;
-  // The boundary nodes on the node geometry (boundary.nodes = "spacing", or the input points of
-  // smooth curves); empty for the thesis' rule, which make_initial_distribution applies itself.
-  // LimitError when the field asks for more than config.max_nodes of them.
-  std::optional<NodeSet> boundary;
   // Why geometry.curves = "smooth" fell back to the polylines (the smooth curves intersect); empty
   // when it did not.
   std::string smooth_fallback;
 
   const Geometry& node_geometry() const { return dense ? dense->geometry : geometry; }
   const GeometryTree& node_tree() const { return dense ? *dense_tree : *tree; }
+  // The boundary nodes on the node geometry (boundary.nodes = "spacing", or the input points of
+  // smooth curves), placed by the spacing field on first use; null for the thesis' rule, which
+  // make_initial_distribution applies itself. LimitError when the field asks for more than
+  // config.max_nodes of them. Not thread-safe on the first call.
+  const NodeSet* boundary_nodes() const;
   // What the initialization tree refines to along each node-geometry segment
-  // (InitTreeOptions::segment_resolution: the boundary-node spacing there); null for the thesis'
-  // rule (the segment lengths).
-  const std::vector<double>* segment_resolution() const { return resolution_.empty() ? nullptr : &resolution_; }
+  // (InitTreeOptions::segment_resolution: the boundary-node spacing there, from the same placement);
+  // null for the thesis' rule (the segment lengths).
+  const std::vector<double>* segment_resolution() const;
   std::vector<std::string> curve_names() const;
 
  private:
-  std::vector<double> resolution_;
+  void place_boundary() const;
+  std::uint64_t max_nodes_ = 0;
+  mutable bool boundary_placed_ = false;
+  mutable std::optional<NodeSet> boundary_;
+  mutable std::vector<double> resolution_;
 };
 
 // Stage 2: refuses, with LimitError naming the numbers, a case whose hexagonal-packing estimate
