@@ -21,33 +21,21 @@
 #include "sim/boundary_handling.hpp"
 #include "sim/simulation.hpp"
 #include "spacing/spacing_field.hpp"
+#include "geometry_fixtures.hpp"
 #include "run_pdmesh.hpp"
 #include "temp_files.hpp"
 
 using namespace pdmesh;
+using pdmesh::fixtures::ConstantSpacing;
 
 namespace {
 
-struct ConstantSpacing final : SpacingField {
-  explicit ConstantSpacing(double v) : q(v) {}
-  double at(Vec2) const override { return q; }
-  double q;
-};
 
 // A smoothly varying field: 0.25 to 0.75 along x over the test geometries.
 struct WavySpacing final : SpacingField {
   double at(Vec2 p) const override { return 0.5 + 0.25 * std::sin(0.4 * p.x + 0.2 * p.y); }
 };
 
-RawCurve circle(double r, int n, const std::string& name) {
-  RawCurve c{name, {}, "test", 1, {}};
-  for (int i = 0; i < n; ++i) {
-    const double a = 2.0 * std::numbers::pi * i / n;
-    c.points.push_back({r * std::cos(a), r * std::sin(a)});
-  }
-  c.points.push_back(c.points.front());
-  return c;
-}
 
 // A 12 x 8 rectangle (2 points a side: coarser than any q here) with a circular hole of radius 2
 // (40 points) at (6, 4). The bottom is three curves: one with a bump of 60- and 120-degree corners
@@ -60,7 +48,7 @@ Geometry plate() {
   raw.push_back({"right", {{12, 0}, {12, 8}}, "test", 10, {}});
   raw.push_back({"top", {{12, 8}, {0, 8}}, "test", 20, {}});
   raw.push_back({"left", {{0, 8}, {0, 0}}, "test", 30, {}});
-  RawCurve hole = circle(2.0, 40, "hole");
+  RawCurve hole = fixtures::circle_curve(2.0, 40, 0.0, "hole");
   for (Vec2& p : hole.points) p = p + Vec2{6, 4};
   raw.push_back(hole);
   return build_geometry(std::move(raw));
@@ -217,7 +205,7 @@ TEST_CASE("input nodes through the station assembly are the thesis' rule", "[pla
 TEST_CASE("spacing nodes on smooth curves: the fill matches the estimate and a short run keeps "
           "boundary nodes on the smooth curve", "[placement][smooth]") {
   // A coarsely segmented circle (16 points, radius 3) in a square.
-  const RawCurve hole = circle(3.0, 16, "hole");
+  const RawCurve hole = fixtures::circle_curve(3.0, 16, 0.0, "hole");
   const Geometry g = build_geometry({{"box", {{-5, -5}, {5, -5}, {5, 5}, {-5, 5}, {-5, -5}}, "test", 1, {}}, hole});
   const ConstantSpacing q(0.5);
   const SmoothCurves smooth(g, 30.0);
@@ -281,7 +269,7 @@ TEST_CASE("pdmesh mesh: smooth curves with spacing nodes pass --check; crossing 
           "[placement][smooth][cli]") {
   const auto dir = pdmesh_test::fresh_dir("boundary_modes");
   // A 16-point circle of radius 1 in a box with one point per corner: both far coarser than q = 0.1.
-  const RawCurve hole = circle(1.0, 16, "hole");
+  const RawCurve hole = fixtures::circle_curve(1.0, 16, 0.0, "hole");
   write_crv(dir / "coarse.crv", {{{-2, -2}, {2, -2}, {2, 2}, {-2, 2}, {-2, -2}}, hole.points});
   const auto r = pdmesh_test::run_pdmesh("mesh '" + (dir / "coarse.crv").string() + "' --out '" +
                                          (dir / "out").string() +
@@ -299,15 +287,7 @@ TEST_CASE("pdmesh mesh: smooth curves with spacing nodes pass --check; crossing 
   CHECK(on_boundary <= 63 + 160 + 4);
 
   // Two coarse curves whose smooth versions cross (test_smooth_curve.cpp): a note, then polylines.
-  const RawCurve hole16 = [] {
-    RawCurve c{"hole", {}, "test", 1, {}};
-    for (int i = 0; i < 16; ++i) {
-      const double a = std::numbers::pi / 16 + 2.0 * std::numbers::pi * i / 16;
-      c.points.push_back({std::cos(a), std::sin(a)});
-    }
-    c.points.push_back(c.points.front());
-    return c;
-  }();
+  const RawCurve hole16 = fixtures::circle_curve(1.0, 16, std::numbers::pi / 16, "hole");
   write_crv(dir / "crossing.crv", {{{-2, -2}, {0.99, -2}, {0.99, 2}, {-2, 2}, {-2, -2}}, hole16.points});
   const auto f = pdmesh_test::run_pdmesh("mesh '" + (dir / "crossing.crv").string() + "' --out '" +
                                          (dir / "out2").string() +

@@ -11,27 +11,15 @@
 #include "geometry/geometry_tree.hpp"
 #include "geometry/smooth_curve.hpp"
 #include "spacing/spacing_field.hpp"
+#include "geometry_fixtures.hpp"
 
 using namespace pdmesh;
+using pdmesh::fixtures::ConstantSpacing;
 
 namespace {
 
-struct ConstantSpacing final : SpacingField {
-  explicit ConstantSpacing(double v) : q(v) {}
-  double at(Vec2) const override { return q; }
-  double q;
-};
 
 // A closed circle of radius r and n segments as one curve starting at angle a0.
-RawCurve circle(double r, int n, double a0 = 0.0, const std::string& name = "circle") {
-  RawCurve c{name, {}, "test", 1, {}};
-  for (int i = 0; i < n; ++i) {
-    const double a = a0 + 2.0 * std::numbers::pi * i / n;
-    c.points.push_back({r * std::cos(a), r * std::sin(a)});
-  }
-  c.points.push_back(c.points.front());
-  return c;
-}
 
 // Largest |distance from the origin - r| over the smooth curve, sampled 200 times per piece.
 double radial_error(const SmoothCurves& s, int curve, double r) {
@@ -46,7 +34,7 @@ double radial_error(const SmoothCurves& s, int curve, double r) {
 
 TEST_CASE("a smooth curve through points of a circle lies within the chord error of the circle", "[smooth]") {
   for (const int n : {16, 24, 48}) {
-    const Geometry g = build_geometry({circle(2.0, n)});
+    const Geometry g = build_geometry({fixtures::circle_curve(2.0, n)});
     const SmoothCurves s(g, 30.0);
     const double chord_error = 2.0 * (1.0 - std::cos(std::numbers::pi / n));  // the polyline's sagitta
     const double err = radial_error(s, 0, 2.0);
@@ -58,7 +46,7 @@ TEST_CASE("a smooth curve through points of a circle lies within the chord error
 }
 
 TEST_CASE("the dense polyline is within its chord tolerance of the smooth curve", "[smooth]") {
-  const Geometry g = build_geometry({circle(2.0, 16)});
+  const Geometry g = build_geometry({fixtures::circle_curve(2.0, 16)});
   const SmoothCurves s(g, 30.0);
   const double q = 0.1;
   DenseOptions options;
@@ -176,7 +164,7 @@ TEST_CASE("smooth curves that cross another curve are refused as a geometry erro
   // A 16-gon hole of radius 1 whose vertices sit at 11.25 + 22.5k degrees: its polyline reaches
   // x = 0.981, its smooth curve x = 1.0. The outer boundary's right side at x = 0.99 passes between.
   RawCurve outer{"outer", {{-2, -2}, {0.99, -2}, {0.99, 2}, {-2, 2}, {-2, -2}}, "test", 1, {}};
-  const Geometry g = build_geometry({outer, circle(1.0, 16, std::numbers::pi / 16, "hole")});
+  const Geometry g = build_geometry({outer, fixtures::circle_curve(1.0, 16, std::numbers::pi / 16, "hole")});
   const SmoothCurves s(g, 30.0);
   CHECK_THROWS_AS(make_dense_geometry(s, ConstantSpacing(0.1)), GeometryError);
   try {
