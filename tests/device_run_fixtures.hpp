@@ -19,9 +19,9 @@ struct Case {
   NodeSet initial;
 };
 
-inline Case load_case(const std::string& name) {
+inline Case load_case(const std::string& name, const std::vector<CaseOverride>& overrides = {}) {
   Case c;
-  c.config = load_case_file(std::string(PDMESH_SOURCE_DIR) + "/cases/" + name + "/case.toml");
+  c.config = load_case_file(std::string(PDMESH_SOURCE_DIR) + "/cases/" + name + "/case.toml", overrides);
   c.config.quiet = true;
   c.inputs = std::make_unique<MeshInputs>(c.config);
   c.initial = make_initial(c.config, *c.inputs).nodes;
@@ -55,9 +55,10 @@ inline Outcome run_case(const Case& c, int iterations, bool device, bool use_flo
     o.device = &test_context();
     o.device_float = use_float;
     o.verlet_skin = skin;
-    out.result = ocl::run_device_simulation(out.nodes, *c.inputs->tree, *c.inputs->spacing, o, *o.device, {}, &out.stats);
+    out.result =
+        ocl::run_device_simulation(out.nodes, c.inputs->node_tree(), *c.inputs->spacing, o, *o.device, {}, &out.stats);
   } else {
-    out.result = run_simulation(out.nodes, *c.inputs->tree, *c.inputs->spacing, o);
+    out.result = run_simulation(out.nodes, c.inputs->node_tree(), *c.inputs->spacing, o);
   }
   return out;
 }
