@@ -274,7 +274,7 @@ TEST_CASE("pdmesh mesh: smooth curves with spacing nodes pass --check; crossing 
   const auto r = pdmesh_test::run_pdmesh("mesh '" + (dir / "coarse.crv").string() + "' --out '" +
                                          (dir / "out").string() +
                                          "' --iterations 20 --device host --check --formats msh "
-                                         "--set spacing.expression=0.1");
+                                         "--set spacing.expression=0.1 --set geometry.curves=smooth");
   INFO(r.output);
   REQUIRE(r.status == 0);
   CHECK_THAT(r.output, Catch::Contains("smooth curves (centripetal Catmull-Rom) as a dense polyline"));
@@ -291,7 +291,7 @@ TEST_CASE("pdmesh mesh: smooth curves with spacing nodes pass --check; crossing 
   write_crv(dir / "crossing.crv", {{{-2, -2}, {0.99, -2}, {0.99, 2}, {-2, 2}, {-2, -2}}, hole16.points});
   const auto f = pdmesh_test::run_pdmesh("mesh '" + (dir / "crossing.crv").string() + "' --out '" +
                                          (dir / "out2").string() +
-                                         "' --iterations 5 --device host --check --formats msh");
+                                         "' --iterations 5 --device host --check --formats msh --set geometry.curves=smooth");
   INFO(f.output);
   CHECK(f.status == 0);
   CHECK_THAT(f.output, Catch::Contains("note: geometry.curves = \"smooth\" fell back to the input polylines"));

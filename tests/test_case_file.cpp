@@ -257,7 +257,7 @@ TEST_CASE("the preset key selects the defaults; keys the file sets win over it",
 
 TEST_CASE("geometry.curves and boundary.nodes: preset defaults, file values, overrides, errors", "[app][case]") {
   const CaseConfig best = parse_case_text(kMinimal, kCase);
-  CHECK(best.geometry.curves == CurveKind::Smooth);
+  CHECK(best.geometry.curves == CurveKind::Polyline);
   CHECK(best.boundary.nodes == BoundaryNodeRule::Spacing);
   const CaseConfig thesis = parse_case_text(std::string("preset = \"thesis\"\n") + kMinimal, kCase);
   CHECK(thesis.geometry.curves == CurveKind::Polyline);
@@ -266,7 +266,7 @@ TEST_CASE("geometry.curves and boundary.nodes: preset defaults, file values, ove
   const std::string text = std::string("preset = \"thesis\"\n") + kMinimal +
                            "curves = \"smooth\"\n[boundary]\nnodes = \"spacing\"\n";
   const CaseConfig mixed = parse_case_text(text, kCase);
-  CHECK(mixed.geometry.curves == CurveKind::Smooth);
+  CHECK(mixed.geometry.curves == CurveKind::Smooth);  // not the default of either preset
   CHECK(mixed.boundary.nodes == BoundaryNodeRule::Spacing);
   const CaseConfig set = parse_case_text(text, kCase, {parse_set_option("boundary.nodes=input"),
                                                        parse_set_option("geometry.curves=polyline")});

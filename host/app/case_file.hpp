@@ -49,7 +49,7 @@ struct CaseConfig {
     std::vector<std::string> curve_names;      // optional, in file/curve order
     double join_tolerance = 1e-9;
     double corner_angle = 30.0;  // degrees
-    CurveKind curves = CurveKind::Smooth;  // thesis: Polyline
+    CurveKind curves = CurveKind::Polyline;  // the same in both presets (docs/initialization.md, "Measured")
   } geometry;
 
   struct Spacing {

@@ -12,8 +12,9 @@ void apply_preset(CaseConfig& c, Preset preset) {
   const bool thesis = preset == Preset::Thesis;
   // One line per key whose default differs between the presets; CaseConfig's member initializers
   // hold the best values. Each line says what the thesis does instead.
-  // Every geometry point is a boundary node, on the input polyline (thesis ch. 4, "Boundary Nodes").
-  c.geometry.curves = thesis ? CurveKind::Polyline : CurveKind::Smooth;
+  // Every geometry point is a boundary node (thesis ch. 4, "Boundary Nodes"), instead of nodes placed
+  // by the spacing field. (geometry.curves is "polyline" in both: smooth curves did not measurably
+  // help; docs/initialization.md, "Measured".)
   c.boundary.nodes = thesis ? BoundaryNodeRule::Input : BoundaryNodeRule::Spacing;
 }
 
