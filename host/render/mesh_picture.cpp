@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <tuple>
 #include <fmt/format.h>
 
 #include "core/errors.hpp"
@@ -78,7 +79,9 @@ void write_mesh_picture(const std::filesystem::path& path, const Mesh& mesh, con
     }
   }
   double lo = INFINITY, hi = -INFINITY;
-  if (values != nullptr) {
+  if (values != nullptr && options.value_range) {
+    std::tie(lo, hi) = *options.value_range;
+  } else if (values != nullptr) {
     for (double v : *values) {
       if (std::isfinite(v)) {
         lo = std::min(lo, v);
