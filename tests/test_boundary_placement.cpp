@@ -265,7 +265,7 @@ void write_crv(const std::filesystem::path& file, const std::vector<std::vector<
 
 }  // namespace
 
-TEST_CASE("pdmesh mesh: smooth curves with spacing nodes pass --check; crossing smooth curves fall back",
+TEST_CASE("pdmesh mesh: smooth curves with spacing nodes pass --check, and crossing smooth curves fall back",
           "[placement][smooth][cli]") {
   const auto dir = pdmesh_test::fresh_dir("boundary_modes");
   // A 16-point circle of radius 1 in a box with one point per corner: both far coarser than q = 0.1.

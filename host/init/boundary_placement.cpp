@@ -123,6 +123,23 @@ double chord_deviation(const Curve& curve, double arc_a, double arc_b) {
 }
 
 CurveStations spacing_stations(const Geometry& geometry, const SpacingField& spacing, const PlacementOptions& options) {
+  const auto refuse = [&](double count) {
+    throw LimitError(fmt::format("the spacing field asks for about {:.0f} boundary nodes (estimate: the integral of "
+                                 "ds/q along the curves, boundary.nodes = \"spacing\"), more than --max-nodes {}; "
+                                 "coarsen the spacing or raise --max-nodes",
+                                 count, options.max_nodes));
+  };
+  // A first count from q at the segment midpoints, so that an absurd field is refused before the
+  // curves are sampled finely.
+  if (options.max_nodes > 0) {
+    double coarse = 0.0;
+    for (const Curve& curve : geometry.curves)
+      for (int k = 0; k < curve.segment_count(); ++k) {
+        const auto i = static_cast<std::size_t>(k);
+        coarse += (curve.arc[i + 1] - curve.arc[i]) / checked_q(spacing, curve, 0.5 * (curve.points[i] + curve.points[i + 1]));
+      }
+    if (coarse > 2.0 * static_cast<double>(options.max_nodes)) refuse(coarse);
+  }
   // The sections of every curve, sampled; the node count is checked against the limit before any
   // node is placed.
   std::vector<std::vector<Section>> sections(geometry.curves.size());
@@ -138,11 +155,8 @@ CurveStations spacing_stations(const Geometry& geometry, const SpacingField& spa
       count += std::max(1.0, std::round(section_integral(sections[c].back())));
       first = k;
     }
-    if (options.max_nodes > 0 && count > static_cast<double>(options.max_nodes))
-      throw LimitError(fmt::format("boundary nodes: the spacing field asks for more than {} nodes on the curves "
-                                   "(boundary.nodes = \"spacing\"); coarsen the spacing or raise --max-nodes",
-                                   options.max_nodes));
   }
+  if (options.max_nodes > 0 && count > static_cast<double>(options.max_nodes)) refuse(count);
 
   CurveStations stations(geometry.curves.size());
   for (std::size_t c = 0; c < geometry.curves.size(); ++c) {
