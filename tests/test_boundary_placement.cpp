@@ -11,6 +11,8 @@
 #include <memory>
 #include <numbers>
 
+#include "app/case_file.hpp"
+#include "app/mesh_command.hpp"
 #include "core/errors.hpp"
 #include "geometry/geometry.hpp"
 #include "geometry/geometry_tree.hpp"
@@ -295,5 +297,39 @@ TEST_CASE("pdmesh mesh: smooth curves with spacing nodes pass --check, and cross
   INFO(f.output);
   CHECK(f.status == 0);
   CHECK_THAT(f.output, Catch::Contains("note: geometry.curves = \"smooth\" fell back to the input polylines"));
+  std::filesystem::remove_all(dir);
+}
+
+TEST_CASE("MeshInputs: the spacing field reads the input segments, everything else the node geometry",
+          "[placement][smooth]") {
+  const auto dir = pdmesh_test::fresh_dir("mesh_inputs");
+  const RawCurve hole = fixtures::circle_curve(1.0, 16, 0.0, "hole");
+  write_crv(dir / "coarse.crv", {{{-2, -2}, {2, -2}, {2, 2}, {-2, 2}, {-2, -2}}, hole.points});
+  const CaseConfig smooth = case_for_geometry_file(dir / "coarse.crv", {parse_set_option("geometry.curves=smooth")});
+  const MeshInputs inputs(smooth);
+  REQUIRE(inputs.dense);
+  CHECK(inputs.geometry.segments.size() == 4 + 16);
+  CHECK(&inputs.tree->geometry() == &inputs.geometry);
+  CHECK(&inputs.node_tree().geometry() == &inputs.dense->geometry);
+  CHECK(inputs.node_geometry().segments.size() > 4 + 16);
+  // Eq. 3.6 on the input polyline: on a hole segment q is that segment's length (0.39), where a
+  // field over the dense polyline would give its much shorter segments.
+  const Vec2 mid = 0.5 * (hole.points[0] + hole.points[1]);
+  CHECK(inputs.spacing->at(mid) == Approx(dist(hole.points[0], hole.points[1])));
+  // Boundary nodes (best preset: spacing) lie on the dense polyline, and the initial distribution
+  // starts from them.
+  const NodeSet* boundary = inputs.boundary_nodes();
+  REQUIRE(boundary != nullptr);
+  for (std::size_t i = 0; i < boundary->size(); ++i)
+    CHECK(inputs.node_tree().closest_on_curve(boundary->x[i], boundary->curve[i]).distance < 1e-12);
+  const InitialDistribution initial = make_initial(smooth, inputs);
+  for (std::size_t i = 0; i < boundary->size(); ++i) CHECK(initial.nodes.x[i] == boundary->x[i]);
+  // The thesis preset: one geometry, no placement of its own.
+  const CaseConfig thesis = case_for_geometry_file(dir / "coarse.crv", {parse_set_option("preset=thesis")});
+  const MeshInputs plain(thesis);
+  CHECK_FALSE(plain.dense);
+  CHECK(&plain.node_tree() == plain.tree.get());
+  CHECK(plain.boundary_nodes() == nullptr);
+  CHECK(plain.segment_resolution() == nullptr);
   std::filesystem::remove_all(dir);
 }
