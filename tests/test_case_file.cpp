@@ -288,3 +288,38 @@ TEST_CASE("edit distance", "[app][case]") {
   CHECK(edit_distance("simulaton", "simulation") == 1);
   CHECK(edit_distance("same", "same") == 0);
 }
+
+TEST_CASE("spacing.file selects a background-mesh field and its keys are checked", "[app][case]") {
+  const std::string base = kMinimal;
+  // A file alone selects the mesh field; the path is relative to the case file; the array defaults to q.
+  CaseConfig c = parse_case_text(base + "[spacing]\nfile = \"data/flow.vtu\"\n", kCase);
+  CHECK(c.spacing.field == SpacingKind::Mesh);
+  CHECK(c.spacing.file == fs::path("/cases/demo/data/flow.vtu"));
+  CHECK(c.spacing.array == "q");
+  c = parse_case_text(base + "[spacing]\nfield = \"mesh\"\nfile = \"/abs/f.MSH\"\narray = \"h\"\n", kCase);
+  CHECK(c.spacing.field == SpacingKind::Mesh);
+  CHECK(c.spacing.file == fs::path("/abs/f.MSH"));
+  CHECK(c.spacing.array == "h");
+  // Given by --set, a relative path is relative to the current directory, where it was typed.
+  c = parse_case_text(base, kCase, {parse_set_option("spacing.file=run1/mesh.vtu"), parse_set_option("spacing.array=2")});
+  CHECK(c.spacing.field == SpacingKind::Mesh);
+  CHECK(c.spacing.file == fs::path("run1/mesh.vtu"));
+  CHECK(c.spacing.array == "2");  // a number given to a string key is its text
+  // Contradictions and bad values.
+  CHECK(error_of(base + "[spacing]\nfield = \"mesh\"\n").find("spacing.file (a .vtu or .msh background mesh) is missing") !=
+        std::string::npos);
+  CHECK(error_of(base + "[spacing]\nfile = \"f.vtu\"\nexpression = \"1\"\n").find("both set; choose one with spacing.field") !=
+        std::string::npos);
+  CHECK(error_of(base + "[spacing]\nfield = \"boundary\"\nfile = \"f.vtu\"\n")
+            .find("spacing.file is set but spacing.field is 'boundary'") != std::string::npos);
+  CHECK(error_of(base + "[spacing]\nfield = \"mesh\"\nfile = \"f.vtu\"\nexpression = \"1\"\n")
+            .find("spacing.expression is set but spacing.field is 'mesh'") != std::string::npos);
+  CHECK(error_of(base + "[spacing]\narray = \"q\"\n").find("spacing.array is set but spacing.field is 'boundary'") !=
+        std::string::npos);
+  CHECK(error_of(base + "[spacing]\nfile = \"f.vtu\"\narray = \"\"\n").find("spacing.array must not be empty") !=
+        std::string::npos);
+  CHECK(error_of(base + "[spacing]\nfile = \"f.stl\"\n").find(":4:8: spacing.file 'f.stl' must be a .vtu or .msh") !=
+        std::string::npos);
+  CHECK(error_of(base + "[spacing]\nfield = \"data\"\n").find("spacing.field must be one of boundary, expression, mesh") !=
+        std::string::npos);
+}

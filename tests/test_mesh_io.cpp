@@ -303,12 +303,17 @@ TEST_CASE("Triangle reader checks indices and reads 0-based files without .poly"
               "a.node:3: unexpected end of file");
 }
 
-TEST_CASE("VTU reader rejects binary arrays and bad connectivity", "[mesh_io]") {
+TEST_CASE("VTU reader rejects damaged binary arrays and bad connectivity", "[mesh_io]") {
   MeshReadReport r;
   std::string v = vtu_string(grid_mesh());
+  // ASCII numbers declared binary: their digits decode as base64 into a nonsensical block header.
   std::string binary = v;
   binary.replace(binary.find("format=\"ascii\""), 14, "format=\"binary\"");
-  message_has([&] { parse_vtu("b.vtu", binary, r); }, "b.vtu:5: DataArray format 'binary' is not supported");
+  message_has([&] { parse_vtu("b.vtu", binary, r); }, "b.vtu:5: DataArray 'boundary_edges': the header announces");
+  std::string lz4 = v;
+  lz4.replace(lz4.find("header_type="), 0, "compressor=\"vtkLZ4DataCompressor\" ");
+  lz4.replace(lz4.find("format=\"ascii\""), 14, "format=\"binary\"");
+  message_has([&] { parse_vtu("z.vtu", lz4, r); }, "z.vtu:5: compressor 'vtkLZ4DataCompressor' is not supported");
   std::string conn = v;
   const auto at = conn.find("Name=\"connectivity\" format=\"ascii\">\n") + 36;
   conn.replace(at, conn.find('\n', at) - at, "          0 1 99");

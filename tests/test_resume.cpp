@@ -14,6 +14,8 @@
 #include <string>
 #include <vector>
 
+#include "app/case_file.hpp"
+#include "app/resume.hpp"
 #include "core/errors.hpp"
 #include "io/text_file.hpp"
 #include "geometry/geometry_tree.hpp"
@@ -244,4 +246,30 @@ TEST_CASE("a failing simulation hands the last good state to on_failure before t
   CHECK(saved->history.back().iteration == 10);
   CHECK(saved->arcs.size() == nodes.curve_nodes.size());
   CHECK(saved->tangents.size() == nodes.size());
+}
+
+TEST_CASE("a checkpoint of a mesh field knows its file's content and array", "[resume]") {
+  const fs::path dir = fresh_dir("identity");
+  fs::create_directories(dir);
+  pdmesh::write_text_file(dir / "f.vtu", "one");
+  const std::string text = "[geometry]\nfiles = [\"" + kCase + "/circles.crv\"]\n[spacing]\nfile = \"f.vtu\"\n";
+  const auto keys = [&](const std::string& extra) {
+    return pdmesh::case_identity(pdmesh::parse_case_text(text + extra, dir / "case.toml"));
+  };
+  const auto value = [](const std::vector<std::pair<std::string, std::string>>& k, const std::string& key) {
+    for (const auto& [name, v] : k)
+      if (name == key) return v;
+    return std::string("(none)");
+  };
+  const auto first = keys("");
+  CHECK(value(first, "spacing.field") == "mesh");
+  CHECK_THAT(value(first, "spacing.file"), Catch::StartsWith("f.vtu (3 bytes, FNV-1a "));
+  CHECK(value(first, "spacing.array") == "q");
+  CHECK(value(keys("array = \"h\"\n"), "spacing.array") == "h");
+  pdmesh::write_text_file(dir / "f.vtu", "two");
+  CHECK(value(keys(""), "spacing.file") != value(first, "spacing.file"));
+  // Other fields keep the keys (and so the checkpoints) they had.
+  const auto boundary = pdmesh::case_identity(pdmesh::parse_case_text(text.substr(0, text.find("[spacing]")), dir / "case.toml"));
+  CHECK(value(boundary, "spacing.file") == "(none)");
+  fs::remove_all(dir);
 }

@@ -6,7 +6,7 @@ cd "$(dirname "$0")/.."
 
 packages=(cmake g++ make pkg-config python3
           ocl-icd-opencl-dev opencl-headers opencl-clhpp-headers pocl-opencl-icd clinfo
-          catch2 libgmp-dev libfmt-dev libcli11-dev libtomlplusplus-dev libmuparser-dev libcairo2-dev)
+          catch2 libgmp-dev libfmt-dev libcli11-dev libtomlplusplus-dev libmuparser-dev libcairo2-dev zlib1g-dev)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -10,6 +10,7 @@
 #include <fmt/format.h>
 
 #include "app/case_file.hpp"
+#include "app/case_spacing.hpp"
 #include "app/graded_case.hpp"
 #include "app/mesh_command.hpp"
 #include "core/atomic_file.hpp"

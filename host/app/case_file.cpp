@@ -207,7 +207,8 @@ void check_keys(const Reader& r, const toml::table& t, const std::string& prefix
 // Keys whose value is a string: an override such as "spacing.expression=2" means the text.
 bool is_string_key(const std::string& key) {
   return key == "name" || key == "preset" || key == "geometry.curves" || key == "boundary.nodes" ||
-         key == "spacing.field" || key == "spacing.expression" || key == "init.method" ||
+         key == "spacing.field" || key == "spacing.expression" || key == "spacing.file" || key == "spacing.array" ||
+         key == "init.method" ||
          key == "simulation.device" || key == "simulation.precision" || key == "simulation.r0_rule" ||
          key == "output.color_by";
 }
@@ -329,19 +330,48 @@ void read_boundary_section(const Reader& r, const toml::table& root, CaseConfig&
 
 void read_spacing_section(const Reader& r, const toml::table& root, CaseConfig& c) {
   const toml::node* expression = find(root, "spacing", "expression");
+  const toml::node* file = find(root, "spacing", "file");
+  const toml::node* array = find(root, "spacing", "array");
   const toml::node* field = find(root, "spacing", "field");
   if (expression != nullptr) c.spacing.expression = r.string("spacing.expression", *expression);
-  // An expression alone selects the expression field; naming both kinds contradictorily is an error.
-  c.spacing.field = expression != nullptr ? SpacingKind::Expression : SpacingKind::Boundary;
-  if (field != nullptr) {
-    c.spacing.field = choose<SpacingKind>(r, "spacing.field", *field,
-                                          {{"boundary", SpacingKind::Boundary}, {"expression", SpacingKind::Expression}});
+  if (file != nullptr) {
+    const std::string f = r.string("spacing.file", *file);
+    std::string ext = fs::path(f).extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char ch) { return static_cast<char>(std::tolower(ch)); });
+    if (ext != ".vtu" && ext != ".msh") {
+      r.fail("spacing.file", file, fmt::format("spacing.file '{}' must be a .vtu or .msh triangle mesh", f));
+    }
+    c.spacing.file = r.resolve("spacing.file", f);
   }
+  if (array != nullptr) {
+    c.spacing.array = r.string("spacing.array", *array);
+    if (c.spacing.array.empty()) r.fail("spacing.array", array, "spacing.array must not be empty");
+  }
+  // An expression or a file alone selects its field; naming kinds contradictorily is an error.
+  if (field != nullptr) {
+    c.spacing.field = choose<SpacingKind>(
+        r, "spacing.field", *field,
+        {{"boundary", SpacingKind::Boundary}, {"expression", SpacingKind::Expression}, {"mesh", SpacingKind::Mesh}});
+  } else if (expression != nullptr && file != nullptr) {
+    r.fail("spacing.file", file, "spacing.expression and spacing.file are both set; choose one with spacing.field");
+  } else {
+    c.spacing.field = expression != nullptr ? SpacingKind::Expression : file != nullptr ? SpacingKind::Mesh : SpacingKind::Boundary;
+  }
+  const char* name = c.spacing.field == SpacingKind::Boundary ? "boundary" : c.spacing.field == SpacingKind::Expression ? "expression" : "mesh";
   if (c.spacing.field == SpacingKind::Expression && c.spacing.expression.empty()) {
     r.fail("spacing.field", field, "spacing.field is 'expression' but spacing.expression is missing or empty");
   }
-  if (c.spacing.field == SpacingKind::Boundary && expression != nullptr) {
-    r.fail("spacing.expression", expression, "spacing.expression is set but spacing.field is 'boundary'");
+  if (c.spacing.field == SpacingKind::Mesh && file == nullptr) {
+    r.fail("spacing.field", field, "spacing.field is 'mesh' but spacing.file (a .vtu or .msh background mesh) is missing");
+  }
+  if (c.spacing.field != SpacingKind::Expression && expression != nullptr) {
+    r.fail("spacing.expression", expression, fmt::format("spacing.expression is set but spacing.field is '{}'", name));
+  }
+  if (c.spacing.field != SpacingKind::Mesh && file != nullptr) {
+    r.fail("spacing.file", file, fmt::format("spacing.file is set but spacing.field is '{}'", name));
+  }
+  if (c.spacing.field != SpacingKind::Mesh && array != nullptr) {
+    r.fail("spacing.array", array, fmt::format("spacing.array is set but spacing.field is '{}'", name));
   }
 }
 
@@ -503,7 +533,7 @@ const std::vector<std::string>& case_file_keys() {
   static const std::vector<std::string> keys = {
       "name", "preset",
       "geometry.files", "geometry.curve_names", "geometry.join_tolerance", "geometry.corner_angle",
-      "geometry.curves", "spacing.field", "spacing.expression", "boundary.nodes",
+      "geometry.curves", "spacing.field", "spacing.expression", "spacing.file", "spacing.array", "boundary.nodes",
       "init.method", "init.seed", "init.total",
       "simulation.iterations", "simulation.dt_initial", "simulation.dt_initial.structured",
       "simulation.dt_initial.random", "simulation.cutoff", "simulation.lj_a", "simulation.device",

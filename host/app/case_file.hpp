@@ -12,7 +12,7 @@
 
 namespace pdmesh {
 
-enum class SpacingKind { Boundary, Expression };
+enum class SpacingKind { Boundary, Expression, Mesh };
 // geometry.curves: the curve the points describe (docs/geometry-input.md, "Smooth curves").
 enum class CurveKind { Polyline, Smooth };
 enum class Precision { Double, Float };
@@ -55,6 +55,10 @@ struct CaseConfig {
   struct Spacing {
     SpacingKind field = SpacingKind::Boundary;
     std::string expression;  // muParser expression in x and y when field == Expression
+    // field == Mesh: a .vtu or .msh triangle mesh (resolved relative to the case file, or to the current
+    // directory when given by --set) and the name of its point-data array that holds q.
+    std::filesystem::path file;
+    std::string array = "q";
   } spacing;
 
   struct Boundary {

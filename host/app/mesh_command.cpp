@@ -1,6 +1,7 @@
 // The `pdmesh mesh` pipeline: read and check inputs, check limits, initialize, write outputs.
 #include "app/mesh_command.hpp"
 
+#include <algorithm>
 #include <cerrno>
 #include <chrono>
 #include <cmath>
@@ -10,6 +11,7 @@
 #include <optional>
 #include <fmt/format.h>
 
+#include "app/case_spacing.hpp"
 #include "app/exit_codes.hpp"
 #include "app/interrupt.hpp"
 #include "app/resume.hpp"
@@ -29,6 +31,7 @@
 #include "render/mesh_picture.hpp"
 #include "render/node_picture.hpp"
 #include "sim/history.hpp"
+#include "spacing/mesh_spacing.hpp"
 #include "spacing/resolution_check.hpp"
 
 namespace pdmesh {
@@ -67,21 +70,26 @@ MeshInputs::MeshInputs(const CaseConfig& config) {
     }
   }
   tree = std::make_unique<GeometryTree>(geometry);
-  if (config.spacing.field == SpacingKind::Expression) {
-    spacing = std::make_unique<ExpressionSpacing>(config.spacing.expression);
-  } else {
-    spacing = std::make_unique<BoundarySpacing>(*tree);
+  const auto spacing_start = std::chrono::steady_clock::now();
+  spacing = make_case_spacing(config, *tree);
+  if (const auto* m = dynamic_cast<const MeshSpacing*>(spacing.get())) {
+    const MeshFieldData& d = m->data();
+    const auto [lo, hi] = std::minmax_element(d.q.begin(), d.q.end());
+    spacing_summary = fmt::format("spacing: '{}' on {} ({} triangles, {} points, q from {:.4g} to {:.4g}), read, checked and "
+                                  "indexed in {:.3f} s",
+                                  d.array, d.file, d.triangles.size(), d.points.size(), *lo, *hi,
+                                  std::chrono::duration<double>(std::chrono::steady_clock::now() - spacing_start).count());
   }
   // Before anything else uses them: with unresolvable coordinates the node estimate's tree could
   // refine without end.
   check_coordinate_resolution(geometry, *spacing);
   boundary_rule = config.boundary.nodes;
   if (config.geometry.curves == CurveKind::Smooth) {
-    DenseOptions options;
-    options.join_tolerance = config.geometry.join_tolerance;
+    DenseOptions dense_options;
+    dense_options.join_tolerance = config.geometry.join_tolerance;
     try {
       dense = std::make_unique<DenseGeometry>(
-          make_dense_geometry(SmoothCurves(geometry, config.geometry.corner_angle), *spacing, options));
+          make_dense_geometry(SmoothCurves(geometry, config.geometry.corner_angle), *spacing, dense_options));
     } catch (const GeometryError& e) {
       // Smooth curves through coarse points can cross where the polylines pass close to each other.
       smooth_fallback = e.what();
@@ -311,6 +319,9 @@ Mesh mesh_and_measure(const CaseConfig& config, const MeshInputs& inputs, const 
              node_area, inputs.geometry.area, std::fabs(node_area - inputs.geometry.area) / inputs.geometry.area);
   }
   const SpacingField& spacing = *inputs.spacing;
+  // The field at every node goes into the mesh files (point data "q"): a run's field can be read back
+  // with spacing.field = "mesh", or edited (e.g. scaled by a solution's error indicator) first.
+  spacing.at_many(mesh.points, mesh.spacing);
   const QualitySummary summary = summarize_quality(mesh, [&spacing](Vec2 p) { return spacing.at(p); });
   if (!config.quiet) fmt::print("{}", format_quality_table(summary, config.name));
   const fs::path& dir = config.out_dir;
@@ -377,6 +388,7 @@ int run_mesh(const CaseConfig& config) {
   const MeshInputs inputs(config);
   progress(config, "geometry: {} curves, {} segments, {} loops, area {:.6g}", inputs.geometry.curves.size(),
            inputs.geometry.segments.size(), inputs.geometry.loops.size(), inputs.geometry.area);
+  if (!inputs.spacing_summary.empty()) progress(config, "{}", inputs.spacing_summary);
   if (inputs.dense)
     progress(config, "geometry: smooth curves (centripetal Catmull-Rom) as a dense polyline of {} segments, area {:.6g}",
              inputs.dense->geometry.segments.size(), inputs.dense->geometry.area);

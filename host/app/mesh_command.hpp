@@ -33,6 +33,8 @@ struct MeshInputs {
   Geometry geometry;                   // the input geometry (spacing field)
   std::unique_ptr<GeometryTree> tree;  // over `geometry`
   std::unique_ptr<SpacingField> spacing;
+  // One line about a spacing field read from a file (spacing.field = "mesh"); empty otherwise.
+  std::string spacing_summary;
   std::unique_ptr<DenseGeometry> dense;     // smooth curves; null for "polyline" (or after a fallback)
   std::unique_ptr<GeometryTree> dense_tree;  // over dense->geometry
   BoundaryNodeRule boundary_rule = BoundaryNodeRule::Input;

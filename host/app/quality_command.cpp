@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 
 #include "app/case_file.hpp"
+#include "app/case_spacing.hpp"
 #include "geometry/geometry_files.hpp"
 #include "geometry/geometry_tree.hpp"
 #include "io/mesh_formats.hpp"
@@ -32,10 +33,6 @@ std::unique_ptr<CaseSpacing> load_spacing(const std::filesystem::path& path) {
   for (auto& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
   const CaseConfig config = ext == ".toml" ? load_case_file(path) : case_for_geometry_file(path);
   auto s = std::make_unique<CaseSpacing>();
-  if (config.spacing.field == SpacingKind::Expression) {
-    s->field = std::make_unique<ExpressionSpacing>(config.spacing.expression);
-    return s;
-  }
   std::vector<std::string> files;
   for (const auto& f : config.geometry.files) files.push_back(f.string());
   GeometryOptions options;
@@ -43,7 +40,7 @@ std::unique_ptr<CaseSpacing> load_spacing(const std::filesystem::path& path) {
   options.corner_angle_deg = config.geometry.corner_angle;
   s->geometry = read_geometry(files, config.geometry.curve_names, options);
   s->tree = std::make_unique<GeometryTree>(s->geometry);
-  s->field = std::make_unique<BoundarySpacing>(*s->tree);
+  s->field = make_case_spacing(config, *s->tree);
   return s;
 }
 

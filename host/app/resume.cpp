@@ -52,10 +52,21 @@ std::vector<std::pair<std::string, std::string>> case_identity(const CaseConfig&
   keys.emplace_back("geometry.curve_names", names);
   keys.emplace_back("geometry.join_tolerance", fmt::format("{}", config.geometry.join_tolerance));
   keys.emplace_back("geometry.corner_angle", fmt::format("{}", config.geometry.corner_angle));
-  keys.emplace_back("geometry.curves", config.geometry.curves == CurveKind::Smooth ? "smooth" : "polyline");
-  keys.emplace_back("boundary.nodes", config.boundary.nodes == BoundaryNodeRule::Spacing ? "spacing" : "input");
-  keys.emplace_back("spacing.field", config.spacing.field == SpacingKind::Expression ? "expression" : "boundary");
+  // Only where they differ from the thesis' rule, so that checkpoints written before these keys
+  // existed keep their identity.
+  if (config.geometry.curves != CurveKind::Polyline) keys.emplace_back("geometry.curves", "smooth");
+  if (config.boundary.nodes != BoundaryNodeRule::Input) keys.emplace_back("boundary.nodes", "spacing");
+  keys.emplace_back("spacing.field", config.spacing.field == SpacingKind::Expression ? "expression"
+                                     : config.spacing.field == SpacingKind::Mesh     ? "mesh"
+                                                                                     : "boundary");
   keys.emplace_back("spacing.expression", config.spacing.expression);
+  // Only for a mesh field, so that checkpoints of the other fields keep their identity.
+  if (config.spacing.field == SpacingKind::Mesh) {
+    const std::string content = read_text_file(config.spacing.file);
+    keys.emplace_back("spacing.file", fmt::format("{} ({} bytes, FNV-1a {:016x})", config.spacing.file.filename().string(),
+                                                  content.size(), fnv1a64(content)));
+    keys.emplace_back("spacing.array", config.spacing.array);
+  }
   keys.emplace_back("init.method", config.init.method == InitMethod::Structured ? "structured" : "random");
   keys.emplace_back("init.seed", fmt::format("{}", config.init.seed));
   keys.emplace_back("init.total", fmt::format("{}", config.init.total));

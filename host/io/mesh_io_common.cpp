@@ -44,6 +44,9 @@ void check_mesh_for_writing(const Mesh& mesh, const std::string& what) {
   if (!mesh.kind.empty() && mesh.kind.size() != mesh.points.size()) {
     throw InputError(fmt::format("{}: {} node kinds for {} points", what, mesh.kind.size(), n));
   }
+  if (!mesh.spacing.empty() && mesh.spacing.size() != mesh.points.size()) {
+    throw InputError(fmt::format("{}: {} spacing values for {} points", what, mesh.spacing.size(), n));
+  }
 }
 
 std::vector<std::size_t> boundary_edges_by_curve(const Mesh& mesh) {
@@ -53,6 +56,15 @@ std::vector<std::size_t> boundary_edges_by_curve(const Mesh& mesh) {
     return mesh.boundary_edges[i].curve < mesh.boundary_edges[j].curve;
   });
   return order;
+}
+
+std::string msh_spacing_node_data(const Mesh& mesh) {
+  if (mesh.spacing.empty()) return {};
+  // One view "q": time 0, time step 0, 1 component, a value per node (node tag = point index + 1).
+  std::string out = fmt::format("$NodeData\n1\n\"q\"\n1\n0\n3\n0\n1\n{}\n", mesh.spacing.size());
+  for (std::size_t i = 0; i < mesh.spacing.size(); ++i) out += fmt::format("{} {}\n", i + 1, coord(mesh.spacing[i]));
+  out += "$EndNodeData\n";
+  return out;
 }
 
 std::string coord(double v) { return fmt::format("{:.17g}", v); }

@@ -2,6 +2,8 @@
 // a mesh passes before it is written, and what a reader reports besides the mesh.
 #pragma once
 #include <cstddef>
+#include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -17,6 +19,28 @@ struct MeshReadReport {
   std::vector<std::string> notes;  // one line each, e.g. "skipped 4 elements of type 3 (quadrangle)"
 };
 
+// A point-data array read beside a mesh: `components` values per point, point-major. An MSH
+// $NodeData may give values for a subset of the nodes: then `given` holds 1 per point that has one
+// (the others are NaN); empty means every point has its values.
+struct PointDataArray {
+  std::string name;
+  int components = 1;
+  std::vector<double> values;
+  std::vector<std::uint8_t> given;
+  std::string where;  // "FILE:LINE" of the array, for messages
+};
+
+// What a reader found besides the mesh, for data fields (spacing.field = "mesh"). The caller names
+// the array it wants; the reader decodes only that one and lists the names of the others.
+struct MeshPointData {
+  std::string wanted;                      // in: the point-data array to decode
+  std::optional<PointDataArray> array;     // out: that array, when the file has it
+  std::vector<std::string> point_arrays;   // out: the name of every point-data array, in file order
+  std::vector<std::string> other_arrays;   // out: other data ("NAME (cell data)"), for messages
+  std::vector<long long> point_ids;        // out: MSH node tag of each point (messages name nodes by
+                                           // tag); empty for VTU (points by index, ParaView's point id)
+};
+
 // The name of curve c as written: its name, or "curve<c>" when empty; double quotes and line
 // breaks become '_' (MSH quotes names), and with `no_blanks` also spaces and tabs (SU2 markers).
 std::string curve_label(const Mesh& mesh, std::size_t c, bool no_blanks = false);
@@ -27,6 +51,10 @@ void check_mesh_for_writing(const Mesh& mesh, const std::string& what);
 
 // Boundary edge indices grouped by curve (stable: curve order, then file order within a curve).
 std::vector<std::size_t> boundary_edges_by_curve(const Mesh& mesh);
+
+// The $NodeData section (MSH 2.2 and 4.1 alike) holding mesh.spacing as the view "q"; empty when
+// the mesh has no spacing values.
+std::string msh_spacing_node_data(const Mesh& mesh);
 
 // Coordinates are written with 17 significant digits, which reads back to the same double.
 std::string coord(double v);

@@ -3,6 +3,9 @@
 // https://gmsh.info/doc/texinfo/gmsh.html#MSH-file-format-version-2-_0028Legacy_0029.
 #include "io/msh_reader.hpp"
 
+#include <algorithm>
+#include <charconv>
+#include <limits>
 #include <map>
 #include <unordered_map>
 
@@ -30,6 +33,14 @@ struct MshData {
   std::vector<Vec2> points;
   std::vector<RawElement> lines, triangles;
   std::map<int, std::size_t> skipped;  // element type -> count
+  std::vector<long long> node_tags;    // per point, for messages about point data
+  // Point data: the wanted $NodeData (the last block of that name: the latest time step).
+  MeshPointData* data = nullptr;
+  bool have_values = false;
+  int components = 1;
+  std::string values_where;
+  std::vector<long long> value_tags;
+  std::vector<double> values;  // components per entry of value_tags
 };
 
 const char* element_name(int type) {
@@ -112,6 +123,7 @@ void add_node(LineScanner& s, MshData& d, long long tag, double x, double y) {
     s.fail("duplicate node tag", fmt::format("{}", tag));
   }
   d.points.push_back({x, y});
+  d.node_tags.push_back(tag);
 }
 
 void read_nodes(LineScanner& s, MshData& d) {
@@ -220,6 +232,100 @@ void read_elements(LineScanner& s, MshData& d) {
   expect_end(s, "Elements");
 }
 
+// The string tags of a $NodeData / $ElementData / $ElementNodeData section (the first is the view's
+// name), then its real and integer tags. Leaves the scanner before the first value line.
+struct DataHeader {
+  std::string name;
+  std::vector<long long> ints;  // time step, components, number of values, [partition]
+};
+
+DataHeader read_data_header(LineScanner& s, std::string_view section) {
+  DataHeader h;
+  const std::size_t strings = count(s, "number of string tags");
+  for (std::size_t i = 0; i < strings; ++i) {
+    std::string_view tag = s.expect_line("a string tag");
+    tag = tag.substr(tag.find_first_not_of(" \t"));
+    if (tag.size() >= 2 && tag.front() == '"' && tag.back() == '"') tag = tag.substr(1, tag.size() - 2);
+    if (i == 0) h.name = std::string(tag);
+  }
+  const std::size_t reals = count(s, "number of real tags");
+  for (std::size_t i = 0; i < reals; ++i) s.to_double(s.token("real tag"), "real tag");
+  const std::size_t ints = count(s, "number of integer tags");
+  for (std::size_t i = 0; i < ints; ++i) h.ints.push_back(s.to_int(s.token("integer tag"), "integer tag"));
+  if (h.ints.size() < 3) {
+    s.fail(fmt::format("{} needs 3 integer tags (time step, number of components, number of values)", section),
+           fmt::format("{} integer tags", h.ints.size()));
+  }
+  if (h.ints[1] < 1 || h.ints[2] < 0) s.fail(fmt::format("bad {} integer tags", section), fmt::format("{} {}", h.ints[1], h.ints[2]));
+  return h;
+}
+
+void skip_to_end(LineScanner& s, std::string_view section) {
+  const std::string end = fmt::format("$End{}", section.substr(1));
+  std::string_view line;
+  while (s.next_line(line)) {
+    const auto toks = split_tokens(line);
+    if (!toks.empty() && toks[0] == end) return;
+  }
+  s.fail(fmt::format("unexpected end of file, expected {}", end));
+}
+
+// $NodeData: lines "nodeTag value..." after the tags. Values may be NaN or infinite here: the
+// caller decides what a valid value is and names the node.
+void read_node_data(LineScanner& s, MshData& d) {
+  const int line = s.line();
+  const DataHeader h = read_data_header(s, "$NodeData");
+  if (std::find(d.data->point_arrays.begin(), d.data->point_arrays.end(), h.name) == d.data->point_arrays.end()) {
+    d.data->point_arrays.push_back(h.name);
+  }
+  if (h.name != d.data->wanted) {
+    skip_to_end(s, "$NodeData");
+    return;
+  }
+  d.have_values = true;
+  d.components = static_cast<int>(h.ints[1]);
+  d.values_where = fmt::format("{}:{}", s.file(), line);
+  d.value_tags.clear();
+  d.values.clear();
+  for (long long i = 0; i < h.ints[2]; ++i) {
+    d.value_tags.push_back(s.to_int(s.token("node tag"), "node tag"));
+    for (int c = 0; c < d.components; ++c) {
+      const std::string_view tok = s.token("node value");
+      double v = 0.0;
+      const auto [p, ec] = std::from_chars(tok.data(), tok.data() + tok.size(), v);
+      if (ec != std::errc() || p != tok.data() + tok.size()) s.fail("expected a number as node value", tok);
+      d.values.push_back(v);
+    }
+  }
+  expect_end(s, "NodeData");
+}
+
+void assemble_point_data(MshData& d) {
+  MeshPointData& out = *d.data;
+  out.point_ids = d.node_tags;
+  if (!d.have_values) return;
+  PointDataArray a;
+  a.name = d.data->wanted;
+  a.components = d.components;
+  a.where = d.values_where;
+  const std::size_t n = d.points.size();
+  a.values.assign(n * static_cast<std::size_t>(d.components), std::numeric_limits<double>::quiet_NaN());
+  a.given.assign(n, 0);
+  for (std::size_t i = 0; i < d.value_tags.size(); ++i) {
+    const auto it = d.node_index.find(d.value_tags[i]);
+    if (it == d.node_index.end()) {
+      throw InputError(fmt::format("{}: $NodeData '{}' gives a value for node {}, which is not in $Nodes", a.where, a.name,
+                                   d.value_tags[i]));
+    }
+    const auto p = static_cast<std::size_t>(it->second);
+    const auto nc = static_cast<std::size_t>(d.components);
+    std::copy_n(d.values.begin() + static_cast<long>(i * nc), nc, a.values.begin() + static_cast<long>(p * nc));
+    a.given[p] = 1;
+  }
+  if (std::all_of(a.given.begin(), a.given.end(), [](std::uint8_t g) { return g != 0; })) a.given.clear();
+  out.array = std::move(a);
+}
+
 int resolve(const MshData& d, const std::string& file, const RawElement& e, long long tag) {
   const auto it = d.node_index.find(tag);
   if (it == d.node_index.end()) throw InputError(fmt::format("{}:{}: element refers to unknown node tag {}", file, e.line, tag));
@@ -260,9 +366,10 @@ Mesh assemble(const std::string& file, MshData& d, MeshReadReport& report) {
 
 }  // namespace
 
-Mesh parse_msh(const std::string& file_label, std::string content, MeshReadReport& report) {
+Mesh parse_msh(const std::string& file_label, std::string content, MeshReadReport& report, MeshPointData* data) {
   LineScanner s(file_label, std::move(content));
   MshData d;
+  d.data = data;
   const auto first = s.token("$MeshFormat");
   if (first != "$MeshFormat") s.fail("an MSH file starts with $MeshFormat", first);
   read_format(s, d);
@@ -279,6 +386,12 @@ Mesh parse_msh(const std::string& file_label, std::string content, MeshReadRepor
       read_nodes(s, d);
     } else if (section == "$Elements") {
       read_elements(s, d);
+    } else if (section == "$NodeData" && d.data != nullptr) {
+      read_node_data(s, d);
+    } else if ((section == "$ElementData" || section == "$ElementNodeData") && d.data != nullptr) {
+      const DataHeader h = read_data_header(s, section);
+      d.data->other_arrays.push_back(fmt::format("{} ({})", h.name, section == "$ElementData" ? "element data" : "element node data"));
+      skip_to_end(s, section);
     } else if (!section.empty() && section[0] == '$') {
       // A section we do not use ($PartitionedEntities, $NodeData, ...): skip to its end marker.
       const std::string end = fmt::format("$End{}", section.substr(1));
@@ -290,11 +403,12 @@ Mesh parse_msh(const std::string& file_label, std::string content, MeshReadRepor
       s.fail("expected a section header starting with '$'", line);
     }
   }
+  if (data != nullptr) assemble_point_data(d);
   return assemble(file_label, d, report);
 }
 
-Mesh read_msh(const std::filesystem::path& path, MeshReadReport& report) {
-  return parse_msh(path.string(), read_text_file(path), report);
+Mesh read_msh(const std::filesystem::path& path, MeshReadReport& report, MeshPointData* data) {
+  return parse_msh(path.string(), read_text_file(path), report, data);
 }
 
 }  // namespace pdmesh

@@ -1,5 +1,6 @@
 // Gmsh MSH reader (ASCII 4.1 and 2.2, detected from $MeshFormat): nodes, 2-node lines as
-// boundary edges grouped into curves by physical group, and 3-node triangles.
+// boundary edges grouped into curves by physical group, 3-node triangles, and on request one
+// $NodeData view (point data).
 #pragma once
 #include <filesystem>
 #include <string>
@@ -13,7 +14,11 @@ namespace pdmesh {
 // "physical<tag>"), then lines without a physical group per elementary entity ("entity<tag>").
 // Other element types are skipped and counted in `report`. Throws InputError "FILE:LINE: ..."
 // on truncation, bad counts, unknown node tags, binary files and unsupported versions.
-Mesh parse_msh(const std::string& file_label, std::string content, MeshReadReport& report);
-Mesh read_msh(const std::filesystem::path& path, MeshReadReport& report);
+// With `data`, the $NodeData view named data->wanted (its first string tag; of several blocks of
+// that name, the last: the latest time step) is read into data->array, with the node tag of every
+// point in data->point_ids, and the names of all views are listed.
+Mesh parse_msh(const std::string& file_label, std::string content, MeshReadReport& report,
+               MeshPointData* data = nullptr);
+Mesh read_msh(const std::filesystem::path& path, MeshReadReport& report, MeshPointData* data = nullptr);
 
 }  // namespace pdmesh

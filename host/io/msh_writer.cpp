@@ -86,6 +86,7 @@ std::string msh41_string(const Mesh& mesh) {
     for (const auto& t : mesh.triangles) out += fmt::format("{} {} {} {}\n", tag++, t[0] + 1, t[1] + 1, t[2] + 1);
   }
   out += "$EndElements\n";
+  out += msh_spacing_node_data(mesh);
   return out;
 }
 
@@ -110,6 +111,7 @@ std::string msh22_string(const Mesh& mesh) {
     out += fmt::format("{} 2 2 {} 1 {} {} {}\n", tag++, curves + 1, t[0] + 1, t[1] + 1, t[2] + 1);
   }
   out += "$EndElements\n";
+  out += msh_spacing_node_data(mesh);
   return out;
 }
 

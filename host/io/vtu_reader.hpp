@@ -1,5 +1,5 @@
-// VTK XML UnstructuredGrid (.vtu) ASCII reader: points, triangle cells, the node kind and the
-// boundary edges / curve names that our writer stores as FieldData.
+// VTK XML UnstructuredGrid (.vtu) reader: points, triangle cells, the node kind and the boundary
+// edges / curve names that our writer stores as FieldData, and on request one point-data array.
 #pragma once
 #include <filesystem>
 #include <string>
@@ -9,9 +9,12 @@
 
 namespace pdmesh {
 
-// Cells other than triangles (type 5) are skipped and counted. Binary, appended or compressed
-// data arrays are rejected with an InputError naming FILE:LINE.
-Mesh parse_vtu(const std::string& file_label, const std::string& content, MeshReadReport& report);
-Mesh read_vtu(const std::filesystem::path& path, MeshReadReport& report);
+// Cells other than triangles (type 5) are skipped and counted. Data arrays may be ascii, binary
+// (base64) or appended (raw or base64), uncompressed or zlib-compressed. With `data`, the point-data
+// array data->wanted is decoded into data->array and the other array names are listed. Throws
+// InputError naming FILE:LINE on malformed or unsupported content.
+Mesh parse_vtu(const std::string& file_label, const std::string& content, MeshReadReport& report,
+               MeshPointData* data = nullptr);
+Mesh read_vtu(const std::filesystem::path& path, MeshReadReport& report, MeshPointData* data = nullptr);
 
 }  // namespace pdmesh

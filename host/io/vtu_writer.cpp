@@ -60,7 +60,13 @@ std::string vtu_string(const Mesh& mesh) {
   for (std::size_t i = 0; i < mesh.points.size(); ++i) {
     out += fmt::format("          {}\n", mesh.kind.empty() ? -1 : static_cast<int>(mesh.kind[i]));
   }
-  out += "        </DataArray>\n      </PointData>\n";
+  out += "        </DataArray>\n";
+  if (!mesh.spacing.empty()) {
+    out += "        <DataArray type=\"Float64\" Name=\"q\" format=\"ascii\">\n";
+    for (double q : mesh.spacing) out += fmt::format("          {}\n", coord(q));
+    out += "        </DataArray>\n";
+  }
+  out += "      </PointData>\n";
   out += "      <CellData Scalars=\"min_angle\">\n";
   cell_array(out, "min_angle", quality, &TriangleQuality::min_angle);
   cell_array(out, "max_angle", quality, &TriangleQuality::max_angle);

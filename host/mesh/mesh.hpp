@@ -20,6 +20,9 @@ struct Mesh {
   std::vector<BoundaryEdge> boundary_edges;
   std::vector<std::string> curve_names;
   std::vector<NodeKind> kind;  // per point, when known (empty for meshes read from files)
+  // Per point, when known: the spacing field q there. Written as point data "q" (VTU PointData, MSH
+  // $NodeData), so that a run's field can be read back as spacing.field = "mesh". Not read back.
+  std::vector<double> spacing;
 };
 
 }  // namespace pdmesh

@@ -2,6 +2,8 @@
 // BoundarySpacing is thesis eq. 3.6 (inverse-distance weighting of the closest segment of each
 // curve); ExpressionSpacing evaluates a user expression in x and y (muParser), e.g. eq. 7.2.
 #pragma once
+#include <cstddef>
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -18,6 +20,13 @@ class SpacingField {
   // Evaluates many points (the simulation's spacing update); the default loops over at().
   virtual void at_many(const std::vector<Vec2>& p, std::vector<double>& q) const;
 };
+
+// Runs body(begin, end) over contiguous chunks of [0, n) on up to max_threads threads, at least
+// kPointsPerThread points each (below that a thread costs more than it saves; small n runs on the
+// calling thread alone). An exception from any chunk is rethrown on the calling thread. For the
+// at_many of thread-safe fields, whose points are independent: the values are those of one loop.
+inline constexpr std::size_t kPointsPerThread = 4096;
+void for_chunks(std::size_t n, std::size_t max_threads, const std::function<void(std::size_t, std::size_t)>& body);
 
 // q(x) = sum_s (l_s / d_s) / sum_s (1 / d_s) over the closest segment s of each curve (eq. 3.6);
 // on the boundary (some d_s == 0 exactly) the limit: the mean l_s of the curves at distance 0.

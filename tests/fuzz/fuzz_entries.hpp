@@ -22,6 +22,7 @@
 #include "nodes/node_file.hpp"
 #include "sim/checkpoint.hpp"
 #include "sim/simulation.hpp"
+#include "spacing/mesh_spacing.hpp"
 #include "spacing/spacing_field.hpp"
 
 namespace pdmesh::fuzz {
@@ -106,6 +107,15 @@ inline void read_mesh_file(const std::filesystem::path& path) {
   try {
     MeshReadReport report;
     read_mesh(path, report);
+  } catch (const InputError&) {
+  }
+  // .vtu and .msh are also background meshes of data fields: point data, binary arrays, the
+  // field's checks and its point-location structure.
+  const std::string ext = path.extension().string();
+  if (ext != ".vtu" && ext != ".msh") return;
+  try {
+    const auto field = load_mesh_spacing(path, "q");
+    (void)field->at({0.5, 0.5});
   } catch (const InputError&) {
   }
 }
