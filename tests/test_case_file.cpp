@@ -281,6 +281,33 @@ TEST_CASE("the preset key selects the defaults, and keys the file sets win over 
   CHECK_THAT(error_of(std::string("preset = 3\n") + kMinimal), Catch::Contains("preset must be a string"));
 }
 
+TEST_CASE("geometry.curves and boundary.nodes: preset defaults, file values, overrides, errors", "[app][case]") {
+  const CaseConfig best = parse_case_text(kMinimal, kCase);
+  CHECK(best.geometry.curves == CurveKind::Polyline);
+  CHECK(best.boundary.nodes == BoundaryNodeRule::Spacing);
+  const CaseConfig thesis = parse_case_text(std::string("preset = \"thesis\"\n") + kMinimal, kCase);
+  CHECK(thesis.geometry.curves == CurveKind::Polyline);
+  CHECK(thesis.boundary.nodes == BoundaryNodeRule::Input);
+  // A key the file sets wins over the preset; --set wins over the file.
+  const std::string text = std::string("preset = \"thesis\"\n") + kMinimal +
+                           "curves = \"smooth\"\n[boundary]\nnodes = \"spacing\"\n";
+  const CaseConfig mixed = parse_case_text(text, kCase);
+  CHECK(mixed.geometry.curves == CurveKind::Smooth);  // not the default of either preset
+  CHECK(mixed.boundary.nodes == BoundaryNodeRule::Spacing);
+  const CaseConfig set = parse_case_text(text, kCase, {parse_set_option("boundary.nodes=input"),
+                                                       parse_set_option("geometry.curves=polyline")});
+  CHECK(set.geometry.curves == CurveKind::Polyline);
+  CHECK(set.boundary.nodes == BoundaryNodeRule::Input);
+  CHECK_THAT(error_of(std::string(kMinimal) + "curves = \"spline\"\n"),
+             Catch::Contains("demo/case.toml:3:10: geometry.curves must be one of polyline, smooth, got 'spline'"));
+  CHECK_THAT(error_of(std::string(kMinimal) + "[boundary]\nnodes = 2\n"),
+             Catch::Contains("boundary.nodes must be a string"));
+  CHECK_THAT(error_of(kMinimal, {parse_set_option("boundary.nodes=auto")}),
+             Catch::Contains("--set boundary.nodes=auto: boundary.nodes must be one of input, spacing, got 'auto'"));
+  CHECK_THAT(error_of(std::string(kMinimal) + "[boundary]\nnode = \"input\"\n"),
+             Catch::Contains("did you mean 'boundary.nodes'?"));
+}
+
 TEST_CASE("edit distance", "[app][case]") {
   CHECK(edit_distance("", "abc") == 3);
   CHECK(edit_distance("kitten", "sitting") == 3);

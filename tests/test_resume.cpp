@@ -103,12 +103,15 @@ TEST_CASE("a checkpoint survives format and parse exactly", "[resume]") {
 }
 
 TEST_CASE("a stopped and resumed run ends bit-identical to an uninterrupted one", "[resume][cli]") {
+  // The thesis' settings, and boundary nodes placed by the field on smooth curves.
+  const std::string settings = GENERATE(std::string(""), std::string("--set boundary.nodes=spacing --set geometry.curves=smooth"));
+  INFO("settings: " << settings);
   const fs::path whole = fresh_dir("whole"), parts = fresh_dir("parts");
-  const auto full = run_pdmesh(mesh_command(whole, "-q"));
+  const auto full = run_pdmesh(mesh_command(whole, "-q " + settings));
   REQUIRE(full.status == 0);
   CHECK_FALSE(fs::exists(whole / "checkpoint.pdmesh"));
 
-  const auto stopped = run_pdmesh(mesh_command(parts, "-q --stop-after 23"));
+  const auto stopped = run_pdmesh(mesh_command(parts, "-q --stop-after 23 " + settings));
   INFO(stopped.output);
   REQUIRE(stopped.status == 130);
   REQUIRE(fs::exists(parts / "checkpoint.pdmesh"));
@@ -120,7 +123,7 @@ TEST_CASE("a stopped and resumed run ends bit-identical to an uninterrupted one"
   CHECK(c.state.history.size() == 23);
   CHECK(pdmesh::read_text_file(parts / "final.nodes") != pdmesh::read_text_file(whole / "final.nodes"));
 
-  const auto resumed = run_pdmesh(mesh_command(parts, "-q --resume '" + parts.string() + "'"));
+  const auto resumed = run_pdmesh(mesh_command(parts, "-q --resume '" + parts.string() + "' " + settings));
   INFO(resumed.output);
   REQUIRE(resumed.status == 0);
   CHECK(pdmesh::read_text_file(parts / "final.nodes") == pdmesh::read_text_file(whole / "final.nodes"));
@@ -142,6 +145,10 @@ TEST_CASE("a checkpoint of another case or other settings is refused with exit 2
       run_pdmesh(mesh_command(fresh_dir("o5"), "--set spacing.gradation=0.3 --resume '" + dir.string() + "'"));
   CHECK(other_field.status == 2);
   CHECK_THAT(other_field.output, Catch::Contains("another case") && Catch::Contains("spacing.gradation"));
+  const auto other_curves =
+      run_pdmesh(mesh_command(fresh_dir("o5"), "--set geometry.curves=smooth --resume '" + dir.string() + "'"));
+  CHECK(other_curves.status == 2);
+  CHECK_THAT(other_curves.output, Catch::Contains("another case") && Catch::Contains("geometry.curves"));
   const std::string square = std::string(PDMESH_SOURCE_DIR) + "/cases/square200";
   const auto other_case = run_pdmesh("mesh '" + square + "' --out '" + fresh_dir("o3").string() +
                                      "' --device host --resume '" + (dir / "checkpoint.pdmesh").string() + "'");

@@ -41,9 +41,14 @@ std::size_t peak_rss() {
 
 struct BenchCase {
   std::string name;
+  // A generated case owns its geometry, tree and field; a case file's come from MeshInputs, built
+  // as pdmesh mesh builds them (the node geometry and boundary nodes of its settings).
   Geometry geometry;
-  std::unique_ptr<GeometryTree> tree;
-  std::unique_ptr<SpacingField> spacing;
+  std::unique_ptr<GeometryTree> own_tree;
+  std::unique_ptr<SpacingField> own_spacing;
+  std::unique_ptr<MeshInputs> inputs;
+  const GeometryTree* tree = nullptr;
+  const SpacingField* spacing = nullptr;
   NodeSet initial;
   SimOptions options;
 };
@@ -52,8 +57,10 @@ std::unique_ptr<BenchCase> generated_case(std::size_t target) {
   auto c = std::make_unique<BenchCase>();
   c->name = fmt::format("graded_{}k", target / 1000);
   c->geometry = graded_case_geometry(graded_case_spacing(target));
-  c->tree = std::make_unique<GeometryTree>(c->geometry);
-  c->spacing = std::make_unique<BoundarySpacing>(*c->tree);
+  c->own_tree = std::make_unique<GeometryTree>(c->geometry);
+  c->own_spacing = std::make_unique<BoundarySpacing>(*c->own_tree);
+  c->tree = c->own_tree.get();
+  c->spacing = c->own_spacing.get();
   c->initial = make_initial_distribution(*c->tree, *c->spacing, {}).nodes;
   c->options.stability_factor = 1.0;  // as pdmesh mesh
   return c;
@@ -64,16 +71,10 @@ std::unique_ptr<BenchCase> file_case(const std::string& dir, const std::string& 
   c->name = name;
   CaseConfig config = load_case_file(std::filesystem::path(dir) / name / "case.toml");
   config.quiet = true;
-  MeshInputs inputs(config);
-  c->geometry = inputs.geometry;
-  c->tree = std::make_unique<GeometryTree>(c->geometry);
-  c->spacing = make_case_spacing(config, *c->tree);
-  InitOptions init;
-  init.method = config.init.method;
-  init.seed = config.init.seed;
-  if (config.init.total > 0) init.total = static_cast<std::size_t>(config.init.total);
-  init.with_estimate = false;
-  c->initial = make_initial_distribution(*c->tree, *c->spacing, init).nodes;
+  c->inputs = std::make_unique<MeshInputs>(config);
+  c->tree = &c->inputs->node_tree();
+  c->spacing = c->inputs->spacing.get();
+  c->initial = make_initial(config, *c->inputs).nodes;
   c->options.dt_initial = config.simulation.dt_for(config.init.method);
   c->options.cutoff = config.simulation.cutoff;
   c->options.lj_a = config.simulation.lj_a;

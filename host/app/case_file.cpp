@@ -23,7 +23,7 @@ namespace fs = std::filesystem;
 namespace {
 
 // Tables that may hold further keys; every other key is a leaf.
-const std::vector<std::string> kSections = {"geometry", "spacing", "init", "simulation", "output"};
+const std::vector<std::string> kSections = {"geometry", "spacing", "boundary", "init", "simulation", "output"};
 const std::vector<std::string> kFormats = {"msh", "msh22", "vtu", "su2", "triangle", "png", "svg"};
 
 const char* type_name(const toml::node& n) {
@@ -212,8 +212,9 @@ void check_keys(const Reader& r, const toml::table& t, const std::string& prefix
 
 // Keys whose value is a string: an override such as "spacing.expression=2" means the text.
 bool is_string_key(const std::string& key) {
-  return key == "name" || key == "preset" || key == "spacing.field" || key == "spacing.expression" ||
-         key == "spacing.file" || key == "spacing.array" || key == "init.method" ||
+  return key == "name" || key == "preset" || key == "geometry.curves" || key == "boundary.nodes" ||
+         key == "spacing.field" || key == "spacing.expression" || key == "spacing.file" || key == "spacing.array" ||
+         key == "init.method" ||
          key == "simulation.device" || key == "simulation.precision" || key == "simulation.r0_rule" ||
          key == "output.color_by";
 }
@@ -294,13 +295,13 @@ bool is_plain_name(const std::string& s) {
 
 void read_geometry_section(const Reader& r, const toml::table& root, CaseConfig& c) {
   const toml::node* files = find(root, "geometry", "files");
-  if (!c.geometry.curves.empty()) {
+  if (!c.geometry.given_curves.empty()) {
     // Curves given in memory (case_for_curves) are the geometry; files would be a second one.
     if (files != nullptr) r.fail("geometry.files", files, "geometry.files cannot be set: the geometry is given as curves");
   } else if (files == nullptr && !r.partial()) {
     throw InputError(fmt::format("{}: geometry.files is required (the .crv/.dat/.poly files to mesh)", r.file()));
   }
-  if (files != nullptr && c.geometry.curves.empty()) {
+  if (files != nullptr && c.geometry.given_curves.empty()) {
     const std::vector<std::string> names = r.strings("geometry.files", *files);
     if (names.empty()) r.fail("geometry.files", files, "geometry.files must name at least one file");
     for (const std::string& f : names) c.geometry.files.push_back(r.resolve("geometry.files", f));
@@ -324,6 +325,17 @@ void read_geometry_section(const Reader& r, const toml::table& root, CaseConfig&
       r.fail("geometry.corner_angle", n, fmt::format("geometry.corner_angle must be in (0, 180) degrees, got {}", a));
     }
     c.geometry.corner_angle = a;
+  }
+  if (const toml::node* n = find(root, "geometry", "curves")) {
+    c.geometry.curves =
+        choose<CurveKind>(r, "geometry.curves", *n, {{"polyline", CurveKind::Polyline}, {"smooth", CurveKind::Smooth}});
+  }
+}
+
+void read_boundary_section(const Reader& r, const toml::table& root, CaseConfig& c) {
+  if (const toml::node* n = find(root, "boundary", "nodes")) {
+    c.boundary.nodes = choose<BoundaryNodeRule>(r, "boundary.nodes", *n,
+                                                {{"input", BoundaryNodeRule::Input}, {"spacing", BoundaryNodeRule::Spacing}});
   }
 }
 
@@ -536,6 +548,7 @@ CaseConfig check_values(const toml::table& root, const Reader& r, CaseConfig c) 
   }
   read_geometry_section(r, root, c);
   read_spacing_section(r, root, c);
+  read_boundary_section(r, root, c);
   read_init_section(r, root, c);
   read_simulation_section(r, root, c);
   read_output_section(r, root, c);
@@ -564,8 +577,8 @@ const std::vector<std::string>& case_file_keys() {
   static const std::vector<std::string> keys = {
       "name", "preset",
       "geometry.files", "geometry.curve_names", "geometry.join_tolerance", "geometry.corner_angle",
-      "spacing.field", "spacing.expression", "spacing.file", "spacing.array", "spacing.scale", "spacing.gradation",
-      "spacing.rows_in_gap", "spacing.curvature_angle",
+      "geometry.curves", "spacing.field", "spacing.expression", "spacing.file", "spacing.array", "spacing.scale",
+      "spacing.gradation", "spacing.rows_in_gap", "spacing.curvature_angle", "boundary.nodes",
       "init.method", "init.seed", "init.total",
       "simulation.iterations", "simulation.dt_initial", "simulation.dt_initial.structured",
       "simulation.dt_initial.random", "simulation.cutoff", "simulation.lj_a", "simulation.device",
@@ -651,7 +664,7 @@ CaseConfig case_for_curves(std::vector<RawCurve> curves, const std::string& sour
   CaseConfig c;
   c.source = source;
   c.name = source;
-  c.geometry.curves = std::move(curves);
+  c.geometry.given_curves = std::move(curves);
   return validate(root, r, overrides, std::move(c));
 }
 

@@ -19,6 +19,8 @@ class SpacingField;
 enum class SpacingKind { Boundary, Expression, Mesh };
 // simulation.precision. Auto: float where the device lacks fp64 or runs it far slower (opencl/precision_probe).
 enum class Precision { Double, Float, Auto };
+// geometry.curves: the curve the points describe (docs/geometry-input.md, "Smooth curves").
+enum class CurveKind { Polyline, Smooth };
 
 // Which defaults the keys a case file leaves out take (top-level key `preset`).
 //   Best:   the settings that give the best meshes; what a geometry given alone runs with.
@@ -53,7 +55,8 @@ struct CaseConfig {
     double join_tolerance = 1e-9;
     double corner_angle = 30.0;  // degrees
     // Curves given in memory (the Python API) instead of files; see case_for_curves().
-    std::vector<RawCurve> curves;
+    std::vector<RawCurve> given_curves;
+    CurveKind curves = CurveKind::Polyline;  // the same in both presets (docs/initialization.md, "Measured")
   } geometry;
 
   struct Spacing {
@@ -75,6 +78,10 @@ struct CaseConfig {
     double rows_in_gap = 2.0;
     double curvature_angle = 10.0;  // degrees
   } spacing;
+
+  struct Boundary {
+    BoundaryNodeRule nodes = BoundaryNodeRule::Spacing;  // thesis: Input (every geometry point is a node)
+  } boundary;
 
   struct Init {
     InitMethod method = InitMethod::Structured;

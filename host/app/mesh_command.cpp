@@ -60,8 +60,9 @@ MeshInputs::MeshInputs(const CaseConfig& config) {
   GeometryOptions options;
   options.join_tolerance = config.geometry.join_tolerance;
   options.corner_angle_deg = config.geometry.corner_angle;
-  geometry = config.geometry.curves.empty() ? read_geometry(files, config.geometry.curve_names, options)
-                                            : geometry_from_curves(config.geometry.curves, config.geometry.curve_names, options);
+  geometry = config.geometry.given_curves.empty()
+                 ? read_geometry(files, config.geometry.curve_names, options)
+                 : geometry_from_curves(config.geometry.given_curves, config.geometry.curve_names, options);
   // Curve names are fields in node and mesh files; one with white space would break them later.
   for (std::size_t c = 0; c < geometry.curves.size(); ++c) {
     const std::string& name = geometry.curves[c].name;
@@ -89,6 +90,49 @@ MeshInputs::MeshInputs(const CaseConfig& config) {
   // Before anything else uses them: with unresolvable coordinates the node estimate's tree could
   // refine without end.
   check_coordinate_resolution(geometry, *spacing);
+  boundary_rule = config.boundary.nodes;
+  if (config.geometry.curves == CurveKind::Smooth) {
+    DenseOptions dense_options;
+    dense_options.join_tolerance = config.geometry.join_tolerance;
+    try {
+      dense = std::make_unique<DenseGeometry>(
+          make_dense_geometry(SmoothCurves(geometry, config.geometry.corner_angle), *spacing, dense_options));
+    } catch (const GeometryError& e) {
+      // Smooth curves through coarse points can cross where the polylines pass close to each other.
+      smooth_fallback = e.what();
+    }
+    if (dense) {
+      check_coordinate_resolution(dense->geometry, *spacing);
+      dense_tree = std::make_unique<GeometryTree>(dense->geometry);
+    }
+  }
+}
+
+void MeshInputs::place_boundary() const {
+  if (boundary_placed_) return;
+  boundary_placed_ = true;
+  // The thesis' rule (every point of the input polyline) is applied by the initialization itself.
+  if (!dense && boundary_rule == BoundaryNodeRule::Input) return;
+  const Geometry& on = node_geometry();
+  PlacementOptions placement;
+  placement.max_nodes = max_nodes_;
+  // Placed by the final field (the pipeline's: graded, feature size, curvature), so that the boundary
+  // rows match the interior rows next to them.
+  const SpacingField& q = field();
+  const CurveStations stations = boundary_rule == BoundaryNodeRule::Spacing ? spacing_stations(on, q, placement)
+                                                                            : vertex_stations(on, &dense->vertex);
+  boundary_ = assemble_boundary_nodes(on, q, stations);
+  resolution_ = station_resolution(on, stations);
+}
+
+const NodeSet* MeshInputs::boundary_nodes() const {
+  place_boundary();
+  return boundary_ ? &*boundary_ : nullptr;
+}
+
+const std::vector<double>* MeshInputs::segment_resolution() const {
+  place_boundary();
+  return resolution_.empty() ? nullptr : &resolution_;
 }
 
 SpacingOptions spacing_options(const CaseConfig& config) {
@@ -97,7 +141,9 @@ SpacingOptions spacing_options(const CaseConfig& config) {
   o.gradation = config.spacing.gradation;
   o.rows_in_gap = config.spacing.rows_in_gap;
   o.curvature_angle = config.spacing.curvature_angle;
-  o.input_boundary_floor = kInputBoundaryFloor;
+  // The floors keep q near the input points' spacing while those points are the boundary nodes; nodes
+  // placed by the field need none (docs/spacing.md, "Floors").
+  o.input_boundary_floor = config.boundary.nodes == BoundaryNodeRule::Spacing ? 0.0 : kInputBoundaryFloor;
   return o;
 }
 
@@ -135,7 +181,7 @@ std::vector<std::string> MeshInputs::curve_names() const {
 }
 
 double check_node_limit(const CaseConfig& config, const MeshInputs& inputs) {
-  const double estimate = estimate_node_count(*inputs.tree, inputs.field());
+  const double estimate = estimate_node_count(inputs.node_tree(), inputs.field(), inputs.segment_resolution());
   refuse_above_limit(config.source.string(), config.max_nodes, estimate, "spacing field");
   if (config.init.total > config.max_nodes) {
     throw LimitError(fmt::format("{}: init.total = {} is more than --max-nodes {}", config.source.string(),
@@ -150,7 +196,9 @@ InitialDistribution make_initial(const CaseConfig& config, const MeshInputs& inp
   options.seed = config.init.seed;
   if (config.init.total > 0) options.total = static_cast<std::size_t>(config.init.total);
   options.with_estimate = false;  // check_node_limit computed it just before
-  return make_initial_distribution(*inputs.tree, inputs.field(), options);
+  options.boundary = inputs.boundary_nodes();
+  options.segment_resolution = inputs.segment_resolution();
+  return make_initial_distribution(inputs.node_tree(), inputs.field(), options);
 }
 
 void prepare_output_directory(const CaseConfig& config) {
@@ -177,10 +225,11 @@ void write_node_outputs(const CaseConfig& config, const MeshInputs& inputs, cons
   NodePictureOptions picture;
   picture.title = title;
   picture.tree_quads = tree_quads;
-  write_node_picture(dir / (stage + ".png"), inputs.geometry, nodes, picture);
+  const Geometry& geometry = inputs.node_geometry();
+  write_node_picture(dir / (stage + ".png"), geometry, nodes, picture);
   const bool svg = nodes.size() <= kSvgNodeLimit;
   if (svg) {
-    write_node_picture(dir / (stage + ".svg"), inputs.geometry, nodes, picture);
+    write_node_picture(dir / (stage + ".svg"), geometry, nodes, picture);
   } else {
     progress(config, "{}.svg skipped: {} nodes is more than {} (the PNG pictures are written)", stage, nodes.size(),
              kSvgNodeLimit);
@@ -189,7 +238,7 @@ void write_node_outputs(const CaseConfig& config, const MeshInputs& inputs, cons
     NodePictureOptions zoomed = picture;
     zoomed.title += " - " + view.name;
     zoomed.window = view.window;
-    write_node_picture(dir / fmt::format("{}_{}.png", stage, view.name), inputs.geometry, nodes, zoomed);
+    write_node_picture(dir / fmt::format("{}_{}.png", stage, view.name), geometry, nodes, zoomed);
   }
   progress(config, "wrote {}/{}.nodes, {}.png{}{}", dir.string(), stage, stage, svg ? fmt::format(", {}.svg", stage) : "",
            config.output.views.empty() ? "" : fmt::format(" and {} view(s)", config.output.views.size()));
@@ -237,8 +286,10 @@ SimResult simulate(const CaseConfig& config, const MeshInputs& inputs, NodeSet& 
   // The pipeline's quadtree: the final field itself, or (thesis) eq. 3.6's lookup table, built here.
   const SpacingPipeline& pipeline = inputs.pipeline();
   const auto field_start = std::chrono::steady_clock::now();
-  options.background = &pipeline.background();
-  if (pipeline.exact())
+  // Smooth curves: the nodes live on the dense polyline, so the simulator builds its quadtree (leaves
+  // tagged inside/boundary/outside) of the final field over that geometry instead.
+  options.background = inputs.dense ? nullptr : &pipeline.background();
+  if (pipeline.exact() && options.background != nullptr)
     progress(config, "spacing field: eq. 3.6 sampled for the simulation in {:.3f} s ({} leaves)",
              std::chrono::duration<double>(std::chrono::steady_clock::now() - field_start).count(),
              options.background->stats().leaves);
@@ -266,7 +317,7 @@ SimResult simulate(const CaseConfig& config, const MeshInputs& inputs, NodeSet& 
   };
   SimResult result;
   try {
-    result = backend.simulator->run(nodes, *inputs.tree, inputs.field(), options, callbacks);
+    result = backend.simulator->run(nodes, inputs.node_tree(), inputs.field(), options, callbacks);
   } catch (const DeviceError& e) {
     if (!saved_after) throw;
     throw DeviceError(e.what() + saved_note() + " (with --device host if the device stays unusable)");
@@ -312,7 +363,7 @@ Mesh mesh_and_measure(const CaseConfig& config, const MeshInputs& inputs, const 
   if (config.check) {
     // The mesh covers the polygons through the boundary nodes, which cut the curves' corners
     // where nodes have slid off geometry vertices; that area is what the check compares against.
-    const double node_area = node_domain_area(nodes, inputs.geometry);
+    const double node_area = node_domain_area(nodes, inputs.node_geometry());
     const CheckReport report = check_mesh(mesh, node_area);
     if (!report.ok()) throw SimulationError("the mesh failed its invariant check:\n" + report.summary());
     progress(config, "mesh check: passed (topology, orientation, constrained Delaunay, boundary edges, area {:.10g}; "
@@ -390,7 +441,7 @@ void report_spacing(const CaseConfig& config, const MeshInputs& inputs) {
 // `--resume`: the node set and driver state come from the checkpoint instead of the initialization
 // (whose outputs the interrupted run already wrote).
 int resume_mesh(const CaseConfig& config, const MeshInputs& inputs) {
-  Checkpoint checkpoint = read_checkpoint_for(*config.resume, config, *inputs.tree);
+  Checkpoint checkpoint = read_checkpoint_for(*config.resume, config, inputs.node_tree());
   check_node_limit(config, inputs);
   report_spacing(config, inputs);
   prepare_output_directory(config);
@@ -410,6 +461,11 @@ int run_mesh(const CaseConfig& config) {
   progress(config, "geometry: {} curves, {} segments, {} loops, area {:.6g}", inputs.geometry.curves.size(),
            inputs.geometry.segments.size(), inputs.geometry.loops.size(), inputs.geometry.area);
   if (!inputs.spacing_summary.empty()) progress(config, "{}", inputs.spacing_summary);
+  if (inputs.dense)
+    progress(config, "geometry: smooth curves (centripetal Catmull-Rom) as a dense polyline of {} segments, area {:.6g}",
+             inputs.dense->geometry.segments.size(), inputs.dense->geometry.area);
+  if (!inputs.smooth_fallback.empty())
+    progress(config, "note: geometry.curves = \"smooth\" fell back to the input polylines: {}", inputs.smooth_fallback);
   // An explicit OpenCL device that is not there is bad input: refuse it before anything is written.
   if (config.simulation.iterations > 0 && config.simulation.device != "host" && config.simulation.device != "auto")
     (void)ocl::select_device(config.simulation.device);

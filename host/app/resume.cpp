@@ -52,6 +52,10 @@ std::vector<std::pair<std::string, std::string>> case_identity(const CaseConfig&
   keys.emplace_back("geometry.curve_names", names);
   keys.emplace_back("geometry.join_tolerance", fmt::format("{}", config.geometry.join_tolerance));
   keys.emplace_back("geometry.corner_angle", fmt::format("{}", config.geometry.corner_angle));
+  // Only where they differ from the thesis' rule, so that checkpoints written before these keys
+  // existed keep their identity.
+  if (config.geometry.curves != CurveKind::Polyline) keys.emplace_back("geometry.curves", "smooth");
+  if (config.boundary.nodes != BoundaryNodeRule::Input) keys.emplace_back("boundary.nodes", "spacing");
   keys.emplace_back("spacing.field", config.spacing.field == SpacingKind::Expression ? "expression"
                                      : config.spacing.field == SpacingKind::Mesh     ? "mesh"
                                                                                      : "boundary");

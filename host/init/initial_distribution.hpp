@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "geometry/geometry_tree.hpp"
+#include "init/boundary_placement.hpp"
 #include "nodes/node_set.hpp"
 #include "spacing/spacing_field.hpp"
 
@@ -27,6 +28,12 @@ struct InitOptions {
   // Compute InitialDistribution::estimate (it costs more than the fill itself: 4x4 spacing samples
   // per leaf and more near the boundary). The mesh command already has it from its limit check.
   bool with_estimate = true;
+  // The boundary nodes to start from (boundary.nodes = "spacing", or the input points on a smooth
+  // curve's dense polyline); null: make_boundary_nodes(tree.geometry()), the thesis' rule.
+  const NodeSet* boundary = nullptr;
+  // Per segment of tree.geometry(): the boundary resolution the initialization tree refines to
+  // (InitTreeOptions::segment_resolution); null: the segment lengths.
+  const std::vector<double>* segment_resolution = nullptr;
 };
 
 struct InitialDistribution {
@@ -46,6 +53,7 @@ InitialDistribution make_initial_distribution(const GeometryTree& tree, const Sp
                                               const InitOptions& options);
 
 // The hexagonal-packing node-count estimate alone (also used to refuse unreasonable inputs).
-double estimate_node_count(const GeometryTree& tree, const SpacingField& spacing);
+double estimate_node_count(const GeometryTree& tree, const SpacingField& spacing,
+                          const std::vector<double>* segment_resolution = nullptr);
 
 }  // namespace pdmesh
