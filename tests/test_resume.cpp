@@ -97,7 +97,7 @@ TEST_CASE("a checkpoint survives format and parse exactly", "[resume]") {
   // A truncated file (no end line) is refused with its line.
   const std::string truncated = text.substr(0, text.rfind("end"));
   CHECK_THROWS_AS(pdmesh::parse_checkpoint(truncated, "mem"), pdmesh::InputError);
-  CHECK_THROWS_WITH(pdmesh::parse_checkpoint("pdmesh-checkpoint 2\n", "mem"), Catch::Contains("mem:1"));
+  CHECK_THROWS_WITH(pdmesh::parse_checkpoint("pdmesh-checkpoint 3\n", "mem"), Catch::Contains("mem:1"));
 }
 
 TEST_CASE("a stopped and resumed run ends bit-identical to an uninterrupted one", "[resume][cli]") {

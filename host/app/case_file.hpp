@@ -9,6 +9,7 @@
 
 #include "core/vec2.hpp"
 #include "init/initial_distribution.hpp"
+#include "sim/population.hpp"
 
 namespace pdmesh {
 
@@ -79,6 +80,10 @@ struct CaseConfig {
       return m == InitMethod::Structured ? dt_structured : dt_random;
     }
   } simulation;
+
+  // Node insertion and removal during the run (sim/population.hpp, docs/cli.md "[population]"). Best:
+  // on; thesis: off (the thesis keeps the initial node count).
+  PopulationOptions population{.enabled = true};
 
   struct Output {
     std::vector<std::string> formats{"msh", "vtu", "png"};

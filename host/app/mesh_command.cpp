@@ -197,6 +197,7 @@ SimResult simulate(const CaseConfig& config, const MeshInputs& inputs, NodeSet& 
   options.lj_a = config.simulation.lj_a;
   options.r0_any_direction = config.simulation.r0_any_direction;
   options.stability_factor = config.simulation.stability_factor;
+  options.population = config.population;
   options.quiet = config.quiet;
   options.device = context.get();
   options.device_float = use_float;
@@ -256,6 +257,9 @@ SimResult simulate(const CaseConfig& config, const MeshInputs& inputs, NodeSet& 
            st.seconds > 0 ? static_cast<double>(st.pairs_within) / st.seconds : 0.0,
            st.pairs_within ? static_cast<double>(st.pairs_examined) / static_cast<double>(st.pairs_within) : 0.0,
            st.snapped);
+  if (options.population.enabled)
+    progress(config, "population control: {} events ({:.3f} s), {} nodes inserted, {} removed; {} nodes now",
+             st.population_events, st.population_seconds, st.inserted, st.removed, nodes.size());
   const fs::path& dir = config.out_dir;
   write_history_csv(dir / "history.csv", result.history);
   write_history_plot(dir / "history.png", result.history, fmt::format("{} ({})", config.name, method_name(config.init.method)));
