@@ -153,7 +153,7 @@ void DeviceRun<Real>::remember(int done, double dt_initial, const GlobalTimeStep
     saved_nodes_.q[i] = build_q_[i];
   }
   saved_state_ = SimState{done, dt_initial, gm.state(), boundary_.arcs(), boundary_.tangents(), {},
-                          population_.last_event, population_.last_change};
+                          population_.schedule};
   saved_rows_ = rows;
 }
 
@@ -179,7 +179,7 @@ SimState DeviceRun<Real>::last_good_state(int done, double dt_initial, const Glo
           nodes_.q[i] = static_cast<double>(q[i]);
         }
         return SimState{done,    dt_initial, gm.state(), boundary_.arcs(), boundary_.tangents(),
-                        history, population_.last_event, population_.last_change};
+                        history, population_.schedule};
       }
     } catch (const Error&) {
       // The device cannot be read: the saved state below.
@@ -294,7 +294,8 @@ void DeviceRun<Real>::upload_nodes(const std::vector<double>* budgets, const std
 // budgets and leaves) and the lists are rebuilt before the next step.
 template <typename Real>
 std::optional<PopulationCounts> DeviceRun<Real>::population_event(int iteration) {
-  if (!population_event_due(options_.population, iteration, options_.iterations)) return std::nullopt;
+  if (!population_event_due(options_.population, population_.schedule, iteration, options_.iterations))
+    return std::nullopt;
   const auto t0 = Clock::now();
   std::vector<Real> x, y, q, budget;
   std::vector<std::int32_t> leaf;
@@ -529,8 +530,7 @@ SimResult DeviceRun<Real>::run(const SimCallbacks& callbacks) {
     throw InputError(fmt::format("the Verlet skin must be >= 0, got {}", options_.verlet_skin));
   const SimState* resume = options_.resume;
   if (resume) {
-    population_.last_event = resume->population_last_event;
-    population_.last_change = resume->population_last_change;
+    population_.schedule = resume->population;
     result.stats.dt_initial = resume->dt_initial;
     boundary_.restore(nodes_, resume->arcs, resume->tangents);  // before upload_initial reads the tangents
   }
@@ -639,7 +639,7 @@ SimResult DeviceRun<Real>::run(const SimCallbacks& callbacks) {
     throw;
   }
   result.state = SimState{done, result.stats.dt_initial, gm.state(), boundary_.arcs(), boundary_.tangents(),
-                          result.history, population_.last_event, population_.last_change};
+                          result.history, population_.schedule};
   result.stats.inserted = population_.inserted;
   result.stats.removed = population_.removed;
   result.stats.population_events = population_.events;

@@ -62,7 +62,8 @@ std::string format_checkpoint(const Checkpoint& c) {
   out += fmt::format("time_step {} {} {} {}\n", hex(s.time_step.dt),
                      s.time_step.previous ? hex(*s.time_step.previous) : std::string("none"),
                      s.time_step.consecutive_decreases, s.time_step.increases);
-  out += fmt::format("population {} {}\n", s.population_last_event, s.population_last_change);
+  out += fmt::format("population {} {} {} {}\n", s.population.next, s.population.interval, s.population.last_event,
+                     s.population.last_change);
   out += fmt::format("nodes {}\n", nodes.size());
   for (std::size_t i = 0; i < nodes.size(); ++i) {
     const Vec2 t = i < s.tangents.size() ? s.tangents[i] : Vec2{};
@@ -117,10 +118,12 @@ Checkpoint parse_checkpoint(const std::string& text, const std::string& source_n
   s.time_step.consecutive_decreases = static_cast<int>(in.to_index(t[3], 0, 1000, "consecutive decreases"));
   s.time_step.increases = static_cast<int>(in.to_index(t[4], 0, 1000, "increases"));
   if (!v1) {
-    t = keyword_line(in, "population", 3, "'population LAST_EVENT LAST_CHANGE'");
-    s.population_last_event = static_cast<int>(in.to_index(t[1], 0, s.iterations_done, "last population event"));
-    s.population_last_change =
-        static_cast<int>(in.to_index(t[2], 0, s.population_last_event, "last population change"));
+    t = keyword_line(in, "population", 5, "'population NEXT INTERVAL LAST_EVENT LAST_CHANGE'");
+    PopulationSchedule& p = s.population;
+    p.next = static_cast<int>(in.to_index(t[1], 0, 2'000'000'000, "next population event"));
+    p.interval = static_cast<int>(in.to_index(t[2], 0, 2'000'000'000, "population interval"));
+    p.last_event = static_cast<int>(in.to_index(t[3], 0, s.iterations_done, "last population event"));
+    p.last_change = static_cast<int>(in.to_index(t[4], 0, p.last_event, "last population change"));
   }
 
   t = keyword_line(in, "nodes", 2, "'nodes N'");

@@ -22,10 +22,24 @@ int population_last_event(const PopulationOptions& options, int iterations) {
   return last >= options.start && last >= 1 ? last : 0;
 }
 
-bool population_event_due(const PopulationOptions& options, int iteration, int iterations) {
+void PopulationSchedule::record(const PopulationOptions& options, int iteration, bool changed) {
+  last_event = iteration;
+  const int every = std::max(1, options.every);
+  if (changed) {
+    last_change = iteration;
+    interval = every;
+  } else {
+    interval = std::min(2 * (interval > 0 ? interval : every), kPopulationQuietGrowth * every);
+  }
+  next = iteration + interval;
+}
+
+bool population_event_due(const PopulationOptions& options, const PopulationSchedule& schedule, int iteration,
+                          int iterations) {
   const int last = population_last_event(options, iterations);
-  if (last == 0 || iteration < options.start || iteration > last) return false;
-  return iteration == last || (iteration - options.start) % options.every == 0;
+  if (last == 0 || iteration > last || iteration <= schedule.last_event) return false;
+  const int next = schedule.next > 0 ? schedule.next : options.start;
+  return iteration == last || iteration == next;
 }
 
 PopulationThresholds population_thresholds(const PopulationOptions& options, int iteration, int iterations) {
@@ -41,12 +55,12 @@ PopulationThresholds population_thresholds(const PopulationOptions& options, int
   return out;
 }
 
-PopulationStatus population_status(const PopulationOptions& options, int iteration, int iterations,
-                                   int last_event, int last_change) {
+PopulationStatus population_status(const PopulationOptions& options, const PopulationSchedule& schedule,
+                                   int iteration, int iterations) {
   PopulationStatus s;
   const int last = population_last_event(options, iterations);
   s.active = last > 0 && iteration < last;
-  s.settled = !s.active || (last_event > 0 && last_change < last_event);
+  s.settled = !s.active || (schedule.last_event > 0 && schedule.last_change < schedule.last_event);
   return s;
 }
 
@@ -100,7 +114,7 @@ std::optional<PopulationCounts> PopulationTracker::after_iteration(const Populat
                                                                    BoundaryHandler& boundary,
                                                                    const SpacingField& spacing,
                                                                    std::vector<int>* old_of_new) {
-  if (!population_event_due(options, iteration, iterations)) return std::nullopt;
+  if (!population_event_due(options, schedule, iteration, iterations)) return std::nullopt;
   const auto start = std::chrono::steady_clock::now();
   const PopulationCounts counts =
       run_population_event(nodes, boundary, spacing, population_thresholds(options, iteration, iterations), old_of_new);
@@ -119,8 +133,7 @@ std::optional<PopulationCounts> PopulationTracker::after_iteration(const Populat
   }
   inserted += counts.inserted();
   removed += counts.removed();
-  last_event = iteration;
-  if (counts.changed()) last_change = iteration;
+  schedule.record(options, iteration, counts.changed());
   return counts;
 }
 

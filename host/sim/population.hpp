@@ -25,7 +25,10 @@ struct PopulationRamp {
 
 struct PopulationOptions {
   bool enabled = false;  // the library default is the thesis' fixed node count
-  int every = 25;        // iterations between events
+  // Iterations between events. An event that changes nothing doubles the interval to the next one
+  // (up to kPopulationQuietGrowth x every), one that changes the node set resets it to every: a
+  // settled run triangulates rarely.
+  int every = 25;
   int start = 100;       // the first event comes after this iteration (the start's transient is over)
   // No event after this fraction of the run: the last event is at floor(stop * iterations), and the
   // lattice relaxes undisturbed after it.
@@ -67,22 +70,14 @@ struct PopulationCounts {
   bool skipped = false;  // the event could not triangulate the nodes (coincident nodes) and did nothing
 };
 
-// The iteration of the last event of a run of `iterations` (0: none).
-int population_last_event(const PopulationOptions& options, int iterations);
-// Whether an event follows iteration `iteration` of a run of `iterations`: start, start + every, ...,
-// and the last event, floor(stop * iterations).
-bool population_event_due(const PopulationOptions& options, int iteration, int iterations);
-// The thresholds at that event (ramped from the first event to the last).
-PopulationThresholds population_thresholds(const PopulationOptions& options, int iteration, int iterations);
+// The interval after quiet events grows at most to this multiple of PopulationOptions::every.
+inline constexpr int kPopulationQuietGrowth = 8;
 
-// Where population control stands after `iteration` (for a stopping rule: stop only once the
-// population has settled). `last_change` is the iteration of the last event that changed the node set.
-struct PopulationStatus {
-  bool active = false;   // events are still to come in this run
-  bool settled = true;   // off, past its last event, or the last event changed nothing
-};
-PopulationStatus population_status(const PopulationOptions& options, int iteration, int iterations,
-                                   int last_event, int last_change);
+// The iteration of the last event of a run of `iterations` (0: none): floor(stop * iterations), if
+// that is at or after start.
+int population_last_event(const PopulationOptions& options, int iterations);
+// The thresholds of an event after `iteration` (ramped from start to the last event).
+PopulationThresholds population_thresholds(const PopulationOptions& options, int iteration, int iterations);
 
 // Runs one event on the node set and the boundary handler that goes with it (positions, kinds,
 // curve lists, arc positions, tangents stay consistent). New nodes get q from `spacing` and no
@@ -93,11 +88,35 @@ PopulationStatus population_status(const PopulationOptions& options, int iterati
 PopulationCounts run_population_event(NodeSet& nodes, BoundaryHandler& boundary, const SpacingField& spacing,
                                       const PopulationThresholds& thresholds, std::vector<int>* old_of_new = nullptr);
 
-// What both simulation drivers keep between events: after each iteration they call after_iteration,
-// which runs the event when one is due and counts it.
-struct PopulationTracker {
-  int last_event = 0;   // iteration after which the last event ran (0: none yet)
+// The schedule's state between events (a checkpoint stores it): with the options and the run's
+// length it says when the next event comes.
+struct PopulationSchedule {
+  int next = 0;         // the iteration after which the next event runs (0: options.start)
+  int interval = 0;     // the current interval (0: options.every)
+  int last_event = 0;   // the iteration after which the last event ran (0: none yet)
   int last_change = 0;  // the same for the last event that changed the node set
+  // Records an event after `iteration` and schedules the next: `every` later after a change, twice
+  // the last interval (at most kPopulationQuietGrowth x every) after a quiet one.
+  void record(const PopulationOptions& options, int iteration, bool changed);
+};
+
+// Whether an event runs after `iteration`: the scheduled one, and always the last one.
+bool population_event_due(const PopulationOptions& options, const PopulationSchedule& schedule, int iteration,
+                          int iterations);
+
+// Where population control stands after `iteration` (for a stopping rule: stop only once the
+// population has settled).
+struct PopulationStatus {
+  bool active = false;   // events are still to come in this run
+  bool settled = true;   // off, past its last event, or the last event changed nothing
+};
+PopulationStatus population_status(const PopulationOptions& options, const PopulationSchedule& schedule,
+                                   int iteration, int iterations);
+
+// What both simulation drivers keep between events: after each iteration they call after_iteration,
+// which runs the event when one is due, counts it and schedules the next.
+struct PopulationTracker {
+  PopulationSchedule schedule;
   std::size_t inserted = 0, removed = 0;  // this run's events (not a resumed run's earlier part)
   int events = 0;
   double seconds = 0.0;

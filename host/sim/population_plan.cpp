@@ -170,7 +170,8 @@ class Planner {
     const auto c = static_cast<std::size_t>(curve);
     const std::vector<int>& list = nodes_.curve_nodes[c];
     const int a = list[k - 1], b = list[k];
-    if (used(a) || used(b)) return;
+    // Splits of neighbouring gaps share an end node without conflict; anything else blocks.
+    if (used_[static_cast<std::size_t>(a)] == 1 || used_[static_cast<std::size_t>(b)] == 1) return;
     const double arc = 0.5 * (arcs_[c][k - 1] + arcs_[c][k]);
     if (!(arcs_[c][k - 1] < arc && arc < arcs_[c][k])) return;
     const Curve& geometry_curve = tree_.geometry().curves[c];
@@ -183,8 +184,8 @@ class Planner {
         if (*u != a && *u != b && dist(x(*u), p) < t_.merge * qp) return;
     plan_.boundary_inserts.push_back({curve, k, arc});
     ++plan_.counts.inserted_boundary;
-    use(a);
-    use(b);
+    used_[static_cast<std::size_t>(a)] = std::max<char>(used_[static_cast<std::size_t>(a)], 2);
+    used_[static_cast<std::size_t>(b)] = std::max<char>(used_[static_cast<std::size_t>(b)], 2);
   }
 
   void close_gap(int curve, std::size_t k) {
@@ -344,7 +345,7 @@ class Planner {
   const SpacingField& spacing_;
   const PopulationThresholds& t_;
   DelaunayGraph graph_;
-  std::vector<char> used_;
+  std::vector<char> used_;  // per node: 0 free, 1 taken by an operation, 2 end of a split gap (only splits share it)
   PopulationPlan plan_;
 };
 

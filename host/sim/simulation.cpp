@@ -122,15 +122,12 @@ SimResult run_simulation(NodeSet& nodes, const GeometryTree& tree, const Spacing
   const int first = resume ? resume->iterations_done + 1 : 1;
   int done = first - 1;
   PopulationTracker population;
-  if (resume) {
-    population.last_event = resume->population_last_event;
-    population.last_change = resume->population_last_change;
-  }
+  if (resume) population.schedule = resume->population;
   // The state after `done` iterations; nodes must hold that iteration's positions.
   const auto snapshot = [&] {
     return SimState{done,           result.stats.dt_initial, gm.state(),
                     boundary.arcs(), boundary.tangents(),    result.history,
-                    population.last_event, population.last_change};
+                    population.schedule};
   };
   for (int iteration = first; iteration <= options.iterations; ++iteration) {
     const double dt_gm = gm.dt();

@@ -32,10 +32,7 @@ struct SimState {
   std::vector<std::vector<double>> arcs;   // BoundaryHandler arc positions, parallel to curve_nodes
   std::vector<Vec2> tangents;              // BoundaryHandler tangent per node
   std::vector<HistoryRow> history;         // rows 1 .. iterations_done
-  // Population control (sim/population.hpp): the iterations after which the last event ran and the
-  // last event that changed the node set (0: none yet).
-  int population_last_event = 0;
-  int population_last_change = 0;
+  PopulationSchedule population;           // population control's schedule (sim/population.hpp)
 };
 
 struct SimOptions {
