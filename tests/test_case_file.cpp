@@ -168,8 +168,8 @@ TEST_CASE("out-of-range values are rejected with the value", "[app][case]") {
         std::string::npos);
   CHECK(error_of(base + "[simulation]\ndt_initial = { random = 0 }\n")
             .find("simulation.dt_initial.random must be > 0") != std::string::npos);
-  CHECK(error_of(base + "[init]\nmethod = \"hexagonal\"\n")
-            .find("init.method must be one of structured, random, got 'hexagonal'") != std::string::npos);
+  CHECK(error_of(base + "[init]\nmethod = \"spiral\"\n")
+            .find("init.method must be one of structured, random, hexagonal, got 'spiral'") != std::string::npos);
   CHECK(error_of(base + "[simulation]\ndevice = \"cuda\"\n").find("got 'cuda'") != std::string::npos);
   CHECK(error_of(base + "[simulation]\ndevice = \"opencl:1\"\n").find("got 'opencl:1'") != std::string::npos);
   CHECK(error_of(base + "[simulation]\nprecision = \"half\"\n").find("got 'half'") != std::string::npos);
@@ -258,7 +258,7 @@ TEST_CASE("the preset key selects the defaults; keys the file sets win over it",
 TEST_CASE("population keys: best runs it, thesis does not; every value is checked", "[app][case][population]") {
   const CaseConfig best = parse_case_text(kMinimal, kCase);
   CHECK(best.population.enabled);
-  CHECK(best.population.every == 25);
+  CHECK(best.population.every == 50);
   CHECK(best.population.start == 100);
   CHECK(best.population.stop == 0.8);
   CHECK_FALSE(parse_case_text(std::string("preset = \"thesis\"\n") + kMinimal, kCase).population.enabled);

@@ -41,7 +41,6 @@ namespace {
 // megabytes, so only the PNG pictures (and zoomed views) are written.
 constexpr std::size_t kSvgNodeLimit = 500'000;
 
-const char* method_name(InitMethod m) { return m == InitMethod::Structured ? "structured" : "random"; }
 
 template <class... Args>
 void progress(const CaseConfig& config, fmt::format_string<Args...> format, Args&&... args) {
@@ -168,7 +167,7 @@ std::vector<double> metric_values(const std::vector<TriangleQuality>& q, const s
 
 void write_initial_outputs(const CaseConfig& config, const MeshInputs& inputs, const InitialDistribution& initial) {
   write_node_outputs(config, inputs, initial.nodes, "initial",
-                     fmt::format("{} - initial distribution ({})", config.name, method_name(config.init.method)),
+                     fmt::format("{} - initial distribution ({})", config.name, to_string(config.init.method)),
                      config.output.tree_overlay ? &initial.tree_quads : nullptr);
 }
 
@@ -262,10 +261,10 @@ SimResult simulate(const CaseConfig& config, const MeshInputs& inputs, NodeSet& 
              st.population_events, st.population_seconds, st.inserted, st.removed, nodes.size());
   const fs::path& dir = config.out_dir;
   write_history_csv(dir / "history.csv", result.history);
-  write_history_plot(dir / "history.png", result.history, fmt::format("{} ({})", config.name, method_name(config.init.method)));
+  write_history_plot(dir / "history.png", result.history, fmt::format("{} ({})", config.name, to_string(config.init.method)));
   write_node_outputs(config, inputs, nodes, "final",
                      fmt::format("{} - final distribution ({}, {} iterations)", config.name,
-                                 method_name(config.init.method), result.state.iterations_done),
+                                 to_string(config.init.method), result.state.iterations_done),
                      nullptr);
   return result;
 }

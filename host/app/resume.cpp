@@ -54,7 +54,7 @@ std::vector<std::pair<std::string, std::string>> case_identity(const CaseConfig&
   keys.emplace_back("geometry.corner_angle", fmt::format("{}", config.geometry.corner_angle));
   keys.emplace_back("spacing.field", config.spacing.field == SpacingKind::Expression ? "expression" : "boundary");
   keys.emplace_back("spacing.expression", config.spacing.expression);
-  keys.emplace_back("init.method", config.init.method == InitMethod::Structured ? "structured" : "random");
+  keys.emplace_back("init.method", to_string(config.init.method));
   keys.emplace_back("init.seed", fmt::format("{}", config.init.seed));
   keys.emplace_back("init.total", fmt::format("{}", config.init.total));
   const auto dt = config.simulation.dt_for(config.init.method);

@@ -158,6 +158,14 @@ void overload(const GeometryTree& tree, const SpacingField& spacing, const InitT
 
 }  // namespace
 
+const char* to_string(InitMethod method) {
+  switch (method) {
+    case InitMethod::Random: return "random";
+    case InitMethod::Hexagonal: return "hexagonal";
+    default: return "structured";
+  }
+}
+
 InitialDistribution make_initial_distribution(const GeometryTree& tree, const SpacingField& spacing,
                                               const InitOptions& options) {
   InitialDistribution out;

@@ -16,6 +16,13 @@ namespace {
 // so a pathological spacing cannot recurse without end.
 constexpr int kMaxFillDepth = 30;
 
+// The hexagonal fill keeps quads whole while the spacing is nearly constant over them, so that one
+// lattice covers many nodes (a lattice per small quad would leave a seam every few nodes): a quad is
+// split while its area ratio exceeds kHexMaxRatio, or exceeds kInitSplitRatio while q at its corners
+// and centre varies by more than kHexSpread.
+constexpr double kHexMaxRatio = 64.0;
+constexpr double kHexSpread = 1.1;
+
 struct FillContext {
   const GeometryTree& tree;
   const SpacingField& spacing;
@@ -53,21 +60,58 @@ void place_structured(FillContext& ctx, const Box& b, int count, bool known_insi
   }
 }
 
-void fill_quad(FillContext& ctx, const Box& b, const std::vector<int>& segments, bool known_inside,
-               int depth) {
+// Rows of an equilateral lattice fitted to the quad: round(width / q) columns h apart and as many
+// rows as make the hexagonal-packing count of the quad (area 2 / (sqrt(3) q^2)), every other row
+// shifted by h/2. In a large quad that is rows sqrt(3)/2 h apart; a small one (near the boundary,
+// one or two nodes wide) is stretched rather than left short of nodes. The row parity counts from
+// the quad's integer row `iy` at its level (row iy * rows + j), so that quads of the same size and
+// spacing next to each other continue one lattice without a seam.
+void place_hexagonal(FillContext& ctx, const Box& b, double q, std::int64_t iy, bool known_inside) {
+  const double w = b.width(), ht = b.height();
+  const int columns = std::max(1, static_cast<int>(std::lround(w / q)));
+  const double h = w / columns;
+  const double count = w * ht * 2.0 / (std::sqrt(3.0) * q * q);
+  const int rows = std::max(1, static_cast<int>(std::lround(count / columns)));
+  for (int j = 0; j < rows; ++j) {
+    const bool odd = ((iy * rows + j) % 2 + 2) % 2 == 1;
+    const double y = b.lo.y + (j + 0.5) / rows * ht;
+    for (int i = 0; i < columns; ++i) place(ctx, Vec2{b.lo.x + (i + (odd ? 0.75 : 0.25)) * h, y}, known_inside);
+  }
+}
+
+// Whether the hexagonal fill splits quad b (see kHexMaxRatio).
+bool hexagonal_split(const FillContext& ctx, const Box& b, double q_mid, double ratio) {
+  if (ratio > kHexMaxRatio) return true;
+  if (ratio <= kInitSplitRatio) return false;
+  double lo = q_mid, hi = q_mid;
+  for (const Vec2 p : {b.lo, b.hi, Vec2{b.lo.x, b.hi.y}, Vec2{b.hi.x, b.lo.y}}) {
+    const double q = ctx.spacing.at(p);
+    if (!(q > 0.0) || !std::isfinite(q)) return true;
+    lo = std::min(lo, q);
+    hi = std::max(hi, q);
+  }
+  return hi > kHexSpread * lo;
+}
+
+void fill_quad(FillContext& ctx, const Box& b, const std::vector<int>& segments, bool known_inside, int depth,
+               std::int64_t iy) {
   const double q_mid = ctx.spacing.at(b.centre());
   if (!(q_mid > 0.0) || !std::isfinite(q_mid))
     throw LimitError(fmt::format("initial distribution: spacing q({}, {}) = {} is not a positive finite number",
                                  b.centre().x, b.centre().y, q_mid));
   const double ratio = b.width() * b.height() / (std::numbers::pi * q_mid * q_mid / 4.0);
-  if (ratio > kInitSplitRatio && depth < kMaxFillDepth) {
+  const bool split = ctx.method == InitMethod::Hexagonal ? hexagonal_split(ctx, b, q_mid, ratio)
+                                                         : ratio > kInitSplitRatio;
+  if (split && depth < kMaxFillDepth) {
     const auto& segs = ctx.tree.geometry().segments;
     const Vec2 c = b.centre();
     const Box children[4] = {Box{b.lo, c}, Box{{c.x, b.lo.y}, {b.hi.x, c.y}},
                              Box{{b.lo.x, c.y}, {c.x, b.hi.y}}, Box{c, b.hi}};
-    for (const Box& child : children) {
+    for (int k = 0; k < 4; ++k) {
+      const Box& child = children[k];
+      const std::int64_t child_iy = 2 * iy + k / 2;  // children: lower-left, lower-right, upper-left, upper-right
       if (known_inside) {
-        fill_quad(ctx, child, segments, true, depth + 1);
+        fill_quad(ctx, child, segments, true, depth + 1, child_iy);
         continue;
       }
       std::vector<int> touching;
@@ -79,13 +123,19 @@ void fill_quad(FillContext& ctx, const Box& b, const std::vector<int>& segments,
         if (!ctx.tree.inside(child.centre())) continue;
         inside = true;
       }
-      fill_quad(ctx, child, touching, inside, depth + 1);
+      fill_quad(ctx, child, touching, inside, depth + 1, child_iy);
     }
     return;
   }
-  const int count = ctx.method == InitMethod::Structured ? structured_count(ratio) : random_count(ratio);
+  const int count = ctx.method == InitMethod::Random ? random_count(ratio)
+                    : ctx.method == InitMethod::Structured ? structured_count(ratio)
+                                                           : static_cast<int>(std::ceil(ratio));
   ctx.centre = b.centre();
   ctx.centre_distance = known_inside && count > 1 ? ctx.tree.closest(ctx.centre).distance : -1.0;
+  if (ctx.method == InitMethod::Hexagonal) {
+    place_hexagonal(ctx, b, q_mid, iy, known_inside);
+    return;
+  }
   if (ctx.method == InitMethod::Structured) {
     place_structured(ctx, b, count, known_inside);
     return;
@@ -135,7 +185,7 @@ std::size_t fill_leaf(const GeometryTree& tree, const SpacingField& spacing, con
                       InitMethod method, UnitRandom& rng, NodeSet& nodes) {
   FillContext ctx{tree, spacing, method, rng, nodes, 0, {}, -1.0};
   // Kept leaves without segments lie wholly inside (InitTree keeps only those whose centre is inside).
-  fill_quad(ctx, leaf.box, leaf.segments, leaf.segments.empty(), 0);
+  fill_quad(ctx, leaf.box, leaf.segments, leaf.segments.empty(), 0, leaf.iy);
   return ctx.added;
 }
 

@@ -28,14 +28,14 @@ struct PopulationOptions {
   // Iterations between events. An event that changes nothing doubles the interval to the next one
   // (up to kPopulationQuietGrowth x every), one that changes the node set resets it to every: a
   // settled run triangulates rarely.
-  int every = 25;
+  int every = 50;
   int start = 100;       // the first event comes after this iteration (the start's transient is over)
   // No event after this fraction of the run: the last event is at floor(stop * iterations), and the
   // lattice relaxes undisturbed after it.
   double stop = 0.8;
   // Vacancy: a triangle whose circumradius exceeds insert * q(circumcentre) gets a node there (or at
   // the midpoint of its longest edge), if that point's nearest node is farther than insert * q too.
-  PopulationRamp insert{0.85, 0.8};
+  PopulationRamp insert{0.8, 0.75};
   // Cluster: two nodes closer than merge * sigma_ij (sigma_ij = (q_i + q_j) / 2) become one.
   PopulationRamp merge{0.6, 0.7};
   // Interior nodes with at most this many Delaunay neighbours are deleted (0: never).
