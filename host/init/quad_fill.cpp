@@ -16,12 +16,13 @@ namespace {
 // so a pathological spacing cannot recurse without end.
 constexpr int kMaxFillDepth = 30;
 
-// The hexagonal fill keeps quads whole while the spacing is nearly constant over them, so that one
-// lattice covers many nodes (a lattice per small quad would leave a seam every few nodes): a quad is
-// split while its area ratio exceeds kHexMaxRatio, or exceeds kInitSplitRatio while q at its corners
-// and centre varies by more than kHexSpread.
-constexpr double kHexMaxRatio = 64.0;
-constexpr double kHexSpread = 1.1;
+// The hexagonal fill places the points of one global equilateral lattice per spacing level: level k
+// has spacing h_k = 2^(k / kHexLevelsPerOctave), rows h_k sqrt(3)/2 apart from the geometry's lower
+// left corner, odd rows shifted by h_k / 2. A quad takes the level nearest its centre spacing
+// (within 4.4%), so neighbouring quads of nearly the same spacing continue one lattice without a
+// seam; seams remain only where the level changes (where q is graded, which a lattice cannot follow
+// anyway).
+constexpr double kHexLevelsPerOctave = 8.0;
 
 struct FillContext {
   const GeometryTree& tree;
@@ -35,6 +36,7 @@ struct FillContext {
   // spares most closest-point queries in quads away from the boundary.
   Vec2 centre;
   double centre_distance = -1.0;
+  LatticePoints* lattice_points = nullptr;  // hexagonal fill only
 };
 
 void place(FillContext& ctx, Vec2 p, bool known_inside) {
@@ -60,58 +62,43 @@ void place_structured(FillContext& ctx, const Box& b, int count, bool known_insi
   }
 }
 
-// Rows of an equilateral lattice fitted to the quad: round(width / q) columns h apart and as many
-// rows as make the hexagonal-packing count of the quad (area 2 / (sqrt(3) q^2)), every other row
-// shifted by h/2. In a large quad that is rows sqrt(3)/2 h apart; a small one (near the boundary,
-// one or two nodes wide) is stretched rather than left short of nodes. The row parity counts from
-// the quad's integer row `iy` at its level (row iy * rows + j), so that quads of the same size and
-// spacing next to each other continue one lattice without a seam.
-void place_hexagonal(FillContext& ctx, const Box& b, double q, std::int64_t iy, bool known_inside) {
-  const double w = b.width(), ht = b.height();
-  const int columns = std::max(1, static_cast<int>(std::lround(w / q)));
-  const double h = w / columns;
-  const double count = w * ht * 2.0 / (std::sqrt(3.0) * q * q);
-  const int rows = std::max(1, static_cast<int>(std::lround(count / columns)));
-  for (int j = 0; j < rows; ++j) {
-    const bool odd = ((iy * rows + j) % 2 + 2) % 2 == 1;
-    const double y = b.lo.y + (j + 0.5) / rows * ht;
-    for (int i = 0; i < columns; ++i) place(ctx, Vec2{b.lo.x + (i + (odd ? 0.75 : 0.25)) * h, y}, known_inside);
+// The lattice points of q's level inside quad b (closed), each placed once.
+void place_hexagonal(FillContext& ctx, const Box& b, double q, bool known_inside) {
+  const auto level = static_cast<std::int64_t>(std::lround(kHexLevelsPerOctave * std::log2(q)));
+  const double h = std::exp2(static_cast<double>(level) / kHexLevelsPerOctave);
+  const double v = 0.5 * std::sqrt(3.0) * h;
+  const Vec2 origin = ctx.tree.geometry().extents.lo;
+  const auto j_lo = static_cast<std::int64_t>(std::ceil((b.lo.y - origin.y) / v));
+  const auto j_hi = static_cast<std::int64_t>(std::floor((b.hi.y - origin.y) / v));
+  for (std::int64_t j = j_lo; j <= j_hi; ++j) {
+    const double shift = (j % 2 != 0) ? 0.5 * h : 0.0;
+    const auto i_lo = static_cast<std::int64_t>(std::ceil((b.lo.x - origin.x - shift) / h));
+    const auto i_hi = static_cast<std::int64_t>(std::floor((b.hi.x - origin.x - shift) / h));
+    for (std::int64_t i = i_lo; i <= i_hi; ++i) {
+      // Level, row and column packed into one key (21 bits each, far more than any lattice needs).
+      const std::uint64_t key = (static_cast<std::uint64_t>(level & 0x1FFFFF) << 42) |
+                                (static_cast<std::uint64_t>(j & 0x1FFFFF) << 21) |
+                                static_cast<std::uint64_t>(i & 0x1FFFFF);
+      if (!ctx.lattice_points->insert(key).second) continue;
+      place(ctx, Vec2{origin.x + static_cast<double>(i) * h + shift, origin.y + static_cast<double>(j) * v}, known_inside);
+    }
   }
 }
 
-// Whether the hexagonal fill splits quad b (see kHexMaxRatio).
-bool hexagonal_split(const FillContext& ctx, const Box& b, double q_mid, double ratio) {
-  if (ratio > kHexMaxRatio) return true;
-  if (ratio <= kInitSplitRatio) return false;
-  double lo = q_mid, hi = q_mid;
-  for (const Vec2 p : {b.lo, b.hi, Vec2{b.lo.x, b.hi.y}, Vec2{b.hi.x, b.lo.y}}) {
-    const double q = ctx.spacing.at(p);
-    if (!(q > 0.0) || !std::isfinite(q)) return true;
-    lo = std::min(lo, q);
-    hi = std::max(hi, q);
-  }
-  return hi > kHexSpread * lo;
-}
-
-void fill_quad(FillContext& ctx, const Box& b, const std::vector<int>& segments, bool known_inside, int depth,
-               std::int64_t iy) {
+void fill_quad(FillContext& ctx, const Box& b, const std::vector<int>& segments, bool known_inside, int depth) {
   const double q_mid = ctx.spacing.at(b.centre());
   if (!(q_mid > 0.0) || !std::isfinite(q_mid))
     throw LimitError(fmt::format("initial distribution: spacing q({}, {}) = {} is not a positive finite number",
                                  b.centre().x, b.centre().y, q_mid));
   const double ratio = b.width() * b.height() / (std::numbers::pi * q_mid * q_mid / 4.0);
-  const bool split = ctx.method == InitMethod::Hexagonal ? hexagonal_split(ctx, b, q_mid, ratio)
-                                                         : ratio > kInitSplitRatio;
-  if (split && depth < kMaxFillDepth) {
+  if (ratio > kInitSplitRatio && depth < kMaxFillDepth) {
     const auto& segs = ctx.tree.geometry().segments;
     const Vec2 c = b.centre();
     const Box children[4] = {Box{b.lo, c}, Box{{c.x, b.lo.y}, {b.hi.x, c.y}},
                              Box{{b.lo.x, c.y}, {c.x, b.hi.y}}, Box{c, b.hi}};
-    for (int k = 0; k < 4; ++k) {
-      const Box& child = children[k];
-      const std::int64_t child_iy = 2 * iy + k / 2;  // children: lower-left, lower-right, upper-left, upper-right
+    for (const Box& child : children) {
       if (known_inside) {
-        fill_quad(ctx, child, segments, true, depth + 1, child_iy);
+        fill_quad(ctx, child, segments, true, depth + 1);
         continue;
       }
       std::vector<int> touching;
@@ -123,7 +110,7 @@ void fill_quad(FillContext& ctx, const Box& b, const std::vector<int>& segments,
         if (!ctx.tree.inside(child.centre())) continue;
         inside = true;
       }
-      fill_quad(ctx, child, touching, inside, depth + 1, child_iy);
+      fill_quad(ctx, child, touching, inside, depth + 1);
     }
     return;
   }
@@ -133,7 +120,7 @@ void fill_quad(FillContext& ctx, const Box& b, const std::vector<int>& segments,
   ctx.centre = b.centre();
   ctx.centre_distance = known_inside && count > 1 ? ctx.tree.closest(ctx.centre).distance : -1.0;
   if (ctx.method == InitMethod::Hexagonal) {
-    place_hexagonal(ctx, b, q_mid, iy, known_inside);
+    place_hexagonal(ctx, b, q_mid, known_inside);
     return;
   }
   if (ctx.method == InitMethod::Structured) {
@@ -182,10 +169,12 @@ bool keep_interior_candidate(const GeometryTree& tree, const SpacingField& spaci
 }
 
 std::size_t fill_leaf(const GeometryTree& tree, const SpacingField& spacing, const InitLeaf& leaf,
-                      InitMethod method, UnitRandom& rng, NodeSet& nodes) {
-  FillContext ctx{tree, spacing, method, rng, nodes, 0, {}, -1.0};
+                      InitMethod method, UnitRandom& rng, NodeSet& nodes, LatticePoints* lattice) {
+  if (method == InitMethod::Hexagonal && lattice == nullptr)
+    throw Error("fill_leaf: the hexagonal fill needs the set of lattice points placed so far");
+  FillContext ctx{tree, spacing, method, rng, nodes, 0, {}, -1.0, lattice};
   // Kept leaves without segments lie wholly inside (InitTree keeps only those whose centre is inside).
-  fill_quad(ctx, leaf.box, leaf.segments, leaf.segments.empty(), 0, leaf.iy);
+  fill_quad(ctx, leaf.box, leaf.segments, leaf.segments.empty(), 0);
   return ctx.added;
 }
 

@@ -35,24 +35,24 @@ struct PopulationOptions {
   double stop = 0.8;
   // Vacancy: a triangle whose circumradius exceeds insert * q(circumcentre) gets a node there (or at
   // the midpoint of its longest edge), if that point's nearest node is farther than insert * q too.
-  PopulationRamp insert{0.8, 0.75};
+  PopulationRamp insert{0.75, 0.7};
   // Cluster: two nodes closer than merge * sigma_ij (sigma_ij = (q_i + q_j) / 2) become one.
-  PopulationRamp merge{0.6, 0.7};
+  PopulationRamp merge{0.6, 0.65};
   // Interior nodes with at most this many Delaunay neighbours are deleted (0: never).
   int remove_valence = 4;
   // Boundary gaps (arc length between consecutive nodes of a curve) longer than boundary_split * sigma
   // get a node at their middle; a node whose gap is shorter than merge * sigma leaves, unless the
   // merged gap would exceed boundary_split * sigma. Critical points never move or leave.
-  double boundary_split = 1.6;
+  double boundary_split = 1.5;
   bool boundary = true;
 };
 
-// The thresholds of one event.
+// The thresholds of one event (population_thresholds gives them for an iteration of a run).
 struct PopulationThresholds {
-  double insert = 0.85;
+  double insert = 0.75;
   double merge = 0.6;
   int remove_valence = 4;
-  double boundary_split = 1.6;
+  double boundary_split = 1.5;
   bool boundary = true;
 };
 
