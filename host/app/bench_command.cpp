@@ -120,10 +120,15 @@ std::string format_row(const Row& r) {
   } else if (r.pairs_within > 0) {
     examined = fmt::format("{:.2f}", static_cast<double>(r.pairs_examined) / static_cast<double>(r.pairs_within));
   }
-  if (r.stats.population_events > 0)
-    split = fmt::format("{}{}population {:.2f} ({} events, +{} -{})", split == "-" ? "" : split, split == "-" ? "" : " / ",
-                        1e3 * r.stats.population_seconds / r.iterations, r.stats.population_events, r.stats.inserted,
-                        r.stats.removed);
+  if (r.stats.population_events > 0) {
+    // Per iteration; on a device also the read-back and re-upload within it.
+    const std::string transfer =
+        r.device ? fmt::format(", transfers {:.2f}", 1e3 * r.device->population_transfer_seconds / r.iterations) : "";
+    const double seconds = r.device ? r.device->population_seconds : r.stats.population_seconds;
+    split = fmt::format("{}{}population {:.2f}{} ({} events, +{} -{})", split == "-" ? "" : split,
+                        split == "-" ? "" : " / ", 1e3 * seconds / r.iterations, transfer,
+                        r.stats.population_events, r.stats.inserted, r.stats.removed);
+  }
   const std::string ratio = r.device && r.host_ms > 0.0 ? fmt::format("{:.2f}", r.host_ms / (1e3 * per_it)) : "-";
   return fmt::format("| {} | {} | {} | {} | {:.3f} | {:.3g} | {:.3g} | {:.0f} | {} | {} | {} | {} | {} | {} |\n",
                      r.case_name, r.backend, r.nodes, r.iterations, 1e3 * per_it, node_its, pairs,

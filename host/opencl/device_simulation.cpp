@@ -304,6 +304,7 @@ std::optional<PopulationCounts> DeviceRun<Real>::population_event(int iteration)
   read(q_[cur_], q, n_);
   read(budget_, budget, n_);
   read(node_leaf_, leaf, n_);
+  stats_.population_transfer_seconds += since(t0);
   for (std::size_t i = 0; i < n_; ++i) {
     if (nodes_.kind[i] == NodeKind::Interior) nodes_.x[i] = {static_cast<double>(x[i]), static_cast<double>(y[i])};
     nodes_.q[i] = static_cast<double>(q[i]);
@@ -326,7 +327,10 @@ std::optional<PopulationCounts> DeviceRun<Real>::population_event(int iteration)
         leaves[k] = background_locate(background_.data(), nodes_.x[k], u, v);
       }
     }
+    const auto t1 = Clock::now();
     upload_nodes(&budgets, &leaves);
+    check(ctx_.queue().finish(), "population re-upload");
+    stats_.population_transfer_seconds += since(t1);
     skin_use_ = HUGE_VAL;  // the lists are rebuilt before the next step
   }
   stats_.population_seconds += since(t0);
