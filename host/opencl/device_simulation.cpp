@@ -12,6 +12,7 @@
 
 #include "core/errors.hpp"
 #include "opencl/device_neighbours.hpp"
+#include "opencl/device_population.hpp"
 #include "opencl/step_program.hpp"
 #include "sim/boundary_handling.hpp"
 #include "sim/failure_report.hpp"
@@ -298,35 +299,20 @@ std::optional<PopulationCounts> DeviceRun<Real>::population_event(int iteration)
     return std::nullopt;
   const auto t0 = Clock::now();
   std::vector<Real> x, y, q, budget;
-  std::vector<std::int32_t> leaf;
-  read(x_[cur_], x, n_);
-  read(y_[cur_], y, n_);
-  read(q_[cur_], q, n_);
-  read(budget_, budget, n_);
-  read(node_leaf_, leaf, n_);
+  std::vector<std::int32_t> leaves;
+  for (auto [from, to] : {std::pair{&x_[cur_], &x}, {&y_[cur_], &y}, {&q_[cur_], &q}, {&budget_, &budget}})
+    read(*from, *to, n_);
+  read(node_leaf_, leaves, n_);
   stats_.population_transfer_seconds += since(t0);
   for (std::size_t i = 0; i < n_; ++i) {
     if (nodes_.kind[i] == NodeKind::Interior) nodes_.x[i] = {static_cast<double>(x[i]), static_cast<double>(y[i])};
     nodes_.q[i] = static_cast<double>(q[i]);
   }
-  const std::vector<Vec2> before = nodes_.x;
-  std::vector<int> old_of_new;
-  const auto counts = population_.after_iteration(options_.population, iteration, options_.iterations, nodes_,
-                                                  boundary_, background_, &old_of_new);
+  std::vector<double> budgets(budget.begin(), budget.end());
+  const auto counts = device_population_event(population_, options_.population, iteration, options_.iterations, nodes_,
+                                              boundary_, background_, budgets, leaves);
   if (counts && counts->changed()) {
     n_ = nodes_.size();
-    std::vector<double> budgets(n_, 0.0);
-    std::vector<std::int32_t> leaves(n_);
-    for (std::size_t k = 0; k < n_; ++k) {
-      const int old = old_of_new[k];
-      if (old >= 0 && nodes_.x[k] == before[static_cast<std::size_t>(old)]) {
-        budgets[k] = static_cast<double>(budget[static_cast<std::size_t>(old)]);
-        leaves[k] = leaf[static_cast<std::size_t>(old)];
-      } else {
-        double u, v;  // a new or merged node: no budget (the host tests its first move exactly)
-        leaves[k] = background_locate(background_.data(), nodes_.x[k], u, v);
-      }
-    }
     const auto t1 = Clock::now();
     upload_nodes(&budgets, &leaves);
     check(ctx_.queue().finish(), "population re-upload");
