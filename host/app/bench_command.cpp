@@ -92,6 +92,7 @@ struct Row {
   std::optional<ocl::DeviceRunStats> device;
   std::size_t peak_rss = 0;
   double host_ms = 0.0;  // the host reference's ms/iteration in the same run (for the ratio)
+  SimStats stats;        // population events
 };
 
 std::string format_row(const Row& r) {
@@ -118,6 +119,15 @@ std::string format_row(const Row& r) {
   } else if (r.pairs_within > 0) {
     examined = fmt::format("{:.2f}", static_cast<double>(r.pairs_examined) / static_cast<double>(r.pairs_within));
   }
+  if (r.stats.population_events > 0) {
+    // Per iteration; on a device also the read-back and re-upload within it.
+    const std::string transfer =
+        r.device ? fmt::format(", transfers {:.2f}", 1e3 * r.device->population_transfer_seconds / r.iterations) : "";
+    const double seconds = r.device ? r.device->population_seconds : r.stats.population_seconds;
+    split = fmt::format("{}{}population {:.2f}{} ({} events, +{} -{})", split == "-" ? "" : split,
+                        split == "-" ? "" : " / ", 1e3 * seconds / r.iterations, transfer,
+                        r.stats.population_events, r.stats.inserted, r.stats.removed);
+  }
   const std::string ratio = r.device && r.host_ms > 0.0 ? fmt::format("{:.2f}", r.host_ms / (1e3 * per_it)) : "-";
   return fmt::format("| {} | {} | {} | {} | {:.3f} | {:.3g} | {:.3g} | {:.0f} | {} | {} | {} | {} | {} | {} |\n",
                      r.case_name, r.backend, r.nodes, r.iterations, 1e3 * per_it, node_its, pairs,
@@ -136,6 +146,8 @@ int run_bench(const BenchArguments& args) {
                                  args.iterations, args.large_iterations));
   if (!(args.verlet_skin >= 0.0 && args.verlet_skin <= 4.0))
     throw InputError(fmt::format("bench: --skin must be in [0, 4], got {}", args.verlet_skin));
+  if (args.population_every < 0)
+    throw InputError(fmt::format("bench: --population must be >= 0, got {}", args.population_every));
   if (args.precision != "double" && args.precision != "float")
     throw InputError(fmt::format("bench: --precision must be double or float, got '{}'", args.precision));
   const std::vector<ocl::DeviceInfo> devices = ocl::list_devices();
@@ -155,6 +167,8 @@ int run_bench(const BenchArguments& args) {
     options.iterations = large ? args.large_iterations : args.iterations;
     options.quiet = true;
     options.verlet_skin = args.verlet_skin;
+    const std::string suffix =
+        args.population_every > 0 ? fmt::format(", population every {}", args.population_every) : std::string();
     {
       const int warm = large ? args.large_warmup : args.warmup;
       SimOptions w = options;
@@ -171,6 +185,12 @@ int run_bench(const BenchArguments& args) {
         if (!r.history.empty()) options.dt_initial = r.history.back().dt_gm;
       }
     }
+    if (args.population_every > 0) {
+      options.population.enabled = true;
+      options.population.every = args.population_every;
+      options.population.start = args.population_every;
+      options.population.stop = 1.0;
+    }
     double host_ms = 0.0;
     auto emit = [&](const Row& row) {
       const std::string line = format_row(row);
@@ -181,8 +201,8 @@ int run_bench(const BenchArguments& args) {
     if (!args.skip_host && !(large && args.skip_host_large)) {
       NodeSet nodes = c->initial;
       const SimResult r = run_simulation(nodes, *c->tree, *c->spacing, options);
-      Row row{c->name, "host reference", nodes.size(), options.iterations, r.stats.seconds, r.stats.pairs_within,
-              r.stats.pairs_examined, std::nullopt, peak_rss(), 0.0};
+      Row row{c->name, "host reference" + suffix, nodes.size(), options.iterations, r.stats.seconds,
+              r.stats.pairs_within, r.stats.pairs_examined, std::nullopt, peak_rss(), 0.0, r.stats};
       host_ms = 1e3 * r.stats.seconds / options.iterations;
       emit(row);
     }
@@ -194,10 +214,10 @@ int run_bench(const BenchArguments& args) {
       ocl::DeviceRunStats stats;
       const SimResult r = ocl::run_device_simulation(nodes, *c->tree, *c->spacing, o, ctx, precision, {}, &stats);
       Row row{c->name,
-              fmt::format("opencl:{}:{} {} ({})", info.platform, info.device, info.type,
-                          precision == ocl::Precision::Float ? "float" : "double"),
+              fmt::format("opencl:{}:{} {} ({}){}", info.platform, info.device, info.type,
+                          precision == ocl::Precision::Float ? "float" : "double", suffix),
               nodes.size(), o.iterations, r.stats.seconds, r.stats.pairs_within, r.stats.pairs_examined, stats,
-              peak_rss(), host_ms};
+              peak_rss(), host_ms, r.stats};
       emit(row);
     }
   }

@@ -23,7 +23,7 @@ namespace fs = std::filesystem;
 namespace {
 
 // Tables that may hold further keys; every other key is a leaf.
-const std::vector<std::string> kSections = {"geometry", "spacing", "boundary", "init", "simulation", "output"};
+const std::vector<std::string> kSections = {"geometry", "spacing", "boundary", "init", "simulation", "population", "output"};
 const std::vector<std::string> kFormats = {"msh", "msh22", "vtu", "su2", "triangle", "png", "svg"};
 
 const char* type_name(const toml::node& n) {
@@ -415,7 +415,8 @@ std::uint64_t non_negative(const Reader& r, const std::string& key, const toml::
 void read_init_section(const Reader& r, const toml::table& root, CaseConfig& c) {
   if (const toml::node* n = find(root, "init", "method")) {
     c.init.method = choose<InitMethod>(r, "init.method", *n,
-                                       {{"structured", InitMethod::Structured}, {"random", InitMethod::Random}});
+                                       {{"structured", InitMethod::Structured}, {"random", InitMethod::Random},
+                                        {"hexagonal", InitMethod::Hexagonal}});
   }
   if (const toml::node* n = find(root, "init", "seed")) c.init.seed = non_negative(r, "init.seed", *n);
   if (const toml::node* n = find(root, "init", "total")) c.init.total = non_negative(r, "init.total", *n);
@@ -467,6 +468,59 @@ void read_simulation_section(const Reader& r, const toml::table& root, CaseConfi
   if (const toml::node* n = find(root, "simulation", "r0_rule")) {
     s.r0_any_direction = choose<bool>(r, "simulation.r0_rule", *n, {{"force_direction", false}, {"any_direction", true}});
   }
+}
+
+// A threshold given as one number (constant over the run) or [first, last] (ramped from the first
+// event to the last), each in (lo, hi).
+PopulationRamp read_ramp(const Reader& r, const std::string& key, const toml::node& n, double lo, double hi) {
+  PopulationRamp ramp;
+  if (n.is_array()) {
+    const toml::array& a = *n.as_array();
+    if (a.size() != 2) r.fail(key, &n, fmt::format("{} must be a number or [first, last], got {} numbers", key, a.size()));
+    ramp = {r.number(key + "[0]", *a.get(0)), r.number(key + "[1]", *a.get(1))};
+  } else {
+    ramp.first = ramp.last = r.number(key, n);
+  }
+  for (double v : {ramp.first, ramp.last})
+    if (!(v > lo && v < hi)) r.fail(key, &n, fmt::format("{} must be in ({}, {}), got {}", key, lo, hi, v));
+  return ramp;
+}
+
+void read_population_section(const Reader& r, const toml::table& root, CaseConfig& c) {
+  PopulationOptions& p = c.population;
+  const auto integer_in = [&](const char* key, std::int64_t lo, std::int64_t hi, int& out) {
+    if (const toml::node* n = find(root, "population", key)) {
+      const std::string name = std::string("population.") + key;
+      const std::int64_t v = r.integer(name, *n);
+      if (v < lo || v > hi) r.fail(name, n, fmt::format("{} must be in {}..{}, got {}", name, lo, hi, v));
+      out = static_cast<int>(v);
+    }
+  };
+  if (const toml::node* n = find(root, "population", "enabled")) p.enabled = r.boolean("population.enabled", *n);
+  integer_in("every", 1, 1'000'000'000, p.every);
+  integer_in("start", 0, 2'000'000'000, p.start);
+  integer_in("remove_valence", 0, 5, p.remove_valence);
+  if (const toml::node* n = find(root, "population", "stop")) {
+    p.stop = r.number("population.stop", *n);
+    if (!(p.stop > 0.0 && p.stop <= 1.0))
+      r.fail("population.stop", n, fmt::format("population.stop must be in (0, 1] (a fraction of the run), got {}", p.stop));
+  }
+  // An equilateral lattice has circumradius q / sqrt(3) = 0.577 q: insert must stay above it.
+  if (const toml::node* n = find(root, "population", "insert")) p.insert = read_ramp(r, "population.insert", *n, 0.6, 3.0);
+  if (const toml::node* n = find(root, "population", "merge")) p.merge = read_ramp(r, "population.merge", *n, 0.0, 1.0);
+  const toml::node* merge = find(root, "population", "merge");
+  if (std::max(p.merge.first, p.merge.last) >= std::min(p.insert.first, p.insert.last))
+    r.fail("population.merge", merge ? merge : find(root, "population", "insert"),
+           "population.merge must stay below population.insert (a new node would be merged again)");
+  if (const toml::node* n = find(root, "population", "boundary")) p.boundary = r.boolean("population.boundary", *n);
+  const toml::node* split = find(root, "population", "boundary_split");
+  if (split) p.boundary_split = r.number("population.boundary_split", *split);
+  // A split gap's halves must not be short enough to merge again (churn).
+  const double merge_max = std::max(p.merge.first, p.merge.last);
+  if (!(p.boundary_split > 2.0 * merge_max && p.boundary_split < 10.0))
+    r.fail("population.boundary_split", split ? split : merge,
+           fmt::format("population.boundary_split must be in (2 x population.merge = {}, 10), got {}", 2.0 * merge_max,
+                       p.boundary_split));
 }
 
 ViewWindow read_view(const Reader& r, const toml::node& entry, std::size_t i) {
@@ -551,6 +605,7 @@ CaseConfig check_values(const toml::table& root, const Reader& r, CaseConfig c) 
   read_boundary_section(r, root, c);
   read_init_section(r, root, c);
   read_simulation_section(r, root, c);
+  read_population_section(r, root, c);
   read_output_section(r, root, c);
   return c;
 }
@@ -583,6 +638,8 @@ const std::vector<std::string>& case_file_keys() {
       "simulation.iterations", "simulation.dt_initial", "simulation.dt_initial.structured",
       "simulation.dt_initial.random", "simulation.cutoff", "simulation.lj_a", "simulation.device",
       "simulation.precision", "simulation.r0_rule", "simulation.stability_factor",
+      "population.enabled", "population.every", "population.start", "population.stop", "population.insert",
+      "population.merge", "population.remove_valence", "population.boundary", "population.boundary_split",
       "output.formats", "output.tree_overlay", "output.views", "output.color_by", "output.spacing_picture",
   };
   return keys;

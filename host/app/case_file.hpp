@@ -11,6 +11,7 @@
 #include "core/vec2.hpp"
 #include "geometry/geometry.hpp"
 #include "init/initial_distribution.hpp"
+#include "sim/population.hpp"
 
 namespace pdmesh {
 
@@ -104,10 +105,15 @@ struct CaseConfig {
     // Stiffness bound on each node's time step (docs/simulation.md, "Stability"): 0 = off, the
     // thesis' rule exactly; c in (0, 1] keeps every step within the forward-Euler stability limit.
     double stability_factor = 1.0;
+    // A hexagonal start is a lattice like the structured one: it takes the structured value.
     std::optional<double> dt_for(InitMethod m) const {
-      return m == InitMethod::Structured ? dt_structured : dt_random;
+      return m == InitMethod::Random ? dt_random : dt_structured;
     }
   } simulation;
+
+  // Node insertion and removal during the run (sim/population.hpp, docs/cli.md "[population]"). Best:
+  // on; thesis: off (the thesis keeps the initial node count).
+  PopulationOptions population{.enabled = true};
 
   struct Output {
     std::vector<std::string> formats{"msh", "vtu", "png"};

@@ -45,7 +45,6 @@ namespace {
 // megabytes, so only the PNG pictures (and zoomed views) are written.
 constexpr std::size_t kSvgNodeLimit = 500'000;
 
-const char* method_name(InitMethod m) { return m == InitMethod::Structured ? "structured" : "random"; }
 
 template <class... Args>
 void progress(const CaseConfig& config, fmt::format_string<Args...> format, Args&&... args) {
@@ -141,10 +140,12 @@ SpacingOptions spacing_options(const CaseConfig& config) {
   o.gradation = config.spacing.gradation;
   o.rows_in_gap = config.spacing.rows_in_gap;
   o.curvature_angle = config.spacing.curvature_angle;
-  // The floors stay with boundary nodes placed by the field too: without them the feature size asks
-  // for q -> 0 toward sharp V tips, whose placed nodes then crowd into slivers (measured on the corpus:
-  // heatsink_channel 0.22 deg, coastline 0.47 deg without; 15.90 and 13.97 deg with; docs/spacing.md).
+  // The sources' floor stays with boundary nodes placed by the field too: without it the feature size
+  // asks for q -> 0 toward sharp V tips, whose placed nodes then crowd into slivers (measured on the
+  // corpus: heatsink_channel 0.22 deg, coastline 0.47 deg without; docs/spacing.md). The final floor
+  // only serves input points as boundary nodes: placed nodes follow whatever finer field the case asks.
   o.input_boundary_floor = kInputBoundaryFloor;
+  o.final_floor = config.boundary.nodes == BoundaryNodeRule::Input;
   return o;
 }
 
@@ -264,7 +265,7 @@ void write_spacing_picture(const CaseConfig& config, const MeshInputs& inputs) {
 
 void write_initial_outputs(const CaseConfig& config, const MeshInputs& inputs, const InitialDistribution& initial) {
   write_node_outputs(config, inputs, initial.nodes, "initial",
-                     fmt::format("{} - initial distribution ({})", config.name, method_name(config.init.method)),
+                     fmt::format("{} - initial distribution ({})", config.name, to_string(config.init.method)),
                      config.output.tree_overlay ? &initial.tree_quads : nullptr);
 }
 
@@ -281,6 +282,7 @@ SimResult simulate(const CaseConfig& config, const MeshInputs& inputs, NodeSet& 
   options.lj_a = config.simulation.lj_a;
   options.r0_any_direction = config.simulation.r0_any_direction;
   options.stability_factor = config.simulation.stability_factor;
+  options.population = config.population;
   options.quiet = config.quiet;
   options.stop = hooks && hooks->stop ? hooks->stop : &InterruptGuard::flag();
   options.resume = resume;
@@ -346,12 +348,15 @@ SimResult simulate(const CaseConfig& config, const MeshInputs& inputs, NodeSet& 
            st.seconds > 0 ? static_cast<double>(st.pairs_within) / st.seconds : 0.0,
            st.pairs_within ? static_cast<double>(st.pairs_examined) / static_cast<double>(st.pairs_within) : 0.0,
            st.snapped);
+  if (options.population.enabled)
+    progress(config, "population control: {} events ({:.3f} s), {} nodes inserted, {} removed; {} nodes now",
+             st.population_events, st.population_seconds, st.inserted, st.removed, nodes.size());
   const fs::path& dir = config.out_dir;
   write_history_csv(dir / "history.csv", result.history);
-  write_history_plot(dir / "history.png", result.history, fmt::format("{} ({})", config.name, method_name(config.init.method)));
+  write_history_plot(dir / "history.png", result.history, fmt::format("{} ({})", config.name, to_string(config.init.method)));
   write_node_outputs(config, inputs, nodes, "final",
                      fmt::format("{} - final distribution ({}, {} iterations)", config.name,
-                                 method_name(config.init.method), result.state.iterations_done),
+                                 to_string(config.init.method), result.state.iterations_done),
                      nullptr);
   return result;
 }

@@ -23,6 +23,9 @@ void apply_preset(CaseConfig& c, Preset preset) {
   // by the spacing field. (geometry.curves is "polyline" in both: smooth curves did not measurably
   // help; docs/initialization.md, "Measured".)
   c.boundary.nodes = thesis ? BoundaryNodeRule::Input : BoundaryNodeRule::Spacing;
+  // The thesis keeps the initial node count for the whole run (population control is its ch. 7
+  // future work).
+  c.population.enabled = !thesis;
 }
 
 }  // namespace pdmesh

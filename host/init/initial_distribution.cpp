@@ -158,6 +158,14 @@ void overload(const GeometryTree& tree, const SpacingField& spacing, const InitT
 
 }  // namespace
 
+const char* to_string(InitMethod method) {
+  switch (method) {
+    case InitMethod::Random: return "random";
+    case InitMethod::Hexagonal: return "hexagonal";
+    default: return "structured";
+  }
+}
+
 InitialDistribution make_initial_distribution(const GeometryTree& tree, const SpacingField& spacing,
                                               const InitOptions& options) {
   InitialDistribution out;
@@ -168,10 +176,11 @@ InitialDistribution make_initial_distribution(const GeometryTree& tree, const Sp
   out.estimate = options.with_estimate ? estimate_over(tree, spacing, init) : std::nan("");
 
   UnitRandom rng(options.seed);
+  LatticePoints lattice;
   for (int k : init.kept()) {
     const InitLeaf& leaf = init.leaves()[k];
     out.tree_quads.push_back(leaf.box);
-    out.tree_nodes += fill_leaf(tree, spacing, leaf, options.method, rng, out.nodes);
+    out.tree_nodes += fill_leaf(tree, spacing, leaf, options.method, rng, out.nodes, &lattice);
   }
   if (options.total && *options.total > out.nodes.size()) {
     out.overload_nodes = *options.total - out.nodes.size();

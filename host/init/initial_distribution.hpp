@@ -12,7 +12,12 @@
 
 namespace pdmesh {
 
-enum class InitMethod { Structured, Random };
+// How a leaf of the initialization tree is filled (docs/initialization.md): the thesis' structured
+// patterns (1, 4, 5 or 9 nodes) and random points, and rows of an equilateral lattice (thesis ch. 7).
+enum class InitMethod { Structured, Random, Hexagonal };
+
+// "structured", "random" or "hexagonal".
+const char* to_string(InitMethod method);
 
 // A quad is split into four while its area / (pi q_mid^2 / 4) exceeds this (thesis: 9.5).
 inline constexpr double kInitSplitRatio = 9.5;
