@@ -152,8 +152,11 @@ TEST_CASE("pdmesh mesh writes every stage's files: initial, history, final, mesh
   REQUIRE(r.status == 0);
   CHECK(contains(r.output, "initial distribution: "));
   CHECK(contains(r.output, "by hexagonal packing"));
-  CHECK(contains(r.output, "mesh check: passed"));
+  CHECK(contains(r.output, "mesh check (triangulation): passed"));
+  CHECK(contains(r.output, "cleanup: "));  // the best preset cleans the mesh ...
+  CHECK(contains(r.output, "mesh check (cleaned mesh): passed"));  // ... and --check checks the result too
   CHECK(contains(r.output, "Minimum Corner Jacobian"));  // the quality table
+  CHECK(contains(r.output, "Cleanup: min angle"));
   const std::vector<std::string> expected = {
       "initial.nodes", "initial.png", "initial.svg", "initial_corner.png", "initial_view2.png",
       "history.csv",   "history.png", "final.nodes", "final.png",          "final.svg",

@@ -1,0 +1,52 @@
+// Triangle measures the cleanup decides with: the sine of the smallest angle (its quality score),
+// circumcentre, circumradius and inradius. Plain floating point: orientation decisions that must be
+// exact use core/predicates; these only rank candidates.
+#pragma once
+#include <algorithm>
+#include <cmath>
+
+#include "core/vec2.hpp"
+
+namespace pdmesh::cleanup {
+
+// Sine of the smallest angle of (a, b, c): 2A / (product of the two longest edges), which is
+// monotone in the smallest angle (always <= 60 degrees), costs one square root, and is negative for
+// a clockwise triangle, so an inverted triangle ranks below every valid one.
+inline double min_angle_sine(Vec2 a, Vec2 b, Vec2 c) {
+  const double ab = norm2(b - a), bc = norm2(c - b), ca = norm2(a - c);
+  const double twice_area = cross(b - a, c - a);
+  // The smallest angle is opposite the shortest edge; the product of the other two is the rest.
+  const double shortest = std::min({ab, bc, ca});
+  const double product = shortest == ab ? bc * ca : (shortest == bc ? ab * ca : ab * bc);
+  return product > 0.0 ? twice_area / std::sqrt(product) : -1.0;
+}
+
+// Smallest angle in degrees from its sine (valid triangles only).
+inline double degrees_from_sine(double s) { return std::asin(std::clamp(s, -1.0, 1.0)) * 57.29577951308232; }
+inline double sine_from_degrees(double d) { return std::sin(d / 57.29577951308232); }
+
+// Area-length quality 4 sqrt(3) A / (l1^2 + l2^2 + l3^2): 1 for equilateral (JIGSAW's and MESH2D's score).
+inline double area_length_quality(Vec2 a, Vec2 b, Vec2 c) {
+  const double s = norm2(b - a) + norm2(c - b) + norm2(a - c);
+  return s > 0.0 ? 3.4641016151377544 * cross(b - a, c - a) / s : -1.0;
+}
+
+// Circumcentre of a non-degenerate triangle (relative to a for accuracy).
+inline Vec2 circumcentre(Vec2 a, Vec2 b, Vec2 c) {
+  const Vec2 u = b - a, v = c - a;
+  const double d = 2.0 * cross(u, v);
+  const double uu = norm2(u), vv = norm2(v);
+  return {a.x + (v.y * uu - u.y * vv) / d, a.y + (u.x * vv - v.x * uu) / d};
+}
+
+inline double inradius(Vec2 a, Vec2 b, Vec2 c) {
+  const double perimeter = dist(a, b) + dist(b, c) + dist(c, a);
+  return perimeter > 0.0 ? std::fabs(cross(b - a, c - a)) / perimeter : 0.0;
+}
+
+inline double circumradius(Vec2 a, Vec2 b, Vec2 c) {
+  const double twice_area = std::fabs(cross(b - a, c - a));
+  return twice_area > 0.0 ? dist(a, b) * dist(b, c) * dist(c, a) / (2.0 * twice_area) : HUGE_VAL;
+}
+
+}  // namespace pdmesh::cleanup

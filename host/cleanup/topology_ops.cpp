@@ -1,0 +1,161 @@
+// Trial-and-measure topology operations on one bad triangle (see topology_ops.hpp).
+#include "cleanup/topology_ops.hpp"
+
+#include <cmath>
+#include <limits>
+#include <utility>
+
+#include "cleanup/measures.hpp"
+#include "core/predicates.hpp"
+
+namespace pdmesh::cleanup {
+namespace {
+
+constexpr double kNone = -std::numeric_limits<double>::infinity();
+// A walk towards an insertion point longer than this is abandoned (the point is far away).
+constexpr int kMaxWalk = 64;
+
+}  // namespace
+
+TopologyOps::TopologyOps(EditableMesh& mesh, Smoother& smoother, std::function<double(Vec2)> h,
+                         TopologyOptions options)
+    : mesh_(mesh), smoother_(smoother), h_(std::move(h)), options_(options) {}
+
+// Visibility walk from triangle `start` towards `at`; -1 when the walk would leave the domain
+// (the point is outside it, or hidden behind a boundary edge), when it is on an edge, or too far.
+int TopologyOps::locate(int start, Vec2 at) const {
+  const auto& m = mesh_;
+  int t = start;
+  for (int step = 0; step < kMaxWalk; ++step) {
+    int across = -2;
+    for (int i = 0; i < 3 && across == -2; ++i) {
+      const double side = orient2d(m.p[m.v[t][next3(i)]], m.p[m.v[t][prev3(i)]], at);
+      if (side < 0.0) across = m.n[t][i];
+      else if (side == 0.0) across = -1;  // on an edge: not a strictly interior point
+    }
+    if (across == -2) return t;
+    if (across < 0) return -1;
+    t = across;
+  }
+  return -1;
+}
+
+bool TopologyOps::edges_fit(int a, bool inserted) {
+  const auto& m = mesh_;
+  const double h = h_(m.p[a]);
+  m.ring(a, ring2_);
+  for (int x : ring2_) {
+    const double l = dist(m.p[a], m.p[x]);
+    if (inserted ? l < options_.min_edge * h : l > options_.max_edge * h) return false;
+  }
+  return true;
+}
+
+void TopologyOps::relax_around(int a) {
+  for (int round = 0; round < options_.relax_rounds; ++round) {
+    smoother_.relax(a);
+    mesh_.ring(a, ring_);
+    for (int x : ring_) smoother_.relax(x);
+  }
+}
+
+bool TopologyOps::insert_at(int t, Vec2 at) {
+  auto& m = mesh_;
+  const int u = locate(t, at);
+  if (u < 0) return false;
+  const int w = m.insert_in_triangle(u, at);
+  edges_.clear();
+  m.push_link_edges(w, edges_);
+  m.legalize(edges_);
+  relax_around(w);
+  return edges_fit(w, true);
+}
+
+bool TopologyOps::collapse_edge(int a, int b) {
+  auto& m = mesh_;
+  const bool both_free = m.kind[b] == NodeKind::Interior;
+  const Vec2 to = both_free ? 0.5 * (m.p[a] + m.p[b]) : m.p[b];
+  if (!m.collapse(a, b, to, m.arc[b])) return false;
+  if (!m.star_valid(b)) return false;
+  edges_.clear();
+  m.push_link_edges(b, edges_);
+  m.legalize(edges_);
+  relax_around(b);
+  return edges_fit(b, false);
+}
+
+bool TopologyOps::split(int t, int i) {
+  auto& m = mesh_;
+  const Vec2 at = 0.5 * (m.p[m.v[t][next3(i)]] + m.p[m.v[t][prev3(i)]]);
+  if (!m.split_edge_valid(t, i, at)) return false;
+  const int w = m.split_edge(t, i, at);
+  edges_.clear();
+  m.push_link_edges(w, edges_);
+  m.legalize(edges_);
+  relax_around(w);
+  return edges_fit(w, true);
+}
+
+double TopologyOps::score() const {
+  const double before = mesh_.touched_min_before(), after = mesh_.touched_min_after();
+  if (!(after >= before + options_.gain)) return kNone;
+  if (mesh_.touched_below_after(options_.target) > mesh_.touched_below_before(options_.target)) return kNone;
+  return after;
+}
+
+RepairKind TopologyOps::repair(int t) {
+  auto& m = mesh_;
+  if (!m.alive(t)) return RepairKind::None;
+  const auto tv = m.v[t];
+  const Vec2 a = m.p[tv[0]], b = m.p[tv[1]], c = m.p[tv[2]];
+  struct Trial {
+    RepairKind kind;
+    std::function<bool()> apply;
+  };
+  std::vector<Trial> trials;
+  const Vec2 cc = circumcentre(a, b, c);
+  trials.push_back({RepairKind::Insert, [this, t, cc] { return insert_at(t, cc); }});
+  const Vec2 centroid = (1.0 / 3.0) * (a + b + c);
+  trials.push_back({RepairKind::Insert, [this, t, centroid] { return insert_at(t, centroid); }});
+  for (int i = 0; i < 3; ++i) {
+    const int x = tv[next3(i)], y = tv[prev3(i)];
+    const bool x_free = m.kind[x] == NodeKind::Interior, y_free = m.kind[y] == NodeKind::Interior;
+    if (x_free) trials.push_back({RepairKind::Collapse, [this, x, y] { return collapse_edge(x, y); }});
+    else if (y_free) trials.push_back({RepairKind::Collapse, [this, x, y] { return collapse_edge(y, x); }});
+    if (m.n[t][i] >= 0) trials.push_back({RepairKind::Split, [this, t, i] { return split(t, i); }});
+  }
+  // A crowded interior vertex (valence >= 7) of the triangle: split each of its other edges, which
+  // gives a neighbour the node it is missing (JIGSAW splits edges of valence-8 nodes).
+  for (int k = 0; k < 3; ++k) {
+    const int x = tv[k];
+    if (m.kind[x] != NodeKind::Interior) continue;
+    m.ring(x, ring2_);
+    if (ring2_.size() < 7) continue;
+    for (int y : ring2_) {
+      if (y == tv[next3(k)] || y == tv[prev3(k)]) continue;
+      trials.push_back({RepairKind::Split, [this, x, y] {
+                          const auto [u, i] = mesh_.find_edge(x, y);
+                          return u >= 0 && split(u, i);
+                        }});
+    }
+  }
+  double best = kNone;
+  int chosen = -1;
+  for (int k = 0; k < static_cast<int>(trials.size()); ++k) {
+    m.begin();
+    const double s = trials[k].apply() ? score() : kNone;
+    m.rollback();
+    if (s > best) {
+      best = s;
+      chosen = k;
+    }
+    if (best >= options_.enough) break;  // the region is out of the work range: good enough
+  }
+  if (chosen < 0) return RepairKind::None;
+  m.begin();
+  trials[chosen].apply();
+  m.commit();
+  return trials[chosen].kind;
+}
+
+}  // namespace pdmesh::cleanup
