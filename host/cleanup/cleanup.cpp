@@ -33,7 +33,8 @@ std::vector<int> vertices_of_bad_triangles(const EditableMesh& m, double limit, 
 
 // The median of edge length / q(midpoint) over a deterministic sample of at most ~4096 edges. The
 // particle lattice settles a little tighter than q (thesis ch. 6: ratios near 0.92), so the size
-// guards compare edges with this multiple of q rather than with q itself.
+// guards compare edges with this multiple of q rather than with q itself. Clamped to [0.8, 1]: a mesh
+// with gaps or without interior nodes has long edges everywhere, which say nothing about the lattice.
 double edge_to_spacing_ratio(const Mesh& mesh, const SpacingField& spacing) {
   std::vector<double> ratios;
   const std::size_t stride = std::max<std::size_t>(1, mesh.triangles.size() / 4096);
@@ -44,7 +45,7 @@ double edge_to_spacing_ratio(const Mesh& mesh, const SpacingField& spacing) {
   }
   if (ratios.empty()) return 1.0;
   std::nth_element(ratios.begin(), ratios.begin() + ratios.size() / 2, ratios.end());
-  return ratios[ratios.size() / 2];
+  return std::clamp(ratios[ratios.size() / 2], 0.8, 1.0);
 }
 
 }  // namespace
@@ -72,7 +73,7 @@ CleanupResult clean_mesh(const Mesh& mesh, const NodeSet& nodes, const GeometryT
   for (int iteration = 0; iteration < options.iterations; ++iteration) {
     std::size_t changed = 0;
     for (int a : vertices_of_bad_triangles(m, smooth_limit, mark)) changed += smoother.relax(a);
-    for (int a : vertices_of_bad_triangles(m, target, mark)) changed += smoother.climb(a);
+    for (int a : vertices_of_bad_triangles(m, topology_limit, mark)) changed += smoother.climb(a);
     result.stats.moves += changed;
     // The topology pass, worst triangle first; not in the last iteration, which only smooths.
     if (options.topology && iteration + 1 < options.iterations) {
@@ -80,6 +81,13 @@ CleanupResult clean_mesh(const Mesh& mesh, const NodeSet& nodes, const GeometryT
       for (int t = 0; t < m.triangle_slots(); ++t)
         if (m.alive(t) && m.quality(t) < topology_limit) bad.push_back({m.quality(t), t});
       std::sort(bad.begin(), bad.end());
+      double aspect_sum = 0.0, count = 0.0;
+      for (int t = 0; t < m.triangle_slots(); ++t)
+        if (m.alive(t)) {
+          aspect_sum += m.aspect(t);
+          count += 1.0;
+        }
+      ops.set_aspect_totals(aspect_sum, count);
       for (const auto& [q, t] : bad) {
         if (!m.alive(t) || !(m.quality(t) < topology_limit)) continue;
         // A triangle no operation could repair is tried again only once its shape has changed.

@@ -78,6 +78,7 @@ EditableMesh::EditableMesh(const Mesh& mesh, const std::vector<std::vector<int>>
 }
 
 double EditableMesh::quality(int t) const { return min_angle_sine(p[v[t][0]], p[v[t][1]], p[v[t][2]]); }
+double EditableMesh::aspect(int t) const { return aspect_ratio(p[v[t][0]], p[v[t][1]], p[v[t][2]]); }
 
 double EditableMesh::neighbour_arc(int a, int side) const {
   const int b = side == 0 ? prev[a] : next[a];
@@ -147,7 +148,7 @@ bool EditableMesh::star_valid(int a) const {
 void EditableMesh::touch_triangle(int t) {
   if (!open_ || t < 0 || t >= tri_size0_ || tri_stamp_[t] == stamp_) return;
   tri_stamp_[t] = stamp_;
-  tri_log_.push_back({t, v[t], n[t], alive(t) ? quality(t) : kInf});
+  tri_log_.push_back({t, v[t], n[t], alive(t) ? quality(t) : kInf, alive(t) ? aspect(t) : 0.0});
 }
 
 void EditableMesh::touch_vertex(int a) {
@@ -213,6 +214,33 @@ double EditableMesh::touched_min_after() const {
   for (int t = tri_size0_; t < triangle_slots(); ++t)
     if (alive(t)) m = std::min(m, quality(t));
   return m;
+}
+
+double EditableMesh::touched_aspect_before(int& count) const {
+  double sum = 0.0;
+  count = 0;
+  for (const SavedTriangle& s : tri_log_) {
+    if (s.quality == kInf) continue;  // a dead slot
+    sum += s.aspect;
+    ++count;
+  }
+  return sum;
+}
+
+double EditableMesh::touched_aspect_after(int& count) const {
+  double sum = 0.0;
+  count = 0;
+  for (const SavedTriangle& s : tri_log_)
+    if (alive(s.t)) {
+      sum += aspect(s.t);
+      ++count;
+    }
+  for (int t = tri_size0_; t < triangle_slots(); ++t)
+    if (alive(t)) {
+      sum += aspect(t);
+      ++count;
+    }
+  return sum;
 }
 
 int EditableMesh::touched_below_before(double limit) const {

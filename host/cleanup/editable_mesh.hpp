@@ -43,6 +43,7 @@ class EditableMesh {
   bool removed(int a) const { return gone_[a] != 0 || vt[a] < 0; }
   bool movable(int a) const { return kind[a] != NodeKind::Fixed; }
   double quality(int t) const;  // min_angle_sine of triangle t
+  double aspect(int t) const;   // aspect ratio R / (2 r) of triangle t
   // Boundary vertex a: the arc position of its neighbour along the curve before (side 0) or after
   // (side 1) it; a boundary vertex slides strictly between the two.
   double neighbour_arc(int a, int side) const;
@@ -89,6 +90,10 @@ class EditableMesh {
   void rollback();
   double touched_min_before() const;  // +inf when nothing was touched
   double touched_min_after() const;
+  // Sum of aspect ratios and number of those triangles, before and after (the cleanup keeps the
+  // mesh's average aspect ratio from rising).
+  double touched_aspect_before(int& count) const;
+  double touched_aspect_after(int& count) const;
   // How many of those triangles score below `limit`, before and after.
   int touched_below_before(double limit) const;
   int touched_below_after(double limit) const;
@@ -113,6 +118,7 @@ class EditableMesh {
     int t;
     std::array<int, 3> v, n;
     double quality;  // before the transaction; +inf for a dead slot
+    double aspect;   // aspect ratio before the transaction; 0 for a dead slot
   };
   struct SavedVertex {
     int a;

@@ -31,6 +31,15 @@ inline double area_length_quality(Vec2 a, Vec2 b, Vec2 c) {
   return s > 0.0 ? 3.4641016151377544 * cross(b - a, c - a) / s : -1.0;
 }
 
+// Aspect ratio R / (2 r) as the thesis appendix defines it (mesh/quality.cpp computes it the same
+// way: l1 l2 l3 s / (8 A^2), s the half perimeter); +inf for a degenerate or inverted triangle.
+inline double aspect_ratio(Vec2 a, Vec2 b, Vec2 c) {
+  const double la = dist(b, c), lb = dist(c, a), lc = dist(a, b);
+  const double area = 0.5 * cross(b - a, c - a);
+  const double s = 0.5 * (la + lb + lc);
+  return area > 0.0 ? la * lb * lc * s / (8.0 * area * area) : HUGE_VAL;
+}
+
 // Circumcentre of a non-degenerate triangle (relative to a for accuracy).
 inline Vec2 circumcentre(Vec2 a, Vec2 b, Vec2 c) {
   const Vec2 u = b - a, v = c - a;

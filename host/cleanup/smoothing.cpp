@@ -34,8 +34,9 @@ Vec2 Smoother::on_curve(int a, Vec2 candidate, double& new_arc) const {
 }
 
 // Moves a by `displacement` (projected onto its curve for a boundary vertex), halving the step
-// until no adjacent triangle inverts and the adjacent minimum does not drop while either the minimum
-// or the sum of area-length qualities rises (strictly, so sweeps end). fan_ holds a's star.
+// until no adjacent triangle inverts, the adjacent minimum does not drop, the adjacent sum of aspect
+// ratios does not rise, and one of the two strictly improves (so sweeps end, and neither the worst
+// angle nor the mesh's average aspect ratio can get worse). fan_ holds a's star.
 bool Smoother::try_move(int a, Vec2 displacement, double old_min, double old_sum) {
   const auto& m = mesh_;
   const Vec2 from = m.p[a];
@@ -54,9 +55,9 @@ bool Smoother::try_move(int a, Vec2 displacement, double old_min, double old_sum
         break;
       }
       new_min = std::min(new_min, min_angle_sine(x, y, z));
-      new_sum += area_length_quality(x, y, z);
+      new_sum += aspect_ratio(x, y, z);
     }
-    if (!valid || new_min < old_min || !(new_min > old_min || new_sum > old_sum)) continue;
+    if (!valid || new_min < old_min || new_sum > old_sum || !(new_min > old_min || new_sum < old_sum)) continue;
     mesh_.move(a, to, new_arc);
     edges_.clear();
     for (int t : fan_) {
@@ -81,7 +82,7 @@ bool Smoother::relax(int a) {
     const auto& tv = m.v[t];
     const Vec2 x = m.p[tv[0]], y = m.p[tv[1]], z = m.p[tv[2]];
     old_min = std::min(old_min, min_angle_sine(x, y, z));
-    old_sum += area_length_quality(x, y, z);
+    old_sum += aspect_ratio(x, y, z);
     const double area = 0.5 * cross(y - x, z - x);
     weighted = weighted + area * circumcentre(x, y, z);
     area_sum += area;
@@ -111,7 +112,7 @@ bool Smoother::climb(int a) {
       old_min = q;
       worst = t;
     }
-    old_sum += area_length_quality(x, y, z);
+    old_sum += aspect_ratio(x, y, z);
     r_min = std::min(r_min, inradius(x, y, z));
   }
   if (worst < 0 || !(r_min > 0.0)) return false;

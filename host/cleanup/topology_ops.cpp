@@ -98,8 +98,19 @@ bool TopologyOps::split(int t, int i) {
 
 double TopologyOps::score() const {
   const double before = mesh_.touched_min_before(), after = mesh_.touched_min_after();
-  if (!(after >= before + options_.gain)) return kNone;
-  if (mesh_.touched_below_after(options_.target) > mesh_.touched_below_before(options_.target)) return kNone;
+  const int below_before = mesh_.touched_below_before(options_.target);
+  const int below_after = mesh_.touched_below_after(options_.target);
+  // Kept when the worst angle rises by the gain without more triangles below the target, or when
+  // fewer triangles are below the target without the worst angle dropping (a plateau move: the
+  // boundary-only triangles of a gap need several insertions before the worst one can rise).
+  const bool rises = after >= before + options_.gain && below_after <= below_before;
+  const bool fewer_bad = after >= before && below_after < below_before;
+  if (!rises && !fewer_bad) return kNone;
+  // The mesh's average aspect ratio A may not rise: sum over the region of (AR - A) must not grow.
+  int n_before = 0, n_after = 0;
+  const double s_before = mesh_.touched_aspect_before(n_before), s_after = mesh_.touched_aspect_after(n_after);
+  const double average = aspect_sum_ / aspect_count_;
+  if (s_after - average * n_after > s_before - average * n_before) return kNone;
   return after;
 }
 
@@ -143,7 +154,8 @@ RepairKind TopologyOps::repair(int t) {
   int chosen = -1;
   for (int k = 0; k < static_cast<int>(trials.size()); ++k) {
     m.begin();
-    const double s = trials[k].apply() ? score() : kNone;
+    const bool applied = trials[k].apply();
+    const double s = applied ? score() : kNone;
     m.rollback();
     if (s > best) {
       best = s;
@@ -154,6 +166,10 @@ RepairKind TopologyOps::repair(int t) {
   if (chosen < 0) return RepairKind::None;
   m.begin();
   trials[chosen].apply();
+  int n_before = 0, n_after = 0;
+  const double s_before = m.touched_aspect_before(n_before), s_after = m.touched_aspect_after(n_after);
+  aspect_sum_ += s_after - s_before;
+  aspect_count_ += n_after - n_before;
   m.commit();
   return trials[chosen].kind;
 }

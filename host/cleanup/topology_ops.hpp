@@ -35,6 +35,12 @@ class TopologyOps {
 
   // Tries every operation on triangle t and applies the best one that helps; returns what it did.
   RepairKind repair(int t);
+  // The mesh's sum of aspect ratios and triangle count: an operation may not raise their average.
+  // Set before a pass; repair() keeps them current.
+  void set_aspect_totals(double sum, double count) {
+    aspect_sum_ = sum;
+    aspect_count_ = count;
+  }
 
  private:
   // One trial: applies the edit (false when it cannot be made) and relaxes; leaves the transaction open.
@@ -52,6 +58,7 @@ class TopologyOps {
   Smoother& smoother_;
   std::function<double(Vec2)> h_;
   TopologyOptions options_;
+  double aspect_sum_ = 0.0, aspect_count_ = 1.0;
   std::vector<int> ring_, ring2_;
   std::vector<std::array<int, 2>> edges_;
 };
