@@ -3,6 +3,7 @@
 // before and after and the time of each stage, single-threaded.
 // Usage: bench_cleanup NODES GEOMETRY... [--min-angle D] [--iterations N] [--smooth-below D]
 //                      [--step-cap F] [--no-topology] [--repeats N] [--png PREFIX] [--window x0,y0,x1,y1]
+//        bench_cleanup --write-graded N FILE.crv   (the graded_N geometry of `pdmesh bench` as a curve file)
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -12,7 +13,9 @@
 #include <string>
 #include <vector>
 
+#include "app/graded_case.hpp"
 #include "cleanup/cleanup.hpp"
+#include "io/text_file.hpp"
 #include "geometry/geometry_files.hpp"
 #include "geometry/geometry_tree.hpp"
 #include "mesh/mesh_check.hpp"
@@ -58,6 +61,17 @@ int main(int argc, char** argv) {
       else if (arg == "--repeats") repeats = std::stoi(value());
       else if (arg == "--png") png = value();
       else if (arg == "--worst") worst = std::stoi(value());
+      else if (arg == "--write-graded") {
+        const auto target = static_cast<std::size_t>(std::stod(value()));
+        const Geometry g = graded_case_geometry(graded_case_spacing(target));
+        std::string text;
+        for (const Curve& c : g.curves) {
+          text += fmt::format("{}\n", c.points.size());
+          for (const Vec2 p : c.points) text += fmt::format("{} {}\n", p.x, p.y);
+        }
+        write_text_file(value(), text);
+        return 0;
+      }
       else if (arg == "--window") {
         Box b;
         double x0, y0, x1, y1;

@@ -86,6 +86,7 @@ class EditableMesh {
   // triangle whose vertices, neighbours or geometry changed, so the worst quality before and after
   // over exactly the affected region can be compared (the rest of the mesh is unchanged).
   void begin();
+  bool in_transaction() const { return open_; }
   void commit();
   void rollback();
   double touched_min_before() const;  // +inf when nothing was touched

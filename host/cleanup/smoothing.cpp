@@ -58,6 +58,11 @@ bool Smoother::try_move(int a, Vec2 displacement, double old_min, double old_sum
       new_sum += aspect_ratio(x, y, z);
     }
     if (!valid || new_min < old_min || new_sum > old_sum || !(new_min > old_min || new_sum < old_sum)) continue;
+    // Lawson flips follow the move. They never lower the smallest angle of the quadrilateral they
+    // flip, but may change its aspect ratios, so outside a topology trial (which measures itself)
+    // the move and its flips are measured together and undone if the aspect-ratio sum grew.
+    const bool own = !mesh_.in_transaction();
+    if (own) mesh_.begin();
     mesh_.move(a, to, new_arc);
     edges_.clear();
     for (int t : fan_) {
@@ -65,6 +70,14 @@ bool Smoother::try_move(int a, Vec2 displacement, double old_min, double old_sum
       for (int i = 0; i < 3; ++i) edges_.push_back({tv[next3(i)], tv[prev3(i)]});
     }
     mesh_.legalize(edges_);
+    if (own) {
+      int n_before = 0, n_after = 0;
+      if (mesh_.touched_aspect_after(n_after) > mesh_.touched_aspect_before(n_before)) {
+        mesh_.rollback();
+        continue;
+      }
+      mesh_.commit();
+    }
     return true;
   }
   return false;
