@@ -107,8 +107,9 @@ int main(int argc, char** argv) {
     print_summary("after", summarize_quality(result.mesh, q, qo));
     const auto& st = result.stats;
     fmt::print("cleanup: {} iterations, {} moves, {} inserted, {} collapsed, {} rejected; best of {}: wall {:.3f} s, "
-               "cpu {:.3f} s (triangulation {:.3f} s)\n",
-               st.iterations_run, st.moves, st.inserted, st.collapsed, st.rejected, repeats, best, best_cpu, triangulate_s);
+               "cpu {:.3f} s (smoothing {:.3f} s, topology {:.3f} s wall; triangulation {:.3f} s)\n",
+               st.iterations_run, st.moves, st.inserted, st.collapsed, st.rejected, repeats, best, best_cpu,
+               st.smoothing_seconds, st.topology_seconds, triangulate_s);
     if (worst > 0) {
       // The worst triangles after the cleanup: angle, vertex kinds (F fixed, B boundary, I interior), valences.
       const Mesh& out = result.mesh;

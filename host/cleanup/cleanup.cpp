@@ -72,8 +72,19 @@ CleanupResult clean_mesh(const Mesh& mesh, const NodeSet& nodes, const GeometryT
   std::map<std::array<int, 3>, double> failures;
   for (int iteration = 0; iteration < options.iterations; ++iteration) {
     std::size_t changed = 0;
-    for (int a : vertices_of_bad_triangles(m, smooth_limit, mark)) changed += smoother.relax(a);
-    for (int a : vertices_of_bad_triangles(m, topology_limit, mark)) changed += smoother.climb(a);
+    // Only nodes whose neighbourhood changed since the last sweep can propose something new.
+    const std::vector<std::uint8_t> dirty = m.take_dirty();
+    const auto timer = std::chrono::steady_clock::now();
+    // Skipping a node whose neighbourhood did not change since it last failed gives exactly the result
+    // of trying it (the same proposal is rejected again); checked when its turn comes, since an earlier
+    // move in the same sweep may have changed it.
+    auto worth = [&](int a) { return (a < static_cast<int>(dirty.size()) && dirty[a]) || m.dirty(a); };
+    for (int a : vertices_of_bad_triangles(m, smooth_limit, mark))
+      if (worth(a)) changed += smoother.relax(a);
+    for (int a : vertices_of_bad_triangles(m, topology_limit, mark))
+      if (worth(a)) changed += smoother.climb(a);
+    const auto smoothed = std::chrono::steady_clock::now();
+    result.stats.smoothing_seconds += std::chrono::duration<double>(smoothed - timer).count();
     result.stats.moves += changed;
     // The topology pass, worst triangle first; not in the last iteration, which only smooths.
     if (options.topology && iteration + 1 < options.iterations) {
@@ -90,7 +101,7 @@ CleanupResult clean_mesh(const Mesh& mesh, const NodeSet& nodes, const GeometryT
       ops.set_aspect_totals(aspect_sum, count);
       for (const auto& [q, t] : bad) {
         if (!m.alive(t) || !(m.quality(t) < topology_limit)) continue;
-        // A triangle no operation could repair is tried again only once its shape has changed.
+        // A triangle no operation could repair is not tried again in this run.
         auto key = m.v[t];
         std::sort(key.begin(), key.end());
         const auto failed = failures.find(key);
@@ -104,6 +115,7 @@ CleanupResult clean_mesh(const Mesh& mesh, const NodeSet& nodes, const GeometryT
           default: ++result.stats.inserted; ++changed; break;
         }
       }
+      result.stats.topology_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - smoothed).count();
     }
     result.stats.iterations_run = iteration + 1;
     if (changed == 0) break;

@@ -36,6 +36,8 @@ struct CleanupStats {
   std::size_t rejected = 0;    // topology operations tried and undone
   int iterations_run = 0;
   double seconds = 0.0;
+  double smoothing_seconds = 0.0;  // of which in the smoothing sweeps ...
+  double topology_seconds = 0.0;   // ... and in the topology passes
 };
 
 struct CleanupResult {

@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 
 #include <cmath>
+#include <cstdlib>
 #include <limits>
 #include <unordered_map>
 
@@ -36,6 +37,7 @@ EditableMesh::EditableMesh(const Mesh& mesh, const std::vector<std::vector<int>>
   vt.assign(np, -1);
   gone_.assign(np, 0);
   vert_stamp_.assign(np, 0);
+  dirty_.assign(np, 1);
   chain_index_.assign(np, -1);
   // Nodes on a curve that the kinds do not mark (a mesh read without kinds) must not move either.
   for (std::size_t c = 0; c < curve_nodes.size(); ++c) {
@@ -145,7 +147,19 @@ bool EditableMesh::star_valid(int a) const {
 
 // ---- journal ----------------------------------------------------------------------------------
 
+void EditableMesh::mark_dirty(int t) {
+  if (t < 0 || !alive(t)) return;
+  for (int a : v[t]) dirty_[a] = 1;
+}
+
+std::vector<std::uint8_t> EditableMesh::take_dirty() {
+  std::vector<std::uint8_t> out(dirty_.size(), 0);
+  out.swap(dirty_);
+  return out;
+}
+
 void EditableMesh::touch_triangle(int t) {
+  if (!open_) mark_dirty(t);
   if (!open_ || t < 0 || t >= tri_size0_ || tri_stamp_[t] == stamp_) return;
   tri_stamp_[t] = stamp_;
   tri_log_.push_back({t, v[t], n[t], alive(t) ? quality(t) : kInf, alive(t) ? aspect(t) : 0.0});
@@ -173,6 +187,12 @@ void EditableMesh::begin() {
 }
 
 void EditableMesh::commit() {
+  for (const SavedTriangle& s : tri_log_) {
+    mark_dirty(s.t);
+    if (s.v[0] >= 0)
+      for (int a : s.v) dirty_[a] = 1;
+  }
+  for (int t = tri_size0_; t < triangle_slots(); ++t) mark_dirty(t);
   open_ = false;
   tri_log_.clear();
   vert_log_.clear();
@@ -198,7 +218,10 @@ void EditableMesh::rollback() {
   arc.resize(vert_size0_);
   gone_.resize(vert_size0_);
   vert_stamp_.resize(vert_size0_);
-  commit();
+  dirty_.resize(vert_size0_);
+  tri_log_.clear();
+  vert_log_.clear();
+  open_ = false;
 }
 
 double EditableMesh::touched_min_before() const {
@@ -288,6 +311,7 @@ int EditableMesh::new_vertex(Vec2 at) {
   vt.push_back(-1);
   gone_.push_back(0);
   vert_stamp_.push_back(0);
+  dirty_.push_back(1);
   chain_index_.push_back(-1);
   return vertex_slots() - 1;
 }
@@ -351,6 +375,10 @@ void EditableMesh::push_link_edges(int a, std::vector<std::array<int, 2>>& edges
 }
 
 void EditableMesh::move(int a, Vec2 to, double new_arc) {
+  if (!open_) {
+    star(a, star_scratch_);
+    for (int t : star_scratch_) mark_dirty(t);
+  }
   touch_star(a);
   touch_vertex(a);
   p[a] = to;

@@ -98,6 +98,12 @@ class EditableMesh {
   // How many of those triangles score below `limit`, before and after.
   int touched_below_before(double limit) const;
   int touched_below_after(double limit) const;
+  // Vertices whose star changed (moved, a neighbour moved, flips, insertions, collapses) since the
+  // last take_dirty(), which returns the flags (one per vertex slot) and clears them. A node whose
+  // neighbourhood did not change makes the same proposal as last time, so sweeps skip it. Edits undone
+  // by rollback() leave no mark.
+  std::vector<std::uint8_t> take_dirty();
+  bool dirty(int a) const { return dirty_[a] != 0; }
   // Vertices created by the open transaction (or since the last begin()).
   int first_new_vertex() const { return vert_size0_; }
 
@@ -135,6 +141,8 @@ class EditableMesh {
   std::vector<SavedVertex> vert_log_;
   int tri_size0_ = 0, vert_size0_ = 0;
   std::vector<std::uint8_t> gone_;  // per vertex: removed by a collapse
+  std::vector<std::uint8_t> dirty_;  // per vertex: see take_dirty()
+  void mark_dirty(int t);
   mutable std::vector<int> scratch_;
   std::vector<int> star_scratch_;
   std::vector<std::vector<int>> curve_nodes_;

@@ -68,7 +68,9 @@ bool TopologyOps::insert_at(int t, Vec2 at) {
   m.push_link_edges(w, edges_);
   m.legalize(edges_);
   relax_around(w);
-  return edges_fit(w, true);
+  fit_vertex_ = w;
+  fit_inserted_ = true;
+  return true;
 }
 
 bool TopologyOps::collapse_edge(int a, int b) {
@@ -81,7 +83,9 @@ bool TopologyOps::collapse_edge(int a, int b) {
   m.push_link_edges(b, edges_);
   m.legalize(edges_);
   relax_around(b);
-  return edges_fit(b, false);
+  fit_vertex_ = b;
+  fit_inserted_ = false;
+  return true;
 }
 
 bool TopologyOps::split(int t, int i) {
@@ -93,7 +97,9 @@ bool TopologyOps::split(int t, int i) {
   m.push_link_edges(w, edges_);
   m.legalize(edges_);
   relax_around(w);
-  return edges_fit(w, true);
+  fit_vertex_ = w;
+  fit_inserted_ = true;
+  return true;
 }
 
 double TopologyOps::score() const {
@@ -154,8 +160,9 @@ RepairKind TopologyOps::repair(int t) {
   int chosen = -1;
   for (int k = 0; k < static_cast<int>(trials.size()); ++k) {
     m.begin();
-    const bool applied = trials[k].apply();
-    const double s = applied ? score() : kNone;
+    double s = trials[k].apply() ? score() : kNone;
+    // The size guard queries the spacing field, so only for a trial that would be chosen.
+    if (s > best && !edges_fit(fit_vertex_, fit_inserted_)) s = kNone;
     m.rollback();
     if (s > best) {
       best = s;

@@ -21,7 +21,7 @@ struct TopologyOptions {
   double gain = 0.0035;  // required rise of the local minimum score (sine of the min angle)
   double target = 0.5;   // score of the target angle: a trial may not add triangles below it
   double enough = 1.0;   // a trial whose local minimum reaches this score is taken without trying the rest
-  int relax_rounds = 3;
+  int relax_rounds = 2;
   // Size guards against h: an inserted node's shortest edge must be at least min_edge x h there, and
   // a collapse may not leave an edge longer than max_edge x h, so that cleaning keeps the spacing.
   double min_edge = 0.6;
@@ -59,6 +59,8 @@ class TopologyOps {
   std::function<double(Vec2)> h_;
   TopologyOptions options_;
   double aspect_sum_ = 0.0, aspect_count_ = 1.0;
+  int fit_vertex_ = -1;         // the node the last trial inserted or merged into ...
+  bool fit_inserted_ = false;   // ... and whether it was inserted (for edges_fit)
   std::vector<int> ring_, ring2_;
   std::vector<std::array<int, 2>> edges_;
 };
