@@ -478,11 +478,16 @@ def main():
     if args.estimate:
         run_estimates(cases, args.ratio, args.cases)
         return 0
-    files = generated_files(cases)
-    if args.check:
+    return write_or_check(generated_files(cases), args.out, args.check, "cases")
+
+
+def write_or_check(files, root, check, under):
+    """Writes {relative path: text} under root (atomically, file by file), or with check lists the
+    files that differ from the text and returns 1 if any does. Returns the exit status."""
+    if check:
         stale = []
         for rel, text in files.items():
-            path = os.path.join(args.out, rel)
+            path = os.path.join(root, rel)
             if not os.path.exists(path):
                 stale.append(rel)
                 continue
@@ -493,10 +498,10 @@ def main():
             print(f"differs from the script's output: {rel}")
         return 1 if stale else 0
     for rel, text in files.items():
-        path = os.path.join(args.out, rel)
+        path = os.path.join(root, rel)
         os.makedirs(os.path.dirname(path), exist_ok=True)
         write_atomically(path, text)
-    print(f"wrote {len(files)} files under {os.path.join(args.out, 'cases')}")
+    print(f"wrote {len(files)} files under {os.path.join(root, under)}")
     return 0
 
 

@@ -4,11 +4,11 @@
 
 #include <algorithm>
 #include <cmath>
-#include <unordered_map>
 
 #include <fmt/format.h>
 
 #include "core/errors.hpp"
+#include "spacing/background_builder.hpp"
 
 namespace pdmesh {
 
@@ -77,183 +77,7 @@ double background_interpolate(const BackgroundFieldData& d, int leaf, double u, 
   return (1.0 - v) * ((1.0 - u) * q00 + u * q10) + v * ((1.0 - u) * q01 + u * q11);
 }
 
-namespace {
-
-// Builds the quadtree on an integer lattice: level R = max_depth + 2 resolves the quarter points of
-// the finest cells, so every sample point has integer coordinates (X, Y) and a 64-bit key; samples
-// shared by neighbouring cells are evaluated once and stored once.
-class Builder {
- public:
-  Builder(const SpacingField& exact, const GeometryTree& tree, const BackgroundOptions& options,
-          BackgroundFieldData& data)
-      : exact_(exact), tree_(tree), opt_(options), d_(data), resolution_(options.max_depth + 2) {}
-
-  void build() {
-    choose_grid();
-    const auto g = static_cast<std::size_t>(d_.grid);
-    std::vector<std::vector<int>> root_segments(g * g);
-    bin_segments(root_segments);
-    d_.root_node.resize(g * g);
-    for (std::size_t k = 0; k < g * g; ++k) {
-      d_.root_node[k] = new_node();
-      const Cell cell{static_cast<std::uint32_t>(k % g) << resolution_, static_cast<std::uint32_t>(k / g) << resolution_,
-                      0};
-      build_cell(d_.root_node[k], cell, root_segments[k]);
-    }
-  }
-
-  std::size_t evaluations() const { return samples_.size(); }
-
- private:
-  struct Cell {
-    std::uint32_t x, y;  // lattice coordinates of the low corner
-    int level;           // 0 = root cell
-  };
-
-  std::uint32_t span(int level) const { return std::uint32_t{1} << (resolution_ - level); }
-  double coord(double origin, std::uint32_t lattice) const {
-    return origin + d_.root_size * std::ldexp(static_cast<double>(lattice), -resolution_);
-  }
-  Box box(const Cell& c) const {
-    Box b;
-    b.lo = {coord(d_.origin_x, c.x), coord(d_.origin_y, c.y)};
-    b.hi = {coord(d_.origin_x, c.x + span(c.level)), coord(d_.origin_y, c.y + span(c.level))};
-    return b;
-  }
-  static std::uint64_t key(std::uint32_t x, std::uint32_t y) { return (std::uint64_t{x} << 32) | y; }
-
-  double sample(std::uint32_t x, std::uint32_t y) {
-    const auto [it, inserted] = samples_.try_emplace(key(x, y), 0.0);
-    if (inserted) it->second = exact_.at({coord(d_.origin_x, x), coord(d_.origin_y, y)});
-    return it->second;
-  }
-  std::int32_t corner(std::uint32_t x, std::uint32_t y) {
-    const auto [it, inserted] = corners_.try_emplace(key(x, y), static_cast<std::int32_t>(d_.corner_q.size()));
-    if (inserted) d_.corner_q.push_back(sample(x, y));
-    return it->second;
-  }
-  int new_node() {
-    d_.node_child.push_back(-1);
-    return static_cast<int>(d_.node_child.size()) - 1;
-  }
-
-  // The square: the extents' bounding square grown by 1/64 so that points off the grid are outside
-  // the domain; the top grid makes root cells about size_factor * (largest sampled q).
-  void choose_grid() {
-    const Box& e = tree_.geometry().extents;
-    Vec2 centre{0.0, 0.0};
-    double side = 1.0;
-    if (e.lo.x <= e.hi.x && e.lo.y <= e.hi.y) {
-      centre = e.centre();
-      side = std::max(e.width(), e.height());
-      if (!(side > 0.0)) side = 1.0;
-    }
-    side *= 1.0 + 1.0 / 64.0;
-    double q_max = 0.0;
-    for (int i = 0; i <= 8; ++i)
-      for (int j = 0; j <= 8; ++j)
-        q_max = std::max(q_max, exact_.at({centre.x + side * (i / 8.0 - 0.5), centre.y + side * (j / 8.0 - 0.5)}));
-    const double cells = std::ceil(side / (opt_.size_factor * q_max));
-    d_.grid = cells >= opt_.max_grid ? opt_.max_grid : std::max(1, static_cast<int>(cells));
-    d_.root_size = side / d_.grid;
-    d_.inv_root_size = 1.0 / d_.root_size;
-    d_.origin_x = centre.x - 0.5 * side;
-    d_.origin_y = centre.y - 0.5 * side;
-  }
-
-  // Each segment goes to the root cells its bounding box overlaps that it really touches (exact test).
-  void bin_segments(std::vector<std::vector<int>>& root_segments) const {
-    const auto& segs = tree_.geometry().segments;
-    const int g = d_.grid;
-    auto cell_of = [&](double c, double origin) {
-      const double f = std::floor((c - origin) * d_.inv_root_size);
-      return f < 0.0 ? 0 : f > g - 1 ? g - 1 : static_cast<int>(f);
-    };
-    for (std::size_t s = 0; s < segs.size(); ++s) {
-      const Segment& seg = segs[s];
-      // One cell of slack each way: the floor above may round either way at a cell edge.
-      const int x0 = std::max(0, cell_of(std::min(seg.a.x, seg.b.x), d_.origin_x) - 1);
-      const int x1 = std::min(g - 1, cell_of(std::max(seg.a.x, seg.b.x), d_.origin_x) + 1);
-      const int y0 = std::max(0, cell_of(std::min(seg.a.y, seg.b.y), d_.origin_y) - 1);
-      const int y1 = std::min(g - 1, cell_of(std::max(seg.a.y, seg.b.y), d_.origin_y) + 1);
-      for (int y = y0; y <= y1; ++y)
-        for (int x = x0; x <= x1; ++x) {
-          const Cell root{static_cast<std::uint32_t>(x) << resolution_, static_cast<std::uint32_t>(y) << resolution_, 0};
-          if (segment_touches_box(seg.a, seg.b, box(root)))
-            root_segments[static_cast<std::size_t>(y) * static_cast<std::size_t>(g) + static_cast<std::size_t>(x)]
-                .push_back(static_cast<int>(s));
-        }
-    }
-  }
-
-  bool needs_split(const Cell& c, const double q[4], int tag) {
-    if (c.level >= opt_.max_depth || tag == kTagOutside) return false;
-    const double q_min = std::min(std::min(q[0], q[1]), std::min(q[2], q[3]));
-    const double side = std::ldexp(d_.root_size, -c.level);
-    if (side > opt_.size_factor * q_min) return true;
-    if (side < (tag == kTagBoundary ? opt_.boundary_min_side_fraction : opt_.min_side_fraction) * q_min) return false;
-    // Test points in quarters of the cell: centre, edge midpoints, the four quarter points.
-    static constexpr int kTests[9][2] = {{2, 2}, {2, 0}, {2, 4}, {0, 2}, {4, 2}, {1, 1}, {3, 1}, {1, 3}, {3, 3}};
-    const std::uint32_t quarter = span(c.level) / 4;
-    for (const auto& t : kTests) {
-      const double exact = sample(c.x + quarter * static_cast<std::uint32_t>(t[0]),
-                                  c.y + quarter * static_cast<std::uint32_t>(t[1]));
-      const double u = t[0] / 4.0, v = t[1] / 4.0;
-      const double bilinear = (1.0 - v) * ((1.0 - u) * q[0] + u * q[1]) + v * ((1.0 - u) * q[2] + u * q[3]);
-      // Half the tolerance: the 9 test points see most, but not all, of the worst error in the cell.
-      if (std::fabs(bilinear - exact) > 0.5 * opt_.tolerance * exact) return true;
-    }
-    return false;
-  }
-
-  void build_cell(int node, const Cell& c, const std::vector<int>& segments) {
-    const std::uint32_t s = span(c.level);
-    const double q[4] = {sample(c.x, c.y), sample(c.x + s, c.y), sample(c.x, c.y + s), sample(c.x + s, c.y + s)};
-    const Box b = box(c);
-    int tag = kTagBoundary;
-    if (segments.empty()) tag = tree_.inside(b.centre()) ? kTagInside : kTagOutside;
-    d_.max_depth = std::max(d_.max_depth, c.level);
-    if (!needs_split(c, q, tag)) {
-      d_.node_child[static_cast<std::size_t>(node)] = -1 - static_cast<std::int32_t>(d_.leaf_tag.size());
-      d_.leaf_tag.push_back(tag);
-      const std::uint32_t below_root = (std::uint32_t{1} << resolution_) - 1;
-      d_.leaf_cell.push_back(static_cast<std::int32_t>((c.y >> resolution_) * static_cast<std::uint32_t>(d_.grid) +
-                                                       (c.x >> resolution_)));
-      d_.leaf_cell.push_back(c.level);
-      d_.leaf_cell.push_back(static_cast<std::int32_t>((c.x & below_root) >> (resolution_ - c.level)));
-      d_.leaf_cell.push_back(static_cast<std::int32_t>((c.y & below_root) >> (resolution_ - c.level)));
-      for (const auto& [dx, dy] : {std::pair{0u, 0u}, {s, 0u}, {0u, s}, {s, s}})
-        d_.leaf_corner.push_back(corner(c.x + dx, c.y + dy));
-      return;
-    }
-    // Four consecutive children; indices, not references, since node_child grows.
-    const int first = new_node();
-    for (int k = 1; k < 4; ++k) new_node();
-    d_.node_child[static_cast<std::size_t>(node)] = first;
-    const std::uint32_t h = s / 2;
-    const auto& segs = tree_.geometry().segments;
-    std::vector<int> child_segments;
-    for (int k = 0; k < 4; ++k) {
-      const Cell child{c.x + (k & 1 ? h : 0u), c.y + (k & 2 ? h : 0u), c.level + 1};
-      const Box cb = box(child);
-      child_segments.clear();
-      for (const int i : segments)
-        if (segment_touches_box(segs[static_cast<std::size_t>(i)].a, segs[static_cast<std::size_t>(i)].b, cb))
-          child_segments.push_back(i);
-      build_cell(first + k, child, child_segments);  // each level has its own list
-    }
-  }
-
-  const SpacingField& exact_;
-  const GeometryTree& tree_;
-  const BackgroundOptions& opt_;
-  BackgroundFieldData& d_;
-  const int resolution_;
-  std::unordered_map<std::uint64_t, double> samples_;
-  std::unordered_map<std::uint64_t, std::int32_t> corners_;
-};
-
-void check_options(const BackgroundOptions& o) {
+void check_background_options(const BackgroundOptions& o) {
   auto bad = [](const char* name, double value, const char* rule) {
     throw InputError(fmt::format("background spacing option {} = {}: {}", name, value, rule));
   };
@@ -269,17 +93,26 @@ void check_options(const BackgroundOptions& o) {
   if (o.max_grid < 1 || o.max_grid > BackgroundOptions::kMaxGridLimit) bad("max_grid", o.max_grid, "must be in [1, 512]");
 }
 
-}  // namespace
-
 BackgroundSpacing::BackgroundSpacing(const SpacingField& exact, const GeometryTree& tree,
                                      const BackgroundOptions& options) {
-  check_options(options);
-  Builder builder(exact, tree, options, data_);
+  check_background_options(options);
+  BackgroundBuilder builder(exact, tree, options);
   builder.build();
+  data_ = builder.emit();
+  stats_.exact_evaluations = builder.evaluations();
+  stats_.exact_batches = builder.batches();
+  fill_stats();
+}
+
+BackgroundSpacing::BackgroundSpacing(BackgroundFieldData data, const BackgroundStats& stats)
+    : data_(std::move(data)), stats_(stats) {
+  fill_stats();
+}
+
+void BackgroundSpacing::fill_stats() {
   stats_.nodes = data_.node_child.size();
   stats_.leaves = data_.leaves();
   stats_.corners = data_.corner_q.size();
-  stats_.exact_evaluations = builder.evaluations();
   stats_.bytes = data_.bytes();
   stats_.grid = data_.grid;
   stats_.max_depth = data_.max_depth;

@@ -76,10 +76,14 @@ struct BackgroundStats {
   std::size_t leaves = 0;
   std::size_t corners = 0;
   std::size_t exact_evaluations = 0;  // distinct points where the exact field was evaluated
+  std::size_t exact_batches = 0;      // SpacingField::at_many calls that evaluated them
   std::size_t bytes = 0;
   int grid = 0;
   int max_depth = 0;
 };
+
+// Throws InputError naming the first invalid option.
+void check_background_options(const BackgroundOptions& options);
 
 // Locates p: the leaf index and the local coordinates (u, v) in [0, 1]^2 within it.
 int background_locate(const BackgroundFieldData& data, Vec2 p, double& u, double& v);
@@ -94,7 +98,10 @@ double background_interpolate(const BackgroundFieldData& data, int leaf, double 
 class BackgroundSpacing final : public SpacingField {
  public:
   // Throws InputError on invalid options; the exact field's errors pass through.
+  // The exact field is evaluated through at_many only, in a few batches per tree level.
   BackgroundSpacing(const SpacingField& exact, const GeometryTree& tree, const BackgroundOptions& options = {});
+  // Wraps arrays built elsewhere (the spacing pipeline); stats' counts are recomputed from them.
+  BackgroundSpacing(BackgroundFieldData data, const BackgroundStats& stats);
   double at(Vec2 p) const override;
   void at_many(const std::vector<Vec2>& p, std::vector<double>& q) const override;
   // The DomainTag of the leaf holding p. Points outside the top grid are clamped onto it; the grid
@@ -104,6 +111,7 @@ class BackgroundSpacing final : public SpacingField {
   const BackgroundStats& stats() const { return stats_; }
 
  private:
+  void fill_stats();
   BackgroundFieldData data_;
   BackgroundStats stats_;
 };

@@ -1,6 +1,8 @@
 // BoundarySpacing: thesis eq. 3.6, q = sum_s(l_s/d_s) / sum_s(1/d_s) over the closest segment s of
 // each curve, with its continuous limit on the boundary (see docs/spacing.md).
 #include <algorithm>
+#include <exception>
+#include <thread>
 #include <vector>
 
 #include "spacing/spacing_field.hpp"
@@ -34,6 +36,35 @@ double BoundarySpacing::at(Vec2 p) const {
     den += w;
   }
   return num / den;
+}
+
+void BoundarySpacing::at_many(const std::vector<Vec2>& p, std::vector<double>& q) const {
+  q.resize(p.size());
+  // Every point is independent and at() is thread-safe, so splitting the range among threads gives the
+  // same values as one loop. Below a few thousand points a thread costs more than it saves.
+  constexpr std::size_t kPerThread = 4096;
+  const std::size_t hardware = std::max(1u, std::thread::hardware_concurrency());
+  const std::size_t threads = std::min({hardware, kMaxThreads, (p.size() + kPerThread - 1) / kPerThread});
+  std::vector<std::exception_ptr> errors(threads);
+  auto run = [&](std::size_t t, std::size_t begin, std::size_t end) {
+    try {
+      for (std::size_t i = begin; i < end; ++i) q[i] = at(p[i]);
+    } catch (...) {
+      errors[t] = std::current_exception();  // rethrown on the calling thread below
+    }
+  };
+  if (threads <= 1) {
+    for (std::size_t i = 0; i < p.size(); ++i) q[i] = at(p[i]);
+    return;
+  }
+  std::vector<std::thread> workers;
+  const std::size_t chunk = (p.size() + threads - 1) / threads;
+  for (std::size_t t = 1; t < threads; ++t)
+    workers.emplace_back(run, t, std::min(p.size(), t * chunk), std::min(p.size(), (t + 1) * chunk));
+  run(0, 0, std::min(p.size(), chunk));
+  for (std::thread& w : workers) w.join();
+  for (const std::exception_ptr& e : errors)
+    if (e) std::rethrow_exception(e);
 }
 
 }  // namespace pdmesh

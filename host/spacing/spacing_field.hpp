@@ -26,6 +26,9 @@ class BoundarySpacing final : public SpacingField {
  public:
   explicit BoundarySpacing(const GeometryTree& tree);
   double at(Vec2 p) const override;
+  // The same values as at() per point, computed on up to kMaxThreads threads for large batches.
+  void at_many(const std::vector<Vec2>& p, std::vector<double>& q) const override;
+  static constexpr std::size_t kMaxThreads = 8;
 
  private:
   const GeometryTree& tree_;

@@ -1,0 +1,91 @@
+// The background field's builder: refines the adaptive quadtree level by level, evaluating every exact
+// sample a level needs in one SpacingField::at_many call, then writes the flat BackgroundFieldData.
+// Internal to host/spacing (BackgroundSpacing and the spacing pipeline use it).
+#pragma once
+#include <cstdint>
+#include <functional>
+#include <unordered_map>
+#include <vector>
+
+#include "spacing/background_field.hpp"
+
+namespace pdmesh {
+
+class BackgroundBuilder {
+ public:
+  // A cell of the tree. Cells 0 .. G*G-1 are the root cells (row-major, y outer); the children of a
+  // split cell are four consecutive cells (x lo y lo, x hi y lo, x lo y hi, x hi y hi).
+  struct Cell {
+    std::uint32_t x = 0, y = 0;     // lattice coordinates of the low corner
+    std::int32_t first_child = -1;  // -1: a leaf
+    std::int32_t segments = -1;     // index into segment_lists_ (boundary leaves), or -1
+    std::int8_t level = 0;          // 0 = root cell
+    std::int8_t tag = kTagBoundary; // a DomainTag
+  };
+  enum class Decision { Leaf, Split, Test };
+
+  // Keeps references to all three; they must outlive the builder.
+  BackgroundBuilder(const SpacingField& exact, const GeometryTree& tree, const BackgroundOptions& options);
+
+  // Chooses the top grid and refines by the exact field: the tree BackgroundSpacing always had.
+  void build();
+
+  // Refines the given leaves further, level by level, by a caller's rule: `decide` sees a cell and its
+  // four corner values and says Leaf, Split or Test; for Test, `test` then sees the cell, its corners
+  // and the exact field at its first `count` test points (5, then all 9 unless the 5 split it) and
+  // says whether to split. Corner values come from
+  // `corner_value` (called with the corner's lattice coordinates after the exact samples of the level
+  // are in). Returns the number of cells split.
+  using DecideFn = std::function<Decision(const Cell&, const double q[4])>;
+  using TestFn = std::function<bool(const Cell&, const double q[4], const double exact[9], int count)>;
+  using CornerFn = std::function<double(std::uint32_t, std::uint32_t)>;
+  std::size_t refine(std::vector<int> cells, const DecideFn& decide, const TestFn& test, const CornerFn& corner_value);
+
+  // The flat arrays, nodes and leaves numbered depth first. corner_q holds `corner_value` at each
+  // distinct leaf corner (the exact sample when empty).
+  BackgroundFieldData emit(const CornerFn& corner_value = {}) const;
+
+  // The rules of BackgroundSpacing's own refinement (docs/spacing.md), for a caller to reuse.
+  Decision default_decide(const Cell& c, const double q[4]) const;
+  bool default_test(const double q[4], const double exact[9], int count) const;
+
+  // Lattice and geometry of the tree.
+  const std::vector<Cell>& cells() const { return cells_; }
+  std::vector<int> leaves() const;
+  int grid() const { return grid_; }
+  int resolution() const { return resolution_; }
+  std::uint32_t span(int level) const { return std::uint32_t{1} << (resolution_ - level); }
+  Vec2 point(std::uint32_t x, std::uint32_t y) const { return {coord(origin_x_, x), coord(origin_y_, y)}; }
+  double side(int level) const;
+  static std::uint64_t key(std::uint32_t x, std::uint32_t y) { return (std::uint64_t{x} << 32) | y; }
+  // The exact sample at a lattice point already evaluated (every corner and test point of the tree).
+  double sample(std::uint32_t x, std::uint32_t y) const;
+  // Evaluates the exact field at all the given lattice points not yet sampled, in one at_many call.
+  void sample_all(const std::vector<std::uint64_t>& keys);
+  // The 9 test points of a cell in lattice quarters: centre, edge midpoints, quarter points.
+  static constexpr int kTests[9][2] = {{2, 2}, {2, 0}, {2, 4}, {0, 2}, {4, 2}, {1, 1}, {3, 1}, {1, 3}, {3, 3}};
+  static constexpr int kFirstQuarterTest = 5;  // tests 0-4 are the children's corners
+
+  std::size_t evaluations() const { return samples_.size(); }
+  std::size_t batches() const { return batches_; }
+
+ private:
+  double coord(double origin, std::uint32_t lattice) const;
+  void choose_grid();
+  void make_roots();
+  // Sets a new cell's tag from its segment list (exact inside test of the centre when empty).
+  void set_tag(Cell& c, std::vector<int> segments);
+
+  const SpacingField& exact_;
+  const GeometryTree& tree_;
+  const BackgroundOptions& opt_;
+  const int resolution_;
+  int grid_ = 1;
+  double origin_x_ = 0.0, origin_y_ = 0.0, root_size_ = 1.0;
+  std::vector<Cell> cells_;
+  std::vector<std::vector<int>> segment_lists_;
+  std::unordered_map<std::uint64_t, double> samples_;
+  std::size_t batches_ = 0;
+};
+
+}  // namespace pdmesh
