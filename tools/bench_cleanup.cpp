@@ -3,11 +3,13 @@
 // before and after and the time of each stage, single-threaded.
 // Usage: bench_cleanup NODES GEOMETRY... [--min-angle D] [--iterations N] [--smooth-below D]
 //                      [--step-cap F] [--no-topology] [--repeats N] [--png PREFIX] [--window x0,y0,x1,y1]
+//                      [--spacing EXPRESSION] (default: the boundary spacing, eq. 3.6)
 //        bench_cleanup --write-graded N FILE.crv   (the graded_N geometry of `pdmesh bench` as a curve file)
 #include <fmt/format.h>
 
 #include <algorithm>
 #include <chrono>
+#include <memory>
 #include <cmath>
 #include <ctime>
 #include <string>
@@ -44,6 +46,7 @@ int main(int argc, char** argv) {
     CleanupOptions options;
     int repeats = 1;
     int worst = 0;
+    std::string expression;
     std::string png;
     std::optional<Box> window;
     for (int i = 1; i < argc; ++i) {
@@ -61,6 +64,7 @@ int main(int argc, char** argv) {
       else if (arg == "--repeats") repeats = std::stoi(value());
       else if (arg == "--png") png = value();
       else if (arg == "--worst") worst = std::stoi(value());
+      else if (arg == "--spacing") expression = value();
       else if (arg == "--write-graded") {
         const auto target = static_cast<std::size_t>(std::stod(value()));
         const Geometry g = graded_case_geometry(graded_case_spacing(target));
@@ -86,7 +90,10 @@ int main(int argc, char** argv) {
     const std::vector<std::string> geometry_files(positional.begin() + 1, positional.end());
     const Geometry geometry = read_geometry(geometry_files, file.curve_names);
     const GeometryTree tree(geometry);
-    const BoundarySpacing spacing(tree);
+    std::unique_ptr<SpacingField> field;
+    if (expression.empty()) field = std::make_unique<BoundarySpacing>(tree);
+    else field = std::make_unique<ExpressionSpacing>(expression);
+    const SpacingField& spacing = *field;
     const auto q = [&spacing](Vec2 p) { return spacing.at(p); };
     QualityOptions qo;
     qo.small_angle_deg = options.min_angle;
@@ -106,9 +113,9 @@ int main(int argc, char** argv) {
     }
     print_summary("after", summarize_quality(result.mesh, q, qo));
     const auto& st = result.stats;
-    fmt::print("cleanup: {} iterations, {} moves, {} inserted, {} collapsed, {} rejected; best of {}: wall {:.3f} s, "
+    fmt::print("cleanup: {} iterations, {} moves, {} inserted, {} collapsed, {} rejected, {} trials; best of {}: wall {:.3f} s, "
                "cpu {:.3f} s (smoothing {:.3f} s, topology {:.3f} s wall; triangulation {:.3f} s)\n",
-               st.iterations_run, st.moves, st.inserted, st.collapsed, st.rejected, repeats, best, best_cpu,
+               st.iterations_run, st.moves, st.inserted, st.collapsed, st.rejected, st.trials, repeats, best, best_cpu,
                st.smoothing_seconds, st.topology_seconds, triangulate_s);
     if (worst > 0) {
       // The worst triangles after the cleanup: angle, vertex kinds (F fixed, B boundary, I interior), valences.

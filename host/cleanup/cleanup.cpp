@@ -70,6 +70,8 @@ CleanupResult clean_mesh(const Mesh& mesh, const NodeSet& nodes, const GeometryT
   cleanup::TopologyOps ops(m, smoother, [&spacing, ratio](Vec2 p) { return ratio * spacing.at(p); }, topology_options);
   std::vector<std::uint8_t> mark;
   std::map<std::array<int, 3>, double> failures;
+  const auto trial_budget = static_cast<std::size_t>(
+      std::max(10000.0, options.trials_per_triangle * static_cast<double>(mesh.triangles.size())));
   for (int iteration = 0; iteration < options.iterations; ++iteration) {
     std::size_t changed = 0;
     // Only nodes whose neighbourhood changed since the last sweep can propose something new.
@@ -100,6 +102,7 @@ CleanupResult clean_mesh(const Mesh& mesh, const NodeSet& nodes, const GeometryT
         }
       ops.set_aspect_totals(aspect_sum, count);
       for (const auto& [q, t] : bad) {
+        if (ops.trials() >= trial_budget) break;
         if (!m.alive(t) || !(m.quality(t) < topology_limit)) continue;
         // A triangle no operation could repair is not tried again in this run.
         auto key = m.v[t];
@@ -120,6 +123,7 @@ CleanupResult clean_mesh(const Mesh& mesh, const NodeSet& nodes, const GeometryT
     result.stats.iterations_run = iteration + 1;
     if (changed == 0) break;
   }
+  result.stats.trials = ops.trials();
   std::vector<int> old_of_new;
   std::vector<std::vector<int>> curve_nodes;
   result.mesh = m.to_mesh(mesh, curve_nodes, old_of_new);

@@ -141,13 +141,15 @@ RepairKind TopologyOps::repair(int t) {
     else if (y_free) trials.push_back({RepairKind::Collapse, [this, x, y] { return collapse_edge(y, x); }});
     if (m.n[t][i] >= 0) trials.push_back({RepairKind::Split, [this, t, i] { return split(t, i); }});
   }
-  // A crowded interior vertex (valence >= 7) of the triangle: split each of its other edges, which
-  // gives a neighbour the node it is missing (JIGSAW splits edges of valence-8 nodes).
+  // A crowded interior vertex of the triangle: split each of its other edges, which gives a
+  // neighbour the node it is missing (JIGSAW splits edges of valence-8 nodes). Valence 7 counts as
+  // crowded only for a triangle below the target (these trials are most of the work).
+  const std::size_t crowded = m.quality(t) < options_.target ? 7 : 8;
   for (int k = 0; k < 3; ++k) {
     const int x = tv[k];
     if (m.kind[x] != NodeKind::Interior) continue;
     m.ring(x, ring2_);
-    if (ring2_.size() < 7) continue;
+    if (ring2_.size() < crowded) continue;
     for (int y : ring2_) {
       if (y == tv[next3(k)] || y == tv[prev3(k)]) continue;
       trials.push_back({RepairKind::Split, [this, x, y] {
@@ -160,6 +162,7 @@ RepairKind TopologyOps::repair(int t) {
   int chosen = -1;
   for (int k = 0; k < static_cast<int>(trials.size()); ++k) {
     m.begin();
+    ++trials_;
     double s = trials[k].apply() ? score() : kNone;
     // The size guard queries the spacing field, so only for a trial that would be chosen.
     if (s > best && !edges_fit(fit_vertex_, fit_inserted_)) s = kNone;

@@ -37,6 +37,8 @@ class TopologyOps {
   RepairKind repair(int t);
   // The mesh's sum of aspect ratios and triangle count: an operation may not raise their average.
   // Set before a pass; repair() keeps them current.
+  // Trials made so far (each an edit, a relaxation, a score and an undo: the unit of work).
+  std::size_t trials() const { return trials_; }
   void set_aspect_totals(double sum, double count) {
     aspect_sum_ = sum;
     aspect_count_ = count;
@@ -59,6 +61,7 @@ class TopologyOps {
   std::function<double(Vec2)> h_;
   TopologyOptions options_;
   double aspect_sum_ = 0.0, aspect_count_ = 1.0;
+  std::size_t trials_ = 0;
   int fit_vertex_ = -1;         // the node the last trial inserted or merged into ...
   bool fit_inserted_ = false;   // ... and whether it was inserted (for edges_fit)
   std::vector<int> ring_, ring2_;
