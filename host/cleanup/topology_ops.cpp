@@ -59,17 +59,20 @@ void TopologyOps::relax_around(int a) {
   }
 }
 
+// After an edit around node a: Lawson flips of its link, the relaxation, and what edges_fit checks.
+void TopologyOps::settle(int a, bool inserted) {
+  edges_.clear();
+  mesh_.push_link_edges(a, edges_);
+  mesh_.legalize(edges_);
+  relax_around(a);
+  fit_vertex_ = a;
+  fit_inserted_ = inserted;
+}
+
 bool TopologyOps::insert_at(int t, Vec2 at) {
-  auto& m = mesh_;
   const int u = locate(t, at);
   if (u < 0) return false;
-  const int w = m.insert_in_triangle(u, at);
-  edges_.clear();
-  m.push_link_edges(w, edges_);
-  m.legalize(edges_);
-  relax_around(w);
-  fit_vertex_ = w;
-  fit_inserted_ = true;
+  settle(mesh_.insert_in_triangle(u, at), true);
   return true;
 }
 
@@ -79,12 +82,7 @@ bool TopologyOps::collapse_edge(int a, int b) {
   const Vec2 to = both_free ? 0.5 * (m.p[a] + m.p[b]) : m.p[b];
   if (!m.collapse(a, b, to, m.arc[b])) return false;
   if (!m.star_valid(b)) return false;
-  edges_.clear();
-  m.push_link_edges(b, edges_);
-  m.legalize(edges_);
-  relax_around(b);
-  fit_vertex_ = b;
-  fit_inserted_ = false;
+  settle(b, false);
   return true;
 }
 
@@ -92,13 +90,7 @@ bool TopologyOps::split(int t, int i) {
   auto& m = mesh_;
   const Vec2 at = 0.5 * (m.p[m.v[t][next3(i)]] + m.p[m.v[t][prev3(i)]]);
   if (!m.split_edge_valid(t, i, at)) return false;
-  const int w = m.split_edge(t, i, at);
-  edges_.clear();
-  m.push_link_edges(w, edges_);
-  m.legalize(edges_);
-  relax_around(w);
-  fit_vertex_ = w;
-  fit_inserted_ = true;
+  settle(m.split_edge(t, i, at), true);
   return true;
 }
 

@@ -50,6 +50,7 @@ class TopologyOps {
   bool collapse_edge(int a, int b);
   bool split(int t, int i);
   void relax_around(int a);
+  void settle(int a, bool inserted);
   int locate(int start, Vec2 at) const;
   Vec2 insertion_point(int t) const;
   // Score of the open transaction: the new local minimum, or -inf when it does not qualify.
