@@ -199,11 +199,10 @@ std::string quality_json(const QualitySummary& s, const std::string& source) {
     cleanup = fmt::format(
         "{{\"target_deg\": {}, \"below_target\": {{\"before\": {}, \"after\": {}}}, "
         "\"min_angle\": {{\"before\": {}, \"after\": {}}}, \"max_angle\": {{\"before\": {}, \"after\": {}}}, "
-        "\"triangles_before\": {}, \"points_before\": {}, \"inserted\": {}, \"removed\": {}, \"moves\": {}, "
-        "\"seconds\": {}}}",
+        "\"triangles_before\": {}, \"points_before\": {}, \"inserted\": {}, \"removed\": {}, \"moves\": {}}}",
         num(e.target_deg), e.below_before, e.below_after, num(e.min_angle_before), num(e.min_angle_after),
         num(e.max_angle_before), num(e.max_angle_after), e.triangles_before, e.points_before, e.inserted, e.removed,
-        e.moves, num(e.seconds));
+        e.moves);
   }
   out += fmt::format("  \"cleanup\": {}\n", cleanup);
   out += "}\n";
