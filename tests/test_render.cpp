@@ -180,6 +180,14 @@ TEST_CASE("mesh pictures fill triangles by value and draw a colour bar", "[rende
   CHECK(png.pixel(400 + 45, 40 + 45).r > 200);
   CHECK(png.pixel(400 + 45, 440 - 45).b > 60);
   CHECK(png.pixel(400 + 45, 440 - 45).g < 40);
+  // A fixed range (two pictures on one scale): 0.25 is now the middle of [-0.5, 1], 1.0 its end.
+  o.value_range = std::make_pair(-0.5, 1.0);
+  write_mesh_picture(dir / "ranged.png", m, o);
+  Png ranged(dir / "ranged.png");
+  REQUIRE(ranged.ok());
+  CHECK(ranged.pixel(lx, ly).g == Approx(255 * colour_ramp(0.5).g).margin(3));
+  CHECK(ranged.pixel(lx, ly).b == Approx(255 * colour_ramp(0.5).b).margin(3));
+  CHECK(ranged.pixel(hx, hy).r == Approx(255 * colour_ramp(1).r).margin(3));
   fs::remove_all(dir);
 }
 

@@ -117,22 +117,25 @@ int main(int argc, char** argv) {
                "cpu {:.3f} s (smoothing {:.3f} s, topology {:.3f} s wall; triangulation {:.3f} s)\n",
                st.iterations_run, st.moves, st.inserted, st.collapsed, st.rejected, st.trials, repeats, best, best_cpu,
                st.smoothing_seconds, st.topology_seconds, triangulate_s);
-    if (worst > 0) {
-      // The worst triangles after the cleanup: angle, vertex kinds (F fixed, B boundary, I interior), valences.
-      const Mesh& out = result.mesh;
+    // The worst triangles before and after the cleanup: angle, where, vertex kinds (F fixed,
+    // B boundary, I interior) and the number of triangles around each vertex.
+    for (const Mesh* which : {&mesh, static_cast<const Mesh*>(&result.mesh)}) {
+      if (worst <= 0) break;
+      const Mesh& out = *which;
       std::vector<int> valence(out.points.size(), 0);
       std::vector<std::pair<double, int>> order;
       const auto per = triangle_qualities(out);
       for (std::size_t t = 0; t < out.triangles.size(); ++t) {
         order.push_back({per[t].min_angle, static_cast<int>(t)});
-        for (int a : out.triangles[t]) ++valence[a];  // triangles around a (= valence for interior)
+        for (int a : out.triangles[t]) ++valence[a];
       }
       std::sort(order.begin(), order.end());
       for (int k = 0; k < worst && k < static_cast<int>(order.size()); ++k) {
         const auto& tv = out.triangles[order[k].second];
         std::string d;
         for (int a : tv) d += fmt::format(" {}{}", "FBI"[static_cast<int>(out.kind[a])], valence[a]);
-        fmt::print("  worst {:6.2f} at ({:.4g}, {:.4g}):{}\n", order[k].first, out.points[tv[0]].x, out.points[tv[0]].y, d);
+        fmt::print("  {} worst {:6.2f} at ({:.4g}, {:.4g}):{}\n", which == &mesh ? "before" : "after", order[k].first,
+                   out.points[tv[0]].x, out.points[tv[0]].y, d);
       }
     }
     const CheckReport check = check_mesh(result.mesh, node_domain_area(result.nodes, geometry));
@@ -145,6 +148,7 @@ int main(int argc, char** argv) {
         MeshPictureOptions po;
         po.triangle_values = &values;
         po.value_label = "min_angle";
+        po.value_range = std::make_pair(summarize_quality(mesh).min_angle, 60.0);  // one scale for both
         po.window = window;
         po.title = which == &mesh ? "before cleanup" : "after cleanup";
         write_mesh_picture(png + (which == &mesh ? "_before.png" : "_after.png"), *which, po);

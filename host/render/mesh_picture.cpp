@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <tuple>
 #include <fmt/format.h>
 
 #include "core/errors.hpp"
@@ -86,6 +87,7 @@ void write_mesh_picture(const std::filesystem::path& path, const Mesh& mesh, con
       }
     }
   }
+  if (options.value_range) std::tie(lo, hi) = *options.value_range;
   Box extents;
   for (const Vec2& p : mesh.points) extents.add(p);
   CanvasOptions layout;

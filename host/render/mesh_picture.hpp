@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "mesh/mesh.hpp"
@@ -16,6 +17,9 @@ struct MeshPictureOptions {
   std::optional<Box> window;                          // default: the mesh's extents + 3%
   const std::vector<double>* triangle_values = nullptr;  // one per triangle; fills and adds a colour bar
   std::string value_label;                            // colour bar caption, e.g. "radius ratio"
+  // Colour bar range; default: the values' finite minimum and maximum. A fixed range lets two
+  // pictures (before and after a change) share one scale; values outside it get the end colours.
+  std::optional<std::pair<double, double>> value_range;
   int long_side = 1600;
 };
 
