@@ -1,6 +1,7 @@
 // Trial-and-measure topology operations on one bad triangle (see topology_ops.hpp).
 #include "cleanup/topology_ops.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <utility>
@@ -42,7 +43,10 @@ int TopologyOps::locate(int start, Vec2 at) const {
 
 bool TopologyOps::edges_fit(int a, bool inserted) {
   const auto& m = mesh_;
-  const double h = h_(m.p[a]);
+  // Where the boundary is segmented more finely than the field asks (fillets, small holes), the
+  // triangle's own shortest edge is the size to respect: nodes at that spacing are what its fan of
+  // thin boundary triangles lacks.
+  const double h = inserted ? std::min(h_(m.p[a]), shortest_) : h_(m.p[a]);
   m.ring(a, ring2_);
   for (int x : ring2_) {
     const double l = dist(m.p[a], m.p[x]);
@@ -117,6 +121,7 @@ RepairKind TopologyOps::repair(int t) {
   if (!m.alive(t)) return RepairKind::None;
   const auto tv = m.v[t];
   const Vec2 a = m.p[tv[0]], b = m.p[tv[1]], c = m.p[tv[2]];
+  shortest_ = std::min({dist(a, b), dist(b, c), dist(c, a)});
   struct Trial {
     RepairKind kind;
     std::function<bool()> apply;

@@ -22,7 +22,8 @@ struct TopologyOptions {
   double target = 0.5;   // score of the target angle: a trial may not add triangles below it
   double enough = 1.0;   // a trial whose local minimum reaches this score is taken without trying the rest
   int relax_rounds = 2;
-  // Size guards against h: an inserted node's shortest edge must be at least min_edge x h there, and
+  // Size guards against h: an inserted node's shortest edge must be at least min_edge x h there (h no
+  // more than the repaired triangle's shortest edge), and
   // a collapse may not leave an edge longer than max_edge x h, so that cleaning keeps the spacing.
   double min_edge = 0.6;
   double max_edge = 1.5;  // hill-climbing rounds over the new node and its neighbours after an edit
@@ -63,6 +64,7 @@ class TopologyOps {
   TopologyOptions options_;
   double aspect_sum_ = 0.0, aspect_count_ = 1.0;
   std::size_t trials_ = 0;
+  double shortest_ = 0.0;      // shortest edge of the triangle being repaired
   int fit_vertex_ = -1;         // the node the last trial inserted or merged into ...
   bool fit_inserted_ = false;   // ... and whether it was inserted (for edges_fit)
   std::vector<int> ring_, ring2_;
