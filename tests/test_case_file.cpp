@@ -262,16 +262,19 @@ TEST_CASE("cleanup keys: best cleans, thesis does not, a key wins over the prese
   CHECK(best.cleanup.min_angle == 30.0);
   CHECK(best.cleanup.iterations == 16);
   CHECK(best.cleanup.topology);
+  CHECK(best.cleanup.split_boundary);
   CHECK_FALSE(parse_case_text(std::string("preset = \"thesis\"\n") + kMinimal, kCase).cleanup.enabled);
   const CaseConfig on = parse_case_text(std::string("preset = \"thesis\"\n") + kMinimal, kCase,
                                         {parse_set_option("cleanup.enabled=true")});
   CHECK(on.cleanup.enabled);
   CHECK(on.preset == Preset::Thesis);
   const CaseConfig set = parse_case_text(
-      std::string(kMinimal) + "[cleanup]\nmin_angle = 33.5\niterations = 4\ntopology = false\n", kCase);
+      std::string(kMinimal) + "[cleanup]\nmin_angle = 33.5\niterations = 4\ntopology = false\nsplit_boundary = false\n",
+      kCase);
   CHECK(set.cleanup.min_angle == 33.5);
   CHECK(set.cleanup.iterations == 4);
   CHECK_FALSE(set.cleanup.topology);
+  CHECK_FALSE(set.cleanup.split_boundary);
   CHECK_THAT(error_of(std::string(kMinimal) + "[cleanup]\nmin_angle = 60\n"),
              Catch::Contains("case.toml:4:13: cleanup.min_angle must be in (0, 60) degrees, got 60"));
   CHECK_THAT(error_of(kMinimal, {parse_set_option("cleanup.min_angle=0")}),

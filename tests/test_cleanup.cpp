@@ -92,8 +92,8 @@ std::vector<std::pair<double, double>> fixed_positions(const NodeSet& nodes) {
 }
 
 // Everything the cleanup promises about one input: a valid constrained Delaunay mesh of the domain
-// through its boundary nodes, min angle and average aspect ratio no worse, boundary nodes on their
-// own curves in their original order, critical points unmoved, the same boundary node count.
+// through its boundary nodes, min angle and average aspect ratio no worse, boundary nodes (old and
+// split-in) on their own curves in curve order, critical points unmoved, no boundary node removed.
 CleanupResult clean_and_verify(const Geometry& g, const GeometryTree& tree, const SpacingField& spacing,
                                const NodeSet& nodes, const CleanupOptions& options = {}) {
   const Mesh mesh = triangulate(nodes, names(g));
@@ -109,7 +109,8 @@ CleanupResult clean_and_verify(const Geometry& g, const GeometryTree& tree, cons
   REQUIRE(r.nodes.curve_nodes.size() == nodes.curve_nodes.size());
   for (std::size_t c = 0; c < nodes.curve_nodes.size(); ++c) {
     const auto& chain = r.nodes.curve_nodes[c];
-    CHECK(chain.size() == nodes.curve_nodes[c].size());
+    CHECK(chain.size() >= nodes.curve_nodes[c].size());
+    if (!options.split_boundary) CHECK(chain.size() == nodes.curve_nodes[c].size());
     double last_arc = 0.0;
     for (std::size_t k = 0; k < chain.size(); ++k) {
       const Vec2 p = r.nodes.x[chain[k]];
@@ -122,7 +123,9 @@ CleanupResult clean_and_verify(const Geometry& g, const GeometryTree& tree, cons
     }
   }
   CHECK(fixed_positions(r.nodes) == fixed_positions(nodes));
-  CHECK(r.nodes.count(NodeKind::Boundary) == nodes.count(NodeKind::Boundary));
+  CHECK(r.nodes.count(NodeKind::Boundary) >= nodes.count(NodeKind::Boundary));
+  for (std::size_t i = 0; i < r.nodes.size(); ++i)  // new boundary nodes know their curve
+    if (r.nodes.kind[i] == NodeKind::Boundary) CHECK(r.nodes.curve[i] >= 0);
   return r;
 }
 
@@ -185,7 +188,7 @@ TEST_CASE("cleanup inserts interior nodes into boundary-only triangles of a narr
   REQUIRE(before.small_angle_triangles > 0);
   const CleanupResult r = clean_and_verify(g, tree, spacing, nodes);
   CHECK(r.stats.inserted > 0);
-  CHECK(r.nodes.count(NodeKind::Interior) == r.stats.inserted - r.stats.collapsed);
+  CHECK(r.nodes.size() == nodes.size() + r.stats.inserted - r.stats.collapsed);
   const QualitySummary after = summarize_quality(r.mesh);
   CHECK(after.small_angle_triangles == 0);
   CHECK(after.min_angle >= 30.0);
@@ -246,6 +249,12 @@ TEST_CASE("cleanup is deterministic and its options act", "[cleanup]") {
   CHECK(s.mesh.points.size() == mesh.points.size());
   CHECK(s.mesh.triangles.size() == mesh.triangles.size());
   CHECK(summarize_quality(a.mesh).min_angle >= summarize_quality(s.mesh).min_angle);  // topology helps
+
+  CleanupOptions fixed_boundary;
+  fixed_boundary.split_boundary = false;
+  const CleanupResult f = clean_and_verify(g, tree, spacing, nodes, fixed_boundary);
+  CHECK(f.nodes.count(NodeKind::Boundary) == nodes.count(NodeKind::Boundary));
+  CHECK(a.nodes.count(NodeKind::Boundary) > nodes.count(NodeKind::Boundary));  // seed 5 splits some
 
   CleanupOptions one;
   one.iterations = 1;

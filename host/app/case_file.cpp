@@ -410,6 +410,8 @@ void read_cleanup_section(const Reader& r, const toml::table& root, CaseConfig& 
       r.fail("cleanup.iterations", n, fmt::format("cleanup.iterations must be in 1..1000, got {}", k.iterations));
   }
   if (const toml::node* n = find(root, "cleanup", "topology")) k.topology = r.boolean("cleanup.topology", *n);
+  if (const toml::node* n = find(root, "cleanup", "split_boundary"))
+    k.split_boundary = r.boolean("cleanup.split_boundary", *n);
 }
 
 ViewWindow read_view(const Reader& r, const toml::node& entry, std::size_t i) {
@@ -512,7 +514,7 @@ const std::vector<std::string>& case_file_keys() {
       "simulation.iterations", "simulation.dt_initial", "simulation.dt_initial.structured",
       "simulation.dt_initial.random", "simulation.cutoff", "simulation.lj_a", "simulation.device",
       "simulation.precision", "simulation.r0_rule", "simulation.stability_factor",
-      "cleanup.enabled", "cleanup.min_angle", "cleanup.iterations", "cleanup.topology",
+      "cleanup.enabled", "cleanup.min_angle", "cleanup.iterations", "cleanup.topology", "cleanup.split_boundary",
       "output.formats", "output.tree_overlay", "output.views", "output.color_by",
   };
   return keys;

@@ -87,6 +87,7 @@ struct CaseConfig {
     double min_angle = 30.0;       // degrees, in (0, 60)
     std::int64_t iterations = 16;  // outer iterations (smoothing sweeps + a topology pass)
     bool topology = true;          // false: smoothing and flips only (the node count stays)
+    bool split_boundary = true;    // false: no new boundary nodes (boundary nodes only slide)
   } cleanup;
 
   struct Output {

@@ -307,6 +307,7 @@ Mesh mesh_and_measure(const CaseConfig& config, const MeshInputs& inputs, const 
     options.min_angle = config.cleanup.min_angle;
     options.iterations = static_cast<int>(config.cleanup.iterations);
     options.topology = config.cleanup.topology;
+    options.split_boundary = config.cleanup.split_boundary;
     effect.target_deg = options.min_angle;
     effect.triangles_before = mesh.triangles.size();
     effect.points_before = mesh.points.size();

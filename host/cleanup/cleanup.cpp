@@ -67,7 +67,9 @@ CleanupResult clean_mesh(const Mesh& mesh, const NodeSet& nodes, const GeometryT
   topology_options.target = target;
   topology_options.enough = topology_limit;
   const double ratio = edge_to_spacing_ratio(mesh, spacing);
-  cleanup::TopologyOps ops(m, smoother, [&spacing, ratio](Vec2 p) { return ratio * spacing.at(p); }, topology_options);
+  topology_options.split_boundary = options.split_boundary;
+  cleanup::TopologyOps ops(m, smoother, tree.geometry(), [&spacing, ratio](Vec2 p) { return ratio * spacing.at(p); },
+                           topology_options);
   std::vector<std::uint8_t> mark;
   std::map<std::array<int, 3>, double> failures;
   const auto trial_budget = static_cast<std::size_t>(
@@ -135,7 +137,7 @@ CleanupResult clean_mesh(const Mesh& mesh, const NodeSet& nodes, const GeometryT
     const auto a = static_cast<std::size_t>(old_of_new[k]);
     const bool original = a < nodes.size();
     out.q.push_back(original ? nodes.q[a] : spacing.at(out.x[k]));
-    out.curve.push_back(original ? nodes.curve[a] : -1);
+    out.curve.push_back(original ? nodes.curve[a] : m.curve[a]);
   }
   result.stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;

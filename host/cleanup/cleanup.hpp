@@ -3,7 +3,8 @@
 // smoothing, Lawson flips and local topology operations (insertion at circumcentres and
 // off-centres, edge collapse, edge split), each kept only when the worst angle it touches rises.
 // Boundary nodes only slide along their own curve between their neighbours; critical (fixed) nodes
-// never move; boundary nodes are never added or removed, so the boundary edges stay the same.
+// never move; boundary nodes are never removed, and a boundary edge split puts its new node on the
+// curve, so the boundary edges stay chords of their curves.
 #pragma once
 #include <cstddef>
 #include <vector>
@@ -27,6 +28,9 @@ struct CleanupOptions {
   // The topology pass works on the triangles whose smallest angle is below this (degrees).
   double topology_below = -1.0;
   bool topology = true;      // insertions, collapses and splits (off: smoothing and flips only)
+  // Boundary edges may be split by a new node on their curve (off: the boundary nodes stay the
+  // simulation's, they only slide).
+  bool split_boundary = true;
   // Work bound of the topology passes: at most max(10000, trials_per_triangle x triangles) trials in
   // all, spent worst triangle first. A settled lattice needs far fewer (thesis cases: 0.07 to 0.7 per
   // triangle); a mesh after a few iterations would otherwise take several per triangle.

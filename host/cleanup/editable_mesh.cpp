@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <limits>
+#include <algorithm>
 #include <unordered_map>
 
 #include "cleanup/measures.hpp"
@@ -25,7 +26,7 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 
 EditableMesh::EditableMesh(const Mesh& mesh, const std::vector<std::vector<int>>& curve_nodes,
                            const std::vector<std::vector<double>>& arcs)
-    : curve_nodes_(curve_nodes), chain_arcs_(arcs) {
+    : fixed_on_curve_(curve_nodes.size()) {
   const std::size_t np = mesh.points.size();
   p = mesh.points;
   kind = mesh.kind.size() == np ? mesh.kind : std::vector<NodeKind>(np, NodeKind::Interior);
@@ -37,7 +38,6 @@ EditableMesh::EditableMesh(const Mesh& mesh, const std::vector<std::vector<int>>
   gone_.assign(np, 0);
   vert_stamp_.assign(np, 0);
   dirty_.assign(np, 1);
-  chain_index_.assign(np, -1);
   // Nodes on a curve that the kinds do not mark (a mesh read without kinds) must not move either.
   for (std::size_t c = 0; c < curve_nodes.size(); ++c) {
     const auto& list = curve_nodes[c];
@@ -46,10 +46,13 @@ EditableMesh::EditableMesh(const Mesh& mesh, const std::vector<std::vector<int>>
       const bool inner = k > 0 && k + 1 < list.size();
       if (!inner || kind[a] != NodeKind::Boundary) {
         kind[a] = NodeKind::Fixed;  // curve end points and critical corners never move
+        fixed_on_curve_[c].push_back({a, arcs[c][k]});
+        // A boundary edge between two fixed nodes has no sliding node to name its curve.
+        if (k > 0 && kind[list[k - 1]] == NodeKind::Fixed)
+          fixed_edges_[edge_key(list[k - 1], a)] = {static_cast<int>(c), list[k - 1], arcs[c][k - 1], arcs[c][k]};
         continue;
       }
       curve[a] = static_cast<int>(c);
-      chain_index_[a] = static_cast<int>(k);
       arc[a] = arcs[c][k];
       prev[a] = list[k - 1];
       next[a] = list[k + 1];
@@ -84,7 +87,36 @@ double EditableMesh::aspect(int t) const { return aspect_ratio(p[v[t][0]], p[v[t
 double EditableMesh::neighbour_arc(int a, int side) const {
   const int b = side == 0 ? prev[a] : next[a];
   if (kind[b] == NodeKind::Boundary) return arc[b];
-  return chain_arcs_[curve[a]][chain_index_[a] + (side == 0 ? -1 : 1)];
+  // A fixed neighbour: its place on a's curve before (after) a. On a closed curve the same node
+  // is both the first and the last entry, at arc 0 and at the curve's length.
+  double best = side == 0 ? -HUGE_VAL : HUGE_VAL;
+  for (const FixedEntry& e : fixed_on_curve_[curve[a]]) {
+    if (e.node != b) continue;
+    if (side == 0 && e.arc < arc[a]) best = std::max(best, e.arc);
+    if (side == 1 && e.arc > arc[a]) best = std::min(best, e.arc);
+  }
+  return best;
+}
+
+bool EditableMesh::boundary_edge_arcs(int t, int i, int& c, double& arc_a, double& arc_b) const {
+  const int a = v[t][next3(i)], b = v[t][prev3(i)];
+  if (n[t][i] >= 0) return false;
+  auto along = [&](int x, int y, double& arc_x, double& arc_y) {  // x slides on its curve
+    if (y != prev[x] && y != next[x]) return false;
+    c = curve[x];
+    arc_x = arc[x];
+    arc_y = neighbour_arc(x, y == prev[x] ? 0 : 1);
+    return std::isfinite(arc_y);
+  };
+  if (kind[a] == NodeKind::Boundary && curve[a] >= 0) return along(a, b, arc_a, arc_b);
+  if (kind[b] == NodeKind::Boundary && curve[b] >= 0) return along(b, a, arc_b, arc_a);
+  const auto it = fixed_edges_.find(edge_key(a, b));
+  if (it == fixed_edges_.end()) return false;
+  const FixedEdge& e = it->second;
+  c = e.curve;
+  arc_a = a == e.first ? e.first_arc : e.second_arc;
+  arc_b = a == e.first ? e.second_arc : e.first_arc;
+  return true;
 }
 
 void EditableMesh::star(int a, std::vector<int>& out) const {
@@ -167,7 +199,7 @@ void EditableMesh::touch_triangle(int t) {
 void EditableMesh::touch_vertex(int a) {
   if (!open_ || a >= vert_size0_ || vert_stamp_[a] == stamp_) return;
   vert_stamp_[a] = stamp_;
-  vert_log_.push_back({a, p[a], arc[a], vt[a], gone_[a]});
+  vert_log_.push_back({a, p[a], arc[a], vt[a], prev[a], next[a], gone_[a]});
 }
 
 void EditableMesh::touch_star(int a) {
@@ -206,12 +238,14 @@ void EditableMesh::rollback() {
     p[s.a] = s.p;
     arc[s.a] = s.arc;
     vt[s.a] = s.vt;
+    prev[s.a] = s.prev;
+    next[s.a] = s.next;
     gone_[s.a] = s.gone;
   }
   v.resize(tri_size0_);
   n.resize(tri_size0_);
   tri_stamp_.resize(tri_size0_);
-  for (auto* field : {&curve, &prev, &next, &vt, &chain_index_}) field->resize(vert_size0_);
+  for (auto* field : {&curve, &prev, &next, &vt}) field->resize(vert_size0_);
   p.resize(vert_size0_);
   kind.resize(vert_size0_);
   arc.resize(vert_size0_);
@@ -311,189 +345,7 @@ int EditableMesh::new_vertex(Vec2 at) {
   gone_.push_back(0);
   vert_stamp_.push_back(0);
   dirty_.push_back(1);
-  chain_index_.push_back(-1);
   return vertex_slots() - 1;
-}
-
-//            p                    p
-//           / \                  /|\          t = (p, a, b) with p = v[t][i],
-//      t_pa/ t \t_bp        t_pa/ | \t_bp     u = (q, b, a) its neighbour across a-b.
-//         a-----b    ->        a t|u b        After the flip: t = (p, a, q), u = (q, b, p).
-//      u_aq\ u /u_qb        u_aq\ | /u_qb
-//           \ /                  \|/
-//            q                    q
-void EditableMesh::flip(int t, int i) {
-  const int u = n[t][i];
-  const int j = index_of(n[u], t);
-  const int pv = v[t][i], a = v[t][next3(i)], b = v[t][prev3(i)];
-  const int q = v[u][j];
-  const int t_pa = n[t][prev3(i)], t_bp = n[t][next3(i)];
-  const int u_qb = n[u][prev3(j)], u_aq = n[u][next3(j)];
-  touch_triangle(t);
-  touch_triangle(u);
-  v[t] = {pv, a, q};
-  n[t] = {u_aq, u, t_pa};
-  v[u] = {q, b, pv};
-  n[u] = {t_bp, t, u_qb};
-  set_neighbour(u_aq, u, t);
-  set_neighbour(t_bp, t, u);
-  set_vt(a, t);
-  set_vt(b, u);
-  set_vt(pv, t);
-  set_vt(q, u);
-}
-
-void EditableMesh::legalize(std::vector<std::array<int, 2>>& edges) {
-  while (!edges.empty()) {
-    const auto [a, b] = edges.back();
-    edges.pop_back();
-    if (gone_[a] || gone_[b]) continue;
-    const auto [t, i] = find_edge(a, b);
-    if (t < 0) continue;  // flipped away meanwhile; its replacement was pushed then
-    const int u = n[t][i];
-    if (u < 0) continue;  // boundary edges are constrained
-    const int pv = v[t][i];
-    const int q = v[u][index_of(n[u], t)];
-    if (incircle(p[pv], p[a], p[b], p[q]) > 0.0) {
-      flip(t, i);
-      edges.push_back({pv, a});
-      edges.push_back({a, q});
-      edges.push_back({q, b});
-      edges.push_back({b, pv});
-    }
-  }
-}
-
-void EditableMesh::push_link_edges(int a, std::vector<std::array<int, 2>>& edges) const {
-  std::vector<int>& fan = scratch_;
-  star(a, fan);
-  for (int t : fan) {
-    const int k = index_of(v[t], a);
-    edges.push_back({v[t][next3(k)], v[t][prev3(k)]});
-  }
-}
-
-void EditableMesh::move(int a, Vec2 to, double new_arc) {
-  if (!open_) {
-    star(a, star_scratch_);
-    for (int t : star_scratch_) mark_dirty(t);
-  }
-  touch_star(a);
-  touch_vertex(a);
-  p[a] = to;
-  arc[a] = new_arc;
-}
-
-int EditableMesh::insert_in_triangle(int t, Vec2 at) {
-  //        a                t0 = (w, b, c) in slot t, t1 = (w, c, a), t2 = (w, a, b);
-  //       /|\               na, nb, nc lie opposite a, b, c.
-  //      / w \              .
-  //     b-----c
-  const auto tv = v[t];
-  const int a = tv[0], b = tv[1], c = tv[2];
-  const int na = n[t][0], nb = n[t][1], nc = n[t][2];
-  touch_triangle(t);
-  const int w = new_vertex(at);
-  const int t0 = t, t1 = triangle_slots(), t2 = t1 + 1;
-  v[t0] = {w, b, c};
-  n[t0] = {na, t1, t2};
-  new_triangle({w, c, a}, {nb, t2, t0});
-  new_triangle({w, a, b}, {nc, t0, t1});
-  set_neighbour(nb, t, t1);
-  set_neighbour(nc, t, t2);
-  set_vt(w, t0);
-  set_vt(a, t1);
-  set_vt(b, t0);
-  set_vt(c, t0);
-  return w;
-}
-
-bool EditableMesh::split_edge_valid(int t, int i, Vec2 at) const {
-  const int u = n[t][i];
-  if (u < 0) return false;
-  const int a = v[t][i], b = v[t][next3(i)], c = v[t][prev3(i)];
-  const int d = v[u][index_of(n[u], t)];
-  return orient2d(p[a], p[b], at) > 0.0 && orient2d(p[a], at, p[c]) > 0.0 && orient2d(p[d], p[c], at) > 0.0 &&
-         orient2d(p[d], at, p[b]) > 0.0;
-}
-
-int EditableMesh::split_edge(int t, int i, Vec2 at) {
-  //        a              w on edge b-c, shared by t = (a, b, c) and u = (d, c, b).
-  //       / \             t0 = (a, b, w) in slot t, t1 = (a, w, c),
-  //      b-w-c            u0 = (d, c, w) in slot u, u1 = (d, w, b).
-  //       \ /
-  //        d
-  const int a = v[t][i], b = v[t][next3(i)], c = v[t][prev3(i)];
-  const int n_ca = n[t][next3(i)], n_ab = n[t][prev3(i)];
-  const int u = n[t][i];
-  const int j = index_of(n[u], t);
-  const int d = v[u][j];
-  const int n_bd = n[u][next3(j)], n_dc = n[u][prev3(j)];
-  touch_triangle(t);
-  touch_triangle(u);
-  const int w = new_vertex(at);
-  const int t0 = t, t1 = triangle_slots(), u0 = u, u1 = t1 + 1;
-  v[t0] = {a, b, w};
-  n[t0] = {u1, t1, n_ab};
-  new_triangle({a, w, c}, {u0, n_ca, t0});
-  v[u0] = {d, c, w};
-  n[u0] = {t1, u1, n_dc};
-  new_triangle({d, w, b}, {t0, n_bd, u0});
-  set_neighbour(n_ca, t, t1);
-  set_neighbour(n_bd, u, u1);
-  set_vt(w, t0);
-  set_vt(a, t0);
-  set_vt(b, t0);
-  set_vt(c, t1);
-  set_vt(d, u0);
-  return w;
-}
-
-bool EditableMesh::collapse(int a, int b, Vec2 to, double b_arc) {
-  const auto [t1, i1] = find_edge(a, b);  // t1 = (c, a, b)
-  const auto [t2, i2] = find_edge(b, a);  // t2 = (d, b, a)
-  if (t1 < 0 || t2 < 0) return false;
-  const int c = v[t1][i1], d = v[t2][i2];
-  // Link condition: a and b may share only c and d, or the collapse would pinch the mesh (and a
-  // valence-3 neighbour would degenerate).
-  std::vector<int> ring_a, ring_b;
-  ring(a, ring_a);
-  ring(b, ring_b);
-  int common = 0;
-  for (int x : ring_a)
-    for (int y : ring_b) common += (x == y);
-  if (common != 2) return false;
-
-  touch_star(a);
-  touch_star(b);
-  const int n_bc = n[t1][index_of(v[t1], a)], n_ca = n[t1][index_of(v[t1], b)];
-  const int n_ad = n[t2][index_of(v[t2], b)], n_db = n[t2][index_of(v[t2], a)];
-  star(a, star_scratch_);
-  const std::vector<int> fan = star_scratch_;
-  set_neighbour(n_ca, t1, n_bc);
-  set_neighbour(n_bc, t1, n_ca);
-  set_neighbour(n_ad, t2, n_db);
-  set_neighbour(n_db, t2, n_ad);
-  for (int t : fan) {
-    if (t == t1 || t == t2) continue;
-    touch_triangle(t);
-    v[t][index_of(v[t], a)] = b;
-  }
-  for (int t : {t1, t2}) {
-    touch_triangle(t);
-    v[t] = {-1, -1, -1};
-    n[t] = {-1, -1, -1};
-  }
-  set_vt(b, n_ca);
-  set_vt(c, n_ca);
-  set_vt(d, n_ad);
-  touch_vertex(a);
-  vt[a] = -1;
-  gone_[a] = 1;
-  touch_vertex(b);
-  p[b] = to;
-  arc[b] = b_arc;
-  return true;
 }
 
 Mesh EditableMesh::to_mesh(const Mesh& original, std::vector<std::vector<int>>& curve_nodes,
@@ -516,10 +368,22 @@ Mesh EditableMesh::to_mesh(const Mesh& original, std::vector<std::vector<int>>& 
   for (int t = 0; t < triangle_slots(); ++t)
     if (alive(t)) out.triangles.push_back({new_of_old[v[t][0]], new_of_old[v[t][1]], new_of_old[v[t][2]]});
   out.curve_names = original.curve_names;
-  for (const BoundaryEdge& e : original.boundary_edges) out.boundary_edges.push_back({new_of_old[e.a], new_of_old[e.b], e.curve});
-  curve_nodes = curve_nodes_;
-  for (auto& list : curve_nodes)
-    for (int& a : list) a = new_of_old[a];
+  // The curve chains: each curve's fixed nodes at their arcs merged with its sliding nodes, ordered by
+  // arc (a sliding node stays strictly between its neighbours, so this is the chain order, with the
+  // nodes that boundary splits added); the boundary edges join consecutive chain nodes.
+  std::vector<std::vector<std::pair<double, int>>> chains(fixed_on_curve_.size());
+  for (std::size_t c = 0; c < chains.size(); ++c)
+    for (const FixedEntry& e : fixed_on_curve_[c]) chains[c].push_back({e.arc, e.node});
+  for (int a = 0; a < vertex_slots(); ++a)
+    if (!gone_[a] && kind[a] == NodeKind::Boundary && curve[a] >= 0) chains[curve[a]].push_back({arc[a], a});
+  curve_nodes.assign(chains.size(), {});
+  for (std::size_t c = 0; c < chains.size(); ++c) {
+    std::stable_sort(chains[c].begin(), chains[c].end(),
+                     [](const auto& x, const auto& y) { return x.first < y.first; });
+    for (const auto& [position, a] : chains[c]) curve_nodes[c].push_back(new_of_old[a]);
+    for (std::size_t k = 0; k + 1 < curve_nodes[c].size(); ++k)
+      out.boundary_edges.push_back({curve_nodes[c][k], curve_nodes[c][k + 1], static_cast<int>(c)});
+  }
   return out;
 }
 

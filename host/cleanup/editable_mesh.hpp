@@ -1,9 +1,11 @@
 // A triangle mesh the final cleanup can edit in place: triangle adjacency, per-vertex kind, curve
 // and arc position, the local operations (flip, Lawson legalisation, vertex move, 1->3 and 2->4
-// insertion, edge collapse) and a journal so that a trial operation can be measured and undone.
+// insertion, boundary edge split, edge collapse; in mesh_edits.cpp) and a journal so that a trial
+// operation can be measured and undone (editable_mesh.cpp).
 #pragma once
 #include <array>
 #include <cstdint>
+#include <unordered_map>
 #include <vector>
 
 #include "core/vec2.hpp"
@@ -47,6 +49,9 @@ class EditableMesh {
   // Boundary vertex a: the arc position of its neighbour along the curve before (side 0) or after
   // (side 1) it; a boundary vertex slides strictly between the two.
   double neighbour_arc(int a, int side) const;
+  // The boundary edge opposite v[t][i]: its curve and the arc positions on it of v[t][next3(i)] and
+  // v[t][prev3(i)]. False when it is not a boundary edge of a curve chain.
+  bool boundary_edge_arcs(int t, int i, int& curve, double& arc_a, double& arc_b) const;
 
   // The triangles around vertex a, counter-clockwise; for a boundary vertex the open fan from the
   // triangle on its outgoing boundary edge to the one on its incoming boundary edge.
@@ -75,6 +80,10 @@ class EditableMesh {
   // triangles are counter-clockwise (split_edge_valid).
   int split_edge(int t, int i, Vec2 at);
   bool split_edge_valid(int t, int i, Vec2 at) const;
+  // Splits the boundary edge opposite v[t][i] (1 -> 2) at `at`, a point of curve `c` at arc position
+  // `at_arc` between the edge's ends; the new node slides on that curve between them. The caller
+  // checks that both new triangles are counter-clockwise.
+  int split_boundary_edge(int t, int i, Vec2 at, double at_arc, int c);
   // Removes interior vertex a by collapsing edge a-b into b, which then moves to `to`. Returns false
   // (and changes nothing) when the link condition fails (the collapse would pinch the mesh); the
   // caller checks the orientation of b's new star afterwards.
@@ -108,7 +117,8 @@ class EditableMesh {
   int first_new_vertex() const { return vert_size0_; }
 
   // The live triangles and vertices, renumbered in slot order; kinds kept. curve_nodes gets the
-  // renumbered curve chains (unchanged in shape: the cleanup never adds or removes boundary nodes).
+  // curve chains (boundary nodes are never removed; boundary splits add some), boundary_edges joins
+  // their consecutive nodes as triangulate() does.
   Mesh to_mesh(const Mesh& original, std::vector<std::vector<int>>& curve_nodes,
                std::vector<int>& old_of_new) const;
 
@@ -132,6 +142,7 @@ class EditableMesh {
     Vec2 p;
     double arc;
     int vt;
+    int prev, next;
     std::uint8_t gone;
   };
   bool open_ = false;
@@ -145,9 +156,23 @@ class EditableMesh {
   void mark_dirty(int t);
   mutable std::vector<int> scratch_;
   std::vector<int> star_scratch_;
-  std::vector<std::vector<int>> curve_nodes_;
-  std::vector<std::vector<double>> chain_arcs_;  // the arcs given to the constructor (Fixed nodes keep theirs)
-  std::vector<int> chain_index_;                 // Boundary vertices: position in their curve's chain
+  // Per curve, its fixed nodes (ends and critical corners) in chain order with their arc positions.
+  struct FixedEntry {
+    int node;
+    double arc;
+  };
+  std::vector<std::vector<FixedEntry>> fixed_on_curve_;
+  // Boundary edges between two fixed nodes, by edge_key: their curve and the ends' arc positions.
+  struct FixedEdge {
+    int curve;
+    int first;
+    double first_arc, second_arc;
+  };
+  std::unordered_map<std::uint64_t, FixedEdge> fixed_edges_;
+  static std::uint64_t edge_key(int a, int b) {
+    const auto lo = static_cast<std::uint32_t>(a < b ? a : b), hi = static_cast<std::uint32_t>(a < b ? b : a);
+    return (static_cast<std::uint64_t>(hi) << 32) | lo;
+  }
 };
 
 }  // namespace pdmesh::cleanup

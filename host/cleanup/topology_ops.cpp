@@ -8,6 +8,7 @@
 
 #include "cleanup/measures.hpp"
 #include "core/predicates.hpp"
+#include "sim/boundary_handling.hpp"
 
 namespace pdmesh::cleanup {
 namespace {
@@ -18,9 +19,9 @@ constexpr int kMaxWalk = 64;
 
 }  // namespace
 
-TopologyOps::TopologyOps(EditableMesh& mesh, Smoother& smoother, std::function<double(Vec2)> h,
-                         TopologyOptions options)
-    : mesh_(mesh), smoother_(smoother), h_(std::move(h)), options_(options) {}
+TopologyOps::TopologyOps(EditableMesh& mesh, Smoother& smoother, const Geometry& geometry,
+                         std::function<double(Vec2)> h, TopologyOptions options)
+    : mesh_(mesh), smoother_(smoother), geometry_(geometry), h_(std::move(h)), options_(options) {}
 
 // Visibility walk from triangle `start` towards `at`; -1 when the walk would leave the domain
 // (the point is outside it, or hidden behind a boundary edge), when it is on an edge, or too far.
@@ -98,6 +99,20 @@ bool TopologyOps::split(int t, int i) {
   return true;
 }
 
+bool TopologyOps::split_boundary(int t, int i) {
+  auto& m = mesh_;
+  int c = -1;
+  double arc_a = 0.0, arc_b = 0.0;
+  if (!m.boundary_edge_arcs(t, i, c, arc_a, arc_b)) return false;
+  const double mid = 0.5 * (arc_a + arc_b);
+  if (!(mid > std::min(arc_a, arc_b) && mid < std::max(arc_a, arc_b))) return false;
+  const Vec2 at = closest_on_curve_range(geometry_.curves[c], {}, mid, mid).p;
+  const Vec2 x = m.p[m.v[t][i]], a = m.p[m.v[t][next3(i)]], b = m.p[m.v[t][prev3(i)]];
+  if (!(orient2d(x, a, at) > 0.0 && orient2d(x, at, b) > 0.0)) return false;
+  settle(m.split_boundary_edge(t, i, at, mid, c), true);
+  return true;
+}
+
 double TopologyOps::score() const {
   const double before = mesh_.touched_min_before(), after = mesh_.touched_min_after();
   const int below_before = mesh_.touched_below_before(options_.target);
@@ -137,6 +152,8 @@ RepairKind TopologyOps::repair(int t) {
     if (x_free) trials.push_back({RepairKind::Collapse, [this, x, y] { return collapse_edge(x, y); }});
     else if (y_free) trials.push_back({RepairKind::Collapse, [this, x, y] { return collapse_edge(y, x); }});
     if (m.n[t][i] >= 0) trials.push_back({RepairKind::Split, [this, t, i] { return split(t, i); }});
+    else if (options_.split_boundary)
+      trials.push_back({RepairKind::Split, [this, t, i] { return split_boundary(t, i); }});
   }
   // A crowded interior vertex of the triangle: split each of its other edges, which gives a
   // neighbour the node it is missing (JIGSAW splits edges of valence-8 nodes). Valence 7 counts as

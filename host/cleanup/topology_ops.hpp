@@ -1,7 +1,9 @@
 // Local topology operations of the final cleanup, tried on one bad triangle at a time: insert a node
 // at its circumcentre (or, when that is outside the domain or too close to a node, at the frontal
 // off-centre of its shortest edge: Rebay / Gmsh / MESH2D), collapse one of its edges (removing an
-// interior node), or split one of its interior edges at the midpoint. Each trial is followed by a
+// interior node), split one of its interior edges at the midpoint, or split one of its boundary edges
+// at the curve point halfway along the arc between its ends (JIGSAW splits boundary segments in
+// narrow gaps the same way). Each trial is followed by a
 // short local relaxation and Lawson flips, measured over exactly the triangles it touched and undone;
 // the best trial is redone when it lifts the worst angle there by at least `gain`
 // (JIGSAW keeps a change only when the local minimum quality rises by 1/300).
@@ -12,6 +14,7 @@
 
 #include "cleanup/editable_mesh.hpp"
 #include "cleanup/smoothing.hpp"
+#include "geometry/geometry.hpp"
 
 namespace pdmesh::cleanup {
 
@@ -22,6 +25,7 @@ struct TopologyOptions {
   double target = 0.5;   // score of the target angle: a trial may not add triangles below it
   double enough = 1.0;   // a trial whose local minimum reaches this score is taken without trying the rest
   int relax_rounds = 2;
+  bool split_boundary = true;  // may split boundary edges (a new node on the curve between the ends)
   // Size guards against h: an inserted node's shortest edge must be at least min_edge x h there (h no
   // more than the repaired triangle's shortest edge), and
   // a collapse may not leave an edge longer than max_edge x h, so that cleaning keeps the spacing.
@@ -32,7 +36,8 @@ struct TopologyOptions {
 class TopologyOps {
  public:
   // h(p): the local edge length the mesh aims at (the spacing field scaled to the mesh, see cleanup.cpp).
-  TopologyOps(EditableMesh& mesh, Smoother& smoother, std::function<double(Vec2)> h, TopologyOptions options);
+  TopologyOps(EditableMesh& mesh, Smoother& smoother, const Geometry& geometry, std::function<double(Vec2)> h,
+              TopologyOptions options);
 
   // Tries every operation on triangle t and applies the best one that helps; returns what it did.
   RepairKind repair(int t);
@@ -50,6 +55,7 @@ class TopologyOps {
   bool insert_at(int t, Vec2 at);
   bool collapse_edge(int a, int b);
   bool split(int t, int i);
+  bool split_boundary(int t, int i);
   void relax_around(int a);
   void settle(int a, bool inserted);
   int locate(int start, Vec2 at) const;
@@ -60,6 +66,7 @@ class TopologyOps {
 
   EditableMesh& mesh_;
   Smoother& smoother_;
+  const Geometry& geometry_;
   std::function<double(Vec2)> h_;
   TopologyOptions options_;
   double aspect_sum_ = 0.0, aspect_count_ = 1.0;
