@@ -190,7 +190,7 @@ void describe(const char* name, const BackgroundSpacing& bg, const AccuracyRepor
 
 }  // namespace
 
-TEST_CASE("background field: circle in circle within tolerance; tags agree with inside()", "[spacing]") {
+TEST_CASE("background field: circle in circle within tolerance, and tags agree with inside()", "[spacing]") {
   const Geometry g = circle_circle();
   const GeometryTree tree(g);
   const BoundarySpacing exact(tree);

@@ -119,7 +119,7 @@ TEST_CASE("omitted keys take the documented defaults", "[app][case]") {
   CHECK(c.max_nodes == 20'000'000);
 }
 
-TEST_CASE("a single dt_initial applies to both methods; an expression alone selects the expression field",
+TEST_CASE("a single dt_initial applies to both methods, and an expression alone selects the expression field",
           "[app][case]") {
   const CaseConfig c = parse_case_text(std::string(kMinimal) +
                                            "[simulation]\ndt_initial = 0.009\n[spacing]\nexpression = \"2\"\n",
@@ -240,7 +240,7 @@ TEST_CASE("several geometry files alone make one default case, named after the f
   CHECK(c.preset == Preset::Best);
 }
 
-TEST_CASE("the preset key selects the defaults; keys the file sets win over it", "[app][case]") {
+TEST_CASE("the preset key selects the defaults, and keys the file sets win over it", "[app][case]") {
   CHECK(parse_case_text(kMinimal, kCase).preset == Preset::Best);
   CHECK(parse_case_text(std::string("preset = \"best\"\n") + kMinimal, kCase).preset == Preset::Best);
   const CaseConfig thesis = parse_case_text(std::string("preset = \"thesis\"\n") + kMinimal, kCase);

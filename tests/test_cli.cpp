@@ -106,7 +106,7 @@ TEST_CASE("case-file errors exit 2 with FILE:LINE and the suggestion, before any
   fs::remove_all(dir);
 }
 
-TEST_CASE("several geometry files make one geometry; a case file takes no second input", "[cli]") {
+TEST_CASE("several geometry files make one geometry, and a case file takes no second input", "[cli]") {
   const fs::path dir = fresh_dir("multi");
   write_rectangle(dir / "rect.crv");
   // A hole: a 0.5 x 0.5 square inside the rectangle, in its own file.
@@ -182,6 +182,34 @@ TEST_CASE("pdmesh mesh writes every stage's files: initial, history, final, mesh
   CHECK(quiet.status == 0);
   CHECK(quiet.output.empty());
   CHECK(read_node_file_size(out / "initial.nodes") == nodes.nodes.size());
+  fs::remove_all(dir);
+}
+
+TEST_CASE("pdmesh quality draws a picture, and bad picture options exit 2 before writing anything", "[cli]") {
+  const fs::path dir = fresh_dir("quality_picture");
+  pdmesh::Mesh m;
+  m.points = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+  m.triangles = {{0, 1, 2}, {0, 2, 3}};
+  m.curve_names = {"square"};
+  m.boundary_edges = {{0, 1, 0}, {1, 2, 0}, {2, 3, 0}, {3, 0, 0}};
+  pdmesh::write_mesh(m, dir, "square", {"msh"});
+  const std::string mesh = "quality '" + (dir / "square.msh").string() + "' --json '" + (dir / "q.json").string() + "'";
+  const Result good = run(mesh + " --picture '" + (dir / "q.png").string() +
+                          "' --view 0,0,0.5,0.5 --color-by min_angle --color-range 20,60");
+  INFO(good.output);
+  CHECK(good.status == 0);
+  CHECK(fs::file_size(dir / "q.png") > 0);
+  fs::remove(dir / "q.png");
+  fs::remove(dir / "q.json");
+  for (const char* bad : {" --picture x.jpg", " --view 0,0,1,1", " --picture p.png --view 0,0,1", " --picture p.png --view 1,0,0,1",
+                          " --picture p.png --color-by angle", " --picture p.png --color-by min_angle --color-range 60,20",
+                          " --picture p.png --color-range 0,60", " --picture p.png --view 0,0,1,nan"}) {
+    INFO(bad);
+    const Result r = run(mesh + bad);
+    CHECK(r.status == 2);
+    CHECK(contains(r.output, "pdmesh: error:"));
+    CHECK(!fs::exists(dir / "q.json"));
+  }
   fs::remove_all(dir);
 }
 

@@ -90,7 +90,7 @@ std::vector<Vec2> circle_loop(double r, int count) {
 
 }  // namespace
 
-TEST_CASE("hilbert_key matches the textbook algorithm; hilbert_order is a permutation", "[mesh]") {
+TEST_CASE("hilbert_key matches the textbook algorithm, and hilbert_order is a permutation", "[mesh]") {
   std::mt19937_64 rng(3);
   for (int i = 0; i < 20000; ++i) {
     const auto x = static_cast<std::uint32_t>(rng() & 0xffff), y = static_cast<std::uint32_t>(rng() & 0xffff);

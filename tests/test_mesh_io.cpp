@@ -132,7 +132,7 @@ TEST_CASE("every format reads back what it wrote", "[mesh_io]") {
   std::filesystem::remove_all(dir);
 }
 
-TEST_CASE("empty curves keep their names; odd names are made writable", "[mesh_io]") {
+TEST_CASE("empty curves keep their names, and odd names are made writable", "[mesh_io]") {
   Mesh mesh = grid_mesh();
   mesh.curve_names.push_back("unused curve");
   mesh.curve_names.push_back("");

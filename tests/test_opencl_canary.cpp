@@ -60,7 +60,7 @@ TEST_CASE("a host write past the end is caught by the next download", "[opencl][
   }
 }
 
-TEST_CASE("a kernel that lets its rounded-up work-items write is caught; a masked one is not", "[opencl][canary]") {
+TEST_CASE("a kernel that lets its rounded-up work-items write is caught, and a masked one is not", "[opencl][canary]") {
   Context& ctx = test::test_context();
   for (int n : {0, 1, 7, 8, 9, 13}) {  // 0, 1, WG-1, WG, WG+1, a prime for the work-group of 8
     INFO(n << " elements");

@@ -320,3 +320,15 @@ TEST_CASE("quality command reads a mesh file, prints the table and writes the JS
   CHECK_THROWS_AS(run_quality((dir / "nope.msh").string(), std::nullopt, std::nullopt, out3, err3), InputError);
   std::filesystem::remove_all(dir);
 }
+
+TEST_CASE("metric values by name are the per-triangle fields and unknown names are refused", "[quality]") {
+  const Mesh m = two_triangle_mesh();
+  const auto per = triangle_qualities(m);
+  CHECK(metric_values(per, "min_angle") == std::vector<double>{per[0].min_angle, per[1].min_angle});
+  CHECK(metric_values(per, "max_angle")[1] == Approx(90.0));
+  CHECK(metric_values(per, "aspect_ratio")[0] == Approx(1.0));
+  CHECK(metric_values(per, "skewness")[1] == per[1].skewness);
+  CHECK(metric_values(per, "condition_number")[1] == per[1].condition_number);
+  CHECK(metric_values(per, "min_jacobian")[0] == Approx(kSqrt3 / 2));
+  CHECK_THROWS_AS(metric_values(per, "minangle"), InputError);
+}

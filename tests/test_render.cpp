@@ -59,6 +59,17 @@ Geometry rectangle_geometry() {
 
 const char kPngSignature[] = "\x89PNG\r\n\x1a\n";
 
+// The unit square as two triangles split along its diagonal from (0, 0) to (1, 1): the first one
+// lower right, the second upper left.
+Mesh unit_square_mesh() {
+  Mesh m;
+  m.points = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+  m.triangles = {{0, 1, 2}, {0, 2, 3}};
+  m.boundary_edges = {{0, 1, 0}, {1, 2, 0}, {2, 3, 0}, {3, 0, 0}};
+  m.curve_names = {"square"};
+  return m;
+}
+
 }  // namespace
 
 TEST_CASE("padded windows add 3% of the longer side", "[render]") {
@@ -147,11 +158,7 @@ TEST_CASE("a view window zooms in and a tall window makes a tall image", "[rende
 
 TEST_CASE("mesh pictures fill triangles by value and draw a colour bar", "[render]") {
   const fs::path dir = fresh_dir("mesh");
-  Mesh m;
-  m.points = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
-  m.triangles = {{0, 1, 2}, {0, 2, 3}};
-  m.boundary_edges = {{0, 1, 0}, {1, 2, 0}, {2, 3, 0}, {3, 0, 0}};
-  m.curve_names = {"square"};
+  const Mesh m = unit_square_mesh();
   const std::vector<double> values = {0.25, 1.0};
   MeshPictureOptions o;
   o.title = "square";
@@ -180,14 +187,29 @@ TEST_CASE("mesh pictures fill triangles by value and draw a colour bar", "[rende
   CHECK(png.pixel(400 + 45, 40 + 45).r > 200);
   CHECK(png.pixel(400 + 45, 440 - 45).b > 60);
   CHECK(png.pixel(400 + 45, 440 - 45).g < 40);
-  // A fixed range (two pictures on one scale): 0.25 is now the middle of [-0.5, 1], 1.0 its end.
-  o.value_range = std::make_pair(-0.5, 1.0);
-  write_mesh_picture(dir / "ranged.png", m, o);
-  Png ranged(dir / "ranged.png");
-  REQUIRE(ranged.ok());
-  CHECK(ranged.pixel(lx, ly).g == Approx(255 * colour_ramp(0.5).g).margin(3));
-  CHECK(ranged.pixel(lx, ly).b == Approx(255 * colour_ramp(0.5).b).margin(3));
-  CHECK(ranged.pixel(hx, hy).r == Approx(255 * colour_ramp(1).r).margin(3));
+  fs::remove_all(dir);
+}
+
+TEST_CASE("a fixed value range places values on the ramp and clamps those outside it", "[render]") {
+  const fs::path dir = fresh_dir("range");
+  const Mesh m = unit_square_mesh();
+  const std::vector<double> values = {30.0, 100.0};  // lower-right, upper-left
+  MeshPictureOptions o;
+  o.triangle_values = &values;
+  o.value_range = std::pair<double, double>(0.0, 60.0);
+  o.long_side = 400;
+  write_mesh_picture(dir / "range.png", m, o);
+  Png png(dir / "range.png");
+  REQUIRE(png.ok());
+  const double scale = 400 / 1.06;
+  auto px = [&](Vec2 w) { return std::pair<int, int>(static_cast<int>((w.x + 0.03) * scale), static_cast<int>(40 + (1.03 - w.y) * scale)); };
+  const auto [mx, my] = px({0.8, 0.2});
+  const Rgb mid = png.pixel(mx, my);  // 30 of [0, 60]: the middle of the ramp, not its start
+  CHECK(mid.g == Approx(255 * colour_ramp(0.5).g).margin(3));
+  CHECK(mid.r == Approx(255 * colour_ramp(0.5).r).margin(3));
+  const auto [hx, hy] = px({0.2, 0.8});
+  const Rgb high = png.pixel(hx, hy);  // 100 > 60: clamped to the end
+  CHECK(high.r == Approx(255 * colour_ramp(1).r).margin(3));
   fs::remove_all(dir);
 }
 

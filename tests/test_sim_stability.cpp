@@ -94,7 +94,7 @@ TEST_CASE("stiffness bound: lj_pair_stiffness is the norm of the pair force Jaco
   }
 }
 
-TEST_CASE("stiffness bound: dt2_limit is empty when off and 2c/K_i when on; the step takes the minimum",
+TEST_CASE("stiffness bound: dt2_limit is empty when off and 2c/K_i when on, and the step takes the minimum",
           "[sim][stability]") {
   SimParticles p;
   add(p, 0.0, 0.0, 1.0, kSimInterior);

@@ -5,6 +5,7 @@
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <cerrno>
+#include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <fmt/format.h>
@@ -18,6 +19,7 @@
 #include "app/mesh_command.hpp"
 #include "app/quality_command.hpp"
 #include "core/errors.hpp"
+#include "mesh/quality.hpp"
 
 namespace pdmesh {
 
@@ -25,7 +27,7 @@ namespace fs = std::filesystem;
 
 struct QualityArguments {
   std::string mesh;
-  std::optional<std::string> geometry, json;
+  std::optional<std::string> geometry, json, picture, view, color_by, color_range;
 };
 
 struct MeshArguments {
@@ -81,6 +83,57 @@ std::string view_value(const std::string& text) {
   t.insert("window", std::move(window));
   t.is_inline(true);
   return toml_text(t);
+}
+
+// "a,b,c" as exactly `count` finite numbers; errors name the option and the text.
+std::vector<double> number_list(const std::string& option, const std::string& text, std::size_t count,
+                                const char* expected) {
+  std::vector<double> out;
+  std::stringstream in(text);
+  for (std::string f; std::getline(in, f, ',');) {
+    char* end = nullptr;
+    const double v = std::strtod(f.c_str(), &end);
+    if (f.empty() || end != f.c_str() + f.size() || !std::isfinite(v)) {
+      throw InputError(fmt::format("{} {}: '{}' is not a finite number (expected {})", option, text, f, expected));
+    }
+    out.push_back(v);
+  }
+  if (out.size() != count) {
+    throw InputError(fmt::format("{} {}: expected {} numbers ({}), got {}", option, text, count, expected, out.size()));
+  }
+  return out;
+}
+
+// The `pdmesh quality --picture` options, checked before anything is read or written.
+std::optional<QualityPicture> quality_picture(const QualityArguments& a) {
+  if (!a.picture) {
+    for (const auto* o : {&a.view, &a.color_by, &a.color_range}) {
+      if (*o) throw InputError("--view, --color-by and --color-range draw a picture: give --picture FILE too");
+    }
+    return std::nullopt;
+  }
+  QualityPicture p;
+  p.path = *a.picture;
+  const std::string ext = fs::path(p.path).extension().string();
+  if (ext != ".png" && ext != ".svg") {
+    throw InputError(fmt::format("--picture {}: the file name must end in .png or .svg", p.path));
+  }
+  if (a.view) {
+    const auto w = number_list("--view", *a.view, 4, "x0,y0,x1,y1");
+    if (!(w[0] < w[2] && w[1] < w[3])) throw InputError(fmt::format("--view {}: needs x0 < x1 and y0 < y1", *a.view));
+    p.window = std::array<double, 4>{w[0], w[1], w[2], w[3]};
+  }
+  if (a.color_by) {
+    metric_values({}, *a.color_by == "none" ? "min_angle" : *a.color_by);  // throws for unknown names
+    p.color_by = *a.color_by;
+  }
+  if (a.color_range) {
+    const auto r = number_list("--color-range", *a.color_range, 2, "LO,HI");
+    if (!(r[0] < r[1])) throw InputError(fmt::format("--color-range {}: needs LO < HI", *a.color_range));
+    if (p.color_by == "none") throw InputError("--color-range needs --color-by METRIC");
+    p.color_range = std::pair<double, double>(r[0], r[1]);
+  }
+  return p;
 }
 
 std::vector<CaseOverride> overrides_from(const MeshArguments& a) {
@@ -238,7 +291,21 @@ Cli::Cli() : app_(std::make_unique<CLI::App>("pdmesh: physics-based point placem
       ->type_name("FILE");
   quality->add_option("--json", quality_->json, "Also write the JSON summary: a file, a directory, or - for stdout")
       ->type_name("PATH");
-  commands_.emplace_back(quality, [this] { return run_quality(quality_->mesh, quality_->geometry, quality_->json); });
+  quality->add_option("--picture", quality_->picture, "Also draw the mesh: a .png or .svg file")->type_name("FILE");
+  quality->add_option("--view", quality_->view, "Window of the picture (default: the whole mesh)")
+      ->type_name("x0,y0,x1,y1");
+  quality->add_option("--color-by", quality_->color_by,
+                      "Fill the picture's triangles by a metric: none | min_angle | max_angle | aspect_ratio | "
+                      "skewness | condition_number | min_jacobian")
+      ->type_name("METRIC");
+  quality->add_option("--color-range", quality_->color_range,
+                      "Values at the two ends of the colour scale (default: the mesh's range), so that pictures "
+                      "of different meshes compare")
+      ->type_name("LO,HI");
+  commands_.emplace_back(quality, [this] {
+    const auto picture = quality_picture(*quality_);
+    return run_quality(quality_->mesh, quality_->geometry, quality_->json, picture);
+  });
 
   CLI::App* bench = app_->add_subcommand("bench", "Time the simulation on the host reference and on each OpenCL device");
   bench->add_option("--cases", bench_->cases, "Cases to run (graded_1m is generated in code)")->type_name("NAME...");

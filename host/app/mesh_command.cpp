@@ -150,21 +150,6 @@ void write_node_outputs(const CaseConfig& config, const MeshInputs& inputs, cons
            config.output.views.empty() ? "" : fmt::format(" and {} view(s)", config.output.views.size()));
 }
 
-// The per-triangle values of one metric, for colouring mesh pictures.
-std::vector<double> metric_values(const std::vector<TriangleQuality>& q, const std::string& metric) {
-  std::vector<double> v;
-  v.reserve(q.size());
-  for (const TriangleQuality& t : q) {
-    if (metric == "min_angle") v.push_back(t.min_angle);
-    else if (metric == "max_angle") v.push_back(t.max_angle);
-    else if (metric == "aspect_ratio") v.push_back(t.aspect_ratio);
-    else if (metric == "skewness") v.push_back(t.skewness);
-    else if (metric == "condition_number") v.push_back(t.condition_number);
-    else v.push_back(t.min_jacobian);
-  }
-  return v;
-}
-
 }  // namespace
 
 void write_initial_outputs(const CaseConfig& config, const MeshInputs& inputs, const InitialDistribution& initial) {

@@ -1,4 +1,4 @@
-// `pdmesh quality`: mesh file in, quality table (and JSON) out.
+// `pdmesh quality`: mesh file in, quality table (and JSON, and a picture) out.
 #include "app/quality_command.hpp"
 
 #include <filesystem>
@@ -14,6 +14,7 @@
 #include "io/text_file.hpp"
 #include "mesh/quality.hpp"
 #include "mesh/quality_report.hpp"
+#include "render/mesh_picture.hpp"
 #include "spacing/spacing_field.hpp"
 
 namespace pdmesh {
@@ -46,10 +47,31 @@ std::unique_ptr<CaseSpacing> load_spacing(const std::filesystem::path& path) {
   return s;
 }
 
+void write_picture(const Mesh& mesh, const std::string& mesh_path, const QualityPicture& picture) {
+  std::vector<double> values;
+  MeshPictureOptions options;
+  options.title = std::filesystem::path(mesh_path).filename().string();
+  if (picture.window) {
+    const auto& w = *picture.window;
+    Box box;
+    box.add({w[0], w[1]});
+    box.add({w[2], w[3]});
+    options.window = box;
+  }
+  if (picture.color_by != "none") {
+    values = metric_values(triangle_qualities(mesh), picture.color_by);
+    options.triangle_values = &values;
+    options.value_label = picture.color_by;
+    options.value_range = picture.color_range;
+  }
+  write_mesh_picture(picture.path, mesh, options);
+}
+
 }  // namespace
 
 int run_quality(const std::string& mesh_path, const std::optional<std::string>& geometry_path,
-                const std::optional<std::string>& out_json, std::ostream& out, std::ostream& err) {
+                const std::optional<std::string>& out_json, std::ostream& out, std::ostream& err,
+                const std::optional<QualityPicture>& picture) {
   MeshReadReport report;
   const Mesh mesh = read_mesh(mesh_path, report);
   for (const auto& note : report.notes) err << note << '\n';
@@ -74,12 +96,16 @@ int run_quality(const std::string& mesh_path, const std::optional<std::string>& 
       err << "wrote " << *out_json << '\n';
     }
   }
+  if (picture) {
+    write_picture(mesh, mesh_path, *picture);
+    err << "wrote " << picture->path << '\n';
+  }
   return 0;
 }
 
 int run_quality(const std::string& mesh_path, const std::optional<std::string>& geometry_path,
-                const std::optional<std::string>& out_json) {
-  return run_quality(mesh_path, geometry_path, out_json, std::cout, std::cerr);
+                const std::optional<std::string>& out_json, const std::optional<QualityPicture>& picture) {
+  return run_quality(mesh_path, geometry_path, out_json, std::cout, std::cerr, picture);
 }
 
 }  // namespace pdmesh

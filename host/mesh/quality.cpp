@@ -95,6 +95,24 @@ std::vector<TriangleQuality> triangle_qualities(const Mesh& mesh) {
   return out;
 }
 
+std::vector<double> metric_values(const std::vector<TriangleQuality>& q, const std::string& metric) {
+  double TriangleQuality::*member = nullptr;
+  if (metric == "min_angle") member = &TriangleQuality::min_angle;
+  else if (metric == "max_angle") member = &TriangleQuality::max_angle;
+  else if (metric == "aspect_ratio") member = &TriangleQuality::aspect_ratio;
+  else if (metric == "skewness") member = &TriangleQuality::skewness;
+  else if (metric == "condition_number") member = &TriangleQuality::condition_number;
+  else if (metric == "min_jacobian") member = &TriangleQuality::min_jacobian;
+  else {
+    throw InputError(fmt::format("unknown quality metric '{}' (choose min_angle, max_angle, aspect_ratio, skewness, "
+                                 "condition_number or min_jacobian)", metric));
+  }
+  std::vector<double> v;
+  v.reserve(q.size());
+  for (const TriangleQuality& t : q) v.push_back(t.*member);
+  return v;
+}
+
 void Histogram::add(double value) {
   if (counts.empty()) return;
   const double k = std::floor((value - lo) / width);

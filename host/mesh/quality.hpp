@@ -4,6 +4,7 @@
 #pragma once
 #include <cstddef>
 #include <functional>
+#include <string>
 #include <vector>
 
 #include "core/vec2.hpp"
@@ -36,6 +37,10 @@ TriangleQuality triangle_quality(Vec2 a, Vec2 b, Vec2 c);
 
 // Per-triangle metrics of a whole mesh, in triangle order.
 std::vector<TriangleQuality> triangle_qualities(const Mesh& mesh);
+
+// The per-triangle values of one metric by name (min_angle, max_angle, aspect_ratio, skewness,
+// condition_number, min_jacobian), for colouring mesh pictures. Throws InputError for other names.
+std::vector<double> metric_values(const std::vector<TriangleQuality>& q, const std::string& metric);
 
 // Fixed-width bins [lo + k*width, lo + (k+1)*width) for k < bins; values below lo count in the
 // first bin and values at or above the last edge count in `overflow` (shown as ">= edge").

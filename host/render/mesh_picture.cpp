@@ -79,7 +79,9 @@ void write_mesh_picture(const std::filesystem::path& path, const Mesh& mesh, con
     }
   }
   double lo = INFINITY, hi = -INFINITY;
-  if (values != nullptr) {
+  if (values != nullptr && options.value_range) {
+    std::tie(lo, hi) = *options.value_range;
+  } else if (values != nullptr) {
     for (double v : *values) {
       if (std::isfinite(v)) {
         lo = std::min(lo, v);
@@ -87,7 +89,6 @@ void write_mesh_picture(const std::filesystem::path& path, const Mesh& mesh, con
       }
     }
   }
-  if (options.value_range) std::tie(lo, hi) = *options.value_range;
   Box extents;
   for (const Vec2& p : mesh.points) extents.add(p);
   CanvasOptions layout;

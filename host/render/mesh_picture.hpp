@@ -17,8 +17,8 @@ struct MeshPictureOptions {
   std::optional<Box> window;                          // default: the mesh's extents + 3%
   const std::vector<double>* triangle_values = nullptr;  // one per triangle; fills and adds a colour bar
   std::string value_label;                            // colour bar caption, e.g. "radius ratio"
-  // Colour bar range; default: the values' finite minimum and maximum. A fixed range lets two
-  // pictures (before and after a change) share one scale; values outside it get the end colours.
+  // Values mapped to the two ends of the colour ramp (others clamped); default: the values'
+  // finite minimum and maximum. A fixed range makes pictures of different meshes comparable.
   std::optional<std::pair<double, double>> value_range;
   int long_side = 1600;
 };
