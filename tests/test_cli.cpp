@@ -160,7 +160,7 @@ TEST_CASE("pdmesh mesh writes every stage's files: initial, history, final, mesh
   const std::vector<std::string> expected = {
       "initial.nodes", "initial.png", "initial.svg", "initial_corner.png", "initial_view2.png",
       "history.csv",   "history.png", "final.nodes", "final.png",          "final.svg",
-      "final_corner.png", "final_view2.png", "mesh.msh", "mesh.vtu",     "quality.json",
+      "final_corner.png", "final_view2.png", "mesh.msh", "mesh.vtu",     "quality.json", "mesh.nodes",
       "mesh.png",      "mesh.svg",        "mesh_corner.png", "mesh_view2.png"};
   for (const std::string& f : expected) {
     INFO(f);

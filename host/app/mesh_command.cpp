@@ -287,6 +287,8 @@ Mesh mesh_and_measure(const CaseConfig& config, const MeshInputs& inputs, const 
   // The final cleanup (docs/cleanup.md): the mesh files and pictures show the cleaned mesh; final.nodes
   // stays the simulation's result.
   CleanupEffect effect;
+  NodeSet cleaned_nodes;
+  const NodeSet* mesh_nodes = &nodes;
   if (config.cleanup.enabled) {
     CleanupOptions options;
     options.min_angle = config.cleanup.min_angle;
@@ -309,6 +311,8 @@ Mesh mesh_and_measure(const CaseConfig& config, const MeshInputs& inputs, const 
              effect.seconds, effect.min_angle_before, effect.min_angle_after, effect.target_deg, effect.below_before,
              effect.below_after, effect.moves, effect.inserted, effect.removed, mesh.triangles.size());
     if (config.check) check_or_throw(config, inputs, mesh, cleaned.nodes, "cleaned mesh");
+    cleaned_nodes = std::move(cleaned.nodes);
+    mesh_nodes = &cleaned_nodes;
   }
   const SpacingField& spacing = *inputs.spacing;
   QualitySummary summary = summarize_quality(mesh, [&spacing](Vec2 p) { return spacing.at(p); });
@@ -321,6 +325,9 @@ Mesh mesh_and_measure(const CaseConfig& config, const MeshInputs& inputs, const 
   for (const std::string& f : config.output.formats)
     if (is_mesh_format(f)) mesh_formats.push_back(f);
   const auto written = write_mesh(mesh, dir, "mesh", mesh_formats);
+  // The nodes of the mesh with their q, kinds and curve chains (final.nodes after the cleanup; the
+  // same nodes without it), for tools that need the mesh's boundary chains, like tools/compare.
+  write_node_file(dir / "mesh.nodes", *mesh_nodes, inputs.curve_names());
   // Pictures: png is always drawn when asked for; svg likewise.
   const std::vector<TriangleQuality> per_triangle = triangle_qualities(mesh);
   std::vector<double> values;
@@ -351,8 +358,8 @@ Mesh mesh_and_measure(const CaseConfig& config, const MeshInputs& inputs, const 
   }
   std::string names;
   for (const auto& p : written) names += (names.empty() ? "" : ", ") + p.filename().string();
-  progress(config, "mesh: {} triangles; wrote {}/quality.json{}{} and {} picture(s)", mesh.triangles.size(), dir.string(),
-           names.empty() ? "" : ", ", names, pictures);
+  progress(config, "mesh: {} triangles; wrote {}/quality.json, mesh.nodes{}{} and {} picture(s)", mesh.triangles.size(),
+           dir.string(), names.empty() ? "" : ", ", names, pictures);
   return mesh;
 }
 
