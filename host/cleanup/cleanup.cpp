@@ -4,7 +4,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <map>
+#include <set>
 
 #include "cleanup/editable_mesh.hpp"
 #include "cleanup/measures.hpp"
@@ -71,7 +71,7 @@ CleanupResult clean_mesh(const Mesh& mesh, const NodeSet& nodes, const GeometryT
   cleanup::TopologyOps ops(m, smoother, tree.geometry(), [&spacing, ratio](Vec2 p) { return ratio * spacing.at(p); },
                            topology_options);
   std::vector<std::uint8_t> mark;
-  std::map<std::array<int, 3>, double> failures;
+  std::set<std::array<int, 3>> failures;
   const auto trial_budget = static_cast<std::size_t>(
       std::max(10000.0, options.trials_per_triangle * static_cast<double>(mesh.triangles.size())));
   for (int iteration = 0; iteration < options.iterations; ++iteration) {
@@ -109,12 +109,11 @@ CleanupResult clean_mesh(const Mesh& mesh, const NodeSet& nodes, const GeometryT
         // A triangle no operation could repair is not tried again in this run.
         auto key = m.v[t];
         std::sort(key.begin(), key.end());
-        const auto failed = failures.find(key);
-        if (failed != failures.end()) continue;
+        if (failures.count(key) > 0) continue;
         switch (ops.repair(t)) {
           case cleanup::RepairKind::None:
             ++result.stats.rejected;
-            failures[key] = m.quality(t);
+            failures.insert(key);
             break;
           case cleanup::RepairKind::Collapse: ++result.stats.collapsed; ++changed; break;
           default: ++result.stats.inserted; ++changed; break;

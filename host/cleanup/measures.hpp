@@ -1,5 +1,5 @@
 // Triangle measures the cleanup decides with: the sine of the smallest angle (its quality score),
-// circumcentre, circumradius and inradius. Plain floating point: orientation decisions that must be
+// the aspect ratio, circumcentre and inradius. Plain floating point: orientation decisions that must be
 // exact use core/predicates; these only rank candidates.
 #pragma once
 #include <algorithm>
@@ -21,15 +21,8 @@ inline double min_angle_sine(Vec2 a, Vec2 b, Vec2 c) {
   return product > 0.0 ? twice_area / std::sqrt(product) : -1.0;
 }
 
-// Smallest angle in degrees from its sine (valid triangles only).
-inline double degrees_from_sine(double s) { return std::asin(std::clamp(s, -1.0, 1.0)) * 57.29577951308232; }
+// The sine of an angle in degrees (targets are given in degrees).
 inline double sine_from_degrees(double d) { return std::sin(d / 57.29577951308232); }
-
-// Area-length quality 4 sqrt(3) A / (l1^2 + l2^2 + l3^2): 1 for equilateral (JIGSAW's and MESH2D's score).
-inline double area_length_quality(Vec2 a, Vec2 b, Vec2 c) {
-  const double s = norm2(b - a) + norm2(c - b) + norm2(a - c);
-  return s > 0.0 ? 3.4641016151377544 * cross(b - a, c - a) / s : -1.0;
-}
 
 // Aspect ratio R / (2 r) as the thesis appendix defines it (mesh/quality.cpp computes it the same
 // way: l1 l2 l3 s / (8 A^2), s the half perimeter); +inf for a degenerate or inverted triangle.
@@ -51,11 +44,6 @@ inline Vec2 circumcentre(Vec2 a, Vec2 b, Vec2 c) {
 inline double inradius(Vec2 a, Vec2 b, Vec2 c) {
   const double perimeter = dist(a, b) + dist(b, c) + dist(c, a);
   return perimeter > 0.0 ? std::fabs(cross(b - a, c - a)) / perimeter : 0.0;
-}
-
-inline double circumradius(Vec2 a, Vec2 b, Vec2 c) {
-  const double twice_area = std::fabs(cross(b - a, c - a));
-  return twice_area > 0.0 ? dist(a, b) * dist(b, c) * dist(c, a) / (2.0 * twice_area) : HUGE_VAL;
 }
 
 }  // namespace pdmesh::cleanup
