@@ -280,7 +280,8 @@ TEST_CASE("pdmesh mesh: smooth curves with spacing nodes pass --check, and cross
   INFO(r.output);
   REQUIRE(r.status == 0);
   CHECK_THAT(r.output, Catch::Contains("smooth curves (centripetal Catmull-Rom) as a dense polyline"));
-  CHECK_THAT(r.output, Catch::Contains("mesh check: passed"));
+  CHECK_THAT(r.output, Catch::Contains("mesh check (triangulation): passed"));
+  CHECK_THAT(r.output, Catch::Contains("mesh check (cleaned mesh): passed"));
   // The best preset placed the boundary nodes by the field: about 2 pi / 0.1 on the circle and
   // 4 / 0.1 a side on the box, where the input gives 16 + 4.
   const NodeFile initial = read_node_file(dir / "out" / "initial.nodes");

@@ -348,6 +348,38 @@ TEST_CASE("population keys: best runs it, thesis does not, every value is checke
              Catch::Contains("--set population.start=-1") && Catch::Contains("population.start must be in 0.."));
 }
 
+TEST_CASE("cleanup keys: best cleans, thesis does not, a key wins over the preset, bad values are refused",
+          "[app][case]") {
+  const CaseConfig best = parse_case_text(kMinimal, kCase);
+  CHECK(best.cleanup.enabled);
+  CHECK(best.cleanup.min_angle == 30.0);
+  CHECK(best.cleanup.iterations == 16);
+  CHECK(best.cleanup.topology);
+  CHECK(best.cleanup.split_boundary);
+  CHECK_FALSE(parse_case_text(std::string("preset = \"thesis\"\n") + kMinimal, kCase).cleanup.enabled);
+  const CaseConfig on = parse_case_text(std::string("preset = \"thesis\"\n") + kMinimal, kCase,
+                                        {parse_set_option("cleanup.enabled=true")});
+  CHECK(on.cleanup.enabled);
+  CHECK(on.preset == Preset::Thesis);
+  const CaseConfig set = parse_case_text(
+      std::string(kMinimal) + "[cleanup]\nmin_angle = 33.5\niterations = 4\ntopology = false\nsplit_boundary = false\n",
+      kCase);
+  CHECK(set.cleanup.min_angle == 33.5);
+  CHECK(set.cleanup.iterations == 4);
+  CHECK_FALSE(set.cleanup.topology);
+  CHECK_FALSE(set.cleanup.split_boundary);
+  CHECK_THAT(error_of(std::string(kMinimal) + "[cleanup]\nmin_angle = 60\n"),
+             Catch::Contains("case.toml:4:13: cleanup.min_angle must be in (0, 60) degrees, got 60"));
+  CHECK_THAT(error_of(kMinimal, {parse_set_option("cleanup.min_angle=0")}),
+             Catch::Contains("--set cleanup.min_angle=0: cleanup.min_angle must be in (0, 60) degrees, got 0"));
+  CHECK_THAT(error_of(std::string(kMinimal) + "[cleanup]\niterations = 0\n"),
+             Catch::Contains("case.toml:4:14: cleanup.iterations must be in 1..1000, got 0"));
+  CHECK_THAT(error_of(std::string(kMinimal) + "[cleanup]\nenabled = \"yes\"\n"),
+             Catch::Contains("cleanup.enabled must be a boolean (true or false), got string"));
+  CHECK_THAT(error_of(std::string(kMinimal) + "[cleanup]\nmin_angel = 20\n"),
+             Catch::Contains("unknown key 'cleanup.min_angel'; did you mean 'cleanup.min_angle'?"));
+}
+
 TEST_CASE("edit distance", "[app][case]") {
   CHECK(edit_distance("", "abc") == 3);
   CHECK(edit_distance("kitten", "sitting") == 3);

@@ -23,7 +23,7 @@ namespace fs = std::filesystem;
 namespace {
 
 // Tables that may hold further keys; every other key is a leaf.
-const std::vector<std::string> kSections = {"geometry", "spacing", "boundary", "init", "simulation", "population", "output"};
+const std::vector<std::string> kSections = {"geometry", "spacing", "boundary", "init", "simulation", "population", "cleanup", "output"};
 const std::vector<std::string> kFormats = {"msh", "msh22", "vtu", "su2", "triangle", "png", "svg"};
 
 const char* type_name(const toml::node& n) {
@@ -523,6 +523,24 @@ void read_population_section(const Reader& r, const toml::table& root, CaseConfi
                        p.boundary_split));
 }
 
+void read_cleanup_section(const Reader& r, const toml::table& root, CaseConfig& c) {
+  auto& k = c.cleanup;
+  if (const toml::node* n = find(root, "cleanup", "enabled")) k.enabled = r.boolean("cleanup.enabled", *n);
+  if (const toml::node* n = find(root, "cleanup", "min_angle")) {
+    k.min_angle = r.number("cleanup.min_angle", *n);
+    if (!(k.min_angle > 0.0 && k.min_angle < 60.0))
+      r.fail("cleanup.min_angle", n, fmt::format("cleanup.min_angle must be in (0, 60) degrees, got {}", k.min_angle));
+  }
+  if (const toml::node* n = find(root, "cleanup", "iterations")) {
+    k.iterations = r.integer("cleanup.iterations", *n);
+    if (k.iterations < 1 || k.iterations > 1000)
+      r.fail("cleanup.iterations", n, fmt::format("cleanup.iterations must be in 1..1000, got {}", k.iterations));
+  }
+  if (const toml::node* n = find(root, "cleanup", "topology")) k.topology = r.boolean("cleanup.topology", *n);
+  if (const toml::node* n = find(root, "cleanup", "split_boundary"))
+    k.split_boundary = r.boolean("cleanup.split_boundary", *n);
+}
+
 ViewWindow read_view(const Reader& r, const toml::node& entry, std::size_t i) {
   const std::string key = fmt::format("output.views[{}]", i);
   if (!entry.is_table()) r.wrong_type(key, entry, "a table { name = ..., window = [x0, y0, x1, y1] }");
@@ -606,6 +624,7 @@ CaseConfig check_values(const toml::table& root, const Reader& r, CaseConfig c) 
   read_init_section(r, root, c);
   read_simulation_section(r, root, c);
   read_population_section(r, root, c);
+  read_cleanup_section(r, root, c);
   read_output_section(r, root, c);
   return c;
 }
@@ -640,6 +659,7 @@ const std::vector<std::string>& case_file_keys() {
       "simulation.precision", "simulation.r0_rule", "simulation.stability_factor",
       "population.enabled", "population.every", "population.start", "population.stop", "population.insert",
       "population.merge", "population.remove_valence", "population.boundary", "population.boundary_split",
+      "cleanup.enabled", "cleanup.min_angle", "cleanup.iterations", "cleanup.topology", "cleanup.split_boundary",
       "output.formats", "output.tree_overlay", "output.views", "output.color_by", "output.spacing_picture",
   };
   return keys;

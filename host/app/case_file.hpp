@@ -114,6 +114,15 @@ struct CaseConfig {
   // Node insertion and removal during the run (sim/population.hpp, docs/cli.md "[population]"). Best:
   // on; thesis: off (the thesis keeps the initial node count).
   PopulationOptions population{.enabled = true};
+  // The final cleanup after the last iteration (docs/cleanup.md): repairs the triangles whose
+  // smallest angle is below min_angle by smoothing, flips and local topology operations.
+  struct Cleanup {
+    bool enabled = true;
+    double min_angle = 30.0;       // degrees, in (0, 60)
+    std::int64_t iterations = 16;  // outer iterations (smoothing sweeps + a topology pass)
+    bool topology = true;          // false: smoothing and flips only (the node count stays)
+    bool split_boundary = true;    // false: no new boundary nodes (boundary nodes only slide)
+  } cleanup;
 
   struct Output {
     std::vector<std::string> formats{"msh", "vtu", "png"};

@@ -16,6 +16,7 @@
 #include "app/exit_codes.hpp"
 #include "app/interrupt.hpp"
 #include "app/resume.hpp"
+#include "cleanup/cleanup.hpp"
 #include "core/atomic_file.hpp"
 #include "core/errors.hpp"
 #include "geometry/geometry_files.hpp"
@@ -361,27 +362,76 @@ SimResult simulate(const CaseConfig& config, const MeshInputs& inputs, NodeSet& 
   return result;
 }
 
+namespace {
+
+// --check: the invariant checker on `mesh`, whose boundary nodes are those of `nodes`.
+void check_or_throw(const CaseConfig& config, const MeshInputs& inputs, const Mesh& mesh, const NodeSet& nodes,
+                    const char* which) {
+  // The mesh covers the polygons through the boundary nodes, which cut the curves' corners
+  // where nodes have slid off geometry vertices; that area is what the check compares against.
+  const double node_area = node_domain_area(nodes, inputs.node_geometry());
+  const CheckReport report = check_mesh(mesh, node_area);
+  if (!report.ok()) throw SimulationError(fmt::format("the {} failed its invariant check:\n{}", which, report.summary()));
+  progress(config, "mesh check ({}): passed (topology, orientation, constrained Delaunay, boundary edges, area {:.10g}; "
+           "the geometry's area is {:.10g}, relative difference {:.2g})",
+           which, node_area, inputs.geometry.area, std::fabs(node_area - inputs.geometry.area) / inputs.geometry.area);
+}
+
+// Smallest and largest angle and the triangles below `target` degrees.
+void angle_figures(const Mesh& mesh, double target, double& min_angle, double& max_angle, std::size_t& below) {
+  const QualitySummary s = summarize_quality(mesh);
+  min_angle = s.min_angle;
+  max_angle = s.max_angle;
+  below = 0;
+  for (const TriangleQuality& t : triangle_qualities(mesh)) below += t.min_angle < target;
+}
+
+}  // namespace
+
 Mesh mesh_and_measure(const CaseConfig& config, const MeshInputs& inputs, const NodeSet& nodes) {
   const auto start = std::chrono::steady_clock::now();
   Mesh mesh = triangulate(nodes, inputs.curve_names());
   progress(config, "triangulation: {:.3f} s ({} triangles)",
            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), mesh.triangles.size());
-  if (config.check) {
-    // The mesh covers the polygons through the boundary nodes, which cut the curves' corners
-    // where nodes have slid off geometry vertices; that area is what the check compares against.
-    const double node_area = node_domain_area(nodes, inputs.node_geometry());
-    const CheckReport report = check_mesh(mesh, node_area);
-    if (!report.ok()) throw SimulationError("the mesh failed its invariant check:\n" + report.summary());
-    progress(config, "mesh check: passed (topology, orientation, constrained Delaunay, boundary edges, area {:.10g}; "
-             "the geometry's area is {:.10g}, relative difference {:.2g})",
-             node_area, inputs.geometry.area, std::fabs(node_area - inputs.geometry.area) / inputs.geometry.area);
+  if (config.check) check_or_throw(config, inputs, mesh, nodes, "triangulation");
+  // The final cleanup (docs/cleanup.md): the mesh files and pictures show the cleaned mesh; final.nodes
+  // stays the simulation's result.
+  CleanupEffect effect;
+  NodeSet cleaned_nodes;
+  const NodeSet* mesh_nodes = &nodes;
+  if (config.cleanup.enabled) {
+    CleanupOptions options;
+    options.min_angle = config.cleanup.min_angle;
+    options.iterations = static_cast<int>(config.cleanup.iterations);
+    options.topology = config.cleanup.topology;
+    options.split_boundary = config.cleanup.split_boundary;
+    effect.target_deg = options.min_angle;
+    effect.triangles_before = mesh.triangles.size();
+    effect.points_before = mesh.points.size();
+    angle_figures(mesh, options.min_angle, effect.min_angle_before, effect.max_angle_before, effect.below_before);
+    CleanupResult cleaned = clean_mesh(mesh, nodes, inputs.node_tree(), inputs.field(), options);
+    mesh = std::move(cleaned.mesh);
+    angle_figures(mesh, options.min_angle, effect.min_angle_after, effect.max_angle_after, effect.below_after);
+    effect.inserted = cleaned.stats.inserted;
+    effect.removed = cleaned.stats.collapsed;
+    effect.moves = cleaned.stats.moves;
+    effect.seconds = cleaned.stats.seconds;
+    progress(config, "cleanup: {:.3f} s; min angle {:.2f} -> {:.2f} deg, triangles below {:g} deg {} -> {}; "
+             "{} node moves, {} nodes inserted, {} removed ({} triangles)",
+             effect.seconds, effect.min_angle_before, effect.min_angle_after, effect.target_deg, effect.below_before,
+             effect.below_after, effect.moves, effect.inserted, effect.removed, mesh.triangles.size());
+    if (config.check) check_or_throw(config, inputs, mesh, cleaned.nodes, "cleaned mesh");
+    cleaned_nodes = std::move(cleaned.nodes);
+    mesh_nodes = &cleaned_nodes;
   }
   const SpacingField& spacing = inputs.field();
   // The field at every node goes into the mesh files (point data "q"): a run's field can be read back
   // with spacing.field = "mesh", or edited (e.g. scaled by a solution's error indicator) first.
   spacing.at_many(mesh.points, mesh.spacing);
   if (!config.write_outputs) return mesh;  // the Python API measures on demand (Mesh.quality())
-  const QualitySummary summary = summarize_quality(mesh, [&spacing](Vec2 p) { return spacing.at(p); });
+  QualitySummary summary = summarize_quality(mesh, [&spacing](Vec2 p) { return spacing.at(p); });
+  summary.has_cleanup = config.cleanup.enabled;
+  summary.cleanup = effect;
   if (!config.quiet) fmt::print("{}", format_quality_table(summary, config.name));
   const fs::path& dir = config.out_dir;
   write_quality_json(summary, dir, config.name);
@@ -389,6 +439,9 @@ Mesh mesh_and_measure(const CaseConfig& config, const MeshInputs& inputs, const 
   for (const std::string& f : config.output.formats)
     if (is_mesh_format(f)) mesh_formats.push_back(f);
   const auto written = write_mesh(mesh, dir, "mesh", mesh_formats);
+  // The nodes of the mesh with their q, kinds and curve chains (final.nodes after the cleanup; the
+  // same nodes without it), for tools that need the mesh's boundary chains, like tools/compare.
+  write_node_file(dir / "mesh.nodes", *mesh_nodes, inputs.curve_names());
   // Pictures: png is always drawn when asked for; svg likewise.
   const std::vector<TriangleQuality> per_triangle = triangle_qualities(mesh);
   std::vector<double> values;
@@ -419,8 +472,8 @@ Mesh mesh_and_measure(const CaseConfig& config, const MeshInputs& inputs, const 
   }
   std::string names;
   for (const auto& p : written) names += (names.empty() ? "" : ", ") + p.filename().string();
-  progress(config, "mesh: {} triangles; wrote {}/quality.json{}{} and {} picture(s)", mesh.triangles.size(), dir.string(),
-           names.empty() ? "" : ", ", names, pictures);
+  progress(config, "mesh: {} triangles; wrote {}/quality.json, mesh.nodes{}{} and {} picture(s)", mesh.triangles.size(),
+           dir.string(), names.empty() ? "" : ", ", names, pictures);
   return mesh;
 }
 

@@ -26,6 +26,8 @@ void apply_preset(CaseConfig& c, Preset preset) {
   // The thesis keeps the initial node count for the whole run (population control is its ch. 7
   // future work).
   c.population.enabled = !thesis;
+  // The thesis meshes the final node distribution as it is (no cleanup pass).
+  c.cleanup.enabled = !thesis;
 }
 
 }  // namespace pdmesh
