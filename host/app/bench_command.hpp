@@ -23,6 +23,13 @@ struct BenchArguments {
   bool skip_host = false;           // devices only
   bool skip_host_large = false;     // the host reference takes seconds per iteration at 1M nodes
   std::string out;                  // the table as Markdown (atomic write); empty: stdout only
+  // --whole-run: the `mesh` command end to end instead (app/whole_run_bench.hpp).
+  bool whole_run = false;
+  int repeat = 3;                          // runs per case and backend
+  std::vector<std::string> backends = {"auto"};  // --device of each run
+  std::vector<std::string> sets;           // --set KEY=VALUE passed to every run
+  std::string work_dir = "bench_runs";     // outputs of the runs and the generated cases
+  bool keep_pictures = true;               // false: --formats msh (no pictures)
 };
 
 // Runs the benchmark and prints the table; returns the exit status.

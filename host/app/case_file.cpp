@@ -208,6 +208,7 @@ void check_keys(const Reader& r, const toml::table& t, const std::string& prefix
 bool is_string_key(const std::string& key) {
   return key == "name" || key == "preset" || key == "spacing.field" || key == "spacing.expression" || key == "init.method" ||
          key == "simulation.device" || key == "simulation.precision" || key == "simulation.r0_rule" ||
+         key == "simulation.stop" ||
          key == "output.color_by";
 }
 
@@ -360,6 +361,9 @@ void read_simulation_section(const Reader& r, const toml::table& root, CaseConfi
     if (v < 0) r.fail("simulation.iterations", n, fmt::format("simulation.iterations must be >= 0, got {}", v));
     s.iterations = v;
   }
+  if (const toml::node* n = find(root, "simulation", "stop")) {
+    s.stop = choose<StopRule>(r, "simulation.stop", *n, {{"converged", StopRule::Converged}, {"iterations", StopRule::Iterations}});
+  }
   if (const toml::node* n = find(root, "simulation", "dt_initial")) {
     if (n->is_table()) {
       const toml::table& per = *n->as_table();
@@ -439,6 +443,8 @@ void read_output_section(const Reader& r, const toml::table& root, CaseConfig& c
                fmt::format("output.formats: unknown format '{}'; valid formats are {}", f, fmt::join(kFormats, ", ")));
       }
     }
+    if (c.output.wants("msh") && c.output.wants("msh22"))
+      r.fail("output.formats", n, "output.formats: 'msh' and 'msh22' both write mesh.msh; ask for one of them");
   }
   if (const toml::node* n = find(root, "output", "color_by")) {
     c.output.color_by = choose<std::string>(r, "output.color_by", *n,
@@ -492,7 +498,7 @@ const std::vector<std::string>& case_file_keys() {
       "geometry.files", "geometry.curve_names", "geometry.join_tolerance", "geometry.corner_angle",
       "spacing.field", "spacing.expression",
       "init.method", "init.seed", "init.total",
-      "simulation.iterations", "simulation.dt_initial", "simulation.dt_initial.structured",
+      "simulation.iterations", "simulation.stop", "simulation.dt_initial", "simulation.dt_initial.structured",
       "simulation.dt_initial.random", "simulation.cutoff", "simulation.lj_a", "simulation.device",
       "simulation.precision", "simulation.r0_rule", "simulation.stability_factor",
       "output.formats", "output.tree_overlay", "output.views", "output.color_by",

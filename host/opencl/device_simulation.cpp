@@ -38,7 +38,8 @@ class DeviceRun {
             Context& ctx, DeviceRunStats& stats)
       : nodes_(nodes), options_(options), ctx_(ctx), stats_(stats), boundary_(tree, nodes),
         background_(spacing, tree), program_(ctx, std::is_same_v<Real, double> ? Precision::Double : Precision::Float),
-        neighbours_(ctx, program_), n_(nodes.size()) {}
+        neighbours_(ctx, program_), n_(nodes.size()),
+        convergence_(options.convergence, options.resume ? options.resume->convergence : std::vector<MeshSample>{}) {}
   // Non-blocking uploads read host vectors of this object: wait for them (errors are moot here).
   ~DeviceRun() { ctx_.queue().finish(); }
   DeviceRun(const DeviceRun&) = delete;
@@ -53,6 +54,7 @@ class DeviceRun {
                            const std::vector<HistoryRow>& history);
   SimulationError non_finite_error(int iteration, const SimState& good);
   void upload_initial();
+  void read_back_nodes();
   void upload_topology();  // kind, prev, next, boundary slots (start and after snapping)
   void rebuild();
   void step_kernel(double dt_gm2);
@@ -129,6 +131,7 @@ class DeviceRun {
   // host_boundary has moved nodes on the host that x_[cur_] does not hold yet (until the iteration ends).
   bool host_ahead_ = false;
   bool moves_finite_ = true;  // every move the host reads in step_kernel is finite
+  ConvergenceMonitor convergence_;  // the stopping rule (its samples go into every saved state)
 };
 
 template <typename Real>
@@ -147,7 +150,7 @@ void DeviceRun<Real>::remember(int done, double dt_initial, const GlobalTimeStep
     if (saved_nodes_.kind[i] == NodeKind::Interior) saved_nodes_.x[i] = {build_x_[i], build_y_[i]};
     saved_nodes_.q[i] = build_q_[i];
   }
-  saved_state_ = SimState{done, dt_initial, gm.state(), boundary_.arcs(), boundary_.tangents(), {}};
+  saved_state_ = SimState{done, dt_initial, gm.state(), boundary_.arcs(), boundary_.tangents(), {}, convergence_.samples()};
   saved_rows_ = rows;
 }
 
@@ -172,7 +175,8 @@ SimState DeviceRun<Real>::last_good_state(int done, double dt_initial, const Glo
           if (nodes_.kind[i] == NodeKind::Interior) nodes_.x[i] = {static_cast<double>(x[i]), static_cast<double>(y[i])};
           nodes_.q[i] = static_cast<double>(q[i]);
         }
-        return SimState{done, dt_initial, gm.state(), boundary_.arcs(), boundary_.tangents(), history};
+        return SimState{done, dt_initial, gm.state(), boundary_.arcs(), boundary_.tangents(), history,
+                        convergence_.samples()};
       }
     } catch (const Error&) {
       // The device cannot be read: the saved state below.
@@ -205,6 +209,23 @@ SimulationError DeviceRun<Real>::non_finite_error(int iteration, const SimState&
   return SimulationError(fmt::format("iteration {}: non-finite force or move ({}) on {} (positions after iteration {})",
                                      iteration, sums, describe_neighbourhood(nodes_, bad, options_.cutoff * nodes_.q[bad]),
                                      good.iterations_done));
+}
+
+// The state after the last complete iteration into nodes_: interior positions and every q from the
+// device; boundary positions are the host's already. Not counted as per-iteration traffic.
+template <typename Real>
+void DeviceRun<Real>::read_back_nodes() {
+  std::vector<Real> x, y, q;
+  const std::uint64_t down = stats_.bytes_down, transfers = stats_.transfers;
+  read(x_[cur_], x, n_);
+  read(y_[cur_], y, n_);
+  read(q_[cur_], q, n_);
+  stats_.bytes_down = down;
+  stats_.transfers = transfers;
+  for (std::size_t i = 0; i < n_; ++i) {
+    if (nodes_.kind[i] == NodeKind::Interior) nodes_.x[i] = {static_cast<double>(x[i]), static_cast<double>(y[i])};
+    nodes_.q[i] = static_cast<double>(q[i]);
+  }
 }
 
 template <typename Real>
@@ -538,21 +559,19 @@ SimResult DeviceRun<Real>::run(const SimCallbacks& callbacks) {
         result.stopped = true;
         break;
       }
+      std::optional<MeshSample> sample;
+      if (convergence_.due(iteration)) {
+        read_back_nodes();
+        sample = measure_mesh(nodes_, iteration);
+      }
+      if (convergence_.observe(row, sample ? &*sample : nullptr) && iteration < options_.iterations) {
+        result.converged = true;
+        break;
+      }
     }
     progress.finish();
     in_loop = false;
-    // Final state: interior positions and every q from the device; boundary positions stay the host's.
-    std::vector<Real> x, y, q;
-    const std::uint64_t down = stats_.bytes_down, transfers = stats_.transfers;  // not per iteration
-    read(x_[cur_], x, n_);
-    read(y_[cur_], y, n_);
-    read(q_[cur_], q, n_);
-    stats_.bytes_down = down;
-    stats_.transfers = transfers;
-    for (std::size_t i = 0; i < n_; ++i) {
-      if (nodes_.kind[i] == NodeKind::Interior) nodes_.x[i] = {static_cast<double>(x[i]), static_cast<double>(y[i])};
-      nodes_.q[i] = static_cast<double>(q[i]);
-    }
+    read_back_nodes();  // the final state
   } catch (const DeviceError& e) {
     progress.finish();
     hand_over();
@@ -564,8 +583,8 @@ SimResult DeviceRun<Real>::run(const SimCallbacks& callbacks) {
     hand_over();
     throw;
   }
-  result.state = SimState{done, result.stats.dt_initial, gm.state(), boundary_.arcs(), boundary_.tangents(),
-                          result.history};
+  result.state = SimState{done,           result.stats.dt_initial, gm.state(), boundary_.arcs(), boundary_.tangents(),
+                          result.history, convergence_.samples()};
   result.stats.pairs_examined = pairs_examined_;
   result.stats.seconds = since(start);
   stats_.stride = stride_;

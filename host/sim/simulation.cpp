@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 #include <memory>
+#include <optional>
 
 #include <fmt/format.h>
 
@@ -121,9 +122,11 @@ SimResult run_simulation(NodeSet& nodes, const GeometryTree& tree, const Spacing
   if (resume) result.history = resume->history;
   const int first = resume ? resume->iterations_done + 1 : 1;
   int done = first - 1;
+  ConvergenceMonitor convergence(options.convergence, resume ? resume->convergence : std::vector<MeshSample>{});
   // The state after `done` iterations; nodes must hold that iteration's positions.
   const auto snapshot = [&] {
-    return SimState{done, result.stats.dt_initial, gm.state(), boundary.arcs(), boundary.tangents(), result.history};
+    return SimState{done,           result.stats.dt_initial, gm.state(), boundary.arcs(), boundary.tangents(),
+                    result.history, convergence.samples()};
   };
   for (int iteration = first; iteration <= options.iterations; ++iteration) {
     const double dt_gm = gm.dt();
@@ -181,6 +184,13 @@ SimResult run_simulation(NodeSet& nodes, const GeometryTree& tree, const Spacing
     done = iteration;
     if (options.stop && options.stop->load() && iteration < options.iterations) {
       result.stopped = true;
+      break;
+    }
+    // The nodes hold this iteration's positions: the stopping rule measures their mesh when due.
+    std::optional<MeshSample> sample;
+    if (convergence.due(iteration)) sample = measure_mesh(nodes, iteration);
+    if (convergence.observe(row, sample ? &*sample : nullptr) && iteration < options.iterations) {
+      result.converged = true;
       break;
     }
   }
