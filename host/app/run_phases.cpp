@@ -2,6 +2,7 @@
 #include "app/run_phases.hpp"
 
 #include <chrono>
+#include <cmath>
 #include <ctime>
 #include <fstream>
 
@@ -184,7 +185,9 @@ std::string RunPhases::json() const {
                      process_cpu_seconds() - start_cpu_, peak_rss_bytes());
   {
     std::lock_guard lock(mutex_);
-    for (const auto& [k, v] : notes_) out += fmt::format("  {}: {},\n", json_string(k), v);
+    // JSON has no NaN or infinity: such a fact is null.
+    for (const auto& [k, v] : notes_)
+      out += fmt::format("  {}: {},\n", json_string(k), std::isfinite(v) ? fmt::format("{}", v) : std::string("null"));
   }
   out += "  \"phases\": [\n";
   for (std::size_t i = 0; i < all.size(); ++i) {
