@@ -42,8 +42,8 @@ class JsonCheck {
   }
   bool value() {
     switch (peek()) {
-      case '{': return object();
-      case '[': return array();
+      case '{': return members('}', true);
+      case '[': return members(']', false);
       case '"': return string();
       case 't': return literal("true");
       case 'f': return literal("false");
@@ -51,41 +51,28 @@ class JsonCheck {
       default: return number();
     }
   }
-  bool object() {
+  // An object (keyed members) or an array: values separated by ',' up to `close`.
+  bool members(char close, bool keyed) {
     ++i_;
     space();
-    if (peek() == '}') return ++i_, true;
+    if (peek() == close) return ++i_, true;
     for (;;) {
       space();
-      if (peek() != '"' || !string()) return fail("expected a key");
-      space();
-      if (peek() != ':') return fail("expected ':'");
-      ++i_;
-      space();
+      if (keyed) {
+        if (peek() != '"' || !string()) return fail("expected a key");
+        space();
+        if (peek() != ':') return fail("expected ':'");
+        ++i_;
+        space();
+      }
       if (!value()) return false;
       space();
       if (peek() == ',') {
         ++i_;
         continue;
       }
-      if (peek() == '}') return ++i_, true;
-      return fail("expected ',' or '}'");
-    }
-  }
-  bool array() {
-    ++i_;
-    space();
-    if (peek() == ']') return ++i_, true;
-    for (;;) {
-      space();
-      if (!value()) return false;
-      space();
-      if (peek() == ',') {
-        ++i_;
-        continue;
-      }
-      if (peek() == ']') return ++i_, true;
-      return fail("expected ',' or ']'");
+      if (peek() == close) return ++i_, true;
+      return fail(keyed ? "expected ',' or '}'" : "expected ',' or ']'");
     }
   }
   bool string() {

@@ -110,13 +110,17 @@ TEST_CASE("run phases: pictures run on the background thread while the caller go
   std::shared_future<void> released = release.get_future().share();
   std::atomic<bool> first_done{false}, second_done{false};
   std::thread::id caller = std::this_thread::get_id(), drawer;
-  // The first job waits until the caller releases it: picture() must have returned without it.
+  std::promise<void> started;
+  // The first job waits until the caller releases it: picture() must have returned without it, and
+  // the background thread has started it while the caller was not waiting.
   run.picture("slow.png", [&] {
     drawer = std::this_thread::get_id();
+    started.set_value();
     released.wait();
     first_done = true;
   });
-  run.picture("next.png", [&] { second_done = first_done.load(); });  // jobs run in order, one at a time
+  run.picture("next.png", [&] { second_done = true; });
+  started.get_future().wait();
   CHECK_FALSE(first_done);
   {
     const auto t = run.phase("work meanwhile");
@@ -134,6 +138,27 @@ TEST_CASE("run phases: pictures run on the background thread while the caller go
   std::size_t background = 0;
   for (const PhaseTime& p : run.phases()) background += p.background ? 1 : 0;
   CHECK(background == 3);
+}
+
+TEST_CASE("run phases: a caller waiting for the pictures draws queued ones itself", "[phases]") {
+  RunPhases run;
+  // Whichever thread takes the first job blocks in it until the second job runs, which only the other
+  // thread can do: the two run on different threads, one of them the waiting caller.
+  std::promise<void> release;
+  std::shared_future<void> released = release.get_future().share();
+  std::thread::id first, second;
+  run.picture("blocked.png", [&] {
+    first = std::this_thread::get_id();
+    released.wait();
+  });
+  run.picture("releases.png", [&] {
+    second = std::this_thread::get_id();
+    release.set_value();
+  });
+  run.wait_pictures();
+  CHECK(first != second);
+  CHECK((first == std::this_thread::get_id() || second == std::this_thread::get_id()));
+  for (const PhaseTime& p : run.phases()) CHECK(p.background);
 }
 
 TEST_CASE("run phases: a picture's exception surfaces from wait_pictures, once, and the others are drawn",
