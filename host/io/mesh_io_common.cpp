@@ -2,6 +2,7 @@
 #include "io/mesh_io_common.hpp"
 
 #include <algorithm>
+#include <iterator>
 #include <numeric>
 
 #include <fmt/format.h>
@@ -62,7 +63,8 @@ std::string msh_spacing_node_data(const Mesh& mesh) {
   if (mesh.spacing.empty()) return {};
   // One view "q": time 0, time step 0, 1 component, a value per node (node tag = point index + 1).
   std::string out = fmt::format("$NodeData\n1\n\"q\"\n1\n0\n3\n0\n1\n{}\n", mesh.spacing.size());
-  for (std::size_t i = 0; i < mesh.spacing.size(); ++i) out += fmt::format("{} {}\n", i + 1, coord(mesh.spacing[i]));
+  auto to = std::back_inserter(out);
+  for (std::size_t i = 0; i < mesh.spacing.size(); ++i) fmt::format_to(to, "{} {:.17g}\n", i + 1, mesh.spacing[i]);
   out += "$EndNodeData\n";
   return out;
 }

@@ -5,6 +5,8 @@
 // (section 10.5 "MSH file format version 2 (Legacy)").
 #include "io/msh_writer.hpp"
 
+#include <iterator>
+
 #include <fmt/format.h>
 
 #include "io/mesh_io_common.hpp"
@@ -59,8 +61,11 @@ std::string msh41_string(const Mesh& mesh) {
     out += "$Nodes\n0 0 0 0\n$EndNodes\n";
   } else {
     out += fmt::format("$Nodes\n1 {} 1 {}\n2 1 0 {}\n", n, n, n);
-    for (std::size_t i = 0; i < n; ++i) out += fmt::format("{}\n", i + 1);
-    for (const auto& p : mesh.points) out += fmt::format("{} {} 0\n", coord(p.x), coord(p.y));
+    // Formatted straight into `out` (a temporary string per number was most of the time at millions
+    // of nodes); numbers as coord() writes them.
+    auto to = std::back_inserter(out);
+    for (std::size_t i = 0; i < n; ++i) fmt::format_to(to, "{}\n", i + 1);
+    for (const auto& p : mesh.points) fmt::format_to(to, "{:.17g} {:.17g} 0\n", p.x, p.y);
     out += "$EndNodes\n";
   }
 
@@ -83,7 +88,8 @@ std::string msh41_string(const Mesh& mesh) {
   }
   if (!mesh.triangles.empty()) {
     out += fmt::format("2 1 2 {}\n", mesh.triangles.size());
-    for (const auto& t : mesh.triangles) out += fmt::format("{} {} {} {}\n", tag++, t[0] + 1, t[1] + 1, t[2] + 1);
+    auto to = std::back_inserter(out);
+    for (const auto& t : mesh.triangles) fmt::format_to(to, "{} {} {} {}\n", tag++, t[0] + 1, t[1] + 1, t[2] + 1);
   }
   out += "$EndElements\n";
   out += msh_spacing_node_data(mesh);
@@ -96,9 +102,9 @@ std::string msh22_string(const Mesh& mesh) {
   std::string out = "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n";
   out += physical_names(mesh);
   out += fmt::format("$Nodes\n{}\n", mesh.points.size());
-  for (std::size_t i = 0; i < mesh.points.size(); ++i) {
-    out += fmt::format("{} {} {} 0\n", i + 1, coord(mesh.points[i].x), coord(mesh.points[i].y));
-  }
+  auto to = std::back_inserter(out);
+  for (std::size_t i = 0; i < mesh.points.size(); ++i)
+    fmt::format_to(to, "{} {:.17g} {:.17g} 0\n", i + 1, mesh.points[i].x, mesh.points[i].y);
   out += "$EndNodes\n";
   // Each element: tag, type, 2 tags (physical, elementary), nodes. Curve c is elementary entity c + 1.
   out += fmt::format("$Elements\n{}\n", mesh.boundary_edges.size() + mesh.triangles.size());
@@ -107,9 +113,8 @@ std::string msh22_string(const Mesh& mesh) {
     const auto& e = mesh.boundary_edges[k];
     out += fmt::format("{} 1 2 {} {} {} {}\n", tag++, e.curve + 1, e.curve + 1, e.a + 1, e.b + 1);
   }
-  for (const auto& t : mesh.triangles) {
-    out += fmt::format("{} 2 2 {} 1 {} {} {}\n", tag++, curves + 1, t[0] + 1, t[1] + 1, t[2] + 1);
-  }
+  for (const auto& t : mesh.triangles)
+    fmt::format_to(to, "{} 2 2 {} 1 {} {} {}\n", tag++, curves + 1, t[0] + 1, t[1] + 1, t[2] + 1);
   out += "$EndElements\n";
   out += msh_spacing_node_data(mesh);
   return out;

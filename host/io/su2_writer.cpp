@@ -4,6 +4,8 @@
 // NPOIN=, NMARK=, MARKER_TAG=, MARKER_ELEMS=.
 #include "io/su2_writer.hpp"
 
+#include <iterator>
+
 #include <fmt/format.h>
 
 namespace pdmesh {
@@ -12,14 +14,16 @@ std::string su2_string(const Mesh& mesh) {
   check_mesh_for_writing(mesh, "SU2 writer");
   std::string out = "% Written by pdmesh\nNDIME= 2\n";
   out += fmt::format("NELEM= {}\n", mesh.triangles.size());
+  // Formatted straight into `out`, numbers as coord() writes them (a temporary string per number was
+  // most of the time at millions of cells).
+  auto to = std::back_inserter(out);
   for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
     const auto& tri = mesh.triangles[t];
-    out += fmt::format("5 {} {} {} {}\n", tri[0], tri[1], tri[2], t);
+    fmt::format_to(to, "5 {} {} {} {}\n", tri[0], tri[1], tri[2], t);
   }
   out += fmt::format("NPOIN= {}\n", mesh.points.size());
-  for (std::size_t i = 0; i < mesh.points.size(); ++i) {
-    out += fmt::format("{} {} {}\n", coord(mesh.points[i].x), coord(mesh.points[i].y), i);
-  }
+  for (std::size_t i = 0; i < mesh.points.size(); ++i)
+    fmt::format_to(to, "{:.17g} {:.17g} {}\n", mesh.points[i].x, mesh.points[i].y, i);
   std::vector<std::vector<std::size_t>> per_curve(mesh.curve_names.size());
   for (std::size_t e = 0; e < mesh.boundary_edges.size(); ++e) {
     per_curve[static_cast<std::size_t>(mesh.boundary_edges[e].curve)].push_back(e);

@@ -3,6 +3,8 @@
 // and https://www.cs.cmu.edu/~quake/triangle.poly.html ("# comments" are allowed on any line).
 #include "io/triangle_writer.hpp"
 
+#include <iterator>
+
 #include <fmt/format.h>
 
 #include "io/mesh_io_common.hpp"
@@ -20,16 +22,19 @@ TriangleFiles triangle_strings(const Mesh& mesh) {
   f.node = "# Written by pdmesh (Triangle .node format)\n";
   if (kinds) f.node += "# pdmesh: attribute 1 = node kind (0 fixed, 1 boundary, 2 interior)\n";
   f.node += fmt::format("{} 2 {} 1\n", mesh.points.size(), kinds ? 1 : 0);
+  // Formatted straight into the strings, numbers as coord() writes them (a temporary string per
+  // number was most of the time at millions of cells).
+  auto node = std::back_inserter(f.node);
   for (std::size_t i = 0; i < mesh.points.size(); ++i) {
-    f.node += fmt::format("{} {} {}", i + 1, coord(mesh.points[i].x), coord(mesh.points[i].y));
-    if (kinds) f.node += fmt::format(" {}", static_cast<int>(mesh.kind[i]));
-    f.node += fmt::format(" {}\n", static_cast<int>(on_boundary[i]));
+    fmt::format_to(node, "{} {:.17g} {:.17g}", i + 1, mesh.points[i].x, mesh.points[i].y);
+    if (kinds) fmt::format_to(node, " {}", static_cast<int>(mesh.kind[i]));
+    fmt::format_to(node, " {}\n", static_cast<int>(on_boundary[i]));
   }
 
   f.ele = fmt::format("# Written by pdmesh (Triangle .ele format)\n{} 3 0\n", mesh.triangles.size());
   for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
     const auto& tri = mesh.triangles[t];
-    f.ele += fmt::format("{} {} {} {}\n", t + 1, tri[0] + 1, tri[1] + 1, tri[2] + 1);
+    fmt::format_to(std::back_inserter(f.ele), "{} {} {} {}\n", t + 1, tri[0] + 1, tri[1] + 1, tri[2] + 1);
   }
 
   f.poly = "# Written by pdmesh (Triangle .poly format); the points are in the .node file\n";
