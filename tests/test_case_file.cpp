@@ -457,3 +457,19 @@ TEST_CASE("spacing pipeline keys: best and thesis defaults, values and ranges", 
              Catch::Contains("output.spacing_picture must be a boolean"));
   CHECK_THAT(error_of(base + "gradiation = 0.2\n"), Catch::Contains("did you mean 'spacing.gradation'?"));
 }
+
+TEST_CASE("simulation.stop: best converges, thesis counts, a key wins over the preset, bad values are refused",
+          "[app][case][convergence]") {
+  CHECK(parse_case_text(kMinimal, kCase).simulation.stop == StopRule::Converged);
+  const std::string thesis = std::string("preset = \"thesis\"\n") + kMinimal;
+  CHECK(parse_case_text(thesis, kCase).simulation.stop == StopRule::Iterations);
+  CHECK(parse_case_text(thesis + "[simulation]\nstop = \"converged\"\n", kCase).simulation.stop == StopRule::Converged);
+  CHECK(parse_case_text(kMinimal, kCase, {parse_set_option("simulation.stop=iterations")}).simulation.stop ==
+        StopRule::Iterations);
+  CHECK_THAT(error_of(std::string(kMinimal) + "[simulation]\nstop = \"settled\"\n"),
+             Catch::Contains("case.toml:4:8:") && Catch::Contains("simulation.stop") && Catch::Contains("converged") &&
+                 Catch::Contains("iterations"));
+  CHECK_THAT(error_of(std::string(kMinimal) + "[simulation]\nstop = 3\n"), Catch::Contains("simulation.stop"));
+  CHECK_THAT(error_of(kMinimal, {parse_set_option("simulation.stop=never")}),
+             Catch::Contains("--set simulation.stop=never") && Catch::Contains("simulation.stop"));
+}

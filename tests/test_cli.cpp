@@ -336,3 +336,23 @@ TEST_CASE("pdmesh devices lists the OpenCL devices and checks each with a kernel
   CHECK(contains(r.output, "equal the host reference bit for bit"));
   CHECK(contains(r.output, "--precision auto picks double"));
 }
+
+TEST_CASE("pdmesh mesh --stop: the rule is named in the progress output, a bad rule exits 2", "[cli][convergence]") {
+  const fs::path dir = fresh_dir("stop_rule");
+  write_rectangle(dir / "rect.crv");
+  const std::string base = "mesh '" + (dir / "rect.crv").string() + "' --out '" + (dir / "out").string() +
+                           "' --iterations 10 --formats msh --device host";
+  const Result converged = run(base);  // a geometry alone: the best preset, which stops once converged
+  INFO(converged.output);
+  REQUIRE(converged.status == 0);
+  CHECK(contains(converged.output, "simulation: until converged, at most 10 iterations"));
+  const Result counted = run(base + " --stop iterations");
+  INFO(counted.output);
+  REQUIRE(counted.status == 0);
+  CHECK(contains(counted.output, "simulation: 10 iterations on"));
+  const Result bad = run(base + " --stop never");
+  CHECK(bad.status == 2);
+  CHECK(contains(bad.output, "--stop never"));
+  CHECK(contains(bad.output, "simulation.stop"));
+  fs::remove_all(dir);
+}
