@@ -34,22 +34,26 @@ std::map<std::string, std::string> precision_defines(Precision precision, std::s
   return d;
 }
 
-cl::Program Context::build(const std::vector<std::string>& files, const std::map<std::string, std::string>& defines,
-                           const std::string& extra_options) {
+std::string program_source(const std::vector<std::string>& files, const std::map<std::string, std::string>& defines) {
   std::string source;
   for (const auto& [name, value] : defines) source += fmt::format("#define {} {}\n", name, value);
   if (defines.count("PDMESH_DOUBLE") && defines.at("PDMESH_DOUBLE") == "1")
     source += "#pragma OPENCL EXTENSION cl_khr_fp64 : enable\n";
   source += kernel_source("common.cl");
-  std::string label = "common.cl";
   for (const auto& f : files) {
     source += fmt::format("\n// ---- {} ----\n", f);
     source += kernel_source(f);
-    label += ", " + f;
   }
+  return source;
+}
+
+cl::Program Context::build(const std::vector<std::string>& files, const std::map<std::string, std::string>& defines,
+                           const std::string& extra_options) {
+  std::string label = "common.cl";
+  for (const auto& f : files) label += ", " + f;
   std::string options = "-cl-std=CL1.2";
   if (!extra_options.empty()) options += " " + extra_options;
-  return build_source(label, source, options);
+  return build_source(label, program_source(files, defines), options);
 }
 
 cl::Program Context::build_source(const std::string& label, const std::string& source, const std::string& options) {

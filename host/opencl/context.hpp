@@ -11,6 +11,8 @@
 namespace pdmesh::ocl {
 
 enum class Precision { Double, Float };
+// The shape of the simulation program's force loop (step_program.hpp, resolve_force_loop).
+enum class ForceLoop { Auto, Vector, Scalar };
 
 class Context {
  public:
@@ -44,6 +46,10 @@ class Context {
 
 // The text of one embedded kernel file; throws DeviceError if it was not embedded.
 const std::string& kernel_source(const std::string& file);
+
+// The source Context::build compiles: the "#define NAME VALUE" lines, the fp64 pragma when
+// PDMESH_DOUBLE is 1, common.cl, then each file under a "// ---- FILE ----" line.
+std::string program_source(const std::vector<std::string>& files, const std::map<std::string, std::string>& defines);
 
 // "#define REAL double" etc.: the common defines for a precision and work-group size.
 std::map<std::string, std::string> precision_defines(Precision precision, std::size_t work_group);
