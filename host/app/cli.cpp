@@ -324,6 +324,7 @@ Cli::Cli() : app_(std::make_unique<CLI::App>("pdmesh: physics-based point placem
   bench->add_option("--skin", bench_->verlet_skin, "Verlet skin of the device runs (list radius cutoff q (1 + skin))")->type_name("S");
   bench->add_flag("--skip-host", bench_->skip_host, "Do not run the host reference");
   bench->add_flag("--skip-host-large", bench_->skip_host_large, "Do not run the host reference on graded_1m");
+  bench->add_option("--force-loop", bench_->force_loop, "Force loop of the device runs: auto | vector | scalar")->type_name("L");
   bench->add_option("--out", bench_->out, "Also write the table (Markdown) to this file")->type_name("FILE");
   commands_.emplace_back(bench, [this] { return run_bench(*bench_); });
 

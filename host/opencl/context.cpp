@@ -6,6 +6,7 @@
 #include "core/embedded_kernels.hpp"
 #include "core/errors.hpp"
 #include "opencl/cl_errors.hpp"
+#include "opencl/command_counts.hpp"
 
 namespace pdmesh::ocl {
 
@@ -78,6 +79,22 @@ void launch(cl::CommandQueue& queue, cl::Kernel& kernel, const std::string& name
   const cl_int err =
       injected_fault(queue.enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange(global), cl::NDRange(local)));
   if (err != CL_SUCCESS) check(err, fmt::format("enqueue '{}' ({} work-items, local size {})", name, global, local));
+  counting::launch();
+}
+
+void finish(cl::CommandQueue& queue, const std::string& what) {
+  check(queue.finish(), what);
+  counting::wait();
+}
+
+void copy_buffer(cl::CommandQueue& queue, cl::Buffer& from, cl::Buffer& to, std::size_t bytes, const std::string& what) {
+  check(queue.enqueueCopyBuffer(from, to, 0, 0, bytes), what);
+  counting::copy();
+}
+
+void fill_zero(cl::CommandQueue& queue, cl::Buffer& buffer, std::size_t bytes, const std::string& what) {
+  check(queue.enqueueFillBuffer(buffer, cl_int{0}, 0, bytes), what);
+  counting::copy();
 }
 
 }  // namespace pdmesh::ocl

@@ -59,4 +59,11 @@ std::map<std::string, std::string> precision_defines(Precision precision, std::s
 void launch(cl::CommandQueue& queue, cl::Kernel& kernel, const std::string& name, std::size_t count,
             std::size_t local);
 
+// The other commands the simulation enqueues, checked (errors name `what`) and counted
+// (command_counts.hpp) like launch and the Buffer transfers: clFinish (a host wait), a device-side
+// copy of the first `bytes` bytes, and filling the first `bytes` bytes with zero ints (bytes > 0).
+void finish(cl::CommandQueue& queue, const std::string& what);
+void copy_buffer(cl::CommandQueue& queue, cl::Buffer& from, cl::Buffer& to, std::size_t bytes, const std::string& what);
+void fill_zero(cl::CommandQueue& queue, cl::Buffer& buffer, std::size_t bytes, const std::string& what);
+
 }  // namespace pdmesh::ocl
