@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "geometry/geometry.hpp"
+#include "spacing/spacing_field.hpp"
 
 namespace pdmesh::fixtures {
 
@@ -107,5 +108,24 @@ inline Geometry multiscale() {
                         arc_points(c, 0.5, 0, 2 * pi, 64, {c.x + 0.5, c.y}, {c.x + 0.5, c.y}),
                         {{600.0, 200.0}, {600.01, 200.0}, {600.005, 200.0087}, {600.0, 200.0}}});
 }
+
+// A closed circle of radius r centred at the origin as one raw curve of n segments, its first point
+// at angle a0 (repeated at the end), for build_geometry.
+inline RawCurve circle_curve(double r, int n, double a0 = 0.0, const std::string& name = "circle") {
+  RawCurve c{name, {}, "test", 1, {}};
+  for (int i = 0; i < n; ++i) {
+    const double a = a0 + 2.0 * std::acos(-1.0) * i / n;
+    c.points.push_back({r * std::cos(a), r * std::sin(a)});
+  }
+  c.points.push_back(c.points.front());
+  return c;
+}
+
+// q = a constant everywhere.
+struct ConstantSpacing final : SpacingField {
+  explicit ConstantSpacing(double v) : q(v) {}
+  double at(Vec2) const override { return q; }
+  double q;
+};
 
 }  // namespace pdmesh::fixtures

@@ -168,8 +168,8 @@ TEST_CASE("out-of-range values are rejected with the value", "[app][case]") {
         std::string::npos);
   CHECK(error_of(base + "[simulation]\ndt_initial = { random = 0 }\n")
             .find("simulation.dt_initial.random must be > 0") != std::string::npos);
-  CHECK(error_of(base + "[init]\nmethod = \"hexagonal\"\n")
-            .find("init.method must be one of structured, random, got 'hexagonal'") != std::string::npos);
+  CHECK(error_of(base + "[init]\nmethod = \"spiral\"\n")
+            .find("init.method must be one of structured, random, hexagonal, got 'spiral'") != std::string::npos);
   CHECK(error_of(base + "[simulation]\ndevice = \"cuda\"\n").find("got 'cuda'") != std::string::npos);
   CHECK(error_of(base + "[simulation]\ndevice = \"opencl:1\"\n").find("got 'opencl:1'") != std::string::npos);
   CHECK(error_of(base + "[simulation]\nprecision = \"half\"\n").find("got 'half'") != std::string::npos);
@@ -279,6 +279,105 @@ TEST_CASE("the preset key selects the defaults, and keys the file sets win over 
   CHECK_THAT(error_of(std::string("preset = \"fast\"\n") + kMinimal),
              Catch::Contains("preset must be one of best, thesis, got 'fast'"));
   CHECK_THAT(error_of(std::string("preset = 3\n") + kMinimal), Catch::Contains("preset must be a string"));
+}
+
+TEST_CASE("geometry.curves and boundary.nodes: preset defaults, file values, overrides, errors", "[app][case]") {
+  const CaseConfig best = parse_case_text(kMinimal, kCase);
+  CHECK(best.geometry.curves == CurveKind::Polyline);
+  CHECK(best.boundary.nodes == BoundaryNodeRule::Spacing);
+  const CaseConfig thesis = parse_case_text(std::string("preset = \"thesis\"\n") + kMinimal, kCase);
+  CHECK(thesis.geometry.curves == CurveKind::Polyline);
+  CHECK(thesis.boundary.nodes == BoundaryNodeRule::Input);
+  // A key the file sets wins over the preset; --set wins over the file.
+  const std::string text = std::string("preset = \"thesis\"\n") + kMinimal +
+                           "curves = \"smooth\"\n[boundary]\nnodes = \"spacing\"\n";
+  const CaseConfig mixed = parse_case_text(text, kCase);
+  CHECK(mixed.geometry.curves == CurveKind::Smooth);  // not the default of either preset
+  CHECK(mixed.boundary.nodes == BoundaryNodeRule::Spacing);
+  const CaseConfig set = parse_case_text(text, kCase, {parse_set_option("boundary.nodes=input"),
+                                                       parse_set_option("geometry.curves=polyline")});
+  CHECK(set.geometry.curves == CurveKind::Polyline);
+  CHECK(set.boundary.nodes == BoundaryNodeRule::Input);
+  CHECK_THAT(error_of(std::string(kMinimal) + "curves = \"spline\"\n"),
+             Catch::Contains("demo/case.toml:3:10: geometry.curves must be one of polyline, smooth, got 'spline'"));
+  CHECK_THAT(error_of(std::string(kMinimal) + "[boundary]\nnodes = 2\n"),
+             Catch::Contains("boundary.nodes must be a string"));
+  CHECK_THAT(error_of(kMinimal, {parse_set_option("boundary.nodes=auto")}),
+             Catch::Contains("--set boundary.nodes=auto: boundary.nodes must be one of input, spacing, got 'auto'"));
+  CHECK_THAT(error_of(std::string(kMinimal) + "[boundary]\nnode = \"input\"\n"),
+             Catch::Contains("did you mean 'boundary.nodes'?"));
+}
+
+TEST_CASE("population keys: best runs it, thesis does not, every value is checked", "[app][case][population]") {
+  const CaseConfig best = parse_case_text(kMinimal, kCase);
+  CHECK(best.population.enabled);
+  CHECK(best.population.every == 50);
+  CHECK(best.population.start == 100);
+  CHECK(best.population.stop == 0.8);
+  CHECK_FALSE(parse_case_text(std::string("preset = \"thesis\"\n") + kMinimal, kCase).population.enabled);
+  // The file wins over the preset.
+  CHECK(parse_case_text(std::string("preset = \"thesis\"\n") + kMinimal + "[population]\nenabled = true\n", kCase)
+            .population.enabled);
+  const CaseConfig set = parse_case_text(
+      std::string(kMinimal) + "[population]\nevery = 10\nstart = 50\nstop = 0.5\ninsert = [0.9, 0.8]\nmerge = 0.5\n"
+                              "remove_valence = 0\nboundary = false\nboundary_split = 1.4\n",
+      kCase);
+  CHECK(set.population.every == 10);
+  CHECK(set.population.start == 50);
+  CHECK(set.population.stop == 0.5);
+  CHECK(set.population.insert.first == 0.9);
+  CHECK(set.population.insert.last == 0.8);
+  CHECK(set.population.merge.first == 0.5);
+  CHECK(set.population.merge.last == 0.5);
+  CHECK(set.population.remove_valence == 0);
+  CHECK_FALSE(set.population.boundary);
+  CHECK(set.population.boundary_split == 1.4);
+  const std::string base = std::string(kMinimal) + "[population]\n";
+  CHECK_THAT(error_of(base + "every = 0\n"), Catch::Contains("population.every must be in 1..") &&
+                                                 Catch::Contains(":4:"));
+  CHECK_THAT(error_of(base + "enabled = 1\n"), Catch::Contains("population.enabled must be a boolean"));
+  CHECK_THAT(error_of(base + "stop = 1.5\n"), Catch::Contains("population.stop must be in (0, 1]"));
+  CHECK_THAT(error_of(base + "insert = 0.5\n"), Catch::Contains("population.insert must be in (0.6, 3), got 0.5"));
+  CHECK_THAT(error_of(base + "insert = [0.9]\n"), Catch::Contains("a number or [first, last]"));
+  CHECK_THAT(error_of(base + "merge = [0.5, 1.2]\n"), Catch::Contains("population.merge must be in (0, 1), got 1.2"));
+  CHECK_THAT(error_of(base + "merge = 0.9\n"), Catch::Contains("population.merge must stay below population.insert"));
+  CHECK_THAT(error_of(base + "remove_valence = 6\n"), Catch::Contains("population.remove_valence must be in 0..5"));
+  CHECK_THAT(error_of(base + "boundary_split = 1.1\n"), Catch::Contains("population.boundary_split must be in"));
+  CHECK_THAT(error_of(base + "evry = 3\n"), Catch::Contains("did you mean 'population.every'"));
+  CHECK_THAT(error_of(kMinimal, {parse_set_option("population.start=-1")}),
+             Catch::Contains("--set population.start=-1") && Catch::Contains("population.start must be in 0.."));
+}
+
+TEST_CASE("cleanup keys: best cleans, thesis does not, a key wins over the preset, bad values are refused",
+          "[app][case]") {
+  const CaseConfig best = parse_case_text(kMinimal, kCase);
+  CHECK(best.cleanup.enabled);
+  CHECK(best.cleanup.min_angle == 30.0);
+  CHECK(best.cleanup.iterations == 16);
+  CHECK(best.cleanup.topology);
+  CHECK(best.cleanup.split_boundary);
+  CHECK_FALSE(parse_case_text(std::string("preset = \"thesis\"\n") + kMinimal, kCase).cleanup.enabled);
+  const CaseConfig on = parse_case_text(std::string("preset = \"thesis\"\n") + kMinimal, kCase,
+                                        {parse_set_option("cleanup.enabled=true")});
+  CHECK(on.cleanup.enabled);
+  CHECK(on.preset == Preset::Thesis);
+  const CaseConfig set = parse_case_text(
+      std::string(kMinimal) + "[cleanup]\nmin_angle = 33.5\niterations = 4\ntopology = false\nsplit_boundary = false\n",
+      kCase);
+  CHECK(set.cleanup.min_angle == 33.5);
+  CHECK(set.cleanup.iterations == 4);
+  CHECK_FALSE(set.cleanup.topology);
+  CHECK_FALSE(set.cleanup.split_boundary);
+  CHECK_THAT(error_of(std::string(kMinimal) + "[cleanup]\nmin_angle = 60\n"),
+             Catch::Contains("case.toml:4:13: cleanup.min_angle must be in (0, 60) degrees, got 60"));
+  CHECK_THAT(error_of(kMinimal, {parse_set_option("cleanup.min_angle=0")}),
+             Catch::Contains("--set cleanup.min_angle=0: cleanup.min_angle must be in (0, 60) degrees, got 0"));
+  CHECK_THAT(error_of(std::string(kMinimal) + "[cleanup]\niterations = 0\n"),
+             Catch::Contains("case.toml:4:14: cleanup.iterations must be in 1..1000, got 0"));
+  CHECK_THAT(error_of(std::string(kMinimal) + "[cleanup]\nenabled = \"yes\"\n"),
+             Catch::Contains("cleanup.enabled must be a boolean (true or false), got string"));
+  CHECK_THAT(error_of(std::string(kMinimal) + "[cleanup]\nmin_angel = 20\n"),
+             Catch::Contains("unknown key 'cleanup.min_angel'; did you mean 'cleanup.min_angle'?"));
 }
 
 TEST_CASE("edit distance", "[app][case]") {

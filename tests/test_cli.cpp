@@ -160,12 +160,15 @@ TEST_CASE("pdmesh mesh writes every stage's files: initial, history, final, mesh
   REQUIRE(r.status == 0);
   CHECK(contains(r.output, "initial distribution: "));
   CHECK(contains(r.output, "by hexagonal packing"));
-  CHECK(contains(r.output, "mesh check: passed"));
+  CHECK(contains(r.output, "mesh check (triangulation): passed"));
+  CHECK(contains(r.output, "cleanup: "));  // the best preset cleans the mesh ...
+  CHECK(contains(r.output, "mesh check (cleaned mesh): passed"));  // ... and --check checks the result too
   CHECK(contains(r.output, "Minimum Corner Jacobian"));  // the quality table
+  CHECK(contains(r.output, "Cleanup: min angle"));
   const std::vector<std::string> expected = {
       "initial.nodes", "initial.png", "initial.svg", "initial_corner.png", "initial_view2.png",
       "history.csv",   "history.png", "final.nodes", "final.png",          "final.svg",
-      "final_corner.png", "final_view2.png", "mesh.msh", "mesh.vtu",     "quality.json",
+      "final_corner.png", "final_view2.png", "mesh.msh", "mesh.vtu",     "quality.json", "mesh.nodes",
       "mesh.png",      "mesh.svg",        "mesh_corner.png", "mesh_view2.png"};
   for (const std::string& f : expected) {
     INFO(f);

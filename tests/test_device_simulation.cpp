@@ -46,9 +46,14 @@ void require_same_nodes(const NodeSet& host, const NodeSet& dev, double tol_q) {
 }  // namespace
 
 TEST_CASE("device run: 10 iterations agree with the host node by node (double)", "[opencl][device_sim]") {
-  for (const char* name : {"circle_circle", "naca0012"}) {
+  // The third: boundary nodes placed by the field on smooth curves, which both runs slide on.
+  const std::vector<CaseOverride> smooth = {parse_set_option("geometry.curves=smooth"),
+                                            parse_set_option("boundary.nodes=spacing")};
+  for (const char* name : {"circle_circle", "naca0012", "circle_circle+smooth"}) {
     INFO(name);
-    const Case c = test::load_case(name);
+    const bool is_smooth = std::string(name) == "circle_circle+smooth";
+    const Case c = test::load_case(is_smooth ? "circle_circle" : name, is_smooth ? smooth : std::vector<CaseOverride>{});
+    if (is_smooth) REQUIRE(c.inputs->dense);
     const Outcome host = test::run_case(c, 10, false);
     for (const auto& [skin, loop] : {std::pair{0.0, ocl::ForceLoop::Vector}, {0.3, ocl::ForceLoop::Vector},
                                     {0.0, ocl::ForceLoop::Scalar}, {0.3, ocl::ForceLoop::Scalar}}) {
@@ -165,6 +170,45 @@ TEST_CASE("device run: randomized snap stress stays bit-identical to the host", 
   // The stress did what it is for: snaps, and rebuilds that only a snap asked for.
   CHECK(snaps > 0);
   CHECK(forced > 0);
+}
+
+TEST_CASE("device run with population control: same node changes as the host", "[opencl][device_sim][population]") {
+  // circle_circle from a random start (vacancies and clusters), events after 20, 30, ... 80 (the last
+  // one at floor(0.8 x 100)). In double bit for bit (the device re-uploads the host's edited node set
+  // exactly); the same inserted/removed counts per iteration and the same node count and kinds.
+  Case c;
+  c.config = load_case_file(std::string(PDMESH_SOURCE_DIR) + "/cases/circle_circle/case.toml",
+                            {{"init.method", "random", "test"}, {"population.enabled", "true", "test"},
+                             {"population.start", "20", "test"}, {"population.every", "10", "test"}});
+  c.config.quiet = true;
+  c.inputs = std::make_unique<MeshInputs>(c.config);
+  c.initial = make_initial(c.config, *c.inputs).nodes;
+  const auto run = [&](bool device) {
+    Outcome out{c.initial, {}, {}};
+    SimOptions o = options_for(c, 100);
+    o.population = c.config.population;
+    if (device) {
+      out.result = ocl::run_device_simulation(out.nodes, *c.inputs->tree, *c.inputs->spacing, o, test::test_context(),
+                                              ocl::Precision::Double, {}, &out.stats);
+    } else {
+      out.result = run_simulation(out.nodes, *c.inputs->tree, *c.inputs->spacing, o);
+    }
+    return out;
+  };
+  const Outcome host = run(false), dev = run(true);
+  REQUIRE(host.result.stats.inserted + host.result.stats.removed > 0);
+  CHECK(dev.result.stats.inserted == host.result.stats.inserted);
+  CHECK(dev.result.stats.removed == host.result.stats.removed);
+  CHECK(dev.result.stats.population_events == host.result.stats.population_events);
+  REQUIRE(dev.result.history.size() == host.result.history.size());
+  for (std::size_t k = 0; k < host.result.history.size(); ++k) {
+    CHECK(dev.result.history[k].inserted == host.result.history[k].inserted);
+    CHECK(dev.result.history[k].removed == host.result.history[k].removed);
+    CHECK(dev.result.history[k].interior == host.result.history[k].interior);
+  }
+  require_identical_nodes(host.nodes, dev.nodes);
+  CHECK(dev.result.state.population.last_event == 80);
+  CHECK(dev.stats.population_seconds > 0.0);
 }
 
 TEST_CASE("device run in float stays close to the host for 10 iterations", "[opencl][device_sim]") {

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <tuple>
 #include <vector>
 
 #include "geometry/geometry.hpp"
@@ -120,7 +121,7 @@ void check_balance(const std::vector<Box>& quads) {
   CHECK(bad == 0);
 }
 
-const char* name_of(InitMethod m) { return m == InitMethod::Structured ? "structured" : "random"; }
+const char* name_of(InitMethod m) { return to_string(m); }
 
 }  // namespace
 
@@ -260,7 +261,7 @@ TEST_CASE("estimate of circle in circle matches a brute-force grid integral", "[
 TEST_CASE("node counts follow the estimate (square and circle in circle, both methods)", "[init]") {
   // Measured: all nodes (boundary + interior) against the hexagonal-packing estimate.
   const double tolerance = 0.25;
-  for (InitMethod method : {InitMethod::Structured, InitMethod::Random}) {
+  for (InitMethod method : {InitMethod::Structured, InitMethod::Random, InitMethod::Hexagonal}) {
     {
       // The thesis' fig 7.1 square: 200 x 200 with 40 boundary points, q = 20.
       const Geometry g = square(200.0, 10);
@@ -285,6 +286,50 @@ TEST_CASE("node counts follow the estimate (square and circle in circle, both me
       CHECK(std::abs(d.nodes.size() / d.estimate - 1.0) <= tolerance);
       check_interior(g, spacing, d.nodes);
     }
+  }
+}
+
+TEST_CASE("hexagonal fill: near the hexagonal-packing estimate, a lattice of spacing q away from the boundary",
+          "[init][hexagonal]") {
+  // A square and an annulus whose boundary segments are 0.5 long, so that eq. 3.6 gives q ~ 0.5
+  // everywhere; and the thesis' graded circle in circle.
+  std::vector<RawCurve> ring;
+  add_circle(ring, 10.0, 64, "outer");
+  add_circle(ring, 5.0, 33, "inner");
+  const Geometry annulus = build_geometry(std::move(ring));
+  const Geometry sq = square(20.0, 40);
+  const Geometry graded = circle_in_circle();
+  for (const auto& [name, g, tolerance] : {std::tuple{"square", &sq, 0.08}, std::tuple{"annulus", &annulus, 0.08},
+                                           std::tuple{"circle in circle", &graded, 0.08}}) {
+    const GeometryTree tree(*g);
+    const BoundarySpacing spacing(tree);
+    const InitialDistribution d = make_initial_distribution(tree, spacing, {InitMethod::Hexagonal, 1, {}});
+    const double ratio = d.nodes.size() / d.estimate;
+    WARN(name << " hexagonal: nodes " << d.nodes.size() << ", estimate " << d.estimate << ", ratio " << ratio);
+    CHECK(std::abs(ratio - 1.0) <= tolerance);
+    check_interior(*g, spacing, d.nodes);
+    // Away from the boundary the nodes of the uniform cases sit on one lattice: nearest neighbour at q
+    // (within 10%: the lattice spacing is q's level, within 4.4%) and six neighbours within 1.2 q.
+    // The graded case changes level every ~9% of q, with a seam each time.
+    std::size_t far = 0, on_lattice = 0;
+    for (std::size_t i = 0; i < d.nodes.size(); ++i) {
+      const Vec2 p = d.nodes.x[i];
+      const double q = d.nodes.q[i];
+      if (d.nodes.kind[i] != NodeKind::Interior || brute_distance(*g, p) < 3.0 * q) continue;
+      ++far;
+      double nearest = HUGE_VAL;
+      int close = 0;
+      for (std::size_t j = 0; j < d.nodes.size(); ++j) {
+        if (j == i) continue;
+        const double r = dist(p, d.nodes.x[j]);
+        nearest = std::min(nearest, r);
+        close += r < 1.2 * q;
+      }
+      on_lattice += std::abs(nearest / q - 1.0) <= 0.1 && close == 6;
+    }
+    WARN(name << ": " << on_lattice << " of " << far << " nodes away from the boundary on the lattice");
+    CHECK(far > 0);
+    if (g != &graded) CHECK(on_lattice >= 0.95 * far);
   }
 }
 

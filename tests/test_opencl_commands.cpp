@@ -126,7 +126,7 @@ TEST_CASE("a device run's iterations: at most 3 launches and 2 waits without a r
     last_rebuilds = rebuilds;
   };
   NodeSet nodes = c.initial;
-  simulator.run(nodes, *c.inputs->tree, *c.inputs->spacing, o, callbacks);
+  simulator.run(nodes, c.inputs->node_tree(), *c.inputs->spacing, o, callbacks);
   REQUIRE(steady > 0);
   REQUIRE(rebuilt > 0);
   // A rebuild adds the two neighbour kernels (build, finish) to the iteration's own launches.

@@ -260,7 +260,31 @@ TEST_CASE("quality.json holds the documented keys and is written atomically", "[
   }
   CHECK(j.find("inf") == std::string::npos);
   CHECK(j.find("nan") == std::string::npos);
+  CHECK(j.find("\"cleanup\": null") != std::string::npos);  // not a cleaned mesh
   std::filesystem::remove_all(dir);
+}
+
+TEST_CASE("a cleaned mesh's summary reports the cleanup in quality.json and in the table", "[quality]") {
+  QualitySummary s = summarize_quality(two_triangle_mesh());
+  s.has_cleanup = true;
+  s.cleanup.target_deg = 32.5;
+  s.cleanup.below_before = 7;
+  s.cleanup.below_after = 1;
+  s.cleanup.min_angle_before = 21.25;
+  s.cleanup.min_angle_after = 31.5;
+  s.cleanup.inserted = 3;
+  s.cleanup.removed = 2;
+  const std::string j = quality_json(s, "m");
+  CHECK(j.find("\"cleanup\": {\"target_deg\": 32.5, \"below_target\": {\"before\": 7, \"after\": 1}, "
+               "\"min_angle\": {\"before\": 21.25, \"after\": 31.5}") != std::string::npos);
+  CHECK(j.find("\"inserted\": 3, \"removed\": 2") != std::string::npos);
+  const std::string table = format_quality_table({{"raw", summarize_quality(two_triangle_mesh())}, {"clean", s}});
+  INFO(table);
+  CHECK(table.find("Cleanup: < 32.5 deg        before            -         7\n") != std::string::npos);
+  CHECK(table.find("Cleanup: min angle         before            -     21.25\n") != std::string::npos);
+  CHECK(table.find("after             -     31.50\n") != std::string::npos);
+  // Without a cleaned column there are no cleanup rows.
+  CHECK(format_quality_table(summarize_quality(two_triangle_mesh())).find("Cleanup") == std::string::npos);
 }
 
 TEST_CASE("quality command reads a mesh file, prints the table and writes the JSON", "[quality]") {

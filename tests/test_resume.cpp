@@ -99,16 +99,19 @@ TEST_CASE("a checkpoint survives format and parse exactly", "[resume]") {
   // A truncated file (no end line) is refused with its line.
   const std::string truncated = text.substr(0, text.rfind("end"));
   CHECK_THROWS_AS(pdmesh::parse_checkpoint(truncated, "mem"), pdmesh::InputError);
-  CHECK_THROWS_WITH(pdmesh::parse_checkpoint("pdmesh-checkpoint 2\n", "mem"), Catch::Contains("mem:1"));
+  CHECK_THROWS_WITH(pdmesh::parse_checkpoint("pdmesh-checkpoint 3\n", "mem"), Catch::Contains("mem:1"));
 }
 
 TEST_CASE("a stopped and resumed run ends bit-identical to an uninterrupted one", "[resume][cli]") {
+  // The thesis' settings, and boundary nodes placed by the field on smooth curves.
+  const std::string settings = GENERATE(std::string(""), std::string("--set boundary.nodes=spacing --set geometry.curves=smooth"));
+  INFO("settings: " << settings);
   const fs::path whole = fresh_dir("whole"), parts = fresh_dir("parts");
-  const auto full = run_pdmesh(mesh_command(whole, "-q"));
+  const auto full = run_pdmesh(mesh_command(whole, "-q " + settings));
   REQUIRE(full.status == 0);
   CHECK_FALSE(fs::exists(whole / "checkpoint.pdmesh"));
 
-  const auto stopped = run_pdmesh(mesh_command(parts, "-q --stop-after 23"));
+  const auto stopped = run_pdmesh(mesh_command(parts, "-q --stop-after 23 " + settings));
   INFO(stopped.output);
   REQUIRE(stopped.status == 130);
   REQUIRE(fs::exists(parts / "checkpoint.pdmesh"));
@@ -120,13 +123,53 @@ TEST_CASE("a stopped and resumed run ends bit-identical to an uninterrupted one"
   CHECK(c.state.history.size() == 23);
   CHECK(pdmesh::read_text_file(parts / "final.nodes") != pdmesh::read_text_file(whole / "final.nodes"));
 
-  const auto resumed = run_pdmesh(mesh_command(parts, "-q --resume '" + parts.string() + "'"));
+  const auto resumed = run_pdmesh(mesh_command(parts, "-q --resume '" + parts.string() + "' " + settings));
   INFO(resumed.output);
   REQUIRE(resumed.status == 0);
   CHECK(pdmesh::read_text_file(parts / "final.nodes") == pdmesh::read_text_file(whole / "final.nodes"));
   CHECK(pdmesh::read_text_file(parts / "history.csv") == pdmesh::read_text_file(whole / "history.csv"));
   CHECK(pdmesh::read_text_file(parts / "mesh.msh") == pdmesh::read_text_file(whole / "mesh.msh"));
   CHECK_FALSE(fs::exists(parts / "checkpoint.pdmesh"));  // the run there is finished
+  fs::remove_all(whole);
+  fs::remove_all(parts);
+}
+
+TEST_CASE("a run stopped after population events resumes bit-identical on the host", "[resume][cli][population]") {
+  // The geometry alone runs the best preset (population control on); a random start with early,
+  // frequent events so that the node set has changed before the stop.
+  const std::string geometry = std::string(PDMESH_SOURCE_DIR) + "/cases/circle_circle/circles.crv";
+  const auto command = [&](const fs::path& out, const std::string& extra) {
+    return "mesh '" + geometry + "' --out '" + out.string() +
+           "' --device host --formats msh --iterations 90 --method random --seed 3 -q --set population.start=20 "
+           "--set population.every=10 " + extra;
+  };
+  const fs::path whole = fresh_dir("pop_whole"), parts = fresh_dir("pop_parts");
+  REQUIRE(run_pdmesh(command(whole, "")).status == 0);
+  const auto stopped = run_pdmesh(command(parts, "--stop-after 45"));
+  INFO(stopped.output);
+  REQUIRE(stopped.status == 130);
+  const pdmesh::Checkpoint c = pdmesh::read_checkpoint(parts / "checkpoint.pdmesh");
+  std::size_t inserted = 0, removed = 0;
+  for (const pdmesh::HistoryRow& row : c.state.history) {
+    inserted += row.inserted;
+    removed += row.removed;
+  }
+  // Events ran after iterations 20, 30 and 40 and changed the node set.
+  CHECK(c.state.population.last_event == 40);
+  REQUIRE(inserted + removed > 0);
+  CHECK(c.nodes.size() == c.state.history.back().fixed + c.state.history.back().boundary +
+                              c.state.history.back().interior);
+  const auto resumed = run_pdmesh(command(parts, "--resume '" + parts.string() + "'"));
+  INFO(resumed.output);
+  REQUIRE(resumed.status == 0);
+  CHECK(pdmesh::read_text_file(parts / "final.nodes") == pdmesh::read_text_file(whole / "final.nodes"));
+  CHECK(pdmesh::read_text_file(parts / "history.csv") == pdmesh::read_text_file(whole / "history.csv"));
+  // A checkpoint with population control is refused by a run without it.
+  REQUIRE(run_pdmesh(command(parts, "--stop-after 45")).status == 130);
+  const auto off = run_pdmesh(command(fresh_dir("pop_off"), "--set population.enabled=false --resume '" +
+                                                                   parts.string() + "'"));
+  CHECK(off.status == 2);
+  CHECK_THAT(off.output, Catch::Contains("population.enabled"));
   fs::remove_all(whole);
   fs::remove_all(parts);
 }
@@ -142,6 +185,10 @@ TEST_CASE("a checkpoint of another case or other settings is refused with exit 2
       run_pdmesh(mesh_command(fresh_dir("o5"), "--set spacing.gradation=0.3 --resume '" + dir.string() + "'"));
   CHECK(other_field.status == 2);
   CHECK_THAT(other_field.output, Catch::Contains("another case") && Catch::Contains("spacing.gradation"));
+  const auto other_curves =
+      run_pdmesh(mesh_command(fresh_dir("o5"), "--set geometry.curves=smooth --resume '" + dir.string() + "'"));
+  CHECK(other_curves.status == 2);
+  CHECK_THAT(other_curves.output, Catch::Contains("another case") && Catch::Contains("geometry.curves"));
   const std::string square = std::string(PDMESH_SOURCE_DIR) + "/cases/square200";
   const auto other_case = run_pdmesh("mesh '" + square + "' --out '" + fresh_dir("o3").string() +
                                      "' --device host --resume '" + (dir / "checkpoint.pdmesh").string() + "'");

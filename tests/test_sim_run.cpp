@@ -139,7 +139,8 @@ TEST_CASE("history CSV and plot files", "[sim]") {
   std::ifstream in(dir / "history.csv");
   std::string line;
   std::getline(in, line);
-  CHECK(line == "iteration,average_force,average_kinetic_energy,max_force,dt_gm,snapped,clamped,fixed,boundary,interior");
+  CHECK(line == "iteration,average_force,average_kinetic_energy,max_force,dt_gm,snapped,clamped,fixed,boundary,interior,"
+                "inserted,removed");
   int lines = 0;
   std::string last;
   while (std::getline(in, line)) ++lines, last = line;

@@ -292,4 +292,10 @@ TEST_CASE("input boundary floor: q rises back to the input spacing next to coars
     }
   }
   CHECK(far > 200);
+  // Boundary nodes placed by the field (final_floor false): the sources keep their floor, the final
+  // field does not, so the wall below the hole keeps the limited value.
+  o.final_floor = false;
+  const Field sources_only(curves, "", o);
+  CHECK(sources_only.at({5, 0}) == Approx(limited.at({5, 0})).epsilon(1e-3));
+  CHECK(sources_only.at({5, 0}) < 0.5 * floored.at({5, 0}));
 }

@@ -45,9 +45,14 @@ std::size_t peak_rss() {
 
 struct BenchCase {
   std::string name;
+  // A generated case owns its geometry, tree and field; a case file's come from MeshInputs, built
+  // as pdmesh mesh builds them (the node geometry and boundary nodes of its settings).
   Geometry geometry;
-  std::unique_ptr<GeometryTree> tree;
-  std::unique_ptr<SpacingField> spacing;
+  std::unique_ptr<GeometryTree> own_tree;
+  std::unique_ptr<SpacingField> own_spacing;
+  std::unique_ptr<MeshInputs> inputs;
+  const GeometryTree* tree = nullptr;
+  const SpacingField* spacing = nullptr;
   NodeSet initial;
   SimOptions options;
 };
@@ -56,8 +61,10 @@ std::unique_ptr<BenchCase> generated_case(std::size_t target) {
   auto c = std::make_unique<BenchCase>();
   c->name = fmt::format("graded_{}k", target / 1000);
   c->geometry = graded_case_geometry(graded_case_spacing(target));
-  c->tree = std::make_unique<GeometryTree>(c->geometry);
-  c->spacing = std::make_unique<BoundarySpacing>(*c->tree);
+  c->own_tree = std::make_unique<GeometryTree>(c->geometry);
+  c->own_spacing = std::make_unique<BoundarySpacing>(*c->own_tree);
+  c->tree = c->own_tree.get();
+  c->spacing = c->own_spacing.get();
   c->initial = make_initial_distribution(*c->tree, *c->spacing, {}).nodes;
   c->options.stability_factor = 1.0;  // as pdmesh mesh
   return c;
@@ -68,16 +75,10 @@ std::unique_ptr<BenchCase> file_case(const std::string& dir, const std::string& 
   c->name = name;
   CaseConfig config = load_case_file(std::filesystem::path(dir) / name / "case.toml");
   config.quiet = true;
-  MeshInputs inputs(config);
-  c->geometry = inputs.geometry;
-  c->tree = std::make_unique<GeometryTree>(c->geometry);
-  c->spacing = make_case_spacing(config, *c->tree);
-  InitOptions init;
-  init.method = config.init.method;
-  init.seed = config.init.seed;
-  if (config.init.total > 0) init.total = static_cast<std::size_t>(config.init.total);
-  init.with_estimate = false;
-  c->initial = make_initial_distribution(*c->tree, *c->spacing, init).nodes;
+  c->inputs = std::make_unique<MeshInputs>(config);
+  c->tree = &c->inputs->node_tree();
+  c->spacing = c->inputs->spacing.get();
+  c->initial = make_initial(config, *c->inputs).nodes;
   c->options.dt_initial = config.simulation.dt_for(config.init.method);
   c->options.cutoff = config.simulation.cutoff;
   c->options.lj_a = config.simulation.lj_a;
@@ -129,6 +130,7 @@ struct Row {
   IterationCommands commands;
   std::size_t peak_rss = 0;
   double host_ms = 0.0;  // the host reference's ms/iteration in the same run (for the ratio)
+  SimStats stats;        // population events
 };
 
 std::string format_row(const Row& r) {
@@ -156,6 +158,15 @@ std::string format_row(const Row& r) {
   } else if (r.pairs_within > 0) {
     examined = fmt::format("{:.2f}", static_cast<double>(r.pairs_examined) / static_cast<double>(r.pairs_within));
   }
+  if (r.stats.population_events > 0) {
+    // Per iteration; on a device also the read-back and re-upload within it.
+    const std::string transfer =
+        r.device ? fmt::format(", transfers {:.2f}", 1e3 * r.device->population_transfer_seconds / r.iterations) : "";
+    const double seconds = r.device ? r.device->population_seconds : r.stats.population_seconds;
+    split = fmt::format("{}{}population {:.2f}{} ({} events, +{} -{})", split == "-" ? "" : split,
+                        split == "-" ? "" : " / ", 1e3 * seconds / r.iterations, transfer,
+                        r.stats.population_events, r.stats.inserted, r.stats.removed);
+  }
   const std::string ratio = r.device && r.host_ms > 0.0 ? fmt::format("{:.2f}", r.host_ms / (1e3 * per_it)) : "-";
   return fmt::format("| {} | {} | {} | {} | {:.3f} | {:.3g} | {:.3g} | {:.0f} | {} | {} | {} | {} | {} | {} | {} |\n",
                      r.case_name, r.backend, r.nodes, r.iterations, 1e3 * per_it, node_its, pairs,
@@ -174,6 +185,8 @@ int run_bench(const BenchArguments& args) {
                                  args.iterations, args.large_iterations));
   if (!(args.verlet_skin >= 0.0 && args.verlet_skin <= 4.0))
     throw InputError(fmt::format("bench: --skin must be in [0, 4], got {}", args.verlet_skin));
+  if (args.population_every < 0)
+    throw InputError(fmt::format("bench: --population must be >= 0, got {}", args.population_every));
   if (args.precision != "double" && args.precision != "float")
     throw InputError(fmt::format("bench: --precision must be double or float, got '{}'", args.precision));
   const ocl::ForceLoop loop = ocl::parse_force_loop(args.force_loop, "bench: --force-loop");
@@ -195,6 +208,8 @@ int run_bench(const BenchArguments& args) {
     options.iterations = large ? args.large_iterations : args.iterations;
     options.quiet = true;
     options.verlet_skin = args.verlet_skin;
+    const std::string suffix =
+        args.population_every > 0 ? fmt::format(", population every {}", args.population_every) : std::string();
     {
       const int warm = large ? args.large_warmup : args.warmup;
       SimOptions w = options;
@@ -211,6 +226,12 @@ int run_bench(const BenchArguments& args) {
         if (!r.history.empty()) options.dt_initial = r.history.back().dt_gm;
       }
     }
+    if (args.population_every > 0) {
+      options.population.enabled = true;
+      options.population.every = args.population_every;
+      options.population.start = args.population_every;
+      options.population.stop = 1.0;
+    }
     double host_ms = 0.0;
     auto emit = [&](const Row& row) {
       const std::string line = format_row(row);
@@ -221,8 +242,8 @@ int run_bench(const BenchArguments& args) {
     if (!args.skip_host && !(large && args.skip_host_large)) {
       NodeSet nodes = c->initial;
       const SimResult r = run_simulation(nodes, *c->tree, *c->spacing, options);
-      Row row{c->name, "host reference", nodes.size(), options.iterations, r.stats.seconds, r.stats.pairs_within,
-              r.stats.pairs_examined, std::nullopt, {}, peak_rss(), 0.0};
+      Row row{c->name, "host reference" + suffix, nodes.size(), options.iterations, r.stats.seconds,
+              r.stats.pairs_within, r.stats.pairs_examined, std::nullopt, {}, peak_rss(), 0.0, r.stats};
       host_ms = 1e3 * r.stats.seconds / options.iterations;
       emit(row);
     }
@@ -246,11 +267,11 @@ int run_bench(const BenchArguments& args) {
       };
       const SimResult r = simulator.run(nodes, *c->tree, *c->spacing, o, callbacks);
       Row row{c->name,
-              fmt::format("opencl:{}:{} {} ({}, {} loop)", info.platform, info.device, info.type,
+              fmt::format("opencl:{}:{} {} ({}, {} loop){}", info.platform, info.device, info.type,
                           precision == ocl::Precision::Float ? "float" : "double",
-                          ocl::force_loop_name(simulator.force_loop())),
+                          ocl::force_loop_name(simulator.force_loop()), suffix),
               nodes.size(), o.iterations, r.stats.seconds, r.stats.pairs_within, r.stats.pairs_examined,
-              simulator.stats(), commands, peak_rss(), host_ms};
+              simulator.stats(), commands, peak_rss(), host_ms, r.stats};
       emit(row);
     }
   }

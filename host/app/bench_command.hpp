@@ -24,6 +24,9 @@ struct BenchArguments {
   bool skip_host_large = false;     // the host reference takes seconds per iteration at 1M nodes
   std::string force_loop = "auto";  // device runs: auto | vector | scalar (kernels/forces.cl; docs/opencl.md)
   std::string out;                  // the table as Markdown (atomic write); empty: stdout only
+  // > 0: population control during the timed iterations, an event every this many iterations (the
+  // first after as many, none skipped for settling), so that the cost of events and re-uploads shows.
+  int population_every = 0;
 };
 
 // Runs the benchmark and prints the table; returns the exit status.

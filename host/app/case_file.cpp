@@ -23,7 +23,7 @@ namespace fs = std::filesystem;
 namespace {
 
 // Tables that may hold further keys; every other key is a leaf.
-const std::vector<std::string> kSections = {"geometry", "spacing", "init", "simulation", "output"};
+const std::vector<std::string> kSections = {"geometry", "spacing", "boundary", "init", "simulation", "population", "cleanup", "output"};
 const std::vector<std::string> kFormats = {"msh", "msh22", "vtu", "su2", "triangle", "png", "svg"};
 
 const char* type_name(const toml::node& n) {
@@ -212,8 +212,9 @@ void check_keys(const Reader& r, const toml::table& t, const std::string& prefix
 
 // Keys whose value is a string: an override such as "spacing.expression=2" means the text.
 bool is_string_key(const std::string& key) {
-  return key == "name" || key == "preset" || key == "spacing.field" || key == "spacing.expression" ||
-         key == "spacing.file" || key == "spacing.array" || key == "init.method" ||
+  return key == "name" || key == "preset" || key == "geometry.curves" || key == "boundary.nodes" ||
+         key == "spacing.field" || key == "spacing.expression" || key == "spacing.file" || key == "spacing.array" ||
+         key == "init.method" ||
          key == "simulation.device" || key == "simulation.precision" || key == "simulation.r0_rule" ||
          key == "output.color_by";
 }
@@ -294,13 +295,13 @@ bool is_plain_name(const std::string& s) {
 
 void read_geometry_section(const Reader& r, const toml::table& root, CaseConfig& c) {
   const toml::node* files = find(root, "geometry", "files");
-  if (!c.geometry.curves.empty()) {
+  if (!c.geometry.given_curves.empty()) {
     // Curves given in memory (case_for_curves) are the geometry; files would be a second one.
     if (files != nullptr) r.fail("geometry.files", files, "geometry.files cannot be set: the geometry is given as curves");
   } else if (files == nullptr && !r.partial()) {
     throw InputError(fmt::format("{}: geometry.files is required (the .crv/.dat/.poly files to mesh)", r.file()));
   }
-  if (files != nullptr && c.geometry.curves.empty()) {
+  if (files != nullptr && c.geometry.given_curves.empty()) {
     const std::vector<std::string> names = r.strings("geometry.files", *files);
     if (names.empty()) r.fail("geometry.files", files, "geometry.files must name at least one file");
     for (const std::string& f : names) c.geometry.files.push_back(r.resolve("geometry.files", f));
@@ -324,6 +325,17 @@ void read_geometry_section(const Reader& r, const toml::table& root, CaseConfig&
       r.fail("geometry.corner_angle", n, fmt::format("geometry.corner_angle must be in (0, 180) degrees, got {}", a));
     }
     c.geometry.corner_angle = a;
+  }
+  if (const toml::node* n = find(root, "geometry", "curves")) {
+    c.geometry.curves =
+        choose<CurveKind>(r, "geometry.curves", *n, {{"polyline", CurveKind::Polyline}, {"smooth", CurveKind::Smooth}});
+  }
+}
+
+void read_boundary_section(const Reader& r, const toml::table& root, CaseConfig& c) {
+  if (const toml::node* n = find(root, "boundary", "nodes")) {
+    c.boundary.nodes = choose<BoundaryNodeRule>(r, "boundary.nodes", *n,
+                                                {{"input", BoundaryNodeRule::Input}, {"spacing", BoundaryNodeRule::Spacing}});
   }
 }
 
@@ -403,7 +415,8 @@ std::uint64_t non_negative(const Reader& r, const std::string& key, const toml::
 void read_init_section(const Reader& r, const toml::table& root, CaseConfig& c) {
   if (const toml::node* n = find(root, "init", "method")) {
     c.init.method = choose<InitMethod>(r, "init.method", *n,
-                                       {{"structured", InitMethod::Structured}, {"random", InitMethod::Random}});
+                                       {{"structured", InitMethod::Structured}, {"random", InitMethod::Random},
+                                        {"hexagonal", InitMethod::Hexagonal}});
   }
   if (const toml::node* n = find(root, "init", "seed")) c.init.seed = non_negative(r, "init.seed", *n);
   if (const toml::node* n = find(root, "init", "total")) c.init.total = non_negative(r, "init.total", *n);
@@ -455,6 +468,77 @@ void read_simulation_section(const Reader& r, const toml::table& root, CaseConfi
   if (const toml::node* n = find(root, "simulation", "r0_rule")) {
     s.r0_any_direction = choose<bool>(r, "simulation.r0_rule", *n, {{"force_direction", false}, {"any_direction", true}});
   }
+}
+
+// A threshold given as one number (constant over the run) or [first, last] (ramped from the first
+// event to the last), each in (lo, hi).
+PopulationRamp read_ramp(const Reader& r, const std::string& key, const toml::node& n, double lo, double hi) {
+  PopulationRamp ramp;
+  if (n.is_array()) {
+    const toml::array& a = *n.as_array();
+    if (a.size() != 2) r.fail(key, &n, fmt::format("{} must be a number or [first, last], got {} numbers", key, a.size()));
+    ramp = {r.number(key + "[0]", *a.get(0)), r.number(key + "[1]", *a.get(1))};
+  } else {
+    ramp.first = ramp.last = r.number(key, n);
+  }
+  for (double v : {ramp.first, ramp.last})
+    if (!(v > lo && v < hi)) r.fail(key, &n, fmt::format("{} must be in ({}, {}), got {}", key, lo, hi, v));
+  return ramp;
+}
+
+void read_population_section(const Reader& r, const toml::table& root, CaseConfig& c) {
+  PopulationOptions& p = c.population;
+  const auto integer_in = [&](const char* key, std::int64_t lo, std::int64_t hi, int& out) {
+    if (const toml::node* n = find(root, "population", key)) {
+      const std::string name = std::string("population.") + key;
+      const std::int64_t v = r.integer(name, *n);
+      if (v < lo || v > hi) r.fail(name, n, fmt::format("{} must be in {}..{}, got {}", name, lo, hi, v));
+      out = static_cast<int>(v);
+    }
+  };
+  if (const toml::node* n = find(root, "population", "enabled")) p.enabled = r.boolean("population.enabled", *n);
+  integer_in("every", 1, 1'000'000'000, p.every);
+  integer_in("start", 0, 2'000'000'000, p.start);
+  integer_in("remove_valence", 0, 5, p.remove_valence);
+  if (const toml::node* n = find(root, "population", "stop")) {
+    p.stop = r.number("population.stop", *n);
+    if (!(p.stop > 0.0 && p.stop <= 1.0))
+      r.fail("population.stop", n, fmt::format("population.stop must be in (0, 1] (a fraction of the run), got {}", p.stop));
+  }
+  // An equilateral lattice has circumradius q / sqrt(3) = 0.577 q: insert must stay above it.
+  if (const toml::node* n = find(root, "population", "insert")) p.insert = read_ramp(r, "population.insert", *n, 0.6, 3.0);
+  if (const toml::node* n = find(root, "population", "merge")) p.merge = read_ramp(r, "population.merge", *n, 0.0, 1.0);
+  const toml::node* merge = find(root, "population", "merge");
+  if (std::max(p.merge.first, p.merge.last) >= std::min(p.insert.first, p.insert.last))
+    r.fail("population.merge", merge ? merge : find(root, "population", "insert"),
+           "population.merge must stay below population.insert (a new node would be merged again)");
+  if (const toml::node* n = find(root, "population", "boundary")) p.boundary = r.boolean("population.boundary", *n);
+  const toml::node* split = find(root, "population", "boundary_split");
+  if (split) p.boundary_split = r.number("population.boundary_split", *split);
+  // A split gap's halves must not be short enough to merge again (churn).
+  const double merge_max = std::max(p.merge.first, p.merge.last);
+  if (!(p.boundary_split > 2.0 * merge_max && p.boundary_split < 10.0))
+    r.fail("population.boundary_split", split ? split : merge,
+           fmt::format("population.boundary_split must be in (2 x population.merge = {}, 10), got {}", 2.0 * merge_max,
+                       p.boundary_split));
+}
+
+void read_cleanup_section(const Reader& r, const toml::table& root, CaseConfig& c) {
+  auto& k = c.cleanup;
+  if (const toml::node* n = find(root, "cleanup", "enabled")) k.enabled = r.boolean("cleanup.enabled", *n);
+  if (const toml::node* n = find(root, "cleanup", "min_angle")) {
+    k.min_angle = r.number("cleanup.min_angle", *n);
+    if (!(k.min_angle > 0.0 && k.min_angle < 60.0))
+      r.fail("cleanup.min_angle", n, fmt::format("cleanup.min_angle must be in (0, 60) degrees, got {}", k.min_angle));
+  }
+  if (const toml::node* n = find(root, "cleanup", "iterations")) {
+    k.iterations = r.integer("cleanup.iterations", *n);
+    if (k.iterations < 1 || k.iterations > 1000)
+      r.fail("cleanup.iterations", n, fmt::format("cleanup.iterations must be in 1..1000, got {}", k.iterations));
+  }
+  if (const toml::node* n = find(root, "cleanup", "topology")) k.topology = r.boolean("cleanup.topology", *n);
+  if (const toml::node* n = find(root, "cleanup", "split_boundary"))
+    k.split_boundary = r.boolean("cleanup.split_boundary", *n);
 }
 
 ViewWindow read_view(const Reader& r, const toml::node& entry, std::size_t i) {
@@ -536,8 +620,11 @@ CaseConfig check_values(const toml::table& root, const Reader& r, CaseConfig c) 
   }
   read_geometry_section(r, root, c);
   read_spacing_section(r, root, c);
+  read_boundary_section(r, root, c);
   read_init_section(r, root, c);
   read_simulation_section(r, root, c);
+  read_population_section(r, root, c);
+  read_cleanup_section(r, root, c);
   read_output_section(r, root, c);
   return c;
 }
@@ -564,12 +651,15 @@ const std::vector<std::string>& case_file_keys() {
   static const std::vector<std::string> keys = {
       "name", "preset",
       "geometry.files", "geometry.curve_names", "geometry.join_tolerance", "geometry.corner_angle",
-      "spacing.field", "spacing.expression", "spacing.file", "spacing.array", "spacing.scale", "spacing.gradation",
-      "spacing.rows_in_gap", "spacing.curvature_angle",
+      "geometry.curves", "spacing.field", "spacing.expression", "spacing.file", "spacing.array", "spacing.scale",
+      "spacing.gradation", "spacing.rows_in_gap", "spacing.curvature_angle", "boundary.nodes",
       "init.method", "init.seed", "init.total",
       "simulation.iterations", "simulation.dt_initial", "simulation.dt_initial.structured",
       "simulation.dt_initial.random", "simulation.cutoff", "simulation.lj_a", "simulation.device",
       "simulation.precision", "simulation.r0_rule", "simulation.stability_factor",
+      "population.enabled", "population.every", "population.start", "population.stop", "population.insert",
+      "population.merge", "population.remove_valence", "population.boundary", "population.boundary_split",
+      "cleanup.enabled", "cleanup.min_angle", "cleanup.iterations", "cleanup.topology", "cleanup.split_boundary",
       "output.formats", "output.tree_overlay", "output.views", "output.color_by", "output.spacing_picture",
   };
   return keys;
@@ -651,7 +741,7 @@ CaseConfig case_for_curves(std::vector<RawCurve> curves, const std::string& sour
   CaseConfig c;
   c.source = source;
   c.name = source;
-  c.geometry.curves = std::move(curves);
+  c.geometry.given_curves = std::move(curves);
   return validate(root, r, overrides, std::move(c));
 }
 

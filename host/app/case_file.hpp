@@ -11,6 +11,7 @@
 #include "core/vec2.hpp"
 #include "geometry/geometry.hpp"
 #include "init/initial_distribution.hpp"
+#include "sim/population.hpp"
 
 namespace pdmesh {
 
@@ -19,6 +20,8 @@ class SpacingField;
 enum class SpacingKind { Boundary, Expression, Mesh };
 // simulation.precision. Auto: float where the device lacks fp64 or runs it far slower (opencl/precision_probe).
 enum class Precision { Double, Float, Auto };
+// geometry.curves: the curve the points describe (docs/geometry-input.md, "Smooth curves").
+enum class CurveKind { Polyline, Smooth };
 
 // Which defaults the keys a case file leaves out take (top-level key `preset`).
 //   Best:   the settings that give the best meshes; what a geometry given alone runs with.
@@ -53,7 +56,8 @@ struct CaseConfig {
     double join_tolerance = 1e-9;
     double corner_angle = 30.0;  // degrees
     // Curves given in memory (the Python API) instead of files; see case_for_curves().
-    std::vector<RawCurve> curves;
+    std::vector<RawCurve> given_curves;
+    CurveKind curves = CurveKind::Polyline;  // the same in both presets (docs/initialization.md, "Measured")
   } geometry;
 
   struct Spacing {
@@ -76,6 +80,10 @@ struct CaseConfig {
     double curvature_angle = 10.0;  // degrees
   } spacing;
 
+  struct Boundary {
+    BoundaryNodeRule nodes = BoundaryNodeRule::Spacing;  // thesis: Input (every geometry point is a node)
+  } boundary;
+
   struct Init {
     InitMethod method = InitMethod::Structured;
     std::uint64_t seed = 1;
@@ -97,10 +105,24 @@ struct CaseConfig {
     // Stiffness bound on each node's time step (docs/simulation.md, "Stability"): 0 = off, the
     // thesis' rule exactly; c in (0, 1] keeps every step within the forward-Euler stability limit.
     double stability_factor = 1.0;
+    // A hexagonal start is a lattice like the structured one: it takes the structured value.
     std::optional<double> dt_for(InitMethod m) const {
-      return m == InitMethod::Structured ? dt_structured : dt_random;
+      return m == InitMethod::Random ? dt_random : dt_structured;
     }
   } simulation;
+
+  // Node insertion and removal during the run (sim/population.hpp, docs/cli.md "[population]"). Best:
+  // on; thesis: off (the thesis keeps the initial node count).
+  PopulationOptions population{.enabled = true};
+  // The final cleanup after the last iteration (docs/cleanup.md): repairs the triangles whose
+  // smallest angle is below min_angle by smoothing, flips and local topology operations.
+  struct Cleanup {
+    bool enabled = true;
+    double min_angle = 30.0;       // degrees, in (0, 60)
+    std::int64_t iterations = 16;  // outer iterations (smoothing sweeps + a topology pass)
+    bool topology = true;          // false: smoothing and flips only (the node count stays)
+    bool split_boundary = true;    // false: no new boundary nodes (boundary nodes only slide)
+  } cleanup;
 
   struct Output {
     std::vector<std::string> formats{"msh", "vtu", "png"};

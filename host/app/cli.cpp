@@ -232,7 +232,7 @@ void add_mesh_options(CLI::App& mesh, MeshArguments& a) {
   mesh.add_option("--iterations", a.iterations, "simulation.iterations: number of time steps (>= 0)")->type_name("N");
   mesh.add_option("--dt", a.dt, "simulation.dt_initial: initial global maximum time step (> 0)")->type_name("DT");
   mesh.add_option("--cutoff", a.cutoff, "simulation.cutoff: cut-off distance factor times q_i (> 0)")->type_name("F");
-  mesh.add_option("--method", a.method, "init.method: structured | random")->type_name("METHOD");
+  mesh.add_option("--method", a.method, "init.method: structured | random | hexagonal")->type_name("METHOD");
   mesh.add_option("--seed", a.seed, "init.seed: seed of the random fill and overloading (>= 0)")->type_name("N");
   mesh.add_option("--total", a.total, "init.total: total node count to reach by overloading (0 = off)")
       ->type_name("N");
@@ -322,6 +322,9 @@ Cli::Cli() : app_(std::make_unique<CLI::App>("pdmesh: physics-based point placem
   bench->add_option("--warmup", bench_->warmup, "Untimed iterations before timing, every backend from that state")->type_name("N");
   bench->add_option("--large-warmup", bench_->large_warmup, "The same for graded_1m")->type_name("N");
   bench->add_option("--skin", bench_->verlet_skin, "Verlet skin of the device runs (list radius cutoff q (1 + skin))")->type_name("S");
+  bench->add_option("--population", bench_->population_every,
+                    "Population control during the timed iterations: an event every K iterations (0 = off)")
+      ->type_name("K");
   bench->add_flag("--skip-host", bench_->skip_host, "Do not run the host reference");
   bench->add_flag("--skip-host-large", bench_->skip_host_large, "Do not run the host reference on graded_1m");
   bench->add_option("--force-loop", bench_->force_loop, "Force loop of the device runs: auto | vector | scalar")->type_name("L");

@@ -16,6 +16,7 @@
 #include "app/exit_codes.hpp"
 #include "app/interrupt.hpp"
 #include "app/resume.hpp"
+#include "cleanup/cleanup.hpp"
 #include "core/atomic_file.hpp"
 #include "core/errors.hpp"
 #include "geometry/geometry_files.hpp"
@@ -45,7 +46,6 @@ namespace {
 // megabytes, so only the PNG pictures (and zoomed views) are written.
 constexpr std::size_t kSvgNodeLimit = 500'000;
 
-const char* method_name(InitMethod m) { return m == InitMethod::Structured ? "structured" : "random"; }
 
 template <class... Args>
 void progress(const CaseConfig& config, fmt::format_string<Args...> format, Args&&... args) {
@@ -60,8 +60,9 @@ MeshInputs::MeshInputs(const CaseConfig& config) {
   GeometryOptions options;
   options.join_tolerance = config.geometry.join_tolerance;
   options.corner_angle_deg = config.geometry.corner_angle;
-  geometry = config.geometry.curves.empty() ? read_geometry(files, config.geometry.curve_names, options)
-                                            : geometry_from_curves(config.geometry.curves, config.geometry.curve_names, options);
+  geometry = config.geometry.given_curves.empty()
+                 ? read_geometry(files, config.geometry.curve_names, options)
+                 : geometry_from_curves(config.geometry.given_curves, config.geometry.curve_names, options);
   // Curve names are fields in node and mesh files; one with white space would break them later.
   for (std::size_t c = 0; c < geometry.curves.size(); ++c) {
     const std::string& name = geometry.curves[c].name;
@@ -89,6 +90,49 @@ MeshInputs::MeshInputs(const CaseConfig& config) {
   // Before anything else uses them: with unresolvable coordinates the node estimate's tree could
   // refine without end.
   check_coordinate_resolution(geometry, *spacing);
+  boundary_rule = config.boundary.nodes;
+  if (config.geometry.curves == CurveKind::Smooth) {
+    DenseOptions dense_options;
+    dense_options.join_tolerance = config.geometry.join_tolerance;
+    try {
+      dense = std::make_unique<DenseGeometry>(
+          make_dense_geometry(SmoothCurves(geometry, config.geometry.corner_angle), *spacing, dense_options));
+    } catch (const GeometryError& e) {
+      // Smooth curves through coarse points can cross where the polylines pass close to each other.
+      smooth_fallback = e.what();
+    }
+    if (dense) {
+      check_coordinate_resolution(dense->geometry, *spacing);
+      dense_tree = std::make_unique<GeometryTree>(dense->geometry);
+    }
+  }
+}
+
+void MeshInputs::place_boundary() const {
+  if (boundary_placed_) return;
+  boundary_placed_ = true;
+  // The thesis' rule (every point of the input polyline) is applied by the initialization itself.
+  if (!dense && boundary_rule == BoundaryNodeRule::Input) return;
+  const Geometry& on = node_geometry();
+  PlacementOptions placement;
+  placement.max_nodes = max_nodes_;
+  // Placed by the final field (the pipeline's: graded, feature size, curvature), so that the boundary
+  // rows match the interior rows next to them.
+  const SpacingField& q = field();
+  const CurveStations stations = boundary_rule == BoundaryNodeRule::Spacing ? spacing_stations(on, q, placement)
+                                                                            : vertex_stations(on, &dense->vertex);
+  boundary_ = assemble_boundary_nodes(on, q, stations);
+  resolution_ = station_resolution(on, stations);
+}
+
+const NodeSet* MeshInputs::boundary_nodes() const {
+  place_boundary();
+  return boundary_ ? &*boundary_ : nullptr;
+}
+
+const std::vector<double>* MeshInputs::segment_resolution() const {
+  place_boundary();
+  return resolution_.empty() ? nullptr : &resolution_;
 }
 
 SpacingOptions spacing_options(const CaseConfig& config) {
@@ -97,7 +141,12 @@ SpacingOptions spacing_options(const CaseConfig& config) {
   o.gradation = config.spacing.gradation;
   o.rows_in_gap = config.spacing.rows_in_gap;
   o.curvature_angle = config.spacing.curvature_angle;
+  // The sources' floor stays with boundary nodes placed by the field too: without it the feature size
+  // asks for q -> 0 toward sharp V tips, whose placed nodes then crowd into slivers (measured on the
+  // corpus: heatsink_channel 0.22 deg, coastline 0.47 deg without; docs/spacing.md). The final floor
+  // only serves input points as boundary nodes: placed nodes follow whatever finer field the case asks.
   o.input_boundary_floor = kInputBoundaryFloor;
+  o.final_floor = config.boundary.nodes == BoundaryNodeRule::Input;
   return o;
 }
 
@@ -135,7 +184,7 @@ std::vector<std::string> MeshInputs::curve_names() const {
 }
 
 double check_node_limit(const CaseConfig& config, const MeshInputs& inputs) {
-  const double estimate = estimate_node_count(*inputs.tree, inputs.field());
+  const double estimate = estimate_node_count(inputs.node_tree(), inputs.field(), inputs.segment_resolution());
   refuse_above_limit(config.source.string(), config.max_nodes, estimate, "spacing field");
   if (config.init.total > config.max_nodes) {
     throw LimitError(fmt::format("{}: init.total = {} is more than --max-nodes {}", config.source.string(),
@@ -150,7 +199,9 @@ InitialDistribution make_initial(const CaseConfig& config, const MeshInputs& inp
   options.seed = config.init.seed;
   if (config.init.total > 0) options.total = static_cast<std::size_t>(config.init.total);
   options.with_estimate = false;  // check_node_limit computed it just before
-  return make_initial_distribution(*inputs.tree, inputs.field(), options);
+  options.boundary = inputs.boundary_nodes();
+  options.segment_resolution = inputs.segment_resolution();
+  return make_initial_distribution(inputs.node_tree(), inputs.field(), options);
 }
 
 void prepare_output_directory(const CaseConfig& config) {
@@ -177,10 +228,11 @@ void write_node_outputs(const CaseConfig& config, const MeshInputs& inputs, cons
   NodePictureOptions picture;
   picture.title = title;
   picture.tree_quads = tree_quads;
-  write_node_picture(dir / (stage + ".png"), inputs.geometry, nodes, picture);
+  const Geometry& geometry = inputs.node_geometry();
+  write_node_picture(dir / (stage + ".png"), geometry, nodes, picture);
   const bool svg = nodes.size() <= kSvgNodeLimit;
   if (svg) {
-    write_node_picture(dir / (stage + ".svg"), inputs.geometry, nodes, picture);
+    write_node_picture(dir / (stage + ".svg"), geometry, nodes, picture);
   } else {
     progress(config, "{}.svg skipped: {} nodes is more than {} (the PNG pictures are written)", stage, nodes.size(),
              kSvgNodeLimit);
@@ -189,7 +241,7 @@ void write_node_outputs(const CaseConfig& config, const MeshInputs& inputs, cons
     NodePictureOptions zoomed = picture;
     zoomed.title += " - " + view.name;
     zoomed.window = view.window;
-    write_node_picture(dir / fmt::format("{}_{}.png", stage, view.name), inputs.geometry, nodes, zoomed);
+    write_node_picture(dir / fmt::format("{}_{}.png", stage, view.name), geometry, nodes, zoomed);
   }
   progress(config, "wrote {}/{}.nodes, {}.png{}{}", dir.string(), stage, stage, svg ? fmt::format(", {}.svg", stage) : "",
            config.output.views.empty() ? "" : fmt::format(" and {} view(s)", config.output.views.size()));
@@ -214,7 +266,7 @@ void write_spacing_picture(const CaseConfig& config, const MeshInputs& inputs) {
 
 void write_initial_outputs(const CaseConfig& config, const MeshInputs& inputs, const InitialDistribution& initial) {
   write_node_outputs(config, inputs, initial.nodes, "initial",
-                     fmt::format("{} - initial distribution ({})", config.name, method_name(config.init.method)),
+                     fmt::format("{} - initial distribution ({})", config.name, to_string(config.init.method)),
                      config.output.tree_overlay ? &initial.tree_quads : nullptr);
 }
 
@@ -231,14 +283,17 @@ SimResult simulate(const CaseConfig& config, const MeshInputs& inputs, NodeSet& 
   options.lj_a = config.simulation.lj_a;
   options.r0_any_direction = config.simulation.r0_any_direction;
   options.stability_factor = config.simulation.stability_factor;
+  options.population = config.population;
   options.quiet = config.quiet;
   options.stop = hooks && hooks->stop ? hooks->stop : &InterruptGuard::flag();
   options.resume = resume;
   // The pipeline's quadtree: the final field itself, or (thesis) eq. 3.6's lookup table, built here.
   const SpacingPipeline& pipeline = inputs.pipeline();
   const auto field_start = std::chrono::steady_clock::now();
-  options.background = &pipeline.background();
-  if (pipeline.exact())
+  // Smooth curves: the nodes live on the dense polyline, so the simulator builds its quadtree (leaves
+  // tagged inside/boundary/outside) of the final field over that geometry instead.
+  options.background = inputs.dense ? nullptr : &pipeline.background();
+  if (pipeline.exact() && options.background != nullptr)
     progress(config, "spacing field: eq. 3.6 sampled for the simulation in {:.3f} s ({} leaves)",
              std::chrono::duration<double>(std::chrono::steady_clock::now() - field_start).count(),
              options.background->stats().leaves);
@@ -266,7 +321,7 @@ SimResult simulate(const CaseConfig& config, const MeshInputs& inputs, NodeSet& 
   };
   SimResult result;
   try {
-    result = backend.simulator->run(nodes, *inputs.tree, inputs.field(), options, callbacks);
+    result = backend.simulator->run(nodes, inputs.node_tree(), inputs.field(), options, callbacks);
   } catch (const DeviceError& e) {
     if (!saved_after) throw;
     throw DeviceError(e.what() + saved_note() + " (with --device host if the device stays unusable)");
@@ -294,37 +349,89 @@ SimResult simulate(const CaseConfig& config, const MeshInputs& inputs, NodeSet& 
            st.seconds > 0 ? static_cast<double>(st.pairs_within) / st.seconds : 0.0,
            st.pairs_within ? static_cast<double>(st.pairs_examined) / static_cast<double>(st.pairs_within) : 0.0,
            st.snapped);
+  if (options.population.enabled)
+    progress(config, "population control: {} events ({:.3f} s), {} nodes inserted, {} removed; {} nodes now",
+             st.population_events, st.population_seconds, st.inserted, st.removed, nodes.size());
   const fs::path& dir = config.out_dir;
   write_history_csv(dir / "history.csv", result.history);
-  write_history_plot(dir / "history.png", result.history, fmt::format("{} ({})", config.name, method_name(config.init.method)));
+  write_history_plot(dir / "history.png", result.history, fmt::format("{} ({})", config.name, to_string(config.init.method)));
   write_node_outputs(config, inputs, nodes, "final",
                      fmt::format("{} - final distribution ({}, {} iterations)", config.name,
-                                 method_name(config.init.method), result.state.iterations_done),
+                                 to_string(config.init.method), result.state.iterations_done),
                      nullptr);
   return result;
 }
+
+namespace {
+
+// --check: the invariant checker on `mesh`, whose boundary nodes are those of `nodes`.
+void check_or_throw(const CaseConfig& config, const MeshInputs& inputs, const Mesh& mesh, const NodeSet& nodes,
+                    const char* which) {
+  // The mesh covers the polygons through the boundary nodes, which cut the curves' corners
+  // where nodes have slid off geometry vertices; that area is what the check compares against.
+  const double node_area = node_domain_area(nodes, inputs.node_geometry());
+  const CheckReport report = check_mesh(mesh, node_area);
+  if (!report.ok()) throw SimulationError(fmt::format("the {} failed its invariant check:\n{}", which, report.summary()));
+  progress(config, "mesh check ({}): passed (topology, orientation, constrained Delaunay, boundary edges, area {:.10g}; "
+           "the geometry's area is {:.10g}, relative difference {:.2g})",
+           which, node_area, inputs.geometry.area, std::fabs(node_area - inputs.geometry.area) / inputs.geometry.area);
+}
+
+// Smallest and largest angle and the triangles below `target` degrees.
+void angle_figures(const Mesh& mesh, double target, double& min_angle, double& max_angle, std::size_t& below) {
+  const QualitySummary s = summarize_quality(mesh);
+  min_angle = s.min_angle;
+  max_angle = s.max_angle;
+  below = 0;
+  for (const TriangleQuality& t : triangle_qualities(mesh)) below += t.min_angle < target;
+}
+
+}  // namespace
 
 Mesh mesh_and_measure(const CaseConfig& config, const MeshInputs& inputs, const NodeSet& nodes) {
   const auto start = std::chrono::steady_clock::now();
   Mesh mesh = triangulate(nodes, inputs.curve_names());
   progress(config, "triangulation: {:.3f} s ({} triangles)",
            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), mesh.triangles.size());
-  if (config.check) {
-    // The mesh covers the polygons through the boundary nodes, which cut the curves' corners
-    // where nodes have slid off geometry vertices; that area is what the check compares against.
-    const double node_area = node_domain_area(nodes, inputs.geometry);
-    const CheckReport report = check_mesh(mesh, node_area);
-    if (!report.ok()) throw SimulationError("the mesh failed its invariant check:\n" + report.summary());
-    progress(config, "mesh check: passed (topology, orientation, constrained Delaunay, boundary edges, area {:.10g}; "
-             "the geometry's area is {:.10g}, relative difference {:.2g})",
-             node_area, inputs.geometry.area, std::fabs(node_area - inputs.geometry.area) / inputs.geometry.area);
+  if (config.check) check_or_throw(config, inputs, mesh, nodes, "triangulation");
+  // The final cleanup (docs/cleanup.md): the mesh files and pictures show the cleaned mesh; final.nodes
+  // stays the simulation's result.
+  CleanupEffect effect;
+  NodeSet cleaned_nodes;
+  const NodeSet* mesh_nodes = &nodes;
+  if (config.cleanup.enabled) {
+    CleanupOptions options;
+    options.min_angle = config.cleanup.min_angle;
+    options.iterations = static_cast<int>(config.cleanup.iterations);
+    options.topology = config.cleanup.topology;
+    options.split_boundary = config.cleanup.split_boundary;
+    effect.target_deg = options.min_angle;
+    effect.triangles_before = mesh.triangles.size();
+    effect.points_before = mesh.points.size();
+    angle_figures(mesh, options.min_angle, effect.min_angle_before, effect.max_angle_before, effect.below_before);
+    CleanupResult cleaned = clean_mesh(mesh, nodes, inputs.node_tree(), inputs.field(), options);
+    mesh = std::move(cleaned.mesh);
+    angle_figures(mesh, options.min_angle, effect.min_angle_after, effect.max_angle_after, effect.below_after);
+    effect.inserted = cleaned.stats.inserted;
+    effect.removed = cleaned.stats.collapsed;
+    effect.moves = cleaned.stats.moves;
+    effect.seconds = cleaned.stats.seconds;
+    progress(config, "cleanup: {:.3f} s; min angle {:.2f} -> {:.2f} deg, triangles below {:g} deg {} -> {}; "
+             "{} node moves, {} nodes inserted, {} removed ({} triangles)",
+             effect.seconds, effect.min_angle_before, effect.min_angle_after, effect.target_deg, effect.below_before,
+             effect.below_after, effect.moves, effect.inserted, effect.removed, mesh.triangles.size());
+    if (config.check) check_or_throw(config, inputs, mesh, cleaned.nodes, "cleaned mesh");
+    cleaned_nodes = std::move(cleaned.nodes);
+    mesh_nodes = &cleaned_nodes;
   }
   const SpacingField& spacing = inputs.field();
   // The field at every node goes into the mesh files (point data "q"): a run's field can be read back
   // with spacing.field = "mesh", or edited (e.g. scaled by a solution's error indicator) first.
   spacing.at_many(mesh.points, mesh.spacing);
   if (!config.write_outputs) return mesh;  // the Python API measures on demand (Mesh.quality())
-  const QualitySummary summary = summarize_quality(mesh, [&spacing](Vec2 p) { return spacing.at(p); });
+  QualitySummary summary = summarize_quality(mesh, [&spacing](Vec2 p) { return spacing.at(p); });
+  summary.has_cleanup = config.cleanup.enabled;
+  summary.cleanup = effect;
   if (!config.quiet) fmt::print("{}", format_quality_table(summary, config.name));
   const fs::path& dir = config.out_dir;
   write_quality_json(summary, dir, config.name);
@@ -332,6 +439,9 @@ Mesh mesh_and_measure(const CaseConfig& config, const MeshInputs& inputs, const 
   for (const std::string& f : config.output.formats)
     if (is_mesh_format(f)) mesh_formats.push_back(f);
   const auto written = write_mesh(mesh, dir, "mesh", mesh_formats);
+  // The nodes of the mesh with their q, kinds and curve chains (final.nodes after the cleanup; the
+  // same nodes without it), for tools that need the mesh's boundary chains, like tools/compare.
+  write_node_file(dir / "mesh.nodes", *mesh_nodes, inputs.curve_names());
   // Pictures: png is always drawn when asked for; svg likewise.
   const std::vector<TriangleQuality> per_triangle = triangle_qualities(mesh);
   std::vector<double> values;
@@ -362,8 +472,8 @@ Mesh mesh_and_measure(const CaseConfig& config, const MeshInputs& inputs, const 
   }
   std::string names;
   for (const auto& p : written) names += (names.empty() ? "" : ", ") + p.filename().string();
-  progress(config, "mesh: {} triangles; wrote {}/quality.json{}{} and {} picture(s)", mesh.triangles.size(), dir.string(),
-           names.empty() ? "" : ", ", names, pictures);
+  progress(config, "mesh: {} triangles; wrote {}/quality.json, mesh.nodes{}{} and {} picture(s)", mesh.triangles.size(),
+           dir.string(), names.empty() ? "" : ", ", names, pictures);
   return mesh;
 }
 
@@ -390,7 +500,7 @@ void report_spacing(const CaseConfig& config, const MeshInputs& inputs) {
 // `--resume`: the node set and driver state come from the checkpoint instead of the initialization
 // (whose outputs the interrupted run already wrote).
 int resume_mesh(const CaseConfig& config, const MeshInputs& inputs) {
-  Checkpoint checkpoint = read_checkpoint_for(*config.resume, config, *inputs.tree);
+  Checkpoint checkpoint = read_checkpoint_for(*config.resume, config, inputs.node_tree());
   check_node_limit(config, inputs);
   report_spacing(config, inputs);
   prepare_output_directory(config);
@@ -410,6 +520,11 @@ int run_mesh(const CaseConfig& config) {
   progress(config, "geometry: {} curves, {} segments, {} loops, area {:.6g}", inputs.geometry.curves.size(),
            inputs.geometry.segments.size(), inputs.geometry.loops.size(), inputs.geometry.area);
   if (!inputs.spacing_summary.empty()) progress(config, "{}", inputs.spacing_summary);
+  if (inputs.dense)
+    progress(config, "geometry: smooth curves (centripetal Catmull-Rom) as a dense polyline of {} segments, area {:.6g}",
+             inputs.dense->geometry.segments.size(), inputs.dense->geometry.area);
+  if (!inputs.smooth_fallback.empty())
+    progress(config, "note: geometry.curves = \"smooth\" fell back to the input polylines: {}", inputs.smooth_fallback);
   // An explicit OpenCL device that is not there is bad input: refuse it before anything is written.
   if (config.simulation.iterations > 0 && config.simulation.device != "host" && config.simulation.device != "auto")
     (void)ocl::select_device(config.simulation.device);

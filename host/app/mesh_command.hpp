@@ -4,10 +4,12 @@
 #include <atomic>
 #include <functional>
 #include <memory>
+#include <optional>
 
 #include "app/case_file.hpp"
 #include "geometry/geometry.hpp"
 #include "geometry/geometry_tree.hpp"
+#include "geometry/smooth_curve.hpp"
 #include "init/initial_distribution.hpp"
 #include "mesh/mesh.hpp"
 #include "sim/simulation.hpp"
@@ -23,28 +25,58 @@ SpacingOptions spacing_options(const CaseConfig& config);
 // Stage 1: the geometry, its tree and the spacing field; throws LimitError for coordinates too
 // large to resolve at the segment lengths or the spacing (check_coordinate_resolution). Not
 // movable: the tree and the boundary spacing field refer to the geometry.
+//
+// Two geometries (docs/geometry-input.md, "Smooth curves"): `geometry` is the input as read; its
+// segments define the spacing field (eq. 3.6's l_s; a dense polyline would shrink q). The node
+// geometry is the curve the nodes live on: with geometry.curves = "smooth", the dense polyline of
+// the smooth curves (same curves, loops and critical points); with "polyline", `geometry` itself.
+// Everything but the spacing field uses the node geometry: boundary nodes, the node-count estimate
+// and the fill, sliding and snapping, inside tests, the mesh check's area and the pictures.
 struct MeshInputs {
   explicit MeshInputs(const CaseConfig& config);
   MeshInputs(const MeshInputs&) = delete;
   MeshInputs& operator=(const MeshInputs&) = delete;
 
-  Geometry geometry;
-  std::unique_ptr<GeometryTree> tree;
-  std::unique_ptr<SpacingField> spacing;  // the base field (eq. 3.6, an expression), exact
+  Geometry geometry;                   // the input geometry (spacing field)
+  std::unique_ptr<GeometryTree> tree;  // over `geometry`
+  std::unique_ptr<SpacingField> spacing;  // the base field (eq. 3.6, an expression, data), exact
   SpacingOptions spacing_options;
   // The spacing pipeline, built on first use (then also the resolution check of the final field):
-  // field() is what the initialization, quality and pictures read, pipeline().background() what both
-  // simulation backends sample. Built once; not thread-safe on the first call.
+  // field() is what the initialization, boundary placement, quality and pictures read,
+  // pipeline().background() what both simulation backends sample. Built once; not thread-safe on the
+  // first call.
   const SpacingPipeline& pipeline() const;
   const SpacingField& field() const { return pipeline().field(); }
   // One line about a spacing field read from a file (spacing.field = "mesh"); empty otherwise.
   std::string spacing_summary;
+  std::unique_ptr<DenseGeometry> dense;     // smooth curves; null for "polyline" (or after a fallback)
+  std::unique_ptr<GeometryTree> dense_tree;  // over dense->geometry
+  BoundaryNodeRule boundary_rule = BoundaryNodeRule::Input;
+  // Why geometry.curves = "smooth" fell back to the polylines (the smooth curves intersect); empty
+  // when it did not.
+  std::string smooth_fallback;
+
+  const Geometry& node_geometry() const { return dense ? dense->geometry : geometry; }
+  const GeometryTree& node_tree() const { return dense ? *dense_tree : *tree; }
+  // The boundary nodes on the node geometry (boundary.nodes = "spacing", or the input points of
+  // smooth curves), placed by the spacing field on first use; null for the thesis' rule, which
+  // make_initial_distribution applies itself. LimitError when the field asks for more than
+  // config.max_nodes of them. Not thread-safe on the first call.
+  const NodeSet* boundary_nodes() const;
+  // What the initialization tree refines to along each node-geometry segment
+  // (InitTreeOptions::segment_resolution: the boundary-node spacing there, from the same placement);
+  // null for the thesis' rule (the segment lengths).
+  const std::vector<double>* segment_resolution() const;
   std::vector<std::string> curve_names() const;
 
  private:
+  void place_boundary() const;
   mutable std::unique_ptr<SpacingPipeline> pipeline_;
-  std::string source_;          // the case file, for messages
-  std::uint64_t max_nodes_ = 0; // the node limit the base field's quadtree is checked against
+  std::string source_;           // the case file, for messages
+  std::uint64_t max_nodes_ = 0;  // the node limit the base field's quadtree and the placement are checked against
+  mutable bool boundary_placed_ = false;
+  mutable std::optional<NodeSet> boundary_;
+  mutable std::vector<double> resolution_;
 };
 
 // Stage 2: refuses, with LimitError naming the numbers, a case whose hexagonal-packing estimate

@@ -19,6 +19,15 @@ void apply_preset(CaseConfig& c, Preset preset) {
   if (thesis) c.spacing.gradation = 0.0;
   if (thesis) c.spacing.rows_in_gap = 0.0;
   if (thesis) c.spacing.curvature_angle = 0.0;
+  // Every geometry point is a boundary node (thesis ch. 4, "Boundary Nodes"), instead of nodes placed
+  // by the spacing field. (geometry.curves is "polyline" in both: smooth curves did not measurably
+  // help; docs/initialization.md, "Measured".)
+  c.boundary.nodes = thesis ? BoundaryNodeRule::Input : BoundaryNodeRule::Spacing;
+  // The thesis keeps the initial node count for the whole run (population control is its ch. 7
+  // future work).
+  c.population.enabled = !thesis;
+  // The thesis meshes the final node distribution as it is (no cleanup pass).
+  c.cleanup.enabled = !thesis;
 }
 
 }  // namespace pdmesh

@@ -52,6 +52,10 @@ std::vector<std::pair<std::string, std::string>> case_identity(const CaseConfig&
   keys.emplace_back("geometry.curve_names", names);
   keys.emplace_back("geometry.join_tolerance", fmt::format("{}", config.geometry.join_tolerance));
   keys.emplace_back("geometry.corner_angle", fmt::format("{}", config.geometry.corner_angle));
+  // Only where they differ from the thesis' rule, so that checkpoints written before these keys
+  // existed keep their identity.
+  if (config.geometry.curves != CurveKind::Polyline) keys.emplace_back("geometry.curves", "smooth");
+  if (config.boundary.nodes != BoundaryNodeRule::Input) keys.emplace_back("boundary.nodes", "spacing");
   keys.emplace_back("spacing.field", config.spacing.field == SpacingKind::Expression ? "expression"
                                      : config.spacing.field == SpacingKind::Mesh     ? "mesh"
                                                                                      : "boundary");
@@ -68,7 +72,7 @@ std::vector<std::pair<std::string, std::string>> case_identity(const CaseConfig&
   keys.emplace_back("spacing.gradation", fmt::format("{}", config.spacing.gradation));
   keys.emplace_back("spacing.rows_in_gap", fmt::format("{}", config.spacing.rows_in_gap));
   keys.emplace_back("spacing.curvature_angle", fmt::format("{}", config.spacing.curvature_angle));
-  keys.emplace_back("init.method", config.init.method == InitMethod::Structured ? "structured" : "random");
+  keys.emplace_back("init.method", to_string(config.init.method));
   keys.emplace_back("init.seed", fmt::format("{}", config.init.seed));
   keys.emplace_back("init.total", fmt::format("{}", config.init.total));
   const auto dt = config.simulation.dt_for(config.init.method);
@@ -77,6 +81,17 @@ std::vector<std::pair<std::string, std::string>> case_identity(const CaseConfig&
   keys.emplace_back("simulation.lj_a", fmt::format("{}", config.simulation.lj_a));
   keys.emplace_back("simulation.r0_rule", config.simulation.r0_any_direction ? "any_direction" : "force_direction");
   keys.emplace_back("simulation.stability_factor", fmt::format("{}", config.simulation.stability_factor));
+  // Population control shapes the node set; its keys are named only when it is on, so that a
+  // checkpoint of a run without it (older files too) identifies the same way.
+  const PopulationOptions& p = config.population;
+  if (p.enabled) {
+    keys.emplace_back("population.enabled", "true");
+    keys.emplace_back("population.schedule", fmt::format("every {} start {} stop {}", p.every, p.start, p.stop));
+    keys.emplace_back("population.thresholds",
+                      fmt::format("insert {} {} merge {} {} valence {} boundary {} split {}", p.insert.first,
+                                  p.insert.last, p.merge.first, p.merge.last, p.remove_valence, p.boundary,
+                                  p.boundary_split));
+  }
   // Values are single lines (a checkpoint stores one key per line).
   for (auto& [k, v] : keys)
     for (char& c : v)

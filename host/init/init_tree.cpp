@@ -14,6 +14,9 @@ InitTree::InitTree(const GeometryTree& tree, const SpacingField& spacing, const 
     : tree_(tree) {
   const Geometry& g = tree.geometry();
   if (g.segments.empty()) throw GeometryError("initialization tree: the geometry has no segments");
+  if (options.segment_resolution != nullptr && options.segment_resolution->size() != g.segments.size())
+    throw GeometryError(fmt::format("initialization tree: {} segment resolutions for {} segments",
+                                    options.segment_resolution->size(), g.segments.size()));
   const Box& e = g.extents;
   // A square root box, 1% larger than the extents so that no segment lies on its border.
   const double half = 0.5 * std::fmax(e.width(), e.height()) * 1.01;
@@ -77,7 +80,11 @@ void InitTree::refine(const SpacingField& spacing, const InitTreeOptions& option
   for (std::size_t n = 0; n < nodes_.size(); ++n) {
     if (nodes_[n].segments.empty() || nodes_[n].level >= options.max_level) continue;
     double shortest = INFINITY;
-    for (int s : nodes_[n].segments) shortest = std::fmin(shortest, segs[s].length);
+    if (options.segment_resolution != nullptr) {
+      for (int s : nodes_[n].segments) shortest = std::fmin(shortest, (*options.segment_resolution)[s]);
+    } else {
+      for (int s : nodes_[n].segments) shortest = std::fmin(shortest, segs[s].length);
+    }
     const Box b = box_of(nodes_[n].level, nodes_[n].ix, nodes_[n].iy);
     const double q = spacing.at(b.centre());
     const double target = options.refine_factor * (std::isfinite(q) && q > 0 ? std::fmin(shortest, q) : shortest);

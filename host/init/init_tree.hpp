@@ -25,6 +25,11 @@ struct InitTreeOptions {
   // refine_factor * min(shortest touching segment, q at the leaf centre). The default 2 gives boundary leaves
   // of side in (h, 2h] for local resolution h, i.e. 1 to 5 nodes each (docs/initialization.md).
   double refine_factor = 2.0;
+  // The boundary resolution per segment of the tree's geometry, used instead of the segment length
+  // in the rule above (+inf: q alone). Null: the segment lengths, the thesis' rule (the input points
+  // are the boundary nodes). Set when the boundary nodes are not the geometry's points: a dense
+  // smooth-curve polyline, or nodes re-placed by the spacing field (docs/initialization.md).
+  const std::vector<double>* segment_resolution = nullptr;
   // Deepest level the geometry refinement and the balancing may create (2^-40 of the root side).
   int max_level = 40;
 };

@@ -158,18 +158,29 @@ void overload(const GeometryTree& tree, const SpacingField& spacing, const InitT
 
 }  // namespace
 
+const char* to_string(InitMethod method) {
+  switch (method) {
+    case InitMethod::Random: return "random";
+    case InitMethod::Hexagonal: return "hexagonal";
+    default: return "structured";
+  }
+}
+
 InitialDistribution make_initial_distribution(const GeometryTree& tree, const SpacingField& spacing,
                                               const InitOptions& options) {
   InitialDistribution out;
-  out.nodes = make_boundary_nodes(tree.geometry(), spacing);
-  const InitTree init(tree, spacing);
+  out.nodes = options.boundary != nullptr ? *options.boundary : make_boundary_nodes(tree.geometry(), spacing);
+  InitTreeOptions tree_options;
+  tree_options.segment_resolution = options.segment_resolution;
+  const InitTree init(tree, spacing, tree_options);
   out.estimate = options.with_estimate ? estimate_over(tree, spacing, init) : std::nan("");
 
   UnitRandom rng(options.seed);
+  LatticePoints lattice;
   for (int k : init.kept()) {
     const InitLeaf& leaf = init.leaves()[k];
     out.tree_quads.push_back(leaf.box);
-    out.tree_nodes += fill_leaf(tree, spacing, leaf, options.method, rng, out.nodes);
+    out.tree_nodes += fill_leaf(tree, spacing, leaf, options.method, rng, out.nodes, &lattice);
   }
   if (options.total && *options.total > out.nodes.size()) {
     out.overload_nodes = *options.total - out.nodes.size();
@@ -178,8 +189,11 @@ InitialDistribution make_initial_distribution(const GeometryTree& tree, const Sp
   return out;
 }
 
-double estimate_node_count(const GeometryTree& tree, const SpacingField& spacing) {
-  const InitTree init(tree, spacing);
+double estimate_node_count(const GeometryTree& tree, const SpacingField& spacing,
+                          const std::vector<double>* segment_resolution) {
+  InitTreeOptions tree_options;
+  tree_options.segment_resolution = segment_resolution;
+  const InitTree init(tree, spacing, tree_options);
   return estimate_over(tree, spacing, init);
 }
 

@@ -6,12 +6,18 @@
 #include <vector>
 
 #include "geometry/geometry_tree.hpp"
+#include "init/boundary_placement.hpp"
 #include "nodes/node_set.hpp"
 #include "spacing/spacing_field.hpp"
 
 namespace pdmesh {
 
-enum class InitMethod { Structured, Random };
+// How a leaf of the initialization tree is filled (docs/initialization.md): the thesis' structured
+// patterns (1, 4, 5 or 9 nodes) and random points, and rows of an equilateral lattice (thesis ch. 7).
+enum class InitMethod { Structured, Random, Hexagonal };
+
+// "structured", "random" or "hexagonal".
+const char* to_string(InitMethod method);
 
 // A quad is split into four while its area / (pi q_mid^2 / 4) exceeds this (thesis: 9.5).
 inline constexpr double kInitSplitRatio = 9.5;
@@ -27,6 +33,12 @@ struct InitOptions {
   // Compute InitialDistribution::estimate (it costs more than the fill itself: 4x4 spacing samples
   // per leaf and more near the boundary). The mesh command already has it from its limit check.
   bool with_estimate = true;
+  // The boundary nodes to start from (boundary.nodes = "spacing", or the input points on a smooth
+  // curve's dense polyline); null: make_boundary_nodes(tree.geometry()), the thesis' rule.
+  const NodeSet* boundary = nullptr;
+  // Per segment of tree.geometry(): the boundary resolution the initialization tree refines to
+  // (InitTreeOptions::segment_resolution); null: the segment lengths.
+  const std::vector<double>* segment_resolution = nullptr;
 };
 
 struct InitialDistribution {
@@ -46,6 +58,7 @@ InitialDistribution make_initial_distribution(const GeometryTree& tree, const Sp
                                               const InitOptions& options);
 
 // The hexagonal-packing node-count estimate alone (also used to refuse unreasonable inputs).
-double estimate_node_count(const GeometryTree& tree, const SpacingField& spacing);
+double estimate_node_count(const GeometryTree& tree, const SpacingField& spacing,
+                          const std::vector<double>* segment_resolution = nullptr);
 
 }  // namespace pdmesh

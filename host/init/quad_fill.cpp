@@ -16,6 +16,14 @@ namespace {
 // so a pathological spacing cannot recurse without end.
 constexpr int kMaxFillDepth = 30;
 
+// The hexagonal fill places the points of one global equilateral lattice per spacing level: level k
+// has spacing h_k = 2^(k / kHexLevelsPerOctave), rows h_k sqrt(3)/2 apart from the geometry's lower
+// left corner, odd rows shifted by h_k / 2. A quad takes the level nearest its centre spacing
+// (within 4.4%), so neighbouring quads of nearly the same spacing continue one lattice without a
+// seam; seams remain only where the level changes (where q is graded, which a lattice cannot follow
+// anyway).
+constexpr double kHexLevelsPerOctave = 8.0;
+
 struct FillContext {
   const GeometryTree& tree;
   const SpacingField& spacing;
@@ -28,6 +36,7 @@ struct FillContext {
   // spares most closest-point queries in quads away from the boundary.
   Vec2 centre;
   double centre_distance = -1.0;
+  LatticePoints* lattice_points = nullptr;  // hexagonal fill only
 };
 
 void place(FillContext& ctx, Vec2 p, bool known_inside) {
@@ -53,8 +62,30 @@ void place_structured(FillContext& ctx, const Box& b, int count, bool known_insi
   }
 }
 
-void fill_quad(FillContext& ctx, const Box& b, const std::vector<int>& segments, bool known_inside,
-               int depth) {
+// The lattice points of q's level inside quad b (closed), each placed once.
+void place_hexagonal(FillContext& ctx, const Box& b, double q, bool known_inside) {
+  const auto level = static_cast<std::int64_t>(std::lround(kHexLevelsPerOctave * std::log2(q)));
+  const double h = std::exp2(static_cast<double>(level) / kHexLevelsPerOctave);
+  const double v = 0.5 * std::sqrt(3.0) * h;
+  const Vec2 origin = ctx.tree.geometry().extents.lo;
+  const auto j_lo = static_cast<std::int64_t>(std::ceil((b.lo.y - origin.y) / v));
+  const auto j_hi = static_cast<std::int64_t>(std::floor((b.hi.y - origin.y) / v));
+  for (std::int64_t j = j_lo; j <= j_hi; ++j) {
+    const double shift = (j % 2 != 0) ? 0.5 * h : 0.0;
+    const auto i_lo = static_cast<std::int64_t>(std::ceil((b.lo.x - origin.x - shift) / h));
+    const auto i_hi = static_cast<std::int64_t>(std::floor((b.hi.x - origin.x - shift) / h));
+    for (std::int64_t i = i_lo; i <= i_hi; ++i) {
+      // Level, row and column packed into one key (21 bits each, far more than any lattice needs).
+      const std::uint64_t key = (static_cast<std::uint64_t>(level & 0x1FFFFF) << 42) |
+                                (static_cast<std::uint64_t>(j & 0x1FFFFF) << 21) |
+                                static_cast<std::uint64_t>(i & 0x1FFFFF);
+      if (!ctx.lattice_points->insert(key).second) continue;
+      place(ctx, Vec2{origin.x + static_cast<double>(i) * h + shift, origin.y + static_cast<double>(j) * v}, known_inside);
+    }
+  }
+}
+
+void fill_quad(FillContext& ctx, const Box& b, const std::vector<int>& segments, bool known_inside, int depth) {
   const double q_mid = ctx.spacing.at(b.centre());
   if (!(q_mid > 0.0) || !std::isfinite(q_mid))
     throw LimitError(fmt::format("initial distribution: spacing q({}, {}) = {} is not a positive finite number",
@@ -83,9 +114,15 @@ void fill_quad(FillContext& ctx, const Box& b, const std::vector<int>& segments,
     }
     return;
   }
-  const int count = ctx.method == InitMethod::Structured ? structured_count(ratio) : random_count(ratio);
+  const int count = ctx.method == InitMethod::Random ? random_count(ratio)
+                    : ctx.method == InitMethod::Structured ? structured_count(ratio)
+                                                           : static_cast<int>(std::ceil(ratio));
   ctx.centre = b.centre();
   ctx.centre_distance = known_inside && count > 1 ? ctx.tree.closest(ctx.centre).distance : -1.0;
+  if (ctx.method == InitMethod::Hexagonal) {
+    place_hexagonal(ctx, b, q_mid, known_inside);
+    return;
+  }
   if (ctx.method == InitMethod::Structured) {
     place_structured(ctx, b, count, known_inside);
     return;
@@ -132,8 +169,10 @@ bool keep_interior_candidate(const GeometryTree& tree, const SpacingField& spaci
 }
 
 std::size_t fill_leaf(const GeometryTree& tree, const SpacingField& spacing, const InitLeaf& leaf,
-                      InitMethod method, UnitRandom& rng, NodeSet& nodes) {
-  FillContext ctx{tree, spacing, method, rng, nodes, 0, {}, -1.0};
+                      InitMethod method, UnitRandom& rng, NodeSet& nodes, LatticePoints* lattice) {
+  if (method == InitMethod::Hexagonal && lattice == nullptr)
+    throw Error("fill_leaf: the hexagonal fill needs the set of lattice points placed so far");
+  FillContext ctx{tree, spacing, method, rng, nodes, 0, {}, -1.0, lattice};
   // Kept leaves without segments lie wholly inside (InitTree keeps only those whose centre is inside).
   fill_quad(ctx, leaf.box, leaf.segments, leaf.segments.empty(), 0);
   return ctx.added;

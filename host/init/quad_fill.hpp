@@ -1,8 +1,10 @@
 // Filling one initialization-tree leaf with interior nodes (thesis ch. 4, "Structured Quad
-// Distribution" and "Random Quad Distribution"), plus the keep rule and the seeded unit RNG.
+// Distribution" and "Random Quad Distribution"; ch. 7's hexagonal packing), plus the keep rule and
+// the seeded unit RNG.
 #pragma once
 #include <cstdint>
 #include <random>
+#include <unordered_set>
 #include <vector>
 
 #include "geometry/geometry_tree.hpp"
@@ -37,9 +39,14 @@ int random_count(double ratio);
 bool keep_interior_candidate(const GeometryTree& tree, const SpacingField& spacing, Vec2 p,
                              bool known_inside, double& q, double distance_lower_bound = -1.0);
 
+// Lattice points the hexagonal fill has placed, by (level, row, column): shared by every leaf of
+// one fill, so that a point on the edge between two quads is placed once.
+using LatticePoints = std::unordered_set<std::uint64_t>;
+
 // Fills one kept leaf, splitting it into four while its area ratio exceeds kInitSplitRatio.
-// Kept nodes are appended to `nodes` as Interior nodes. Returns how many were added.
+// Kept nodes are appended to `nodes` as Interior nodes. Returns how many were added. The hexagonal
+// fill needs `lattice` (the same set for every leaf of the fill).
 std::size_t fill_leaf(const GeometryTree& tree, const SpacingField& spacing, const InitLeaf& leaf,
-                      InitMethod method, UnitRandom& rng, NodeSet& nodes);
+                      InitMethod method, UnitRandom& rng, NodeSet& nodes, LatticePoints* lattice = nullptr);
 
 }  // namespace pdmesh

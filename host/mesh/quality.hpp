@@ -71,6 +71,18 @@ struct QualityOptions {
   int aspect_bins = 10;           // ... this many, then an overflow bin
 };
 
+// What the final cleanup (docs/cleanup.md) did to a mesh: triangles below its target angle and the
+// smallest angle before and after, and the nodes it added and removed.
+struct CleanupEffect {
+  double target_deg = 30.0;
+  std::size_t below_before = 0, below_after = 0;  // triangles whose min angle < target_deg
+  double min_angle_before = 0.0, min_angle_after = 0.0;
+  double max_angle_before = 0.0, max_angle_after = 0.0;
+  std::size_t triangles_before = 0, points_before = 0;
+  std::size_t inserted = 0, removed = 0, moves = 0;
+  double seconds = 0.0;  // printed on stderr only: quality.json stays identical across runs
+};
+
 // Summary over a mesh: the rows of thesis tables 6.2-6.6 and our extra rows.
 struct QualitySummary {
   std::size_t triangles = 0;
@@ -88,6 +100,8 @@ struct QualitySummary {
   Histogram aspect_ratio_histogram;
   bool has_spacing = false;  // spacing conformance computed (a q callback was given)
   SpacingConformance spacing;
+  bool has_cleanup = false;  // the mesh is the output of the final cleanup, which `cleanup` describes
+  CleanupEffect cleanup;
 };
 
 using SpacingCallback = std::function<double(Vec2)>;

@@ -34,7 +34,8 @@ std::string histogram_label(const Histogram& h, std::size_t k, int decimals) {
   return fmt::format("[{:.{}f},{:.{}f})", h.edge(k), decimals, h.edge(k + 1), decimals);
 }
 
-std::vector<Row> table_rows(const QualitySummary& first) {
+// `cleanup`: some column comes from a cleaned mesh (its rows are shown, '-' in the other columns).
+std::vector<Row> table_rows(const QualitySummary& first, const QualitySummary* cleanup) {
   std::vector<Row> rows = {
       {"Number of Triangles", "", [](const QualitySummary& s) { return fmt::format("{}", s.triangles); }},
       {"Included Angle", "MIN", fixed(&QualitySummary::min_angle, 2)},
@@ -56,6 +57,24 @@ std::vector<Row> table_rows(const QualitySummary& first) {
       {"", "P05", spacing_cell(&SpacingConformance::p05)},
       {"", "P95", spacing_cell(&SpacingConformance::p95)},
   };
+  // The cleanup rows (docs/cleanup.md), shown when a column comes from a cleaned mesh.
+  auto cleanup_count = [](std::size_t CleanupEffect::*field) {
+    return [field](const QualitySummary& s) { return s.has_cleanup ? fmt::format("{}", s.cleanup.*field) : std::string("-"); };
+  };
+  auto cleanup_angle = [](double CleanupEffect::*field) {
+    return [field](const QualitySummary& s) {
+      return s.has_cleanup ? fmt::format("{:.2f}", s.cleanup.*field) : std::string("-");
+    };
+  };
+  if (cleanup != nullptr) {
+    rows.push_back({fmt::format("Cleanup: < {:g} deg", cleanup->cleanup.target_deg), "before",
+                    cleanup_count(&CleanupEffect::below_before)});
+    rows.push_back({"", "after", cleanup_count(&CleanupEffect::below_after)});
+    rows.push_back({"Cleanup: min angle", "before", cleanup_angle(&CleanupEffect::min_angle_before)});
+    rows.push_back({"", "after", cleanup_angle(&CleanupEffect::min_angle_after)});
+    rows.push_back({"Cleanup: nodes", "inserted", cleanup_count(&CleanupEffect::inserted)});
+    rows.push_back({"", "removed", cleanup_count(&CleanupEffect::removed)});
+  }
   const Histogram& ha = first.min_angle_histogram;
   for (std::size_t k = 0; k < ha.counts.size(); ++k) {
     rows.push_back({k == 0 ? "Min angle histogram" : "", histogram_label(ha, k, 0), [k](const QualitySummary& s) {
@@ -89,7 +108,10 @@ std::string histogram_json(const Histogram& h) {
 
 std::string format_quality_table(const std::vector<std::pair<std::string, QualitySummary>>& columns) {
   if (columns.empty()) return {};
-  const auto rows = table_rows(columns.front().second);
+  const QualitySummary* cleanup = nullptr;
+  for (const auto& column : columns)
+    if (column.second.has_cleanup && cleanup == nullptr) cleanup = &column.second;
+  const auto rows = table_rows(columns.front().second, cleanup);
   std::size_t name_width = 0, sub_width = 0;
   for (const auto& r : rows) {
     name_width = std::max(name_width, r.name.size());
@@ -170,7 +192,19 @@ std::string quality_json(const QualitySummary& s, const std::string& source) {
                      num(s.small_angle_deg), s.small_angle_triangles, num(s.small_angle_share));
   out += fmt::format("  \"histograms\": {{\n    \"min_angle\": {},\n    \"aspect_ratio\": {}\n  }},\n",
                      histogram_json(s.min_angle_histogram), histogram_json(s.aspect_ratio_histogram));
-  out += fmt::format("  \"spacing_conformance\": {}\n", spacing);
+  out += fmt::format("  \"spacing_conformance\": {},\n", spacing);
+  std::string cleanup = "null";
+  if (s.has_cleanup) {
+    const CleanupEffect& e = s.cleanup;
+    cleanup = fmt::format(
+        "{{\"target_deg\": {}, \"below_target\": {{\"before\": {}, \"after\": {}}}, "
+        "\"min_angle\": {{\"before\": {}, \"after\": {}}}, \"max_angle\": {{\"before\": {}, \"after\": {}}}, "
+        "\"triangles_before\": {}, \"points_before\": {}, \"inserted\": {}, \"removed\": {}, \"moves\": {}}}",
+        num(e.target_deg), e.below_before, e.below_after, num(e.min_angle_before), num(e.min_angle_after),
+        num(e.max_angle_before), num(e.max_angle_after), e.triangles_before, e.points_before, e.inserted, e.removed,
+        e.moves);
+  }
+  out += fmt::format("  \"cleanup\": {}\n", cleanup);
   out += "}\n";
   return out;
 }

@@ -12,6 +12,7 @@
 
 #include "core/errors.hpp"
 #include "opencl/device_neighbours.hpp"
+#include "opencl/device_population.hpp"
 #include "opencl/step_program.hpp"
 #include "sim/boundary_handling.hpp"
 #include "sim/failure_report.hpp"
@@ -53,6 +54,10 @@ class DeviceRun {
                            const std::vector<HistoryRow>& history);
   SimulationError non_finite_error(int iteration, const SimState& good);
   void upload_initial();
+  // The node arrays for n_ nodes, with the given clearance budgets and background leaves, or (null)
+  // computed from the node set: at the start and after a population event.
+  void upload_nodes(const std::vector<double>* budgets, const std::vector<std::int32_t>* leaves);
+  std::optional<PopulationCounts> population_event(int iteration);
   void upload_topology();  // kind, prev, next, boundary slots (start and after snapping)
   void rebuild();
   void step_kernel(double dt_gm2);
@@ -130,6 +135,7 @@ class DeviceRun {
   // host_boundary has moved nodes on the host that x_[cur_] does not hold yet (until the iteration ends).
   bool host_ahead_ = false;
   bool moves_finite_ = true;  // every move the host reads in step_kernel is finite
+  PopulationTracker population_;
 };
 
 template <typename Real>
@@ -148,7 +154,8 @@ void DeviceRun<Real>::remember(int done, double dt_initial, const GlobalTimeStep
     if (saved_nodes_.kind[i] == NodeKind::Interior) saved_nodes_.x[i] = {build_x_[i], build_y_[i]};
     saved_nodes_.q[i] = build_q_[i];
   }
-  saved_state_ = SimState{done, dt_initial, gm.state(), boundary_.arcs(), boundary_.tangents(), {}};
+  saved_state_ = SimState{done, dt_initial, gm.state(), boundary_.arcs(), boundary_.tangents(), {},
+                          population_.schedule};
   saved_rows_ = rows;
 }
 
@@ -173,7 +180,8 @@ SimState DeviceRun<Real>::last_good_state(int done, double dt_initial, const Glo
           if (nodes_.kind[i] == NodeKind::Interior) nodes_.x[i] = {static_cast<double>(x[i]), static_cast<double>(y[i])};
           nodes_.q[i] = static_cast<double>(q[i]);
         }
-        return SimState{done, dt_initial, gm.state(), boundary_.arcs(), boundary_.tangents(), history};
+        return SimState{done,    dt_initial, gm.state(), boundary_.arcs(), boundary_.tangents(),
+                        history, population_.schedule};
       }
     } catch (const Error&) {
       // The device cannot be read: the saved state below.
@@ -210,36 +218,6 @@ SimulationError DeviceRun<Real>::non_finite_error(int iteration, const SimState&
 
 template <typename Real>
 void DeviceRun<Real>::upload_initial() {
-  const std::size_t n = n_;
-  std::vector<double> x(n), y(n), tx(n), ty(n), budget(n, 0.0);
-  for (std::size_t i = 0; i < n; ++i) {
-    x[i] = nodes_.x[i].x;
-    y[i] = nodes_.x[i].y;
-    const Vec2 t = boundary_.tangent(static_cast<int>(i));
-    tx[i] = t.x;
-    ty[i] = t.y;
-  }
-  // Clearance budgets of the interior nodes (exact test once, as the host reference's first iteration).
-  for (std::size_t i = 0; i < n; ++i)
-    if (nodes_.kind[i] == NodeKind::Interior && boundary_.tree().inside(nodes_.x[i]))
-      budget[i] = device_budget(nodes_.x[i], boundary_.clearance_from(nodes_.x[i]));
-  for (int b = 0; b < 2; ++b) {
-    x_[b] = Buffer<Real>(ctx_, "x", n);
-    y_[b] = Buffer<Real>(ctx_, "y", n);
-    q_[b] = Buffer<Real>(ctx_, "q", n);
-  }
-  for (auto* b : {&tx_, &ty_, &x_build_, &y_build_, &q_build_}) *b = Buffer<Real>(ctx_, "node_array", n);
-  budget_ = Buffer<Real>(ctx_, "clearance_budget", n);
-  write(x_[0], to_real<Real>(x));
-  write(y_[0], to_real<Real>(y));
-  write(q_[0], to_real<Real>(nodes_.q));
-  write(tx_, to_real<Real>(tx));
-  write(ty_, to_real<Real>(ty));
-  write(budget_, to_real<Real>(budget));
-  cand_index_ = Buffer<std::int32_t>(ctx_, "cand_index", n);
-  cand_rec_ = Buffer<Real>(ctx_, "cand_rec", 4 * n);
-  counters_ = Buffer<std::int32_t>(ctx_, "step_counters", 1);
-  partials_ = Buffer<Real>(ctx_, "partials", kStepPartials * groups());
   const BackgroundFieldData& d = background_.data();
   bg_root_ = Buffer<std::int32_t>(ctx_, "bg_root_node", d.root_node.size());
   bg_child_ = Buffer<std::int32_t>(ctx_, "bg_node_child", d.node_child.size());
@@ -250,15 +228,59 @@ void DeviceRun<Real>::upload_initial() {
   write(bg_child_, d.node_child);
   write(bg_corner_, d.leaf_corner);
   write(bg_cell_, d.leaf_cell);
+  write(bg_q_, to_real<Real>(d.corner_q));
+  counters_ = Buffer<std::int32_t>(ctx_, "step_counters", 1);
+  upload_nodes(nullptr, nullptr);
+}
+
+template <typename Real>
+void DeviceRun<Real>::upload_nodes(const std::vector<double>* budgets, const std::vector<std::int32_t>* leaves) {
+  const std::size_t n = n_;
+  std::vector<double> x(n), y(n), tx(n), ty(n), budget(n, 0.0);
+  for (std::size_t i = 0; i < n; ++i) {
+    x[i] = nodes_.x[i].x;
+    y[i] = nodes_.x[i].y;
+    const Vec2 t = boundary_.tangent(static_cast<int>(i));
+    tx[i] = t.x;
+    ty[i] = t.y;
+  }
+  if (budgets) {
+    budget = *budgets;
+  } else {
+    // Clearance budgets of the interior nodes (exact test once, as the host reference's first iteration).
+    for (std::size_t i = 0; i < n; ++i)
+      if (nodes_.kind[i] == NodeKind::Interior && boundary_.tree().inside(nodes_.x[i]))
+        budget[i] = device_budget(nodes_.x[i], boundary_.clearance_from(nodes_.x[i]));
+  }
+  for (int b = 0; b < 2; ++b) {
+    x_[b] = Buffer<Real>(ctx_, "x", n);
+    y_[b] = Buffer<Real>(ctx_, "y", n);
+    q_[b] = Buffer<Real>(ctx_, "q", n);
+  }
+  cur_ = 0;
+  for (auto* b : {&tx_, &ty_, &x_build_, &y_build_, &q_build_}) *b = Buffer<Real>(ctx_, "node_array", n);
+  budget_ = Buffer<Real>(ctx_, "clearance_budget", n);
+  write(x_[0], to_real<Real>(x));
+  write(y_[0], to_real<Real>(y));
+  write(q_[0], to_real<Real>(nodes_.q));
+  write(tx_, to_real<Real>(tx));
+  write(ty_, to_real<Real>(ty));
+  write(budget_, to_real<Real>(budget));
+  cand_index_ = Buffer<std::int32_t>(ctx_, "cand_index", n);
+  cand_rec_ = Buffer<Real>(ctx_, "cand_rec", 4 * n);
+  partials_ = Buffer<Real>(ctx_, "partials", kStepPartials * groups());
   // Each node's leaf: the guess the step kernel tests before descending.
   std::vector<std::int32_t> leaf(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    double u, v;
-    leaf[i] = background_locate(d, nodes_.x[i], u, v);
+  if (leaves) {
+    leaf = *leaves;
+  } else {
+    for (std::size_t i = 0; i < n; ++i) {
+      double u, v;
+      leaf[i] = background_locate(background_.data(), nodes_.x[i], u, v);
+    }
   }
   node_leaf_ = Buffer<std::int32_t>(ctx_, "node_leaf", n);
   write(node_leaf_, leaf);
-  write(bg_q_, to_real<Real>(d.corner_q));
   kind_host_.resize(n);
   upload_topology();
   dx_.assign(n, 0.0);
@@ -266,6 +288,40 @@ void DeviceRun<Real>::upload_initial() {
   build_x_ = x;
   build_y_ = y;
   build_q_ = nodes_.q;
+}
+
+// Population control on the device run: the whole state comes back (interior positions and every q
+// from the device; boundary positions are the host's), the event runs on the host exactly as in the
+// host reference, and when it changed the node set the node arrays go up again (kept nodes keep their
+// budgets and leaves) and the lists are rebuilt before the next step.
+template <typename Real>
+std::optional<PopulationCounts> DeviceRun<Real>::population_event(int iteration) {
+  if (!population_event_due(options_.population, population_.schedule, iteration, options_.iterations))
+    return std::nullopt;
+  const auto t0 = Clock::now();
+  std::vector<Real> x, y, q, budget;
+  std::vector<std::int32_t> leaves;
+  for (auto [from, to] : {std::pair{&x_[cur_], &x}, {&y_[cur_], &y}, {&q_[cur_], &q}, {&budget_, &budget}})
+    read(*from, *to, n_);
+  read(node_leaf_, leaves, n_);
+  stats_.population_transfer_seconds += since(t0);
+  for (std::size_t i = 0; i < n_; ++i) {
+    if (nodes_.kind[i] == NodeKind::Interior) nodes_.x[i] = {static_cast<double>(x[i]), static_cast<double>(y[i])};
+    nodes_.q[i] = static_cast<double>(q[i]);
+  }
+  std::vector<double> budgets(budget.begin(), budget.end());
+  const auto counts = device_population_event(population_, options_.population, iteration, options_.iterations, nodes_,
+                                              boundary_, background_, budgets, leaves);
+  if (counts && counts->changed()) {
+    n_ = nodes_.size();
+    const auto t1 = Clock::now();
+    upload_nodes(&budgets, &leaves);
+    check(ctx_.queue().finish(), "population re-upload");
+    stats_.population_transfer_seconds += since(t1);
+    skin_use_ = HUGE_VAL;  // the lists are rebuilt before the next step
+  }
+  stats_.population_seconds += since(t0);
+  return counts;
 }
 
 template <typename Real>
@@ -465,6 +521,7 @@ SimResult DeviceRun<Real>::run(const SimCallbacks& callbacks) {
     throw InputError(fmt::format("the Verlet skin must be >= 0, got {}", options_.verlet_skin));
   const SimState* resume = options_.resume;
   if (resume) {
+    population_.schedule = resume->population;
     result.stats.dt_initial = resume->dt_initial;
     boundary_.restore(nodes_, resume->arcs, resume->tangents);  // before upload_initial reads the tangents
   }
@@ -517,6 +574,7 @@ SimResult DeviceRun<Real>::run(const SimCallbacks& callbacks) {
         if (skin_use_ <= kSkinUseLimit) ++stats_.snap_rebuilds;
         skin_use_ = HUGE_VAL;
       }
+      const auto event = population_event(iteration);
 
       HistoryRow row;
       row.iteration = iteration;
@@ -529,6 +587,12 @@ SimResult DeviceRun<Real>::run(const SimCallbacks& callbacks) {
       row.clamped = counts.clamped;
       on_boundary += counts.snapped;
       interior -= counts.snapped;
+      if (event) {
+        row.inserted = event->inserted();
+        row.removed = event->removed();
+        on_boundary = nodes_.count(NodeKind::Boundary);
+        interior = nodes_.count(NodeKind::Interior);
+      }
       row.fixed = fixed;
       row.boundary = on_boundary;
       row.interior = interior;
@@ -574,7 +638,11 @@ SimResult DeviceRun<Real>::run(const SimCallbacks& callbacks) {
     throw;
   }
   result.state = SimState{done, result.stats.dt_initial, gm.state(), boundary_.arcs(), boundary_.tangents(),
-                          result.history};
+                          result.history, population_.schedule};
+  result.stats.inserted = population_.inserted;
+  result.stats.removed = population_.removed;
+  result.stats.population_events = population_.events;
+  result.stats.population_seconds = population_.seconds;
   result.stats.pairs_examined = pairs_examined_;
   result.stats.seconds = since(start);
   stats_.stride = stride_;

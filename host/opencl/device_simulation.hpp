@@ -32,6 +32,8 @@ struct DeviceRunStats {
   double download_seconds = 0.0;     // candidate records
   double host_seconds = 0.0;         // boundary handling on the host
   double upload_seconds = 0.0;       // enqueueing host positions back + apply_host_moves (not waited on)
+  double population_seconds = 0.0;   // population events: state read back, the host event, re-upload
+  double population_transfer_seconds = 0.0;  // of which the read-back and the re-upload
   std::size_t device_bytes = 0;      // device buffers at the end
 };
 

@@ -1,5 +1,6 @@
 // The history plot (thesis fig. 6.1): average |F| (red) and average kinetic energy (blue) against
-// the iteration on a logarithmic y axis, drawn with cairo.
+// the iteration on a logarithmic y axis, drawn with cairo; population events that changed the node
+// set are green ticks along the bottom, longer for more nodes inserted or removed.
 #include "render/history_plot.hpp"
 
 #include <algorithm>
@@ -120,6 +121,18 @@ void draw(cairo_t* cr, const std::vector<HistoryRow>& rows, const std::string& t
   draw_series(cr, f, rows, &HistoryRow::average_force);
   cairo_set_source_rgb(cr, 0.1, 0.2, 0.85);
   draw_series(cr, f, rows, &HistoryRow::average_kinetic);
+  bool events = false;
+  cairo_set_source_rgb(cr, 0.1, 0.6, 0.2);
+  for (const HistoryRow& r : rows) {
+    const std::size_t changed = r.inserted + r.removed;
+    if (changed == 0) continue;
+    events = true;
+    // 6 px for one node, 6 px more per factor of 10.
+    const double length = 6.0 * (1.0 + std::log10(static_cast<double>(changed)));
+    cairo_move_to(cr, f.px(r.iteration), plot_bottom);
+    cairo_line_to(cr, f.px(r.iteration), plot_bottom - length);
+  }
+  cairo_stroke(cr);
   cairo_restore(cr);
 
   // Labels, title, legend.
@@ -147,6 +160,14 @@ void draw(cairo_t* cr, const std::vector<HistoryRow>& rows, const std::string& t
   cairo_set_source_rgb(cr, 0, 0, 0);
   text(cr, lx + 30, ly, "average |F|", 0.0, 0.5);
   text(cr, lx + 30, ly + 18, "average kinetic energy", 0.0, 0.5);
+  if (events) {
+    cairo_set_source_rgb(cr, 0.1, 0.6, 0.2);
+    cairo_move_to(cr, lx + 12, ly + 42);
+    cairo_line_to(cr, lx + 12, ly + 30);
+    cairo_stroke(cr);
+    cairo_set_source_rgb(cr, 0, 0, 0);
+    text(cr, lx + 30, ly + 36, "nodes inserted/removed", 0.0, 0.5);
+  }
 }
 
 }  // namespace

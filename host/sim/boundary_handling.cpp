@@ -187,6 +187,87 @@ void BoundaryHandler::move_interior_node(NodeSet& nodes, std::size_t i, const st
   ++counts.snapped;
 }
 
+int BoundaryHandler::add_interior(NodeSet& nodes, Vec2 p, double q) {
+  const int node = nodes.add(p, q, NodeKind::Interior, -1);
+  tangent_.push_back(Vec2{});
+  budget_.push_back(0.0);
+  return node;
+}
+
+int BoundaryHandler::add_boundary(NodeSet& nodes, int curve, std::size_t pos, double arc, double q) {
+  const auto c = static_cast<std::size_t>(curve);
+  std::vector<double>& arcs = arcs_.at(c);
+  std::vector<int>& list = nodes.curve_nodes.at(c);
+  if (pos == 0 || pos >= list.size() || !(arcs[pos - 1] < arc && arc < arcs[pos]))
+    throw SimulationError(fmt::format("boundary insertion on curve {} at arc {} does not fall inside gap {} ({}, {})",
+                                      curve, arc, pos, pos > 0 && pos <= arcs.size() ? arcs[pos - 1] : NAN,
+                                      pos < arcs.size() ? arcs[pos] : NAN));
+  // The point at that arc position: a search restricted to [arc, arc].
+  const CurvePoint cp = closest_on_curve_range(tree_.geometry().curves[c], Vec2{}, arc, arc);
+  const int node = nodes.add(cp.p, q, NodeKind::Boundary, curve);
+  tangent_.push_back(cp.tangent);
+  budget_.push_back(0.0);
+  list.insert(list.begin() + static_cast<std::ptrdiff_t>(pos), node);
+  arcs.insert(arcs.begin() + static_cast<std::ptrdiff_t>(pos), cp.arc);
+  return node;
+}
+
+void BoundaryHandler::move_interior(NodeSet& nodes, int node, Vec2 p) {
+  const auto i = static_cast<std::size_t>(node);
+  if (nodes.kind[i] != NodeKind::Interior)
+    throw SimulationError(fmt::format("node {} is {}: only interior nodes are moved by population control", node,
+                                      to_string(nodes.kind[i])));
+  nodes.x[i] = p;
+  budget_[i] = 0.0;
+}
+
+std::vector<int> BoundaryHandler::remove_nodes(NodeSet& nodes, const std::vector<char>& remove) {
+  const std::size_t n = nodes.size();
+  std::vector<int> new_of_old(n, -1), old_of_new;
+  old_of_new.reserve(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    if (i < remove.size() && remove[i]) {
+      if (nodes.kind[i] == NodeKind::Fixed)
+        throw SimulationError(fmt::format("population control asked to remove node {}, a critical point", i));
+      continue;
+    }
+    new_of_old[i] = static_cast<int>(old_of_new.size());
+    old_of_new.push_back(static_cast<int>(i));
+  }
+  // Curve lists first (they hold old indices), then the per-node arrays in place (k <= old index).
+  for (std::size_t c = 0; c < nodes.curve_nodes.size(); ++c) {
+    std::vector<int>& list = nodes.curve_nodes[c];
+    std::vector<double>& arcs = arcs_[c];
+    std::size_t kept = 0;
+    for (std::size_t k = 0; k < list.size(); ++k) {
+      const int renumbered = new_of_old[static_cast<std::size_t>(list[k])];
+      if (renumbered < 0) continue;
+      list[kept] = renumbered;
+      arcs[kept] = arcs[k];
+      ++kept;
+    }
+    list.resize(kept);
+    arcs.resize(kept);
+  }
+  for (std::size_t k = 0; k < old_of_new.size(); ++k) {
+    const auto i = static_cast<std::size_t>(old_of_new[k]);
+    nodes.x[k] = nodes.x[i];
+    nodes.q[k] = nodes.q[i];
+    nodes.kind[k] = nodes.kind[i];
+    nodes.curve[k] = nodes.curve[i];
+    tangent_[k] = tangent_[i];
+    budget_[k] = budget_[i];
+  }
+  const std::size_t m = old_of_new.size();
+  nodes.x.resize(m);
+  nodes.q.resize(m);
+  nodes.kind.resize(m);
+  nodes.curve.resize(m);
+  tangent_.resize(m);
+  budget_.resize(m);
+  return old_of_new;
+}
+
 double BoundaryHandler::clearance_from(Vec2 p) const {
   const ClosestHit hit = tree_.closest(p);
   if (hit.segment < 0 || !std::isfinite(hit.distance)) return 0.0;

@@ -63,6 +63,19 @@ class BoundaryHandler {
   // Previous and next node along the curve of each Boundary node (-1 for other kinds).
   void curve_neighbours(const NodeSet& nodes, std::vector<int>& prev, std::vector<int>& next) const;
 
+  // Edits for population control (sim/population.cpp); each keeps curve_nodes, the arc positions, the
+  // tangents and the clearance budgets parallel to the node set.
+  // Appends an Interior node at p with spacing q (no budget yet: its first move gets the exact test).
+  int add_interior(NodeSet& nodes, Vec2 p, double q);
+  // Inserts a Boundary node on curve `curve` at arc position `arc`, which must lie strictly between
+  // the arc positions of curve_nodes[curve][pos - 1] and [pos]; it becomes entry pos. Returns its index.
+  int add_boundary(NodeSet& nodes, int curve, std::size_t pos, double arc, double q);
+  // Moves Interior node `node` to p (a merge); its budget is spent.
+  void move_interior(NodeSet& nodes, int node, Vec2 p);
+  // Removes the flagged nodes (never Fixed ones: SimulationError) and renumbers the rest in their order;
+  // removed Boundary nodes leave their curve lists. Returns the old index of every kept node.
+  std::vector<int> remove_nodes(NodeSet& nodes, const std::vector<char>& remove);
+
   // The exact shortcut for interior moves (see move_interior_node): an interior node whose exact
   // test accepted position p gets the budget clearance_from(p), a lower bound of the distance from p
   // to the boundary; each later move whose move_cost is below the remaining budget stays in the open

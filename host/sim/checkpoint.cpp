@@ -13,7 +13,10 @@
 namespace pdmesh {
 namespace {
 
-constexpr const char* kHeader = "pdmesh-checkpoint 1";
+// Version 2 added population control (the population line and two history counts); version 1 files
+// (a fixed node count) are still read.
+constexpr const char* kHeader = "pdmesh-checkpoint 2";
+constexpr const char* kHeaderV1 = "pdmesh-checkpoint 1";
 
 // Hexadecimal floating point without the 0x prefix (std::to_chars): exact and locale-free.
 std::string hex(double v) {
@@ -59,6 +62,8 @@ std::string format_checkpoint(const Checkpoint& c) {
   out += fmt::format("time_step {} {} {} {}\n", hex(s.time_step.dt),
                      s.time_step.previous ? hex(*s.time_step.previous) : std::string("none"),
                      s.time_step.consecutive_decreases, s.time_step.increases);
+  out += fmt::format("population {} {} {} {}\n", s.population.next, s.population.interval, s.population.last_event,
+                     s.population.last_change);
   out += fmt::format("nodes {}\n", nodes.size());
   for (std::size_t i = 0; i < nodes.size(); ++i) {
     const Vec2 t = i < s.tangents.size() ? s.tangents[i] : Vec2{};
@@ -75,8 +80,9 @@ std::string format_checkpoint(const Checkpoint& c) {
   }
   out += fmt::format("history {}\n", s.history.size());
   for (const HistoryRow& r : s.history)
-    out += fmt::format("{} {} {} {} {} {} {} {} {} {}\n", r.iteration, hex(r.average_force), hex(r.average_kinetic),
-                       hex(r.max_force), hex(r.dt_gm), r.snapped, r.clamped, r.fixed, r.boundary, r.interior);
+    out += fmt::format("{} {} {} {} {} {} {} {} {} {} {} {}\n", r.iteration, hex(r.average_force),
+                       hex(r.average_kinetic), hex(r.max_force), hex(r.dt_gm), r.snapped, r.clamped, r.fixed,
+                       r.boundary, r.interior, r.inserted, r.removed);
   out += "end\n";
   return out;
 }
@@ -89,7 +95,8 @@ Checkpoint parse_checkpoint(const std::string& text, const std::string& source_n
   LineScanner in(source_name, text);
   Checkpoint c;
   std::string_view line = in.expect_line("the header line");
-  if (line != kHeader) in.fail(fmt::format("expected the header '{}'", kHeader), line);
+  const bool v1 = line == kHeaderV1;
+  if (line != kHeader && !v1) in.fail(fmt::format("expected the header '{}'", kHeader), line);
   std::vector<std::string_view> t = in.expect_tokens("a case line or iterations_done");
   while (!t.empty() && t[0] == "case") {
     if (t.size() < 2) in.fail("expected 'case KEY VALUE'");
@@ -110,6 +117,14 @@ Checkpoint parse_checkpoint(const std::string& text, const std::string& source_n
   if (t[2] != "none") s.time_step.previous = parse_hex(in, t[2], "previous maximum force");
   s.time_step.consecutive_decreases = static_cast<int>(in.to_index(t[3], 0, 1000, "consecutive decreases"));
   s.time_step.increases = static_cast<int>(in.to_index(t[4], 0, 1000, "increases"));
+  if (!v1) {
+    t = keyword_line(in, "population", 5, "'population NEXT INTERVAL LAST_EVENT LAST_CHANGE'");
+    PopulationSchedule& p = s.population;
+    p.next = static_cast<int>(in.to_index(t[1], 0, 2'000'000'000, "next population event"));
+    p.interval = static_cast<int>(in.to_index(t[2], 0, 2'000'000'000, "population interval"));
+    p.last_event = static_cast<int>(in.to_index(t[3], 0, s.iterations_done, "last population event"));
+    p.last_change = static_cast<int>(in.to_index(t[4], 0, p.last_event, "last population change"));
+  }
 
   t = keyword_line(in, "nodes", 2, "'nodes N'");
   const std::size_t n = parse_count(in, t[1], "node count");
@@ -151,15 +166,17 @@ Checkpoint parse_checkpoint(const std::string& text, const std::string& source_n
   s.history.reserve(rows);
   for (std::size_t r = 0; r < rows; ++r) {
     t = in.expect_tokens("a history row");
-    if (t.size() != 10) in.fail("expected a history row (10 fields)");
+    const std::size_t fields = v1 ? 10 : 12;
+    if (t.size() != fields) in.fail(fmt::format("expected a history row ({} fields)", fields));
     HistoryRow row;
     row.iteration = static_cast<int>(in.to_index(t[0], 1, 2'000'000'000, "iteration"));
     row.average_force = parse_hex(in, t[1], "average force");
     row.average_kinetic = parse_hex(in, t[2], "average kinetic energy");
     row.max_force = parse_hex(in, t[3], "maximum force");
     row.dt_gm = parse_hex(in, t[4], "dt_GM");
-    std::size_t* counts[] = {&row.snapped, &row.clamped, &row.fixed, &row.boundary, &row.interior};
-    for (std::size_t f = 0; f < 5; ++f) *counts[f] = parse_count(in, t[5 + f], "history count");
+    std::size_t* counts[] = {&row.snapped, &row.clamped, &row.fixed, &row.boundary, &row.interior,
+                             &row.inserted, &row.removed};
+    for (std::size_t f = 0; f + 5 < fields; ++f) *counts[f] = parse_count(in, t[5 + f], "history count");
     s.history.push_back(row);
   }
   t = in.expect_tokens("'end' (the file is truncated)");

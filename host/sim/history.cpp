@@ -9,11 +9,12 @@ namespace pdmesh {
 
 std::string history_csv(const std::vector<HistoryRow>& rows) {
   std::string out =
-      "iteration,average_force,average_kinetic_energy,max_force,dt_gm,snapped,clamped,fixed,boundary,interior\n";
+      "iteration,average_force,average_kinetic_energy,max_force,dt_gm,snapped,clamped,fixed,boundary,interior,inserted,"
+      "removed\n";
   for (const HistoryRow& r : rows)
-    out += fmt::format("{},{:.17g},{:.17g},{:.17g},{:.17g},{},{},{},{},{}\n", r.iteration, r.average_force,
+    out += fmt::format("{},{:.17g},{:.17g},{:.17g},{:.17g},{},{},{},{},{},{},{}\n", r.iteration, r.average_force,
                        r.average_kinetic, r.max_force, r.dt_gm, r.snapped, r.clamped, r.fixed, r.boundary,
-                       r.interior);
+                       r.interior, r.inserted, r.removed);
   return out;
 }
 

@@ -130,9 +130,13 @@ SimResult run_simulation(NodeSet& nodes, const GeometryTree& tree, const Spacing
   if (resume) result.history = resume->history;
   const int first = resume ? resume->iterations_done + 1 : 1;
   int done = first - 1;
+  PopulationTracker population;
+  if (resume) population.schedule = resume->population;
   // The state after `done` iterations; nodes must hold that iteration's positions.
   const auto snapshot = [&] {
-    return SimState{done, result.stats.dt_initial, gm.state(), boundary.arcs(), boundary.tangents(), result.history};
+    return SimState{done,           result.stats.dt_initial, gm.state(),
+                    boundary.arcs(), boundary.tangents(),    result.history,
+                    population.schedule};
   };
   for (int iteration = first; iteration <= options.iterations; ++iteration) {
     const double dt_gm = gm.dt();
@@ -165,6 +169,9 @@ SimResult run_simulation(NodeSet& nodes, const GeometryTree& tree, const Spacing
     }
     const BoundaryCounts counts = boundary.apply(nodes, moves.dx, moves.dy);
     iteration_spacing.at_many(nodes.x, nodes.q);
+    // Population control between iterations: the next iteration loads the changed node set.
+    const auto event =
+        population.after_iteration(options.population, iteration, options.iterations, nodes, boundary, iteration_spacing);
 
     HistoryRow row;
     row.iteration = iteration;
@@ -178,6 +185,10 @@ SimResult run_simulation(NodeSet& nodes, const GeometryTree& tree, const Spacing
     row.fixed = nodes.count(NodeKind::Fixed);
     row.boundary = nodes.count(NodeKind::Boundary);
     row.interior = nodes.count(NodeKind::Interior);
+    if (event) {
+      row.inserted = event->inserted();
+      row.removed = event->removed();
+    }
     gm.update(sums.max_force);
 
     result.stats.pairs_examined += flags.pairs_examined;
@@ -194,6 +205,10 @@ SimResult run_simulation(NodeSet& nodes, const GeometryTree& tree, const Spacing
     }
   }
   progress.finish();
+  result.stats.inserted = population.inserted;
+  result.stats.removed = population.removed;
+  result.stats.population_events = population.events;
+  result.stats.population_seconds = population.seconds;
   result.state = snapshot();
   result.stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;

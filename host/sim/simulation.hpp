@@ -14,6 +14,7 @@
 #include "nodes/node_set.hpp"
 #include "sim/global_time_step.hpp"
 #include "sim/history.hpp"
+#include "sim/population.hpp"
 #include "sim/step_backend.hpp"
 #include "spacing/spacing_field.hpp"
 
@@ -30,6 +31,7 @@ struct SimState {
   std::vector<std::vector<double>> arcs;   // BoundaryHandler arc positions, parallel to curve_nodes
   std::vector<Vec2> tangents;              // BoundaryHandler tangent per node
   std::vector<HistoryRow> history;         // rows 1 .. iterations_done
+  PopulationSchedule population;           // population control's schedule (sim/population.hpp)
 };
 
 struct SimOptions {
@@ -54,6 +56,8 @@ struct SimOptions {
   // Non-null: continue from this state (the NodeSet passed must be the one saved with it) with
   // iterations resume->iterations_done + 1 .. iterations; dt_initial is then unused.
   const SimState* resume = nullptr;
+  // Node insertion and removal during the run (off by default: the thesis keeps the count fixed).
+  PopulationOptions population;
 };
 
 struct SimCallbacks {
@@ -76,6 +80,9 @@ struct SimStats {
   std::uint64_t pairs_within = 0;    // pair interactions (interior neighbour-list entries), all iterations
   std::uint64_t coincident_pairs = 0;
   std::size_t snapped = 0;           // interior nodes snapped onto curves, all iterations
+  std::size_t inserted = 0, removed = 0;  // by population control, all events of this run
+  int population_events = 0;         // events run (including those that changed nothing)
+  double population_seconds = 0.0;   // wall time of the events (planning and editing the node set)
 };
 
 struct SimResult {

@@ -19,6 +19,10 @@ struct SizeSourceOptions {
   // from it (the upper envelope over the segments), but not above what the shortest segment nearby
   // allows (the lower envelope of upward cones). 0 = none.
   double input_boundary_floor = 0.0;
+  // Whether the final field keeps floor_at() too. Boundary nodes placed by the field need only the
+  // sources' floor (it stops the feature size from asking for q -> 0 toward a sharp V tip); the final
+  // floor would lift a fine field back to coarse input points' spacing.
+  bool final_floor = true;
   double scale = 1.0;            // multiplies every value (spacing.scale)
   bool active() const { return rows_in_gap > 0.0 || curvature_angle > 0.0; }
 };
@@ -34,7 +38,7 @@ class SizeSources {
   double at(Vec2 p, double limit) const;
   // The input-boundary floor at p (see input_boundary_floor) when it exceeds `q`, else q. Thread-safe.
   double floor_at(Vec2 p, double q) const;
-  bool has_floor() const { return options_.input_boundary_floor > 0.0; }
+  bool has_floor() const { return options_.input_boundary_floor > 0.0 && options_.final_floor; }
   // The floor's fall-off per unit distance from a segment (docs/spacing.md, "Input boundary points").
   static constexpr double kFloorSlope = 0.5;
 

@@ -92,6 +92,7 @@ void SpacingPipeline::build() {
   so.rows_in_gap = options_.rows_in_gap;
   so.curvature_angle = options_.curvature_angle;
   so.input_boundary_floor = options_.input_boundary_floor;
+  so.final_floor = options_.final_floor;
   so.scale = options_.scale;
   BackgroundFieldData data;
   const bool limited = so.active() || options_.gradation > 0.0 || !options_.points.empty();

@@ -24,6 +24,7 @@ struct SpacingOptions {
   double rows_in_gap = 0.0;      // spacing.rows_in_gap k; 0 = off
   double curvature_angle = 0.0;  // spacing.curvature_angle theta in degrees; 0 = off
   double input_boundary_floor = 0.0;  // SizeSourceOptions::input_boundary_floor
+  bool final_floor = true;            // SizeSourceOptions::final_floor
   std::vector<PointSource> points;    // sizes at points, limited like the rest (API and tests)
   BackgroundOptions background;
   // False for the thesis' field exactly (all of the above off and scale 1): then the final field is the

@@ -12,7 +12,7 @@ from .meshfiles import boundary_loops
 GMSH_INSTALL = "apt-get install -y --no-install-recommends gmsh"
 
 
-def write_geo(nodes, curves, algorithm, background=None, source="pdmesh's final.nodes"):
+def write_geo(nodes, curves, algorithm, background=None, source="pdmesh's mesh.nodes"):
     """The .geo text for nodes and curves of a node file. One Plane Surface per even-odd region
     (outer loop minus the loops directly inside it).
 

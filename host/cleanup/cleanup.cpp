@@ -1,0 +1,145 @@
+// The cleanup driver: outer iterations of smoothing sweeps and a topology pass over the bad triangles.
+#include "cleanup/cleanup.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <set>
+
+#include "cleanup/editable_mesh.hpp"
+#include "cleanup/measures.hpp"
+#include "cleanup/smoothing.hpp"
+#include "cleanup/topology_ops.hpp"
+#include "sim/boundary_handling.hpp"
+
+namespace pdmesh {
+
+using cleanup::EditableMesh;
+
+namespace {
+
+// The vertices of the live triangles whose score is below `limit`, ascending (deterministic order).
+std::vector<int> vertices_of_bad_triangles(const EditableMesh& m, double limit, std::vector<std::uint8_t>& mark) {
+  mark.assign(m.vertex_slots(), 0);
+  for (int t = 0; t < m.triangle_slots(); ++t) {
+    if (!m.alive(t) || !(m.quality(t) < limit)) continue;
+    for (int a : m.v[t]) mark[a] = 1;
+  }
+  std::vector<int> out;
+  for (int a = 0; a < m.vertex_slots(); ++a)
+    if (mark[a]) out.push_back(a);
+  return out;
+}
+
+// The median of edge length / q(midpoint) over a deterministic sample of at most ~4096 edges. The
+// particle lattice settles a little tighter than q (thesis ch. 6: ratios near 0.92), so the size
+// guards compare edges with this multiple of q rather than with q itself. Clamped to [0.8, 1]: a mesh
+// with gaps or without interior nodes has long edges everywhere, which say nothing about the lattice.
+double edge_to_spacing_ratio(const Mesh& mesh, const SpacingField& spacing) {
+  std::vector<double> ratios;
+  const std::size_t stride = std::max<std::size_t>(1, mesh.triangles.size() / 4096);
+  for (std::size_t t = 0; t < mesh.triangles.size(); t += stride) {
+    const Vec2 a = mesh.points[mesh.triangles[t][0]], b = mesh.points[mesh.triangles[t][1]];
+    const double q = spacing.at(0.5 * (a + b));
+    if (q > 0.0 && std::isfinite(q)) ratios.push_back(dist(a, b) / q);
+  }
+  if (ratios.empty()) return 1.0;
+  std::nth_element(ratios.begin(), ratios.begin() + ratios.size() / 2, ratios.end());
+  return std::clamp(ratios[ratios.size() / 2], 0.8, 1.0);
+}
+
+}  // namespace
+
+CleanupResult clean_mesh(const Mesh& mesh, const NodeSet& nodes, const GeometryTree& tree,
+                         const SpacingField& spacing, const CleanupOptions& options) {
+  const auto start = std::chrono::steady_clock::now();
+  CleanupResult result;
+  const BoundaryHandler boundary(tree, nodes);
+  EditableMesh m(mesh, nodes.curve_nodes, boundary.arcs());
+  cleanup::Smoother smoother(m, tree.geometry(), options.step_cap);
+  const double smooth_below = options.smooth_below >= 0.0 ? options.smooth_below : std::min(options.min_angle + 20.0, 59.0);
+  const double topology_below =
+      options.topology_below >= 0.0 ? options.topology_below : std::min(options.min_angle + 15.0, 59.0);
+  const double smooth_limit = cleanup::sine_from_degrees(smooth_below);
+  const double target = cleanup::sine_from_degrees(options.min_angle);
+  const double topology_limit = cleanup::sine_from_degrees(topology_below);
+  cleanup::TopologyOptions topology_options;
+  topology_options.target = target;
+  topology_options.enough = topology_limit;
+  const double ratio = edge_to_spacing_ratio(mesh, spacing);
+  topology_options.split_boundary = options.split_boundary;
+  cleanup::TopologyOps ops(m, smoother, tree.geometry(), [&spacing, ratio](Vec2 p) { return ratio * spacing.at(p); },
+                           topology_options);
+  std::vector<std::uint8_t> mark;
+  std::set<std::array<int, 3>> failures;
+  const auto trial_budget = static_cast<std::size_t>(
+      std::max(10000.0, options.trials_per_triangle * static_cast<double>(mesh.triangles.size())));
+  for (int iteration = 0; iteration < options.iterations; ++iteration) {
+    std::size_t changed = 0;
+    // Only nodes whose neighbourhood changed since the last sweep can propose something new.
+    const std::vector<std::uint8_t> dirty = m.take_dirty();
+    const auto timer = std::chrono::steady_clock::now();
+    // Skipping a node whose neighbourhood did not change since it last failed gives exactly the result
+    // of trying it (the same proposal is rejected again); checked when its turn comes, since an earlier
+    // move in the same sweep may have changed it.
+    auto worth = [&](int a) { return (a < static_cast<int>(dirty.size()) && dirty[a]) || m.dirty(a); };
+    for (int a : vertices_of_bad_triangles(m, smooth_limit, mark))
+      if (worth(a)) changed += smoother.relax(a);
+    for (int a : vertices_of_bad_triangles(m, topology_limit, mark))
+      if (worth(a)) changed += smoother.climb(a);
+    const auto smoothed = std::chrono::steady_clock::now();
+    result.stats.smoothing_seconds += std::chrono::duration<double>(smoothed - timer).count();
+    result.stats.moves += changed;
+    // The topology pass, worst triangle first; not in the last iteration, which only smooths.
+    if (options.topology && iteration + 1 < options.iterations) {
+      std::vector<std::pair<double, int>> bad;
+      for (int t = 0; t < m.triangle_slots(); ++t)
+        if (m.alive(t) && m.quality(t) < topology_limit) bad.push_back({m.quality(t), t});
+      std::sort(bad.begin(), bad.end());
+      double aspect_sum = 0.0, count = 0.0;
+      for (int t = 0; t < m.triangle_slots(); ++t)
+        if (m.alive(t)) {
+          aspect_sum += m.aspect(t);
+          count += 1.0;
+        }
+      ops.set_aspect_totals(aspect_sum, count);
+      for (const auto& [q, t] : bad) {
+        if (ops.trials() >= trial_budget) break;
+        if (!m.alive(t) || !(m.quality(t) < topology_limit)) continue;
+        // A triangle no operation could repair is not tried again in this run.
+        auto key = m.v[t];
+        std::sort(key.begin(), key.end());
+        if (failures.count(key) > 0) continue;
+        switch (ops.repair(t)) {
+          case cleanup::RepairKind::None:
+            ++result.stats.rejected;
+            failures.insert(key);
+            break;
+          case cleanup::RepairKind::Collapse: ++result.stats.collapsed; ++changed; break;
+          default: ++result.stats.inserted; ++changed; break;
+        }
+      }
+      result.stats.topology_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - smoothed).count();
+    }
+    result.stats.iterations_run = iteration + 1;
+    if (changed == 0) break;
+  }
+  result.stats.trials = ops.trials();
+  std::vector<int> old_of_new;
+  std::vector<std::vector<int>> curve_nodes;
+  result.mesh = m.to_mesh(mesh, curve_nodes, old_of_new);
+  NodeSet& out = result.nodes;
+  out.x = result.mesh.points;
+  out.kind = result.mesh.kind;
+  out.curve_nodes = std::move(curve_nodes);
+  for (std::size_t k = 0; k < old_of_new.size(); ++k) {
+    const auto a = static_cast<std::size_t>(old_of_new[k]);
+    const bool original = a < nodes.size();
+    out.q.push_back(original ? nodes.q[a] : spacing.at(out.x[k]));
+    out.curve.push_back(original ? nodes.curve[a] : m.curve[a]);
+  }
+  result.stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return result;
+}
+
+}  // namespace pdmesh

@@ -1,0 +1,178 @@
+// A triangle mesh the final cleanup can edit in place: triangle adjacency, per-vertex kind, curve
+// and arc position, the local operations (flip, Lawson legalisation, vertex move, 1->3 and 2->4
+// insertion, boundary edge split, edge collapse; in mesh_edits.cpp) and a journal so that a trial
+// operation can be measured and undone (editable_mesh.cpp).
+#pragma once
+#include <array>
+#include <cstdint>
+#include <unordered_map>
+#include <vector>
+
+#include "core/vec2.hpp"
+#include "mesh/mesh.hpp"
+
+namespace pdmesh::cleanup {
+
+inline int next3(int i) { return i == 2 ? 0 : i + 1; }
+inline int prev3(int i) { return i == 0 ? 2 : i - 1; }
+
+// Triangle t has counter-clockwise vertices v[t] and neighbours n[t], n[t][i] across the edge
+// opposite v[t][i]; -1 there means the edge is on the domain boundary. In the constrained Delaunay
+// mesh of a domain every constrained edge is such a boundary edge (even-odd rule), so "n == -1"
+// and "constrained" are the same thing and no flip ever crosses the boundary. A dead triangle has
+// v[t][0] == -1; a removed vertex has vt == -1. Slots are compacted only by to_mesh().
+class EditableMesh {
+ public:
+  // mesh: a boundary-conforming triangulation with kinds (triangulate()'s output); curve_nodes:
+  // per curve, its nodes in order (NodeSet::curve_nodes); arcs: their arc positions on the curve.
+  EditableMesh(const Mesh& mesh, const std::vector<std::vector<int>>& curve_nodes,
+               const std::vector<std::vector<double>>& arcs);
+
+  // Vertices.
+  std::vector<Vec2> p;
+  std::vector<NodeKind> kind;
+  std::vector<int> curve;          // Boundary vertices: their curve; others -1
+  std::vector<double> arc;         // Boundary vertices: arc position on their curve
+  std::vector<int> prev, next;     // Boundary vertices: neighbours along the curve; others -1
+  std::vector<int> vt;             // one incident triangle; -1 for a removed vertex
+  // Triangles.
+  std::vector<std::array<int, 3>> v;
+  std::vector<std::array<int, 3>> n;
+
+  int vertex_slots() const { return static_cast<int>(p.size()); }
+  int triangle_slots() const { return static_cast<int>(v.size()); }
+  bool alive(int t) const { return v[t][0] >= 0; }
+  bool removed(int a) const { return gone_[a] != 0 || vt[a] < 0; }
+  bool movable(int a) const { return kind[a] != NodeKind::Fixed; }
+  double quality(int t) const;  // min_angle_sine of triangle t
+  double aspect(int t) const;   // aspect ratio R / (2 r) of triangle t
+  // Boundary vertex a: the arc position of its neighbour along the curve before (side 0) or after
+  // (side 1) it; a boundary vertex slides strictly between the two.
+  double neighbour_arc(int a, int side) const;
+  // The boundary edge opposite v[t][i]: its curve and the arc positions on it of v[t][next3(i)] and
+  // v[t][prev3(i)]. False when it is not a boundary edge of a curve chain.
+  bool boundary_edge_arcs(int t, int i, int& curve, double& arc_a, double& arc_b) const;
+
+  // The triangles around vertex a, counter-clockwise; for a boundary vertex the open fan from the
+  // triangle on its outgoing boundary edge to the one on its incoming boundary edge.
+  void star(int a, std::vector<int>& out) const;
+  // The vertices joined to a, in the order of star(a) (for a boundary vertex one more than the fan).
+  void ring(int a, std::vector<int>& out) const;
+  // Triangle t and local index i with edge a -> b counter-clockwise in t, opposite v[t][i];
+  // {-1, -1} when there is no such edge.
+  std::array<int, 2> find_edge(int a, int b) const;
+  static int index_of(const std::array<int, 3>& tv, int value) {
+    return tv[0] == value ? 0 : (tv[1] == value ? 1 : 2);
+  }
+
+  // Edits. Each keeps the adjacency consistent; with a transaction open each saves what it changes.
+  void flip(int t, int i);
+  // Lawson flips of non-boundary edges whose opposite vertex lies strictly inside the circumcircle
+  // (exact incircle), starting from the given edges (vertex pairs) and spreading to the edges of
+  // every flipped quadrilateral. Restores the constrained Delaunay property around an edit.
+  void legalize(std::vector<std::array<int, 2>>& edges);
+  // Pushes the edges of a's link (the ones opposite a) for legalize().
+  void push_link_edges(int a, std::vector<std::array<int, 2>>& edges) const;
+  void move(int a, Vec2 to, double new_arc);
+  // Splits triangle t at `at`, which the caller has checked lies strictly inside it (1 -> 3).
+  int insert_in_triangle(int t, Vec2 at);
+  // Splits the interior edge opposite v[t][i] at `at` (2 -> 4); the caller checks that the four new
+  // triangles are counter-clockwise (split_edge_valid).
+  int split_edge(int t, int i, Vec2 at);
+  bool split_edge_valid(int t, int i, Vec2 at) const;
+  // Splits the boundary edge opposite v[t][i] (1 -> 2) at `at`, a point of curve `c` at arc position
+  // `at_arc` between the edge's ends; the new node slides on that curve between them. The caller
+  // checks that both new triangles are counter-clockwise.
+  int split_boundary_edge(int t, int i, Vec2 at, double at_arc, int c);
+  // Removes interior vertex a by collapsing edge a-b into b, which then moves to `to`. Returns false
+  // (and changes nothing) when the link condition fails (the collapse would pinch the mesh); the
+  // caller checks the orientation of b's new star afterwards.
+  bool collapse(int a, int b, Vec2 to, double b_arc);
+  // True when every triangle around a is strictly counter-clockwise (exact orient2d).
+  bool star_valid(int a) const;
+
+  // Transactions: begin(), edits, then commit() or rollback(). While open, the journal knows every
+  // triangle whose vertices, neighbours or geometry changed, so the worst quality before and after
+  // over exactly the affected region can be compared (the rest of the mesh is unchanged).
+  void begin();
+  bool in_transaction() const { return open_; }
+  void commit();
+  void rollback();
+  double touched_min_before() const;  // +inf when nothing was touched
+  double touched_min_after() const;
+  // Sum of aspect ratios and number of those triangles, before and after (the cleanup keeps the
+  // mesh's average aspect ratio from rising).
+  double touched_aspect_before(int& count) const;
+  double touched_aspect_after(int& count) const;
+  // How many of those triangles score below `limit`, before and after.
+  int touched_below_before(double limit) const;
+  int touched_below_after(double limit) const;
+  // Vertices whose star changed (moved, a neighbour moved, flips, insertions, collapses) since the
+  // last take_dirty(), which returns the flags (one per vertex slot) and clears them. A node whose
+  // neighbourhood did not change makes the same proposal as last time, so sweeps skip it. Edits undone
+  // by rollback() leave no mark.
+  std::vector<std::uint8_t> take_dirty();
+  bool dirty(int a) const { return dirty_[a] != 0; }
+  // Vertices created by the open transaction (or since the last begin()).
+  int first_new_vertex() const { return vert_size0_; }
+
+  // The live triangles and vertices, renumbered in slot order; kinds kept. curve_nodes gets the
+  // curve chains (boundary nodes are never removed; boundary splits add some), boundary_edges joins
+  // their consecutive nodes as triangulate() does.
+  Mesh to_mesh(const Mesh& original, std::vector<std::vector<int>>& curve_nodes,
+               std::vector<int>& old_of_new) const;
+
+ private:
+  void touch_triangle(int t);
+  void touch_vertex(int a);
+  void touch_star(int a);
+  void set_vt(int a, int t);
+  void set_neighbour(int t, int old_neighbour, int new_neighbour);
+  int new_triangle(std::array<int, 3> tv, std::array<int, 3> tn);
+  int new_vertex(Vec2 at);
+
+  struct SavedTriangle {
+    int t;
+    std::array<int, 3> v, n;
+    double quality;  // before the transaction; +inf for a dead slot
+    double aspect;   // aspect ratio before the transaction; 0 for a dead slot
+  };
+  struct SavedVertex {
+    int a;
+    Vec2 p;
+    double arc;
+    int vt;
+    int prev, next;
+    std::uint8_t gone;
+  };
+  bool open_ = false;
+  std::uint32_t stamp_ = 0;
+  std::vector<std::uint32_t> tri_stamp_, vert_stamp_;
+  std::vector<SavedTriangle> tri_log_;
+  std::vector<SavedVertex> vert_log_;
+  int tri_size0_ = 0, vert_size0_ = 0;
+  std::vector<std::uint8_t> gone_;  // per vertex: removed by a collapse
+  std::vector<std::uint8_t> dirty_;  // per vertex: see take_dirty()
+  void mark_dirty(int t);
+  mutable std::vector<int> scratch_;
+  std::vector<int> star_scratch_;
+  // Per curve, its fixed nodes (ends and critical corners) in chain order with their arc positions.
+  struct FixedEntry {
+    int node;
+    double arc;
+  };
+  std::vector<std::vector<FixedEntry>> fixed_on_curve_;
+  // Boundary edges between two fixed nodes, by edge_key: their curve and the ends' arc positions.
+  struct FixedEdge {
+    int curve;
+    int first;
+    double first_arc, second_arc;
+  };
+  std::unordered_map<std::uint64_t, FixedEdge> fixed_edges_;
+  static std::uint64_t edge_key(int a, int b) {
+    const auto lo = static_cast<std::uint32_t>(a < b ? a : b), hi = static_cast<std::uint32_t>(a < b ? b : a);
+    return (static_cast<std::uint64_t>(hi) << 32) | lo;
+  }
+};
+
+}  // namespace pdmesh::cleanup

@@ -1,0 +1,49 @@
+// Triangle measures the cleanup decides with: the sine of the smallest angle (its quality score),
+// the aspect ratio, circumcentre and inradius. Plain floating point: orientation decisions that must be
+// exact use core/predicates; these only rank candidates.
+#pragma once
+#include <algorithm>
+#include <cmath>
+
+#include "core/vec2.hpp"
+
+namespace pdmesh::cleanup {
+
+// Sine of the smallest angle of (a, b, c): 2A / (product of the two longest edges), which is
+// monotone in the smallest angle (always <= 60 degrees), costs one square root, and is negative for
+// a clockwise triangle, so an inverted triangle ranks below every valid one.
+inline double min_angle_sine(Vec2 a, Vec2 b, Vec2 c) {
+  const double ab = norm2(b - a), bc = norm2(c - b), ca = norm2(a - c);
+  const double twice_area = cross(b - a, c - a);
+  // The smallest angle is opposite the shortest edge; the product of the other two is the rest.
+  const double shortest = std::min({ab, bc, ca});
+  const double product = shortest == ab ? bc * ca : (shortest == bc ? ab * ca : ab * bc);
+  return product > 0.0 ? twice_area / std::sqrt(product) : -1.0;
+}
+
+// The sine of an angle in degrees (targets are given in degrees).
+inline double sine_from_degrees(double d) { return std::sin(d / 57.29577951308232); }
+
+// Aspect ratio R / (2 r) as the thesis appendix defines it (mesh/quality.cpp computes it the same
+// way: l1 l2 l3 s / (8 A^2), s the half perimeter); +inf for a degenerate or inverted triangle.
+inline double aspect_ratio(Vec2 a, Vec2 b, Vec2 c) {
+  const double la = dist(b, c), lb = dist(c, a), lc = dist(a, b);
+  const double area = 0.5 * cross(b - a, c - a);
+  const double s = 0.5 * (la + lb + lc);
+  return area > 0.0 ? la * lb * lc * s / (8.0 * area * area) : HUGE_VAL;
+}
+
+// Circumcentre of a non-degenerate triangle (relative to a for accuracy).
+inline Vec2 circumcentre(Vec2 a, Vec2 b, Vec2 c) {
+  const Vec2 u = b - a, v = c - a;
+  const double d = 2.0 * cross(u, v);
+  const double uu = norm2(u), vv = norm2(v);
+  return {a.x + (v.y * uu - u.y * vv) / d, a.y + (u.x * vv - v.x * uu) / d};
+}
+
+inline double inradius(Vec2 a, Vec2 b, Vec2 c) {
+  const double perimeter = dist(a, b) + dist(b, c) + dist(c, a);
+  return perimeter > 0.0 ? std::fabs(cross(b - a, c - a)) / perimeter : 0.0;
+}
+
+}  // namespace pdmesh::cleanup

@@ -1,0 +1,144 @@
+// Hill-climbing ODT smoothing with optimesh's step cap, boundary sliding and Lawson flips.
+#include "cleanup/smoothing.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "cleanup/measures.hpp"
+#include "core/predicates.hpp"
+#include "sim/boundary_handling.hpp"
+
+namespace pdmesh::cleanup {
+namespace {
+
+// A boundary vertex moves at most this fraction of the arc gap to each curve neighbour per move,
+// so neighbours never meet or cross (BoundaryHandler uses 0.45 for the same reason).
+constexpr double kArcGapFraction = 0.45;
+// Step lengths tried per move: the capped step, then halved this many times (MESH2D relaxes a
+// rejected move back towards the old position the same way).
+constexpr int kLineSearchSteps = 4;
+
+}  // namespace
+
+Smoother::Smoother(EditableMesh& mesh, const Geometry& geometry, double step_cap)
+    : mesh_(mesh), geometry_(geometry), step_cap_(step_cap) {}
+
+Vec2 Smoother::on_curve(int a, Vec2 candidate, double& new_arc) const {
+  const double here = mesh_.arc[a];
+  const double lo = here - kArcGapFraction * (here - mesh_.neighbour_arc(a, 0));
+  const double hi = here + kArcGapFraction * (mesh_.neighbour_arc(a, 1) - here);
+  const CurvePoint cp = closest_on_curve_range(geometry_.curves[mesh_.curve[a]], candidate, lo, hi);
+  new_arc = cp.arc;
+  return cp.p;
+}
+
+// Moves a by `displacement` (projected onto its curve for a boundary vertex), halving the step
+// until no adjacent triangle inverts, the adjacent minimum does not drop, the adjacent sum of aspect
+// ratios does not rise, and one of the two strictly improves (so sweeps end, and neither the worst
+// angle nor the mesh's average aspect ratio can get worse). fan_ holds a's star.
+bool Smoother::try_move(int a, Vec2 displacement, double old_min, double old_sum) {
+  const auto& m = mesh_;
+  const Vec2 from = m.p[a];
+  const bool sliding = m.kind[a] == NodeKind::Boundary;
+  for (int k = 0; k < kLineSearchSteps; ++k, displacement = 0.5 * displacement) {
+    double new_arc = m.arc[a];
+    const Vec2 to = sliding ? on_curve(a, from + displacement, new_arc) : from + displacement;
+    if (to == from) return false;
+    double new_min = std::numeric_limits<double>::infinity(), new_sum = 0.0;
+    bool valid = true;
+    for (int t : fan_) {
+      const auto& tv = m.v[t];
+      const Vec2 x = tv[0] == a ? to : m.p[tv[0]], y = tv[1] == a ? to : m.p[tv[1]], z = tv[2] == a ? to : m.p[tv[2]];
+      if (!(orient2d(x, y, z) > 0.0)) {
+        valid = false;
+        break;
+      }
+      new_min = std::min(new_min, min_angle_sine(x, y, z));
+      new_sum += aspect_ratio(x, y, z);
+    }
+    if (!valid || new_min < old_min || new_sum > old_sum || !(new_min > old_min || new_sum < old_sum)) continue;
+    // Lawson flips follow the move. They never lower the smallest angle of the quadrilateral they
+    // flip, but may change its aspect ratios, so outside a topology trial (which measures itself)
+    // the move and its flips are measured together and undone if the aspect-ratio sum grew.
+    const bool own = !mesh_.in_transaction();
+    if (own) mesh_.begin();
+    mesh_.move(a, to, new_arc);
+    edges_.clear();
+    for (int t : fan_) {
+      const auto& tv = m.v[t];
+      for (int i = 0; i < 3; ++i) edges_.push_back({tv[next3(i)], tv[prev3(i)]});
+    }
+    mesh_.legalize(edges_);
+    if (own) {
+      int n_before = 0, n_after = 0;
+      if (mesh_.touched_aspect_after(n_after) > mesh_.touched_aspect_before(n_before)) {
+        mesh_.rollback();
+        continue;
+      }
+      mesh_.commit();
+    }
+    return true;
+  }
+  return false;
+}
+
+bool Smoother::relax(int a) {
+  auto& m = mesh_;
+  if (m.removed(a) || !m.movable(a)) return false;
+  if (m.kind[a] == NodeKind::Boundary && m.curve[a] < 0) return false;
+  m.star(a, fan_);
+  double old_min = std::numeric_limits<double>::infinity(), old_sum = 0.0, area_sum = 0.0;
+  double r_min = std::numeric_limits<double>::infinity();
+  Vec2 weighted{};
+  for (int t : fan_) {
+    const auto& tv = m.v[t];
+    const Vec2 x = m.p[tv[0]], y = m.p[tv[1]], z = m.p[tv[2]];
+    old_min = std::min(old_min, min_angle_sine(x, y, z));
+    old_sum += aspect_ratio(x, y, z);
+    const double area = 0.5 * cross(y - x, z - x);
+    weighted = weighted + area * circumcentre(x, y, z);
+    area_sum += area;
+    r_min = std::min(r_min, inradius(x, y, z));
+  }
+  if (!(area_sum > 0.0)) return false;
+  Vec2 d = (1.0 / area_sum) * weighted - m.p[a];
+  const double length = norm(d), cap = step_cap_ * r_min;
+  if (!(length > 0.0)) return false;
+  if (length > cap) d = (cap / length) * d;
+  return try_move(a, d, old_min, old_sum);
+}
+
+bool Smoother::climb(int a) {
+  auto& m = mesh_;
+  if (m.removed(a) || !m.movable(a)) return false;
+  if (m.kind[a] == NodeKind::Boundary && m.curve[a] < 0) return false;
+  m.star(a, fan_);
+  double old_min = std::numeric_limits<double>::infinity(), old_sum = 0.0;
+  double r_min = std::numeric_limits<double>::infinity();
+  int worst = -1;
+  for (int t : fan_) {
+    const auto& tv = m.v[t];
+    const Vec2 x = m.p[tv[0]], y = m.p[tv[1]], z = m.p[tv[2]];
+    const double q = min_angle_sine(x, y, z);
+    if (q < old_min) {
+      old_min = q;
+      worst = t;
+    }
+    old_sum += aspect_ratio(x, y, z);
+    r_min = std::min(r_min, inradius(x, y, z));
+  }
+  if (worst < 0 || !(r_min > 0.0)) return false;
+  // Central differences of the worst triangle's score in a's position.
+  const auto& tv = m.v[worst];
+  const int k = EditableMesh::index_of(tv, a);
+  const Vec2 y = m.p[tv[next3(k)]], z = m.p[tv[prev3(k)]], x = m.p[a];
+  const double h = 1e-3 * r_min;
+  const Vec2 g{min_angle_sine(x + Vec2{h, 0}, y, z) - min_angle_sine(x - Vec2{h, 0}, y, z),
+               min_angle_sine(x + Vec2{0, h}, y, z) - min_angle_sine(x - Vec2{0, h}, y, z)};
+  const double length = norm(g);
+  if (!(length > 0.0)) return false;
+  return try_move(a, (step_cap_ * r_min / length) * g, old_min, old_sum);
+}
+
+}  // namespace pdmesh::cleanup

@@ -1,0 +1,38 @@
+// Hill-climbing node smoothing for the final cleanup: each move proposes the ODT point (area-weighted
+// circumcentres of the adjacent triangles, Chen & Holst; optimesh's odt-fixed-point), caps the step
+// at a fraction of the smallest adjacent inradius (optimesh), slides boundary nodes along their own
+// curve between their curve neighbours, and is kept only when no adjacent triangle inverts and the
+// adjacent minimum angle does not drop (JIGSAW / MESH2D hill-climbing). Lawson flips follow.
+#pragma once
+#include <array>
+#include <vector>
+
+#include "cleanup/editable_mesh.hpp"
+#include "geometry/geometry.hpp"
+
+namespace pdmesh::cleanup {
+
+class Smoother {
+ public:
+  // step_cap: the largest step as a fraction of the smallest inradius of the adjacent triangles.
+  Smoother(EditableMesh& mesh, const Geometry& geometry, double step_cap);
+
+  // One hill-climbing move of vertex a (Fixed and removed vertices never move). Returns true when
+  // it moved; the edges around it are then made constrained Delaunay again by Lawson flips.
+  bool relax(int a);
+  // Gradient move: a step that raises the smallest angle of a's worst adjacent triangle, for
+  // vertices whose ODT point does not help (same guards as relax).
+  bool climb(int a);
+
+ private:
+  bool try_move(int a, Vec2 displacement, double old_min, double old_sum);
+  Vec2 on_curve(int a, Vec2 candidate, double& new_arc) const;
+
+  EditableMesh& mesh_;
+  const Geometry& geometry_;
+  double step_cap_;
+  std::vector<int> fan_;
+  std::vector<std::array<int, 2>> edges_;
+};
+
+}  // namespace pdmesh::cleanup

@@ -1,0 +1,201 @@
+// Trial-and-measure topology operations on one bad triangle (see topology_ops.hpp).
+#include "cleanup/topology_ops.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <utility>
+
+#include "cleanup/measures.hpp"
+#include "core/predicates.hpp"
+#include "sim/boundary_handling.hpp"
+
+namespace pdmesh::cleanup {
+namespace {
+
+constexpr double kNone = -std::numeric_limits<double>::infinity();
+// A walk towards an insertion point longer than this is abandoned (the point is far away).
+constexpr int kMaxWalk = 64;
+
+}  // namespace
+
+TopologyOps::TopologyOps(EditableMesh& mesh, Smoother& smoother, const Geometry& geometry,
+                         std::function<double(Vec2)> h, TopologyOptions options)
+    : mesh_(mesh), smoother_(smoother), geometry_(geometry), h_(std::move(h)), options_(options) {}
+
+// Visibility walk from triangle `start` towards `at`; -1 when the walk would leave the domain
+// (the point is outside it, or hidden behind a boundary edge), when it is on an edge, or too far.
+int TopologyOps::locate(int start, Vec2 at) const {
+  const auto& m = mesh_;
+  int t = start;
+  for (int step = 0; step < kMaxWalk; ++step) {
+    int across = -2;
+    for (int i = 0; i < 3 && across == -2; ++i) {
+      const double side = orient2d(m.p[m.v[t][next3(i)]], m.p[m.v[t][prev3(i)]], at);
+      if (side < 0.0) across = m.n[t][i];
+      else if (side == 0.0) across = -1;  // on an edge: not a strictly interior point
+    }
+    if (across == -2) return t;
+    if (across < 0) return -1;
+    t = across;
+  }
+  return -1;
+}
+
+bool TopologyOps::edges_fit(int a, bool inserted) {
+  const auto& m = mesh_;
+  // Where the boundary is segmented more finely than the field asks (fillets, small holes), the
+  // triangle's own shortest edge is the size to respect: nodes at that spacing are what its fan of
+  // thin boundary triangles lacks.
+  const double h = inserted ? std::min(h_(m.p[a]), shortest_) : h_(m.p[a]);
+  m.ring(a, ring2_);
+  for (int x : ring2_) {
+    const double l = dist(m.p[a], m.p[x]);
+    if (inserted ? l < options_.min_edge * h : l > options_.max_edge * h) return false;
+  }
+  return true;
+}
+
+void TopologyOps::relax_around(int a) {
+  for (int round = 0; round < options_.relax_rounds; ++round) {
+    smoother_.relax(a);
+    mesh_.ring(a, ring_);
+    for (int x : ring_) smoother_.relax(x);
+  }
+}
+
+// After an edit around node a: Lawson flips of its link, the relaxation, and what edges_fit checks.
+void TopologyOps::settle(int a, bool inserted) {
+  edges_.clear();
+  mesh_.push_link_edges(a, edges_);
+  mesh_.legalize(edges_);
+  relax_around(a);
+  fit_vertex_ = a;
+  fit_inserted_ = inserted;
+}
+
+bool TopologyOps::insert_at(int t, Vec2 at) {
+  const int u = locate(t, at);
+  if (u < 0) return false;
+  settle(mesh_.insert_in_triangle(u, at), true);
+  return true;
+}
+
+bool TopologyOps::collapse_edge(int a, int b) {
+  auto& m = mesh_;
+  const bool both_free = m.kind[b] == NodeKind::Interior;
+  const Vec2 to = both_free ? 0.5 * (m.p[a] + m.p[b]) : m.p[b];
+  if (!m.collapse(a, b, to, m.arc[b])) return false;
+  if (!m.star_valid(b)) return false;
+  settle(b, false);
+  return true;
+}
+
+bool TopologyOps::split(int t, int i) {
+  auto& m = mesh_;
+  const Vec2 at = 0.5 * (m.p[m.v[t][next3(i)]] + m.p[m.v[t][prev3(i)]]);
+  if (!m.split_edge_valid(t, i, at)) return false;
+  settle(m.split_edge(t, i, at), true);
+  return true;
+}
+
+bool TopologyOps::split_boundary(int t, int i) {
+  auto& m = mesh_;
+  int c = -1;
+  double arc_a = 0.0, arc_b = 0.0;
+  if (!m.boundary_edge_arcs(t, i, c, arc_a, arc_b)) return false;
+  const double mid = 0.5 * (arc_a + arc_b);
+  if (!(mid > std::min(arc_a, arc_b) && mid < std::max(arc_a, arc_b))) return false;
+  const Vec2 at = closest_on_curve_range(geometry_.curves[c], {}, mid, mid).p;
+  const Vec2 x = m.p[m.v[t][i]], a = m.p[m.v[t][next3(i)]], b = m.p[m.v[t][prev3(i)]];
+  if (!(orient2d(x, a, at) > 0.0 && orient2d(x, at, b) > 0.0)) return false;
+  settle(m.split_boundary_edge(t, i, at, mid, c), true);
+  return true;
+}
+
+double TopologyOps::score() const {
+  const double before = mesh_.touched_min_before(), after = mesh_.touched_min_after();
+  const int below_before = mesh_.touched_below_before(options_.target);
+  const int below_after = mesh_.touched_below_after(options_.target);
+  // Kept when the worst angle rises by the gain without more triangles below the target, or when
+  // fewer triangles are below the target without the worst angle dropping (a plateau move: the
+  // boundary-only triangles of a gap need several insertions before the worst one can rise).
+  const bool rises = after >= before + options_.gain && below_after <= below_before;
+  const bool fewer_bad = after >= before && below_after < below_before;
+  if (!rises && !fewer_bad) return kNone;
+  // The mesh's average aspect ratio A may not rise: sum over the region of (AR - A) must not grow.
+  int n_before = 0, n_after = 0;
+  const double s_before = mesh_.touched_aspect_before(n_before), s_after = mesh_.touched_aspect_after(n_after);
+  const double average = aspect_sum_ / aspect_count_;
+  if (s_after - average * n_after > s_before - average * n_before) return kNone;
+  return after;
+}
+
+RepairKind TopologyOps::repair(int t) {
+  auto& m = mesh_;
+  if (!m.alive(t)) return RepairKind::None;
+  const auto tv = m.v[t];
+  const Vec2 a = m.p[tv[0]], b = m.p[tv[1]], c = m.p[tv[2]];
+  shortest_ = std::min({dist(a, b), dist(b, c), dist(c, a)});
+  struct Trial {
+    RepairKind kind;
+    std::function<bool()> apply;
+  };
+  std::vector<Trial> trials;
+  const Vec2 cc = circumcentre(a, b, c);
+  trials.push_back({RepairKind::Insert, [this, t, cc] { return insert_at(t, cc); }});
+  const Vec2 centroid = (1.0 / 3.0) * (a + b + c);
+  trials.push_back({RepairKind::Insert, [this, t, centroid] { return insert_at(t, centroid); }});
+  for (int i = 0; i < 3; ++i) {
+    const int x = tv[next3(i)], y = tv[prev3(i)];
+    const bool x_free = m.kind[x] == NodeKind::Interior, y_free = m.kind[y] == NodeKind::Interior;
+    if (x_free) trials.push_back({RepairKind::Collapse, [this, x, y] { return collapse_edge(x, y); }});
+    else if (y_free) trials.push_back({RepairKind::Collapse, [this, x, y] { return collapse_edge(y, x); }});
+    if (m.n[t][i] >= 0) trials.push_back({RepairKind::Split, [this, t, i] { return split(t, i); }});
+    else if (options_.split_boundary)
+      trials.push_back({RepairKind::Split, [this, t, i] { return split_boundary(t, i); }});
+  }
+  // A crowded interior vertex of the triangle: split each of its other edges, which gives a
+  // neighbour the node it is missing (JIGSAW splits edges of valence-8 nodes). Valence 7 counts as
+  // crowded only for a triangle below the target (these trials are most of the work).
+  const std::size_t crowded = m.quality(t) < options_.target ? 7 : 8;
+  for (int k = 0; k < 3; ++k) {
+    const int x = tv[k];
+    if (m.kind[x] != NodeKind::Interior) continue;
+    m.ring(x, ring2_);
+    if (ring2_.size() < crowded) continue;
+    for (int y : ring2_) {
+      if (y == tv[next3(k)] || y == tv[prev3(k)]) continue;
+      trials.push_back({RepairKind::Split, [this, x, y] {
+                          const auto [u, i] = mesh_.find_edge(x, y);
+                          return u >= 0 && split(u, i);
+                        }});
+    }
+  }
+  double best = kNone;
+  int chosen = -1;
+  for (int k = 0; k < static_cast<int>(trials.size()); ++k) {
+    m.begin();
+    ++trials_;
+    double s = trials[k].apply() ? score() : kNone;
+    // The size guard queries the spacing field, so only for a trial that would be chosen.
+    if (s > best && !edges_fit(fit_vertex_, fit_inserted_)) s = kNone;
+    m.rollback();
+    if (s > best) {
+      best = s;
+      chosen = k;
+    }
+    if (best >= options_.enough) break;  // the region is out of the work range: good enough
+  }
+  if (chosen < 0) return RepairKind::None;
+  m.begin();
+  trials[chosen].apply();
+  int n_before = 0, n_after = 0;
+  const double s_before = m.touched_aspect_before(n_before), s_after = m.touched_aspect_after(n_after);
+  aspect_sum_ += s_after - s_before;
+  aspect_count_ += n_after - n_before;
+  m.commit();
+  return trials[chosen].kind;
+}
+
+}  // namespace pdmesh::cleanup
