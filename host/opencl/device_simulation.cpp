@@ -316,7 +316,7 @@ std::optional<PopulationCounts> DeviceRun<Real>::population_event(int iteration)
     n_ = nodes_.size();
     const auto t1 = Clock::now();
     upload_nodes(&budgets, &leaves);
-    check(ctx_.queue().finish(), "population re-upload");
+    finish(ctx_.queue(), "population re-upload");
     stats_.population_transfer_seconds += since(t1);
     skin_use_ = HUGE_VAL;  // the lists are rebuilt before the next step
   }
