@@ -5,14 +5,17 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <string>
 #include <vector>
+#include <vector>
 
 #include "io/mesh_formats.hpp"
+#include "io/text_file.hpp"
 #include "nodes/node_file.hpp"
 #include "run_pdmesh.hpp"
 
@@ -165,11 +168,11 @@ TEST_CASE("pdmesh mesh writes every stage's files: initial, history, final, mesh
   CHECK(contains(r.output, "mesh check (cleaned mesh): passed"));  // ... and --check checks the result too
   CHECK(contains(r.output, "Minimum Corner Jacobian"));  // the quality table
   CHECK(contains(r.output, "Cleanup: min angle"));
+  // The default formats (msh, vtu, png): no SVG pictures (svg is opt-in).
   const std::vector<std::string> expected = {
-      "initial.nodes", "initial.png", "initial.svg", "initial_corner.png", "initial_view2.png",
-      "history.csv",   "history.png", "final.nodes", "final.png",          "final.svg",
-      "final_corner.png", "final_view2.png", "mesh.msh", "mesh.vtu",     "quality.json", "mesh.nodes",
-      "mesh.png",      "mesh.svg",        "mesh_corner.png", "mesh_view2.png"};
+      "initial.nodes", "initial.png", "initial_corner.png", "initial_view2.png", "history.csv", "history.png",
+      "final.nodes",   "final.png",   "final_corner.png",   "final_view2.png",   "mesh.msh",    "mesh.vtu",
+      "quality.json",  "mesh.nodes",  "mesh.png",           "mesh_corner.png",   "mesh_view2.png"};
   for (const std::string& f : expected) {
     INFO(f);
     CHECK(fs::is_regular_file(out / f));
@@ -258,6 +261,37 @@ TEST_CASE("pdmesh quality --geometry judges a mesh against the field pdmesh mesh
                             "' --json -");
   REQUIRE(thesis.status == 0);
   CHECK(conformance(thesis.output) != from_mesh);
+  fs::remove_all(dir);
+}
+
+TEST_CASE("pdmesh mesh --formats decides the pictures: msh alone draws none, svg adds the SVG pictures", "[cli]") {
+  const fs::path dir = fresh_dir("formats");
+  write_rectangle(dir / "rect.crv");
+  const auto files_in = [](const fs::path& d) {
+    std::vector<std::string> names;
+    for (const auto& e : fs::directory_iterator(d)) names.push_back(e.path().filename().string());
+    std::sort(names.begin(), names.end());
+    return names;
+  };
+  const Result batch = run("mesh '" + (dir / "rect.crv").string() + "' --out '" + (dir / "batch").string() +
+                           "' --view corner=0,0,0.5,0.5 --iterations 10 --formats msh --timings '" +
+                           (dir / "timings.json").string() + "'");
+  INFO(batch.output);
+  REQUIRE(batch.status == 0);
+  CHECK(files_in(dir / "batch") == std::vector<std::string>{"final.nodes", "history.csv", "initial.nodes", "mesh.msh",
+                                                            "mesh.nodes", "quality.json"});
+  // --timings: every phase of the run, and no picture among them.
+  const std::string timings = pdmesh::read_text_file(dir / "timings.json");
+  for (const char* phase : {"\"read\"", "\"spacing\"", "\"estimate\"", "\"fill\"", "\"simulation\"",
+                            "\"triangulation\"", "\"cleanup\"", "\"quality\"", "\"mesh msh\""})
+    CHECK(contains(timings, phase));
+  CHECK_FALSE(contains(timings, "\"background\": true"));
+  const Result svg = run("mesh '" + (dir / "rect.crv").string() + "' --out '" + (dir / "svg").string() +
+                         "' --iterations 10 --formats svg");
+  INFO(svg.output);
+  REQUIRE(svg.status == 0);
+  CHECK(files_in(dir / "svg") == std::vector<std::string>{"final.nodes", "final.svg", "history.csv", "initial.nodes",
+                                                          "initial.svg", "mesh.nodes", "mesh.svg", "quality.json"});
   fs::remove_all(dir);
 }
 

@@ -216,6 +216,7 @@ bool is_string_key(const std::string& key) {
          key == "spacing.field" || key == "spacing.expression" || key == "spacing.file" || key == "spacing.array" ||
          key == "init.method" ||
          key == "simulation.device" || key == "simulation.precision" || key == "simulation.r0_rule" ||
+         key == "simulation.stop" ||
          key == "output.color_by";
 }
 
@@ -434,6 +435,9 @@ void read_simulation_section(const Reader& r, const toml::table& root, CaseConfi
     if (v < 0) r.fail("simulation.iterations", n, fmt::format("simulation.iterations must be >= 0, got {}", v));
     s.iterations = v;
   }
+  if (const toml::node* n = find(root, "simulation", "stop")) {
+    s.stop = choose<StopRule>(r, "simulation.stop", *n, {{"converged", StopRule::Converged}, {"iterations", StopRule::Iterations}});
+  }
   if (const toml::node* n = find(root, "simulation", "dt_initial")) {
     if (n->is_table()) {
       const toml::table& per = *n->as_table();
@@ -584,6 +588,8 @@ void read_output_section(const Reader& r, const toml::table& root, CaseConfig& c
                fmt::format("output.formats: unknown format '{}'; valid formats are {}", f, fmt::join(kFormats, ", ")));
       }
     }
+    if (c.output.wants("msh") && c.output.wants("msh22"))
+      r.fail("output.formats", n, "output.formats: 'msh' and 'msh22' both write mesh.msh; ask for one of them");
   }
   if (const toml::node* n = find(root, "output", "color_by")) {
     c.output.color_by = choose<std::string>(r, "output.color_by", *n,
@@ -654,7 +660,7 @@ const std::vector<std::string>& case_file_keys() {
       "geometry.curves", "spacing.field", "spacing.expression", "spacing.file", "spacing.array", "spacing.scale",
       "spacing.gradation", "spacing.rows_in_gap", "spacing.curvature_angle", "boundary.nodes",
       "init.method", "init.seed", "init.total",
-      "simulation.iterations", "simulation.dt_initial", "simulation.dt_initial.structured",
+      "simulation.iterations", "simulation.stop", "simulation.dt_initial", "simulation.dt_initial.structured",
       "simulation.dt_initial.random", "simulation.cutoff", "simulation.lj_a", "simulation.device",
       "simulation.precision", "simulation.r0_rule", "simulation.stability_factor",
       "population.enabled", "population.every", "population.start", "population.stop", "population.insert",

@@ -22,6 +22,9 @@ enum class SpacingKind { Boundary, Expression, Mesh };
 enum class Precision { Double, Float, Auto };
 // geometry.curves: the curve the points describe (docs/geometry-input.md, "Smooth curves").
 enum class CurveKind { Polyline, Smooth };
+// When the simulation ends: once the nodes have converged (sim/convergence.hpp) or after exactly
+// simulation.iterations iterations (the thesis).
+enum class StopRule { Converged, Iterations };
 
 // Which defaults the keys a case file leaves out take (top-level key `preset`).
 //   Best:   the settings that give the best meshes; what a geometry given alone runs with.
@@ -91,7 +94,8 @@ struct CaseConfig {
   } init;
 
   struct Simulation {
-    std::int64_t iterations = 2000;
+    std::int64_t iterations = 2000;  // with stop = Converged the most the run may take
+    StopRule stop = StopRule::Converged;
     // Initial global maximum time step per init method; empty = the automatic rule.
     std::optional<double> dt_structured;
     std::optional<double> dt_random;
@@ -139,6 +143,7 @@ struct CaseConfig {
   bool check = false;  // run the mesh invariant checker and fail when it finds a problem
   std::uint64_t max_nodes = 20'000'000;
   std::optional<std::filesystem::path> resume;  // --resume: continue from this checkpoint (file or directory)
+  std::optional<std::filesystem::path> timings_file;  // --timings: the phase times as JSON
   std::int64_t stop_after = 0;  // --stop-after (testing aid): act as if interrupted after this iteration; 0 = off
   // false (the Python API): the stages compute only; nothing is written into out_dir.
   bool write_outputs = true;

@@ -16,6 +16,7 @@
 #include "app/case_file.hpp"
 #include "app/exit_codes.hpp"
 #include "app/bench_command.hpp"
+#include "app/whole_run_bench.hpp"
 #include "app/devices_command.hpp"
 #include "app/mesh_command.hpp"
 #include "app/quality_command.hpp"
@@ -36,7 +37,7 @@ struct MeshArguments {
   std::string out;
   std::vector<std::string> sets;
   std::optional<std::string> iterations, dt, cutoff, method, seed, total, device, precision, formats, r0_rule,
-      color_by, stability;
+      color_by, stability, stop, timings;
   std::vector<std::string> views;
   bool tree = false;
   bool plot_spacing = false;
@@ -145,6 +146,7 @@ std::vector<CaseOverride> overrides_from(const MeshArguments& a) {
     if (v) out.push_back({key, *v, fmt::format("{} {}", option, *v)});
   };
   direct(a.iterations, "--iterations", "simulation.iterations");
+  direct(a.stop, "--stop", "simulation.stop");
   direct(a.dt, "--dt", "simulation.dt_initial");
   direct(a.cutoff, "--cutoff", "simulation.cutoff");
   direct(a.method, "--method", "init.method");
@@ -215,6 +217,7 @@ CaseConfig config_from(const MeshArguments& a) {
   if (a.resume) config.resume = fs::path(*a.resume);
   if (a.stop_after < 0) throw InputError(fmt::format("--stop-after {}: expected an iteration number >= 1", a.stop_after));
   config.stop_after = a.stop_after;
+  if (a.timings) config.timings_file = fs::path(*a.timings);
   return config;
 }
 
@@ -230,6 +233,10 @@ void add_mesh_options(CLI::App& mesh, MeshArguments& a) {
       ->type_name("KEY=VALUE")
       ->allow_extra_args(false);
   mesh.add_option("--iterations", a.iterations, "simulation.iterations: number of time steps (>= 0)")->type_name("N");
+  mesh.add_option("--stop", a.stop,
+                  "simulation.stop: converged (stop once the nodes have settled, at most --iterations) | iterations "
+                  "(exactly --iterations)")
+      ->type_name("RULE");
   mesh.add_option("--dt", a.dt, "simulation.dt_initial: initial global maximum time step (> 0)")->type_name("DT");
   mesh.add_option("--cutoff", a.cutoff, "simulation.cutoff: cut-off distance factor times q_i (> 0)")->type_name("F");
   mesh.add_option("--method", a.method, "init.method: structured | random | hexagonal")->type_name("METHOD");
@@ -249,7 +256,9 @@ void add_mesh_options(CLI::App& mesh, MeshArguments& a) {
                   "output.color_by: fill mesh.png by a quality metric: none | min_angle | max_angle | aspect_ratio | "
                   "skewness | condition_number | min_jacobian")
       ->type_name("METRIC");
-  mesh.add_option("--formats", a.formats, "output.formats, comma-separated: msh,msh22,vtu,su2,triangle,png,svg")
+  mesh.add_option("--formats", a.formats,
+                  "output.formats, comma-separated: msh,msh22,vtu,su2,triangle,png,svg (no png and no svg: no "
+                  "pictures at all)")
       ->type_name("LIST");
   mesh.add_option("--view", a.views,
                   "Extra zoomed picture initial_NAME.png of the window x0,y0,x1,y1 (NAME defaults to viewK). "
@@ -270,6 +279,8 @@ void add_mesh_options(CLI::App& mesh, MeshArguments& a) {
                   "Continue an interrupted run from its checkpoint: DIR/checkpoint.pdmesh (or that file); the case "
                   "must be the same (--iterations may differ)")
       ->type_name("DIR");
+  mesh.add_option("--timings", a.timings, "Write the wall and CPU time of every phase of the run as JSON to FILE")
+      ->type_name("FILE");
   // Testing aid (docs/cli.md): behave as if interrupted after iteration N. Hidden from --help.
   mesh.add_option("--stop-after", a.stop_after, "")->group("")->type_name("N");
   mesh.footer("Options other than --out, --quiet and --max-nodes override keys of the case file; every key can be\n"
@@ -329,7 +340,23 @@ Cli::Cli() : app_(std::make_unique<CLI::App>("pdmesh: physics-based point placem
   bench->add_flag("--skip-host-large", bench_->skip_host_large, "Do not run the host reference on graded_1m");
   bench->add_option("--force-loop", bench_->force_loop, "Force loop of the device runs: auto | vector | scalar")->type_name("L");
   bench->add_option("--out", bench_->out, "Also write the table (Markdown) to this file")->type_name("FILE");
-  commands_.emplace_back(bench, [this] { return run_bench(*bench_); });
+  bench->add_flag("--whole-run", bench_->whole_run,
+                  "Time the mesh command end to end instead: every phase, --repeat runs per case and backend, each "
+                  "a separate process")
+      ->group("Whole runs");
+  bench->add_option("--repeat", bench_->repeat, "Runs per case and backend (--whole-run)")->type_name("N")->group("Whole runs");
+  bench->add_option("--backends", bench_->backends, "--device of the runs, e.g. host auto (--whole-run)")
+      ->type_name("DEV...")
+      ->group("Whole runs");
+  bench->add_option("--set", bench_->sets, "Case key passed to every run as --set (--whole-run)")
+      ->type_name("KEY=VALUE")
+      ->allow_extra_args(false)
+      ->group("Whole runs");
+  bench->add_option("--work-dir", bench_->work_dir, "Where the runs write (and annulus_N cases are generated)")
+      ->type_name("DIR")
+      ->group("Whole runs");
+  bench->add_flag("--no-pictures{false}", bench_->keep_pictures, "Runs write no pictures (--formats msh)")->group("Whole runs");
+  commands_.emplace_back(bench, [this] { return bench_->whole_run ? run_whole_run_bench(*bench_) : run_bench(*bench_); });
 
   CLI::App* devices = app_->add_subcommand("devices", "List the OpenCL platforms and devices (--device opencl:P:D)");
   devices->add_flag("--check", devices_check_, "Also build and run a small kernel on each device");

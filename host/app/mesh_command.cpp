@@ -220,31 +220,46 @@ void prepare_output_directory(const CaseConfig& config) {
 
 namespace {
 
-// STAGE.nodes, STAGE.png, STAGE.svg and STAGE_<view>.png for one node distribution.
+// STAGE.nodes, and (as output.formats asks) STAGE.png and STAGE_<view>.png, STAGE.svg, for one node
+// distribution. The pictures go to `run`'s background thread: `nodes` (and the tree quads) must stay
+// unchanged until run.wait_pictures().
 void write_node_outputs(const CaseConfig& config, const MeshInputs& inputs, const NodeSet& nodes,
-                        const std::string& stage, const std::string& title, const std::vector<Box>* tree_quads) {
+                        const std::string& stage, const std::string& title, const std::vector<Box>* tree_quads,
+                        RunPhases& run) {
   const fs::path& dir = config.out_dir;
-  write_node_file(dir / (stage + ".nodes"), nodes, inputs.curve_names());
+  {
+    const auto timer = run.phase(stage + ".nodes");
+    write_node_file(dir / (stage + ".nodes"), nodes, inputs.curve_names());
+  }
   NodePictureOptions picture;
   picture.title = title;
   picture.tree_quads = tree_quads;
-  const Geometry& geometry = inputs.node_geometry();
-  write_node_picture(dir / (stage + ".png"), geometry, nodes, picture);
-  const bool svg = nodes.size() <= kSvgNodeLimit;
-  if (svg) {
-    write_node_picture(dir / (stage + ".svg"), geometry, nodes, picture);
-  } else {
-    progress(config, "{}.svg skipped: {} nodes is more than {} (the PNG pictures are written)", stage, nodes.size(),
-             kSvgNodeLimit);
+  const Geometry* geometry = &inputs.node_geometry();
+  const NodeSet* drawn = &nodes;
+  std::vector<std::string> names;
+  const auto draw = [&](const std::string& file, const NodePictureOptions& options) {
+    run.picture(file, [geometry, drawn, options, path = dir / file] { write_node_picture(path, *geometry, *drawn, options); });
+    names.push_back(file);
+  };
+  if (config.output.wants("png")) {
+    draw(stage + ".png", picture);
+    for (const ViewWindow& view : config.output.views) {
+      NodePictureOptions zoomed = picture;
+      zoomed.title += " - " + view.name;
+      zoomed.window = view.window;
+      draw(fmt::format("{}_{}.png", stage, view.name), zoomed);
+    }
   }
-  for (const ViewWindow& view : config.output.views) {
-    NodePictureOptions zoomed = picture;
-    zoomed.title += " - " + view.name;
-    zoomed.window = view.window;
-    write_node_picture(dir / fmt::format("{}_{}.png", stage, view.name), geometry, nodes, zoomed);
+  if (config.output.wants("svg")) {
+    if (nodes.size() <= kSvgNodeLimit) {
+      draw(stage + ".svg", picture);
+    } else {
+      progress(config, "{}.svg skipped: {} nodes is more than {} (the PNG pictures are written)", stage, nodes.size(),
+               kSvgNodeLimit);
+    }
   }
-  progress(config, "wrote {}/{}.nodes, {}.png{}{}", dir.string(), stage, stage, svg ? fmt::format(", {}.svg", stage) : "",
-           config.output.views.empty() ? "" : fmt::format(" and {} view(s)", config.output.views.size()));
+  progress(config, "wrote {}/{}.nodes{}", dir.string(), stage,
+           names.empty() ? "" : fmt::format("; drawing {}", fmt::join(names, ", ")));
 }
 
 }  // namespace
@@ -264,20 +279,18 @@ void write_spacing_picture(const CaseConfig& config, const MeshInputs& inputs) {
            config.output.views.empty() ? "" : fmt::format(" and {} view(s)", config.output.views.size()));
 }
 
-void write_initial_outputs(const CaseConfig& config, const MeshInputs& inputs, const InitialDistribution& initial) {
+void write_initial_outputs(const CaseConfig& config, const MeshInputs& inputs, const InitialDistribution& initial,
+                           RunPhases* run) {
+  RunPhases local(false);
   write_node_outputs(config, inputs, initial.nodes, "initial",
                      fmt::format("{} - initial distribution ({})", config.name, to_string(config.init.method)),
-                     config.output.tree_overlay ? &initial.tree_quads : nullptr);
+                     config.output.tree_overlay ? &initial.tree_quads : nullptr, run ? *run : local);
 }
 
-SimResult simulate(const CaseConfig& config, const MeshInputs& inputs, NodeSet& nodes, const SimState* resume,
-                   const SimulateHooks* hooks) {
-  // auto: the best OpenCL device whose program builds, else the host reference. An explicit opencl
-  // spec that cannot be met throws InputError listing the devices (exit 2).
-  const ChosenBackend backend = choose_backend(config.simulation.device, config.simulation.precision,
-                                               [&config](const std::string& line) { progress(config, "{}", line); });
+SimOptions simulation_options(const CaseConfig& config) {
   SimOptions options;
   options.iterations = static_cast<int>(config.simulation.iterations);
+  options.convergence.enabled = config.simulation.stop == StopRule::Converged;
   options.dt_initial = config.simulation.dt_for(config.init.method);
   options.cutoff = config.simulation.cutoff;
   options.lj_a = config.simulation.lj_a;
@@ -285,6 +298,19 @@ SimResult simulate(const CaseConfig& config, const MeshInputs& inputs, NodeSet& 
   options.stability_factor = config.simulation.stability_factor;
   options.population = config.population;
   options.quiet = config.quiet;
+  return options;
+}
+
+SimResult simulate(const CaseConfig& config, const MeshInputs& inputs, NodeSet& nodes, const SimState* resume,
+                   const SimulateHooks* hooks, RunPhases* run) {
+  RunPhases local(false);
+  RunPhases& phases = run ? *run : local;
+  auto timer = phases.phase("simulation");
+  // auto: the best OpenCL device whose program builds, else the host reference. An explicit opencl
+  // spec that cannot be met throws InputError listing the devices (exit 2).
+  const ChosenBackend backend = choose_backend(config.simulation.device, config.simulation.precision,
+                                               [&config](const std::string& line) { progress(config, "{}", line); });
+  SimOptions options = simulation_options(config);
   options.stop = hooks && hooks->stop ? hooks->stop : &InterruptGuard::flag();
   options.resume = resume;
   // The pipeline's quadtree: the final field itself, or (thesis) eq. 3.6's lookup table, built here.
@@ -297,8 +323,9 @@ SimResult simulate(const CaseConfig& config, const MeshInputs& inputs, NodeSet& 
     progress(config, "spacing field: eq. 3.6 sampled for the simulation in {:.3f} s ({} leaves)",
              std::chrono::duration<double>(std::chrono::steady_clock::now() - field_start).count(),
              options.background->stats().leaves);
-  progress(config, "simulation: {} iterations on {}, cutoff {}, a = {}, r0 rule {}, stability factor {}",
-           options.iterations, backend.simulator->describe(), options.cutoff, options.lj_a,
+  progress(config, "simulation: {}{} iterations on {}, cutoff {}, a = {}, r0 rule {}, stability factor {}",
+           options.convergence.enabled ? "until converged, at most " : "", options.iterations,
+           backend.simulator->describe(), options.cutoff, options.lj_a,
            options.r0_any_direction ? "any_direction" : "force_direction", options.stability_factor);
   if (resume) progress(config, "simulation: resuming after iteration {}", resume->iterations_done);
   const fs::path checkpoint_file = checkpoint_path(config.out_dir);
@@ -339,6 +366,9 @@ SimResult simulate(const CaseConfig& config, const MeshInputs& inputs, NodeSet& 
     std::error_code ec;
     fs::remove(checkpoint_file, ec);
   }
+  if (result.converged)
+    progress(config, "simulation: converged after {} iterations (of at most {})", result.state.iterations_done,
+             options.iterations);
   const SimStats& st = result.stats;
   const int iterations_run = result.state.iterations_done - (resume ? resume->iterations_done : 0);
   const double per_iteration = iterations_run > 0 ? st.seconds / iterations_run : 0.0;
@@ -352,13 +382,25 @@ SimResult simulate(const CaseConfig& config, const MeshInputs& inputs, NodeSet& 
   if (options.population.enabled)
     progress(config, "population control: {} events ({:.3f} s), {} nodes inserted, {} removed; {} nodes now",
              st.population_events, st.population_seconds, st.inserted, st.removed, nodes.size());
+  timer.stop();
+  phases.note("iterations", result.state.iterations_done);
+  phases.note("converged", result.converged ? 1 : 0);
+  phases.note("simulation_seconds", st.seconds);
   const fs::path& dir = config.out_dir;
-  write_history_csv(dir / "history.csv", result.history);
-  write_history_plot(dir / "history.png", result.history, fmt::format("{} ({})", config.name, to_string(config.init.method)));
+  {
+    const auto csv_timer = phases.phase("history.csv");
+    write_history_csv(dir / "history.csv", result.history);
+  }
+  if (config.output.wants("png")) {
+    phases.picture("history.png", [path = dir / "history.png", rows = result.history,
+                                   title = fmt::format("{} ({})", config.name, to_string(config.init.method))] {
+      write_history_plot(path, rows, title);
+    });
+  }
   write_node_outputs(config, inputs, nodes, "final",
                      fmt::format("{} - final distribution ({}, {} iterations)", config.name,
                                  to_string(config.init.method), result.state.iterations_done),
-                     nullptr);
+                     nullptr, phases);
   return result;
 }
 
@@ -388,18 +430,26 @@ void angle_figures(const Mesh& mesh, double target, double& min_angle, double& m
 
 }  // namespace
 
-Mesh mesh_and_measure(const CaseConfig& config, const MeshInputs& inputs, const NodeSet& nodes) {
-  const auto start = std::chrono::steady_clock::now();
+Mesh mesh_and_measure(const CaseConfig& config, const MeshInputs& inputs, const NodeSet& nodes, RunPhases* run) {
+  RunPhases local(false);
+  RunPhases& phases = run ? *run : local;
+  auto timer = phases.phase("triangulation");
   Mesh mesh = triangulate(nodes, inputs.curve_names());
-  progress(config, "triangulation: {:.3f} s ({} triangles)",
-           std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), mesh.triangles.size());
-  if (config.check) check_or_throw(config, inputs, mesh, nodes, "triangulation");
+  timer.stop();
+  progress(config, "triangulation: {} triangles", mesh.triangles.size());
+  phases.note("nodes", static_cast<double>(nodes.size()));
+  phases.note("triangles", static_cast<double>(mesh.triangles.size()));
+  if (config.check) {
+    const auto check_timer = phases.phase("check");
+    check_or_throw(config, inputs, mesh, nodes, "triangulation");
+  }
   // The final cleanup (docs/cleanup.md): the mesh files and pictures show the cleaned mesh; final.nodes
   // stays the simulation's result.
   CleanupEffect effect;
   NodeSet cleaned_nodes;
   const NodeSet* mesh_nodes = &nodes;
   if (config.cleanup.enabled) {
+    const auto cleanup_timer = phases.phase("cleanup");
     CleanupOptions options;
     options.min_angle = config.cleanup.min_angle;
     options.iterations = static_cast<int>(config.cleanup.iterations);
@@ -427,24 +477,22 @@ Mesh mesh_and_measure(const CaseConfig& config, const MeshInputs& inputs, const 
   const SpacingField& spacing = inputs.field();
   // The field at every node goes into the mesh files (point data "q"): a run's field can be read back
   // with spacing.field = "mesh", or edited (e.g. scaled by a solution's error indicator) first.
-  spacing.at_many(mesh.points, mesh.spacing);
+  {
+    const auto q_timer = phases.phase("q at the nodes");
+    spacing.at_many(mesh.points, mesh.spacing);
+  }
   if (!config.write_outputs) return mesh;  // the Python API measures on demand (Mesh.quality())
-  QualitySummary summary = summarize_quality(mesh, [&spacing](Vec2 p) { return spacing.at(p); });
+  auto quality_timer = phases.phase("quality");
+  const std::vector<TriangleQuality> per_triangle = triangle_qualities(mesh);
+  QualitySummary summary = summarize_quality(per_triangle);
+  summary.points = mesh.points.size();
   summary.has_cleanup = config.cleanup.enabled;
   summary.cleanup = effect;
-  if (!config.quiet) fmt::print("{}", format_quality_table(summary, config.name));
-  const fs::path& dir = config.out_dir;
-  write_quality_json(summary, dir, config.name);
-  std::vector<std::string> mesh_formats;
-  for (const std::string& f : config.output.formats)
-    if (is_mesh_format(f)) mesh_formats.push_back(f);
-  const auto written = write_mesh(mesh, dir, "mesh", mesh_formats);
-  // The nodes of the mesh with their q, kinds and curve chains (final.nodes after the cleanup; the
-  // same nodes without it), for tools that need the mesh's boundary chains, like tools/compare.
-  write_node_file(dir / "mesh.nodes", *mesh_nodes, inputs.curve_names());
-  // Pictures: png is always drawn when asked for; svg likewise.
-  const std::vector<TriangleQuality> per_triangle = triangle_qualities(mesh);
+  quality_timer.stop();
+  // The pictures are drawn on the background thread while the quality is measured and the files are
+  // written; the mesh and the values stay alive until the wait below (also when something throws).
   std::vector<double> values;
+  const PictureGuard guard(phases);
   MeshPictureOptions picture;
   picture.title = fmt::format("{} - mesh ({} triangles)", config.name, mesh.triangles.size());
   if (config.output.color_by != "none") {
@@ -452,28 +500,53 @@ Mesh mesh_and_measure(const CaseConfig& config, const MeshInputs& inputs, const 
     picture.triangle_values = &values;
     picture.value_label = config.output.color_by;
   }
-  std::size_t pictures = 0;
-  // Pictures come as PNG and SVG, like the node pictures; either format name asks for both.
-  const bool pictures_wanted = config.output.wants("png") || config.output.wants("svg");
-  for (const char* ext : {"png", "svg"}) {
-    if (!pictures_wanted) continue;
-    if (std::string(ext) == "svg" && mesh.triangles.size() > 2 * kSvgNodeLimit) continue;
-    write_mesh_picture(dir / fmt::format("mesh.{}", ext), mesh, picture);
-    ++pictures;
-  }
+  const fs::path& dir = config.out_dir;
+  std::vector<std::string> pictures;
+  const auto draw = [&](const std::string& file, const MeshPictureOptions& options) {
+    phases.picture(file, [&mesh, options, path = dir / file] { write_mesh_picture(path, mesh, options); });
+    pictures.push_back(file);
+  };
   if (config.output.wants("png")) {
+    draw("mesh.png", picture);
     for (const ViewWindow& view : config.output.views) {
       MeshPictureOptions zoomed = picture;
       zoomed.title += " - " + view.name;
       zoomed.window = view.window;
-      write_mesh_picture(dir / fmt::format("mesh_{}.png", view.name), mesh, zoomed);
-      ++pictures;
+      draw(fmt::format("mesh_{}.png", view.name), zoomed);
     }
+  }
+  if (config.output.wants("svg") && mesh.triangles.size() <= 2 * kSvgNodeLimit) draw("mesh.svg", picture);
+  {
+    const auto conformance_timer = phases.phase("spacing conformance");
+    summary.has_spacing = true;
+    summary.spacing = spacing_conformance(
+        mesh, [&spacing](const std::vector<Vec2>& p, std::vector<double>& q) { spacing.at_many(p, q); });
+  }
+  if (!config.quiet) fmt::print("{}", format_quality_table(summary, config.name));
+  {
+    const auto json_timer = phases.phase("quality.json");
+    write_quality_json(summary, dir, config.name);
+  }
+  std::vector<fs::path> written;
+  for (const std::string& f : config.output.formats) {
+    if (!is_mesh_format(f)) continue;
+    const auto writer_timer = phases.phase(fmt::format("mesh {}", f));
+    for (fs::path& p : write_mesh(mesh, dir, "mesh", {f})) written.push_back(std::move(p));
+  }
+  {
+    // The nodes of the mesh with their q, kinds and curve chains (final.nodes after the cleanup; the
+    // same nodes without it), for tools that need the mesh's boundary chains, like tools/compare.
+    const auto nodes_timer = phases.phase("mesh.nodes");
+    write_node_file(dir / "mesh.nodes", *mesh_nodes, inputs.curve_names());
+  }
+  {
+    const auto wait_timer = phases.phase("waiting for pictures");
+    phases.wait_pictures();
   }
   std::string names;
   for (const auto& p : written) names += (names.empty() ? "" : ", ") + p.filename().string();
-  progress(config, "mesh: {} triangles; wrote {}/quality.json, mesh.nodes{}{} and {} picture(s)", mesh.triangles.size(),
-           dir.string(), names.empty() ? "" : ", ", names, pictures);
+  progress(config, "mesh: {} triangles; wrote {}/quality.json, mesh.nodes{}{}{}", mesh.triangles.size(), dir.string(),
+           names.empty() ? "" : ", ", names, pictures.empty() ? "" : fmt::format(", {}", fmt::join(pictures, ", ")));
   return mesh;
 }
 
@@ -499,24 +572,42 @@ void report_spacing(const CaseConfig& config, const MeshInputs& inputs) {
 
 // `--resume`: the node set and driver state come from the checkpoint instead of the initialization
 // (whose outputs the interrupted run already wrote).
-int resume_mesh(const CaseConfig& config, const MeshInputs& inputs) {
+void resume_mesh(const CaseConfig& config, const MeshInputs& inputs, RunPhases& phases) {
+  auto timer = phases.phase("checkpoint");
   Checkpoint checkpoint = read_checkpoint_for(*config.resume, config, inputs.node_tree());
-  check_node_limit(config, inputs);
+  timer.stop();
+  {
+    const auto spacing_timer = phases.phase("spacing");
+    (void)inputs.pipeline();
+  }
+  {
+    const auto estimate_timer = phases.phase("estimate");
+    check_node_limit(config, inputs);
+  }
   report_spacing(config, inputs);
   prepare_output_directory(config);
   NodeSet nodes = std::move(checkpoint.nodes);
-  simulate(config, inputs, nodes, &checkpoint.state);
-  mesh_and_measure(config, inputs, nodes);
-  return InterruptGuard::flag().load() ? kExitInterrupted : kExitOk;
+  const PictureGuard guard(phases);
+  simulate(config, inputs, nodes, &checkpoint.state, nullptr, &phases);
+  mesh_and_measure(config, inputs, nodes, &phases);
+}
+
+// The summary line, and the JSON when --timings asks for it.
+void report_phases(const CaseConfig& config, const RunPhases& phases) {
+  progress(config, "{}", phases.summary());
+  if (config.timings_file) write_file_atomically(*config.timings_file, phases.json());
 }
 
 }  // namespace
 
 int run_mesh(const CaseConfig& config) {
+  RunPhases phases;
   // SIGINT/SIGTERM from here on stop the simulation after its current iteration (exit 130).
   InterruptGuard interrupt;
   // Stage 1: inputs.
+  auto timer = phases.phase("read");
   const MeshInputs inputs(config);
+  timer.stop();
   progress(config, "geometry: {} curves, {} segments, {} loops, area {:.6g}", inputs.geometry.curves.size(),
            inputs.geometry.segments.size(), inputs.geometry.loops.size(), inputs.geometry.area);
   if (!inputs.spacing_summary.empty()) progress(config, "{}", inputs.spacing_summary);
@@ -528,34 +619,45 @@ int run_mesh(const CaseConfig& config) {
   // An explicit OpenCL device that is not there is bad input: refuse it before anything is written.
   if (config.simulation.iterations > 0 && config.simulation.device != "host" && config.simulation.device != "auto")
     (void)ocl::select_device(config.simulation.device);
-  if (config.resume) return resume_mesh(config, inputs);
-  // Stage 2: limits, before any large allocation. The estimate is part of the initialization's time
-  // (the thesis' initialization also estimates the node count), so the timer starts here.
-  const auto init_start = std::chrono::steady_clock::now();
-  const double estimate = check_node_limit(config, inputs);
+  if (config.resume) {
+    resume_mesh(config, inputs, phases);
+    report_phases(config, phases);
+    return InterruptGuard::flag().load() ? kExitInterrupted : kExitOk;
+  }
+  // Stage 2: the final spacing field (the pipeline), then the limits, before any large allocation.
+  timer = phases.phase("spacing");
+  (void)inputs.pipeline();
+  timer.stop();
   report_spacing(config, inputs);
-  // Stage 3: initial distribution.
-  const auto fill_start = std::chrono::steady_clock::now();
+  timer = phases.phase("estimate");
+  const double estimate = check_node_limit(config, inputs);
+  timer.stop();
+  // Stage 3: initial distribution (the boundary placement, then the fill).
+  timer = phases.phase("fill");
   const InitialDistribution initial = make_initial(config, inputs);
-  const auto init_end = std::chrono::steady_clock::now();
-  progress(config, "initialization: {:.3f} s (node-count estimate {:.3f} s, initial distribution {:.3f} s)",
-           std::chrono::duration<double>(init_end - init_start).count(),
-           std::chrono::duration<double>(fill_start - init_start).count(),
-           std::chrono::duration<double>(init_end - fill_start).count());
+  timer.stop();
   progress(config, "initial distribution: {} nodes (estimate {:.0f} by hexagonal packing; {} fixed, {} boundary, "
            "{} interior of which {} by overloading)",
            initial.nodes.size(), estimate, initial.nodes.count(NodeKind::Fixed),
            initial.nodes.count(NodeKind::Boundary), initial.nodes.count(NodeKind::Interior), initial.overload_nodes);
+  phases.note("estimate", estimate);
+  phases.note("initial_nodes", static_cast<double>(initial.nodes.size()));
   // Stage 4: outputs. Later stages (simulation, triangulation, mesh files) follow the same pattern:
   // compute, then write atomically into the directory prepared here.
   prepare_output_directory(config);
-  if (config.output.spacing_picture) write_spacing_picture(config, inputs);
-  write_initial_outputs(config, inputs, initial);
-  // Stage 5: the simulation (none with --iterations 0: the initial distribution is meshed).
+  if (config.output.spacing_picture) {
+    const auto spacing_picture_timer = phases.phase("spacing.png");
+    write_spacing_picture(config, inputs);
+  }
   NodeSet nodes = initial.nodes;
-  if (config.simulation.iterations > 0) simulate(config, inputs, nodes);
+  // The initial pictures read `initial` while the simulation moves `nodes`.
+  const PictureGuard guard(phases);
+  write_initial_outputs(config, inputs, initial, &phases);
+  // Stage 5: the simulation (none with --iterations 0: the initial distribution is meshed).
+  if (config.simulation.iterations > 0) simulate(config, inputs, nodes, nullptr, nullptr, &phases);
   // Stage 6: the mesh, its quality and its files.
-  mesh_and_measure(config, inputs, nodes);
+  mesh_and_measure(config, inputs, nodes, &phases);
+  report_phases(config, phases);
   return InterruptGuard::flag().load() ? kExitInterrupted : kExitOk;
 }
 

@@ -7,6 +7,7 @@
 #include <optional>
 
 #include "app/case_file.hpp"
+#include "app/run_phases.hpp"
 #include "geometry/geometry.hpp"
 #include "geometry/geometry_tree.hpp"
 #include "geometry/smooth_curve.hpp"
@@ -94,8 +95,18 @@ void prepare_output_directory(const CaseConfig& config);
 // DIR/spacing.png (and spacing_<view>.png per view): the final field (pipeline().background()).
 void write_spacing_picture(const CaseConfig& config, const MeshInputs& inputs);
 
-// Stage 5: DIR/initial.nodes, initial.png, initial.svg and initial_<view>.png per view, each atomic.
-void write_initial_outputs(const CaseConfig& config, const MeshInputs& inputs, const InitialDistribution& initial);
+// The stages below time their phases in `run` and draw their pictures on its background thread;
+// what a picture reads (the node sets passed in) must then stay unchanged until
+// run->wait_pictures(). Without `run` the pictures are drawn before the stage returns.
+
+// Stage 5: DIR/initial.nodes, and as output.formats asks initial.png and initial_<view>.png per view
+// (png), initial.svg (svg), each atomic.
+void write_initial_outputs(const CaseConfig& config, const MeshInputs& inputs, const InitialDistribution& initial,
+                           RunPhases* run = nullptr);
+
+// The simulation settings of the case (iterations, stopping rule, time step, forces, population
+// control); the backend, stop flag, background field and resume state are the caller's to add.
+SimOptions simulation_options(const CaseConfig& config);
 
 // For callers that drive the stages themselves (the Python API, python/src/): a callback after every
 // iteration, on top of the command's own, and the stop flag to poll instead of InterruptGuard::flag().
@@ -104,24 +115,28 @@ struct SimulateHooks {
   const std::atomic<bool>* stop = nullptr;
 };
 
-// Stage 6: the particle dynamics simulation on the chosen backend, updating `nodes` in place;
-// writes DIR/history.csv, history.png, final.nodes, final.png (.svg) and final_<view>.png.
+// Stage 6: the particle dynamics simulation on the chosen backend, updating `nodes` in place, until
+// it converges or for simulation.iterations (simulation.stop); writes DIR/history.csv, final.nodes,
+// history.png, final.png and final_<view>.png (png), final.svg (svg).
 // With `resume`, continues that state (nodes must be its node set). Stops early when
 // InterruptGuard::flag() is set (a signal, or config.stop_after); then, or when the simulation fails,
 // writes DIR/checkpoint.pdmesh; a finished run removes a stale one. With config.write_outputs false
 // nothing is written (no checkpoint either: the caller keeps the returned state).
 SimResult simulate(const CaseConfig& config, const MeshInputs& inputs, NodeSet& nodes,
-                   const SimState* resume = nullptr, const SimulateHooks* hooks = nullptr);
+                   const SimState* resume = nullptr, const SimulateHooks* hooks = nullptr, RunPhases* run = nullptr);
 
 // Stage 7: triangulates `nodes`, checks the mesh when config.check (SimulationError listing the
 // problems if it fails), measures quality, prints the table, and writes DIR/quality.json, the mesh
-// files of config.output.formats, mesh.png (.svg) and mesh_<view>.png. With config.write_outputs
-// false it stops after the check: no table, no quality summary, no files.
-Mesh mesh_and_measure(const CaseConfig& config, const MeshInputs& inputs, const NodeSet& nodes);
+// files of config.output.formats, mesh.nodes, mesh.png and mesh_<view>.png (png), mesh.svg (svg); with
+// cleanup.enabled the cleaned mesh. Waits for every picture queued in `run` before it returns. With
+// config.write_outputs false it stops after the cleanup: no table, no quality summary, no files.
+Mesh mesh_and_measure(const CaseConfig& config, const MeshInputs& inputs, const NodeSet& nodes,
+                      RunPhases* run = nullptr);
 
 // All stages in order (or, with config.resume, from the checkpoint on); progress on stderr unless
 // config.quiet. Returns the exit status: 0, or 130 when interrupted (outputs of the state reached
-// and a checkpoint written).
+// and a checkpoint written). Every phase is timed: a summary line on stderr, and the JSON in
+// config.timings_file when set.
 int run_mesh(const CaseConfig& config);
 
 }  // namespace pdmesh

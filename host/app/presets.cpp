@@ -28,6 +28,9 @@ void apply_preset(CaseConfig& c, Preset preset) {
   c.population.enabled = !thesis;
   // The thesis meshes the final node distribution as it is (no cleanup pass).
   c.cleanup.enabled = !thesis;
+  // The thesis runs a fixed 2000 iterations (its report histories and Table 6.x); best stops once the
+  // nodes have converged (sim/convergence.hpp), with simulation.iterations as the most it may take.
+  c.simulation.stop = thesis ? StopRule::Iterations : StopRule::Converged;
 }
 
 }  // namespace pdmesh

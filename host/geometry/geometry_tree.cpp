@@ -95,10 +95,17 @@ namespace {
 struct Node {
   Box box;      // the quadrant
   Box content;  // box ∩ bounding box of its segments: a tighter lower bound for closest()
+  // The last three fields: a capsule around the node's segments, every point of which lies within
+  // cap_r of the segment cap_a-cap_b (along their principal direction). Its distance minus cap_r
+  // bounds closest() from below far more tightly than the box where the segments follow a curve:
+  // seen from afar, the box of an arc bulges towards the query point, and without this bound a
+  // query on a finely segmented circle visited O(sqrt(segments)) leaves (docs/performance.md).
   int first_child = -1;  // children are first_child .. first_child + 3; -1 for a leaf
   int begin = 0;         // leaf: its segment ids are items[begin, begin + count)
   int count = 0;
   int depth = 0;
+  Vec2 cap_a{}, cap_b{};
+  double cap_r = -1.0;  // < 0: no capsule (no segments)
 };
 
 // fmax(v, 0) without the library call: NaN (a NaN query point) gives 0, as fmax does.
@@ -113,6 +120,23 @@ inline double box_distance2(Vec2 p, const Box& b) {
 }
 
 inline double box_distance(Vec2 p, const Box& b) { return std::sqrt(box_distance2(p, b)); }
+
+// Distance from p to the segment ab (a == b allowed).
+inline double point_segment_distance(Vec2 p, Vec2 a, Vec2 b) {
+  const double dx = b.x - a.x, dy = b.y - a.y;
+  const double len2 = dx * dx + dy * dy;
+  double t = len2 > 0.0 ? ((p.x - a.x) * dx + (p.y - a.y) * dy) / len2 : 0.0;
+  t = t < 0.0 ? 0.0 : (t > 1.0 ? 1.0 : t);
+  const double ex = p.x - (a.x + t * dx), ey = p.y - (a.y + t * dy);
+  return std::sqrt(ex * ex + ey * ey);
+}
+
+// A lower bound on the distance from p to any segment of the node: its content box and its capsule.
+inline double node_lower_bound(Vec2 p, const Node& n) {
+  const double box = box_distance(p, n.content);
+  if (n.cap_r < 0.0) return box;
+  return std::max(box, point_segment_distance(p, n.cap_a, n.cap_b) - n.cap_r);
+}
 
 // Squared distance from p to the bounding box of segment s.
 inline double segment_box_distance2(Vec2 p, const Segment& s) {
@@ -168,7 +192,7 @@ class Quadtree {
     const auto farther = [](const std::pair<double, int>& x, const std::pair<double, int>& y) {
       return x.first > y.first;
     };
-    heap.push_back({box_distance(p, nodes_[0].content), 0});
+    heap.push_back({node_lower_bound(p, nodes_[0]), 0});
     while (!heap.empty()) {
       std::pop_heap(heap.begin(), heap.end(), farther);
       const auto [d, n] = heap.back();
@@ -194,7 +218,7 @@ class Quadtree {
       for (int c = node.first_child; c < node.first_child + 4; ++c) {
         const Node& kid = nodes_[c];
         if (kid.first_child < 0 && kid.count == 0) continue;  // empty leaf
-        const double kd = box_distance(p, kid.content);
+        const double kd = node_lower_bound(p, kid);
         if (kd <= bound(best.distance)) {
           heap.push_back({kd, c});
           std::push_heap(heap.begin(), heap.end(), farther);
@@ -263,7 +287,51 @@ class Quadtree {
   // so that rounding in box_distance can never hide an exactly tied segment with a lower index.
   double bound(double best) const { return best * (1.0 + 1e-9) + slack_; }
 
+  // The capsule of node n around the end points of its segments (see Node::cap_r).
+  void set_capsule(int n, const std::vector<int>& ids) {
+    if (ids.empty()) return;
+    double mx = 0.0, my = 0.0;
+    for (const int id : ids) {
+      const Segment& s = (*segments_)[id];
+      mx += s.a.x + s.b.x;
+      my += s.a.y + s.b.y;
+    }
+    const double count = 2.0 * static_cast<double>(ids.size());
+    mx /= count;
+    my /= count;
+    double sxx = 0.0, sxy = 0.0, syy = 0.0;
+    for (const int id : ids) {
+      for (const Vec2 e : {(*segments_)[id].a, (*segments_)[id].b}) {
+        sxx += (e.x - mx) * (e.x - mx);
+        sxy += (e.x - mx) * (e.y - my);
+        syy += (e.y - my) * (e.y - my);
+      }
+    }
+    const double angle = 0.5 * std::atan2(2.0 * sxy, sxx - syy);
+    const double ux = std::cos(angle), uy = std::sin(angle);
+    double lo = HUGE_VAL, hi = -HUGE_VAL;
+    for (const int id : ids) {
+      for (const Vec2 e : {(*segments_)[id].a, (*segments_)[id].b}) {
+        const double t = (e.x - mx) * ux + (e.y - my) * uy;
+        lo = std::min(lo, t);
+        hi = std::max(hi, t);
+      }
+    }
+    Node& node = nodes_[n];
+    node.cap_a = {mx + lo * ux, my + lo * uy};
+    node.cap_b = {mx + hi * ux, my + hi * uy};
+    // The distance to the axis is convex along a segment, so its end points bound it. Rounded up
+    // generously: the bound must never exceed a true distance (closest() adds its own margin too).
+    double r = 0.0;
+    for (const int id : ids)
+      for (const Vec2 e : {(*segments_)[id].a, (*segments_)[id].b})
+        r = std::max(r, point_segment_distance(e, node.cap_a, node.cap_b));
+    const Box& b = node.box;
+    node.cap_r = r * (1.0 + 1e-9) + 1e-12 * std::fmax(b.width(), b.height());
+  }
+
   void build(int n, std::vector<int> ids) {
+    set_capsule(n, ids);
     const Box box = nodes_[n].box;
     const int depth = nodes_[n].depth;
     if (static_cast<int>(ids.size()) <= GeometryTree::kLeafCapacity || depth >= GeometryTree::kMaxDepth) {
@@ -289,11 +357,10 @@ class Quadtree {
     nodes_[n].first_child = first;
     for (int k = 0; k < 4; ++k) nodes_.push_back(Node{kid_boxes[k], Box{}, -1, 0, 0, depth + 1});
     for (int k = 0; k < 4; ++k) {
-      if (kid_ids[k].size() == ids.size()) {
-        make_leaf(first + k, kid_ids[k]);  // this child would not shrink either
-      } else {
-        build(first + k, std::move(kid_ids[k]));
-      }
+      // A child may hold all of its parent's segments and still split them further: a small curve
+      // in a large quadrant (made a leaf here before, the inner circle of an annulus ended in leaves
+      // of hundreds of segments). build() itself makes a leaf where no split helps.
+      build(first + k, std::move(kid_ids[k]));
       const Box& kid = nodes_[first + k].content;
       if (kid.lo.x <= kid.hi.x) {
         nodes_[n].content.add(kid.lo);

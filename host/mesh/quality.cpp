@@ -6,7 +6,6 @@
 #include <cstdint>
 #include <limits>
 #include <string>
-#include <unordered_set>
 
 #include <fmt/format.h>
 
@@ -171,29 +170,52 @@ QualitySummary summarize_quality(const std::vector<TriangleQuality>& per_triangl
   return s;
 }
 
-SpacingConformance spacing_conformance(const Mesh& mesh, const SpacingCallback& q) {
-  // Unique undirected edges, keyed by (min, max) point index.
-  std::unordered_set<std::uint64_t> seen;
-  seen.reserve(mesh.triangles.size() * 2);
-  std::vector<double> ratios;
-  ratios.reserve(mesh.triangles.size() * 3 / 2 + 8);
-  for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
-    const auto& tri = mesh.triangles[t];
+std::vector<std::pair<int, int>> unique_edges(const Mesh& mesh) {
+  const auto n = static_cast<int>(mesh.points.size());
+  for (std::size_t t = 0; t < mesh.triangles.size(); ++t)
+    for (int v : mesh.triangles[t])
+      if (v < 0 || v >= n)
+        throw InputError(fmt::format("mesh triangle {} refers to point {} but the mesh has {} points", t, v, n));
+  // Targets of the directed edges out of each point.
+  std::vector<int> first(mesh.points.size() + 1, 0), target(3 * mesh.triangles.size());
+  for (const auto& tri : mesh.triangles)
+    for (int v : tri) ++first[static_cast<std::size_t>(v) + 1];
+  for (std::size_t i = 1; i < first.size(); ++i) first[i] += first[i - 1];
+  std::vector<int> fill(first.begin(), first.end() - 1);
+  for (const auto& tri : mesh.triangles)
+    for (int e = 0; e < 3; ++e) target[static_cast<std::size_t>(fill[static_cast<std::size_t>(tri[e])]++)] = tri[(e + 1) % 3];
+  const auto has_edge = [&](int a, int b) {
+    for (int k = first[static_cast<std::size_t>(a)]; k < first[static_cast<std::size_t>(a) + 1]; ++k)
+      if (target[static_cast<std::size_t>(k)] == b) return true;
+    return false;
+  };
+  std::vector<std::pair<int, int>> edges;
+  edges.reserve(mesh.triangles.size() * 3 / 2 + 8);
+  for (const auto& tri : mesh.triangles) {
     for (int e = 0; e < 3; ++e) {
       const int i = tri[e], j = tri[(e + 1) % 3];
-      const auto lo = static_cast<std::uint64_t>(static_cast<std::uint32_t>(std::min(i, j)));
-      const auto hi = static_cast<std::uint64_t>(static_cast<std::uint32_t>(std::max(i, j)));
-      if (!seen.insert((lo << 32) | hi).second) continue;
-      const Vec2 a = mesh.points.at(static_cast<std::size_t>(i)), b = mesh.points.at(static_cast<std::size_t>(j));
-      const Vec2 mid = 0.5 * (a + b);
-      const double qm = q(mid);
-      if (!(std::isfinite(qm) && qm > 0.0)) {
-        throw InputError(fmt::format("spacing q({:.17g}, {:.17g}) = {} at the midpoint of edge {}-{} is not a "
-                                     "finite positive number",
-                                     mid.x, mid.y, qm, i, j));
-      }
-      ratios.push_back(dist(a, b) / qm);
+      if (i < j || !has_edge(j, i)) edges.emplace_back(i, j);
     }
+  }
+  return edges;
+}
+
+SpacingConformance spacing_conformance(const Mesh& mesh, const SpacingBatch& q) {
+  const std::vector<std::pair<int, int>> edges = unique_edges(mesh);
+  std::vector<Vec2> mid(edges.size());
+  for (std::size_t k = 0; k < edges.size(); ++k)
+    mid[k] = 0.5 * (mesh.points[static_cast<std::size_t>(edges[k].first)] + mesh.points[static_cast<std::size_t>(edges[k].second)]);
+  std::vector<double> qm;
+  q(mid, qm);
+  std::vector<double> ratios(edges.size());
+  for (std::size_t k = 0; k < edges.size(); ++k) {
+    if (!(std::isfinite(qm[k]) && qm[k] > 0.0)) {
+      throw InputError(fmt::format("spacing q({:.17g}, {:.17g}) = {} at the midpoint of edge {}-{} is not a "
+                                   "finite positive number",
+                                   mid[k].x, mid[k].y, qm[k], edges[k].first, edges[k].second));
+    }
+    const auto [i, j] = edges[k];
+    ratios[k] = dist(mesh.points[static_cast<std::size_t>(i)], mesh.points[static_cast<std::size_t>(j)]) / qm[k];
   }
   SpacingConformance c;
   c.edges = ratios.size();
@@ -204,12 +226,28 @@ SpacingConformance spacing_conformance(const Mesh& mesh, const SpacingCallback& 
   double sq = 0.0;
   for (double r : ratios) sq += (r - c.mean) * (r - c.mean);
   c.stddev = std::sqrt(sq / static_cast<double>(ratios.size()));
-  std::sort(ratios.begin(), ratios.end());
-  c.p05 = percentile_sorted(ratios, 0.05);
-  c.p95 = percentile_sorted(ratios, 0.95);
-  c.min = ratios.front();
-  c.max = ratios.back();
+  // Only the 5th and 95th percentiles and the extremes are needed: selection, not a full sort.
+  const auto at = [&ratios](double p) {
+    const double pos = p * static_cast<double>(ratios.size() - 1);
+    const auto lo = static_cast<std::size_t>(std::floor(pos));
+    std::nth_element(ratios.begin(), ratios.begin() + static_cast<std::ptrdiff_t>(lo), ratios.end());
+    const double a = ratios[lo];
+    if (lo + 1 >= ratios.size()) return a;
+    const double b = *std::min_element(ratios.begin() + static_cast<std::ptrdiff_t>(lo) + 1, ratios.end());
+    return a + (pos - static_cast<double>(lo)) * (b - a);
+  };
+  c.p05 = at(0.05);
+  c.p95 = at(0.95);
+  c.min = *std::min_element(ratios.begin(), ratios.end());
+  c.max = *std::max_element(ratios.begin(), ratios.end());
   return c;
+}
+
+SpacingConformance spacing_conformance(const Mesh& mesh, const SpacingCallback& q) {
+  return spacing_conformance(mesh, [&q](const std::vector<Vec2>& p, std::vector<double>& out) {
+    out.resize(p.size());
+    for (std::size_t k = 0; k < p.size(); ++k) out[k] = q(p[k]);
+  });
 }
 
 QualitySummary summarize_quality(const Mesh& mesh, const SpacingCallback& q, const QualityOptions& options) {

@@ -5,6 +5,7 @@
 #include <cstddef>
 #include <functional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/vec2.hpp"
@@ -114,9 +115,19 @@ QualitySummary summarize_quality(const Mesh& mesh, const SpacingCallback& q = {}
 QualitySummary summarize_quality(const std::vector<TriangleQuality>& per_triangle,
                                  const QualityOptions& options = {});
 
+// q at many points at once (SpacingField::at_many, which may use threads).
+using SpacingBatch = std::function<void(const std::vector<Vec2>& points, std::vector<double>& q)>;
+
 // Spacing conformance of the unique edges of `mesh` against q. Throws InputError when q is not
-// finite and positive at an edge midpoint (naming the edge and the midpoint).
+// finite and positive at an edge midpoint (naming the edge and the midpoint). Linear in the mesh:
+// each edge is found once without a hash set, and q is asked for all midpoints in one batch.
+SpacingConformance spacing_conformance(const Mesh& mesh, const SpacingBatch& q);
 SpacingConformance spacing_conformance(const Mesh& mesh, const SpacingCallback& q);
+
+// The unique undirected edges of the mesh's triangles, each once, as point index pairs: an edge
+// i -> j of a counter-clockwise triangle with i < j, or with i > j when no triangle has j -> i (an
+// edge of the mesh's outline). Compressed rows of the directed edges, no hash set.
+std::vector<std::pair<int, int>> unique_edges(const Mesh& mesh);
 
 // Percentile p in [0, 1] by linear interpolation between closest ranks (position p * (n - 1) in
 // the sorted values; numpy's default). `sorted` must be ascending and non-empty.

@@ -39,7 +39,8 @@ class DeviceRun {
             Context& ctx, StepProgram& program, DeviceRunStats& stats)
       : nodes_(nodes), options_(options), ctx_(ctx), stats_(stats), boundary_(tree, nodes),
         background_(background_for(options, spacing, tree, own_background_)), program_(program), neighbours_(ctx, program_),
-        n_(nodes.size()) {}
+        n_(nodes.size()),
+        convergence_(options.convergence, options.resume ? options.resume->convergence : std::vector<MeshSample>{}) {}
   // Non-blocking uploads read host vectors of this object: wait for them (errors are moot here).
   ~DeviceRun() { ctx_.queue().finish(); }
   DeviceRun(const DeviceRun&) = delete;
@@ -58,6 +59,7 @@ class DeviceRun {
   // computed from the node set: at the start and after a population event.
   void upload_nodes(const std::vector<double>* budgets, const std::vector<std::int32_t>* leaves);
   std::optional<PopulationCounts> population_event(int iteration);
+  void read_back_nodes();
   void upload_topology();  // kind, prev, next, boundary slots (start and after snapping)
   void rebuild();
   void step_kernel(double dt_gm2);
@@ -136,6 +138,7 @@ class DeviceRun {
   bool host_ahead_ = false;
   bool moves_finite_ = true;  // every move the host reads in step_kernel is finite
   PopulationTracker population_;
+  ConvergenceMonitor convergence_;  // the stopping rule (its samples go into every saved state)
 };
 
 template <typename Real>
@@ -155,7 +158,7 @@ void DeviceRun<Real>::remember(int done, double dt_initial, const GlobalTimeStep
     saved_nodes_.q[i] = build_q_[i];
   }
   saved_state_ = SimState{done, dt_initial, gm.state(), boundary_.arcs(), boundary_.tangents(), {},
-                          population_.schedule};
+                          population_.schedule, convergence_.samples()};
   saved_rows_ = rows;
 }
 
@@ -181,7 +184,7 @@ SimState DeviceRun<Real>::last_good_state(int done, double dt_initial, const Glo
           nodes_.q[i] = static_cast<double>(q[i]);
         }
         return SimState{done,    dt_initial, gm.state(), boundary_.arcs(), boundary_.tangents(),
-                        history, population_.schedule};
+                        history, population_.schedule, convergence_.samples()};
       }
     } catch (const Error&) {
       // The device cannot be read: the saved state below.
@@ -214,6 +217,23 @@ SimulationError DeviceRun<Real>::non_finite_error(int iteration, const SimState&
   return SimulationError(fmt::format("iteration {}: non-finite force or move ({}) on {} (positions after iteration {})",
                                      iteration, sums, describe_neighbourhood(nodes_, bad, options_.cutoff * nodes_.q[bad]),
                                      good.iterations_done));
+}
+
+// The state after the last complete iteration into nodes_: interior positions and every q from the
+// device; boundary positions are the host's already. Not counted as per-iteration traffic.
+template <typename Real>
+void DeviceRun<Real>::read_back_nodes() {
+  std::vector<Real> x, y, q;
+  const std::uint64_t down = stats_.bytes_down, transfers = stats_.transfers;
+  read(x_[cur_], x, n_);
+  read(y_[cur_], y, n_);
+  read(q_[cur_], q, n_);
+  stats_.bytes_down = down;
+  stats_.transfers = transfers;
+  for (std::size_t i = 0; i < n_; ++i) {
+    if (nodes_.kind[i] == NodeKind::Interior) nodes_.x[i] = {static_cast<double>(x[i]), static_cast<double>(y[i])};
+    nodes_.q[i] = static_cast<double>(q[i]);
+  }
 }
 
 template <typename Real>
@@ -611,21 +631,22 @@ SimResult DeviceRun<Real>::run(const SimCallbacks& callbacks) {
         result.stopped = true;
         break;
       }
+      std::optional<MeshSample> sample;
+      if (convergence_.due(iteration)) {
+        read_back_nodes();
+        sample = measure_mesh(nodes_, iteration);
+      }
+      // Never while population control may still change the node set (as the host driver).
+      const bool settled =
+          population_status(options_.population, population_.schedule, iteration, options_.iterations).settled;
+      if (convergence_.observe(row, sample ? &*sample : nullptr, settled) && iteration < options_.iterations) {
+        result.converged = true;
+        break;
+      }
     }
     progress.finish();
     in_loop = false;
-    // Final state: interior positions and every q from the device; boundary positions stay the host's.
-    std::vector<Real> x, y, q;
-    const std::uint64_t down = stats_.bytes_down, transfers = stats_.transfers;  // not per iteration
-    read(x_[cur_], x, n_);
-    read(y_[cur_], y, n_);
-    read(q_[cur_], q, n_);
-    stats_.bytes_down = down;
-    stats_.transfers = transfers;
-    for (std::size_t i = 0; i < n_; ++i) {
-      if (nodes_.kind[i] == NodeKind::Interior) nodes_.x[i] = {static_cast<double>(x[i]), static_cast<double>(y[i])};
-      nodes_.q[i] = static_cast<double>(q[i]);
-    }
+    read_back_nodes();  // the final state
   } catch (const DeviceError& e) {
     progress.finish();
     hand_over();
@@ -638,7 +659,7 @@ SimResult DeviceRun<Real>::run(const SimCallbacks& callbacks) {
     throw;
   }
   result.state = SimState{done, result.stats.dt_initial, gm.state(), boundary_.arcs(), boundary_.tangents(),
-                          result.history, population_.schedule};
+                          result.history, population_.schedule, convergence_.samples()};
   result.stats.inserted = population_.inserted;
   result.stats.removed = population_.removed;
   result.stats.population_events = population_.events;

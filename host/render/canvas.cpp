@@ -9,6 +9,7 @@
 
 #include "core/atomic_file.hpp"
 #include "core/errors.hpp"
+#include "render/png_file.hpp"
 
 namespace pdmesh {
 
@@ -186,14 +187,65 @@ void Canvas::scale_bar() {
 void Canvas::finish() {
   check("draw");
   if (format_ == ImageFormat::Png) {
-    const cairo_status_t s = cairo_surface_write_to_png(surface_, file_.c_str());
-    if (s != CAIRO_STATUS_SUCCESS) {
-      throw InputError(fmt::format("cannot write '{}': {}", file_.string(), cairo_status_to_string(s)));
-    }
+    write_png_file(file_, surface_);
   } else {
     cairo_surface_finish(surface_);
     check("write the SVG");
   }
+}
+
+namespace {
+// Items per stroke or fill: large enough that cairo's per-call cost vanishes, small enough that the
+// path it tessellates at once stays in cache.
+constexpr int kBatchItems = 4096;
+}  // namespace
+
+StrokeBatch::StrokeBatch(Canvas& canvas, Rgb colour, double width_px)
+    : canvas_(canvas), colour_(colour), width_(width_px) {
+  cairo_new_path(canvas_.context());
+}
+
+void StrokeBatch::segment(Vec2 a, Vec2 b) {
+  const Vec2 pa = canvas_.to_pixel(a), pb = canvas_.to_pixel(b);
+  cairo_t* cr = canvas_.context();
+  cairo_move_to(cr, pa.x, pa.y);
+  cairo_line_to(cr, pb.x, pb.y);
+  if (++count_ >= kBatchItems) flush();
+}
+
+void StrokeBatch::box(const Box& b) {
+  const Vec2 p0 = canvas_.to_pixel(b.lo), p1 = canvas_.to_pixel(b.hi);
+  cairo_rectangle(canvas_.context(), p0.x, p1.y, p1.x - p0.x, p0.y - p1.y);
+  if (++count_ >= kBatchItems) flush();
+}
+
+void StrokeBatch::flush() {
+  if (count_ == 0) return;
+  cairo_t* cr = canvas_.context();
+  cairo_set_source_rgb(cr, colour_.r, colour_.g, colour_.b);
+  cairo_set_line_width(cr, width_);
+  cairo_stroke(cr);  // also clears the path
+  count_ = 0;
+}
+
+DotBatch::DotBatch(Canvas& canvas, Rgb colour) : canvas_(canvas), colour_(colour) {
+  cairo_new_path(canvas_.context());
+}
+
+void DotBatch::dot(Vec2 centre, double radius_px) {
+  const Vec2 p = canvas_.to_pixel(centre);
+  cairo_t* cr = canvas_.context();
+  cairo_new_sub_path(cr);
+  cairo_arc(cr, p.x, p.y, radius_px, 0, 2 * M_PI);
+  if (++count_ >= kBatchItems) flush();
+}
+
+void DotBatch::flush() {
+  if (count_ == 0) return;
+  cairo_t* cr = canvas_.context();
+  cairo_set_source_rgb(cr, colour_.r, colour_.g, colour_.b);
+  cairo_fill(cr);
+  count_ = 0;
 }
 
 void render_picture(const fs::path& path, const CanvasOptions& options, const std::function<void(Canvas&)>& draw) {

@@ -89,6 +89,42 @@ class Canvas {
   bool clipped_ = false;
 };
 
+// Many segments of one colour and width (or many dots of one colour) drawn as one path: cairo's
+// per-call cost dominates pictures of thousands of items, so items are collected into one path and
+// stroked (filled) every few thousand items and when the batch ends. Overlapping items of a batch
+// are painted once (their union), not blended over each other.
+class StrokeBatch {
+ public:
+  StrokeBatch(Canvas& canvas, Rgb colour, double width_px);
+  ~StrokeBatch() { flush(); }
+  StrokeBatch(const StrokeBatch&) = delete;
+  StrokeBatch& operator=(const StrokeBatch&) = delete;
+  void segment(Vec2 a, Vec2 b);  // world coordinates
+  void box(const Box& b);        // the outline of a world box
+  void flush();
+
+ private:
+  Canvas& canvas_;
+  Rgb colour_;
+  double width_;
+  int count_ = 0;
+};
+
+class DotBatch {
+ public:
+  DotBatch(Canvas& canvas, Rgb colour);
+  ~DotBatch() { flush(); }
+  DotBatch(const DotBatch&) = delete;
+  DotBatch& operator=(const DotBatch&) = delete;
+  void dot(Vec2 centre, double radius_px);
+  void flush();
+
+ private:
+  Canvas& canvas_;
+  Rgb colour_;
+  int count_ = 0;
+};
+
 // Draws with `draw` into a new Canvas and writes it atomically to `path` (format by extension).
 void render_picture(const std::filesystem::path& path, const CanvasOptions& options,
                     const std::function<void(Canvas&)>& draw);

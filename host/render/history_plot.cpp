@@ -11,6 +11,7 @@
 
 #include "core/atomic_file.hpp"
 #include "core/errors.hpp"
+#include "render/png_file.hpp"
 
 namespace pdmesh {
 namespace {
@@ -179,10 +180,13 @@ void write_history_plot(const std::filesystem::path& path, const std::vector<His
     cairo_t* cr = cairo_create(surface);
     draw(cr, rows, title);
     cairo_destroy(cr);
-    const cairo_status_t status = cairo_surface_write_to_png(surface, tmp.c_str());
+    try {
+      write_png_file(tmp, surface);
+    } catch (...) {
+      cairo_surface_destroy(surface);
+      throw;
+    }
     cairo_surface_destroy(surface);
-    if (status != CAIRO_STATUS_SUCCESS)
-      throw InputError(fmt::format("cannot write {}: {}", tmp.string(), cairo_status_to_string(status)));
   });
 }
 

@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 
 #include "core/errors.hpp"
+#include "mesh/quality.hpp"
 
 namespace pdmesh {
 
@@ -100,28 +101,39 @@ void write_mesh_picture(const std::filesystem::path& path, const Mesh& mesh, con
   layout.long_side = options.long_side;
   layout.side_width = values != nullptr ? kColourBarBand : 0;
 
+  // Each edge once (an interior edge belongs to two triangles).
+  const std::vector<std::pair<int, int>> edges = unique_edges(mesh);
+
+  const auto visible = [&](const Canvas& canvas, const std::array<int, 3>& tri) {
+    Box box;
+    for (int v : tri) box.add(mesh.points[v]);
+    return canvas.visible(box);
+  };
   render_picture(path, layout, [&](Canvas& canvas) {
-    const double edge_width = 0.6;
-    for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
-      const auto& tri = mesh.triangles[t];
-      const Vec2 a = mesh.points[tri[0]], b = mesh.points[tri[1]], c = mesh.points[tri[2]];
-      Box box;
-      box.add(a);
-      box.add(b);
-      box.add(c);
-      if (!canvas.visible(box)) continue;
-      if (values != nullptr) {
+    // Fills first, then every edge on top of them.
+    if (values != nullptr) {
+      for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
+        const auto& tri = mesh.triangles[t];
+        if (!visible(canvas, tri)) continue;
         // Equal extremes: every triangle has the same value; show it mid-ramp.
         const double v = (*values)[t];
         const double u = hi > lo ? (v - lo) / (hi - lo) : (std::isfinite(v) ? 0.5 : NAN);
-        canvas.fill_triangle(a, b, c, colour_ramp(u));
+        canvas.fill_triangle(mesh.points[tri[0]], mesh.points[tri[1]], mesh.points[tri[2]], colour_ramp(u));
       }
-      canvas.line(a, b, colours::kBlack, edge_width);
-      canvas.line(b, c, colours::kBlack, edge_width);
-      canvas.line(c, a, colours::kBlack, edge_width);
     }
-    for (const BoundaryEdge& e : mesh.boundary_edges) {
-      canvas.line(mesh.points[e.a], mesh.points[e.b], colours::kBlack, 2.0);
+    const double edge_width = 0.6;
+    StrokeBatch lines(canvas, colours::kBlack, edge_width);
+    for (const auto& [i, j] : edges) {
+      const Vec2 a = mesh.points[static_cast<std::size_t>(i)], b = mesh.points[static_cast<std::size_t>(j)];
+      Box box;
+      box.add(a);
+      box.add(b);
+      if (canvas.visible(box)) lines.segment(a, b);
+    }
+    lines.flush();
+    {
+      StrokeBatch boundary(canvas, colours::kBlack, 2.0);
+      for (const BoundaryEdge& e : mesh.boundary_edges) boundary.segment(mesh.points[e.a], mesh.points[e.b]);
     }
     canvas.scale_bar();
     canvas.title(fmt::format("{}   {} points, {} triangles", options.title, mesh.points.size(), mesh.triangles.size()));

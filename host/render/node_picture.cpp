@@ -22,24 +22,28 @@ void write_node_picture(const std::filesystem::path& path, const Geometry& geome
   layout.long_side = options.long_side;
   render_picture(path, layout, [&](Canvas& canvas) {
     if (options.tree_quads != nullptr) {
+      StrokeBatch tree(canvas, colours::kTree, 0.6);
       for (const Box& b : *options.tree_quads) {
-        if (canvas.visible(b)) canvas.rectangle(b, colours::kTree, 0.6);
+        if (canvas.visible(b)) tree.box(b);
       }
     }
-    for (const Segment& s : geometry.segments) {
-      Box b;
-      b.add(s.a);
-      b.add(s.b);
-      if (canvas.visible(b)) canvas.line(s.a, s.b, colours::kGeometry, 1.5);
+    {
+      StrokeBatch curves(canvas, colours::kGeometry, 1.5);
+      for (const Segment& s : geometry.segments) {
+        Box b;
+        b.add(s.a);
+        b.add(s.b);
+        if (canvas.visible(b)) curves.segment(s.a, s.b);
+      }
     }
     // Interior nodes first so that boundary nodes stay visible where they overlap.
     for (NodeKind pass : {NodeKind::Interior, NodeKind::Boundary, NodeKind::Fixed}) {
-      const Rgb colour = pass == NodeKind::Interior ? colours::kInteriorNode : colours::kBoundaryNode;
+      DotBatch dots(canvas, pass == NodeKind::Interior ? colours::kInteriorNode : colours::kBoundaryNode);
       for (std::size_t i = 0; i < nodes.size(); ++i) {
         if (nodes.kind[i] != pass) continue;
         const double q = i < nodes.q.size() ? nodes.q[i] : 0.0;
         const double r = node_dot_radius(q, canvas.scale(), pass == NodeKind::Fixed);
-        if (canvas.visible(nodes.x[i], r)) canvas.dot(nodes.x[i], r, colour);
+        if (canvas.visible(nodes.x[i], r)) dots.dot(nodes.x[i], r);
       }
     }
     canvas.scale_bar();

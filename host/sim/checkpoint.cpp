@@ -83,6 +83,13 @@ std::string format_checkpoint(const Checkpoint& c) {
     out += fmt::format("{} {} {} {} {} {} {} {} {} {} {} {}\n", r.iteration, hex(r.average_force),
                        hex(r.average_kinetic), hex(r.max_force), hex(r.dt_gm), r.snapped, r.clamped, r.fixed,
                        r.boundary, r.interior, r.inserted, r.removed);
+  // The stopping rule's measurements (sim/convergence.hpp); a file without this section has none.
+  if (!s.convergence.empty()) {
+    out += fmt::format("convergence {}\n", s.convergence.size());
+    const auto value = [](double v) { return std::isnan(v) ? std::string("nan") : hex(v); };
+    for (const MeshSample& m : s.convergence)
+      out += fmt::format("{} {} {}\n", m.iteration, value(m.min_angle), value(m.aspect_ratio));
+  }
   out += "end\n";
   return out;
 }
@@ -179,7 +186,26 @@ Checkpoint parse_checkpoint(const std::string& text, const std::string& source_n
     for (std::size_t f = 0; f + 5 < fields; ++f) *counts[f] = parse_count(in, t[5 + f], "history count");
     s.history.push_back(row);
   }
-  t = in.expect_tokens("'end' (the file is truncated)");
+  t = in.expect_tokens("'convergence N' or 'end' (the file is truncated)");
+  if (!t.empty() && t[0] == "convergence") {
+    if (t.size() != 2) in.fail("expected 'convergence N'");
+    const std::size_t samples = parse_count(in, t[1], "convergence sample count");
+    const auto value = [&in](std::string_view token, std::string_view what) {
+      return token == "nan" ? std::nan("") : parse_hex(in, token, what);
+    };
+    int previous = 0;
+    for (std::size_t k = 0; k < samples; ++k) {
+      t = in.expect_tokens("a convergence sample 'ITERATION MIN_ANGLE ASPECT_RATIO'");
+      if (t.size() != 3) in.fail("expected a convergence sample 'ITERATION MIN_ANGLE ASPECT_RATIO' (3 fields)");
+      MeshSample m;
+      m.iteration = static_cast<int>(in.to_index(t[0], previous + 1, s.iterations_done, "convergence sample iteration"));
+      m.min_angle = value(t[1], "minimum angle");
+      m.aspect_ratio = value(t[2], "aspect ratio");
+      previous = m.iteration;
+      s.convergence.push_back(m);
+    }
+    t = in.expect_tokens("'end' (the file is truncated)");
+  }
   if (t.size() != 1 || t[0] != "end") in.fail("expected 'end'", t.empty() ? "" : t[0]);
   return c;
 }

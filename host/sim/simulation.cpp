@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 #include <memory>
+#include <optional>
 
 #include <fmt/format.h>
 
@@ -132,11 +133,12 @@ SimResult run_simulation(NodeSet& nodes, const GeometryTree& tree, const Spacing
   int done = first - 1;
   PopulationTracker population;
   if (resume) population.schedule = resume->population;
+  ConvergenceMonitor convergence(options.convergence, resume ? resume->convergence : std::vector<MeshSample>{});
   // The state after `done` iterations; nodes must hold that iteration's positions.
   const auto snapshot = [&] {
     return SimState{done,           result.stats.dt_initial, gm.state(),
                     boundary.arcs(), boundary.tangents(),    result.history,
-                    population.schedule};
+                    population.schedule, convergence.samples()};
   };
   for (int iteration = first; iteration <= options.iterations; ++iteration) {
     const double dt_gm = gm.dt();
@@ -201,6 +203,15 @@ SimResult run_simulation(NodeSet& nodes, const GeometryTree& tree, const Spacing
     done = iteration;
     if (options.stop && options.stop->load() && iteration < options.iterations) {
       result.stopped = true;
+      break;
+    }
+    // The nodes hold this iteration's positions: the stopping rule measures their mesh when due.
+    std::optional<MeshSample> sample;
+    if (convergence.due(iteration)) sample = measure_mesh(nodes, iteration);
+    // Never while population control may still change the node set.
+    const bool settled = population_status(options.population, population.schedule, iteration, options.iterations).settled;
+    if (convergence.observe(row, sample ? &*sample : nullptr, settled) && iteration < options.iterations) {
+      result.converged = true;
       break;
     }
   }

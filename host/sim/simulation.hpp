@@ -12,6 +12,7 @@
 
 #include "geometry/geometry_tree.hpp"
 #include "nodes/node_set.hpp"
+#include "sim/convergence.hpp"
 #include "sim/global_time_step.hpp"
 #include "sim/history.hpp"
 #include "sim/population.hpp"
@@ -32,10 +33,13 @@ struct SimState {
   std::vector<Vec2> tangents;              // BoundaryHandler tangent per node
   std::vector<HistoryRow> history;         // rows 1 .. iterations_done
   PopulationSchedule population;           // population control's schedule (sim/population.hpp)
+  std::vector<MeshSample> convergence;     // the stopping rule's measurements (sim/convergence.hpp)
 };
 
 struct SimOptions {
-  int iterations = 2000;
+  int iterations = 2000;  // the run's length, or with convergence.enabled the most it may take
+  // The stopping rule (sim/convergence.hpp): disabled by default, so that every iteration runs.
+  ConvergenceOptions convergence;
   std::optional<double> dt_initial;  // initial global maximum time step; empty: default_dt_initial()
   double cutoff = 1.5;               // cut-off distance factor (neighbours within cutoff * q_i)
   double lj_a = 15.0;                // a of eq. 5.11
@@ -88,7 +92,8 @@ struct SimStats {
 struct SimResult {
   std::vector<HistoryRow> history;  // every row, including those of a resumed run's earlier part
   SimStats stats;
-  bool stopped = false;  // SimOptions::stop ended the run early
+  bool stopped = false;    // SimOptions::stop ended the run early
+  bool converged = false;  // the convergence rule ended the run (before SimOptions::iterations)
   SimState state;        // the state after the last iteration run (history included)
 };
 

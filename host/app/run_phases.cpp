@@ -1,0 +1,200 @@
+// Phase timing and the background picture thread; see run_phases.hpp.
+#include "app/run_phases.hpp"
+
+#include <chrono>
+#include <ctime>
+#include <fstream>
+
+#include <fmt/format.h>
+
+#include "mesh/quality_report.hpp"
+
+namespace pdmesh {
+namespace {
+
+double clock_seconds(clockid_t id) {
+  timespec ts{};
+  clock_gettime(id, &ts);
+  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
+}
+
+}  // namespace
+
+double process_cpu_seconds() { return clock_seconds(CLOCK_PROCESS_CPUTIME_ID); }
+double thread_cpu_seconds() { return clock_seconds(CLOCK_THREAD_CPUTIME_ID); }
+double wall_seconds() {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+
+std::size_t peak_rss_bytes() {
+  std::ifstream f("/proc/self/status");
+  std::string key;
+  while (f >> key) {
+    if (key == "VmHWM:") {
+      std::size_t kb = 0;
+      f >> kb;
+      return kb * 1024;
+    }
+    std::getline(f, key);
+  }
+  return 0;
+}
+
+RunPhases::RunPhases(bool background)
+    : background_(background), start_wall_(wall_seconds()), start_cpu_(process_cpu_seconds()) {}
+
+RunPhases::~RunPhases() {
+  {
+    std::unique_lock lock(mutex_);
+    cv_.wait(lock, [this] { return pending_ == 0; });
+    stopping_ = true;
+  }
+  cv_.notify_all();
+  if (thread_.joinable()) thread_.join();
+}
+
+RunPhases::Timer::Timer(RunPhases& phases, std::string name)
+    : phases_(&phases), name_(std::move(name)), wall0_(wall_seconds()), cpu0_(process_cpu_seconds()) {}
+
+RunPhases::Timer::Timer(Timer&& other) noexcept
+    : phases_(other.phases_), name_(std::move(other.name_)), wall0_(other.wall0_), cpu0_(other.cpu0_) {
+  other.phases_ = nullptr;
+}
+
+RunPhases::Timer& RunPhases::Timer::operator=(Timer&& other) noexcept {
+  if (this != &other) {
+    stop();
+    phases_ = other.phases_;
+    name_ = std::move(other.name_);
+    wall0_ = other.wall0_;
+    cpu0_ = other.cpu0_;
+    other.phases_ = nullptr;
+  }
+  return *this;
+}
+
+void RunPhases::Timer::stop() {
+  if (!phases_) return;
+  phases_->add({name_, wall_seconds() - wall0_, process_cpu_seconds() - cpu0_, false});
+  phases_ = nullptr;
+}
+
+void RunPhases::add(PhaseTime t) {
+  std::lock_guard lock(mutex_);
+  phases_.push_back(std::move(t));
+}
+
+void RunPhases::note(const std::string& key, double value) {
+  std::lock_guard lock(mutex_);
+  for (auto& [k, v] : notes_) {
+    if (k == key) {
+      v = value;
+      return;
+    }
+  }
+  notes_.emplace_back(key, value);
+}
+
+void RunPhases::picture(std::string name, std::function<void()> job) {
+  if (!background_) {
+    const double w0 = wall_seconds(), c0 = thread_cpu_seconds();
+    job();
+    add({std::move(name), wall_seconds() - w0, thread_cpu_seconds() - c0, false});
+    return;
+  }
+  {
+    std::lock_guard lock(mutex_);
+    queue_.emplace_back(std::move(name), std::move(job));
+    ++pending_;
+    if (!thread_.joinable()) thread_ = std::thread(&RunPhases::worker, this);
+  }
+  cv_.notify_all();
+}
+
+void RunPhases::worker() {
+  std::unique_lock lock(mutex_);
+  for (;;) {
+    cv_.wait(lock, [this] { return stopping_ || !queue_.empty(); });
+    if (queue_.empty()) return;  // stopping, nothing left
+    auto [name, job] = std::move(queue_.front());
+    queue_.pop_front();
+    lock.unlock();
+    const double w0 = wall_seconds(), c0 = thread_cpu_seconds();
+    std::exception_ptr error;
+    try {
+      job();
+    } catch (...) {
+      error = std::current_exception();
+    }
+    const PhaseTime t{std::move(name), wall_seconds() - w0, thread_cpu_seconds() - c0, true};
+    lock.lock();
+    phases_.push_back(t);
+    if (error && !error_) error_ = error;
+    --pending_;
+    cv_.notify_all();
+  }
+}
+
+void RunPhases::wait_pictures() {
+  std::exception_ptr error;
+  {
+    std::unique_lock lock(mutex_);
+    cv_.wait(lock, [this] { return pending_ == 0; });
+    std::swap(error, error_);
+  }
+  if (error) std::rethrow_exception(error);
+}
+
+PictureGuard::~PictureGuard() {
+  try {
+    phases_.wait_pictures();
+  } catch (...) {  // not reported over the exception that is unwinding
+  }
+}
+
+std::vector<PhaseTime> RunPhases::phases() const {
+  std::lock_guard lock(mutex_);
+  return phases_;
+}
+
+double RunPhases::elapsed() const { return wall_seconds() - start_wall_; }
+
+std::string RunPhases::summary() const {
+  const std::vector<PhaseTime> all = phases();
+  std::string line;
+  double pictures = 0.0;
+  std::size_t count = 0;
+  for (const PhaseTime& p : all) {
+    if (p.background) {
+      pictures += p.wall;
+      ++count;
+      continue;
+    }
+    line += fmt::format("{}{} {:.3f}", line.empty() ? "" : ", ", p.name, p.wall);
+  }
+  if (count > 0) line += fmt::format("; {} picture(s) {:.3f} on a background thread", count, pictures);
+  return fmt::format("timing (wall s): {}; whole run {:.3f} s wall, {:.3f} s CPU", line, elapsed(),
+                     process_cpu_seconds() - start_cpu_);
+}
+
+std::string RunPhases::json() const {
+  const std::vector<PhaseTime> all = phases();
+  std::string out = "{\n  \"format\": \"pdmesh-timings\",\n  \"version\": 1,\n";
+  out += fmt::format("  \"wall\": {:.6f},\n  \"cpu\": {:.6f},\n  \"peak_rss_bytes\": {},\n", elapsed(),
+                     process_cpu_seconds() - start_cpu_, peak_rss_bytes());
+  {
+    std::lock_guard lock(mutex_);
+    for (const auto& [k, v] : notes_) out += fmt::format("  {}: {},\n", json_string(k), v);
+  }
+  out += "  \"phases\": [\n";
+  for (std::size_t i = 0; i < all.size(); ++i) {
+    const PhaseTime& p = all[i];
+    out += fmt::format("    {{\"name\": {}, \"wall\": {:.6f}, \"cpu\": {:.6f}, \"background\": {}}}{}\n",
+                       json_string(p.name), p.wall, p.cpu, p.background ? "true" : "false",
+                       i + 1 < all.size() ? "," : "");
+  }
+  out += "  ]\n}\n";
+  return out;
+}
+
+}  // namespace pdmesh

@@ -1,0 +1,111 @@
+// The phases of one `pdmesh mesh` run: each timed (wall and process CPU time) for the progress
+// messages, `--timings FILE` and `pdmesh bench --whole-run`; and the pictures, drawn on a background
+// thread while the run goes on (docs/performance.md, "Whole runs").
+#pragma once
+#include <condition_variable>
+#include <cstddef>
+#include <deque>
+#include <exception>
+#include <filesystem>
+#include <functional>
+#include <mutex>
+#include <string>
+#include <thread>
+#include <utility>
+#include <vector>
+
+namespace pdmesh {
+
+struct PhaseTime {
+  std::string name;
+  double wall = 0.0;  // seconds
+  // Process CPU seconds (every thread, background pictures included) during the phase; for a
+  // background job, the CPU seconds of the thread that drew it.
+  double cpu = 0.0;
+  bool background = false;  // a job of the background thread (a picture), overlapping other phases
+};
+
+// Seconds of the process's CPU time (all threads) and of the calling thread's.
+double process_cpu_seconds();
+double thread_cpu_seconds();
+
+class RunPhases {
+ public:
+  // background false: pictures are drawn at once, on the calling thread (still timed).
+  explicit RunPhases(bool background = true);
+  // Waits for the pictures still queued (their errors are dropped: wait_pictures() reports them).
+  ~RunPhases();
+  RunPhases(const RunPhases&) = delete;
+  RunPhases& operator=(const RunPhases&) = delete;
+
+  // Times the enclosing scope as one phase (added when the timer is destroyed or stopped).
+  class Timer {
+   public:
+    Timer(RunPhases& phases, std::string name);
+    ~Timer() { stop(); }
+    Timer(Timer&& other) noexcept;
+    // Ends this phase (if running) and takes over the other's.
+    Timer& operator=(Timer&& other) noexcept;
+    void stop();
+
+   private:
+    RunPhases* phases_;
+    std::string name_;
+    double wall0_, cpu0_;
+  };
+  Timer phase(std::string name) { return Timer(*this, std::move(name)); }
+
+  // Draws a picture: queued for the background thread (or drawn now). Whatever the job reads must
+  // stay alive and unchanged until wait_pictures() returns.
+  void picture(std::string name, std::function<void()> job);
+  // Waits for every picture queued so far; rethrows the first error a job threw (once).
+  void wait_pictures();
+
+  // Adds a phase measured elsewhere; thread-safe.
+  void add(PhaseTime t);
+  // A fact about the run for the timings file (iterations, nodes, triangles, ...).
+  void note(const std::string& key, double value);
+
+  std::vector<PhaseTime> phases() const;
+  double elapsed() const;  // wall seconds since construction
+  // One progress line: the phases in order with their wall times, the pictures' total, the whole.
+  std::string summary() const;
+  // The JSON of --timings: every phase, the facts, the totals and the peak resident set.
+  std::string json() const;
+
+ private:
+  void worker();
+  const bool background_;
+  const double start_wall_, start_cpu_;
+  mutable std::mutex mutex_;
+  std::vector<PhaseTime> phases_;
+  std::vector<std::pair<std::string, double>> notes_;
+  // The background thread and its queue (started with the first picture).
+  std::condition_variable cv_;
+  std::deque<std::pair<std::string, std::function<void()>>> queue_;
+  std::size_t pending_ = 0;  // queued or running
+  bool stopping_ = false;
+  std::exception_ptr error_;
+  std::thread thread_;
+};
+
+// Waits for the pictures of `phases` when it goes out of scope, errors dropped: declared after the
+// data the pictures read, it keeps them from reading freed memory while an exception unwinds.
+class PictureGuard {
+ public:
+  explicit PictureGuard(RunPhases& phases) : phases_(phases) {}
+  ~PictureGuard();
+  PictureGuard(const PictureGuard&) = delete;
+  PictureGuard& operator=(const PictureGuard&) = delete;
+
+ private:
+  RunPhases& phases_;
+};
+
+// Wall seconds on a steady clock (for phases timed by hand).
+double wall_seconds();
+
+// Peak resident set of this process (VmHWM), bytes; 0 where /proc is missing.
+std::size_t peak_rss_bytes();
+
+}  // namespace pdmesh

@@ -1,0 +1,110 @@
+// PNG encoding with zlib; see png_file.hpp. Format: PNG specification, 2nd edition (W3C, 2003),
+// https://www.w3.org/TR/png/ : signature, IHDR, IDAT (zlib stream of filtered scanlines), IEND, each
+// chunk with a CRC-32 over its type and data.
+#include "render/png_file.hpp"
+
+#include <zlib.h>
+
+#include <cstdint>
+#include <fstream>
+#include <vector>
+
+#include <fmt/format.h>
+
+#include "core/errors.hpp"
+
+namespace pdmesh {
+namespace {
+
+void put32(std::string& out, std::uint32_t v) {
+  out += static_cast<char>(v >> 24);
+  out += static_cast<char>(v >> 16);
+  out += static_cast<char>(v >> 8);
+  out += static_cast<char>(v);
+}
+
+void chunk(std::string& out, const char* type, const std::string& data) {
+  put32(out, static_cast<std::uint32_t>(data.size()));
+  const std::size_t start = out.size();
+  out.append(type, 4);
+  out += data;
+  uLong crc = crc32(0L, Z_NULL, 0);
+  crc = crc32(crc, reinterpret_cast<const Bytef*>(out.data() + start), static_cast<uInt>(out.size() - start));
+  put32(out, static_cast<std::uint32_t>(crc));
+}
+
+}  // namespace
+
+std::string encode_png(cairo_surface_t* surface, int level) {
+  if (cairo_surface_get_type(surface) != CAIRO_SURFACE_TYPE_IMAGE)
+    throw Error("PNG encoder: not an image surface");
+  const cairo_format_t format = cairo_image_surface_get_format(surface);
+  if (format != CAIRO_FORMAT_RGB24 && format != CAIRO_FORMAT_ARGB32)
+    throw Error("PNG encoder: the surface is neither RGB24 nor ARGB32");
+  cairo_surface_flush(surface);
+  const int width = cairo_image_surface_get_width(surface), height = cairo_image_surface_get_height(surface);
+  const int stride = cairo_image_surface_get_stride(surface);
+  const unsigned char* data = cairo_image_surface_get_data(surface);
+
+  z_stream z{};
+  if (deflateInit2(&z, level, Z_DEFLATED, 15, 8, Z_DEFAULT_STRATEGY) != Z_OK)
+    throw Error("PNG encoder: deflateInit failed");
+  std::string idat;
+  std::vector<unsigned char> row(1 + 3 * static_cast<std::size_t>(width));
+  std::vector<unsigned char> buffer(1 << 16);
+  const auto drain = [&](int flush) {
+    do {
+      z.next_out = buffer.data();
+      z.avail_out = static_cast<uInt>(buffer.size());
+      const int rc = deflate(&z, flush);
+      if (rc == Z_STREAM_ERROR) {
+        deflateEnd(&z);
+        throw Error("PNG encoder: deflate failed");
+      }
+      idat.append(reinterpret_cast<const char*>(buffer.data()), buffer.size() - z.avail_out);
+    } while (z.avail_out == 0);
+  };
+  for (int y = 0; y < height; ++y) {
+    const auto* pixels = reinterpret_cast<const std::uint32_t*>(data + static_cast<std::ptrdiff_t>(y) * stride);
+    for (int x = 0; x < width; ++x) {
+      const std::uint32_t p = pixels[x];  // 0xAARRGGBB in native order
+      row[1 + 3 * x] = static_cast<unsigned char>(p >> 16);
+      row[2 + 3 * x] = static_cast<unsigned char>(p >> 8);
+      row[3 + 3 * x] = static_cast<unsigned char>(p);
+    }
+    // Filter type 0 (none): measured on a 30P30N mesh picture, level 1 then gives a smaller file
+    // (0.98 MB) than the Sub or Up filters (1.16, 1.17 MB) or cairo's writer (1.10 MB), as fast.
+    row[0] = 0;
+    z.next_in = row.data();
+    z.avail_in = static_cast<uInt>(row.size());
+    drain(Z_NO_FLUSH);
+  }
+  z.next_in = nullptr;
+  z.avail_in = 0;
+  drain(Z_FINISH);
+  deflateEnd(&z);
+
+  std::string out = "\x89PNG\r\n\x1a\n";
+  std::string header;
+  put32(header, static_cast<std::uint32_t>(width));
+  put32(header, static_cast<std::uint32_t>(height));
+  header += '\x08';  // bit depth
+  header += '\x02';  // colour type: RGB
+  header += '\x00';  // compression: deflate
+  header += '\x00';  // filter method 0
+  header += '\x00';  // no interlace
+  chunk(out, "IHDR", header);
+  chunk(out, "IDAT", idat);
+  chunk(out, "IEND", "");
+  return out;
+}
+
+void write_png_file(const std::filesystem::path& path, cairo_surface_t* surface) {
+  const std::string bytes = encode_png(surface);
+  std::ofstream f(path, std::ios::binary | std::ios::trunc);
+  f.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+  f.close();
+  if (!f) throw InputError(fmt::format("cannot write '{}'", path.string()));
+}
+
+}  // namespace pdmesh

@@ -1,0 +1,86 @@
+// The convergence stopping rule; see convergence.hpp.
+#include "sim/convergence.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+
+#include <fmt/format.h>
+
+#include "core/errors.hpp"
+#include "mesh/quality.hpp"
+#include "mesh/triangulate_nodes.hpp"
+
+namespace pdmesh {
+
+void check_convergence_options(const ConvergenceOptions& o) {
+  if (o.check_every < 1) throw InputError(fmt::format("convergence check_every must be >= 1, got {}", o.check_every));
+  if (o.window < o.check_every)
+    throw InputError(fmt::format("convergence window must be >= check_every ({}), got {}", o.check_every, o.window));
+  if (!(o.aspect_tolerance >= 0.0) || !std::isfinite(o.aspect_tolerance))
+    throw InputError(fmt::format("convergence aspect tolerance must be >= 0, got {}", o.aspect_tolerance));
+  if (!(o.angle_tolerance >= 0.0) || !std::isfinite(o.angle_tolerance))
+    throw InputError(fmt::format("convergence angle tolerance must be >= 0, got {}", o.angle_tolerance));
+  if (o.min_iterations < 0)
+    throw InputError(fmt::format("convergence min_iterations must be >= 0, got {}", o.min_iterations));
+}
+
+MeshSample measure_mesh(const NodeSet& nodes, int iteration) {
+  constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+  MeshSample s{iteration, kNaN, kNaN};
+  std::vector<std::string> names(nodes.curve_nodes.size());
+  for (std::size_t c = 0; c < names.size(); ++c) names[c] = fmt::format("c{}", c);
+  try {
+    const Mesh mesh = triangulate(nodes, names);
+    if (mesh.triangles.empty()) return s;
+    double angle = 180.0, aspect = 0.0;
+    for (const auto& t : mesh.triangles) {
+      const TriangleQuality q = triangle_quality(mesh.points[t[0]], mesh.points[t[1]], mesh.points[t[2]]);
+      angle = std::min(angle, q.min_angle);
+      aspect += q.aspect_ratio;
+    }
+    s.min_angle = angle;
+    s.aspect_ratio = aspect / static_cast<double>(mesh.triangles.size());
+  } catch (const Error&) {
+    // Nodes that do not triangulate in mid-run (two coincident ones) are simply not converged.
+  }
+  return s;
+}
+
+ConvergenceMonitor::ConvergenceMonitor(const ConvergenceOptions& options, std::vector<MeshSample> samples)
+    : options_(options), samples_(std::move(samples)) {
+  check_convergence_options(options_);
+}
+
+bool ConvergenceMonitor::due(int iteration) const {
+  return options_.enabled && iteration > 0 && iteration % options_.check_every == 0;
+}
+
+bool ConvergenceMonitor::observe(const HistoryRow& row, const MeshSample* sample, bool population_settled) {
+  if (!sample) return false;
+  samples_.push_back(*sample);
+  if (!population_settled || row.iteration < options_.min_iterations) return false;
+  // The window: the measurements after iteration now - window, and the one at its start.
+  const int start = row.iteration - options_.window;
+  const auto first_in =
+      std::find_if(samples_.begin(), samples_.end(), [start](const MeshSample& s) { return s.iteration > start; });
+  if (first_in == samples_.begin() || (first_in - 1)->iteration != start) return false;
+  double aspect_lo = HUGE_VAL, aspect_hi = -HUGE_VAL, best_before = -1.0, best_within = -1.0;
+  for (auto it = samples_.begin(); it != samples_.end(); ++it) {
+    const bool finite = std::isfinite(it->min_angle) && std::isfinite(it->aspect_ratio);
+    if (it >= first_in - 1) {
+      if (!finite) return false;  // the nodes did not triangulate within the window: not settled
+      aspect_lo = std::min(aspect_lo, it->aspect_ratio);
+      aspect_hi = std::max(aspect_hi, it->aspect_ratio);
+    }
+    if (!finite) continue;
+    if (it < first_in) best_before = std::max(best_before, it->min_angle);
+    else best_within = std::max(best_within, it->min_angle);
+  }
+  // The mean quality has stayed within the tolerance over the window (worsening counts too), and the
+  // smallest angle has not reached a new best in it.
+  return aspect_hi - aspect_lo <= options_.aspect_tolerance && best_within <= best_before + options_.angle_tolerance;
+}
+
+}  // namespace pdmesh

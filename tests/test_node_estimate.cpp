@@ -1,0 +1,110 @@
+// The node-count estimate over the background field's leaves (init/node_estimate): the closed-form
+// integral of 1/q^2 for a bilinear q against quadrature, and whole estimates against closed forms,
+// a brute-force grid integral and the per-sample estimate over the exact field.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <numbers>
+#include <random>
+#include <vector>
+
+#include "geometry/geometry.hpp"
+#include "geometry/geometry_tree.hpp"
+#include "init/initial_distribution.hpp"
+#include "init/node_estimate.hpp"
+#include "spacing/background_field.hpp"
+#include "spacing/spacing_field.hpp"
+
+using namespace pdmesh;
+
+namespace {
+
+// Gauss-Legendre with 20 x 20 points per cell of an m x m split of [0,1]^2.
+double quadrature(double q00, double q10, double q01, double q11) {
+  static const double x[5] = {0.0765265211334973, 0.2277858511416451, 0.3737060887154195, 0.5108670019508271,
+                              0.6360536807265150};
+  (void)x;
+  const int m = 64, g = 8;
+  // 8-point rule nodes and weights on [-1, 1].
+  static const double t[8] = {-0.9602898564975363, -0.7966664774136267, -0.5255324099163290, -0.1834346424956498,
+                              0.1834346424956498,  0.5255324099163290,  0.7966664774136267,  0.9602898564975363};
+  static const double w[8] = {0.1012285362903763, 0.2223810344533745, 0.3137066458778873, 0.3626837833783620,
+                              0.3626837833783620, 0.3137066458778873, 0.2223810344533745, 0.1012285362903763};
+  double sum = 0.0;
+  for (int a = 0; a < m; ++a)
+    for (int b = 0; b < m; ++b)
+      for (int i = 0; i < g; ++i)
+        for (int j = 0; j < g; ++j) {
+          const double u = (a + 0.5 * (t[i] + 1)) / m, v = (b + 0.5 * (t[j] + 1)) / m;
+          const double q = (1 - v) * ((1 - u) * q00 + u * q10) + v * ((1 - u) * q01 + u * q11);
+          sum += w[i] * w[j] * 0.25 / (m * m) / (q * q);
+        }
+  return sum;
+}
+
+std::vector<Vec2> line(Vec2 a, Vec2 b, int segments) {
+  std::vector<Vec2> p;
+  for (int i = 0; i <= segments; ++i) {
+    const double t = static_cast<double>(i) / segments;
+    p.push_back(i == 0 ? a : i == segments ? b : Vec2{a.x + t * (b.x - a.x), a.y + t * (b.y - a.y)});
+  }
+  return p;
+}
+
+Geometry square(double L, int m, Vec2 o = {0, 0}) {
+  const Vec2 c[4] = {{o.x, o.y}, {o.x + L, o.y}, {o.x + L, o.y + L}, {o.x, o.y + L}};
+  std::vector<RawCurve> raw;
+  for (int k = 0; k < 4; ++k) raw.push_back({"side" + std::to_string(k), line(c[k], c[(k + 1) % 4], m), "test", 0, {}});
+  return build_geometry(std::move(raw));
+}
+
+RawCurve circle(const std::string& name, double r, int segments) {
+  RawCurve c{name, {}, "test", 0, {}};
+  for (int i = 0; i < segments; ++i) {
+    const double t = 2.0 * std::numbers::pi * i / segments;
+    c.points.push_back({r * std::cos(t), r * std::sin(t)});
+  }
+  c.points.push_back(c.points.front());
+  return c;
+}
+
+}  // namespace
+
+TEST_CASE("node estimate: integral of 1/q^2 over a bilinear cell, closed form against quadrature", "[init]") {
+  CHECK(inverse_square_integral(2.0, 2.0, 2.0, 2.0) == Approx(0.25).epsilon(1e-15));
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> spread(0.05, 3.0);
+  for (int k = 0; k < 40; ++k) {
+    const double q00 = spread(rng), q10 = spread(rng), q01 = spread(rng);
+    // Every fourth case nearly separable (the series branch), the rest general.
+    const double q11 = k % 4 == 0 ? q10 * q01 / q00 * (1 + 1e-5) : spread(rng);
+    INFO("corners " << q00 << " " << q10 << " " << q01 << " " << q11);
+    CHECK(inverse_square_integral(q00, q10, q01, q11) == Approx(quadrature(q00, q10, q01, q11)).epsilon(1e-9));
+  }
+}
+
+TEST_CASE("node estimate over the background field: a constant-spacing square is the closed form", "[init]") {
+  const double L = 7.3;
+  const Geometry g = square(L, 13);
+  const GeometryTree tree(g);
+  const BoundarySpacing exact(tree);
+  const BackgroundSpacing field(exact, tree);
+  const double q = L / 13;
+  const double closed_form = L * L * 2.0 / (std::sqrt(3.0) * q * q);
+  CHECK(estimate_node_count(tree, field) == Approx(closed_form).epsilon(1e-3));
+}
+
+TEST_CASE("node estimate over the background field agrees with the per-sample estimate (circle in circle, annulus)",
+          "[init]") {
+  for (const double inner : {0.5, 1.0}) {
+    std::vector<RawCurve> raw = {circle("outer", 10.0, inner == 0.5 ? 60 : 160), circle("inner", inner, 60)};
+    const Geometry g = build_geometry(std::move(raw));
+    const GeometryTree tree(g);
+    const BoundarySpacing exact(tree);
+    const BackgroundSpacing field(exact, tree);
+    const double per_sample = estimate_node_count(tree, static_cast<const SpacingField&>(exact));
+    const double leaves = estimate_node_count(tree, field);
+    INFO("inner radius " << inner << ": per-sample " << per_sample << ", leaves " << leaves);
+    CHECK(leaves == Approx(per_sample).epsilon(0.01));
+  }
+}
