@@ -211,6 +211,37 @@ TEST_CASE("device run with population control: same node changes as the host", "
   CHECK(dev.stats.population_seconds > 0.0);
 }
 
+TEST_CASE("device run: the convergence rule stops a double run after the host's iteration, with the host's "
+          "measurements", "[opencl][device_sim][convergence]") {
+  // circle_circle with a short rule (measured every 20 iterations, window 60) so that it converges
+  // within a few hundred iterations; in double the device repeats the host bit for bit, so the
+  // measurements and the stop must be the same.
+  const Case c = test::load_case("circle_circle", {parse_set_option("simulation.stop=converged")});
+  SimOptions o = options_for(c, 600);
+  o.convergence = simulation_options(c.config).convergence;
+  REQUIRE(o.convergence.enabled);
+  o.convergence.check_every = 20;
+  o.convergence.window = 60;
+  o.convergence.min_iterations = 100;
+  const Outcome host = test::run_from(c, c.initial, o, false);
+  const Outcome dev = test::run_from(c, c.initial, o, true);
+  REQUIRE(host.result.converged);
+  CHECK(dev.result.converged);
+  CHECK(dev.result.state.iterations_done == host.result.state.iterations_done);
+  INFO("the host run converged after " << host.result.state.iterations_done);
+  CHECK(host.result.state.iterations_done < 600);
+  const auto& hs = host.result.state.convergence;
+  const auto& ds = dev.result.state.convergence;
+  REQUIRE(ds.size() == hs.size());
+  for (std::size_t k = 0; k < hs.size(); ++k) {
+    INFO("measurement after iteration " << hs[k].iteration);
+    CHECK(ds[k].iteration == hs[k].iteration);
+    CHECK(ds[k].min_angle == hs[k].min_angle);
+    CHECK(ds[k].aspect_ratio == hs[k].aspect_ratio);
+  }
+  require_identical_nodes(host.nodes, dev.nodes);
+}
+
 TEST_CASE("device run in float stays close to the host for 10 iterations", "[opencl][device_sim]") {
   const Case c = test::load_case("circle_circle");
   const Outcome host = test::run_case(c, 10, false);

@@ -21,9 +21,6 @@ namespace {
 
 // Gauss-Legendre with 20 x 20 points per cell of an m x m split of [0,1]^2.
 double quadrature(double q00, double q10, double q01, double q11) {
-  static const double x[5] = {0.0765265211334973, 0.2277858511416451, 0.3737060887154195, 0.5108670019508271,
-                              0.6360536807265150};
-  (void)x;
   const int m = 64, g = 8;
   // 8-point rule nodes and weights on [-1, 1].
   static const double t[8] = {-0.9602898564975363, -0.7966664774136267, -0.5255324099163290, -0.1834346424956498,
@@ -92,6 +89,36 @@ TEST_CASE("node estimate over the background field: a constant-spacing square is
   const double q = L / 13;
   const double closed_form = L * L * 2.0 / (std::sqrt(3.0) * q * q);
   CHECK(estimate_node_count(tree, field) == Approx(closed_form).epsilon(1e-3));
+}
+
+TEST_CASE("node estimate over the background field: a square with a square hole, boundary leaves cut by the hole",
+          "[init]") {
+  // Constant spacing (every segment 0.25 long), the hole's sides off the quadtree's grid lines.
+  const double L = 8.0, l = 2.0, q = 0.25;
+  std::vector<RawCurve> raw;
+  const Vec2 outer[4] = {{0, 0}, {L, 0}, {L, L}, {0, L}};
+  const Vec2 o{2.13, 3.37};
+  const Vec2 hole[4] = {{o.x, o.y}, {o.x, o.y + l}, {o.x + l, o.y + l}, {o.x + l, o.y}};  // clockwise
+  for (int k = 0; k < 4; ++k) raw.push_back({"outer" + std::to_string(k), line(outer[k], outer[(k + 1) % 4], 32), "test", 0, {}});
+  for (int k = 0; k < 4; ++k) raw.push_back({"hole" + std::to_string(k), line(hole[k], hole[(k + 1) % 4], 8), "test", 0, {}});
+  const Geometry g = build_geometry(std::move(raw));
+  REQUIRE(g.area == Approx(L * L - l * l));
+  const GeometryTree tree(g);
+  const BoundarySpacing exact(tree);
+  const BackgroundSpacing field(exact, tree);
+  const double closed_form = (L * L - l * l) * 2.0 / (std::sqrt(3.0) * q * q);
+  CHECK(estimate_node_count(tree, field) == Approx(closed_form).epsilon(2e-3));
+  // Shifting the whole geometry changes nothing but rounding.
+  std::vector<RawCurve> moved;
+  for (const Curve& c : g.curves) {
+    RawCurve r{c.name, {}, "test", 0, {}};
+    for (const Vec2& p : c.points) r.points.push_back({p.x + 100.37, p.y - 41.9});
+    moved.push_back(std::move(r));
+  }
+  const Geometry gm = build_geometry(std::move(moved));
+  const GeometryTree tm(gm);
+  const BoundarySpacing em(tm);
+  CHECK(estimate_node_count(tm, BackgroundSpacing(em, tm)) == Approx(closed_form).epsilon(2e-3));
 }
 
 TEST_CASE("node estimate over the background field agrees with the per-sample estimate (circle in circle, annulus)",

@@ -102,6 +102,50 @@ TEST_CASE("a checkpoint survives format and parse exactly", "[resume]") {
   CHECK_THROWS_WITH(pdmesh::parse_checkpoint("pdmesh-checkpoint 3\n", "mem"), Catch::Contains("mem:1"));
 }
 
+TEST_CASE("a checkpoint keeps the stopping rule's measurements exactly, and a file without them has none",
+          "[resume][convergence]") {
+  pdmesh::Checkpoint c;
+  c.nodes.add({0.0, 0.0}, 0.3, pdmesh::NodeKind::Fixed, 0);
+  c.nodes.add({1.0, 0.0}, 0.3, pdmesh::NodeKind::Fixed, 0);
+  c.nodes.curve_nodes = {{0, 1}};
+  c.state.iterations_done = 300;
+  c.state.dt_initial = 0.01;
+  c.state.arcs = {{0.0, 1.0}};
+  c.state.tangents = {{0, 0}, {0, 0}};
+  c.state.history.resize(300);
+  for (int k = 0; k < 300; ++k) c.state.history[static_cast<std::size_t>(k)].iteration = k + 1;
+  // Without measurements (simulation.stop = "iterations"): no section at all, as in older files.
+  const std::string without = pdmesh::format_checkpoint(c);
+  CHECK(without.find("convergence") == std::string::npos);
+  CHECK(pdmesh::parse_checkpoint(without, "mem").state.convergence.empty());
+  // With them, a NaN one (nodes that did not triangulate) included: bit for bit.
+  c.state.convergence = {{100, 1.0 / 3.0, 1.0 + 0x1p-52}, {200, std::nan(""), std::nan("")}, {300, 35.25, 1.0123}};
+  const std::string text = pdmesh::format_checkpoint(c);
+  const pdmesh::Checkpoint back = pdmesh::parse_checkpoint(text, "mem");
+  CHECK(pdmesh::format_checkpoint(back) == text);
+  REQUIRE(back.state.convergence.size() == 3);
+  CHECK(back.state.convergence[0].iteration == 100);
+  CHECK(back.state.convergence[0].min_angle == 1.0 / 3.0);
+  CHECK(back.state.convergence[0].aspect_ratio == 1.0 + 0x1p-52);
+  CHECK(std::isnan(back.state.convergence[1].min_angle));
+  CHECK(std::isnan(back.state.convergence[1].aspect_ratio));
+  CHECK(back.state.convergence[2].iteration == 300);
+  // Measurements after the last iteration done, out of order, or of the wrong shape are refused.
+  const auto section = text.find("convergence 3\n");
+  REQUIRE(section != std::string::npos);
+  const std::string tail = text.substr(section);
+  const auto replaced = [&](const std::string& from, const std::string& to) {
+    std::string t = tail;
+    const auto at = t.find(from);
+    REQUIRE(at != std::string::npos);
+    return text.substr(0, section) + t.replace(at, from.size(), to);
+  };
+  CHECK_THROWS_AS(pdmesh::parse_checkpoint(replaced("\n300 ", "\n301 "), "mem"), pdmesh::InputError);
+  CHECK_THROWS_AS(pdmesh::parse_checkpoint(replaced("\n200 ", "\n50 "), "mem"), pdmesh::InputError);
+  CHECK_THROWS_AS(pdmesh::parse_checkpoint(replaced("convergence 3", "convergence 4"), "mem"), pdmesh::InputError);
+  CHECK_THROWS_AS(pdmesh::parse_checkpoint(replaced(" nan nan", " nan"), "mem"), pdmesh::InputError);
+}
+
 TEST_CASE("a stopped and resumed run ends bit-identical to an uninterrupted one", "[resume][cli]") {
   // The thesis' settings, and boundary nodes placed by the field on smooth curves.
   const std::string settings = GENERATE(std::string(""), std::string("--set boundary.nodes=spacing --set geometry.curves=smooth"));

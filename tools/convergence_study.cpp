@@ -1,71 +1,80 @@
-// Convergence study: runs one case for simulation.iterations iterations in chunks (each chunk resumes
-// the state of the last, which the drivers continue bit-identically), and after every chunk
-// triangulates the nodes and measures the mesh, so that the quality can be read against the
-// iteration. Writes one CSV line per chunk on stdout and the run's history to --history; the
-// stopping rule (sim/convergence) is judged against these with tools/convergence_check.py.
-// Usage: convergence_study CASE.toml [--set KEY=VALUE ...] [--chunk N] [--history FILE]
+// Convergence study: runs one case on the host reference for simulation.iterations iterations (every
+// one of them: simulation.stop is set to "iterations") and, every --every iterations, measures the
+// mesh of the nodes as the stopping rule does (sim/convergence measure_mesh: the smallest angle and
+// the mean aspect ratio of their constrained Delaunay triangulation, before any cleanup) together with
+// whether population control has settled then. One CSV line per measurement on stdout; the history
+// to --history. tools/convergence_check.py replays the stopping rule over these lines with any
+// options (docs/simulation.md, "When a run stops").
+// Usage: convergence_study CASE.toml|GEOMETRY... [--set KEY=VALUE ...] [--every N] [--history FILE]
 #include <fmt/format.h>
 
 #include <chrono>
+#include <filesystem>
 #include <string>
 #include <vector>
 
 #include "app/case_file.hpp"
 #include "app/mesh_command.hpp"
 #include "core/errors.hpp"
-#include "mesh/quality.hpp"
-#include "mesh/triangulate_nodes.hpp"
+#include "sim/convergence.hpp"
 #include "sim/history.hpp"
+#include "sim/population.hpp"
 
 int main(int argc, char** argv) {
   using namespace pdmesh;
   try {
-    if (argc < 2) {
-      fmt::print(stderr, "usage: convergence_study CASE.toml [--set KEY=VALUE ...] [--chunk N] [--history FILE]\n");
-      return 2;
-    }
+    std::vector<std::string> inputs;
     std::vector<CaseOverride> overrides;
-    int chunk = 50;
+    int every = 10;
     std::string history_file;
-    for (int a = 2; a < argc; ++a) {
+    for (int a = 1; a < argc; ++a) {
       const std::string arg = argv[a];
       if (arg == "--set" && a + 1 < argc) overrides.push_back(parse_set_option(argv[++a]));
-      else if (arg == "--chunk" && a + 1 < argc) chunk = std::stoi(argv[++a]);
+      else if (arg == "--every" && a + 1 < argc) every = std::stoi(argv[++a]);
       else if (arg == "--history" && a + 1 < argc) history_file = argv[++a];
+      else if (!arg.empty() && arg[0] != '-') inputs.push_back(arg);
       else throw InputError(fmt::format("convergence_study: unknown argument '{}'", arg));
     }
-    CaseConfig config = load_case_file(argv[1], overrides);
+    if (inputs.empty() || every < 1) {
+      fmt::print(stderr, "usage: convergence_study CASE.toml|GEOMETRY... [--set KEY=VALUE ...] [--every N] "
+                         "[--history FILE]\n");
+      return 2;
+    }
+    std::vector<std::filesystem::path> files(inputs.begin(), inputs.end());
+    CaseConfig config = files.size() == 1 && files[0].extension() == ".toml" ? load_case_file(files[0], overrides)
+                        : files.size() == 1 && std::filesystem::is_directory(files[0])
+                            ? load_case_file(files[0] / "case.toml", overrides)
+                            : case_for_geometry_files(files, overrides);
     config.quiet = true;
     config.simulation.stop = StopRule::Iterations;  // the study runs every iteration
-    const MeshInputs inputs(config);
-    NodeSet nodes = make_initial(config, inputs).nodes;
-    const int total = static_cast<int>(config.simulation.iterations);
-    SimState state;
-    bool have_state = false;
-    fmt::print("iteration,min_angle,max_angle,aspect_ratio_avg,triangles,points,seconds\n");
+    const MeshInputs in(config);
+    check_node_limit(config, in);
+    NodeSet nodes = make_initial(config, in).nodes;
+    SimOptions options = simulation_options(config);
+    options.background = in.dense ? nullptr : &in.pipeline().background();
+    fmt::print("iteration,min_angle,aspect_ratio,settled,nodes,average_force,seconds\n");
     const auto start = std::chrono::steady_clock::now();
-    for (int done = 0; done < total;) {
-      const int next = std::min(total, done + chunk);
-      CaseConfig c = config;
-      c.simulation.iterations = next;
-      c.simulation.device = "host";
-      const SimResult r = [&] {
-        // simulate() writes files; the study only needs the state, so it calls the driver directly.
-        SimOptions o = simulation_options(c);
-        o.resume = have_state ? &state : nullptr;
-        return run_simulation(nodes, *inputs.tree, *inputs.spacing, o);
-      }();
-      state = r.state;
-      have_state = true;
-      done = next;
-      const Mesh mesh = triangulate(nodes, inputs.curve_names());
-      const QualitySummary s = summarize_quality(mesh);
-      fmt::print("{},{:.4f},{:.4f},{:.6f},{},{},{:.2f}\n", done, s.min_angle, s.max_angle, s.aspect_ratio_avg,
-                 s.triangles, s.points,
+    // Population control's schedule, followed as the driver keeps it (an event is due by the same
+    // rule; it changed the node set when the row counts insertions or removals), so that `settled` is
+    // what the driver hands the rule.
+    PopulationSchedule schedule;
+    // The host driver updates `nodes` in place: in the callback they hold the iteration's positions,
+    // after its population event, as when the rule measures them.
+    SimCallbacks callbacks;
+    callbacks.on_iteration = [&](const HistoryRow& row) {
+      const int it = row.iteration;
+      if (options.population.enabled && population_event_due(options.population, schedule, it, options.iterations))
+        schedule.record(options.population, it, row.inserted + row.removed > 0);
+      if (it % every != 0) return;
+      const bool settled = population_status(options.population, schedule, it, options.iterations).settled;
+      const MeshSample s = measure_mesh(nodes, it);
+      fmt::print("{},{:.6f},{:.8f},{},{},{:.6g},{:.2f}\n", it, s.min_angle, s.aspect_ratio, settled ? 1 : 0,
+                 nodes.size(), row.average_force,
                  std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
       std::fflush(stdout);
-    }
-    if (!history_file.empty()) write_history_csv(history_file, state.history);
+    };
+    const SimResult r = run_simulation(nodes, in.node_tree(), in.field(), options, callbacks);
+    if (!history_file.empty()) write_history_csv(history_file, r.history);
     return 0;
   } catch (const std::exception& e) {
     fmt::print(stderr, "convergence_study: {}\n", e.what());

@@ -2,6 +2,7 @@
 #include "app/run_phases.hpp"
 
 #include <chrono>
+#include <cmath>
 #include <ctime>
 #include <fstream>
 
@@ -116,29 +117,36 @@ void RunPhases::worker() {
   for (;;) {
     cv_.wait(lock, [this] { return stopping_ || !queue_.empty(); });
     if (queue_.empty()) return;  // stopping, nothing left
-    auto [name, job] = std::move(queue_.front());
-    queue_.pop_front();
-    lock.unlock();
-    const double w0 = wall_seconds(), c0 = thread_cpu_seconds();
-    std::exception_ptr error;
-    try {
-      job();
-    } catch (...) {
-      error = std::current_exception();
-    }
-    const PhaseTime t{std::move(name), wall_seconds() - w0, thread_cpu_seconds() - c0, true};
-    lock.lock();
-    phases_.push_back(t);
-    if (error && !error_) error_ = error;
-    --pending_;
-    cv_.notify_all();
+    run_job(lock);
   }
+}
+
+void RunPhases::run_job(std::unique_lock<std::mutex>& lock) {
+  auto [name, job] = std::move(queue_.front());
+  queue_.pop_front();
+  lock.unlock();
+  const double w0 = wall_seconds(), c0 = thread_cpu_seconds();
+  std::exception_ptr error;
+  try {
+    job();
+  } catch (...) {
+    error = std::current_exception();
+  }
+  const PhaseTime t{std::move(name), wall_seconds() - w0, thread_cpu_seconds() - c0, true};
+  lock.lock();
+  phases_.push_back(t);
+  if (error && !error_) error_ = error;
+  --pending_;
+  cv_.notify_all();
 }
 
 void RunPhases::wait_pictures() {
   std::exception_ptr error;
   {
     std::unique_lock lock(mutex_);
+    // The caller has nothing else to do: it draws queued pictures too, beside the background thread
+    // (30P30N's six mesh pictures, drawn at the end of a run, were its wait).
+    while (!queue_.empty()) run_job(lock);
     cv_.wait(lock, [this] { return pending_ == 0; });
     std::swap(error, error_);
   }
@@ -184,7 +192,9 @@ std::string RunPhases::json() const {
                      process_cpu_seconds() - start_cpu_, peak_rss_bytes());
   {
     std::lock_guard lock(mutex_);
-    for (const auto& [k, v] : notes_) out += fmt::format("  {}: {},\n", json_string(k), v);
+    // JSON has no NaN or infinity: such a fact is null.
+    for (const auto& [k, v] : notes_)
+      out += fmt::format("  {}: {},\n", json_string(k), std::isfinite(v) ? fmt::format("{}", v) : std::string("null"));
   }
   out += "  \"phases\": [\n";
   for (std::size_t i = 0; i < all.size(); ++i) {

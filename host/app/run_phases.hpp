@@ -22,7 +22,9 @@ struct PhaseTime {
   // Process CPU seconds (every thread, background pictures included) during the phase; for a
   // background job, the CPU seconds of the thread that drew it.
   double cpu = 0.0;
-  bool background = false;  // a job of the background thread (a picture), overlapping other phases
+  // A picture job, drawn by the background thread (overlapping other phases) or by the caller of
+  // RunPhases::wait_pictures while it waits.
+  bool background = false;
 };
 
 // Seconds of the process's CPU time (all threads) and of the calling thread's.
@@ -58,7 +60,8 @@ class RunPhases {
   // Draws a picture: queued for the background thread (or drawn now). Whatever the job reads must
   // stay alive and unchanged until wait_pictures() returns.
   void picture(std::string name, std::function<void()> job);
-  // Waits for every picture queued so far; rethrows the first error a job threw (once).
+  // Waits for every picture queued so far, drawing queued ones on the calling thread meanwhile;
+  // rethrows the first error a job threw (once).
   void wait_pictures();
 
   // Adds a phase measured elsewhere; thread-safe.
@@ -75,6 +78,9 @@ class RunPhases {
 
  private:
   void worker();
+  // Runs the queue's first job with `lock` (held on entry and on return) released meanwhile; records
+  // its time and its error.
+  void run_job(std::unique_lock<std::mutex>& lock);
   const bool background_;
   const double start_wall_, start_cpu_;
   mutable std::mutex mutex_;

@@ -570,7 +570,12 @@ SimResult DeviceRun<Real>::run(const SimCallbacks& callbacks) {
     if (callbacks.on_failure) callbacks.on_failure(*failed_at);
   };
   try {
-    for (; iteration <= options_.iterations; ++iteration) {
+    // A run stopped in the iteration it converged in is complete (as in the host driver).
+    if (options_.resume && done < options_.iterations &&
+        convergence_.converged_after(
+            done, population_status(options_.population, population_.schedule, done, options_.iterations).settled))
+      result.converged = true;
+    for (; iteration <= options_.iterations && !result.converged; ++iteration) {
       // A zero skin rebuilds every iteration (the reference's behaviour).
       if (skin_use_ > kSkinUseLimit || options_.verlet_skin == 0.0) {
         rebuild();
@@ -627,10 +632,8 @@ SimResult DeviceRun<Real>::run(const SimCallbacks& callbacks) {
       progress.update(iteration, options_.iterations, row.average_force, dt_gm);
       done = iteration;
       host_ahead_ = false;
-      if (options_.stop && options_.stop->load() && iteration < options_.iterations) {
-        result.stopped = true;
-        break;
-      }
+      // The stopping rule, in the host driver's order: measured also in an iteration the run is
+      // stopped after, so that a resumed run has every measurement.
       std::optional<MeshSample> sample;
       if (convergence_.due(iteration)) {
         read_back_nodes();
@@ -641,6 +644,10 @@ SimResult DeviceRun<Real>::run(const SimCallbacks& callbacks) {
           population_status(options_.population, population_.schedule, iteration, options_.iterations).settled;
       if (convergence_.observe(row, sample ? &*sample : nullptr, settled) && iteration < options_.iterations) {
         result.converged = true;
+        break;
+      }
+      if (options_.stop && options_.stop->load() && iteration < options_.iterations) {
+        result.stopped = true;
         break;
       }
     }

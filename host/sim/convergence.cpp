@@ -16,8 +16,10 @@ namespace pdmesh {
 
 void check_convergence_options(const ConvergenceOptions& o) {
   if (o.check_every < 1) throw InputError(fmt::format("convergence check_every must be >= 1, got {}", o.check_every));
-  if (o.window < o.check_every)
-    throw InputError(fmt::format("convergence window must be >= check_every ({}), got {}", o.check_every, o.window));
+  // The window starts at a measurement: measurements are taken at the multiples of check_every.
+  if (o.window < o.check_every || o.window % o.check_every != 0)
+    throw InputError(
+        fmt::format("convergence window must be a positive multiple of check_every ({}), got {}", o.check_every, o.window));
   if (!(o.aspect_tolerance >= 0.0) || !std::isfinite(o.aspect_tolerance))
     throw InputError(fmt::format("convergence aspect tolerance must be >= 0, got {}", o.aspect_tolerance));
   if (!(o.angle_tolerance >= 0.0) || !std::isfinite(o.angle_tolerance))
@@ -60,9 +62,15 @@ bool ConvergenceMonitor::due(int iteration) const {
 bool ConvergenceMonitor::observe(const HistoryRow& row, const MeshSample* sample, bool population_settled) {
   if (!sample) return false;
   samples_.push_back(*sample);
-  if (!population_settled || row.iteration < options_.min_iterations) return false;
+  return converged_after(row.iteration, population_settled);
+}
+
+bool ConvergenceMonitor::converged_after(int iteration, bool population_settled) const {
+  if (!options_.enabled || !population_settled || iteration < options_.min_iterations) return false;
+  // Only at a measurement: the newest sample must be of this iteration.
+  if (samples_.empty() || samples_.back().iteration != iteration) return false;
   // The window: the measurements after iteration now - window, and the one at its start.
-  const int start = row.iteration - options_.window;
+  const int start = iteration - options_.window;
   const auto first_in =
       std::find_if(samples_.begin(), samples_.end(), [start](const MeshSample& s) { return s.iteration > start; });
   if (first_in == samples_.begin() || (first_in - 1)->iteration != start) return false;

@@ -53,6 +53,10 @@ class ConvergenceMonitor {
   // `sample` is the measurement after this iteration when due() asked for one (else null);
   // `population_settled` false while population control may still change the node set.
   bool observe(const HistoryRow& row, const MeshSample* sample, bool population_settled = true);
+  // Whether the measurements so far say the run has converged after `iteration` (the rule observe()
+  // applies). A resumed run asks this first: a run that converged in the very iteration it was
+  // interrupted after is complete, as the uninterrupted run would have been.
+  bool converged_after(int iteration, bool population_settled = true) const;
   const std::vector<MeshSample>& samples() const { return samples_; }
 
  private:

@@ -140,7 +140,12 @@ SimResult run_simulation(NodeSet& nodes, const GeometryTree& tree, const Spacing
                     boundary.arcs(), boundary.tangents(),    result.history,
                     population.schedule, convergence.samples()};
   };
-  for (int iteration = first; iteration <= options.iterations; ++iteration) {
+  // A run stopped in the iteration it converged in is complete (the uninterrupted run ended there).
+  if (resume && done < options.iterations &&
+      convergence.converged_after(
+          done, population_status(options.population, population.schedule, done, options.iterations).settled))
+    result.converged = true;
+  for (int iteration = first; iteration <= options.iterations && !result.converged; ++iteration) {
     const double dt_gm = gm.dt();
     StepSums sums;
     try {
@@ -201,17 +206,18 @@ SimResult run_simulation(NodeSet& nodes, const GeometryTree& tree, const Spacing
     if (callbacks.on_iteration) callbacks.on_iteration(row);
     progress.update(iteration, options.iterations, row.average_force, dt_gm);
     done = iteration;
-    if (options.stop && options.stop->load() && iteration < options.iterations) {
-      result.stopped = true;
-      break;
-    }
-    // The nodes hold this iteration's positions: the stopping rule measures their mesh when due.
+    // The nodes hold this iteration's positions: the stopping rule measures their mesh when due, also
+    // in an iteration the run is stopped after, so that a resumed run has every measurement.
     std::optional<MeshSample> sample;
     if (convergence.due(iteration)) sample = measure_mesh(nodes, iteration);
     // Never while population control may still change the node set.
     const bool settled = population_status(options.population, population.schedule, iteration, options.iterations).settled;
     if (convergence.observe(row, sample ? &*sample : nullptr, settled) && iteration < options.iterations) {
       result.converged = true;
+      break;
+    }
+    if (options.stop && options.stop->load() && iteration < options.iterations) {
+      result.stopped = true;
       break;
     }
   }

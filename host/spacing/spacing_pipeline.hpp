@@ -51,7 +51,7 @@ class SpacingPipeline {
   // Builds the background at once when the options modify the field, else on first background() call.
   // check_base (if set) sees the scaled base field's quadtree before any source or limit is applied
   // (the sources only lower q: a node-count limit can refuse the case there, cheaply).
-  using BaseCheck = std::function<void(const SpacingField& base_tree)>;
+  using BaseCheck = std::function<void(const BackgroundSpacing& base_tree)>;
   SpacingPipeline(const SpacingField& base, const GeometryTree& tree, const SpacingOptions& options,
                   BaseCheck check_base = {});
   ~SpacingPipeline();

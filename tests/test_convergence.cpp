@@ -1,0 +1,273 @@
+// The convergence stopping rule (sim/convergence): the monitor on synthetic measurement sequences
+// whose convergence iteration is known, its options' validation, measure_mesh on small node sets, and
+// the rule inside the host driver: a run that converges stops there, and a run stopped (also in a
+// measured iteration) and resumed from its checkpoint stops where the uninterrupted run did.
+#include <catch2/catch.hpp>
+
+#include <atomic>
+#include <cmath>
+#include <functional>
+#include <limits>
+#include <vector>
+
+#include "app/case_file.hpp"
+#include "app/mesh_command.hpp"
+#include "core/errors.hpp"
+#include "mesh/quality.hpp"
+#include "mesh/triangulate_nodes.hpp"
+#include "sim/checkpoint.hpp"
+#include "sim/convergence.hpp"
+#include "sim/simulation.hpp"
+
+using namespace pdmesh;
+
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+ConvergenceOptions small_options() {
+  ConvergenceOptions o;
+  o.enabled = true;
+  o.check_every = 10;
+  o.window = 40;
+  o.aspect_tolerance = 5e-4;
+  o.angle_tolerance = 0.25;
+  o.min_iterations = 40;
+  return o;
+}
+
+// A mesh that improves until iteration 60 (aspect ratio falling by 0.01 and the smallest angle rising
+// by 1 degree per measurement) and then only wobbles within the tolerances.
+MeshSample settling(int iteration) {
+  if (iteration <= 60) return {iteration, 20.0 + iteration / 10.0, 1.10 - iteration / 1000.0};
+  const double wobble = (iteration / 10) % 2 == 0 ? 1.0 : -1.0;
+  return {iteration, 26.0 + 0.1 * wobble, 1.04 + 1e-4 * wobble};
+}
+
+// Feeds iterations 1 .. last to `monitor` (a sample at every due iteration from `sample`) and returns
+// the first iteration it reports converged, or 0.
+int first_converged(ConvergenceMonitor& monitor, int last, const std::function<MeshSample(int)>& sample,
+                    const std::function<bool(int)>& settled = [](int) { return true; }, int from = 1) {
+  for (int it = from; it <= last; ++it) {
+    HistoryRow row;
+    row.iteration = it;
+    std::optional<MeshSample> s;
+    if (monitor.due(it)) s = sample(it);
+    if (monitor.observe(row, s ? &*s : nullptr, settled(it))) return it;
+  }
+  return 0;
+}
+
+}  // namespace
+
+TEST_CASE("convergence: a mesh that settles at iteration 60 converges one window later, at 100", "[convergence]") {
+  ConvergenceMonitor monitor(small_options());
+  CHECK_FALSE(monitor.due(0));
+  CHECK_FALSE(monitor.due(5));
+  CHECK(monitor.due(10));
+  CHECK(first_converged(monitor, 300, settling) == 100);
+  // Every measurement up to the stop was kept (for the checkpoint), one per check.
+  REQUIRE(monitor.samples().size() == 10);
+  CHECK(monitor.samples().back().iteration == 100);
+  CHECK(monitor.converged_after(100));
+  CHECK_FALSE(monitor.converged_after(95));  // between measurements: never
+}
+
+TEST_CASE("convergence: never before min_iterations, and never while disabled", "[convergence]") {
+  ConvergenceOptions o = small_options();
+  o.min_iterations = 150;
+  ConvergenceMonitor late(o);
+  CHECK(first_converged(late, 300, settling) == 150);
+  o.enabled = false;
+  ConvergenceMonitor off(o);
+  CHECK_FALSE(off.due(100));
+  CHECK(first_converged(off, 300, settling) == 0);
+  CHECK(off.samples().empty());
+}
+
+TEST_CASE("convergence: never while population control may still change the node set", "[convergence]") {
+  ConvergenceMonitor monitor(small_options());
+  // Unsettled until iteration 125: the first measurement after that, 130, stops the run; the
+  // measurements taken meanwhile count for the window.
+  CHECK(first_converged(monitor, 300, settling, [](int it) { return it >= 125; }) == 130);
+  CHECK(monitor.samples().size() == 13);
+  ConvergenceMonitor never(small_options());
+  CHECK(first_converged(never, 300, settling, [](int) { return false; }) == 0);
+}
+
+TEST_CASE("convergence: a mesh that keeps improving or drifting does not converge", "[convergence]") {
+  // The smallest angle reaches a new best by more than the tolerance at every measurement.
+  ConvergenceMonitor rising(small_options());
+  CHECK(first_converged(rising, 400, [](int it) { return MeshSample{it, 10.0 + 0.03 * it, 1.05}; }) == 0);
+  // The average aspect ratio drifts by 2e-5 per iteration: 8e-4 over the window, above 5e-4.
+  ConvergenceMonitor drifting(small_options());
+  CHECK(first_converged(drifting, 400, [](int it) { return MeshSample{it, 30.0, 1.05 - 2e-5 * it}; }) == 0);
+  // The smallest angle falling (a worse mesh) is not a new best: the aspect ratio decides alone, as
+  // early as it can: the window needs a measurement at its start (none at iteration 0), so 50.
+  ConvergenceMonitor falling(small_options());
+  CHECK(first_converged(falling, 400, [](int it) { return MeshSample{it, 30.0 - 0.01 * it, 1.05}; }) == 50);
+}
+
+TEST_CASE("convergence: NaN measurements (nodes that did not triangulate) never converge", "[convergence]") {
+  // One NaN at iteration 80: no window that holds it (up to 120) converges; 130 does.
+  ConvergenceMonitor one(small_options());
+  const auto with_hole = [](int it) { return it == 80 ? MeshSample{it, kNaN, kNaN} : settling(it); };
+  CHECK(first_converged(one, 300, with_hole) == 130);
+  ConvergenceMonitor all(small_options());
+  CHECK(first_converged(all, 300, [](int it) { return MeshSample{it, kNaN, kNaN}; }) == 0);
+  // NaN in the angle alone counts as well.
+  ConvergenceMonitor angle(small_options());
+  CHECK(first_converged(angle, 300, [](int it) { return MeshSample{it, kNaN, 1.05}; }) == 0);
+}
+
+TEST_CASE("convergence: a monitor given the earlier measurements continues as the uninterrupted one", "[convergence]") {
+  ConvergenceMonitor whole(small_options());
+  const int stop = first_converged(whole, 300, settling);
+  REQUIRE(stop == 100);
+  for (const int cut : {50, 70, 99}) {
+    INFO("cut after iteration " << cut);
+    ConvergenceMonitor first(small_options());
+    REQUIRE(first_converged(first, cut, settling) == 0);
+    ConvergenceMonitor second(small_options(), first.samples());
+    CHECK(first_converged(second, 300, settling, [](int) { return true; }, cut + 1) == stop);
+  }
+  // Cut exactly where it converged: the measurements alone say so.
+  ConvergenceMonitor first(small_options());
+  REQUIRE(first_converged(first, 100, settling) == 100);
+  const ConvergenceMonitor second(small_options(), first.samples());
+  CHECK(second.converged_after(100));
+  CHECK_FALSE(second.converged_after(100, false));
+}
+
+TEST_CASE("convergence options: invalid values are refused naming the option", "[convergence]") {
+  const auto refused = [](const std::function<void(ConvergenceOptions&)>& change, const std::string& words) {
+    ConvergenceOptions o = small_options();
+    change(o);
+    CHECK_THROWS_AS(check_convergence_options(o), InputError);
+    CHECK_THROWS_WITH(check_convergence_options(o), Catch::Contains(words));
+    CHECK_THROWS_AS(ConvergenceMonitor(o), InputError);
+  };
+  CHECK_NOTHROW(check_convergence_options(small_options()));
+  CHECK_NOTHROW(check_convergence_options(ConvergenceOptions{}));  // the defaults
+  refused([](ConvergenceOptions& o) { o.check_every = 0; }, "check_every must be >= 1");
+  refused([](ConvergenceOptions& o) { o.window = 5; }, "window must be a positive multiple of check_every");
+  refused([](ConvergenceOptions& o) { o.window = 45; }, "window must be a positive multiple of check_every");
+  refused([](ConvergenceOptions& o) { o.aspect_tolerance = -1e-4; }, "aspect tolerance");
+  refused([](ConvergenceOptions& o) { o.aspect_tolerance = kNaN; }, "aspect tolerance");
+  refused([](ConvergenceOptions& o) { o.angle_tolerance = HUGE_VAL; }, "angle tolerance");
+  refused([](ConvergenceOptions& o) { o.min_iterations = -1; }, "min_iterations");
+}
+
+TEST_CASE("measure_mesh: the triangulated nodes' smallest angle and mean aspect ratio, NaN when they do not "
+          "triangulate", "[convergence]") {
+  // A unit square of four corners and one interior node off centre.
+  NodeSet nodes;
+  const Vec2 corners[4] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+  for (int k = 0; k < 4; ++k) nodes.add(corners[k], 0.5, NodeKind::Fixed, k);
+  nodes.add({0.4, 0.45}, 0.5, NodeKind::Interior, -1);
+  nodes.curve_nodes = {{0, 1}, {1, 2}, {2, 3}, {3, 0}};
+  const MeshSample s = measure_mesh(nodes, 7);
+  CHECK(s.iteration == 7);
+  const QualitySummary q = summarize_quality(triangulate(nodes, {"c0", "c1", "c2", "c3"}));
+  REQUIRE(q.triangles == 4);
+  CHECK(s.min_angle == Approx(q.min_angle).epsilon(1e-12));
+  CHECK(s.aspect_ratio == Approx(q.aspect_ratio_avg).epsilon(1e-12));
+  // A second interior node on top of the first: no triangulation, NaN values (not an exception).
+  nodes.add({0.4, 0.45}, 0.5, NodeKind::Interior, -1);
+  const MeshSample bad = measure_mesh(nodes, 8);
+  CHECK(std::isnan(bad.min_angle));
+  CHECK(std::isnan(bad.aspect_ratio));
+}
+
+namespace {
+
+// circle_circle (thesis preset) from its structured start on the host, with a short rule so that the
+// run converges within a few hundred iterations.
+struct SmallRun {
+  CaseConfig config;
+  std::unique_ptr<MeshInputs> inputs;
+  NodeSet initial;
+  SimOptions options;
+
+  SmallRun() {
+    config = load_case_file(std::string(PDMESH_SOURCE_DIR) + "/cases/circle_circle/case.toml",
+                            {{"simulation.stop", "converged", "test"}, {"simulation.iterations", "600", "test"}});
+    config.quiet = true;
+    inputs = std::make_unique<MeshInputs>(config);
+    initial = make_initial(config, *inputs).nodes;
+    options = simulation_options(config);
+    options.background = &inputs->pipeline().background();  // as the mesh command passes it
+    options.convergence.check_every = 20;
+    options.convergence.window = 60;
+    options.convergence.min_iterations = 100;
+  }
+  SimResult run(NodeSet& nodes, const SimState* resume = nullptr, const std::atomic<bool>* stop = nullptr) const {
+    SimOptions o = options;
+    o.resume = resume;
+    o.stop = stop;
+    return run_simulation(nodes, *inputs->tree, inputs->field(), o);
+  }
+};
+
+}  // namespace
+
+TEST_CASE("convergence in the host driver: the run stops at a measurement, and a resumed run stops there too",
+          "[convergence][sim][resume]") {
+  const SmallRun c;
+  REQUIRE(c.options.convergence.enabled);  // simulation.stop = "converged"
+  NodeSet whole = c.initial;
+  const SimResult full = c.run(whole);
+  REQUIRE(full.converged);
+  const int stop = full.state.iterations_done;
+  INFO("converged after " << stop);
+  CHECK(stop % c.options.convergence.check_every == 0);
+  CHECK(stop >= c.options.convergence.min_iterations);
+  CHECK(stop < 600);
+  CHECK(full.history.size() == static_cast<std::size_t>(stop));
+  CHECK(full.state.convergence.size() == static_cast<std::size_t>(stop / c.options.convergence.check_every));
+
+  // Stopped after a measured iteration (its measurement must reach the resumed run), after one between
+  // measurements, and after the very iteration it converged in; the state goes through the checkpoint
+  // file format, as with --stop-after and --resume.
+  for (const int cut : {80, stop - 7, stop}) {
+    INFO("stopped after iteration " << cut);
+    NodeSet nodes = c.initial;
+    std::atomic<bool> flag{false};
+    SimOptions first_options = c.options;
+    first_options.stop = &flag;
+    SimCallbacks callbacks;
+    callbacks.on_iteration = [&](const HistoryRow& row) {
+      if (row.iteration == cut) flag = true;
+    };
+    const SimResult part = run_simulation(nodes, *c.inputs->tree, c.inputs->field(), first_options, callbacks);
+    REQUIRE(part.state.iterations_done == cut);
+    CHECK(part.stopped == (cut != stop));
+    CHECK(part.converged == (cut == stop));
+    const Checkpoint saved = parse_checkpoint(format_checkpoint(Checkpoint{{}, nodes, part.state}), "mem");
+    REQUIRE(saved.state.convergence.size() == part.state.convergence.size());
+    NodeSet resumed_nodes = saved.nodes;
+    const SimResult resumed = c.run(resumed_nodes, &saved.state);
+    CHECK(resumed.converged);
+    CHECK(resumed.state.iterations_done == stop);
+    CHECK(resumed.history.size() == full.history.size());
+    CHECK(resumed_nodes.x == whole.x);
+    REQUIRE(resumed.state.convergence.size() == full.state.convergence.size());
+    for (std::size_t k = 0; k < full.state.convergence.size(); ++k) {
+      CHECK(resumed.state.convergence[k].iteration == full.state.convergence[k].iteration);
+      CHECK(resumed.state.convergence[k].min_angle == full.state.convergence[k].min_angle);
+      CHECK(resumed.state.convergence[k].aspect_ratio == full.state.convergence[k].aspect_ratio);
+    }
+  }
+}
+
+TEST_CASE("convergence off (simulation.stop = iterations): every iteration runs, nothing is measured",
+          "[convergence][sim]") {
+  SmallRun c;
+  c.options.convergence.enabled = false;
+  c.options.iterations = 150;
+  NodeSet nodes = c.initial;
+  const SimResult r = c.run(nodes);
+  CHECK_FALSE(r.converged);
+  CHECK(r.state.iterations_done == 150);
+  CHECK(r.state.convergence.empty());
+}

@@ -1,0 +1,162 @@
+// The PNG encoder (render/png_file): the file structure checked by hand against the PNG specification
+// (signature, IHDR fields, chunk CRCs with zlib's crc32, the IDAT stream inflated with zlib's
+// uncompress into filter bytes and RGB rows), and the pixels read back by libpng through cairo.
+#include <catch2/catch.hpp>
+
+#include <cairo.h>
+#include <zlib.h>
+
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "core/errors.hpp"
+#include "render/png_file.hpp"
+#include "temp_files.hpp"
+
+using namespace pdmesh;
+
+namespace {
+
+std::uint32_t be32(const std::string& s, std::size_t at) {
+  return (static_cast<std::uint32_t>(static_cast<unsigned char>(s[at])) << 24) |
+         (static_cast<std::uint32_t>(static_cast<unsigned char>(s[at + 1])) << 16) |
+         (static_cast<std::uint32_t>(static_cast<unsigned char>(s[at + 2])) << 8) |
+         static_cast<std::uint32_t>(static_cast<unsigned char>(s[at + 3]));
+}
+
+struct Chunk {
+  std::string type, data;
+};
+
+// Splits a PNG into its chunks, checking the signature and every chunk's CRC-32.
+std::vector<Chunk> chunks(const std::string& png) {
+  REQUIRE(png.size() >= 8);
+  REQUIRE(png.substr(0, 8) == std::string("\x89PNG\r\n\x1a\n", 8));
+  std::vector<Chunk> out;
+  std::size_t at = 8;
+  while (at < png.size()) {
+    REQUIRE(at + 12 <= png.size());
+    const std::uint32_t length = be32(png, at);
+    REQUIRE(at + 12 + length <= png.size());
+    Chunk c{png.substr(at + 4, 4), png.substr(at + 8, length)};
+    uLong crc = crc32(0L, Z_NULL, 0);
+    crc = crc32(crc, reinterpret_cast<const Bytef*>(png.data() + at + 4), static_cast<uInt>(4 + length));
+    INFO("chunk " << c.type);
+    CHECK(be32(png, at + 8 + length) == static_cast<std::uint32_t>(crc));
+    out.push_back(std::move(c));
+    at += 12 + length;
+  }
+  return out;
+}
+
+// A width x height RGB24 (or ARGB32) surface whose pixel (x, y) has red 10x + y, green 7y, blue x + y.
+cairo_surface_t* pattern(int width, int height, cairo_format_t format = CAIRO_FORMAT_RGB24) {
+  cairo_surface_t* s = cairo_image_surface_create(format, width, height);
+  cairo_surface_flush(s);
+  unsigned char* data = cairo_image_surface_get_data(s);
+  const int stride = cairo_image_surface_get_stride(s);
+  for (int y = 0; y < height; ++y) {
+    auto* row = reinterpret_cast<std::uint32_t*>(data + y * stride);
+    for (int x = 0; x < width; ++x)
+      row[x] = 0xFF000000u | (static_cast<std::uint32_t>(10 * x + y) << 16) | (static_cast<std::uint32_t>(7 * y) << 8) |
+               static_cast<std::uint32_t>(x + y);
+  }
+  cairo_surface_mark_dirty(s);
+  return s;
+}
+
+}  // namespace
+
+TEST_CASE("PNG encoder: signature, IHDR, CRCs and the inflated rows follow the specification", "[render][png]") {
+  const int width = 13, height = 5;
+  cairo_surface_t* surface = pattern(width, height);
+  const std::string png = encode_png(surface);
+  cairo_surface_destroy(surface);
+  const std::vector<Chunk> parts = chunks(png);
+  REQUIRE(parts.size() == 3);
+  CHECK(parts[0].type == "IHDR");
+  CHECK(parts[1].type == "IDAT");
+  CHECK(parts[2].type == "IEND");
+  CHECK(parts[2].data.empty());
+  const std::string& h = parts[0].data;
+  REQUIRE(h.size() == 13);
+  CHECK(be32(h, 0) == static_cast<std::uint32_t>(width));
+  CHECK(be32(h, 4) == static_cast<std::uint32_t>(height));
+  CHECK(h[8] == 8);   // bit depth
+  CHECK(h[9] == 2);   // truecolour (RGB)
+  CHECK(h[10] == 0);  // deflate
+  CHECK(h[11] == 0);  // adaptive filtering, method 0
+  CHECK(h[12] == 0);  // not interlaced
+  // The IDAT stream is one zlib stream of `height` rows: a filter byte, then RGB triples.
+  const std::size_t row = 1 + 3 * static_cast<std::size_t>(width);
+  std::vector<unsigned char> raw(row * height + 16);
+  uLongf size = static_cast<uLongf>(raw.size());
+  REQUIRE(uncompress(raw.data(), &size, reinterpret_cast<const Bytef*>(parts[1].data.data()),
+                     static_cast<uLong>(parts[1].data.size())) == Z_OK);
+  REQUIRE(size == row * height);
+  for (int y = 0; y < height; ++y) {
+    const unsigned char* r = &raw[static_cast<std::size_t>(y) * row];
+    CHECK(r[0] == 0);  // filter type None
+    for (int x = 0; x < width; ++x) {
+      INFO("pixel " << x << ", " << y);
+      CHECK(r[1 + 3 * x] == 10 * x + y);
+      CHECK(r[2 + 3 * x] == 7 * y);
+      CHECK(r[3 + 3 * x] == x + y);
+    }
+  }
+  // Every compression level gives the same pixels.
+  cairo_surface_t* again = pattern(width, height);
+  for (const int level : {0, 6, 9}) {
+    const std::vector<Chunk> p = chunks(encode_png(again, level));
+    std::vector<unsigned char> r(row * height);
+    uLongf n = static_cast<uLongf>(r.size());
+    REQUIRE(uncompress(r.data(), &n, reinterpret_cast<const Bytef*>(p[1].data.data()), static_cast<uLong>(p[1].data.size())) ==
+            Z_OK);
+    CHECK(std::vector<unsigned char>(raw.begin(), raw.begin() + static_cast<std::ptrdiff_t>(row * height)) == r);
+  }
+  cairo_surface_destroy(again);
+}
+
+TEST_CASE("PNG encoder: libpng (through cairo) reads back the written pixels, alpha dropped", "[render][png]") {
+  const auto dir = pdmesh_test::fresh_dir("png_file");
+  for (const cairo_format_t format : {CAIRO_FORMAT_RGB24, CAIRO_FORMAT_ARGB32}) {
+    INFO("format " << static_cast<int>(format));
+    cairo_surface_t* surface = pattern(300, 17, format);
+    const auto file = dir / "p.png";
+    write_png_file(file, surface);
+    cairo_surface_t* back = cairo_image_surface_create_from_png(file.c_str());
+    REQUIRE(cairo_surface_status(back) == CAIRO_STATUS_SUCCESS);
+    REQUIRE(cairo_image_surface_get_width(back) == 300);
+    REQUIRE(cairo_image_surface_get_height(back) == 17);
+    CHECK(cairo_image_surface_get_format(back) == CAIRO_FORMAT_RGB24);  // no alpha channel in the file
+    cairo_surface_flush(back);
+    std::size_t differ = 0;
+    for (int y = 0; y < 17; ++y) {
+      const auto* a = reinterpret_cast<const std::uint32_t*>(cairo_image_surface_get_data(surface) +
+                                                             y * cairo_image_surface_get_stride(surface));
+      const auto* b = reinterpret_cast<const std::uint32_t*>(cairo_image_surface_get_data(back) +
+                                                             y * cairo_image_surface_get_stride(back));
+      for (int x = 0; x < 300; ++x) differ += (a[x] & 0xFFFFFFu) != (b[x] & 0xFFFFFFu);
+    }
+    CHECK(differ == 0);
+    cairo_surface_destroy(back);
+    cairo_surface_destroy(surface);
+  }
+  std::filesystem::remove_all(dir);
+}
+
+TEST_CASE("PNG encoder: other surfaces and unwritable paths are errors", "[render][png]") {
+  cairo_surface_t* alpha = cairo_image_surface_create(CAIRO_FORMAT_A8, 4, 4);
+  CHECK_THROWS_AS(encode_png(alpha), Error);
+  cairo_surface_destroy(alpha);
+  cairo_surface_t* recording = cairo_recording_surface_create(CAIRO_CONTENT_COLOR, nullptr);
+  CHECK_THROWS_AS(encode_png(recording), Error);
+  cairo_surface_destroy(recording);
+  cairo_surface_t* ok = pattern(2, 2);
+  const auto missing = std::filesystem::temp_directory_path() / "pdmesh_no_such_dir_png" / "x.png";
+  CHECK_THROWS_AS(write_png_file(missing, ok), InputError);
+  CHECK_THROWS_WITH(write_png_file(missing, ok), Catch::Contains("x.png"));
+  cairo_surface_destroy(ok);
+}
