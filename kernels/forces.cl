@@ -1,10 +1,27 @@
 // Steps 2 and 3 on the device (mirror of host/sim/reference/forces.cpp, compute_forces): the net
 // Lennard-Jones force of eq. 5.11 gathered per node over its padded neighbour row, the tangential
-// projection for boundary nodes, and r0 (eq. 5.3). Each work-item walks its row 8 entries at a time
-// in vector types: PoCL's CPU device did not vectorize these loops across work-items (measured,
-// docs/performance.md), explicit vectors give AVX code directly and are plain OpenCL C 1.2 for GPUs.
-// One division (1/r^2), one sqrt and no pow/length per entry.
+// projection for boundary nodes, and r0 (eq. 5.3). Two shapes of the same loop, one chosen by the
+// program builder from the device type (host/opencl/step_program.cpp, docs/opencl.md "Force loop"):
+// PDMESH_FORCE_LOOP_VECTOR walks the row 8 entries at a time in vector types (PoCL's CPU device did not
+// vectorize these loops across work-items, docs/performance.md; explicit vectors give AVX code);
+// PDMESH_FORCE_LOOP_SCALAR takes one entry at a time in scalar code, which a GPU compiler keeps in few
+// registers (the 8-wide double vectors cost 16 registers each: 254 VGPRs on gfx90a). Both compute the
+// reference's expressions in its summation order, so in double they agree with it, and each other, bit
+// for bit. One division (1/r^2), one sqrt and no pow/length per entry.
 #pragma OPENCL FP_CONTRACT OFF
+
+#if PDMESH_FORCE_LOOP_VECTOR == PDMESH_FORCE_LOOP_SCALAR
+#error "exactly one of PDMESH_FORCE_LOOP_VECTOR and PDMESH_FORCE_LOOP_SCALAR must be 1 (the program builder defines both)"
+#endif
+
+// node_forces: net force and r0 of node i over row entries [base, base + stride), of which the first
+// `count` are valid. rc2 >= 0: interior rows are a Verlet list and only entries with r^2 <= rc2 count
+// (the reference's exact cut-off test); rc2 < 0: every row entry counts. count = 0 (fixed or padding
+// work-items) gives F = 0, r0 = 0, no stiffness. Outputs: the force (tangential for boundary nodes),
+// r0, the stability bound on dt^2 (INFINITY without one), the coincident entries and, for interior
+// nodes, the entries within the cut-off. Both shapes below compute the reference's expressions per
+// entry in its summation order (row order), so double results match it bit for bit.
+#if PDMESH_FORCE_LOOP_VECTOR
 
 #if PDMESH_DOUBLE
 #define REAL8 double8
@@ -55,14 +72,8 @@ MASK8 row_chunk_offsets(const int i, const int stride, const int count, const lo
   return CONVERT_MASK8(valid_i) & (~filter | (r2 <= (REAL8)(rc2)));
 }
 
-// Net force and r0 of node i over row entries [base, base + stride), of which the first `count`
-// are valid. rc2 >= 0: interior rows are a Verlet list and only entries with r^2 <= rc2 count (the
-// reference's exact cut-off test); rc2 < 0: every row entry counts. count = 0 (fixed or padding
-// work-items) gives F = 0, r0 = 0, no stiffness. Eight entries at a time in vector types (PoCL does
-// not vectorize these loops across work-items; explicit vectors give AVX code directly), only as
-// many chunks as the row needs (boundary rows: one), with the
-// reference's expressions per entry and its summation order, so double results match it bit for
-// bit (a masked entry adds +0).
+// node_forces, vector shape: eight entries at a time, only as many chunks as the row needs (boundary
+// rows: one); a masked entry adds +0, which leaves a sum that starts at +0 unchanged.
 void node_forces(const int i, const int stride, const int count, const long base, const REAL xi, const REAL yi,
                  const REAL qi, const int kind_i, const REAL rc2, const REAL tx, const REAL ty, const REAL lj_a,
                  const int r0_any_direction, const REAL stability_factor, __global const REAL* x,
@@ -130,6 +141,86 @@ void node_forces(const int i, const int stride, const int count, const long base
   *coincident_out = coincident;
   *within_out = kind_i == 2 ? within : 0;
 }
+
+#else  // PDMESH_FORCE_LOOP_SCALAR
+
+// Entry k of the row relative to (xi, yi): the offsets and r^2 (what both passes recompute: keeping
+// them would cost registers or memory; recomputing costs three loads that hit the cache).
+// Returns whether the entry counts (rc2 < 0, or r^2 within rc2 when `filter`).
+int row_entry(const long base, const int k, const REAL xi, const REAL yi, const int filter, const REAL rc2,
+              __global const REAL* x, __global const REAL* y, __global const int* index, int* j_out,
+              REAL* dx_out, REAL* dy_out, REAL* r2_out) {
+  const int j = index[base + k];
+  const REAL dx = x[j] - xi, dy = y[j] - yi;
+  const REAL r2 = dx * dx + dy * dy;
+  *j_out = j;
+  *dx_out = dx;
+  *dy_out = dy;
+  *r2_out = r2;
+  return !filter || r2 <= rc2;  // a NaN r^2 fails the filter, as in the vector shape
+}
+
+// node_forces, scalar shape: one entry at a time, no vectors, no masks: a few scalars live across the
+// loop (sums, counters, the node's own values), so a GPU keeps many more work-items resident.
+void node_forces(const int i, const int stride, const int count, const long base, const REAL xi, const REAL yi,
+                 const REAL qi, const int kind_i, const REAL rc2, const REAL tx, const REAL ty, const REAL lj_a,
+                 const int r0_any_direction, const REAL stability_factor, __global const REAL* x,
+                 __global const REAL* y, __global const REAL* q, __global const int* index, REAL* fx_out,
+                 REAL* fy_out, REAL* r0_out, REAL* dt2_limit_out, int* coincident_out, int* within_out) {
+  const int filter = kind_i == 2 && rc2 >= (REAL)0;
+  const REAL four_a = (REAL)-4 * lj_a, four_a_pos = (REAL)4 * lj_a;
+  REAL fx = (REAL)0, fy = (REAL)0, stiffness = (REAL)0;
+  int coincident = 0, within = 0;
+  for (int k = 0; k < count; ++k) {
+    int j;
+    REAL dx, dy, r2;
+    if (!row_entry(base, k, xi, yi, filter, rc2, x, y, index, &j, &dx, &dy, &r2)) continue;
+    ++within;
+    if (r2 == (REAL)0) {  // coincident: no direction, counted (the reference's rule)
+      ++coincident;
+      continue;
+    }
+    if (!(r2 > (REAL)0)) continue;  // NaN: no contribution, as the vector shape's mask
+    const REAL inv_r2 = (REAL)1 / r2;
+    const REAL inv_r = sqrt(inv_r2);
+    const REAL sigma = REAL_C(0.5) * (qi + q[j]);
+    const REAL s2 = sigma * sigma * inv_r2;
+    const REAL s6 = s2 * s2 * s2;
+    const REAL f = four_a * sigma * (s6 * s6 - s6) * inv_r;
+    fx += f * dx;
+    fy += f * dy;
+    // The stability bound's pair stiffness max(|df/dr|, |f|/r) (reference::lj_pair_stiffness).
+    const REAL scale = four_a_pos * sigma * inv_r;
+    const REAL radial = fabs(scale * ((REAL)12 * s6 * s6 - (REAL)6 * s6));
+    const REAL transverse = fabs(scale * (s6 * s6 - s6));
+    stiffness += radial > transverse ? radial : transverse;
+  }
+  *dt2_limit_out = stability_factor > (REAL)0 && stiffness > (REAL)0 ? (REAL)2 * stability_factor / stiffness : INFINITY;
+  // Boundary nodes slide along their curve: keep the tangential component only.
+  const REAL ft = fx * tx + fy * ty;
+  fx = kind_i == 1 ? ft * tx : fx;
+  fy = kind_i == 1 ? ft * ty : fy;
+  const int any_direction = r0_any_direction && (fx != (REAL)0 || fy != (REAL)0);
+  // r0: the smallest r^2 among the qualifying entries.
+  REAL best2 = INFINITY;
+  int found = 0;
+  for (int k = 0; k < count; ++k) {
+    int j;
+    REAL dx, dy, r2;
+    if (!row_entry(base, k, xi, yi, filter, rc2, x, y, index, &j, &dx, &dy, &r2) || !(r2 > (REAL)0)) continue;
+    if (!(any_direction || fx * dx + fy * dy > (REAL)0)) continue;
+    found = 1;
+    best2 = r2 < best2 ? r2 : best2;
+  }
+  *fx_out = fx;
+  *fy_out = fy;
+  // An entry found with r^2 = INFINITY (overflow) gives r0 = INFINITY, as in the reference.
+  *r0_out = found ? sqrt(best2) : (REAL)0;
+  *coincident_out = coincident;
+  *within_out = kind_i == 2 ? within : 0;
+}
+
+#endif  // PDMESH_FORCE_LOOP_VECTOR
 
 // The StepBackend kernel: forces and r0 of every node over a list that holds exactly the neighbours,
 // and the stability bound on dt^2 (INFINITY when off or without stiffness).

@@ -47,13 +47,18 @@ struct Outcome {
   ocl::DeviceRunStats stats;
 };
 
+// Both shapes of the force loop (kernels/forces.cl), for tests that run every device test body with each.
+inline constexpr ocl::ForceLoop kForceLoops[] = {ocl::ForceLoop::Vector, ocl::ForceLoop::Scalar};
+
 // A run with options `o` from `start`: on the host reference, or device-resident on test_context()
-// (double unless use_float).
-inline Outcome run_from(const Case& c, const NodeSet& start, const SimOptions& o, bool device, bool use_float = false) {
+// (double unless use_float; the force loop `loop`, Auto: the device's).
+inline Outcome run_from(const Case& c, const NodeSet& start, const SimOptions& o, bool device, bool use_float = false,
+                        ocl::ForceLoop loop = ocl::ForceLoop::Auto) {
   Outcome out{start, {}, {}};
   if (device) {
     out.result = ocl::run_device_simulation(out.nodes, c.inputs->node_tree(), *c.inputs->spacing, o, test_context(),
-                                            use_float ? ocl::Precision::Float : ocl::Precision::Double, {}, &out.stats);
+                                            use_float ? ocl::Precision::Float : ocl::Precision::Double, {}, &out.stats,
+                                            loop);
   } else {
     out.result = run_simulation(out.nodes, c.inputs->node_tree(), *c.inputs->spacing, o);
   }
@@ -61,11 +66,12 @@ inline Outcome run_from(const Case& c, const NodeSet& start, const SimOptions& o
 }
 
 // `iterations` of the case from its initial distribution: on the host reference, or device-resident
-// on test_context() (double unless use_float; Verlet skin `skin`).
-inline Outcome run_case(const Case& c, int iterations, bool device, bool use_float = false, double skin = 0.3) {
+// on test_context() (double unless use_float; Verlet skin `skin`; force loop `loop`).
+inline Outcome run_case(const Case& c, int iterations, bool device, bool use_float = false, double skin = 0.3,
+                        ocl::ForceLoop loop = ocl::ForceLoop::Auto) {
   SimOptions o = options_for(c, iterations);
   o.verlet_skin = skin;
-  return run_from(c, c.initial, o, device, use_float);
+  return run_from(c, c.initial, o, device, use_float, loop);
 }
 
 }  // namespace pdmesh::test

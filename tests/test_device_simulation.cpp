@@ -1,5 +1,7 @@
 // The device-resident simulation (host/opencl/device_simulation.cpp) against the host reference on
-// the cases in cases/: 10 iterations node by node, and a whole run compared by mesh quality.
+// the cases in cases/: 10 iterations node by node, and a whole run compared by mesh quality. The
+// node-by-node tests run with both force loops (kernels/forces.cl: vector, scalar), whatever the device
+// would choose, so the GPU-shaped loop is checked bit for bit on PoCL too.
 // Tolerances: double, 10 iterations: |x_device - x_host| <= 1e-9 q per node (the kernels repeat the
 // reference's arithmetic, so in practice the runs agree bit for bit); kinds and boundary order exact.
 // Float, 10 iterations: 2e-2 q (measured 6.6e-3: the unsettled start amplifies rounding). Whole run: same triangle count, min angle within 0.5 degrees, average
@@ -53,9 +55,10 @@ TEST_CASE("device run: 10 iterations agree with the host node by node (double)",
     const Case c = test::load_case(is_smooth ? "circle_circle" : name, is_smooth ? smooth : std::vector<CaseOverride>{});
     if (is_smooth) REQUIRE(c.inputs->dense);
     const Outcome host = test::run_case(c, 10, false);
-    for (double skin : {0.0, 0.3}) {
-      INFO("skin " << skin);
-      const Outcome dev = test::run_case(c, 10, true, false, skin);
+    for (const auto& [skin, loop] : {std::pair{0.0, ocl::ForceLoop::Vector}, {0.3, ocl::ForceLoop::Vector},
+                                    {0.0, ocl::ForceLoop::Scalar}, {0.3, ocl::ForceLoop::Scalar}}) {
+      INFO("skin " << skin << ", " << ocl::force_loop_name(loop) << " force loop");
+      const Outcome dev = test::run_case(c, 10, true, false, skin, loop);
       require_same_nodes(host.nodes, dev.nodes, 1e-9);
       REQUIRE(dev.result.history.size() == host.result.history.size());
       for (std::size_t k = 0; k < host.result.history.size(); ++k) {
@@ -105,27 +108,32 @@ TEST_CASE("device run: shock from the structured start is bit-identical to the h
           "(snaps the skin alone would not rebuild for)", "[opencl][device_sim]") {
   const Case c = test::load_case("shock", {parse_set_option("init.method=structured")});
   const Outcome host = test::run_case(c, 100, false);
-  const Outcome dev = test::run_case(c, 100, true);
-  CHECK(dev.stats.snap_rebuilds > 0);
-  require_identical_nodes(host.nodes, dev.nodes);
-  CHECK(dev.result.stats.snapped == host.result.stats.snapped);
+  for (const ocl::ForceLoop loop : test::kForceLoops) {
+    INFO(ocl::force_loop_name(loop) << " force loop");
+    const Outcome dev = test::run_case(c, 100, true, false, 0.3, loop);
+    CHECK(dev.stats.snap_rebuilds > 0);
+    require_identical_nodes(host.nodes, dev.nodes);
+    CHECK(dev.result.stats.snapped == host.result.stats.snapped);
+  }
 }
 
 // Snaps the skin rule would not rebuild for, at random: from the structured start of circle_circle
 // (small moves), in phases of a few iterations; before each phase random interior nodes near a circle
 // are put just outside the domain (they snap in the phase's first iteration), and both runs continue
 // from the same SimState (the resume path). Random skins, stability settings and nodes, from a fixed
-// seed (each trial's settings are printed on failure).
+// seed (each trial's settings are printed on failure); the trials alternate the two force loops.
 TEST_CASE("device run: randomized snap stress stays bit-identical to the host", "[opencl][device_sim]") {
   const Case c = test::load_case("circle_circle");
   std::mt19937_64 rng(20240613);
   int forced = 0;
   std::size_t snaps = 0;
-  for (int trial = 0; trial < 2; ++trial) {
+  for (int trial = 0; trial < 4; ++trial) {
+    const ocl::ForceLoop loop = test::kForceLoops[trial % 2];
     SimOptions o = test::options_for(c, 0);
     o.verlet_skin = 1.0 + 2.0 * pdmesh_test::uniform(rng);
     o.stability_factor = rng() % 2 == 0 ? 1.0 : 0.0;
-    INFO("trial " << trial << ": skin " << o.verlet_skin << ", stability factor " << o.stability_factor);
+    INFO("trial " << trial << ": skin " << o.verlet_skin << ", stability factor " << o.stability_factor << ", "
+                  << ocl::force_loop_name(loop) << " force loop");
     NodeSet host_nodes = c.initial, dev_nodes = c.initial;
     SimState host_state, dev_state;
     for (int phase = 0; phase < 4; ++phase) {
@@ -147,7 +155,7 @@ TEST_CASE("device run: randomized snap stress stays bit-identical to the host", 
       o.resume = phase == 0 ? nullptr : &host_state;
       test::Outcome host = test::run_from(c, host_nodes, o, false);
       o.resume = phase == 0 ? nullptr : &dev_state;
-      test::Outcome dev = test::run_from(c, dev_nodes, o, true);
+      test::Outcome dev = test::run_from(c, dev_nodes, o, true, false, loop);
       require_identical_nodes(host.nodes, dev.nodes);
       REQUIRE(dev.result.history.size() == host.result.history.size());
       for (std::size_t k = 0; k < host.result.history.size(); ++k) CHECK(dev.result.history[k].snapped == host.result.history[k].snapped);
@@ -237,8 +245,11 @@ TEST_CASE("device run: the convergence rule stops a double run after the host's 
 TEST_CASE("device run in float stays close to the host for 10 iterations", "[opencl][device_sim]") {
   const Case c = test::load_case("circle_circle");
   const Outcome host = test::run_case(c, 10, false);
-  const Outcome dev = test::run_case(c, 10, true, true);
-  require_same_nodes(host.nodes, dev.nodes, 2e-2);
+  for (const ocl::ForceLoop loop : test::kForceLoops) {
+    INFO(ocl::force_loop_name(loop) << " force loop");
+    const Outcome dev = test::run_case(c, 10, true, true, 0.3, loop);
+    require_same_nodes(host.nodes, dev.nodes, 2e-2);
+  }
 }
 
 TEST_CASE("device run: a whole circle_circle run gives the host's mesh quality", "[opencl][device_sim]") {

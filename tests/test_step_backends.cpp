@@ -2,7 +2,8 @@
 // double and in float on the first OpenCL device: PoCL's CPU device in CI), with identical inputs
 // and the oracle (brute-force lists, the reference functions) computed on the same (rounded) inputs.
 // Stability bound: off (thesis) and c = 1. Tolerances (require_close: |device - oracle| <= tol * max(|oracle|, floor)):
-//   double: 1e-12 (the kernels repeat the reference's expressions; only sum order may differ)
+//   double: 1e-12 (the kernels repeat the reference's expressions; only sum order may differ);
+//           compute_forces with either force loop (vector, scalar): 0, bit for bit
 //   float:  forces 1e-4 of the node's sum of |pair forces|, everything else 1e-5 relative.
 // Integer outputs (counts, neighbour sets, flags, pairs) must match exactly; in float a pair may
 // differ only when its distance is within 1e-5 (relative) of the cut-off.
@@ -30,6 +31,8 @@ struct HostReference {
   static constexpr double tol = 1e-12, force_tol = 1e-12;
   static std::unique_ptr<StepBackend> make() { return make_reference_backend(); }
 };
+// The device's own force loop (PoCL: the vector one), and the other shape (kernels/forces.cl) forced,
+// so both run in CI without a GPU.
 struct OpenclDouble {
   static constexpr bool is_float = false;
   static constexpr double tol = 1e-12, force_tol = 1e-12;
@@ -40,6 +43,24 @@ struct OpenclFloat {
   static constexpr double tol = 1e-5, force_tol = 1e-4;
   static std::unique_ptr<StepBackend> make() { return ocl::make_opencl_backend(test_context(), ocl::Precision::Float); }
 };
+template <ocl::ForceLoop Loop>
+struct OpenclDoubleLoop : OpenclDouble {
+  // Both loops sum each row in row order, as the reference does: the forces are equal bit for bit.
+  static constexpr double tol = 0.0, force_tol = 0.0;
+  static std::unique_ptr<StepBackend> make() {
+    return ocl::make_opencl_backend(test_context(), ocl::Precision::Double, Loop);
+  }
+};
+template <ocl::ForceLoop Loop>
+struct OpenclFloatLoop : OpenclFloat {
+  static std::unique_ptr<StepBackend> make() {
+    return ocl::make_opencl_backend(test_context(), ocl::Precision::Float, Loop);
+  }
+};
+using OpenclDoubleScalar = OpenclDoubleLoop<ocl::ForceLoop::Scalar>;
+using OpenclDoubleVector = OpenclDoubleLoop<ocl::ForceLoop::Vector>;
+using OpenclFloatScalar = OpenclFloatLoop<ocl::ForceLoop::Scalar>;
+using OpenclFloatVector = OpenclFloatLoop<ocl::ForceLoop::Vector>;
 
 // The one tolerance helper: relative to the oracle, scale floored per element.
 void require_close(const char* what, const std::vector<double>& oracle, const std::vector<double>& got,
@@ -156,7 +177,7 @@ TEMPLATE_TEST_CASE("build_neighbours matches brute force on every input", "[open
 }
 
 TEMPLATE_TEST_CASE("compute_forces matches the reference on every input", "[opencl][backend]", HostReference,
-                   OpenclDouble, OpenclFloat) {
+                   OpenclDoubleVector, OpenclFloatVector, OpenclDoubleScalar, OpenclFloatScalar) {
   for (const Input& in : all_inputs(TestType::is_float)) {
     check_forces<TestType>(in, false, 0.0);
     check_forces<TestType>(in, true, 0.0);

@@ -2,6 +2,8 @@
 // OpenCL device, per case, and prints one table row per (case, backend). See bench_command.hpp.
 #include "app/bench_command.hpp"
 
+#include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <fstream>
@@ -17,9 +19,11 @@
 #include "core/errors.hpp"
 #include "geometry/geometry.hpp"
 #include "init/initial_distribution.hpp"
+#include "opencl/command_counts.hpp"
 #include "opencl/context.hpp"
 #include "opencl/device_simulation.hpp"
 #include "opencl/devices.hpp"
+#include "opencl/step_program.hpp"
 
 namespace pdmesh {
 namespace {
@@ -83,6 +87,39 @@ std::unique_ptr<BenchCase> file_case(const std::string& dir, const std::string& 
   return c;
 }
 
+// OpenCL commands per iteration (ocl::command_counts, counted by the wrapper) over one kind of
+// iteration: the smallest, largest and summed launches, reads, writes, copies and waits.
+struct CommandSpread {
+  int iterations = 0;
+  std::array<std::uint64_t, 5> min{}, max{}, sum{};
+  void add(const ocl::CommandCounts& c) {
+    const std::array<std::uint64_t, 5> v = {c.launches, c.reads, c.writes, c.copies, c.waits};
+    for (std::size_t k = 0; k < v.size(); ++k) {
+      min[k] = iterations == 0 ? v[k] : std::min(min[k], v[k]);
+      max[k] = iterations == 0 ? v[k] : std::max(max[k], v[k]);
+      sum[k] += v[k];
+    }
+    ++iterations;
+  }
+  // "launches / reads / writes / copies / waits": a count, or "min–max (mean)" where iterations differ.
+  std::string format() const {
+    if (iterations == 0) return "-";
+    std::string out;
+    for (std::size_t k = 0; k < sum.size(); ++k) {
+      if (k > 0) out += " / ";
+      out += min[k] == max[k] ? fmt::format("{}", min[k])
+                              : fmt::format("{}–{} ({:.2f})", min[k], max[k], static_cast<double>(sum[k]) / iterations);
+    }
+    return fmt::format("{} ({} it.)", out, iterations);
+  }
+};
+
+// Per-iteration command counts of a device run, split by whether the iteration rebuilt the neighbour
+// lists. The first iteration (setup uploads and the first build) is left out.
+struct IterationCommands {
+  CommandSpread steady, rebuild;
+};
+
 struct Row {
   std::string case_name, backend;
   std::size_t nodes = 0;
@@ -90,6 +127,7 @@ struct Row {
   double seconds = 0.0;
   std::uint64_t pairs_within = 0, pairs_examined = 0;
   std::optional<ocl::DeviceRunStats> device;
+  IterationCommands commands;
   std::size_t peak_rss = 0;
   double host_ms = 0.0;  // the host reference's ms/iteration in the same run (for the ratio)
   SimStats stats;        // population events
@@ -99,7 +137,7 @@ std::string format_row(const Row& r) {
   const double per_it = r.seconds / r.iterations;
   const double node_its = static_cast<double>(r.nodes) * r.iterations / r.seconds;
   const double pairs = static_cast<double>(r.pairs_within) / r.seconds;
-  std::string split = "-", traffic = "-", device_mem = "-", launches = "-", examined = "-";
+  std::string split = "-", traffic = "-", device_mem = "-", steady = "-", rebuild = "-", examined = "-";
   if (r.device) {
     const ocl::DeviceRunStats& d = *r.device;
     const double it = d.iterations;
@@ -109,7 +147,8 @@ std::string format_row(const Row& r) {
                         d.rebuilds);
     traffic = fmt::format("{:.0f}", static_cast<double>(d.bytes_down + d.bytes_up) / it);
     device_mem = fmt::format("{:.0f}", static_cast<double>(d.device_bytes) / static_cast<double>(r.nodes));
-    launches = fmt::format("{:.1f} + {:.1f}", static_cast<double>(d.launches) / it, static_cast<double>(d.transfers) / it);
+    steady = r.commands.steady.format();
+    rebuild = r.commands.rebuild.format();
     if (d.pairs_listed > 0)
       examined = fmt::format("{:.2f} (rebuilds {:.2f} per listed entry, x{:.2f} skin, stride {})",
                              static_cast<double>(r.pairs_examined) / static_cast<double>(r.pairs_within),
@@ -129,9 +168,9 @@ std::string format_row(const Row& r) {
                         r.stats.population_events, r.stats.inserted, r.stats.removed);
   }
   const std::string ratio = r.device && r.host_ms > 0.0 ? fmt::format("{:.2f}", r.host_ms / (1e3 * per_it)) : "-";
-  return fmt::format("| {} | {} | {} | {} | {:.3f} | {:.3g} | {:.3g} | {:.0f} | {} | {} | {} | {} | {} | {} |\n",
+  return fmt::format("| {} | {} | {} | {} | {:.3f} | {:.3g} | {:.3g} | {:.0f} | {} | {} | {} | {} | {} | {} | {} |\n",
                      r.case_name, r.backend, r.nodes, r.iterations, 1e3 * per_it, node_its, pairs,
-                     1e9 * per_it / static_cast<double>(r.nodes), examined, split, traffic, launches,
+                     1e9 * per_it / static_cast<double>(r.nodes), examined, split, traffic, steady, rebuild,
                      fmt::format("{:.0f} / {}", static_cast<double>(r.peak_rss) / static_cast<double>(r.nodes), device_mem),
                      ratio);
 }
@@ -150,15 +189,17 @@ int run_bench(const BenchArguments& args) {
     throw InputError(fmt::format("bench: --population must be >= 0, got {}", args.population_every));
   if (args.precision != "double" && args.precision != "float")
     throw InputError(fmt::format("bench: --precision must be double or float, got '{}'", args.precision));
+  const ocl::ForceLoop loop = ocl::parse_force_loop(args.force_loop, "bench: --force-loop");
   const std::vector<ocl::DeviceInfo> devices = ocl::list_devices();
   const auto precision_on = [&args](const ocl::DeviceInfo& d) {
     return args.precision == "float" || !d.fp64 ? ocl::Precision::Float : ocl::Precision::Double;
   };
   std::string table =
       "| case | backend | nodes | iterations | ms/iteration | node-iterations/s | pair interactions/s | ns per "
-      "node-iteration | pairs examined per pair | device split, ms/iteration | bytes/iteration | launches + transfers "
-      "/iteration | peak host RSS / device bytes per node | host/device time |\n"
-      "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+      "node-iteration | pairs examined per pair | device split, ms/iteration | bytes/iteration | commands per "
+      "iteration without a rebuild: launches / reads / writes / copies / waits | the same, iterations with a rebuild "
+      "| peak host RSS / device bytes per node | host/device time |\n"
+      "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   fmt::print("{}", table);
   for (const std::string& name : args.cases) {
     const bool large = name == "graded_1m";
@@ -177,7 +218,7 @@ int run_bench(const BenchArguments& args) {
       std::unique_ptr<Simulator> warm_up = make_host_simulator();
       if (!devices.empty() && warm > 0) {
         ctx.emplace(devices.front());
-        warm_up = std::make_unique<ocl::DeviceSimulator>(*ctx, precision_on(devices.front()));
+        warm_up = std::make_unique<ocl::DeviceSimulator>(*ctx, precision_on(devices.front()), loop);
       }
       if (warm > 0) {
         const SimResult r = warm_up->run(c->initial, *c->tree, *c->spacing, w);
@@ -202,7 +243,7 @@ int run_bench(const BenchArguments& args) {
       NodeSet nodes = c->initial;
       const SimResult r = run_simulation(nodes, *c->tree, *c->spacing, options);
       Row row{c->name, "host reference" + suffix, nodes.size(), options.iterations, r.stats.seconds,
-              r.stats.pairs_within, r.stats.pairs_examined, std::nullopt, peak_rss(), 0.0, r.stats};
+              r.stats.pairs_within, r.stats.pairs_examined, std::nullopt, {}, peak_rss(), 0.0, r.stats};
       host_ms = 1e3 * r.stats.seconds / options.iterations;
       emit(row);
     }
@@ -211,13 +252,26 @@ int run_bench(const BenchArguments& args) {
       const SimOptions& o = options;
       const ocl::Precision precision = precision_on(info);
       NodeSet nodes = c->initial;
-      ocl::DeviceRunStats stats;
-      const SimResult r = ocl::run_device_simulation(nodes, *c->tree, *c->spacing, o, ctx, precision, {}, &stats);
+      ocl::DeviceSimulator simulator(ctx, precision, loop);
+      // Commands per iteration from the wrapper's counts; the simulator's stats are live during the run.
+      IterationCommands commands;
+      ocl::CommandCounts last = ocl::command_counts();
+      int last_rebuilds = 0;
+      SimCallbacks callbacks;
+      callbacks.on_iteration = [&](const HistoryRow& h) {
+        const ocl::CommandCounts now = ocl::command_counts();
+        const int rebuilds = simulator.stats().rebuilds;
+        if (h.iteration > 1) (rebuilds != last_rebuilds ? commands.rebuild : commands.steady).add(now - last);
+        last = now;
+        last_rebuilds = rebuilds;
+      };
+      const SimResult r = simulator.run(nodes, *c->tree, *c->spacing, o, callbacks);
       Row row{c->name,
-              fmt::format("opencl:{}:{} {} ({}){}", info.platform, info.device, info.type,
-                          precision == ocl::Precision::Float ? "float" : "double", suffix),
-              nodes.size(), o.iterations, r.stats.seconds, r.stats.pairs_within, r.stats.pairs_examined, stats,
-              peak_rss(), host_ms, r.stats};
+              fmt::format("opencl:{}:{} {} ({}, {} loop){}", info.platform, info.device, info.type,
+                          precision == ocl::Precision::Float ? "float" : "double",
+                          ocl::force_loop_name(simulator.force_loop()), suffix),
+              nodes.size(), o.iterations, r.stats.seconds, r.stats.pairs_within, r.stats.pairs_examined,
+              simulator.stats(), commands, peak_rss(), host_ms, r.stats};
       emit(row);
     }
   }

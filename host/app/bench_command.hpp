@@ -22,6 +22,7 @@ struct BenchArguments {
   double verlet_skin = 0.3;         // device runs: Verlet list radius cutoff q (1 + skin), as pdmesh mesh
   bool skip_host = false;           // devices only
   bool skip_host_large = false;     // the host reference takes seconds per iteration at 1M nodes
+  std::string force_loop = "auto";  // device runs: auto | vector | scalar (kernels/forces.cl; docs/opencl.md)
   std::string out;                  // the table as Markdown (atomic write); empty: stdout only
   // > 0: population control during the timed iterations, an event every this many iterations (the
   // first after as many, none skipped for settling), so that the cost of events and re-uploads shows.

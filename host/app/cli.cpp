@@ -338,6 +338,7 @@ Cli::Cli() : app_(std::make_unique<CLI::App>("pdmesh: physics-based point placem
       ->type_name("K");
   bench->add_flag("--skip-host", bench_->skip_host, "Do not run the host reference");
   bench->add_flag("--skip-host-large", bench_->skip_host_large, "Do not run the host reference on graded_1m");
+  bench->add_option("--force-loop", bench_->force_loop, "Force loop of the device runs: auto | vector | scalar")->type_name("L");
   bench->add_option("--out", bench_->out, "Also write the table (Markdown) to this file")->type_name("FILE");
   bench->add_flag("--whole-run", bench_->whole_run,
                   "Time the mesh command end to end instead: every phase, --repeat runs per case and backend, each "

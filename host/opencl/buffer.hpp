@@ -1,5 +1,6 @@
 // A typed, named device buffer (RAII through cl::Buffer). Uploads and downloads check sizes and
-// every error names the buffer, so a failure reads "download of 'forces' failed: CL_OUT_OF_RESOURCES (-5)".
+// every error names the buffer, so a failure reads "download of 'forces' failed: CL_OUT_OF_RESOURCES (-5)";
+// every transfer is counted (command_counts.hpp).
 // With Context::set_canary_tail (tests) each buffer carries a sentinel tail checked on every download.
 #pragma once
 #include <cstdint>
@@ -10,6 +11,7 @@
 
 #include "core/errors.hpp"
 #include "opencl/cl_errors.hpp"
+#include "opencl/command_counts.hpp"
 #include "opencl/context.hpp"
 
 namespace pdmesh::ocl {
@@ -53,6 +55,7 @@ class Buffer {
     // The message is formatted only on failure: transfers run every iteration.
     const cl_int err = injected_fault(q.enqueueWriteBuffer(buffer_, blocking ? CL_TRUE : CL_FALSE, 0, sizeof(T) * count, data));
     if (err != CL_SUCCESS) check(err, fmt::format("upload to '{}'", name_));
+    counting::write(sizeof(T) * count, blocking);
   }
   // Non-blocking (blocking = false): `host` is sized now and filled once the queue is synchronised.
   void download(cl::CommandQueue& q, std::vector<T>& host, std::size_t count, bool blocking = true) {
@@ -64,6 +67,7 @@ class Buffer {
     const cl_int err =
         injected_fault(q.enqueueReadBuffer(buffer_, blocking ? CL_TRUE : CL_FALSE, 0, sizeof(T) * count, host.data()));
     if (err != CL_SUCCESS) check(err, fmt::format("download from '{}'", name_));
+    counting::read(sizeof(T) * count, blocking);
   }
   void download(cl::CommandQueue& q, std::vector<T>& host) { download(q, host, count_); }
 

@@ -6,6 +6,7 @@
 #include "core/embedded_kernels.hpp"
 #include "core/errors.hpp"
 #include "opencl/cl_errors.hpp"
+#include "opencl/command_counts.hpp"
 
 namespace pdmesh::ocl {
 
@@ -34,22 +35,26 @@ std::map<std::string, std::string> precision_defines(Precision precision, std::s
   return d;
 }
 
-cl::Program Context::build(const std::vector<std::string>& files, const std::map<std::string, std::string>& defines,
-                           const std::string& extra_options) {
+std::string program_source(const std::vector<std::string>& files, const std::map<std::string, std::string>& defines) {
   std::string source;
   for (const auto& [name, value] : defines) source += fmt::format("#define {} {}\n", name, value);
   if (defines.count("PDMESH_DOUBLE") && defines.at("PDMESH_DOUBLE") == "1")
     source += "#pragma OPENCL EXTENSION cl_khr_fp64 : enable\n";
   source += kernel_source("common.cl");
-  std::string label = "common.cl";
   for (const auto& f : files) {
     source += fmt::format("\n// ---- {} ----\n", f);
     source += kernel_source(f);
-    label += ", " + f;
   }
+  return source;
+}
+
+cl::Program Context::build(const std::vector<std::string>& files, const std::map<std::string, std::string>& defines,
+                           const std::string& extra_options) {
+  std::string label = "common.cl";
+  for (const auto& f : files) label += ", " + f;
   std::string options = "-cl-std=CL1.2";
   if (!extra_options.empty()) options += " " + extra_options;
-  return build_source(label, source, options);
+  return build_source(label, program_source(files, defines), options);
 }
 
 cl::Program Context::build_source(const std::string& label, const std::string& source, const std::string& options) {
@@ -74,6 +79,22 @@ void launch(cl::CommandQueue& queue, cl::Kernel& kernel, const std::string& name
   const cl_int err =
       injected_fault(queue.enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange(global), cl::NDRange(local)));
   if (err != CL_SUCCESS) check(err, fmt::format("enqueue '{}' ({} work-items, local size {})", name, global, local));
+  counting::launch();
+}
+
+void finish(cl::CommandQueue& queue, const std::string& what) {
+  check(queue.finish(), what);
+  counting::wait();
+}
+
+void copy_buffer(cl::CommandQueue& queue, cl::Buffer& from, cl::Buffer& to, std::size_t bytes, const std::string& what) {
+  check(queue.enqueueCopyBuffer(from, to, 0, 0, bytes), what);
+  counting::copy();
+}
+
+void fill_zero(cl::CommandQueue& queue, cl::Buffer& buffer, std::size_t bytes, const std::string& what) {
+  check(queue.enqueueFillBuffer(buffer, cl_int{0}, 0, bytes), what);
+  counting::copy();
 }
 
 }  // namespace pdmesh::ocl

@@ -11,6 +11,8 @@
 namespace pdmesh::ocl {
 
 enum class Precision { Double, Float };
+// The shape of the simulation program's force loop (step_program.hpp, resolve_force_loop).
+enum class ForceLoop { Auto, Vector, Scalar };
 
 class Context {
  public:
@@ -45,6 +47,10 @@ class Context {
 // The text of one embedded kernel file; throws DeviceError if it was not embedded.
 const std::string& kernel_source(const std::string& file);
 
+// The source Context::build compiles: the "#define NAME VALUE" lines, the fp64 pragma when
+// PDMESH_DOUBLE is 1, common.cl, then each file under a "// ---- FILE ----" line.
+std::string program_source(const std::vector<std::string>& files, const std::map<std::string, std::string>& defines);
+
 // "#define REAL double" etc.: the common defines for a precision and work-group size.
 std::map<std::string, std::string> precision_defines(Precision precision, std::size_t work_group);
 
@@ -52,5 +58,12 @@ std::map<std::string, std::string> precision_defines(Precision precision, std::s
 // of `local`; kernels skip the extra items). Errors name the kernel.
 void launch(cl::CommandQueue& queue, cl::Kernel& kernel, const std::string& name, std::size_t count,
             std::size_t local);
+
+// The other commands the simulation enqueues, checked (errors name `what`) and counted
+// (command_counts.hpp) like launch and the Buffer transfers: clFinish (a host wait), a device-side
+// copy of the first `bytes` bytes, and filling the first `bytes` bytes with zero ints (bytes > 0).
+void finish(cl::CommandQueue& queue, const std::string& what);
+void copy_buffer(cl::CommandQueue& queue, cl::Buffer& from, cl::Buffer& to, std::size_t bytes, const std::string& what);
+void fill_zero(cl::CommandQueue& queue, cl::Buffer& buffer, std::size_t bytes, const std::string& what);
 
 }  // namespace pdmesh::ocl

@@ -78,8 +78,7 @@ NeighbourFlags DeviceNeighbours<Real>::build(const double* hx, const double* hy,
     ensure_size(ctx_, scatter_count_, "neighbour_scatter_count", n);
     ensure_size(ctx_, scatter_index_, "neighbour_scatter_index", entries);
     if (n > 0)  // a zero-sized fill is invalid OpenCL
-      check(ctx_.queue().enqueueFillBuffer(scatter_count_.get(), cl_int{0}, 0, n * sizeof(cl_int)),
-            "clearing 'neighbour_scatter_count'");
+      fill_zero(ctx_.queue(), scatter_count_.get(), n * sizeof(cl_int), "clearing 'neighbour_scatter_count'");
     ArgSetter a(program_.build_neighbours, "build_neighbours");
     a(static_cast<cl_int>(n))(static_cast<cl_int>(stride))(radius)(x)(y)(q)(kind)(prev)(next)(level_)(inv_cell_)(
         table_offset_)(table_mask_)(start_offset_)(nodes_offset_)(table_cx_)(table_cy_)(table_id_)(cell_start_)(

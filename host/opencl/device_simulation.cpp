@@ -336,7 +336,7 @@ std::optional<PopulationCounts> DeviceRun<Real>::population_event(int iteration)
     n_ = nodes_.size();
     const auto t1 = Clock::now();
     upload_nodes(&budgets, &leaves);
-    check(ctx_.queue().finish(), "population re-upload");
+    finish(ctx_.queue(), "population re-upload");
     stats_.population_transfer_seconds += since(t1);
     skin_use_ = HUGE_VAL;  // the lists are rebuilt before the next step
   }
@@ -378,7 +378,7 @@ void DeviceRun<Real>::rebuild() {
     read(x_[cur_], v[0], n, false);
     read(y_[cur_], v[1], n, false);
     read(q_[cur_], v[2], n, false);
-    check(ctx_.queue().finish(), "positions for binning");
+    finish(ctx_.queue(), "positions for binning");
     build_x_.assign(v[0].begin(), v[0].end());
     build_y_.assign(v[1].begin(), v[1].end());
     build_q_.assign(v[2].begin(), v[2].end());
@@ -404,7 +404,7 @@ void DeviceRun<Real>::rebuild() {
   list_entries_ = flags.pairs_within;
   // The build state the skin is measured from.
   for (auto [from, to] : {std::pair{&x_[cur_], &x_build_}, {&y_[cur_], &y_build_}, {&q_[cur_], &q_build_}})
-    check(ctx_.queue().enqueueCopyBuffer(from->get(), to->get(), 0, 0, n * sizeof(Real)), "copy to the build state");
+    copy_buffer(ctx_.queue(), from->get(), to->get(), n * sizeof(Real), "copy to the build state");
   ++stats_.rebuilds;
   skin_use_ = 0.0;
 }
@@ -427,7 +427,7 @@ void DeviceRun<Real>::step_kernel(double dt_gm2) {
   read(partials_, part_, kStepPartials * groups(), false);
   read(counters_, count_host_, 1, false);
   read(brec_, brec_host_, 4 * boundary_nodes_.size(), false);
-  check(ctx_.queue().finish(), "device_step");
+  finish(ctx_.queue(), "device_step");
   stats_.step_seconds += since(t0);
   t0 = Clock::now();
   const auto m = static_cast<std::size_t>(count_host_[0]);
@@ -435,7 +435,7 @@ void DeviceRun<Real>::step_kernel(double dt_gm2) {
   if (m > 0) {
     read(cand_index_, cand, m, false);
     read(cand_rec_, cand_rec_host_, 4 * m, false);
-    check(ctx_.queue().finish(), "device_step candidates");
+    finish(ctx_.queue(), "device_step candidates");
   }
   stats_.download_seconds += since(t0);
   // Sums in group order.

@@ -69,8 +69,9 @@ class DeviceSimulator final : public Simulator {
  public:
   // Builds the step program on ctx (which must outlive this) now, so that a DeviceError from the build
   // or from the work-group check (StepProgram) comes before anything runs: a caller that picked the
-  // device itself can try the next one.
-  DeviceSimulator(Context& ctx, Precision precision);
+  // device itself can try the next one. `loop`: the force loop's shape (Auto: by the device type or
+  // PDMESH_FORCE_LOOP; step_program.hpp).
+  DeviceSimulator(Context& ctx, Precision precision, ForceLoop loop = ForceLoop::Auto);
   ~DeviceSimulator() override;
   std::string describe() const override;
   SimResult run(NodeSet& nodes, const GeometryTree& tree, const SpacingField& spacing, const SimOptions& options,
@@ -78,6 +79,7 @@ class DeviceSimulator final : public Simulator {
   // Of the last run.
   const DeviceRunStats& stats() const { return stats_; }
   Precision precision() const;
+  ForceLoop force_loop() const;  // as built: Vector or Scalar
 
  private:
   Context& ctx_;
@@ -93,6 +95,7 @@ SimResult run_device_resident(NodeSet& nodes, const GeometryTree& tree, const Sp
 // One run on a DeviceSimulator built for it (tests, bench).
 SimResult run_device_simulation(NodeSet& nodes, const GeometryTree& tree, const SpacingField& spacing,
                                 const SimOptions& options, Context& ctx, Precision precision = Precision::Double,
-                                const SimCallbacks& callbacks = {}, DeviceRunStats* stats = nullptr);
+                                const SimCallbacks& callbacks = {}, DeviceRunStats* stats = nullptr,
+                                ForceLoop loop = ForceLoop::Auto);
 
 }  // namespace pdmesh::ocl

@@ -8,17 +8,19 @@
 
 namespace pdmesh::ocl {
 
-DeviceSimulator::DeviceSimulator(Context& ctx, Precision precision)
-    : ctx_(ctx), program_(std::make_unique<StepProgram>(ctx, precision)) {}
+DeviceSimulator::DeviceSimulator(Context& ctx, Precision precision, ForceLoop loop)
+    : ctx_(ctx), program_(std::make_unique<StepProgram>(ctx, precision, loop)) {}
 
 DeviceSimulator::~DeviceSimulator() = default;
 
 Precision DeviceSimulator::precision() const { return program_->precision; }
 
+ForceLoop DeviceSimulator::force_loop() const { return program_->force_loop; }
+
 std::string DeviceSimulator::describe() const {
   const DeviceInfo& d = ctx_.device();
-  return fmt::format("opencl:{}:{} ({}, {}, {}, device-resident)", d.platform, d.device, d.name, d.type,
-                     precision() == Precision::Double ? "double" : "float");
+  return fmt::format("opencl:{}:{} ({}, {}, {}, device-resident, {} force loop)", d.platform, d.device, d.name, d.type,
+                     precision() == Precision::Double ? "double" : "float", force_loop_name(force_loop()));
 }
 
 SimResult DeviceSimulator::run(NodeSet& nodes, const GeometryTree& tree, const SpacingField& spacing,
@@ -31,8 +33,8 @@ SimResult DeviceSimulator::run(NodeSet& nodes, const GeometryTree& tree, const S
 
 SimResult run_device_simulation(NodeSet& nodes, const GeometryTree& tree, const SpacingField& spacing,
                                 const SimOptions& options, Context& ctx, Precision precision,
-                                const SimCallbacks& callbacks, DeviceRunStats* stats) {
-  DeviceSimulator simulator(ctx, precision);
+                                const SimCallbacks& callbacks, DeviceRunStats* stats, ForceLoop loop) {
+  DeviceSimulator simulator(ctx, precision, loop);
   try {
     SimResult result = simulator.run(nodes, tree, spacing, options, callbacks);
     if (stats) *stats = simulator.stats();

@@ -13,7 +13,8 @@ namespace {
 template <typename Real>
 class OpenclBackend final : public StepBackend {
  public:
-  OpenclBackend(Context& ctx, Precision precision) : ctx_(ctx), program_(ctx, precision), neighbours_(ctx, program_) {}
+  OpenclBackend(Context& ctx, Precision precision, ForceLoop loop)
+      : ctx_(ctx), program_(ctx, precision, loop), neighbours_(ctx, program_) {}
 
   std::string name() const override {
     return fmt::format("opencl:{}:{} ({}, {})", ctx_.device().platform, ctx_.device().device, ctx_.device().name,
@@ -166,9 +167,9 @@ class OpenclBackend final : public StepBackend {
 
 }  // namespace
 
-std::unique_ptr<StepBackend> make_opencl_backend(Context& ctx, Precision precision) {
-  if (precision == Precision::Double) return std::make_unique<OpenclBackend<double>>(ctx, precision);
-  return std::make_unique<OpenclBackend<float>>(ctx, precision);
+std::unique_ptr<StepBackend> make_opencl_backend(Context& ctx, Precision precision, ForceLoop loop) {
+  if (precision == Precision::Double) return std::make_unique<OpenclBackend<double>>(ctx, precision, loop);
+  return std::make_unique<OpenclBackend<float>>(ctx, precision, loop);
 }
 
 }  // namespace pdmesh::ocl

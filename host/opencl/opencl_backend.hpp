@@ -10,7 +10,8 @@
 
 namespace pdmesh::ocl {
 
-// The backend keeps a reference to ctx (which must outlive it) and builds its program once.
-std::unique_ptr<StepBackend> make_opencl_backend(Context& ctx, Precision precision);
+// The backend keeps a reference to ctx (which must outlive it) and builds its program once, with the
+// force loop `loop` (Auto: by the device type; step_program.hpp).
+std::unique_ptr<StepBackend> make_opencl_backend(Context& ctx, Precision precision, ForceLoop loop = ForceLoop::Auto);
 
 }  // namespace pdmesh::ocl

@@ -59,14 +59,55 @@ bool injected_build_failure() {
 
 }  // namespace
 
-StepProgram::StepProgram(Context& ctx, Precision p, std::size_t wg) : precision(p), work_group(wg) {
+ForceLoop parse_force_loop(const std::string& text, const std::string& what) {
+  if (text == "auto") return ForceLoop::Auto;
+  if (text == "vector") return ForceLoop::Vector;
+  if (text == "scalar") return ForceLoop::Scalar;
+  throw InputError(fmt::format("{} must be auto, vector or scalar, got '{}'", what, text));
+}
+
+const char* force_loop_name(ForceLoop loop) {
+  switch (loop) {
+    case ForceLoop::Vector: return "vector";
+    case ForceLoop::Scalar: return "scalar";
+    case ForceLoop::Auto: break;
+  }
+  return "auto";
+}
+
+ForceLoop resolve_force_loop(ForceLoop requested, const std::string& device_type) {
+  if (requested != ForceLoop::Auto) return requested;
+  if (const char* v = std::getenv("PDMESH_FORCE_LOOP")) {
+    const ForceLoop env = parse_force_loop(v, "the environment variable PDMESH_FORCE_LOOP");
+    if (env != ForceLoop::Auto) return env;
+  }
+  // PoCL's CPU device runs the vector loop as AVX code; a GPU runs work-items as SIMD lanes already,
+  // where 8-wide double vectors only cost registers (docs/opencl.md, "Force loop").
+  return device_type == "CPU" ? ForceLoop::Vector : ForceLoop::Scalar;
+}
+
+const std::vector<std::string>& step_program_files() {
+  static const std::vector<std::string> files = {"spacing_field.cl", "reduce.cl",     "forces.cl",
+                                                 "time_step.cl",     "neighbours.cl", "device_step.cl"};
+  return files;
+}
+
+std::map<std::string, std::string> step_program_defines(Precision precision, std::size_t work_group, ForceLoop loop) {
+  if (loop == ForceLoop::Auto) throw DeviceError("step_program_defines: the force loop must be resolved (not auto)");
+  std::map<std::string, std::string> d = precision_defines(precision, work_group);
+  d.emplace("PDMESH_FORCE_LOOP_VECTOR", loop == ForceLoop::Vector ? "1" : "0");
+  d.emplace("PDMESH_FORCE_LOOP_SCALAR", loop == ForceLoop::Scalar ? "1" : "0");
+  return d;
+}
+
+StepProgram::StepProgram(Context& ctx, Precision p, ForceLoop loop, std::size_t wg)
+    : precision(p), force_loop(resolve_force_loop(loop, ctx.device().type)), work_group(wg) {
   if (p == Precision::Double && !ctx.device().fp64)
     throw DeviceError(fmt::format("{} has no double precision (cl_khr_fp64): use --precision float", ctx.device().name));
   if (injected_build_failure())
     throw DeviceError(fmt::format("building OpenCL program on {} failed: CL_BUILD_PROGRAM_FAILURE (-11) (injected by "
                                   "PDMESH_TEST_FAIL_BUILD)\nbuild log:\n(none)", ctx.device().name));
-  program = ctx.build({"spacing_field.cl", "reduce.cl", "forces.cl", "time_step.cl", "neighbours.cl", "device_step.cl"},
-                      precision_defines(p, wg));
+  program = ctx.build(step_program_files(), step_program_defines(p, wg, force_loop));
   const std::pair<cl::Kernel*, const char*> kernels[] = {
       {&build_neighbours, "build_neighbours"}, {&finish_neighbours, "finish_neighbours"},
       {&compute_forces, "compute_forces"},     {&time_step_and_move, "time_step_and_move"},

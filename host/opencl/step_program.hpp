@@ -1,8 +1,10 @@
 // The simulation kernels of one device and precision, built once: kernels/spacing_field.cl,
-// neighbours.cl, forces.cl, time_step.cl, reduce.cl and device_step.cl in one program, plus the
-// argument helper every launch uses (errors name the kernel and the argument).
+// neighbours.cl, forces.cl, time_step.cl, reduce.cl and device_step.cl in one program, with the shape
+// of the force loop chosen for the device (ForceLoop), plus the argument helper every launch uses
+// (errors name the kernel and the argument).
 #pragma once
 #include <cstdint>
+#include <map>
 #include <string>
 #include <type_traits>
 #include <vector>
@@ -21,6 +23,24 @@ inline constexpr std::size_t kStepWorkGroup = 64;
 // Partial sums per group written by the device_step kernel (STEP_PARTIALS in device_step.cl).
 inline constexpr std::size_t kStepPartials = 7;
 
+// The shape of the force loop in kernels/forces.cl (docs/opencl.md, "Force loop"): Vector walks a
+// row 8 entries at a time in REAL8 vectors (CPU devices: PoCL does not vectorize across work-items);
+// Scalar takes one entry at a time (GPUs: few registers per work-item). Both give the same results
+// bit for bit in double. Auto: the environment variable PDMESH_FORCE_LOOP (auto | vector | scalar)
+// when set, else Vector on CPU devices and Scalar on every other type.
+// (The enum itself is in context.hpp, beside Precision.)
+// "auto" | "vector" | "scalar"; anything else throws InputError naming `what` (an option or variable).
+ForceLoop parse_force_loop(const std::string& text, const std::string& what);
+const char* force_loop_name(ForceLoop loop);
+// Never Auto: `requested` unless Auto, then PDMESH_FORCE_LOOP, then the device's type.
+ForceLoop resolve_force_loop(ForceLoop requested, const std::string& device_type);
+
+// The program StepProgram builds, as data (tools/kernel_registers.sh compiles the same text for GPU
+// targets): its kernel files in build order, and its defines (precision_defines plus
+// PDMESH_FORCE_LOOP_VECTOR / PDMESH_FORCE_LOOP_SCALAR, one of them 1). `loop` must not be Auto.
+const std::vector<std::string>& step_program_files();
+std::map<std::string, std::string> step_program_defines(Precision precision, std::size_t work_group, ForceLoop loop);
+
 // What the device allows one kernel of the program (clGetKernelWorkGroupInfo).
 struct KernelLimits {
   std::string name;
@@ -34,12 +54,14 @@ void check_work_group(const std::string& kernel, const std::string& device, std:
 // "" when work_group is a multiple of every kernel's preferred multiple, else what idles (a note, not an error).
 std::string work_group_advice(const std::vector<KernelLimits>& limits, std::size_t work_group);
 
-// Builds the program for `precision` (DeviceError when the device has no fp64 for Double, or the
-// build fails, with the build log) and checks every kernel's CL_KERNEL_WORK_GROUP_SIZE against
-// work_group (check_work_group).
+// Builds the program for `precision` and the force loop resolve_force_loop(loop, device type)
+// (DeviceError when the device has no fp64 for Double, or the build fails, with the build log) and
+// checks every kernel's CL_KERNEL_WORK_GROUP_SIZE against work_group (check_work_group).
 struct StepProgram {
-  StepProgram(Context& ctx, Precision precision, std::size_t work_group = kStepWorkGroup);
+  StepProgram(Context& ctx, Precision precision, ForceLoop loop = ForceLoop::Auto,
+              std::size_t work_group = kStepWorkGroup);
   Precision precision;
+  ForceLoop force_loop;  // as built: Vector or Scalar
   std::size_t work_group;
   cl::Program program;
   cl::Kernel build_neighbours, finish_neighbours, compute_forces, time_step_and_move, reduce, device_step, apply_host_moves;

@@ -25,10 +25,16 @@ def test_rings_mesh_the_domain(rings):
     area = 0.5 * ((p[:, 1, 0] - p[:, 0, 0]) * (p[:, 2, 1] - p[:, 0, 1])
                   - (p[:, 2, 0] - p[:, 0, 0]) * (p[:, 1, 1] - p[:, 0, 1]))
     assert (area > 0).all()
-    # The hole is the polygon through its boundary nodes, which slide along the 24 segments.
-    polygon_hole = 0.5 * 24 * 0.3**2 * np.sin(2 * np.pi / 24)
-    assert area.sum() == pytest.approx(4.0 - polygon_hole, rel=1e-4)
+    # The domain is the square minus the polygon through the hole's boundary nodes (placed along its
+    # 24 segments by the field, and split onto them by the cleanup).
     assert set(mesh.boundary_edges) == {"outer", "hole"}
+
+    def enclosed(edges):
+        a, b = mesh.points[edges[:, 0]], mesh.points[edges[:, 1]]
+        return abs(0.5 * (a[:, 0] * b[:, 1] - b[:, 0] * a[:, 1]).sum())
+
+    assert enclosed(mesh.boundary_edges["outer"]) == pytest.approx(4.0, rel=1e-12)
+    assert area.sum() == pytest.approx(4.0 - enclosed(mesh.boundary_edges["hole"]), rel=1e-12)
     hole = mesh.boundary_edges["hole"]
     assert hole.dtype == np.int32 and hole.shape[1] == 2
     r = np.hypot(*mesh.points[hole.ravel()].T)  # on the hole's segments: between chord and circle
@@ -52,14 +58,15 @@ def test_case_file_gives_the_commands_points(rings, tmp_path, command):
                     '[init]\nmethod = "random"\nseed = 7\n[simulation]\niterations = 80\ndevice = "host"\n')
     mesh = pdmesh.Case.from_toml(case).run()
     command("mesh", case, "--out", tmp_path / "out", "--quiet", "--formats", "msh")
-    assert np.array_equal(mesh.points, read_nodes(tmp_path / "out" / "final.nodes"))  # bit-identical
+    # The nodes of the (cleaned) mesh: the command's mesh.nodes, bit for bit.
+    assert np.array_equal(mesh.points, read_nodes(tmp_path / "out" / "mesh.nodes"))
     written = pdmesh.Mesh.read(tmp_path / "out" / "mesh.msh")
     assert np.array_equal(mesh.triangles, written.triangles)
     assert mesh.curve_names == written.curve_names == ["outer", "hole"]
     # generate() with a case-file path and the seed given in Python: the command with --seed.
     other = pdmesh.generate(str(case), seed=11)
     command("mesh", case, "--out", tmp_path / "out11", "--quiet", "--formats", "msh", "--seed", 11)
-    assert np.array_equal(other.points, read_nodes(tmp_path / "out11" / "final.nodes"))
+    assert np.array_equal(other.points, read_nodes(tmp_path / "out11" / "mesh.nodes"))
     assert not np.array_equal(other.points, mesh.points)
 
 

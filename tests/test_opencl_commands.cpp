@@ -1,0 +1,213 @@
+// What the OpenCL wrapper counts (opencl/command_counts.hpp: launches, reads, writes, device copies,
+// host waits), the commands a device run enqueues per iteration as `pdmesh bench` reports them, and
+// the choice of the force loop's shape (opencl/step_program.hpp: by device type, PDMESH_FORCE_LOOP,
+// or explicitly; the kernel refuses a program built without exactly one shape).
+#include <catch2/catch.hpp>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <optional>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "app/bench_command.hpp"
+#include "core/errors.hpp"
+#include "device_run_fixtures.hpp"
+#include "opencl/buffer.hpp"
+#include "opencl/command_counts.hpp"
+#include "opencl/context.hpp"
+#include "opencl/step_program.hpp"
+
+using namespace pdmesh;
+using namespace pdmesh::ocl;
+
+namespace {
+
+// Sets (or, with nullopt, removes) an environment variable for one scope, restoring the old value.
+class ScopedEnv {
+ public:
+  ScopedEnv(const char* name, std::optional<std::string> value) : name_(name) {
+    if (const char* old = std::getenv(name)) old_ = old;
+    if (value)
+      ::setenv(name, value->c_str(), 1);
+    else
+      ::unsetenv(name);
+  }
+  ~ScopedEnv() {
+    if (old_)
+      ::setenv(name_, old_->c_str(), 1);
+    else
+      ::unsetenv(name_);
+  }
+  ScopedEnv(const ScopedEnv&) = delete;
+  ScopedEnv& operator=(const ScopedEnv&) = delete;
+
+ private:
+  const char* name_;
+  std::optional<std::string> old_;
+};
+
+}  // namespace
+
+TEST_CASE("the wrapper counts launches, transfers, device copies and waits", "[opencl]") {
+  auto info = select_device("auto");
+  REQUIRE(info.has_value());
+  Context ctx(*info);  // no canary tail: its checks are not counted anyway
+  const std::size_t wg = 8;
+  cl::Program program = ctx.build({"selftest.cl"}, precision_defines(ocl::Precision::Float, wg));
+  cl_int err = CL_SUCCESS;
+  cl::Kernel k(program, "selftest_axpy", &err);
+  check(err, "clCreateKernel(selftest_axpy)");
+  const int n = 13;
+  const std::vector<float> x(n, 1.5f);
+  Buffer<float> bx(ctx, "x", n), by(ctx, "y", n), bz(ctx, "z", n);
+
+  const CommandCounts start = command_counts();
+  bx.upload(ctx.queue(), x);         // blocking: a write and a wait
+  by.upload(ctx.queue(), x, false);  // non-blocking: a write
+  k.setArg(0, n);
+  k.setArg(1, 2.0f);
+  k.setArg(2, bx.get());
+  k.setArg(3, by.get());
+  launch(ctx.queue(), k, "selftest_axpy", n, wg);
+  copy_buffer(ctx.queue(), by.get(), bz.get(), n * sizeof(float), "copy y to z");
+  fill_zero(ctx.queue(), by.get(), n * sizeof(float), "clear y");
+  std::vector<float> y, z, none;
+  by.download(ctx.queue(), y, n, false);  // non-blocking: a read
+  finish(ctx.queue(), "reads");           // a wait
+  bz.download(ctx.queue(), z);            // blocking: a read and a wait
+  bz.download(ctx.queue(), none, 0);      // nothing to read: no command
+  launch(ctx.queue(), k, "selftest_axpy", 0, wg);  // no work-items: no command
+  const CommandCounts d = command_counts() - start;
+
+  CHECK(d.launches == 1);
+  CHECK(d.writes == 2);
+  CHECK(d.reads == 2);
+  CHECK(d.copies == 2);
+  CHECK(d.waits == 3);
+  CHECK(d.bytes_written == 2 * n * sizeof(float));
+  CHECK(d.bytes_read == 2 * n * sizeof(float));
+  // The copy and the fill did what they say (y = 2 x + i before the copy, zeros after the fill).
+  for (int i = 0; i < n; ++i) {
+    CHECK(z[i] == 2.0f * 1.5f + static_cast<float>(i));
+    CHECK(y[i] == 0.0f);
+  }
+}
+
+TEST_CASE("a device run's iterations: at most 3 launches and 2 waits without a rebuild, more with one",
+          "[opencl][device_sim]") {
+  const test::Case c = test::load_case("circle_circle");
+  SimOptions o = test::options_for(c, 12);
+  DeviceSimulator simulator(test::test_context(), ocl::Precision::Double);
+  CommandCounts last = command_counts();
+  int last_rebuilds = 0, steady = 0, rebuilt = 0;
+  std::uint64_t steady_launches = 0, rebuild_launches = 0;
+  SimCallbacks callbacks;
+  callbacks.on_iteration = [&](const HistoryRow& h) {
+    const CommandCounts d = command_counts() - last;
+    last = command_counts();
+    const int rebuilds = simulator.stats().rebuilds;
+    INFO("iteration " << h.iteration << ": " << d.launches << " launches, " << d.reads << " reads, " << d.writes
+                      << " writes, " << d.copies << " copies, " << d.waits << " waits");
+    CHECK(d.waits >= 1);  // today the host reads every iteration's partial sums
+    CHECK(d.reads >= 1);
+    if (rebuilds != last_rebuilds) {
+      ++rebuilt;
+      rebuild_launches += d.launches;
+    } else {
+      ++steady;
+      steady_launches += d.launches;
+      CHECK(d.launches <= 3);
+      CHECK(d.waits <= 2);
+      CHECK(d.copies == 0);
+    }
+    last_rebuilds = rebuilds;
+  };
+  NodeSet nodes = c.initial;
+  simulator.run(nodes, c.inputs->node_tree(), *c.inputs->spacing, o, callbacks);
+  REQUIRE(steady > 0);
+  REQUIRE(rebuilt > 0);
+  // A rebuild adds the two neighbour kernels (build, finish) to the iteration's own launches.
+  CHECK(static_cast<double>(rebuild_launches) / rebuilt >= static_cast<double>(steady_launches) / steady + 2.0);
+}
+
+TEST_CASE("the force loop is chosen by device type, PDMESH_FORCE_LOOP, or explicitly", "[opencl]") {
+  {
+    const ScopedEnv unset("PDMESH_FORCE_LOOP", std::nullopt);
+    CHECK(resolve_force_loop(ForceLoop::Auto, "CPU") == ForceLoop::Vector);
+    CHECK(resolve_force_loop(ForceLoop::Auto, "GPU") == ForceLoop::Scalar);
+    CHECK(resolve_force_loop(ForceLoop::Auto, "accelerator") == ForceLoop::Scalar);
+    CHECK(resolve_force_loop(ForceLoop::Scalar, "CPU") == ForceLoop::Scalar);
+    CHECK(resolve_force_loop(ForceLoop::Vector, "GPU") == ForceLoop::Vector);
+  }
+  {
+    const ScopedEnv scalar("PDMESH_FORCE_LOOP", "scalar");
+    CHECK(resolve_force_loop(ForceLoop::Auto, "CPU") == ForceLoop::Scalar);
+    CHECK(resolve_force_loop(ForceLoop::Vector, "CPU") == ForceLoop::Vector);  // explicit wins
+  }
+  {
+    const ScopedEnv automatic("PDMESH_FORCE_LOOP", "auto");
+    CHECK(resolve_force_loop(ForceLoop::Auto, "GPU") == ForceLoop::Scalar);
+  }
+  {
+    const ScopedEnv bad("PDMESH_FORCE_LOOP", "fast");
+    REQUIRE_THROWS_AS(resolve_force_loop(ForceLoop::Auto, "CPU"), InputError);
+    REQUIRE_THROWS_WITH(resolve_force_loop(ForceLoop::Auto, "CPU"),
+                        "the environment variable PDMESH_FORCE_LOOP must be auto, vector or scalar, got 'fast'");
+  }
+  CHECK(parse_force_loop("vector", "--force-loop") == ForceLoop::Vector);
+  REQUIRE_THROWS_WITH(parse_force_loop("Scalar", "--force-loop"), Catch::Contains("--force-loop must be"));
+  CHECK(std::string(force_loop_name(ForceLoop::Scalar)) == "scalar");
+  BenchArguments bench;
+  bench.force_loop = "wide";
+  REQUIRE_THROWS_WITH(run_bench(bench), Catch::Contains("bench: --force-loop must be auto, vector or scalar"));
+}
+
+TEST_CASE("the program carries exactly one force-loop define, and the kernels refuse anything else", "[opencl]") {
+  const auto scalar = step_program_defines(ocl::Precision::Double, 64, ForceLoop::Scalar);
+  CHECK(scalar.at("PDMESH_FORCE_LOOP_SCALAR") == "1");
+  CHECK(scalar.at("PDMESH_FORCE_LOOP_VECTOR") == "0");
+  CHECK(scalar.at("REAL") == "double");
+  const auto vector = step_program_defines(ocl::Precision::Float, 64, ForceLoop::Vector);
+  CHECK(vector.at("PDMESH_FORCE_LOOP_VECTOR") == "1");
+  CHECK(vector.at("PDMESH_FORCE_LOOP_SCALAR") == "0");
+  REQUIRE_THROWS_AS(step_program_defines(ocl::Precision::Double, 64, ForceLoop::Auto), DeviceError);
+  const std::string source = program_source(step_program_files(), scalar);
+  CHECK(source.rfind("#define PDMESH_DOUBLE 1\n", 0) == 0);  // the defines come first, in name order
+  CHECK(source.find("#define PDMESH_FORCE_LOOP_SCALAR 1\n") != std::string::npos);
+  CHECK(source.find("// ---- forces.cl ----") != std::string::npos);
+
+  Context& ctx = test::test_context();
+  for (const ForceLoop loop : {ForceLoop::Vector, ForceLoop::Scalar}) {
+    const StepProgram program(ctx, ocl::Precision::Float, loop);
+    CHECK(program.force_loop == loop);
+  }
+  auto neither = vector;
+  neither["PDMESH_FORCE_LOOP_VECTOR"] = "0";
+  REQUIRE_THROWS_WITH(ctx.build(step_program_files(), neither),
+                      Catch::Contains("exactly one of PDMESH_FORCE_LOOP_VECTOR and PDMESH_FORCE_LOOP_SCALAR"));
+}
+
+TEST_CASE("bench reports the force loop and the commands per iteration", "[opencl][bench]") {
+  const std::filesystem::path out = std::filesystem::temp_directory_path() / "pdmesh_test_bench_commands.md";
+  BenchArguments args;
+  args.cases = {"circle_circle"};
+  args.cases_dir = std::string(PDMESH_SOURCE_DIR) + "/cases";
+  args.iterations = 6;
+  args.warmup = 0;
+  args.skip_host = true;
+  args.force_loop = "scalar";
+  args.out = out.string();
+  REQUIRE(run_bench(args) == 0);
+  std::ifstream f(out);
+  std::stringstream text;
+  text << f.rdbuf();
+  std::filesystem::remove(out);
+  const std::string table = text.str();
+  INFO(table);
+  CHECK(table.find("launches / reads / writes / copies / waits") != std::string::npos);
+  CHECK(table.find("(double, scalar loop)") != std::string::npos);
+  CHECK(table.find(" it.) |") != std::string::npos);  // at least one kind of iteration was counted
+}
