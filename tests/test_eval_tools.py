@@ -187,3 +187,44 @@ class Verdict(unittest.TestCase):
 
 if __name__ == "__main__":
     unittest.main()
+
+
+def load_convergence_check():
+    loader = importlib.machinery.SourceFileLoader("convergence_check", os.path.join(TOOLS, "convergence_check.py"))
+    spec = importlib.util.spec_from_loader("convergence_check", loader)
+    module = importlib.util.module_from_spec(spec)
+    loader.exec_module(module)
+    return module
+
+
+class ConvergenceReplay(unittest.TestCase):
+    """tools/convergence_check.py applies sim/convergence.cpp's rule; the same synthetic sequence as
+    tests/test_convergence.cpp ("settles at iteration 60 converges at 100") must stop at the same
+    iteration."""
+
+    OPTIONS = dict(check_every=10, window=40, aspect=5e-4, angle=0.25, min_iterations=40)
+
+    def settling(self, it, settled=True):
+        if it <= 60:
+            return dict(iteration=it, min_angle=20.0 + it / 10.0, aspect_ratio=1.10 - it / 1000.0, settled=settled)
+        wobble = 1.0 if (it // 10) % 2 == 0 else -1.0
+        return dict(iteration=it, min_angle=26.0 + 0.1 * wobble, aspect_ratio=1.04 + 1e-4 * wobble, settled=settled)
+
+    def test_stops_where_the_monitor_does(self):
+        cc = load_convergence_check()
+        rows = [self.settling(it) for it in range(5, 305, 5)]
+        self.assertEqual(cc.stop_of(rows, self.OPTIONS)[0], 100)
+        late = dict(self.OPTIONS, min_iterations=150)
+        self.assertEqual(cc.stop_of(rows, late)[0], 150)
+        unsettled = [self.settling(it, settled=it >= 125) for it in range(5, 305, 5)]
+        self.assertEqual(cc.stop_of(unsettled, self.OPTIONS)[0], 130)
+
+    def test_nan_blocks_and_a_run_that_never_settles_ends_at_its_last_row(self):
+        cc = load_convergence_check()
+        rows = [self.settling(it) for it in range(10, 310, 10)]
+        rows[7] = dict(rows[7], min_angle=math.nan, aspect_ratio=math.nan)  # iteration 80
+        self.assertEqual(cc.stop_of(rows, self.OPTIONS)[0], 130)
+        rising = [dict(iteration=it, min_angle=10 + 0.03 * it, aspect_ratio=1.05, settled=True) for it in range(10, 410, 10)]
+        it, at = cc.stop_of(rising, self.OPTIONS)
+        self.assertEqual(it, 400)
+        self.assertIs(at, rising[-1])
