@@ -15,6 +15,7 @@
 #include "app/case_spacing.hpp"
 #include "app/graded_case.hpp"
 #include "app/mesh_command.hpp"
+#include "app/run_phases.hpp"
 #include "core/atomic_file.hpp"
 #include "core/errors.hpp"
 #include "geometry/geometry.hpp"
@@ -27,21 +28,6 @@
 
 namespace pdmesh {
 namespace {
-
-// Peak resident set of this process (VmHWM), bytes; 0 where /proc is missing.
-std::size_t peak_rss() {
-  std::ifstream f("/proc/self/status");
-  std::string key;
-  while (f >> key) {
-    if (key == "VmHWM:") {
-      std::size_t kb = 0;
-      f >> kb;
-      return kb * 1024;
-    }
-    std::getline(f, key);
-  }
-  return 0;
-}
 
 struct BenchCase {
   std::string name;
@@ -243,7 +229,7 @@ int run_bench(const BenchArguments& args) {
       NodeSet nodes = c->initial;
       const SimResult r = run_simulation(nodes, *c->tree, *c->spacing, options);
       Row row{c->name, "host reference" + suffix, nodes.size(), options.iterations, r.stats.seconds,
-              r.stats.pairs_within, r.stats.pairs_examined, std::nullopt, {}, peak_rss(), 0.0, r.stats};
+              r.stats.pairs_within, r.stats.pairs_examined, std::nullopt, {}, peak_rss_bytes(), 0.0, r.stats};
       host_ms = 1e3 * r.stats.seconds / options.iterations;
       emit(row);
     }
@@ -271,7 +257,7 @@ int run_bench(const BenchArguments& args) {
                           precision == ocl::Precision::Float ? "float" : "double",
                           ocl::force_loop_name(simulator.force_loop()), suffix),
               nodes.size(), o.iterations, r.stats.seconds, r.stats.pairs_within, r.stats.pairs_examined,
-              simulator.stats(), commands, peak_rss(), host_ms, r.stats};
+              simulator.stats(), commands, peak_rss_bytes(), host_ms, r.stats};
       emit(row);
     }
   }

@@ -105,7 +105,7 @@ void RunPhases::picture(std::string name, std::function<void()> job) {
   }
   {
     std::lock_guard lock(mutex_);
-    queue_.emplace_back(std::move(name), std::move(job));
+    queue_.push_back(Job{next_seq_++, std::move(name), std::move(job)});
     ++pending_;
     if (!thread_.joinable()) thread_ = std::thread(&RunPhases::worker, this);
   }
@@ -122,20 +122,23 @@ void RunPhases::worker() {
 }
 
 void RunPhases::run_job(std::unique_lock<std::mutex>& lock) {
-  auto [name, job] = std::move(queue_.front());
+  Job next = std::move(queue_.front());
   queue_.pop_front();
   lock.unlock();
   const double w0 = wall_seconds(), c0 = thread_cpu_seconds();
   std::exception_ptr error;
   try {
-    job();
+    next.job();
   } catch (...) {
     error = std::current_exception();
   }
-  const PhaseTime t{std::move(name), wall_seconds() - w0, thread_cpu_seconds() - c0, true};
+  const PhaseTime t{std::move(next.name), wall_seconds() - w0, thread_cpu_seconds() - c0, true};
   lock.lock();
   phases_.push_back(t);
-  if (error && !error_) error_ = error;
+  if (error && (!error_ || next.seq < error_seq_)) {
+    error_ = error;
+    error_seq_ = next.seq;
+  }
   --pending_;
   cv_.notify_all();
 }

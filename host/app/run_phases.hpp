@@ -5,6 +5,7 @@
 #include <condition_variable>
 #include <cstddef>
 #include <deque>
+#include <cstdint>
 #include <exception>
 #include <filesystem>
 #include <functional>
@@ -61,7 +62,8 @@ class RunPhases {
   // stay alive and unchanged until wait_pictures() returns.
   void picture(std::string name, std::function<void()> job);
   // Waits for every picture queued so far, drawing queued ones on the calling thread meanwhile;
-  // rethrows the first error a job threw (once).
+  // rethrows the error of the earliest queued job that threw (once; queue order, not completion order,
+  // so the same error whichever thread drew which picture).
   void wait_pictures();
 
   // Adds a phase measured elsewhere; thread-safe.
@@ -88,10 +90,17 @@ class RunPhases {
   std::vector<std::pair<std::string, double>> notes_;
   // The background thread and its queue (started with the first picture).
   std::condition_variable cv_;
-  std::deque<std::pair<std::string, std::function<void()>>> queue_;
+  struct Job {
+    std::uint64_t seq;  // queue order
+    std::string name;
+    std::function<void()> job;
+  };
+  std::deque<Job> queue_;
+  std::uint64_t next_seq_ = 0;
   std::size_t pending_ = 0;  // queued or running
   bool stopping_ = false;
   std::exception_ptr error_;
+  std::uint64_t error_seq_ = 0;  // the queue position of error_'s job
   std::thread thread_;
 };
 

@@ -94,7 +94,8 @@ def parse_pdmesh_stderr(text):
     if m:
         found["nodes"] = int(m.group(1))
     # "... on the host reference (double), ..." or "... on opencl:0:0 (NAME, CPU, double, device-resident), ..."
-    m = re.search(r"^simulation: \d+ iterations on (?:the )?(host reference|opencl:\d+:\d+)(.*)$", text, re.M)
+    m = re.search(r"^simulation: (?:until converged, at most )?\d+ iterations on (?:the )?(host reference|opencl:\d+:\d+)(.*)$",
+                  text, re.M)
     if m:
         found["device"] = m.group(1)
         if m.group(1).startswith("opencl"):
@@ -107,6 +108,23 @@ def parse_pdmesh_stderr(text):
     if m:
         found["simulation_seconds"] = float(m.group(1))
         found["ms_per_iteration"] = float(m.group(2))
+    # The phase summary: "timing (wall s): read 0.002, spacing 0.1, estimate 0.2, fill 0.02, ...,
+    # triangulation 0.008, ...". The initialization is the spacing field, the estimate and the fill.
+    m = re.search(r"^timing \(wall s\): (.*)$", text, re.M)
+    if m:
+        phases = {}
+        for item in m.group(1).split(";")[0].split(", "):
+            name, _, value = item.rpartition(" ")
+            try:
+                phases[name] = float(value)
+            except ValueError:
+                pass
+        init = [phases[k] for k in ("spacing", "estimate", "fill") if k in phases]
+        if init:
+            found["initialization_seconds"] = sum(init)
+        if "triangulation" in phases:
+            found["triangulation_seconds"] = phases["triangulation"]
+        return found
     for key, pattern in (("initialization_seconds",
                           rf"^(?:initialization: |initial distribution: .*?\bin ){NUMBER} s\b"),
                          ("triangulation_seconds",
