@@ -17,12 +17,17 @@ from pdmesh_eval.meshfiles import boundary_loops, corner_angles, read_msh
 TOOLS = os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "tools")
 
 
-def load_compare():
-    loader = importlib.machinery.SourceFileLoader("compare_tool", os.path.join(TOOLS, "compare"))
-    spec = importlib.util.spec_from_loader("compare_tool", loader)
+def load_tool(file_name, module_name):
+    """A script in tools/ (with or without a .py name) as a module."""
+    loader = importlib.machinery.SourceFileLoader(module_name, os.path.join(TOOLS, file_name))
+    spec = importlib.util.spec_from_loader(module_name, loader)
     module = importlib.util.module_from_spec(spec)
     loader.exec_module(module)
     return module
+
+
+def load_compare():
+    return load_tool("compare", "compare_tool")
 
 
 def crv(curves):
@@ -190,11 +195,7 @@ if __name__ == "__main__":
 
 
 def load_convergence_check():
-    loader = importlib.machinery.SourceFileLoader("convergence_check", os.path.join(TOOLS, "convergence_check.py"))
-    spec = importlib.util.spec_from_loader("convergence_check", loader)
-    module = importlib.util.module_from_spec(spec)
-    loader.exec_module(module)
-    return module
+    return load_tool("convergence_check.py", "convergence_check")
 
 
 class ConvergenceReplay(unittest.TestCase):
