@@ -1,5 +1,5 @@
 // Test helper: small Geometry values built directly (curves, segments, arc lengths, extents)
-// without build_geometry, plus a seeded, platform-independent random number source.
+// without build_geometry, a few through it, plus a seeded, platform-independent random number source.
 #pragma once
 #include <algorithm>
 #include <cmath>
@@ -127,5 +127,29 @@ struct ConstantSpacing final : SpacingField {
   double at(Vec2) const override { return q; }
   double q;
 };
+
+// Points from a to b in `segments` equal segments, with both ends exactly a and b.
+inline std::vector<Vec2> line(Vec2 a, Vec2 b, int segments) {
+  std::vector<Vec2> p;
+  for (int i = 0; i <= segments; ++i) {
+    const double t = static_cast<double>(i) / segments;
+    p.push_back(i == 0 ? a : i == segments ? b : Vec2{a.x + t * (b.x - a.x), a.y + t * (b.y - a.y)});
+  }
+  return p;
+}
+
+// An L x L square with corner o as four curves "side0".."side3" of m equal segments each
+// (counter-clockwise), through build_geometry.
+inline Geometry square(double L, int m, Vec2 o = {0, 0}) {
+  const Vec2 c[4] = {{o.x, o.y}, {o.x + L, o.y}, {o.x + L, o.y + L}, {o.x, o.y + L}};
+  std::vector<RawCurve> raw;
+  for (int k = 0; k < 4; ++k) {
+    RawCurve curve;
+    curve.name = "side" + std::to_string(k);
+    curve.points = line(c[k], c[(k + 1) % 4], m);
+    raw.push_back(std::move(curve));
+  }
+  return build_geometry(std::move(raw));
+}
 
 }  // namespace pdmesh::fixtures

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "geometry/geometry.hpp"
+#include "geometry_fixtures.hpp"
 #include "geometry/geometry_tree.hpp"
 #include "init/init_tree.hpp"
 #include "init/initial_distribution.hpp"
@@ -20,28 +21,8 @@ namespace {
 
 constexpr double kPi = std::numbers::pi;
 
-// Points from a to b, `segments` equal segments, with both ends exactly a and b.
-std::vector<Vec2> line(Vec2 a, Vec2 b, int segments) {
-  std::vector<Vec2> p;
-  for (int i = 0; i <= segments; ++i) {
-    const double t = static_cast<double>(i) / segments;
-    p.push_back(i == 0 ? a : i == segments ? b : Vec2{a.x + t * (b.x - a.x), a.y + t * (b.y - a.y)});
-  }
-  return p;
-}
-
-// An L x L square as four curves of m equal segments each (counter-clockwise).
-Geometry square(double L, int m, Vec2 o = {0, 0}) {
-  const Vec2 c[4] = {{o.x, o.y}, {o.x + L, o.y}, {o.x + L, o.y + L}, {o.x, o.y + L}};
-  std::vector<RawCurve> raw;
-  for (int k = 0; k < 4; ++k) {
-    RawCurve curve;
-    curve.name = "side" + std::to_string(k);
-    curve.points = line(c[k], c[(k + 1) % 4], m);
-    raw.push_back(std::move(curve));
-  }
-  return build_geometry(std::move(raw));
-}
+using fixtures::line;
+using fixtures::square;
 
 // A circle of radius r as two semicircles of `points` equally spaced points each, joined at (+-r, 0).
 void add_circle(std::vector<RawCurve>& raw, double r, int points, const std::string& name) {

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "geometry/geometry.hpp"
+#include "geometry_fixtures.hpp"
 #include "geometry/geometry_tree.hpp"
 #include "init/initial_distribution.hpp"
 #include "init/node_estimate.hpp"
@@ -39,21 +40,8 @@ double quadrature(double q00, double q10, double q01, double q11) {
   return sum;
 }
 
-std::vector<Vec2> line(Vec2 a, Vec2 b, int segments) {
-  std::vector<Vec2> p;
-  for (int i = 0; i <= segments; ++i) {
-    const double t = static_cast<double>(i) / segments;
-    p.push_back(i == 0 ? a : i == segments ? b : Vec2{a.x + t * (b.x - a.x), a.y + t * (b.y - a.y)});
-  }
-  return p;
-}
-
-Geometry square(double L, int m, Vec2 o = {0, 0}) {
-  const Vec2 c[4] = {{o.x, o.y}, {o.x + L, o.y}, {o.x + L, o.y + L}, {o.x, o.y + L}};
-  std::vector<RawCurve> raw;
-  for (int k = 0; k < 4; ++k) raw.push_back({"side" + std::to_string(k), line(c[k], c[(k + 1) % 4], m), "test", 0, {}});
-  return build_geometry(std::move(raw));
-}
+using fixtures::line;
+using fixtures::square;
 
 RawCurve circle(const std::string& name, double r, int segments) {
   RawCurve c{name, {}, "test", 0, {}};
