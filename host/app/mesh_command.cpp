@@ -420,12 +420,13 @@ void check_or_throw(const CaseConfig& config, const MeshInputs& inputs, const Me
 }
 
 // Smallest and largest angle and the triangles below `target` degrees.
-void angle_figures(const Mesh& mesh, double target, double& min_angle, double& max_angle, std::size_t& below) {
-  const QualitySummary s = summarize_quality(mesh);
+void angle_figures(const std::vector<TriangleQuality>& per_triangle, double target, double& min_angle,
+                   double& max_angle, std::size_t& below) {
+  const QualitySummary s = summarize_quality(per_triangle);
   min_angle = s.min_angle;
   max_angle = s.max_angle;
   below = 0;
-  for (const TriangleQuality& t : triangle_qualities(mesh)) below += t.min_angle < target;
+  for (const TriangleQuality& t : per_triangle) below += t.min_angle < target;
 }
 
 }  // namespace
@@ -446,6 +447,7 @@ Mesh mesh_and_measure(const CaseConfig& config, const MeshInputs& inputs, const 
   // The final cleanup (docs/cleanup.md): the mesh files and pictures show the cleaned mesh; final.nodes
   // stays the simulation's result.
   CleanupEffect effect;
+  std::vector<TriangleQuality> per_triangle;  // the final mesh's, computed once
   NodeSet cleaned_nodes;
   const NodeSet* mesh_nodes = &nodes;
   if (config.cleanup.enabled) {
@@ -458,10 +460,12 @@ Mesh mesh_and_measure(const CaseConfig& config, const MeshInputs& inputs, const 
     effect.target_deg = options.min_angle;
     effect.triangles_before = mesh.triangles.size();
     effect.points_before = mesh.points.size();
-    angle_figures(mesh, options.min_angle, effect.min_angle_before, effect.max_angle_before, effect.below_before);
+    angle_figures(triangle_qualities(mesh), options.min_angle, effect.min_angle_before, effect.max_angle_before,
+                  effect.below_before);
     CleanupResult cleaned = clean_mesh(mesh, nodes, inputs.node_tree(), inputs.field(), options);
     mesh = std::move(cleaned.mesh);
-    angle_figures(mesh, options.min_angle, effect.min_angle_after, effect.max_angle_after, effect.below_after);
+    per_triangle = triangle_qualities(mesh);  // the cleaned mesh's, reused by the quality summary below
+    angle_figures(per_triangle, options.min_angle, effect.min_angle_after, effect.max_angle_after, effect.below_after);
     effect.inserted = cleaned.stats.inserted;
     effect.removed = cleaned.stats.collapsed;
     effect.moves = cleaned.stats.moves;
@@ -483,7 +487,7 @@ Mesh mesh_and_measure(const CaseConfig& config, const MeshInputs& inputs, const 
   }
   if (!config.write_outputs) return mesh;  // the Python API measures on demand (Mesh.quality())
   auto quality_timer = phases.phase("quality");
-  const std::vector<TriangleQuality> per_triangle = triangle_qualities(mesh);
+  if (!config.cleanup.enabled) per_triangle = triangle_qualities(mesh);
   QualitySummary summary = summarize_quality(per_triangle);
   summary.points = mesh.points.size();
   summary.has_cleanup = config.cleanup.enabled;
