@@ -180,10 +180,14 @@ class Quadtree {
   const Box& root_box() const { return nodes_[0].box; }
   const Box& bounds() const { return bounds_; }
 
-  ClosestHit closest(Vec2 p) const {
+  // hint >= 0: a segment of this tree whose hit seeds the search. The result does not depend on it:
+  // every segment at least as close as the seed is still examined (the bounds keep their margin and
+  // ties go to the lowest index), so only the number of nodes visited changes.
+  ClosestHit closest(Vec2 p, int hint = -1) const {
     ClosestHit best;
     best.distance = std::numeric_limits<double>::infinity();
     if (nodes_.empty()) return ClosestHit{};
+    if (hint >= 0) best = closest_on_segment(p, (*segments_)[static_cast<std::size_t>(hint)], hint);
     // Best-first: nodes are popped in order of their box distance, so the search stops at the
     // first node farther than the best hit and never descends into a far subtree first. The heap
     // lives in a thread-local buffer to avoid an allocation per query.
@@ -455,6 +459,19 @@ ClosestHit GeometryTree::closest_on_curve(Vec2 p, int curve) const {
 void GeometryTree::closest_per_curve(Vec2 p, std::vector<ClosestHit>& out) const {
   out.resize(impl_->per_curve.size());
   for (std::size_t c = 0; c < out.size(); ++c) out[c] = impl_->per_curve[c].closest(p);
+}
+
+void GeometryTree::closest_per_curve_near(Vec2 p, std::vector<ClosestHit>& out) const {
+  const std::size_t curves = impl_->per_curve.size();
+  const auto& segs = geometry_.segments;
+  const bool hinted = out.size() == curves;
+  out.resize(curves);
+  for (std::size_t c = 0; c < curves; ++c) {
+    const int s = hinted ? out[c].segment : -1;
+    const bool valid = s >= 0 && static_cast<std::size_t>(s) < segs.size() &&
+                       segs[static_cast<std::size_t>(s)].curve == static_cast<int>(c);
+    out[c] = impl_->per_curve[c].closest(p, valid ? s : -1);
+  }
 }
 
 bool GeometryTree::inside(Vec2 p) const {

@@ -48,6 +48,11 @@ class GeometryTree {
   // For every curve, its closest segment (out[c] for curve c). Used by the boundary spacing field.
   // Costs O(curves * log segments): each curve has its own quadtree.
   void closest_per_curve(Vec2 p, std::vector<ClosestHit>& out) const;
+  // The same result, bit for bit, faster when out holds this tree's answer for a nearby point (the
+  // previous query of a spatially ordered batch): each curve's search starts from that segment's
+  // distance, which prunes most of the tree at once. Entries that are not such an answer (wrong size,
+  // segment -1, a segment of another curve) are ignored.
+  void closest_per_curve_near(Vec2 p, std::vector<ClosestHit>& out) const;
   // Even-odd point-in-domain test. Points exactly on a segment count as inside.
   bool inside(Vec2 p) const;
   // True when the move a->b touches or crosses any boundary segment at a point other than a

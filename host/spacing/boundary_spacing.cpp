@@ -12,8 +12,11 @@ namespace pdmesh {
 BoundarySpacing::BoundarySpacing(const GeometryTree& tree) : tree_(tree) {}
 
 double BoundarySpacing::at(Vec2 p) const {
+  // The hits of this thread's previous query seed the searches: at_many's batches are spatially
+  // ordered (cell corners and test points level by level), so the last segment is usually the answer
+  // or close to it. The result does not depend on the seed (GeometryTree::closest_per_curve_near).
   thread_local std::vector<ClosestHit> hits;
-  tree_.closest_per_curve(p, hits);
+  tree_.closest_per_curve_near(p, hits);
   const auto& segs = tree_.geometry().segments;
   double d_min = -1.0;
   for (const ClosestHit& h : hits)
