@@ -77,7 +77,7 @@ TEST_CASE("GeometryTree queries equal brute force", "[tree]") {
       const GeometryTree tree(g);
       const int curves = static_cast<int>(g.curves.size());
       std::mt19937_64 rng(20240607);
-      std::vector<ClosestHit> per_tree, per_brute;
+      std::vector<ClosestHit> per_tree, per_brute, per_near;
       int inside_count = 0, crossing_count = 0;
       for (int i = 0; i < 4000; ++i) {
         const Vec2 p = query_point(g, rng);
@@ -88,6 +88,13 @@ TEST_CASE("GeometryTree queries equal brute force", "[tree]") {
         brute_force::closest_per_curve(g, p, per_brute);
         REQUIRE(per_tree.size() == per_brute.size());
         for (int k = 0; k < curves; ++k) require_same(per_tree[k], per_brute[k], p);
+        // The seeded search: per_near holds the previous query's hits (a point far or near), and now
+        // and then a seed that is no answer of this tree (another curve's segment, out of range).
+        if (i % 7 == 3 && curves > 1) per_near[0].segment = per_near[1].segment;
+        if (i % 11 == 5 && !per_near.empty()) per_near.back().segment = static_cast<int>(g.segments.size()) + 3;
+        tree.closest_per_curve_near(p, per_near);
+        REQUIRE(per_near.size() == per_brute.size());
+        for (int k = 0; k < curves; ++k) require_same(per_near[k], per_brute[k], p);
         const bool in = tree.inside(p);
         INFO("inside query (" << p.x << ", " << p.y << ")");
         REQUIRE(in == brute_force::inside(g, p));

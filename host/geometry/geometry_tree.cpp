@@ -188,20 +188,17 @@ class Quadtree {
     best.distance = std::numeric_limits<double>::infinity();
     if (nodes_.empty()) return ClosestHit{};
     if (hint >= 0) best = closest_on_segment(p, (*segments_)[static_cast<std::size_t>(hint)], hint);
-    // Best-first: nodes are popped in order of their box distance, so the search stops at the
-    // first node farther than the best hit and never descends into a far subtree first. The heap
-    // lives in a thread-local buffer to avoid an allocation per query.
-    thread_local std::vector<std::pair<double, int>> heap;
-    heap.clear();
-    const auto farther = [](const std::pair<double, int>& x, const std::pair<double, int>& y) {
-      return x.first > y.first;
-    };
-    heap.push_back({node_lower_bound(p, nodes_[0]), 0});
-    while (!heap.empty()) {
-      std::pop_heap(heap.begin(), heap.end(), farther);
-      const auto [d, n] = heap.back();
-      heap.pop_back();
-      if (d > bound(best.distance)) break;
+    // Depth first, the nearer children first: with the seed's bound (or the first leaf's hit) most
+    // subtrees are pruned at once, and a small stack on the frame costs less than a heap (this is the
+    // inner loop of every eq. 3.6 evaluation: 15 searches per point on 30P30N). The nodes visited
+    // are a superset of the best-first search's, so the result is the same: every segment that could
+    // beat or tie the best hit is examined, ties going to the lowest index.
+    std::array<std::pair<double, int>, 3 * GeometryTree::kMaxDepth + 8> stack;
+    int top = 0;
+    stack[top++] = {node_lower_bound(p, nodes_[0]), 0};
+    while (top > 0) {
+      const auto [d, n] = stack[--top];
+      if (d > bound(best.distance)) continue;
       const Node& node = nodes_[n];
       if (node.first_child < 0) {
         for (int i = node.begin; i < node.begin + node.count; ++i) {
@@ -219,15 +216,22 @@ class Quadtree {
         }
         continue;
       }
+      std::pair<double, int> kids[4];
+      int count = 0;
       for (int c = node.first_child; c < node.first_child + 4; ++c) {
         const Node& kid = nodes_[c];
         if (kid.first_child < 0 && kid.count == 0) continue;  // empty leaf
         const double kd = node_lower_bound(p, kid);
-        if (kd <= bound(best.distance)) {
-          heap.push_back({kd, c});
-          std::push_heap(heap.begin(), heap.end(), farther);
+        if (kd > bound(best.distance)) continue;
+        // Insertion into kids, farthest first, so that the nearest is pushed last and popped next.
+        int k = count++;
+        while (k > 0 && kids[k - 1].first < kd) {
+          kids[k] = kids[k - 1];
+          --k;
         }
+        kids[k] = {kd, c};
       }
+      for (int k = 0; k < count; ++k) stack[top++] = kids[k];
     }
     return best;
   }
