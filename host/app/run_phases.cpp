@@ -2,15 +2,9 @@
 #include "app/run_phases.hpp"
 
 #include <chrono>
-#include <algorithm>
-#include <cerrno>
 #include <cmath>
 #include <ctime>
 #include <fstream>
-
-#include <sys/resource.h>
-#include <sys/syscall.h>
-#include <unistd.h>
 
 #include <fmt/format.h>
 
@@ -119,14 +113,6 @@ void RunPhases::picture(std::string name, std::function<void()> job) {
 }
 
 void RunPhases::worker() {
-  // The pictures are never on the critical path while the run goes on: the simulation (PoCL's
-  // threads, or the host loop) and the phases after it are. On two cores the picture thread competed
-  // with them as an equal; at a lower priority it takes the CPU they leave, and what is still queued
-  // at the end is drawn by the waiting caller at normal priority too (wait_pictures). Linux sets the
-  // nice value per thread; where that fails the thread simply keeps the process's priority.
-  errno = 0;
-  const int nice_now = getpriority(PRIO_PROCESS, static_cast<id_t>(syscall(SYS_gettid)));
-  if (errno == 0) (void)setpriority(PRIO_PROCESS, static_cast<id_t>(syscall(SYS_gettid)), std::min(19, nice_now + kPictureNice));
   std::unique_lock lock(mutex_);
   for (;;) {
     cv_.wait(lock, [this] { return stopping_ || !queue_.empty(); });

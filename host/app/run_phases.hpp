@@ -32,9 +32,6 @@ struct PhaseTime {
 double process_cpu_seconds();
 double thread_cpu_seconds();
 
-// How much nicer than the process the background picture thread runs (RunPhases::worker).
-inline constexpr int kPictureNice = 10;
-
 class RunPhases {
  public:
   // background false: pictures are drawn at once, on the calling thread (still timed).
