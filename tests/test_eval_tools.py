@@ -190,9 +190,6 @@ class Verdict(unittest.TestCase):
         self.assertFalse(v["beats_gmsh"] or v["excused_by_sharp_corner"])
 
 
-if __name__ == "__main__":
-    unittest.main()
-
 
 def load_convergence_check():
     return load_tool("convergence_check.py", "convergence_check")
@@ -229,3 +226,46 @@ class ConvergenceReplay(unittest.TestCase):
         it, at = cc.stop_of(rising, self.OPTIONS)
         self.assertEqual(it, 400)
         self.assertIs(at, rising[-1])
+
+
+FAKE_PDMESH = '''#!/usr/bin/env python3
+import json, os, sys
+a = sys.argv[1:]
+out, timings = a[a.index("--out") + 1], a[a.index("--timings") + 1]
+short = "simulation.iterations=1000" in a
+os.makedirs(out, exist_ok=True)
+with open(os.path.join(out, "quality.json"), "w") as f:
+    json.dump({"included_angle": {"min": 39.5 if short else 40.0}, "aspect_ratio": {"average": 1.0150},
+               "triangles": 1000}, f)
+with open(timings, "w") as f:
+    json.dump({"iterations": 1000 if short else 1900, "converged": 0 if short else 1, "wall": 1.5}, f)
+'''
+
+
+class StopStudy(unittest.TestCase):
+    """tools/stop_study's verdict: a candidate is within the issue's 1 % of the default or not, per metric."""
+
+    def test_verdicts_against_the_default(self):
+        import subprocess
+        import sys
+        with tempfile.TemporaryDirectory() as d:
+            fake = os.path.join(d, "pdmesh")
+            with open(fake, "w") as f:
+                f.write(FAKE_PDMESH)
+            os.chmod(fake, 0o755)
+            r = subprocess.run([sys.executable, os.path.join(TOOLS, "stop_study"), "--pdmesh", fake, "--work",
+                                os.path.join(d, "w"), "--cases", "circle_circle", "--candidate",
+                                "it1000=simulation.iterations=1000", "--candidate", "same=population.every=50"],
+                               capture_output=True, text=True)
+            self.assertEqual(r.returncode, 0, r.stderr)
+            rows = [line for line in r.stdout.splitlines() if line.startswith("| circle_circle")]
+            self.assertEqual(len(rows), 6)  # both starts, three settings each
+            self.assertIn("| 1900 (converged) |", rows[0])
+            self.assertTrue(rows[1].endswith("| **no** (angle) |"), rows[1])  # 39.5 against 40.0: 1.25 %
+            self.assertTrue(rows[2].endswith("| yes |"), rows[2])
+            self.assertIn("it1000: within 1 % on 0 of 2 runs", r.stdout)
+            self.assertIn("same: within 1 % on 2 of 2 runs", r.stdout)
+
+
+if __name__ == "__main__":
+    unittest.main()
