@@ -92,9 +92,19 @@ BoundarySnapResult DeviceBoundary<Real>::sum(const std::vector<Real>& partials, 
 }
 
 template <typename Real>
+void DeviceBoundary<Real>::read_arcs(int which, std::vector<Real>& flat, bool blocking) {
+  arcs_[which].download(ctx_.queue(), flat, arc_entries_, blocking);
+}
+
+template <typename Real>
 std::vector<std::vector<double>> DeviceBoundary<Real>::download_arcs(int which, const NodeSet& nodes) {
   std::vector<Real> flat;
-  arcs_[which].download(ctx_.queue(), flat, arc_entries_);
+  read_arcs(which, flat, true);
+  return unflatten(flat, nodes);
+}
+
+template <typename Real>
+std::vector<std::vector<double>> DeviceBoundary<Real>::unflatten(const std::vector<Real>& flat, const NodeSet& nodes) {
   std::vector<std::vector<double>> arcs(nodes.curve_nodes.size());
   std::size_t at = 0;
   for (std::size_t c = 0; c < arcs.size(); ++c)

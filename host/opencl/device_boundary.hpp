@@ -55,10 +55,14 @@ class DeviceBoundary {
     return kBoundaryPartials * ((slots() + work_group - 1) / work_group);
   }
   static BoundarySnapResult sum(const std::vector<Real>& partials, std::size_t count);
-  // Arc buffer `which` back into the per-curve layout of nodes.curve_nodes (blocking read).
+  // Arc buffer `which` back into the per-curve layout of nodes.curve_nodes (blocking read), or in two
+  // steps: enqueue the read into `flat` (blocking or not), then, after a wait, unflatten it.
   std::vector<std::vector<double>> download_arcs(int which, const NodeSet& nodes);
+  void read_arcs(int which, std::vector<Real>& flat, bool blocking);
+  static std::vector<std::vector<double>> unflatten(const std::vector<Real>& flat, const NodeSet& nodes);
 
   std::size_t slots() const { return slot_nodes_.size(); }
+  std::size_t arc_entries() const { return arc_entries_; }  // entries of all curve lists
   std::size_t bytes() const;
 
  private:

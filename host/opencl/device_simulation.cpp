@@ -71,6 +71,10 @@ class DeviceRun {
   // sync_boundary_from: buffer `which` whole (the last good state after a failed step).
   void sync_boundary();
   void sync_boundary_from(int which);
+  // In float, the host's boundary positions are put back exactly onto their curves (at their arc
+  // positions, in double), as the host computed them before the device re-snapped: the rounding of
+  // the device's float copy stays on the device. Nothing to do in double.
+  void boundary_positions_on_curves();
   void rebuild();
   void step_kernel(double dt_gm2);
   BoundaryCounts host_boundary(double& skin_use);
@@ -127,7 +131,7 @@ class DeviceRun {
   std::vector<double> build_x_, build_y_, build_q_;  // positions and spacings at the last build
   std::vector<double> dx_, dy_;                      // host displacement scratch (full size, sparse use)
   std::vector<std::int32_t> candidates_;
-  std::vector<Real> part_, bpart_, brec_host_, cand_rec_host_, rec_host_;
+  std::vector<Real> part_, bpart_, brec_host_, arcs_host_, cand_rec_host_, rec_host_;
   std::vector<std::int32_t> count_host_, rec_index_host_;
   // Targets of non-blocking downloads are members too: when a wait fails and the error unwinds, a
   // read still in flight must not write into freed memory (~DeviceRun waits for the queue first).
@@ -390,13 +394,32 @@ void DeviceRun<Real>::upload_topology() {
 }
 
 template <typename Real>
+void DeviceRun<Real>::boundary_positions_on_curves() {
+  if constexpr (!std::is_same_v<Real, double>) {
+    const std::vector<Curve>& curves = boundary_.tree().geometry().curves;
+    for (std::size_t c = 0; c < curves.size(); ++c) {
+      const std::vector<int>& list = nodes_.curve_nodes[c];
+      const std::vector<double>& arcs = boundary_.arcs()[c];
+      for (std::size_t k = 1; k + 1 < list.size(); ++k) {
+        const auto i = static_cast<std::size_t>(list[k]);
+        if (nodes_.kind[i] == NodeKind::Boundary)
+          nodes_.x[i] = closest_on_curve_range(curves[c], nodes_.x[i], arcs[k], arcs[k]).p;
+      }
+    }
+  }
+}
+
+template <typename Real>
 void DeviceRun<Real>::sync_boundary() {
   // The records are the last boundary_snap's for the current slots: the slots change only in
   // upload_topology, which runs with the host's boundary state current (synced first).
   std::vector<Real>& rec = brec_host_;
-  read(brec_, rec, 4 * boundary_nodes_.size());
-  std::vector<std::vector<double>> arcs = device_boundary_.download_arcs(snap_arcs_, nodes_);
+  read(brec_, rec, 4 * boundary_nodes_.size(), false);
+  device_boundary_.read_arcs(snap_arcs_, arcs_host_, false);
   ++stats_.transfers;
+  finish(ctx_.queue(), "boundary state");
+  stats_.bytes_down += arcs_host_.size() * sizeof(Real);
+  std::vector<std::vector<double>> arcs = DeviceBoundary<Real>::unflatten(arcs_host_, nodes_);
   std::vector<Vec2> tangents = boundary_.tangents();
   for (std::size_t s = 0; s < boundary_nodes_.size(); ++s) {
     const auto i = static_cast<std::size_t>(boundary_nodes_[s]);
@@ -404,6 +427,7 @@ void DeviceRun<Real>::sync_boundary() {
     tangents[i] = {static_cast<double>(rec[4 * s + 2]), static_cast<double>(rec[4 * s + 3])};
   }
   boundary_.restore(nodes_, std::move(arcs), std::move(tangents));
+  boundary_positions_on_curves();
   boundary_stale_ = false;
 }
 
@@ -416,6 +440,7 @@ void DeviceRun<Real>::sync_boundary_from(int which) {
   read(ty_[which], ty, n_);
   std::vector<std::vector<double>> arcs = device_boundary_.download_arcs(which, nodes_);
   ++stats_.transfers;
+  stats_.bytes_down += device_boundary_.arc_entries() * sizeof(Real);
   std::vector<Vec2> tangents(n_);
   for (std::size_t i = 0; i < n_; ++i) {
     if (nodes_.kind[i] != NodeKind::Boundary) continue;
@@ -423,6 +448,7 @@ void DeviceRun<Real>::sync_boundary_from(int which) {
     tangents[i] = {static_cast<double>(tx[i]), static_cast<double>(ty[i])};
   }
   boundary_.restore(nodes_, std::move(arcs), std::move(tangents));
+  boundary_positions_on_curves();
   boundary_stale_ = false;
 }
 
