@@ -86,7 +86,8 @@ void closest_on_curve(__global const REAL* p, __global const REAL* arc, const in
 // leaf (as apply_host_moves did with the host's result), its new (x, y, tx, ty) over its brec record
 // (what sync_boundary reads back), and per group: clamped moves, non-finite
 // targets (nothing is written for those: the host reports them), and the largest skin use (the
-// formula of device_step).
+// formula of device_step). step_counters[1] != 0 (device_step's flag for a move that is not finite): nothing is
+// written but the partials.
 __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1)))
 void boundary_snap(const int m, __global const int* slot_node, __global const int* slot_curve,
                    __global const int* slot_pos, __global const int* curve_pt, __global const REAL* pts,
@@ -94,10 +95,12 @@ void boundary_snap(const int m, __global const int* slot_node, __global const in
                    __global REAL* brec, __global REAL* x, __global REAL* y, __global REAL* q, __global REAL* tx,
                    __global REAL* ty, __global int* node_leaf, __global const REAL* x_build,
                    __global const REAL* y_build, __global const REAL* q_build, const REAL cutoff,
-                   const REAL skin_cutoff, __global REAL* partials, BG_ARGS) {
+                   const REAL skin_cutoff, __global const int* step_counters, __global REAL* partials, BG_ARGS) {
   __local REAL values[BOUNDARY_PARTIALS * WG_SIZE];
   const int s = get_global_id(0), l = get_local_id(0);
   REAL clamped = (REAL)0, bad = (REAL)0, skin_use = (REAL)0;
+  // device_step found a move that is not finite: nothing is written (tangents are updated in place).
+  const int halted = step_counters[1] != 0;
   if (s < m) {
     const int i = slot_node[s], c = slot_curve[s], pos = slot_pos[s];
     const REAL old = arcs_in[pos];
@@ -106,7 +109,7 @@ void boundary_snap(const int m, __global const int* slot_node, __global const in
     const REAL px = brec[4 * s] + brec[4 * s + 2], py = brec[4 * s + 1] + brec[4 * s + 3];
     if (!isfinite(px) || !isfinite(py)) {
       bad = (REAL)1;
-    } else {
+    } else if (!halted) {
       const int first = curve_pt[c];
       REAL2 on, tangent;
       REAL arc;

@@ -68,7 +68,8 @@ class DeviceRun {
   // The boundary state (positions of the Boundary nodes, tangents, arc positions) into nodes_ and
   // boundary_: the device re-snaps, the host reads it back only when it needs it. sync_boundary: the
   // last boundary_snap's result (its per-slot records and arcs, a few bytes per boundary node);
-  // sync_boundary_from: buffer `which` whole (the last good state after a failed step).
+  // sync_boundary_from: positions and arcs of buffer `which` and the tangents, whole (the last good
+  // state after a failed step, when boundary_snap did not run or was halted).
   void sync_boundary();
   void sync_boundary_from(int which);
   // In float, the host's boundary positions are put back exactly onto their curves (at their arc
@@ -120,7 +121,7 @@ class DeviceRun {
   std::size_t n_;
   int stride_ = kInitialStride;  // entries per neighbour row: grows to the largest row a build finds
   int cur_ = 0;  // which of the double-buffered x, y, q is current
-  Buffer<Real> x_[2], y_[2], q_[2], tx_[2], ty_[2], x_build_, y_build_, q_build_, brec_, cand_rec_, partials_, rec_, bg_q_,
+  Buffer<Real> x_[2], y_[2], q_[2], tx_, ty_, x_build_, y_build_, q_build_, brec_, cand_rec_, partials_, rec_, bg_q_,
       budget_;
   Buffer<std::uint8_t> kind_;
   Buffer<std::int32_t> prev_, next_, bslot_, cand_index_, counters_, rec_index_, bg_root_, bg_child_, bg_corner_,
@@ -137,7 +138,7 @@ class DeviceRun {
   // read still in flight must not write into freed memory (~DeviceRun waits for the queue first).
   std::vector<Real> positions_host_[3];
   std::vector<std::int32_t> cand_index_host_;
-  const std::vector<std::int32_t> zero_counter_ = std::vector<std::int32_t>(1, 0);
+  const std::vector<std::int32_t> zero_counter_ = std::vector<std::int32_t>(2, 0);
   double skin_use_ = HUGE_VAL;                       // since the last build; HUGE_VAL forces a build
   std::uint64_t pairs_examined_ = 0;  // rebuild candidates plus, every iteration, the entries of the current lists
   std::uint64_t list_entries_ = 0;    // entries of the current lists (within the skin radius)
@@ -151,6 +152,7 @@ class DeviceRun {
   std::size_t saved_rows_ = 0;
   // host_boundary has moved nodes on the host that x_[cur_] does not hold yet (until the iteration ends).
   bool host_ahead_ = false;
+  bool tangents_ahead_ = false;  // boundary_snap has run in the iteration not yet complete
   // The device re-snapped the boundary nodes since the host last read their state (sync_boundary).
   bool boundary_stale_ = false;
   int snap_arcs_ = 0;  // the arc buffer the last boundary_snap wrote
@@ -187,7 +189,7 @@ void DeviceRun<Real>::remember(int done, double dt_initial, const GlobalTimeStep
 template <typename Real>
 SimState DeviceRun<Real>::last_good_state(int done, double dt_initial, const GlobalTimeStep& gm,
                                           const std::vector<HistoryRow>& history) {
-  if (!host_ahead_) {
+  if (!host_ahead_ && !tangents_ahead_) {
     try {
       std::vector<Real> x, y, q;
       x_[cur_].download(ctx_.queue(), x, n_);
@@ -270,7 +272,7 @@ void DeviceRun<Real>::upload_initial() {
   write(bg_corner_, d.leaf_corner);
   write(bg_cell_, d.leaf_cell);
   write(bg_q_, to_real<Real>(d.corner_q));
-  counters_ = Buffer<std::int32_t>(ctx_, "step_counters", 1);
+  counters_ = Buffer<std::int32_t>(ctx_, "step_counters", 2);  // candidates, non-finite move flag
   upload_nodes(nullptr, nullptr);
 }
 
@@ -299,18 +301,13 @@ void DeviceRun<Real>::upload_nodes(const std::vector<double>* budgets, const std
     q_[b] = Buffer<Real>(ctx_, "q", n);
   }
   cur_ = 0;
-  for (auto* b : {&tx_[0], &ty_[0], &tx_[1], &ty_[1], &x_build_, &y_build_, &q_build_})
-    *b = Buffer<Real>(ctx_, "node_array", n);
+  for (auto* b : {&tx_, &ty_, &x_build_, &y_build_, &q_build_}) *b = Buffer<Real>(ctx_, "node_array", n);
   budget_ = Buffer<Real>(ctx_, "clearance_budget", n);
   write(x_[0], to_real<Real>(x));
   write(y_[0], to_real<Real>(y));
   write(q_[0], to_real<Real>(nodes_.q));
-  // Tangents are double-buffered like positions: boundary_snap writes the next ones while the
-  // current ones stay whole (the last good state after a failed step).
-  for (int b = 0; b < 2; ++b) {
-    write(tx_[b], to_real<Real>(tx));
-    write(ty_[b], to_real<Real>(ty));
-  }
+  write(tx_, to_real<Real>(tx));
+  write(ty_, to_real<Real>(ty));
   write(budget_, to_real<Real>(budget));
   cand_index_ = Buffer<std::int32_t>(ctx_, "cand_index", n);
   cand_rec_ = Buffer<Real>(ctx_, "cand_rec", 4 * n);
@@ -436,8 +433,8 @@ void DeviceRun<Real>::sync_boundary_from(int which) {
   std::vector<Real> x, y, tx, ty;
   read(x_[which], x, n_);
   read(y_[which], y, n_);
-  read(tx_[which], tx, n_);
-  read(ty_[which], ty, n_);
+  read(tx_, tx, n_);
+  read(ty_, ty, n_);
   std::vector<std::vector<double>> arcs = device_boundary_.download_arcs(which, nodes_);
   ++stats_.transfers;
   stats_.bytes_down += device_boundary_.arc_entries() * sizeof(Real);
@@ -500,7 +497,7 @@ void DeviceRun<Real>::step_kernel(double dt_gm2) {
   a(static_cast<cl_int>(n_))(static_cast<cl_int>(stride_))(static_cast<Real>(options_.cutoff))(
       static_cast<Real>(options_.lj_a))(static_cast<cl_int>(options_.r0_any_direction ? 1 : 0))(
       static_cast<Real>(options_.stability_factor))(static_cast<Real>(dt_gm2))(static_cast<Real>(options_.verlet_skin * options_.cutoff))(x_[cur_])(y_[cur_])(
-      q_[cur_])(kind_)(tx_[cur_])(ty_[cur_])(neighbours_.count())(neighbours_.index())(x_build_)(y_build_)(q_build_)(bslot_)(
+      q_[cur_])(kind_)(tx_)(ty_)(neighbours_.count())(neighbours_.index())(x_build_)(y_build_)(q_build_)(bslot_)(
       x_[next])(y_[next])(q_[next])(budget_)(node_leaf_)(brec_)(cand_index_)(cand_rec_)(counters_)(partials_);
   bg_args(a);
   launch(ctx_.queue(), program_.device_step, "device_step", n_, program_.work_group);
@@ -508,8 +505,8 @@ void DeviceRun<Real>::step_kernel(double dt_gm2) {
   // Every boundary node re-snapped on the device into the next buffers (x, y, q, tangents, arcs).
   const std::size_t bparts = device_boundary_.partial_count(program_.work_group);
   if (!boundary_nodes_.empty()) {
-    device_boundary_.enqueue(program_, cur_, brec_, x_[next], y_[next], q_[next], tx_[next], ty_[next], node_leaf_,
-                             x_build_, y_build_, q_build_, options_.cutoff, options_.verlet_skin * options_.cutoff,
+    device_boundary_.enqueue(program_, cur_, brec_, x_[next], y_[next], q_[next], tx_, ty_, node_leaf_, x_build_,
+                             y_build_, q_build_, options_.cutoff, options_.verlet_skin * options_.cutoff, counters_,
                              [this](ArgSetter& a) { bg_args(a); });
     ++stats_.launches;
     boundary_stale_ = true;
@@ -518,7 +515,7 @@ void DeviceRun<Real>::step_kernel(double dt_gm2) {
   // One wait for the kernels (and the previous iteration's apply_host_moves) and their partial sums.
   auto t0 = Clock::now();
   read(partials_, part_, kStepPartials * groups(), false);
-  read(counters_, count_host_, 1, false);
+  read(counters_, count_host_, 2, false);
   if (bparts > 0) read(device_boundary_.partials(), bpart_, bparts, false);
   finish(ctx_.queue(), "device_step");
   stats_.step_seconds += since(t0);
@@ -561,7 +558,10 @@ void DeviceRun<Real>::step_kernel(double dt_gm2) {
   snap_ = DeviceBoundary<Real>::sum(bpart_, bparts);
   // Every move must be finite (the sums may not show a single NaN move): boundary_snap counted the
   // boundary nodes' targets, the candidates' moves are here.
-  moves_finite_ = snap_.non_finite == 0;
+  moves_finite_ = snap_.non_finite == 0 && count_host_[1] == 0;
+  // boundary_snap updated the tangents in place: the device's state before this step is no longer
+  // whole, unless the flag stopped it (last_good_state).
+  tangents_ahead_ = !boundary_nodes_.empty() && count_host_[1] == 0;
   for (std::int32_t node : candidates_)
     moves_finite_ = moves_finite_ && std::isfinite(dx_[static_cast<std::size_t>(node)]) &&
                     std::isfinite(dy_[static_cast<std::size_t>(node)]);
@@ -609,7 +609,7 @@ BoundaryCounts DeviceRun<Real>::host_boundary(double& skin_use) {
     write(rec_, rec, false);
     const int next = 1 - cur_;
     ArgSetter a(program_.apply_host_moves, "apply_host_moves");
-    a(static_cast<cl_int>(index.size()))(rec_index_)(rec_)(x_[next])(y_[next])(q_[next])(tx_[next])(ty_[next])(budget_)(node_leaf_);
+    a(static_cast<cl_int>(index.size()))(rec_index_)(rec_)(x_[next])(y_[next])(q_[next])(tx_)(ty_)(budget_)(node_leaf_);
     bg_args(a);
     launch(ctx_.queue(), program_.apply_host_moves, "apply_host_moves", index.size(), program_.work_group);
     ++stats_.launches;  // not waited on: the next device_step follows it in the in-order queue
@@ -723,6 +723,7 @@ SimResult DeviceRun<Real>::run(const SimCallbacks& callbacks) {
       progress.update(iteration, options_.iterations, row.average_force, dt_gm);
       done = iteration;
       host_ahead_ = false;
+      tangents_ahead_ = false;
       // The stopping rule, in the host driver's order: measured also in an iteration the run is
       // stopped after, so that a resumed run has every measurement.
       std::optional<MeshSample> sample;
@@ -769,7 +770,7 @@ SimResult DeviceRun<Real>::run(const SimCallbacks& callbacks) {
                         brec_.bytes() + kind_.bytes() + budget_.bytes() + prev_.bytes() + next_.bytes() +
                         bslot_.bytes() + bg_q_.bytes() + bg_root_.bytes() + bg_child_.bytes() + bg_corner_.bytes() +
                         bg_cell_.bytes() + node_leaf_.bytes() + rec_.bytes() + rec_index_.bytes() +
-                        device_boundary_.bytes() + (6 + 7) * n_ * sizeof(Real);
+                        device_boundary_.bytes() + (6 + 5) * n_ * sizeof(Real);
   return result;
 }
 
