@@ -21,6 +21,7 @@
 #include "io/text_file.hpp"
 #include "opencl/device_simulation.hpp"
 #include "run_pdmesh.hpp"
+#include "sim/boundary_handling.hpp"
 #include "sim/checkpoint.hpp"
 #include "sim/simulation.hpp"
 #include "spacing/resolution_check.hpp"
@@ -166,6 +167,32 @@ TEST_CASE("two nodes 1e-30 apart: the device run stops too and hands over its la
   // Read back from the device: the positions uploaded, exactly (double precision).
   CHECK(c.nodes.x == before.x);
   check_checkpoint_fits(Checkpoint{{}, c.nodes, *saved}, *c.tree, "saved");
+}
+
+// A boundary node's move that is not finite: device_step raises its flag, boundary_snap (which
+// re-snaps the boundary nodes on the device, updating tangents in place) writes nothing, and the state
+// handed over is the one before the step, boundary positions, tangents and arc positions included.
+TEST_CASE("a non-finite boundary move stops the device run with the boundary state before the step", "[failures][opencl]") {
+  SquareCase c;
+  std::size_t b = 0;  // the boundary node at (0, -1)
+  while (!(c.nodes.kind[b] == NodeKind::Boundary && c.nodes.x[b].x == 0.0 && c.nodes.x[b].y == -1.0)) ++b;
+  std::size_t a = 0;
+  while (c.nodes.kind[a] != NodeKind::Interior) ++a;
+  c.nodes.x[a] = {1e-30, -1.0};
+  const NodeSet before = c.nodes;
+  const BoundaryHandler fresh(*c.tree, before);
+  ocl::DeviceSimulator device(test::test_context(), ocl::Precision::Double);
+  std::optional<SimState> saved;
+  SimCallbacks callbacks;
+  callbacks.on_failure = [&](const SimState& s) { saved = s; };
+  CHECK_THROWS_WITH(device.run(c.nodes, *c.tree, c.spacing, quiet_options(10), callbacks),
+                    Contains("iteration 1: non-finite force or move") &&
+                        Contains(fmt::format("node {} (boundary)", b)));
+  REQUIRE(saved);
+  CHECK(saved->iterations_done == 0);
+  CHECK(c.nodes.x == before.x);
+  CHECK(saved->tangents == fresh.tangents());
+  CHECK(saved->arcs == fresh.arcs());
 }
 
 TEST_CASE("a lost OpenCL device leaves a checkpoint of a good state that resumes", "[failures][opencl][cli]") {
