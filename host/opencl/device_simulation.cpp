@@ -504,6 +504,8 @@ void DeviceRun<Real>::step_kernel(double dt_gm2) {
   ++stats_.launches;
   // Every boundary node re-snapped on the device into the next buffers (x, y, q, tangents, arcs).
   const std::size_t bparts = device_boundary_.partial_count(program_.work_group);
+  const bool was_stale = boundary_stale_;
+  const int was_arcs = snap_arcs_;
   if (!boundary_nodes_.empty()) {
     device_boundary_.enqueue(program_, cur_, brec_, x_[next], y_[next], q_[next], tx_, ty_, node_leaf_, x_build_,
                              y_build_, q_build_, options_.cutoff, options_.verlet_skin * options_.cutoff, counters_,
@@ -562,6 +564,10 @@ void DeviceRun<Real>::step_kernel(double dt_gm2) {
   // boundary_snap updated the tangents in place: the device's state before this step is no longer
   // whole, unless the flag stopped it (last_good_state).
   tangents_ahead_ = !boundary_nodes_.empty() && count_host_[1] == 0;
+  if (count_host_[1] != 0) {  // boundary_snap wrote nothing: the boundary state is as it was
+    boundary_stale_ = was_stale;
+    snap_arcs_ = was_arcs;
+  }
   for (std::int32_t node : candidates_)
     moves_finite_ = moves_finite_ && std::isfinite(dx_[static_cast<std::size_t>(node)]) &&
                     std::isfinite(dy_[static_cast<std::size_t>(node)]);
