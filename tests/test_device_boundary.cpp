@@ -104,6 +104,7 @@ TEST_CASE("boundary_snap re-snaps every boundary node exactly as the host (doubl
   ocl::Context& ctx = test::test_context();
   ocl::StepProgram& program = test::test_program(ocl::Precision::Double);
   ocl::DeviceBoundary<double> device(ctx, geometry);
+  device.upload_curves();
   const std::vector<std::int32_t> slots = device.upload_topology(nodes, handler.arcs());
   REQUIRE(slots.size() == nodes.count(NodeKind::Boundary));
   std::vector<double> rec, x(n), y(n), q(n), zero(n, 0.0);

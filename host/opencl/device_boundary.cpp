@@ -8,10 +8,11 @@
 namespace pdmesh::ocl {
 
 template <typename Real>
-DeviceBoundary<Real>::DeviceBoundary(Context& ctx, const Geometry& geometry) : ctx_(ctx) {
+void DeviceBoundary<Real>::upload_curves() {
+  Context& ctx = ctx_;
   std::vector<std::int32_t> first{0};
   std::vector<Real> pts, arc;
-  for (const Curve& curve : geometry.curves) {
+  for (const Curve& curve : geometry_.curves) {
     for (std::size_t k = 0; k < curve.points.size(); ++k) {
       pts.push_back(static_cast<Real>(curve.points[k].x));
       pts.push_back(static_cast<Real>(curve.points[k].y));

@@ -27,8 +27,10 @@ struct BoundarySnapResult {
 template <typename Real>
 class DeviceBoundary {
  public:
-  // Uploads the curves' points and cumulative arc lengths (blocking).
-  DeviceBoundary(Context& ctx, const Geometry& geometry);
+  // Allocates nothing yet (a run checks the device's memory first).
+  DeviceBoundary(Context& ctx, const Geometry& geometry) : ctx_(ctx), geometry_(geometry) {}
+  // Uploads the curves' points and cumulative arc lengths (blocking; once, before upload_topology).
+  void upload_curves();
 
   // The slots of the Boundary nodes in index order (device_step's bslot order) and the arc positions
   // (parallel to nodes.curve_nodes), into both arc buffers. Returns the slots' nodes.
@@ -69,6 +71,7 @@ class DeviceBoundary {
 
  private:
   Context& ctx_;
+  const Geometry& geometry_;
   Buffer<std::int32_t> curve_pt_, slot_node_, slot_curve_, slot_pos_;
   Buffer<Real> pts_, pt_arc_, arcs_[2], partials_;
   std::vector<std::int32_t> slot_nodes_;

@@ -273,6 +273,7 @@ void DeviceRun<Real>::upload_initial() {
   write(bg_cell_, d.leaf_cell);
   write(bg_q_, to_real<Real>(d.corner_q));
   counters_ = Buffer<std::int32_t>(ctx_, "step_counters", 2);  // candidates, non-finite move flag
+  device_boundary_.upload_curves();
   upload_nodes(nullptr, nullptr);
 }
 
