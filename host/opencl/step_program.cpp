@@ -88,7 +88,8 @@ ForceLoop resolve_force_loop(ForceLoop requested, const std::string& device_type
 
 const std::vector<std::string>& step_program_files() {
   static const std::vector<std::string> files = {"spacing_field.cl", "reduce.cl",     "forces.cl",
-                                                 "time_step.cl",     "neighbours.cl", "device_step.cl"};
+                                                 "time_step.cl",     "neighbours.cl", "device_step.cl",
+                                                 "boundary.cl"};
   return files;
 }
 
@@ -112,7 +113,7 @@ StepProgram::StepProgram(Context& ctx, Precision p, ForceLoop loop, std::size_t 
       {&build_neighbours, "build_neighbours"}, {&finish_neighbours, "finish_neighbours"},
       {&compute_forces, "compute_forces"},     {&time_step_and_move, "time_step_and_move"},
       {&reduce, "reduce"},                     {&device_step, "device_step"},
-      {&apply_host_moves, "apply_host_moves"}};
+      {&apply_host_moves, "apply_host_moves"}, {&boundary_snap, "boundary_snap"}};
   // Every kernel declares reqd_work_group_size(WG_SIZE): a device that cannot run a group that size
   // (registers, local memory) would fail at the first enqueue with CL_INVALID_WORK_GROUP_SIZE or
   // CL_OUT_OF_RESOURCES; checked here, it fails before the run with the reason.
