@@ -1,9 +1,13 @@
-// Host binning + device gather of the neighbour rows; see device_neighbours.hpp.
+// Host binning + device sizing, gather and sort of the compact neighbour rows; see device_neighbours.hpp.
 #include "opencl/device_neighbours.hpp"
 
 #include <array>
 #include <chrono>
 #include <cmath>
+
+#include <fmt/format.h>
+
+#include "core/errors.hpp"
 
 namespace pdmesh::ocl {
 namespace {
@@ -27,8 +31,9 @@ constexpr std::array<std::uint32_t, 5> kZeroCounters{};
 
 template <typename Real>
 std::size_t DeviceNeighbours<Real>::device_bytes() const {
-  return count_.bytes() + scatter_count_.bytes() + scatter_index_.bytes() + index_.bytes() + level_.bytes() + table_id_.bytes() + table_cx_.bytes() +
-         table_cy_.bytes() + cell_start_.bytes() + cell_nodes_.bytes();
+  return count_.bytes() + offset_.bytes() + block_total_.bytes() + index_.bytes() + level_.bytes() + inv_cell_.bytes() +
+         table_offset_.bytes() + table_mask_.bytes() + start_offset_.bytes() + nodes_offset_.bytes() + table_id_.bytes() +
+         table_cx_.bytes() + table_cy_.bytes() + cell_start_.bytes() + cell_nodes_.bytes() + counters_.bytes();
 }
 
 template <typename Real>
@@ -36,9 +41,10 @@ NeighbourFlags DeviceNeighbours<Real>::build(const double* hx, const double* hy,
                                              const std::uint8_t* hkind, std::size_t n, double radius_factor,
                                              Buffer<Real>& x, Buffer<Real>& y, Buffer<Real>& q,
                                              Buffer<std::uint8_t>& kind, Buffer<std::int32_t>& prev,
-                                             Buffer<std::int32_t>& next, int& stride, bool grow) {
+                                             Buffer<std::int32_t>& next) {
   NeighbourFlags flags;
-  if (stride < 2) stride = 2;
+  attempts = 0;
+  launches = 0;
   for (std::size_t i = 0; i < n && flags.first_invalid < 0; ++i)
     if (!(std::isfinite(hx[i]) && std::isfinite(hy[i]) && std::isfinite(hq[i]) && hq[i] > 0.0))
       flags.first_invalid = static_cast<std::int32_t>(i);
@@ -62,49 +68,75 @@ NeighbourFlags DeviceNeighbours<Real>::build(const double* hx, const double* hy,
     uploaded_bytes += put(ctx_, cell_nodes_, "cell_nodes", grids_.cell_nodes);
   }
   ensure_size(ctx_, counters_, "neighbour_counters", 5);
-  for (int attempt = 0; attempt < 3; ++attempt) {
-    if (check_stride) check_stride(stride);
-    const std::size_t entries = n * static_cast<std::size_t>(stride);
+  ensure_size(ctx_, offset_, "neighbour_offset", n + 1);
+  // The counts of another node set say nothing about these rows: start from zero (a counting build).
+  if (n != counted_n_ || count_.size() < n) {
     ensure_size(ctx_, count_, "neighbour_count", n);
-    ensure_size(ctx_, index_, "neighbour_index", entries);
-    counters_.upload(ctx_.queue(), kZeroCounters.data(), kZeroCounters.size(), false);
-    if (flags.first_invalid >= 0) {
-      // Lists of an invalid node set are not built; the caller throws naming the node.
-      flags.max_count = 0;
-      break;
-    }
-    const Real radius = static_cast<Real>(radius_factor);
-    // Pass 1: own cumulative grid, scattering to finer rows (scatter counts start at 0).
-    ensure_size(ctx_, scatter_count_, "neighbour_scatter_count", n);
-    ensure_size(ctx_, scatter_index_, "neighbour_scatter_index", entries);
-    if (n > 0)  // a zero-sized fill is invalid OpenCL
-      fill_zero(ctx_.queue(), scatter_count_.get(), n * sizeof(cl_int), "clearing 'neighbour_scatter_count'");
-    ArgSetter a(program_.build_neighbours, "build_neighbours");
-    a(static_cast<cl_int>(n))(static_cast<cl_int>(stride))(radius)(x)(y)(q)(kind)(prev)(next)(level_)(inv_cell_)(
-        table_offset_)(table_mask_)(start_offset_)(nodes_offset_)(table_cx_)(table_cy_)(table_id_)(cell_start_)(
-        cell_nodes_)(count_)(scatter_count_)(scatter_index_)(index_)(counters_);
-    launch(ctx_.queue(), program_.build_neighbours, "build_neighbours", n, program_.work_group);
-    // Pass 2: join, sort, pad; overflowing rows rescanned in reference order.
-    ArgSetter b(program_.finish_neighbours, "finish_neighbours");
-    b(static_cast<cl_int>(n))(static_cast<cl_int>(stride))(static_cast<cl_int>(grids_.levels))(radius)(x)(y)(q)(
-        kind)(level_)(inv_cell_)(table_offset_)(table_mask_)(start_offset_)(nodes_offset_)(table_cx_)(table_cy_)(
-        table_id_)(cell_start_)(cell_nodes_)(scatter_count_)(scatter_index_)(count_)(index_)(counters_);
-    launch(ctx_.queue(), program_.finish_neighbours, "finish_neighbours", n, program_.work_group);
-    std::vector<std::uint32_t> c;
-    counters_.download(ctx_.queue(), c, 5);
-    flags.max_count = static_cast<std::int32_t>(c[2]);
-    flags.pairs_examined = c[3];
-    flags.pairs_within = c[4];
-    flags.overflow = flags.max_count > stride ? 1U : 0U;
-    if (!flags.overflow || !grow) break;
-    stride = (flags.max_count + 7) / 8 * 8;
+    if (n > 0) fill_zero(ctx_.queue(), count_.get(), n * sizeof(cl_int), "clearing 'neighbour_count'");
+    counted_total_ = 0;
   }
-  // Boundary rows hold 2 entries even when no interior node exists (the reference's max_count).
-  for (std::size_t i = 0; i < n; ++i)
-    if (hkind[i] == kSimBoundary) {
-      if (flags.max_count < 2) flags.max_count = 2;
-      break;
+  if (flags.first_invalid >= 0 || n == 0) {
+    // Lists of an invalid node set are not built (the caller throws naming the node); no rows at n = 0.
+    fill_zero(ctx_.queue(), offset_.get(), sizeof(cl_ulong), "clearing 'neighbour_offset'");
+    ensure_size(ctx_, index_, "neighbour_index", kRowTail);
+    counted_n_ = 0;
+    for (std::size_t i = 0; i < n; ++i)  // boundary rows hold 2 entries (the reference's max_count)
+      if (hkind[i] == kSimBoundary) {
+        flags.max_count = 2;
+        break;
+      }
+    gather_seconds = seconds_since(t1);
+    return flags;
+  }
+  const std::size_t wg = program_.work_group, groups = (n + wg - 1) / wg;
+  ensure_size(ctx_, block_total_, "neighbour_block_total", groups + 1);
+  const Real radius = static_cast<Real>(radius_factor);
+  std::vector<std::uint32_t> c;
+  int attempt = 0;
+  for (;; ++attempt) {
+    // Every capacity sum bounds offset[n]: sum(c + c >> s + m) <= total + total >> s + m n.
+    const std::uint64_t bound = counted_total_ + (counted_total_ >> kSpareShift) +
+                                static_cast<std::uint64_t>(kSpareMin) * n + kRowTail;
+    if (index_.size() < bound) {
+      if (check_entries) check_entries(bound);
+      ensure_size(ctx_, index_, "neighbour_index", bound);
+      // Slack slots are read (masked) by the vector force loop: give them defined contents.
+      fill_zero(ctx_.queue(), index_.get(), index_.size() * sizeof(cl_int), "clearing 'neighbour_index'");
     }
+    const cl_ulong entries_size = index_.size() - kRowTail;
+    ArgSetter s(program_.row_capacity_scan, "row_capacity_scan");
+    s(static_cast<cl_int>(n))(static_cast<cl_int>(kSpareShift))(static_cast<cl_int>(kSpareMin))(count_)(offset_)(
+        block_total_);
+    launch(ctx_.queue(), program_.row_capacity_scan, "row_capacity_scan", n, wg);
+    ArgSetter b(program_.row_block_offsets, "row_block_offsets");
+    b(static_cast<cl_int>(groups))(block_total_);
+    launch(ctx_.queue(), program_.row_block_offsets, "row_block_offsets", wg, wg);
+    ArgSetter o(program_.row_offsets_add, "row_offsets_add");
+    o(static_cast<cl_int>(n))(offset_)(block_total_);
+    launch(ctx_.queue(), program_.row_offsets_add, "row_offsets_add", n, wg);
+    fill_zero(ctx_.queue(), count_.get(), n * sizeof(cl_int), "clearing 'neighbour_count'");
+    counters_.upload(ctx_.queue(), kZeroCounters.data(), kZeroCounters.size(), false);
+    ArgSetter g(program_.gather_rows, "gather_rows");
+    g(static_cast<cl_int>(n))(radius)(x)(y)(q)(kind)(prev)(next)(level_)(inv_cell_)(table_offset_)(table_mask_)(
+        start_offset_)(nodes_offset_)(table_cx_)(table_cy_)(table_id_)(cell_start_)(cell_nodes_)(offset_)(count_)(
+        entries_size)(index_)(counters_);
+    launch(ctx_.queue(), program_.gather_rows, "gather_rows", n, wg);
+    ArgSetter r(program_.sort_rows, "sort_rows");
+    r(static_cast<cl_int>(n))(kind)(offset_)(count_)(entries_size)(index_)(counters_);
+    launch(ctx_.queue(), program_.sort_rows, "sort_rows", n, wg);
+    launches += 5;
+    counters_.download(ctx_.queue(), c, 5);
+    counted_n_ = n;
+    counted_total_ = c[1];
+    if (c[0] == 0) break;
+    // The counts are exact now (rows count past their capacity): the next gather fits.
+    if (attempt >= 2)
+      throw SimulationError(fmt::format("neighbour rows still outgrow their capacities after {} gathers", attempt + 1));
+  }
+  attempts = attempt + 1;
+  flags.max_count = static_cast<std::int32_t>(c[2]);
+  flags.pairs_examined = c[3];
+  flags.pairs_within = c[4];
   gather_seconds = seconds_since(t1);
   return flags;
 }

@@ -109,7 +109,9 @@ StepProgram::StepProgram(Context& ctx, Precision p, ForceLoop loop, std::size_t 
                                   "PDMESH_TEST_FAIL_BUILD)\nbuild log:\n(none)", ctx.device().name));
   program = ctx.build(step_program_files(), step_program_defines(p, wg, force_loop));
   const std::pair<cl::Kernel*, const char*> kernels[] = {
-      {&build_neighbours, "build_neighbours"}, {&finish_neighbours, "finish_neighbours"},
+      {&row_capacity_scan, "row_capacity_scan"}, {&row_block_offsets, "row_block_offsets"},
+      {&row_offsets_add, "row_offsets_add"},     {&gather_rows, "gather_rows"},
+      {&sort_rows, "sort_rows"},
       {&compute_forces, "compute_forces"},     {&time_step_and_move, "time_step_and_move"},
       {&reduce, "reduce"},                     {&device_step, "device_step"},
       {&apply_host_moves, "apply_host_moves"}};

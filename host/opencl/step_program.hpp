@@ -64,7 +64,7 @@ struct StepProgram {
   ForceLoop force_loop;  // as built: Vector or Scalar
   std::size_t work_group;
   cl::Program program;
-  cl::Kernel build_neighbours, finish_neighbours, compute_forces, time_step_and_move, reduce, device_step, apply_host_moves;
+  cl::Kernel row_capacity_scan, row_block_offsets, row_offsets_add, gather_rows, sort_rows, compute_forces, time_step_and_move, reduce, device_step, apply_host_moves;
   std::vector<KernelLimits> limits;  // per kernel, in the order above
 };
 
