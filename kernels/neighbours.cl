@@ -1,64 +1,21 @@
 // Step 1 on the device (mirror of host/sim/reference/binning.cpp, build_neighbours) over the
-// multi-level hashed cell grids the host flattened (host/opencl/neighbour_grids.cpp), into compact rows
-// (CSR): row i holds count[i] entries at entries[offset[i] ..], in a slot of capacity offset[i + 1] -
-// offset[i]. Offsets are 64-bit (ulong): the entries pass 2^31 long before the node count does. A build:
+// multi-level grids kernels/binning.cl built on the device, into compact rows (CSR): row i holds
+// count[i] entries at entries[offset[i] ..], in a slot of capacity offset[i + 1] - offset[i]. Offsets
+// are 64-bit (ulong): the entries pass 2^31 long before the node count does. A build:
 //   row_capacity_scan, row_block_offsets, row_offsets_add: the capacity of each row (the count the
 //     last build found plus slack, host/opencl/device_neighbours.cpp) and its offset, an exclusive
 //     prefix sum over work-groups (per group in local memory, the group totals by one work-group).
 //   gather_rows: every node m scans only the cumulative grid C_L of its own level L (levels <= L). An
 //     interior m appends the j within its radius r_m to its own row; and m appends itself to the row
 //     of every finer interior j (level < L) within r_j, since r_j < r_m puts m inside j's search box
-//     but in no grid j scans (this replaces j's lookups in the exact grid of every coarser level: 13
+//     but in no grid j scans (this replaces j's lookups in the grid of every coarser level: 13
 //     levels on 30P30N, a third of the gather's time). Every slot comes from an integer atomic on the
 //     row's count, so no two work-items ever write one slot; an entry past the capacity is counted
 //     but not written (the row overflows).
 //   sort_rows: sorts each interior row by node index (the reference's order: forces are summed in
-//     it) and raises the overflow flag when a row outgrew its capacity; the host then builds again
-//     with capacities from the counts just found, which are exact.
+//     it) and counts the rows that outgrew their capacities; the host then builds again with
+//     capacities from the counts just found, which are exact.
 #pragma OPENCL FP_CONTRACT OFF
-
-// splitmix64 finaliser over both cell coordinates (the reference's hash_key).
-ulong nb_hash(long cx, long cy) {
-  ulong h = ((ulong)cx * 0x9E3779B97F4A7C15UL) ^ (ulong)cy;
-  h ^= h >> 30;
-  h *= 0xBF58476D1CE4E5B9UL;
-  h ^= h >> 27;
-  h *= 0x94D049BB133111EBUL;
-  h ^= h >> 31;
-  return h;
-}
-
-long nb_cell_coord(REAL v, REAL inv_cell) {
-  const REAL c = floor(v * inv_cell);
-  return (long)clamp(c, -REAL_C(4.0e18), REAL_C(4.0e18));
-}
-
-// Dense cell id of (cx, cy) in grid g, -1 when the cell is empty.
-int nb_find(int g, long cx, long cy, __global const int* grid_table_offset, __global const int* grid_table_mask,
-            __global const long* table_cx, __global const long* table_cy, __global const int* table_id) {
-  const int off = grid_table_offset[g];
-  const ulong mask = (ulong)grid_table_mask[g];
-  for (ulong s = nb_hash(cx, cy) & mask;; s = (s + 1) & mask) {
-    const int id = table_id[off + (int)s];
-    if (id < 0) return -1;
-    if (table_cx[off + (int)s] == cx && table_cy[off + (int)s] == cy) return id;
-  }
-}
-
-// Inclusive prefix sum of v over the work-group (Hillis-Steele in local memory; every work-item of
-// the group must call it).
-ulong group_inclusive_scan(const ulong v, __local ulong* tmp) {
-  const int l = get_local_id(0);
-  tmp[l] = v;
-  barrier(CLK_LOCAL_MEM_FENCE);
-  for (int d = 1; d < WG_SIZE; d <<= 1) {
-    const ulong add = l >= d ? tmp[l - d] : 0;
-    barrier(CLK_LOCAL_MEM_FENCE);
-    tmp[l] += add;
-    barrier(CLK_LOCAL_MEM_FENCE);
-  }
-  return tmp[l];
-}
 
 // Row capacities c + (c >> spare_shift) + spare_min from the counts c of the last build (0 for a first
 // build), scanned per work-group: offset[i + 1] = the group's inclusive sum up to i, block_total[g] =
@@ -114,18 +71,16 @@ void row_append(const int r, const int j, __global const ulong* offset, __global
 __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1)))
 void gather_rows(const int n, const REAL radius_factor, __global const REAL* x, __global const REAL* y,
                  __global const REAL* q, __global const uchar* kind, __global const int* prev,
-                 __global const int* next, __global const int* level, __global const REAL* grid_inv_cell,
-                 __global const int* grid_table_offset, __global const int* grid_table_mask,
-                 __global const int* grid_start_offset, __global const int* grid_nodes_offset,
-                 __global const long* table_cx, __global const long* table_cy, __global const int* table_id,
-                 __global const int* cell_start, __global const int* cell_nodes, __global const ulong* offset,
-                 __global volatile int* count, const ulong entries_size, __global int* entries,
-                 __global uint* counters) {
+                 __global const int* next, __global const int* level, __global const int* bin_state,
+                 __global const int* grid_mask, __global const uint* grid_bucket_offset,
+                 __global const REAL* grid_inv_cell, __global const uint* bucket, __global const int* grid_nodes,
+                 __global const ulong* offset, __global volatile int* count, const ulong entries_size,
+                 __global int* entries, __global uint* counters) {
   __local uint local_examined;
   if (get_local_id(0) == 0) local_examined = 0;
   barrier(CLK_LOCAL_MEM_FENCE);
   const int i = get_global_id(0);
-  if (i < n) {
+  if (i < n && bin_ok(bin_state, n)) {
     const int kind_i = kind[i];
     uint examined = 0;
     if (kind_i == 1) {  // [prev, next], in that order (no other work-item writes a boundary row)
@@ -138,22 +93,24 @@ void gather_rows(const int n, const REAL radius_factor, __global const REAL* x, 
 #if PDMESH_DOUBLE
       const REAL box = r;
 #else
-      // Cells were assigned on the host in double: widen the box so float rounding cannot drop a cell.
+      // The cells and the box are computed in float: widen the box so rounding cannot drop a cell.
       const REAL box = r * REAL_C(1.0001) + (fabs(xi) + fabs(yi)) * REAL_C(1e-6);
 #endif
-      const int own = level[i], g = 2 * own;
-      const REAL inv_cell = grid_inv_cell[g];
+      const int own = level[i];
+      const REAL inv_cell = grid_inv_cell[own];
       const long x0 = nb_cell_coord(xi - box, inv_cell), x1 = nb_cell_coord(xi + box, inv_cell);
       const long y0 = nb_cell_coord(yi - box, inv_cell), y1 = nb_cell_coord(yi + box, inv_cell);
-      const int start_off = grid_start_offset[g], nodes_off = grid_nodes_offset[g];
+      const uint bucket_base = grid_bucket_offset[own];
+      const ulong mask = (ulong)grid_mask[own];
       for (long cy = y0; cy <= y1; ++cy) {
         for (long cx = x0; cx <= x1; ++cx) {
-          const int id = nb_find(g, cx, cy, grid_table_offset, grid_table_mask, table_cx, table_cy, table_id);
-          if (id < 0) continue;
-          const int end = cell_start[start_off + id + 1];
-          for (int k = cell_start[start_off + id]; k < end; ++k) {
-            const int j = cell_nodes[nodes_off + k];
+          const uint b = bucket_base + (uint)(nb_hash(cx, cy) & mask);
+          const uint end = bucket[b];
+          for (uint k = b > 0 ? bucket[b - 1] : 0; k < end; ++k) {
+            const int j = grid_nodes[k];
             if (j == i) continue;
+            // Only the probed cell's nodes (a bucket may hold other cells, one of them probed too).
+            if (nb_cell_coord(x[j], inv_cell) != cx || nb_cell_coord(y[j], inv_cell) != cy) continue;
             ++examined;
             // -(x[i] - x[j]) exactly: the same squared distance row j's own scan would compute.
             const REAL dx = x[j] - xi, dy = y[j] - yi, d2 = dx * dx + dy * dy;
@@ -173,7 +130,7 @@ void gather_rows(const int n, const REAL radius_factor, __global const REAL* x, 
 }
 
 // Pass 2 (see the top): interior rows sorted ascending (insertion sort: rows are short and nearly
-// sorted by cell order). counters[0] = 1 when a row outgrew its capacity, counters[1] = the entries of
+// sorted by cell order). counters[0] = the rows that outgrew their capacities, counters[1] = the entries of
 // all rows, counters[2] = the largest row (atomic max), counters[4] = pairs within (interior rows).
 __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1)))
 void sort_rows(const int n, __global const uchar* kind, __global const ulong* offset, __global const int* count,
@@ -192,7 +149,7 @@ void sort_rows(const int n, __global const uchar* kind, __global const ulong* of
     const int c = count[i];
     const ulong base = offset[i];
     if (base + (ulong)c > offset[i + 1] || offset[i + 1] > entries_size) {
-      atomic_or(&local_overflow, 1U);
+      atomic_inc(&local_overflow);
     } else if (kind[i] == 2) {
       for (int a = 1; a < c; ++a) {
         const int v = entries[base + a];
@@ -210,7 +167,7 @@ void sort_rows(const int n, __global const uchar* kind, __global const ulong* of
   }
   barrier(CLK_LOCAL_MEM_FENCE);
   if (get_local_id(0) == 0) {
-    if (local_overflow) atomic_or(&counters[0], 1U);
+    if (local_overflow) atomic_add(&counters[0], local_overflow);
     atomic_add(&counters[1], local_total);
     atomic_max((__global int*)&counters[2], local_max);
     atomic_add(&counters[4], local_within);

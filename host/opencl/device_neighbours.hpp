@@ -1,13 +1,14 @@
-// Neighbour lists on the device in compact rows (CSR): the host bins (O(N) flat grids,
-// neighbour_grids.hpp), the device sizes the rows (a prefix sum over capacities), gathers them
-// (integer atomics per row) and sorts them (kernels/neighbours.cl). Used by the StepBackend and the
-// device-resident run.
+// Neighbour lists on the device in compact rows (CSR), built on the device from the device's
+// positions: binning by a counting sort into the multi-level grids (kernels/binning.cl), the rows
+// sized by a prefix sum over capacities, gathered with integer atomics per row and sorted
+// (kernels/neighbours.cl); the host enqueues the kernels and reads 13 ints at the end (one wait).
+// Used by the StepBackend and the device-resident run. neighbour_grids.hpp is the host's binning,
+// the oracle of the device's (tests/test_device_neighbours.cpp).
 #pragma once
 #include <cstdint>
 #include <functional>
 
 #include "opencl/buffer.hpp"
-#include "opencl/neighbour_grids.hpp"
 #include "opencl/step_program.hpp"
 #include "sim/step_backend.hpp"
 
@@ -25,15 +26,15 @@ class DeviceNeighbours {
  public:
   DeviceNeighbours(Context& ctx, StepProgram& program) : ctx_(ctx), program_(program) {}
 
-  // Builds the rows of n nodes (device arrays x, y, q, kind, prev, next) from host copies hx, hy, hq of
-  // the same positions (to bin), interior radius radius_factor * q_i. Row capacities are the counts
-  // of the last build plus slack (kSpareShift, kSpareMin); when a row outgrows its capacity the build
-  // runs again with the counts it found (exact), so a first build, or one after the node set changed,
-  // costs two gathers. Sets the flags (first_invalid from a host scan; overflow stays 0: rows are
-  // never truncated). Before the index buffer grows, check_entries (when set) is called with its new
-  // size: it throws when the device cannot hold it (the device-resident run's check_device_memory).
-  NeighbourFlags build(const double* hx, const double* hy, const double* hq, const std::uint8_t* hkind, std::size_t n,
-                       double radius_factor, Buffer<Real>& x, Buffer<Real>& y, Buffer<Real>& q,
+  // Builds the rows of n nodes (device arrays x, y, q, kind, prev, next), interior radius
+  // radius_factor * q_i. Grid and row capacities are those of the last build plus slack (kSpareShift,
+  // kSpareMin); when the grids or a row outgrow them the build runs again at the sizes it found
+  // (exact), so a first build, or one after the node set changed size, costs two or three passes.
+  // Sets the flags (first_invalid: the smallest node with a non-finite x, y or q, or q <= 0, whose
+  // rows are then not built; overflow stays 0: rows are never truncated). Before the index buffer
+  // grows, check_entries (when set) is called with its new size: it throws when the device cannot
+  // hold it (the device-resident run's check_device_memory).
+  NeighbourFlags build(std::size_t n, double radius_factor, Buffer<Real>& x, Buffer<Real>& y, Buffer<Real>& q,
                        Buffer<std::uint8_t>& kind, Buffer<std::int32_t>& prev, Buffer<std::int32_t>& next);
 
   // A row's capacity is c + (c >> kSpareShift) + kSpareMin for the count c of the last build: rows
@@ -45,23 +46,30 @@ class DeviceNeighbours {
   Buffer<std::int32_t>& index() { return index_; }
   std::size_t device_bytes() const;
   std::function<void(std::uint64_t entries)> check_entries;
+  // The device grids of the last build (kernels/binning.cl): per node its level; per level L its
+  // bucket mask (-1: no grid), first bucket and inverse cell size; bucket b of all grids holds
+  // grid_nodes[bucket[b - 1] .. bucket[b]) (0 for b = 0).
+  Buffer<std::int32_t>& level() { return level_; }
+  Buffer<std::int32_t>& grid_mask() { return grid_mask_; }
+  Buffer<std::uint32_t>& grid_bucket_offset() { return grid_bucket_offset_; }
+  Buffer<Real>& grid_inv_cell() { return grid_inv_cell_; }
+  Buffer<std::uint32_t>& bucket() { return bucket_; }
+  Buffer<std::int32_t>& grid_nodes() { return grid_nodes_; }
   std::size_t uploaded_bytes = 0;  // by the last build
-  double bin_seconds = 0.0;        // host binning, last build
-  double gather_seconds = 0.0;     // device gather (incl. uploads), last build
-  int attempts = 0;                // gathers of the last build (2 when a row outgrew its capacity)
+  double gather_seconds = 0.0;     // the whole build on the device (binning, rows), last build
+  int attempts = 0;                // passes of the last build (2 or 3 when the grids or a row outgrew their capacities)
   int launches = 0;                // kernel launches of the last build
+  std::uint64_t outgrown_rows = 0;  // rows of the last build that outgrew their capacities (each pass)
 
  private:
   Context& ctx_;
   StepProgram& program_;
-  NeighbourGrids grids_;
-  Buffer<std::int32_t> count_, index_, level_, table_offset_, table_mask_, start_offset_, nodes_offset_, table_id_,
-      cell_start_, cell_nodes_;
+  Buffer<std::int32_t> count_, index_, level_, bin_state_, grid_mask_, grid_nodes_;
+  Buffer<std::uint32_t> grid_bucket_offset_, bucket_;
   Buffer<std::uint64_t> offset_, block_total_;
   Buffer<std::uint32_t> counters_;
-  Buffer<Real> inv_cell_;
-  std::vector<Real> inv_cell_host_;  // kept alive for the non-blocking upload
-  Buffer<std::int64_t> table_cx_, table_cy_;
+  Buffer<Real> bin_partial_, grid_inv_cell_;
+  std::uint64_t bucket_capacity_ = 0, member_capacity_ = 0;  // wanted by the next build
   std::size_t counted_n_ = 0;       // nodes whose counts count_ holds (the last build's n; 0: none)
   std::uint64_t counted_total_ = 0;  // their sum
 };

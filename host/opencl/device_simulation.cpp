@@ -375,29 +375,30 @@ void DeviceRun<Real>::upload_topology() {
 template <typename Real>
 void DeviceRun<Real>::rebuild() {
   const std::size_t n = n_;
+  std::vector<Real>* v = positions_host_;
   if (stats_.rebuilds > 0) {
-    // The host needs every position only here (rare with the skin): to bin.
-    std::vector<Real>* v = positions_host_;
+    // The host's copy of the build state, for its boundary handling's skin test and the saved state
+    // (remember); the binning no longer needs it. Not waited on: the build's one wait completes it.
     read(x_[cur_], v[0], n, false);
     read(y_[cur_], v[1], n, false);
     read(q_[cur_], v[2], n, false);
-    finish(ctx_.queue(), "positions for binning");
+  }
+  const double radius = options_.cutoff * (1.0 + options_.verlet_skin);
+  NeighbourFlags flags = neighbours_.build(n, radius, x_[cur_], y_[cur_], q_[cur_], kind_, prev_, next_);
+  if (stats_.rebuilds > 0) {
     build_x_.assign(v[0].begin(), v[0].end());
     build_y_.assign(v[1].begin(), v[1].end());
     build_q_.assign(v[2].begin(), v[2].end());
   }
-  const double radius = options_.cutoff * (1.0 + options_.verlet_skin);
-  NeighbourFlags flags = neighbours_.build(build_x_.data(), build_y_.data(), build_q_.data(), kind_host_.data(), n,
-                                           radius, x_[cur_], y_[cur_], q_[cur_], kind_, prev_, next_);
   if (flags.first_invalid >= 0) {
     const auto i = static_cast<std::size_t>(flags.first_invalid);
     throw SimulationError(fmt::format("node {} is invalid before binning: x = ({}, {}), q = {}", i, build_x_[i],
                                       build_y_[i], build_q_[i]));
   }
   largest_row_ = std::max(largest_row_, flags.max_count);
-  stats_.bin_seconds += neighbours_.bin_seconds;
   stats_.gather_seconds += neighbours_.gather_seconds;
   stats_.gathers += neighbours_.attempts;
+  stats_.outgrown_rows += neighbours_.outgrown_rows;
   stats_.bytes_up += neighbours_.uploaded_bytes;
   stats_.launches += static_cast<std::size_t>(neighbours_.launches);  // the row sizing, gather and sort
   pairs_examined_ += flags.pairs_examined;

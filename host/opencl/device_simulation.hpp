@@ -17,7 +17,8 @@ struct DeviceRunStats {
   int iterations = 0;
   int rebuilds = 0;                  // neighbour-list builds (Verlet skin)
   int snap_rebuilds = 0;             // of those, forced by a snap alone (the skin had room left)
-  int gathers = 0;                   // neighbour gathers: one per rebuild, two when a row outgrew its capacity
+  int gathers = 0;                   // neighbour build passes: one per rebuild, more when grids or rows outgrew their capacities
+  std::uint64_t outgrown_rows = 0;   // rows that outgrew their capacities, summed over the passes
   int stride = 0;                    // the longest neighbour row of any build (rows are compact)
   std::uint64_t launches = 0;        // kernel launches
   std::uint64_t transfers = 0;       // reads + writes enqueued
@@ -26,8 +27,8 @@ struct DeviceRunStats {
   std::uint64_t pairs_listed = 0;    // list entries within the skin radius, summed over builds
   std::uint64_t rebuild_candidates = 0;  // candidate pairs whose distance the rebuilds computed
   std::uint64_t candidates = 0;      // interior nodes handed to the host's exact test, all iterations
-  double bin_seconds = 0.0;          // host binning at rebuilds
-  double gather_seconds = 0.0;       // device neighbour gather at rebuilds (with its transfers)
+  double bin_seconds = 0.0;          // host binning at rebuilds (0 since issue 15: the device bins, in gather_seconds)
+  double gather_seconds = 0.0;       // device neighbour build at rebuilds: binning, rows (one wait)
   double step_seconds = 0.0;         // the fused device_step kernel (+ the previous apply_host_moves,
                                      // partials and boundary records: one wait)
   double download_seconds = 0.0;     // candidate records

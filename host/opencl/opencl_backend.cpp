@@ -25,8 +25,7 @@ class OpenclBackend final : public StepBackend {
     upload_particles(p);
     const std::size_t n = p.size();
     const int stride = std::max(list.stride, 2);
-    flags = neighbours_.build(p.x.data(), p.y.data(), p.q.data(), p.kind.data(), n, cutoff, x_, y_, q_, kind_, prev_,
-                              next_);
+    flags = neighbours_.build(n, cutoff, x_, y_, q_, kind_, prev_, next_);
     list.stride = stride;
     const auto s = static_cast<std::size_t>(stride);
     list.count.assign(n, 0);
@@ -39,6 +38,7 @@ class OpenclBackend final : public StepBackend {
           list.index[i * s] = p.prev[i];
           list.index[i * s + 1] = p.next[i];
         }
+      flags.max_count = std::count(p.kind.begin(), p.kind.end(), kSimBoundary) > 0 ? 2 : 0;
       return;
     }
     // The compact rows into the StepBackend's padded ones: a row longer than the stride keeps its

@@ -88,7 +88,8 @@ ForceLoop resolve_force_loop(ForceLoop requested, const std::string& device_type
 
 const std::vector<std::string>& step_program_files() {
   static const std::vector<std::string> files = {"spacing_field.cl", "reduce.cl",     "forces.cl",
-                                                 "time_step.cl",     "neighbours.cl", "device_step.cl"};
+                                                 "time_step.cl",     "binning.cl",    "neighbours.cl",
+                                                 "device_step.cl"};
   return files;
 }
 
@@ -97,6 +98,7 @@ std::map<std::string, std::string> step_program_defines(Precision precision, std
   std::map<std::string, std::string> d = precision_defines(precision, work_group);
   d.emplace("PDMESH_FORCE_LOOP_VECTOR", loop == ForceLoop::Vector ? "1" : "0");
   d.emplace("PDMESH_FORCE_LOOP_SCALAR", loop == ForceLoop::Scalar ? "1" : "0");
+  d.emplace("PDMESH_GRID_LEVELS", std::to_string(kBinLevels));
   return d;
 }
 
@@ -111,7 +113,11 @@ StepProgram::StepProgram(Context& ctx, Precision p, ForceLoop loop, std::size_t 
   const std::pair<cl::Kernel*, const char*> kernels[] = {
       {&row_capacity_scan, "row_capacity_scan"}, {&row_block_offsets, "row_block_offsets"},
       {&row_offsets_add, "row_offsets_add"},     {&gather_rows, "gather_rows"},
-      {&sort_rows, "sort_rows"},
+      {&sort_rows, "sort_rows"},                 {&bin_bounds, "bin_bounds"},
+      {&bin_rmin, "bin_rmin"},                   {&bin_levels, "bin_levels"},
+      {&bin_plan, "bin_plan"},                   {&bin_count, "bin_count"},
+      {&bucket_scan, "bucket_scan"},             {&bucket_offsets_add, "bucket_offsets_add"},
+      {&bin_fill, "bin_fill"},
       {&compute_forces, "compute_forces"},     {&time_step_and_move, "time_step_and_move"},
       {&reduce, "reduce"},                     {&device_step, "device_step"},
       {&apply_host_moves, "apply_host_moves"}};
