@@ -56,18 +56,29 @@ void row_offsets_add(const int n, __global ulong* offset, __global const ulong* 
   if (i < n) offset[i + 1] += block_total[get_group_id(0)];
 }
 
-// Appends j to row r (see the top): the slot from the row's count, written only inside the capacity.
+// Appends j to row r (see the top): the slot from the row's count, written inside the capacity; past
+// it, (r, j) goes to the spill list (counters[5] counts them, `spill_capacity` are kept) for
+// relocate_rows.
 void row_append(const int r, const int j, __global const ulong* offset, __global volatile int* count,
-                const ulong entries_size, __global int* entries) {
+                const ulong entries_size, __global int* entries, const uint spill_capacity, __global int* spill,
+                __global uint* counters) {
   const ulong s = (ulong)atomic_inc(&count[r]);
   const ulong slot = offset[r] + s;
-  if (slot < offset[r + 1] && slot < entries_size) entries[slot] = j;
+  if (slot < offset[r + 1] && slot < entries_size) {
+    entries[slot] = j;
+  } else {
+    const uint p = atomic_inc(&counters[5]);
+    if (p < spill_capacity) {
+      spill[2 * p] = r;
+      spill[2 * p + 1] = j;
+    }
+  }
 }
 
 // Kernel arguments: per grid g (2 per occupied level: cumulative C_L at 2L, exact E_L at 2L+1; absent
 // grids have inv_cell 0): inverse cell size, hash-table offset and mask, offsets into cell_start
 // (cells + 1 entries per grid) and cell_nodes. Rows: offset (n + 1, from the scan), count (zeroed by
-// the host), entries. counters[3] += pairs examined.
+// the host), entries (entries_size slots), the spill list. counters[3] += pairs examined.
 __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1)))
 void gather_rows(const int n, const REAL radius_factor, __global const REAL* x, __global const REAL* y,
                  __global const REAL* q, __global const uchar* kind, __global const int* prev,
@@ -75,7 +86,7 @@ void gather_rows(const int n, const REAL radius_factor, __global const REAL* x, 
                  __global const int* grid_mask, __global const uint* grid_bucket_offset,
                  __global const REAL* grid_inv_cell, __global const uint* bucket, __global const int* grid_nodes,
                  __global const ulong* offset, __global volatile int* count, const ulong entries_size,
-                 __global int* entries, __global uint* counters) {
+                 __global int* entries, const uint spill_capacity, __global int* spill, __global uint* counters) {
   __local uint local_examined;
   if (get_local_id(0) == 0) local_examined = 0;
   barrier(CLK_LOCAL_MEM_FENCE);
@@ -84,8 +95,8 @@ void gather_rows(const int n, const REAL radius_factor, __global const REAL* x, 
     const int kind_i = kind[i];
     uint examined = 0;
     if (kind_i == 1) {  // [prev, next], in that order (no other work-item writes a boundary row)
-      row_append(i, prev[i], offset, count, entries_size, entries);
-      row_append(i, next[i], offset, count, entries_size, entries);
+      row_append(i, prev[i], offset, count, entries_size, entries, spill_capacity, spill, counters);
+      row_append(i, next[i], offset, count, entries_size, entries, spill_capacity, spill, counters);
     }
     {  // every kind scans: boundary and fixed nodes scatter to finer interior rows too
       const REAL xi = x[i], yi = y[i];
@@ -114,10 +125,10 @@ void gather_rows(const int n, const REAL radius_factor, __global const REAL* x, 
             ++examined;
             // -(x[i] - x[j]) exactly: the same squared distance row j's own scan would compute.
             const REAL dx = x[j] - xi, dy = y[j] - yi, d2 = dx * dx + dy * dy;
-            if (kind_i == 2 && d2 <= r2) row_append(i, j, offset, count, entries_size, entries);
+            if (kind_i == 2 && d2 <= r2) row_append(i, j, offset, count, entries_size, entries, spill_capacity, spill, counters);
             if (level[j] < own && kind[j] == 2) {
               const REAL rj = radius_factor * q[j];
-              if (d2 <= rj * rj) row_append(j, i, offset, count, entries_size, entries);
+              if (d2 <= rj * rj) row_append(j, i, offset, count, entries_size, entries, spill_capacity, spill, counters);
             }
           }
         }
@@ -172,4 +183,55 @@ void sort_rows(const int n, __global const uchar* kind, __global const ulong* of
     atomic_max((__global int*)&counters[2], local_max);
     atomic_add(&counters[4], local_within);
   }
+}
+
+// A row that outgrew its capacity (its entries past it in the spill list) moves to the spare region
+// behind the last row, [offset[n], entries_size): its kept entries, then its spilled ones in spill
+// order (a boundary row's prev before next), sorted when interior. Its new start goes to the move
+// list (apply_row_moves writes it to offset[i]: this kernel still reads the capacities).
+// counters[6]: spare entries used; counters[7]: rows moved; counters[8]: the spare region was full. When the spill list, the spare region or
+// the move list is too small, nothing is moved and the host builds again (the counts are exact then).
+__kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1)))
+void relocate_rows(const int n, __global const uchar* kind, __global const ulong* offset, __global const int* count,
+                   const ulong entries_size, __global int* entries, const uint spill_capacity,
+                   __global const int* spill, const uint move_capacity, __global int* move_node,
+                   __global ulong* move_start, __global uint* counters) {
+  const int i = get_global_id(0);
+  if (i >= n) return;
+  const int c = count[i];
+  const ulong base = offset[i], cap = offset[i + 1] - base;
+  if (base + (ulong)c <= offset[i + 1] && offset[i + 1] <= entries_size) return;
+  const uint spilled = counters[5];
+  if (spilled > spill_capacity || counters[0] > move_capacity) return;
+  const ulong start = offset[n] + (ulong)atomic_add(&counters[6], (uint)c);
+  if (start + (ulong)c > entries_size) {
+    atomic_or(&counters[8], 1U);  // the spare region is full: the host builds again
+    return;
+  }
+  const ulong kept = min(cap, (ulong)c);
+  for (ulong k = 0; k < kept; ++k) entries[start + k] = entries[base + k];
+  ulong k = kept;
+  for (uint p = 0; p < spilled; ++p)
+    if (spill[2 * p] == i) entries[start + k++] = spill[2 * p + 1];
+  if (kind[i] == 2) {
+    for (int a = 1; a < c; ++a) {
+      const int v = entries[start + a];
+      int b = a;
+      while (b > 0 && entries[start + b - 1] > v) {
+        entries[start + b] = entries[start + b - 1];
+        --b;
+      }
+      entries[start + b] = v;
+    }
+  }
+  const uint m = atomic_inc(&counters[7]);
+  move_node[m] = i;
+  move_start[m] = start;
+}
+
+__kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1)))
+void apply_row_moves(__global const int* move_node, __global const ulong* move_start, __global const uint* counters,
+                     __global ulong* offset) {
+  const uint k = get_global_id(0);
+  if (k < counters[7]) offset[move_node[k]] = move_start[k];
 }

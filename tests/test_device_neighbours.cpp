@@ -28,6 +28,7 @@ struct DeviceRows {
   std::vector<std::uint64_t> offset;
   NeighbourFlags flags;
   int attempts = 0;
+  std::uint64_t outgrown_rows = 0;
   std::size_t index_size = 0;
 };
 
@@ -52,6 +53,7 @@ class DeviceBuilder {
     DeviceRows out;
     out.flags = nb_.build(n, cutoff, x, y, q, kind, prev, next);
     out.attempts = nb_.attempts;
+    out.outgrown_rows = nb_.outgrown_rows;
     nb_.offset().download(ctx_.queue(), out.offset, n + 1);
     nb_.count().download(ctx_.queue(), out.count, n);
     nb_.index().download(ctx_.queue(), out.index);
@@ -83,13 +85,15 @@ void check_rows(const Input& in, const DeviceRows& got) {
   REQUIRE(got.flags.pairs_within == oflags.pairs_within);
   REQUIRE(got.count == oracle.count);
   REQUIRE(got.offset.size() == n + 1);
-  CHECK(got.offset[0] == 0U);
   // The vector force loop reads whole chunks of 8 past a row's start: they must be inside the buffer.
   CHECK(got.offset[n] + ocl::kRowTail <= got.index_size);
   const auto s = static_cast<std::size_t>(oracle.stride);
   for (std::size_t i = 0; i < n; ++i) {
     INFO("node " << i);
-    REQUIRE(got.offset[i] + static_cast<std::uint64_t>(got.count[i]) <= got.offset[i + 1]);
+    // A row inside its slot, or moved behind the last row (relocate_rows); the force loop's chunks too.
+    REQUIRE((got.offset[i] + static_cast<std::uint64_t>(got.count[i]) <= got.offset[i + 1] ||
+             got.offset[i] >= got.offset[n]));
+    REQUIRE(got.offset[i] + static_cast<std::uint64_t>(got.count[i]) + ocl::kRowTail <= got.index_size);
     for (std::size_t k = 0; k < static_cast<std::size_t>(got.count[i]); ++k) {
       INFO("slot " << k);
       REQUIRE(got.index[got.offset[i] + k] == oracle.index[i * s + k]);
@@ -130,20 +134,22 @@ TEST_CASE("device neighbour rows with coincident nodes equal the reference", "[o
 }
 
 // A first build knows no counts (capacities of kSpareMin: rows overflow, and the gather runs again with
-// the exact counts; before that, grids larger than the first guess run the binning again); a second build of the same nodes fits the first's capacities; rows that outgrow
-// them (nodes moved together) are gathered again. Every build's rows equal the reference.
+// the exact counts; before that, grids larger than the first guess run the binning again); a second
+// build of the same nodes fits the first's capacities; rows that outgrow them (nodes moved together)
+// move behind the others in the same pass, or, when too many spill, are gathered again. Every
+// build's rows equal the reference.
 TEST_CASE("device rows that outgrow their capacities are gathered again and equal the reference",
           "[opencl][neighbour]") {
   for (const Input& in : {crowded_input(false), graded_input(false)}) {
     DeviceBuilder b;
     const DeviceRows first = b.build(in.p, in.cutoff);
     check_rows(in, first);
-    CHECK(first.attempts >= 2);  // rows counted (and, graded, the grids sized first: 3)
-    CHECK(first.attempts <= 3);
+    CHECK(first.outgrown_rows > 0);  // capacities of kSpareMin: the rows spill (moved, or built again)
     const DeviceRows again = b.build(in.p, in.cutoff);
     check_rows(in, again);
     CHECK(again.attempts == 1);
-    CHECK(again.offset == first.offset);  // capacities from the same counts
+    CHECK(again.outgrown_rows == 0);
+    CHECK(b.build(in.p, in.cutoff).offset == again.offset);  // capacities from the same counts
     // Shrink the cloud 100-fold towards node 0: rows grow past count + count/8 + kSpareMin.
     Input moved = in;
     for (std::size_t i = 0; i < moved.p.size(); ++i) {
@@ -152,7 +158,13 @@ TEST_CASE("device rows that outgrow their capacities are gathered again and equa
     }
     const DeviceRows grown = b.build(moved.p, moved.cutoff);
     check_rows(moved, grown);
-    CHECK(grown.attempts == 2);
+    CHECK(grown.outgrown_rows > 0);
+    // crowded: a few rows spill a few entries: they move behind the others in the same pass; graded:
+    // every row outgrows, the spill list overflows, and the build runs again.
+    CHECK(grown.attempts == (in.name == "crowded" ? 1 : 2));
+    const DeviceRows settled = b.build(moved.p, moved.cutoff);
+    check_rows(moved, settled);
+    CHECK(settled.outgrown_rows == 0);
     // And a node set of another size starts from zero counts again.
     Input fewer = in;
     for (auto* v : {&fewer.p.x, &fewer.p.y, &fewer.p.q, &fewer.p.tx, &fewer.p.ty}) v->resize(v->size() - 3);
@@ -173,9 +185,11 @@ TEST_CASE("one very crowded row costs its own entries, not a stride for every no
   check_rows(in, rows);
   REQUIRE(rows.count[17] == 599);
   const std::uint64_t total = total_entries(in);
+  // The rows with their slack, and the spare region for moved rows (2 max(4096, total / 64)).
   const std::uint64_t bound =
       total + (total >> ocl::DeviceNeighbours<double>::kSpareShift) +
-      static_cast<std::uint64_t>(ocl::DeviceNeighbours<double>::kSpareMin) * in.p.size() + ocl::kRowTail;
+      static_cast<std::uint64_t>(ocl::DeviceNeighbours<double>::kSpareMin) * in.p.size() +
+      2 * std::max<std::uint64_t>(4096, total / 64) + ocl::kRowTail;
   CHECK(rows.offset.back() <= bound);
   CHECK(rows.index_size <= bound);
   CHECK(rows.index_size < in.p.size() * 599 / 10);

@@ -17,7 +17,7 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
-constexpr std::array<std::uint32_t, 5> kZeroCounters{};
+constexpr std::array<std::uint32_t, 9> kZeroCounters{};
 
 // kernels/binning.cl's bin_state: entries the host reads, and its initial contents.
 constexpr std::size_t kBinFirstInvalid = 0, kBinTooManyLevels = 2, kBinBuckets = 3, kBinMembers = 4, kBinTooSmall = 5,
@@ -49,7 +49,7 @@ NeighbourFlags DeviceNeighbours<Real>::build(std::size_t n, double radius_factor
   outgrown_rows = 0;
   uploaded_bytes = 0;
   const auto t0 = std::chrono::steady_clock::now();
-  ensure_size(ctx_, counters_, "neighbour_counters", 5);
+  ensure_size(ctx_, counters_, "neighbour_counters", kZeroCounters.size());
   ensure_size(ctx_, offset_, "neighbour_offset", n + 1);
   // The counts of another node set say nothing about these rows: start from zero (a counting build).
   if (n != counted_n_ || count_.size() < n) {
@@ -90,9 +90,15 @@ NeighbourFlags DeviceNeighbours<Real>::build(std::size_t n, double radius_factor
     ensure_size(ctx_, grid_nodes_, "grid_nodes", member_capacity_);
     const std::size_t buckets = bucket_.size(), bucket_groups = (buckets + wg - 1) / wg;
     ensure_size(ctx_, block_total_, "neighbour_block_total", std::max(groups, bucket_groups) + 1);
-    // Every capacity sum bounds offset[n]: sum(c + c >> s + m) <= total + total >> s + m n.
+    // Every capacity sum bounds offset[n]: sum(c + c >> s + m) <= total + total >> s + m n; behind
+    // the rows a spare region for the rows that outgrow their capacities (relocate_rows).
+    const std::uint64_t spill_capacity = std::max<std::uint64_t>(4096, counted_total_ / 64);
+    const std::uint64_t move_capacity = std::max<std::uint64_t>(1024, n / 256);
     const std::uint64_t bound = counted_total_ + (counted_total_ >> kSpareShift) +
-                                static_cast<std::uint64_t>(kSpareMin) * n + kRowTail;
+                                static_cast<std::uint64_t>(kSpareMin) * n + 2 * spill_capacity + kRowTail;
+    ensure_size(ctx_, spill_, "neighbour_spill", 2 * spill_capacity);
+    ensure_size(ctx_, move_node_, "neighbour_move_node", move_capacity);
+    ensure_size(ctx_, move_start_, "neighbour_move_start", move_capacity);
     if (index_.size() < bound) {
       if (check_entries) check_entries(bound);
       ensure_size(ctx_, index_, "neighbour_index", bound);
@@ -139,14 +145,20 @@ NeighbourFlags DeviceNeighbours<Real>::build(std::size_t n, double radius_factor
     uploaded_bytes += sizeof(kZeroCounters);
     ArgSetter(program_.gather_rows, "gather_rows")(n_arg)(radius)(x)(y)(q)(kind)(prev)(next)(level_)(bin_state_)(
         grid_mask_)(grid_bucket_offset_)(grid_inv_cell_)(bucket_)(grid_nodes_)(offset_)(count_)(entries_size)(index_)(
-        counters_);
+        static_cast<cl_uint>(spill_capacity))(spill_)(counters_);
     launch(ctx_.queue(), program_.gather_rows, "gather_rows", n, wg);
     ArgSetter(program_.sort_rows, "sort_rows")(n_arg)(kind)(offset_)(count_)(entries_size)(index_)(counters_);
     launch(ctx_.queue(), program_.sort_rows, "sort_rows", n, wg);
-    launches += 14;
+    ArgSetter(program_.relocate_rows, "relocate_rows")(n_arg)(kind)(offset_)(count_)(entries_size)(index_)(
+        static_cast<cl_uint>(spill_capacity))(spill_)(static_cast<cl_uint>(move_capacity))(move_node_)(move_start_)(
+        counters_);
+    launch(ctx_.queue(), program_.relocate_rows, "relocate_rows", n, wg);
+    ArgSetter(program_.apply_row_moves, "apply_row_moves")(move_node_)(move_start_)(counters_)(offset_);
+    launch(ctx_.queue(), program_.apply_row_moves, "apply_row_moves", move_capacity, wg);
+    launches += 16;
     // The build's one wait: the counters and the binning's state.
     bin_state_.download(ctx_.queue(), state, kBinHead, false);
-    counters_.download(ctx_.queue(), c, 5);
+    counters_.download(ctx_.queue(), c, kZeroCounters.size());
     if (state[kBinFirstInvalid] < static_cast<std::int32_t>(n)) {
       flags.first_invalid = state[kBinFirstInvalid];
       counted_n_ = 0;  // the counts are of no rows
@@ -163,8 +175,9 @@ NeighbourFlags DeviceNeighbours<Real>::build(std::size_t n, double radius_factor
       outgrown_rows += c[0];
       counted_n_ = n;
       counted_total_ = c[1];
-      if (c[0] == 0) break;
-      // The counts are exact now (rows count past their capacity): the next gather fits.
+      // Rows that outgrew their capacities were moved behind the others, unless the spill list, the
+      // move list or the spare region was too small: then build again with the counts (exact now).
+      if (c[0] == 0 || (c[5] <= spill_capacity && c[0] <= move_capacity && c[8] == 0)) break;
     }
     if (attempt >= 3)
       throw SimulationError(fmt::format("neighbour rows still outgrow their capacities after {} passes", attempt + 1));

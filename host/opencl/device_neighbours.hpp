@@ -64,9 +64,9 @@ class DeviceNeighbours {
  private:
   Context& ctx_;
   StepProgram& program_;
-  Buffer<std::int32_t> count_, index_, level_, bin_state_, grid_mask_, grid_nodes_;
+  Buffer<std::int32_t> count_, index_, level_, bin_state_, grid_mask_, grid_nodes_, spill_, move_node_;
   Buffer<std::uint32_t> grid_bucket_offset_, bucket_;
-  Buffer<std::uint64_t> offset_, block_total_;
+  Buffer<std::uint64_t> offset_, block_total_, move_start_;
   Buffer<std::uint32_t> counters_;
   Buffer<Real> bin_partial_, grid_inv_cell_;
   std::uint64_t bucket_capacity_ = 0, member_capacity_ = 0;  // wanted by the next build
