@@ -140,6 +140,19 @@ void gather_rows(const int n, const REAL radius_factor, __global const REAL* x, 
   if (get_local_id(0) == 0) atomic_add(&counters[3], local_examined);
 }
 
+// Insertion sort of entries[base .. base + c) ascending (rows are short and nearly sorted by cell order).
+void sort_row(__global int* entries, const ulong base, const int c) {
+  for (int a = 1; a < c; ++a) {
+    const int v = entries[base + a];
+    int b = a;
+    while (b > 0 && entries[base + b - 1] > v) {
+      entries[base + b] = entries[base + b - 1];
+      --b;
+    }
+    entries[base + b] = v;
+  }
+}
+
 // Pass 2 (see the top): interior rows sorted ascending (insertion sort: rows are short and nearly
 // sorted by cell order). counters[0] = the rows that outgrew their capacities, counters[1] = the entries of
 // all rows, counters[2] = the largest row (atomic max), counters[4] = pairs within (interior rows).
@@ -162,15 +175,7 @@ void sort_rows(const int n, __global const uchar* kind, __global const ulong* of
     if (base + (ulong)c > offset[i + 1] || offset[i + 1] > entries_size) {
       atomic_inc(&local_overflow);
     } else if (kind[i] == 2) {
-      for (int a = 1; a < c; ++a) {
-        const int v = entries[base + a];
-        int b = a;
-        while (b > 0 && entries[base + b - 1] > v) {
-          entries[base + b] = entries[base + b - 1];
-          --b;
-        }
-        entries[base + b] = v;
-      }
+      sort_row(entries, base, c);
     }
     if (kind[i] == 2) atomic_add(&local_within, (uint)c);
     atomic_add(&local_total, (uint)c);
@@ -214,15 +219,7 @@ void relocate_rows(const int n, __global const uchar* kind, __global const ulong
   for (uint p = 0; p < spilled; ++p)
     if (spill[2 * p] == i) entries[start + k++] = spill[2 * p + 1];
   if (kind[i] == 2) {
-    for (int a = 1; a < c; ++a) {
-      const int v = entries[start + a];
-      int b = a;
-      while (b > 0 && entries[start + b - 1] > v) {
-        entries[start + b] = entries[start + b - 1];
-        --b;
-      }
-      entries[start + b] = v;
-    }
+    sort_row(entries, start, c);
   }
   const uint m = atomic_inc(&counters[7]);
   move_node[m] = i;

@@ -47,7 +47,7 @@ class OpenclBackend final : public StepBackend {
     std::vector<std::int32_t> entries;
     neighbours_.count().download(ctx_.queue(), list.count, n);
     neighbours_.offset().download(ctx_.queue(), offset, n + 1);
-    neighbours_.index().download(ctx_.queue(), entries, offset[n]);
+    neighbours_.index().download(ctx_.queue(), entries);  // whole: moved rows lie behind offset[n]
     for (std::size_t i = 0; i < n; ++i) {
       const std::size_t listed = std::min<std::size_t>(static_cast<std::size_t>(list.count[i]), s);
       std::copy_n(entries.begin() + static_cast<std::ptrdiff_t>(offset[i]), listed, list.index.begin() + static_cast<std::ptrdiff_t>(i * s));
