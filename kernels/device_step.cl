@@ -43,7 +43,8 @@ REAL bg_spacing_cached(const REAL px, const REAL py, int* leaf, BG_ARGS) {
 // budget (host/sim/boundary_handling.hpp, clearance_budget): a move whose cost (the same move_cost
 // formula, with this precision's epsilon) is below it stays inside the domain, exactly; the cost is
 // subtracted. Other interior nodes (and non-finite moves) are appended to cand_index / cand_rec
-// (x, y, dx, dy) with an integer atomic counter (counters[0]) for the host's exact test; boundary
+// (x, y, dx, dy) with an integer atomic counter (counters[0]) for the host's exact test (counters[1]:
+// set when a move is not finite); boundary
 // nodes write (x, y, dx, dy) to their slot bslot[i] of brec. skin_use: (|x_next - x_build| + cutoff
 // max(0, q_next - q_build)) / (skin cutoff q_build), maximised per group (interior nodes the host
 // does not touch; the host covers the rest).
@@ -118,6 +119,9 @@ void device_step(const int n, const REAL cutoff, const REAL lj_a, const int r0_a
     x_next[i] = xn;
     y_next[i] = yn;
     q_next[i] = qn;
+    // A move that is not finite halts the iteration for the host (counters[1]): boundary_snap then
+    // writes nothing, so the state before this step stays whole on the device.
+    if (moving && !(isfinite(dx) && isfinite(dy) && isfinite(xn) && isfinite(yn))) atomic_or(&counters[1], 1);
     if (!host && kind_i == 2) {
       const REAL ex = xn - x_build[i], ey = yn - y_build[i];
       const REAL grow = qn > q_build[i] ? cutoff * (qn - q_build[i]) : (REAL)0;

@@ -17,10 +17,11 @@ DeviceMemoryNeed device_memory_need(std::size_t nodes, std::size_t boundary_node
   // Per node: x, y, q twice, tx, ty, the build copies of x, y, q, the clearance budget and a 4-value
   // candidate record (16 reals); kind (1 byte); prev, next, bslot, candidate index, leaf, neighbour
   // count, level (7 ints); the row offset (8 bytes); the compact neighbour rows (entries_per_node ints
-  // per node on average). Per boundary node a 4-value record. Lower bounds: the neighbour binning adds
-  // its grids, the host records their buffers.
+  // per node on average). Per boundary node a 4-value record, its arc position twice (boundary_snap's
+  // Jacobi rule) and its slot (node, curve, entry: 3 ints). Lower bounds: the neighbour binning adds
+  // its grids, the curves' polylines and the host records their buffers.
   need.largest = 4 * n * static_cast<std::uint64_t>(entries_per_node);
-  need.total = n * (16 * r + 1 + 7 * 4 + 8) + need.largest + 4 * r * boundary_nodes + field_bytes;
+  need.total = n * (16 * r + 1 + 7 * 4 + 8) + need.largest + (6 * r + 12) * boundary_nodes + field_bytes;
   return need;
 }
 

@@ -1,7 +1,8 @@
 // The device-resident simulation loop; see device_simulation.hpp and docs/opencl.md. Per iteration:
 // [rebuild the Verlet lists when the skin is used up] -> device_step (forces, r0, time step, move,
-// spacing, clearance budgets, partial sums) -> download partials, boundary and flagged records -> host boundary
-// handling on those nodes only -> upload their positions -> apply_host_moves -> dt rule on the host.
+// spacing, clearance budgets, partial sums) -> boundary_snap (every boundary node re-snapped on the
+// device, kernels/boundary.cl) -> download the partials and the flagged interior candidates -> the
+// host's exact test on those only -> [apply_host_moves for them] -> dt rule on the host.
 #include "opencl/device_simulation.hpp"
 
 #include <algorithm>
@@ -11,6 +12,8 @@
 #include <optional>
 
 #include "core/errors.hpp"
+#include "opencl/command_counts.hpp"
+#include "opencl/device_boundary.hpp"
 #include "opencl/device_neighbours.hpp"
 #include "opencl/device_population.hpp"
 #include "opencl/step_program.hpp"
@@ -39,6 +42,7 @@ class DeviceRun {
             Context& ctx, StepProgram& program, DeviceRunStats& stats)
       : nodes_(nodes), options_(options), ctx_(ctx), stats_(stats), boundary_(tree, nodes),
         background_(background_for(options, spacing, tree, own_background_)), program_(program), neighbours_(ctx, program_),
+        device_boundary_(ctx, tree.geometry()),
         n_(nodes.size()),
         convergence_(options.convergence, options.resume ? options.resume->convergence : std::vector<MeshSample>{}) {}
   // Non-blocking uploads read host vectors of this object: wait for them (errors are moot here).
@@ -60,7 +64,18 @@ class DeviceRun {
   void upload_nodes(const std::vector<double>* budgets, const std::vector<std::int32_t>* leaves);
   std::optional<PopulationCounts> population_event(int iteration);
   void read_back_nodes();
-  void upload_topology();  // kind, prev, next, boundary slots (start and after snapping)
+  void upload_topology();  // kind, prev, next, boundary slots and arc positions (start and after snapping)
+  // The boundary state (positions of the Boundary nodes, tangents, arc positions) into nodes_ and
+  // boundary_: the device re-snaps, the host reads it back only when it needs it. sync_boundary: the
+  // last boundary_snap's result (its per-slot records and arcs, a few bytes per boundary node);
+  // sync_boundary_from: positions and arcs of buffer `which` and the tangents, whole (the last good
+  // state after a failed step, when boundary_snap did not run or was halted).
+  void sync_boundary();
+  void sync_boundary_from(int which);
+  // In float, the host's boundary positions are put back exactly onto their curves (at their arc
+  // positions, in double), as the host computed them before the device re-snapped: the rounding of
+  // the device's float copy stays on the device. Nothing to do in double.
+  void boundary_positions_on_curves();
   void rebuild();
   void step_kernel(double dt_gm2);
   BoundaryCounts host_boundary(double& skin_use);
@@ -102,6 +117,7 @@ class DeviceRun {
   const BackgroundSpacing& background_;
   StepProgram& program_;
   DeviceNeighbours<Real> neighbours_;
+  DeviceBoundary<Real> device_boundary_;
   std::size_t n_;
   int largest_row_ = 0;  // the longest neighbour row any build found (rows are compact: for the stats)
   int cur_ = 0;  // which of the double-buffered x, y, q is current
@@ -116,13 +132,13 @@ class DeviceRun {
   std::vector<double> build_x_, build_y_, build_q_;  // positions and spacings at the last build
   std::vector<double> dx_, dy_;                      // host displacement scratch (full size, sparse use)
   std::vector<std::int32_t> candidates_;
-  std::vector<Real> part_, brec_host_, cand_rec_host_, rec_host_;
+  std::vector<Real> part_, bpart_, brec_host_, arcs_host_, cand_rec_host_, rec_host_;
   std::vector<std::int32_t> count_host_, rec_index_host_;
   // Targets of non-blocking downloads are members too: when a wait fails and the error unwinds, a
   // read still in flight must not write into freed memory (~DeviceRun waits for the queue first).
   std::vector<Real> positions_host_[3];
   std::vector<std::int32_t> cand_index_host_;
-  const std::vector<std::int32_t> zero_counter_ = std::vector<std::int32_t>(1, 0);
+  const std::vector<std::int32_t> zero_counter_ = std::vector<std::int32_t>(2, 0);
   double skin_use_ = HUGE_VAL;                       // since the last build; HUGE_VAL forces a build
   std::uint64_t pairs_examined_ = 0;  // rebuild candidates plus, every iteration, the entries of the current lists
   std::uint64_t list_entries_ = 0;    // entries of the current lists (within the skin radius)
@@ -136,6 +152,11 @@ class DeviceRun {
   std::size_t saved_rows_ = 0;
   // host_boundary has moved nodes on the host that x_[cur_] does not hold yet (until the iteration ends).
   bool host_ahead_ = false;
+  bool tangents_ahead_ = false;  // boundary_snap has run in the iteration not yet complete
+  // The device re-snapped the boundary nodes since the host last read their state (sync_boundary).
+  bool boundary_stale_ = false;
+  int snap_arcs_ = 0;  // the arc buffer the last boundary_snap wrote
+  BoundarySnapResult snap_;  // of this iteration's boundary_snap
   bool moves_finite_ = true;  // every move the host reads in step_kernel is finite
   PopulationTracker population_;
   ConvergenceMonitor convergence_;  // the stopping rule (its samples go into every saved state)
@@ -171,7 +192,7 @@ void DeviceRun<Real>::remember(int done, double dt_initial, const GlobalTimeStep
 template <typename Real>
 SimState DeviceRun<Real>::last_good_state(int done, double dt_initial, const GlobalTimeStep& gm,
                                           const std::vector<HistoryRow>& history) {
-  if (!host_ahead_) {
+  if (!host_ahead_ && !tangents_ahead_) {
     try {
       std::vector<Real> x, y, q;
       x_[cur_].download(ctx_.queue(), x, n_);
@@ -182,6 +203,7 @@ SimState DeviceRun<Real>::last_good_state(int done, double dt_initial, const Glo
         finite = finite && std::isfinite(static_cast<double>(x[i])) && std::isfinite(static_cast<double>(y[i])) &&
                  q[i] > 0 && std::isfinite(static_cast<double>(q[i]));
       if (finite) {
+        if (boundary_stale_) sync_boundary_from(cur_);
         for (std::size_t i = 0; i < n_; ++i) {
           if (nodes_.kind[i] == NodeKind::Interior) nodes_.x[i] = {static_cast<double>(x[i]), static_cast<double>(y[i])};
           nodes_.q[i] = static_cast<double>(q[i]);
@@ -223,11 +245,12 @@ SimulationError DeviceRun<Real>::non_finite_error(int iteration, const SimState&
 }
 
 // The state after the last complete iteration into nodes_: interior positions and every q from the
-// device; boundary positions are the host's already. Not counted as per-iteration traffic.
+// device, the boundary state when the host's is older (sync_boundary). Not counted as per-iteration traffic.
 template <typename Real>
 void DeviceRun<Real>::read_back_nodes() {
   std::vector<Real> x, y, q;
   const std::uint64_t down = stats_.bytes_down, transfers = stats_.transfers;
+  if (boundary_stale_) sync_boundary();
   read(x_[cur_], x, n_);
   read(y_[cur_], y, n_);
   read(q_[cur_], q, n_);
@@ -252,7 +275,8 @@ void DeviceRun<Real>::upload_initial() {
   write(bg_corner_, d.leaf_corner);
   write(bg_cell_, d.leaf_cell);
   write(bg_q_, to_real<Real>(d.corner_q));
-  counters_ = Buffer<std::int32_t>(ctx_, "step_counters", 1);
+  counters_ = Buffer<std::int32_t>(ctx_, "step_counters", 2);  // candidates, non-finite move flag
+  device_boundary_.upload_curves();
   upload_nodes(nullptr, nullptr);
 }
 
@@ -322,6 +346,7 @@ std::optional<PopulationCounts> DeviceRun<Real>::population_event(int iteration)
   if (!population_event_due(options_.population, population_.schedule, iteration, options_.iterations))
     return std::nullopt;
   const auto t0 = Clock::now();
+  if (boundary_stale_) sync_boundary();
   std::vector<Real> x, y, q, budget;
   std::vector<std::int32_t> leaves;
   for (auto [from, to] : {std::pair{&x_[cur_], &x}, {&y_[cur_], &y}, {&q_[cur_], &q}, {&budget_, &budget}})
@@ -353,14 +378,11 @@ void DeviceRun<Real>::upload_topology() {
   std::vector<int> prev, next;
   boundary_.curve_neighbours(nodes_, prev, next);
   std::vector<std::int32_t> bslot(n, -1);
-  boundary_nodes_.clear();
-  for (std::size_t i = 0; i < n; ++i) {
-    kind_host_[i] = static_cast<std::uint8_t>(nodes_.kind[i]);
-    if (nodes_.kind[i] == NodeKind::Boundary) {
-      bslot[i] = static_cast<std::int32_t>(boundary_nodes_.size());
-      boundary_nodes_.push_back(static_cast<std::int32_t>(i));
-    }
-  }
+  const std::uint64_t before = command_counts().writes;
+  boundary_nodes_ = device_boundary_.upload_topology(nodes_, boundary_.arcs());
+  stats_.transfers += command_counts().writes - before;
+  for (std::size_t s = 0; s < boundary_nodes_.size(); ++s) bslot[static_cast<std::size_t>(boundary_nodes_[s])] = static_cast<std::int32_t>(s);
+  for (std::size_t i = 0; i < n; ++i) kind_host_[i] = static_cast<std::uint8_t>(nodes_.kind[i]);
   ensure_size(ctx_, kind_, "kind", n);
   ensure_size(ctx_, prev_, "prev", n);
   ensure_size(ctx_, next_, "next", n);
@@ -370,6 +392,65 @@ void DeviceRun<Real>::upload_topology() {
   write(prev_, std::vector<std::int32_t>(prev.begin(), prev.end()));
   write(next_, std::vector<std::int32_t>(next.begin(), next.end()));
   write(bslot_, bslot);
+}
+
+template <typename Real>
+void DeviceRun<Real>::boundary_positions_on_curves() {
+  if constexpr (!std::is_same_v<Real, double>) {
+    const std::vector<Curve>& curves = boundary_.tree().geometry().curves;
+    for (std::size_t c = 0; c < curves.size(); ++c) {
+      const std::vector<int>& list = nodes_.curve_nodes[c];
+      const std::vector<double>& arcs = boundary_.arcs()[c];
+      for (std::size_t k = 1; k + 1 < list.size(); ++k) {
+        const auto i = static_cast<std::size_t>(list[k]);
+        if (nodes_.kind[i] == NodeKind::Boundary)
+          nodes_.x[i] = closest_on_curve_range(curves[c], nodes_.x[i], arcs[k], arcs[k]).p;
+      }
+    }
+  }
+}
+
+template <typename Real>
+void DeviceRun<Real>::sync_boundary() {
+  // The records are the last boundary_snap's for the current slots: the slots change only in
+  // upload_topology, which runs with the host's boundary state current (synced first).
+  std::vector<Real>& rec = brec_host_;
+  read(brec_, rec, 4 * boundary_nodes_.size(), false);
+  device_boundary_.read_arcs(snap_arcs_, arcs_host_, false);
+  ++stats_.transfers;
+  finish(ctx_.queue(), "boundary state");
+  stats_.bytes_down += arcs_host_.size() * sizeof(Real);
+  std::vector<std::vector<double>> arcs = DeviceBoundary<Real>::unflatten(arcs_host_, nodes_);
+  std::vector<Vec2> tangents = boundary_.tangents();
+  for (std::size_t s = 0; s < boundary_nodes_.size(); ++s) {
+    const auto i = static_cast<std::size_t>(boundary_nodes_[s]);
+    nodes_.x[i] = {static_cast<double>(rec[4 * s]), static_cast<double>(rec[4 * s + 1])};
+    tangents[i] = {static_cast<double>(rec[4 * s + 2]), static_cast<double>(rec[4 * s + 3])};
+  }
+  boundary_.restore(nodes_, std::move(arcs), std::move(tangents));
+  boundary_positions_on_curves();
+  boundary_stale_ = false;
+}
+
+template <typename Real>
+void DeviceRun<Real>::sync_boundary_from(int which) {
+  std::vector<Real> x, y, tx, ty;
+  read(x_[which], x, n_);
+  read(y_[which], y, n_);
+  read(tx_, tx, n_);
+  read(ty_, ty, n_);
+  std::vector<std::vector<double>> arcs = device_boundary_.download_arcs(which, nodes_);
+  ++stats_.transfers;
+  stats_.bytes_down += device_boundary_.arc_entries() * sizeof(Real);
+  std::vector<Vec2> tangents(n_);
+  for (std::size_t i = 0; i < n_; ++i) {
+    if (nodes_.kind[i] != NodeKind::Boundary) continue;
+    nodes_.x[i] = {static_cast<double>(x[i]), static_cast<double>(y[i])};
+    tangents[i] = {static_cast<double>(tx[i]), static_cast<double>(ty[i])};
+  }
+  boundary_.restore(nodes_, std::move(arcs), std::move(tangents));
+  boundary_positions_on_curves();
+  boundary_stale_ = false;
 }
 
 template <typename Real>
@@ -425,11 +506,23 @@ void DeviceRun<Real>::step_kernel(double dt_gm2) {
   bg_args(a);
   launch(ctx_.queue(), program_.device_step, "device_step", n_, program_.work_group);
   ++stats_.launches;
-  // One wait for the kernel (and the previous iteration's apply_host_moves) and its small records.
+  // Every boundary node re-snapped on the device into the next buffers (x, y, q, tangents, arcs).
+  const std::size_t bparts = device_boundary_.partial_count(program_.work_group);
+  const bool was_stale = boundary_stale_;
+  const int was_arcs = snap_arcs_;
+  if (!boundary_nodes_.empty()) {
+    device_boundary_.enqueue(program_, cur_, brec_, x_[next], y_[next], q_[next], tx_, ty_, node_leaf_, x_build_,
+                             y_build_, q_build_, options_.cutoff, options_.verlet_skin * options_.cutoff, counters_,
+                             [this](ArgSetter& a) { bg_args(a); });
+    ++stats_.launches;
+    boundary_stale_ = true;
+    snap_arcs_ = 1 - cur_;
+  }
+  // One wait for the kernels (and the previous iteration's apply_host_moves) and their partial sums.
   auto t0 = Clock::now();
   read(partials_, part_, kStepPartials * groups(), false);
-  read(counters_, count_host_, 1, false);
-  read(brec_, brec_host_, 4 * boundary_nodes_.size(), false);
+  read(counters_, count_host_, 2, false);
+  if (bparts > 0) read(device_boundary_.partials(), bpart_, bparts, false);
   finish(ctx_.queue(), "device_step");
   stats_.step_seconds += since(t0);
   t0 = Clock::now();
@@ -468,16 +561,17 @@ void DeviceRun<Real>::step_kernel(double dt_gm2) {
     dy_[i] = static_cast<double>(cand_rec_host_[4 * r + 3]);
   }
   stats_.candidates += m;
-  for (std::size_t s = 0; s < boundary_nodes_.size(); ++s) {
-    const auto i = static_cast<std::size_t>(boundary_nodes_[s]);
-    dx_[i] = static_cast<double>(brec_host_[4 * s + 2]);
-    dy_[i] = static_cast<double>(brec_host_[4 * s + 3]);
+  snap_ = DeviceBoundary<Real>::sum(bpart_, bparts);
+  // Every move must be finite (the sums may not show a single NaN move): boundary_snap counted the
+  // boundary nodes' targets, the candidates' moves are here.
+  moves_finite_ = snap_.non_finite == 0 && count_host_[1] == 0;
+  // boundary_snap updated the tangents in place: the device's state before this step is no longer
+  // whole, unless the flag stopped it (last_good_state).
+  tangents_ahead_ = !boundary_nodes_.empty() && count_host_[1] == 0;
+  if (count_host_[1] != 0) {  // boundary_snap wrote nothing: the boundary state is as it was
+    boundary_stale_ = was_stale;
+    snap_arcs_ = was_arcs;
   }
-  // The moves the host applies must be finite (the sums may not show a single NaN move).
-  moves_finite_ = true;
-  for (std::int32_t node : boundary_nodes_)
-    moves_finite_ = moves_finite_ && std::isfinite(dx_[static_cast<std::size_t>(node)]) &&
-                    std::isfinite(dy_[static_cast<std::size_t>(node)]);
   for (std::int32_t node : candidates_)
     moves_finite_ = moves_finite_ && std::isfinite(dx_[static_cast<std::size_t>(node)]) &&
                     std::isfinite(dy_[static_cast<std::size_t>(node)]);
@@ -487,15 +581,20 @@ template <typename Real>
 BoundaryCounts DeviceRun<Real>::host_boundary(double& skin_use) {
   auto t0 = Clock::now();
   host_ahead_ = true;
-  const BoundaryCounts counts = boundary_.apply_subset(nodes_, dx_, dy_, candidates_);
+  // The device re-snapped the boundary nodes; a snap reads their arc positions (after the re-snap).
+  BoundaryCounts counts = boundary_.apply_interior(nodes_, dx_, dy_, candidates_, [this] {
+    if (boundary_stale_) sync_boundary();
+  });
+  counts.clamped = snap_.clamped;
+  skin_use = std::max(skin_use, snap_.skin_use);
   if (counts.snapped > 0) upload_topology();  // kinds and curve neighbours changed (rare); run() rebuilds
-  // Records: every boundary node (re-snapped, with its tangent) and every candidate still interior.
+  // Records: every candidate (moved, or snapped with its tangent).
   // Members: their uploads are non-blocking and complete before the next step's records arrive.
   std::vector<std::int32_t>& index = rec_index_host_;
   std::vector<Real>& rec = rec_host_;
   index.clear();
   rec.clear();
-  index.reserve(boundary_nodes_.size() + candidates_.size());
+  index.reserve(candidates_.size());
   rec.reserve(5 * index.capacity());
   auto add = [&](std::int32_t node) {
     const auto i = static_cast<std::size_t>(node);
@@ -510,9 +609,7 @@ BoundaryCounts DeviceRun<Real>::host_boundary(double& skin_use) {
     skin_use = std::max(skin_use, (std::sqrt(ex * ex + ey * ey) + grow) / (options_.verlet_skin * options_.cutoff *
                                                                             build_q_[i]));
   };
-  for (std::int32_t node : boundary_nodes_) add(node);
-  for (std::int32_t node : candidates_)
-    if (nodes_.kind[static_cast<std::size_t>(node)] == NodeKind::Interior) add(node);
+  for (std::int32_t node : candidates_) add(node);
   stats_.host_seconds += since(t0);
   t0 = Clock::now();
   if (!index.empty()) {
@@ -582,6 +679,7 @@ SimResult DeviceRun<Real>::run(const SimCallbacks& callbacks) {
       // A zero skin rebuilds every iteration (the reference's behaviour).
       if (skin_use_ > kSkinUseLimit || options_.verlet_skin == 0.0) {
         rebuild();
+        if (boundary_stale_) sync_boundary();  // the saved state needs the boundary's
         remember(done, result.stats.dt_initial, gm, result.history.size());
       }
       const double dt_gm = gm.dt();
@@ -635,6 +733,7 @@ SimResult DeviceRun<Real>::run(const SimCallbacks& callbacks) {
       progress.update(iteration, options_.iterations, row.average_force, dt_gm);
       done = iteration;
       host_ahead_ = false;
+      tangents_ahead_ = false;
       // The stopping rule, in the host driver's order: measured also in an iteration the run is
       // stopped after, so that a resumed run has every measurement.
       std::optional<MeshSample> sample;
@@ -681,7 +780,7 @@ SimResult DeviceRun<Real>::run(const SimCallbacks& callbacks) {
                         brec_.bytes() + kind_.bytes() + budget_.bytes() + prev_.bytes() + next_.bytes() +
                         bslot_.bytes() + bg_q_.bytes() + bg_root_.bytes() + bg_child_.bytes() + bg_corner_.bytes() +
                         bg_cell_.bytes() + node_leaf_.bytes() + rec_.bytes() + rec_index_.bytes() +
-                        (6 + 5) * n_ * sizeof(Real);
+                        device_boundary_.bytes() + (6 + 5) * n_ * sizeof(Real);
   return result;
 }
 

@@ -1,7 +1,7 @@
-// The device-resident simulation: positions, q, kinds and neighbour lists stay on the OpenCL device
-// across iterations; per iteration the host downloads only the boundary nodes (to re-snap them), the
-// interior nodes the device flagged as near the boundary (domain tag != 0: the exact inside test),
-// and per-work-group partial sums. See docs/opencl.md.
+// The device-resident simulation: positions, q, kinds, neighbour lists and the boundary state (arc
+// positions, tangents; boundary nodes are re-snapped on the device) stay on the OpenCL device across
+// iterations; per iteration the host downloads only the interior nodes whose clearance budget ran out
+// (the exact inside test) and per-work-group partial sums. See docs/opencl.md.
 #pragma once
 #include <cstdint>
 
@@ -29,10 +29,10 @@ struct DeviceRunStats {
   std::uint64_t candidates = 0;      // interior nodes handed to the host's exact test, all iterations
   double bin_seconds = 0.0;          // host binning at rebuilds (0 since issue 15: the device bins, in gather_seconds)
   double gather_seconds = 0.0;       // device neighbour build at rebuilds: binning, rows (one wait)
-  double step_seconds = 0.0;         // the fused device_step kernel (+ the previous apply_host_moves,
-                                     // partials and boundary records: one wait)
+  double step_seconds = 0.0;         // device_step and boundary_snap (+ the previous apply_host_moves,
+                                     // and the partials: one wait)
   double download_seconds = 0.0;     // candidate records
-  double host_seconds = 0.0;         // boundary handling on the host
+  double host_seconds = 0.0;         // the flagged interior nodes' exact test on the host
   double upload_seconds = 0.0;       // enqueueing host positions back + apply_host_moves (not waited on)
   double population_seconds = 0.0;   // population events: state read back, the host event, re-upload
   double population_transfer_seconds = 0.0;  // of which the read-back and the re-upload

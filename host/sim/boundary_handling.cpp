@@ -123,11 +123,20 @@ BoundaryCounts BoundaryHandler::apply_subset(NodeSet& nodes, const std::vector<d
                                              const std::vector<double>& dy, const std::vector<int>& interior) {
   BoundaryCounts counts;
   move_boundary_nodes(nodes, dx, dy, counts);
+  const BoundaryCounts inner = apply_interior(nodes, dx, dy, interior, {});
+  counts.snapped = inner.snapped;
+  return counts;
+}
+
+BoundaryCounts BoundaryHandler::apply_interior(NodeSet& nodes, const std::vector<double>& dx,
+                                               const std::vector<double>& dy, const std::vector<int>& interior,
+                                               const std::function<void()>& before_snap) {
+  BoundaryCounts counts;
   for (int node : interior) {
     const auto i = static_cast<std::size_t>(node);
     // The device moved this node since the host last saw it: the host's budget no longer holds.
     budget_[i] = 0.0;
-    if (nodes.kind[i] == NodeKind::Interior) move_interior_node(nodes, i, dx, dy, counts);
+    if (nodes.kind[i] == NodeKind::Interior) move_interior_node(nodes, i, dx, dy, counts, &before_snap);
   }
   return counts;
 }
@@ -162,7 +171,8 @@ void BoundaryHandler::move_boundary_nodes(NodeSet& nodes, const std::vector<doub
 }
 
 void BoundaryHandler::move_interior_node(NodeSet& nodes, std::size_t i, const std::vector<double>& dx,
-                                         const std::vector<double>& dy, BoundaryCounts& counts) {
+                                         const std::vector<double>& dy, BoundaryCounts& counts,
+                                         const std::function<void()>* before_snap) {
   const Vec2 from = nodes.x[i];
   const Vec2 target{from.x + dx[i], from.y + dy[i]};
   if (!std::isfinite(target.x) || !std::isfinite(target.y))
@@ -183,6 +193,7 @@ void BoundaryHandler::move_interior_node(NodeSet& nodes, std::size_t i, const st
     return;
   }
   budget_[i] = 0.0;
+  if (before_snap && *before_snap) (*before_snap)();
   insert_snapped(nodes, static_cast<int>(i), target);
   ++counts.snapped;
 }

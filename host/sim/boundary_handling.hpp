@@ -3,6 +3,7 @@
 // point; interior nodes that leave the domain are snapped to the closest curve and join it.
 #pragma once
 #include <cstddef>
+#include <functional>
 #include <vector>
 
 #include "geometry/geometry_tree.hpp"
@@ -48,6 +49,11 @@ class BoundaryHandler {
   // dx, dy are read only at Boundary nodes and at `interior`.
   BoundaryCounts apply_subset(NodeSet& nodes, const std::vector<double>& dx, const std::vector<double>& dy,
                               const std::vector<int>& interior);
+  // apply_subset without the boundary nodes, which the device re-snapped already (kernels/boundary.cl):
+  // the interior step of `interior` only. before_snap (when set) runs before each escaped node is
+  // snapped onto a curve, which reads the arc positions: the device run brings them up to date there.
+  BoundaryCounts apply_interior(NodeSet& nodes, const std::vector<double>& dx, const std::vector<double>& dy,
+                                const std::vector<int>& interior, const std::function<void()>& before_snap);
 
   const GeometryTree& tree() const { return tree_; }
   // Unit tangent of a Boundary node (zero for other kinds).
@@ -95,7 +101,7 @@ class BoundaryHandler {
   void move_boundary_nodes(NodeSet& nodes, const std::vector<double>& dx, const std::vector<double>& dy,
                            BoundaryCounts& counts);
   void move_interior_node(NodeSet& nodes, std::size_t i, const std::vector<double>& dx, const std::vector<double>& dy,
-                          BoundaryCounts& counts);
+                          BoundaryCounts& counts, const std::function<void()>* before_snap = nullptr);
 
   const GeometryTree& tree_;
   std::vector<std::vector<double>> arcs_;

@@ -1,0 +1,143 @@
+// Boundary handling on the device (host/opencl/device_boundary.*): every boundary node is re-snapped
+// to the closest point of its own curve within its allowed arc range, the host's
+// BoundaryHandler::move_boundary_nodes + closest_on_curve_range (host/sim/boundary_handling.cpp)
+// operation for operation, so that a double run is bit-identical to the host reference. The Jacobi
+// rule reads the old arc positions (arcs_in) and writes the new ones (arcs_out): the host swaps them.
+#pragma OPENCL FP_CONTRACT OFF
+
+#define BOUNDARY_PARTIALS 3  // clamped count, non-finite targets | max skin use
+#define MAX_GAP_FRACTION REAL_C(0.45)  // BoundaryHandler::kMaxGapFraction
+
+// unit(v) of boundary_handling.cpp: v / |v| as (1 / |v|) v, zero for a zero vector.
+REAL2 unit2(const REAL2 v) {
+  const REAL n = sqrt(v.x * v.x + v.y * v.y);
+  if (n > (REAL)0) {
+    const REAL s = (REAL)1 / n;
+    return (REAL2)(s * v.x, s * v.y);
+  }
+  return (REAL2)((REAL)0, (REAL)0);
+}
+
+// Unit tangent of segment k (points p[k] -> p[k + 1]; p: x, y interleaved).
+REAL2 segment_tangent(__global const REAL* p, const int k) {
+  return unit2((REAL2)(p[2 * k + 2] - p[2 * k], p[2 * k + 3] - p[2 * k + 1]));
+}
+
+// closest_on_curve_range on one curve: points p (segments + 1 of them, interleaved), cumulative arc
+// lengths arc. std::max, std::min and std::clamp written as libstdc++ evaluates them (the same
+// comparison, the same operand returned), so NaN and signed zeros come out the same too.
+void closest_on_curve(__global const REAL* p, __global const REAL* arc, const int segments, const REAL px,
+                      const REAL py, const REAL arc_lo, const REAL arc_hi, REAL2* best_p, REAL* best_arc,
+                      REAL2* best_tangent) {
+  REAL best2 = INFINITY;
+  *best_p = (REAL2)((REAL)0, (REAL)0);
+  *best_arc = (REAL)0;
+  *best_tangent = (REAL2)((REAL)0, (REAL)0);
+  // std::upper_bound(arc, arc + segments + 1, arc_lo) - 1: the first segment that reaches arc_lo.
+  int first = 0, count = segments + 1;
+  while (count > 0) {
+    const int step = count / 2;
+    if (!(arc_lo < arc[first + step])) {
+      first += step + 1;
+      count -= step + 1;
+    } else {
+      count = step;
+    }
+  }
+  int k = first - 1;
+  k = k < 0 ? 0 : (segments - 1 < k ? segments - 1 : k);
+  for (; k < segments && arc[k] <= arc_hi; ++k) {
+    const REAL s0 = arc[k], len = arc[k + 1] - s0;
+    const REAL lo_t = (arc_lo - s0) / len, hi_t = (arc_hi - s0) / len;
+    const REAL t_lo = (REAL)0 < lo_t ? lo_t : (REAL)0;
+    const REAL t_hi = hi_t < (REAL)1 ? hi_t : (REAL)1;
+    if (t_lo > t_hi) continue;
+    const REAL ax = p[2 * k], ay = p[2 * k + 1], bx = p[2 * k + 2], by = p[2 * k + 3];
+    const REAL dx = bx - ax, dy = by - ay;
+    const REAL v = ((px - ax) * dx + (py - ay) * dy) / (dx * dx + dy * dy);
+    const REAL t = v < t_lo ? t_lo : (t_hi < v ? t_hi : v);
+    const REAL onx = t == (REAL)0 ? ax : t == (REAL)1 ? bx : ax + t * dx;
+    const REAL ony = t == (REAL)0 ? ay : t == (REAL)1 ? by : ay + t * dy;
+    const REAL ex = px - onx, ey = py - ony;
+    const REAL dist2 = ex * ex + ey * ey;
+    if (dist2 < best2) {
+      best2 = dist2;
+      *best_p = (REAL2)(onx, ony);
+      *best_arc = t == (REAL)1 ? arc[k + 1] : s0 + t * len;
+      // At a vertex the node slides along the mean direction of both segments.
+      REAL2 tangent = segment_tangent(p, k);
+      if (t == (REAL)0 && k > 0) {
+        const REAL2 other = segment_tangent(p, k - 1);
+        tangent = unit2((REAL2)(tangent.x + other.x, tangent.y + other.y));
+      }
+      if (t == (REAL)1 && k + 1 < segments) {
+        const REAL2 other = segment_tangent(p, k + 1);
+        tangent = unit2((REAL2)(tangent.x + other.x, tangent.y + other.y));
+      }
+      *best_tangent = tangent;
+    }
+  }
+}
+
+// One work-item per boundary slot s (node slot_node[s], in node index order as device_step's bslot):
+// its move (x, y, dx, dy) = brec[4 s ..] from device_step; its curve slot_curve[s]; its entry
+// slot_pos[s] in the arc positions of all curve lists laid end to end (curve_pt: each curve's first
+// point in pts/arc, curves + 1 entries). Writes the node's position, tangent, arc position, spacing and
+// leaf (as apply_host_moves did with the host's result), its new (x, y, tx, ty) over its brec record
+// (what sync_boundary reads back), and per group: clamped moves, non-finite
+// targets (nothing is written for those: the host reports them), and the largest skin use (the
+// formula of device_step). step_counters[1] != 0 (device_step's flag for a move that is not finite): nothing is
+// written but the partials.
+__kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1)))
+void boundary_snap(const int m, __global const int* slot_node, __global const int* slot_curve,
+                   __global const int* slot_pos, __global const int* curve_pt, __global const REAL* pts,
+                   __global const REAL* pt_arc, __global const REAL* arcs_in, __global REAL* arcs_out,
+                   __global REAL* brec, __global REAL* x, __global REAL* y, __global REAL* q, __global REAL* tx,
+                   __global REAL* ty, __global int* node_leaf, __global const REAL* x_build,
+                   __global const REAL* y_build, __global const REAL* q_build, const REAL cutoff,
+                   const REAL skin_cutoff, __global const int* step_counters, __global REAL* partials, BG_ARGS) {
+  __local REAL values[BOUNDARY_PARTIALS * WG_SIZE];
+  const int s = get_global_id(0), l = get_local_id(0);
+  REAL clamped = (REAL)0, bad = (REAL)0, skin_use = (REAL)0;
+  // device_step found a move that is not finite: nothing is written (tangents are updated in place).
+  const int halted = step_counters[1] != 0;
+  if (s < m) {
+    const int i = slot_node[s], c = slot_curve[s], pos = slot_pos[s];
+    const REAL old = arcs_in[pos];
+    const REAL lo = old - MAX_GAP_FRACTION * (old - arcs_in[pos - 1]);
+    const REAL hi = old + MAX_GAP_FRACTION * (arcs_in[pos + 1] - old);
+    const REAL px = brec[4 * s] + brec[4 * s + 2], py = brec[4 * s + 1] + brec[4 * s + 3];
+    if (!isfinite(px) || !isfinite(py)) {
+      bad = (REAL)1;
+    } else if (!halted) {
+      const int first = curve_pt[c];
+      REAL2 on, tangent;
+      REAL arc;
+      closest_on_curve(pts + 2 * first, pt_arc + first, curve_pt[c + 1] - first - 1, px, py, lo, hi, &on, &arc,
+                       &tangent);
+      if (arc == lo || arc == hi) clamped = (REAL)1;
+      arcs_out[pos] = arc;
+      brec[4 * s] = on.x;  // the slot's record becomes its new state (read back by sync_boundary)
+      brec[4 * s + 1] = on.y;
+      brec[4 * s + 2] = tangent.x;
+      brec[4 * s + 3] = tangent.y;
+      x[i] = on.x;
+      y[i] = on.y;
+      tx[i] = tangent.x;
+      ty[i] = tangent.y;
+      REAL u, v;
+      const int leaf = bg_locate(on.x, on.y, bg_origin_x, bg_origin_y, bg_inv_root, bg_grid, bg_root, bg_child, &u, &v);
+      node_leaf[i] = leaf;
+      const REAL qn = bg_interpolate(leaf, u, v, bg_corner, bg_q);
+      q[i] = qn;
+      const REAL ex = on.x - x_build[i], ey = on.y - y_build[i];
+      const REAL grow = qn > q_build[i] ? cutoff * (qn - q_build[i]) : (REAL)0;
+      skin_use = (sqrt(ex * ex + ey * ey) + grow) / (skin_cutoff * q_build[i]);
+    }
+  }
+  values[l] = clamped;
+  values[WG_SIZE + l] = bad;
+  values[2 * WG_SIZE + l] = skin_use;
+  group_reduce(values, BOUNDARY_PARTIALS, 2);
+  if (l < BOUNDARY_PARTIALS) partials[BOUNDARY_PARTIALS * get_group_id(0) + l] = values[l * WG_SIZE];
+}
