@@ -49,10 +49,11 @@ REAL bg_spacing_cached(const REAL px, const REAL py, int* leaf, BG_ARGS) {
 // max(0, q_next - q_build)) / (skin cutoff q_build), maximised per group (interior nodes the host
 // does not touch; the host covers the rest).
 __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1)))
-void device_step(const int n, const int stride, const REAL cutoff, const REAL lj_a, const int r0_any_direction,
+void device_step(const int n, const REAL cutoff, const REAL lj_a, const int r0_any_direction,
                  const REAL stability_factor, const REAL dt_gm2, const REAL skin_cutoff, __global const REAL* x, __global const REAL* y,
                  __global const REAL* q, __global const uchar* kind, __global const REAL* tx,
-                 __global const REAL* ty, __global const int* count, __global const int* index,
+                 __global const REAL* ty, __global const int* count, __global const ulong* row_offset,
+                 __global const int* index,
                  __global const REAL* x_build, __global const REAL* y_build, __global const REAL* q_build,
                  __global const int* bslot, __global REAL* x_next, __global REAL* y_next, __global REAL* q_next,
                  __global REAL* budget, __global int* node_leaf, __global REAL* brec, __global int* cand_index, __global REAL* cand_rec,
@@ -64,12 +65,16 @@ void device_step(const int n, const int stride, const REAL cutoff, const REAL lj
   const int ic = active ? i : 0;  // padding work-items compute node 0 and write nothing
   const int kind_i = active ? (int)kind[ic] : 0;
   const int moving = kind_i != 0;
-  const int row = moving ? min(count[ic], stride) : 0;
+  // Row ic: count[ic] entries at index[row_offset[ic] ..] (CSR, kernels/neighbours.cl). The vector loop
+  // reads whole chunks of 8 (its `stride` argument: the row rounded up to 8); the index buffer has 8
+  // readable entries past the last row, and entries past the row are masked.
+  const int row = moving ? count[ic] : 0;
+  const long row_start = (long)row_offset[ic];
   const REAL xi = x[ic], yi = y[ic], qi = q[ic];
   const REAL rc = cutoff * qi;
   REAL fx, fy, r0, limit;
   int coincident, within;
-  node_forces(ic, stride, row, row_base(ic, stride), xi, yi, qi, kind_i, rc * rc, tx[ic], ty[ic], lj_a, r0_any_direction,
+  node_forces(ic, (row + 7) & ~7, row, row_start, xi, yi, qi, kind_i, rc * rc, tx[ic], ty[ic], lj_a, r0_any_direction,
               stability_factor, x, y, q, index, &fx, &fy, &r0, &limit, &coincident, &within);
   const REAL dt2 = local_dt2(fx, fy, r0, dt_gm2, limit);
   const REAL dx = moving ? REAL_C(0.5) * dt2 * fx : (REAL)0;

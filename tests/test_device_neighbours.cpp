@@ -1,12 +1,20 @@
-// The device neighbour build (opencl/device_neighbours, kernels/neighbours.cl) on its own: every
-// row, in order, equals the brute-force reference row (ascending, the `stride` smallest on overflow),
-// padding is -1, and the index buffer beyond n x stride is left alone (canary tail).
+// The device neighbour build (opencl/device_neighbours, kernels/neighbours.cl) on its own: compact rows
+// (CSR) whose every row equals the brute-force reference row slot by slot (interior rows ascending,
+// boundary rows [prev, next]), whatever capacities the last build left: a first (counting) build, a
+// build from the last counts, rows that outgrow their capacities and are gathered again, and one very
+// crowded node, which a padded layout would multiply by the node count. The buffers of the test
+// context carry canary tails, so a write past any row buffer fails the download.
 #include <catch2/catch.hpp>
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <memory>
 #include <vector>
 
 #include "opencl/device_neighbours.hpp"
+#include "opencl/neighbour_grids.hpp"
 #include "sim/reference/reference_backend.hpp"
 #include "step_backend_inputs.hpp"
 
@@ -15,121 +23,253 @@ using namespace pdmesh::test;
 
 namespace {
 
-constexpr std::int32_t kCanary = 0x5EEDBEEF;
-
-struct DeviceLists {
+struct DeviceRows {
   std::vector<std::int32_t> count, index;
+  std::vector<std::uint64_t> offset;
   NeighbourFlags flags;
-  int stride = 0;
+  int attempts = 0;
+  std::uint64_t outgrown_rows = 0;
+  std::size_t index_size = 0;
 };
 
-// Builds on the device (double) with a fixed stride (no growing) after filling the index buffer,
-// sized `capacity` rows (>= n), with the canary.
-DeviceLists device_build(const SimParticles& p, double cutoff, int stride, std::size_t capacity) {
-  ocl::Context& ctx = test_context();
-  ocl::StepProgram& program = test_program(ocl::Precision::Double);
-  ocl::DeviceNeighbours<double> nb(ctx, program);
-  const std::size_t n = p.size();
-  ocl::Buffer<double> x(ctx, "x", n), y(ctx, "y", n), q(ctx, "q", n);
-  ocl::Buffer<std::uint8_t> kind(ctx, "kind", n);
-  ocl::Buffer<std::int32_t> prev(ctx, "prev", n), next(ctx, "next", n);
-  x.upload(ctx.queue(), p.x);
-  y.upload(ctx.queue(), p.y);
-  q.upload(ctx.queue(), p.q);
-  kind.upload(ctx.queue(), p.kind);
-  prev.upload(ctx.queue(), p.prev);
-  next.upload(ctx.queue(), p.next);
-  // A first build over `capacity` nodes sizes the index buffer; then the canary fills all of it.
-  SimParticles big = p;
-  while (big.size() < capacity) pdmesh_test::add(big, 1e6 + static_cast<double>(big.size()), 0.0, 1.0);
-  int s = stride;
-  {
-    ocl::Buffer<double> bx(ctx, "x", capacity), by(ctx, "y", capacity), bq(ctx, "q", capacity);
-    ocl::Buffer<std::uint8_t> bk(ctx, "kind", capacity);
-    ocl::Buffer<std::int32_t> bp(ctx, "prev", capacity), bn(ctx, "next", capacity);
-    bx.upload(ctx.queue(), big.x);
-    by.upload(ctx.queue(), big.y);
-    bq.upload(ctx.queue(), big.q);
-    bk.upload(ctx.queue(), big.kind);
-    bp.upload(ctx.queue(), big.prev);
-    bn.upload(ctx.queue(), big.next);
-    nb.build(big.x.data(), big.y.data(), big.q.data(), big.kind.data(), capacity, cutoff, bx, by, bq, bk, bp, bn, s,
-             false);
+// One DeviceNeighbours<double> across builds (its capacities come from the last build).
+class DeviceBuilder {
+ public:
+  DeviceBuilder() : ctx_(test_context()), nb_(ctx_, test_program(ocl::Precision::Double)) {}
+
+  ocl::DeviceNeighbours<double>& neighbours() { return nb_; }
+
+  DeviceRows build(const SimParticles& p, double cutoff) {
+    const std::size_t n = p.size();
+    ocl::Buffer<double> x(ctx_, "x", n), y(ctx_, "y", n), q(ctx_, "q", n);
+    ocl::Buffer<std::uint8_t> kind(ctx_, "kind", n);
+    ocl::Buffer<std::int32_t> prev(ctx_, "prev", n), next(ctx_, "next", n);
+    x.upload(ctx_.queue(), p.x);
+    y.upload(ctx_.queue(), p.y);
+    q.upload(ctx_.queue(), p.q);
+    kind.upload(ctx_.queue(), p.kind);
+    prev.upload(ctx_.queue(), p.prev);
+    next.upload(ctx_.queue(), p.next);
+    DeviceRows out;
+    out.flags = nb_.build(n, cutoff, x, y, q, kind, prev, next);
+    out.attempts = nb_.attempts;
+    out.outgrown_rows = nb_.outgrown_rows;
+    nb_.offset().download(ctx_.queue(), out.offset, n + 1);
+    nb_.count().download(ctx_.queue(), out.count, n);
+    nb_.index().download(ctx_.queue(), out.index);
+    out.index_size = nb_.index().size();
+    return out;
   }
-  const std::size_t slots = std::max<std::size_t>(nb.index().size(), 1);
-  nb.index().upload(ctx.queue(), std::vector<std::int32_t>(slots, kCanary));
-  DeviceLists out;
-  out.stride = stride;
-  out.flags = nb.build(p.x.data(), p.y.data(), p.q.data(), p.kind.data(), n, cutoff, x, y, q, kind, prev, next,
-                       out.stride, false);
-  nb.count().download(ctx.queue(), out.count, n);
-  nb.index().download(ctx.queue(), out.index);
-  return out;
+
+ private:
+  ocl::Context& ctx_;
+  ocl::DeviceNeighbours<double> nb_;
+};
+
+// The reference rows, never truncated (a stride above every count).
+NeighbourList reference_rows(const Input& in, NeighbourFlags& flags) {
+  NeighbourList oracle;
+  oracle.stride = static_cast<int>(in.p.size()) + 2;
+  reference::build_neighbours_brute_force(in.p, in.cutoff, oracle, flags);
+  REQUIRE(flags.overflow == 0U);
+  return oracle;
 }
 
-void check_against_reference(const Input& in, int stride, std::size_t capacity) {
-  INFO("input " << in.name << ", " << in.p.size() << " nodes, stride " << stride << ", capacity " << capacity);
+void check_rows(const Input& in, const DeviceRows& got) {
+  INFO("input " << in.name << ", " << in.p.size() << " nodes");
   const std::size_t n = in.p.size();
-  const DeviceLists got = device_build(in.p, in.cutoff, stride, capacity);
-  NeighbourList oracle;
-  oracle.stride = stride;
   NeighbourFlags oflags;
-  reference::build_neighbours_brute_force(in.p, in.cutoff, oracle, oflags);
-  REQUIRE(got.stride == stride);
-  REQUIRE(got.flags.overflow == oflags.overflow);
+  const NeighbourList oracle = reference_rows(in, oflags);
+  REQUIRE(got.flags.overflow == 0U);
   REQUIRE(got.flags.max_count == oflags.max_count);
   REQUIRE(got.flags.pairs_within == oflags.pairs_within);
   REQUIRE(got.count == oracle.count);
-  const auto s = static_cast<std::size_t>(stride);
+  REQUIRE(got.offset.size() == n + 1);
+  // The vector force loop reads whole chunks of 8 past a row's start: they must be inside the buffer.
+  CHECK(got.offset[n] + ocl::kRowTail <= got.index_size);
+  const auto s = static_cast<std::size_t>(oracle.stride);
   for (std::size_t i = 0; i < n; ++i) {
     INFO("node " << i);
-    const std::size_t listed = std::min<std::size_t>(static_cast<std::size_t>(oracle.count[i]), s);
-    for (std::size_t k = 0; k < s; ++k) {
+    // A row inside its slot, or moved behind the last row (relocate_rows); the force loop's chunks too.
+    REQUIRE((got.offset[i] + static_cast<std::uint64_t>(got.count[i]) <= got.offset[i + 1] ||
+             got.offset[i] >= got.offset[n]));
+    REQUIRE(got.offset[i] + static_cast<std::uint64_t>(got.count[i]) + ocl::kRowTail <= got.index_size);
+    for (std::size_t k = 0; k < static_cast<std::size_t>(got.count[i]); ++k) {
       INFO("slot " << k);
-      // The reference row is ascending and truncated; the device's must equal it slot by slot.
-      REQUIRE(got.index[i * s + k] == (k < listed ? oracle.index[i * s + k] : -1));
+      REQUIRE(got.index[got.offset[i] + k] == oracle.index[i * s + k]);
     }
   }
-  std::size_t canaries = 0;
-  for (std::size_t k = n * s; k < got.index.size(); ++k) canaries += got.index[k] == kCanary ? 1 : 0;
-  CHECK(canaries == got.index.size() - std::min(got.index.size(), n * s));
+}
+
+// The reference rows' entries (what exact capacities would hold).
+std::uint64_t total_entries(const Input& in) {
+  NeighbourFlags flags;
+  const NeighbourList oracle = reference_rows(in, flags);
+  std::uint64_t total = 0;
+  for (auto c : oracle.count) total += static_cast<std::uint64_t>(c);
+  return total;
 }
 
 }  // namespace
 
 TEST_CASE("device neighbour rows equal the reference rows in order at awkward sizes", "[opencl][neighbour]") {
   const std::size_t wg = ocl::kStepWorkGroup;
-  for (std::size_t n : {std::size_t{0}, std::size_t{1}, wg - 1, wg, wg + 1, std::size_t{131}})
-    check_against_reference(random_input(n, 77 + n, false), 32, n + 70);
-  check_against_reference(graded_input(false), 32, 700);
-  check_against_reference(lattice_input(), 16, 100);
+  for (std::size_t n : {std::size_t{0}, std::size_t{1}, wg - 1, wg, wg + 1, std::size_t{131}, 3 * wg + 5}) {
+    const Input in = random_input(n, 77 + n, false);
+    DeviceBuilder b;
+    check_rows(in, b.build(in.p, in.cutoff));
+  }
+  for (const Input& in : {graded_input(false), lattice_input(), dense_cluster_input(false)}) {
+    DeviceBuilder b;
+    check_rows(in, b.build(in.p, in.cutoff));
+  }
 }
 
 TEST_CASE("device neighbour rows with coincident nodes equal the reference", "[opencl][neighbour]") {
   Input in = coincident_input(false);
   // And a stack of 5 nodes at one point: each sees the 4 others at distance 0.
   for (int k = 0; k < 5; ++k) pdmesh_test::add(in.p, 0.25, 0.25, 0.1);
-  check_against_reference(in, 32, in.p.size() + 9);
+  DeviceBuilder b;
+  check_rows(in, b.build(in.p, in.cutoff));
 }
 
-TEST_CASE("an overflowing device row keeps the stride smallest indices, ascending", "[opencl][neighbour]") {
-  const Input in = crowded_input(false);
-  for (int stride : {2, 8, 38, 39, 40}) check_against_reference(in, stride, in.p.size() + 3);
-}
-
-// The graded input spans 10 grid levels, so rows get entries scattered by coarser nodes; at these
-// strides rows overflow with both parts present, the case where the owner's and the scatters' writes
-// once met in one row (a data race: oclgrind --data-races, label oclgrind, counts it).
-TEST_CASE("graded rows overflowing small strides with scattered entries equal the reference", "[opencl][neighbour]") {
-  const Input in = graded_input(false);
-  int overflowing = 0;
-  for (int stride : {2, 3, 4, 5, 6, 7, 8, 9, 12, 16, 24}) {
-    check_against_reference(in, stride, in.p.size() + 70);  // the device's overflow flag is the reference's
-    NeighbourList oracle;
-    oracle.stride = stride;
-    NeighbourFlags oflags;
-    reference::build_neighbours_brute_force(in.p, in.cutoff, oracle, oflags);
-    overflowing += static_cast<int>(oflags.overflow);
+// A first build knows no counts (capacities of kSpareMin: rows overflow, and the gather runs again with
+// the exact counts; before that, grids larger than the first guess run the binning again); a second
+// build of the same nodes fits the first's capacities; rows that outgrow them (nodes moved together)
+// move behind the others in the same pass, or, when too many spill, are gathered again. Every
+// build's rows equal the reference.
+TEST_CASE("device rows that outgrow their capacities are gathered again and equal the reference",
+          "[opencl][neighbour]") {
+  for (const Input& in : {crowded_input(false), graded_input(false)}) {
+    DeviceBuilder b;
+    const DeviceRows first = b.build(in.p, in.cutoff);
+    check_rows(in, first);
+    CHECK(first.outgrown_rows > 0);  // capacities of kSpareMin: the rows spill (moved, or built again)
+    const DeviceRows again = b.build(in.p, in.cutoff);
+    check_rows(in, again);
+    CHECK(again.attempts == 1);
+    CHECK(again.outgrown_rows == 0);
+    CHECK(b.build(in.p, in.cutoff).offset == again.offset);  // capacities from the same counts
+    // Shrink the cloud 100-fold towards node 0: rows grow past count + count/8 + kSpareMin.
+    Input moved = in;
+    for (std::size_t i = 0; i < moved.p.size(); ++i) {
+      moved.p.x[i] = in.p.x[0] + 0.01 * (moved.p.x[i] - in.p.x[0]);
+      moved.p.y[i] = in.p.y[0] + 0.01 * (moved.p.y[i] - in.p.y[0]);
+    }
+    const DeviceRows grown = b.build(moved.p, moved.cutoff);
+    check_rows(moved, grown);
+    CHECK(grown.outgrown_rows > 0);
+    // crowded: a few rows spill a few entries: they move behind the others in the same pass; graded:
+    // every row outgrows, the spill list overflows, and the build runs again.
+    CHECK(grown.attempts == (in.name == "crowded" ? 1 : 2));
+    const DeviceRows settled = b.build(moved.p, moved.cutoff);
+    check_rows(moved, settled);
+    CHECK(settled.outgrown_rows == 0);
+    // And a node set of another size starts from zero counts again.
+    Input fewer = in;
+    for (auto* v : {&fewer.p.x, &fewer.p.y, &fewer.p.q, &fewer.p.tx, &fewer.p.ty}) v->resize(v->size() - 3);
+    for (auto* v : {&fewer.p.prev, &fewer.p.next}) v->resize(v->size() - 3);
+    fewer.p.kind.resize(fewer.p.kind.size() - 3);
+    check_rows(fewer, b.build(fewer.p, fewer.cutoff));
   }
-  CHECK(overflowing >= 6);  // strides 2 .. 8 (the largest graded row holds 9)
+}
+
+// One node whose radius covers every other node: its row holds them all, every other row a few. Rows
+// of one stride would take n x (n - 1) entries; the compact rows take about the total.
+TEST_CASE("one very crowded row costs its own entries, not a stride for every node", "[opencl][neighbour]") {
+  Input in = random_input(600, 31, false);
+  in.p.q[17] = 100.0;  // radius 150 around a ~2 x 2 cloud
+  DeviceBuilder b;
+  b.build(in.p, in.cutoff);
+  const DeviceRows rows = b.build(in.p, in.cutoff);
+  check_rows(in, rows);
+  REQUIRE(rows.count[17] == 599);
+  const std::uint64_t total = total_entries(in);
+  // The rows with their slack, and the spare region for moved rows (2 max(4096, total / 64)).
+  const std::uint64_t bound =
+      total + (total >> ocl::DeviceNeighbours<double>::kSpareShift) +
+      static_cast<std::uint64_t>(ocl::DeviceNeighbours<double>::kSpareMin) * in.p.size() +
+      2 * std::max<std::uint64_t>(4096, total / 64) + ocl::kRowTail;
+  CHECK(rows.offset.back() <= bound);
+  CHECK(rows.index_size <= bound);
+  CHECK(rows.index_size < in.p.size() * 599 / 10);
+}
+
+// The device's binning (kernels/binning.cl) against the host's (neighbour_grids.cpp, the reference's
+// grids in flat arrays): the same level per node and cell size per level, and every cumulative grid
+// holds the same nodes, each in the bucket of its own cell (order within a bucket is free).
+TEST_CASE("device binning puts every node in the cells the host binning does", "[opencl][neighbour]") {
+  for (const Input& in : {graded_input(false), random_input(3 * ocl::kStepWorkGroup + 5, 9, false), lattice_input()}) {
+    INFO("input " << in.name);
+    DeviceBuilder b;
+    b.build(in.p, in.cutoff);
+    const std::size_t n = in.p.size();
+    ocl::NeighbourGrids host;
+    ocl::build_neighbour_grids(in.p.x.data(), in.p.y.data(), in.p.q.data(), n, in.cutoff, host);
+    ocl::Context& ctx = test_context();
+    ocl::DeviceNeighbours<double>& nb = b.neighbours();
+    std::vector<std::int32_t> level, mask, nodes;
+    std::vector<std::uint32_t> bucket_offset, bucket;
+    std::vector<double> inv_cell;
+    nb.level().download(ctx.queue(), level, n);
+    nb.grid_mask().download(ctx.queue(), mask);
+    nb.grid_bucket_offset().download(ctx.queue(), bucket_offset);
+    nb.grid_inv_cell().download(ctx.queue(), inv_cell);
+    nb.bucket().download(ctx.queue(), bucket);
+    nb.grid_nodes().download(ctx.queue(), nodes);
+    REQUIRE(level == host.level);
+    int grids = 0;
+    for (int L = 0; L < host.levels; ++L) {
+      INFO("level " << L);
+      const auto g = static_cast<std::size_t>(2 * L);  // the host's cumulative grid C_L
+      const bool has_nodes = std::count(host.level.begin(), host.level.end(), L) > 0;
+      REQUIRE((mask[static_cast<std::size_t>(L)] >= 0) == has_nodes);
+      if (!has_nodes) continue;
+      ++grids;
+      CHECK(inv_cell[static_cast<std::size_t>(L)] == host.inv_cell[g]);
+      // Host: every cell's nodes, by cell coordinates.
+      std::map<std::pair<std::int64_t, std::int64_t>, std::vector<std::int32_t>> host_cells, device_cells;
+      const auto start = static_cast<std::size_t>(host.start_offset[g]);
+      const auto base = static_cast<std::size_t>(host.nodes_offset[g]);
+      const auto cap = static_cast<std::size_t>(host.table_mask[g]) + 1;
+      for (std::size_t s = 0; s < cap; ++s) {
+        const std::int32_t id = host.table_id[static_cast<std::size_t>(host.table_offset[g]) + s];
+        if (id < 0) continue;
+        const auto cell = std::pair{host.table_cx[static_cast<std::size_t>(host.table_offset[g]) + s],
+                                    host.table_cy[static_cast<std::size_t>(host.table_offset[g]) + s]};
+        for (auto k = host.cell_start[start + static_cast<std::size_t>(id)];
+             k < host.cell_start[start + static_cast<std::size_t>(id) + 1]; ++k)
+          host_cells[cell].push_back(host.cell_nodes[base + static_cast<std::size_t>(k)]);
+      }
+      // Device: every bucket of grid L; each node must sit in the bucket of its cell's hash.
+      const std::uint32_t first = bucket_offset[static_cast<std::size_t>(L)];
+      const auto buckets = static_cast<std::uint32_t>(mask[static_cast<std::size_t>(L)]) + 1;
+      for (std::uint32_t k = 0; k < buckets; ++k) {
+        const std::uint32_t bi = first + k;
+        for (std::uint32_t e = bi > 0 ? bucket[bi - 1] : 0; e < bucket[bi]; ++e) {
+          const std::int32_t j = nodes[e];
+          const double ic = inv_cell[static_cast<std::size_t>(L)];
+          const auto cell = std::pair{static_cast<std::int64_t>(std::floor(in.p.x[static_cast<std::size_t>(j)] * ic)),
+                                      static_cast<std::int64_t>(std::floor(in.p.y[static_cast<std::size_t>(j)] * ic))};
+          CHECK((cell_hash(cell.first, cell.second) & static_cast<std::uint64_t>(buckets - 1)) == k);
+          device_cells[cell].push_back(j);
+        }
+      }
+      for (auto& [cell, v] : device_cells) std::sort(v.begin(), v.end());
+      CHECK(device_cells == host_cells);
+    }
+    CHECK(grids > 0);
+  }
+}
+
+TEST_CASE("a device build names the first invalid node and builds no rows", "[opencl][neighbour]") {
+  Input in = random_input(200, 3, false);
+  in.p.q[150] = -1.0;
+  in.p.x[170] = std::numeric_limits<double>::quiet_NaN();
+  DeviceBuilder b;
+  CHECK(b.build(in.p, in.cutoff).flags.first_invalid == 150);
+  in.p.q[150] = 0.1;
+  CHECK(b.build(in.p, in.cutoff).flags.first_invalid == 170);
+  in.p.x[170] = 0.5;
+  check_rows(in, b.build(in.p, in.cutoff));
 }

@@ -1,9 +1,14 @@
-// Host binning + device gather of the neighbour rows; see device_neighbours.hpp.
+// The neighbour build on the device: binning, row sizing, gather and sort; see device_neighbours.hpp.
 #include "opencl/device_neighbours.hpp"
 
 #include <array>
 #include <chrono>
 #include <cmath>
+#include <limits>
+
+#include <fmt/format.h>
+
+#include "core/errors.hpp"
 
 namespace pdmesh::ocl {
 namespace {
@@ -12,100 +17,178 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
-// Non-blocking: `host` must stay unchanged until the queue is synchronised (the counters download
-// after the gather does that), so one rebuild waits on the device once, not once per array.
-template <typename T>
-std::size_t put(Context& ctx, Buffer<T>& b, const char* name, const std::vector<T>& host) {
-  ensure_size(ctx, b, name, host.size());
-  b.upload(ctx.queue(), host, false);
-  return host.size() * sizeof(T);
-}
+constexpr std::array<std::uint32_t, 9> kZeroCounters{};
 
-constexpr std::array<std::uint32_t, 5> kZeroCounters{};
+// kernels/binning.cl's bin_state: entries the host reads, and its initial contents.
+constexpr std::size_t kBinFirstInvalid = 0, kBinTooManyLevels = 2, kBinBuckets = 3, kBinMembers = 4, kBinTooSmall = 5,
+                      kBinHead = 8, kBinStateSize = kBinHead + kBinLevels;
+const std::array<std::int32_t, kBinStateSize> kBinStateInit = [] {
+  std::array<std::int32_t, kBinStateSize> a{};
+  a[kBinFirstInvalid] = std::numeric_limits<std::int32_t>::max();
+  return a;
+}();
+
+std::uint64_t with_slack(std::uint64_t v) { return v + v / 8 + 64; }
 
 }  // namespace
 
 template <typename Real>
 std::size_t DeviceNeighbours<Real>::device_bytes() const {
-  return count_.bytes() + scatter_count_.bytes() + scatter_index_.bytes() + index_.bytes() + level_.bytes() + table_id_.bytes() + table_cx_.bytes() +
-         table_cy_.bytes() + cell_start_.bytes() + cell_nodes_.bytes();
+  return count_.bytes() + offset_.bytes() + block_total_.bytes() + index_.bytes() + level_.bytes() + bin_state_.bytes() +
+         grid_mask_.bytes() + grid_bucket_offset_.bytes() + grid_inv_cell_.bytes() + bucket_.bytes() + grid_nodes_.bytes() +
+         bin_partial_.bytes() + counters_.bytes();
 }
 
 template <typename Real>
-NeighbourFlags DeviceNeighbours<Real>::build(const double* hx, const double* hy, const double* hq,
-                                             const std::uint8_t* hkind, std::size_t n, double radius_factor,
-                                             Buffer<Real>& x, Buffer<Real>& y, Buffer<Real>& q,
-                                             Buffer<std::uint8_t>& kind, Buffer<std::int32_t>& prev,
-                                             Buffer<std::int32_t>& next, int& stride, bool grow) {
+NeighbourFlags DeviceNeighbours<Real>::build(std::size_t n, double radius_factor, Buffer<Real>& x, Buffer<Real>& y,
+                                             Buffer<Real>& q, Buffer<std::uint8_t>& kind, Buffer<std::int32_t>& prev,
+                                             Buffer<std::int32_t>& next) {
   NeighbourFlags flags;
-  if (stride < 2) stride = 2;
-  for (std::size_t i = 0; i < n && flags.first_invalid < 0; ++i)
-    if (!(std::isfinite(hx[i]) && std::isfinite(hy[i]) && std::isfinite(hq[i]) && hq[i] > 0.0))
-      flags.first_invalid = static_cast<std::int32_t>(i);
-  const auto t0 = std::chrono::steady_clock::now();
-  if (flags.first_invalid < 0) build_neighbour_grids(hx, hy, hq, n, radius_factor, grids_);
-  bin_seconds = seconds_since(t0);
-  const auto t1 = std::chrono::steady_clock::now();
+  attempts = 0;
+  launches = 0;
+  outgrown_rows = 0;
   uploaded_bytes = 0;
-  if (flags.first_invalid < 0) {
-    uploaded_bytes += put(ctx_, level_, "level", grids_.level);
-    inv_cell_host_ = to_real<Real>(grids_.inv_cell);
-    uploaded_bytes += put(ctx_, inv_cell_, "grid_inv_cell", inv_cell_host_);
-    uploaded_bytes += put(ctx_, table_offset_, "grid_table_offset", grids_.table_offset);
-    uploaded_bytes += put(ctx_, table_mask_, "grid_table_mask", grids_.table_mask);
-    uploaded_bytes += put(ctx_, start_offset_, "grid_start_offset", grids_.start_offset);
-    uploaded_bytes += put(ctx_, nodes_offset_, "grid_nodes_offset", grids_.nodes_offset);
-    uploaded_bytes += put(ctx_, table_cx_, "table_cx", grids_.table_cx);
-    uploaded_bytes += put(ctx_, table_cy_, "table_cy", grids_.table_cy);
-    uploaded_bytes += put(ctx_, table_id_, "table_id", grids_.table_id);
-    uploaded_bytes += put(ctx_, cell_start_, "cell_start", grids_.cell_start);
-    uploaded_bytes += put(ctx_, cell_nodes_, "cell_nodes", grids_.cell_nodes);
-  }
-  ensure_size(ctx_, counters_, "neighbour_counters", 5);
-  for (int attempt = 0; attempt < 3; ++attempt) {
-    if (check_stride) check_stride(stride);
-    const std::size_t entries = n * static_cast<std::size_t>(stride);
+  const auto t0 = std::chrono::steady_clock::now();
+  ensure_size(ctx_, counters_, "neighbour_counters", kZeroCounters.size());
+  ensure_size(ctx_, offset_, "neighbour_offset", n + 1);
+  // The counts of another node set say nothing about these rows: start from zero (a counting build).
+  if (n != counted_n_ || count_.size() < n) {
     ensure_size(ctx_, count_, "neighbour_count", n);
-    ensure_size(ctx_, index_, "neighbour_index", entries);
+    if (n > 0) fill_zero(ctx_.queue(), count_.get(), n * sizeof(cl_int), "clearing 'neighbour_count'");
+    counted_total_ = 0;
+  }
+  if (n == 0) {
+    fill_zero(ctx_.queue(), offset_.get(), sizeof(cl_ulong), "clearing 'neighbour_offset'");
+    ensure_size(ctx_, index_, "neighbour_index", kRowTail);
+    counted_n_ = 0;
+    gather_seconds = seconds_since(t0);
+    return flags;
+  }
+  const std::size_t wg = program_.work_group, groups = (n + wg - 1) / wg;
+  ensure_size(ctx_, level_, "level", n);
+  ensure_size(ctx_, bin_state_, "bin_state", kBinStateSize);
+  ensure_size(ctx_, bin_partial_, "bin_partial", groups + 1);
+  ensure_size(ctx_, grid_mask_, "grid_mask", kBinLevels);
+  ensure_size(ctx_, grid_bucket_offset_, "grid_bucket_offset", kBinLevels);
+  ensure_size(ctx_, grid_inv_cell_, "grid_inv_cell", kBinLevels);
+  // First guesses for the grids (one entry per node and level with nodes, a bucket per two): a
+  // build that finds them too small reports the sizes it needs and runs again.
+  if (member_capacity_ == 0) member_capacity_ = with_slack(4 * static_cast<std::uint64_t>(n));
+  if (bucket_capacity_ == 0) bucket_capacity_ = with_slack(2 * static_cast<std::uint64_t>(n));
+  const Real radius = static_cast<Real>(radius_factor);
+  const auto n_arg = static_cast<cl_int>(n), groups_arg = static_cast<cl_int>(groups);
+  std::vector<std::uint32_t> c;
+  std::vector<std::int32_t> state;
+  int attempt = 0;
+  for (;; ++attempt) {
+    constexpr std::uint64_t kMaxIndex = std::numeric_limits<std::int32_t>::max();
+    if (bucket_capacity_ > kMaxIndex || member_capacity_ > kMaxIndex)
+      throw SimulationError(fmt::format("the neighbour grids of {} nodes need {} buckets and {} entries, more than "
+                                        "the device binning indexes (2^31)",
+                                        n, bucket_capacity_, member_capacity_));
+    ensure_size(ctx_, bucket_, "grid_bucket", bucket_capacity_);
+    ensure_size(ctx_, grid_nodes_, "grid_nodes", member_capacity_);
+    const std::size_t buckets = bucket_.size(), bucket_groups = (buckets + wg - 1) / wg;
+    ensure_size(ctx_, block_total_, "neighbour_block_total", std::max(groups, bucket_groups) + 1);
+    // Every capacity sum bounds offset[n]: sum(c + c >> s + m) <= total + total >> s + m n; behind
+    // the rows a spare region for the rows that outgrow their capacities (relocate_rows).
+    const std::uint64_t spill_capacity = std::max<std::uint64_t>(4096, counted_total_ / 64);
+    const std::uint64_t move_capacity = std::max<std::uint64_t>(1024, n / 256);
+    const std::uint64_t bound = counted_total_ + (counted_total_ >> kSpareShift) +
+                                static_cast<std::uint64_t>(kSpareMin) * n + 2 * spill_capacity + kRowTail;
+    ensure_size(ctx_, spill_, "neighbour_spill", 2 * spill_capacity);
+    ensure_size(ctx_, move_node_, "neighbour_move_node", move_capacity);
+    ensure_size(ctx_, move_start_, "neighbour_move_start", move_capacity);
+    if (index_.size() < bound) {
+      if (check_entries) check_entries(bound);
+      ensure_size(ctx_, index_, "neighbour_index", bound);
+      // Slack slots are read (masked) by the vector force loop: give them defined contents.
+      fill_zero(ctx_.queue(), index_.get(), index_.size() * sizeof(cl_int), "clearing 'neighbour_index'");
+    }
+    const cl_ulong entries_size = index_.size() - kRowTail;
+    // Binning (kernels/binning.cl).
+    bin_state_.upload(ctx_.queue(), kBinStateInit.data(), kBinStateInit.size(), false);
+    uploaded_bytes += sizeof(kBinStateInit);
+    ArgSetter(program_.bin_bounds, "bin_bounds")(n_arg)(radius)(x)(y)(q)(bin_partial_)(bin_state_);
+    launch(ctx_.queue(), program_.bin_bounds, "bin_bounds", n, wg);
+    ArgSetter(program_.bin_rmin, "bin_rmin")(groups_arg)(bin_partial_);
+    launch(ctx_.queue(), program_.bin_rmin, "bin_rmin", wg, wg);
+    ArgSetter(program_.bin_levels, "bin_levels")(n_arg)(groups_arg)(radius)(q)(bin_partial_)(level_)(bin_state_);
+    launch(ctx_.queue(), program_.bin_levels, "bin_levels", n, wg);
+    ArgSetter(program_.bin_plan, "bin_plan")(n_arg)(groups_arg)(static_cast<cl_uint>(buckets))(
+        static_cast<cl_uint>(grid_nodes_.size()))(bin_partial_)(bin_state_)(grid_mask_)(grid_bucket_offset_)(
+        grid_inv_cell_);
+    launch(ctx_.queue(), program_.bin_plan, "bin_plan", wg, wg);
+    fill_zero(ctx_.queue(), bucket_.get(), buckets * sizeof(cl_uint), "clearing 'grid_bucket'");
+    ArgSetter(program_.bin_count, "bin_count")(n_arg)(x)(y)(level_)(bin_state_)(grid_mask_)(grid_bucket_offset_)(
+        grid_inv_cell_)(bucket_);
+    launch(ctx_.queue(), program_.bin_count, "bin_count", n, wg);
+    ArgSetter(program_.bucket_scan, "bucket_scan")(static_cast<cl_uint>(buckets))(bucket_)(block_total_);
+    launch(ctx_.queue(), program_.bucket_scan, "bucket_scan", buckets, wg);
+    ArgSetter(program_.row_block_offsets, "row_block_offsets")(static_cast<cl_int>(bucket_groups))(block_total_);
+    launch(ctx_.queue(), program_.row_block_offsets, "row_block_offsets", wg, wg);
+    ArgSetter(program_.bucket_offsets_add, "bucket_offsets_add")(static_cast<cl_uint>(buckets))(bucket_)(block_total_);
+    launch(ctx_.queue(), program_.bucket_offsets_add, "bucket_offsets_add", buckets, wg);
+    ArgSetter(program_.bin_fill, "bin_fill")(n_arg)(x)(y)(level_)(bin_state_)(grid_mask_)(grid_bucket_offset_)(
+        grid_inv_cell_)(bucket_)(grid_nodes_);
+    launch(ctx_.queue(), program_.bin_fill, "bin_fill", n, wg);
+    // Rows (kernels/neighbours.cl).
+    ArgSetter(program_.row_capacity_scan, "row_capacity_scan")(n_arg)(static_cast<cl_int>(kSpareShift))(
+        static_cast<cl_int>(kSpareMin))(count_)(offset_)(block_total_);
+    launch(ctx_.queue(), program_.row_capacity_scan, "row_capacity_scan", n, wg);
+    ArgSetter(program_.row_block_offsets, "row_block_offsets")(groups_arg)(block_total_);
+    launch(ctx_.queue(), program_.row_block_offsets, "row_block_offsets", wg, wg);
+    ArgSetter(program_.row_offsets_add, "row_offsets_add")(n_arg)(offset_)(block_total_);
+    launch(ctx_.queue(), program_.row_offsets_add, "row_offsets_add", n, wg);
+    fill_zero(ctx_.queue(), count_.get(), n * sizeof(cl_int), "clearing 'neighbour_count'");
     counters_.upload(ctx_.queue(), kZeroCounters.data(), kZeroCounters.size(), false);
-    if (flags.first_invalid >= 0) {
-      // Lists of an invalid node set are not built; the caller throws naming the node.
-      flags.max_count = 0;
+    uploaded_bytes += sizeof(kZeroCounters);
+    ArgSetter(program_.gather_rows, "gather_rows")(n_arg)(radius)(x)(y)(q)(kind)(prev)(next)(level_)(bin_state_)(
+        grid_mask_)(grid_bucket_offset_)(grid_inv_cell_)(bucket_)(grid_nodes_)(offset_)(count_)(entries_size)(index_)(
+        static_cast<cl_uint>(spill_capacity))(spill_)(counters_);
+    launch(ctx_.queue(), program_.gather_rows, "gather_rows", n, wg);
+    ArgSetter(program_.sort_rows, "sort_rows")(n_arg)(kind)(offset_)(count_)(entries_size)(index_)(counters_);
+    launch(ctx_.queue(), program_.sort_rows, "sort_rows", n, wg);
+    ArgSetter(program_.relocate_rows, "relocate_rows")(n_arg)(kind)(offset_)(count_)(entries_size)(index_)(
+        static_cast<cl_uint>(spill_capacity))(spill_)(static_cast<cl_uint>(move_capacity))(move_node_)(move_start_)(
+        counters_);
+    launch(ctx_.queue(), program_.relocate_rows, "relocate_rows", n, wg);
+    ArgSetter(program_.apply_row_moves, "apply_row_moves")(move_node_)(move_start_)(counters_)(offset_);
+    launch(ctx_.queue(), program_.apply_row_moves, "apply_row_moves", move_capacity, wg);
+    launches += 16;
+    // The build's one wait: the counters and the binning's state.
+    bin_state_.download(ctx_.queue(), state, kBinHead, false);
+    counters_.download(ctx_.queue(), c, kZeroCounters.size());
+    if (state[kBinFirstInvalid] < static_cast<std::int32_t>(n)) {
+      flags.first_invalid = state[kBinFirstInvalid];
+      counted_n_ = 0;  // the counts are of no rows
       break;
     }
-    const Real radius = static_cast<Real>(radius_factor);
-    // Pass 1: own cumulative grid, scattering to finer rows (scatter counts start at 0).
-    ensure_size(ctx_, scatter_count_, "neighbour_scatter_count", n);
-    ensure_size(ctx_, scatter_index_, "neighbour_scatter_index", entries);
-    if (n > 0)  // a zero-sized fill is invalid OpenCL
-      fill_zero(ctx_.queue(), scatter_count_.get(), n * sizeof(cl_int), "clearing 'neighbour_scatter_count'");
-    ArgSetter a(program_.build_neighbours, "build_neighbours");
-    a(static_cast<cl_int>(n))(static_cast<cl_int>(stride))(radius)(x)(y)(q)(kind)(prev)(next)(level_)(inv_cell_)(
-        table_offset_)(table_mask_)(start_offset_)(nodes_offset_)(table_cx_)(table_cy_)(table_id_)(cell_start_)(
-        cell_nodes_)(count_)(scatter_count_)(scatter_index_)(index_)(counters_);
-    launch(ctx_.queue(), program_.build_neighbours, "build_neighbours", n, program_.work_group);
-    // Pass 2: join, sort, pad; overflowing rows rescanned in reference order.
-    ArgSetter b(program_.finish_neighbours, "finish_neighbours");
-    b(static_cast<cl_int>(n))(static_cast<cl_int>(stride))(static_cast<cl_int>(grids_.levels))(radius)(x)(y)(q)(
-        kind)(level_)(inv_cell_)(table_offset_)(table_mask_)(start_offset_)(nodes_offset_)(table_cx_)(table_cy_)(
-        table_id_)(cell_start_)(cell_nodes_)(scatter_count_)(scatter_index_)(count_)(index_)(counters_);
-    launch(ctx_.queue(), program_.finish_neighbours, "finish_neighbours", n, program_.work_group);
-    std::vector<std::uint32_t> c;
-    counters_.download(ctx_.queue(), c, 5);
+    if (state[kBinTooManyLevels])
+      throw SimulationError(fmt::format("the list radii of the nodes span more than 2^{}: the device binning has {} "
+                                        "grid levels at most",
+                                        kBinLevels, kBinLevels));
+    const bool grids_fit = state[kBinTooSmall] == 0;
+    member_capacity_ = std::max<std::uint64_t>(member_capacity_, with_slack(static_cast<std::uint64_t>(state[kBinMembers])));
+    bucket_capacity_ = std::max<std::uint64_t>(bucket_capacity_, with_slack(static_cast<std::uint64_t>(state[kBinBuckets])));
+    if (grids_fit) {
+      outgrown_rows += c[0];
+      counted_n_ = n;
+      counted_total_ = c[1];
+      // Rows that outgrew their capacities were moved behind the others, unless the spill list, the
+      // move list or the spare region was too small: then build again with the counts (exact now).
+      if (c[0] == 0 || (c[5] <= spill_capacity && c[0] <= move_capacity && c[8] == 0)) break;
+    }
+    if (attempt >= 3)
+      throw SimulationError(fmt::format("neighbour rows still outgrow their capacities after {} passes", attempt + 1));
+  }
+  attempts = attempt + 1;
+  if (flags.first_invalid < 0) {
     flags.max_count = static_cast<std::int32_t>(c[2]);
     flags.pairs_examined = c[3];
     flags.pairs_within = c[4];
-    flags.overflow = flags.max_count > stride ? 1U : 0U;
-    if (!flags.overflow || !grow) break;
-    stride = (flags.max_count + 7) / 8 * 8;
   }
-  // Boundary rows hold 2 entries even when no interior node exists (the reference's max_count).
-  for (std::size_t i = 0; i < n; ++i)
-    if (hkind[i] == kSimBoundary) {
-      if (flags.max_count < 2) flags.max_count = 2;
-      break;
-    }
-  gather_seconds = seconds_since(t1);
+  gather_seconds = seconds_since(t0);
   return flags;
 }
 

@@ -1,51 +1,77 @@
-// Neighbour lists on the device: the host bins (O(N) flat grids, neighbour_grids.hpp), the device
-// gathers each row in two passes (kernels/neighbours.cl: own-level scan with scatter into a separate
-// buffer, then join + sort). Used by the StepBackend and the device-resident run.
+// Neighbour lists on the device in compact rows (CSR), built on the device from the device's
+// positions: binning by a counting sort into the multi-level grids (kernels/binning.cl), the rows
+// sized by a prefix sum over capacities, gathered with integer atomics per row and sorted
+// (kernels/neighbours.cl); the host enqueues the kernels and reads 13 ints at the end (one wait).
+// Used by the StepBackend and the device-resident run. neighbour_grids.hpp is the host's binning,
+// the oracle of the device's (tests/test_device_neighbours.cpp).
 #pragma once
 #include <cstdint>
 #include <functional>
 
 #include "opencl/buffer.hpp"
-#include "opencl/neighbour_grids.hpp"
 #include "opencl/step_program.hpp"
 #include "sim/step_backend.hpp"
 
 namespace pdmesh::ocl {
+
+// Row i of a build holds count()[i] entries at index()[offset()[i] ..] (64-bit offsets, n + 1 of them;
+// offset[i + 1] - offset[i] is the row's capacity, >= its count). Interior rows are sorted ascending,
+// boundary rows are [prev, next]: the reference's rows (host/sim/reference/binning.cpp), slot by slot,
+// never truncated. index() has kRowTail readable entries past offset[n] (the vector force loop reads
+// whole chunks of 8).
+inline constexpr std::size_t kRowTail = 8;
 
 template <typename Real>
 class DeviceNeighbours {
  public:
   DeviceNeighbours(Context& ctx, StepProgram& program) : ctx_(ctx), program_(program) {}
 
-  // Builds rows of `stride` for n nodes (device arrays x, y, q, kind, prev, next) from host copies
-  // hx, hy, hq of the same positions (to bin), interior radius radius_factor * q_i. Sets count and
-  // index and the flags (first_invalid from a host scan). With grow, a row overflow grows stride to
-  // the next multiple of 8 of the largest count and builds again (the host retry). Before the row
-  // buffers are allocated at a stride, check_stride (when set) is called with it: it throws when the
-  // device cannot hold n rows of that stride (the device-resident run's check_device_memory).
-  NeighbourFlags build(const double* hx, const double* hy, const double* hq, const std::uint8_t* hkind, std::size_t n,
-                       double radius_factor, Buffer<Real>& x, Buffer<Real>& y, Buffer<Real>& q,
-                       Buffer<std::uint8_t>& kind, Buffer<std::int32_t>& prev, Buffer<std::int32_t>& next,
-                       int& stride, bool grow);
+  // Builds the rows of n nodes (device arrays x, y, q, kind, prev, next), interior radius
+  // radius_factor * q_i. Grid and row capacities are those of the last build plus slack (kSpareShift,
+  // kSpareMin); when the grids or a row outgrow them the build runs again at the sizes it found
+  // (exact), so a first build, or one after the node set changed size, costs two or three passes.
+  // Sets the flags (first_invalid: the smallest node with a non-finite x, y or q, or q <= 0, whose
+  // rows are then not built; overflow stays 0: rows are never truncated). Before the index buffer
+  // grows, check_entries (when set) is called with its new size: it throws when the device cannot
+  // hold it (the device-resident run's check_device_memory).
+  NeighbourFlags build(std::size_t n, double radius_factor, Buffer<Real>& x, Buffer<Real>& y, Buffer<Real>& q,
+                       Buffer<std::uint8_t>& kind, Buffer<std::int32_t>& prev, Buffer<std::int32_t>& next);
+
+  // A row's capacity is c + (c >> kSpareShift) + kSpareMin for the count c of the last build: rows
+  // grow a little between rebuilds as nodes move (docs/performance.md, issue 15 neighbours).
+  static constexpr int kSpareShift = 3, kSpareMin = 2;
 
   Buffer<std::int32_t>& count() { return count_; }
+  Buffer<std::uint64_t>& offset() { return offset_; }
   Buffer<std::int32_t>& index() { return index_; }
   std::size_t device_bytes() const;
-  std::function<void(int stride)> check_stride;
+  std::function<void(std::uint64_t entries)> check_entries;
+  // The device grids of the last build (kernels/binning.cl): per node its level; per level L its
+  // bucket mask (-1: no grid), first bucket and inverse cell size; bucket b of all grids holds
+  // grid_nodes[bucket[b - 1] .. bucket[b]) (0 for b = 0).
+  Buffer<std::int32_t>& level() { return level_; }
+  Buffer<std::int32_t>& grid_mask() { return grid_mask_; }
+  Buffer<std::uint32_t>& grid_bucket_offset() { return grid_bucket_offset_; }
+  Buffer<Real>& grid_inv_cell() { return grid_inv_cell_; }
+  Buffer<std::uint32_t>& bucket() { return bucket_; }
+  Buffer<std::int32_t>& grid_nodes() { return grid_nodes_; }
   std::size_t uploaded_bytes = 0;  // by the last build
-  double bin_seconds = 0.0;        // host binning, last build
-  double gather_seconds = 0.0;     // device gather (incl. uploads), last build
+  double gather_seconds = 0.0;     // the whole build on the device (binning, rows), last build
+  int attempts = 0;                // passes of the last build (2 or 3 when the grids or a row outgrew their capacities)
+  int launches = 0;                // kernel launches of the last build
+  std::uint64_t outgrown_rows = 0;  // rows of the last build that outgrew their capacities (each pass)
 
  private:
   Context& ctx_;
   StepProgram& program_;
-  NeighbourGrids grids_;
-  Buffer<std::int32_t> count_, scatter_count_, scatter_index_, index_, level_, table_offset_, table_mask_, start_offset_, nodes_offset_, table_id_,
-      cell_start_, cell_nodes_;
+  Buffer<std::int32_t> count_, index_, level_, bin_state_, grid_mask_, grid_nodes_, spill_, move_node_;
+  Buffer<std::uint32_t> grid_bucket_offset_, bucket_;
+  Buffer<std::uint64_t> offset_, block_total_, move_start_;
   Buffer<std::uint32_t> counters_;
-  Buffer<Real> inv_cell_;
-  std::vector<Real> inv_cell_host_;  // kept alive for the non-blocking upload
-  Buffer<std::int64_t> table_cx_, table_cy_;
+  Buffer<Real> bin_partial_, grid_inv_cell_;
+  std::uint64_t bucket_capacity_ = 0, member_capacity_ = 0;  // wanted by the next build
+  std::size_t counted_n_ = 0;       // nodes whose counts count_ holds (the last build's n; 0: none)
+  std::uint64_t counted_total_ = 0;  // their sum
 };
 
 }  // namespace pdmesh::ocl

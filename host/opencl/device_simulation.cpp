@@ -53,7 +53,7 @@ class DeviceRun {
   SimResult run(const SimCallbacks& callbacks);
 
  private:
-  void check_memory(int stride) const;
+  void check_memory(std::uint64_t entries) const;
   void remember(int done, double dt_initial, const GlobalTimeStep& gm, std::size_t rows);
   SimState last_good_state(int done, double dt_initial, const GlobalTimeStep& gm,
                            const std::vector<HistoryRow>& history);
@@ -119,7 +119,7 @@ class DeviceRun {
   DeviceNeighbours<Real> neighbours_;
   DeviceBoundary<Real> device_boundary_;
   std::size_t n_;
-  int stride_ = kInitialStride;  // entries per neighbour row: grows to the largest row a build finds
+  int largest_row_ = 0;  // the longest neighbour row any build found (rows are compact: for the stats)
   int cur_ = 0;  // which of the double-buffered x, y, q is current
   Buffer<Real> x_[2], y_[2], q_[2], tx_, ty_, x_build_, y_build_, q_build_, brec_, cand_rec_, partials_, rec_, bg_q_,
       budget_;
@@ -163,11 +163,14 @@ class DeviceRun {
 };
 
 template <typename Real>
-void DeviceRun<Real>::check_memory(int stride) const {
+void DeviceRun<Real>::check_memory(std::uint64_t entries) const {
   const BackgroundFieldData& d = background_.data();
   const std::uint64_t field = 4 * (d.root_node.size() + d.node_child.size() + d.leaf_corner.size() + d.leaf_cell.size()) +
                               sizeof(Real) * d.corner_q.size();
-  check_device_memory(ctx_.device(), n_, nodes_.count(NodeKind::Boundary), field, sizeof(Real), stride);
+  // The rows' entries as an average per node (the compact rows replace rows of one stride).
+  const std::uint64_t per_node = n_ > 0 ? (entries + n_ - 1) / n_ : 0;
+  check_device_memory(ctx_.device(), n_, nodes_.count(NodeKind::Boundary), field, sizeof(Real),
+                      static_cast<int>(std::max<std::uint64_t>(per_node, kInitialStride)));
 }
 
 template <typename Real>
@@ -453,32 +456,32 @@ void DeviceRun<Real>::sync_boundary_from(int which) {
 template <typename Real>
 void DeviceRun<Real>::rebuild() {
   const std::size_t n = n_;
+  std::vector<Real>* v = positions_host_;
   if (stats_.rebuilds > 0) {
-    // The host needs every position only here (rare with the skin): to bin.
-    std::vector<Real>* v = positions_host_;
+    // The host's copy of the build state, for its boundary handling's skin test and the saved state
+    // (remember); the binning no longer needs it. Not waited on: the build's one wait completes it.
     read(x_[cur_], v[0], n, false);
     read(y_[cur_], v[1], n, false);
     read(q_[cur_], v[2], n, false);
-    finish(ctx_.queue(), "positions for binning");
+  }
+  const double radius = options_.cutoff * (1.0 + options_.verlet_skin);
+  NeighbourFlags flags = neighbours_.build(n, radius, x_[cur_], y_[cur_], q_[cur_], kind_, prev_, next_);
+  if (stats_.rebuilds > 0) {
     build_x_.assign(v[0].begin(), v[0].end());
     build_y_.assign(v[1].begin(), v[1].end());
     build_q_.assign(v[2].begin(), v[2].end());
   }
-  const double radius = options_.cutoff * (1.0 + options_.verlet_skin);
-  NeighbourFlags flags = neighbours_.build(build_x_.data(), build_y_.data(), build_q_.data(), kind_host_.data(), n,
-                                           radius, x_[cur_], y_[cur_], q_[cur_], kind_, prev_, next_, stride_, true);
   if (flags.first_invalid >= 0) {
     const auto i = static_cast<std::size_t>(flags.first_invalid);
     throw SimulationError(fmt::format("node {} is invalid before binning: x = ({}, {}), q = {}", i, build_x_[i],
                                       build_y_[i], build_q_[i]));
   }
-  if (flags.overflow)
-    throw SimulationError(fmt::format("neighbour list still overflows at stride {} (max count {})", stride_,
-                                      flags.max_count));
-  stats_.bin_seconds += neighbours_.bin_seconds;
+  largest_row_ = std::max(largest_row_, flags.max_count);
   stats_.gather_seconds += neighbours_.gather_seconds;
+  stats_.gathers += neighbours_.attempts;
+  stats_.outgrown_rows += neighbours_.outgrown_rows;
   stats_.bytes_up += neighbours_.uploaded_bytes;
-  stats_.launches += 2;  // build_neighbours + finish_neighbours (+ the fill of the scatter counts)
+  stats_.launches += static_cast<std::size_t>(neighbours_.launches);  // the row sizing, gather and sort
   pairs_examined_ += flags.pairs_examined;
   stats_.rebuild_candidates += flags.pairs_examined;
   stats_.pairs_listed += flags.pairs_within;
@@ -495,10 +498,10 @@ void DeviceRun<Real>::step_kernel(double dt_gm2) {
   const int next = 1 - cur_;
   write(counters_, zero_counter_, false);
   ArgSetter a(program_.device_step, "device_step");
-  a(static_cast<cl_int>(n_))(static_cast<cl_int>(stride_))(static_cast<Real>(options_.cutoff))(
+  a(static_cast<cl_int>(n_))(static_cast<Real>(options_.cutoff))(
       static_cast<Real>(options_.lj_a))(static_cast<cl_int>(options_.r0_any_direction ? 1 : 0))(
       static_cast<Real>(options_.stability_factor))(static_cast<Real>(dt_gm2))(static_cast<Real>(options_.verlet_skin * options_.cutoff))(x_[cur_])(y_[cur_])(
-      q_[cur_])(kind_)(tx_)(ty_)(neighbours_.count())(neighbours_.index())(x_build_)(y_build_)(q_build_)(bslot_)(
+      q_[cur_])(kind_)(tx_)(ty_)(neighbours_.count())(neighbours_.offset())(neighbours_.index())(x_build_)(y_build_)(q_build_)(bslot_)(
       x_[next])(y_[next])(q_[next])(budget_)(node_leaf_)(brec_)(cand_index_)(cand_rec_)(counters_)(partials_);
   bg_args(a);
   launch(ctx_.queue(), program_.device_step, "device_step", n_, program_.work_group);
@@ -643,8 +646,8 @@ SimResult DeviceRun<Real>::run(const SimCallbacks& callbacks) {
     boundary_.restore(nodes_, resume->arcs, resume->tangents);  // before upload_initial reads the tangents
   }
   GlobalTimeStep gm = resume ? GlobalTimeStep(resume->time_step) : GlobalTimeStep(result.stats.dt_initial);
-  check_memory(stride_);  // before the first device allocation
-  neighbours_.check_stride = [this](int stride) { check_memory(stride); };  // and before the rows grow
+  check_memory(0);  // before the first device allocation
+  neighbours_.check_entries = [this](std::uint64_t entries) { check_memory(entries); };  // and before the rows grow
   ProgressLine progress(options_.quiet);
   upload_initial();  // setup, like the host path's, is not part of the timed iterations
   stats_.setup_bytes = stats_.bytes_up;
@@ -772,7 +775,7 @@ SimResult DeviceRun<Real>::run(const SimCallbacks& callbacks) {
   result.stats.population_seconds = population_.seconds;
   result.stats.pairs_examined = pairs_examined_;
   result.stats.seconds = since(start);
-  stats_.stride = stride_;
+  stats_.stride = largest_row_;
   stats_.device_bytes = neighbours_.device_bytes() + partials_.bytes() + cand_index_.bytes() + cand_rec_.bytes() +
                         brec_.bytes() + kind_.bytes() + budget_.bytes() + prev_.bytes() + next_.bytes() +
                         bslot_.bytes() + bg_q_.bytes() + bg_root_.bytes() + bg_child_.bytes() + bg_corner_.bytes() +

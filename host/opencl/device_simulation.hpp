@@ -17,7 +17,9 @@ struct DeviceRunStats {
   int iterations = 0;
   int rebuilds = 0;                  // neighbour-list builds (Verlet skin)
   int snap_rebuilds = 0;             // of those, forced by a snap alone (the skin had room left)
-  int stride = 0;                    // final row stride
+  int gathers = 0;                   // neighbour build passes: one per rebuild, more when grids or rows outgrew their capacities
+  std::uint64_t outgrown_rows = 0;   // rows that outgrew their capacities, summed over the passes
+  int stride = 0;                    // the longest neighbour row of any build (rows are compact)
   std::uint64_t launches = 0;        // kernel launches
   std::uint64_t transfers = 0;       // reads + writes enqueued
   std::uint64_t bytes_down = 0, bytes_up = 0;  // all iterations, including rebuilds, excluding setup
@@ -25,8 +27,8 @@ struct DeviceRunStats {
   std::uint64_t pairs_listed = 0;    // list entries within the skin radius, summed over builds
   std::uint64_t rebuild_candidates = 0;  // candidate pairs whose distance the rebuilds computed
   std::uint64_t candidates = 0;      // interior nodes handed to the host's exact test, all iterations
-  double bin_seconds = 0.0;          // host binning at rebuilds
-  double gather_seconds = 0.0;       // device neighbour gather at rebuilds (with its transfers)
+  double bin_seconds = 0.0;          // host binning at rebuilds (0 since issue 15: the device bins, in gather_seconds)
+  double gather_seconds = 0.0;       // device neighbour build at rebuilds: binning, rows (one wait)
   double step_seconds = 0.0;         // device_step and boundary_snap (+ the previous apply_host_moves,
                                      // and the partials: one wait)
   double download_seconds = 0.0;     // candidate records
@@ -37,24 +39,25 @@ struct DeviceRunStats {
   std::size_t device_bytes = 0;      // device buffers at the end
 };
 
-// The neighbour rows' initial stride (entries per row); it grows to the largest row a build finds.
+// The neighbour rows' entries per node assumed before the first build (the rows are compact: a build
+// sizes them to the entries it finds, docs/performance.md "issue 15 neighbours").
 inline constexpr int kInitialStride = 16;
 
-// Device memory a run needs with neighbour rows of `stride` entries (a lower bound; docs/opencl.md):
-// in total, and for its largest buffer (the neighbour list).
+// Device memory a run needs with compact neighbour rows of `entries_per_node` entries per node on
+// average (a lower bound; docs/opencl.md): in total, and for its largest buffer (the neighbour rows).
 struct DeviceMemoryNeed {
   std::uint64_t total = 0, largest = 0;
 };
 DeviceMemoryNeed device_memory_need(std::size_t nodes, std::size_t boundary_nodes, std::uint64_t field_bytes,
-                                    std::size_t real_bytes, int stride = kInitialStride);
+                                    std::size_t real_bytes, int entries_per_node = kInitialStride);
 
 // Throws LimitError (exit 2) naming the bytes needed, the device's global memory and largest
 // allocation, and what to do instead (--precision float, --device host, a coarser spacing), when
 // device_memory_need exceeds either, or when there are more nodes than the device's 32-bit node
-// indices allow. Run before the first allocation of a device run (initial stride) and before the
-// neighbour rows grow (the new stride).
+// indices allow. Run before the first allocation of a device run (kInitialStride entries per node) and
+// before the neighbour rows grow (their new size per node, rounded up).
 void check_device_memory(const DeviceInfo& device, std::size_t nodes, std::size_t boundary_nodes,
-                         std::uint64_t field_bytes, std::size_t real_bytes, int stride = kInitialStride);
+                         std::uint64_t field_bytes, std::size_t real_bytes, int entries_per_node = kInitialStride);
 
 struct StepProgram;
 

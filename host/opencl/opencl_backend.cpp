@@ -24,24 +24,35 @@ class OpenclBackend final : public StepBackend {
   void build_neighbours(const SimParticles& p, double cutoff, NeighbourList& list, NeighbourFlags& flags) override {
     upload_particles(p);
     const std::size_t n = p.size();
-    int stride = std::max(list.stride, 2);
-    flags = neighbours_.build(p.x.data(), p.y.data(), p.q.data(), p.kind.data(), n, cutoff, x_, y_, q_, kind_, prev_,
-                              next_, stride, false);
+    const int stride = std::max(list.stride, 2);
+    flags = neighbours_.build(n, cutoff, x_, y_, q_, kind_, prev_, next_);
     list.stride = stride;
+    const auto s = static_cast<std::size_t>(stride);
+    list.count.assign(n, 0);
+    list.index.assign(n * s, -1);
     if (flags.first_invalid >= 0) {
       // As the reference: boundary rows only.
-      list.count.assign(n, 0);
-      list.index.assign(n * static_cast<std::size_t>(stride), -1);
       for (std::size_t i = 0; i < n; ++i)
         if (p.kind[i] == kSimBoundary) {
           list.count[i] = 2;
-          list.index[i * static_cast<std::size_t>(stride)] = p.prev[i];
-          list.index[i * static_cast<std::size_t>(stride) + 1] = p.next[i];
+          list.index[i * s] = p.prev[i];
+          list.index[i * s + 1] = p.next[i];
         }
+      flags.max_count = std::count(p.kind.begin(), p.kind.end(), kSimBoundary) > 0 ? 2 : 0;
       return;
     }
+    // The compact rows into the StepBackend's padded ones: a row longer than the stride keeps its
+    // first `stride` entries, the smallest indices (rows are sorted), as the reference's truncated row.
+    std::vector<std::uint64_t> offset;
+    std::vector<std::int32_t> entries;
     neighbours_.count().download(ctx_.queue(), list.count, n);
-    neighbours_.index().download(ctx_.queue(), list.index, n * static_cast<std::size_t>(stride));
+    neighbours_.offset().download(ctx_.queue(), offset, n + 1);
+    neighbours_.index().download(ctx_.queue(), entries);  // whole: moved rows lie behind offset[n]
+    for (std::size_t i = 0; i < n; ++i) {
+      const std::size_t listed = std::min<std::size_t>(static_cast<std::size_t>(list.count[i]), s);
+      std::copy_n(entries.begin() + static_cast<std::ptrdiff_t>(offset[i]), listed, list.index.begin() + static_cast<std::ptrdiff_t>(i * s));
+    }
+    flags.overflow = flags.max_count > stride ? 1U : 0U;
   }
 
   void compute_forces(const SimParticles& p, const NeighbourList& list, const ForceParams& params,

@@ -88,8 +88,8 @@ ForceLoop resolve_force_loop(ForceLoop requested, const std::string& device_type
 
 const std::vector<std::string>& step_program_files() {
   static const std::vector<std::string> files = {"spacing_field.cl", "reduce.cl",     "forces.cl",
-                                                 "time_step.cl",     "neighbours.cl", "device_step.cl",
-                                                 "boundary.cl"};
+                                                 "time_step.cl",     "binning.cl",    "neighbours.cl",
+                                                 "device_step.cl",   "boundary.cl"};
   return files;
 }
 
@@ -98,6 +98,7 @@ std::map<std::string, std::string> step_program_defines(Precision precision, std
   std::map<std::string, std::string> d = precision_defines(precision, work_group);
   d.emplace("PDMESH_FORCE_LOOP_VECTOR", loop == ForceLoop::Vector ? "1" : "0");
   d.emplace("PDMESH_FORCE_LOOP_SCALAR", loop == ForceLoop::Scalar ? "1" : "0");
+  d.emplace("PDMESH_GRID_LEVELS", std::to_string(kBinLevels));
   return d;
 }
 
@@ -110,7 +111,14 @@ StepProgram::StepProgram(Context& ctx, Precision p, ForceLoop loop, std::size_t 
                                   "PDMESH_TEST_FAIL_BUILD)\nbuild log:\n(none)", ctx.device().name));
   program = ctx.build(step_program_files(), step_program_defines(p, wg, force_loop));
   const std::pair<cl::Kernel*, const char*> kernels[] = {
-      {&build_neighbours, "build_neighbours"}, {&finish_neighbours, "finish_neighbours"},
+      {&row_capacity_scan, "row_capacity_scan"}, {&row_block_offsets, "row_block_offsets"},
+      {&row_offsets_add, "row_offsets_add"},     {&gather_rows, "gather_rows"},
+      {&sort_rows, "sort_rows"},                 {&bin_bounds, "bin_bounds"},
+      {&bin_rmin, "bin_rmin"},                   {&bin_levels, "bin_levels"},
+      {&bin_plan, "bin_plan"},                   {&bin_count, "bin_count"},
+      {&bucket_scan, "bucket_scan"},             {&bucket_offsets_add, "bucket_offsets_add"},
+      {&bin_fill, "bin_fill"},                   {&relocate_rows, "relocate_rows"},
+      {&apply_row_moves, "apply_row_moves"},
       {&compute_forces, "compute_forces"},     {&time_step_and_move, "time_step_and_move"},
       {&reduce, "reduce"},                     {&device_step, "device_step"},
       {&apply_host_moves, "apply_host_moves"}, {&boundary_snap, "boundary_snap"}};

@@ -41,6 +41,10 @@ ForceLoop resolve_force_loop(ForceLoop requested, const std::string& device_type
 const std::vector<std::string>& step_program_files();
 std::map<std::string, std::string> step_program_defines(Precision precision, std::size_t work_group, ForceLoop loop);
 
+// Grid levels the device binning allows (kernels/binning.cl's PDMESH_GRID_LEVELS, which the builder defines):
+// the list radii of a run span less than 2^kBinLevels.
+inline constexpr int kBinLevels = 64;
+
 // What the device allows one kernel of the program (clGetKernelWorkGroupInfo).
 struct KernelLimits {
   std::string name;
@@ -64,8 +68,9 @@ struct StepProgram {
   ForceLoop force_loop;  // as built: Vector or Scalar
   std::size_t work_group;
   cl::Program program;
-  cl::Kernel build_neighbours, finish_neighbours, compute_forces, time_step_and_move, reduce, device_step, apply_host_moves,
-      boundary_snap;
+  cl::Kernel row_capacity_scan, row_block_offsets, row_offsets_add, gather_rows, sort_rows, relocate_rows,
+      apply_row_moves, bin_bounds, bin_rmin, bin_levels, bin_plan, bin_count, bucket_scan, bucket_offsets_add, bin_fill,
+      compute_forces, time_step_and_move, reduce, device_step, apply_host_moves, boundary_snap;
   std::vector<KernelLimits> limits;  // per kernel, in the order above
 };
 

@@ -1,0 +1,211 @@
+// Binning on the device for the neighbour gather (kernels/neighbours.cl): the reference's multi-level
+// grids (host/sim/reference/binning.cpp; host/opencl/neighbour_grids.cpp is the host's flat copy and
+// the test oracle) built by a counting sort, so a rebuild uploads no grid and downloads nothing to bin.
+// Level of node j: floor(log2(R_j / R_min)), R = radius_factor q; the grid of level L holds the nodes of
+// level <= L (the cumulative grid C_L, the only one the gather scans) in cells of R_min 2^L. A grid is
+// a hash table of 2^k buckets (k from its member count: about 2 members per bucket), each bucket the
+// nodes of the cells hashing to it; the gather keeps the nodes of the probed cell only. Kernels, in
+// order (host/opencl/device_neighbours.cpp):
+//   bin_bounds: validity (first invalid node, atomic_min) and per-group minima of R;
+//   bin_rmin: R_min (one work-group);
+//   bin_levels: each node's level, the member count of each level, the top level;
+//   bin_plan: one work-item lays out the grids (bucket counts and offsets, inverse cell sizes) and
+//     checks them against the buffers' capacities (too small: the host builds again at the sizes
+//     it reports);
+//   bin_count: per node and grid, atomic_inc on its bucket's count;
+//   bucket_scan, row_block_offsets, bucket_offsets_add: exclusive prefix sum of the counts in place;
+//   bin_fill: per node and grid, a slot from atomic_inc on its bucket's start, which leaves every
+//     bucket's entry holding its end (= the next bucket's start): bucket b is [bucket[b - 1], bucket[b]).
+// Order within a bucket is the atomics' order; the rows the gather makes from it are sorted.
+#pragma OPENCL FP_CONTRACT OFF
+
+#ifndef PDMESH_GRID_LEVELS
+#error "PDMESH_GRID_LEVELS (grid levels at most, kBinLevels) must be defined by the program builder"
+#endif
+// bin_state (ints): what the host reads after a build with the row counters.
+#define BIN_FIRST_INVALID 0  // smallest invalid node (non-finite x, y or q, or q <= 0); INT_MAX: none
+#define BIN_TOP 1            // the top level
+#define BIN_TOO_MANY_LEVELS 2
+#define BIN_BUCKETS 3  // buckets the grids need
+#define BIN_MEMBERS 4  // grid entries the grids need
+#define BIN_TOO_SMALL 5
+#define BIN_LEVEL_COUNT 8  // PDMESH_GRID_LEVELS member counts follow
+#define BIN_STATE_SIZE (BIN_LEVEL_COUNT + PDMESH_GRID_LEVELS)
+
+// splitmix64 finaliser over both cell coordinates (the reference's hash_key).
+ulong nb_hash(long cx, long cy) {
+  ulong h = ((ulong)cx * 0x9E3779B97F4A7C15UL) ^ (ulong)cy;
+  h ^= h >> 30;
+  h *= 0xBF58476D1CE4E5B9UL;
+  h ^= h >> 27;
+  h *= 0x94D049BB133111EBUL;
+  h ^= h >> 31;
+  return h;
+}
+
+long nb_cell_coord(REAL v, REAL inv_cell) {
+  const REAL c = floor(v * inv_cell);
+  return (long)clamp(c, -REAL_C(4.0e18), REAL_C(4.0e18));
+}
+
+// Whether the binning left usable grids (every kernel after bin_levels checks it).
+int bin_ok(__global const int* state, const int n) {
+  return state[BIN_FIRST_INVALID] >= n && !state[BIN_TOO_MANY_LEVELS] && !state[BIN_TOO_SMALL];
+}
+
+// The bucket of node j's cell in grid L: its global index into `bucket`.
+uint bin_bucket(const REAL xj, const REAL yj, const int L, __global const int* grid_mask,
+                __global const uint* grid_bucket_offset, __global const REAL* grid_inv_cell) {
+  const REAL inv_cell = grid_inv_cell[L];
+  const ulong h = nb_hash(nb_cell_coord(xj, inv_cell), nb_cell_coord(yj, inv_cell));
+  return grid_bucket_offset[L] + (uint)(h & (ulong)grid_mask[L]);
+}
+
+// state[BIN_FIRST_INVALID] must start at INT_MAX, the other entries at 0 (the host uploads them).
+__kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1)))
+void bin_bounds(const int n, const REAL radius_factor, __global const REAL* x, __global const REAL* y,
+                __global const REAL* q, __global REAL* partial, __global int* state) {
+  __local REAL m[WG_SIZE];
+  const int i = get_global_id(0), l = get_local_id(0);
+  REAL r = INFINITY;
+  if (i < n) {
+    const REAL xi = x[i], yi = y[i], qi = q[i];
+    if (!(isfinite(xi) && isfinite(yi) && isfinite(qi) && qi > (REAL)0))
+      atomic_min(&state[BIN_FIRST_INVALID], i);
+    else
+      r = radius_factor * qi;
+  }
+  m[l] = r;
+  barrier(CLK_LOCAL_MEM_FENCE);
+  for (int s = WG_SIZE / 2; s > 0; s >>= 1) {
+    if (l < s && m[l + s] < m[l]) m[l] = m[l + s];
+    barrier(CLK_LOCAL_MEM_FENCE);
+  }
+  if (l == 0) partial[get_group_id(0)] = m[0];
+}
+
+// One work-group: partial[groups] = the minimum of partial[0 .. groups) (R_min).
+__kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1)))
+void bin_rmin(const int groups, __global REAL* partial) {
+  __local REAL m[WG_SIZE];
+  const int l = get_local_id(0);
+  REAL r = INFINITY;
+  for (int g = l; g < groups; g += WG_SIZE) r = partial[g] < r ? partial[g] : r;
+  m[l] = r;
+  barrier(CLK_LOCAL_MEM_FENCE);
+  for (int s = WG_SIZE / 2; s > 0; s >>= 1) {
+    if (l < s && m[l + s] < m[l]) m[l] = m[l + s];
+    barrier(CLK_LOCAL_MEM_FENCE);
+  }
+  if (l == 0) partial[groups] = m[0];
+}
+
+// level = floor(log2(R_j / R_min)) as the reference: R_j / R_min = m 2^e with m in [0.5, 1).
+__kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1)))
+void bin_levels(const int n, const int groups, const REAL radius_factor, __global const REAL* q,
+                __global const REAL* partial, __global int* level, __global int* state) {
+  const int i = get_global_id(0);
+  if (i >= n || state[BIN_FIRST_INVALID] < n) return;
+  int e = 0;
+  frexp(radius_factor * q[i] / partial[groups], &e);
+  int lv = max(0, e - 1);
+  if (lv >= PDMESH_GRID_LEVELS) {
+    atomic_or(&state[BIN_TOO_MANY_LEVELS], 1);
+    lv = PDMESH_GRID_LEVELS - 1;
+  }
+  level[i] = lv;
+  atomic_inc(&state[BIN_LEVEL_COUNT + lv]);
+  atomic_max(&state[BIN_TOP], lv);
+}
+
+// One work-item: grid L (a level with nodes) gets 2^k buckets, 2^k >= its members / 2, at
+// grid_bucket_offset[L]; levels without nodes get no grid (mask -1: no node scans them). Cell size
+// R_min 2^L, as the reference.
+__kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1)))
+void bin_plan(const int n, const int groups, const uint bucket_capacity, const uint member_capacity,
+              __global const REAL* partial, __global int* state, __global int* grid_mask,
+              __global uint* grid_bucket_offset, __global REAL* grid_inv_cell) {
+  if (get_global_id(0) != 0 || state[BIN_FIRST_INVALID] < n || state[BIN_TOO_MANY_LEVELS]) return;
+  const REAL r_min = partial[groups];
+  const int top = state[BIN_TOP];
+  ulong cumulative = 0, buckets = 0, members = 0;
+  for (int L = 0; L < PDMESH_GRID_LEVELS; ++L) {
+    const uint c = (uint)state[BIN_LEVEL_COUNT + L];
+    cumulative += c;
+    if (L > top || c == 0) {
+      grid_mask[L] = -1;
+      grid_bucket_offset[L] = 0;
+      grid_inv_cell[L] = (REAL)0;
+      continue;
+    }
+    ulong b = 1;
+    while (2 * b < cumulative) b *= 2;
+    grid_mask[L] = (int)(b - 1);
+    grid_bucket_offset[L] = (uint)buckets;
+    grid_inv_cell[L] = (REAL)1 / ldexp(r_min, L);
+    buckets += b;
+    members += cumulative;
+  }
+  const ulong big = 0x7FFFFFFFUL;  // reported sizes are ints
+  state[BIN_BUCKETS] = (int)min(buckets, big);
+  state[BIN_MEMBERS] = (int)min(members, big);
+  state[BIN_TOO_SMALL] = buckets > (ulong)bucket_capacity || members > (ulong)member_capacity ? 1 : 0;
+}
+
+// Each node in the grid of every level from its own up to the top (the cumulative grids).
+__kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1)))
+void bin_count(const int n, __global const REAL* x, __global const REAL* y, __global const int* level,
+               __global const int* state, __global const int* grid_mask, __global const uint* grid_bucket_offset,
+               __global const REAL* grid_inv_cell, __global volatile uint* bucket) {
+  const int i = get_global_id(0);
+  if (i >= n || !bin_ok(state, n)) return;
+  const REAL xi = x[i], yi = y[i];
+  const int top = state[BIN_TOP];
+  for (int L = level[i]; L <= top; ++L)
+    if (grid_mask[L] >= 0) atomic_inc(&bucket[bin_bucket(xi, yi, L, grid_mask, grid_bucket_offset, grid_inv_cell)]);
+}
+
+// Inclusive prefix sum of v over the work-group (Hillis-Steele in local memory; every work-item of
+// the group must call it). Used here and by the row offsets (neighbours.cl).
+ulong group_inclusive_scan(const ulong v, __local ulong* tmp) {
+  const int l = get_local_id(0);
+  tmp[l] = v;
+  barrier(CLK_LOCAL_MEM_FENCE);
+  for (int d = 1; d < WG_SIZE; d <<= 1) {
+    const ulong add = l >= d ? tmp[l - d] : 0;
+    barrier(CLK_LOCAL_MEM_FENCE);
+    tmp[l] += add;
+    barrier(CLK_LOCAL_MEM_FENCE);
+  }
+  return tmp[l];
+}
+
+// Exclusive prefix sum of bucket[0 .. m) in place, per work-group, the group totals to block_total.
+__kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1)))
+void bucket_scan(const uint m, __global uint* bucket, __global ulong* block_total) {
+  __local ulong tmp[WG_SIZE];
+  const uint i = get_global_id(0);
+  const ulong v = i < m ? bucket[i] : 0;
+  const ulong s = group_inclusive_scan(v, tmp);
+  if (i < m) bucket[i] = (uint)(s - v);
+  if (get_local_id(0) == WG_SIZE - 1) block_total[get_group_id(0)] = s;
+}
+
+__kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1)))
+void bucket_offsets_add(const uint m, __global uint* bucket, __global const ulong* block_total) {
+  const uint i = get_global_id(0);
+  if (i < m) bucket[i] += (uint)block_total[get_group_id(0)];
+}
+
+__kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1)))
+void bin_fill(const int n, __global const REAL* x, __global const REAL* y, __global const int* level,
+              __global const int* state, __global const int* grid_mask, __global const uint* grid_bucket_offset,
+              __global const REAL* grid_inv_cell, __global volatile uint* bucket, __global int* grid_nodes) {
+  const int i = get_global_id(0);
+  if (i >= n || !bin_ok(state, n)) return;
+  const REAL xi = x[i], yi = y[i];
+  const int top = state[BIN_TOP];
+  for (int L = level[i]; L <= top; ++L)
+    if (grid_mask[L] >= 0)
+      grid_nodes[atomic_inc(&bucket[bin_bucket(xi, yi, L, grid_mask, grid_bucket_offset, grid_inv_cell)])] = i;
+}
