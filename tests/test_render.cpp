@@ -237,3 +237,48 @@ TEST_CASE("picture errors: bad extension, bad values, missing directory", "[rend
   CHECK_THROWS_AS(write_node_picture(dir / "missing" / "x.svg", rectangle_geometry(), NodeSet{}, {}), Error);
   fs::remove_all(dir);
 }
+
+TEST_CASE("mesh pictures shade triangles too small to draw instead of painting them black", "[render]") {
+  const fs::path dir = fresh_dir("dense");
+  // The unit square as a 300 x 300 grid of split cells (180,000 triangles): at 400 pixels a cell is
+  // about 1.3 pixels wide, below the smallest edge drawn.
+  Mesh m;
+  const int k = 300;
+  for (int j = 0; j <= k; ++j)
+    for (int i = 0; i <= k; ++i) m.points.push_back({static_cast<double>(i) / k, static_cast<double>(j) / k});
+  const auto id = [&](int i, int j) { return j * (k + 1) + i; };
+  for (int j = 0; j < k; ++j)
+    for (int i = 0; i < k; ++i) {
+      m.triangles.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
+      m.triangles.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
+    }
+  m.boundary_edges = {{id(0, 0), id(k, 0), 0}, {id(k, 0), id(k, k), 0}, {id(k, k), id(0, k), 0}, {id(0, k), id(0, 0), 0}};
+  m.curve_names = {"square"};
+  MeshPictureOptions o;
+  o.long_side = 400;
+  write_mesh_picture(dir / "dense.png", m, o);
+  Png png(dir / "dense.png");
+  REQUIRE(png.ok());
+  // The middle of the square: the uniform grey shade (0.55), neither black edges nor white paper.
+  double sum = 0;
+  int count = 0;
+  for (int y = 200; y < 240; ++y)
+    for (int x = 180; x < 220; ++x) {
+      const Rgb p = png.pixel(x, y);
+      CHECK(p.r == Approx(255 * 0.55).margin(3));
+      sum += p.r;
+      ++count;
+    }
+  CHECK(sum / count == Approx(255 * 0.55).margin(2));
+  // A coarse mesh keeps its edges: a pixel on the unit square's diagonal is dark.
+  const Mesh coarse = unit_square_mesh();
+  write_mesh_picture(dir / "coarse.png", coarse, o);
+  Png c(dir / "coarse.png");
+  REQUIRE(c.ok());
+  const double scale = 400 / 1.06;
+  const int x = static_cast<int>((0.5 + 0.03) * scale), y = static_cast<int>(40 + (1.03 - 0.5) * scale);
+  double darkest = 255;
+  for (int dy = -1; dy <= 1; ++dy) darkest = std::min(darkest, c.pixel(x, y + dy).r);
+  CHECK(darkest < 128);
+  fs::remove_all(dir);
+}

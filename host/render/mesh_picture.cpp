@@ -16,6 +16,10 @@ namespace {
 
 constexpr int kColourBarBand = 150;
 constexpr Rgb kNoValue{0.75, 0.75, 0.75};  // non-finite values
+// Interior edges shorter than this on screen are not drawn; triangles with one are shaded kDenseShade
+// (without a value fill).
+constexpr double kMinEdgePixels = 2.0;
+constexpr Rgb kDenseShade{0.55, 0.55, 0.55};
 
 // Samples of matplotlib's viridis at t = 0, 1/8, ..., 1, interpolated linearly in between.
 constexpr std::array<Rgb, 9> kViridis = {{{0.267, 0.005, 0.329},
@@ -110,7 +114,19 @@ void write_mesh_picture(const std::filesystem::path& path, const Mesh& mesh, con
     return canvas.visible(box);
   };
   render_picture(path, layout, [&](Canvas& canvas) {
-    // Fills first, then every edge on top of them.
+    // Interior edges shorter than kMinEdgePixels on screen are left out: at millions of triangles
+    // they would only paint the whole mesh black. Without a value fill, a triangle with such an
+    // edge is shaded grey instead, so dense parts read as meshed, not as empty.
+    const double min_edge_world = kMinEdgePixels / canvas.scale();
+    const auto shown = [&](Vec2 a, Vec2 b) { return dist(a, b) >= min_edge_world; };
+    if (values == nullptr) {
+      for (const auto& tri : mesh.triangles) {
+        const Vec2 a = mesh.points[tri[0]], b = mesh.points[tri[1]], c = mesh.points[tri[2]];
+        if (shown(a, b) && shown(b, c) && shown(c, a)) continue;
+        if (visible(canvas, tri)) canvas.fill_triangle(a, b, c, kDenseShade);
+      }
+    }
+    // Value fills first, then the edges on top of them.
     if (values != nullptr) {
       for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
         const auto& tri = mesh.triangles[t];
@@ -123,12 +139,18 @@ void write_mesh_picture(const std::filesystem::path& path, const Mesh& mesh, con
     }
     const double edge_width = 0.6;
     StrokeBatch lines(canvas, colours::kBlack, edge_width);
+    std::size_t skipped = 0;
     for (const auto& [i, j] : edges) {
       const Vec2 a = mesh.points[static_cast<std::size_t>(i)], b = mesh.points[static_cast<std::size_t>(j)];
       Box box;
       box.add(a);
       box.add(b);
-      if (canvas.visible(box)) lines.segment(a, b);
+      if (!canvas.visible(box)) continue;
+      if (shown(a, b)) {
+        lines.segment(a, b);
+      } else {
+        ++skipped;
+      }
     }
     lines.flush();
     {
@@ -136,7 +158,8 @@ void write_mesh_picture(const std::filesystem::path& path, const Mesh& mesh, con
       for (const BoundaryEdge& e : mesh.boundary_edges) boundary.segment(mesh.points[e.a], mesh.points[e.b]);
     }
     canvas.scale_bar();
-    canvas.title(fmt::format("{}   {} points, {} triangles", options.title, mesh.points.size(), mesh.triangles.size()));
+    canvas.title(fmt::format("{}   {} points, {} triangles{}", options.title, mesh.points.size(), mesh.triangles.size(),
+                             skipped > 0 ? fmt::format(" (edges under {} px not drawn)", kMinEdgePixels) : std::string()));
     if (values != nullptr) {
       draw_colour_bar(canvas, std::isfinite(lo) ? lo : 0.0, std::isfinite(hi) ? hi : 0.0, options.value_label);
     }
