@@ -22,14 +22,13 @@
 #ifndef PDMESH_GRID_LEVELS
 #error "PDMESH_GRID_LEVELS (grid levels at most, kBinLevels) must be defined by the program builder"
 #endif
-// bin_state (ints): what the host reads after a build with the row counters.
-#define BIN_FIRST_INVALID 0  // smallest invalid node (non-finite x, y or q, or q <= 0); INT_MAX: none
-#define BIN_TOP 1            // the top level
-#define BIN_TOO_MANY_LEVELS 2
-#define BIN_BUCKETS 3  // buckets the grids need
-#define BIN_MEMBERS 4  // grid entries the grids need
-#define BIN_TOO_SMALL 5
-#define BIN_LEVEL_COUNT 8  // PDMESH_GRID_LEVELS member counts follow
+// bin_state (ints): what the host reads after a build with the row counters. Its slots
+// (BIN_FIRST_INVALID, BIN_TOP, BIN_TOO_MANY_LEVELS, BIN_BUCKETS, BIN_MEMBERS, BIN_TOO_SMALL, then
+// PDMESH_GRID_LEVELS member counts from BIN_LEVEL_COUNT) are defined by the program builder from
+// host/opencl/step_program.hpp's BinStateSlot.
+#ifndef BIN_LEVEL_COUNT
+#error "the bin_state slots (BIN_*) must be defined by the program builder"
+#endif
 #define BIN_STATE_SIZE (BIN_LEVEL_COUNT + PDMESH_GRID_LEVELS)
 
 // splitmix64 finaliser over both cell coordinates (the reference's hash_key).

@@ -15,6 +15,12 @@
 //   sort_rows: sorts each interior row by node index (the reference's order: forces are summed in
 //     it) and counts the rows that outgrew their capacities; the host then builds again with
 //     capacities from the counts just found, which are exact.
+
+// The row counters' slots (ROW_OUTGROWN ... ROW_SPARE_FULL) come from the program builder
+// (host/opencl/step_program.hpp, RowCounter).
+#ifndef ROW_SPARE_FULL
+#error "the row counter slots (ROW_*) must be defined by the program builder"
+#endif
 #pragma OPENCL FP_CONTRACT OFF
 
 // Row capacities c + (c >> spare_shift) + spare_min from the counts c of the last build (0 for a first
@@ -57,7 +63,7 @@ void row_offsets_add(const int n, __global ulong* offset, __global const ulong* 
 }
 
 // Appends j to row r (see the top): the slot from the row's count, written inside the capacity; past
-// it, (r, j) goes to the spill list (counters[5] counts them, `spill_capacity` are kept) for
+// it, (r, j) goes to the spill list (counters[ROW_SPILLED] counts them, `spill_capacity` are kept) for
 // relocate_rows.
 void row_append(const int r, const int j, __global const ulong* offset, __global volatile int* count,
                 const ulong entries_size, __global int* entries, const uint spill_capacity, __global int* spill,
@@ -67,7 +73,7 @@ void row_append(const int r, const int j, __global const ulong* offset, __global
   if (slot < offset[r + 1] && slot < entries_size) {
     entries[slot] = j;
   } else {
-    const uint p = atomic_inc(&counters[5]);
+    const uint p = atomic_inc(&counters[ROW_SPILLED]);
     if (p < spill_capacity) {
       spill[2 * p] = r;
       spill[2 * p + 1] = j;
@@ -78,7 +84,7 @@ void row_append(const int r, const int j, __global const ulong* offset, __global
 // Kernel arguments: per grid g (2 per occupied level: cumulative C_L at 2L, exact E_L at 2L+1; absent
 // grids have inv_cell 0): inverse cell size, hash-table offset and mask, offsets into cell_start
 // (cells + 1 entries per grid) and cell_nodes. Rows: offset (n + 1, from the scan), count (zeroed by
-// the host), entries (entries_size slots), the spill list. counters[3] += pairs examined.
+// the host), entries (entries_size slots), the spill list. counters[ROW_EXAMINED] += pairs examined.
 __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1)))
 void gather_rows(const int n, const REAL radius_factor, __global const REAL* x, __global const REAL* y,
                  __global const REAL* q, __global const uchar* kind, __global const int* prev,
@@ -137,7 +143,7 @@ void gather_rows(const int n, const REAL radius_factor, __global const REAL* x, 
     atomic_add(&local_examined, examined);
   }
   barrier(CLK_LOCAL_MEM_FENCE);
-  if (get_local_id(0) == 0) atomic_add(&counters[3], local_examined);
+  if (get_local_id(0) == 0) atomic_add(&counters[ROW_EXAMINED], local_examined);
 }
 
 // Insertion sort of entries[base .. base + c) ascending (rows are short and nearly sorted by cell order).
@@ -154,8 +160,9 @@ void sort_row(__global int* entries, const ulong base, const int c) {
 }
 
 // Pass 2 (see the top): interior rows sorted ascending (insertion sort: rows are short and nearly
-// sorted by cell order). counters[0] = the rows that outgrew their capacities, counters[1] = the entries of
-// all rows, counters[2] = the largest row (atomic max), counters[4] = pairs within (interior rows).
+// sorted by cell order). counters[ROW_OUTGROWN] = the rows that outgrew their capacities,
+// counters[ROW_ENTRIES] = the entries of all rows, counters[ROW_LARGEST] = the largest row (atomic
+// max), counters[ROW_WITHIN] = pairs within (interior rows).
 __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1)))
 void sort_rows(const int n, __global const uchar* kind, __global const ulong* offset, __global const int* count,
                const ulong entries_size, __global int* entries, __global uint* counters) {
@@ -183,10 +190,10 @@ void sort_rows(const int n, __global const uchar* kind, __global const ulong* of
   }
   barrier(CLK_LOCAL_MEM_FENCE);
   if (get_local_id(0) == 0) {
-    if (local_overflow) atomic_add(&counters[0], local_overflow);
-    atomic_add(&counters[1], local_total);
-    atomic_max((__global int*)&counters[2], local_max);
-    atomic_add(&counters[4], local_within);
+    if (local_overflow) atomic_add(&counters[ROW_OUTGROWN], local_overflow);
+    atomic_add(&counters[ROW_ENTRIES], local_total);
+    atomic_max((__global int*)&counters[ROW_LARGEST], local_max);
+    atomic_add(&counters[ROW_WITHIN], local_within);
   }
 }
 
@@ -194,8 +201,9 @@ void sort_rows(const int n, __global const uchar* kind, __global const ulong* of
 // behind the last row, [offset[n], entries_size): its kept entries, then its spilled ones in spill
 // order (a boundary row's prev before next), sorted when interior. Its new start goes to the move
 // list (apply_row_moves writes it to offset[i]: this kernel still reads the capacities).
-// counters[6]: spare entries used; counters[7]: rows moved; counters[8]: the spare region was full. When the spill list, the spare region or
-// the move list is too small, nothing is moved and the host builds again (the counts are exact then).
+// counters[ROW_SPARE_USED]: spare entries used; counters[ROW_MOVED]: rows moved;
+// counters[ROW_SPARE_FULL]: the spare region was full. When the spill list, the spare region or the
+// move list is too small, nothing is moved and the host builds again (the counts are exact then).
 __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1)))
 void relocate_rows(const int n, __global const uchar* kind, __global const ulong* offset, __global const int* count,
                    const ulong entries_size, __global int* entries, const uint spill_capacity,
@@ -206,11 +214,11 @@ void relocate_rows(const int n, __global const uchar* kind, __global const ulong
   const int c = count[i];
   const ulong base = offset[i], cap = offset[i + 1] - base;
   if (base + (ulong)c <= offset[i + 1] && offset[i + 1] <= entries_size) return;
-  const uint spilled = counters[5];
-  if (spilled > spill_capacity || counters[0] > move_capacity) return;
-  const ulong start = offset[n] + (ulong)atomic_add(&counters[6], (uint)c);
+  const uint spilled = counters[ROW_SPILLED];
+  if (spilled > spill_capacity || counters[ROW_OUTGROWN] > move_capacity) return;
+  const ulong start = offset[n] + (ulong)atomic_add(&counters[ROW_SPARE_USED], (uint)c);
   if (start + (ulong)c > entries_size) {
-    atomic_or(&counters[8], 1U);  // the spare region is full: the host builds again
+    atomic_or(&counters[ROW_SPARE_FULL], 1U);  // the spare region is full: the host builds again
     return;
   }
   const ulong kept = min(cap, (ulong)c);
@@ -221,7 +229,7 @@ void relocate_rows(const int n, __global const uchar* kind, __global const ulong
   if (kind[i] == 2) {
     sort_row(entries, start, c);
   }
-  const uint m = atomic_inc(&counters[7]);
+  const uint m = atomic_inc(&counters[ROW_MOVED]);
   move_node[m] = i;
   move_start[m] = start;
 }
@@ -230,5 +238,5 @@ __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1)))
 void apply_row_moves(__global const int* move_node, __global const ulong* move_start, __global const uint* counters,
                      __global ulong* offset) {
   const uint k = get_global_id(0);
-  if (k < counters[7]) offset[move_node[k]] = move_start[k];
+  if (k < counters[ROW_MOVED]) offset[move_node[k]] = move_start[k];
 }

@@ -3,6 +3,7 @@
 // the choice of the force loop's shape (opencl/step_program.hpp: by device type, PDMESH_FORCE_LOOP,
 // or explicitly; the kernel refuses a program built without exactly one shape).
 #include <catch2/catch.hpp>
+#include <fmt/format.h>
 
 #include <cstdlib>
 #include <filesystem>
@@ -175,7 +176,14 @@ TEST_CASE("the program carries exactly one force-loop define, and the kernels re
   CHECK(vector.at("PDMESH_FORCE_LOOP_SCALAR") == "0");
   REQUIRE_THROWS_AS(step_program_defines(ocl::Precision::Double, 64, ForceLoop::Auto), DeviceError);
   const std::string source = program_source(step_program_files(), scalar);
-  CHECK(source.rfind("#define PDMESH_DOUBLE 1\n", 0) == 0);  // the defines come first, in name order
+  // The defines come first, in name order (the map's), the first one opening the source.
+  CHECK(source.rfind(fmt::format("#define {} {}\n", scalar.begin()->first, scalar.begin()->second), 0) == 0);
+  CHECK(source.find("#define PDMESH_DOUBLE 1\n") < source.find("#define REAL double\n"));
+  // The slots of the words a neighbour build leaves for the host, one definition for host and kernels.
+  CHECK(scalar.at("BIN_FIRST_INVALID") == std::to_string(kBinFirstInvalid));
+  CHECK(scalar.at("BIN_LEVEL_COUNT") == std::to_string(kBinHead));
+  CHECK(scalar.at("ROW_SPILLED") == std::to_string(kRowSpilled));
+  CHECK(scalar.at("ROW_SPARE_FULL") == std::to_string(kRowCounters - 1));
   CHECK(source.find("#define PDMESH_FORCE_LOOP_SCALAR 1\n") != std::string::npos);
   CHECK(source.find("// ---- forces.cl ----") != std::string::npos);
 

@@ -17,11 +17,10 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
-constexpr std::array<std::uint32_t, 9> kZeroCounters{};
+constexpr std::array<std::uint32_t, kRowCounters> kZeroCounters{};
 
-// kernels/binning.cl's bin_state: entries the host reads, and its initial contents.
-constexpr std::size_t kBinFirstInvalid = 0, kBinTooManyLevels = 2, kBinBuckets = 3, kBinMembers = 4, kBinTooSmall = 5,
-                      kBinHead = 8, kBinStateSize = kBinHead + kBinLevels;
+// kernels/binning.cl's bin_state: its initial contents (slots: step_program.hpp).
+constexpr std::size_t kBinStateSize = kBinHead + kBinLevels;
 const std::array<std::int32_t, kBinStateSize> kBinStateInit = [] {
   std::array<std::int32_t, kBinStateSize> a{};
   a[kBinFirstInvalid] = std::numeric_limits<std::int32_t>::max();
@@ -172,21 +171,23 @@ NeighbourFlags DeviceNeighbours<Real>::build(std::size_t n, double radius_factor
     member_capacity_ = std::max<std::uint64_t>(member_capacity_, with_slack(static_cast<std::uint64_t>(state[kBinMembers])));
     bucket_capacity_ = std::max<std::uint64_t>(bucket_capacity_, with_slack(static_cast<std::uint64_t>(state[kBinBuckets])));
     if (grids_fit) {
-      outgrown_rows += c[0];
+      outgrown_rows += c[kRowOutgrown];
       counted_n_ = n;
-      counted_total_ = c[1];
+      counted_total_ = c[kRowEntries];
       // Rows that outgrew their capacities were moved behind the others, unless the spill list, the
       // move list or the spare region was too small: then build again with the counts (exact now).
-      if (c[0] == 0 || (c[5] <= spill_capacity && c[0] <= move_capacity && c[8] == 0)) break;
+      if (c[kRowOutgrown] == 0 || (c[kRowSpilled] <= spill_capacity && c[kRowOutgrown] <= move_capacity &&
+                                     c[kRowSpareFull] == 0))
+        break;
     }
     if (attempt >= 3)
       throw SimulationError(fmt::format("neighbour rows still outgrow their capacities after {} passes", attempt + 1));
   }
   attempts = attempt + 1;
   if (flags.first_invalid < 0) {
-    flags.max_count = static_cast<std::int32_t>(c[2]);
-    flags.pairs_examined = c[3];
-    flags.pairs_within = c[4];
+    flags.max_count = static_cast<std::int32_t>(c[kRowLargest]);
+    flags.pairs_examined = c[kRowExamined];
+    flags.pairs_within = c[kRowWithin];
   }
   gather_seconds = seconds_since(t0);
   return flags;

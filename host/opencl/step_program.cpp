@@ -99,6 +99,17 @@ std::map<std::string, std::string> step_program_defines(Precision precision, std
   d.emplace("PDMESH_FORCE_LOOP_VECTOR", loop == ForceLoop::Vector ? "1" : "0");
   d.emplace("PDMESH_FORCE_LOOP_SCALAR", loop == ForceLoop::Scalar ? "1" : "0");
   d.emplace("PDMESH_GRID_LEVELS", std::to_string(kBinLevels));
+  for (const auto& [name, slot] : {std::pair{"BIN_FIRST_INVALID", kBinFirstInvalid}, {"BIN_TOP", kBinTop},
+                                   {"BIN_TOO_MANY_LEVELS", kBinTooManyLevels}, {"BIN_BUCKETS", kBinBuckets},
+                                   {"BIN_MEMBERS", kBinMembers}, {"BIN_TOO_SMALL", kBinTooSmall},
+                                   {"BIN_LEVEL_COUNT", kBinHead}})
+    d.emplace(name, std::to_string(static_cast<int>(slot)));
+  for (const auto& [name, slot] : {std::pair{"ROW_OUTGROWN", kRowOutgrown}, {"ROW_ENTRIES", kRowEntries},
+                                   {"ROW_LARGEST", kRowLargest}, {"ROW_EXAMINED", kRowExamined},
+                                   {"ROW_WITHIN", kRowWithin}, {"ROW_SPILLED", kRowSpilled},
+                                   {"ROW_SPARE_USED", kRowSpareUsed}, {"ROW_MOVED", kRowMoved},
+                                   {"ROW_SPARE_FULL", kRowSpareFull}})
+    d.emplace(name, std::to_string(static_cast<int>(slot)));
   return d;
 }
 

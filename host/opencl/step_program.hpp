@@ -45,6 +45,32 @@ std::map<std::string, std::string> step_program_defines(Precision precision, std
 // the list radii of a run span less than 2^kBinLevels.
 inline constexpr int kBinLevels = 64;
 
+// Slots of the words a neighbour build leaves for the host: the binning's state (kernels/binning.cl,
+// bin_state: kBinHead words, then kBinLevels member counts) and the row counters (kernels/neighbours.cl).
+// Defined once here; step_program_defines passes each to the kernels as a define (BIN_FIRST_INVALID,
+// ROW_OUTGROWN, ...), so host and kernels index the same slot.
+enum BinStateSlot : int {
+  kBinFirstInvalid = 0,   // smallest invalid node (non-finite x, y or q, or q <= 0); INT_MAX: none
+  kBinTop = 1,            // the top level
+  kBinTooManyLevels = 2,  // the radii span more than kBinLevels levels
+  kBinBuckets = 3,        // buckets the grids need
+  kBinMembers = 4,        // grid entries the grids need
+  kBinTooSmall = 5,       // the grids did not fit their capacities
+  kBinHead = 8            // the per-level member counts follow
+};
+enum RowCounter : int {
+  kRowOutgrown = 0,   // rows that outgrew their capacities
+  kRowEntries = 1,    // entries of all rows
+  kRowLargest = 2,    // the largest row (atomic max)
+  kRowExamined = 3,   // candidate pairs examined
+  kRowWithin = 4,     // pairs within the cut-off (interior rows)
+  kRowSpilled = 5,    // entries sent to the spill list
+  kRowSpareUsed = 6,  // spare entries taken by moved rows
+  kRowMoved = 7,      // rows moved behind the others
+  kRowSpareFull = 8,  // the spare region was full: build again
+  kRowCounters = 9    // how many
+};
+
 // What the device allows one kernel of the program (clGetKernelWorkGroupInfo).
 struct KernelLimits {
   std::string name;
