@@ -6,7 +6,10 @@
 #pragma OPENCL FP_CONTRACT OFF
 
 #define BOUNDARY_PARTIALS 3  // clamped count, non-finite targets | max skin use
-#define MAX_GAP_FRACTION REAL_C(0.45)  // BoundaryHandler::kMaxGapFraction
+// MAX_GAP_FRACTION: BoundaryHandler::kMaxGapFraction, defined by the program builder.
+#ifndef MAX_GAP_FRACTION
+#error "MAX_GAP_FRACTION must be defined by the program builder"
+#endif
 
 // unit(v) of boundary_handling.cpp: v / |v| as (1 / |v|) v, zero for a zero vector.
 REAL2 unit2(const REAL2 v) {

@@ -184,6 +184,7 @@ TEST_CASE("the program carries exactly one force-loop define, and the kernels re
   CHECK(scalar.at("BIN_LEVEL_COUNT") == std::to_string(kBinHead));
   CHECK(scalar.at("ROW_SPILLED") == std::to_string(kRowSpilled));
   CHECK(scalar.at("ROW_SPARE_FULL") == std::to_string(kRowCounters - 1));
+  CHECK(scalar.at("MAX_GAP_FRACTION") == "REAL_C(0.45)");  // BoundaryHandler::kMaxGapFraction
   CHECK(source.find("#define PDMESH_FORCE_LOOP_SCALAR 1\n") != std::string::npos);
   CHECK(source.find("// ---- forces.cl ----") != std::string::npos);
 

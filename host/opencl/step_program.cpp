@@ -4,7 +4,10 @@
 #include <atomic>
 #include <cstdlib>
 
+#include <fmt/format.h>
+
 #include "core/errors.hpp"
+#include "sim/boundary_handling.hpp"
 
 namespace pdmesh::ocl {
 namespace {
@@ -99,6 +102,8 @@ std::map<std::string, std::string> step_program_defines(Precision precision, std
   d.emplace("PDMESH_FORCE_LOOP_VECTOR", loop == ForceLoop::Vector ? "1" : "0");
   d.emplace("PDMESH_FORCE_LOOP_SCALAR", loop == ForceLoop::Scalar ? "1" : "0");
   d.emplace("PDMESH_GRID_LEVELS", std::to_string(kBinLevels));
+  // kernels/boundary.cl's Jacobi rule: the host's fraction (shortest round-trip text, so the same double).
+  d.emplace("MAX_GAP_FRACTION", fmt::format("REAL_C({})", BoundaryHandler::kMaxGapFraction));
   for (const auto& [name, slot] : {std::pair{"BIN_FIRST_INVALID", kBinFirstInvalid}, {"BIN_TOP", kBinTop},
                                    {"BIN_TOO_MANY_LEVELS", kBinTooManyLevels}, {"BIN_BUCKETS", kBinBuckets},
                                    {"BIN_MEMBERS", kBinMembers}, {"BIN_TOO_SMALL", kBinTooSmall},
