@@ -121,10 +121,13 @@ void gather_rows(const int n, const REAL radius_factor, __global const REAL* x, 
       const ulong mask = (ulong)grid_mask[own];
       for (long cy = y0; cy <= y1; ++cy) {
         for (long cx = x0; cx <= x1; ++cx) {
-          const uint b = bucket_base + (uint)(nb_hash(cx, cy) & mask);
+          const ulong h = nb_hash(cx, cy);
+          const uint b = bucket_base + (uint)(h & mask), tag = nb_tag(h);
           const uint end = bucket[b];
           for (uint k = b > 0 ? bucket[b - 1] : 0; k < end; ++k) {
-            const int j = grid_nodes[k];
+            const uint e = (uint)grid_nodes[k];
+            if ((e & ~GRID_NODE_MASK) != tag) continue;  // another cell (most of them: no position loads)
+            const int j = (int)(e & GRID_NODE_MASK);
             if (j == i) continue;
             // Only the probed cell's nodes (a bucket may hold other cells, one of them probed too).
             if (nb_cell_coord(x[j], inv_cell) != cx || nb_cell_coord(y[j], inv_cell) != cy) continue;

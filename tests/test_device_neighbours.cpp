@@ -247,11 +247,15 @@ TEST_CASE("device binning puts every node in the cells the host binning does", "
       for (std::uint32_t k = 0; k < buckets; ++k) {
         const std::uint32_t bi = first + k;
         for (std::uint32_t e = bi > 0 ? bucket[bi - 1] : 0; e < bucket[bi]; ++e) {
-          const std::int32_t j = nodes[e];
+          const auto j = static_cast<std::int32_t>(static_cast<std::uint32_t>(nodes[e]) &
+                                                   ((1U << ocl::kGridNodeBits) - 1U));
           const double ic = inv_cell[static_cast<std::size_t>(L)];
           const auto cell = std::pair{static_cast<std::int64_t>(std::floor(in.p.x[static_cast<std::size_t>(j)] * ic)),
                                       static_cast<std::int64_t>(std::floor(in.p.y[static_cast<std::size_t>(j)] * ic))};
           CHECK((cell_hash(cell.first, cell.second) & static_cast<std::uint64_t>(buckets - 1)) == k);
+          // The entry's tag: the top bits of its cell's hash.
+          CHECK((static_cast<std::uint32_t>(nodes[e]) >> ocl::kGridNodeBits) ==
+                (cell_hash(cell.first, cell.second) >> (32 + ocl::kGridNodeBits)));
           device_cells[cell].push_back(j);
         }
       }

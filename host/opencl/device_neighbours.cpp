@@ -63,6 +63,9 @@ NeighbourFlags DeviceNeighbours<Real>::build(std::size_t n, double radius_factor
     gather_seconds = seconds_since(t0);
     return flags;
   }
+  if (n >= (std::size_t{1} << kGridNodeBits))
+    throw LimitError(fmt::format("{} nodes are more than the device neighbour build indexes ({} at most)", n,
+                                 (std::size_t{1} << kGridNodeBits) - 1));
   const std::size_t wg = program_.work_group, groups = (n + wg - 1) / wg;
   ensure_size(ctx_, level_, "level", n);
   ensure_size(ctx_, bin_state_, "bin_state", kBinStateSize);
