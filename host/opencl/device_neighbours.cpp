@@ -51,7 +51,9 @@ NeighbourFlags DeviceNeighbours<Real>::build(std::size_t n, double radius_factor
   ensure_size(ctx_, counters_, "neighbour_counters", kZeroCounters.size());
   ensure_size(ctx_, offset_, "neighbour_offset", n + 1);
   // The counts of another node set say nothing about these rows: start from zero (a counting build).
+  bool have_counts = true;  // count_ holds the last build's counts of these n nodes
   if (n != counted_n_ || count_.size() < n) {
+    have_counts = false;
     ensure_size(ctx_, count_, "neighbour_count", n);
     if (n > 0) fill_zero(ctx_.queue(), count_.get(), n * sizeof(cl_int), "clearing 'neighbour_count'");
     counted_total_ = 0;
@@ -145,15 +147,18 @@ NeighbourFlags DeviceNeighbours<Real>::build(std::size_t n, double radius_factor
     fill_zero(ctx_.queue(), count_.get(), n * sizeof(cl_int), "clearing 'neighbour_count'");
     counters_.upload(ctx_.queue(), kZeroCounters.data(), kZeroCounters.size(), false);
     uploaded_bytes += sizeof(kZeroCounters);
+    // Without counts every row would outgrow its capacity: count only, then build with the counts.
+    const bool counting = !have_counts;
     ArgSetter(program_.gather_rows, "gather_rows")(n_arg)(radius)(x)(y)(q)(kind)(prev)(next)(level_)(bin_state_)(
         grid_mask_)(grid_bucket_offset_)(grid_inv_cell_)(bucket_)(grid_nodes_)(offset_)(count_)(entries_size)(index_)(
-        static_cast<cl_uint>(spill_capacity))(spill_)(counters_);
+        static_cast<cl_uint>(spill_capacity))(spill_)(counters_)(static_cast<cl_int>(counting ? 1 : 0));
     launch(ctx_.queue(), program_.gather_rows, "gather_rows", n, wg);
     ArgSetter(program_.sort_rows, "sort_rows")(n_arg)(kind)(offset_)(count_)(entries_size)(index_)(counters_);
     launch(ctx_.queue(), program_.sort_rows, "sort_rows", n, wg);
+    // A counting pass moves nothing (move capacity 0): the next pass builds with the counts.
     ArgSetter(program_.relocate_rows, "relocate_rows")(n_arg)(kind)(offset_)(count_)(entries_size)(index_)(
-        static_cast<cl_uint>(spill_capacity))(spill_)(static_cast<cl_uint>(move_capacity))(move_node_)(move_start_)(
-        counters_);
+        static_cast<cl_uint>(spill_capacity))(spill_)(static_cast<cl_uint>(counting ? 0 : move_capacity))(move_node_)(
+        move_start_)(counters_);
     launch(ctx_.queue(), program_.relocate_rows, "relocate_rows", n, wg);
     ArgSetter(program_.apply_row_moves, "apply_row_moves")(move_node_)(move_start_)(counters_)(offset_);
     launch(ctx_.queue(), program_.apply_row_moves, "apply_row_moves", move_capacity, wg);
@@ -174,13 +179,14 @@ NeighbourFlags DeviceNeighbours<Real>::build(std::size_t n, double radius_factor
     member_capacity_ = std::max<std::uint64_t>(member_capacity_, with_slack(static_cast<std::uint64_t>(state[kBinMembers])));
     bucket_capacity_ = std::max<std::uint64_t>(bucket_capacity_, with_slack(static_cast<std::uint64_t>(state[kBinBuckets])));
     if (grids_fit) {
+      have_counts = true;
       outgrown_rows += c[kRowOutgrown];
       counted_n_ = n;
       counted_total_ = c[kRowEntries];
       // Rows that outgrew their capacities were moved behind the others, unless the spill list, the
       // move list or the spare region was too small: then build again with the counts (exact now).
-      if (c[kRowOutgrown] == 0 || (c[kRowSpilled] <= spill_capacity && c[kRowOutgrown] <= move_capacity &&
-                                     c[kRowSpareFull] == 0))
+      if (!counting && (c[kRowOutgrown] == 0 || (c[kRowSpilled] <= spill_capacity && c[kRowOutgrown] <= move_capacity &&
+                                                   c[kRowSpareFull] == 0)))
         break;
     }
     if (attempt >= 3)
