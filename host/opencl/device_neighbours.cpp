@@ -84,14 +84,19 @@ NeighbourFlags DeviceNeighbours<Real>::build(std::size_t n, double radius_factor
   std::vector<std::uint32_t> c;
   std::vector<std::int32_t> state;
   int attempt = 0;
+  bool binned = false;  // the grids of these positions are built (an earlier pass of this build)
   for (;; ++attempt) {
     constexpr std::uint64_t kMaxIndex = std::numeric_limits<std::int32_t>::max();
     if (bucket_capacity_ > kMaxIndex || member_capacity_ > kMaxIndex)
       throw SimulationError(fmt::format("the neighbour grids of {} nodes need {} buckets and {} entries, more than "
                                         "the device binning indexes (2^31)",
                                         n, bucket_capacity_, member_capacity_));
-    ensure_size(ctx_, bucket_, "grid_bucket", bucket_capacity_);
-    ensure_size(ctx_, grid_nodes_, "grid_nodes", member_capacity_);
+    // A pass after one whose grids fit (a counting pass, or rows that outgrew) keeps those grids: the
+    // positions are the same. Growing a grid buffer would drop its contents.
+    if (!binned) {
+      ensure_size(ctx_, bucket_, "grid_bucket", bucket_capacity_);
+      ensure_size(ctx_, grid_nodes_, "grid_nodes", member_capacity_);
+    }
     const std::size_t buckets = bucket_.size(), bucket_groups = (buckets + wg - 1) / wg;
     ensure_size(ctx_, block_total_, "neighbour_block_total", std::max(groups, bucket_groups) + 1);
     // Every capacity sum bounds offset[n]: sum(c + c >> s + m) <= total + total >> s + m n; behind
@@ -111,31 +116,35 @@ NeighbourFlags DeviceNeighbours<Real>::build(std::size_t n, double radius_factor
     }
     const cl_ulong entries_size = index_.size() - kRowTail;
     // Binning (kernels/binning.cl).
-    bin_state_.upload(ctx_.queue(), kBinStateInit.data(), kBinStateInit.size(), false);
-    uploaded_bytes += sizeof(kBinStateInit);
-    ArgSetter(program_.bin_bounds, "bin_bounds")(n_arg)(radius)(x)(y)(q)(bin_partial_)(bin_state_);
-    launch(ctx_.queue(), program_.bin_bounds, "bin_bounds", n, wg);
-    ArgSetter(program_.bin_rmin, "bin_rmin")(groups_arg)(bin_partial_);
-    launch(ctx_.queue(), program_.bin_rmin, "bin_rmin", wg, wg);
-    ArgSetter(program_.bin_levels, "bin_levels")(n_arg)(groups_arg)(radius)(q)(bin_partial_)(level_)(bin_state_);
-    launch(ctx_.queue(), program_.bin_levels, "bin_levels", n, wg);
-    ArgSetter(program_.bin_plan, "bin_plan")(n_arg)(groups_arg)(static_cast<cl_uint>(buckets))(
-        static_cast<cl_uint>(grid_nodes_.size()))(bin_partial_)(bin_state_)(grid_mask_)(grid_bucket_offset_)(
-        grid_inv_cell_);
-    launch(ctx_.queue(), program_.bin_plan, "bin_plan", wg, wg);
-    fill_zero(ctx_.queue(), bucket_.get(), buckets * sizeof(cl_uint), "clearing 'grid_bucket'");
-    ArgSetter(program_.bin_count, "bin_count")(n_arg)(x)(y)(level_)(bin_state_)(grid_mask_)(grid_bucket_offset_)(
-        grid_inv_cell_)(bucket_);
-    launch(ctx_.queue(), program_.bin_count, "bin_count", n, wg);
-    ArgSetter(program_.bucket_scan, "bucket_scan")(static_cast<cl_uint>(buckets))(bucket_)(block_total_);
-    launch(ctx_.queue(), program_.bucket_scan, "bucket_scan", buckets, wg);
-    ArgSetter(program_.row_block_offsets, "row_block_offsets")(static_cast<cl_int>(bucket_groups))(block_total_);
-    launch(ctx_.queue(), program_.row_block_offsets, "row_block_offsets", wg, wg);
-    ArgSetter(program_.bucket_offsets_add, "bucket_offsets_add")(static_cast<cl_uint>(buckets))(bucket_)(block_total_);
-    launch(ctx_.queue(), program_.bucket_offsets_add, "bucket_offsets_add", buckets, wg);
-    ArgSetter(program_.bin_fill, "bin_fill")(n_arg)(x)(y)(level_)(bin_state_)(grid_mask_)(grid_bucket_offset_)(
-        grid_inv_cell_)(bucket_)(grid_nodes_);
-    launch(ctx_.queue(), program_.bin_fill, "bin_fill", n, wg);
+    if (!binned) {
+      bin_state_.upload(ctx_.queue(), kBinStateInit.data(), kBinStateInit.size(), false);
+      uploaded_bytes += sizeof(kBinStateInit);
+      ArgSetter(program_.bin_bounds, "bin_bounds")(n_arg)(radius)(x)(y)(q)(bin_partial_)(bin_state_);
+      launch(ctx_.queue(), program_.bin_bounds, "bin_bounds", n, wg);
+      ArgSetter(program_.bin_rmin, "bin_rmin")(groups_arg)(bin_partial_);
+      launch(ctx_.queue(), program_.bin_rmin, "bin_rmin", wg, wg);
+      ArgSetter(program_.bin_levels, "bin_levels")(n_arg)(groups_arg)(radius)(q)(bin_partial_)(level_)(bin_state_);
+      launch(ctx_.queue(), program_.bin_levels, "bin_levels", n, wg);
+      ArgSetter(program_.bin_plan, "bin_plan")(n_arg)(groups_arg)(static_cast<cl_uint>(buckets))(
+          static_cast<cl_uint>(grid_nodes_.size()))(bin_partial_)(bin_state_)(grid_mask_)(grid_bucket_offset_)(
+          grid_inv_cell_);
+      launch(ctx_.queue(), program_.bin_plan, "bin_plan", wg, wg);
+      fill_zero(ctx_.queue(), bucket_.get(), buckets * sizeof(cl_uint), "clearing 'grid_bucket'");
+      ArgSetter(program_.bin_count, "bin_count")(n_arg)(x)(y)(level_)(bin_state_)(grid_mask_)(grid_bucket_offset_)(
+          grid_inv_cell_)(bucket_);
+      launch(ctx_.queue(), program_.bin_count, "bin_count", n, wg);
+      ArgSetter(program_.bucket_scan, "bucket_scan")(static_cast<cl_uint>(buckets))(bucket_)(block_total_);
+      launch(ctx_.queue(), program_.bucket_scan, "bucket_scan", buckets, wg);
+      ArgSetter(program_.row_block_offsets, "row_block_offsets")(static_cast<cl_int>(bucket_groups))(block_total_);
+      launch(ctx_.queue(), program_.row_block_offsets, "row_block_offsets", wg, wg);
+      ArgSetter(program_.bucket_offsets_add, "bucket_offsets_add")(static_cast<cl_uint>(buckets))(bucket_)(
+          block_total_);
+      launch(ctx_.queue(), program_.bucket_offsets_add, "bucket_offsets_add", buckets, wg);
+      ArgSetter(program_.bin_fill, "bin_fill")(n_arg)(x)(y)(level_)(bin_state_)(grid_mask_)(grid_bucket_offset_)(
+          grid_inv_cell_)(bucket_)(grid_nodes_);
+      launch(ctx_.queue(), program_.bin_fill, "bin_fill", n, wg);
+      launches += 9;
+    }
     // Rows (kernels/neighbours.cl).
     ArgSetter(program_.row_capacity_scan, "row_capacity_scan")(n_arg)(static_cast<cl_int>(kSpareShift))(
         static_cast<cl_int>(kSpareMin))(count_)(offset_)(block_total_);
@@ -162,7 +171,7 @@ NeighbourFlags DeviceNeighbours<Real>::build(std::size_t n, double radius_factor
     launch(ctx_.queue(), program_.relocate_rows, "relocate_rows", n, wg);
     ArgSetter(program_.apply_row_moves, "apply_row_moves")(move_node_)(move_start_)(counters_)(offset_);
     launch(ctx_.queue(), program_.apply_row_moves, "apply_row_moves", move_capacity, wg);
-    launches += 16;
+    launches += 7;
     // The build's one wait: the counters and the binning's state.
     bin_state_.download(ctx_.queue(), state, kBinHead, false);
     counters_.download(ctx_.queue(), c, kZeroCounters.size());
@@ -179,6 +188,7 @@ NeighbourFlags DeviceNeighbours<Real>::build(std::size_t n, double radius_factor
     member_capacity_ = std::max<std::uint64_t>(member_capacity_, with_slack(static_cast<std::uint64_t>(state[kBinMembers])));
     bucket_capacity_ = std::max<std::uint64_t>(bucket_capacity_, with_slack(static_cast<std::uint64_t>(state[kBinBuckets])));
     if (grids_fit) {
+      binned = true;
       have_counts = true;
       outgrown_rows += c[kRowOutgrown];
       counted_n_ = n;
