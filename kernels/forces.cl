@@ -84,15 +84,13 @@ void node_forces(const int i, const int stride, const int count, const long base
   const REAL8 four_a_pos = (REAL8)((REAL)4 * lj_a);
   const REAL8 zero = (REAL8)((REAL)0), one = (REAL8)((REAL)1);
   REAL fx = (REAL)0, fy = (REAL)0, stiffness = (REAL)0;
-  // Counted per lane (a mask lane is -1 where true) and summed across lanes once after the loop: a
-  // horizontal sum per chunk cost ~30 shuffles and adds.
-  MASK8 coincident_lanes = (MASK8)(0), within_lanes = (MASK8)(0);
+  int coincident = 0, within = 0;
   for (int k0 = 0; k0 < count; k0 += 8) {
     int8 j;
     REAL8 dx, dy, r2;
     const MASK8 in_range = row_chunk_offsets(i, stride, count, base, k0, xi, yi, filter, rc2, x, y, index, &j, &dx, &dy, &r2);
-    within_lanes += in_range;
-    coincident_lanes += in_range & (r2 == zero);
+    within += (int)COUNT8(in_range);
+    coincident += (int)COUNT8(in_range & (r2 == zero));
     const MASK8 use = in_range & (r2 > zero);
     const REAL8 inv_r2 = one / select(one, r2, use);
     const REAL8 inv_r = sqrt(inv_r2);
@@ -110,7 +108,6 @@ void node_forces(const int i, const int stride, const int count, const long base
     const REAL8 cs = select(zero, select(transverse, radial, radial > transverse), use);
     ADD8_IN_ORDER(stiffness, cs);
   }
-  const int within = (int)COUNT8(within_lanes), coincident = (int)COUNT8(coincident_lanes);
   *dt2_limit_out = stability_factor > (REAL)0 && stiffness > (REAL)0 ? (REAL)2 * stability_factor / stiffness : INFINITY;
   // Boundary nodes slide along their curve: keep the tangential component only.
   const REAL ft = fx * tx + fy * ty;
