@@ -502,7 +502,9 @@ void DeviceRun<Real>::step_kernel(double dt_gm2) {
       static_cast<Real>(options_.lj_a))(static_cast<cl_int>(options_.r0_any_direction ? 1 : 0))(
       static_cast<Real>(options_.stability_factor))(static_cast<Real>(dt_gm2))(static_cast<Real>(options_.verlet_skin * options_.cutoff))(x_[cur_])(y_[cur_])(
       q_[cur_])(kind_)(tx_)(ty_)(neighbours_.count())(neighbours_.offset())(neighbours_.index())(x_build_)(y_build_)(q_build_)(bslot_)(
-      x_[next])(y_[next])(q_[next])(budget_)(node_leaf_)(brec_)(cand_index_)(cand_rec_)(counters_)(partials_);
+      x_[next])(y_[next])(q_[next])(budget_)(node_leaf_)(brec_)(cand_index_)(cand_rec_)(counters_)(partials_)(
+      device_boundary_.segments())(static_cast<cl_int>(device_boundary_.segment_count()))(
+      static_cast<Real>(device_boundary_.segment_scale()));
   bg_args(a);
   launch(ctx_.queue(), program_.device_step, "device_step", n_, program_.work_group);
   ++stats_.launches;

@@ -92,7 +92,7 @@ ForceLoop resolve_force_loop(ForceLoop requested, const std::string& device_type
 const std::vector<std::string>& step_program_files() {
   static const std::vector<std::string> files = {"spacing_field.cl", "reduce.cl",     "forces.cl",
                                                  "time_step.cl",     "binning.cl",    "neighbours.cl",
-                                                 "device_step.cl",   "boundary.cl"};
+                                                 "clearance.cl",     "device_step.cl", "boundary.cl"};
   return files;
 }
 
@@ -137,7 +137,8 @@ StepProgram::StepProgram(Context& ctx, Precision p, ForceLoop loop, std::size_t 
       {&apply_row_moves, "apply_row_moves"},
       {&compute_forces, "compute_forces"},     {&time_step_and_move, "time_step_and_move"},
       {&reduce, "reduce"},                     {&device_step, "device_step"},
-      {&apply_host_moves, "apply_host_moves"}, {&boundary_snap, "boundary_snap"}};
+      {&apply_host_moves, "apply_host_moves"}, {&boundary_snap, "boundary_snap"},
+      {&clearance_points, "clearance_points"}};
   // Every kernel declares reqd_work_group_size(WG_SIZE): a device that cannot run a group that size
   // (registers, local memory) would fail at the first enqueue with CL_INVALID_WORK_GROUP_SIZE or
   // CL_OUT_OF_RESOURCES; checked here, it fails before the run with the reason.
