@@ -103,6 +103,8 @@ void boundary_snap(const int m, __global const int* slot_node, __global const in
   const int s = get_global_id(0), l = get_local_id(0);
   REAL clamped = (REAL)0, bad = (REAL)0, skin_use = (REAL)0;
   // device_step found a move that is not finite: nothing is written (tangents are updated in place).
+  // The window was halted before this iteration (kernels/window.cl): nothing at all.
+  if (step_counters[WINDOW_HALT] != 0) return;
   const int halted = step_counters[1] != 0;
   if (s < m) {
     const int i = slot_node[s], c = slot_curve[s], pos = slot_pos[s];

@@ -46,7 +46,7 @@ REAL bg_spacing_cached(const REAL px, const REAL py, int* leaf, BG_ARGS) {
 // does not touch; the host covers the rest).
 __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1)))
 void device_step(const int n, const REAL cutoff, const REAL lj_a, const int r0_any_direction,
-                 const REAL stability_factor, const REAL dt_gm2, const REAL skin_cutoff, __global const REAL* x, __global const REAL* y,
+                 const REAL stability_factor, __global const REAL* dt_gm2_in, const REAL skin_cutoff, __global const REAL* x, __global const REAL* y,
                  __global const REAL* q, __global const uchar* kind, __global const REAL* tx,
                  __global const REAL* ty, __global const int* count, __global const ulong* row_offset,
                  __global const int* index,
@@ -56,6 +56,9 @@ void device_step(const int n, const REAL cutoff, const REAL lj_a, const int r0_a
                  __global int* counters, __global REAL* partials, __global const REAL* segs, const int n_segs,
                  const REAL seg_scale, BG_ARGS) {
   __local REAL values[STEP_PARTIALS * WG_SIZE];
+  // The window was halted for the host (kernels/window.cl): this iteration does nothing (uniform exit).
+  if (counters[WINDOW_HALT] != 0) return;
+  const REAL dt_gm2 = dt_gm2_in[0];  // the time-step rule's (iteration_rule or the host)
   const int i = get_global_id(0), l = get_local_id(0);
   const int active = i < n;
   // Every work-item runs the same code up to the group reduction; padding ones are masked.

@@ -1,6 +1,8 @@
 // Builds the simulation program, creates its kernels and checks their work-group limits; see step_program.hpp.
 #include "opencl/step_program.hpp"
 
+#include "opencl/device_window.hpp"
+
 #include <atomic>
 #include <cstdlib>
 
@@ -92,7 +94,8 @@ ForceLoop resolve_force_loop(ForceLoop requested, const std::string& device_type
 const std::vector<std::string>& step_program_files() {
   static const std::vector<std::string> files = {"spacing_field.cl", "reduce.cl",     "forces.cl",
                                                  "time_step.cl",     "binning.cl",    "neighbours.cl",
-                                                 "clearance.cl",     "device_step.cl", "boundary.cl"};
+                                                 "clearance.cl",     "device_step.cl", "boundary.cl",
+                                                 "window.cl"};
   return files;
 }
 
@@ -115,6 +118,8 @@ std::map<std::string, std::string> step_program_defines(Precision precision, std
                                    {"ROW_SPARE_USED", kRowSpareUsed}, {"ROW_MOVED", kRowMoved},
                                    {"ROW_SPARE_FULL", kRowSpareFull}})
     d.emplace(name, std::to_string(static_cast<int>(slot)));
+  for (const auto& [name, value] : window_defines())
+    if (!d.emplace(name, value).second) throw DeviceError(fmt::format("step program: the define {} is given twice", name));
   return d;
 }
 
@@ -150,6 +155,9 @@ StepProgram::StepProgram(Context& ctx, Precision p, ForceLoop loop, std::size_t 
     check_work_group(name, ctx.device().name, wg, std::min(k.max_work_group, ctx.device().max_work_group));
     limits.push_back(k);
   }
+  // kernels/window.cl needs cl_khr_fp64 (the time-step rule's state is double); without it the host
+  // runs the rule (DeviceWindow).
+  if (ctx.device().fp64) iteration_rule = make_kernel(program, "iteration_rule");
 }
 
 }  // namespace pdmesh::ocl
