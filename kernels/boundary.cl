@@ -59,13 +59,11 @@ void closest_on_curve(__global const REAL* p, __global const REAL* arc, const in
     const REAL dx = bx - ax, dy = by - ay;
     const REAL v = ((px - ax) * dx + (py - ay) * dy) / (dx * dx + dy * dy);
     const REAL t = v < t_lo ? t_lo : (t_hi < v ? t_hi : v);
-    const REAL onx = t == (REAL)0 ? ax : t == (REAL)1 ? bx : ax + t * dx;
-    const REAL ony = t == (REAL)0 ? ay : t == (REAL)1 ? by : ay + t * dy;
-    const REAL ex = px - onx, ey = py - ony;
-    const REAL dist2 = ex * ex + ey * ey;
+    REAL2 on;
+    const REAL dist2 = segment_point(ax, ay, bx, by, dx, dy, t, px, py, &on);  // clearance.cl
     if (dist2 < best2) {
       best2 = dist2;
-      *best_p = (REAL2)(onx, ony);
+      *best_p = on;
       *best_arc = t == (REAL)1 ? arc[k + 1] : s0 + t * len;
       // At a vertex the node slides along the mean direction of both segments.
       REAL2 tangent = segment_tangent(p, k);

@@ -17,6 +17,17 @@
 #define CLEARANCE_EPS FLT_EPSILON
 #endif
 
+// The point of segment a -> b (ab = b - a) at parameter t, exactly a at 0 and b at 1 (closest_on_segment's
+// rule, and closest_on_curve_range's in boundary.cl), and its squared distance from p.
+REAL segment_point(const REAL ax, const REAL ay, const REAL bx, const REAL by, const REAL abx, const REAL aby,
+                   const REAL t, const REAL px, const REAL py, REAL2* on) {
+  const REAL qx = t == (REAL)0 ? ax : t == (REAL)1 ? bx : ax + t * abx;
+  const REAL qy = t == (REAL)0 ? ay : t == (REAL)1 ? by : ay + t * aby;
+  *on = (REAL2)(qx, qy);
+  const REAL ex = px - qx, ey = py - qy;
+  return ex * ex + ey * ey;
+}
+
 // segs: (ax, ay, bx, by) per boundary segment in Geometry::segments order; seg_scale: the largest
 // |coordinate| of any segment end (DeviceBoundary::segment_scale). Returns 0 where the host must
 // decide: no segments, a non-finite p, or p within 1e-12 of the scale of a segment, where the host's
@@ -39,10 +50,8 @@ REAL clearance_bound(const REAL px, const REAL py, __global const REAL* segs, co
     const REAL len2 = abx * abx + aby * aby;
     REAL t = len2 > (REAL)0 ? ((px - ax) * abx + (py - ay) * aby) / len2 : (REAL)0;
     t = t < (REAL)0 ? (REAL)0 : ((REAL)1 < t ? (REAL)1 : t);
-    const REAL qx = t == (REAL)0 ? ax : t == (REAL)1 ? bx : ax + t * abx;
-    const REAL qy = t == (REAL)0 ? ay : t == (REAL)1 ? by : ay + t * aby;
-    const REAL ex = px - qx, ey = py - qy;
-    const REAL d2 = ex * ex + ey * ey;
+    REAL2 q;
+    const REAL d2 = segment_point(ax, ay, bx, by, abx, aby, t, px, py, &q);
     if (d2 < best2) {
       best2 = d2;
       const REAL lim = sqrt(best2) + margin;
