@@ -59,13 +59,11 @@ void closest_on_curve(__global const REAL* p, __global const REAL* arc, const in
     const REAL dx = bx - ax, dy = by - ay;
     const REAL v = ((px - ax) * dx + (py - ay) * dy) / (dx * dx + dy * dy);
     const REAL t = v < t_lo ? t_lo : (t_hi < v ? t_hi : v);
-    const REAL onx = t == (REAL)0 ? ax : t == (REAL)1 ? bx : ax + t * dx;
-    const REAL ony = t == (REAL)0 ? ay : t == (REAL)1 ? by : ay + t * dy;
-    const REAL ex = px - onx, ey = py - ony;
-    const REAL dist2 = ex * ex + ey * ey;
+    REAL2 on;
+    const REAL dist2 = segment_point(ax, ay, bx, by, dx, dy, t, px, py, &on);  // clearance.cl
     if (dist2 < best2) {
       best2 = dist2;
-      *best_p = (REAL2)(onx, ony);
+      *best_p = on;
       *best_arc = t == (REAL)1 ? arc[k + 1] : s0 + t * len;
       // At a vertex the node slides along the mean direction of both segments.
       REAL2 tangent = segment_tangent(p, k);
@@ -103,6 +101,8 @@ void boundary_snap(const int m, __global const int* slot_node, __global const in
   const int s = get_global_id(0), l = get_local_id(0);
   REAL clamped = (REAL)0, bad = (REAL)0, skin_use = (REAL)0;
   // device_step found a move that is not finite: nothing is written (tangents are updated in place).
+  // The window was halted before this iteration (kernels/window.cl): nothing at all.
+  if (step_counters[WINDOW_HALT] != 0) return;
   const int halted = step_counters[1] != 0;
   if (s < m) {
     const int i = slot_node[s], c = slot_curve[s], pos = slot_pos[s];

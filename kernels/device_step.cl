@@ -32,17 +32,13 @@ REAL bg_spacing_cached(const REAL px, const REAL py, int* leaf, BG_ARGS) {
 }
 #define BG_PASS bg_origin_x, bg_origin_y, bg_inv_root, bg_grid, bg_root, bg_child, bg_corner, bg_cell, bg_q
 
-#if PDMESH_DOUBLE
-#define REAL_EPS DBL_EPSILON
-#else
-#define REAL_EPS FLT_EPSILON
-#endif
 
 
 // Inputs x, y, q (current), outputs x_next, y_next, q_next. budget[i]: interior node i's clearance
 // budget (host/sim/boundary_handling.hpp, clearance_budget): a move whose cost (the same move_cost
 // formula, with this precision's epsilon) is below it stays inside the domain, exactly; the cost is
-// subtracted. Other interior nodes (and non-finite moves) are appended to cand_index / cand_rec
+// subtracted. A spent budget is refreshed from the segments segs (kernels/clearance.cl) when the move
+// is clearly inside. Other interior nodes (and non-finite moves) are appended to cand_index / cand_rec
 // (x, y, dx, dy) with an integer atomic counter (counters[0]) for the host's exact test (counters[1]:
 // set when a move is not finite); boundary
 // nodes write (x, y, dx, dy) to their slot bslot[i] of brec. skin_use: (|x_next - x_build| + cutoff
@@ -50,15 +46,19 @@ REAL bg_spacing_cached(const REAL px, const REAL py, int* leaf, BG_ARGS) {
 // does not touch; the host covers the rest).
 __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1)))
 void device_step(const int n, const REAL cutoff, const REAL lj_a, const int r0_any_direction,
-                 const REAL stability_factor, const REAL dt_gm2, const REAL skin_cutoff, __global const REAL* x, __global const REAL* y,
+                 const REAL stability_factor, __global const REAL* dt_gm2_in, const REAL skin_cutoff, __global const REAL* x, __global const REAL* y,
                  __global const REAL* q, __global const uchar* kind, __global const REAL* tx,
                  __global const REAL* ty, __global const int* count, __global const ulong* row_offset,
                  __global const int* index,
                  __global const REAL* x_build, __global const REAL* y_build, __global const REAL* q_build,
                  __global const int* bslot, __global REAL* x_next, __global REAL* y_next, __global REAL* q_next,
                  __global REAL* budget, __global int* node_leaf, __global REAL* brec, __global int* cand_index, __global REAL* cand_rec,
-                 __global int* counters, __global REAL* partials, BG_ARGS) {
+                 __global int* counters, __global REAL* partials, __global const REAL* segs, const int n_segs,
+                 const REAL seg_scale, BG_ARGS) {
   __local REAL values[STEP_PARTIALS * WG_SIZE];
+  // The window was halted for the host (kernels/window.cl): this iteration does nothing (uniform exit).
+  if (counters[WINDOW_HALT] != 0) return;
+  const REAL dt_gm2 = dt_gm2_in[0];  // the time-step rule's (iteration_rule or the host)
   const int i = get_global_id(0), l = get_local_id(0);
   const int active = i < n;
   // Every work-item runs the same code up to the group reduction; padding ones are masked.
@@ -102,10 +102,15 @@ void device_step(const int n, const REAL cutoff, const REAL lj_a, const int r0_a
     } else if (kind_i == 2) {
       const REAL b = budget[i];
       const REAL ex = xn - xi, ey = yn - yi;
-      const REAL cost = sqrt(ex * ex + ey * ey) * ((REAL)1 + (REAL)64 * REAL_EPS) +
-                        (REAL)8 * REAL_EPS * (fabs(xn) + fabs(yn) + b);
+      const REAL cost = clearance_move_cost(ex, ey, xn, yn, b);
+      // Budget spent: a node known inside (b > 0) gets a fresh one when its move is clearly inside
+      // (kernels/clearance.cl); the rest go to the host's exact test.
+      const REAL fresh = !(cost < b) && b > (REAL)0 ? clearance_refresh(ex, ey, xn, yn, segs, n_segs, seg_scale)
+                                                    : (REAL)0;
       if (cost < b) {  // false for NaN
         budget[i] = b - cost;
+      } else if (fresh > (REAL)0) {
+        budget[i] = fresh;
       } else {
         const int s = atomic_inc(&counters[0]);
         cand_index[s] = i;

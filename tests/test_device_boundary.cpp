@@ -10,6 +10,7 @@
 
 #include "device_run_fixtures.hpp"
 #include "opencl/device_boundary.hpp"
+#include "opencl/device_window.hpp"
 #include "sim/boundary_handling.hpp"
 #include "spacing/background_field.hpp"
 
@@ -126,7 +127,7 @@ TEST_CASE("boundary_snap re-snaps every boundary node exactly as the host (doubl
                       tx = buffer("tx", zero), ty = buffer("ty", zero), bg_q = buffer("bg_q", bg.corner_q);
   ocl::Buffer<std::int32_t> leaf = buffer("leaf", std::vector<std::int32_t>(n, 0)), root = buffer("root", bg.root_node),
                             child = buffer("child", bg.node_child), corner = buffer("corner", bg.leaf_corner),
-                            cell = buffer("cell", bg.leaf_cell), halt = buffer("halt", std::vector<std::int32_t>{0, 0});
+                            cell = buffer("cell", bg.leaf_cell), halt = buffer("halt", std::vector<std::int32_t>(ocl::kWindowCounters, 0));
   device.enqueue(program, 0, brec, bx, by, bq, tx, ty, leaf, bx, by, bq, options.cutoff, 0.3 * options.cutoff, halt,
                  [&](ocl::ArgSetter& a) {
                    a(bg.origin_x)(bg.origin_y)(bg.inv_root_size)(static_cast<cl_int>(bg.grid))(root)(child)(corner)(

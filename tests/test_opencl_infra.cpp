@@ -124,7 +124,7 @@ TEST_CASE("buffers check sizes and names", "[opencl]") {
 TEST_CASE("the simulation program's work-group size is checked against every kernel's limit", "[opencl]") {
   Context ctx(require_device());
   const StepProgram program(ctx, ctx.device().fp64 ? Precision::Double : Precision::Float);
-  REQUIRE(program.limits.size() == 21);
+  REQUIRE(program.limits.size() == 22);
   for (const KernelLimits& k : program.limits) {
     INFO(k.name);
     CHECK(k.max_work_group >= program.work_group);

@@ -73,35 +73,40 @@ std::unique_ptr<BenchCase> file_case(const std::string& dir, const std::string& 
   return c;
 }
 
-// OpenCL commands per iteration (ocl::command_counts, counted by the wrapper) over one kind of
-// iteration: the smallest, largest and summed launches, reads, writes, copies and waits.
+// OpenCL commands of a device run (ocl::command_counts, counted by the wrapper) over one kind of
+// window: a window of iterations is enqueued and read back at once (docs/opencl.md, "One iteration"),
+// so its commands are all counted at its first row. Per window: the smallest, largest and summed
+// launches, reads, writes, copies and waits; and the iterations it ran.
 struct CommandSpread {
-  int iterations = 0;
+  int windows = 0, iterations = 0;
   std::array<std::uint64_t, 5> min{}, max{}, sum{};
-  void add(const ocl::CommandCounts& c) {
+  void add(const ocl::CommandCounts& c, int rows) {
     const std::array<std::uint64_t, 5> v = {c.launches, c.reads, c.writes, c.copies, c.waits};
     for (std::size_t k = 0; k < v.size(); ++k) {
-      min[k] = iterations == 0 ? v[k] : std::min(min[k], v[k]);
-      max[k] = iterations == 0 ? v[k] : std::max(max[k], v[k]);
+      min[k] = windows == 0 ? v[k] : std::min(min[k], v[k]);
+      max[k] = windows == 0 ? v[k] : std::max(max[k], v[k]);
       sum[k] += v[k];
     }
-    ++iterations;
+    ++windows;
+    iterations += rows;
   }
-  // "launches / reads / writes / copies / waits": a count, or "min–max (mean)" where iterations differ.
-  std::string format() const {
-    if (iterations == 0) return "-";
-    std::string out;
+  // "launches / reads / writes / copies / waits" per iteration (means; `per`: what `iterations` counts),
+  // then per window: a count, or "min–max" where windows differ.
+  std::string format(const char* per = "it.") const {
+    if (windows == 0) return "-";
+    std::string mean, spread;
     for (std::size_t k = 0; k < sum.size(); ++k) {
-      if (k > 0) out += " / ";
-      out += min[k] == max[k] ? fmt::format("{}", min[k])
-                              : fmt::format("{}–{} ({:.2f})", min[k], max[k], static_cast<double>(sum[k]) / iterations);
+      if (k > 0) mean += " / ", spread += " / ";
+      mean += fmt::format("{:.2f}", static_cast<double>(sum[k]) / iterations);
+      spread += min[k] == max[k] ? fmt::format("{}", min[k]) : fmt::format("{}–{}", min[k], max[k]);
     }
-    return fmt::format("{} ({} it.)", out, iterations);
+    return fmt::format("{} ({} {} in {} windows; per window {})", mean, iterations, per, windows, spread);
   }
 };
 
-// Per-iteration command counts of a device run, split by whether the iteration rebuilt the neighbour
-// lists. The first iteration (setup uploads and the first build) is left out.
+// Command counts of a device run's windows: the iterations' own (the rebuilds' taken out) per
+// iteration, and the rebuilds' (DeviceRunStats::rebuild_commands) per rebuild. The first window (setup
+// uploads and the first build) is left out.
 struct IterationCommands {
   CommandSpread steady, rebuild;
 };
@@ -134,7 +139,7 @@ std::string format_row(const Row& r) {
     traffic = fmt::format("{:.0f}", static_cast<double>(d.bytes_down + d.bytes_up) / it);
     device_mem = fmt::format("{:.0f}", static_cast<double>(d.device_bytes) / static_cast<double>(r.nodes));
     steady = r.commands.steady.format();
-    rebuild = r.commands.rebuild.format();
+    rebuild = r.commands.rebuild.format("rebuilds");
     if (d.pairs_listed > 0)
       examined = fmt::format("{:.2f} (rebuilds {:.2f} per listed entry, x{:.2f} skin, longest row {})",
                              static_cast<double>(r.pairs_examined) / static_cast<double>(r.pairs_within),
@@ -183,7 +188,7 @@ int run_bench(const BenchArguments& args) {
   std::string table =
       "| case | backend | nodes | iterations | ms/iteration | node-iterations/s | pair interactions/s | ns per "
       "node-iteration | pairs examined per pair | device split, ms/iteration | bytes/iteration | commands per "
-      "iteration without a rebuild: launches / reads / writes / copies / waits | the same, iterations with a rebuild "
+      "iteration, rebuilds left out: launches / reads / writes / copies / waits | the same per rebuild "
       "| peak host RSS / device bytes per node | host/device time |\n"
       "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   fmt::print("{}", table);
@@ -240,18 +245,37 @@ int run_bench(const BenchArguments& args) {
       NodeSet nodes = c->initial;
       ocl::DeviceSimulator simulator(ctx, precision, loop);
       // Commands per iteration from the wrapper's counts; the simulator's stats are live during the run.
+      // A window's commands come before its first row (and the host's work at its last); the simulator's
+      // live stats say where a window starts.
       IterationCommands commands;
-      ocl::CommandCounts last = ocl::command_counts();
-      int last_rebuilds = 0;
+      ocl::CommandCounts last = ocl::command_counts(), window, last_rebuild, rebuild;
+      int last_rebuilds = 0, rows = 0, windows = 0, last_windows = 0, rebuilt = 0;
+      const auto close_window = [&] {
+        if (windows <= 1) return;
+        commands.steady.add(window - rebuild, rows);
+        if (rebuilt > 0) commands.rebuild.add(rebuild, rebuilt);
+      };
       SimCallbacks callbacks;
-      callbacks.on_iteration = [&](const HistoryRow& h) {
-        const ocl::CommandCounts now = ocl::command_counts();
+      callbacks.on_iteration = [&](const HistoryRow&) {
+        const ocl::CommandCounts now = ocl::command_counts(), d = now - last;
         const int rebuilds = simulator.stats().rebuilds;
-        if (h.iteration > 1) (rebuilds != last_rebuilds ? commands.rebuild : commands.steady).add(now - last);
+        if (windows == 0 || simulator.stats().windows != last_windows) {
+          close_window();
+          ++windows;
+          window = rebuild = ocl::CommandCounts{};
+          rows = rebuilt = 0;
+        }
+        window = window + d;
+        rebuild = rebuild + (simulator.stats().rebuild_commands - last_rebuild);
+        last_rebuild = simulator.stats().rebuild_commands;
+        rebuilt += rebuilds - last_rebuilds;
+        last_windows = simulator.stats().windows;
+        ++rows;
         last = now;
         last_rebuilds = rebuilds;
       };
       const SimResult r = simulator.run(nodes, *c->tree, *c->spacing, o, callbacks);
+      close_window();
       Row row{c->name,
               fmt::format("opencl:{}:{} {} ({}, {} loop){}", info.platform, info.device, info.type,
                           precision == ocl::Precision::Float ? "float" : "double",

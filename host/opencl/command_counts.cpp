@@ -20,6 +20,18 @@ CommandCounts operator-(const CommandCounts& a, const CommandCounts& b) {
   return d;
 }
 
+CommandCounts operator+(const CommandCounts& a, const CommandCounts& b) {
+  CommandCounts d;
+  d.launches = a.launches + b.launches;
+  d.reads = a.reads + b.reads;
+  d.writes = a.writes + b.writes;
+  d.copies = a.copies + b.copies;
+  d.waits = a.waits + b.waits;
+  d.bytes_read = a.bytes_read + b.bytes_read;
+  d.bytes_written = a.bytes_written + b.bytes_written;
+  return d;
+}
+
 CommandCounts command_counts() { return t_counts; }
 
 namespace counting {

@@ -19,6 +19,7 @@ struct CommandCounts {
   std::uint64_t bytes_read = 0, bytes_written = 0;
 };
 CommandCounts operator-(const CommandCounts& a, const CommandCounts& b);
+CommandCounts operator+(const CommandCounts& a, const CommandCounts& b);
 
 // This thread's totals since it started.
 CommandCounts command_counts();

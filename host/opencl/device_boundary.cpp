@@ -2,6 +2,7 @@
 #include "opencl/device_boundary.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 #include "core/errors.hpp"
 
@@ -26,6 +27,17 @@ void DeviceBoundary<Real>::upload_curves() {
   curve_pt_ = Buffer<std::int32_t>(ctx, "curve_first_point", first.size());
   pts_ = Buffer<Real>(ctx, "curve_points", pts.size());
   pt_arc_ = Buffer<Real>(ctx, "curve_point_arc", arc.size());
+  std::vector<Real> segs;
+  segment_scale_ = 0.0;
+  for (const Segment& s : geometry_.segments) {
+    for (double v : {s.a.x, s.a.y, s.b.x, s.b.y}) {
+      segs.push_back(static_cast<Real>(v));
+      segment_scale_ = std::max(segment_scale_, std::fabs(v));
+    }
+  }
+  segs.resize(std::max<std::size_t>(segs.size(), 4));
+  segs_ = Buffer<Real>(ctx, "boundary_segments", segs.size());
+  segs_.upload(ctx.queue(), segs);
   curve_pt_.upload(ctx.queue(), first);
   pts_.upload(ctx.queue(), pts);
   pt_arc_.upload(ctx.queue(), arc);
@@ -116,7 +128,8 @@ std::vector<std::vector<double>> DeviceBoundary<Real>::unflatten(const std::vect
 template <typename Real>
 std::size_t DeviceBoundary<Real>::bytes() const {
   return curve_pt_.bytes() + slot_node_.bytes() + slot_curve_.bytes() + slot_pos_.bytes() + pts_.bytes() +
-         pt_arc_.bytes() + arcs_[0].bytes() + arcs_[1].bytes() + partials_.bytes();
+         pt_arc_.bytes() + arcs_[0].bytes() + arcs_[1].bytes() + partials_.bytes() +
+         segs_.bytes();
 }
 
 template class DeviceBoundary<float>;

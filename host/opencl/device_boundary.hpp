@@ -53,6 +53,12 @@ class DeviceBoundary {
     bg(a);
     launch(ctx_.queue(), program.boundary_snap, "boundary_snap", slots(), program.work_group);
   }
+  // Every boundary segment as (ax, ay, bx, by), Geometry::segments order, for the clearance refresh
+  // (kernels/clearance.cl), uploaded by upload_curves; segment_scale: the largest |coordinate| of a
+  // segment end.
+  Buffer<Real>& segments() { return segs_; }
+  int segment_count() const { return static_cast<int>(geometry_.segments.size()); }
+  double segment_scale() const { return segment_scale_; }
   // The partials buffer and how many entries the last topology's launch writes (for the caller's reads).
   Buffer<Real>& partials() { return partials_; }
   std::size_t partial_count(std::size_t work_group) const {
@@ -73,7 +79,8 @@ class DeviceBoundary {
   Context& ctx_;
   const Geometry& geometry_;
   Buffer<std::int32_t> curve_pt_, slot_node_, slot_curve_, slot_pos_;
-  Buffer<Real> pts_, pt_arc_, arcs_[2], partials_;
+  Buffer<Real> pts_, pt_arc_, arcs_[2], partials_, segs_;
+  double segment_scale_ = 0.0;
   std::vector<std::int32_t> slot_nodes_;
   std::size_t arc_entries_ = 0;
 };

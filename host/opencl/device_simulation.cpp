@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdlib>
 #include <cmath>
 #include <limits>
 #include <optional>
@@ -16,6 +17,7 @@
 #include "opencl/device_boundary.hpp"
 #include "opencl/device_neighbours.hpp"
 #include "opencl/device_population.hpp"
+#include "opencl/device_window.hpp"
 #include "opencl/step_program.hpp"
 #include "sim/boundary_handling.hpp"
 #include "sim/failure_report.hpp"
@@ -44,6 +46,8 @@ class DeviceRun {
         background_(background_for(options, spacing, tree, own_background_)), program_(program), neighbours_(ctx, program_),
         device_boundary_(ctx, tree.geometry()),
         n_(nodes.size()),
+        window_(ctx, program.iteration_rule.get() != nullptr && !std::getenv("PDMESH_TEST_HOST_TIME_STEP_RULE")),
+        cpu_device_(ctx.device().type == "CPU"),
         convergence_(options.convergence, options.resume ? options.resume->convergence : std::vector<MeshSample>{}) {}
   // Non-blocking uploads read host vectors of this object: wait for them (errors are moot here).
   ~DeviceRun() { ctx_.queue().finish(); }
@@ -77,7 +81,10 @@ class DeviceRun {
   // the device's float copy stays on the device. Nothing to do in double.
   void boundary_positions_on_curves();
   void rebuild();
-  void step_kernel(double dt_gm2);
+  void enqueue_iteration(int cur);
+  void start_window(int first, const GlobalTimeStep& gm);
+  void take_row();
+  int window_length() const;
   BoundaryCounts host_boundary(double& skin_use);
   void bg_args(ArgSetter& a) {
     const BackgroundFieldData& d = background_.data();
@@ -132,13 +139,12 @@ class DeviceRun {
   std::vector<double> build_x_, build_y_, build_q_;  // positions and spacings at the last build
   std::vector<double> dx_, dy_;                      // host displacement scratch (full size, sparse use)
   std::vector<std::int32_t> candidates_;
-  std::vector<Real> part_, bpart_, brec_host_, arcs_host_, cand_rec_host_, rec_host_;
-  std::vector<std::int32_t> count_host_, rec_index_host_;
+  std::vector<Real> brec_host_, arcs_host_, cand_rec_host_, rec_host_;
+  std::vector<std::int32_t> rec_index_host_;
   // Targets of non-blocking downloads are members too: when a wait fails and the error unwinds, a
   // read still in flight must not write into freed memory (~DeviceRun waits for the queue first).
   std::vector<Real> positions_host_[3];
   std::vector<std::int32_t> cand_index_host_;
-  const std::vector<std::int32_t> zero_counter_ = std::vector<std::int32_t>(2, 0);
   double skin_use_ = HUGE_VAL;                       // since the last build; HUGE_VAL forces a build
   std::uint64_t pairs_examined_ = 0;  // rebuild candidates plus, every iteration, the entries of the current lists
   std::uint64_t list_entries_ = 0;    // entries of the current lists (within the skin radius)
@@ -157,7 +163,11 @@ class DeviceRun {
   bool boundary_stale_ = false;
   int snap_arcs_ = 0;  // the arc buffer the last boundary_snap wrote
   BoundarySnapResult snap_;  // of this iteration's boundary_snap
-  bool moves_finite_ = true;  // every move the host reads in step_kernel is finite
+  bool moves_finite_ = true;  // every move of the iteration take_row read is finite
+  DeviceWindow<Real> window_;
+  int window_rows_ = 0, window_next_ = 0;  // rows the last window ran, the next one to take
+  int since_build_ = 0, build_interval_ = 0;  // iterations since the last build; between the last two (0: unknown)
+  bool cpu_device_ = false;  // window_length's choice
   PopulationTracker population_;
   ConvergenceMonitor convergence_;  // the stopping rule (its samples go into every saved state)
 };
@@ -275,7 +285,7 @@ void DeviceRun<Real>::upload_initial() {
   write(bg_corner_, d.leaf_corner);
   write(bg_cell_, d.leaf_cell);
   write(bg_q_, to_real<Real>(d.corner_q));
-  counters_ = Buffer<std::int32_t>(ctx_, "step_counters", 2);  // candidates, non-finite move flag
+  counters_ = Buffer<std::int32_t>(ctx_, "step_counters", kWindowCounters);  // device_window.hpp, WindowCounter
   device_boundary_.upload_curves();
   upload_nodes(nullptr, nullptr);
 }
@@ -493,40 +503,104 @@ void DeviceRun<Real>::rebuild() {
   skin_use_ = 0.0;
 }
 
+// One iteration's kernels from buffers `cur`: device_step (dt^2 from window_.dt2()), boundary_snap
+// and, with the device's rule, iteration_rule. Nothing is waited on.
 template <typename Real>
-void DeviceRun<Real>::step_kernel(double dt_gm2) {
-  const int next = 1 - cur_;
-  write(counters_, zero_counter_, false);
+void DeviceRun<Real>::enqueue_iteration(int cur) {
+  const int next = 1 - cur;
   ArgSetter a(program_.device_step, "device_step");
   a(static_cast<cl_int>(n_))(static_cast<Real>(options_.cutoff))(
       static_cast<Real>(options_.lj_a))(static_cast<cl_int>(options_.r0_any_direction ? 1 : 0))(
-      static_cast<Real>(options_.stability_factor))(static_cast<Real>(dt_gm2))(static_cast<Real>(options_.verlet_skin * options_.cutoff))(x_[cur_])(y_[cur_])(
-      q_[cur_])(kind_)(tx_)(ty_)(neighbours_.count())(neighbours_.offset())(neighbours_.index())(x_build_)(y_build_)(q_build_)(bslot_)(
-      x_[next])(y_[next])(q_[next])(budget_)(node_leaf_)(brec_)(cand_index_)(cand_rec_)(counters_)(partials_);
+      static_cast<Real>(options_.stability_factor))(window_.dt2())(static_cast<Real>(options_.verlet_skin * options_.cutoff))(x_[cur])(y_[cur])(
+      q_[cur])(kind_)(tx_)(ty_)(neighbours_.count())(neighbours_.offset())(neighbours_.index())(x_build_)(y_build_)(q_build_)(bslot_)(
+      x_[next])(y_[next])(q_[next])(budget_)(node_leaf_)(brec_)(cand_index_)(cand_rec_)(counters_)(partials_)(
+      device_boundary_.segments())(static_cast<cl_int>(device_boundary_.segment_count()))(
+      static_cast<Real>(device_boundary_.segment_scale()));
   bg_args(a);
   launch(ctx_.queue(), program_.device_step, "device_step", n_, program_.work_group);
   ++stats_.launches;
   // Every boundary node re-snapped on the device into the next buffers (x, y, q, tangents, arcs).
-  const std::size_t bparts = device_boundary_.partial_count(program_.work_group);
-  const bool was_stale = boundary_stale_;
-  const int was_arcs = snap_arcs_;
   if (!boundary_nodes_.empty()) {
-    device_boundary_.enqueue(program_, cur_, brec_, x_[next], y_[next], q_[next], tx_, ty_, node_leaf_, x_build_,
+    device_boundary_.enqueue(program_, cur, brec_, x_[next], y_[next], q_[next], tx_, ty_, node_leaf_, x_build_,
                              y_build_, q_build_, options_.cutoff, options_.verlet_skin * options_.cutoff, counters_,
                              [this](ArgSetter& a) { bg_args(a); });
     ++stats_.launches;
+  }
+  if (window_.device_rule()) {
+    window_.enqueue_rule(program_, groups(), partials_, device_boundary_.partial_count(program_.work_group),
+                         device_boundary_.partials(), counters_);
+    ++stats_.launches;
+  }
+}
+
+// Enqueues iterations first .. (at most) the window's end without a wait, then reads their history
+// rows (one wait). The window ends where the host has work whatever the device does: a population
+// event, a convergence measurement, the last iteration; a zero skin rebuilds every iteration.
+template <typename Real>
+void DeviceRun<Real>::start_window(int first, const GlobalTimeStep& gm) {
+  int last = first;
+  const int cap = options_.verlet_skin == 0.0 ? first : std::min(options_.iterations, first + window_length() - 1);
+  while (last < cap && !convergence_.due(last) &&
+         !population_event_due(options_.population, population_.schedule, last, options_.iterations))
+    ++last;
+  const auto t0 = Clock::now();
+  window_.begin(gm, skin_use_, kSkinUseLimit, counters_);
+  for (int k = 0; k <= last - first; ++k) enqueue_iteration(cur_ ^ (k & 1));
+  window_rows_ = window_.finish_window(ctx_, groups(), partials_, device_boundary_.partial_count(program_.work_group),
+                                       device_boundary_.partials(), counters_);
+  window_next_ = 0;
+  ++stats_.windows;
+  stats_.transfers += window_.transfers;
+  stats_.bytes_up += window_.bytes_up;
+  stats_.bytes_down += window_.bytes_down;
+  stats_.step_seconds += since(t0);
+  if (window_rows_ < 1 || window_rows_ > last - first + 1)
+    throw SimulationError(fmt::format("iteration {}: the device ran {} of the window's {} iterations", first,
+                                      window_rows_, last - first + 1));
+}
+
+// Iterations the next window enqueues: the most the ring holds, but not far past where the skin is
+// expected to run out, since the iterations a halt leaves behind are launched for nothing. The
+// prediction: the skin use so far at its mean rate since the build, or right after a build the
+// previous build's interval. On a CPU device (PoCL) a launch for nothing costs more than another wait
+// (the device's work-groups are scheduled by the host's threads), so the window stops short of the
+// prediction; elsewhere a wait costs more, so it reaches one iteration past it. In a settled run
+// builds are far apart and windows are whole.
+template <typename Real>
+int DeviceRun<Real>::window_length() const {
+  const int most = window_.max_length();
+  double predicted = 0.0;
+  if (since_build_ > 0 && skin_use_ > 0.0 && skin_use_ <= kSkinUseLimit)
+    predicted = (kSkinUseLimit - skin_use_) * since_build_ / skin_use_;
+  else if (build_interval_ > 0)
+    predicted = build_interval_ - since_build_;
+  else
+    return most;
+  const double length = cpu_device_ ? std::floor(0.9 * predicted) : std::ceil(predicted) + 1.0;
+  return length >= most ? most : std::max(1, static_cast<int>(length));
+}
+
+// The next row of the window into the iteration's sums, and (the window's last row only) the interior
+// nodes for the host's exact test (a second wait).
+template <typename Real>
+void DeviceRun<Real>::take_row() {
+  const double* r = window_.row(window_next_++);
+  sum_force_ = r[kRingForce];
+  sum_kinetic_ = r[kRingKinetic];
+  sum_moving_ = static_cast<std::size_t>(r[kRingMoving]);
+  within_ = static_cast<std::size_t>(r[kRingWithin]);
+  coincident_ = static_cast<std::size_t>(r[kRingCoincident]);
+  max_force_ = r[kRingMaxForce];
+  device_skin_use_ = r[kRingSkin];
+  snap_ = BoundarySnapResult{static_cast<std::size_t>(r[kRingClamped]), static_cast<std::size_t>(r[kRingSnapBad]),
+                             r[kRingSnapSkin]};
+  const auto m = static_cast<std::size_t>(r[kRingCandidates]);
+  const bool non_finite_move = r[kRingNonFinite] != 0.0;
+  if (!boundary_nodes_.empty() && !non_finite_move) {  // boundary_snap wrote the next buffers
     boundary_stale_ = true;
     snap_arcs_ = 1 - cur_;
   }
-  // One wait for the kernels (and the previous iteration's apply_host_moves) and their partial sums.
   auto t0 = Clock::now();
-  read(partials_, part_, kStepPartials * groups(), false);
-  read(counters_, count_host_, 2, false);
-  if (bparts > 0) read(device_boundary_.partials(), bpart_, bparts, false);
-  finish(ctx_.queue(), "device_step");
-  stats_.step_seconds += since(t0);
-  t0 = Clock::now();
-  const auto m = static_cast<std::size_t>(count_host_[0]);
   std::vector<std::int32_t>& cand = cand_index_host_;
   if (m > 0) {
     read(cand_index_, cand, m, false);
@@ -534,44 +608,26 @@ void DeviceRun<Real>::step_kernel(double dt_gm2) {
     finish(ctx_.queue(), "device_step candidates");
   }
   stats_.download_seconds += since(t0);
-  // Sums in group order.
-  sum_force_ = sum_kinetic_ = max_force_ = device_skin_use_ = 0.0;
-  sum_moving_ = within_ = coincident_ = 0;
-  for (std::size_t g = 0; g < groups(); ++g) {
-    const Real* p = part_.data() + kStepPartials * g;
-    sum_force_ += static_cast<double>(p[0]);
-    sum_kinetic_ += static_cast<double>(p[1]);
-    sum_moving_ += static_cast<std::size_t>(p[2]);
-    within_ += static_cast<std::size_t>(p[3]);
-    coincident_ += static_cast<std::size_t>(p[4]);
-    max_force_ = std::max(max_force_, static_cast<double>(p[5]));
-    device_skin_use_ = std::max(device_skin_use_, static_cast<double>(p[6]));
-  }
   // Candidates in index order (the reference handles interior nodes in index order).
   std::vector<std::size_t> order(m);
   for (std::size_t k = 0; k < m; ++k) order[k] = k;
   std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return cand[a] < cand[b]; });
   candidates_.resize(m);
   for (std::size_t k = 0; k < m; ++k) {
-    const std::size_t r = order[k];
-    const auto i = static_cast<std::size_t>(cand[r]);
-    candidates_[k] = cand[r];
-    nodes_.x[i] = {static_cast<double>(cand_rec_host_[4 * r]), static_cast<double>(cand_rec_host_[4 * r + 1])};
-    dx_[i] = static_cast<double>(cand_rec_host_[4 * r + 2]);
-    dy_[i] = static_cast<double>(cand_rec_host_[4 * r + 3]);
+    const std::size_t o = order[k];
+    const auto i = static_cast<std::size_t>(cand[o]);
+    candidates_[k] = cand[o];
+    nodes_.x[i] = {static_cast<double>(cand_rec_host_[4 * o]), static_cast<double>(cand_rec_host_[4 * o + 1])};
+    dx_[i] = static_cast<double>(cand_rec_host_[4 * o + 2]);
+    dy_[i] = static_cast<double>(cand_rec_host_[4 * o + 3]);
   }
   stats_.candidates += m;
-  snap_ = DeviceBoundary<Real>::sum(bpart_, bparts);
   // Every move must be finite (the sums may not show a single NaN move): boundary_snap counted the
   // boundary nodes' targets, the candidates' moves are here.
-  moves_finite_ = snap_.non_finite == 0 && count_host_[1] == 0;
+  moves_finite_ = snap_.non_finite == 0 && !non_finite_move;
   // boundary_snap updated the tangents in place: the device's state before this step is no longer
   // whole, unless the flag stopped it (last_good_state).
-  tangents_ahead_ = !boundary_nodes_.empty() && count_host_[1] == 0;
-  if (count_host_[1] != 0) {  // boundary_snap wrote nothing: the boundary state is as it was
-    boundary_stale_ = was_stale;
-    snap_arcs_ = was_arcs;
-  }
+  tangents_ahead_ = !boundary_nodes_.empty() && !non_finite_move;
   for (std::int32_t node : candidates_)
     moves_finite_ = moves_finite_ && std::isfinite(dx_[static_cast<std::size_t>(node)]) &&
                     std::isfinite(dy_[static_cast<std::size_t>(node)]);
@@ -678,12 +734,26 @@ SimResult DeviceRun<Real>::run(const SimCallbacks& callbacks) {
     for (; iteration <= options_.iterations && !result.converged; ++iteration) {
       // A zero skin rebuilds every iteration (the reference's behaviour).
       if (skin_use_ > kSkinUseLimit || options_.verlet_skin == 0.0) {
+        // The device halts a window where the skin is used up, so no row of it is left here.
+        if (window_next_ < window_rows_)
+          throw SimulationError(fmt::format("iteration {}: a rebuild is due with {} device iterations unread",
+                                            iteration, window_rows_ - window_next_));
+        const CommandCounts before = command_counts();
         rebuild();
         if (boundary_stale_) sync_boundary();  // the saved state needs the boundary's
         remember(done, result.stats.dt_initial, gm, result.history.size());
+        stats_.rebuild_commands = stats_.rebuild_commands + (command_counts() - before);
+        if (stats_.rebuilds > 1) build_interval_ = since_build_;
+        since_build_ = 0;
       }
+      if (window_next_ >= window_rows_) start_window(iteration, gm);
       const double dt_gm = gm.dt();
-      step_kernel(gm.dt2());
+      take_row();
+      ++since_build_;
+      // The device's rule ran on a copy of the host's state: its dt must be the host's, bit for bit.
+      if (window_.device_rule() && window_.row(window_next_ - 1)[kRingDt] != dt_gm)
+        throw SimulationError(fmt::format("iteration {}: the device's global time step {} differs from the host's {}",
+                                          iteration, window_.row(window_next_ - 1)[kRingDt], dt_gm));
       // Before the host moves anything: the last good state is still whole on the device.
       if (!std::isfinite(sum_force_) || !std::isfinite(sum_kinetic_) || !moves_finite_) {
         failed_at = last_good_state(done, result.stats.dt_initial, gm, result.history);
@@ -748,7 +818,8 @@ SimResult DeviceRun<Real>::run(const SimCallbacks& callbacks) {
         result.converged = true;
         break;
       }
-      if (options_.stop && options_.stop->load() && iteration < options_.iterations) {
+      // Only where the device is not ahead of the host (the end of a window).
+      if (options_.stop && options_.stop->load() && iteration < options_.iterations && window_next_ >= window_rows_) {
         result.stopped = true;
         break;
       }

@@ -7,6 +7,7 @@
 
 #include <memory>
 
+#include "opencl/command_counts.hpp"
 #include "opencl/context.hpp"
 #include "sim/simulation.hpp"
 
@@ -16,6 +17,8 @@ namespace pdmesh::ocl {
 struct DeviceRunStats {
   int iterations = 0;
   int rebuilds = 0;                  // neighbour-list builds (Verlet skin)
+  int windows = 0;                   // windows of iterations enqueued without a wait (device_window.hpp)
+  CommandCounts rebuild_commands;    // the commands of the rebuilds (and the state they save), all of them
   int snap_rebuilds = 0;             // of those, forced by a snap alone (the skin had room left)
   int gathers = 0;                   // neighbour build passes: one per rebuild, more when grids or rows outgrew their capacities
   std::uint64_t outgrown_rows = 0;   // rows that outgrew their capacities, summed over the passes

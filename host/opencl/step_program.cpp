@@ -1,6 +1,8 @@
 // Builds the simulation program, creates its kernels and checks their work-group limits; see step_program.hpp.
 #include "opencl/step_program.hpp"
 
+#include "opencl/device_window.hpp"
+
 #include <atomic>
 #include <cstdlib>
 
@@ -92,7 +94,8 @@ ForceLoop resolve_force_loop(ForceLoop requested, const std::string& device_type
 const std::vector<std::string>& step_program_files() {
   static const std::vector<std::string> files = {"spacing_field.cl", "reduce.cl",     "forces.cl",
                                                  "time_step.cl",     "binning.cl",    "neighbours.cl",
-                                                 "device_step.cl",   "boundary.cl"};
+                                                 "clearance.cl",     "device_step.cl", "boundary.cl",
+                                                 "window.cl"};
   return files;
 }
 
@@ -116,6 +119,8 @@ std::map<std::string, std::string> step_program_defines(Precision precision, std
                                    {"ROW_SPARE_USED", kRowSpareUsed}, {"ROW_MOVED", kRowMoved},
                                    {"ROW_SPARE_FULL", kRowSpareFull}})
     d.emplace(name, std::to_string(static_cast<int>(slot)));
+  for (const auto& [name, value] : window_defines())
+    if (!d.emplace(name, value).second) throw DeviceError(fmt::format("step program: the define {} is given twice", name));
   return d;
 }
 
@@ -138,7 +143,8 @@ StepProgram::StepProgram(Context& ctx, Precision p, ForceLoop loop, std::size_t 
       {&apply_row_moves, "apply_row_moves"},
       {&compute_forces, "compute_forces"},     {&time_step_and_move, "time_step_and_move"},
       {&reduce, "reduce"},                     {&device_step, "device_step"},
-      {&apply_host_moves, "apply_host_moves"}, {&boundary_snap, "boundary_snap"}};
+      {&apply_host_moves, "apply_host_moves"}, {&boundary_snap, "boundary_snap"},
+      {&clearance_points, "clearance_points"}};
   // Every kernel declares reqd_work_group_size(WG_SIZE): a device that cannot run a group that size
   // (registers, local memory) would fail at the first enqueue with CL_INVALID_WORK_GROUP_SIZE or
   // CL_OUT_OF_RESOURCES; checked here, it fails before the run with the reason.
@@ -150,6 +156,9 @@ StepProgram::StepProgram(Context& ctx, Precision p, ForceLoop loop, std::size_t 
     check_work_group(name, ctx.device().name, wg, std::min(k.max_work_group, ctx.device().max_work_group));
     limits.push_back(k);
   }
+  // kernels/window.cl needs cl_khr_fp64 (the time-step rule's state is double); without it the host
+  // runs the rule (DeviceWindow).
+  if (ctx.device().fp64) iteration_rule = make_kernel(program, "iteration_rule");
 }
 
 }  // namespace pdmesh::ocl

@@ -46,7 +46,7 @@ std::map<std::string, std::string> step_program_defines(Precision precision, std
 inline constexpr int kBinLevels = 64;
 
 // A grid entry (kernels/binning.cl, grid_nodes) holds its node in the low kGridNodeBits bits and, above
-// them, a tag of its cell (the top bits of the cell's hash), so the gather skips most entries of other
+// them, a tag of its cell (the top bits of a second hash of the cell), so the gather skips most entries of other
 // cells sharing the bucket without loading their positions. Device runs index fewer nodes than this.
 inline constexpr int kGridNodeBits = 28;
 
@@ -101,7 +101,9 @@ struct StepProgram {
   cl::Program program;
   cl::Kernel row_capacity_scan, row_block_offsets, row_offsets_add, gather_rows, sort_rows, relocate_rows,
       apply_row_moves, bin_bounds, bin_rmin, bin_levels, bin_plan, bin_count, bucket_scan, bucket_offsets_add, bin_fill,
-      compute_forces, time_step_and_move, reduce, device_step, apply_host_moves, boundary_snap;
+      compute_forces, time_step_and_move, reduce, device_step, apply_host_moves, boundary_snap,
+      clearance_points;
+  cl::Kernel iteration_rule;  // only where the device has cl_khr_fp64 (kernels/window.cl)
   std::vector<KernelLimits> limits;  // per kernel, in the order above
 };
 

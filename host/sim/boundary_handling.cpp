@@ -187,9 +187,21 @@ void BoundaryHandler::move_interior_node(NodeSet& nodes, std::size_t i, const st
     budget_[i] -= cost;
     return;
   }
+  // The refresh (the same rule on the device, kernels/clearance.cl): a node known inside (budget > 0:
+  // its position is in the disc of the last exact test) whose move costs less than the clearance D of
+  // its target has its old position in the open disc of radius D around the target, which holds no
+  // boundary point, so the disc, the target and the move are inside and the exact test would accept:
+  // the node gets the budget D without it. Only moves comparable to the distance to the boundary
+  // (and nodes without a budget) get the exact test.
+  const double clearance = budget_[i] > 0.0 ? clearance_from(target) : -1.0;
+  if (budget_[i] > 0.0 && refresh_accepts(target.x - from.x, target.y - from.y, target, clearance)) {
+    nodes.x[i] = target;
+    budget_[i] = clearance;
+    return;
+  }
   if (tree_.inside(target) && !tree_.crosses_boundary(from, target)) {
     nodes.x[i] = target;
-    budget_[i] = clearance_from(target);
+    budget_[i] = clearance >= 0.0 ? clearance : clearance_from(target);
     return;
   }
   budget_[i] = 0.0;
@@ -287,6 +299,10 @@ double BoundaryHandler::clearance_from(Vec2 p) const {
   constexpr double eps = std::numeric_limits<double>::epsilon();
   const double d = hit.distance - 16.0 * eps * (std::fabs(p.x) + std::fabs(p.y) + hit.distance);
   return d > 0.0 ? d * (1.0 - 1e-6) : 0.0;
+}
+
+bool BoundaryHandler::refresh_accepts(double ex, double ey, Vec2 target, double clearance) {
+  return clearance > 0.0 && move_cost(ex, ey, target.x, target.y, clearance) < clearance;
 }
 
 double BoundaryHandler::move_cost(double ex, double ey, double px, double py, double budget) {

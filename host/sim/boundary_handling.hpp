@@ -95,6 +95,10 @@ class BoundaryHandler {
   // budget b: |e| (1 + 64 eps) + 8 eps (|px| + |py| + b), eps the precision's unit roundoff x 2.
   // The same formula in kernels/device_step.cl.
   static double move_cost(double ex, double ey, double px, double py, double budget);
+  // The refresh rule (kernels/clearance.cl, clearance_refresh): a node known inside (budget > 0) whose
+  // move by (ex, ey) to target costs less than clearance = clearance_from(target) stays inside without
+  // the exact test, with the new budget clearance.
+  static bool refresh_accepts(double ex, double ey, Vec2 target, double clearance);
 
  private:
   void insert_snapped(NodeSet& nodes, int node, Vec2 target);

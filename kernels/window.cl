@@ -1,0 +1,98 @@
+// The end of one device-resident iteration on the device (host/opencl/device_window.*): one work-item
+// sums the per-group partials of device_step and boundary_snap in group order (as the host did), writes
+// the iteration's history row into a ring the host reads once per window, runs the global time-step rule
+// (GlobalTimeStep::update, host/sim/global_time_step.cpp, operation for operation in double) and hands
+// the next device_step its dt^2. It halts the window (step_counters[WINDOW_HALT]; every later kernel of
+// the window then does nothing) when the host must act: interior nodes for the exact test, a move or a
+// sum that is not finite, or a skin use past the rebuild limit. Needs cl_khr_fp64 (the rule's state
+// is double whatever REAL is); without it the host sums and runs the rule (DeviceWindow::device_rule).
+#if defined(cl_khr_fp64)
+#pragma OPENCL EXTENSION cl_khr_fp64 : enable
+#pragma OPENCL FP_CONTRACT OFF
+
+#define STEP_PARTIAL_COUNT 7      // device_step.cl, STEP_PARTIALS
+#define SNAP_PARTIAL_COUNT 3      // boundary.cl, BOUNDARY_PARTIALS
+
+// RING_*, STATE_*, WINDOW_* slots, GM_RUN_LENGTH, GM_GROW, GM_SHRINK: defined by the program builder
+// from host/opencl/device_window.hpp and GlobalTimeStep.
+__kernel void iteration_rule(const int groups, __global const REAL* partials, const int snap_entries,
+                             __global const REAL* snap_partials, __global int* step_counters,
+                             __global double* state, __global double* ring, const int ring_rows,
+                             __global REAL* dt2_out) {
+  if (get_global_id(0) != 0 || step_counters[WINDOW_HALT] != 0) return;
+  const int r = step_counters[WINDOW_ROWS];
+  if (r >= ring_rows) {  // the host sizes the ring to the window: never, but never write past it
+    step_counters[WINDOW_HALT] = 1;
+    return;
+  }
+  // DeviceRun's sums, in group order: |F| and kinetic energy in double, the counts as integers,
+  // the maxima by std::max's comparison.
+  double force = 0.0, kinetic = 0.0, max_force = 0.0, skin = 0.0;
+  long moving = 0, within = 0, coincident = 0;
+  for (int g = 0; g < groups; ++g) {
+    __global const REAL* p = partials + STEP_PARTIAL_COUNT * g;
+    force += (double)p[0];
+    kinetic += (double)p[1];
+    moving += (long)p[2];
+    within += (long)p[3];
+    coincident += (long)p[4];
+    max_force = max_force < (double)p[5] ? (double)p[5] : max_force;
+    skin = skin < (double)p[6] ? (double)p[6] : skin;
+  }
+  long clamped = 0, bad = 0;
+  double snap_skin = 0.0;
+  for (int g = 0; g + SNAP_PARTIAL_COUNT <= snap_entries; g += SNAP_PARTIAL_COUNT) {
+    clamped += (long)snap_partials[g];
+    bad += (long)snap_partials[g + 1];
+    snap_skin = snap_skin < (double)snap_partials[g + 2] ? (double)snap_partials[g + 2] : snap_skin;
+  }
+  __global double* row = ring + RING_SIZE * r;
+  row[RING_FORCE] = force;
+  row[RING_KINETIC] = kinetic;
+  row[RING_MOVING] = (double)moving;
+  row[RING_WITHIN] = (double)within;
+  row[RING_COINCIDENT] = (double)coincident;
+  row[RING_MAX_FORCE] = max_force;
+  row[RING_SKIN] = skin;
+  row[RING_CLAMPED] = (double)clamped;
+  row[RING_SNAP_BAD] = (double)bad;
+  row[RING_SNAP_SKIN] = snap_skin;
+  row[RING_DT] = state[STATE_DT];
+  row[RING_CANDIDATES] = (double)step_counters[0];
+  row[RING_NON_FINITE] = (double)step_counters[1];
+  // GlobalTimeStep::update(max_force).
+  double dt = state[STATE_DT];
+  if (state[STATE_HAS_PREVIOUS] != 0.0) {
+    const double before = state[STATE_PREVIOUS];
+    int decreases = (int)state[STATE_DECREASES], increases = (int)state[STATE_INCREASES];
+    if (max_force < before) {
+      if (++decreases == GM_RUN_LENGTH) {
+        dt *= GM_GROW;
+        decreases = 0;
+        increases = 0;
+      }
+    } else {
+      decreases = 0;
+      if (max_force > before && ++increases == GM_RUN_LENGTH) {
+        dt *= GM_SHRINK;
+        increases = 0;
+      }
+    }
+    state[STATE_DECREASES] = (double)decreases;
+    state[STATE_INCREASES] = (double)increases;
+  }
+  state[STATE_PREVIOUS] = max_force;
+  state[STATE_HAS_PREVIOUS] = 1.0;
+  state[STATE_DT] = dt;
+  dt2_out[0] = (REAL)(dt * dt);
+  // The skin use since the last build (the host's skin_use_), as DeviceRun keeps it.
+  double used = state[STATE_SKIN];
+  used = used < skin ? skin : used;
+  used = used < snap_skin ? snap_skin : used;
+  state[STATE_SKIN] = used;
+  step_counters[WINDOW_ROWS] = r + 1;
+  if (step_counters[0] != 0 || step_counters[1] != 0 || bad != 0 || !isfinite(force) || !isfinite(kinetic) ||
+      used > state[STATE_SKIN_LIMIT])
+    step_counters[WINDOW_HALT] = 1;
+}
+#endif
