@@ -49,7 +49,7 @@ class Mesher:
     samples the spacing field and places the initial nodes; ``run()``, ``step(n)`` and
     ``iterate(every=50)`` move them; ``triangulate()`` meshes them at any point. A step interrupted by
     Ctrl-C (KeyboardInterrupt) or cancelled (progress returned False: ``pdmesh.Cancelled``) stops at
-    the end of an iteration; the Mesher then continues from there, on the host device to the same
+    the end of an iteration (on an OpenCL device, of the device's window of at most 32); the Mesher then continues from there, on the host device to the same
     result as a run that was never interrupted. ``geo`` is a Geometry, anything Geometry() accepts,
     or a Case. Keywords are case-file settings (see ``generate``). With ``out`` (a directory) the
     run also writes the command's outputs there. ``max_nodes`` refuses (LimitError) a case whose

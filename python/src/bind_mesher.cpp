@@ -83,6 +83,8 @@ class Mesher {
     SimulateHooks hooks;
     hooks.stop = &stop;
     hooks.on_iteration = [&](const HistoryRow& row) {
+      // Once stopping, the rest of a device window is replayed without asking again.
+      if (stop.load()) return;
       const auto now = Clock::now();
       if (now - last < every && row.iteration < target) return;
       last = now;
