@@ -35,7 +35,7 @@ void BackgroundBuilder::sample_all(const std::vector<std::uint64_t>& keys) {
   std::vector<double> q;
   exact_->at_many(points, q);
   ++batches_;
-  for (std::size_t i = 0; i < fresh.size(); ++i) samples_[fresh[i]] = q[i];
+  for (std::size_t i = 0; i < fresh.size(); ++i) *samples_.find(fresh[i]) = q[i];
 }
 
 // The square: the extents' bounding square grown by 1/64 so that points off the grid are outside the
@@ -288,12 +288,12 @@ BackgroundFieldData BackgroundBuilder::emit(const ValueFn& corner_value) const {
   d.root_size = root_size_;
   d.inv_root_size = 1.0 / root_size_;
   d.grid = grid_;
-  std::unordered_map<std::uint64_t, std::int32_t> corner_ids;
+  FlatKeyMap<std::int32_t> corner_ids;
   const std::uint32_t below_root = (std::uint32_t{1} << resolution_) - 1;
   auto corner = [&](std::uint32_t x, std::uint32_t y) {
-    const auto [it, inserted] = corner_ids.try_emplace(key(x, y), static_cast<std::int32_t>(d.corner_q.size()));
+    const auto [id, inserted] = corner_ids.try_emplace(key(x, y), static_cast<std::int32_t>(d.corner_q.size()));
     if (inserted) d.corner_q.push_back(corner_value ? corner_value(x, y) : sample(x, y));
-    return it->second;
+    return *id;
   };
   auto new_node = [&] {
     d.node_child.push_back(-1);

@@ -4,9 +4,9 @@
 #pragma once
 #include <cstdint>
 #include <functional>
-#include <unordered_map>
 #include <vector>
 
+#include "core/flat_key_map.hpp"
 #include "spacing/background_field.hpp"
 
 namespace pdmesh {
@@ -97,7 +97,7 @@ class BackgroundBuilder {
   double origin_x_ = 0.0, origin_y_ = 0.0, root_size_ = 1.0;
   std::vector<Cell> cells_;
   std::vector<std::vector<int>> segment_lists_;
-  std::unordered_map<std::uint64_t, double> samples_;
+  FlatKeyMap<double> samples_;
   std::size_t batches_ = 0;
 };
 
