@@ -7,7 +7,14 @@
 #include <cmath>
 #include <limits>
 
+#include "core/parallel.hpp"
+
 namespace pdmesh {
+
+namespace {
+// Cells tested per thread at least (a test is a few lookups and nine interpolations).
+constexpr std::size_t kTestsPerThread = 2048;
+}  // namespace
 
 BackgroundBuilder::BackgroundBuilder(const SpacingField& exact, const GeometryTree& tree,
                                      const BackgroundOptions& options)
@@ -202,9 +209,11 @@ std::size_t BackgroundBuilder::refine(std::vector<int> level_cells, const Decide
       }
       sample_all(keys);
       if (sampled) sampled(keys);
-      for (std::size_t m = 0; m < tested.size(); ++m) {
+      // The tests only read (the samples, the caller's state), and each writes its own cell's decision:
+      // on all cores, with the decisions of one loop.
+      parallel_for(tested.size(), [&](std::size_t m) {
         const auto n = static_cast<std::size_t>(tested[m]);
-        if (round == 1 && decision[n] == Decision::Split) continue;
+        if (round == 1 && decision[n] == Decision::Split) return;
         const Cell& c = cells_[static_cast<std::size_t>(level_cells[n])];
         const std::uint32_t quarter = span(c.level) / 4;
         const int count = round == 0 ? kFirstQuarterTest : 9;
@@ -213,7 +222,7 @@ std::size_t BackgroundBuilder::refine(std::vector<int> level_cells, const Decide
                                                               c.y + quarter * static_cast<std::uint32_t>(kTests[t][1]));
         const bool split = test(c, &corners[4 * n], &exact[9 * m], count);
         decision[n] = split ? Decision::Split : round == 0 ? Decision::Test : Decision::Leaf;
-      }
+      }, kTestsPerThread);
     }
     // 3. Children of the split cells: the next level.
     next.clear();
