@@ -12,6 +12,9 @@
 //     levels on 30P30N, a third of the gather's time). Every slot comes from an integer atomic on the
 //     row's count, so no two work-items ever write one slot; an entry past the capacity is counted
 //     but not written (the row overflows).
+//   A build without the last counts (a run's first, or after the node set changed) runs gather_rows
+//   once with `counting` set: rows are only counted (no entry, no spill list: every row would outgrow
+//   its capacity of kSpareMin), then again with capacities from those exact counts.
 //   sort_rows: sorts each interior row by node index (the reference's order: forces are summed in
 //     it) and counts the rows that outgrew their capacities; the host then builds again with
 //     capacities from the counts just found, which are exact.
@@ -64,10 +67,14 @@ void row_offsets_add(const int n, __global ulong* offset, __global const ulong* 
 
 // Appends j to row r (see the top): the slot from the row's count, written inside the capacity; past
 // it, (r, j) goes to the spill list (counters[ROW_SPILLED] counts them, `spill_capacity` are kept) for
-// relocate_rows.
+// relocate_rows. A counting pass (`counting`) only counts.
 void row_append(const int r, const int j, __global const ulong* offset, __global volatile int* count,
                 const ulong entries_size, __global int* entries, const uint spill_capacity, __global int* spill,
-                __global uint* counters) {
+                __global uint* counters, const int counting) {
+  if (counting) {
+    atomic_inc(&count[r]);
+    return;
+  }
   const ulong s = (ulong)atomic_inc(&count[r]);
   const ulong slot = offset[r] + s;
   if (slot < offset[r + 1] && slot < entries_size) {
@@ -92,7 +99,8 @@ void gather_rows(const int n, const REAL radius_factor, __global const REAL* x, 
                  __global const int* grid_mask, __global const uint* grid_bucket_offset,
                  __global const REAL* grid_inv_cell, __global const uint* bucket, __global const int* grid_nodes,
                  __global const ulong* offset, __global volatile int* count, const ulong entries_size,
-                 __global int* entries, const uint spill_capacity, __global int* spill, __global uint* counters) {
+                 __global int* entries, const uint spill_capacity, __global int* spill, __global uint* counters,
+                 const int counting) {
   __local uint local_examined;
   if (get_local_id(0) == 0) local_examined = 0;
   barrier(CLK_LOCAL_MEM_FENCE);
@@ -101,8 +109,8 @@ void gather_rows(const int n, const REAL radius_factor, __global const REAL* x, 
     const int kind_i = kind[i];
     uint examined = 0;
     if (kind_i == 1) {  // [prev, next], in that order (no other work-item writes a boundary row)
-      row_append(i, prev[i], offset, count, entries_size, entries, spill_capacity, spill, counters);
-      row_append(i, next[i], offset, count, entries_size, entries, spill_capacity, spill, counters);
+      row_append(i, prev[i], offset, count, entries_size, entries, spill_capacity, spill, counters, counting);
+      row_append(i, next[i], offset, count, entries_size, entries, spill_capacity, spill, counters, counting);
     }
     {  // every kind scans: boundary and fixed nodes scatter to finer interior rows too
       const REAL xi = x[i], yi = y[i];
@@ -119,22 +127,40 @@ void gather_rows(const int n, const REAL radius_factor, __global const REAL* x, 
       const long y0 = nb_cell_coord(yi - box, inv_cell), y1 = nb_cell_coord(yi + box, inv_cell);
       const uint bucket_base = grid_bucket_offset[own];
       const ulong mask = (ulong)grid_mask[own];
+      // Cells of the box that no point within r reaches (its corners) are skipped: the gap from
+      // (xi, yi) to the cell, shrunk by `slack` (far above the rounding of the cell bounds and of d2),
+      // exceeds r. Only the work changes: a node in a skipped cell is farther than r, in no row.
+      const REAL cell = (REAL)1 / inv_cell;
+#if PDMESH_DOUBLE
+      const REAL slack = (fabs(xi) + fabs(yi) + r + cell) * REAL_C(1e-12);
+#else
+      const REAL slack = (fabs(xi) + fabs(yi) + r + cell) * REAL_C(1e-4);
+#endif
       for (long cy = y0; cy <= y1; ++cy) {
+        const REAL gy = fmax(fmax((REAL)cy * cell - yi, yi - (REAL)(cy + 1) * cell) - slack, (REAL)0);
         for (long cx = x0; cx <= x1; ++cx) {
-          const uint b = bucket_base + (uint)(nb_hash(cx, cy) & mask);
+          const REAL gx = fmax(fmax((REAL)cx * cell - xi, xi - (REAL)(cx + 1) * cell) - slack, (REAL)0);
+          if (gx * gx + gy * gy > r2) continue;
+          const ulong h = nb_hash(cx, cy);
+          const uint b = bucket_base + (uint)(h & mask), tag = nb_tag(cx, cy);
           const uint end = bucket[b];
           for (uint k = b > 0 ? bucket[b - 1] : 0; k < end; ++k) {
-            const int j = grid_nodes[k];
+            const uint e = (uint)grid_nodes[k];
+            if ((e & ~GRID_NODE_MASK) != tag) continue;  // another cell (most of them: no position loads)
+            const int j = (int)(e & GRID_NODE_MASK);
             if (j == i) continue;
-            // Only the probed cell's nodes (a bucket may hold other cells, one of them probed too).
-            if (nb_cell_coord(x[j], inv_cell) != cx || nb_cell_coord(y[j], inv_cell) != cy) continue;
             ++examined;
             // -(x[i] - x[j]) exactly: the same squared distance row j's own scan would compute.
             const REAL dx = x[j] - xi, dy = y[j] - yi, d2 = dx * dx + dy * dy;
-            if (kind_i == 2 && d2 <= r2) row_append(i, j, offset, count, entries_size, entries, spill_capacity, spill, counters);
+            // Every pair this scan lists is within r: r_j < r_i for a finer j (level[j] < own), so
+            // d2 <= r_j^2 implies d2 <= r2. Farther candidates need no cell test.
+            if (!(d2 <= r2)) continue;
+            // Only the probed cell's nodes (a bucket may hold other cells, one of them probed too).
+            if (nb_cell_coord(x[j], inv_cell) != cx || nb_cell_coord(y[j], inv_cell) != cy) continue;
+            if (kind_i == 2) row_append(i, j, offset, count, entries_size, entries, spill_capacity, spill, counters, counting);
             if (level[j] < own && kind[j] == 2) {
               const REAL rj = radius_factor * q[j];
-              if (d2 <= rj * rj) row_append(j, i, offset, count, entries_size, entries, spill_capacity, spill, counters);
+              if (d2 <= rj * rj) row_append(j, i, offset, count, entries_size, entries, spill_capacity, spill, counters, counting);
             }
           }
         }

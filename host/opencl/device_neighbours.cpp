@@ -51,7 +51,9 @@ NeighbourFlags DeviceNeighbours<Real>::build(std::size_t n, double radius_factor
   ensure_size(ctx_, counters_, "neighbour_counters", kZeroCounters.size());
   ensure_size(ctx_, offset_, "neighbour_offset", n + 1);
   // The counts of another node set say nothing about these rows: start from zero (a counting build).
+  bool have_counts = true;  // count_ holds the last build's counts of these n nodes
   if (n != counted_n_ || count_.size() < n) {
+    have_counts = false;
     ensure_size(ctx_, count_, "neighbour_count", n);
     if (n > 0) fill_zero(ctx_.queue(), count_.get(), n * sizeof(cl_int), "clearing 'neighbour_count'");
     counted_total_ = 0;
@@ -63,6 +65,9 @@ NeighbourFlags DeviceNeighbours<Real>::build(std::size_t n, double radius_factor
     gather_seconds = seconds_since(t0);
     return flags;
   }
+  if (n >= (std::size_t{1} << kGridNodeBits))
+    throw LimitError(fmt::format("{} nodes are more than the device neighbour build indexes ({} at most)", n,
+                                 (std::size_t{1} << kGridNodeBits) - 1));
   const std::size_t wg = program_.work_group, groups = (n + wg - 1) / wg;
   ensure_size(ctx_, level_, "level", n);
   ensure_size(ctx_, bin_state_, "bin_state", kBinStateSize);
@@ -79,14 +84,19 @@ NeighbourFlags DeviceNeighbours<Real>::build(std::size_t n, double radius_factor
   std::vector<std::uint32_t> c;
   std::vector<std::int32_t> state;
   int attempt = 0;
+  bool binned = false;  // the grids of these positions are built (an earlier pass of this build)
   for (;; ++attempt) {
     constexpr std::uint64_t kMaxIndex = std::numeric_limits<std::int32_t>::max();
     if (bucket_capacity_ > kMaxIndex || member_capacity_ > kMaxIndex)
       throw SimulationError(fmt::format("the neighbour grids of {} nodes need {} buckets and {} entries, more than "
                                         "the device binning indexes (2^31)",
                                         n, bucket_capacity_, member_capacity_));
-    ensure_size(ctx_, bucket_, "grid_bucket", bucket_capacity_);
-    ensure_size(ctx_, grid_nodes_, "grid_nodes", member_capacity_);
+    // A pass after one whose grids fit (a counting pass, or rows that outgrew) keeps those grids: the
+    // positions are the same. Growing a grid buffer would drop its contents.
+    if (!binned) {
+      ensure_size(ctx_, bucket_, "grid_bucket", bucket_capacity_);
+      ensure_size(ctx_, grid_nodes_, "grid_nodes", member_capacity_);
+    }
     const std::size_t buckets = bucket_.size(), bucket_groups = (buckets + wg - 1) / wg;
     ensure_size(ctx_, block_total_, "neighbour_block_total", std::max(groups, bucket_groups) + 1);
     // Every capacity sum bounds offset[n]: sum(c + c >> s + m) <= total + total >> s + m n; behind
@@ -106,31 +116,35 @@ NeighbourFlags DeviceNeighbours<Real>::build(std::size_t n, double radius_factor
     }
     const cl_ulong entries_size = index_.size() - kRowTail;
     // Binning (kernels/binning.cl).
-    bin_state_.upload(ctx_.queue(), kBinStateInit.data(), kBinStateInit.size(), false);
-    uploaded_bytes += sizeof(kBinStateInit);
-    ArgSetter(program_.bin_bounds, "bin_bounds")(n_arg)(radius)(x)(y)(q)(bin_partial_)(bin_state_);
-    launch(ctx_.queue(), program_.bin_bounds, "bin_bounds", n, wg);
-    ArgSetter(program_.bin_rmin, "bin_rmin")(groups_arg)(bin_partial_);
-    launch(ctx_.queue(), program_.bin_rmin, "bin_rmin", wg, wg);
-    ArgSetter(program_.bin_levels, "bin_levels")(n_arg)(groups_arg)(radius)(q)(bin_partial_)(level_)(bin_state_);
-    launch(ctx_.queue(), program_.bin_levels, "bin_levels", n, wg);
-    ArgSetter(program_.bin_plan, "bin_plan")(n_arg)(groups_arg)(static_cast<cl_uint>(buckets))(
-        static_cast<cl_uint>(grid_nodes_.size()))(bin_partial_)(bin_state_)(grid_mask_)(grid_bucket_offset_)(
-        grid_inv_cell_);
-    launch(ctx_.queue(), program_.bin_plan, "bin_plan", wg, wg);
-    fill_zero(ctx_.queue(), bucket_.get(), buckets * sizeof(cl_uint), "clearing 'grid_bucket'");
-    ArgSetter(program_.bin_count, "bin_count")(n_arg)(x)(y)(level_)(bin_state_)(grid_mask_)(grid_bucket_offset_)(
-        grid_inv_cell_)(bucket_);
-    launch(ctx_.queue(), program_.bin_count, "bin_count", n, wg);
-    ArgSetter(program_.bucket_scan, "bucket_scan")(static_cast<cl_uint>(buckets))(bucket_)(block_total_);
-    launch(ctx_.queue(), program_.bucket_scan, "bucket_scan", buckets, wg);
-    ArgSetter(program_.row_block_offsets, "row_block_offsets")(static_cast<cl_int>(bucket_groups))(block_total_);
-    launch(ctx_.queue(), program_.row_block_offsets, "row_block_offsets", wg, wg);
-    ArgSetter(program_.bucket_offsets_add, "bucket_offsets_add")(static_cast<cl_uint>(buckets))(bucket_)(block_total_);
-    launch(ctx_.queue(), program_.bucket_offsets_add, "bucket_offsets_add", buckets, wg);
-    ArgSetter(program_.bin_fill, "bin_fill")(n_arg)(x)(y)(level_)(bin_state_)(grid_mask_)(grid_bucket_offset_)(
-        grid_inv_cell_)(bucket_)(grid_nodes_);
-    launch(ctx_.queue(), program_.bin_fill, "bin_fill", n, wg);
+    if (!binned) {
+      bin_state_.upload(ctx_.queue(), kBinStateInit.data(), kBinStateInit.size(), false);
+      uploaded_bytes += sizeof(kBinStateInit);
+      ArgSetter(program_.bin_bounds, "bin_bounds")(n_arg)(radius)(x)(y)(q)(bin_partial_)(bin_state_);
+      launch(ctx_.queue(), program_.bin_bounds, "bin_bounds", n, wg);
+      ArgSetter(program_.bin_rmin, "bin_rmin")(groups_arg)(bin_partial_);
+      launch(ctx_.queue(), program_.bin_rmin, "bin_rmin", wg, wg);
+      ArgSetter(program_.bin_levels, "bin_levels")(n_arg)(groups_arg)(radius)(q)(bin_partial_)(level_)(bin_state_);
+      launch(ctx_.queue(), program_.bin_levels, "bin_levels", n, wg);
+      ArgSetter(program_.bin_plan, "bin_plan")(n_arg)(groups_arg)(static_cast<cl_uint>(buckets))(
+          static_cast<cl_uint>(grid_nodes_.size()))(bin_partial_)(bin_state_)(grid_mask_)(grid_bucket_offset_)(
+          grid_inv_cell_);
+      launch(ctx_.queue(), program_.bin_plan, "bin_plan", wg, wg);
+      fill_zero(ctx_.queue(), bucket_.get(), buckets * sizeof(cl_uint), "clearing 'grid_bucket'");
+      ArgSetter(program_.bin_count, "bin_count")(n_arg)(x)(y)(level_)(bin_state_)(grid_mask_)(grid_bucket_offset_)(
+          grid_inv_cell_)(bucket_);
+      launch(ctx_.queue(), program_.bin_count, "bin_count", n, wg);
+      ArgSetter(program_.bucket_scan, "bucket_scan")(static_cast<cl_uint>(buckets))(bucket_)(block_total_);
+      launch(ctx_.queue(), program_.bucket_scan, "bucket_scan", buckets, wg);
+      ArgSetter(program_.row_block_offsets, "row_block_offsets")(static_cast<cl_int>(bucket_groups))(block_total_);
+      launch(ctx_.queue(), program_.row_block_offsets, "row_block_offsets", wg, wg);
+      ArgSetter(program_.bucket_offsets_add, "bucket_offsets_add")(static_cast<cl_uint>(buckets))(bucket_)(
+          block_total_);
+      launch(ctx_.queue(), program_.bucket_offsets_add, "bucket_offsets_add", buckets, wg);
+      ArgSetter(program_.bin_fill, "bin_fill")(n_arg)(x)(y)(level_)(bin_state_)(grid_mask_)(grid_bucket_offset_)(
+          grid_inv_cell_)(bucket_)(grid_nodes_);
+      launch(ctx_.queue(), program_.bin_fill, "bin_fill", n, wg);
+      launches += 9;
+    }
     // Rows (kernels/neighbours.cl).
     ArgSetter(program_.row_capacity_scan, "row_capacity_scan")(n_arg)(static_cast<cl_int>(kSpareShift))(
         static_cast<cl_int>(kSpareMin))(count_)(offset_)(block_total_);
@@ -142,19 +156,22 @@ NeighbourFlags DeviceNeighbours<Real>::build(std::size_t n, double radius_factor
     fill_zero(ctx_.queue(), count_.get(), n * sizeof(cl_int), "clearing 'neighbour_count'");
     counters_.upload(ctx_.queue(), kZeroCounters.data(), kZeroCounters.size(), false);
     uploaded_bytes += sizeof(kZeroCounters);
+    // Without counts every row would outgrow its capacity: count only, then build with the counts.
+    const bool counting = !have_counts;
     ArgSetter(program_.gather_rows, "gather_rows")(n_arg)(radius)(x)(y)(q)(kind)(prev)(next)(level_)(bin_state_)(
         grid_mask_)(grid_bucket_offset_)(grid_inv_cell_)(bucket_)(grid_nodes_)(offset_)(count_)(entries_size)(index_)(
-        static_cast<cl_uint>(spill_capacity))(spill_)(counters_);
+        static_cast<cl_uint>(spill_capacity))(spill_)(counters_)(static_cast<cl_int>(counting ? 1 : 0));
     launch(ctx_.queue(), program_.gather_rows, "gather_rows", n, wg);
     ArgSetter(program_.sort_rows, "sort_rows")(n_arg)(kind)(offset_)(count_)(entries_size)(index_)(counters_);
     launch(ctx_.queue(), program_.sort_rows, "sort_rows", n, wg);
+    // A counting pass moves nothing (move capacity 0): the next pass builds with the counts.
     ArgSetter(program_.relocate_rows, "relocate_rows")(n_arg)(kind)(offset_)(count_)(entries_size)(index_)(
-        static_cast<cl_uint>(spill_capacity))(spill_)(static_cast<cl_uint>(move_capacity))(move_node_)(move_start_)(
-        counters_);
+        static_cast<cl_uint>(spill_capacity))(spill_)(static_cast<cl_uint>(counting ? 0 : move_capacity))(move_node_)(
+        move_start_)(counters_);
     launch(ctx_.queue(), program_.relocate_rows, "relocate_rows", n, wg);
     ArgSetter(program_.apply_row_moves, "apply_row_moves")(move_node_)(move_start_)(counters_)(offset_);
     launch(ctx_.queue(), program_.apply_row_moves, "apply_row_moves", move_capacity, wg);
-    launches += 16;
+    launches += 7;
     // The build's one wait: the counters and the binning's state.
     bin_state_.download(ctx_.queue(), state, kBinHead, false);
     counters_.download(ctx_.queue(), c, kZeroCounters.size());
@@ -171,13 +188,15 @@ NeighbourFlags DeviceNeighbours<Real>::build(std::size_t n, double radius_factor
     member_capacity_ = std::max<std::uint64_t>(member_capacity_, with_slack(static_cast<std::uint64_t>(state[kBinMembers])));
     bucket_capacity_ = std::max<std::uint64_t>(bucket_capacity_, with_slack(static_cast<std::uint64_t>(state[kBinBuckets])));
     if (grids_fit) {
+      binned = true;
+      have_counts = true;
       outgrown_rows += c[kRowOutgrown];
       counted_n_ = n;
       counted_total_ = c[kRowEntries];
       // Rows that outgrew their capacities were moved behind the others, unless the spill list, the
       // move list or the spare region was too small: then build again with the counts (exact now).
-      if (c[kRowOutgrown] == 0 || (c[kRowSpilled] <= spill_capacity && c[kRowOutgrown] <= move_capacity &&
-                                     c[kRowSpareFull] == 0))
+      if (!counting && (c[kRowOutgrown] == 0 || (c[kRowSpilled] <= spill_capacity && c[kRowOutgrown] <= move_capacity &&
+                                                   c[kRowSpareFull] == 0)))
         break;
     }
     if (attempt >= 3)

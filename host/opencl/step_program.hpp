@@ -45,6 +45,11 @@ std::map<std::string, std::string> step_program_defines(Precision precision, std
 // the list radii of a run span less than 2^kBinLevels.
 inline constexpr int kBinLevels = 64;
 
+// A grid entry (kernels/binning.cl, grid_nodes) holds its node in the low kGridNodeBits bits and, above
+// them, a tag of its cell (the top bits of a second hash of the cell), so the gather skips most entries of other
+// cells sharing the bucket without loading their positions. Device runs index fewer nodes than this.
+inline constexpr int kGridNodeBits = 28;
+
 // Slots of the words a neighbour build leaves for the host: the binning's state (kernels/binning.cl,
 // bin_state: kBinHead words, then kBinLevels member counts) and the row counters (kernels/neighbours.cl).
 // Defined once here; step_program_defines passes each to the kernels as a define (BIN_FIRST_INVALID,
