@@ -221,8 +221,14 @@ class Quadtree {
       for (int c = node.first_child; c < node.first_child + 4; ++c) {
         const Node& kid = nodes_[c];
         if (kid.first_child < 0 && kid.count == 0) continue;  // empty leaf
-        const double kd = node_lower_bound(p, kid);
-        if (kd > bound(best.distance)) continue;
+        // The content box first, squared: most children are pruned by it without the capsule's
+        // division and square roots (the same children are pruned as by node_lower_bound).
+        const double limit = bound(best.distance);
+        const double box2 = box_distance2(p, kid.content);
+        if (box2 > limit * limit) continue;
+        double kd = std::sqrt(box2);
+        if (kid.cap_r >= 0.0) kd = std::max(kd, point_segment_distance(p, kid.cap_a, kid.cap_b) - kid.cap_r);
+        if (kd > limit) continue;
         // Insertion into kids, farthest first, so that the nearest is pushed last and popped next.
         int k = count++;
         while (k > 0 && kids[k - 1].first < kd) {

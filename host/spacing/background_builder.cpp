@@ -7,7 +7,14 @@
 #include <cmath>
 #include <limits>
 
+#include "core/parallel.hpp"
+
 namespace pdmesh {
+
+namespace {
+// Cells tested per thread at least (a test is a few lookups and nine interpolations).
+constexpr std::size_t kTestsPerThread = 2048;
+}  // namespace
 
 BackgroundBuilder::BackgroundBuilder(const SpacingField& exact, const GeometryTree& tree,
                                      const BackgroundOptions& options)
@@ -35,7 +42,7 @@ void BackgroundBuilder::sample_all(const std::vector<std::uint64_t>& keys) {
   std::vector<double> q;
   exact_->at_many(points, q);
   ++batches_;
-  for (std::size_t i = 0; i < fresh.size(); ++i) samples_[fresh[i]] = q[i];
+  for (std::size_t i = 0; i < fresh.size(); ++i) *samples_.find(fresh[i]) = q[i];
 }
 
 // The square: the extents' bounding square grown by 1/64 so that points off the grid are outside the
@@ -202,9 +209,11 @@ std::size_t BackgroundBuilder::refine(std::vector<int> level_cells, const Decide
       }
       sample_all(keys);
       if (sampled) sampled(keys);
-      for (std::size_t m = 0; m < tested.size(); ++m) {
+      // The tests only read (the samples, the caller's state), and each writes its own cell's decision:
+      // on all cores, with the decisions of one loop.
+      parallel_for(tested.size(), [&](std::size_t m) {
         const auto n = static_cast<std::size_t>(tested[m]);
-        if (round == 1 && decision[n] == Decision::Split) continue;
+        if (round == 1 && decision[n] == Decision::Split) return;
         const Cell& c = cells_[static_cast<std::size_t>(level_cells[n])];
         const std::uint32_t quarter = span(c.level) / 4;
         const int count = round == 0 ? kFirstQuarterTest : 9;
@@ -213,7 +222,7 @@ std::size_t BackgroundBuilder::refine(std::vector<int> level_cells, const Decide
                                                               c.y + quarter * static_cast<std::uint32_t>(kTests[t][1]));
         const bool split = test(c, &corners[4 * n], &exact[9 * m], count);
         decision[n] = split ? Decision::Split : round == 0 ? Decision::Test : Decision::Leaf;
-      }
+      }, kTestsPerThread);
     }
     // 3. Children of the split cells: the next level.
     next.clear();
@@ -288,12 +297,12 @@ BackgroundFieldData BackgroundBuilder::emit(const ValueFn& corner_value) const {
   d.root_size = root_size_;
   d.inv_root_size = 1.0 / root_size_;
   d.grid = grid_;
-  std::unordered_map<std::uint64_t, std::int32_t> corner_ids;
+  FlatKeyMap<std::int32_t> corner_ids;
   const std::uint32_t below_root = (std::uint32_t{1} << resolution_) - 1;
   auto corner = [&](std::uint32_t x, std::uint32_t y) {
-    const auto [it, inserted] = corner_ids.try_emplace(key(x, y), static_cast<std::int32_t>(d.corner_q.size()));
+    const auto [id, inserted] = corner_ids.try_emplace(key(x, y), static_cast<std::int32_t>(d.corner_q.size()));
     if (inserted) d.corner_q.push_back(corner_value ? corner_value(x, y) : sample(x, y));
-    return it->second;
+    return *id;
   };
   auto new_node = [&] {
     d.node_child.push_back(-1);

@@ -4,9 +4,9 @@
 #pragma once
 #include <cstdint>
 #include <functional>
-#include <unordered_map>
 #include <vector>
 
+#include "core/flat_key_map.hpp"
 #include "spacing/background_field.hpp"
 
 namespace pdmesh {
@@ -37,6 +37,8 @@ class BackgroundBuilder {
   // batch), then `corner_value` gives each cell's corner values (cell, lattice x, y). `sampled` (if
   // set) sees the keys of every batch (corners, then test points) as soon as its samples are in, so a
   // caller can compute its own values at those points in bulk. Returns the number of cells split.
+  // `test` is called from several threads at once: it may only read (decide and corner_value are
+  // called on the calling thread, in the cells' order).
   using DecideFn = std::function<Decision(const Cell&, const double q[4])>;
   using TestFn = std::function<bool(const Cell&, const double q[4], const double exact[9], int count)>;
   using CornerFn = std::function<double(const Cell&, std::uint32_t, std::uint32_t)>;
@@ -97,7 +99,7 @@ class BackgroundBuilder {
   double origin_x_ = 0.0, origin_y_ = 0.0, root_size_ = 1.0;
   std::vector<Cell> cells_;
   std::vector<std::vector<int>> segment_lists_;
-  std::unordered_map<std::uint64_t, double> samples_;
+  FlatKeyMap<double> samples_;
   std::size_t batches_ = 0;
 };
 

@@ -6,8 +6,8 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
-#include <unordered_map>
 
+#include "core/flat_key_map.hpp"
 #include "core/parallel.hpp"
 
 namespace pdmesh {
@@ -108,7 +108,7 @@ class LimitedField {
                                                               static_cast<std::uint32_t>(fresh[i] & 0xffffffffu)));
     }, 256);
     stats_.source_seconds += seconds_since(start);
-    for (std::size_t i = 0; i < fresh.size(); ++i) source_at_[fresh[i]] = value[i];
+    for (std::size_t i = 0; i < fresh.size(); ++i) *source_at_.find(fresh[i]) = value[i];
   }
 
   // Registers new corners: position, base sample and min(base, sources); their limited value is set
@@ -214,7 +214,7 @@ class LimitedField {
   // cones of its parent's corners' sources, the same min the next limit would give it locally.
   double corner_value(const Cell& c, std::uint32_t x, std::uint32_t y) {
     const std::uint64_t k = BackgroundBuilder::key(x, y);
-    if (id_.find(k) == id_.end()) add_corners({k});
+    if (!id_.find(k)) add_corners({k});
     const auto i = static_cast<std::size_t>(id_.at(k));
     if (!std::isnan(q_[i])) return q_[i];
     q_[i] = q0_[i];
@@ -260,8 +260,8 @@ class LimitedField {
   const double g_;
   const std::vector<PointSource>& points_;
   LimitedFieldStats& stats_;
-  std::unordered_map<std::uint64_t, std::int32_t> id_;
-  std::unordered_map<std::uint64_t, double> source_at_;  // the sources at lattice points
+  FlatKeyMap<std::int32_t> id_;
+  FlatKeyMap<double> source_at_;  // the sources at lattice points
   std::vector<Vec2> pos_;
   std::vector<double> base_, q0_, q_;
   std::vector<std::int32_t> source_;
