@@ -42,6 +42,23 @@ def read_nodes(path: Path) -> np.ndarray:
     return np.array([[float(v) for v in ln.split()[:2]] for ln in lines[1:1 + n]])
 
 
+class CancelAt:
+    """A progress callable that records the iterations it was shown and cancels at iteration `k`."""
+
+    def __init__(self, k: int):
+        self.k = k
+        self.seen: list[int] = []
+
+    def __call__(self, p) -> bool:
+        self.seen.append(p.iteration)
+        return p.iteration < self.k
+
+
+@pytest.fixture
+def cancel_at():
+    return CancelAt
+
+
 @pytest.fixture
 def rings():
     return circle_in_square()

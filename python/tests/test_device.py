@@ -10,21 +10,16 @@ import pdmesh
 import pdmesh.mesher
 
 
-def test_device_run_cancels_and_continues(rings, monkeypatch):
+def test_device_run_cancels_and_continues(rings, monkeypatch, cancel_at):
     monkeypatch.setattr(pdmesh.mesher, "CHECK_INTERVAL", 0.0)
     m = pdmesh.Mesher(rings, device="opencl", iterations=40, seed=1)
-    seen = []
-
-    def progress(p):
-        seen.append(p.iteration)
-        return p.iteration < 15
-
+    stop = cancel_at(15)
     with pytest.raises(pdmesh.Cancelled) as info:
-        m.run(progress=progress)
+        m.run(progress=stop)
     # The device runs iterations in windows without waiting for the host (at most 32, kWindowLength in
-    # host/opencl/device_window.hpp): the run stops at the end of the window holding iteration 15,
-    # with the state of that iteration, and the callable is not asked again after it said stop.
-    assert seen[-1] == 15
+    # host/opencl/device_window.hpp): the run stops at the end of the window holding iteration 15, with
+    # the state of the iteration it stopped at, and the callable is not asked again after it said stop.
+    assert stop.seen[-1] == 15
     assert 15 <= m.iteration < 15 + 32
     assert f"after iteration {m.iteration}" in str(info.value)
     assert m.backend.startswith("opencl:")

@@ -31,19 +31,14 @@ def test_progress_bar_on_stderr(rings, capsys):
     assert "pdmesh: [" in err and "20/20" in err
 
 
-def test_cancel_is_honoured_at_the_next_check(rings, monkeypatch):
+def test_cancel_is_honoured_at_the_next_check(rings, monkeypatch, cancel_at):
     monkeypatch.setattr(pdmesh.mesher, "CHECK_INTERVAL", 0.0)  # a check after every iteration
     m = pdmesh.Mesher(rings, device="host", iterations=200, seed=1)
-    seen = []
-
-    def stop_at_25(p):
-        seen.append(p.iteration)
-        return p.iteration < 25
-
+    stop = cancel_at(25)
     with pytest.raises(pdmesh.Cancelled) as e:
-        m.run(progress=stop_at_25)
+        m.run(progress=stop)
     assert e.value.mesher is m
-    assert seen[-1] == 25 and m.iteration == 25
+    assert stop.seen[-1] == 25 and m.iteration == 25
     m.run()  # and it goes on
     assert m.iteration == 200
 
