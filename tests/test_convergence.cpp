@@ -271,3 +271,36 @@ TEST_CASE("convergence off (simulation.stop = iterations): every iteration runs,
   CHECK(r.state.iterations_done == 150);
   CHECK(r.state.convergence.empty());
 }
+
+TEST_CASE("convergence: a run that did not converge says which part of the rule held it", "[convergence]") {
+  const ConvergenceOptions o = small_options();
+  SECTION("the aspect ratio still changing") {
+    std::vector<MeshSample> samples;
+    for (int it = 10; it <= 80; it += 10) samples.push_back({it, 30.0, 1.10 - it / 1000.0});
+    const ConvergenceMonitor m(o, samples);
+    CHECK_FALSE(m.converged_after(80));
+    CHECK(m.not_converged_reason(80) ==
+          "the mean aspect ratio of the triangulated nodes changed by 0.04 over iterations 40-80 (tolerance 0.0005)");
+  }
+  SECTION("a new best smallest angle") {
+    std::vector<MeshSample> samples;
+    for (int it = 10; it <= 80; it += 10) samples.push_back({it, 20.0 + it / 10.0, 1.04});
+    const ConvergenceMonitor m(o, samples);
+    CHECK(m.not_converged_reason(80) ==
+          "the smallest angle reached a new best over iterations 40-80: 28.00 deg against 24.00 before (tolerance 0.25)");
+  }
+  SECTION("settled, early, unsettled population, no window") {
+    std::vector<MeshSample> samples;
+    for (int it = 10; it <= 100; it += 10) samples.push_back(settling(it));
+    const ConvergenceMonitor m(o, samples);
+    CHECK(m.converged_after(100));
+    CHECK(m.not_converged_reason(100).empty());
+    CHECK(m.not_converged_reason(100, false) == "population control had not settled");
+    CHECK(m.not_converged_reason(30) == "iteration 30 is before the earliest stop (40)");
+    CHECK(m.not_converged_reason(95) == "no measured window of 40 iterations ends at iteration 95");
+    std::vector<MeshSample> bad = samples;
+    bad[8].min_angle = kNaN;  // iteration 90
+    CHECK(ConvergenceMonitor(o, bad).not_converged_reason(100) ==
+          "the nodes did not triangulate at a measurement after iteration 60");
+  }
+}

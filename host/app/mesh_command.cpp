@@ -33,7 +33,9 @@
 #include "render/mesh_picture.hpp"
 #include "render/node_picture.hpp"
 #include "render/spacing_picture.hpp"
+#include "sim/convergence.hpp"
 #include "sim/history.hpp"
+#include "sim/population.hpp"
 #include "spacing/mesh_spacing.hpp"
 #include "spacing/resolution_check.hpp"
 
@@ -366,9 +368,21 @@ SimResult simulate(const CaseConfig& config, const MeshInputs& inputs, NodeSet& 
     std::error_code ec;
     fs::remove(checkpoint_file, ec);
   }
-  if (result.converged)
+  if (result.converged) {
     progress(config, "simulation: converged after {} iterations (of at most {})", result.state.iterations_done,
              options.iterations);
+  } else if (options.convergence.enabled && !result.stopped && result.state.iterations_done == options.iterations) {
+    // A run that ran to its maximum says what held it (the rule's measurements are not printed otherwise).
+    const int done = result.state.iterations_done;
+    const bool settled =
+        population_status(options.population, result.state.population, done, options.iterations).settled;
+    const std::string why =
+        ConvergenceMonitor(options.convergence, result.state.convergence).not_converged_reason(done, settled);
+    if (why.empty())
+      progress(config, "simulation: the stopping rule's conditions were met at the last iteration allowed, {}", done);
+    else
+      progress(config, "simulation: not converged in {} iterations: {}", done, why);
+  }
   const SimStats& st = result.stats;
   const int iterations_run = result.state.iterations_done - (resume ? resume->iterations_done : 0);
   const double per_iteration = iterations_run > 0 ? st.seconds / iterations_run : 0.0;

@@ -65,30 +65,77 @@ bool ConvergenceMonitor::observe(const HistoryRow& row, const MeshSample* sample
   return converged_after(row.iteration, population_settled);
 }
 
-bool ConvergenceMonitor::converged_after(int iteration, bool population_settled) const {
-  if (!options_.enabled || !population_settled || iteration < options_.min_iterations) return false;
+struct ConvergenceMonitor::Verdict {
+  enum class Why { Converged, Disabled, Population, Early, NoWindow, NotFinite, Aspect, Angle } why = Why::Disabled;
+  int window_start = 0;
+  double aspect_change = 0.0, best_before = -1.0, best_within = -1.0;
+};
+
+ConvergenceMonitor::Verdict ConvergenceMonitor::judge(int iteration, bool population_settled) const {
+  using Why = Verdict::Why;
+  Verdict v;
+  if (!options_.enabled) return v;
+  v.why = Why::Population;
+  if (!population_settled) return v;
+  v.why = Why::Early;
+  if (iteration < options_.min_iterations) return v;
   // Only at a measurement: the newest sample must be of this iteration.
-  if (samples_.empty() || samples_.back().iteration != iteration) return false;
+  v.why = Why::NoWindow;
+  if (samples_.empty() || samples_.back().iteration != iteration) return v;
   // The window: the measurements after iteration now - window, and the one at its start.
   const int start = iteration - options_.window;
+  v.window_start = start;
   const auto first_in =
       std::find_if(samples_.begin(), samples_.end(), [start](const MeshSample& s) { return s.iteration > start; });
-  if (first_in == samples_.begin() || (first_in - 1)->iteration != start) return false;
-  double aspect_lo = HUGE_VAL, aspect_hi = -HUGE_VAL, best_before = -1.0, best_within = -1.0;
+  if (first_in == samples_.begin() || (first_in - 1)->iteration != start) return v;
+  double aspect_lo = HUGE_VAL, aspect_hi = -HUGE_VAL;
   for (auto it = samples_.begin(); it != samples_.end(); ++it) {
     const bool finite = std::isfinite(it->min_angle) && std::isfinite(it->aspect_ratio);
     if (it >= first_in - 1) {
-      if (!finite) return false;  // the nodes did not triangulate within the window: not settled
+      // The nodes did not triangulate within the window: not settled.
+      if (!finite) return Verdict{Why::NotFinite, start};
       aspect_lo = std::min(aspect_lo, it->aspect_ratio);
       aspect_hi = std::max(aspect_hi, it->aspect_ratio);
     }
     if (!finite) continue;
-    if (it < first_in) best_before = std::max(best_before, it->min_angle);
-    else best_within = std::max(best_within, it->min_angle);
+    if (it < first_in) v.best_before = std::max(v.best_before, it->min_angle);
+    else v.best_within = std::max(v.best_within, it->min_angle);
   }
+  v.aspect_change = aspect_hi - aspect_lo;
   // The mean quality has stayed within the tolerance over the window (worsening counts too), and the
   // smallest angle has not reached a new best in it.
-  return aspect_hi - aspect_lo <= options_.aspect_tolerance && best_within <= best_before + options_.angle_tolerance;
+  v.why = v.aspect_change > options_.aspect_tolerance              ? Why::Aspect
+          : v.best_within > v.best_before + options_.angle_tolerance ? Why::Angle
+                                                                     : Why::Converged;
+  return v;
+}
+
+bool ConvergenceMonitor::converged_after(int iteration, bool population_settled) const {
+  return judge(iteration, population_settled).why == Verdict::Why::Converged;
+}
+
+std::string ConvergenceMonitor::not_converged_reason(int iteration, bool population_settled) const {
+  using Why = Verdict::Why;
+  const Verdict v = judge(iteration, population_settled);
+  switch (v.why) {
+    case Why::Converged: return {};
+    case Why::Disabled: return "the stopping rule is off";
+    case Why::Population: return "population control had not settled";
+    case Why::Early: return fmt::format("iteration {} is before the earliest stop ({})", iteration, options_.min_iterations);
+    case Why::NoWindow:
+      return fmt::format("no measured window of {} iterations ends at iteration {}", options_.window, iteration);
+    case Why::NotFinite:
+      return fmt::format("the nodes did not triangulate at a measurement after iteration {}", v.window_start);
+    case Why::Aspect:
+      return fmt::format(
+          "the mean aspect ratio of the triangulated nodes changed by {:.2g} over iterations {}-{} (tolerance {:.2g})",
+          v.aspect_change, v.window_start, iteration, options_.aspect_tolerance);
+    case Why::Angle:
+      return fmt::format(
+          "the smallest angle reached a new best over iterations {}-{}: {:.2f} deg against {:.2f} before (tolerance {:.2f})",
+          v.window_start, iteration, v.best_within, v.best_before, options_.angle_tolerance);
+  }
+  return {};
 }
 
 }  // namespace pdmesh

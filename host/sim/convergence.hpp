@@ -8,6 +8,7 @@
 // so a host run and a double-precision device run stop after the same iteration.
 #pragma once
 #include <cstddef>
+#include <string>
 #include <vector>
 
 #include "nodes/node_set.hpp"
@@ -58,8 +59,16 @@ class ConvergenceMonitor {
   // interrupted after is complete, as the uninterrupted run would have been.
   bool converged_after(int iteration, bool population_settled = true) const;
   const std::vector<MeshSample>& samples() const { return samples_; }
+  // Why the rule does not say converged after `iteration`, in words for the progress output (a run
+  // that ran to its maximum): population control not settled, too early, no window of measurements
+  // yet, a measurement that did not triangulate, the aspect ratio's change over the window, or the
+  // smallest angle's new best. Empty when it has converged.
+  std::string not_converged_reason(int iteration, bool population_settled = true) const;
 
  private:
+  // The rule's verdict after `iteration` and, when it is no, why (converged_after, not_converged_reason).
+  struct Verdict;
+  Verdict judge(int iteration, bool population_settled) const;
   ConvergenceOptions options_;
   std::vector<MeshSample> samples_;
 };
