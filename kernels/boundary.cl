@@ -5,7 +5,7 @@
 // rule reads the old arc positions (arcs_in) and writes the new ones (arcs_out): the host swaps them.
 #pragma OPENCL FP_CONTRACT OFF
 
-#define BOUNDARY_PARTIALS 3  // clamped count, non-finite targets | max skin use
+// BOUNDARY_PARTIALS (clamped count, non-finite targets | max skin use): defined by the program builder.
 // MAX_GAP_FRACTION: BoundaryHandler::kMaxGapFraction, defined by the program builder.
 #ifndef MAX_GAP_FRACTION
 #error "MAX_GAP_FRACTION must be defined by the program builder"
@@ -87,7 +87,7 @@ void closest_on_curve(__global const REAL* p, __global const REAL* arc, const in
 // leaf (as apply_host_moves did with the host's result), its new (x, y, tx, ty) over its brec record
 // (what sync_boundary reads back), and per group: clamped moves, non-finite
 // targets (nothing is written for those: the host reports them), and the largest skin use (the
-// formula of device_step). step_counters[1] != 0 (device_step's flag for a move that is not finite): nothing is
+// formula of device_step). step_counters[COUNTER_NON_FINITE] != 0 (device_step's flag for a move that is not finite): nothing is
 // written but the partials.
 __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1)))
 void boundary_snap(const int m, __global const int* slot_node, __global const int* slot_curve,
@@ -103,7 +103,7 @@ void boundary_snap(const int m, __global const int* slot_node, __global const in
   // device_step found a move that is not finite: nothing is written (tangents are updated in place).
   // The window was halted before this iteration (kernels/window.cl): nothing at all.
   if (step_counters[WINDOW_HALT] != 0) return;
-  const int halted = step_counters[1] != 0;
+  const int halted = step_counters[COUNTER_NON_FINITE] != 0;
   if (s < m) {
     const int i = slot_node[s], c = slot_curve[s], pos = slot_pos[s];
     const REAL old = arcs_in[pos];

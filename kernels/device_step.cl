@@ -5,7 +5,9 @@
 // the positions the host's boundary handling decided.
 #pragma OPENCL FP_CONTRACT OFF
 
-#define STEP_PARTIALS 7  // sum |F|, sum kinetic, moving, pairs within, coincident | max |F|, max skin use
+// STEP_PARTIALS (sum |F|, sum kinetic, moving, pairs within, coincident | max |F|, max skin use) and the
+// step counters' slots (COUNTER_CANDIDATES, COUNTER_NON_FINITE, WINDOW_HALT) come from the program
+// builder (host/opencl/step_program.hpp, device_window.hpp).
 
 // The background field's arrays, passed as one group of arguments (bg_cell: leaf_cell, 4 per leaf).
 #define BG_ARGS                                                                                      \
@@ -32,14 +34,12 @@ REAL bg_spacing_cached(const REAL px, const REAL py, int* leaf, BG_ARGS) {
 }
 #define BG_PASS bg_origin_x, bg_origin_y, bg_inv_root, bg_grid, bg_root, bg_child, bg_corner, bg_cell, bg_q
 
-
-
 // Inputs x, y, q (current), outputs x_next, y_next, q_next. budget[i]: interior node i's clearance
 // budget (host/sim/boundary_handling.hpp, clearance_budget): a move whose cost (the same move_cost
 // formula, with this precision's epsilon) is below it stays inside the domain, exactly; the cost is
 // subtracted. A spent budget is refreshed from the segments segs (kernels/clearance.cl) when the move
 // is clearly inside. Other interior nodes (and non-finite moves) are appended to cand_index / cand_rec
-// (x, y, dx, dy) with an integer atomic counter (counters[0]) for the host's exact test (counters[1]:
+// (x, y, dx, dy) with an integer atomic counter (counters[COUNTER_CANDIDATES]) for the host's exact test (counters[COUNTER_NON_FINITE]:
 // set when a move is not finite); boundary
 // nodes write (x, y, dx, dy) to their slot bslot[i] of brec. skin_use: (|x_next - x_build| + cutoff
 // max(0, q_next - q_build)) / (skin cutoff q_build), maximised per group (interior nodes the host
@@ -112,7 +112,7 @@ void device_step(const int n, const REAL cutoff, const REAL lj_a, const int r0_a
       } else if (fresh > (REAL)0) {
         budget[i] = fresh;
       } else {
-        const int s = atomic_inc(&counters[0]);
+        const int s = atomic_inc(&counters[COUNTER_CANDIDATES]);
         cand_index[s] = i;
         cand_rec[4 * s] = xi;
         cand_rec[4 * s + 1] = yi;
@@ -124,9 +124,9 @@ void device_step(const int n, const REAL cutoff, const REAL lj_a, const int r0_a
     x_next[i] = xn;
     y_next[i] = yn;
     q_next[i] = qn;
-    // A move that is not finite halts the iteration for the host (counters[1]): boundary_snap then
+    // A move that is not finite halts the iteration for the host (counters[COUNTER_NON_FINITE]): boundary_snap then
     // writes nothing, so the state before this step stays whole on the device.
-    if (moving && !(isfinite(dx) && isfinite(dy) && isfinite(xn) && isfinite(yn))) atomic_or(&counters[1], 1);
+    if (moving && !(isfinite(dx) && isfinite(dy) && isfinite(xn) && isfinite(yn))) atomic_or(&counters[COUNTER_NON_FINITE], 1);
     if (!host && kind_i == 2) {
       const REAL ex = xn - x_build[i], ey = yn - y_build[i];
       const REAL grow = qn > q_build[i] ? cutoff * (qn - q_build[i]) : (REAL)0;

@@ -10,11 +10,9 @@
 #pragma OPENCL EXTENSION cl_khr_fp64 : enable
 #pragma OPENCL FP_CONTRACT OFF
 
-#define STEP_PARTIAL_COUNT 7      // device_step.cl, STEP_PARTIALS
-#define SNAP_PARTIAL_COUNT 3      // boundary.cl, BOUNDARY_PARTIALS
-
-// RING_*, STATE_*, WINDOW_* slots, GM_RUN_LENGTH, GM_GROW, GM_SHRINK: defined by the program builder
-// from host/opencl/device_window.hpp and GlobalTimeStep.
+// RING_*, STATE_*, COUNTER_*, WINDOW_* slots, GM_RUN_LENGTH, GM_GROW, GM_SHRINK, STEP_PARTIALS and
+// BOUNDARY_PARTIALS: defined by the program builder from host/opencl/device_window.hpp,
+// step_program.hpp and GlobalTimeStep.
 __kernel void iteration_rule(const int groups, __global const REAL* partials, const int snap_entries,
                              __global const REAL* snap_partials, __global int* step_counters,
                              __global double* state, __global double* ring, const int ring_rows,
@@ -30,7 +28,7 @@ __kernel void iteration_rule(const int groups, __global const REAL* partials, co
   double force = 0.0, kinetic = 0.0, max_force = 0.0, skin = 0.0;
   long moving = 0, within = 0, coincident = 0;
   for (int g = 0; g < groups; ++g) {
-    __global const REAL* p = partials + STEP_PARTIAL_COUNT * g;
+    __global const REAL* p = partials + STEP_PARTIALS * g;
     force += (double)p[0];
     kinetic += (double)p[1];
     moving += (long)p[2];
@@ -41,7 +39,7 @@ __kernel void iteration_rule(const int groups, __global const REAL* partials, co
   }
   long clamped = 0, bad = 0;
   double snap_skin = 0.0;
-  for (int g = 0; g + SNAP_PARTIAL_COUNT <= snap_entries; g += SNAP_PARTIAL_COUNT) {
+  for (int g = 0; g + BOUNDARY_PARTIALS <= snap_entries; g += BOUNDARY_PARTIALS) {
     clamped += (long)snap_partials[g];
     bad += (long)snap_partials[g + 1];
     snap_skin = snap_skin < (double)snap_partials[g + 2] ? (double)snap_partials[g + 2] : snap_skin;
@@ -58,8 +56,8 @@ __kernel void iteration_rule(const int groups, __global const REAL* partials, co
   row[RING_SNAP_BAD] = (double)bad;
   row[RING_SNAP_SKIN] = snap_skin;
   row[RING_DT] = state[STATE_DT];
-  row[RING_CANDIDATES] = (double)step_counters[0];
-  row[RING_NON_FINITE] = (double)step_counters[1];
+  row[RING_CANDIDATES] = (double)step_counters[COUNTER_CANDIDATES];
+  row[RING_NON_FINITE] = (double)step_counters[COUNTER_NON_FINITE];
   // GlobalTimeStep::update(max_force).
   double dt = state[STATE_DT];
   if (state[STATE_HAS_PREVIOUS] != 0.0) {
@@ -91,7 +89,7 @@ __kernel void iteration_rule(const int groups, __global const REAL* partials, co
   used = used < snap_skin ? snap_skin : used;
   state[STATE_SKIN] = used;
   step_counters[WINDOW_ROWS] = r + 1;
-  if (step_counters[0] != 0 || step_counters[1] != 0 || bad != 0 || !isfinite(force) || !isfinite(kinetic) ||
+  if (step_counters[COUNTER_CANDIDATES] != 0 || step_counters[COUNTER_NON_FINITE] != 0 || bad != 0 || !isfinite(force) || !isfinite(kinetic) ||
       used > state[STATE_SKIN_LIMIT])
     step_counters[WINDOW_HALT] = 1;
 }

@@ -215,6 +215,11 @@ TEST_CASE("the program carries exactly one force-loop define, and the kernels re
   CHECK(scalar.at("ROW_SPILLED") == std::to_string(kRowSpilled));
   CHECK(scalar.at("ROW_SPARE_FULL") == std::to_string(kRowCounters - 1));
   CHECK(scalar.at("MAX_GAP_FRACTION") == "REAL_C(0.45)");  // BoundaryHandler::kMaxGapFraction
+  // The partial sums' widths and the step counters' slots, also one definition for both sides.
+  CHECK(scalar.at("STEP_PARTIALS") == std::to_string(kStepPartials));
+  CHECK(scalar.at("BOUNDARY_PARTIALS") == std::to_string(kBoundaryPartials));
+  CHECK(scalar.at("COUNTER_CANDIDATES") == std::to_string(ocl::kCounterCandidates));
+  CHECK(scalar.at("COUNTER_NON_FINITE") == std::to_string(ocl::kCounterNonFinite));
   CHECK(source.find("#define PDMESH_FORCE_LOOP_SCALAR 1\n") != std::string::npos);
   CHECK(source.find("// ---- forces.cl ----") != std::string::npos);
 

@@ -14,9 +14,6 @@
 
 namespace pdmesh::ocl {
 
-// Per-group results of boundary_snap (kernels/boundary.cl, BOUNDARY_PARTIALS).
-inline constexpr std::size_t kBoundaryPartials = 3;
-
 // Sums of boundary_snap's partials over its groups, in group order.
 struct BoundarySnapResult {
   std::size_t clamped = 0;     // moves cut short at the allowed arc range (BoundaryCounts::clamped)
@@ -37,7 +34,7 @@ class DeviceBoundary {
   const std::vector<std::int32_t>& upload_topology(const NodeSet& nodes, const std::vector<std::vector<double>>& arcs);
 
   // Enqueues boundary_snap: moves from brec (x, y, dx, dy per slot), old arcs in buffer `cur`, new
-  // ones into 1 - cur; writes x, y, q, tx, ty and node_leaf of the boundary nodes, unless step_counters[1]
+  // ones into 1 - cur; writes x, y, q, tx, ty and node_leaf of the boundary nodes, unless step_counters[kCounterNonFinite]
   // != 0 (device_step's flag for a move that is not finite). `bg` sets the background field's arguments
   // (DeviceRun::bg_args). No-op without boundary nodes.
   template <typename BgArgs>

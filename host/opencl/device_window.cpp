@@ -23,6 +23,8 @@ std::map<std::string, std::string> window_defines() {
                                    {"STATE_INCREASES", kStateIncreases}, {"STATE_SKIN", kStateSkin},
                                    {"STATE_SKIN_LIMIT", kStateSkinLimit}})
     d.emplace(name, std::to_string(static_cast<int>(slot)));
+  d.emplace("COUNTER_CANDIDATES", std::to_string(static_cast<int>(kCounterCandidates)));
+  d.emplace("COUNTER_NON_FINITE", std::to_string(static_cast<int>(kCounterNonFinite)));
   d.emplace("WINDOW_HALT", std::to_string(static_cast<int>(kWindowHalt)));
   d.emplace("WINDOW_ROWS", std::to_string(static_cast<int>(kWindowRows)));
   // The rule's constants as the shortest round-trip text, so that the kernel has the same doubles.

@@ -106,6 +106,8 @@ std::map<std::string, std::string> step_program_defines(Precision precision, std
   d.emplace("PDMESH_FORCE_LOOP_SCALAR", loop == ForceLoop::Scalar ? "1" : "0");
   d.emplace("PDMESH_GRID_LEVELS", std::to_string(kBinLevels));
   d.emplace("GRID_NODE_BITS", std::to_string(kGridNodeBits));
+  d.emplace("STEP_PARTIALS", std::to_string(kStepPartials));
+  d.emplace("BOUNDARY_PARTIALS", std::to_string(kBoundaryPartials));
   // kernels/boundary.cl's Jacobi rule: the host's fraction (shortest round-trip text, so the same double).
   d.emplace("MAX_GAP_FRACTION", fmt::format("REAL_C({})", BoundaryHandler::kMaxGapFraction));
   for (const auto& [name, slot] : {std::pair{"BIN_FIRST_INVALID", kBinFirstInvalid}, {"BIN_TOP", kBinTop},

@@ -20,8 +20,12 @@ namespace pdmesh::ocl {
 // Work-group size of every simulation kernel (a power of two: the reductions halve it). 64 measured
 // best on PoCL's CPU device among 32/64/128 (docs/opencl.md).
 inline constexpr std::size_t kStepWorkGroup = 64;
-// Partial sums per group written by the device_step kernel (STEP_PARTIALS in device_step.cl).
+// Partial sums per group written by the device_step kernel (STEP_PARTIALS in device_step.cl: sum |F|,
+// sum kinetic, moving, pairs within, coincident | max |F|, max skin use) and by boundary_snap
+// (BOUNDARY_PARTIALS in boundary.cl: clamped count, non-finite targets | max skin use); the program
+// builder passes both to the kernels.
 inline constexpr std::size_t kStepPartials = 7;
+inline constexpr std::size_t kBoundaryPartials = 3;
 
 // The shape of the force loop in kernels/forces.cl (docs/opencl.md, "Force loop"): Vector walks a
 // row 8 entries at a time in REAL8 vectors (CPU devices: PoCL does not vectorize across work-items);
