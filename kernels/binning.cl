@@ -54,9 +54,25 @@ ulong nb_hash(long cx, long cy) {
   return h;
 }
 
+// The bucket of cell (cx, cy) in a grid of mask + 1 buckets: the cell's 4x4 block of cells is hashed,
+// and its 16 cells take 16 consecutive buckets (when the grid has 16 or more), so the cells a node's
+// search box covers lie in a few runs of buckets and of grid entries instead of one random place
+// each (at 1M nodes the gather's probes were cache misses). Blocks are floor(c / 4) in two's
+// complement (the unsigned shift keeps negative coordinates consistent; no other property is needed).
+uint nb_bucket(const long cx, const long cy, const ulong mask) {
+  const ulong h = nb_hash((long)((ulong)cx >> 2), (long)((ulong)cy >> 2));
+  return (uint)(((h << 4) | (((ulong)cy & 3UL) << 2) | ((ulong)cx & 3UL)) & mask);
+}
+
+// floor(v inv_cell) clamped to +-4e18, as the host's (neighbour_grids.cpp, the reference), by truncation
+// and a correction: the same integer for every finite v (the bounds are integers, so clamping first
+// commutes with floor; a clamped value converts exactly). PoCL's CPU device expands floor() into a
+// branchy sequence that was a third of the gather's time at 1M nodes (perf, session 5); the gather
+// calls this for every candidate within the radius.
 long nb_cell_coord(REAL v, REAL inv_cell) {
-  const REAL c = floor(v * inv_cell);
-  return (long)clamp(c, -REAL_C(4.0e18), REAL_C(4.0e18));
+  const REAL c = clamp(v * inv_cell, -REAL_C(4.0e18), REAL_C(4.0e18));
+  const long t = (long)c;
+  return (REAL)t > c ? t - 1 : t;
 }
 
 // Whether the binning left usable grids (every kernel after bin_levels checks it).
@@ -69,9 +85,8 @@ uint bin_bucket(const REAL xj, const REAL yj, const int L, __global const int* g
                 __global const uint* grid_bucket_offset, __global const REAL* grid_inv_cell, uint* tag) {
   const REAL inv_cell = grid_inv_cell[L];
   const long cx = nb_cell_coord(xj, inv_cell), cy = nb_cell_coord(yj, inv_cell);
-  const ulong h = nb_hash(cx, cy);
   *tag = nb_tag(cx, cy);
-  return grid_bucket_offset[L] + (uint)(h & (ulong)grid_mask[L]);
+  return grid_bucket_offset[L] + nb_bucket(cx, cy, (ulong)grid_mask[L]);
 }
 
 // state[BIN_FIRST_INVALID] must start at INT_MAX, the other entries at 0 (the host uploads them).

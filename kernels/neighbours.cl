@@ -141,8 +141,7 @@ void gather_rows(const int n, const REAL radius_factor, __global const REAL* x, 
         for (long cx = x0; cx <= x1; ++cx) {
           const REAL gx = fmax(fmax((REAL)cx * cell - xi, xi - (REAL)(cx + 1) * cell) - slack, (REAL)0);
           if (gx * gx + gy * gy > r2) continue;
-          const ulong h = nb_hash(cx, cy);
-          const uint b = bucket_base + (uint)(h & mask), tag = nb_tag(cx, cy);
+          const uint b = bucket_base + nb_bucket(cx, cy, mask), tag = nb_tag(cx, cy);
           const uint end = bucket[b];
           for (uint k = b > 0 ? bucket[b - 1] : 0; k < end; ++k) {
             const uint e = (uint)grid_nodes[k];

@@ -242,7 +242,7 @@ TEST_CASE("device binning puts every node in the cells the host binning does", "
              k < host.cell_start[start + static_cast<std::size_t>(id) + 1]; ++k)
           host_cells[cell].push_back(host.cell_nodes[base + static_cast<std::size_t>(k)]);
       }
-      // Device: every bucket of grid L; each node must sit in the bucket of its cell's hash.
+      // Device: every bucket of grid L; each node must sit in the bucket of its cell (its block's hash).
       const std::uint32_t first = bucket_offset[static_cast<std::size_t>(L)];
       const auto buckets = static_cast<std::uint32_t>(mask[static_cast<std::size_t>(L)]) + 1;
       for (std::uint32_t k = 0; k < buckets; ++k) {
@@ -253,7 +253,7 @@ TEST_CASE("device binning puts every node in the cells the host binning does", "
           const double ic = inv_cell[static_cast<std::size_t>(L)];
           const auto cell = std::pair{static_cast<std::int64_t>(std::floor(in.p.x[static_cast<std::size_t>(j)] * ic)),
                                       static_cast<std::int64_t>(std::floor(in.p.y[static_cast<std::size_t>(j)] * ic))};
-          CHECK((cell_hash(cell.first, cell.second) & static_cast<std::uint64_t>(buckets - 1)) == k);
+          CHECK(ocl::grid_bucket(cell.first, cell.second, buckets - 1) == k);
           // The entry's tag (kernels/binning.cl, nb_tag): the top bits of a second hash of its cell.
           const std::uint64_t t = static_cast<std::uint64_t>(cell.first) * 0xD6E8FEB86659FD93ULL +
                                   static_cast<std::uint64_t>(cell.second) * 0xA0761D6478BD642FULL;

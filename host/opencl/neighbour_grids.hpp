@@ -36,4 +36,14 @@ void build_neighbour_grids(const double* x, const double* y, const double* q, st
 // The hash of a cell (sim/cell_hash.hpp), which the kernel's nb_hash repeats.
 using pdmesh::cell_hash;
 
+// The device's bucket of cell (cx, cy) in a grid of mask + 1 buckets (kernels/binning.cl, nb_bucket): the
+// hash of the cell's 4x4 block, shifted, with the cell's place in its block in the low 4 bits, so a
+// block's cells take consecutive buckets.
+inline std::uint64_t grid_bucket(std::int64_t cx, std::int64_t cy, std::uint64_t mask) {
+  const auto ux = static_cast<std::uint64_t>(cx), uy = static_cast<std::uint64_t>(cy);
+  return ((cell_hash(static_cast<std::int64_t>(ux >> 2), static_cast<std::int64_t>(uy >> 2)) << 4) | ((uy & 3) << 2) |
+          (ux & 3)) &
+         mask;
+}
+
 }  // namespace pdmesh::ocl
