@@ -125,6 +125,45 @@ TEST_CASE("device neighbour rows equal the reference rows in order at awkward si
   }
 }
 
+// Grids of 256 buckets and more (the gather skips most cell tests there, kernels/neighbours.cl,
+// tags_apart), their 4 x 4 blocks of cells on both sides of both axes: rows equal the reference's.
+TEST_CASE("device rows from larger grids around the origin equal the reference", "[opencl][neighbour]") {
+  Input in = random_input(600, 31, false);
+  in.name = "random 600 around the origin";
+  const double side = std::sqrt(601.0) * 0.08;
+  for (std::size_t i = 0; i < in.p.size(); ++i) {
+    in.p.x[i] -= 0.5 * side;
+    in.p.y[i] -= 0.5 * side;
+  }
+  DeviceBuilder b;
+  check_rows(in, b.build(in.p, in.cutoff));
+}
+
+// The gather skips the cell test for candidates well inside a search box of at most 5 x 5 cells
+// (kernels/neighbours.cl, tags_apart) because two cells of such a box sharing a bucket are (4a, 4b)
+// apart, a, b in {-1, 0, 1}, and nb_tag's top bits then always differ: t' = t + 4a M + 4b N, so the top
+// 4 bits of 4a M + 4b N must be neither 0 nor 15 (no carry can bring them back). The kernel's
+// constants, checked here; and two such cells' tags, sampled.
+TEST_CASE("cells of one search box sharing a bucket never share a tag", "[opencl][neighbour]") {
+  constexpr std::uint64_t kM = 0xD6E8FEB86659FD93ULL, kN = 0xA0761D6478BD642FULL;  // binning.cl, nb_tag
+  auto tag = [&](std::int64_t cx, std::int64_t cy) {
+    return (static_cast<std::uint64_t>(cx) * kM + static_cast<std::uint64_t>(cy) * kN) >> (32 + ocl::kGridNodeBits);
+  };
+  for (std::int64_t a = -1; a <= 1; ++a)
+    for (std::int64_t b = -1; b <= 1; ++b) {
+      if (a == 0 && b == 0) continue;
+      const std::uint64_t k = static_cast<std::uint64_t>(4 * a) * kM + static_cast<std::uint64_t>(4 * b) * kN;
+      INFO("offset (" << 4 * a << ", " << 4 * b << ")");
+      CHECK((k >> 60) != 0);
+      CHECK((k >> 60) != 15);
+      for (std::int64_t cx : {std::int64_t{-9}, std::int64_t{0}, std::int64_t{3}, std::int64_t{1} << 40})
+        for (std::int64_t cy : {std::int64_t{-5}, std::int64_t{0}, std::int64_t{77}, -(std::int64_t{1} << 33)}) {
+          CHECK(ocl::grid_bucket(cx, cy, 15) == ocl::grid_bucket(cx + 4 * a, cy + 4 * b, 15));
+          CHECK(tag(cx, cy) != tag(cx + 4 * a, cy + 4 * b));
+        }
+    }
+}
+
 TEST_CASE("device neighbour rows with coincident nodes equal the reference", "[opencl][neighbour]") {
   Input in = coincident_input(false);
   // And a stack of 5 nodes at one point: each sees the 4 others at distance 0.
