@@ -1,0 +1,17 @@
+// splitmix64's finaliser: a cheap bijective 64-bit mix. Lattice keys (cell coordinates, packed
+// quadtree keys) differ in few low bits, so hash tables index by mix64(key) rather than by the key.
+#pragma once
+#include <cstdint>
+
+namespace pdmesh {
+
+constexpr std::uint64_t mix64(std::uint64_t k) {
+  k ^= k >> 30;
+  k *= 0xBF58476D1CE4E5B9ULL;
+  k ^= k >> 27;
+  k *= 0x94D049BB133111EBULL;
+  k ^= k >> 31;
+  return k;
+}
+
+}  // namespace pdmesh
