@@ -1,5 +1,7 @@
 // splitmix64's finaliser: a cheap bijective 64-bit mix. Lattice keys (cell coordinates, packed
 // quadtree keys) differ in few low bits, so hash tables index by mix64(key) rather than by the key.
+// kernels/binning.cl (nb_hash) repeats it in OpenCL C for the device bins; test_device_neighbours
+// checks that the device buckets are cell_hash's.
 #pragma once
 #include <cstdint>
 
