@@ -69,10 +69,15 @@ uint nb_bucket(const long cx, const long cy, const ulong mask) {
 // commutes with floor; a clamped value converts exactly). PoCL's CPU device expands floor() into a
 // branchy sequence that was a third of the gather's time at 1M nodes (perf, session 5); the gather
 // calls this for every candidate within the radius.
+// The GPU-shaped program (PDMESH_FORCE_LOOP_SCALAR) keeps floor(), one instruction there.
 long nb_cell_coord(REAL v, REAL inv_cell) {
+#if PDMESH_FORCE_LOOP_VECTOR
   const REAL c = clamp(v * inv_cell, -REAL_C(4.0e18), REAL_C(4.0e18));
   const long t = (long)c;
   return (REAL)t > c ? t - 1 : t;
+#else
+  return (long)clamp(floor(v * inv_cell), -REAL_C(4.0e18), REAL_C(4.0e18));
+#endif
 }
 
 // Whether the binning left usable grids (every kernel after bin_levels checks it).

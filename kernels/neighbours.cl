@@ -137,7 +137,8 @@ void gather_rows(const int n, const REAL radius_factor, __global const REAL* x, 
       const REAL slack = (fabs(xi) + fabs(yi) + r + cell) * REAL_C(1e-4);
 #endif
       // A box spanning at most 5 cells a side (r < 2 cells: always in double) lies in at most 2 x 2
-      // blocks of 4 x 4 cells (nb_bucket), whose hashes are computed once. In a grid of 16 buckets or
+      // blocks of 4 x 4 cells (nb_bucket), whose hashes the CPU loop computes once (the GPU-shaped
+      // program hashes per cell: 4 more 64-bit values cost 22 VGPRs on gfx90a). In a grid of 16 buckets or
       // more, two cells share a bucket only at the same place in their blocks, so two cells of such a
       // box in one bucket are (4a, 4b) apart with a, b in {-1, 0, 1}, and their tags differ (nb_tag
       // is linear: its top 4 bits move by those of 4a M + 4b N, which are neither 0 nor 15 for these
@@ -145,23 +146,35 @@ void gather_rows(const int n, const REAL radius_factor, __global const REAL* x, 
       // probed cell's tag from another cell lies outside the box: a candidate inside the box by more
       // than `slack` on both axes is of the probed cell without the cell test (the same rows); nearer
       // the box's edge, in larger boxes (float) or in smaller grids the cell test decides, as before.
-      const ulong bx0 = (ulong)x0 >> 2, by0 = (ulong)y0 >> 2;
       const int small_box = x1 - x0 <= 4 && y1 - y0 <= 4;
+#if PDMESH_FORCE_LOOP_VECTOR
+      const ulong bx0 = (ulong)x0 >> 2, by0 = (ulong)y0 >> 2;
       const ulong h00 = nb_hash((long)bx0, (long)by0), h10 = nb_hash((long)((ulong)x1 >> 2), (long)by0);
       const ulong h01 = nb_hash((long)bx0, (long)((ulong)y1 >> 2));
       const ulong h11 = nb_hash((long)((ulong)x1 >> 2), (long)((ulong)y1 >> 2));
+#endif
+#if PDMESH_FORCE_LOOP_VECTOR
       const int tags_apart = small_box && mask >= 15;
+#else
+      const int tags_apart = 0;  // GPU-shaped: floor() is cheap there, and this path cost 6 VGPRs (gfx90a)
+#endif
       const REAL inside = r - slack;
       for (long cy = y0; cy <= y1; ++cy) {
         const REAL gy = fmax(fmax((REAL)cy * cell - yi, yi - (REAL)(cy + 1) * cell) - slack, (REAL)0);
+#if PDMESH_FORCE_LOOP_VECTOR
         const int second_y = ((ulong)cy >> 2) != by0;
+#endif
         for (long cx = x0; cx <= x1; ++cx) {
           const REAL gx = fmax(fmax((REAL)cx * cell - xi, xi - (REAL)(cx + 1) * cell) - slack, (REAL)0);
           if (gx * gx + gy * gy > r2) continue;
+#if PDMESH_FORCE_LOOP_VECTOR
           const int second_x = ((ulong)cx >> 2) != bx0;
           const ulong hb = second_y ? (second_x ? h11 : h01) : (second_x ? h10 : h00);
           const uint in_block = (uint)((((ulong)cy & 3UL) << 2) | ((ulong)cx & 3UL));
           const uint b = bucket_base + (small_box ? (uint)(((hb << 4) | in_block) & mask) : nb_bucket(cx, cy, mask));
+#else
+          const uint b = bucket_base + nb_bucket(cx, cy, mask);
+#endif
           const uint tag = nb_tag(cx, cy);
           const uint end = bucket[b];
           for (uint k = b > 0 ? bucket[b - 1] : 0; k < end; ++k) {

@@ -35,7 +35,8 @@ struct DeviceRows {
 // One DeviceNeighbours<double> across builds (its capacities come from the last build).
 class DeviceBuilder {
  public:
-  DeviceBuilder() : ctx_(test_context()), nb_(ctx_, test_program(ocl::Precision::Double)) {}
+  DeviceBuilder() : DeviceBuilder(test_program(ocl::Precision::Double)) {}
+  explicit DeviceBuilder(ocl::StepProgram& program) : ctx_(test_context()), nb_(ctx_, program) {}
 
   ocl::DeviceNeighbours<double>& neighbours() { return nb_; }
 
@@ -121,6 +122,16 @@ TEST_CASE("device neighbour rows equal the reference rows in order at awkward si
   }
   for (const Input& in : {graded_input(false), lattice_input(), dense_cluster_input(false)}) {
     DeviceBuilder b;
+    check_rows(in, b.build(in.p, in.cutoff));
+  }
+}
+
+// The GPU-shaped program (ForceLoop::Scalar) bins and gathers with floor() and the cell test everywhere
+// (kernels/binning.cl, neighbours.cl): the same rows.
+TEST_CASE("device neighbour rows of the GPU-shaped program equal the reference", "[opencl][neighbour]") {
+  ocl::StepProgram scalar(test_context(), ocl::Precision::Double, ocl::ForceLoop::Scalar);
+  for (const Input& in : {random_input(3 * ocl::kStepWorkGroup + 5, 80, false), graded_input(false), lattice_input()}) {
+    DeviceBuilder b(scalar);
     check_rows(in, b.build(in.p, in.cutoff));
   }
 }
