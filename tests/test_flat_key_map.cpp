@@ -1,5 +1,6 @@
 // FlatKeyMap (core/flat_key_map.hpp), the spacing pipeline's lattice table: the same answers as
-// std::unordered_map over inserts, repeated inserts, lookups of absent keys and growth.
+// std::unordered_map over inserts, repeated inserts, lookups of absent keys and growth; and mix64,
+// the hash it and the cell lists index by.
 #include <catch2/catch.hpp>
 
 #include <cstdint>
@@ -8,6 +9,8 @@
 #include <unordered_map>
 
 #include "core/flat_key_map.hpp"
+#include "core/mix64.hpp"
+#include "sim/cell_hash.hpp"
 
 using namespace pdmesh;
 
@@ -47,4 +50,14 @@ TEST_CASE("FlatKeyMap refuses its reserved key and keeps entries across reserve"
   for (int i = 0; i < 100; ++i) CHECK(map.at(static_cast<std::uint64_t>(i) * 977) == i);
   CHECK_FALSE(map.try_emplace(977, 5).second);
   CHECK(map.at(977) == 1);
+}
+
+TEST_CASE("mix64 is splitmix64's finaliser", "[core]") {
+  // splitmix64 seeded with 0 returns mix64 of its first state, the golden-ratio increment; its first
+  // two outputs are published (Vigna's reference implementation).
+  const std::uint64_t gamma = 0x9E3779B97F4A7C15ULL;
+  CHECK(mix64(gamma) == 0xE220A8397B1DCDAFULL);
+  CHECK(mix64(2 * gamma) == 0x6E789E6AA1B965F4ULL);
+  // cell_hash (sim/cell_hash.hpp, also computed by kernels/binning.cl) is mix64 of the packed pair.
+  CHECK(cell_hash(3, -5) == mix64(3 * gamma ^ static_cast<std::uint64_t>(std::int64_t{-5})));
 }

@@ -11,6 +11,8 @@
 #include <utility>
 #include <vector>
 
+#include "core/mix64.hpp"
+
 namespace pdmesh {
 
 template <class V>
@@ -69,15 +71,8 @@ class FlatKeyMap {
     V value{};
   };
 
-  // splitmix64's finaliser: lattice keys differ in few low bits of each half.
-  std::size_t slot(std::uint64_t k) const {
-    k ^= k >> 30;
-    k *= 0xBF58476D1CE4E5B9ULL;
-    k ^= k >> 27;
-    k *= 0x94D049BB133111EBULL;
-    k ^= k >> 31;
-    return static_cast<std::size_t>(k) & mask_;
-  }
+  // Keys differ in few low bits of each half: index by their mix.
+  std::size_t slot(std::uint64_t k) const { return static_cast<std::size_t>(mix64(k)) & mask_; }
 
   void rehash(std::size_t at_least) {
     std::size_t capacity = 16;
