@@ -670,7 +670,8 @@ int run_mesh(const CaseConfig& config) {
   // 30P30N) is set up on a thread while this one builds the spacing field, estimates and fills, which
   // leave a core idle part of the time. Its notes and errors come out when the simulation starts.
   std::future<PreparedBackend> prepared;
-  if (config.simulation.iterations > 0) prepared = std::async(std::launch::async, [&config] { return prepare_backend(config); });
+  if (config.simulation.iterations > 0)
+    prepared = std::async(std::launch::async, [&config] { return prepare_backend(config); });
   // Stage 2: the final spacing field (the pipeline), then the limits, before any large allocation.
   // The quadtree of the final field (in the thesis preset eq. 3.6's lookup table, which the node
   // estimate and the simulation read) is built here.
