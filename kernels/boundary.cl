@@ -89,20 +89,29 @@ void closest_on_curve(__global const REAL* p, __global const REAL* arc, const in
 // targets (nothing is written for those: the host reports them), and the largest skin use (the
 // formula of device_step). step_counters[COUNTER_NON_FINITE] != 0 (device_step's flag for a move that is not finite): nothing is
 // written but the partials.
-__kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1)))
-void boundary_snap(const int m, __global const int* slot_node, __global const int* slot_curve,
-                   __global const int* slot_pos, __global const int* curve_pt, __global const REAL* pts,
-                   __global const REAL* pt_arc, __global const REAL* arcs_in, __global REAL* arcs_out,
-                   __global REAL* brec, __global REAL* x, __global REAL* y, __global REAL* q, __global REAL* tx,
-                   __global REAL* ty, __global int* node_leaf, __global const REAL* x_build,
-                   __global const REAL* y_build, __global const REAL* q_build, const REAL cutoff,
-                   const REAL skin_cutoff, __global const int* step_counters, __global REAL* partials, BG_ARGS) {
-  __local REAL values[BOUNDARY_PARTIALS * WG_SIZE];
+// boundary_snap's arguments, shared by its two kernels.
+#define SNAP_ARGS                                                                                              \
+  const int m, __global const int *slot_node, __global const int *slot_curve, __global const int *slot_pos,    \
+      __global const int *curve_pt, __global const REAL *pts, __global const REAL *pt_arc,                      \
+      __global const REAL *arcs_in, __global REAL *arcs_out, __global REAL *brec, __global REAL *x,              \
+      __global REAL *y, __global REAL *q, __global REAL *tx, __global REAL *ty, __global int *node_leaf,         \
+      __global const REAL *x_build, __global const REAL *y_build, __global const REAL *q_build, const REAL cutoff, \
+      const REAL skin_cutoff, __global int *step_counters, __global REAL *partials, BG_ARGS
+#define SNAP_PASS                                                                                                \
+  m, slot_node, slot_curve, slot_pos, curve_pt, pts, pt_arc, arcs_in, arcs_out, brec, x, y, q, tx, ty, node_leaf, \
+      x_build, y_build, q_build, cutoff, skin_cutoff, step_counters, partials, BG_PASS
+
+// Inlined into both kernels: a call with this many arguments costs GPU registers and scratch.
+__attribute__((always_inline)) void boundary_snap_body(__local REAL* values, __local int* halt, SNAP_ARGS) {
   const int s = get_global_id(0), l = get_local_id(0);
   REAL clamped = (REAL)0, bad = (REAL)0, skin_use = (REAL)0;
   // device_step found a move that is not finite: nothing is written (tangents are updated in place).
   // The window was halted before this iteration (kernels/window.cl): nothing at all.
-  if (step_counters[WINDOW_HALT] != 0) return;
+  // (boundary_snap_rule's last group may set the flag while this launch runs: an atomic read, by one
+  // work-item, before any group counted itself done.)
+  if (get_local_id(0) == 0) *halt = atomic_or(&step_counters[WINDOW_HALT], 0);
+  barrier(CLK_LOCAL_MEM_FENCE);
+  if (*halt != 0) return;
   const int halted = step_counters[COUNTER_NON_FINITE] != 0;
   if (s < m) {
     const int i = slot_node[s], c = slot_curve[s], pos = slot_pos[s];
@@ -142,5 +151,37 @@ void boundary_snap(const int m, __global const int* slot_node, __global const in
   values[WG_SIZE + l] = bad;
   values[2 * WG_SIZE + l] = skin_use;
   group_reduce(values, BOUNDARY_PARTIALS, 2);
-  if (l < BOUNDARY_PARTIALS) partials[BOUNDARY_PARTIALS * get_group_id(0) + l] = values[l * WG_SIZE];
+  if (l < BOUNDARY_PARTIALS) atomic_store_real(partials + BOUNDARY_PARTIALS * get_group_id(0) + l, values[l * WG_SIZE]);
 }
+
+__kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1)))
+void boundary_snap(SNAP_ARGS) {
+  __local REAL values[BOUNDARY_PARTIALS * WG_SIZE];
+  __local int halt;
+  boundary_snap_body(values, &halt, SNAP_PASS);
+}
+
+#if defined(cl_khr_fp64)
+// boundary_snap, then the iteration's end (kernels/window.cl, iteration_rule_body) in its last
+// work-group, one launch instead of two: each group's work-item 0 counts the group as done
+// (step_counters[COUNTER_SNAP_DONE], an integer atomic) after the group's partials are written and
+// fenced; the group that counts last sums every group's partials (atomic reads, reduce.cl) and runs the rule,
+// and sets the count back to 0 for the next iteration. Arguments after boundary_snap's: iteration_rule's.
+__kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1)))
+void boundary_snap_rule(SNAP_ARGS, const int groups, __global const REAL* step_partials, __global double* state,
+                        __global double* ring, const int ring_rows, __global REAL* dt2_out) {
+  __local REAL values[BOUNDARY_PARTIALS * WG_SIZE];
+  __local int halt;
+  boundary_snap_body(values, &halt, SNAP_PASS);  // halted before this iteration: nothing (the rule neither)
+  barrier(CLK_GLOBAL_MEM_FENCE);  // this group's partials (work-items l < BOUNDARY_PARTIALS) are written
+  if (get_local_id(0) == 0) {
+    mem_fence(CLK_GLOBAL_MEM_FENCE);
+    if (atomic_inc(&step_counters[COUNTER_SNAP_DONE]) == (int)get_num_groups(0) - 1) {
+      mem_fence(CLK_GLOBAL_MEM_FENCE);  // every other group's partials were written before its count
+      atomic_xchg(&step_counters[COUNTER_SNAP_DONE], 0);
+      iteration_rule_body(groups, step_partials, BOUNDARY_PARTIALS * (int)get_num_groups(0), partials, step_counters,
+                          state, ring, ring_rows, dt2_out);
+    }
+  }
+}
+#endif

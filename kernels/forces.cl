@@ -7,7 +7,8 @@
 // PDMESH_FORCE_LOOP_SCALAR takes one entry at a time in scalar code, which a GPU compiler keeps in few
 // registers (the 8-wide double vectors cost 16 registers each: 254 VGPRs on gfx90a). Both compute the
 // reference's expressions in its summation order, so in double they agree with it, and each other, bit
-// for bit. One division (1/r^2), one sqrt and no pow/length per entry.
+// for bit. One division (1/r^2), one sqrt and no pow/length per entry (the vector shape: per entry
+// within the cut-off only, after packing them).
 #pragma OPENCL FP_CONTRACT OFF
 
 #if PDMESH_FORCE_LOOP_VECTOR == PDMESH_FORCE_LOOP_SCALAR
@@ -72,19 +73,104 @@ MASK8 row_chunk_offsets(const int i, const int stride, const int count, const lo
   return CONVERT_MASK8(valid_i) & (~filter | (r2 <= (REAL8)(rc2)));
 }
 
-// node_forces, vector shape: eight entries at a time, only as many chunks as the row needs (boundary
-// rows: one); a masked entry adds +0, which leaves a sum that starts at +0 unchanged.
+// The entries of a row that count (in range and r^2 > 0), packed in row order into a private buffer
+// of PACK_CAP: the Verlet rows hold ~2.4 entries per entry within the cut-off (the skin), and the
+// division, square root and LJ arithmetic run on dense chunks of packed entries only. Packing keeps
+// the row order, and a dropped entry added +0 before, which leaves a sum that starts at +0 unchanged,
+// so the sums are the reference's bit for bit. The r0 pass reads the buffer when the whole row's
+// entries fitted; a longer row (the StepBackend's unfiltered rows can be hundreds long) has its
+// chunks computed as they fill and r0 from a second walk of the row.
+#define PACK_CAP 64
+
+// PACK8 appends a chunk's entries that are used (`use`: MASK8, -1 or 0 per entry) to the buffer, in
+// order. On x86 with AVX-512 (PoCL's CPU device on such a machine) a compress instruction per array does
+// it (the clang builtins behind _mm512_maskz_compress_pd; one store of 8, the slots past the used ones
+// are spare); elsewhere (other CPUs, Oclgrind) one conditional scalar append per entry. Both leave the
+// same entries in the same order.
+#if defined(__x86_64__) && defined(__AVX512F__) && defined(__AVX512VL__) && defined(__AVX512DQ__)
+typedef int pack_v8si __attribute__((vector_size(32)));
+#if PDMESH_DOUBLE
+typedef double pack_v8real __attribute__((vector_size(64)));
+typedef long pack_v8mask __attribute__((vector_size(64)));
+#define PACK_MASK_BITS(m) __builtin_ia32_cvtq2mask512(__builtin_astype(m, pack_v8mask))
+#define PACK_COMPRESS_REAL __builtin_ia32_compressdf512_mask
+#else
+typedef float pack_v8real __attribute__((vector_size(32)));
+typedef int pack_v8mask __attribute__((vector_size(32)));
+#define PACK_MASK_BITS(m) __builtin_ia32_cvtd2mask256(__builtin_astype(m, pack_v8mask))
+#define PACK_COMPRESS_REAL __builtin_ia32_compresssf256_mask
+#endif
+#define PACK_REAL(v, bits) \
+  __builtin_astype(PACK_COMPRESS_REAL(__builtin_astype(v, pack_v8real), __builtin_astype(zero, pack_v8real), bits), REAL8)
+#define PACK8                                                                                          \
+  {                                                                                                    \
+    const uchar bits = (uchar)PACK_MASK_BITS(use);                                                     \
+    vstore8(__builtin_astype(__builtin_ia32_compresssi256_mask(__builtin_astype(j, pack_v8si),         \
+                                                               __builtin_astype((int8)(0), pack_v8si), \
+                                                               bits),                                  \
+                             int8),                                                                    \
+            0, pj + packed);                                                                           \
+    vstore8(PACK_REAL(dx, bits), 0, pdx + packed);                                                     \
+    vstore8(PACK_REAL(dy, bits), 0, pdy + packed);                                                     \
+    vstore8(PACK_REAL(r2, bits), 0, pr2 + packed);                                                     \
+    packed += (int)popcount((uint)bits);                                                               \
+  }
+#else
+#define PACK1(c)         \
+  pj[packed] = j.s##c;   \
+  pdx[packed] = dx.s##c; \
+  pdy[packed] = dy.s##c; \
+  pr2[packed] = r2.s##c; \
+  packed -= (int)use.s##c;
+#define PACK8 PACK1(0) PACK1(1) PACK1(2) PACK1(3) PACK1(4) PACK1(5) PACK1(6) PACK1(7)
+#endif
+
+// The LJ force and the stability bound's pair stiffness of eight packed entries, added in entry order
+// to *fx, *fy, *stiffness; entries outside `use` add +0.
+void lj_chunk(const int8 j, const REAL8 dx, const REAL8 dy, const REAL8 r2, const MASK8 use, const REAL qi,
+              const REAL lj_a, __global const REAL* q, REAL* fx, REAL* fy, REAL* stiffness) {
+  const REAL8 zero = (REAL8)((REAL)0), one = (REAL8)((REAL)1);
+  const REAL8 inv_r2 = one / select(one, r2, use);
+  const REAL8 inv_r = sqrt(inv_r2);
+  const REAL8 sigma = REAL_C(0.5) * ((REAL8)(qi) + GATHER8(q, j));
+  const REAL8 s2 = sigma * sigma * inv_r2;
+  const REAL8 s6 = s2 * s2 * s2;
+  const REAL8 f = (REAL8)((REAL)-4 * lj_a) * sigma * (s6 * s6 - s6) * inv_r;
+  const REAL8 cx = select(zero, f * dx, use), cy = select(zero, f * dy, use);
+  ADD8_IN_ORDER(*fx, cx);
+  ADD8_IN_ORDER(*fy, cy);
+  // The stability bound's pair stiffness max(|df/dr|, |f|/r) (reference::lj_pair_stiffness).
+  const REAL8 scale = (REAL8)((REAL)4 * lj_a) * sigma * inv_r;
+  const REAL8 radial = fabs(scale * ((REAL)12 * s6 * s6 - (REAL)6 * s6));
+  const REAL8 transverse = fabs(scale * (s6 * s6 - s6));
+  const REAL8 cs = select(zero, select(transverse, radial, radial > transverse), use);
+  ADD8_IN_ORDER(*stiffness, cs);
+}
+
+// Packed entries k .. k + 7 of the buffer, of which the first `valid` count (pk_use); the others may
+// be stale or unwritten slots: their node index becomes i, so the gather of q stays inside the arrays.
+#define PACKED_CHUNK(k, valid)                                                        \
+  const int8 pk_valid = (int8)(0, 1, 2, 3, 4, 5, 6, 7) < (int8)(valid);              \
+  const int8 pk_j = select((int8)(i), vload8(0, pj + (k)), pk_valid);                \
+  const REAL8 pk_dx = vload8(0, pdx + (k)), pk_dy = vload8(0, pdy + (k));             \
+  const REAL8 pk_r2 = vload8(0, pr2 + (k));                                           \
+  const MASK8 pk_use = CONVERT_MASK8(pk_valid)
+
+// node_forces, vector shape: eight row entries at a time through the packing buffer, only as many
+// chunks as the row needs (boundary rows: one).
 void node_forces(const int i, const int stride, const int count, const long base, const REAL xi, const REAL yi,
                  const REAL qi, const int kind_i, const REAL rc2, const REAL tx, const REAL ty, const REAL lj_a,
                  const int r0_any_direction, const REAL stability_factor, __global const REAL* x,
                  __global const REAL* y, __global const REAL* q, __global const int* index, REAL* fx_out,
                  REAL* fy_out, REAL* r0_out, REAL* dt2_limit_out, int* coincident_out, int* within_out) {
   const MASK8 filter = (MASK8)(kind_i == 2 && rc2 >= (REAL)0 ? -1 : 0);
-  const REAL8 four_a = (REAL8)((REAL)-4 * lj_a);
-  const REAL8 four_a_pos = (REAL8)((REAL)4 * lj_a);
-  const REAL8 zero = (REAL8)((REAL)0), one = (REAL8)((REAL)1);
+  const REAL8 zero = (REAL8)((REAL)0);
+  // 8 spare slots: a chunk's packing writes all 8 components, past the last used one too.
+  int pj[PACK_CAP + 8];
+  REAL pdx[PACK_CAP + 8], pdy[PACK_CAP + 8], pr2[PACK_CAP + 8];
   REAL fx = (REAL)0, fy = (REAL)0, stiffness = (REAL)0;
   int coincident = 0, within = 0;
+  int packed = 0, done = 0, overflow = 0;  // buffer entries; of them computed; whether any were dropped
   for (int k0 = 0; k0 < count; k0 += 8) {
     int8 j;
     REAL8 dx, dy, r2;
@@ -92,21 +178,27 @@ void node_forces(const int i, const int stride, const int count, const long base
     within += (int)COUNT8(in_range);
     coincident += (int)COUNT8(in_range & (r2 == zero));
     const MASK8 use = in_range & (r2 > zero);
-    const REAL8 inv_r2 = one / select(one, r2, use);
-    const REAL8 inv_r = sqrt(inv_r2);
-    const REAL8 sigma = REAL_C(0.5) * ((REAL8)(qi) + GATHER8(q, j));
-    const REAL8 s2 = sigma * sigma * inv_r2;
-    const REAL8 s6 = s2 * s2 * s2;
-    const REAL8 f = four_a * sigma * (s6 * s6 - s6) * inv_r;
-    const REAL8 cx = select(zero, f * dx, use), cy = select(zero, f * dy, use);
-    ADD8_IN_ORDER(fx, cx);
-    ADD8_IN_ORDER(fy, cy);
-    // The stability bound's pair stiffness max(|df/dr|, |f|/r) (reference::lj_pair_stiffness).
-    const REAL8 scale = four_a_pos * sigma * inv_r;
-    const REAL8 radial = fabs(scale * ((REAL)12 * s6 * s6 - (REAL)6 * s6));
-    const REAL8 transverse = fabs(scale * (s6 * s6 - s6));
-    const REAL8 cs = select(zero, select(transverse, radial, radial > transverse), use);
-    ADD8_IN_ORDER(stiffness, cs);
+    PACK8
+    if (packed - done >= 8) {
+      PACKED_CHUNK(done, 8);
+      lj_chunk(pk_j, pk_dx, pk_dy, pk_r2, pk_use, qi, lj_a, q, &fx, &fy, &stiffness);
+      done += 8;
+    }
+    if (packed + 8 > PACK_CAP) {  // no room for another chunk: keep the entries not yet computed only
+      for (int k = done; k < packed; ++k) {
+        pj[k - done] = pj[k];
+        pdx[k - done] = pdx[k];
+        pdy[k - done] = pdy[k];
+        pr2[k - done] = pr2[k];
+      }
+      packed -= done;
+      done = 0;
+      overflow = 1;
+    }
+  }
+  if (packed > done) {
+    PACKED_CHUNK(done, packed - done);
+    lj_chunk(pk_j, pk_dx, pk_dy, pk_r2, pk_use, qi, lj_a, q, &fx, &fy, &stiffness);
   }
   *dt2_limit_out = stability_factor > (REAL)0 && stiffness > (REAL)0 ? (REAL)2 * stability_factor / stiffness : INFINITY;
   // Boundary nodes slide along their curve: keep the tangential component only.
@@ -117,14 +209,22 @@ void node_forces(const int i, const int stride, const int count, const long base
   // r0: the smallest r^2 among the qualifying entries (a minimum: the order does not matter).
   REAL8 best2 = (REAL8)(INFINITY);
   MASK8 found = (MASK8)(0);
-  for (int k0 = 0; k0 < count; k0 += 8) {
-    int8 j;
-    REAL8 dx, dy, r2;
-    const MASK8 ok = row_chunk_offsets(i, stride, count, base, k0, xi, yi, filter, rc2, x, y, index, &j, &dx, &dy, &r2) &
-                     (r2 > zero) &
-                     (any_direction | ((REAL8)(fx) * dx + (REAL8)(fy) * dy > zero));
-    best2 = select(best2, r2, ok & (r2 < best2));
-    found |= ok;
+  if (!overflow) {  // the buffer holds every entry that counts (r^2 > 0 and in range)
+    for (int k = 0; k < packed; k += 8) {
+      PACKED_CHUNK(k, packed - k);
+      const MASK8 ok = pk_use & (any_direction | ((REAL8)(fx) * pk_dx + (REAL8)(fy) * pk_dy > zero));
+      best2 = select(best2, pk_r2, ok & (pk_r2 < best2));
+      found |= ok;
+    }
+  } else {
+    for (int k0 = 0; k0 < count; k0 += 8) {
+      int8 j;
+      REAL8 dx, dy, r2;
+      const MASK8 ok = row_chunk_offsets(i, stride, count, base, k0, xi, yi, filter, rc2, x, y, index, &j, &dx, &dy, &r2) &
+                       (r2 > zero) & (any_direction | ((REAL8)(fx) * dx + (REAL8)(fy) * dy > zero));
+      best2 = select(best2, r2, ok & (r2 < best2));
+      found |= ok;
+    }
   }
   REAL b = best2.s0;
   b = best2.s1 < b ? best2.s1 : b;

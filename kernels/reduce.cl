@@ -19,6 +19,27 @@ void group_reduce(__local REAL* values, const int slots, const int sum_slots) {
   barrier(CLK_LOCAL_MEM_FENCE);
 }
 
+// Values one work-group writes and another work-group of the same launch reads (boundary_snap_rule's
+// partials, read by its last group; kernels/boundary.cl): OpenCL 1.2 orders nothing between work-groups
+// but atomics, so both sides go through 32-bit integer atomics (a double as two halves; the reader
+// reads only after every writer counted itself done, so the halves belong together).
+void atomic_store_real(__global REAL* p, const REAL v) {
+#if PDMESH_DOUBLE
+  const int2 h = as_int2(v);
+  atomic_xchg((volatile __global int*)p, h.x);
+  atomic_xchg((volatile __global int*)p + 1, h.y);
+#else
+  atomic_xchg((volatile __global int*)p, as_int(v));
+#endif
+}
+REAL atomic_load_real(__global REAL* p) {
+#if PDMESH_DOUBLE
+  return as_double((int2)(atomic_or((volatile __global int*)p, 0), atomic_or((volatile __global int*)p + 1, 0)));
+#else
+  return as_float(atomic_or((volatile __global int*)p, 0));
+#endif
+}
+
 // |F| = sqrt(fx^2 + fy^2). Double: that expression (the reference's). Float: fx^2 overflows past
 // |F| ~ 1.8e19 (a node closer than ~q/30 to another), so large forces are scaled by the exact power
 // of two 2^-64 before squaring and the root scaled back: no overflow below |F| = FLT_MAX.

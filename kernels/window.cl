@@ -1,4 +1,5 @@
 // The end of one device-resident iteration on the device (host/opencl/device_window.*): one work-item
+// (the last work-group of boundary_snap_rule, or the kernel iteration_rule where there are no boundary nodes)
 // sums the per-group partials of device_step and boundary_snap in group order (as the host did), writes
 // the iteration's history row into a ring the host reads once per window, runs the global time-step rule
 // (GlobalTimeStep::update, host/sim/global_time_step.cpp, operation for operation in double) and hands
@@ -13,14 +14,17 @@
 // RING_*, STATE_*, COUNTER_*, WINDOW_* slots, GM_RUN_LENGTH, GM_GROW, GM_SHRINK, STEP_PARTIALS and
 // BOUNDARY_PARTIALS: defined by the program builder from host/opencl/device_window.hpp,
 // step_program.hpp and GlobalTimeStep.
-__kernel void iteration_rule(const int groups, __global const REAL* partials, const int snap_entries,
-                             __global const REAL* snap_partials, __global int* step_counters,
-                             __global double* state, __global double* ring, const int ring_rows,
-                             __global REAL* dt2_out) {
-  if (get_global_id(0) != 0 || step_counters[WINDOW_HALT] != 0) return;
+// The rule, run by one work-item: the kernel iteration_rule below (runs without boundary nodes) or the
+// last work-group of boundary_snap_rule (kernels/boundary.cl), which saves a launch per iteration.
+// In boundary_snap_rule other work-groups of the same launch wrote snap_partials and read the halt
+// flag: those go through atomics (reduce.cl, atomic_load_real).
+void iteration_rule_body(const int groups, __global const REAL* partials, const int snap_entries,
+                         __global REAL* snap_partials, __global int* step_counters,
+                         __global double* state, __global double* ring, const int ring_rows, __global REAL* dt2_out) {
+  if (atomic_or(&step_counters[WINDOW_HALT], 0) != 0) return;
   const int r = step_counters[WINDOW_ROWS];
   if (r >= ring_rows) {  // the host sizes the ring to the window: never, but never write past it
-    step_counters[WINDOW_HALT] = 1;
+    atomic_xchg(&step_counters[WINDOW_HALT], 1);
     return;
   }
   // DeviceRun's sums, in group order: |F| and kinetic energy in double, the counts as integers,
@@ -40,9 +44,10 @@ __kernel void iteration_rule(const int groups, __global const REAL* partials, co
   long clamped = 0, bad = 0;
   double snap_skin = 0.0;
   for (int g = 0; g + BOUNDARY_PARTIALS <= snap_entries; g += BOUNDARY_PARTIALS) {
-    clamped += (long)snap_partials[g];
-    bad += (long)snap_partials[g + 1];
-    snap_skin = snap_skin < (double)snap_partials[g + 2] ? (double)snap_partials[g + 2] : snap_skin;
+    clamped += (long)atomic_load_real(snap_partials + g);
+    bad += (long)atomic_load_real(snap_partials + g + 1);
+    const double skin_g = (double)atomic_load_real(snap_partials + g + 2);
+    snap_skin = snap_skin < skin_g ? skin_g : snap_skin;
   }
   __global double* row = ring + RING_SIZE * r;
   row[RING_FORCE] = force;
@@ -91,6 +96,14 @@ __kernel void iteration_rule(const int groups, __global const REAL* partials, co
   step_counters[WINDOW_ROWS] = r + 1;
   if (step_counters[COUNTER_CANDIDATES] != 0 || step_counters[COUNTER_NON_FINITE] != 0 || bad != 0 || !isfinite(force) || !isfinite(kinetic) ||
       used > state[STATE_SKIN_LIMIT])
-    step_counters[WINDOW_HALT] = 1;
+    atomic_xchg(&step_counters[WINDOW_HALT], 1);
+}
+
+__kernel void iteration_rule(const int groups, __global const REAL* partials, const int snap_entries,
+                             __global REAL* snap_partials, __global int* step_counters,
+                             __global double* state, __global double* ring, const int ring_rows,
+                             __global REAL* dt2_out) {
+  if (get_global_id(0) != 0) return;
+  iteration_rule_body(groups, partials, snap_entries, snap_partials, step_counters, state, ring, ring_rows, dt2_out);
 }
 #endif

@@ -163,6 +163,24 @@ inline Input dense_cluster_input(bool is_float) {
   return in;
 }
 
+// Rows longer than the vector force loop's packing buffer (kernels/forces.cl, PACK_CAP = 64): 144
+// nodes on a jittered 12 x 12 lattice of pitch 1/80 (q = 0.1: nearly every pair within the cut-off 0.15,
+// rows of ~140 entries; nearest pairs >= 0.0075 apart, forces within float range), three of them
+// duplicated (coincident pairs inside long rows), boundary and fixed nodes mixed in. Not in all_inputs:
+// only the force test needs it (a stride of 256).
+inline Input long_rows_input(bool is_float) {
+  Input in{"long rows", {}, 1.5};
+  std::mt19937_64 rng(13);
+  const double pitch = 1.0 / 80.0;
+  for (int i = 0; i < 144; ++i)
+    pdmesh_test::add(in.p, pitch * (i % 12 + 0.4 * (uniform(rng) - 0.5)),
+                     pitch * (i / 12 + 0.4 * (uniform(rng) - 0.5)), 0.1);
+  for (std::size_t k : {5u, 70u, 131u}) pdmesh_test::add(in.p, in.p.x[k], in.p.y[k], in.p.q[k]);
+  mix_kinds(in.p, rng, 9);
+  if (is_float) round_to_float(in.p);
+  return in;
+}
+
 inline std::vector<Input> all_inputs(bool is_float) {
   std::vector<Input> v;
   for (std::size_t n : {0u, 1u, 63u, 64u, 65u, 101u}) v.push_back(random_input(n, 1000 + n, is_float));

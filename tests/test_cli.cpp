@@ -337,6 +337,38 @@ TEST_CASE("pdmesh devices lists the OpenCL devices and checks each with a kernel
   CHECK(contains(r.output, "--precision auto picks double"));
 }
 
+TEST_CASE("pdmesh mesh sets the backend up beside the spacing phase: its notes and errors come at the simulation",
+          "[cli][opencl]") {
+  const fs::path dir = fresh_dir("backend_thread");
+  write_rectangle(dir / "rect.crv");
+  const auto base = [&dir](const std::string& out) {
+    return "mesh '" + (dir / "rect.crv").string() + "' --out '" + (dir / out).string() +
+           "' --iterations 5 --stop iterations --formats msh";
+  };
+  // auto: the device's program build fails (injected), the note says so and the run goes on on the host.
+  const Result fallback = pdmesh_test::run_pdmesh(base("auto") + " --device auto", "PDMESH_TEST_FAIL_BUILD=1");
+  INFO(fallback.output);
+  REQUIRE(fallback.status == 0);
+  const std::size_t note = fallback.output.find("cannot run the simulation: building OpenCL program");
+  const std::size_t initial = fallback.output.find("initial distribution:");
+  const std::size_t simulation = fallback.output.find("simulation: 5 iterations on the host reference");
+  REQUIRE(note != std::string::npos);
+  REQUIRE(initial != std::string::npos);
+  REQUIRE(simulation != std::string::npos);
+  // Printed when the simulation starts, after the fill's line, as when the backend was chosen there.
+  CHECK(initial < note);
+  CHECK(note < simulation);
+  // An explicit device does not fall back: the set-up thread's error ends the run (exit 1), after the
+  // initial outputs, before any simulation output.
+  const Result failed = pdmesh_test::run_pdmesh(base("explicit") + " --device opencl:0:0", "PDMESH_TEST_FAIL_BUILD=1");
+  INFO(failed.output);
+  CHECK(failed.status == 1);
+  CHECK(contains(failed.output, "building OpenCL program"));
+  CHECK(fs::exists(dir / "explicit" / "initial.nodes"));
+  CHECK_FALSE(fs::exists(dir / "explicit" / "history.csv"));
+  fs::remove_all(dir);
+}
+
 TEST_CASE("pdmesh mesh --stop: the rule is named in the progress output, a bad rule exits 2", "[cli][convergence]") {
   const fs::path dir = fresh_dir("stop_rule");
   write_rectangle(dir / "rect.crv");

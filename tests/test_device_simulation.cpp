@@ -145,6 +145,31 @@ TEST_CASE("device run: windows with the device's time-step rule and the host's r
   CHECK(host.result.state.time_step.dt != c.config.simulation.dt_for(c.config.init.method));
 }
 
+// With boundary nodes the rule runs in boundary_snap_rule's last work-group; without any (here every
+// boundary node of circle_circle held as a fixed node) no boundary_snap runs and the kernel
+// iteration_rule runs the same rule (kernels/window.cl): both repeat the host bit for bit.
+TEST_CASE("device run without boundary nodes: the rule's own kernel repeats the host", "[opencl][device_sim]") {
+  Case c = test::load_case("circle_circle");
+  int boundary = 0;
+  for (auto& k : c.initial.kind)
+    if (k == NodeKind::Boundary) {
+      k = NodeKind::Fixed;
+      ++boundary;
+    }
+  REQUIRE(boundary > 0);
+  const Outcome host = test::run_case(c, 40, false);
+  const Outcome dev = test::run_case(c, 40, true);
+  require_identical_nodes(host.nodes, dev.nodes);
+  REQUIRE(dev.result.history.size() == host.result.history.size());
+  for (std::size_t k = 0; k < host.result.history.size(); ++k) {
+    INFO("iteration " << host.result.history[k].iteration);
+    CHECK(dev.result.history[k].max_force == host.result.history[k].max_force);
+    CHECK(dev.result.history[k].dt_gm == host.result.history[k].dt_gm);
+  }
+  CHECK(dev.stats.windows < 40);  // the device's rule: windows of several iterations
+  CHECK(dev.result.state.time_step.dt == host.result.state.time_step.dt);
+}
+
 // A snap the Verlet skin does not rebuild for left the snapped node its stale interior row (and its new
 // curve neighbours their old rows): on shock from the structured start 4 nodes snap at iteration 11
 // with skin use 0.24, and the device run left the host there (0.28 q apart after 100 iterations).

@@ -121,12 +121,12 @@ void check_neighbours(const Input& in) {
 }
 
 template <class B>
-void check_forces(const Input& in, bool r0_any, double stability) {
+void check_forces(const Input& in, bool r0_any, double stability, int stride = 64) {
   INFO("input " << in.name << ", " << in.p.size() << " nodes, r0_any_direction " << r0_any << ", stability "
                 << stability);
   NeighbourList list;
   NeighbourFlags flags;
-  list.stride = 64;
+  list.stride = stride;
   reference::build_neighbours_brute_force(in.p, in.cutoff, list, flags);
   REQUIRE(flags.overflow == 0);
   const ForceParams params{in.cutoff, 15.0, r0_any, stability};
@@ -183,6 +183,20 @@ TEMPLATE_TEST_CASE("compute_forces matches the reference on every input", "[open
     check_forces<TestType>(in, true, 0.0);
     check_forces<TestType>(in, false, 1.0);
   }
+}
+
+// The vector loop packs the entries that count into a buffer of 64 and computes r0 from it; longer rows
+// are computed as the buffer fills and r0 comes from a second walk of the row (kernels/forces.cl).
+TEMPLATE_TEST_CASE("compute_forces matches the reference on rows longer than the packing buffer", "[opencl][backend]",
+                   HostReference, OpenclDoubleVector, OpenclFloatVector, OpenclDoubleScalar, OpenclFloatScalar) {
+  const Input in = long_rows_input(TestType::is_float);
+  NeighbourList list;
+  NeighbourFlags flags;
+  list.stride = 256;
+  reference::build_neighbours_brute_force(in.p, in.cutoff, list, flags);
+  REQUIRE(*std::max_element(list.count.begin(), list.count.end()) > 128);  // two buffers' worth and more
+  check_forces<TestType>(in, false, 0.0, 256);
+  check_forces<TestType>(in, true, 1.0, 256);
 }
 
 TEMPLATE_TEST_CASE("time_step_and_move and reduce match the reference on every input", "[opencl][backend]",

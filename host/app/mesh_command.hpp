@@ -6,6 +6,7 @@
 #include <memory>
 #include <optional>
 
+#include "app/backend_choice.hpp"
 #include "app/case_file.hpp"
 #include "app/run_phases.hpp"
 #include "geometry/geometry.hpp"
@@ -113,6 +114,9 @@ SimOptions simulation_options(const CaseConfig& config);
 struct SimulateHooks {
   std::function<void(const HistoryRow&)> on_iteration;
   const std::atomic<bool>* stop = nullptr;
+  // The backend when the caller set it up beforehand (run_mesh does, on a thread, while the spacing
+  // field is built); it passes its notes to `note`. Empty: simulate() calls choose_backend.
+  std::function<ChosenBackend(const std::function<void(const std::string&)>& note)> backend;
 };
 
 // Stage 6: the particle dynamics simulation on the chosen backend, updating `nodes` in place, until

@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 
 #include "core/errors.hpp"
+#include "core/g17.hpp"
 #include "core/predicates.hpp"
 
 namespace pdmesh {
@@ -64,12 +65,20 @@ std::string msh_spacing_node_data(const Mesh& mesh) {
   // One view "q": time 0, time step 0, 1 component, a value per node (node tag = point index + 1).
   std::string out = fmt::format("$NodeData\n1\n\"q\"\n1\n0\n3\n0\n1\n{}\n", mesh.spacing.size());
   auto to = std::back_inserter(out);
-  for (std::size_t i = 0; i < mesh.spacing.size(); ++i) fmt::format_to(to, "{} {:.17g}\n", i + 1, mesh.spacing[i]);
+  for (std::size_t i = 0; i < mesh.spacing.size(); ++i) {
+    fmt::format_to(to, "{} ", i + 1);
+    append_g17(out, mesh.spacing[i]);
+    out += '\n';
+  }
   out += "$EndNodeData\n";
   return out;
 }
 
-std::string coord(double v) { return fmt::format("{:.17g}", v); }
+std::string coord(double v) {
+  std::string out;
+  append_g17(out, v);
+  return out;
+}
 
 void orient_triangles_ccw(Mesh& mesh, MeshReadReport& report) {
   std::size_t flipped = 0;

@@ -9,6 +9,7 @@
 
 #include <fmt/format.h>
 
+#include "core/g17.hpp"
 #include "io/mesh_io_common.hpp"
 
 namespace pdmesh {
@@ -65,7 +66,12 @@ std::string msh41_string(const Mesh& mesh) {
     // of nodes); numbers as coord() writes them.
     auto to = std::back_inserter(out);
     for (std::size_t i = 0; i < n; ++i) fmt::format_to(to, "{}\n", i + 1);
-    for (const auto& p : mesh.points) fmt::format_to(to, "{:.17g} {:.17g} 0\n", p.x, p.y);
+    for (const auto& p : mesh.points) {
+      append_g17(out, p.x);
+      out += ' ';
+      append_g17(out, p.y);
+      out += " 0\n";
+    }
     out += "$EndNodes\n";
   }
 
@@ -103,8 +109,13 @@ std::string msh22_string(const Mesh& mesh) {
   out += physical_names(mesh);
   out += fmt::format("$Nodes\n{}\n", mesh.points.size());
   auto to = std::back_inserter(out);
-  for (std::size_t i = 0; i < mesh.points.size(); ++i)
-    fmt::format_to(to, "{} {:.17g} {:.17g} 0\n", i + 1, mesh.points[i].x, mesh.points[i].y);
+  for (std::size_t i = 0; i < mesh.points.size(); ++i) {
+    fmt::format_to(to, "{} ", i + 1);
+    append_g17(out, mesh.points[i].x);
+    out += ' ';
+    append_g17(out, mesh.points[i].y);
+    out += " 0\n";
+  }
   out += "$EndNodes\n";
   // Each element: tag, type, 2 tags (physical, elementary), nodes. Curve c is elementary entity c + 1.
   out += fmt::format("$Elements\n{}\n", mesh.boundary_edges.size() + mesh.triangles.size());

@@ -8,6 +8,7 @@
 
 #include <fmt/format.h>
 
+#include "core/g17.hpp"
 #include "io/mesh_io_common.hpp"
 #include "mesh/quality.hpp"
 
@@ -19,8 +20,11 @@ double finite_or_big(double v) { return std::isfinite(v) ? v : (v < 0 ? -1e300 :
 void cell_array(std::string& out, const char* name, const std::vector<TriangleQuality>& q,
                 double TriangleQuality::*field) {
   out += fmt::format("        <DataArray type=\"Float64\" Name=\"{}\" format=\"ascii\">\n", name);
-  auto to = std::back_inserter(out);
-  for (const auto& t : q) fmt::format_to(to, "          {:.17g}\n", finite_or_big(t.*field));
+  for (const auto& t : q) {
+    out += "          ";
+    append_g17(out, finite_or_big(t.*field));
+    out += '\n';
+  }
   out += "        </DataArray>\n";
 }
 
@@ -60,14 +64,19 @@ std::string vtu_string(const Mesh& mesh) {
                      mesh.triangles.size());
   out += "      <PointData Scalars=\"kind\">\n        <DataArray type=\"Int32\" Name=\"kind\" format=\"ascii\">\n";
   // The large arrays are formatted straight into `out` (format_to): a temporary string per number
-  // took most of the writer's time at millions of cells. Numbers as coord() writes them ({:.17g}).
+  // took most of the writer's time at millions of cells. Numbers as coord() writes them (%.17g,
+  // append_g17).
   auto to = std::back_inserter(out);
   for (std::size_t i = 0; i < mesh.points.size(); ++i)
     fmt::format_to(to, "          {}\n", mesh.kind.empty() ? -1 : static_cast<int>(mesh.kind[i]));
   out += "        </DataArray>\n";
   if (!mesh.spacing.empty()) {
     out += "        <DataArray type=\"Float64\" Name=\"q\" format=\"ascii\">\n";
-    for (double q : mesh.spacing) fmt::format_to(to, "          {:.17g}\n", q);
+    for (double q : mesh.spacing) {
+      out += "          ";
+      append_g17(out, q);
+      out += '\n';
+    }
     out += "        </DataArray>\n";
   }
   out += "      </PointData>\n";
@@ -80,7 +89,13 @@ std::string vtu_string(const Mesh& mesh) {
   cell_array(out, "min_jacobian", quality, &TriangleQuality::min_jacobian);
   out += "      </CellData>\n";
   out += "      <Points>\n        <DataArray type=\"Float64\" Name=\"Points\" NumberOfComponents=\"3\" format=\"ascii\">\n";
-  for (const auto& p : mesh.points) fmt::format_to(to, "          {:.17g} {:.17g} 0\n", p.x, p.y);
+  for (const auto& p : mesh.points) {
+    out += "          ";
+    append_g17(out, p.x);
+    out += ' ';
+    append_g17(out, p.y);
+    out += " 0\n";
+  }
   out += "        </DataArray>\n      </Points>\n";
   out += "      <Cells>\n        <DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">\n";
   for (const auto& t : mesh.triangles) fmt::format_to(to, "          {} {} {}\n", t[0], t[1], t[2]);

@@ -12,6 +12,7 @@
 
 #include "core/atomic_file.hpp"
 #include "core/errors.hpp"
+#include "core/g17.hpp"
 
 namespace pdmesh {
 
@@ -112,8 +113,13 @@ std::string format_node_file(const NodeSet& nodes, const std::vector<std::string
   fmt::memory_buffer out;
   fmt::format_to(std::back_inserter(out), "{}\n{}\n", kHeader, nodes.size());
   for (std::size_t i = 0; i < nodes.size(); ++i) {
-    fmt::format_to(std::back_inserter(out), "{:.17g} {:.17g} {} {} {:.17g}\n", nodes.x[i].x, nodes.x[i].y,
-                   to_string(nodes.kind[i]), nodes.kind[i] == NodeKind::Interior ? -1 : nodes.curve[i], nodes.q[i]);
+    append_g17(out, nodes.x[i].x);
+    out.push_back(' ');
+    append_g17(out, nodes.x[i].y);
+    fmt::format_to(std::back_inserter(out), " {} {} ", to_string(nodes.kind[i]),
+                   nodes.kind[i] == NodeKind::Interior ? -1 : nodes.curve[i]);
+    append_g17(out, nodes.q[i]);
+    out.push_back('\n');
   }
   fmt::format_to(std::back_inserter(out), "curves {}\n", nodes.curve_nodes.size());
   for (std::size_t c = 0; c < nodes.curve_nodes.size(); ++c) {

@@ -503,8 +503,9 @@ void DeviceRun<Real>::rebuild() {
   skin_use_ = 0.0;
 }
 
-// One iteration's kernels from buffers `cur`: device_step (dt^2 from window_.dt2()), boundary_snap
-// and, with the device's rule, iteration_rule. Nothing is waited on.
+// One iteration's kernels from buffers `cur`: device_step (dt^2 from window_.dt2()) and boundary_snap;
+// with the device's rule, boundary_snap_rule instead (the rule in its last work-group), or iteration_rule
+// where there are no boundary nodes. Nothing is waited on.
 template <typename Real>
 void DeviceRun<Real>::enqueue_iteration(int cur) {
   const int next = 1 - cur;
@@ -519,14 +520,18 @@ void DeviceRun<Real>::enqueue_iteration(int cur) {
   bg_args(a);
   launch(ctx_.queue(), program_.device_step, "device_step", n_, program_.work_group);
   ++stats_.launches;
-  // Every boundary node re-snapped on the device into the next buffers (x, y, q, tangents, arcs).
-  if (!boundary_nodes_.empty()) {
-    device_boundary_.enqueue(program_, cur, brec_, x_[next], y_[next], q_[next], tx_, ty_, node_leaf_, x_build_,
-                             y_build_, q_build_, options_.cutoff, options_.verlet_skin * options_.cutoff, counters_,
-                             [this](ArgSetter& a) { bg_args(a); });
+  // Every boundary node re-snapped on the device into the next buffers (x, y, q, tangents, arcs); with
+  // the device's rule, the same launch ends the iteration (boundary_snap_rule).
+  auto rule = [this](ArgSetter& a) { window_.rule_args(a, groups(), partials_); };
+  bool rule_done = false;
+  if (!boundary_nodes_.empty() &&
+      device_boundary_.enqueue(program_, cur, brec_, x_[next], y_[next], q_[next], tx_, ty_, node_leaf_, x_build_,
+                               y_build_, q_build_, options_.cutoff, options_.verlet_skin * options_.cutoff, counters_,
+                               [this](ArgSetter& a) { bg_args(a); }, window_.device_rule() ? &rule : nullptr)) {
     ++stats_.launches;
+    rule_done = window_.device_rule();
   }
-  if (window_.device_rule()) {
+  if (window_.device_rule() && !rule_done) {
     window_.enqueue_rule(program_, groups(), partials_, device_boundary_.partial_count(program_.work_group),
                          device_boundary_.partials(), counters_);
     ++stats_.launches;

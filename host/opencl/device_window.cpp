@@ -27,6 +27,7 @@ std::map<std::string, std::string> window_defines() {
   d.emplace("COUNTER_NON_FINITE", std::to_string(static_cast<int>(kCounterNonFinite)));
   d.emplace("WINDOW_HALT", std::to_string(static_cast<int>(kWindowHalt)));
   d.emplace("WINDOW_ROWS", std::to_string(static_cast<int>(kWindowRows)));
+  d.emplace("COUNTER_SNAP_DONE", std::to_string(static_cast<int>(kCounterSnapDone)));
   // The rule's constants as the shortest round-trip text, so that the kernel has the same doubles.
   d.emplace("GM_RUN_LENGTH", std::to_string(GlobalTimeStep::kRunLength));
   d.emplace("GM_GROW", fmt::format("{}", GlobalTimeStep::kGrow));
@@ -66,6 +67,12 @@ void DeviceWindow<Real>::begin(const GlobalTimeStep& gm, double skin_use, double
   state_.upload(ctx_.queue(), state_host_, false);
   ++transfers;
   bytes_up += state_host_.size() * sizeof(double);
+}
+
+template <typename Real>
+void DeviceWindow<Real>::rule_args(ArgSetter& a, std::size_t groups, Buffer<Real>& partials) {
+  if (!device_rule_) throw DeviceError("DeviceWindow::rule_args: the host runs the time-step rule");
+  a(static_cast<cl_int>(groups))(partials)(state_)(ring_)(static_cast<cl_int>(kWindowLength))(dt2_);
 }
 
 template <typename Real>

@@ -50,8 +50,16 @@ enum WindowStateSlot : int {
   kStateSkinLimit = 6,
   kStateSize = 7
 };
-// The step counters (ints; device_step's candidate count and non-finite flag come first).
-enum WindowCounter : int { kCounterCandidates = 0, kCounterNonFinite = 1, kWindowHalt = 2, kWindowRows = 3, kWindowCounters = 4 };
+// The step counters (ints; device_step's candidate count and non-finite flag come first;
+// kCounterSnapDone: boundary_snap_rule's count of finished work-groups, back to 0 after each launch).
+enum WindowCounter : int {
+  kCounterCandidates = 0,
+  kCounterNonFinite = 1,
+  kWindowHalt = 2,
+  kWindowRows = 3,
+  kCounterSnapDone = 4,
+  kWindowCounters = 5
+};
 
 // Iterations one window enqueues at most (the ring's rows): the host reads the history this often.
 inline constexpr int kWindowLength = 32;
@@ -72,7 +80,10 @@ class DeviceWindow {
 
   // Before a window: zero counters, the rule's state and dt^2 of its first step (3 writes, not waited on).
   void begin(const GlobalTimeStep& gm, double skin_use, double skin_limit, Buffer<std::int32_t>& counters);
-  // After each iteration's boundary_snap: iteration_rule (device rule only).
+  // After each iteration's device_step where no boundary_snap runs: iteration_rule (device rule only).
+  // Where one runs, boundary_snap_rule runs the rule in its last work-group: rule_args appends the
+  // rule's arguments after boundary_snap's.
+  void rule_args(ArgSetter& a, std::size_t groups, Buffer<Real>& partials);
   void enqueue_rule(StepProgram& program, std::size_t groups, Buffer<Real>& partials, std::size_t snap_entries,
                     Buffer<Real>& snap_partials, Buffer<std::int32_t>& counters);
   // After the window: reads the ring and the counters (one wait; with the host's sums, the partials)

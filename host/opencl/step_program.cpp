@@ -94,8 +94,8 @@ ForceLoop resolve_force_loop(ForceLoop requested, const std::string& device_type
 const std::vector<std::string>& step_program_files() {
   static const std::vector<std::string> files = {"spacing_field.cl", "reduce.cl",     "forces.cl",
                                                  "time_step.cl",     "binning.cl",    "neighbours.cl",
-                                                 "clearance.cl",     "device_step.cl", "boundary.cl",
-                                                 "window.cl"};
+                                                 "clearance.cl",     "device_step.cl", "window.cl",
+                                                 "boundary.cl"};  // boundary_snap_rule calls window.cl's rule
   return files;
 }
 
@@ -160,7 +160,16 @@ StepProgram::StepProgram(Context& ctx, Precision p, ForceLoop loop, std::size_t 
   }
   // kernels/window.cl needs cl_khr_fp64 (the time-step rule's state is double); without it the host
   // runs the rule (DeviceWindow).
-  if (ctx.device().fp64) iteration_rule = make_kernel(program, "iteration_rule");
+  if (ctx.device().fp64) {
+    iteration_rule = make_kernel(program, "iteration_rule");
+    boundary_snap_rule = make_kernel(program, "boundary_snap_rule");
+    const char* name = "boundary_snap_rule";
+    KernelLimits k{name, group_info<CL_KERNEL_WORK_GROUP_SIZE>(boundary_snap_rule, ctx.device().handle, name, "CL_KERNEL_WORK_GROUP_SIZE"),
+                   group_info<CL_KERNEL_PREFERRED_WORK_GROUP_SIZE_MULTIPLE>(
+                       boundary_snap_rule, ctx.device().handle, name, "CL_KERNEL_PREFERRED_WORK_GROUP_SIZE_MULTIPLE")};
+    check_work_group(name, ctx.device().name, wg, std::min(k.max_work_group, ctx.device().max_work_group));
+    limits.push_back(k);
+  }
 }
 
 }  // namespace pdmesh::ocl

@@ -107,7 +107,9 @@ struct StepProgram {
       apply_row_moves, bin_bounds, bin_rmin, bin_levels, bin_plan, bin_count, bucket_scan, bucket_offsets_add, bin_fill,
       compute_forces, time_step_and_move, reduce, device_step, apply_host_moves, boundary_snap,
       clearance_points;
-  cl::Kernel iteration_rule;  // only where the device has cl_khr_fp64 (kernels/window.cl)
+  // Only where the device has cl_khr_fp64 (kernels/window.cl): the rule alone, and boundary_snap with the
+  // rule in its last work-group.
+  cl::Kernel iteration_rule, boundary_snap_rule;
   std::vector<KernelLimits> limits;  // per kernel, in the order above
 };
 
