@@ -4,7 +4,10 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <cmath>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <random>
 #include <string>
 
@@ -16,6 +19,7 @@
 #include "io/su2_writer.hpp"
 #include "io/text_file.hpp"
 #include "io/triangle_reader.hpp"
+#include "io/vtu_data.hpp"
 #include "io/vtu_reader.hpp"
 #include "io/vtu_writer.hpp"
 
@@ -305,7 +309,7 @@ TEST_CASE("Triangle reader checks indices and reads 0-based files without .poly"
 
 TEST_CASE("VTU reader rejects damaged binary arrays and bad connectivity", "[mesh_io]") {
   MeshReadReport r;
-  std::string v = vtu_string(grid_mesh());
+  std::string v = vtu_string(grid_mesh(), VtuFormat::Ascii);
   // ASCII numbers declared binary: their digits decode as base64 into a nonsensical block header.
   std::string binary = v;
   binary.replace(binary.find("format=\"ascii\""), 14, "format=\"binary\"");
@@ -320,6 +324,72 @@ TEST_CASE("VTU reader rejects damaged binary arrays and bad connectivity", "[mes
   message_has([&] { parse_vtu("c.vtu", conn, r); }, "connectivity holds index 99");
   CHECK(v.find("<DataArray type=\"Float64\" Name=\"condition_number\"") != std::string::npos);
   CHECK(v.find("<DataArray type=\"Int32\" Name=\"kind\"") != std::string::npos);
+}
+
+TEST_CASE("base64 encoder: RFC 4648's test vectors, and a round trip through the reader's decoder", "[mesh_io]") {
+  const auto encode = [](const std::string& bytes, std::size_t chunk) {
+    std::string out;
+    Base64Encoder e(out);
+    for (std::size_t i = 0; i < bytes.size(); i += chunk) e.put(bytes.data() + i, std::min(chunk, bytes.size() - i));
+    e.finish();
+    return out;
+  };
+  // RFC 4648, section 10.
+  const std::pair<const char*, const char*> vectors[] = {{"", ""},         {"f", "Zg=="},         {"fo", "Zm8="},
+                                                         {"foo", "Zm9v"},  {"foob", "Zm9vYg=="},  {"fooba", "Zm9vYmE="},
+                                                         {"foobar", "Zm9vYmFy"}};
+  for (const auto& [in, expected] : vectors) {
+    CHECK(encode(in, 1) == expected);
+    CHECK(encode(in, 7) == expected);
+  }
+  // Lengths about the encoder's 3072-byte buffer, put in pieces of several sizes.
+  std::mt19937 rng(5);
+  for (const std::size_t n : {3071u, 3072u, 3073u, 6145u, 10000u}) {
+    std::string bytes(n, '\0');
+    for (char& c : bytes) c = static_cast<char>(rng() & 0xff);
+    for (const std::size_t chunk : {1u, 8u, 1000u, 4096u}) {
+      INFO("n " << n << " chunk " << chunk);
+      const std::string text = encode(bytes, chunk);
+      CHECK(text.size() == (n + 2) / 3 * 4);
+      VtuBytes decoder = VtuBytes::base64(text, "t");
+      std::vector<unsigned char> back;
+      decoder.read(n, back, "all");
+      CHECK(std::string(back.begin(), back.end()) == bytes);
+    }
+  }
+}
+
+TEST_CASE("VTU binary and ASCII forms hold the same mesh, and binary is what write_mesh writes", "[mesh_io]") {
+  Mesh mesh = grid_mesh();
+  mesh.spacing.assign(mesh.points.size(), 0.0);
+  for (std::size_t i = 0; i < mesh.points.size(); ++i) mesh.spacing[i] = 0.1 + std::sqrt(0.5 + mesh.points[i].x);
+  const std::string binary = vtu_string(mesh);
+  const std::string ascii = vtu_string(mesh, VtuFormat::Ascii);
+  CHECK(binary.find("format=\"ascii\"") == std::string::npos);
+  CHECK(ascii.find("format=\"binary\"") == std::string::npos);
+  // 14 arrays: boundary_edges, curve_names, kind, q, 6 metrics, Points, connectivity, offsets, types.
+  std::size_t arrays = 0;
+  for (auto at = binary.find("format=\"binary\""); at != std::string::npos; at = binary.find("format=\"binary\"", at + 1))
+    ++arrays;
+  CHECK(arrays == 14);
+  MeshReadReport r;
+  MeshPointData qb, qa;
+  qb.wanted = qa.wanted = "q";
+  const Mesh from_binary = parse_vtu("b.vtu", binary, r, &qb);
+  const Mesh from_ascii = parse_vtu("a.vtu", ascii, r, &qa);
+  check_round_trip(mesh, from_binary, true);
+  check_round_trip(mesh, from_ascii, true);
+  REQUIRE(qb.array);
+  REQUIRE(qa.array);
+  CHECK(qb.array->values == mesh.spacing);  // bit for bit
+  CHECK(qa.array->values == mesh.spacing);
+  const auto dir = std::filesystem::temp_directory_path() / "pdmesh_vtu_binary";
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  write_mesh(mesh, dir, "m", {"vtu"});
+  std::ifstream in(dir / "m.vtu", std::ios::binary);
+  CHECK(std::string(std::istreambuf_iterator<char>(in), {}) == binary);
+  std::filesystem::remove_all(dir);
 }
 
 TEST_CASE("format dispatch rejects unknown names and extensions", "[mesh_io]") {

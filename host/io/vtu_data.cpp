@@ -4,6 +4,7 @@
 #include <zlib.h>
 
 #include <algorithm>
+#include <array>
 #include <cstring>
 #include <limits>
 
@@ -14,15 +15,21 @@
 namespace pdmesh {
 namespace {
 
-// 0..63 for a base64 character, -1 for anything else.
-int base64_value(char c) {
-  if (c >= 'A' && c <= 'Z') return c - 'A';
-  if (c >= 'a' && c <= 'z') return c - 'a' + 26;
-  if (c >= '0' && c <= '9') return c - '0' + 52;
-  if (c == '+') return 62;
-  if (c == '/') return 63;
-  return -1;
-}
+// 0..63 for a base64 character, -1 for anything else; by table, since large arrays decode
+// hundreds of millions of characters.
+constexpr std::array<signed char, 256> kBase64Values = [] {
+  std::array<signed char, 256> t{};
+  for (auto& v : t) v = -1;
+  for (int i = 0; i < 26; ++i) {
+    t['A' + i] = static_cast<signed char>(i);
+    t['a' + i] = static_cast<signed char>(26 + i);
+  }
+  for (int i = 0; i < 10; ++i) t['0' + i] = static_cast<signed char>(52 + i);
+  t['+'] = 62;
+  t['/'] = 63;
+  return t;
+}();
+int base64_value(char c) { return kBase64Values[static_cast<unsigned char>(c)]; }
 
 bool is_space(char c) { return c == ' ' || c == '\n' || c == '\r' || c == '\t'; }
 
@@ -56,7 +63,49 @@ double load_value(const unsigned char* p, const VtuType& t, bool big_endian) {
   return static_cast<double>(s);
 }
 
+constexpr char kBase64Alphabet[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+
 }  // namespace
+
+void Base64Encoder::put(const void* data, std::size_t n) {
+  const auto* p = static_cast<const unsigned char*>(data);
+  while (n > 0) {
+    const std::size_t take = std::min(n, sizeof buffer_ - used_);
+    std::memcpy(buffer_ + used_, p, take);
+    used_ += take;
+    p += take;
+    n -= take;
+    if (used_ == sizeof buffer_) flush_whole_groups();
+  }
+}
+
+// Encodes every whole 3-byte group of the buffer and keeps the 0-2 bytes left over.
+void Base64Encoder::flush_whole_groups() {
+  const std::size_t whole = used_ - used_ % 3;
+  const std::size_t start = out_.size();
+  out_.resize(start + whole / 3 * 4);
+  char* o = out_.data() + start;
+  for (std::size_t i = 0; i < whole; i += 3) {
+    const unsigned v = (unsigned{buffer_[i]} << 16) | (unsigned{buffer_[i + 1]} << 8) | buffer_[i + 2];
+    *o++ = kBase64Alphabet[(v >> 18) & 63];
+    *o++ = kBase64Alphabet[(v >> 12) & 63];
+    *o++ = kBase64Alphabet[(v >> 6) & 63];
+    *o++ = kBase64Alphabet[v & 63];
+  }
+  std::memmove(buffer_, buffer_ + whole, used_ - whole);
+  used_ -= whole;
+}
+
+void Base64Encoder::finish() {
+  flush_whole_groups();
+  if (used_ == 0) return;
+  const unsigned v = (unsigned{buffer_[0]} << 16) | (used_ == 2 ? unsigned{buffer_[1]} << 8 : 0u);
+  out_ += kBase64Alphabet[(v >> 18) & 63];
+  out_ += kBase64Alphabet[(v >> 12) & 63];
+  out_ += used_ == 2 ? kBase64Alphabet[(v >> 6) & 63] : '=';
+  out_ += '=';
+  used_ = 0;
+}
 
 bool parse_vtu_type(std::string_view name, VtuType& type) {
   struct Entry {
@@ -137,6 +186,29 @@ void VtuBytes::read(std::size_t n, std::vector<unsigned char>& out, std::string_
     return;
   }
   while (n > 0) {
+    // Fast path: whole groups of four plain characters (no white space, no padding) decode straight
+    // into `out`; anything else goes through next_group(), which checks and reports it.
+    if (pending_pos_ == pending_count_) {
+      const std::size_t start = out.size();
+      std::size_t groups = std::min(n / 3, (text_.size() - pos_) / 4);
+      out.resize(start + 3 * groups);
+      unsigned char* o = out.data() + start;
+      const char* t = text_.data() + pos_;
+      std::size_t done = 0;
+      for (; done < groups; ++done, t += 4) {
+        const int a = base64_value(t[0]), b = base64_value(t[1]), c = base64_value(t[2]), d = base64_value(t[3]);
+        if ((a | b | c | d) < 0) break;
+        const auto word = (static_cast<std::uint32_t>(a) << 18) | (static_cast<std::uint32_t>(b) << 12) |
+                          (static_cast<std::uint32_t>(c) << 6) | static_cast<std::uint32_t>(d);
+        *o++ = static_cast<unsigned char>(word >> 16);
+        *o++ = static_cast<unsigned char>(word >> 8);
+        *o++ = static_cast<unsigned char>(word);
+      }
+      out.resize(start + 3 * done);
+      pos_ += 4 * done;
+      n -= 3 * done;
+      if (n == 0) break;
+    }
     if (pending_pos_ == pending_count_ && !next_group()) {
       throw InputError(fmt::format("{}: the data ends before {}", where_, what));
     }

@@ -1,7 +1,8 @@
 // Decoding the contents of VTK XML <DataArray> elements: the binary forms VTK, ParaView and meshio
 // write by default ("binary" = base64 inline, "appended" = raw bytes or base64 after <AppendedData>),
 // uncompressed or compressed with vtkZLibDataCompressor, with UInt32 or UInt64 block headers, in
-// either byte order. The ASCII form is parsed by the VTU reader itself.
+// either byte order; and the base64 encoder the writer uses. The ASCII form is parsed by the VTU
+// reader itself.
 // Format: https://docs.vtk.org/en/latest/design_documents/VTKFileFormats.html ("XML File Formats",
 // "Binary data" and "Compressed data").
 #pragma once
@@ -57,6 +58,22 @@ class VtuBytes {
   int pending_count_ = 0;
   int pending_pos_ = 0;
   std::string where_;
+};
+
+// Appends the base64 encoding (RFC 4648: the standard alphabet, '=' padding, no line breaks) of the
+// bytes put into it to `out`; the writer's half of the "binary" form above. finish() writes the
+// last group and must be called once, after the last put().
+class Base64Encoder {
+ public:
+  explicit Base64Encoder(std::string& out) : out_(out) {}
+  void put(const void* data, std::size_t n);
+  void finish();
+
+ private:
+  void flush_whole_groups();
+  std::string& out_;
+  unsigned char buffer_[3 * 1024];  // bytes not yet encoded; encoded a whole buffer at a time
+  std::size_t used_ = 0;
 };
 
 // Decodes one binary array (its header, then its possibly compressed blocks) into doubles.
