@@ -34,7 +34,7 @@ REAL bg_spacing_cached(const REAL px, const REAL py, int* leaf, BG_ARGS) {
 }
 #define BG_PASS bg_origin_x, bg_origin_y, bg_inv_root, bg_grid, bg_root, bg_child, bg_corner, bg_cell, bg_q
 
-// Inputs x, y, q (current), outputs x_next, y_next, q_next. budget[i]: interior node i's clearance
+// Inputs xy (positions, x and y interleaved), q (current), outputs xy_next, q_next. budget[i]: interior node i's clearance
 // budget (host/sim/boundary_handling.hpp, clearance_budget): a move whose cost (the same move_cost
 // formula, with this precision's epsilon) is below it stays inside the domain, exactly; the cost is
 // subtracted. A spent budget is refreshed from the segments segs (kernels/clearance.cl) when the move
@@ -46,12 +46,12 @@ REAL bg_spacing_cached(const REAL px, const REAL py, int* leaf, BG_ARGS) {
 // does not touch; the host covers the rest).
 __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1)))
 void device_step(const int n, const REAL cutoff, const REAL lj_a, const int r0_any_direction,
-                 const REAL stability_factor, __global const REAL* dt_gm2_in, const REAL skin_cutoff, __global const REAL* x, __global const REAL* y,
+                 const REAL stability_factor, __global const REAL* dt_gm2_in, const REAL skin_cutoff, __global const REAL2* xy,
                  __global const REAL* q, __global const uchar* kind, __global const REAL* tx,
                  __global const REAL* ty, __global const int* count, __global const ulong* row_offset,
                  __global const int* index,
-                 __global const REAL* x_build, __global const REAL* y_build, __global const REAL* q_build,
-                 __global const int* bslot, __global REAL* x_next, __global REAL* y_next, __global REAL* q_next,
+                 __global const REAL2* xy_build, __global const REAL* q_build,
+                 __global const int* bslot, __global REAL2* xy_next, __global REAL* q_next,
                  __global REAL* budget, __global int* node_leaf, __global REAL* brec, __global int* cand_index, __global REAL* cand_rec,
                  __global int* counters, __global REAL* partials, __global const REAL* segs, const int n_segs,
                  const REAL seg_scale, BG_ARGS) {
@@ -70,12 +70,13 @@ void device_step(const int n, const REAL cutoff, const REAL lj_a, const int r0_a
   // readable entries past the last row, and entries past the row are masked.
   const int row = moving ? count[ic] : 0;
   const long row_start = (long)row_offset[ic];
-  const REAL xi = x[ic], yi = y[ic], qi = q[ic];
+  const REAL2 pi = xy[ic];
+  const REAL xi = pi.x, yi = pi.y, qi = q[ic];
   const REAL rc = cutoff * qi;
   REAL fx, fy, r0, limit;
   int coincident, within;
   node_forces(ic, (row + 7) & ~7, row, row_start, xi, yi, qi, kind_i, rc * rc, tx[ic], ty[ic], lj_a, r0_any_direction,
-              stability_factor, x, y, q, index, &fx, &fy, &r0, &limit, &coincident, &within);
+              stability_factor, xy, q, index, &fx, &fy, &r0, &limit, &coincident, &within);
   const REAL dt2 = local_dt2(fx, fy, r0, dt_gm2, limit);
   const REAL dx = moving ? REAL_C(0.5) * dt2 * fx : (REAL)0;
   const REAL dy = moving ? REAL_C(0.5) * dt2 * fy : (REAL)0;
@@ -121,14 +122,14 @@ void device_step(const int n, const REAL cutoff, const REAL lj_a, const int r0_a
         host = 1;
       }
     }
-    x_next[i] = xn;
-    y_next[i] = yn;
+    xy_next[i] = (REAL2)(xn, yn);
     q_next[i] = qn;
     // A move that is not finite halts the iteration for the host (counters[COUNTER_NON_FINITE]): boundary_snap then
     // writes nothing, so the state before this step stays whole on the device.
     if (moving && !(isfinite(dx) && isfinite(dy) && isfinite(xn) && isfinite(yn))) atomic_or(&counters[COUNTER_NON_FINITE], 1);
     if (!host && kind_i == 2) {
-      const REAL ex = xn - x_build[i], ey = yn - y_build[i];
+      const REAL2 pb = xy_build[i];
+      const REAL ex = xn - pb.x, ey = yn - pb.y;
       const REAL grow = qn > q_build[i] ? cutoff * (qn - q_build[i]) : (REAL)0;
       skin_use = (sqrt(ex * ex + ey * ey) + grow) / (skin_cutoff * q_build[i]);
     }
@@ -147,15 +148,14 @@ void device_step(const int n, const REAL cutoff, const REAL lj_a, const int r0_a
 // Writes back the m positions the host decided (boundary nodes re-snapped, candidates moved or
 // snapped): rec = (x, y, tx, ty, budget) per entry; recomputes q and the leaf there.
 __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1)))
-void apply_host_moves(const int m, __global const int* rec_index, __global const REAL* rec, __global REAL* x,
-                      __global REAL* y, __global REAL* q, __global REAL* tx, __global REAL* ty, __global REAL* budget,
+void apply_host_moves(const int m, __global const int* rec_index, __global const REAL* rec, __global REAL2* xy,
+                      __global REAL* q, __global REAL* tx, __global REAL* ty, __global REAL* budget,
                       __global int* node_leaf, BG_ARGS) {
   const int k = get_global_id(0);
   if (k >= m) return;
   const int i = rec_index[k];
   const REAL px = rec[5 * k], py = rec[5 * k + 1];
-  x[i] = px;
-  y[i] = py;
+  xy[i] = (REAL2)(px, py);
   tx[i] = rec[5 * k + 2];
   ty[i] = rec[5 * k + 3];
   budget[i] = rec[5 * k + 4];
