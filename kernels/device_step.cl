@@ -105,21 +105,30 @@ void device_step(const int n, const REAL cutoff, const REAL lj_a, const int r0_a
       const REAL ex = xn - xi, ey = yn - yi;
       const REAL cost = clearance_move_cost(ex, ey, xn, yn, b);
       // Budget spent: a node known inside (b > 0) gets a fresh one when its move is clearly inside
-      // (kernels/clearance.cl); the rest go to the host's exact test.
+      // (kernels/clearance.cl); the rest go to the host's exact test. PDMESH_REFRESH_KERNEL: the
+      // refresh runs in its own kernel (refresh_budgets below; its segment loop would cost this
+      // kernel GPU registers): the node is listed for it as ~i.
+#if PDMESH_REFRESH_KERNEL
+      const REAL fresh = (REAL)0;
+      const int deferred = !(cost < b) && b > (REAL)0;
+#else
       const REAL fresh = !(cost < b) && b > (REAL)0 ? clearance_refresh(ex, ey, xn, yn, segs, n_segs, seg_scale)
                                                     : (REAL)0;
+      const int deferred = 0;
+#endif
       if (cost < b) {  // false for NaN
         budget[i] = b - cost;
       } else if (fresh > (REAL)0) {
         budget[i] = fresh;
       } else {
         const int s = atomic_inc(&counters[COUNTER_CANDIDATES]);
-        cand_index[s] = i;
+        cand_index[s] = deferred ? ~i : i;
         cand_rec[4 * s] = xi;
         cand_rec[4 * s + 1] = yi;
         cand_rec[4 * s + 2] = dx;
         cand_rec[4 * s + 3] = dy;
-        host = 1;
+        if (!deferred) atomic_or(&counters[COUNTER_HOST], 1);
+        host = 1;  // a refreshed node's skin use: refresh_budgets
       }
     }
     xy_next[i] = (REAL2)(xn, yn);
@@ -143,6 +152,51 @@ void device_step(const int n, const REAL cutoff, const REAL lj_a, const int r0_a
   values[6 * WG_SIZE + l] = skin_use;
   group_reduce(values, STEP_PARTIALS, 5);
   if (l < STEP_PARTIALS) partials[STEP_PARTIALS * get_group_id(0) + l] = values[l * WG_SIZE];
+}
+
+// The clearance refresh of the nodes device_step listed as ~i (PDMESH_REFRESH_KERNEL; the same rule and
+// expressions as its inline refresh): entry k of the list (counters[COUNTER_CANDIDATES] entries; the
+// launch covers n). Accepted: the node's new budget, and its skin use (device_step's formula) into
+// the maximum of step partials slot 6 of this group (only the maximum over all groups is used, and
+// a maximum does not depend on the grouping); the entry stays ~i, which the host skips. Otherwise
+// the entry becomes i, for the host's exact test (counters[COUNTER_HOST]).
+__kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1)))
+void refresh_budgets(const int n, __global int* counters, __global int* cand_index,
+                     __global const REAL* cand_rec, __global REAL* budget, __global const REAL* q_next,
+                     __global const REAL2* xy_build, __global const REAL* q_build, const REAL cutoff,
+                     const REAL skin_cutoff, __global const REAL* segs, const int n_segs, const REAL seg_scale,
+                     __global REAL* partials) {
+  __local REAL values[WG_SIZE];
+  if (counters[WINDOW_HALT] != 0) return;  // uniform: the window was halted (kernels/window.cl)
+  const int k = get_global_id(0), l = get_local_id(0);
+  const int m = counters[COUNTER_CANDIDATES];
+  REAL skin_use = (REAL)0;
+  const int entry = k < m ? cand_index[k] : 0;
+  if (k < m && entry < 0) {
+    const int i = ~entry;
+    const REAL xi = cand_rec[4 * k], yi = cand_rec[4 * k + 1], dx = cand_rec[4 * k + 2], dy = cand_rec[4 * k + 3];
+    const REAL xn = xi + dx, yn = yi + dy;
+    const REAL ex = xn - xi, ey = yn - yi;
+    const REAL fresh = clearance_refresh(ex, ey, xn, yn, segs, n_segs, seg_scale);
+    if (fresh > (REAL)0) {
+      budget[i] = fresh;
+      const REAL qn = q_next[i];
+      const REAL2 pb = xy_build[i];
+      const REAL bx = xn - pb.x, by = yn - pb.y;
+      const REAL grow = qn > q_build[i] ? cutoff * (qn - q_build[i]) : (REAL)0;
+      skin_use = (sqrt(bx * bx + by * by) + grow) / (skin_cutoff * q_build[i]);
+    } else {
+      cand_index[k] = i;
+      atomic_or(&counters[COUNTER_HOST], 1);
+    }
+  }
+  if (get_group_id(0) * WG_SIZE >= m) return;  // uniform: no entry in this group
+  values[l] = skin_use;
+  group_reduce(values, 1, 0);
+  if (l == 0) {
+    const REAL old = partials[STEP_PARTIALS * get_group_id(0) + 6];
+    partials[STEP_PARTIALS * get_group_id(0) + 6] = values[0] > old ? values[0] : old;
+  }
 }
 
 // Writes back the m positions the host decided (boundary nodes re-snapped, candidates moved or

@@ -548,6 +548,15 @@ void DeviceRun<Real>::enqueue_iteration(int cur) {
   bg_args(a);
   launch(ctx_.queue(), program_.device_step, "device_step", n_, program_.work_group);
   ++stats_.launches;
+  if (program_.force_loop == ForceLoop::Scalar) {  // PDMESH_REFRESH_KERNEL: the clearance refresh apart
+    ArgSetter r(program_.refresh_budgets, "refresh_budgets");
+    r(static_cast<cl_int>(n_))(counters_)(cand_index_)(cand_rec_)(budget_)(q_[next])(xy_build_)(q_build_)(
+        static_cast<Real>(options_.cutoff))(static_cast<Real>(options_.verlet_skin * options_.cutoff))(
+        device_boundary_.segments())(static_cast<cl_int>(device_boundary_.segment_count()))(
+        static_cast<Real>(device_boundary_.segment_scale()))(partials_);
+    launch(ctx_.queue(), program_.refresh_budgets, "refresh_budgets", n_, program_.work_group);
+    ++stats_.launches;
+  }
   // Every boundary node re-snapped on the device into the next buffers (x, y, q, tangents, arcs); with
   // the device's rule, the same launch ends the iteration (boundary_snap_rule).
   auto rule = [this](ArgSetter& a) { window_.rule_args(a, groups(), partials_); };
@@ -641,12 +650,15 @@ void DeviceRun<Real>::take_row() {
     finish(ctx_.queue(), "device_step candidates");
   }
   stats_.download_seconds += since(t0);
-  // Candidates in index order (the reference handles interior nodes in index order).
-  std::vector<std::size_t> order(m);
-  for (std::size_t k = 0; k < m; ++k) order[k] = k;
+  // Candidates in index order (the reference handles interior nodes in index order); entries ~i < 0
+  // are nodes refresh_budgets gave a fresh budget on the device (the GPU shape), not candidates.
+  std::vector<std::size_t> order;
+  order.reserve(m);
+  for (std::size_t k = 0; k < m; ++k)
+    if (cand[k] >= 0) order.push_back(k);
   std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return cand[a] < cand[b]; });
-  candidates_.resize(m);
-  for (std::size_t k = 0; k < m; ++k) {
+  candidates_.resize(order.size());
+  for (std::size_t k = 0; k < order.size(); ++k) {
     const std::size_t o = order[k];
     const auto i = static_cast<std::size_t>(cand[o]);
     candidates_[k] = cand[o];
@@ -654,7 +666,7 @@ void DeviceRun<Real>::take_row() {
     dx_[i] = static_cast<double>(cand_rec_host_[4 * o + 2]);
     dy_[i] = static_cast<double>(cand_rec_host_[4 * o + 3]);
   }
-  stats_.candidates += m;
+  stats_.candidates += order.size();
   // Every move must be finite (the sums may not show a single NaN move): boundary_snap counted the
   // boundary nodes' targets, the candidates' moves are here.
   moves_finite_ = snap_.non_finite == 0 && !non_finite_move;
