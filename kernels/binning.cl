@@ -96,13 +96,13 @@ uint bin_bucket(const REAL xj, const REAL yj, const int L, __global const int* g
 
 // state[BIN_FIRST_INVALID] must start at INT_MAX, the other entries at 0 (the host uploads them).
 __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1)))
-void bin_bounds(const int n, const REAL radius_factor, __global const REAL* x, __global const REAL* y,
+void bin_bounds(const int n, const REAL radius_factor, __global const REAL2* xy,
                 __global const REAL* q, __global REAL* partial, __global int* state) {
   __local REAL m[WG_SIZE];
   const int i = get_global_id(0), l = get_local_id(0);
   REAL r = INFINITY;
   if (i < n) {
-    const REAL xi = x[i], yi = y[i], qi = q[i];
+    const REAL xi = xy[i].x, yi = xy[i].y, qi = q[i];  // positions: x, y interleaved
     if (!(isfinite(xi) && isfinite(yi) && isfinite(qi) && qi > (REAL)0))
       atomic_min(&state[BIN_FIRST_INVALID], i);
     else
@@ -187,12 +187,12 @@ void bin_plan(const int n, const int groups, const uint bucket_capacity, const u
 
 // Each node in the grid of every level from its own up to the top (the cumulative grids).
 __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1)))
-void bin_count(const int n, __global const REAL* x, __global const REAL* y, __global const int* level,
+void bin_count(const int n, __global const REAL2* xy, __global const int* level,
                __global const int* state, __global const int* grid_mask, __global const uint* grid_bucket_offset,
                __global const REAL* grid_inv_cell, __global volatile uint* bucket) {
   const int i = get_global_id(0);
   if (i >= n || !bin_ok(state, n)) return;
-  const REAL xi = x[i], yi = y[i];
+  const REAL xi = xy[i].x, yi = xy[i].y;
   const int top = state[BIN_TOP];
   uint tag;
   for (int L = level[i]; L <= top; ++L)
@@ -232,12 +232,12 @@ void bucket_offsets_add(const uint m, __global uint* bucket, __global const ulon
 }
 
 __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1)))
-void bin_fill(const int n, __global const REAL* x, __global const REAL* y, __global const int* level,
+void bin_fill(const int n, __global const REAL2* xy, __global const int* level,
               __global const int* state, __global const int* grid_mask, __global const uint* grid_bucket_offset,
               __global const REAL* grid_inv_cell, __global volatile uint* bucket, __global int* grid_nodes) {
   const int i = get_global_id(0);
   if (i >= n || !bin_ok(state, n)) return;
-  const REAL xi = x[i], yi = y[i];
+  const REAL xi = xy[i].x, yi = xy[i].y;
   const int top = state[BIN_TOP];
   uint tag;
   for (int L = level[i]; L <= top; ++L)

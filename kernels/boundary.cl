@@ -93,13 +93,13 @@ void closest_on_curve(__global const REAL* p, __global const REAL* arc, const in
 #define SNAP_ARGS                                                                                              \
   const int m, __global const int *slot_node, __global const int *slot_curve, __global const int *slot_pos,    \
       __global const int *curve_pt, __global const REAL *pts, __global const REAL *pt_arc,                      \
-      __global const REAL *arcs_in, __global REAL *arcs_out, __global REAL *brec, __global REAL *x,              \
-      __global REAL *y, __global REAL *q, __global REAL *tx, __global REAL *ty, __global int *node_leaf,         \
-      __global const REAL *x_build, __global const REAL *y_build, __global const REAL *q_build, const REAL cutoff, \
+      __global const REAL *arcs_in, __global REAL *arcs_out, __global REAL *brec, __global REAL2 *xy,           \
+      __global REAL *q, __global REAL *tx, __global REAL *ty, __global int *node_leaf,         \
+      __global const REAL2 *xy_build, __global const REAL *q_build, const REAL cutoff, \
       const REAL skin_cutoff, __global int *step_counters, __global REAL *partials, BG_ARGS
 #define SNAP_PASS                                                                                                \
-  m, slot_node, slot_curve, slot_pos, curve_pt, pts, pt_arc, arcs_in, arcs_out, brec, x, y, q, tx, ty, node_leaf, \
-      x_build, y_build, q_build, cutoff, skin_cutoff, step_counters, partials, BG_PASS
+  m, slot_node, slot_curve, slot_pos, curve_pt, pts, pt_arc, arcs_in, arcs_out, brec, xy, q, tx, ty, node_leaf, \
+      xy_build, q_build, cutoff, skin_cutoff, step_counters, partials, BG_PASS
 
 // Inlined into both kernels: a call with this many arguments costs GPU registers and scratch.
 __attribute__((always_inline)) void boundary_snap_body(__local REAL* values, __local int* halt, SNAP_ARGS) {
@@ -133,8 +133,7 @@ __attribute__((always_inline)) void boundary_snap_body(__local REAL* values, __l
       brec[4 * s + 1] = on.y;
       brec[4 * s + 2] = tangent.x;
       brec[4 * s + 3] = tangent.y;
-      x[i] = on.x;
-      y[i] = on.y;
+      xy[i] = on;
       tx[i] = tangent.x;
       ty[i] = tangent.y;
       REAL u, v;
@@ -142,7 +141,8 @@ __attribute__((always_inline)) void boundary_snap_body(__local REAL* values, __l
       node_leaf[i] = leaf;
       const REAL qn = bg_interpolate(leaf, u, v, bg_corner, bg_q);
       q[i] = qn;
-      const REAL ex = on.x - x_build[i], ey = on.y - y_build[i];
+      const REAL2 pb = xy_build[i];
+      const REAL ex = on.x - pb.x, ey = on.y - pb.y;
       const REAL grow = qn > q_build[i] ? cutoff * (qn - q_build[i]) : (REAL)0;
       skin_use = (sqrt(ex * ex + ey * ey) + grow) / (skin_cutoff * q_build[i]);
     }

@@ -34,7 +34,7 @@ REAL bg_spacing_cached(const REAL px, const REAL py, int* leaf, BG_ARGS) {
 }
 #define BG_PASS bg_origin_x, bg_origin_y, bg_inv_root, bg_grid, bg_root, bg_child, bg_corner, bg_cell, bg_q
 
-// Inputs x, y, q (current), outputs x_next, y_next, q_next. budget[i]: interior node i's clearance
+// Inputs xy (positions, x and y interleaved), q (current), outputs xy_next, q_next. budget[i]: interior node i's clearance
 // budget (host/sim/boundary_handling.hpp, clearance_budget): a move whose cost (the same move_cost
 // formula, with this precision's epsilon) is below it stays inside the domain, exactly; the cost is
 // subtracted. A spent budget is refreshed from the segments segs (kernels/clearance.cl) when the move
@@ -46,12 +46,12 @@ REAL bg_spacing_cached(const REAL px, const REAL py, int* leaf, BG_ARGS) {
 // does not touch; the host covers the rest).
 __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1)))
 void device_step(const int n, const REAL cutoff, const REAL lj_a, const int r0_any_direction,
-                 const REAL stability_factor, __global const REAL* dt_gm2_in, const REAL skin_cutoff, __global const REAL* x, __global const REAL* y,
+                 const REAL stability_factor, __global const REAL* dt_gm2_in, const REAL skin_cutoff, __global const REAL2* xy,
                  __global const REAL* q, __global const uchar* kind, __global const REAL* tx,
                  __global const REAL* ty, __global const int* count, __global const ulong* row_offset,
                  __global const int* index,
-                 __global const REAL* x_build, __global const REAL* y_build, __global const REAL* q_build,
-                 __global const int* bslot, __global REAL* x_next, __global REAL* y_next, __global REAL* q_next,
+                 __global const REAL2* xy_build, __global const REAL* q_build,
+                 __global const int* bslot, __global REAL2* xy_next, __global REAL* q_next,
                  __global REAL* budget, __global int* node_leaf, __global REAL* brec, __global int* cand_index, __global REAL* cand_rec,
                  __global int* counters, __global REAL* partials, __global const REAL* segs, const int n_segs,
                  const REAL seg_scale, BG_ARGS) {
@@ -70,12 +70,13 @@ void device_step(const int n, const REAL cutoff, const REAL lj_a, const int r0_a
   // readable entries past the last row, and entries past the row are masked.
   const int row = moving ? count[ic] : 0;
   const long row_start = (long)row_offset[ic];
-  const REAL xi = x[ic], yi = y[ic], qi = q[ic];
+  const REAL2 pi = xy[ic];
+  const REAL xi = pi.x, yi = pi.y, qi = q[ic];
   const REAL rc = cutoff * qi;
   REAL fx, fy, r0, limit;
   int coincident, within;
   node_forces(ic, (row + 7) & ~7, row, row_start, xi, yi, qi, kind_i, rc * rc, tx[ic], ty[ic], lj_a, r0_any_direction,
-              stability_factor, x, y, q, index, &fx, &fy, &r0, &limit, &coincident, &within);
+              stability_factor, xy, q, index, &fx, &fy, &r0, &limit, &coincident, &within);
   const REAL dt2 = local_dt2(fx, fy, r0, dt_gm2, limit);
   const REAL dx = moving ? REAL_C(0.5) * dt2 * fx : (REAL)0;
   const REAL dy = moving ? REAL_C(0.5) * dt2 * fy : (REAL)0;
@@ -104,31 +105,40 @@ void device_step(const int n, const REAL cutoff, const REAL lj_a, const int r0_a
       const REAL ex = xn - xi, ey = yn - yi;
       const REAL cost = clearance_move_cost(ex, ey, xn, yn, b);
       // Budget spent: a node known inside (b > 0) gets a fresh one when its move is clearly inside
-      // (kernels/clearance.cl); the rest go to the host's exact test.
+      // (kernels/clearance.cl); the rest go to the host's exact test. PDMESH_REFRESH_KERNEL: the
+      // refresh runs in its own kernel (refresh_budgets below; its segment loop would cost this
+      // kernel GPU registers): the node is listed for it as ~i.
+#if PDMESH_REFRESH_KERNEL
+      const REAL fresh = (REAL)0;
+      const int deferred = !(cost < b) && b > (REAL)0;
+#else
       const REAL fresh = !(cost < b) && b > (REAL)0 ? clearance_refresh(ex, ey, xn, yn, segs, n_segs, seg_scale)
                                                     : (REAL)0;
+      const int deferred = 0;
+#endif
       if (cost < b) {  // false for NaN
         budget[i] = b - cost;
       } else if (fresh > (REAL)0) {
         budget[i] = fresh;
       } else {
         const int s = atomic_inc(&counters[COUNTER_CANDIDATES]);
-        cand_index[s] = i;
+        cand_index[s] = deferred ? ~i : i;
         cand_rec[4 * s] = xi;
         cand_rec[4 * s + 1] = yi;
         cand_rec[4 * s + 2] = dx;
         cand_rec[4 * s + 3] = dy;
-        host = 1;
+        if (!deferred) atomic_or(&counters[COUNTER_HOST], 1);
+        host = 1;  // a refreshed node's skin use: refresh_budgets
       }
     }
-    x_next[i] = xn;
-    y_next[i] = yn;
+    xy_next[i] = (REAL2)(xn, yn);
     q_next[i] = qn;
     // A move that is not finite halts the iteration for the host (counters[COUNTER_NON_FINITE]): boundary_snap then
     // writes nothing, so the state before this step stays whole on the device.
     if (moving && !(isfinite(dx) && isfinite(dy) && isfinite(xn) && isfinite(yn))) atomic_or(&counters[COUNTER_NON_FINITE], 1);
     if (!host && kind_i == 2) {
-      const REAL ex = xn - x_build[i], ey = yn - y_build[i];
+      const REAL2 pb = xy_build[i];
+      const REAL ex = xn - pb.x, ey = yn - pb.y;
       const REAL grow = qn > q_build[i] ? cutoff * (qn - q_build[i]) : (REAL)0;
       skin_use = (sqrt(ex * ex + ey * ey) + grow) / (skin_cutoff * q_build[i]);
     }
@@ -144,18 +154,62 @@ void device_step(const int n, const REAL cutoff, const REAL lj_a, const int r0_a
   if (l < STEP_PARTIALS) partials[STEP_PARTIALS * get_group_id(0) + l] = values[l * WG_SIZE];
 }
 
+// The clearance refresh of the nodes device_step listed as ~i (PDMESH_REFRESH_KERNEL; the same rule and
+// expressions as its inline refresh): entry k of the list (counters[COUNTER_CANDIDATES] entries; the
+// launch covers n). Accepted: the node's new budget, and its skin use (device_step's formula) into
+// the maximum of step partials slot 6 of this group (only the maximum over all groups is used, and
+// a maximum does not depend on the grouping); the entry stays ~i, which the host skips. Otherwise
+// the entry becomes i, for the host's exact test (counters[COUNTER_HOST]).
+__kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1)))
+void refresh_budgets(const int n, __global int* counters, __global int* cand_index,
+                     __global const REAL* cand_rec, __global REAL* budget, __global const REAL* q_next,
+                     __global const REAL2* xy_build, __global const REAL* q_build, const REAL cutoff,
+                     const REAL skin_cutoff, __global const REAL* segs, const int n_segs, const REAL seg_scale,
+                     __global REAL* partials) {
+  __local REAL values[WG_SIZE];
+  if (counters[WINDOW_HALT] != 0) return;  // uniform: the window was halted (kernels/window.cl)
+  const int k = get_global_id(0), l = get_local_id(0);
+  const int m = counters[COUNTER_CANDIDATES];
+  REAL skin_use = (REAL)0;
+  const int entry = k < m ? cand_index[k] : 0;
+  if (k < m && entry < 0) {
+    const int i = ~entry;
+    const REAL xi = cand_rec[4 * k], yi = cand_rec[4 * k + 1], dx = cand_rec[4 * k + 2], dy = cand_rec[4 * k + 3];
+    const REAL xn = xi + dx, yn = yi + dy;
+    const REAL ex = xn - xi, ey = yn - yi;
+    const REAL fresh = clearance_refresh(ex, ey, xn, yn, segs, n_segs, seg_scale);
+    if (fresh > (REAL)0) {
+      budget[i] = fresh;
+      const REAL qn = q_next[i];
+      const REAL2 pb = xy_build[i];
+      const REAL bx = xn - pb.x, by = yn - pb.y;
+      const REAL grow = qn > q_build[i] ? cutoff * (qn - q_build[i]) : (REAL)0;
+      skin_use = (sqrt(bx * bx + by * by) + grow) / (skin_cutoff * q_build[i]);
+    } else {
+      cand_index[k] = i;
+      atomic_or(&counters[COUNTER_HOST], 1);
+    }
+  }
+  if (get_group_id(0) * WG_SIZE >= m) return;  // uniform: no entry in this group
+  values[l] = skin_use;
+  group_reduce(values, 1, 0);
+  if (l == 0) {
+    const REAL old = partials[STEP_PARTIALS * get_group_id(0) + 6];
+    partials[STEP_PARTIALS * get_group_id(0) + 6] = values[0] > old ? values[0] : old;
+  }
+}
+
 // Writes back the m positions the host decided (boundary nodes re-snapped, candidates moved or
 // snapped): rec = (x, y, tx, ty, budget) per entry; recomputes q and the leaf there.
 __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1)))
-void apply_host_moves(const int m, __global const int* rec_index, __global const REAL* rec, __global REAL* x,
-                      __global REAL* y, __global REAL* q, __global REAL* tx, __global REAL* ty, __global REAL* budget,
+void apply_host_moves(const int m, __global const int* rec_index, __global const REAL* rec, __global REAL2* xy,
+                      __global REAL* q, __global REAL* tx, __global REAL* ty, __global REAL* budget,
                       __global int* node_leaf, BG_ARGS) {
   const int k = get_global_id(0);
   if (k >= m) return;
   const int i = rec_index[k];
   const REAL px = rec[5 * k], py = rec[5 * k + 1];
-  x[i] = px;
-  y[i] = py;
+  xy[i] = (REAL2)(px, py);
   tx[i] = rec[5 * k + 2];
   ty[i] = rec[5 * k + 3];
   budget[i] = rec[5 * k + 4];

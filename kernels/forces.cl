@@ -35,6 +35,15 @@
 #endif
 #define GATHER8(a, j) \
   (REAL8)(a[j.s0], a[j.s1], a[j.s2], a[j.s3], a[j.s4], a[j.s5], a[j.s6], a[j.s7])
+// The positions of eight nodes from the packed array xy (x, y interleaved): one 16-byte load per
+// entry fetches both coordinates, from one cache line, instead of a gather from each of two arrays.
+#define GATHER8_XY(xy, j, px, py)                                                                  \
+  {                                                                                                \
+    const REAL2 p0 = xy[j.s0], p1 = xy[j.s1], p2 = xy[j.s2], p3 = xy[j.s3], p4 = xy[j.s4], p5 = xy[j.s5], \
+                p6 = xy[j.s6], p7 = xy[j.s7];                                                      \
+    px = (REAL8)(p0.x, p1.x, p2.x, p3.x, p4.x, p5.x, p6.x, p7.x);                                  \
+    py = (REAL8)(p0.y, p1.y, p2.y, p3.y, p4.y, p5.y, p6.y, p7.y);                                  \
+  }
 // Components in order: sums over a row add its entries in index order, as the reference does.
 #define ADD8_IN_ORDER(sum, v) \
   sum = (((((((sum + v.s0) + v.s1) + v.s2) + v.s3) + v.s4) + v.s5) + v.s6) + v.s7
@@ -60,11 +69,13 @@ int8 row_chunk(const int i, const int stride, const int count, const long base, 
 // the mask of the entries that count (inside the row and, where `filter` is set, within rc2).
 MASK8 row_chunk_offsets(const int i, const int stride, const int count, const long base, const int k0,
                         const REAL xi, const REAL yi, const MASK8 filter, const REAL rc2,
-                        __global const REAL* x, __global const REAL* y, __global const int* index, int8* j_out,
+                        __global const REAL2* xy, __global const int* index, int8* j_out,
                         REAL8* dx_out, REAL8* dy_out, REAL8* r2_out) {
   int8 valid_i;
   const int8 j = row_chunk(i, stride, count, base, k0, index, &valid_i);
-  const REAL8 dx = GATHER8(x, j) - (REAL8)(xi), dy = GATHER8(y, j) - (REAL8)(yi);
+  REAL8 px, py;
+  GATHER8_XY(xy, j, px, py);
+  const REAL8 dx = px - (REAL8)(xi), dy = py - (REAL8)(yi);
   const REAL8 r2 = dx * dx + dy * dy;
   *j_out = j;
   *dx_out = dx;
@@ -160,8 +171,8 @@ void lj_chunk(const int8 j, const REAL8 dx, const REAL8 dy, const REAL8 r2, cons
 // chunks as the row needs (boundary rows: one).
 void node_forces(const int i, const int stride, const int count, const long base, const REAL xi, const REAL yi,
                  const REAL qi, const int kind_i, const REAL rc2, const REAL tx, const REAL ty, const REAL lj_a,
-                 const int r0_any_direction, const REAL stability_factor, __global const REAL* x,
-                 __global const REAL* y, __global const REAL* q, __global const int* index, REAL* fx_out,
+                 const int r0_any_direction, const REAL stability_factor, __global const REAL2* xy,
+                 __global const REAL* q, __global const int* index, REAL* fx_out,
                  REAL* fy_out, REAL* r0_out, REAL* dt2_limit_out, int* coincident_out, int* within_out) {
   const MASK8 filter = (MASK8)(kind_i == 2 && rc2 >= (REAL)0 ? -1 : 0);
   const REAL8 zero = (REAL8)((REAL)0);
@@ -174,7 +185,7 @@ void node_forces(const int i, const int stride, const int count, const long base
   for (int k0 = 0; k0 < count; k0 += 8) {
     int8 j;
     REAL8 dx, dy, r2;
-    const MASK8 in_range = row_chunk_offsets(i, stride, count, base, k0, xi, yi, filter, rc2, x, y, index, &j, &dx, &dy, &r2);
+    const MASK8 in_range = row_chunk_offsets(i, stride, count, base, k0, xi, yi, filter, rc2, xy, index, &j, &dx, &dy, &r2);
     within += (int)COUNT8(in_range);
     coincident += (int)COUNT8(in_range & (r2 == zero));
     const MASK8 use = in_range & (r2 > zero);
@@ -220,7 +231,7 @@ void node_forces(const int i, const int stride, const int count, const long base
     for (int k0 = 0; k0 < count; k0 += 8) {
       int8 j;
       REAL8 dx, dy, r2;
-      const MASK8 ok = row_chunk_offsets(i, stride, count, base, k0, xi, yi, filter, rc2, x, y, index, &j, &dx, &dy, &r2) &
+      const MASK8 ok = row_chunk_offsets(i, stride, count, base, k0, xi, yi, filter, rc2, xy, index, &j, &dx, &dy, &r2) &
                        (r2 > zero) & (any_direction | ((REAL8)(fx) * dx + (REAL8)(fy) * dy > zero));
       best2 = select(best2, r2, ok & (r2 < best2));
       found |= ok;
@@ -248,10 +259,11 @@ void node_forces(const int i, const int stride, const int count, const long base
 // them would cost registers or memory; recomputing costs three loads that hit the cache).
 // Returns whether the entry counts (rc2 < 0, or r^2 within rc2 when `filter`).
 int row_entry(const long base, const int k, const REAL xi, const REAL yi, const int filter, const REAL rc2,
-              __global const REAL* x, __global const REAL* y, __global const int* index, int* j_out,
+              __global const REAL2* xy, __global const int* index, int* j_out,
               REAL* dx_out, REAL* dy_out, REAL* r2_out) {
   const int j = index[base + k];
-  const REAL dx = x[j] - xi, dy = y[j] - yi;
+  const REAL2 p = xy[j];  // one load: the packed array holds x and y side by side
+  const REAL dx = p.x - xi, dy = p.y - yi;
   const REAL r2 = dx * dx + dy * dy;
   *j_out = j;
   *dx_out = dx;
@@ -264,8 +276,8 @@ int row_entry(const long base, const int k, const REAL xi, const REAL yi, const 
 // loop (sums, counters, the node's own values), so a GPU keeps many more work-items resident.
 void node_forces(const int i, const int stride, const int count, const long base, const REAL xi, const REAL yi,
                  const REAL qi, const int kind_i, const REAL rc2, const REAL tx, const REAL ty, const REAL lj_a,
-                 const int r0_any_direction, const REAL stability_factor, __global const REAL* x,
-                 __global const REAL* y, __global const REAL* q, __global const int* index, REAL* fx_out,
+                 const int r0_any_direction, const REAL stability_factor, __global const REAL2* xy,
+                 __global const REAL* q, __global const int* index, REAL* fx_out,
                  REAL* fy_out, REAL* r0_out, REAL* dt2_limit_out, int* coincident_out, int* within_out) {
   const int filter = kind_i == 2 && rc2 >= (REAL)0;
   const REAL four_a = (REAL)-4 * lj_a, four_a_pos = (REAL)4 * lj_a;
@@ -274,7 +286,7 @@ void node_forces(const int i, const int stride, const int count, const long base
   for (int k = 0; k < count; ++k) {
     int j;
     REAL dx, dy, r2;
-    if (!row_entry(base, k, xi, yi, filter, rc2, x, y, index, &j, &dx, &dy, &r2)) continue;
+    if (!row_entry(base, k, xi, yi, filter, rc2, xy, index, &j, &dx, &dy, &r2)) continue;
     ++within;
     if (r2 == (REAL)0) {  // coincident: no direction, counted (the reference's rule)
       ++coincident;
@@ -307,7 +319,7 @@ void node_forces(const int i, const int stride, const int count, const long base
   for (int k = 0; k < count; ++k) {
     int j;
     REAL dx, dy, r2;
-    if (!row_entry(base, k, xi, yi, filter, rc2, x, y, index, &j, &dx, &dy, &r2) || !(r2 > (REAL)0)) continue;
+    if (!row_entry(base, k, xi, yi, filter, rc2, xy, index, &j, &dx, &dy, &r2) || !(r2 > (REAL)0)) continue;
     if (!(any_direction || fx * dx + fy * dy > (REAL)0)) continue;
     found = 1;
     best2 = r2 < best2 ? r2 : best2;
@@ -327,8 +339,7 @@ void node_forces(const int i, const int stride, const int count, const long base
 __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1)))
 void compute_forces(const int n, const int stride, const REAL lj_a, const int r0_any_direction,
                     const REAL stability_factor,
-                    __global const REAL* x, __global const REAL* y, __global const REAL* q,
-                    __global const uchar* kind, __global const REAL* tx, __global const REAL* ty,
+                    __global const REAL2* xy, __global const REAL* q, __global const uchar* kind, __global const REAL* tx, __global const REAL* ty,
                     __global const int* count, __global const int* index, __global REAL* fx_out,
                     __global REAL* fy_out, __global REAL* r0_out, __global REAL* limit_out,
                     __global int* coincident_out) {
@@ -339,8 +350,9 @@ void compute_forces(const int n, const int stride, const REAL lj_a, const int r0
   const int row = kind_i != 0 ? min(count[ic], stride) : 0;
   REAL fx, fy, r0, limit;
   int coincident, within;
-  node_forces(ic, stride, row, row_base(ic, stride), x[ic], y[ic], q[ic], kind_i, (REAL)-1, tx[ic], ty[ic], lj_a,
-              r0_any_direction, stability_factor, x, y, q, index, &fx, &fy, &r0, &limit, &coincident, &within);
+  const REAL2 pi = xy[ic];
+  node_forces(ic, stride, row, row_base(ic, stride), pi.x, pi.y, q[ic], kind_i, (REAL)-1, tx[ic], ty[ic], lj_a,
+              r0_any_direction, stability_factor, xy, q, index, &fx, &fy, &r0, &limit, &coincident, &within);
   if (!active) return;
   limit_out[i] = kind_i != 0 ? limit : INFINITY;
   fx_out[i] = fx;

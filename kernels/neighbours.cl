@@ -93,7 +93,7 @@ void row_append(const int r, const int j, __global const ulong* offset, __global
 // (cells + 1 entries per grid) and cell_nodes. Rows: offset (n + 1, from the scan), count (zeroed by
 // the host), entries (entries_size slots), the spill list. counters[ROW_EXAMINED] += pairs examined.
 __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1)))
-void gather_rows(const int n, const REAL radius_factor, __global const REAL* x, __global const REAL* y,
+void gather_rows(const int n, const REAL radius_factor, __global const REAL2* xy,
                  __global const REAL* q, __global const uchar* kind, __global const int* prev,
                  __global const int* next, __global const int* level, __global const int* bin_state,
                  __global const int* grid_mask, __global const uint* grid_bucket_offset,
@@ -113,7 +113,8 @@ void gather_rows(const int n, const REAL radius_factor, __global const REAL* x, 
       row_append(i, next[i], offset, count, entries_size, entries, spill_capacity, spill, counters, counting);
     }
     {  // every kind scans: boundary and fixed nodes scatter to finer interior rows too
-      const REAL xi = x[i], yi = y[i];
+      const REAL2 pi = xy[i];  // positions: x, y interleaved (the step's layout)
+      const REAL xi = pi.x, yi = pi.y;
       const REAL r = radius_factor * q[i], r2 = r * r;
 #if PDMESH_DOUBLE
       const REAL box = r;
@@ -184,14 +185,15 @@ void gather_rows(const int n, const REAL radius_factor, __global const REAL* x, 
             if (j == i) continue;
             ++examined;
             // -(x[i] - x[j]) exactly: the same squared distance row j's own scan would compute.
-            const REAL dx = x[j] - xi, dy = y[j] - yi, d2 = dx * dx + dy * dy;
+            const REAL2 pj = xy[j];
+            const REAL dx = pj.x - xi, dy = pj.y - yi, d2 = dx * dx + dy * dy;
             // Every pair this scan lists is within r: r_j < r_i for a finer j (level[j] < own), so
             // d2 <= r_j^2 implies d2 <= r2. Farther candidates need no cell test.
             if (!(d2 <= r2)) continue;
             // Only the probed cell's nodes (a bucket may hold other cells, one of them probed too);
             // see `tags_apart` above.
             if (!(tags_apart && fabs(dx) < inside && fabs(dy) < inside) &&
-                (nb_cell_coord(x[j], inv_cell) != cx || nb_cell_coord(y[j], inv_cell) != cy))
+                (nb_cell_coord(pj.x, inv_cell) != cx || nb_cell_coord(pj.y, inv_cell) != cy))
               continue;
             if (kind_i == 2) row_append(i, j, offset, count, entries_size, entries, spill_capacity, spill, counters, counting);
             if (level[j] < own && kind[j] == 2) {

@@ -61,7 +61,11 @@ void iteration_rule_body(const int groups, __global const REAL* partials, const 
   row[RING_SNAP_BAD] = (double)bad;
   row[RING_SNAP_SKIN] = snap_skin;
   row[RING_DT] = state[STATE_DT];
-  row[RING_CANDIDATES] = (double)step_counters[COUNTER_CANDIDATES];
+  // The list holds the host's candidates and (PDMESH_REFRESH_KERNEL) refreshed nodes, which the host
+  // skips: it is read only when it holds a candidate, and otherwise emptied for the next iteration.
+  const int host = step_counters[COUNTER_HOST] != 0;
+  row[RING_CANDIDATES] = host ? (double)step_counters[COUNTER_CANDIDATES] : 0.0;
+  if (!host) step_counters[COUNTER_CANDIDATES] = 0;
   row[RING_NON_FINITE] = (double)step_counters[COUNTER_NON_FINITE];
   // GlobalTimeStep::update(max_force).
   double dt = state[STATE_DT];
@@ -94,7 +98,7 @@ void iteration_rule_body(const int groups, __global const REAL* partials, const 
   used = used < snap_skin ? snap_skin : used;
   state[STATE_SKIN] = used;
   step_counters[WINDOW_ROWS] = r + 1;
-  if (step_counters[COUNTER_CANDIDATES] != 0 || step_counters[COUNTER_NON_FINITE] != 0 || bad != 0 || !isfinite(force) || !isfinite(kinetic) ||
+  if (host || step_counters[COUNTER_NON_FINITE] != 0 || bad != 0 || !isfinite(force) || !isfinite(kinetic) ||
       used > state[STATE_SKIN_LIMIT])
     atomic_xchg(&step_counters[WINDOW_HALT], 1);
 }

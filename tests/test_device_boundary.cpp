@@ -108,8 +108,8 @@ TEST_CASE("boundary_snap re-snaps every boundary node exactly as the host (doubl
   device.upload_curves();
   const std::vector<std::int32_t> slots = device.upload_topology(nodes, handler.arcs());
   REQUIRE(slots.size() == nodes.count(NodeKind::Boundary));
-  std::vector<double> rec, x(n), y(n), q(n), zero(n, 0.0);
-  for (std::size_t i = 0; i < n; ++i) x[i] = nodes.x[i].x, y[i] = nodes.x[i].y;
+  std::vector<double> rec, x(n), y(n), xy(2 * n), q(n), zero(n, 0.0);
+  for (std::size_t i = 0; i < n; ++i) x[i] = xy[2 * i] = nodes.x[i].x, y[i] = xy[2 * i + 1] = nodes.x[i].y;
   for (std::int32_t s : slots) {
     const auto i = static_cast<std::size_t>(s);
     for (double v : {x[i], y[i], dx[i], dy[i]}) rec.push_back(v);
@@ -123,19 +123,19 @@ TEST_CASE("boundary_snap re-snaps every boundary node exactly as the host (doubl
     b.upload(ctx.queue(), host_data);
     return b;
   };
-  ocl::Buffer<double> brec = buffer("brec", rec), bx = buffer("x", x), by = buffer("y", y), bq = buffer("q", nodes.q),
+  ocl::Buffer<double> brec = buffer("brec", rec), bxy = buffer("xy", xy), bq = buffer("q", nodes.q),
                       tx = buffer("tx", zero), ty = buffer("ty", zero), bg_q = buffer("bg_q", bg.corner_q);
   ocl::Buffer<std::int32_t> leaf = buffer("leaf", std::vector<std::int32_t>(n, 0)), root = buffer("root", bg.root_node),
                             child = buffer("child", bg.node_child), corner = buffer("corner", bg.leaf_corner),
                             cell = buffer("cell", bg.leaf_cell), halt = buffer("halt", std::vector<std::int32_t>(ocl::kWindowCounters, 0));
-  device.enqueue(program, 0, brec, bx, by, bq, tx, ty, leaf, bx, by, bq, options.cutoff, 0.3 * options.cutoff, halt,
+  device.enqueue(program, 0, brec, bxy, bq, tx, ty, leaf, bxy, bq, options.cutoff, 0.3 * options.cutoff, halt,
                  [&](ocl::ArgSetter& a) {
                    a(bg.origin_x)(bg.origin_y)(bg.inv_root_size)(static_cast<cl_int>(bg.grid))(root)(child)(corner)(
                        cell)(bg_q);
                  });
-  std::vector<double> out_x, out_y, out_tx, out_ty, out_q, out_rec, partials;
-  bx.download(ctx.queue(), out_x, n);
-  by.download(ctx.queue(), out_y, n);
+  std::vector<double> out_xy, out_x(n), out_y(n), out_tx, out_ty, out_q, out_rec, partials;
+  bxy.download(ctx.queue(), out_xy, 2 * n);
+  for (std::size_t i = 0; i < n; ++i) out_x[i] = out_xy[2 * i], out_y[i] = out_xy[2 * i + 1];
   tx.download(ctx.queue(), out_tx, n);
   ty.download(ctx.queue(), out_ty, n);
   bq.download(ctx.queue(), out_q, n);

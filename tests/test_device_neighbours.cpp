@@ -42,17 +42,18 @@ class DeviceBuilder {
 
   DeviceRows build(const SimParticles& p, double cutoff) {
     const std::size_t n = p.size();
-    ocl::Buffer<double> x(ctx_, "x", n), y(ctx_, "y", n), q(ctx_, "q", n);
+    ocl::Buffer<double> xy(ctx_, "xy", 2 * n), q(ctx_, "q", n);
     ocl::Buffer<std::uint8_t> kind(ctx_, "kind", n);
     ocl::Buffer<std::int32_t> prev(ctx_, "prev", n), next(ctx_, "next", n);
-    x.upload(ctx_.queue(), p.x);
-    y.upload(ctx_.queue(), p.y);
+    std::vector<double> packed(2 * n);  // the kernels' layout: x, y interleaved
+    for (std::size_t i = 0; i < n; ++i) packed[2 * i] = p.x[i], packed[2 * i + 1] = p.y[i];
+    xy.upload(ctx_.queue(), packed);
     q.upload(ctx_.queue(), p.q);
     kind.upload(ctx_.queue(), p.kind);
     prev.upload(ctx_.queue(), p.prev);
     next.upload(ctx_.queue(), p.next);
     DeviceRows out;
-    out.flags = nb_.build(n, cutoff, x, y, q, kind, prev, next);
+    out.flags = nb_.build(n, cutoff, xy, q, kind, prev, next);
     out.attempts = nb_.attempts;
     out.outgrown_rows = nb_.outgrown_rows;
     nb_.offset().download(ctx_.queue(), out.offset, n + 1);

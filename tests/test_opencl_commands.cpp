@@ -203,6 +203,9 @@ TEST_CASE("the program carries exactly one force-loop define, and the kernels re
   const auto vector = step_program_defines(ocl::Precision::Float, 64, ForceLoop::Vector);
   CHECK(vector.at("PDMESH_FORCE_LOOP_VECTOR") == "1");
   CHECK(vector.at("PDMESH_FORCE_LOOP_SCALAR") == "0");
+  // The GPU shape refreshes clearance budgets in refresh_budgets, the CPU shape inside device_step.
+  CHECK(scalar.at("PDMESH_REFRESH_KERNEL") == "1");
+  CHECK(vector.at("PDMESH_REFRESH_KERNEL") == "0");
   REQUIRE_THROWS_AS(step_program_defines(ocl::Precision::Double, 64, ForceLoop::Auto), DeviceError);
   const std::string source = program_source(step_program_files(), scalar);
   // The defines come first, in name order (the map's), the first one opening the source.
@@ -219,6 +222,7 @@ TEST_CASE("the program carries exactly one force-loop define, and the kernels re
   CHECK(scalar.at("BOUNDARY_PARTIALS") == std::to_string(kBoundaryPartials));
   CHECK(scalar.at("COUNTER_CANDIDATES") == std::to_string(ocl::kCounterCandidates));
   CHECK(scalar.at("COUNTER_NON_FINITE") == std::to_string(ocl::kCounterNonFinite));
+  CHECK(scalar.at("COUNTER_HOST") == std::to_string(ocl::kCounterHost));
   CHECK(source.find("#define PDMESH_FORCE_LOOP_SCALAR 1\n") != std::string::npos);
   CHECK(source.find("// ---- forces.cl ----") != std::string::npos);
 

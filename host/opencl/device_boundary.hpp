@@ -34,22 +34,23 @@ class DeviceBoundary {
   const std::vector<std::int32_t>& upload_topology(const NodeSet& nodes, const std::vector<std::vector<double>>& arcs);
 
   // Enqueues boundary_snap: moves from brec (x, y, dx, dy per slot), old arcs in buffer `cur`, new
-  // ones into 1 - cur; writes x, y, q, tx, ty and node_leaf of the boundary nodes, unless step_counters[kCounterNonFinite]
-  // != 0 (device_step's flag for a move that is not finite). `bg` sets the background field's arguments
+  // ones into 1 - cur; writes xy (positions, x and y interleaved), q, tx, ty and node_leaf of the
+  // boundary nodes, unless step_counters[kCounterNonFinite] != 0 (device_step's flag for a move that
+  // is not finite). `bg` sets the background field's arguments
   // (DeviceRun::bg_args). With `rule` (DeviceWindow::rule_args, given the ArgSetter) the launch is
   // boundary_snap_rule, which also ends the iteration (kernels/boundary.cl). No-op without boundary
   // nodes; returns whether it launched.
   template <typename BgArgs, typename RuleArgs = void(ArgSetter&)>
-  bool enqueue(StepProgram& program, int cur, Buffer<Real>& brec, Buffer<Real>& x, Buffer<Real>& y, Buffer<Real>& q,
-               Buffer<Real>& tx, Buffer<Real>& ty, Buffer<std::int32_t>& node_leaf, Buffer<Real>& x_build,
-               Buffer<Real>& y_build, Buffer<Real>& q_build, double cutoff, double skin_cutoff,
+  bool enqueue(StepProgram& program, int cur, Buffer<Real>& brec, Buffer<Real>& xy, Buffer<Real>& q,
+               Buffer<Real>& tx, Buffer<Real>& ty, Buffer<std::int32_t>& node_leaf, Buffer<Real>& xy_build,
+               Buffer<Real>& q_build, double cutoff, double skin_cutoff,
                Buffer<std::int32_t>& step_counters, BgArgs&& bg, RuleArgs* rule = nullptr) {
     if (slots() == 0) return false;
     cl::Kernel& kernel = rule ? program.boundary_snap_rule : program.boundary_snap;
     const char* name = rule ? "boundary_snap_rule" : "boundary_snap";
     ArgSetter a(kernel, name);
     a(static_cast<cl_int>(slots()))(slot_node_)(slot_curve_)(slot_pos_)(curve_pt_)(pts_)(pt_arc_)(arcs_[cur])(
-        arcs_[1 - cur])(brec)(x)(y)(q)(tx)(ty)(node_leaf)(x_build)(y_build)(q_build)(static_cast<Real>(cutoff))(
+        arcs_[1 - cur])(brec)(xy)(q)(tx)(ty)(node_leaf)(xy_build)(q_build)(static_cast<Real>(cutoff))(
         static_cast<Real>(skin_cutoff))(step_counters)(partials_);
     bg(a);
     if (rule) (*rule)(a);

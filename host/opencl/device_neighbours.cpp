@@ -39,7 +39,7 @@ std::size_t DeviceNeighbours<Real>::device_bytes() const {
 }
 
 template <typename Real>
-NeighbourFlags DeviceNeighbours<Real>::build(std::size_t n, double radius_factor, Buffer<Real>& x, Buffer<Real>& y,
+NeighbourFlags DeviceNeighbours<Real>::build(std::size_t n, double radius_factor, Buffer<Real>& xy,
                                              Buffer<Real>& q, Buffer<std::uint8_t>& kind, Buffer<std::int32_t>& prev,
                                              Buffer<std::int32_t>& next) {
   NeighbourFlags flags;
@@ -82,7 +82,7 @@ NeighbourFlags DeviceNeighbours<Real>::build(std::size_t n, double radius_factor
   const Real radius = static_cast<Real>(radius_factor);
   const auto n_arg = static_cast<cl_int>(n), groups_arg = static_cast<cl_int>(groups);
   std::vector<std::uint32_t> c;
-  std::vector<std::int32_t> state;
+  std::vector<std::int32_t>& state = state_host_;
   int attempt = 0;
   bool binned = false;  // the grids of these positions are built (an earlier pass of this build)
   for (;; ++attempt) {
@@ -119,7 +119,7 @@ NeighbourFlags DeviceNeighbours<Real>::build(std::size_t n, double radius_factor
     if (!binned) {
       bin_state_.upload(ctx_.queue(), kBinStateInit.data(), kBinStateInit.size(), false);
       uploaded_bytes += sizeof(kBinStateInit);
-      ArgSetter(program_.bin_bounds, "bin_bounds")(n_arg)(radius)(x)(y)(q)(bin_partial_)(bin_state_);
+      ArgSetter(program_.bin_bounds, "bin_bounds")(n_arg)(radius)(xy)(q)(bin_partial_)(bin_state_);
       launch(ctx_.queue(), program_.bin_bounds, "bin_bounds", n, wg);
       ArgSetter(program_.bin_rmin, "bin_rmin")(groups_arg)(bin_partial_);
       launch(ctx_.queue(), program_.bin_rmin, "bin_rmin", wg, wg);
@@ -130,7 +130,7 @@ NeighbourFlags DeviceNeighbours<Real>::build(std::size_t n, double radius_factor
           grid_inv_cell_);
       launch(ctx_.queue(), program_.bin_plan, "bin_plan", wg, wg);
       fill_zero(ctx_.queue(), bucket_.get(), buckets * sizeof(cl_uint), "clearing 'grid_bucket'");
-      ArgSetter(program_.bin_count, "bin_count")(n_arg)(x)(y)(level_)(bin_state_)(grid_mask_)(grid_bucket_offset_)(
+      ArgSetter(program_.bin_count, "bin_count")(n_arg)(xy)(level_)(bin_state_)(grid_mask_)(grid_bucket_offset_)(
           grid_inv_cell_)(bucket_);
       launch(ctx_.queue(), program_.bin_count, "bin_count", n, wg);
       ArgSetter(program_.bucket_scan, "bucket_scan")(static_cast<cl_uint>(buckets))(bucket_)(block_total_);
@@ -140,7 +140,7 @@ NeighbourFlags DeviceNeighbours<Real>::build(std::size_t n, double radius_factor
       ArgSetter(program_.bucket_offsets_add, "bucket_offsets_add")(static_cast<cl_uint>(buckets))(bucket_)(
           block_total_);
       launch(ctx_.queue(), program_.bucket_offsets_add, "bucket_offsets_add", buckets, wg);
-      ArgSetter(program_.bin_fill, "bin_fill")(n_arg)(x)(y)(level_)(bin_state_)(grid_mask_)(grid_bucket_offset_)(
+      ArgSetter(program_.bin_fill, "bin_fill")(n_arg)(xy)(level_)(bin_state_)(grid_mask_)(grid_bucket_offset_)(
           grid_inv_cell_)(bucket_)(grid_nodes_);
       launch(ctx_.queue(), program_.bin_fill, "bin_fill", n, wg);
       launches += 9;
@@ -158,7 +158,7 @@ NeighbourFlags DeviceNeighbours<Real>::build(std::size_t n, double radius_factor
     uploaded_bytes += sizeof(kZeroCounters);
     // Without counts every row would outgrow its capacity: count only, then build with the counts.
     const bool counting = !have_counts;
-    ArgSetter(program_.gather_rows, "gather_rows")(n_arg)(radius)(x)(y)(q)(kind)(prev)(next)(level_)(bin_state_)(
+    ArgSetter(program_.gather_rows, "gather_rows")(n_arg)(radius)(xy)(q)(kind)(prev)(next)(level_)(bin_state_)(
         grid_mask_)(grid_bucket_offset_)(grid_inv_cell_)(bucket_)(grid_nodes_)(offset_)(count_)(entries_size)(index_)(
         static_cast<cl_uint>(spill_capacity))(spill_)(counters_)(static_cast<cl_int>(counting ? 1 : 0));
     launch(ctx_.queue(), program_.gather_rows, "gather_rows", n, wg);

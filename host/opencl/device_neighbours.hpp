@@ -25,16 +25,21 @@ template <typename Real>
 class DeviceNeighbours {
  public:
   DeviceNeighbours(Context& ctx, StepProgram& program) : ctx_(ctx), program_(program) {}
+  // A build that throws may leave the non-blocking read into state_host_ in flight: wait for it
+  // before the vector goes (the error is moot here).
+  ~DeviceNeighbours() { ctx_.queue().finish(); }
+  DeviceNeighbours(const DeviceNeighbours&) = delete;
+  DeviceNeighbours& operator=(const DeviceNeighbours&) = delete;
 
-  // Builds the rows of n nodes (device arrays x, y, q, kind, prev, next), interior radius
-  // radius_factor * q_i. Grid and row capacities are those of the last build plus slack (kSpareShift,
+  // Builds the rows of n nodes (device arrays xy: 2n positions, x and y interleaved as the step keeps
+  // them; q, kind, prev, next), interior radius radius_factor * q_i. Grid and row capacities are those of the last build plus slack (kSpareShift,
   // kSpareMin); when the grids or a row outgrow them the build runs again at the sizes it found
   // (exact), so a first build, or one after the node set changed size, costs two or three passes.
   // Sets the flags (first_invalid: the smallest node with a non-finite x, y or q, or q <= 0, whose
   // rows are then not built; overflow stays 0: rows are never truncated). Before the index buffer
   // grows, check_entries (when set) is called with its new size: it throws when the device cannot
   // hold it (the device-resident run's check_device_memory).
-  NeighbourFlags build(std::size_t n, double radius_factor, Buffer<Real>& x, Buffer<Real>& y, Buffer<Real>& q,
+  NeighbourFlags build(std::size_t n, double radius_factor, Buffer<Real>& xy, Buffer<Real>& q,
                        Buffer<std::uint8_t>& kind, Buffer<std::int32_t>& prev, Buffer<std::int32_t>& next);
 
   // A row's capacity is c + (c >> kSpareShift) + kSpareMin for the count c of the last build: rows
@@ -72,6 +77,9 @@ class DeviceNeighbours {
   std::uint64_t bucket_capacity_ = 0, member_capacity_ = 0;  // wanted by the next build
   std::size_t counted_n_ = 0;       // nodes whose counts count_ holds (the last build's n; 0: none)
   std::uint64_t counted_total_ = 0;  // their sum
+  // Target of the build's non-blocking read of bin_state: a member, so that a read still in flight
+  // when the build throws (the next download fails) never writes into freed memory.
+  std::vector<std::int32_t> state_host_;
 };
 
 }  // namespace pdmesh::ocl

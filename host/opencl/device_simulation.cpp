@@ -100,6 +100,34 @@ class DeviceRun {
     ++stats_.transfers;
     stats_.bytes_down += count * sizeof(T);
   }
+  // Positions of buffer `which` split into x and y: read counts the transfer, download does not. Both
+  // block, into a local vector (positions_host_ may be the target of a read still in flight).
+  void read_positions(int which, std::vector<Real>& x, std::vector<Real>& y) {
+    std::vector<Real> xy;
+    read(xy_[which], xy, 2 * n_);
+    split(xy, x, y);
+  }
+  void download_positions(int which, std::vector<Real>& x, std::vector<Real>& y) {
+    std::vector<Real> xy;
+    xy_[which].download(ctx_.queue(), xy, 2 * n_);
+    split(xy, x, y);
+  }
+  static void split(const std::vector<Real>& xy, std::vector<Real>& x, std::vector<Real>& y) {
+    x.resize(xy.size() / 2);
+    y.resize(xy.size() / 2);
+    for (std::size_t i = 0; i < x.size(); ++i) {
+      x[i] = xy[2 * i];
+      y[i] = xy[2 * i + 1];
+    }
+  }
+  static std::vector<Real> interleave(const std::vector<double>& x, const std::vector<double>& y) {
+    std::vector<Real> xy(2 * x.size());
+    for (std::size_t i = 0; i < x.size(); ++i) {
+      xy[2 * i] = static_cast<Real>(x[i]);
+      xy[2 * i + 1] = static_cast<Real>(y[i]);
+    }
+    return xy;
+  }
   template <typename T>
   void write(Buffer<T>& b, const std::vector<T>& host, bool blocking = true) {
     b.upload(ctx_.queue(), host, blocking);
@@ -128,7 +156,9 @@ class DeviceRun {
   std::size_t n_;
   int largest_row_ = 0;  // the longest neighbour row any build found (rows are compact: for the stats)
   int cur_ = 0;  // which of the double-buffered x, y, q is current
-  Buffer<Real> x_[2], y_[2], q_[2], tx_, ty_, x_build_, y_build_, q_build_, brec_, cand_rec_, partials_, rec_, bg_q_,
+  // Positions packed, x and y interleaved (2n entries): the force loop's gather of a neighbour fetches
+  // both coordinates with one load, from one cache line (docs/performance.md, "Step on PoCL, session 6").
+  Buffer<Real> xy_[2], q_[2], tx_, ty_, xy_build_, q_build_, brec_, cand_rec_, partials_, rec_, bg_q_,
       budget_;
   Buffer<std::uint8_t> kind_;
   Buffer<std::int32_t> prev_, next_, bslot_, cand_index_, counters_, rec_index_, bg_root_, bg_child_, bg_corner_,
@@ -143,7 +173,7 @@ class DeviceRun {
   std::vector<std::int32_t> rec_index_host_;
   // Targets of non-blocking downloads are members too: when a wait fails and the error unwinds, a
   // read still in flight must not write into freed memory (~DeviceRun waits for the queue first).
-  std::vector<Real> positions_host_[3];
+  std::vector<Real> positions_host_[2];  // xy, q
   std::vector<std::int32_t> cand_index_host_;
   double skin_use_ = HUGE_VAL;                       // since the last build; HUGE_VAL forces a build
   std::uint64_t pairs_examined_ = 0;  // rebuild candidates plus, every iteration, the entries of the current lists
@@ -156,7 +186,7 @@ class DeviceRun {
   NodeSet saved_nodes_;
   SimState saved_state_;
   std::size_t saved_rows_ = 0;
-  // host_boundary has moved nodes on the host that x_[cur_] does not hold yet (until the iteration ends).
+  // host_boundary has moved nodes on the host that xy_[cur_] does not hold yet (until the iteration ends).
   bool host_ahead_ = false;
   bool tangents_ahead_ = false;  // boundary_snap has run in the iteration not yet complete
   // The device re-snapped the boundary nodes since the host last read their state (sync_boundary).
@@ -205,8 +235,7 @@ SimState DeviceRun<Real>::last_good_state(int done, double dt_initial, const Glo
   if (!host_ahead_ && !tangents_ahead_) {
     try {
       std::vector<Real> x, y, q;
-      x_[cur_].download(ctx_.queue(), x, n_);
-      y_[cur_].download(ctx_.queue(), y, n_);
+      download_positions(cur_, x, y);
       q_[cur_].download(ctx_.queue(), q, n_);
       bool finite = true;
       for (std::size_t i = 0; i < n_; ++i)
@@ -231,15 +260,14 @@ SimState DeviceRun<Real>::last_good_state(int done, double dt_initial, const Glo
   return state;
 }
 
-// The device's new positions (x_[1 - cur_]) name the first node whose move was not finite; its
+// The device's new positions (xy_[1 - cur_]) name the first node whose move was not finite; its
 // neighbourhood is described at the last good positions (nodes_ holds them).
 template <typename Real>
 SimulationError DeviceRun<Real>::non_finite_error(int iteration, const SimState& good) {
   std::size_t bad = n_;
   try {
     std::vector<Real> x, y;
-    x_[1 - cur_].download(ctx_.queue(), x, n_);
-    y_[1 - cur_].download(ctx_.queue(), y, n_);
+    download_positions(1 - cur_, x, y);
     for (std::size_t i = 0; i < n_ && bad == n_; ++i)
       if (!std::isfinite(static_cast<double>(x[i])) || !std::isfinite(static_cast<double>(y[i]))) bad = i;
   } catch (const Error&) {
@@ -261,8 +289,7 @@ void DeviceRun<Real>::read_back_nodes() {
   std::vector<Real> x, y, q;
   const std::uint64_t down = stats_.bytes_down, transfers = stats_.transfers;
   if (boundary_stale_) sync_boundary();
-  read(x_[cur_], x, n_);
-  read(y_[cur_], y, n_);
+  read_positions(cur_, x, y);
   read(q_[cur_], q, n_);
   stats_.bytes_down = down;
   stats_.transfers = transfers;
@@ -310,15 +337,14 @@ void DeviceRun<Real>::upload_nodes(const std::vector<double>* budgets, const std
         budget[i] = device_budget(nodes_.x[i], boundary_.clearance_from(nodes_.x[i]));
   }
   for (int b = 0; b < 2; ++b) {
-    x_[b] = Buffer<Real>(ctx_, "x", n);
-    y_[b] = Buffer<Real>(ctx_, "y", n);
+    xy_[b] = Buffer<Real>(ctx_, "xy", 2 * n);
     q_[b] = Buffer<Real>(ctx_, "q", n);
   }
   cur_ = 0;
-  for (auto* b : {&tx_, &ty_, &x_build_, &y_build_, &q_build_}) *b = Buffer<Real>(ctx_, "node_array", n);
+  for (auto* b : {&tx_, &ty_, &q_build_}) *b = Buffer<Real>(ctx_, "node_array", n);
+  xy_build_ = Buffer<Real>(ctx_, "xy_build", 2 * n);
   budget_ = Buffer<Real>(ctx_, "clearance_budget", n);
-  write(x_[0], to_real<Real>(x));
-  write(y_[0], to_real<Real>(y));
+  write(xy_[0], interleave(x, y));
   write(q_[0], to_real<Real>(nodes_.q));
   write(tx_, to_real<Real>(tx));
   write(ty_, to_real<Real>(ty));
@@ -359,8 +385,8 @@ std::optional<PopulationCounts> DeviceRun<Real>::population_event(int iteration)
   if (boundary_stale_) sync_boundary();
   std::vector<Real> x, y, q, budget;
   std::vector<std::int32_t> leaves;
-  for (auto [from, to] : {std::pair{&x_[cur_], &x}, {&y_[cur_], &y}, {&q_[cur_], &q}, {&budget_, &budget}})
-    read(*from, *to, n_);
+  read_positions(cur_, x, y);
+  for (auto [from, to] : {std::pair{&q_[cur_], &q}, {&budget_, &budget}}) read(*from, *to, n_);
   read(node_leaf_, leaves, n_);
   stats_.population_transfer_seconds += since(t0);
   for (std::size_t i = 0; i < n_; ++i) {
@@ -445,8 +471,7 @@ void DeviceRun<Real>::sync_boundary() {
 template <typename Real>
 void DeviceRun<Real>::sync_boundary_from(int which) {
   std::vector<Real> x, y, tx, ty;
-  read(x_[which], x, n_);
-  read(y_[which], y, n_);
+  read_positions(which, x, y);
   read(tx_, tx, n_);
   read(ty_, ty, n_);
   std::vector<std::vector<double>> arcs = device_boundary_.download_arcs(which, nodes_);
@@ -470,16 +495,19 @@ void DeviceRun<Real>::rebuild() {
   if (stats_.rebuilds > 0) {
     // The host's copy of the build state, for its boundary handling's skin test and the saved state
     // (remember); the binning no longer needs it. Not waited on: the build's one wait completes it.
-    read(x_[cur_], v[0], n, false);
-    read(y_[cur_], v[1], n, false);
-    read(q_[cur_], v[2], n, false);
+    read(xy_[cur_], v[0], 2 * n, false);
+    read(q_[cur_], v[1], n, false);
   }
   const double radius = options_.cutoff * (1.0 + options_.verlet_skin);
-  NeighbourFlags flags = neighbours_.build(n, radius, x_[cur_], y_[cur_], q_[cur_], kind_, prev_, next_);
+  NeighbourFlags flags = neighbours_.build(n, radius, xy_[cur_], q_[cur_], kind_, prev_, next_);
   if (stats_.rebuilds > 0) {
-    build_x_.assign(v[0].begin(), v[0].end());
-    build_y_.assign(v[1].begin(), v[1].end());
-    build_q_.assign(v[2].begin(), v[2].end());
+    build_x_.resize(n);
+    build_y_.resize(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      build_x_[i] = static_cast<double>(v[0][2 * i]);
+      build_y_[i] = static_cast<double>(v[0][2 * i + 1]);
+    }
+    build_q_.assign(v[1].begin(), v[1].end());
   }
   if (flags.first_invalid >= 0) {
     const auto i = static_cast<std::size_t>(flags.first_invalid);
@@ -497,8 +525,8 @@ void DeviceRun<Real>::rebuild() {
   stats_.pairs_listed += flags.pairs_within;
   list_entries_ = flags.pairs_within;
   // The build state the skin is measured from.
-  for (auto [from, to] : {std::pair{&x_[cur_], &x_build_}, {&y_[cur_], &y_build_}, {&q_[cur_], &q_build_}})
-    copy_buffer(ctx_.queue(), from->get(), to->get(), n * sizeof(Real), "copy to the build state");
+  copy_buffer(ctx_.queue(), xy_[cur_].get(), xy_build_.get(), 2 * n * sizeof(Real), "copy to the build state");
+  copy_buffer(ctx_.queue(), q_[cur_].get(), q_build_.get(), n * sizeof(Real), "copy to the build state");
   ++stats_.rebuilds;
   skin_use_ = 0.0;
 }
@@ -512,21 +540,30 @@ void DeviceRun<Real>::enqueue_iteration(int cur) {
   ArgSetter a(program_.device_step, "device_step");
   a(static_cast<cl_int>(n_))(static_cast<Real>(options_.cutoff))(
       static_cast<Real>(options_.lj_a))(static_cast<cl_int>(options_.r0_any_direction ? 1 : 0))(
-      static_cast<Real>(options_.stability_factor))(window_.dt2())(static_cast<Real>(options_.verlet_skin * options_.cutoff))(x_[cur])(y_[cur])(
-      q_[cur])(kind_)(tx_)(ty_)(neighbours_.count())(neighbours_.offset())(neighbours_.index())(x_build_)(y_build_)(q_build_)(bslot_)(
-      x_[next])(y_[next])(q_[next])(budget_)(node_leaf_)(brec_)(cand_index_)(cand_rec_)(counters_)(partials_)(
+      static_cast<Real>(options_.stability_factor))(window_.dt2())(static_cast<Real>(options_.verlet_skin * options_.cutoff))(xy_[cur])(
+      q_[cur])(kind_)(tx_)(ty_)(neighbours_.count())(neighbours_.offset())(neighbours_.index())(xy_build_)(q_build_)(bslot_)(
+      xy_[next])(q_[next])(budget_)(node_leaf_)(brec_)(cand_index_)(cand_rec_)(counters_)(partials_)(
       device_boundary_.segments())(static_cast<cl_int>(device_boundary_.segment_count()))(
       static_cast<Real>(device_boundary_.segment_scale()));
   bg_args(a);
   launch(ctx_.queue(), program_.device_step, "device_step", n_, program_.work_group);
   ++stats_.launches;
+  if (program_.force_loop == ForceLoop::Scalar) {  // PDMESH_REFRESH_KERNEL: the clearance refresh apart
+    ArgSetter r(program_.refresh_budgets, "refresh_budgets");
+    r(static_cast<cl_int>(n_))(counters_)(cand_index_)(cand_rec_)(budget_)(q_[next])(xy_build_)(q_build_)(
+        static_cast<Real>(options_.cutoff))(static_cast<Real>(options_.verlet_skin * options_.cutoff))(
+        device_boundary_.segments())(static_cast<cl_int>(device_boundary_.segment_count()))(
+        static_cast<Real>(device_boundary_.segment_scale()))(partials_);
+    launch(ctx_.queue(), program_.refresh_budgets, "refresh_budgets", n_, program_.work_group);
+    ++stats_.launches;
+  }
   // Every boundary node re-snapped on the device into the next buffers (x, y, q, tangents, arcs); with
   // the device's rule, the same launch ends the iteration (boundary_snap_rule).
   auto rule = [this](ArgSetter& a) { window_.rule_args(a, groups(), partials_); };
   bool rule_done = false;
   if (!boundary_nodes_.empty() &&
-      device_boundary_.enqueue(program_, cur, brec_, x_[next], y_[next], q_[next], tx_, ty_, node_leaf_, x_build_,
-                               y_build_, q_build_, options_.cutoff, options_.verlet_skin * options_.cutoff, counters_,
+      device_boundary_.enqueue(program_, cur, brec_, xy_[next], q_[next], tx_, ty_, node_leaf_, xy_build_, q_build_,
+                               options_.cutoff, options_.verlet_skin * options_.cutoff, counters_,
                                [this](ArgSetter& a) { bg_args(a); }, window_.device_rule() ? &rule : nullptr)) {
     ++stats_.launches;
     rule_done = window_.device_rule();
@@ -613,12 +650,15 @@ void DeviceRun<Real>::take_row() {
     finish(ctx_.queue(), "device_step candidates");
   }
   stats_.download_seconds += since(t0);
-  // Candidates in index order (the reference handles interior nodes in index order).
-  std::vector<std::size_t> order(m);
-  for (std::size_t k = 0; k < m; ++k) order[k] = k;
+  // Candidates in index order (the reference handles interior nodes in index order); entries ~i < 0
+  // are nodes refresh_budgets gave a fresh budget on the device (the GPU shape), not candidates.
+  std::vector<std::size_t> order;
+  order.reserve(m);
+  for (std::size_t k = 0; k < m; ++k)
+    if (cand[k] >= 0) order.push_back(k);
   std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return cand[a] < cand[b]; });
-  candidates_.resize(m);
-  for (std::size_t k = 0; k < m; ++k) {
+  candidates_.resize(order.size());
+  for (std::size_t k = 0; k < order.size(); ++k) {
     const std::size_t o = order[k];
     const auto i = static_cast<std::size_t>(cand[o]);
     candidates_[k] = cand[o];
@@ -626,7 +666,7 @@ void DeviceRun<Real>::take_row() {
     dx_[i] = static_cast<double>(cand_rec_host_[4 * o + 2]);
     dy_[i] = static_cast<double>(cand_rec_host_[4 * o + 3]);
   }
-  stats_.candidates += m;
+  stats_.candidates += order.size();
   // Every move must be finite (the sums may not show a single NaN move): boundary_snap counted the
   // boundary nodes' targets, the candidates' moves are here.
   moves_finite_ = snap_.non_finite == 0 && !non_finite_move;
@@ -680,7 +720,7 @@ BoundaryCounts DeviceRun<Real>::host_boundary(double& skin_use) {
     write(rec_, rec, false);
     const int next = 1 - cur_;
     ArgSetter a(program_.apply_host_moves, "apply_host_moves");
-    a(static_cast<cl_int>(index.size()))(rec_index_)(rec_)(x_[next])(y_[next])(q_[next])(tx_)(ty_)(budget_)(node_leaf_);
+    a(static_cast<cl_int>(index.size()))(rec_index_)(rec_)(xy_[next])(q_[next])(tx_)(ty_)(budget_)(node_leaf_);
     bg_args(a);
     launch(ctx_.queue(), program_.apply_host_moves, "apply_host_moves", index.size(), program_.work_group);
     ++stats_.launches;  // not waited on: the next device_step follows it in the in-order queue

@@ -28,6 +28,7 @@ std::map<std::string, std::string> window_defines() {
   d.emplace("WINDOW_HALT", std::to_string(static_cast<int>(kWindowHalt)));
   d.emplace("WINDOW_ROWS", std::to_string(static_cast<int>(kWindowRows)));
   d.emplace("COUNTER_SNAP_DONE", std::to_string(static_cast<int>(kCounterSnapDone)));
+  d.emplace("COUNTER_HOST", std::to_string(static_cast<int>(kCounterHost)));
   // The rule's constants as the shortest round-trip text, so that the kernel has the same doubles.
   d.emplace("GM_RUN_LENGTH", std::to_string(GlobalTimeStep::kRunLength));
   d.emplace("GM_GROW", fmt::format("{}", GlobalTimeStep::kGrow));
@@ -123,7 +124,7 @@ int DeviceWindow<Real>::finish_window(Context& ctx, std::size_t groups, Buffer<R
   r[kRingSnapBad] = static_cast<double>(snap.non_finite);
   r[kRingSnapSkin] = snap.skin_use;
   r[kRingDt] = 0.0;  // the host's rule
-  r[kRingCandidates] = counters_host_[kCounterCandidates];
+  r[kRingCandidates] = counters_host_[kCounterHost] != 0 ? counters_host_[kCounterCandidates] : 0;
   r[kRingNonFinite] = counters_host_[kCounterNonFinite];
   return 1;
 }

@@ -51,14 +51,17 @@ enum WindowStateSlot : int {
   kStateSize = 7
 };
 // The step counters (ints; device_step's candidate count and non-finite flag come first;
-// kCounterSnapDone: boundary_snap_rule's count of finished work-groups, back to 0 after each launch).
+// kCounterSnapDone: boundary_snap_rule's count of finished work-groups, back to 0 after each launch;
+// kCounterHost: set when an entry of the candidate list is for the host (the list also holds the nodes
+// whose clearance refresh succeeded in refresh_budgets, as ~i, which the host skips).
 enum WindowCounter : int {
   kCounterCandidates = 0,
   kCounterNonFinite = 1,
   kWindowHalt = 2,
   kWindowRows = 3,
   kCounterSnapDone = 4,
-  kWindowCounters = 5
+  kCounterHost = 5,
+  kWindowCounters = 6
 };
 
 // Iterations one window enqueues at most (the ring's rows): the host reads the history this often.

@@ -25,7 +25,7 @@ class OpenclBackend final : public StepBackend {
     upload_particles(p);
     const std::size_t n = p.size();
     const int stride = std::max(list.stride, 2);
-    flags = neighbours_.build(n, cutoff, x_, y_, q_, kind_, prev_, next_);
+    flags = neighbours_.build(n, cutoff, xy_, q_, kind_, prev_, next_);
     list.stride = stride;
     const auto s = static_cast<std::size_t>(stride);
     list.count.assign(n, 0);
@@ -70,7 +70,7 @@ class OpenclBackend final : public StepBackend {
     ensure_size(ctx_, limit_, "dt2_limit", n);
     ArgSetter args(program_.compute_forces, "compute_forces");
     args(static_cast<cl_int>(n))(static_cast<cl_int>(list.stride))(static_cast<Real>(params.lj_a))(
-        static_cast<cl_int>(params.r0_any_direction ? 1 : 0))(static_cast<Real>(params.stability_factor))(x_)(y_)(q_)(
+        static_cast<cl_int>(params.r0_any_direction ? 1 : 0))(static_cast<Real>(params.stability_factor))(xy_)(q_)(
         kind_)(tx_)(ty_)(count_)(index_)(fx_)(fy_)(r0_)(limit_)(coincident_);
     launch(ctx_.queue(), program_.compute_forces, "compute_forces", n, program_.work_group);
     out.fx = download(fx_, n);
@@ -140,16 +140,19 @@ class OpenclBackend final : public StepBackend {
 
   void upload_particles(const SimParticles& p) {
     const std::size_t n = p.size();
-    ensure_size(ctx_, x_, "x", n);
-    ensure_size(ctx_, y_, "y", n);
+    ensure_size(ctx_, xy_, "xy", 2 * n);
     ensure_size(ctx_, q_, "q", n);
     ensure_size(ctx_, tx_, "tx", n);
     ensure_size(ctx_, ty_, "ty", n);
     ensure_size(ctx_, kind_, "kind", n);
     ensure_size(ctx_, prev_, "prev", n);
     ensure_size(ctx_, next_, "next", n);
-    x_.upload(ctx_.queue(), to_real<Real>(p.x));
-    y_.upload(ctx_.queue(), to_real<Real>(p.y));
+    std::vector<Real> xy(2 * n);  // the packed layout of the kernels (x, y interleaved)
+    for (std::size_t i = 0; i < n; ++i) {
+      xy[2 * i] = static_cast<Real>(p.x[i]);
+      xy[2 * i + 1] = static_cast<Real>(p.y[i]);
+    }
+    xy_.upload(ctx_.queue(), xy);
     q_.upload(ctx_.queue(), to_real<Real>(p.q));
     tx_.upload(ctx_.queue(), to_real<Real>(p.tx));
     ty_.upload(ctx_.queue(), to_real<Real>(p.ty));
@@ -171,7 +174,7 @@ class OpenclBackend final : public StepBackend {
   Context& ctx_;
   StepProgram program_;
   DeviceNeighbours<Real> neighbours_;
-  Buffer<Real> x_, y_, q_, tx_, ty_, fx_, fy_, r0_, limit_, dx_, dy_, dt2_, partials_;
+  Buffer<Real> xy_, q_, tx_, ty_, fx_, fy_, r0_, limit_, dx_, dy_, dt2_, partials_;
   Buffer<std::uint8_t> kind_;
   Buffer<std::int32_t> prev_, next_, count_, index_, coincident_;
 };

@@ -104,6 +104,9 @@ std::map<std::string, std::string> step_program_defines(Precision precision, std
   std::map<std::string, std::string> d = precision_defines(precision, work_group);
   d.emplace("PDMESH_FORCE_LOOP_VECTOR", loop == ForceLoop::Vector ? "1" : "0");
   d.emplace("PDMESH_FORCE_LOOP_SCALAR", loop == ForceLoop::Scalar ? "1" : "0");
+  // The GPU shape refreshes clearance budgets in their own kernel (refresh_budgets): device_step keeps
+  // fewer registers. The CPU shape keeps it inline: a launch costs more there than the registers.
+  d.emplace("PDMESH_REFRESH_KERNEL", loop == ForceLoop::Scalar ? "1" : "0");
   d.emplace("PDMESH_GRID_LEVELS", std::to_string(kBinLevels));
   d.emplace("GRID_NODE_BITS", std::to_string(kGridNodeBits));
   d.emplace("STEP_PARTIALS", std::to_string(kStepPartials));
@@ -146,7 +149,7 @@ StepProgram::StepProgram(Context& ctx, Precision p, ForceLoop loop, std::size_t 
       {&compute_forces, "compute_forces"},     {&time_step_and_move, "time_step_and_move"},
       {&reduce, "reduce"},                     {&device_step, "device_step"},
       {&apply_host_moves, "apply_host_moves"}, {&boundary_snap, "boundary_snap"},
-      {&clearance_points, "clearance_points"}};
+      {&clearance_points, "clearance_points"}, {&refresh_budgets, "refresh_budgets"}};
   // Every kernel declares reqd_work_group_size(WG_SIZE): a device that cannot run a group that size
   // (registers, local memory) would fail at the first enqueue with CL_INVALID_WORK_GROUP_SIZE or
   // CL_OUT_OF_RESOURCES; checked here, it fails before the run with the reason.
