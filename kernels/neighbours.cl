@@ -12,9 +12,12 @@
 //     levels on 30P30N, a third of the gather's time). Every slot comes from an integer atomic on the
 //     row's count, so no two work-items ever write one slot; an entry past the capacity is counted
 //     but not written (the row overflows).
-//   A build without the last counts (a run's first, or after the node set changed) runs gather_rows
-//   once with `counting` set: rows are only counted (no entry, no spill list: every row would outgrow
-//   its capacity of kSpareMin), then again with capacities from those exact counts.
+//   A build without the last counts (a run's first, or after the node set changed) first runs
+//   gather_rows with `counting` set on a sample of the nodes (every sample_stride-th scans; stride 1:
+//   all, exact counts): rows are only counted (no entry, no spill list). row_level_tally sums the
+//   sampled counts of the interior rows per grid level; the host turns them into one estimated
+//   capacity per level (device_neighbours.cpp), row_capacity_scan lays the rows out with it, and
+//   the gather writes them; the few rows that outgrow it move behind the others (relocate_rows).
 //   sort_rows: sorts each interior row by node index (the reference's order: forces are summed in
 //     it) and counts the rows that outgrew their capacities; the host then builds again with
 //     capacities from the counts just found, which are exact.
@@ -26,16 +29,20 @@
 #endif
 #pragma OPENCL FP_CONTRACT OFF
 
-// Row capacities c + (c >> spare_shift) + spare_min from the counts c of the last build (0 for a first
-// build), scanned per work-group: offset[i + 1] = the group's inclusive sum up to i, block_total[g] =
-// the group's total. row_block_offsets and row_offsets_add finish the prefix sum.
+// Row capacities c + (c >> spare_shift) + spare_min from the counts c of the last build, scanned per
+// work-group: offset[i + 1] = the group's inclusive sum up to i, block_total[g] = the group's total.
+// row_block_offsets and row_offsets_add finish the prefix sum. With `estimate` set (a build without
+// counts), an interior row takes its level's estimated capacity level_cap[level[i]] instead, a
+// boundary row that of its 2 entries, any other that of none.
 __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1)))
 void row_capacity_scan(const int n, const int spare_shift, const int spare_min, __global const int* count,
-                       __global ulong* offset, __global ulong* block_total) {
+                       const int estimate, __global const uchar* kind, __global const int* level,
+                       __global const int* level_cap, __global ulong* offset, __global ulong* block_total) {
   __local ulong tmp[WG_SIZE];
   const int i = get_global_id(0);
-  const int c = i < n ? max(count[i], 0) : 0;
-  const ulong cap = i < n ? (ulong)c + (ulong)(c >> spare_shift) + (ulong)spare_min : 0;
+  const int c = i >= n ? 0 : !estimate ? max(count[i], 0) : kind[i] == 1 ? 2 : 0;
+  ulong cap = i < n ? (ulong)c + (ulong)(c >> spare_shift) + (ulong)spare_min : 0;
+  if (i < n && estimate && kind[i] == 2) cap = (ulong)max(level_cap[clamp(level[i], 0, PDMESH_GRID_LEVELS - 1)], spare_min);
   const ulong s = group_inclusive_scan(cap, tmp);
   if (i < n) offset[i + 1] = s;
   if (get_local_id(0) == WG_SIZE - 1) block_total[get_group_id(0)] = s;
@@ -100,12 +107,12 @@ void gather_rows(const int n, const REAL radius_factor, __global const REAL2* xy
                  __global const REAL* grid_inv_cell, __global const uint* bucket, __global const int* grid_nodes,
                  __global const ulong* offset, __global volatile int* count, const ulong entries_size,
                  __global int* entries, const uint spill_capacity, __global int* spill, __global uint* counters,
-                 const int counting) {
+                 const int counting, const int sample_stride) {
   __local uint local_examined;
   if (get_local_id(0) == 0) local_examined = 0;
   barrier(CLK_LOCAL_MEM_FENCE);
   const int i = get_global_id(0);
-  if (i < n && bin_ok(bin_state, n)) {
+  if (i < n && i % sample_stride == 0 && bin_ok(bin_state, n)) {
     const int kind_i = kind[i];
     uint examined = 0;
     if (kind_i == 1) {  // [prev, next], in that order (no other work-item writes a boundary row)
@@ -208,6 +215,31 @@ void gather_rows(const int n, const REAL radius_factor, __global const REAL2* xy
   }
   barrier(CLK_LOCAL_MEM_FENCE);
   if (get_local_id(0) == 0) atomic_add(&counters[ROW_EXAMINED], local_examined);
+}
+
+// After a sampled counting pass (see the top): per level L, tally[2 L] += the counts of its interior
+// rows and tally[2 L + 1] += its interior nodes; tally[2 PDMESH_GRID_LEVELS] += the boundary nodes.
+// Sums per work-group in local memory first (the levels are few, their atomics contended).
+__kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1)))
+void row_level_tally(const int n, __global const uchar* kind, __global const int* level, __global const int* count,
+                     __global uint* tally) {
+  __local uint sums[2 * PDMESH_GRID_LEVELS + 1];
+  const int l = get_local_id(0);
+  for (int k = l; k < 2 * PDMESH_GRID_LEVELS + 1; k += WG_SIZE) sums[k] = 0;
+  barrier(CLK_LOCAL_MEM_FENCE);
+  const int i = get_global_id(0);
+  if (i < n) {
+    if (kind[i] == 2) {
+      const int L = clamp(level[i], 0, PDMESH_GRID_LEVELS - 1);  // in range whenever the binning succeeded
+      atomic_add(&sums[2 * L], (uint)max(count[i], 0));
+      atomic_inc(&sums[2 * L + 1]);
+    } else if (kind[i] == 1) {
+      atomic_inc(&sums[2 * PDMESH_GRID_LEVELS]);
+    }
+  }
+  barrier(CLK_LOCAL_MEM_FENCE);
+  for (int k = l; k < 2 * PDMESH_GRID_LEVELS + 1; k += WG_SIZE)
+    if (sums[k]) atomic_add(&tally[k], sums[k]);
 }
 
 // Insertion sort of entries[base .. base + c) ascending (rows are short and nearly sorted by cell order).

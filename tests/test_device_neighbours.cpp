@@ -28,6 +28,7 @@ struct DeviceRows {
   std::vector<std::uint64_t> offset;
   NeighbourFlags flags;
   int attempts = 0;
+  bool sampled = false;
   std::uint64_t outgrown_rows = 0;
   std::size_t index_size = 0;
 };
@@ -56,6 +57,7 @@ class DeviceBuilder {
     out.flags = nb_.build(n, cutoff, xy, q, kind, prev, next);
     out.attempts = nb_.attempts;
     out.outgrown_rows = nb_.outgrown_rows;
+    out.sampled = nb_.sampled;
     nb_.offset().download(ctx_.queue(), out.offset, n + 1);
     nb_.count().download(ctx_.queue(), out.count, n);
     nb_.index().download(ctx_.queue(), out.index);
@@ -224,6 +226,46 @@ TEST_CASE("device rows that outgrow their capacities are gathered again and equa
     fewer.p.kind.resize(fewer.p.kind.size() - 3);
     check_rows(fewer, b.build(fewer.p, fewer.cutoff));
   }
+}
+
+// A build without counts from kSampleFrom nodes on lays its rows out from a sample (every stride-th
+// node's scan counted, one capacity per grid level); forced here on small inputs. The rows above
+// their level's estimate move behind the others in the same pass (random inputs: counts spread
+// around the mean), or, where the estimate is far off (crowded: a row of 39 in a level of rows of
+// 0), when the move list or the spare region overflows, the build runs again with the exact counts.
+// Either way the rows equal the reference slot by slot, and the next build uses the counts.
+TEST_CASE("device rows laid out from a sampled estimate move the outgrown rows and equal the reference",
+          "[opencl][neighbour]") {
+  REQUIRE(ocl::DeviceNeighbours<double>::kSampleStride > 1);
+  for (const int stride : {2, 4, 16}) {
+    for (const Input& in : {random_input(600, 41, false), random_input(3 * ocl::kStepWorkGroup + 5, 43, false),
+                            graded_input(false), crowded_input(false), dense_cluster_input(false), lattice_input()}) {
+      INFO("stride " << stride << ", input " << in.name);
+      DeviceBuilder b;
+      b.neighbours().sample_stride = stride;
+      const DeviceRows first = b.build(in.p, in.cutoff);
+      check_rows(in, first);
+      CHECK(first.sampled);
+      CHECK(first.attempts <= 2);
+      if (in.name.rfind("random", 0) == 0) {
+        CHECK(first.outgrown_rows > 0);  // rows above their level's mean: moved in the same pass
+        CHECK(first.attempts == 1);
+      }
+      const DeviceRows again = b.build(in.p, in.cutoff);  // from the counts: nothing outgrows
+      check_rows(in, again);
+      CHECK_FALSE(again.sampled);
+      CHECK(again.attempts == 1);
+      CHECK(again.outgrown_rows == 0);
+    }
+  }
+  // Stride 1: the exact counting pass (no estimate), then the rows at their counts.
+  const Input in = random_input(600, 41, false);
+  DeviceBuilder b;
+  b.neighbours().sample_stride = 1;
+  const DeviceRows exact = b.build(in.p, in.cutoff);
+  check_rows(in, exact);
+  CHECK_FALSE(exact.sampled);
+  CHECK(exact.attempts == 2);
 }
 
 // One node whose radius covers every other node: its row holds them all, every other row a few. Rows

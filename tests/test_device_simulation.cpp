@@ -280,6 +280,44 @@ TEST_CASE("device run with population control: same node changes as the host", "
   CHECK(dev.stats.population_seconds > 0.0);
 }
 
+// Builds without counts (the run's first, and after every population event) laid out from a sampled
+// estimate (forced on this small case: PDMESH_TEST_SAMPLE_STRIDE; from 65536 nodes by default): rows
+// above their level's estimate move behind the others, and the run stays the host's bit for bit.
+TEST_CASE("device run with rows from a sampled estimate is bit-identical to the host", "[opencl][device_sim][population]") {
+  Case c;
+  c.config = load_case_file(std::string(PDMESH_SOURCE_DIR) + "/cases/circle_circle/case.toml",
+                            {{"init.method", "random", "test"}, {"population.enabled", "true", "test"},
+                             {"population.start", "10", "test"}, {"population.every", "10", "test"}});
+  c.config.quiet = true;
+  c.inputs = std::make_unique<MeshInputs>(c.config);
+  c.initial = make_initial(c.config, *c.inputs).nodes;
+  SimOptions o = options_for(c, 40);
+  o.population = c.config.population;
+  NodeSet host_nodes = c.initial, dev_nodes = c.initial;
+  const SimResult host = run_simulation(host_nodes, *c.inputs->tree, *c.inputs->spacing, o);
+  for (const ocl::ForceLoop loop : test::kForceLoops) {
+    INFO(ocl::force_loop_name(loop) << " force loop");
+    dev_nodes = c.initial;
+    ocl::DeviceRunStats stats;
+    ::setenv("PDMESH_TEST_SAMPLE_STRIDE", "4", 1);
+    const SimResult dev = ocl::run_device_simulation(dev_nodes, *c.inputs->tree, *c.inputs->spacing, o,
+                                                     test::test_context(), ocl::Precision::Double, {}, &stats, loop);
+    ::unsetenv("PDMESH_TEST_SAMPLE_STRIDE");
+    REQUIRE(host.stats.population_events > 0);
+    CHECK(stats.sampled_builds == 1 + static_cast<std::size_t>(host.stats.population_events));  // the first, and one per event
+    CHECK(stats.outgrown_rows > 0);  // the estimate left rows to move
+    REQUIRE(dev.history.size() == host.history.size());
+    for (std::size_t k = 0; k < host.history.size(); ++k) {
+      INFO("iteration " << host.history[k].iteration);
+      CHECK(dev.history[k].max_force == host.history[k].max_force);
+      CHECK(dev.history[k].dt_gm == host.history[k].dt_gm);
+      CHECK(dev.history[k].interior == host.history[k].interior);
+    }
+    CHECK(dev.stats.pairs_within == host.stats.pairs_within);
+    require_identical_nodes(host_nodes, dev_nodes);
+  }
+}
+
 TEST_CASE("device run: the convergence rule stops a double run after the host's iteration, with the host's "
           "measurements", "[opencl][device_sim][convergence]") {
   // circle_circle with a short rule (measured every 20 iterations, window 60) so that it converges

@@ -4,6 +4,7 @@
 #include <array>
 #include <chrono>
 #include <cmath>
+#include <cstdlib>
 #include <limits>
 
 #include <fmt/format.h>
@@ -29,13 +30,25 @@ const std::array<std::int32_t, kBinStateSize> kBinStateInit = [] {
 
 std::uint64_t with_slack(std::uint64_t v) { return v + v / 8 + 64; }
 
+// row_level_tally's output: per level its interior rows' sampled counts and nodes, then the boundary nodes.
+constexpr std::size_t kTallySize = 2 * kBinLevels + 1;
+
 }  // namespace
 
 template <typename Real>
 std::size_t DeviceNeighbours<Real>::device_bytes() const {
   return count_.bytes() + offset_.bytes() + block_total_.bytes() + index_.bytes() + level_.bytes() + bin_state_.bytes() +
          grid_mask_.bytes() + grid_bucket_offset_.bytes() + grid_inv_cell_.bytes() + bucket_.bytes() + grid_nodes_.bytes() +
-         bin_partial_.bytes() + counters_.bytes();
+         bin_partial_.bytes() + counters_.bytes() + spill_.bytes() + move_node_.bytes() + move_start_.bytes() +
+         level_cap_.bytes() + tally_.bytes();
+}
+
+template <typename Real>
+int DeviceNeighbours<Real>::stride_for(std::size_t n) const {
+  if (sample_stride > 0) return sample_stride;
+  // Tests of whole runs force a stride on their small cases (tests/test_device_simulation.cpp).
+  if (const char* v = std::getenv("PDMESH_TEST_SAMPLE_STRIDE")) return std::max(1, std::atoi(v));
+  return n >= kSampleFrom ? kSampleStride : 1;
 }
 
 template <typename Real>
@@ -44,6 +57,7 @@ NeighbourFlags DeviceNeighbours<Real>::build(std::size_t n, double radius_factor
                                              Buffer<std::int32_t>& next) {
   NeighbourFlags flags;
   attempts = 0;
+  sampled = false;
   launches = 0;
   outgrown_rows = 0;
   uploaded_bytes = 0;
@@ -75,12 +89,17 @@ NeighbourFlags DeviceNeighbours<Real>::build(std::size_t n, double radius_factor
   ensure_size(ctx_, grid_mask_, "grid_mask", kBinLevels);
   ensure_size(ctx_, grid_bucket_offset_, "grid_bucket_offset", kBinLevels);
   ensure_size(ctx_, grid_inv_cell_, "grid_inv_cell", kBinLevels);
+  ensure_size(ctx_, level_cap_, "neighbour_level_cap", kBinLevels);
   // First guesses for the grids (one entry per node and level with nodes, a bucket per two): a
   // build that finds them too small reports the sizes it needs and runs again.
   if (member_capacity_ == 0) member_capacity_ = with_slack(4 * static_cast<std::uint64_t>(n));
   if (bucket_capacity_ == 0) bucket_capacity_ = with_slack(2 * static_cast<std::uint64_t>(n));
   const Real radius = static_cast<Real>(radius_factor);
   const auto n_arg = static_cast<cl_int>(n), groups_arg = static_cast<cl_int>(groups);
+  // Without counts: every stride-th node's scan is counted, and the rows are laid out with capacities
+  // estimated from that sample (stride 1: an exact counting pass, then the rows at those counts).
+  const int stride = have_counts ? 1 : stride_for(n);
+  bool estimate = false;  // rows laid out with the sampled estimate (level_cap_)
   std::vector<std::uint32_t> c;
   std::vector<std::int32_t>& state = state_host_;
   int attempt = 0;
@@ -99,12 +118,16 @@ NeighbourFlags DeviceNeighbours<Real>::build(std::size_t n, double radius_factor
     }
     const std::size_t buckets = bucket_.size(), bucket_groups = (buckets + wg - 1) / wg;
     ensure_size(ctx_, block_total_, "neighbour_block_total", std::max(groups, bucket_groups) + 1);
-    // Every capacity sum bounds offset[n]: sum(c + c >> s + m) <= total + total >> s + m n; behind
-    // the rows a spare region for the rows that outgrow their capacities (relocate_rows).
-    const std::uint64_t spill_capacity = std::max<std::uint64_t>(4096, counted_total_ / 64);
-    const std::uint64_t move_capacity = std::max<std::uint64_t>(1024, n / 256);
+    // Every capacity sum bounds offset[n]: sum(c + c >> s + m) <= total + total >> s + m n (an
+    // estimated layout's sum is the same with the estimated total); behind the rows a spare region
+    // for the rows that outgrow their capacities (relocate_rows). The spill list holds the entries
+    // past the capacities (a few per outgrown row), the move list the outgrown rows: an estimated
+    // layout leaves more of them (~0.8% of the rows at 1M nodes) than one from the last counts.
+    const std::uint64_t spare_capacity = std::max<std::uint64_t>(4096, counted_total_ / 64);
+    const std::uint64_t spill_capacity = std::max<std::uint64_t>(4096, counted_total_ / 256);
+    const std::uint64_t move_capacity = std::max<std::uint64_t>(1024, estimate ? n / 64 : n / 256);
     const std::uint64_t bound = counted_total_ + (counted_total_ >> kSpareShift) +
-                                static_cast<std::uint64_t>(kSpareMin) * n + 2 * spill_capacity + kRowTail;
+                                static_cast<std::uint64_t>(kSpareMin) * n + 2 * spare_capacity + kRowTail;
     ensure_size(ctx_, spill_, "neighbour_spill", 2 * spill_capacity);
     ensure_size(ctx_, move_node_, "neighbour_move_node", move_capacity);
     ensure_size(ctx_, move_start_, "neighbour_move_start", move_capacity);
@@ -145,23 +168,55 @@ NeighbourFlags DeviceNeighbours<Real>::build(std::size_t n, double radius_factor
       launch(ctx_.queue(), program_.bin_fill, "bin_fill", n, wg);
       launches += 9;
     }
+    // Without counts: count (a sample, or every row), then build with the estimate or the counts.
+    const bool counting = !have_counts && !estimate;
+    counters_.upload(ctx_.queue(), kZeroCounters.data(), kZeroCounters.size(), false);
+    uploaded_bytes += sizeof(kZeroCounters);
+    if (counting && stride > 1) {
+      // The sample: its counts summed per level (row_level_tally); nothing else of a build.
+      ensure_size(ctx_, tally_, "neighbour_level_tally", kTallySize);
+      fill_zero(ctx_.queue(), tally_.get(), kTallySize * sizeof(cl_uint), "clearing 'neighbour_level_tally'");
+      fill_zero(ctx_.queue(), count_.get(), n * sizeof(cl_int), "clearing 'neighbour_count'");
+      gather(n_arg, radius, xy, q, kind, prev, next, 0, 0, true, stride);
+      ArgSetter(program_.row_level_tally, "row_level_tally")(n_arg)(kind)(level_)(count_)(tally_);
+      launch(ctx_.queue(), program_.row_level_tally, "row_level_tally", n, wg);
+      launches += 2;
+      std::vector<std::uint32_t> tally;
+      bin_state_.download(ctx_.queue(), state, kBinHead, false);
+      tally_.download(ctx_.queue(), tally, kTallySize);
+      if (state[kBinFirstInvalid] < static_cast<std::int32_t>(n)) {
+        flags.first_invalid = state[kBinFirstInvalid];
+        counted_n_ = 0;
+        break;
+      }
+      if (state[kBinTooManyLevels])
+        throw SimulationError(fmt::format("the list radii of the nodes span more than 2^{}: the device binning has "
+                                          "{} grid levels at most",
+                                          kBinLevels, kBinLevels));
+      member_capacity_ =
+          std::max<std::uint64_t>(member_capacity_, with_slack(static_cast<std::uint64_t>(state[kBinMembers])));
+      bucket_capacity_ =
+          std::max<std::uint64_t>(bucket_capacity_, with_slack(static_cast<std::uint64_t>(state[kBinBuckets])));
+      if (state[kBinTooSmall] == 0) {
+        binned = true;
+        estimate = true;
+        sampled = true;
+        counted_total_ = set_level_caps(tally, stride);
+      }
+      continue;  // not a pass of its own: attempts counts whole gathers
+    }
     // Rows (kernels/neighbours.cl).
     ArgSetter(program_.row_capacity_scan, "row_capacity_scan")(n_arg)(static_cast<cl_int>(kSpareShift))(
-        static_cast<cl_int>(kSpareMin))(count_)(offset_)(block_total_);
+        static_cast<cl_int>(kSpareMin))(count_)(static_cast<cl_int>(estimate && !have_counts ? 1 : 0))(kind)(level_)(
+        level_cap_)(offset_)(block_total_);
     launch(ctx_.queue(), program_.row_capacity_scan, "row_capacity_scan", n, wg);
     ArgSetter(program_.row_block_offsets, "row_block_offsets")(groups_arg)(block_total_);
     launch(ctx_.queue(), program_.row_block_offsets, "row_block_offsets", wg, wg);
     ArgSetter(program_.row_offsets_add, "row_offsets_add")(n_arg)(offset_)(block_total_);
     launch(ctx_.queue(), program_.row_offsets_add, "row_offsets_add", n, wg);
     fill_zero(ctx_.queue(), count_.get(), n * sizeof(cl_int), "clearing 'neighbour_count'");
-    counters_.upload(ctx_.queue(), kZeroCounters.data(), kZeroCounters.size(), false);
-    uploaded_bytes += sizeof(kZeroCounters);
-    // Without counts every row would outgrow its capacity: count only, then build with the counts.
-    const bool counting = !have_counts;
-    ArgSetter(program_.gather_rows, "gather_rows")(n_arg)(radius)(xy)(q)(kind)(prev)(next)(level_)(bin_state_)(
-        grid_mask_)(grid_bucket_offset_)(grid_inv_cell_)(bucket_)(grid_nodes_)(offset_)(count_)(entries_size)(index_)(
-        static_cast<cl_uint>(spill_capacity))(spill_)(counters_)(static_cast<cl_int>(counting ? 1 : 0));
-    launch(ctx_.queue(), program_.gather_rows, "gather_rows", n, wg);
+    gather(n_arg, radius, xy, q, kind, prev, next, entries_size, spill_capacity, counting, 1);
+    ++attempts;
     ArgSetter(program_.sort_rows, "sort_rows")(n_arg)(kind)(offset_)(count_)(entries_size)(index_)(counters_);
     launch(ctx_.queue(), program_.sort_rows, "sort_rows", n, wg);
     // A counting pass moves nothing (move capacity 0): the next pass builds with the counts.
@@ -199,10 +254,9 @@ NeighbourFlags DeviceNeighbours<Real>::build(std::size_t n, double radius_factor
                                                    c[kRowSpareFull] == 0)))
         break;
     }
-    if (attempt >= 3)
+    if (attempt >= 4)
       throw SimulationError(fmt::format("neighbour rows still outgrow their capacities after {} passes", attempt + 1));
   }
-  attempts = attempt + 1;
   if (flags.first_invalid < 0) {
     flags.max_count = static_cast<std::int32_t>(c[kRowLargest]);
     flags.pairs_examined = c[kRowExamined];
@@ -210,6 +264,41 @@ NeighbourFlags DeviceNeighbours<Real>::build(std::size_t n, double radius_factor
   }
   gather_seconds = seconds_since(t0);
   return flags;
+}
+
+template <typename Real>
+void DeviceNeighbours<Real>::gather(cl_int n_arg, Real radius, Buffer<Real>& xy, Buffer<Real>& q,
+                                    Buffer<std::uint8_t>& kind, Buffer<std::int32_t>& prev,
+                                    Buffer<std::int32_t>& next, cl_ulong entries_size, std::uint64_t spill_capacity,
+                                    bool counting, int stride) {
+  ArgSetter(program_.gather_rows, "gather_rows")(n_arg)(radius)(xy)(q)(kind)(prev)(next)(level_)(bin_state_)(
+      grid_mask_)(grid_bucket_offset_)(grid_inv_cell_)(bucket_)(grid_nodes_)(offset_)(count_)(entries_size)(index_)(
+      static_cast<cl_uint>(spill_capacity))(spill_)(counters_)(static_cast<cl_int>(counting ? 1 : 0))(
+      static_cast<cl_int>(stride));
+  launch(ctx_.queue(), program_.gather_rows, "gather_rows", static_cast<std::size_t>(n_arg), program_.work_group);
+}
+
+// Per level L with interior nodes: their mean count m = stride x (sampled counts) / (nodes), and the
+// capacity every interior row of L gets, c + (c >> kSpareShift) + kSpareMin for c = m rounded: the
+// layout a build from counts would make if every row had its level's mean. Returns the estimated
+// entries of all rows (the boundary rows' 2 each included), which sizes the index like a total.
+template <typename Real>
+std::uint64_t DeviceNeighbours<Real>::set_level_caps(const std::vector<std::uint32_t>& tally, int stride) {
+  std::vector<std::int32_t> cap(kBinLevels, kSpareMin);
+  std::uint64_t total = 2 * static_cast<std::uint64_t>(tally[2 * kBinLevels]);
+  for (int L = 0; L < kBinLevels; ++L) {
+    const std::uint64_t nodes = tally[2 * L + 1];
+    if (nodes == 0) continue;
+    const std::uint64_t sum = static_cast<std::uint64_t>(tally[2 * L]) * static_cast<std::uint64_t>(stride);
+    const std::uint64_t mean = (sum + nodes / 2) / nodes;
+    const std::uint64_t c = std::min<std::uint64_t>(mean + (mean >> kSpareShift) + kSpareMin,
+                                                    std::numeric_limits<std::int32_t>::max());
+    cap[static_cast<std::size_t>(L)] = static_cast<std::int32_t>(c);
+    total += mean * nodes;
+  }
+  level_cap_.upload(ctx_.queue(), cap, true);
+  uploaded_bytes += cap.size() * sizeof(std::int32_t);
+  return total;
 }
 
 template class DeviceNeighbours<double>;

@@ -32,9 +32,12 @@ class DeviceNeighbours {
   DeviceNeighbours& operator=(const DeviceNeighbours&) = delete;
 
   // Builds the rows of n nodes (device arrays xy: 2n positions, x and y interleaved as the step keeps
-  // them; q, kind, prev, next), interior radius radius_factor * q_i. Grid and row capacities are those of the last build plus slack (kSpareShift,
-  // kSpareMin); when the grids or a row outgrow them the build runs again at the sizes it found
-  // (exact), so a first build, or one after the node set changed size, costs two or three passes.
+  // them; q, kind, prev, next), interior radius radius_factor * q_i. Grid and row capacities are those
+  // of the last build plus slack (kSpareShift, kSpareMin); a build without them (a run's first, or
+  // after the node set changed size) counts a sample of the rows (every stride_for(n)-th node's scan)
+  // and gives every interior row its level's estimated capacity. Rows that outgrow their capacities
+  // move behind the others in the same pass; when too many do (or the grids outgrow theirs) the build
+  // runs again at the sizes it found (exact). With stride 1 the sample is an exact counting pass.
   // Sets the flags (first_invalid: the smallest node with a non-finite x, y or q, or q <= 0, whose
   // rows are then not built; overflow stays 0: rows are never truncated). Before the index buffer
   // grows, check_entries (when set) is called with its new size: it throws when the device cannot
@@ -45,6 +48,14 @@ class DeviceNeighbours {
   // A row's capacity is c + (c >> kSpareShift) + kSpareMin for the count c of the last build: rows
   // grow a little between rebuilds as nodes move (docs/performance.md, issue 15 neighbours).
   static constexpr int kSpareShift = 3, kSpareMin = 2;
+  // A build without counts samples every kSampleStride-th node's scan from kSampleFrom nodes on (a
+  // counting pass costs about a gather: at 1M nodes a quarter of a 20-iteration run's gathers); below,
+  // it counts every row (exact: fewer moved rows, and the pass is cheap). sample_stride > 0 overrides
+  // it (tests).
+  static constexpr int kSampleStride = 16;
+  static constexpr std::size_t kSampleFrom = 65536;
+  int sample_stride = 0;
+  int stride_for(std::size_t n) const;
 
   Buffer<std::int32_t>& count() { return count_; }
   Buffer<std::uint64_t>& offset() { return offset_; }
@@ -62,15 +73,21 @@ class DeviceNeighbours {
   Buffer<std::int32_t>& grid_nodes() { return grid_nodes_; }
   std::size_t uploaded_bytes = 0;  // by the last build
   double gather_seconds = 0.0;     // the whole build on the device (binning, rows), last build
-  int attempts = 0;                // passes of the last build (2 or 3 when the grids or a row outgrew their capacities)
+  int attempts = 0;                // gather passes of the last build (2 or 3 when the grids or a row outgrew their capacities)
+  bool sampled = false;            // the last build laid its rows out from a sampled estimate
   int launches = 0;                // kernel launches of the last build
   std::uint64_t outgrown_rows = 0;  // rows of the last build that outgrew their capacities (each pass)
 
  private:
+  void gather(cl_int n_arg, Real radius, Buffer<Real>& xy, Buffer<Real>& q, Buffer<std::uint8_t>& kind,
+              Buffer<std::int32_t>& prev, Buffer<std::int32_t>& next, cl_ulong entries_size,
+              std::uint64_t spill_capacity, bool counting, int stride);
+  std::uint64_t set_level_caps(const std::vector<std::uint32_t>& tally, int stride);
+
   Context& ctx_;
   StepProgram& program_;
-  Buffer<std::int32_t> count_, index_, level_, bin_state_, grid_mask_, grid_nodes_, spill_, move_node_;
-  Buffer<std::uint32_t> grid_bucket_offset_, bucket_;
+  Buffer<std::int32_t> count_, index_, level_, bin_state_, grid_mask_, grid_nodes_, spill_, move_node_, level_cap_;
+  Buffer<std::uint32_t> grid_bucket_offset_, bucket_, tally_;
   Buffer<std::uint64_t> offset_, block_total_, move_start_;
   Buffer<std::uint32_t> counters_;
   Buffer<Real> bin_partial_, grid_inv_cell_;

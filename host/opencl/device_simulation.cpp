@@ -518,6 +518,7 @@ void DeviceRun<Real>::rebuild() {
   stats_.gather_seconds += neighbours_.gather_seconds;
   stats_.gathers += neighbours_.attempts;
   stats_.outgrown_rows += neighbours_.outgrown_rows;
+  stats_.sampled_builds += neighbours_.sampled ? 1 : 0;
   stats_.bytes_up += neighbours_.uploaded_bytes;
   stats_.launches += static_cast<std::size_t>(neighbours_.launches);  // the row sizing, gather and sort
   pairs_examined_ += flags.pairs_examined;

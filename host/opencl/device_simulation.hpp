@@ -22,6 +22,7 @@ struct DeviceRunStats {
   int snap_rebuilds = 0;             // of those, forced by a snap alone (the skin had room left)
   int gathers = 0;                   // neighbour build passes: one per rebuild, more when grids or rows outgrew their capacities
   std::uint64_t outgrown_rows = 0;   // rows that outgrew their capacities, summed over the passes
+  std::size_t sampled_builds = 0;    // builds laid out from a sampled estimate (no counts yet: device_neighbours.hpp)
   int stride = 0;                    // the longest neighbour row of any build (rows are compact)
   std::uint64_t launches = 0;        // kernel launches
   std::uint64_t transfers = 0;       // reads + writes enqueued
