@@ -294,12 +294,21 @@ void sort_rows(const int n, __global const uchar* kind, __global const ulong* of
 }
 
 // A row that outgrew its capacity (its entries past it in the spill list) moves to the spare region
-// behind the last row, [offset[n], entries_size): its kept entries, then its spilled ones in spill
-// order (a boundary row's prev before next), sorted when interior. Its new start goes to the move
-// list (apply_row_moves writes it to offset[i]: this kernel still reads the capacities).
-// counters[ROW_SPARE_USED]: spare entries used; counters[ROW_MOVED]: rows moved;
-// counters[ROW_SPARE_FULL]: the spare region was full. When the spill list, the spare region or the
-// move list is too small, nothing is moved and the host builds again (the counts are exact then).
+// behind the last row, [offset[n], entries_size): relocate_rows copies its kept entries there and
+// leaves in its old slot (capacity >= spare_min = 2 entries, every layout) where the row went,
+// relative to offset[n], and how many entries it holds there; place_spilled then appends each
+// spilled entry to its row through that cursor (integer atomics), and apply_row_moves sorts each moved
+// row and points offset[i] at it. Each kernel's work is linear in the rows moved or the entries
+// spilled (a layout from a sampled estimate moves ~1% of the rows). The spilled entries' order is the
+// atomics': only interior rows can outgrow (a boundary row holds its 2 entries in a capacity of at
+// least 2), and they are sorted. counters[ROW_SPARE_USED]: spare entries used; counters[ROW_MOVED]:
+// rows moved; counters[ROW_SPARE_FULL]: the spare region was full. When the spill list, the spare
+// region or the move list is too small, nothing is moved and the host builds again (the counts are
+// exact then).
+int rows_move(__global const uint* counters, const uint spill_capacity, const uint move_capacity) {
+  return counters[ROW_SPILLED] <= spill_capacity && counters[ROW_OUTGROWN] <= move_capacity;
+}
+
 __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1)))
 void relocate_rows(const int n, __global const uchar* kind, __global const ulong* offset, __global const int* count,
                    const ulong entries_size, __global int* entries, const uint spill_capacity,
@@ -310,29 +319,46 @@ void relocate_rows(const int n, __global const uchar* kind, __global const ulong
   const int c = count[i];
   const ulong base = offset[i], cap = offset[i + 1] - base;
   if (base + (ulong)c <= offset[i + 1] && offset[i + 1] <= entries_size) return;
-  const uint spilled = counters[ROW_SPILLED];
-  if (spilled > spill_capacity || counters[ROW_OUTGROWN] > move_capacity) return;
-  const ulong start = offset[n] + (ulong)atomic_add(&counters[ROW_SPARE_USED], (uint)c);
-  if (start + (ulong)c > entries_size) {
-    atomic_or(&counters[ROW_SPARE_FULL], 1U);  // the spare region is full: the host builds again
+  if (!rows_move(counters, spill_capacity, move_capacity)) return;
+  const ulong rel = (ulong)atomic_add(&counters[ROW_SPARE_USED], (uint)c);
+  const ulong start = offset[n] + rel;
+  if (start + (ulong)c > entries_size || rel + (ulong)c > (ulong)INT_MAX || cap < 2 || base + 2 > entries_size ||
+      kind[i] != 2) {
+    atomic_or(&counters[ROW_SPARE_FULL], 1U);  // no room (or no cursor): the host builds again
     return;
   }
   const ulong kept = min(cap, (ulong)c);
   for (ulong k = 0; k < kept; ++k) entries[start + k] = entries[base + k];
-  ulong k = kept;
-  for (uint p = 0; p < spilled; ++p)
-    if (spill[2 * p] == i) entries[start + k++] = spill[2 * p + 1];
-  if (kind[i] == 2) {
-    sort_row(entries, start, c);
-  }
+  entries[base] = (int)rel;  // the cursor for place_spilled
+  entries[base + 1] = (int)kept;
   const uint m = atomic_inc(&counters[ROW_MOVED]);
   move_node[m] = i;
   move_start[m] = start;
 }
 
+// One work-item per spilled entry (row r, node j): appended to r's moved row through the cursor
+// relocate_rows left in r's old slot.
+__kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1)))
+void place_spilled(const int n, __global const ulong* offset, __global volatile int* entries,
+                   const uint spill_capacity, __global const int* spill, const uint move_capacity,
+                   __global const uint* counters) {
+  const uint p = get_global_id(0);
+  if (p >= min(counters[ROW_SPILLED], spill_capacity) || !rows_move(counters, spill_capacity, move_capacity) ||
+      counters[ROW_SPARE_FULL])
+    return;
+  const int r = spill[2 * p];
+  const ulong base = offset[r];
+  const ulong rel = (ulong)(uint)entries[base];
+  const uint k = (uint)atomic_inc(&entries[base + 1]);
+  entries[offset[n] + rel + k] = spill[2 * p + 1];
+}
+
 __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1)))
 void apply_row_moves(__global const int* move_node, __global const ulong* move_start, __global const uint* counters,
-                     __global ulong* offset) {
+                     __global const int* count, __global int* entries, __global ulong* offset) {
   const uint k = get_global_id(0);
-  if (k < counters[ROW_MOVED]) offset[move_node[k]] = move_start[k];
+  if (k >= counters[ROW_MOVED] || counters[ROW_SPARE_FULL]) return;
+  const int i = move_node[k];
+  sort_row(entries, move_start[k], count[i]);  // interior rows only move (relocate_rows)
+  offset[i] = move_start[k];
 }

@@ -224,9 +224,12 @@ NeighbourFlags DeviceNeighbours<Real>::build(std::size_t n, double radius_factor
         static_cast<cl_uint>(spill_capacity))(spill_)(static_cast<cl_uint>(counting ? 0 : move_capacity))(move_node_)(
         move_start_)(counters_);
     launch(ctx_.queue(), program_.relocate_rows, "relocate_rows", n, wg);
-    ArgSetter(program_.apply_row_moves, "apply_row_moves")(move_node_)(move_start_)(counters_)(offset_);
+    ArgSetter(program_.place_spilled, "place_spilled")(n_arg)(offset_)(index_)(static_cast<cl_uint>(spill_capacity))(
+        spill_)(static_cast<cl_uint>(counting ? 0 : move_capacity))(counters_);
+    launch(ctx_.queue(), program_.place_spilled, "place_spilled", spill_capacity, wg);
+    ArgSetter(program_.apply_row_moves, "apply_row_moves")(move_node_)(move_start_)(counters_)(count_)(index_)(offset_);
     launch(ctx_.queue(), program_.apply_row_moves, "apply_row_moves", move_capacity, wg);
-    launches += 7;
+    launches += 8;
     // The build's one wait: the counters and the binning's state.
     bin_state_.download(ctx_.queue(), state, kBinHead, false);
     counters_.download(ctx_.queue(), c, kZeroCounters.size());

@@ -146,6 +146,7 @@ StepProgram::StepProgram(Context& ctx, Precision p, ForceLoop loop, std::size_t 
       {&bucket_scan, "bucket_scan"},             {&bucket_offsets_add, "bucket_offsets_add"},
       {&bin_fill, "bin_fill"},                   {&relocate_rows, "relocate_rows"},
       {&apply_row_moves, "apply_row_moves"},     {&row_level_tally, "row_level_tally"},
+      {&place_spilled, "place_spilled"},
       {&compute_forces, "compute_forces"},     {&time_step_and_move, "time_step_and_move"},
       {&reduce, "reduce"},                     {&device_step, "device_step"},
       {&apply_host_moves, "apply_host_moves"}, {&boundary_snap, "boundary_snap"},
