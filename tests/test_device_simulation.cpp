@@ -241,17 +241,28 @@ TEST_CASE("device run: randomized snap stress stays bit-identical to the host", 
   CHECK(forced > 0);
 }
 
+namespace {
+
+// circle_circle from a random start (vacancies and clusters), population events every 10 iterations
+// from `start` on.
+Case circle_circle_with_population(const char* start) {
+  Case c;
+  c.config = load_case_file(std::string(PDMESH_SOURCE_DIR) + "/cases/circle_circle/case.toml",
+                            {{"init.method", "random", "test"}, {"population.enabled", "true", "test"},
+                             {"population.start", start, "test"}, {"population.every", "10", "test"}});
+  c.config.quiet = true;
+  c.inputs = std::make_unique<MeshInputs>(c.config);
+  c.initial = make_initial(c.config, *c.inputs).nodes;
+  return c;
+}
+
+}  // namespace
+
 TEST_CASE("device run with population control: same node changes as the host", "[opencl][device_sim][population]") {
   // circle_circle from a random start (vacancies and clusters), events after 20, 30, ... 80 (the last
   // one at floor(0.8 x 100)). In double bit for bit (the device re-uploads the host's edited node set
   // exactly); the same inserted/removed counts per iteration and the same node count and kinds.
-  Case c;
-  c.config = load_case_file(std::string(PDMESH_SOURCE_DIR) + "/cases/circle_circle/case.toml",
-                            {{"init.method", "random", "test"}, {"population.enabled", "true", "test"},
-                             {"population.start", "20", "test"}, {"population.every", "10", "test"}});
-  c.config.quiet = true;
-  c.inputs = std::make_unique<MeshInputs>(c.config);
-  c.initial = make_initial(c.config, *c.inputs).nodes;
+  const Case c = circle_circle_with_population("20");
   const auto run = [&](bool device) {
     Outcome out{c.initial, {}, {}};
     SimOptions o = options_for(c, 100);
@@ -284,13 +295,7 @@ TEST_CASE("device run with population control: same node changes as the host", "
 // estimate (forced on this small case: PDMESH_TEST_SAMPLE_STRIDE; from 65536 nodes by default): rows
 // above their level's estimate move behind the others, and the run stays the host's bit for bit.
 TEST_CASE("device run with rows from a sampled estimate is bit-identical to the host", "[opencl][device_sim][population]") {
-  Case c;
-  c.config = load_case_file(std::string(PDMESH_SOURCE_DIR) + "/cases/circle_circle/case.toml",
-                            {{"init.method", "random", "test"}, {"population.enabled", "true", "test"},
-                             {"population.start", "10", "test"}, {"population.every", "10", "test"}});
-  c.config.quiet = true;
-  c.inputs = std::make_unique<MeshInputs>(c.config);
-  c.initial = make_initial(c.config, *c.inputs).nodes;
+  const Case c = circle_circle_with_population("10");
   SimOptions o = options_for(c, 40);
   o.population = c.config.population;
   NodeSet host_nodes = c.initial, dev_nodes = c.initial;
