@@ -111,8 +111,8 @@ void gather_rows(const int n, const REAL radius_factor, __global const REAL2* xy
   __local uint local_examined;
   if (get_local_id(0) == 0) local_examined = 0;
   barrier(CLK_LOCAL_MEM_FENCE);
-  const int i = get_global_id(0);
-  if (i < n && i % sample_stride == 0 && bin_ok(bin_state, n)) {
+  const int i = (int)get_global_id(0) * sample_stride;  // launched over ceil(n / sample_stride) work-items
+  if (i < n && bin_ok(bin_state, n)) {
     const int kind_i = kind[i];
     uint examined = 0;
     if (kind_i == 1) {  // [prev, next], in that order (no other work-item writes a boundary row)

@@ -278,7 +278,9 @@ void DeviceNeighbours<Real>::gather(cl_int n_arg, Real radius, Buffer<Real>& xy,
       grid_mask_)(grid_bucket_offset_)(grid_inv_cell_)(bucket_)(grid_nodes_)(offset_)(count_)(entries_size)(index_)(
       static_cast<cl_uint>(spill_capacity))(spill_)(counters_)(static_cast<cl_int>(counting ? 1 : 0))(
       static_cast<cl_int>(stride));
-  launch(ctx_.queue(), program_.gather_rows, "gather_rows", static_cast<std::size_t>(n_arg), program_.work_group);
+  const std::size_t items = (static_cast<std::size_t>(n_arg) + static_cast<std::size_t>(stride) - 1) /
+                            static_cast<std::size_t>(stride);
+  launch(ctx_.queue(), program_.gather_rows, "gather_rows", items, program_.work_group);
 }
 
 // Per level L with interior nodes: their mean count m = stride x (sampled counts) / (nodes), and the
