@@ -196,6 +196,31 @@ TEST_CASE("pdmesh mesh writes every stage's files: initial, history, final, mesh
   fs::remove_all(dir);
 }
 
+TEST_CASE("pdmesh mesh: an initial picture that cannot be written fails the run after the mesh files", "[cli]") {
+  // On a CPU OpenCL device (auto, here PoCL) the initial pictures are held until the iterations end,
+  // on the host reference drawn beside them: either way every other file is written and the
+  // picture's error ends the run.
+  for (const char* device : {"host", "auto"}) {
+    INFO(device);
+    const fs::path dir = fresh_dir(std::string("bad_picture_") + device);
+    write_rectangle(dir / "rect.crv");
+    const fs::path out = dir / "out";
+    fs::create_directories(out / "initial_corner.png");  // a directory where the picture goes
+    const Result r = run("mesh '" + (dir / "rect.crv").string() + "' --out '" + out.string() +
+                         "' --view corner=0,0,0.5,0.5 --iterations 20 --device " + device);
+    INFO(r.output);
+    CHECK(r.status != 0);
+    CHECK(contains(r.output, "initial_corner.png"));
+    for (const char* f : {"initial.png", "history.png", "final.png", "final_corner.png", "mesh.msh", "mesh.png",
+                          "mesh_corner.png", "quality.json"}) {
+      INFO(f);
+      CHECK(fs::is_regular_file(out / f));
+    }
+    CHECK(fs::is_directory(out / "initial_corner.png"));
+    fs::remove_all(dir);
+  }
+}
+
 TEST_CASE("pdmesh mesh --plot-spacing writes spacing.png and one picture per view, and the field is reported", "[cli]") {
   const fs::path dir = fresh_dir("spacing");
   write_rectangle(dir / "rect.crv");
