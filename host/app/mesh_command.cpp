@@ -724,14 +724,7 @@ int run_mesh(const CaseConfig& config) {
   if (config.simulation.iterations > 0) {
     SimulateHooks hooks;
     hooks.pictures = &hold_initial;
-    hooks.backend = [&prepared, &phases](const std::function<void(const std::string&)>& note) {
-      // Still setting up (a program not in PoCL's cache builds for seconds): the held pictures are
-      // drawn meanwhile, then held again until simulate() knows the device.
-      if (prepared.wait_for(std::chrono::seconds(0)) != std::future_status::ready) {
-        phases.release_pictures();
-        prepared.wait();
-        phases.hold_pictures();
-      }
+    hooks.backend = [&prepared](const std::function<void(const std::string&)>& note) {
       PreparedBackend p = prepared.get();
       for (const std::string& line : p.notes) note(line);
       if (p.error) std::rethrow_exception(p.error);
