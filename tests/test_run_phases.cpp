@@ -10,8 +10,6 @@
 #include <stdexcept>
 #include <string>
 #include <thread>
-#include <vector>
-#include <chrono>
 
 #include "app/run_phases.hpp"
 #include "core/errors.hpp"
@@ -202,61 +200,4 @@ TEST_CASE("run phases: the guard waits for the pictures when an exception unwind
     CHECK(std::string(e.what()) == "the run failed");
   }
   CHECK(drawn);  // the guard waited before the data the job reads went away
-}
-
-TEST_CASE("run phases: held pictures wait for the release, or are drawn by a waiting caller", "[phases]") {
-  RunPhases run;
-  const std::thread::id caller = std::this_thread::get_id();
-  SECTION("a caller waiting while they are held draws them itself, in queue order, errors included") {
-    const PictureHold hold(run);
-    std::vector<std::thread::id> drawers;
-    std::vector<int> order;
-    run.picture("a.png", [&] {
-      drawers.push_back(std::this_thread::get_id());
-      order.push_back(1);
-    });
-    run.picture("bad.png", [] { throw InputError("cannot write 'bad.png'"); });
-    run.picture("b.png", [&] {
-      drawers.push_back(std::this_thread::get_id());
-      order.push_back(2);
-    });
-    CHECK_THROWS_AS(run.wait_pictures(), InputError);
-    CHECK(order == std::vector<int>{1, 2});
-    CHECK(drawers == std::vector<std::thread::id>{caller, caller});  // the held thread started none
-    CHECK(run.phases().size() == 3);
-  }
-  SECTION("holds are counted; the last release lets the background thread draw") {
-    PictureHold outer(run);
-    PictureHold inner(run);
-    std::promise<void> started;
-    std::promise<void> finish;
-    std::shared_future<void> finished = finish.get_future().share();
-    std::thread::id drawer;
-    run.picture("held.png", [&] {
-      drawer = std::this_thread::get_id();
-      started.set_value();
-      finished.wait();
-    });
-    inner.release();
-    inner.release();  // a second release of the same hold does nothing
-    outer.release();
-    // Only the background thread can start it now (the caller is not waiting); the timeout only
-    // keeps a broken release from hanging the suite.
-    auto began = started.get_future();
-    REQUIRE(began.wait_for(std::chrono::seconds(30)) == std::future_status::ready);
-    finish.set_value();
-    run.wait_pictures();
-    CHECK(drawer != caller);
-  }
-}
-
-TEST_CASE("run phases: a hold left over does not keep the destructor from drawing the queue", "[phases]") {
-  std::atomic<int> drawn{0};
-  {
-    RunPhases run;
-    run.hold_pictures();
-    run.picture("one.png", [&] { ++drawn; });
-    run.picture("two.png", [&] { ++drawn; });
-  }
-  CHECK(drawn == 2);
 }

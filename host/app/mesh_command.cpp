@@ -308,17 +308,6 @@ SimOptions simulation_options(const CaseConfig& config) {
   return options;
 }
 
-namespace {
-
-// Whether the simulation's backend keeps every core of this machine busy: an OpenCL CPU device
-// (PoCL runs a work-group thread per core). Pictures drawn beside it take a core from a work-group
-// that the kernel's end then waits for; the host reference runs on one thread.
-bool uses_every_core(const ChosenBackend& backend) {
-  return backend.context != nullptr && backend.context->device().type == "CPU";
-}
-
-}  // namespace
-
 SimResult simulate(const CaseConfig& config, const MeshInputs& inputs, NodeSet& nodes, const SimState* resume,
                    const SimulateHooks* hooks, RunPhases* run) {
   RunPhases local(false);
@@ -330,8 +319,6 @@ SimResult simulate(const CaseConfig& config, const MeshInputs& inputs, NodeSet& 
   const ChosenBackend backend = hooks && hooks->backend
                                     ? hooks->backend(note)
                                     : choose_backend(config.simulation.device, config.simulation.precision, note);
-  PictureHold* const held = hooks ? hooks->pictures : nullptr;
-  if (held != nullptr && !uses_every_core(backend)) held->release();
   SimOptions options = simulation_options(config);
   options.stop = hooks && hooks->stop ? hooks->stop : &InterruptGuard::flag();
   options.resume = resume;
@@ -367,7 +354,6 @@ SimResult simulate(const CaseConfig& config, const MeshInputs& inputs, NodeSet& 
   SimResult result;
   try {
     result = backend.simulator->run(nodes, inputs.node_tree(), inputs.field(), options, callbacks);
-    if (held != nullptr) held->release();
   } catch (const DeviceError& e) {
     if (!saved_after) throw;
     throw DeviceError(e.what() + saved_note() + " (with --device host if the device stays unusable)");
@@ -716,14 +702,10 @@ int run_mesh(const CaseConfig& config) {
   NodeSet nodes = initial.nodes;
   // The initial pictures read `initial` while the simulation moves `nodes`.
   const PictureGuard guard(phases);
-  // Held from before they are queued, so that none is started before the backend is known
-  // (SimulateHooks::pictures); released at the latest when the simulation ends.
-  PictureHold hold_initial(phases);
   write_initial_outputs(config, inputs, initial, &phases);
   // Stage 5: the simulation (none with --iterations 0: the initial distribution is meshed).
   if (config.simulation.iterations > 0) {
     SimulateHooks hooks;
-    hooks.pictures = &hold_initial;
     hooks.backend = [&prepared](const std::function<void(const std::string&)>& note) {
       PreparedBackend p = prepared.get();
       for (const std::string& line : p.notes) note(line);
@@ -732,7 +714,6 @@ int run_mesh(const CaseConfig& config) {
     };
     simulate(config, inputs, nodes, nullptr, &hooks, &phases);
   }
-  hold_initial.release();
   // Stage 6: the mesh, its quality and its files.
   mesh_and_measure(config, inputs, nodes, &phases);
   report_phases(config, phases);

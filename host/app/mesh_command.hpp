@@ -117,10 +117,6 @@ struct SimulateHooks {
   // The backend when the caller set it up beforehand (run_mesh does, on a thread, while the spacing
   // field is built); it passes its notes to `note`. Empty: simulate() calls choose_backend.
   std::function<ChosenBackend(const std::function<void(const std::string&)>& note)> backend;
-  // Pictures the caller queued and holds (run_mesh: the initial ones). simulate() releases them as
-  // soon as the backend is known to leave a core free (a GPU, the one-thread host reference), else
-  // once the iterations are done: a CPU OpenCL device runs its kernels on every core.
-  PictureHold* pictures = nullptr;
 };
 
 // Stage 6: the particle dynamics simulation on the chosen backend, updating `nodes` in place, until

@@ -47,8 +47,6 @@ RunPhases::RunPhases(bool background)
 RunPhases::~RunPhases() {
   {
     std::unique_lock lock(mutex_);
-    held_ = 0;  // a hold left over must not keep the queue from draining
-    cv_.notify_all();
     cv_.wait(lock, [this] { return pending_ == 0; });
     stopping_ = true;
   }
@@ -117,7 +115,7 @@ void RunPhases::picture(std::string name, std::function<void()> job) {
 void RunPhases::worker() {
   std::unique_lock lock(mutex_);
   for (;;) {
-    cv_.wait(lock, [this] { return stopping_ || (!queue_.empty() && held_ == 0); });
+    cv_.wait(lock, [this] { return stopping_ || !queue_.empty(); });
     if (queue_.empty()) return;  // stopping, nothing left
     run_job(lock);
   }
@@ -156,19 +154,6 @@ void RunPhases::wait_pictures() {
     std::swap(error, error_);
   }
   if (error) std::rethrow_exception(error);
-}
-
-void RunPhases::hold_pictures() {
-  std::lock_guard lock(mutex_);
-  ++held_;
-}
-
-void RunPhases::release_pictures() {
-  {
-    std::lock_guard lock(mutex_);
-    if (held_ > 0) --held_;
-  }
-  cv_.notify_all();
 }
 
 PictureGuard::~PictureGuard() {

@@ -65,12 +65,6 @@ class RunPhases {
   // rethrows the error of the earliest queued job that threw (once; queue order, not completion order,
   // so the same error whichever thread drew which picture).
   void wait_pictures();
-  // While held (a count: every hold_pictures needs its release_pictures) the background thread
-  // starts no picture; queued ones wait, and wait_pictures() still draws them on its caller. A run on
-  // a CPU OpenCL device holds them during the simulation, whose kernels keep every core busy
-  // (docs/performance.md, "Whole command, session 7").
-  void hold_pictures();
-  void release_pictures();
 
   // Adds a phase measured elsewhere; thread-safe.
   void add(PhaseTime t);
@@ -105,7 +99,6 @@ class RunPhases {
   std::uint64_t next_seq_ = 0;
   std::size_t pending_ = 0;  // queued or running
   bool stopping_ = false;
-  int held_ = 0;  // hold_pictures() calls not yet released
   std::exception_ptr error_;
   std::uint64_t error_seq_ = 0;  // the queue position of error_'s job
   std::thread thread_;
@@ -122,23 +115,6 @@ class PictureGuard {
 
  private:
   RunPhases& phases_;
-};
-
-// Holds the pictures of `phases` from construction until release() or destruction (at most one
-// release either way).
-class PictureHold {
- public:
-  explicit PictureHold(RunPhases& phases) : phases_(&phases) { phases.hold_pictures(); }
-  ~PictureHold() { release(); }
-  PictureHold(const PictureHold&) = delete;
-  PictureHold& operator=(const PictureHold&) = delete;
-  void release() {
-    if (phases_ != nullptr) phases_->release_pictures();
-    phases_ = nullptr;
-  }
-
- private:
-  RunPhases* phases_;
 };
 
 // Wall seconds on a steady clock (for phases timed by hand).
