@@ -141,10 +141,7 @@ __attribute__((always_inline)) void boundary_snap_body(__local REAL* values, __l
       node_leaf[i] = leaf;
       const REAL qn = bg_interpolate(leaf, u, v, bg_corner, bg_q);
       q[i] = qn;
-      const REAL2 pb = xy_build[i];
-      const REAL ex = on.x - pb.x, ey = on.y - pb.y;
-      const REAL grow = qn > q_build[i] ? cutoff * (qn - q_build[i]) : (REAL)0;
-      skin_use = (sqrt(ex * ex + ey * ey) + grow) / (skin_cutoff * q_build[i]);
+      skin_use = skin_use_of(on, qn, xy_build[i], q_build[i], cutoff, skin_cutoff);
     }
   }
   values[l] = clamped;

@@ -136,12 +136,7 @@ void device_step(const int n, const REAL cutoff, const REAL lj_a, const int r0_a
     // A move that is not finite halts the iteration for the host (counters[COUNTER_NON_FINITE]): boundary_snap then
     // writes nothing, so the state before this step stays whole on the device.
     if (moving && !(isfinite(dx) && isfinite(dy) && isfinite(xn) && isfinite(yn))) atomic_or(&counters[COUNTER_NON_FINITE], 1);
-    if (!host && kind_i == 2) {
-      const REAL2 pb = xy_build[i];
-      const REAL ex = xn - pb.x, ey = yn - pb.y;
-      const REAL grow = qn > q_build[i] ? cutoff * (qn - q_build[i]) : (REAL)0;
-      skin_use = (sqrt(ex * ex + ey * ey) + grow) / (skin_cutoff * q_build[i]);
-    }
+    if (!host && kind_i == 2) skin_use = skin_use_of((REAL2)(xn, yn), qn, xy_build[i], q_build[i], cutoff, skin_cutoff);
   }
   values[l] = f;
   values[WG_SIZE + l] = kinetic;
@@ -180,11 +175,7 @@ void refresh_budgets(const int n, __global int* counters, __global int* cand_ind
     const REAL fresh = clearance_refresh(ex, ey, xn, yn, segs, n_segs, seg_scale);
     if (fresh > (REAL)0) {
       budget[i] = fresh;
-      const REAL qn = q_next[i];
-      const REAL2 pb = xy_build[i];
-      const REAL bx = xn - pb.x, by = yn - pb.y;
-      const REAL grow = qn > q_build[i] ? cutoff * (qn - q_build[i]) : (REAL)0;
-      skin_use = (sqrt(bx * bx + by * by) + grow) / (skin_cutoff * q_build[i]);
+      skin_use = skin_use_of((REAL2)(xn, yn), q_next[i], xy_build[i], q_build[i], cutoff, skin_cutoff);
     } else {
       cand_index[k] = i;
       atomic_or(&counters[COUNTER_HOST], 1);

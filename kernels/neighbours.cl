@@ -242,6 +242,16 @@ void row_level_tally(const int n, __global const uchar* kind, __global const int
     if (sums[k]) atomic_add(&tally[k], sums[k]);
 }
 
+// The share of node i's skin its position p and spacing qn have used since the lists were built
+// (position pb, spacing qb): its distance from pb plus the cut-off's growth with q, over the skin.
+// One expression for device_step, refresh_budgets and boundary_snap, so that they agree bit for bit.
+REAL skin_use_of(const REAL2 p, const REAL qn, const REAL2 pb, const REAL qb, const REAL cutoff,
+                 const REAL skin_cutoff) {
+  const REAL ex = p.x - pb.x, ey = p.y - pb.y;
+  const REAL grow = qn > qb ? cutoff * (qn - qb) : (REAL)0;
+  return (sqrt(ex * ex + ey * ey) + grow) / (skin_cutoff * qb);
+}
+
 // Insertion sort of entries[base .. base + c) ascending (rows are short and nearly sorted by cell order).
 void sort_row(__global int* entries, const ulong base, const int c) {
   for (int a = 1; a < c; ++a) {

@@ -15,18 +15,14 @@
 namespace pdmesh {
 namespace {
 
-// 0..63 for a base64 character, -1 for anything else; by table, since large arrays decode
-// hundreds of millions of characters.
+constexpr char kBase64Alphabet[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+
+// 0..63 for a base64 character, -1 for anything else (the alphabet inverted); by table, since large
+// arrays decode hundreds of millions of characters.
 constexpr std::array<signed char, 256> kBase64Values = [] {
   std::array<signed char, 256> t{};
   for (auto& v : t) v = -1;
-  for (int i = 0; i < 26; ++i) {
-    t['A' + i] = static_cast<signed char>(i);
-    t['a' + i] = static_cast<signed char>(26 + i);
-  }
-  for (int i = 0; i < 10; ++i) t['0' + i] = static_cast<signed char>(52 + i);
-  t['+'] = 62;
-  t['/'] = 63;
+  for (int i = 0; i < 64; ++i) t[static_cast<unsigned char>(kBase64Alphabet[i])] = static_cast<signed char>(i);
   return t;
 }();
 int base64_value(char c) { return kBase64Values[static_cast<unsigned char>(c)]; }
@@ -62,8 +58,6 @@ double load_value(const unsigned char* p, const VtuType& t, bool big_endian) {
   const auto s = static_cast<std::int64_t>(bits << shift) >> shift;
   return static_cast<double>(s);
 }
-
-constexpr char kBase64Alphabet[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
 
 }  // namespace
 

@@ -184,20 +184,9 @@ NeighbourFlags DeviceNeighbours<Real>::build(std::size_t n, double radius_factor
       std::vector<std::uint32_t> tally;
       bin_state_.download(ctx_.queue(), state, kBinHead, false);
       tally_.download(ctx_.queue(), tally, kTallySize);
-      if (state[kBinFirstInvalid] < static_cast<std::int32_t>(n)) {
-        flags.first_invalid = state[kBinFirstInvalid];
-        counted_n_ = 0;
-        break;
-      }
-      if (state[kBinTooManyLevels])
-        throw SimulationError(fmt::format("the list radii of the nodes span more than 2^{}: the device binning has "
-                                          "{} grid levels at most",
-                                          kBinLevels, kBinLevels));
-      member_capacity_ =
-          std::max<std::uint64_t>(member_capacity_, with_slack(static_cast<std::uint64_t>(state[kBinMembers])));
-      bucket_capacity_ =
-          std::max<std::uint64_t>(bucket_capacity_, with_slack(static_cast<std::uint64_t>(state[kBinBuckets])));
-      if (state[kBinTooSmall] == 0) {
+      bool grids_fit = false;
+      if (!take_bin_state(n, flags, grids_fit)) break;
+      if (grids_fit) {
         binned = true;
         estimate = true;
         sampled = true;
@@ -233,18 +222,8 @@ NeighbourFlags DeviceNeighbours<Real>::build(std::size_t n, double radius_factor
     // The build's one wait: the counters and the binning's state.
     bin_state_.download(ctx_.queue(), state, kBinHead, false);
     counters_.download(ctx_.queue(), c, kZeroCounters.size());
-    if (state[kBinFirstInvalid] < static_cast<std::int32_t>(n)) {
-      flags.first_invalid = state[kBinFirstInvalid];
-      counted_n_ = 0;  // the counts are of no rows
-      break;
-    }
-    if (state[kBinTooManyLevels])
-      throw SimulationError(fmt::format("the list radii of the nodes span more than 2^{}: the device binning has {} "
-                                        "grid levels at most",
-                                        kBinLevels, kBinLevels));
-    const bool grids_fit = state[kBinTooSmall] == 0;
-    member_capacity_ = std::max<std::uint64_t>(member_capacity_, with_slack(static_cast<std::uint64_t>(state[kBinMembers])));
-    bucket_capacity_ = std::max<std::uint64_t>(bucket_capacity_, with_slack(static_cast<std::uint64_t>(state[kBinBuckets])));
+    bool grids_fit = false;
+    if (!take_bin_state(n, flags, grids_fit)) break;
     if (grids_fit) {
       binned = true;
       have_counts = true;
@@ -267,6 +246,27 @@ NeighbourFlags DeviceNeighbours<Real>::build(std::size_t n, double radius_factor
   }
   gather_seconds = seconds_since(t0);
   return flags;
+}
+
+// The binning's state after a wait (state_host_): false when a node is invalid (flags.first_invalid
+// set; no rows are built, and the counts are of no rows). Otherwise the grid capacities grow to what
+// the binning needed, and grids_fit says whether these grids held every node.
+template <typename Real>
+bool DeviceNeighbours<Real>::take_bin_state(std::size_t n, NeighbourFlags& flags, bool& grids_fit) {
+  const std::vector<std::int32_t>& state = state_host_;
+  if (state[kBinFirstInvalid] < static_cast<std::int32_t>(n)) {
+    flags.first_invalid = state[kBinFirstInvalid];
+    counted_n_ = 0;
+    return false;
+  }
+  if (state[kBinTooManyLevels])
+    throw SimulationError(fmt::format("the list radii of the nodes span more than 2^{}: the device binning has {} "
+                                      "grid levels at most",
+                                      kBinLevels, kBinLevels));
+  member_capacity_ = std::max<std::uint64_t>(member_capacity_, with_slack(static_cast<std::uint64_t>(state[kBinMembers])));
+  bucket_capacity_ = std::max<std::uint64_t>(bucket_capacity_, with_slack(static_cast<std::uint64_t>(state[kBinBuckets])));
+  grids_fit = state[kBinTooSmall] == 0;
+  return true;
 }
 
 template <typename Real>

@@ -83,6 +83,7 @@ class DeviceNeighbours {
               Buffer<std::int32_t>& prev, Buffer<std::int32_t>& next, cl_ulong entries_size,
               std::uint64_t spill_capacity, bool counting, int stride);
   std::uint64_t set_level_caps(const std::vector<std::uint32_t>& tally, int stride);
+  bool take_bin_state(std::size_t n, NeighbourFlags& flags, bool& grids_fit);
 
   Context& ctx_;
   StepProgram& program_;
