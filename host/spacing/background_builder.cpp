@@ -28,21 +28,27 @@ double BackgroundBuilder::coord(double origin, std::uint32_t lattice) const {
 
 double BackgroundBuilder::side(int level) const { return std::ldexp(root_size_, -level); }
 
-double BackgroundBuilder::sample(std::uint32_t x, std::uint32_t y) const { return samples_.at(key(x, y)); }
+double BackgroundBuilder::sample(std::uint32_t x, std::uint32_t y) const {
+  return values_[static_cast<std::size_t>(samples_.at(key(x, y)))];
+}
 
-void BackgroundBuilder::sample_all(const std::vector<std::uint64_t>& keys) {
-  std::vector<std::uint64_t> fresh;
+void BackgroundBuilder::sample_all(const std::vector<std::uint64_t>& keys, std::vector<std::int32_t>& ids) {
+  // New samples take the next ids in the order of their first key: the values land in values_ by id,
+  // with no second lookup, and callers keep the ids instead of looking keys up again.
+  const std::size_t first = values_.size();
   std::vector<Vec2> points;
-  for (const std::uint64_t k : keys) {
-    if (!samples_.try_emplace(k, 0.0).second) continue;
-    fresh.push_back(k);
-    points.push_back(point(static_cast<std::uint32_t>(k >> 32), static_cast<std::uint32_t>(k & 0xffffffffu)));
+  ids.resize(keys.size());
+  for (std::size_t i = 0; i < keys.size(); ++i) {
+    const std::uint64_t k = keys[i];
+    const auto [id, fresh] = samples_.try_emplace(k, static_cast<std::int32_t>(first + points.size()));
+    ids[i] = *id;
+    if (fresh) points.push_back(point(static_cast<std::uint32_t>(k >> 32), static_cast<std::uint32_t>(k & 0xffffffffu)));
   }
   if (points.empty()) return;
   std::vector<double> q;
   exact_->at_many(points, q);
   ++batches_;
-  for (std::size_t i = 0; i < fresh.size(); ++i) *samples_.find(fresh[i]) = q[i];
+  values_.insert(values_.end(), q.begin(), q.end());
 }
 
 // The square: the extents' bounding square grown by 1/64 so that points off the grid are outside the
@@ -129,8 +135,10 @@ void BackgroundBuilder::build() {
   for (std::size_t k = 0; k < roots.size(); ++k) roots[k] = static_cast<int>(k);
   refine(
       std::move(roots), [this](const Cell& c, const double q[4]) { return default_decide(c, q); },
-      [this](const Cell&, const double q[4], const double exact[9], int count) { return default_test(q, exact, count); },
-      [this](const Cell&, std::uint32_t x, std::uint32_t y) { return sample(x, y); });
+      [this](const Cell&, const double q[4], const double exact[9], const std::int32_t*, int count) {
+        return default_test(q, exact, count);
+      },
+      [this](const Cell&, std::uint32_t, std::uint32_t, std::int32_t id) { return sample_value(id); });
 }
 
 BackgroundBuilder::Decision BackgroundBuilder::default_decide(const Cell& c, const double q[4]) const {
@@ -157,6 +165,7 @@ std::size_t BackgroundBuilder::refine(std::vector<int> level_cells, const Decide
                                       const CornerFn& corner_value, const SampledFn& sampled) {
   std::size_t splits = 0;
   std::vector<std::uint64_t> keys;
+  std::vector<std::int32_t> ids;
   std::vector<int> tested, next;
   std::vector<double> corners;  // 4 per cell of the level
   while (!level_cells.empty()) {
@@ -168,8 +177,10 @@ std::size_t BackgroundBuilder::refine(std::vector<int> level_cells, const Decide
       for (const std::uint32_t dy : {0u, s})
         for (const std::uint32_t dx : {0u, s}) keys.push_back(key(c.x + dx, c.y + dy));
     }
-    sample_all(keys);
-    if (sampled) sampled(keys);
+    sample_all(keys, ids);
+    for (std::size_t n = 0; n < level_cells.size(); ++n)
+      std::copy_n(ids.begin() + static_cast<std::ptrdiff_t>(4 * n), 4, cells_[static_cast<std::size_t>(level_cells[n])].corner);
+    if (sampled) sampled(keys, ids);
     corners.resize(4 * level_cells.size());
     std::vector<Decision> decision(level_cells.size());
     keys.clear();
@@ -178,10 +189,10 @@ std::size_t BackgroundBuilder::refine(std::vector<int> level_cells, const Decide
       const Cell& c = cells_[static_cast<std::size_t>(level_cells[n])];
       const std::uint32_t s = span(c.level);
       double* q = &corners[4 * n];
-      q[0] = corner_value(c, c.x, c.y);
-      q[1] = corner_value(c, c.x + s, c.y);
-      q[2] = corner_value(c, c.x, c.y + s);
-      q[3] = corner_value(c, c.x + s, c.y + s);
+      q[0] = corner_value(c, c.x, c.y, c.corner[0]);
+      q[1] = corner_value(c, c.x + s, c.y, c.corner[1]);
+      q[2] = corner_value(c, c.x, c.y + s, c.corner[2]);
+      q[3] = corner_value(c, c.x + s, c.y + s, c.corner[3]);
       decision[n] = decide(c, q);
       if (decision[n] != Decision::Test) continue;
       tested.push_back(static_cast<int>(n));
@@ -195,32 +206,39 @@ std::size_t BackgroundBuilder::refine(std::vector<int> level_cells, const Decide
     // the cells these did not already split, the quarter points. Evaluating all 9 at once costs a
     // third more samples on 30P30N than the per-point builder, whose tests stop at the first failure.
     std::vector<double> exact(9 * tested.size());
+    std::vector<std::int32_t> test_ids(9 * tested.size());
+    std::vector<std::size_t> first_key(tested.size());  // where tested cell m's keys start in this round's batch
+    for (std::size_t m = 0; m < tested.size(); ++m) first_key[m] = kFirstQuarterTest * m;
     for (const int round : {0, 1}) {
       if (round == 1) {
         keys.clear();
-        for (const int n : tested) {
-          if (decision[static_cast<std::size_t>(n)] == Decision::Split) continue;
-          const Cell& c = cells_[static_cast<std::size_t>(level_cells[static_cast<std::size_t>(n)])];
+        for (std::size_t m = 0; m < tested.size(); ++m) {
+          const auto n = static_cast<std::size_t>(tested[m]);
+          if (decision[n] == Decision::Split) continue;
+          first_key[m] = keys.size();
+          const Cell& c = cells_[static_cast<std::size_t>(level_cells[n])];
           const std::uint32_t quarter = span(c.level) / 4;
           for (int t = kFirstQuarterTest; t < 9; ++t)
             keys.push_back(key(c.x + quarter * static_cast<std::uint32_t>(kTests[t][0]),
                                c.y + quarter * static_cast<std::uint32_t>(kTests[t][1])));
         }
       }
-      sample_all(keys);
-      if (sampled) sampled(keys);
+      sample_all(keys, ids);
+      if (sampled) sampled(keys, ids);
       // The tests only read (the samples, the caller's state), and each writes its own cell's decision:
       // on all cores, with the decisions of one loop.
       parallel_for(tested.size(), [&](std::size_t m) {
         const auto n = static_cast<std::size_t>(tested[m]);
         if (round == 1 && decision[n] == Decision::Split) return;
         const Cell& c = cells_[static_cast<std::size_t>(level_cells[n])];
-        const std::uint32_t quarter = span(c.level) / 4;
+        const int from = round == 0 ? 0 : kFirstQuarterTest;
         const int count = round == 0 ? kFirstQuarterTest : 9;
-        for (int t = round == 0 ? 0 : kFirstQuarterTest; t < count; ++t)
-          exact[9 * m + static_cast<std::size_t>(t)] = sample(c.x + quarter * static_cast<std::uint32_t>(kTests[t][0]),
-                                                              c.y + quarter * static_cast<std::uint32_t>(kTests[t][1]));
-        const bool split = test(c, &corners[4 * n], &exact[9 * m], count);
+        for (int t = from; t < count; ++t) {
+          const std::int32_t id = ids[first_key[m] + static_cast<std::size_t>(t - from)];
+          test_ids[9 * m + static_cast<std::size_t>(t)] = id;
+          exact[9 * m + static_cast<std::size_t>(t)] = values_[static_cast<std::size_t>(id)];
+        }
+        const bool split = test(c, &corners[4 * n], &exact[9 * m], &test_ids[9 * m], count);
         decision[n] = split ? Decision::Split : round == 0 ? Decision::Test : Decision::Leaf;
       }, kTestsPerThread);
     }
@@ -245,6 +263,7 @@ std::size_t BackgroundBuilder::refine(std::vector<int> level_cells, const Decide
         child.x = p.x + (k & 1 ? h : 0u);
         child.y = p.y + (k & 2 ? h : 0u);
         child.level = static_cast<std::int8_t>(p.level + 1);
+        child.parent = static_cast<std::int32_t>(parent);
         Box b;
         b.lo = point(child.x, child.y);
         b.hi = point(child.x + h, child.y + h);
@@ -297,12 +316,16 @@ BackgroundFieldData BackgroundBuilder::emit(const ValueFn& corner_value) const {
   d.root_size = root_size_;
   d.inv_root_size = 1.0 / root_size_;
   d.grid = grid_;
-  FlatKeyMap<std::int32_t> corner_ids;
+  // Distinct corners numbered in the order first reached, by sample id (every leaf corner is a sample).
+  std::vector<std::int32_t> corner_ids(values_.size(), -1);
   const std::uint32_t below_root = (std::uint32_t{1} << resolution_) - 1;
-  auto corner = [&](std::uint32_t x, std::uint32_t y) {
-    const auto [id, inserted] = corner_ids.try_emplace(key(x, y), static_cast<std::int32_t>(d.corner_q.size()));
-    if (inserted) d.corner_q.push_back(corner_value ? corner_value(x, y) : sample(x, y));
-    return *id;
+  auto corner = [&](std::int32_t sample_id) {
+    std::int32_t& id = corner_ids[static_cast<std::size_t>(sample_id)];
+    if (id < 0) {
+      id = static_cast<std::int32_t>(d.corner_q.size());
+      d.corner_q.push_back(corner_value ? corner_value(sample_id) : values_[static_cast<std::size_t>(sample_id)]);
+    }
+    return id;
   };
   auto new_node = [&] {
     d.node_child.push_back(-1);
@@ -321,8 +344,7 @@ BackgroundFieldData BackgroundBuilder::emit(const ValueFn& corner_value) const {
       d.leaf_cell.push_back(c.level);
       d.leaf_cell.push_back(static_cast<std::int32_t>((c.x & below_root) >> (resolution_ - c.level)));
       d.leaf_cell.push_back(static_cast<std::int32_t>((c.y & below_root) >> (resolution_ - c.level)));
-      const std::uint32_t s = span(c.level);
-      for (const auto& [dx, dy] : {std::pair{0u, 0u}, {s, 0u}, {0u, s}, {s, s}}) d.leaf_corner.push_back(corner(c.x + dx, c.y + dy));
+      for (const std::int32_t id : c.corner) d.leaf_corner.push_back(corner(id));
       return;
     }
     const int first = new_node();
