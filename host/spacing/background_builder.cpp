@@ -169,17 +169,23 @@ std::size_t BackgroundBuilder::refine(std::vector<int> level_cells, const Decide
   std::vector<int> tested, next;
   std::vector<double> corners;  // 4 per cell of the level
   while (!level_cells.empty()) {
-    // 1. The corners of every cell of the level, in one batch.
+    // 1. The corners of every cell of the level, in one batch. Most are known already: a child's
+    // corners are its parent's corners and test points (step 3), and a leaf refined again keeps its
+    // own. Only the others are looked up (or sampled): the same new samples in the same order.
     keys.clear();
-    for (const int i : level_cells) {
-      const Cell& c = cells_[static_cast<std::size_t>(i)];
+    std::vector<std::size_t> unknown;  // 4 n + k: corner k of level_cells[n]
+    for (std::size_t n = 0; n < level_cells.size(); ++n) {
+      const Cell& c = cells_[static_cast<std::size_t>(level_cells[n])];
       const std::uint32_t s = span(c.level);
-      for (const std::uint32_t dy : {0u, s})
-        for (const std::uint32_t dx : {0u, s}) keys.push_back(key(c.x + dx, c.y + dy));
+      for (int k = 0; k < 4; ++k) {
+        if (c.corner[k] >= 0) continue;
+        keys.push_back(key(c.x + (k & 1 ? s : 0u), c.y + (k & 2 ? s : 0u)));
+        unknown.push_back(4 * n + static_cast<std::size_t>(k));
+      }
     }
     sample_all(keys, ids);
-    for (std::size_t n = 0; n < level_cells.size(); ++n)
-      std::copy_n(ids.begin() + static_cast<std::ptrdiff_t>(4 * n), 4, cells_[static_cast<std::size_t>(level_cells[n])].corner);
+    for (std::size_t i = 0; i < unknown.size(); ++i)
+      cells_[static_cast<std::size_t>(level_cells[unknown[i] / 4])].corner[unknown[i] % 4] = ids[i];
     if (sampled) sampled(keys, ids);
     corners.resize(4 * level_cells.size());
     std::vector<Decision> decision(level_cells.size());
@@ -245,8 +251,21 @@ std::size_t BackgroundBuilder::refine(std::vector<int> level_cells, const Decide
     // 3. Children of the split cells: the next level.
     next.clear();
     const auto& segs = tree_.geometry().segments;
+    std::vector<std::int32_t> tested_as(level_cells.size(), -1);  // n -> m
+    for (std::size_t m = 0; m < tested.size(); ++m) tested_as[static_cast<std::size_t>(tested[m])] = static_cast<std::int32_t>(m);
     for (std::size_t n = 0; n < level_cells.size(); ++n) {
       if (decision[n] != Decision::Split) continue;
+      // The sample ids at the parent's points in quarters (0, 2, 4 each way): its corners, and its
+      // centre and edge midpoints when it was tested (else -1: step 1 looks them up).
+      std::int32_t at[3][3];
+      for (auto& row : at) std::fill(row, row + 3, -1);
+      {
+        const Cell& c = cells_[static_cast<std::size_t>(level_cells[n])];
+        for (int k = 0; k < 4; ++k) at[k & 2 ? 2 : 0][k & 1 ? 2 : 0] = c.corner[k];
+        if (tested_as[n] >= 0)
+          for (int t = 0; t < kFirstQuarterTest; ++t)
+            at[kTests[t][1] / 2][kTests[t][0] / 2] = test_ids[9 * static_cast<std::size_t>(tested_as[n]) + static_cast<std::size_t>(t)];
+      }
       ++splits;
       const auto parent = static_cast<std::size_t>(level_cells[n]);
       const auto first = static_cast<std::int32_t>(cells_.size());
@@ -264,6 +283,7 @@ std::size_t BackgroundBuilder::refine(std::vector<int> level_cells, const Decide
         child.y = p.y + (k & 2 ? h : 0u);
         child.level = static_cast<std::int8_t>(p.level + 1);
         child.parent = static_cast<std::int32_t>(parent);
+        for (int j = 0; j < 4; ++j) child.corner[j] = at[(k & 2 ? 1 : 0) + (j & 2 ? 1 : 0)][(k & 1 ? 1 : 0) + (j & 1 ? 1 : 0)];
         Box b;
         b.lo = point(child.x, child.y);
         b.hi = point(child.x + h, child.y + h);
