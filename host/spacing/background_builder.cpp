@@ -14,6 +14,8 @@ namespace pdmesh {
 namespace {
 // Cells tested per thread at least (a test is a few lookups and nine interpolations).
 constexpr std::size_t kTestsPerThread = 2048;
+// New cells set up per thread at least (a few exact segment-box tests, or one inside test, each).
+constexpr std::size_t kChildrenPerThread = 1024;
 }  // namespace
 
 BackgroundBuilder::BackgroundBuilder(const SpacingField& exact, const GeometryTree& tree,
@@ -79,9 +81,14 @@ void BackgroundBuilder::choose_grid() {
 }
 
 void BackgroundBuilder::set_tag(Cell& c, std::vector<int> segments) {
+  const std::uint32_t half = span(c.level) / 2;
+  const bool inside = segments.empty() && tree_.inside(point(c.x + half, c.y + half));
+  set_tag(c, std::move(segments), inside);
+}
+
+void BackgroundBuilder::set_tag(Cell& c, std::vector<int> segments, bool inside) {
   if (segments.empty()) {
-    const std::uint32_t half = span(c.level) / 2;
-    c.tag = static_cast<std::int8_t>(tree_.inside(point(c.x + half, c.y + half)) ? kTagInside : kTagOutside);
+    c.tag = static_cast<std::int8_t>(inside ? kTagInside : kTagOutside);
     return;
   }
   c.tag = kTagBoundary;
@@ -253,6 +260,7 @@ std::size_t BackgroundBuilder::refine(std::vector<int> level_cells, const Decide
     const auto& segs = tree_.geometry().segments;
     std::vector<std::int32_t> tested_as(level_cells.size(), -1);  // n -> m
     for (std::size_t m = 0; m < tested.size(); ++m) tested_as[static_cast<std::size_t>(tested[m])] = static_cast<std::int32_t>(m);
+    std::vector<std::vector<int>> parent_lists;  // per split cell, in order: its segments
     for (std::size_t n = 0; n < level_cells.size(); ++n) {
       if (decision[n] != Decision::Split) continue;
       // The sample ids at the parent's points in quarters (0, 2, 4 each way): its corners, and its
@@ -271,9 +279,9 @@ std::size_t BackgroundBuilder::refine(std::vector<int> level_cells, const Decide
       const auto first = static_cast<std::int32_t>(cells_.size());
       cells_[parent].first_child = first;
       const Cell p = cells_[parent];
-      std::vector<int> parent_segments;
+      parent_lists.emplace_back();
       if (p.segments >= 0) {
-        parent_segments = std::move(segment_lists_[static_cast<std::size_t>(p.segments)]);
+        parent_lists.back() = std::move(segment_lists_[static_cast<std::size_t>(p.segments)]);
         cells_[parent].segments = -1;  // an inner cell needs no list (the vector was moved out)
       }
       const std::uint32_t h = span(p.level) / 2;
@@ -284,18 +292,29 @@ std::size_t BackgroundBuilder::refine(std::vector<int> level_cells, const Decide
         child.level = static_cast<std::int8_t>(p.level + 1);
         child.parent = static_cast<std::int32_t>(parent);
         for (int j = 0; j < 4; ++j) child.corner[j] = at[(k & 2 ? 1 : 0) + (j & 2 ? 1 : 0)][(k & 1 ? 1 : 0) + (j & 1 ? 1 : 0)];
-        Box b;
-        b.lo = point(child.x, child.y);
-        b.hi = point(child.x + h, child.y + h);
-        std::vector<int> child_segments;
-        for (const int i : parent_segments)
-          if (segment_touches_box(segs[static_cast<std::size_t>(i)].a, segs[static_cast<std::size_t>(i)].b, b))
-            child_segments.push_back(i);
-        set_tag(child, std::move(child_segments));
         cells_.push_back(child);
         next.push_back(first + k);
       }
     }
+    // The children's segment lists (exact segment-box tests) and, for those without segments, the
+    // inside test of their centre: on all cores, each child writing its own entries; then the tags in
+    // the children's order, as set_tag always numbered the lists.
+    std::vector<std::vector<int>> child_segments(next.size());
+    std::vector<std::uint8_t> inside(next.size(), 0);
+    parallel_for(next.size(), [&](std::size_t i) {
+      const Cell& child = cells_[static_cast<std::size_t>(next[i])];
+      const std::uint32_t h = span(child.level);
+      Box b;
+      b.lo = point(child.x, child.y);
+      b.hi = point(child.x + h, child.y + h);
+      for (const int s : parent_lists[i / 4])
+        if (segment_touches_box(segs[static_cast<std::size_t>(s)].a, segs[static_cast<std::size_t>(s)].b, b))
+          child_segments[i].push_back(s);
+      if (child_segments[i].empty()) inside[i] = tree_.inside(point(child.x + h / 2, child.y + h / 2)) ? 1 : 0;
+    }, kChildrenPerThread);
+    parent_lists.clear();
+    for (std::size_t i = 0; i < next.size(); ++i)
+      set_tag(cells_[static_cast<std::size_t>(next[i])], std::move(child_segments[i]), inside[i] != 0);
     level_cells.swap(next);
   }
   return splits;

@@ -100,6 +100,8 @@ class BackgroundBuilder {
   void make_roots();
   // Sets a new cell's tag from its segment list (exact inside test of the centre when empty).
   void set_tag(Cell& c, std::vector<int> segments);
+  // The same with the inside test of its centre done (used when segments is empty).
+  void set_tag(Cell& c, std::vector<int> segments, bool inside);
 
   const SpacingField* exact_;
   const GeometryTree& tree_;
