@@ -1,0 +1,172 @@
+// `pdmesh mesh`, stages 1-3: the inputs (geometry, trees, spacing pipeline, boundary nodes), the node
+// limit and the initial distribution.
+#include "app/mesh_command.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <fmt/format.h>
+
+#include "app/case_spacing.hpp"
+#include "core/errors.hpp"
+#include "geometry/geometry_files.hpp"
+#include "spacing/mesh_spacing.hpp"
+#include "spacing/resolution_check.hpp"
+
+namespace pdmesh {
+
+MeshInputs::MeshInputs(const CaseConfig& config) {
+  std::vector<std::string> files;
+  for (const std::filesystem::path& f : config.geometry.files) files.push_back(f.string());
+  GeometryOptions options;
+  options.join_tolerance = config.geometry.join_tolerance;
+  options.corner_angle_deg = config.geometry.corner_angle;
+  geometry = config.geometry.given_curves.empty()
+                 ? read_geometry(files, config.geometry.curve_names, options)
+                 : geometry_from_curves(config.geometry.given_curves, config.geometry.curve_names, options);
+  // Curve names are fields in node and mesh files; one with white space would break them later.
+  for (std::size_t c = 0; c < geometry.curves.size(); ++c) {
+    const std::string& name = geometry.curves[c].name;
+    if (name.empty() || name.find_first_of(" \t\r\n") != std::string::npos) {
+      throw InputError(fmt::format("{}:{}: curve {} name '{}' is empty or contains white space; name the curves "
+                                   "with geometry.curve_names",
+                                   geometry.curves[c].file, geometry.curves[c].line, c, name));
+    }
+  }
+  tree = std::make_unique<GeometryTree>(geometry);
+  spacing_options = pdmesh::spacing_options(config);
+  check_spacing_options(spacing_options);
+  source_ = config.source.string();
+  max_nodes_ = config.max_nodes;
+  const auto spacing_start = std::chrono::steady_clock::now();
+  spacing = make_case_spacing(config, *tree);
+  if (const auto* m = dynamic_cast<const MeshSpacing*>(spacing.get())) {
+    const MeshFieldData& d = m->data();
+    const auto [lo, hi] = std::minmax_element(d.q.begin(), d.q.end());
+    spacing_summary = fmt::format("spacing: '{}' on {} ({} triangles, {} points, q from {:.4g} to {:.4g}), read, checked and "
+                                  "indexed in {:.3f} s",
+                                  d.array, d.file, d.triangles.size(), d.points.size(), *lo, *hi,
+                                  std::chrono::duration<double>(std::chrono::steady_clock::now() - spacing_start).count());
+  }
+  // Before anything else uses them: with unresolvable coordinates the node estimate's tree could
+  // refine without end.
+  check_coordinate_resolution(geometry, *spacing);
+  boundary_rule = config.boundary.nodes;
+  if (config.geometry.curves == CurveKind::Smooth) {
+    DenseOptions dense_options;
+    dense_options.join_tolerance = config.geometry.join_tolerance;
+    try {
+      dense = std::make_unique<DenseGeometry>(
+          make_dense_geometry(SmoothCurves(geometry, config.geometry.corner_angle), *spacing, dense_options));
+    } catch (const GeometryError& e) {
+      // Smooth curves through coarse points can cross where the polylines pass close to each other.
+      smooth_fallback = e.what();
+    }
+    if (dense) {
+      check_coordinate_resolution(dense->geometry, *spacing);
+      dense_tree = std::make_unique<GeometryTree>(dense->geometry);
+    }
+  }
+}
+
+void MeshInputs::place_boundary() const {
+  if (boundary_placed_) return;
+  boundary_placed_ = true;
+  // The thesis' rule (every point of the input polyline) is applied by the initialization itself.
+  if (!dense && boundary_rule == BoundaryNodeRule::Input) return;
+  const Geometry& on = node_geometry();
+  PlacementOptions placement;
+  placement.max_nodes = max_nodes_;
+  // Placed by the final field (the pipeline's: graded, feature size, curvature), so that the boundary
+  // rows match the interior rows next to them.
+  const SpacingField& q = field();
+  const CurveStations stations = boundary_rule == BoundaryNodeRule::Spacing ? spacing_stations(on, q, placement)
+                                                                            : vertex_stations(on, &dense->vertex);
+  boundary_ = assemble_boundary_nodes(on, q, stations);
+  resolution_ = station_resolution(on, stations);
+}
+
+const NodeSet* MeshInputs::boundary_nodes() const {
+  place_boundary();
+  return boundary_ ? &*boundary_ : nullptr;
+}
+
+const std::vector<double>* MeshInputs::segment_resolution() const {
+  place_boundary();
+  return resolution_.empty() ? nullptr : &resolution_;
+}
+
+SpacingOptions spacing_options(const CaseConfig& config) {
+  SpacingOptions o;
+  o.scale = config.spacing.scale;
+  o.gradation = config.spacing.gradation;
+  o.rows_in_gap = config.spacing.rows_in_gap;
+  o.curvature_angle = config.spacing.curvature_angle;
+  // The sources' floor stays with boundary nodes placed by the field too: without it the feature size
+  // asks for q -> 0 toward sharp V tips, whose placed nodes then crowd into slivers (measured on the
+  // corpus: heatsink_channel 0.22 deg, coastline 0.47 deg without; docs/spacing.md). The final floor
+  // only serves input points as boundary nodes: placed nodes follow whatever finer field the case asks.
+  o.input_boundary_floor = kInputBoundaryFloor;
+  o.final_floor = config.boundary.nodes == BoundaryNodeRule::Input;
+  return o;
+}
+
+namespace {
+
+// The hexagonal-packing estimate against --max-nodes.
+void refuse_above_limit(const std::string& source, std::uint64_t max_nodes, double estimate, const char* which) {
+  if (!std::isfinite(estimate) || estimate > static_cast<double>(max_nodes)) {
+    throw LimitError(fmt::format("{}: the {} asks for about {:.0f} nodes (hexagonal-packing estimate), "
+                                 "more than --max-nodes {}; coarsen the spacing or raise --max-nodes",
+                                 source, which, estimate, max_nodes));
+  }
+}
+
+}  // namespace
+
+const SpacingPipeline& MeshInputs::pipeline() const {
+  if (!pipeline_) {
+    // The base field's quadtree is checked before the limits refine it (they only lower q).
+    const auto check_base = [this](const BackgroundSpacing& base_tree) {
+      refuse_above_limit(source_, max_nodes_, estimate_node_count(*tree, base_tree), "spacing field before its limits");
+    };
+    pipeline_ = std::make_unique<SpacingPipeline>(*spacing, *tree, spacing_options,
+                                                  spacing_options.modifies() ? check_base : SpacingPipeline::BaseCheck{});
+    // The sources lower q: the final field must be resolvable too.
+    if (!pipeline_->exact()) check_coordinate_resolution(geometry, pipeline_->field());
+  }
+  return *pipeline_;
+}
+
+std::vector<std::string> MeshInputs::curve_names() const {
+  std::vector<std::string> names;
+  for (const Curve& c : geometry.curves) names.push_back(c.name);
+  return names;
+}
+
+double check_node_limit(const CaseConfig& config, const MeshInputs& inputs) {
+  // One pass over the leaves of the final field's quadtree (init/node_estimate), which the simulation
+  // samples anyway: per-sample queries over the initialization tree took longer than the simulation
+  // on rods_fine (7.4 s against 5.5 s, thesis preset).
+  const double estimate = estimate_node_count(inputs.node_tree(), inputs.pipeline().background());
+  refuse_above_limit(config.source.string(), config.max_nodes, estimate, "spacing field");
+  if (config.init.total > config.max_nodes) {
+    throw LimitError(fmt::format("{}: init.total = {} is more than --max-nodes {}", config.source.string(),
+                                 config.init.total, config.max_nodes));
+  }
+  return estimate;
+}
+
+InitialDistribution make_initial(const CaseConfig& config, const MeshInputs& inputs) {
+  InitOptions options;
+  options.method = config.init.method;
+  options.seed = config.init.seed;
+  if (config.init.total > 0) options.total = static_cast<std::size_t>(config.init.total);
+  options.with_estimate = false;  // check_node_limit computed it just before
+  options.boundary = inputs.boundary_nodes();
+  options.segment_resolution = inputs.segment_resolution();
+  return make_initial_distribution(inputs.node_tree(), inputs.field(), options);
+}
+
+}  // namespace pdmesh

@@ -1,0 +1,199 @@
+// DeviceRun: the state and steps of one device-resident run (internal to host/opencl; the entry
+// point is run_device_resident in device_simulation.hpp). Its members are defined in two files:
+// device_run_state.cpp (uploads, read-backs, the saved state, population events) and
+// device_simulation.cpp (rebuilds, iterations, windows, the loop).
+#pragma once
+#include <chrono>
+#include <cmath>
+#include <cstdlib>
+#include <limits>
+#include <optional>
+#include <type_traits>
+
+#include "opencl/command_counts.hpp"
+#include "opencl/device_boundary.hpp"
+#include "opencl/device_neighbours.hpp"
+#include "opencl/device_population.hpp"
+#include "opencl/device_simulation.hpp"
+#include "opencl/device_window.hpp"
+#include "opencl/step_program.hpp"
+#include "sim/boundary_handling.hpp"
+#include "sim/global_time_step.hpp"
+
+namespace pdmesh::ocl {
+
+using Clock = std::chrono::steady_clock;
+inline double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+// A node pair can only be missing from a Verlet list built with radius cutoff q_b (1 + skin) once
+// d_i + d_j + cutoff (q_i - q_b,i) reaches skin cutoff q_b,i. Each node's own use of its skin is
+// kept below this fraction, so the sum stays below the skin while neighbouring spacings differ by
+// less than 3x (the spacing fields here vary by far less over a cut-off distance).
+constexpr double kSkinUseLimit = 0.25;
+
+template <typename Real>
+class DeviceRun {
+ public:
+  DeviceRun(NodeSet& nodes, const GeometryTree& tree, const SpacingField& spacing, const SimOptions& options,
+            Context& ctx, StepProgram& program, DeviceRunStats& stats)
+      : nodes_(nodes), options_(options), ctx_(ctx), stats_(stats), boundary_(tree, nodes),
+        background_(background_for(options, spacing, tree, own_background_)), program_(program), neighbours_(ctx, program_),
+        device_boundary_(ctx, tree.geometry()),
+        n_(nodes.size()),
+        window_(ctx, program.iteration_rule.get() != nullptr && !std::getenv("PDMESH_TEST_HOST_TIME_STEP_RULE")),
+        cpu_device_(ctx.device().type == "CPU"),
+        convergence_(options.convergence, options.resume ? options.resume->convergence : std::vector<MeshSample>{}) {}
+  // Non-blocking uploads read host vectors of this object: wait for them (errors are moot here).
+  ~DeviceRun() { ctx_.queue().finish(); }
+  DeviceRun(const DeviceRun&) = delete;
+  DeviceRun& operator=(const DeviceRun&) = delete;
+
+  SimResult run(const SimCallbacks& callbacks);
+
+ private:
+  void check_memory(std::uint64_t entries) const;
+  void remember(int done, double dt_initial, const GlobalTimeStep& gm, std::size_t rows);
+  SimState last_good_state(int done, double dt_initial, const GlobalTimeStep& gm,
+                           const std::vector<HistoryRow>& history);
+  SimulationError non_finite_error(int iteration, const SimState& good);
+  void upload_initial();
+  // The node arrays for n_ nodes, with the given clearance budgets and background leaves, or (null)
+  // computed from the node set: at the start and after a population event.
+  void upload_nodes(const std::vector<double>* budgets, const std::vector<std::int32_t>* leaves);
+  std::optional<PopulationCounts> population_event(int iteration);
+  void read_back_nodes();
+  void upload_topology();  // kind, prev, next, boundary slots and arc positions (start and after snapping)
+  // The boundary state (positions of the Boundary nodes, tangents, arc positions) into nodes_ and
+  // boundary_: the device re-snaps, the host reads it back only when it needs it. sync_boundary: the
+  // last boundary_snap's result (its per-slot records and arcs, a few bytes per boundary node);
+  // sync_boundary_from: positions and arcs of buffer `which` and the tangents, whole (the last good
+  // state after a failed step, when boundary_snap did not run or was halted).
+  void sync_boundary();
+  void sync_boundary_from(int which);
+  // In float, the host's boundary positions are put back exactly onto their curves (at their arc
+  // positions, in double), as the host computed them before the device re-snapped: the rounding of
+  // the device's float copy stays on the device. Nothing to do in double.
+  void boundary_positions_on_curves();
+  void rebuild();
+  void enqueue_iteration(int cur);
+  void start_window(int first, const GlobalTimeStep& gm);
+  void take_row();
+  int window_length() const;
+  BoundaryCounts host_boundary(double& skin_use);
+  void bg_args(ArgSetter& a) {
+    const BackgroundFieldData& d = background_.data();
+    a(static_cast<Real>(d.origin_x))(static_cast<Real>(d.origin_y))(static_cast<Real>(d.inv_root_size))(
+        static_cast<cl_int>(d.grid))(bg_root_)(bg_child_)(bg_corner_)(bg_cell_)(bg_q_);
+  }
+  // Transfers with blocking = false are enqueued only: the host data must stay untouched until the
+  // next synchronisation (finish or a blocking transfer). Per iteration the host waits on the
+  // device twice (after the step and its records, and for the candidates when there are any).
+  template <typename T>
+  void read(Buffer<T>& b, std::vector<T>& host, std::size_t count, bool blocking = true) {
+    b.download(ctx_.queue(), host, count, blocking);
+    ++stats_.transfers;
+    stats_.bytes_down += count * sizeof(T);
+  }
+  // Positions of buffer `which` split into x and y: read counts the transfer, download does not. Both
+  // block, into a local vector (positions_host_ may be the target of a read still in flight).
+  void read_positions(int which, std::vector<Real>& x, std::vector<Real>& y) {
+    std::vector<Real> xy;
+    read(xy_[which], xy, 2 * n_);
+    split(xy, x, y);
+  }
+  void download_positions(int which, std::vector<Real>& x, std::vector<Real>& y) {
+    std::vector<Real> xy;
+    xy_[which].download(ctx_.queue(), xy, 2 * n_);
+    split(xy, x, y);
+  }
+  static void split(const std::vector<Real>& xy, std::vector<Real>& x, std::vector<Real>& y) {
+    x.resize(xy.size() / 2);
+    y.resize(xy.size() / 2);
+    for (std::size_t i = 0; i < x.size(); ++i) {
+      x[i] = xy[2 * i];
+      y[i] = xy[2 * i + 1];
+    }
+  }
+  static std::vector<Real> interleave(const std::vector<double>& x, const std::vector<double>& y) {
+    std::vector<Real> xy(2 * x.size());
+    for (std::size_t i = 0; i < x.size(); ++i) {
+      xy[2 * i] = static_cast<Real>(x[i]);
+      xy[2 * i + 1] = static_cast<Real>(y[i]);
+    }
+    return xy;
+  }
+  template <typename T>
+  void write(Buffer<T>& b, const std::vector<T>& host, bool blocking = true) {
+    b.upload(ctx_.queue(), host, blocking);
+    ++stats_.transfers;
+    stats_.bytes_up += host.size() * sizeof(T);
+  }
+  std::size_t groups() const { return (n_ + program_.work_group - 1) / program_.work_group; }
+  // A host clearance budget for the device's copy of p: in float the stored position is p rounded,
+  // up to eps (|p.x| + |p.y|) away, which comes off the budget.
+  static double device_budget(Vec2 p, double budget) {
+    if constexpr (std::is_same_v<Real, double>) return budget;
+    const double b = budget - std::numeric_limits<Real>::epsilon() * (std::fabs(p.x) + std::fabs(p.y));
+    return b > 0.0 ? b : 0.0;
+  }
+
+  NodeSet& nodes_;
+  const SimOptions& options_;
+  Context& ctx_;
+  DeviceRunStats& stats_;
+  BoundaryHandler boundary_;
+  std::unique_ptr<BackgroundSpacing> own_background_;  // when options.background is null
+  const BackgroundSpacing& background_;
+  StepProgram& program_;
+  DeviceNeighbours<Real> neighbours_;
+  DeviceBoundary<Real> device_boundary_;
+  std::size_t n_;
+  int largest_row_ = 0;  // the longest neighbour row any build found (rows are compact: for the stats)
+  int cur_ = 0;  // which of the double-buffered x, y, q is current
+  // Positions packed, x and y interleaved (2n entries): the force loop's gather of a neighbour fetches
+  // both coordinates with one load, from one cache line (docs/performance.md, "Step on PoCL, session 6").
+  Buffer<Real> xy_[2], q_[2], tx_, ty_, xy_build_, q_build_, brec_, cand_rec_, partials_, rec_, bg_q_,
+      budget_;
+  Buffer<std::uint8_t> kind_;
+  Buffer<std::int32_t> prev_, next_, bslot_, cand_index_, counters_, rec_index_, bg_root_, bg_child_, bg_corner_,
+      bg_cell_, node_leaf_;
+  // Host mirrors.
+  std::vector<std::uint8_t> kind_host_;
+  std::vector<std::int32_t> boundary_nodes_;  // Boundary nodes in slot order
+  std::vector<double> build_x_, build_y_, build_q_;  // positions and spacings at the last build
+  std::vector<double> dx_, dy_;                      // host displacement scratch (full size, sparse use)
+  std::vector<std::int32_t> candidates_;
+  std::vector<Real> brec_host_, arcs_host_, cand_rec_host_, rec_host_;
+  std::vector<std::int32_t> rec_index_host_;
+  // Targets of non-blocking downloads are members too: when a wait fails and the error unwinds, a
+  // read still in flight must not write into freed memory (~DeviceRun waits for the queue first).
+  std::vector<Real> positions_host_[2];  // xy, q
+  std::vector<std::int32_t> cand_index_host_;
+  double skin_use_ = HUGE_VAL;                       // since the last build; HUGE_VAL forces a build
+  std::uint64_t pairs_examined_ = 0;  // rebuild candidates plus, every iteration, the entries of the current lists
+  std::uint64_t list_entries_ = 0;    // entries of the current lists (within the skin radius)
+  std::size_t within_ = 0, coincident_ = 0, sum_moving_ = 0;
+  double sum_force_ = 0, sum_kinetic_ = 0, max_force_ = 0, device_skin_use_ = 0;
+  // The state to fall back on when the device cannot be read after a failure: saved before the first
+  // iteration and after every neighbour-list build (which reads every position anyway). Its history
+  // is the first saved_rows_ rows of the run's.
+  NodeSet saved_nodes_;
+  SimState saved_state_;
+  std::size_t saved_rows_ = 0;
+  // host_boundary has moved nodes on the host that xy_[cur_] does not hold yet (until the iteration ends).
+  bool host_ahead_ = false;
+  bool tangents_ahead_ = false;  // boundary_snap has run in the iteration not yet complete
+  // The device re-snapped the boundary nodes since the host last read their state (sync_boundary).
+  bool boundary_stale_ = false;
+  int snap_arcs_ = 0;  // the arc buffer the last boundary_snap wrote
+  BoundarySnapResult snap_;  // of this iteration's boundary_snap
+  bool moves_finite_ = true;  // every move of the iteration take_row read is finite
+  DeviceWindow<Real> window_;
+  int window_rows_ = 0, window_next_ = 0;  // rows the last window ran, the next one to take
+  int since_build_ = 0, build_interval_ = 0;  // iterations since the last build; between the last two (0: unknown)
+  bool cpu_device_ = false;  // window_length's choice
+  PopulationTracker population_;
+  ConvergenceMonitor convergence_;  // the stopping rule (its samples go into every saved state)
+};
+
+}  // namespace pdmesh::ocl

@@ -1,0 +1,305 @@
+// DeviceRun's transfers and saved state: the memory check, the node arrays up and back, the state
+// saved at each build and the last good state after a failure, boundary synchronisation, and
+// population events (the host's event between two uploads). The loop is in device_simulation.cpp.
+#include "opencl/device_run.hpp"
+
+#include <algorithm>
+
+#include "core/errors.hpp"
+#include "sim/failure_report.hpp"
+#include "spacing/background_field.hpp"
+
+namespace pdmesh::ocl {
+
+template <typename Real>
+void DeviceRun<Real>::check_memory(std::uint64_t entries) const {
+  const BackgroundFieldData& d = background_.data();
+  const std::uint64_t field = 4 * (d.root_node.size() + d.node_child.size() + d.leaf_corner.size() + d.leaf_cell.size()) +
+                              sizeof(Real) * d.corner_q.size();
+  // The rows' entries as an average per node (the compact rows replace rows of one stride).
+  const std::uint64_t per_node = n_ > 0 ? (entries + n_ - 1) / n_ : 0;
+  check_device_memory(ctx_.device(), n_, nodes_.count(NodeKind::Boundary), field, sizeof(Real),
+                      static_cast<int>(std::max<std::uint64_t>(per_node, kInitialStride)));
+}
+
+template <typename Real>
+void DeviceRun<Real>::remember(int done, double dt_initial, const GlobalTimeStep& gm, std::size_t rows) {
+  // Interior positions and every q as the build read them from the device; boundary nodes the host's.
+  saved_nodes_ = nodes_;
+  for (std::size_t i = 0; i < n_; ++i) {
+    if (saved_nodes_.kind[i] == NodeKind::Interior) saved_nodes_.x[i] = {build_x_[i], build_y_[i]};
+    saved_nodes_.q[i] = build_q_[i];
+  }
+  saved_state_ = SimState{done, dt_initial, gm.state(), boundary_.arcs(), boundary_.tangents(), {},
+                          population_.schedule, convergence_.samples()};
+  saved_rows_ = rows;
+}
+
+// Puts the last good state into nodes_ and returns the driver state that goes with it: the state
+// after iteration `done` read back from the device, or, when the host is already ahead of it, the
+// device cannot be read or what it holds is not finite, the state saved at the last build.
+template <typename Real>
+SimState DeviceRun<Real>::last_good_state(int done, double dt_initial, const GlobalTimeStep& gm,
+                                          const std::vector<HistoryRow>& history) {
+  if (!host_ahead_ && !tangents_ahead_) {
+    try {
+      std::vector<Real> x, y, q;
+      download_positions(cur_, x, y);
+      q_[cur_].download(ctx_.queue(), q, n_);
+      bool finite = true;
+      for (std::size_t i = 0; i < n_; ++i)
+        finite = finite && std::isfinite(static_cast<double>(x[i])) && std::isfinite(static_cast<double>(y[i])) &&
+                 q[i] > 0 && std::isfinite(static_cast<double>(q[i]));
+      if (finite) {
+        if (boundary_stale_) sync_boundary_from(cur_);
+        for (std::size_t i = 0; i < n_; ++i) {
+          if (nodes_.kind[i] == NodeKind::Interior) nodes_.x[i] = {static_cast<double>(x[i]), static_cast<double>(y[i])};
+          nodes_.q[i] = static_cast<double>(q[i]);
+        }
+        return SimState{done,    dt_initial, gm.state(), boundary_.arcs(), boundary_.tangents(),
+                        history, population_.schedule, convergence_.samples()};
+      }
+    } catch (const Error&) {
+      // The device cannot be read: the saved state below.
+    }
+  }
+  nodes_ = saved_nodes_;
+  SimState state = saved_state_;
+  state.history.assign(history.begin(), history.begin() + static_cast<std::ptrdiff_t>(saved_rows_));
+  return state;
+}
+
+// The device's new positions (xy_[1 - cur_]) name the first node whose move was not finite; its
+// neighbourhood is described at the last good positions (nodes_ holds them).
+template <typename Real>
+SimulationError DeviceRun<Real>::non_finite_error(int iteration, const SimState& good) {
+  std::size_t bad = n_;
+  try {
+    std::vector<Real> x, y;
+    download_positions(1 - cur_, x, y);
+    for (std::size_t i = 0; i < n_ && bad == n_; ++i)
+      if (!std::isfinite(static_cast<double>(x[i])) || !std::isfinite(static_cast<double>(y[i]))) bad = i;
+  } catch (const Error&) {
+  }
+  const std::string sums = fmt::format("sum |F| {}, sum kinetic {}", sum_force_, sum_kinetic_);
+  if (bad == n_)
+    return SimulationError(fmt::format("iteration {}: non-finite force sums ({}); no node's new position is "
+                                       "non-finite (last good state: after iteration {})",
+                                       iteration, sums, good.iterations_done));
+  return SimulationError(fmt::format("iteration {}: non-finite force or move ({}) on {} (positions after iteration {})",
+                                     iteration, sums, describe_neighbourhood(nodes_, bad, options_.cutoff * nodes_.q[bad]),
+                                     good.iterations_done));
+}
+
+// The state after the last complete iteration into nodes_: interior positions and every q from the
+// device, the boundary state when the host's is older (sync_boundary). Not counted as per-iteration traffic.
+template <typename Real>
+void DeviceRun<Real>::read_back_nodes() {
+  std::vector<Real> x, y, q;
+  const std::uint64_t down = stats_.bytes_down, transfers = stats_.transfers;
+  if (boundary_stale_) sync_boundary();
+  read_positions(cur_, x, y);
+  read(q_[cur_], q, n_);
+  stats_.bytes_down = down;
+  stats_.transfers = transfers;
+  for (std::size_t i = 0; i < n_; ++i) {
+    if (nodes_.kind[i] == NodeKind::Interior) nodes_.x[i] = {static_cast<double>(x[i]), static_cast<double>(y[i])};
+    nodes_.q[i] = static_cast<double>(q[i]);
+  }
+}
+
+template <typename Real>
+void DeviceRun<Real>::upload_initial() {
+  const BackgroundFieldData& d = background_.data();
+  bg_root_ = Buffer<std::int32_t>(ctx_, "bg_root_node", d.root_node.size());
+  bg_child_ = Buffer<std::int32_t>(ctx_, "bg_node_child", d.node_child.size());
+  bg_corner_ = Buffer<std::int32_t>(ctx_, "bg_leaf_corner", d.leaf_corner.size());
+  bg_cell_ = Buffer<std::int32_t>(ctx_, "bg_leaf_cell", d.leaf_cell.size());
+  bg_q_ = Buffer<Real>(ctx_, "bg_corner_q", d.corner_q.size());
+  write(bg_root_, d.root_node);
+  write(bg_child_, d.node_child);
+  write(bg_corner_, d.leaf_corner);
+  write(bg_cell_, d.leaf_cell);
+  write(bg_q_, to_real<Real>(d.corner_q));
+  counters_ = Buffer<std::int32_t>(ctx_, "step_counters", kWindowCounters);  // device_window.hpp, WindowCounter
+  device_boundary_.upload_curves();
+  upload_nodes(nullptr, nullptr);
+}
+
+template <typename Real>
+void DeviceRun<Real>::upload_nodes(const std::vector<double>* budgets, const std::vector<std::int32_t>* leaves) {
+  const std::size_t n = n_;
+  std::vector<double> x(n), y(n), tx(n), ty(n), budget(n, 0.0);
+  for (std::size_t i = 0; i < n; ++i) {
+    x[i] = nodes_.x[i].x;
+    y[i] = nodes_.x[i].y;
+    const Vec2 t = boundary_.tangent(static_cast<int>(i));
+    tx[i] = t.x;
+    ty[i] = t.y;
+  }
+  if (budgets) {
+    budget = *budgets;
+  } else {
+    // Clearance budgets of the interior nodes (exact test once, as the host reference's first iteration).
+    for (std::size_t i = 0; i < n; ++i)
+      if (nodes_.kind[i] == NodeKind::Interior && boundary_.tree().inside(nodes_.x[i]))
+        budget[i] = device_budget(nodes_.x[i], boundary_.clearance_from(nodes_.x[i]));
+  }
+  for (int b = 0; b < 2; ++b) {
+    xy_[b] = Buffer<Real>(ctx_, "xy", 2 * n);
+    q_[b] = Buffer<Real>(ctx_, "q", n);
+  }
+  cur_ = 0;
+  for (auto* b : {&tx_, &ty_, &q_build_}) *b = Buffer<Real>(ctx_, "node_array", n);
+  xy_build_ = Buffer<Real>(ctx_, "xy_build", 2 * n);
+  budget_ = Buffer<Real>(ctx_, "clearance_budget", n);
+  write(xy_[0], interleave(x, y));
+  write(q_[0], to_real<Real>(nodes_.q));
+  write(tx_, to_real<Real>(tx));
+  write(ty_, to_real<Real>(ty));
+  write(budget_, to_real<Real>(budget));
+  cand_index_ = Buffer<std::int32_t>(ctx_, "cand_index", n);
+  cand_rec_ = Buffer<Real>(ctx_, "cand_rec", 4 * n);
+  partials_ = Buffer<Real>(ctx_, "partials", kStepPartials * groups());
+  // Each node's leaf: the guess the step kernel tests before descending.
+  std::vector<std::int32_t> leaf(n);
+  if (leaves) {
+    leaf = *leaves;
+  } else {
+    for (std::size_t i = 0; i < n; ++i) {
+      double u, v;
+      leaf[i] = background_locate(background_.data(), nodes_.x[i], u, v);
+    }
+  }
+  node_leaf_ = Buffer<std::int32_t>(ctx_, "node_leaf", n);
+  write(node_leaf_, leaf);
+  kind_host_.resize(n);
+  upload_topology();
+  dx_.assign(n, 0.0);
+  dy_.assign(n, 0.0);
+  build_x_ = x;
+  build_y_ = y;
+  build_q_ = nodes_.q;
+}
+
+// Population control on the device run: the whole state comes back (interior positions and every q
+// from the device; boundary positions are the host's), the event runs on the host exactly as in the
+// host reference, and when it changed the node set the node arrays go up again (kept nodes keep their
+// budgets and leaves) and the lists are rebuilt before the next step.
+template <typename Real>
+std::optional<PopulationCounts> DeviceRun<Real>::population_event(int iteration) {
+  if (!population_event_due(options_.population, population_.schedule, iteration, options_.iterations))
+    return std::nullopt;
+  const auto t0 = Clock::now();
+  if (boundary_stale_) sync_boundary();
+  std::vector<Real> x, y, q, budget;
+  std::vector<std::int32_t> leaves;
+  read_positions(cur_, x, y);
+  for (auto [from, to] : {std::pair{&q_[cur_], &q}, {&budget_, &budget}}) read(*from, *to, n_);
+  read(node_leaf_, leaves, n_);
+  stats_.population_transfer_seconds += since(t0);
+  for (std::size_t i = 0; i < n_; ++i) {
+    if (nodes_.kind[i] == NodeKind::Interior) nodes_.x[i] = {static_cast<double>(x[i]), static_cast<double>(y[i])};
+    nodes_.q[i] = static_cast<double>(q[i]);
+  }
+  std::vector<double> budgets(budget.begin(), budget.end());
+  const auto counts = device_population_event(population_, options_.population, iteration, options_.iterations, nodes_,
+                                              boundary_, background_, budgets, leaves);
+  if (counts && counts->changed()) {
+    n_ = nodes_.size();
+    const auto t1 = Clock::now();
+    upload_nodes(&budgets, &leaves);
+    finish(ctx_.queue(), "population re-upload");
+    stats_.population_transfer_seconds += since(t1);
+    skin_use_ = HUGE_VAL;  // the lists are rebuilt before the next step
+  }
+  stats_.population_seconds += since(t0);
+  return counts;
+}
+
+template <typename Real>
+void DeviceRun<Real>::upload_topology() {
+  const std::size_t n = n_;
+  std::vector<int> prev, next;
+  boundary_.curve_neighbours(nodes_, prev, next);
+  std::vector<std::int32_t> bslot(n, -1);
+  const std::uint64_t before = command_counts().writes;
+  boundary_nodes_ = device_boundary_.upload_topology(nodes_, boundary_.arcs());
+  stats_.transfers += command_counts().writes - before;
+  for (std::size_t s = 0; s < boundary_nodes_.size(); ++s) bslot[static_cast<std::size_t>(boundary_nodes_[s])] = static_cast<std::int32_t>(s);
+  for (std::size_t i = 0; i < n; ++i) kind_host_[i] = static_cast<std::uint8_t>(nodes_.kind[i]);
+  ensure_size(ctx_, kind_, "kind", n);
+  ensure_size(ctx_, prev_, "prev", n);
+  ensure_size(ctx_, next_, "next", n);
+  ensure_size(ctx_, bslot_, "bslot", n);
+  ensure_size(ctx_, brec_, "brec", 4 * boundary_nodes_.size());
+  write(kind_, kind_host_);
+  write(prev_, std::vector<std::int32_t>(prev.begin(), prev.end()));
+  write(next_, std::vector<std::int32_t>(next.begin(), next.end()));
+  write(bslot_, bslot);
+}
+
+template <typename Real>
+void DeviceRun<Real>::boundary_positions_on_curves() {
+  if constexpr (!std::is_same_v<Real, double>) {
+    const std::vector<Curve>& curves = boundary_.tree().geometry().curves;
+    for (std::size_t c = 0; c < curves.size(); ++c) {
+      const std::vector<int>& list = nodes_.curve_nodes[c];
+      const std::vector<double>& arcs = boundary_.arcs()[c];
+      for (std::size_t k = 1; k + 1 < list.size(); ++k) {
+        const auto i = static_cast<std::size_t>(list[k]);
+        if (nodes_.kind[i] == NodeKind::Boundary)
+          nodes_.x[i] = closest_on_curve_range(curves[c], nodes_.x[i], arcs[k], arcs[k]).p;
+      }
+    }
+  }
+}
+
+template <typename Real>
+void DeviceRun<Real>::sync_boundary() {
+  // The records are the last boundary_snap's for the current slots: the slots change only in
+  // upload_topology, which runs with the host's boundary state current (synced first).
+  std::vector<Real>& rec = brec_host_;
+  read(brec_, rec, 4 * boundary_nodes_.size(), false);
+  device_boundary_.read_arcs(snap_arcs_, arcs_host_, false);
+  ++stats_.transfers;
+  finish(ctx_.queue(), "boundary state");
+  stats_.bytes_down += arcs_host_.size() * sizeof(Real);
+  std::vector<std::vector<double>> arcs = DeviceBoundary<Real>::unflatten(arcs_host_, nodes_);
+  std::vector<Vec2> tangents = boundary_.tangents();
+  for (std::size_t s = 0; s < boundary_nodes_.size(); ++s) {
+    const auto i = static_cast<std::size_t>(boundary_nodes_[s]);
+    nodes_.x[i] = {static_cast<double>(rec[4 * s]), static_cast<double>(rec[4 * s + 1])};
+    tangents[i] = {static_cast<double>(rec[4 * s + 2]), static_cast<double>(rec[4 * s + 3])};
+  }
+  boundary_.restore(nodes_, std::move(arcs), std::move(tangents));
+  boundary_positions_on_curves();
+  boundary_stale_ = false;
+}
+
+template <typename Real>
+void DeviceRun<Real>::sync_boundary_from(int which) {
+  std::vector<Real> x, y, tx, ty;
+  read_positions(which, x, y);
+  read(tx_, tx, n_);
+  read(ty_, ty, n_);
+  std::vector<std::vector<double>> arcs = device_boundary_.download_arcs(which, nodes_);
+  ++stats_.transfers;
+  stats_.bytes_down += device_boundary_.arc_entries() * sizeof(Real);
+  std::vector<Vec2> tangents(n_);
+  for (std::size_t i = 0; i < n_; ++i) {
+    if (nodes_.kind[i] != NodeKind::Boundary) continue;
+    nodes_.x[i] = {static_cast<double>(x[i]), static_cast<double>(y[i])};
+    tangents[i] = {static_cast<double>(tx[i]), static_cast<double>(ty[i])};
+  }
+  boundary_.restore(nodes_, std::move(arcs), std::move(tangents));
+  boundary_positions_on_curves();
+  boundary_stale_ = false;
+}
+
+// The members above in both precisions (device_simulation.cpp instantiates its own by using them):
+// an explicit instantiation defines only the members defined before it ([temp.explicit]).
+template class DeviceRun<float>;
+template class DeviceRun<double>;
+
+}  // namespace pdmesh::ocl
