@@ -218,6 +218,49 @@ TEST_CASE("a run stopped after population events resumes bit-identical on the ho
   fs::remove_all(parts);
 }
 
+TEST_CASE("a run whose population control settled early resumes bit-identical, without further events",
+          "[resume][cli][population]") {
+  // settle = 0.1: every event is quiet; with settle_events = 1 the first one (after iteration 20) ends
+  // population control. The checkpoint after iteration 45 holds the finished schedule.
+  const std::string geometry = std::string(PDMESH_SOURCE_DIR) + "/cases/circle_circle/circles.crv";
+  const auto command = [&](const fs::path& out, const std::string& extra) {
+    return "mesh '" + geometry + "' --out '" + out.string() +
+           "' --device host --formats msh --iterations 90 --method random --seed 3 -q --set population.start=20 "
+           "--set population.every=10 --set population.settle=0.1 --set population.settle_events=1 " + extra;
+  };
+  const fs::path whole = fresh_dir("settle_whole"), parts = fresh_dir("settle_parts");
+  REQUIRE(run_pdmesh(command(whole, "")).status == 0);
+  REQUIRE(run_pdmesh(command(parts, "--stop-after 45")).status == 130);
+  const pdmesh::Checkpoint c = pdmesh::read_checkpoint(parts / "checkpoint.pdmesh");
+  CHECK(c.state.population.last_event == 20);
+  CHECK(c.state.population.last_change == 0);
+  const auto resumed = run_pdmesh(command(parts, "--resume '" + parts.string() + "'"));
+  INFO(resumed.output);
+  REQUIRE(resumed.status == 0);
+  CHECK(pdmesh::read_text_file(parts / "final.nodes") == pdmesh::read_text_file(whole / "final.nodes"));
+  const std::string history = pdmesh::read_text_file(parts / "history.csv");
+  CHECK(history == pdmesh::read_text_file(whole / "history.csv"));
+  // One event only: after iteration 20 no row inserts or removes (the last two columns).
+  std::istringstream lines(history);
+  std::string line;
+  std::getline(lines, line);  // header
+  int after = 0;
+  while (std::getline(lines, line)) {
+    if (std::stoi(line.substr(0, line.find(','))) <= 20) continue;
+    ++after;
+    CHECK(line.substr(line.size() - 4) == ",0,0");
+  }
+  CHECK(after == 70);
+  // Another settle tolerance is another schedule: refused.
+  REQUIRE(run_pdmesh(command(parts, "--stop-after 45")).status == 130);
+  const auto other = run_pdmesh(command(fresh_dir("settle_other"), "--set population.settle=0 --resume '" +
+                                                                      parts.string() + "'"));
+  CHECK(other.status == 2);
+  CHECK_THAT(other.output, Catch::Contains("population.schedule"));
+  fs::remove_all(whole);
+  fs::remove_all(parts);
+}
+
 TEST_CASE("a checkpoint of another case or other settings is refused with exit 2", "[resume][cli]") {
   const fs::path dir = fresh_dir("other");
   REQUIRE(run_pdmesh(mesh_command(dir, "-q --stop-after 3")).status == 130);
