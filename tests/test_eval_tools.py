@@ -243,23 +243,27 @@ with open(timings, "w") as f:
 '''
 
 
+def run_stop_study(d, fake_source, *arguments):
+    """tools/stop_study on circle_circle with a fake pdmesh (fake_source, a Python script) written to d."""
+    import subprocess
+    import sys
+    fake = os.path.join(d, "pdmesh")
+    with open(fake, "w") as f:
+        f.write(fake_source)
+    os.chmod(fake, 0o755)
+    return subprocess.run([sys.executable, os.path.join(TOOLS, "stop_study"), "--pdmesh", fake, "--work",
+                           os.path.join(d, "w"), "--cases", "circle_circle", *arguments], capture_output=True,
+                          text=True)
+
+
 class StopStudy(unittest.TestCase):
     """tools/stop_study's verdicts: a candidate is within the issue's 1 % of the default or not, per metric,
     and passes issue 14's gate (at most 0.5 degrees and 0.002 aspect ratio worse) or not."""
 
     def test_verdicts_against_the_default(self):
-        import subprocess
-        import sys
         with tempfile.TemporaryDirectory() as d:
-            fake = os.path.join(d, "pdmesh")
-            with open(fake, "w") as f:
-                f.write(FAKE_PDMESH)
-            os.chmod(fake, 0o755)
-            r = subprocess.run([sys.executable, os.path.join(TOOLS, "stop_study"), "--pdmesh", fake, "--work",
-                                os.path.join(d, "w"), "--cases", "circle_circle", "--candidate",
-                                "it1000=simulation.iterations=1000", "--candidate", "same=population.every=50",
-                                "--candidate", "it800=simulation.iterations=800"],
-                               capture_output=True, text=True)
+            r = run_stop_study(d, FAKE_PDMESH, "--candidate", "it1000=simulation.iterations=1000", "--candidate",
+                               "same=population.every=50", "--candidate", "it800=simulation.iterations=800")
             self.assertEqual(r.returncode, 0, r.stderr)
             rows = [line for line in r.stdout.splitlines() if line.startswith("| circle_circle")]
             self.assertEqual(len(rows), 8)  # both starts, four settings each
@@ -292,15 +296,8 @@ class StopStudyPerturbed(unittest.TestCase):
     the gate judges the median of the three runs (one unlucky run neither fails nor passes a setting)."""
 
     def study(self, d, *extra):
-        import subprocess
-        import sys
-        fake = os.path.join(d, "pdmesh")
-        with open(fake, "w") as f:
-            f.write(FAKE_NOISY_PDMESH)
-        os.chmod(fake, 0o755)
-        r = subprocess.run([sys.executable, os.path.join(TOOLS, "stop_study"), "--pdmesh", fake, "--work",
-                            os.path.join(d, "w"), "--cases", "circle_circle", "--candidate",
-                            "x=population.insert=0.72,population.every=50", *extra], capture_output=True, text=True)
+        r = run_stop_study(d, FAKE_NOISY_PDMESH, "--candidate", "x=population.insert=0.72,population.every=50",
+                           *extra)
         self.assertEqual(r.returncode, 0, r.stderr)
         return r.stdout
 

@@ -178,15 +178,19 @@ TEST_CASE("a stopped and resumed run ends bit-identical to an uninterrupted one"
   fs::remove_all(parts);
 }
 
+// circle_circle's geometry alone (the best preset: population control on), a random start with early,
+// frequent population events, 90 iterations on the host, writing to `out`.
+namespace {
+std::string population_command(const fs::path& out, const std::string& extra) {
+  return "mesh '" + std::string(PDMESH_SOURCE_DIR) + "/cases/circle_circle/circles.crv' --out '" + out.string() +
+         "' --device host --formats msh --iterations 90 --method random --seed 3 -q --set population.start=20 "
+         "--set population.every=10 " + extra;
+}
+}  // namespace
+
 TEST_CASE("a run stopped after population events resumes bit-identical on the host", "[resume][cli][population]") {
-  // The geometry alone runs the best preset (population control on); a random start with early,
-  // frequent events so that the node set has changed before the stop.
-  const std::string geometry = std::string(PDMESH_SOURCE_DIR) + "/cases/circle_circle/circles.crv";
-  const auto command = [&](const fs::path& out, const std::string& extra) {
-    return "mesh '" + geometry + "' --out '" + out.string() +
-           "' --device host --formats msh --iterations 90 --method random --seed 3 -q --set population.start=20 "
-           "--set population.every=10 " + extra;
-  };
+  // Events from iteration 20 on, so that the node set has changed before the stop.
+  const auto command = population_command;
   const fs::path whole = fresh_dir("pop_whole"), parts = fresh_dir("pop_parts");
   REQUIRE(run_pdmesh(command(whole, "")).status == 0);
   const auto stopped = run_pdmesh(command(parts, "--stop-after 45"));
@@ -222,11 +226,8 @@ TEST_CASE("a run whose population control settled early resumes bit-identical, w
           "[resume][cli][population]") {
   // settle = 0.1: every event is quiet; with settle_events = 1 the first one (after iteration 20) ends
   // population control. The checkpoint after iteration 45 holds the finished schedule.
-  const std::string geometry = std::string(PDMESH_SOURCE_DIR) + "/cases/circle_circle/circles.crv";
-  const auto command = [&](const fs::path& out, const std::string& extra) {
-    return "mesh '" + geometry + "' --out '" + out.string() +
-           "' --device host --formats msh --iterations 90 --method random --seed 3 -q --set population.start=20 "
-           "--set population.every=10 --set population.settle=0.1 --set population.settle_events=1 " + extra;
+  const auto command = [](const fs::path& out, const std::string& extra) {
+    return population_command(out, "--set population.settle=0.1 --set population.settle_events=1 " + extra);
   };
   const fs::path whole = fresh_dir("settle_whole"), parts = fresh_dir("settle_parts");
   REQUIRE(run_pdmesh(command(whole, "")).status == 0);
