@@ -406,3 +406,17 @@ TEST_CASE("a checkpoint of a mesh field knows its file's content and array", "[r
   CHECK(value(boundary, "spacing.file") == "(none)");
   fs::remove_all(dir);
 }
+
+TEST_CASE("population control's identity names the settle keys only when settling is on", "[resume]") {
+  const std::string text = "[geometry]\nfiles = [\"" + kCase + "/circles.crv\"]\n";
+  const auto schedule = [&](const std::string& extra) {
+    for (const auto& [name, v] : pdmesh::case_identity(pdmesh::parse_case_text(text + extra, "case.toml")))
+      if (name == "population.schedule") return v;
+    return std::string("(none)");
+  };
+  // Off (the default): the string of the checkpoints written before the keys existed, so they resume.
+  CHECK(schedule("") == "every 50 start 100 stop 0.8");
+  CHECK(schedule("[population]\nsettle = 0.001\n") == "every 50 start 100 stop 0.8 settle 0.001 2");
+  CHECK(schedule("[population]\nsettle = 0.001\nsettle_events = 3\n") !=
+        schedule("[population]\nsettle = 0.001\n"));
+}
