@@ -314,14 +314,19 @@ TEST_CASE("population keys: best runs it, thesis does not, every value is checke
   CHECK(best.population.every == 50);
   CHECK(best.population.start == 100);
   CHECK(best.population.stop == 0.8);
+  CHECK(best.population.settle == 0.0);
+  CHECK(best.population.settle_events == 2);
   CHECK_FALSE(parse_case_text(std::string("preset = \"thesis\"\n") + kMinimal, kCase).population.enabled);
   // The file wins over the preset.
   CHECK(parse_case_text(std::string("preset = \"thesis\"\n") + kMinimal + "[population]\nenabled = true\n", kCase)
             .population.enabled);
   const CaseConfig set = parse_case_text(
       std::string(kMinimal) + "[population]\nevery = 10\nstart = 50\nstop = 0.5\ninsert = [0.9, 0.8]\nmerge = 0.5\n"
-                              "remove_valence = 0\nboundary = false\nboundary_split = 1.4\n",
+                              "remove_valence = 0\nboundary = false\nboundary_split = 1.4\n"
+                              "settle = 2e-3\nsettle_events = 3\n",
       kCase);
+  CHECK(set.population.settle == 2e-3);
+  CHECK(set.population.settle_events == 3);
   CHECK(set.population.every == 10);
   CHECK(set.population.start == 50);
   CHECK(set.population.stop == 0.5);
@@ -343,6 +348,10 @@ TEST_CASE("population keys: best runs it, thesis does not, every value is checke
   CHECK_THAT(error_of(base + "merge = 0.9\n"), Catch::Contains("population.merge must stay below population.insert"));
   CHECK_THAT(error_of(base + "remove_valence = 6\n"), Catch::Contains("population.remove_valence must be in 0..5"));
   CHECK_THAT(error_of(base + "boundary_split = 1.1\n"), Catch::Contains("population.boundary_split must be in"));
+  CHECK_THAT(error_of(base + "settle = 0.5\n"), Catch::Contains("population.settle must be in [0, 0.1]"));
+  CHECK_THAT(error_of(base + "settle = -1e-3\n"), Catch::Contains("population.settle must be in [0, 0.1]"));
+  CHECK_THAT(error_of(base + "settle_events = 4\n"), Catch::Contains("population.settle_events must be in 1..3"));
+  CHECK_THAT(error_of(base + "settle_events = 0\n"), Catch::Contains("population.settle_events must be in 1..3"));
   CHECK_THAT(error_of(base + "evry = 3\n"), Catch::Contains("did you mean 'population.every'"));
   CHECK_THAT(error_of(kMinimal, {parse_set_option("population.start=-1")}),
              Catch::Contains("--set population.start=-1") && Catch::Contains("population.start must be in 0.."));
@@ -472,4 +481,21 @@ TEST_CASE("simulation.stop: best converges, thesis counts, a key wins over the p
   CHECK_THAT(error_of(std::string(kMinimal) + "[simulation]\nstop = 3\n"), Catch::Contains("simulation.stop"));
   CHECK_THAT(error_of(kMinimal, {parse_set_option("simulation.stop=never")}),
              Catch::Contains("--set simulation.stop=never") && Catch::Contains("simulation.stop"));
+}
+
+TEST_CASE("simulation.stop_aspect / stop_angle: the convergence rule's tolerances, checked", "[app][case][convergence]") {
+  const CaseConfig best = parse_case_text(kMinimal, kCase);
+  CHECK(best.simulation.stop_aspect == 5e-4);
+  CHECK(best.simulation.stop_angle == 0.25);
+  const CaseConfig set =
+      parse_case_text(std::string(kMinimal) + "[simulation]\nstop_aspect = 1e-3\nstop_angle = 0.5\n", kCase);
+  CHECK(set.simulation.stop_aspect == 1e-3);
+  CHECK(set.simulation.stop_angle == 0.5);
+  CHECK(parse_case_text(kMinimal, kCase, {parse_set_option("simulation.stop_aspect=0")}).simulation.stop_aspect == 0.0);
+  CHECK_THAT(error_of(std::string(kMinimal) + "[simulation]\nstop_aspect = 0.2\n"),
+             Catch::Contains("simulation.stop_aspect must be in [0, 0.1], got 0.2") && Catch::Contains(":4:"));
+  CHECK_THAT(error_of(std::string(kMinimal) + "[simulation]\nstop_angle = -1\n"),
+             Catch::Contains("simulation.stop_angle must be in [0, 10], got -1"));
+  CHECK_THAT(error_of(kMinimal, {parse_set_option("simulation.stop_angle=nan")}),
+             Catch::Contains("simulation.stop_angle"));
 }

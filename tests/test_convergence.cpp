@@ -304,3 +304,19 @@ TEST_CASE("convergence: a run that did not converge says which part of the rule 
           "the nodes did not triangulate at a measurement after iteration 60");
   }
 }
+
+TEST_CASE("simulation_options: the stop tolerances and population settling keys reach the drivers", "[convergence]") {
+  const CaseConfig config = load_case_file(
+      std::string(PDMESH_SOURCE_DIR) + "/cases/circle_circle/case.toml",
+      {{"simulation.stop_aspect", "1e-3", "test"}, {"simulation.stop_angle", "0.5", "test"},
+       {"population.settle", "2e-3", "test"}, {"population.settle_events", "3", "test"}});
+  const SimOptions o = simulation_options(config);
+  CHECK(o.convergence.aspect_tolerance == 1e-3);
+  CHECK(o.convergence.angle_tolerance == 0.5);
+  CHECK(o.population.settle == 2e-3);
+  CHECK(o.population.settle_events == 3);
+  // The defaults are the rule's own.
+  const SimOptions d = simulation_options(load_case_file(std::string(PDMESH_SOURCE_DIR) + "/cases/circle_circle/case.toml"));
+  CHECK(d.convergence.aspect_tolerance == ConvergenceOptions{}.aspect_tolerance);
+  CHECK(d.convergence.angle_tolerance == ConvergenceOptions{}.angle_tolerance);
+}

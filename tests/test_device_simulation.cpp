@@ -256,6 +256,20 @@ Case circle_circle_with_population(const char* start) {
   return c;
 }
 
+// 100 iterations of the case with its population control, on the host reference or the device (double).
+Outcome run_with_population(const Case& c, bool device) {
+  Outcome out{c.initial, {}, {}};
+  SimOptions o = options_for(c, 100);
+  o.population = c.config.population;
+  if (device) {
+    out.result = ocl::run_device_simulation(out.nodes, *c.inputs->tree, *c.inputs->spacing, o, test::test_context(),
+                                            ocl::Precision::Double, {}, &out.stats);
+  } else {
+    out.result = run_simulation(out.nodes, *c.inputs->tree, *c.inputs->spacing, o);
+  }
+  return out;
+}
+
 }  // namespace
 
 TEST_CASE("device run with population control: same node changes as the host", "[opencl][device_sim][population]") {
@@ -263,19 +277,7 @@ TEST_CASE("device run with population control: same node changes as the host", "
   // one at floor(0.8 x 100)). In double bit for bit (the device re-uploads the host's edited node set
   // exactly); the same inserted/removed counts per iteration and the same node count and kinds.
   const Case c = circle_circle_with_population("20");
-  const auto run = [&](bool device) {
-    Outcome out{c.initial, {}, {}};
-    SimOptions o = options_for(c, 100);
-    o.population = c.config.population;
-    if (device) {
-      out.result = ocl::run_device_simulation(out.nodes, *c.inputs->tree, *c.inputs->spacing, o, test::test_context(),
-                                              ocl::Precision::Double, {}, &out.stats);
-    } else {
-      out.result = run_simulation(out.nodes, *c.inputs->tree, *c.inputs->spacing, o);
-    }
-    return out;
-  };
-  const Outcome host = run(false), dev = run(true);
+  const Outcome host = run_with_population(c, false), dev = run_with_population(c, true);
   REQUIRE(host.result.stats.inserted + host.result.stats.removed > 0);
   CHECK(dev.result.stats.inserted == host.result.stats.inserted);
   CHECK(dev.result.stats.removed == host.result.stats.removed);
@@ -289,6 +291,24 @@ TEST_CASE("device run with population control: same node changes as the host", "
   require_identical_nodes(host.nodes, dev.nodes);
   CHECK(dev.result.state.population.last_event == 80);
   CHECK(dev.stats.population_seconds > 0.0);
+}
+
+TEST_CASE("device run whose population control settles early: same events and nodes as the host",
+          "[opencl][device_sim][population]") {
+  // settle = 0.1: every event is quiet, so after the events of iterations 20 and 40 (the interval
+  // doubles) population control is over: no event at 80 (the last one otherwise), on both.
+  Case c = circle_circle_with_population("20");
+  c.config.population.settle = 0.1;
+  c.config.population.settle_events = 2;
+  const Outcome host = run_with_population(c, false), dev = run_with_population(c, true);
+  CHECK(host.result.stats.population_events == 2);
+  CHECK(dev.result.stats.population_events == 2);
+  CHECK(host.result.state.population.last_event == 40);
+  CHECK(dev.result.state.population.last_event == 40);
+  CHECK(dev.result.state.population.finished(c.config.population));
+  CHECK(dev.result.stats.inserted == host.result.stats.inserted);
+  CHECK(dev.result.stats.removed == host.result.stats.removed);
+  require_identical_nodes(host.nodes, dev.nodes);
 }
 
 // Builds without counts (the run's first, and after every population event) laid out from a sampled

@@ -243,23 +243,27 @@ with open(timings, "w") as f:
 '''
 
 
+def run_stop_study(d, fake_source, *arguments):
+    """tools/stop_study on circle_circle with a fake pdmesh (fake_source, a Python script) written to d."""
+    import subprocess
+    import sys
+    fake = os.path.join(d, "pdmesh")
+    with open(fake, "w") as f:
+        f.write(fake_source)
+    os.chmod(fake, 0o755)
+    return subprocess.run([sys.executable, os.path.join(TOOLS, "stop_study"), "--pdmesh", fake, "--work",
+                           os.path.join(d, "w"), "--cases", "circle_circle", *arguments], capture_output=True,
+                          text=True)
+
+
 class StopStudy(unittest.TestCase):
     """tools/stop_study's verdicts: a candidate is within the issue's 1 % of the default or not, per metric,
     and passes issue 14's gate (at most 0.5 degrees and 0.002 aspect ratio worse) or not."""
 
     def test_verdicts_against_the_default(self):
-        import subprocess
-        import sys
         with tempfile.TemporaryDirectory() as d:
-            fake = os.path.join(d, "pdmesh")
-            with open(fake, "w") as f:
-                f.write(FAKE_PDMESH)
-            os.chmod(fake, 0o755)
-            r = subprocess.run([sys.executable, os.path.join(TOOLS, "stop_study"), "--pdmesh", fake, "--work",
-                                os.path.join(d, "w"), "--cases", "circle_circle", "--candidate",
-                                "it1000=simulation.iterations=1000", "--candidate", "same=population.every=50",
-                                "--candidate", "it800=simulation.iterations=800"],
-                               capture_output=True, text=True)
+            r = run_stop_study(d, FAKE_PDMESH, "--candidate", "it1000=simulation.iterations=1000", "--candidate",
+                               "same=population.every=50", "--candidate", "it800=simulation.iterations=800")
             self.assertEqual(r.returncode, 0, r.stderr)
             rows = [line for line in r.stdout.splitlines() if line.startswith("| circle_circle")]
             self.assertEqual(len(rows), 8)  # both starts, four settings each
@@ -271,6 +275,45 @@ class StopStudy(unittest.TestCase):
             self.assertIn("it1000: within 1 % on 0 of 2 runs; issue 14's gate passed on 2 of 2", r.stdout)
             self.assertIn("same: within 1 % on 2 of 2 runs; issue 14's gate passed on 2 of 2", r.stdout)
             self.assertIn("it800: within 1 % on 0 of 2 runs; issue 14's gate passed on 0 of 2", r.stdout)
+
+
+FAKE_NOISY_PDMESH = '''#!/usr/bin/env python3
+import json, os, sys
+a = sys.argv[1:]
+out, timings = a[a.index("--out") + 1], a[a.index("--timings") + 1]
+x, e49, e51 = "population.insert=0.72" in a, "population.every=49" in a, "population.every=51" in a
+angle = (40.1 if e49 else 40.3 if e51 else 39.0) if x else (37.0 if e49 else 40.2 if e51 else 40.0)
+os.makedirs(out, exist_ok=True)
+with open(os.path.join(out, "quality.json"), "w") as f:
+    json.dump({"included_angle": {"min": angle}, "aspect_ratio": {"average": 1.0150}, "triangles": 1000}, f)
+with open(timings, "w") as f:
+    json.dump({"iterations": 1500 if x else 1900, "converged": 1, "wall": 1.5}, f)
+'''
+
+
+class StopStudyPerturbed(unittest.TestCase):
+    """tools/stop_study --perturb: every setting also runs with population.every one less and one more, and
+    the gate judges the median of the three runs (one unlucky run neither fails nor passes a setting)."""
+
+    def study(self, d, *extra):
+        r = run_stop_study(d, FAKE_NOISY_PDMESH, "--candidate", "x=population.insert=0.72,population.every=50",
+                           *extra)
+        self.assertEqual(r.returncode, 0, r.stderr)
+        return r.stdout
+
+    def test_the_median_of_three_runs_is_judged(self):
+        with tempfile.TemporaryDirectory() as d:
+            # One run each: the candidate's 39.0 is 1 degree below the default's 40.0.
+            self.assertIn("x: within 1 % on 0 of 2 runs; issue 14's gate passed on 0 of 2", self.study(d))
+        with tempfile.TemporaryDirectory() as d:
+            out = self.study(d, "--perturb")
+            # Medians: the default 40.0 (of 37.0, 40.0, 40.2), the candidate 40.1 (of 39.0, 40.1, 40.3).
+            rows = [line for line in out.splitlines() if line.startswith("| circle_circle")]
+            self.assertIn("| 40.00 |", rows[0])
+            self.assertIn("| 40.10 |", rows[1])
+            self.assertIn("x: within 1 % on 2 of 2 runs; issue 14's gate passed on 2 of 2", out)
+            for name in ("default_every49", "default_every51", "x_every49", "x_every51"):
+                self.assertTrue(os.path.isdir(os.path.join(d, "w", name, "circle_circle_random")), name)
 
 
 if __name__ == "__main__":

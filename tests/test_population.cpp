@@ -265,6 +265,7 @@ TEST_CASE("population: the schedule, its ramp and the settled status", "[populat
   o.every = 25;
   o.start = 100;
   o.stop = 0.8;
+  o.settle = 0.0;  // the schedule without a settle tolerance: events up to the last one
   CHECK(population_last_event(o, 2000) == 1600);
   // Events that change the node set come every 25 iterations; quiet ones double the interval up to
   // 8 x 25; the last event runs whatever the interval.
@@ -274,7 +275,7 @@ TEST_CASE("population: the schedule, its ramp and the settled status", "[populat
     for (int it = 1; it <= iterations; ++it)
       if (population_event_due(o, sched, it, iterations)) {
         at.push_back(it);
-        sched.record(o, it, std::find(changing.begin(), changing.end(), it) != changing.end());
+        sched.record(o, it, std::find(changing.begin(), changing.end(), it) != changing.end() ? 1 : 0, 1000);
       }
     return at;
   };
@@ -295,14 +296,90 @@ TEST_CASE("population: the schedule, its ramp and the settled status", "[populat
   // Settled: off, after the last event, or the last event changed nothing.
   CHECK_FALSE(population_status(o, s, 50, 2000).settled);
   CHECK(population_status(o, s, 50, 2000).active);
-  s.record(o, 400, true);
+  s.record(o, 400, 3, 1000);
   CHECK_FALSE(population_status(o, s, 400, 2000).settled);
-  s.record(o, 425, false);
+  s.record(o, 425, 0, 1000);
   CHECK(population_status(o, s, 430, 2000).settled);
   CHECK(population_status(o, s, 430, 2000).active);
-  s.record(o, 1600, true);
+  s.record(o, 1600, 3, 1000);
   CHECK(population_status(o, s, 1600, 2000).settled);
   CHECK_FALSE(population_status(o, s, 1600, 2000).active);
   o.enabled = false;
   CHECK(population_status(o, PopulationSchedule{}, 50, 2000).settled);
+}
+
+TEST_CASE("population: an event changing at most settle x nodes is quiet, settle_events of them end the events",
+          "[population]") {
+  PopulationOptions o;
+  o.enabled = true;
+  o.every = 50;
+  o.start = 100;
+  o.stop = 0.8;
+  o.settle = 1e-3;
+  o.settle_events = 2;
+  // The tolerance counts inserted plus removed nodes against the node count after the event.
+  CHECK(population_quiet(o, 0, 100));
+  CHECK_FALSE(population_quiet(o, 1, 100));  // small meshes: only an event that changes nothing
+  CHECK(population_quiet(o, 14, 14'000));
+  CHECK_FALSE(population_quiet(o, 15, 14'000));
+  o.settle = 0.0;
+  CHECK(population_quiet(o, 0, 14'000));
+  CHECK_FALSE(population_quiet(o, 1, 14'000));
+  o.settle = 1e-3;
+  // Replays a run of 2000 iterations on 10,000 nodes whose event after iteration `it` changes
+  // changes(it) nodes; returns the iterations of the events and checks the status on the way.
+  const auto run = [&](const auto& changes, std::vector<int>* settled_at = nullptr) {
+    PopulationSchedule s;
+    std::vector<int> at;
+    for (int it = 1; it <= 2000; ++it) {
+      if (population_event_due(o, s, it, 2000)) {
+        at.push_back(it);
+        s.record(o, it, changes(it), 10'000);
+      }
+      const PopulationStatus st = population_status(o, s, it, 2000);
+      if (settled_at && st.settled && settled_at->empty()) settled_at->push_back(it);
+      // Never settled while the last event changed more than the tolerance and events are to come.
+      if (st.active && s.last_event > 0 && changes(s.last_event) > 10) CHECK_FALSE(st.settled);
+    }
+    return at;
+  };
+  // The annealing lattice: 30 nodes at the first events, then 1-13 per event for the whole run (as
+  // 30P30N's trace). Two quiet events in a row (150, then 250 after the doubled interval) end it.
+  const auto annealing = [](int it) { return it <= 100 ? 30 : 1 + it % 13; };
+  std::vector<int> settled_at;
+  CHECK(run(annealing, &settled_at) == std::vector<int>{100, 150, 250});
+  CHECK(settled_at == std::vector<int>{150});  // the first quiet event: a stopping rule may start its window
+  // A larger change between quiet events restarts the count (and the interval).
+  const auto relapse = [](int it) { return it <= 100 ? 30 : it == 250 ? 40 : 2; };
+  CHECK(run(relapse) == std::vector<int>{100, 150, 250, 300, 400});
+  // One quiet event is enough with settle_events = 1; three need intervals of 50, 100, 200.
+  o.settle_events = 1;
+  CHECK(run(annealing) == std::vector<int>{100, 150});
+  o.settle_events = 3;
+  CHECK(run(annealing) == std::vector<int>{100, 150, 250, 450});
+  // Without a tolerance the same run has events to the last one, and is settled only past it.
+  o.settle = 0.0;
+  settled_at.clear();
+  const std::vector<int> all = run(annealing, &settled_at);
+  CHECK(all.back() == 1600);
+  CHECK(all.size() == 31);
+  CHECK(settled_at == std::vector<int>{1600});
+  // A finished schedule: no event, not active, settled (a checkpoint's schedule resumes the same).
+  o.settle = 1e-3;
+  o.settle_events = 2;
+  PopulationSchedule s;
+  s.record(o, 100, 30, 10'000);
+  CHECK_FALSE(s.finished(o));
+  s.record(o, 150, 5, 10'000);
+  CHECK_FALSE(s.finished(o));
+  CHECK(population_status(o, s, 160, 2000).settled);
+  CHECK(population_status(o, s, 160, 2000).active);
+  s.record(o, 250, 5, 10'000);
+  CHECK(s.finished(o));
+  const PopulationSchedule resumed{s.next, s.interval, s.last_event, s.last_change};
+  CHECK(resumed.finished(o));
+  CHECK_FALSE(population_event_due(o, resumed, resumed.next, 2000));
+  CHECK_FALSE(population_event_due(o, resumed, 1600, 2000));
+  CHECK_FALSE(population_status(o, resumed, 300, 2000).active);
+  CHECK(population_status(o, resumed, 300, 2000).settled);
 }

@@ -178,15 +178,19 @@ TEST_CASE("a stopped and resumed run ends bit-identical to an uninterrupted one"
   fs::remove_all(parts);
 }
 
+// circle_circle's geometry alone (the best preset: population control on), a random start with early,
+// frequent population events, 90 iterations on the host, writing to `out`.
+namespace {
+std::string population_command(const fs::path& out, const std::string& extra) {
+  return "mesh '" + std::string(PDMESH_SOURCE_DIR) + "/cases/circle_circle/circles.crv' --out '" + out.string() +
+         "' --device host --formats msh --iterations 90 --method random --seed 3 -q --set population.start=20 "
+         "--set population.every=10 " + extra;
+}
+}  // namespace
+
 TEST_CASE("a run stopped after population events resumes bit-identical on the host", "[resume][cli][population]") {
-  // The geometry alone runs the best preset (population control on); a random start with early,
-  // frequent events so that the node set has changed before the stop.
-  const std::string geometry = std::string(PDMESH_SOURCE_DIR) + "/cases/circle_circle/circles.crv";
-  const auto command = [&](const fs::path& out, const std::string& extra) {
-    return "mesh '" + geometry + "' --out '" + out.string() +
-           "' --device host --formats msh --iterations 90 --method random --seed 3 -q --set population.start=20 "
-           "--set population.every=10 " + extra;
-  };
+  // Events from iteration 20 on, so that the node set has changed before the stop.
+  const auto command = population_command;
   const fs::path whole = fresh_dir("pop_whole"), parts = fresh_dir("pop_parts");
   REQUIRE(run_pdmesh(command(whole, "")).status == 0);
   const auto stopped = run_pdmesh(command(parts, "--stop-after 45"));
@@ -214,6 +218,46 @@ TEST_CASE("a run stopped after population events resumes bit-identical on the ho
                                                                    parts.string() + "'"));
   CHECK(off.status == 2);
   CHECK_THAT(off.output, Catch::Contains("population.enabled"));
+  fs::remove_all(whole);
+  fs::remove_all(parts);
+}
+
+TEST_CASE("a run whose population control settled early resumes bit-identical, without further events",
+          "[resume][cli][population]") {
+  // settle = 0.1: every event is quiet; with settle_events = 1 the first one (after iteration 20) ends
+  // population control. The checkpoint after iteration 45 holds the finished schedule.
+  const auto command = [](const fs::path& out, const std::string& extra) {
+    return population_command(out, "--set population.settle=0.1 --set population.settle_events=1 " + extra);
+  };
+  const fs::path whole = fresh_dir("settle_whole"), parts = fresh_dir("settle_parts");
+  REQUIRE(run_pdmesh(command(whole, "")).status == 0);
+  REQUIRE(run_pdmesh(command(parts, "--stop-after 45")).status == 130);
+  const pdmesh::Checkpoint c = pdmesh::read_checkpoint(parts / "checkpoint.pdmesh");
+  CHECK(c.state.population.last_event == 20);
+  CHECK(c.state.population.last_change == 0);
+  const auto resumed = run_pdmesh(command(parts, "--resume '" + parts.string() + "'"));
+  INFO(resumed.output);
+  REQUIRE(resumed.status == 0);
+  CHECK(pdmesh::read_text_file(parts / "final.nodes") == pdmesh::read_text_file(whole / "final.nodes"));
+  const std::string history = pdmesh::read_text_file(parts / "history.csv");
+  CHECK(history == pdmesh::read_text_file(whole / "history.csv"));
+  // One event only: after iteration 20 no row inserts or removes (the last two columns).
+  std::istringstream lines(history);
+  std::string line;
+  std::getline(lines, line);  // header
+  int after = 0;
+  while (std::getline(lines, line)) {
+    if (std::stoi(line.substr(0, line.find(','))) <= 20) continue;
+    ++after;
+    CHECK(line.substr(line.size() - 4) == ",0,0");
+  }
+  CHECK(after == 70);
+  // Another settle tolerance is another schedule: refused.
+  REQUIRE(run_pdmesh(command(parts, "--stop-after 45")).status == 130);
+  const auto other = run_pdmesh(command(fresh_dir("settle_other"), "--set population.settle=0 --resume '" +
+                                                                      parts.string() + "'"));
+  CHECK(other.status == 2);
+  CHECK_THAT(other.output, Catch::Contains("population.schedule"));
   fs::remove_all(whole);
   fs::remove_all(parts);
 }
@@ -361,4 +405,18 @@ TEST_CASE("a checkpoint of a mesh field knows its file's content and array", "[r
   const auto boundary = pdmesh::case_identity(pdmesh::parse_case_text(text.substr(0, text.find("[spacing]")), dir / "case.toml"));
   CHECK(value(boundary, "spacing.file") == "(none)");
   fs::remove_all(dir);
+}
+
+TEST_CASE("population control's identity names the settle keys only when settling is on", "[resume]") {
+  const std::string text = "[geometry]\nfiles = [\"" + kCase + "/circles.crv\"]\n";
+  const auto schedule = [&](const std::string& extra) {
+    for (const auto& [name, v] : pdmesh::case_identity(pdmesh::parse_case_text(text + extra, "case.toml")))
+      if (name == "population.schedule") return v;
+    return std::string("(none)");
+  };
+  // Off (the default): the string of the checkpoints written before the keys existed, so they resume.
+  CHECK(schedule("") == "every 50 start 100 stop 0.8");
+  CHECK(schedule("[population]\nsettle = 0.001\n") == "every 50 start 100 stop 0.8 settle 0.001 2");
+  CHECK(schedule("[population]\nsettle = 0.001\nsettle_events = 3\n") !=
+        schedule("[population]\nsettle = 0.001\n"));
 }

@@ -55,7 +55,7 @@ int main(int argc, char** argv) {
     fmt::print("iteration,min_angle,aspect_ratio,settled,nodes,average_force,seconds\n");
     const auto start = std::chrono::steady_clock::now();
     // Population control's schedule, followed as the driver keeps it (an event is due by the same
-    // rule; it changed the node set when the row counts insertions or removals), so that `settled` is
+    // rule; the row counts its insertions and removals), so that `settled` is
     // what the driver hands the rule.
     PopulationSchedule schedule;
     // The host driver updates `nodes` in place: in the callback they hold the iteration's positions,
@@ -64,7 +64,7 @@ int main(int argc, char** argv) {
     callbacks.on_iteration = [&](const HistoryRow& row) {
       const int it = row.iteration;
       if (options.population.enabled && population_event_due(options.population, schedule, it, options.iterations))
-        schedule.record(options.population, it, row.inserted + row.removed > 0);
+        schedule.record(options.population, it, row.inserted + row.removed, nodes.size());
       if (it % every != 0) return;
       const bool settled = population_status(options.population, schedule, it, options.iterations).settled;
       const MeshSample s = measure_mesh(nodes, it);

@@ -438,6 +438,12 @@ void read_simulation_section(const Reader& r, const toml::table& root, CaseConfi
   if (const toml::node* n = find(root, "simulation", "stop")) {
     s.stop = choose<StopRule>(r, "simulation.stop", *n, {{"converged", StopRule::Converged}, {"iterations", StopRule::Iterations}});
   }
+  for (auto [key, out, hi] : {std::tuple{"stop_aspect", &s.stop_aspect, 0.1}, {"stop_angle", &s.stop_angle, 10.0}})
+    if (const toml::node* n = find(root, "simulation", key)) {
+      const std::string name = std::string("simulation.") + key;
+      *out = r.number(name, *n);
+      if (!(*out >= 0.0 && *out <= hi)) r.fail(name, n, fmt::format("{} must be in [0, {}], got {}", name, hi, *out));
+    }
   if (const toml::node* n = find(root, "simulation", "dt_initial")) {
     if (n->is_table()) {
       const toml::table& per = *n->as_table();
@@ -504,6 +510,13 @@ void read_population_section(const Reader& r, const toml::table& root, CaseConfi
   integer_in("every", 1, 1'000'000'000, p.every);
   integer_in("start", 0, 2'000'000'000, p.start);
   integer_in("remove_valence", 0, 5, p.remove_valence);
+  integer_in("settle_events", 1, kPopulationMaxSettleEvents, p.settle_events);
+  if (const toml::node* n = find(root, "population", "settle")) {
+    p.settle = r.number("population.settle", *n);
+    if (!(p.settle >= 0.0 && p.settle <= 0.1))
+      r.fail("population.settle", n,
+             fmt::format("population.settle must be in [0, 0.1] (a fraction of the nodes), got {}", p.settle));
+  }
   if (const toml::node* n = find(root, "population", "stop")) {
     p.stop = r.number("population.stop", *n);
     if (!(p.stop > 0.0 && p.stop <= 1.0))
@@ -660,11 +673,13 @@ const std::vector<std::string>& case_file_keys() {
       "geometry.curves", "spacing.field", "spacing.expression", "spacing.file", "spacing.array", "spacing.scale",
       "spacing.gradation", "spacing.rows_in_gap", "spacing.curvature_angle", "boundary.nodes",
       "init.method", "init.seed", "init.total",
-      "simulation.iterations", "simulation.stop", "simulation.dt_initial", "simulation.dt_initial.structured",
+      "simulation.iterations", "simulation.stop", "simulation.stop_aspect", "simulation.stop_angle",
+      "simulation.dt_initial", "simulation.dt_initial.structured",
       "simulation.dt_initial.random", "simulation.cutoff", "simulation.lj_a", "simulation.device",
       "simulation.precision", "simulation.r0_rule", "simulation.stability_factor",
       "population.enabled", "population.every", "population.start", "population.stop", "population.insert",
       "population.merge", "population.remove_valence", "population.boundary", "population.boundary_split",
+      "population.settle", "population.settle_events",
       "cleanup.enabled", "cleanup.min_angle", "cleanup.iterations", "cleanup.topology", "cleanup.split_boundary",
       "output.formats", "output.tree_overlay", "output.views", "output.color_by", "output.spacing_picture",
   };

@@ -96,6 +96,11 @@ struct CaseConfig {
   struct Simulation {
     std::int64_t iterations = 2000;  // with stop = Converged the most the run may take
     StopRule stop = StopRule::Converged;
+    // The convergence rule's tolerances (sim/convergence.hpp ConvergenceOptions): the most the mean
+    // aspect ratio of the triangulated nodes may change over the rule's window, and the most the
+    // smallest angle may rise above its earlier best in it (degrees).
+    double stop_aspect = 5e-4;
+    double stop_angle = 0.25;
     // Initial global maximum time step per init method; empty = the automatic rule.
     std::optional<double> dt_structured;
     std::optional<double> dt_random;

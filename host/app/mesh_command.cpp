@@ -25,6 +25,8 @@ SimOptions simulation_options(const CaseConfig& config) {
   SimOptions options;
   options.iterations = static_cast<int>(config.simulation.iterations);
   options.convergence.enabled = config.simulation.stop == StopRule::Converged;
+  options.convergence.aspect_tolerance = config.simulation.stop_aspect;
+  options.convergence.angle_tolerance = config.simulation.stop_angle;
   options.dt_initial = config.simulation.dt_for(config.init.method);
   options.cutoff = config.simulation.cutoff;
   options.lj_a = config.simulation.lj_a;

@@ -86,7 +86,12 @@ std::vector<std::pair<std::string, std::string>> case_identity(const CaseConfig&
   const PopulationOptions& p = config.population;
   if (p.enabled) {
     keys.emplace_back("population.enabled", "true");
-    keys.emplace_back("population.schedule", fmt::format("every {} start {} stop {}", p.every, p.start, p.stop));
+    // The settle keys only when settling is on (settle > 0): with it off the schedule is the one before
+    // them, and so is its identity, so that earlier checkpoints of such runs still resume.
+    keys.emplace_back("population.schedule",
+                      p.settle > 0 ? fmt::format("every {} start {} stop {} settle {} {}", p.every, p.start, p.stop,
+                                                 p.settle, p.settle_events)
+                                   : fmt::format("every {} start {} stop {}", p.every, p.start, p.stop));
     keys.emplace_back("population.thresholds",
                       fmt::format("insert {} {} merge {} {} valence {} boundary {} split {}", p.insert.first,
                                   p.insert.last, p.merge.first, p.merge.last, p.remove_valence, p.boundary,

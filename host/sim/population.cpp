@@ -22,10 +22,15 @@ int population_last_event(const PopulationOptions& options, int iterations) {
   return last >= options.start && last >= 1 ? last : 0;
 }
 
-void PopulationSchedule::record(const PopulationOptions& options, int iteration, bool changed) {
+bool population_quiet(const PopulationOptions& options, std::size_t changes, std::size_t nodes) {
+  return static_cast<double>(changes) <= options.settle * static_cast<double>(nodes);
+}
+
+void PopulationSchedule::record(const PopulationOptions& options, int iteration, std::size_t changes,
+                                std::size_t nodes) {
   last_event = iteration;
   const int every = std::max(1, options.every);
-  if (changed) {
+  if (!population_quiet(options, changes, nodes)) {
     last_change = iteration;
     interval = every;
   } else {
@@ -34,10 +39,17 @@ void PopulationSchedule::record(const PopulationOptions& options, int iteration,
   next = iteration + interval;
 }
 
+bool PopulationSchedule::finished(const PopulationOptions& options) const {
+  if (!(options.settle > 0.0) || last_event == 0) return false;
+  // k consecutive quiet events leave the interval at every x 2^k (k <= 3, below the growth cap).
+  const int k = std::clamp(options.settle_events, 1, kPopulationMaxSettleEvents);
+  return last_change < last_event && interval >= (std::max(1, options.every) << k);
+}
+
 bool population_event_due(const PopulationOptions& options, const PopulationSchedule& schedule, int iteration,
                           int iterations) {
   const int last = population_last_event(options, iterations);
-  if (last == 0 || iteration > last || iteration <= schedule.last_event) return false;
+  if (last == 0 || iteration > last || iteration <= schedule.last_event || schedule.finished(options)) return false;
   const int next = schedule.next > 0 ? schedule.next : options.start;
   return iteration == last || iteration == next;
 }
@@ -59,7 +71,7 @@ PopulationStatus population_status(const PopulationOptions& options, const Popul
                                    int iteration, int iterations) {
   PopulationStatus s;
   const int last = population_last_event(options, iterations);
-  s.active = last > 0 && iteration < last;
+  s.active = last > 0 && iteration < last && !schedule.finished(options);
   s.settled = !s.active || (schedule.last_event > 0 && schedule.last_change < schedule.last_event);
   return s;
 }
@@ -120,20 +132,27 @@ std::optional<PopulationCounts> PopulationTracker::after_iteration(const Populat
       run_population_event(nodes, boundary, spacing, population_thresholds(options, iteration, iterations), old_of_new);
   seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   ++events;
+  inserted += counts.inserted();
+  removed += counts.removed();
+  // An event that could not triangulate the nodes saw nothing: with a settle tolerance it does not
+  // count towards settling (without one it is quiet, as it always was).
+  const std::size_t changes =
+      counts.skipped && options.settle > 0.0 ? nodes.size() + 1 : counts.inserted() + counts.removed();
+  schedule.record(options, iteration, changes, nodes.size());
   // PDMESH_POPULATION_TRACE=1: one line per event on stderr (tuning and diagnosis).
   static const bool trace = std::getenv("PDMESH_POPULATION_TRACE") != nullptr;
   if (trace) {
     const PopulationThresholds t = population_thresholds(options, iteration, iterations);
+    const char* state = schedule.finished(options) ? "; settled, no further event"
+                        : schedule.last_change < iteration ? "; quiet"
+                                                           : "";
     fmt::print(stderr,
                "population event after iteration {}: insert {:.3f} merge {:.3f}: +{} interior +{} boundary, "
-               "-{} merged -{} thinned -{} valence -{} boundary{}; {} nodes\n",
+               "-{} merged -{} thinned -{} valence -{} boundary{}; {} nodes{}\n",
                iteration, t.insert, t.merge, counts.inserted_interior, counts.inserted_boundary, counts.merged,
                counts.thinned, counts.valence, counts.removed_boundary, counts.skipped ? " (skipped)" : "",
-               nodes.size());
+               nodes.size(), state);
   }
-  inserted += counts.inserted();
-  removed += counts.removed();
-  schedule.record(options, iteration, counts.changed());
   return counts;
 }
 

@@ -25,9 +25,9 @@ struct PopulationRamp {
 
 struct PopulationOptions {
   bool enabled = false;  // the library default is the thesis' fixed node count
-  // Iterations between events. An event that changes nothing doubles the interval to the next one
-  // (up to kPopulationQuietGrowth x every), one that changes the node set resets it to every: a
-  // settled run triangulates rarely.
+  // Iterations between events. A quiet event (see settle) doubles the interval to the next one (up
+  // to kPopulationQuietGrowth x every), one that changes more resets it to every: a settled run
+  // triangulates rarely.
   int every = 50;
   int start = 100;       // the first event comes after this iteration (the start's transient is over)
   // No event after this fraction of the run: the last event is at floor(stop * iterations), and the
@@ -45,6 +45,16 @@ struct PopulationOptions {
   // merged gap would exceed boundary_split * sigma. Critical points never move or leave.
   double boundary_split = 1.5;
   bool boundary = true;
+  // Settledness. An event is quiet when it changes (inserts plus removes) at most settle x the node
+  // count after it (0: only an event that changes nothing). With settle > 0, after settle_events
+  // consecutive quiet events population control is over: no event follows, so the lattice relaxes
+  // undisturbed and a stopping rule can start its window. The annealing lattice keeps opening a few
+  // vacancies per event for the whole run (30P30N: 1-13 of 14k nodes per event to the last one), so
+  // "changes nothing" alone practically never holds before the last event. The default 0 keeps events
+  // up to the last one: ending them early cost up to 2 degrees of smallest angle on NACA 0012 and
+  // circle_circle (docs/simulation.md, "Population control", "Settling early: measured").
+  double settle = 0.0;
+  int settle_events = 2;  // 1..kPopulationMaxSettleEvents
 };
 
 // The thresholds of one event (population_thresholds gives them for an iteration of a run).
@@ -72,6 +82,12 @@ struct PopulationCounts {
 
 // The interval after quiet events grows at most to this multiple of PopulationOptions::every.
 inline constexpr int kPopulationQuietGrowth = 8;
+// The most consecutive quiet events settle_events may ask for: the schedule counts them by its interval
+// (every x 2^k after k of them), which stops growing at kPopulationQuietGrowth = 2^3.
+inline constexpr int kPopulationMaxSettleEvents = 3;
+
+// Whether an event that changed `changes` nodes, leaving `nodes`, is quiet (PopulationOptions::settle).
+bool population_quiet(const PopulationOptions& options, std::size_t changes, std::size_t nodes);
 
 // The iteration of the last event of a run of `iterations` (0: none): floor(stop * iterations), if
 // that is at or after start.
@@ -94,13 +110,18 @@ struct PopulationSchedule {
   int next = 0;         // the iteration after which the next event runs (0: options.start)
   int interval = 0;     // the current interval (0: options.every)
   int last_event = 0;   // the iteration after which the last event ran (0: none yet)
-  int last_change = 0;  // the same for the last event that changed the node set
-  // Records an event after `iteration` and schedules the next: `every` later after a change, twice
-  // the last interval (at most kPopulationQuietGrowth x every) after a quiet one.
-  void record(const PopulationOptions& options, int iteration, bool changed);
+  int last_change = 0;  // the same for the last event that was not quiet (population_quiet)
+  // Records an event after `iteration` that changed `changes` nodes and left `nodes`, and schedules
+  // the next: `every` later after one that was not quiet, twice the last interval (at most
+  // kPopulationQuietGrowth x every) after a quiet one.
+  void record(const PopulationOptions& options, int iteration, std::size_t changes, std::size_t nodes);
+  // Whether population control is over before its last event: settle > 0 and the last
+  // settle_events events were quiet (the interval has doubled that many times since the last change).
+  bool finished(const PopulationOptions& options) const;
 };
 
-// Whether an event runs after `iteration`: the scheduled one, and always the last one.
+// Whether an event runs after `iteration`: the scheduled one, and the last one unless the schedule has
+// finished (PopulationSchedule::finished).
 bool population_event_due(const PopulationOptions& options, const PopulationSchedule& schedule, int iteration,
                           int iterations);
 
@@ -108,7 +129,7 @@ bool population_event_due(const PopulationOptions& options, const PopulationSche
 // population has settled).
 struct PopulationStatus {
   bool active = false;   // events are still to come in this run
-  bool settled = true;   // off, past its last event, or the last event changed nothing
+  bool settled = true;   // off, finished, past its last event, or the last event was quiet
 };
 PopulationStatus population_status(const PopulationOptions& options, const PopulationSchedule& schedule,
                                    int iteration, int iterations);
