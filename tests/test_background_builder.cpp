@@ -11,6 +11,7 @@
 #include "geometry/curve_reader.hpp"
 #include "geometry/geometry.hpp"
 #include "geometry/geometry_tree.hpp"
+#include "spacing/background_builder.hpp"
 #include "spacing/background_field.hpp"
 #include "spacing/spacing_pipeline.hpp"
 
@@ -271,6 +272,76 @@ TEST_CASE("background builder: batched build equals the recursive build bit for 
   CHECK(counting.points == s.exact_evaluations + 81);
   CHECK(s.exact_evaluations >= recursive.evaluations());
   CHECK(static_cast<double>(s.exact_evaluations) <= 1.01 * static_cast<double>(recursive.evaluations()));
+}
+
+TEST_CASE("background builder: sample ids name the lattice points of the cells' corners", "[spacing]") {
+  // Every cell keeps the sample ids of its corners (children take theirs from the parent's corners
+  // and tested points), callers index their own arrays by them: each must be the sample at its point.
+  const Geometry g = circle_circle();
+  const GeometryTree tree(g);
+  const BoundarySpacing exact(tree);
+  BackgroundOptions options;
+  options.tolerance = 1e-3;
+  BackgroundBuilder b(exact, tree, options);
+  b.build();
+  // Mismatches are counted, not asserted one by one: hundreds of thousands of corners.
+  auto bad_cells = [&] {
+    std::size_t bad = 0;
+    const auto& cells = b.cells();
+    for (std::size_t i = 0; i < cells.size(); ++i) {
+      const BackgroundBuilder::Cell& c = cells[i];
+      const std::uint32_t s = b.span(c.level);
+      for (int k = 0; k < 4; ++k) {
+        if (c.corner[k] < 0 || static_cast<std::size_t>(c.corner[k]) >= b.samples()) {
+          ++bad;
+          continue;
+        }
+        if (b.sample_value(c.corner[k]) != b.sample(c.x + (k & 1 ? s : 0u), c.y + (k & 2 ? s : 0u))) ++bad;
+      }
+      if (c.level == 0) {
+        if (c.parent != -1) ++bad;
+      } else if (c.parent < 0) {
+        ++bad;
+      } else {
+        const auto first = static_cast<std::size_t>(cells[static_cast<std::size_t>(c.parent)].first_child);
+        if (i < first || i >= first + 4) ++bad;
+      }
+    }
+    return bad;
+  };
+  CHECK(bad_cells() == 0);
+  CHECK(b.samples() == b.evaluations());
+  // A caller's refinement (every leaf split once more, the new cells not): the ids it is handed name
+  // the keys' points.
+  const std::size_t before = b.samples();
+  const std::size_t old_cells = b.cells().size();
+  std::size_t checked = 0, bad_ids = 0;
+  const std::size_t splits = b.refine(
+      b.leaves(),
+      [&](const BackgroundBuilder::Cell& c, const double*) {
+        const auto index = static_cast<std::size_t>(&c - b.cells().data());
+        return index < old_cells && c.level < options.max_depth ? BackgroundBuilder::Decision::Split
+                                                                : BackgroundBuilder::Decision::Leaf;
+      },
+      [](const BackgroundBuilder::Cell&, const double*, const double*, const std::int32_t*, int) { return false; },
+      [&](const BackgroundBuilder::Cell&, std::uint32_t x, std::uint32_t y, std::int32_t id) {
+        if (b.sample_value(id) != b.sample(x, y)) ++bad_ids;
+        return b.sample_value(id);
+      },
+      [&](const std::vector<std::uint64_t>& keys, const std::vector<std::int32_t>& ids) {
+        REQUIRE(keys.size() == ids.size());
+        for (std::size_t i = 0; i < keys.size(); ++i) {
+          if (b.sample_value(ids[i]) !=
+              b.sample(static_cast<std::uint32_t>(keys[i] >> 32), static_cast<std::uint32_t>(keys[i] & 0xffffffffu)))
+            ++bad_ids;
+          ++checked;
+        }
+      });
+  CHECK(splits > 0);
+  CHECK(b.samples() > before);
+  CHECK(checked > 0);
+  CHECK(bad_ids == 0);
+  CHECK(bad_cells() == 0);
 }
 
 TEST_CASE("background builder: an expression field is built in batches too", "[spacing]") {

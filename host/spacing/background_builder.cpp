@@ -14,6 +14,8 @@ namespace pdmesh {
 namespace {
 // Cells tested per thread at least (a test is a few lookups and nine interpolations).
 constexpr std::size_t kTestsPerThread = 2048;
+// New cells set up per thread at least (a few exact segment-box tests, or one inside test, each).
+constexpr std::size_t kChildrenPerThread = 1024;
 }  // namespace
 
 BackgroundBuilder::BackgroundBuilder(const SpacingField& exact, const GeometryTree& tree,
@@ -28,21 +30,27 @@ double BackgroundBuilder::coord(double origin, std::uint32_t lattice) const {
 
 double BackgroundBuilder::side(int level) const { return std::ldexp(root_size_, -level); }
 
-double BackgroundBuilder::sample(std::uint32_t x, std::uint32_t y) const { return samples_.at(key(x, y)); }
+double BackgroundBuilder::sample(std::uint32_t x, std::uint32_t y) const {
+  return values_[static_cast<std::size_t>(samples_.at(key(x, y)))];
+}
 
-void BackgroundBuilder::sample_all(const std::vector<std::uint64_t>& keys) {
-  std::vector<std::uint64_t> fresh;
+void BackgroundBuilder::sample_all(const std::vector<std::uint64_t>& keys, std::vector<std::int32_t>& ids) {
+  // New samples take the next ids in the order of their first key: the values land in values_ by id,
+  // with no second lookup, and callers keep the ids instead of looking keys up again.
+  const std::size_t first = values_.size();
   std::vector<Vec2> points;
-  for (const std::uint64_t k : keys) {
-    if (!samples_.try_emplace(k, 0.0).second) continue;
-    fresh.push_back(k);
-    points.push_back(point(static_cast<std::uint32_t>(k >> 32), static_cast<std::uint32_t>(k & 0xffffffffu)));
+  ids.resize(keys.size());
+  for (std::size_t i = 0; i < keys.size(); ++i) {
+    const std::uint64_t k = keys[i];
+    const auto [id, fresh] = samples_.try_emplace(k, static_cast<std::int32_t>(first + points.size()));
+    ids[i] = *id;
+    if (fresh) points.push_back(point(static_cast<std::uint32_t>(k >> 32), static_cast<std::uint32_t>(k & 0xffffffffu)));
   }
   if (points.empty()) return;
   std::vector<double> q;
   exact_->at_many(points, q);
   ++batches_;
-  for (std::size_t i = 0; i < fresh.size(); ++i) *samples_.find(fresh[i]) = q[i];
+  values_.insert(values_.end(), q.begin(), q.end());
 }
 
 // The square: the extents' bounding square grown by 1/64 so that points off the grid are outside the
@@ -73,9 +81,14 @@ void BackgroundBuilder::choose_grid() {
 }
 
 void BackgroundBuilder::set_tag(Cell& c, std::vector<int> segments) {
+  const std::uint32_t half = span(c.level) / 2;
+  const bool inside = segments.empty() && tree_.inside(point(c.x + half, c.y + half));
+  set_tag(c, std::move(segments), inside);
+}
+
+void BackgroundBuilder::set_tag(Cell& c, std::vector<int> segments, bool inside) {
   if (segments.empty()) {
-    const std::uint32_t half = span(c.level) / 2;
-    c.tag = static_cast<std::int8_t>(tree_.inside(point(c.x + half, c.y + half)) ? kTagInside : kTagOutside);
+    c.tag = static_cast<std::int8_t>(inside ? kTagInside : kTagOutside);
     return;
   }
   c.tag = kTagBoundary;
@@ -129,8 +142,10 @@ void BackgroundBuilder::build() {
   for (std::size_t k = 0; k < roots.size(); ++k) roots[k] = static_cast<int>(k);
   refine(
       std::move(roots), [this](const Cell& c, const double q[4]) { return default_decide(c, q); },
-      [this](const Cell&, const double q[4], const double exact[9], int count) { return default_test(q, exact, count); },
-      [this](const Cell&, std::uint32_t x, std::uint32_t y) { return sample(x, y); });
+      [this](const Cell&, const double q[4], const double exact[9], const std::int32_t*, int count) {
+        return default_test(q, exact, count);
+      },
+      [this](const Cell&, std::uint32_t, std::uint32_t, std::int32_t id) { return sample_value(id); });
 }
 
 BackgroundBuilder::Decision BackgroundBuilder::default_decide(const Cell& c, const double q[4]) const {
@@ -157,19 +172,28 @@ std::size_t BackgroundBuilder::refine(std::vector<int> level_cells, const Decide
                                       const CornerFn& corner_value, const SampledFn& sampled) {
   std::size_t splits = 0;
   std::vector<std::uint64_t> keys;
+  std::vector<std::int32_t> ids;
   std::vector<int> tested, next;
   std::vector<double> corners;  // 4 per cell of the level
   while (!level_cells.empty()) {
-    // 1. The corners of every cell of the level, in one batch.
+    // 1. The corners of every cell of the level, in one batch. Most are known already: a child's
+    // corners are its parent's corners and test points (step 3), and a leaf refined again keeps its
+    // own. Only the others are looked up (or sampled): the same new samples in the same order.
     keys.clear();
-    for (const int i : level_cells) {
-      const Cell& c = cells_[static_cast<std::size_t>(i)];
+    std::vector<std::size_t> unknown;  // 4 n + k: corner k of level_cells[n]
+    for (std::size_t n = 0; n < level_cells.size(); ++n) {
+      const Cell& c = cells_[static_cast<std::size_t>(level_cells[n])];
       const std::uint32_t s = span(c.level);
-      for (const std::uint32_t dy : {0u, s})
-        for (const std::uint32_t dx : {0u, s}) keys.push_back(key(c.x + dx, c.y + dy));
+      for (int k = 0; k < 4; ++k) {
+        if (c.corner[k] >= 0) continue;
+        keys.push_back(key(c.x + (k & 1 ? s : 0u), c.y + (k & 2 ? s : 0u)));
+        unknown.push_back(4 * n + static_cast<std::size_t>(k));
+      }
     }
-    sample_all(keys);
-    if (sampled) sampled(keys);
+    sample_all(keys, ids);
+    for (std::size_t i = 0; i < unknown.size(); ++i)
+      cells_[static_cast<std::size_t>(level_cells[unknown[i] / 4])].corner[unknown[i] % 4] = ids[i];
+    if (sampled) sampled(keys, ids);
     corners.resize(4 * level_cells.size());
     std::vector<Decision> decision(level_cells.size());
     keys.clear();
@@ -178,10 +202,10 @@ std::size_t BackgroundBuilder::refine(std::vector<int> level_cells, const Decide
       const Cell& c = cells_[static_cast<std::size_t>(level_cells[n])];
       const std::uint32_t s = span(c.level);
       double* q = &corners[4 * n];
-      q[0] = corner_value(c, c.x, c.y);
-      q[1] = corner_value(c, c.x + s, c.y);
-      q[2] = corner_value(c, c.x, c.y + s);
-      q[3] = corner_value(c, c.x + s, c.y + s);
+      q[0] = corner_value(c, c.x, c.y, c.corner[0]);
+      q[1] = corner_value(c, c.x + s, c.y, c.corner[1]);
+      q[2] = corner_value(c, c.x, c.y + s, c.corner[2]);
+      q[3] = corner_value(c, c.x + s, c.y + s, c.corner[3]);
       decision[n] = decide(c, q);
       if (decision[n] != Decision::Test) continue;
       tested.push_back(static_cast<int>(n));
@@ -195,48 +219,69 @@ std::size_t BackgroundBuilder::refine(std::vector<int> level_cells, const Decide
     // the cells these did not already split, the quarter points. Evaluating all 9 at once costs a
     // third more samples on 30P30N than the per-point builder, whose tests stop at the first failure.
     std::vector<double> exact(9 * tested.size());
+    std::vector<std::int32_t> test_ids(9 * tested.size());
+    std::vector<std::size_t> first_key(tested.size());  // where tested cell m's keys start in this round's batch
+    for (std::size_t m = 0; m < tested.size(); ++m) first_key[m] = kFirstQuarterTest * m;
     for (const int round : {0, 1}) {
       if (round == 1) {
         keys.clear();
-        for (const int n : tested) {
-          if (decision[static_cast<std::size_t>(n)] == Decision::Split) continue;
-          const Cell& c = cells_[static_cast<std::size_t>(level_cells[static_cast<std::size_t>(n)])];
+        for (std::size_t m = 0; m < tested.size(); ++m) {
+          const auto n = static_cast<std::size_t>(tested[m]);
+          if (decision[n] == Decision::Split) continue;
+          first_key[m] = keys.size();
+          const Cell& c = cells_[static_cast<std::size_t>(level_cells[n])];
           const std::uint32_t quarter = span(c.level) / 4;
           for (int t = kFirstQuarterTest; t < 9; ++t)
             keys.push_back(key(c.x + quarter * static_cast<std::uint32_t>(kTests[t][0]),
                                c.y + quarter * static_cast<std::uint32_t>(kTests[t][1])));
         }
       }
-      sample_all(keys);
-      if (sampled) sampled(keys);
+      sample_all(keys, ids);
+      if (sampled) sampled(keys, ids);
       // The tests only read (the samples, the caller's state), and each writes its own cell's decision:
       // on all cores, with the decisions of one loop.
       parallel_for(tested.size(), [&](std::size_t m) {
         const auto n = static_cast<std::size_t>(tested[m]);
         if (round == 1 && decision[n] == Decision::Split) return;
         const Cell& c = cells_[static_cast<std::size_t>(level_cells[n])];
-        const std::uint32_t quarter = span(c.level) / 4;
+        const int from = round == 0 ? 0 : kFirstQuarterTest;
         const int count = round == 0 ? kFirstQuarterTest : 9;
-        for (int t = round == 0 ? 0 : kFirstQuarterTest; t < count; ++t)
-          exact[9 * m + static_cast<std::size_t>(t)] = sample(c.x + quarter * static_cast<std::uint32_t>(kTests[t][0]),
-                                                              c.y + quarter * static_cast<std::uint32_t>(kTests[t][1]));
-        const bool split = test(c, &corners[4 * n], &exact[9 * m], count);
+        for (int t = from; t < count; ++t) {
+          const std::int32_t id = ids[first_key[m] + static_cast<std::size_t>(t - from)];
+          test_ids[9 * m + static_cast<std::size_t>(t)] = id;
+          exact[9 * m + static_cast<std::size_t>(t)] = values_[static_cast<std::size_t>(id)];
+        }
+        const bool split = test(c, &corners[4 * n], &exact[9 * m], &test_ids[9 * m], count);
         decision[n] = split ? Decision::Split : round == 0 ? Decision::Test : Decision::Leaf;
       }, kTestsPerThread);
     }
     // 3. Children of the split cells: the next level.
     next.clear();
     const auto& segs = tree_.geometry().segments;
+    std::vector<std::int32_t> tested_as(level_cells.size(), -1);  // n -> m
+    for (std::size_t m = 0; m < tested.size(); ++m) tested_as[static_cast<std::size_t>(tested[m])] = static_cast<std::int32_t>(m);
+    std::vector<std::vector<int>> parent_lists;  // per split cell, in order: its segments
     for (std::size_t n = 0; n < level_cells.size(); ++n) {
       if (decision[n] != Decision::Split) continue;
+      // The sample ids at the parent's points in quarters (0, 2, 4 each way): its corners, and its
+      // centre and edge midpoints when it was tested (else -1: step 1 looks them up).
+      std::int32_t at[3][3];
+      for (auto& row : at) std::fill(row, row + 3, -1);
+      {
+        const Cell& c = cells_[static_cast<std::size_t>(level_cells[n])];
+        for (int k = 0; k < 4; ++k) at[k & 2 ? 2 : 0][k & 1 ? 2 : 0] = c.corner[k];
+        if (tested_as[n] >= 0)
+          for (int t = 0; t < kFirstQuarterTest; ++t)
+            at[kTests[t][1] / 2][kTests[t][0] / 2] = test_ids[9 * static_cast<std::size_t>(tested_as[n]) + static_cast<std::size_t>(t)];
+      }
       ++splits;
       const auto parent = static_cast<std::size_t>(level_cells[n]);
       const auto first = static_cast<std::int32_t>(cells_.size());
       cells_[parent].first_child = first;
       const Cell p = cells_[parent];
-      std::vector<int> parent_segments;
+      parent_lists.emplace_back();
       if (p.segments >= 0) {
-        parent_segments = std::move(segment_lists_[static_cast<std::size_t>(p.segments)]);
+        parent_lists.back() = std::move(segment_lists_[static_cast<std::size_t>(p.segments)]);
         cells_[parent].segments = -1;  // an inner cell needs no list (the vector was moved out)
       }
       const std::uint32_t h = span(p.level) / 2;
@@ -245,18 +290,31 @@ std::size_t BackgroundBuilder::refine(std::vector<int> level_cells, const Decide
         child.x = p.x + (k & 1 ? h : 0u);
         child.y = p.y + (k & 2 ? h : 0u);
         child.level = static_cast<std::int8_t>(p.level + 1);
-        Box b;
-        b.lo = point(child.x, child.y);
-        b.hi = point(child.x + h, child.y + h);
-        std::vector<int> child_segments;
-        for (const int i : parent_segments)
-          if (segment_touches_box(segs[static_cast<std::size_t>(i)].a, segs[static_cast<std::size_t>(i)].b, b))
-            child_segments.push_back(i);
-        set_tag(child, std::move(child_segments));
+        child.parent = static_cast<std::int32_t>(parent);
+        for (int j = 0; j < 4; ++j) child.corner[j] = at[(k & 2 ? 1 : 0) + (j & 2 ? 1 : 0)][(k & 1 ? 1 : 0) + (j & 1 ? 1 : 0)];
         cells_.push_back(child);
         next.push_back(first + k);
       }
     }
+    // The children's segment lists (exact segment-box tests) and, for those without segments, the
+    // inside test of their centre: on all cores, each child writing its own entries; then the tags in
+    // the children's order, as set_tag always numbered the lists.
+    std::vector<std::vector<int>> child_segments(next.size());
+    std::vector<std::uint8_t> inside(next.size(), 0);
+    parallel_for(next.size(), [&](std::size_t i) {
+      const Cell& child = cells_[static_cast<std::size_t>(next[i])];
+      const std::uint32_t h = span(child.level);
+      Box b;
+      b.lo = point(child.x, child.y);
+      b.hi = point(child.x + h, child.y + h);
+      for (const int s : parent_lists[i / 4])
+        if (segment_touches_box(segs[static_cast<std::size_t>(s)].a, segs[static_cast<std::size_t>(s)].b, b))
+          child_segments[i].push_back(s);
+      if (child_segments[i].empty()) inside[i] = tree_.inside(point(child.x + h / 2, child.y + h / 2)) ? 1 : 0;
+    }, kChildrenPerThread);
+    parent_lists.clear();
+    for (std::size_t i = 0; i < next.size(); ++i)
+      set_tag(cells_[static_cast<std::size_t>(next[i])], std::move(child_segments[i]), inside[i] != 0);
     level_cells.swap(next);
   }
   return splits;
@@ -297,12 +355,16 @@ BackgroundFieldData BackgroundBuilder::emit(const ValueFn& corner_value) const {
   d.root_size = root_size_;
   d.inv_root_size = 1.0 / root_size_;
   d.grid = grid_;
-  FlatKeyMap<std::int32_t> corner_ids;
+  // Distinct corners numbered in the order first reached, by sample id (every leaf corner is a sample).
+  std::vector<std::int32_t> corner_ids(values_.size(), -1);
   const std::uint32_t below_root = (std::uint32_t{1} << resolution_) - 1;
-  auto corner = [&](std::uint32_t x, std::uint32_t y) {
-    const auto [id, inserted] = corner_ids.try_emplace(key(x, y), static_cast<std::int32_t>(d.corner_q.size()));
-    if (inserted) d.corner_q.push_back(corner_value ? corner_value(x, y) : sample(x, y));
-    return *id;
+  auto corner = [&](std::int32_t sample_id) {
+    std::int32_t& id = corner_ids[static_cast<std::size_t>(sample_id)];
+    if (id < 0) {
+      id = static_cast<std::int32_t>(d.corner_q.size());
+      d.corner_q.push_back(corner_value ? corner_value(sample_id) : values_[static_cast<std::size_t>(sample_id)]);
+    }
+    return id;
   };
   auto new_node = [&] {
     d.node_child.push_back(-1);
@@ -321,8 +383,7 @@ BackgroundFieldData BackgroundBuilder::emit(const ValueFn& corner_value) const {
       d.leaf_cell.push_back(c.level);
       d.leaf_cell.push_back(static_cast<std::int32_t>((c.x & below_root) >> (resolution_ - c.level)));
       d.leaf_cell.push_back(static_cast<std::int32_t>((c.y & below_root) >> (resolution_ - c.level)));
-      const std::uint32_t s = span(c.level);
-      for (const auto& [dx, dy] : {std::pair{0u, 0u}, {s, 0u}, {0u, s}, {s, s}}) d.leaf_corner.push_back(corner(c.x + dx, c.y + dy));
+      for (const std::int32_t id : c.corner) d.leaf_corner.push_back(corner(id));
       return;
     }
     const int first = new_node();

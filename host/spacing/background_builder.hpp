@@ -19,6 +19,10 @@ class BackgroundBuilder {
     std::uint32_t x = 0, y = 0;     // lattice coordinates of the low corner
     std::int32_t first_child = -1;  // -1: a leaf
     std::int32_t segments = -1;     // index into segment_lists_ (boundary leaves), or -1
+    std::int32_t parent = -1;       // -1 for a root cell
+    // Sample ids of the corners (x lo y lo, x hi y lo, x lo y hi, x hi y hi), set when the cell's level
+    // is sampled: callers index their own per-sample arrays by them instead of hashing lattice keys.
+    std::int32_t corner[4] = {-1, -1, -1, -1};
     std::int8_t level = 0;          // 0 = root cell
     std::int8_t tag = kTagBoundary; // a DomainTag
   };
@@ -34,21 +38,23 @@ class BackgroundBuilder {
   // and its four corner values and says Leaf, Split or Test; for Test, `test` then sees the cell, its
   // corners and the exact field at its first `count` test points (5, then all 9 unless the 5 split
   // it) and says whether to split. Per level, the exact samples of all corners are taken first (one
-  // batch), then `corner_value` gives each cell's corner values (cell, lattice x, y). `sampled` (if
-  // set) sees the keys of every batch (corners, then test points) as soon as its samples are in, so a
-  // caller can compute its own values at those points in bulk. Returns the number of cells split.
+  // batch), then `corner_value` gives each cell's corner values (cell, lattice x, y, the corner's
+  // sample id). `sampled` (if set) sees the keys of every batch (corners, then test points) and their
+  // sample ids as soon as the samples are in, so a caller can compute its own values at those points in
+  // bulk. `test` also sees the sample ids of the test points. Returns the number of cells split.
   // `test` is called from several threads at once: it may only read (decide and corner_value are
   // called on the calling thread, in the cells' order).
   using DecideFn = std::function<Decision(const Cell&, const double q[4])>;
-  using TestFn = std::function<bool(const Cell&, const double q[4], const double exact[9], int count)>;
-  using CornerFn = std::function<double(const Cell&, std::uint32_t, std::uint32_t)>;
-  using SampledFn = std::function<void(const std::vector<std::uint64_t>& keys)>;
+  using TestFn =
+      std::function<bool(const Cell&, const double q[4], const double exact[9], const std::int32_t ids[9], int count)>;
+  using CornerFn = std::function<double(const Cell&, std::uint32_t, std::uint32_t, std::int32_t)>;
+  using SampledFn = std::function<void(const std::vector<std::uint64_t>& keys, const std::vector<std::int32_t>& ids)>;
   std::size_t refine(std::vector<int> cells, const DecideFn& decide, const TestFn& test, const CornerFn& corner_value,
                      const SampledFn& sampled = {});
 
   // The flat arrays, nodes and leaves numbered depth first. corner_q holds `corner_value` at each
-  // distinct leaf corner (the exact sample when empty).
-  using ValueFn = std::function<double(std::uint32_t, std::uint32_t)>;
+  // distinct leaf corner, given its sample id (the exact sample when empty).
+  using ValueFn = std::function<double(std::int32_t)>;
   BackgroundFieldData emit(const ValueFn& corner_value = {}) const;
   // The leaf holding p (points off the grid are clamped onto it), by the lookup's descent.
   int locate(Vec2 p) const;
@@ -72,8 +78,12 @@ class BackgroundBuilder {
   static std::uint64_t key(std::uint32_t x, std::uint32_t y) { return (std::uint64_t{x} << 32) | y; }
   // The exact sample at a lattice point already evaluated (every corner and test point of the tree).
   double sample(std::uint32_t x, std::uint32_t y) const;
-  // Evaluates the exact field at all the given lattice points not yet sampled, in one at_many call.
-  void sample_all(const std::vector<std::uint64_t>& keys);
+  // Samples are numbered 0, 1, ... in the order they are first asked for.
+  double sample_value(std::int32_t id) const { return values_[static_cast<std::size_t>(id)]; }
+  std::size_t samples() const { return values_.size(); }
+  // Evaluates the exact field at all the given lattice points not yet sampled, in one at_many call,
+  // and gives every key's sample id (ids[i] for keys[i]).
+  void sample_all(const std::vector<std::uint64_t>& keys, std::vector<std::int32_t>& ids);
   // Takes later samples from `field` instead (kept by reference): the pipeline refines for the
   // limited field with the base tree's own interpolation, not new exact evaluations.
   void sample_from(const SpacingField& field) { exact_ = &field; }
@@ -81,7 +91,7 @@ class BackgroundBuilder {
   static constexpr int kTests[9][2] = {{2, 2}, {2, 0}, {2, 4}, {0, 2}, {4, 2}, {1, 1}, {3, 1}, {1, 3}, {3, 3}};
   static constexpr int kFirstQuarterTest = 5;  // tests 0-4 are the children's corners
 
-  std::size_t evaluations() const { return samples_.size(); }
+  std::size_t evaluations() const { return values_.size(); }
   std::size_t batches() const { return batches_; }
 
  private:
@@ -90,6 +100,8 @@ class BackgroundBuilder {
   void make_roots();
   // Sets a new cell's tag from its segment list (exact inside test of the centre when empty).
   void set_tag(Cell& c, std::vector<int> segments);
+  // The same with the inside test of its centre done (used when segments is empty).
+  void set_tag(Cell& c, std::vector<int> segments, bool inside);
 
   const SpacingField* exact_;
   const GeometryTree& tree_;
@@ -99,7 +111,8 @@ class BackgroundBuilder {
   double origin_x_ = 0.0, origin_y_ = 0.0, root_size_ = 1.0;
   std::vector<Cell> cells_;
   std::vector<std::vector<int>> segment_lists_;
-  FlatKeyMap<double> samples_;
+  FlatKeyMap<std::int32_t> samples_;  // lattice key -> sample id
+  std::vector<double> values_;         // by sample id
   std::size_t batches_ = 0;
 };
 

@@ -6,8 +6,8 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 
-#include "core/flat_key_map.hpp"
 #include "core/parallel.hpp"
 
 namespace pdmesh {
@@ -39,13 +39,15 @@ class LimitedField {
       std::vector<std::int32_t> leaf_corner;
       leaf_corner.reserve(4 * leaves.size());
       std::vector<std::uint64_t> keys;
+      std::vector<std::int32_t> ids;
       for (const int l : leaves) {
         const Cell& c = b_.cells()[static_cast<std::size_t>(l)];
         const std::uint32_t s = b_.span(c.level);
         for (const auto& [dx, dy] : {std::pair{0u, 0u}, {s, 0u}, {0u, s}, {s, s}}) keys.push_back(BackgroundBuilder::key(c.x + dx, c.y + dy));
+        ids.insert(ids.end(), c.corner, c.corner + 4);
       }
-      add_corners(keys);  // the base tree's corners in round 1; afterwards all known already
-      for (const std::uint64_t k : keys) leaf_corner.push_back(id_.at(k));
+      add_corners(keys, ids);  // the base tree's corners in round 1; afterwards all known already
+      for (const std::int32_t id : ids) leaf_corner.push_back(corner_id(id));
       const std::vector<double> before = q_;
       const double tolerance = b_.options().tolerance;
       limit(leaf_corner, round == 1);
@@ -71,9 +73,11 @@ class LimitedField {
       const auto start = Clock::now();
       const std::size_t splits = b_.refine(
           std::move(candidates), [this](const Cell& c, const double q[4]) { return decide(c, q); },
-          [this](const Cell& c, const double q[4], const double exact[9], int count) { return test(c, q, exact, count); },
-          [this](const Cell& c, std::uint32_t x, std::uint32_t y) { return corner_value(c, x, y); },
-          [this](const std::vector<std::uint64_t>& sampled) { add_sources(sampled); });
+          [this](const Cell& c, const double q[4], const double exact[9], const std::int32_t ids[9], int count) {
+            return test(c, q, exact, ids, count);
+          },
+          [this](const Cell& c, std::uint32_t x, std::uint32_t y, std::int32_t id) { return corner_value(c, x, y, id); },
+          [this](const std::vector<std::uint64_t>& sampled, const std::vector<std::int32_t>& ids) { add_sources(sampled, ids); });
       stats_.refine_seconds += seconds_since(start);
       if (splits == 0) break;
     }
@@ -87,7 +91,7 @@ class LimitedField {
     }
     for (std::size_t i = 0; i < q_.size(); ++i)
       if (q_[i] < base_[i]) ++stats_.reduced_corners;
-    return b_.emit([this](std::uint32_t x, std::uint32_t y) { return q_[static_cast<std::size_t>(id_.at(BackgroundBuilder::key(x, y)))]; });
+    return b_.emit([this](std::int32_t id) { return q_[static_cast<std::size_t>(corner_id(id))]; });
   }
 
  private:
@@ -95,33 +99,52 @@ class LimitedField {
     return b.point(static_cast<std::uint32_t>(k >> 32), static_cast<std::uint32_t>(k & 0xffffffffu));
   }
 
-  // The sources at lattice points not seen yet, in parallel (they are thread-safe), each searching no
-  // further than the base field there asks.
-  void add_sources(const std::vector<std::uint64_t>& keys) {
-    std::vector<std::uint64_t> fresh;
-    for (const std::uint64_t k : keys)
-      if (source_at_.try_emplace(k, 0.0).second) fresh.push_back(k);
-    std::vector<double> value(fresh.size());
+  // The per-sample arrays cover every sample the builder has taken (new ones: no source, no corner).
+  void grow() {
+    source_at_.resize(b_.samples(), std::numeric_limits<double>::quiet_NaN());
+    has_source_.resize(b_.samples(), 0);
+    corner_of_.resize(b_.samples(), -1);
+  }
+  // The corner id of a sample that is a known corner.
+  std::int32_t corner_id(std::int32_t sample) const {
+    const std::int32_t id = corner_of_.at(static_cast<std::size_t>(sample));
+    if (id < 0) throw std::logic_error("limited field: a leaf corner that was never registered");
+    return id;
+  }
+
+  // The sources at lattice points not seen yet (keys[i] is sample ids[i]), in parallel (they are
+  // thread-safe), each searching no further than the base field there asks.
+  void add_sources(const std::vector<std::uint64_t>& keys, const std::vector<std::int32_t>& ids) {
+    grow();
+    std::vector<std::size_t> fresh;  // positions in keys
+    for (std::size_t i = 0; i < keys.size(); ++i) {
+      std::uint8_t& has = has_source_[static_cast<std::size_t>(ids[i])];
+      if (has) continue;
+      has = 1;
+      fresh.push_back(i);
+    }
     const auto start = Clock::now();
     parallel_for(fresh.size(), [&](std::size_t i) {
-      value[i] = sources_.at(lattice(b_, fresh[i]), b_.sample(static_cast<std::uint32_t>(fresh[i] >> 32),
-                                                              static_cast<std::uint32_t>(fresh[i] & 0xffffffffu)));
+      const auto id = ids[fresh[i]];
+      source_at_[static_cast<std::size_t>(id)] = sources_.at(lattice(b_, keys[fresh[i]]), b_.sample_value(id));
     }, 256);
     stats_.source_seconds += seconds_since(start);
-    for (std::size_t i = 0; i < fresh.size(); ++i) *source_at_.find(fresh[i]) = value[i];
   }
 
   // Registers new corners: position, base sample and min(base, sources); their limited value is set
   // when a cell first asks for it (corner_value).
-  void add_corners(const std::vector<std::uint64_t>& keys) {
-    add_sources(keys);
+  void add_corners(const std::vector<std::uint64_t>& keys, const std::vector<std::int32_t>& ids) {
+    add_sources(keys, ids);
     const std::size_t first = pos_.size();
-    for (const std::uint64_t k : keys) {
-      if (!id_.try_emplace(k, static_cast<std::int32_t>(pos_.size())).second) continue;
+    for (std::size_t i = 0; i < keys.size(); ++i) {
+      const auto sample = static_cast<std::size_t>(ids[i]);
+      if (corner_of_[sample] >= 0) continue;
+      corner_of_[sample] = static_cast<std::int32_t>(pos_.size());
+      const std::uint64_t k = keys[i];
       const auto x = static_cast<std::uint32_t>(k >> 32), y = static_cast<std::uint32_t>(k & 0xffffffffu);
       pos_.push_back(b_.point(x, y));
-      base_.push_back(b_.sample(x, y));
-      q0_.push_back(std::min(base_.back(), source_at_.at(k)));
+      base_.push_back(b_.sample_value(ids[i]));
+      q0_.push_back(std::min(base_.back(), source_at_[sample]));
     }
     const std::size_t n = pos_.size();
     q_.resize(n, std::numeric_limits<double>::quiet_NaN());  // NaN: not yet limited
@@ -179,10 +202,8 @@ class LimitedField {
       std::vector<std::vector<std::int32_t>> point_corners;
       for (const PointSource& p : points_) {
         const Cell& c = b_.cells()[static_cast<std::size_t>(b_.locate(p.p))];
-        const std::uint32_t s = b_.span(c.level);
         std::vector<std::int32_t> ids;
-        for (const auto& [dx, dy] : {std::pair{0u, 0u}, {s, 0u}, {0u, s}, {s, s}})
-          ids.push_back(id_.at(BackgroundBuilder::key(c.x + dx, c.y + dy)));
+        for (const std::int32_t sample : c.corner) ids.push_back(corner_id(sample));
         point_corners.push_back(std::move(ids));
       }
       graph.limit(g_, q0_, q_, source, points_, point_corners);
@@ -204,18 +225,16 @@ class LimitedField {
 
   // The 4 corner ids of a cell's parent (whose corners are known when the cell is new).
   void parent_corners(const Cell& c, std::int32_t out[4]) const {
-    const std::uint32_t ps = b_.span(c.level - 1);
-    const std::uint32_t px = c.x & ~(ps - 1), py = c.y & ~(ps - 1);
-    int k = 0;
-    for (const auto& [dx, dy] : {std::pair{0u, 0u}, {ps, 0u}, {0u, ps}, {ps, ps}}) out[k++] = id_.at(BackgroundBuilder::key(px + dx, py + dy));
+    const Cell& parent = b_.cells().at(static_cast<std::size_t>(c.parent));
+    for (int k = 0; k < 4; ++k) out[k] = corner_id(parent.corner[k]);
   }
 
   // A known corner keeps its limited value; a new one (a child's) takes min(base, sources) and the
   // cones of its parent's corners' sources, the same min the next limit would give it locally.
-  double corner_value(const Cell& c, std::uint32_t x, std::uint32_t y) {
-    const std::uint64_t k = BackgroundBuilder::key(x, y);
-    if (!id_.find(k)) add_corners({k});
-    const auto i = static_cast<std::size_t>(id_.at(k));
+  double corner_value(const Cell& c, std::uint32_t x, std::uint32_t y, std::int32_t sample) {
+    grow();
+    if (corner_of_[static_cast<std::size_t>(sample)] < 0) add_corners({BackgroundBuilder::key(x, y)}, {sample});
+    const auto i = static_cast<std::size_t>(corner_id(sample));
     if (!std::isnan(q_[i])) return q_[i];
     q_[i] = q0_[i];
     if (c.level > 0) {
@@ -235,18 +254,16 @@ class LimitedField {
 
   // Interpolation test against the limited field at the test points: min of the base sample, the
   // sources there and the cones of the cell's corners' sources.
-  bool test(const Cell& c, const double q[4], const double exact[9], int count) const {
+  bool test(const Cell& c, const double q[4], const double exact[9], const std::int32_t ids[9], int count) const {
     const std::uint32_t s = b_.span(c.level), quarter = s / 4;
     std::int32_t corner_source[4];
-    int k = 0;
-    for (const auto& [dx, dy] : {std::pair{0u, 0u}, {s, 0u}, {0u, s}, {s, s}})
-      corner_source[k++] = source_[static_cast<std::size_t>(id_.at(BackgroundBuilder::key(c.x + dx, c.y + dy)))];
+    for (int k = 0; k < 4; ++k) corner_source[k] = source_[static_cast<std::size_t>(corner_id(c.corner[k]))];
     const double tolerance = b_.options().tolerance;
     for (int t = 0; t < count; ++t) {
       const std::uint32_t x = c.x + quarter * static_cast<std::uint32_t>(BackgroundBuilder::kTests[t][0]);
       const std::uint32_t y = c.y + quarter * static_cast<std::uint32_t>(BackgroundBuilder::kTests[t][1]);
       const Vec2 p = b_.point(x, y);
-      double target = std::min(exact[t], source_at_.at(BackgroundBuilder::key(x, y)));
+      double target = std::min(exact[t], source_at_[static_cast<std::size_t>(ids[t])]);
       for (const std::int32_t cs : corner_source) target = std::min(target, cone(cs, p));
       const double u = BackgroundBuilder::kTests[t][0] / 4.0, v = BackgroundBuilder::kTests[t][1] / 4.0;
       const double bilinear = (1.0 - v) * ((1.0 - u) * q[0] + u * q[1]) + v * ((1.0 - u) * q[2] + u * q[3]);
@@ -260,8 +277,10 @@ class LimitedField {
   const double g_;
   const std::vector<PointSource>& points_;
   LimitedFieldStats& stats_;
-  FlatKeyMap<std::int32_t> id_;
-  FlatKeyMap<double> source_at_;  // the sources at lattice points
+  // By the builder's sample id: the sources there (once has_source_), and the corner id (-1: none).
+  std::vector<double> source_at_;
+  std::vector<std::uint8_t> has_source_;
+  std::vector<std::int32_t> corner_of_;
   std::vector<Vec2> pos_;
   std::vector<double> base_, q0_, q_;
   std::vector<std::int32_t> source_;
