@@ -186,6 +186,17 @@ std::string population_command(const fs::path& out, const std::string& extra) {
          "' --device host --formats msh --iterations 90 --method random --seed 3 -q --set population.start=20 "
          "--set population.every=10 " + extra;
 }
+
+// Stops `parts`' run (made by `command`) after iteration 45 again, then resumes its checkpoint with
+// `settings` in a fresh directory: refused with exit 2, naming `key`.
+template <class Command>
+void check_resume_refused(const Command& command, const fs::path& parts, const std::string& dir,
+                          const std::string& settings, const std::string& key) {
+  REQUIRE(run_pdmesh(command(parts, "--stop-after 45")).status == 130);
+  const auto refused = run_pdmesh(command(fresh_dir(dir), settings + " --resume '" + parts.string() + "'"));
+  CHECK(refused.status == 2);
+  CHECK_THAT(refused.output, Catch::Contains(key));
+}
 }  // namespace
 
 TEST_CASE("a run stopped after population events resumes bit-identical on the host", "[resume][cli][population]") {
@@ -213,11 +224,7 @@ TEST_CASE("a run stopped after population events resumes bit-identical on the ho
   CHECK(pdmesh::read_text_file(parts / "final.nodes") == pdmesh::read_text_file(whole / "final.nodes"));
   CHECK(pdmesh::read_text_file(parts / "history.csv") == pdmesh::read_text_file(whole / "history.csv"));
   // A checkpoint with population control is refused by a run without it.
-  REQUIRE(run_pdmesh(command(parts, "--stop-after 45")).status == 130);
-  const auto off = run_pdmesh(command(fresh_dir("pop_off"), "--set population.enabled=false --resume '" +
-                                                                   parts.string() + "'"));
-  CHECK(off.status == 2);
-  CHECK_THAT(off.output, Catch::Contains("population.enabled"));
+  check_resume_refused(command, parts, "pop_off", "--set population.enabled=false", "population.enabled");
   fs::remove_all(whole);
   fs::remove_all(parts);
 }
@@ -253,11 +260,7 @@ TEST_CASE("a run whose population control settled early resumes bit-identical, w
   }
   CHECK(after == 70);
   // Another settle tolerance is another schedule: refused.
-  REQUIRE(run_pdmesh(command(parts, "--stop-after 45")).status == 130);
-  const auto other = run_pdmesh(command(fresh_dir("settle_other"), "--set population.settle=0 --resume '" +
-                                                                      parts.string() + "'"));
-  CHECK(other.status == 2);
-  CHECK_THAT(other.output, Catch::Contains("population.schedule"));
+  check_resume_refused(command, parts, "settle_other", "--set population.settle=0", "population.schedule");
   fs::remove_all(whole);
   fs::remove_all(parts);
 }
