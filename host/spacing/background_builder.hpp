@@ -78,7 +78,8 @@ class BackgroundBuilder {
   static std::uint64_t key(std::uint32_t x, std::uint32_t y) { return (std::uint64_t{x} << 32) | y; }
   // The exact sample at a lattice point already evaluated (every corner and test point of the tree).
   double sample(std::uint32_t x, std::uint32_t y) const;
-  // Samples are numbered 0, 1, ... in the order they are first asked for.
+  // Samples are numbered 0, 1, ... in the order they are first asked for; each was one evaluation of
+  // the field (the exact one, or sample_from's).
   double sample_value(std::int32_t id) const { return values_[static_cast<std::size_t>(id)]; }
   std::size_t samples() const { return values_.size(); }
   // Evaluates the exact field at all the given lattice points not yet sampled, in one at_many call,
@@ -91,7 +92,6 @@ class BackgroundBuilder {
   static constexpr int kTests[9][2] = {{2, 2}, {2, 0}, {2, 4}, {0, 2}, {4, 2}, {1, 1}, {3, 1}, {1, 3}, {3, 3}};
   static constexpr int kFirstQuarterTest = 5;  // tests 0-4 are the children's corners
 
-  std::size_t evaluations() const { return values_.size(); }
   std::size_t batches() const { return batches_; }
 
  private:

@@ -99,7 +99,7 @@ BackgroundSpacing::BackgroundSpacing(const SpacingField& exact, const GeometryTr
   BackgroundBuilder builder(exact, tree, options);
   builder.build();
   data_ = builder.emit();
-  stats_.exact_evaluations = builder.evaluations();
+  stats_.exact_evaluations = builder.samples();
   stats_.exact_batches = builder.batches();
   fill_stats();
 }

@@ -84,7 +84,7 @@ void SpacingPipeline::build() {
   BackgroundBuilder builder(scaled, tree_, options_.background);
   builder.build();
   BackgroundStats bs;
-  bs.exact_evaluations = builder.evaluations();
+  bs.exact_evaluations = builder.samples();
   bs.exact_batches = builder.batches();
   stats_.base_seconds = seconds_since(start);
   stats_.base_leaves = builder.leaves().size();
