@@ -244,7 +244,7 @@ TEST_CASE("neighbour build reports invalid nodes and overflow", "[sim]") {
 }
 
 // Heavy-ball momentum (reference::apply_momentum, docs/simulation.md "Momentum"), one node per rule.
-TEST_CASE("momentum: d = g + beta p, the plain step against the force, |d| capped to r0 / 3", "[sim][momentum]") {
+TEST_CASE("momentum: d = g + beta p and the plain step against the force and |d| capped to r0 / 3", "[sim][momentum]") {
   SimParticles p;
   for (int i = 0; i < 6; ++i) add(p, 0.0, 0.0, 1.0);
   p.kind[5] = kSimFixed;
@@ -285,7 +285,7 @@ TEST_CASE("momentum: d = g + beta p, the plain step against the force, |d| cappe
   }
 }
 
-TEST_CASE("momentum: a constant step accumulates to g (1 - beta^k) / (1 - beta); beta = 0 is the plain step",
+TEST_CASE("momentum: a constant step accumulates to g (1 - beta^k) / (1 - beta) and beta 0 is the plain step",
           "[sim][momentum]") {
   SimParticles p;
   add(p, 0.0, 0.0, 1.0);
