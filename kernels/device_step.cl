@@ -41,7 +41,8 @@ REAL bg_spacing_cached(const REAL px, const REAL py, int* leaf, BG_ARGS) {
 // is clearly inside. Other interior nodes (and non-finite moves) are appended to cand_index / cand_rec
 // (x, y, dx, dy) with an integer atomic counter (counters[COUNTER_CANDIDATES]) for the host's exact test (counters[COUNTER_NON_FINITE]:
 // set when a move is not finite); boundary
-// nodes write (x, y, dx, dy) to their slot bslot[i] of brec. skin_use: (|x_next - x_build| + cutoff
+// nodes write (x, y, dx, dy) to their slot bslot[i] of brec. beta > 0: the move is momentum's d
+// (carried: each node's previous d, x and y interleaved; any buffer when beta = 0). skin_use: (|x_next - x_build| + cutoff
 // max(0, q_next - q_build)) / (skin cutoff q_build), maximised per group (interior nodes the host
 // does not touch; the host covers the rest).
 __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1)))
@@ -54,7 +55,7 @@ void device_step(const int n, const REAL cutoff, const REAL lj_a, const int r0_a
                  __global const int* bslot, __global REAL2* xy_next, __global REAL* q_next,
                  __global REAL* budget, __global int* node_leaf, __global REAL* brec, __global int* cand_index, __global REAL* cand_rec,
                  __global int* counters, __global REAL* partials, __global const REAL* segs, const int n_segs,
-                 const REAL seg_scale, BG_ARGS) {
+                 const REAL seg_scale, const REAL beta, __global REAL2* carried, BG_ARGS) {
   __local REAL values[STEP_PARTIALS * WG_SIZE];
   // The window was halted for the host (kernels/window.cl): this iteration does nothing (uniform exit).
   if (counters[WINDOW_HALT] != 0) return;
@@ -78,8 +79,18 @@ void device_step(const int n, const REAL cutoff, const REAL lj_a, const int r0_a
   node_forces(ic, (row + 7) & ~7, row, row_start, xi, yi, qi, kind_i, rc * rc, tx[ic], ty[ic], lj_a, r0_any_direction,
               stability_factor, xy, q, index, &fx, &fy, &r0, &limit, &coincident, &within);
   const REAL dt2 = local_dt2(fx, fy, r0, dt_gm2, limit);
-  const REAL dx = moving ? REAL_C(0.5) * dt2 * fx : (REAL)0;
-  const REAL dy = moving ? REAL_C(0.5) * dt2 * fy : (REAL)0;
+  REAL dx = moving ? REAL_C(0.5) * dt2 * fx : (REAL)0;
+  REAL dy = moving ? REAL_C(0.5) * dt2 * fy : (REAL)0;
+  // Heavy-ball momentum (beta > 0 only, uniform; kernels/time_step.cl, momentum_move): node i alone
+  // reads and writes its carried move, so one buffer serves (no double buffering). Fixed: p = 0.
+  if (beta > (REAL)0 && active) {
+    if (moving) {
+      const REAL2 d = momentum_move(dx, dy, carried[i], beta, fx, fy, r0);
+      dx = d.x;
+      dy = d.y;
+    }
+    carried[i] = (REAL2)(dx, dy);
+  }
   const REAL f = moving ? force_norm(fx, fy) : (REAL)0;  // reduce.cl: float-safe |F|
 #if PDMESH_DOUBLE
   const REAL kinetic = moving ? REAL_C(0.125) * dt2 * (fx * fx + fy * fy) : (REAL)0;  // the reference's expression

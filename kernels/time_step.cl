@@ -33,3 +33,43 @@ void time_step_and_move(const int n, const REAL dt_gm2, const int has_limit, __g
   dx_out[i] = REAL_C(0.5) * dt2 * fx[i];
   dy_out[i] = REAL_C(0.5) * dt2 * fy[i];
 }
+
+// Heavy-ball momentum for one node (host/sim/reference/time_step.cpp, momentum_move: the same
+// expressions in the same order): d = g + beta p; g where d points against F; |d| capped to r0 / 3.
+REAL2 momentum_move(const REAL gx, const REAL gy, const REAL2 p, const REAL beta, const REAL fx, const REAL fy,
+                    const REAL r0) {
+  REAL dx = gx + beta * p.x;
+  REAL dy = gy + beta * p.y;
+  if (dx * fx + dy * fy < (REAL)0) {
+    dx = gx;
+    dy = gy;
+  }
+  if (r0 > (REAL)0) {
+    const REAL cap = r0 / (REAL)3;
+    const REAL len = force_norm(dx, dy);  // double: sqrt(dx^2 + dy^2), the reference's
+    if (len > cap) {
+      const REAL s = cap / len;
+      dx = dx * s;
+      dy = dy * s;
+    }
+  }
+  return (REAL2)(dx, dy);
+}
+
+// StepBackend::apply_momentum: moves (dx, dy) in = g, out = d; carried (x and y interleaved) in = p,
+// out = d. Fixed nodes: d = p = 0.
+__kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1)))
+void apply_momentum(const int n, const REAL beta, __global const uchar* kind, __global const REAL* fx,
+                    __global const REAL* fy, __global const REAL* r0, __global REAL* dx, __global REAL* dy,
+                    __global REAL2* carried) {
+  const int i = get_global_id(0);
+  if (i >= n) return;
+  if (kind[i] == 0) {
+    carried[i] = (REAL2)((REAL)0, (REAL)0);
+    return;
+  }
+  const REAL2 d = momentum_move(dx[i], dy[i], carried[i], beta, fx[i], fy[i], r0[i]);
+  dx[i] = d.x;
+  dy[i] = d.y;
+  carried[i] = d;
+}

@@ -416,3 +416,25 @@ TEST_CASE("pdmesh mesh --stop: the rule is named in the progress output, a bad r
   CHECK(contains(bad.output, "simulation.stop"));
   fs::remove_all(dir);
 }
+
+// (No brackets or commas in test names: ctest passes the name to Catch as a test spec.)
+TEST_CASE("simulation.momentum out of range exits 2 naming the key and the value before any output", "[cli][momentum]") {
+  const fs::path dir = fresh_dir("momentum");
+  write_rectangle(dir / "rect.crv");
+  const fs::path out = dir / "out";
+  Result r = run("mesh '" + (dir / "rect.crv").string() + "' --out '" + out.string() + "' --momentum 1");
+  CHECK(r.status == 2);
+  CHECK(contains(r.output, "--momentum 1: simulation.momentum must be in [0, 1) (0 = plain gradient descent), got 1"));
+  CHECK_FALSE(fs::exists(out));
+  std::ofstream(dir / "case.toml") << "[geometry]\nfiles = [\"rect.crv\"]\n[simulation]\nmomentum = -0.5\n";
+  r = run("mesh '" + (dir / "case.toml").string() + "' --out '" + out.string() + "'");
+  CHECK(r.status == 2);
+  CHECK(contains(r.output, "case.toml:4:12: simulation.momentum must be in [0, 1) (0 = plain gradient descent), got -0.5"));
+  CHECK_FALSE(fs::exists(out));
+  // In range: the run takes it (and says so).
+  r = run("mesh '" + (dir / "rect.crv").string() + "' --out '" + out.string() +
+          "' --momentum 0.9 --iterations 3 --formats msh --device host");
+  CHECK(r.status == 0);
+  CHECK(contains(r.output, "momentum 0.9"));
+  fs::remove_all(dir);
+}

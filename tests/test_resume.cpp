@@ -229,6 +229,32 @@ TEST_CASE("a run stopped after population events resumes bit-identical on the ho
   fs::remove_all(parts);
 }
 
+TEST_CASE("a run with momentum stopped after population events resumes bit-identical on the host",
+          "[resume][cli][population][momentum]") {
+  // The beta as a --set, so that a check's own --momentum (a direct option, applied after it) replaces it.
+  const auto command = [](const fs::path& out, const std::string& extra) {
+    return population_command(out, "--set simulation.momentum=0.9 " + extra);
+  };
+  const fs::path whole = fresh_dir("mom_whole"), parts = fresh_dir("mom_parts");
+  REQUIRE(run_pdmesh(command(whole, "")).status == 0);
+  REQUIRE(run_pdmesh(command(parts, "--stop-after 45")).status == 130);
+  const pdmesh::Checkpoint c = pdmesh::read_checkpoint(parts / "checkpoint.pdmesh");
+  REQUIRE(c.state.momentum.size() == c.nodes.size());
+  std::size_t carried = 0;
+  for (const pdmesh::Vec2& p : c.state.momentum) carried += p.x != 0.0 || p.y != 0.0 ? 1 : 0;
+  CHECK(carried > 0);
+  const auto resumed = run_pdmesh(command(parts, "--resume '" + parts.string() + "'"));
+  INFO(resumed.output);
+  REQUIRE(resumed.status == 0);
+  CHECK(pdmesh::read_text_file(parts / "final.nodes") == pdmesh::read_text_file(whole / "final.nodes"));
+  CHECK(pdmesh::read_text_file(parts / "history.csv") == pdmesh::read_text_file(whole / "history.csv"));
+  // The momentum is part of the case: another beta, or none, is refused.
+  check_resume_refused(command, parts, "mom_other", "--momentum 0.5", "simulation.momentum");
+  check_resume_refused(command, parts, "mom_none", "--momentum 0", "simulation.momentum");
+  fs::remove_all(whole);
+  fs::remove_all(parts);
+}
+
 TEST_CASE("a run whose population control settled early resumes bit-identical, without further events",
           "[resume][cli][population]") {
   // settle = 0.1: every event is quiet; with settle_events = 1 the first one (after iteration 20) ends

@@ -86,6 +86,10 @@ class PoisonedMoves : public StepBackend {
     reference_->time_step_and_move(p, forces, dt_gm2, out);
     if (++calls_ == at_call_) out.dx[node_] = HUGE_VAL;
   }
+  void apply_momentum(const SimParticles& p, const ForceResult& forces, double beta, MoveResult& moves,
+                      MomentumState& carried) override {
+    reference_->apply_momentum(p, forces, beta, moves, carried);
+  }
   StepSums reduce(const SimParticles& p, const ForceResult& forces, const MoveResult& moves) override {
     return reference_->reduce(p, forces, moves);
   }

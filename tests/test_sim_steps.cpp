@@ -242,3 +242,86 @@ TEST_CASE("neighbour build reports invalid nodes and overflow", "[sim]") {
   reference::build_neighbours(p, 1.5, list, flags);
   CHECK(flags.first_invalid == 5);
 }
+
+// Heavy-ball momentum (reference::apply_momentum, docs/simulation.md "Momentum"), one node per rule.
+TEST_CASE("momentum: d = g + beta p and the plain step against the force and |d| capped to r0 / 3", "[sim][momentum]") {
+  SimParticles p;
+  for (int i = 0; i < 6; ++i) add(p, 0.0, 0.0, 1.0);
+  p.kind[5] = kSimFixed;
+  ForceResult f;
+  f.fx = {1.0, 1.0, 1.0, 1.0, 0.0, 1.0};
+  f.fy = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
+  f.r0 = {1.0, 1.0, 0.6, 0.0, 0.0, 1.0};
+  MoveResult m;
+  m.dx = {0.01, 0.01, 0.1, 0.1, 0.0, 0.0};
+  m.dy = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
+  MomentumState carried;
+  carried.px = {0.02, -0.1, 0.5, 1.0, 0.25, 0.3};
+  carried.py = {0.01, 0.0, 0.0, 0.0, -0.5, 0.3};
+  reference::apply_momentum(p, f, 0.5, m, carried);
+  // Node 0: the accumulation, exactly the expression of the rule.
+  CHECK(m.dx[0] == 0.01 + 0.5 * 0.02);
+  CHECK(m.dy[0] == 0.0 + 0.5 * 0.01);
+  // Node 1: 0.01 - 0.05 points against F: the plain step.
+  CHECK(m.dx[1] == 0.01);
+  CHECK(m.dy[1] == 0.0);
+  // Node 2: 0.1 + 0.25 = 0.35 > r0 / 3 = 0.2: scaled to length 0.2, direction kept.
+  CHECK(m.dx[2] == Approx(0.2).epsilon(1e-15));
+  CHECK(m.dy[2] == 0.0);
+  // Node 3: r0 = 0 (no neighbour in the force direction): no cap, 0.1 + 0.5.
+  CHECK(m.dx[3] == 0.1 + 0.5 * 1.0);
+  // Node 4: no force (g = 0): the carried motion goes on (d . F = 0 is not against it).
+  CHECK(m.dx[4] == 0.5 * 0.25);
+  CHECK(m.dy[4] == 0.5 * -0.5);
+  // Node 5: fixed: no move, nothing carried.
+  CHECK(m.dx[5] == 0.0);
+  CHECK(m.dy[5] == 0.0);
+  CHECK(carried.px[5] == 0.0);
+  CHECK(carried.py[5] == 0.0);
+  // p = d for every other node.
+  for (std::size_t i = 0; i < 5; ++i) {
+    CHECK(carried.px[i] == m.dx[i]);
+    CHECK(carried.py[i] == m.dy[i]);
+  }
+}
+
+TEST_CASE("momentum: a constant step accumulates to g (1 - beta^k) / (1 - beta) and beta 0 is the plain step",
+          "[sim][momentum]") {
+  SimParticles p;
+  add(p, 0.0, 0.0, 1.0);
+  ForceResult f;
+  f.fx = {2.0};
+  f.fy = {1.0};
+  f.r0 = {10.0};
+  MomentumState carried;  // empty: zero for the first iteration
+  const double beta = 0.9, gx = 0.002, gy = 0.001;
+  for (int k = 1; k <= 20; ++k) {
+    MoveResult m;
+    m.dx = {gx};
+    m.dy = {gy};
+    reference::apply_momentum(p, f, beta, m, carried);
+    const double sum = (1.0 - std::pow(beta, k)) / (1.0 - beta);
+    INFO("iteration " << k);
+    CHECK(m.dx[0] == Approx(gx * sum).epsilon(1e-13));
+    CHECK(m.dy[0] == Approx(gy * sum).epsilon(1e-13));
+    if (k == 1) CHECK(m.dx[0] == gx);  // p = 0 at the start: exactly g
+  }
+  // beta = 0 leaves the moves of time_step_and_move as they are, whatever is carried, where |g| is
+  // clearly below r0 / 3 (where eq. 5.8 binds, |g| = r0 / 3 up to rounding, and the cap may round it:
+  // the driver does not call apply_momentum for beta = 0, so SimOptions::momentum = 0 is the thesis' move).
+  SimParticles q;
+  for (int i = 0; i < 4; ++i) add(q, 0.0, 0.0, 1.0);
+  ForceResult g;
+  g.fx = {3.0, 0.0, 300.0, 2.0};
+  g.fy = {4.0, 0.0, 400.0, 0.0};
+  g.r0 = {1.5, 1.0, 1.5, 0.0};
+  MoveResult plain, with_zero;
+  reference::time_step_and_move(q, g, 1e-4, plain);
+  with_zero = plain;
+  MomentumState some;
+  some.px = {0.3, -0.2, 0.1, 7.0};
+  some.py = {-0.3, 0.2, 0.1, 7.0};
+  reference::apply_momentum(q, g, 0.0, with_zero, some);
+  CHECK(with_zero.dx == plain.dx);
+  CHECK(with_zero.dy == plain.dy);
+}

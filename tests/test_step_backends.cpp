@@ -270,3 +270,47 @@ TEMPLATE_TEST_CASE("an invalid node is reported by index", "[opencl][backend]", 
   CHECK(flags.first_invalid == 7);
   REQUIRE_THROWS_AS(build_neighbours_growing(*TestType::make(), in.p, in.cutoff, list, flags), SimulationError);
 }
+
+// Heavy-ball momentum (StepBackend::apply_momentum) on every input, from carried moves of all sizes:
+// none, some against the force, some past the r0 / 3 cap. Double: bit for bit (the kernel repeats the
+// reference's expressions, FP_CONTRACT OFF); float: the backend's tolerance.
+TEMPLATE_TEST_CASE("apply_momentum matches the reference on every input", "[opencl][backend][momentum]", HostReference,
+                   OpenclDouble, OpenclFloat) {
+  for (const Input& in : all_inputs(TestType::is_float)) {
+    INFO("input " << in.name << ", " << in.p.size() << " nodes");
+    NeighbourList list;
+    NeighbourFlags flags;
+    list.stride = 64;
+    reference::build_neighbours_brute_force(in.p, in.cutoff, list, flags);
+    ForceResult forces;
+    reference::compute_forces(in.p, list, {in.cutoff, 15.0, false, 1.0}, forces);
+    if (TestType::is_float) round_to_float(forces);
+    MoveResult g;
+    reference::time_step_and_move(in.p, forces, 0.01 * 0.01, g);
+    std::mt19937_64 rng(42);
+    std::uniform_real_distribution<double> u(-1.0, 1.0);
+    MomentumState start;
+    for (std::size_t i = 0; i < in.p.size(); ++i) {
+      // Carried moves from 0 to 3 r0: the cap binds for some, the dot test for others.
+      const double scale = (i % 4) * in.p.q[i];
+      start.px.push_back(scale * u(rng));
+      start.py.push_back(scale * u(rng));
+    }
+    if (TestType::is_float)
+      for (auto* v : {&start.px, &start.py, &g.dx, &g.dy})
+        for (double& x : *v) x = static_cast<double>(static_cast<float>(x));
+    auto backend = TestType::make();
+    for (double beta : {0.5, 0.9}) {
+      MoveResult oracle = g, got = g;
+      MomentumState oracle_p = start, got_p = start;
+      reference::apply_momentum(in.p, forces, beta, oracle, oracle_p);
+      backend->apply_momentum(in.p, forces, beta, got, got_p);
+      const double tol = TestType::is_float ? TestType::tol : 0.0;
+      const std::vector<double> floor(in.p.q.begin(), in.p.q.end());  // moves relative to the spacing
+      require_close("dx", oracle.dx, got.dx, floor, tol);
+      require_close("dy", oracle.dy, got.dy, floor, tol);
+      require_close("px", oracle_p.px, got_p.px, floor, tol);
+      require_close("py", oracle_p.py, got_p.py, floor, tol);
+    }
+  }
+}

@@ -70,6 +70,7 @@ std::unique_ptr<BenchCase> file_case(const std::string& dir, const std::string& 
   c->options.lj_a = config.simulation.lj_a;
   c->options.r0_any_direction = config.simulation.r0_any_direction;
   c->options.stability_factor = config.simulation.stability_factor;
+  c->options.momentum = config.simulation.momentum;
   return c;
 }
 

@@ -191,7 +191,7 @@ const std::vector<std::string>& case_file_keys() {
       "simulation.iterations", "simulation.stop", "simulation.stop_aspect", "simulation.stop_angle",
       "simulation.dt_initial", "simulation.dt_initial.structured",
       "simulation.dt_initial.random", "simulation.cutoff", "simulation.lj_a", "simulation.device",
-      "simulation.precision", "simulation.r0_rule", "simulation.stability_factor",
+      "simulation.precision", "simulation.r0_rule", "simulation.stability_factor", "simulation.momentum",
       "population.enabled", "population.every", "population.start", "population.stop", "population.insert",
       "population.merge", "population.remove_valence", "population.boundary", "population.boundary_split",
       "population.settle", "population.settle_events",

@@ -114,6 +114,7 @@ struct CaseConfig {
     // Stiffness bound on each node's time step (docs/simulation.md, "Stability"): 0 = off, the
     // thesis' rule exactly; c in (0, 1] keeps every step within the forward-Euler stability limit.
     double stability_factor = 1.0;
+    double momentum = 0.0;  // SimOptions::momentum (heavy-ball beta in [0, 1); 0 = off)
     // A hexagonal start is a lattice like the structured one: it takes the structured value.
     std::optional<double> dt_for(InitMethod m) const {
       return m == InitMethod::Random ? dt_random : dt_structured;

@@ -199,6 +199,13 @@ void read_simulation_section(const Reader& r, const toml::table& root, CaseConfi
                          s.stability_factor));
     }
   }
+  if (const toml::node* n = find(root, "simulation", "momentum")) {
+    s.momentum = r.number("simulation.momentum", *n);
+    if (!(s.momentum >= 0.0 && s.momentum < 1.0)) {
+      r.fail("simulation.momentum", n,
+             fmt::format("simulation.momentum must be in [0, 1) (0 = plain gradient descent), got {}", s.momentum));
+    }
+  }
   if (const toml::node* n = find(root, "simulation", "r0_rule")) {
     s.r0_any_direction = choose<bool>(r, "simulation.r0_rule", *n, {{"force_direction", false}, {"any_direction", true}});
   }

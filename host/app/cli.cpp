@@ -37,7 +37,7 @@ struct MeshArguments {
   std::string out;
   std::vector<std::string> sets;
   std::optional<std::string> iterations, dt, cutoff, method, seed, total, device, precision, formats, r0_rule,
-      color_by, stability, stop, timings;
+      color_by, stability, momentum, stop, timings;
   std::vector<std::string> views;
   bool tree = false;
   bool plot_spacing = false;
@@ -156,6 +156,7 @@ std::vector<CaseOverride> overrides_from(const MeshArguments& a) {
   direct(a.precision, "--precision", "simulation.precision");
   direct(a.r0_rule, "--r0-rule", "simulation.r0_rule");
   direct(a.stability, "--stability", "simulation.stability_factor");
+  direct(a.momentum, "--momentum", "simulation.momentum");
   direct(a.color_by, "--color-by", "output.color_by");
   if (a.formats) out.push_back({"output.formats", formats_value(*a.formats), "--formats " + *a.formats});
   if (a.tree) out.push_back({"output.tree_overlay", "true", "--tree"});
@@ -252,6 +253,10 @@ void add_mesh_options(CLI::App& mesh, MeshArguments& a) {
                   "simulation.stability_factor in [0, 1]: bound each step by the local stiffness (default 1; "
                   "0 = the thesis' time step exactly, which can oscillate late in a run)")
       ->type_name("C");
+  mesh.add_option("--momentum", a.momentum,
+                  "simulation.momentum in [0, 1): heavy-ball beta, each move carries beta times the node's previous "
+                  "one (default 0: plain gradient descent)")
+      ->type_name("B");
   mesh.add_option("--color-by", a.color_by,
                   "output.color_by: fill mesh.png by a quality metric: none | min_angle | max_angle | aspect_ratio | "
                   "skewness | condition_number | min_jacobian")

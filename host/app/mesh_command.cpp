@@ -32,6 +32,7 @@ SimOptions simulation_options(const CaseConfig& config) {
   options.lj_a = config.simulation.lj_a;
   options.r0_any_direction = config.simulation.r0_any_direction;
   options.stability_factor = config.simulation.stability_factor;
+  options.momentum = config.simulation.momentum;
   options.population = config.population;
   options.quiet = config.quiet;
   return options;
@@ -57,10 +58,11 @@ SimResult simulate(const CaseConfig& config, const MeshInputs& inputs, NodeSet& 
   // Smooth curves: the nodes live on the dense polyline, so the simulator builds its quadtree (leaves
   // tagged inside/boundary/outside) of the final field over that geometry instead.
   options.background = inputs.dense ? nullptr : &pipeline.background();
-  progress(config, "simulation: {}{} iterations on {}, cutoff {}, a = {}, r0 rule {}, stability factor {}",
+  progress(config, "simulation: {}{} iterations on {}, cutoff {}, a = {}, r0 rule {}, stability factor {}{}",
            options.convergence.enabled ? "until converged, at most " : "", options.iterations,
            backend.simulator->describe(), options.cutoff, options.lj_a,
-           options.r0_any_direction ? "any_direction" : "force_direction", options.stability_factor);
+           options.r0_any_direction ? "any_direction" : "force_direction", options.stability_factor,
+           options.momentum > 0.0 ? fmt::format(", momentum {}", options.momentum) : std::string());
   if (resume) progress(config, "simulation: resuming after iteration {}", resume->iterations_done);
   const fs::path checkpoint_file = checkpoint_path(config.out_dir);
   SimCallbacks callbacks;

@@ -81,6 +81,9 @@ std::vector<std::pair<std::string, std::string>> case_identity(const CaseConfig&
   keys.emplace_back("simulation.lj_a", fmt::format("{}", config.simulation.lj_a));
   keys.emplace_back("simulation.r0_rule", config.simulation.r0_any_direction ? "any_direction" : "force_direction");
   keys.emplace_back("simulation.stability_factor", fmt::format("{}", config.simulation.stability_factor));
+  // Only when on, so that checkpoints of runs without momentum (older files too) identify the same way.
+  if (config.simulation.momentum > 0.0)
+    keys.emplace_back("simulation.momentum", fmt::format("{}", config.simulation.momentum));
   // Population control shapes the node set; its keys are named only when it is on, so that a
   // checkpoint of a run without it (older files too) identifies the same way.
   const PopulationOptions& p = config.population;

@@ -11,7 +11,7 @@
 namespace pdmesh::ocl {
 
 DeviceMemoryNeed device_memory_need(std::size_t nodes, std::size_t boundary_nodes, std::uint64_t field_bytes,
-                                    std::size_t real_bytes, int entries_per_node) {
+                                    std::size_t real_bytes, int entries_per_node, bool momentum) {
   DeviceMemoryNeed need;
   const std::uint64_t n = nodes, r = real_bytes;
   // Per node: x, y, q twice, tx, ty, the build copies of x, y, q, the clearance budget and a 4-value
@@ -19,23 +19,24 @@ DeviceMemoryNeed device_memory_need(std::size_t nodes, std::size_t boundary_node
   // count, level (7 ints); the row offset (8 bytes); the compact neighbour rows (entries_per_node ints
   // per node on average). Per boundary node a 4-value record, its arc position twice (boundary_snap's
   // Jacobi rule) and its slot (node, curve, entry: 3 ints). Lower bounds: the neighbour binning adds
-  // its grids, the curves' polylines and the host records their buffers.
+  // its grids, the curves' polylines and the host records their buffers. With momentum 2 reals more
+  // per node: the carried move.
   need.largest = 4 * n * static_cast<std::uint64_t>(entries_per_node);
-  need.total = n * (16 * r + 1 + 7 * 4 + 8) + need.largest + (6 * r + 12) * boundary_nodes + field_bytes;
+  need.total = n * ((momentum ? 18 : 16) * r + 1 + 7 * 4 + 8) + need.largest + (6 * r + 12) * boundary_nodes + field_bytes;
   return need;
 }
 
 void check_device_memory(const DeviceInfo& device, std::size_t nodes, std::size_t boundary_nodes,
-                         std::uint64_t field_bytes, std::size_t real_bytes, int entries_per_node) {
+                         std::uint64_t field_bytes, std::size_t real_bytes, int entries_per_node, bool momentum) {
   // Node indices, and 5 values per node in the record buffers, are 32-bit on the device.
   constexpr std::size_t kMaxNodes = static_cast<std::size_t>(std::numeric_limits<std::int32_t>::max()) / 8;
   if (nodes > kMaxNodes)
     throw LimitError(fmt::format("{} nodes are more than the device-resident run indexes ({} at most): use --device "
                                  "host or a coarser spacing",
                                  nodes, kMaxNodes));
-  const DeviceMemoryNeed need = device_memory_need(nodes, boundary_nodes, field_bytes, real_bytes, entries_per_node);
+  const DeviceMemoryNeed need = device_memory_need(nodes, boundary_nodes, field_bytes, real_bytes, entries_per_node, momentum);
   if (need.total <= device.global_memory && need.largest <= device.max_allocation) return;
-  const DeviceMemoryNeed in_float = device_memory_need(nodes, boundary_nodes, field_bytes, 4, entries_per_node);
+  const DeviceMemoryNeed in_float = device_memory_need(nodes, boundary_nodes, field_bytes, 4, entries_per_node, momentum);
   const bool grown = entries_per_node > kInitialStride;
   throw LimitError(fmt::format(
       "{} nodes need at least {} bytes of device memory in {} (the largest buffer, the neighbour rows at {} "

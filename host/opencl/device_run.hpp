@@ -57,6 +57,11 @@ class DeviceRun {
                            const std::vector<HistoryRow>& history);
   SimulationError non_finite_error(int iteration, const SimState& good);
   void upload_initial();
+  bool with_momentum() const { return options_.momentum > 0.0; }
+  // The carried moves (SimState::momentum) from the device; the device must not be ahead of the host.
+  std::vector<Vec2> read_momentum();
+  // Zeroes the carried moves of `nodes` (interior nodes just snapped onto a curve), on the device.
+  void reset_momentum(const std::vector<std::int32_t>& nodes);
   // The node arrays for n_ nodes, with the given clearance budgets and background leaves, or (null)
   // computed from the node set: at the start and after a population event.
   void upload_nodes(const std::vector<double>* budgets, const std::vector<std::int32_t>* leaves);
@@ -157,6 +162,7 @@ class DeviceRun {
   Buffer<std::uint8_t> kind_;
   Buffer<std::int32_t> prev_, next_, bslot_, cand_index_, counters_, rec_index_, bg_root_, bg_child_, bg_corner_,
       bg_cell_, node_leaf_;
+  Buffer<Real> carried_;  // momentum's carried moves, x and y interleaved (2 entries when momentum is off)
   // Host mirrors.
   std::vector<std::uint8_t> kind_host_;
   std::vector<std::int32_t> boundary_nodes_;  // Boundary nodes in slot order

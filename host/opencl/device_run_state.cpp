@@ -19,7 +19,7 @@ void DeviceRun<Real>::check_memory(std::uint64_t entries) const {
   // The rows' entries as an average per node (the compact rows replace rows of one stride).
   const std::uint64_t per_node = n_ > 0 ? (entries + n_ - 1) / n_ : 0;
   check_device_memory(ctx_.device(), n_, nodes_.count(NodeKind::Boundary), field, sizeof(Real),
-                      static_cast<int>(std::max<std::uint64_t>(per_node, kInitialStride)));
+                      static_cast<int>(std::max<std::uint64_t>(per_node, kInitialStride)), with_momentum());
 }
 
 template <typename Real>
@@ -31,17 +31,20 @@ void DeviceRun<Real>::remember(int done, double dt_initial, const GlobalTimeStep
     saved_nodes_.q[i] = build_q_[i];
   }
   saved_state_ = SimState{done, dt_initial, gm.state(), boundary_.arcs(), boundary_.tangents(), {},
-                          population_.schedule, convergence_.samples()};
+                          population_.schedule, convergence_.samples(), {}};
+  // The device is not ahead here (a build or the start: no window is running).
+  if (with_momentum()) saved_state_.momentum = read_momentum();
   saved_rows_ = rows;
 }
 
 // Puts the last good state into nodes_ and returns the driver state that goes with it: the state
 // after iteration `done` read back from the device, or, when the host is already ahead of it, the
-// device cannot be read or what it holds is not finite, the state saved at the last build.
+// device cannot be read or what it holds is not finite, the state saved at the last build. With
+// momentum always the saved state: a failed step has already overwritten the carried moves.
 template <typename Real>
 SimState DeviceRun<Real>::last_good_state(int done, double dt_initial, const GlobalTimeStep& gm,
                                           const std::vector<HistoryRow>& history) {
-  if (!host_ahead_ && !tangents_ahead_) {
+  if (!host_ahead_ && !tangents_ahead_ && !with_momentum()) {
     try {
       std::vector<Real> x, y, q;
       download_positions(cur_, x, y);
@@ -57,7 +60,7 @@ SimState DeviceRun<Real>::last_good_state(int done, double dt_initial, const Glo
           nodes_.q[i] = static_cast<double>(q[i]);
         }
         return SimState{done,    dt_initial, gm.state(), boundary_.arcs(), boundary_.tangents(),
-                        history, population_.schedule, convergence_.samples()};
+                        history, population_.schedule, convergence_.samples(), {}};
       }
     } catch (const Error&) {
       // The device cannot be read: the saved state below.
@@ -124,6 +127,28 @@ void DeviceRun<Real>::upload_initial() {
   counters_ = Buffer<std::int32_t>(ctx_, "step_counters", kWindowCounters);  // device_window.hpp, WindowCounter
   device_boundary_.upload_curves();
   upload_nodes(nullptr, nullptr);
+  if (with_momentum() && options_.resume && !options_.resume->momentum.empty()) {
+    MomentumState carried;
+    momentum_from_state(options_.resume->momentum, n_, carried);
+    write(carried_, interleave(carried.px, carried.py));
+  }
+}
+
+template <typename Real>
+std::vector<Vec2> DeviceRun<Real>::read_momentum() {
+  std::vector<Real> xy;
+  carried_.download(ctx_.queue(), xy, 2 * n_);
+  std::vector<Vec2> out(n_);
+  for (std::size_t i = 0; i < n_; ++i) out[i] = {static_cast<double>(xy[2 * i]), static_cast<double>(xy[2 * i + 1])};
+  return out;
+}
+
+template <typename Real>
+void DeviceRun<Real>::reset_momentum(const std::vector<std::int32_t>& nodes) {
+  std::vector<Real> xy;
+  read(carried_, xy, 2 * n_);
+  for (std::int32_t i : nodes) xy[2 * static_cast<std::size_t>(i)] = xy[2 * static_cast<std::size_t>(i) + 1] = Real(0);
+  write(carried_, xy);
 }
 
 template <typename Real>
@@ -173,6 +198,10 @@ void DeviceRun<Real>::upload_nodes(const std::vector<double>* budgets, const std
   }
   node_leaf_ = Buffer<std::int32_t>(ctx_, "node_leaf", n);
   write(node_leaf_, leaf);
+  // The carried moves start at zero, also after a population event changed the node set (the
+  // resumed ones: upload_initial). Without momentum the step kernel never reads its buffer.
+  carried_ = Buffer<Real>(ctx_, "momentum", with_momentum() ? 2 * n : 2);
+  write(carried_, std::vector<Real>(with_momentum() ? 2 * n : 2, Real(0)));
   kind_host_.resize(n);
   upload_topology();
   dx_.assign(n, 0.0);

@@ -71,7 +71,7 @@ void DeviceRun<Real>::enqueue_iteration(int cur) {
       q_[cur])(kind_)(tx_)(ty_)(neighbours_.count())(neighbours_.offset())(neighbours_.index())(xy_build_)(q_build_)(bslot_)(
       xy_[next])(q_[next])(budget_)(node_leaf_)(brec_)(cand_index_)(cand_rec_)(counters_)(partials_)(
       device_boundary_.segments())(static_cast<cl_int>(device_boundary_.segment_count()))(
-      static_cast<Real>(device_boundary_.segment_scale()));
+      static_cast<Real>(device_boundary_.segment_scale()))(static_cast<Real>(options_.momentum))(carried_);
   bg_args(a);
   launch(ctx_.queue(), program_.device_step, "device_step", n_, program_.work_group);
   ++stats_.launches;
@@ -215,7 +215,17 @@ BoundaryCounts DeviceRun<Real>::host_boundary(double& skin_use) {
   });
   counts.clamped = snap_.clamped;
   skin_use = std::max(skin_use, snap_.skin_use);
-  if (counts.snapped > 0) upload_topology();  // kinds and curve neighbours changed (rare); run() rebuilds
+  if (counts.snapped > 0) {
+    upload_topology();  // kinds and curve neighbours changed (rare); run() rebuilds
+    // A snapped node's interior motion does not carry over (the host driver's rule). The window
+    // halted for the exact test, so the carried moves are this iteration's.
+    if (with_momentum()) {
+      std::vector<std::int32_t> snapped;
+      for (std::int32_t node : candidates_)
+        if (nodes_.kind[static_cast<std::size_t>(node)] == NodeKind::Boundary) snapped.push_back(node);
+      reset_momentum(snapped);
+    }
+  }
   // Records: every candidate (moved, or snapped with its tangent).
   // Members: their uploads are non-blocking and complete before the next step's records arrive.
   std::vector<std::int32_t>& index = rec_index_host_;
@@ -411,7 +421,8 @@ SimResult DeviceRun<Real>::run(const SimCallbacks& callbacks) {
     throw;
   }
   result.state = SimState{done, result.stats.dt_initial, gm.state(), boundary_.arcs(), boundary_.tangents(),
-                          result.history, population_.schedule, convergence_.samples()};
+                          result.history, population_.schedule, convergence_.samples(), {}};
+  if (with_momentum()) result.state.momentum = read_momentum();
   result.stats.inserted = population_.inserted;
   result.stats.removed = population_.removed;
   result.stats.population_events = population_.events;
@@ -423,7 +434,7 @@ SimResult DeviceRun<Real>::run(const SimCallbacks& callbacks) {
                         brec_.bytes() + kind_.bytes() + budget_.bytes() + prev_.bytes() + next_.bytes() +
                         bslot_.bytes() + bg_q_.bytes() + bg_root_.bytes() + bg_child_.bytes() + bg_corner_.bytes() +
                         bg_cell_.bytes() + node_leaf_.bytes() + rec_.bytes() + rec_index_.bytes() +
-                        device_boundary_.bytes() + (6 + 5) * n_ * sizeof(Real);
+                        device_boundary_.bytes() + carried_.bytes() + (6 + 5) * n_ * sizeof(Real);
   return result;
 }
 

@@ -52,8 +52,10 @@ inline constexpr int kInitialStride = 16;
 struct DeviceMemoryNeed {
   std::uint64_t total = 0, largest = 0;
 };
+// momentum: SimOptions::momentum > 0 (2 more reals per node, the carried moves).
 DeviceMemoryNeed device_memory_need(std::size_t nodes, std::size_t boundary_nodes, std::uint64_t field_bytes,
-                                    std::size_t real_bytes, int entries_per_node = kInitialStride);
+                                    std::size_t real_bytes, int entries_per_node = kInitialStride,
+                                    bool momentum = false);
 
 // Throws LimitError (exit 2) naming the bytes needed, the device's global memory and largest
 // allocation, and what to do instead (--precision float, --device host, a coarser spacing), when
@@ -61,7 +63,8 @@ DeviceMemoryNeed device_memory_need(std::size_t nodes, std::size_t boundary_node
 // indices allow. Run before the first allocation of a device run (kInitialStride entries per node) and
 // before the neighbour rows grow (their new size per node, rounded up).
 void check_device_memory(const DeviceInfo& device, std::size_t nodes, std::size_t boundary_nodes,
-                         std::uint64_t field_bytes, std::size_t real_bytes, int entries_per_node = kInitialStride);
+                         std::uint64_t field_bytes, std::size_t real_bytes, int entries_per_node = kInitialStride,
+                         bool momentum = false);
 
 struct StepProgram;
 

@@ -110,6 +110,37 @@ class OpenclBackend final : public StepBackend {
     out.dt2 = download(dt2_, n);
   }
 
+  void apply_momentum(const SimParticles& p, const ForceResult& forces, double beta, MoveResult& moves,
+                      MomentumState& carried) override {
+    const std::size_t n = p.size();
+    carried.px.resize(n, 0.0);
+    carried.py.resize(n, 0.0);
+    upload_forces(p, forces);
+    ensure_size(ctx_, r0_, "r0", n);
+    r0_.upload(ctx_.queue(), to_real<Real>(forces.r0));
+    ensure_size(ctx_, dx_, "dx", n);
+    ensure_size(ctx_, dy_, "dy", n);
+    ensure_size(ctx_, carried_, "momentum", 2 * n);
+    dx_.upload(ctx_.queue(), to_real<Real>(moves.dx));
+    dy_.upload(ctx_.queue(), to_real<Real>(moves.dy));
+    std::vector<Real> pxy(2 * n);  // the device run's layout: x and y interleaved
+    for (std::size_t i = 0; i < n; ++i) {
+      pxy[2 * i] = static_cast<Real>(carried.px[i]);
+      pxy[2 * i + 1] = static_cast<Real>(carried.py[i]);
+    }
+    carried_.upload(ctx_.queue(), pxy);
+    ArgSetter args(program_.apply_momentum, "apply_momentum");
+    args(static_cast<cl_int>(n))(static_cast<Real>(beta))(kind_)(fx_)(fy_)(r0_)(dx_)(dy_)(carried_);
+    launch(ctx_.queue(), program_.apply_momentum, "apply_momentum", n, program_.work_group);
+    moves.dx = download(dx_, n);
+    moves.dy = download(dy_, n);
+    const std::vector<double> out = download(carried_, 2 * n);
+    for (std::size_t i = 0; i < n; ++i) {
+      carried.px[i] = out[2 * i];
+      carried.py[i] = out[2 * i + 1];
+    }
+  }
+
   StepSums reduce(const SimParticles& p, const ForceResult& forces, const MoveResult& moves) override {
     const std::size_t n = p.size();
     upload_forces(p, forces);
@@ -174,7 +205,7 @@ class OpenclBackend final : public StepBackend {
   Context& ctx_;
   StepProgram program_;
   DeviceNeighbours<Real> neighbours_;
-  Buffer<Real> xy_, q_, tx_, ty_, fx_, fy_, r0_, limit_, dx_, dy_, dt2_, partials_;
+  Buffer<Real> xy_, q_, tx_, ty_, fx_, fy_, r0_, limit_, dx_, dy_, dt2_, partials_, carried_;
   Buffer<std::uint8_t> kind_;
   Buffer<std::int32_t> prev_, next_, count_, index_, coincident_;
 };

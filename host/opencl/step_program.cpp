@@ -148,6 +148,7 @@ StepProgram::StepProgram(Context& ctx, Precision p, ForceLoop loop, std::size_t 
       {&apply_row_moves, "apply_row_moves"},     {&row_level_tally, "row_level_tally"},
       {&place_spilled, "place_spilled"},
       {&compute_forces, "compute_forces"},     {&time_step_and_move, "time_step_and_move"},
+      {&apply_momentum, "apply_momentum"},
       {&reduce, "reduce"},                     {&device_step, "device_step"},
       {&apply_host_moves, "apply_host_moves"}, {&boundary_snap, "boundary_snap"},
       {&clearance_points, "clearance_points"}, {&refresh_budgets, "refresh_budgets"}};

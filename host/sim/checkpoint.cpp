@@ -90,6 +90,11 @@ std::string format_checkpoint(const Checkpoint& c) {
     for (const MeshSample& m : s.convergence)
       out += fmt::format("{} {} {}\n", m.iteration, value(m.min_angle), value(m.aspect_ratio));
   }
+  // Heavy-ball momentum's carried moves (simulation.momentum > 0 only); a file without it has none.
+  if (!s.momentum.empty()) {
+    out += fmt::format("momentum {}\n", s.momentum.size());
+    for (const Vec2& p : s.momentum) out += fmt::format("{} {}\n", hex(p.x), hex(p.y));
+  }
   out += "end\n";
   return out;
 }
@@ -186,7 +191,7 @@ Checkpoint parse_checkpoint(const std::string& text, const std::string& source_n
     for (std::size_t f = 0; f + 5 < fields; ++f) *counts[f] = parse_count(in, t[5 + f], "history count");
     s.history.push_back(row);
   }
-  t = in.expect_tokens("'convergence N' or 'end' (the file is truncated)");
+  t = in.expect_tokens("'convergence N', 'momentum N' or 'end' (the file is truncated)");
   if (!t.empty() && t[0] == "convergence") {
     if (t.size() != 2) in.fail("expected 'convergence N'");
     const std::size_t samples = parse_count(in, t[1], "convergence sample count");
@@ -203,6 +208,18 @@ Checkpoint parse_checkpoint(const std::string& text, const std::string& source_n
       m.aspect_ratio = value(t[2], "aspect ratio");
       previous = m.iteration;
       s.convergence.push_back(m);
+    }
+    t = in.expect_tokens("'momentum N' or 'end' (the file is truncated)");
+  }
+  if (!t.empty() && t[0] == "momentum") {
+    if (t.size() != 2) in.fail("expected 'momentum N'");
+    const std::size_t count = parse_count(in, t[1], "momentum count");
+    if (count != n) in.fail(fmt::format("expected momentum {} (one carried move per node)", n), t[1]);
+    s.momentum.resize(count);
+    for (std::size_t i = 0; i < count; ++i) {
+      t = in.expect_tokens("a carried move 'PX PY'");
+      if (t.size() != 2) in.fail("expected a carried move 'PX PY' (2 fields)");
+      s.momentum[i] = {parse_hex(in, t[0], "carried move x"), parse_hex(in, t[1], "carried move y")};
     }
     t = in.expect_tokens("'end' (the file is truncated)");
   }

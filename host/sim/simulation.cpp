@@ -48,6 +48,24 @@ void check_node_set(const NodeSet& nodes) {
                                       nodes.q.size(), nodes.kind.size(), nodes.curve.size()));
 }
 
+void momentum_from_state(const std::vector<Vec2>& saved, std::size_t n, MomentumState& carried) {
+  carried.px.assign(n, 0.0);
+  carried.py.assign(n, 0.0);
+  if (saved.empty()) return;
+  if (saved.size() != n)
+    throw SimulationError(fmt::format("the saved momentum has {} entries for {} nodes", saved.size(), n));
+  for (std::size_t i = 0; i < n; ++i) {
+    carried.px[i] = saved[i].x;
+    carried.py[i] = saved[i].y;
+  }
+}
+
+std::vector<Vec2> momentum_to_state(const MomentumState& carried, std::size_t n) {
+  std::vector<Vec2> out(n, Vec2{0.0, 0.0});
+  for (std::size_t i = 0; i < n && i < carried.px.size(); ++i) out[i] = {carried.px[i], carried.py[i]};
+  return out;
+}
+
 namespace {
 
 // The first node with a non-finite force or move component (the node count if none).
@@ -135,10 +153,16 @@ SimResult run_simulation(NodeSet& nodes, const GeometryTree& tree, const Spacing
   if (resume) population.schedule = resume->population;
   ConvergenceMonitor convergence(options.convergence, resume ? resume->convergence : std::vector<MeshSample>{});
   // The state after `done` iterations; nodes must hold that iteration's positions.
+  // Heavy-ball momentum (options.momentum > 0 only): each node's last move, carried into the next.
+  const bool with_momentum = options.momentum > 0.0;
+  MomentumState carried;
+  if (with_momentum && resume) momentum_from_state(resume->momentum, nodes.size(), carried);
   const auto snapshot = [&] {
-    return SimState{done,           result.stats.dt_initial, gm.state(),
-                    boundary.arcs(), boundary.tangents(),    result.history,
-                    population.schedule, convergence.samples()};
+    SimState s{done,           result.stats.dt_initial, gm.state(),
+               boundary.arcs(), boundary.tangents(),    result.history,
+               population.schedule, convergence.samples(), {}};
+    if (with_momentum) s.momentum = momentum_to_state(carried, nodes.size());
+    return s;
   };
   // A run stopped in the iteration it converged in is complete (the uninterrupted run ended there).
   if (resume && done < options.iterations &&
@@ -153,6 +177,12 @@ SimResult run_simulation(NodeSet& nodes, const GeometryTree& tree, const Spacing
       build_neighbours_growing(*backend, particles, options.cutoff, list, flags);
       backend->compute_forces(particles, list, params, forces);
       backend->time_step_and_move(particles, forces, gm.dt2(), moves);
+      // On a copy: a failure below must leave the last good iteration's p for the checkpoint.
+      MomentumState next_carried;
+      if (with_momentum) {
+        next_carried = carried;
+        backend->apply_momentum(particles, forces, options.momentum, moves, next_carried);
+      }
       sums = backend->reduce(particles, forces, moves);
       if (trace.covers(iteration))
         trace_step(stderr, iteration, particles, list, forces, moves, gm.dt2(), options.cutoff, 3);
@@ -169,16 +199,25 @@ SimResult run_simulation(NodeSet& nodes, const GeometryTree& tree, const Spacing
                                           moves.dx[bad], moves.dy[bad],
                                           describe_neighbourhood(nodes, bad, options.cutoff * nodes.q[bad])));
       }
+      if (with_momentum) carried = std::move(next_carried);
     } catch (const SimulationError&) {
       // Nothing has moved yet in this iteration: the nodes still hold the last good state.
       if (callbacks.on_failure) callbacks.on_failure(snapshot());
       throw;
     }
     const BoundaryCounts counts = boundary.apply(nodes, moves.dx, moves.dy);
+    // An interior node snapped onto a curve is a boundary node now: its interior motion does not carry
+    // over (the device run does the same in host_boundary).
+    if (with_momentum && counts.snapped > 0)
+      for (std::size_t i = 0; i < particles.size(); ++i)
+        if (static_cast<std::uint8_t>(nodes.kind[i]) != particles.kind[i]) carried.px[i] = carried.py[i] = 0.0;
     iteration_spacing.at_many(nodes.x, nodes.q);
     // Population control between iterations: the next iteration loads the changed node set.
     const auto event =
         population.after_iteration(options.population, iteration, options.iterations, nodes, boundary, iteration_spacing);
+
+    // A changed node set starts without momentum (nodes were inserted, removed and renumbered).
+    if (with_momentum && event && event->changed()) carried = MomentumState{};
 
     HistoryRow row;
     row.iteration = iteration;

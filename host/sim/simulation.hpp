@@ -34,6 +34,8 @@ struct SimState {
   std::vector<HistoryRow> history;         // rows 1 .. iterations_done
   PopulationSchedule population;           // population control's schedule (sim/population.hpp)
   std::vector<MeshSample> convergence;     // the stopping rule's measurements (sim/convergence.hpp)
+  // With SimOptions::momentum > 0: each node's last move p_i (MomentumState); empty = all zero.
+  std::vector<Vec2> momentum;
 };
 
 struct SimOptions {
@@ -45,6 +47,9 @@ struct SimOptions {
   double lj_a = 15.0;                // a of eq. 5.11
   bool r0_any_direction = false;     // ForceParams::r0_any_direction (false = thesis eq. 5.3)
   double stability_factor = 0.0;     // ForceParams::stability_factor (0 = off, the thesis)
+  // Heavy-ball beta in [0, 1) (StepBackend::apply_momentum, docs/simulation.md "Momentum"); 0 = off:
+  // the thesis' gradient-descent move, and no momentum arithmetic at all.
+  double momentum = 0.0;
   bool quiet = false;                // no progress line on stderr
   // false: the per-iteration spacing update reads a BackgroundSpacing built once from the given field
   // (tolerance 1e-3, docs/spacing.md); true: evaluate the given field exactly every iteration.
@@ -105,6 +110,11 @@ double default_dt_initial(const NodeSet& nodes, double lj_a);
 
 // How many history rows to reserve for a run of `iterations` (capped: rows are added as they come).
 std::size_t history_reserve(int iterations);
+
+// SimState::momentum to and from the driver's MomentumState (n nodes; an empty saved list is all zero).
+// momentum_from_state throws SimulationError when a non-empty list does not have n entries.
+void momentum_from_state(const std::vector<Vec2>& saved, std::size_t n, MomentumState& carried);
+std::vector<Vec2> momentum_to_state(const MomentumState& carried, std::size_t n);
 
 // Throws SimulationError when the node set's arrays differ in length (every Simulator checks first).
 void check_node_set(const NodeSet& nodes);

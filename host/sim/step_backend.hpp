@@ -76,6 +76,13 @@ struct StepSums {
   double sum_kinetic = 0.0;  // sum 1/2 |dx_i / dt_i|^2 = sum dt_i^2 |F_i|^2 / 8
 };
 
+// Heavy-ball momentum's carried state (SimOptions::momentum): p_i, node i's move d_i of the previous
+// iteration; zero at the start of a run, for every node after a population event that changed the node
+// set, and for a node whose kind changed (an interior node snapped onto a curve).
+struct MomentumState {
+  std::vector<double> px, py;
+};
+
 struct ForceParams {
   double cutoff = 1.5;  // cut-off distance factor: neighbours within cutoff * q_i
   double lj_a = 15.0;   // a of eq. 5.11
@@ -103,6 +110,11 @@ class StepBackend {
   // Step 4: local time step and displacement. dt_gm2 is the squared global maximum time step.
   virtual void time_step_and_move(const SimParticles& p, const ForceResult& forces, double dt_gm2,
                                   MoveResult& out) = 0;
+  // Step 4, heavy-ball momentum (beta in (0, 1); callers skip it for beta = 0): turns moves' g_i =
+  // dt_i^2/2 F_i into d_i = g_i + beta p_i; d_i = g_i where d_i . F_i < 0; then |d_i| capped to r0_i / 3
+  // where r0_i > 0. Fixed nodes: d_i = 0. Sets p_i = d_i (carried: n entries each, resized with zeros).
+  virtual void apply_momentum(const SimParticles& p, const ForceResult& forces, double beta, MoveResult& moves,
+                              MomentumState& carried) = 0;
   // Reductions for the history and the global time step rule.
   virtual StepSums reduce(const SimParticles& p, const ForceResult& forces, const MoveResult& moves) = 0;
 };

@@ -25,6 +25,10 @@ class ReferenceBackend final : public StepBackend {
                           MoveResult& out) override {
     reference::time_step_and_move(p, forces, dt_gm2, out);
   }
+  void apply_momentum(const SimParticles& p, const ForceResult& forces, double beta, MoveResult& moves,
+                      MomentumState& carried) override {
+    reference::apply_momentum(p, forces, beta, moves, carried);
+  }
   StepSums reduce(const SimParticles& p, const ForceResult& forces, const MoveResult& moves) override {
     return reference::reduce(p, forces, moves);
   }

@@ -20,6 +20,13 @@ void compute_forces(const SimParticles& p, const NeighbourList& list, const Forc
 
 // Step 4 and the reductions (time_step.cpp).
 void time_step_and_move(const SimParticles& p, const ForceResult& forces, double dt_gm2, MoveResult& out);
+// Heavy-ball momentum on the moves of time_step_and_move (StepBackend::apply_momentum).
+void apply_momentum(const SimParticles& p, const ForceResult& forces, double beta, MoveResult& moves,
+                    MomentumState& carried);
+// d = g + beta p, back to g against the force, capped to r0 / 3: one node's rule (kernels/time_step.cl,
+// momentum_move, has the same expressions in the same order, so that double results agree bit for bit).
+void momentum_move(double gx, double gy, double px, double py, double beta, double fx, double fy, double r0,
+                   double& dx, double& dy);
 StepSums reduce(const SimParticles& p, const ForceResult& forces, const MoveResult& moves);
 
 // The pair force of eq. 5.11 as a signed magnitude along +r_ij/r_ij (negative = repulsion),

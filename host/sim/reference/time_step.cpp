@@ -1,5 +1,5 @@
-// Reference step 4: local time step (thesis eqs. 5.8, 5.9), displacement (eq. 5.6), and the
-// reductions the history and the global time step rule need.
+// Reference step 4: local time step (thesis eqs. 5.8, 5.9), displacement (eq. 5.6), the optional
+// heavy-ball momentum on it, and the reductions the history and the global time step rule need.
 #include <algorithm>
 #include <cmath>
 
@@ -26,6 +26,46 @@ void time_step_and_move(const SimParticles& p, const ForceResult& forces, double
     out.dt2[i] = dt2;
     out.dx[i] = 0.5 * dt2 * fx;
     out.dy[i] = 0.5 * dt2 * fy;
+  }
+}
+
+void momentum_move(double gx, double gy, double px, double py, double beta, double fx, double fy, double r0,
+                   double& dx, double& dy) {
+  dx = gx + beta * px;
+  dy = gy + beta * py;
+  // Motion carried against today's force would push the node uphill: the plain step instead.
+  if (dx * fx + dy * fy < 0.0) {
+    dx = gx;
+    dy = gy;
+  }
+  // The thesis' rule that a node moves at most a third of the way to its nearest neighbour in the
+  // force direction (eq. 5.8 bounds g alone) holds for the total move.
+  if (r0 > 0.0) {
+    const double cap = r0 / 3.0;
+    const double len = std::sqrt(dx * dx + dy * dy);
+    if (len > cap) {
+      const double s = cap / len;
+      dx = dx * s;
+      dy = dy * s;
+    }
+  }
+}
+
+void apply_momentum(const SimParticles& p, const ForceResult& forces, double beta, MoveResult& moves,
+                    MomentumState& carried) {
+  const std::size_t n = p.size();
+  carried.px.resize(n, 0.0);
+  carried.py.resize(n, 0.0);
+  for (std::size_t i = 0; i < n; ++i) {
+    if (p.kind[i] == kSimFixed) {
+      carried.px[i] = carried.py[i] = 0.0;  // time_step_and_move left d = 0
+      continue;
+    }
+    double dx, dy;
+    momentum_move(moves.dx[i], moves.dy[i], carried.px[i], carried.py[i], beta, forces.fx[i], forces.fy[i],
+                  forces.r0[i], dx, dy);
+    moves.dx[i] = carried.px[i] = dx;
+    moves.dy[i] = carried.py[i] = dy;
   }
 }
 

@@ -1,0 +1,132 @@
+// Heavy-ball momentum (SimOptions::momentum, docs/simulation.md "Momentum") over whole runs: the
+// device-resident run repeats the host reference bit for bit in double with beta = 0.9 (both force
+// loops; population events that renumber the nodes; snaps that turn interior nodes into boundary
+// nodes), and a run stopped and resumed from its checkpoint is the uninterrupted run, bit for bit,
+// on the host and on the device.
+#include <catch2/catch.hpp>
+
+#include <atomic>
+#include <cmath>
+
+#include "sim/checkpoint.hpp"
+#include "device_run_fixtures.hpp"
+
+using namespace pdmesh;
+using pdmesh::test::Case;
+using pdmesh::test::Outcome;
+
+namespace {
+
+// Same positions, spacings, kinds and curve lists, bit for bit.
+void require_identical_nodes(const NodeSet& a, const NodeSet& b) {
+  REQUIRE(b.size() == a.size());
+  REQUIRE(b.kind == a.kind);
+  REQUIRE(b.curve_nodes == a.curve_nodes);
+  std::size_t differ = 0, first = a.size();
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    if (b.x[i].x == a.x[i].x && b.x[i].y == a.x[i].y && b.q[i] == a.q[i]) continue;
+    if (differ++ == 0) first = i;
+  }
+  INFO(differ << " nodes differ; the first is node " << first);
+  CHECK(differ == 0);
+}
+
+void require_same_momentum(const SimState& a, const SimState& b) {
+  REQUIRE(a.momentum.size() == b.momentum.size());
+  std::size_t differ = 0;
+  for (std::size_t i = 0; i < a.momentum.size(); ++i)
+    if (a.momentum[i].x != b.momentum[i].x || a.momentum[i].y != b.momentum[i].y) ++differ;
+  CHECK(differ == 0);
+}
+
+// circle_circle from a random start with population control (events every 10 iterations from 20).
+Case population_case() {
+  return test::load_case("circle_circle", {{"init.method", "random", "test"},
+                                            {"population.enabled", "true", "test"},
+                                            {"population.start", "20", "test"},
+                                            {"population.every", "10", "test"}});
+}
+
+SimOptions momentum_options(const Case& c, int iterations, double beta) {
+  SimOptions o = test::options_for(c, iterations);
+  o.population = c.config.population;
+  o.momentum = beta;
+  return o;
+}
+
+}  // namespace
+
+TEST_CASE("momentum 0.9: the device run repeats the host over 300 iterations with population events",
+          "[opencl][device_sim][momentum]") {
+  const Case c = population_case();
+  const SimOptions o = momentum_options(c, 300, 0.9);
+  const Outcome host = test::run_from(c, c.initial, o, false);
+  REQUIRE(host.result.stats.inserted + host.result.stats.removed > 0);
+  REQUIRE(host.result.state.momentum.size() == host.nodes.size());
+  // Momentum changed the run (else this test could not fail on a device that ignores it).
+  const Outcome plain = test::run_from(c, c.initial, momentum_options(c, 300, 0.0), false);
+  CHECK(plain.result.history.back().max_force != host.result.history.back().max_force);
+  CHECK(plain.result.state.momentum.empty());
+  for (const ocl::ForceLoop loop : test::kForceLoops) {
+    INFO(ocl::force_loop_name(loop) << " force loop");
+    const Outcome dev = test::run_from(c, c.initial, o, true, false, loop);
+    REQUIRE(dev.result.history.size() == host.result.history.size());
+    for (std::size_t k = 0; k < host.result.history.size(); ++k) {
+      INFO("iteration " << host.result.history[k].iteration);
+      CHECK(dev.result.history[k].max_force == host.result.history[k].max_force);
+      CHECK(dev.result.history[k].inserted == host.result.history[k].inserted);
+      CHECK(dev.result.history[k].removed == host.result.history[k].removed);
+    }
+    require_identical_nodes(host.nodes, dev.nodes);
+    require_same_momentum(host.result.state, dev.result.state);
+  }
+}
+
+TEST_CASE("momentum 0.9: snaps (interior nodes that become boundary nodes) on the device as on the host",
+          "[opencl][device_sim][momentum]") {
+  const Case c = test::load_case("shock", {parse_set_option("init.method=structured")});
+  SimOptions o = test::options_for(c, 100);
+  o.momentum = 0.9;
+  const Outcome host = test::run_from(c, c.initial, o, false);
+  REQUIRE(host.result.stats.snapped > 0);
+  for (const ocl::ForceLoop loop : test::kForceLoops) {
+    INFO(ocl::force_loop_name(loop) << " force loop");
+    const Outcome dev = test::run_from(c, c.initial, o, true, false, loop);
+    CHECK(dev.result.stats.snapped == host.result.stats.snapped);
+    require_identical_nodes(host.nodes, dev.nodes);
+    require_same_momentum(host.result.state, dev.result.state);
+  }
+}
+
+TEST_CASE("momentum 0.9: a run stopped, saved and resumed is the uninterrupted run, bit for bit",
+          "[momentum][resume]") {
+  const Case c = population_case();
+  const SimOptions whole = momentum_options(c, 120, 0.9);
+  const Outcome uninterrupted = test::run_from(c, c.initial, whole, false);
+  // Stopped after 55 iterations of the same 120 (between population events; a shorter run would ramp
+  // population control's thresholds to its own end), through the checkpoint's text.
+  std::atomic<bool> stop{false};
+  SimOptions stopped = whole;
+  stopped.stop = &stop;
+  SimCallbacks callbacks;
+  callbacks.on_iteration = [&stop](const HistoryRow& row) {
+    if (row.iteration == 55) stop = true;
+  };
+  Outcome first{c.initial, {}, {}};
+  first.result = run_simulation(first.nodes, c.inputs->node_tree(), *c.inputs->spacing, stopped, callbacks);
+  REQUIRE(first.result.stopped);
+  REQUIRE(first.result.state.iterations_done == 55);
+  REQUIRE(first.result.state.momentum.size() == first.nodes.size());
+  Checkpoint saved{{{"simulation.momentum", "0.9"}}, first.nodes, first.result.state};
+  const Checkpoint read = parse_checkpoint(format_checkpoint(saved), "test checkpoint");
+  require_same_momentum(first.result.state, read.state);
+  for (const bool device : {false, true}) {
+    INFO((device ? "device" : "host") << " resume");
+    SimOptions rest = whole;
+    rest.resume = &read.state;
+    const Outcome resumed = test::run_from(c, read.nodes, rest, device);
+    REQUIRE(resumed.result.history.size() == uninterrupted.result.history.size());
+    require_identical_nodes(uninterrupted.nodes, resumed.nodes);
+    require_same_momentum(uninterrupted.result.state, resumed.result.state);
+  }
+}
