@@ -175,7 +175,7 @@ int run_bench(const BenchArguments& args) {
   if (args.iterations < 1 || args.large_iterations < 1)
     throw InputError(fmt::format("bench: --iterations and --large-iterations must be >= 1, got {} and {}",
                                  args.iterations, args.large_iterations));
-  if (!(args.verlet_skin >= 0.0 && args.verlet_skin <= 4.0))
+  if (args.verlet_skin != kAutomaticSkin && !(args.verlet_skin >= 0.0 && args.verlet_skin <= 4.0))
     throw InputError(fmt::format("bench: --skin must be in [0, 4], got {}", args.verlet_skin));
   if (args.population_every < 0)
     throw InputError(fmt::format("bench: --population must be >= 0, got {}", args.population_every));
@@ -199,7 +199,7 @@ int run_bench(const BenchArguments& args) {
     SimOptions options = c->options;
     options.iterations = large ? args.large_iterations : args.iterations;
     options.quiet = true;
-    options.verlet_skin = args.verlet_skin;
+    options.verlet_skin = args.verlet_skin == kAutomaticSkin ? default_verlet_skin(options.momentum) : args.verlet_skin;
     const std::string suffix =
         args.population_every > 0 ? fmt::format(", population every {}", args.population_every) : std::string();
     {

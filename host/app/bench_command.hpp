@@ -7,6 +7,9 @@
 
 namespace pdmesh {
 
+// BenchArguments::verlet_skin when --skin is not given.
+inline constexpr double kAutomaticSkin = -1.0;
+
 struct BenchArguments {
   std::vector<std::string> cases = {"naca0012", "rods_fine", "30p30n", "graded_1m"};
   std::string cases_dir = "cases";  // where the named cases live
@@ -19,7 +22,9 @@ struct BenchArguments {
   int warmup = 200;
   int large_warmup = 20;
   std::string precision = "double";
-  double verlet_skin = 0.3;         // device runs: Verlet list radius cutoff q (1 + skin), as pdmesh mesh
+  // Device runs: Verlet list radius cutoff q (1 + skin); kAutomaticSkin: as pdmesh mesh picks it
+  // (default_verlet_skin: 0.3, or 0.6 for a case with momentum).
+  double verlet_skin = kAutomaticSkin;
   bool skip_host = false;           // devices only
   bool skip_host_large = false;     // the host reference takes seconds per iteration at 1M nodes
   std::string force_loop = "auto";  // device runs: auto | vector | scalar (kernels/forces.cl; docs/opencl.md)

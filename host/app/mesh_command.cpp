@@ -33,6 +33,7 @@ SimOptions simulation_options(const CaseConfig& config) {
   options.r0_any_direction = config.simulation.r0_any_direction;
   options.stability_factor = config.simulation.stability_factor;
   options.momentum = config.simulation.momentum;
+  options.verlet_skin = default_verlet_skin(options.momentum);
   options.population = config.population;
   options.quiet = config.quiet;
   return options;

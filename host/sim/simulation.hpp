@@ -38,6 +38,14 @@ struct SimState {
   std::vector<Vec2> momentum;
 };
 
+// Verlet skin of device runs (list radius cutoff q (1 + skin)). With momentum the nodes move farther per
+// iteration early in a run and use up a 0.3 skin ~3x as often (30P30N curves alone, 500 iterations,
+// beta 0.9: 174 rebuilds at 0.3, 107 at 0.5, 65 at 0.8; docs/performance.md, session 9); a larger skin
+// costs more pairs examined per iteration but far fewer rebuilds. The skin never changes a result.
+inline constexpr double kVerletSkin = 0.3;
+inline constexpr double kMomentumVerletSkin = 0.6;
+inline double default_verlet_skin(double momentum) { return momentum > 0.0 ? kMomentumVerletSkin : kVerletSkin; }
+
 struct SimOptions {
   int iterations = 2000;  // the run's length, or with convergence.enabled the most it may take
   // The stopping rule (sim/convergence.hpp): disabled by default, so that every iteration runs.
@@ -58,7 +66,7 @@ struct SimOptions {
   // quadtree instead of one built from the given field (the spacing pipeline's, built once per run).
   const BackgroundSpacing* background = nullptr;
   StepBackend* backend = nullptr;    // host driver: the step implementation; nullptr: the reference backend
-  double verlet_skin = 0.3;  // device run: list radius cutoff q (1 + skin); 0 rebuilds every iteration
+  double verlet_skin = kVerletSkin;  // device run: list radius cutoff q (1 + skin); 0 rebuilds every iteration
   // Polled once after every iteration (both backends); when it reads true the run stops there,
   // with SimResult::stopped set. Set from a signal handler, so it must be lock-free.
   const std::atomic<bool>* stop = nullptr;
