@@ -11,6 +11,7 @@
 #include "app/case_spacing.hpp"
 #include "core/errors.hpp"
 #include "geometry/geometry_files.hpp"
+#include "init/node_estimate.hpp"
 #include "spacing/mesh_spacing.hpp"
 #include "spacing/resolution_check.hpp"
 
