@@ -123,3 +123,23 @@ TEST_CASE("node estimate over the background field agrees with the per-sample es
     CHECK(leaves == Approx(per_sample).epsilon(0.01));
   }
 }
+
+TEST_CASE("node count bound: not below the estimate, above it only by the boundary leaves' outside parts", "[init]") {
+  // The annulus: boundary leaves on both circles, cut by curved segments; the bound counts them whole.
+  std::vector<RawCurve> raw = {circle("outer", 10.0, 160), circle("inner", 1.0, 60)};
+  const Geometry g = build_geometry(std::move(raw));
+  const GeometryTree tree(g);
+  const BoundarySpacing exact(tree);
+  const BackgroundSpacing field(exact, tree);
+  const double estimate = estimate_node_count(tree, field);
+  const double bound = node_count_bound(field);
+  INFO("estimate " << estimate << ", bound " << bound);
+  CHECK(bound >= estimate);
+  CHECK(bound < 1.2 * estimate);
+  // A square with constant spacing: its boundary leaves are cut by straight sides.
+  const Geometry s = square(7.3, 13);
+  const GeometryTree st(s);
+  const BoundarySpacing se(st);
+  const BackgroundSpacing sf(se, st);
+  CHECK(node_count_bound(sf) >= estimate_node_count(st, sf));
+}

@@ -7,6 +7,10 @@
 
 #include "geometry/geometry_tree.hpp"
 #include "init/boundary_placement.hpp"
+// The leaf-pass estimate over a BackgroundSpacing: whoever sees the per-sample overload below sees it
+// too, so a BackgroundSpacing argument never converts silently to SpacingField& (mesh_inputs.cpp did from
+// 1962773 to session 9: the per-sample estimate, 11605 against the leaf pass's 11634 on 30P30N).
+#include "init/node_estimate.hpp"
 #include "nodes/node_set.hpp"
 #include "spacing/spacing_field.hpp"
 
@@ -57,7 +61,8 @@ NodeSet make_boundary_nodes(const Geometry& geometry, const SpacingField& spacin
 InitialDistribution make_initial_distribution(const GeometryTree& tree, const SpacingField& spacing,
                                               const InitOptions& options);
 
-// The hexagonal-packing node-count estimate alone (also used to refuse unreasonable inputs).
+// The hexagonal-packing node-count estimate alone, by sampling q (any field; for a BackgroundSpacing the
+// overload in init/node_estimate.hpp integrates its leaves exactly and is the one pdmesh mesh uses).
 double estimate_node_count(const GeometryTree& tree, const SpacingField& spacing,
                           const std::vector<double>* segment_resolution = nullptr);
 

@@ -13,6 +13,12 @@ namespace pdmesh {
 // q11, all positive: closed form (one logarithm), a series where the logarithm would cancel.
 double inverse_square_integral(double q00, double q10, double q01, double q11);
 
+// Computed on all cores; the same value as a single-threaded loop over the leaves, bit for bit.
 double estimate_node_count(const GeometryTree& tree, const BackgroundSpacing& field);
+
+// The same integral with every leaf that is not outside counted whole: not below estimate_node_count
+// but for rounding (a boundary leaf's estimate is a part of its whole integral), in one pass with no
+// geometry query. For checks that only need to know that the estimate stays below a limit.
+double node_count_bound(const BackgroundSpacing& field);
 
 }  // namespace pdmesh

@@ -88,10 +88,23 @@ void GradationGraph::sweep(double g, const std::vector<double>& q0, std::vector<
     start.resize(n);
     for (std::size_t i = 0; i < n; ++i) start[i] = {q[i], static_cast<std::int32_t>(i)};
   }
-  std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>> heap(std::greater<Entry>(), std::move(start));
-  while (!heap.empty()) {
-    const auto [value, i] = heap.top();
-    heap.pop();
+  // The start entries are sorted once and read in order; only the values lowered since go through the
+  // heap, and each step takes the smaller of the two fronts. (value, corner) pairs are totally ordered
+  // and an entry is pushed only below its corner's value, so the steps are those of one heap holding
+  // every entry (any exact min-queue gives the same sequence): the same q and sources, bit for bit,
+  // without sifting the n start entries through a heap of n.
+  std::sort(start.begin(), start.end());
+  std::size_t next = 0;
+  std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>> heap;
+  while (next < start.size() || !heap.empty()) {
+    Entry top;
+    if (heap.empty() || (next < start.size() && start[next] < heap.top())) {
+      top = start[next++];
+    } else {
+      top = heap.top();
+      heap.pop();
+    }
+    const auto [value, i] = top;
     if (value > q[static_cast<std::size_t>(i)]) continue;
     const std::int32_t s = source[static_cast<std::size_t>(i)];
     const Vec2 sp = source_point(s);
