@@ -276,9 +276,44 @@ TEST_CASE("the preset key selects the defaults, and keys the file sets win over 
         Precision::Float);
   // An override selects it too, and a bad value names the key and the choices.
   CHECK(parse_case_text(kMinimal, kCase, {parse_set_option("preset=thesis")}).preset == Preset::Thesis);
-  CHECK_THAT(error_of(std::string("preset = \"fast\"\n") + kMinimal),
-             Catch::Contains("preset must be one of best, thesis, got 'fast'"));
+  CHECK_THAT(error_of(std::string("preset = \"quick\"\n") + kMinimal),
+             Catch::Contains("preset must be one of best, thesis, fast, got 'quick'"));
   CHECK_THAT(error_of(std::string("preset = 3\n") + kMinimal), Catch::Contains("preset must be a string"));
+}
+
+TEST_CASE("the fast preset: best with momentum, a compressed schedule and rule, a stronger cleanup", "[app][case]") {
+  const CaseConfig best = parse_case_text(kMinimal, kCase);
+  const CaseConfig fast = parse_case_text(std::string("preset = \"fast\"\n") + kMinimal, kCase);
+  CHECK(fast.preset == Preset::Fast);
+  CHECK(std::string(to_string(fast.preset)) == "fast");
+  // What it shares with best.
+  CHECK(fast.simulation.stop == StopRule::Converged);
+  CHECK(fast.population.enabled);
+  CHECK(fast.cleanup.enabled);
+  CHECK(fast.boundary.nodes == best.boundary.nodes);
+  CHECK(fast.spacing.gradation == best.spacing.gradation);
+  CHECK(fast.simulation.precision == Precision::Auto);
+  // What it changes.
+  CHECK(best.simulation.momentum == 0.0);
+  CHECK(fast.simulation.momentum == 0.9);
+  CHECK(fast.population.stop == 0.2);
+  CHECK(fast.population.insert.first == 0.7);
+  CHECK(fast.population.insert.last == 0.7);
+  CHECK(fast.population.settle == 1e-3);
+  CHECK(fast.population.settle_events == 2);
+  CHECK(fast.simulation.stop_aspect == 1e-3);
+  CHECK(best.simulation.stop_every == 100);
+  CHECK(best.simulation.stop_window == 400);
+  CHECK(best.simulation.stop_min == 400);
+  CHECK(fast.simulation.stop_every == 50);
+  CHECK(fast.simulation.stop_window == 200);
+  CHECK(fast.simulation.stop_min == 300);
+  CHECK(fast.cleanup.min_angle == 40.0);
+  CHECK(fast.cleanup.iterations == 32);
+  // A key the file sets wins over the preset, and --set selects it.
+  CHECK(parse_case_text(std::string("preset = \"fast\"\n") + kMinimal + "[simulation]\nmomentum = 0.5\n", kCase)
+            .simulation.momentum == 0.5);
+  CHECK(parse_case_text(kMinimal, kCase, {parse_set_option("preset=fast")}).simulation.momentum == 0.9);
 }
 
 TEST_CASE("geometry.curves and boundary.nodes: preset defaults, file values, overrides, errors", "[app][case]") {
@@ -498,4 +533,22 @@ TEST_CASE("simulation.stop_aspect / stop_angle: the convergence rule's tolerance
              Catch::Contains("simulation.stop_angle must be in [0, 10], got -1"));
   CHECK_THAT(error_of(kMinimal, {parse_set_option("simulation.stop_angle=nan")}),
              Catch::Contains("simulation.stop_angle"));
+}
+
+TEST_CASE("simulation.stop_every / stop_window / stop_min: the rule's interval, window and earliest stop", "[app][case][convergence]") {
+  const CaseConfig set = parse_case_text(
+      std::string(kMinimal) + "[simulation]\nstop_every = 25\nstop_window = 150\nstop_min = 0\n", kCase);
+  CHECK(set.simulation.stop_every == 25);
+  CHECK(set.simulation.stop_window == 150);
+  CHECK(set.simulation.stop_min == 0);
+  CHECK_THAT(error_of(std::string(kMinimal) + "[simulation]\nstop_every = 0\n"),
+             Catch::Contains("simulation.stop_every must be in [1, 1000000], got 0"));
+  CHECK_THAT(error_of(std::string(kMinimal) + "[simulation]\nstop_min = -5\n"),
+             Catch::Contains("simulation.stop_min must be in [0, 1000000], got -5"));
+  CHECK_THAT(error_of(std::string(kMinimal) + "[simulation]\nstop_window = 2.5\n"),
+             Catch::Contains("simulation.stop_window must be an integer"));
+  // The window starts at a measurement, so it is a multiple of the interval (400 is not of 150).
+  CHECK_THAT(error_of(std::string(kMinimal) + "[simulation]\nstop_every = 150\n"),
+             Catch::Contains("simulation.stop_window must be a multiple of simulation.stop_every (150), got 400") &&
+                 Catch::Contains(":4:"));
 }

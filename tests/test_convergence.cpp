@@ -315,8 +315,18 @@ TEST_CASE("simulation_options: the stop tolerances and population settling keys 
   CHECK(o.convergence.angle_tolerance == 0.5);
   CHECK(o.population.settle == 2e-3);
   CHECK(o.population.settle_events == 3);
+  const SimOptions r = simulation_options(load_case_file(
+      std::string(PDMESH_SOURCE_DIR) + "/cases/circle_circle/case.toml",
+      {{"simulation.stop_every", "50", "test"}, {"simulation.stop_window", "200", "test"},
+       {"simulation.stop_min", "300", "test"}}));
+  CHECK(r.convergence.check_every == 50);
+  CHECK(r.convergence.window == 200);
+  CHECK(r.convergence.min_iterations == 300);
   // The defaults are the rule's own.
   const SimOptions d = simulation_options(load_case_file(std::string(PDMESH_SOURCE_DIR) + "/cases/circle_circle/case.toml"));
   CHECK(d.convergence.aspect_tolerance == ConvergenceOptions{}.aspect_tolerance);
   CHECK(d.convergence.angle_tolerance == ConvergenceOptions{}.angle_tolerance);
+  CHECK(d.convergence.check_every == ConvergenceOptions{}.check_every);
+  CHECK(d.convergence.window == ConvergenceOptions{}.window);
+  CHECK(d.convergence.min_iterations == ConvergenceOptions{}.min_iterations);
 }

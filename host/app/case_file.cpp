@@ -153,7 +153,7 @@ CaseConfig check_values(const toml::table& root, const Reader& r, CaseConfig c) 
   check_keys(r, root, "");
   // The preset first: it sets the defaults that every other key then overrides.
   if (const toml::node* n = root.get("preset")) {
-    apply_preset(c, choose<Preset>(r, "preset", *n, {{"best", Preset::Best}, {"thesis", Preset::Thesis}}));
+    apply_preset(c, choose<Preset>(r, "preset", *n, {{"best", Preset::Best}, {"thesis", Preset::Thesis}, {"fast", Preset::Fast}}));
   }
   if (const toml::node* n = root.get("name")) {
     c.name = r.string("name", *n);
@@ -189,6 +189,7 @@ const std::vector<std::string>& case_file_keys() {
       "spacing.gradation", "spacing.rows_in_gap", "spacing.curvature_angle", "boundary.nodes",
       "init.method", "init.seed", "init.total",
       "simulation.iterations", "simulation.stop", "simulation.stop_aspect", "simulation.stop_angle",
+      "simulation.stop_every", "simulation.stop_window", "simulation.stop_min",
       "simulation.dt_initial", "simulation.dt_initial.structured",
       "simulation.dt_initial.random", "simulation.cutoff", "simulation.lj_a", "simulation.device",
       "simulation.precision", "simulation.r0_rule", "simulation.stability_factor", "simulation.momentum",

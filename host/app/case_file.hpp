@@ -31,7 +31,10 @@ enum class StopRule { Converged, Iterations };
 //   Thesis: Fackler's settings, so that the thesis case files reproduce chapter 6 (report/).
 // The member initializers of CaseConfig below are the Best values; apply_preset() (app/presets.cpp)
 // changes the keys whose thesis value differs. Keys the file sets always win over the preset.
-enum class Preset { Best, Thesis };
+//   Fast:   best with heavy-ball momentum and a compressed schedule (population control, the stopping
+//           rule) and a stronger cleanup: about a third of best's iterations, a worst triangle that
+//           is not always as good (docs/cli.md, "Presets"; docs/performance.md, session 9).
+enum class Preset { Best, Thesis, Fast };
 
 // A zoom window: an extra picture NAME_VIEW.png of the region [x0, x1] x [y0, y1].
 struct ViewWindow {
@@ -51,7 +54,7 @@ struct CaseOverride {
 struct CaseConfig {
   std::filesystem::path source;  // the case file, or the geometry file when meshing one directly
   std::string name;              // for titles; default: the case directory name (or geometry file stem)
-  Preset preset = Preset::Best;  // top-level key `preset`: "best" (default) or "thesis"
+  Preset preset = Preset::Best;  // top-level key `preset`: "best" (default), "thesis" or "fast"
 
   struct Geometry {
     std::vector<std::filesystem::path> files;  // resolved relative to the case file
@@ -101,6 +104,11 @@ struct CaseConfig {
     // smallest angle may rise above its earlier best in it (degrees).
     double stop_aspect = 5e-4;
     double stop_angle = 0.25;
+    // The rule's measurement interval, window and earliest stop (ConvergenceOptions::check_every,
+    // window, min_iterations), in iterations.
+    int stop_every = 100;
+    int stop_window = 400;
+    int stop_min = 400;
     // Initial global maximum time step per init method; empty = the automatic rule.
     std::optional<double> dt_structured;
     std::optional<double> dt_random;

@@ -168,6 +168,21 @@ void read_simulation_section(const Reader& r, const toml::table& root, CaseConfi
       *out = r.number(name, *n);
       if (!(*out >= 0.0 && *out <= hi)) r.fail(name, n, fmt::format("{} must be in [0, {}], got {}", name, hi, *out));
     }
+  for (auto [key, out, lo] : {std::tuple{"stop_every", &s.stop_every, 1}, {"stop_window", &s.stop_window, 1},
+                              {"stop_min", &s.stop_min, 0}})
+    if (const toml::node* n = find(root, "simulation", key)) {
+      const std::string name = std::string("simulation.") + key;
+      const std::int64_t v = r.integer(name, *n);
+      if (v < lo || v > 1000000) r.fail(name, n, fmt::format("{} must be in [{}, 1000000], got {}", name, lo, v));
+      *out = static_cast<int>(v);
+    }
+  if (s.stop_window % s.stop_every != 0) {
+    const toml::node* n = find(root, "simulation", "stop_window");
+    if (!n) n = find(root, "simulation", "stop_every");
+    r.fail("simulation.stop_window", n,
+           fmt::format("simulation.stop_window must be a multiple of simulation.stop_every ({}), got {}", s.stop_every,
+                       s.stop_window));
+  }
   if (const toml::node* n = find(root, "simulation", "dt_initial")) {
     if (n->is_table()) {
       const toml::table& per = *n->as_table();

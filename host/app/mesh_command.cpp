@@ -27,6 +27,9 @@ SimOptions simulation_options(const CaseConfig& config) {
   options.convergence.enabled = config.simulation.stop == StopRule::Converged;
   options.convergence.aspect_tolerance = config.simulation.stop_aspect;
   options.convergence.angle_tolerance = config.simulation.stop_angle;
+  options.convergence.check_every = config.simulation.stop_every;
+  options.convergence.window = config.simulation.stop_window;
+  options.convergence.min_iterations = config.simulation.stop_min;
   options.dt_initial = config.simulation.dt_for(config.init.method);
   options.cutoff = config.simulation.cutoff;
   options.lj_a = config.simulation.lj_a;
