@@ -337,7 +337,7 @@ Cli::Cli() : app_(std::make_unique<CLI::App>("pdmesh: physics-based point placem
   bench->add_option("--precision", bench_->precision, "double | float (devices without fp64 run float)")->type_name("P");
   bench->add_option("--warmup", bench_->warmup, "Untimed iterations before timing, every backend from that state")->type_name("N");
   bench->add_option("--large-warmup", bench_->large_warmup, "The same for graded_1m")->type_name("N");
-  bench->add_option("--skin", bench_->verlet_skin, "Verlet skin of the device runs (list radius cutoff q (1 + skin)); default as pdmesh mesh: 0.3, or 0.6 with momentum")->type_name("S");
+  bench->add_option("--skin", bench_->verlet_skin, "Verlet skin of the device runs (list radius cutoff q (1 + skin)); default as pdmesh mesh: 0.3, or 0.8 with momentum")->type_name("S");
   bench->add_option("--population", bench_->population_every,
                     "Population control during the timed iterations: an event every K iterations (0 = off)")
       ->type_name("K");
