@@ -330,3 +330,34 @@ TEST_CASE("simulation_options: the stop tolerances and population settling keys 
   CHECK(d.convergence.window == ConvergenceOptions{}.window);
   CHECK(d.convergence.min_iterations == ConvergenceOptions{}.min_iterations);
 }
+
+TEST_CASE("the fast preset converges a geometry alone in a fraction of best's iterations (host driver)",
+          "[convergence][sim][preset]") {
+  // circle_circle with the fast preset over its file's thesis one: momentum, population control to
+  // iteration 400 at most, the rule every 50 over 200 from 300. Best's own schedule (events to
+  // iteration 1600, a 400-iteration window) cannot stop before 1000.
+  const auto run = [](const char* preset) {
+    CaseConfig config = load_case_file(std::string(PDMESH_SOURCE_DIR) + "/cases/circle_circle/case.toml",
+                                       {{"preset", preset, "test"}, {"simulation.iterations", "1000", "test"}});
+    config.quiet = true;
+    MeshInputs inputs(config);
+    NodeSet nodes = make_initial(config, inputs).nodes;
+    SimOptions options = simulation_options(config);
+    options.background = &inputs.pipeline().background();
+    return std::pair{options, run_simulation(nodes, *inputs.tree, inputs.field(), options)};
+  };
+  const auto [fast_options, fast] = run("fast");
+  CHECK(fast_options.momentum == 0.9);
+  CHECK(fast_options.population.enabled);
+  CHECK(fast_options.convergence.enabled);
+  REQUIRE(fast.converged);
+  const int stop = fast.state.iterations_done;
+  INFO("the fast preset converged after " << stop);
+  CHECK(stop % 50 == 0);
+  CHECK(stop >= 300);
+  CHECK(stop < 1000);
+  const auto [best_options, best] = run("best");
+  CHECK(best_options.momentum == 0.0);
+  CHECK_FALSE(best.converged);
+  CHECK(best.state.iterations_done == 1000);
+}
