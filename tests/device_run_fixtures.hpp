@@ -74,4 +74,18 @@ inline Outcome run_case(const Case& c, int iterations, bool device, bool use_flo
   return run_from(c, c.initial, o, device, use_float, loop);
 }
 
+// Every node at the same position with the same spacing and kind, and the same curve lists: bit for bit.
+inline void require_identical_nodes(const NodeSet& host, const NodeSet& dev) {
+  REQUIRE(dev.size() == host.size());
+  REQUIRE(dev.kind == host.kind);
+  REQUIRE(dev.curve_nodes == host.curve_nodes);
+  std::size_t differ = 0, first = host.size();
+  for (std::size_t i = 0; i < host.size(); ++i) {
+    if (dev.x[i].x == host.x[i].x && dev.x[i].y == host.x[i].y && dev.q[i] == host.q[i]) continue;
+    if (differ++ == 0) first = i;
+  }
+  INFO(differ << " nodes differ; the first is node " << first);
+  CHECK(differ == 0);
+}
+
 }  // namespace pdmesh::test

@@ -14,22 +14,9 @@
 using namespace pdmesh;
 using pdmesh::test::Case;
 using pdmesh::test::Outcome;
+using pdmesh::test::require_identical_nodes;
 
 namespace {
-
-// Same positions, spacings, kinds and curve lists, bit for bit.
-void require_identical_nodes(const NodeSet& a, const NodeSet& b) {
-  REQUIRE(b.size() == a.size());
-  REQUIRE(b.kind == a.kind);
-  REQUIRE(b.curve_nodes == a.curve_nodes);
-  std::size_t differ = 0, first = a.size();
-  for (std::size_t i = 0; i < a.size(); ++i) {
-    if (b.x[i].x == a.x[i].x && b.x[i].y == a.x[i].y && b.q[i] == a.q[i]) continue;
-    if (differ++ == 0) first = i;
-  }
-  INFO(differ << " nodes differ; the first is node " << first);
-  CHECK(differ == 0);
-}
 
 void require_same_momentum(const SimState& a, const SimState& b) {
   REQUIRE(a.momentum.size() == b.momentum.size());

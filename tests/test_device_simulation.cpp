@@ -19,6 +19,7 @@
 #include "device_run_fixtures.hpp"
 
 using namespace pdmesh;
+using pdmesh::test::require_identical_nodes;
 using pdmesh::test::Case;
 using pdmesh::test::Outcome;
 using pdmesh::test::options_for;
@@ -82,24 +83,6 @@ TEST_CASE("device run: 10 iterations agree with the host node by node (double)",
     }
   }
 }
-
-namespace {
-
-// Every node at the same position with the same spacing and kind, and the same curve lists: bit for bit.
-void require_identical_nodes(const NodeSet& host, const NodeSet& dev) {
-  REQUIRE(dev.size() == host.size());
-  REQUIRE(dev.kind == host.kind);
-  REQUIRE(dev.curve_nodes == host.curve_nodes);
-  std::size_t differ = 0, first = host.size();
-  for (std::size_t i = 0; i < host.size(); ++i) {
-    if (dev.x[i].x == host.x[i].x && dev.x[i].y == host.x[i].y && dev.q[i] == host.q[i]) continue;
-    if (differ++ == 0) first = i;
-  }
-  INFO(differ << " nodes differ; the first is node " << first);
-  CHECK(differ == 0);
-}
-
-}  // namespace
 
 // The two ends of an iteration: the device's (iteration_rule, windows of iterations without a wait)
 // and the host's (devices without cl_khr_fp64: the partials read every iteration), both the host
