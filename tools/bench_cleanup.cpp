@@ -4,6 +4,7 @@
 // Usage: bench_cleanup NODES GEOMETRY... [--min-angle D] [--iterations N] [--smooth-below D]
 //                      [--step-cap F] [--no-topology] [--repeats N] [--png PREFIX] [--window x0,y0,x1,y1]
 //                      [--spacing EXPRESSION] (default: the boundary spacing, eq. 3.6)
+//                      [--per-iteration] (a table of every outer iteration) [--write MESH.msh] (the cleaned mesh)
 //        bench_cleanup --write-graded N FILE.crv   (the graded_N geometry of `pdmesh bench` as a curve file)
 #include <fmt/format.h>
 
@@ -17,6 +18,7 @@
 
 #include "app/graded_case.hpp"
 #include "cleanup/cleanup.hpp"
+#include "io/msh_writer.hpp"
 #include "io/text_file.hpp"
 #include "geometry/geometry_files.hpp"
 #include "geometry/geometry_tree.hpp"
@@ -48,6 +50,7 @@ int main(int argc, char** argv) {
     int worst = 0;
     std::string expression;
     std::string png;
+    std::string mesh_out;
     std::optional<Box> window;
     for (int i = 1; i < argc; ++i) {
       const std::string arg = argv[i];
@@ -64,6 +67,8 @@ int main(int argc, char** argv) {
       else if (arg == "--repeats") repeats = std::stoi(value());
       else if (arg == "--png") png = value();
       else if (arg == "--worst") worst = std::stoi(value());
+      else if (arg == "--per-iteration") options.measure_iterations = true;
+      else if (arg == "--write") mesh_out = value();
       else if (arg == "--spacing") expression = value();
       else if (arg == "--write-graded") {
         const auto target = static_cast<std::size_t>(std::stod(value()));
@@ -117,6 +122,18 @@ int main(int argc, char** argv) {
                "cpu {:.3f} s (smoothing {:.3f} s, topology {:.3f} s wall; triangulation {:.3f} s)\n",
                st.iterations_run, st.moves, st.inserted, st.collapsed, st.rejected, st.trials, repeats, best, best_cpu,
                st.smoothing_seconds, st.topology_seconds, triangulate_s);
+    if (options.measure_iterations) {
+      // Where the work goes: per outer iteration the moves (and those that lowered their star's mean
+      // aspect ratio by less than 1e-4), what they gained, and the mesh after it.
+      fmt::print("iter  moves  small  AR-drop(all)  AR-drop(small)  topo  smooth_s  topo_s  min_deg  AR_mean\n");
+      for (std::size_t k = 0; k < st.per_iteration.size(); ++k) {
+        const CleanupIteration& it = st.per_iteration[k];
+        fmt::print("{:>4} {:>6} {:>6} {:>13.6g} {:>15.6g} {:>5} {:>9.3f} {:>7.3f} {:>8.3f} {:>8.6f}\n", k + 1, it.moves,
+                   it.small_moves, it.aspect_drop, it.small_aspect_drop, it.topology, it.smoothing_seconds,
+                   it.topology_seconds, it.min_angle, it.aspect_mean);
+      }
+    }
+    if (!mesh_out.empty()) write_text_file(mesh_out, msh41_string(result.mesh));  // to cmp two builds' output
     // The worst triangles before and after the cleanup: angle, where, vertex kinds (F fixed,
     // B boundary, I interior) and the number of triangles around each vertex.
     for (const Mesh* which : {&mesh, static_cast<const Mesh*>(&result.mesh)}) {

@@ -83,12 +83,25 @@ CleanupResult clean_mesh(const Mesh& mesh, const NodeSet& nodes, const GeometryT
     // of trying it (the same proposal is rejected again); checked when its turn comes, since an earlier
     // move in the same sweep may have changed it.
     auto worth = [&](int a) { return (a < static_cast<int>(dirty.size()) && dirty[a]) || m.dirty(a); };
+    CleanupIteration record;
+    auto count = [&](bool moved) {
+      if (!moved) return;
+      const cleanup::MoveGain& g = smoother.last_gain();
+      ++record.moves;
+      record.aspect_drop += g.aspect_drop;
+      if (g.aspect_drop < 1e-4 * g.triangles) {
+        ++record.small_moves;
+        record.small_aspect_drop += g.aspect_drop;
+      }
+    };
     for (int a : vertices_of_bad_triangles(m, smooth_limit, mark))
-      if (worth(a)) changed += smoother.relax(a);
+      if (worth(a)) count(smoother.relax(a));
     for (int a : vertices_of_bad_triangles(m, topology_limit, mark))
-      if (worth(a)) changed += smoother.climb(a);
+      if (worth(a)) count(smoother.climb(a));
+    changed += record.moves;
     const auto smoothed = std::chrono::steady_clock::now();
-    result.stats.smoothing_seconds += std::chrono::duration<double>(smoothed - timer).count();
+    record.smoothing_seconds = std::chrono::duration<double>(smoothed - timer).count();
+    result.stats.smoothing_seconds += record.smoothing_seconds;
     result.stats.moves += changed;
     // The topology pass, worst triangle first; not in the last iteration, which only smooths.
     if (options.topology && iteration + 1 < options.iterations) {
@@ -119,8 +132,22 @@ CleanupResult clean_mesh(const Mesh& mesh, const NodeSet& nodes, const GeometryT
           default: ++result.stats.inserted; ++changed; break;
         }
       }
-      result.stats.topology_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - smoothed).count();
+      record.topology_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - smoothed).count();
+      result.stats.topology_seconds += record.topology_seconds;
     }
+    record.topology = changed - record.moves;
+    if (options.measure_iterations) {
+      double worst = 1.0, aspect_sum = 0.0, count = 0.0;
+      for (int t = 0; t < m.triangle_slots(); ++t)
+        if (m.alive(t)) {
+          worst = std::min(worst, m.quality(t));
+          aspect_sum += m.aspect(t);
+          count += 1.0;
+        }
+      record.min_angle = std::asin(std::clamp(worst, -1.0, 1.0)) * 57.29577951308232;
+      record.aspect_mean = count > 0.0 ? aspect_sum / count : 0.0;
+    }
+    result.stats.per_iteration.push_back(record);
     result.stats.iterations_run = iteration + 1;
     if (changed == 0) break;
   }

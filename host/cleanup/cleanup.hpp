@@ -35,6 +35,20 @@ struct CleanupOptions {
   // all, spent worst triangle first. A settled lattice needs far fewer (thesis cases: 0.07 to 0.7 per
   // triangle); a mesh after a few iterations would otherwise take several per triangle.
   double trials_per_triangle = 0.5;
+  // Measure the whole mesh after every outer iteration (CleanupIteration's min_angle, aspect_mean): a
+  // scan of every triangle per iteration, for bench_cleanup's per-iteration table; off in runs.
+  bool measure_iterations = false;
+};
+
+// One outer iteration (bench_cleanup --per-iteration prints them).
+struct CleanupIteration {
+  std::size_t moves = 0;        // accepted node moves
+  std::size_t small_moves = 0;  // ... of which lowered their star's mean aspect ratio by < 1e-4
+  double aspect_drop = 0.0;     // sum over the moves of the drop of their star's aspect-ratio sum
+  double small_aspect_drop = 0.0;
+  std::size_t topology = 0;     // topology changes made
+  double smoothing_seconds = 0.0, topology_seconds = 0.0;
+  double min_angle = 0.0, aspect_mean = 0.0;  // after it (degrees; measure_iterations only)
 };
 
 struct CleanupStats {
@@ -47,6 +61,7 @@ struct CleanupStats {
   double seconds = 0.0;
   double smoothing_seconds = 0.0;  // of which in the smoothing sweeps ...
   double topology_seconds = 0.0;   // ... and in the topology passes
+  std::vector<CleanupIteration> per_iteration;
 };
 
 struct CleanupResult {

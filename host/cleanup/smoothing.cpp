@@ -62,6 +62,7 @@ bool Smoother::try_move(int a, Vec2 displacement, double old_min, double old_sum
     // flip, but may change its aspect ratios, so outside a topology trial (which measures itself)
     // the move and its flips are measured together and undone if the aspect-ratio sum grew.
     const bool own = !mesh_.in_transaction();
+    last_gain_ = {new_min - old_min, old_sum - new_sum, static_cast<int>(fan_.size())};
     if (own) mesh_.begin();
     mesh_.move(a, to, new_arc);
     edges_.clear();

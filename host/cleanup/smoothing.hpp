@@ -12,6 +12,14 @@
 
 namespace pdmesh::cleanup {
 
+// What the last accepted move gained on its star: the rise of the smallest score (sine of the smallest
+// angle), the drop of the sum of aspect ratios (both measured before its Lawson flips) and the star's size.
+struct MoveGain {
+  double min_rise = 0.0;
+  double aspect_drop = 0.0;
+  int triangles = 0;
+};
+
 class Smoother {
  public:
   // step_cap: the largest step as a fraction of the smallest inradius of the adjacent triangles.
@@ -23,6 +31,7 @@ class Smoother {
   // Gradient move: a step that raises the smallest angle of a's worst adjacent triangle, for
   // vertices whose ODT point does not help (same guards as relax).
   bool climb(int a);
+  const MoveGain& last_gain() const { return last_gain_; }
 
  private:
   bool try_move(int a, Vec2 displacement, double old_min, double old_sum);
@@ -33,6 +42,7 @@ class Smoother {
   double step_cap_;
   std::vector<int> fan_;
   std::vector<std::array<int, 2>> edges_;
+  MoveGain last_gain_;
 };
 
 }  // namespace pdmesh::cleanup
