@@ -63,6 +63,13 @@ bool Smoother::try_move(int a, Vec2 displacement, double old_min, double old_sum
     // the move and its flips are measured together and undone if the aspect-ratio sum grew.
     const bool own = !mesh_.in_transaction();
     last_gain_ = {new_min - old_min, old_sum - new_sum, static_cast<int>(fan_.size())};
+    // Most moves of a settled lattice flip nothing. Then the move is all there is: no Lawson pass, and
+    // outside a trial no journal either, since the flips were the only thing it could have undone
+    // (the measured sums would be exactly new_sum <= old_sum); move() marks the star dirty as a commit would.
+    if (!flips_needed(a, to)) {
+      mesh_.move(a, to, new_arc);  // in a trial it journals the star; outside one it marks it dirty
+      return true;
+    }
     if (own) mesh_.begin();
     mesh_.move(a, to, new_arc);
     edges_.clear();
@@ -80,6 +87,27 @@ bool Smoother::try_move(int a, Vec2 displacement, double old_min, double old_sum
       mesh_.commit();
     }
     return true;
+  }
+  return false;
+}
+
+// Whether legalize() would flip any edge of a's star once a is at `to`: the edges it starts from are
+// the three edges of each star triangle, so with none of them illegal it flips nothing. Each edge is
+// tested from the star triangle whose local index it is opposite to (the link edge and the spoke shared
+// with the next star triangle; the first one's other spoke is shared with the last triangle, or is a
+// boundary edge of an open star); the exact incircle test gives the same sign from either side.
+bool Smoother::flips_needed(int a, Vec2 to) const {
+  const auto& m = mesh_;
+  auto at = [&](int x) { return x == a ? to : m.p[x]; };
+  for (int t : fan_) {
+    const auto& tv = m.v[t];
+    const int k = EditableMesh::index_of(tv, a);
+    for (const int i : {k, next3(k)}) {
+      const int u = m.n[t][i];
+      if (u < 0) continue;
+      const int q = m.v[u][EditableMesh::index_of(m.n[u], t)];
+      if (incircle(at(tv[i]), at(tv[next3(i)]), at(tv[prev3(i)]), at(q)) > 0.0) return true;
+    }
   }
   return false;
 }

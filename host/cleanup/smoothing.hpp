@@ -36,6 +36,7 @@ class Smoother {
  private:
   bool try_move(int a, Vec2 displacement, double old_min, double old_sum);
   Vec2 on_curve(int a, Vec2 candidate, double& new_arc) const;
+  bool flips_needed(int a, Vec2 to) const;
 
   EditableMesh& mesh_;
   const Geometry& geometry_;
