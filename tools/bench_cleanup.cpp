@@ -35,7 +35,7 @@ using namespace pdmesh;
 namespace {
 
 void print_summary(const char* label, const QualitySummary& s) {
-  fmt::print("{:<7} triangles {:>8}  min {:6.2f}  max {:6.2f}  AR avg {:.4f}  edge/q mean {:.3f} std {:.4f}  <{:g}deg {}\n",
+  fmt::print("{:<7} triangles {:>8}  min {:7.3f}  max {:6.2f}  AR avg {:.6f}  edge/q mean {:.3f} std {:.4f}  <{:g}deg {}\n",
              label, s.triangles, s.min_angle, s.max_angle, s.aspect_ratio_avg, s.spacing.mean, s.spacing.stddev,
              s.small_angle_deg, s.small_angle_triangles);
 }
@@ -67,6 +67,8 @@ int main(int argc, char** argv) {
       else if (arg == "--repeats") repeats = std::stoi(value());
       else if (arg == "--png") png = value();
       else if (arg == "--worst") worst = std::stoi(value());
+      else if (arg == "--move-min-rise") options.move_min_rise = std::stod(value());
+      else if (arg == "--move-aspect-drop") options.move_aspect_drop = std::stod(value());
       else if (arg == "--per-iteration") options.measure_iterations = true;
       else if (arg == "--write") mesh_out = value();
       else if (arg == "--spacing") expression = value();

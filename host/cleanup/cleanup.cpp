@@ -31,6 +31,12 @@ std::vector<int> vertices_of_bad_triangles(const EditableMesh& m, double limit, 
   return out;
 }
 
+// A triangle's vertices in ascending order: its name in the set of triangles no operation could repair.
+std::array<int, 3> sorted_key(std::array<int, 3> key) {
+  std::sort(key.begin(), key.end());
+  return key;
+}
+
 // The median of edge length / q(midpoint) over a deterministic sample of at most ~4096 edges. The
 // particle lattice settles a little tighter than q (thesis ch. 6: ratios near 0.92), so the size
 // guards compare edges with this multiple of q rather than with q itself. Clamped to [0.8, 1]: a mesh
@@ -57,6 +63,7 @@ CleanupResult clean_mesh(const Mesh& mesh, const NodeSet& nodes, const GeometryT
   const BoundaryHandler boundary(tree, nodes);
   EditableMesh m(mesh, nodes.curve_nodes, boundary.arcs());
   cleanup::Smoother smoother(m, tree.geometry(), options.step_cap);
+  smoother.set_sweep_gain(options.move_min_rise, options.move_aspect_drop);
   const double smooth_below = options.smooth_below >= 0.0 ? options.smooth_below : std::min(options.min_angle + 20.0, 59.0);
   const double topology_below =
       options.topology_below >= 0.0 ? options.topology_below : std::min(options.min_angle + 15.0, 59.0);
@@ -104,10 +111,17 @@ CleanupResult clean_mesh(const Mesh& mesh, const NodeSet& nodes, const GeometryT
     result.stats.smoothing_seconds += record.smoothing_seconds;
     result.stats.moves += changed;
     // The topology pass, worst triangle first; not in the last iteration, which only smooths.
-    if (options.topology && iteration + 1 < options.iterations) {
+    // Once the trial budget is spent a pass would only build and sort its list (the common case: a
+    // settled lattice spends it in the first pass), so there is none.
+    if (options.topology && iteration + 1 < options.iterations && ops.trials() < trial_budget) {
+      // Triangles that failed before are dropped before the sort rather than after it: after the first
+      // pass they are nearly all of the list, and the order of the others is the same.
       std::vector<std::pair<double, int>> bad;
-      for (int t = 0; t < m.triangle_slots(); ++t)
-        if (m.alive(t) && m.quality(t) < topology_limit) bad.push_back({m.quality(t), t});
+      for (int t = 0; t < m.triangle_slots(); ++t) {
+        if (!m.alive(t)) continue;
+        const double q = m.quality(t);
+        if (q < topology_limit && (failures.empty() || failures.count(sorted_key(m.v[t])) == 0)) bad.push_back({q, t});
+      }
       std::sort(bad.begin(), bad.end());
       double aspect_sum = 0.0, count = 0.0;
       for (int t = 0; t < m.triangle_slots(); ++t)
@@ -120,8 +134,7 @@ CleanupResult clean_mesh(const Mesh& mesh, const NodeSet& nodes, const GeometryT
         if (ops.trials() >= trial_budget) break;
         if (!m.alive(t) || !(m.quality(t) < topology_limit)) continue;
         // A triangle no operation could repair is not tried again in this run.
-        auto key = m.v[t];
-        std::sort(key.begin(), key.end());
+        const auto key = sorted_key(m.v[t]);
         if (failures.count(key) > 0) continue;
         switch (ops.repair(t)) {
           case cleanup::RepairKind::None:

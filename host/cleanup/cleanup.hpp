@@ -27,6 +27,11 @@ struct CleanupOptions {
   double smooth_below = -1.0;
   // The topology pass works on the triangles whose smallest angle is below this (degrees).
   double topology_below = -1.0;
+  // The least gain of a sweep move (Smoother::set_sweep_gain): a rise of its star's smallest score
+  // (sine of the smallest angle) above move_min_rise, or a drop of its mean aspect ratio above
+  // move_aspect_drop. 0 and 0: any strict improvement counts.
+  double move_min_rise = 0.0;
+  double move_aspect_drop = 0.0;
   bool topology = true;      // insertions, collapses and splits (off: smoothing and flips only)
   // Boundary edges may be split by a new node on their curve (off: the boundary nodes stay the
   // simulation's, they only slide).

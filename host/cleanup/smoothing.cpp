@@ -57,7 +57,13 @@ bool Smoother::try_move(int a, Vec2 displacement, double old_min, double old_sum
       new_min = std::min(new_min, min_angle_sine(x, y, z));
       new_sum += aspect_ratio(x, y, z);
     }
-    if (!valid || new_min < old_min || new_sum > old_sum || !(new_min > old_min || new_sum < old_sum)) continue;
+    if (!valid || new_min < old_min || new_sum > old_sum) continue;
+    // The move must gain something: outside a trial at least the sweep gains (a settled lattice
+    // otherwise keeps taking moves that change the mean aspect ratio in the sixth digit, docs/cleanup.md);
+    // a trial's relaxation takes any gain (0: strict improvement).
+    const bool sweep = !mesh_.in_transaction();
+    const double min_gain = sweep ? min_rise_ : 0.0, aspect_gain = sweep ? aspect_drop_ * static_cast<double>(fan_.size()) : 0.0;
+    if (!(new_min - old_min > min_gain || old_sum - new_sum > aspect_gain)) continue;
     // Lawson flips follow the move. They never lower the smallest angle of the quadrilateral they
     // flip, but may change its aspect ratios, so outside a topology trial (which measures itself)
     // the move and its flips are measured together and undone if the aspect-ratio sum grew.

@@ -32,6 +32,13 @@ class Smoother {
   // vertices whose ODT point does not help (same guards as relax).
   bool climb(int a);
   const MoveGain& last_gain() const { return last_gain_; }
+  // The least gain a sweep move must make (a trial's relaxation takes any): a rise of the star's
+  // smallest score above min_rise, or a drop of its aspect-ratio sum above aspect_drop per star
+  // triangle. 0 and 0: any strict improvement.
+  void set_sweep_gain(double min_rise, double aspect_drop) {
+    min_rise_ = min_rise;
+    aspect_drop_ = aspect_drop;
+  }
 
  private:
   bool try_move(int a, Vec2 displacement, double old_min, double old_sum);
@@ -44,6 +51,7 @@ class Smoother {
   std::vector<int> fan_;
   std::vector<std::array<int, 2>> edges_;
   MoveGain last_gain_;
+  double min_rise_ = 0.0, aspect_drop_ = 0.0;
 };
 
 }  // namespace pdmesh::cleanup
