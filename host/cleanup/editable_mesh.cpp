@@ -123,6 +123,19 @@ void EditableMesh::star(int a, std::vector<int>& out) const {
   out.clear();
   const int start = vt[a];
   if (start < 0) return;
+  // A closed star (an interior vertex, the common case) in one walk counter-clockwise from vt[a]; it
+  // is listed from the triangle after vt[a], as the walk below lists it, since the order of the star
+  // is the order in which callers sum over it.
+  for (int t = start;;) {
+    out.push_back(t);
+    t = n[t][next3(index_of(v[t], a))];
+    if (t < 0) break;
+    if (t == start) {
+      std::rotate(out.begin(), out.begin() + 1, out.end());
+      return;
+    }
+  }
+  out.clear();
   // Clockwise to the first triangle of an open fan (or all the way round).
   int t = start;
   for (;;) {
