@@ -262,3 +262,35 @@ TEST_CASE("cleanup is deterministic and its options act", "[cleanup]") {
   CHECK(o.stats.iterations_run == 1);
   CHECK(a.stats.iterations_run > 1);
 }
+
+TEST_CASE("cleanup's least move gain takes fewer moves and keeps every guarantee, and the per-iteration record adds up", "[cleanup]") {
+  const Geometry g = plate_with_hole();
+  const GeometryTree tree(g);
+  const BoundarySpacing spacing(tree);
+  const NodeSet nodes = make_initial_distribution(tree, spacing, {InitMethod::Random, 3, {}, false}).nodes;
+  CleanupOptions any;
+  any.measure_iterations = true;
+  any.move_min_rise = 0.0;
+  any.move_aspect_drop = 0.0;
+  CleanupOptions least = any;
+  least.move_min_rise = 1e-3;
+  least.move_aspect_drop = 1e-3;
+  const CleanupResult a = clean_and_verify(g, tree, spacing, nodes, any);
+  const CleanupResult l = clean_and_verify(g, tree, spacing, nodes, least);
+  CHECK(l.stats.moves < a.stats.moves);
+  for (const CleanupResult* r : {&a, &l}) {
+    REQUIRE(r->stats.per_iteration.size() == static_cast<std::size_t>(r->stats.iterations_run));
+    std::size_t moves = 0;
+    double last_min = 0.0, last_aspect = HUGE_VAL;
+    for (const CleanupIteration& it : r->stats.per_iteration) {
+      moves += it.moves;
+      CHECK(it.small_moves <= it.moves);
+      CHECK(it.min_angle >= last_min);       // the worst angle never drops ...
+      CHECK(it.aspect_mean <= last_aspect + 1e-12);  // ... and the mean aspect ratio never rises, iteration by iteration
+      last_min = it.min_angle;
+      last_aspect = it.aspect_mean;
+    }
+    CHECK(moves == r->stats.moves);
+    CHECK(last_min == Approx(summarize_quality(r->mesh).min_angle).margin(1e-6));
+  }
+}

@@ -69,6 +69,7 @@ int main(int argc, char** argv) {
       else if (arg == "--worst") worst = std::stoi(value());
       else if (arg == "--move-min-rise") options.move_min_rise = std::stod(value());
       else if (arg == "--move-aspect-drop") options.move_aspect_drop = std::stod(value());
+      else if (arg == "--trials-per-triangle") options.trials_per_triangle = std::stod(value());
       else if (arg == "--per-iteration") options.measure_iterations = true;
       else if (arg == "--write") mesh_out = value();
       else if (arg == "--spacing") expression = value();
@@ -127,11 +128,12 @@ int main(int argc, char** argv) {
     if (options.measure_iterations) {
       // Where the work goes: per outer iteration the moves (and those that lowered their star's mean
       // aspect ratio by less than 1e-4), what they gained, and the mesh after it.
-      fmt::print("iter  moves  small  AR-drop(all)  AR-drop(small)  topo  smooth_s  topo_s  min_deg  AR_mean\n");
+      fmt::print("iter  moves  small  AR-drop(all)  AR-drop(small)  topo   trials last@trial last_deg  smooth_s  topo_s  min_deg  AR_mean\n");
       for (std::size_t k = 0; k < st.per_iteration.size(); ++k) {
         const CleanupIteration& it = st.per_iteration[k];
-        fmt::print("{:>4} {:>6} {:>6} {:>13.6g} {:>15.6g} {:>5} {:>9.3f} {:>7.3f} {:>8.3f} {:>8.6f}\n", k + 1, it.moves,
-                   it.small_moves, it.aspect_drop, it.small_aspect_drop, it.topology, it.smoothing_seconds,
+        fmt::print("{:>4} {:>6} {:>6} {:>13.6g} {:>15.6g} {:>5} {:>8} {:>10} {:>8.3f} {:>9.3f} {:>7.3f} {:>8.3f} {:>8.6f}\n",
+                   k + 1, it.moves, it.small_moves, it.aspect_drop, it.small_aspect_drop, it.topology, it.trials,
+                   it.trials_to_last_change, it.last_change_angle, it.smoothing_seconds,
                    it.topology_seconds, it.min_angle, it.aspect_mean);
       }
     }

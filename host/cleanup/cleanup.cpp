@@ -130,21 +130,26 @@ CleanupResult clean_mesh(const Mesh& mesh, const NodeSet& nodes, const GeometryT
           count += 1.0;
         }
       ops.set_aspect_totals(aspect_sum, count);
+      const std::size_t trials_before = ops.trials();
       for (const auto& [q, t] : bad) {
         if (ops.trials() >= trial_budget) break;
         if (!m.alive(t) || !(m.quality(t) < topology_limit)) continue;
         // A triangle no operation could repair is not tried again in this run.
         const auto key = sorted_key(m.v[t]);
         if (failures.count(key) > 0) continue;
-        switch (ops.repair(t)) {
-          case cleanup::RepairKind::None:
-            ++result.stats.rejected;
-            failures.insert(key);
-            break;
-          case cleanup::RepairKind::Collapse: ++result.stats.collapsed; ++changed; break;
-          default: ++result.stats.inserted; ++changed; break;
+        const double angle = m.quality(t);
+        const cleanup::RepairKind kind = ops.repair(t);
+        if (kind == cleanup::RepairKind::None) {
+          ++result.stats.rejected;
+          failures.insert(key);
+          continue;
         }
+        ++(kind == cleanup::RepairKind::Collapse ? result.stats.collapsed : result.stats.inserted);
+        ++changed;
+        record.trials_to_last_change = ops.trials() - trials_before;
+        record.last_change_angle = std::asin(std::clamp(angle, -1.0, 1.0)) * 57.29577951308232;
       }
+      record.trials = ops.trials() - trials_before;
       record.topology_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - smoothed).count();
       result.stats.topology_seconds += record.topology_seconds;
     }

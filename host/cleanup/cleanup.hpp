@@ -52,6 +52,9 @@ struct CleanupIteration {
   double aspect_drop = 0.0;     // sum over the moves of the drop of their star's aspect-ratio sum
   double small_aspect_drop = 0.0;
   std::size_t topology = 0;     // topology changes made
+  std::size_t trials = 0;       // topology trials made ...
+  std::size_t trials_to_last_change = 0;  // ... up to and with the one that made the last change
+  double last_change_angle = 0.0;         // the smallest angle (degrees) of the triangle it repaired
   double smoothing_seconds = 0.0, topology_seconds = 0.0;
   double min_angle = 0.0, aspect_mean = 0.0;  // after it (degrees; measure_iterations only)
 };
