@@ -74,6 +74,8 @@ class EditableMesh {
   // Pushes the edges of a's link (the ones opposite a) for legalize().
   void push_link_edges(int a, std::vector<std::array<int, 2>>& edges) const;
   void move(int a, Vec2 to, double new_arc);
+  // The same for a caller that holds a's star (star(a)), as the smoother does.
+  void move(int a, Vec2 to, double new_arc, const std::vector<int>& a_star);
   // Splits triangle t at `at`, which the caller has checked lies strictly inside it (1 -> 3).
   int insert_in_triangle(int t, Vec2 at);
   // Splits the interior edge opposite v[t][i] at `at` (2 -> 4); the caller checks that the four new

@@ -67,11 +67,12 @@ void EditableMesh::push_link_edges(int a, std::vector<std::array<int, 2>>& edges
 }
 
 void EditableMesh::move(int a, Vec2 to, double new_arc) {
-  if (!open_) {
-    star(a, star_scratch_);
-    for (int t : star_scratch_) mark_dirty(t);
-  }
-  touch_star(a);
+  star(a, star_scratch_);
+  move(a, to, new_arc, star_scratch_);
+}
+
+void EditableMesh::move(int a, Vec2 to, double new_arc, const std::vector<int>& a_star) {
+  for (int t : a_star) touch_triangle(t);  // journals it in a transaction, else marks it dirty
   touch_vertex(a);
   p[a] = to;
   arc[a] = new_arc;

@@ -63,7 +63,12 @@ bool Smoother::try_move(int a, Vec2 displacement, double old_min, double old_sum
     // a trial's relaxation takes any gain (0: strict improvement).
     const bool sweep = !mesh_.in_transaction();
     const double min_gain = sweep ? min_rise_ : 0.0, aspect_gain = sweep ? aspect_drop_ * static_cast<double>(fan_.size()) : 0.0;
-    if (!(new_min - old_min > min_gain || old_sum - new_sum > aspect_gain)) continue;
+    // A step that is valid and harms nothing but gains too little ends the search: a shorter one
+    // would gain less still, and trying the halvings is what a rejected move costs.
+    if (!(new_min - old_min > min_gain || old_sum - new_sum > aspect_gain)) {
+      if (sweep && (min_gain > 0.0 || aspect_gain > 0.0)) return false;
+      continue;
+    }
     // Lawson flips follow the move. They never lower the smallest angle of the quadrilateral they
     // flip, but may change its aspect ratios, so outside a topology trial (which measures itself)
     // the move and its flips are measured together and undone if the aspect-ratio sum grew.
@@ -73,11 +78,11 @@ bool Smoother::try_move(int a, Vec2 displacement, double old_min, double old_sum
     // outside a trial no journal either, since the flips were the only thing it could have undone
     // (the measured sums would be exactly new_sum <= old_sum); move() marks the star dirty as a commit would.
     if (!flips_needed(a, to)) {
-      mesh_.move(a, to, new_arc);  // in a trial it journals the star; outside one it marks it dirty
+      mesh_.move(a, to, new_arc, fan_);  // in a trial it journals the star; outside one it marks it dirty
       return true;
     }
     if (own) mesh_.begin();
-    mesh_.move(a, to, new_arc);
+    mesh_.move(a, to, new_arc, fan_);
     edges_.clear();
     for (int t : fan_) {
       const auto& tv = m.v[t];
