@@ -56,6 +56,12 @@ bool Smoother::try_move(int a, Vec2 displacement, double old_min, double old_sum
       }
       new_min = std::min(new_min, min_angle_sine(x, y, z));
       new_sum += aspect_ratio(x, y, z);
+      // Rejected already (aspect ratios are positive, so the sum only grows): the rest of the star
+      // cannot change the verdict below, so the step ends here.
+      if (new_min < old_min || new_sum > old_sum) {
+        valid = false;
+        break;
+      }
     }
     if (!valid || new_min < old_min || new_sum > old_sum) continue;
     // The move must gain something: outside a trial at least the sweep gains (a settled lattice
