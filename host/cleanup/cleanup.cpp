@@ -18,11 +18,36 @@ using cleanup::EditableMesh;
 
 namespace {
 
+// The scores of the live triangles, for the sweeps' candidate lists. A triangle none of whose vertices
+// is marked changed since the last call (the journal marks the vertices of every changed triangle and
+// of every moved vertex's star; `since` holds the marks taken at the start of the iteration, the mesh
+// those made since) keeps the score computed then, which is the score quality() would give: the same
+// triangle, the same points. Late iterations change little of a large mesh.
+class Scores {
+ public:
+  const std::vector<double>& update(const EditableMesh& m, const std::vector<std::uint8_t>& since) {
+    auto changed = [&](int a) { return (a < static_cast<int>(since.size()) && since[a]) || m.dirty(a); };
+    score_.resize(m.triangle_slots(), 0.0);
+    for (int t = 0; t < m.triangle_slots(); ++t) {
+      if (!m.alive(t)) continue;
+      const auto& tv = m.v[t];
+      if (t >= known_ || changed(tv[0]) || changed(tv[1]) || changed(tv[2])) score_[t] = m.quality(t);
+    }
+    known_ = m.triangle_slots();
+    return score_;
+  }
+
+ private:
+  std::vector<double> score_;
+  int known_ = 0;  // slots scored by the last update
+};
+
 // The vertices of the live triangles whose score is below `limit`, ascending (deterministic order).
-std::vector<int> vertices_of_bad_triangles(const EditableMesh& m, double limit, std::vector<std::uint8_t>& mark) {
+std::vector<int> vertices_of_bad_triangles(const EditableMesh& m, const std::vector<double>& score, double limit,
+                                           std::vector<std::uint8_t>& mark) {
   mark.assign(m.vertex_slots(), 0);
   for (int t = 0; t < m.triangle_slots(); ++t) {
-    if (!m.alive(t) || !(m.quality(t) < limit)) continue;
+    if (!m.alive(t) || !(score[t] < limit)) continue;
     for (int a : m.v[t]) mark[a] = 1;
   }
   std::vector<int> out;
@@ -78,6 +103,7 @@ CleanupResult clean_mesh(const Mesh& mesh, const NodeSet& nodes, const GeometryT
   cleanup::TopologyOps ops(m, smoother, tree.geometry(), [&spacing, ratio](Vec2 p) { return ratio * spacing.at(p); },
                            topology_options);
   std::vector<std::uint8_t> mark;
+  Scores scores;
   std::set<std::array<int, 3>> failures;
   const auto trial_budget = static_cast<std::size_t>(
       std::max(10000.0, options.trials_per_triangle * static_cast<double>(mesh.triangles.size())));
@@ -101,9 +127,9 @@ CleanupResult clean_mesh(const Mesh& mesh, const NodeSet& nodes, const GeometryT
         record.small_aspect_drop += g.aspect_drop;
       }
     };
-    for (int a : vertices_of_bad_triangles(m, smooth_limit, mark))
+    for (int a : vertices_of_bad_triangles(m, scores.update(m, dirty), smooth_limit, mark))
       if (worth(a)) count(smoother.relax(a));
-    for (int a : vertices_of_bad_triangles(m, topology_limit, mark))
+    for (int a : vertices_of_bad_triangles(m, scores.update(m, dirty), topology_limit, mark))
       if (worth(a)) count(smoother.climb(a));
     changed += record.moves;
     const auto smoothed = std::chrono::steady_clock::now();
