@@ -117,7 +117,7 @@ CleanupResult clean_mesh(const Mesh& mesh, const NodeSet& nodes, const GeometryT
     // move in the same sweep may have changed it.
     auto worth = [&](int a) { return (a < static_cast<int>(dirty.size()) && dirty[a]) || m.dirty(a); };
     CleanupIteration record;
-    auto count = [&](bool moved) {
+    auto tally = [&](bool moved) {
       if (!moved) return;
       const cleanup::MoveGain& g = smoother.last_gain();
       ++record.moves;
@@ -128,9 +128,9 @@ CleanupResult clean_mesh(const Mesh& mesh, const NodeSet& nodes, const GeometryT
       }
     };
     for (int a : vertices_of_bad_triangles(m, scores.update(m, dirty), smooth_limit, mark))
-      if (worth(a)) count(smoother.relax(a));
+      if (worth(a)) tally(smoother.relax(a));
     for (int a : vertices_of_bad_triangles(m, scores.update(m, dirty), topology_limit, mark))
-      if (worth(a)) count(smoother.climb(a));
+      if (worth(a)) tally(smoother.climb(a));
     changed += record.moves;
     const auto smoothed = std::chrono::steady_clock::now();
     record.smoothing_seconds = std::chrono::duration<double>(smoothed - timer).count();
