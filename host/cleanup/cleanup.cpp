@@ -68,6 +68,7 @@ CleanupResult clean_mesh(const Mesh& mesh, const NodeSet& nodes, const GeometryT
   topology_options.enough = topology_limit;
   const double ratio = edge_to_spacing_ratio(mesh, spacing);
   topology_options.split_boundary = options.split_boundary;
+  topology_options.compound = options.compound;
   cleanup::TopologyOps ops(m, smoother, tree.geometry(), [&spacing, ratio](Vec2 p) { return ratio * spacing.at(p); },
                            topology_options);
   std::vector<std::uint8_t> mark;
@@ -104,18 +105,23 @@ CleanupResult clean_mesh(const Mesh& mesh, const NodeSet& nodes, const GeometryT
         }
       ops.set_aspect_totals(aspect_sum, count);
       for (const auto& [q, t] : bad) {
-        if (ops.trials() >= trial_budget) break;
+        // The triangles below the target get compound trials when no single one helps, and may spend
+        // a second budget: they come first and are few in a settled lattice, and the first budget is
+        // often gone on the 40-55 degree triangles of the first iterations (docs/cleanup.md).
+        const bool below = q < target;
+        if (ops.trials() >= trial_budget && (!below || ops.trials() >= 2 * trial_budget)) break;
         if (!m.alive(t) || !(m.quality(t) < topology_limit)) continue;
         // A triangle no operation could repair is not tried again in this run.
         auto key = m.v[t];
         std::sort(key.begin(), key.end());
         if (failures.count(key) > 0) continue;
-        switch (ops.repair(t)) {
+        switch (ops.repair(t, below)) {
           case cleanup::RepairKind::None:
             ++result.stats.rejected;
             failures.insert(key);
             break;
           case cleanup::RepairKind::Collapse: ++result.stats.collapsed; ++changed; break;
+          case cleanup::RepairKind::Compound: ++changed; break;  // its nodes are counted below
           default: ++result.stats.inserted; ++changed; break;
         }
       }
@@ -125,6 +131,10 @@ CleanupResult clean_mesh(const Mesh& mesh, const NodeSet& nodes, const GeometryT
     if (changed == 0) break;
   }
   result.stats.trials = ops.trials();
+  result.stats.inserted += ops.compound_inserted();
+  result.stats.collapsed += ops.compound_removed();
+  result.stats.compound_trials = ops.compound_trials();
+  result.stats.compound_applied = ops.compound_applied();
   std::vector<int> old_of_new;
   std::vector<std::vector<int>> curve_nodes;
   result.mesh = m.to_mesh(mesh, curve_nodes, old_of_new);
