@@ -115,7 +115,8 @@ CleanupResult clean_mesh(const Mesh& mesh, const NodeSet& nodes, const GeometryT
         auto key = m.v[t];
         std::sort(key.begin(), key.end());
         if (failures.count(key) > 0) continue;
-        switch (ops.repair(t, below)) {
+        // Compound trials for a triangle below the target now (an earlier repair may have lifted it).
+        switch (ops.repair(t, m.quality(t) < target)) {
           case cleanup::RepairKind::None:
             ++result.stats.rejected;
             failures.insert(key);

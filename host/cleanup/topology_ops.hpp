@@ -29,8 +29,9 @@ struct TopologyOptions {
   int relax_rounds = 2;
   bool split_boundary = true;  // may split boundary edges (a new node on the curve between the ends)
   // Size guards against h: an inserted node's shortest edge must be at least min_edge x h there (h no
-  // more than the repaired triangle's shortest edge), and
-  // a collapse may not leave an edge longer than max_edge x h, so that cleaning keeps the spacing.
+  // more than the repaired triangle's shortest edge), and a collapse may not leave an edge longer
+  // than max_edge x h (boundary edges aside: no collapse makes them), so that cleaning keeps the
+  // spacing.
   double min_edge = 0.6;
   double max_edge = 1.5;  // hill-climbing rounds over the new node and its neighbours after an edit
   // Compound trials: a triangle the driver names (one below the target) that no single trial repairs gets every trial followed by every trial on the worst triangle the first
@@ -92,6 +93,7 @@ class TopologyOps {
   // Score of the open transaction: the new local minimum, or -inf when it does not qualify.
   double score() const;
   bool edges_fit(int a, bool inserted, double shortest);
+  bool boundary_edge(int a, int x) const;
 
   EditableMesh& mesh_;
   Smoother& smoother_;
