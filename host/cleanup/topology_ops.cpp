@@ -57,8 +57,8 @@ bool TopologyOps::edges_fit(int a, bool inserted, double shortest) {
 }
 
 // A merged node's boundary edges are the curve chain's, which no collapse makes or lengthens (only
-// interior nodes are removed): a coarse segment beside it (the plate's 0.31 octagon sides at a field
-// of 0.18) says nothing about the edit, and counting it refused every collapse into such a corner.
+// interior nodes are removed): a coarse segment beside it (the plate's 0.31 octagon sides, where h
+// is 0.18) says nothing about the edit, and counting it refused every collapse into such a corner.
 bool TopologyOps::boundary_edge(int a, int x) const {
   const auto& m = mesh_;
   for (const auto [t, i] : {m.find_edge(a, x), m.find_edge(x, a)})
