@@ -1,7 +1,7 @@
 // The final cleanup (host/cleanup, docs/cleanup.md): it never lowers the min angle, never inverts a
 // triangle, keeps boundary nodes on their curves and critical points in place, repairs known bad
-// triangles (a sliver, boundary-only triangles in a gap), does no harm to a good mesh and is
-// deterministic.
+// triangles (a sliver, boundary-only triangles in a gap, a coarse boundary segment that needs a pair
+// of edits), does no harm to a good mesh and is deterministic.
 #include <catch2/catch.hpp>
 
 #include <algorithm>
@@ -10,11 +10,13 @@
 
 #include "cleanup/cleanup.hpp"
 #include "geometry/geometry.hpp"
+#include "geometry/geometry_files.hpp"
 #include "geometry/geometry_tree.hpp"
 #include "init/initial_distribution.hpp"
 #include "mesh/mesh_check.hpp"
 #include "mesh/quality.hpp"
 #include "mesh/triangulate_nodes.hpp"
+#include "nodes/node_file.hpp"
 #include "nodes/node_domain.hpp"
 #include "sim/boundary_handling.hpp"
 #include "spacing/spacing_field.hpp"
@@ -224,6 +226,7 @@ TEST_CASE("cleanup does no harm to a good mesh and leaves an equilateral one unt
   const Mesh mesh = triangulate(lattice, names(hex));
   const CleanupResult r = clean_mesh(mesh, lattice, hex_tree, unit, {});
   CHECK(r.stats.moves == 0);
+  CHECK(r.stats.compound_trials == 0);  // nothing below the target
   CHECK(r.stats.inserted == 0);
   CHECK(r.stats.collapsed == 0);
   CHECK(r.mesh.points == mesh.points);
@@ -293,4 +296,50 @@ TEST_CASE("cleanup's least move gain takes fewer moves and keeps every guarantee
     CHECK(moves == r->stats.moves);
     CHECK(last_min == Approx(summarize_quality(r->mesh).min_angle).margin(1e-6));
   }
+}
+
+TEST_CASE("compound trials lift a triangle on a coarse boundary segment that no single edit can", "[cleanup]") {
+  // The plate's octagonal cut-out (cases/corpus/plate) with the interior nodes the fast preset left
+  // around it (session 9's final.nodes, cropped to a box with boundary nodes every 0.1): a triangle
+  // on an unsplit 0.31 octagon side between two fixed corners stays at 35 degrees with single edits.
+  const std::string dir = PDMESH_SOURCE_DIR "/tests/data/cleanup/";
+  const NodeFile file = read_node_file(dir + "plate_octagon.nodes");
+  const Geometry g = read_geometry({dir + "plate_octagon.crv"}, file.curve_names);
+  const GeometryTree tree(g);
+  const BoundarySpacing spacing(tree);
+  CleanupOptions options;
+  options.min_angle = 40.0;  // the fast preset's target and iterations
+  options.iterations = 32;
+  CleanupOptions single = options;
+  single.compound = false;
+  const Mesh mesh = triangulate(file.nodes, file.curve_names);
+  const CleanupResult without = clean_mesh(mesh, file.nodes, tree, spacing, single);
+  const QualitySummary q_without = summarize_quality(without.mesh);
+  CHECK(without.stats.compound_trials == 0);
+  CHECK(q_without.min_angle < 37.0);
+  const CleanupResult with = clean_and_verify(g, tree, spacing, file.nodes, options);
+  const QualitySummary q_with = summarize_quality(with.mesh);
+  CHECK(with.stats.compound_applied > 0);
+  CHECK(with.stats.compound_trials > with.stats.compound_applied);  // most pairs are refused
+  CHECK(q_with.min_angle >= 40.0);
+  CHECK(with.nodes.size() == file.nodes.size() + with.stats.inserted - with.stats.collapsed);
+}
+
+TEST_CASE("compound trials refuse what no pair of edits can lift", "[cleanup]") {
+  // One triangle between three fixed corners, 20 degrees at one of them: every triangle at that
+  // corner keeps an angle of at most 20 degrees, so no edit or pair of edits may raise the worst
+  // angle or lower the number below the target. The pairs are tried and all refused.
+  const double a = 20.0 / 180.0 * M_PI;
+  const Geometry g = build_geometry({polyline({{0, 0}, {3, 0}, {3 * std::cos(a), 3 * std::sin(a)}, {0, 0}}, "wedge")});
+  const GeometryTree tree(g);
+  const ExpressionSpacing spacing("10");
+  const NodeSet nodes = make_boundary_nodes(g, spacing);
+  REQUIRE(nodes.size() == 3);
+  const Mesh mesh = triangulate(nodes, names(g));
+  REQUIRE(mesh.triangles.size() == 1);
+  const CleanupResult r = clean_mesh(mesh, nodes, tree, spacing, {});
+  CHECK(r.stats.compound_trials > 0);
+  CHECK(r.stats.compound_applied == 0);
+  CHECK(r.mesh.points == mesh.points);
+  CHECK(r.mesh.triangles == mesh.triangles);
 }

@@ -2,7 +2,7 @@
 // (e.g. a run's final.nodes) over its geometry, cleans the mesh, checks it and prints the quality
 // before and after and the time of each stage, single-threaded.
 // Usage: bench_cleanup NODES GEOMETRY... [--min-angle D] [--iterations N] [--smooth-below D]
-//                      [--step-cap F] [--no-topology] [--repeats N] [--png PREFIX] [--window x0,y0,x1,y1]
+//                      [--step-cap F] [--no-topology] [--no-compound] [--trials-per-triangle F] [--repeats N] [--png PREFIX] [--window x0,y0,x1,y1]
 //                      [--spacing EXPRESSION] (default: the boundary spacing, eq. 3.6)
 //                      [--per-iteration] (a table of every outer iteration) [--write MESH.msh] (the cleaned mesh)
 //        bench_cleanup --write-graded N FILE.crv   (the graded_N geometry of `pdmesh bench` as a curve file)
@@ -64,12 +64,13 @@ int main(int argc, char** argv) {
       else if (arg == "--topology-below") options.topology_below = std::stod(value());
       else if (arg == "--step-cap") options.step_cap = std::stod(value());
       else if (arg == "--no-topology") options.topology = false;
+      else if (arg == "--no-compound") options.compound = false;
+      else if (arg == "--trials-per-triangle") options.trials_per_triangle = std::stod(value());
       else if (arg == "--repeats") repeats = std::stoi(value());
       else if (arg == "--png") png = value();
       else if (arg == "--worst") worst = std::stoi(value());
       else if (arg == "--move-min-rise") options.move_min_rise = std::stod(value());
       else if (arg == "--move-aspect-drop") options.move_aspect_drop = std::stod(value());
-      else if (arg == "--trials-per-triangle") options.trials_per_triangle = std::stod(value());
       else if (arg == "--per-iteration") options.measure_iterations = true;
       else if (arg == "--write") mesh_out = value();
       else if (arg == "--spacing") expression = value();
@@ -121,9 +122,10 @@ int main(int argc, char** argv) {
     }
     print_summary("after", summarize_quality(result.mesh, q, qo));
     const auto& st = result.stats;
-    fmt::print("cleanup: {} iterations, {} moves, {} inserted, {} collapsed, {} rejected, {} trials; best of {}: wall {:.3f} s, "
-               "cpu {:.3f} s (smoothing {:.3f} s, topology {:.3f} s wall; triangulation {:.3f} s)\n",
-               st.iterations_run, st.moves, st.inserted, st.collapsed, st.rejected, st.trials, repeats, best, best_cpu,
+    fmt::print("cleanup: {} iterations, {} moves, {} inserted, {} collapsed, {} rejected, {} trials ({} compound, {} applied); "
+               "best of {}: wall {:.3f} s, cpu {:.3f} s (smoothing {:.3f} s, topology {:.3f} s wall; triangulation {:.3f} s)\n",
+               st.iterations_run, st.moves, st.inserted, st.collapsed, st.rejected, st.trials, st.compound_trials,
+               st.compound_applied, repeats, best, best_cpu,
                st.smoothing_seconds, st.topology_seconds, triangulate_s);
     if (options.measure_iterations) {
       // Where the work goes: per outer iteration the moves (and those that lowered their star's mean

@@ -100,6 +100,7 @@ CleanupResult clean_mesh(const Mesh& mesh, const NodeSet& nodes, const GeometryT
   topology_options.enough = topology_limit;
   const double ratio = edge_to_spacing_ratio(mesh, spacing);
   topology_options.split_boundary = options.split_boundary;
+  topology_options.compound = options.compound;
   cleanup::TopologyOps ops(m, smoother, tree.geometry(), [&spacing, ratio](Vec2 p) { return ratio * spacing.at(p); },
                            topology_options);
   std::vector<std::uint8_t> mark;
@@ -137,40 +138,51 @@ CleanupResult clean_mesh(const Mesh& mesh, const NodeSet& nodes, const GeometryT
     result.stats.smoothing_seconds += record.smoothing_seconds;
     result.stats.moves += changed;
     // The topology pass, worst triangle first; not in the last iteration, which only smooths.
-    // Once the trial budget is spent a pass would only build and sort its list (the common case: a
-    // settled lattice spends it in the first pass), so there is none.
-    if (options.topology && iteration + 1 < options.iterations && ops.trials() < trial_budget) {
+    // The triangles below the target get compound trials when no single one helps, and may spend a
+    // second budget: they come first and are few in a settled lattice, and the first budget is often
+    // gone on the 40-55 degree triangles of the first iterations (docs/cleanup.md). So once the first
+    // budget is spent only the triangles below the target are listed (the pass would stop at the first
+    // other one), and a pass with none to try, the common case on a settled lattice after its first
+    // pass, is not made at all.
+    const bool first_spent = ops.trials() >= trial_budget;
+    if (options.topology && iteration + 1 < options.iterations && ops.trials() < 2 * trial_budget) {
       // Triangles that failed before are dropped before the sort rather than after it: after the first
       // pass they are nearly all of the list, and the order of the others is the same.
+      const double list_below = first_spent ? target : topology_limit;
       std::vector<std::pair<double, int>> bad;
       for (int t = 0; t < m.triangle_slots(); ++t) {
         if (!m.alive(t)) continue;
         const double q = m.quality(t);
-        if (q < topology_limit && (failures.empty() || failures.count(sorted_key(m.v[t])) == 0)) bad.push_back({q, t});
+        if (q < list_below && (failures.empty() || failures.count(sorted_key(m.v[t])) == 0)) bad.push_back({q, t});
       }
       std::sort(bad.begin(), bad.end());
-      double aspect_sum = 0.0, count = 0.0;
-      for (int t = 0; t < m.triangle_slots(); ++t)
-        if (m.alive(t)) {
-          aspect_sum += m.aspect(t);
-          count += 1.0;
-        }
-      ops.set_aspect_totals(aspect_sum, count);
+      if (!bad.empty()) {
+        double aspect_sum = 0.0, count = 0.0;
+        for (int t = 0; t < m.triangle_slots(); ++t)
+          if (m.alive(t)) {
+            aspect_sum += m.aspect(t);
+            count += 1.0;
+          }
+        ops.set_aspect_totals(aspect_sum, count);
+      }
       const std::size_t trials_before = ops.trials();
       for (const auto& [q, t] : bad) {
-        if (ops.trials() >= trial_budget) break;
+        const bool below = q < target;
+        if (ops.trials() >= trial_budget && (!below || ops.trials() >= 2 * trial_budget)) break;
         if (!m.alive(t) || !(m.quality(t) < topology_limit)) continue;
         // A triangle no operation could repair is not tried again in this run.
         const auto key = sorted_key(m.v[t]);
         if (failures.count(key) > 0) continue;
         const double angle = m.quality(t);
-        const cleanup::RepairKind kind = ops.repair(t);
+        // Compound trials for a triangle below the target now (an earlier repair may have lifted it).
+        const cleanup::RepairKind kind = ops.repair(t, angle < target);
         if (kind == cleanup::RepairKind::None) {
           ++result.stats.rejected;
           failures.insert(key);
           continue;
         }
-        ++(kind == cleanup::RepairKind::Collapse ? result.stats.collapsed : result.stats.inserted);
+        if (kind == cleanup::RepairKind::Collapse) ++result.stats.collapsed;
+        else if (kind != cleanup::RepairKind::Compound) ++result.stats.inserted;  // a compound's nodes are counted below
         ++changed;
         record.trials_to_last_change = ops.trials() - trials_before;
         record.last_change_angle = std::asin(std::clamp(angle, -1.0, 1.0)) * 57.29577951308232;
@@ -196,6 +208,10 @@ CleanupResult clean_mesh(const Mesh& mesh, const NodeSet& nodes, const GeometryT
     if (changed == 0) break;
   }
   result.stats.trials = ops.trials();
+  result.stats.inserted += ops.compound_inserted();
+  result.stats.collapsed += ops.compound_removed();
+  result.stats.compound_trials = ops.compound_trials();
+  result.stats.compound_applied = ops.compound_applied();
   std::vector<int> old_of_new;
   std::vector<std::vector<int>> curve_nodes;
   result.mesh = m.to_mesh(mesh, curve_nodes, old_of_new);

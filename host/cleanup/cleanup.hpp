@@ -36,6 +36,8 @@ struct CleanupOptions {
   // Boundary edges may be split by a new node on their curve (off: the boundary nodes stay the
   // simulation's, they only slide).
   bool split_boundary = true;
+  // Pairs of edits for a triangle below the target that no single edit repairs (docs/cleanup.md).
+  bool compound = true;
   // Work bound of the topology passes: at most max(10000, trials_per_triangle x triangles) trials in
   // all, spent worst triangle first. A settled lattice needs far fewer (thesis cases: 0.07 to 0.7 per
   // triangle); a mesh after a few iterations would otherwise take several per triangle.
@@ -65,6 +67,8 @@ struct CleanupStats {
   std::size_t collapsed = 0;   // interior nodes removed by edge collapse
   std::size_t rejected = 0;    // triangles no topology operation could repair
   std::size_t trials = 0;      // topology trials (edit, relaxation, score, undo) made
+  std::size_t compound_trials = 0;   // of which pairs of edits (docs/cleanup.md) ...
+  std::size_t compound_applied = 0;  // ... and pairs applied
   int iterations_run = 0;
   double seconds = 0.0;
   double smoothing_seconds = 0.0;  // of which in the smoothing sweeps ...

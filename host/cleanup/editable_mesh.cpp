@@ -285,6 +285,22 @@ double EditableMesh::touched_min_after() const {
   return m;
 }
 
+int EditableMesh::touched_worst_after() const {
+  int worst = -1;
+  double lowest = kInf;
+  auto consider = [&](int t) {
+    if (!alive(t)) return;
+    const double q = quality(t);
+    if (q < lowest || (q == lowest && t < worst)) {
+      lowest = q;
+      worst = t;
+    }
+  };
+  for (const SavedTriangle& s : tri_log_) consider(s.t);
+  for (int t = tri_size0_; t < triangle_slots(); ++t) consider(t);
+  return worst;
+}
+
 double EditableMesh::touched_aspect_before(int& count) const {
   double sum = 0.0;
   count = 0;

@@ -106,6 +106,9 @@ class EditableMesh {
   // mesh's average aspect ratio from rising).
   double touched_aspect_before(int& count) const;
   double touched_aspect_after(int& count) const;
+  // The live touched triangle with the lowest score now (-1 when none): where a compound trial's
+  // second edit goes (topology_ops.cpp).
+  int touched_worst_after() const;
   // How many of those triangles score below `limit`, before and after.
   int touched_below_before(double limit) const;
   int touched_below_after(double limit) const;

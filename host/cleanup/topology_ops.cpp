@@ -42,17 +42,33 @@ int TopologyOps::locate(int start, Vec2 at) const {
   return -1;
 }
 
-bool TopologyOps::edges_fit(int a, bool inserted) {
+bool TopologyOps::edges_fit(int a, bool inserted, double shortest) {
   const auto& m = mesh_;
   // Where the boundary is segmented more finely than the field asks (fillets, small holes), the
   // triangle's own shortest edge is the size to respect: nodes at that spacing are what its fan of
   // thin boundary triangles lacks.
-  const double h = inserted ? std::min(h_(m.p[a]), shortest_) : h_(m.p[a]);
+  const double h = inserted ? std::min(h_(m.p[a]), shortest) : h_(m.p[a]);
   m.ring(a, ring2_);
   for (int x : ring2_) {
     const double l = dist(m.p[a], m.p[x]);
-    if (inserted ? l < options_.min_edge * h : l > options_.max_edge * h) return false;
+    if (inserted ? l < options_.min_edge * h : l > options_.max_edge * h && !boundary_edge(a, x)) return false;
   }
+  return true;
+}
+
+// A merged node's boundary edges are the curve chain's, which no collapse makes or lengthens (only
+// interior nodes are removed): a coarse segment beside it (the plate's 0.31 octagon sides, where h
+// is 0.18) says nothing about the edit, and counting it refused every collapse into such a corner.
+bool TopologyOps::boundary_edge(int a, int x) const {
+  const auto& m = mesh_;
+  for (const auto [t, i] : {m.find_edge(a, x), m.find_edge(x, a)})
+    if (t >= 0 && m.n[t][i] < 0) return true;
+  return false;
+}
+
+bool TopologyOps::fits() {
+  for (const auto& f : fit_)
+    if (!mesh_.removed(f.node) && !edges_fit(f.node, f.inserted, f.shortest)) return false;
   return true;
 }
 
@@ -70,8 +86,7 @@ void TopologyOps::settle(int a, bool inserted) {
   mesh_.push_link_edges(a, edges_);
   mesh_.legalize(edges_);
   relax_around(a);
-  fit_vertex_ = a;
-  fit_inserted_ = inserted;
+  fit_.push_back({a, inserted, shortest_});
 }
 
 bool TopologyOps::insert_at(int t, Vec2 at) {
@@ -131,29 +146,23 @@ double TopologyOps::score() const {
   return after;
 }
 
-RepairKind TopologyOps::repair(int t) {
+void TopologyOps::candidates(int t, std::vector<Trial>& trials) {
   auto& m = mesh_;
-  if (!m.alive(t)) return RepairKind::None;
   const auto tv = m.v[t];
   const Vec2 a = m.p[tv[0]], b = m.p[tv[1]], c = m.p[tv[2]];
-  shortest_ = std::min({dist(a, b), dist(b, c), dist(c, a)});
-  struct Trial {
-    RepairKind kind;
-    std::function<bool()> apply;
-  };
-  std::vector<Trial> trials;
+  const double shortest = std::min({dist(a, b), dist(b, c), dist(c, a)});
+  auto add = [&](RepairKind kind, std::function<bool()> apply) { trials.push_back({kind, std::move(apply), shortest}); };
   const Vec2 cc = circumcentre(a, b, c);
-  trials.push_back({RepairKind::Insert, [this, t, cc] { return insert_at(t, cc); }});
+  add(RepairKind::Insert, [this, t, cc] { return insert_at(t, cc); });
   const Vec2 centroid = (1.0 / 3.0) * (a + b + c);
-  trials.push_back({RepairKind::Insert, [this, t, centroid] { return insert_at(t, centroid); }});
+  add(RepairKind::Insert, [this, t, centroid] { return insert_at(t, centroid); });
   for (int i = 0; i < 3; ++i) {
     const int x = tv[next3(i)], y = tv[prev3(i)];
     const bool x_free = m.kind[x] == NodeKind::Interior, y_free = m.kind[y] == NodeKind::Interior;
-    if (x_free) trials.push_back({RepairKind::Collapse, [this, x, y] { return collapse_edge(x, y); }});
-    else if (y_free) trials.push_back({RepairKind::Collapse, [this, x, y] { return collapse_edge(y, x); }});
-    if (m.n[t][i] >= 0) trials.push_back({RepairKind::Split, [this, t, i] { return split(t, i); }});
-    else if (options_.split_boundary)
-      trials.push_back({RepairKind::Split, [this, t, i] { return split_boundary(t, i); }});
+    if (x_free) add(RepairKind::Collapse, [this, x, y] { return collapse_edge(x, y); });
+    else if (y_free) add(RepairKind::Collapse, [this, x, y] { return collapse_edge(y, x); });
+    if (m.n[t][i] >= 0) add(RepairKind::Split, [this, t, i] { return split(t, i); });
+    else if (options_.split_boundary) add(RepairKind::Split, [this, t, i] { return split_boundary(t, i); });
   }
   // A crowded interior vertex of the triangle: split each of its other edges, which gives a
   // neighbour the node it is missing (JIGSAW splits edges of valence-8 nodes). Valence 7 counts as
@@ -166,20 +175,38 @@ RepairKind TopologyOps::repair(int t) {
     if (ring2_.size() < crowded) continue;
     for (int y : ring2_) {
       if (y == tv[next3(k)] || y == tv[prev3(k)]) continue;
-      trials.push_back({RepairKind::Split, [this, x, y] {
-                          const auto [u, i] = mesh_.find_edge(x, y);
-                          return u >= 0 && split(u, i);
-                        }});
+      add(RepairKind::Split, [this, x, y] {
+        const auto [u, i] = mesh_.find_edge(x, y);
+        return u >= 0 && split(u, i);
+      });
     }
   }
+}
+
+void TopologyOps::commit_chosen() {
+  auto& m = mesh_;
+  int n_before = 0, n_after = 0;
+  const double s_before = m.touched_aspect_before(n_before), s_after = m.touched_aspect_after(n_after);
+  aspect_sum_ += s_after - s_before;
+  aspect_count_ += n_after - n_before;
+  m.commit();
+}
+
+RepairKind TopologyOps::repair(int t, bool compound) {
+  auto& m = mesh_;
+  if (!m.alive(t)) return RepairKind::None;
+  std::vector<Trial> trials;
+  candidates(t, trials);
   double best = kNone;
   int chosen = -1;
   for (int k = 0; k < static_cast<int>(trials.size()); ++k) {
     m.begin();
     ++trials_;
+    fit_.clear();
+    shortest_ = trials[k].shortest;
     double s = trials[k].apply() ? score() : kNone;
     // The size guard queries the spacing field, so only for a trial that would be chosen.
-    if (s > best && !edges_fit(fit_vertex_, fit_inserted_)) s = kNone;
+    if (s > best && !fits()) s = kNone;
     m.rollback();
     if (s > best) {
       best = s;
@@ -187,15 +214,78 @@ RepairKind TopologyOps::repair(int t) {
     }
     if (best >= options_.enough) break;  // the region is out of the work range: good enough
   }
-  if (chosen < 0) return RepairKind::None;
+  if (chosen < 0) return options_.compound && compound ? repair_compound(trials) : RepairKind::None;
   m.begin();
+  shortest_ = trials[chosen].shortest;
   trials[chosen].apply();
-  int n_before = 0, n_after = 0;
-  const double s_before = m.touched_aspect_before(n_before), s_after = m.touched_aspect_after(n_after);
-  aspect_sum_ += s_after - s_before;
-  aspect_count_ += n_after - n_before;
-  m.commit();
+  commit_chosen();
   return trials[chosen].kind;
+}
+
+bool TopologyOps::apply_pair(const std::vector<Trial>& first, int k, int j, std::vector<Trial>& second) {
+  fit_.clear();
+  shortest_ = first[k].shortest;
+  if (!first[k].apply()) return false;
+  const int w = mesh_.touched_worst_after();
+  if (w < 0) return false;
+  second.clear();
+  candidates(w, second);
+  if (j >= static_cast<int>(second.size())) return false;
+  shortest_ = second[j].shortest;
+  return second[j].apply();
+}
+
+// Pairs of edits for a triangle no single edit repairs: each trial on it, then each trial on the
+// worst triangle that one leaves in its region, measured together against the state before both
+// (the same rules as a single trial). This is how a valence-5/7 pair next to a boundary is moved
+// (a split that makes a node, then a collapse that takes one away elsewhere) and how a coarse
+// boundary segment gets a node and the row behind it one (split, then insert or split again).
+RepairKind TopologyOps::repair_compound(const std::vector<Trial>& first) {
+  auto& m = mesh_;
+  double best = kNone;
+  int best_k = -1, best_j = -1;
+  std::vector<Trial> second;
+  for (int k = 0; k < static_cast<int>(first.size()) && best < options_.enough; ++k) {
+    // How many second trials follow first[k] (the list is rebuilt with each pair, the same each time).
+    m.begin();
+    ++trials_;
+    fit_.clear();
+    shortest_ = first[k].shortest;
+    std::size_t count = 0;
+    if (first[k].apply()) {
+      const int w = m.touched_worst_after();
+      if (w >= 0) {
+        second.clear();
+        candidates(w, second);
+        count = second.size();
+      }
+    }
+    m.rollback();
+    for (int j = 0; j < static_cast<int>(count); ++j) {
+      m.begin();
+      ++trials_;
+      ++compound_trials_;
+      double s = apply_pair(first, k, j, second) ? score() : kNone;
+      if (s > best && !fits()) s = kNone;
+      m.rollback();
+      if (s > best) {
+        best = s;
+        best_k = k;
+        best_j = j;
+      }
+      if (best >= options_.enough) break;
+    }
+  }
+  if (best_k < 0) return RepairKind::None;
+  m.begin();
+  apply_pair(first, best_k, best_j, second);
+  commit_chosen();
+  ++compound_applied_;
+  for (RepairKind kind : {first[best_k].kind, second[best_j].kind}) {
+    if (kind == RepairKind::Collapse) ++compound_removed_;
+    else ++compound_inserted_;
+  }
+  return RepairKind::Compound;
 }
 
 }  // namespace pdmesh::cleanup

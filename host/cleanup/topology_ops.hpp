@@ -10,6 +10,7 @@
 #pragma once
 #include <array>
 #include <functional>
+#include <utility>
 #include <vector>
 
 #include "cleanup/editable_mesh.hpp"
@@ -18,7 +19,8 @@
 
 namespace pdmesh::cleanup {
 
-enum class RepairKind { None, Insert, Collapse, Split };
+// Compound: two edits applied together (repair_compound); they may add and remove nodes.
+enum class RepairKind { None, Insert, Collapse, Split, Compound };
 
 struct TopologyOptions {
   double gain = 0.0035;  // required rise of the local minimum score (sine of the min angle)
@@ -27,10 +29,14 @@ struct TopologyOptions {
   int relax_rounds = 2;
   bool split_boundary = true;  // may split boundary edges (a new node on the curve between the ends)
   // Size guards against h: an inserted node's shortest edge must be at least min_edge x h there (h no
-  // more than the repaired triangle's shortest edge), and
-  // a collapse may not leave an edge longer than max_edge x h, so that cleaning keeps the spacing.
+  // more than the repaired triangle's shortest edge), and a collapse may not leave an edge longer
+  // than max_edge x h (boundary edges aside: no collapse makes them), so that cleaning keeps the
+  // spacing.
   double min_edge = 0.6;
   double max_edge = 1.5;  // hill-climbing rounds over the new node and its neighbours after an edit
+  // Compound trials: a triangle the driver names (one below the target) that no single trial repairs gets every trial followed by every trial on the worst triangle the first
+  // one left (see repair()).
+  bool compound = true;
 };
 
 class TopologyOps {
@@ -40,7 +46,16 @@ class TopologyOps {
               TopologyOptions options);
 
   // Tries every operation on triangle t and applies the best one that helps; returns what it did.
-  RepairKind repair(int t);
+  // When none helps and `compound` (the driver's choice: t is below the target),
+  // tries pairs of operations (compound trials: the second on the worst triangle the first leaves),
+  // which fix a defect no single edit can.
+  RepairKind repair(int t, bool compound);
+  // Compound trials made so far, and how many of them were applied.
+  std::size_t compound_trials() const { return compound_trials_; }
+  std::size_t compound_applied() const { return compound_applied_; }
+  // Nodes the applied compound trials inserted and removed (their kinds say which).
+  std::size_t compound_inserted() const { return compound_inserted_; }
+  std::size_t compound_removed() const { return compound_removed_; }
   // The mesh's sum of aspect ratios and triangle count: an operation may not raise their average.
   // Set before a pass; repair() keeps them current.
   // Trials made so far (each an edit, a relaxation, a score and an undo: the unit of work).
@@ -51,6 +66,21 @@ class TopologyOps {
   }
 
  private:
+  struct Trial {
+    RepairKind kind;
+    std::function<bool()> apply;
+    double shortest;  // shortest edge of the triangle it repairs (edges_fit's cap on h)
+  };
+  // The trials on triangle t of the mesh as it is now.
+  void candidates(int t, std::vector<Trial>& out);
+  // Applies first[k] and then the j-th trial on the worst triangle it touched (rebuilt on the mesh
+  // after first[k], which is the same each time: edits are deterministic); false when either fails.
+  bool apply_pair(const std::vector<Trial>& first, int k, int j, std::vector<Trial>& second);
+  RepairKind repair_compound(const std::vector<Trial>& first);
+  // True when the nodes the open transaction's edits made or merged keep the size guards.
+  bool fits();
+  // Keeps the open transaction (the chosen trial, redone) and updates the aspect-ratio totals.
+  void commit_chosen();
   // One trial: applies the edit (false when it cannot be made) and relaxes; leaves the transaction open.
   bool insert_at(int t, Vec2 at);
   bool collapse_edge(int a, int b);
@@ -62,7 +92,8 @@ class TopologyOps {
   Vec2 insertion_point(int t) const;
   // Score of the open transaction: the new local minimum, or -inf when it does not qualify.
   double score() const;
-  bool edges_fit(int a, bool inserted);
+  bool edges_fit(int a, bool inserted, double shortest);
+  bool boundary_edge(int a, int x) const;
 
   EditableMesh& mesh_;
   Smoother& smoother_;
@@ -71,9 +102,16 @@ class TopologyOps {
   TopologyOptions options_;
   double aspect_sum_ = 0.0, aspect_count_ = 1.0;
   std::size_t trials_ = 0;
+  std::size_t compound_trials_ = 0, compound_applied_ = 0, compound_inserted_ = 0, compound_removed_ = 0;
   double shortest_ = 0.0;      // shortest edge of the triangle being repaired
-  int fit_vertex_ = -1;         // the node the last trial inserted or merged into ...
-  bool fit_inserted_ = false;   // ... and whether it was inserted (for edges_fit)
+  // The nodes the open transaction's edits inserted or merged into, whether each was inserted, and
+  // the repaired triangle's shortest edge then (for edges_fit); cleared by each trial.
+  struct Fit {
+    int node;
+    bool inserted;
+    double shortest;
+  };
+  std::vector<Fit> fit_;
   std::vector<int> ring_, ring2_;
   std::vector<std::array<int, 2>> edges_;
 };
