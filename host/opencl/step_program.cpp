@@ -122,8 +122,10 @@ std::map<std::string, std::string> step_program_defines(Precision precision, std
                                    {"ROW_LARGEST", kRowLargest}, {"ROW_EXAMINED", kRowExamined},
                                    {"ROW_WITHIN", kRowWithin}, {"ROW_SPILLED", kRowSpilled},
                                    {"ROW_SPARE_USED", kRowSpareUsed}, {"ROW_MOVED", kRowMoved},
-                                   {"ROW_SPARE_FULL", kRowSpareFull}})
+                                   {"ROW_SPARE_FULL", kRowSpareFull}, {"ROW_RATIO", kRowRatio}})
     d.emplace(name, std::to_string(static_cast<int>(slot)));
+  d.emplace("ROW_RATIO_SCALE", std::to_string(kRowRatioScale));
+  d.emplace("SKIN_CLASS_STEPS", std::to_string(kSkinClassSteps));
   for (const auto& [name, value] : window_defines())
     if (!d.emplace(name, value).second) throw DeviceError(fmt::format("step program: the define {} is given twice", name));
   return d;

@@ -77,8 +77,14 @@ enum RowCounter : int {
   kRowSpareUsed = 6,  // spare entries taken by moved rows
   kRowMoved = 7,      // rows moved behind the others
   kRowSpareFull = 8,  // the spare region was full: build again
-  kRowCounters = 9    // how many
+  kRowRatio = 9,      // the largest q_m / q_j of a pair within r_m, j interior, in 1/kRowRatioScale (atomic max)
+  kRowCounters = 10   // how many
 };
+// kRowRatio's fixed point: gather_rows rounds q_m / q_j * kRowRatioScale up (ROW_RATIO_SCALE).
+inline constexpr std::uint32_t kRowRatioScale = 4096;
+// A node's skin class c (gather_rows, one byte per node) allows it the share 2^(-1 - c / kSkinClassSteps)
+// of its skin (SKIN_CLASS_STEPS; opencl/device_run.hpp).
+inline constexpr int kSkinClassSteps = 16;
 
 // What the device allows one kernel of the program (clGetKernelWorkGroupInfo).
 struct KernelLimits {
