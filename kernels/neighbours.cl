@@ -279,15 +279,19 @@ void row_level_tally(const int n, __global const uchar* kind, __global const int
 // The share of node i's skin its position p and spacing qn have used since the lists were built
 // (position pb, spacing qb): its distance from pb plus the cut-off's growth with q, over the skin.
 // One expression for device_step, refresh_budgets and boundary_snap, so that they agree bit for bit.
+// 2^(k / SKIN_CLASS_STEPS), k < SKIN_CLASS_STEPS (the program builder's, skin_class_factor's table).
+__constant REAL skin_class_roots[SKIN_CLASS_STEPS] = {SKIN_CLASS_ROOTS};
+
 // Divided by the share node i may use, 2^(-1 - c / SKIN_CLASS_STEPS) for its skin class c (written by
-// gather_rows; host/opencl/device_run.hpp, skin_class_allowed): the lists hold while every node's
-// result stays at most 1 (less the host's margin).
+// gather_rows; host/opencl/device_run.hpp): the lists hold while every node's result stays at most 1
+// (less the host's margin). The factor 2^(1 + c / SKIN_CLASS_STEPS) from a table and exact powers of 2,
+// as the host computes it (an exp2 per node and iteration cost a libm call on PoCL).
 REAL skin_use_of(const REAL2 p, const REAL qn, const REAL2 pb, const REAL qb, const REAL cutoff,
                  const REAL skin_cutoff, const uchar skin_class) {
   const REAL ex = p.x - pb.x, ey = p.y - pb.y;
   const REAL grow = qn > qb ? cutoff * (qn - qb) : (REAL)0;
-  return (sqrt(ex * ex + ey * ey) + grow) / (skin_cutoff * qb) *
-         exp2((REAL)1 + (REAL)skin_class / (REAL)SKIN_CLASS_STEPS);
+  const REAL factor = (REAL)(2 << (skin_class / SKIN_CLASS_STEPS)) * skin_class_roots[skin_class % SKIN_CLASS_STEPS];
+  return (sqrt(ex * ex + ey * ey) + grow) / (skin_cutoff * qb) * factor;
 }
 
 // Insertion sort of entries[base .. base + c) ascending (rows are short and nearly sorted by cell order).

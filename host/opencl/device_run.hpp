@@ -43,7 +43,6 @@ inline double since(Clock::time_point t0) { return std::chrono::duration<double>
 // most 1 (less a margin far above the rounding). Before session 10 rows were R_ij = c (1 + s) q_b,i and
 // every share 0.25, which assumed rho <= 3 across levels without measuring it (30P30N's thesis case
 // has pairs at 4.5: docs/performance.md, "Neighbour work per iteration, session 10").
-inline double skin_class_share(int skin_class) { return std::exp2(-1.0 - skin_class / double(kSkinClassSteps)); }
 // The limit on the quotient: 1 less the margin (a ratio beyond the largest class, which a level's
 // factor 2 rules out, would scale it down).
 inline double skin_use_limit(double largest_spacing_ratio) {

@@ -251,8 +251,8 @@ BoundaryCounts DeviceRun<Real>::host_boundary(double& skin_use) {
     const double q = background_.at(p);
     const double grow = q > build_q_[i] ? options_.cutoff * (q - build_q_[i]) : 0.0;
     skin_use = std::max(skin_use, (std::sqrt(ex * ex + ey * ey) + grow) /
-                                      (options_.verlet_skin * options_.cutoff * build_q_[i] *
-                                       skin_class_share(skin_class_host_[i])));
+                                      (options_.verlet_skin * options_.cutoff * build_q_[i]) *
+                                      skin_class_factor(skin_class_host_[i]));
   };
   for (std::int32_t node : candidates_) add(node);
   stats_.host_seconds += since(t0);
