@@ -38,9 +38,9 @@ inline double since(Clock::time_point t0) { return std::chrono::duration<double>
 // <= c q_b,i (1 + L_i s) + L_j s c q_b,j <= c (1 + s) q_b,j, within j's radius, where the build
 // measures rho_j, the largest such ratio over j's level (gather_rows). L_j <= 1 / (2 rho_j) gives rho
 // L_j <= 1/2 and L_i <= 1/2 the rest. So node j's share is 2^(-1 - c_j / kSkinClassSteps) for its skin
-// class c_j = ceil(kSkinClassSteps log2 max(1, rho_j)) (one byte per node, at least 1/4), the device
-// divides each skin use by it (skin_use_of), and the lists hold while the largest quotient stays at
-// most 1 (less a margin far above the rounding). Before session 10 rows were R_ij = c (1 + s) q_b,i and
+// class c_j = ceil(kSkinClassSteps log2 max(1, rho_j)) (one byte per node; 0-17: a share of 0.24 at
+// least), the device divides each skin use by it (skin_use_of), and the lists hold while the largest
+// quotient stays at most 1 (less a margin far above the rounding). Before session 10 rows were R_ij = c (1 + s) q_b,i and
 // every share 0.25, which assumed rho <= 3 across levels without measuring it (30P30N's thesis case
 // has pairs at 4.5: docs/performance.md, "Neighbour work per iteration, session 10").
 // The limit on the quotient: 1 less the margin (a ratio beyond the largest class, which a level's
