@@ -386,11 +386,16 @@ TEST_CASE("a device build names the first invalid node and builds no rows", "[op
 TEST_CASE("device rows of the run take coarser neighbours within c q_i + s c q_j, and skin classes bound the "
           "spacing ratios of a level",
           "[opencl][neighbour]") {
-  for (const Input& in : {graded_input(false), random_input(3 * ocl::kStepWorkGroup + 5, 91, false),
-                          dense_cluster_input(false)}) {
-    INFO("input " << in.name);
+  // Both programs: the GPU-shaped one gathers with floor() and the cell test everywhere.
+  ocl::StepProgram scalar(test_context(), ocl::Precision::Double, ocl::ForceLoop::Scalar);
+  const std::vector<Input> inputs{graded_input(false), random_input(3 * ocl::kStepWorkGroup + 5, 91, false),
+                                  dense_cluster_input(false)};
+  for (std::size_t run = 0; run < 2 * inputs.size(); ++run) {
+    ocl::StepProgram* program = run < inputs.size() ? &test_program(ocl::Precision::Double) : &scalar;
+    const Input& in = inputs[run % inputs.size()];
+    INFO("input " << in.name << ", force loop " << (program == &scalar ? "scalar" : "vector"));
     const double skin = 0.3, c = in.cutoff, radius = c * (1.0 + skin), pair_skin = skin * c;
-    DeviceBuilder b;
+    DeviceBuilder b(*program);
     const DeviceRows got = b.build(in.p, radius, pair_skin);
     const SimParticles& p = in.p;
     const std::size_t n = p.size();
