@@ -276,16 +276,16 @@ void row_level_tally(const int n, __global const uchar* kind, __global const int
     if (sums[k]) atomic_add(&tally[k], sums[k]);
 }
 
-// The share of node i's skin its position p and spacing qn have used since the lists were built
-// (position pb, spacing qb): its distance from pb plus the cut-off's growth with q, over the skin.
-// One expression for device_step, refresh_budgets and boundary_snap, so that they agree bit for bit.
 // 2^(k / SKIN_CLASS_STEPS), k < SKIN_CLASS_STEPS (the program builder's, skin_class_factor's table).
 __constant REAL skin_class_roots[SKIN_CLASS_STEPS] = {SKIN_CLASS_ROOTS};
 
-// Divided by the share node i may use, 2^(-1 - c / SKIN_CLASS_STEPS) for its skin class c (written by
+// The share of node i's skin its position p and spacing qn have used since the lists were built
+// (position pb, spacing qb): its distance from pb plus the cut-off's growth with q, over the skin,
+// divided by the share node i may use, 2^(-1 - c / SKIN_CLASS_STEPS) for its skin class c (written by
 // gather_rows; host/opencl/device_run.hpp): the lists hold while every node's result stays at most 1
 // (less the host's margin). The factor 2^(1 + c / SKIN_CLASS_STEPS) from a table and exact powers of 2,
-// as the host computes it (an exp2 per node and iteration cost a libm call on PoCL).
+// as the host computes it (an exp2 per node and iteration cost a libm call on PoCL). One expression
+// for device_step, refresh_budgets and boundary_snap, so that they agree bit for bit.
 REAL skin_use_of(const REAL2 p, const REAL qn, const REAL2 pb, const REAL qb, const REAL cutoff,
                  const REAL skin_cutoff, const uchar skin_class) {
   const REAL ex = p.x - pb.x, ey = p.y - pb.y;
