@@ -95,11 +95,11 @@ void closest_on_curve(__global const REAL* p, __global const REAL* arc, const in
       __global const int *curve_pt, __global const REAL *pts, __global const REAL *pt_arc,                      \
       __global const REAL *arcs_in, __global REAL *arcs_out, __global REAL *brec, __global REAL2 *xy,           \
       __global REAL *q, __global REAL *tx, __global REAL *ty, __global int *node_leaf,         \
-      __global const REAL2 *xy_build, __global const REAL *q_build, const REAL cutoff, \
-      const REAL skin_cutoff, __global int *step_counters, __global REAL *partials, BG_ARGS
+      __global const REAL2 *xy_build, __global const REAL *q_build, __global const uchar *skin_class,          \
+      const REAL cutoff, const REAL skin_cutoff, __global int *step_counters, __global REAL *partials, BG_ARGS
 #define SNAP_PASS                                                                                                \
   m, slot_node, slot_curve, slot_pos, curve_pt, pts, pt_arc, arcs_in, arcs_out, brec, xy, q, tx, ty, node_leaf, \
-      xy_build, q_build, cutoff, skin_cutoff, step_counters, partials, BG_PASS
+      xy_build, q_build, skin_class, cutoff, skin_cutoff, step_counters, partials, BG_PASS
 
 // Inlined into both kernels: a call with this many arguments costs GPU registers and scratch.
 __attribute__((always_inline)) void boundary_snap_body(__local REAL* values, __local int* halt, SNAP_ARGS) {
@@ -141,7 +141,7 @@ __attribute__((always_inline)) void boundary_snap_body(__local REAL* values, __l
       node_leaf[i] = leaf;
       const REAL qn = bg_interpolate(leaf, u, v, bg_corner, bg_q);
       q[i] = qn;
-      skin_use = skin_use_of(on, qn, xy_build[i], q_build[i], cutoff, skin_cutoff);
+      skin_use = skin_use_of(on, qn, xy_build[i], q_build[i], cutoff, skin_cutoff, skin_class[i]);
     }
   }
   values[l] = clamped;

@@ -43,7 +43,7 @@ REAL bg_spacing_cached(const REAL px, const REAL py, int* leaf, BG_ARGS) {
 // set when a move is not finite); boundary
 // nodes write (x, y, dx, dy) to their slot bslot[i] of brec. beta > 0: the move is momentum's d
 // (carried: each node's previous d, x and y interleaved; any buffer when beta = 0). skin_use: (|x_next - x_build| + cutoff
-// max(0, q_next - q_build)) / (skin cutoff q_build), maximised per group (interior nodes the host
+// max(0, q_next - q_build)) / (skin cutoff q_build) over the share its skin class allows (skin_use_of), maximised per group (interior nodes the host
 // does not touch; the host covers the rest).
 __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1)))
 void device_step(const int n, const REAL cutoff, const REAL lj_a, const int r0_any_direction,
@@ -51,7 +51,7 @@ void device_step(const int n, const REAL cutoff, const REAL lj_a, const int r0_a
                  __global const REAL* q, __global const uchar* kind, __global const REAL* tx,
                  __global const REAL* ty, __global const int* count, __global const ulong* row_offset,
                  __global const int* index,
-                 __global const REAL2* xy_build, __global const REAL* q_build,
+                 __global const REAL2* xy_build, __global const REAL* q_build, __global const uchar* skin_class,
                  __global const int* bslot, __global REAL2* xy_next, __global REAL* q_next,
                  __global REAL* budget, __global int* node_leaf, __global REAL* brec, __global int* cand_index, __global REAL* cand_rec,
                  __global int* counters, __global REAL* partials, __global const REAL* segs, const int n_segs,
@@ -147,7 +147,7 @@ void device_step(const int n, const REAL cutoff, const REAL lj_a, const int r0_a
     // A move that is not finite halts the iteration for the host (counters[COUNTER_NON_FINITE]): boundary_snap then
     // writes nothing, so the state before this step stays whole on the device.
     if (moving && !(isfinite(dx) && isfinite(dy) && isfinite(xn) && isfinite(yn))) atomic_or(&counters[COUNTER_NON_FINITE], 1);
-    if (!host && kind_i == 2) skin_use = skin_use_of((REAL2)(xn, yn), qn, xy_build[i], q_build[i], cutoff, skin_cutoff);
+    if (!host && kind_i == 2) skin_use = skin_use_of((REAL2)(xn, yn), qn, xy_build[i], q_build[i], cutoff, skin_cutoff, skin_class[i]);
   }
   values[l] = f;
   values[WG_SIZE + l] = kinetic;
@@ -169,7 +169,8 @@ void device_step(const int n, const REAL cutoff, const REAL lj_a, const int r0_a
 __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1)))
 void refresh_budgets(const int n, __global int* counters, __global int* cand_index,
                      __global const REAL* cand_rec, __global REAL* budget, __global const REAL* q_next,
-                     __global const REAL2* xy_build, __global const REAL* q_build, const REAL cutoff,
+                     __global const REAL2* xy_build, __global const REAL* q_build,
+                     __global const uchar* skin_class, const REAL cutoff,
                      const REAL skin_cutoff, __global const REAL* segs, const int n_segs, const REAL seg_scale,
                      __global REAL* partials) {
   __local REAL values[WG_SIZE];
@@ -186,7 +187,7 @@ void refresh_budgets(const int n, __global int* counters, __global int* cand_ind
     const REAL fresh = clearance_refresh(ex, ey, xn, yn, segs, n_segs, seg_scale);
     if (fresh > (REAL)0) {
       budget[i] = fresh;
-      skin_use = skin_use_of((REAL2)(xn, yn), q_next[i], xy_build[i], q_build[i], cutoff, skin_cutoff);
+      skin_use = skin_use_of((REAL2)(xn, yn), q_next[i], xy_build[i], q_build[i], cutoff, skin_cutoff, skin_class[i]);
     } else {
       cand_index[k] = i;
       atomic_or(&counters[COUNTER_HOST], 1);

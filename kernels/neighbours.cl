@@ -18,6 +18,13 @@
 //   sampled counts of the interior rows per grid level; the host turns them into one estimated
 //   capacity per level (device_neighbours.cpp), row_capacity_scan lays the rows out with it, and
 //   the gather writes them; the few rows that outgrow it move behind the others (relocate_rows).
+//   With pair_skin = s c > 0 (the device run's lists: radius_factor = c (1 + s), c the cut-off, s the
+//     skin) a finer interior row i also takes a coarser m (level[m] > level[i]) within c q_i + s c q_m,
+//     more than r_i: the pair's skin is the coarser node's, so that either node may use half of its own
+//     skin (host/opencl/device_run.hpp). pair_skin = 0 gives the reference's rows.
+//   Every building pass also finds, per node m, the largest ratio rho_m = q_m / q_j over the interior j
+//     of its own level within its radius r_m (below 2: a level spans a factor 2 of radii), as m's skin
+//     class (skin_class[m]), and their maximum (counters[ROW_RATIO]): how much of its skin m may use.
 //   sort_rows: sorts each interior row by node index (the reference's order: forces are summed in
 //     it) and counts the rows that outgrew their capacities; the host then builds again with
 //     capacities from the counts just found, which are exact.
@@ -107,14 +114,20 @@ void gather_rows(const int n, const REAL radius_factor, __global const REAL2* xy
                  __global const REAL* grid_inv_cell, __global const uint* bucket, __global const int* grid_nodes,
                  __global const ulong* offset, __global volatile int* count, const ulong entries_size,
                  __global int* entries, const uint spill_capacity, __global int* spill, __global uint* counters,
-                 const int counting, const int sample_stride) {
-  __local uint local_examined;
-  if (get_local_id(0) == 0) local_examined = 0;
+                 const int counting, const int sample_stride, __global uchar* skin_class, const REAL pair_skin) {
+  __local uint local_examined, local_ratio;
+  if (get_local_id(0) == 0) {
+    local_examined = 0;
+    local_ratio = 0;
+  }
   barrier(CLK_LOCAL_MEM_FENCE);
   const int i = (int)get_global_id(0) * sample_stride;  // launched over ceil(n / sample_stride) work-items
   if (i < n && bin_ok(bin_state, n)) {
     const int kind_i = kind[i];
     uint examined = 0;
+    // The smallest q_j of the interior j within r_i (building passes only): q_i over it is the largest
+    // spacing ratio of a pair this scan owns, for the device run's skin-use limit (see the top).
+    REAL q_min = INFINITY;
     if (kind_i == 1) {  // [prev, next], in that order (no other work-item writes a boundary row)
       row_append(i, prev[i], offset, count, entries_size, entries, spill_capacity, spill, counters, counting);
       row_append(i, next[i], offset, count, entries_size, entries, spill_capacity, spill, counters, counting);
@@ -122,7 +135,8 @@ void gather_rows(const int n, const REAL radius_factor, __global const REAL2* xy
     {  // every kind scans: boundary and fixed nodes scatter to finer interior rows too
       const REAL2 pi = xy[i];  // positions: x, y interleaved (the step's layout)
       const REAL xi = pi.x, yi = pi.y;
-      const REAL r = radius_factor * q[i], r2 = r * r;
+      const REAL qi = q[i];
+      const REAL r = radius_factor * qi, r2 = r * r;
 #if PDMESH_DOUBLE
       const REAL box = r;
 #else
@@ -203,8 +217,13 @@ void gather_rows(const int n, const REAL radius_factor, __global const REAL2* xy
                 (nb_cell_coord(pj.x, inv_cell) != cx || nb_cell_coord(pj.y, inv_cell) != cy))
               continue;
             if (kind_i == 2) row_append(i, j, offset, count, entries_size, entries, spill_capacity, spill, counters, counting);
-            if (level[j] < own && kind[j] == 2) {
-              const REAL rj = radius_factor * q[j];
+            const int interior_j = kind[j] == 2;
+            if (interior_j && !counting && level[j] == own) q_min = fmin(q_min, q[j]);
+            if (level[j] < own && interior_j) {
+              // The finer row's radius, widened for its coarser neighbour to c q_j + s c q_i (pair_skin =
+              // s c; see the top): r_i = c (1 + s) q_i bounds it, so this scan sees every such pair.
+              const REAL qj = q[j];
+              const REAL rj = radius_factor * qj + (qj < qi ? pair_skin * (qi - qj) : (REAL)0);
               if (d2 <= rj * rj) row_append(j, i, offset, count, entries_size, entries, spill_capacity, spill, counters, counting);
             }
           }
@@ -212,9 +231,24 @@ void gather_rows(const int n, const REAL radius_factor, __global const REAL2* xy
       }
     }
     atomic_add(&local_examined, examined);
+    const REAL ratio = q_min < INFINITY ? q[i] / q_min : (REAL)0;
+    if (q_min < INFINITY) {
+      // Rounded up to the next 1/ROW_RATIO_SCALE (the unit covers a float quotient's rounding).
+      const REAL scaled = ratio * (REAL)ROW_RATIO_SCALE;
+      atomic_max(&local_ratio, scaled < (REAL)2.0e9 ? (uint)scaled + 1U : 2000000000U);
+    }
+    // Node i's skin class: ceil(SKIN_CLASS_STEPS log2 rho) for rho = max(1, ratio), plus a margin far
+    // above log2's rounding; 255 at most (larger ratios: the host scales its limit, device_run.hpp).
+    if (!counting) {
+      const REAL steps = ratio > (REAL)1 ? (REAL)SKIN_CLASS_STEPS * log2(ratio) + REAL_C(0.001) : (REAL)0;
+      skin_class[i] = steps < (REAL)254 ? (uchar)ceil(steps) : (uchar)255;
+    }
   }
   barrier(CLK_LOCAL_MEM_FENCE);
-  if (get_local_id(0) == 0) atomic_add(&counters[ROW_EXAMINED], local_examined);
+  if (get_local_id(0) == 0) {
+    atomic_add(&counters[ROW_EXAMINED], local_examined);
+    atomic_max(&counters[ROW_RATIO], local_ratio);
+  }
 }
 
 // After a sampled counting pass (see the top): per level L, tally[2 L] += the counts of its interior
@@ -242,14 +276,22 @@ void row_level_tally(const int n, __global const uchar* kind, __global const int
     if (sums[k]) atomic_add(&tally[k], sums[k]);
 }
 
+// 2^(k / SKIN_CLASS_STEPS), k < SKIN_CLASS_STEPS (the program builder's, skin_class_factor's table).
+__constant REAL skin_class_roots[SKIN_CLASS_STEPS] = {SKIN_CLASS_ROOTS};
+
 // The share of node i's skin its position p and spacing qn have used since the lists were built
-// (position pb, spacing qb): its distance from pb plus the cut-off's growth with q, over the skin.
-// One expression for device_step, refresh_budgets and boundary_snap, so that they agree bit for bit.
+// (position pb, spacing qb): its distance from pb plus the cut-off's growth with q, over the skin,
+// divided by the share node i may use, 2^(-1 - c / SKIN_CLASS_STEPS) for its skin class c (written by
+// gather_rows; host/opencl/device_run.hpp): the lists hold while every node's result stays at most 1
+// (less the host's margin). The factor 2^(1 + c / SKIN_CLASS_STEPS) from a table and exact powers of 2,
+// as the host computes it (an exp2 per node and iteration cost a libm call on PoCL). One expression
+// for device_step, refresh_budgets and boundary_snap, so that they agree bit for bit.
 REAL skin_use_of(const REAL2 p, const REAL qn, const REAL2 pb, const REAL qb, const REAL cutoff,
-                 const REAL skin_cutoff) {
+                 const REAL skin_cutoff, const uchar skin_class) {
   const REAL ex = p.x - pb.x, ey = p.y - pb.y;
   const REAL grow = qn > qb ? cutoff * (qn - qb) : (REAL)0;
-  return (sqrt(ex * ex + ey * ey) + grow) / (skin_cutoff * qb);
+  const REAL factor = (REAL)(2 << (skin_class / SKIN_CLASS_STEPS)) * skin_class_roots[skin_class % SKIN_CLASS_STEPS];
+  return (sqrt(ex * ex + ey * ey) + grow) / (skin_cutoff * qb) * factor;
 }
 
 // Insertion sort of entries[base .. base + c) ascending (rows are short and nearly sorted by cell order).

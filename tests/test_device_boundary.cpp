@@ -128,7 +128,8 @@ TEST_CASE("boundary_snap re-snaps every boundary node exactly as the host (doubl
   ocl::Buffer<std::int32_t> leaf = buffer("leaf", std::vector<std::int32_t>(n, 0)), root = buffer("root", bg.root_node),
                             child = buffer("child", bg.node_child), corner = buffer("corner", bg.leaf_corner),
                             cell = buffer("cell", bg.leaf_cell), halt = buffer("halt", std::vector<std::int32_t>(ocl::kWindowCounters, 0));
-  device.enqueue(program, 0, brec, bxy, bq, tx, ty, leaf, bxy, bq, options.cutoff, 0.3 * options.cutoff, halt,
+  ocl::Buffer<std::uint8_t> skin_class = buffer("skin_class", std::vector<std::uint8_t>(n, 0));
+  device.enqueue(program, 0, brec, bxy, bq, tx, ty, leaf, bxy, bq, skin_class, options.cutoff, 0.3 * options.cutoff, halt,
                  [&](ocl::ArgSetter& a) {
                    a(bg.origin_x)(bg.origin_y)(bg.inv_root_size)(static_cast<cl_int>(bg.grid))(root)(child)(corner)(
                        cell)(bg_q);

@@ -24,7 +24,9 @@ using namespace pdmesh::test;
 namespace {
 
 struct DeviceRows {
-  std::vector<std::int32_t> count, index;
+  std::vector<std::int32_t> count, index, level;
+  std::vector<std::uint8_t> skin_class;
+  double spacing_ratio = 0.0;
   std::vector<std::uint64_t> offset;
   NeighbourFlags flags;
   int attempts = 0;
@@ -41,7 +43,7 @@ class DeviceBuilder {
 
   ocl::DeviceNeighbours<double>& neighbours() { return nb_; }
 
-  DeviceRows build(const SimParticles& p, double cutoff) {
+  DeviceRows build(const SimParticles& p, double cutoff, double pair_skin = 0.0) {
     const std::size_t n = p.size();
     ocl::Buffer<double> xy(ctx_, "xy", 2 * n), q(ctx_, "q", n);
     ocl::Buffer<std::uint8_t> kind(ctx_, "kind", n);
@@ -54,7 +56,10 @@ class DeviceBuilder {
     prev.upload(ctx_.queue(), p.prev);
     next.upload(ctx_.queue(), p.next);
     DeviceRows out;
-    out.flags = nb_.build(n, cutoff, xy, q, kind, prev, next);
+    out.flags = nb_.build(n, cutoff, xy, q, kind, prev, next, pair_skin);
+    out.spacing_ratio = nb_.spacing_ratio;
+    nb_.level().download(ctx_.queue(), out.level, n);
+    nb_.skin_class().download(ctx_.queue(), out.skin_class, n);
     out.attempts = nb_.attempts;
     out.outgrown_rows = nb_.outgrown_rows;
     out.sampled = nb_.sampled;
@@ -372,3 +377,63 @@ TEST_CASE("a device build names the first invalid node and builds no rows", "[op
   in.p.x[170] = 0.5;
   check_rows(in, b.build(in.p, in.cutoff));
 }
+
+// The device run's lists (pair_skin = s c > 0): row i of an interior node holds every j within
+// c (1 + s) q_i and, of a coarser grid level, within c q_i + s c q_j (kernels/neighbours.cl); each node's
+// skin class is ceil(16 log2 rho) (+1 at most: the kernel's margin) of its largest ratio q_m / q_j over
+// the interior j of its own level within c (1 + s) q_m, never below it (host/opencl/device_run.hpp
+// rests on it). Brute force over every pair, with the device's grid levels.
+TEST_CASE("device rows of the run take coarser neighbours within c q_i + s c q_j, and skin classes bound the "
+          "spacing ratios of a level",
+          "[opencl][neighbour]") {
+  // Both programs: the GPU-shaped one gathers with floor() and the cell test everywhere.
+  ocl::StepProgram scalar(test_context(), ocl::Precision::Double, ocl::ForceLoop::Scalar);
+  const std::vector<Input> inputs{graded_input(false), random_input(3 * ocl::kStepWorkGroup + 5, 91, false),
+                                  dense_cluster_input(false)};
+  for (std::size_t run = 0; run < 2 * inputs.size(); ++run) {
+    ocl::StepProgram* program = run < inputs.size() ? &test_program(ocl::Precision::Double) : &scalar;
+    const Input& in = inputs[run % inputs.size()];
+    INFO("input " << in.name << ", force loop " << (program == &scalar ? "scalar" : "vector"));
+    const double skin = 0.3, c = in.cutoff, radius = c * (1.0 + skin), pair_skin = skin * c;
+    DeviceBuilder b(*program);
+    const DeviceRows got = b.build(in.p, radius, pair_skin);
+    const SimParticles& p = in.p;
+    const std::size_t n = p.size();
+    REQUIRE(got.level.size() == n);
+    double largest = 0.0;
+    std::uint64_t widened = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+      INFO("node " << i);
+      std::vector<std::int32_t> row;
+      double rho = 1.0, ratio = 0.0;
+      for (std::size_t j = 0; j < n; ++j) {
+        if (j == i) continue;
+        const double dx = p.x[j] - p.x[i], dy = p.y[j] - p.y[i], d2 = dx * dx + dy * dy;
+        const double own = radius * p.q[i];
+        // The kernel's expression, from the coarser node's scan.
+        const double wide = radius * p.q[i] + (p.q[i] < p.q[j] ? pair_skin * (p.q[j] - p.q[i]) : 0.0);
+        const bool coarser = got.level[j] > got.level[i];
+        if (d2 <= own * own || (coarser && d2 <= wide * wide)) {
+          row.push_back(static_cast<std::int32_t>(j));
+          if (!(d2 <= own * own)) ++widened;
+        }
+        if (p.kind[j] == kSimInterior && got.level[j] == got.level[i] && d2 <= own * own) {
+          ratio = std::max(ratio, p.q[i] / p.q[j]);
+          rho = std::max(rho, p.q[i] / p.q[j]);
+        }
+      }
+      largest = std::max(largest, ratio);
+      const int exact = static_cast<int>(std::ceil(16.0 * std::log2(rho)));
+      CHECK(static_cast<int>(got.skin_class[i]) >= exact);
+      CHECK(static_cast<int>(got.skin_class[i]) <= exact + 1);
+      CHECK(rho < 2.0);  // one level spans a factor 2 of radii
+      if (p.kind[i] != kSimInterior) continue;
+      REQUIRE(got.count[i] == static_cast<std::int32_t>(row.size()));
+      for (std::size_t k = 0; k < row.size(); ++k) REQUIRE(got.index[got.offset[i] + k] == row[k]);
+    }
+    CHECK(got.spacing_ratio >= largest);
+    CHECK(got.spacing_ratio <= largest + 2.0 / ocl::kRowRatioScale);
+    if (in.name == graded_input(false).name) CHECK(widened > 0);  // the widened radius is exercised
+  }
+}
+

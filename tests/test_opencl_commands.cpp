@@ -215,7 +215,10 @@ TEST_CASE("the program carries exactly one force-loop define, and the kernels re
   CHECK(scalar.at("BIN_FIRST_INVALID") == std::to_string(kBinFirstInvalid));
   CHECK(scalar.at("BIN_LEVEL_COUNT") == std::to_string(kBinHead));
   CHECK(scalar.at("ROW_SPILLED") == std::to_string(kRowSpilled));
-  CHECK(scalar.at("ROW_SPARE_FULL") == std::to_string(kRowCounters - 1));
+  CHECK(scalar.at("ROW_SPARE_FULL") == std::to_string(kRowSpareFull));
+  CHECK(scalar.at("ROW_RATIO") == std::to_string(kRowCounters - 1));
+  CHECK(scalar.at("ROW_RATIO_SCALE") == std::to_string(kRowRatioScale));
+  CHECK(scalar.at("SKIN_CLASS_STEPS") == std::to_string(kSkinClassSteps));
   CHECK(scalar.at("MAX_GAP_FRACTION") == "REAL_C(0.45)");  // BoundaryHandler::kMaxGapFraction
   // The partial sums' widths and the step counters' slots, also one definition for both sides.
   CHECK(scalar.at("STEP_PARTIALS") == std::to_string(kStepPartials));

@@ -133,10 +133,10 @@ std::string format_row(const Row& r) {
   if (r.device) {
     const ocl::DeviceRunStats& d = *r.device;
     const double it = d.iterations;
-    split = fmt::format("bin {:.2f} / gather {:.2f} / step {:.2f} / host {:.2f} / down {:.2f} / up {:.2f} ({} rebuilds, {} from a sample, {} build passes, {} rows outgrew)",
+    split = fmt::format("bin {:.2f} / gather {:.2f} / step {:.2f} / host {:.2f} / down {:.2f} / up {:.2f} ({} rebuilds, {} from a sample, {} build passes, {} rows outgrew; largest spacing ratio {:.2f})",
                         1e3 * d.bin_seconds / it, 1e3 * d.gather_seconds / it, 1e3 * d.step_seconds / it,
                         1e3 * d.host_seconds / it, 1e3 * d.download_seconds / it, 1e3 * d.upload_seconds / it,
-                        d.rebuilds, d.sampled_builds, d.gathers, d.outgrown_rows);
+                        d.rebuilds, d.sampled_builds, d.gathers, d.outgrown_rows, d.largest_spacing_ratio);
     traffic = fmt::format("{:.0f}", static_cast<double>(d.bytes_down + d.bytes_up) / it);
     device_mem = fmt::format("{:.0f}", static_cast<double>(d.device_bytes) / static_cast<double>(r.nodes));
     steady = r.commands.steady.format();

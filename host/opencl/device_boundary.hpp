@@ -43,14 +43,14 @@ class DeviceBoundary {
   template <typename BgArgs, typename RuleArgs = void(ArgSetter&)>
   bool enqueue(StepProgram& program, int cur, Buffer<Real>& brec, Buffer<Real>& xy, Buffer<Real>& q,
                Buffer<Real>& tx, Buffer<Real>& ty, Buffer<std::int32_t>& node_leaf, Buffer<Real>& xy_build,
-               Buffer<Real>& q_build, double cutoff, double skin_cutoff,
+               Buffer<Real>& q_build, Buffer<std::uint8_t>& skin_class, double cutoff, double skin_cutoff,
                Buffer<std::int32_t>& step_counters, BgArgs&& bg, RuleArgs* rule = nullptr) {
     if (slots() == 0) return false;
     cl::Kernel& kernel = rule ? program.boundary_snap_rule : program.boundary_snap;
     const char* name = rule ? "boundary_snap_rule" : "boundary_snap";
     ArgSetter a(kernel, name);
     a(static_cast<cl_int>(slots()))(slot_node_)(slot_curve_)(slot_pos_)(curve_pt_)(pts_)(pt_arc_)(arcs_[cur])(
-        arcs_[1 - cur])(brec)(xy)(q)(tx)(ty)(node_leaf)(xy_build)(q_build)(static_cast<Real>(cutoff))(
+        arcs_[1 - cur])(brec)(xy)(q)(tx)(ty)(node_leaf)(xy_build)(q_build)(skin_class)(static_cast<Real>(cutoff))(
         static_cast<Real>(skin_cutoff))(step_counters)(partials_);
     bg(a);
     if (rule) (*rule)(a);

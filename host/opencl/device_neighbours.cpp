@@ -40,7 +40,7 @@ std::size_t DeviceNeighbours<Real>::device_bytes() const {
   return count_.bytes() + offset_.bytes() + block_total_.bytes() + index_.bytes() + level_.bytes() + bin_state_.bytes() +
          grid_mask_.bytes() + grid_bucket_offset_.bytes() + grid_inv_cell_.bytes() + bucket_.bytes() + grid_nodes_.bytes() +
          bin_partial_.bytes() + counters_.bytes() + spill_.bytes() + move_node_.bytes() + move_start_.bytes() +
-         level_cap_.bytes() + tally_.bytes();
+         level_cap_.bytes() + tally_.bytes() + skin_class_.bytes();
 }
 
 template <typename Real>
@@ -54,12 +54,13 @@ int DeviceNeighbours<Real>::stride_for(std::size_t n) const {
 template <typename Real>
 NeighbourFlags DeviceNeighbours<Real>::build(std::size_t n, double radius_factor, Buffer<Real>& xy,
                                              Buffer<Real>& q, Buffer<std::uint8_t>& kind, Buffer<std::int32_t>& prev,
-                                             Buffer<std::int32_t>& next) {
+                                             Buffer<std::int32_t>& next, double pair_skin) {
   NeighbourFlags flags;
   attempts = 0;
   sampled = false;
   launches = 0;
   outgrown_rows = 0;
+  spacing_ratio = 0.0;
   uploaded_bytes = 0;
   const auto t0 = std::chrono::steady_clock::now();
   ensure_size(ctx_, counters_, "neighbour_counters", kZeroCounters.size());
@@ -75,6 +76,7 @@ NeighbourFlags DeviceNeighbours<Real>::build(std::size_t n, double radius_factor
   if (n == 0) {
     fill_zero(ctx_.queue(), offset_.get(), sizeof(cl_ulong), "clearing 'neighbour_offset'");
     ensure_size(ctx_, index_, "neighbour_index", kRowTail);
+    ensure_size(ctx_, skin_class_, "skin_class", 1);  // a kernel argument even without nodes
     counted_n_ = 0;
     gather_seconds = seconds_since(t0);
     return flags;
@@ -84,6 +86,7 @@ NeighbourFlags DeviceNeighbours<Real>::build(std::size_t n, double radius_factor
                                  (std::size_t{1} << kGridNodeBits) - 1));
   const std::size_t wg = program_.work_group, groups = (n + wg - 1) / wg;
   ensure_size(ctx_, level_, "level", n);
+  ensure_size(ctx_, skin_class_, "skin_class", n);
   ensure_size(ctx_, bin_state_, "bin_state", kBinStateSize);
   ensure_size(ctx_, bin_partial_, "bin_partial", groups + 1);
   ensure_size(ctx_, grid_mask_, "grid_mask", kBinLevels);
@@ -95,6 +98,7 @@ NeighbourFlags DeviceNeighbours<Real>::build(std::size_t n, double radius_factor
   if (member_capacity_ == 0) member_capacity_ = with_slack(4 * static_cast<std::uint64_t>(n));
   if (bucket_capacity_ == 0) bucket_capacity_ = with_slack(2 * static_cast<std::uint64_t>(n));
   const Real radius = static_cast<Real>(radius_factor);
+  pair_skin_ = static_cast<Real>(pair_skin);
   const auto n_arg = static_cast<cl_int>(n), groups_arg = static_cast<cl_int>(groups);
   // Without counts: every stride-th node's scan is counted, and the rows are laid out with capacities
   // estimated from that sample (stride 1: an exact counting pass, then the rows at those counts).
@@ -243,6 +247,7 @@ NeighbourFlags DeviceNeighbours<Real>::build(std::size_t n, double radius_factor
     flags.max_count = static_cast<std::int32_t>(c[kRowLargest]);
     flags.pairs_examined = c[kRowExamined];
     flags.pairs_within = c[kRowWithin];
+    spacing_ratio = static_cast<double>(c[kRowRatio]) / kRowRatioScale;
   }
   gather_seconds = seconds_since(t0);
   return flags;
@@ -277,7 +282,7 @@ void DeviceNeighbours<Real>::gather(cl_int n_arg, Real radius, Buffer<Real>& xy,
   ArgSetter(program_.gather_rows, "gather_rows")(n_arg)(radius)(xy)(q)(kind)(prev)(next)(level_)(bin_state_)(
       grid_mask_)(grid_bucket_offset_)(grid_inv_cell_)(bucket_)(grid_nodes_)(offset_)(count_)(entries_size)(index_)(
       static_cast<cl_uint>(spill_capacity))(spill_)(counters_)(static_cast<cl_int>(counting ? 1 : 0))(
-      static_cast<cl_int>(stride));
+      static_cast<cl_int>(stride))(skin_class_)(pair_skin_);
   const std::size_t items = (static_cast<std::size_t>(n_arg) + static_cast<std::size_t>(stride) - 1) /
                             static_cast<std::size_t>(stride);
   launch(ctx_.queue(), program_.gather_rows, "gather_rows", items, program_.work_group);

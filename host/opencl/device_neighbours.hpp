@@ -42,8 +42,11 @@ class DeviceNeighbours {
   // rows are then not built; overflow stays 0: rows are never truncated). Before the index buffer
   // grows, check_entries (when set) is called with its new size: it throws when the device cannot
   // hold it (the device-resident run's check_device_memory).
+  // pair_skin = s c > 0 (radius_factor = c (1 + s)): a finer interior row also takes each coarser
+  // node m within c q_i + s c q_m (the device run's lists, kernels/neighbours.cl); 0: the reference's rows.
   NeighbourFlags build(std::size_t n, double radius_factor, Buffer<Real>& xy, Buffer<Real>& q,
-                       Buffer<std::uint8_t>& kind, Buffer<std::int32_t>& prev, Buffer<std::int32_t>& next);
+                       Buffer<std::uint8_t>& kind, Buffer<std::int32_t>& prev, Buffer<std::int32_t>& next,
+                       double pair_skin = 0.0);
 
   // A row's capacity is c + (c >> kSpareShift) + kSpareMin for the count c of the last build: rows
   // grow a little between rebuilds as nodes move (docs/performance.md, issue 15 neighbours).
@@ -60,6 +63,8 @@ class DeviceNeighbours {
   Buffer<std::int32_t>& count() { return count_; }
   Buffer<std::uint64_t>& offset() { return offset_; }
   Buffer<std::int32_t>& index() { return index_; }
+  // Per node its skin class from the last build (kernels/neighbours.cl, gather_rows; n entries).
+  Buffer<std::uint8_t>& skin_class() { return skin_class_; }
   std::size_t device_bytes() const;
   std::function<void(std::uint64_t entries)> check_entries;
   // The device grids of the last build (kernels/binning.cl): per node its level; per level L its
@@ -77,6 +82,9 @@ class DeviceNeighbours {
   bool sampled = false;            // the last build laid its rows out from a sampled estimate
   int launches = 0;                // kernel launches of the last build
   std::uint64_t outgrown_rows = 0;  // rows of the last build that outgrew their capacities (each pass)
+  // The largest q_m / q_j over the pairs of the last build with j interior of m's grid level and
+  // |x_m - x_j| <= the radius of m, rounded up to 1/kRowRatioScale (0: no such pair); kernels/neighbours.cl.
+  double spacing_ratio = 0.0;
 
  private:
   void gather(cl_int n_arg, Real radius, Buffer<Real>& xy, Buffer<Real>& q, Buffer<std::uint8_t>& kind,
@@ -92,6 +100,8 @@ class DeviceNeighbours {
   Buffer<std::uint64_t> offset_, block_total_, move_start_;
   Buffer<std::uint32_t> counters_;
   Buffer<Real> bin_partial_, grid_inv_cell_;
+  Buffer<std::uint8_t> skin_class_;
+  Real pair_skin_ = 0;  // the last build's
   std::uint64_t bucket_capacity_ = 0, member_capacity_ = 0;  // wanted by the next build
   std::size_t counted_n_ = 0;       // nodes whose counts count_ holds (the last build's n; 0: none)
   std::uint64_t counted_total_ = 0;  // their sum

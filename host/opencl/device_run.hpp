@@ -3,6 +3,7 @@
 // device_run_state.cpp (uploads, read-backs, the saved state, population events) and
 // device_simulation.cpp (rebuilds, iterations, windows, the loop).
 #pragma once
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
@@ -25,11 +26,29 @@ namespace pdmesh::ocl {
 using Clock = std::chrono::steady_clock;
 inline double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
-// A node pair can only be missing from a Verlet list built with radius cutoff q_b (1 + skin) once
-// d_i + d_j + cutoff (q_i - q_b,i) reaches skin cutoff q_b,i. Each node's own use of its skin is
-// kept below this fraction, so the sum stays below the skin while neighbouring spacings differ by
-// less than 3x (the spacing fields here vary by far less over a cut-off distance).
-constexpr double kSkinUseLimit = 0.25;
+// How much of its skin a node may use before the lists are rebuilt. Row i (interior) holds every j
+// with |x_j,b - x_i,b| <= R_ij, where c is the cut-off, s the skin, q_b the spacings at the build:
+// R_ij = c (1 + s) q_b,i, and for j of a coarser grid level (q_b,j > q_b,i: kernels/neighbours.cl,
+// pair_skin) R_ij = c q_b,i + s c q_b,j. A needed pair, |x_j - x_i| <= c q_i, is missing only when
+// (triangle inequality; d: distances moved since the build) d_i + c (q_i - q_b,i) + d_j > R_ij - c q_b,i.
+// Each node's skin use u = (d + c max(0, q - q_b)) / (c s q_b) is kept at most its share L, so the
+// left side is at most s c (L_i q_b,i + L_j q_b,j). Every share is at most 1/2: pairs with q_b,j <=
+// q_b,i and pairs across levels hold (R_ij - c q_b,i = s c max(q_b,i, q_b,j)). A pair of one level
+// with rho = q_b,j / q_b,i in (1, 2) needs L_i + rho L_j <= 1; it can matter only when |x_j,b - x_i,b|
+// <= c q_b,i (1 + L_i s) + L_j s c q_b,j <= c (1 + s) q_b,j, within j's radius, where the build
+// measures rho_j, the largest such ratio over j's level (gather_rows). L_j <= 1 / (2 rho_j) gives rho
+// L_j <= 1/2 and L_i <= 1/2 the rest. So node j's share is 2^(-1 - c_j / kSkinClassSteps) for its skin
+// class c_j = ceil(kSkinClassSteps log2 max(1, rho_j)) (one byte per node; 0-17: a share of 0.24 at
+// least), the device divides each skin use by it (skin_use_of), and the lists hold while the largest
+// quotient stays at most 1 (less a margin far above the rounding). Before session 10 rows were R_ij = c (1 + s) q_b,i and
+// every share 0.25, which assumed rho <= 3 across levels without measuring it (30P30N's thesis case
+// has pairs at 4.5: docs/performance.md, "Neighbour work per iteration, session 10").
+// The limit on the quotient: 1 less the margin (a ratio beyond the largest class, which a level's
+// factor 2 rules out, would scale it down).
+inline double skin_use_limit(double largest_spacing_ratio) {
+  const double top = std::exp2(254.0 / kSkinClassSteps);
+  return (1.0 - 1e-4) * (largest_spacing_ratio > top ? top / largest_spacing_ratio : 1.0);
+}
 
 template <typename Real>
 class DeviceRun {
@@ -176,6 +195,8 @@ class DeviceRun {
   std::vector<Real> positions_host_[2];  // xy, q
   std::vector<std::int32_t> cand_index_host_;
   double skin_use_ = HUGE_VAL;                       // since the last build; HUGE_VAL forces a build
+  double skin_limit_ = skin_use_limit(0.0);  // the largest skin use over share the current lists allow
+  std::vector<std::uint8_t> skin_class_host_;  // the last build's skin classes (host_boundary's test)
   std::uint64_t pairs_examined_ = 0;  // rebuild candidates plus, every iteration, the entries of the current lists
   std::uint64_t list_entries_ = 0;    // entries of the current lists (within the skin radius)
   std::size_t within_ = 0, coincident_ = 0, sum_moving_ = 0;

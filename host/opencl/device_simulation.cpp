@@ -25,7 +25,8 @@ void DeviceRun<Real>::rebuild() {
     read(q_[cur_], v[1], n, false);
   }
   const double radius = options_.cutoff * (1.0 + options_.verlet_skin);
-  NeighbourFlags flags = neighbours_.build(n, radius, xy_[cur_], q_[cur_], kind_, prev_, next_);
+  NeighbourFlags flags = neighbours_.build(n, radius, xy_[cur_], q_[cur_], kind_, prev_, next_,
+                                           options_.verlet_skin * options_.cutoff);
   if (stats_.rebuilds > 0) {
     build_x_.resize(n);
     build_y_.resize(n);
@@ -51,6 +52,10 @@ void DeviceRun<Real>::rebuild() {
   stats_.rebuild_candidates += flags.pairs_examined;
   stats_.pairs_listed += flags.pairs_within;
   list_entries_ = flags.pairs_within;
+  skin_limit_ = skin_use_limit(neighbours_.spacing_ratio);
+  stats_.largest_spacing_ratio = std::max(stats_.largest_spacing_ratio, neighbours_.spacing_ratio);
+  // The host's test of the nodes it moves needs their classes: read with the next wait (a window's).
+  read(neighbours_.skin_class(), skin_class_host_, n, false);
   // The build state the skin is measured from.
   copy_buffer(ctx_.queue(), xy_[cur_].get(), xy_build_.get(), 2 * n * sizeof(Real), "copy to the build state");
   copy_buffer(ctx_.queue(), q_[cur_].get(), q_build_.get(), n * sizeof(Real), "copy to the build state");
@@ -68,7 +73,7 @@ void DeviceRun<Real>::enqueue_iteration(int cur) {
   a(static_cast<cl_int>(n_))(static_cast<Real>(options_.cutoff))(
       static_cast<Real>(options_.lj_a))(static_cast<cl_int>(options_.r0_any_direction ? 1 : 0))(
       static_cast<Real>(options_.stability_factor))(window_.dt2())(static_cast<Real>(options_.verlet_skin * options_.cutoff))(xy_[cur])(
-      q_[cur])(kind_)(tx_)(ty_)(neighbours_.count())(neighbours_.offset())(neighbours_.index())(xy_build_)(q_build_)(bslot_)(
+      q_[cur])(kind_)(tx_)(ty_)(neighbours_.count())(neighbours_.offset())(neighbours_.index())(xy_build_)(q_build_)(neighbours_.skin_class())(bslot_)(
       xy_[next])(q_[next])(budget_)(node_leaf_)(brec_)(cand_index_)(cand_rec_)(counters_)(partials_)(
       device_boundary_.segments())(static_cast<cl_int>(device_boundary_.segment_count()))(
       static_cast<Real>(device_boundary_.segment_scale()))(static_cast<Real>(options_.momentum))(carried_);
@@ -77,7 +82,7 @@ void DeviceRun<Real>::enqueue_iteration(int cur) {
   ++stats_.launches;
   if (program_.force_loop == ForceLoop::Scalar) {  // PDMESH_REFRESH_KERNEL: the clearance refresh apart
     ArgSetter r(program_.refresh_budgets, "refresh_budgets");
-    r(static_cast<cl_int>(n_))(counters_)(cand_index_)(cand_rec_)(budget_)(q_[next])(xy_build_)(q_build_)(
+    r(static_cast<cl_int>(n_))(counters_)(cand_index_)(cand_rec_)(budget_)(q_[next])(xy_build_)(q_build_)(neighbours_.skin_class())(
         static_cast<Real>(options_.cutoff))(static_cast<Real>(options_.verlet_skin * options_.cutoff))(
         device_boundary_.segments())(static_cast<cl_int>(device_boundary_.segment_count()))(
         static_cast<Real>(device_boundary_.segment_scale()))(partials_);
@@ -90,6 +95,7 @@ void DeviceRun<Real>::enqueue_iteration(int cur) {
   bool rule_done = false;
   if (!boundary_nodes_.empty() &&
       device_boundary_.enqueue(program_, cur, brec_, xy_[next], q_[next], tx_, ty_, node_leaf_, xy_build_, q_build_,
+                               neighbours_.skin_class(),
                                options_.cutoff, options_.verlet_skin * options_.cutoff, counters_,
                                [this](ArgSetter& a) { bg_args(a); }, window_.device_rule() ? &rule : nullptr)) {
     ++stats_.launches;
@@ -113,7 +119,7 @@ void DeviceRun<Real>::start_window(int first, const GlobalTimeStep& gm) {
          !population_event_due(options_.population, population_.schedule, last, options_.iterations))
     ++last;
   const auto t0 = Clock::now();
-  window_.begin(gm, skin_use_, kSkinUseLimit, counters_);
+  window_.begin(gm, skin_use_, skin_limit_, counters_);
   for (int k = 0; k <= last - first; ++k) enqueue_iteration(cur_ ^ (k & 1));
   window_rows_ = window_.finish_window(ctx_, groups(), partials_, device_boundary_.partial_count(program_.work_group),
                                        device_boundary_.partials(), counters_);
@@ -139,8 +145,8 @@ template <typename Real>
 int DeviceRun<Real>::window_length() const {
   const int most = window_.max_length();
   double predicted = 0.0;
-  if (since_build_ > 0 && skin_use_ > 0.0 && skin_use_ <= kSkinUseLimit)
-    predicted = (kSkinUseLimit - skin_use_) * since_build_ / skin_use_;
+  if (since_build_ > 0 && skin_use_ > 0.0 && skin_use_ <= skin_limit_)
+    predicted = (skin_limit_ - skin_use_) * since_build_ / skin_use_;
   else if (build_interval_ > 0)
     predicted = build_interval_ - since_build_;
   else
@@ -244,8 +250,9 @@ BoundaryCounts DeviceRun<Real>::host_boundary(double& skin_use) {
     const double ex = p.x - build_x_[i], ey = p.y - build_y_[i];
     const double q = background_.at(p);
     const double grow = q > build_q_[i] ? options_.cutoff * (q - build_q_[i]) : 0.0;
-    skin_use = std::max(skin_use, (std::sqrt(ex * ex + ey * ey) + grow) / (options_.verlet_skin * options_.cutoff *
-                                                                            build_q_[i]));
+    skin_use = std::max(skin_use, (std::sqrt(ex * ex + ey * ey) + grow) /
+                                      (options_.verlet_skin * options_.cutoff * build_q_[i]) *
+                                      skin_class_factor(skin_class_host_[i]));
   };
   for (std::int32_t node : candidates_) add(node);
   stats_.host_seconds += since(t0);
@@ -315,7 +322,7 @@ SimResult DeviceRun<Real>::run(const SimCallbacks& callbacks) {
       result.converged = true;
     for (; iteration <= options_.iterations && !result.converged; ++iteration) {
       // A zero skin rebuilds every iteration (the reference's behaviour).
-      if (skin_use_ > kSkinUseLimit || options_.verlet_skin == 0.0) {
+      if (skin_use_ > skin_limit_ || options_.verlet_skin == 0.0) {
         // The device halts a window where the skin is used up, so no row of it is left here.
         if (window_next_ < window_rows_)
           throw SimulationError(fmt::format("iteration {}: a rebuild is due with {} device iterations unread",
@@ -349,7 +356,7 @@ SimResult DeviceRun<Real>::run(const SimCallbacks& callbacks) {
         // The rows are stale after a snap: the snapped node still holds its interior row (node_forces
         // does not filter a boundary node's row) and its new curve neighbours their old [prev, next].
         // The host reference rebuilds on any kind change (NeighbourCache), so the next step must too.
-        if (skin_use_ <= kSkinUseLimit) ++stats_.snap_rebuilds;
+        if (skin_use_ <= skin_limit_) ++stats_.snap_rebuilds;
         skin_use_ = HUGE_VAL;
       }
       const auto event = population_event(iteration);

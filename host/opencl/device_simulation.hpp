@@ -20,6 +20,7 @@ struct DeviceRunStats {
   int windows = 0;                   // windows of iterations enqueued without a wait (device_window.hpp)
   CommandCounts rebuild_commands;    // the commands of the rebuilds (and the state they save), all of them
   int snap_rebuilds = 0;             // of those, forced by a snap alone (the skin had room left)
+  double largest_spacing_ratio = 0.0;  // of any build (DeviceNeighbours::spacing_ratio; skin classes: device_run.hpp)
   int gathers = 0;                   // neighbour build passes: one per rebuild, more when grids or rows outgrew their capacities
   std::uint64_t outgrown_rows = 0;   // rows that outgrew their capacities, summed over the passes
   std::size_t sampled_builds = 0;    // builds laid out from a sampled estimate (no counts yet: device_neighbours.hpp)

@@ -122,8 +122,15 @@ std::map<std::string, std::string> step_program_defines(Precision precision, std
                                    {"ROW_LARGEST", kRowLargest}, {"ROW_EXAMINED", kRowExamined},
                                    {"ROW_WITHIN", kRowWithin}, {"ROW_SPILLED", kRowSpilled},
                                    {"ROW_SPARE_USED", kRowSpareUsed}, {"ROW_MOVED", kRowMoved},
-                                   {"ROW_SPARE_FULL", kRowSpareFull}})
+                                   {"ROW_SPARE_FULL", kRowSpareFull}, {"ROW_RATIO", kRowRatio}})
     d.emplace(name, std::to_string(static_cast<int>(slot)));
+  d.emplace("ROW_RATIO_SCALE", std::to_string(kRowRatioScale));
+  d.emplace("SKIN_CLASS_STEPS", std::to_string(kSkinClassSteps));
+  std::string roots;
+  for (int k = 0; k < kSkinClassSteps; ++k)
+    // Shortest round trip (the same double), always with a point or an exponent: REAL_C(1.0) pastes an f in float.
+    roots += fmt::format("{}REAL_C({:#})", k ? ", " : "", skin_class_root(k));
+  d.emplace("SKIN_CLASS_ROOTS", roots);
   for (const auto& [name, value] : window_defines())
     if (!d.emplace(name, value).second) throw DeviceError(fmt::format("step program: the define {} is given twice", name));
   return d;

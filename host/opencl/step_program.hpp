@@ -3,6 +3,7 @@
 // of the force loop chosen for the device (ForceLoop), plus the argument helper every launch uses
 // (errors name the kernel and the argument).
 #pragma once
+#include <cmath>
 #include <cstdint>
 #include <map>
 #include <string>
@@ -77,8 +78,20 @@ enum RowCounter : int {
   kRowSpareUsed = 6,  // spare entries taken by moved rows
   kRowMoved = 7,      // rows moved behind the others
   kRowSpareFull = 8,  // the spare region was full: build again
-  kRowCounters = 9    // how many
+  kRowRatio = 9,      // the largest q_m / q_j of a pair within r_m, j interior, in 1/kRowRatioScale (atomic max)
+  kRowCounters = 10   // how many
 };
+// kRowRatio's fixed point: gather_rows rounds q_m / q_j * kRowRatioScale up (ROW_RATIO_SCALE).
+inline constexpr std::uint32_t kRowRatioScale = 4096;
+// A node's skin class c (gather_rows, one byte per node) allows it the share 2^(-1 - c / kSkinClassSteps)
+// of its skin (SKIN_CLASS_STEPS; opencl/device_run.hpp).
+inline constexpr int kSkinClassSteps = 16;
+// 2^(k / kSkinClassSteps) for k < kSkinClassSteps (SKIN_CLASS_ROOTS); class c's quotient factor is
+// 2^(1 + c / kSkinClassSteps) = (2 << c / kSkinClassSteps) root(c % kSkinClassSteps) on both sides.
+inline double skin_class_root(int k) { return std::exp2(static_cast<double>(k) / kSkinClassSteps); }
+inline double skin_class_factor(int c) {
+  return static_cast<double>(2 << (c / kSkinClassSteps)) * skin_class_root(c % kSkinClassSteps);
+}
 
 // What the device allows one kernel of the program (clGetKernelWorkGroupInfo).
 struct KernelLimits {
