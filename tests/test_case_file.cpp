@@ -277,42 +277,72 @@ TEST_CASE("the preset key selects the defaults, and keys the file sets win over 
   // An override selects it too, and a bad value names the key and the choices.
   CHECK(parse_case_text(kMinimal, kCase, {parse_set_option("preset=thesis")}).preset == Preset::Thesis);
   CHECK_THAT(error_of(std::string("preset = \"quick\"\n") + kMinimal),
-             Catch::Contains("preset must be one of best, thesis, fast, got 'quick'"));
+             Catch::Contains("preset must be one of best, thesis, long, fast, got 'quick'"));
   CHECK_THAT(error_of(std::string("preset = 3\n") + kMinimal), Catch::Contains("preset must be a string"));
 }
 
-TEST_CASE("the fast preset: best with momentum, a compressed schedule and rule, a stronger cleanup", "[app][case]") {
+TEST_CASE("the best preset is long with momentum, a compressed schedule and rule, a stronger cleanup, and fast is best",
+          "[app][case]") {
   const CaseConfig best = parse_case_text(kMinimal, kCase);
+  const CaseConfig long_ = parse_case_text(std::string("preset = \"long\"\n") + kMinimal, kCase);
   const CaseConfig fast = parse_case_text(std::string("preset = \"fast\"\n") + kMinimal, kCase);
+  const CaseConfig thesis = parse_case_text(std::string("preset = \"thesis\"\n") + kMinimal, kCase);
+  CHECK(best.preset == Preset::Best);
+  CHECK(long_.preset == Preset::Long);
   CHECK(fast.preset == Preset::Fast);
+  CHECK(std::string(to_string(long_.preset)) == "long");
   CHECK(std::string(to_string(fast.preset)) == "fast");
-  // What it shares with best.
-  CHECK(fast.simulation.stop == StopRule::Converged);
-  CHECK(fast.population.enabled);
-  CHECK(fast.cleanup.enabled);
-  CHECK(fast.boundary.nodes == best.boundary.nodes);
-  CHECK(fast.spacing.gradation == best.spacing.gradation);
-  CHECK(fast.simulation.precision == Precision::Auto);
-  // What it changes.
-  CHECK(best.simulation.momentum == 0.0);
-  CHECK(fast.simulation.momentum == 0.9);
-  CHECK(fast.population.stop == 0.2);
-  CHECK(fast.population.insert.first == 0.7);
-  CHECK(fast.population.insert.last == 0.7);
-  CHECK(fast.population.settle == 1e-3);
-  CHECK(fast.population.settle_events == 2);
-  CHECK(fast.simulation.stop_aspect == 1e-3);
-  CHECK(best.simulation.stop_every == 100);
-  CHECK(best.simulation.stop_window == 400);
-  CHECK(best.simulation.stop_min == 400);
-  CHECK(fast.simulation.stop_every == 50);
-  CHECK(fast.simulation.stop_window == 200);
-  CHECK(fast.simulation.stop_min == 300);
-  CHECK(fast.cleanup.min_angle == 40.0);
-  CHECK(fast.cleanup.iterations == 32);
+  CHECK(std::string(to_string(best.preset)) == "best");
+  // What long shares with best.
+  for (const CaseConfig* c : {&long_, &fast}) {
+    CHECK(c->simulation.stop == StopRule::Converged);
+    CHECK(c->population.enabled);
+    CHECK(c->cleanup.enabled);
+    CHECK(c->boundary.nodes == best.boundary.nodes);
+    CHECK(c->spacing.gradation == best.spacing.gradation);
+    CHECK(c->simulation.precision == Precision::Auto);
+  }
+  // What best (and fast, its session-9 name) set, and long's values: a CaseConfig's initializers.
+  const CaseConfig initializers;
+  CHECK(initializers.preset == Preset::Long);
+  for (const CaseConfig* c : {&best, &fast}) {
+    CHECK(c->simulation.momentum == 0.9);
+    CHECK(c->population.stop == 0.2);
+    CHECK(c->population.insert.first == 0.7);
+    CHECK(c->population.insert.last == 0.7);
+    CHECK(c->population.settle == 1e-3);
+    CHECK(c->population.settle_events == 2);
+    CHECK(c->simulation.stop_aspect == 1e-3);
+    CHECK(c->simulation.stop_every == 50);
+    CHECK(c->simulation.stop_window == 200);
+    CHECK(c->simulation.stop_min == 300);
+    CHECK(c->cleanup.min_angle == 40.0);
+    CHECK(c->cleanup.iterations == 32);
+  }
+  for (const CaseConfig* c : {&long_, &thesis, &initializers}) {
+    CHECK(c->simulation.momentum == 0.0);
+    CHECK(c->population.stop == 0.8);
+    CHECK(c->population.insert.first == 0.75);
+    CHECK(c->population.insert.last == 0.7);
+    CHECK(c->population.settle == 0.0);
+    CHECK(c->simulation.stop_aspect == 5e-4);
+    CHECK(c->simulation.stop_every == 100);
+    CHECK(c->simulation.stop_window == 400);
+    CHECK(c->simulation.stop_min == 400);
+    CHECK(c->cleanup.min_angle == 30.0);
+    CHECK(c->cleanup.iterations == 16);
+  }
+  // Applying one preset after another leaves nothing of the first behind.
+  CaseConfig by_hand = best;
+  apply_preset(by_hand, Preset::Long);
+  CHECK(by_hand.simulation.momentum == 0.0);
+  CHECK(by_hand.simulation.stop_every == 100);
+  CHECK(by_hand.cleanup.min_angle == 30.0);
+  apply_preset(by_hand, Preset::Best);
+  CHECK(by_hand.simulation.momentum == 0.9);
   // A key the file sets wins over the preset, and --set selects it.
-  CHECK(parse_case_text(std::string("preset = \"fast\"\n") + kMinimal + "[simulation]\nmomentum = 0.5\n", kCase)
-            .simulation.momentum == 0.5);
+  CHECK(parse_case_text(kMinimal + std::string("[simulation]\nmomentum = 0.5\n"), kCase).simulation.momentum == 0.5);
+  CHECK(parse_case_text(kMinimal, kCase, {parse_set_option("preset=long")}).simulation.momentum == 0.0);
   CHECK(parse_case_text(kMinimal, kCase, {parse_set_option("preset=fast")}).simulation.momentum == 0.9);
 }
 
@@ -348,8 +378,8 @@ TEST_CASE("population keys: best runs it, thesis does not, every value is checke
   CHECK(best.population.enabled);
   CHECK(best.population.every == 50);
   CHECK(best.population.start == 100);
-  CHECK(best.population.stop == 0.8);
-  CHECK(best.population.settle == 0.0);
+  CHECK(best.population.stop == 0.2);
+  CHECK(best.population.settle == 1e-3);
   CHECK(best.population.settle_events == 2);
   CHECK_FALSE(parse_case_text(std::string("preset = \"thesis\"\n") + kMinimal, kCase).population.enabled);
   // The file wins over the preset.
@@ -396,8 +426,8 @@ TEST_CASE("cleanup keys: best cleans, thesis does not, a key wins over the prese
           "[app][case]") {
   const CaseConfig best = parse_case_text(kMinimal, kCase);
   CHECK(best.cleanup.enabled);
-  CHECK(best.cleanup.min_angle == 30.0);
-  CHECK(best.cleanup.iterations == 16);
+  CHECK(best.cleanup.min_angle == 40.0);
+  CHECK(best.cleanup.iterations == 32);
   CHECK(best.cleanup.topology);
   CHECK(best.cleanup.split_boundary);
   CHECK_FALSE(parse_case_text(std::string("preset = \"thesis\"\n") + kMinimal, kCase).cleanup.enabled);
@@ -520,11 +550,11 @@ TEST_CASE("simulation.stop: best converges, thesis counts, a key wins over the p
 
 TEST_CASE("simulation.stop_aspect / stop_angle: the convergence rule's tolerances, checked", "[app][case][convergence]") {
   const CaseConfig best = parse_case_text(kMinimal, kCase);
-  CHECK(best.simulation.stop_aspect == 5e-4);
+  CHECK(best.simulation.stop_aspect == 1e-3);
   CHECK(best.simulation.stop_angle == 0.25);
   const CaseConfig set =
-      parse_case_text(std::string(kMinimal) + "[simulation]\nstop_aspect = 1e-3\nstop_angle = 0.5\n", kCase);
-  CHECK(set.simulation.stop_aspect == 1e-3);
+      parse_case_text(std::string(kMinimal) + "[simulation]\nstop_aspect = 2e-3\nstop_angle = 0.5\n", kCase);
+  CHECK(set.simulation.stop_aspect == 2e-3);
   CHECK(set.simulation.stop_angle == 0.5);
   CHECK(parse_case_text(kMinimal, kCase, {parse_set_option("simulation.stop_aspect=0")}).simulation.stop_aspect == 0.0);
   CHECK_THAT(error_of(std::string(kMinimal) + "[simulation]\nstop_aspect = 0.2\n"),
@@ -547,8 +577,8 @@ TEST_CASE("simulation.stop_every / stop_window / stop_min: the rule's interval, 
              Catch::Contains("simulation.stop_min must be in [0, 1000000], got -5"));
   CHECK_THAT(error_of(std::string(kMinimal) + "[simulation]\nstop_window = 2.5\n"),
              Catch::Contains("simulation.stop_window must be an integer"));
-  // The window starts at a measurement, so it is a multiple of the interval (400 is not of 150).
+  // The window starts at a measurement, so it is a multiple of the interval (best's 200 is not of 150).
   CHECK_THAT(error_of(std::string(kMinimal) + "[simulation]\nstop_every = 150\n"),
-             Catch::Contains("simulation.stop_window must be a multiple of simulation.stop_every (150), got 400") &&
+             Catch::Contains("simulation.stop_window must be a multiple of simulation.stop_every (150), got 200") &&
                  Catch::Contains(":4:"));
 }

@@ -331,10 +331,10 @@ TEST_CASE("simulation_options: the stop tolerances and population settling keys 
   CHECK(d.convergence.min_iterations == ConvergenceOptions{}.min_iterations);
 }
 
-TEST_CASE("the fast preset converges a geometry alone in a fraction of best's iterations (host driver)",
+TEST_CASE("the best preset converges a geometry alone in a fraction of long's iterations (host driver)",
           "[convergence][sim][preset]") {
-  // circle_circle with the fast preset over its file's thesis one: momentum, population control to
-  // iteration 400 at most, the rule every 50 over 200 from 300. Best's own schedule (events to
+  // circle_circle with the best preset over its file's thesis one: momentum, population control to
+  // iteration 400 at most, the rule every 50 over 200 from 300. The long preset's schedule (events to
   // iteration 1600, a 400-iteration window) cannot stop before 1000.
   const auto run = [](const char* preset) {
     CaseConfig config = load_case_file(std::string(PDMESH_SOURCE_DIR) + "/cases/circle_circle/case.toml",
@@ -346,18 +346,18 @@ TEST_CASE("the fast preset converges a geometry alone in a fraction of best's it
     options.background = &inputs.pipeline().background();
     return std::pair{options, run_simulation(nodes, *inputs.tree, inputs.field(), options)};
   };
-  const auto [fast_options, fast] = run("fast");
+  const auto [fast_options, fast] = run("best");
   CHECK(fast_options.momentum == 0.9);
   CHECK(fast_options.population.enabled);
   CHECK(fast_options.convergence.enabled);
   REQUIRE(fast.converged);
   const int stop = fast.state.iterations_done;
-  INFO("the fast preset converged after " << stop);
+  INFO("the best preset converged after " << stop);
   CHECK(stop % 50 == 0);
   CHECK(stop >= 300);
   CHECK(stop < 1000);
-  const auto [best_options, best] = run("best");
-  CHECK(best_options.momentum == 0.0);
-  CHECK_FALSE(best.converged);
-  CHECK(best.state.iterations_done == 1000);
+  const auto [long_options, long_run] = run("long");
+  CHECK(long_options.momentum == 0.0);
+  CHECK_FALSE(long_run.converged);
+  CHECK(long_run.state.iterations_done == 1000);
 }

@@ -151,10 +151,15 @@ void apply_override(toml::table& root, const CaseOverride& o, Reader& r) {
 
 CaseConfig check_values(const toml::table& root, const Reader& r, CaseConfig c) {
   check_keys(r, root, "");
-  // The preset first: it sets the defaults that every other key then overrides.
+  // The preset first (best unless the file names one): it sets the defaults that every other key then
+  // overrides. c holds the long preset's values (CaseConfig's initializers) until then.
+  Preset preset = Preset::Best;
   if (const toml::node* n = root.get("preset")) {
-    apply_preset(c, choose<Preset>(r, "preset", *n, {{"best", Preset::Best}, {"thesis", Preset::Thesis}, {"fast", Preset::Fast}}));
+    preset = choose<Preset>(r, "preset", *n,
+                            {{"best", Preset::Best}, {"thesis", Preset::Thesis}, {"long", Preset::Long},
+                             {"fast", Preset::Fast}});
   }
+  apply_preset(c, preset);
   if (const toml::node* n = root.get("name")) {
     c.name = r.string("name", *n);
     if (c.name.empty()) r.fail("name", n, "name must not be empty");

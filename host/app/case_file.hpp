@@ -27,14 +27,18 @@ enum class CurveKind { Polyline, Smooth };
 enum class StopRule { Converged, Iterations };
 
 // Which defaults the keys a case file leaves out take (top-level key `preset`).
-//   Best:   the settings that give the best meshes; what a geometry given alone runs with.
+//   Best:   the settings that give the best meshes; what a geometry given alone runs with: heavy-ball
+//           momentum, a compressed population schedule and stopping rule, and a 40-degree cleanup
+//           (docs/cli.md, "Presets"; docs/performance.md, sessions 9-10).
 //   Thesis: Fackler's settings, so that the thesis case files reproduce chapter 6 (report/).
-// The member initializers of CaseConfig below are the Best values; apply_preset() (app/presets.cpp)
-// changes the keys whose thesis value differs. Keys the file sets always win over the preset.
-//   Fast:   best with heavy-ball momentum and a compressed schedule (population control, the stopping
-//           rule) and a stronger cleanup: about a third of best's iterations, a worst triangle that
-//           is not always as good (docs/cli.md, "Presets"; docs/performance.md, session 9).
-enum class Preset { Best, Thesis, Fast };
+//   Long:   best as it was until session 10: no momentum, population control to 80 % of the run, the
+//           rule every 100 iterations over a 400-iteration window, a 30-degree cleanup. Three times the
+//           iterations for the same or a slightly better worst triangle on some geometries.
+//   Fast:   the name best's schedule had in session 9; the same settings as Best.
+// The member initializers of CaseConfig below are the Long values (those of the library's option
+// structs); apply_preset() (app/presets.cpp) changes the keys whose value differs in the other
+// presets. Keys the file sets always win over the preset.
+enum class Preset { Best, Thesis, Fast, Long };
 
 // A zoom window: an extra picture NAME_VIEW.png of the region [x0, x1] x [y0, y1].
 struct ViewWindow {
@@ -54,7 +58,9 @@ struct CaseOverride {
 struct CaseConfig {
   std::filesystem::path source;  // the case file, or the geometry file when meshing one directly
   std::string name;              // for titles; default: the case directory name (or geometry file stem)
-  Preset preset = Preset::Best;  // top-level key `preset`: "best" (default), "thesis" or "fast"
+  // Top-level key `preset`: "best" (a case file's default), "thesis", "long" or "fast". A CaseConfig
+  // built in code holds the long preset's values until apply_preset() runs (a parsed one always has).
+  Preset preset = Preset::Long;
 
   struct Geometry {
     std::vector<std::filesystem::path> files;  // resolved relative to the case file

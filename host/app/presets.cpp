@@ -1,22 +1,30 @@
-// The two presets of the case-file defaults (docs/cli.md, "Presets"): `best`, the settings that give
-// the best meshes, which a geometry given alone runs with; and `thesis`, Fackler's settings, which
-// the thesis case files name so that report/ still reproduces chapter 6.
+// The presets of the case-file defaults (docs/cli.md, "Presets"): `best`, the settings that give the
+// best meshes, which a geometry given alone runs with (`fast` is its session-9 name); `thesis`,
+// Fackler's settings, which the thesis case files name so that report/ still reproduces chapter 6;
+// and `long`, best's schedule before session 10 (no momentum, three times the iterations).
 #include "app/case_file.hpp"
 
 namespace pdmesh {
 
 const char* to_string(Preset preset) {
-  return preset == Preset::Thesis ? "thesis" : (preset == Preset::Fast ? "fast" : "best");
+  switch (preset) {
+    case Preset::Thesis: return "thesis";
+    case Preset::Fast: return "fast";
+    case Preset::Long: return "long";
+    case Preset::Best: break;
+  }
+  return "best";
 }
 
 namespace {
 
-// Fast = best plus these (the study's candidate M4, docs/performance.md "Momentum and an early stop,
-// session 9"): over the 16 study runs it stops after 500-750 iterations instead of 1300-2000 (summed
-// medians 9,500 against 30,300) with a lower mean aspect ratio everywhere, but its smallest angle
-// swings by up to 4 degrees with small changes of the schedule and was 1.9 degrees below best's on
-// one case (plate), so it is not the default.
-void apply_fast(CaseConfig& c) {
+// Best (and fast) = long plus these (the study's candidate M4, docs/performance.md "Momentum and an
+// early stop, session 9"): over the 16 study runs it stops after 500-750 iterations instead of
+// 1300-2000 (summed medians 9,500 against 30,300) with a lower mean aspect ratio everywhere. With the
+// cleanup's compound trials (session 10) its smallest angle is within 0.5 degrees of long's or better
+// on all 16 runs (medians of 3); under other population intervals it still loses 0.6-2.6 degrees on
+// three of them, all at or above 40.3 degrees (docs/performance.md, "The cleanup's last defects").
+void apply_momentum_schedule(CaseConfig& c) {
   // Heavy-ball momentum: the lattice's defects anneal ~4x faster (docs/simulation.md, "Momentum").
   c.simulation.momentum = 0.9;
   // Population control only over the first fifth of the maximum (to iteration 400 of 2000), with a
@@ -27,7 +35,7 @@ void apply_fast(CaseConfig& c) {
   c.population.settle = 1e-3;
   c.population.settle_events = 2;
   // The rule on the faster time scale: measured every 50 iterations over a 200-iteration window, from
-  // iteration 300, with twice best's aspect-ratio tolerance.
+  // iteration 300, with twice long's aspect-ratio tolerance.
   c.simulation.stop_aspect = 1e-3;
   c.simulation.stop_every = 50;
   c.simulation.stop_window = 200;
@@ -37,13 +45,30 @@ void apply_fast(CaseConfig& c) {
   c.cleanup.iterations = 32;
 }
 
+// The long preset's values of the keys apply_momentum_schedule sets: CaseConfig's initializers. So
+// applying one preset after another leaves no key of the first behind.
+void apply_long_schedule(CaseConfig& c) {
+  const CaseConfig long_values;
+  c.simulation.momentum = long_values.simulation.momentum;
+  c.population.stop = long_values.population.stop;
+  c.population.insert = long_values.population.insert;
+  c.population.settle = long_values.population.settle;
+  c.population.settle_events = long_values.population.settle_events;
+  c.simulation.stop_aspect = long_values.simulation.stop_aspect;
+  c.simulation.stop_every = long_values.simulation.stop_every;
+  c.simulation.stop_window = long_values.simulation.stop_window;
+  c.simulation.stop_min = long_values.simulation.stop_min;
+  c.cleanup.min_angle = long_values.cleanup.min_angle;
+  c.cleanup.iterations = long_values.cleanup.iterations;
+}
+
 }  // namespace
 
 void apply_preset(CaseConfig& c, Preset preset) {
   c.preset = preset;
   const bool thesis = preset == Preset::Thesis;
-  // One line per key whose default differs between the presets; CaseConfig's member initializers
-  // hold the best values. Each line says what the thesis does instead.
+  // One line per key whose default differs between thesis and the others; CaseConfig's member
+  // initializers hold the long preset's values. Each line says what the thesis does instead.
   // Double on every device: the thesis runs reproduce the host reference where a device can (best: auto,
   // float on GPUs whose fp64 is slow).
   c.simulation.precision = thesis ? Precision::Double : Precision::Auto;
@@ -63,7 +88,11 @@ void apply_preset(CaseConfig& c, Preset preset) {
   // The thesis runs a fixed 2000 iterations (its report histories and Table 6.x); best stops once the
   // nodes have converged (sim/convergence.hpp), with simulation.iterations as the most it may take.
   c.simulation.stop = thesis ? StopRule::Iterations : StopRule::Converged;
-  if (preset == Preset::Fast) apply_fast(c);
+  // Best's schedule (momentum, a compressed population schedule and rule, a 40-degree cleanup); the
+  // thesis keeps long's values of those keys (no momentum; its rule, population control and cleanup
+  // are off, but a file may switch them on).
+  if (preset == Preset::Best || preset == Preset::Fast) apply_momentum_schedule(c);
+  else apply_long_schedule(c);
 }
 
 }  // namespace pdmesh
