@@ -184,7 +184,7 @@ namespace {
 std::string population_command(const fs::path& out, const std::string& extra) {
   return "mesh '" + std::string(PDMESH_SOURCE_DIR) + "/cases/circle_circle/circles.crv' --out '" + out.string() +
          "' --device host --formats msh --iterations 90 --method random --seed 3 -q --set population.start=20 "
-         "--set population.every=10 " + extra;
+         "--set population.every=10 --set population.stop=0.8 " + extra;
 }
 
 // Stops `parts`' run (made by `command`) after iteration 45 again, then resumes its checkpoint with
@@ -437,13 +437,14 @@ TEST_CASE("a checkpoint of a mesh field knows its file's content and array", "[r
 }
 
 TEST_CASE("population control's identity names the settle keys only when settling is on", "[resume]") {
-  const std::string text = "[geometry]\nfiles = [\"" + kCase + "/circles.crv\"]\n";
+  // The long preset: settling off by default (best settles).
+  const std::string text = "preset = \"long\"\n[geometry]\nfiles = [\"" + kCase + "/circles.crv\"]\n";
   const auto schedule = [&](const std::string& extra) {
     for (const auto& [name, v] : pdmesh::case_identity(pdmesh::parse_case_text(text + extra, "case.toml")))
       if (name == "population.schedule") return v;
     return std::string("(none)");
   };
-  // Off (the default): the string of the checkpoints written before the keys existed, so they resume.
+  // Off (long's default): the string of the checkpoints written before the keys existed, so they resume.
   CHECK(schedule("") == "every 50 start 100 stop 0.8");
   CHECK(schedule("[population]\nsettle = 0.001\n") == "every 50 start 100 stop 0.8 settle 0.001 2");
   CHECK(schedule("[population]\nsettle = 0.001\nsettle_events = 3\n") !=
