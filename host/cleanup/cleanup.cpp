@@ -149,10 +149,13 @@ CleanupResult clean_mesh(const Mesh& mesh, const NodeSet& nodes, const GeometryT
       // Triangles that failed before are dropped before the sort rather than after it: after the first
       // pass they are nearly all of the list, and the order of the others is the same.
       const double list_below = first_spent ? target : topology_limit;
+      // The scores the sweeps' lists keep, brought up to date: triangles the sweeps did not change keep
+      // theirs, rather than every triangle's being computed again.
+      const std::vector<double>& score = scores.update(m, dirty);
       std::vector<std::pair<double, int>> bad;
       for (int t = 0; t < m.triangle_slots(); ++t) {
         if (!m.alive(t)) continue;
-        const double q = m.quality(t);
+        const double q = score[t];
         if (q < list_below && (failures.empty() || failures.count(sorted_key(m.v[t])) == 0)) bad.push_back({q, t});
       }
       std::sort(bad.begin(), bad.end());
@@ -173,9 +176,9 @@ CleanupResult clean_mesh(const Mesh& mesh, const NodeSet& nodes, const GeometryT
         // A triangle no operation could repair is not tried again in this run.
         const auto key = sorted_key(m.v[t]);
         if (failures.count(key) > 0) continue;
-        const double angle = m.quality(t);
+        const double now = m.quality(t);
         // Compound trials for a triangle below the target now (an earlier repair may have lifted it).
-        const cleanup::RepairKind kind = ops.repair(t, angle < target);
+        const cleanup::RepairKind kind = ops.repair(t, now < target);
         if (kind == cleanup::RepairKind::None) {
           ++result.stats.rejected;
           failures.insert(key);
@@ -185,7 +188,7 @@ CleanupResult clean_mesh(const Mesh& mesh, const NodeSet& nodes, const GeometryT
         else if (kind != cleanup::RepairKind::Compound) ++result.stats.inserted;  // a compound's nodes are counted below
         ++changed;
         record.trials_to_last_change = ops.trials() - trials_before;
-        record.last_change_angle = std::asin(std::clamp(angle, -1.0, 1.0)) * 57.29577951308232;
+        record.last_change_angle = cleanup::degrees_from_sine(now);
       }
       record.trials = ops.trials() - trials_before;
       record.topology_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - smoothed).count();
@@ -200,7 +203,7 @@ CleanupResult clean_mesh(const Mesh& mesh, const NodeSet& nodes, const GeometryT
           aspect_sum += m.aspect(t);
           count += 1.0;
         }
-      record.min_angle = std::asin(std::clamp(worst, -1.0, 1.0)) * 57.29577951308232;
+      record.min_angle = cleanup::degrees_from_sine(worst);
       record.aspect_mean = count > 0.0 ? aspect_sum / count : 0.0;
     }
     result.stats.per_iteration.push_back(record);

@@ -21,8 +21,10 @@ inline double min_angle_sine(Vec2 a, Vec2 b, Vec2 c) {
   return product > 0.0 ? twice_area / std::sqrt(product) : -1.0;
 }
 
-// The sine of an angle in degrees (targets are given in degrees).
+// The sine of an angle in degrees (targets are given in degrees), and back (a score as an angle,
+// for reports).
 inline double sine_from_degrees(double d) { return std::sin(d / 57.29577951308232); }
+inline double degrees_from_sine(double s) { return std::asin(std::clamp(s, -1.0, 1.0)) * 57.29577951308232; }
 
 // Aspect ratio R / (2 r) as the thesis appendix defines it (mesh/quality.cpp computes it the same
 // way: l1 l2 l3 s / (8 A^2), s the half perimeter); +inf for a degenerate or inverted triangle.
