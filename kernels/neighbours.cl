@@ -102,6 +102,37 @@ void row_append(const int r, const int j, __global const ulong* offset, __global
   }
 }
 
+#if PDMESH_FORCE_LOOP_VECTOR
+// row_append for k entries of one row at once: one integer atomic reserves k slots (on a CPU device
+// the atomic per entry was a quarter of gather_rows' time: a locked instruction each). The entries a
+// row ends up with are the same whatever the batching (sort_rows orders them; an entry past the
+// capacity spills, as row_append's); only the order before the sort differs.
+void row_append_batch(const int r, const int* js, const int k, __global const ulong* offset,
+                      __global volatile int* count, const ulong entries_size, __global int* entries,
+                      const uint spill_capacity, __global int* spill, __global uint* counters, const int counting) {
+  if (counting) {
+    atomic_add(&count[r], k);
+    return;
+  }
+  const ulong s = (ulong)atomic_add(&count[r], k);
+  for (int t = 0; t < k; ++t) {
+    const ulong slot = offset[r] + s + (ulong)t;
+    if (slot < offset[r + 1] && slot < entries_size) {
+      entries[slot] = js[t];
+    } else {
+      const uint p = atomic_inc(&counters[ROW_SPILLED]);
+      if (p < spill_capacity) {
+        spill[2 * p] = r;
+        spill[2 * p + 1] = js[t];
+      }
+    }
+  }
+}
+// Entries of a node's own row gathered before one row_append_batch (the CPU loop only: on a GPU the
+// array would live in scratch memory).
+#define OWN_ROW_BATCH 32
+#endif
+
 // Kernel arguments: per grid g (2 per occupied level: cumulative C_L at 2L, exact E_L at 2L+1; absent
 // grids have inv_cell 0): inverse cell size, hash-table offset and mask, offsets into cell_start
 // (cells + 1 entries per grid) and cell_nodes. Rows: offset (n + 1, from the scan), count (zeroed by
@@ -133,6 +164,10 @@ void gather_rows(const int n, const REAL radius_factor, __global const REAL2* xy
       row_append(i, next[i], offset, count, entries_size, entries, spill_capacity, spill, counters, counting);
     }
     {  // every kind scans: boundary and fixed nodes scatter to finer interior rows too
+#if PDMESH_FORCE_LOOP_VECTOR
+      int own_batch[OWN_ROW_BATCH];
+      int own_count = 0;
+#endif
       const REAL2 pi = xy[i];  // positions: x, y interleaved (the step's layout)
       const REAL xi = pi.x, yi = pi.y;
       const REAL qi = q[i];
@@ -216,7 +251,18 @@ void gather_rows(const int n, const REAL radius_factor, __global const REAL2* xy
             if (!(tags_apart && fabs(dx) < inside && fabs(dy) < inside) &&
                 (nb_cell_coord(pj.x, inv_cell) != cx || nb_cell_coord(pj.y, inv_cell) != cy))
               continue;
-            if (kind_i == 2) row_append(i, j, offset, count, entries_size, entries, spill_capacity, spill, counters, counting);
+            if (kind_i == 2) {
+#if PDMESH_FORCE_LOOP_VECTOR
+              own_batch[own_count++] = j;
+              if (own_count == OWN_ROW_BATCH) {
+                row_append_batch(i, own_batch, own_count, offset, count, entries_size, entries, spill_capacity, spill,
+                                 counters, counting);
+                own_count = 0;
+              }
+#else
+              row_append(i, j, offset, count, entries_size, entries, spill_capacity, spill, counters, counting);
+#endif
+            }
             const int interior_j = kind[j] == 2;
             if (interior_j && !counting && level[j] == own) q_min = fmin(q_min, q[j]);
             if (level[j] < own && interior_j) {
@@ -229,6 +275,11 @@ void gather_rows(const int n, const REAL radius_factor, __global const REAL2* xy
           }
         }
       }
+#if PDMESH_FORCE_LOOP_VECTOR
+      if (own_count > 0)
+        row_append_batch(i, own_batch, own_count, offset, count, entries_size, entries, spill_capacity, spill, counters,
+                         counting);
+#endif
     }
     atomic_add(&local_examined, examined);
     const REAL ratio = q_min < INFINITY ? q[i] / q_min : (REAL)0;
