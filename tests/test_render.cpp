@@ -282,3 +282,64 @@ TEST_CASE("mesh pictures shade triangles too small to draw instead of painting t
   CHECK(darkest < 128);
   fs::remove_all(dir);
 }
+
+TEST_CASE("a mesh picture drawn in bands is the picture one canvas draws, pixel for pixel", "[render]") {
+  const fs::path dir = fresh_dir("bands");
+  // A 120 x 120 grid of split cells warped by x -> x^3, y -> y^2: dense (shaded) towards x = 0,
+  // coarse (edges drawn) towards x = 1, so that every band gets a different share of both.
+  Mesh m;
+  const int k = 120;
+  for (int j = 0; j <= k; ++j)
+    for (int i = 0; i <= k; ++i) {
+      const double x = static_cast<double>(i) / k, y = static_cast<double>(j) / k;
+      m.points.push_back({x * x * x, y * y});
+    }
+  const auto id = [&](int i, int j) { return j * (k + 1) + i; };
+  for (int j = 0; j < k; ++j)
+    for (int i = 0; i < k; ++i) {
+      m.triangles.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
+      m.triangles.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
+    }
+  m.boundary_edges = {{id(0, 0), id(k, 0), 0}, {id(k, 0), id(k, k), 0}, {id(k, k), id(0, k), 0}, {id(0, k), id(0, 0), 0}};
+  m.curve_names = {"square"};
+  std::vector<double> values(m.triangles.size());
+  for (std::size_t t = 0; t < values.size(); ++t) values[t] = static_cast<double>(t % 97);
+  for (const bool coloured : {false, true}) {
+    MeshPictureOptions o;
+    o.title = "bands";
+    o.long_side = 500;
+    if (coloured) o.triangle_values = &values;
+    o.bands = 1;
+    write_mesh_picture(dir / "one.png", m, o);
+    for (const int bands : {2, 3, 7}) {
+      o.bands = bands;
+      write_mesh_picture(dir / "bands.png", m, o);
+      Png one(dir / "one.png"), banded(dir / "bands.png");
+      REQUIRE(one.ok());
+      REQUIRE(banded.ok());
+      REQUIRE(banded.width() == one.width());
+      REQUIRE(banded.height() == one.height());
+      int differing = 0;
+      for (int y = 0; y < one.height(); ++y)
+        for (int x = 0; x < one.width(); ++x) {
+          const Rgb a = one.pixel(x, y), b = banded.pixel(x, y);
+          differing += a.r != b.r || a.g != b.g || a.b != b.b;
+        }
+      INFO("coloured " << coloured << ", bands " << bands);
+      CHECK(differing == 0);
+    }
+    // The picture is not blank: the shaded part and the drawn edges are both there.
+    Png one(dir / "one.png");
+    int grey = 0, dark = 0;
+    for (int y = 40; y < one.height(); ++y)
+      for (int x = 0; x < 500; ++x) {
+        const Rgb p = one.pixel(x, y);
+        grey += std::abs(p.r - 255 * 0.55) < 3 && p.r == p.g;
+        dark += p.r < 60 && p.g < 60 && p.b < 60;
+      }
+    if (!coloured) CHECK(grey > 1000);
+    CHECK(dark > 1000);
+  }
+  CHECK(entries(dir) == 2);  // no temporary left behind
+  fs::remove_all(dir);
+}

@@ -4,7 +4,12 @@
 #include <cairo-svg.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
+#include <exception>
+#include <memory>
+#include <thread>
+#include <vector>
 #include <fmt/format.h>
 
 #include "core/atomic_file.hpp"
@@ -36,7 +41,7 @@ Box padded_window(const Box& extents, double margin) {
   return Box{{c.x - hx, c.y - hy}, {c.x + hx, c.y + hy}};
 }
 
-Canvas::Canvas(const CanvasOptions& options, ImageFormat format, const fs::path& file)
+Canvas::Canvas(const CanvasOptions& options, ImageFormat format, const fs::path& file, PixelRows rows)
     : file_(file), format_(format), window_(options.window) {
   const double ww = window_.width(), wh = window_.height();
   if (!(ww > 0 && wh > 0) || !std::isfinite(ww) || !std::isfinite(wh)) {
@@ -56,9 +61,18 @@ Canvas::Canvas(const CanvasOptions& options, ImageFormat format, const fs::path&
   offset_x_ = plot_x0_ + 0.5 * (plot_w_ - scale_ * ww);
   offset_y_ = plot_y0_ + 0.5 * (plot_h_ - scale_ * wh);
 
-  surface_ = format == ImageFormat::Png ? cairo_image_surface_create(CAIRO_FORMAT_RGB24, width_, height_)
+  const int first = std::clamp(rows.first, 0, height_);
+  const int count = rows.count < 0 ? height_ - first : std::min(rows.count, height_ - first);
+  if (format != ImageFormat::Png && (first != 0 || count != height_))
+    throw Error(fmt::format("cannot draw '{}': only a PNG is drawn in bands", file.string()));
+  rows_lo_ = first;
+  rows_hi_ = first + count;
+  surface_ = format == ImageFormat::Png ? cairo_image_surface_create(CAIRO_FORMAT_RGB24, width_, std::max(count, 1))
                                         : cairo_svg_surface_create(file.c_str(), width_, height_);
   cr_ = cairo_create(surface_);
+  // A band draws the whole picture's pixel coordinates shifted up by its first row (an integer, so
+  // every pixel's coverage is the one the whole picture gives it).
+  if (first != 0) cairo_translate(cr_, 0, -first);
   try {
     check("create the surface");
   } catch (...) {
@@ -97,15 +111,25 @@ Vec2 Canvas::to_pixel(Vec2 w) const {
   return {offset_x_ + (w.x - window_.lo.x) * scale_, offset_y_ + (window_.hi.y - w.y) * scale_};
 }
 
-bool Canvas::visible(const Box& b) const {
+bool Canvas::in_window(const Box& b) const {
   const double slack = 8.0 / scale_;  // line widths and dot radii reach a few pixels beyond
   return b.hi.x >= window_.lo.x - slack && b.lo.x <= window_.hi.x + slack && b.hi.y >= window_.lo.y - slack &&
          b.lo.y <= window_.hi.y + slack;
 }
 
+bool Canvas::visible(const Box& b) const { return in_window(b) && in_rows(b.lo.y, b.hi.y, 8.0); }
+
 bool Canvas::visible(Vec2 p, double radius_px) const {
   const double r = radius_px / scale_;
-  return p.x >= window_.lo.x - r && p.x <= window_.hi.x + r && p.y >= window_.lo.y - r && p.y <= window_.hi.y + r;
+  return p.x >= window_.lo.x - r && p.x <= window_.hi.x + r && p.y >= window_.lo.y - r && p.y <= window_.hi.y + r &&
+         in_rows(p.y, p.y, radius_px + 1.0);
+}
+
+bool Canvas::in_rows(double world_lo_y, double world_hi_y, double slack_px) const {
+  // Pixel rows grow downwards: the box's top edge (world_hi_y) is its first row.
+  const double top = offset_y_ + (window_.hi.y - world_hi_y) * scale_;
+  const double bottom = offset_y_ + (window_.hi.y - world_lo_y) * scale_;
+  return !(bottom < rows_lo_ - slack_px) && !(top > rows_hi_ + slack_px);
 }
 
 void Canvas::line(Vec2 a, Vec2 b, Rgb c, double width_px) {
@@ -198,6 +222,9 @@ namespace {
 // Items per stroke or fill: large enough that cairo's per-call cost vanishes, small enough that the
 // path it tessellates at once stays in cache.
 constexpr int kBatchItems = 4096;
+// Triangles per fill: one fill is their union, seamless, so as many as memory allows (a cairo path
+// holds ~100 bytes a triangle); more only in meshes of over ~64k tiny triangles.
+constexpr int kFillBatchItems = 1 << 16;
 }  // namespace
 
 StrokeBatch::StrokeBatch(Canvas& canvas, Rgb colour, double width_px)
@@ -219,13 +246,60 @@ void StrokeBatch::box(const Box& b) {
   if (++count_ >= kBatchItems) flush();
 }
 
+void StrokeBatch::skip() {
+  if (++count_ >= kBatchItems) flush();
+}
+
 void StrokeBatch::flush() {
   if (count_ == 0) return;
   cairo_t* cr = canvas_.context();
+  if (!cairo_has_current_point(cr)) {  // only skipped items since the last flush
+    count_ = 0;
+    return;
+  }
   cairo_set_source_rgb(cr, colour_.r, colour_.g, colour_.b);
   cairo_set_line_width(cr, width_);
   cairo_stroke(cr);  // also clears the path
   count_ = 0;
+}
+
+FillBatch::FillBatch(Canvas& canvas, Rgb colour) : canvas_(canvas), colour_(colour) {
+  cairo_new_path(canvas_.context());
+}
+
+void FillBatch::triangle(Vec2 a, Vec2 b, Vec2 c) {
+  const Vec2 pa = canvas_.to_pixel(a), pb = canvas_.to_pixel(b), pc = canvas_.to_pixel(c);
+  cairo_t* cr = canvas_.context();
+  cairo_move_to(cr, pa.x, pa.y);
+  cairo_line_to(cr, pb.x, pb.y);
+  cairo_line_to(cr, pc.x, pc.y);
+  cairo_close_path(cr);
+  if (++count_ >= kFillBatchItems) flush(true);
+}
+
+void FillBatch::skip() {
+  if (++count_ >= kFillBatchItems) flush(true);
+}
+
+void FillBatch::flush(bool cut) {
+  if (count_ == 0) return;
+  cairo_t* cr = canvas_.context();
+  count_ = 0;
+  cut_ = cut_ || cut;
+  if (!cairo_has_current_point(cr)) return;  // only skipped items since the last flush
+  cairo_set_source_rgb(cr, colour_.r, colour_.g, colour_.b);
+  if (!cut_) {
+    cairo_fill(cr);  // the union of every triangle: no seams inside it
+    return;
+  }
+  // Several batches: a hairline stroke in the fill colour closes the anti-aliasing seams where two
+  // batches meet (bevel joins: round ones cost most of the stroke at these sizes).
+  cairo_fill_preserve(cr);
+  cairo_save(cr);
+  cairo_set_line_width(cr, 0.5);
+  cairo_set_line_join(cr, CAIRO_LINE_JOIN_BEVEL);
+  cairo_stroke(cr);  // also clears the path
+  cairo_restore(cr);
 }
 
 DotBatch::DotBatch(Canvas& canvas, Rgb colour) : canvas_(canvas), colour_(colour) {
@@ -248,12 +322,52 @@ void DotBatch::flush() {
   count_ = 0;
 }
 
-void render_picture(const fs::path& path, const CanvasOptions& options, const std::function<void(Canvas&)>& draw) {
+void render_picture(const fs::path& path, const CanvasOptions& options, const std::function<void(Canvas&)>& draw,
+                    int bands) {
   const ImageFormat format = image_format_for(path);
+  if (format != ImageFormat::Png || bands <= 1) {
+    write_atomically(path, [&](const fs::path& tmp) {
+      Canvas canvas(options, format, tmp);
+      draw(canvas);
+      canvas.finish();
+    });
+    return;
+  }
   write_atomically(path, [&](const fs::path& tmp) {
-    Canvas canvas(options, format, tmp);
-    draw(canvas);
-    canvas.finish();
+    // The picture's height, from a canvas that draws no row.
+    const int height = Canvas(options, format, tmp, PixelRows{0, 1}).height();
+    bands = std::clamp(bands, 1, std::max(1, height / 64));
+    std::vector<std::unique_ptr<Canvas>> canvases;
+    for (int k = 0; k < bands; ++k) {
+      const int first = static_cast<int>(static_cast<long long>(height) * k / bands);
+      const int next = static_cast<int>(static_cast<long long>(height) * (k + 1) / bands);
+      canvases.push_back(std::make_unique<Canvas>(options, format, tmp, PixelRows{first, next - first}));
+    }
+    // The bands go to the caller and up to (cores - 1) threads, each taking the next band not yet
+    // drawn (the work is uneven: a mesh's dense parts cost most); the first failure is rethrown
+    // after every thread has ended.
+    std::vector<std::exception_ptr> failed(static_cast<std::size_t>(bands));
+    std::atomic<int> next_band{0};
+    const auto draw_bands = [&] {
+      for (int k = next_band++; k < bands; k = next_band++) {
+        try {
+          draw(*canvases[static_cast<std::size_t>(k)]);
+          canvases[static_cast<std::size_t>(k)]->check_drawn();
+        } catch (...) {
+          failed[static_cast<std::size_t>(k)] = std::current_exception();
+        }
+      }
+    };
+    const int helpers = std::min(bands, static_cast<int>(std::max(1u, std::thread::hardware_concurrency()))) - 1;
+    std::vector<std::thread> threads;
+    for (int t = 0; t < helpers; ++t) threads.emplace_back(draw_bands);
+    draw_bands();
+    for (std::thread& t : threads) t.join();
+    for (const std::exception_ptr& e : failed)
+      if (e) std::rethrow_exception(e);
+    std::vector<cairo_surface_t*> surfaces;
+    for (const auto& c : canvases) surfaces.push_back(c->surface());
+    write_png_file(tmp, surfaces);
   });
 }
 

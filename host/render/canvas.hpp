@@ -40,22 +40,35 @@ struct CanvasOptions {
   int side_width = 0;       // band right of the plot (colour bar); 0 = none
 };
 
+// The pixel rows [first, first + count) of a picture that one Canvas draws (count < 0: to the
+// bottom). A picture drawn in bands by several threads (render_picture's `bands`) gives each band
+// its own surface; the world-to-pixel transform is the whole picture's, shifted by `first` rows.
+struct PixelRows {
+  int first = 0;
+  int count = -1;
+};
+
 class Canvas {
  public:
   // Creates the surface; for SVG, `file` is written as drawing proceeds, for PNG at finish().
-  Canvas(const CanvasOptions& options, ImageFormat format, const std::filesystem::path& file);
+  Canvas(const CanvasOptions& options, ImageFormat format, const std::filesystem::path& file,
+         PixelRows rows = {});
   ~Canvas();
   Canvas(const Canvas&) = delete;
   Canvas& operator=(const Canvas&) = delete;
 
   int width() const { return width_; }
-  int height() const { return height_; }
+  int height() const { return height_; }  // the whole picture's, whatever rows this canvas draws
   double scale() const { return scale_; }  // pixels per world unit
   Vec2 to_pixel(Vec2 world) const;
   const Box& window() const { return window_; }
-  // True when a world box overlaps the visible window (cheap culling of far-away items).
+  // True when a world box overlaps the visible window and this canvas' rows (cheap culling of items
+  // no pixel of which this canvas draws).
   bool visible(const Box& b) const;
   bool visible(Vec2 p, double radius_px) const;
+  // True when a world box overlaps the visible window, whichever rows this canvas draws (what a
+  // picture says about itself, e.g. in its title, must not depend on the band).
+  bool in_window(const Box& b) const;
 
   // World-space drawing, clipped to the plot area. Widths and radii are in pixels.
   void line(Vec2 a, Vec2 b, Rgb colour, double width_px);
@@ -74,9 +87,15 @@ class Canvas {
 
   // Writes the PNG (or completes the SVG) and checks cairo's status; throws Error naming the file.
   void finish();
+  // Checks cairo's status (throws Error naming the file); for a band, whose rows another writes.
+  void check_drawn() const { check("draw"); }
+  cairo_surface_t* surface() { return surface_; }
 
  private:
   void check(const char* what) const;
+  // Whether pixel rows of the world band [world_lo_y, world_hi_y], widened by slack_px, meet this
+  // canvas' rows.
+  bool in_rows(double world_lo_y, double world_hi_y, double slack_px) const;
 
   std::filesystem::path file_;
   ImageFormat format_;
@@ -84,6 +103,7 @@ class Canvas {
   int width_ = 0, height_ = 0;
   double plot_x0_ = 0, plot_y0_ = 0, plot_w_ = 0, plot_h_ = 0;
   double scale_ = 1, offset_x_ = 0, offset_y_ = 0;
+  double rows_lo_ = 0, rows_hi_ = 0;  // the pixel rows this canvas draws, [lo, hi)
   cairo_surface_t* surface_ = nullptr;
   cairo_t* cr_ = nullptr;
   bool clipped_ = false;
@@ -101,6 +121,10 @@ class StrokeBatch {
   StrokeBatch& operator=(const StrokeBatch&) = delete;
   void segment(Vec2 a, Vec2 b);  // world coordinates
   void box(const Box& b);        // the outline of a world box
+  // An item that this canvas does not draw (outside its band) but the whole picture does: counted
+  // as drawn, so that every band flushes its batches after the same items as the whole picture and
+  // overlapping items blend the same way in every band.
+  void skip();
   void flush();
 
  private:
@@ -108,6 +132,27 @@ class StrokeBatch {
   Rgb colour_;
   double width_;
   int count_ = 0;
+};
+
+// Many triangles of one colour filled as one path: their union, without the anti-aliasing seams that
+// separate fills leave between neighbours (Canvas::fill_triangle closes them with a hairline stroke
+// per triangle, which cost most of a 30P30N mesh picture). A mesh with more triangles than one batch
+// holds gets the hairline once per batch, where batches meet.
+class FillBatch {
+ public:
+  FillBatch(Canvas& canvas, Rgb colour);
+  ~FillBatch() { flush(); }
+  FillBatch(const FillBatch&) = delete;
+  FillBatch& operator=(const FillBatch&) = delete;
+  void triangle(Vec2 a, Vec2 b, Vec2 c);  // world coordinates
+  void skip();                             // as StrokeBatch::skip
+  void flush(bool cut = false);            // cut: more triangles follow in another batch
+
+ private:
+  Canvas& canvas_;
+  Rgb colour_;
+  int count_ = 0;
+  bool cut_ = false;
 };
 
 class DotBatch {
@@ -126,7 +171,13 @@ class DotBatch {
 };
 
 // Draws with `draw` into a new Canvas and writes it atomically to `path` (format by extension).
+// bands > 1 (PNG only): the picture is cut into that many horizontal bands, each drawn by `draw`
+// on a canvas of its own, by the caller and up to (cores - 1) threads, and the bands are written as
+// one PNG, pixel for pixel the picture one canvas draws when `draw` culls with Canvas::visible and
+// skips what it culls in its batches (StrokeBatch::skip). `draw` must then be safe to call from
+// several threads at once (reading shared data only). A mesh picture drawn after the cleanup is on
+// the run's critical path, and cairo's rasteriser is single-threaded.
 void render_picture(const std::filesystem::path& path, const CanvasOptions& options,
-                    const std::function<void(Canvas&)>& draw);
+                    const std::function<void(Canvas&)>& draw, int bands = 1);
 
 }  // namespace pdmesh

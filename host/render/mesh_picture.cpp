@@ -113,6 +113,7 @@ void write_mesh_picture(const std::filesystem::path& path, const Mesh& mesh, con
     for (int v : tri) box.add(mesh.points[v]);
     return canvas.visible(box);
   };
+  // Drawn in bands on several threads (PNG; render_picture): everything below only reads the mesh.
   render_picture(path, layout, [&](Canvas& canvas) {
     // Interior edges shorter than kMinEdgePixels on screen are left out: at millions of triangles
     // they would only paint the whole mesh black. Without a value fill, a triangle with such an
@@ -120,10 +121,18 @@ void write_mesh_picture(const std::filesystem::path& path, const Mesh& mesh, con
     const double min_edge_world = kMinEdgePixels / canvas.scale();
     const auto shown = [&](Vec2 a, Vec2 b) { return dist(a, b) >= min_edge_world; };
     if (values == nullptr) {
+      FillBatch dense(canvas, kDenseShade);
       for (const auto& tri : mesh.triangles) {
         const Vec2 a = mesh.points[tri[0]], b = mesh.points[tri[1]], c = mesh.points[tri[2]];
         if (shown(a, b) && shown(b, c) && shown(c, a)) continue;
-        if (visible(canvas, tri)) canvas.fill_triangle(a, b, c, kDenseShade);
+        Box box;
+        for (int v : tri) box.add(mesh.points[v]);
+        if (!canvas.in_window(box)) continue;
+        if (canvas.visible(box)) {
+          dense.triangle(a, b, c);
+        } else {
+          dense.skip();  // in another band (see the edges below)
+        }
       }
     }
     // Value fills first, then the edges on top of them.
@@ -145,11 +154,13 @@ void write_mesh_picture(const std::filesystem::path& path, const Mesh& mesh, con
       Box box;
       box.add(a);
       box.add(b);
-      if (!canvas.visible(box)) continue;
-      if (shown(a, b)) {
+      if (!canvas.in_window(box)) continue;
+      if (!shown(a, b)) {
+        ++skipped;  // counted over the whole window: every band draws the same title
+      } else if (canvas.visible(box)) {
         lines.segment(a, b);
       } else {
-        ++skipped;
+        lines.skip();  // in another band: this band's batches end where the whole picture's do
       }
     }
     lines.flush();
@@ -163,7 +174,7 @@ void write_mesh_picture(const std::filesystem::path& path, const Mesh& mesh, con
     if (values != nullptr) {
       draw_colour_bar(canvas, std::isfinite(lo) ? lo : 0.0, std::isfinite(hi) ? hi : 0.0, options.value_label);
     }
-  });
+  }, options.bands);
 }
 
 }  // namespace pdmesh
