@@ -314,7 +314,7 @@ TEST_CASE("the best preset is long with momentum, a compressed schedule and rule
     CHECK(c->population.settle_events == 2);
     CHECK(c->simulation.stop_aspect == 1e-3);
     CHECK(c->simulation.stop_every == 50);
-    CHECK(c->simulation.stop_window == 200);
+    CHECK(c->simulation.stop_window == 150);
     CHECK(c->simulation.stop_min == 300);
     CHECK(c->cleanup.min_angle == 40.0);
     CHECK(c->cleanup.iterations == 32);
@@ -577,8 +577,8 @@ TEST_CASE("simulation.stop_every / stop_window / stop_min: the rule's interval, 
              Catch::Contains("simulation.stop_min must be in [0, 1000000], got -5"));
   CHECK_THAT(error_of(std::string(kMinimal) + "[simulation]\nstop_window = 2.5\n"),
              Catch::Contains("simulation.stop_window must be an integer"));
-  // The window starts at a measurement, so it is a multiple of the interval (best's 200 is not of 150).
-  CHECK_THAT(error_of(std::string(kMinimal) + "[simulation]\nstop_every = 150\n"),
-             Catch::Contains("simulation.stop_window must be a multiple of simulation.stop_every (150), got 200") &&
+  // The window starts at a measurement, so it is a multiple of the interval (best's 150 is not of 100).
+  CHECK_THAT(error_of(std::string(kMinimal) + "[simulation]\nstop_every = 100\n"),
+             Catch::Contains("simulation.stop_window must be a multiple of simulation.stop_every (100), got 150") &&
                  Catch::Contains(":4:"));
 }
