@@ -160,3 +160,48 @@ TEST_CASE("PNG encoder: other surfaces and unwritable paths are errors", "[rende
   CHECK_THROWS_WITH(write_png_file(missing, ok), Catch::Contains("x.png"));
   cairo_surface_destroy(ok);
 }
+
+TEST_CASE("PNG encoder: bands deflated apart join into one valid stream of the whole picture's rows", "[render][png]") {
+  // A 37 x 300 pattern cut into bands of 1, 120 and 179 rows: the joined PNG inflates (zlib checks
+  // the combined Adler-32) to the rows of the whole surface's PNG; one band is encode_png's bytes.
+  const int width = 37, height = 300;
+  cairo_surface_t* whole = pattern(width, height);
+  const std::string reference = encode_png(whole);
+  std::vector<cairo_surface_t*> parts;
+  std::vector<DeflatedBand> deflated;
+  const int cuts[] = {0, 1, 121, height};
+  for (int k = 0; k < 3; ++k) {
+    const int rows = cuts[k + 1] - cuts[k];
+    cairo_surface_t* band = cairo_image_surface_create(CAIRO_FORMAT_RGB24, width, rows);
+    cairo_surface_flush(whole);
+    cairo_surface_flush(band);
+    const int stride = cairo_image_surface_get_stride(whole);
+    for (int y = 0; y < rows; ++y)
+      std::copy_n(cairo_image_surface_get_data(whole) + (cuts[k] + y) * stride, 4 * width,
+                  cairo_image_surface_get_data(band) + y * cairo_image_surface_get_stride(band));
+    cairo_surface_mark_dirty(band);
+    deflated.push_back(deflate_band(band, k == 2));
+    parts.push_back(band);
+  }
+  const std::string joined = png_from_bands(deflated);
+  const auto inflated = [&](const std::string& png) {
+    const std::vector<Chunk> c = chunks(png);
+    REQUIRE(c.size() == 3);
+    CHECK(be32(c[0].data, 0) == static_cast<std::uint32_t>(width));
+    CHECK(be32(c[0].data, 4) == static_cast<std::uint32_t>(height));
+    std::vector<unsigned char> rows(static_cast<std::size_t>(height) * (1 + 3 * width) + 16);
+    uLongf size = rows.size();
+    REQUIRE(uncompress(rows.data(), &size, reinterpret_cast<const Bytef*>(c[1].data.data()),
+                       static_cast<uLong>(c[1].data.size())) == Z_OK);
+    rows.resize(size);
+    return rows;
+  };
+  CHECK(inflated(joined) == inflated(reference));
+  CHECK(inflated(joined).size() == static_cast<std::size_t>(height) * (1 + 3 * width));
+  // A band that is not the last ends without the final-block bit: used as the last, it would end the
+  // stream early; and one band on its own is the single-surface encoder's output, byte for byte.
+  CHECK(png_from_bands({deflate_band(whole, true)}) == reference);
+  CHECK_THROWS_AS(png_from_bands({}), Error);
+  for (cairo_surface_t* s : parts) cairo_surface_destroy(s);
+  cairo_surface_destroy(whole);
+}

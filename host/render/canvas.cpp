@@ -347,12 +347,16 @@ void render_picture(const fs::path& path, const CanvasOptions& options, const st
     // drawn (the work is uneven: a mesh's dense parts cost most); the first failure is rethrown
     // after every thread has ended.
     std::vector<std::exception_ptr> failed(static_cast<std::size_t>(bands));
+    std::vector<DeflatedBand> deflated(static_cast<std::size_t>(bands));
     std::atomic<int> next_band{0};
     const auto draw_bands = [&] {
       for (int k = next_band++; k < bands; k = next_band++) {
         try {
-          draw(*canvases[static_cast<std::size_t>(k)]);
-          canvases[static_cast<std::size_t>(k)]->check_drawn();
+          Canvas& canvas = *canvases[static_cast<std::size_t>(k)];
+          draw(canvas);
+          canvas.check_drawn();
+          // Encoded where it was drawn, while other bands are still being drawn.
+          deflated[static_cast<std::size_t>(k)] = deflate_band(canvas.surface(), k == bands - 1);
         } catch (...) {
           failed[static_cast<std::size_t>(k)] = std::current_exception();
         }
@@ -365,9 +369,7 @@ void render_picture(const fs::path& path, const CanvasOptions& options, const st
     for (std::thread& t : threads) t.join();
     for (const std::exception_ptr& e : failed)
       if (e) std::rethrow_exception(e);
-    std::vector<cairo_surface_t*> surfaces;
-    for (const auto& c : canvases) surfaces.push_back(c->surface());
-    write_png_file(tmp, surfaces);
+    write_bytes(tmp, png_from_bands(deflated));
   });
 }
 

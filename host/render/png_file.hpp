@@ -11,15 +11,28 @@
 
 namespace pdmesh {
 
-// The PNG bytes (8-bit RGB, no alpha) of an RGB24 or ARGB32 image surface (alpha dropped).
-// Throws Error when the surface is not an image surface of those formats or zlib fails.
+// The PNG bytes (8-bit RGB, no alpha) of an RGB24 or ARGB32 image surface (alpha dropped), zlib
+// at `level`. Throws Error when the surface is not an image surface of those formats or zlib fails.
 std::string encode_png(cairo_surface_t* surface, int level = 1);
-// One PNG of image surfaces of equal width stacked top to bottom (a picture drawn in bands).
-std::string encode_png(const std::vector<cairo_surface_t*>& bands, int level = 1);
 
-// Writes encode_png(surface) to `path` (not atomically: the caller writes to a temporary).
-// Throws InputError naming the path when it cannot be written.
+// A picture drawn in horizontal bands (render_picture) is encoded band by band, each on the thread
+// that drew it: its scanlines deflated on their own (raw deflate, ending in a sync flush unless it
+// is the last band), with their Adler-32 and byte count. png_from_bands joins them, top to bottom,
+// into one PNG (one zlib stream: the header, the bands' data, the combined Adler-32). One band gives
+// encode_png's bytes.
+struct DeflatedBand {
+  std::string bytes;
+  unsigned long adler = 1;
+  std::size_t length = 0;  // scanline bytes, filter bytes included
+  int width = 0, height = 0;
+};
+DeflatedBand deflate_band(cairo_surface_t* surface, bool last, int level = 1);
+std::string png_from_bands(const std::vector<DeflatedBand>& bands);
+
+// Writes `bytes` to `path` (not atomically: the caller writes to a temporary). Throws InputError
+// naming the path when it cannot be written.
+void write_bytes(const std::filesystem::path& path, const std::string& bytes);
+// Writes encode_png(surface) to `path`, as write_bytes.
 void write_png_file(const std::filesystem::path& path, cairo_surface_t* surface);
-void write_png_file(const std::filesystem::path& path, const std::vector<cairo_surface_t*>& bands);
 
 }  // namespace pdmesh
