@@ -70,6 +70,24 @@ Mesh unit_square_mesh() {
   return m;
 }
 
+// The unit square as a k x k grid of cells split along their diagonals (2 k^2 triangles), its
+// points mapped by `map` (a monotone map of [0, 1]^2 onto itself keeps the square).
+template <class Map>
+Mesh grid_mesh(int k, Map map) {
+  Mesh m;
+  for (int j = 0; j <= k; ++j)
+    for (int i = 0; i <= k; ++i) m.points.push_back(map(static_cast<double>(i) / k, static_cast<double>(j) / k));
+  const auto id = [&](int i, int j) { return j * (k + 1) + i; };
+  for (int j = 0; j < k; ++j)
+    for (int i = 0; i < k; ++i) {
+      m.triangles.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
+      m.triangles.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
+    }
+  m.boundary_edges = {{id(0, 0), id(k, 0), 0}, {id(k, 0), id(k, k), 0}, {id(k, k), id(0, k), 0}, {id(0, k), id(0, 0), 0}};
+  m.curve_names = {"square"};
+  return m;
+}
+
 }  // namespace
 
 TEST_CASE("padded windows add 3% of the longer side", "[render]") {
@@ -242,18 +260,7 @@ TEST_CASE("mesh pictures shade triangles too small to draw instead of painting t
   const fs::path dir = fresh_dir("dense");
   // The unit square as a 300 x 300 grid of split cells (180,000 triangles): at 400 pixels a cell is
   // about 1.3 pixels wide, below the smallest edge drawn.
-  Mesh m;
-  const int k = 300;
-  for (int j = 0; j <= k; ++j)
-    for (int i = 0; i <= k; ++i) m.points.push_back({static_cast<double>(i) / k, static_cast<double>(j) / k});
-  const auto id = [&](int i, int j) { return j * (k + 1) + i; };
-  for (int j = 0; j < k; ++j)
-    for (int i = 0; i < k; ++i) {
-      m.triangles.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
-      m.triangles.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
-    }
-  m.boundary_edges = {{id(0, 0), id(k, 0), 0}, {id(k, 0), id(k, k), 0}, {id(k, k), id(0, k), 0}, {id(0, k), id(0, 0), 0}};
-  m.curve_names = {"square"};
+  const Mesh m = grid_mesh(300, [](double x, double y) { return Vec2{x, y}; });
   MeshPictureOptions o;
   o.long_side = 400;
   write_mesh_picture(dir / "dense.png", m, o);
@@ -287,21 +294,7 @@ TEST_CASE("a mesh picture drawn in bands is the picture one canvas draws, pixel 
   const fs::path dir = fresh_dir("bands");
   // A 120 x 120 grid of split cells warped by x -> x^3, y -> y^2: dense (shaded) towards x = 0,
   // coarse (edges drawn) towards x = 1, so that every band gets a different share of both.
-  Mesh m;
-  const int k = 120;
-  for (int j = 0; j <= k; ++j)
-    for (int i = 0; i <= k; ++i) {
-      const double x = static_cast<double>(i) / k, y = static_cast<double>(j) / k;
-      m.points.push_back({x * x * x, y * y});
-    }
-  const auto id = [&](int i, int j) { return j * (k + 1) + i; };
-  for (int j = 0; j < k; ++j)
-    for (int i = 0; i < k; ++i) {
-      m.triangles.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
-      m.triangles.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
-    }
-  m.boundary_edges = {{id(0, 0), id(k, 0), 0}, {id(k, 0), id(k, k), 0}, {id(k, k), id(0, k), 0}, {id(0, k), id(0, 0), 0}};
-  m.curve_names = {"square"};
+  const Mesh m = grid_mesh(120, [](double x, double y) { return Vec2{x * x * x, y * y}; });
   std::vector<double> values(m.triangles.size());
   for (std::size_t t = 0; t < values.size(); ++t) values[t] = static_cast<double>(t % 97);
   for (const bool coloured : {false, true}) {
