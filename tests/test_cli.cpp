@@ -313,6 +313,8 @@ TEST_CASE("pdmesh mesh --formats decides the pictures: msh alone draws none, svg
                             "\"triangulation\"", "\"cleanup\"", "\"quality\"", "\"mesh msh\""})
     CHECK(contains(timings, phase));
   CHECK_FALSE(contains(timings, "\"background\": true"));
+  // The backend that ran the simulation, in words (a fallback of --device auto shows here under -q too).
+  CHECK((contains(timings, "\"backend\": \"opencl:") || contains(timings, "\"backend\": \"the host reference")));
   const Result svg = run("mesh '" + (dir / "rect.crv").string() + "' --out '" + (dir / "svg").string() +
                          "' --iterations 10 --formats svg");
   INFO(svg.output);

@@ -62,6 +62,8 @@ TEST_CASE("run phases: timers, notes and pictures in the timings JSON", "[phases
   run.note("nodes", 2304);
   run.note("iterations", 600);  // a note set twice keeps its last value
   run.note("estimate", std::nan(""));  // JSON has no NaN: null
+  run.note("backend", std::string("opencl:0:0"));
+  run.note("backend", std::string("the \"host\" reference"));  // a text note set twice keeps its last value
   std::atomic<int> drawn{0};
   run.picture("a.png", [&] { ++drawn; });
   run.picture("b.png", [&] { ++drawn; });
@@ -88,6 +90,8 @@ TEST_CASE("run phases: timers, notes and pictures in the timings JSON", "[phases
   CHECK(count(json, "\"iterations\": 600,") == 1);
   CHECK(count(json, "\"nodes\": 2304,") == 1);
   CHECK(count(json, "\"estimate\": null,") == 1);
+  CHECK(count(json, "\"backend\": \"the \\\"host\\\" reference\",") == 1);  // escaped
+  CHECK(count(json, "opencl:0:0") == 0);
   CHECK(count(json, "\"peak_rss_bytes\": ") == 1);
   CHECK(count(json, "\"format\": \"pdmesh-timings\"") == 1);
   const std::string line = run.summary();

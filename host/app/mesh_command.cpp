@@ -138,6 +138,7 @@ SimResult simulate(const CaseConfig& config, const MeshInputs& inputs, NodeSet& 
   phases.note("iterations", result.state.iterations_done);
   phases.note("converged", result.converged ? 1 : 0);
   phases.note("simulation_seconds", st.seconds);
+  phases.note("backend", backend.simulator->describe());
   const fs::path& dir = config.out_dir;
   {
     const auto csv_timer = phases.phase("history.csv");

@@ -85,6 +85,17 @@ void RunPhases::add(PhaseTime t) {
   phases_.push_back(std::move(t));
 }
 
+void RunPhases::note(const std::string& key, const std::string& value) {
+  std::lock_guard lock(mutex_);
+  for (auto& [k, v] : text_notes_) {
+    if (k == key) {
+      v = value;
+      return;
+    }
+  }
+  text_notes_.emplace_back(key, value);
+}
+
 void RunPhases::note(const std::string& key, double value) {
   std::lock_guard lock(mutex_);
   for (auto& [k, v] : notes_) {
@@ -198,6 +209,7 @@ std::string RunPhases::json() const {
     // JSON has no NaN or infinity: such a fact is null.
     for (const auto& [k, v] : notes_)
       out += fmt::format("  {}: {},\n", json_string(k), std::isfinite(v) ? fmt::format("{}", v) : std::string("null"));
+    for (const auto& [k, v] : text_notes_) out += fmt::format("  {}: {},\n", json_string(k), json_string(v));
   }
   out += "  \"phases\": [\n";
   for (std::size_t i = 0; i < all.size(); ++i) {

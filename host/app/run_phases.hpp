@@ -70,6 +70,9 @@ class RunPhases {
   void add(PhaseTime t);
   // A fact about the run for the timings file (iterations, nodes, triangles, ...).
   void note(const std::string& key, double value);
+  // A fact in words (the backend that ran the simulation): a string in the timings file, so that a
+  // run `--device auto` moved to the host reference says so even under -q.
+  void note(const std::string& key, const std::string& value);
 
   std::vector<PhaseTime> phases() const;
   double elapsed() const;  // wall seconds since construction
@@ -88,6 +91,7 @@ class RunPhases {
   mutable std::mutex mutex_;
   std::vector<PhaseTime> phases_;
   std::vector<std::pair<std::string, double>> notes_;
+  std::vector<std::pair<std::string, std::string>> text_notes_;
   // The background thread and its queue (started with the first picture).
   std::condition_variable cv_;
   struct Job {
