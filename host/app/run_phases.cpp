@@ -85,26 +85,30 @@ void RunPhases::add(PhaseTime t) {
   phases_.push_back(std::move(t));
 }
 
-void RunPhases::note(const std::string& key, const std::string& value) {
-  std::lock_guard lock(mutex_);
-  for (auto& [k, v] : text_notes_) {
+namespace {
+
+// Sets key's value in a list of (key, value) facts kept in the order they were first set.
+template <class T>
+void set_fact(std::vector<std::pair<std::string, T>>& facts, const std::string& key, T value) {
+  for (auto& [k, v] : facts) {
     if (k == key) {
-      v = value;
+      v = std::move(value);
       return;
     }
   }
-  text_notes_.emplace_back(key, value);
+  facts.emplace_back(key, std::move(value));
+}
+
+}  // namespace
+
+void RunPhases::note(const std::string& key, const std::string& value) {
+  std::lock_guard lock(mutex_);
+  set_fact(text_notes_, key, value);
 }
 
 void RunPhases::note(const std::string& key, double value) {
   std::lock_guard lock(mutex_);
-  for (auto& [k, v] : notes_) {
-    if (k == key) {
-      v = value;
-      return;
-    }
-  }
-  notes_.emplace_back(key, value);
+  set_fact(notes_, key, value);
 }
 
 void RunPhases::picture(std::string name, std::function<void()> job) {
