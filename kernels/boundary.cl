@@ -136,15 +136,12 @@ __attribute__((always_inline)) void boundary_snap_body(__local REAL* values, __l
       xy[i] = on;
       tx[i] = tangent.x;
       ty[i] = tangent.y;
-      // The node's leaf from the last step seeds the lookup (bg_locate_cached: the same leaf and (u, v)
-      // bit for bit as a descent from the root; a snap moves a node by a fraction of a cell, so the
-      // guess nearly always holds and the 15-20 dependent loads of a descent are skipped).
-      REAL u, v;
+      // The node's leaf from the last step seeds the lookup, as in device_step (bg_locate_cached: the
+      // same leaf and (u, v) bit for bit as a descent from the root; a snap moves a node by a fraction
+      // of a cell, so the guess nearly always holds and the 15-20 dependent loads of a descent are skipped).
       int leaf = node_leaf[i];
-      bg_locate_cached(on.x, on.y, &leaf, bg_origin_x, bg_origin_y, bg_inv_root, bg_grid, bg_root, bg_child, bg_cell, &u,
-                       &v);
+      const REAL qn = bg_spacing_cached(on.x, on.y, &leaf, BG_PASS);
       node_leaf[i] = leaf;
-      const REAL qn = bg_interpolate(leaf, u, v, bg_corner, bg_q);
       q[i] = qn;
       skin_use = skin_use_of(on, qn, xy_build[i], q_build[i], cutoff, skin_cutoff, skin_class[i]);
     }

@@ -79,17 +79,11 @@ void row_offsets_add(const int n, __global ulong* offset, __global const ulong* 
   if (i < n) offset[i + 1] += block_total[get_group_id(0)];
 }
 
-// Appends j to row r (see the top): the slot from the row's count, written inside the capacity; past
-// it, (r, j) goes to the spill list (counters[ROW_SPILLED] counts them, `spill_capacity` are kept) for
-// relocate_rows. A counting pass (`counting`) only counts.
-void row_append(const int r, const int j, __global const ulong* offset, __global volatile int* count,
-                const ulong entries_size, __global int* entries, const uint spill_capacity, __global int* spill,
-                __global uint* counters, const int counting) {
-  if (counting) {
-    atomic_inc(&count[r]);
-    return;
-  }
-  const ulong s = (ulong)atomic_inc(&count[r]);
+// Writes j into slot s of row r (a slot reserved from the row's count): inside the capacity in place;
+// past it, (r, j) goes to the spill list (counters[ROW_SPILLED] counts them, `spill_capacity` are kept)
+// for relocate_rows.
+void row_place(const int r, const ulong s, const int j, __global const ulong* offset, const ulong entries_size,
+               __global int* entries, const uint spill_capacity, __global int* spill, __global uint* counters) {
   const ulong slot = offset[r] + s;
   if (slot < offset[r + 1] && slot < entries_size) {
     entries[slot] = j;
@@ -102,6 +96,18 @@ void row_append(const int r, const int j, __global const ulong* offset, __global
   }
 }
 
+// Appends j to row r (see the top): the slot from the row's count (row_place). A counting pass
+// (`counting`) only counts.
+void row_append(const int r, const int j, __global const ulong* offset, __global volatile int* count,
+                const ulong entries_size, __global int* entries, const uint spill_capacity, __global int* spill,
+                __global uint* counters, const int counting) {
+  if (counting) {
+    atomic_inc(&count[r]);
+    return;
+  }
+  row_place(r, (ulong)atomic_inc(&count[r]), j, offset, entries_size, entries, spill_capacity, spill, counters);
+}
+
 #if PDMESH_FORCE_LOOP_VECTOR
 // row_append for k entries of one row at once: one integer atomic reserves k slots (on a CPU device
 // the atomic per entry was a quarter of gather_rows' time: a locked instruction each). The entries a
@@ -110,23 +116,10 @@ void row_append(const int r, const int j, __global const ulong* offset, __global
 void row_append_batch(const int r, const int* js, const int k, __global const ulong* offset,
                       __global volatile int* count, const ulong entries_size, __global int* entries,
                       const uint spill_capacity, __global int* spill, __global uint* counters, const int counting) {
-  if (counting) {
-    atomic_add(&count[r], k);
-    return;
-  }
   const ulong s = (ulong)atomic_add(&count[r], k);
-  for (int t = 0; t < k; ++t) {
-    const ulong slot = offset[r] + s + (ulong)t;
-    if (slot < offset[r + 1] && slot < entries_size) {
-      entries[slot] = js[t];
-    } else {
-      const uint p = atomic_inc(&counters[ROW_SPILLED]);
-      if (p < spill_capacity) {
-        spill[2 * p] = r;
-        spill[2 * p + 1] = js[t];
-      }
-    }
-  }
+  if (counting) return;
+  for (int t = 0; t < k; ++t)
+    row_place(r, s + (ulong)t, js[t], offset, entries_size, entries, spill_capacity, spill, counters);
 }
 // Entries of a node's own row gathered before one row_append_batch (the CPU loop only: on a GPU the
 // array would live in scratch memory).
