@@ -1,0 +1,52 @@
+// parallel_for (core/parallel.hpp): every index once whatever the thread count and block size, small
+// ranges on the calling thread, and the lowest failing block's exception rethrown.
+#include <catch2/catch.hpp>
+
+#include <atomic>
+#include <stdexcept>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "core/parallel.hpp"
+
+using pdmesh::parallel_for;
+
+TEST_CASE("parallel_for runs every index exactly once", "[core][parallel]") {
+  for (const std::size_t n : {0u, 1u, 7u, 511u, 512u, 1023u, 10000u, 100003u}) {
+    for (const std::size_t min_chunk : {1u, 64u, 512u, 4096u}) {
+      std::vector<std::atomic<int>> seen(n);
+      parallel_for(n, [&](std::size_t i) { seen[i].fetch_add(1); }, min_chunk);
+      std::size_t wrong = 0;
+      for (const auto& s : seen) wrong += s.load() == 1 ? 0 : 1;
+      INFO("n = " << n << ", min_chunk = " << min_chunk);
+      CHECK(wrong == 0);
+    }
+  }
+}
+
+TEST_CASE("parallel_for keeps a range of one chunk on the calling thread", "[core][parallel]") {
+  const std::thread::id caller = std::this_thread::get_id();
+  std::atomic<int> elsewhere{0};
+  parallel_for(4096, [&](std::size_t) { elsewhere += std::this_thread::get_id() == caller ? 0 : 1; }, 4096);
+  CHECK(elsewhere.load() == 0);
+}
+
+TEST_CASE("parallel_for rethrows the exception of the lowest failing block", "[core][parallel]") {
+  // Every index from 1000 on throws its own index: whichever thread reaches a failing block first,
+  // the error rethrown is that of the lowest block that threw, which holds index 1000 whenever the
+  // blocks are taken in increasing order by the first thread to fail (the counter only increases).
+  const std::size_t n = 100000;
+  std::string what;
+  try {
+    parallel_for(n, [&](std::size_t i) {
+      if (i >= 1000) throw std::runtime_error(std::to_string(i));
+    }, 64);
+  } catch (const std::runtime_error& e) {
+    what = e.what();
+  }
+  REQUIRE_FALSE(what.empty());
+  // The thrower of the lowest block threw at that block's first failing index: 1000 is in the block
+  // taken first among the failing ones, so no block below it can have thrown.
+  CHECK(what == "1000");
+}
