@@ -134,6 +134,24 @@ TEST_CASE("metrics are invariant under rotation, scaling, translation and cyclic
   }
 }
 
+TEST_CASE("triangle_shape gives triangle_quality's smallest angle and aspect ratio bit for bit", "[quality]") {
+  std::mt19937_64 rng(11);
+  int compared = 0;
+  for (int i = 0; i < 1000; ++i) {
+    const Vec2 a{unit(rng), unit(rng)}, b{unit(rng), unit(rng)}, c{unit(rng), unit(rng)};
+    const TriangleQuality full = triangle_quality(a, b, c);
+    const TriangleShape lean = triangle_shape(a, b, c);
+    CHECK(lean.min_angle == full.min_angle);
+    CHECK(lean.aspect_ratio == full.aspect_ratio);
+    ++compared;
+  }
+  // Degenerate: the same infinite aspect ratio.
+  const TriangleShape flat = triangle_shape({0.0, 0.0}, {1.0, 0.0}, {2.0, 0.0});
+  CHECK(std::isinf(flat.aspect_ratio));
+  CHECK(flat.aspect_ratio == triangle_quality({0.0, 0.0}, {1.0, 0.0}, {2.0, 0.0}).aspect_ratio);
+  CHECK(compared == 1000);
+}
+
 TEST_CASE("two-triangle mesh summary matches hand values", "[quality]") {
   const Mesh m = two_triangle_mesh();
   const auto s = summarize_quality(m);

@@ -56,26 +56,44 @@ double corner_jacobian(Vec2 corner, Vec2 next, Vec2 prev) {
   return cross((1.0 / lu) * u, (1.0 / lv) * v);
 }
 
-TriangleQuality triangle_quality(Vec2 a, Vec2 b, Vec2 c) {
-  TriangleQuality t;
-  const double angles[3] = {angle_deg(a, b, c), angle_deg(b, c, a), angle_deg(c, a, b)};
-  t.min_angle = std::min({angles[0], angles[1], angles[2]});
-  t.max_angle = std::max({angles[0], angles[1], angles[2]});
+namespace {
 
-  // Edge lengths: la opposite a, and so on.
-  const double la = dist(b, c), lb = dist(c, a), lc = dist(a, b);
-  const double lmin = std::min({la, lb, lc}), lmax = std::max({la, lb, lc});
-  t.skewness = lmin > 0.0 ? lmax / lmin : kInf;
+// The angles, edge lengths and aspect ratio of a triangle: one body for triangle_quality and
+// triangle_shape, so that both give the same values bit for bit.
+struct Shape {
+  double angles[3];
+  double la, lb, lc;  // la opposite a, and so on
+  double aspect_ratio;
+};
 
+inline Shape shape_of(Vec2 a, Vec2 b, Vec2 c) {
+  Shape s{{angle_deg(a, b, c), angle_deg(b, c, a), angle_deg(c, a, b)}, dist(b, c), dist(c, a), dist(a, b), 0.0};
   // R = la lb lc / (4 area), r = area / s with s the half perimeter, so
   // R / (2 r) = la lb lc s / (8 area^2).
   const double area = 0.5 * std::fabs(cross(b - a, c - a));
-  const double s = 0.5 * (la + lb + lc);
-  t.aspect_ratio = area > 0.0 ? la * lb * lc * s / (8.0 * area * area) : kInf;
+  const double half = 0.5 * (s.la + s.lb + s.lc);
+  s.aspect_ratio = area > 0.0 ? s.la * s.lb * s.lc * half / (8.0 * area * area) : kInf;
+  return s;
+}
 
+}  // namespace
+
+TriangleQuality triangle_quality(Vec2 a, Vec2 b, Vec2 c) {
+  TriangleQuality t;
+  const Shape s = shape_of(a, b, c);
+  t.min_angle = std::min({s.angles[0], s.angles[1], s.angles[2]});
+  t.max_angle = std::max({s.angles[0], s.angles[1], s.angles[2]});
+  const double lmin = std::min({s.la, s.lb, s.lc}), lmax = std::max({s.la, s.lb, s.lc});
+  t.skewness = lmin > 0.0 ? lmax / lmin : kInf;
+  t.aspect_ratio = s.aspect_ratio;
   t.condition_number = weighted_condition_number(a, b, c);
   t.min_jacobian = std::min({corner_jacobian(a, b, c), corner_jacobian(b, c, a), corner_jacobian(c, a, b)});
   return t;
+}
+
+TriangleShape triangle_shape(Vec2 a, Vec2 b, Vec2 c) {
+  const Shape s = shape_of(a, b, c);
+  return {std::min({s.angles[0], s.angles[1], s.angles[2]}), s.aspect_ratio};
 }
 
 std::vector<TriangleQuality> triangle_qualities(const Mesh& mesh) {

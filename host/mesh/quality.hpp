@@ -36,6 +36,14 @@ double corner_jacobian(Vec2 corner, Vec2 next, Vec2 prev);
 // All metrics of triangle (a, b, c); a, b, c in counter-clockwise order for positive Jacobians.
 TriangleQuality triangle_quality(Vec2 a, Vec2 b, Vec2 c);
 
+// The two metrics the stopping rule follows (sim/convergence.hpp), without the others' cost: equal
+// to triangle_quality's min_angle and aspect_ratio bit for bit.
+struct TriangleShape {
+  double min_angle = 0.0;     // degrees
+  double aspect_ratio = 0.0;  // R / (2 r)
+};
+TriangleShape triangle_shape(Vec2 a, Vec2 b, Vec2 c);
+
 // Per-triangle metrics of a whole mesh, in triangle order.
 std::vector<TriangleQuality> triangle_qualities(const Mesh& mesh);
 

@@ -38,7 +38,7 @@ MeshSample measure_mesh(const NodeSet& nodes, int iteration) {
     if (mesh.triangles.empty()) return s;
     double angle = 180.0, aspect = 0.0;
     for (const auto& t : mesh.triangles) {
-      const TriangleQuality q = triangle_quality(mesh.points[t[0]], mesh.points[t[1]], mesh.points[t[2]]);
+      const TriangleShape q = triangle_shape(mesh.points[t[0]], mesh.points[t[1]], mesh.points[t[2]]);
       angle = std::min(angle, q.min_angle);
       aspect += q.aspect_ratio;
     }
