@@ -6,6 +6,8 @@
 #include <string>
 
 #include "app/case_file.hpp"
+#include "app/mesh_command.hpp"
+#include "spacing/background_field.hpp"
 #include "core/errors.hpp"
 
 namespace fs = std::filesystem;
@@ -530,6 +532,33 @@ TEST_CASE("spacing pipeline keys: best and thesis defaults, values and ranges", 
   CHECK_THAT(error_of(std::string(kMinimal) + "[output]\nspacing_picture = 1\n"),
              Catch::Contains("output.spacing_picture must be a boolean"));
   CHECK_THAT(error_of(base + "gradiation = 0.2\n"), Catch::Contains("did you mean 'spacing.gradation'?"));
+}
+
+TEST_CASE("spacing background keys: the thesis keeps the builder's defaults, a file's values win, ranges", "[app][case]") {
+  const BackgroundOptions builder;
+  const CaseConfig thesis = parse_case_text(std::string("preset = \"thesis\"\n") + kMinimal, kCase);
+  CHECK(thesis.spacing.background_tolerance == builder.tolerance);
+  CHECK(thesis.spacing.background_min_side == builder.min_side_fraction);
+  CHECK(thesis.spacing.background_boundary_min_side == builder.boundary_min_side_fraction);
+  const CaseConfig set = parse_case_text(std::string(kMinimal) +
+                                             "[spacing]\nbackground_tolerance = 0.03\nbackground_min_side = 0.5\n"
+                                             "background_boundary_min_side = 0.125\n",
+                                         kCase);
+  CHECK(set.spacing.background_tolerance == 0.03);
+  CHECK(set.spacing.background_min_side == 0.5);
+  CHECK(set.spacing.background_boundary_min_side == 0.125);
+  // They reach the background builder.
+  const SpacingOptions o = spacing_options(set);
+  CHECK(o.background.tolerance == 0.03);
+  CHECK(o.background.min_side_fraction == 0.5);
+  CHECK(o.background.boundary_min_side_fraction == 0.125);
+  const std::string base = std::string(kMinimal) + "[spacing]\n";
+  CHECK_THAT(error_of(base + "background_tolerance = 0\n"),
+             Catch::Contains("spacing.background_tolerance must be in (0, 1], got 0"));
+  CHECK_THAT(error_of(base + "background_min_side = 2\n"),
+             Catch::Contains("spacing.background_min_side must be in (0, 1], got 2"));
+  CHECK_THAT(error_of(base + "background_boundary_min_side = -0.5\n"),
+             Catch::Contains("spacing.background_boundary_min_side must be in (0, 1], got -0.5"));
 }
 
 TEST_CASE("simulation.stop: best converges, thesis counts, a key wins over the preset, bad values are refused",

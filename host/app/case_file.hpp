@@ -90,6 +90,13 @@ struct CaseConfig {
     double gradation = 0.2;
     double rows_in_gap = 2.0;
     double curvature_angle = 10.0;  // degrees
+    // The background quadtree's resolution (spacing/background_field.hpp BackgroundOptions, whose
+    // defaults these are; the best preset coarsens it): refine while the bilinear value is off by more
+    // than background_tolerance (relative), but not for accuracy below background_min_side x q inside
+    // and background_boundary_min_side x q in leaves a boundary segment touches.
+    double background_tolerance = 1e-2;
+    double background_min_side = 1.0 / 4.0;
+    double background_boundary_min_side = 1.0 / 16.0;
   } spacing;
 
   struct Boundary {

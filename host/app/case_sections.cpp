@@ -123,6 +123,17 @@ void read_spacing_section(const Reader& r, const toml::table& root, CaseConfig& 
       r.fail("spacing.rows_in_gap", n,
              fmt::format("spacing.rows_in_gap must be 0 (off) or in [1, 100], got {}", c.spacing.rows_in_gap));
   }
+  // The background quadtree's resolution: fractions and a tolerance in (0, 1].
+  const auto fraction = [&](const char* name, double& value) {
+    const std::string key = std::string("spacing.") + name;
+    if (const toml::node* n = find(root, "spacing", name)) {
+      value = r.number(key, *n);
+      if (!(value > 0.0 && value <= 1.0)) r.fail(key, n, fmt::format("{} must be in (0, 1], got {}", key, value));
+    }
+  };
+  fraction("background_tolerance", c.spacing.background_tolerance);
+  fraction("background_min_side", c.spacing.background_min_side);
+  fraction("background_boundary_min_side", c.spacing.background_boundary_min_side);
   if (const toml::node* n = find(root, "spacing", "curvature_angle")) {
     c.spacing.curvature_angle = r.number("spacing.curvature_angle", *n);
     if (!(c.spacing.curvature_angle >= 0.0 && c.spacing.curvature_angle <= 90.0))

@@ -104,6 +104,9 @@ SpacingOptions spacing_options(const CaseConfig& config) {
   o.gradation = config.spacing.gradation;
   o.rows_in_gap = config.spacing.rows_in_gap;
   o.curvature_angle = config.spacing.curvature_angle;
+  o.background.tolerance = config.spacing.background_tolerance;
+  o.background.min_side_fraction = config.spacing.background_min_side;
+  o.background.boundary_min_side_fraction = config.spacing.background_boundary_min_side;
   // The sources' floor stays with boundary nodes placed by the field too: without it the feature size
   // asks for q -> 0 toward sharp V tips, whose placed nodes then crowd into slivers (measured on the
   // corpus: heatsink_channel 0.22 deg, coastline 0.47 deg without; docs/spacing.md). The final floor
