@@ -1,6 +1,7 @@
 // Tests of case-file parsing: a full example, defaults, every error kind (with line numbers and
 // suggestions) and --set overrides.
 #include <catch2/catch.hpp>
+#include <fmt/format.h>
 
 #include <filesystem>
 #include <string>
@@ -534,12 +535,15 @@ TEST_CASE("spacing pipeline keys: best and thesis defaults, values and ranges", 
   CHECK_THAT(error_of(base + "gradiation = 0.2\n"), Catch::Contains("did you mean 'spacing.gradation'?"));
 }
 
-TEST_CASE("spacing background keys: the thesis keeps the builder's defaults, a file's values win, ranges", "[app][case]") {
+TEST_CASE("spacing background keys: every preset keeps the builder's defaults, a file's values win, ranges", "[app][case]") {
   const BackgroundOptions builder;
-  const CaseConfig thesis = parse_case_text(std::string("preset = \"thesis\"\n") + kMinimal, kCase);
-  CHECK(thesis.spacing.background_tolerance == builder.tolerance);
-  CHECK(thesis.spacing.background_min_side == builder.min_side_fraction);
-  CHECK(thesis.spacing.background_boundary_min_side == builder.boundary_min_side_fraction);
+  for (const char* preset : {"thesis", "best", "long"}) {
+    const CaseConfig c = parse_case_text(fmt::format("preset = \"{}\"\n", preset) + kMinimal, kCase);
+    INFO("preset " << preset);
+    CHECK(c.spacing.background_tolerance == builder.tolerance);
+    CHECK(c.spacing.background_min_side == builder.min_side_fraction);
+    CHECK(c.spacing.background_boundary_min_side == builder.boundary_min_side_fraction);
+  }
   const CaseConfig set = parse_case_text(std::string(kMinimal) +
                                              "[spacing]\nbackground_tolerance = 0.03\nbackground_min_side = 0.5\n"
                                              "background_boundary_min_side = 0.125\n",
