@@ -288,6 +288,11 @@ class Planner {
     };
     std::vector<Candidate> candidates;
     const auto& tris = graph_.triangles;
+    // The triangles past the cheap filter, then q at all their circumcentres in one batch (at_many:
+    // the same values as at(), on every core; in a settled lattice most triangles pass the filter).
+    std::vector<std::size_t> passed;
+    std::vector<Vec2> centres;
+    std::vector<double> radii;
     for (std::size_t t = 0; t < tris.size(); ++t) {
       const auto [a, b, c] = tris[t];
       Vec2 centre;
@@ -296,9 +301,16 @@ class Planner {
       // Cheap filter first: q varies little over a circumradius (a graded field by at most ~25%).
       const double q_min = std::min({q(a), q(b), q(c)});
       if (!(radius > 0.75 * t_.insert * q_min)) continue;
-      const double qc = spacing_.at(centre);
+      passed.push_back(t);
+      centres.push_back(centre);
+      radii.push_back(radius);
+    }
+    std::vector<double> qcs;
+    spacing_.at_many(centres, qcs);
+    for (std::size_t k = 0; k < passed.size(); ++k) {
+      const double qc = qcs[k], radius = radii[k];
       if (!(qc > 0.0) || !(radius > t_.insert * qc)) continue;
-      candidates.push_back({radius / qc, t, centre});
+      candidates.push_back({radius / qc, passed[k], centres[k]});
     }
     std::sort(candidates.begin(), candidates.end(), [](const Candidate& e, const Candidate& f) {
       return e.ratio > f.ratio || (e.ratio == f.ratio && e.t < f.t);

@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 
 #include "core/errors.hpp"
+#include "core/parallel.hpp"
 #include "spacing/background_builder.hpp"
 
 namespace pdmesh {
@@ -126,7 +127,10 @@ double BackgroundSpacing::at(Vec2 p) const {
 
 void BackgroundSpacing::at_many(const std::vector<Vec2>& p, std::vector<double>& q) const {
   q.resize(p.size());
-  for (std::size_t i = 0; i < p.size(); ++i) q[i] = at(p[i]);
+  // A lookup is a descent of up to max_depth levels (~0.2-0.4 us on 30P30N's tree); large batches
+  // (a population event's triangle circumcentres, every node of a mesh) are worth a second core.
+  // Each value is at()'s whatever the thread.
+  parallel_for(p.size(), [&](std::size_t i) { q[i] = at(p[i]); }, 8192);
 }
 
 int BackgroundSpacing::tag_at(Vec2 p) const {
