@@ -174,6 +174,41 @@ TEST_CASE("a view window zooms in and a tall window makes a tall image", "[rende
   fs::remove_all(dir);
 }
 
+TEST_CASE("the scale bar sits in the title band beside the title, over the plot only where there is no room", "[render]") {
+  const fs::path dir = fresh_dir("scale_bar");
+  // 2 x 1 window at 800 px: 400 px per unit, a 0.2 bar of 80 px, in the band from x = 700 to 780 at y = 32.
+  NodeSet n;
+  n.add({0.075, 0.0625}, 0.1, NodeKind::Interior, -1);  // pixel (30, 415): where the bar used to be drawn
+  NodePictureOptions o;
+  o.window = Box{{0.0, 0.0}, {2.0, 1.0}};
+  o.long_side = 800;
+  write_node_picture(dir / "wide.png", rectangle_geometry(), n, o);
+  {
+    Png png(dir / "wide.png");
+    REQUIRE(png.ok());
+    REQUIRE(png.width() == 800);
+    // The bar's line, dark, in the band.
+    CHECK(png.pixel(740, 32).r < 100);
+    // The node in the plot's bottom-left corner in its full colour, no white backing over it.
+    const Rgb node = png.pixel(30, 415);
+    CHECK(node.r > 200);
+    CHECK(node.g < 60);
+  }
+  // 160 px wide with a title longer than the band: the bar goes on its backing in the plot's
+  // bottom-left corner (a 0.05 bar of 25 px from x = 20 at y = 40 + 500 - 20).
+  o.window = Box{{0.4, 0.0}, {0.6, 1.0}};
+  o.long_side = 500;
+  o.title = "a title longer than the picture is wide";
+  write_node_picture(dir / "narrow.png", rectangle_geometry(), n, o);
+  {
+    Png png(dir / "narrow.png");
+    REQUIRE(png.ok());
+    REQUIRE(png.width() == 160);
+    CHECK(png.pixel(32, 520).r < 100);
+  }
+  fs::remove_all(dir);
+}
+
 TEST_CASE("mesh pictures fill triangles by value and draw a colour bar", "[render]") {
   const fs::path dir = fresh_dir("mesh");
   const Mesh m = unit_square_mesh();

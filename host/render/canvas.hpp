@@ -76,9 +76,11 @@ class Canvas {
   void rectangle(const Box& b, Rgb colour, double width_px);
   void fill_triangle(Vec2 a, Vec2 b, Vec2 c, Rgb colour);
 
-  // Pixel-space decorations.
-  void title(const std::string& text);
-  void scale_bar();
+  // Pixel-space decorations. The title goes in the band above the plot; with `scale_bar`, a bar of
+  // 1, 2 or 5 times a power of ten world units goes at the band's right end, beside the title, so that
+  // it hides nothing of the drawing. Only where the band is too low or the title too long for both
+  // does the bar go on a white backing in the plot's bottom-left corner.
+  void title(const std::string& text, bool scale_bar = false);
   void text(double px, double py, const std::string& s, double size, Rgb colour);
   cairo_t* context() { return cr_; }  // for decorations that need cairo directly (colour bars)
   double plot_right() const { return plot_x0_ + plot_w_; }

@@ -168,9 +168,9 @@ void write_mesh_picture(const std::filesystem::path& path, const Mesh& mesh, con
       StrokeBatch boundary(canvas, colours::kBlack, 2.0);
       for (const BoundaryEdge& e : mesh.boundary_edges) boundary.segment(mesh.points[e.a], mesh.points[e.b]);
     }
-    canvas.scale_bar();
     canvas.title(fmt::format("{}   {} points, {} triangles{}", options.title, mesh.points.size(), mesh.triangles.size(),
-                             skipped > 0 ? fmt::format(" (edges under {} px not drawn)", kMinEdgePixels) : std::string()));
+                             skipped > 0 ? fmt::format(" (edges under {} px not drawn)", kMinEdgePixels) : std::string()),
+                 true);
     if (values != nullptr) {
       draw_colour_bar(canvas, std::isfinite(lo) ? lo : 0.0, std::isfinite(hi) ? hi : 0.0, options.value_label);
     }

@@ -46,10 +46,10 @@ void write_node_picture(const std::filesystem::path& path, const Geometry& geome
         if (canvas.visible(nodes.x[i], r)) dots.dot(nodes.x[i], r);
       }
     }
-    canvas.scale_bar();
     canvas.title(fmt::format("{}   {} nodes: {} fixed, {} boundary, {} interior", options.title, nodes.size(),
                              nodes.count(NodeKind::Fixed), nodes.count(NodeKind::Boundary),
-                             nodes.count(NodeKind::Interior)));
+                             nodes.count(NodeKind::Interior)),
+                 true);
   });
 }
 
