@@ -8,6 +8,7 @@
 
 #include "app/case_file.hpp"
 #include "app/mesh_command.hpp"
+#include "cleanup/cleanup.hpp"
 #include "spacing/background_field.hpp"
 #include "core/errors.hpp"
 
@@ -455,6 +456,30 @@ TEST_CASE("cleanup keys: best cleans, thesis does not, a key wins over the prese
              Catch::Contains("cleanup.enabled must be a boolean (true or false), got string"));
   CHECK_THAT(error_of(std::string(kMinimal) + "[cleanup]\nmin_angel = 20\n"),
              Catch::Contains("unknown key 'cleanup.min_angel'; did you mean 'cleanup.min_angle'?"));
+}
+
+TEST_CASE("cleanup trial budget keys: the presets' values, a file's values win, ranges", "[app][case]") {
+  // long (and so the thesis' cleanup when a file turns it on) keeps CleanupOptions' bound.
+  const CleanupOptions options;
+  const CaseConfig long_preset = parse_case_text(std::string("preset = \"long\"\n") + kMinimal, kCase);
+  CHECK(long_preset.cleanup.trials_per_triangle == options.trials_per_triangle);
+  CHECK(static_cast<double>(long_preset.cleanup.min_trials) == options.min_trials);
+  const CaseConfig thesis = parse_case_text(std::string("preset = \"thesis\"\n") + kMinimal, kCase);
+  CHECK(thesis.cleanup.trials_per_triangle == options.trials_per_triangle);
+  CHECK(static_cast<double>(thesis.cleanup.min_trials) == options.min_trials);
+  // best: a smaller first budget (app/presets.cpp).
+  const CaseConfig best = parse_case_text(kMinimal, kCase);
+  CHECK(best.cleanup.trials_per_triangle == 0.2);
+  CHECK(best.cleanup.min_trials == 2000);
+  const CaseConfig set =
+      parse_case_text(std::string(kMinimal) + "[cleanup]\ntrials_per_triangle = 1.5\nmin_trials = 300\n", kCase);
+  CHECK(set.cleanup.trials_per_triangle == 1.5);
+  CHECK(set.cleanup.min_trials == 300);
+  CHECK_THAT(error_of(std::string(kMinimal) + "[cleanup]\ntrials_per_triangle = -1\n"),
+             Catch::Contains("cleanup.trials_per_triangle must be in [0, 100], got -1"));
+  CHECK_THAT(error_of(std::string(kMinimal) + "[cleanup]\nmin_trials = -5\n"),
+             Catch::Contains("cleanup.min_trials must be in 0..1000000000, got -5"));
+  CHECK_THAT(error_of(std::string(kMinimal) + "[cleanup]\nmin_trials = 2.5\n"), Catch::Contains("cleanup.min_trials must be"));
 }
 
 TEST_CASE("edit distance", "[app][case]") {

@@ -2,7 +2,7 @@
 // (e.g. a run's final.nodes) over its geometry, cleans the mesh, checks it and prints the quality
 // before and after and the time of each stage, single-threaded.
 // Usage: bench_cleanup NODES GEOMETRY... [--min-angle D] [--iterations N] [--smooth-below D]
-//                      [--step-cap F] [--no-topology] [--no-compound] [--trials-per-triangle F] [--repeats N] [--png PREFIX] [--window x0,y0,x1,y1]
+//                      [--step-cap F] [--no-topology] [--no-compound] [--trials-per-triangle F] [--min-trials N] [--repeats N] [--png PREFIX] [--window x0,y0,x1,y1]
 //                      [--spacing EXPRESSION] (default: the boundary spacing, eq. 3.6)
 //                      [--per-iteration] (a table of every outer iteration) [--write MESH.msh] (the cleaned mesh)
 //        bench_cleanup --write-graded N FILE.crv   (the graded_N geometry of `pdmesh bench` as a curve file)
@@ -66,6 +66,7 @@ int main(int argc, char** argv) {
       else if (arg == "--no-topology") options.topology = false;
       else if (arg == "--no-compound") options.compound = false;
       else if (arg == "--trials-per-triangle") options.trials_per_triangle = std::stod(value());
+      else if (arg == "--min-trials") options.min_trials = std::stod(value());
       else if (arg == "--repeats") repeats = std::stoi(value());
       else if (arg == "--png") png = value();
       else if (arg == "--worst") worst = std::stoi(value());

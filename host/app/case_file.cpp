@@ -203,6 +203,7 @@ const std::vector<std::string>& case_file_keys() {
       "population.merge", "population.remove_valence", "population.boundary", "population.boundary_split",
       "population.settle", "population.settle_events",
       "cleanup.enabled", "cleanup.min_angle", "cleanup.iterations", "cleanup.topology", "cleanup.split_boundary",
+      "cleanup.trials_per_triangle", "cleanup.min_trials",
       "output.formats", "output.tree_overlay", "output.views", "output.color_by", "output.spacing_picture",
   };
   return keys;

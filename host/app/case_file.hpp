@@ -153,6 +153,10 @@ struct CaseConfig {
     std::int64_t iterations = 16;  // outer iterations (smoothing sweeps + a topology pass)
     bool topology = true;          // false: smoothing and flips only (the node count stays)
     bool split_boundary = true;    // false: no new boundary nodes (boundary nodes only slide)
+    // The topology passes' work bound: max(min_trials, trials_per_triangle x triangles) trials
+    // (cleanup/cleanup.hpp CleanupOptions, whose defaults these are; best lowers both).
+    double trials_per_triangle = 0.5;
+    std::int64_t min_trials = 10000;
   } cleanup;
 
   struct Output {

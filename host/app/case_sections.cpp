@@ -313,6 +313,17 @@ void read_cleanup_section(const Reader& r, const toml::table& root, CaseConfig& 
   if (const toml::node* n = find(root, "cleanup", "topology")) k.topology = r.boolean("cleanup.topology", *n);
   if (const toml::node* n = find(root, "cleanup", "split_boundary"))
     k.split_boundary = r.boolean("cleanup.split_boundary", *n);
+  if (const toml::node* n = find(root, "cleanup", "trials_per_triangle")) {
+    k.trials_per_triangle = r.number("cleanup.trials_per_triangle", *n);
+    if (!(k.trials_per_triangle >= 0.0 && k.trials_per_triangle <= 100.0))
+      r.fail("cleanup.trials_per_triangle", n,
+             fmt::format("cleanup.trials_per_triangle must be in [0, 100], got {}", k.trials_per_triangle));
+  }
+  if (const toml::node* n = find(root, "cleanup", "min_trials")) {
+    k.min_trials = r.integer("cleanup.min_trials", *n);
+    if (k.min_trials < 0 || k.min_trials > 1000000000)
+      r.fail("cleanup.min_trials", n, fmt::format("cleanup.min_trials must be in 0..1000000000, got {}", k.min_trials));
+  }
 }
 
 ViewWindow read_view(const Reader& r, const toml::node& entry, std::size_t i) {

@@ -158,6 +158,8 @@ Mesh mesh_and_measure(const CaseConfig& config, const MeshInputs& inputs, const 
     options.iterations = static_cast<int>(config.cleanup.iterations);
     options.topology = config.cleanup.topology;
     options.split_boundary = config.cleanup.split_boundary;
+    options.trials_per_triangle = config.cleanup.trials_per_triangle;
+    options.min_trials = static_cast<double>(config.cleanup.min_trials);
     effect.target_deg = options.min_angle;
     effect.triangles_before = mesh.triangles.size();
     effect.points_before = mesh.points.size();

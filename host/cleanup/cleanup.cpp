@@ -107,7 +107,7 @@ CleanupResult clean_mesh(const Mesh& mesh, const NodeSet& nodes, const GeometryT
   Scores scores;
   std::set<std::array<int, 3>> failures;
   const auto trial_budget = static_cast<std::size_t>(
-      std::max(10000.0, options.trials_per_triangle * static_cast<double>(mesh.triangles.size())));
+      std::max(options.min_trials, options.trials_per_triangle * static_cast<double>(mesh.triangles.size())));
   for (int iteration = 0; iteration < options.iterations; ++iteration) {
     std::size_t changed = 0;
     // Only nodes whose neighbourhood changed since the last sweep can propose something new.

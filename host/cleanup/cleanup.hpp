@@ -38,10 +38,13 @@ struct CleanupOptions {
   bool split_boundary = true;
   // Pairs of edits for a triangle below the target that no single edit repairs (docs/cleanup.md).
   bool compound = true;
-  // Work bound of the topology passes: at most max(10000, trials_per_triangle x triangles) trials in
-  // all, spent worst triangle first. A settled lattice needs far fewer (thesis cases: 0.07 to 0.7 per
-  // triangle); a mesh after a few iterations would otherwise take several per triangle.
+  // Work bound of the topology passes: at most max(min_trials, trials_per_triangle x triangles)
+  // trials in all, spent worst triangle first (the triangles below the target may spend a second
+  // bound). A settled lattice needs far fewer (thesis cases: 0.07 to 0.7 per triangle); a mesh after
+  // a few iterations would otherwise take several per triangle. Case keys cleanup.trials_per_triangle
+  // and cleanup.min_trials.
   double trials_per_triangle = 0.5;
+  double min_trials = 10000.0;
   // Measure the whole mesh after every outer iteration (CleanupIteration's min_angle, aspect_mean): a
   // scan of every triangle per iteration, for bench_cleanup's per-iteration table; off in runs.
   bool measure_iterations = false;
