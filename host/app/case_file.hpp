@@ -8,10 +8,12 @@
 #include <string>
 #include <vector>
 
+#include "cleanup/cleanup.hpp"
 #include "core/vec2.hpp"
 #include "geometry/geometry.hpp"
 #include "init/initial_distribution.hpp"
 #include "sim/population.hpp"
+#include "spacing/background_field.hpp"
 
 namespace pdmesh {
 
@@ -90,13 +92,13 @@ struct CaseConfig {
     double gradation = 0.2;
     double rows_in_gap = 2.0;
     double curvature_angle = 10.0;  // degrees
-    // The background quadtree's resolution (spacing/background_field.hpp BackgroundOptions, whose
-    // defaults these are; the best preset coarsens it): refine while the bilinear value is off by more
-    // than background_tolerance (relative), but not for accuracy below background_min_side x q inside
-    // and background_boundary_min_side x q in leaves a boundary segment touches.
-    double background_tolerance = 1e-2;
-    double background_min_side = 1.0 / 4.0;
-    double background_boundary_min_side = 1.0 / 16.0;
+    // The background quadtree's resolution, BackgroundOptions' defaults in every preset: refine while
+    // the bilinear value is off by more than background_tolerance (relative), but not for accuracy
+    // below background_min_side x q inside and background_boundary_min_side x q in leaves a boundary
+    // segment touches.
+    double background_tolerance = BackgroundOptions{}.tolerance;
+    double background_min_side = BackgroundOptions{}.min_side_fraction;
+    double background_boundary_min_side = BackgroundOptions{}.boundary_min_side_fraction;
   } spacing;
 
   struct Boundary {
@@ -154,9 +156,9 @@ struct CaseConfig {
     bool topology = true;          // false: smoothing and flips only (the node count stays)
     bool split_boundary = true;    // false: no new boundary nodes (boundary nodes only slide)
     // The topology passes' work bound: max(min_trials, trials_per_triangle x triangles) trials
-    // (cleanup/cleanup.hpp CleanupOptions, whose defaults these are; best lowers both).
-    double trials_per_triangle = 0.5;
-    std::int64_t min_trials = 10000;
+    // (CleanupOptions' defaults; best lowers both).
+    double trials_per_triangle = CleanupOptions{}.trials_per_triangle;
+    std::int64_t min_trials = static_cast<std::int64_t>(CleanupOptions{}.min_trials);
   } cleanup;
 
   struct Output {

@@ -74,10 +74,10 @@ std::vector<std::pair<std::string, std::string>> case_identity(const CaseConfig&
   keys.emplace_back("spacing.curvature_angle", fmt::format("{}", config.spacing.curvature_angle));
   // The background's resolution changes the field too. Only when not the thesis' (and long's) values,
   // so that checkpoints written before these keys existed identify the same way.
-  const CaseConfig::Spacing defaults;
-  if (config.spacing.background_tolerance != defaults.background_tolerance ||
-      config.spacing.background_min_side != defaults.background_min_side ||
-      config.spacing.background_boundary_min_side != defaults.background_boundary_min_side) {
+  const BackgroundOptions defaults;
+  if (config.spacing.background_tolerance != defaults.tolerance ||
+      config.spacing.background_min_side != defaults.min_side_fraction ||
+      config.spacing.background_boundary_min_side != defaults.boundary_min_side_fraction) {
     keys.emplace_back("spacing.background_tolerance", fmt::format("{}", config.spacing.background_tolerance));
     keys.emplace_back("spacing.background_min_side", fmt::format("{}", config.spacing.background_min_side));
     keys.emplace_back("spacing.background_boundary_min_side",

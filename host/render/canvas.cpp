@@ -177,46 +177,46 @@ void Canvas::text(double px, double py, const std::string& s, double size, Rgb c
   cairo_show_text(cr_, s.c_str());
 }
 
-void Canvas::title(const std::string& s, bool scale_bar) {
+void Canvas::title(const std::string& s) {
   if (clipped_) cairo_restore(cr_);
-  const double title_size = std::min(18.0, plot_y0_ * 0.5);
-  text(12, plot_y0_ * 0.7, s, title_size, colours::kBlack);
-  if (scale_bar) {
-    // The longest 1, 2 or 5 times a power of ten that fits in a fifth of the plot width.
-    const double target = 0.2 * plot_w_ / scale_;
-    const double power = std::pow(10.0, std::floor(std::log10(target)));
-    double length = power;
-    for (double m : {2.0, 5.0}) {
-      if (m * power <= target) length = m * power;
-    }
-    const double px = length * scale_;
-    const std::string label = fmt::format("{:g}", length);
-    cairo_text_extents_t title_extent;
-    cairo_set_font_size(cr_, title_size);
-    cairo_text_extents(cr_, s.c_str(), &title_extent);
-    // In the band: the bar's baseline 8 px above the plot, its label above it, its right end 20 px
-    // in from the plot's right edge; it needs the band at least 32 px high and 24 px clear of the title.
-    const double band_x0 = plot_x0_ + plot_w_ - 20 - px;
-    const bool in_band = plot_y0_ >= 32 && band_x0 - 24 >= 12 + title_extent.x_advance;
-    const double x0 = in_band ? band_x0 : plot_x0_ + 20;
-    const double y0 = in_band ? plot_y0_ - 8 : plot_y0_ + plot_h_ - 20;
-    if (!in_band) {
-      cairo_set_source_rgba(cr_, 1, 1, 1, 0.8);
-      cairo_rectangle(cr_, x0 - 8, y0 - 30, px + 16, 40);
-      cairo_fill(cr_);
-    }
-    cairo_set_source_rgb(cr_, 0, 0, 0);
-    cairo_set_line_width(cr_, 2);
-    cairo_move_to(cr_, x0, y0 - 6);
-    cairo_line_to(cr_, x0, y0);
-    cairo_line_to(cr_, x0 + px, y0);
-    cairo_line_to(cr_, x0 + px, y0 - 6);
-    cairo_stroke(cr_);
-    text(x0, y0 - 10, label, 14, colours::kBlack);
-  }
+  const double size = std::min(18.0, plot_y0_ * 0.5);
+  text(12, plot_y0_ * 0.7, s, size, colours::kBlack);
+  cairo_text_extents_t extent;
+  cairo_text_extents(cr_, s.c_str(), &extent);  // at the title's font size, which text() set
+  scale_bar(12 + extent.x_advance);
   cairo_save(cr_);
   cairo_rectangle(cr_, plot_x0_, plot_y0_, plot_w_, plot_h_);
   cairo_clip(cr_);
+}
+
+void Canvas::scale_bar(double title_right) {
+  // The longest 1, 2 or 5 times a power of ten that fits in a fifth of the plot width.
+  const double target = 0.2 * plot_w_ / scale_;
+  const double power = std::pow(10.0, std::floor(std::log10(target)));
+  double length = power;
+  for (double m : {2.0, 5.0}) {
+    if (m * power <= target) length = m * power;
+  }
+  const double px = length * scale_;
+  // In the band: the bar's baseline 8 px above the plot, its label above it, its right end 20 px in
+  // from the plot's right edge; it needs the band at least 32 px high and 24 px clear of the title.
+  const double band_x0 = plot_x0_ + plot_w_ - 20 - px;
+  const bool in_band = plot_y0_ >= 32 && band_x0 - 24 >= title_right;
+  const double x0 = in_band ? band_x0 : plot_x0_ + 20;
+  const double y0 = in_band ? plot_y0_ - 8 : plot_y0_ + plot_h_ - 20;
+  if (!in_band) {
+    cairo_set_source_rgba(cr_, 1, 1, 1, 0.8);
+    cairo_rectangle(cr_, x0 - 8, y0 - 30, px + 16, 40);
+    cairo_fill(cr_);
+  }
+  cairo_set_source_rgb(cr_, 0, 0, 0);
+  cairo_set_line_width(cr_, 2);
+  cairo_move_to(cr_, x0, y0 - 6);
+  cairo_line_to(cr_, x0, y0);
+  cairo_line_to(cr_, x0 + px, y0);
+  cairo_line_to(cr_, x0 + px, y0 - 6);
+  cairo_stroke(cr_);
+  text(x0, y0 - 10, fmt::format("{:g}", length), 14, colours::kBlack);
 }
 
 void Canvas::finish() {

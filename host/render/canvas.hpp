@@ -76,11 +76,11 @@ class Canvas {
   void rectangle(const Box& b, Rgb colour, double width_px);
   void fill_triangle(Vec2 a, Vec2 b, Vec2 c, Rgb colour);
 
-  // Pixel-space decorations. The title goes in the band above the plot; with `scale_bar`, a bar of
-  // 1, 2 or 5 times a power of ten world units goes at the band's right end, beside the title, so that
-  // it hides nothing of the drawing. Only where the band is too low or the title too long for both
-  // does the bar go on a white backing in the plot's bottom-left corner.
-  void title(const std::string& text, bool scale_bar = false);
+  // Pixel-space decorations. The title goes in the band above the plot, and a scale bar of 1, 2 or 5
+  // times a power of ten world units at the band's right end, beside the title, so that it hides
+  // nothing of the drawing; only where the band is too low or the title too long for both does the
+  // bar go on a white backing in the plot's bottom-left corner.
+  void title(const std::string& text);
   void text(double px, double py, const std::string& s, double size, Rgb colour);
   cairo_t* context() { return cr_; }  // for decorations that need cairo directly (colour bars)
   double plot_right() const { return plot_x0_ + plot_w_; }
@@ -94,6 +94,7 @@ class Canvas {
   cairo_surface_t* surface() { return surface_; }
 
  private:
+  void scale_bar(double title_right);  // title()'s bar, clear of a title ending at x = title_right
   void check(const char* what) const;
   // Whether pixel rows of the world band [world_lo_y, world_hi_y], widened by slack_px, meet this
   // canvas' rows.

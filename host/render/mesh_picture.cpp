@@ -169,8 +169,7 @@ void write_mesh_picture(const std::filesystem::path& path, const Mesh& mesh, con
       for (const BoundaryEdge& e : mesh.boundary_edges) boundary.segment(mesh.points[e.a], mesh.points[e.b]);
     }
     canvas.title(fmt::format("{}   {} points, {} triangles{}", options.title, mesh.points.size(), mesh.triangles.size(),
-                             skipped > 0 ? fmt::format(" (edges under {} px not drawn)", kMinEdgePixels) : std::string()),
-                 true);
+                             skipped > 0 ? fmt::format(" (edges under {} px not drawn)", kMinEdgePixels) : std::string()));
     if (values != nullptr) {
       draw_colour_bar(canvas, std::isfinite(lo) ? lo : 0.0, std::isfinite(hi) ? hi : 0.0, options.value_label);
     }

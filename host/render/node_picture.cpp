@@ -48,8 +48,7 @@ void write_node_picture(const std::filesystem::path& path, const Geometry& geome
     }
     canvas.title(fmt::format("{}   {} nodes: {} fixed, {} boundary, {} interior", options.title, nodes.size(),
                              nodes.count(NodeKind::Fixed), nodes.count(NodeKind::Boundary),
-                             nodes.count(NodeKind::Interior)),
-                 true);
+                             nodes.count(NodeKind::Interior)));
   });
 }
 

@@ -106,7 +106,7 @@ void write_spacing_picture(const std::filesystem::path& path, const GeometryTree
     cairo_paint(cr);
     cairo_surface_destroy(image);
     for (const Segment& s : g.segments) canvas.line(s.a, s.b, colours::kBlack, 1.2);
-    canvas.title(fmt::format("{}   q from {:.3g} to {:.3g}", options.title, lo, hi), true);
+    canvas.title(fmt::format("{}   q from {:.3g} to {:.3g}", options.title, lo, hi));
     draw_log_colour_bar(canvas, lo, hi);
   });
 }
