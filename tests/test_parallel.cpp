@@ -50,3 +50,39 @@ TEST_CASE("parallel_for rethrows the exception of the lowest failing block", "[c
   // taken first among the failing ones, so no block below it can have thrown.
   CHECK(what == "1000");
 }
+
+namespace {
+// A scratch that counts how many are alive and remembers the one thread that may use it.
+struct CountedScratch {
+  static inline std::atomic<int> alive{0};
+  std::thread::id owner{};
+  std::vector<std::size_t> seen;
+  CountedScratch() { alive.fetch_add(1); }
+  CountedScratch(const CountedScratch&) = delete;
+  CountedScratch& operator=(const CountedScratch&) = delete;
+  ~CountedScratch() { alive.fetch_sub(1); }
+};
+}  // namespace
+
+TEST_CASE("parallel_for_scratch gives every thread its own scratch and frees it", "[core][parallel]") {
+  for (const std::size_t n : {0u, 100u, 100003u}) {
+    std::vector<std::atomic<int>> seen(n);
+    std::atomic<int> foreign{0};
+    pdmesh::parallel_for_scratch<CountedScratch>(
+        n,
+        [&](CountedScratch& s, std::size_t i) {
+          if (s.owner == std::thread::id{}) s.owner = std::this_thread::get_id();
+          if (s.owner != std::this_thread::get_id()) foreign.fetch_add(1);
+          // The scratch keeps what this thread's earlier indices left: they were taken in rising order.
+          if (!s.seen.empty() && s.seen.back() >= i) foreign.fetch_add(1);
+          s.seen.push_back(i);
+          seen[i].fetch_add(1);
+        },
+        64);
+    CHECK(foreign.load() == 0);
+    std::size_t wrong = 0;
+    for (const auto& c : seen) wrong += c.load() != 1;
+    CHECK(wrong == 0);
+    CHECK(CountedScratch::alive.load() == 0);
+  }
+}

@@ -531,8 +531,8 @@ bool GeometryTree::inside(Vec2 p) const {
 bool GeometryTree::ray_inside(Vec2 p) const {
   const Quadtree& tree = impl_->all;
   // Segments straddling several leaves along the ray must be counted once: gather, sort, unique.
-  thread_local std::vector<int> candidates;
-  candidates.clear();
+  // A local, not a thread_local (see parallel_for_scratch): the ray cast is the rare fallback.
+  std::vector<int> candidates;
   if (tree.empty()) return false;
   // Cast the ray towards the nearer side of the root box: fewer leaves to visit. With the
   // half-open rule both directions give the same parity (every closed loop crosses the whole row

@@ -11,13 +11,15 @@ namespace pdmesh {
 
 BoundarySpacing::BoundarySpacing(const GeometryTree& tree) : tree_(tree) {}
 
-double BoundarySpacing::at(Vec2 p) const {
-  // The hits of this thread's previous query seed the searches: at_many's batches are spatially
-  // ordered (cell corners and test points level by level), so the last segment is usually the answer
-  // or close to it. The result does not depend on the seed (GeometryTree::closest_per_curve_near).
-  thread_local std::vector<ClosestHit> hits;
-  tree_.closest_per_curve_near(p, hits);
-  const auto& segs = tree_.geometry().segments;
+namespace {
+
+// eq. 3.6 at p. `hits` carries the previous query's answer of the same thread as the seed of this one's
+// searches: at_many's batches are spatially ordered (cell corners and test points level by level), so
+// the last segment is usually the answer or close to it. The result does not depend on the seed
+// (GeometryTree::closest_per_curve_near).
+double boundary_spacing_at(const GeometryTree& tree, Vec2 p, std::vector<ClosestHit>& hits) {
+  tree.closest_per_curve_near(p, hits);
+  const auto& segs = tree.geometry().segments;
   double d_min = -1.0;
   for (const ClosestHit& h : hits)
     if (h.segment >= 0 && (d_min < 0.0 || h.distance < d_min)) d_min = h.distance;
@@ -41,13 +43,24 @@ double BoundarySpacing::at(Vec2 p) const {
   return num / den;
 }
 
+}  // namespace
+
+double BoundarySpacing::at(Vec2 p) const {
+  // No seed kept between calls (a thread_local would be; see parallel_for_scratch for why not): the
+  // batches go through at_many.
+  std::vector<ClosestHit> hits;
+  return boundary_spacing_at(tree_, p, hits);
+}
+
 void BoundarySpacing::at_many(const std::vector<Vec2>& p, std::vector<double>& q) const {
   q.resize(p.size());
-  // Every point is independent and at() is thread-safe, so the values are at()'s whatever the
-  // thread count. A point costs about 3 us on 30P30N (15 curve searches), so 512 points (1.5 ms)
-  // are worth a thread (~50 us to start): with 4096, 35k of the 263k points of the thesis 30P30N
-  // quadtree, in its small early and late batches, were evaluated on one core.
-  parallel_for(p.size(), [&](std::size_t i) { q[i] = at(p[i]); }, 512, kMaxThreads);
+  // Every point is independent, so the values are at()'s whatever the thread count; each thread's
+  // previous answer seeds its next searches. A point costs about 3 us on 30P30N (15 curve searches),
+  // so 512 points (1.5 ms) are worth a thread (~50 us to start): with 4096, 35k of the 263k points of
+  // the thesis 30P30N quadtree, in its small early and late batches, were evaluated on one core.
+  parallel_for_scratch<std::vector<ClosestHit>>(
+      p.size(), [&](std::vector<ClosestHit>& hits, std::size_t i) { q[i] = boundary_spacing_at(tree_, p[i], hits); },
+      512, kMaxThreads);
 }
 
 }  // namespace pdmesh
