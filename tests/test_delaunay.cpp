@@ -118,6 +118,42 @@ TEST_CASE("random points: Delaunay by brute force", "[mesh]") {
   }
 }
 
+TEST_CASE("a triangulation just built is already Delaunay: the Lawson pass flips nothing", "[mesh]") {
+  // recover_edges skips the pass when no boundary edge needed a flip; that is exact only if the
+  // incremental insertion leaves no edge the pass would flip, degenerate inputs included.
+  std::vector<std::vector<Vec2>> sets;
+  for (int n : {3, 50, 2000, 20000}) {
+    std::mt19937_64 rng(11 + n);
+    std::vector<Vec2> pts;
+    for (int k = 0; k < n; ++k) pts.push_back({unit(rng), unit(rng)});
+    sets.push_back(pts);
+  }
+  std::vector<Vec2> grid, hex;  // every cell cocircular; a triangular lattice with sixfold ties
+  for (int i = 0; i < 60; ++i)
+    for (int j = 0; j < 60; ++j) {
+      grid.push_back({0.5 * i, 0.5 * j});
+      hex.push_back({i + 0.5 * (j % 2), 0.8660254037844386 * j});
+    }
+  sets.push_back(grid);
+  sets.push_back(hex);
+  for (std::size_t k = 0; k < sets.size(); ++k) {
+    INFO("set " << k);
+    Triangulation tri(sets[k]);
+    CHECK(tri.make_delaunay() == 0);
+  }
+  // constrain / is_constrained: either direction of a marked edge, not an edge between a marked vertex
+  // and another (the per-vertex flags only short-cut the hash lookup).
+  NodeSet nodes;
+  std::vector<Vec2> loop = {{0, 0}, {10, 0}, {10, 0.02}, {0, 0.02}};
+  add_loop(nodes, loop, 0);
+  for (int k = 1; k < 40; ++k) nodes.add({0.25 * k, 0.001}, 0.1, NodeKind::Interior, -1);
+  Triangulation strip(nodes.x);
+  REQUIRE(strip.find_edge(strip.vertex_of[0], strip.vertex_of[1])[0] < 0);
+  strip.constrain(strip.vertex_of[0], strip.vertex_of[1]);
+  CHECK(strip.is_constrained(strip.vertex_of[1], strip.vertex_of[0]));
+  CHECK_FALSE(strip.is_constrained(strip.vertex_of[1], strip.vertex_of[2]));
+}
+
 TEST_CASE("random points in a square domain: checker passes, area is 1", "[mesh]") {
   for (int n : {1, 17, 1000}) {
     NodeSet nodes;

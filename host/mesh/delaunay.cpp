@@ -256,7 +256,15 @@ std::vector<int> Triangulation::triangles_around(int a) const {
   return fan;
 }
 
-void Triangulation::make_delaunay() {
+void Triangulation::constrain(int a, int b) {
+  if (on_constraint_.empty()) on_constraint_.assign(points.size(), 0);
+  on_constraint_[static_cast<std::size_t>(a)] = 1;
+  on_constraint_[static_cast<std::size_t>(b)] = 1;
+  constrained_.insert(edge_key(a, b));
+}
+
+int Triangulation::make_delaunay() {
+  int flips = 0;
   std::vector<std::array<int, 2>> stack;  // edges as (a, b) vertex pairs: triangles change under us
   for (int t = 0; t < static_cast<int>(v.size()); ++t)
     for (int i = 0; i < 3; ++i)
@@ -273,12 +281,14 @@ void Triangulation::make_delaunay() {
     const int q = v[u][index_of(n[u], t)];
     if (incircle(points[p], points[a], points[b], points[q]) > 0.0) {
       flip(t, i);
+      ++flips;
       stack.push_back({p, a});
       stack.push_back({a, q});
       stack.push_back({q, b});
       stack.push_back({b, p});
     }
   }
+  return flips;
 }
 
 std::vector<std::array<int, 3>> Triangulation::inner_triangles() const {

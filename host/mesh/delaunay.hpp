@@ -29,12 +29,18 @@ class Triangulation {
   std::vector<std::array<int, 3>> v;        // triangle vertices, counter-clockwise
   std::vector<std::array<int, 3>> n;        // neighbours, n[t][i] opposite v[t][i]
   std::vector<int> vertex_triangle;         // one triangle incident to each vertex
-  std::unordered_set<std::uint64_t> constrained;  // edge_key of edges Lawson must not flip
   int input_count = 0;
 
   bool is_super(int vertex) const { return vertex >= input_count; }
   static std::uint64_t edge_key(int a, int b);
-  bool is_constrained(int a, int b) const { return !constrained.empty() && constrained.count(edge_key(a, b)) > 0; }
+  // Marks the edge a-b (either direction) as one Lawson must not flip.
+  void constrain(int a, int b);
+  // Most vertices are on no constrained edge: their flag answers without hashing the edge (every
+  // convergence check asks for each edge of its ~80k, in make_delaunay and the parity fill).
+  bool is_constrained(int a, int b) const {
+    return !constrained_.empty() && on_constraint_[static_cast<std::size_t>(a)] &&
+           on_constraint_[static_cast<std::size_t>(b)] && constrained_.count(edge_key(a, b)) > 0;
+  }
 
   // Flips the edge opposite v[t][i] (the quadrilateral must be strictly convex); see the diagram
   // in delaunay.cpp for the names. Afterwards t = (p, a, q) and the old neighbour u = (q, b, p).
@@ -45,8 +51,10 @@ class Triangulation {
   // Triangles around vertex a, counter-clockwise, starting at vertex_triangle[a].
   std::vector<int> triangles_around(int a) const;
   // Restores the (constrained) Delaunay property by Lawson flips of every non-constrained edge,
-  // driven by an explicit stack. Used after edge recovery.
-  void make_delaunay();
+  // driven by an explicit stack. Used after edge recovery. Returns the number of flips: 0 on a
+  // triangulation just built, which the incremental insertion leaves Delaunay under the same exact
+  // incircle test (tests/test_delaunay.cpp checks it; recover_edges relies on it).
+  int make_delaunay();
   // Triangles not touching the super-triangle, in input point indices (unconstrained use).
   std::vector<std::array<int, 3>> inner_triangles() const;
 
@@ -57,6 +65,8 @@ class Triangulation {
   void legalize(std::vector<std::array<int, 2>>& stack);
   void replace_neighbour(int t, int old_neighbour, int new_neighbour);
   std::vector<std::array<int, 2>> flip_stack_;  // reused by every insertion
+  std::unordered_set<std::uint64_t> constrained_;  // edge_key of edges Lawson must not flip
+  std::vector<char> on_constraint_;               // per vertex: an end of a constrained edge
 };
 
 // Delaunay triangles of the points (without constraints); see Triangulation for the hull caveat.
