@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "core/parallel.hpp"
+#include "core/worker_pool.hpp"
 
 using pdmesh::parallel_for;
 
@@ -85,4 +86,37 @@ TEST_CASE("parallel_for_scratch gives every thread its own scratch and frees it"
     CHECK(wrong == 0);
     CHECK(CountedScratch::alive.load() == 0);
   }
+}
+
+TEST_CASE("WorkerPool runs job(0) on the caller and 1..count on its helpers, one call at a time", "[core][parallel]") {
+  pdmesh::WorkerPool pool(3);
+  REQUIRE(pool.helpers() == 3);
+  for (std::size_t count = 0; count <= 3; ++count) {
+    std::vector<std::atomic<int>> ran(4);
+    std::vector<std::thread::id> who(4);
+    REQUIRE(pool.run(count, [&](std::size_t t) {
+      ran[t].fetch_add(1);
+      who[t] = std::this_thread::get_id();
+    }));
+    INFO("count " << count);
+    for (std::size_t t = 0; t < 4; ++t) CHECK(ran[t].load() == (t <= count ? 1 : 0));
+    CHECK(who[0] == std::this_thread::get_id());
+    for (std::size_t t = 1; t <= count; ++t) CHECK(who[t] != std::this_thread::get_id());
+  }
+  CHECK_FALSE(pool.run(4, [](std::size_t) {}));  // more than it has: the caller makes its own threads
+  // A call from inside a job (or from another thread meanwhile) finds the pool busy.
+  std::atomic<int> nested_refused{0};
+  REQUIRE(pool.run(1, [&](std::size_t t) {
+    if (t == 0 && !pool.run(1, [](std::size_t) {})) nested_refused.fetch_add(1);
+  }));
+  CHECK(nested_refused.load() == 1);
+}
+
+TEST_CASE("parallel_for nested in parallel_for runs every index once", "[core][parallel]") {
+  const std::size_t outer = 64, inner = 5000;
+  std::vector<std::atomic<int>> seen(outer * inner);
+  parallel_for(outer, [&](std::size_t i) { parallel_for(inner, [&](std::size_t j) { seen[i * inner + j].fetch_add(1); }, 512); }, 1);
+  std::size_t wrong = 0;
+  for (const auto& c : seen) wrong += c.load() != 1;
+  CHECK(wrong == 0);
 }

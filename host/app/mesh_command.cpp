@@ -13,6 +13,7 @@
 #include "app/resume.hpp"
 #include "core/atomic_file.hpp"
 #include "core/errors.hpp"
+#include "core/worker_pool.hpp"
 #include "render/history_plot.hpp"
 
 namespace pdmesh {
@@ -247,6 +248,9 @@ int run_mesh(const CaseConfig& config) {
   // An explicit OpenCL device that is not there is bad input: refuse it before anything is written.
   if (config.simulation.iterations > 0 && config.simulation.device != "host" && config.simulation.device != "auto")
     (void)ocl::select_device(config.simulation.device);
+  // parallel_for's helpers before any backend starts: creating a thread waits while the backend's
+  // dlopen runs (core/worker_pool.hpp), and the spacing phase's parallel loops would wait for it.
+  start_workers();
   if (config.resume) {
     resume_mesh(config, inputs, phases);
     report_phases(config, phases);

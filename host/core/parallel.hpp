@@ -5,8 +5,11 @@
 #include <atomic>
 #include <cstddef>
 #include <exception>
+#include <functional>
 #include <thread>
 #include <vector>
+
+#include "core/worker_pool.hpp"
 
 namespace pdmesh {
 
@@ -17,7 +20,7 @@ namespace pdmesh {
 // through glibc's __cxa_thread_atexit_impl, which takes the dynamic loader's lock; while the OpenCL
 // backend's thread is inside dlopen (PoCL and LLVM, 170 MB, read from disk when the page cache has
 // dropped them) that lock is held for up to ~100 ms, and the spacing phase's threads stalled behind it
-// (docs/performance.md, thirteenth session). Which thread and scratch serve an index changes nothing
+// (docs/performance.md, thirteenth session; creating a thread waits for it too: core/worker_pool.hpp). Which thread and scratch serve an index changes nothing
 // when body(scratch, i)'s result does not depend on what an earlier index left in the scratch.
 template <class Scratch, class Body>
 void parallel_for_scratch(std::size_t n, const Body& body, std::size_t min_chunk = 4096, std::size_t max_threads = 8) {
@@ -53,10 +56,15 @@ void parallel_for_scratch(std::size_t n, const Body& body, std::size_t min_chunk
       failed.store(true, std::memory_order_relaxed);
     }
   };
-  std::vector<std::thread> workers;
-  for (std::size_t t = 1; t < threads; ++t) workers.emplace_back(run, t);
-  run(0);
-  for (std::thread& w : workers) w.join();
+  // The helpers come from the process's pool (core/worker_pool.hpp: no thread is created per call),
+  // or, when the pool is serving another call or has too few, from threads of this call's own.
+  WorkerPool& pool = WorkerPool::instance();
+  if (!(threads - 1 <= pool.helpers() && pool.run(threads - 1, run))) {
+    std::vector<std::thread> workers;
+    for (std::size_t t = 1; t < threads; ++t) workers.emplace_back(run, t);
+    run(0);
+    for (std::thread& w : workers) w.join();
+  }
   std::size_t first = threads;
   for (std::size_t t = 0; t < threads; ++t)
     if (errors[t] && (first == threads || error_block[t] < error_block[first])) first = t;

@@ -2,8 +2,9 @@
 #include "spacing/spacing_field.hpp"
 
 #include <algorithm>
-#include <exception>
 #include <thread>
+
+#include "core/parallel.hpp"
 
 namespace pdmesh {
 
@@ -19,21 +20,11 @@ void for_chunks(std::size_t n, std::size_t max_threads, const std::function<void
     body(0, n);
     return;
   }
-  std::vector<std::exception_ptr> errors(threads);
-  auto run = [&](std::size_t t, std::size_t begin, std::size_t end) {
-    try {
-      body(begin, end);
-    } catch (...) {
-      errors[t] = std::current_exception();  // rethrown on the calling thread below
-    }
-  };
-  std::vector<std::thread> workers;
+  // One index per chunk on parallel_for's threads (its pool: no thread created per call); the error
+  // of the lowest failing chunk is the one rethrown.
   const std::size_t chunk = (n + threads - 1) / threads;
-  for (std::size_t t = 1; t < threads; ++t) workers.emplace_back(run, t, std::min(n, t * chunk), std::min(n, (t + 1) * chunk));
-  run(0, 0, std::min(n, chunk));
-  for (std::thread& w : workers) w.join();
-  for (const std::exception_ptr& e : errors)
-    if (e) std::rethrow_exception(e);
+  parallel_for(
+      threads, [&](std::size_t t) { body(std::min(n, t * chunk), std::min(n, (t + 1) * chunk)); }, 1, threads);
 }
 
 }  // namespace pdmesh

@@ -1,0 +1,62 @@
+// WorkerPool: helper threads started once; one job at a time, handed out under a mutex.
+#include "core/worker_pool.hpp"
+
+#include <algorithm>
+
+namespace pdmesh {
+
+WorkerPool& WorkerPool::instance() {
+  static WorkerPool pool(std::max(1u, std::thread::hardware_concurrency()) - 1);
+  return pool;
+}
+
+WorkerPool::WorkerPool(std::size_t helpers) {
+  threads_.reserve(helpers);
+  for (std::size_t k = 0; k < helpers; ++k) threads_.emplace_back(&WorkerPool::work, this, k + 1);
+}
+
+WorkerPool::~WorkerPool() {
+  {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    stop_ = true;
+  }
+  wake_.notify_all();
+  for (std::thread& t : threads_) t.join();
+}
+
+bool WorkerPool::run(std::size_t count, const std::function<void(std::size_t)>& job) {
+  if (count > threads_.size() || !busy_.try_lock()) return false;
+  const std::lock_guard<std::mutex> serving(busy_, std::adopt_lock);
+  std::unique_lock<std::mutex> lock(mutex_);
+  job_ = &job;
+  count_ = count;
+  pending_ = count;
+  ++generation_;
+  lock.unlock();
+  if (count > 0) wake_.notify_all();
+  job(0);
+  lock.lock();
+  done_.wait(lock, [this] { return pending_ == 0; });
+  job_ = nullptr;
+  return true;
+}
+
+void WorkerPool::work(std::size_t index) {
+  std::size_t seen = 0;
+  std::unique_lock<std::mutex> lock(mutex_);
+  for (;;) {
+    wake_.wait(lock, [&] { return stop_ || generation_ != seen; });
+    if (stop_) return;
+    seen = generation_;
+    if (index > count_) continue;  // not needed for this job
+    const std::function<void(std::size_t)>* job = job_;
+    lock.unlock();
+    (*job)(index);
+    lock.lock();
+    if (--pending_ == 0) done_.notify_one();
+  }
+}
+
+void start_workers() { (void)WorkerPool::instance(); }
+
+}  // namespace pdmesh

@@ -1,0 +1,54 @@
+// WorkerPool: the helper threads of parallel_for, started once and kept for the process.
+//
+// Why not a thread per call: creating a thread takes glibc's TLS lock (_dl_allocate_tls_init), which
+// dlopen holds for the whole load. The OpenCL backend is set up on its own thread while the spacing
+// field is built, and PoCL's dlopen of LLVM and clang (170 MB) takes ~0.15 s when the page cache has
+// dropped them (this machine drops them within a minute): every parallel_for of the spacing phase
+// waited for it before its helper could start (docs/performance.md, thirteenth session). The pool's
+// threads are started before the backend (start_workers() in run_mesh), so no call creates one then.
+#pragma once
+#include <condition_variable>
+#include <cstddef>
+#include <functional>
+#include <mutex>
+#include <thread>
+#include <vector>
+
+namespace pdmesh {
+
+class WorkerPool {
+ public:
+  // The process's pool: hardware_concurrency() - 1 helpers, started on the first call.
+  static WorkerPool& instance();
+
+  explicit WorkerPool(std::size_t helpers);
+  ~WorkerPool();
+  WorkerPool(const WorkerPool&) = delete;
+  WorkerPool& operator=(const WorkerPool&) = delete;
+
+  std::size_t helpers() const { return threads_.size(); }
+
+  // Runs job(0) on the calling thread and job(1), ..., job(count) on `count` helpers (count <=
+  // helpers()), and returns once all have returned; job must not throw. Returns false without
+  // running anything when the pool is already serving another call (a parallel_for on another
+  // thread, or one nested in a job) or count > helpers(): the caller then makes threads of its own.
+  bool run(std::size_t count, const std::function<void(std::size_t)>& job);
+
+ private:
+  void work(std::size_t index);
+
+  std::vector<std::thread> threads_;
+  std::mutex busy_;  // held by the call being served
+  std::mutex mutex_;
+  std::condition_variable wake_, done_;
+  const std::function<void(std::size_t)>* job_ = nullptr;
+  std::size_t count_ = 0;        // helpers 1..count_ take part in the current job
+  std::size_t generation_ = 0;   // bumped for every job
+  std::size_t pending_ = 0;      // helpers of the current job still running
+  bool stop_ = false;
+};
+
+// Starts the process's pool now (see the header comment for why this matters before a dlopen).
+void start_workers();
+
+}  // namespace pdmesh
