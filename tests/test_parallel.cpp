@@ -3,6 +3,10 @@
 #include <catch2/catch.hpp>
 
 #include <atomic>
+#include <mutex>
+#include <set>
+#include <sys/syscall.h>
+#include <unistd.h>
 #include <stdexcept>
 #include <string>
 #include <thread>
@@ -119,4 +123,24 @@ TEST_CASE("parallel_for nested in parallel_for runs every index once", "[core][p
   std::size_t wrong = 0;
   for (const auto& c : seen) wrong += c.load() != 1;
   CHECK(wrong == 0);
+}
+
+TEST_CASE("parallel_for reuses the pool's threads: no thread is created per call", "[core][parallel]") {
+  // A thread created while the OpenCL backend's dlopen runs waits for it (core/worker_pool.hpp), so
+  // the spacing phase's loops must not create any. Linux thread ids are not reused soon, so threads
+  // made per call would show as new ids in every call.
+  pdmesh::start_workers();
+  std::mutex mutex;
+  std::set<long> tids;
+  for (int call = 0; call < 20; ++call) {
+    parallel_for(
+        100000,
+        [&](std::size_t) {
+          thread_local const long tid = static_cast<long>(syscall(SYS_gettid));  // trivially destructible
+          const std::lock_guard<std::mutex> lock(mutex);
+          tids.insert(tid);
+        },
+        512);
+  }
+  CHECK(tids.size() <= 1 + pdmesh::WorkerPool::instance().helpers());
 }
