@@ -3,9 +3,13 @@
 #include <catch2/catch.hpp>
 
 #include <atomic>
+#include <chrono>
+#include <csignal>
+#include <cstdio>
 #include <mutex>
 #include <set>
 #include <sys/syscall.h>
+#include <sys/wait.h>
 #include <unistd.h>
 #include <stdexcept>
 #include <string>
@@ -143,4 +147,33 @@ TEST_CASE("parallel_for reuses the pool's threads: no thread is created per call
         512);
   }
   CHECK(tids.size() <= 1 + pdmesh::WorkerPool::instance().helpers());
+}
+
+TEST_CASE("parallel_for in a child made by fork() runs on threads of its own", "[core][parallel]") {
+  // Python's multiprocessing forks: the child has the pool object but not its helpers.
+  pdmesh::start_workers();
+  std::fflush(nullptr);
+  const pid_t child = fork();
+  REQUIRE(child >= 0);
+  if (child == 0) {
+    std::vector<std::atomic<int>> seen(100000);
+    parallel_for(seen.size(), [&](std::size_t i) { seen[i].fetch_add(1); }, 512);
+    for (const auto& c : seen)
+      if (c.load() != 1) _exit(1);
+    _exit(0);
+  }
+  // A child waiting for helpers that do not exist would hang: give it 30 s, then kill it and fail.
+  int status = 0;
+  pid_t done = 0;
+  for (int waited_ms = 0; waited_ms < 30000 && done == 0; waited_ms += 10) {
+    done = waitpid(child, &status, WNOHANG);
+    if (done == 0) std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  if (done == 0) {
+    kill(child, SIGKILL);
+    waitpid(child, &status, 0);
+  }
+  REQUIRE(done == child);
+  CHECK(WIFEXITED(status));
+  CHECK(WEXITSTATUS(status) == 0);
 }

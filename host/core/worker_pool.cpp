@@ -1,16 +1,20 @@
 // WorkerPool: helper threads started once; one job at a time, handed out under a mutex.
 #include "core/worker_pool.hpp"
 
+#include <unistd.h>
+
 #include <algorithm>
 
 namespace pdmesh {
 
 WorkerPool& WorkerPool::instance() {
-  static WorkerPool pool(std::max(1u, std::thread::hardware_concurrency()) - 1);
-  return pool;
+  // Never destroyed: its helpers sleep until the process ends. A destructor run at exit would have to
+  // join them, and in a child made by fork() (Python's multiprocessing) they do not exist.
+  static WorkerPool* const pool = new WorkerPool(std::max(1u, std::thread::hardware_concurrency()) - 1);
+  return *pool;
 }
 
-WorkerPool::WorkerPool(std::size_t helpers) {
+WorkerPool::WorkerPool(std::size_t helpers) : pid_(getpid()) {
   threads_.reserve(helpers);
   for (std::size_t k = 0; k < helpers; ++k) threads_.emplace_back(&WorkerPool::work, this, k + 1);
 }
@@ -25,7 +29,8 @@ WorkerPool::~WorkerPool() {
 }
 
 bool WorkerPool::run(std::size_t count, const std::function<void(std::size_t)>& job) {
-  if (count > threads_.size() || !busy_.try_lock()) return false;
+  // After fork() the helpers stayed behind in the parent: the child's calls make their own threads.
+  if (count > threads_.size() || getpid() != pid_ || !busy_.try_lock()) return false;
   const std::lock_guard<std::mutex> serving(busy_, std::adopt_lock);
   std::unique_lock<std::mutex> lock(mutex_);
   job_ = &job;

@@ -18,7 +18,8 @@ namespace pdmesh {
 
 class WorkerPool {
  public:
-  // The process's pool: hardware_concurrency() - 1 helpers, started on the first call.
+  // The process's pool: hardware_concurrency() - 1 helpers, started on the first call and kept (never
+  // destroyed) until the process ends.
   static WorkerPool& instance();
 
   explicit WorkerPool(std::size_t helpers);
@@ -31,7 +32,8 @@ class WorkerPool {
   // Runs job(0) on the calling thread and job(1), ..., job(count) on `count` helpers (count <=
   // helpers()), and returns once all have returned; job must not throw. Returns false without
   // running anything when the pool is already serving another call (a parallel_for on another
-  // thread, or one nested in a job) or count > helpers(): the caller then makes threads of its own.
+  // thread, or one nested in a job), when count > helpers(), or in a child process forked after the
+  // pool started (its helpers are the parent's): the caller then makes threads of its own.
   bool run(std::size_t count, const std::function<void(std::size_t)>& job);
 
  private:
@@ -46,6 +48,7 @@ class WorkerPool {
   std::size_t generation_ = 0;   // bumped for every job
   std::size_t pending_ = 0;      // helpers of the current job still running
   bool stop_ = false;
+  int pid_;  // the process whose threads these are (getpid() at construction)
 };
 
 // Starts the process's pool now (see the header comment for why this matters before a dlopen).
