@@ -19,9 +19,10 @@ namespace pdmesh {
 // Why not thread_local: the first use of a thread_local with a destructor in a thread registers it
 // through glibc's __cxa_thread_atexit_impl, which takes the dynamic loader's lock; while the OpenCL
 // backend's thread is inside dlopen (PoCL and LLVM, 170 MB, read from disk when the page cache has
-// dropped them) that lock is held for up to ~100 ms, and the spacing phase's threads stalled behind it
-// (docs/performance.md, thirteenth session; creating a thread waits for it too: core/worker_pool.hpp). Which thread and scratch serve an index changes nothing
-// when body(scratch, i)'s result does not depend on what an earlier index left in the scratch.
+// dropped them) that lock is held for up to ~100 ms, and the spacing phase's threads stalled behind
+// it (docs/performance.md, thirteenth session; creating a thread waits for it too, hence the pool of
+// core/worker_pool.hpp). Which thread and scratch serve an index changes nothing when body(scratch,
+// i)'s result does not depend on what an earlier index left in the scratch.
 template <class Scratch, class Body>
 void parallel_for_scratch(std::size_t n, const Body& body, std::size_t min_chunk = 4096, std::size_t max_threads = 8) {
   const std::size_t chunks = (n + min_chunk - 1) / std::max<std::size_t>(1, min_chunk);

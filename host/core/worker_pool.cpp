@@ -30,8 +30,13 @@ WorkerPool::~WorkerPool() {
 
 bool WorkerPool::run(std::size_t count, const std::function<void(std::size_t)>& job) {
   // After fork() the helpers stayed behind in the parent: the child's calls make their own threads.
-  if (count > threads_.size() || getpid() != pid_ || !busy_.try_lock()) return false;
-  const std::lock_guard<std::mutex> serving(busy_, std::adopt_lock);
+  if (count > threads_.size() || getpid() != pid_) return false;
+  bool idle = false;
+  if (!busy_.compare_exchange_strong(idle, true, std::memory_order_acquire)) return false;
+  struct Release {
+    std::atomic<bool>& busy;
+    ~Release() { busy.store(false, std::memory_order_release); }
+  } release{busy_};
   std::unique_lock<std::mutex> lock(mutex_);
   job_ = &job;
   count_ = count;

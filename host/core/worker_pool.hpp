@@ -7,6 +7,7 @@
 // waited for it before its helper could start (docs/performance.md, thirteenth session). The pool's
 // threads are started before the backend (start_workers() in run_mesh), so no call creates one then.
 #pragma once
+#include <atomic>
 #include <condition_variable>
 #include <cstddef>
 #include <functional>
@@ -40,7 +41,8 @@ class WorkerPool {
   void work(std::size_t index);
 
   std::vector<std::thread> threads_;
-  std::mutex busy_;  // held by the call being served
+  std::atomic<bool> busy_{false};  // set by the call being served (not a mutex: a nested call on the
+                                  // same thread must see it taken, and may not try_lock a mutex it holds)
   std::mutex mutex_;
   std::condition_variable wake_, done_;
   const std::function<void(std::size_t)>* job_ = nullptr;
