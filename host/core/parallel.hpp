@@ -59,8 +59,7 @@ void parallel_for_scratch(std::size_t n, const Body& body, std::size_t min_chunk
   };
   // The helpers come from the process's pool (core/worker_pool.hpp: no thread is created per call),
   // or, when the pool is serving another call or has too few, from threads of this call's own.
-  WorkerPool& pool = WorkerPool::instance();
-  if (!(threads - 1 <= pool.helpers() && pool.run(threads - 1, run))) {
+  if (!WorkerPool::instance().run(threads - 1, run)) {
     std::vector<std::thread> workers;
     for (std::size_t t = 1; t < threads; ++t) workers.emplace_back(run, t);
     run(0);

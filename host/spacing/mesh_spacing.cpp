@@ -8,6 +8,7 @@
 #include <fmt/ranges.h>
 
 #include "core/errors.hpp"
+#include "core/parallel.hpp"
 #include "core/predicates.hpp"
 #include "io/msh_reader.hpp"
 #include "io/vtu_reader.hpp"
@@ -129,19 +130,20 @@ double MeshSpacing::at(Vec2 p) const {
 
 void MeshSpacing::at_many(const std::vector<Vec2>& p, std::vector<double>& q) const {
   q.resize(p.size());
-  for_chunks(p.size(), kMaxThreads, [&](std::size_t begin, std::size_t end) {
-    Located l;
-    for (std::size_t i = begin; i < end; ++i) {
-      // Strictly inside the last triangle: no other triangle holds the point, so at() would pick it
-      // too (and compute the same weights).
-      if (l.position >= 0 && locator_->strictly_inside(l.position, p[i], l)) {
-        q[i] = locator_->interpolate(l);
-        continue;
-      }
-      l = locator_->locate(p[i]);
-      q[i] = l.triangle >= 0 ? locator_->interpolate(l) : outside(p[i]);
-    }
-  });
+  // Each thread keeps its last triangle as the next point's first guess (its scratch).
+  parallel_for_scratch<Located>(
+      p.size(),
+      [&](Located& l, std::size_t i) {
+        // Strictly inside the last triangle: no other triangle holds the point, so at() would pick it
+        // too (and compute the same weights).
+        if (l.position >= 0 && locator_->strictly_inside(l.position, p[i], l)) {
+          q[i] = locator_->interpolate(l);
+          return;
+        }
+        l = locator_->locate(p[i]);
+        q[i] = l.triangle >= 0 ? locator_->interpolate(l) : outside(p[i]);
+      },
+      kPointsPerThread, kMaxThreads);
 }
 
 void MeshSpacing::check_covers(const Geometry& geometry) const {

@@ -3,7 +3,6 @@
 // curve); ExpressionSpacing evaluates a user expression in x and y (muParser), e.g. eq. 7.2.
 #pragma once
 #include <cstddef>
-#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -21,12 +20,9 @@ class SpacingField {
   virtual void at_many(const std::vector<Vec2>& p, std::vector<double>& q) const;
 };
 
-// Runs body(begin, end) over contiguous chunks of [0, n) on up to max_threads threads, at least
-// kPointsPerThread points each (below that a thread costs more than it saves; small n runs on the
-// calling thread alone). An exception from any chunk is rethrown on the calling thread. For the
-// at_many of thread-safe fields, whose points are independent: the values are those of one loop.
+// The fewest lookups worth a thread in a thread-safe field's at_many (parallel_for's min_chunk):
+// below that a thread costs more than it saves.
 inline constexpr std::size_t kPointsPerThread = 4096;
-void for_chunks(std::size_t n, std::size_t max_threads, const std::function<void(std::size_t, std::size_t)>& body);
 
 // q(x) = sum_s (l_s / d_s) / sum_s (1 / d_s) over the closest segment s of each curve (eq. 3.6);
 // on the boundary (some d_s == 0 exactly) the limit: the mean l_s of the curves at distance 0.
