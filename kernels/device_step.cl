@@ -34,6 +34,19 @@ REAL bg_spacing_cached(const REAL px, const REAL py, int* leaf, BG_ARGS) {
 }
 #define BG_PASS bg_origin_x, bg_origin_y, bg_inv_root, bg_grid, bg_root, bg_child, bg_corner, bg_cell, bg_q
 
+// STEP_PHASE: where the CPU shape (PDMESH_FORCE_LOOP_VECTOR) splits device_step into phases with a
+// barrier that changes nothing else (every work-item reaches it; nothing is shared through local
+// memory). PoCL runs each region between barriers as a loop over the group's work-items: the scalar
+// tail of one node (|F|'s square root, the division of eq. 5.8, momentum's square root and division,
+// a dependency chain of ~90 cycles) then overlaps with the next node's instead of waiting behind its
+// call of node_forces. 30P30N's curves with momentum: step 1.69 -> 1.51 ms per iteration
+// (docs/performance.md, fourteenth session). A GPU interleaves work-items in hardware: no barrier there.
+#if PDMESH_FORCE_LOOP_VECTOR
+#define STEP_PHASE() barrier(CLK_LOCAL_MEM_FENCE)
+#else
+#define STEP_PHASE()
+#endif
+
 // Inputs xy (positions, x and y interleaved), q (current), outputs xy_next, q_next. budget[i]: interior node i's clearance
 // budget (host/sim/boundary_handling.hpp, clearance_budget): a move whose cost (the same move_cost
 // formula, with this precision's epsilon) is below it stays inside the domain, exactly; the cost is
@@ -78,6 +91,7 @@ void device_step(const int n, const REAL cutoff, const REAL lj_a, const int r0_a
   int coincident, within;
   node_forces(ic, (row + 7) & ~7, row, row_start, xi, yi, qi, kind_i, rc * rc, tx[ic], ty[ic], lj_a, r0_any_direction,
               stability_factor, xy, q, index, &fx, &fy, &r0, &limit, &coincident, &within);
+  STEP_PHASE();
   const REAL dt2 = local_dt2(fx, fy, r0, dt_gm2, limit);
   REAL dx = moving ? REAL_C(0.5) * dt2 * fx : (REAL)0;
   REAL dy = moving ? REAL_C(0.5) * dt2 * fy : (REAL)0;
@@ -98,6 +112,7 @@ void device_step(const int n, const REAL cutoff, const REAL lj_a, const int r0_a
   const REAL kinetic = moving ? REAL_C(0.125) * dt2 * f * f : (REAL)0;  // f^2 could overflow in float
 #endif
   REAL skin_use = (REAL)0;
+  STEP_PHASE();
   if (active) {
     const REAL xn = xi + dx, yn = yi + dy;
     int leaf = node_leaf[i];
