@@ -7,6 +7,7 @@
 
 #include <atomic>
 #include <cmath>
+#include <cstdlib>
 
 #include "sim/checkpoint.hpp"
 #include "device_run_fixtures.hpp"
@@ -115,5 +116,40 @@ TEST_CASE("momentum 0.9: a run stopped, saved and resumed is the uninterrupted r
     REQUIRE(resumed.result.history.size() == uninterrupted.result.history.size());
     require_identical_nodes(uninterrupted.nodes, resumed.nodes);
     require_same_momentum(uninterrupted.result.state, resumed.result.state);
+  }
+}
+
+TEST_CASE("momentum 0.9 with the convergence rule: running ahead of the checks changes nothing, the stop included",
+          "[opencl][device_sim][momentum][convergence]") {
+  // The device begins the next window while the host measures a check's mesh (DeviceRun's run_ahead);
+  // at the check the run stops after, what it ran ahead is dropped and the state is the check's,
+  // its carried moves included. Against the same run without running ahead and the host's.
+  const Case c = population_case();
+  SimOptions o = momentum_options(c, 600, 0.9);
+  o.convergence = simulation_options(c.config).convergence;
+  o.convergence.enabled = true;
+  o.convergence.check_every = 20;
+  o.convergence.window = 60;
+  o.convergence.min_iterations = 100;
+  const Outcome host = test::run_from(c, c.initial, o, false);
+  REQUIRE(host.result.converged);
+  INFO("the host run converged after " << host.result.state.iterations_done);
+  const Outcome ahead = test::run_from(c, c.initial, o, true);
+  ::setenv("PDMESH_TEST_NO_RUN_AHEAD", "1", 1);
+  const Outcome in_step = test::run_from(c, c.initial, o, true);
+  ::unsetenv("PDMESH_TEST_NO_RUN_AHEAD");
+  CHECK(ahead.stats.ahead_windows > 0);
+  CHECK(in_step.stats.ahead_windows == 0);
+  CHECK(ahead.stats.iterations == in_step.stats.iterations);
+  CHECK(ahead.stats.rebuilds == in_step.stats.rebuilds);
+  for (const Outcome* dev : {&ahead, &in_step}) {
+    CHECK(dev->result.converged);
+    CHECK(dev->result.state.iterations_done == host.result.state.iterations_done);
+    REQUIRE(dev->result.history.size() == host.result.history.size());
+    CHECK(dev->result.history.back().max_force == host.result.history.back().max_force);
+    require_identical_nodes(host.nodes, dev->nodes);
+    require_same_momentum(host.result.state, dev->result.state);
+    REQUIRE(dev->result.state.convergence.size() == host.result.state.convergence.size());
+    CHECK(dev->result.state.convergence.back().aspect_ratio == host.result.state.convergence.back().aspect_ratio);
   }
 }

@@ -63,6 +63,8 @@ void launch(cl::CommandQueue& queue, cl::Kernel& kernel, const std::string& name
 // (command_counts.hpp) like launch and the Buffer transfers: clFinish (a host wait), a device-side
 // copy of the first `bytes` bytes, and filling the first `bytes` bytes with zero ints (bytes > 0).
 void finish(cl::CommandQueue& queue, const std::string& what);
+// clFlush: the commands enqueued so far are submitted to the device without a wait (not counted).
+void flush(cl::CommandQueue& queue, const std::string& what);
 void copy_buffer(cl::CommandQueue& queue, cl::Buffer& from, cl::Buffer& to, std::size_t bytes, const std::string& what);
 void fill_zero(cl::CommandQueue& queue, cl::Buffer& buffer, std::size_t bytes, const std::string& what);
 

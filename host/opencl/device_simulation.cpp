@@ -113,25 +113,46 @@ void DeviceRun<Real>::enqueue_iteration(int cur) {
 // event, a convergence measurement, the last iteration; a zero skin rebuilds every iteration.
 template <typename Real>
 void DeviceRun<Real>::start_window(int first, const GlobalTimeStep& gm) {
+  begin_window(first, gm, window_.max_length());
+  end_window();
+}
+
+// Enqueues iterations first .. (at most) the window's end, and no more than `most`, and the reads of
+// their rows, without a wait. The window ends where the host has work whatever the device does: a
+// population event, a convergence measurement, the last iteration; a zero skin rebuilds every iteration.
+template <typename Real>
+void DeviceRun<Real>::begin_window(int first, const GlobalTimeStep& gm, int most) {
   int last = first;
-  const int cap = options_.verlet_skin == 0.0 ? first : std::min(options_.iterations, first + window_length() - 1);
+  const int cap = options_.verlet_skin == 0.0
+                      ? first
+                      : std::min(options_.iterations, first + std::min(window_length(), std::max(1, most)) - 1);
   while (last < cap && !convergence_.due(last) &&
          !population_event_due(options_.population, population_.schedule, last, options_.iterations))
     ++last;
-  const auto t0 = Clock::now();
+  pending_t0_ = Clock::now();
   window_.begin(gm, skin_use_, skin_limit_, counters_);
   for (int k = 0; k <= last - first; ++k) enqueue_iteration(cur_ ^ (k & 1));
-  window_rows_ = window_.finish_window(ctx_, groups(), partials_, device_boundary_.partial_count(program_.work_group),
-                                       device_boundary_.partials(), counters_);
+  window_.enqueue_reads(ctx_, groups(), partials_, device_boundary_.partial_count(program_.work_group),
+                        device_boundary_.partials(), counters_);
+  window_pending_ = true;
+  pending_first_ = first;
+  pending_length_ = last - first + 1;
+}
+
+// Waits for the window begin_window enqueued and takes its rows (one wait).
+template <typename Real>
+void DeviceRun<Real>::end_window() {
+  window_pending_ = false;
+  window_rows_ = window_.complete(ctx_, groups(), device_boundary_.partial_count(program_.work_group));
   window_next_ = 0;
   ++stats_.windows;
   stats_.transfers += window_.transfers;
   stats_.bytes_up += window_.bytes_up;
   stats_.bytes_down += window_.bytes_down;
-  stats_.step_seconds += since(t0);
-  if (window_rows_ < 1 || window_rows_ > last - first + 1)
-    throw SimulationError(fmt::format("iteration {}: the device ran {} of the window's {} iterations", first,
-                                      window_rows_, last - first + 1));
+  stats_.step_seconds += since(pending_t0_);
+  if (window_rows_ < 1 || window_rows_ > pending_length_)
+    throw SimulationError(fmt::format("iteration {}: the device ran {} of the window's {} iterations", pending_first_,
+                                      window_rows_, pending_length_));
 }
 
 // Iterations the next window enqueues: the most the ring holds, but not far past where the skin is
@@ -320,22 +341,31 @@ SimResult DeviceRun<Real>::run(const SimCallbacks& callbacks) {
         convergence_.converged_after(
             done, population_status(options_.population, population_.schedule, done, options_.iterations).settled))
       result.converged = true;
+    // The lists' rebuild before the iteration after `done`, when the skin is used up. A zero skin
+    // rebuilds every iteration (the reference's behaviour).
+    const auto rebuild_if_due = [&](int next_iteration) {
+      if (!(skin_use_ > skin_limit_ || options_.verlet_skin == 0.0)) return false;
+      // The device halts a window where the skin is used up, so no row of it is left here (and
+      // run_ahead begins none before a build).
+      if (window_next_ < window_rows_ || window_pending_)
+        throw SimulationError(fmt::format("iteration {}: a rebuild is due with {} device iterations unread",
+                                          next_iteration, window_rows_ - window_next_));
+      const CommandCounts before = command_counts();
+      rebuild();
+      if (boundary_stale_) sync_boundary();  // the saved state needs the boundary's
+      remember(done, result.stats.dt_initial, gm, result.history.size());
+      stats_.rebuild_commands = stats_.rebuild_commands + (command_counts() - before);
+      if (stats_.rebuilds > 1) build_interval_ = since_build_;
+      since_build_ = 0;
+      return true;
+    };
     for (; iteration <= options_.iterations && !result.converged; ++iteration) {
-      // A zero skin rebuilds every iteration (the reference's behaviour).
-      if (skin_use_ > skin_limit_ || options_.verlet_skin == 0.0) {
-        // The device halts a window where the skin is used up, so no row of it is left here.
-        if (window_next_ < window_rows_)
-          throw SimulationError(fmt::format("iteration {}: a rebuild is due with {} device iterations unread",
-                                            iteration, window_rows_ - window_next_));
-        const CommandCounts before = command_counts();
-        rebuild();
-        if (boundary_stale_) sync_boundary();  // the saved state needs the boundary's
-        remember(done, result.stats.dt_initial, gm, result.history.size());
-        stats_.rebuild_commands = stats_.rebuild_commands + (command_counts() - before);
-        if (stats_.rebuilds > 1) build_interval_ = since_build_;
-        since_build_ = 0;
+      rebuild_if_due(iteration);
+      if (window_pending_) {  // begun while the host measured the last iteration's mesh
+        end_window();
+        host_ahead_ = false;  // as at the start of every iteration: the device holds the state after `done`
       }
-      if (window_next_ >= window_rows_) start_window(iteration, gm);
+      else if (window_next_ >= window_rows_) start_window(iteration, gm);
       const double dt_gm = gm.dt();
       take_row();
       ++since_build_;
@@ -396,14 +426,30 @@ SimResult DeviceRun<Real>::run(const SimCallbacks& callbacks) {
       // The stopping rule, in the host driver's order: measured also in an iteration the run is
       // stopped after, so that a resumed run has every measurement.
       std::optional<MeshSample> sample;
+      bool rebuilt_ahead = false;
       if (convergence_.due(iteration)) {
         read_back_nodes();
+        // The device runs ahead while the host triangulates (run_ahead): the rebuild the next iteration
+        // would start with, if one is due, then the next window, split after kAheadIterations (CPU
+        // devices). Its commands are the same, so the run is the same bit for bit; a run that stops
+        // here discards what it ran (after the loop).
+        if (run_ahead_ && iteration < options_.iterations && window_next_ >= window_rows_ &&
+            !(options_.stop && options_.stop->load())) {
+          rebuilt_ahead = rebuild_if_due(iteration + 1);
+          if (with_momentum()) read(carried_, momentum_at_check_, 2 * n_, false);
+          host_ahead_ = true;  // a failure from here on falls back on the saved state: the device moves on
+          begin_window(iteration + 1, gm, cpu_device_ ? kAheadIterations : window_.max_length());
+          ++stats_.ahead_windows;
+        }
         sample = measure_mesh(nodes_, iteration);
       }
       // Never while population control may still change the node set (as the host driver).
       const bool settled =
           population_status(options_.population, population_.schedule, iteration, options_.iterations).settled;
-      if (convergence_.observe(row, sample ? &*sample : nullptr, settled) && iteration < options_.iterations) {
+      const bool converged = convergence_.observe(row, sample ? &*sample : nullptr, settled);
+      // A build made before this iteration's measurement saved the state without it.
+      if (rebuilt_ahead) saved_state_.convergence = convergence_.samples();
+      if (converged && iteration < options_.iterations) {
         result.converged = true;
         break;
       }
@@ -415,7 +461,15 @@ SimResult DeviceRun<Real>::run(const SimCallbacks& callbacks) {
     }
     progress.finish();
     in_loop = false;
-    read_back_nodes();  // the final state
+    if (window_pending_) {
+      // Stopped after a convergence check while the device ran ahead: nodes_ and the boundary state
+      // hold the state after `done` (read for the check); what the device ran since is dropped.
+      finish(ctx_.queue(), "iterations run ahead of a stop");
+      window_pending_ = false;
+    } else {
+      read_back_nodes();  // the final state
+      momentum_at_check_.clear();
+    }
   } catch (const DeviceError& e) {
     progress.finish();
     hand_over();
@@ -429,7 +483,16 @@ SimResult DeviceRun<Real>::run(const SimCallbacks& callbacks) {
   }
   result.state = SimState{done, result.stats.dt_initial, gm.state(), boundary_.arcs(), boundary_.tangents(),
                           result.history, population_.schedule, convergence_.samples(), {}};
-  if (with_momentum()) result.state.momentum = read_momentum();
+  if (with_momentum()) {
+    if (momentum_at_check_.empty()) {
+      result.state.momentum = read_momentum();
+    } else {  // the carried moves after `done`, read before the device ran ahead
+      result.state.momentum.resize(n_);
+      for (std::size_t i = 0; i < n_; ++i)
+        result.state.momentum[i] = {static_cast<double>(momentum_at_check_[2 * i]),
+                                    static_cast<double>(momentum_at_check_[2 * i + 1])};
+    }
+  }
   result.stats.inserted = population_.inserted;
   result.stats.removed = population_.removed;
   result.stats.population_events = population_.events;

@@ -91,22 +91,38 @@ template <typename Real>
 int DeviceWindow<Real>::finish_window(Context& ctx, std::size_t groups, Buffer<Real>& partials,
                                       std::size_t snap_entries, Buffer<Real>& snap_partials,
                                       Buffer<std::int32_t>& counters) {
+  enqueue_reads(ctx, groups, partials, snap_entries, snap_partials, counters);
+  return complete(ctx, groups, snap_entries);
+}
+
+template <typename Real>
+void DeviceWindow<Real>::enqueue_reads(Context& ctx, std::size_t groups, Buffer<Real>& partials,
+                                       std::size_t snap_entries, Buffer<Real>& snap_partials,
+                                       Buffer<std::int32_t>& counters) {
   counters.download(ctx.queue(), counters_host_, kWindowCounters, false);
   transfers += 1;
   bytes_down += kWindowCounters * sizeof(std::int32_t);
   if (device_rule_) {
     ring_.download(ctx.queue(), rows_, rows_.size(), false);
-    finish(ctx.queue(), "device iterations");
     ++transfers;
     bytes_down += rows_.size() * sizeof(double);  // the whole ring: how many rows ran is known only after
+  } else {
+    // The host's sums of one iteration, in group order: what iteration_rule computes.
+    partials.download(ctx.queue(), part_host_, kStepPartials * groups, false);
+    if (snap_entries > 0) snap_partials.download(ctx.queue(), snap_host_, snap_entries, false);
+    transfers += snap_entries > 0 ? 2 : 1;
+    bytes_down += (kStepPartials * groups + snap_entries) * sizeof(Real);
+  }
+  flush(ctx.queue(), "device iterations");
+}
+
+template <typename Real>
+int DeviceWindow<Real>::complete(Context& ctx, std::size_t groups, std::size_t snap_entries) {
+  if (device_rule_) {
+    finish(ctx.queue(), "device iterations");
     return counters_host_[kWindowRows];
   }
-  // The host's sums of one iteration, in group order: what iteration_rule computes.
-  partials.download(ctx.queue(), part_host_, kStepPartials * groups, false);
-  if (snap_entries > 0) snap_partials.download(ctx.queue(), snap_host_, snap_entries, false);
   finish(ctx.queue(), "device_step");
-  transfers += snap_entries > 0 ? 2 : 1;
-  bytes_down += (kStepPartials * groups + snap_entries) * sizeof(Real);
   double* r = rows_.data();
   std::fill(r, r + kRingSize, 0.0);
   for (std::size_t g = 0; g < groups; ++g) {
