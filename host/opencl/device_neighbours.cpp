@@ -253,6 +253,28 @@ NeighbourFlags DeviceNeighbours<Real>::build(std::size_t n, double radius_factor
   return flags;
 }
 
+template <typename Real>
+void DeviceNeighbours<Real>::carry_counts(const std::vector<int>& old_of_new, std::size_t old_n) {
+  if (old_n == 0 || counted_n_ != old_n || count_.size() < old_n || old_of_new.empty()) return;
+  std::vector<std::int32_t> old_counts;
+  count_.download(ctx_.queue(), old_counts, old_n);
+  const std::size_t n = old_of_new.size();
+  std::vector<std::int32_t> counts(n);
+  const auto mean = static_cast<std::int32_t>(counted_total_ / old_n);
+  std::uint64_t total = 0;
+  for (std::size_t k = 0; k < n; ++k) {
+    const int old = old_of_new[k];
+    counts[k] = old >= 0 && static_cast<std::size_t>(old) < old_n ? std::max(old_counts[static_cast<std::size_t>(old)], 0)
+                                                                  : mean;
+    total += static_cast<std::uint64_t>(counts[k]);
+  }
+  ensure_size(ctx_, count_, "neighbour_count", n);
+  count_.upload(ctx_.queue(), counts.data(), n);
+  uploaded_bytes += n * sizeof(std::int32_t);
+  counted_n_ = n;
+  counted_total_ = total;
+}
+
 // The binning's state after a wait (state_host_): false when a node is invalid (flags.first_invalid
 // set; no rows are built, and the counts are of no rows). Otherwise the grid capacities grow to what
 // the binning needed, and grids_fit says whether these grids held every node.

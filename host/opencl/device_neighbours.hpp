@@ -7,6 +7,7 @@
 #pragma once
 #include <cstdint>
 #include <functional>
+#include <vector>
 
 #include "opencl/buffer.hpp"
 #include "opencl/step_program.hpp"
@@ -33,8 +34,9 @@ class DeviceNeighbours {
 
   // Builds the rows of n nodes (device arrays xy: 2n positions, x and y interleaved as the step keeps
   // them; q, kind, prev, next), interior radius radius_factor * q_i. Grid and row capacities are those
-  // of the last build plus slack (kSpareShift, kSpareMin); a build without them (a run's first, or
-  // after the node set changed size) counts a sample of the rows (every stride_for(n)-th node's scan)
+  // of the last build plus slack (kSpareShift, kSpareMin; after a population event those carried over,
+  // carry_counts); a build without them (a run's first, or after the node set changed size without
+  // carry_counts) counts a sample of the rows (every stride_for(n)-th node's scan)
   // and gives every interior row its level's estimated capacity. Rows that outgrow their capacities
   // move behind the others in the same pass; when too many do (or the grids outgrow theirs) the build
   // runs again at the sizes it found (exact). With stride 1 the sample is an exact counting pass.
@@ -47,6 +49,13 @@ class DeviceNeighbours {
   NeighbourFlags build(std::size_t n, double radius_factor, Buffer<Real>& xy, Buffer<Real>& q,
                        Buffer<std::uint8_t>& kind, Buffer<std::int32_t>& prev, Buffer<std::int32_t>& next,
                        double pair_skin = 0.0);
+
+  // After a population event renumbered the nodes (new node k was old node old_of_new[k], or is new
+  // when that is < 0): the last build's counts carried over to the new numbering, a new node's its
+  // neighbours' mean, so that the next build lays its rows out from them instead of counting first (an
+  // extra gather per event). Only the layout depends on the counts: the rows are the same, and those
+  // that outgrow their estimate move as in any build. Nothing happens without counts of old_n nodes.
+  void carry_counts(const std::vector<int>& old_of_new, std::size_t old_n);
 
   // A row's capacity is c + (c >> kSpareShift) + kSpareMin for the count c of the last build: rows
   // grow a little between rebuilds as nodes move (docs/performance.md, issue 15 neighbours).

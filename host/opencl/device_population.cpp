@@ -7,11 +7,14 @@ std::optional<PopulationCounts> device_population_event(PopulationTracker& track
                                                         int iteration, int iterations, NodeSet& nodes,
                                                         BoundaryHandler& boundary, const BackgroundSpacing& background,
                                                         std::vector<double>& budgets,
-                                                        std::vector<std::int32_t>& leaves) {
+                                                        std::vector<std::int32_t>& leaves,
+                                                        std::vector<int>* old_of_new_out) {
   const std::vector<Vec2> before = nodes.x;
   std::vector<int> old_of_new;
   const auto counts = tracker.after_iteration(options, iteration, iterations, nodes, boundary, background, &old_of_new);
+  if (old_of_new_out) old_of_new_out->clear();
   if (!counts || !counts->changed()) return counts;
+  if (old_of_new_out) *old_of_new_out = old_of_new;
   std::vector<double> new_budgets(nodes.size(), 0.0);
   std::vector<std::int32_t> new_leaves(nodes.size());
   for (std::size_t k = 0; k < nodes.size(); ++k) {

@@ -16,11 +16,14 @@ namespace pdmesh::ocl {
 // the device, and `boundary`. On entry `budgets` and `leaves` hold the device's clearance budgets
 // and background leaves per node; when the event changed the node set they are replaced by those the
 // node arrays go up with: kept nodes that did not move keep theirs, new and merged nodes get no
-// budget (the host tests their first move exactly) and the leaf holding them.
+// budget (the host tests their first move exactly) and the leaf holding them. old_of_new (when set):
+// the event's renumbering, new node k was old node old_of_new[k] (< 0: a new node); empty when the
+// node set did not change.
 std::optional<PopulationCounts> device_population_event(PopulationTracker& tracker, const PopulationOptions& options,
                                                         int iteration, int iterations, NodeSet& nodes,
                                                         BoundaryHandler& boundary, const BackgroundSpacing& background,
                                                         std::vector<double>& budgets,
-                                                        std::vector<std::int32_t>& leaves);
+                                                        std::vector<std::int32_t>& leaves,
+                                                        std::vector<int>* old_of_new = nullptr);
 
 }  // namespace pdmesh::ocl

@@ -236,10 +236,14 @@ std::optional<PopulationCounts> DeviceRun<Real>::population_event(int iteration)
     nodes_.q[i] = static_cast<double>(q[i]);
   }
   std::vector<double> budgets(budget.begin(), budget.end());
+  std::vector<int> old_of_new;
+  const std::size_t old_n = n_;
   const auto counts = device_population_event(population_, options_.population, iteration, options_.iterations, nodes_,
-                                              boundary_, background_, budgets, leaves);
+                                              boundary_, background_, budgets, leaves, &old_of_new);
   if (counts && counts->changed()) {
     n_ = nodes_.size();
+    // The next build lays its rows out from the last build's counts, renumbered (no counting pass).
+    neighbours_.carry_counts(old_of_new, old_n);
     const auto t1 = Clock::now();
     upload_nodes(&budgets, &leaves);
     finish(ctx_.queue(), "population re-upload");
