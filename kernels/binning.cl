@@ -134,21 +134,42 @@ void bin_rmin(const int groups, __global REAL* partial) {
 }
 
 // level = floor(log2(R_j / R_min)) as the reference: R_j / R_min = m 2^e with m in [0.5, 1).
+// The member counts and the top level are tallied per work-group in local memory first, then added
+// with one global atomic per level the group has: a global atomic per node on the same few words had
+// the CPU device's two threads pass their cache line back and forth for every node.
 __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1)))
 void bin_levels(const int n, const int groups, const REAL radius_factor, __global const REAL* q,
                 __global const REAL* partial, __global int* level, __global int* state) {
-  const int i = get_global_id(0);
-  if (i >= n || state[BIN_FIRST_INVALID] < n) return;
-  int e = 0;
-  frexp(radius_factor * q[i] / partial[groups], &e);
-  int lv = max(0, e - 1);
-  if (lv >= PDMESH_GRID_LEVELS) {
-    atomic_or(&state[BIN_TOO_MANY_LEVELS], 1);
-    lv = PDMESH_GRID_LEVELS - 1;
+  __local int levels[WG_SIZE];
+  const int i = get_global_id(0), l = get_local_id(0);
+  const int valid = state[BIN_FIRST_INVALID] >= n;  // uniform: the same word for every work-item
+  int lv = -1;
+  if (i < n && valid) {
+    int e = 0;
+    frexp(radius_factor * q[i] / partial[groups], &e);
+    lv = max(0, e - 1);
+    if (lv >= PDMESH_GRID_LEVELS) {
+      atomic_or(&state[BIN_TOO_MANY_LEVELS], 1);
+      lv = PDMESH_GRID_LEVELS - 1;
+    }
+    level[i] = lv;
   }
-  level[i] = lv;
-  atomic_inc(&state[BIN_LEVEL_COUNT + lv]);
-  atomic_max(&state[BIN_TOP], lv);
+  levels[l] = lv;
+  barrier(CLK_LOCAL_MEM_FENCE);
+  if (l == 0) {
+    int count[PDMESH_GRID_LEVELS];
+    for (int k = 0; k < PDMESH_GRID_LEVELS; ++k) count[k] = 0;
+    int top = -1;
+    for (int k = 0; k < WG_SIZE; ++k) {
+      const int v = levels[k];
+      if (v < 0) continue;
+      ++count[v];
+      top = max(top, v);
+    }
+    for (int k = 0; k < PDMESH_GRID_LEVELS; ++k)
+      if (count[k] > 0) atomic_add(&state[BIN_LEVEL_COUNT + k], count[k]);
+    if (top >= 0) atomic_max(&state[BIN_TOP], top);
+  }
 }
 
 // One work-item: grid L (a level with nodes) gets 2^k buckets, 2^k >= its members / 2, at
