@@ -206,6 +206,75 @@ void bin_plan(const int n, const int groups, const uint bucket_capacity, const u
   state[BIN_TOO_SMALL] = buckets > (ulong)bucket_capacity || members > (ulong)member_capacity ? 1 : 0;
 }
 
+#if PDMESH_FORCE_LOOP_VECTOR
+// The CPU shape counts and fills per level and work-group: work-item 0 groups the work-items' buckets
+// and takes each distinct bucket's slots with one atomic_add, when the group's nodes fall in at most
+// BIN_GROUP_BUCKETS buckets (the coarse levels, whose few cells every node of the group falls in);
+// otherwise every work-item takes its own slot. A global atomic per node and level on the few
+// buckets of a coarse grid had the CPU device's two threads pass their cache lines back and forth
+// (94 % of bin_count's and bin_fill's samples were their atomics). Within a bucket the order is the
+// group's (ascending nodes, groups in the atomics' order): the rows the gather makes are sorted.
+// Every work-item reaches every barrier of these kernels: PoCL's CPU device crashed on a level loop
+// that skipped a level's barriers with `continue`, uniform as the skip was.
+#define BIN_GROUP_BUCKETS 8
+// Work-item 0: groups b[0 .. WG_SIZE) (BIN_NO_BUCKET: none) by bucket; returns 0 when there are more
+// than BIN_GROUP_BUCKETS distinct ones (nothing done), else takes their slots (one atomic_add per
+// bucket) and, where slot is given, writes each work-item's slot, in work-item order.
+#define BIN_NO_BUCKET 0xFFFFFFFFU
+int bin_group_take(__local const uint* b, __global volatile uint* bucket, __local uint* slot) {
+  uint distinct[BIN_GROUP_BUCKETS], next[BIN_GROUP_BUCKETS];
+  int nd = 0;
+  for (int k = 0; k < WG_SIZE; ++k) {
+    const uint v = b[k];
+    if (v == BIN_NO_BUCKET) continue;
+    int j = 0;
+    while (j < nd && distinct[j] != v) ++j;
+    if (j == nd) {
+      if (nd == BIN_GROUP_BUCKETS) return 0;
+      distinct[nd] = v;
+      next[nd++] = 0;
+    }
+    ++next[j];
+  }
+  for (int j = 0; j < nd; ++j) next[j] = atomic_add(&bucket[distinct[j]], next[j]);
+  if (slot) {
+    for (int k = 0; k < WG_SIZE; ++k) {
+      const uint v = b[k];
+      if (v == BIN_NO_BUCKET) continue;
+      int j = 0;
+      while (distinct[j] != v) ++j;
+      slot[k] = next[j]++;
+    }
+  }
+  return 1;
+}
+
+// Each node in the grid of every level from its own up to the top (the cumulative grids).
+__kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1)))
+void bin_count(const int n, __global const REAL2* xy, __global const int* level,
+               __global const int* state, __global const int* grid_mask, __global const uint* grid_bucket_offset,
+               __global const REAL* grid_inv_cell, __global volatile uint* bucket) {
+  __local uint wg_bucket[WG_SIZE];
+  __local int grouped;
+  const int i = get_global_id(0), l = get_local_id(0);
+  const REAL2 p = i < n ? xy[i] : (REAL2)((REAL)0, (REAL)0);
+  const int own = i < n ? level[i] : PDMESH_GRID_LEVELS;
+  // No levels when the binning failed (the same words for every work-item: no return before a barrier).
+  const int top = bin_ok(state, n) ? state[BIN_TOP] : -1;
+  // Every work-item reaches every barrier: a level without a grid (grid_mask -1) just has no buckets.
+  for (int L = 0; L <= top; ++L) {
+    uint tag;
+    const uint b = own <= L && grid_mask[L] >= 0
+                       ? bin_bucket(p.x, p.y, L, grid_mask, grid_bucket_offset, grid_inv_cell, &tag)
+                       : BIN_NO_BUCKET;
+    wg_bucket[l] = b;
+    barrier(CLK_LOCAL_MEM_FENCE);
+    if (l == 0) grouped = bin_group_take(wg_bucket, bucket, 0);
+    barrier(CLK_LOCAL_MEM_FENCE);
+    if (!grouped && b != BIN_NO_BUCKET) atomic_inc(&bucket[b]);
+  }
+}
+#else
 // Each node in the grid of every level from its own up to the top (the cumulative grids).
 __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1)))
 void bin_count(const int n, __global const REAL2* xy, __global const int* level,
@@ -219,6 +288,8 @@ void bin_count(const int n, __global const REAL2* xy, __global const int* level,
   for (int L = level[i]; L <= top; ++L)
     if (grid_mask[L] >= 0) atomic_inc(&bucket[bin_bucket(xi, yi, L, grid_mask, grid_bucket_offset, grid_inv_cell, &tag)]);
 }
+
+#endif
 
 // Inclusive prefix sum of v over the work-group (Hillis-Steele in local memory; every work-item of
 // the group must call it). Used here and by the row offsets (neighbours.cl).
@@ -252,6 +323,31 @@ void bucket_offsets_add(const uint m, __global uint* bucket, __global const ulon
   if (i < m) bucket[i] += (uint)block_total[get_group_id(0)];
 }
 
+#if PDMESH_FORCE_LOOP_VECTOR
+// bin_fill, CPU shape: the slots per level and work-group as bin_count takes its counts.
+__kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1)))
+void bin_fill(const int n, __global const REAL2* xy, __global const int* level,
+              __global const int* state, __global const int* grid_mask, __global const uint* grid_bucket_offset,
+              __global const REAL* grid_inv_cell, __global volatile uint* bucket, __global int* grid_nodes) {
+  __local uint wg_bucket[WG_SIZE], wg_slot[WG_SIZE];
+  __local int grouped;
+  const int i = get_global_id(0), l = get_local_id(0);
+  const REAL2 p = i < n ? xy[i] : (REAL2)((REAL)0, (REAL)0);
+  const int own = i < n ? level[i] : PDMESH_GRID_LEVELS;
+  const int top = bin_ok(state, n) ? state[BIN_TOP] : -1;  // as in bin_count
+  for (int L = 0; L <= top; ++L) {
+    uint tag = 0;
+    const uint b = own <= L && grid_mask[L] >= 0
+                       ? bin_bucket(p.x, p.y, L, grid_mask, grid_bucket_offset, grid_inv_cell, &tag)
+                       : BIN_NO_BUCKET;
+    wg_bucket[l] = b;
+    barrier(CLK_LOCAL_MEM_FENCE);
+    if (l == 0) grouped = bin_group_take(wg_bucket, bucket, wg_slot);
+    barrier(CLK_LOCAL_MEM_FENCE);
+    if (b != BIN_NO_BUCKET) grid_nodes[grouped ? wg_slot[l] : atomic_inc(&bucket[b])] = (int)((uint)i | tag);
+  }
+}
+#else
 __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1)))
 void bin_fill(const int n, __global const REAL2* xy, __global const int* level,
               __global const int* state, __global const int* grid_mask, __global const uint* grid_bucket_offset,
@@ -267,3 +363,4 @@ void bin_fill(const int n, __global const REAL2* xy, __global const int* level,
       grid_nodes[atomic_inc(&bucket[b])] = (int)((uint)i | tag);
     }
 }
+#endif
