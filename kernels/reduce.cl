@@ -24,8 +24,7 @@ void group_reduce(__local REAL* values, const int slots, const int sum_slots) {
     }
   }
   barrier(CLK_LOCAL_MEM_FENCE);
-  return;
-#endif
+#else
   const int l = get_local_id(0);
   for (int width = WG_SIZE / 2; width > 0; width /= 2) {
     barrier(CLK_LOCAL_MEM_FENCE);
@@ -37,6 +36,7 @@ void group_reduce(__local REAL* values, const int slots, const int sum_slots) {
     }
   }
   barrier(CLK_LOCAL_MEM_FENCE);
+#endif
 }
 
 // Values one work-group writes and another work-group of the same launch reads (boundary_snap_rule's

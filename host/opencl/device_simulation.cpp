@@ -108,9 +108,7 @@ void DeviceRun<Real>::enqueue_iteration(int cur) {
   }
 }
 
-// Enqueues iterations first .. (at most) the window's end without a wait, then reads their history
-// rows (one wait). The window ends where the host has work whatever the device does: a population
-// event, a convergence measurement, the last iteration; a zero skin rebuilds every iteration.
+// One whole window from iteration `first`, waited for: begin_window, then end_window.
 template <typename Real>
 void DeviceRun<Real>::start_window(int first, const GlobalTimeStep& gm) {
   begin_window(first, gm, window_.max_length());

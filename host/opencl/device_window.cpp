@@ -88,14 +88,6 @@ void DeviceWindow<Real>::enqueue_rule(StepProgram& program, std::size_t groups, 
 }
 
 template <typename Real>
-int DeviceWindow<Real>::finish_window(Context& ctx, std::size_t groups, Buffer<Real>& partials,
-                                      std::size_t snap_entries, Buffer<Real>& snap_partials,
-                                      Buffer<std::int32_t>& counters) {
-  enqueue_reads(ctx, groups, partials, snap_entries, snap_partials, counters);
-  return complete(ctx, groups, snap_entries);
-}
-
-template <typename Real>
 void DeviceWindow<Real>::enqueue_reads(Context& ctx, std::size_t groups, Buffer<Real>& partials,
                                        std::size_t snap_entries, Buffer<Real>& snap_partials,
                                        Buffer<std::int32_t>& counters) {

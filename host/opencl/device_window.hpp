@@ -89,17 +89,15 @@ class DeviceWindow {
   void rule_args(ArgSetter& a, std::size_t groups, Buffer<Real>& partials);
   void enqueue_rule(StepProgram& program, std::size_t groups, Buffer<Real>& partials, std::size_t snap_entries,
                     Buffer<Real>& snap_partials, Buffer<std::int32_t>& counters);
-  // After the window: reads the ring and the counters (one wait; with the host's sums, the partials)
-  // and returns how many iterations ran. Their rows are row(0 ..). = enqueue_reads, then complete.
-  int finish_window(Context& ctx, std::size_t groups, Buffer<Real>& partials, std::size_t snap_entries,
-                    Buffer<Real>& snap_partials, Buffer<std::int32_t>& counters);
-  // finish_window in two halves, so that the host can work while the device runs the window: the
-  // reads enqueued (not waited on; the queue flushed), then the wait and the rows.
+  // After the window's iterations, in two halves so that the host can work while the device runs
+  // them: enqueue_reads enqueues the reads of the ring and the counters (with the host's sums, the
+  // partials) and flushes the queue, no wait; complete waits (one wait) and returns how many
+  // iterations ran. Their rows are row(0 ..).
   void enqueue_reads(Context& ctx, std::size_t groups, Buffer<Real>& partials, std::size_t snap_entries,
                      Buffer<Real>& snap_partials, Buffer<std::int32_t>& counters);
   int complete(Context& ctx, std::size_t groups, std::size_t snap_entries);
   const double* row(int k) const { return rows_.data() + static_cast<std::size_t>(kRingSize) * static_cast<std::size_t>(k); }
-  // Transfers enqueued by the last begin() + finish_window(), and their bytes (DeviceRunStats).
+  // Transfers enqueued by the last begin() + enqueue_reads(), and their bytes (DeviceRunStats).
   std::uint64_t transfers = 0, bytes_up = 0, bytes_down = 0;
 
  private:
