@@ -38,7 +38,7 @@ REAL bg_spacing_cached(const REAL px, const REAL py, int* leaf, BG_ARGS) {
 // barrier that changes nothing else (every work-item reaches it; nothing is shared through local
 // memory). PoCL runs each region between barriers as a loop over the group's work-items: the scalar
 // tail of one node (|F|'s square root, the division of eq. 5.8, momentum's square root and division,
-// a dependency chain of ~90 cycles) then overlaps with the next node's instead of waiting behind its
+// each waiting for the one before) then overlaps with the next node's instead of waiting behind its
 // call of node_forces. 30P30N's curves with momentum: step 1.69 -> 1.51 ms per iteration
 // (docs/performance.md, fourteenth session). A GPU interleaves work-items in hardware: no barrier there.
 #if PDMESH_FORCE_LOOP_VECTOR

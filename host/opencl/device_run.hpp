@@ -224,7 +224,8 @@ class DeviceRun {
   // A window begun and not yet ended (begin_window): its first iteration and length, its start time.
   // run_ahead_: a convergence check's window begins before the host measures the mesh (off with
   // PDMESH_TEST_NO_RUN_AHEAD, for the test that the runs are the same); its first part is kAheadIterations
-  // long, about what the device runs while the host triangulates (~7 ms on 30P30N's 14k nodes).
+  // long, about what the device runs while the host triangulates (6.5 ms for 30P30N's 14k final nodes,
+  // bench_triangulation --nodes).
   static constexpr int kAheadIterations = 4;
   const bool run_ahead_ = std::getenv("PDMESH_TEST_NO_RUN_AHEAD") == nullptr;
   bool window_pending_ = false;
