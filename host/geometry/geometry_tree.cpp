@@ -13,6 +13,8 @@
 
 #include "core/errors.hpp"
 #include "core/predicates.hpp"
+#include "geometry/closest_on_segment.hpp"
+#include "geometry/curve_scan.hpp"
 
 namespace pdmesh {
 
@@ -25,37 +27,7 @@ bool point_on_segment(Vec2 p, Vec2 a, Vec2 b) {
   return orient2d(a, b, p) == 0.0;
 }
 
-namespace {
-
-// closest_on_segment's body, inlined into the tree's search (1.6 calls per search, each returning
-// its hit through memory when called); the exported function is this too, so both compute the same bits.
-inline __attribute__((always_inline)) ClosestHit closest_on_segment_inline(Vec2 p, const Segment& s, int index) {
-  const Vec2 ab = s.b - s.a;
-  const double len2 = norm2(ab);
-  double t = len2 > 0.0 ? dot(p - s.a, ab) / len2 : 0.0;
-  t = std::clamp(t, 0.0, 1.0);
-  const Vec2 q = t == 0.0 ? s.a : t == 1.0 ? s.b : s.a + t * ab;
-  ClosestHit hit{index, q, norm(p - q), t};
-  // The projection rounds, so a point exactly on the segment would get a distance of a few ulps.
-  // Snap it to exactly 0 (decided by the exact predicate) so that "on the boundary" means d == 0.
-  if (hit.distance != 0.0) {
-    // std::max, not std::fmax (a library call, not inlined, on the hot path of every spacing
-    // evaluation): the tree's segments are finite, and a NaN in p makes hit.distance NaN, which
-    // fails the test below whatever scale is.
-    const double scale = std::max(std::max(std::fabs(p.x), std::fabs(p.y)),
-                                  std::max(std::max(std::fabs(s.a.x), std::fabs(s.a.y)),
-                                           std::max(std::fabs(s.b.x), std::fabs(s.b.y))));
-    if (hit.distance <= 1e-12 * scale && point_on_segment(p, s.a, s.b)) {
-      hit.point = p;
-      hit.distance = 0.0;
-    }
-  }
-  return hit;
-}
-
-}  // namespace
-
-ClosestHit closest_on_segment(Vec2 p, const Segment& s, int index) { return closest_on_segment_inline(p, s, index); }
+ClosestHit closest_on_segment(Vec2 p, const Segment& s, int index) { return detail::closest_on_segment_inline(p, s, index); }
 
 int ray_crossing(Vec2 p, Vec2 a, Vec2 b, RayDirection direction) {
   if (point_on_segment(p, a, b)) return 2;
@@ -187,7 +159,7 @@ class Quadtree {
     ClosestHit best;
     best.distance = std::numeric_limits<double>::infinity();
     if (nodes_.empty()) return ClosestHit{};
-    if (hint >= 0) best = closest_on_segment_inline(p, (*segments_)[static_cast<std::size_t>(hint)], hint);
+    if (hint >= 0) best = detail::closest_on_segment_inline(p, (*segments_)[static_cast<std::size_t>(hint)], hint);
     // Depth first, the nearer children first: with the seed's bound (or the first leaf's hit) most
     // subtrees are pruned at once, and a small stack on the frame costs less than a heap (this is the
     // inner loop of every eq. 3.6 evaluation: 15 searches per point on 30P30N). The nodes visited
@@ -218,7 +190,7 @@ class Quadtree {
             const double limit = bound(best.distance);
             if (segment_box_distance2(p, seg) > limit * limit) continue;
           }
-          const ClosestHit h = closest_on_segment_inline(p, seg, id);
+          const ClosestHit h = detail::closest_on_segment_inline(p, seg, id);
           if (h.distance < best.distance || (h.distance == best.distance && id < best.segment)) best = h;
         }
         continue;
@@ -421,6 +393,8 @@ struct GeometryTree::Impl {
   // Per node of `all` (leaves only): whether the leaf's centre is inside (1), outside (0), or on
   // the boundary (-1: the local test below cannot start from it).
   std::vector<signed char> centre_inside;
+  // The small curves' segments for one vectorized pass each (closest_per_curve*).
+  std::unique_ptr<CurveScan> scan;
 };
 
 namespace {
@@ -447,7 +421,8 @@ GeometryTree::GeometryTree(const Geometry& geometry) : geometry_(geometry) {
                           " has a non-finite end point");
     by_curve[s.curve].push_back(static_cast<int>(i));
   }
-  impl_ = std::make_unique<Impl>(Impl{Quadtree(segs, all_ids(segs.size())), {}, {}});
+  impl_ = std::make_unique<Impl>(Impl{Quadtree(segs, all_ids(segs.size())), {}, {}, {}});
+  impl_->scan = std::make_unique<CurveScan>(geometry, by_curve);
   impl_->per_curve.reserve(curves);
   for (int c = 0; c < curves; ++c) impl_->per_curve.emplace_back(segs, std::move(by_curve[c]));
   const auto& nodes = impl_->all.nodes();
@@ -474,9 +449,19 @@ ClosestHit GeometryTree::closest_on_curve(Vec2 p, int curve) const {
   return impl_->per_curve[curve].closest(p);
 }
 
+namespace {
+// The scan needs finite coordinates of moderate size (see CurveScan); other points use the trees.
+bool scannable(Vec2 p) {
+  return std::fabs(p.x) <= CurveScan::kMaxMagnitude && std::fabs(p.y) <= CurveScan::kMaxMagnitude;
+}
+}  // namespace
+
 void GeometryTree::closest_per_curve(Vec2 p, std::vector<ClosestHit>& out) const {
   out.resize(impl_->per_curve.size());
-  for (std::size_t c = 0; c < out.size(); ++c) out[c] = impl_->per_curve[c].closest(p);
+  const bool scan = scannable(p);
+  if (scan) impl_->scan->closest(p, out);
+  for (std::size_t c = 0; c < out.size(); ++c)
+    if (!scan || !impl_->scan->covers(static_cast<int>(c))) out[c] = impl_->per_curve[c].closest(p);
 }
 
 void GeometryTree::closest_per_curve_near(Vec2 p, std::vector<ClosestHit>& out) const {
@@ -484,7 +469,11 @@ void GeometryTree::closest_per_curve_near(Vec2 p, std::vector<ClosestHit>& out) 
   const auto& segs = geometry_.segments;
   const bool hinted = out.size() == curves;
   out.resize(curves);
+  // The scan writes only its own curves' entries: the others keep their hints for the trees.
+  const bool scan = scannable(p);
+  if (scan) impl_->scan->closest(p, out);
   for (std::size_t c = 0; c < curves; ++c) {
+    if (scan && impl_->scan->covers(static_cast<int>(c))) continue;
     const int s = hinted ? out[c].segment : -1;
     const bool valid = s >= 0 && static_cast<std::size_t>(s) < segs.size() &&
                        segs[static_cast<std::size_t>(s)].curve == static_cast<int>(c);

@@ -48,7 +48,8 @@ class GeometryTree {
   // Closest point on one curve (ties: lowest segment index). Throws std::out_of_range on a bad curve.
   ClosestHit closest_on_curve(Vec2 p, int curve) const;
   // For every curve, its closest segment (out[c] for curve c). Used by the boundary spacing field.
-  // Costs O(curves * log segments): each curve has its own quadtree.
+  // Curves of up to CurveScan::kMaxSegments segments are answered by one vectorized pass over their
+  // segments (geometry/curve_scan.hpp), larger ones by their own quadtree: the same answers.
   void closest_per_curve(Vec2 p, std::vector<ClosestHit>& out) const;
   // The same result, bit for bit, faster when out holds this tree's answer for a nearby point (the
   // previous query of a spatially ordered batch): each curve's search starts from that segment's
