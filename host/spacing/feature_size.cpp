@@ -9,6 +9,7 @@
 #include <fmt/format.h>
 
 #include "core/errors.hpp"
+#include "geometry/closest_on_segment.hpp"
 
 namespace pdmesh {
 
@@ -66,6 +67,7 @@ FeatureSize::FeatureSize(const Geometry& geometry) : geometry_(geometry) {
   for (std::size_t s = 0; s < n; ++s)
     if (loop_[s] < 0)
       throw Error(fmt::format("feature size: segment {} of curve {} belongs to no loop", segs[s].index, segs[s].curve));
+  for (const Segment& s : segs) scale_ = std::max({scale_, std::fabs(s.a.x), std::fabs(s.a.y), std::fabs(s.b.x), std::fabs(s.b.y)});
   order_.resize(n);
   for (std::size_t s = 0; s < n; ++s) order_[s] = static_cast<std::int32_t>(s);
   if (n > 0) {
@@ -142,19 +144,39 @@ void FeatureSize::traverse(Vec2 x, const Skip& skip, const Visit& segment) const
   }
 }
 
-ClosestHit FeatureSize::closest(Vec2 x) const {
+ClosestHit FeatureSize::closest(Vec2 x, int hint) const {
   ClosestHit best;
   double best2 = std::numeric_limits<double>::infinity();
+  // Nodes and segments whose bounding box lies farther than best.distance + margin are skipped: their
+  // distance exceeds the best by far more than either's rounding (~50 ulps of the coordinates'
+  // magnitude) and closest_on_segment's snap to 0 (1e-12 of it), so their squared distance is
+  // strictly larger and they could neither win nor tie. Every segment that could is measured,
+  // whatever the order, so the answer is the least squared distance, then the lowest index, whichever
+  // segment seeds the search.
+  const double margin = 1e-11 * std::max({scale_, std::fabs(x.x), std::fabs(x.y)});
+  double skip2 = std::numeric_limits<double>::infinity();
   const auto& segs = geometry_.segments;
+  const auto measure = [&](std::int32_t si) {
+    const ClosestHit h = detail::closest_on_segment_inline(x, segs[static_cast<std::size_t>(si)], si);
+    const double d2 = h.distance * h.distance;
+    if (d2 < best2 || (d2 == best2 && si < best.segment)) {
+      best2 = d2;
+      best = h;
+      skip2 = (h.distance + margin) * (h.distance + margin);
+    }
+  };
+  const bool seeded = hint >= 0 && static_cast<std::size_t>(hint) < segs.size();
+  if (seeded) measure(hint);
   traverse(
-      x, [&](const Node& n) { return box_distance2(n.box, x) > best2; },  // equal: a tie to a lower index
+      x, [&](const Node& n) { return box_distance2(n.box, x) > skip2; },
       [&](std::int32_t si) {
-        const ClosestHit h = closest_on_segment(x, segs[static_cast<std::size_t>(si)], si);
-        const double d2 = h.distance * h.distance;
-        if (d2 < best2 || (d2 == best2 && si < best.segment)) {
-          best2 = d2;
-          best = h;
-        }
+        if (seeded && si == hint) return;  // measured first
+        const Segment& s = segs[static_cast<std::size_t>(si)];
+        Box b;
+        b.add(s.a);
+        b.add(s.b);
+        if (box_distance2(b, x) > skip2) return;
+        measure(si);
       });
   return best;
 }

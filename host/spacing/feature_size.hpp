@@ -28,9 +28,11 @@ class FeatureSize {
   // (max_width bounds the search: wider gaps do not matter to the caller).
   double width(Vec2 x, const ClosestHit& nearest, bool inside, double max_width) const;
 
-  // The closest boundary point to x (as GeometryTree::closest: ties to the lowest segment index), by this
-  // hierarchy, which prunes far-away segments faster than the geometry quadtree for points far from them.
-  ClosestHit closest(Vec2 x) const;
+  // The closest boundary point to x (the least squared distance, then the lowest segment index), by
+  // this hierarchy, which prunes far-away segments faster than the geometry quadtree for points far
+  // from them. hint >= 0: a segment measured first, whose distance prunes most of the hierarchy at once
+  // (the answer for a nearby point); the answer does not depend on it.
+  ClosestHit closest(Vec2 x, int hint = -1) const;
 
   // max over segments s of (fraction * length(s) - slope * distance(x, s)), or 0 if all are below: the
   // upper envelope of one cone per segment, so it is slope-Lipschitz (no jump where the closest
@@ -64,6 +66,7 @@ class FeatureSize {
   std::vector<double> arc_a_;        // per segment: loop arc at its point a ...
   std::vector<double> arc_sign_;     // ... and +1 / -1 as the loop runs a->b / b->a
   std::vector<double> loop_length_;  // per loop
+  double scale_ = 0.0;               // the largest coordinate magnitude of any segment end
   std::vector<Node> nodes_;          // bounding-volume hierarchy over segments; root is nodes_[0]
   std::vector<std::int32_t> order_;  // segment indices, leaf by leaf
 };

@@ -25,6 +25,11 @@ constexpr int kMaxRounds = 12;
 // the interpolation tolerance (smaller changes cannot change a refinement decision much).
 constexpr double kLowered = 0.25;
 
+// A thread's seed for the sources' closest-segment search (parallel_for_scratch).
+struct Seed {
+  int segment = -1;
+};
+
 class LimitedField {
  public:
   LimitedField(BackgroundBuilder& b, const SizeSources& sources, double g, const std::vector<PointSource>& points,
@@ -124,9 +129,10 @@ class LimitedField {
       fresh.push_back(i);
     }
     const auto start = Clock::now();
-    parallel_for(fresh.size(), [&](std::size_t i) {
+    // Each thread's last closest segment seeds its next search (the keys come in spatial order).
+    parallel_for_scratch<Seed>(fresh.size(), [&](Seed& seed, std::size_t i) {
       const auto id = ids[fresh[i]];
-      source_at_[static_cast<std::size_t>(id)] = sources_.at(lattice(b_, keys[fresh[i]]), b_.sample_value(id));
+      source_at_[static_cast<std::size_t>(id)] = sources_.at(lattice(b_, keys[fresh[i]]), b_.sample_value(id), &seed.segment);
     }, 256);
     stats_.source_seconds += seconds_since(start);
   }

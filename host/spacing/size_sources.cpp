@@ -17,10 +17,11 @@ SizeSources::SizeSources(const GeometryTree& tree, const SizeSourceOptions& opti
   }
 }
 
-double SizeSources::at(Vec2 p, double limit) const {
+double SizeSources::at(Vec2 p, double limit, int* seed) const {
   constexpr double kNone = std::numeric_limits<double>::infinity();
   if (!options_.active()) return kNone;
-  const ClosestHit hit = feature_->closest(p);
+  const ClosestHit hit = feature_->closest(p, seed ? *seed : -1);
+  if (seed) *seed = hit.segment;
   if (hit.segment < 0) return kNone;
   const double s = options_.scale;
   // With input boundary points, no source asks for less than (a fraction of) the closest segment:

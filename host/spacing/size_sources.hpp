@@ -34,8 +34,10 @@ class SizeSources {
   const SizeSourceOptions& options() const { return options_; }
 
   // The smallest spacing the sources ask for at p, +inf where none asks for less than `limit` (the
-  // gap search stops there). Thread-safe.
-  double at(Vec2 p, double limit) const;
+  // gap search stops there). Thread-safe. seed (optional): the closest segment of the caller's last
+  // point, which starts this point's search (faster for a nearby point; the same value), and is set
+  // to this point's.
+  double at(Vec2 p, double limit, int* seed = nullptr) const;
   // The input-boundary floor at p (see input_boundary_floor) when it exceeds `q`, else q. Thread-safe.
   double floor_at(Vec2 p, double q) const;
   bool has_floor() const { return options_.input_boundary_floor > 0.0 && options_.final_floor; }

@@ -1,0 +1,93 @@
+// FeatureSize::closest against brute force: the least squared distance, then the lowest segment
+// index, with and without a seed segment. The plate's lattice points where two wall segments meet at
+// the closest vertex (an exact tie) were answered with the higher index before the search's pruning
+// kept a margin; they are checked by name.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "geometry/geometry_files.hpp"
+#include "geometry_fixtures.hpp"
+#include "spacing/feature_size.hpp"
+
+using namespace pdmesh;
+using fixtures::unit;
+
+namespace {
+
+// The rule FeatureSize::closest documents, over every segment.
+ClosestHit brute_closest(const Geometry& g, Vec2 p) {
+  ClosestHit best;
+  double best2 = INFINITY;
+  for (std::size_t k = 0; k < g.segments.size(); ++k) {
+    const ClosestHit h = closest_on_segment(p, g.segments[k], static_cast<int>(k));
+    const double d2 = h.distance * h.distance;
+    if (d2 < best2 || (d2 == best2 && static_cast<int>(k) < best.segment)) {
+      best2 = d2;
+      best = h;
+    }
+  }
+  return best;
+}
+
+void require_same(const ClosestHit& got, const ClosestHit& brute, Vec2 p) {
+  INFO("query (" << p.x << ", " << p.y << "): segment " << got.segment << " at " << got.distance << ", brute force "
+                 << brute.segment << " at " << brute.distance);
+  REQUIRE(got.segment == brute.segment);
+  REQUIRE(got.distance == brute.distance);
+  REQUIRE(got.point == brute.point);
+  REQUIRE(got.t == brute.t);
+}
+
+// Random points around the geometry, points on segments and vertices, and points of a dyadic lattice
+// (as the background tree's corners: exact ties to two segments are common there). Each query is
+// asked without a seed and seeded with the previous answer and with a random segment.
+void check(const Geometry& g, int queries, std::uint64_t seed) {
+  const FeatureSize fs(g);
+  std::mt19937_64 rng(seed);
+  const Box& e = g.extents;
+  int previous = -1;
+  for (int i = 0; i < queries; ++i) {
+    Vec2 p;
+    const Segment& s = g.segments[rng() % g.segments.size()];
+    switch (i % 4) {
+      case 0:
+        p = {e.lo.x - 0.1 * e.width() + 1.2 * e.width() * unit(rng), e.lo.y - 0.1 * e.height() + 1.2 * e.height() * unit(rng)};
+        break;
+      case 1:
+        p = (rng() & 1) ? s.a : s.a + unit(rng) * (s.b - s.a);
+        break;
+      default: {
+        const double step = std::ldexp(std::max(e.width(), e.height()), -7);
+        p = {e.lo.x + step * std::floor(unit(rng) * 130.0 - 1.0), e.lo.y + step * std::floor(unit(rng) * 130.0 - 1.0)};
+      }
+    }
+    const ClosestHit brute = brute_closest(g, p);
+    require_same(fs.closest(p), brute, p);
+    require_same(fs.closest(p, previous), brute, p);
+    require_same(fs.closest(p, static_cast<int>(rng() % g.segments.size())), brute, p);
+    previous = brute.segment;
+  }
+}
+
+}  // namespace
+
+TEST_CASE("FeatureSize::closest equals brute force, seeded or not", "[spacing][feature]") {
+  SECTION("square of four sides") { check(fixtures::square(2.0, 7), 3000, 21); }
+  SECTION("plate (corpus)") {
+    const Geometry g = read_geometry({std::string(PDMESH_SOURCE_DIR) + "/cases/corpus/plate/plate.poly"}, {});
+    check(g, 3000, 22);
+    const FeatureSize fs(g);
+    // Lattice points of the plate's run where the closest point is a vertex shared by two segments.
+    for (const Vec2 p : {Vec2{-0.0625, 5.1597222222222223}, Vec2{5.692708333333333, 2.2256944444444446},
+                         Vec2{5.692708333333333, 1.9435763888888893}, Vec2{5.7491319444444446, 1.9435763888888893},
+                         Vec2{5.6362847222222223, 2.1128472222222223}}) {
+      const ClosestHit brute = brute_closest(g, p);
+      require_same(fs.closest(p), brute, p);
+      require_same(fs.closest(p, brute.segment + 1), brute, p);
+    }
+  }
+}
