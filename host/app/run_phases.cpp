@@ -6,12 +6,6 @@
 #include <ctime>
 #include <fstream>
 
-#if defined(__linux__)
-#include <sys/resource.h>
-#include <sys/syscall.h>
-#include <unistd.h>
-#endif
-
 #include <fmt/format.h>
 
 #include "mesh/quality_report.hpp"
@@ -133,24 +127,7 @@ void RunPhases::picture(std::string name, std::function<void()> job) {
   cv_.notify_all();
 }
 
-namespace {
-
-// The picture thread at the lowest priority (nice 19, Linux: per thread): while the simulation's
-// device threads (PoCL's, one per core) run kernels it draws in their gaps instead of taking a core
-// from them (a kernel waits for its slowest thread), and once a core is idle (the serial cleanup, the
-// end of the run) it runs as fast as ever. Never starved (unlike SCHED_IDLE): under CFS a nice-19
-// thread still gets its small share of a busy core. 30P30N's curves alone: simulation 1.01 -> 0.99 s,
-// whole run ~0.02 s less (docs/performance.md, fifteenth session). Failure changes nothing but speed.
-void lower_this_thread_priority() {
-#if defined(__linux__)
-  (void)setpriority(PRIO_PROCESS, static_cast<id_t>(syscall(SYS_gettid)), 19);
-#endif
-}
-
-}  // namespace
-
 void RunPhases::worker() {
-  lower_this_thread_priority();
   std::unique_lock lock(mutex_);
   for (;;) {
     cv_.wait(lock, [this] { return stopping_ || !queue_.empty(); });
