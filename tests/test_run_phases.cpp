@@ -5,6 +5,7 @@
 #include <catch2/catch.hpp>
 
 #include <atomic>
+#include <chrono>
 #include <cmath>
 #include <future>
 #include <stdexcept>
@@ -142,6 +143,60 @@ TEST_CASE("run phases: pictures run on the background thread while the caller go
   std::size_t background = 0;
   for (const PhaseTime& p : run.phases()) background += p.background ? 1 : 0;
   CHECK(background == 3);
+}
+
+TEST_CASE("run phases: held pictures wait until released, a deadline, wait_pictures or the end", "[phases]") {
+  SECTION("release: the background thread draws them") {
+    RunPhases run;
+    std::atomic<bool> drawn{false};
+    std::promise<std::thread::id> drawer;
+    PictureHold hold(run, true);
+    run.picture("held.png", [&] {
+      drawn = true;
+      drawer.set_value(std::this_thread::get_id());
+    });
+    // Held: the thread, idle otherwise, starts nothing (without the hold it would have by now).
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    CHECK_FALSE(drawn);
+    hold.release();
+    CHECK(drawer.get_future().get() != std::this_thread::get_id());
+    run.wait_pictures();
+    CHECK(drawn);
+  }
+  SECTION("wait_pictures draws held pictures") {
+    RunPhases run;
+    bool drawn = false;
+    const PictureHold hold(run, true);
+    run.picture("held.png", [&] { drawn = true; });
+    run.wait_pictures();
+    CHECK(drawn);
+  }
+  SECTION("pictures still held when the run ends are drawn") {
+    std::atomic<int> drawn{0};
+    {
+      RunPhases run;
+      run.hold_pictures(true);
+      run.picture("a.png", [&] { ++drawn; });
+      run.picture("b.png", [&] { ++drawn; });
+    }
+    CHECK(drawn == 2);
+  }
+  SECTION("a hold ends at its deadline") {
+    RunPhases run;
+    std::promise<void> done;
+    const PictureHold hold(run, true, 0.05);
+    run.picture("late.png", [&] { done.set_value(); });
+    done.get_future().wait();  // drawn by the thread once 0.05 s have passed, the hold object alive
+    run.wait_pictures();
+  }
+  SECTION("an inactive hold holds nothing") {
+    RunPhases run;
+    std::promise<void> done;
+    const PictureHold hold(run, false);
+    run.picture("free.png", [&] { done.set_value(); });
+    done.get_future().wait();  // drawn by the thread while the hold object lives
+    run.wait_pictures();
+  }
 }
 
 TEST_CASE("run phases: a caller waiting for the pictures draws queued ones itself", "[phases]") {

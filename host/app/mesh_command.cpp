@@ -43,6 +43,11 @@ SimOptions simulation_options(const CaseConfig& config) {
   return options;
 }
 
+namespace {
+// How long the initial pictures wait for a simulation on a CPU device (see simulate).
+constexpr double kPictureHoldSeconds = 2.0;
+}  // namespace
+
 SimResult simulate(const CaseConfig& config, const MeshInputs& inputs, NodeSet& nodes, const SimState* resume,
                    const SimulateHooks* hooks, RunPhases* run) {
   RunPhases local(false);
@@ -88,6 +93,11 @@ SimResult simulate(const CaseConfig& config, const MeshInputs& inputs, NodeSet& 
                        checkpoint_file.string(), config.out_dir.string());
   };
   SimResult result;
+  // On a CPU device the kernels keep every core busy, and a picture drawn beside them slows every
+  // kernel (each waits for its slowest thread): the pictures queued so far (the initial ones) wait
+  // for the simulation to end, and are drawn beside the serial work after it (the cleanup); for 2 s
+  // at most, so that a long run still shows its initial pictures early.
+  const PictureHold hold(phases, backend.context && backend.context->device().type == "CPU", kPictureHoldSeconds);
   try {
     result = backend.simulator->run(nodes, inputs.node_tree(), inputs.field(), options, callbacks);
   } catch (const DeviceError& e) {
@@ -97,6 +107,7 @@ SimResult simulate(const CaseConfig& config, const MeshInputs& inputs, NodeSet& 
     if (!saved_after) throw;
     throw SimulationError(e.what() + saved_note());
   }
+  hold.release();
   if (!config.write_outputs) return result;  // the Python API keeps the state in memory
   if (result.stopped || InterruptGuard::flag().load()) {
     write_checkpoint(checkpoint_file, Checkpoint{case_identity(config), nodes, result.state});

@@ -1,6 +1,7 @@
 // Phase timing and the background picture thread; see run_phases.hpp.
 #include "app/run_phases.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <ctime>
@@ -47,6 +48,8 @@ RunPhases::RunPhases(bool background)
 RunPhases::~RunPhases() {
   {
     std::unique_lock lock(mutex_);
+    held_ = false;
+    cv_.notify_all();
     cv_.wait(lock, [this] { return pending_ == 0; });
     stopping_ = true;
   }
@@ -127,10 +130,29 @@ void RunPhases::picture(std::string name, std::function<void()> job) {
   cv_.notify_all();
 }
 
+void RunPhases::hold_pictures(bool hold, double max_seconds) {
+  {
+    std::lock_guard lock(mutex_);
+    held_ = hold;
+    if (hold)
+      held_until_ = std::chrono::steady_clock::now() +
+                    std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                        std::chrono::duration<double>(std::min(max_seconds, 1e6)));
+  }
+  cv_.notify_all();
+}
+
 void RunPhases::worker() {
   std::unique_lock lock(mutex_);
   for (;;) {
-    cv_.wait(lock, [this] { return stopping_ || !queue_.empty(); });
+    const auto ready = [this] { return stopping_ || (!queue_.empty() && !held_); };
+    if (held_) {
+      // A hold lasts until released or until its deadline, whichever comes first.
+      if (!cv_.wait_until(lock, held_until_, ready)) held_ = false;
+    } else {
+      cv_.wait(lock, ready);
+    }
+    if (!ready()) continue;
     if (queue_.empty()) return;  // stopping, nothing left
     run_job(lock);
   }
@@ -162,6 +184,8 @@ void RunPhases::wait_pictures() {
   std::exception_ptr error;
   {
     std::unique_lock lock(mutex_);
+    held_ = false;
+    cv_.notify_all();
     // The caller has nothing else to do: it draws queued pictures too, beside the background thread
     // (30P30N's six mesh pictures, drawn at the end of a run, were its wait).
     while (!queue_.empty()) run_job(lock);

@@ -2,6 +2,8 @@
 // messages, `--timings FILE` and `pdmesh bench --whole-run`; and the pictures, drawn on a background
 // thread while the run goes on (docs/performance.md, "Whole runs").
 #pragma once
+#include <chrono>
+#include <cmath>
 #include <condition_variable>
 #include <cstddef>
 #include <deque>
@@ -65,6 +67,9 @@ class RunPhases {
   // rethrows the error of the earliest queued job that threw (once; queue order, not completion order,
   // so the same error whichever thread drew which picture).
   void wait_pictures();
+  // While held, queued pictures wait (the background thread starts none), for at most max_seconds;
+  // wait_pictures() and the destructor release them.
+  void hold_pictures(bool hold, double max_seconds = HUGE_VAL);
 
   // Adds a phase measured elsewhere; thread-safe.
   void add(PhaseTime t);
@@ -103,6 +108,8 @@ class RunPhases {
   std::uint64_t next_seq_ = 0;
   std::size_t pending_ = 0;  // queued or running
   bool stopping_ = false;
+  bool held_ = false;
+  std::chrono::steady_clock::time_point held_until_{};
   std::exception_ptr error_;
   std::uint64_t error_seq_ = 0;  // the queue position of error_'s job
   std::thread thread_;
@@ -119,6 +126,24 @@ class PictureGuard {
 
  private:
   RunPhases& phases_;
+};
+
+// Holds the pictures of `phases` (RunPhases::hold_pictures) from construction, when `active`, until
+// release(), destruction or max_seconds.
+class PictureHold {
+ public:
+  PictureHold(RunPhases& phases, bool active, double max_seconds = HUGE_VAL) : phases_(active ? &phases : nullptr) {
+    if (phases_) phases_->hold_pictures(true, max_seconds);
+  }
+  ~PictureHold() { release(); }
+  void release() const {
+    if (phases_) phases_->hold_pictures(false);
+  }
+  PictureHold(const PictureHold&) = delete;
+  PictureHold& operator=(const PictureHold&) = delete;
+
+ private:
+  RunPhases* phases_;
 };
 
 // Wall seconds on a steady clock (for phases timed by hand).
