@@ -112,10 +112,15 @@ CurveScan::CurveScan(const Geometry& geometry, const std::vector<std::vector<int
   }
 }
 
-void CurveScan::closest(Vec2 p, std::vector<ClosestHit>& out) const {
+void CurveScan::closest(Vec2 p, std::vector<ClosestHit>& out, ClosestHit* by_square) const {
   alignas(64) double d2[kBatchLanes];
   alignas(64) double least[kBatchLanes];  // kWidth per curve, and a curve has kWidth lanes or more
-  const double margin = kMargin * std::max({scale_, std::fabs(p.x), std::fabs(p.y)});
+  const double margin = this->margin(p);
+  // The least squared distance, then the lowest index, over every hit measured exactly: each curve's
+  // candidates include every segment of it within the margin of its least, so those of the curve
+  // nearest p include every segment whose squared distance could tie with the least of all.
+  ClosestHit square_best;
+  double square_best2 = std::numeric_limits<double>::infinity();
   for (const Batch& b : batches_) {
     const std::size_t f = b.first_lane;
     squared_distances(p.x, p.y, ax_.data() + f, ay_.data() + f, dx_.data() + f, dy_.data() + f, inv_len2_.data() + f,
@@ -138,12 +143,20 @@ void CurveScan::closest(Vec2 p, std::vector<ClosestHit>& out) const {
           const int id = id_[f + static_cast<std::size_t>(i)];
           const ClosestHit h = detail::closest_on_segment_inline(p, geometry_.segments[static_cast<std::size_t>(id)], id);
           if (best.segment < 0 || h.distance < best.distance || (h.distance == best.distance && id < best.segment)) best = h;
+          const double h2 = h.distance * h.distance;
+          if (h2 < square_best2 || (h2 == square_best2 && id < square_best.segment)) {
+            square_best2 = h2;
+            square_best = h;
+          }
         }
       }
       out[static_cast<std::size_t>(s.curve)] = best;
       first += s.lanes;
     }
   }
+  if (by_square) *by_square = square_best;
 }
+
+double CurveScan::margin(Vec2 p) const { return kMargin * std::max({scale_, std::fabs(p.x), std::fabs(p.y)}); }
 
 }  // namespace pdmesh

@@ -25,7 +25,11 @@ class CurveScan {
   // For every scanned curve c, out[c] = its closest segment to p: the lowest index among those at the
   // least distance, as closest_on_segment measures it (out holds an entry per curve; the others are
   // left as they are). p's coordinates must be finite and at most kMaxMagnitude in size.
-  void closest(Vec2 p, std::vector<ClosestHit>& out) const;
+  // by_square (optional): the closest segment over the scanned curves by the least squared distance
+  // (h.distance * h.distance), then the lowest index.
+  void closest(Vec2 p, std::vector<ClosestHit>& out, ClosestHit* by_square = nullptr) const;
+  // The filter's margin at p, in distance: candidates lie within it of their curve's least.
+  double margin(Vec2 p) const;
   static constexpr double kMaxMagnitude = 1e100;
 
   // Lanes per vector of the pass, and so the padding of each curve's arrays.

@@ -464,20 +464,32 @@ void GeometryTree::closest_per_curve(Vec2 p, std::vector<ClosestHit>& out) const
     if (!scan || !impl_->scan->covers(static_cast<int>(c))) out[c] = impl_->per_curve[c].closest(p);
 }
 
-void GeometryTree::closest_per_curve_near(Vec2 p, std::vector<ClosestHit>& out) const {
+void GeometryTree::closest_per_curve_near(Vec2 p, std::vector<ClosestHit>& out, ClosestHit* by_square) const {
   const std::size_t curves = impl_->per_curve.size();
   const auto& segs = geometry_.segments;
   const bool hinted = out.size() == curves;
   out.resize(curves);
   // The scan writes only its own curves' entries: the others keep their hints for the trees.
   const bool scan = scannable(p);
-  if (scan) impl_->scan->closest(p, out);
+  if (by_square) *by_square = ClosestHit{};
+  if (scan) impl_->scan->closest(p, out, by_square);
   for (std::size_t c = 0; c < curves; ++c) {
     if (scan && impl_->scan->covers(static_cast<int>(c))) continue;
     const int s = hinted ? out[c].segment : -1;
     const bool valid = s >= 0 && static_cast<std::size_t>(s) < segs.size() &&
                        segs[static_cast<std::size_t>(s)].curve == static_cast<int>(c);
     out[c] = impl_->per_curve[c].closest(p, valid ? s : -1);
+  }
+  // A curve on its tree reports its own closest segment only: were it within the scan's margin of the
+  // scanned curves' least, one of its other segments could tie by its square, so the answer is left
+  // undetermined. Farther off, all of its segments are strictly farther by their squares too.
+  if (by_square && by_square->segment >= 0) {
+    const double limit = by_square->distance + impl_->scan->margin(p);
+    for (std::size_t c = 0; c < curves; ++c)
+      if (!impl_->scan->covers(static_cast<int>(c)) && out[c].segment >= 0 && !(out[c].distance > limit)) {
+        *by_square = ClosestHit{};
+        break;
+      }
   }
 }
 

@@ -55,7 +55,10 @@ class GeometryTree {
   // previous query of a spatially ordered batch): each curve's search starts from that segment's
   // distance, which prunes most of the tree at once. Entries that are not such an answer (wrong size,
   // segment -1, a segment of another curve) are ignored.
-  void closest_per_curve_near(Vec2 p, std::vector<ClosestHit>& out) const;
+  // by_square (optional): the closest segment over all curves by the least squared distance, then the
+  // lowest index (FeatureSize::closest's rule), found with the per-curve answers; segment -1 where
+  // they do not settle it (a curve on its own tree as near as the best, a point beyond the scan's range).
+  void closest_per_curve_near(Vec2 p, std::vector<ClosestHit>& out, ClosestHit* by_square = nullptr) const;
   // Even-odd point-in-domain test. Points exactly on a segment count as inside.
   bool inside(Vec2 p) const;
   // True when the move a->b touches or crosses any boundary segment at a point other than a

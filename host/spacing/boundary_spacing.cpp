@@ -17,8 +17,9 @@ namespace {
 // searches: at_many's batches are spatially ordered (cell corners and test points level by level), so
 // the last segment is usually the answer or close to it. The result does not depend on the seed
 // (GeometryTree::closest_per_curve_near).
-double boundary_spacing_at(const GeometryTree& tree, Vec2 p, std::vector<ClosestHit>& hits) {
-  tree.closest_per_curve_near(p, hits);
+double boundary_spacing_at(const GeometryTree& tree, Vec2 p, std::vector<ClosestHit>& hits,
+                           ClosestHit* by_square = nullptr) {
+  tree.closest_per_curve_near(p, hits, by_square);
   const auto& segs = tree.geometry().segments;
   double d_min = -1.0;
   for (const ClosestHit& h : hits)
@@ -60,6 +61,24 @@ void BoundarySpacing::at_many(const std::vector<Vec2>& p, std::vector<double>& q
   // the thesis 30P30N quadtree, in its small early and late batches, were evaluated on one core.
   parallel_for_scratch<std::vector<ClosestHit>>(
       p.size(), [&](std::vector<ClosestHit>& hits, std::size_t i) { q[i] = boundary_spacing_at(tree_, p[i], hits); },
+      512, kMaxThreads);
+}
+
+void BoundarySpacing::at_many_closest(const std::vector<Vec2>& p, std::vector<double>& q, std::vector<int>& closest,
+                                      const Geometry& geometry) const {
+  if (&geometry != &tree_.geometry()) {
+    SpacingField::at_many_closest(p, q, closest, geometry);
+    return;
+  }
+  q.resize(p.size());
+  closest.resize(p.size());
+  parallel_for_scratch<std::vector<ClosestHit>>(
+      p.size(),
+      [&](std::vector<ClosestHit>& hits, std::size_t i) {
+        ClosestHit by_square;
+        q[i] = boundary_spacing_at(tree_, p[i], hits, &by_square);
+        closest[i] = by_square.segment;
+      },
       512, kMaxThreads);
 }
 

@@ -132,7 +132,8 @@ class LimitedField {
     // Each thread's last closest segment seeds its next search (the keys come in spatial order).
     parallel_for_scratch<Seed>(fresh.size(), [&](Seed& seed, std::size_t i) {
       const auto id = ids[fresh[i]];
-      source_at_[static_cast<std::size_t>(id)] = sources_.at(lattice(b_, keys[fresh[i]]), b_.sample_value(id), &seed.segment);
+      source_at_[static_cast<std::size_t>(id)] =
+          sources_.at(lattice(b_, keys[fresh[i]]), b_.sample_value(id), &seed.segment, b_.sample_closest(id));
     }, 256);
     stats_.source_seconds += seconds_since(start);
   }

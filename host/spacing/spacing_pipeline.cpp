@@ -28,6 +28,11 @@ class ScaledSpacing final : public SpacingField {
     base_.at_many(p, q);
     for (double& v : q) v *= scale_;
   }
+  void at_many_closest(const std::vector<Vec2>& p, std::vector<double>& q, std::vector<int>& closest,
+                       const Geometry& geometry) const override {
+    base_.at_many_closest(p, q, closest, geometry);
+    for (double& v : q) v *= scale_;
+  }
 
  private:
   const SpacingField& base_;
@@ -81,19 +86,21 @@ const BackgroundSpacing& SpacingPipeline::background() const {
 void SpacingPipeline::build() {
   const auto start = Clock::now();
   const SpacingField& scaled = scaled_ ? *scaled_ : base_;
-  BackgroundBuilder builder(scaled, tree_, options_.background);
-  builder.build();
-  BackgroundStats bs;
-  bs.exact_evaluations = builder.samples();
-  bs.exact_batches = builder.batches();
-  stats_.base_seconds = seconds_since(start);
-  stats_.base_leaves = builder.leaves().size();
   SizeSourceOptions so;
   so.rows_in_gap = options_.rows_in_gap;
   so.curvature_angle = options_.curvature_angle;
   so.input_boundary_floor = options_.input_boundary_floor;
   so.final_floor = options_.final_floor;
   so.scale = options_.scale;
+  BackgroundBuilder builder(scaled, tree_, options_.background);
+  // The sources look for each sample's closest boundary segment again; eq. 3.6 finds it on the way.
+  if (so.active()) builder.collect_closest(tree_.geometry());
+  builder.build();
+  BackgroundStats bs;
+  bs.exact_evaluations = builder.samples();
+  bs.exact_batches = builder.batches();
+  stats_.base_seconds = seconds_since(start);
+  stats_.base_leaves = builder.leaves().size();
   BackgroundFieldData data;
   const bool limited = so.active() || options_.gradation > 0.0 || !options_.points.empty();
   std::unique_ptr<BackgroundSpacing> base_tree;
