@@ -129,24 +129,6 @@ TEST_CASE("GeometryTree: per-curve queries beyond the scan's coordinate range st
   }
 }
 
-namespace {
-
-// FeatureSize::closest's rule over every segment: the least squared distance, then the lowest index.
-ClosestHit brute_by_square(const Geometry& g, Vec2 p) {
-  ClosestHit best;
-  double best2 = INFINITY;
-  for (std::size_t k = 0; k < g.segments.size(); ++k) {
-    const ClosestHit h = closest_on_segment(p, g.segments[k], static_cast<int>(k));
-    const double d2 = h.distance * h.distance;
-    if (d2 < best2 || (d2 == best2 && static_cast<int>(k) < best.segment)) {
-      best2 = d2;
-      best = h;
-    }
-  }
-  return best;
-}
-
-}  // namespace
 
 TEST_CASE("GeometryTree: the closest segment by its square, from the per-curve searches", "[tree][scan]") {
   // A jagged curve of 600 segments stays on its tree beside small curves: where it is as near as the
@@ -176,7 +158,7 @@ TEST_CASE("GeometryTree: the closest segment by its square, from the per-curve s
       tree.closest_per_curve_near(p, hits, &by_square);
       if (by_square.segment < 0) continue;
       ++determined;
-      require_same(by_square, brute_by_square(g, p), p, -1);
+      require_same(by_square, brute_force::closest_by_square(g, p), p, -1);
     }
     // Undetermined only beside a curve on its tree (the mixed geometry's jagged curve).
     if (name != "jagged beside a square") CHECK(determined == queries);

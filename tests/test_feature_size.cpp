@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "geometry/brute_force_queries.hpp"
 #include "geometry/geometry_files.hpp"
 #include "geometry_fixtures.hpp"
 #include "geometry/geometry_tree.hpp"
@@ -21,21 +22,6 @@ using namespace pdmesh;
 using fixtures::unit;
 
 namespace {
-
-// The rule FeatureSize::closest documents, over every segment.
-ClosestHit brute_closest(const Geometry& g, Vec2 p) {
-  ClosestHit best;
-  double best2 = INFINITY;
-  for (std::size_t k = 0; k < g.segments.size(); ++k) {
-    const ClosestHit h = closest_on_segment(p, g.segments[k], static_cast<int>(k));
-    const double d2 = h.distance * h.distance;
-    if (d2 < best2 || (d2 == best2 && static_cast<int>(k) < best.segment)) {
-      best2 = d2;
-      best = h;
-    }
-  }
-  return best;
-}
 
 void require_same(const ClosestHit& got, const ClosestHit& brute, Vec2 p) {
   INFO("query (" << p.x << ", " << p.y << "): segment " << got.segment << " at " << got.distance << ", brute force "
@@ -69,7 +55,7 @@ void check(const Geometry& g, int queries, std::uint64_t seed) {
         p = {e.lo.x + step * std::floor(unit(rng) * 130.0 - 1.0), e.lo.y + step * std::floor(unit(rng) * 130.0 - 1.0)};
       }
     }
-    const ClosestHit brute = brute_closest(g, p);
+    const ClosestHit brute = brute_force::closest_by_square(g, p);
     require_same(fs.closest(p), brute, p);
     require_same(fs.closest(p, previous), brute, p);
     require_same(fs.closest(p, static_cast<int>(rng() % g.segments.size())), brute, p);
@@ -89,7 +75,7 @@ TEST_CASE("FeatureSize::closest equals brute force, seeded or not", "[spacing][f
     for (const Vec2 p : {Vec2{-0.0625, 5.1597222222222223}, Vec2{5.692708333333333, 2.2256944444444446},
                          Vec2{5.692708333333333, 1.9435763888888893}, Vec2{5.7491319444444446, 1.9435763888888893},
                          Vec2{5.6362847222222223, 2.1128472222222223}}) {
-      const ClosestHit brute = brute_closest(g, p);
+      const ClosestHit brute = brute_force::closest_by_square(g, p);
       require_same(fs.closest(p), brute, p);
       require_same(fs.closest(p, brute.segment + 1), brute, p);
     }

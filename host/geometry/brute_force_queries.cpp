@@ -20,6 +20,20 @@ ClosestHit closest(const Geometry& g, Vec2 p) {
   return best;
 }
 
+ClosestHit closest_by_square(const Geometry& g, Vec2 p) {
+  ClosestHit best;
+  double best2 = 0.0;
+  for (std::size_t i = 0; i < g.segments.size(); ++i) {
+    const ClosestHit h = closest_on_segment(p, g.segments[i], static_cast<int>(i));
+    const double d2 = h.distance * h.distance;
+    if (best.segment < 0 || d2 < best2 || (d2 == best2 && h.segment < best.segment)) {
+      best2 = d2;
+      best = h;
+    }
+  }
+  return best;
+}
+
 ClosestHit closest_on_curve(const Geometry& g, Vec2 p, int curve) {
   ClosestHit best;
   for (std::size_t i = 0; i < g.segments.size(); ++i)
