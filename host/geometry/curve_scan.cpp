@@ -67,10 +67,8 @@ constexpr double kMargin = 4e-12;
 }  // namespace
 
 CurveScan::CurveScan(const Geometry& geometry, const std::vector<std::vector<int>>& segment_ids)
-    : geometry_(geometry), covered_(segment_ids.size(), 0) {
+    : geometry_(geometry), covered_(segment_ids.size(), 0), scale_(coordinate_magnitude(geometry.segments)) {
   const auto& segs = geometry.segments;
-  for (const Segment& s : segs)
-    scale_ = std::max({scale_, std::fabs(s.a.x), std::fabs(s.a.y), std::fabs(s.b.x), std::fabs(s.b.y)});
   if (!(scale_ <= kMaxMagnitude)) return;  // nothing scanned: the trees answer
   const double nan = std::numeric_limits<double>::quiet_NaN();
   for (std::size_t c = 0; c < segment_ids.size(); ++c) {

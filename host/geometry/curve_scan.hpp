@@ -56,7 +56,7 @@ class CurveScan {
   // Padding lanes hold NaN, which no comparison selects.
   std::vector<double> ax_, ay_, dx_, dy_, inv_len2_;
   std::vector<int> id_;
-  double scale_ = 0.0;  // the largest coordinate magnitude of any segment end
+  double scale_ = 0.0;  // coordinate_magnitude of the segments
 };
 
 }  // namespace pdmesh

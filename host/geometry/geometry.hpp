@@ -49,6 +49,15 @@ struct Segment {
   double length = 0.0;
 };
 
+// The largest |coordinate| of any segment end (0 for none): the scale of the rounding in distances
+// to the segments, for the margins of exact searches (geometry/curve_scan, spacing/feature_size).
+inline double coordinate_magnitude(const std::vector<Segment>& segments) {
+  double m = 0.0;
+  for (const Segment& s : segments)
+    for (const double v : {s.a.x, s.a.y, s.b.x, s.b.y}) m = v > m ? v : (-v > m ? -v : m);
+  return m;
+}
+
 // A closed loop: curves chained end to start (a curve may be traversed reversed).
 struct Loop {
   std::vector<int> curves;

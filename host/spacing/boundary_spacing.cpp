@@ -53,16 +53,24 @@ double BoundarySpacing::at(Vec2 p) const {
   return boundary_spacing_at(tree_, p, hits);
 }
 
-void BoundarySpacing::at_many(const std::vector<Vec2>& p, std::vector<double>& q) const {
+void BoundarySpacing::evaluate(const std::vector<Vec2>& p, std::vector<double>& q, std::vector<int>* closest) const {
   q.resize(p.size());
+  if (closest) closest->resize(p.size());
   // Every point is independent, so the values are at()'s whatever the thread count; each thread's
   // previous answer seeds its next searches. A point costs about 3 us on 30P30N (15 curve searches),
   // so 512 points (1.5 ms) are worth a thread (~50 us to start): with 4096, 35k of the 263k points of
   // the thesis 30P30N quadtree, in its small early and late batches, were evaluated on one core.
   parallel_for_scratch<std::vector<ClosestHit>>(
-      p.size(), [&](std::vector<ClosestHit>& hits, std::size_t i) { q[i] = boundary_spacing_at(tree_, p[i], hits); },
+      p.size(),
+      [&](std::vector<ClosestHit>& hits, std::size_t i) {
+        ClosestHit by_square;
+        q[i] = boundary_spacing_at(tree_, p[i], hits, closest ? &by_square : nullptr);
+        if (closest) (*closest)[i] = by_square.segment;
+      },
       512, kMaxThreads);
 }
+
+void BoundarySpacing::at_many(const std::vector<Vec2>& p, std::vector<double>& q) const { evaluate(p, q, nullptr); }
 
 void BoundarySpacing::at_many_closest(const std::vector<Vec2>& p, std::vector<double>& q, std::vector<int>& closest,
                                       const Geometry& geometry) const {
@@ -70,16 +78,7 @@ void BoundarySpacing::at_many_closest(const std::vector<Vec2>& p, std::vector<do
     SpacingField::at_many_closest(p, q, closest, geometry);
     return;
   }
-  q.resize(p.size());
-  closest.resize(p.size());
-  parallel_for_scratch<std::vector<ClosestHit>>(
-      p.size(),
-      [&](std::vector<ClosestHit>& hits, std::size_t i) {
-        ClosestHit by_square;
-        q[i] = boundary_spacing_at(tree_, p[i], hits, &by_square);
-        closest[i] = by_square.segment;
-      },
-      512, kMaxThreads);
+  evaluate(p, q, &closest);
 }
 
 }  // namespace pdmesh

@@ -67,7 +67,7 @@ FeatureSize::FeatureSize(const Geometry& geometry) : geometry_(geometry) {
   for (std::size_t s = 0; s < n; ++s)
     if (loop_[s] < 0)
       throw Error(fmt::format("feature size: segment {} of curve {} belongs to no loop", segs[s].index, segs[s].curve));
-  for (const Segment& s : segs) scale_ = std::max({scale_, std::fabs(s.a.x), std::fabs(s.a.y), std::fabs(s.b.x), std::fabs(s.b.y)});
+  scale_ = coordinate_magnitude(segs);
   order_.resize(n);
   for (std::size_t s = 0; s < n; ++s) order_[s] = static_cast<std::int32_t>(s);
   if (n > 0) {

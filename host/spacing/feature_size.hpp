@@ -66,7 +66,7 @@ class FeatureSize {
   std::vector<double> arc_a_;        // per segment: loop arc at its point a ...
   std::vector<double> arc_sign_;     // ... and +1 / -1 as the loop runs a->b / b->a
   std::vector<double> loop_length_;  // per loop
-  double scale_ = 0.0;               // the largest coordinate magnitude of any segment end
+  double scale_ = 0.0;               // coordinate_magnitude of the segments
   std::vector<Node> nodes_;          // bounding-volume hierarchy over segments; root is nodes_[0]
   std::vector<std::int32_t> order_;  // segment indices, leaf by leaf
 };

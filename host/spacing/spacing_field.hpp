@@ -45,6 +45,8 @@ class BoundarySpacing final : public SpacingField {
   static constexpr std::size_t kMaxThreads = 8;
 
  private:
+  // at_many's body; closest (when set) gets the closest segments by their square.
+  void evaluate(const std::vector<Vec2>& p, std::vector<double>& q, std::vector<int>* closest) const;
   const GeometryTree& tree_;
 };
 
