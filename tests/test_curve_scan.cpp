@@ -78,6 +78,17 @@ TEST_CASE("CurveScan equals brute force on every covered curve", "[tree][scan]")
   SECTION("multiscale (a 0.01 triangle beside a 1000 square)") { check_geometry(fixtures::multiscale(), 4000, 13); }
   SECTION("square of four sides, 7 segments each") { check_geometry(fixtures::square(2.0, 7), 4000, 14); }
   SECTION("a curve of kMaxSegments segments") { check_geometry(fixtures::jagged_polygon(CurveScan::kMaxSegments, 3), 2000, 15); }
+  // The scan measures only the chunks (kWidth segments) whose box can hold the least: these put
+  // exact ties in chunks far apart, and every chunk about as near to the centre.
+  SECTION("one curve around a square, kMaxSegments segments: ties four sides apart") {
+    check_geometry(fixtures::make_geometry({fixtures::rectangle({-1, -1}, {1, 1}, CurveScan::kMaxSegments / 4, true)}),
+                   2000, 16);
+  }
+  SECTION("a regular polygon of kMaxSegments segments") {
+    const double pi = std::acos(-1.0);
+    check_geometry(fixtures::make_geometry({fixtures::arc_points({0, 0}, 1, 0, 2 * pi, CurveScan::kMaxSegments, {1, 0}, {1, 0})}),
+                   2000, 17);
+  }
 }
 
 TEST_CASE("CurveScan: the centre of a square is a tie of four sides, the lowest index wins", "[tree][scan]") {
