@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <random>
 #include <string>
 #include <vector>
@@ -167,6 +168,64 @@ TEST_CASE("gradation: each corner gets the smallest cone, not an 8-neighbour pat
   CHECK(source == std::vector<std::int32_t>{0, 0, 0, 0});
   graph.limit(0.0, {0.1, 9, 9, 9}, q, source);  // off
   CHECK(q == std::vector<double>{0.1, 9, 9, 9});
+}
+
+TEST_CASE("gradation: the sweep's start entries sort as std::sort sorts them", "[spacing]") {
+  std::mt19937_64 rng(5);
+  // Many equal values (the corner decides), zeros, tiny and huge values, infinity.
+  const std::vector<double> pool = {0.0, 1e-300, 0.01, 0.25, 0.25 + 1e-16, 1.0, 3.5, 1e300,
+                                    std::numeric_limits<double>::infinity()};
+  for (int round = 0; round < 20; ++round) {
+    std::vector<std::pair<double, std::int32_t>> entries;
+    const int n = 1 + static_cast<int>(rng() % 5000);
+    for (int i = 0; i < n; ++i)
+      entries.push_back({rng() % 3 == 0 ? unit(rng) : pool[rng() % pool.size()], static_cast<std::int32_t>(i)});
+    if (round == 5) entries[static_cast<std::size_t>(n) / 2].first = -0.0;  // std::sort's path
+    if (round == 6) entries[0].first = -1.0;
+    auto expected = entries;
+    std::sort(expected.begin(), expected.end());
+    detail::sort_gradation_entries(entries);
+    REQUIRE(entries == expected);
+  }
+}
+
+TEST_CASE("gradation: relimit from repeated seeds is relimit from each seed once", "[spacing]") {
+  // A 6 x 6 grid of unit leaves, a few low values to spread; the seeds repeat as the corners of
+  // neighbouring leaves do.
+  std::vector<Vec2> pos;
+  for (int y = 0; y <= 6; ++y)
+    for (int x = 0; x <= 6; ++x) pos.push_back({static_cast<double>(x), static_cast<double>(y)});
+  std::vector<std::int32_t> leaf_corner;
+  for (int y = 0; y < 6; ++y)
+    for (int x = 0; x < 6; ++x)
+      for (int k = 0; k < 4; ++k) leaf_corner.push_back((y + (k >> 1)) * 7 + x + (k & 1));
+  const GradationGraph graph(pos, leaf_corner);
+  std::vector<double> q0(pos.size(), 2.0);
+  q0[8] = 0.1;
+  q0[40] = 0.3;
+  std::vector<double> base;
+  std::vector<std::int32_t> base_source;
+  graph.limit(0.3, q0, base, base_source);
+  // Lower two corners afterwards (as a refinement's new corners would be) and sweep from them.
+  std::vector<double> q0_new = q0;
+  q0_new[20] = 0.05;
+  q0_new[33] = 0.02;
+  std::vector<double> q_once = base, q_repeated = base;
+  std::vector<std::int32_t> s_once = base_source, s_repeated = base_source;
+  for (const int c : {20, 33}) {
+    q_once[static_cast<std::size_t>(c)] = q_repeated[static_cast<std::size_t>(c)] = q0_new[static_cast<std::size_t>(c)];
+    s_once[static_cast<std::size_t>(c)] = s_repeated[static_cast<std::size_t>(c)] = c;
+  }
+  const std::vector<std::int32_t> once = {19, 20, 21, 26, 27, 32, 33, 34};
+  std::vector<std::int32_t> repeated;
+  for (int k = 0; k < 3; ++k) repeated.insert(repeated.end(), once.rbegin(), once.rend());
+  graph.relimit(0.3, q0_new, q_once, s_once, once);
+  graph.relimit(0.3, q0_new, q_repeated, s_repeated, repeated);
+  CHECK(q_once == q_repeated);
+  CHECK(s_once == s_repeated);
+  CHECK(q_once[20] == 0.05);
+  CHECK(q_once[13] == Approx(0.05 + 0.3));  // the neighbour below corner 20
+  CHECK(s_once[13] == 20);
 }
 
 TEST_CASE("feature size: a slot of width w gets k node spacings across, and corners are no gaps", "[spacing]") {

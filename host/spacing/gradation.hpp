@@ -2,6 +2,7 @@
 // q(x) = min over sources y of q0(y) + g |x - y|, so that q(x) <= q(y) + g |x - y| for every pair.
 #pragma once
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "core/vec2.hpp"
@@ -49,5 +50,11 @@ class GradationGraph {
   std::vector<std::int32_t> neighbour_start_;  // CSR: corner -> its graph neighbours
   std::vector<std::int32_t> neighbours_;
 };
+
+namespace detail {
+// The sweep's start entries (value, corner), given in ascending corner order, sorted as std::sort
+// orders them: by value, then corner. Exposed for tests.
+void sort_gradation_entries(std::vector<std::pair<double, std::int32_t>>& entries);
+}  // namespace detail
 
 }  // namespace pdmesh
