@@ -142,21 +142,20 @@ class LimitedField {
   // when a cell first asks for it (corner_value).
   void add_corners(const std::vector<std::uint64_t>& keys, const std::vector<std::int32_t>& ids) {
     add_sources(keys, ids);
-    const std::size_t first = pos_.size();
-    for (std::size_t i = 0; i < keys.size(); ++i) {
-      const auto sample = static_cast<std::size_t>(ids[i]);
-      if (corner_of_[sample] >= 0) continue;
-      corner_of_[sample] = static_cast<std::int32_t>(pos_.size());
-      const std::uint64_t k = keys[i];
-      const auto x = static_cast<std::uint32_t>(k >> 32), y = static_cast<std::uint32_t>(k & 0xffffffffu);
-      pos_.push_back(b_.point(x, y));
-      base_.push_back(b_.sample_value(ids[i]));
-      q0_.push_back(std::min(base_.back(), source_at_[sample]));
-    }
-    const std::size_t n = pos_.size();
-    q_.resize(n, std::numeric_limits<double>::quiet_NaN());  // NaN: not yet limited
-    source_.resize(n, 0);
-    for (std::size_t i = first; i < n; ++i) source_[i] = static_cast<std::int32_t>(i);
+    for (std::size_t i = 0; i < keys.size(); ++i) add_corner(keys[i], ids[i]);
+  }
+  // One corner whose sources are known (add_sources has seen its sample); a known corner is skipped.
+  void add_corner(std::uint64_t k, std::int32_t id) {
+    const auto sample = static_cast<std::size_t>(id);
+    if (corner_of_[sample] >= 0) return;
+    const auto i = static_cast<std::int32_t>(pos_.size());
+    corner_of_[sample] = i;
+    const auto x = static_cast<std::uint32_t>(k >> 32), y = static_cast<std::uint32_t>(k & 0xffffffffu);
+    pos_.push_back(b_.point(x, y));
+    base_.push_back(b_.sample_value(id));
+    q0_.push_back(std::min(base_.back(), source_at_[sample]));
+    q_.push_back(std::numeric_limits<double>::quiet_NaN());  // NaN: not yet limited
+    source_.push_back(i);
   }
 
   // The sources at each segment's midpoint, seen from the boundary (so a gap narrower than the leaves
@@ -240,7 +239,11 @@ class LimitedField {
   // cones of its parent's corners' sources, the same min the next limit would give it locally.
   double corner_value(const Cell& c, std::uint32_t x, std::uint32_t y, std::int32_t sample) {
     grow();
-    if (corner_of_[static_cast<std::size_t>(sample)] < 0) add_corners({BackgroundBuilder::key(x, y)}, {sample});
+    if (corner_of_[static_cast<std::size_t>(sample)] < 0) {
+      // The builder passed every sample it took to add_sources (`sampled`) before asking for values.
+      if (has_source_[static_cast<std::size_t>(sample)]) add_corner(BackgroundBuilder::key(x, y), sample);
+      else add_corners({BackgroundBuilder::key(x, y)}, {sample});
+    }
     const auto i = static_cast<std::size_t>(corner_id(sample));
     if (!std::isnan(q_[i])) return q_[i];
     q_[i] = q0_[i];
