@@ -166,17 +166,39 @@ TEST_CASE("measure_mesh: the triangulated nodes' smallest angle and mean aspect 
   for (int k = 0; k < 4; ++k) nodes.add(corners[k], 0.5, NodeKind::Fixed, k);
   nodes.add({0.4, 0.45}, 0.5, NodeKind::Interior, -1);
   nodes.curve_nodes = {{0, 1}, {1, 2}, {2, 3}, {3, 0}};
-  const MeshSample s = measure_mesh(nodes, 7);
+  Mesh kept;
+  const MeshSample s = measure_mesh(nodes, 7, &kept);
   CHECK(s.iteration == 7);
-  const QualitySummary q = summarize_quality(triangulate(nodes, {"c0", "c1", "c2", "c3"}));
+  const Mesh direct = triangulate(nodes, {"c0", "c1", "c2", "c3"});
+  const QualitySummary q = summarize_quality(direct);
+  // The mesh it measured, handed out: triangulate's, and recognised as these nodes' mesh.
+  CHECK(kept.triangles == direct.triangles);
+  CHECK(kept.points == direct.points);
+  CHECK(kept.curve_names == direct.curve_names);
+  CHECK(triangulates(kept, nodes));
+  {
+    NodeSet moved = nodes;
+    moved.x[4].x = std::nextafter(moved.x[4].x, 1.0);  // one ulp
+    CHECK_FALSE(triangulates(kept, moved));
+    NodeSet rekinded = nodes;
+    rekinded.kind[4] = NodeKind::Boundary;
+    CHECK_FALSE(triangulates(kept, rekinded));
+    NodeSet rechained = nodes;
+    rechained.curve_nodes = {{0, 1}, {1, 2}, {2, 3, 0}};
+    CHECK_FALSE(triangulates(kept, rechained));
+    NodeSet shorter = nodes;
+    shorter.curve_nodes.back() = {3};
+    CHECK_FALSE(triangulates(kept, shorter));
+  }
   REQUIRE(q.triangles == 4);
   CHECK(s.min_angle == Approx(q.min_angle).epsilon(1e-12));
   CHECK(s.aspect_ratio == Approx(q.aspect_ratio_avg).epsilon(1e-12));
   // A second interior node on top of the first: no triangulation, NaN values (not an exception).
   nodes.add({0.4, 0.45}, 0.5, NodeKind::Interior, -1);
-  const MeshSample bad = measure_mesh(nodes, 8);
+  const MeshSample bad = measure_mesh(nodes, 8, &kept);
   CHECK(std::isnan(bad.min_angle));
   CHECK(std::isnan(bad.aspect_ratio));
+  CHECK(kept.triangles == direct.triangles);  // left as it was
 }
 
 namespace {
@@ -225,6 +247,10 @@ TEST_CASE("convergence in the host driver: the run stops at a measurement, and a
   CHECK(stop < 600);
   CHECK(full.history.size() == static_cast<std::size_t>(stop));
   CHECK(full.state.convergence.size() == static_cast<std::size_t>(stop / c.options.convergence.check_every));
+  // The last measurement's mesh, for the mesh stage: the final nodes' triangulation.
+  REQUIRE(full.final_mesh);
+  CHECK(triangulates(*full.final_mesh, whole));
+  CHECK(full.final_mesh->triangles == triangulate(whole, c.inputs->curve_names()).triangles);
 
   // Stopped after a measured iteration (its measurement must reach the resumed run), after one between
   // measurements, and after the very iteration it converged in; the state goes through the checkpoint
@@ -243,6 +269,7 @@ TEST_CASE("convergence in the host driver: the run stops at a measurement, and a
     REQUIRE(part.state.iterations_done == cut);
     CHECK(part.stopped == (cut != stop));
     CHECK(part.converged == (cut == stop));
+    CHECK(static_cast<bool>(part.final_mesh) == (cut == stop));  // only a converged run hands one out
     const Checkpoint saved = parse_checkpoint(format_checkpoint(Checkpoint{{}, nodes, part.state}), "mem");
     REQUIRE(saved.state.convergence.size() == part.state.convergence.size());
     NodeSet resumed_nodes = saved.nodes;

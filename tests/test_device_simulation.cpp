@@ -357,6 +357,10 @@ TEST_CASE("device run: the convergence rule stops a double run after the host's 
     CHECK(ds[k].aspect_ratio == hs[k].aspect_ratio);
   }
   require_identical_nodes(host.nodes, dev.nodes);
+  // The last measurement's mesh comes back for the mesh stage: the final nodes' triangulation.
+  REQUIRE(dev.result.final_mesh);
+  CHECK(triangulates(*dev.result.final_mesh, dev.nodes));
+  CHECK(dev.result.final_mesh->triangles == triangulate(dev.nodes, c.inputs->curve_names()).triangles);
 }
 
 TEST_CASE("device run in float stays close to the host for 10 iterations", "[opencl][device_sim]") {

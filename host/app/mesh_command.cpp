@@ -210,8 +210,8 @@ void resume_mesh(const CaseConfig& config, const MeshInputs& inputs, RunPhases& 
   prepare_output_directory(config);
   NodeSet nodes = std::move(checkpoint.nodes);
   const PictureGuard guard(phases);
-  simulate(config, inputs, nodes, &checkpoint.state, nullptr, &phases);
-  mesh_and_measure(config, inputs, nodes, &phases);
+  const SimResult result = simulate(config, inputs, nodes, &checkpoint.state, nullptr, &phases);
+  mesh_and_measure(config, inputs, nodes, &phases, result.final_mesh.get());
 }
 
 // choose_backend's result, its notes and its error, for a run that sets the backend up on a thread.
@@ -305,6 +305,7 @@ int run_mesh(const CaseConfig& config) {
   const PictureGuard guard(phases);
   write_initial_outputs(config, inputs, initial, &phases);
   // Stage 5: the simulation (none with --iterations 0: the initial distribution is meshed).
+  std::shared_ptr<const Mesh> final_mesh;
   if (config.simulation.iterations > 0) {
     SimulateHooks hooks;
     hooks.backend = [&prepared](const std::function<void(const std::string&)>& note) {
@@ -313,10 +314,10 @@ int run_mesh(const CaseConfig& config) {
       if (p.error) std::rethrow_exception(p.error);
       return std::move(p.backend);
     };
-    simulate(config, inputs, nodes, nullptr, &hooks, &phases);
+    final_mesh = simulate(config, inputs, nodes, nullptr, &hooks, &phases).final_mesh;
   }
-  // Stage 6: the mesh, its quality and its files.
-  mesh_and_measure(config, inputs, nodes, &phases);
+  // Stage 6: the mesh, its quality and its files (a converged run has triangulated its final nodes).
+  mesh_and_measure(config, inputs, nodes, &phases, final_mesh.get());
   report_phases(config, phases);
   return InterruptGuard::flag().load() ? kExitInterrupted : kExitOk;
 }

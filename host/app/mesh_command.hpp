@@ -134,8 +134,10 @@ SimResult simulate(const CaseConfig& config, const MeshInputs& inputs, NodeSet& 
 // files of config.output.formats, mesh.nodes, mesh.png and mesh_<view>.png (png), mesh.svg (svg); with
 // cleanup.enabled the cleaned mesh. Waits for every picture queued in `run` before it returns. With
 // config.write_outputs false it stops after the cleanup: no table, no quality summary, no files.
+// `triangulated` (optional): a mesh already made of these nodes (SimResult::final_mesh), used instead
+// of triangulating them again when it is theirs (triangulates()).
 Mesh mesh_and_measure(const CaseConfig& config, const MeshInputs& inputs, const NodeSet& nodes,
-                      RunPhases* run = nullptr);
+                      RunPhases* run = nullptr, const Mesh* triangulated = nullptr);
 
 // All stages in order (or, with config.resume, from the checkpoint on); progress on stderr unless
 // config.quiet. Returns the exit status: 0, or 130 when interrupted (outputs of the state reached

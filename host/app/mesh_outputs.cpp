@@ -132,11 +132,18 @@ void angle_figures(const std::vector<TriangleQuality>& per_triangle, double targ
 
 }  // namespace
 
-Mesh mesh_and_measure(const CaseConfig& config, const MeshInputs& inputs, const NodeSet& nodes, RunPhases* run) {
+Mesh mesh_and_measure(const CaseConfig& config, const MeshInputs& inputs, const NodeSet& nodes, RunPhases* run,
+                      const Mesh* triangulated) {
   RunPhases local(false);
   RunPhases& phases = run ? *run : local;
   auto timer = phases.phase("triangulation");
-  Mesh mesh = triangulate(nodes, inputs.curve_names());
+  Mesh mesh;
+  if (triangulated && triangulates(*triangulated, nodes)) {
+    mesh = *triangulated;  // the convergence rule's last measurement: the same mesh
+    mesh.curve_names = inputs.curve_names();
+  } else {
+    mesh = triangulate(nodes, inputs.curve_names());
+  }
   timer.stop();
   progress(config, "triangulation: {} triangles", mesh.triangles.size());
   phases.note("nodes", static_cast<double>(nodes.size()));

@@ -3,6 +3,7 @@
 
 #include <fmt/format.h>
 
+#include <cstring>
 #include <unordered_map>
 
 #include "core/errors.hpp"
@@ -44,6 +45,23 @@ Mesh triangulate(const NodeSet& nodes, const std::vector<std::string>& curve_nam
   mesh.boundary_edges.reserve(edges.size());
   for (const auto& e : edges) mesh.boundary_edges.push_back({e.a, e.b, e.curve});
   return mesh;
+}
+
+bool triangulates(const Mesh& mesh, const NodeSet& nodes) {
+  // Positions bit for bit (== on doubles would also take -0.0 for 0.0).
+  if (mesh.points.size() != nodes.x.size() || mesh.kind != nodes.kind ||
+      (!mesh.points.empty() && std::memcmp(mesh.points.data(), nodes.x.data(), nodes.x.size() * sizeof(Vec2)) != 0))
+    return false;
+  std::size_t k = 0;  // the boundary edges are the curve chains' pairs, in curve order
+  for (std::size_t c = 0; c < nodes.curve_nodes.size(); ++c) {
+    const auto& list = nodes.curve_nodes[c];
+    for (std::size_t i = 0; i + 1 < list.size(); ++i, ++k) {
+      if (k >= mesh.boundary_edges.size()) return false;
+      const BoundaryEdge& e = mesh.boundary_edges[k];
+      if (e.a != list[i] || e.b != list[i + 1] || e.curve != static_cast<int>(c)) return false;
+    }
+  }
+  return k == mesh.boundary_edges.size();
 }
 
 }  // namespace pdmesh

@@ -16,4 +16,8 @@ namespace pdmesh {
 // points, a node inside a boundary edge, crossing boundary edges, an edge used by two curves).
 Mesh triangulate(const NodeSet& nodes, const std::vector<std::string>& curve_names);
 
+// Whether `mesh` is what triangulate makes of `nodes` (whatever the curve names): it was made from the
+// same positions, kinds and curve chains (triangulate is deterministic).
+bool triangulates(const Mesh& mesh, const NodeSet& nodes);
+
 }  // namespace pdmesh

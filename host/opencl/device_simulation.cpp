@@ -424,6 +424,7 @@ SimResult DeviceRun<Real>::run(const SimCallbacks& callbacks) {
       // The stopping rule, in the host driver's order: measured also in an iteration the run is
       // stopped after, so that a resumed run has every measurement.
       std::optional<MeshSample> sample;
+      Mesh measured;
       bool rebuilt_ahead = false;
       if (convergence_.due(iteration)) {
         read_back_nodes();
@@ -439,7 +440,7 @@ SimResult DeviceRun<Real>::run(const SimCallbacks& callbacks) {
           begin_window(iteration + 1, gm, cpu_device_ ? kAheadIterations : window_.max_length());
           ++stats_.ahead_windows;
         }
-        sample = measure_mesh(nodes_, iteration);
+        sample = measure_mesh(nodes_, iteration, &measured);
       }
       // Never while population control may still change the node set (as the host driver).
       const bool settled =
@@ -449,6 +450,7 @@ SimResult DeviceRun<Real>::run(const SimCallbacks& callbacks) {
       if (rebuilt_ahead) saved_state_.convergence = convergence_.samples();
       if (converged && iteration < options_.iterations) {
         result.converged = true;
+        if (!measured.triangles.empty()) result.final_mesh = std::make_shared<const Mesh>(std::move(measured));
         break;
       }
       // Only where the device is not ahead of the host (the end of a window).

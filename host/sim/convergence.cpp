@@ -29,13 +29,13 @@ void check_convergence_options(const ConvergenceOptions& o) {
     throw InputError(fmt::format("convergence min_iterations must be >= 0, got {}", o.min_iterations));
 }
 
-MeshSample measure_mesh(const NodeSet& nodes, int iteration) {
+MeshSample measure_mesh(const NodeSet& nodes, int iteration, Mesh* mesh_out) {
   constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
   MeshSample s{iteration, kNaN, kNaN};
   std::vector<std::string> names(nodes.curve_nodes.size());
   for (std::size_t c = 0; c < names.size(); ++c) names[c] = fmt::format("c{}", c);
   try {
-    const Mesh mesh = triangulate(nodes, names);
+    Mesh mesh = triangulate(nodes, names);
     if (mesh.triangles.empty()) return s;
     // The shapes on every core (the device waits for this check), then the minimum and the sum in
     // triangle order on this thread: the same bits as one loop.
@@ -51,6 +51,7 @@ MeshSample measure_mesh(const NodeSet& nodes, int iteration) {
     }
     s.min_angle = angle;
     s.aspect_ratio = aspect / static_cast<double>(mesh.triangles.size());
+    if (mesh_out) *mesh_out = std::move(mesh);
   } catch (const Error&) {
     // Nodes that do not triangulate in mid-run (two coincident ones) are simply not converged.
   }

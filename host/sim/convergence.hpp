@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "mesh/mesh.hpp"
 #include "nodes/node_set.hpp"
 #include "sim/history.hpp"
 
@@ -41,7 +42,9 @@ struct MeshSample {
 
 // The constrained Delaunay mesh of the nodes (mesh/triangulate_nodes), measured. A node set that does
 // not triangulate (coincident nodes in mid-run) gives NaN values, which never count as converged.
-MeshSample measure_mesh(const NodeSet& nodes, int iteration);
+// `mesh` (optional) receives the mesh measured (its curves named c0, c1, ...; left as it was when the
+// nodes do not triangulate): a run that stops here has triangulated its final nodes already.
+MeshSample measure_mesh(const NodeSet& nodes, int iteration, Mesh* mesh = nullptr);
 
 class ConvergenceMonitor {
  public:

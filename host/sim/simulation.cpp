@@ -248,11 +248,13 @@ SimResult run_simulation(NodeSet& nodes, const GeometryTree& tree, const Spacing
     // The nodes hold this iteration's positions: the stopping rule measures their mesh when due, also
     // in an iteration the run is stopped after, so that a resumed run has every measurement.
     std::optional<MeshSample> sample;
-    if (convergence.due(iteration)) sample = measure_mesh(nodes, iteration);
+    Mesh measured;
+    if (convergence.due(iteration)) sample = measure_mesh(nodes, iteration, &measured);
     // Never while population control may still change the node set.
     const bool settled = population_status(options.population, population.schedule, iteration, options.iterations).settled;
     if (convergence.observe(row, sample ? &*sample : nullptr, settled) && iteration < options.iterations) {
       result.converged = true;
+      if (!measured.triangles.empty()) result.final_mesh = std::make_shared<const Mesh>(std::move(measured));
       break;
     }
     if (options.stop && options.stop->load() && iteration < options.iterations) {

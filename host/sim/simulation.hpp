@@ -111,6 +111,9 @@ struct SimResult {
   bool stopped = false;    // SimOptions::stop ended the run early
   bool converged = false;  // the convergence rule ended the run (before SimOptions::iterations)
   SimState state;        // the state after the last iteration run (history included)
+  // A converged run: the mesh the rule measured in its last iteration, i.e. the final nodes'
+  // triangulation (measure_mesh: curves named c0, c1, ...), which the mesh stage need not repeat.
+  std::shared_ptr<const Mesh> final_mesh;
 };
 
 // The default initial dt_GM: a node at r = 0.9 sigma from one neighbour with the median interior
