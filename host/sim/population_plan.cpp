@@ -40,40 +40,37 @@ struct DelaunayGraph {
     const Triangulation dt(points);
     const std::size_t n = points.size();
     on_hull.assign(n, 0);
-    std::vector<std::pair<int, int>> edges;
-    edges.reserve(6 * n);
+    // Every side (a, b) with both ends real, of every triangle (the super-triangle's too): in a
+    // triangulation each directed edge is the side of one triangle, the one on its left, so a gets
+    // each neighbour b once from the sides a -> b.
+    std::vector<std::size_t> count(n + 1, 0);
     for (const auto& tv : dt.v) {
       const bool super[3] = {dt.is_super(tv[0]), dt.is_super(tv[1]), dt.is_super(tv[2])};
       for (int k = 0; k < 3; ++k) {
         if (super[k]) continue;
         const int a = dt.input_index[static_cast<std::size_t>(tv[k])];
         if (super[(k + 1) % 3] || super[(k + 2) % 3]) on_hull[static_cast<std::size_t>(a)] = 1;
-        if (!super[(k + 1) % 3]) edges.emplace_back(a, dt.input_index[static_cast<std::size_t>(tv[(k + 1) % 3])]);
+        if (!super[(k + 1) % 3]) ++count[static_cast<std::size_t>(a) + 1];
       }
       if (!super[0] && !super[1] && !super[2])
         triangles.push_back({dt.input_index[static_cast<std::size_t>(tv[0])],
                              dt.input_index[static_cast<std::size_t>(tv[1])],
                              dt.input_index[static_cast<std::size_t>(tv[2])]});
     }
-    // Each directed edge appears once per triangle side; both directions make the adjacency.
-    std::vector<std::size_t> count(n + 1, 0);
-    for (const auto& [a, b] : edges) {
-      ++count[static_cast<std::size_t>(a) + 1];
-      ++count[static_cast<std::size_t>(b) + 1];
-    }
     for (std::size_t i = 0; i < n; ++i) count[i + 1] += count[i];
-    first = count;
     std::vector<int> all(count[n]);
-    for (const auto& [a, b] : edges) {
-      all[count[static_cast<std::size_t>(a)]++] = b;
-      all[count[static_cast<std::size_t>(b)]++] = a;
-    }
-    // Sort and deduplicate each list (an edge shared by two triangles was added twice).
-    adjacent.reserve(all.size() / 2 + n);
+    std::vector<std::size_t> next(count.begin(), count.end() - 1);
+    for (const auto& tv : dt.v)
+      for (int k = 0; k < 3; ++k)
+        if (!dt.is_super(tv[k]) && !dt.is_super(tv[(k + 1) % 3]))
+          all[next[static_cast<std::size_t>(dt.input_index[static_cast<std::size_t>(tv[k])])]++] =
+              dt.input_index[static_cast<std::size_t>(tv[(k + 1) % 3])];
+    // Sorted; a repeat (none in a valid triangulation) is dropped as before.
+    adjacent.reserve(all.size());
     std::vector<std::size_t> start(n + 1, 0);
     for (std::size_t i = 0; i < n; ++i) {
-      auto b = all.begin() + static_cast<std::ptrdiff_t>(first[i]);
-      auto e = all.begin() + static_cast<std::ptrdiff_t>(first[i + 1]);
+      auto b = all.begin() + static_cast<std::ptrdiff_t>(count[i]);
+      auto e = all.begin() + static_cast<std::ptrdiff_t>(count[i + 1]);
       std::sort(b, e);
       e = std::unique(b, e);
       start[i] = adjacent.size();
