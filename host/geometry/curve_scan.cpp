@@ -29,7 +29,7 @@ inline __attribute__((always_inline)) Lanes load(const double* p) {
   return v;
 }
 
-inline __attribute__((always_inline)) double least_lane(Lanes v) {
+inline __attribute__((always_inline)) double least_lane(const Lanes& v) {
   double m = v[0];
   for (int j = 1; j < CurveScan::kWidth; ++j) m = v[j] < m ? v[j] : m;
   return m;
