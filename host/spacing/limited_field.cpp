@@ -144,10 +144,12 @@ class LimitedField {
     add_sources(keys, ids);
     for (std::size_t i = 0; i < keys.size(); ++i) add_corner(keys[i], ids[i]);
   }
-  // One corner whose sources are known (add_sources has seen its sample); a known corner is skipped.
+  // One corner (a known one is skipped); its sources are computed here only when add_sources has not
+  // seen its sample (the builder passes every sample it takes to add_sources, `sampled`, first).
   void add_corner(std::uint64_t k, std::int32_t id) {
     const auto sample = static_cast<std::size_t>(id);
     if (corner_of_[sample] >= 0) return;
+    if (!has_source_[sample]) add_sources({k}, {id});
     const auto i = static_cast<std::int32_t>(pos_.size());
     corner_of_[sample] = i;
     const auto x = static_cast<std::uint32_t>(k >> 32), y = static_cast<std::uint32_t>(k & 0xffffffffu);
@@ -239,11 +241,7 @@ class LimitedField {
   // cones of its parent's corners' sources, the same min the next limit would give it locally.
   double corner_value(const Cell& c, std::uint32_t x, std::uint32_t y, std::int32_t sample) {
     grow();
-    if (corner_of_[static_cast<std::size_t>(sample)] < 0) {
-      // The builder passed every sample it took to add_sources (`sampled`) before asking for values.
-      if (has_source_[static_cast<std::size_t>(sample)]) add_corner(BackgroundBuilder::key(x, y), sample);
-      else add_corners({BackgroundBuilder::key(x, y)}, {sample});
-    }
+    add_corner(BackgroundBuilder::key(x, y), sample);
     const auto i = static_cast<std::size_t>(corner_id(sample));
     if (!std::isnan(q_[i])) return q_[i];
     q_[i] = q0_[i];
