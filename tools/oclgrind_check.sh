@@ -6,7 +6,7 @@
 # parts by the host, and aborts on LLVM's `freeze` instruction (see the GPU portability audit).
 set -uo pipefail
 if ! command -v oclgrind >/dev/null; then
-  echo "oclgrind_check: oclgrind is not installed (tools/setup.sh installs it)" >&2
+  echo "oclgrind_check: oclgrind is not installed (tools/setup.sh --tests installs it)" >&2
   exit 1
 fi
 log=$(mktemp)

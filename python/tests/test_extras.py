@@ -1,4 +1,4 @@
-"""The optional extras (tools/setup.sh installs them into .venv): meshio, matplotlib, shapely."""
+"""The optional extras (tools/setup.sh --tests installs them into .venv): meshio, matplotlib, shapely."""
 
 from __future__ import annotations
 
