@@ -67,7 +67,7 @@ uint nb_bucket(const long cx, const long cy, const ulong mask) {
 // floor(v inv_cell) clamped to +-4e18, as the host's (neighbour_grids.cpp, the reference), by truncation
 // and a correction: the same integer for every finite v (the bounds are integers, so clamping first
 // commutes with floor; a clamped value converts exactly). PoCL's CPU device expands floor() into a
-// branchy sequence that was a third of the gather's time at 1M nodes (perf, session 5); the gather
+// branchy sequence that takes a third of the gather's time at 1M nodes (perf); the gather
 // calls this for every candidate within the radius.
 // The GPU-shaped program (PDMESH_FORCE_LOOP_SCALAR) keeps floor(), one instruction there.
 long nb_cell_coord(REAL v, REAL inv_cell) {

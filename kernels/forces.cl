@@ -2,8 +2,8 @@
 // Lennard-Jones force of eq. 5.11 gathered per node over its padded neighbour row, the tangential
 // projection for boundary nodes, and r0 (eq. 5.3). Two shapes of the same loop, one chosen by the
 // program builder from the device type (host/opencl/step_program.cpp, docs/opencl.md "Force loop"):
-// PDMESH_FORCE_LOOP_VECTOR walks the row 8 entries at a time in vector types (PoCL's CPU device did not
-// vectorize these loops across work-items, docs/performance.md; explicit vectors give AVX code);
+// PDMESH_FORCE_LOOP_VECTOR walks the row 8 entries at a time in vector types (PoCL's CPU device does not
+// vectorize these loops across work-items; explicit vectors give AVX code);
 // PDMESH_FORCE_LOOP_SCALAR takes one entry at a time in scalar code, which a GPU compiler keeps in few
 // registers (the 8-wide double vectors cost 16 registers each: 254 VGPRs on gfx90a). Both compute the
 // reference's expressions in its summation order, so in double they agree with it, and each other, bit

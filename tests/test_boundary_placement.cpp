@@ -81,7 +81,7 @@ TEST_CASE("spacing nodes: edges within 10% of q at their midpoints under a smoot
   for (const bool smooth : {false, true}) {
     INFO((smooth ? "smooth curves" : "polylines"));
     std::unique_ptr<DenseGeometry> dense;
-    if (smooth) dense = std::make_unique<DenseGeometry>(make_dense_geometry(SmoothCurves(g, 30.0), q));
+    if (smooth) dense = std::make_unique<DenseGeometry>(make_dense_geometry(SmoothCurves(g, 30.0), [&q](Vec2 p) { return q.at(p); }));
     const Geometry& ng = smooth ? dense->geometry : g;
     const NodeSet nodes = place_boundary_nodes(ng, q, BoundaryNodeRule::Spacing, nullptr);
     const double worst = worst_edge_ratio(nodes, ng, q, 8);
@@ -211,7 +211,7 @@ TEST_CASE("spacing nodes on smooth curves: the fill matches the estimate and a s
   const Geometry g = build_geometry({{"box", {{-5, -5}, {5, -5}, {5, 5}, {-5, 5}, {-5, -5}}, "test", 1, {}}, hole});
   const ConstantSpacing q(0.5);
   const SmoothCurves smooth(g, 30.0);
-  const DenseGeometry dense = make_dense_geometry(smooth, q);
+  const DenseGeometry dense = make_dense_geometry(smooth, [&q](Vec2 p) { return q.at(p); });
   const GeometryTree tree(dense.geometry);
   const CurveStations stations = spacing_stations(dense.geometry, q);
   const NodeSet boundary = assemble_boundary_nodes(dense.geometry, q, stations);

@@ -12,7 +12,7 @@
 #include "core/predicates.hpp"
 #include "mesh/constrain.hpp"
 #include "mesh/delaunay.hpp"
-#include "mesh/hilbert.hpp"
+#include "geometry/hilbert.hpp"
 #include "mesh/mesh_check.hpp"
 #include "mesh/triangulate_nodes.hpp"
 

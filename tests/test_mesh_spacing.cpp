@@ -23,6 +23,7 @@
 #include "io/msh_writer.hpp"
 #include "io/vtu_writer.hpp"
 #include "run_pdmesh.hpp"
+#include "io/spacing_mesh_file.hpp"
 #include "spacing/mesh_spacing.hpp"
 #include "temp_files.hpp"
 

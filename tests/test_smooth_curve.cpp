@@ -14,7 +14,6 @@
 #include "geometry_fixtures.hpp"
 
 using namespace pdmesh;
-using pdmesh::fixtures::ConstantSpacing;
 
 namespace {
 
@@ -50,7 +49,7 @@ TEST_CASE("the dense polyline is within its chord tolerance of the smooth curve"
   const SmoothCurves s(g, 30.0);
   const double q = 0.1;
   DenseOptions options;
-  const DenseGeometry d = make_dense_geometry(s, ConstantSpacing(q), options);
+  const DenseGeometry d = make_dense_geometry(s, [q](Vec2) { return q; }, options);
   const GeometryTree tree(d.geometry);
   const double tol = options.tolerance * q;  // h = min(q, segment length) = q here
   double worst = 0.0;
@@ -89,7 +88,7 @@ TEST_CASE("smooth curves keep corners at critical points and stay straight on st
         const Vec2 p = s.at(curve, k, j / 10.0);
         CHECK(std::min({std::fabs(p.x), std::fabs(p.x - 4), std::fabs(p.y), std::fabs(p.y - 4)}) < 1e-12);
       }
-  const DenseGeometry d = make_dense_geometry(s, ConstantSpacing(0.5));
+  const DenseGeometry d = make_dense_geometry(s, [](Vec2) { return 0.5; });
   CHECK(d.geometry.segments.size() == square.segments.size());  // nothing to add on straight lines
 
   // An open polyline with a 60-degree corner, closed by a straight curve.
@@ -112,7 +111,7 @@ TEST_CASE("smooth curves keep corners at critical points and stay straight on st
   const Vec2 in2 = sb.derivative(0, 1, 1.0), out2 = sb.derivative(0, 2, 0.0);
   CHECK(std::fabs(cross(in2, out2)) < 1e-12 * norm(in2) * norm(out2));
   // The dense geometry has the same critical points, in the same order, at the same places.
-  const DenseGeometry dg = make_dense_geometry(sb, ConstantSpacing(0.2));
+  const DenseGeometry dg = make_dense_geometry(sb, [](Vec2) { return 0.2; });
   REQUIRE(dg.geometry.critical.size() == g.critical.size());
   for (std::size_t k = 0; k < g.critical.size(); ++k) {
     CHECK(dg.geometry.critical[k].p == g.critical[k].p);
@@ -166,9 +165,9 @@ TEST_CASE("smooth curves that cross another curve are refused as a geometry erro
   RawCurve outer{"outer", {{-2, -2}, {0.99, -2}, {0.99, 2}, {-2, 2}, {-2, -2}}, "test", 1, {}};
   const Geometry g = build_geometry({outer, fixtures::circle_curve(1.0, 16, std::numbers::pi / 16, "hole")});
   const SmoothCurves s(g, 30.0);
-  CHECK_THROWS_AS(make_dense_geometry(s, ConstantSpacing(0.1)), GeometryError);
+  CHECK_THROWS_AS(make_dense_geometry(s, [](Vec2) { return 0.1; }), GeometryError);
   try {
-    make_dense_geometry(s, ConstantSpacing(0.1));
+    make_dense_geometry(s, [](Vec2) { return 0.1; });
   } catch (const GeometryError& e) {
     CHECK_THAT(e.what(), Catch::Contains("geometry.curves = \"smooth\"") && Catch::Contains("intersect"));
   }

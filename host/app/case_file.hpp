@@ -1,4 +1,4 @@
-// The case file (case.toml, see CASE_SCHEMA.md and docs/cli.md): parsed, overridden from the
+// The case file (case.toml; its keys: docs/cli.md, "Case files"): parsed, overridden from the
 // command line and validated into a CaseConfig before anything runs or is written.
 #pragma once
 #include <cstdint>
@@ -31,12 +31,13 @@ enum class StopRule { Converged, Iterations };
 // Which defaults the keys a case file leaves out take (top-level key `preset`).
 //   Best:   the settings that give the best meshes; what a geometry given alone runs with: heavy-ball
 //           momentum, a compressed population schedule and stopping rule, and a 40-degree cleanup
-//           (docs/cli.md, "Presets"; docs/performance.md, sessions 9-10).
+//           (docs/cli.md, "Presets").
 //   Thesis: Fackler's settings, so that the thesis case files reproduce chapter 6 (report/).
-//   Long:   best as it was until session 10: no momentum, population control to 80 % of the run, the
+//   Long:   the slower schedule best replaced: no momentum, population control to 80 % of the run, the
 //           rule every 100 iterations over a 400-iteration window, a 30-degree cleanup. Three times the
 //           iterations for the same or a slightly better worst triangle on some geometries.
-//   Fast:   the name best's schedule had in session 9; the same settings as Best.
+//   Fast:   an older name of best's schedule, kept so that files naming it still run; the same settings
+//           as Best.
 // The member initializers of CaseConfig below are the Long values (those of the library's option
 // structs); apply_preset() (app/presets.cpp) changes the keys whose value differs in the other
 // presets. Keys the file sets always win over the preset.

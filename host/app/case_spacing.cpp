@@ -2,6 +2,7 @@
 #include "app/case_spacing.hpp"
 
 #include "spacing/background_field.hpp"
+#include "io/spacing_mesh_file.hpp"
 #include "spacing/mesh_spacing.hpp"
 
 namespace pdmesh {

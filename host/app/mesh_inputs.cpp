@@ -59,7 +59,8 @@ MeshInputs::MeshInputs(const CaseConfig& config) {
     dense_options.join_tolerance = config.geometry.join_tolerance;
     try {
       dense = std::make_unique<DenseGeometry>(
-          make_dense_geometry(SmoothCurves(geometry, config.geometry.corner_angle), *spacing, dense_options));
+          make_dense_geometry(SmoothCurves(geometry, config.geometry.corner_angle),
+                              [&](Vec2 p) { return spacing->at(p); }, dense_options));
     } catch (const GeometryError& e) {
       // Smooth curves through coarse points can cross where the polylines pass close to each other.
       smooth_fallback = e.what();

@@ -12,7 +12,7 @@
 #include "core/errors.hpp"
 #include "io/mesh_formats.hpp"
 #include "mesh/mesh_check.hpp"
-#include "mesh/quality_report.hpp"
+#include "io/quality_report.hpp"
 #include "mesh/triangulate_nodes.hpp"
 #include "nodes/node_domain.hpp"
 #include "nodes/node_file.hpp"

@@ -1,7 +1,7 @@
 // The presets of the case-file defaults (docs/cli.md, "Presets"): `best`, the settings that give the
-// best meshes, which a geometry given alone runs with (`fast` is its session-9 name); `thesis`,
+// best meshes, which a geometry given alone runs with (`fast` is an older name of it); `thesis`,
 // Fackler's settings, which the thesis case files name so that report/ still reproduces chapter 6;
-// and `long`, best's schedule before session 10 (no momentum, three times the iterations).
+// and `long`, the slower schedule best replaced (no momentum, three times the iterations).
 #include "app/case_file.hpp"
 
 namespace pdmesh {
@@ -18,12 +18,12 @@ const char* to_string(Preset preset) {
 
 namespace {
 
-// Best (and fast) = long plus these (the study's candidate M4, docs/performance.md "Momentum and an
-// early stop, session 9"): over the 16 study runs it stops after 500-750 iterations instead of
-// 1300-2000 (summed medians 9,500 against 30,300) with a lower mean aspect ratio everywhere. With the
-// cleanup's compound trials (session 10) its smallest angle is within 0.5 degrees of long's or better
-// on all 16 runs (medians of 3); under other population intervals it still loses 0.6-2.6 degrees on
-// three of them, all at or above 40.3 degrees (docs/performance.md, "The cleanup's last defects").
+// Best (and fast) = long plus these: over the 16 runs of the stopping study (tools/stop_study) it
+// stops after 500-750 iterations instead of 1300-2000 with a lower mean aspect ratio everywhere, and
+// with the cleanup's compound trials its smallest angle is within 0.5 degrees of long's or better on
+// all 16 (medians of 3); under other population intervals it loses 0.6-2.6 degrees on three of them,
+// all at or above 40.3 degrees (docs/journal/2026-11-25.md, "Momentum and an early stop" and "The
+// cleanup's last defects").
 void apply_momentum_schedule(CaseConfig& c) {
   // Heavy-ball momentum: the lattice's defects anneal ~4x faster (docs/simulation.md, "Momentum").
   c.simulation.momentum = 0.9;
@@ -35,10 +35,9 @@ void apply_momentum_schedule(CaseConfig& c) {
   c.population.settle = 1e-3;
   c.population.settle_events = 2;
   // The rule on the faster time scale: measured every 50 iterations over a 150-iteration window, from
-  // iteration 300, with twice long's aspect-ratio tolerance. The window was 200 until session 11: 150
-  // stops ~50 iterations sooner (9 % fewer over the study's 16 runs) with a smallest angle as good
-  // (mean 42.56 against 42.33 degrees over 42 medians of 3, worst 40.57 against 40.29; docs/performance.md,
-  // "Where the targets stand (2026-11-28, eleventh session)").
+  // iteration 300, with twice long's aspect-ratio tolerance. A 150-iteration window stops ~50
+  // iterations sooner than a 200-iteration one with a smallest angle as good over the study's runs
+  // (docs/journal/2026-11-28.md).
   c.simulation.stop_aspect = 1e-3;
   c.simulation.stop_every = 50;
   c.simulation.stop_window = 150;
@@ -50,7 +49,7 @@ void apply_momentum_schedule(CaseConfig& c) {
   // mostly on 40-55 degree triangles of a settled lattice, 0.12 s of the 30P30N curves' 0.23 s
   // cleanup; the triangles below the target still take a second budget. Over the stopping study's 16
   // runs (and its two other population intervals) the smallest angle moves by at most 0.3 degrees
-  // (docs/performance.md, "Where the targets stand (2026-11-28, twelfth session)").
+  // (docs/journal/2026-11-28.md).
   c.cleanup.trials_per_triangle = 0.2;
   c.cleanup.min_trials = 2000;
 }

@@ -14,7 +14,7 @@
 #include "io/mesh_formats.hpp"
 #include "io/text_file.hpp"
 #include "mesh/quality.hpp"
-#include "mesh/quality_report.hpp"
+#include "io/quality_report.hpp"
 #include "render/mesh_picture.hpp"
 #include "spacing/spacing_field.hpp"
 

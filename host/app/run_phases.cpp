@@ -9,7 +9,7 @@
 
 #include <fmt/format.h>
 
-#include "mesh/quality_report.hpp"
+#include "io/quality_report.hpp"
 
 namespace pdmesh {
 namespace {

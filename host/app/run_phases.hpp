@@ -1,6 +1,6 @@
 // The phases of one `pdmesh mesh` run: each timed (wall and process CPU time) for the progress
 // messages, `--timings FILE` and `pdmesh bench --whole-run`; and the pictures, drawn on a background
-// thread while the run goes on (docs/performance.md, "Whole runs").
+// thread while the run goes on (docs/performance.md, "How to measure").
 #pragma once
 #include <chrono>
 #include <cmath>

@@ -1,6 +1,6 @@
 // `pdmesh bench --whole-run`: the `mesh` command end to end, each run a separate process (as a user
 // runs it), repeated; every phase's wall time from its --timings file, the process's CPU time and
-// peak memory from the kernel, min / median / max over the repeats (docs/performance.md, "Whole runs").
+// peak memory from the kernel, min / median / max over the repeats (docs/cli.md, "Whole runs").
 #pragma once
 #include <string>
 

@@ -10,7 +10,7 @@
 #include "cleanup/measures.hpp"
 #include "cleanup/smoothing.hpp"
 #include "cleanup/topology_ops.hpp"
-#include "sim/boundary_handling.hpp"
+#include "nodes/boundary_arcs.hpp"
 
 namespace pdmesh {
 
@@ -85,8 +85,7 @@ CleanupResult clean_mesh(const Mesh& mesh, const NodeSet& nodes, const GeometryT
                          const SpacingField& spacing, const CleanupOptions& options) {
   const auto start = std::chrono::steady_clock::now();
   CleanupResult result;
-  const BoundaryHandler boundary(tree, nodes);
-  EditableMesh m(mesh, nodes.curve_nodes, boundary.arcs());
+  EditableMesh m(mesh, nodes.curve_nodes, boundary_arcs(tree.geometry(), nodes));
   cleanup::Smoother smoother(m, tree.geometry(), options.step_cap);
   smoother.set_sweep_gain(options.move_min_rise, options.move_aspect_drop);
   const double smooth_below = options.smooth_below >= 0.0 ? options.smooth_below : std::min(options.min_angle + 20.0, 59.0);

@@ -7,13 +7,13 @@
 
 #include "cleanup/measures.hpp"
 #include "core/predicates.hpp"
-#include "sim/boundary_handling.hpp"
+#include "geometry/curve_projection.hpp"
 
 namespace pdmesh::cleanup {
 namespace {
 
 // A boundary vertex moves at most this fraction of the arc gap to each curve neighbour per move,
-// so neighbours never meet or cross (BoundaryHandler uses 0.45 for the same reason).
+// so neighbours never meet or cross (sim/boundary_handling uses 0.45 for the same reason).
 constexpr double kArcGapFraction = 0.45;
 // Step lengths tried per move: the capped step, then halved this many times (MESH2D relaxes a
 // rejected move back towards the old position the same way).

@@ -8,7 +8,7 @@
 
 #include "cleanup/measures.hpp"
 #include "core/predicates.hpp"
-#include "sim/boundary_handling.hpp"
+#include "geometry/curve_projection.hpp"
 
 namespace pdmesh::cleanup {
 namespace {

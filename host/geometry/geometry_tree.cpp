@@ -79,7 +79,7 @@ struct Node {
   // cap_r of the axis from cap_a, cap_len long along their principal direction. Its distance minus cap_r
   // bounds closest() from below far more tightly than the box where the segments follow a curve:
   // seen from afar, the box of an arc bulges towards the query point, and without this bound a
-  // query on a finely segmented circle visited O(sqrt(segments)) leaves (docs/performance.md).
+  // query on a finely segmented circle would visit O(sqrt(segments)) leaves.
   int first_child = -1;  // children are first_child .. first_child + 3; -1 for a leaf
   int begin = 0;         // leaf: its segment ids are items[begin, begin + count)
   int count = 0;

@@ -165,7 +165,8 @@ Vec2 SmoothCurves::derivative(int curve, int piece, double u) const {
   return d00 * p[k] + d10 * start_[c][k] + d01 * p[k + 1] + d11 * end_[c][k];
 }
 
-DenseGeometry make_dense_geometry(const SmoothCurves& curves, const SpacingField& spacing, const DenseOptions& options) {
+DenseGeometry make_dense_geometry(const SmoothCurves& curves, const std::function<double(Vec2)>& size,
+                                  const DenseOptions& options) {
   const Geometry& in = curves.geometry();
   DenseGeometry out;
   std::vector<RawCurve> raw(in.curves.size());
@@ -179,10 +180,10 @@ DenseGeometry make_dense_geometry(const SmoothCurves& curves, const SpacingField
     r.points.push_back(curve.points[0]);
     r.lines.push_back(curve.line);
     out.vertex[c].push_back(0);
-    double q_prev = spacing.at(curve.points[0]);
+    double q_prev = size(curve.points[0]);
     for (int k = 0; k + 1 < static_cast<int>(curve.points.size()); ++k) {
       const Vec2 a = curve.points[static_cast<std::size_t>(k)], b = curve.points[static_cast<std::size_t>(k) + 1];
-      const double q_next = spacing.at(b);
+      const double q_next = size(b);
       double h = dist(a, b);
       if (q_prev > 0.0 && std::isfinite(q_prev)) h = std::min(h, q_prev);
       if (q_next > 0.0 && std::isfinite(q_next)) h = std::min(h, q_next);

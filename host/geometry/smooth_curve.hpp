@@ -4,10 +4,10 @@
 // mesh boundary). The input polyline keeps defining the spacing field (its segment lengths are eq.
 // 3.6's l_s). See docs/geometry-input.md, "Smooth curves".
 #pragma once
+#include <functional>
 #include <vector>
 
 #include "geometry/geometry.hpp"
-#include "spacing/spacing_field.hpp"
 
 namespace pdmesh {
 
@@ -38,7 +38,7 @@ class SmoothCurves {
 
 struct DenseOptions {
   // Chord tolerance: each dense segment deviates from the smooth curve by at most tolerance x h,
-  // h = min(q at both ends of the input segment, its length), q the run's spacing field.
+  // h = min(q at both ends of the input segment, its length), q the run's spacing field (`size`).
   double tolerance = 1e-3;
   // Dense segments are not split below min_fraction x h (bounds the count where the spacing field
   // is far finer than the curvature radius; the nodes could not resolve such a bend anyway).
@@ -57,9 +57,10 @@ struct DenseGeometry {
   std::vector<int> source;
 };
 
-// Builds the dense geometry. Throws GeometryError when the smooth curves intersect themselves or
-// each other (build_geometry's checks; the caller may fall back to the polylines).
-DenseGeometry make_dense_geometry(const SmoothCurves& curves, const SpacingField& spacing,
+// Builds the dense geometry; size(p) is the spacing field's q at p (the geometry layer knows no
+// spacing field: the caller passes its at()). Throws GeometryError when the smooth curves intersect
+// themselves or each other (build_geometry's checks; the caller may fall back to the polylines).
+DenseGeometry make_dense_geometry(const SmoothCurves& curves, const std::function<double(Vec2)>& size,
                                   const DenseOptions& options = {});
 
 }  // namespace pdmesh

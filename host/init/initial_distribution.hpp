@@ -8,8 +8,8 @@
 #include "geometry/geometry_tree.hpp"
 #include "init/boundary_placement.hpp"
 // The leaf-pass estimate over a BackgroundSpacing: whoever sees the per-sample overload below sees it
-// too, so a BackgroundSpacing argument never converts silently to SpacingField& (mesh_inputs.cpp did from
-// 1962773 to session 9: the per-sample estimate, 11605 against the leaf pass's 11634 on 30P30N).
+// too, so a BackgroundSpacing argument never converts silently to SpacingField& (which would pick the
+// per-sample estimate: 11605 against the leaf pass's 11634 on 30P30N).
 #include "init/node_estimate.hpp"
 #include "nodes/node_set.hpp"
 #include "spacing/spacing_field.hpp"

@@ -98,7 +98,7 @@ constexpr std::size_t kLeavesPerChunk = 4096;
 
 double estimate_node_count(const GeometryTree& tree, const BackgroundSpacing& field) {
   const BackgroundFieldData& d = field.data();
-  // Each leaf's nodes are computed on all cores (the boundary leaves' geometry queries were 0.04 s on
+  // Each leaf's nodes are computed on all cores (the boundary leaves' geometry queries take 0.04 s on
   // one core for 30P30N's curves alone, twice per run), then summed here in leaf order: the same
   // additions in the same order as one loop, so the estimate is the same bits whatever the thread count.
   std::vector<double> nodes(d.leaves(), 0.0);

@@ -142,10 +142,10 @@ int structured_count(double ratio) {
   // "Two" is 2.05 here: our tree's root is 1% wider than the geometry (InitTree), which makes every
   // leaf's area ratio 2% larger than in a tree on the geometry itself (2 x 1.01^2 = 2.04).
   // Evidence (docs/initialization.md): the thesis' 200 x 200 square (fig. 7.1, leaves of 25, ratio
-  // 1.99) got one node per leaf, 64 in all; the nearest-of-{1, 4, 5, 9} rule (threshold 2.5) gave
-  // the circle within a circle, the one thesis case whose geometry is fully given, 2304 nodes
-  // against Table 6.1's 2536 (now 2436), and structured starts on the rod assembly fewer nodes
-  // than random ones, where every row of Table 6.1 has more.
+  // 1.99) got one node per leaf, 64 in all; a threshold of 2.5 would give the circle within a circle,
+  // the one thesis case whose geometry is fully given, 2304 nodes against Table 6.1's 2536 (2.05
+  // gives 2436), and structured starts on the rod assembly fewer nodes than random ones, where every
+  // row of Table 6.1 has more.
   if (!(ratio >= 2.05)) return 1;
   if (ratio < 4.5) return 4;
   if (ratio < 7.0) return 5;

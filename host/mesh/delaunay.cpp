@@ -8,7 +8,7 @@
 
 #include "core/errors.hpp"
 #include "core/predicates.hpp"
-#include "mesh/hilbert.hpp"
+#include "geometry/hilbert.hpp"
 
 namespace pdmesh {
 namespace {

@@ -58,7 +58,7 @@ class DeviceNeighbours {
   void carry_counts(const std::vector<int>& old_of_new, std::size_t old_n);
 
   // A row's capacity is c + (c >> kSpareShift) + kSpareMin for the count c of the last build: rows
-  // grow a little between rebuilds as nodes move (docs/performance.md, issue 15 neighbours).
+  // grow a little between rebuilds as nodes move (docs/opencl.md, "Neighbour lists: Verlet skin").
   static constexpr int kSpareShift = 3, kSpareMin = 2;
   // A build without counts samples every kSampleStride-th node's scan from kSampleFrom nodes on (a
   // counting pass costs about a gather: at 1M nodes a quarter of a 20-iteration run's gathers); below,

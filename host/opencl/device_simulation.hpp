@@ -13,7 +13,7 @@
 
 namespace pdmesh::ocl {
 
-// Where the time and the bytes went (benchmarks, docs/performance.md). Seconds are wall times.
+// Where the time and the bytes went (pdmesh bench: docs/performance.md). Seconds are wall times.
 struct DeviceRunStats {
   int iterations = 0;
   int rebuilds = 0;                  // neighbour-list builds (Verlet skin)
@@ -33,7 +33,7 @@ struct DeviceRunStats {
   std::uint64_t pairs_listed = 0;    // list entries within the skin radius, summed over builds
   std::uint64_t rebuild_candidates = 0;  // candidate pairs whose distance the rebuilds computed
   std::uint64_t candidates = 0;      // interior nodes handed to the host's exact test, all iterations
-  double bin_seconds = 0.0;          // host binning at rebuilds (0 since issue 15: the device bins, in gather_seconds)
+  double bin_seconds = 0.0;          // host binning at rebuilds (0: the device bins, within gather_seconds)
   double gather_seconds = 0.0;       // device neighbour build at rebuilds: binning, rows (one wait)
   double step_seconds = 0.0;         // device_step and boundary_snap (+ the previous apply_host_moves,
                                      // and the partials: one wait)
@@ -46,7 +46,7 @@ struct DeviceRunStats {
 };
 
 // The neighbour rows' entries per node assumed before the first build (the rows are compact: a build
-// sizes them to the entries it finds, docs/performance.md "issue 15 neighbours").
+// sizes them to the entries it finds, docs/opencl.md "Neighbour lists: Verlet skin").
 inline constexpr int kInitialStride = 16;
 
 // Device memory a run needs with compact neighbour rows of `entries_per_node` entries per node on

@@ -1,6 +1,6 @@
 // The multi-level hashed cell grids of host/sim/reference/binning.cpp in flat arrays, built on the host
 // in O(N): the oracle of the device's binning (kernels/binning.cl, tests/test_device_neighbours.cpp),
-// which replaced it in the device builds (issue 15: a rebuild no longer downloads positions to bin).
+// which bins on the device, so that a rebuild downloads no positions.
 #pragma once
 #include <cstdint>
 #include <vector>

@@ -1,7 +1,7 @@
 // PNG files from cairo image surfaces, written with zlib directly: cairo's own writer goes through
 // libpng at zlib's default level, which took about half the time of a 1600 px picture; a picture
 // of lines and dots on white compresses as well at level 1 without a row filter, several times
-// faster (docs/performance.md, "Pictures").
+// faster (docs/cli.md, "Pictures while the run goes on").
 #pragma once
 #include <cairo.h>
 

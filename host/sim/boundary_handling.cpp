@@ -10,77 +10,13 @@
 #include <fmt/format.h>
 
 #include "core/errors.hpp"
+#include "nodes/boundary_arcs.hpp"
 
 namespace pdmesh {
-namespace {
-
-Vec2 unit(Vec2 v) {
-  const double n = norm(v);
-  return n > 0.0 ? (1.0 / n) * v : Vec2{};
-}
-
-Vec2 segment_tangent(const Curve& curve, int k) {
-  const auto i = static_cast<std::size_t>(k);
-  return unit(curve.points[i + 1] - curve.points[i]);
-}
-
-}  // namespace
-
-CurvePoint closest_on_curve_range(const Curve& curve, Vec2 p, double arc_lo, double arc_hi) {
-  const int segments = curve.segment_count();
-  CurvePoint best;
-  double best2 = HUGE_VAL;
-  // First segment that reaches arc_lo.
-  int k = static_cast<int>(std::upper_bound(curve.arc.begin(), curve.arc.end(), arc_lo) - curve.arc.begin()) - 1;
-  k = std::clamp(k, 0, segments - 1);
-  for (; k < segments && curve.arc[static_cast<std::size_t>(k)] <= arc_hi; ++k) {
-    const auto i = static_cast<std::size_t>(k);
-    const double s0 = curve.arc[i], len = curve.arc[i + 1] - s0;
-    const double t_lo = std::max(0.0, (arc_lo - s0) / len), t_hi = std::min(1.0, (arc_hi - s0) / len);
-    if (t_lo > t_hi) continue;
-    const Vec2 a = curve.points[i], b = curve.points[i + 1], d = b - a;
-    const double t = std::clamp(dot(p - a, d) / dot(d, d), t_lo, t_hi);
-    const Vec2 on = t == 0.0 ? a : t == 1.0 ? b : a + t * d;
-    const double dist2 = norm2(p - on);
-    if (dist2 < best2) {
-      best2 = dist2;
-      best.p = on;
-      best.arc = t == 1.0 ? curve.arc[i + 1] : s0 + t * len;
-      best.distance = std::sqrt(dist2);
-      // At a vertex the node slides along the mean direction of both segments.
-      Vec2 tangent = segment_tangent(curve, k);
-      if (t == 0.0 && k > 0) tangent = unit(tangent + segment_tangent(curve, k - 1));
-      if (t == 1.0 && k + 1 < segments) tangent = unit(tangent + segment_tangent(curve, k + 1));
-      best.tangent = tangent;
-    }
-  }
-  return best;
-}
-
 BoundaryHandler::BoundaryHandler(const GeometryTree& tree, const NodeSet& nodes) : tree_(tree) {
-  const Geometry& geometry = tree.geometry();
-  if (nodes.curve_nodes.size() != geometry.curves.size())
-    throw SimulationError(fmt::format("the node set has boundary node lists for {} curves, the geometry has {}",
-                                      nodes.curve_nodes.size(), geometry.curves.size()));
   tangent_.assign(nodes.size(), Vec2{});
   budget_.assign(nodes.size(), 0.0);
-  arcs_.resize(geometry.curves.size());
-  for (std::size_t c = 0; c < geometry.curves.size(); ++c) {
-    const Curve& curve = geometry.curves[c];
-    const std::vector<int>& list = nodes.curve_nodes[c];
-    if (list.size() < 2)
-      throw SimulationError(fmt::format("curve {} ('{}') has {} boundary nodes; it needs its two end points",
-                                        c, curve.name, list.size()));
-    std::vector<double>& arcs = arcs_[c];
-    arcs.assign(list.size(), 0.0);
-    arcs.back() = curve.length();
-    for (std::size_t k = 1; k + 1 < list.size(); ++k) {
-      const auto node = static_cast<std::size_t>(list[k]);
-      const CurvePoint cp = closest_on_curve_range(curve, nodes.x[node], arcs[k - 1], curve.length());
-      arcs[k] = cp.arc;
-      if (nodes.kind[node] == NodeKind::Boundary) tangent_[node] = cp.tangent;
-    }
-  }
+  arcs_ = boundary_arcs(tree.geometry(), nodes, &tangent_);
 }
 
 void BoundaryHandler::restore(const NodeSet& nodes, std::vector<std::vector<double>> arcs, std::vector<Vec2> tangents) {

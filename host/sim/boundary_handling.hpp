@@ -6,22 +6,11 @@
 #include <functional>
 #include <vector>
 
+#include "geometry/curve_projection.hpp"
 #include "geometry/geometry_tree.hpp"
 #include "nodes/node_set.hpp"
 
 namespace pdmesh {
-
-// A point on one curve, found by a restricted closest-point search.
-struct CurvePoint {
-  Vec2 p;
-  double arc = 0.0;  // arc-length position from the curve's first point
-  Vec2 tangent;      // unit tangent (at a vertex: the normalised mean of both segments' tangents)
-  double distance = 0.0;
-};
-
-// Closest point of curve `curve` to p among the points with arc position in [arc_lo, arc_hi]
-// (ties: lowest segment). Exposed for tests.
-CurvePoint closest_on_curve_range(const Curve& curve, Vec2 p, double arc_lo, double arc_hi);
 
 struct BoundaryCounts {
   std::size_t snapped = 0;   // interior nodes that left the domain and became boundary nodes

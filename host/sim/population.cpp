@@ -135,7 +135,7 @@ std::optional<PopulationCounts> PopulationTracker::after_iteration(const Populat
   inserted += counts.inserted();
   removed += counts.removed();
   // An event that could not triangulate the nodes saw nothing: with a settle tolerance it does not
-  // count towards settling (without one it is quiet, as it always was).
+  // count towards settling (without one it is quiet).
   const std::size_t changes =
       counts.skipped && options.settle > 0.0 ? nodes.size() + 1 : counts.inserted() + counts.removed();
   schedule.record(options, iteration, changes, nodes.size());

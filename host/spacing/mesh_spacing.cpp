@@ -1,4 +1,5 @@
-// MeshSpacing: reading, checking and evaluating a spacing field given on a background triangle mesh.
+// MeshSpacing: checking and evaluating a spacing field given on a background triangle mesh (the file
+// is read by io/spacing_mesh_file).
 #include "spacing/mesh_spacing.hpp"
 
 #include <algorithm>
@@ -10,8 +11,6 @@
 #include "core/errors.hpp"
 #include "core/parallel.hpp"
 #include "core/predicates.hpp"
-#include "io/msh_reader.hpp"
-#include "io/vtu_reader.hpp"
 
 namespace pdmesh {
 
@@ -165,43 +164,6 @@ void MeshSpacing::check_covers(const Geometry& geometry) const {
           kMeshCoverEdgeFraction));
     }
   }
-}
-
-std::unique_ptr<MeshSpacing> load_mesh_spacing(const std::filesystem::path& file, const std::string& array) {
-  std::string ext = file.extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  if (ext != ".vtu" && ext != ".msh") {
-    throw InputError(fmt::format("{}: a spacing background mesh must be a .vtu or .msh file (got '{}')", file.string(), ext));
-  }
-  MeshPointData pd;
-  pd.wanted = array;
-  MeshReadReport report;
-  Mesh mesh = ext == ".vtu" ? read_vtu(file, report, &pd) : read_msh(file, report, &pd);
-  MeshFieldData d;
-  d.file = file.string();
-  d.array = array;
-  if (mesh.triangles.empty()) {
-    throw InputError(fmt::format("{}: the mesh has no triangles{}; a spacing background mesh needs triangle cells",
-                                 d.file, report.skipped_elements > 0 ? fmt::format(" (it has {} other cells)", report.skipped_elements) : ""));
-  }
-  if (!pd.array) {
-    const std::string has = pd.point_arrays.empty()
-                                ? std::string("the file has no point data")
-                                : fmt::format("its point-data arrays are: {}", fmt::join(pd.point_arrays, ", "));
-    const std::string other = pd.other_arrays.empty() ? std::string() : fmt::format(" (other data: {})", fmt::join(pd.other_arrays, ", "));
-    throw InputError(fmt::format("{}: no point-data array '{}' (spacing.array); {}{}", d.file, array, has, other));
-  }
-  if (pd.array->components != 1) {
-    throw InputError(fmt::format("{}: point-data array '{}' has {} components; the spacing must be a scalar (1 component)",
-                                 pd.array->where, array, pd.array->components));
-  }
-  d.points = std::move(mesh.points);
-  d.triangles = std::move(mesh.triangles);
-  d.q = std::move(pd.array->values);
-  d.given = std::move(pd.array->given);
-  d.array_where = pd.array->where;
-  d.point_ids = std::move(pd.point_ids);
-  return std::make_unique<MeshSpacing>(std::move(d));
 }
 
 }  // namespace pdmesh

@@ -71,10 +71,4 @@ class MeshSpacing final : public SpacingField {
   std::unique_ptr<TriangleLocator> locator_;
 };
 
-// Reads FILE (.vtu or .msh by extension) and builds the field from its point-data array `array`
-// (a VTU PointData array, or the MSH $NodeData view of that name). Throws InputError naming the file
-// when it cannot be read, has no such array (listing the arrays it has), or the array is not one
-// scalar per point; then every check of MeshSpacing.
-std::unique_ptr<MeshSpacing> load_mesh_spacing(const std::filesystem::path& file, const std::string& array);
-
 }  // namespace pdmesh

@@ -6,7 +6,7 @@
 #include <limits>
 
 #include "core/predicates.hpp"
-#include "mesh/hilbert.hpp"
+#include "geometry/hilbert.hpp"
 
 namespace pdmesh {
 namespace {

@@ -10,7 +10,7 @@
 #include "core/errors.hpp"
 #include "io/mesh_formats.hpp"
 #include "mesh/quality.hpp"
-#include "mesh/quality_report.hpp"
+#include "io/quality_report.hpp"
 #include "render/mesh_picture.hpp"
 
 namespace pdmesh::py {

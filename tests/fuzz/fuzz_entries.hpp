@@ -22,6 +22,7 @@
 #include "nodes/node_file.hpp"
 #include "sim/checkpoint.hpp"
 #include "sim/simulation.hpp"
+#include "io/spacing_mesh_file.hpp"
 #include "spacing/mesh_spacing.hpp"
 #include "spacing/spacing_field.hpp"
 

@@ -1,5 +1,5 @@
 // Formats a QualitySummary as the thesis-style table and as quality.json (written atomically).
-#include "mesh/quality_report.hpp"
+#include "io/quality_report.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,5 +1,5 @@
 // Hilbert-curve ordering of points (integer grid key + stable radix sort).
-#include "mesh/hilbert.hpp"
+#include "geometry/hilbert.hpp"
 
 #include <algorithm>
 #include <cstdint>

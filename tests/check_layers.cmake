@@ -1,0 +1,62 @@
+# The layer rule (ARCHITECTURE.md, "Layers"): a file of host/ includes only files of its own folder and
+# of the folders below it in PDMESH_LAYERS. Run by ctest (test `layer_order`):
+#   cmake -DHOST_DIR=<repo>/host -P tests/check_layers.cmake
+# Fails naming every include against the order (file, line, included file, both layers), and every
+# folder of host/ that has no place in the order (a new folder must be given one here).
+cmake_minimum_required(VERSION 3.20)
+
+# Lowest first. main is host/main.cpp.
+set(PDMESH_LAYERS core geometry spacing nodes mesh io init cleanup sim render opencl app main)
+
+if(NOT HOST_DIR OR NOT IS_DIRECTORY "${HOST_DIR}")
+  message(FATAL_ERROR "check_layers: HOST_DIR='${HOST_DIR}' is not a directory")
+endif()
+
+file(GLOB_RECURSE sources RELATIVE "${HOST_DIR}" "${HOST_DIR}/*.hpp" "${HOST_DIR}/*.cpp" "${HOST_DIR}/*.h")
+list(SORT sources)
+set(violations "")
+set(checked 0)
+foreach(rel IN LISTS sources)
+  if(rel MATCHES "^([^/]+)/")
+    set(own "${CMAKE_MATCH_1}")
+  else()
+    set(own main)
+  endif()
+  list(FIND PDMESH_LAYERS "${own}" own_rank)
+  if(own_rank EQUAL -1)
+    string(APPEND violations "  ${rel}: folder '${own}' has no place in the layer order (tests/check_layers.cmake)\n")
+    continue()
+  endif()
+  file(STRINGS "${HOST_DIR}/${rel}" lines)
+  set(line_no 0)
+  foreach(line IN LISTS lines)
+    math(EXPR line_no "${line_no} + 1")
+    if(NOT line MATCHES "^[ \t]*#[ \t]*include[ \t]*\"([^\"]+)\"")
+      continue()
+    endif()
+    set(included "${CMAKE_MATCH_1}")
+    math(EXPR checked "${checked} + 1")
+    if(included MATCHES "^\\.\\./|/\\.\\./")
+      string(APPEND violations "  ${rel}:${line_no}: includes \"${included}\": name a header by its folder under host/, not by '..'\n")
+      continue()
+    endif()
+    if(NOT included MATCHES "^([^/]+)/")
+      continue()  # a file of the same folder
+    endif()
+    set(target "${CMAKE_MATCH_1}")
+    list(FIND PDMESH_LAYERS "${target}" target_rank)
+    if(target_rank EQUAL -1)
+      continue()  # not a folder of host/ (a library's header written with quotes)
+    endif()
+    if(target_rank GREATER own_rank)
+      string(APPEND violations "  ${rel}:${line_no}: includes \"${included}\": ${own} may not include ${target} (above it)\n")
+    endif()
+  endforeach()
+endforeach()
+
+list(JOIN PDMESH_LAYERS " < " order)
+if(violations)
+  message(FATAL_ERROR "Includes against the layer order ${order}:\n${violations}")
+endif()
+list(LENGTH sources files)
+message(STATUS "layer order ${order}: ${files} files, ${checked} includes, none against it")
