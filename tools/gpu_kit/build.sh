@@ -70,13 +70,23 @@ git ls-files -z cases | xargs -0 cp --parents -t "$stage"
 install -m 755 tools/gpu_kit/run.sh "$stage/run.sh"
 install -m 644 tools/gpu_kit/kit_json.sh tools/gpu_kit/kit_driver.sh tools/gpu_kit/kit_steps.sh "$stage/"
 
-glibc_min=$(objdump -T "$stage"/bin/* 2>/dev/null | grep -o 'GLIBC_[0-9][0-9.]*' | sed 's/GLIBC_//' | sort -uV | tail -n 1)
+# The newest glibc symbol version each file uses (GLIBC_NEEDS, read by run.sh: on an older glibc it
+# leaves out the bundled libraries that need a newer one, so that the machine's own are used).
+for f in "$stage"/bin/*; do
+  echo "$(basename "$f") $(objdump -T "$f" | grep -o 'GLIBC_[0-9][0-9.]*' | sed 's/GLIBC_//' | sort -uV | tail -n 1)"
+done >"$stage/GLIBC_NEEDS"
+glibc_min=$(grep -v '^lib' "$stage/GLIBC_NEEDS" | cut -d' ' -f2 | sort -V | tail -n 1)
+glibc_all=$(cut -d' ' -f2 "$stage/GLIBC_NEEDS" | sort -V | tail -n 1)
 {
   echo "commit=$(git rev-parse HEAD)"
   echo "uncommitted_changes=$(git status --porcelain --untracked-files=no | wc -l)"
   echo "built=$(date -u +%Y-%m-%dT%H:%M:%SZ)"
   echo "built_on=$(. /etc/os-release 2>/dev/null && echo "$PRETTY_NAME"), glibc $(getconf GNU_LIBC_VERSION | cut -d' ' -f2)"
   echo "glibc_min=$glibc_min"
+  echo "glibc_for_all_bundled_libraries=$glibc_all"
+  echo "newer_glibc_needed_by=$(while read -r f v; do
+    [ "$(printf '%s\n%s\n' "$v" "$glibc_min" | sort -V | tail -n 1)" = "$glibc_min" ] || printf '%s ' "$f"
+  done <"$stage/GLIBC_NEEDS")"
   echo "ocl_icd=$(dpkg-query -W -f='${Version}' ocl-icd-libopencl1 2>/dev/null || echo unknown)"
   echo "binaries=pdmesh ${TESTS[*]}"
 } >"$stage/BUILD_INFO"
@@ -92,4 +102,4 @@ fi
 rm -rf gpu-kit
 mv "$stage" gpu-kit
 trap - EXIT
-echo "gpu_kit/build.sh: gpu-kit/ staged: $(du -sh gpu-kit | cut -f1) ($kit_bytes bytes; with the working tree's $tree_bytes, $(((kit_bytes + tree_bytes) * 100 / CARRY_LIMIT))% of the 64 MiB a run call carries), $(ls gpu-kit/bin | wc -l) files in bin/, glibc $glibc_min or newer"
+echo "gpu_kit/build.sh: gpu-kit/ staged: $(du -sh gpu-kit | cut -f1) ($kit_bytes bytes; with the working tree's $tree_bytes, $(((kit_bytes + tree_bytes) * 100 / CARRY_LIMIT))% of the 64 MiB a run call carries), $(ls gpu-kit/bin | wc -l) files in bin/, glibc $glibc_min or newer ($glibc_all for every bundled library)"

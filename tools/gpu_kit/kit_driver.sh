@@ -4,7 +4,8 @@
 # at it alone: it writes WORK/vendors/<vendor>.icd holding the library's absolute path and exports
 # OCL_ICD_VENDORS=WORK/vendors (empty when nothing was found, so that the loader then sees no platform
 # rather than whatever else the machine registers), and appends the library's folder to
-# LD_LIBRARY_PATH (the driver loads its own companions, libcuda.so.1 and the like, from there).
+# LD_LIBRARY_PATH (the driver loads its own companions, libcuda.so.1 and the like, from there), after
+# the kit's bin/ (fit_glibc puts that first).
 #
 # Everything it looked at and everything it saw goes to the log and into DRIVER_JSON.
 # PDMESH_KIT_SEARCH_ROOT=DIR makes every system path of the search relative to DIR (and leaves out
@@ -60,10 +61,14 @@ driver_search() {
     cache=$( { ldconfig -p 2>/dev/null || /sbin/ldconfig -p 2>/dev/null; } | awk -v p="${pattern%\*}" 'index($1, p) == 1 { print $NF }')
     while IFS= read -r f; do [ -n "$f" ] && libs+=("$f"); done <<<"$cache"
   fi
-  # Unique, in the order found.
+  # Unique, in the order found (/lib and /usr/lib are often one folder).
   local -A seen=()
   local -a unique=()
-  for f in "${libs[@]}"; do [ -n "${seen[$f]:-}" ] || { seen[$f]=1; unique+=("$f"); }; done
+  local key
+  for f in "${libs[@]}"; do
+    key=$(readlink -f "$(dirname "$f")")/$(basename "$f")
+    [ -n "${seen[$key]:-}" ] || { seen[$key]=1; unique+=("$f"); }
+  done
   libs=("${unique[@]}")
 
   # Registrations: which library each .icd names, and whether that library is there.

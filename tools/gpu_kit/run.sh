@@ -56,15 +56,15 @@ CASES=$KIT/cases
 
 # The cases: the GPU's, and the dry run's on a 2-core CPU.
 if [ "$mode" = gpu ]; then
-  LARGE=(1000000 5000000) LARGE_ITERATIONS=200 ANNULUS=annulus_5m
+  SMALL_ITERATIONS=2000 SMALL_WARMUP=200 LARGE=(1000000 5000000) LARGE_ITERATIONS=200 ANNULUS=annulus_5m
 else
-  LARGE=(100000 500000) LARGE_ITERATIONS=20 ANNULUS=annulus_200k
+  SMALL_ITERATIONS=2000 SMALL_WARMUP=200 LARGE=(100000 500000) LARGE_ITERATIONS=20 ANNULUS=annulus_100k
 fi
 
 # ---- results -------------------------------------------------------------------------------------
 STEPS_JSON=() BENCH_JSON=() WHOLE_JSON=() TEST_EXES_JSON=()
 TESTS_PASSED=0 TESTS_FAILED=0 TESTS_UNFINISHED=() TESTS_NOTE=null
-DRIVER_JSON=null SMI_JSON=null DEVICE_JSON='{"found": null, "reason": "the driver search has not run"}'
+DRIVER_JSON=null SMI_JSON=null KIT_FIT_JSON=null DEVICE_JSON='{"found": null, "reason": "the driver search has not run"}'
 COMPLETE=false
 
 kit_info_json() {
@@ -111,7 +111,7 @@ write_results() {
       "$(json_str "$mode")" "$COMPLETE"
     printf '  "started": %s,\n  "wall_s": %s,\n  "budget_s": %s,\n' \
       "$(json_str "$(date -u -d "@$START" +%Y-%m-%dT%H:%M:%SZ 2>/dev/null)")" "$((now - START))" "$budget"
-    printf '  "kit": %s,\n  "machine": %s,\n' "$(kit_info_json)" "$MACHINE_JSON"
+    printf '  "kit": %s,\n  "machine": %s,\n  "kit_fit": %s,\n' "$(kit_info_json)" "$MACHINE_JSON" "$KIT_FIT_JSON"
     printf '  "driver_search": %s,\n  "nvidia_smi": %s,\n  "device": %s,\n' "$DRIVER_JSON" "$SMI_JSON" "$DEVICE_JSON"
     printf '  "tests": {"passed": %s, "failed": %s, "unfinished": %s, "note": %s, "executables": [\n    %s\n  ]},\n' \
       "$TESTS_PASSED" "$TESTS_FAILED" "$unfinished" "$TESTS_NOTE" "$(join_with $',\n    ' "${TEST_EXES_JSON[@]}")"

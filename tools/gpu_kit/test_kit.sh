@@ -71,14 +71,19 @@ EOF
     ;;
   broken_search)
     mkdir -p "$tmp/empty-root" "$tmp/empty-vendors"
+    # And a machine glibc older than one (made-up) bundled library needs: left out of the copy run.
+    printf 'pdmesh 2.30\nlibnewer.so.1 2.99\nlibolder.so.1 2.2.5\n' >"$kit/GLIBC_NEEDS"
+    touch "$kit/bin/libnewer.so.1" "$kit/bin/libolder.so.1"
     status=0
     env -i PATH=/usr/bin:/bin HOME="$tmp" PDMESH_KIT_SEARCH_ROOT="$tmp/empty-root" OCL_ICD_VENDORS="$tmp/empty-vendors" \
-      "$kit/run.sh" --budget 120 "$tmp/out" || status=$?
+      PDMESH_KIT_GLIBC=2.35 "$kit/run.sh" --budget 120 "$tmp/out" || status=$?
     expect_eq "$status" 0 "run.sh's exit status without a driver"
     python3 "$here/check_results.py" --expect-no-device "$tmp/out/gpu_results.json" || fail "gpu_results.json"
     grep -q '"reason": "no OpenCL GPU: no driver library' "$tmp/out/gpu_results.json" || fail "the reason is not the missing driver"
     grep -q "libnvidia-opencl.so\*" "$tmp/out/gpu_results.json" || fail "the JSON does not say what was looked for"
     grep -q "OpenCL devices (0)" "$tmp/out/driver.log" || fail "driver.log lacks what the ICD loader listed"
+    grep -q '"machine_glibc": "2.35", "kit_glibc_min": "2.0", "libraries_left_out": \["libnewer.so.1"\]' \
+      "$tmp/out/gpu_results.json" || fail "the library needing a newer glibc was not left out"
     files=$(ls "$tmp/out" | wc -l)
     ((files <= 8)) || fail "$files files in OUTDIR"
     ;;
