@@ -47,7 +47,11 @@ WORK=$(mktemp -d "${TMPDIR:-/tmp}/pdmesh-gpu-kit.XXXXXX") || exit 2
 mkdir -p "$WORK/tmp" "$WORK/pocl-cache"
 # The work folder (the whole runs' meshes, gigabytes at 5M nodes) goes at the end;
 # PDMESH_KIT_KEEP_WORK=1 keeps it.
-[ -n "${PDMESH_KIT_KEEP_WORK:-}" ] || trap 'rm -rf "$WORK"' EXIT
+if [ -n "${PDMESH_KIT_KEEP_WORK:-}" ]; then
+  trap 'rm -f "$out/.gpu_results.json.tmp"' EXIT
+else
+  trap 'rm -rf "$WORK"; rm -f "$out/.gpu_results.json.tmp"' EXIT
+fi
 export TMPDIR=$WORK/tmp POCL_CACHE_DIR=${POCL_CACHE_DIR:-$WORK/pocl-cache} PDMESH_TEST_SOURCE_DIR=$KIT
 export PATH=$PATH:/usr/local/nvidia/bin:/usr/sbin:/sbin
 export HOME=${HOME:-$WORK}
