@@ -66,7 +66,7 @@ def check_device_run(r, p, steps):
     p.need(r.get("complete") is True, "the run did not complete")
     dev = r["device"]
     p.need(dev.get("found") is True, f"no device: {dev.get('reason')}")
-    p.need(dev.get("check", "").startswith("ok"), f"the device check says {dev.get('check')!r}")
+    p.need((dev.get("check") or "").startswith("ok"), f"the device check says {dev.get('check')!r}")
     for s in r["steps"]:
         p.need(s["status"] == "ok", f"step {s['name']}: {s['status']}")
     if "bench" in steps:

@@ -66,8 +66,11 @@ step_driver() {
       "--device auto picks: "*) pick=${line#--device auto picks: } ;;
     esac
   done <"$out/$log"
+  # The device type that counts: a GPU, or on --local any; PDMESH_KIT_WANT_TYPE (e.g. CPU) for the
+  # kit's test, which runs the GPU mode's search on PoCL under NVIDIA's library name.
   local want_type=GPU
   [ "$mode" = local ] && want_type=
+  want_type=${PDMESH_KIT_WANT_TYPE-$want_type}
   for line in "${listed[@]}"; do
     local s t
     read -r s t _ <<<"$line"

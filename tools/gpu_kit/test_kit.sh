@@ -4,6 +4,8 @@
 #   parsers        the JSON helpers on known inputs (a bench row, Catch2 summaries, a timings file);
 #   broken_search  run.sh with the driver search pointed at an empty root and an empty OCL_ICD_VENDORS:
 #                  exit 0, no device, the facts and the skipped steps in a well-formed JSON;
+#   unregistered_driver  the GPU mode's search finds a driver library no .icd file names (PoCL under
+#                  NVIDIA's name) and registers it itself; without a GPU among the devices, says so;
 #   local_driver   run.sh --local --steps driver: finds PoCL, checks it, reports it in the JSON.
 #   tools/gpu_kit/test_kit.sh CHECK PDMESH SOURCE_DIR
 set -euo pipefail
@@ -86,6 +88,31 @@ EOF
       "$tmp/out/gpu_results.json" || fail "the library needing a newer glibc was not left out"
     files=$(ls "$tmp/out" | wc -l)
     ((files <= 8)) || fail "$files files in OUTDIR"
+    ;;
+  unregistered_driver)
+    # The GPU mode's search on a root whose driver library is not registered in any .icd file, as in a
+    # container whose image has no /etc/OpenCL/vendors/nvidia.icd: PoCL stands in for NVIDIA's library.
+    pocl=$( { ldconfig -p 2>/dev/null || /sbin/ldconfig -p; } | awk '$1 == "libpocl.so.2" { print $NF; exit }')
+    [ -n "$pocl" ] || fail "PoCL (libpocl.so.2) is not installed"
+    mkdir -p "$tmp/root/usr/local/nvidia/lib64" "$tmp/root/etc/OpenCL/vendors"
+    ln -s "$pocl" "$tmp/root/usr/local/nvidia/lib64/libnvidia-opencl.so.1"
+    # PoCL finds its device modules (pocl/ beside it) and headers (../../share/pocl) from the path it
+    # was loaded by.
+    ln -s "$(dirname "$(readlink -f "$pocl")")/pocl" "$tmp/root/usr/local/nvidia/lib64/pocl"
+    mkdir -p "$tmp/root/usr/local/share"
+    ln -s /usr/share/pocl "$tmp/root/usr/local/share/pocl"
+    status=0
+    env -i PATH=/usr/bin:/bin HOME="$tmp" ${POCL_CACHE_DIR:+POCL_CACHE_DIR="$POCL_CACHE_DIR"} \
+      PDMESH_KIT_SEARCH_ROOT="$tmp/root" PDMESH_KIT_WANT_TYPE=CPU "$kit/run.sh" --steps driver --budget 120 "$tmp/out" || status=$?
+    expect_eq "$status" 0 "run.sh's exit status"
+    python3 "$here/check_results.py" --expect-device --steps driver "$tmp/out/gpu_results.json" || fail "gpu_results.json"
+    grep -q "\"chosen\": \"$tmp/root/usr/local/nvidia/lib64/libnvidia-opencl.so.1\", \"how\": \"not registered by the image: the kit registered it\"" \
+      "$tmp/out/gpu_results.json" || fail "the unregistered library was not chosen and registered"
+    # And without the stand-in type, the same machine has no GPU: said so, exit 0.
+    env -i PATH=/usr/bin:/bin HOME="$tmp" ${POCL_CACHE_DIR:+POCL_CACHE_DIR="$POCL_CACHE_DIR"} \
+      PDMESH_KIT_SEARCH_ROOT="$tmp/root" "$kit/run.sh" --steps driver --budget 120 "$tmp/out2" || fail "exit status"
+    grep -q '"reason": "no OpenCL GPU: the driver library .* was found and registered, but the ICD loader listed 1 device' \
+      "$tmp/out2/gpu_results.json" || fail "a CPU-only machine is not reported as having no GPU"
     ;;
   local_driver)
     status=0
