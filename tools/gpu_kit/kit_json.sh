@@ -76,13 +76,13 @@ catch_counts() {
 }
 
 # The names of the test cases a Catch2 log reports as failed, at most 20, as a JSON array. Catch2 prints
-# each failure under a header: a line of 79 dashes, the test case's name (and its sections), another
-# line of dashes; the "FAILED:" lines follow.
+# each failure under a header: a line of 79 dashes, the test case's name (wrapped over several lines
+# when long, then its sections, indented; joined here), another line of dashes; "FAILED:" follows.
 catch_failed_names() {
   awk '
     BEGIN { dashes = "-------------------------------------------------------------------------------" }
     $0 == dashes { if (inside) { inside = 0; current = name } else { inside = 1; name = "" }; next }
-    inside && name == "" { name = $0; next }
+    inside { line = $0; sub(/^ +/, "", line); name = name == "" ? line : name " " line; next }
     /FAILED:$/ && current != "" && !(current in seen) && count < 20 { seen[current] = 1; names[count++] = current }
     END {
       printf "["

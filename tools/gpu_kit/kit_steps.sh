@@ -232,6 +232,8 @@ whole_case() {
       "$(json_num "$(timings_value triangles "$timings")")" "$(json_num "$(timings_value iterations "$timings")")" \
       "$(json_num "$(timings_value converged "$timings")")" "$(json_num "$(timings_value simulation_seconds "$timings")")" \
       "$(json_str "$(timings_value backend "$timings")")" "$(timings_phases_json "$timings")")")
+  elif [ "$status" = skipped ]; then
+    WHOLE_JSON+=("$(printf '{"case": %s, "status": "skipped", "wall_s": null, "phases": {}, "note": "out of time"}' "$(json_str "$name")")")
   else
     WHOLE_JSON+=("$(printf '{"case": %s, "status": "%s", "wall_s": null, "phases": {}, "note": "no timings file: the run did not finish (see %s)"}' \
       "$(json_str "$name")" "$status" "$log")")

@@ -46,7 +46,7 @@ EOF
     printf '%s\n' "$dashes" "device run: a case" "  a section" "$dashes" "/x.cpp:10" "......" "" "/x.cpp:12: FAILED:" \
       "  CHECK( a == b )" "====" "test cases:  5 |  4 passed | 1 failed" "assertions: 9 | 8 passed | 1 failed" >"$tmp/fail.log"
     expect_eq "$(catch_counts "$tmp/fail.log")" "4 1" "Catch2 with a failure"
-    expect_eq "$(catch_failed_names "$tmp/fail.log")" '["device run: a case"]' "failed test names"
+    expect_eq "$(catch_failed_names "$tmp/fail.log")" '["device run: a case a section"]' "failed test names"
     printf 'Segmentation fault\n' >"$tmp/crash.log"
     expect_eq "$(catch_counts "$tmp/crash.log")" "" "Catch2 without a summary"
     cat >"$tmp/timings.json" <<'EOF'
