@@ -30,6 +30,10 @@ if ! command -v patchelf >/dev/null; then
   DEBIAN_FRONTEND=noninteractive "${sudo_cmd[@]}" apt-get install -y -qq --no-install-recommends patchelf
 fi
 
+if grep -q '^PDMESH_BUILD_TESTS:BOOL=OFF' build/CMakeCache.txt; then
+  echo "gpu_kit/build.sh: build/ has the tests off; turning them on (the kit carries the device tests)"
+  cmake -S . -B build -DPDMESH_BUILD_TESTS=ON >/dev/null
+fi
 cmake --build build -j "$(nproc 2>/dev/null || echo 2)" --target pdmesh "${TESTS[@]}"
 
 stage=$(mktemp -d "$root/.gpu-kit-stage.XXXXXX")
