@@ -184,7 +184,7 @@ step_tests() {
   done
   wait
   : >"$out/$log"
-  local rc counts passed failed status unfinished=0
+  local rc counts passed failed status
   for exe in "${exes[@]}"; do
     name=$(basename "$exe")
     rc=$(cat "$dir/$name.rc" 2>/dev/null || echo 125)
