@@ -10,6 +10,7 @@
 #include "app/case_file.hpp"
 #include "app/mesh_command.hpp"
 #include "opencl/device_simulation.hpp"
+#include "source_dir.hpp"
 #include "step_backend_inputs.hpp"
 
 namespace pdmesh::test {
@@ -22,7 +23,7 @@ struct Case {
 
 inline Case load_case(const std::string& name, const std::vector<CaseOverride>& overrides = {}) {
   Case c;
-  c.config = load_case_file(std::string(PDMESH_SOURCE_DIR) + "/cases/" + name + "/case.toml", overrides);
+  c.config = load_case_file(source_dir() + "/cases/" + name + "/case.toml", overrides);
   c.config.quiet = true;
   c.inputs = std::make_unique<MeshInputs>(c.config);
   c.initial = make_initial(c.config, *c.inputs).nodes;

@@ -119,7 +119,7 @@ void compare_bit_for_bit(const std::string& name) {
 
 TEST_CASE("the bit-identity list names every case in cases/", "[cases]") {
   std::vector<std::string> dirs;
-  const std::filesystem::path root = PDMESH_SOURCE_DIR "/cases";
+  const std::filesystem::path root = pdmesh::test::source_dir() + "/cases";
   for (const auto& e : std::filesystem::recursive_directory_iterator(root))
     if (e.is_directory() && std::filesystem::exists(e.path() / "case.toml"))
       dirs.push_back(e.path().lexically_relative(root).generic_string());

@@ -230,7 +230,7 @@ namespace {
 // from `start` on.
 Case circle_circle_with_population(const char* start) {
   Case c;
-  c.config = load_case_file(std::string(PDMESH_SOURCE_DIR) + "/cases/circle_circle/case.toml",
+  c.config = load_case_file(pdmesh::test::source_dir() + "/cases/circle_circle/case.toml",
                             {{"init.method", "random", "test"}, {"population.enabled", "true", "test"},
                              {"population.start", start, "test"}, {"population.every", "10", "test"}});
   c.config.quiet = true;

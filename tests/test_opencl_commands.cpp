@@ -244,7 +244,7 @@ TEST_CASE("bench reports the force loop and the commands per iteration", "[openc
   const std::filesystem::path out = std::filesystem::temp_directory_path() / "pdmesh_test_bench_commands.md";
   BenchArguments args;
   args.cases = {"circle_circle"};
-  args.cases_dir = std::string(PDMESH_SOURCE_DIR) + "/cases";
+  args.cases_dir = pdmesh::test::source_dir() + "/cases";
   args.iterations = 6;
   args.warmup = 0;
   args.skip_host = true;
