@@ -475,7 +475,7 @@ TEST_CASE("the shock_data example reads as thesis eq. 7.2 and covers its square"
 }
 
 TEST_CASE("damaged background meshes give InputError or a field, nothing else", "[mesh_spacing]") {
-  // A small deterministic fuzz of the binary decoding (tools/fuzz.sh runs the real one): random byte
+  // A small deterministic fuzz of the binary decoding (tools/check/fuzz.sh runs the real one): random byte
   // changes and truncations of every fixture. Under the sanitizer build this also checks memory.
   const fs::path dir = pdmesh_test::fresh_dir("mesh_spacing_mutants");
   std::mt19937_64 rng(99);
