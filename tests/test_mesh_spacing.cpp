@@ -26,6 +26,7 @@
 #include "io/spacing_mesh_file.hpp"
 #include "spacing/mesh_spacing.hpp"
 #include "temp_files.hpp"
+#include "seeded_random.hpp"
 
 using namespace pdmesh;
 namespace fs = std::filesystem;
@@ -34,7 +35,7 @@ namespace {
 
 const fs::path kFixtures = fs::path(PDMESH_SOURCE_DIR) / "tests/data/spacing";
 
-double unit(std::mt19937_64& rng) { return static_cast<double>(rng() >> 11) * 0x1.0p-53; }
+using pdmesh_test::unit;
 
 double linear(Vec2 p) { return 1.0 + 0.5 * p.x + 0.25 * p.y; }
 
