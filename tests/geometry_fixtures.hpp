@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "geometry/geometry.hpp"
+#include "seeded_random.hpp"
 #include "spacing/spacing_field.hpp"
 
 namespace pdmesh::fixtures {
@@ -79,8 +80,7 @@ inline Geometry square_with_hole() {
   return make_geometry({rectangle({0, 0}, {4, 4}, 4, true), rectangle({1.5, 1.5}, {2.5, 2.5}, 1, false)});
 }
 
-// 53 random bits mapped to [0, 1): reproducible on every platform, unlike uniform_real_distribution.
-inline double unit(std::mt19937_64& rng) { return static_cast<double>(rng() >> 11) * 0x1.0p-53; }
+using pdmesh_test::unit;  // 53 random bits mapped to [0, 1) (seeded_random.hpp)
 
 // A star-shaped polygon with n vertices at random radii in [1, 2]: many short, jagged segments.
 inline Geometry jagged_polygon(int n, std::uint64_t seed) {

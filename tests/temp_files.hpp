@@ -1,5 +1,5 @@
-// File helpers of the tests that write outputs: a fresh per-process temporary directory, a file's
-// whole content, and the number of entries in a directory (to see that no temporaries are left).
+// File helpers of the tests that write outputs: a fresh per-process temporary path or directory, a
+// file's whole content, and the number of entries in a directory (to see that no temporaries are left).
 #pragma once
 #include <unistd.h>
 
@@ -11,9 +11,17 @@
 
 namespace pdmesh_test {
 
-inline std::filesystem::path fresh_dir(const std::string& tag) {
+// A path in the temporary directory named after the tag and this process, removed if an earlier run
+// left it: for a command that must create its output folder itself, or write nothing there.
+inline std::filesystem::path fresh_path(const std::string& tag) {
   const auto d = std::filesystem::temp_directory_path() / ("pdmesh_test_" + tag + "_" + std::to_string(::getpid()));
   std::filesystem::remove_all(d);
+  return d;
+}
+
+// fresh_path(tag), created as an empty directory.
+inline std::filesystem::path fresh_dir(const std::string& tag) {
+  const auto d = fresh_path(tag);
   std::filesystem::create_directories(d);
   return d;
 }

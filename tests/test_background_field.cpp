@@ -17,6 +17,7 @@
 #include "opencl/context.hpp"
 #include "opencl/devices.hpp"
 #include "spacing/background_field.hpp"
+#include "seeded_random.hpp"
 
 using namespace pdmesh;
 
@@ -24,8 +25,7 @@ namespace {
 
 constexpr std::uint64_t kSeed = 42;
 
-// A double in [0, 1) from 53 random bits (reproducible across platforms).
-double unit(std::mt19937_64& rng) { return static_cast<double>(rng() >> 11) * 0x1.0p-53; }
+using pdmesh_test::unit;
 
 RawCurve polyline(const std::string& name, std::vector<Vec2> points) { return {name, std::move(points), "test", 1, {}}; }
 

@@ -1,4 +1,4 @@
-// Structure checks of the committed cases/ (written by tools/make_cases.py): every case.toml parses,
+// Structure checks of the committed cases/ (written by tools/cases/make_cases.py): every case.toml parses,
 // names its files and curves consistently, and every curve end meets exactly one other curve end.
 #include <catch2/catch.hpp>
 

@@ -2,15 +2,13 @@
 // both initializations, a reduced iteration count that fits CI, `--check`, and quality floors.
 #include <catch2/catch.hpp>
 
-#include <sys/wait.h>
-#include <unistd.h>
-
-#include <cstdio>
 #include <filesystem>
 #include <string>
 
 #include "io/mesh_formats.hpp"
 #include "mesh/quality.hpp"
+#include "run_pdmesh.hpp"
+#include "temp_files.hpp"
 
 namespace fs = std::filesystem;
 
@@ -50,30 +48,16 @@ const Floors kFloors[] = {
 };
 // clang-format on
 
-int run_pdmesh(const std::string& arguments, std::string& output) {
-  const std::string command = std::string("'") + PDMESH_BINARY + "' " + arguments + " 2>&1";
-  FILE* pipe = ::popen(command.c_str(), "r");
-  REQUIRE(pipe != nullptr);
-  char buffer[4096];
-  std::size_t n = 0;
-  while ((n = std::fread(buffer, 1, sizeof buffer, pipe)) > 0) output.append(buffer, n);
-  const int raw = ::pclose(pipe);
-  return WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
-}
-
 void check_case(const Floors& f) {
-  const fs::path dir = fs::temp_directory_path() /
-                       (std::string("pdmesh_test_cases_") + f.case_name + "_" + f.method + "_" +
-                        std::to_string(::getpid()));
-  fs::remove_all(dir);
+  const fs::path dir = pdmesh_test::fresh_path(std::string("cases_") + f.case_name + "_" + f.method);
   const std::string arguments = std::string("mesh '") + PDMESH_SOURCE_DIR + "/cases/" + f.case_name +
                                 "' --out '" + dir.string() + "' --method " + f.method +
                                 " --iterations " + std::to_string(f.iterations) +
                                 " --device host --check -q --formats msh --set 'output.views=[]'";
-  std::string output;
-  const int status = run_pdmesh(arguments, output);
-  INFO("pdmesh " << arguments << "\n" << output);
-  REQUIRE(status == 0);  // --check passed: valid topology, CCW, constrained Delaunay, area
+  const pdmesh_test::Result run = pdmesh_test::run_pdmesh(arguments);
+  INFO("pdmesh " << arguments << "\n" << run.output);
+  // --check passed: valid topology, CCW, constrained Delaunay, area (-1: the command did not start)
+  REQUIRE(run.status == 0);
 
   const pdmesh::Mesh mesh = pdmesh::read_mesh(dir / "mesh.msh");
   const pdmesh::QualitySummary q = pdmesh::summarize_quality(mesh);

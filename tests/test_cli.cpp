@@ -18,6 +18,7 @@
 #include "io/text_file.hpp"
 #include "nodes/node_file.hpp"
 #include "run_pdmesh.hpp"
+#include "temp_files.hpp"
 
 namespace fs = std::filesystem;
 
@@ -26,12 +27,7 @@ namespace {
 using pdmesh_test::Result;
 Result run(const std::string& arguments) { return pdmesh_test::run_pdmesh(arguments); }
 
-fs::path fresh_dir(const std::string& tag) {
-  fs::path d = fs::temp_directory_path() / ("pdmesh_test_cli_" + tag + "_" + std::to_string(::getpid()));
-  fs::remove_all(d);
-  fs::create_directories(d);
-  return d;
-}
+using pdmesh_test::fresh_dir;
 
 std::size_t read_node_file_size(const fs::path& p) { return pdmesh::read_node_file(p).nodes.size(); }
 

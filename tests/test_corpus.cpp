@@ -1,4 +1,4 @@
-// The evaluation corpus (cases/corpus/, written by tools/make_corpus.py): every case names only its
+// The evaluation corpus (cases/corpus/, written by tools/cases/make_corpus.py): every case names only its
 // geometry, curve names and views (so it runs with the best defaults), and every geometry is valid
 // and meshes in a short host run. Label `cases-corpus` (ctest -L corpus; whole-case runs, so the
 // sanitizer pass of CI, -LE cases, leaves it out).

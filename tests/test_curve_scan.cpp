@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "closest_hit_check.hpp"
 #include "geometry/brute_force_queries.hpp"
 #include "geometry/curve_scan.hpp"
 #include "geometry/geometry_tree.hpp"
@@ -16,6 +17,7 @@
 
 using namespace pdmesh;
 using fixtures::unit;
+using pdmesh_test::require_same;
 
 namespace {
 
@@ -23,15 +25,6 @@ std::vector<std::vector<int>> ids_by_curve(const Geometry& g) {
   std::vector<std::vector<int>> ids(g.curves.size());
   for (std::size_t i = 0; i < g.segments.size(); ++i) ids[static_cast<std::size_t>(g.segments[i].curve)].push_back(static_cast<int>(i));
   return ids;
-}
-
-void require_same(const ClosestHit& got, const ClosestHit& brute, Vec2 p, int curve) {
-  INFO("query (" << p.x << ", " << p.y << ") curve " << curve << ": scan segment " << got.segment << " at "
-                 << got.distance << ", brute force segment " << brute.segment << " at " << brute.distance);
-  REQUIRE(got.segment == brute.segment);
-  REQUIRE(got.distance == brute.distance);
-  REQUIRE(got.point == brute.point);
-  REQUIRE(got.t == brute.t);
 }
 
 // Points of every awkward kind for a geometry (seeded).

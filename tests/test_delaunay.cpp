@@ -15,6 +15,7 @@
 #include "geometry/hilbert.hpp"
 #include "mesh/mesh_check.hpp"
 #include "mesh/triangulate_nodes.hpp"
+#include "seeded_random.hpp"
 
 using namespace pdmesh;
 
@@ -22,7 +23,7 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-double unit(std::mt19937_64& rng) { return static_cast<double>(rng() >> 11) * 0x1p-53; }
+using pdmesh_test::unit;
 
 // Hilbert index by the textbook algorithm (rotating the coordinates), as an oracle.
 std::uint32_t reference_hilbert(std::uint32_t x, std::uint32_t y) {

@@ -1,6 +1,6 @@
-"""Unit tests of the evaluation tools' shared code (tools/pdmesh_eval/) and of tools/compare's
+"""Unit tests of the evaluation tools' shared code (tools/eval/pdmesh_eval/) and of tools/eval/compare's
 verdict: domain angles at input corners, mesh file reading, the worst-angle analysis, the Gmsh
-background view. Run by ctest (eval_tools) with tools/ on the module path."""
+background view. Run by ctest (eval_tools) with tools/eval/ on the module path."""
 
 import importlib.machinery
 import importlib.util
@@ -18,7 +18,7 @@ TOOLS = os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
 
 def load_tool(file_name, module_name):
-    """A script in tools/ (with or without a .py name) as a module."""
+    """A script under tools/ (a path such as "eval/compare", with or without a .py name) as a module."""
     loader = importlib.machinery.SourceFileLoader(module_name, os.path.join(TOOLS, file_name))
     spec = importlib.util.spec_from_loader(module_name, loader)
     module = importlib.util.module_from_spec(spec)
@@ -27,7 +27,7 @@ def load_tool(file_name, module_name):
 
 
 def load_compare():
-    return load_tool("compare", "compare_tool")
+    return load_tool("eval/compare", "compare_tool")
 
 
 def crv(curves):
@@ -192,11 +192,11 @@ class Verdict(unittest.TestCase):
 
 
 def load_convergence_check():
-    return load_tool("convergence_check.py", "convergence_check")
+    return load_tool("studies/convergence_check.py", "convergence_check")
 
 
 class ConvergenceReplay(unittest.TestCase):
-    """tools/convergence_check.py applies sim/convergence.cpp's rule; the same synthetic sequence as
+    """tools/studies/convergence_check.py applies sim/convergence.cpp's rule; the same synthetic sequence as
     tests/test_convergence.cpp ("settles at iteration 60 converges at 100") must stop at the same
     iteration."""
 
@@ -244,20 +244,20 @@ with open(timings, "w") as f:
 
 
 def run_stop_study(d, fake_source, *arguments):
-    """tools/stop_study on circle_circle with a fake pdmesh (fake_source, a Python script) written to d."""
+    """tools/studies/stop_study on circle_circle with a fake pdmesh (fake_source, a Python script) written to d."""
     import subprocess
     import sys
     fake = os.path.join(d, "pdmesh")
     with open(fake, "w") as f:
         f.write(fake_source)
     os.chmod(fake, 0o755)
-    return subprocess.run([sys.executable, os.path.join(TOOLS, "stop_study"), "--pdmesh", fake, "--work",
+    return subprocess.run([sys.executable, os.path.join(TOOLS, "studies", "stop_study"), "--pdmesh", fake, "--work",
                            os.path.join(d, "w"), "--cases", "circle_circle", *arguments], capture_output=True,
                           text=True)
 
 
 class StopStudy(unittest.TestCase):
-    """tools/stop_study's verdicts: a candidate is within the issue's 1 % of the default or not, per metric,
+    """tools/studies/stop_study's verdicts: a candidate is within the issue's 1 % of the default or not, per metric,
     and passes issue 14's gate (at most 0.5 degrees and 0.002 aspect ratio worse) or not."""
 
     def test_verdicts_against_the_default(self):
@@ -292,7 +292,7 @@ with open(timings, "w") as f:
 
 
 class StopStudyPerturbed(unittest.TestCase):
-    """tools/stop_study --perturb: every setting also runs with population.every one less and one more, and
+    """tools/studies/stop_study --perturb: every setting also runs with population.every one less and one more, and
     the gate judges the median of the three runs (one unlucky run neither fails nor passes a setting)."""
 
     def study(self, d, *extra):

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "closest_hit_check.hpp"
 #include "geometry/brute_force_queries.hpp"
 #include "geometry/geometry_files.hpp"
 #include "geometry_fixtures.hpp"
@@ -20,17 +21,9 @@
 
 using namespace pdmesh;
 using fixtures::unit;
+using pdmesh_test::require_same;
 
 namespace {
-
-void require_same(const ClosestHit& got, const ClosestHit& brute, Vec2 p) {
-  INFO("query (" << p.x << ", " << p.y << "): segment " << got.segment << " at " << got.distance << ", brute force "
-                 << brute.segment << " at " << brute.distance);
-  REQUIRE(got.segment == brute.segment);
-  REQUIRE(got.distance == brute.distance);
-  REQUIRE(got.point == brute.point);
-  REQUIRE(got.t == brute.t);
-}
 
 // Random points around the geometry, points on segments and vertices, and points of a dyadic lattice
 // (as the background tree's corners: exact ties to two segments are common there). Each query is

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "closest_hit_check.hpp"
 #include "core/errors.hpp"
 #include "geometry/brute_force_queries.hpp"
 #include "geometry/geometry_tree.hpp"
@@ -14,6 +15,7 @@
 
 using namespace pdmesh;
 using fixtures::unit;
+using pdmesh_test::require_same;
 
 namespace {
 
@@ -57,15 +59,6 @@ Vec2 query_point(const Geometry& g, std::mt19937_64& rng) {
     default:
       return {(unit(rng) - 0.5) * 2e6 * diag, (unit(rng) - 0.5) * 2e6 * diag};
   }
-}
-
-void require_same(const ClosestHit& tree, const ClosestHit& brute, Vec2 p) {
-  INFO("query (" << p.x << ", " << p.y << ") tree segment " << tree.segment << " at " << tree.distance
-                 << ", brute force segment " << brute.segment << " at " << brute.distance);
-  REQUIRE(tree.segment == brute.segment);
-  REQUIRE(tree.distance == brute.distance);
-  REQUIRE(tree.point == brute.point);
-  REQUIRE(tree.t == brute.t);
 }
 
 }  // namespace

@@ -22,12 +22,14 @@
 #include "io/vtu_data.hpp"
 #include "io/vtu_reader.hpp"
 #include "io/vtu_writer.hpp"
+#include "temp_files.hpp"
+#include "seeded_random.hpp"
 
 using namespace pdmesh;
 
 namespace {
 
-double unit(std::mt19937_64& rng) { return static_cast<double>(rng() >> 11) * 0x1.0p-53; }
+using pdmesh_test::unit;
 
 // A 5 x 4 grid of the rectangle [0, 1.7] x [0, 0.9] with jittered interior points (coordinates
 // that need all 17 digits), two triangles per cell, counter-clockwise, and the four sides as
@@ -62,12 +64,7 @@ Mesh grid_mesh() {
   return m;
 }
 
-std::filesystem::path fresh_dir(const std::string& name) {
-  const auto dir = std::filesystem::temp_directory_path() / ("pdmesh_test_mesh_io_" + name);
-  std::filesystem::remove_all(dir);
-  std::filesystem::create_directories(dir);
-  return dir;
-}
+using pdmesh_test::fresh_dir;
 
 // Edges grouped by curve as the writers store them (stable within a curve).
 std::vector<std::array<int, 3>> grouped_edges(const Mesh& m) {

@@ -26,6 +26,7 @@
 #include "io/spacing_mesh_file.hpp"
 #include "spacing/mesh_spacing.hpp"
 #include "temp_files.hpp"
+#include "seeded_random.hpp"
 
 using namespace pdmesh;
 namespace fs = std::filesystem;
@@ -34,7 +35,7 @@ namespace {
 
 const fs::path kFixtures = fs::path(PDMESH_SOURCE_DIR) / "tests/data/spacing";
 
-double unit(std::mt19937_64& rng) { return static_cast<double>(rng() >> 11) * 0x1.0p-53; }
+using pdmesh_test::unit;
 
 double linear(Vec2 p) { return 1.0 + 0.5 * p.x + 0.25 * p.y; }
 
@@ -475,7 +476,7 @@ TEST_CASE("the shock_data example reads as thesis eq. 7.2 and covers its square"
 }
 
 TEST_CASE("damaged background meshes give InputError or a field, nothing else", "[mesh_spacing]") {
-  // A small deterministic fuzz of the binary decoding (tools/fuzz.sh runs the real one): random byte
+  // A small deterministic fuzz of the binary decoding (tools/check/fuzz.sh runs the real one): random byte
   // changes and truncations of every fixture. Under the sanitizer build this also checks memory.
   const fs::path dir = pdmesh_test::fresh_dir("mesh_spacing_mutants");
   std::mt19937_64 rng(99);

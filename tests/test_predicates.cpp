@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "core/predicates.hpp"
+#include "seeded_random.hpp"
 
 using pdmesh::Vec2;
 
@@ -99,8 +100,7 @@ bool exact_cross_properly(Vec2 a, Vec2 b, Vec2 c, Vec2 d) {
   return exact_orient(a, b, c) * exact_orient(a, b, d) < 0 && exact_orient(c, d, a) * exact_orient(c, d, b) < 0;
 }
 
-// Uniform double in [0, 1) from 53 random bits (reproducible across platforms).
-double unit(std::mt19937_64& rng) { return static_cast<double>(rng() >> 11) * 0x1p-53; }
+using pdmesh_test::unit;
 
 // Moves v by whole ulps. Zero stays zero: stepping into subnormals would underflow the products,
 // which is outside the predicates' exactness contract.

@@ -17,6 +17,7 @@
 #include "io/text_file.hpp"
 #include "mesh/quality.hpp"
 #include "io/quality_report.hpp"
+#include "seeded_random.hpp"
 
 using namespace pdmesh;
 
@@ -25,8 +26,7 @@ namespace {
 const double kSqrt2 = std::sqrt(2.0);
 const double kSqrt3 = std::sqrt(3.0);
 
-// Uniform [0, 1) from the top 53 bits: reproducible across standard libraries.
-double unit(std::mt19937_64& rng) { return static_cast<double>(rng() >> 11) * 0x1.0p-53; }
+using pdmesh_test::unit;
 
 // Closed form of K_W derived by hand: with W^-1 = [[1, -1/sqrt3], [0, 2/sqrt3]],
 // ||A W^-1||^2 = (2/3)(l1^2 + l2^2 + l3^2) and |det(A W^-1)| = 4 area / sqrt3; for 2x2 M,

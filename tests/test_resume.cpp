@@ -25,19 +25,15 @@
 #include "sim_fixtures.hpp"
 #include "spacing/spacing_field.hpp"
 #include "sim/checkpoint.hpp"
+#include "temp_files.hpp"
 
 namespace fs = std::filesystem;
+using pdmesh_test::fresh_path;
 using pdmesh_test::run_pdmesh;
 
 namespace {
 
 const std::string kCase = std::string(PDMESH_SOURCE_DIR) + "/cases/circle_circle";
-
-fs::path fresh_dir(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / ("pdmesh_test_resume_" + name + "_" + std::to_string(::getpid()));
-  fs::remove_all(dir);
-  return dir;
-}
 
 std::string mesh_command(const fs::path& out, const std::string& extra, const std::string& device = "host") {
   return "mesh '" + kCase + "' --out '" + out.string() + "' --device " + device + " --formats msh --iterations 60 " +
@@ -150,7 +146,7 @@ TEST_CASE("a stopped and resumed run ends bit-identical to an uninterrupted one"
   // The thesis' settings, and boundary nodes placed by the field on smooth curves.
   const std::string settings = GENERATE(std::string(""), std::string("--set boundary.nodes=spacing --set geometry.curves=smooth"));
   INFO("settings: " << settings);
-  const fs::path whole = fresh_dir("whole"), parts = fresh_dir("parts");
+  const fs::path whole = fresh_path("whole"), parts = fresh_path("parts");
   const auto full = run_pdmesh(mesh_command(whole, "-q " + settings));
   REQUIRE(full.status == 0);
   CHECK_FALSE(fs::exists(whole / "checkpoint.pdmesh"));
@@ -193,7 +189,7 @@ template <class Command>
 void check_resume_refused(const Command& command, const fs::path& parts, const std::string& dir,
                           const std::string& settings, const std::string& key) {
   REQUIRE(run_pdmesh(command(parts, "--stop-after 45")).status == 130);
-  const auto refused = run_pdmesh(command(fresh_dir(dir), settings + " --resume '" + parts.string() + "'"));
+  const auto refused = run_pdmesh(command(fresh_path(dir), settings + " --resume '" + parts.string() + "'"));
   CHECK(refused.status == 2);
   CHECK_THAT(refused.output, Catch::Contains(key));
 }
@@ -202,7 +198,7 @@ void check_resume_refused(const Command& command, const fs::path& parts, const s
 TEST_CASE("a run stopped after population events resumes bit-identical on the host", "[resume][cli][population]") {
   // Events from iteration 20 on, so that the node set has changed before the stop.
   const auto command = population_command;
-  const fs::path whole = fresh_dir("pop_whole"), parts = fresh_dir("pop_parts");
+  const fs::path whole = fresh_path("pop_whole"), parts = fresh_path("pop_parts");
   REQUIRE(run_pdmesh(command(whole, "")).status == 0);
   const auto stopped = run_pdmesh(command(parts, "--stop-after 45"));
   INFO(stopped.output);
@@ -235,7 +231,7 @@ TEST_CASE("a run with momentum stopped after population events resumes bit-ident
   const auto command = [](const fs::path& out, const std::string& extra) {
     return population_command(out, "--set simulation.momentum=0.9 " + extra);
   };
-  const fs::path whole = fresh_dir("mom_whole"), parts = fresh_dir("mom_parts");
+  const fs::path whole = fresh_path("mom_whole"), parts = fresh_path("mom_parts");
   REQUIRE(run_pdmesh(command(whole, "")).status == 0);
   REQUIRE(run_pdmesh(command(parts, "--stop-after 45")).status == 130);
   const pdmesh::Checkpoint c = pdmesh::read_checkpoint(parts / "checkpoint.pdmesh");
@@ -262,7 +258,7 @@ TEST_CASE("a run whose population control settled early resumes bit-identical, w
   const auto command = [](const fs::path& out, const std::string& extra) {
     return population_command(out, "--set population.settle=0.1 --set population.settle_events=1 " + extra);
   };
-  const fs::path whole = fresh_dir("settle_whole"), parts = fresh_dir("settle_parts");
+  const fs::path whole = fresh_path("settle_whole"), parts = fresh_path("settle_parts");
   REQUIRE(run_pdmesh(command(whole, "")).status == 0);
   REQUIRE(run_pdmesh(command(parts, "--stop-after 45")).status == 130);
   const pdmesh::Checkpoint c = pdmesh::read_checkpoint(parts / "checkpoint.pdmesh");
@@ -292,33 +288,33 @@ TEST_CASE("a run whose population control settled early resumes bit-identical, w
 }
 
 TEST_CASE("a checkpoint of another case or other settings is refused with exit 2", "[resume][cli]") {
-  const fs::path dir = fresh_dir("other");
+  const fs::path dir = fresh_path("other");
   REQUIRE(run_pdmesh(mesh_command(dir, "-q --stop-after 3")).status == 130);
-  const auto other_settings = run_pdmesh(mesh_command(fresh_dir("o2"), "--cutoff 1.6 --resume '" + dir.string() + "'"));
+  const auto other_settings = run_pdmesh(mesh_command(fresh_path("o2"), "--cutoff 1.6 --resume '" + dir.string() + "'"));
   CHECK(other_settings.status == 2);
   CHECK_THAT(other_settings.output, Catch::Contains("another case") && Catch::Contains("simulation.cutoff"));
   // The spacing pipeline's keys change the field the run follows.
   const auto other_field =
-      run_pdmesh(mesh_command(fresh_dir("o5"), "--set spacing.gradation=0.3 --resume '" + dir.string() + "'"));
+      run_pdmesh(mesh_command(fresh_path("o5"), "--set spacing.gradation=0.3 --resume '" + dir.string() + "'"));
   CHECK(other_field.status == 2);
   CHECK_THAT(other_field.output, Catch::Contains("another case") && Catch::Contains("spacing.gradation"));
   const auto other_curves =
-      run_pdmesh(mesh_command(fresh_dir("o5"), "--set geometry.curves=smooth --resume '" + dir.string() + "'"));
+      run_pdmesh(mesh_command(fresh_path("o5"), "--set geometry.curves=smooth --resume '" + dir.string() + "'"));
   CHECK(other_curves.status == 2);
   CHECK_THAT(other_curves.output, Catch::Contains("another case") && Catch::Contains("geometry.curves"));
   const std::string square = std::string(PDMESH_SOURCE_DIR) + "/cases/square200";
-  const auto other_case = run_pdmesh("mesh '" + square + "' --out '" + fresh_dir("o3").string() +
+  const auto other_case = run_pdmesh("mesh '" + square + "' --out '" + fresh_path("o3").string() +
                                      "' --device host --resume '" + (dir / "checkpoint.pdmesh").string() + "'");
   CHECK(other_case.status == 2);
   CHECK_THAT(other_case.output, Catch::Contains("another case") && Catch::Contains("geometry.file.0"));
-  const auto missing = run_pdmesh(mesh_command(fresh_dir("o4"), "--resume '" + fresh_dir("none").string() + "'"));
+  const auto missing = run_pdmesh(mesh_command(fresh_path("o4"), "--resume '" + fresh_path("none").string() + "'"));
   CHECK(missing.status == 2);
   CHECK_THAT(missing.output, Catch::Contains("no checkpoint"));
   fs::remove_all(dir);
 }
 
 TEST_CASE("SIGINT stops a running mesh command with exit 130 and a readable checkpoint", "[resume][cli][signal]") {
-  const fs::path dir = fresh_dir("sigint");
+  const fs::path dir = fresh_path("sigint");
   int err[2];
   REQUIRE(::pipe(err) == 0);
   const pid_t pid = ::fork();
@@ -367,7 +363,7 @@ TEST_CASE("SIGINT stops a running mesh command with exit 130 and a readable chec
 TEST_CASE("a stopped and resumed device run continues the same run", "[resume][cli][opencl]") {
   // The device-resident run restarts its Verlet lists on resume: the same run within round-off,
   // not promised bit-identical.
-  const fs::path whole = fresh_dir("dev_whole"), parts = fresh_dir("dev_parts");
+  const fs::path whole = fresh_path("dev_whole"), parts = fresh_path("dev_parts");
   REQUIRE(run_pdmesh(mesh_command(whole, "-q", "opencl")).status == 0);
   REQUIRE(run_pdmesh(mesh_command(parts, "-q --stop-after 23", "opencl")).status == 130);
   REQUIRE(run_pdmesh(mesh_command(parts, "-q --resume '" + parts.string() + "'", "opencl")).status == 0);
@@ -411,7 +407,7 @@ TEST_CASE("a failing simulation hands the last good state to on_failure before t
 }
 
 TEST_CASE("a checkpoint of a mesh field knows its file's content and array", "[resume]") {
-  const fs::path dir = fresh_dir("identity");
+  const fs::path dir = fresh_path("identity");
   fs::create_directories(dir);
   pdmesh::write_text_file(dir / "f.vtu", "one");
   const std::string text = "[geometry]\nfiles = [\"" + kCase + "/circles.crv\"]\n[spacing]\nfile = \"f.vtu\"\n";

@@ -28,19 +28,15 @@
 #include "spacing/spacing_field.hpp"
 #include "device_run_fixtures.hpp"
 #include "step_backend_inputs.hpp"
+#include "temp_files.hpp"
 
 namespace fs = std::filesystem;
 using namespace pdmesh;
 using Catch::Contains;
+using pdmesh_test::fresh_path;
 using pdmesh_test::run_pdmesh;
 
 namespace {
-
-fs::path fresh_dir(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / ("pdmesh_test_failures_" + name + "_" + std::to_string(::getpid()));
-  fs::remove_all(dir);
-  return dir;
-}
 
 // The square [-1, 1]^2 as one closed curve with points every 0.25 (the Boundary nodes), uniform
 // spacing 0.25 (about 90 nodes).
@@ -204,7 +200,7 @@ TEST_CASE("a lost OpenCL device leaves a checkpoint of a good state that resumes
   for (const char* fault : {"300", "300:-2"}) {
     const bool not_available = std::string(fault).find(":-2") != std::string::npos;
     INFO("PDMESH_TEST_FAIL_CL_AT=" << fault);
-    const fs::path dir = fresh_dir("lost");
+    const fs::path dir = fresh_path("lost");
     const std::string args = "mesh '" + kase + "' --out '" + dir.string() + "' --formats msh -q";
     const auto r = run_pdmesh(args + " --device opencl --iterations 1000", std::string("PDMESH_TEST_FAIL_CL_AT=") + fault);
     INFO(r.output);
@@ -233,7 +229,7 @@ TEST_CASE("a device lost at any call: exit 1, and a checkpoint that resumes once
   // Every 53rd OpenCL call from the first until a run gets through: setup, first build, steps,
   // rebuilds, the final read-back. Failures before the first iteration leave no checkpoint.
   const std::string kase = PDMESH_SOURCE_DIR "/cases/circle_circle";
-  const fs::path dir = fresh_dir("sweep");
+  const fs::path dir = fresh_path("sweep");
   int with_checkpoint = 0;
   for (int at = 1;; at += 53) {
     INFO("PDMESH_TEST_FAIL_CL_AT=" << at);
@@ -310,7 +306,7 @@ TEST_CASE("device memory: neighbour rows that outgrow the device's largest buffe
 }
 
 TEST_CASE("a device with too little memory is refused before allocating, exit 2", "[failures][opencl][cli]") {
-  const fs::path dir = fresh_dir("memory");
+  const fs::path dir = fresh_path("memory");
   const auto r = run_pdmesh("mesh '" PDMESH_SOURCE_DIR "/cases/square200' --out '" + dir.string() +
                                 "' --device opencl --iterations 5 --formats msh -q",
                             "PDMESH_TEST_DEVICE_MEMORY=26000");  // float would fit: the message says so

@@ -16,6 +16,7 @@
 #include "geometry/geometry_tree.hpp"
 #include "spacing/gradation.hpp"
 #include "spacing/spacing_pipeline.hpp"
+#include "seeded_random.hpp"
 
 using namespace pdmesh;
 
@@ -23,7 +24,7 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-double unit(std::mt19937_64& rng) { return static_cast<double>(rng() >> 11) * 0x1.0p-53; }
+using pdmesh_test::unit;
 
 // A closed polyline through `corners`, each side cut into pieces of at most `step`.
 RawCurve polygon(const std::vector<Vec2>& corners, double step, const std::string& name) {

@@ -249,7 +249,7 @@ Mesh mesh_and_measure(const CaseConfig& config, const MeshInputs& inputs, const 
   }
   {
     // The nodes of the mesh with their q, kinds and curve chains (final.nodes after the cleanup; the
-    // same nodes without it), for tools that need the mesh's boundary chains, like tools/compare.
+    // same nodes without it), for tools that need the mesh's boundary chains, like tools/eval/compare.
     const auto nodes_timer = phases.phase("mesh.nodes");
     write_node_file(dir / "mesh.nodes", *mesh_nodes, inputs.curve_names());
   }

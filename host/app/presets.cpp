@@ -18,7 +18,7 @@ const char* to_string(Preset preset) {
 
 namespace {
 
-// Best (and fast) = long plus these: over the 16 runs of the stopping study (tools/stop_study) it
+// Best (and fast) = long plus these: over the 16 runs of the stopping study (tools/studies/stop_study) it
 // stops after 500-750 iterations instead of 1300-2000 with a lower mean aspect ratio everywhere, and
 // with the cleanup's compound trials its smallest angle is within 0.5 degrees of long's or better on
 // all 16 (medians of 3); under other population intervals it loses 0.6-2.6 degrees on three of them,

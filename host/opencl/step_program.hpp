@@ -40,7 +40,7 @@ const char* force_loop_name(ForceLoop loop);
 // Never Auto: `requested` unless Auto, then PDMESH_FORCE_LOOP, then the device's type.
 ForceLoop resolve_force_loop(ForceLoop requested, const std::string& device_type);
 
-// The program StepProgram builds, as data (tools/kernel_registers.sh compiles the same text for GPU
+// The program StepProgram builds, as data (tools/check/kernel_registers.sh compiles the same text for GPU
 // targets): its kernel files in build order, and its defines (precision_defines plus
 // PDMESH_FORCE_LOOP_VECTOR / PDMESH_FORCE_LOOP_SCALAR, one of them 1). `loop` must not be Auto.
 const std::vector<std::string>& step_program_files();

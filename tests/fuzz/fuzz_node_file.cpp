@@ -1,4 +1,4 @@
-// libFuzzer target: pdmesh::fuzz::node_file (see fuzz_entries.hpp; run with tools/fuzz.sh).
+// libFuzzer target: pdmesh::fuzz::node_file (see fuzz_entries.hpp; run with tools/check/fuzz.sh).
 #include <cstddef>
 #include <cstdint>
 

@@ -13,18 +13,14 @@
 #include "io/mesh_formats.hpp"
 #include "mesh/mesh.hpp"
 #include "nodes/node_file.hpp"
+#include "../temp_files.hpp"
 
 namespace fs = std::filesystem;
 using namespace pdmesh;
 
 namespace {
 
-std::string slurp(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
+using pdmesh_test::slurp;
 
 void put(const fs::path& path, const std::string& bytes) {
   fs::create_directories(path.parent_path());

@@ -1,6 +1,6 @@
 // Prints the simulation program exactly as StepProgram hands it to the OpenCL compiler (the defines
 // the program builder prepends, common.cl and the kernel files in build order), for a precision and a
-// force-loop shape, so tools/kernel_registers.sh compiles the host's program for GPU targets. Needs no
+// force-loop shape, so tools/check/kernel_registers.sh compiles the host's program for GPU targets. Needs no
 // OpenCL device. Exit status 2 on a bad argument.
 // Usage: kernel_source double|float vector|scalar
 #include <fmt/format.h>

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Runs a command under Oclgrind's simulated OpenCL device with the data-race detector and the API
 # checker (docs/opencl.md, "Oclgrind"); fails when the command fails or Oclgrind reports anything.
-#   tools/oclgrind_check.sh COMMAND [ARGS...]
+#   tools/check/oclgrind_check.sh COMMAND [ARGS...]
 # Not --uninitialized: Oclgrind 21.10 misreports memory filled by clEnqueueFillBuffer or written in
 # parts by the host, and aborts on LLVM's `freeze` instruction (see the GPU portability audit).
 set -uo pipefail

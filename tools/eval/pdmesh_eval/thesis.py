@@ -1,4 +1,4 @@
-"""Data of tools/report: the thesis' Tables 6.1-6.6 (Fackler, chapter 6), the metric rows the
+"""Data of tools/eval/report: the thesis' Tables 6.1-6.6 (Fackler, chapter 6), the metric rows the
 report prints, and the curated explanation per case of why a run falls short of 30 degrees."""
 
 # Thesis Table 6.1 (Intel Core i5 2.67 GHz x 4, 4 GB): nodes, initialization, simulation and

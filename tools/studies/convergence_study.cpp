@@ -3,7 +3,7 @@
 // mesh of the nodes as the stopping rule does (sim/convergence measure_mesh: the smallest angle and
 // the mean aspect ratio of their constrained Delaunay triangulation, before any cleanup) together with
 // whether population control has settled then. One CSV line per measurement on stdout; the history
-// to --history. tools/convergence_check.py replays the stopping rule over these lines with any
+// to --history. tools/studies/convergence_check.py replays the stopping rule over these lines with any
 // options (docs/simulation.md, "When a run stops").
 // Usage: convergence_study CASE.toml|GEOMETRY... [--set KEY=VALUE ...] [--every N] [--history FILE]
 #include <fmt/format.h>

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
-# A short `pdmesh mesh` run on Oclgrind's simulated device (tools/oclgrind_check.sh: data races and
+# A short `pdmesh mesh` run on Oclgrind's simulated device (tools/check/oclgrind_check.sh: data races and
 # API misuse fail it) whose final.nodes must equal the host reference's byte for byte.
-#   tools/oclgrind_mesh.sh PDMESH CASE ITERATIONS WORK_DIR
+#   tools/check/oclgrind_mesh.sh PDMESH CASE ITERATIONS WORK_DIR
 set -euo pipefail
 pdmesh=$1 case=$2 iterations=$3 work=$4
 here=$(cd "$(dirname "$0")" && pwd)

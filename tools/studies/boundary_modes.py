@@ -3,7 +3,7 @@
 run alone (the best preset), so that the choice of defaults rests on numbers: min angle, average
 aspect ratio, edge/q standard deviation, triangles under 30 degrees and node count per run.
 
-  tools/boundary_modes.py [--pdmesh build/pdmesh] [--cases 30p30n,naca0012] [--methods structured]
+  tools/studies/boundary_modes.py [--pdmesh build/pdmesh] [--cases 30p30n,naca0012] [--methods structured]
                           [--iterations 2000] [--device host] [--geometry NAME=FILE,FILE ...]
 
 Thesis cases are given by name (their geometry files, without the case file); --geometry adds any
@@ -18,7 +18,7 @@ import subprocess
 import sys
 import tempfile
 
-REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+REPO = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 COMBOS = [("input", "polyline"), ("input", "smooth"), ("spacing", "polyline"), ("spacing", "smooth")]
 
 

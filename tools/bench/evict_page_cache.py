@@ -3,14 +3,14 @@
 run that must read them from disk, as one after a pause does: this project's 2-core machine gives
 file pages back within minutes (docs/journal/2026-11-28.md).
 
-    tools/evict_page_cache.py [--pdmesh BIN] [FILE ...]
+    tools/bench/evict_page_cache.py [--pdmesh BIN] [FILE ...]
 
 With --pdmesh, also the binary, every shared library `ldd` lists for it, and PoCL's LLVM and clang
 libraries (what the OpenCL backend loads). Pages still mapped by a running process stay. Prints how
 many files it advised. Standard library only; no privileges needed. Example (hyperfine runs it
 before every timed run):
 
-    hyperfine -N -w 1 -r 10 --prepare 'tools/evict_page_cache.py --pdmesh build/pdmesh' \\
+    hyperfine -N -w 1 -r 10 --prepare 'tools/bench/evict_page_cache.py --pdmesh build/pdmesh' \\
         'build/pdmesh mesh cases/30p30n/airfoil.crv cases/30p30n/farfield.crv --out D -q'
 """
 import argparse

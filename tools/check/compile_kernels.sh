@@ -5,9 +5,9 @@
 # (vector, scalar), and prints clang's diagnostics: what a strict vendor compiler may reject
 # (docs/opencl.md, "Portability"). Needs clang-14 (not a build dependency) and the kernel_source target.
 # Exit status 1 when there is any warning.
-#   tools/compile_kernels.sh [BUILD_DIR]      (default: build)
+#   tools/check/compile_kernels.sh [BUILD_DIR]      (default: build)
 set -euo pipefail
-cd "$(dirname "$0")/.."
+cd "$(dirname "$0")/../.."
 build=${1:-build}
 if [ ! -x "$build/kernel_source" ]; then
   echo "compile_kernels: $build/kernel_source is missing: cmake --build $build --target kernel_source" >&2

@@ -1,7 +1,7 @@
 """Gmsh meshes of pdmesh's boundary: a .geo with one point per boundary node of a pdmesh node file
 and one transfinite 2-node line per boundary segment (so Gmsh keeps exactly those boundary nodes),
-sized either from the boundary (tools/report) or by a background view of pdmesh's own spacing
-(tools/compare); the view as a .pos file; and running Gmsh."""
+sized either from the boundary (tools/eval/report) or by a background view of pdmesh's own spacing
+(tools/eval/compare); the view as a .pos file; and running Gmsh."""
 
 import math
 import subprocess

@@ -11,7 +11,7 @@
    checks) and the callable's own time inside them.
 
 Run from the repository root with the venv's Python after tools/setup.sh:
-    .venv/bin/python tools/bench_python.py [--case cases/naca0012/case.toml] [--device host] [--repeats 5]
+    .venv/bin/python tools/bench/bench_python.py [--case cases/naca0012/case.toml] [--device host] [--repeats 5]
 """
 
 from __future__ import annotations

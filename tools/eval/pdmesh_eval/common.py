@@ -7,7 +7,7 @@ import re
 import subprocess
 import sys
 
-TOOL = "tools/" + os.path.basename(sys.argv[0])
+TOOL = "tools/eval/" + os.path.basename(sys.argv[0])  # the tools that print through it are in tools/eval/
 
 
 def fail(message):

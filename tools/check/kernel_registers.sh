@@ -11,9 +11,9 @@
 # Prints one Markdown table (docs/opencl.md, "Force loop"). Needs clang-14, llvm-link-14, opt-14, llc-14,
 # libclc-14 (Debian: clang-14 llvm-14 libclc-14 libclc-14-dev) and, for the NVIDIA column, ptxas (CUDA
 # toolkit; PATH or /usr/local/cuda/bin); without ptxas that column says so.
-#   tools/kernel_registers.sh [BUILD_DIR]     (default: build; needs its kernel_source target)
+#   tools/check/kernel_registers.sh [BUILD_DIR]     (default: build; needs its kernel_source target)
 set -euo pipefail
-cd "$(dirname "$0")/.."
+cd "$(dirname "$0")/../.."
 build=${1:-build}
 source_tool=$build/kernel_source
 if [ ! -x "$source_tool" ]; then

@@ -1,10 +1,10 @@
 #!/usr/bin/env bash
 # Builds pdmesh with AddressSanitizer + UndefinedBehaviorSanitizer in build-asan/ and runs the
-# whole test suite there: tools/sanitize.sh [extra ctest arguments]. Exit status: ctest's.
+# whole test suite there: tools/check/sanitize.sh [extra ctest arguments]. Exit status: ctest's.
 # Leak reports from inside PoCL/LLVM and fontconfig (process-lifetime caches) are suppressed by
 # tests/lsan.supp; see docs/robustness.md for what was found and why.
 set -euo pipefail
-cd "$(dirname "$0")/.."
+cd "$(dirname "$0")/../.."
 
 build=build-asan
 # PDMESH_SANITIZE adds float-cast-overflow too: GCC leaves it out of -fsanitize=undefined, and

@@ -8,7 +8,7 @@ triangulation, before any cleanup) against the run's last measurement, and wheth
 goal of docs/simulation.md ("When a run stops"): not worse than the full run's mesh by more than
 0.5 degrees or 0.002.
 
-    tools/convergence_check.py RUN.csv... [--check-every 100] [--window 400] [--aspect 5e-4]
+    tools/studies/convergence_check.py RUN.csv... [--check-every 100] [--window 400] [--aspect 5e-4]
                                [--angle 0.25] [--min-iterations 400] [--grid]
 
 --grid tries a range of options and prints, per option set, the misses and the iterations saved.

@@ -1,11 +1,11 @@
 #!/usr/bin/env bash
-# Fuzzes every reader: tools/fuzz.sh [SECONDS] [TARGET...] (default 60 s each, all targets).
+# Fuzzes every reader: tools/check/fuzz.sh [SECONDS] [TARGET...] (default 60 s each, all targets).
 # Configures a clang build with -DPDMESH_FUZZ=ON in build-fuzz/, runs the targets one at a time
 # and prints executions and findings per target. Findings (crash-*, leak-*, timeout-*, oom-*)
 # land in build-fuzz/findings/TARGET/; the growing corpus in build-fuzz/corpus/TARGET/ (the
 # committed seeds in tests/fuzz/corpus/TARGET/ are only read). See docs/robustness.md.
 set -euo pipefail
-cd "$(dirname "$0")/.."
+cd "$(dirname "$0")/../.."
 
 seconds=${1:-60}
 shift || true

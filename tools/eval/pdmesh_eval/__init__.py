@@ -1,0 +1,2 @@
+"""Shared code of the evaluation tools (tools/eval/report, tools/eval/compare, tools/cases/make_corpus.py): reading
+geometry, node and mesh files, running pdmesh and Gmsh, PNG helpers. Python 3 standard library only."""

@@ -1,2 +1,0 @@
-"""Shared code of the evaluation tools (tools/report, tools/compare, tools/make_corpus.py): reading
-geometry, node and mesh files, running pdmesh and Gmsh, PNG helpers. Python 3 standard library only."""
