@@ -3,12 +3,26 @@ unit edges and Q = 1 for a metric-equilateral triangle, the log edge length, the
 constant and linear metrics, and the P1 interpolation error. Run by ctest (eval_metric) with
 tools/eval/ on the module path; needs numpy."""
 
+import importlib.machinery
+import importlib.util
 import math
+import os
 import unittest
 
 import numpy as np
 
 from pdmesh_eval import metric as mt
+
+TOOLS = os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "tools")
+
+
+def load_anchors():
+    """tools/eval/aniso_anchors.py as a module."""
+    loader = importlib.machinery.SourceFileLoader("aniso_anchors", os.path.join(TOOLS, "eval", "aniso_anchors.py"))
+    spec = importlib.util.spec_from_loader("aniso_anchors", loader)
+    module = importlib.util.module_from_spec(spec)
+    loader.exec_module(module)
+    return module
 
 
 def equilateral_in(m, scale=1.0):
@@ -171,6 +185,70 @@ class Report(unittest.TestCase):
         self.assertAlmostEqual(rep["L_max"], math.sqrt(2))
         self.assertAlmostEqual(rep["N_over_ideal"], 2 / (4 / math.sqrt(3)))
         self.assertEqual(sum(rep["Q_histogram"]["counts"]), 2)
+
+
+class AnchorInputs(unittest.TestCase):
+    """The anchors script's own inputs (tools/eval/pdmesh_eval/aniso_tools.py): the metric strings
+    given to Gmsh and FreeFem++ are the cases of metric.py, the start meshes are valid, the Medit files
+    round-trip, and --pdmesh judges a mesh file beside the anchors."""
+
+    def sample(self):
+        rng = np.random.default_rng(1)
+        p = rng.uniform(0, 1, (400, 2))
+        return p[np.hypot(p[:, 0], p[:, 1]) > 0.52]
+
+    def test_gmsh_expressions_are_the_cases(self):
+        from pdmesh_eval import aniso_tools as at
+        p = self.sample()
+        env = {"x": p[:, 0], "y": p[:, 1], "Fabs": np.abs, "Sqrt": np.sqrt}
+        for case in at.CASES:
+            got = np.column_stack([np.broadcast_to(eval(e, env), len(p)) for e in at.GMSH_METRIC[case]])
+            np.testing.assert_allclose(got, at.METRICS[case](p), rtol=1e-9, atol=1e-6, err_msg=case)
+
+    def test_freefem_expressions_are_the_cases(self):
+        import re
+        from pdmesh_eval import aniso_tools as at
+        p = self.sample()
+        for case in at.CASES:
+            text = at.FREEFEM_METRIC[case] + (at.FREEFEM_POLAR if case != "linear" else "")
+            env = {"x": p[:, 0], "y": p[:, 1], "abs": np.abs, "sqrt": np.sqrt}
+            for name, expr in re.findall(r"func (\w+) = ([^;]+);", text):
+                env[name] = eval(expr.replace("^", "**"), env)
+            got = np.column_stack([np.broadcast_to(env[k], len(p)) for k in ("m11", "m12", "m22")])
+            np.testing.assert_allclose(got, at.METRICS[case](p), rtol=1e-9, atol=1e-6, err_msg=case)
+
+    def test_start_meshes_cover_their_domains(self):
+        from pdmesh_eval import aniso_tools as at
+        for domain, area in (("square", 1.0), ("square-minus-disc", 1 - math.pi / 16)):
+            p, t, edges, corners = at.initial_mesh(domain)
+            a, b, c = p[t[:, 0]], p[t[:, 1]], p[t[:, 2]]
+            signed = 0.5 * ((b - a)[:, 0] * (c - a)[:, 1] - (b - a)[:, 1] * (c - a)[:, 0])
+            self.assertGreater(signed.min(), 0.0, domain)
+            self.assertAlmostEqual(signed.sum(), area, delta=2e-5)
+            # Every boundary edge is an edge of exactly one triangle.
+            all_edges = np.sort(np.concatenate([t[:, [0, 1]], t[:, [1, 2]], t[:, [2, 0]]]), axis=1)
+            _, counts = np.unique(all_edges, axis=0, return_counts=True)
+            self.assertEqual(int(np.sum(counts == 1)), len(edges), domain)
+
+    def test_medit_round_trip_and_pdmesh_hook(self):
+        import tempfile
+        from pdmesh_eval import aniso_tools as at
+        anchors = load_anchors()
+        p, t, edges, corners = at.grid_mesh(3)
+        with tempfile.TemporaryDirectory() as tmp:
+            at.write_medit(os.path.join(tmp, "linear.mesh"), p, t, edges, corners)
+            q, u = at.read_medit(os.path.join(tmp, "linear.mesh"))
+            np.testing.assert_array_equal(q, p)
+            np.testing.assert_array_equal(u, t)
+            with open(os.path.join(tmp, "linear.time"), "w") as f:
+                f.write("0.25\n")
+            block = anchors.metric_rows("linear", [], tmp)
+        row = block["rows"][0]
+        self.assertEqual(row["tool"], "pdmesh")
+        self.assertEqual(row["triangles"], 18)
+        self.assertEqual(row["wall_s"], 0.25)
+        expected = mt.metric_report(p, t, mt.linear_metric)["Q_min"]
+        self.assertAlmostEqual(row["Q_min"], expected)
 
 
 if __name__ == "__main__":

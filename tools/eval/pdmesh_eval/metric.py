@@ -83,33 +83,40 @@ def _sym_eig(m):
     return np.linalg.eigh(mat)
 
 
-def abs_clipped(h, hmin, hmax):
-    """|H| = R |Λ| Rᵀ with each |λ| clipped to [1/hmax², 1/hmin²]: an SPD metric, (N, 3)."""
+def abs_clipped(h, lam_min, lam_max=np.inf):
+    """|H| = R |Λ| Rᵀ with each |λ| clipped to [lam_min, lam_max]: an SPD matrix, (N, 3)."""
     lam, vec = _sym_eig(np.asarray(h, float))
-    lam = np.clip(np.abs(lam), 1.0 / hmax ** 2, 1.0 / hmin ** 2)
+    lam = np.clip(np.abs(lam), lam_min, lam_max)
     m = np.einsum("nik,nk,njk->nij", vec, lam, vec)
     return np.stack([m[:, 0, 0], m[:, 0, 1], m[:, 1, 1]], -1)
 
 
-def l2_optimal_scale(hessian, complexity, hmin=1e-5, hmax=0.3, grid=1024):
-    """D of the L2-optimal metric (Loseille-Alauzet, 2-D, p = 2): M = D·det|H|^(−1/6)·|H| has
-    complexity ∫√det M = D·∫det|H|^(1/3) = C, so D = C / ∫det|H|^(1/3), the integral over the unit
-    square by the midpoint rule on a grid x grid grid (|H| clipped as abs_clipped does)."""
+# |H|'s eigenvalues are floored here before det|H|^(-1/6) is taken (where u is flat, H = 0); the
+# tanh layer's Hessian is ~1e4 inside the layer, so the floor only touches where u is constant.
+HESSIAN_FLOOR = 1e-8
+
+
+def l2_optimal_scale(hessian, complexity, grid=1024):
+    """D of the L2-optimal metric (Loseille-Alauzet, 2-D, L^p with p = 2): M = D·det|H|^(−1/6)·|H|
+    has complexity ∫√det M = D·∫det|H|^(1/3) = C, so D = C / ∫det|H|^(1/3), the integral over the
+    unit square by the midpoint rule on a grid x grid grid (|H| floored by HESSIAN_FLOOR). The size
+    clipping of l2_optimal_metric comes after and changes C slightly (aniso_anchors.py reports it)."""
     s = (np.arange(grid) + 0.5) / grid
     total = 0.0
     for row in np.array_split(np.arange(grid), 16):
         x, y = np.meshgrid(s, s[row])
-        h = abs_clipped(hessian(np.column_stack([x.ravel(), y.ravel()])), hmin, hmax)
+        h = abs_clipped(hessian(np.column_stack([x.ravel(), y.ravel()])), HESSIAN_FLOOR)
         total += np.sum(np.abs(h[:, 0] * h[:, 2] - h[:, 1] ** 2) ** (1.0 / 3.0))
     return complexity / (total / grid ** 2)
 
 
 def l2_optimal_metric(hessian, scale, hmin=1e-5, hmax=0.3):
-    """M(p) = D·det|H|^(−1/6)·|H| for the points p, then its sizes clipped to [hmin, hmax]."""
+    """M(p) = D·det|H|^(−1/6)·|H| at the points p, then its eigenvalues clipped to
+    [1/hmax², 1/hmin²] (sizes between hmin and hmax)."""
     def metric(p):
-        h = abs_clipped(hessian(p), hmin, hmax)
+        h = abs_clipped(hessian(p), HESSIAN_FLOOR)
         det = np.abs(h[:, 0] * h[:, 2] - h[:, 1] ** 2)
-        return abs_clipped(h * (scale * det ** (-1.0 / 6.0))[:, None], hmin, hmax)
+        return abs_clipped(h * (scale * det ** (-1.0 / 6.0))[:, None], 1.0 / hmax ** 2, 1.0 / hmin ** 2)
     return metric
 
 
