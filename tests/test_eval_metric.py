@@ -244,6 +244,33 @@ class AnchorInputs(unittest.TestCase):
                 f.write("0.25\n")
             block = anchors.metric_rows("linear", [], tmp)
         row = block["rows"][0]
+        with tempfile.TemporaryDirectory() as tmp:
+            vtu = os.path.join(tmp, "m.vtu")
+            body = ('<VTKFile type="UnstructuredGrid"><UnstructuredGrid><Piece NumberOfPoints="3" NumberOfCells="1">'
+                    '<Points><DataArray type="Float64" NumberOfComponents="3" format="{f}">0 0 0 1 0 0 0 1 0'
+                    '</DataArray></Points><Cells><DataArray type="Int64" Name="connectivity" format="ascii">'
+                    '0 1 2</DataArray></Cells></Piece></UnstructuredGrid></VTKFile>')
+            with open(vtu, "w") as f:
+                f.write(body.format(f="ascii"))
+            q, u = at.read_mesh_file(vtu)
+            np.testing.assert_array_equal(q, [[0, 0], [1, 0], [0, 1]])
+            np.testing.assert_array_equal(u, [[0, 1, 2]])
+            # Binary as pdmesh writes it: base64 of a UInt64 byte count, then the data.
+            import base64
+            b64 = lambda a: base64.b64encode(np.uint64(a.nbytes).tobytes() + a.tobytes()).decode()
+            binary = body.replace("0 0 0 1 0 0 0 1 0", b64(np.array([0, 0, 0, 1, 0, 0, 0, 1, 0], "<f8")))
+            binary = binary.replace("0 1 2</", b64(np.array([0, 1, 2], "<i8")) + "</")
+            binary = binary.replace('"UnstructuredGrid">', '"UnstructuredGrid" header_type="UInt64">', 1)
+            with open(vtu, "w") as f:
+                f.write(binary.replace('format="ascii"', 'format="binary"').format(f="binary"))
+            q, u = at.read_mesh_file(vtu)
+            np.testing.assert_array_equal(q, [[0, 0], [1, 0], [0, 1]])
+            np.testing.assert_array_equal(u, [[0, 1, 2]])
+            with open(vtu, "w") as f:
+                f.write(binary.replace('format="ascii"', 'format="binary"').format(f="binary")
+                        .replace('header_type="UInt64"', 'header_type="UInt64" compressor="vtkZLibDataCompressor"'))
+            with self.assertRaisesRegex(ValueError, "m.vtu: only ASCII or uncompressed"):
+                at.read_mesh_file(vtu)
         self.assertEqual(row["tool"], "pdmesh")
         self.assertEqual(row["triangles"], 18)
         self.assertEqual(row["wall_s"], 0.25)

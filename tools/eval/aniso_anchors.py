@@ -158,7 +158,11 @@ def main(argv=None):
     result = {"date": time.strftime("%Y-%m-%d %H:%M UTC", time.gmtime()), "command": " ".join(sys.argv),
               "versions": versions, "cases": []}
     for case in cases:
-        block = tanh_rows(args.pdmesh) if case == "tanh" else metric_rows(case, tools, args.pdmesh)
+        try:
+            block = tanh_rows(args.pdmesh) if case == "tanh" else metric_rows(case, tools, args.pdmesh)
+        except ValueError as e:           # an unreadable --pdmesh file
+            print(f"aniso_anchors: {e}", file=sys.stderr)
+            return 2
         result["cases"].append(block)
         (print_tanh_table if case == "tanh" else print_metric_table)(block)
         sys.stdout.flush()

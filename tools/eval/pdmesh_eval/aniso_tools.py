@@ -79,13 +79,33 @@ def read_mesh_file(path):
     if path.endswith(".vtu"):
         with open(path) as f:
             text = f.read()
-        pts = re.search(r"<Points>\s*<DataArray[^>]*>(.*?)</DataArray>", text, re.S)
-        con = re.search(r'<DataArray[^>]*Name="connectivity"[^>]*>(.*?)</DataArray>', text, re.S)
+        pts = re.search(r"<Points>\s*<DataArray([^>]*)>(.*?)</DataArray>", text, re.S)
+        con = re.search(r'<DataArray([^>]*Name="connectivity"[^>]*)>(.*?)</DataArray>', text, re.S)
         if not pts or not con:
-            raise ValueError(f"{path}: no ASCII Points or connectivity array")
-        p = np.array(pts.group(1).split(), float).reshape(-1, 3)[:, :2]
-        return p, np.array(con.group(1).split(), int).reshape(-1, 3)
+            raise ValueError(f"{path}: no Points or connectivity array")
+        p = _vtu_values(path, text, *pts.groups()).reshape(-1, 3)[:, :2]
+        return p, _vtu_values(path, text, *con.groups()).astype(np.int64).reshape(-1, 3)
     raise ValueError(f"{path}: unknown mesh format (use .mesh, .msh or .vtu)")
+
+
+_VTU_TYPES = {"Float64": "<f8", "Float32": "<f4", "Int64": "<i8", "Int32": "<i4", "UInt64": "<u8",
+              "UInt32": "<u4"}
+
+
+def _vtu_values(path, text, attributes, body):
+    """One inline DataArray of a .vtu as a flat numpy array: ASCII, or binary (base64 of a UInt64
+    byte count and the little-endian data, uncompressed, as pdmesh writes it)."""
+    import base64
+    kind = re.search(r'type="(\w+)"', attributes)
+    if 'format="ascii"' in attributes:
+        return np.array(body.split(), float)
+    if ('format="binary"' not in attributes or "compressor=" in text or 'header_type="UInt64"' not in text
+            or 'byte_order="BigEndian"' in text or not kind or kind.group(1) not in _VTU_TYPES):
+        raise ValueError(f"{path}: only ASCII or uncompressed little-endian binary .vtu arrays "
+                         "(header_type UInt64) are read; write .msh instead")
+    raw = base64.b64decode("".join(body.split()))
+    count = int(np.frombuffer(raw[:8], "<u8")[0])
+    return np.frombuffer(raw[8:8 + count], _VTU_TYPES[kind.group(1)]).astype(float)
 
 
 # ---- initial meshes ------------------------------------------------------------------------------
@@ -154,8 +174,8 @@ def run_mmg2d(start, metric, passes=5, options=MMG_OPTIONS):
     with tempfile.TemporaryDirectory() as tmp:
         src, sol, out = (os.path.join(tmp, n) for n in ("in.mesh", "in.sol", "out.mesh"))
         write_medit(src, pts, tri, edges, corners)
-        for _ in range(passes):
-            if _:
+        for k in range(passes):
+            if k > 0:
                 os.replace(out, src)
                 pts, tri = read_medit(src)
             write_sol(sol, metric(pts))
