@@ -7,6 +7,7 @@ case and writes JSON; --pdmesh DIR judges pdmesh's meshes of the same cases besi
 Setup (once): tools/eval/setup_anchors.sh. Run from the repository root:
     tools/.venv-anchors/bin/python tools/eval/aniso_anchors.py [--json out/aniso_anchors.json]
         [--cases linear,polar-1,polar-2,tanh] [--tools mmg2d,bamg,gmsh] [--pdmesh DIR]
+        [--wall-segments 160] [--mmg-hausd 0.001]
 
 --pdmesh DIR reads DIR/<case>.msh (or .vtu, .mesh) for <case> in linear, polar-1, polar-2,
 tanh-4000, tanh-16000 (whichever exist) and, if present, the run's wall seconds from DIR/<case>.time."""
@@ -43,7 +44,7 @@ def pdmesh_mesh(directory, name):
     return None
 
 
-def metric_rows(case, tools, pdmesh_dir):
+def metric_rows(case, tools, pdmesh_dir, wall_segments=160, mmg_options=at.MMG_OPTIONS):
     metric = at.METRICS[case]
     c = at.complexity(case)
     rows = []
@@ -51,7 +52,8 @@ def metric_rows(case, tools, pdmesh_dir):
         print(f"  {case}: {tool} ...", file=sys.stderr, flush=True)
         try:
             if tool == "mmg2d":
-                p, t, wall = at.run_mmg2d(at.initial_mesh(at.DOMAIN[case]), metric)
+                p, t, wall = at.run_mmg2d(at.initial_mesh(at.DOMAIN[case], wall_segments), metric,
+                                          options=mmg_options)
             elif tool == "bamg":
                 p, t, wall = at.run_bamg(case)
             else:
@@ -136,7 +138,10 @@ def main(argv=None):
     ap.add_argument("--cases", default="linear,polar-1,polar-2,tanh")
     ap.add_argument("--tools", default="mmg2d,bamg,gmsh")
     ap.add_argument("--pdmesh", metavar="DIR", help="judge DIR/<case>.msh|.vtu|.mesh beside the anchors")
-    ap.add_argument("--json", default="out/aniso_anchors.json")
+    ap.add_argument("--json", default="out/aniso_anchors.json", help="'' writes none")
+    ap.add_argument("--wall-segments", type=int, default=160,
+                    help="wall segments of mmg2d's first mesh on the polar cases (even)")
+    ap.add_argument("--mmg-hausd", default="0.001", help="mmg2d's -hausd")
     args = ap.parse_args(argv)
     cases = [c for c in args.cases.split(",") if c]
     tools = [t for t in args.tools.split(",") if t]
@@ -146,6 +151,9 @@ def main(argv=None):
     for t in tools:
         if t not in ("mmg2d", "bamg", "gmsh"):
             ap.error(f"--tools: unknown tool '{t}' (mmg2d, bamg, gmsh)")
+    if args.wall_segments < 2 or args.wall_segments % 2:
+        ap.error(f"--wall-segments: {args.wall_segments} is not an even number >= 2")
+    mmg_options = ["-hgrad", "-1", "-hausd", args.mmg_hausd, "-v", "-1"]
     if args.pdmesh and not os.path.isdir(args.pdmesh):
         ap.error(f"--pdmesh: '{args.pdmesh}' is not a directory")
     versions = {"mmg2d": at.version([at.mmg2d_binary() or "mmg2d_O3", "-val"]).strip(" -"),
@@ -156,10 +164,12 @@ def main(argv=None):
     except ImportError:
         versions["gmsh"] = "not installed"
     result = {"date": time.strftime("%Y-%m-%d %H:%M UTC", time.gmtime()), "command": " ".join(sys.argv),
-              "versions": versions, "cases": []}
+              "versions": versions, "wall_segments": args.wall_segments, "mmg_options": mmg_options,
+              "cases": []}
     for case in cases:
         try:
-            block = tanh_rows(args.pdmesh) if case == "tanh" else metric_rows(case, tools, args.pdmesh)
+            block = tanh_rows(args.pdmesh) if case == "tanh" else metric_rows(case, tools, args.pdmesh,
+                                                                                   args.wall_segments, mmg_options)
         except ValueError as e:           # an unreadable --pdmesh file
             print(f"aniso_anchors: {e}", file=sys.stderr)
             return 2

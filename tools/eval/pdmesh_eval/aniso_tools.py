@@ -144,10 +144,10 @@ def quarter_annulus_mesh(n_theta=40, n_r=16, radius=0.5):
     return pts, tri, edges, corners
 
 
-def initial_mesh(domain):
-    """mmg2d's first mesh: a 20 x 20 grid, or the quarter annulus with 160 wall segments (a coarser
-    wall polyline changes mmg2d's polar Q_min several-fold: docs/anisotropy-anchors.md)."""
-    return grid_mesh(20) if domain == "square" else quarter_annulus_mesh(n_theta=160)
+def initial_mesh(domain, wall_segments=160):
+    """mmg2d's first mesh: a 20 x 20 grid, or the quarter annulus with `wall_segments` wall segments
+    (a coarser wall polyline changes mmg2d's polar Q_min several-fold: docs/anisotropy-anchors.md)."""
+    return grid_mesh(20) if domain == "square" else quarter_annulus_mesh(n_theta=wall_segments)
 
 
 # ---- mmg2d ---------------------------------------------------------------------------------------
