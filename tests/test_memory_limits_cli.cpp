@@ -29,7 +29,7 @@ pdmesh_test::Result mesh(const fs::path& input, const fs::path& out, const std::
 
 }  // namespace
 
-TEST_CASE("--max-nodes must be a count >= 1", "[memory]") {
+TEST_CASE("the node limit (--max-nodes) must be a count >= 1", "[memory]") {
   const fs::path dir = pdmesh_test::fresh_dir("max_nodes_negative");
   const auto r = mesh(write_square(dir), dir / "out", "--max-nodes -1");
   INFO(r.output);
@@ -40,7 +40,7 @@ TEST_CASE("--max-nodes must be a count >= 1", "[memory]") {
   fs::remove_all(dir);
 }
 
-TEST_CASE("--max-memory takes a size with a suffix and refuses anything else", "[memory]") {
+TEST_CASE("the memory limit (--max-memory) takes a size with a suffix and refuses anything else", "[memory]") {
   const fs::path dir = pdmesh_test::fresh_dir("max_memory_bad");
   const auto r = mesh(write_square(dir), dir / "out", "--max-memory 4X");
   INFO(r.output);
@@ -50,7 +50,7 @@ TEST_CASE("--max-memory takes a size with a suffix and refuses anything else", "
   fs::remove_all(dir);
 }
 
-TEST_CASE("--max-memory refuses a run whose later stages would not fit, before they allocate", "[memory]") {
+TEST_CASE("the memory limit (--max-memory) refuses a run whose later stages would not fit, before they allocate", "[memory]") {
   const fs::path dir = pdmesh_test::fresh_dir("max_memory_run");
   const auto r = mesh(write_square(dir), dir / "out", "--iterations 5 --max-memory 32M");
   INFO(r.output);

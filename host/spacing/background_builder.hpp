@@ -101,14 +101,17 @@ class BackgroundBuilder {
 
   std::size_t batches() const { return batches_; }
 
-  // What the tree holds per cell, for the memory budget: the cell, its share of the samples (key
-  // table, values, closest segments), the level's work arrays, the flat arrays emit() writes and the
-  // limited field's per-sample arrays (measured: docs/robustness.md, "Memory").
-  static constexpr double kBytesPerCell = 400.0;
-  // build() refuses once the nodes that its inside cells ask for pass max_nodes times this: a coarse
-  // level's bilinear q can overestimate the count a little where q varies fast; the exact estimate
-  // of the finished field is checked against max_nodes itself.
-  static constexpr double kEarlyNodeMargin = 2.0;
+  // What the tree holds per cell at its peak, for the memory budget: the cell, its share of the
+  // samples (key table, values, closest segments; up to 8 per leaf where every cell is tested), the
+  // level's work arrays, the flat arrays emit() writes and the limited field's per-sample arrays.
+  // Measured 620-680 bytes per cell on uniform fields of 0.26-1.3 M cells, the case with the most
+  // samples per cell (docs/robustness.md, "Memory").
+  static constexpr double kBytesPerCell = 768.0;
+  // build() refuses once the nodes that its inside cells ask for pass max_nodes times this. The count
+  // grows level by level toward the finished field's estimate: on the 14 case files in both presets
+  // it stayed below it at every level (at most 0.996 of it), so the margin only covers fields whose
+  // coarse bilinear q overestimates; the exact estimate is checked against max_nodes itself.
+  static constexpr double kEarlyNodeMargin = 1.25;
 
  private:
   double coord(double origin, std::uint32_t lattice) const;
