@@ -17,6 +17,7 @@
 #include "spacing/background_builder.hpp"
 #include "spacing/background_field.hpp"
 #include "spacing/spacing_field.hpp"
+#include "spacing/spacing_pipeline.hpp"
 
 using namespace pdmesh;
 
@@ -154,4 +155,25 @@ TEST_CASE("background quadtree: the coarse count leaves a field within max_nodes
   options.max_nodes = estimate / (2.0 * BackgroundBuilder::kEarlyNodeMargin);
   BackgroundBuilder refused(q, tree, options);
   CHECK_THROWS_AS(refused.build(), LimitError);
+}
+
+TEST_CASE("spacing pipeline: limits that ask for far more nodes than max_nodes are refused before refinement",
+          "[memory]") {
+  const Geometry g = fixtures::square(1.0, 4);
+  const GeometryTree tree(g);
+  // The base field asks for about one node per unit area; a point size of 1e-4 spreading by a
+  // gradation of 0.001 asks for millions.
+  const fixtures::ConstantSpacing base(1.0);
+  SpacingOptions options;
+  options.gradation = 0.001;
+  options.points.push_back({{0.5, 0.5}, 1e-4});
+  options.background.max_nodes = 1000.0;
+  const std::string m = limit_message([&] { SpacingPipeline pipeline(base, tree, options); });
+  INFO(m);
+  CHECK(contains(m, "the spacing field with its limits"));
+  CHECK(contains(m, "before they are refined for it, more than --max-nodes 1000"));
+  // Within the budget it builds.
+  options.background.max_nodes = 1e9;
+  options.points.front().q = 0.05;
+  CHECK_NOTHROW(SpacingPipeline(base, tree, options));
 }
