@@ -106,3 +106,14 @@ TEST_CASE("a coordinate that underflows is called too small, not too large", "[m
   CHECK_FALSE(fs::exists(dir / "out"));
   fs::remove_all(dir);
 }
+
+TEST_CASE("a denormal spacing is called an underflow, not coordinates too large", "[memory]") {
+  const fs::path dir = pdmesh_test::fresh_dir("denormal_spacing");
+  const auto r = mesh(write_square(dir), dir / "out", "--set spacing.expression=1e-310");
+  INFO(r.output);
+  CHECK(r.status == 2);
+  CHECK(contains(r.output, "is 1e-310, below the smallest normal double (2.22507e-308)"));
+  CHECK_FALSE(contains(r.output, "move the geometry nearer the origin"));
+  CHECK_FALSE(fs::exists(dir / "out"));
+  fs::remove_all(dir);
+}
