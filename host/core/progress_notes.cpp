@@ -64,16 +64,25 @@ ProgressHeartbeat::~ProgressHeartbeat() {
 
 void ProgressHeartbeat::run() {
   std::unique_lock<std::mutex> lock(mutex_);
+  std::string phase;        // the phase the wait below is for
+  Clock::time_point start;  // its start
+  double wait = kProgressInterval;
   while (!cv_.wait_for(lock, std::chrono::seconds(1), [this] { return stop_; })) {
     const std::lock_guard<std::mutex> sink_lock(sink_mutex());
     State& st = state();
-    if (!sink() || st.phase.empty() || st.phase == "simulation") continue;
+    if (st.phase != phase || st.phase_start != start) {
+      phase = st.phase;
+      start = st.phase_start;
+      wait = kProgressInterval;
+    }
+    if (!sink() || phase.empty() || phase == "simulation") continue;
     const auto now = Clock::now();
-    const double running = std::chrono::duration<double>(now - st.phase_start).count();
     const auto since = std::max(st.phase_start, st.last_line);
-    if (running < kProgressInterval || std::chrono::duration<double>(now - since).count() < kProgressInterval) continue;
-    sink()(st.phase + ": still running (" + std::to_string(static_cast<long>(running)) + " s)");
+    if (std::chrono::duration<double>(now - since).count() < wait) continue;
+    const double running = std::chrono::duration<double>(now - st.phase_start).count();
+    sink()(phase + ": still running (" + std::to_string(static_cast<long>(running)) + " s)");
     st.last_line = now;
+    wait = std::min(2.0 * wait, kHeartbeatMaxInterval);
   }
 }
 

@@ -29,9 +29,11 @@ void progress_line(const std::string& line);
 void set_current_phase(const std::string& name);
 void clear_current_phase(const std::string& name);
 
-// While alive: every second, when the current phase has run for kProgressInterval seconds with no
-// progress line, prints "<phase>: still running (N s)" on the sink, and again every interval after.
-// The simulation is left alone (its own progress line is drawn in place).
+// While alive: when the current phase has run for kProgressInterval seconds with no progress line,
+// prints "<phase>: still running (N s)" on the sink, then again after twice the last wait, at most
+// kHeartbeatMaxInterval (5, 10, 20, 40, 60, 60, ... s), so that a long phase says it is alive without
+// a line every few seconds. The simulation is left alone (its own progress line is drawn in place).
+inline constexpr double kHeartbeatMaxInterval = 60.0;
 class ProgressHeartbeat {
  public:
   ProgressHeartbeat();
