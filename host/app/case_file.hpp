@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "cleanup/cleanup.hpp"
+#include "core/memory_budget.hpp"
 #include "core/vec2.hpp"
 #include "geometry/geometry.hpp"
 #include "init/initial_distribution.hpp"
@@ -176,6 +177,9 @@ struct CaseConfig {
   bool quiet = false;
   bool check = false;  // run the mesh invariant checker and fail when it finds a problem
   std::uint64_t max_nodes = 20'000'000;
+  // --max-memory: what the run may allocate, checked by every stage before it allocates in proportion
+  // to the input or the node count (default: a share of the machine's memory, core/memory_budget.hpp).
+  MemoryLimit max_memory = default_memory_limit();
   std::optional<std::filesystem::path> resume;  // --resume: continue from this checkpoint (file or directory)
   std::optional<std::filesystem::path> timings_file;  // --timings: the phase times as JSON
   std::int64_t stop_after = 0;  // --stop-after (testing aid): act as if interrupted after this iteration; 0 = off

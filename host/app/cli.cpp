@@ -21,6 +21,7 @@
 #include "app/mesh_command.hpp"
 #include "app/quality_command.hpp"
 #include "core/errors.hpp"
+#include "core/memory_budget.hpp"
 #include "mesh/quality.hpp"
 
 namespace pdmesh {
@@ -43,7 +44,8 @@ struct MeshArguments {
   bool plot_spacing = false;
   bool quiet = false;
   bool check = false;
-  std::uint64_t max_nodes = 20'000'000;
+  std::int64_t max_nodes = 20'000'000;
+  std::optional<std::string> max_memory;
   std::optional<std::string> resume;
   std::int64_t stop_after = 0;
 };
@@ -214,7 +216,9 @@ CaseConfig config_from(const MeshArguments& a) {
   config.out_dir = a.out;
   config.quiet = a.quiet;
   config.check = a.check;
-  config.max_nodes = a.max_nodes;
+  if (a.max_nodes < 1) throw InputError(fmt::format("--max-nodes {}: expected a node count >= 1", a.max_nodes));
+  config.max_nodes = static_cast<std::uint64_t>(a.max_nodes);
+  if (a.max_memory) config.max_memory = parse_memory_limit(*a.max_memory);
   if (a.resume) config.resume = fs::path(*a.resume);
   if (a.stop_after < 0) throw InputError(fmt::format("--stop-after {}: expected an iteration number >= 1", a.stop_after));
   config.stop_after = a.stop_after;
@@ -280,6 +284,11 @@ void add_mesh_options(CLI::App& mesh, MeshArguments& a) {
   mesh.add_option("--max-nodes", a.max_nodes,
                   "Refuse cases whose estimated node count exceeds this (default 20000000)")
       ->type_name("N");
+  mesh.add_option("--max-memory", a.max_memory,
+                  "Refuse, before allocating, a run whose stages would need more memory than this: bytes, or with "
+                  "a suffix K, M, G, T (powers of 1024), e.g. 4G (default: 3/4 of the least of the RAM, ulimit -v "
+                  "and the cgroup's memory.max)")
+      ->type_name("SIZE");
   mesh.add_option("--resume", a.resume,
                   "Continue an interrupted run from its checkpoint: DIR/checkpoint.pdmesh (or that file); the case "
                   "must be the same (--iterations may differ)")
@@ -288,8 +297,8 @@ void add_mesh_options(CLI::App& mesh, MeshArguments& a) {
       ->type_name("FILE");
   // Testing aid (docs/cli.md): behave as if interrupted after iteration N. Hidden from --help.
   mesh.add_option("--stop-after", a.stop_after, "")->group("")->type_name("N");
-  mesh.footer("Options other than --out, --quiet and --max-nodes override keys of the case file; every key can be\n"
-              "set with --set (see docs/cli.md). Direct options are applied after --set.");
+  mesh.footer("Options other than --out, --quiet, --max-nodes and --max-memory override keys of the case file;\n"
+              "every key can be set with --set (see docs/cli.md). Direct options are applied after --set.");
 }
 
 }  // namespace

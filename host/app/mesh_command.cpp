@@ -13,6 +13,7 @@
 #include "app/resume.hpp"
 #include "core/atomic_file.hpp"
 #include "core/errors.hpp"
+#include "core/progress_notes.hpp"
 #include "core/worker_pool.hpp"
 #include "render/history_plot.hpp"
 
@@ -200,7 +201,7 @@ void resume_mesh(const CaseConfig& config, const MeshInputs& inputs, RunPhases& 
   timer.stop();
   {
     const auto spacing_timer = phases.phase("spacing");
-    (void)inputs.pipeline().background();
+    (void)inputs.background();
   }
   {
     const auto estimate_timer = phases.phase("estimate");
@@ -241,6 +242,20 @@ void report_phases(const CaseConfig& config, const RunPhases& phases) {
 }  // namespace
 
 int run_mesh(const CaseConfig& config) {
+  // The long phases' progress notes (core/progress_notes.hpp) go where the progress lines go.
+  // A phase that runs long with nothing to say gets a "still running" line from the heartbeat.
+  struct Notes {
+    explicit Notes(bool quiet) {
+      if (quiet) return;
+      set_progress_sink([](const std::string& line) { fmt::print(stderr, "{}\n", line); });
+      heartbeat = std::make_unique<ProgressHeartbeat>();
+    }
+    ~Notes() {
+      heartbeat.reset();
+      set_progress_sink({});
+    }
+    std::unique_ptr<ProgressHeartbeat> heartbeat;
+  } notes(config.quiet);
   RunPhases phases;
   // SIGINT/SIGTERM from here on stop the simulation after its current iteration (exit 130).
   InterruptGuard interrupt;
@@ -277,7 +292,7 @@ int run_mesh(const CaseConfig& config) {
   // The quadtree of the final field (in the thesis preset eq. 3.6's lookup table, which the node
   // estimate and the simulation read) is built here.
   timer = phases.phase("spacing");
-  (void)inputs.pipeline().background();
+  (void)inputs.background();
   timer.stop();
   report_spacing(config, inputs);
   timer = phases.phase("estimate");

@@ -49,6 +49,9 @@ struct MeshInputs {
   // first call.
   const SpacingPipeline& pipeline() const;
   const SpacingField& field() const { return pipeline().field(); }
+  // pipeline().background(), with the case named in a LimitError of its budgets (--max-nodes,
+  // --max-memory) when this call builds it.
+  const BackgroundSpacing& background() const;
   // One line about a spacing field read from a file (spacing.field = "mesh"); empty otherwise.
   std::string spacing_summary;
   std::unique_ptr<DenseGeometry> dense;     // smooth curves; null for "polyline" (or after a fallback)
@@ -76,6 +79,7 @@ struct MeshInputs {
   mutable std::unique_ptr<SpacingPipeline> pipeline_;
   std::string source_;           // the case file, for messages
   std::uint64_t max_nodes_ = 0;  // the node limit the base field's quadtree and the placement are checked against
+  std::string node_hint_;        // appended to a refusal by --max-nodes: where eq. 3.6's q comes from
   mutable bool boundary_placed_ = false;
   mutable std::optional<NodeSet> boundary_;
   mutable std::vector<double> resolution_;
@@ -85,7 +89,21 @@ struct MeshInputs {
 // (or requested total) exceeds config.max_nodes. Returns the estimate of the final field. When the
 // pipeline modifies the base field, the base field's quadtree is checked first, inside the pipeline
 // (the sources only lower q), so that an absurd case is refused before the limits refine it further.
+// It then refuses, with LimitError, a run whose later stages would need more than config.max_memory
+// (run_memory_bytes).
 double check_node_limit(const CaseConfig& config, const MeshInputs& inputs);
+
+// The memory model of a run's stages after the spacing field (docs/robustness.md, "Memory"): what a
+// run holds per node at its peak (the node set and initialization tree, the simulation's arrays and
+// neighbour grid, an OpenCL CPU device's buffers, which are host memory, the triangulation and the
+// cleanup's editable mesh, the writers' text), plus the process's base and the field. Measured on a
+// 289k-node estimate (q = 2e-3 on the unit square, 30 iterations, every stage): 1.3 KB per estimated
+// node on the host, 1.7 KB with PoCL; 2 KB x 1.25 leaves room for the population's growth.
+inline constexpr double kRunBytesBase = 64.0 * 1024 * 1024;
+inline constexpr double kRunBytesPerNode = 2048.0;
+// Population control inserts nodes where the estimate is low, at most a few percent on the corpus.
+inline constexpr double kRunNodeGrowth = 1.25;
+double run_memory_bytes(double nodes, std::size_t field_bytes);
 
 // Stage 3: the initial distribution (boundary nodes and the tree fill).
 InitialDistribution make_initial(const CaseConfig& config, const MeshInputs& inputs);

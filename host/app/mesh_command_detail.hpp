@@ -11,6 +11,7 @@
 #include "app/case_file.hpp"
 #include "app/mesh_command.hpp"
 #include "app/run_phases.hpp"
+#include "core/progress_notes.hpp"
 #include "geometry/geometry.hpp"
 #include "nodes/node_set.hpp"
 
@@ -20,10 +21,14 @@ namespace pdmesh::mesh_detail {
 // megabytes, so only the PNG pictures (and zoomed views) are written.
 inline constexpr std::size_t kSvgNodeLimit = 500'000;
 
-// One progress line on stderr unless the case is quiet.
+// One progress line on stderr unless the case is quiet (through the progress sink when run_mesh set
+// one, so that the heartbeat knows the run is not silent).
 template <class... Args>
 void progress(const CaseConfig& config, fmt::format_string<Args...> format, Args&&... args) {
-  if (!config.quiet) fmt::print(stderr, "{}\n", fmt::format(format, std::forward<Args>(args)...));
+  if (config.quiet) return;
+  const std::string line = fmt::format(format, std::forward<Args>(args)...);
+  if (has_progress_sink()) progress_line(line);
+  else fmt::print(stderr, "{}\n", line);
 }
 
 // STAGE.nodes, and (as output.formats asks) STAGE.png and STAGE_<view>.png, STAGE.svg, for one node

@@ -6,10 +6,12 @@
 #include <chrono>
 #include <cmath>
 #include <filesystem>
+#include <string_view>
 #include <fmt/format.h>
 
 #include "app/case_spacing.hpp"
 #include "core/errors.hpp"
+#include "core/memory_budget.hpp"
 #include "geometry/geometry_files.hpp"
 #include "init/node_estimate.hpp"
 #include "spacing/mesh_spacing.hpp"
@@ -35,11 +37,28 @@ MeshInputs::MeshInputs(const CaseConfig& config) {
                                    geometry.curves[c].file, geometry.curves[c].line, c, name));
     }
   }
+  // The geometry's quadtree and the queries' per-segment arrays, before they are made (the
+  // geometry itself is read: its size was the file's).
+  check_memory(config.max_memory, GeometryTree::kBytesPerSegment * static_cast<double>(geometry.segments.size()),
+               fmt::format("{}: the geometry's quadtree over {} segments", config.source.string(),
+                           geometry.segments.size()),
+               "raise --max-memory");
   tree = std::make_unique<GeometryTree>(geometry);
   spacing_options = pdmesh::spacing_options(config);
   check_spacing_options(spacing_options);
   source_ = config.source.string();
   max_nodes_ = config.max_nodes;
+  if (config.spacing.field == SpacingKind::Boundary) {
+    // A refusal by the node count says where eq. 3.6's q comes from: a dense input polyline asks for
+    // nodes as fine as its segments everywhere.
+    const auto [shortest, longest] = std::minmax_element(
+        geometry.segments.begin(), geometry.segments.end(),
+        [](const Segment& a, const Segment& b) { return a.length < b.length; });
+    if (shortest != geometry.segments.end())
+      node_hint_ = fmt::format(" (eq. 3.6 takes q from the lengths of the input's {} segments, {:.3g} to {:.3g}: a "
+                               "coarser polyline, spacing.scale or spacing.expression asks for fewer)",
+                               geometry.segments.size(), shortest->length, longest->length);
+  }
   const auto spacing_start = std::chrono::steady_clock::now();
   spacing = make_case_spacing(config, *tree);
   if (const auto* m = dynamic_cast<const MeshSpacing*>(spacing.get())) {
@@ -108,6 +127,10 @@ SpacingOptions spacing_options(const CaseConfig& config) {
   o.background.tolerance = config.spacing.background_tolerance;
   o.background.min_side_fraction = config.spacing.background_min_side;
   o.background.boundary_min_side_fraction = config.spacing.background_boundary_min_side;
+  // The budgets the quadtree is built within (a field that asks for 1e9 nodes is refused on a coarse
+  // level, before the tree at its resolution exists).
+  o.background.max_nodes = static_cast<double>(config.max_nodes);
+  o.background.memory = config.max_memory;
   // The sources' floor stays with boundary nodes placed by the field too: without it the feature size
   // asks for q -> 0 toward sharp V tips, whose placed nodes then crowd into slivers (measured on the
   // corpus: heatsink_channel 0.22 deg, coastline 0.47 deg without; docs/spacing.md). The final floor
@@ -119,12 +142,16 @@ SpacingOptions spacing_options(const CaseConfig& config) {
 
 namespace {
 
-// The hexagonal-packing estimate against --max-nodes.
+bool refused_by_nodes(const LimitError& e) { return std::string_view(e.what()).find("--max-nodes") != std::string_view::npos; }
+
+// The hexagonal-packing estimate against --max-nodes (`source` prefixes the message unless empty).
 void refuse_above_limit(const std::string& source, std::uint64_t max_nodes, double estimate, const char* which) {
-  if (!std::isfinite(estimate) || estimate > static_cast<double>(max_nodes)) {
-    throw LimitError(fmt::format("{}: the {} asks for about {:.0f} nodes (hexagonal-packing estimate), "
+  if (!(estimate <= static_cast<double>(max_nodes))) {
+    throw LimitError(fmt::format("{}the {} asks for about {} nodes (hexagonal-packing estimate), "
                                  "more than --max-nodes {}; coarsen the spacing or raise --max-nodes",
-                                 source, which, estimate, max_nodes));
+                                 source.empty() ? std::string() : source + ": ", which,
+                                 std::isfinite(estimate) ? fmt::format("{:.0f}", estimate) : std::string("infinitely many"),
+                                 max_nodes));
   }
 }
 
@@ -140,14 +167,29 @@ const SpacingPipeline& MeshInputs::pipeline() const {
       // queries (0.04 s on 30P30N's curves alone) are skipped.
       const double bound = node_count_bound(base_tree);
       if (std::isfinite(bound) && bound * (1.0 + 1e-6) <= static_cast<double>(max_nodes_)) return;
-      refuse_above_limit(source_, max_nodes_, estimate_node_count(*tree, base_tree), "spacing field before its limits");
+      refuse_above_limit("", max_nodes_, estimate_node_count(*tree, base_tree), "spacing field before its limits");
     };
-    pipeline_ = std::make_unique<SpacingPipeline>(*spacing, *tree, spacing_options,
-                                                  spacing_options.modifies() ? check_base : SpacingPipeline::BaseCheck{});
+    try {
+      pipeline_ = std::make_unique<SpacingPipeline>(*spacing, *tree, spacing_options,
+                                                    spacing_options.modifies() ? check_base : SpacingPipeline::BaseCheck{});
+    } catch (const LimitError& e) {
+      throw LimitError(fmt::format("{}: {}{}", source_, e.what(), refused_by_nodes(e) ? node_hint_ : ""));
+    }
     // The sources lower q: the final field must be resolvable too.
     if (!pipeline_->exact()) check_coordinate_resolution(geometry, pipeline_->field());
   }
   return *pipeline_;
+}
+
+const BackgroundSpacing& MeshInputs::background() const {
+  const SpacingPipeline& p = pipeline();
+  // The thesis' field builds its quadtree (the node estimate's and the simulation's lookup table) on
+  // first use, within the same budgets.
+  try {
+    return p.background();
+  } catch (const LimitError& e) {
+    throw LimitError(fmt::format("{}: {}{}", source_, e.what(), refused_by_nodes(e) ? node_hint_ : ""));
+  }
 }
 
 std::vector<std::string> MeshInputs::curve_names() const {
@@ -160,13 +202,24 @@ double check_node_limit(const CaseConfig& config, const MeshInputs& inputs) {
   // One pass over the leaves of the final field's quadtree (init/node_estimate), which the simulation
   // samples anyway: per-sample queries over the initialization tree took longer than the simulation
   // on rods_fine (7.4 s against 5.5 s, thesis preset).
-  const double estimate = estimate_node_count(inputs.node_tree(), inputs.pipeline().background());
+  const BackgroundSpacing& background = inputs.background();
+  const double estimate = estimate_node_count(inputs.node_tree(), background);
   refuse_above_limit(config.source.string(), config.max_nodes, estimate, "spacing field");
   if (config.init.total > config.max_nodes) {
     throw LimitError(fmt::format("{}: init.total = {} is more than --max-nodes {}", config.source.string(),
                                  config.init.total, config.max_nodes));
   }
+  // The stages after this one (the fill, the simulation, the triangulation, the cleanup, the writers)
+  // each hold arrays in proportion to the node count: the run's peak, before the first of them.
+  const double nodes = std::max(estimate, static_cast<double>(config.init.total));
+  check_memory(config.max_memory, run_memory_bytes(nodes, background.stats().bytes),
+               fmt::format("{}: meshing about {:.0f} nodes (hexagonal-packing estimate)", config.source.string(), nodes),
+               "raise --max-memory, coarsen the spacing or lower --max-nodes");
   return estimate;
+}
+
+double run_memory_bytes(double nodes, std::size_t field_bytes) {
+  return kRunBytesBase + kRunBytesPerNode * kRunNodeGrowth * nodes + static_cast<double>(field_bytes);
 }
 
 InitialDistribution make_initial(const CaseConfig& config, const MeshInputs& inputs) {

@@ -9,6 +9,7 @@
 
 #include <fmt/format.h>
 
+#include "core/progress_notes.hpp"
 #include "io/quality_report.hpp"
 
 namespace pdmesh {
@@ -58,7 +59,9 @@ RunPhases::~RunPhases() {
 }
 
 RunPhases::Timer::Timer(RunPhases& phases, std::string name)
-    : phases_(&phases), name_(std::move(name)), wall0_(wall_seconds()), cpu0_(process_cpu_seconds()) {}
+    : phases_(&phases), name_(std::move(name)), wall0_(wall_seconds()), cpu0_(process_cpu_seconds()) {
+  set_current_phase(name_);  // for the progress heartbeat (core/progress_notes.hpp)
+}
 
 RunPhases::Timer::Timer(Timer&& other) noexcept
     : phases_(other.phases_), name_(std::move(other.name_)), wall0_(other.wall0_), cpu0_(other.cpu0_) {
@@ -80,6 +83,7 @@ RunPhases::Timer& RunPhases::Timer::operator=(Timer&& other) noexcept {
 void RunPhases::Timer::stop() {
   if (!phases_) return;
   phases_->add({name_, wall_seconds() - wall0_, process_cpu_seconds() - cpu0_, false});
+  clear_current_phase(name_);
   phases_ = nullptr;
 }
 

@@ -31,6 +31,10 @@ class GeometryTree {
   // boxes, cheaper than a level's four child bounds (eq. 3.6 on 30P30N: ~15 % less per point).
   static constexpr int kLeafCapacity = 16;
   static constexpr int kMaxDepth = 20;
+  // What the tree and the geometry's derived arrays hold per segment at most, for the memory budget:
+  // a circle of 1e6 segments peaks at 297 MB up to its refusal, reading included
+  // (docs/robustness.md, "Memory").
+  static constexpr double kBytesPerSegment = 512.0;
 
   // Keeps a reference to geometry: it must outlive the tree and not change.
   explicit GeometryTree(const Geometry& geometry);

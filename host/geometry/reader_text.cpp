@@ -2,8 +2,10 @@
 #include "geometry/reader_text.hpp"
 
 #include <cerrno>
+#include <cfloat>
 #include <charconv>
 #include <cmath>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -76,6 +78,13 @@ double parse_coordinate(const std::string& file, int line, const std::string& to
   double value = 0.0;
   const auto [ptr, ec] = std::from_chars(first, last, value);
   if (ec == std::errc::result_out_of_range) {
+    // from_chars says the same for a value too small for a double (1e-400) as for one too large:
+    // strtod's result tells which (0 or a denormal when it underflows).
+    if (std::fabs(std::strtod(token.c_str(), nullptr)) < DBL_MIN) {
+      throw InputError(fmt::format("{}:{}: {} '{}' is too small for a double: it underflows to 0 or a denormal "
+                                   "(write 0, or a value of at least {:g})",
+                                   file, line, what, token, DBL_MIN));
+    }
     throw InputError(fmt::format("{}:{}: {} '{}' is too large (|value| must be <= {:g})", file, line, what, token,
                                  kLargestCoordinate));
   }

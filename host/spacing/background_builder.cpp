@@ -7,7 +7,12 @@
 #include <cmath>
 #include <limits>
 
+#include <fmt/format.h>
+
+#include "core/errors.hpp"
 #include "core/parallel.hpp"
+#include "core/progress_notes.hpp"
+#include "init/node_estimate.hpp"
 
 namespace pdmesh {
 
@@ -150,9 +155,19 @@ void BackgroundBuilder::make_roots() {
 
 void BackgroundBuilder::build() {
   choose_grid();
+  // The root cells are the first allocation in proportion to the field (up to 512 x 512).
+  check_memory(opt_.memory, kBytesPerCell * static_cast<double>(grid_) * static_cast<double>(grid_),
+               fmt::format("the spacing field's background quadtree of {} x {} root cells", grid_, grid_),
+               "raise --max-memory");
   make_roots();
   std::vector<int> roots(cells_.size());
   for (std::size_t k = 0; k < roots.size(); ++k) roots[k] = static_cast<int>(k);
+  count_nodes_ = true;
+  finished_nodes_ = 0.0;
+  struct Off {
+    bool& flag;
+    ~Off() { flag = false; }
+  } off{count_nodes_};
   refine(
       std::move(roots), [this](const Cell& c, const double q[4]) { return default_decide(c, q); },
       [this](const Cell&, const double q[4], const double exact[9], const std::int32_t*, int count) {
@@ -181,8 +196,48 @@ bool BackgroundBuilder::default_test(const double q[4], const double exact[9], i
   return false;
 }
 
+void BackgroundBuilder::check_budget(const std::vector<int>& level_cells, const std::vector<Decision>& decision,
+                                     const std::vector<double>& corners) {
+  std::size_t splits = 0;
+  for (const Decision d : decision) splits += d == Decision::Split ? 1 : 0;
+  if (count_nodes_ && opt_.max_nodes > 0.0) {
+    // The hexagonal-packing count of the inside cells, on their bilinear q: exact for the leaves' final
+    // field and converging to it level by level for the cells that split. Boundary cells are left
+    // out (the part of them inside the domain is not known here; counting them whole would refuse a
+    // thin domain on its coarse levels).
+    const double hex = 2.0 / std::sqrt(3.0);
+    double splitting = 0.0;
+    for (std::size_t n = 0; n < level_cells.size(); ++n) {
+      const Cell& c = cells_[static_cast<std::size_t>(level_cells[n])];
+      if (c.tag != kTagInside) continue;
+      const double* q = &corners[4 * n];
+      if (!(q[0] > 0.0 && q[1] > 0.0 && q[2] > 0.0 && q[3] > 0.0)) continue;
+      const double s = side(c.level);
+      const double nodes = hex * s * s * inverse_square_integral(q[0], q[1], q[2], q[3]);
+      (decision[n] == Decision::Split ? splitting : finished_nodes_) += nodes;
+    }
+    const double estimate = finished_nodes_ + splitting;
+    if (!(estimate <= kEarlyNodeMargin * opt_.max_nodes)) {
+      const Cell& c = cells_[static_cast<std::size_t>(level_cells.front())];
+      throw LimitError(fmt::format(
+          "the spacing field asks for about {} nodes already on level {} of its quadtree (cells of side {:.3g}; "
+          "hexagonal-packing estimate over the cells inside the domain), more than --max-nodes {:.0f}; coarsen "
+          "the spacing or raise --max-nodes",
+          std::isfinite(estimate) ? fmt::format("{:.3g}", estimate) : std::string("infinitely many"), c.level,
+          side(c.level), opt_.max_nodes));
+    }
+  }
+  if (splits == 0) return;
+  const double cells = static_cast<double>(cells_.size()) + 4.0 * static_cast<double>(splits);
+  check_memory(opt_.memory, kBytesPerCell * cells,
+               fmt::format("the spacing field's background quadtree of {:.3g} cells (level {})", cells,
+                           cells_[static_cast<std::size_t>(level_cells.front())].level + 1),
+               "raise --max-memory, or coarsen the spacing");
+}
+
 std::size_t BackgroundBuilder::refine(std::vector<int> level_cells, const DecideFn& decide, const TestFn& test,
                                       const CornerFn& corner_value, const SampledFn& sampled) {
+  PhaseProgress progress("spacing field");
   std::size_t splits = 0;
   std::vector<std::uint64_t> keys;
   std::vector<std::int32_t> ids;
@@ -268,7 +323,12 @@ std::size_t BackgroundBuilder::refine(std::vector<int> level_cells, const Decide
         decision[n] = split ? Decision::Split : round == 0 ? Decision::Test : Decision::Leaf;
       }, kTestsPerThread);
     }
-    // 3. Children of the split cells: the next level.
+    // 3. Children of the split cells: the next level, once the budgets allow it.
+    check_budget(level_cells, decision, corners);
+    progress.note([&] {
+      return fmt::format("quadtree level {}: {} cells, {} samples", cells_[static_cast<std::size_t>(level_cells.front())].level,
+                         cells_.size(), values_.size());
+    });
     next.clear();
     const auto& segs = tree_.geometry().segments;
     std::vector<std::int32_t> tested_as(level_cells.size(), -1);  // n -> m

@@ -101,6 +101,18 @@ class BackgroundBuilder {
 
   std::size_t batches() const { return batches_; }
 
+  // What the tree holds per cell at its peak, for the memory budget: the cell, its share of the
+  // samples (key table, values, closest segments; up to 8 per leaf where every cell is tested), the
+  // level's work arrays, the flat arrays emit() writes and the limited field's per-sample arrays.
+  // Measured 620-680 bytes per cell on uniform fields of 0.26-1.3 M cells, the case with the most
+  // samples per cell (docs/robustness.md, "Memory").
+  static constexpr double kBytesPerCell = 768.0;
+  // build() refuses once the nodes that its inside cells ask for pass max_nodes times this. The count
+  // grows level by level toward the finished field's estimate: on the 14 case files in both presets
+  // it stayed below it at every level (at most 0.996 of it), so the margin only covers fields whose
+  // coarse bilinear q overestimates; the exact estimate is checked against max_nodes itself.
+  static constexpr double kEarlyNodeMargin = 1.25;
+
  private:
   double coord(double origin, std::uint32_t lattice) const;
   void choose_grid();
@@ -109,6 +121,10 @@ class BackgroundBuilder {
   void set_tag(Cell& c, std::vector<int> segments);
   // The same with the inside test of its centre done (used when segments is empty).
   void set_tag(Cell& c, std::vector<int> segments, bool inside);
+  // The budgets before a level's children are made (BackgroundOptions::max_nodes, memory); `corners`
+  // holds the level's corner values, 4 per cell.
+  void check_budget(const std::vector<int>& level_cells, const std::vector<Decision>& decision,
+                    const std::vector<double>& corners);
 
   const SpacingField* exact_;
   const GeometryTree& tree_;
@@ -123,6 +139,8 @@ class BackgroundBuilder {
   const Geometry* closest_geometry_ = nullptr;  // collect_closest's
   std::vector<std::int32_t> closest_;          // by sample id, while collecting (see collect_closest)
   std::size_t batches_ = 0;
+  bool count_nodes_ = false;     // build() is refining: its cells' corner values are the exact field's
+  double finished_nodes_ = 0.0;  // nodes in the inside leaves build() has finished
 };
 
 }  // namespace pdmesh

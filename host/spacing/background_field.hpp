@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "core/memory_budget.hpp"
 #include "core/vec2.hpp"
 #include "geometry/geometry_tree.hpp"
 #include "spacing/spacing_field.hpp"
@@ -69,6 +70,11 @@ struct BackgroundOptions {
   int max_grid = 512;  // top grid at most max_grid x max_grid, at most kMaxGridLimit
   static constexpr int kMaxDepthLimit = 20;
   static constexpr int kMaxGridLimit = 512;
+  // The budgets, checked before each level's cells are made (docs/robustness.md, "Memory"): the
+  // tree's estimated bytes against `memory`, and, while the tree of the exact field is built, the
+  // nodes that the inside cells made so far ask for against max_nodes (0: no limit).
+  double max_nodes = 0.0;
+  MemoryLimit memory;
 };
 
 struct BackgroundStats {

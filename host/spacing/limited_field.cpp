@@ -8,7 +8,11 @@
 #include <limits>
 #include <stdexcept>
 
+#include <fmt/format.h>
+
+#include "core/errors.hpp"
 #include "core/parallel.hpp"
+#include "init/node_estimate.hpp"
 
 namespace pdmesh {
 
@@ -56,6 +60,7 @@ class LimitedField {
       const std::vector<double> before = q_;
       const double tolerance = b_.options().tolerance;
       limit(leaf_corner, round == 1);
+      check_nodes(leaves, leaf_corner);
       // Refine the leaves whose corners the limit lowered this round (round 1: below the base field).
       std::vector<int> candidates;
       for (std::size_t n = 0; n < leaves.size(); ++n) {
@@ -100,6 +105,32 @@ class LimitedField {
   }
 
  private:
+  // The sources and the limit only lower q: before the leaves are refined for them, the nodes their
+  // inside leaves ask for, with the limited corners, are held to the node budget as the base tree's
+  // levels were (BackgroundBuilder::kEarlyNodeMargin).
+  void check_nodes(const std::vector<int>& leaves, const std::vector<std::int32_t>& leaf_corner) const {
+    const double max_nodes = b_.options().max_nodes;
+    if (!(max_nodes > 0.0)) return;
+    const double hex = 2.0 / std::sqrt(3.0);
+    double nodes = 0.0;
+    for (std::size_t n = 0; n < leaves.size(); ++n) {
+      const Cell& c = b_.cells()[static_cast<std::size_t>(leaves[n])];
+      if (c.tag != kTagInside) continue;
+      double q[4];
+      for (int a = 0; a < 4; ++a) q[a] = q_[static_cast<std::size_t>(leaf_corner[4 * n + static_cast<std::size_t>(a)])];
+      if (!(q[0] > 0.0 && q[1] > 0.0 && q[2] > 0.0 && q[3] > 0.0)) continue;
+      const double side = b_.side(c.level);
+      nodes += hex * side * side * inverse_square_integral(q[0], q[1], q[2], q[3]);
+    }
+    if (nodes <= BackgroundBuilder::kEarlyNodeMargin * max_nodes) return;
+    throw LimitError(fmt::format(
+        "the spacing field with its limits (feature size, curvature, gradation, point sizes) asks for about {} "
+        "nodes on the base quadtree's leaves inside the domain, before they are refined for it, more than "
+        "--max-nodes {:.0f}; coarsen the spacing, relax spacing.rows_in_gap or spacing.curvature_angle, or raise "
+        "--max-nodes",
+        std::isfinite(nodes) ? fmt::format("{:.3g}", nodes) : std::string("infinitely many"), max_nodes));
+  }
+
   static Vec2 lattice(const BackgroundBuilder& b, std::uint64_t k) {
     return b.point(static_cast<std::uint32_t>(k >> 32), static_cast<std::uint32_t>(k & 0xffffffffu));
   }
