@@ -12,6 +12,7 @@
 #include <vector>
 #include <fmt/format.h>
 
+#include "core/interrupt.hpp"
 #include "core/atomic_file.hpp"
 #include "core/errors.hpp"
 #include "render/png_file.hpp"
@@ -364,6 +365,7 @@ void render_picture(const fs::path& path, const CanvasOptions& options, const st
       for (int k = next_band++; k < bands; k = next_band++) {
         try {
           Canvas& canvas = *canvases[static_cast<std::size_t>(k)];
+          check_interrupt();  // a stop request abandons the picture (its temporary is removed)
           draw(canvas);
           canvas.check_drawn();
           // Encoded where it was drawn, while other bands are still being drawn.
