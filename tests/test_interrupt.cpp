@@ -13,9 +13,14 @@
 
 #include "core/interrupt.hpp"
 #include "core/parallel.hpp"
+#include "geometry/geometry_tree.hpp"
+#include "init/initial_distribution.hpp"
 #include "io/text_file.hpp"
 #include "run_pdmesh.hpp"
 #include "sim/checkpoint.hpp"
+#include "sim/simulation.hpp"
+#include "sim_fixtures.hpp"
+#include "spacing/spacing_field.hpp"
 #include "temp_files.hpp"
 
 namespace fs = std::filesystem;
@@ -88,6 +93,56 @@ TEST_CASE("parallel_for ends with Interrupted at a stop request, and runs whole 
     count = 0;
     for (int d : done) count += static_cast<std::size_t>(d);
     CHECK(count == n);
+  }
+}
+
+TEST_CASE("a stop during an iteration's forces or the stopping rule's measurement resumes bit-identical",
+          "[interrupt][sim]") {
+  using namespace pdmesh;
+  const Geometry geometry = pdmesh_test::circle_circle();
+  const GeometryTree tree(geometry);
+  const BoundarySpacing spacing(tree);
+  const NodeSet start = make_initial_distribution(tree, spacing, {InitMethod::Structured, 1, {}}).nodes;
+  SimOptions options;
+  options.iterations = 120;
+  options.dt_initial = 0.01;
+  options.quiet = true;
+  options.convergence.enabled = true;
+  options.convergence.check_every = 20;
+  options.convergence.window = 40;
+  options.convergence.min_iterations = 40;
+  NodeSet whole = start;
+  const SimResult a = run_simulation(whole, tree, spacing, options, {});
+  // The flag set in iteration 60's callback (a measurement is due after it) ends the measurement; set
+  // in iteration 90's, the forces of iteration 91 (the state after 90 is kept).
+  const int at = GENERATE(60, 90);
+  INFO("stop requested in iteration " << at);
+  NodeSet parts = start;
+  SimCallbacks callbacks;
+  callbacks.on_iteration = [at](const HistoryRow& row) {
+    if (row.iteration == at) interrupt_flag().store(true);
+  };
+  const SimResult b = run_simulation(parts, tree, spacing, options, callbacks);
+  interrupt_flag().store(false);
+  REQUIRE(b.stopped);
+  CHECK(b.state.iterations_done == at);
+  REQUIRE_FALSE(b.state.convergence.empty());
+  // After 60 the measurement is missing (taken by the resumed run); after 90 none was due.
+  CHECK(b.state.convergence.back().iteration == (at == 60 ? 40 : 80));
+  SimOptions again = options;
+  again.resume = &b.state;
+  const SimResult c = run_simulation(parts, tree, spacing, again, {});
+  CHECK(c.state.iterations_done == a.state.iterations_done);
+  CHECK(c.converged == a.converged);
+  REQUIRE(c.state.convergence.size() == a.state.convergence.size());
+  for (std::size_t k = 0; k < a.state.convergence.size(); ++k) {
+    CHECK(c.state.convergence[k].iteration == a.state.convergence[k].iteration);
+    CHECK(c.state.convergence[k].min_angle == a.state.convergence[k].min_angle);
+  }
+  REQUIRE(parts.size() == whole.size());
+  for (std::size_t i = 0; i < whole.size(); ++i) {
+    CHECK(parts.x[i].x == whole.x[i].x);
+    CHECK(parts.x[i].y == whole.x[i].y);
   }
 }
 

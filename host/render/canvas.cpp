@@ -368,6 +368,7 @@ void render_picture(const fs::path& path, const CanvasOptions& options, const st
           check_interrupt();  // a stop request abandons the picture (its temporary is removed)
           draw(canvas);
           canvas.check_drawn();
+          check_interrupt();
           // Encoded where it was drawn, while other bands are still being drawn.
           deflated[static_cast<std::size_t>(k)] = deflate_band(canvas.surface(), k == bands - 1);
         } catch (...) {
@@ -382,6 +383,7 @@ void render_picture(const fs::path& path, const CanvasOptions& options, const st
     for (std::thread& t : threads) t.join();
     for (const std::exception_ptr& e : failed)
       if (e) std::rethrow_exception(e);
+    check_interrupt();
     write_bytes(tmp, png_from_bands(deflated));
   });
 }

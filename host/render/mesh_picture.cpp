@@ -123,7 +123,9 @@ void write_mesh_picture(const std::filesystem::path& path, const Mesh& mesh, con
     const auto shown = [&](Vec2 a, Vec2 b) { return dist(a, b) >= min_edge_world; };
     if (values == nullptr) {
       FillBatch dense(canvas, kDenseShade);
+      InterruptPoll poll(65536);
       for (const auto& tri : mesh.triangles) {
+        poll.tick();
         const Vec2 a = mesh.points[tri[0]], b = mesh.points[tri[1]], c = mesh.points[tri[2]];
         if (shown(a, b) && shown(b, c) && shown(c, a)) continue;
         Box box;

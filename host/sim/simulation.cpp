@@ -175,10 +175,10 @@ SimResult run_simulation(NodeSet& nodes, const GeometryTree& tree, const Spacing
     result.converged = true;
   for (int iteration = first; iteration <= options.iterations && !result.converged; ++iteration) {
     const double dt_gm = gm.dt();
-    // An iteration runs whole once begun (a stop request is acted on after it, below): the parallel
-    // loops of its steps would otherwise end with Interrupted half way through moving the nodes.
+    // A stop request ends the iteration's computation (neighbours, forces, moves: nothing has moved
+    // yet) with Interrupted, and the run stops after the previous one; once the nodes move the
+    // iteration runs whole (the shield below) and the request is acted on after it.
     std::optional<InterruptShield> shield;
-    shield.emplace();
     StepSums sums;
     try {
       load_particles(nodes, boundary, particles);
@@ -212,7 +212,11 @@ SimResult run_simulation(NodeSet& nodes, const GeometryTree& tree, const Spacing
       // Nothing has moved yet in this iteration: the nodes still hold the last good state.
       if (callbacks.on_failure) callbacks.on_failure(snapshot());
       throw;
+    } catch (const Interrupted&) {
+      result.stopped = true;  // the state after `done`, as after a stop between iterations
+      break;
     }
+    shield.emplace();
     const BoundaryCounts counts = boundary.apply(nodes, moves.dx, moves.dy);
     // An interior node snapped onto a curve is a boundary node now: its interior motion does not carry
     // over (the device run does the same in host_boundary).
