@@ -32,7 +32,7 @@ ChosenBackend choose_backend(const std::string& device, Precision precision,
 // host ends before an OpenCL device is set up and its first lists are built (measured where host
 // and PoCL whole runs cross, docs/devices.md "auto and small meshes"). Outputs do not change: the
 // device run in double precision is the host's bit for bit.
-inline constexpr double kAutoHostBelowNodes = 20000;
+inline constexpr double kAutoHostBelowNodes = 1000;
 
 // Whether `device` ("auto" only) should take the host reference for a run of about `nodes` nodes:
 // below kAutoHostBelowNodes, or below PDMESH_TEST_AUTO_HOST_BELOW when that is set (a test hook,
