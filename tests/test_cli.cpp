@@ -361,7 +361,7 @@ TEST_CASE("pdmesh devices lists the OpenCL devices and checks each with a kernel
   CHECK(contains(r.output, "--precision auto picks double"));
 }
 
-TEST_CASE("--device auto simulates a small case on the host reference, without setting OpenCL up", "[cli]") {
+TEST_CASE("pdmesh mesh --device auto simulates a small case on the host reference, without setting OpenCL up", "[cli]") {
   const fs::path dir = fresh_dir("auto_small");
   write_rectangle(dir / "rect.crv");
   const Result r = run("mesh '" + (dir / "rect.crv").string() + "' --out '" + (dir / "out").string() +

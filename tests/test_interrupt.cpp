@@ -192,7 +192,8 @@ TEST_CASE("SIGINT in any phase stops the run with exit 130, a message, and only 
     bool simulated;  // the simulation has run: a checkpoint is written
   };
   const Phase phase = GENERATE(Phase{"read", false}, Phase{"spacing", false}, Phase{"fill", false},
-                               Phase{"initial.nodes", false}, Phase{"simulation", true}, Phase{"history.csv", true},
+                               // At the simulation's start: its first iteration's forces are cut short.
+                               Phase{"initial.nodes", false}, Phase{"simulation", false}, Phase{"history.csv", true},
                                Phase{"final.nodes", true}, Phase{"triangulation", true}, Phase{"cleanup", true},
                                Phase{"quality", true}, Phase{"mesh msh", true}, Phase{"waiting for pictures", true});
   INFO("phase: " << phase.name);

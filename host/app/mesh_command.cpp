@@ -116,7 +116,10 @@ SimResult simulate(const CaseConfig& config, const MeshInputs& inputs, NodeSet& 
   if (!config.write_outputs) return result;  // the Python API keeps the state in memory
   if (interrupt_flag().load()) {
     // Ctrl-C (or --stop-after): the nodes as they are go to the checkpoint, and nothing else is
-    // written: triangulating and cleaning up an unsettled mesh would only delay the stop.
+    // written: triangulating and cleaning up an unsettled mesh would only delay the stop. Stopped
+    // before an iteration of this run ended, there is nothing new to save (a resumed run's
+    // checkpoint stays as it was).
+    if (result.state.iterations_done == (resume ? resume->iterations_done : 0)) throw_interrupted();
     {
       const InterruptShield shield;
       write_checkpoint(checkpoint_file, Checkpoint{case_identity(config), nodes, result.state});

@@ -75,8 +75,8 @@ std::string stop_message(const CaseConfig& config, const std::string& phase, int
       text += fmt::format("; nothing was written, the checkpoint {} is unchanged\n",
                           checkpoint_path(config.out_dir).string());
     } else {
-      text += "; the simulation had not started, so there is nothing to continue from: run the same command "
-              "again to start over\n";
+      text += "; no iteration of the simulation had ended, so there is nothing to continue from: run the same "
+              "command again to start over\n";
       return text;
     }
   } else {
