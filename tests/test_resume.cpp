@@ -335,15 +335,17 @@ TEST_CASE("SIGINT stops a running mesh command with exit 130 and a readable chec
     ::_exit(127);
   }
   ::close(err[1]);
-  // Wait until the simulation has started (its first progress line), however loaded the machine.
+  // Wait until iterations have ended (the first "simulation N/100000" progress line, printed after the
+  // simulation's first second), however loaded the machine: a stop before the first iteration has
+  // ended leaves nothing to continue from, and no checkpoint.
   std::string seen;
   char buffer[256];
-  while (seen.find("simulation:") == std::string::npos) {
+  while (seen.find("/100000") == std::string::npos) {
     const ssize_t n = ::read(err[0], buffer, sizeof buffer);
     if (n <= 0) break;
     seen.append(buffer, static_cast<std::size_t>(n));
   }
-  REQUIRE(seen.find("simulation:") != std::string::npos);
+  REQUIRE(seen.find("/100000") != std::string::npos);
   REQUIRE(::kill(pid, SIGINT) == 0);
   // Keep draining stderr so that the child never blocks on a full pipe.
   while (::read(err[0], buffer, sizeof buffer) > 0) {
