@@ -1,6 +1,7 @@
 // The simulation backend of a run; see backend_choice.hpp.
 #include "app/backend_choice.hpp"
 
+#include <cstdlib>
 #include <fmt/format.h>
 
 #include "core/errors.hpp"
@@ -61,6 +62,31 @@ ChosenBackend choose_among(const std::vector<ocl::DeviceInfo>& candidates, bool 
     }
   }
   return host_backend(precision, note);
+}
+
+namespace {
+double auto_host_below() {
+  static const double below = [] {
+    const char* v = std::getenv("PDMESH_TEST_AUTO_HOST_BELOW");
+    return v != nullptr ? std::atof(v) : kAutoHostBelowNodes;
+  }();
+  return below;
+}
+}  // namespace
+
+bool auto_prefers_host(const std::string& device, double nodes) {
+  return device == "auto" && nodes < auto_host_below();
+}
+
+ChosenBackend choose_backend_for(const std::string& device, Precision precision, double nodes,
+                                 const std::function<void(const std::string&)>& note) {
+  if (!auto_prefers_host(device, nodes)) return choose_backend(device, precision, note);
+  note(fmt::format("device auto: the host reference for {:.0f} nodes (below {:.0f}, a whole run on the host ends "
+                   "sooner than on an OpenCL device; docs/devices.md)",
+                   nodes, auto_host_below()));
+  ChosenBackend chosen;
+  chosen.simulator = make_host_simulator();
+  return chosen;
 }
 
 ChosenBackend choose_backend(const std::string& device, Precision precision,

@@ -28,6 +28,22 @@ struct ChosenBackend {
 ChosenBackend choose_backend(const std::string& device, Precision precision,
                              const std::function<void(const std::string&)>& note);
 
+// `--device auto` simulates on the host reference below this many nodes: there a whole run on the
+// host ends before an OpenCL device is set up and its first lists are built (measured where host
+// and PoCL whole runs cross, docs/devices.md "auto and small meshes"). Outputs do not change: the
+// device run in double precision is the host's bit for bit.
+inline constexpr double kAutoHostBelowNodes = 1000;
+
+// Whether `device` ("auto" only) should take the host reference for a run of about `nodes` nodes:
+// below kAutoHostBelowNodes, or below PDMESH_TEST_AUTO_HOST_BELOW when that is set (a test hook,
+// docs/robustness.md: 0 lets the tests of auto's OpenCL path run on small cases).
+bool auto_prefers_host(const std::string& device, double nodes);
+
+// choose_backend for a run of about `nodes` nodes: "auto" below kAutoHostBelowNodes is the host
+// reference (noted), otherwise as choose_backend.
+ChosenBackend choose_backend_for(const std::string& device, Precision precision, double nodes,
+                                 const std::function<void(const std::string&)>& note);
+
 // The first of `candidates` (tried in order; each failure noted) on which the program builds, else
 // the host reference. `fall_back` false: the first candidate's DeviceError propagates.
 ChosenBackend choose_among(const std::vector<ocl::DeviceInfo>& candidates, bool fall_back, Precision precision,

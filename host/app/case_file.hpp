@@ -182,6 +182,9 @@ struct CaseConfig {
   MemoryLimit max_memory = default_memory_limit();
   std::optional<std::filesystem::path> resume;  // --resume: continue from this checkpoint (file or directory)
   std::optional<std::filesystem::path> timings_file;  // --timings: the phase times as JSON
+  // The `pdmesh mesh` command line as given (argv), for the commands a stopped run prints; empty
+  // for runs not started by the command.
+  std::vector<std::string> command_line;
   std::int64_t stop_after = 0;  // --stop-after (testing aid): act as if interrupted after this iteration; 0 = off
   // false (the Python API): the stages compute only; nothing is written into out_dir.
   bool write_outputs = true;

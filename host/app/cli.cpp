@@ -21,6 +21,7 @@
 #include "app/mesh_command.hpp"
 #include "app/quality_command.hpp"
 #include "core/errors.hpp"
+#include "core/interrupt.hpp"
 #include "core/memory_budget.hpp"
 #include "mesh/quality.hpp"
 
@@ -48,6 +49,7 @@ struct MeshArguments {
   std::optional<std::string> max_memory;
   std::optional<std::string> resume;
   std::int64_t stop_after = 0;
+  std::vector<std::string> command_line;  // argv as given
 };
 
 namespace {
@@ -222,6 +224,7 @@ CaseConfig config_from(const MeshArguments& a) {
   if (a.resume) config.resume = fs::path(*a.resume);
   if (a.stop_after < 0) throw InputError(fmt::format("--stop-after {}: expected an iteration number >= 1", a.stop_after));
   config.stop_after = a.stop_after;
+  config.command_line = a.command_line;
   if (a.timings) config.timings_file = fs::path(*a.timings);
   return config;
 }
@@ -379,7 +382,10 @@ Cli::Cli() : app_(std::make_unique<CLI::App>("pdmesh: physics-based point placem
 
 Cli::~Cli() = default;
 
-void Cli::parse(int argc, const char* const* argv) { app_->parse(argc, argv); }
+void Cli::parse(int argc, const char* const* argv) {
+  mesh_->command_line.assign(argv, argv + argc);
+  app_->parse(argc, argv);
+}
 
 int Cli::run() {
   for (const auto& [command, runner] : commands_) {
@@ -398,6 +404,9 @@ int run_command_line(int argc, const char* const* argv) {
       return cli.app().exit(e) == 0 ? kExitOk : kExitInput;
     }
     return cli.run();
+  } catch (const Interrupted&) {  // a stop request outside run_mesh's own handling
+    fmt::print(stderr, "pdmesh: stopped\n");
+    return kExitInterrupted;
   } catch (const InputError& e) {
     fmt::print(stderr, "pdmesh: error: {}\n", e.what());
     return kExitInput;

@@ -1,21 +1,22 @@
-// SIGINT/SIGTERM handlers that only store to lock-free atomics (async-signal-safe).
+// SIGINT/SIGTERM handlers that only store to lock-free atomics (async-signal-safe): the stop flag of
+// core/interrupt, which every long loop polls.
 #include "app/interrupt.hpp"
 
 #include <csignal>
 
+#include "core/interrupt.hpp"
+
 namespace pdmesh {
 namespace {
 
-static_assert(std::atomic<bool>::is_always_lock_free, "the stop flag is set from a signal handler");
 static_assert(std::atomic<int>::is_always_lock_free, "the signal number is set from a signal handler");
 
-std::atomic<bool> g_stop{false};
 std::atomic<int> g_signal{0};
 struct sigaction g_previous_int, g_previous_term;
 
 extern "C" void on_stop_signal(int signal) {
   g_signal.store(signal);
-  g_stop.store(true);
+  interrupt_flag().store(true);
   // A second signal ends the process at once (sigaction and SIG_DFL are async-signal-safe).
   struct sigaction dfl {};
   dfl.sa_handler = SIG_DFL;
@@ -26,7 +27,7 @@ extern "C" void on_stop_signal(int signal) {
 }  // namespace
 
 InterruptGuard::InterruptGuard() {
-  g_stop.store(false);
+  interrupt_flag().store(false);
   g_signal.store(0);
   struct sigaction action {};
   action.sa_handler = on_stop_signal;
@@ -41,7 +42,7 @@ InterruptGuard::~InterruptGuard() {
   sigaction(SIGTERM, &g_previous_term, nullptr);
 }
 
-std::atomic<bool>& InterruptGuard::flag() { return g_stop; }
+std::atomic<bool>& InterruptGuard::flag() { return interrupt_flag(); }
 int InterruptGuard::signal_number() { return g_signal.load(); }
 
 }  // namespace pdmesh

@@ -1,5 +1,7 @@
-// SIGINT/SIGTERM handling for `pdmesh mesh`: the first signal asks the run to stop after the current
-// iteration (and write a checkpoint); a second one ends the process the default way.
+// SIGINT/SIGTERM handling for `pdmesh mesh`: the first signal sets core/interrupt's stop flag, which
+// stops the run wherever it is (the simulation after its current iteration, with a checkpoint; every
+// other long phase within a fraction of a second, by check_interrupt); a second one ends the process
+// the default way.
 #pragma once
 #include <atomic>
 
@@ -13,7 +15,7 @@ class InterruptGuard {
   InterruptGuard(const InterruptGuard&) = delete;
   InterruptGuard& operator=(const InterruptGuard&) = delete;
 
-  // Set by the handler (and by tests or --stop-after); read by the simulation once per iteration.
+  // core/interrupt's flag: set by the handler (and by tests or --stop-after).
   static std::atomic<bool>& flag();
   // The signal that set the flag, 0 if none.
   static int signal_number();

@@ -10,9 +10,12 @@
 #include "app/exit_codes.hpp"
 #include "app/interrupt.hpp"
 #include "app/mesh_command_detail.hpp"
+#include "app/output_guard.hpp"
 #include "app/resume.hpp"
+#include "app/stop_report.hpp"
 #include "core/atomic_file.hpp"
 #include "core/errors.hpp"
+#include "core/interrupt.hpp"
 #include "core/progress_notes.hpp"
 #include "core/worker_pool.hpp"
 #include "render/history_plot.hpp"
@@ -57,9 +60,11 @@ SimResult simulate(const CaseConfig& config, const MeshInputs& inputs, NodeSet& 
   // auto: the best OpenCL device whose program builds, else the host reference. An explicit opencl
   // spec that cannot be met throws InputError listing the devices (exit 2).
   const auto note = [&config](const std::string& line) { progress(config, "{}", line); };
-  const ChosenBackend backend = hooks && hooks->backend
-                                    ? hooks->backend(note)
-                                    : choose_backend(config.simulation.device, config.simulation.precision, note);
+  const ChosenBackend backend =
+      hooks && hooks->backend
+          ? hooks->backend(note)
+          : choose_backend_for(config.simulation.device, config.simulation.precision,
+                               static_cast<double>(nodes.size()), note);
   SimOptions options = simulation_options(config);
   options.stop = hooks && hooks->stop ? hooks->stop : &InterruptGuard::flag();
   options.resume = resume;
@@ -110,7 +115,22 @@ SimResult simulate(const CaseConfig& config, const MeshInputs& inputs, NodeSet& 
   }
   hold.release();
   if (!config.write_outputs) return result;  // the Python API keeps the state in memory
-  if (result.stopped || InterruptGuard::flag().load()) {
+  if (interrupt_flag().load()) {
+    // Ctrl-C (or --stop-after): the nodes as they are go to the checkpoint, and nothing else is
+    // written: triangulating and cleaning up an unsettled mesh would only delay the stop. Stopped
+    // before an iteration of this run ended, there is nothing new to save (a resumed run's
+    // checkpoint stays as it was).
+    if (result.state.iterations_done == (resume ? resume->iterations_done : 0)) throw_interrupted();
+    {
+      const InterruptShield shield;
+      write_checkpoint(checkpoint_file, Checkpoint{case_identity(config), nodes, result.state});
+    }
+    throw Interrupted(fmt::format("after iteration {} of {}{}; wrote {} and nothing else",
+                                  result.state.iterations_done, options.iterations,
+                                  result.converged ? " (converged)" : "", checkpoint_file.string()));
+  }
+  if (hooks && hooks->finished) *hooks->finished = result.state;
+  if (result.stopped) {
     write_checkpoint(checkpoint_file, Checkpoint{case_identity(config), nodes, result.state});
     progress(config, "simulation: stopped after iteration {} of {}; wrote {} (continue with --resume {})",
              result.state.iterations_done, options.iterations, checkpoint_file.string(), config.out_dir.string());
@@ -193,10 +213,33 @@ void report_spacing(const CaseConfig& config, const MeshInputs& inputs) {
            o.rows_in_gap, o.curvature_angle, b.leaves, s.base_leaves, s.reduced_corners, b.corners);
 }
 
+// Runs `stages` (the simulation and what follows it). A stop request after the simulation has ended
+// (`finished` set by SimulateHooks::finished) writes its nodes to the checkpoint, which a stop in
+// the simulation has written itself (and named in its message), and throws on saying so.
+template <class Stages>
+void checkpoint_on_stop(const CaseConfig& config, const NodeSet& nodes, const std::optional<SimState>& finished,
+                        const Stages& stages) {
+  try {
+    stages();
+  } catch (const Interrupted& e) {
+    if (std::string(e.what()) != "interrupted" || !finished || !config.write_outputs) throw;
+    const fs::path file = checkpoint_path(config.out_dir);
+    {
+      const InterruptShield shield;
+      write_checkpoint(file, Checkpoint{case_identity(config), nodes, *finished});
+    }
+    throw Interrupted(fmt::format("after the simulation had ended (iteration {}); wrote its nodes to {} (the files "
+                                  "written whole before the stop stay)",
+                                  finished->iterations_done, file.string()));
+  }
+}
+
 // `--resume`: the node set and driver state come from the checkpoint instead of the initialization
-// (whose outputs the interrupted run already wrote).
+// (whose outputs the interrupted run already wrote). With --iterations 0 the checkpoint's nodes are
+// meshed as they are, and the checkpoint stays (the run can still be continued).
 void resume_mesh(const CaseConfig& config, const MeshInputs& inputs, RunPhases& phases) {
   auto timer = phases.phase("checkpoint");
+  const bool mesh_as_is = config.simulation.iterations == 0;
   Checkpoint checkpoint = read_checkpoint_for(*config.resume, config, inputs.node_tree());
   timer.stop();
   {
@@ -210,9 +253,21 @@ void resume_mesh(const CaseConfig& config, const MeshInputs& inputs, RunPhases& 
   report_spacing(config, inputs);
   prepare_output_directory(config);
   NodeSet nodes = std::move(checkpoint.nodes);
+  if (mesh_as_is) {
+    progress(config, "mesh: the nodes of the checkpoint as they are, after iteration {} (the checkpoint stays)",
+             checkpoint.state.iterations_done);
+    mesh_and_measure(config, inputs, nodes, &phases);
+    return;
+  }
   const PictureGuard guard(phases);
-  const SimResult result = simulate(config, inputs, nodes, &checkpoint.state, nullptr, &phases);
-  mesh_and_measure(config, inputs, nodes, &phases, result.final_mesh.get());
+  std::optional<SimState> finished;
+  SimulateHooks hooks;
+  hooks.finished = &finished;
+  checkpoint_on_stop(config, nodes, finished, [&] {
+    const SimResult result = simulate(config, inputs, nodes, &checkpoint.state, &hooks, &phases);
+    mesh_and_measure(config, inputs, nodes, &phases, result.final_mesh.get());
+    check_interrupt();  // a stop while the last pictures were abandoned
+  });
 }
 
 // choose_backend's result, its notes and its error, for a run that sets the backend up on a thread.
@@ -241,27 +296,14 @@ void report_phases(const CaseConfig& config, const RunPhases& phases) {
 
 }  // namespace
 
-int run_mesh(const CaseConfig& config) {
-  // The long phases' progress notes (core/progress_notes.hpp) go where the progress lines go.
-  // A phase that runs long with nothing to say gets a "still running" line from the heartbeat.
-  struct Notes {
-    explicit Notes(bool quiet) {
-      if (quiet) return;
-      set_progress_sink([](const std::string& line) { fmt::print(stderr, "{}\n", line); });
-      heartbeat = std::make_unique<ProgressHeartbeat>();
-    }
-    ~Notes() {
-      heartbeat.reset();
-      set_progress_sink({});
-    }
-    std::unique_ptr<ProgressHeartbeat> heartbeat;
-  } notes(config.quiet);
-  RunPhases phases;
-  // SIGINT/SIGTERM from here on stop the simulation after its current iteration (exit 130).
-  InterruptGuard interrupt;
+namespace {
+
+// Every stage in order (run_mesh without the stop handling).
+void run_stages(const CaseConfig& config, RunPhases& phases) {
   // Stage 1: inputs.
   auto timer = phases.phase("read");
   const MeshInputs inputs(config);
+  check_interrupt();  // a stop while reading is acted on here at the latest
   timer.stop();
   progress(config, "geometry: {} curves, {} segments, {} loops, area {:.6g}", inputs.geometry.curves.size(),
            inputs.geometry.segments.size(), inputs.geometry.loops.size(), inputs.geometry.area);
@@ -279,15 +321,8 @@ int run_mesh(const CaseConfig& config) {
   start_workers();
   if (config.resume) {
     resume_mesh(config, inputs, phases);
-    report_phases(config, phases);
-    return InterruptGuard::flag().load() ? kExitInterrupted : kExitOk;
+    return;
   }
-  // The simulation's backend (OpenCL platforms, context, program from PoCL's cache: ~0.05 s wall on
-  // 30P30N) is set up on a thread while this one builds the spacing field, estimates and fills, which
-  // leave a core idle part of the time. Its notes and errors come out when the simulation starts.
-  std::future<PreparedBackend> prepared;
-  if (config.simulation.iterations > 0)
-    prepared = std::async(std::launch::async, [&config] { return prepare_backend(config); });
   // Stage 2: the final spacing field (the pipeline), then the limits, before any large allocation.
   // The quadtree of the final field (in the thesis preset eq. 3.6's lookup table, which the node
   // estimate and the simulation read) is built here.
@@ -298,6 +333,13 @@ int run_mesh(const CaseConfig& config) {
   timer = phases.phase("estimate");
   const double estimate = check_node_limit(config, inputs);
   timer.stop();
+  // The simulation's backend (OpenCL platforms, context, program from PoCL's cache: ~0.05 s wall on
+  // 30P30N) is set up on a thread while this one fills, which leaves a core idle part of the time.
+  // Its notes and errors come out when the simulation starts. `--device auto` on a small case takes
+  // the host reference (simulate decides, from the node count), and sets up no OpenCL at all.
+  std::future<PreparedBackend> prepared;
+  if (config.simulation.iterations > 0 && !auto_prefers_host(config.simulation.device, estimate))
+    prepared = std::async(std::launch::async, [&config] { return prepare_backend(config); });
   // Stage 3: initial distribution (the boundary placement, then the fill).
   timer = phases.phase("fill");
   const InitialDistribution initial = make_initial(config, inputs);
@@ -320,19 +362,59 @@ int run_mesh(const CaseConfig& config) {
   const PictureGuard guard(phases);
   write_initial_outputs(config, inputs, initial, &phases);
   // Stage 5: the simulation (none with --iterations 0: the initial distribution is meshed).
-  std::shared_ptr<const Mesh> final_mesh;
-  if (config.simulation.iterations > 0) {
-    SimulateHooks hooks;
-    hooks.backend = [&prepared](const std::function<void(const std::string&)>& note) {
-      PreparedBackend p = prepared.get();
-      for (const std::string& line : p.notes) note(line);
-      if (p.error) std::rethrow_exception(p.error);
-      return std::move(p.backend);
-    };
-    final_mesh = simulate(config, inputs, nodes, nullptr, &hooks, &phases).final_mesh;
+  std::optional<SimState> finished;
+  checkpoint_on_stop(config, nodes, finished, [&] {
+    std::shared_ptr<const Mesh> final_mesh;
+    if (config.simulation.iterations > 0) {
+      SimulateHooks hooks;
+      if (prepared.valid()) {
+        hooks.backend = [&prepared](const std::function<void(const std::string&)>& note) {
+          PreparedBackend p = prepared.get();
+          for (const std::string& line : p.notes) note(line);
+          if (p.error) std::rethrow_exception(p.error);
+          return std::move(p.backend);
+        };
+      }
+      hooks.finished = &finished;
+      final_mesh = simulate(config, inputs, nodes, nullptr, &hooks, &phases).final_mesh;
+    }
+    // Stage 6: the mesh, its quality and its files (a converged run has triangulated its final nodes).
+    mesh_and_measure(config, inputs, nodes, &phases, final_mesh.get());
+    check_interrupt();  // a stop while the last pictures were abandoned
+  });
+}
+
+}  // namespace
+
+int run_mesh(const CaseConfig& config) {
+  // The long phases' progress notes (core/progress_notes.hpp) go where the progress lines go.
+  // A phase that runs long with nothing to say gets a "still running" line from the heartbeat.
+  struct Notes {
+    explicit Notes(bool quiet) {
+      if (quiet) return;
+      set_progress_sink([](const std::string& line) { fmt::print(stderr, "{}\n", line); });
+      heartbeat = std::make_unique<ProgressHeartbeat>();
+    }
+    ~Notes() {
+      heartbeat.reset();
+      set_progress_sink({});
+    }
+    std::unique_ptr<ProgressHeartbeat> heartbeat;
+  } notes(config.quiet);
+  RunPhases phases;
+  // SIGINT/SIGTERM from here on stop the run wherever it is (exit 130, app/stop_report).
+  InterruptGuard interrupt;
+  // Before any work: no output replaces an input, every output is writable, and --out is this run's
+  // alone (app/output_guard).
+  check_outputs(config);
+  try {
+    run_stages(config, phases);
+  } catch (const Interrupted& e) {
+    const std::string what = e.what();
+    report_stop(config, phases.current_phase(), InterruptGuard::signal_number(),
+                what == "interrupted" ? std::nullopt : std::optional<std::string>(what));
+    return kExitInterrupted;
   }
-  // Stage 6: the mesh, its quality and its files (a converged run has triangulated its final nodes).
-  mesh_and_measure(config, inputs, nodes, &phases, final_mesh.get());
   report_phases(config, phases);
   return InterruptGuard::flag().load() ? kExitInterrupted : kExitOk;
 }

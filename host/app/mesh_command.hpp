@@ -135,15 +135,20 @@ struct SimulateHooks {
   // The backend when the caller set it up beforehand (run_mesh does, on a thread, while the spacing
   // field is built); it passes its notes to `note`. Empty: simulate() calls choose_backend.
   std::function<ChosenBackend(const std::function<void(const std::string&)>& note)> backend;
+  // Non-null: receives the simulation's state as soon as it has ended normally (before its outputs
+  // are written), so that a later stop request can checkpoint the finished nodes.
+  std::optional<SimState>* finished = nullptr;
 };
 
 // Stage 6: the particle dynamics simulation on the chosen backend, updating `nodes` in place, until
 // it converges or for simulation.iterations (simulation.stop); writes DIR/history.csv, final.nodes,
 // history.png, final.png and final_<view>.png (png), final.svg (svg).
-// With `resume`, continues that state (nodes must be its node set). Stops early when
-// InterruptGuard::flag() is set (a signal, or config.stop_after); then, or when the simulation fails,
-// writes DIR/checkpoint.pdmesh; a finished run removes a stale one. With config.write_outputs false
-// nothing is written (no checkpoint either: the caller keeps the returned state).
+// With `resume`, continues that state (nodes must be its node set). Stops early when core/interrupt's
+// flag is set (a signal, or config.stop_after): then writes DIR/checkpoint.pdmesh and nothing else,
+// and throws Interrupted naming the iteration and the file. A run stopped by hooks->stop writes the
+// checkpoint and its outputs. A failed simulation writes the checkpoint of its last good state; a
+// finished run removes a stale one. With config.write_outputs false nothing is written (no checkpoint
+// either: the caller keeps the returned state).
 SimResult simulate(const CaseConfig& config, const MeshInputs& inputs, NodeSet& nodes,
                    const SimState* resume = nullptr, const SimulateHooks* hooks = nullptr, RunPhases* run = nullptr);
 
@@ -158,9 +163,11 @@ Mesh mesh_and_measure(const CaseConfig& config, const MeshInputs& inputs, const 
                       RunPhases* run = nullptr, const Mesh* triangulated = nullptr);
 
 // All stages in order (or, with config.resume, from the checkpoint on); progress on stderr unless
-// config.quiet. Returns the exit status: 0, or 130 when interrupted (outputs of the state reached
-// and a checkpoint written). Every phase is timed: a summary line on stderr, and the JSON in
-// config.timings_file when set.
+// config.quiet. Returns the exit status: 0, or 130 when interrupted (app/stop_report: the checkpoint
+// of the current nodes once the simulation has run, nothing else, and a message on stderr with the
+// commands that continue). With config.resume and simulation.iterations 0 the checkpoint's nodes are
+// meshed as they are (the checkpoint is kept). Every phase is timed: a summary line on stderr, and the
+// JSON in config.timings_file when set.
 int run_mesh(const CaseConfig& config);
 
 }  // namespace pdmesh

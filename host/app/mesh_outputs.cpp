@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 
 #include "app/mesh_command_detail.hpp"
+#include "app/output_guard.hpp"
 #include "cleanup/cleanup.hpp"
 #include "core/atomic_file.hpp"
 #include "core/errors.hpp"
@@ -34,6 +35,8 @@ void prepare_output_directory(const CaseConfig& config) {
     throw InputError(fmt::format("cannot create output directory '{}': {}", config.out_dir.string(),
                                  ec ? ec.message() : std::string("a file of that name exists")));
   }
+  // The directory is this run's alone from here on (a run into an existing one took it earlier).
+  lock_output_directory(config.out_dir);
   // A run killed while writing leaves its temporary beside the file it was writing.
   const std::size_t stale = remove_stale_temporaries(config.out_dir);
   if (stale > 0)

@@ -141,7 +141,8 @@ Checkpoint read_checkpoint_for(const fs::path& resume, const CaseConfig& config,
       throw InputError(fmt::format("{}: the checkpoint belongs to another case: it has {} = '{}', {} has none",
                                    file.string(), key, value, config.source.string()));
   }
-  if (checkpoint.state.iterations_done > config.simulation.iterations)
+  // --iterations 0 meshes the checkpoint's nodes as they are (run_mesh).
+  if (config.simulation.iterations > 0 && checkpoint.state.iterations_done > config.simulation.iterations)
     throw InputError(fmt::format("{}: the checkpoint is after {} iterations, more than --iterations {}",
                                  file.string(), checkpoint.state.iterations_done, config.simulation.iterations));
   check_checkpoint_fits(checkpoint, tree, file.string());

@@ -4,11 +4,17 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <csignal>
+#include <cstdio>
+#include <cstdlib>
 #include <ctime>
+#include <signal.h>
+#include <unistd.h>
 #include <fstream>
 
 #include <fmt/format.h>
 
+#include "core/interrupt.hpp"
 #include "core/progress_notes.hpp"
 #include "io/quality_report.hpp"
 
@@ -19,6 +25,32 @@ double clock_seconds(clockid_t id) {
   timespec ts{};
   clock_gettime(id, &ts);
   return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
+}
+
+// Test hook (docs/robustness.md): PDMESH_TEST_SIGNAL_IN_PHASE=NAME[@SECONDS] sends this process a
+// SIGINT when the phase NAME begins (after SECONDS, from a thread, when given), and notes on stderr
+// the wall-clock time it did, so that a test or tools/interrupt_latency.sh can stop a run in any
+// phase and time how long it takes to end.
+void signal_in_phase(const std::string& name) {
+  static const char* const spec = std::getenv("PDMESH_TEST_SIGNAL_IN_PHASE");
+  if (spec == nullptr) return;
+  const std::string text(spec);
+  const auto at = text.find('@');
+  if (text.substr(0, at) != name) return;
+  const double delay = at == std::string::npos ? 0.0 : std::atof(text.c_str() + at + 1);
+  const auto send = [delay] {
+    if (delay > 0.0) std::this_thread::sleep_for(std::chrono::duration<double>(delay));
+    timespec ts{};
+    clock_gettime(CLOCK_REALTIME, &ts);
+    std::fprintf(stderr, "pdmesh: test: SIGINT sent at %lld.%09ld\n", static_cast<long long>(ts.tv_sec), ts.tv_nsec);
+    std::fflush(stderr);
+    ::kill(::getpid(), SIGINT);
+  };
+  if (delay > 0.0) {
+    std::thread(send).detach();
+  } else {
+    send();
+  }
 }
 
 }  // namespace
@@ -61,6 +93,11 @@ RunPhases::~RunPhases() {
 RunPhases::Timer::Timer(RunPhases& phases, std::string name)
     : phases_(&phases), name_(std::move(name)), wall0_(wall_seconds()), cpu0_(process_cpu_seconds()) {
   set_current_phase(name_);  // for the progress heartbeat (core/progress_notes.hpp)
+  {
+    std::lock_guard lock(phases.mutex_);
+    phases.current_ = name_;
+  }
+  signal_in_phase(name_);
 }
 
 RunPhases::Timer::Timer(Timer&& other) noexcept
@@ -165,6 +202,11 @@ void RunPhases::worker() {
 void RunPhases::run_job(std::unique_lock<std::mutex>& lock) {
   Job next = std::move(queue_.front());
   queue_.pop_front();
+  if (interrupt_flag().load()) {  // stopping: the pictures not begun are abandoned
+    --pending_;
+    cv_.notify_all();
+    return;
+  }
   lock.unlock();
   const double w0 = wall_seconds(), c0 = thread_cpu_seconds();
   std::exception_ptr error;
@@ -204,6 +246,11 @@ PictureGuard::~PictureGuard() {
     phases_.wait_pictures();
   } catch (...) {  // not reported over the exception that is unwinding
   }
+}
+
+std::string RunPhases::current_phase() const {
+  std::lock_guard lock(mutex_);
+  return current_;
 }
 
 std::vector<PhaseTime> RunPhases::phases() const {

@@ -67,6 +67,8 @@ class RunPhases {
   // rethrows the error of the earliest queued job that threw (once; queue order, not completion order,
   // so the same error whichever thread drew which picture).
   void wait_pictures();
+  // A stop request (core/interrupt) abandons the pictures not begun yet; one being drawn ends with
+  // Interrupted (the drawing loops poll it), which wait_pictures() rethrows.
   // While held, queued pictures wait (the background thread starts none), for at most max_seconds;
   // wait_pictures() and the destructor release them.
   void hold_pictures(bool hold, double max_seconds = HUGE_VAL);
@@ -80,6 +82,8 @@ class RunPhases {
   void note(const std::string& key, const std::string& value);
 
   std::vector<PhaseTime> phases() const;
+  // The name of the phase begun last (by phase()), "" before the first: where a stop came.
+  std::string current_phase() const;
   double elapsed() const;  // wall seconds since construction
   // One progress line: the phases in order with their wall times, the pictures' total, the whole.
   std::string summary() const;
@@ -97,6 +101,7 @@ class RunPhases {
   std::vector<PhaseTime> phases_;
   std::vector<std::pair<std::string, double>> notes_;
   std::vector<std::pair<std::string, std::string>> text_notes_;
+  std::string current_;
   // The background thread and its queue (started with the first picture).
   std::condition_variable cv_;
   struct Job {

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <set>
 
+#include "core/interrupt.hpp"
 #include "cleanup/editable_mesh.hpp"
 #include "cleanup/measures.hpp"
 #include "cleanup/smoothing.hpp"
@@ -127,10 +128,16 @@ CleanupResult clean_mesh(const Mesh& mesh, const NodeSet& nodes, const GeometryT
         record.small_aspect_drop += g.aspect_drop;
       }
     };
-    for (int a : vertices_of_bad_triangles(m, scores.update(m, dirty), smooth_limit, mark))
+    // A stop request ends the cleanup between two node moves or repairs (each leaves a valid mesh).
+    InterruptPoll poll(256);
+    for (int a : vertices_of_bad_triangles(m, scores.update(m, dirty), smooth_limit, mark)) {
+      poll.tick();
       if (worth(a)) tally(smoother.relax(a));
-    for (int a : vertices_of_bad_triangles(m, scores.update(m, dirty), topology_limit, mark))
+    }
+    for (int a : vertices_of_bad_triangles(m, scores.update(m, dirty), topology_limit, mark)) {
+      poll.tick();
       if (worth(a)) tally(smoother.climb(a));
+    }
     changed += record.moves;
     const auto smoothed = std::chrono::steady_clock::now();
     record.smoothing_seconds = std::chrono::duration<double>(smoothed - timer).count();
@@ -169,6 +176,7 @@ CleanupResult clean_mesh(const Mesh& mesh, const NodeSet& nodes, const GeometryT
       }
       const std::size_t trials_before = ops.trials();
       for (const auto& [q, t] : bad) {
+        poll.tick();
         const bool below = q < target;
         if (ops.trials() >= trial_budget && (!below || ops.trials() >= 2 * trial_budget)) break;
         if (!m.alive(t) || !(m.quality(t) < topology_limit)) continue;

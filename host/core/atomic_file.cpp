@@ -4,6 +4,7 @@
 #include <signal.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cstdio>
 #include <cstdlib>
@@ -12,6 +13,7 @@
 #include <fmt/format.h>
 
 #include "core/errors.hpp"
+#include "core/interrupt.hpp"
 
 namespace pdmesh {
 
@@ -57,7 +59,20 @@ void write_file_atomically(const fs::path& path, std::string_view content) {
     if (f == nullptr) {
       throw InputError(fmt::format("cannot write '{}': {}", path.string(), std::strerror(errno)));
     }
-    const std::size_t written = content.empty() ? 0 : std::fwrite(content.data(), 1, content.size(), f);
+    // In pieces, so that a stop request (core/interrupt) ends a write of hundreds of megabytes within
+    // a fraction of a second: the temporary is then removed (write_atomically).
+    constexpr std::size_t kPiece = std::size_t{8} << 20;
+    std::size_t written = 0;
+    while (written < content.size()) {
+      if (interrupt_requested()) {
+        std::fclose(f);
+        throw_interrupted();
+      }
+      const std::size_t piece = std::min(kPiece, content.size() - written);
+      const std::size_t n = std::fwrite(content.data() + written, 1, piece, f);
+      written += n;
+      if (n != piece) break;
+    }
     const int write_errno = errno;
     const bool flushed = std::fflush(f) == 0;
     const int flush_errno = errno;

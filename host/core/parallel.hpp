@@ -9,6 +9,7 @@
 #include <thread>
 #include <vector>
 
+#include "core/interrupt.hpp"
 #include "core/worker_pool.hpp"
 
 namespace pdmesh {
@@ -29,9 +30,15 @@ void parallel_for_scratch(std::size_t n, const Body& body, std::size_t min_chunk
   // hardware_concurrency() reads /sys on Linux: ask once.
   static const std::size_t hardware = std::max(1u, std::thread::hardware_concurrency());
   const std::size_t threads = chunks <= 1 ? 1 : std::min({hardware, max_threads, chunks});
+  // A stop request (core/interrupt) ends the loop between blocks with Interrupted, unless the caller
+  // is shielded (the helpers run on other threads: the caller's shield is passed on by hand).
+  const bool poll = !interrupt_shielded();
   if (threads <= 1) {
     Scratch scratch{};
-    for (std::size_t i = 0; i < n; ++i) body(scratch, i);
+    for (std::size_t i = 0; i < n; ++i) {
+      if (poll && (i & 1023) == 0) check_interrupt();
+      body(scratch, i);
+    }
     return;
   }
   // Blocks small enough that the last ones even out the threads' finishing times (8 per thread), and
@@ -48,6 +55,7 @@ void parallel_for_scratch(std::size_t n, const Body& body, std::size_t min_chunk
       while (!failed.load(std::memory_order_relaxed)) {
         begin = next.fetch_add(block, std::memory_order_relaxed);
         if (begin >= n) break;
+        if (poll && interrupt_flag().load(std::memory_order_relaxed)) throw_interrupted();
         const std::size_t end = std::min(n, begin + block);
         for (std::size_t i = begin; i < end; ++i) body(scratch, i);
       }

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/interrupt.hpp"
 #include "core/errors.hpp"
 #include "fmt/format.h"
 
@@ -36,6 +37,7 @@ InitTree::InitTree(const GeometryTree& tree, const SpacingField& spacing, const 
   balance(options.max_level);
   collect(0);
   for (std::size_t i = 0; i < leaves_.size(); ++i) {
+    if ((i & 4095) == 0) check_interrupt();
     InitLeaf& leaf = leaves_[i];
     // A leaf no segment touches lies wholly in one region, so its centre decides for all of it.
     leaf.kept = !leaf.segments.empty() || tree_.inside(leaf.box.centre());

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "core/interrupt.hpp"
 #include "core/errors.hpp"
 #include "fmt/format.h"
 #include "init/init_tree.hpp"
@@ -110,7 +111,9 @@ double estimate_quad(const GeometryTree& tree, const SpacingField& spacing, cons
 
 double estimate_over(const GeometryTree& tree, const SpacingField& spacing, const InitTree& init) {
   double sum = 0.0;
+  InterruptPoll poll(1024);
   for (int k : init.kept()) {
+    poll.tick();
     const InitLeaf& leaf = init.leaves()[k];
     sum += estimate_quad(tree, spacing, leaf.box, leaf.segments, leaf.segments.empty(), 0);
   }
@@ -177,7 +180,9 @@ InitialDistribution make_initial_distribution(const GeometryTree& tree, const Sp
 
   UnitRandom rng(options.seed);
   LatticePoints lattice;
+  InterruptPoll poll(1024);
   for (int k : init.kept()) {
+    poll.tick();
     const InitLeaf& leaf = init.leaves()[k];
     out.tree_quads.push_back(leaf.box);
     out.tree_nodes += fill_leaf(tree, spacing, leaf, options.method, rng, out.nodes, &lattice);

@@ -9,6 +9,7 @@
 
 #include <fmt/format.h>
 
+#include "core/interrupt.hpp"
 #include "core/g17.hpp"
 #include "io/mesh_io_common.hpp"
 
@@ -66,7 +67,9 @@ std::string msh41_string(const Mesh& mesh) {
     // of nodes); numbers as coord() writes them.
     auto to = std::back_inserter(out);
     for (std::size_t i = 0; i < n; ++i) fmt::format_to(to, "{}\n", i + 1);
+    InterruptPoll poll(65536);
     for (const auto& p : mesh.points) {
+      poll.tick();
       append_g17(out, p.x);
       out += ' ';
       append_g17(out, p.y);
@@ -95,7 +98,11 @@ std::string msh41_string(const Mesh& mesh) {
   if (!mesh.triangles.empty()) {
     out += fmt::format("2 1 2 {}\n", mesh.triangles.size());
     auto to = std::back_inserter(out);
-    for (const auto& t : mesh.triangles) fmt::format_to(to, "{} {} {} {}\n", tag++, t[0] + 1, t[1] + 1, t[2] + 1);
+    InterruptPoll poll(65536);
+    for (const auto& t : mesh.triangles) {
+      poll.tick();
+      fmt::format_to(to, "{} {} {} {}\n", tag++, t[0] + 1, t[1] + 1, t[2] + 1);
+    }
   }
   out += "$EndElements\n";
   out += msh_spacing_node_data(mesh);
@@ -110,6 +117,7 @@ std::string msh22_string(const Mesh& mesh) {
   out += fmt::format("$Nodes\n{}\n", mesh.points.size());
   auto to = std::back_inserter(out);
   for (std::size_t i = 0; i < mesh.points.size(); ++i) {
+    if ((i & 65535) == 0) check_interrupt();
     fmt::format_to(to, "{} ", i + 1);
     append_g17(out, mesh.points[i].x);
     out += ' ';
@@ -124,8 +132,11 @@ std::string msh22_string(const Mesh& mesh) {
     const auto& e = mesh.boundary_edges[k];
     out += fmt::format("{} 1 2 {} {} {} {}\n", tag++, e.curve + 1, e.curve + 1, e.a + 1, e.b + 1);
   }
-  for (const auto& t : mesh.triangles)
+  InterruptPoll poll(65536);
+  for (const auto& t : mesh.triangles) {
+    poll.tick();
     fmt::format_to(to, "{} 2 2 {} 1 {} {} {}\n", tag++, curves + 1, t[0] + 1, t[1] + 1, t[2] + 1);
+  }
   out += "$EndElements\n";
   out += msh_spacing_node_data(mesh);
   return out;

@@ -3,6 +3,7 @@
 // (section "SU2 Native Format (.su2)"): NDIME=, NELEM= (VTK type ids, 0-based point indices),
 // NPOIN=, NMARK=, MARKER_TAG=, MARKER_ELEMS=.
 #include "io/su2_writer.hpp"
+#include "core/interrupt.hpp"
 
 #include <iterator>
 
@@ -18,12 +19,15 @@ std::string su2_string(const Mesh& mesh) {
   // most of the time at millions of cells).
   auto to = std::back_inserter(out);
   for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
+    if ((t & 65535) == 0) check_interrupt();
     const auto& tri = mesh.triangles[t];
     fmt::format_to(to, "5 {} {} {} {}\n", tri[0], tri[1], tri[2], t);
   }
   out += fmt::format("NPOIN= {}\n", mesh.points.size());
-  for (std::size_t i = 0; i < mesh.points.size(); ++i)
+  for (std::size_t i = 0; i < mesh.points.size(); ++i) {
+    if ((i & 65535) == 0) check_interrupt();
     fmt::format_to(to, "{:.17g} {:.17g} {}\n", mesh.points[i].x, mesh.points[i].y, i);
+  }
   std::vector<std::vector<std::size_t>> per_curve(mesh.curve_names.size());
   for (std::size_t e = 0; e < mesh.boundary_edges.size(); ++e) {
     per_curve[static_cast<std::size_t>(mesh.boundary_edges[e].curve)].push_back(e);

@@ -7,6 +7,7 @@
 
 #include <fmt/format.h>
 
+#include "core/interrupt.hpp"
 #include "io/mesh_io_common.hpp"
 
 namespace pdmesh {
@@ -26,6 +27,7 @@ TriangleFiles triangle_strings(const Mesh& mesh) {
   // number was most of the time at millions of cells).
   auto node = std::back_inserter(f.node);
   for (std::size_t i = 0; i < mesh.points.size(); ++i) {
+    if ((i & 65535) == 0) check_interrupt();
     fmt::format_to(node, "{} {:.17g} {:.17g}", i + 1, mesh.points[i].x, mesh.points[i].y);
     if (kinds) fmt::format_to(node, " {}", static_cast<int>(mesh.kind[i]));
     fmt::format_to(node, " {}\n", static_cast<int>(on_boundary[i]));
@@ -33,6 +35,7 @@ TriangleFiles triangle_strings(const Mesh& mesh) {
 
   f.ele = fmt::format("# Written by pdmesh (Triangle .ele format)\n{} 3 0\n", mesh.triangles.size());
   for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
+    if ((t & 65535) == 0) check_interrupt();
     const auto& tri = mesh.triangles[t];
     fmt::format_to(std::back_inserter(f.ele), "{} {} {} {}\n", t + 1, tri[0] + 1, tri[1] + 1, tri[2] + 1);
   }

@@ -14,6 +14,7 @@
 
 #include <fmt/format.h>
 
+#include "core/interrupt.hpp"
 #include "core/g17.hpp"
 #include "io/mesh_io_common.hpp"
 #include "io/vtu_data.hpp"
@@ -63,6 +64,7 @@ void data_array(std::string& out, VtuFormat format, std::string_view indent, std
   out += format == VtuFormat::Ascii ? " format=\"ascii\">\n" : " format=\"binary\">\n";
   if (format == VtuFormat::Ascii) {
     for (std::size_t i = 0; i < tuples; ++i) {
+      if ((i & 65535) == 0) check_interrupt();
       out += indent;
       out += "  ";
       for (int c = 0; c < components; ++c) {
@@ -79,11 +81,13 @@ void data_array(std::string& out, VtuFormat format, std::string_view indent, std
     Base64Encoder encoder(out);
     const std::uint64_t bytes = static_cast<std::uint64_t>(tuples) * components * sizeof(T);
     encoder.put(&bytes, sizeof bytes);
-    for (std::size_t i = 0; i < tuples; ++i)
+    for (std::size_t i = 0; i < tuples; ++i) {
+      if ((i & 65535) == 0) check_interrupt();
       for (int c = 0; c < components; ++c) {
         const T v = static_cast<T>(value(i, c));
         encoder.put(&v, sizeof v);
       }
+    }
     encoder.finish();
     out += '\n';
   }

@@ -6,6 +6,7 @@
 
 #include <deque>
 
+#include "core/interrupt.hpp"
 #include "core/errors.hpp"
 #include "core/predicates.hpp"
 
@@ -117,7 +118,11 @@ void recover_edges(Triangulation& tri, const std::vector<ConstrainedEdge>& edges
   }
   // Work in the triangulation's vertex numbering; messages translate back to input indices.
   bool flipped = false;
-  for (const auto& e : edges) flipped |= recover_edge(tri, {tri.vertex_of[e.a], tri.vertex_of[e.b], e.curve});
+  InterruptPoll poll(1024);
+  for (const auto& e : edges) {
+    poll.tick();
+    flipped |= recover_edge(tri, {tri.vertex_of[e.a], tri.vertex_of[e.b], e.curve});
+  }
   // Without a recovery flip the triangulation is the incremental one, already Delaunay under the
   // same exact test: the full Lawson pass (an incircle test and an edge search for each of its ~3n
   // edges, a fifth of a convergence check's triangulation) would flip nothing.

@@ -6,6 +6,7 @@
 
 #include <cmath>
 
+#include "core/interrupt.hpp"
 #include "core/errors.hpp"
 #include "core/predicates.hpp"
 #include "geometry/hilbert.hpp"
@@ -77,6 +78,7 @@ void Triangulation::build() {
 
   int last = 0;
   for (int vertex = 0; vertex < input_count; ++vertex) {
+    if ((vertex & 8191) == 0) check_interrupt();
     last = locate(points[vertex], last);
     insert(vertex, last);
   }
@@ -269,7 +271,9 @@ int Triangulation::make_delaunay() {
   for (int t = 0; t < static_cast<int>(v.size()); ++t)
     for (int i = 0; i < 3; ++i)
       if (n[t][i] > t) stack.push_back({v[t][next3(i)], v[t][prev3(i)]});
+  InterruptPoll poll(16384);
   while (!stack.empty()) {
+    poll.tick();
     const auto [a, b] = stack.back();
     stack.pop_back();
     if (is_constrained(a, b)) continue;

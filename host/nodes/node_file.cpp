@@ -10,6 +10,7 @@
 #include <optional>
 #include <sstream>
 
+#include "core/interrupt.hpp"
 #include "core/atomic_file.hpp"
 #include "core/errors.hpp"
 #include "core/g17.hpp"
@@ -113,6 +114,7 @@ std::string format_node_file(const NodeSet& nodes, const std::vector<std::string
   fmt::memory_buffer out;
   fmt::format_to(std::back_inserter(out), "{}\n{}\n", kHeader, nodes.size());
   for (std::size_t i = 0; i < nodes.size(); ++i) {
+    if ((i & 65535) == 0) check_interrupt();
     append_g17(out, nodes.x[i].x);
     out.push_back(' ');
     append_g17(out, nodes.x[i].y);

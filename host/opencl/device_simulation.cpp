@@ -8,6 +8,7 @@
 #include <algorithm>
 
 #include "core/errors.hpp"
+#include "core/interrupt.hpp"
 #include "sim/failure_report.hpp"
 #include "sim/progress.hpp"
 #include "spacing/background_field.hpp"
@@ -294,6 +295,10 @@ BoundaryCounts DeviceRun<Real>::host_boundary(double& skin_use) {
 
 template <typename Real>
 SimResult DeviceRun<Real>::run(const SimCallbacks& callbacks) {
+  // The device run acts on a stop request at the end of a window (options_.stop, below); the host
+  // work between (boundary handling, population events, the stopping rule's measurement) must not
+  // end half way with Interrupted.
+  const InterruptShield shield;
   SimResult result;
   result.stats.backend = fmt::format("opencl:{}:{} ({}, {}, device-resident)", ctx_.device().platform,
                                      ctx_.device().device, ctx_.device().name,
@@ -334,6 +339,8 @@ SimResult DeviceRun<Real>::run(const SimCallbacks& callbacks) {
     if (callbacks.on_failure) callbacks.on_failure(*failed_at);
   };
   try {
+    // A checkpoint whose last measurement a stop request ended lacks it (as in the host driver).
+    if (options_.resume && convergence_.missing_sample(done)) convergence_.add_sample(measure_mesh(nodes_, done));
     // A run stopped in the iteration it converged in is complete (as in the host driver).
     if (options_.resume && done < options_.iterations &&
         convergence_.converged_after(

@@ -12,6 +12,7 @@
 #include <vector>
 #include <fmt/format.h>
 
+#include "core/interrupt.hpp"
 #include "core/atomic_file.hpp"
 #include "core/errors.hpp"
 #include "render/png_file.hpp"
@@ -364,8 +365,10 @@ void render_picture(const fs::path& path, const CanvasOptions& options, const st
       for (int k = next_band++; k < bands; k = next_band++) {
         try {
           Canvas& canvas = *canvases[static_cast<std::size_t>(k)];
+          check_interrupt();  // a stop request abandons the picture (its temporary is removed)
           draw(canvas);
           canvas.check_drawn();
+          check_interrupt();
           // Encoded where it was drawn, while other bands are still being drawn.
           deflated[static_cast<std::size_t>(k)] = deflate_band(canvas.surface(), k == bands - 1);
         } catch (...) {
@@ -380,6 +383,7 @@ void render_picture(const fs::path& path, const CanvasOptions& options, const st
     for (std::thread& t : threads) t.join();
     for (const std::exception_ptr& e : failed)
       if (e) std::rethrow_exception(e);
+    check_interrupt();
     write_bytes(tmp, png_from_bands(deflated));
   });
 }

@@ -1,6 +1,7 @@
 // A drawing surface for pdmesh pictures (cairo, PNG or SVG): a world window mapped to pixels with
 // the aspect ratio preserved, a title band on top, an optional side band (colour bars) and a scale bar.
 #pragma once
+#include <exception>
 #include <cairo.h>
 
 #include <filesystem>
@@ -114,12 +115,15 @@ class Canvas {
 
 // Many segments of one colour and width (or many dots of one colour) drawn as one path: cairo's
 // per-call cost dominates pictures of thousands of items, so items are collected into one path and
-// stroked (filled) every few thousand items and when the batch ends. Overlapping items of a batch
-// are painted once (their union), not blended over each other.
+// stroked (filled) every few thousand items and when the batch ends, unless it ends by an exception
+// (a stop request: the picture is abandoned, and painting the batch would only delay the stop).
+// Overlapping items of a batch are painted once (their union), not blended over each other.
 class StrokeBatch {
  public:
   StrokeBatch(Canvas& canvas, Rgb colour, double width_px);
-  ~StrokeBatch() { flush(); }
+  ~StrokeBatch() {
+    if (std::uncaught_exceptions() == 0) flush();
+  }
   StrokeBatch(const StrokeBatch&) = delete;
   StrokeBatch& operator=(const StrokeBatch&) = delete;
   void segment(Vec2 a, Vec2 b);  // world coordinates
@@ -144,7 +148,9 @@ class StrokeBatch {
 class FillBatch {
  public:
   FillBatch(Canvas& canvas, Rgb colour);
-  ~FillBatch() { flush(); }
+  ~FillBatch() {
+    if (std::uncaught_exceptions() == 0) flush();
+  }
   FillBatch(const FillBatch&) = delete;
   FillBatch& operator=(const FillBatch&) = delete;
   void triangle(Vec2 a, Vec2 b, Vec2 c);  // world coordinates
@@ -161,7 +167,9 @@ class FillBatch {
 class DotBatch {
  public:
   DotBatch(Canvas& canvas, Rgb colour);
-  ~DotBatch() { flush(); }
+  ~DotBatch() {
+    if (std::uncaught_exceptions() == 0) flush();
+  }
   DotBatch(const DotBatch&) = delete;
   DotBatch& operator=(const DotBatch&) = delete;
   void dot(Vec2 centre, double radius_px);

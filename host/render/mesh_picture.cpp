@@ -7,6 +7,7 @@
 #include <tuple>
 #include <fmt/format.h>
 
+#include "core/interrupt.hpp"
 #include "core/errors.hpp"
 #include "mesh/quality.hpp"
 
@@ -122,7 +123,9 @@ void write_mesh_picture(const std::filesystem::path& path, const Mesh& mesh, con
     const auto shown = [&](Vec2 a, Vec2 b) { return dist(a, b) >= min_edge_world; };
     if (values == nullptr) {
       FillBatch dense(canvas, kDenseShade);
+      InterruptPoll poll(65536);
       for (const auto& tri : mesh.triangles) {
+        poll.tick();
         const Vec2 a = mesh.points[tri[0]], b = mesh.points[tri[1]], c = mesh.points[tri[2]];
         if (shown(a, b) && shown(b, c) && shown(c, a)) continue;
         Box box;
@@ -137,7 +140,9 @@ void write_mesh_picture(const std::filesystem::path& path, const Mesh& mesh, con
     }
     // Value fills first, then the edges on top of them.
     if (values != nullptr) {
+      InterruptPoll poll(65536);
       for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
+        poll.tick();
         const auto& tri = mesh.triangles[t];
         if (!visible(canvas, tri)) continue;
         // Equal extremes: every triangle has the same value; show it mid-ramp.
@@ -149,7 +154,9 @@ void write_mesh_picture(const std::filesystem::path& path, const Mesh& mesh, con
     const double edge_width = 0.6;
     StrokeBatch lines(canvas, colours::kBlack, edge_width);
     std::size_t skipped = 0;
+    InterruptPoll poll(65536);
     for (const auto& [i, j] : edges) {
+      poll.tick();
       const Vec2 a = mesh.points[static_cast<std::size_t>(i)], b = mesh.points[static_cast<std::size_t>(j)];
       Box box;
       box.add(a);

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <fmt/format.h>
 
+#include "core/interrupt.hpp"
 #include "render/canvas.hpp"
 
 namespace pdmesh {
@@ -40,6 +41,7 @@ void write_node_picture(const std::filesystem::path& path, const Geometry& geome
     for (NodeKind pass : {NodeKind::Interior, NodeKind::Boundary, NodeKind::Fixed}) {
       DotBatch dots(canvas, pass == NodeKind::Interior ? colours::kInteriorNode : colours::kBoundaryNode);
       for (std::size_t i = 0; i < nodes.size(); ++i) {
+        if ((i & 65535) == 0) check_interrupt();
         if (nodes.kind[i] != pass) continue;
         const double q = i < nodes.q.size() ? nodes.q[i] : 0.0;
         const double r = node_dot_radius(q, canvas.scale(), pass == NodeKind::Fixed);

@@ -9,6 +9,7 @@
 #include <fmt/format.h>
 
 #include "core/errors.hpp"
+#include "core/interrupt.hpp"
 #include "core/parallel.hpp"
 #include "mesh/quality.hpp"
 #include "mesh/triangulate_nodes.hpp"
@@ -52,6 +53,8 @@ MeshSample measure_mesh(const NodeSet& nodes, int iteration, Mesh* mesh_out) {
     s.min_angle = angle;
     s.aspect_ratio = aspect / static_cast<double>(mesh.triangles.size());
     if (mesh_out) *mesh_out = std::move(mesh);
+  } catch (const Interrupted&) {
+    throw;  // a stop request, not a measurement
   } catch (const Error&) {
     // Nodes that do not triangulate in mid-run (two coincident ones) are simply not converged.
   }

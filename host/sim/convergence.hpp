@@ -62,6 +62,12 @@ class ConvergenceMonitor {
   // interrupted after is complete, as the uninterrupted run would have been.
   bool converged_after(int iteration, bool population_settled = true) const;
   const std::vector<MeshSample>& samples() const { return samples_; }
+  // Whether the measurement after `iteration` is due and not among the samples: a checkpoint written
+  // when a stop request ended that measurement. The resumed run takes it (add_sample) first.
+  bool missing_sample(int iteration) const {
+    return due(iteration) && (samples_.empty() || samples_.back().iteration != iteration);
+  }
+  void add_sample(const MeshSample& sample) { samples_.push_back(sample); }
   // Why the rule does not say converged after `iteration`, in words for the progress output (a run
   // that ran to its maximum): population control not settled, too early, no window of measurements
   // yet, a measurement that did not triangulate, the aspect ratio's change over the window, or the

@@ -10,6 +10,7 @@
 #include <fmt/format.h>
 
 #include "core/errors.hpp"
+#include "core/interrupt.hpp"
 #include "sim/boundary_handling.hpp"
 #include "sim/failure_report.hpp"
 #include "sim/global_time_step.hpp"
@@ -164,6 +165,9 @@ SimResult run_simulation(NodeSet& nodes, const GeometryTree& tree, const Spacing
     if (with_momentum) s.momentum = momentum_to_state(carried, nodes.size());
     return s;
   };
+  // A checkpoint written while the measurement after its last iteration was being taken (a stop
+  // request ends the measurement) lacks it: taken now, so that the run goes on as if uninterrupted.
+  if (resume && convergence.missing_sample(done)) convergence.add_sample(measure_mesh(nodes, done));
   // A run stopped in the iteration it converged in is complete (the uninterrupted run ended there).
   if (resume && done < options.iterations &&
       convergence.converged_after(
@@ -171,6 +175,10 @@ SimResult run_simulation(NodeSet& nodes, const GeometryTree& tree, const Spacing
     result.converged = true;
   for (int iteration = first; iteration <= options.iterations && !result.converged; ++iteration) {
     const double dt_gm = gm.dt();
+    // A stop request ends the iteration's computation (neighbours, forces, moves: nothing has moved
+    // yet) with Interrupted, and the run stops after the previous one; once the nodes move the
+    // iteration runs whole (the shield below) and the request is acted on after it.
+    std::optional<InterruptShield> shield;
     StepSums sums;
     try {
       load_particles(nodes, boundary, particles);
@@ -204,7 +212,11 @@ SimResult run_simulation(NodeSet& nodes, const GeometryTree& tree, const Spacing
       // Nothing has moved yet in this iteration: the nodes still hold the last good state.
       if (callbacks.on_failure) callbacks.on_failure(snapshot());
       throw;
+    } catch (const Interrupted&) {
+      result.stopped = true;  // the state after `done`, as after a stop between iterations
+      break;
     }
+    shield.emplace();
     const BoundaryCounts counts = boundary.apply(nodes, moves.dx, moves.dy);
     // An interior node snapped onto a curve is a boundary node now: its interior motion does not carry
     // over (the device run does the same in host_boundary).
@@ -249,7 +261,17 @@ SimResult run_simulation(NodeSet& nodes, const GeometryTree& tree, const Spacing
     // in an iteration the run is stopped after, so that a resumed run has every measurement.
     std::optional<MeshSample> sample;
     Mesh measured;
-    if (convergence.due(iteration)) sample = measure_mesh(nodes, iteration, &measured);
+    shield.reset();
+    if (convergence.due(iteration)) {
+      // The measurement (a triangulation of every node) stops at a stop request: the state after this
+      // iteration is whole, and a resumed run takes the measurement first (missing_sample above).
+      try {
+        sample = measure_mesh(nodes, iteration, &measured);
+      } catch (const Interrupted&) {
+        result.stopped = true;
+        break;
+      }
+    }
     // Never while population control may still change the node set.
     const bool settled = population_status(options.population, population.schedule, iteration, options.iterations).settled;
     if (convergence.observe(row, sample ? &*sample : nullptr, settled) && iteration < options.iterations) {

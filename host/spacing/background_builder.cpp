@@ -10,6 +10,7 @@
 #include <fmt/format.h>
 
 #include "core/errors.hpp"
+#include "core/interrupt.hpp"
 #include "core/parallel.hpp"
 #include "core/progress_notes.hpp"
 #include "init/node_estimate.hpp"
@@ -244,6 +245,7 @@ std::size_t BackgroundBuilder::refine(std::vector<int> level_cells, const Decide
   std::vector<int> tested, next;
   std::vector<double> corners;  // 4 per cell of the level
   while (!level_cells.empty()) {
+    check_interrupt();
     // 1. The corners of every cell of the level, in one batch. Most are known already: a child's
     // corners are its parent's corners and test points (step 3), and a leaf refined again keeps its
     // own. Only the others are looked up (or sampled): the same new samples in the same order.

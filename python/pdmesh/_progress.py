@@ -18,6 +18,7 @@ class Progress:
     max_force: float      #: largest |F|
     dt: float             #: the global maximum time step dt_GM of this iteration
     seconds: float        #: time since this step began
+    converged: bool = False  #: the stopping rule ended the run here, before ``iterations`` (the last report)
 
     @property
     def fraction(self) -> float:
@@ -40,13 +41,16 @@ class Bar:
         self.logged_at = None
 
     def __call__(self, p: Progress) -> None:
-        filled = int(round(self.width * p.fraction))
-        line = (f"pdmesh: [{'#' * filled}{'.' * (self.width - filled)}] {p.iteration}/{p.iterations} "
+        # A converged run is complete: a full bar, and the iteration it stopped at.
+        filled = self.width if p.converged else int(round(self.width * p.fraction))
+        count = f"{p.iteration}/{p.iterations}" + (" converged" if p.converged else "")
+        line = (f"pdmesh: [{'#' * filled}{'.' * (self.width - filled)}] {count} "
                 f"avg |F| {p.average_force:.3g}  dt {p.dt:.3g}  {p.seconds:.1f} s")
         if self.in_place:
             self.stream.write("\r" + line)
             self.drawn = True
-        elif p.iteration == p.iterations or self.logged_at is None or p.seconds - self.logged_at >= self.LOG_INTERVAL:
+        elif (p.converged or p.iteration == p.iterations or self.logged_at is None
+              or p.seconds - self.logged_at >= self.LOG_INTERVAL):
             self.stream.write(line + "\n")
             self.logged_at = p.seconds
         self.stream.flush()
@@ -67,7 +71,7 @@ def callback(progress: Any) -> tuple[Callable | None, Bar | None]:
     if not callable(user):
         raise TypeError(f"progress: expected True, False or a callable, got {type(progress).__name__}")
 
-    def report(iteration, iterations, average_force, max_force, dt, seconds):
-        return user(Progress(int(iteration), int(iterations), average_force, max_force, dt, seconds))
+    def report(iteration, iterations, average_force, max_force, dt, seconds, converged=False):
+        return user(Progress(int(iteration), int(iterations), average_force, max_force, dt, seconds, bool(converged)))
 
     return report, bar

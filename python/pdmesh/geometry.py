@@ -32,11 +32,13 @@ class Geometry:
     .crv/.dat/.poly files, ``Geometry.from_curves(curves)`` takes open polylines that join at their
     end points (as the curves of a .crv file), and ``Geometry.from_geo_interface(obj)`` (or passing
     a shapely Polygon/MultiPolygon to the constructor) takes the rings of a GeoJSON-like polygon.
-    ``names`` names the curves (the boundary markers of the mesh files and ``Mesh.boundary_edges``).
+    A GeoJSON-like dict (``{"type": "Polygon", "coordinates": [...]}``) is taken as by
+    ``from_geo_interface``. ``names`` names the curves (the boundary markers of the mesh files and ``Mesh.boundary_edges``).
     """
 
     def __init__(self, rings: Iterable[Any] | Any, names: Sequence[str] | None = None):
-        if hasattr(rings, "__geo_interface__"):
+        # A GeoJSON-like mapping ({"type": "Polygon", "coordinates": ...}) as a shapely polygon.
+        if hasattr(rings, "__geo_interface__") or isinstance(rings, Mapping):
             other = Geometry.from_geo_interface(rings, names)
             self._init(other._files, other._curves, other._names, other._label)
             return
@@ -78,6 +80,9 @@ class Geometry:
         """The rings of a Polygon or MultiPolygon given by ``__geo_interface__`` (shapely) or as a
         GeoJSON-like mapping: every exterior and interior ring becomes one closed curve."""
         geo = obj.__geo_interface__ if hasattr(obj, "__geo_interface__") else obj
+        if isinstance(obj, Mapping) and "type" not in obj:
+            raise InputError(f"a geometry dict needs a 'type' (Polygon or MultiPolygon) and its 'coordinates'; "
+                             f"got the keys {sorted(map(str, obj))}")
         if not isinstance(geo, Mapping) or "type" not in geo:
             raise InputError(f"{type(obj).__name__} has no GeoJSON-like __geo_interface__")
         if geo["type"] == "Polygon":

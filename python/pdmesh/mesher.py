@@ -82,6 +82,12 @@ class Mesher:
         return self._core.iterations_done
 
     @property
+    def converged(self) -> bool:
+        """Whether the stopping rule (simulation.stop = "converged") has ended the run: further
+        steps, run() and iterate() leave it where it is."""
+        return self._core.converged
+
+    @property
     def iterations(self) -> int:
         """The case's iteration count (simulation.iterations), where run() stops."""
         return self._core.iterations
@@ -150,7 +156,9 @@ class Mesher:
         if every < 1:
             raise InputError(f"iterate: every must be >= 1, got {every}")
         target = self.iterations if iterations is None else int(iterations)
-        while self.iteration < target:
+        # A run whose stopping rule (simulation.stop = "converged") has ended it before `target`
+        # stays where it is: no further step would move it.
+        while self.iteration < target and not self.converged:
             yield self._run_to(min(target, self.iteration + every), progress)
 
     def _run_to(self, target: int, progress: Any) -> State:

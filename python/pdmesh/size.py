@@ -49,7 +49,22 @@ def sampler(function: Callable[[np.ndarray], Any]) -> Callable[[np.ndarray], np.
     (a scalar result means the same size everywhere). The core checks the values themselves."""
 
     def sample(xy: np.ndarray) -> np.ndarray:
-        h = np.asarray(function(xy), dtype=np.float64)
+        result = function(xy)
+        # numpy turns None (and None inside a list) into nan: name what came back instead.
+        if result is None:
+            raise InputError("size: the callable returned None (NoneType); it must return the size at each point "
+                             f"({len(xy)} numbers) or one number for all")
+        raw = np.asarray(result)
+        if raw.dtype == object:
+            numbers_only = [isinstance(v, numbers.Real) and not isinstance(v, bool) for v in raw.reshape(-1)]
+            if not all(numbers_only):
+                bad = raw.reshape(-1)[numbers_only.index(False)]
+                raise InputError(f"size: the callable returned {bad!r} ({type(bad).__name__}) among its sizes; "
+                                 "each size must be a number")
+        try:
+            h = np.asarray(result, dtype=np.float64)
+        except (TypeError, ValueError) as e:
+            raise InputError(f"size: the callable returned a {type(result).__name__} that is not numbers ({e})") from None
         if h.ndim == 0:
             return np.full(len(xy), float(h))
         if h.shape != (len(xy),):

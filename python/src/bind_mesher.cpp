@@ -69,7 +69,9 @@ class Mesher {
   std::string step(std::int64_t target, nb::object progress, double interval) {
     if (failed_) throw SimulationError("this Mesher's run failed earlier; make a new one");
     const Busy busy(*this);
-    if (target <= iterations_done()) return "done";
+    // A run the stopping rule has ended is done: a later step (with another total, which changes when
+    // population control counts as settled) must not start it again.
+    if (target <= iterations_done() || converged_) return "done";
     // Copy on write: arrays handed to Python keep the node set they view alive and unchanged.
     if (nodes_.use_count() > 1) nodes_ = std::make_shared<NodeSet>(*nodes_);
     CaseConfig config = session_->config;
@@ -82,12 +84,14 @@ class Mesher {
     const auto every = std::chrono::duration<double>(interval);
     SimulateHooks hooks;
     hooks.stop = &stop;
+    int reported = -1;  // the last iteration the progress callable was given
     hooks.on_iteration = [&](const HistoryRow& row) {
       // Once stopping, the rest of a device window is replayed without asking again.
       if (stop.load()) return;
       const auto now = Clock::now();
       if (now - last < every && row.iteration < target) return;
       last = now;
+      reported = row.iteration;
       nb::gil_scoped_acquire gil;
       try {
         if (PyErr_CheckSignals() != 0) throw nb::python_error();
@@ -119,7 +123,16 @@ class Mesher {
     state_ = std::move(result.state);
     seconds_ += result.stats.seconds;
     backend_ = result.stats.backend;
+    converged_ = result.converged;
     if (pending) std::rethrow_exception(pending);
+    // The last report is of the iteration the run ended at: a run the stopping rule ended before
+    // `target` (never reported by the rule above) says so, rather than leaving an earlier row last.
+    if (!cancelled && progress.is_valid() && !progress.is_none() && !state_->history.empty() &&
+        (converged_ || reported != state_->iterations_done)) {
+      const HistoryRow& row = state_->history.back();
+      progress(row.iteration, target, row.average_force, row.max_force, row.dt_gm,
+               std::chrono::duration<double>(Clock::now() - start).count(), converged_);
+    }
     return cancelled ? "cancelled" : "done";
   }
 
@@ -148,6 +161,7 @@ class Mesher {
   double init_seconds() const { return init_seconds_; }
   double sim_seconds() const { return seconds_; }
   const std::string& backend() const { return backend_; }
+  bool converged() const { return converged_; }
 
  private:
   // Marks the Mesher busy while a step or a triangulation runs with the GIL released: a second call
@@ -178,6 +192,7 @@ class Mesher {
   std::string backend_;
   bool failed_ = false;
   bool busy_ = false;
+  bool converged_ = false;  // the stopping rule ended the run (SimResult::converged of the last step)
 };
 
 // The history rows as columns (copies: a history is small next to the nodes).
@@ -219,6 +234,7 @@ void bind_mesher(nb::module_& m) {
       .def_prop_ro("init_seconds", &Mesher::init_seconds)
       .def_prop_ro("sim_seconds", &Mesher::sim_seconds)
       .def_prop_ro("backend", &Mesher::backend)
+      .def_prop_ro("converged", &Mesher::converged, "Whether the stopping rule has ended the run.")
       .def_prop_ro("size", [](const Mesher& s) { return s.nodes()->size(); })
       .def_prop_ro(
           "points",

@@ -11,6 +11,7 @@
 #include <cstdint>
 
 #include "sim/reference/level_grids.hpp"
+#include "core/interrupt.hpp"
 #include "sim/reference/reference_backend.hpp"
 
 namespace pdmesh::reference {
@@ -26,6 +27,7 @@ void build_neighbours(const SimParticles& p, double cutoff, NeighbourList& list,
 
   std::vector<std::int32_t> found;
   for (std::size_t i = 0; i < n; ++i) {
+    if ((i & 16383) == 0) check_interrupt();
     if (p.kind[i] != kSimInterior) continue;
     found.clear();
     const double xi = p.x[i], yi = p.y[i], r = cutoff * p.q[i], r2 = r * r;

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "sim/reference/reference_backend.hpp"
+#include "core/interrupt.hpp"
 
 namespace pdmesh::reference {
 
@@ -21,6 +22,7 @@ void compute_forces(const SimParticles& p, const NeighbourList& list, const Forc
   else
     out.dt2_limit.clear();
   for (std::size_t i = 0; i < n; ++i) {
+    if ((i & 16383) == 0) check_interrupt();  // only outputs written so far: the caller drops them
     if (p.kind[i] == kSimFixed) continue;
     const double xi = p.x[i], yi = p.y[i], qi = p.q[i];
     const std::size_t base = i * stride;

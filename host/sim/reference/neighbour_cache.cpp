@@ -17,6 +17,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/interrupt.hpp"
 #include "sim/reference/reference_backend.hpp"
 
 namespace pdmesh::reference {
@@ -75,6 +76,8 @@ void NeighbourCache::rebuild(const SimParticles& p, double cutoff, NeighbourFlag
   first_.assign(n + 1, 0);
   candidates_.clear();
   for (std::size_t i = 0; i < n; ++i) {
+    // A stop request ends the run with this cache half built: it is never read again.
+    if ((i & 16383) == 0) check_interrupt();
     first_[i] = static_cast<std::int64_t>(candidates_.size());
     if (p.kind[i] != kSimInterior) continue;
     found_.clear();
@@ -122,6 +125,7 @@ void NeighbourCache::build(const SimParticles& p, double cutoff, NeighbourList& 
   // The exact filter, written as reference::build_neighbours writes it (same rounding).
   const auto stride = static_cast<std::size_t>(list.stride);
   for (std::size_t i = 0; i < n; ++i) {
+    if ((i & 16383) == 0) check_interrupt();
     if (p.kind[i] != kSimInterior) continue;
     const double xi = p.x[i], yi = p.y[i], r = cutoff * p.q[i], r2 = r * r;
     const std::size_t base = i * stride;
