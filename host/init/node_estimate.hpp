@@ -6,12 +6,9 @@
 #pragma once
 #include "geometry/geometry_tree.hpp"
 #include "spacing/background_field.hpp"
+#include "spacing/inverse_square_integral.hpp"
 
 namespace pdmesh {
-
-// Integral over [0,1]^2 of 1 / q(u, v)^2 for q bilinear with corners q00, q10 (u = 1), q01 (v = 1),
-// q11, all positive: closed form (one logarithm), a series where the logarithm would cancel.
-double inverse_square_integral(double q00, double q10, double q01, double q11);
 
 // Computed on all cores; the same value as a single-threaded loop over the leaves, bit for bit.
 double estimate_node_count(const GeometryTree& tree, const BackgroundSpacing& field);

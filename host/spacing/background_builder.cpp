@@ -13,7 +13,7 @@
 #include "core/interrupt.hpp"
 #include "core/parallel.hpp"
 #include "core/progress_notes.hpp"
-#include "init/node_estimate.hpp"
+#include "spacing/inverse_square_integral.hpp"
 
 namespace pdmesh {
 

@@ -12,7 +12,7 @@
 
 #include "core/errors.hpp"
 #include "core/parallel.hpp"
-#include "init/node_estimate.hpp"
+#include "spacing/inverse_square_integral.hpp"
 
 namespace pdmesh {
 
