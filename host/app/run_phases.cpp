@@ -29,7 +29,7 @@ double clock_seconds(clockid_t id) {
 
 // Test hook (docs/robustness.md): PDMESH_TEST_SIGNAL_IN_PHASE=NAME[@SECONDS] sends this process a
 // SIGINT when the phase NAME begins (after SECONDS, from a thread, when given), and notes on stderr
-// the wall-clock time it did, so that a test or tools/interrupt_latency.sh can stop a run in any
+// the wall-clock time it did, so that a test or tools/bench/interrupt_latency.sh can stop a run in any
 // phase and time how long it takes to end.
 void signal_in_phase(const std::string& name) {
   static const char* const spec = std::getenv("PDMESH_TEST_SIGNAL_IN_PHASE");

@@ -2,7 +2,7 @@
 # Measures how long `pdmesh mesh` takes to stop after a SIGINT in each phase of a large run (a
 # measuring script, not a test; docs/robustness.md "Stopped by Ctrl-C" has its table).
 #
-# Usage: tools/interrupt_latency.sh PDMESH [NODES] [WORKDIR] [EXTRA ARGS...]
+# Usage: tools/bench/interrupt_latency.sh PDMESH [NODES] [WORKDIR] [EXTRA ARGS...]
 #   PDMESH   the binary (build/pdmesh)
 #   NODES    about how many nodes: a unit square at a uniform spacing giving that many (default 1000000)
 #   WORKDIR  scratch folder (default /tmp/pdmesh_latency)
