@@ -397,3 +397,26 @@ TEST_CASE("device run refuses the exact spacing field", "[opencl][device_sim]") 
   REQUIRE_THROWS_AS(ocl::run_device_simulation(nodes, *c.inputs->tree, *c.inputs->spacing, o, test::test_context()),
                     InputError);
 }
+
+// The window's length is bounded by SimOptions::window_seconds at the last window's pace (so that a stop
+// request waits little at any size), and the length does not change the result: windows of one
+// iteration (a bound far below any iteration's time) give the host's nodes and history bit for bit, as
+// whole windows do.
+TEST_CASE("device run: windows bounded in time give the same run", "[opencl][device_sim]") {
+  const Case c = test::load_case("naca0012");
+  SimOptions o = test::options_for(c, 120);
+  const test::Outcome host = test::run_from(c, c.initial, o, false);
+  const test::Outcome whole = test::run_from(c, c.initial, o, true);
+  o.window_seconds = 1e-12;
+  const test::Outcome short_windows = test::run_from(c, c.initial, o, true);
+  CHECK(short_windows.stats.windows > 2 * whole.stats.windows);
+  CHECK(short_windows.stats.windows >= 80);  // one iteration each after the first window
+  require_identical_nodes(host.nodes, whole.nodes);
+  require_identical_nodes(host.nodes, short_windows.nodes);
+  REQUIRE(short_windows.result.history.size() == host.result.history.size());
+  for (std::size_t k = 0; k < host.result.history.size(); ++k) {
+    INFO("iteration " << k + 1);
+    CHECK(short_windows.result.history[k].dt_gm == host.result.history[k].dt_gm);
+    CHECK(short_windows.result.history[k].snapped == host.result.history[k].snapped);
+  }
+}

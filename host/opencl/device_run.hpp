@@ -236,6 +236,7 @@ class DeviceRun {
   std::vector<Real> momentum_at_check_;
   int since_build_ = 0, build_interval_ = 0;  // iterations since the last build; between the last two (0: unknown)
   bool cpu_device_ = false;  // window_length's choice
+  double seconds_per_iteration_ = 0.0;  // the last window's wall time per iteration (0: none yet)
   PopulationTracker population_;
   ConvergenceMonitor convergence_;  // the stopping rule (its samples go into every saved state)
 };

@@ -148,7 +148,9 @@ void DeviceRun<Real>::end_window() {
   stats_.transfers += window_.transfers;
   stats_.bytes_up += window_.bytes_up;
   stats_.bytes_down += window_.bytes_down;
-  stats_.step_seconds += since(pending_t0_);
+  const double seconds = since(pending_t0_);
+  stats_.step_seconds += seconds;
+  if (window_rows_ >= 1) seconds_per_iteration_ = seconds / window_rows_;
   if (window_rows_ < 1 || window_rows_ > pending_length_)
     throw SimulationError(fmt::format("iteration {}: the device ran {} of the window's {} iterations", pending_first_,
                                       window_rows_, pending_length_));
@@ -160,10 +162,14 @@ void DeviceRun<Real>::end_window() {
 // previous build's interval. On a CPU device (PoCL) a launch for nothing costs more than another wait
 // (the device's work-groups are scheduled by the host's threads), so the window stops short of the
 // prediction; elsewhere a wait costs more, so it reaches one iteration past it. In a settled run
-// builds are far apart and windows are whole.
+// builds are far apart and windows are whole. A window is also no longer than options_.window_seconds at
+// the last window's pace, so that a stop request, acted on at a window's end, waits little at any size.
 template <typename Real>
 int DeviceRun<Real>::window_length() const {
-  const int most = window_.max_length();
+  int most = window_.max_length();
+  if (seconds_per_iteration_ > 0.0 && options_.window_seconds > 0.0)
+    most = static_cast<int>(std::clamp(std::floor(options_.window_seconds / seconds_per_iteration_), 1.0,
+                                       static_cast<double>(most)));
   double predicted = 0.0;
   if (since_build_ > 0 && skin_use_ > 0.0 && skin_use_ <= skin_limit_)
     predicted = (skin_limit_ - skin_use_) * since_build_ / skin_use_;

@@ -70,6 +70,10 @@ struct SimOptions {
   const BackgroundSpacing* background = nullptr;
   StepBackend* backend = nullptr;    // host driver: the step implementation; nullptr: the reference backend
   double verlet_skin = kVerletSkin;  // device run: list radius cutoff q (1 + skin); 0 rebuilds every iteration
+  // Device run: the longest a window of queued iterations may be expected to take, from the last
+  // window's time per iteration. A stop request is acted on at the end of a window, so this bounds how
+  // long Ctrl-C waits at any size; the window's length does not change the run's result.
+  double window_seconds = 0.25;
   // Polled once after every iteration (both backends); when it reads true the run stops there,
   // with SimResult::stopped set. Set from a signal handler, so it must be lock-free.
   const std::atomic<bool>* stop = nullptr;
