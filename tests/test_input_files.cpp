@@ -129,6 +129,12 @@ TEST_CASE("a missing or unreadable file names the file and the reason", "[input]
         "cannot read geometry file '" + (dir / "nope.crv").string() + "': No such file or directory");
 }
 
+TEST_CASE("a read that fails is an error naming the file", "[input]") {
+  // /proc/self/mem is a regular file whose first page is not mapped: read() fails with EIO.
+  CHECK(message_of([] { pdmesh::read_input_file("/proc/self/mem", InputKind::Text); }) ==
+        "cannot read file '/proc/self/mem': read failed after 0 bytes: Input/output error");
+}
+
 TEST_CASE("quote_input shows at most 100 characters, escaped", "[input]") {
   CHECK(pdmesh::quote_input("plain text 1.5") == "plain text 1.5");
   CHECK(pdmesh::quote_input("\xEF\xBB\xBF" "4") == "\\xef\\xbb\\xbf4");
