@@ -22,9 +22,12 @@ if ! command -v clang++ >/dev/null; then
   echo "fuzz: clang++ not found (Debian: apt-get install clang libclang-rt-dev)" >&2
   exit 2
 fi
-cmake -S . -B "$build" -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-      -DPDMESH_FUZZ=ON -DPDMESH_BUILD_TESTS=OFF >/dev/null
-cmake --build "$build" -j "$(nproc 2>/dev/null || echo 2)" --target fuzz_all
+# FUZZ_BUILD=0 runs the targets as built (e.g. several fuzz.sh at once, each on its own targets).
+if [ "${FUZZ_BUILD:-1}" != 0 ]; then
+  cmake -S . -B "$build" -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+        -DPDMESH_FUZZ=ON -DPDMESH_BUILD_TESTS=OFF >/dev/null
+  cmake --build "$build" -j "$(nproc 2>/dev/null || echo 2)" --target fuzz_all
+fi
 
 targets=("$@")
 if ((${#targets[@]} == 0)); then

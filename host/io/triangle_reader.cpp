@@ -142,8 +142,7 @@ Mesh read_triangle(const std::filesystem::path& ele_path, MeshReadReport& report
   std::string poly;
   if (std::filesystem::exists(poly_path)) poly = read_text_file(poly_path, InputKind::Mesh);
   return parse_triangle(node_path.string(), read_text_file(node_path, InputKind::Mesh), ele_path.string(),
-                        read_text_file(ele_path, InputKind::Mesh),
-                        poly_path.string(), std::move(poly), report);
+                        read_text_file(ele_path, InputKind::Mesh), poly_path.string(), std::move(poly), report);
 }
 
 }  // namespace pdmesh
