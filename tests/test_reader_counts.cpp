@@ -52,7 +52,7 @@ TEST_CASE("a checkpoint's node count must fit in the file before it is allocated
             .find("c.pdmesh:7: curve count 999999 cannot fit") == 0);
 }
 
-TEST_CASE("bytes after 'end' in a checkpoint are refused; trailing blank lines are not", "[input][checkpoint]") {
+TEST_CASE("bytes after 'end' in a checkpoint are refused, trailing blank lines are not", "[input][checkpoint]") {
   const std::string seed = pdmesh_test::slurp(PDMESH_SOURCE_DIR "/tests/fuzz/corpus/fuzz_checkpoint/square_3_iterations.pdmesh");
   REQUIRE(seed.size() > 100);
   CHECK_NOTHROW(pdmesh::parse_checkpoint(seed + "\n  \n", "c.pdmesh"));
@@ -105,7 +105,7 @@ TEST_CASE("an MSH data view's component count is bounded before the values are a
   CHECK(m.find("components must be 1 to 9") != std::string::npos);
 }
 
-TEST_CASE("a case's name is bounded and holds no control characters; a large case file is refused", "[input][case]") {
+TEST_CASE("a case's name is bounded and holds no control characters, and a large case file is refused", "[input][case]") {
   const fs::path dir = pdmesh_test::fresh_dir("case_name");
   write(dir / "a.crv", "5\n0 0\n1 0\n1 1\n0 1\n0 0\n");
   const auto load = [&](const std::string& name) {
