@@ -92,7 +92,10 @@ TEST_CASE("malformed node files are rejected naming file and line", "[nodes][app
   CHECK(error_of("# pdmesh nodes v2\n0\ncurves 0\n").rfind("bad.nodes:1: expected the header", 0) == 0);
   CHECK(error_of("# pdmesh nodes v1\nthree\n") == "bad.nodes:2: node count 'three' is not an integer");
   CHECK(error_of("# pdmesh nodes v1\n2\n0 0 fixed 0 1\n") ==
-        "bad.nodes:4: unexpected end of file, expected a node line 'x y kind curve q'");
+        "bad.nodes:2: node count 2 cannot fit in the 14 bytes left in the file (each needs at least 14): the count is "
+        "wrong or the file is truncated");
+  CHECK(error_of("# pdmesh nodes v1\n2\n0 0 fixed 0 1\n\n\n\n\n\n\n\n\n\n\n\n\n\n") ==
+        "bad.nodes:17: unexpected end of file, expected a node line 'x y kind curve q'");
   CHECK(error_of("# pdmesh nodes v1\n1\n0 0 fixed 0\ncurves 0\n") ==
         "bad.nodes:3: expected a node line 'x y kind curve q' (5 fields), got 4 fields");
   CHECK(error_of("# pdmesh nodes v1\n1\n0 nan interior -1 1\ncurves 0\n") == "bad.nodes:3: y 'nan' is not finite");

@@ -4,15 +4,12 @@
 #include "app/case_file.hpp"
 
 #include <algorithm>
-#include <cerrno>
-#include <cstring>
-#include <fstream>
-#include <sstream>
 #include <fmt/format.h>
 #include <toml++/toml.h>
 
 #include "app/case_reader.hpp"
 #include "core/errors.hpp"
+#include "core/input_file.hpp"
 
 namespace pdmesh {
 
@@ -26,6 +23,8 @@ using case_detail::type_name;
 namespace {
 
 // Tables that may hold further keys; every other key is a leaf.
+constexpr std::size_t kMaxNameBytes = 200;
+
 const std::vector<std::string> kSections = {"geometry", "spacing", "boundary", "init", "simulation", "population", "cleanup", "output"};
 
 std::string nearest_key(const std::string& key) {
@@ -43,11 +42,13 @@ std::string nearest_key(const std::string& key) {
 }
 
 [[noreturn]] void unknown_key(const Reader& r, const std::string& key, const toml::key& k) {
-  const std::string suggestion = nearest_key(key);
+  // No key is longer than 40 characters: a longer one gets no suggestion (and edit_distance's cost
+  // grows with the product of the lengths).
+  const std::string suggestion = key.size() <= 64 ? nearest_key(key) : std::string();
   if (!suggestion.empty()) {
-    r.fail_at_key(key, k, fmt::format("unknown key '{}'; did you mean '{}'?", key, suggestion));
+    r.fail_at_key(key, k, fmt::format("unknown key '{}'; did you mean '{}'?", quote_input(key), suggestion));
   }
-  r.fail_at_key(key, k, fmt::format("unknown key '{}'; valid keys are listed in docs/cli.md", key));
+  r.fail_at_key(key, k, fmt::format("unknown key '{}'; valid keys are listed in docs/cli.md", quote_input(key)));
 }
 
 bool is_known(const std::string& key) {
@@ -163,6 +164,15 @@ CaseConfig check_values(const toml::table& root, const Reader& r, CaseConfig c) 
   if (const toml::node* n = root.get("name")) {
     c.name = r.string("name", *n);
     if (c.name.empty()) r.fail("name", n, "name must not be empty");
+    // The name titles pictures: a line of text, not a payload.
+    if (c.name.size() > kMaxNameBytes) {
+      r.fail("name", n, fmt::format("name has {} bytes, more than {} (got '{}')", c.name.size(), kMaxNameBytes,
+                                    quote_input(c.name)));
+    }
+    const auto control = [](char ch) { return static_cast<unsigned char>(ch) < 0x20 || ch == 0x7f; };
+    if (std::any_of(c.name.begin(), c.name.end(), control)) {
+      r.fail("name", n, fmt::format("name holds a control character (got '{}')", quote_input(c.name)));
+    }
   }
   read_case_sections(r, root, c);
   return c;
@@ -250,13 +260,7 @@ CaseConfig parse_case_text(std::string_view text, const fs::path& source, const 
 }
 
 CaseConfig load_case_file(const fs::path& case_file, const std::vector<CaseOverride>& overrides) {
-  std::ifstream in(case_file, std::ios::binary);
-  if (!in) {
-    throw InputError(fmt::format("cannot read case file '{}': {}", case_file.string(), std::strerror(errno)));
-  }
-  std::ostringstream text;
-  text << in.rdbuf();
-  return parse_case_text(text.str(), case_file, overrides);
+  return parse_case_text(read_input_file(case_file, InputKind::Case), case_file, overrides);
 }
 
 CaseConfig case_for_geometry_file(const fs::path& geometry_file, const std::vector<CaseOverride>& overrides) {

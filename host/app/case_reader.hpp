@@ -15,6 +15,7 @@
 
 #include "app/case_file.hpp"
 #include "core/errors.hpp"
+#include "core/input_file.hpp"
 
 namespace pdmesh::case_detail {
 
@@ -159,7 +160,7 @@ T choose(const Reader& r, const std::string& key, const toml::node& n,
     if (name == v) return value;
     valid += (valid.empty() ? "" : ", ") + name;
   }
-  r.fail(key, &n, fmt::format("{} must be one of {}, got '{}'", key, valid, v));
+  r.fail(key, &n, fmt::format("{} must be one of {}, got '{}'", key, valid, quote_input(v)));
 }
 
 // Every section's keys into `c` (case_sections.cpp), after the preset and the name.

@@ -6,6 +6,7 @@
 #include <fmt/ranges.h>
 
 #include "app/case_reader.hpp"
+#include "core/input_file.hpp"
 
 namespace pdmesh::case_detail {
 
@@ -13,9 +14,13 @@ namespace {
 
 const std::vector<std::string> kFormats = {"msh", "msh22", "vtu", "su2", "triangle", "png", "svg"};
 
+// A loop, not std::regex: libstdc++'s matcher recurses once per character, so a long name would
+// overflow the stack.
 bool is_plain_name(const std::string& s) {
-  static const std::regex plain("[A-Za-z0-9_.+-]+");
-  return std::regex_match(s, plain);
+  return !s.empty() && std::all_of(s.begin(), s.end(), [](char ch) {
+    return (ch >= 'A' && ch <= 'Z') || (ch >= 'a' && ch <= 'z') || (ch >= '0' && ch <= '9') || ch == '_' || ch == '.' ||
+           ch == '+' || ch == '-';
+  });
 }
 
 void read_geometry_section(const Reader& r, const toml::table& root, CaseConfig& c) {
@@ -37,7 +42,7 @@ void read_geometry_section(const Reader& r, const toml::table& root, CaseConfig&
       // Names appear in node files and mesh files, which separate fields by white space.
       if (!is_plain_name(name)) {
         r.fail("geometry.curve_names", n,
-               fmt::format("geometry.curve_names: '{}' is not a plain name (letters, digits, _ . + -)", name));
+               fmt::format("geometry.curve_names: '{}' is not a plain name (letters, digits, _ . + -)", quote_input(name)));
       }
     }
   }
@@ -75,7 +80,7 @@ void read_spacing_section(const Reader& r, const toml::table& root, CaseConfig& 
     std::string ext = fs::path(f).extension().string();
     std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char ch) { return static_cast<char>(std::tolower(ch)); });
     if (ext != ".vtu" && ext != ".msh") {
-      r.fail("spacing.file", file, fmt::format("spacing.file '{}' must be a .vtu or .msh triangle mesh", f));
+      r.fail("spacing.file", file, fmt::format("spacing.file '{}' must be a .vtu or .msh triangle mesh", quote_input(f)));
     }
     c.spacing.file = r.resolve("spacing.file", f);
   }
@@ -160,7 +165,8 @@ void read_init_section(const Reader& r, const toml::table& root, CaseConfig& c) 
 
 bool valid_device(const std::string& d) {
   static const std::regex device("auto|host|opencl|opencl:[0-9]+:[0-9]+");
-  return std::regex_match(d, device);
+  // Bounded first: std::regex recurses once per character.
+  return d.size() <= 64 && std::regex_match(d, device);
 }
 
 void read_simulation_section(const Reader& r, const toml::table& root, CaseConfig& c) {
@@ -211,7 +217,7 @@ void read_simulation_section(const Reader& r, const toml::table& root, CaseConfi
     s.device = r.string("simulation.device", *n);
     if (!valid_device(s.device)) {
       r.fail("simulation.device", n,
-             fmt::format("simulation.device must be auto, host, opencl or opencl:P:D, got '{}'", s.device));
+             fmt::format("simulation.device must be auto, host, opencl or opencl:P:D, got '{}'", quote_input(s.device)));
     }
   }
   if (const toml::node* n = find(root, "simulation", "precision")) {
@@ -337,13 +343,13 @@ ViewWindow read_view(const Reader& r, const toml::node& entry, std::size_t i) {
     if (k == "name") {
       v.name = r.string(sub, n);
       if (!is_plain_name(v.name)) {
-        r.fail(sub, &n, fmt::format("{} '{}' must be a plain name (letters, digits, _ . + -)", sub, v.name));
+        r.fail(sub, &n, fmt::format("{} '{}' must be a plain name (letters, digits, _ . + -)", sub, quote_input(v.name)));
       }
     } else if (k == "window") {
       window = &n;
     } else {
       const std::string hint = edit_distance(k.str(), "name") <= 2 ? "name" : "window";
-      r.fail_at_key(sub, k, fmt::format("unknown key '{}'; did you mean '{}.{}'?", sub, key, hint));
+      r.fail_at_key(sub, k, fmt::format("unknown key '{}'; did you mean '{}.{}'?", sub, quote_input(key), hint));
     }
   }
   if (window == nullptr) r.fail(key, &entry, fmt::format("{} needs window = [x0, y0, x1, y1]", key));
@@ -366,7 +372,7 @@ void read_output_section(const Reader& r, const toml::table& root, CaseConfig& c
     for (const std::string& f : c.output.formats) {
       if (std::find(kFormats.begin(), kFormats.end(), f) == kFormats.end()) {
         r.fail("output.formats", n,
-               fmt::format("output.formats: unknown format '{}'; valid formats are {}", f, fmt::join(kFormats, ", ")));
+               fmt::format("output.formats: unknown format '{}'; valid formats are {}", quote_input(f), fmt::join(kFormats, ", ")));
       }
     }
     if (c.output.wants("msh") && c.output.wants("msh22"))
@@ -387,7 +393,7 @@ void read_output_section(const Reader& r, const toml::table& root, CaseConfig& c
       ViewWindow v = read_view(r, *a.get(i), i);
       for (const ViewWindow& earlier : c.output.views) {
         if (earlier.name == v.name) {
-          r.fail(fmt::format("output.views[{}]", i), a.get(i), fmt::format("view name '{}' is used twice", v.name));
+          r.fail(fmt::format("output.views[{}]", i), a.get(i), fmt::format("view name '{}' is used twice", quote_input(v.name)));
         }
       }
       c.output.views.push_back(std::move(v));

@@ -13,6 +13,8 @@
 #include "geometry/geometry_tree.hpp"
 #include "io/mesh_formats.hpp"
 #include "io/text_file.hpp"
+#include "core/errors.hpp"
+#include "mesh/mesh_topology.hpp"
 #include "mesh/quality.hpp"
 #include "io/quality_report.hpp"
 #include "render/mesh_picture.hpp"
@@ -62,6 +64,11 @@ int run_quality(const std::string& mesh_path, const std::optional<std::string>& 
   MeshReadReport report;
   const Mesh mesh = read_mesh(mesh_path, report);
   for (const auto& note : report.notes) err << note << '\n';
+  // Measuring a folded or non-manifold mesh would report numbers of a mesh that is not there.
+  if (const auto problem = find_fold_or_nonmanifold_edge(mesh)) {
+    throw InputError(fmt::format("{}: {}; pdmesh quality measures only meshes without folds (docs/quality.md)",
+                                 mesh_path, *problem));
+  }
 
   std::unique_ptr<MeshInputs> spacing;
   SpacingCallback q;

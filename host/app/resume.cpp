@@ -42,7 +42,7 @@ std::vector<std::pair<std::string, std::string>> case_identity(const CaseConfig&
   std::vector<std::pair<std::string, std::string>> keys;
   for (std::size_t f = 0; f < config.geometry.files.size(); ++f) {
     const fs::path& file = config.geometry.files[f];
-    const std::string content = read_text_file(file);
+    const std::string content = read_text_file(file, InputKind::Geometry);
     keys.emplace_back(fmt::format("geometry.file.{}", f), fmt::format("{} ({} bytes, FNV-1a {:016x})",
                                                                       file.filename().string(), content.size(),
                                                                       fnv1a64(content)));
@@ -62,7 +62,7 @@ std::vector<std::pair<std::string, std::string>> case_identity(const CaseConfig&
   keys.emplace_back("spacing.expression", config.spacing.expression);
   // Only for a mesh field, so that checkpoints of the other fields keep their identity.
   if (config.spacing.field == SpacingKind::Mesh) {
-    const std::string content = read_text_file(config.spacing.file);
+    const std::string content = read_text_file(config.spacing.file, InputKind::Mesh);
     keys.emplace_back("spacing.file", fmt::format("{} ({} bytes, FNV-1a {:016x})", config.spacing.file.filename().string(),
                                                   content.size(), fnv1a64(content)));
     keys.emplace_back("spacing.array", config.spacing.array);

@@ -170,6 +170,52 @@ double signed_area(const std::vector<Curve>& curves, const Loop& loop) {
   return 0.5 * twice;
 }
 
+// A loop must enclose an area that doubles can tell from zero and a mesh could fill. Its mean width
+// w = 2|A| / P (area over half the perimeter: about h for a strip of width h) must be at least the
+// larger of
+//  - the spacing of doubles at its largest coordinate M (M 2^-52): below it the loop cannot be told
+//    from a doubled-back line, and
+//  - P / 2^31: a mesh must put nodes along the loop at most w apart to fit one inside it, and more
+//    than 2^31 nodes cannot be indexed.
+// 2|A| is the shoelace sum less its rounding bound (n + 4) 2^-53 sum |terms| (n terms), so only an
+// area known to be large enough passes. The thesis' geometries have widths some ten orders of magnitude above.
+void check_loop_area(const Geometry& g, const Loop& loop, const PointLines& lines) {
+  const Vec2 ref = g.curves[loop.curves[0]].points[0];
+  double twice = 0.0, magnitude = 0.0, perimeter = 0.0, largest = 0.0;
+  std::size_t terms = 0;
+  for (std::size_t i = 0; i < loop.curves.size(); ++i) {
+    const Curve& curve = g.curves[loop.curves[i]];
+    const auto& pts = curve.points;
+    double sum = 0.0;
+    for (std::size_t k = 0; k + 1 < pts.size(); ++k) {
+      const Vec2 a = pts[k] - ref, b = pts[k + 1] - ref;
+      sum += cross(a, b);
+      magnitude += std::fabs(a.x * b.y) + std::fabs(a.y * b.x);
+      ++terms;
+    }
+    for (const Vec2 p : pts) largest = std::max({largest, std::fabs(p.x), std::fabs(p.y)});
+    twice += loop.reversed[i] ? -sum : sum;
+    perimeter += curve.arc.back();
+  }
+  const double rounding = static_cast<double>(terms + 4) * std::ldexp(magnitude, -53);
+  const double width = std::max(0.0, std::fabs(twice) - rounding) / perimeter;
+  const double quantum = std::ldexp(largest, -52);
+  const double finest = std::ldexp(perimeter, -31);
+  if (width >= quantum && width >= finest) return;
+  const Curve& first = g.curves[loop.curves[0]];
+  const std::string curves =
+      loop.curves.size() == 1 ? fmt::format("curve '{}'", first.name)
+                              : fmt::format("curve '{}' and {} more curve{}", first.name, loop.curves.size() - 1,
+                                            loop.curves.size() == 2 ? "" : "s");
+  throw GeometryError(fmt::format(
+      "{}: the loop of {} encloses almost no area: area {:.3g} over its perimeter {:.6g} is a mean width of {:.3g}, "
+      "below {:.3g} ({}); a loop needs an inside (is it a line traced out and back?)",
+      where(first.file, lines[loop.curves[0]].empty() ? first.line : lines[loop.curves[0]][0]), curves,
+      0.5 * std::fabs(twice), perimeter, width, std::max(quantum, finest),
+      quantum >= finest ? fmt::format("the spacing of doubles at its coordinates, which reach {:.6g}", largest)
+                        : "its perimeter / 2^31: a mesh would need more nodes along it than it can index"));
+}
+
 // Joints, then sharp interior corners, in curve order; one entry per distinct location.
 void find_critical_points(Geometry& g, const std::vector<Vec2>& joints, const std::vector<std::array<int, 2>>& ends,
                           const std::vector<std::vector<CurveEnd>>& at, double corner_angle_deg) {
@@ -301,7 +347,10 @@ Geometry build_geometry(std::vector<RawCurve> raw, const std::vector<RawHolePoin
   fill_segments(g);
   detail::check_intersections(g, lines);
 
-  for (Loop& loop : g.loops) loop.signed_area = signed_area(g.curves, loop);
+  for (Loop& loop : g.loops) {
+    loop.signed_area = signed_area(g.curves, loop);
+    check_loop_area(g, loop, lines);
+  }
   find_depths(g);
   g.area = 0.0;
   for (const Loop& loop : g.loops) g.area += std::fabs(loop.signed_area) * (loop.depth % 2 == 0 ? 1.0 : -1.0);

@@ -5,6 +5,7 @@
 #include <fmt/ranges.h>
 
 #include "core/errors.hpp"
+#include "core/input_file.hpp"
 #include "geometry/reader_text.hpp"
 
 namespace pdmesh {
@@ -17,7 +18,7 @@ std::vector<RawCurve> read_curve_file(const std::string& path) {
     const detail::TokenLine& header = lines[i];
     if (header.tokens.size() != 1) {
       throw InputError(fmt::format("{}:{}: expected a point count on its own line, found '{}'", path, header.number,
-                                   fmt::join(header.tokens, " ")));
+                                   quote_input(fmt::format("{}", fmt::join(header.tokens, " ")))));
     }
     const long long count = detail::parse_count(path, header.number, header.tokens[0], "point count");
     const std::size_t remaining = lines.size() - i - 1;
@@ -36,11 +37,11 @@ std::vector<RawCurve> read_curve_file(const std::string& path) {
       if (row.tokens.size() == 1) {
         throw InputError(fmt::format(
             "{}:{}: expected point {} of {} as 'x y [z]', found '{}' (is the count {} at line {} too large?)", path,
-            row.number, k + 1, count, row.tokens[0], count, header.number));
+            row.number, k + 1, count, quote_input(row.tokens[0]), count, header.number));
       }
       if (row.tokens.size() > 3) {
         throw InputError(fmt::format("{}:{}: extra text '{}' after point 'x y z'", path, row.number,
-                                     fmt::join(row.tokens.begin() + 3, row.tokens.end(), " ")));
+                                     quote_input(fmt::format("{}", fmt::join(row.tokens.begin() + 3, row.tokens.end(), " ")))));
       }
       const double x = detail::parse_coordinate(path, row.number, row.tokens[0], "x coordinate");
       const double y = detail::parse_coordinate(path, row.number, row.tokens[1], "y coordinate");

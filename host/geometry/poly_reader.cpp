@@ -8,6 +8,7 @@
 #include <fmt/ranges.h>
 
 #include "core/errors.hpp"
+#include "core/input_file.hpp"
 #include "geometry/reader_text.hpp"
 
 namespace pdmesh {
@@ -38,6 +39,16 @@ class Cursor {
   }
   bool at_end() const { return pos_ >= lines_.size(); }
 
+  // A section's count must fit in the lines left: one line per item.
+  void check_count(const detail::TokenLine& header, long long count, const char* what) const {
+    const std::size_t left = lines_.size() - pos_;
+    if (static_cast<unsigned long long>(count) > left) {
+      throw InputError(fmt::format("{}:{}: {} {} is more than the {} line{} left in the file (one per item): the count "
+                                   "is wrong or the file is truncated",
+                                   path_, header.number, what, count, left, left == 1 ? "" : "s"));
+    }
+  }
+
  private:
   const std::string& path_;
   const std::vector<detail::TokenLine>& lines_;
@@ -47,7 +58,7 @@ class Cursor {
 void expect_tokens(const std::string& path, const detail::TokenLine& line, std::size_t want, const char* what) {
   if (line.tokens.size() != want) {
     throw InputError(fmt::format("{}:{}: {} should have {} value{}, found {}: '{}'", path, line.number, what, want,
-                                 want == 1 ? "" : "s", line.tokens.size(), fmt::join(line.tokens, " ")));
+                                 want == 1 ? "" : "s", line.tokens.size(), quote_input(fmt::format("{}", fmt::join(line.tokens, " ")))));
   }
 }
 
@@ -65,17 +76,19 @@ std::vector<PolyVertex> read_vertices(const std::string& path, Cursor& cursor, i
   }
   if (dimension != 2) {
     throw InputError(fmt::format("{}:{}: dimension '{}' is not supported; only 2-D geometry (2)", path,
-                                 header.number, header.tokens[1]));
+                                 header.number, quote_input(header.tokens[1])));
   }
   if (attributes > 1000) {
     throw InputError(fmt::format("{}:{}: attribute count '{}' is implausibly large", path, header.number,
-                                 header.tokens[2]));
+                                 quote_input(header.tokens[2])));
   }
   if (markers > 1) {
     throw InputError(fmt::format("{}:{}: vertex marker count '{}' must be 0 or 1", path, header.number,
-                                 header.tokens[3]));
+                                 quote_input(header.tokens[3])));
   }
+  cursor.check_count(header, count, "vertex count");
   std::vector<PolyVertex> vertices;
+  vertices.reserve(static_cast<std::size_t>(count));
   for (long long k = 0; k < count; ++k) {
     const detail::TokenLine& row = cursor.next("a vertex line");
     expect_tokens(path, row, static_cast<std::size_t>(3 + attributes + markers), "a vertex line");
@@ -83,13 +96,13 @@ std::vector<PolyVertex> read_vertices(const std::string& path, Cursor& cursor, i
     if (k == 0) {
       if (index != 0 && index != 1) {
         throw InputError(fmt::format("{}:{}: the first vertex index '{}' must be 0 or 1", path, row.number,
-                                     row.tokens[0]));
+                                     quote_input(row.tokens[0])));
       }
       base = static_cast<int>(index);
     }
     if (index != base + k) {
       throw InputError(fmt::format("{}:{}: vertex index '{}' is out of order; expected {}", path, row.number,
-                                   row.tokens[0], base + k));
+                                   quote_input(row.tokens[0]), base + k));
     }
     const double x = detail::parse_coordinate(path, row.number, row.tokens[1], "x coordinate");
     const double y = detail::parse_coordinate(path, row.number, row.tokens[2], "y coordinate");
@@ -107,17 +120,19 @@ std::vector<PolySegment> read_segments(const std::string& path, Cursor& cursor, 
   const long long markers = detail::parse_count(path, header.number, header.tokens[1], "segment marker count");
   if (markers > 1) {
     throw InputError(fmt::format("{}:{}: segment marker count '{}' must be 0 or 1", path, header.number,
-                                 header.tokens[1]));
+                                 quote_input(header.tokens[1])));
   }
   if (count == 0) throw InputError(fmt::format("{}:{}: the file has no segments", path, header.number));
+  cursor.check_count(header, count, "segment count");
   std::vector<PolySegment> segments;
+  segments.reserve(static_cast<std::size_t>(count));
   for (long long k = 0; k < count; ++k) {
     const detail::TokenLine& row = cursor.next("a segment line");
     expect_tokens(path, row, static_cast<std::size_t>(3 + markers), "a segment line");
     const long long index = detail::parse_integer(path, row.number, row.tokens[0], "segment index");
     if (index != base + k) {
       throw InputError(fmt::format("{}:{}: segment index '{}' is out of order; expected {}", path, row.number,
-                                   row.tokens[0], base + k));
+                                   quote_input(row.tokens[0]), base + k));
     }
     PolySegment seg;
     seg.line = row.number;
@@ -145,6 +160,7 @@ std::vector<RawHolePoint> read_holes(const std::string& path, Cursor& cursor, in
   const detail::TokenLine& header = cursor.next("the hole count line");
   expect_tokens(path, header, 1, "the hole header '<holes>'");
   const long long count = detail::parse_count(path, header.number, header.tokens[0], "hole count");
+  cursor.check_count(header, count, "hole count");
   std::vector<RawHolePoint> holes;
   for (long long k = 0; k < count; ++k) {
     const detail::TokenLine& row = cursor.next("a hole line");
@@ -152,7 +168,7 @@ std::vector<RawHolePoint> read_holes(const std::string& path, Cursor& cursor, in
     const long long index = detail::parse_integer(path, row.number, row.tokens[0], "hole index");
     if (index != base + k) {
       throw InputError(fmt::format("{}:{}: hole index '{}' is out of order; expected {}", path, row.number,
-                                   row.tokens[0], base + k));
+                                   quote_input(row.tokens[0]), base + k));
     }
     const double x = detail::parse_coordinate(path, row.number, row.tokens[1], "x coordinate");
     const double y = detail::parse_coordinate(path, row.number, row.tokens[2], "y coordinate");

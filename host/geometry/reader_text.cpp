@@ -1,19 +1,15 @@
 // Checked text loading and number parsing for the geometry file readers (see reader_text.hpp).
 #include "geometry/reader_text.hpp"
 
-#include <cerrno>
 #include <cfloat>
 #include <charconv>
 #include <cmath>
 #include <cstdlib>
-#include <cstring>
-#include <filesystem>
-#include <fstream>
-#include <sstream>
 
 #include <fmt/format.h>
 
 #include "core/errors.hpp"
+#include "core/input_file.hpp"
 
 namespace pdmesh::detail {
 
@@ -28,16 +24,8 @@ bool is_space(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\v' |
 }  // namespace
 
 std::vector<TokenLine> read_token_lines(const std::string& path) {
-  std::error_code ec;
-  if (std::filesystem::is_directory(path, ec)) {
-    throw InputError(fmt::format("cannot read geometry file '{}': it is a directory", path));
-  }
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(fmt::format("cannot open geometry file '{}': {}", path, std::strerror(errno)));
-  std::ostringstream buffer;
-  buffer << in.rdbuf();
-  if (in.bad()) throw InputError(fmt::format("cannot read geometry file '{}'", path));
-  const std::string text = buffer.str();
+  std::string text = read_input_file(path, InputKind::Geometry);
+  skip_utf8_bom(text);
 
   std::vector<TokenLine> lines;
   int number = 1;
@@ -83,19 +71,19 @@ double parse_coordinate(const std::string& file, int line, const std::string& to
     if (std::fabs(std::strtod(token.c_str(), nullptr)) < DBL_MIN) {
       throw InputError(fmt::format("{}:{}: {} '{}' is too small for a double: it underflows to 0 or a denormal "
                                    "(write 0, or a value of at least {:g})",
-                                   file, line, what, token, DBL_MIN));
+                                   file, line, what, quote_input(token), DBL_MIN));
     }
-    throw InputError(fmt::format("{}:{}: {} '{}' is too large (|value| must be <= {:g})", file, line, what, token,
+    throw InputError(fmt::format("{}:{}: {} '{}' is too large (|value| must be <= {:g})", file, line, what, quote_input(token),
                                  kLargestCoordinate));
   }
   if (ec != std::errc() || ptr != last) {
-    throw InputError(fmt::format("{}:{}: {} '{}' is not a number", file, line, what, token));
+    throw InputError(fmt::format("{}:{}: {} '{}' is not a number", file, line, what, quote_input(token)));
   }
   if (!std::isfinite(value)) {
-    throw InputError(fmt::format("{}:{}: {} '{}' is not finite", file, line, what, token));
+    throw InputError(fmt::format("{}:{}: {} '{}' is not finite", file, line, what, quote_input(token)));
   }
   if (std::fabs(value) > kLargestCoordinate) {
-    throw InputError(fmt::format("{}:{}: {} '{}' is too large (|value| must be <= {:g})", file, line, what, token,
+    throw InputError(fmt::format("{}:{}: {} '{}' is too large (|value| must be <= {:g})", file, line, what, quote_input(token),
                                  kLargestCoordinate));
   }
   return value;
@@ -105,10 +93,10 @@ long long parse_count(const std::string& file, int line, const std::string& toke
   long long value = 0;
   const auto [ptr, ec] = std::from_chars(token.data(), token.data() + token.size(), value);
   if (ec == std::errc() && ptr == token.data() + token.size() && value < 0) {
-    throw InputError(fmt::format("{}:{}: {} '{}' is negative", file, line, what, token));
+    throw InputError(fmt::format("{}:{}: {} '{}' is negative", file, line, what, quote_input(token)));
   }
   if (ec != std::errc() || ptr != token.data() + token.size()) {
-    throw InputError(fmt::format("{}:{}: {} '{}' is not a non-negative integer", file, line, what, token));
+    throw InputError(fmt::format("{}:{}: {} '{}' is not a non-negative integer", file, line, what, quote_input(token)));
   }
   return value;
 }
@@ -117,7 +105,7 @@ long long parse_integer(const std::string& file, int line, const std::string& to
   long long value = 0;
   const auto [ptr, ec] = std::from_chars(token.data(), token.data() + token.size(), value);
   if (ec != std::errc() || ptr != token.data() + token.size()) {
-    throw InputError(fmt::format("{}:{}: {} '{}' is not an integer", file, line, what, token));
+    throw InputError(fmt::format("{}:{}: {} '{}' is not an integer", file, line, what, quote_input(token)));
   }
   return value;
 }

@@ -61,9 +61,12 @@ void expect_end(LineScanner& s, std::string_view section) {
   if (tok != want) s.fail(fmt::format("expected {} (a count in this section is wrong or the file is truncated)", want), tok);
 }
 
-std::size_t count(LineScanner& s, std::string_view what) {
+// A count of items that take at least `min_bytes_each` bytes each in the file; refused when that
+// many cannot fit in what is left of it (before anything is allocated by it).
+std::size_t count(LineScanner& s, std::string_view what, std::size_t min_bytes_each = 2) {
   const long long n = s.to_int(s.token(what), what);
   if (n < 0) s.fail(fmt::format("negative {}", what), fmt::format("{}", n));
+  s.check_count(n, min_bytes_each, what);
   return static_cast<std::size_t>(n);
 }
 
@@ -128,7 +131,7 @@ void add_node(LineScanner& s, MshData& d, long long tag, double x, double y) {
 
 void read_nodes(LineScanner& s, MshData& d) {
   if (!d.v41) {
-    const std::size_t n = count(s, "number of nodes");
+    const std::size_t n = count(s, "number of nodes", 8);  // "1 0 0 0\n"
     for (std::size_t i = 0; i < n; ++i) {
       const long long tag = s.to_int(s.token("node tag"), "node tag");
       const double x = s.to_double(s.token("x"), "x");
@@ -140,7 +143,7 @@ void read_nodes(LineScanner& s, MshData& d) {
     return;
   }
   const std::size_t blocks = count(s, "number of node blocks");
-  const std::size_t total = count(s, "number of nodes");
+  const std::size_t total = count(s, "number of nodes", 8);  // a tag, then "0 0 0\n"
   s.token("minimum node tag");
   s.token("maximum node tag");
   std::size_t seen = 0;
@@ -149,7 +152,7 @@ void read_nodes(LineScanner& s, MshData& d) {
     const long long dim = s.to_index(s.token("entity dimension"), 0, 3, "entity dimension");
     s.token("entity tag");
     const long long parametric = s.to_index(s.token("parametric flag"), 0, 1, "parametric flag");
-    const std::size_t n = count(s, "number of nodes in block");
+    const std::size_t n = count(s, "number of nodes in block", 8);
     tags.resize(n);
     for (auto& t : tags) t = s.to_int(s.token("node tag"), "node tag");
     const long long extra = parametric ? dim : 0;
@@ -187,7 +190,7 @@ void add_element(LineScanner& s, MshData& d, int type, std::string_view nodes, l
 
 void read_elements(LineScanner& s, MshData& d) {
   if (!d.v41) {
-    const std::size_t n = count(s, "number of elements");
+    const std::size_t n = count(s, "number of elements", 8);  // "1 15 0 1\n"
     for (std::size_t i = 0; i < n; ++i) {
       s.to_int(s.token("element tag"), "element tag");
       const std::string_view rest = s.rest_of_line();
@@ -208,7 +211,7 @@ void read_elements(LineScanner& s, MshData& d) {
     return;
   }
   const std::size_t blocks = count(s, "number of element blocks");
-  const std::size_t total = count(s, "number of elements");
+  const std::size_t total = count(s, "number of elements", 4);  // "1 1\n"
   s.token("minimum element tag");
   s.token("maximum element tag");
   std::size_t seen = 0;
@@ -216,7 +219,7 @@ void read_elements(LineScanner& s, MshData& d) {
     const long long dim = s.to_index(s.token("entity dimension"), 0, 3, "entity dimension");
     const long long entity = s.to_int(s.token("entity tag"), "entity tag");
     const auto type = static_cast<int>(s.to_int(s.token("element type"), "element type"));
-    const std::size_t n = count(s, "number of elements in block");
+    const std::size_t n = count(s, "number of elements in block", 4);
     long long physical = 0;
     if (dim == 1) {
       const auto it = d.curve_entity_phys.find(entity);
@@ -256,7 +259,11 @@ DataHeader read_data_header(LineScanner& s, std::string_view section) {
     s.fail(fmt::format("{} needs 3 integer tags (time step, number of components, number of values)", section),
            fmt::format("{} integer tags", h.ints.size()));
   }
-  if (h.ints[1] < 1 || h.ints[2] < 0) s.fail(fmt::format("bad {} integer tags", section), fmt::format("{} {}", h.ints[1], h.ints[2]));
+  // Gmsh writes 1, 3 or 9 components (scalar, vector, tensor).
+  if (h.ints[1] < 1 || h.ints[1] > 9 || h.ints[2] < 0) {
+    s.fail(fmt::format("bad {} integer tags (components must be 1 to 9, values >= 0)", section),
+           fmt::format("{} {}", h.ints[1], h.ints[2]));
+  }
   return h;
 }
 
@@ -287,6 +294,7 @@ void read_node_data(LineScanner& s, MshData& d) {
   d.values_where = fmt::format("{}:{}", s.file(), line);
   d.value_tags.clear();
   d.values.clear();
+  s.check_count(h.ints[2], 2 + 2 * static_cast<std::size_t>(d.components), "number of values");
   for (long long i = 0; i < h.ints[2]; ++i) {
     d.value_tags.push_back(s.to_int(s.token("node tag"), "node tag"));
     for (int c = 0; c < d.components; ++c) {
@@ -314,7 +322,7 @@ void assemble_point_data(MshData& d) {
   for (std::size_t i = 0; i < d.value_tags.size(); ++i) {
     const auto it = d.node_index.find(d.value_tags[i]);
     if (it == d.node_index.end()) {
-      throw InputError(fmt::format("{}: $NodeData '{}' gives a value for node {}, which is not in $Nodes", a.where, a.name,
+      throw InputError(fmt::format("{}: $NodeData '{}' gives a value for node {}, which is not in $Nodes", a.where, quote_input(a.name),
                                    d.value_tags[i]));
     }
     const auto p = static_cast<std::size_t>(it->second);
@@ -390,7 +398,7 @@ Mesh parse_msh(const std::string& file_label, std::string content, MeshReadRepor
       read_node_data(s, d);
     } else if ((section == "$ElementData" || section == "$ElementNodeData") && d.data != nullptr) {
       const DataHeader h = read_data_header(s, section);
-      d.data->other_arrays.push_back(fmt::format("{} ({})", h.name, section == "$ElementData" ? "element data" : "element node data"));
+      d.data->other_arrays.push_back(fmt::format("{} ({})", quote_input(h.name), section == "$ElementData" ? "element data" : "element node data"));
       skip_to_end(s, section);
     } else if (!section.empty() && section[0] == '$') {
       // A section we do not use ($PartitionedEntities, $NodeData, ...): skip to its end marker.
@@ -408,7 +416,7 @@ Mesh parse_msh(const std::string& file_label, std::string content, MeshReadRepor
 }
 
 Mesh read_msh(const std::filesystem::path& path, MeshReadReport& report, MeshPointData* data) {
-  return parse_msh(path.string(), read_text_file(path), report, data);
+  return parse_msh(path.string(), read_text_file(path, InputKind::Mesh), report, data);
 }
 
 }  // namespace pdmesh

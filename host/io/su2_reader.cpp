@@ -88,12 +88,15 @@ Mesh parse_su2(const std::string& file, std::string content, MeshReadReport& rep
     } else if (key.find("NELEM") != std::string_view::npos) {
       const long long n = s.to_int(keyed(s, line, "NELEM"), "element count");
       if (n < 0) s.fail("negative element count", line);
+      s.check_count(n, 6, "element count");  // "3 0 1\n"
       for (long long i = 0; i < n; ++i) read_element(-1);
     } else if (key.find("NPOIN") != std::string_view::npos) {
       const auto toks = split_tokens(keyed(s, line, "NPOIN"));
       if (toks.empty()) s.fail("expected a point count after NPOIN=", line);
       npoints = s.to_int(toks[0], "point count");
       if (npoints < 0) s.fail("negative point count", line);
+      s.check_count(npoints, 4, "point count");  // "0 0\n"
+      mesh.points.reserve(static_cast<std::size_t>(npoints));
       for (long long i = 0; i < npoints; ++i) {
         const auto t = s.expect_tokens("a point", '%');
         if (t.size() < 2) s.fail("a point needs x and y", fmt::format("{} fields", t.size()));
@@ -101,12 +104,14 @@ Mesh parse_su2(const std::string& file, std::string content, MeshReadReport& rep
       }
     } else if (key.find("NMARK") != std::string_view::npos) {
       const long long m = s.to_int(keyed(s, line, "NMARK"), "marker count");
+      s.check_count(m, 27, "marker count");  // "MARKER_TAG=\nMARKER_ELEMS=0\n"
       for (long long k = 0; k < m; ++k) {
         const auto tag = keyed(s, s.expect_line("MARKER_TAG=", '%'), "MARKER_TAG");
         const int curve = static_cast<int>(mesh.curve_names.size());
         mesh.curve_names.emplace_back(tag);
         const long long n = s.to_int(keyed(s, s.expect_line("MARKER_ELEMS=", '%'), "MARKER_ELEMS"), "marker element count");
         if (n < 0) s.fail("negative marker element count");
+        s.check_count(n, 6, "marker element count");
         for (long long i = 0; i < n; ++i) read_element(curve);
       }
     } else {
@@ -136,7 +141,7 @@ Mesh parse_su2(const std::string& file, std::string content, MeshReadReport& rep
 }
 
 Mesh read_su2(const std::filesystem::path& path, MeshReadReport& report) {
-  return parse_su2(path.string(), read_text_file(path), report);
+  return parse_su2(path.string(), read_text_file(path, InputKind::Mesh), report);
 }
 
 }  // namespace pdmesh

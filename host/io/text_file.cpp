@@ -4,8 +4,6 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
-#include <fstream>
-#include <sstream>
 
 #include <fmt/format.h>
 
@@ -18,13 +16,7 @@ void write_text_file(const std::filesystem::path& path, const std::string& conte
   write_file_atomically(path, content);
 }
 
-std::string read_text_file(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(fmt::format("cannot open '{}' for reading", path.string()));
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
+std::string read_text_file(const std::filesystem::path& path, InputKind kind) { return read_input_file(path, kind); }
 
 std::vector<std::string_view> split_tokens(std::string_view line) {
   std::vector<std::string_view> out;
@@ -39,7 +31,9 @@ std::vector<std::string_view> split_tokens(std::string_view line) {
 }
 
 LineScanner::LineScanner(std::string file_label, std::string content)
-    : file_(std::move(file_label)), content_(std::move(content)) {}
+    : file_(std::move(file_label)), content_(std::move(content)) {
+  skip_utf8_bom(content_);
+}
 
 bool LineScanner::next_line(std::string_view& line) {
   pending_ = {};  // line mode: whatever was left of the previous line is dropped
@@ -100,7 +94,13 @@ std::vector<std::string_view> LineScanner::expect_tokens(std::string_view what, 
 void LineScanner::fail(std::string_view what) const { throw InputError(fmt::format("{}:{}: {}", file_, line_, what)); }
 
 void LineScanner::fail(std::string_view what, std::string_view got) const {
-  throw InputError(fmt::format("{}:{}: {} (got '{}')", file_, line_, what, got));
+  throw InputError(fmt::format("{}:{}: {} (got '{}')", file_, line_, what, quote_input(got)));
+}
+
+void LineScanner::check_count(long long count, std::size_t min_bytes_each, std::string_view what) const {
+  if (count < 0) fail(fmt::format("negative {}", what), fmt::format("{}", count));
+  const std::size_t left = pending_.size() + (content_.size() - std::min(pos_, content_.size()));
+  check_count_fits(fmt::format("{}:{}", file_, line_), what, static_cast<std::uint64_t>(count), left, min_bytes_each);
 }
 
 long long LineScanner::to_int(std::string_view token, std::string_view what) const {

@@ -7,17 +7,21 @@
 #include <string_view>
 #include <vector>
 
+#include "core/input_file.hpp"
+
 namespace pdmesh {
 
 // Writes `content` to `path` atomically (core/atomic_file.hpp: temporary beside it, then rename).
 // Throws InputError naming the path when the directory is missing or not writable.
 void write_text_file(const std::filesystem::path& path, const std::string& content);
 
-// Reads a whole file; throws InputError naming the path when it cannot be opened.
-std::string read_text_file(const std::filesystem::path& path);
+// Reads a whole file with read_input_file (core/input_file.hpp): regular files only, at most the
+// size limit of `kind`, read errors checked; throws InputError naming the path.
+std::string read_text_file(const std::filesystem::path& path, InputKind kind = InputKind::Text);
 
-// Walks a text file line by line, splitting lines into whitespace-separated tokens.
-// Every parse error throws InputError "FILE:LINE: what (got 'TEXT')".
+// Walks a text file line by line, splitting lines into whitespace-separated tokens. A UTF-8
+// byte-order mark at the start is skipped. Every parse error throws InputError
+// "FILE:LINE: what (got 'TEXT')", TEXT quoted by quote_input (at most 100 characters, escaped).
 class LineScanner {
  public:
   LineScanner(std::string file_label, std::string content);
@@ -35,6 +39,10 @@ class LineScanner {
   std::string_view token(std::string_view what);
   // The unread remainder of the line the last token came from (trimmed); that line is then done.
   std::string_view rest_of_line();
+
+  // Before allocating by a count read from the file: InputError naming this line, `what` and the
+  // count when `count` items of at least `min_bytes_each` bytes cannot fit in the unread text.
+  void check_count(long long count, std::size_t min_bytes_each, std::string_view what) const;
 
   int line() const { return line_; }
   const std::string& file() const { return file_; }

@@ -2,6 +2,7 @@
 // Format: https://www.cs.cmu.edu/~quake/triangle.node.html, triangle.ele.html, triangle.poly.html.
 #include "io/triangle_reader.hpp"
 
+#include <algorithm>
 #include <map>
 
 #include <fmt/format.h>
@@ -53,6 +54,8 @@ Mesh parse_triangle(const std::string& node_label, std::string node, const std::
     const long long nattr = head.size() > 2 ? s.to_int(head[2], "attribute count") : 0;
     const long long nbm = head.size() > 3 ? s.to_int(head[3], "boundary marker count") : 0;
     if (nattr < 0 || nbm < 0 || nbm > 1) s.fail("bad attribute or boundary marker count");
+    s.check_count(n, static_cast<std::size_t>(2 * (3 + std::min(nattr, 1000LL) + nbm)), "point count");
+    mesh.points.reserve(static_cast<std::size_t>(n));
     for (long long i = 0; i < n; ++i) {
       const auto t = s.expect_tokens("a point", '#');
       if (static_cast<long long>(t.size()) < 3 + nattr + nbm) {
@@ -80,6 +83,8 @@ Mesh parse_triangle(const std::string& node_label, std::string node, const std::
     const long long per = s.to_int(head[1], "nodes per triangle");
     if (count < 0) s.fail("negative triangle count", head[0]);
     if (per != 3 && per != 6) s.fail("nodes per triangle must be 3 or 6", head[1]);
+    s.check_count(count, static_cast<std::size_t>(2 * (1 + per)), "triangle count");
+    mesh.triangles.reserve(static_cast<std::size_t>(count));
     for (long long i = 0; i < count; ++i) {
       const auto t = s.expect_tokens("a triangle", '#');
       if (static_cast<long long>(t.size()) < 1 + per) s.fail(fmt::format("a triangle needs {} fields", 1 + per));
@@ -97,12 +102,14 @@ Mesh parse_triangle(const std::string& node_label, std::string node, const std::
     if (head.empty()) s.fail("empty .poly header");
     const long long inline_points = s.to_int(head[0], "point count");
     if (inline_points < 0) s.fail("negative point count", head[0]);
+    s.check_count(inline_points, 2, "point count");
     for (long long i = 0; i < inline_points; ++i) s.expect_line("a point", '#');  // the .node points are used
     const auto seg = s.expect_tokens("the segment header", '#');
     if (seg.empty()) s.fail("missing segment count");
     const long long count = s.to_int(seg[0], "segment count");
     const bool markers = seg.size() > 1 && s.to_int(seg[1], "boundary marker count") > 0;
     if (count < 0) s.fail("negative segment count", seg[0]);
+    s.check_count(count, markers ? 8 : 6, "segment count");
     std::map<long long, int> curve_of;  // marker -> curve index
     for (const auto& [marker, name] : names) curve_of[marker] = 0;
     std::vector<std::array<long long, 3>> segments;
@@ -133,9 +140,9 @@ Mesh read_triangle(const std::filesystem::path& ele_path, MeshReadReport& report
   node_path.replace_extension(".node");
   poly_path.replace_extension(".poly");
   std::string poly;
-  if (std::filesystem::exists(poly_path)) poly = read_text_file(poly_path);
-  return parse_triangle(node_path.string(), read_text_file(node_path), ele_path.string(), read_text_file(ele_path),
-                        poly_path.string(), std::move(poly), report);
+  if (std::filesystem::exists(poly_path)) poly = read_text_file(poly_path, InputKind::Mesh);
+  return parse_triangle(node_path.string(), read_text_file(node_path, InputKind::Mesh), ele_path.string(),
+                        read_text_file(ele_path, InputKind::Mesh), poly_path.string(), std::move(poly), report);
 }
 
 }  // namespace pdmesh

@@ -11,6 +11,7 @@
 #include <fmt/format.h>
 
 #include "core/errors.hpp"
+#include "core/input_file.hpp"
 
 namespace pdmesh {
 namespace {
@@ -151,7 +152,7 @@ bool VtuBytes::next_group() {
     }
     const int v = base64_value(c);
     if (v < 0 || padding > 0) {
-      throw InputError(fmt::format("{}: invalid base64 character '{}'", where_, c));
+      throw InputError(fmt::format("{}: invalid base64 character '{}'", where_, quote_input(std::string_view(&c, 1))));
     }
     values[n++] = v;
   }

@@ -12,6 +12,7 @@
 #include <fmt/format.h>
 
 #include "core/errors.hpp"
+#include "core/input_file.hpp"
 #include "io/text_file.hpp"
 #include "io/vtu_data.hpp"
 
@@ -31,6 +32,9 @@ struct ArrayInfo {
 };
 
 bool is_space(char c) { return c == ' ' || c == '\n' || c == '\t' || c == '\r'; }
+
+constexpr long long kMaxCount = 2'147'483'647;  // points and cells: a Mesh indexes them with int
+constexpr long long kMaxComponents = 1000;      // VTK writes up to 9 (a tensor)
 
 // The attributes of a start tag "<Name a="1" b='2'>" (XML entities in values decoded).
 std::map<std::string, std::string> attributes(std::string_view tag) {
@@ -78,7 +82,7 @@ class VtuFile {
     throw InputError(fmt::format("{}:{}: {}", file_, line_at(pos), what));
   }
   std::string location(std::size_t pos) const { return fmt::format("{}:{}", file_, line_at(pos)); }
-  std::string where(const ArrayInfo& a) const { return fmt::format("{}: DataArray '{}'", location(a.pos), a.name); }
+  std::string where(const ArrayInfo& a) const { return fmt::format("{}: DataArray '{}'", location(a.pos), quote_input(a.name)); }
 
   void scan() {
     // Raw appended data may hold any byte, '<' included: the markup ends where it begins.
@@ -114,6 +118,10 @@ class VtuFile {
         const auto a = attributes(tag);
         points_ = parse_count(pos, get(a, "NumberOfPoints"), "NumberOfPoints");
         cells_ = parse_count(pos, get(a, "NumberOfCells"), "NumberOfCells");
+        // A mesh indexes its points with int; the arrays' sizes are checked against these when decoded.
+        for (const long long n : {points_, cells_}) {
+          if (n > kMaxCount) fail(pos, fmt::format("<Piece> with {} points or cells: more than {}", n, kMaxCount));
+        }
       } else if (element == "DataArray") {
         pos = read_array(pos, close, tag, section);
         continue;
@@ -146,9 +154,9 @@ class VtuFile {
       VtuBytes bytes = VtuBytes::base64(std::string_view(text_).substr(a.begin, a.end - a.begin), where(a));
       return decode_vtu_binary(bytes, encoding_, a.type);
     }
-    if (appended_begin_ == std::string::npos) fail(a.pos, fmt::format("DataArray '{}' is appended but the file has no <AppendedData>", a.name));
+    if (appended_begin_ == std::string::npos) fail(a.pos, fmt::format("DataArray '{}' is appended but the file has no <AppendedData>", quote_input(a.name)));
     if (a.offset > appended_end_ - appended_begin_) {
-      fail(a.pos, fmt::format("DataArray '{}' has offset {} past the end of the appended data", a.name, a.offset));
+      fail(a.pos, fmt::format("DataArray '{}' has offset {} past the end of the appended data", quote_input(a.name), a.offset));
     }
     const std::size_t at = appended_begin_ + static_cast<std::size_t>(a.offset);
     const std::string_view data = std::string_view(text_).substr(at, appended_end_ - at);
@@ -159,12 +167,12 @@ class VtuFile {
  private:
   void read_root(std::size_t pos, const std::map<std::string, std::string>& a) {
     const std::string type = get(a, "type");
-    if (type != "UnstructuredGrid") fail(pos, fmt::format("VTK file type '{}' is not UnstructuredGrid", type));
+    if (type != "UnstructuredGrid") fail(pos, fmt::format("VTK file type '{}' is not UnstructuredGrid", quote_input(type)));
     const std::string order = get(a, "byte_order");
-    if (!order.empty() && order != "LittleEndian" && order != "BigEndian") fail(pos, fmt::format("unknown byte_order '{}'", order));
+    if (!order.empty() && order != "LittleEndian" && order != "BigEndian") fail(pos, fmt::format("unknown byte_order '{}'", quote_input(order)));
     encoding_.big_endian = order == "BigEndian";
     const std::string header = get(a, "header_type");
-    if (!header.empty() && header != "UInt32" && header != "UInt64") fail(pos, fmt::format("unknown header_type '{}'", header));
+    if (!header.empty() && header != "UInt32" && header != "UInt64") fail(pos, fmt::format("unknown header_type '{}'", quote_input(header)));
     encoding_.header_uint64 = header == "UInt64";
     const std::string compressor = get(a, "compressor");
     if (compressor == "vtkZLibDataCompressor") {
@@ -173,7 +181,7 @@ class VtuFile {
       // Reported only if a binary array is actually read: ASCII arrays are never compressed.
       compressor_error_ = fmt::format("compressor '{}' is not supported (pdmesh reads uncompressed data and "
                                       "vtkZLibDataCompressor; in ParaView save with Compressor Type None or ZLib)",
-                                      compressor);
+                                      quote_input(compressor));
     }
   }
 
@@ -181,7 +189,7 @@ class VtuFile {
     const auto close = text_.find('>', pos);
     if (close == std::string::npos) fail(pos, "unterminated <AppendedData> tag");
     const std::string encoding = get(attributes(std::string_view(text_).substr(pos, close - pos + 1)), "encoding");
-    if (encoding != "raw" && encoding != "base64") fail(pos, fmt::format("unknown AppendedData encoding '{}'", encoding));
+    if (encoding != "raw" && encoding != "base64") fail(pos, fmt::format("unknown AppendedData encoding '{}'", quote_input(encoding)));
     appended_base64_ = encoding == "base64";
     const auto mark = text_.find('_', close);
     if (mark == std::string::npos) fail(pos, "<AppendedData> without the '_' that starts its data");
@@ -199,10 +207,14 @@ class VtuFile {
     a.format = get(attrs, "format");
     if (a.format.empty()) a.format = "ascii";
     const std::string type = get(attrs, "type");
-    if (!parse_vtu_type(type, a.type)) fail(pos, fmt::format("DataArray '{}' has unsupported type '{}'", a.name, type));
+    if (!parse_vtu_type(type, a.type)) fail(pos, fmt::format("DataArray '{}' has unsupported type '{}'", quote_input(a.name), quote_input(type)));
     if (const std::string nc = get(attrs, "NumberOfComponents"); !nc.empty()) {
-      a.components = static_cast<int>(parse_count(pos, nc, "NumberOfComponents"));
-      if (a.components < 1) fail(pos, fmt::format("DataArray '{}' has NumberOfComponents {}", a.name, nc));
+      const long long components = parse_count(pos, nc, "NumberOfComponents");
+      if (components < 1 || components > kMaxComponents) {
+        fail(pos, fmt::format("DataArray '{}' has NumberOfComponents {} (1 to {})", quote_input(a.name), components,
+                              kMaxComponents));
+      }
+      a.components = static_cast<int>(components);
     }
     const bool self_closing = tag.size() >= 2 && tag[tag.size() - 2] == '/';
     std::size_t next = close + 1;
@@ -223,7 +235,7 @@ class VtuFile {
         next = end + 12;
       }
     } else {
-      fail(pos, fmt::format("DataArray '{}' has unknown format '{}' (ascii, binary or appended)", a.name, a.format));
+      fail(pos, fmt::format("DataArray '{}' has unknown format '{}' (ascii, binary or appended)", quote_input(a.name), quote_input(a.format)));
     }
     arrays_.push_back(std::move(a));
     return next;
@@ -232,7 +244,7 @@ class VtuFile {
   long long parse_count(std::size_t pos, const std::string& v, const char* what) const {
     long long n = -1;
     const auto [p, ec] = std::from_chars(v.data(), v.data() + v.size(), n);
-    if (ec != std::errc() || p != v.data() + v.size() || n < 0) fail(pos, fmt::format("bad {} '{}'", what, v));
+    if (ec != std::errc() || p != v.data() + v.size() || n < 0) fail(pos, fmt::format("bad {} '{}'", what, quote_input(v)));
     return n;
   }
 
@@ -247,8 +259,8 @@ class VtuFile {
       double v = 0.0;
       const auto [p, ec] = std::from_chars(text_.data() + i, text_.data() + j, v);
       if (ec != std::errc() || p != text_.data() + j) {
-        fail(i, fmt::format("expected a number in DataArray '{}' (got '{}')", a.name,
-                            std::string_view(text_.data() + i, j - i)));
+        fail(i, fmt::format("expected a number in DataArray '{}' (got '{}')", quote_input(a.name),
+                            quote_input(std::string_view(text_.data() + i, j - i))));
       }
       out.push_back(v);
       i = j;
@@ -269,7 +281,7 @@ class VtuFile {
 
 int as_index(double v, long long n, const ArrayInfo& a, const VtuFile& f) {
   if (!(v >= 0 && v < static_cast<double>(n)) || v != static_cast<double>(static_cast<long long>(v))) {
-    f.fail(a.pos, fmt::format("{} holds index {} outside 0..{}", a.name, v, n - 1));
+    f.fail(a.pos, fmt::format("{} holds index {} outside 0..{}", quote_input(a.name), v, n - 1));
   }
   return static_cast<int>(v);
 }
@@ -352,7 +364,7 @@ void read_point_data(const VtuFile& f, MeshPointData& data) {
     if (a.section == "PointData") {
       data.point_arrays.push_back(a.name);
     } else if (a.section == "CellData" || a.section == "FieldData") {
-      data.other_arrays.push_back(fmt::format("{} ({})", a.name, a.section == "CellData" ? "cell data" : "field data"));
+      data.other_arrays.push_back(fmt::format("{} ({})", quote_input(a.name), a.section == "CellData" ? "cell data" : "field data"));
     }
   }
   const ArrayInfo* a = f.find("PointData", data.wanted);
@@ -363,7 +375,7 @@ void read_point_data(const VtuFile& f, MeshPointData& data) {
   out.where = f.location(a->pos);
   out.values = f.values(*a);
   if (static_cast<long long>(out.values.size()) != f.points() * a->components) {
-    f.fail(a->pos, fmt::format("point-data array '{}' holds {} values, expected {} components x {} points", a->name,
+    f.fail(a->pos, fmt::format("point-data array '{}' holds {} values, expected {} components x {} points", quote_input(a->name),
                                out.values.size(), a->components, f.points()));
   }
   data.array = std::move(out);
@@ -394,7 +406,7 @@ Mesh parse_vtu(const std::string& file, const std::string& content, MeshReadRepo
 }
 
 Mesh read_vtu(const std::filesystem::path& path, MeshReadReport& report, MeshPointData* data) {
-  return parse_vtu(path.string(), read_text_file(path), report, data);
+  return parse_vtu(path.string(), read_text_file(path, InputKind::Mesh), report, data);
 }
 
 }  // namespace pdmesh

@@ -6,7 +6,6 @@
 #include <cmath>
 #include <cstring>
 #include <fmt/format.h>
-#include <fstream>
 #include <optional>
 #include <sstream>
 
@@ -14,6 +13,7 @@
 #include "core/atomic_file.hpp"
 #include "core/errors.hpp"
 #include "core/g17.hpp"
+#include "core/input_file.hpp"
 
 namespace pdmesh {
 
@@ -28,7 +28,8 @@ bool has_space(const std::string& s) {
 // Splits the text into numbered lines, skipping blank lines and '#' comments after the header.
 class LineReader {
  public:
-  LineReader(const std::string& text, std::string source) : in_(text), source_(std::move(source)) {}
+  LineReader(const std::string& text, std::string source)
+      : in_(text), size_(text.size()), source_(std::move(source)) {}
 
   // The fields of the next non-blank, non-comment line; `what` names the expected content.
   std::vector<std::string> next(const char* what) {
@@ -55,6 +56,13 @@ class LineReader {
 
   int line() const { return line_; }
 
+  // Before allocating by `count`: it must fit in the unread text at `min_bytes_each` per item.
+  void check_count(std::size_t count, std::size_t min_bytes_each, const char* what) {
+    const std::streamoff at = in_.tellg();
+    const std::size_t left = at < 0 ? 0 : size_ - static_cast<std::size_t>(at);
+    check_count_fits(fmt::format("{}:{}", source_, line_), what, count, left, min_bytes_each);
+  }
+
   std::string header() {
     std::string line;
     if (!std::getline(in_, line)) {
@@ -73,7 +81,9 @@ class LineReader {
   long long integer(const std::string& s, const char* what, long long lo, long long hi) const {
     long long v = 0;
     const auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
-    if (ec != std::errc() || end != s.data() + s.size()) fail(fmt::format("{} '{}' is not an integer", what, s));
+    if (ec != std::errc() || end != s.data() + s.size()) {
+      fail(fmt::format("{} '{}' is not an integer", what, quote_input(s)));
+    }
     if (v < lo || v > hi) fail(fmt::format("{} {} is out of range [{}, {}]", what, v, lo, hi));
     return v;
   }
@@ -82,8 +92,8 @@ class LineReader {
     errno = 0;
     char* end = nullptr;
     const double v = std::strtod(s.c_str(), &end);
-    if (end != s.c_str() + s.size() || s.empty()) fail(fmt::format("{} '{}' is not a number", what, s));
-    if (!std::isfinite(v)) fail(fmt::format("{} '{}' is not finite", what, s));
+    if (end != s.c_str() + s.size() || s.empty()) fail(fmt::format("{} '{}' is not a number", what, quote_input(s)));
+    if (!std::isfinite(v)) fail(fmt::format("{} '{}' is not finite", what, quote_input(s)));
     return v;
   }
 
@@ -93,6 +103,7 @@ class LineReader {
 
  private:
   std::istringstream in_;
+  std::size_t size_ = 0;
   std::string source_;
   int line_ = 0;
 };
@@ -101,7 +112,7 @@ NodeKind kind_from(const LineReader& r, const std::string& s) {
   if (s == "fixed") return NodeKind::Fixed;
   if (s == "boundary") return NodeKind::Boundary;
   if (s == "interior") return NodeKind::Interior;
-  r.fail(fmt::format("unknown node kind '{}' (expected fixed, boundary or interior)", s));
+  r.fail(fmt::format("unknown node kind '{}' (expected fixed, boundary or interior)", quote_input(s)));
 }
 
 }  // namespace
@@ -141,21 +152,22 @@ void write_node_file(const std::filesystem::path& path, const NodeSet& nodes,
 }
 
 NodeFile parse_node_file(const std::string& text, const std::string& source_name) {
-  LineReader r(text, source_name);
+  // A UTF-8 byte-order mark, as some editors write it, is skipped.
+  const bool bom = text.size() >= 3 && text.compare(0, 3, "\xEF\xBB\xBF") == 0;
+  LineReader r(bom ? text.substr(3) : text, source_name);
   if (const std::string h = r.header(); h != kHeader) {
-    r.fail(fmt::format("expected the header '{}', got '{}'", kHeader, h.substr(0, 60)));
+    r.fail(fmt::format("expected the header '{}', got '{}'", kHeader, quote_input(h)));
   }
   NodeFile file;
   NodeSet& nodes = file.nodes;
   auto f = r.next("the node count");
   r.expect_fields(f, 1, "the node count");
   const auto n = static_cast<std::size_t>(r.integer(f[0], "node count", 0, 1'000'000'000));
-  // Reserve only what the text can hold, so a corrupt count cannot exhaust memory.
-  const std::size_t plausible = std::min(n, text.size() / 10 + 1);
-  nodes.x.reserve(plausible);
-  nodes.q.reserve(plausible);
-  nodes.kind.reserve(plausible);
-  nodes.curve.reserve(plausible);
+  r.check_count(n, 14, "node count");  // "0 0 fixed 0 0\n"
+  nodes.x.reserve(n);
+  nodes.q.reserve(n);
+  nodes.kind.reserve(n);
+  nodes.curve.reserve(n);
   std::vector<int> node_lines;
   for (std::size_t i = 0; i < n; ++i) {
     f = r.next("a node line 'x y kind curve q'");
@@ -174,18 +186,19 @@ NodeFile parse_node_file(const std::string& text, const std::string& source_name
   f = r.next("'curves C'");
   if (f.size() != 2 || f[0] != "curves") r.fail("expected 'curves C' after the node lines");
   const auto curves = static_cast<std::size_t>(r.integer(f[1], "curve count", 0, 1'000'000));
+  r.check_count(curves, 4, "curve count");  // "c 0\n"
   for (std::size_t c = 0; c < curves; ++c) {
     f = r.next("a curve line 'name count idx...'");
     if (f.size() < 2) r.fail("expected a curve line 'name count idx...'");
     const auto count = static_cast<std::size_t>(r.integer(f[1], "curve node count", 0, 1'000'000'000));
     if (f.size() != count + 2) {
-      r.fail(fmt::format("curve '{}' declares {} nodes but lists {}", f[0], count, f.size() - 2));
+      r.fail(fmt::format("curve '{}' declares {} nodes but lists {}", quote_input(f[0]), count, f.size() - 2));
     }
     std::vector<int> idx(count);
     for (std::size_t k = 0; k < count; ++k) {
       idx[k] = static_cast<int>(r.integer(f[k + 2], "node index", 0, static_cast<long long>(n) - 1));
       if (nodes.kind[idx[k]] == NodeKind::Interior) {
-        r.fail(fmt::format("curve '{}' lists interior node {}", f[0], idx[k]));
+        r.fail(fmt::format("curve '{}' lists interior node {}", quote_input(f[0]), idx[k]));
       }
     }
     file.curve_names.push_back(f[0]);
@@ -202,11 +215,7 @@ NodeFile parse_node_file(const std::string& text, const std::string& source_name
 }
 
 NodeFile read_node_file(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(fmt::format("cannot read node file '{}': {}", path.string(), std::strerror(errno)));
-  std::ostringstream text;
-  text << in.rdbuf();
-  return parse_node_file(text.str(), path.string());
+  return parse_node_file(read_input_file(path, InputKind::NodeFile), path.string());
 }
 
 }  // namespace pdmesh

@@ -182,6 +182,7 @@ Checkpoint parse_checkpoint(const std::string& text, const std::string& source_n
 
   t = keyword_line(in, "nodes", 2, "'nodes N'");
   const std::size_t n = parse_count(in, t[1], "node count");
+  in.check_count(static_cast<long long>(n), 14, "node count");  // "0 0 0 0 0 0 0\n"
   NodeSet& nodes = c.nodes;
   const long long last_node = static_cast<long long>(n) - 1;
   s.tangents.resize(n);
@@ -197,6 +198,7 @@ Checkpoint parse_checkpoint(const std::string& text, const std::string& source_n
   }
   t = keyword_line(in, "curves", 2, "'curves C'");
   const std::size_t curves = parse_count(in, t[1], "curve count");
+  in.check_count(static_cast<long long>(curves), 10, "curve count");  // "curve 0 0\n"
   nodes.curve_nodes.resize(curves);
   s.arcs.resize(curves);
   for (std::size_t k = 0; k < curves; ++k) {
@@ -217,6 +219,7 @@ Checkpoint parse_checkpoint(const std::string& text, const std::string& source_n
   const std::size_t rows = parse_count(in, t[1], "history row count");
   if (rows != static_cast<std::size_t>(s.iterations_done))
     in.fail(fmt::format("expected {} history rows (iterations_done)", s.iterations_done), t[1]);
+  in.check_count(static_cast<long long>(rows), v1 ? 20 : 24, "history row count");  // "0 0 ... 0\n"
   s.history.reserve(rows);
   for (std::size_t r = 0; r < rows; ++r) {
     t = in.expect_tokens("a history row");
@@ -237,6 +240,7 @@ Checkpoint parse_checkpoint(const std::string& text, const std::string& source_n
   if (!t.empty() && t[0] == "convergence") {
     if (t.size() != 2) in.fail("expected 'convergence N'");
     const std::size_t samples = parse_count(in, t[1], "convergence sample count");
+    in.check_count(static_cast<long long>(samples), 6, "convergence sample count");  // "1 0 0\n"
     const auto value = [&in](std::string_view token, std::string_view what) {
       return token == "nan" ? std::nan("") : parse_hex(in, token, what);
     };
@@ -266,11 +270,15 @@ Checkpoint parse_checkpoint(const std::string& text, const std::string& source_n
     t = in.expect_tokens("'end' (the file is truncated)");
   }
   if (t.size() != 1 || t[0] != "end") in.fail("expected 'end'", t.empty() ? "" : t[0]);
+  // Nothing may follow: a second checkpoint appended, or anything else, means a damaged file.
+  for (std::string_view rest; in.next_line(rest);) {
+    if (rest.find_first_not_of(" \t\r") != std::string_view::npos) in.fail("unexpected content after 'end'", rest);
+  }
   return c;
 }
 
 Checkpoint read_checkpoint(const std::filesystem::path& path) {
-  return parse_checkpoint(read_text_file(path), path.string());
+  return parse_checkpoint(read_text_file(path, InputKind::Checkpoint), path.string());
 }
 
 }  // namespace pdmesh

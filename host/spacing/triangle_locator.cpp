@@ -105,15 +105,18 @@ void BoxTree::build(const std::vector<Box>& boxes, bool grid) {
     build_subtree(*this, boxes, {0, root, 0, std::move(all)});
     return;
   }
-  // Cells of a power-of-two side, about kItemsPerCell items each, at most kMaxCells of them.
+  // Cells of a power-of-two side, about kItemsPerCell items each, at most kMaxCells of them, and
+  // at most 4 per item (and 64): a long thin mesh (one far point) would otherwise get a row of
+  // millions of empty cells for a few dozen triangles.
   const double target = std::max(1.0, static_cast<double>(boxes.size()) / kItemsPerCell);
+  const double most = std::min(static_cast<double>(kMaxCells), 64.0 + 4.0 * static_cast<double>(boxes.size()));
   cell = std::exp2(std::ceil(std::log2(std::sqrt(root.width() * root.height() / target))));
   for (;;) {
     inv_cell = 1.0 / cell;
     i0 = std::floor(root.lo.x * inv_cell);
     j0 = std::floor(root.lo.y * inv_cell);
     const double nx = std::floor(root.hi.x * inv_cell) - i0 + 1, ny = std::floor(root.hi.y * inv_cell) - j0 + 1;
-    if (nx * ny <= static_cast<double>(kMaxCells)) {
+    if (nx * ny <= most) {
       gx = static_cast<int>(nx);
       gy = static_cast<int>(ny);
       break;

@@ -12,14 +12,22 @@ shift || true
 build=build-fuzz
 max_len=${FUZZ_MAX_LEN:-8192}   # bytes; the largest seed is well below
 max_findings=${FUZZ_MAX_FINDINGS:-5}  # per target: after a finding the fuzzer restarts for the time left
+# The memory budget of one execution: an input of at most max_len bytes must not need more. Above
+# either limit libFuzzer stops with an oom-* finding (-malloc_limit_mb: any single allocation larger;
+# -rss_limit_mb: the whole process).
+rss_limit_mb=${FUZZ_RSS_LIMIT_MB:-1024}
+malloc_limit_mb=${FUZZ_MALLOC_LIMIT_MB:-256}
 
 if ! command -v clang++ >/dev/null; then
   echo "fuzz: clang++ not found (Debian: apt-get install clang libclang-rt-dev)" >&2
   exit 2
 fi
-cmake -S . -B "$build" -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-      -DPDMESH_FUZZ=ON -DPDMESH_BUILD_TESTS=OFF >/dev/null
-cmake --build "$build" -j "$(nproc 2>/dev/null || echo 2)" --target fuzz_all
+# FUZZ_BUILD=0 runs the targets as built (e.g. several fuzz.sh at once, each on its own targets).
+if [ "${FUZZ_BUILD:-1}" != 0 ]; then
+  cmake -S . -B "$build" -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+        -DPDMESH_FUZZ=ON -DPDMESH_BUILD_TESTS=OFF >/dev/null
+  cmake --build "$build" -j "$(nproc 2>/dev/null || echo 2)" --target fuzz_all
+fi
 
 targets=("$@")
 if ((${#targets[@]} == 0)); then
@@ -45,7 +53,8 @@ for t in "${targets[@]}"; do
   while ((left > 0 && runs <= max_findings)); do
     start=$(date +%s)
     set +e
-    "$bin" -max_total_time="$left" -timeout=10 -rss_limit_mb=2048 -max_len="$max_len" -print_final_stats=1 \
+    "$bin" -max_total_time="$left" -timeout=10 -rss_limit_mb="$rss_limit_mb" -malloc_limit_mb="$malloc_limit_mb" \
+           -max_len="$max_len" -print_final_stats=1 \
            -artifact_prefix="$findings/" "$work" "tests/fuzz/corpus/$t" >>"$log" 2>&1
     rc=$?
     set -e
@@ -63,7 +72,7 @@ for t in "${targets[@]}"; do
 done
 
 echo
-echo "fuzz: ${seconds}s per target"
+echo "fuzz: ${seconds}s per target, at most ${malloc_limit_mb} MB per allocation and ${rss_limit_mb} MB in all"
 printf '%s\n' "${summary[@]}"
 if ((total_findings > 0)); then
   echo "fuzz: findings in $build/findings/ — reproduce with: $build/fuzz/TARGET FILE; keep each as tests/fuzz/regressions/TARGET/NAME"
