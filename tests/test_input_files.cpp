@@ -20,6 +20,7 @@
 #include "nodes/node_file.hpp"
 #include "run_pdmesh.hpp"
 #include "sim/checkpoint.hpp"
+#include "io/spacing_mesh_file.hpp"
 #include "spacing/mesh_spacing.hpp"
 #include "temp_files.hpp"
 

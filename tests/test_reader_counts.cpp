@@ -13,6 +13,7 @@
 #include "io/mesh_formats.hpp"
 #include "nodes/node_file.hpp"
 #include "sim/checkpoint.hpp"
+#include "io/spacing_mesh_file.hpp"
 #include "spacing/mesh_spacing.hpp"
 #include "temp_files.hpp"
 
