@@ -22,6 +22,7 @@
 #include "sim/checkpoint.hpp"
 #include "io/spacing_mesh_file.hpp"
 #include "spacing/mesh_spacing.hpp"
+#include "error_message.hpp"
 #include "temp_files.hpp"
 
 namespace fs = std::filesystem;
@@ -56,16 +57,6 @@ std::vector<Reader> readers() {
   };
 }
 
-// The message of the InputError `f` throws ("" when it throws none).
-std::string message_of(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "";
-}
-
 }  // namespace
 
 TEST_CASE("every reader refuses a directory, a device and a named pipe without reading it", "[input]") {
@@ -96,14 +87,14 @@ TEST_CASE("every reader refuses a directory, a device and a named pipe without r
       }
       r.read(p);
     };
-    const std::string m_dir = message_of([&] { read(folder); });
+    const std::string m_dir = pdmesh_test::error_message<InputError>([&] { read(folder); });
     CHECK(m_dir.find("it is a directory, not a regular file") != std::string::npos);
     CHECK(m_dir.find((dir / "folder.").string()) != std::string::npos);
-    const std::string m_zero = message_of([&] { read(zero); });
+    const std::string m_zero = pdmesh_test::error_message<InputError>([&] { read(zero); });
     CHECK(m_zero.find("it is a character device, not a regular file") != std::string::npos);
-    CHECK(message_of([&] { read(random); }).find("character device") != std::string::npos);
+    CHECK(pdmesh_test::error_message<InputError>([&] { read(random); }).find("character device") != std::string::npos);
     // Opening a pipe without a writer would block: the reader must refuse it before.
-    CHECK(message_of([&] { read(pipe); }).find("it is a named pipe (FIFO), not a regular file") != std::string::npos);
+    CHECK(pdmesh_test::error_message<InputError>([&] { read(pipe); }).find("it is a named pipe (FIFO), not a regular file") != std::string::npos);
   }
 }
 
@@ -114,7 +105,7 @@ TEST_CASE("a file larger than its kind's limit is refused by its size, before it
     const fs::path big = dir / (std::string("big") + ext);
     write(big, "");
     fs::resize_file(big, pdmesh::input_size_limit(kind) + 1);
-    const std::string m = message_of([&] { pdmesh::read_input_file(big, kind); });
+    const std::string m = pdmesh_test::error_message<InputError>([&] { pdmesh::read_input_file(big, kind); });
     CHECK(m.find(big.string()) != std::string::npos);
     CHECK(m.find(std::to_string(pdmesh::input_size_limit(kind) + 1) + " bytes, more than the") != std::string::npos);
     fs::resize_file(big, pdmesh::input_size_limit(kind));
@@ -126,13 +117,13 @@ TEST_CASE("a file larger than its kind's limit is refused by its size, before it
 
 TEST_CASE("a missing or unreadable file names the file and the reason", "[input]") {
   const fs::path dir = pdmesh_test::fresh_dir("input_missing");
-  CHECK(message_of([&] { pdmesh::read_input_file(dir / "nope.crv", InputKind::Geometry); }) ==
+  CHECK(pdmesh_test::error_message<InputError>([&] { pdmesh::read_input_file(dir / "nope.crv", InputKind::Geometry); }) ==
         "cannot read geometry file '" + (dir / "nope.crv").string() + "': No such file or directory");
 }
 
 TEST_CASE("a read that fails is an error naming the file", "[input]") {
   // /proc/self/mem is a regular file whose first page is not mapped: read() fails with EIO.
-  CHECK(message_of([] { pdmesh::read_input_file("/proc/self/mem", InputKind::Text); }) ==
+  CHECK(pdmesh_test::error_message<InputError>([] { pdmesh::read_input_file("/proc/self/mem", InputKind::Text); }) ==
         "cannot read file '/proc/self/mem': read failed after 0 bytes: Input/output error");
 }
 
@@ -158,7 +149,7 @@ TEST_CASE("a UTF-8 byte-order mark at the start of a .crv or .poly file is skipp
   write(dir / "case.toml", bom + "[geometry]\nfiles = [\"a.crv\"]\n");
   CHECK(pdmesh::load_case_file(dir / "case.toml").geometry.files.size() == 1);
   write(dir / "b.crv", "5\n0 0\n1 0\n" + bom + "1 1\n0 1\n0 0\n");
-  CHECK(message_of([&] { pdmesh::read_curve_file((dir / "b.crv").string()); })
+  CHECK(pdmesh_test::error_message<InputError>([&] { pdmesh::read_curve_file((dir / "b.crv").string()); })
             .find("x coordinate '\\xef\\xbb\\xbf1' is not a number") != std::string::npos);
 }
 
@@ -180,7 +171,7 @@ TEST_CASE("reader messages quote at most about 100 characters of the input, esca
     write(dir / name, text);
     const fs::path p = dir / name;
     const std::string ext = p.extension().string();
-    const std::string m = message_of([&] {
+    const std::string m = pdmesh_test::error_message<InputError>([&] {
       if (ext == ".crv") pdmesh::read_curve_file(p.string());
       else if (ext == ".poly") pdmesh::read_poly_file(p.string());
       else if (ext == ".nodes") pdmesh::read_node_file(p);

@@ -3,6 +3,8 @@
 // refusals that carry the numbers, all on small inputs.
 #include <catch2/catch.hpp>
 
+#include "error_message.hpp"
+
 #include <sys/resource.h>
 
 #include <cmath>
@@ -24,17 +26,6 @@ using namespace pdmesh;
 namespace {
 
 bool contains(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
-
-// The message of the LimitError that f throws ("" when it throws none).
-template <class F>
-std::string limit_message(F&& f) {
-  try {
-    f();
-  } catch (const LimitError& e) {
-    return e.what();
-  }
-  return "";
-}
 
 }  // namespace
 
@@ -76,9 +67,9 @@ TEST_CASE("memory limit: the default is 3/4 of the address-space limit when that
 TEST_CASE("memory limit: check_memory refuses with what, how much and the limit", "[memory]") {
   const MemoryLimit limit = parse_memory_limit("1M");
   CHECK_NOTHROW(check_memory(limit, 1024.0 * 1024.0, "x", "y"));
-  const std::string m = limit_message([&] { check_memory(limit, 3.5 * 1024 * 1024, "the thing", "raise it"); });
+  const std::string m = pdmesh_test::error_message<LimitError>([&] { check_memory(limit, 3.5 * 1024 * 1024, "the thing", "raise it"); });
   CHECK(m == "the thing needs about 3.50 MiB of memory, more than --max-memory 1.00 MiB; raise it");
-  CHECK_FALSE(limit_message([&] { check_memory(limit, std::numeric_limits<double>::infinity(), "t", "r"); }).empty());
+  CHECK_FALSE(pdmesh_test::error_message<LimitError>([&] { check_memory(limit, std::numeric_limits<double>::infinity(), "t", "r"); }).empty());
   CHECK_NOTHROW(check_memory(MemoryLimit{}, 1e30, "no limit", "r"));
 }
 
@@ -110,7 +101,7 @@ TEST_CASE("background quadtree: a field that asks for far more nodes than max_no
   BackgroundOptions options;
   options.max_nodes = 1000.0;
   BackgroundBuilder builder(q, tree, options);
-  const std::string m = limit_message([&] { builder.build(); });
+  const std::string m = pdmesh_test::error_message<LimitError>([&] { builder.build(); });
   INFO(m);
   CHECK(contains(m, "asks for about 1.1"));
   CHECK(contains(m, "e+08 nodes already on level 0"));
@@ -128,7 +119,7 @@ TEST_CASE("background quadtree: a tree that would outgrow the memory limit is re
   options.max_nodes = 1e6;  // not the limit that refuses
   options.memory = parse_memory_limit("256K");
   BackgroundBuilder builder(q, tree, options);
-  const std::string m = limit_message([&] { builder.build(); });
+  const std::string m = pdmesh_test::error_message<LimitError>([&] { builder.build(); });
   INFO(m);
   CHECK(contains(m, "the spacing field's background quadtree of"));
   CHECK(contains(m, "cells (level "));
@@ -168,7 +159,7 @@ TEST_CASE("spacing pipeline: limits that ask for far more nodes than max_nodes a
   options.gradation = 0.001;
   options.points.push_back({{0.5, 0.5}, 1e-4});
   options.background.max_nodes = 1000.0;
-  const std::string m = limit_message([&] { SpacingPipeline pipeline(base, tree, options); });
+  const std::string m = pdmesh_test::error_message<LimitError>([&] { SpacingPipeline pipeline(base, tree, options); });
   INFO(m);
   CHECK(contains(m, "the spacing field with its limits"));
   CHECK(contains(m, "before they are refined for it, more than --max-nodes 1000"));
