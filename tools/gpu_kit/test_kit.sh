@@ -92,7 +92,9 @@ EOF
   unregistered_driver)
     # The GPU mode's search on a root whose driver library is not registered in any .icd file, as in a
     # container whose image has no /etc/OpenCL/vendors/nvidia.icd: PoCL stands in for NVIDIA's library.
-    pocl=$( { ldconfig -p 2>/dev/null || /sbin/ldconfig -p; } | awk '$1 == "libpocl.so.2" { print $NF; exit }')
+    # awk reads the whole list: an early exit would end ldconfig with SIGPIPE, which pipefail and set -e
+    # turn into a silent exit of this script.
+    pocl=$( { ldconfig -p 2>/dev/null || /sbin/ldconfig -p; } | awk '$1 == "libpocl.so.2" && !found { print $NF; found = 1 }')
     [ -n "$pocl" ] || fail "PoCL (libpocl.so.2) is not installed"
     mkdir -p "$tmp/root/usr/local/nvidia/lib64" "$tmp/root/etc/OpenCL/vendors"
     ln -s "$pocl" "$tmp/root/usr/local/nvidia/lib64/libnvidia-opencl.so.1"
