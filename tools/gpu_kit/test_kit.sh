@@ -19,8 +19,19 @@ cp "$here"/run.sh "$here"/kit_*.sh "$kit/"
 ln -s "$pdmesh" "$kit/bin/pdmesh"
 ln -s "$src/cases" "$kit/cases"
 printf 'commit=test\nglibc_min=2.0\n' >"$kit/BUILD_INFO"
-fail() { echo "test_kit: $check: $*" >&2; exit 1; }
+fail() {
+  echo "test_kit: $check: $*" >&2
+  for log in "$tmp"/out*/driver.log; do [ -f "$log" ] && { echo "--- $log (last 40 lines)" >&2; tail -n 40 "$log" >&2; }; done
+  exit 1
+}
 expect_eq() { [ "$1" = "$2" ] || fail "$3: got '$1', expected '$2'"; }
+# What run.sh keeps of the test's environment under env -i: PoCL's kernel cache, and the sanitizer
+# options of tools/check/sanitize.sh, without which a sanitized pdmesh fails inside PoCL's LLVM
+# (docs/robustness.md, "OpenCL (PoCL) under the sanitizers").
+kept_env=()
+for name in POCL_CACHE_DIR ASAN_OPTIONS LSAN_OPTIONS UBSAN_OPTIONS; do
+  [ -n "${!name:-}" ] && kept_env+=("$name=${!name}")
+done
 
 case $check in
   parsers)
@@ -77,7 +88,7 @@ EOF
     printf 'pdmesh 2.30\nlibnewer.so.1 2.99\nlibolder.so.1 2.2.5\n' >"$kit/GLIBC_NEEDS"
     touch "$kit/bin/libnewer.so.1" "$kit/bin/libolder.so.1"
     status=0
-    env -i PATH=/usr/bin:/bin HOME="$tmp" PDMESH_KIT_SEARCH_ROOT="$tmp/empty-root" OCL_ICD_VENDORS="$tmp/empty-vendors" \
+    env -i PATH=/usr/bin:/bin HOME="$tmp" "${kept_env[@]}" PDMESH_KIT_SEARCH_ROOT="$tmp/empty-root" OCL_ICD_VENDORS="$tmp/empty-vendors" \
       PDMESH_KIT_GLIBC=2.35 "$kit/run.sh" --budget 120 "$tmp/out" || status=$?
     expect_eq "$status" 0 "run.sh's exit status without a driver"
     python3 "$here/check_results.py" --expect-no-device "$tmp/out/gpu_results.json" || fail "gpu_results.json"
@@ -104,21 +115,21 @@ EOF
     mkdir -p "$tmp/root/usr/local/share"
     ln -s /usr/share/pocl "$tmp/root/usr/local/share/pocl"
     status=0
-    env -i PATH=/usr/bin:/bin HOME="$tmp" ${POCL_CACHE_DIR:+POCL_CACHE_DIR="$POCL_CACHE_DIR"} \
+    env -i PATH=/usr/bin:/bin HOME="$tmp" "${kept_env[@]}" \
       PDMESH_KIT_SEARCH_ROOT="$tmp/root" PDMESH_KIT_WANT_TYPE=CPU "$kit/run.sh" --steps driver --budget 120 "$tmp/out" || status=$?
     expect_eq "$status" 0 "run.sh's exit status"
     python3 "$here/check_results.py" --expect-device --steps driver "$tmp/out/gpu_results.json" || fail "gpu_results.json"
     grep -q "\"chosen\": \"$tmp/root/usr/local/nvidia/lib64/libnvidia-opencl.so.1\", \"how\": \"not registered by the image: the kit registered it\"" \
       "$tmp/out/gpu_results.json" || fail "the unregistered library was not chosen and registered"
     # And without the stand-in type, the same machine has no GPU: said so, exit 0.
-    env -i PATH=/usr/bin:/bin HOME="$tmp" ${POCL_CACHE_DIR:+POCL_CACHE_DIR="$POCL_CACHE_DIR"} \
+    env -i PATH=/usr/bin:/bin HOME="$tmp" "${kept_env[@]}" \
       PDMESH_KIT_SEARCH_ROOT="$tmp/root" "$kit/run.sh" --steps driver --budget 120 "$tmp/out2" || fail "exit status"
     grep -q '"reason": "no OpenCL GPU: the driver library .* was found and registered, but the ICD loader listed 1 device' \
       "$tmp/out2/gpu_results.json" || fail "a CPU-only machine is not reported as having no GPU"
     ;;
   local_driver)
     status=0
-    env -i PATH=/usr/bin:/bin HOME="$tmp" ${POCL_CACHE_DIR:+POCL_CACHE_DIR="$POCL_CACHE_DIR"} "$kit/run.sh" --local --steps driver --budget 120 "$tmp/out" || status=$?
+    env -i PATH=/usr/bin:/bin HOME="$tmp" "${kept_env[@]}" "$kit/run.sh" --local --steps driver --budget 120 "$tmp/out" || status=$?
     expect_eq "$status" 0 "run.sh's exit status"
     python3 "$here/check_results.py" --expect-device --steps driver "$tmp/out/gpu_results.json" || fail "gpu_results.json"
     grep -q '"bit_identical_double": true' "$tmp/out/gpu_results.json" || fail "the check does not report bit-identity"
