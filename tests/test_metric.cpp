@@ -2,7 +2,6 @@
 // eigen-decomposition, validation messages, edge lengths, log-Euclidean interpolation, intersection;
 // and metric gradation on a graph of points (spacing/metric_gradation.hpp).
 #include <catch2/catch.hpp>
-
 #include <cmath>
 #include <limits>
 #include <vector>
@@ -31,8 +30,8 @@ bool same(const Metric& a, const Metric& b, double eps) {
 
 // A few SPD metrics of different shapes, sizes and directions.
 std::vector<Metric> sample_metrics() {
-  return {metric_from_sizes(0.1, 0.001, 0.0),      metric_from_sizes(0.1, 0.02, 30 * kDeg),
-          metric_from_sizes(2.0, 0.5, -70 * kDeg), metric_from_sizes(1e-3, 1e-3, 0.0),
+  return {metric_from_sizes(0.1, 0.001, 0.0),       metric_from_sizes(0.1, 0.02, 30 * kDeg),
+          metric_from_sizes(2.0, 0.5, -70 * kDeg),  metric_from_sizes(1e-3, 1e-3, 0.0),
           metric_from_sizes(0.05, 0.3, 100 * kDeg), Metric{3.0, 1.0, 2.0}};
 }
 
@@ -172,30 +171,31 @@ TEST_CASE("intersect contains both metrics and keeps the larger along their comm
   CHECK(xy.m22 == Approx(1.0 / (0.01 * 0.01)).epsilon(1e-13));
 }
 
-TEST_CASE("span grows a metric by the gradation beta along an edge", "[metric][gradation]") {
+TEST_CASE("span_metric grows a metric by the gradation beta along an edge", "[metric][gradation]") {
   const double beta = 1.5;
   const Metric m = metric_from_sizes(0.1, 0.01, 20 * kDeg);
   const Vec2 v{0.05, 0.02};
   // Metric space (t = 0): m / eta² with eta = 1 + |v|_m ln beta, the shape kept.
   const double eta = 1.0 + m.length(v) * std::log(beta);
-  CHECK(same(span(m, v, beta, 0.0), (1.0 / (eta * eta)) * m, 1e-14));
+  CHECK(same(span_metric(m, v, beta, 0.0), (1.0 / (eta * eta)) * m, 1e-14));
   // Physical space (t = 1): each size h_i grows by |v| ln beta.
-  const Metric p = span(m, v, beta, 1.0);
+  const Metric p = span_metric(m, v, beta, 1.0);
   const MetricEigen e = eigen(p);
   CHECK(1.0 / std::sqrt(e.lambda1) == Approx(0.01 + norm(v) * std::log(beta)).epsilon(1e-13));
   CHECK(1.0 / std::sqrt(e.lambda2) == Approx(0.1 + norm(v) * std::log(beta)).epsilon(1e-13));
   // For an isotropic metric every t gives the same.
   const Metric iso = metric_from_sizes(0.1, 0.1, 0.0);
-  CHECK(same(span(iso, v, beta, 0.0), span(iso, v, beta, 1.0), 1e-14));
-  CHECK(same(span(iso, v, beta, 0.0), span(iso, v, beta, 0.125), 1e-14));
-  // The spanned metric at the far end is within the gradation.
-  CHECK(edge_gradation(m, span(m, v, beta, 0.0), v) == Approx(beta).epsilon(1e-12));
-  CHECK(edge_gradation(span(m, v, beta, 0.0), m, v) == Approx(beta).epsilon(1e-12));
+  CHECK(same(span_metric(iso, v, beta, 0.0), span_metric(iso, v, beta, 1.0), 1e-14));
+  CHECK(same(span_metric(iso, v, beta, 0.0), span_metric(iso, v, beta, 0.125), 1e-14));
+  // The spanned metric at the far end has gradation beta exactly, from either end.
+  CHECK(edge_gradation(m, span_metric(m, v, beta, 0.0), v) == Approx(beta).epsilon(1e-12));
+  CHECK(edge_gradation(span_metric(m, v, beta, 0.0), m, v) == Approx(beta).epsilon(1e-12));
   CHECK(edge_gradation(m, m, v) == 1.0);
   CHECK(edge_gradation(m, 100.0 * m, v) > beta);
 }
 
-TEST_CASE("limit_metric_gradation: every edge within beta, metrics only grow, the smallest kept", "[metric][gradation]") {
+TEST_CASE("limit_metric_gradation: every edge within beta, metrics only grow, the smallest kept",
+          "[metric][gradation]") {
   // A 12 x 12 grid of the unit square, isotropic size 0.1, with one point of size 0.001.
   const int n = 12;
   std::vector<Vec2> points;
@@ -224,7 +224,8 @@ TEST_CASE("limit_metric_gradation: every edge within beta, metrics only grow, th
     CHECK(r.max_gradation <= 1.01 * o.beta);
     for (const auto& e : edges) CHECK(edge_gradation(m[e[0]], m[e[1]], points[e[1]] - points[e[0]]) <= 1.01 * o.beta);
     for (std::size_t i = 0; i < m.size(); ++i)
-      for (Vec2 v : {Vec2{1, 0}, Vec2{0, 1}, Vec2{1, 1}, Vec2{1, -2}}) CHECK(m[i].quad(v) >= before[i].quad(v) * (1 - 1e-12));
+      for (Vec2 v : {Vec2{1, 0}, Vec2{0, 1}, Vec2{1, 1}, Vec2{1, -2}})
+        CHECK(m[i].quad(v) >= before[i].quad(v) * (1 - 1e-12));
     CHECK(same(m[small], before[small], 1e-15));
     // The neighbours had to shrink: at distance 1/11 with beta = 1.5 the size is far below 0.1.
     CHECK(eigen(m[small + 1]).lambda2 > 100.0 * 1.5);

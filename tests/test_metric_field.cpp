@@ -2,7 +2,6 @@
 // metric_from_sizes, the errors naming the expression and the value; and the complexity
 // C = ∫ sqrt(det M) (spacing/metric_complexity.hpp) against closed forms and the Python evaluator.
 #include <catch2/catch.hpp>
-
 #include <cmath>
 #include <vector>
 
@@ -33,8 +32,8 @@ TEST_CASE("ExpressionMetricField in sizes form: issue 37's linear and polar-1 me
   for (Vec2 p : {Vec2{0.2, 0.5}, Vec2{0.7, 0.9}, Vec2{0.0, 0.1}})
     check_same(linear.at(p), metric_from_sizes(0.1, 0.001 + 0.198 * std::fabs(p.y - 0.5), 0.0), 1e-15);
   // polar-1: h_r along the radius, h_t = 0.1 across; the angle in degrees.
-  const auto polar = ExpressionMetricField::from_sizes("0.001 + 0.198*abs(sqrt(x^2+y^2)-0.5)", "0.1",
-                                                       "atan2(y, x)*180/pi");
+  const auto polar =
+      ExpressionMetricField::from_sizes("0.001 + 0.198*abs(sqrt(x^2+y^2)-0.5)", "0.1", "atan2(y, x)*180/pi");
   for (Vec2 p : {Vec2{0.6, 0.1}, Vec2{0.3, 0.8}, Vec2{0.9, 0.9}}) {
     const double r = std::hypot(p.x, p.y);
     const Metric expected = metric_from_sizes(0.001 + 0.198 * std::fabs(r - 0.5), 0.1, std::atan2(p.y, p.x));
@@ -62,7 +61,9 @@ TEST_CASE("ExpressionMetricField refuses bad expressions and values naming them"
   // A size that is negative somewhere: named with the point and the value.
   const auto negative = ExpressionMetricField::from_sizes("0.1", "y - 0.5", "0");
   CHECK_NOTHROW(negative.at({0.0, 0.75}));
-  CHECK_THAT(error_message<InputError>([&] { negative.at({0.25, 0.25}); }),
+  CHECK_THAT(error_message<InputError>([&] {
+               negative.at({0.25, 0.25});
+             }),
              Contains("h2 = 'y - 0.5'") && Contains("(0.25, 0.25)") && Contains("-0.25") && Contains("positive"));
   const auto nan = ExpressionMetricField::from_sizes("sqrt(x)", "0.1", "0");
   CHECK_THAT(error_message<InputError>([&] { nan.at({-1.0, 0.0}); }), Contains("h1 = 'sqrt(x)'") && Contains("nan"));
@@ -71,9 +72,13 @@ TEST_CASE("ExpressionMetricField refuses bad expressions and values naming them"
   // Components that are not SPD at a point.
   const auto indefinite = ExpressionMetricField::from_components("1", "x", "1");
   CHECK_NOTHROW(indefinite.at({0.5, 0.0}));
-  CHECK_THAT(error_message<InputError>([&] { indefinite.at({2.0, 0.0}); }),
+  CHECK_THAT(error_message<InputError>([&] {
+               indefinite.at({2.0, 0.0});
+             }),
              Contains("m12 = 'x'") && Contains("(2, 0)") && Contains("(1, 2, 1)") && Contains("not positive definite"));
-  CHECK_THAT(error_message<InputError>([] { ConstantMetricField(Metric{1.0, 0.0, -1.0}); }),
+  CHECK_THAT(error_message<InputError>([] {
+               ConstantMetricField(Metric{1.0, 0.0, -1.0});
+             }),
              Contains("constant metric field") && Contains("(1, 0, -1)"));
 }
 

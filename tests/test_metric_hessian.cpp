@@ -3,7 +3,6 @@
 // clipping, the complexity of the metric from mesh data, and the metric of a function against the
 // Python evaluator (tools/eval/pdmesh_eval/metric.py).
 #include <catch2/catch.hpp>
-
 #include <cmath>
 #include <vector>
 
@@ -199,6 +198,8 @@ TEST_CASE("HessianMetricField equals metric.py's l2_optimal_metric", "[hessian]"
   // Where an eigenvalue of H is 0 (x = 0.5, where sin 2πx has no curvature), the differences' rounding
   // (~1e-16 / h² = 1e-6) lies above |H|'s floor 1e-8 and the two differ; away from it they agree.
   // A bad expression is named.
-  CHECK_THAT(error_message<InputError>([&] { HessianMetricField("tanh(", Box{{0, 0}, {1, 1}}, t, 1e-5, 4); }),
+  CHECK_THAT(error_message<InputError>([&] {
+               HessianMetricField("tanh(", Box{{0, 0}, {1, 1}}, t, 1e-5, 4);
+             }),
              Contains("'tanh('"));
 }

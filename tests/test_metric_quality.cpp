@@ -2,7 +2,6 @@
 // tools/eval/pdmesh_eval/metric.py on one small mesh in issue 37's linear and polar-1 metrics, and
 // against closed forms (an equilateral triangle in its metric, an inverted one).
 #include <catch2/catch.hpp>
-
 #include <cmath>
 #include <vector>
 
@@ -120,7 +119,9 @@ TEST_CASE("Q is 1 for a triangle equilateral in its metric and changes sign when
   const Metric m = metric_from_sizes(0.1, 0.001, angle);
   const MetricEigen e = eigen(m);
   const Metric inv_sqrt = metric_from_eigen(1.0 / std::sqrt(e.lambda1), 1.0 / std::sqrt(e.lambda2), e.angle);
-  auto map = [&](Vec2 p) { return Vec2{inv_sqrt.m11 * p.x + inv_sqrt.m12 * p.y, inv_sqrt.m12 * p.x + inv_sqrt.m22 * p.y}; };
+  auto map = [&](Vec2 p) {
+    return Vec2{inv_sqrt.m11 * p.x + inv_sqrt.m12 * p.y, inv_sqrt.m12 * p.x + inv_sqrt.m22 * p.y};
+  };
   Mesh mesh;
   mesh.points = {map({0, 0}), map({1, 0}), map({0.5, std::sqrt(3.0) / 2})};
   mesh.triangles = {{0, 1, 2}, {0, 2, 1}};

@@ -67,7 +67,8 @@ MetricQualitySummary metric_quality(const Mesh& mesh, const std::vector<Metric>&
       below += x < 0.3 ? 1 : 0;
       // Bin edges k/10 as metric.py writes them (0.1, 0.2, ...), so a Q on an edge falls on its side.
       static constexpr std::array<double, 9> kEdges{0.1, 0.2, 0.3, 0.4, 0.5, 0.6, 0.7, 0.8, 0.9};
-      const std::size_t bin = static_cast<std::size_t>(std::upper_bound(kEdges.begin(), kEdges.end(), x) - kEdges.begin());
+      const std::size_t bin =
+          static_cast<std::size_t>(std::upper_bound(kEdges.begin(), kEdges.end(), x) - kEdges.begin());
       ++s.q_histogram[bin];
     }
     s.q_mean = sum / static_cast<double>(q.size());

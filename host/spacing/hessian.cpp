@@ -1,9 +1,10 @@
 // Hessians by central differences and by least-squares quadratic fits on mesh patches (hessian.hpp).
 #include "spacing/hessian.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
-#include <fmt/format.h>
 
 #include "core/errors.hpp"
 
@@ -142,9 +143,10 @@ std::vector<Hessian> recover_hessians(const std::vector<Vec2>& points, const std
       solved = true;
     }
     if (!solved)
-      throw InputError(fmt::format("{}: no quadratic fits the neighbourhood of point {} ({}, {}) within {} rings of "
-                                   "triangles (its points are collinear or too few)",
-                                   what, v, points[v].x, points[v].y, kMaxRings));
+      throw InputError(
+          fmt::format("{}: no quadratic fits the neighbourhood of point {} ({}, {}) within {} rings of "
+                      "triangles (its points are collinear or too few)",
+                      what, v, points[v].x, points[v].y, kMaxRings));
   }
   return result;
 }

@@ -1,9 +1,10 @@
 // The L^p-optimal metric from Hessians of a function or of mesh data (hessian_metric.hpp).
 #include "spacing/hessian_metric.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
-#include <fmt/format.h>
 
 #include "core/errors.hpp"
 
@@ -75,7 +76,8 @@ HessianMetricField::HessianMetricField(const std::string& expression, const Box&
     : u_(expression), options_(o), step_(step) {
   check_hessian_metric_options(o);
   if (!std::isfinite(step) || !(step > 0.0))
-    throw InputError(fmt::format("hessian metric of '{}': step = {} must be a finite positive number", expression, step));
+    throw InputError(
+        fmt::format("hessian metric of '{}': step = {} must be a finite positive number", expression, step));
   if (!(box.width() > 0.0) || !(box.height() > 0.0) || grid < 1)
     throw InputError(fmt::format("hessian metric of '{}': an empty box or grid ({})", expression, grid));
   double total = 0.0;

@@ -22,7 +22,7 @@ struct HessianMetricOptions {
   double complexity = 1000.0;  // C = ∫ sqrt(det M), before clipping (about 1.15 C vertices)
   double p = 2.0;              // the error's norm, L^p (1 <= p; p = 2 the L2 norm)
   double hmin = 0.0;           // smallest size (0: none)
-  double hmax = std::numeric_limits<double>::infinity();  // largest size
+  double hmax = std::numeric_limits<double>::infinity();            // largest size
   double max_anisotropy = std::numeric_limits<double>::infinity();  // largest h_max / h_min of one metric
   double floor = 1e-8;  // |H|'s eigenvalues are floored here (where u is flat, H = 0)
 };

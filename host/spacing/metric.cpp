@@ -2,9 +2,10 @@
 // through it, lengths, interpolation, intersection and gradation.
 #include "spacing/metric.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
-#include <fmt/format.h>
 
 #include "core/errors.hpp"
 #include "core/gauss_legendre.hpp"
@@ -69,9 +70,10 @@ void check_metric(const Metric& m, std::string_view what) {
   if (is_spd(m)) return;
   if (!std::isfinite(m.m11) || !std::isfinite(m.m12) || !std::isfinite(m.m22))
     throw InputError(fmt::format("{}: metric (m11, m12, m22) = ({}, {}, {}) is not finite", what, m.m11, m.m12, m.m22));
-  throw InputError(fmt::format("{}: metric (m11, m12, m22) = ({}, {}, {}) is not positive definite "
-                               "(needs m11 > 0, m22 > 0 and m11*m22 - m12^2 = {} > 0)",
-                               what, m.m11, m.m12, m.m22, m.det()));
+  throw InputError(
+      fmt::format("{}: metric (m11, m12, m22) = ({}, {}, {}) is not positive definite "
+                  "(needs m11 > 0, m22 > 0 and m11*m22 - m12^2 = {} > 0)",
+                  what, m.m11, m.m12, m.m22, m.det()));
 }
 
 double edge_length(const Metric& ma, const Metric& mb, Vec2 v) {
@@ -122,7 +124,8 @@ Metric intersect(const Metric& a, const Metric& b) {
   // N = S^-1 b S^-1, with the symmetric products written out.
   const double t11 = s_inv.m11 * b.m11 + s_inv.m12 * b.m12, t12 = s_inv.m11 * b.m12 + s_inv.m12 * b.m22;
   const double t21 = s_inv.m12 * b.m11 + s_inv.m22 * b.m12, t22 = s_inv.m12 * b.m12 + s_inv.m22 * b.m22;
-  const Metric n{t11 * s_inv.m11 + t12 * s_inv.m12, 0.5 * (t11 * s_inv.m12 + t12 * s_inv.m22 + t21 * s_inv.m11 + t22 * s_inv.m12),
+  const Metric n{t11 * s_inv.m11 + t12 * s_inv.m12,
+                 0.5 * (t11 * s_inv.m12 + t12 * s_inv.m22 + t21 * s_inv.m11 + t22 * s_inv.m12),
                  t21 * s_inv.m12 + t22 * s_inv.m22};
   const MetricEigen en = eigen(n);
   const Metric k = metric_from_eigen(std::max(1.0, en.lambda1), std::max(1.0, en.lambda2), en.angle);
@@ -133,7 +136,7 @@ Metric intersect(const Metric& a, const Metric& b) {
           u21 * s.m12 + u22 * s.m22};
 }
 
-Metric span(const Metric& m, Vec2 v, double beta, double t) {
+Metric span_metric(const Metric& m, Vec2 v, double beta, double t) {
   const double log_beta = std::log(beta);
   const double eta0 = std::pow(1.0 + m.length(v) * log_beta, 1.0 - t);
   const double physical = norm(v) * log_beta;

@@ -84,16 +84,16 @@ Metric log_euclidean_mean(const std::vector<Metric>& m, const std::vector<double
 Metric intersect(const Metric& a, const Metric& b);
 
 // Metric gradation (Alauzet 2010, "Size gradation control of anisotropic meshes"; the mixed form of
-// Alauzet & Frazza 2021). span(m, v, beta, t) is the metric m at one end of v lets the other end
-// have: each eigenvalue lambda_i of m divided by eta_i², with
+// Alauzet & Frazza 2021). span_metric(m, v, beta, t) is the metric that m at one end of v lets the
+// other end have: each eigenvalue lambda_i of m divided by eta_i², with
 //   eta_i = (1 + |v|_m ln beta)^(1 - t) * (1 + sqrt(lambda_i) |v| ln beta)^t.
 // t = 0 grows both sizes in proportion (metric space: the shape of m is kept), t = 1 grows each size
 // by |v| ln beta (physical space), and t in between mixes the two.
-Metric span(const Metric& m, Vec2 v, double beta, double t);
+Metric span_metric(const Metric& m, Vec2 v, double beta, double t);
 // The gradation of an edge v between metrics ma and mb: the size ratio per unit of metric length,
 // max(a, 1/a)^(1/L) with a = |v|_ma / |v|_mb and L the edge's metric length when the size along v
-// varies linearly from one end to the other, as span's growth does: span(m, v, beta, 0) at the far
-// end has gradation beta exactly along v. 1 when the two agree along v.
+// varies linearly from one end to the other, as span_metric's growth does: span_metric(m, v, beta, 0)
+// at the far end has gradation beta exactly along v. 1 when the two agree along v.
 double edge_gradation(const Metric& ma, const Metric& mb, Vec2 v);
 
 }  // namespace pdmesh

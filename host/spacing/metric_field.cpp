@@ -1,11 +1,11 @@
 // Metric fields: a constant metric and three muParser expressions (metric_field.hpp).
 #include "spacing/metric_field.hpp"
 
+#include <fmt/format.h>
 #include <muParser.h>
 
 #include <array>
 #include <cmath>
-#include <fmt/format.h>
 
 #include "core/errors.hpp"
 
@@ -68,8 +68,8 @@ Metric ExpressionMetricField::at(Vec2 p) const {
         throw InputError(fmt::format("{} at ({}, {}) gives {}; a size must be a finite positive number",
                                      impl_->label(k), p.x, p.y, v[k]));
     if (!std::isfinite(v[2]))
-      throw InputError(fmt::format("{} at ({}, {}) gives {}; the angle must be a finite number", impl_->label(2), p.x,
-                                   p.y, v[2]));
+      throw InputError(
+          fmt::format("{} at ({}, {}) gives {}; the angle must be a finite number", impl_->label(2), p.x, p.y, v[2]));
     return metric_from_sizes(v[0], v[1], v[2] * (M_PI / 180.0));
   }
   const Metric m{v[0], v[1], v[2]};

@@ -1,9 +1,10 @@
 // Metric gradation by sweeps of span-and-intersect over the edges (metric_gradation.hpp).
 #include "spacing/metric_gradation.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
-#include <fmt/format.h>
 
 #include "core/errors.hpp"
 
@@ -20,8 +21,8 @@ bool moved(const Metric& a, const Metric& b) {
 }  // namespace
 
 MetricGradationResult limit_metric_gradation(const std::vector<Vec2>& points,
-                                             const std::vector<std::array<int, 2>>& edges,
-                                             std::vector<Metric>& metrics, const MetricGradationOptions& options) {
+                                             const std::vector<std::array<int, 2>>& edges, std::vector<Metric>& metrics,
+                                             const MetricGradationOptions& options) {
   if (!(options.beta > 1.0) || !std::isfinite(options.beta))
     throw InputError(fmt::format("metric gradation: beta = {} must be a finite number > 1", options.beta));
   if (!(options.t >= 0.0 && options.t <= 1.0))
@@ -40,8 +41,8 @@ MetricGradationResult limit_metric_gradation(const std::vector<Vec2>& points,
       // Each end takes in the other's span; where one metric dominates the other, only the smaller
       // one changes. An intersection that moves nothing (the mixed span can leave an edge above
       // the limit that no further sweep improves) does not count as a change.
-      const Metric from_a = span(ma, v, options.beta, options.t);
-      const Metric from_b = span(mb, v, options.beta, options.t);
+      const Metric from_a = span_metric(ma, v, options.beta, options.t);
+      const Metric from_b = span_metric(mb, v, options.beta, options.t);
       const Metric new_b = intersect(mb, from_a);
       const Metric new_a = intersect(ma, from_b);
       changed = changed || moved(ma, new_a) || moved(mb, new_b);

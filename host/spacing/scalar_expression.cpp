@@ -1,10 +1,10 @@
 // ScalarExpression: one muParser expression in x and y (scalar_expression.hpp).
 #include "spacing/scalar_expression.hpp"
 
+#include <fmt/format.h>
 #include <muParser.h>
 
 #include <cmath>
-#include <fmt/format.h>
 
 #include "core/errors.hpp"
 
