@@ -29,7 +29,8 @@ Hessian hessian_by_differences(const std::function<double(Vec2)>& u, Vec2 p, dou
 // squares (Householder QR, coordinates scaled by the patch's radius). A point in no triangle gets a
 // zero Hessian. Throws InputError naming `what`, the point and the value for a value that is not
 // finite, and naming the vertex when no ring up to the fourth determines a quadratic. u.size() must
-// equal points.size().
+// equal points.size() and every triangle index lie in [0, points.size()) (the callers' data, as the
+// mesh readers check it).
 std::vector<Hessian> recover_hessians(const std::vector<Vec2>& points, const std::vector<std::array<int, 3>>& triangles,
                                       const std::vector<double>& u, std::string_view what);
 
