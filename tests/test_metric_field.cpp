@@ -1,5 +1,6 @@
 // Metric fields from muParser expressions (spacing/metric_field.hpp): both forms against
-// metric_from_sizes, the errors naming the expression and the value; and the complexity
+// metric_from_sizes, the errors naming the expression and the value; metrics on a mesh
+// (spacing/mesh_metric_field.hpp) against log-Euclidean interpolation; and the complexity
 // C = ∫ sqrt(det M) (spacing/metric_complexity.hpp) against closed forms and the Python evaluator.
 #include <catch2/catch.hpp>
 #include <cmath>
@@ -7,6 +8,7 @@
 
 #include "core/errors.hpp"
 #include "error_message.hpp"
+#include "spacing/mesh_metric_field.hpp"
 #include "spacing/metric_complexity.hpp"
 #include "spacing/metric_field.hpp"
 
@@ -103,4 +105,55 @@ TEST_CASE("complexity of the linear case against its closed form and metric.py",
   // 40 panels reach it to 5e-4, 160 panels to better than 1e-5.
   CHECK(complexity_on_box(linear, kUnitSquare, 40, 4) == Approx(465.1687056553628).epsilon(1e-3));
   CHECK(complexity_on_box(linear, kUnitSquare, 160, 4) == Approx(465.1687056553628).epsilon(1e-5));
+}
+
+TEST_CASE("MeshMetricField interpolates log-Euclidean inside and along the nearest boundary edge", "[metric_field]") {
+  // The unit square as two counter-clockwise triangles, a different metric at each corner.
+  const std::vector<Vec2> points{{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+  const std::vector<std::array<int, 3>> triangles{{0, 1, 2}, {0, 2, 3}};
+  const std::vector<Metric> m{metric_from_sizes(0.1, 0.001, 0.0), metric_from_sizes(0.05, 0.02, 0.7),
+                              metric_from_sizes(0.3, 0.3, 0.0), metric_from_sizes(0.01, 0.2, -1.2)};
+  const MeshMetricField f(points, triangles, m, "'m.vtu'");
+  for (int i = 0; i < 4; ++i) {
+    const Metric at = f.at(points[i]);
+    CHECK(at.m11 == m[i].m11);  // a corner's own metric, exactly
+    CHECK(at.m12 == m[i].m12);
+    CHECK(at.m22 == m[i].m22);
+  }
+  check_same(f.at({0.5, 0.0}), interpolate(m[0], m[1], 0.5), 1e-13);
+  check_same(f.at({0.25, 0.25}), interpolate(m[0], m[2], 0.25), 1e-13);  // on the shared diagonal
+  check_same(f.at({2.0 / 3.0, 1.0 / 3.0}), log_euclidean_mean({m[0], m[1], m[2]}, {1, 1, 1}), 1e-13);
+  // Outside: the nearest boundary point's interpolation; beyond a corner, the corner's metric.
+  check_same(f.at({0.5, -3.0}), interpolate(m[0], m[1], 0.5), 1e-13);
+  check_same(f.at({1.5, 0.75}), interpolate(m[1], m[2], 0.75), 1e-13);
+  check_same(f.at({-1.0, -1.0}), m[0], 0.0);
+  // Equal metrics stay equal everywhere.
+  const MeshMetricField same_everywhere(points, triangles, std::vector<Metric>(4, m[1]), "x");
+  for (Vec2 p : {Vec2{0.3, 0.1}, Vec2{0.1, 0.9}, Vec2{0.5, 0.5}, Vec2{3.0, 3.0}})
+    check_same(same_everywhere.at(p), m[1], 1e-13);
+}
+
+TEST_CASE("MeshMetricField refuses bad data naming it", "[metric_field]") {
+  const std::vector<Vec2> points{{0, 0}, {1, 0}, {1, 1}};
+  const std::vector<Metric> good(3, Metric{});
+  std::vector<Metric> bad = good;
+  bad[2] = Metric{1.0, 0.0, -4.0};
+  CHECK_THAT(error_message<InputError>([&] {
+               MeshMetricField(points, {{0, 1, 2}}, bad, "'m.vtu' array 'M'");
+             }),
+             Contains("'m.vtu' array 'M': point 2 (1, 1)") && Contains("(1, 0, -4)"));
+  CHECK_THAT(error_message<InputError>([&] {
+               MeshMetricField(points, {{0, 2, 1}}, good, "'m.vtu'");
+             }),
+             Contains("triangle 0 (0, 2, 1)") && Contains("positive area"));
+  CHECK_THAT(error_message<InputError>([&] {
+               MeshMetricField(points, {{0, 1, 3}}, good, "'m.vtu'");
+             }),
+             Contains("uses point 3"));
+  CHECK_THAT(error_message<InputError>([&] { MeshMetricField(points, {}, good, "'m.vtu'"); }),
+             Contains("at least one triangle"));
+  CHECK_THAT(error_message<InputError>([&] {
+               MeshMetricField(points, {{0, 1, 2}}, {Metric{}}, "'m.vtu'");
+             }),
+             Contains("1 metrics for 3 points"));
 }

@@ -10,6 +10,7 @@
 #include "error_message.hpp"
 #include "spacing/hessian.hpp"
 #include "spacing/hessian_metric.hpp"
+#include "spacing/mesh_metric_field.hpp"
 #include "spacing/metric_complexity.hpp"
 
 using namespace pdmesh;
@@ -164,6 +165,9 @@ TEST_CASE("hessian_metrics_on_mesh reaches the target complexity and is exact fo
   const Metric h = abs_hessian(kQuadraticH, o.floor);
   const Metric expected = (1000.0 / std::sqrt(h.det())) * h;
   for (const Metric& x : m) check_metric_near(x, expected.m11, expected.m12, expected.m22, 1e-8);
+  // As a field on that mesh (the route of data on a background mesh), its complexity is C too.
+  const MeshMetricField field(g.points, g.triangles, m, "u");
+  CHECK(complexity_on_box(field, Box{{0, 0}, {1, 1}}, 8, 2) == Approx(1000.0).epsilon(1e-8));
   // Clipping at hmax = 0.01 (sizes above it shrink): the complexity grows.
   o.hmax = 0.01;
   const std::vector<Metric> clipped = hessian_metrics_on_mesh(g.points, g.triangles, u, o, "u");
