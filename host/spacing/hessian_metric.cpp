@@ -1,0 +1,99 @@
+// The L^p-optimal metric from Hessians of a function or of mesh data (hessian_metric.hpp).
+#include "spacing/hessian_metric.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/errors.hpp"
+
+namespace pdmesh {
+
+void check_hessian_metric_options(const HessianMetricOptions& o) {
+  if (!std::isfinite(o.complexity) || !(o.complexity > 0.0))
+    throw InputError(fmt::format("hessian metric: complexity = {} must be a finite positive number", o.complexity));
+  if (!std::isfinite(o.p) || !(o.p >= 1.0))
+    throw InputError(fmt::format("hessian metric: p = {} must be a finite number >= 1", o.p));
+  if (!(o.hmin >= 0.0) || !std::isfinite(o.hmin))
+    throw InputError(fmt::format("hessian metric: hmin = {} must be a finite number >= 0", o.hmin));
+  if (!(o.hmax > o.hmin))
+    throw InputError(fmt::format("hessian metric: hmax = {} must be larger than hmin = {}", o.hmax, o.hmin));
+  if (!(o.max_anisotropy >= 1.0))
+    throw InputError(fmt::format("hessian metric: max_anisotropy = {} must be >= 1", o.max_anisotropy));
+  if (!std::isfinite(o.floor) || !(o.floor > 0.0))
+    throw InputError(fmt::format("hessian metric: floor = {} must be a finite positive number", o.floor));
+}
+
+Metric abs_hessian(const Hessian& h, double floor) {
+  const MetricEigen e = eigen(Metric{h.xx, h.xy, h.yy});
+  return metric_from_eigen(std::max(std::fabs(e.lambda1), floor), std::max(std::fabs(e.lambda2), floor), e.angle);
+}
+
+double hessian_density(const Hessian& h, const HessianMetricOptions& o) {
+  return std::pow(abs_hessian(h, o.floor).det(), o.p / (2.0 * o.p + 2.0));
+}
+
+Metric clip_metric(const Metric& m, double hmin, double hmax, double max_anisotropy) {
+  const MetricEigen e = eigen(m);
+  const double lo = 1.0 / (hmax * hmax);
+  const double hi = hmin > 0.0 ? 1.0 / (hmin * hmin) : std::numeric_limits<double>::infinity();
+  const double l1 = std::clamp(e.lambda1, lo, hi);
+  double l2 = std::clamp(e.lambda2, lo, hi);
+  if (std::isfinite(max_anisotropy)) l2 = std::max(l2, l1 / (max_anisotropy * max_anisotropy));
+  return metric_from_eigen(l1, l2, e.angle);
+}
+
+Metric lp_optimal_metric(const Hessian& h, double scale, const HessianMetricOptions& o) {
+  const Metric a = abs_hessian(h, o.floor);
+  const Metric m = (scale * std::pow(a.det(), -1.0 / (2.0 * o.p + 2.0))) * a;
+  return clip_metric(m, o.hmin, o.hmax, o.max_anisotropy);
+}
+
+std::vector<Metric> hessian_metrics_on_mesh(const std::vector<Vec2>& points,
+                                            const std::vector<std::array<int, 3>>& triangles,
+                                            const std::vector<double>& u, const HessianMetricOptions& o,
+                                            std::string_view what) {
+  check_hessian_metric_options(o);
+  const std::vector<Hessian> h = recover_hessians(points, triangles, u, what);
+  std::vector<double> density(points.size());
+  for (std::size_t i = 0; i < points.size(); ++i) density[i] = hessian_density(h[i], o);
+  double integral = 0.0;
+  for (const auto& t : triangles) {
+    const double area = 0.5 * std::fabs(cross(points[t[1]] - points[t[0]], points[t[2]] - points[t[0]]));
+    integral += area * (density[t[0]] + density[t[1]] + density[t[2]]) / 3.0;
+  }
+  if (!(integral > 0.0))
+    throw InputError(fmt::format("{}: the mesh has no area to spread complexity {} over", what, o.complexity));
+  const double scale = o.complexity / integral;
+  std::vector<Metric> m(points.size());
+  for (std::size_t i = 0; i < points.size(); ++i) m[i] = lp_optimal_metric(h[i], scale, o);
+  return m;
+}
+
+HessianMetricField::HessianMetricField(const std::string& expression, const Box& box, const HessianMetricOptions& o,
+                                       double step, int grid)
+    : u_(expression), options_(o), step_(step) {
+  check_hessian_metric_options(o);
+  if (!std::isfinite(step) || !(step > 0.0))
+    throw InputError(
+        fmt::format("hessian metric of '{}': step = {} must be a finite positive number", expression, step));
+  if (!(box.width() > 0.0) || !(box.height() > 0.0) || grid < 1)
+    throw InputError(fmt::format("hessian metric of '{}': an empty box or grid ({})", expression, grid));
+  double total = 0.0;
+  for (int j = 0; j < grid; ++j)
+    for (int i = 0; i < grid; ++i) {
+      const Vec2 p{box.lo.x + (i + 0.5) / grid * box.width(), box.lo.y + (j + 0.5) / grid * box.height()};
+      total += hessian_density(hessian(p), options_);
+    }
+  const double integral = total * box.width() * box.height() / (static_cast<double>(grid) * grid);
+  scale_ = options_.complexity / integral;
+}
+
+Hessian HessianMetricField::hessian(Vec2 p) const {
+  return hessian_by_differences([this](Vec2 q) { return u_(q); }, p, step_);
+}
+
+Metric HessianMetricField::at(Vec2 p) const { return lp_optimal_metric(hessian(p), scale_, options_); }
+
+}  // namespace pdmesh

@@ -1,0 +1,61 @@
+// Log-Euclidean interpolation of metrics on a triangle mesh (mesh_metric_field.hpp).
+#include "spacing/mesh_metric_field.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/errors.hpp"
+#include "core/predicates.hpp"
+
+namespace pdmesh {
+
+MeshMetricField::MeshMetricField(std::vector<Vec2> points, std::vector<std::array<int, 3>> triangles,
+                                 std::vector<Metric> metrics, std::string what)
+    : points_(std::move(points)),
+      triangles_(std::move(triangles)),
+      metrics_(std::move(metrics)),
+      what_(std::move(what)) {
+  if (triangles_.empty()) throw InputError(fmt::format("{}: a metric mesh needs at least one triangle", what_));
+  if (metrics_.size() != points_.size())
+    throw InputError(fmt::format("{}: {} metrics for {} points", what_, metrics_.size(), points_.size()));
+  for (std::size_t i = 0; i < points_.size(); ++i)
+    check_metric(metrics_[i], fmt::format("{}: point {} ({}, {})", what_, i, points_[i].x, points_[i].y));
+  const int n = static_cast<int>(points_.size());
+  for (std::size_t t = 0; t < triangles_.size(); ++t) {
+    const auto& v = triangles_[t];
+    for (int k = 0; k < 3; ++k)
+      if (v[k] < 0 || v[k] >= n)
+        throw InputError(
+            fmt::format("{}: triangle {} uses point {}, which does not exist ({} points)", what_, t, v[k], n));
+    if (!(orient2d(points_[v[0]], points_[v[1]], points_[v[2]]) > 0.0))
+      throw InputError(fmt::format("{}: triangle {} ({}, {}, {}) has no positive area (counter-clockwise expected)",
+                                   what_, t, v[0], v[1], v[2]));
+  }
+  logs_.reserve(metrics_.size());
+  for (const Metric& m : metrics_) logs_.push_back(log_metric(m));
+  locator_ = std::make_unique<TriangleLocator>(points_, triangles_);
+}
+
+Metric MeshMetricField::at(Vec2 p) const {
+  const Located l = locator_->locate(p);
+  if (l.triangle >= 0) {
+    const auto& v = triangles_[static_cast<std::size_t>(l.triangle)];
+    const double sum = l.w[0] + l.w[1] + l.w[2];
+    // At a corner (one weight holds everything) the corner's metric itself, without exp(log()).
+    for (int k = 0; k < 3; ++k)
+      if (l.w[k] == sum) return metrics_[static_cast<std::size_t>(v[k])];
+    Metric s{0.0, 0.0, 0.0};
+    for (int k = 0; k < 3; ++k) s = s + (l.w[k] / sum) * logs_[static_cast<std::size_t>(v[k])];
+    return exp_metric(s);
+  }
+  const BoundaryHit hit = locator_->nearest_boundary(p);
+  const auto& e = locator_->boundary_edges()[static_cast<std::size_t>(hit.edge)];
+  const double t = std::clamp(hit.t, 0.0, 1.0);
+  if (t == 0.0) return metrics_[static_cast<std::size_t>(e[0])];
+  if (t == 1.0) return metrics_[static_cast<std::size_t>(e[1])];
+  return exp_metric((1.0 - t) * logs_[static_cast<std::size_t>(e[0])] + t * logs_[static_cast<std::size_t>(e[1])]);
+}
+
+}  // namespace pdmesh
