@@ -223,6 +223,76 @@ void parse_end(LineScanner& in, const std::vector<std::string_view>& t) {
   }
 }
 
+// The writer's sections.
+
+// The node lines, in blocks formatted on several threads (a stopped run writes its checkpoint while
+// the user waits), joined in order: the same text as one loop.
+void append_node_lines(std::string& out, const NodeSet& nodes, const SimState& s) {
+  const InterruptShield shield;  // written whole, also when a stop request comes meanwhile
+  constexpr std::size_t kBlock = 1 << 15;
+  std::vector<std::string> blocks((nodes.size() + kBlock - 1) / kBlock);
+  parallel_for(
+      blocks.size(),
+      [&](std::size_t b) {
+        std::string& text = blocks[b];
+        const std::size_t end = std::min(nodes.size(), (b + 1) * kBlock);
+        text.reserve(110 * (end - b * kBlock));
+        for (std::size_t i = b * kBlock; i < end; ++i) {
+          const Vec2 t = i < s.tangents.size() ? s.tangents[i] : Vec2{};
+          append_hex(text, nodes.x[i].x);
+          text += ' ';
+          append_hex(text, nodes.x[i].y);
+          text += ' ';
+          append_hex(text, nodes.q[i]);
+          fmt::format_to(std::back_inserter(text), " {} {} ", static_cast<int>(nodes.kind[i]), nodes.curve[i]);
+          append_hex(text, t.x);
+          text += ' ';
+          append_hex(text, t.y);
+          text += '\n';
+        }
+      },
+      1);
+  std::size_t total = out.size();
+  for (const std::string& text : blocks) total += text.size();
+  out.reserve(total + 64 * nodes.size());  // and the curve lines
+  for (const std::string& text : blocks) out += text;
+}
+
+// The curve lines: each curve's nodes with their arc positions.
+void append_curve_lines(std::string& out, const NodeSet& nodes, const SimState& s) {
+  out += fmt::format("curves {}\n", nodes.curve_nodes.size());
+  for (std::size_t k = 0; k < nodes.curve_nodes.size(); ++k) {
+    const std::vector<int>& list = nodes.curve_nodes[k];
+    out += fmt::format("curve {} {}", k, list.size());
+    for (std::size_t j = 0; j < list.size(); ++j) {
+      fmt::format_to(std::back_inserter(out), " {}:", list[j]);
+      append_hex(out, k < s.arcs.size() && j < s.arcs[k].size() ? s.arcs[k][j] : 0.0);
+    }
+    out += '\n';
+  }
+}
+
+// The history rows, then the convergence and momentum sections when there is something in them.
+void append_history(std::string& out, const SimState& s) {
+  out += fmt::format("history {}\n", s.history.size());
+  for (const HistoryRow& r : s.history)
+    out += fmt::format("{} {} {} {} {} {} {} {} {} {} {} {}\n", r.iteration, hex(r.average_force),
+                       hex(r.average_kinetic), hex(r.max_force), hex(r.dt_gm), r.snapped, r.clamped, r.fixed,
+                       r.boundary, r.interior, r.inserted, r.removed);
+  // The stopping rule's measurements (sim/convergence.hpp); a file without this section has none.
+  if (!s.convergence.empty()) {
+    out += fmt::format("convergence {}\n", s.convergence.size());
+    const auto value = [](double v) { return std::isnan(v) ? std::string("nan") : hex(v); };
+    for (const MeshSample& m : s.convergence)
+      out += fmt::format("{} {} {}\n", m.iteration, value(m.min_angle), value(m.aspect_ratio));
+  }
+  // Heavy-ball momentum's carried moves (simulation.momentum > 0 only); a file without it has none.
+  if (!s.momentum.empty()) {
+    out += fmt::format("momentum {}\n", s.momentum.size());
+    for (const Vec2& p : s.momentum) out += fmt::format("{} {}\n", hex(p.x), hex(p.y));
+  }
+}
+
 }  // namespace
 
 std::string format_checkpoint(const Checkpoint& c) {
@@ -242,65 +312,9 @@ std::string format_checkpoint(const Checkpoint& c) {
   out += fmt::format("population {} {} {} {}\n", s.population.next, s.population.interval, s.population.last_event,
                      s.population.last_change);
   out += fmt::format("nodes {}\n", nodes.size());
-  // The node lines in blocks formatted on several threads (a stopped run writes its checkpoint while
-  // the user waits), joined in order: the same text as one loop.
-  {
-    const InterruptShield shield;  // written whole, also when a stop request comes meanwhile
-    constexpr std::size_t kBlock = 1 << 15;
-    std::vector<std::string> blocks((nodes.size() + kBlock - 1) / kBlock);
-    parallel_for(
-        blocks.size(),
-        [&](std::size_t b) {
-          std::string& text = blocks[b];
-          const std::size_t end = std::min(nodes.size(), (b + 1) * kBlock);
-          text.reserve(110 * (end - b * kBlock));
-          for (std::size_t i = b * kBlock; i < end; ++i) {
-            const Vec2 t = i < s.tangents.size() ? s.tangents[i] : Vec2{};
-            append_hex(text, nodes.x[i].x);
-            text += ' ';
-            append_hex(text, nodes.x[i].y);
-            text += ' ';
-            append_hex(text, nodes.q[i]);
-            fmt::format_to(std::back_inserter(text), " {} {} ", static_cast<int>(nodes.kind[i]), nodes.curve[i]);
-            append_hex(text, t.x);
-            text += ' ';
-            append_hex(text, t.y);
-            text += '\n';
-          }
-        },
-        1);
-    std::size_t total = out.size();
-    for (const std::string& text : blocks) total += text.size();
-    out.reserve(total + 64 * nodes.size());  // and the curve lines
-    for (const std::string& text : blocks) out += text;
-  }
-  out += fmt::format("curves {}\n", nodes.curve_nodes.size());
-  for (std::size_t k = 0; k < nodes.curve_nodes.size(); ++k) {
-    const std::vector<int>& list = nodes.curve_nodes[k];
-    out += fmt::format("curve {} {}", k, list.size());
-    for (std::size_t j = 0; j < list.size(); ++j) {
-      fmt::format_to(std::back_inserter(out), " {}:", list[j]);
-      append_hex(out, k < s.arcs.size() && j < s.arcs[k].size() ? s.arcs[k][j] : 0.0);
-    }
-    out += '\n';
-  }
-  out += fmt::format("history {}\n", s.history.size());
-  for (const HistoryRow& r : s.history)
-    out += fmt::format("{} {} {} {} {} {} {} {} {} {} {} {}\n", r.iteration, hex(r.average_force),
-                       hex(r.average_kinetic), hex(r.max_force), hex(r.dt_gm), r.snapped, r.clamped, r.fixed,
-                       r.boundary, r.interior, r.inserted, r.removed);
-  // The stopping rule's measurements (sim/convergence.hpp); a file without this section has none.
-  if (!s.convergence.empty()) {
-    out += fmt::format("convergence {}\n", s.convergence.size());
-    const auto value = [](double v) { return std::isnan(v) ? std::string("nan") : hex(v); };
-    for (const MeshSample& m : s.convergence)
-      out += fmt::format("{} {} {}\n", m.iteration, value(m.min_angle), value(m.aspect_ratio));
-  }
-  // Heavy-ball momentum's carried moves (simulation.momentum > 0 only); a file without it has none.
-  if (!s.momentum.empty()) {
-    out += fmt::format("momentum {}\n", s.momentum.size());
-    for (const Vec2& p : s.momentum) out += fmt::format("{} {}\n", hex(p.x), hex(p.y));
-  }
+  append_node_lines(out, nodes, s);
+  append_curve_lines(out, nodes, s);
+  append_history(out, s);
   out += "end\n";
   return out;
 }
