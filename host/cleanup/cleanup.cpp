@@ -80,151 +80,215 @@ double edge_to_spacing_ratio(const Mesh& mesh, const SpacingField& spacing) {
   return std::clamp(ratios[ratios.size() / 2], 0.8, 1.0);
 }
 
-}  // namespace
+// The three thresholds of a run, as sines of the smallest angle.
+struct Limits {
+  double smooth;    // the sweeps work on the vertices of the triangles below this ...
+  double topology;  // ... the topology pass on the triangles below this ...
+  double target;    // ... and these are the triangles to repair
+};
 
-CleanupResult clean_mesh(const Mesh& mesh, const NodeSet& nodes, const GeometryTree& tree,
-                         const SpacingField& spacing, const CleanupOptions& options) {
-  const auto start = std::chrono::steady_clock::now();
-  CleanupResult result;
-  EditableMesh m(mesh, nodes.curve_nodes, boundary_arcs(tree.geometry(), nodes));
-  cleanup::Smoother smoother(m, tree.geometry(), options.step_cap);
-  smoother.set_sweep_gain(options.move_min_rise, options.move_aspect_drop);
+Limits limits_of(const CleanupOptions& options) {
   const double smooth_below = options.smooth_below >= 0.0 ? options.smooth_below : std::min(options.min_angle + 20.0, 59.0);
   const double topology_below =
       options.topology_below >= 0.0 ? options.topology_below : std::min(options.min_angle + 15.0, 59.0);
-  const double smooth_limit = cleanup::sine_from_degrees(smooth_below);
-  const double target = cleanup::sine_from_degrees(options.min_angle);
-  const double topology_limit = cleanup::sine_from_degrees(topology_below);
+  return {cleanup::sine_from_degrees(smooth_below), cleanup::sine_from_degrees(topology_below),
+          cleanup::sine_from_degrees(options.min_angle)};
+}
+
+cleanup::TopologyOptions topology_options_of(const CleanupOptions& options, const Limits& limits) {
   cleanup::TopologyOptions topology_options;
-  topology_options.target = target;
-  topology_options.enough = topology_limit;
-  const double ratio = edge_to_spacing_ratio(mesh, spacing);
+  topology_options.target = limits.target;
+  topology_options.enough = limits.topology;
   topology_options.split_boundary = options.split_boundary;
   topology_options.compound = options.compound;
-  cleanup::TopologyOps ops(m, smoother, tree.geometry(), [&spacing, ratio](Vec2 p) { return ratio * spacing.at(p); },
-                           topology_options);
-  std::vector<std::uint8_t> mark;
-  Scores scores;
-  std::set<std::array<int, 3>> failures;
-  const auto trial_budget = static_cast<std::size_t>(
-      std::max(options.min_trials, options.trials_per_triangle * static_cast<double>(mesh.triangles.size())));
-  for (int iteration = 0; iteration < options.iterations; ++iteration) {
-    std::size_t changed = 0;
-    // Only nodes whose neighbourhood changed since the last sweep can propose something new.
-    const std::vector<std::uint8_t> dirty = m.take_dirty();
-    const auto timer = std::chrono::steady_clock::now();
-    // Skipping a node whose neighbourhood did not change since it last failed gives exactly the result
-    // of trying it (the same proposal is rejected again); checked when its turn comes, since an earlier
-    // move in the same sweep may have changed it.
-    auto worth = [&](int a) { return (a < static_cast<int>(dirty.size()) && dirty[a]) || m.dirty(a); };
-    CleanupIteration record;
-    auto tally = [&](bool moved) {
-      if (!moved) return;
-      const cleanup::MoveGain& g = smoother.last_gain();
-      ++record.moves;
-      record.aspect_drop += g.aspect_drop;
-      if (g.aspect_drop < 1e-4 * g.triangles) {
-        ++record.small_moves;
-        record.small_aspect_drop += g.aspect_drop;
-      }
-    };
-    // A stop request ends the cleanup between two node moves or repairs (each leaves a valid mesh).
-    InterruptPoll poll(256);
-    for (int a : vertices_of_bad_triangles(m, scores.update(m, dirty), smooth_limit, mark)) {
-      poll.tick();
-      if (worth(a)) tally(smoother.relax(a));
-    }
-    for (int a : vertices_of_bad_triangles(m, scores.update(m, dirty), topology_limit, mark)) {
-      poll.tick();
-      if (worth(a)) tally(smoother.climb(a));
-    }
-    changed += record.moves;
-    const auto smoothed = std::chrono::steady_clock::now();
-    record.smoothing_seconds = std::chrono::duration<double>(smoothed - timer).count();
-    result.stats.smoothing_seconds += record.smoothing_seconds;
-    result.stats.moves += changed;
-    // The topology pass, worst triangle first; not in the last iteration, which only smooths.
-    // The triangles below the target get compound trials when no single one helps, and may spend a
-    // second budget: they come first and are few in a settled lattice, and the first budget is often
-    // gone on the 40-55 degree triangles of the first iterations (docs/cleanup.md). So once the first
-    // budget is spent only the triangles below the target are listed (the pass would stop at the first
-    // other one), and a pass with none to try, the common case on a settled lattice after its first
-    // pass, is not made at all.
-    const bool first_spent = ops.trials() >= trial_budget;
-    if (options.topology && iteration + 1 < options.iterations && ops.trials() < 2 * trial_budget) {
-      // Triangles that failed before are dropped before the sort rather than after it: after the first
-      // pass they are nearly all of the list, and the order of the others is the same.
-      const double list_below = first_spent ? target : topology_limit;
-      // The scores the sweeps' lists keep, brought up to date: triangles the sweeps did not change keep
-      // theirs, rather than every triangle's being computed again.
-      const std::vector<double>& score = scores.update(m, dirty);
-      std::vector<std::pair<double, int>> bad;
-      for (int t = 0; t < m.triangle_slots(); ++t) {
-        if (!m.alive(t)) continue;
-        const double q = score[t];
-        if (q < list_below && (failures.empty() || failures.count(sorted_key(m.v[t])) == 0)) bad.push_back({q, t});
-      }
-      std::sort(bad.begin(), bad.end());
-      if (!bad.empty()) {
-        double aspect_sum = 0.0, count = 0.0;
-        for (int t = 0; t < m.triangle_slots(); ++t)
-          if (m.alive(t)) {
-            aspect_sum += m.aspect(t);
-            count += 1.0;
-          }
-        ops.set_aspect_totals(aspect_sum, count);
-      }
-      const std::size_t trials_before = ops.trials();
-      for (const auto& [q, t] : bad) {
-        poll.tick();
-        const bool below = q < target;
-        if (ops.trials() >= trial_budget && (!below || ops.trials() >= 2 * trial_budget)) break;
-        if (!m.alive(t) || !(m.quality(t) < topology_limit)) continue;
-        // A triangle no operation could repair is not tried again in this run.
-        const auto key = sorted_key(m.v[t]);
-        if (failures.count(key) > 0) continue;
-        const double now = m.quality(t);
-        // Compound trials for a triangle below the target now (an earlier repair may have lifted it).
-        const cleanup::RepairKind kind = ops.repair(t, now < target);
-        if (kind == cleanup::RepairKind::None) {
-          ++result.stats.rejected;
-          failures.insert(key);
-          continue;
-        }
-        if (kind == cleanup::RepairKind::Collapse) ++result.stats.collapsed;
-        else if (kind != cleanup::RepairKind::Compound) ++result.stats.inserted;  // a compound's nodes are counted below
-        ++changed;
-        record.trials_to_last_change = ops.trials() - trials_before;
-        record.last_change_angle = cleanup::degrees_from_sine(now);
-      }
-      record.trials = ops.trials() - trials_before;
-      record.topology_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - smoothed).count();
-      result.stats.topology_seconds += record.topology_seconds;
-    }
-    record.topology = changed - record.moves;
-    if (options.measure_iterations) {
-      double worst = 1.0, aspect_sum = 0.0, count = 0.0;
-      for (int t = 0; t < m.triangle_slots(); ++t)
-        if (m.alive(t)) {
-          worst = std::min(worst, m.quality(t));
-          aspect_sum += m.aspect(t);
-          count += 1.0;
-        }
-      record.min_angle = cleanup::degrees_from_sine(worst);
-      record.aspect_mean = count > 0.0 ? aspect_sum / count : 0.0;
-    }
-    result.stats.per_iteration.push_back(record);
-    result.stats.iterations_run = iteration + 1;
-    if (changed == 0) break;
+  return topology_options;
+}
+
+// Adds a sweep's accepted move (if it moved) to the iteration's record.
+void tally_move(bool moved, const cleanup::Smoother& smoother, CleanupIteration& record) {
+  if (!moved) return;
+  const cleanup::MoveGain& g = smoother.last_gain();
+  ++record.moves;
+  record.aspect_drop += g.aspect_drop;
+  if (g.aspect_drop < 1e-4 * g.triangles) {
+    ++record.small_moves;
+    record.small_aspect_drop += g.aspect_drop;
   }
-  result.stats.trials = ops.trials();
-  result.stats.inserted += ops.compound_inserted();
-  result.stats.collapsed += ops.compound_removed();
-  result.stats.compound_trials = ops.compound_trials();
-  result.stats.compound_applied = ops.compound_applied();
+}
+
+// The mesh being cleaned, its smoother and topology operations, and what the outer iterations carry
+// from one to the next: the kept scores and the triangles no operation could repair.
+class CleanupRun {
+ public:
+  CleanupRun(const Mesh& mesh, const NodeSet& nodes, const GeometryTree& tree, const SpacingField& spacing,
+             const CleanupOptions& options, double ratio)
+      : options_(options),
+        limits_(limits_of(options)),
+        m_(mesh, nodes.curve_nodes, boundary_arcs(tree.geometry(), nodes)),
+        smoother_(m_, tree.geometry(), options.step_cap),
+        ops_(m_, smoother_, tree.geometry(), [&spacing, ratio](Vec2 p) { return ratio * spacing.at(p); },
+             topology_options_of(options, limits_)),
+        trial_budget_(static_cast<std::size_t>(
+            std::max(options.min_trials, options.trials_per_triangle * static_cast<double>(mesh.triangles.size())))) {
+    smoother_.set_sweep_gain(options.move_min_rise, options.move_aspect_drop);
+  }
+
+  // One outer iteration: the smoothing sweeps, then the topology pass; its record goes to `stats`.
+  // Returns the number of changes it made (node moves and topology changes).
+  std::size_t iterate(int iteration, CleanupStats& stats);
+
+  // The cleaned mesh and its node set, and the topology operations' counts in `result.stats`.
+  void finish(const Mesh& mesh, const NodeSet& nodes, const SpacingField& spacing, CleanupResult& result);
+
+ private:
+  void sweeps(const std::vector<std::uint8_t>& dirty, InterruptPoll& poll, CleanupIteration& record);
+  std::vector<std::pair<double, int>> topology_list(const std::vector<std::uint8_t>& dirty, double below);
+  void set_aspect_totals();
+  std::size_t topology_pass(const std::vector<std::uint8_t>& dirty, InterruptPoll& poll, CleanupIteration& record,
+                            CleanupStats& stats);
+  void measure(CleanupIteration& record) const;
+
+  const CleanupOptions& options_;
+  const Limits limits_;
+  EditableMesh m_;
+  cleanup::Smoother smoother_;
+  cleanup::TopologyOps ops_;
+  const std::size_t trial_budget_;
+  std::vector<std::uint8_t> mark_;
+  Scores scores_;
+  std::set<std::array<int, 3>> failures_;
+};
+
+// The sweeps over the vertices of the bad triangles: relaxation below the smoothing limit, then
+// hill-climbing below the topology limit.
+void CleanupRun::sweeps(const std::vector<std::uint8_t>& dirty, InterruptPoll& poll, CleanupIteration& record) {
+  // Skipping a node whose neighbourhood did not change since it last failed gives exactly the result
+  // of trying it (the same proposal is rejected again); checked when its turn comes, since an earlier
+  // move in the same sweep may have changed it.
+  auto worth = [&](int a) { return (a < static_cast<int>(dirty.size()) && dirty[a]) || m_.dirty(a); };
+  for (int a : vertices_of_bad_triangles(m_, scores_.update(m_, dirty), limits_.smooth, mark_)) {
+    poll.tick();
+    if (worth(a)) tally_move(smoother_.relax(a), smoother_, record);
+  }
+  for (int a : vertices_of_bad_triangles(m_, scores_.update(m_, dirty), limits_.topology, mark_)) {
+    poll.tick();
+    if (worth(a)) tally_move(smoother_.climb(a), smoother_, record);
+  }
+}
+
+// The live triangles scored below `below` that have not failed before, worst first. Triangles that
+// failed before are dropped before the sort rather than after it: after the first pass they are nearly
+// all of the list, and the order of the others is the same.
+std::vector<std::pair<double, int>> CleanupRun::topology_list(const std::vector<std::uint8_t>& dirty, double below) {
+  // The scores the sweeps' lists keep, brought up to date: triangles the sweeps did not change keep
+  // theirs, rather than every triangle's being computed again.
+  const std::vector<double>& score = scores_.update(m_, dirty);
+  std::vector<std::pair<double, int>> bad;
+  for (int t = 0; t < m_.triangle_slots(); ++t) {
+    if (!m_.alive(t)) continue;
+    const double q = score[t];
+    if (q < below && (failures_.empty() || failures_.count(sorted_key(m_.v[t])) == 0)) bad.push_back({q, t});
+  }
+  std::sort(bad.begin(), bad.end());
+  return bad;
+}
+
+// The sum and count of the live triangles' aspect ratios, which the topology operations' gain measures.
+void CleanupRun::set_aspect_totals() {
+  double aspect_sum = 0.0, count = 0.0;
+  for (int t = 0; t < m_.triangle_slots(); ++t)
+    if (m_.alive(t)) {
+      aspect_sum += m_.aspect(t);
+      count += 1.0;
+    }
+  ops_.set_aspect_totals(aspect_sum, count);
+}
+
+// The topology pass, worst triangle first. The triangles below the target get compound trials when no
+// single one helps, and may spend a second budget: they come first and are few in a settled lattice,
+// and the first budget is often gone on the 40-55 degree triangles of the first iterations
+// (docs/cleanup.md). So once the first budget is spent only the triangles below the target are listed
+// (the pass would stop at the first other one), and a pass with none to try, the common case on a
+// settled lattice after its first pass, is not made at all. Returns the number of changes it made.
+std::size_t CleanupRun::topology_pass(const std::vector<std::uint8_t>& dirty, InterruptPoll& poll,
+                                      CleanupIteration& record, CleanupStats& stats) {
+  const bool first_spent = ops_.trials() >= trial_budget_;
+  const auto bad = topology_list(dirty, first_spent ? limits_.target : limits_.topology);
+  if (!bad.empty()) set_aspect_totals();
+  std::size_t changed = 0;
+  const std::size_t trials_before = ops_.trials();
+  for (const auto& [q, t] : bad) {
+    poll.tick();
+    const bool below = q < limits_.target;
+    if (ops_.trials() >= trial_budget_ && (!below || ops_.trials() >= 2 * trial_budget_)) break;
+    if (!m_.alive(t) || !(m_.quality(t) < limits_.topology)) continue;
+    // A triangle no operation could repair is not tried again in this run.
+    const auto key = sorted_key(m_.v[t]);
+    if (failures_.count(key) > 0) continue;
+    const double now = m_.quality(t);
+    // Compound trials for a triangle below the target now (an earlier repair may have lifted it).
+    const cleanup::RepairKind kind = ops_.repair(t, now < limits_.target);
+    if (kind == cleanup::RepairKind::None) {
+      ++stats.rejected;
+      failures_.insert(key);
+      continue;
+    }
+    if (kind == cleanup::RepairKind::Collapse) ++stats.collapsed;
+    else if (kind != cleanup::RepairKind::Compound) ++stats.inserted;  // a compound's nodes are counted in finish()
+    ++changed;
+    record.trials_to_last_change = ops_.trials() - trials_before;
+    record.last_change_angle = cleanup::degrees_from_sine(now);
+  }
+  record.trials = ops_.trials() - trials_before;
+  return changed;
+}
+
+// The whole mesh's smallest angle and mean aspect ratio after an iteration.
+void CleanupRun::measure(CleanupIteration& record) const {
+  double worst = 1.0, aspect_sum = 0.0, count = 0.0;
+  for (int t = 0; t < m_.triangle_slots(); ++t)
+    if (m_.alive(t)) {
+      worst = std::min(worst, m_.quality(t));
+      aspect_sum += m_.aspect(t);
+      count += 1.0;
+    }
+  record.min_angle = cleanup::degrees_from_sine(worst);
+  record.aspect_mean = count > 0.0 ? aspect_sum / count : 0.0;
+}
+
+std::size_t CleanupRun::iterate(int iteration, CleanupStats& stats) {
+  // Only nodes whose neighbourhood changed since the last sweep can propose something new.
+  const std::vector<std::uint8_t> dirty = m_.take_dirty();
+  const auto timer = std::chrono::steady_clock::now();
+  CleanupIteration record;
+  // A stop request ends the cleanup between two node moves or repairs (each leaves a valid mesh).
+  InterruptPoll poll(256);
+  sweeps(dirty, poll, record);
+  const auto smoothed = std::chrono::steady_clock::now();
+  record.smoothing_seconds = std::chrono::duration<double>(smoothed - timer).count();
+  stats.smoothing_seconds += record.smoothing_seconds;
+  stats.moves += record.moves;
+  // Not in the last iteration, which only smooths.
+  if (options_.topology && iteration + 1 < options_.iterations && ops_.trials() < 2 * trial_budget_) {
+    record.topology = topology_pass(dirty, poll, record, stats);
+    record.topology_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - smoothed).count();
+    stats.topology_seconds += record.topology_seconds;
+  }
+  if (options_.measure_iterations) measure(record);
+  stats.per_iteration.push_back(record);
+  stats.iterations_run = iteration + 1;
+  return record.moves + record.topology;
+}
+
+void CleanupRun::finish(const Mesh& mesh, const NodeSet& nodes, const SpacingField& spacing, CleanupResult& result) {
+  result.stats.trials = ops_.trials();
+  result.stats.inserted += ops_.compound_inserted();
+  result.stats.collapsed += ops_.compound_removed();
+  result.stats.compound_trials = ops_.compound_trials();
+  result.stats.compound_applied = ops_.compound_applied();
   std::vector<int> old_of_new;
   std::vector<std::vector<int>> curve_nodes;
-  result.mesh = m.to_mesh(mesh, curve_nodes, old_of_new);
+  result.mesh = m_.to_mesh(mesh, curve_nodes, old_of_new);
   NodeSet& out = result.nodes;
   out.x = result.mesh.points;
   out.kind = result.mesh.kind;
@@ -233,8 +297,20 @@ CleanupResult clean_mesh(const Mesh& mesh, const NodeSet& nodes, const GeometryT
     const auto a = static_cast<std::size_t>(old_of_new[k]);
     const bool original = a < nodes.size();
     out.q.push_back(original ? nodes.q[a] : spacing.at(out.x[k]));
-    out.curve.push_back(original ? nodes.curve[a] : m.curve[a]);
+    out.curve.push_back(original ? nodes.curve[a] : m_.curve[a]);
   }
+}
+
+}  // namespace
+
+CleanupResult clean_mesh(const Mesh& mesh, const NodeSet& nodes, const GeometryTree& tree,
+                         const SpacingField& spacing, const CleanupOptions& options) {
+  const auto start = std::chrono::steady_clock::now();
+  CleanupResult result;
+  CleanupRun run(mesh, nodes, tree, spacing, options, edge_to_spacing_ratio(mesh, spacing));
+  for (int iteration = 0; iteration < options.iterations; ++iteration)
+    if (run.iterate(iteration, result.stats) == 0) break;
+  run.finish(mesh, nodes, spacing, result);
   result.stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;
 }

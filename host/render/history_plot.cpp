@@ -18,6 +18,7 @@ namespace {
 
 constexpr int kWidth = 900, kHeight = 560;
 constexpr double kLeft = 90, kRight = 20, kTop = 40, kBottom = 60;
+constexpr double kPlotRight = kWidth - kRight, kPlotBottom = kHeight - kBottom;
 
 // A "nice" tick step (1, 2 or 5 times a power of ten) giving about `target` ticks over `span`.
 double nice_step(double span, int target) {
@@ -57,7 +58,8 @@ void draw_series(cairo_t* cr, const Frame& f, const std::vector<HistoryRow>& row
   cairo_stroke(cr);
 }
 
-void draw(cairo_t* cr, const std::vector<HistoryRow>& rows, const std::string& title) {
+// The frame of the plot: iterations 1 .. the last (at least 2) and the decades of the positive values.
+Frame frame_of(const std::vector<HistoryRow>& rows) {
   double lo = HUGE_VAL, hi = 0.0;
   for (const HistoryRow& r : rows)
     for (double v : {r.average_force, r.average_kinetic})
@@ -66,21 +68,17 @@ void draw(cairo_t* cr, const std::vector<HistoryRow>& rows, const std::string& t
   Frame f{1.0, std::max(2.0, rows.empty() ? 2.0 : static_cast<double>(rows.back().iteration)),
           std::floor(std::log10(lo)), std::ceil(std::log10(hi))};
   if (f.d1 <= f.d0) f.d1 = f.d0 + 1.0;
+  return f;
+}
 
-  cairo_set_source_rgb(cr, 1, 1, 1);
-  cairo_paint(cr);
-  cairo_select_font_face(cr, "sans-serif", CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_NORMAL);
-  cairo_set_line_width(cr, 1.0);
-  const double plot_right = kWidth - kRight, plot_bottom = kHeight - kBottom;
-
-  // Grid and ticks: y at every decade (labels 1e-3 ...), x at nice steps.
-  cairo_set_font_size(cr, 12);
+// The y grid and ticks at every decade (labels 1e-3 ...), with minor ticks when there are few decades.
+void draw_y_axis(cairo_t* cr, const Frame& f) {
   const int decades = static_cast<int>(f.d1 - f.d0);
   for (int d = static_cast<int>(f.d0); d <= static_cast<int>(f.d1); ++d) {
     const double y = f.py(std::pow(10.0, d));
     cairo_set_source_rgb(cr, 0.88, 0.88, 0.88);
     cairo_move_to(cr, kLeft, y);
-    cairo_line_to(cr, plot_right, y);
+    cairo_line_to(cr, kPlotRight, y);
     cairo_stroke(cr);
     cairo_set_source_rgb(cr, 0, 0, 0);
     cairo_move_to(cr, kLeft - 6, y);
@@ -96,26 +94,30 @@ void draw(cairo_t* cr, const std::vector<HistoryRow>& rows, const std::string& t
       cairo_stroke(cr);
     }
   }
+}
+
+// The x grid and ticks at nice steps.
+void draw_x_axis(cairo_t* cr, const Frame& f) {
   const double step = nice_step(f.x1 - f.x0, 8);
   for (double it = std::ceil(f.x0 / step) * step; it <= f.x1 + 1e-9; it += step) {
     const double x = f.px(it);
     cairo_set_source_rgb(cr, 0.88, 0.88, 0.88);
     cairo_move_to(cr, x, kTop);
-    cairo_line_to(cr, x, plot_bottom);
+    cairo_line_to(cr, x, kPlotBottom);
     cairo_stroke(cr);
     cairo_set_source_rgb(cr, 0, 0, 0);
-    cairo_move_to(cr, x, plot_bottom);
-    cairo_line_to(cr, x, plot_bottom + 6);
+    cairo_move_to(cr, x, kPlotBottom);
+    cairo_line_to(cr, x, kPlotBottom + 6);
     cairo_stroke(cr);
-    text(cr, x, plot_bottom + 9, fmt::format("{:g}", it), 0.5, 0.0);
+    text(cr, x, kPlotBottom + 9, fmt::format("{:g}", it), 0.5, 0.0);
   }
-  cairo_set_source_rgb(cr, 0, 0, 0);
-  cairo_rectangle(cr, kLeft, kTop, plot_right - kLeft, plot_bottom - kTop);
-  cairo_stroke(cr);
+}
 
-  // Series, clipped to the plot area.
+// The two series and the population events' ticks, clipped to the plot area. Returns whether there
+// were events (the legend then names them).
+bool draw_data(cairo_t* cr, const Frame& f, const std::vector<HistoryRow>& rows) {
   cairo_save(cr);
-  cairo_rectangle(cr, kLeft, kTop, plot_right - kLeft, plot_bottom - kTop);
+  cairo_rectangle(cr, kLeft, kTop, kPlotRight - kLeft, kPlotBottom - kTop);
   cairo_clip(cr);
   cairo_set_line_width(cr, 1.5);
   cairo_set_source_rgb(cr, 0.85, 0.1, 0.1);
@@ -130,25 +132,32 @@ void draw(cairo_t* cr, const std::vector<HistoryRow>& rows, const std::string& t
     events = true;
     // 6 px for one node, 6 px more per factor of 10.
     const double length = 6.0 * (1.0 + std::log10(static_cast<double>(changed)));
-    cairo_move_to(cr, f.px(r.iteration), plot_bottom);
-    cairo_line_to(cr, f.px(r.iteration), plot_bottom - length);
+    cairo_move_to(cr, f.px(r.iteration), kPlotBottom);
+    cairo_line_to(cr, f.px(r.iteration), kPlotBottom - length);
   }
   cairo_stroke(cr);
   cairo_restore(cr);
+  return events;
+}
 
-  // Labels, title, legend.
+// The axis labels and the title.
+void draw_labels(cairo_t* cr, const std::string& title) {
   cairo_set_source_rgb(cr, 0, 0, 0);
   cairo_set_font_size(cr, 14);
-  text(cr, 0.5 * (kLeft + plot_right), kHeight - 8, "iteration", 0.5, 1.0);
+  text(cr, 0.5 * (kLeft + kPlotRight), kHeight - 8, "iteration", 0.5, 1.0);
   cairo_save(cr);
-  cairo_translate(cr, 20, 0.5 * (kTop + plot_bottom));
+  cairo_translate(cr, 20, 0.5 * (kTop + kPlotBottom));
   cairo_rotate(cr, -M_PI / 2);
   text(cr, 0, 0, "average per moving node (log scale)", 0.5, 0.5);
   cairo_restore(cr);
   cairo_set_font_size(cr, 15);
-  text(cr, 0.5 * (kLeft + plot_right), 12, title, 0.5, 0.0);
+  text(cr, 0.5 * (kLeft + kPlotRight), 12, title, 0.5, 0.0);
+}
+
+// The legend at the top right: the two series, and the events when there were any.
+void draw_legend(cairo_t* cr, bool events) {
   cairo_set_font_size(cr, 12);
-  const double lx = plot_right - 210, ly = kTop + 14;
+  const double lx = kPlotRight - 210, ly = kTop + 14;
   cairo_set_line_width(cr, 2.0);
   cairo_set_source_rgb(cr, 0.85, 0.1, 0.1);
   cairo_move_to(cr, lx, ly);
@@ -169,6 +178,23 @@ void draw(cairo_t* cr, const std::vector<HistoryRow>& rows, const std::string& t
     cairo_set_source_rgb(cr, 0, 0, 0);
     text(cr, lx + 30, ly + 36, "nodes inserted/removed", 0.0, 0.5);
   }
+}
+
+void draw(cairo_t* cr, const std::vector<HistoryRow>& rows, const std::string& title) {
+  const Frame f = frame_of(rows);
+  cairo_set_source_rgb(cr, 1, 1, 1);
+  cairo_paint(cr);
+  cairo_select_font_face(cr, "sans-serif", CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_NORMAL);
+  cairo_set_line_width(cr, 1.0);
+  cairo_set_font_size(cr, 12);
+  draw_y_axis(cr, f);
+  draw_x_axis(cr, f);
+  cairo_set_source_rgb(cr, 0, 0, 0);
+  cairo_rectangle(cr, kLeft, kTop, kPlotRight - kLeft, kPlotBottom - kTop);
+  cairo_stroke(cr);
+  const bool events = draw_data(cr, f, rows);
+  draw_labels(cr, title);
+  draw_legend(cr, events);
 }
 
 }  // namespace

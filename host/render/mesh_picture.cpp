@@ -40,6 +40,109 @@ void draw_colour_bar(Canvas& canvas, double lo, double hi, const std::string& la
   canvas.text(b.x - 20, b.top - 14, label, 14, colours::kBlack);
 }
 
+// Throws Error unless there is one value per triangle (when there are values) and every triangle and
+// boundary edge names points of the mesh.
+void check_picture_inputs(const std::filesystem::path& path, const Mesh& mesh, const std::vector<double>* values) {
+  if (values != nullptr && values->size() != mesh.triangles.size()) {
+    throw Error(fmt::format("mesh picture '{}': {} values for {} triangles", path.string(), values->size(),
+                            mesh.triangles.size()));
+  }
+  const auto n = static_cast<int>(mesh.points.size());
+  for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
+    for (int v : mesh.triangles[t]) {
+      if (v < 0 || v >= n) throw Error(fmt::format("mesh picture: triangle {} has point index {} of {}", t, v, n));
+    }
+  }
+  for (const BoundaryEdge& e : mesh.boundary_edges) {
+    if (e.a < 0 || e.a >= n || e.b < 0 || e.b >= n) {
+      throw Error(fmt::format("mesh picture: boundary edge {}-{} is outside the {} points", e.a, e.b, n));
+    }
+  }
+}
+
+// The values at the two ends of the colour ramp: the options' range, else the values' finite minimum
+// and maximum (infinite when there are none).
+std::pair<double, double> ramp_range(const std::vector<double>* values, const MeshPictureOptions& options) {
+  double lo = INFINITY, hi = -INFINITY;
+  if (values != nullptr && options.value_range) {
+    std::tie(lo, hi) = *options.value_range;
+  } else if (values != nullptr) {
+    for (double v : *values) {
+      if (std::isfinite(v)) {
+        lo = std::min(lo, v);
+        hi = std::max(hi, v);
+      }
+    }
+  }
+  return {lo, hi};
+}
+
+// Interior edges shorter than kMinEdgePixels on screen are left out: at millions of triangles they
+// would only paint the whole mesh black. `min_edge_world` is that length in world units.
+bool shown(Vec2 a, Vec2 b, double min_edge_world) { return dist(a, b) >= min_edge_world; }
+
+// Without a value fill, a triangle with an edge too short to draw is shaded grey instead, so dense
+// parts read as meshed, not as empty.
+void draw_dense_shade(Canvas& canvas, const Mesh& mesh, double min_edge_world) {
+  FillBatch dense(canvas, kDenseShade);
+  InterruptPoll poll(65536);
+  for (const auto& tri : mesh.triangles) {
+    poll.tick();
+    const Vec2 a = mesh.points[tri[0]], b = mesh.points[tri[1]], c = mesh.points[tri[2]];
+    if (shown(a, b, min_edge_world) && shown(b, c, min_edge_world) && shown(c, a, min_edge_world)) continue;
+    Box box;
+    for (int v : tri) box.add(mesh.points[v]);
+    if (!canvas.in_window(box)) continue;
+    if (canvas.visible(box)) {
+      dense.triangle(a, b, c);
+    } else {
+      dense.skip();  // in another band (see draw_edges)
+    }
+  }
+}
+
+// Each visible triangle filled with the ramp's colour of its value (lo and hi at the ramp's ends).
+void draw_value_fills(Canvas& canvas, const Mesh& mesh, const std::vector<double>& values, double lo, double hi) {
+  InterruptPoll poll(65536);
+  for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
+    poll.tick();
+    const auto& tri = mesh.triangles[t];
+    Box box;
+    for (int v : tri) box.add(mesh.points[v]);
+    if (!canvas.visible(box)) continue;
+    // Equal extremes: every triangle has the same value; show it mid-ramp.
+    const double v = values[t];
+    const double u = hi > lo ? (v - lo) / (hi - lo) : (std::isfinite(v) ? 0.5 : NAN);
+    canvas.fill_triangle(mesh.points[tri[0]], mesh.points[tri[1]], mesh.points[tri[2]], colour_ramp(u));
+  }
+}
+
+// The edges long enough to draw, thin and black; returns how many in the window were too short.
+std::size_t draw_edges(Canvas& canvas, const Mesh& mesh, const std::vector<std::pair<int, int>>& edges,
+                       double min_edge_world) {
+  const double edge_width = 0.6;
+  StrokeBatch lines(canvas, colours::kBlack, edge_width);
+  std::size_t skipped = 0;
+  InterruptPoll poll(65536);
+  for (const auto& [i, j] : edges) {
+    poll.tick();
+    const Vec2 a = mesh.points[static_cast<std::size_t>(i)], b = mesh.points[static_cast<std::size_t>(j)];
+    Box box;
+    box.add(a);
+    box.add(b);
+    if (!canvas.in_window(box)) continue;
+    if (!shown(a, b, min_edge_world)) {
+      ++skipped;  // counted over the whole window: every band draws the same title
+    } else if (canvas.visible(box)) {
+      lines.segment(a, b);
+    } else {
+      lines.skip();  // in another band: this band's batches end where the whole picture's do
+    }
+  }
+  lines.flush();
+  return skipped;
+}
+
 }  // namespace
 
 ColourBarBox draw_colour_ramp_bar(Canvas& canvas) {
@@ -73,32 +176,9 @@ Rgb colour_ramp(double t) {
 
 void write_mesh_picture(const std::filesystem::path& path, const Mesh& mesh, const MeshPictureOptions& options) {
   const std::vector<double>* values = options.triangle_values;
-  if (values != nullptr && values->size() != mesh.triangles.size()) {
-    throw Error(fmt::format("mesh picture '{}': {} values for {} triangles", path.string(), values->size(),
-                            mesh.triangles.size()));
-  }
-  const auto n = static_cast<int>(mesh.points.size());
-  for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
-    for (int v : mesh.triangles[t]) {
-      if (v < 0 || v >= n) throw Error(fmt::format("mesh picture: triangle {} has point index {} of {}", t, v, n));
-    }
-  }
-  for (const BoundaryEdge& e : mesh.boundary_edges) {
-    if (e.a < 0 || e.a >= n || e.b < 0 || e.b >= n) {
-      throw Error(fmt::format("mesh picture: boundary edge {}-{} is outside the {} points", e.a, e.b, n));
-    }
-  }
-  double lo = INFINITY, hi = -INFINITY;
-  if (values != nullptr && options.value_range) {
-    std::tie(lo, hi) = *options.value_range;
-  } else if (values != nullptr) {
-    for (double v : *values) {
-      if (std::isfinite(v)) {
-        lo = std::min(lo, v);
-        hi = std::max(hi, v);
-      }
-    }
-  }
+  check_picture_inputs(path, mesh, values);
+  const std::pair<double, double> range = ramp_range(values, options);
+  const double lo = range.first, hi = range.second;
   Box extents;
   for (const Vec2& p : mesh.points) extents.add(p);
   CanvasOptions layout;
@@ -109,68 +189,13 @@ void write_mesh_picture(const std::filesystem::path& path, const Mesh& mesh, con
   // Each edge once (an interior edge belongs to two triangles).
   const std::vector<std::pair<int, int>> edges = unique_edges(mesh);
 
-  const auto visible = [&](const Canvas& canvas, const std::array<int, 3>& tri) {
-    Box box;
-    for (int v : tri) box.add(mesh.points[v]);
-    return canvas.visible(box);
-  };
   // Drawn in bands on several threads (PNG; render_picture): everything below only reads the mesh.
   render_picture(path, layout, [&](Canvas& canvas) {
-    // Interior edges shorter than kMinEdgePixels on screen are left out: at millions of triangles
-    // they would only paint the whole mesh black. Without a value fill, a triangle with such an
-    // edge is shaded grey instead, so dense parts read as meshed, not as empty.
     const double min_edge_world = kMinEdgePixels / canvas.scale();
-    const auto shown = [&](Vec2 a, Vec2 b) { return dist(a, b) >= min_edge_world; };
-    if (values == nullptr) {
-      FillBatch dense(canvas, kDenseShade);
-      InterruptPoll poll(65536);
-      for (const auto& tri : mesh.triangles) {
-        poll.tick();
-        const Vec2 a = mesh.points[tri[0]], b = mesh.points[tri[1]], c = mesh.points[tri[2]];
-        if (shown(a, b) && shown(b, c) && shown(c, a)) continue;
-        Box box;
-        for (int v : tri) box.add(mesh.points[v]);
-        if (!canvas.in_window(box)) continue;
-        if (canvas.visible(box)) {
-          dense.triangle(a, b, c);
-        } else {
-          dense.skip();  // in another band (see the edges below)
-        }
-      }
-    }
     // Value fills first, then the edges on top of them.
-    if (values != nullptr) {
-      InterruptPoll poll(65536);
-      for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
-        poll.tick();
-        const auto& tri = mesh.triangles[t];
-        if (!visible(canvas, tri)) continue;
-        // Equal extremes: every triangle has the same value; show it mid-ramp.
-        const double v = (*values)[t];
-        const double u = hi > lo ? (v - lo) / (hi - lo) : (std::isfinite(v) ? 0.5 : NAN);
-        canvas.fill_triangle(mesh.points[tri[0]], mesh.points[tri[1]], mesh.points[tri[2]], colour_ramp(u));
-      }
-    }
-    const double edge_width = 0.6;
-    StrokeBatch lines(canvas, colours::kBlack, edge_width);
-    std::size_t skipped = 0;
-    InterruptPoll poll(65536);
-    for (const auto& [i, j] : edges) {
-      poll.tick();
-      const Vec2 a = mesh.points[static_cast<std::size_t>(i)], b = mesh.points[static_cast<std::size_t>(j)];
-      Box box;
-      box.add(a);
-      box.add(b);
-      if (!canvas.in_window(box)) continue;
-      if (!shown(a, b)) {
-        ++skipped;  // counted over the whole window: every band draws the same title
-      } else if (canvas.visible(box)) {
-        lines.segment(a, b);
-      } else {
-        lines.skip();  // in another band: this band's batches end where the whole picture's do
-      }
-    }
-    lines.flush();
+    if (values == nullptr) draw_dense_shade(canvas, mesh, min_edge_world);
+    else draw_value_fills(canvas, mesh, *values, lo, hi);
+    const std::size_t skipped = draw_edges(canvas, mesh, edges, min_edge_world);
     {
       StrokeBatch boundary(canvas, colours::kBlack, 2.0);
       for (const BoundaryEdge& e : mesh.boundary_edges) boundary.segment(mesh.points[e.a], mesh.points[e.b]);

@@ -236,161 +236,214 @@ void BackgroundBuilder::check_budget(const std::vector<int>& level_cells, const 
                "raise --max-memory, or coarsen the spacing");
 }
 
+// The work arrays of one level of refine(): its cells with, per cell, the four corner values and the
+// decision; the cells tested (indices into `cells`) with the exact values and sample ids at their
+// test points; and the batch buffers (a batch's lattice keys and their sample ids).
+struct BackgroundBuilder::Level {
+  std::vector<int> cells;
+  std::vector<double> corners;         // 4 per cell
+  std::vector<Decision> decision;      // per cell
+  std::vector<int> tested;
+  std::vector<double> exact;           // 9 per tested cell
+  std::vector<std::int32_t> test_ids;  // 9 per tested cell
+  std::vector<std::uint64_t> keys;
+  std::vector<std::int32_t> ids;
+};
+
+// Step 1: the corners of every cell of the level, in one batch. Most are known already: a child's
+// corners are its parent's corners and test points (step 3), and a leaf refined again keeps its own.
+// Only the others are looked up (or sampled): the same new samples in the same order.
+void BackgroundBuilder::sample_corners(Level& level, const SampledFn& sampled) {
+  level.keys.clear();
+  std::vector<std::size_t> unknown;  // 4 n + k: corner k of level.cells[n]
+  for (std::size_t n = 0; n < level.cells.size(); ++n) {
+    const Cell& c = cells_[static_cast<std::size_t>(level.cells[n])];
+    const std::uint32_t s = span(c.level);
+    for (int k = 0; k < 4; ++k) {
+      if (c.corner[k] >= 0) continue;
+      level.keys.push_back(key(c.x + (k & 1 ? s : 0u), c.y + (k & 2 ? s : 0u)));
+      unknown.push_back(4 * n + static_cast<std::size_t>(k));
+    }
+  }
+  sample_all(level.keys, level.ids);
+  for (std::size_t i = 0; i < unknown.size(); ++i)
+    cells_[static_cast<std::size_t>(level.cells[unknown[i] / 4])].corner[unknown[i] % 4] = level.ids[i];
+  if (sampled) sampled(level.keys, level.ids);
+}
+
+// The corner values and the decision of every cell of the level; the cells to test, with the keys of
+// their first test points (the centre and edge midpoints) as the next batch.
+void BackgroundBuilder::decide_level(Level& level, const DecideFn& decide, const CornerFn& corner_value) {
+  level.corners.resize(4 * level.cells.size());
+  level.decision.assign(level.cells.size(), Decision::Leaf);
+  level.keys.clear();
+  level.tested.clear();
+  for (std::size_t n = 0; n < level.cells.size(); ++n) {
+    const Cell& c = cells_[static_cast<std::size_t>(level.cells[n])];
+    const std::uint32_t s = span(c.level);
+    double* q = &level.corners[4 * n];
+    q[0] = corner_value(c, c.x, c.y, c.corner[0]);
+    q[1] = corner_value(c, c.x + s, c.y, c.corner[1]);
+    q[2] = corner_value(c, c.x, c.y + s, c.corner[2]);
+    q[3] = corner_value(c, c.x + s, c.y + s, c.corner[3]);
+    level.decision[n] = decide(c, q);
+    if (level.decision[n] != Decision::Test) continue;
+    level.tested.push_back(static_cast<int>(n));
+    const std::uint32_t quarter = s / 4;
+    for (int t = 0; t < kFirstQuarterTest; ++t)
+      level.keys.push_back(key(c.x + quarter * static_cast<std::uint32_t>(kTests[t][0]),
+                               c.y + quarter * static_cast<std::uint32_t>(kTests[t][1])));
+  }
+}
+
+// The keys of the quarter points of the tested cells the first round did not split, as the next
+// batch; first_key[m] is where tested cell m's keys start in it.
+void BackgroundBuilder::quarter_point_keys(Level& level, std::vector<std::size_t>& first_key) const {
+  level.keys.clear();
+  for (std::size_t m = 0; m < level.tested.size(); ++m) {
+    const auto n = static_cast<std::size_t>(level.tested[m]);
+    if (level.decision[n] == Decision::Split) continue;
+    first_key[m] = level.keys.size();
+    const Cell& c = cells_[static_cast<std::size_t>(level.cells[n])];
+    const std::uint32_t quarter = span(c.level) / 4;
+    for (int t = kFirstQuarterTest; t < 9; ++t)
+      level.keys.push_back(key(c.x + quarter * static_cast<std::uint32_t>(kTests[t][0]),
+                               c.y + quarter * static_cast<std::uint32_t>(kTests[t][1])));
+  }
+}
+
+// Step 2: the test points of the cells whose corners did not decide, in two batches: first the centre
+// and edge midpoints (the corners of the children, needed anyway if the cell splits), then, for the
+// cells these did not already split, the quarter points. Evaluating all 9 at once costs a third more
+// samples on 30P30N than the per-point builder, whose tests stop at the first failure.
+void BackgroundBuilder::test_level(Level& level, const TestFn& test, const SampledFn& sampled) {
+  const std::vector<int>& tested = level.tested;
+  level.exact.assign(9 * tested.size(), 0.0);
+  level.test_ids.assign(9 * tested.size(), 0);
+  std::vector<std::size_t> first_key(tested.size());  // where tested cell m's keys start in this round's batch
+  for (std::size_t m = 0; m < tested.size(); ++m) first_key[m] = kFirstQuarterTest * m;
+  for (const int round : {0, 1}) {
+    if (round == 1) quarter_point_keys(level, first_key);
+    sample_all(level.keys, level.ids);
+    if (sampled) sampled(level.keys, level.ids);
+    // The tests only read (the samples, the caller's state), and each writes its own cell's decision:
+    // on all cores, with the decisions of one loop.
+    parallel_for(tested.size(), [&](std::size_t m) {
+      const auto n = static_cast<std::size_t>(tested[m]);
+      if (round == 1 && level.decision[n] == Decision::Split) return;
+      const Cell& c = cells_[static_cast<std::size_t>(level.cells[n])];
+      const int from = round == 0 ? 0 : kFirstQuarterTest;
+      const int count = round == 0 ? kFirstQuarterTest : 9;
+      for (int t = from; t < count; ++t) {
+        const std::int32_t id = level.ids[first_key[m] + static_cast<std::size_t>(t - from)];
+        level.test_ids[9 * m + static_cast<std::size_t>(t)] = id;
+        level.exact[9 * m + static_cast<std::size_t>(t)] = values_[static_cast<std::size_t>(id)];
+      }
+      const bool split = test(c, &level.corners[4 * n], &level.exact[9 * m], &level.test_ids[9 * m], count);
+      level.decision[n] = split ? Decision::Split : round == 0 ? Decision::Test : Decision::Leaf;
+    }, kTestsPerThread);
+  }
+}
+
+// The four children of the level's cell n, which splits, appended to cells_ and to `next`; m is its
+// index among the tested cells (-1: not tested). Returns the parent's segment list, moved out of it.
+std::vector<int> BackgroundBuilder::split_cell(const Level& level, std::size_t n, std::int32_t m,
+                                               std::vector<int>& next) {
+  // The sample ids at the parent's points in quarters (0, 2, 4 each way): its corners, and its centre
+  // and edge midpoints when it was tested (else -1: step 1 looks them up).
+  std::int32_t at[3][3];
+  for (auto& row : at) std::fill(row, row + 3, -1);
+  {
+    const Cell& c = cells_[static_cast<std::size_t>(level.cells[n])];
+    for (int k = 0; k < 4; ++k) at[k & 2 ? 2 : 0][k & 1 ? 2 : 0] = c.corner[k];
+    if (m >= 0)
+      for (int t = 0; t < kFirstQuarterTest; ++t)
+        at[kTests[t][1] / 2][kTests[t][0] / 2] = level.test_ids[9 * static_cast<std::size_t>(m) + static_cast<std::size_t>(t)];
+  }
+  const auto parent = static_cast<std::size_t>(level.cells[n]);
+  const auto first = static_cast<std::int32_t>(cells_.size());
+  cells_[parent].first_child = first;
+  const Cell p = cells_[parent];
+  std::vector<int> parent_list;
+  if (p.segments >= 0) {
+    parent_list = std::move(segment_lists_[static_cast<std::size_t>(p.segments)]);
+    cells_[parent].segments = -1;  // an inner cell needs no list (the vector was moved out)
+  }
+  const std::uint32_t h = span(p.level) / 2;
+  for (int k = 0; k < 4; ++k) {
+    Cell child;
+    child.x = p.x + (k & 1 ? h : 0u);
+    child.y = p.y + (k & 2 ? h : 0u);
+    child.level = static_cast<std::int8_t>(p.level + 1);
+    child.parent = static_cast<std::int32_t>(parent);
+    for (int j = 0; j < 4; ++j) child.corner[j] = at[(k & 2 ? 1 : 0) + (j & 2 ? 1 : 0)][(k & 1 ? 1 : 0) + (j & 1 ? 1 : 0)];
+    cells_.push_back(child);
+    next.push_back(first + k);
+  }
+  return parent_list;
+}
+
+// Step 3: the children of the level's split cells, in the cells' order, as `next`; parent_lists gets
+// each split cell's segment list. Returns the number of cells split.
+std::size_t BackgroundBuilder::split_level(const Level& level, std::vector<int>& next,
+                                           std::vector<std::vector<int>>& parent_lists) {
+  next.clear();
+  std::vector<std::int32_t> tested_as(level.cells.size(), -1);  // n -> m
+  for (std::size_t m = 0; m < level.tested.size(); ++m)
+    tested_as[static_cast<std::size_t>(level.tested[m])] = static_cast<std::int32_t>(m);
+  std::size_t splits = 0;
+  for (std::size_t n = 0; n < level.cells.size(); ++n) {
+    if (level.decision[n] != Decision::Split) continue;
+    ++splits;
+    parent_lists.push_back(split_cell(level, n, tested_as[n], next));
+  }
+  return splits;
+}
+
+// The children's segment lists (exact segment-box tests) and, for those without segments, the inside
+// test of their centre: on all cores, each child writing its own entries; then the tags in the
+// children's order, as set_tag always numbered the lists.
+void BackgroundBuilder::tag_children(const std::vector<int>& next, const std::vector<std::vector<int>>& parent_lists) {
+  const auto& segs = tree_.geometry().segments;
+  std::vector<std::vector<int>> child_segments(next.size());
+  std::vector<std::uint8_t> inside(next.size(), 0);
+  parallel_for(next.size(), [&](std::size_t i) {
+    const Cell& child = cells_[static_cast<std::size_t>(next[i])];
+    const std::uint32_t h = span(child.level);
+    Box b;
+    b.lo = point(child.x, child.y);
+    b.hi = point(child.x + h, child.y + h);
+    for (const int s : parent_lists[i / 4])
+      if (segment_touches_box(segs[static_cast<std::size_t>(s)].a, segs[static_cast<std::size_t>(s)].b, b))
+        child_segments[i].push_back(s);
+    if (child_segments[i].empty()) inside[i] = tree_.inside(point(child.x + h / 2, child.y + h / 2)) ? 1 : 0;
+  }, kChildrenPerThread);
+  for (std::size_t i = 0; i < next.size(); ++i)
+    set_tag(cells_[static_cast<std::size_t>(next[i])], std::move(child_segments[i]), inside[i] != 0);
+}
+
 std::size_t BackgroundBuilder::refine(std::vector<int> level_cells, const DecideFn& decide, const TestFn& test,
                                       const CornerFn& corner_value, const SampledFn& sampled) {
   PhaseProgress progress("spacing field");
   std::size_t splits = 0;
-  std::vector<std::uint64_t> keys;
-  std::vector<std::int32_t> ids;
-  std::vector<int> tested, next;
-  std::vector<double> corners;  // 4 per cell of the level
-  while (!level_cells.empty()) {
+  Level level;
+  level.cells = std::move(level_cells);
+  std::vector<int> next;
+  while (!level.cells.empty()) {
     check_interrupt();
-    // 1. The corners of every cell of the level, in one batch. Most are known already: a child's
-    // corners are its parent's corners and test points (step 3), and a leaf refined again keeps its
-    // own. Only the others are looked up (or sampled): the same new samples in the same order.
-    keys.clear();
-    std::vector<std::size_t> unknown;  // 4 n + k: corner k of level_cells[n]
-    for (std::size_t n = 0; n < level_cells.size(); ++n) {
-      const Cell& c = cells_[static_cast<std::size_t>(level_cells[n])];
-      const std::uint32_t s = span(c.level);
-      for (int k = 0; k < 4; ++k) {
-        if (c.corner[k] >= 0) continue;
-        keys.push_back(key(c.x + (k & 1 ? s : 0u), c.y + (k & 2 ? s : 0u)));
-        unknown.push_back(4 * n + static_cast<std::size_t>(k));
-      }
-    }
-    sample_all(keys, ids);
-    for (std::size_t i = 0; i < unknown.size(); ++i)
-      cells_[static_cast<std::size_t>(level_cells[unknown[i] / 4])].corner[unknown[i] % 4] = ids[i];
-    if (sampled) sampled(keys, ids);
-    corners.resize(4 * level_cells.size());
-    std::vector<Decision> decision(level_cells.size());
-    keys.clear();
-    tested.clear();
-    for (std::size_t n = 0; n < level_cells.size(); ++n) {
-      const Cell& c = cells_[static_cast<std::size_t>(level_cells[n])];
-      const std::uint32_t s = span(c.level);
-      double* q = &corners[4 * n];
-      q[0] = corner_value(c, c.x, c.y, c.corner[0]);
-      q[1] = corner_value(c, c.x + s, c.y, c.corner[1]);
-      q[2] = corner_value(c, c.x, c.y + s, c.corner[2]);
-      q[3] = corner_value(c, c.x + s, c.y + s, c.corner[3]);
-      decision[n] = decide(c, q);
-      if (decision[n] != Decision::Test) continue;
-      tested.push_back(static_cast<int>(n));
-      const std::uint32_t quarter = s / 4;
-      for (int t = 0; t < kFirstQuarterTest; ++t)
-        keys.push_back(key(c.x + quarter * static_cast<std::uint32_t>(kTests[t][0]),
-                           c.y + quarter * static_cast<std::uint32_t>(kTests[t][1])));
-    }
-    // 2. The test points of the cells whose corners did not decide, in two batches: first the centre
-    // and edge midpoints (the corners of the children, needed anyway if the cell splits), then, for
-    // the cells these did not already split, the quarter points. Evaluating all 9 at once costs a
-    // third more samples on 30P30N than the per-point builder, whose tests stop at the first failure.
-    std::vector<double> exact(9 * tested.size());
-    std::vector<std::int32_t> test_ids(9 * tested.size());
-    std::vector<std::size_t> first_key(tested.size());  // where tested cell m's keys start in this round's batch
-    for (std::size_t m = 0; m < tested.size(); ++m) first_key[m] = kFirstQuarterTest * m;
-    for (const int round : {0, 1}) {
-      if (round == 1) {
-        keys.clear();
-        for (std::size_t m = 0; m < tested.size(); ++m) {
-          const auto n = static_cast<std::size_t>(tested[m]);
-          if (decision[n] == Decision::Split) continue;
-          first_key[m] = keys.size();
-          const Cell& c = cells_[static_cast<std::size_t>(level_cells[n])];
-          const std::uint32_t quarter = span(c.level) / 4;
-          for (int t = kFirstQuarterTest; t < 9; ++t)
-            keys.push_back(key(c.x + quarter * static_cast<std::uint32_t>(kTests[t][0]),
-                               c.y + quarter * static_cast<std::uint32_t>(kTests[t][1])));
-        }
-      }
-      sample_all(keys, ids);
-      if (sampled) sampled(keys, ids);
-      // The tests only read (the samples, the caller's state), and each writes its own cell's decision:
-      // on all cores, with the decisions of one loop.
-      parallel_for(tested.size(), [&](std::size_t m) {
-        const auto n = static_cast<std::size_t>(tested[m]);
-        if (round == 1 && decision[n] == Decision::Split) return;
-        const Cell& c = cells_[static_cast<std::size_t>(level_cells[n])];
-        const int from = round == 0 ? 0 : kFirstQuarterTest;
-        const int count = round == 0 ? kFirstQuarterTest : 9;
-        for (int t = from; t < count; ++t) {
-          const std::int32_t id = ids[first_key[m] + static_cast<std::size_t>(t - from)];
-          test_ids[9 * m + static_cast<std::size_t>(t)] = id;
-          exact[9 * m + static_cast<std::size_t>(t)] = values_[static_cast<std::size_t>(id)];
-        }
-        const bool split = test(c, &corners[4 * n], &exact[9 * m], &test_ids[9 * m], count);
-        decision[n] = split ? Decision::Split : round == 0 ? Decision::Test : Decision::Leaf;
-      }, kTestsPerThread);
-    }
-    // 3. Children of the split cells: the next level, once the budgets allow it.
-    check_budget(level_cells, decision, corners);
+    sample_corners(level, sampled);
+    decide_level(level, decide, corner_value);
+    test_level(level, test, sampled);
+    // The next level, once the budgets allow it.
+    check_budget(level.cells, level.decision, level.corners);
     progress.note([&] {
-      return fmt::format("quadtree level {}: {} cells, {} samples", cells_[static_cast<std::size_t>(level_cells.front())].level,
+      return fmt::format("quadtree level {}: {} cells, {} samples", cells_[static_cast<std::size_t>(level.cells.front())].level,
                          cells_.size(), values_.size());
     });
-    next.clear();
-    const auto& segs = tree_.geometry().segments;
-    std::vector<std::int32_t> tested_as(level_cells.size(), -1);  // n -> m
-    for (std::size_t m = 0; m < tested.size(); ++m) tested_as[static_cast<std::size_t>(tested[m])] = static_cast<std::int32_t>(m);
     std::vector<std::vector<int>> parent_lists;  // per split cell, in order: its segments
-    for (std::size_t n = 0; n < level_cells.size(); ++n) {
-      if (decision[n] != Decision::Split) continue;
-      // The sample ids at the parent's points in quarters (0, 2, 4 each way): its corners, and its
-      // centre and edge midpoints when it was tested (else -1: step 1 looks them up).
-      std::int32_t at[3][3];
-      for (auto& row : at) std::fill(row, row + 3, -1);
-      {
-        const Cell& c = cells_[static_cast<std::size_t>(level_cells[n])];
-        for (int k = 0; k < 4; ++k) at[k & 2 ? 2 : 0][k & 1 ? 2 : 0] = c.corner[k];
-        if (tested_as[n] >= 0)
-          for (int t = 0; t < kFirstQuarterTest; ++t)
-            at[kTests[t][1] / 2][kTests[t][0] / 2] = test_ids[9 * static_cast<std::size_t>(tested_as[n]) + static_cast<std::size_t>(t)];
-      }
-      ++splits;
-      const auto parent = static_cast<std::size_t>(level_cells[n]);
-      const auto first = static_cast<std::int32_t>(cells_.size());
-      cells_[parent].first_child = first;
-      const Cell p = cells_[parent];
-      parent_lists.emplace_back();
-      if (p.segments >= 0) {
-        parent_lists.back() = std::move(segment_lists_[static_cast<std::size_t>(p.segments)]);
-        cells_[parent].segments = -1;  // an inner cell needs no list (the vector was moved out)
-      }
-      const std::uint32_t h = span(p.level) / 2;
-      for (int k = 0; k < 4; ++k) {
-        Cell child;
-        child.x = p.x + (k & 1 ? h : 0u);
-        child.y = p.y + (k & 2 ? h : 0u);
-        child.level = static_cast<std::int8_t>(p.level + 1);
-        child.parent = static_cast<std::int32_t>(parent);
-        for (int j = 0; j < 4; ++j) child.corner[j] = at[(k & 2 ? 1 : 0) + (j & 2 ? 1 : 0)][(k & 1 ? 1 : 0) + (j & 1 ? 1 : 0)];
-        cells_.push_back(child);
-        next.push_back(first + k);
-      }
-    }
-    // The children's segment lists (exact segment-box tests) and, for those without segments, the
-    // inside test of their centre: on all cores, each child writing its own entries; then the tags in
-    // the children's order, as set_tag always numbered the lists.
-    std::vector<std::vector<int>> child_segments(next.size());
-    std::vector<std::uint8_t> inside(next.size(), 0);
-    parallel_for(next.size(), [&](std::size_t i) {
-      const Cell& child = cells_[static_cast<std::size_t>(next[i])];
-      const std::uint32_t h = span(child.level);
-      Box b;
-      b.lo = point(child.x, child.y);
-      b.hi = point(child.x + h, child.y + h);
-      for (const int s : parent_lists[i / 4])
-        if (segment_touches_box(segs[static_cast<std::size_t>(s)].a, segs[static_cast<std::size_t>(s)].b, b))
-          child_segments[i].push_back(s);
-      if (child_segments[i].empty()) inside[i] = tree_.inside(point(child.x + h / 2, child.y + h / 2)) ? 1 : 0;
-    }, kChildrenPerThread);
-    parent_lists.clear();
-    for (std::size_t i = 0; i < next.size(); ++i)
-      set_tag(cells_[static_cast<std::size_t>(next[i])], std::move(child_segments[i]), inside[i] != 0);
-    level_cells.swap(next);
+    splits += split_level(level, next, parent_lists);
+    tag_children(next, parent_lists);
+    level.cells.swap(next);
   }
   return splits;
 }

@@ -125,6 +125,15 @@ class BackgroundBuilder {
   // holds the level's corner values, 4 per cell.
   void check_budget(const std::vector<int>& level_cells, const std::vector<Decision>& decision,
                     const std::vector<double>& corners);
+  // The steps of refine() on one level (background_builder.cpp says what each does).
+  struct Level;
+  void sample_corners(Level& level, const SampledFn& sampled);
+  void decide_level(Level& level, const DecideFn& decide, const CornerFn& corner_value);
+  void quarter_point_keys(Level& level, std::vector<std::size_t>& first_key) const;
+  void test_level(Level& level, const TestFn& test, const SampledFn& sampled);
+  std::vector<int> split_cell(const Level& level, std::size_t n, std::int32_t m, std::vector<int>& next);
+  std::size_t split_level(const Level& level, std::vector<int>& next, std::vector<std::vector<int>>& parent_lists);
+  void tag_children(const std::vector<int>& next, const std::vector<std::vector<int>>& parent_lists);
 
   const SpacingField* exact_;
   const GeometryTree& tree_;
