@@ -1,4 +1,5 @@
-// The device-resident simulation loop; see device_simulation.hpp and docs/opencl.md. Per iteration:
+// The device-resident run's iterations, in sim/iteration_loop's loop (DeviceRun is its IterationSteps);
+// see device_simulation.hpp and docs/opencl.md. Per iteration:
 // [rebuild the Verlet lists when the skin is used up] -> device_step (forces, r0, time step, move,
 // spacing, clearance budgets, partial sums) -> boundary_snap (every boundary node re-snapped on the
 // device, kernels/boundary.cl) -> download the partials and the flagged interior candidates -> the

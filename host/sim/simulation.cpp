@@ -8,7 +8,6 @@
 #include <fmt/format.h>
 
 #include "core/errors.hpp"
-#include "core/interrupt.hpp"
 #include "sim/boundary_handling.hpp"
 #include "sim/failure_report.hpp"
 #include "sim/iteration_loop.hpp"
