@@ -248,7 +248,7 @@ BoundaryCounts DeviceRun<Real>::host_boundary(double& skin_use) {
   counts.clamped = snap_.clamped;
   skin_use = std::max(skin_use, snap_.skin_use);
   if (counts.snapped > 0) {
-    upload_topology();  // kinds and curve neighbours changed (rare); run() rebuilds
+    upload_topology();  // kinds and curve neighbours changed (rare); apply() forces a rebuild
     // A snapped node's interior motion does not carry over (the host driver's rule). The window
     // halted for the exact test, so the carried moves are this iteration's.
     if (with_momentum()) {
@@ -355,7 +355,7 @@ IterationStep DeviceRun<Real>::compute(int iteration, const GlobalTimeStep& gm) 
   rebuild_if_due(iteration);
   if (window_pending_) {  // begun while the host measured the last iteration's mesh
     end_window();
-    host_ahead_ = false;  // as at the start of every iteration: the device holds the state after `done`
+    host_ahead_ = false;  // as at the start of every iteration: the device holds the state after loop_.done()
   } else if (window_next_ >= window_rows_) {
     start_window(iteration, gm);
   }
@@ -443,7 +443,7 @@ template <typename Real>
 void DeviceRun<Real>::after_iterations() {
   if (window_pending_) {
     // Stopped after a convergence check while the device ran ahead: nodes_ and the boundary state
-    // hold the state after `done` (read for the check); what the device ran since is dropped.
+    // hold the state after loop_.done() (read for the check); what the device ran since is dropped.
     finish(ctx_.queue(), "iterations run ahead of a stop");
     window_pending_ = false;
   } else {
@@ -470,7 +470,7 @@ void DeviceRun<Real>::end_run(SimResult& result) {
 template <typename Real>
 std::vector<Vec2> DeviceRun<Real>::final_momentum() {
   if (momentum_at_check_.empty()) return read_momentum();
-  // The carried moves after `done`, read before the device ran ahead.
+  // The carried moves after loop_.done(), read before the device ran ahead.
   std::vector<Vec2> momentum(n_);
   for (std::size_t i = 0; i < n_; ++i)
     momentum[i] = {static_cast<double>(momentum_at_check_[2 * i]), static_cast<double>(momentum_at_check_[2 * i + 1])};

@@ -8,7 +8,7 @@
 // driver's loop (sim/iteration_loop.hpp: history, progress, callbacks, GlobalTimeStep, which it checks
 // against the device's dt).
 // Without cl_khr_fp64 (the rule's state is double) the host sums the partials itself, one iteration per
-// window, as the loop did before (tests force that path with the environment variable
+// window (tests force that path with the environment variable
 // PDMESH_TEST_HOST_TIME_STEP_RULE).
 #pragma once
 #include <cstdint>
