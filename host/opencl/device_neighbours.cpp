@@ -65,184 +65,21 @@ NeighbourFlags DeviceNeighbours<Real>::build(std::size_t n, double radius_factor
   const auto t0 = std::chrono::steady_clock::now();
   ensure_size(ctx_, counters_, "neighbour_counters", kZeroCounters.size());
   ensure_size(ctx_, offset_, "neighbour_offset", n + 1);
-  // The counts of another node set say nothing about these rows: start from zero (a counting build).
-  bool have_counts = true;  // count_ holds the last build's counts of these n nodes
-  if (n != counted_n_ || count_.size() < n) {
-    have_counts = false;
-    ensure_size(ctx_, count_, "neighbour_count", n);
-    if (n > 0) fill_zero(ctx_.queue(), count_.get(), n * sizeof(cl_int), "clearing 'neighbour_count'");
-    counted_total_ = 0;
-  }
+  const bool have_counts = keep_counts(n);
   if (n == 0) {
-    fill_zero(ctx_.queue(), offset_.get(), sizeof(cl_ulong), "clearing 'neighbour_offset'");
-    ensure_size(ctx_, index_, "neighbour_index", kRowTail);
-    ensure_size(ctx_, skin_class_, "skin_class", 1);  // a kernel argument even without nodes
-    counted_n_ = 0;
+    build_empty();
     gather_seconds = seconds_since(t0);
     return flags;
   }
   if (n >= (std::size_t{1} << kGridNodeBits))
     throw LimitError(fmt::format("{} nodes are more than the device neighbour build indexes ({} at most)", n,
                                  (std::size_t{1} << kGridNodeBits) - 1));
-  const std::size_t wg = program_.work_group, groups = (n + wg - 1) / wg;
-  ensure_size(ctx_, level_, "level", n);
-  ensure_size(ctx_, skin_class_, "skin_class", n);
-  ensure_size(ctx_, bin_state_, "bin_state", kBinStateSize);
-  ensure_size(ctx_, bin_partial_, "bin_partial", groups + 1);
-  ensure_size(ctx_, grid_mask_, "grid_mask", kBinLevels);
-  ensure_size(ctx_, grid_bucket_offset_, "grid_bucket_offset", kBinLevels);
-  ensure_size(ctx_, grid_inv_cell_, "grid_inv_cell", kBinLevels);
-  ensure_size(ctx_, level_cap_, "neighbour_level_cap", kBinLevels);
-  // First guesses for the grids (one entry per node and level with nodes, a bucket per two): a
-  // build that finds them too small reports the sizes it needs and runs again.
-  if (member_capacity_ == 0) member_capacity_ = with_slack(4 * static_cast<std::uint64_t>(n));
-  if (bucket_capacity_ == 0) bucket_capacity_ = with_slack(2 * static_cast<std::uint64_t>(n));
-  const Real radius = static_cast<Real>(radius_factor);
+  const std::size_t wg = program_.work_group;
+  const BuildArgs a{n, wg, (n + wg - 1) / wg, static_cast<Real>(radius_factor), xy, q, kind, prev, next};
+  size_node_buffers(a);
   pair_skin_ = static_cast<Real>(pair_skin);
-  const auto n_arg = static_cast<cl_int>(n), groups_arg = static_cast<cl_int>(groups);
-  // Without counts: every stride-th node's scan is counted, and the rows are laid out with capacities
-  // estimated from that sample (stride 1: an exact counting pass, then the rows at those counts).
-  const int stride = have_counts ? 1 : stride_for(n);
-  bool estimate = false;  // rows laid out with the sampled estimate (level_cap_)
   std::vector<std::uint32_t> c;
-  std::vector<std::int32_t>& state = state_host_;
-  int attempt = 0;
-  bool binned = false;  // the grids of these positions are built (an earlier pass of this build)
-  for (;; ++attempt) {
-    constexpr std::uint64_t kMaxIndex = std::numeric_limits<std::int32_t>::max();
-    if (bucket_capacity_ > kMaxIndex || member_capacity_ > kMaxIndex)
-      throw SimulationError(fmt::format("the neighbour grids of {} nodes need {} buckets and {} entries, more than "
-                                        "the device binning indexes (2^31)",
-                                        n, bucket_capacity_, member_capacity_));
-    // A pass after one whose grids fit (a counting pass, or rows that outgrew) keeps those grids: the
-    // positions are the same. Growing a grid buffer would drop its contents.
-    if (!binned) {
-      ensure_size(ctx_, bucket_, "grid_bucket", bucket_capacity_);
-      ensure_size(ctx_, grid_nodes_, "grid_nodes", member_capacity_);
-    }
-    const std::size_t buckets = bucket_.size(), bucket_groups = (buckets + wg - 1) / wg;
-    ensure_size(ctx_, block_total_, "neighbour_block_total", std::max(groups, bucket_groups) + 1);
-    // Every capacity sum bounds offset[n]: sum(c + c >> s + m) <= total + total >> s + m n (an
-    // estimated layout's sum is the same with the estimated total); behind the rows a spare region
-    // for the rows that outgrow their capacities (relocate_rows). The spill list holds the entries
-    // past the capacities (a few per outgrown row), the move list the outgrown rows: an estimated
-    // layout leaves more of them (~0.8% of the rows at 1M nodes) than one from the last counts.
-    const std::uint64_t spare_capacity = std::max<std::uint64_t>(4096, counted_total_ / 64);
-    const std::uint64_t spill_capacity = std::max<std::uint64_t>(4096, counted_total_ / 256);
-    const std::uint64_t move_capacity = std::max<std::uint64_t>(1024, estimate ? n / 64 : n / 256);
-    const std::uint64_t bound = counted_total_ + (counted_total_ >> kSpareShift) +
-                                static_cast<std::uint64_t>(kSpareMin) * n + 2 * spare_capacity + kRowTail;
-    ensure_size(ctx_, spill_, "neighbour_spill", 2 * spill_capacity);
-    ensure_size(ctx_, move_node_, "neighbour_move_node", move_capacity);
-    ensure_size(ctx_, move_start_, "neighbour_move_start", move_capacity);
-    if (index_.size() < bound) {
-      if (check_entries) check_entries(bound);
-      ensure_size(ctx_, index_, "neighbour_index", bound);
-      // Slack slots are read (masked) by the vector force loop: give them defined contents.
-      fill_zero(ctx_.queue(), index_.get(), index_.size() * sizeof(cl_int), "clearing 'neighbour_index'");
-    }
-    const cl_ulong entries_size = index_.size() - kRowTail;
-    // Binning (kernels/binning.cl).
-    if (!binned) {
-      bin_state_.upload(ctx_.queue(), kBinStateInit.data(), kBinStateInit.size(), false);
-      uploaded_bytes += sizeof(kBinStateInit);
-      ArgSetter(program_.bin_bounds, "bin_bounds")(n_arg)(radius)(xy)(q)(bin_partial_)(bin_state_);
-      launch(ctx_.queue(), program_.bin_bounds, "bin_bounds", n, wg);
-      ArgSetter(program_.bin_rmin, "bin_rmin")(groups_arg)(bin_partial_);
-      launch(ctx_.queue(), program_.bin_rmin, "bin_rmin", wg, wg);
-      ArgSetter(program_.bin_levels, "bin_levels")(n_arg)(groups_arg)(radius)(q)(bin_partial_)(level_)(bin_state_);
-      launch(ctx_.queue(), program_.bin_levels, "bin_levels", n, wg);
-      ArgSetter(program_.bin_plan, "bin_plan")(n_arg)(groups_arg)(static_cast<cl_uint>(buckets))(
-          static_cast<cl_uint>(grid_nodes_.size()))(bin_partial_)(bin_state_)(grid_mask_)(grid_bucket_offset_)(
-          grid_inv_cell_);
-      launch(ctx_.queue(), program_.bin_plan, "bin_plan", wg, wg);
-      fill_zero(ctx_.queue(), bucket_.get(), buckets * sizeof(cl_uint), "clearing 'grid_bucket'");
-      ArgSetter(program_.bin_count, "bin_count")(n_arg)(xy)(level_)(bin_state_)(grid_mask_)(grid_bucket_offset_)(
-          grid_inv_cell_)(bucket_);
-      launch(ctx_.queue(), program_.bin_count, "bin_count", n, wg);
-      ArgSetter(program_.bucket_scan, "bucket_scan")(static_cast<cl_uint>(buckets))(bucket_)(block_total_);
-      launch(ctx_.queue(), program_.bucket_scan, "bucket_scan", buckets, wg);
-      ArgSetter(program_.row_block_offsets, "row_block_offsets")(static_cast<cl_int>(bucket_groups))(block_total_);
-      launch(ctx_.queue(), program_.row_block_offsets, "row_block_offsets", wg, wg);
-      ArgSetter(program_.bucket_offsets_add, "bucket_offsets_add")(static_cast<cl_uint>(buckets))(bucket_)(
-          block_total_);
-      launch(ctx_.queue(), program_.bucket_offsets_add, "bucket_offsets_add", buckets, wg);
-      ArgSetter(program_.bin_fill, "bin_fill")(n_arg)(xy)(level_)(bin_state_)(grid_mask_)(grid_bucket_offset_)(
-          grid_inv_cell_)(bucket_)(grid_nodes_);
-      launch(ctx_.queue(), program_.bin_fill, "bin_fill", n, wg);
-      launches += 9;
-    }
-    // Without counts: count (a sample, or every row), then build with the estimate or the counts.
-    const bool counting = !have_counts && !estimate;
-    counters_.upload(ctx_.queue(), kZeroCounters.data(), kZeroCounters.size(), false);
-    uploaded_bytes += sizeof(kZeroCounters);
-    if (counting && stride > 1) {
-      // The sample: its counts summed per level (row_level_tally); nothing else of a build.
-      ensure_size(ctx_, tally_, "neighbour_level_tally", kTallySize);
-      fill_zero(ctx_.queue(), tally_.get(), kTallySize * sizeof(cl_uint), "clearing 'neighbour_level_tally'");
-      fill_zero(ctx_.queue(), count_.get(), n * sizeof(cl_int), "clearing 'neighbour_count'");
-      gather(n_arg, radius, xy, q, kind, prev, next, 0, 0, true, stride);
-      ArgSetter(program_.row_level_tally, "row_level_tally")(n_arg)(kind)(level_)(count_)(tally_);
-      launch(ctx_.queue(), program_.row_level_tally, "row_level_tally", n, wg);
-      launches += 2;
-      std::vector<std::uint32_t> tally;
-      bin_state_.download(ctx_.queue(), state, kBinHead, false);
-      tally_.download(ctx_.queue(), tally, kTallySize);
-      bool grids_fit = false;
-      if (!take_bin_state(n, flags, grids_fit)) break;
-      if (grids_fit) {
-        binned = true;
-        estimate = true;
-        sampled = true;
-        counted_total_ = set_level_caps(tally, stride);
-      }
-      continue;  // not a pass of its own: attempts counts whole gathers
-    }
-    // Rows (kernels/neighbours.cl).
-    ArgSetter(program_.row_capacity_scan, "row_capacity_scan")(n_arg)(static_cast<cl_int>(kSpareShift))(
-        static_cast<cl_int>(kSpareMin))(count_)(static_cast<cl_int>(estimate && !have_counts ? 1 : 0))(kind)(level_)(
-        level_cap_)(offset_)(block_total_);
-    launch(ctx_.queue(), program_.row_capacity_scan, "row_capacity_scan", n, wg);
-    ArgSetter(program_.row_block_offsets, "row_block_offsets")(groups_arg)(block_total_);
-    launch(ctx_.queue(), program_.row_block_offsets, "row_block_offsets", wg, wg);
-    ArgSetter(program_.row_offsets_add, "row_offsets_add")(n_arg)(offset_)(block_total_);
-    launch(ctx_.queue(), program_.row_offsets_add, "row_offsets_add", n, wg);
-    fill_zero(ctx_.queue(), count_.get(), n * sizeof(cl_int), "clearing 'neighbour_count'");
-    gather(n_arg, radius, xy, q, kind, prev, next, entries_size, spill_capacity, counting, 1);
-    ++attempts;
-    ArgSetter(program_.sort_rows, "sort_rows")(n_arg)(kind)(offset_)(count_)(entries_size)(index_)(counters_);
-    launch(ctx_.queue(), program_.sort_rows, "sort_rows", n, wg);
-    // A counting pass moves nothing (move capacity 0): the next pass builds with the counts.
-    ArgSetter(program_.relocate_rows, "relocate_rows")(n_arg)(kind)(offset_)(count_)(entries_size)(index_)(
-        static_cast<cl_uint>(spill_capacity))(spill_)(static_cast<cl_uint>(counting ? 0 : move_capacity))(move_node_)(
-        move_start_)(counters_);
-    launch(ctx_.queue(), program_.relocate_rows, "relocate_rows", n, wg);
-    ArgSetter(program_.place_spilled, "place_spilled")(n_arg)(offset_)(index_)(static_cast<cl_uint>(spill_capacity))(
-        spill_)(static_cast<cl_uint>(counting ? 0 : move_capacity))(counters_);
-    launch(ctx_.queue(), program_.place_spilled, "place_spilled", spill_capacity, wg);
-    ArgSetter(program_.apply_row_moves, "apply_row_moves")(move_node_)(move_start_)(counters_)(count_)(index_)(offset_);
-    launch(ctx_.queue(), program_.apply_row_moves, "apply_row_moves", move_capacity, wg);
-    launches += 8;
-    // The build's one wait: the counters and the binning's state.
-    bin_state_.download(ctx_.queue(), state, kBinHead, false);
-    counters_.download(ctx_.queue(), c, kZeroCounters.size());
-    bool grids_fit = false;
-    if (!take_bin_state(n, flags, grids_fit)) break;
-    if (grids_fit) {
-      binned = true;
-      have_counts = true;
-      outgrown_rows += c[kRowOutgrown];
-      counted_n_ = n;
-      counted_total_ = c[kRowEntries];
-      // Rows that outgrew their capacities were moved behind the others, unless the spill list, the
-      // move list or the spare region was too small: then build again with the counts (exact now).
-      if (!counting && (c[kRowOutgrown] == 0 || (c[kRowSpilled] <= spill_capacity && c[kRowOutgrown] <= move_capacity &&
-                                                   c[kRowSpareFull] == 0)))
-        break;
-    }
-    if (attempt >= 4)
-      throw SimulationError(fmt::format("neighbour rows still outgrow their capacities after {} passes", attempt + 1));
-  }
+  run_passes(a, have_counts, flags, c);
   if (flags.first_invalid < 0) {
     flags.max_count = static_cast<std::int32_t>(c[kRowLargest]);
     flags.pairs_examined = c[kRowExamined];
@@ -251,6 +88,219 @@ NeighbourFlags DeviceNeighbours<Real>::build(std::size_t n, double radius_factor
   }
   gather_seconds = seconds_since(t0);
   return flags;
+}
+
+// Whether count_ holds the last build's counts of these n nodes. The counts of another node set say
+// nothing about these rows: then they start from zero (a counting build).
+template <typename Real>
+bool DeviceNeighbours<Real>::keep_counts(std::size_t n) {
+  if (n == counted_n_ && count_.size() >= n) return true;
+  ensure_size(ctx_, count_, "neighbour_count", n);
+  if (n > 0) fill_zero(ctx_.queue(), count_.get(), n * sizeof(cl_int), "clearing 'neighbour_count'");
+  counted_total_ = 0;
+  return false;
+}
+
+// No nodes: an empty row layout, and the buffers the kernels take as arguments all the same.
+template <typename Real>
+void DeviceNeighbours<Real>::build_empty() {
+  fill_zero(ctx_.queue(), offset_.get(), sizeof(cl_ulong), "clearing 'neighbour_offset'");
+  ensure_size(ctx_, index_, "neighbour_index", kRowTail);
+  ensure_size(ctx_, skin_class_, "skin_class", 1);  // a kernel argument even without nodes
+  counted_n_ = 0;
+}
+
+template <typename Real>
+void DeviceNeighbours<Real>::size_node_buffers(const BuildArgs& a) {
+  ensure_size(ctx_, level_, "level", a.n);
+  ensure_size(ctx_, skin_class_, "skin_class", a.n);
+  ensure_size(ctx_, bin_state_, "bin_state", kBinStateSize);
+  ensure_size(ctx_, bin_partial_, "bin_partial", a.groups + 1);
+  ensure_size(ctx_, grid_mask_, "grid_mask", kBinLevels);
+  ensure_size(ctx_, grid_bucket_offset_, "grid_bucket_offset", kBinLevels);
+  ensure_size(ctx_, grid_inv_cell_, "grid_inv_cell", kBinLevels);
+  ensure_size(ctx_, level_cap_, "neighbour_level_cap", kBinLevels);
+  // First guesses for the grids (one entry per node and level with nodes, a bucket per two): a
+  // build that finds them too small reports the sizes it needs and runs again.
+  if (member_capacity_ == 0) member_capacity_ = with_slack(4 * static_cast<std::uint64_t>(a.n));
+  if (bucket_capacity_ == 0) bucket_capacity_ = with_slack(2 * static_cast<std::uint64_t>(a.n));
+}
+
+// The passes of a build until its rows are whole (or a node is invalid): c receives the last pass's
+// counters. Without counts: every stride-th node's scan is counted, and the rows are laid out with
+// capacities estimated from that sample (stride 1: an exact counting pass, then the rows at those counts).
+template <typename Real>
+void DeviceNeighbours<Real>::run_passes(const BuildArgs& a, bool have_counts, NeighbourFlags& flags,
+                                        std::vector<std::uint32_t>& c) {
+  const int stride = have_counts ? 1 : stride_for(a.n);
+  bool estimate = false;  // rows laid out with the sampled estimate (level_cap_)
+  bool binned = false;    // the grids of these positions are built (an earlier pass of this build)
+  for (int attempt = 0;; ++attempt) {
+    const PassCapacities caps = size_pass_buffers(a, binned, estimate);
+    if (!binned) bin(a, caps);
+    // Without counts: count (a sample, or every row), then build with the estimate or the counts.
+    const bool counting = !have_counts && !estimate;
+    counters_.upload(ctx_.queue(), kZeroCounters.data(), kZeroCounters.size(), false);
+    uploaded_bytes += sizeof(kZeroCounters);
+    if (counting && stride > 1) {
+      bool grids_fit = false;
+      if (!sample_counts(a, stride, flags, grids_fit)) return;
+      if (grids_fit) binned = estimate = sampled = true;
+      continue;  // not a pass of its own: attempts counts whole gathers
+    }
+    gather_pass(a, caps, counting, estimate && !have_counts);
+    // The build's one wait: the counters and the binning's state.
+    bin_state_.download(ctx_.queue(), state_host_, kBinHead, false);
+    counters_.download(ctx_.queue(), c, kZeroCounters.size());
+    bool grids_fit = false;
+    if (!take_bin_state(a.n, flags, grids_fit)) return;
+    if (grids_fit) {
+      binned = true;
+      have_counts = true;
+      outgrown_rows += c[kRowOutgrown];
+      counted_n_ = a.n;
+      counted_total_ = c[kRowEntries];
+      // Rows that outgrew their capacities were moved behind the others, unless the spill list, the
+      // move list or the spare region was too small: then build again with the counts (exact now).
+      if (!counting && (c[kRowOutgrown] == 0 || (c[kRowSpilled] <= caps.spill && c[kRowOutgrown] <= caps.move &&
+                                                   c[kRowSpareFull] == 0)))
+        return;
+    }
+    if (attempt >= 4)
+      throw SimulationError(fmt::format("neighbour rows still outgrow their capacities after {} passes", attempt + 1));
+  }
+}
+
+// The buffers of one pass at the capacities the build knows now (the grids' only when they are to
+// be built again).
+template <typename Real>
+typename DeviceNeighbours<Real>::PassCapacities DeviceNeighbours<Real>::size_pass_buffers(const BuildArgs& a,
+                                                                                          bool binned, bool estimate) {
+  constexpr std::uint64_t kMaxIndex = std::numeric_limits<std::int32_t>::max();
+  if (bucket_capacity_ > kMaxIndex || member_capacity_ > kMaxIndex)
+    throw SimulationError(fmt::format("the neighbour grids of {} nodes need {} buckets and {} entries, more than "
+                                      "the device binning indexes (2^31)",
+                                      a.n, bucket_capacity_, member_capacity_));
+  // A pass after one whose grids fit (a counting pass, or rows that outgrew) keeps those grids: the
+  // positions are the same. Growing a grid buffer would drop its contents.
+  if (!binned) {
+    ensure_size(ctx_, bucket_, "grid_bucket", bucket_capacity_);
+    ensure_size(ctx_, grid_nodes_, "grid_nodes", member_capacity_);
+  }
+  PassCapacities caps;
+  caps.buckets = bucket_.size();
+  caps.bucket_groups = (caps.buckets + a.wg - 1) / a.wg;
+  ensure_size(ctx_, block_total_, "neighbour_block_total", std::max(a.groups, caps.bucket_groups) + 1);
+  // Every capacity sum bounds offset[n]: sum(c + c >> s + m) <= total + total >> s + m n (an
+  // estimated layout's sum is the same with the estimated total); behind the rows a spare region
+  // for the rows that outgrow their capacities (relocate_rows). The spill list holds the entries
+  // past the capacities (a few per outgrown row), the move list the outgrown rows: an estimated
+  // layout leaves more of them (~0.8% of the rows at 1M nodes) than one from the last counts.
+  const std::uint64_t spare_capacity = std::max<std::uint64_t>(4096, counted_total_ / 64);
+  caps.spill = std::max<std::uint64_t>(4096, counted_total_ / 256);
+  caps.move = std::max<std::uint64_t>(1024, estimate ? a.n / 64 : a.n / 256);
+  const std::uint64_t bound = counted_total_ + (counted_total_ >> kSpareShift) +
+                              static_cast<std::uint64_t>(kSpareMin) * a.n + 2 * spare_capacity + kRowTail;
+  ensure_size(ctx_, spill_, "neighbour_spill", 2 * caps.spill);
+  ensure_size(ctx_, move_node_, "neighbour_move_node", caps.move);
+  ensure_size(ctx_, move_start_, "neighbour_move_start", caps.move);
+  if (index_.size() < bound) {
+    if (check_entries) check_entries(bound);
+    ensure_size(ctx_, index_, "neighbour_index", bound);
+    // Slack slots are read (masked) by the vector force loop: give them defined contents.
+    fill_zero(ctx_.queue(), index_.get(), index_.size() * sizeof(cl_int), "clearing 'neighbour_index'");
+  }
+  caps.entries = index_.size() - kRowTail;
+  return caps;
+}
+
+// Binning (kernels/binning.cl): the grid levels and buckets of the positions, nodes sorted into them.
+template <typename Real>
+void DeviceNeighbours<Real>::bin(const BuildArgs& a, const PassCapacities& caps) {
+  const auto n_arg = static_cast<cl_int>(a.n), groups_arg = static_cast<cl_int>(a.groups);
+  const std::size_t n = a.n, wg = a.wg, buckets = caps.buckets;
+  bin_state_.upload(ctx_.queue(), kBinStateInit.data(), kBinStateInit.size(), false);
+  uploaded_bytes += sizeof(kBinStateInit);
+  ArgSetter(program_.bin_bounds, "bin_bounds")(n_arg)(a.radius)(a.xy)(a.q)(bin_partial_)(bin_state_);
+  launch(ctx_.queue(), program_.bin_bounds, "bin_bounds", n, wg);
+  ArgSetter(program_.bin_rmin, "bin_rmin")(groups_arg)(bin_partial_);
+  launch(ctx_.queue(), program_.bin_rmin, "bin_rmin", wg, wg);
+  ArgSetter(program_.bin_levels, "bin_levels")(n_arg)(groups_arg)(a.radius)(a.q)(bin_partial_)(level_)(bin_state_);
+  launch(ctx_.queue(), program_.bin_levels, "bin_levels", n, wg);
+  ArgSetter(program_.bin_plan, "bin_plan")(n_arg)(groups_arg)(static_cast<cl_uint>(buckets))(
+      static_cast<cl_uint>(grid_nodes_.size()))(bin_partial_)(bin_state_)(grid_mask_)(grid_bucket_offset_)(
+      grid_inv_cell_);
+  launch(ctx_.queue(), program_.bin_plan, "bin_plan", wg, wg);
+  fill_zero(ctx_.queue(), bucket_.get(), buckets * sizeof(cl_uint), "clearing 'grid_bucket'");
+  ArgSetter(program_.bin_count, "bin_count")(n_arg)(a.xy)(level_)(bin_state_)(grid_mask_)(grid_bucket_offset_)(
+      grid_inv_cell_)(bucket_);
+  launch(ctx_.queue(), program_.bin_count, "bin_count", n, wg);
+  ArgSetter(program_.bucket_scan, "bucket_scan")(static_cast<cl_uint>(buckets))(bucket_)(block_total_);
+  launch(ctx_.queue(), program_.bucket_scan, "bucket_scan", buckets, wg);
+  ArgSetter(program_.row_block_offsets, "row_block_offsets")(static_cast<cl_int>(caps.bucket_groups))(block_total_);
+  launch(ctx_.queue(), program_.row_block_offsets, "row_block_offsets", wg, wg);
+  ArgSetter(program_.bucket_offsets_add, "bucket_offsets_add")(static_cast<cl_uint>(buckets))(bucket_)(block_total_);
+  launch(ctx_.queue(), program_.bucket_offsets_add, "bucket_offsets_add", buckets, wg);
+  ArgSetter(program_.bin_fill, "bin_fill")(n_arg)(a.xy)(level_)(bin_state_)(grid_mask_)(grid_bucket_offset_)(
+      grid_inv_cell_)(bucket_)(grid_nodes_);
+  launch(ctx_.queue(), program_.bin_fill, "bin_fill", n, wg);
+  launches += 9;
+}
+
+// The sample: every stride-th node's counts summed per level (row_level_tally); nothing else of a
+// build. False when a node is invalid; grids_fit: the grids held every node, and the level capacities
+// are set from the sample (set_level_caps).
+template <typename Real>
+bool DeviceNeighbours<Real>::sample_counts(const BuildArgs& a, int stride, NeighbourFlags& flags, bool& grids_fit) {
+  const auto n_arg = static_cast<cl_int>(a.n);
+  ensure_size(ctx_, tally_, "neighbour_level_tally", kTallySize);
+  fill_zero(ctx_.queue(), tally_.get(), kTallySize * sizeof(cl_uint), "clearing 'neighbour_level_tally'");
+  fill_zero(ctx_.queue(), count_.get(), a.n * sizeof(cl_int), "clearing 'neighbour_count'");
+  gather(n_arg, a.radius, a.xy, a.q, a.kind, a.prev, a.next, 0, 0, true, stride);
+  ArgSetter(program_.row_level_tally, "row_level_tally")(n_arg)(a.kind)(level_)(count_)(tally_);
+  launch(ctx_.queue(), program_.row_level_tally, "row_level_tally", a.n, a.wg);
+  launches += 2;
+  std::vector<std::uint32_t> tally;
+  bin_state_.download(ctx_.queue(), state_host_, kBinHead, false);
+  tally_.download(ctx_.queue(), tally, kTallySize);
+  if (!take_bin_state(a.n, flags, grids_fit)) return false;
+  if (grids_fit) counted_total_ = set_level_caps(tally, stride);
+  return true;
+}
+
+// One pass of rows (kernels/neighbours.cl): laid out from the counts (or with estimated, the level
+// capacities), gathered, sorted, and the rows that outgrew their capacities moved behind the others.
+// A counting pass moves nothing (move capacity 0): the next pass builds with the counts.
+template <typename Real>
+void DeviceNeighbours<Real>::gather_pass(const BuildArgs& a, const PassCapacities& caps, bool counting,
+                                         bool estimated) {
+  const auto n_arg = static_cast<cl_int>(a.n), groups_arg = static_cast<cl_int>(a.groups);
+  const std::size_t n = a.n, wg = a.wg;
+  const cl_ulong entries_size = caps.entries;
+  const auto spill_capacity = static_cast<cl_uint>(caps.spill);
+  const auto move_capacity = static_cast<cl_uint>(counting ? 0 : caps.move);
+  ArgSetter(program_.row_capacity_scan, "row_capacity_scan")(n_arg)(static_cast<cl_int>(kSpareShift))(
+      static_cast<cl_int>(kSpareMin))(count_)(static_cast<cl_int>(estimated ? 1 : 0))(a.kind)(level_)(level_cap_)(
+      offset_)(block_total_);
+  launch(ctx_.queue(), program_.row_capacity_scan, "row_capacity_scan", n, wg);
+  ArgSetter(program_.row_block_offsets, "row_block_offsets")(groups_arg)(block_total_);
+  launch(ctx_.queue(), program_.row_block_offsets, "row_block_offsets", wg, wg);
+  ArgSetter(program_.row_offsets_add, "row_offsets_add")(n_arg)(offset_)(block_total_);
+  launch(ctx_.queue(), program_.row_offsets_add, "row_offsets_add", n, wg);
+  fill_zero(ctx_.queue(), count_.get(), n * sizeof(cl_int), "clearing 'neighbour_count'");
+  gather(n_arg, a.radius, a.xy, a.q, a.kind, a.prev, a.next, entries_size, caps.spill, counting, 1);
+  ++attempts;
+  ArgSetter(program_.sort_rows, "sort_rows")(n_arg)(a.kind)(offset_)(count_)(entries_size)(index_)(counters_);
+  launch(ctx_.queue(), program_.sort_rows, "sort_rows", n, wg);
+  ArgSetter(program_.relocate_rows, "relocate_rows")(n_arg)(a.kind)(offset_)(count_)(entries_size)(index_)(
+      spill_capacity)(spill_)(move_capacity)(move_node_)(move_start_)(counters_);
+  launch(ctx_.queue(), program_.relocate_rows, "relocate_rows", n, wg);
+  ArgSetter(program_.place_spilled, "place_spilled")(n_arg)(offset_)(index_)(spill_capacity)(spill_)(move_capacity)(
+      counters_);
+  launch(ctx_.queue(), program_.place_spilled, "place_spilled", caps.spill, wg);
+  ArgSetter(program_.apply_row_moves, "apply_row_moves")(move_node_)(move_start_)(counters_)(count_)(index_)(offset_);
+  launch(ctx_.queue(), program_.apply_row_moves, "apply_row_moves", caps.move, wg);
+  launches += 8;
 }
 
 template <typename Real>

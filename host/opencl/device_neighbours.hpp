@@ -96,6 +96,32 @@ class DeviceNeighbours {
   double spacing_ratio = 0.0;
 
  private:
+  // One build's nodes and arguments (build's parameters, the work-group size and the groups of n).
+  struct BuildArgs {
+    std::size_t n, wg, groups;
+    Real radius;  // radius_factor
+    Buffer<Real>& xy;
+    Buffer<Real>& q;
+    Buffer<std::uint8_t>& kind;
+    Buffer<std::int32_t>& prev;
+    Buffer<std::int32_t>& next;
+  };
+  // The capacities of one pass: the grids' buckets (and their work-groups), the row entries before the
+  // tail, the spill list's entries and the move list's rows.
+  struct PassCapacities {
+    std::size_t buckets = 0, bucket_groups = 0;
+    cl_ulong entries = 0;
+    std::uint64_t spill = 0, move = 0;
+  };
+  // build's steps, in order.
+  bool keep_counts(std::size_t n);
+  void build_empty();
+  void size_node_buffers(const BuildArgs& a);
+  void run_passes(const BuildArgs& a, bool have_counts, NeighbourFlags& flags, std::vector<std::uint32_t>& c);
+  PassCapacities size_pass_buffers(const BuildArgs& a, bool binned, bool estimate);
+  void bin(const BuildArgs& a, const PassCapacities& caps);
+  bool sample_counts(const BuildArgs& a, int stride, NeighbourFlags& flags, bool& grids_fit);
+  void gather_pass(const BuildArgs& a, const PassCapacities& caps, bool counting, bool estimated);
   void gather(cl_int n_arg, Real radius, Buffer<Real>& xy, Buffer<Real>& q, Buffer<std::uint8_t>& kind,
               Buffer<std::int32_t>& prev, Buffer<std::int32_t>& next, cl_ulong entries_size,
               std::uint64_t spill_capacity, bool counting, int stride);

@@ -1,7 +1,9 @@
 // DeviceRun: the state and steps of one device-resident run (internal to host/opencl; the entry
-// point is run_device_resident in device_simulation.hpp). Its members are defined in two files:
-// device_run_state.cpp (uploads, read-backs, the saved state, population events) and
-// device_simulation.cpp (rebuilds, iterations, windows, the loop).
+// point is run_device_resident in device_simulation.hpp). The loop is sim/iteration_loop's, shared with
+// the host driver: DeviceRun is its IterationSteps, each iteration's computation the next row of a
+// window of device iterations. Its members are defined in two files: device_run_state.cpp (uploads,
+// read-backs, the saved state, population events) and device_simulation.cpp (rebuilds, windows, the
+// iteration's steps).
 #pragma once
 #include <algorithm>
 #include <chrono>
@@ -20,6 +22,7 @@
 #include "opencl/step_program.hpp"
 #include "sim/boundary_handling.hpp"
 #include "sim/global_time_step.hpp"
+#include "sim/iteration_loop.hpp"
 
 namespace pdmesh::ocl {
 
@@ -51,7 +54,7 @@ inline double skin_use_limit(double largest_spacing_ratio) {
 }
 
 template <typename Real>
-class DeviceRun {
+class DeviceRun final : public IterationSteps {
  public:
   DeviceRun(NodeSet& nodes, const GeometryTree& tree, const SpacingField& spacing, const SimOptions& options,
             Context& ctx, StepProgram& program, DeviceRunStats& stats)
@@ -60,20 +63,39 @@ class DeviceRun {
         device_boundary_(ctx, tree.geometry()),
         n_(nodes.size()),
         window_(ctx, program.iteration_rule.get() != nullptr && !std::getenv("PDMESH_TEST_HOST_TIME_STEP_RULE")),
-        cpu_device_(ctx.device().type == "CPU"),
-        convergence_(options.convergence, options.resume ? options.resume->convergence : std::vector<MeshSample>{}) {}
+        cpu_device_(ctx.device().type == "CPU"), loop_(nodes, options) {}
   // Non-blocking uploads read host vectors of this object: wait for them (errors are moot here).
-  ~DeviceRun() { ctx_.queue().finish(); }
+  ~DeviceRun() override { ctx_.queue().finish(); }
   DeviceRun(const DeviceRun&) = delete;
   DeviceRun& operator=(const DeviceRun&) = delete;
 
   SimResult run(const SimCallbacks& callbacks);
 
  private:
+  // IterationSteps (device_simulation.cpp): the loop's iteration is the next row of a window.
+  std::string backend_name() const override;
+  IterationStep compute(int iteration, const GlobalTimeStep& gm) override;
+  IterationMoves apply(int iteration) override;
+  void after_row() override;
+  void before_measure(int iteration, const GlobalTimeStep& gm) override;
+  void after_observe() override;
+  bool may_stop() const override { return window_next_ >= window_rows_; }  // not while the device is ahead
+  void after_iterations() override;
+  SimState failure_state() override;
+  void end_run(SimResult& result) override;
+
+  // Before the iteration after loop_.done(): the lists rebuilt when the skin is used up; true when they were.
+  bool rebuild_if_due(int next_iteration);
+  // The row take_row read: throws SimulationError when the device's dt differs from the host's or a
+  // move or sum is not finite (then with the last good state in failed_at_).
+  void check_row(int iteration, double dt_gm);
+  // SimState::momentum after loop_.done().
+  std::vector<Vec2> final_momentum();
+  std::size_t device_bytes() const;
   void check_memory(std::uint64_t entries) const;
-  void remember(int done, double dt_initial, const GlobalTimeStep& gm, std::size_t rows);
-  SimState last_good_state(int done, double dt_initial, const GlobalTimeStep& gm,
-                           const std::vector<HistoryRow>& history);
+  // The state after loop_.done() (its history rows by count), to fall back on (see saved_state_).
+  void remember();
+  SimState last_good_state();
   SimulationError non_finite_error(int iteration, const SimState& good);
   void upload_initial();
   bool with_momentum() const { return options_.momentum > 0.0; }
@@ -201,7 +223,7 @@ class DeviceRun {
   double skin_use_ = HUGE_VAL;                       // since the last build; HUGE_VAL forces a build
   double skin_limit_ = skin_use_limit(0.0);  // the largest skin use over share the current lists allow
   std::vector<std::uint8_t> skin_class_host_;  // the last build's skin classes (host_boundary's test)
-  std::uint64_t pairs_examined_ = 0;  // rebuild candidates plus, every iteration, the entries of the current lists
+  std::uint64_t pairs_examined_ = 0;  // rebuild candidates (the loop adds the current lists' entries every iteration)
   std::uint64_t list_entries_ = 0;    // entries of the current lists (within the skin radius)
   std::size_t within_ = 0, coincident_ = 0, sum_moving_ = 0;
   double sum_force_ = 0, sum_kinetic_ = 0, max_force_ = 0, device_skin_use_ = 0;
@@ -237,8 +259,12 @@ class DeviceRun {
   int since_build_ = 0, build_interval_ = 0;  // iterations since the last build; between the last two (0: unknown)
   bool cpu_device_ = false;  // window_length's choice
   double seconds_per_iteration_ = 0.0;  // the last window's wall time per iteration (0: none yet)
-  PopulationTracker population_;
-  ConvergenceMonitor convergence_;  // the stopping rule (its samples go into every saved state)
+  std::size_t fixed_ = 0, on_boundary_ = 0, interior_ = 0;  // node counts by kind after the last iteration
+  std::optional<SimState> failed_at_;  // the last good state, where a failure computed it already
+  bool rebuilt_ahead_ = false;  // the lists were rebuilt while the device ran ahead of a measurement
+  // The iterations' bookkeeping: history, time step rule, population schedule, stopping rule (its
+  // samples go into every saved state). Last: it checks the options when the run is set up.
+  IterationLoop loop_;
 };
 
 }  // namespace pdmesh::ocl

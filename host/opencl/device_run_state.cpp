@@ -24,27 +24,25 @@ void DeviceRun<Real>::check_memory(std::uint64_t entries) const {
 }
 
 template <typename Real>
-void DeviceRun<Real>::remember(int done, double dt_initial, const GlobalTimeStep& gm, std::size_t rows) {
+void DeviceRun<Real>::remember() {
   // Interior positions and every q as the build read them from the device; boundary nodes the host's.
   saved_nodes_ = nodes_;
   for (std::size_t i = 0; i < n_; ++i) {
     if (saved_nodes_.kind[i] == NodeKind::Interior) saved_nodes_.x[i] = {build_x_[i], build_y_[i]};
     saved_nodes_.q[i] = build_q_[i];
   }
-  saved_state_ = SimState{done, dt_initial, gm.state(), boundary_.arcs(), boundary_.tangents(), {},
-                          population_.schedule, convergence_.samples(), {}};
+  saved_state_ = loop_.state(boundary_, false);
   // The device is not ahead here (a build or the start: no window is running).
   if (with_momentum()) saved_state_.momentum = read_momentum();
-  saved_rows_ = rows;
+  saved_rows_ = loop_.history().size();
 }
 
 // Puts the last good state into nodes_ and returns the driver state that goes with it: the state
-// after iteration `done` read back from the device, or, when the host is already ahead of it, the
+// after iteration loop_.done() read back from the device, or, when the host is already ahead of it, the
 // device cannot be read or what it holds is not finite, the state saved at the last build. With
 // momentum always the saved state: a failed step has already overwritten the carried moves.
 template <typename Real>
-SimState DeviceRun<Real>::last_good_state(int done, double dt_initial, const GlobalTimeStep& gm,
-                                          const std::vector<HistoryRow>& history) {
+SimState DeviceRun<Real>::last_good_state() {
   if (!host_ahead_ && !tangents_ahead_ && !with_momentum()) {
     try {
       std::vector<Real> x, y, q;
@@ -60,8 +58,7 @@ SimState DeviceRun<Real>::last_good_state(int done, double dt_initial, const Glo
           if (nodes_.kind[i] == NodeKind::Interior) nodes_.x[i] = {static_cast<double>(x[i]), static_cast<double>(y[i])};
           nodes_.q[i] = static_cast<double>(q[i]);
         }
-        return SimState{done,    dt_initial, gm.state(), boundary_.arcs(), boundary_.tangents(),
-                        history, population_.schedule, convergence_.samples(), {}};
+        return loop_.state(boundary_);
       }
     } catch (const Error&) {
       // The device cannot be read: the saved state below.
@@ -69,6 +66,7 @@ SimState DeviceRun<Real>::last_good_state(int done, double dt_initial, const Glo
   }
   nodes_ = saved_nodes_;
   SimState state = saved_state_;
+  const std::vector<HistoryRow>& history = loop_.history();
   state.history.assign(history.begin(), history.begin() + static_cast<std::ptrdiff_t>(saved_rows_));
   return state;
 }
@@ -221,7 +219,7 @@ void DeviceRun<Real>::upload_nodes(const std::vector<double>* budgets, const std
 // budgets and leaves) and the lists are rebuilt before the next step.
 template <typename Real>
 std::optional<PopulationCounts> DeviceRun<Real>::population_event(int iteration) {
-  if (!population_event_due(options_.population, population_.schedule, iteration, options_.iterations))
+  if (!population_event_due(options_.population, loop_.population().schedule, iteration, options_.iterations))
     return std::nullopt;
   const auto t0 = Clock::now();
   if (boundary_stale_) sync_boundary();
@@ -238,7 +236,7 @@ std::optional<PopulationCounts> DeviceRun<Real>::population_event(int iteration)
   std::vector<double> budgets(budget.begin(), budget.end());
   std::vector<int> old_of_new;
   const std::size_t old_n = n_;
-  const auto counts = device_population_event(population_, options_.population, iteration, options_.iterations, nodes_,
+  const auto counts = device_population_event(loop_.population(), options_.population, iteration, options_.iterations, nodes_,
                                               boundary_, background_, budgets, leaves, &old_of_new);
   if (counts && counts->changed()) {
     n_ = nodes_.size();

@@ -1,4 +1,5 @@
-// The device-resident simulation loop; see device_simulation.hpp and docs/opencl.md. Per iteration:
+// The device-resident run's iterations, in sim/iteration_loop's loop (DeviceRun is its IterationSteps);
+// see device_simulation.hpp and docs/opencl.md. Per iteration:
 // [rebuild the Verlet lists when the skin is used up] -> device_step (forces, r0, time step, move,
 // spacing, clearance budgets, partial sums) -> boundary_snap (every boundary node re-snapped on the
 // device, kernels/boundary.cl) -> download the partials and the flagged interior candidates -> the
@@ -10,7 +11,6 @@
 #include "core/errors.hpp"
 #include "core/interrupt.hpp"
 #include "sim/failure_report.hpp"
-#include "sim/progress.hpp"
 #include "spacing/background_field.hpp"
 
 namespace pdmesh::ocl {
@@ -125,8 +125,8 @@ void DeviceRun<Real>::begin_window(int first, const GlobalTimeStep& gm, int most
   const int cap = options_.verlet_skin == 0.0
                       ? first
                       : std::min(options_.iterations, first + std::min(window_length(), std::max(1, most)) - 1);
-  while (last < cap && !convergence_.due(last) &&
-         !population_event_due(options_.population, population_.schedule, last, options_.iterations))
+  while (last < cap && !loop_.convergence().due(last) &&
+         !population_event_due(options_.population, loop_.population().schedule, last, options_.iterations))
     ++last;
   pending_t0_ = Clock::now();
   window_.begin(gm, skin_use_, skin_limit_, counters_);
@@ -248,7 +248,7 @@ BoundaryCounts DeviceRun<Real>::host_boundary(double& skin_use) {
   counts.clamped = snap_.clamped;
   skin_use = std::max(skin_use, snap_.skin_use);
   if (counts.snapped > 0) {
-    upload_topology();  // kinds and curve neighbours changed (rare); run() rebuilds
+    upload_topology();  // kinds and curve neighbours changed (rare); apply() forces a rebuild
     // A snapped node's interior motion does not carry over (the host driver's rule). The window
     // halted for the exact test, so the carried moves are this iteration's.
     if (with_momentum()) {
@@ -301,224 +301,188 @@ BoundaryCounts DeviceRun<Real>::host_boundary(double& skin_use) {
 
 template <typename Real>
 SimResult DeviceRun<Real>::run(const SimCallbacks& callbacks) {
-  // The device run acts on a stop request at the end of a window (options_.stop, below); the host
-  // work between (boundary handling, population events, the stopping rule's measurement) must not
-  // end half way with Interrupted.
+  // The device run acts on a stop request at the end of a window (may_stop); the host work between
+  // (boundary handling, population events, the stopping rule's measurement) must not end half way
+  // with Interrupted.
   const InterruptShield shield;
-  SimResult result;
-  result.stats.backend = fmt::format("opencl:{}:{} ({}, {}, device-resident)", ctx_.device().platform,
-                                     ctx_.device().device, ctx_.device().name,
-                                     std::is_same_v<Real, double> ? "double" : "float");
-  result.stats.dt_initial = options_.dt_initial ? *options_.dt_initial : default_dt_initial(nodes_, options_.lj_a);
-  if (!(result.stats.dt_initial > 0.0) || !std::isfinite(result.stats.dt_initial))
-    throw InputError(fmt::format("simulation.dt_initial must be a positive number, got {}", result.stats.dt_initial));
   if (!(options_.verlet_skin >= 0.0))
     throw InputError(fmt::format("the Verlet skin must be >= 0, got {}", options_.verlet_skin));
-  const SimState* resume = options_.resume;
-  if (resume) {
-    population_.schedule = resume->population;
-    result.stats.dt_initial = resume->dt_initial;
-    boundary_.restore(nodes_, resume->arcs, resume->tangents);  // before upload_initial reads the tangents
-  }
-  GlobalTimeStep gm = resume ? GlobalTimeStep(resume->time_step) : GlobalTimeStep(result.stats.dt_initial);
+  if (options_.resume)  // before upload_initial reads the tangents
+    boundary_.restore(nodes_, options_.resume->arcs, options_.resume->tangents);
   check_memory(0);  // before the first device allocation
   neighbours_.check_entries = [this](std::uint64_t entries) { check_memory(entries); };  // and before the rows grow
-  ProgressLine progress(options_.quiet);
   upload_initial();  // setup, like the host path's, is not part of the timed iterations
   stats_.setup_bytes = stats_.bytes_up;
   stats_.bytes_up = 0;
   stats_.transfers = 0;
-  const auto start = Clock::now();
-  std::size_t fixed = nodes_.count(NodeKind::Fixed), on_boundary = nodes_.count(NodeKind::Boundary);
-  std::size_t interior = nodes_.count(NodeKind::Interior);
-  result.history.reserve(history_reserve(options_.iterations));
-  if (resume) result.history = resume->history;
-  const int first = resume ? resume->iterations_done + 1 : 1;
-  int done = first - 1;
-  remember(done, result.stats.dt_initial, gm, result.history.size());
+  fixed_ = nodes_.count(NodeKind::Fixed);
+  on_boundary_ = nodes_.count(NodeKind::Boundary);
+  interior_ = nodes_.count(NodeKind::Interior);
+  remember();
   // On any failure from here on the caller gets the last good state (SimCallbacks::on_failure).
-  int iteration = first;
-  std::optional<SimState> failed_at;  // set where the failure computed it already
-  bool in_loop = true;                 // false once the iterations are done (the final read-back)
-  const auto hand_over = [&] {
-    if (!failed_at) failed_at = last_good_state(done, result.stats.dt_initial, gm, result.history);
-    if (callbacks.on_failure) callbacks.on_failure(*failed_at);
-  };
-  try {
-    // A checkpoint whose last measurement a stop request ended lacks it (as in the host driver).
-    if (options_.resume && convergence_.missing_sample(done)) convergence_.add_sample(measure_mesh(nodes_, done));
-    // A run stopped in the iteration it converged in is complete (as in the host driver).
-    if (options_.resume && done < options_.iterations &&
-        convergence_.converged_after(
-            done, population_status(options_.population, population_.schedule, done, options_.iterations).settled))
-      result.converged = true;
-    // The lists' rebuild before the iteration after `done`, when the skin is used up. A zero skin
-    // rebuilds every iteration (the reference's behaviour).
-    const auto rebuild_if_due = [&](int next_iteration) {
-      if (!(skin_use_ > skin_limit_ || options_.verlet_skin == 0.0)) return false;
-      // The device halts a window where the skin is used up, so no row of it is left here (and
-      // run_ahead begins none before a build).
-      if (window_next_ < window_rows_ || window_pending_)
-        throw SimulationError(fmt::format("iteration {}: a rebuild is due with {} device iterations unread",
-                                          next_iteration, window_rows_ - window_next_));
-      const CommandCounts before = command_counts();
-      rebuild();
-      if (boundary_stale_) sync_boundary();  // the saved state needs the boundary's
-      remember(done, result.stats.dt_initial, gm, result.history.size());
-      stats_.rebuild_commands = stats_.rebuild_commands + (command_counts() - before);
-      if (stats_.rebuilds > 1) build_interval_ = since_build_;
-      since_build_ = 0;
-      return true;
-    };
-    for (; iteration <= options_.iterations && !result.converged; ++iteration) {
-      rebuild_if_due(iteration);
-      if (window_pending_) {  // begun while the host measured the last iteration's mesh
-        end_window();
-        host_ahead_ = false;  // as at the start of every iteration: the device holds the state after `done`
-      }
-      else if (window_next_ >= window_rows_) start_window(iteration, gm);
-      const double dt_gm = gm.dt();
-      take_row();
-      ++since_build_;
-      // The device's rule ran on a copy of the host's state: its dt must be the host's, bit for bit.
-      if (window_.device_rule() && window_.row(window_next_ - 1)[kRingDt] != dt_gm)
-        throw SimulationError(fmt::format("iteration {}: the device's global time step {} differs from the host's {}",
-                                          iteration, window_.row(window_next_ - 1)[kRingDt], dt_gm));
-      // Before the host moves anything: the last good state is still whole on the device.
-      if (!std::isfinite(sum_force_) || !std::isfinite(sum_kinetic_) || !moves_finite_) {
-        failed_at = last_good_state(done, result.stats.dt_initial, gm, result.history);
-        throw non_finite_error(iteration, *failed_at);
-      }
-      double skin_use = device_skin_use_;
-      const BoundaryCounts counts = host_boundary(skin_use);
-      cur_ = 1 - cur_;
-      skin_use_ = std::max(skin_use_, skin_use);
-      if (counts.snapped > 0) {
-        // The rows are stale after a snap: the snapped node still holds its interior row (node_forces
-        // does not filter a boundary node's row) and its new curve neighbours their old [prev, next].
-        // The host reference rebuilds on any kind change (NeighbourCache), so the next step must too.
-        if (skin_use_ <= skin_limit_) ++stats_.snap_rebuilds;
-        skin_use_ = HUGE_VAL;
-      }
-      const auto event = population_event(iteration);
+  return loop_.run(*this, callbacks, FailureScope::Run);
+}
 
-      HistoryRow row;
-      row.iteration = iteration;
-      const double moving = sum_moving_ > 0 ? static_cast<double>(sum_moving_) : 1.0;
-      row.average_force = sum_force_ / moving;
-      row.average_kinetic = sum_kinetic_ / moving;
-      row.max_force = max_force_;
-      row.dt_gm = dt_gm;
-      row.snapped = counts.snapped;
-      row.clamped = counts.clamped;
-      on_boundary += counts.snapped;
-      interior -= counts.snapped;
-      if (event) {
-        row.inserted = event->inserted();
-        row.removed = event->removed();
-        on_boundary = nodes_.count(NodeKind::Boundary);
-        interior = nodes_.count(NodeKind::Interior);
-      }
-      row.fixed = fixed;
-      row.boundary = on_boundary;
-      row.interior = interior;
-      gm.update(max_force_);
-      result.stats.pairs_within += within_;
-      pairs_examined_ += list_entries_;  // the step kernel computes the distance of every list entry
-      result.stats.coincident_pairs += coincident_;
-      result.stats.snapped += counts.snapped;
-      result.history.push_back(row);
-      ++stats_.iterations;
-      if (callbacks.on_iteration) callbacks.on_iteration(row);
-      progress.update(iteration, options_.iterations, row.average_force, dt_gm);
-      done = iteration;
-      host_ahead_ = false;
-      tangents_ahead_ = false;
-      // The stopping rule, in the host driver's order: measured also in an iteration the run is
-      // stopped after, so that a resumed run has every measurement.
-      std::optional<MeshSample> sample;
-      Mesh measured;
-      bool rebuilt_ahead = false;
-      if (convergence_.due(iteration)) {
-        read_back_nodes();
-        // The device runs ahead while the host triangulates (run_ahead): the rebuild the next iteration
-        // would start with, if one is due, then the next window, split after kAheadIterations (CPU
-        // devices). Its commands are the same, so the run is the same bit for bit; a run that stops
-        // here discards what it ran (after the loop).
-        if (run_ahead_ && iteration < options_.iterations && window_next_ >= window_rows_ &&
-            !(options_.stop && options_.stop->load())) {
-          rebuilt_ahead = rebuild_if_due(iteration + 1);
-          if (with_momentum()) read(carried_, momentum_at_check_, 2 * n_, false);
-          host_ahead_ = true;  // a failure from here on falls back on the saved state: the device moves on
-          begin_window(iteration + 1, gm, cpu_device_ ? kAheadIterations : window_.max_length());
-          ++stats_.ahead_windows;
-        }
-        sample = measure_mesh(nodes_, iteration, &measured);
-      }
-      // Never while population control may still change the node set (as the host driver).
-      const bool settled =
-          population_status(options_.population, population_.schedule, iteration, options_.iterations).settled;
-      const bool converged = convergence_.observe(row, sample ? &*sample : nullptr, settled);
-      // A build made before this iteration's measurement saved the state without it.
-      if (rebuilt_ahead) saved_state_.convergence = convergence_.samples();
-      if (converged && iteration < options_.iterations) {
-        result.converged = true;
-        if (!measured.triangles.empty()) result.final_mesh = std::make_shared<const Mesh>(std::move(measured));
-        break;
-      }
-      // Only where the device is not ahead of the host (the end of a window).
-      if (options_.stop && options_.stop->load() && iteration < options_.iterations && window_next_ >= window_rows_) {
-        result.stopped = true;
-        break;
-      }
-    }
-    progress.finish();
-    in_loop = false;
-    if (window_pending_) {
-      // Stopped after a convergence check while the device ran ahead: nodes_ and the boundary state
-      // hold the state after `done` (read for the check); what the device ran since is dropped.
-      finish(ctx_.queue(), "iterations run ahead of a stop");
-      window_pending_ = false;
-    } else {
-      read_back_nodes();  // the final state
-      momentum_at_check_.clear();
-    }
-  } catch (const DeviceError& e) {
-    progress.finish();
-    hand_over();
-    // Where it failed, for the message; the error itself names the call and the CL code.
-    throw DeviceError(in_loop ? fmt::format("iteration {}: {}", iteration, e.what())
-                              : fmt::format("reading back the state after iteration {}: {}", done, e.what()));
-  } catch (const Error&) {
-    progress.finish();
-    hand_over();
-    throw;
+template <typename Real>
+std::string DeviceRun<Real>::backend_name() const {
+  return fmt::format("opencl:{}:{} ({}, {}, device-resident)", ctx_.device().platform, ctx_.device().device,
+                     ctx_.device().name, std::is_same_v<Real, double> ? "double" : "float");
+}
+
+// The lists' rebuild before the iteration after loop_.done(), when the skin is used up. A zero skin
+// rebuilds every iteration (the reference's behaviour).
+template <typename Real>
+bool DeviceRun<Real>::rebuild_if_due(int next_iteration) {
+  if (!(skin_use_ > skin_limit_ || options_.verlet_skin == 0.0)) return false;
+  // The device halts a window where the skin is used up, so no row of it is left here (and the run
+  // ahead of a measurement begins none before a build).
+  if (window_next_ < window_rows_ || window_pending_)
+    throw SimulationError(fmt::format("iteration {}: a rebuild is due with {} device iterations unread",
+                                      next_iteration, window_rows_ - window_next_));
+  const CommandCounts before = command_counts();
+  rebuild();
+  if (boundary_stale_) sync_boundary();  // the saved state needs the boundary's
+  remember();
+  stats_.rebuild_commands = stats_.rebuild_commands + (command_counts() - before);
+  if (stats_.rebuilds > 1) build_interval_ = since_build_;
+  since_build_ = 0;
+  return true;
+}
+
+// The iteration's computation: the next row of the current window, or of a new one.
+template <typename Real>
+IterationStep DeviceRun<Real>::compute(int iteration, const GlobalTimeStep& gm) {
+  rebuild_if_due(iteration);
+  if (window_pending_) {  // begun while the host measured the last iteration's mesh
+    end_window();
+    host_ahead_ = false;  // as at the start of every iteration: the device holds the state after loop_.done()
+  } else if (window_next_ >= window_rows_) {
+    start_window(iteration, gm);
   }
-  result.state = SimState{done, result.stats.dt_initial, gm.state(), boundary_.arcs(), boundary_.tangents(),
-                          result.history, population_.schedule, convergence_.samples(), {}};
-  if (with_momentum()) {
-    if (momentum_at_check_.empty()) {
-      result.state.momentum = read_momentum();
-    } else {  // the carried moves after `done`, read before the device ran ahead
-      result.state.momentum.resize(n_);
-      for (std::size_t i = 0; i < n_; ++i)
-        result.state.momentum[i] = {static_cast<double>(momentum_at_check_[2 * i]),
-                                    static_cast<double>(momentum_at_check_[2 * i + 1])};
-    }
+  take_row();
+  ++since_build_;
+  check_row(iteration, gm.dt());
+  // The step kernel computes the distance of every list entry.
+  return IterationStep{StepSums{sum_moving_, sum_force_, max_force_, sum_kinetic_}, list_entries_, within_,
+                       coincident_};
+}
+
+template <typename Real>
+void DeviceRun<Real>::check_row(int iteration, double dt_gm) {
+  // The device's rule ran on a copy of the host's state: its dt must be the host's, bit for bit.
+  const double device_dt = window_.row(window_next_ - 1)[kRingDt];
+  if (window_.device_rule() && device_dt != dt_gm)
+    throw SimulationError(fmt::format("iteration {}: the device's global time step {} differs from the host's {}",
+                                      iteration, device_dt, dt_gm));
+  // Before the host moves anything: the last good state is still whole on the device.
+  if (!std::isfinite(sum_force_) || !std::isfinite(sum_kinetic_) || !moves_finite_) {
+    failed_at_ = last_good_state();
+    throw non_finite_error(iteration, *failed_at_);
   }
-  result.stats.inserted = population_.inserted;
-  result.stats.removed = population_.removed;
-  result.stats.population_events = population_.events;
-  result.stats.population_seconds = population_.seconds;
-  result.stats.pairs_examined = pairs_examined_;
-  result.stats.seconds = since(start);
+}
+
+template <typename Real>
+IterationMoves DeviceRun<Real>::apply(int iteration) {
+  IterationMoves out;
+  double skin_use = device_skin_use_;
+  out.boundary = host_boundary(skin_use);
+  cur_ = 1 - cur_;
+  skin_use_ = std::max(skin_use_, skin_use);
+  if (out.boundary.snapped > 0) {
+    // The rows are stale after a snap: the snapped node still holds its interior row (node_forces
+    // does not filter a boundary node's row) and its new curve neighbours their old [prev, next].
+    // The host reference rebuilds on any kind change (NeighbourCache), so the next step must too.
+    if (skin_use_ <= skin_limit_) ++stats_.snap_rebuilds;
+    skin_use_ = HUGE_VAL;
+  }
+  out.event = population_event(iteration);
+  on_boundary_ += out.boundary.snapped;
+  interior_ -= out.boundary.snapped;
+  if (out.event) {
+    on_boundary_ = nodes_.count(NodeKind::Boundary);
+    interior_ = nodes_.count(NodeKind::Interior);
+  }
+  out.fixed = fixed_;
+  out.on_boundary = on_boundary_;
+  out.interior = interior_;
+  return out;
+}
+
+template <typename Real>
+void DeviceRun<Real>::after_row() {
+  ++stats_.iterations;
+  host_ahead_ = false;
+  tangents_ahead_ = false;
+}
+
+// The stopping rule's measurement needs the nodes on the host. The device runs ahead while the host
+// triangulates (run_ahead_): the rebuild the next iteration would start with, if one is due, then the
+// next window, split after kAheadIterations (CPU devices). Its commands are the same, so the run is the
+// same bit for bit; a run that stops here discards what it ran (after_iterations).
+template <typename Real>
+void DeviceRun<Real>::before_measure(int iteration, const GlobalTimeStep& gm) {
+  read_back_nodes();
+  if (run_ahead_ && iteration < options_.iterations && window_next_ >= window_rows_ &&
+      !(options_.stop && options_.stop->load())) {
+    rebuilt_ahead_ = rebuild_if_due(iteration + 1);
+    if (with_momentum()) read(carried_, momentum_at_check_, 2 * n_, false);
+    host_ahead_ = true;  // a failure from here on falls back on the saved state: the device moves on
+    begin_window(iteration + 1, gm, cpu_device_ ? kAheadIterations : window_.max_length());
+    ++stats_.ahead_windows;
+  }
+}
+
+template <typename Real>
+void DeviceRun<Real>::after_observe() {
+  // A build made before this iteration's measurement saved the state without it.
+  if (rebuilt_ahead_) saved_state_.convergence = loop_.convergence().samples();
+  rebuilt_ahead_ = false;
+}
+
+template <typename Real>
+void DeviceRun<Real>::after_iterations() {
+  if (window_pending_) {
+    // Stopped after a convergence check while the device ran ahead: nodes_ and the boundary state
+    // hold the state after loop_.done() (read for the check); what the device ran since is dropped.
+    finish(ctx_.queue(), "iterations run ahead of a stop");
+    window_pending_ = false;
+  } else {
+    read_back_nodes();  // the final state
+    momentum_at_check_.clear();
+  }
+}
+
+template <typename Real>
+SimState DeviceRun<Real>::failure_state() {
+  if (!failed_at_) failed_at_ = last_good_state();
+  return *failed_at_;
+}
+
+template <typename Real>
+void DeviceRun<Real>::end_run(SimResult& result) {
+  result.state = loop_.state(boundary_);
+  if (with_momentum()) result.state.momentum = final_momentum();
+  result.stats.pairs_examined += pairs_examined_;
   stats_.stride = largest_row_;
-  stats_.device_bytes = neighbours_.device_bytes() + partials_.bytes() + cand_index_.bytes() + cand_rec_.bytes() +
-                        brec_.bytes() + kind_.bytes() + budget_.bytes() + prev_.bytes() + next_.bytes() +
-                        bslot_.bytes() + bg_q_.bytes() + bg_root_.bytes() + bg_child_.bytes() + bg_corner_.bytes() +
-                        bg_cell_.bytes() + node_leaf_.bytes() + rec_.bytes() + rec_index_.bytes() +
-                        device_boundary_.bytes() + carried_.bytes() + (6 + 5) * n_ * sizeof(Real);
-  return result;
+  stats_.device_bytes = device_bytes();
+}
+
+template <typename Real>
+std::vector<Vec2> DeviceRun<Real>::final_momentum() {
+  if (momentum_at_check_.empty()) return read_momentum();
+  // The carried moves after loop_.done(), read before the device ran ahead.
+  std::vector<Vec2> momentum(n_);
+  for (std::size_t i = 0; i < n_; ++i)
+    momentum[i] = {static_cast<double>(momentum_at_check_[2 * i]), static_cast<double>(momentum_at_check_[2 * i + 1])};
+  return momentum;
+}
+
+template <typename Real>
+std::size_t DeviceRun<Real>::device_bytes() const {
+  return neighbours_.device_bytes() + partials_.bytes() + cand_index_.bytes() + cand_rec_.bytes() + brec_.bytes() +
+         kind_.bytes() + budget_.bytes() + prev_.bytes() + next_.bytes() + bslot_.bytes() + bg_q_.bytes() +
+         bg_root_.bytes() + bg_child_.bytes() + bg_corner_.bytes() + bg_cell_.bytes() + node_leaf_.bytes() +
+         rec_.bytes() + rec_index_.bytes() + device_boundary_.bytes() + carried_.bytes() + (6 + 5) * n_ * sizeof(Real);
 }
 
 SimResult run_device_resident(NodeSet& nodes, const GeometryTree& tree, const SpacingField& spacing,

@@ -4,10 +4,11 @@
 // into a ring, runs the global time-step rule on a copy of its state and hands the next step its dt^2;
 // it halts the window when the host must act (nodes for the exact test, a non-finite move or sum, the
 // skin used up). The host writes the rule's state and the counters once per window and reads the ring
-// and the counters once at its end (one wait); it then replays the rows through the same bookkeeping as
-// before (history, progress, callbacks, GlobalTimeStep, which it checks against the device's dt).
+// and the counters once at its end (one wait); it then replays the rows one by one through the host
+// driver's loop (sim/iteration_loop.hpp: history, progress, callbacks, GlobalTimeStep, which it checks
+// against the device's dt).
 // Without cl_khr_fp64 (the rule's state is double) the host sums the partials itself, one iteration per
-// window, as the loop did before (tests force that path with the environment variable
+// window (tests force that path with the environment variable
 // PDMESH_TEST_HOST_TIME_STEP_RULE).
 #pragma once
 #include <cstdint>

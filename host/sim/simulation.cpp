@@ -2,19 +2,15 @@
 #include "sim/simulation.hpp"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <memory>
-#include <optional>
 
 #include <fmt/format.h>
 
 #include "core/errors.hpp"
-#include "core/interrupt.hpp"
 #include "sim/boundary_handling.hpp"
 #include "sim/failure_report.hpp"
-#include "sim/global_time_step.hpp"
-#include "sim/progress.hpp"
+#include "sim/iteration_loop.hpp"
 #include "sim/step_trace.hpp"
 #include "spacing/background_field.hpp"
 
@@ -112,6 +108,108 @@ const BackgroundSpacing& background_for(const SimOptions& options, const Spacing
   return *own;
 }
 
+namespace {
+
+// The host driver's part of an iteration (IterationSteps): the step on a StepBackend from the node
+// set's arrays, then boundary handling, the spacing update and population control on the node set.
+// Heavy-ball momentum (options.momentum > 0 only): each node's last move, carried into the next.
+class HostSteps final : public IterationSteps {
+ public:
+  HostSteps(NodeSet& nodes, const SimOptions& options, StepBackend& backend, BoundaryHandler& boundary,
+            const SpacingField& spacing, IterationLoop& loop)
+      : nodes_(nodes), options_(options), backend_(backend), boundary_(boundary), spacing_(spacing), loop_(loop),
+        params_{options.cutoff, options.lj_a, options.r0_any_direction, options.stability_factor} {
+    if (with_momentum_ && options.resume) momentum_from_state(options.resume->momentum, nodes.size(), carried_);
+  }
+
+  std::string backend_name() const override { return backend_.name(); }
+  IterationStep compute(int iteration, const GlobalTimeStep& gm) override;
+  IterationMoves apply(int iteration) override;
+  SimState failure_state() override { return state(); }
+  void end_run(SimResult& result) override { result.state = state(); }
+
+ private:
+  // The state after loop_.done(); the node set must hold that iteration's positions.
+  SimState state() const {
+    SimState s = loop_.state(boundary_);
+    if (with_momentum_) s.momentum = momentum_to_state(carried_, nodes_.size());
+    return s;
+  }
+  // Throws SimulationError naming the first node with a non-finite force or move, or the sums.
+  void check_finite(int iteration, const StepSums& sums) const;
+
+  NodeSet& nodes_;
+  const SimOptions& options_;
+  StepBackend& backend_;
+  BoundaryHandler& boundary_;
+  const SpacingField& spacing_;  // the per-iteration spacing update's field
+  IterationLoop& loop_;
+  const ForceParams params_;
+  const TraceRange trace_ = TraceRange::from_environment();
+  const bool with_momentum_ = options_.momentum > 0.0;
+  MomentumState carried_;
+  SimParticles particles_;
+  NeighbourList list_;
+  NeighbourFlags flags_;
+  ForceResult forces_;
+  MoveResult moves_;
+};
+
+IterationStep HostSteps::compute(int iteration, const GlobalTimeStep& gm) {
+  load_particles(nodes_, boundary_, particles_);
+  build_neighbours_growing(backend_, particles_, options_.cutoff, list_, flags_);
+  backend_.compute_forces(particles_, list_, params_, forces_);
+  backend_.time_step_and_move(particles_, forces_, gm.dt2(), moves_);
+  // On a copy: a failure below must leave the last good iteration's p for the checkpoint.
+  MomentumState next_carried;
+  if (with_momentum_) {
+    next_carried = carried_;
+    backend_.apply_momentum(particles_, forces_, options_.momentum, moves_, next_carried);
+  }
+  const StepSums sums = backend_.reduce(particles_, forces_, moves_);
+  if (trace_.covers(iteration))
+    trace_step(stderr, iteration, particles_, list_, forces_, moves_, gm.dt2(), options_.cutoff, 3);
+  check_finite(iteration, sums);
+  if (with_momentum_) carried_ = std::move(next_carried);
+  return IterationStep{sums, flags_.pairs_examined, flags_.pairs_within, forces_.coincident_pairs};
+}
+
+// Before boundary handling moves anything: a non-finite move would otherwise be turned into a
+// non-finite position there (boundary nodes) or stop it half done (interior nodes).
+void HostSteps::check_finite(int iteration, const StepSums& sums) const {
+  const std::size_t bad = first_non_finite(forces_, moves_);
+  if (bad >= nodes_.size() && std::isfinite(sums.sum_force) && std::isfinite(sums.sum_kinetic)) return;
+  if (bad >= nodes_.size())
+    throw SimulationError(fmt::format("iteration {}: the force sums overflowed (sum |F| {}, sum kinetic {})",
+                                      iteration, sums.sum_force, sums.sum_kinetic));
+  const bool force = !std::isfinite(forces_.fx[bad]) || !std::isfinite(forces_.fy[bad]);
+  throw SimulationError(fmt::format("iteration {}: non-finite {} (force ({}, {}), move ({}, {})) on {}", iteration,
+                                    force ? "force" : "move", forces_.fx[bad], forces_.fy[bad], moves_.dx[bad],
+                                    moves_.dy[bad], describe_neighbourhood(nodes_, bad, options_.cutoff * nodes_.q[bad])));
+}
+
+IterationMoves HostSteps::apply(int iteration) {
+  IterationMoves out;
+  out.boundary = boundary_.apply(nodes_, moves_.dx, moves_.dy);
+  // An interior node snapped onto a curve is a boundary node now: its interior motion does not carry
+  // over (the device run does the same in host_boundary).
+  if (with_momentum_ && out.boundary.snapped > 0)
+    for (std::size_t i = 0; i < particles_.size(); ++i)
+      if (static_cast<std::uint8_t>(nodes_.kind[i]) != particles_.kind[i]) carried_.px[i] = carried_.py[i] = 0.0;
+  spacing_.at_many(nodes_.x, nodes_.q);
+  // Population control between iterations: the next iteration loads the changed node set.
+  out.event = loop_.population().after_iteration(options_.population, iteration, options_.iterations, nodes_,
+                                                 boundary_, spacing_);
+  // A changed node set starts without momentum (nodes were inserted, removed and renumbered).
+  if (with_momentum_ && out.event && out.event->changed()) carried_ = MomentumState{};
+  out.fixed = nodes_.count(NodeKind::Fixed);
+  out.on_boundary = nodes_.count(NodeKind::Boundary);
+  out.interior = nodes_.count(NodeKind::Interior);
+  return out;
+}
+
+}  // namespace
+
 SimResult run_simulation(NodeSet& nodes, const GeometryTree& tree, const SpacingField& spacing,
                          const SimOptions& options, const SimCallbacks& callbacks) {
   check_node_set(nodes);
@@ -121,177 +219,16 @@ SimResult run_simulation(NodeSet& nodes, const GeometryTree& tree, const Spacing
     own_backend = make_reference_backend();
     backend = own_backend.get();
   }
-  SimResult result;
-  result.stats.backend = backend->name();
-  result.stats.dt_initial = options.dt_initial ? *options.dt_initial : default_dt_initial(nodes, options.lj_a);
-  if (!(result.stats.dt_initial > 0.0) || !std::isfinite(result.stats.dt_initial))
-    throw InputError(fmt::format("simulation.dt_initial must be a positive number, got {}", result.stats.dt_initial));
-  const SimState* resume = options.resume;
-  if (resume) result.stats.dt_initial = resume->dt_initial;
-  GlobalTimeStep gm = resume ? GlobalTimeStep(resume->time_step) : GlobalTimeStep(result.stats.dt_initial);
+  IterationLoop loop(nodes, options);
   BoundaryHandler boundary(tree, nodes);
-  if (resume) boundary.restore(nodes, resume->arcs, resume->tangents);
+  if (options.resume) boundary.restore(nodes, options.resume->arcs, options.resume->tangents);
   // The exact field costs microseconds per node (eq. 3.6 queries every curve); the background field
   // a lookup, so it is built once here and read every iteration.
   std::unique_ptr<BackgroundSpacing> own_background;
   const SpacingField& iteration_spacing =
       options.exact_spacing ? spacing : static_cast<const SpacingField&>(background_for(options, spacing, tree, own_background));
-  ProgressLine progress(options.quiet);
-  const auto start = std::chrono::steady_clock::now();
-
-  SimParticles particles;
-  NeighbourList list;
-  NeighbourFlags flags;
-  ForceResult forces;
-  MoveResult moves;
-  const TraceRange trace = TraceRange::from_environment();
-  ForceParams params{options.cutoff, options.lj_a, options.r0_any_direction, options.stability_factor};
-  result.history.reserve(history_reserve(options.iterations));
-  if (resume) result.history = resume->history;
-  const int first = resume ? resume->iterations_done + 1 : 1;
-  int done = first - 1;
-  PopulationTracker population;
-  if (resume) population.schedule = resume->population;
-  ConvergenceMonitor convergence(options.convergence, resume ? resume->convergence : std::vector<MeshSample>{});
-  // The state after `done` iterations; nodes must hold that iteration's positions.
-  // Heavy-ball momentum (options.momentum > 0 only): each node's last move, carried into the next.
-  const bool with_momentum = options.momentum > 0.0;
-  MomentumState carried;
-  if (with_momentum && resume) momentum_from_state(resume->momentum, nodes.size(), carried);
-  const auto snapshot = [&] {
-    SimState s{done,           result.stats.dt_initial, gm.state(),
-               boundary.arcs(), boundary.tangents(),    result.history,
-               population.schedule, convergence.samples(), {}};
-    if (with_momentum) s.momentum = momentum_to_state(carried, nodes.size());
-    return s;
-  };
-  // A checkpoint written while the measurement after its last iteration was being taken (a stop
-  // request ends the measurement) lacks it: taken now, so that the run goes on as if uninterrupted.
-  if (resume && convergence.missing_sample(done)) convergence.add_sample(measure_mesh(nodes, done));
-  // A run stopped in the iteration it converged in is complete (the uninterrupted run ended there).
-  if (resume && done < options.iterations &&
-      convergence.converged_after(
-          done, population_status(options.population, population.schedule, done, options.iterations).settled))
-    result.converged = true;
-  for (int iteration = first; iteration <= options.iterations && !result.converged; ++iteration) {
-    const double dt_gm = gm.dt();
-    // A stop request ends the iteration's computation (neighbours, forces, moves: nothing has moved
-    // yet) with Interrupted, and the run stops after the previous one; once the nodes move the
-    // iteration runs whole (the shield below) and the request is acted on after it.
-    std::optional<InterruptShield> shield;
-    StepSums sums;
-    try {
-      load_particles(nodes, boundary, particles);
-      build_neighbours_growing(*backend, particles, options.cutoff, list, flags);
-      backend->compute_forces(particles, list, params, forces);
-      backend->time_step_and_move(particles, forces, gm.dt2(), moves);
-      // On a copy: a failure below must leave the last good iteration's p for the checkpoint.
-      MomentumState next_carried;
-      if (with_momentum) {
-        next_carried = carried;
-        backend->apply_momentum(particles, forces, options.momentum, moves, next_carried);
-      }
-      sums = backend->reduce(particles, forces, moves);
-      if (trace.covers(iteration))
-        trace_step(stderr, iteration, particles, list, forces, moves, gm.dt2(), options.cutoff, 3);
-      // Before boundary handling moves anything: a non-finite move would otherwise be turned into a
-      // non-finite position there (boundary nodes) or stop it half done (interior nodes).
-      const std::size_t bad = first_non_finite(forces, moves);
-      if (bad < nodes.size() || !std::isfinite(sums.sum_force) || !std::isfinite(sums.sum_kinetic)) {
-        if (bad >= nodes.size())
-          throw SimulationError(fmt::format("iteration {}: the force sums overflowed (sum |F| {}, sum kinetic {})",
-                                            iteration, sums.sum_force, sums.sum_kinetic));
-        const bool force = !std::isfinite(forces.fx[bad]) || !std::isfinite(forces.fy[bad]);
-        throw SimulationError(fmt::format("iteration {}: non-finite {} (force ({}, {}), move ({}, {})) on {}",
-                                          iteration, force ? "force" : "move", forces.fx[bad], forces.fy[bad],
-                                          moves.dx[bad], moves.dy[bad],
-                                          describe_neighbourhood(nodes, bad, options.cutoff * nodes.q[bad])));
-      }
-      if (with_momentum) carried = std::move(next_carried);
-    } catch (const SimulationError&) {
-      // Nothing has moved yet in this iteration: the nodes still hold the last good state.
-      if (callbacks.on_failure) callbacks.on_failure(snapshot());
-      throw;
-    } catch (const Interrupted&) {
-      result.stopped = true;  // the state after `done`, as after a stop between iterations
-      break;
-    }
-    shield.emplace();
-    const BoundaryCounts counts = boundary.apply(nodes, moves.dx, moves.dy);
-    // An interior node snapped onto a curve is a boundary node now: its interior motion does not carry
-    // over (the device run does the same in host_boundary).
-    if (with_momentum && counts.snapped > 0)
-      for (std::size_t i = 0; i < particles.size(); ++i)
-        if (static_cast<std::uint8_t>(nodes.kind[i]) != particles.kind[i]) carried.px[i] = carried.py[i] = 0.0;
-    iteration_spacing.at_many(nodes.x, nodes.q);
-    // Population control between iterations: the next iteration loads the changed node set.
-    const auto event =
-        population.after_iteration(options.population, iteration, options.iterations, nodes, boundary, iteration_spacing);
-
-    // A changed node set starts without momentum (nodes were inserted, removed and renumbered).
-    if (with_momentum && event && event->changed()) carried = MomentumState{};
-
-    HistoryRow row;
-    row.iteration = iteration;
-    const double moving = sums.moving > 0 ? static_cast<double>(sums.moving) : 1.0;
-    row.average_force = sums.sum_force / moving;
-    row.average_kinetic = sums.sum_kinetic / moving;
-    row.max_force = sums.max_force;
-    row.dt_gm = dt_gm;
-    row.snapped = counts.snapped;
-    row.clamped = counts.clamped;
-    row.fixed = nodes.count(NodeKind::Fixed);
-    row.boundary = nodes.count(NodeKind::Boundary);
-    row.interior = nodes.count(NodeKind::Interior);
-    if (event) {
-      row.inserted = event->inserted();
-      row.removed = event->removed();
-    }
-    gm.update(sums.max_force);
-
-    result.stats.pairs_examined += flags.pairs_examined;
-    result.stats.pairs_within += flags.pairs_within;
-    result.stats.coincident_pairs += forces.coincident_pairs;
-    result.stats.snapped += counts.snapped;
-    result.history.push_back(row);
-    if (callbacks.on_iteration) callbacks.on_iteration(row);
-    progress.update(iteration, options.iterations, row.average_force, dt_gm);
-    done = iteration;
-    // The nodes hold this iteration's positions: the stopping rule measures their mesh when due, also
-    // in an iteration the run is stopped after, so that a resumed run has every measurement.
-    std::optional<MeshSample> sample;
-    Mesh measured;
-    shield.reset();
-    if (convergence.due(iteration)) {
-      // The measurement (a triangulation of every node) stops at a stop request: the state after this
-      // iteration is whole, and a resumed run takes the measurement first (missing_sample above).
-      try {
-        sample = measure_mesh(nodes, iteration, &measured);
-      } catch (const Interrupted&) {
-        result.stopped = true;
-        break;
-      }
-    }
-    // Never while population control may still change the node set.
-    const bool settled = population_status(options.population, population.schedule, iteration, options.iterations).settled;
-    if (convergence.observe(row, sample ? &*sample : nullptr, settled) && iteration < options.iterations) {
-      result.converged = true;
-      if (!measured.triangles.empty()) result.final_mesh = std::make_shared<const Mesh>(std::move(measured));
-      break;
-    }
-    if (options.stop && options.stop->load() && iteration < options.iterations) {
-      result.stopped = true;
-      break;
-    }
-  }
-  progress.finish();
-  result.stats.inserted = population.inserted;
-  result.stats.removed = population.removed;
-  result.stats.population_events = population.events;
-  result.stats.population_seconds = population.seconds;
-  result.state = snapshot();
-  result.stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  return result;
+  HostSteps steps(nodes, options, *backend, boundary, iteration_spacing, loop);
+  return loop.run(steps, callbacks, FailureScope::Step);
 }
 
 namespace {
