@@ -7,8 +7,8 @@
 #include <string>
 #include <vector>
 
-#include "app/case_file.hpp"
-#include "app/mesh_command.hpp"
+#include "app/config/case_file.hpp"
+#include "app/pipeline/mesh_pipeline.hpp"
 #include "opencl/device_simulation.hpp"
 #include "source_dir.hpp"
 #include "step_backend_inputs.hpp"

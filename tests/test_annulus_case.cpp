@@ -1,5 +1,5 @@
-// The generated benchmark case annulus_<N> (app/annulus_case) and the whole-run benchmark that uses it
-// (app/whole_run_bench): names, the geometry, the case files it writes (readable by the mesh command,
+// The generated benchmark case annulus_<N> (app/bench/annulus_case) and the whole-run benchmark that uses it
+// (app/bench/whole_run_bench): names, the geometry, the case files it writes (readable by the mesh command,
 // whose node estimate comes out near N with the thesis' field), and one small `pdmesh bench
 // --whole-run` whose tables and timings files are checked.
 #include <catch2/catch.hpp>
@@ -9,10 +9,10 @@
 #include <numbers>
 #include <string>
 
-#include "app/annulus_case.hpp"
-#include "app/case_file.hpp"
-#include "app/mesh_command.hpp"
-#include "app/whole_run_bench.hpp"
+#include "app/bench/annulus_case.hpp"
+#include "app/config/case_file.hpp"
+#include "app/pipeline/mesh_pipeline.hpp"
+#include "app/bench/whole_run_bench.hpp"
 #include "io/text_file.hpp"
 #include "json_check.hpp"
 #include "run_pdmesh.hpp"

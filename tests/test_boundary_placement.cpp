@@ -11,8 +11,8 @@
 #include <memory>
 #include <numbers>
 
-#include "app/case_file.hpp"
-#include "app/mesh_command.hpp"
+#include "app/config/case_file.hpp"
+#include "app/pipeline/mesh_pipeline.hpp"
 #include "core/errors.hpp"
 #include "geometry/geometry.hpp"
 #include "geometry/geometry_tree.hpp"

@@ -10,8 +10,8 @@
 #include <limits>
 #include <vector>
 
-#include "app/case_file.hpp"
-#include "app/mesh_command.hpp"
+#include "app/config/case_file.hpp"
+#include "app/pipeline/mesh_pipeline.hpp"
 #include "core/errors.hpp"
 #include "mesh/quality.hpp"
 #include "mesh/triangulate_nodes.hpp"

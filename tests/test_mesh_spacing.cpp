@@ -14,8 +14,8 @@
 #include <random>
 #include <string>
 
-#include "app/case_file.hpp"
-#include "app/mesh_command.hpp"
+#include "app/config/case_file.hpp"
+#include "app/pipeline/mesh_pipeline.hpp"
 #include "core/errors.hpp"
 #include "core/predicates.hpp"
 #include "geometry/geometry_files.hpp"

@@ -13,8 +13,8 @@
 #include <string>
 #include <vector>
 
-#include "app/case_file.hpp"
-#include "app/mesh_command.hpp"
+#include "app/config/case_file.hpp"
+#include "app/pipeline/mesh_pipeline.hpp"
 #include "core/errors.hpp"
 #include "sim/convergence.hpp"
 #include "sim/history.hpp"
