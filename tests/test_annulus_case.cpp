@@ -77,12 +77,12 @@ TEST_CASE("annulus case: the written case is read by the mesh command's stages, 
   REQUIRE(thesis.geometry.curves.size() == 2);
   CHECK(thesis.geometry.curves[0].name == "inner");
   CHECK(thesis.geometry.area == Approx(std::numbers::pi * (100.0 - 1.0)).epsilon(0.01));
-  CHECK(check_node_limit(config, thesis) == Approx(3000.0).epsilon(0.05));
+  CHECK(check_node_limit(config, thesis, SpacingStage(config, thesis)) == Approx(3000.0).epsilon(0.05));
   // The case itself names no preset: the best one, whose gradation and curvature limits add nodes.
   CaseConfig best = load_case_file(case_file);
   best.quiet = true;
   const MeshInputs best_inputs(best);
-  const double estimate = check_node_limit(best, best_inputs);
+  const double estimate = check_node_limit(best, best_inputs, SpacingStage(best, best_inputs));
   CHECK(estimate >= 3000.0 * 0.95);
   CHECK(estimate <= 3000.0 * 3.0);
   // A name that is no annulus is passed through: a case directory, or paths joined with '+'.

@@ -1,5 +1,5 @@
 // pdmesh._core.Mesher: one case's run held in memory, stepped in chunks through the command's own
-// stages (MeshInputs, check_node_limit, make_initial, simulate, mesh_and_measure). The GIL is
+// stages (MeshInputs, SpacingStage and check_node_limit, make_initial, simulate, mesh_and_measure). The GIL is
 // released while C++ works; about every `interval` seconds the run takes it back to check for
 // signals (Ctrl-C) and to call the progress callable, and either can stop the run at the end of the
 // current iteration, leaving the Mesher able to continue.
@@ -13,6 +13,7 @@
 #include <nanobind/stl/string.h>
 #include <nanobind/stl/vector.h>
 
+#include "app/pipeline/mesh_pipeline.hpp"
 #include "bindings.hpp"
 #include "callable_spacing.hpp"
 #include "core/errors.hpp"
@@ -53,8 +54,10 @@ class Mesher {
     // As the command: an explicit OpenCL device that is not there is refused before anything runs.
     if (c.simulation.iterations > 0 && c.simulation.device != "host" && c.simulation.device != "auto")
       (void)ocl::select_device(c.simulation.device);
-    estimate_ = check_node_limit(c, inputs);
-    InitialDistribution initial = make_initial(c, inputs);
+    session_->spacing = std::make_unique<SpacingStage>(c, inputs);
+    const SpacingStage& spacing = *session_->spacing;
+    estimate_ = check_node_limit(c, inputs, spacing);
+    InitialDistribution initial = make_initial(c, inputs, spacing);
     if (c.write_outputs) {
       prepare_output_directory(c);
       write_initial_outputs(c, inputs, initial);
@@ -113,7 +116,7 @@ class Mesher {
     try {
       nb::gil_scoped_release release;
       std::lock_guard lock(session_->mutex);
-      result = simulate(config, *session_->inputs, *nodes_, state_ ? &*state_ : nullptr, &hooks);
+      result = simulate(config, *session_->inputs, *session_->spacing, *nodes_, state_ ? &*state_ : nullptr, &hooks);
     } catch (...) {
       // The node set holds the last good state (SimCallbacks::on_failure), but the driver state
       // that goes with it is not kept: the Mesher can be triangulated, not continued.
@@ -145,7 +148,7 @@ class Mesher {
     {
       nb::gil_scoped_release release;
       std::lock_guard lock(session_->mutex);
-      mesh = mesh_and_measure(config, *session_->inputs, *nodes);
+      mesh = mesh_and_measure(config, *session_->inputs, *session_->spacing, *nodes);
     }
     return MeshHandle{std::make_shared<const Mesh>(std::move(mesh)), session_, config.name};
   }

@@ -37,6 +37,7 @@ struct BenchCase {
   std::unique_ptr<GeometryTree> own_tree;
   std::unique_ptr<SpacingField> own_spacing;
   std::unique_ptr<MeshInputs> inputs;
+  std::unique_ptr<SpacingStage> final_spacing;  // over *inputs: the initial distribution's field
   const GeometryTree* tree = nullptr;
   const SpacingField* spacing = nullptr;
   NodeSet initial;
@@ -64,7 +65,8 @@ std::unique_ptr<BenchCase> file_case(const std::string& dir, const std::string& 
   c->inputs = std::make_unique<MeshInputs>(config);
   c->tree = &c->inputs->node_tree();
   c->spacing = c->inputs->spacing.get();
-  c->initial = make_initial(config, *c->inputs).nodes;
+  c->final_spacing = std::make_unique<SpacingStage>(config, *c->inputs, SpacingStage::Build::FieldOnly);
+  c->initial = make_initial(config, *c->inputs, *c->final_spacing).nodes;
   c->options.dt_initial = config.simulation.dt_for(config.init.method);
   c->options.cutoff = config.simulation.cutoff;
   c->options.lj_a = config.simulation.lj_a;

@@ -8,7 +8,7 @@
 #include <fmt/format.h>
 
 #include "app/config/case_file.hpp"
-#include "app/pipeline/mesh_pipeline.hpp"
+#include "app/pipeline/mesh_inputs.hpp"
 #include "geometry/geometry_files.hpp"
 #include "geometry/geometry_tree.hpp"
 #include "io/mesh_formats.hpp"
@@ -26,14 +26,20 @@ namespace {
 // The final spacing field of a case (or of a geometry file alone, with the best preset): the same
 // pipeline `pdmesh mesh` builds, so that meshes from elsewhere (Gmsh) are judged against the field
 // pdmesh's own meshes are.
-std::unique_ptr<MeshInputs> load_spacing(const std::filesystem::path& path) {
+struct CaseSpacing {
+  std::unique_ptr<MeshInputs> inputs;
+  std::unique_ptr<SpacingStage> spacing;  // refers to *inputs
+};
+
+CaseSpacing load_spacing(const std::filesystem::path& path) {
   std::string ext = path.extension().string();
   for (auto& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
   CaseConfig config = ext == ".toml" ? load_case_file(path) : case_for_geometry_file(path);
   config.quiet = true;
-  auto inputs = std::make_unique<MeshInputs>(config);
-  (void)inputs->field();  // builds the pipeline
-  return inputs;
+  CaseSpacing loaded;
+  loaded.inputs = std::make_unique<MeshInputs>(config);
+  loaded.spacing = std::make_unique<SpacingStage>(config, *loaded.inputs, SpacingStage::Build::FieldOnly);
+  return loaded;
 }
 
 void write_picture(const Mesh& mesh, const std::string& mesh_path, const QualityPicture& picture) {
@@ -70,11 +76,11 @@ int run_quality(const std::string& mesh_path, const std::optional<std::string>& 
                                  mesh_path, *problem));
   }
 
-  std::unique_ptr<MeshInputs> spacing;
+  CaseSpacing spacing;
   SpacingCallback q;
   if (geometry_path) {
     spacing = load_spacing(*geometry_path);
-    const SpacingField* field = &spacing->field();
+    const SpacingField* field = &spacing.spacing->field();
     q = [field](Vec2 p) { return field->at(p); };
   }
   const QualitySummary summary = summarize_quality(mesh, q);

@@ -1,6 +1,6 @@
-// `pdmesh mesh`, stages 1-3: the inputs (geometry, trees, spacing pipeline, boundary nodes), the node
-// limit and the initial distribution.
-#include "app/pipeline/mesh_pipeline.hpp"
+// `pdmesh mesh`, stages read, spacing and initial (mesh_inputs.hpp): the inputs (geometry, trees, base
+// field), the spacing pipeline and the limits, the boundary placement and the initial distribution.
+#include "app/pipeline/mesh_inputs.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -46,8 +46,6 @@ MeshInputs::MeshInputs(const CaseConfig& config) {
   tree = std::make_unique<GeometryTree>(geometry);
   spacing_options = pdmesh::spacing_options(config);
   check_spacing_options(spacing_options);
-  source_ = config.source.string();
-  max_nodes_ = config.max_nodes;
   if (config.spacing.field == SpacingKind::Boundary) {
     // A refusal by the node count says where eq. 3.6's q comes from: a dense input polyline asks for
     // nodes as fine as its segments everywhere.
@@ -55,7 +53,7 @@ MeshInputs::MeshInputs(const CaseConfig& config) {
         geometry.segments.begin(), geometry.segments.end(),
         [](const Segment& a, const Segment& b) { return a.length < b.length; });
     if (shortest != geometry.segments.end())
-      node_hint_ = fmt::format(" (eq. 3.6 takes q from the lengths of the input's {} segments, {:.3g} to {:.3g}: a "
+      node_hint = fmt::format(" (eq. 3.6 takes q from the lengths of the input's {} segments, {:.3g} to {:.3g}: a "
                                "coarser polyline, spacing.scale or spacing.expression asks for fewer)",
                                geometry.segments.size(), shortest->length, longest->length);
   }
@@ -91,31 +89,22 @@ MeshInputs::MeshInputs(const CaseConfig& config) {
   }
 }
 
-void MeshInputs::place_boundary() const {
-  if (boundary_placed_) return;
-  boundary_placed_ = true;
+BoundaryPlacement place_boundary(const CaseConfig& config, const MeshInputs& inputs, const SpacingStage& spacing) {
+  BoundaryPlacement placed;
   // The thesis' rule (every point of the input polyline) is applied by the initialization itself.
-  if (!dense && boundary_rule == BoundaryNodeRule::Input) return;
-  const Geometry& on = node_geometry();
+  if (!inputs.dense && inputs.boundary_rule == BoundaryNodeRule::Input) return placed;
+  const Geometry& on = inputs.node_geometry();
   PlacementOptions placement;
-  placement.max_nodes = max_nodes_;
+  placement.max_nodes = config.max_nodes;
   // Placed by the final field (the pipeline's: graded, feature size, curvature), so that the boundary
   // rows match the interior rows next to them.
-  const SpacingField& q = field();
-  const CurveStations stations = boundary_rule == BoundaryNodeRule::Spacing ? spacing_stations(on, q, placement)
-                                                                            : vertex_stations(on, &dense->vertex);
-  boundary_ = assemble_boundary_nodes(on, q, stations);
-  resolution_ = station_resolution(on, stations);
-}
-
-const NodeSet* MeshInputs::boundary_nodes() const {
-  place_boundary();
-  return boundary_ ? &*boundary_ : nullptr;
-}
-
-const std::vector<double>* MeshInputs::segment_resolution() const {
-  place_boundary();
-  return resolution_.empty() ? nullptr : &resolution_;
+  const SpacingField& q = spacing.field();
+  const CurveStations stations = inputs.boundary_rule == BoundaryNodeRule::Spacing
+                                     ? spacing_stations(on, q, placement)
+                                     : vertex_stations(on, &inputs.dense->vertex);
+  placed.nodes = assemble_boundary_nodes(on, q, stations);
+  placed.resolution = station_resolution(on, stations);
+  return placed;
 }
 
 SpacingOptions spacing_options(const CaseConfig& config) {
@@ -157,36 +146,36 @@ void refuse_above_limit(const std::string& source, std::uint64_t max_nodes, doub
 
 }  // namespace
 
-const SpacingPipeline& MeshInputs::pipeline() const {
-  if (!pipeline_) {
-    // The base field's quadtree is checked before the limits refine it (they only lower q).
-    const auto check_base = [this](const BackgroundSpacing& base_tree) {
-      // Only the refusal matters here (the final field's estimate is the one reported): where the
-      // bound, every leaf not outside counted whole, is clearly below the limit, the estimate is too
-      // (it is not above the bound but for rounding, ~1e-13 relative), and its boundary leaves' geometry
-      // queries (0.04 s on 30P30N's curves alone) are skipped.
-      const double bound = node_count_bound(base_tree);
-      if (std::isfinite(bound) && bound * (1.0 + 1e-6) <= static_cast<double>(max_nodes_)) return;
-      refuse_above_limit("", max_nodes_, estimate_node_count(*tree, base_tree), "spacing field before its limits");
-    };
-    try {
-      pipeline_ = std::make_unique<SpacingPipeline>(*spacing, *tree, spacing_options,
-                                                    spacing_options.modifies() ? check_base : SpacingPipeline::BaseCheck{});
-    } catch (const LimitError& e) {
-      throw LimitError(fmt::format("{}: {}{}", source_, e.what(), refused_by_nodes(e) ? node_hint_ : ""));
-    }
-    // The sources lower q: the final field must be resolvable too.
-    if (!pipeline_->exact()) check_coordinate_resolution(geometry, pipeline_->field());
+SpacingStage::SpacingStage(const CaseConfig& config, const MeshInputs& inputs, Build build)
+    : source_(config.source.string()), node_hint_(inputs.node_hint) {
+  const std::uint64_t max_nodes = config.max_nodes;
+  // The base field's quadtree is checked before the limits refine it (they only lower q).
+  const auto check_base = [&inputs, max_nodes](const BackgroundSpacing& base_tree) {
+    // Only the refusal matters here (the final field's estimate is the one reported): where the
+    // bound, every leaf not outside counted whole, is clearly below the limit, the estimate is too
+    // (it is not above the bound but for rounding, ~1e-13 relative), and its boundary leaves' geometry
+    // queries (0.04 s on 30P30N's curves alone) are skipped.
+    const double bound = node_count_bound(base_tree);
+    if (std::isfinite(bound) && bound * (1.0 + 1e-6) <= static_cast<double>(max_nodes)) return;
+    refuse_above_limit("", max_nodes, estimate_node_count(*inputs.tree, base_tree), "spacing field before its limits");
+  };
+  const SpacingOptions& options = inputs.spacing_options;
+  try {
+    pipeline_ = std::make_unique<SpacingPipeline>(*inputs.spacing, *inputs.tree, options,
+                                                  options.modifies() ? check_base : SpacingPipeline::BaseCheck{});
+  } catch (const LimitError& e) {
+    throw LimitError(fmt::format("{}: {}{}", source_, e.what(), refused_by_nodes(e) ? node_hint_ : ""));
   }
-  return *pipeline_;
+  // The sources lower q: the final field must be resolvable too.
+  if (!pipeline_->exact()) check_coordinate_resolution(inputs.geometry, pipeline_->field());
+  if (build == Build::Meshing) (void)background();
 }
 
-const BackgroundSpacing& MeshInputs::background() const {
-  const SpacingPipeline& p = pipeline();
+const BackgroundSpacing& SpacingStage::background() const {
   // The thesis' field builds its quadtree (the node estimate's and the simulation's lookup table) on
   // first use, within the same budgets.
   try {
-    return p.background();
+    return pipeline_->background();
   } catch (const LimitError& e) {
     throw LimitError(fmt::format("{}: {}{}", source_, e.what(), refused_by_nodes(e) ? node_hint_ : ""));
   }
@@ -198,11 +187,11 @@ std::vector<std::string> MeshInputs::curve_names() const {
   return names;
 }
 
-double check_node_limit(const CaseConfig& config, const MeshInputs& inputs) {
+double check_node_limit(const CaseConfig& config, const MeshInputs& inputs, const SpacingStage& spacing) {
   // One pass over the leaves of the final field's quadtree (init/node_estimate), which the simulation
   // samples anyway: per-sample queries over the initialization tree took longer than the simulation
   // on rods_fine (7.4 s against 5.5 s, thesis preset).
-  const BackgroundSpacing& background = inputs.background();
+  const BackgroundSpacing& background = spacing.background();
   const double estimate = estimate_node_count(inputs.node_tree(), background);
   refuse_above_limit(config.source.string(), config.max_nodes, estimate, "spacing field");
   if (config.init.total > config.max_nodes) {
@@ -222,15 +211,16 @@ double run_memory_bytes(double nodes, std::size_t field_bytes) {
   return kRunBytesBase + kRunBytesPerNode * kRunNodeGrowth * nodes + static_cast<double>(field_bytes);
 }
 
-InitialDistribution make_initial(const CaseConfig& config, const MeshInputs& inputs) {
+InitialDistribution make_initial(const CaseConfig& config, const MeshInputs& inputs, const SpacingStage& spacing) {
+  const BoundaryPlacement boundary = place_boundary(config, inputs, spacing);
   InitOptions options;
   options.method = config.init.method;
   options.seed = config.init.seed;
   if (config.init.total > 0) options.total = static_cast<std::size_t>(config.init.total);
   options.with_estimate = false;  // check_node_limit computed it just before
-  options.boundary = inputs.boundary_nodes();
-  options.segment_resolution = inputs.segment_resolution();
-  return make_initial_distribution(inputs.node_tree(), inputs.field(), options);
+  options.boundary = boundary.nodes ? &*boundary.nodes : nullptr;
+  options.segment_resolution = boundary.resolution.empty() ? nullptr : &boundary.resolution;
+  return make_initial_distribution(inputs.node_tree(), spacing.field(), options);
 }
 
 }  // namespace pdmesh

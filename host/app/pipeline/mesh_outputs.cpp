@@ -1,5 +1,5 @@
 // `pdmesh mesh`, the outputs: the output directory, the node files and pictures of a stage, the spacing
-// picture, and stage 7 (triangulation, check, cleanup, quality, mesh files and pictures).
+// picture, and stage mesh (triangulation, check, cleanup, quality, mesh files and pictures).
 #include "app/pipeline/mesh_pipeline.hpp"
 
 #include <cmath>
@@ -44,7 +44,7 @@ void prepare_output_directory(const CaseConfig& config) {
              config.out_dir.string());
 }
 
-// Declared in mesh_command_detail.hpp (the simulation stage writes the final nodes with it).
+// Declared in pipeline_detail.hpp (the simulation stage writes the final nodes with it).
 void mesh_detail::write_node_outputs(const CaseConfig& config, const MeshInputs& inputs, const NodeSet& nodes,
                         const std::string& stage, const std::string& title, const std::vector<Box>* tree_quads,
                         RunPhases& run) {
@@ -85,8 +85,8 @@ void mesh_detail::write_node_outputs(const CaseConfig& config, const MeshInputs&
 }
 
 
-void write_spacing_picture(const CaseConfig& config, const MeshInputs& inputs) {
-  const BackgroundSpacing& field = inputs.pipeline().background();
+void write_spacing_picture(const CaseConfig& config, const MeshInputs& inputs, const SpacingStage& spacing) {
+  const BackgroundSpacing& field = spacing.background();
   SpacingPictureOptions picture;
   picture.title = fmt::format("{} - spacing field", config.name);
   write_spacing_picture(config.out_dir / "spacing.png", *inputs.tree, field, picture);
@@ -135,10 +135,11 @@ void angle_figures(const std::vector<TriangleQuality>& per_triangle, double targ
 
 }  // namespace
 
-Mesh mesh_and_measure(const CaseConfig& config, const MeshInputs& inputs, const NodeSet& nodes, RunPhases* run,
-                      const Mesh* triangulated) {
-  RunPhases local(false);
-  RunPhases& phases = run ? *run : local;
+namespace {
+
+// The triangulation of `nodes` (or `triangulated`, when it is theirs), checked when config.check.
+Mesh triangulate_nodes(const CaseConfig& config, const MeshInputs& inputs, const NodeSet& nodes, RunPhases& phases,
+                       const Mesh* triangulated) {
   auto timer = phases.phase("triangulation");
   Mesh mesh;
   if (triangulated && triangulates(*triangulated, nodes)) {
@@ -155,66 +156,60 @@ Mesh mesh_and_measure(const CaseConfig& config, const MeshInputs& inputs, const 
     const auto check_timer = phases.phase("check");
     check_or_throw(config, inputs, mesh, nodes, "triangulation");
   }
-  // The final cleanup (docs/cleanup.md): the mesh files and pictures show the cleaned mesh; final.nodes
-  // stays the simulation's result.
+  return mesh;
+}
+
+// The final cleanup (docs/cleanup.md) of `mesh` in place; its nodes, its effect and the cleaned
+// mesh's qualities.
+struct CleanedMesh {
+  NodeSet nodes;
   CleanupEffect effect;
-  std::vector<TriangleQuality> per_triangle;  // the final mesh's, computed once
-  NodeSet cleaned_nodes;
-  const NodeSet* mesh_nodes = &nodes;
-  if (config.cleanup.enabled) {
-    const auto cleanup_timer = phases.phase("cleanup");
-    CleanupOptions options;
-    options.min_angle = config.cleanup.min_angle;
-    options.iterations = static_cast<int>(config.cleanup.iterations);
-    options.topology = config.cleanup.topology;
-    options.split_boundary = config.cleanup.split_boundary;
-    options.trials_per_triangle = config.cleanup.trials_per_triangle;
-    options.min_trials = static_cast<double>(config.cleanup.min_trials);
-    effect.target_deg = options.min_angle;
-    effect.triangles_before = mesh.triangles.size();
-    effect.points_before = mesh.points.size();
-    angle_figures(triangle_qualities(mesh), options.min_angle, effect.min_angle_before, effect.max_angle_before,
-                  effect.below_before);
-    CleanupResult cleaned = clean_mesh(mesh, nodes, inputs.node_tree(), inputs.field(), options);
-    mesh = std::move(cleaned.mesh);
-    per_triangle = triangle_qualities(mesh);  // the cleaned mesh's, reused by the quality summary below
-    angle_figures(per_triangle, options.min_angle, effect.min_angle_after, effect.max_angle_after, effect.below_after);
-    effect.inserted = cleaned.stats.inserted;
-    effect.removed = cleaned.stats.collapsed;
-    effect.moves = cleaned.stats.moves;
-    effect.seconds = cleaned.stats.seconds;
-    progress(config, "cleanup: {:.3f} s; min angle {:.2f} -> {:.2f} deg, triangles below {:g} deg {} -> {}; "
-             "{} node moves, {} nodes inserted, {} removed ({} triangles)",
-             effect.seconds, effect.min_angle_before, effect.min_angle_after, effect.target_deg, effect.below_before,
-             effect.below_after, effect.moves, effect.inserted, effect.removed, mesh.triangles.size());
-    if (config.check) check_or_throw(config, inputs, mesh, cleaned.nodes, "cleaned mesh");
-    cleaned_nodes = std::move(cleaned.nodes);
-    mesh_nodes = &cleaned_nodes;
-  }
-  const SpacingField& spacing = inputs.field();
-  // The field at every node goes into the mesh files (point data "q"): a run's field can be read back
-  // with spacing.field = "mesh", or edited (e.g. scaled by a solution's error indicator) first.
-  {
-    const auto q_timer = phases.phase("q at the nodes");
-    spacing.at_many(mesh.points, mesh.spacing);
-  }
-  if (!config.write_outputs) return mesh;  // the Python API measures on demand (Mesh.quality())
-  auto quality_timer = phases.phase("quality");
-  if (!config.cleanup.enabled) per_triangle = triangle_qualities(mesh);
-  QualitySummary summary = summarize_quality(per_triangle);
-  summary.points = mesh.points.size();
-  summary.has_cleanup = config.cleanup.enabled;
-  summary.cleanup = effect;
-  quality_timer.stop();
-  // The pictures are drawn on the background thread while the quality is measured and the files are
-  // written; the mesh and the values stay alive until the wait below (also when something throws).
-  std::vector<double> values;
-  const PictureGuard guard(phases);
+  std::vector<TriangleQuality> per_triangle;
+};
+
+CleanedMesh clean_up(const CaseConfig& config, const MeshInputs& inputs, const SpacingStage& spacing, Mesh& mesh,
+                     const NodeSet& nodes, RunPhases& phases) {
+  const auto cleanup_timer = phases.phase("cleanup");
+  CleanupOptions options;
+  options.min_angle = config.cleanup.min_angle;
+  options.iterations = static_cast<int>(config.cleanup.iterations);
+  options.topology = config.cleanup.topology;
+  options.split_boundary = config.cleanup.split_boundary;
+  options.trials_per_triangle = config.cleanup.trials_per_triangle;
+  options.min_trials = static_cast<double>(config.cleanup.min_trials);
+  CleanedMesh out;
+  CleanupEffect& effect = out.effect;
+  effect.target_deg = options.min_angle;
+  effect.triangles_before = mesh.triangles.size();
+  effect.points_before = mesh.points.size();
+  angle_figures(triangle_qualities(mesh), options.min_angle, effect.min_angle_before, effect.max_angle_before,
+                effect.below_before);
+  CleanupResult cleaned = clean_mesh(mesh, nodes, inputs.node_tree(), spacing.field(), options);
+  mesh = std::move(cleaned.mesh);
+  out.per_triangle = triangle_qualities(mesh);  // the cleaned mesh's, reused by the quality summary
+  angle_figures(out.per_triangle, options.min_angle, effect.min_angle_after, effect.max_angle_after,
+                effect.below_after);
+  effect.inserted = cleaned.stats.inserted;
+  effect.removed = cleaned.stats.collapsed;
+  effect.moves = cleaned.stats.moves;
+  effect.seconds = cleaned.stats.seconds;
+  progress(config, "cleanup: {:.3f} s; min angle {:.2f} -> {:.2f} deg, triangles below {:g} deg {} -> {}; "
+           "{} node moves, {} nodes inserted, {} removed ({} triangles)",
+           effect.seconds, effect.min_angle_before, effect.min_angle_after, effect.target_deg, effect.below_before,
+           effect.below_after, effect.moves, effect.inserted, effect.removed, mesh.triangles.size());
+  if (config.check) check_or_throw(config, inputs, mesh, cleaned.nodes, "cleaned mesh");
+  out.nodes = std::move(cleaned.nodes);
+  return out;
+}
+
+// Queues mesh.png, mesh_<view>.png and mesh.svg as output.formats asks; returns their names. `mesh`
+// and `values` must stay unchanged until the pictures are drawn.
+std::vector<std::string> queue_mesh_pictures(const CaseConfig& config, const Mesh& mesh,
+                                             const std::vector<double>* values, RunPhases& phases) {
   MeshPictureOptions picture;
   picture.title = fmt::format("{} - mesh ({} triangles)", config.name, mesh.triangles.size());
-  if (config.output.color_by != "none") {
-    values = metric_values(per_triangle, config.output.color_by);
-    picture.triangle_values = &values;
+  if (values) {
+    picture.triangle_values = values;
     picture.value_label = config.output.color_by;
   }
   const fs::path& dir = config.out_dir;
@@ -233,6 +228,20 @@ Mesh mesh_and_measure(const CaseConfig& config, const MeshInputs& inputs, const 
     }
   }
   if (config.output.wants("svg") && mesh.triangles.size() <= 2 * kSvgNodeLimit) draw("mesh.svg", picture);
+  return pictures;
+}
+
+// The quality table, DIR/quality.json, the mesh files, mesh.nodes and the pictures of the mesh stage.
+void write_mesh_outputs(const CaseConfig& config, const MeshInputs& inputs, const SpacingField& spacing,
+                        const Mesh& mesh, const NodeSet& mesh_nodes, QualitySummary& summary,
+                        const std::vector<TriangleQuality>& per_triangle, RunPhases& phases) {
+  // The pictures are drawn on the background thread while the quality is measured and the files are
+  // written; the mesh and the values stay alive until the wait below (also when something throws).
+  std::vector<double> values;
+  const PictureGuard guard(phases);
+  if (config.output.color_by != "none") values = metric_values(per_triangle, config.output.color_by);
+  const std::vector<std::string> pictures =
+      queue_mesh_pictures(config, mesh, config.output.color_by != "none" ? &values : nullptr, phases);
   {
     const auto conformance_timer = phases.phase("spacing conformance");
     summary.has_spacing = true;
@@ -240,6 +249,7 @@ Mesh mesh_and_measure(const CaseConfig& config, const MeshInputs& inputs, const 
         mesh, [&spacing](const std::vector<Vec2>& p, std::vector<double>& q) { spacing.at_many(p, q); });
   }
   if (!config.quiet) fmt::print("{}", format_quality_table(summary, config.name));
+  const fs::path& dir = config.out_dir;
   {
     const auto json_timer = phases.phase("quality.json");
     write_quality_json(summary, dir, config.name);
@@ -254,7 +264,7 @@ Mesh mesh_and_measure(const CaseConfig& config, const MeshInputs& inputs, const 
     // The nodes of the mesh with their q, kinds and curve chains (final.nodes after the cleanup; the
     // same nodes without it), for tools that need the mesh's boundary chains, like tools/eval/compare.
     const auto nodes_timer = phases.phase("mesh.nodes");
-    write_node_file(dir / "mesh.nodes", *mesh_nodes, inputs.curve_names());
+    write_node_file(dir / "mesh.nodes", mesh_nodes, inputs.curve_names());
   }
   {
     const auto wait_timer = phases.phase("waiting for pictures");
@@ -264,6 +274,36 @@ Mesh mesh_and_measure(const CaseConfig& config, const MeshInputs& inputs, const 
   for (const auto& p : written) names += (names.empty() ? "" : ", ") + p.filename().string();
   progress(config, "mesh: {} triangles; wrote {}/quality.json, mesh.nodes{}{}{}", mesh.triangles.size(), dir.string(),
            names.empty() ? "" : ", ", names, pictures.empty() ? "" : fmt::format(", {}", fmt::join(pictures, ", ")));
+}
+
+}  // namespace
+
+Mesh mesh_and_measure(const CaseConfig& config, const MeshInputs& inputs, const SpacingStage& spacing,
+                      const NodeSet& nodes, RunPhases* run, const Mesh* triangulated) {
+  RunPhases local(false);
+  RunPhases& phases = run ? *run : local;
+  Mesh mesh = triangulate_nodes(config, inputs, nodes, phases, triangulated);
+  // The final cleanup: the mesh files and pictures show the cleaned mesh; final.nodes stays the
+  // simulation's result.
+  CleanedMesh cleaned;
+  if (config.cleanup.enabled) cleaned = clean_up(config, inputs, spacing, mesh, nodes, phases);
+  const NodeSet& mesh_nodes = config.cleanup.enabled ? cleaned.nodes : nodes;
+  const SpacingField& field = spacing.field();
+  // The field at every node goes into the mesh files (point data "q"): a run's field can be read back
+  // with spacing.field = "mesh", or edited (e.g. scaled by a solution's error indicator) first.
+  {
+    const auto q_timer = phases.phase("q at the nodes");
+    field.at_many(mesh.points, mesh.spacing);
+  }
+  if (!config.write_outputs) return mesh;  // the Python API measures on demand (Mesh.quality())
+  auto quality_timer = phases.phase("quality");
+  if (!config.cleanup.enabled) cleaned.per_triangle = triangle_qualities(mesh);
+  QualitySummary summary = summarize_quality(cleaned.per_triangle);
+  summary.points = mesh.points.size();
+  summary.has_cleanup = config.cleanup.enabled;
+  summary.cleanup = cleaned.effect;
+  quality_timer.stop();
+  write_mesh_outputs(config, inputs, field, mesh, mesh_nodes, summary, cleaned.per_triangle, phases);
   return mesh;
 }
 

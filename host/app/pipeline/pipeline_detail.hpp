@@ -1,4 +1,4 @@
-// What the stages of `pdmesh mesh` share (app/pipeline/mesh_pipeline.cpp, mesh_inputs.cpp, mesh_outputs.cpp):
+// What the stages of `pdmesh mesh` share (app/pipeline/mesh_pipeline.cpp, simulate_stage.cpp, mesh_outputs.cpp):
 // the progress lines, the SVG size limit and the node outputs of a stage. Internal to those files.
 #pragma once
 #include <cstddef>
