@@ -169,9 +169,8 @@ std::string format_row(const Row& r) {
                      ratio);
 }
 
-}  // namespace
-
-int run_bench(const BenchArguments& args) {
+// InputError naming the first argument out of range.
+void check_arguments(const BenchArguments& args) {
   if (args.warmup < 0 || args.large_warmup < 0)
     throw InputError(fmt::format("bench: --warmup must be >= 0, got {}", args.warmup));
   if (args.iterations < 1 || args.large_iterations < 1)
@@ -183,6 +182,80 @@ int run_bench(const BenchArguments& args) {
     throw InputError(fmt::format("bench: --population must be >= 0, got {}", args.population_every));
   if (args.precision != "double" && args.precision != "float")
     throw InputError(fmt::format("bench: --precision must be double or float, got '{}'", args.precision));
+}
+
+// `warm` iterations of the case on the first device (the host without one), moving c.initial on: the
+// measured runs start where the warm-up ended, and with the dt_GM it returns (options.dt_initial
+// without a warm-up).
+std::optional<double> warm_up(BenchCase& c, const SimOptions& options, int warm,
+                              const std::vector<ocl::DeviceInfo>& devices, ocl::Precision precision,
+                              ocl::ForceLoop loop) {
+  SimOptions w = options;
+  w.iterations = warm;
+  std::optional<ocl::Context> ctx;
+  std::unique_ptr<Simulator> simulator = make_host_simulator();
+  if (!devices.empty() && warm > 0) {
+    ctx.emplace(devices.front());
+    simulator = std::make_unique<ocl::DeviceSimulator>(*ctx, precision, loop);
+  }
+  if (warm > 0) {
+    const SimResult r = simulator->run(c.initial, *c.tree, *c.spacing, w);
+    // Continue with the dt_GM the warm-up ended with.
+    if (!r.history.empty()) return r.history.back().dt_gm;
+  }
+  return options.dt_initial;
+}
+
+// The row of one device: the run, with its commands per iteration from the wrapper's counts.
+Row device_row(const BenchCase& c, const ocl::DeviceInfo& info, const SimOptions& o, ocl::Precision precision,
+               ocl::ForceLoop loop, const std::string& suffix, double host_ms) {
+  ocl::Context ctx(info);
+  NodeSet nodes = c.initial;
+  ocl::DeviceSimulator simulator(ctx, precision, loop);
+  // Commands per iteration from the wrapper's counts; the simulator's stats are live during the run.
+  // A window's commands come before its first row (and the host's work at its last); the simulator's
+  // live stats say where a window starts.
+  IterationCommands commands;
+  ocl::CommandCounts last = ocl::command_counts(), window, last_rebuild, rebuild;
+  int last_rebuilds = 0, rows = 0, windows = 0, last_windows = 0, rebuilt = 0;
+  const auto close_window = [&] {
+    if (windows <= 1) return;
+    commands.steady.add(window - rebuild, rows);
+    if (rebuilt > 0) commands.rebuild.add(rebuild, rebuilt);
+  };
+  SimCallbacks callbacks;
+  callbacks.on_iteration = [&](const HistoryRow&) {
+    const ocl::CommandCounts now = ocl::command_counts(), d = now - last;
+    const int rebuilds = simulator.stats().rebuilds;
+    if (windows == 0 || simulator.stats().windows != last_windows) {
+      close_window();
+      ++windows;
+      window = rebuild = ocl::CommandCounts{};
+      rows = rebuilt = 0;
+    }
+    window = window + d;
+    rebuild = rebuild + (simulator.stats().rebuild_commands - last_rebuild);
+    last_rebuild = simulator.stats().rebuild_commands;
+    rebuilt += rebuilds - last_rebuilds;
+    last_windows = simulator.stats().windows;
+    ++rows;
+    last = now;
+    last_rebuilds = rebuilds;
+  };
+  const SimResult r = simulator.run(nodes, *c.tree, *c.spacing, o, callbacks);
+  close_window();
+  return Row{c.name,
+             fmt::format("opencl:{}:{} {} ({}, {} loop){}", info.platform, info.device, info.type,
+                         precision == ocl::Precision::Float ? "float" : "double",
+                         ocl::force_loop_name(simulator.force_loop()), suffix),
+             nodes.size(), o.iterations, r.stats.seconds, r.stats.pairs_within, r.stats.pairs_examined,
+             simulator.stats(), commands, peak_rss_bytes(), host_ms, r.stats};
+}
+
+}  // namespace
+
+int run_bench(const BenchArguments& args) {
+  check_arguments(args);
   const ocl::ForceLoop loop = ocl::parse_force_loop(args.force_loop, "bench: --force-loop");
   const std::vector<ocl::DeviceInfo> devices = ocl::list_devices();
   const auto precision_on = [&args](const ocl::DeviceInfo& d) {
@@ -204,22 +277,8 @@ int run_bench(const BenchArguments& args) {
     options.verlet_skin = args.verlet_skin == kAutomaticSkin ? default_verlet_skin(options.momentum) : args.verlet_skin;
     const std::string suffix =
         args.population_every > 0 ? fmt::format(", population every {}", args.population_every) : std::string();
-    {
-      const int warm = large ? args.large_warmup : args.warmup;
-      SimOptions w = options;
-      w.iterations = warm;
-      std::optional<ocl::Context> ctx;
-      std::unique_ptr<Simulator> warm_up = make_host_simulator();
-      if (!devices.empty() && warm > 0) {
-        ctx.emplace(devices.front());
-        warm_up = std::make_unique<ocl::DeviceSimulator>(*ctx, precision_on(devices.front()), loop);
-      }
-      if (warm > 0) {
-        const SimResult r = warm_up->run(c->initial, *c->tree, *c->spacing, w);
-        // Continue with the dt_GM the warm-up ended with.
-        if (!r.history.empty()) options.dt_initial = r.history.back().dt_gm;
-      }
-    }
+    options.dt_initial = warm_up(*c, options, large ? args.large_warmup : args.warmup, devices,
+                                 devices.empty() ? ocl::Precision::Double : precision_on(devices.front()), loop);
     if (args.population_every > 0) {
       options.population.enabled = true;
       options.population.every = args.population_every;
@@ -241,52 +300,8 @@ int run_bench(const BenchArguments& args) {
       host_ms = 1e3 * r.stats.seconds / options.iterations;
       emit(row);
     }
-    for (const ocl::DeviceInfo& info : devices) {
-      ocl::Context ctx(info);
-      const SimOptions& o = options;
-      const ocl::Precision precision = precision_on(info);
-      NodeSet nodes = c->initial;
-      ocl::DeviceSimulator simulator(ctx, precision, loop);
-      // Commands per iteration from the wrapper's counts; the simulator's stats are live during the run.
-      // A window's commands come before its first row (and the host's work at its last); the simulator's
-      // live stats say where a window starts.
-      IterationCommands commands;
-      ocl::CommandCounts last = ocl::command_counts(), window, last_rebuild, rebuild;
-      int last_rebuilds = 0, rows = 0, windows = 0, last_windows = 0, rebuilt = 0;
-      const auto close_window = [&] {
-        if (windows <= 1) return;
-        commands.steady.add(window - rebuild, rows);
-        if (rebuilt > 0) commands.rebuild.add(rebuild, rebuilt);
-      };
-      SimCallbacks callbacks;
-      callbacks.on_iteration = [&](const HistoryRow&) {
-        const ocl::CommandCounts now = ocl::command_counts(), d = now - last;
-        const int rebuilds = simulator.stats().rebuilds;
-        if (windows == 0 || simulator.stats().windows != last_windows) {
-          close_window();
-          ++windows;
-          window = rebuild = ocl::CommandCounts{};
-          rows = rebuilt = 0;
-        }
-        window = window + d;
-        rebuild = rebuild + (simulator.stats().rebuild_commands - last_rebuild);
-        last_rebuild = simulator.stats().rebuild_commands;
-        rebuilt += rebuilds - last_rebuilds;
-        last_windows = simulator.stats().windows;
-        ++rows;
-        last = now;
-        last_rebuilds = rebuilds;
-      };
-      const SimResult r = simulator.run(nodes, *c->tree, *c->spacing, o, callbacks);
-      close_window();
-      Row row{c->name,
-              fmt::format("opencl:{}:{} {} ({}, {} loop){}", info.platform, info.device, info.type,
-                          precision == ocl::Precision::Float ? "float" : "double",
-                          ocl::force_loop_name(simulator.force_loop()), suffix),
-              nodes.size(), o.iterations, r.stats.seconds, r.stats.pairs_within, r.stats.pairs_examined,
-              simulator.stats(), commands, peak_rss_bytes(), host_ms, r.stats};
-      emit(row);
-    }
+    for (const ocl::DeviceInfo& info : devices)
+      emit(device_row(*c, info, options, precision_on(info), loop, suffix, host_ms));
   }
   if (!args.out.empty()) write_file_atomically(args.out, table);
   return 0;
