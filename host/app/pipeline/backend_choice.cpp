@@ -1,6 +1,7 @@
 // The simulation backend of a run; see backend_choice.hpp.
 #include "app/pipeline/backend_choice.hpp"
 
+#include <atomic>
 #include <cstdlib>
 #include <fmt/format.h>
 
@@ -13,6 +14,8 @@ namespace pdmesh {
 namespace {
 
 std::string first_line(const std::string& s) { return s.substr(0, s.find('\n')); }
+
+std::atomic<std::size_t> setups{0};
 
 ocl::Precision device_precision(Precision requested, const ocl::DeviceInfo& device, ocl::Context& ctx,
                                 const std::function<void(const std::string&)>& note) {
@@ -74,6 +77,8 @@ double auto_host_below() {
 }
 }  // namespace
 
+std::size_t backend_setups() { return setups.load(); }
+
 bool auto_prefers_host(const std::string& device, double nodes) {
   return device == "auto" && nodes < auto_host_below();
 }
@@ -81,6 +86,7 @@ bool auto_prefers_host(const std::string& device, double nodes) {
 ChosenBackend choose_backend_for(const std::string& device, Precision precision, double nodes,
                                  const std::function<void(const std::string&)>& note) {
   if (!auto_prefers_host(device, nodes)) return choose_backend(device, precision, note);
+  ++setups;
   note(fmt::format("device auto: the host reference for {:.0f} nodes (below {:.0f}, a whole run on the host ends "
                    "sooner than on an OpenCL device; docs/devices.md)",
                    nodes, auto_host_below()));
@@ -91,6 +97,7 @@ ChosenBackend choose_backend_for(const std::string& device, Precision precision,
 
 ChosenBackend choose_backend(const std::string& device, Precision precision,
                              const std::function<void(const std::string&)>& note) {
+  ++setups;
   if (device == "host") return host_backend(precision, note);
   if (device != "auto") return choose_among({*ocl::select_device(device)}, false, precision, note);  // InputError when absent
   const std::vector<ocl::DeviceInfo> candidates = ocl::auto_order(ocl::list_devices());

@@ -2,6 +2,7 @@
 // the device-resident run on an OpenCL device, through the Simulator contract of sim/simulation.hpp.
 // The app is the one place that knows both sides, so sim/ does not depend on opencl/.
 #pragma once
+#include <cstddef>
 #include <functional>
 #include <memory>
 #include <string>
@@ -43,6 +44,10 @@ bool auto_prefers_host(const std::string& device, double nodes);
 // reference (noted), otherwise as choose_backend.
 ChosenBackend choose_backend_for(const std::string& device, Precision precision, double nodes,
                                  const std::function<void(const std::string&)>& note);
+
+// How many backends choose_backend and choose_backend_for have set up in this process (a test hook:
+// a caller that keeps its backend, like the Python Mesher's steps, sets up one).
+std::size_t backend_setups();
 
 // The first of `candidates` (tried in order; each failure noted) on which the program builds, else
 // the host reference. `fall_back` false: the first candidate's DeviceError propagates.
