@@ -7,8 +7,8 @@
 #include <string>
 #include <vector>
 
-#include "app/case_file.hpp"
-#include "app/mesh_command.hpp"
+#include "app/config/case_file.hpp"
+#include "app/pipeline/mesh_pipeline.hpp"
 #include "opencl/device_simulation.hpp"
 #include "source_dir.hpp"
 #include "step_backend_inputs.hpp"
@@ -18,6 +18,7 @@ namespace pdmesh::test {
 struct Case {
   CaseConfig config;
   std::unique_ptr<MeshInputs> inputs;
+  std::unique_ptr<SpacingStage> spacing;  // the final field the initial distribution was made with
   NodeSet initial;
 };
 
@@ -26,7 +27,8 @@ inline Case load_case(const std::string& name, const std::vector<CaseOverride>& 
   c.config = load_case_file(source_dir() + "/cases/" + name + "/case.toml", overrides);
   c.config.quiet = true;
   c.inputs = std::make_unique<MeshInputs>(c.config);
-  c.initial = make_initial(c.config, *c.inputs).nodes;
+  c.spacing = std::make_unique<SpacingStage>(c.config, *c.inputs, SpacingStage::Build::FieldOnly);
+  c.initial = make_initial(c.config, *c.inputs, *c.spacing).nodes;
   return c;
 }
 

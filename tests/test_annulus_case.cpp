@@ -1,5 +1,5 @@
-// The generated benchmark case annulus_<N> (app/annulus_case) and the whole-run benchmark that uses it
-// (app/whole_run_bench): names, the geometry, the case files it writes (readable by the mesh command,
+// The generated benchmark case annulus_<N> (app/bench/annulus_case) and the whole-run benchmark that uses it
+// (app/bench/whole_run_bench): names, the geometry, the case files it writes (readable by the mesh command,
 // whose node estimate comes out near N with the thesis' field), and one small `pdmesh bench
 // --whole-run` whose tables and timings files are checked.
 #include <catch2/catch.hpp>
@@ -9,10 +9,10 @@
 #include <numbers>
 #include <string>
 
-#include "app/annulus_case.hpp"
-#include "app/case_file.hpp"
-#include "app/mesh_command.hpp"
-#include "app/whole_run_bench.hpp"
+#include "app/bench/annulus_case.hpp"
+#include "app/config/case_file.hpp"
+#include "app/pipeline/mesh_pipeline.hpp"
+#include "app/bench/whole_run_bench.hpp"
 #include "io/text_file.hpp"
 #include "json_check.hpp"
 #include "run_pdmesh.hpp"
@@ -77,12 +77,12 @@ TEST_CASE("annulus case: the written case is read by the mesh command's stages, 
   REQUIRE(thesis.geometry.curves.size() == 2);
   CHECK(thesis.geometry.curves[0].name == "inner");
   CHECK(thesis.geometry.area == Approx(std::numbers::pi * (100.0 - 1.0)).epsilon(0.01));
-  CHECK(check_node_limit(config, thesis) == Approx(3000.0).epsilon(0.05));
+  CHECK(check_node_limit(config, thesis, SpacingStage(config, thesis)) == Approx(3000.0).epsilon(0.05));
   // The case itself names no preset: the best one, whose gradation and curvature limits add nodes.
   CaseConfig best = load_case_file(case_file);
   best.quiet = true;
   const MeshInputs best_inputs(best);
-  const double estimate = check_node_limit(best, best_inputs);
+  const double estimate = check_node_limit(best, best_inputs, SpacingStage(best, best_inputs));
   CHECK(estimate >= 3000.0 * 0.95);
   CHECK(estimate <= 3000.0 * 3.0);
   // A name that is no annulus is passed through: a case directory, or paths joined with '+'.

@@ -1,4 +1,4 @@
-// The app's choice of simulation backend (app/backend_choice): `--device auto` falls back device by
+// The app's choice of simulation backend (app/pipeline/backend_choice): `--device auto` falls back device by
 // device, then to the host, when the simulation program does not build (PDMESH_TEST_FAIL_BUILD
 // injects a driver's build failure); an explicit device does not fall back; precisions.
 #include <catch2/catch.hpp>
@@ -10,7 +10,7 @@
 
 #include <fmt/format.h>
 
-#include "app/backend_choice.hpp"
+#include "app/pipeline/backend_choice.hpp"
 #include "core/errors.hpp"
 #include "opencl/device_simulation.hpp"
 #include "opencl/devices.hpp"

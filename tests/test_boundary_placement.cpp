@@ -11,8 +11,8 @@
 #include <memory>
 #include <numbers>
 
-#include "app/case_file.hpp"
-#include "app/mesh_command.hpp"
+#include "app/config/case_file.hpp"
+#include "app/pipeline/mesh_pipeline.hpp"
 #include "core/errors.hpp"
 #include "geometry/geometry.hpp"
 #include "geometry/geometry_tree.hpp"
@@ -319,18 +319,21 @@ TEST_CASE("MeshInputs: the spacing field reads the input segments, everything el
   CHECK(inputs.spacing->at(mid) == Approx(dist(hole.points[0], hole.points[1])));
   // Boundary nodes (best preset: spacing) lie on the dense polyline, and the initial distribution
   // starts from them.
-  const NodeSet* boundary = inputs.boundary_nodes();
-  REQUIRE(boundary != nullptr);
+  const SpacingStage spacing(smooth, inputs);
+  const BoundaryPlacement placed = place_boundary(smooth, inputs, spacing);
+  REQUIRE(placed.nodes);
+  const NodeSet* boundary = &*placed.nodes;
   for (std::size_t i = 0; i < boundary->size(); ++i)
     CHECK(inputs.node_tree().closest_on_curve(boundary->x[i], boundary->curve[i]).distance < 1e-12);
-  const InitialDistribution initial = make_initial(smooth, inputs);
+  const InitialDistribution initial = make_initial(smooth, inputs, spacing);
   for (std::size_t i = 0; i < boundary->size(); ++i) CHECK(initial.nodes.x[i] == boundary->x[i]);
   // The thesis preset: one geometry, no placement of its own.
   const CaseConfig thesis = case_for_geometry_file(dir / "coarse.crv", {parse_set_option("preset=thesis")});
   const MeshInputs plain(thesis);
   CHECK_FALSE(plain.dense);
   CHECK(&plain.node_tree() == plain.tree.get());
-  CHECK(plain.boundary_nodes() == nullptr);
-  CHECK(plain.segment_resolution() == nullptr);
+  const BoundaryPlacement none = place_boundary(thesis, plain, SpacingStage(thesis, plain));
+  CHECK_FALSE(none.nodes);
+  CHECK(none.resolution.empty());
   std::filesystem::remove_all(dir);
 }

@@ -6,8 +6,8 @@
 #include <filesystem>
 #include <string>
 
-#include "app/case_file.hpp"
-#include "app/mesh_command.hpp"
+#include "app/config/case_file.hpp"
+#include "app/pipeline/mesh_pipeline.hpp"
 #include "cleanup/cleanup.hpp"
 #include "spacing/background_field.hpp"
 #include "core/errors.hpp"
@@ -467,7 +467,7 @@ TEST_CASE("cleanup trial budget keys: the presets' values, a file's values win, 
   const CaseConfig thesis = parse_case_text(std::string("preset = \"thesis\"\n") + kMinimal, kCase);
   CHECK(thesis.cleanup.trials_per_triangle == options.trials_per_triangle);
   CHECK(static_cast<double>(thesis.cleanup.min_trials) == options.min_trials);
-  // best: a smaller first budget (app/presets.cpp).
+  // best: a smaller first budget (app/config/presets.cpp).
   const CaseConfig best = parse_case_text(kMinimal, kCase);
   CHECK(best.cleanup.trials_per_triangle == 0.2);
   CHECK(best.cleanup.min_trials == 2000);

@@ -196,7 +196,7 @@ TEST_CASE("pdmesh mesh writes every stage's files: initial, history, final, mesh
 }
 
 TEST_CASE("pdmesh mesh: a picture that cannot be written is refused before the run starts", "[cli]") {
-  // Every output path is checked before any work (app/output_guard): a directory where a picture goes
+  // Every output path is checked before any work (app/pipeline/output_guard): a directory where a picture goes
   // ends the run with exit 2 naming it, and nothing is written.
   for (const char* device : {"host", "auto"}) {
     INFO(device);

@@ -10,8 +10,8 @@
 #include <limits>
 #include <vector>
 
-#include "app/case_file.hpp"
-#include "app/mesh_command.hpp"
+#include "app/config/case_file.hpp"
+#include "app/pipeline/mesh_pipeline.hpp"
 #include "core/errors.hpp"
 #include "mesh/quality.hpp"
 #include "mesh/triangulate_nodes.hpp"
@@ -208,6 +208,7 @@ namespace {
 struct SmallRun {
   CaseConfig config;
   std::unique_ptr<MeshInputs> inputs;
+  std::unique_ptr<SpacingStage> spacing;
   NodeSet initial;
   SimOptions options;
 
@@ -216,9 +217,10 @@ struct SmallRun {
                             {{"simulation.stop", "converged", "test"}, {"simulation.iterations", "600", "test"}});
     config.quiet = true;
     inputs = std::make_unique<MeshInputs>(config);
-    initial = make_initial(config, *inputs).nodes;
+    spacing = std::make_unique<SpacingStage>(config, *inputs);
+    initial = make_initial(config, *inputs, *spacing).nodes;
     options = simulation_options(config);
-    options.background = &inputs->pipeline().background();  // as the mesh command passes it
+    options.background = &spacing->background();  // as the mesh command passes it
     options.convergence.check_every = 20;
     options.convergence.window = 60;
     options.convergence.min_iterations = 100;
@@ -227,7 +229,7 @@ struct SmallRun {
     SimOptions o = options;
     o.resume = resume;
     o.stop = stop;
-    return run_simulation(nodes, *inputs->tree, inputs->field(), o);
+    return run_simulation(nodes, *inputs->tree, spacing->field(), o);
   }
 };
 
@@ -265,7 +267,7 @@ TEST_CASE("convergence in the host driver: the run stops at a measurement, and a
     callbacks.on_iteration = [&](const HistoryRow& row) {
       if (row.iteration == cut) flag = true;
     };
-    const SimResult part = run_simulation(nodes, *c.inputs->tree, c.inputs->field(), first_options, callbacks);
+    const SimResult part = run_simulation(nodes, *c.inputs->tree, c.spacing->field(), first_options, callbacks);
     REQUIRE(part.state.iterations_done == cut);
     CHECK(part.stopped == (cut != stop));
     CHECK(part.converged == (cut == stop));
@@ -368,10 +370,11 @@ TEST_CASE("the best preset converges a geometry alone in a fraction of long's it
                                        {{"preset", preset, "test"}, {"simulation.iterations", "1000", "test"}});
     config.quiet = true;
     MeshInputs inputs(config);
-    NodeSet nodes = make_initial(config, inputs).nodes;
+    const SpacingStage spacing(config, inputs);
+    NodeSet nodes = make_initial(config, inputs, spacing).nodes;
     SimOptions options = simulation_options(config);
-    options.background = &inputs.pipeline().background();
-    return std::pair{options, run_simulation(nodes, *inputs.tree, inputs.field(), options)};
+    options.background = &spacing.background();
+    return std::pair{options, run_simulation(nodes, *inputs.tree, spacing.field(), options)};
   };
   const auto [fast_options, fast] = run("best");
   CHECK(fast_options.momentum == 0.9);

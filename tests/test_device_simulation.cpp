@@ -235,7 +235,8 @@ Case circle_circle_with_population(const char* start) {
                              {"population.start", start, "test"}, {"population.every", "10", "test"}});
   c.config.quiet = true;
   c.inputs = std::make_unique<MeshInputs>(c.config);
-  c.initial = make_initial(c.config, *c.inputs).nodes;
+  c.spacing = std::make_unique<SpacingStage>(c.config, *c.inputs, SpacingStage::Build::FieldOnly);
+  c.initial = make_initial(c.config, *c.inputs, *c.spacing).nodes;
   return c;
 }
 

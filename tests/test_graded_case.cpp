@@ -1,10 +1,10 @@
-// The generated benchmark case of `pdmesh bench` (app/graded_case): its initial distribution has
+// The generated benchmark case of `pdmesh bench` (app/bench/graded_case): its initial distribution has
 // the node count the fit promises, so "graded_1m" really has about a million nodes.
 #include <catch2/catch.hpp>
 
 #include <cmath>
 
-#include "app/graded_case.hpp"
+#include "app/bench/graded_case.hpp"
 #include "geometry/geometry_tree.hpp"
 #include "init/initial_distribution.hpp"
 #include "spacing/spacing_field.hpp"

@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "app/case_file.hpp"
+#include "app/config/case_file.hpp"
 #include "core/errors.hpp"
 #include "core/input_file.hpp"
 #include "geometry/curve_reader.hpp"

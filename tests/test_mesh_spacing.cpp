@@ -14,8 +14,8 @@
 #include <random>
 #include <string>
 
-#include "app/case_file.hpp"
-#include "app/mesh_command.hpp"
+#include "app/config/case_file.hpp"
+#include "app/pipeline/mesh_pipeline.hpp"
 #include "core/errors.hpp"
 #include "core/predicates.hpp"
 #include "geometry/geometry_files.hpp"
@@ -446,8 +446,10 @@ TEST_CASE("pdmesh mesh runs with a background-mesh field and writes it back as p
   CHECK(r.output.find("spacing: 'q' on ") != std::string::npos);
   // The output's point data q is the run's final field at the nodes: the background data through the
   // spacing pipeline (its floor lifts q toward the 0.1 segments next to the boundary).
-  const MeshInputs inputs(load_case_file(dir / "case.toml"));
-  const SpacingField& field = inputs.field();
+  const CaseConfig config = load_case_file(dir / "case.toml");
+  const MeshInputs inputs(config);
+  const SpacingStage spacing(config, inputs, SpacingStage::Build::FieldOnly);
+  const SpacingField& field = spacing.field();
   const auto written = load_mesh_spacing(out / "mesh.vtu", "q");
   const MeshFieldData& w = written->data();
   REQUIRE(w.points.size() > 100);  // about 154 by hexagonal packing

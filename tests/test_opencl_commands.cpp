@@ -17,7 +17,7 @@
 #include <string>
 #include <vector>
 
-#include "app/bench_command.hpp"
+#include "app/bench/bench_command.hpp"
 #include "core/errors.hpp"
 #include "device_run_fixtures.hpp"
 #include "opencl/buffer.hpp"

@@ -11,7 +11,7 @@
 
 #include <fmt/format.h>
 
-#include "app/quality_command.hpp"
+#include "app/cli/quality_command.hpp"
 #include "core/errors.hpp"
 #include "io/mesh_formats.hpp"
 #include "io/text_file.hpp"

@@ -7,7 +7,7 @@
 #include <functional>
 #include <string>
 
-#include "app/case_file.hpp"
+#include "app/config/case_file.hpp"
 #include "core/errors.hpp"
 #include "geometry/poly_reader.hpp"
 #include "io/mesh_formats.hpp"

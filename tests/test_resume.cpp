@@ -14,8 +14,8 @@
 #include <string>
 #include <vector>
 
-#include "app/case_file.hpp"
-#include "app/resume.hpp"
+#include "app/config/case_file.hpp"
+#include "app/pipeline/resume.hpp"
 #include "core/errors.hpp"
 #include "io/text_file.hpp"
 #include "geometry/geometry_tree.hpp"

@@ -1,4 +1,4 @@
-// The phases of a run (app/run_phases): timers and notes in the --timings JSON (well-formed, every
+// The phases of a run (app/pipeline/run_phases): timers and notes in the --timings JSON (well-formed, every
 // phase once), pictures drawn on the background thread and waited for, a picture's exception
 // surfacing from wait_pictures(), and the same jobs drawn at once without the thread. No timing is
 // asserted beyond what the clocks guarantee (non-negative, ordered).
@@ -12,7 +12,7 @@
 #include <string>
 #include <thread>
 
-#include "app/run_phases.hpp"
+#include "app/pipeline/run_phases.hpp"
 #include "core/errors.hpp"
 #include "json_check.hpp"
 

@@ -1,4 +1,4 @@
-// The stop request of a run (Ctrl-C): a process-wide flag that app/interrupt's signal handler sets,
+// The stop request of a run (Ctrl-C): a process-wide flag that app/pipeline/interrupt's signal handler sets,
 // and a check the long loops of every layer call, which throws Interrupted once it is set. The flag
 // lives here, below every layer, so that the geometry, spacing, initialization, triangulation,
 // cleanup, writers and pictures can stop within a fraction of a second without knowing about signals.

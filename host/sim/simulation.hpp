@@ -139,7 +139,7 @@ void check_node_set(const NodeSet& nodes);
 
 // The simulation contract: one whole run, whatever computes it. Implemented by the host driver below
 // (make_host_simulator: run_simulation over a StepBackend) and by the device-resident run
-// (host/opencl/device_simulation.hpp: ocl::DeviceSimulator); the app chooses one (app/backend_choice),
+// (host/opencl/device_simulation.hpp: ocl::DeviceSimulator); the app chooses one (app/pipeline/backend_choice),
 // so sim/ knows nothing of OpenCL. run() has run_simulation's contract: it runs options.iterations
 // iterations (or the remaining ones of options.resume, a SimState from a checkpoint or an earlier run),
 // updates nodes in place, hands the last good state to callbacks.on_failure before an error propagates,

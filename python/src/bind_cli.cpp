@@ -4,7 +4,7 @@
 #include <nanobind/stl/string.h>
 #include <nanobind/stl/vector.h>
 
-#include "app/cli.hpp"
+#include "app/cli/cli.hpp"
 #include "bindings.hpp"
 
 namespace pdmesh::py {

@@ -45,7 +45,7 @@ std::string quality_json_of(const MeshHandle& h) {
   nb::gil_scoped_release release;
   if (!h.session) return quality_json(summarize_quality(*h.mesh), h.name);
   std::lock_guard lock(h.session->mutex);
-  const SpacingField& spacing = h.session->inputs->field();
+  const SpacingField& spacing = h.session->spacing->field();
   return quality_json(summarize_quality(*h.mesh, [&spacing](Vec2 p) { return spacing.at(p); }), h.name);
 }
 

@@ -1,5 +1,6 @@
 // pdmesh._core.Mesher: one case's run held in memory, stepped in chunks through the command's own
-// stages (MeshInputs, check_node_limit, make_initial, simulate, mesh_and_measure). The GIL is
+// stages (MeshInputs, SpacingStage and check_node_limit, make_initial, simulate, mesh_and_measure),
+// on one simulation backend, set up by the first step and kept for the later ones. The GIL is
 // released while C++ works; about every `interval` seconds the run takes it back to check for
 // signals (Ctrl-C) and to call the progress callable, and either can stop the run at the end of the
 // current iteration, leaving the Mesher able to continue.
@@ -13,6 +14,8 @@
 #include <nanobind/stl/string.h>
 #include <nanobind/stl/vector.h>
 
+#include "app/pipeline/backend_choice.hpp"
+#include "app/pipeline/mesh_pipeline.hpp"
 #include "bindings.hpp"
 #include "callable_spacing.hpp"
 #include "core/errors.hpp"
@@ -53,8 +56,10 @@ class Mesher {
     // As the command: an explicit OpenCL device that is not there is refused before anything runs.
     if (c.simulation.iterations > 0 && c.simulation.device != "host" && c.simulation.device != "auto")
       (void)ocl::select_device(c.simulation.device);
-    estimate_ = check_node_limit(c, inputs);
-    InitialDistribution initial = make_initial(c, inputs);
+    session_->spacing = std::make_unique<SpacingStage>(c, inputs);
+    const SpacingStage& spacing = *session_->spacing;
+    estimate_ = check_node_limit(c, inputs, spacing);
+    InitialDistribution initial = make_initial(c, inputs, spacing);
     if (c.write_outputs) {
       prepare_output_directory(c);
       write_initial_outputs(c, inputs, initial);
@@ -84,6 +89,15 @@ class Mesher {
     const auto every = std::chrono::duration<double>(interval);
     SimulateHooks hooks;
     hooks.stop = &stop;
+    // The backend (for OpenCL its context and built program) is chosen by the first step, for the node
+    // count then, and kept: a later step uploads the state again but sets nothing up.
+    hooks.backend = [this, &config](const std::function<void(const std::string&)>& note) -> ChosenBackend& {
+      if (!backend_) {
+        backend_ = choose_backend_for(config.simulation.device, config.simulation.precision,
+                                      static_cast<double>(nodes_->size()), note);
+      }
+      return *backend_;
+    };
     int reported = -1;  // the last iteration the progress callable was given
     hooks.on_iteration = [&](const HistoryRow& row) {
       // Once stopping, the rest of a device window is replayed without asking again.
@@ -113,7 +127,7 @@ class Mesher {
     try {
       nb::gil_scoped_release release;
       std::lock_guard lock(session_->mutex);
-      result = simulate(config, *session_->inputs, *nodes_, state_ ? &*state_ : nullptr, &hooks);
+      result = simulate(config, *session_->inputs, *session_->spacing, *nodes_, state_ ? &*state_ : nullptr, &hooks);
     } catch (...) {
       // The node set holds the last good state (SimCallbacks::on_failure), but the driver state
       // that goes with it is not kept: the Mesher can be triangulated, not continued.
@@ -122,7 +136,7 @@ class Mesher {
     }
     state_ = std::move(result.state);
     seconds_ += result.stats.seconds;
-    backend_ = result.stats.backend;
+    backend_name_ = result.stats.backend;
     converged_ = result.converged;
     if (pending) std::rethrow_exception(pending);
     // The last report is of the iteration the run ended at: a run the stopping rule ended before
@@ -145,7 +159,7 @@ class Mesher {
     {
       nb::gil_scoped_release release;
       std::lock_guard lock(session_->mutex);
-      mesh = mesh_and_measure(config, *session_->inputs, *nodes);
+      mesh = mesh_and_measure(config, *session_->inputs, *session_->spacing, *nodes);
     }
     return MeshHandle{std::make_shared<const Mesh>(std::move(mesh)), session_, config.name};
   }
@@ -160,7 +174,7 @@ class Mesher {
   double size_seconds() const { return size_seconds_; }
   double init_seconds() const { return init_seconds_; }
   double sim_seconds() const { return seconds_; }
-  const std::string& backend() const { return backend_; }
+  const std::string& backend() const { return backend_name_; }
   bool converged() const { return converged_; }
 
  private:
@@ -189,7 +203,8 @@ class Mesher {
   double size_seconds_ = 0.0;
   double init_seconds_ = 0.0;
   double seconds_ = 0.0;
-  std::string backend_;
+  std::optional<ChosenBackend> backend_;  // set up by the first step
+  std::string backend_name_;
   bool failed_ = false;
   bool busy_ = false;
   bool converged_ = false;  // the stopping rule ended the run (SimResult::converged of the last step)
@@ -216,6 +231,8 @@ nb::dict history_columns(const std::vector<HistoryRow>& rows) {
 }  // namespace
 
 void bind_mesher(nb::module_& m) {
+  m.def("_backend_setups", &backend_setups,
+        "How many simulation backends this process has set up (choose_backend); for tests.");
   nb::class_<Mesher>(m, "Mesher", "One case's run in memory (use pdmesh.Mesher).")
       .def(nb::init<const CaseConfig&, const std::string&, std::uint64_t>(), nb::arg("config"),
            nb::arg("out_dir") = "", nb::arg("max_nodes") = 0,

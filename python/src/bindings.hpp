@@ -9,19 +9,21 @@
 #include <nanobind/nanobind.h>
 #include <nanobind/ndarray.h>
 
-#include "app/case_file.hpp"
-#include "app/mesh_command.hpp"
+#include "app/config/case_file.hpp"
+#include "app/pipeline/mesh_inputs.hpp"
 #include "mesh/mesh.hpp"
 
 namespace pdmesh::py {
 
 namespace nb = nanobind;
 
-// A validated case and the inputs built from it (geometry, tree, spacing field), shared by a Mesher
-// and every mesh it makes: a mesh measures its spacing conformance with the same field.
+// A validated case and the pipeline's first stages built from it (the inputs: geometry, tree, base
+// field; the final spacing field), shared by a Mesher and every mesh it makes: a mesh measures its
+// spacing conformance with the same field.
 struct Session {
   CaseConfig config;
   std::unique_ptr<MeshInputs> inputs;
+  std::unique_ptr<SpacingStage> spacing;  // over *inputs
   // Held (with the GIL released) while C++ uses the inputs: ExpressionSpacing is not thread-safe,
   // and two Python threads may drive one Mesher or measure its meshes at once.
   std::mutex mutex;

@@ -13,7 +13,7 @@
 #include <string_view>
 #include <vector>
 
-#include "app/case_file.hpp"
+#include "app/config/case_file.hpp"
 #include "core/errors.hpp"
 #include "geometry/curve_reader.hpp"
 #include "geometry/geometry_files.hpp"

@@ -16,7 +16,7 @@
 #include <string>
 #include <vector>
 
-#include "app/graded_case.hpp"
+#include "app/bench/graded_case.hpp"
 #include "cleanup/cleanup.hpp"
 #include "io/msh_writer.hpp"
 #include "io/text_file.hpp"

@@ -13,8 +13,8 @@
 #include <string>
 #include <vector>
 
-#include "app/case_file.hpp"
-#include "app/mesh_command.hpp"
+#include "app/config/case_file.hpp"
+#include "app/pipeline/mesh_pipeline.hpp"
 #include "core/errors.hpp"
 #include "sim/convergence.hpp"
 #include "sim/history.hpp"
@@ -48,10 +48,11 @@ int main(int argc, char** argv) {
     config.quiet = true;
     config.simulation.stop = StopRule::Iterations;  // the study runs every iteration
     const MeshInputs in(config);
-    check_node_limit(config, in);
-    NodeSet nodes = make_initial(config, in).nodes;
+    const SpacingStage spacing(config, in);
+    check_node_limit(config, in, spacing);
+    NodeSet nodes = make_initial(config, in, spacing).nodes;
     SimOptions options = simulation_options(config);
-    options.background = in.dense ? nullptr : &in.pipeline().background();
+    options.background = in.dense ? nullptr : &spacing.background();
     fmt::print("iteration,min_angle,aspect_ratio,settled,nodes,average_force,seconds\n");
     const auto start = std::chrono::steady_clock::now();
     // Population control's schedule, followed as the driver keeps it (an event is due by the same
@@ -73,7 +74,7 @@ int main(int argc, char** argv) {
                  std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
       std::fflush(stdout);
     };
-    const SimResult r = run_simulation(nodes, in.node_tree(), in.field(), options, callbacks);
+    const SimResult r = run_simulation(nodes, in.node_tree(), spacing.field(), options, callbacks);
     if (!history_file.empty()) write_history_csv(history_file, r.history);
     return 0;
   } catch (const std::exception& e) {

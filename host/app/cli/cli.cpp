@@ -1,0 +1,422 @@
+// Command-line definition: `pdmesh mesh INPUT --out DIR [options]`, translating the direct options
+// into case-file overrides so that one validator checks every value.
+#include "app/cli/cli.hpp"
+
+#include <CLI/CLI.hpp>
+#include <algorithm>
+#include <cerrno>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fmt/format.h>
+#include <optional>
+#include <sstream>
+#include <toml++/toml.h>
+
+#include "app/config/case_file.hpp"
+#include "app/pipeline/exit_codes.hpp"
+#include "app/bench/bench_command.hpp"
+#include "app/bench/whole_run_bench.hpp"
+#include "app/cli/devices_command.hpp"
+#include "app/pipeline/mesh_pipeline.hpp"
+#include "app/cli/quality_command.hpp"
+#include "core/errors.hpp"
+#include "core/interrupt.hpp"
+#include "core/memory_budget.hpp"
+#include "mesh/quality.hpp"
+
+namespace pdmesh {
+
+namespace fs = std::filesystem;
+
+struct QualityArguments {
+  std::string mesh;
+  std::optional<std::string> geometry, json, picture, view, color_by, color_range;
+};
+
+struct MeshArguments {
+  std::vector<std::string> inputs;
+  std::string out;
+  std::vector<std::string> sets;
+  std::optional<std::string> iterations, dt, cutoff, method, seed, total, device, precision, formats, r0_rule,
+      color_by, stability, momentum, stop, timings;
+  std::vector<std::string> views;
+  bool tree = false;
+  bool plot_spacing = false;
+  bool quiet = false;
+  bool check = false;
+  std::int64_t max_nodes = 20'000'000;
+  std::optional<std::string> max_memory;
+  std::optional<std::string> resume;
+  std::int64_t stop_after = 0;
+  std::vector<std::string> command_line;  // argv as given
+};
+
+namespace {
+
+std::string toml_text(const toml::node& n) {
+  std::ostringstream s;
+  n.visit([&](const auto& v) { s << v; });
+  return s.str();
+}
+
+// "--formats png,svg" as the TOML array ["png", "svg"].
+std::string formats_value(const std::string& list) {
+  toml::array a;
+  std::stringstream in(list);
+  for (std::string f; std::getline(in, f, ',');) a.push_back(f);
+  return toml_text(a);
+}
+
+// "--view [NAME=]x0,y0,x1,y1" as an inline table { name = ..., window = [...] }.
+std::string view_value(const std::string& text) {
+  std::string name, numbers = text;
+  if (const auto eq = text.find('='); eq != std::string::npos) {
+    name = text.substr(0, eq);
+    numbers = text.substr(eq + 1);
+  }
+  toml::array window;
+  std::stringstream in(numbers);
+  for (std::string f; std::getline(in, f, ',');) {
+    char* end = nullptr;
+    const double v = std::strtod(f.c_str(), &end);
+    if (f.empty() || end != f.c_str() + f.size()) {
+      throw InputError(fmt::format("--view {}: '{}' is not a number (expected [NAME=]x0,y0,x1,y1)", text, f));
+    }
+    window.push_back(v);
+  }
+  toml::table t;
+  if (!name.empty()) t.insert("name", name);
+  t.insert("window", std::move(window));
+  t.is_inline(true);
+  return toml_text(t);
+}
+
+// "a,b,c" as exactly `count` finite numbers; errors name the option and the text.
+std::vector<double> number_list(const std::string& option, const std::string& text, std::size_t count,
+                                const char* expected) {
+  std::vector<double> out;
+  std::stringstream in(text);
+  for (std::string f; std::getline(in, f, ',');) {
+    char* end = nullptr;
+    const double v = std::strtod(f.c_str(), &end);
+    if (f.empty() || end != f.c_str() + f.size() || !std::isfinite(v)) {
+      throw InputError(fmt::format("{} {}: '{}' is not a finite number (expected {})", option, text, f, expected));
+    }
+    out.push_back(v);
+  }
+  if (out.size() != count) {
+    throw InputError(fmt::format("{} {}: expected {} numbers ({}), got {}", option, text, count, expected, out.size()));
+  }
+  return out;
+}
+
+// The `pdmesh quality --picture` options, checked before anything is read or written.
+std::optional<QualityPicture> quality_picture(const QualityArguments& a) {
+  if (!a.picture) {
+    for (const auto* o : {&a.view, &a.color_by, &a.color_range}) {
+      if (*o) throw InputError("--view, --color-by and --color-range draw a picture: give --picture FILE too");
+    }
+    return std::nullopt;
+  }
+  QualityPicture p;
+  p.path = *a.picture;
+  const std::string ext = fs::path(p.path).extension().string();
+  if (ext != ".png" && ext != ".svg") {
+    throw InputError(fmt::format("--picture {}: the file name must end in .png or .svg", p.path));
+  }
+  if (a.view) {
+    const auto w = number_list("--view", *a.view, 4, "x0,y0,x1,y1");
+    if (!(w[0] < w[2] && w[1] < w[3])) throw InputError(fmt::format("--view {}: needs x0 < x1 and y0 < y1", *a.view));
+    p.window = std::array<double, 4>{w[0], w[1], w[2], w[3]};
+  }
+  if (a.color_by) {
+    metric_values({}, *a.color_by == "none" ? "min_angle" : *a.color_by);  // throws for unknown names
+    p.color_by = *a.color_by;
+  }
+  if (a.color_range) {
+    const auto r = number_list("--color-range", *a.color_range, 2, "LO,HI");
+    if (!(r[0] < r[1])) throw InputError(fmt::format("--color-range {}: needs LO < HI", *a.color_range));
+    if (p.color_by == "none") throw InputError("--color-range needs --color-by METRIC");
+    p.color_range = std::pair<double, double>(r[0], r[1]);
+  }
+  return p;
+}
+
+std::vector<CaseOverride> overrides_from(const MeshArguments& a) {
+  std::vector<CaseOverride> out;
+  for (const std::string& s : a.sets) out.push_back(parse_set_option(s));
+  auto direct = [&](const std::optional<std::string>& v, const char* option, const char* key) {
+    if (v) out.push_back({key, *v, fmt::format("{} {}", option, *v)});
+  };
+  direct(a.iterations, "--iterations", "simulation.iterations");
+  direct(a.stop, "--stop", "simulation.stop");
+  direct(a.dt, "--dt", "simulation.dt_initial");
+  direct(a.cutoff, "--cutoff", "simulation.cutoff");
+  direct(a.method, "--method", "init.method");
+  direct(a.seed, "--seed", "init.seed");
+  direct(a.total, "--total", "init.total");
+  direct(a.device, "--device", "simulation.device");
+  direct(a.precision, "--precision", "simulation.precision");
+  direct(a.r0_rule, "--r0-rule", "simulation.r0_rule");
+  direct(a.stability, "--stability", "simulation.stability_factor");
+  direct(a.momentum, "--momentum", "simulation.momentum");
+  direct(a.color_by, "--color-by", "output.color_by");
+  if (a.formats) out.push_back({"output.formats", formats_value(*a.formats), "--formats " + *a.formats});
+  if (a.tree) out.push_back({"output.tree_overlay", "true", "--tree"});
+  if (a.plot_spacing) out.push_back({"output.spacing_picture", "true", "--plot-spacing"});
+  for (const std::string& v : a.views) out.push_back({"output.views", view_value(v), "--view " + v, true});
+  return out;
+}
+
+std::string lower_extension(const fs::path& p) {
+  std::string ext = p.extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  return ext;
+}
+
+bool is_geometry_extension(const std::string& ext) { return ext == ".crv" || ext == ".dat" || ext == ".poly"; }
+
+CaseConfig config_from(const MeshArguments& a) {
+  std::error_code ec;
+  for (const std::string& name : a.inputs) {
+    if (!fs::exists(fs::path(name), ec)) throw InputError(fmt::format("cannot read '{}': {}", name, std::strerror(ENOENT)));
+  }
+  fs::path input(a.inputs.front());
+  // A case directory stands for the case.toml inside it.
+  if (fs::is_directory(input, ec)) {
+    if (!fs::is_regular_file(input / "case.toml", ec)) {
+      throw InputError(fmt::format("'{}' is a directory without a case.toml", a.inputs.front()));
+    }
+    input /= "case.toml";
+  }
+  const std::vector<CaseOverride> overrides = overrides_from(a);
+  const std::string ext = lower_extension(input);
+  CaseConfig config;
+  if (ext == ".toml") {
+    if (a.inputs.size() > 1) {
+      throw InputError(fmt::format("{}: a case file is meshed alone; '{}' would be a second input (name geometry "
+                                   "files in the case file's geometry.files)", a.inputs.front(), a.inputs[1]));
+    }
+    config = load_case_file(input, overrides);
+  } else if (is_geometry_extension(ext)) {
+    // Several geometry files make one geometry, as geometry.files does in a case file.
+    std::vector<fs::path> files;
+    for (const std::string& name : a.inputs) {
+      const std::string e = lower_extension(fs::path(name));
+      if (!is_geometry_extension(e) || fs::is_directory(fs::path(name), ec)) {
+        throw InputError(fmt::format("{}: expected a .crv, .dat or .poly geometry file after '{}', got '{}'", name,
+                                     a.inputs.front(), e.empty() ? name : e));
+      }
+      files.emplace_back(name);
+    }
+    config = case_for_geometry_files(files, overrides);
+  } else {
+    throw InputError(fmt::format("{}: unknown input type '{}' (expected a case .toml, a case directory or a .crv, "
+                                 ".dat or .poly geometry file)", a.inputs.front(), ext));
+  }
+  config.out_dir = a.out;
+  config.quiet = a.quiet;
+  config.check = a.check;
+  if (a.max_nodes < 1) throw InputError(fmt::format("--max-nodes {}: expected a node count >= 1", a.max_nodes));
+  config.max_nodes = static_cast<std::uint64_t>(a.max_nodes);
+  if (a.max_memory) config.max_memory = parse_memory_limit(*a.max_memory);
+  if (a.resume) config.resume = fs::path(*a.resume);
+  if (a.stop_after < 0) throw InputError(fmt::format("--stop-after {}: expected an iteration number >= 1", a.stop_after));
+  config.stop_after = a.stop_after;
+  config.command_line = a.command_line;
+  if (a.timings) config.timings_file = fs::path(*a.timings);
+  return config;
+}
+
+void add_mesh_options(CLI::App& mesh, MeshArguments& a) {
+  mesh.add_option("INPUT", a.inputs,
+                  "Case file (.toml), case directory (holding case.toml), or one or more geometry files (.crv, .dat, "
+                  ".poly) that together make one geometry, meshed with the best settings (preset = \"best\")")
+      ->required()
+      ->type_name("FILE...");
+  mesh.add_option("--out,-o", a.out, "Output directory (created if missing)")->required()->type_name("DIR");
+  mesh.add_option("--set", a.sets,
+                  "Override a case-file key: section.key=VALUE (TOML value; a bare word is a string). Repeatable")
+      ->type_name("KEY=VALUE")
+      ->allow_extra_args(false);
+  mesh.add_option("--iterations", a.iterations, "simulation.iterations: number of time steps (>= 0)")->type_name("N");
+  mesh.add_option("--stop", a.stop,
+                  "simulation.stop: converged (stop once the nodes have settled, at most --iterations) | iterations "
+                  "(exactly --iterations)")
+      ->type_name("RULE");
+  mesh.add_option("--dt", a.dt, "simulation.dt_initial: initial global maximum time step (> 0)")->type_name("DT");
+  mesh.add_option("--cutoff", a.cutoff, "simulation.cutoff: cut-off distance factor times q_i (> 0)")->type_name("F");
+  mesh.add_option("--method", a.method, "init.method: structured | random | hexagonal")->type_name("METHOD");
+  mesh.add_option("--seed", a.seed, "init.seed: seed of the random fill and overloading (>= 0)")->type_name("N");
+  mesh.add_option("--total", a.total, "init.total: total node count to reach by overloading (0 = off)")
+      ->type_name("N");
+  mesh.add_option("--device", a.device, "simulation.device: auto | host | opencl | opencl:P:D")->type_name("DEV");
+  mesh.add_option("--precision", a.precision, "simulation.precision: double | float")->type_name("P");
+  mesh.add_option("--r0-rule", a.r0_rule,
+                  "simulation.r0_rule: force_direction (thesis eq. 5.3) | any_direction (nearest neighbour limits the step)")
+      ->type_name("RULE");
+  mesh.add_option("--stability", a.stability,
+                  "simulation.stability_factor in [0, 1]: bound each step by the local stiffness (default 1; "
+                  "0 = the thesis' time step exactly, which can oscillate late in a run)")
+      ->type_name("C");
+  mesh.add_option("--momentum", a.momentum,
+                  "simulation.momentum in [0, 1): heavy-ball beta, each move carries beta times the node's previous "
+                  "one (default 0: plain gradient descent)")
+      ->type_name("B");
+  mesh.add_option("--color-by", a.color_by,
+                  "output.color_by: fill mesh.png by a quality metric: none | min_angle | max_angle | aspect_ratio | "
+                  "skewness | condition_number | min_jacobian")
+      ->type_name("METRIC");
+  mesh.add_option("--formats", a.formats,
+                  "output.formats, comma-separated: msh,msh22,vtu,su2,triangle,png,svg (no png and no svg: no "
+                  "pictures at all)")
+      ->type_name("LIST");
+  mesh.add_option("--view", a.views,
+                  "Extra zoomed picture initial_NAME.png of the window x0,y0,x1,y1 (NAME defaults to viewK). "
+                  "Repeatable")
+      ->type_name("[NAME=]x0,y0,x1,y1")
+      ->allow_extra_args(false);
+  mesh.add_flag("--tree", a.tree, "output.tree_overlay: draw the initialization tree on the initial pictures");
+  mesh.add_flag("--plot-spacing", a.plot_spacing,
+                "output.spacing_picture: draw the final spacing field as DIR/spacing.png (log colour scale, boundary drawn)");
+  mesh.add_flag("--quiet,-q", a.quiet, "No progress messages on stderr and no quality table on stdout");
+  mesh.add_flag("--check", a.check,
+                "Check the mesh invariants (topology, orientation, constrained Delaunay, boundary edges, area); "
+                "exit 1 listing the problems if any fails");
+  mesh.add_option("--max-nodes", a.max_nodes,
+                  "Refuse cases whose estimated node count exceeds this (default 20000000)")
+      ->type_name("N");
+  mesh.add_option("--max-memory", a.max_memory,
+                  "Refuse, before allocating, a run whose stages would need more memory than this: bytes, or with "
+                  "a suffix K, M, G, T (powers of 1024), e.g. 4G (default: 3/4 of the least of the RAM, ulimit -v "
+                  "and the cgroup's memory.max)")
+      ->type_name("SIZE");
+  mesh.add_option("--resume", a.resume,
+                  "Continue an interrupted run from its checkpoint: DIR/checkpoint.pdmesh (or that file); the case "
+                  "must be the same (--iterations may differ)")
+      ->type_name("DIR");
+  mesh.add_option("--timings", a.timings, "Write the wall and CPU time of every phase of the run as JSON to FILE")
+      ->type_name("FILE");
+  // Testing aid (docs/cli.md): behave as if interrupted after iteration N. Hidden from --help.
+  mesh.add_option("--stop-after", a.stop_after, "")->group("")->type_name("N");
+  mesh.footer("Options other than --out, --quiet, --max-nodes and --max-memory override keys of the case file;\n"
+              "every key can be set with --set (see docs/cli.md). Direct options are applied after --set.");
+}
+
+}  // namespace
+
+Cli::Cli() : app_(std::make_unique<CLI::App>("pdmesh: physics-based point placement and triangle meshing", "pdmesh")),
+             mesh_(std::make_unique<MeshArguments>()), quality_(std::make_unique<QualityArguments>()),
+             bench_(std::make_unique<BenchArguments>()) {
+  app_->set_version_flag("--version", std::string("pdmesh ") + PDMESH_VERSION);
+  app_->require_subcommand(1);
+  CLI::App* mesh = app_->add_subcommand("mesh", "Distribute nodes for a case and write them and their pictures");
+  add_mesh_options(*mesh, *mesh_);
+  commands_.emplace_back(mesh, [this] { return run_mesh(config_from(*mesh_)); });
+
+  CLI::App* quality = app_->add_subcommand("quality", "Print the quality table of an existing mesh file");
+  quality->add_option("MESH", quality_->mesh, "Mesh file: .msh (Gmsh 2.2 or 4.1), .vtu, .su2, or Triangle .ele/.node")
+      ->required()
+      ->type_name("FILE");
+  quality->add_option("--geometry,-g", quality_->geometry,
+                      "Case file or geometry file giving the desired spacing q (for spacing conformance)")
+      ->type_name("FILE");
+  quality->add_option("--json", quality_->json, "Also write the JSON summary: a file, a directory, or - for stdout")
+      ->type_name("PATH");
+  quality->add_option("--picture", quality_->picture, "Also draw the mesh: a .png or .svg file")->type_name("FILE");
+  quality->add_option("--view", quality_->view, "Window of the picture (default: the whole mesh)")
+      ->type_name("x0,y0,x1,y1");
+  quality->add_option("--color-by", quality_->color_by,
+                      "Fill the picture's triangles by a metric: none | min_angle | max_angle | aspect_ratio | "
+                      "skewness | condition_number | min_jacobian")
+      ->type_name("METRIC");
+  quality->add_option("--color-range", quality_->color_range,
+                      "Values at the two ends of the colour scale (default: the mesh's range), so that pictures "
+                      "of different meshes compare")
+      ->type_name("LO,HI");
+  commands_.emplace_back(quality, [this] {
+    const auto picture = quality_picture(*quality_);
+    return run_quality(quality_->mesh, quality_->geometry, quality_->json, picture);
+  });
+
+  CLI::App* bench = app_->add_subcommand("bench", "Time the simulation on the host reference and on each OpenCL device");
+  bench->add_option("--cases", bench_->cases, "Cases to run (graded_1m is generated in code)")->type_name("NAME...");
+  bench->add_option("--cases-dir", bench_->cases_dir, "Directory holding the named cases")->type_name("DIR");
+  bench->add_option("--iterations", bench_->iterations, "Iterations per case and backend")->type_name("N");
+  bench->add_option("--large-iterations", bench_->large_iterations, "Iterations for graded_1m")->type_name("N");
+  bench->add_option("--large-nodes", bench_->large_nodes, "Target node count of graded_1m")->type_name("N");
+  bench->add_option("--precision", bench_->precision, "double | float (devices without fp64 run float)")->type_name("P");
+  bench->add_option("--warmup", bench_->warmup, "Untimed iterations before timing, every backend from that state")->type_name("N");
+  bench->add_option("--large-warmup", bench_->large_warmup, "The same for graded_1m")->type_name("N");
+  bench->add_option("--skin", bench_->verlet_skin, "Verlet skin of the device runs (list radius cutoff q (1 + skin)); default as pdmesh mesh: 0.3, or 0.8 with momentum")->type_name("S");
+  bench->add_option("--population", bench_->population_every,
+                    "Population control during the timed iterations: an event every K iterations (0 = off)")
+      ->type_name("K");
+  bench->add_flag("--skip-host", bench_->skip_host, "Do not run the host reference");
+  bench->add_flag("--skip-host-large", bench_->skip_host_large, "Do not run the host reference on graded_1m");
+  bench->add_option("--force-loop", bench_->force_loop, "Force loop of the device runs: auto | vector | scalar")->type_name("L");
+  bench->add_option("--out", bench_->out, "Also write the table (Markdown) to this file")->type_name("FILE");
+  bench->add_flag("--whole-run", bench_->whole_run,
+                  "Time the mesh command end to end instead: every phase, --repeat runs per case and backend, each "
+                  "a separate process")
+      ->group("Whole runs");
+  bench->add_option("--repeat", bench_->repeat, "Runs per case and backend (--whole-run)")->type_name("N")->group("Whole runs");
+  bench->add_option("--backends", bench_->backends, "--device of the runs, e.g. host auto (--whole-run)")
+      ->type_name("DEV...")
+      ->group("Whole runs");
+  bench->add_option("--set", bench_->sets, "Case key passed to every run as --set (--whole-run)")
+      ->type_name("KEY=VALUE")
+      ->allow_extra_args(false)
+      ->group("Whole runs");
+  bench->add_option("--work-dir", bench_->work_dir, "Where the runs write (and annulus_N cases are generated)")
+      ->type_name("DIR")
+      ->group("Whole runs");
+  bench->add_flag("--no-pictures{false}", bench_->keep_pictures, "Runs write no pictures (--formats msh)")->group("Whole runs");
+  commands_.emplace_back(bench, [this] { return bench_->whole_run ? run_whole_run_bench(*bench_) : run_bench(*bench_); });
+
+  CLI::App* devices = app_->add_subcommand("devices", "List the OpenCL platforms and devices (--device opencl:P:D)");
+  devices->add_flag("--check", devices_check_, "Also build and run a small kernel on each device");
+  commands_.emplace_back(devices, [this] { return run_devices(devices_check_); });
+}
+
+Cli::~Cli() = default;
+
+void Cli::parse(int argc, const char* const* argv) {
+  mesh_->command_line.assign(argv, argv + argc);
+  app_->parse(argc, argv);
+}
+
+int Cli::run() {
+  for (const auto& [command, runner] : commands_) {
+    if (command->parsed()) return runner();
+  }
+  throw Error("no command was selected");
+}
+
+int run_command_line(int argc, const char* const* argv) {
+  try {
+    Cli cli;
+    try {
+      cli.parse(argc, argv);
+    } catch (const CLI::ParseError& e) {
+      // --help and --version arrive here too, with exit code 0.
+      return cli.app().exit(e) == 0 ? kExitOk : kExitInput;
+    }
+    return cli.run();
+  } catch (const Interrupted&) {  // a stop request outside run_mesh's own handling
+    fmt::print(stderr, "pdmesh: stopped\n");
+    return kExitInterrupted;
+  } catch (const InputError& e) {
+    fmt::print(stderr, "pdmesh: error: {}\n", e.what());
+    return kExitInput;
+  } catch (const Error& e) {
+    fmt::print(stderr, "pdmesh: error: {}\n", e.what());
+    return kExitFailure;
+  } catch (const std::exception& e) {
+    fmt::print(stderr, "pdmesh: internal error: {}\n", e.what());
+    return kExitFailure;
+  }
+}
+
+}  // namespace pdmesh

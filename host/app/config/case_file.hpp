@@ -1,0 +1,230 @@
+// The case file (case.toml; its keys: docs/cli.md, "Case files"): parsed, overridden from the
+// command line and validated into a CaseConfig before anything runs or is written.
+#pragma once
+#include <cstdint>
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "cleanup/cleanup.hpp"
+#include "core/memory_budget.hpp"
+#include "core/vec2.hpp"
+#include "geometry/geometry.hpp"
+#include "init/initial_distribution.hpp"
+#include "sim/population.hpp"
+#include "spacing/background_field.hpp"
+
+namespace pdmesh {
+
+class SpacingField;
+
+enum class SpacingKind { Boundary, Expression, Mesh };
+// simulation.precision. Auto: float where the device lacks fp64 or runs it far slower (opencl/precision_probe).
+enum class Precision { Double, Float, Auto };
+// geometry.curves: the curve the points describe (docs/geometry-input.md, "Smooth curves").
+enum class CurveKind { Polyline, Smooth };
+// When the simulation ends: once the nodes have converged (sim/convergence.hpp) or after exactly
+// simulation.iterations iterations (the thesis).
+enum class StopRule { Converged, Iterations };
+
+// Which defaults the keys a case file leaves out take (top-level key `preset`).
+//   Best:   the settings that give the best meshes; what a geometry given alone runs with: heavy-ball
+//           momentum, a compressed population schedule and stopping rule, and a 40-degree cleanup
+//           (docs/cli.md, "Presets").
+//   Thesis: Fackler's settings, so that the thesis case files reproduce chapter 6 (report/).
+//   Long:   the slower schedule best replaced: no momentum, population control to 80 % of the run, the
+//           rule every 100 iterations over a 400-iteration window, a 30-degree cleanup. Three times the
+//           iterations for the same or a slightly better worst triangle on some geometries.
+//   Fast:   an older name of best's schedule, kept so that files naming it still run; the same settings
+//           as Best.
+// The member initializers of CaseConfig below are the Long values (those of the library's option
+// structs); apply_preset() (app/config/presets.cpp) changes the keys whose value differs in the other
+// presets. Keys the file sets always win over the preset.
+enum class Preset { Best, Thesis, Fast, Long };
+
+// A zoom window: an extra picture NAME_VIEW.png of the region [x0, x1] x [y0, y1].
+struct ViewWindow {
+  std::string name;
+  Box window;
+};
+
+// One "--set section.key=VALUE" (or a direct option translated into one). `label` is how
+// messages name it, e.g. "--set simulation.iterations=abc" or "--iterations abc".
+struct CaseOverride {
+  std::string key;    // dotted key, e.g. "simulation.iterations"
+  std::string value;  // TOML value syntax; a bare word that is not valid TOML is taken as a string
+  std::string label;
+  bool append = false;  // append the value to the array at `key` instead of replacing it (--view)
+};
+
+struct CaseConfig {
+  std::filesystem::path source;  // the case file, or the geometry file when meshing one directly
+  std::string name;              // for titles; default: the case directory name (or geometry file stem)
+  // Top-level key `preset`: "best" (a case file's default), "thesis", "long" or "fast". A CaseConfig
+  // built in code holds the long preset's values until apply_preset() runs (a parsed one always has).
+  Preset preset = Preset::Long;
+
+  struct Geometry {
+    std::vector<std::filesystem::path> files;  // resolved relative to the case file
+    std::vector<std::string> curve_names;      // optional, in file/curve order
+    double join_tolerance = 1e-9;
+    double corner_angle = 30.0;  // degrees
+    // Curves given in memory (the Python API) instead of files; see case_for_curves().
+    std::vector<RawCurve> given_curves;
+    CurveKind curves = CurveKind::Polyline;  // the same in both presets (docs/initialization.md, "Measured")
+  } geometry;
+
+  struct Spacing {
+    SpacingKind field = SpacingKind::Boundary;
+    std::string expression;  // muParser expression in x and y when field == Expression
+    // field == Mesh: a .vtu or .msh triangle mesh (resolved relative to the case file, or to the current
+    // directory when given by --set) and the name of its point-data array that holds q.
+    std::filesystem::path file;
+    std::string array = "q";
+    // A field given by the caller (the Python API: a size callable), not a case key. When set it
+    // replaces `field`; MeshInputs samples it once into a background field, so that nothing later
+    // evaluates it per point.
+    std::shared_ptr<const SpacingField> given;
+    // The pipeline on top of the base field (docs/spacing.md): base x scale, min with the feature size
+    // (rows_in_gap node spacings across every gap) and the curvature rule (q <= R theta), then the
+    // gradation limit |grad q| <= gradation. 0 turns each off; the thesis preset turns all off.
+    double scale = 1.0;
+    double gradation = 0.2;
+    double rows_in_gap = 2.0;
+    double curvature_angle = 10.0;  // degrees
+    // The background quadtree's resolution, BackgroundOptions' defaults in every preset: refine while
+    // the bilinear value is off by more than background_tolerance (relative), but not for accuracy
+    // below background_min_side x q inside and background_boundary_min_side x q in leaves a boundary
+    // segment touches.
+    double background_tolerance = BackgroundOptions{}.tolerance;
+    double background_min_side = BackgroundOptions{}.min_side_fraction;
+    double background_boundary_min_side = BackgroundOptions{}.boundary_min_side_fraction;
+  } spacing;
+
+  struct Boundary {
+    BoundaryNodeRule nodes = BoundaryNodeRule::Spacing;  // thesis: Input (every geometry point is a node)
+  } boundary;
+
+  struct Init {
+    InitMethod method = InitMethod::Structured;
+    std::uint64_t seed = 1;
+    std::uint64_t total = 0;  // 0 = no overloading
+  } init;
+
+  struct Simulation {
+    std::int64_t iterations = 2000;  // with stop = Converged the most the run may take
+    StopRule stop = StopRule::Converged;
+    // The convergence rule's tolerances (sim/convergence.hpp ConvergenceOptions): the most the mean
+    // aspect ratio of the triangulated nodes may change over the rule's window, and the most the
+    // smallest angle may rise above its earlier best in it (degrees).
+    double stop_aspect = 5e-4;
+    double stop_angle = 0.25;
+    // The rule's measurement interval, window and earliest stop (ConvergenceOptions::check_every,
+    // window, min_iterations), in iterations.
+    int stop_every = 100;
+    int stop_window = 400;
+    int stop_min = 400;
+    // Initial global maximum time step per init method; empty = the automatic rule.
+    std::optional<double> dt_structured;
+    std::optional<double> dt_random;
+    double cutoff = 1.5;
+    double lj_a = 15.0;
+    std::string device = "auto";  // auto | host | opencl | opencl:P:D
+    Precision precision = Precision::Auto;  // the host reference always computes in double
+    // true: r0 is the nearest neighbour in any direction ("any_direction"); false: in the force
+    // direction, thesis eq. 5.3 ("force_direction", the default).
+    bool r0_any_direction = false;
+    // Stiffness bound on each node's time step (docs/simulation.md, "Stability"): 0 = off, the
+    // thesis' rule exactly; c in (0, 1] keeps every step within the forward-Euler stability limit.
+    double stability_factor = 1.0;
+    double momentum = 0.0;  // SimOptions::momentum (heavy-ball beta in [0, 1); 0 = off)
+    // A hexagonal start is a lattice like the structured one: it takes the structured value.
+    std::optional<double> dt_for(InitMethod m) const {
+      return m == InitMethod::Random ? dt_random : dt_structured;
+    }
+  } simulation;
+
+  // Node insertion and removal during the run (sim/population.hpp, docs/cli.md "[population]"). Best:
+  // on; thesis: off (the thesis keeps the initial node count).
+  PopulationOptions population{.enabled = true};
+  // The final cleanup after the last iteration (docs/cleanup.md): repairs the triangles whose
+  // smallest angle is below min_angle by smoothing, flips and local topology operations.
+  struct Cleanup {
+    bool enabled = true;
+    double min_angle = 30.0;       // degrees, in (0, 60)
+    std::int64_t iterations = 16;  // outer iterations (smoothing sweeps + a topology pass)
+    bool topology = true;          // false: smoothing and flips only (the node count stays)
+    bool split_boundary = true;    // false: no new boundary nodes (boundary nodes only slide)
+    // The topology passes' work bound: max(min_trials, trials_per_triangle x triangles) trials
+    // (CleanupOptions' defaults; best lowers both).
+    double trials_per_triangle = CleanupOptions{}.trials_per_triangle;
+    std::int64_t min_trials = static_cast<std::int64_t>(CleanupOptions{}.min_trials);
+  } cleanup;
+
+  struct Output {
+    std::vector<std::string> formats{"msh", "vtu", "png"};
+    bool tree_overlay = false;
+    std::vector<ViewWindow> views;
+    std::string color_by = "none";  // mesh.png fill: none or a per-triangle quality metric
+    bool spacing_picture = false;   // DIR/spacing.png: the final spacing field (--plot-spacing)
+    bool wants(const std::string& format) const;
+  } output;
+
+  // Command-line only (not case-file keys).
+  std::filesystem::path out_dir;
+  bool quiet = false;
+  bool check = false;  // run the mesh invariant checker and fail when it finds a problem
+  std::uint64_t max_nodes = 20'000'000;
+  // --max-memory: what the run may allocate, checked by every stage before it allocates in proportion
+  // to the input or the node count (default: a share of the machine's memory, core/memory_budget.hpp).
+  MemoryLimit max_memory = default_memory_limit();
+  std::optional<std::filesystem::path> resume;  // --resume: continue from this checkpoint (file or directory)
+  std::optional<std::filesystem::path> timings_file;  // --timings: the phase times as JSON
+  // The `pdmesh mesh` command line as given (argv), for the commands a stopped run prints; empty
+  // for runs not started by the command.
+  std::vector<std::string> command_line;
+  std::int64_t stop_after = 0;  // --stop-after (testing aid): act as if interrupted after this iteration; 0 = off
+  // false (the Python API): the stages compute only; nothing is written into out_dir.
+  bool write_outputs = true;
+};
+
+// Every valid dotted key, for docs and suggestions.
+const std::vector<std::string>& case_file_keys();
+
+// Parses and validates a case file. Throws InputError "FILE:LINE:COL: ..." on TOML syntax errors,
+// unknown keys (with the nearest valid key suggested), wrong types and out-of-range values.
+CaseConfig load_case_file(const std::filesystem::path& case_file,
+                          const std::vector<CaseOverride>& overrides = {});
+
+// The same from TOML text; `source` names it in messages and anchors relative paths.
+CaseConfig parse_case_text(std::string_view text, const std::filesystem::path& source,
+                           const std::vector<CaseOverride>& overrides = {});
+
+// A case for one geometry file (.crv, .dat, .poly) with every other key at its default.
+CaseConfig case_for_geometry_file(const std::filesystem::path& geometry_file,
+                                  const std::vector<CaseOverride>& overrides = {});
+// The same for several geometry files that together make one geometry (curves taken in file order);
+// the case is named after the first file's stem.
+CaseConfig case_for_geometry_files(const std::vector<std::filesystem::path>& geometry_files,
+                                   const std::vector<CaseOverride>& overrides = {});
+
+// A case for curves given in memory (the Python API) with every key at its default but those the
+// overrides set; `source` names the geometry in messages and the case (its name) unless `name` is set.
+// geometry.files may not be set (InputError); geometry.curve_names names the curves as for files.
+CaseConfig case_for_curves(std::vector<RawCurve> curves, const std::string& source,
+                           const std::vector<CaseOverride>& overrides = {});
+
+// Sets every key whose default differs between presets to `preset`'s value (and config.preset).
+void apply_preset(CaseConfig& config, Preset preset);
+// "best" or "thesis".
+const char* to_string(Preset preset);
+
+// Splits "section.key=VALUE" into an override; throws InputError when there is no '=' or key.
+CaseOverride parse_set_option(const std::string& text);
+
+// Levenshtein distance, used to suggest the nearest valid key.
+std::size_t edit_distance(std::string_view a, std::string_view b);
+
+}  // namespace pdmesh

@@ -1,0 +1,226 @@
+// `pdmesh mesh`, stages read, spacing and initial (mesh_inputs.hpp): the inputs (geometry, trees, base
+// field), the spacing pipeline and the limits, the boundary placement and the initial distribution.
+#include "app/pipeline/mesh_inputs.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <string_view>
+#include <fmt/format.h>
+
+#include "app/config/case_spacing.hpp"
+#include "core/errors.hpp"
+#include "core/memory_budget.hpp"
+#include "geometry/geometry_files.hpp"
+#include "init/node_estimate.hpp"
+#include "spacing/mesh_spacing.hpp"
+#include "spacing/resolution_check.hpp"
+
+namespace pdmesh {
+
+MeshInputs::MeshInputs(const CaseConfig& config) {
+  std::vector<std::string> files;
+  for (const std::filesystem::path& f : config.geometry.files) files.push_back(f.string());
+  GeometryOptions options;
+  options.join_tolerance = config.geometry.join_tolerance;
+  options.corner_angle_deg = config.geometry.corner_angle;
+  geometry = config.geometry.given_curves.empty()
+                 ? read_geometry(files, config.geometry.curve_names, options)
+                 : geometry_from_curves(config.geometry.given_curves, config.geometry.curve_names, options);
+  // Curve names are fields in node and mesh files; one with white space would break them later.
+  for (std::size_t c = 0; c < geometry.curves.size(); ++c) {
+    const std::string& name = geometry.curves[c].name;
+    if (name.empty() || name.find_first_of(" \t\r\n") != std::string::npos) {
+      throw InputError(fmt::format("{}:{}: curve {} name '{}' is empty or contains white space; name the curves "
+                                   "with geometry.curve_names",
+                                   geometry.curves[c].file, geometry.curves[c].line, c, name));
+    }
+  }
+  // The geometry's quadtree and the queries' per-segment arrays, before they are made (the
+  // geometry itself is read: its size was the file's).
+  check_memory(config.max_memory, GeometryTree::kBytesPerSegment * static_cast<double>(geometry.segments.size()),
+               fmt::format("{}: the geometry's quadtree over {} segments", config.source.string(),
+                           geometry.segments.size()),
+               "raise --max-memory");
+  tree = std::make_unique<GeometryTree>(geometry);
+  spacing_options = pdmesh::spacing_options(config);
+  check_spacing_options(spacing_options);
+  if (config.spacing.field == SpacingKind::Boundary) {
+    // A refusal by the node count says where eq. 3.6's q comes from: a dense input polyline asks for
+    // nodes as fine as its segments everywhere.
+    const auto [shortest, longest] = std::minmax_element(
+        geometry.segments.begin(), geometry.segments.end(),
+        [](const Segment& a, const Segment& b) { return a.length < b.length; });
+    if (shortest != geometry.segments.end())
+      node_hint = fmt::format(" (eq. 3.6 takes q from the lengths of the input's {} segments, {:.3g} to {:.3g}: a "
+                               "coarser polyline, spacing.scale or spacing.expression asks for fewer)",
+                               geometry.segments.size(), shortest->length, longest->length);
+  }
+  const auto spacing_start = std::chrono::steady_clock::now();
+  spacing = make_case_spacing(config, *tree);
+  if (const auto* m = dynamic_cast<const MeshSpacing*>(spacing.get())) {
+    const MeshFieldData& d = m->data();
+    const auto [lo, hi] = std::minmax_element(d.q.begin(), d.q.end());
+    spacing_summary = fmt::format("spacing: '{}' on {} ({} triangles, {} points, q from {:.4g} to {:.4g}), read, checked and "
+                                  "indexed in {:.3f} s",
+                                  d.array, d.file, d.triangles.size(), d.points.size(), *lo, *hi,
+                                  std::chrono::duration<double>(std::chrono::steady_clock::now() - spacing_start).count());
+  }
+  // Before anything else uses them: with unresolvable coordinates the node estimate's tree could
+  // refine without end.
+  check_coordinate_resolution(geometry, *spacing);
+  boundary_rule = config.boundary.nodes;
+  if (config.geometry.curves == CurveKind::Smooth) {
+    DenseOptions dense_options;
+    dense_options.join_tolerance = config.geometry.join_tolerance;
+    try {
+      dense = std::make_unique<DenseGeometry>(
+          make_dense_geometry(SmoothCurves(geometry, config.geometry.corner_angle),
+                              [&](Vec2 p) { return spacing->at(p); }, dense_options));
+    } catch (const GeometryError& e) {
+      // Smooth curves through coarse points can cross where the polylines pass close to each other.
+      smooth_fallback = e.what();
+    }
+    if (dense) {
+      check_coordinate_resolution(dense->geometry, *spacing);
+      dense_tree = std::make_unique<GeometryTree>(dense->geometry);
+    }
+  }
+}
+
+BoundaryPlacement place_boundary(const CaseConfig& config, const MeshInputs& inputs, const SpacingStage& spacing) {
+  BoundaryPlacement placed;
+  // The thesis' rule (every point of the input polyline) is applied by the initialization itself.
+  if (!inputs.dense && inputs.boundary_rule == BoundaryNodeRule::Input) return placed;
+  const Geometry& on = inputs.node_geometry();
+  PlacementOptions placement;
+  placement.max_nodes = config.max_nodes;
+  // Placed by the final field (the pipeline's: graded, feature size, curvature), so that the boundary
+  // rows match the interior rows next to them.
+  const SpacingField& q = spacing.field();
+  const CurveStations stations = inputs.boundary_rule == BoundaryNodeRule::Spacing
+                                     ? spacing_stations(on, q, placement)
+                                     : vertex_stations(on, &inputs.dense->vertex);
+  placed.nodes = assemble_boundary_nodes(on, q, stations);
+  placed.resolution = station_resolution(on, stations);
+  return placed;
+}
+
+SpacingOptions spacing_options(const CaseConfig& config) {
+  SpacingOptions o;
+  o.scale = config.spacing.scale;
+  o.gradation = config.spacing.gradation;
+  o.rows_in_gap = config.spacing.rows_in_gap;
+  o.curvature_angle = config.spacing.curvature_angle;
+  o.background.tolerance = config.spacing.background_tolerance;
+  o.background.min_side_fraction = config.spacing.background_min_side;
+  o.background.boundary_min_side_fraction = config.spacing.background_boundary_min_side;
+  // The budgets the quadtree is built within (a field that asks for 1e9 nodes is refused on a coarse
+  // level, before the tree at its resolution exists).
+  o.background.max_nodes = static_cast<double>(config.max_nodes);
+  o.background.memory = config.max_memory;
+  // The sources' floor stays with boundary nodes placed by the field too: without it the feature size
+  // asks for q -> 0 toward sharp V tips, whose placed nodes then crowd into slivers (measured on the
+  // corpus: heatsink_channel 0.22 deg, coastline 0.47 deg without; docs/spacing.md). The final floor
+  // only serves input points as boundary nodes: placed nodes follow whatever finer field the case asks.
+  o.input_boundary_floor = kInputBoundaryFloor;
+  o.final_floor = config.boundary.nodes == BoundaryNodeRule::Input;
+  return o;
+}
+
+namespace {
+
+bool refused_by_nodes(const LimitError& e) { return std::string_view(e.what()).find("--max-nodes") != std::string_view::npos; }
+
+// The hexagonal-packing estimate against --max-nodes (`source` prefixes the message unless empty).
+void refuse_above_limit(const std::string& source, std::uint64_t max_nodes, double estimate, const char* which) {
+  if (!(estimate <= static_cast<double>(max_nodes))) {
+    throw LimitError(fmt::format("{}the {} asks for about {} nodes (hexagonal-packing estimate), "
+                                 "more than --max-nodes {}; coarsen the spacing or raise --max-nodes",
+                                 source.empty() ? std::string() : source + ": ", which,
+                                 std::isfinite(estimate) ? fmt::format("{:.0f}", estimate) : std::string("infinitely many"),
+                                 max_nodes));
+  }
+}
+
+}  // namespace
+
+SpacingStage::SpacingStage(const CaseConfig& config, const MeshInputs& inputs, Build build)
+    : source_(config.source.string()), node_hint_(inputs.node_hint) {
+  const std::uint64_t max_nodes = config.max_nodes;
+  // The base field's quadtree is checked before the limits refine it (they only lower q).
+  const auto check_base = [&inputs, max_nodes](const BackgroundSpacing& base_tree) {
+    // Only the refusal matters here (the final field's estimate is the one reported): where the
+    // bound, every leaf not outside counted whole, is clearly below the limit, the estimate is too
+    // (it is not above the bound but for rounding, ~1e-13 relative), and its boundary leaves' geometry
+    // queries (0.04 s on 30P30N's curves alone) are skipped.
+    const double bound = node_count_bound(base_tree);
+    if (std::isfinite(bound) && bound * (1.0 + 1e-6) <= static_cast<double>(max_nodes)) return;
+    refuse_above_limit("", max_nodes, estimate_node_count(*inputs.tree, base_tree), "spacing field before its limits");
+  };
+  const SpacingOptions& options = inputs.spacing_options;
+  try {
+    pipeline_ = std::make_unique<SpacingPipeline>(*inputs.spacing, *inputs.tree, options,
+                                                  options.modifies() ? check_base : SpacingPipeline::BaseCheck{});
+  } catch (const LimitError& e) {
+    throw LimitError(fmt::format("{}: {}{}", source_, e.what(), refused_by_nodes(e) ? node_hint_ : ""));
+  }
+  // The sources lower q: the final field must be resolvable too.
+  if (!pipeline_->exact()) check_coordinate_resolution(inputs.geometry, pipeline_->field());
+  if (build == Build::Meshing) (void)background();
+}
+
+const BackgroundSpacing& SpacingStage::background() const {
+  // The thesis' field builds its quadtree (the node estimate's and the simulation's lookup table) on
+  // first use, within the same budgets.
+  try {
+    return pipeline_->background();
+  } catch (const LimitError& e) {
+    throw LimitError(fmt::format("{}: {}{}", source_, e.what(), refused_by_nodes(e) ? node_hint_ : ""));
+  }
+}
+
+std::vector<std::string> MeshInputs::curve_names() const {
+  std::vector<std::string> names;
+  for (const Curve& c : geometry.curves) names.push_back(c.name);
+  return names;
+}
+
+double check_node_limit(const CaseConfig& config, const MeshInputs& inputs, const SpacingStage& spacing) {
+  // One pass over the leaves of the final field's quadtree (init/node_estimate), which the simulation
+  // samples anyway: per-sample queries over the initialization tree took longer than the simulation
+  // on rods_fine (7.4 s against 5.5 s, thesis preset).
+  const BackgroundSpacing& background = spacing.background();
+  const double estimate = estimate_node_count(inputs.node_tree(), background);
+  refuse_above_limit(config.source.string(), config.max_nodes, estimate, "spacing field");
+  if (config.init.total > config.max_nodes) {
+    throw LimitError(fmt::format("{}: init.total = {} is more than --max-nodes {}", config.source.string(),
+                                 config.init.total, config.max_nodes));
+  }
+  // The stages after this one (the fill, the simulation, the triangulation, the cleanup, the writers)
+  // each hold arrays in proportion to the node count: the run's peak, before the first of them.
+  const double nodes = std::max(estimate, static_cast<double>(config.init.total));
+  check_memory(config.max_memory, run_memory_bytes(nodes, background.stats().bytes),
+               fmt::format("{}: meshing about {:.0f} nodes (hexagonal-packing estimate)", config.source.string(), nodes),
+               "raise --max-memory, coarsen the spacing or lower --max-nodes");
+  return estimate;
+}
+
+double run_memory_bytes(double nodes, std::size_t field_bytes) {
+  return kRunBytesBase + kRunBytesPerNode * kRunNodeGrowth * nodes + static_cast<double>(field_bytes);
+}
+
+InitialDistribution make_initial(const CaseConfig& config, const MeshInputs& inputs, const SpacingStage& spacing) {
+  const BoundaryPlacement boundary = place_boundary(config, inputs, spacing);
+  InitOptions options;
+  options.method = config.init.method;
+  options.seed = config.init.seed;
+  if (config.init.total > 0) options.total = static_cast<std::size_t>(config.init.total);
+  options.with_estimate = false;  // check_node_limit computed it just before
+  options.boundary = boundary.nodes ? &*boundary.nodes : nullptr;
+  options.segment_resolution = boundary.resolution.empty() ? nullptr : &boundary.resolution;
+  return make_initial_distribution(inputs.node_tree(), spacing.field(), options);
+}
+
+}  // namespace pdmesh

@@ -1,0 +1,124 @@
+// The first stages of `pdmesh mesh` (mesh_pipeline.hpp lists them all): read (MeshInputs), spacing
+// (SpacingStage, then the node and memory limits) and initial (the boundary placement and the fill).
+// Each is a value built from the ones before it; none changes them.
+#pragma once
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "app/config/case_file.hpp"
+#include "geometry/geometry.hpp"
+#include "geometry/geometry_tree.hpp"
+#include "geometry/smooth_curve.hpp"
+#include "init/initial_distribution.hpp"
+#include "nodes/node_set.hpp"
+#include "spacing/background_field.hpp"
+#include "spacing/spacing_field.hpp"
+#include "spacing/spacing_pipeline.hpp"
+
+namespace pdmesh {
+
+// The case's spacing keys as pipeline options (boundary nodes are the input points: the sources
+// keep to kInputBoundaryFloor of the input segments next to them, docs/spacing.md).
+SpacingOptions spacing_options(const CaseConfig& config);
+
+// Stage read: the geometry, its tree and the base spacing field; throws LimitError for coordinates
+// too large to resolve at the segment lengths or the spacing (check_coordinate_resolution). Not
+// movable: the tree and the boundary spacing field refer to the geometry.
+//
+// Two geometries (docs/geometry-input.md, "Smooth curves"): `geometry` is the input as read; its
+// segments define the spacing field (eq. 3.6's l_s; a dense polyline would shrink q). The node
+// geometry is the curve the nodes live on: with geometry.curves = "smooth", the dense polyline of
+// the smooth curves (same curves, loops and critical points); with "polyline", `geometry` itself.
+// Everything but the spacing field uses the node geometry: boundary nodes, the node-count estimate
+// and the fill, sliding and snapping, inside tests, the mesh check's area and the pictures.
+struct MeshInputs {
+  explicit MeshInputs(const CaseConfig& config);
+  MeshInputs(const MeshInputs&) = delete;
+  MeshInputs& operator=(const MeshInputs&) = delete;
+
+  Geometry geometry;                   // the input geometry (spacing field)
+  std::unique_ptr<GeometryTree> tree;  // over `geometry`
+  std::unique_ptr<SpacingField> spacing;  // the base field (eq. 3.6, an expression, data), exact
+  SpacingOptions spacing_options;
+  // One line about a spacing field read from a file (spacing.field = "mesh"); empty otherwise.
+  std::string spacing_summary;
+  std::unique_ptr<DenseGeometry> dense;     // smooth curves; null for "polyline" (or after a fallback)
+  std::unique_ptr<GeometryTree> dense_tree;  // over dense->geometry
+  BoundaryNodeRule boundary_rule = BoundaryNodeRule::Input;
+  // Why geometry.curves = "smooth" fell back to the polylines (the smooth curves intersect); empty
+  // when it did not.
+  std::string smooth_fallback;
+  // What a refusal by --max-nodes appends: where eq. 3.6's q comes from (empty unless the field is
+  // eq. 3.6 of the input segments).
+  std::string node_hint;
+
+  const Geometry& node_geometry() const { return dense ? dense->geometry : geometry; }
+  const GeometryTree& node_tree() const { return dense ? *dense_tree : *tree; }
+  std::vector<std::string> curve_names() const;
+};
+
+// Stage spacing: the final spacing field (the pipeline over the inputs' base field), which the
+// initialization, boundary placement, quality and pictures read (field()), and its quadtree, which
+// both simulation backends and the node estimate sample (background()). A LimitError of its budgets
+// (--max-nodes, --max-memory) names the case. Refers to `inputs`, which must outlive it.
+class SpacingStage {
+ public:
+  // Meshing: the quadtree is built here too (in the thesis' case eq. 3.6's lookup table, which the
+  // pipeline builds only on demand). FieldOnly: for readers of field() alone (pdmesh quality), which
+  // then leave the thesis' quadtree unbuilt.
+  enum class Build { Meshing, FieldOnly };
+  SpacingStage(const CaseConfig& config, const MeshInputs& inputs, Build build = Build::Meshing);
+  SpacingStage(const SpacingStage&) = delete;
+  SpacingStage& operator=(const SpacingStage&) = delete;
+
+  const SpacingPipeline& pipeline() const { return *pipeline_; }
+  const SpacingField& field() const { return pipeline_->field(); }
+  // The quadtree (built by the constructor unless FieldOnly; then by the first call, not thread-safe).
+  const BackgroundSpacing& background() const;
+
+ private:
+  std::string source_;     // the case file, for messages
+  std::string node_hint_;  // MeshInputs::node_hint
+  std::unique_ptr<SpacingPipeline> pipeline_;
+};
+
+// Stage spacing, its limits: refuses, with LimitError naming the numbers, a case whose
+// hexagonal-packing estimate (or requested total) exceeds config.max_nodes. Returns the estimate of the
+// final field. When the pipeline modifies the base field, the base field's quadtree has been checked
+// first, inside SpacingStage (the sources only lower q), so that an absurd case is refused before the
+// limits refine it further. It then refuses, with LimitError, a run whose later stages would need
+// more than config.max_memory (run_memory_bytes).
+double check_node_limit(const CaseConfig& config, const MeshInputs& inputs, const SpacingStage& spacing);
+
+// The memory model of a run's stages after the spacing field (docs/robustness.md, "Memory"): what a
+// run holds per node at its peak (the node set and initialization tree, the simulation's arrays and
+// neighbour grid, an OpenCL CPU device's buffers, which are host memory, the triangulation and the
+// cleanup's editable mesh, the writers' text), plus the process's base and the field. Measured on a
+// 289k-node estimate (q = 2e-3 on the unit square, 30 iterations, every stage): 1.3 KB per estimated
+// node on the host, 1.7 KB with PoCL; 2 KB x 1.25 leaves room for the population's growth.
+inline constexpr double kRunBytesBase = 64.0 * 1024 * 1024;
+inline constexpr double kRunBytesPerNode = 2048.0;
+// Population control inserts nodes where the estimate is low, at most a few percent on the corpus.
+inline constexpr double kRunNodeGrowth = 1.25;
+double run_memory_bytes(double nodes, std::size_t field_bytes);
+
+// Stage initial, its first part: the boundary nodes on the node geometry (boundary.nodes = "spacing",
+// or the input points of smooth curves), placed by the final field, and what the initialization tree
+// refines to along each node-geometry segment (InitTreeOptions::segment_resolution: the boundary-node
+// spacing there, from the same placement). Both empty for the thesis' rule, which
+// make_initial_distribution applies itself. LimitError when the field asks for more than
+// config.max_nodes boundary nodes.
+struct BoundaryPlacement {
+  std::optional<NodeSet> nodes;
+  std::vector<double> resolution;
+};
+BoundaryPlacement place_boundary(const CaseConfig& config, const MeshInputs& inputs, const SpacingStage& spacing);
+
+// Stage initial: the initial distribution (the boundary placement, then the tree fill).
+InitialDistribution make_initial(const CaseConfig& config, const MeshInputs& inputs, const SpacingStage& spacing);
+
+}  // namespace pdmesh

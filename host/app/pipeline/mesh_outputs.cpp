@@ -1,0 +1,310 @@
+// `pdmesh mesh`, the outputs: the output directory, the node files and pictures of a stage, the spacing
+// picture, and stage mesh (triangulation, check, cleanup, quality, mesh files and pictures).
+#include "app/pipeline/mesh_pipeline.hpp"
+
+#include <cmath>
+#include <filesystem>
+#include <fmt/format.h>
+
+#include "app/pipeline/pipeline_detail.hpp"
+#include "app/pipeline/output_guard.hpp"
+#include "cleanup/cleanup.hpp"
+#include "core/atomic_file.hpp"
+#include "core/errors.hpp"
+#include "io/mesh_formats.hpp"
+#include "mesh/mesh_check.hpp"
+#include "io/quality_report.hpp"
+#include "mesh/triangulate_nodes.hpp"
+#include "nodes/node_domain.hpp"
+#include "nodes/node_file.hpp"
+#include "render/mesh_picture.hpp"
+#include "render/node_picture.hpp"
+#include "render/spacing_picture.hpp"
+
+namespace pdmesh {
+
+namespace fs = std::filesystem;
+using mesh_detail::kSvgNodeLimit;
+using mesh_detail::progress;
+using mesh_detail::write_node_outputs;
+
+void prepare_output_directory(const CaseConfig& config) {
+  std::error_code ec;
+  fs::create_directories(config.out_dir, ec);
+  if (ec || !fs::is_directory(config.out_dir)) {
+    throw InputError(fmt::format("cannot create output directory '{}': {}", config.out_dir.string(),
+                                 ec ? ec.message() : std::string("a file of that name exists")));
+  }
+  // The directory is this run's alone from here on (a run into an existing one took it earlier).
+  lock_output_directory(config.out_dir);
+  // A run killed while writing leaves its temporary beside the file it was writing.
+  const std::size_t stale = remove_stale_temporaries(config.out_dir);
+  if (stale > 0)
+    progress(config, "removed {} temporary file(s) left in {} by a run that was killed while writing", stale,
+             config.out_dir.string());
+}
+
+// Declared in pipeline_detail.hpp (the simulation stage writes the final nodes with it).
+void mesh_detail::write_node_outputs(const CaseConfig& config, const MeshInputs& inputs, const NodeSet& nodes,
+                        const std::string& stage, const std::string& title, const std::vector<Box>* tree_quads,
+                        RunPhases& run) {
+  const fs::path& dir = config.out_dir;
+  {
+    const auto timer = run.phase(stage + ".nodes");
+    write_node_file(dir / (stage + ".nodes"), nodes, inputs.curve_names());
+  }
+  NodePictureOptions picture;
+  picture.title = title;
+  picture.tree_quads = tree_quads;
+  const Geometry* geometry = &inputs.node_geometry();
+  const NodeSet* drawn = &nodes;
+  std::vector<std::string> names;
+  const auto draw = [&](const std::string& file, const NodePictureOptions& options) {
+    run.picture(file, [geometry, drawn, options, path = dir / file] { write_node_picture(path, *geometry, *drawn, options); });
+    names.push_back(file);
+  };
+  if (config.output.wants("png")) {
+    draw(stage + ".png", picture);
+    for (const ViewWindow& view : config.output.views) {
+      NodePictureOptions zoomed = picture;
+      zoomed.title += " - " + view.name;
+      zoomed.window = view.window;
+      draw(fmt::format("{}_{}.png", stage, view.name), zoomed);
+    }
+  }
+  if (config.output.wants("svg")) {
+    if (nodes.size() <= kSvgNodeLimit) {
+      draw(stage + ".svg", picture);
+    } else {
+      progress(config, "{}.svg skipped: {} nodes is more than {} (the PNG pictures are written)", stage, nodes.size(),
+               kSvgNodeLimit);
+    }
+  }
+  progress(config, "wrote {}/{}.nodes{}", dir.string(), stage,
+           names.empty() ? "" : fmt::format("; drawing {}", fmt::join(names, ", ")));
+}
+
+
+void write_spacing_picture(const CaseConfig& config, const MeshInputs& inputs, const SpacingStage& spacing) {
+  const BackgroundSpacing& field = spacing.background();
+  SpacingPictureOptions picture;
+  picture.title = fmt::format("{} - spacing field", config.name);
+  write_spacing_picture(config.out_dir / "spacing.png", *inputs.tree, field, picture);
+  for (const ViewWindow& view : config.output.views) {
+    SpacingPictureOptions zoomed = picture;
+    zoomed.title += " - " + view.name;
+    zoomed.window = view.window;
+    write_spacing_picture(config.out_dir / fmt::format("spacing_{}.png", view.name), *inputs.tree, field, zoomed);
+  }
+  progress(config, "wrote {}/spacing.png{}", config.out_dir.string(),
+           config.output.views.empty() ? "" : fmt::format(" and {} view(s)", config.output.views.size()));
+}
+
+void write_initial_outputs(const CaseConfig& config, const MeshInputs& inputs, const InitialDistribution& initial,
+                           RunPhases* run) {
+  RunPhases local(false);
+  write_node_outputs(config, inputs, initial.nodes, "initial",
+                     fmt::format("{} - initial distribution ({})", config.name, to_string(config.init.method)),
+                     config.output.tree_overlay ? &initial.tree_quads : nullptr, run ? *run : local);
+}
+
+namespace {
+
+// --check: the invariant checker on `mesh`, whose boundary nodes are those of `nodes`.
+void check_or_throw(const CaseConfig& config, const MeshInputs& inputs, const Mesh& mesh, const NodeSet& nodes,
+                    const char* which) {
+  // The mesh covers the polygons through the boundary nodes, which cut the curves' corners
+  // where nodes have slid off geometry vertices; that area is what the check compares against.
+  const double node_area = node_domain_area(nodes, inputs.node_geometry());
+  const CheckReport report = check_mesh(mesh, node_area);
+  if (!report.ok()) throw SimulationError(fmt::format("the {} failed its invariant check:\n{}", which, report.summary()));
+  progress(config, "mesh check ({}): passed (topology, orientation, constrained Delaunay, boundary edges, area {:.10g}; "
+           "the geometry's area is {:.10g}, relative difference {:.2g})",
+           which, node_area, inputs.geometry.area, std::fabs(node_area - inputs.geometry.area) / inputs.geometry.area);
+}
+
+// Smallest and largest angle and the triangles below `target` degrees.
+void angle_figures(const std::vector<TriangleQuality>& per_triangle, double target, double& min_angle,
+                   double& max_angle, std::size_t& below) {
+  const QualitySummary s = summarize_quality(per_triangle);
+  min_angle = s.min_angle;
+  max_angle = s.max_angle;
+  below = 0;
+  for (const TriangleQuality& t : per_triangle) below += t.min_angle < target;
+}
+
+}  // namespace
+
+namespace {
+
+// The triangulation of `nodes` (or `triangulated`, when it is theirs), checked when config.check.
+Mesh triangulate_nodes(const CaseConfig& config, const MeshInputs& inputs, const NodeSet& nodes, RunPhases& phases,
+                       const Mesh* triangulated) {
+  auto timer = phases.phase("triangulation");
+  Mesh mesh;
+  if (triangulated && triangulates(*triangulated, nodes)) {
+    mesh = *triangulated;  // the convergence rule's last measurement: the same mesh
+    mesh.curve_names = inputs.curve_names();
+  } else {
+    mesh = triangulate(nodes, inputs.curve_names());
+  }
+  timer.stop();
+  progress(config, "triangulation: {} triangles", mesh.triangles.size());
+  phases.note("nodes", static_cast<double>(nodes.size()));
+  phases.note("triangles", static_cast<double>(mesh.triangles.size()));
+  if (config.check) {
+    const auto check_timer = phases.phase("check");
+    check_or_throw(config, inputs, mesh, nodes, "triangulation");
+  }
+  return mesh;
+}
+
+// The final cleanup (docs/cleanup.md) of `mesh` in place; its nodes, its effect and the cleaned
+// mesh's qualities.
+struct CleanedMesh {
+  NodeSet nodes;
+  CleanupEffect effect;
+  std::vector<TriangleQuality> per_triangle;
+};
+
+CleanedMesh clean_up(const CaseConfig& config, const MeshInputs& inputs, const SpacingStage& spacing, Mesh& mesh,
+                     const NodeSet& nodes, RunPhases& phases) {
+  const auto cleanup_timer = phases.phase("cleanup");
+  CleanupOptions options;
+  options.min_angle = config.cleanup.min_angle;
+  options.iterations = static_cast<int>(config.cleanup.iterations);
+  options.topology = config.cleanup.topology;
+  options.split_boundary = config.cleanup.split_boundary;
+  options.trials_per_triangle = config.cleanup.trials_per_triangle;
+  options.min_trials = static_cast<double>(config.cleanup.min_trials);
+  CleanedMesh out;
+  CleanupEffect& effect = out.effect;
+  effect.target_deg = options.min_angle;
+  effect.triangles_before = mesh.triangles.size();
+  effect.points_before = mesh.points.size();
+  angle_figures(triangle_qualities(mesh), options.min_angle, effect.min_angle_before, effect.max_angle_before,
+                effect.below_before);
+  CleanupResult cleaned = clean_mesh(mesh, nodes, inputs.node_tree(), spacing.field(), options);
+  mesh = std::move(cleaned.mesh);
+  out.per_triangle = triangle_qualities(mesh);  // the cleaned mesh's, reused by the quality summary
+  angle_figures(out.per_triangle, options.min_angle, effect.min_angle_after, effect.max_angle_after,
+                effect.below_after);
+  effect.inserted = cleaned.stats.inserted;
+  effect.removed = cleaned.stats.collapsed;
+  effect.moves = cleaned.stats.moves;
+  effect.seconds = cleaned.stats.seconds;
+  progress(config, "cleanup: {:.3f} s; min angle {:.2f} -> {:.2f} deg, triangles below {:g} deg {} -> {}; "
+           "{} node moves, {} nodes inserted, {} removed ({} triangles)",
+           effect.seconds, effect.min_angle_before, effect.min_angle_after, effect.target_deg, effect.below_before,
+           effect.below_after, effect.moves, effect.inserted, effect.removed, mesh.triangles.size());
+  if (config.check) check_or_throw(config, inputs, mesh, cleaned.nodes, "cleaned mesh");
+  out.nodes = std::move(cleaned.nodes);
+  return out;
+}
+
+// Queues mesh.png, mesh_<view>.png and mesh.svg as output.formats asks; returns their names. `mesh`
+// and `values` must stay unchanged until the pictures are drawn.
+std::vector<std::string> queue_mesh_pictures(const CaseConfig& config, const Mesh& mesh,
+                                             const std::vector<double>* values, RunPhases& phases) {
+  MeshPictureOptions picture;
+  picture.title = fmt::format("{} - mesh ({} triangles)", config.name, mesh.triangles.size());
+  if (values) {
+    picture.triangle_values = values;
+    picture.value_label = config.output.color_by;
+  }
+  const fs::path& dir = config.out_dir;
+  std::vector<std::string> pictures;
+  const auto draw = [&](const std::string& file, const MeshPictureOptions& options) {
+    phases.picture(file, [&mesh, options, path = dir / file] { write_mesh_picture(path, mesh, options); });
+    pictures.push_back(file);
+  };
+  if (config.output.wants("png")) {
+    draw("mesh.png", picture);
+    for (const ViewWindow& view : config.output.views) {
+      MeshPictureOptions zoomed = picture;
+      zoomed.title += " - " + view.name;
+      zoomed.window = view.window;
+      draw(fmt::format("mesh_{}.png", view.name), zoomed);
+    }
+  }
+  if (config.output.wants("svg") && mesh.triangles.size() <= 2 * kSvgNodeLimit) draw("mesh.svg", picture);
+  return pictures;
+}
+
+// The quality table, DIR/quality.json, the mesh files, mesh.nodes and the pictures of the mesh stage.
+void write_mesh_outputs(const CaseConfig& config, const MeshInputs& inputs, const SpacingField& spacing,
+                        const Mesh& mesh, const NodeSet& mesh_nodes, QualitySummary& summary,
+                        const std::vector<TriangleQuality>& per_triangle, RunPhases& phases) {
+  // The pictures are drawn on the background thread while the quality is measured and the files are
+  // written; the mesh and the values stay alive until the wait below (also when something throws).
+  std::vector<double> values;
+  const PictureGuard guard(phases);
+  if (config.output.color_by != "none") values = metric_values(per_triangle, config.output.color_by);
+  const std::vector<std::string> pictures =
+      queue_mesh_pictures(config, mesh, config.output.color_by != "none" ? &values : nullptr, phases);
+  {
+    const auto conformance_timer = phases.phase("spacing conformance");
+    summary.has_spacing = true;
+    summary.spacing = spacing_conformance(
+        mesh, [&spacing](const std::vector<Vec2>& p, std::vector<double>& q) { spacing.at_many(p, q); });
+  }
+  if (!config.quiet) fmt::print("{}", format_quality_table(summary, config.name));
+  const fs::path& dir = config.out_dir;
+  {
+    const auto json_timer = phases.phase("quality.json");
+    write_quality_json(summary, dir, config.name);
+  }
+  std::vector<fs::path> written;
+  for (const std::string& f : config.output.formats) {
+    if (!is_mesh_format(f)) continue;
+    const auto writer_timer = phases.phase(fmt::format("mesh {}", f));
+    for (fs::path& p : write_mesh(mesh, dir, "mesh", {f})) written.push_back(std::move(p));
+  }
+  {
+    // The nodes of the mesh with their q, kinds and curve chains (final.nodes after the cleanup; the
+    // same nodes without it), for tools that need the mesh's boundary chains, like tools/eval/compare.
+    const auto nodes_timer = phases.phase("mesh.nodes");
+    write_node_file(dir / "mesh.nodes", mesh_nodes, inputs.curve_names());
+  }
+  {
+    const auto wait_timer = phases.phase("waiting for pictures");
+    phases.wait_pictures();
+  }
+  std::string names;
+  for (const auto& p : written) names += (names.empty() ? "" : ", ") + p.filename().string();
+  progress(config, "mesh: {} triangles; wrote {}/quality.json, mesh.nodes{}{}{}", mesh.triangles.size(), dir.string(),
+           names.empty() ? "" : ", ", names, pictures.empty() ? "" : fmt::format(", {}", fmt::join(pictures, ", ")));
+}
+
+}  // namespace
+
+Mesh mesh_and_measure(const CaseConfig& config, const MeshInputs& inputs, const SpacingStage& spacing,
+                      const NodeSet& nodes, RunPhases* run, const Mesh* triangulated) {
+  RunPhases local(false);
+  RunPhases& phases = run ? *run : local;
+  Mesh mesh = triangulate_nodes(config, inputs, nodes, phases, triangulated);
+  // The final cleanup: the mesh files and pictures show the cleaned mesh; final.nodes stays the
+  // simulation's result.
+  CleanedMesh cleaned;
+  if (config.cleanup.enabled) cleaned = clean_up(config, inputs, spacing, mesh, nodes, phases);
+  const NodeSet& mesh_nodes = config.cleanup.enabled ? cleaned.nodes : nodes;
+  const SpacingField& field = spacing.field();
+  // The field at every node goes into the mesh files (point data "q"): a run's field can be read back
+  // with spacing.field = "mesh", or edited (e.g. scaled by a solution's error indicator) first.
+  {
+    const auto q_timer = phases.phase("q at the nodes");
+    field.at_many(mesh.points, mesh.spacing);
+  }
+  if (!config.write_outputs) return mesh;  // the Python API measures on demand (Mesh.quality())
+  auto quality_timer = phases.phase("quality");
+  if (!config.cleanup.enabled) cleaned.per_triangle = triangle_qualities(mesh);
+  QualitySummary summary = summarize_quality(cleaned.per_triangle);
+  summary.points = mesh.points.size();
+  summary.has_cleanup = config.cleanup.enabled;
+  summary.cleanup = cleaned.effect;
+  quality_timer.stop();
+  write_mesh_outputs(config, inputs, field, mesh, mesh_nodes, summary, cleaned.per_triangle, phases);
+  return mesh;
+}
+
+}  // namespace pdmesh

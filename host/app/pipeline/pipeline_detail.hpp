@@ -1,0 +1,41 @@
+// What the stages of `pdmesh mesh` share (app/pipeline/mesh_pipeline.cpp, simulate_stage.cpp, mesh_outputs.cpp):
+// the progress lines, the SVG size limit and the node outputs of a stage. Internal to those files.
+#pragma once
+#include <cstddef>
+#include <cstdio>
+#include <string>
+#include <utility>
+#include <vector>
+#include <fmt/format.h>
+
+#include "app/config/case_file.hpp"
+#include "app/pipeline/mesh_pipeline.hpp"
+#include "app/pipeline/run_phases.hpp"
+#include "core/progress_notes.hpp"
+#include "geometry/geometry.hpp"
+#include "nodes/node_set.hpp"
+
+namespace pdmesh::mesh_detail {
+
+// Every node is an element in an SVG; beyond this many the file would run to hundreds of
+// megabytes, so only the PNG pictures (and zoomed views) are written.
+inline constexpr std::size_t kSvgNodeLimit = 500'000;
+
+// One progress line on stderr unless the case is quiet (through the progress sink when run_mesh set
+// one, so that the heartbeat knows the run is not silent).
+template <class... Args>
+void progress(const CaseConfig& config, fmt::format_string<Args...> format, Args&&... args) {
+  if (config.quiet) return;
+  const std::string line = fmt::format(format, std::forward<Args>(args)...);
+  if (has_progress_sink()) progress_line(line);
+  else fmt::print(stderr, "{}\n", line);
+}
+
+// STAGE.nodes, and (as output.formats asks) STAGE.png and STAGE_<view>.png, STAGE.svg, for one node
+// distribution (mesh_outputs.cpp). The pictures go to `run`'s background thread: `nodes` (and the tree
+// quads) must stay unchanged until run.wait_pictures().
+void write_node_outputs(const CaseConfig& config, const MeshInputs& inputs, const NodeSet& nodes,
+                        const std::string& stage, const std::string& title, const std::vector<Box>* tree_quads,
+                        RunPhases& run);
+
+}  // namespace pdmesh::mesh_detail
