@@ -6,7 +6,7 @@
 cmake_minimum_required(VERSION 3.20)
 
 # Lowest first. main is host/main.cpp.
-set(PDMESH_LAYERS core geometry spacing nodes mesh io init cleanup sim render opencl app main)
+set(PDMESH_LAYERS core geometry spacing nodes mesh layers io init cleanup sim render opencl app main)
 
 if(NOT HOST_DIR OR NOT IS_DIRECTORY "${HOST_DIR}")
   message(FATAL_ERROR "check_layers: HOST_DIR='${HOST_DIR}' is not a directory")

@@ -1,0 +1,152 @@
+// How thick each ray's layers may be: the free thickness (the settings and the core's spacing),
+// the collisions with curves and with other rays, the limit on neighbouring thickness ratios, and
+// the layer count and growth that give that thickness with the first height exact.
+#include <algorithm>
+#include <cmath>
+
+#include "core/predicates.hpp"
+#include "layers/layers_detail.hpp"
+
+namespace pdmesh::layers_detail {
+
+namespace {
+
+// The free thickness of one ray: the settings' thickness (or layer count), or less where a layer's
+// height reaches the core's spacing there divided by the growth.
+double free_thickness(const LayerRay& ray, Vec2 p, const LayerSettings& s, const CoreSpacing& core) {
+  const double target = s.layers > 0 ? stack_height(s.first_height, s.growth, s.layers) : s.thickness;
+  if (!core) return target;
+  double height = 0.0, layer = s.first_height;
+  while (height + layer <= target * (1.0 + 1e-12)) {
+    height += layer;
+    const double q = core(p + (height / ray.correction) * ray.direction);
+    if (layer * s.growth >= q) return height;
+    layer *= s.growth;
+  }
+  return target;
+}
+
+}  // namespace
+
+void free_and_collision_limits(RaySet& set, const Geometry& geometry, const LayerSettings& settings,
+                               const CoreSpacing& core_spacing, std::vector<double>& allowed) {
+  const int nr = static_cast<int>(set.rays.size());
+  allowed.assign(nr, 0.0);
+  std::vector<Vec2> end(nr);
+  Box box;
+  double longest = 0.0;
+  for (int r = 0; r < nr; ++r) {
+    LayerRay& ray = set.rays[r];
+    const Vec2 p = set.wall_points[ray.wall_node];
+    ray.free_thickness = free_thickness(ray, p, settings, core_spacing);
+    allowed[r] = ray.free_thickness;
+    end[r] = p + (ray.free_thickness / ray.correction) * ray.direction;
+    box.add(p);
+    box.add(end[r]);
+    longest = std::max(longest, ray.free_thickness / ray.correction);
+  }
+  if (nr == 0) return;
+  const int ns = static_cast<int>(geometry.segments.size());
+  const double cell = std::max(longest, box.diagonal() / std::sqrt(static_cast<double>(nr) + ns) * 0.5);
+  SegmentGrid grid(box, cell > 0.0 ? cell : 1.0);
+  for (int k = 0; k < ns; ++k) grid.insert(k, geometry.segments[k].a, geometry.segments[k].b);
+  for (int r = 0; r < nr; ++r) grid.insert(ns + r, set.wall_points[set.rays[r].wall_node], end[r]);
+  for (int r = 0; r < nr; ++r) {
+    const LayerRay& ray = set.rays[r];
+    const Vec2 p = set.wall_points[ray.wall_node], e = end[r];
+    const double length = norm(e - p);
+    grid.query(p, e, [&](int id) {
+      if (id < ns) {
+        const Segment& s = geometry.segments[id];
+        if (s.a == p || s.b == p || !segments_intersect(p, e, s.a, s.b)) return;
+        const double t = intersection_parameter(p, e, s.a, s.b);
+        allowed[r] = std::min(allowed[r], settings.gap_fraction * t * length * ray.correction);
+        return;
+      }
+      const LayerRay& other = set.rays[id - ns];
+      const Vec2 q = set.wall_points[other.wall_node];
+      if (other.wall_node == ray.wall_node || q == p) return;
+      if (!segments_cross_properly(p, e, q, end[id - ns])) return;
+      const double t = intersection_parameter(p, e, q, end[id - ns]);
+      allowed[r] = std::min(allowed[r], settings.cross_fraction * t * length * ray.correction);
+    });
+  }
+}
+
+void grade_thickness(const RaySet& set, double max_jump, std::vector<double>& allowed) {
+  for (std::size_t c = 0; c + 1 < set.ray_begin.size(); ++c) {
+    const int b = set.ray_begin[c], e = set.ray_begin[c + 1], n = e - b;
+    if (n < 2) continue;
+    const bool closed = set.closed[c] != 0;
+    // Sweeps until nothing changes; each sweep passes a limit along the whole chain.
+    for (int round = 0; round < n + 2; ++round) {
+      bool changed = false;
+      auto limit = [&](int r, int from) {
+        const double cap = max_jump * allowed[from];
+        if (allowed[r] > cap) {
+          allowed[r] = cap;
+          changed = true;
+        }
+      };
+      for (int k = 1; k < n; ++k) limit(b + k, b + k - 1);
+      if (closed) limit(b, e - 1);
+      for (int k = n - 2; k >= 0; --k) limit(b + k, b + k + 1);
+      if (closed) limit(e - 1, b);
+      if (!changed) break;
+    }
+  }
+}
+
+void layer_counts(const RaySet& set, const LayerSettings& settings, const std::vector<double>& allowed,
+                  std::vector<int>& count, std::vector<double>& growth) {
+  const double h1 = settings.first_height, g = settings.growth;
+  const int nr = static_cast<int>(set.rays.size());
+  count.assign(nr, 0);
+  growth.assign(nr, g);
+  for (int r = 0; r < nr; ++r) {
+    const double a = allowed[r];
+    if (a < h1 * (1.0 - 1e-12)) continue;
+    int n = 1;
+    while (stack_height(h1, g, n) < a * (1.0 - 1e-12)) ++n;
+    if (n * h1 > a) n = std::max(1, static_cast<int>(std::floor(a / h1 * (1.0 + 1e-12))));
+    count[r] = n;
+  }
+  // Neighbouring counts differ by at most one where the thinner ray can take more, thinner layers.
+  for (std::size_t c = 0; c + 1 < set.ray_begin.size(); ++c) {
+    const int b = set.ray_begin[c], e = set.ray_begin[c + 1], n = e - b;
+    const bool closed = set.closed[c] != 0;
+    for (int round = 0; round < 64; ++round) {
+      bool changed = false;
+      for (int k = 0; k < n; ++k) {
+        const int r = b + k;
+        for (const int j : {k - 1, k + 1}) {
+          if (!closed && (j < 0 || j >= n)) continue;
+          const int o = b + (j + n) % n;
+          if (count[o] - count[r] > 1 && (count[r] + 1) * h1 <= allowed[r] * (1.0 + 1e-12) && count[r] > 0) {
+            ++count[r];
+            changed = true;
+          }
+        }
+      }
+      if (!changed) break;
+    }
+  }
+  for (int r = 0; r < nr; ++r) {
+    const int n = count[r];
+    if (n == 0) continue;
+    const double a = allowed[r];
+    if (std::abs(stack_height(h1, g, n) - a) <= 1e-9 * a) continue;  // exactly the settings' stack
+    if (n * h1 >= a) {
+      growth[r] = 1.0;
+      continue;
+    }
+    double lo = 1.0, hi = g;
+    for (int it = 0; it < 80; ++it) {
+      const double mid = 0.5 * (lo + hi);
+      (stack_height(h1, mid, n) < a ? lo : hi) = mid;
+    }
+    growth[r] = lo;
+  }
+}
+
+}  // namespace pdmesh::layers_detail

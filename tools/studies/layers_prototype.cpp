@@ -1,0 +1,110 @@
+// Boundary-layer prototype (docs/boundary-layers.md): grows layers from the named wall curves of a
+// case's geometry, the core spacing being the case's spacing field, prints the layer measures and
+// writes the layer cells (quads split into triangles) as OUT/layers.vtu and .msh, with pictures of
+// the whole layer and of each view given.
+//
+//   layers_prototype CASE.toml OUT H1 GROWTH THICKNESS CURVE[,CURVE...] [NAME=X0,Y0,X1,Y1 ...]
+//
+// Example: build/layers_prototype cases/naca0012/case.toml /tmp/bl 1e-5 1.2 0.05 upper,lower
+//            le=-0.02,-0.05,0.08,0.05 te=0.95,-0.03,1.01,0.03
+#include <fmt/format.h>
+
+#include <chrono>
+#include <cstdlib>
+#include <filesystem>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "app/case_file.hpp"
+#include "app/mesh_command.hpp"
+#include "core/errors.hpp"
+#include "io/mesh_formats.hpp"
+#include "layers/boundary_layers.hpp"
+#include "layers/layer_measures.hpp"
+#include "render/mesh_picture.hpp"
+
+using namespace pdmesh;
+
+namespace {
+
+std::vector<std::string> split(const std::string& s, char sep) {
+  std::vector<std::string> out;
+  std::stringstream in(s);
+  for (std::string item; std::getline(in, item, sep);) out.push_back(item);
+  return out;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc < 7) {
+    fmt::print(stderr, "usage: {} CASE.toml OUT H1 GROWTH THICKNESS CURVE[,CURVE...] [NAME=X0,Y0,X1,Y1 ...]\n", argv[0]);
+    return 2;
+  }
+  try {
+    const CaseConfig config = load_case_file(argv[1]);
+    const std::filesystem::path out = argv[2];
+    std::filesystem::create_directories(out);
+    LayerSettings settings;
+    settings.first_height = std::stod(argv[3]);
+    settings.growth = std::stod(argv[4]);
+    settings.thickness = std::stod(argv[5]);
+    MeshInputs inputs(config);
+    const SpacingField& field = inputs.field();
+    const CoreSpacing core = [&field](Vec2 p) { return field.at(p); };
+    const std::vector<int> walls = curves_by_name(inputs.geometry, split(argv[6], ','), "wall curves");
+
+    const auto start = std::chrono::steady_clock::now();
+    const LayerMesh layers = build_boundary_layers(inputs.geometry, walls, settings, core);
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const LayerMeasures m = measure_layers(layers, settings.first_height, core);
+    std::vector<std::string> names;
+    for (const Curve& c : inputs.geometry.curves) names.push_back(c.name);
+    fmt::print("{}: {} wall nodes, {} rays, {} repair rounds, built in {:.3f} s\n{}", argv[1], layers.wall_nodes,
+               layers.rays.size(), layers.repairs, seconds, format_layer_measures(m, names));
+
+    // The cells as triangles (quads split along v0-v2), the fronts as boundary edges.
+    Mesh mesh;
+    mesh.points = layers.nodes;
+    mesh.curve_names = {"front"};
+    std::vector<double> kind;
+    for (const LayerCell& c : layers.cells) {
+      mesh.triangles.push_back({c.v[0], c.v[1], c.v[2]});
+      kind.push_back(static_cast<double>(c.kind));
+      if (!c.triangle()) {
+        mesh.triangles.push_back({c.v[0], c.v[2], c.v[3]});
+        kind.push_back(static_cast<double>(c.kind));
+      }
+    }
+    for (const LayerFront& f : layers.fronts) {
+      const std::size_t n = f.nodes.size();
+      for (std::size_t k = 0; k + (f.closed ? 0 : 1) < n; ++k) mesh.boundary_edges.push_back({f.nodes[k], f.nodes[(k + 1) % n], 0});
+    }
+    write_mesh(mesh, out, "layers", {"vtu", "msh"});
+    MeshPictureOptions options;
+    options.triangle_values = &kind;
+    options.value_label = "0 quad, 1 fan, 2 transition";
+    options.value_range = std::make_pair(0.0, 3.0);
+    options.title = "boundary layer";
+    write_mesh_picture(out / "layers.png", mesh, options);
+    for (int k = 7; k < argc; ++k) {
+      const std::vector<std::string> view = split(argv[k], '=');
+      const std::vector<std::string> w = view.size() == 2 ? split(view[1], ',') : std::vector<std::string>{};
+      if (w.size() != 4) throw InputError(fmt::format("view \"{}\": give NAME=X0,Y0,X1,Y1", argv[k]));
+      Box box;
+      box.add({std::stod(w[0]), std::stod(w[1])});
+      box.add({std::stod(w[2]), std::stod(w[3])});
+      options.window = box;
+      options.title = "boundary layer: " + view[0];
+      write_mesh_picture(out / ("layers_" + view[0] + ".png"), mesh, options);
+    }
+    return 0;
+  } catch (const InputError& e) {
+    fmt::print(stderr, "error: {}\n", e.what());
+    return 2;
+  } catch (const std::exception& e) {
+    fmt::print(stderr, "error: {}\n", e.what());
+    return 1;
+  }
+}
