@@ -51,26 +51,43 @@ void free_and_collision_limits(RaySet& set, const Geometry& geometry, const Laye
   SegmentGrid grid(box, cell > 0.0 ? cell : 1.0);
   for (int k = 0; k < ns; ++k) grid.insert(k, geometry.segments[k].a, geometry.segments[k].b);
   for (int r = 0; r < nr; ++r) grid.insert(ns + r, set.wall_points[set.rays[r].wall_node], end[r]);
+  // First the curves: a ray that meets a curve at distance L stops at gap_fraction x L.
   for (int r = 0; r < nr; ++r) {
     const LayerRay& ray = set.rays[r];
     const Vec2 p = set.wall_points[ray.wall_node], e = end[r];
     const double length = norm(e - p);
     grid.query(p, e, [&](int id) {
-      if (id < ns) {
-        const Segment& s = geometry.segments[id];
-        if (s.a == p || s.b == p || !segments_intersect(p, e, s.a, s.b)) return;
-        const double t = intersection_parameter(p, e, s.a, s.b);
-        allowed[r] = std::min(allowed[r], settings.gap_fraction * t * length * ray.correction);
-        return;
-      }
-      const LayerRay& other = set.rays[id - ns];
-      const Vec2 q = set.wall_points[other.wall_node];
-      if (other.wall_node == ray.wall_node || q == p) return;
-      if (!segments_cross_properly(p, e, q, end[id - ns])) return;
-      const double t = intersection_parameter(p, e, q, end[id - ns]);
-      allowed[r] = std::min(allowed[r], settings.cross_fraction * t * length * ray.correction);
+      if (id >= ns) return;
+      const Segment& s = geometry.segments[id];
+      if (s.a == p || s.b == p || !segments_intersect(p, e, s.a, s.b)) return;
+      const double t = intersection_parameter(p, e, s.a, s.b);
+      allowed[r] = std::min(allowed[r], settings.gap_fraction * t * length * ray.correction);
     });
   }
+  // Then the rays as cut there: of two rays that cross at X, the one whose wall node is farther from
+  // X stops at cross_fraction of that distance, and the other too when its distance is comparable
+  // (at least half), so that a long ray passing close to another wall does not cut that wall's rays.
+  std::vector<Vec2> cut(nr);
+  for (int r = 0; r < nr; ++r)
+    cut[r] = set.wall_points[set.rays[r].wall_node] + (allowed[r] / set.rays[r].correction) * set.rays[r].direction;
+  std::vector<double> limit = allowed;
+  for (int r = 0; r < nr; ++r) {
+    const LayerRay& ray = set.rays[r];
+    const Vec2 p = set.wall_points[ray.wall_node], e = cut[r];
+    const double length = norm(e - p);
+    grid.query(p, end[r], [&](int id) {
+      if (id < ns) return;
+      const int o = id - ns;
+      const LayerRay& other = set.rays[o];
+      const Vec2 q = set.wall_points[other.wall_node];
+      if (other.wall_node == ray.wall_node || q == p) return;
+      if (!segments_cross_properly(p, e, q, cut[o])) return;
+      const double a = intersection_parameter(p, e, q, cut[o]) * length;
+      const double b = intersection_parameter(q, cut[o], p, e) * norm(cut[o] - q);
+      if (a >= 0.5 * b) limit[r] = std::min(limit[r], settings.cross_fraction * a * ray.correction);
+    });
+  }
+  allowed = std::move(limit);
 }
 
 void grade_thickness(const RaySet& set, double max_jump, std::vector<double>& allowed) {
@@ -78,6 +95,17 @@ void grade_thickness(const RaySet& set, double max_jump, std::vector<double>& al
     const int b = set.ray_begin[c], e = set.ray_begin[c + 1], n = e - b;
     if (n < 2) continue;
     const bool closed = set.closed[c] != 0;
+    // A few passes that lower each thickness to its neighbourhood's mean: fronts cut by collisions
+    // come out smooth instead of saw-toothed.
+    for (int pass = 0; pass < 4; ++pass) {
+      std::vector<double> next(allowed.begin() + b, allowed.begin() + e);
+      for (int k = 0; k < n; ++k) {
+        if (!closed && (k == 0 || k == n - 1)) continue;
+        const double mean = (allowed[b + (k + n - 1) % n] + allowed[b + k] + allowed[b + (k + 1) % n]) / 3.0;
+        next[k] = std::min(next[k], mean);
+      }
+      std::copy(next.begin(), next.end(), allowed.begin() + b);
+    }
     // Sweeps until nothing changes; each sweep passes a limit along the whole chain.
     for (int round = 0; round < n + 2; ++round) {
       bool changed = false;
