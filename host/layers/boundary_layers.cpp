@@ -40,6 +40,8 @@ void check_layer_settings(const LayerSettings& s) {
   if (s.smoothing_passes < 0 || s.smoothing_passes > 1000)
     fail(fmt::format("smoothing_passes = {} must be in 0..1000", s.smoothing_passes));
   if (!(s.max_jump > 1.0 && s.max_jump <= 10.0)) fail(fmt::format("max_jump = {} must be in (1, 10]", s.max_jump));
+  if (!(s.max_slope > 0.0 && s.max_slope <= 100.0))
+    fail(fmt::format("max_slope = {} must be in (0, 100]", s.max_slope));
   if (!(s.gap_fraction > 0.0 && s.gap_fraction <= 0.5))
     fail(fmt::format("gap_fraction = {} must be in (0, 0.5]", s.gap_fraction));
   if (!(s.cross_fraction > 0.0 && s.cross_fraction < 1.0))
@@ -234,7 +236,7 @@ LayerMesh build_boundary_layers(const Geometry& geometry, const std::vector<int>
   std::vector<double> growth;
   constexpr int kMaxRepairs = 60;
   for (int round = 0; round <= kMaxRepairs; ++round) {
-    grade_thickness(set, settings.max_jump, allowed);
+    grade_thickness(set, settings.max_jump, settings.max_slope, allowed);
     layer_counts(set, settings, allowed, count, growth);
     LayerMesh m = assemble(set, count, growth, settings, owner);
     const std::vector<int> bad = check(m, owner, geometry);

@@ -24,6 +24,10 @@ struct LayerSettings {
   double fan_elements_per_pi = 5.0;  // a fan's elements: ceil(this x turn / pi), at least 2
   int smoothing_passes = 8;          // Laplacian passes over the normals (not at fans)
   double max_jump = 1.3;             // largest thickness ratio between neighbouring wall nodes
+  // Largest change of thickness per unit distance between neighbouring rays (their wall nodes'
+  // distance plus the arc between their directions at the thinner one's height): the front's slope
+  // against the wall, so that dense wall nodes do not let the front drop along the rays.
+  double max_slope = 0.5;
   // A ray that meets another curve at distance L stops at gap_fraction x L (the front opposite
   // stops there too, leaving (1 - 2 gap_fraction) L to the core); rays that cross stop at
   // cross_fraction of the crossing distance.

@@ -90,7 +90,7 @@ void free_and_collision_limits(RaySet& set, const Geometry& geometry, const Laye
   allowed = std::move(limit);
 }
 
-void grade_thickness(const RaySet& set, double max_jump, std::vector<double>& allowed) {
+void grade_thickness(const RaySet& set, double max_jump, double max_slope, std::vector<double>& allowed) {
   for (std::size_t c = 0; c + 1 < set.ray_begin.size(); ++c) {
     const int b = set.ray_begin[c], e = set.ray_begin[c + 1], n = e - b;
     if (n < 2) continue;
@@ -110,7 +110,12 @@ void grade_thickness(const RaySet& set, double max_jump, std::vector<double>& al
     for (int round = 0; round < n + 2; ++round) {
       bool changed = false;
       auto limit = [&](int r, int from) {
-        const double cap = max_jump * allowed[from];
+        const LayerRay& a = set.rays[r];
+        const LayerRay& o = set.rays[from];
+        const double turn = std::acos(std::clamp(dot(a.direction, o.direction), -1.0, 1.0));
+        const double d = dist(set.wall_points[a.wall_node], set.wall_points[o.wall_node]) +
+                         turn * std::min(allowed[r], allowed[from]);
+        const double cap = std::min(max_jump * allowed[from], allowed[from] + max_slope * d);
         if (allowed[r] > cap) {
           allowed[r] = cap;
           changed = true;

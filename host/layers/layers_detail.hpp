@@ -88,8 +88,9 @@ double stack_height(double h1, double g, int n);
 // cut where a ray meets a curve of the geometry or another ray.
 void free_and_collision_limits(RaySet& set, const Geometry& geometry, const LayerSettings& settings,
                                const CoreSpacing& core_spacing, std::vector<double>& allowed);
-// Limits neighbouring rays of each chain to thickness ratios <= max_jump (only lowers).
-void grade_thickness(const RaySet& set, double max_jump, std::vector<double>& allowed);
+// Limits neighbouring rays of each chain to thickness ratios <= max_jump and thickness changes
+// <= max_slope x their distance (only lowers).
+void grade_thickness(const RaySet& set, double max_jump, double max_slope, std::vector<double>& allowed);
 // The layer count and growth of each ray for its allowed thickness: the first height exact, the
 // growth <= settings.growth, neighbouring counts differing by at most one where the growth allows.
 void layer_counts(const RaySet& set, const LayerSettings& settings, const std::vector<double>& allowed,
