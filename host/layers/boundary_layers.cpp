@@ -67,7 +67,7 @@ std::vector<int> curves_by_name(const Geometry& geometry, const std::vector<std:
 
 namespace {
 
-LayerMesh assemble(const RaySet& set, const std::vector<int>& count, const std::vector<double>& growth,
+LayerMesh assemble(const RaySet& set, const std::vector<int>& count, const std::vector<double>& top,
                    const LayerSettings& settings, std::vector<int>& owner) {
   LayerMesh m;
   m.nodes = set.wall_points;
@@ -78,17 +78,21 @@ LayerMesh assemble(const RaySet& set, const std::vector<int>& count, const std::
   m.fan_sizes = set.fan_sizes;
   owner.assign(m.nodes.size(), -1);
   const double h1 = settings.first_height;
+  std::vector<std::vector<double>> height(m.rays.size());  // per ray: each node's height over the wall
   for (std::size_t r = 0; r < m.rays.size(); ++r) {
     LayerRay& ray = m.rays[r];
     const Vec2 p = m.nodes[ray.wall_node];
     ray.nodes = {ray.wall_node};
-    ray.growth = growth[r];
-    ray.thickness = stack_height(h1, growth[r], count[r]);
-    for (int k = 1; k <= count[r]; ++k) {
+    height[r] = {0.0};
+    const int n = count[r];
+    ray.thickness = n > 0 ? top[r] : 0.0;
+    for (int k = 1; k <= n; ++k) {
+      height[r].push_back(k < n ? stack_height(h1, settings.growth, k) : top[r]);
       ray.nodes.push_back(static_cast<int>(m.nodes.size()));
-      m.nodes.push_back(p + (stack_height(h1, growth[r], k) / ray.correction) * ray.direction);
+      m.nodes.push_back(p + (height[r].back() / ray.correction) * ray.direction);
       owner.push_back(static_cast<int>(r));
     }
+    ray.last_growth = n >= 2 ? (top[r] - stack_height(h1, settings.growth, n - 1)) / (h1 * std::pow(settings.growth, n - 2)) : 1.0;
   }
   auto add = [&](std::array<int, 4> v, LayerCellKind kind, int curve, int layer) {
     if (v[3] >= 0 && settings.split_quads) {
@@ -129,17 +133,37 @@ LayerMesh assemble(const RaySet& set, const std::vector<int>& count, const std::
       const bool fan = ra.wall_node == rb.wall_node;
       const int curve = ra.curve;
       const int na = static_cast<int>(ca.size()) - 1, nb = static_cast<int>(cb.size()) - 1;
-      const int common = std::min(na, nb);
-      for (int j = 0; j < common; ++j) {
-        if (fan && j == 0) add({ca[0], cb[1], ca[1], -1}, LayerCellKind::Fan, curve, 0);
-        else add({ca[j], cb[j], cb[j + 1], ca[j + 1]}, fan ? LayerCellKind::Fan : LayerCellKind::Quad, curve, j);
+      if (fan && std::min(na, nb) == 0) continue;  // a fan ray without layers: nothing beside it
+      // Zip the two columns upwards: a quad while their next nodes are at about the same height
+      // (within half the thinner of the two layers), else a triangle that advances the lower one.
+      int i = 0, j = 0;
+      if (fan) {
+        add({ca[0], cb[1], ca[1], -1}, LayerCellKind::Fan, curve, 0);
+        i = j = 1;
       }
-      if (fan && common == 0) continue;  // a fan ray without layers: nothing between it and its neighbour
-      for (int j = common; j < nb; ++j) {
-        add({ca[common], cb[j], cb[j + 1], -1}, LayerCellKind::Transition, curve, j);
-      }
-      for (int j = common; j < na; ++j) {
-        add({ca[j], cb[common], ca[j + 1], -1}, LayerCellKind::Transition, curve, j);
+      const auto& ha = height[b + k];
+      const auto& hb = height[b + (k + 1) % n];
+      while (i < na || j < nb) {
+        bool advance_a = i < na, advance_b = j < nb;
+        if (advance_a && advance_b) {
+          const double ta = ha[i + 1] - ha[i], tb = hb[j + 1] - hb[j];
+          if (std::abs(ha[i + 1] - hb[j + 1]) > 0.5 * std::min(ta, tb)) {
+            advance_a = ha[i + 1] < hb[j + 1];
+            advance_b = !advance_a;
+          }
+        }
+        const int layer = std::max(i, j);
+        if (advance_a && advance_b) {
+          add({ca[i], cb[j], cb[j + 1], ca[i + 1]}, fan ? LayerCellKind::Fan : LayerCellKind::Quad, curve, layer);
+          ++i;
+          ++j;
+        } else if (advance_b) {
+          add({ca[i], cb[j], cb[j + 1], -1}, LayerCellKind::Transition, curve, layer);
+          ++j;
+        } else {
+          add({ca[i], cb[j], ca[i + 1], -1}, LayerCellKind::Transition, curve, layer);
+          ++i;
+        }
       }
     }
     // The front: an open chain's first column upwards, the tops, its last column downwards.
@@ -233,12 +257,12 @@ LayerMesh build_boundary_layers(const Geometry& geometry, const std::vector<int>
   std::vector<double> allowed;
   free_and_collision_limits(set, geometry, settings, core_spacing, allowed);
   std::vector<int> count, owner;
-  std::vector<double> growth;
+  std::vector<double> top;
   constexpr int kMaxRepairs = 60;
   for (int round = 0; round <= kMaxRepairs; ++round) {
     grade_thickness(set, settings.max_jump, settings.max_slope, allowed);
-    layer_counts(set, settings, allowed, count, growth);
-    LayerMesh m = assemble(set, count, growth, settings, owner);
+    layer_counts(set, settings, allowed, count, top);
+    LayerMesh m = assemble(set, count, top, settings, owner);
     const std::vector<int> bad = check(m, owner, geometry);
     if (bad.empty()) {
       m.repairs = round;

@@ -27,7 +27,7 @@ struct LayerSettings {
   // Largest change of thickness per unit distance between neighbouring rays (their wall nodes'
   // distance plus the arc between their directions at the thinner one's height): the front's slope
   // against the wall, so that dense wall nodes do not let the front drop along the rays.
-  double max_slope = 0.5;
+  double max_slope = 0.3;
   // A ray that meets another curve at distance L stops at gap_fraction x L (the front opposite
   // stops there too, leaving (1 - 2 gap_fraction) L to the core); rays that cross stop at
   // cross_fraction of the crossing distance.
@@ -63,7 +63,7 @@ struct LayerRay {
   double correction = 1.0;     // mean of direction . (normals of the adjacent wall segments)
   std::vector<int> nodes;      // nodes[0] = wall_node, then one per layer
   double thickness = 0.0;      // height of its top node over the wall (along the normal)
-  double growth = 1.0;         // the growth actually used (<= settings.growth where compressed)
+  double last_growth = 1.0;    // the last layer's height over the one below (the others: settings.growth)
   double free_thickness = 0.0; // what it would have had with no collision
   bool fan = false;
 };

@@ -131,54 +131,23 @@ void grade_thickness(const RaySet& set, double max_jump, double max_slope, std::
 }
 
 void layer_counts(const RaySet& set, const LayerSettings& settings, const std::vector<double>& allowed,
-                  std::vector<int>& count, std::vector<double>& growth) {
+                  std::vector<int>& count, std::vector<double>& top) {
   const double h1 = settings.first_height, g = settings.growth;
   const int nr = static_cast<int>(set.rays.size());
   count.assign(nr, 0);
-  growth.assign(nr, g);
+  top.assign(nr, 0.0);
   for (int r = 0; r < nr; ++r) {
     const double a = allowed[r];
     if (a < h1 * (1.0 - 1e-12)) continue;
+    // The fewest layers of the settings' stack that reach a; the last one ends at a.
     int n = 1;
     while (stack_height(h1, g, n) < a * (1.0 - 1e-12)) ++n;
-    if (n * h1 > a) n = std::max(1, static_cast<int>(std::floor(a / h1 * (1.0 + 1e-12))));
+    const double last = a - stack_height(h1, g, n - 1);
+    // A last layer thinner than a quarter of the one below joins it (growth <= 1.25 g there), except
+    // the first layer, whose height is the settings'.
+    if (n >= 3 && last < 0.25 * h1 * std::pow(g, n - 2)) --n;
     count[r] = n;
-  }
-  // Neighbouring counts differ by at most one where the thinner ray can take more, thinner layers.
-  for (std::size_t c = 0; c + 1 < set.ray_begin.size(); ++c) {
-    const int b = set.ray_begin[c], e = set.ray_begin[c + 1], n = e - b;
-    const bool closed = set.closed[c] != 0;
-    for (int round = 0; round < 64; ++round) {
-      bool changed = false;
-      for (int k = 0; k < n; ++k) {
-        const int r = b + k;
-        for (const int j : {k - 1, k + 1}) {
-          if (!closed && (j < 0 || j >= n)) continue;
-          const int o = b + (j + n) % n;
-          if (count[o] - count[r] > 1 && (count[r] + 1) * h1 <= allowed[r] * (1.0 + 1e-12) && count[r] > 0) {
-            ++count[r];
-            changed = true;
-          }
-        }
-      }
-      if (!changed) break;
-    }
-  }
-  for (int r = 0; r < nr; ++r) {
-    const int n = count[r];
-    if (n == 0) continue;
-    const double a = allowed[r];
-    if (std::abs(stack_height(h1, g, n) - a) <= 1e-9 * a) continue;  // exactly the settings' stack
-    if (n * h1 >= a) {
-      growth[r] = 1.0;
-      continue;
-    }
-    double lo = 1.0, hi = g;
-    for (int it = 0; it < 80; ++it) {
-      const double mid = 0.5 * (lo + hi);
-      (stack_height(h1, mid, n) < a ? lo : hi) = mid;
-    }
-    growth[r] = lo;
+    top[r] = std::abs(stack_height(h1, g, n) - a) <= 1e-9 * a ? stack_height(h1, g, n) : (n == 1 ? h1 : a);
   }
 }
 

@@ -91,9 +91,10 @@ void free_and_collision_limits(RaySet& set, const Geometry& geometry, const Laye
 // Limits neighbouring rays of each chain to thickness ratios <= max_jump and thickness changes
 // <= max_slope x their distance (only lowers).
 void grade_thickness(const RaySet& set, double max_jump, double max_slope, std::vector<double>& allowed);
-// The layer count and growth of each ray for its allowed thickness: the first height exact, the
-// growth <= settings.growth, neighbouring counts differing by at most one where the growth allows.
+// The layer count and top height of each ray for its allowed thickness: every layer but the last
+// of the settings' stack (first height and growth exact, so that neighbouring rays' layers match),
+// the last ending at the allowed thickness (1/4 to 1.25 times the stack's next layer).
 void layer_counts(const RaySet& set, const LayerSettings& settings, const std::vector<double>& allowed,
-                  std::vector<int>& count, std::vector<double>& growth);
+                  std::vector<int>& count, std::vector<double>& top);
 
 }  // namespace pdmesh::layers_detail
