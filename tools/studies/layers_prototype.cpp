@@ -3,7 +3,9 @@
 // writes the layer cells (quads split into triangles) as OUT/layers.vtu and .msh, with pictures of
 // the whole layer and of each view given.
 //
-//   layers_prototype CASE.toml OUT H1 GROWTH THICKNESS CURVE[,CURVE...] [NAME=X0,Y0,X1,Y1 ...]
+//   layers_prototype CASE.toml OUT H1 GROWTH THICKNESS CURVE[,CURVE...] [split] [NAME=X0,Y0,X1,Y1 ...]
+//
+// `split` writes each layer quad as two triangles (LayerSettings::split_quads) and measures those.
 //
 // Example: build/layers_prototype cases/naca0012/case.toml /tmp/bl 1e-5 1.2 0.05 upper,lower
 //            le=-0.02,-0.05,0.08,0.05 te=0.95,-0.03,1.01,0.03
@@ -39,7 +41,8 @@ std::vector<std::string> split(const std::string& s, char sep) {
 
 int main(int argc, char** argv) {
   if (argc < 7) {
-    fmt::print(stderr, "usage: {} CASE.toml OUT H1 GROWTH THICKNESS CURVE[,CURVE...] [NAME=X0,Y0,X1,Y1 ...]\n", argv[0]);
+    fmt::print(stderr, "usage: {} CASE.toml OUT H1 GROWTH THICKNESS CURVE[,CURVE...] [split] [NAME=X0,Y0,X1,Y1 ...]\n",
+               argv[0]);
     return 2;
   }
   try {
@@ -50,6 +53,11 @@ int main(int argc, char** argv) {
     settings.first_height = std::stod(argv[3]);
     settings.growth = std::stod(argv[4]);
     settings.thickness = std::stod(argv[5]);
+    int first_view = 7;
+    if (argc > 7 && std::string(argv[7]) == "split") {
+      settings.split_quads = true;
+      first_view = 8;
+    }
     MeshInputs inputs(config);
     const SpacingField& field = inputs.field();
     const CoreSpacing core = [&field](Vec2 p) { return field.at(p); };
@@ -102,7 +110,7 @@ int main(int argc, char** argv) {
     options.value_range = std::make_pair(0.0, 3.0);
     options.title = "boundary layer";
     write_mesh_picture(out / "layers.png", mesh, options);
-    for (int k = 7; k < argc; ++k) {
+    for (int k = first_view; k < argc; ++k) {
       const std::vector<std::string> view = split(argv[k], '=');
       const std::vector<std::string> w = view.size() == 2 ? split(view[1], ',') : std::vector<std::string>{};
       if (w.size() != 4) throw InputError(fmt::format("view \"{}\": give NAME=X0,Y0,X1,Y1", argv[k]));
