@@ -228,3 +228,35 @@ TEST_CASE("bad layer settings are input errors naming the value", "[layers]") {
              Catch::Contains("boundary_layer.curves: unknown curve \"flap\" (the curves are: far, wall)"));
   CHECK(msg(settings(1e-3, 1.2, 0.05)).empty());  // good settings pass
 }
+
+TEST_CASE("open wall chain: the end rays run along the curves that continue the boundary", "[layers]") {
+  // A channel [0,4] x [0,1]: the bottom is the wall, the inlet and outlet are upright, the top is
+  // slanted so that the outlet meets the bottom at a right angle and the inlet at 90 degrees too.
+  std::vector<RawCurve> raw;
+  auto add = [&](std::vector<Vec2> pts, const std::string& name) { raw.push_back({name, pts, "test", 1, {}}); };
+  std::vector<Vec2> bottom;
+  for (int i = 0; i <= 40; ++i) bottom.push_back({0.1 * i, 0.0});
+  add(bottom, "bottom");
+  add({{4, 0}, {4, 0.5}, {4, 1}}, "outlet");
+  add({{4, 1}, {0, 1}}, "top");
+  add({{0, 1}, {0, 0.5}, {0, 0}}, "inlet");
+  const Geometry g = build_geometry(raw);
+  const LayerSettings s = settings(1e-3, 1.2, 0.1);
+  const LayerMesh m = build_boundary_layers(g, curves_by_name(g, {"bottom"}, "test"), s);
+  const LayerMeasures q = measure_layers(m, s.first_height);
+  CHECK(m.repairs == 0);
+  CHECK(q.inverted_cells == 0);
+  CHECK(crossing_edges(m) == 0);
+  CHECK(q.max_thickness == Approx(0.1).epsilon(1e-9));
+  CHECK(q.min_thickness == Approx(0.1).epsilon(1e-9));  // the ends keep the full layer
+  REQUIRE(m.rays.size() == 41);
+  CHECK(m.rays.front().slide_segment >= 0);
+  CHECK(m.rays.back().slide_segment >= 0);
+  for (const int node : m.rays.front().nodes) CHECK(m.nodes[node].x == 0.0);  // on the inlet
+  for (const int node : m.rays.back().nodes) CHECK(m.nodes[node].x == 4.0);   // on the outlet
+  // The open front runs up the first ray, along the tops and down the last ray.
+  REQUIRE(m.fronts.size() == 1);
+  CHECK_FALSE(m.fronts[0].closed);
+  CHECK(m.fronts[0].nodes.front() == m.rays.front().wall_node);
+  CHECK(m.fronts[0].nodes.back() == m.rays.back().wall_node);
+}

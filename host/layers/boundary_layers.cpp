@@ -229,6 +229,18 @@ std::vector<int> check(const LayerMesh& m, const std::vector<int>& owner, const 
         return;
       }
       const Segment& s = geometry.segments[id - ne];
+      // An end ray's column lies on the segment it runs along: its own edges, and edges from its
+      // nodes to nodes on the domain side of that segment, only touch it.
+      auto on_ray = [&](int node, int r) { return node < m.wall_nodes ? node == m.rays[r].wall_node : owner[node] == r; };
+      for (const int r : {a < m.wall_nodes ? -1 : owner[a], b < m.wall_nodes ? -1 : owner[b]}) {
+        if (r < 0 || m.rays[r].slide_segment != id - ne) continue;
+        const int other = on_ray(a, r) ? b : a;
+        if (on_ray(other, r)) return;
+        const int neighbour = std::binary_search(m.chain_ray_begin.begin(), m.chain_ray_begin.end(), r) ? r + 1 : r - 1;
+        const double inside = orient2d(s.a, s.b, m.nodes[m.rays[neighbour].wall_node]);
+        const double side = orient2d(s.a, s.b, m.nodes[other]);
+        if ((inside > 0 && side > 0) || (inside < 0 && side < 0)) return;
+      }
       for (const Vec2 w : {pa, pb})
         if ((a < m.wall_nodes && w == pa) || (b < m.wall_nodes && w == pb))
           if (s.a == w || s.b == w) return;
@@ -253,7 +265,7 @@ LayerMesh build_boundary_layers(const Geometry& geometry, const std::vector<int>
     if (c < 0 || c >= static_cast<int>(geometry.curves.size()))
       throw InputError(fmt::format("boundary layer: wall curve index {} is not a curve of the geometry (it has {})", c,
                                    geometry.curves.size()));
-  RaySet set = make_rays(wall_chains(geometry, wall_curves), settings);
+  RaySet set = make_rays(wall_chains(geometry, wall_curves), geometry, settings);
   std::vector<double> allowed;
   free_and_collision_limits(set, geometry, settings, core_spacing, allowed);
   std::vector<int> count, owner;

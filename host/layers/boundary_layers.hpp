@@ -66,6 +66,9 @@ struct LayerRay {
   double last_growth = 1.0;    // the last layer's height over the one below (the others: settings.growth)
   double free_thickness = 0.0; // what it would have had with no collision
   bool fan = false;
+  // At the end of an open chain: the geometry segment (of the curve that continues the boundary
+  // there) that the ray runs along, so that the layer's side lies on that curve; -1 otherwise.
+  int slide_segment = -1;
 };
 
 // The outer front of one wall chain: the boundary between the layer and the core. A closed chain's

@@ -39,6 +39,10 @@ void free_and_collision_limits(RaySet& set, const Geometry& geometry, const Laye
     LayerRay& ray = set.rays[r];
     const Vec2 p = set.wall_points[ray.wall_node];
     ray.free_thickness = free_thickness(ray, p, settings, core_spacing);
+    if (ray.slide_segment >= 0) {  // stay on the first segment of the curve it runs along
+      const Segment& s = geometry.segments[ray.slide_segment];
+      ray.free_thickness = std::min(ray.free_thickness, 0.9 * s.length * ray.correction);
+    }
     allowed[r] = ray.free_thickness;
     end[r] = p + (ray.free_thickness / ray.correction) * ray.direction;
     box.add(p);

@@ -19,7 +19,30 @@ struct Vertex {
 
 }  // namespace
 
-RaySet make_rays(const std::vector<WallChain>& chains, const LayerSettings& settings) {
+namespace {
+
+// The segment of another curve than the chain's that starts or ends at p and leaves into the domain
+// side of the wall normal n (cosine > 0.2), the most normal one; -1 when none.
+int slide_segment(const Geometry& geometry, Vec2 p, Vec2 n, const std::vector<int>& chain_curves, Vec2& direction) {
+  int best = -1;
+  double best_cos = 0.2;
+  for (std::size_t k = 0; k < geometry.segments.size(); ++k) {
+    const Segment& s = geometry.segments[k];
+    if (!(s.a == p || s.b == p)) continue;
+    if (std::find(chain_curves.begin(), chain_curves.end(), s.curve) != chain_curves.end()) continue;
+    const Vec2 d = normalized((s.a == p ? s.b : s.a) - p);
+    if (dot(d, n) > best_cos) {
+      best_cos = dot(d, n);
+      best = static_cast<int>(k);
+      direction = d;
+    }
+  }
+  return best;
+}
+
+}  // namespace
+
+RaySet make_rays(const std::vector<WallChain>& chains, const Geometry& geometry, const LayerSettings& settings) {
   RaySet set;
   const double fan_turn = settings.fan_angle_deg * std::numbers::pi / 180.0;
   for (const WallChain& chain : chains) {
@@ -53,6 +76,9 @@ RaySet make_rays(const std::vector<WallChain>& chains, const LayerSettings& sett
     // neighbours' rays; a fan neighbour offers its nearer edge ray).
     std::vector<Vec2> dir(n);
     for (int i = 0; i < n; ++i) dir[i] = normalized(vx[i].n_in + vx[i].n_out);
+    std::vector<int> slide(n, -1);
+    if (!chain.closed)
+      for (const int i : {0, n - 1}) slide[i] = slide_segment(geometry, chain.points[i], dir[i], chain.curve, dir[i]);
     auto near_ray = [&](int j, bool from_before) {  // neighbour j's ray seen from its side
       if (vx[j].fan == 0) return dir[j];
       return from_before ? vx[j].n_out : vx[j].n_in;
@@ -74,6 +100,7 @@ RaySet make_rays(const std::vector<WallChain>& chains, const LayerSettings& sett
       LayerRay ray;
       ray.wall_node = base + i;
       ray.curve = chain.curve[i];
+      ray.slide_segment = slide[i];
       if (v.fan == 0) {
         ray.direction = dir[i];
         ray.correction = std::max(0.2, 0.5 * (dot(dir[i], v.n_in) + dot(dir[i], v.n_out)));

@@ -79,7 +79,10 @@ struct RaySet {
   std::vector<std::uint8_t> closed;
   std::vector<int> fan_sizes;
 };
-RaySet make_rays(const std::vector<WallChain>& chains, const LayerSettings& settings);
+// An open chain's end ray runs along the first segment of the curve that continues the boundary
+// there (when that segment leaves into the domain side, more than acos 0.2 from the wall), else along
+// the wall's normal.
+RaySet make_rays(const std::vector<WallChain>& chains, const Geometry& geometry, const LayerSettings& settings);
 
 // Cumulative height of n layers: h1 (g^n - 1) / (g - 1) (n h1 for g = 1).
 double stack_height(double h1, double g, int n);
