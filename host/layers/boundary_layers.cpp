@@ -134,8 +134,9 @@ LayerMesh assemble(const RaySet& set, const std::vector<int>& count, const std::
       const int curve = ra.curve;
       const int na = static_cast<int>(ca.size()) - 1, nb = static_cast<int>(cb.size()) - 1;
       if (fan && std::min(na, nb) == 0) continue;  // a fan ray without layers: nothing beside it
-      // Zip the two columns upwards: a quad while their next nodes are at about the same height
-      // (within half the thinner of the two layers), else a triangle that advances the lower one.
+      // Zip the two columns upwards: a quad while both its lower and its upper nodes are level
+      // (heights within half the thinner layer and 0.3 x the width between them: no skewed quad),
+      // else a triangle advancing the column whose next node is lower.
       int i = 0, j = 0;
       if (fan) {
         add({ca[0], cb[1], ca[1], -1}, LayerCellKind::Fan, curve, 0);
@@ -143,11 +144,14 @@ LayerMesh assemble(const RaySet& set, const std::vector<int>& count, const std::
       }
       const auto& ha = height[b + k];
       const auto& hb = height[b + (k + 1) % n];
+      auto level = [&](int p, int q, double layer) {
+        return std::abs(ha[p] - hb[q]) <= std::min(0.5 * layer, 0.3 * dist(m.nodes[ca[p]], m.nodes[cb[q]]));
+      };
       while (i < na || j < nb) {
         bool advance_a = i < na, advance_b = j < nb;
         if (advance_a && advance_b) {
-          const double ta = ha[i + 1] - ha[i], tb = hb[j + 1] - hb[j];
-          if (std::abs(ha[i + 1] - hb[j + 1]) > 0.5 * std::min(ta, tb)) {
+          const double layer = std::min(ha[i + 1] - ha[i], hb[j + 1] - hb[j]);
+          if (!((i == 0 && j == 0) || level(i, j, layer)) || !level(i + 1, j + 1, layer)) {
             advance_a = ha[i + 1] < hb[j + 1];
             advance_b = !advance_a;
           }

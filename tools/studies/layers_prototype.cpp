@@ -83,7 +83,11 @@ int main(int argc, char** argv) {
           const Vec2 p = layers.nodes[c.v[(i + k - 1) % k]], v = layers.nodes[c.v[i]], n = layers.nodes[c.v[(i + 1) % k]];
           if (std::atan2(cross(n - v, p - v), dot(n - v, p - v)) * 180.0 / 3.141592653589793 > std::atof(std::getenv("LAYERS_DUMP")) ||
               std::atan2(cross(n - v, p - v), dot(n - v, p - v)) < 0.0)
-            fmt::print("wide {} {} {:.6f} {:.6f}\n", static_cast<int>(c.kind), c.layer, v.x, v.y);
+            fmt::print("wide {} {} {:.6f} {:.6f} cell {}\n", static_cast<int>(c.kind), c.layer, v.x, v.y, [&] {
+              std::string t;
+              for (int j = 0; j < k; ++j) t += fmt::format(" ({:.6f},{:.6f})", layers.nodes[c.v[j]].x, layers.nodes[c.v[j]].y);
+              return t;
+            }());
         }
       }
     // The cells as triangles (quads split along v0-v2), the fronts as boundary edges.
