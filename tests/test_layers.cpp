@@ -260,3 +260,34 @@ TEST_CASE("open wall chain: the end rays run along the curves that continue the 
   CHECK(m.fronts[0].nodes.front() == m.rays.front().wall_node);
   CHECK(m.fronts[0].nodes.back() == m.rays.back().wall_node);
 }
+
+TEST_CASE("jagged star-shaped walls: valid layers whatever the collisions", "[layers]") {
+  // Star polygons with random radii in [1, 2] (a fixed generator: the same shapes everywhere), as
+  // holes in a box; thick layers collide with the star's own teeth.
+  std::uint64_t state = 12345;
+  auto next = [&state] {  // splitmix64
+    std::uint64_t z = (state += 0x9E3779B97F4A7C15ull);
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+    return static_cast<double>((z ^ (z >> 31)) >> 11) / 9007199254740992.0;
+  };
+  for (int shape = 0; shape < 6; ++shape) {
+    const int n = 12 + 8 * shape;
+    RawCurve star{"star", {}, "test", 1, {}};
+    for (int i = 0; i < n; ++i) {
+      const double a = 2 * kPi * i / n, r = 1.0 + next();
+      star.points.push_back({r * std::cos(a), r * std::sin(a)});
+    }
+    star.points.push_back(star.points.front());
+    const Geometry g = build_geometry({box({-4, -4}, {4, 4}, 4, "far"), star});
+    const LayerSettings s = settings(1e-3, 1.2, 0.4);
+    const LayerMesh m = build_boundary_layers(g, {1}, s);
+    const LayerMeasures q = measure_layers(m, s.first_height);
+    INFO("shape " << shape << ", " << n << " vertices, " << m.repairs << " repair rounds");
+    CHECK(q.inverted_cells == 0);
+    CHECK(crossing_edges(m) == 0);
+    CHECK(q.max_thickness_jump <= 1.3 + 1e-12);
+    CHECK(q.first_height_within_2pct == 1.0);
+    CHECK(q.max_thickness > 0.1);
+  }
+}

@@ -90,8 +90,20 @@ RaySet make_rays(const std::vector<WallChain>& chains, const Geometry& geometry,
         const int prev = (i + n - 1) % n, next = (i + 1) % n;
         if (!chain.closed && (i == 0 || i == n - 1)) continue;
         const Vec2 s = normalized(2.0 * dir[i] + near_ray(prev, true) + near_ray(next, false));
-        // Keep the ray clearly on the domain side of both its wall segments.
-        if (dot(s, vx[i].n_in) > 0.3 && dot(s, vx[i].n_out) > 0.3) next_dir[i] = s;
+        // Keep the ray clearly on the domain side of both its wall segments, and its first node's
+        // heights over both within 1 % of the mean (a ray tilted from the bisector is higher over
+        // one segment than over the other): the largest step towards s that does.
+        auto fits = [&](Vec2 d) {
+          const double a = dot(d, vx[i].n_in), b = dot(d, vx[i].n_out), c = 0.5 * (a + b);
+          return a > 0.3 && b > 0.3 && std::abs(a / c - 1.0) <= 0.01 && std::abs(b / c - 1.0) <= 0.01;
+        };
+        for (const double w : {1.0, 0.5, 0.25, 0.125}) {
+          const Vec2 d = normalized((1.0 - w) * dir[i] + w * s);
+          if (fits(d)) {
+            next_dir[i] = d;
+            break;
+          }
+        }
       }
       dir = std::move(next_dir);
     }
