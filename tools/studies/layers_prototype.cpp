@@ -1,7 +1,8 @@
 // Boundary-layer prototype (docs/boundary-layers.md): grows layers from the named wall curves of a
 // case's geometry, the core spacing being the case's spacing field, prints the layer measures and
-// writes the layer cells (quads split into triangles) as OUT/layers.vtu and .msh, with pictures of
-// the whole layer and of each view given.
+// writes the layer cells as they are (quads and triangles, with their kind, curve and layer) as
+// OUT/layer_cells.vtu, split into triangles as OUT/layers.vtu and .msh (the fronts as boundary
+// edges), with pictures of the whole layer and of each view given.
 //
 //   layers_prototype CASE.toml OUT H1 GROWTH THICKNESS CURVE[,CURVE...] [split] [NAME=X0,Y0,X1,Y1 ...]
 //
@@ -20,6 +21,7 @@
 
 #include "app/case_file.hpp"
 #include "app/mesh_command.hpp"
+#include "core/atomic_file.hpp"
 #include "core/errors.hpp"
 #include "io/mesh_formats.hpp"
 #include "layers/boundary_layers.hpp"
@@ -35,6 +37,35 @@ std::vector<std::string> split(const std::string& s, char sep) {
   std::stringstream in(s);
   for (std::string item; std::getline(in, item, sep);) out.push_back(item);
   return out;
+}
+
+// The layer cells as they are (VTK_QUAD 9, VTK_TRIANGLE 5) with cell data kind, curve and layer.
+std::string cells_vtu(const LayerMesh& layers) {
+  std::string points, connectivity, offsets, types, kind, curve, layer;
+  for (const Vec2 p : layers.nodes) points += fmt::format("{:.17g} {:.17g} 0\n", p.x, p.y);
+  int offset = 0;
+  for (const LayerCell& c : layers.cells) {
+    const int k = c.triangle() ? 3 : 4;
+    for (int i = 0; i < k; ++i) connectivity += fmt::format("{} ", c.v[i]);
+    offset += k;
+    offsets += fmt::format("{} ", offset);
+    types += c.triangle() ? "5 " : "9 ";
+    kind += fmt::format("{} ", static_cast<int>(c.kind));
+    curve += fmt::format("{} ", c.curve);
+    layer += fmt::format("{} ", c.layer);
+  }
+  return fmt::format(
+      "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
+      "<UnstructuredGrid>\n<Piece NumberOfPoints=\"{}\" NumberOfCells=\"{}\">\n"
+      "<Points>\n<DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">\n{}</DataArray>\n</Points>\n"
+      "<Cells>\n<DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">\n{}\n</DataArray>\n"
+      "<DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">\n{}\n</DataArray>\n"
+      "<DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\">\n{}\n</DataArray>\n</Cells>\n"
+      "<CellData>\n<DataArray type=\"Int32\" Name=\"kind\" format=\"ascii\">\n{}\n</DataArray>\n"
+      "<DataArray type=\"Int32\" Name=\"curve\" format=\"ascii\">\n{}\n</DataArray>\n"
+      "<DataArray type=\"Int32\" Name=\"layer\" format=\"ascii\">\n{}\n</DataArray>\n</CellData>\n"
+      "</Piece>\n</UnstructuredGrid>\n</VTKFile>\n",
+      layers.nodes.size(), layers.cells.size(), points, connectivity, offsets, types, kind, curve, layer);
 }
 
 }  // namespace
@@ -108,6 +139,7 @@ int main(int argc, char** argv) {
       for (std::size_t k = 0; k + (f.closed ? 0 : 1) < n; ++k) mesh.boundary_edges.push_back({f.nodes[k], f.nodes[(k + 1) % n], 0});
     }
     write_mesh(mesh, out, "layers", {"vtu", "msh"});
+    write_file_atomically(out / "layer_cells.vtu", cells_vtu(layers));
     MeshPictureOptions options;
     options.triangle_values = &kind;
     options.value_label = "0 quad, 1 fan, 2 transition";
