@@ -1,8 +1,8 @@
 // The boundary-layer generator (host/layers): exact first height and growth on a circle, fans at
 // convex corners, concave corners, shrinking between close curves, the core-spacing stop, the
 // quad split, the measures, and bad settings refused by name.
-#include <catch2/catch.hpp>
 #include <algorithm>
+#include <catch2/catch.hpp>
 #include <cmath>
 #include <string>
 #include <vector>
@@ -22,7 +22,8 @@ const double kPi = std::acos(-1.0);
 
 RawCurve circle(Vec2 c, double r, int n, const std::string& name) {
   RawCurve curve{name, {}, "test", 1, {}};
-  for (int i = 0; i < n; ++i) curve.points.push_back({c.x + r * std::cos(2 * kPi * i / n), c.y + r * std::sin(2 * kPi * i / n)});
+  for (int i = 0; i < n; ++i)
+    curve.points.push_back({c.x + r * std::cos(2 * kPi * i / n), c.y + r * std::sin(2 * kPi * i / n)});
   curve.points.push_back(curve.points.front());
   return curve;
 }
@@ -224,7 +225,9 @@ TEST_CASE("bad layer settings are input errors naming the value", "[layers]") {
   CHECK_THAT(msg(settings(1e-3, 1.2, 0.05, 4)), Catch::Contains("not both"));
   CHECK_THAT(msg(settings(1e-3, 1.2, 0.05), {}), Catch::Contains("the list of wall curves is empty"));
   CHECK_THAT(msg(settings(1e-3, 1.2, 0.05), {7}), Catch::Contains("wall curve index 7"));
-  CHECK_THAT(error_message<InputError>([&] { curves_by_name(g, {"wall", "flap"}, "boundary_layer.curves"); }),
+  CHECK_THAT(error_message<InputError>([&] {
+               curves_by_name(g, {"wall", "flap"}, "boundary_layer.curves");
+             }),
              Catch::Contains("boundary_layer.curves: unknown curve \"flap\" (the curves are: far, wall)"));
   CHECK(msg(settings(1e-3, 1.2, 0.05)).empty());  // good settings pass
 }

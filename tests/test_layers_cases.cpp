@@ -44,9 +44,9 @@ TEST_CASE("NACA 0012: h1 1e-5, growth 1.2, thickness 0.05", "[layers]") {
 }
 
 TEST_CASE("30P30N: all three elements, h1 1e-5, growth 1.15, thickness 0.02", "[layers]") {
-  const std::vector<std::string> names = {"main_cove", "main_cove_wall", "main_lower", "main_upper", "main_te",
-                                          "flap_lower", "flap_upper", "flap_te", "slat_te", "slat_cove",
-                                          "slat_upper", "bottom", "right", "top", "left"};
+  const std::vector<std::string> names = {"main_cove",  "main_cove_wall", "main_lower", "main_upper", "main_te",
+                                          "flap_lower", "flap_upper",     "flap_te",    "slat_te",    "slat_cove",
+                                          "slat_upper", "bottom",         "right",      "top",        "left"};
   const Geometry g = case_geometry("30p30n", names);
   LayerSettings s;
   s.first_height = 1e-5;

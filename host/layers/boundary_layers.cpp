@@ -2,12 +2,12 @@
 // that shrink the rays of any inverted cell or crossing edge until none is left.
 #include "layers/boundary_layers.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
 #include <string>
 #include <unordered_set>
-
-#include <fmt/format.h>
 
 #include "core/errors.hpp"
 #include "core/predicates.hpp"
@@ -21,8 +21,7 @@ void check_layer_settings(const LayerSettings& s) {
   auto fail = [](const std::string& what) { throw InputError("boundary layer: " + what); };
   if (!(std::isfinite(s.first_height) && s.first_height > 0.0))
     fail(fmt::format("first_height = {} must be a positive number", s.first_height));
-  if (!(std::isfinite(s.growth) && s.growth > 1.0))
-    fail(fmt::format("growth = {} must be greater than 1", s.growth));
+  if (!(std::isfinite(s.growth) && s.growth > 1.0)) fail(fmt::format("growth = {} must be greater than 1", s.growth));
   if (s.growth > 3.0) fail(fmt::format("growth = {} is above 3", s.growth));
   const bool by_thickness = s.thickness != 0.0;
   if (by_thickness == (s.layers != 0))
@@ -92,7 +91,8 @@ LayerMesh assemble(const RaySet& set, const std::vector<int>& count, const std::
       m.nodes.push_back(p + (height[r].back() / ray.correction) * ray.direction);
       owner.push_back(static_cast<int>(r));
     }
-    ray.last_growth = n >= 2 ? (top[r] - stack_height(h1, settings.growth, n - 1)) / (h1 * std::pow(settings.growth, n - 2)) : 1.0;
+    ray.last_growth =
+        n >= 2 ? (top[r] - stack_height(h1, settings.growth, n - 1)) / (h1 * std::pow(settings.growth, n - 2)) : 1.0;
   }
   auto add = [&](std::array<int, 4> v, LayerCellKind kind, int curve, int layer) {
     if (v[3] >= 0 && settings.split_quads) {
@@ -198,13 +198,15 @@ std::vector<int> check(const LayerMesh& m, const std::vector<int>& owner, const 
     const int k = cell.triangle() ? 3 : 4;
     bool ok = true;
     for (int i = 0; i < k; ++i)
-      if (orient2d(m.nodes[cell.v[(i + k - 1) % k]], m.nodes[cell.v[i]], m.nodes[cell.v[(i + 1) % k]]) <= 0.0) ok = false;
+      if (orient2d(m.nodes[cell.v[(i + k - 1) % k]], m.nodes[cell.v[i]], m.nodes[cell.v[(i + 1) % k]]) <= 0.0)
+        ok = false;
     if (!ok)
       for (int i = 0; i < k; ++i) mark(cell.v[i]);
     for (int i = 0; i < k; ++i) {
       const int a = std::min(cell.v[i], cell.v[(i + 1) % k]), b = std::max(cell.v[i], cell.v[(i + 1) % k]);
       if (b < m.wall_nodes) continue;  // a wall edge: a segment of the geometry
-      if (seen.insert((static_cast<std::uint64_t>(a) << 32) | static_cast<std::uint32_t>(b)).second) edges.push_back({a, b});
+      if (seen.insert((static_cast<std::uint64_t>(a) << 32) | static_cast<std::uint32_t>(b)).second)
+        edges.push_back({a, b});
     }
   }
   Box box;
@@ -235,7 +237,9 @@ std::vector<int> check(const LayerMesh& m, const std::vector<int>& owner, const 
       const Segment& s = geometry.segments[id - ne];
       // An end ray's column lies on the segment it runs along: its own edges, and edges from its
       // nodes to nodes on the domain side of that segment, only touch it.
-      auto on_ray = [&](int node, int r) { return node < m.wall_nodes ? node == m.rays[r].wall_node : owner[node] == r; };
+      auto on_ray = [&](int node, int r) {
+        return node < m.wall_nodes ? node == m.rays[r].wall_node : owner[node] == r;
+      };
       for (const int r : {a < m.wall_nodes ? -1 : owner[a], b < m.wall_nodes ? -1 : owner[b]}) {
         if (r < 0 || m.rays[r].slide_segment != id - ne) continue;
         const int other = on_ray(a, r) ? b : a;

@@ -57,14 +57,14 @@ struct LayerCell {
 
 // One ray of nodes grown from a wall node (a fan corner has several rays from one wall node).
 struct LayerRay {
-  int wall_node = -1;          // index into LayerMesh::nodes
-  int curve = -1;              // the geometry curve of the wall node (the one before it at a joint)
-  Vec2 direction;              // unit
-  double correction = 1.0;     // mean of direction . (normals of the adjacent wall segments)
-  std::vector<int> nodes;      // nodes[0] = wall_node, then one per layer
-  double thickness = 0.0;      // height of its top node over the wall (along the normal)
-  double last_growth = 1.0;    // the last layer's height over the one below (the others: settings.growth)
-  double free_thickness = 0.0; // what it would have had with no collision
+  int wall_node = -1;           // index into LayerMesh::nodes
+  int curve = -1;               // the geometry curve of the wall node (the one before it at a joint)
+  Vec2 direction;               // unit
+  double correction = 1.0;      // mean of direction . (normals of the adjacent wall segments)
+  std::vector<int> nodes;       // nodes[0] = wall_node, then one per layer
+  double thickness = 0.0;       // height of its top node over the wall (along the normal)
+  double last_growth = 1.0;     // the last layer's height over the one below (the others: settings.growth)
+  double free_thickness = 0.0;  // what it would have had with no collision
   bool fan = false;
   // At the end of an open chain: the geometry segment (of the curve that continues the boundary
   // there) that the ray runs along, so that the layer's side lies on that curve; -1 otherwise.

@@ -1,13 +1,13 @@
 // measure_layers(): the layer measures of layer_measures.hpp.
 #include "layers/layer_measures.hpp"
 
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <numbers>
-
-#include <fmt/format.h>
-#include <fmt/ranges.h>
 
 #include "core/predicates.hpp"
 
@@ -19,7 +19,7 @@ namespace {
 double quantile(std::vector<double> v, double q) {
   if (v.empty()) return 0.0;
   std::sort(v.begin(), v.end());
-  const auto k = static_cast<std::size_t>(std::ceil(q * static_cast<double>(v.size()))) ;
+  const auto k = static_cast<std::size_t>(std::ceil(q * static_cast<double>(v.size())));
   return v[std::min(v.size() - 1, k == 0 ? 0 : k - 1)];
 }
 
@@ -114,8 +114,8 @@ LayerMeasures measure_layers(const LayerMesh& mesh, double first_height, const C
 
 std::string format_layer_measures(const LayerMeasures& m, const std::vector<std::string>& curve_names) {
   std::string s;
-  s += fmt::format("nodes {}  cells {} ({} quads, {} triangles)  inverted {}\n", m.nodes, m.cells, m.quads,
-                   m.triangles, m.inverted_cells);
+  s += fmt::format("nodes {}  cells {} ({} quads, {} triangles)  inverted {}\n", m.nodes, m.cells, m.quads, m.triangles,
+                   m.inverted_cells);
   s += fmt::format("wall cells {}: {:.2f} % within +-2 % of h1, max error {:.3g} %\n", m.wall_cells,
                    100.0 * m.first_height_within_2pct, 100.0 * m.first_height_max_error);
   s += fmt::format("growth inside: median {:.4f} p95 {:.4f} max {:.4f}\n", m.growth_median, m.growth_p95, m.growth_max);

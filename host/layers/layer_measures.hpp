@@ -10,9 +10,9 @@ namespace pdmesh {
 
 struct LayerMeasures {
   int nodes = 0, cells = 0, quads = 0, triangles = 0;
-  int wall_cells = 0;                    // cells with an edge on the wall
-  double first_height_within_2pct = 0;   // share (0..1) of wall cells whose heights are all within +-2 %
-  double first_height_max_error = 0;     // largest |height / h1 - 1| over the wall cells' apexes
+  int wall_cells = 0;                   // cells with an edge on the wall
+  double first_height_within_2pct = 0;  // share (0..1) of wall cells whose heights are all within +-2 %
+  double first_height_max_error = 0;    // largest |height / h1 - 1| over the wall cells' apexes
   // Ratios of consecutive layer heights along every ray (inside), and with the core's spacing at
   // each top node over the last layer's height (the junction; none without a core spacing).
   double growth_median = 0, growth_p95 = 0, growth_max = 0;
@@ -22,8 +22,8 @@ struct LayerMeasures {
   int angles_above_150 = 0;
   int inverted_cells = 0;  // cells with a corner whose orientation is not counter-clockwise (exact test)
   std::vector<int> fan_sizes;
-  double max_thickness_jump = 1;       // largest thickness ratio of neighbouring wall nodes' rays
-  std::vector<double> jump_by_curve;   // the same per geometry curve (1 where it has no neighbours)
+  double max_thickness_jump = 1;      // largest thickness ratio of neighbouring wall nodes' rays
+  std::vector<double> jump_by_curve;  // the same per geometry curve (1 where it has no neighbours)
   int max_layers = 0;
   double min_thickness = 0, max_thickness = 0;
 };

@@ -69,7 +69,8 @@ RaySet make_rays(const std::vector<WallChain>& chains, const Geometry& geometry,
         // The turn from the arriving to the leaving direction equals the turn of the normals.
         v.turn = std::atan2(cross(v.n_in, v.n_out), dot(v.n_in, v.n_out));
         if (-v.turn > fan_turn)
-          v.fan = std::max(2, static_cast<int>(std::ceil(settings.fan_elements_per_pi * -v.turn / std::numbers::pi - 1e-9)));
+          v.fan = std::max(
+              2, static_cast<int>(std::ceil(settings.fan_elements_per_pi * -v.turn / std::numbers::pi - 1e-9)));
       }
     }
     // Directions: fans fixed, the others the bisector, then smoothed (Jacobi passes over the

@@ -50,7 +50,8 @@ std::vector<WallChain> wall_chains(const Geometry& geometry, const std::vector<i
     if (walls == n) {
       WallChain chain;
       chain.closed = true;
-      for (int k = 0; k < n; ++k) append_curve(chain, geometry.curves[loop.curves[k]], loop.curves[k], loop.reversed[k] != 0);
+      for (int k = 0; k < n; ++k)
+        append_curve(chain, geometry.curves[loop.curves[k]], loop.curves[k], loop.reversed[k] != 0);
       chain.points.pop_back();  // the loop's first point again
       chain.curve.pop_back();
       orient(chain, left);

@@ -103,20 +103,24 @@ int main(int argc, char** argv) {
     fmt::print("{}: {} wall nodes, {} rays, {} repair rounds, built in {:.3f} s\n{}", argv[1], layers.wall_nodes,
                layers.rays.size(), layers.repairs, seconds, format_layer_measures(m, names));
 
-    if (std::getenv("LAYERS_DUMP"))  // one line per ray: wall point, layers, thickness, free thickness, last layer's growth
+    if (std::getenv(
+            "LAYERS_DUMP"))  // one line per ray: wall point, layers, thickness, free thickness, last layer's growth
       for (const LayerRay& r : layers.rays)
-        fmt::print("ray {:.6f} {:.6f} {} {:.5g} {:.5g} {:.5f}\n", layers.nodes[r.wall_node].x, layers.nodes[r.wall_node].y,
-                   r.nodes.size() - 1, r.thickness, r.free_thickness, r.last_growth);
+        fmt::print("ray {:.6f} {:.6f} {} {:.5g} {:.5g} {:.5f}\n", layers.nodes[r.wall_node].x,
+                   layers.nodes[r.wall_node].y, r.nodes.size() - 1, r.thickness, r.free_thickness, r.last_growth);
     if (std::getenv("LAYERS_DUMP"))  // cells with an angle above LAYERS_DUMP degrees: kind, layer, the corner
       for (const LayerCell& c : layers.cells) {
         const int k = c.triangle() ? 3 : 4;
         for (int i = 0; i < k; ++i) {
-          const Vec2 p = layers.nodes[c.v[(i + k - 1) % k]], v = layers.nodes[c.v[i]], n = layers.nodes[c.v[(i + 1) % k]];
-          if (std::atan2(cross(n - v, p - v), dot(n - v, p - v)) * 180.0 / 3.141592653589793 > std::atof(std::getenv("LAYERS_DUMP")) ||
+          const Vec2 p = layers.nodes[c.v[(i + k - 1) % k]], v = layers.nodes[c.v[i]],
+                     n = layers.nodes[c.v[(i + 1) % k]];
+          if (std::atan2(cross(n - v, p - v), dot(n - v, p - v)) * 180.0 / 3.141592653589793 >
+                  std::atof(std::getenv("LAYERS_DUMP")) ||
               std::atan2(cross(n - v, p - v), dot(n - v, p - v)) < 0.0)
             fmt::print("wide {} {} {:.6f} {:.6f} cell {}\n", static_cast<int>(c.kind), c.layer, v.x, v.y, [&] {
               std::string t;
-              for (int j = 0; j < k; ++j) t += fmt::format(" ({:.6f},{:.6f})", layers.nodes[c.v[j]].x, layers.nodes[c.v[j]].y);
+              for (int j = 0; j < k; ++j)
+                t += fmt::format(" ({:.6f},{:.6f})", layers.nodes[c.v[j]].x, layers.nodes[c.v[j]].y);
               return t;
             }());
         }
@@ -136,7 +140,8 @@ int main(int argc, char** argv) {
     }
     for (const LayerFront& f : layers.fronts) {
       const std::size_t n = f.nodes.size();
-      for (std::size_t k = 0; k + (f.closed ? 0 : 1) < n; ++k) mesh.boundary_edges.push_back({f.nodes[k], f.nodes[(k + 1) % n], 0});
+      for (std::size_t k = 0; k + (f.closed ? 0 : 1) < n; ++k)
+        mesh.boundary_edges.push_back({f.nodes[k], f.nodes[(k + 1) % n], 0});
     }
     write_mesh(mesh, out, "layers", {"vtu", "msh"});
     write_file_atomically(out / "layer_cells.vtu", cells_vtu(layers));
