@@ -32,6 +32,12 @@ void check_layer_settings(const LayerSettings& s) {
   if (by_thickness && s.first_height > s.thickness)
     fail(fmt::format("first_height = {} is above the thickness = {}", s.first_height, s.thickness));
   if (s.layers < 0 || s.layers > 10000) fail(fmt::format("layers = {} must be in 1..10000", s.layers));
+  if (by_thickness) {
+    const double n = std::log1p(s.thickness * (s.growth - 1.0) / s.first_height) / std::log(s.growth);
+    if (!(n <= 10000.0))
+      fail(fmt::format("thickness = {} needs {:.0f} layers of first_height = {} and growth = {} (at most 10000)",
+                       s.thickness, n, s.first_height, s.growth));
+  }
   if (!(s.fan_angle_deg > 0.0 && s.fan_angle_deg < 180.0))
     fail(fmt::format("fan_angle = {} must be in (0, 180) degrees", s.fan_angle_deg));
   if (!(s.fan_elements_per_pi >= 1.0 && s.fan_elements_per_pi <= 100.0))
