@@ -7,6 +7,7 @@
 
 #include "geometry/geometry_files.hpp"
 #include "layers/boundary_layers.hpp"
+#include "layers/front_geometry.hpp"
 #include "layers/layer_measures.hpp"
 #include "source_dir.hpp"
 
@@ -62,4 +63,38 @@ TEST_CASE("30P30N: all three elements, h1 1e-5, growth 1.15, thickness 0.02", "[
   CHECK(m.fronts.size() == 3);
   // Every element keeps a layer: none shrinks below a tenth of the thickness.
   CHECK(q.min_thickness >= 0.1 * s.thickness);
+}
+
+TEST_CASE("the fronts bound a valid core geometry; the cells tile the layer region exactly", "[layers]") {
+  const std::vector<std::string> names = {"main_cove",  "main_cove_wall", "main_lower", "main_upper", "main_te",
+                                          "flap_lower", "flap_upper",     "flap_te",    "slat_te",    "slat_cove",
+                                          "slat_upper", "bottom",         "right",      "top",        "left"};
+  struct Case {
+    std::string dir;
+    std::vector<std::string> names;
+    std::vector<std::string> walls;
+    double h1, growth, thickness;
+  };
+  const std::vector<Case> cases = {
+      {"naca0012", {"upper", "lower", "bottom", "right", "top", "left"}, {"upper", "lower"}, 1e-5, 1.2, 0.05},
+      {"30p30n", names, std::vector<std::string>(names.begin(), names.begin() + 11), 1e-5, 1.15, 0.02}};
+  for (const Case& c : cases) {
+    INFO(c.dir);
+    const Geometry g = case_geometry(c.dir, c.names);
+    LayerSettings s;
+    s.first_height = c.h1;
+    s.growth = c.growth;
+    s.thickness = c.thickness;
+    const std::vector<int> walls = curves_by_name(g, c.walls, "test");
+    const LayerMesh m = build_boundary_layers(g, walls, s);
+    const Geometry core = build_geometry(front_curves(g, walls, m));  // throws on crossing curves
+    double cells = 0.0;
+    for (const LayerCell& cell : m.cells) {
+      const int k = cell.triangle() ? 3 : 4;
+      for (int i = 0; i < k; ++i) cells += 0.5 * cross(m.nodes[cell.v[i]], m.nodes[cell.v[(i + 1) % k]]);
+    }
+    // No overlap and no hole: the cells' area is the domain's minus the core's.
+    CHECK(cells == Approx(g.area - core.area).epsilon(1e-9));
+    CHECK(cells > 0.0);
+  }
 }
