@@ -25,6 +25,7 @@
 #include "core/errors.hpp"
 #include "io/mesh_formats.hpp"
 #include "layers/boundary_layers.hpp"
+#include "layers/front_geometry.hpp"
 #include "layers/layer_measures.hpp"
 #include "render/mesh_picture.hpp"
 
@@ -145,6 +146,29 @@ int main(int argc, char** argv) {
     }
     write_mesh(mesh, out, "layers", {"vtu", "msh"});
     write_file_atomically(out / "layer_cells.vtu", cells_vtu(layers));
+    // The core's boundary (non-wall curves and the closed fronts) as a curve file and a case that
+    // meshes it with the front nodes fixed (best preset otherwise): `pdmesh mesh OUT/core.toml --out DIR`.
+    std::string crv, names_list;
+    for (const RawCurve& c : front_curves(inputs.geometry, walls, layers)) {
+      crv += fmt::format("{}\n", c.points.size());
+      for (const Vec2 p : c.points) crv += fmt::format("{:.17g} {:.17g}\n", p.x, p.y);
+      names_list += fmt::format("{}\"{}\"", names_list.empty() ? "" : ", ", c.name);
+    }
+    write_file_atomically(out / "core.crv", crv);
+    // Per top node of a ray: x, y, the last layer's height (for the junction with a core mesh).
+    std::string tops = "# x y last_layer_height\n";
+    for (const LayerRay& r : layers.rays)
+      if (r.nodes.size() >= 2) {
+        const Vec2 t = layers.nodes[r.nodes.back()], u = layers.nodes[r.nodes[r.nodes.size() - 2]];
+        tops += fmt::format("{:.17g} {:.17g} {:.17g}\n", t.x, t.y, dist(t, u) * r.correction);
+      }
+    write_file_atomically(out / "front_tops.txt", tops);
+    // The boundary nodes at the curves' points, and every front vertex that turns at all a critical
+    // point (fixed): the core keeps the layer's top nodes where they are.
+    write_file_atomically(out / "core.toml", fmt::format("name = \"core\"\npreset = \"best\"\n\n[geometry]\n"
+                                                         "files = [\"core.crv\"]\ncurve_names = [{}]\n"
+                                                         "corner_angle = 0.001\n\n[boundary]\nnodes = \"input\"\n",
+                                                         names_list));
     MeshPictureOptions options;
     options.triangle_values = &kind;
     options.value_label = "0 quad, 1 fan, 2 transition";
