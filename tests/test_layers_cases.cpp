@@ -65,7 +65,7 @@ TEST_CASE("30P30N: all three elements, h1 1e-5, growth 1.15, thickness 0.02", "[
   CHECK(q.min_thickness >= 0.1 * s.thickness);
 }
 
-TEST_CASE("the fronts bound a valid core geometry; the cells tile the layer region exactly", "[layers]") {
+TEST_CASE("the fronts bound a valid core geometry and the cells tile the layer region exactly", "[layers]") {
   const std::vector<std::string> names = {"main_cove",  "main_cove_wall", "main_lower", "main_upper", "main_te",
                                           "flap_lower", "flap_upper",     "flap_te",    "slat_te",    "slat_cove",
                                           "slat_upper", "bottom",         "right",      "top",        "left"};
