@@ -1,0 +1,302 @@
+// build_boundary_layers(): rays, thickness limits, the layer cells and fronts, and the final checks
+// that shrink the rays of any inverted cell or crossing edge until none is left.
+#include "layers/boundary_layers.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <unordered_set>
+
+#include "core/errors.hpp"
+#include "core/predicates.hpp"
+#include "layers/layers_detail.hpp"
+
+namespace pdmesh {
+
+using namespace layers_detail;
+
+void check_layer_settings(const LayerSettings& s) {
+  auto fail = [](const std::string& what) { throw InputError("boundary layer: " + what); };
+  if (!(std::isfinite(s.first_height) && s.first_height > 0.0))
+    fail(fmt::format("first_height = {} must be a positive number", s.first_height));
+  if (!(std::isfinite(s.growth) && s.growth > 1.0)) fail(fmt::format("growth = {} must be greater than 1", s.growth));
+  if (s.growth > 3.0) fail(fmt::format("growth = {} is above 3", s.growth));
+  const bool by_thickness = s.thickness != 0.0;
+  if (by_thickness == (s.layers != 0))
+    fail(fmt::format("give either thickness or layers, not {} (thickness = {}, layers = {})",
+                     by_thickness ? "both" : "neither", s.thickness, s.layers));
+  if (by_thickness && !(std::isfinite(s.thickness) && s.thickness > 0.0))
+    fail(fmt::format("thickness = {} must be a positive number", s.thickness));
+  if (by_thickness && s.first_height > s.thickness)
+    fail(fmt::format("first_height = {} is above the thickness = {}", s.first_height, s.thickness));
+  if (s.layers < 0 || s.layers > 10000) fail(fmt::format("layers = {} must be in 1..10000", s.layers));
+  if (by_thickness) {
+    const double n = std::log1p(s.thickness * (s.growth - 1.0) / s.first_height) / std::log(s.growth);
+    if (!(n <= 10000.0))
+      fail(fmt::format("thickness = {} needs {:.0f} layers of first_height = {} and growth = {} (at most 10000)",
+                       s.thickness, n, s.first_height, s.growth));
+  }
+  if (!(s.fan_angle_deg > 0.0 && s.fan_angle_deg < 180.0))
+    fail(fmt::format("fan_angle = {} must be in (0, 180) degrees", s.fan_angle_deg));
+  if (!(s.fan_elements_per_pi >= 1.0 && s.fan_elements_per_pi <= 100.0))
+    fail(fmt::format("fan_elements_per_pi = {} must be in [1, 100]", s.fan_elements_per_pi));
+  if (s.smoothing_passes < 0 || s.smoothing_passes > 1000)
+    fail(fmt::format("smoothing_passes = {} must be in 0..1000", s.smoothing_passes));
+  if (!(s.max_jump > 1.0 && s.max_jump <= 10.0)) fail(fmt::format("max_jump = {} must be in (1, 10]", s.max_jump));
+  if (!(s.max_slope > 0.0 && s.max_slope <= 100.0))
+    fail(fmt::format("max_slope = {} must be in (0, 100]", s.max_slope));
+  if (!(s.gap_fraction > 0.0 && s.gap_fraction <= 0.5))
+    fail(fmt::format("gap_fraction = {} must be in (0, 0.5]", s.gap_fraction));
+  if (!(s.cross_fraction > 0.0 && s.cross_fraction < 1.0))
+    fail(fmt::format("cross_fraction = {} must be in (0, 1)", s.cross_fraction));
+}
+
+std::vector<int> curves_by_name(const Geometry& geometry, const std::vector<std::string>& names,
+                                const std::string& what) {
+  std::vector<int> out;
+  for (const std::string& name : names) {
+    int found = -1;
+    for (std::size_t c = 0; c < geometry.curves.size(); ++c)
+      if (geometry.curves[c].name == name) found = static_cast<int>(c);
+    if (found < 0) {
+      std::string known;
+      for (const Curve& c : geometry.curves) known += (known.empty() ? "" : ", ") + c.name;
+      throw InputError(fmt::format("{}: unknown curve \"{}\" (the curves are: {})", what, name, known));
+    }
+    out.push_back(found);
+  }
+  return out;
+}
+
+namespace {
+
+LayerMesh assemble(const RaySet& set, const std::vector<int>& count, const std::vector<double>& top,
+                   const LayerSettings& settings, std::vector<int>& owner) {
+  LayerMesh m;
+  m.nodes = set.wall_points;
+  m.wall_nodes = static_cast<int>(m.nodes.size());
+  m.rays = set.rays;
+  m.chain_ray_begin = set.ray_begin;
+  m.chain_closed = set.closed;
+  m.fan_sizes = set.fan_sizes;
+  owner.assign(m.nodes.size(), -1);
+  const double h1 = settings.first_height;
+  std::vector<std::vector<double>> height(m.rays.size());  // per ray: each node's height over the wall
+  for (std::size_t r = 0; r < m.rays.size(); ++r) {
+    LayerRay& ray = m.rays[r];
+    const Vec2 p = m.nodes[ray.wall_node];
+    ray.nodes = {ray.wall_node};
+    height[r] = {0.0};
+    const int n = count[r];
+    ray.thickness = n > 0 ? top[r] : 0.0;
+    for (int k = 1; k <= n; ++k) {
+      height[r].push_back(k < n ? stack_height(h1, settings.growth, k) : top[r]);
+      ray.nodes.push_back(static_cast<int>(m.nodes.size()));
+      m.nodes.push_back(p + (height[r].back() / ray.correction) * ray.direction);
+      owner.push_back(static_cast<int>(r));
+    }
+    ray.last_growth =
+        n >= 2 ? (top[r] - stack_height(h1, settings.growth, n - 1)) / (h1 * std::pow(settings.growth, n - 2)) : 1.0;
+  }
+  auto add = [&](std::array<int, 4> v, LayerCellKind kind, int curve, int layer) {
+    if (v[3] >= 0 && settings.split_quads) {
+      // The diagonal whose triangles have the smaller largest angle (cosines compared).
+      auto min_cos = [&](int a, int b, int c) {
+        double lo = 1.0;
+        const int t[3] = {a, b, c};
+        for (int i = 0; i < 3; ++i) {
+          const Vec2 u = m.nodes[t[(i + 1) % 3]] - m.nodes[t[i]], w = m.nodes[t[(i + 2) % 3]] - m.nodes[t[i]];
+          lo = std::min(lo, dot(u, w) / (norm(u) * norm(w)));
+        }
+        return lo;
+      };
+      const double d02 = std::min(min_cos(v[0], v[1], v[2]), min_cos(v[0], v[2], v[3]));
+      const double d13 = std::min(min_cos(v[0], v[1], v[3]), min_cos(v[1], v[2], v[3]));
+      const LayerCellKind k = kind == LayerCellKind::Quad ? LayerCellKind::Split : kind;
+      if (d02 >= d13) {
+        m.cells.push_back({{v[0], v[1], v[2], -1}, k, curve, layer});
+        m.cells.push_back({{v[0], v[2], v[3], -1}, k, curve, layer});
+      } else {
+        m.cells.push_back({{v[0], v[1], v[3], -1}, k, curve, layer});
+        m.cells.push_back({{v[1], v[2], v[3], -1}, k, curve, layer});
+      }
+      return;
+    }
+    m.cells.push_back({v, kind, curve, layer});
+  };
+  for (std::size_t c = 0; c + 1 < set.ray_begin.size(); ++c) {
+    const int b = set.ray_begin[c], e = set.ray_begin[c + 1], n = e - b;
+    const bool closed = set.closed[c] != 0;
+    LayerFront front;
+    front.closed = closed;
+    for (int k = 0; k < (closed ? n : n - 1); ++k) {
+      const LayerRay& ra = m.rays[b + k];
+      const LayerRay& rb = m.rays[b + (k + 1) % n];
+      const auto& ca = ra.nodes;
+      const auto& cb = rb.nodes;
+      const bool fan = ra.wall_node == rb.wall_node;
+      const int curve = ra.curve;
+      const int na = static_cast<int>(ca.size()) - 1, nb = static_cast<int>(cb.size()) - 1;
+      if (fan && std::min(na, nb) == 0) continue;  // a fan ray without layers: nothing beside it
+      // Zip the two columns upwards: a quad while both its lower and its upper nodes are level
+      // (heights within half the thinner layer and 0.3 x the width between them: no skewed quad),
+      // else a triangle advancing the column whose next node is lower.
+      int i = 0, j = 0;
+      if (fan) {
+        add({ca[0], cb[1], ca[1], -1}, LayerCellKind::Fan, curve, 0);
+        i = j = 1;
+      }
+      const auto& ha = height[b + k];
+      const auto& hb = height[b + (k + 1) % n];
+      auto level = [&](int p, int q, double layer) {
+        return std::abs(ha[p] - hb[q]) <= std::min(0.5 * layer, 0.3 * dist(m.nodes[ca[p]], m.nodes[cb[q]]));
+      };
+      while (i < na || j < nb) {
+        bool advance_a = i < na, advance_b = j < nb;
+        if (advance_a && advance_b) {
+          const double layer = std::min(ha[i + 1] - ha[i], hb[j + 1] - hb[j]);
+          if (!((i == 0 && j == 0) || level(i, j, layer)) || !level(i + 1, j + 1, layer)) {
+            advance_a = ha[i + 1] < hb[j + 1];
+            advance_b = !advance_a;
+          }
+        }
+        const int layer = std::max(i, j);
+        if (advance_a && advance_b) {
+          add({ca[i], cb[j], cb[j + 1], ca[i + 1]}, fan ? LayerCellKind::Fan : LayerCellKind::Quad, curve, layer);
+          ++i;
+          ++j;
+        } else if (advance_b) {
+          add({ca[i], cb[j], cb[j + 1], -1}, LayerCellKind::Transition, curve, layer);
+          ++j;
+        } else {
+          add({ca[i], cb[j], ca[i + 1], -1}, LayerCellKind::Transition, curve, layer);
+          ++i;
+        }
+      }
+    }
+    // The front: an open chain's first column upwards, the tops, its last column downwards.
+    auto push = [&](int node) {
+      if (front.nodes.empty() || front.nodes.back() != node) front.nodes.push_back(node);
+    };
+    if (!closed)
+      for (std::size_t j = 0; j + 1 < m.rays[b].nodes.size(); ++j) push(m.rays[b].nodes[j]);
+    for (int k = 0; k < n; ++k) push(m.rays[b + k].nodes.back());
+    if (!closed)
+      for (std::size_t j = m.rays[e - 1].nodes.size(); j-- > 0;) push(m.rays[e - 1].nodes[j]);
+    if (closed && front.nodes.size() > 1 && front.nodes.front() == front.nodes.back()) front.nodes.pop_back();
+    m.fronts.push_back(std::move(front));
+  }
+  return m;
+}
+
+// The rays to shrink: those owning a node of an inverted cell, or of a cell edge that meets another
+// cell edge (not at a shared node) or a curve of the geometry (not at the wall node it starts from).
+std::vector<int> check(const LayerMesh& m, const std::vector<int>& owner, const Geometry& geometry) {
+  std::vector<std::uint8_t> bad(m.rays.size(), 0);
+  auto mark = [&](int node) {
+    if (owner[node] >= 0) bad[owner[node]] = 1;
+  };
+  std::unordered_set<std::uint64_t> seen;
+  std::vector<std::array<int, 2>> edges;
+  for (const LayerCell& cell : m.cells) {
+    const int k = cell.triangle() ? 3 : 4;
+    bool ok = true;
+    for (int i = 0; i < k; ++i)
+      if (orient2d(m.nodes[cell.v[(i + k - 1) % k]], m.nodes[cell.v[i]], m.nodes[cell.v[(i + 1) % k]]) <= 0.0)
+        ok = false;
+    if (!ok)
+      for (int i = 0; i < k; ++i) mark(cell.v[i]);
+    for (int i = 0; i < k; ++i) {
+      const int a = std::min(cell.v[i], cell.v[(i + 1) % k]), b = std::max(cell.v[i], cell.v[(i + 1) % k]);
+      if (b < m.wall_nodes) continue;  // a wall edge: a segment of the geometry
+      if (seen.insert((static_cast<std::uint64_t>(a) << 32) | static_cast<std::uint32_t>(b)).second)
+        edges.push_back({a, b});
+    }
+  }
+  Box box;
+  double total = 0.0;
+  for (const auto& e : edges) {
+    box.add(m.nodes[e[0]]);
+    box.add(m.nodes[e[1]]);
+    total += dist(m.nodes[e[0]], m.nodes[e[1]]);
+  }
+  if (edges.empty()) return {};
+  const int ne = static_cast<int>(edges.size());
+  SegmentGrid grid(box, 2.0 * total / ne);
+  for (int i = 0; i < ne; ++i) grid.insert(i, m.nodes[edges[i][0]], m.nodes[edges[i][1]]);
+  const int ns = static_cast<int>(geometry.segments.size());
+  for (int s = 0; s < ns; ++s) grid.insert(ne + s, geometry.segments[s].a, geometry.segments[s].b);
+  for (int i = 0; i < ne; ++i) {
+    const int a = edges[i][0], b = edges[i][1];
+    const Vec2 pa = m.nodes[a], pb = m.nodes[b];
+    grid.query(pa, pb, [&](int id) {
+      if (id < ne) {
+        if (id <= i) return;
+        const int c = edges[id][0], d = edges[id][1];
+        if (c == a || c == b || d == a || d == b) return;
+        if (!segments_intersect(pa, pb, m.nodes[c], m.nodes[d])) return;
+        for (const int v : {a, b, c, d}) mark(v);
+        return;
+      }
+      const Segment& s = geometry.segments[id - ne];
+      // An end ray's column lies on the segment it runs along: its own edges, and edges from its
+      // nodes to nodes on the domain side of that segment, only touch it.
+      auto on_ray = [&](int node, int r) {
+        return node < m.wall_nodes ? node == m.rays[r].wall_node : owner[node] == r;
+      };
+      for (const int r : {a < m.wall_nodes ? -1 : owner[a], b < m.wall_nodes ? -1 : owner[b]}) {
+        if (r < 0 || m.rays[r].slide_segment != id - ne) continue;
+        const int other = on_ray(a, r) ? b : a;
+        if (on_ray(other, r)) return;
+        const int neighbour = std::binary_search(m.chain_ray_begin.begin(), m.chain_ray_begin.end(), r) ? r + 1 : r - 1;
+        const double inside = orient2d(s.a, s.b, m.nodes[m.rays[neighbour].wall_node]);
+        const double side = orient2d(s.a, s.b, m.nodes[other]);
+        if ((inside > 0 && side > 0) || (inside < 0 && side < 0)) return;
+      }
+      for (const Vec2 w : {pa, pb})
+        if ((a < m.wall_nodes && w == pa) || (b < m.wall_nodes && w == pb))
+          if (s.a == w || s.b == w) return;
+      if (!segments_intersect(pa, pb, s.a, s.b)) return;
+      mark(a);
+      mark(b);
+    });
+  }
+  std::vector<int> out;
+  for (std::size_t r = 0; r < bad.size(); ++r)
+    if (bad[r]) out.push_back(static_cast<int>(r));
+  return out;
+}
+
+}  // namespace
+
+LayerMesh build_boundary_layers(const Geometry& geometry, const std::vector<int>& wall_curves,
+                                const LayerSettings& settings, const CoreSpacing& core_spacing) {
+  check_layer_settings(settings);
+  if (wall_curves.empty()) throw InputError("boundary layer: the list of wall curves is empty");
+  for (const int c : wall_curves)
+    if (c < 0 || c >= static_cast<int>(geometry.curves.size()))
+      throw InputError(fmt::format("boundary layer: wall curve index {} is not a curve of the geometry (it has {})", c,
+                                   geometry.curves.size()));
+  RaySet set = make_rays(wall_chains(geometry, wall_curves), geometry, settings);
+  std::vector<double> allowed;
+  free_and_collision_limits(set, geometry, settings, core_spacing, allowed);
+  std::vector<int> count, owner;
+  std::vector<double> top;
+  constexpr int kMaxRepairs = 60;
+  for (int round = 0; round <= kMaxRepairs; ++round) {
+    grade_thickness(set, settings.max_jump, settings.max_slope, allowed);
+    layer_counts(set, settings, allowed, count, top);
+    LayerMesh m = assemble(set, count, top, settings, owner);
+    const std::vector<int> bad = check(m, owner, geometry);
+    if (bad.empty()) {
+      m.repairs = round;
+      return m;
+    }
+    for (const int r : bad) allowed[r] *= 0.7;
+  }
+  throw Error(fmt::format("boundary layer: cells still invalid after {} rounds of shrinking", kMaxRepairs));
+}
+
+}  // namespace pdmesh

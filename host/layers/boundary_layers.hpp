@@ -1,0 +1,105 @@
+// Boundary layers for viscous flow: layered cells advanced from wall curves along smoothed normals
+// (docs/boundary-layers.md). The input is the geometry and the wall curves (their polyline points,
+// which are the boundary nodes of the thesis' rule); the output is the layer nodes and cells and the
+// outer front, the boundary the particle core is to fill from. Not wired to the case file yet.
+#pragma once
+#include <array>
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "core/vec2.hpp"
+#include "geometry/geometry.hpp"
+
+namespace pdmesh {
+
+struct LayerSettings {
+  double first_height = 0.0;  // h1, the height of the wall cells
+  double growth = 1.2;        // g > 1, the ratio of consecutive layer heights
+  double thickness = 0.0;     // the layer's total height where nothing else limits it (or `layers`)
+  int layers = 0;             // the number of layers where nothing else limits it (0: use thickness)
+  // A wall vertex whose convex turn exceeds this (degrees) gets a fan of rays.
+  double fan_angle_deg = 45.0;
+  double fan_elements_per_pi = 5.0;  // a fan's elements: ceil(this x turn / pi), at least 2
+  int smoothing_passes = 8;          // Laplacian passes over the normals (not at fans)
+  double max_jump = 1.3;             // largest thickness ratio between neighbouring wall nodes
+  // Largest change of thickness per unit distance between neighbouring rays (their wall nodes'
+  // distance plus the arc between their directions at the thinner one's height): the front's slope
+  // against the wall, so that dense wall nodes do not let the front drop along the rays.
+  double max_slope = 0.3;
+  // A ray that meets another curve at distance L stops at gap_fraction x L (the front opposite
+  // stops there too, leaving (1 - 2 gap_fraction) L to the core); rays that cross stop at
+  // cross_fraction of the crossing distance.
+  double gap_fraction = 0.4;
+  double cross_fraction = 0.5;
+  bool split_quads = false;  // write each quad as 2 triangles (the diagonal with the smaller max angle)
+};
+
+// Throws InputError naming the setting and its value: h1 <= 0 or not finite, growth <= 1, neither
+// or both of thickness and layers, first height above the thickness, bad fan or jump settings.
+void check_layer_settings(const LayerSettings& settings);
+
+// The spacing the isotropic core asks for at a point (the spacing field's q). Layers stop where the
+// last layer's height reaches core_spacing / growth, so that the growth into the core is no larger
+// than inside the layer. May be empty (no such limit).
+using CoreSpacing = std::function<double(Vec2)>;
+
+enum class LayerCellKind : unsigned char { Quad, Fan, Transition, Split };
+
+struct LayerCell {
+  std::array<int, 4> v{-1, -1, -1, -1};  // counter-clockwise node indices; v[3] = -1 for a triangle
+  LayerCellKind kind = LayerCellKind::Quad;
+  int curve = -1;  // the geometry curve of the wall node the cell grows from
+  int layer = 0;   // 0 = on the wall
+  bool triangle() const { return v[3] < 0; }
+};
+
+// One ray of nodes grown from a wall node (a fan corner has several rays from one wall node).
+struct LayerRay {
+  int wall_node = -1;           // index into LayerMesh::nodes
+  int curve = -1;               // the geometry curve of the wall node (the one before it at a joint)
+  Vec2 direction;               // unit
+  double correction = 1.0;      // mean of direction . (normals of the adjacent wall segments)
+  std::vector<int> nodes;       // nodes[0] = wall_node, then one per layer
+  double thickness = 0.0;       // height of its top node over the wall (along the normal)
+  double last_growth = 1.0;     // the last layer's height over the one below (the others: settings.growth)
+  double free_thickness = 0.0;  // what it would have had with no collision
+  bool fan = false;
+  // At the end of an open chain: the geometry segment (of the curve that continues the boundary
+  // there) that the ray runs along, so that the layer's side lies on that curve; -1 otherwise.
+  int slide_segment = -1;
+};
+
+// The outer front of one wall chain: the boundary between the layer and the core. A closed chain's
+// front is closed (the rays' top nodes); an open chain's front runs from its first wall node up the
+// first ray, along the top nodes and down the last ray to its last wall node.
+struct LayerFront {
+  std::vector<int> nodes;
+  bool closed = false;
+};
+
+struct LayerMesh {
+  std::vector<Vec2> nodes;  // wall nodes first (nodes[i] for i < wall_nodes), then layer nodes
+  int wall_nodes = 0;
+  std::vector<LayerCell> cells;
+  std::vector<LayerRay> rays;              // in chain order, chain after chain
+  std::vector<int> chain_ray_begin;        // chain c's rays are [chain_ray_begin[c], chain_ray_begin[c+1])
+  std::vector<std::uint8_t> chain_closed;  // per chain
+  std::vector<LayerFront> fronts;          // one per chain
+  std::vector<int> fan_sizes;              // elements per layer of each fan
+  int repairs = 0;                         // rounds of shrinking that the final checks needed
+};
+
+// Advances layers from the named wall curves of `geometry` (indices into geometry.curves) into the
+// domain. Curves that join end to end form one chain; a loop made only of wall curves is a closed
+// chain. Every curve of the geometry stops the layers (gap_fraction). Throws InputError for bad
+// settings or an empty or out-of-range curve list; throws Error when no valid layer can be made.
+LayerMesh build_boundary_layers(const Geometry& geometry, const std::vector<int>& wall_curves,
+                                const LayerSettings& settings, const CoreSpacing& core_spacing = {});
+
+// The curve indices of the given names; InputError naming an unknown one (and `what`, e.g. the key).
+std::vector<int> curves_by_name(const Geometry& geometry, const std::vector<std::string>& names,
+                                const std::string& what);
+
+}  // namespace pdmesh

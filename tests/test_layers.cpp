@@ -1,0 +1,297 @@
+// The boundary-layer generator (host/layers): exact first height and growth on a circle, fans at
+// convex corners, concave corners, shrinking between close curves, the core-spacing stop, the
+// quad split, the measures, and bad settings refused by name.
+#include <algorithm>
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "core/errors.hpp"
+#include "core/predicates.hpp"
+#include "error_message.hpp"
+#include "geometry/geometry.hpp"
+#include "layers/boundary_layers.hpp"
+#include "layers/layer_measures.hpp"
+
+using namespace pdmesh;
+
+namespace {
+
+const double kPi = std::acos(-1.0);
+
+RawCurve circle(Vec2 c, double r, int n, const std::string& name) {
+  RawCurve curve{name, {}, "test", 1, {}};
+  for (int i = 0; i < n; ++i)
+    curve.points.push_back({c.x + r * std::cos(2 * kPi * i / n), c.y + r * std::sin(2 * kPi * i / n)});
+  curve.points.push_back(curve.points.front());
+  return curve;
+}
+
+RawCurve box(Vec2 lo, Vec2 hi, int per_side, const std::string& name) {
+  const Vec2 c[4] = {lo, {hi.x, lo.y}, hi, {lo.x, hi.y}};
+  RawCurve curve{name, {}, "test", 1, {}};
+  for (int s = 0; s < 4; ++s)
+    for (int i = 0; i < per_side; ++i) {
+      const double t = static_cast<double>(i) / per_side;
+      curve.points.push_back(c[s] + t * (c[(s + 1) % 4] - c[s]));
+    }
+  curve.points.push_back(lo);
+  return curve;
+}
+
+LayerSettings settings(double h1, double g, double thickness, int layers = 0) {
+  LayerSettings s;
+  s.first_height = h1;
+  s.growth = g;
+  s.thickness = thickness;
+  s.layers = layers;
+  return s;
+}
+
+// Every pair of cell edges that meet other than at a shared node, by brute force (independent of
+// the generator's grid): 0 for a valid layer.
+int crossing_edges(const LayerMesh& m) {
+  std::vector<std::array<int, 2>> edges;
+  for (const LayerCell& c : m.cells) {
+    const int k = c.triangle() ? 3 : 4;
+    for (int i = 0; i < k; ++i) edges.push_back({c.v[i], c.v[(i + 1) % k]});
+  }
+  int bad = 0;
+  for (std::size_t i = 0; i < edges.size(); ++i)
+    for (std::size_t j = i + 1; j < edges.size(); ++j) {
+      const auto& a = edges[i];
+      const auto& b = edges[j];
+      if (a[0] == b[0] || a[0] == b[1] || a[1] == b[0] || a[1] == b[1]) continue;
+      const Vec2 p = m.nodes[a[0]], q = m.nodes[a[1]], u = m.nodes[b[0]], v = m.nodes[b[1]];
+      if (std::max(p.x, q.x) < std::min(u.x, v.x) || std::max(u.x, v.x) < std::min(p.x, q.x) ||
+          std::max(p.y, q.y) < std::min(u.y, v.y) || std::max(u.y, v.y) < std::min(p.y, q.y))
+        continue;  // the boxes are apart
+      if (segments_intersect(m.nodes[a[0]], m.nodes[a[1]], m.nodes[b[0]], m.nodes[b[1]])) ++bad;
+    }
+  return bad;
+}
+
+int cells_of(const LayerMesh& m, LayerCellKind kind) {
+  int n = 0;
+  for (const LayerCell& c : m.cells) n += c.kind == kind ? 1 : 0;
+  return n;
+}
+
+}  // namespace
+
+TEST_CASE("circle: the first height and the growth are exact, no fan", "[layers]") {
+  const Geometry g = build_geometry({box({-5, -5}, {5, 5}, 4, "far"), circle({0, 0}, 1.0, 128, "wall")});
+  const LayerSettings s = settings(1e-3, 1.2, 0.0, 10);
+  const LayerMesh m = build_boundary_layers(g, curves_by_name(g, {"wall"}, "test"), s);
+  const LayerMeasures q = measure_layers(m, s.first_height);
+  CHECK(m.fan_sizes.empty());
+  CHECK(m.repairs == 0);
+  CHECK(m.wall_nodes == 128);
+  CHECK(q.quads == 128 * 10);
+  CHECK(q.triangles == 0);
+  CHECK(q.wall_cells == 128);
+  CHECK(q.first_height_within_2pct == 1.0);
+  CHECK(q.first_height_max_error < 1e-9);
+  CHECK(q.growth_median == Approx(1.2).epsilon(1e-9));
+  CHECK(q.growth_max == Approx(1.2).epsilon(1e-9));
+  CHECK(q.max_layers == 10);
+  CHECK(q.min_thickness == Approx(1e-3 * (std::pow(1.2, 10) - 1) / 0.2).epsilon(1e-12));
+  CHECK(q.max_thickness_jump == Approx(1.0).epsilon(1e-12));
+  CHECK(q.inverted_cells == 0);
+  // The layers grow outwards (into the domain): every layer node is farther from the centre than 1.
+  for (std::size_t i = m.wall_nodes; i < m.nodes.size(); ++i) REQUIRE(norm(m.nodes[i]) > 1.0);
+  // One closed front of 128 nodes at the top of each ray.
+  REQUIRE(m.fronts.size() == 1);
+  CHECK(m.fronts[0].closed);
+  CHECK(m.fronts[0].nodes.size() == 128);
+  CHECK(crossing_edges(m) == 0);
+}
+
+TEST_CASE("square obstacle: fans of >= 5 elements per pi at its convex corners", "[layers]") {
+  const Geometry g = build_geometry({box({-5, -5}, {5, 5}, 4, "far"), box({0, 0}, {1, 1}, 10, "wall")});
+  const LayerSettings s = settings(1e-3, 1.2, 0.05);
+  const LayerMesh m = build_boundary_layers(g, curves_by_name(g, {"wall"}, "test"), s);
+  const LayerMeasures q = measure_layers(m, s.first_height);
+  // A right-angle corner turns by pi/2: ceil(5 x 1/2) = 3 elements.
+  CHECK(m.fan_sizes == std::vector<int>{3, 3, 3, 3});
+  CHECK(cells_of(m, LayerCellKind::Fan) == 4 * 3 * q.max_layers);
+  CHECK(q.first_height_within_2pct == 1.0);
+  CHECK(q.inverted_cells == 0);
+  CHECK(q.max_angle_deg < 150.0);
+  CHECK(q.max_thickness_jump <= 1.3 + 1e-12);
+  CHECK(crossing_edges(m) == 0);
+}
+
+TEST_CASE("square box with a square hole: concave corners without crossing, fans on the hole", "[layers]") {
+  const Geometry g = build_geometry({box({0, 0}, {1, 1}, 12, "box"), box({0.4, 0.4}, {0.6, 0.6}, 4, "hole")});
+  const LayerSettings s = settings(1e-3, 1.2, 0.08);
+  const LayerMesh m = build_boundary_layers(g, curves_by_name(g, {"box", "hole"}, "test"), s);
+  const LayerMeasures q = measure_layers(m, s.first_height);
+  CHECK(m.fan_sizes.size() == 4);  // the hole's corners only: the box's are concave
+  CHECK(q.inverted_cells == 0);
+  CHECK(crossing_edges(m) == 0);
+  CHECK(q.max_thickness_jump <= 1.3 + 1e-12);
+  CHECK(q.first_height_within_2pct == 1.0);
+  // The box's layers grow inwards, and keep some layers at its corners.
+  for (const LayerRay& r : m.rays) {
+    const Vec2 p = m.nodes[r.wall_node];
+    if (m.nodes[r.nodes.back()].x < 0.0 || m.nodes[r.nodes.back()].x > 1.0) FAIL("a layer node outside the box");
+    if ((p.x == 0.0 || p.x == 1.0) && (p.y == 0.0 || p.y == 1.0)) CHECK(r.nodes.size() > 3);
+  }
+}
+
+TEST_CASE("two close circles: the layers shrink in the gap, no crossing, jumps <= 1.3", "[layers]") {
+  const double gap = 0.1;
+  const Geometry g = build_geometry({box({-6, -5}, {6, 5}, 4, "far"), circle({-1.0 - gap / 2, 0}, 1.0, 96, "left"),
+                                     circle({1.0 + gap / 2, 0}, 1.0, 96, "right")});
+  const LayerSettings s = settings(1e-3, 1.2, 0.3);
+  const LayerMesh m = build_boundary_layers(g, curves_by_name(g, {"left", "right"}, "test"), s);
+  const LayerMeasures q = measure_layers(m, s.first_height);
+  CHECK(q.inverted_cells == 0);
+  CHECK(crossing_edges(m) == 0);
+  CHECK(q.max_thickness_jump <= 1.3 + 1e-12);
+  CHECK(q.max_thickness == Approx(0.3).epsilon(1e-9));  // away from the gap
+  CHECK(q.first_height_within_2pct == 1.0);
+  // The rays that face the gap stop at gap_fraction of it, leaving room to the core, found by the
+  // collision limits rather than by the final checks' shrinking.
+  CHECK(m.repairs == 0);
+  int facing = 0;
+  for (const LayerRay& r : m.rays) {
+    const Vec2 p = m.nodes[r.wall_node];
+    if (std::abs(p.y) < 1e-12 && std::abs(p.x) < 0.1) {
+      CHECK(r.thickness <= s.gap_fraction * gap * (1.0 + 1e-12));
+      CHECK(r.thickness >= 0.95 * s.gap_fraction * gap);  // smoothed with its neighbours only
+      ++facing;
+    }
+  }
+  CHECK(facing == 2);
+  REQUIRE(m.fronts.size() == 2);
+}
+
+TEST_CASE("the core spacing stops the layers where the growth into the core is at most the growth", "[layers]") {
+  const Geometry g = build_geometry({box({-5, -5}, {5, 5}, 4, "far"), circle({0, 0}, 1.0, 64, "wall")});
+  const LayerSettings s = settings(1e-3, 1.2, 1.0);
+  const CoreSpacing core = [](Vec2) { return 0.01; };
+  const LayerMesh m = build_boundary_layers(g, {1}, s, core);
+  const LayerMeasures q = measure_layers(m, s.first_height, core);
+  // 1e-3 x 1.2^12 = 0.00892 is the first layer height whose growth to 0.01 is <= 1.2: 13 layers.
+  CHECK(q.max_layers == 13);
+  CHECK(q.junction_max == Approx(0.01 / (1e-3 * std::pow(1.2, 12))).epsilon(1e-9));
+  CHECK(q.growth_with_junction_max <= 1.2 + 1e-9);
+}
+
+TEST_CASE("split quads: two triangles each, no angle above 95 degrees on a circle", "[layers]") {
+  const Geometry g = build_geometry({box({-5, -5}, {5, 5}, 4, "far"), circle({0, 0}, 1.0, 128, "wall")});
+  LayerSettings s = settings(1e-3, 1.2, 0.0, 8);
+  s.split_quads = true;
+  const LayerMesh m = build_boundary_layers(g, {1}, s);
+  const LayerMeasures q = measure_layers(m, s.first_height);
+  CHECK(q.quads == 0);
+  CHECK(q.triangles == 2 * 128 * 8);
+  CHECK(q.max_angle_deg < 95.0);
+  CHECK(q.first_height_within_2pct == 1.0);
+  CHECK(q.inverted_cells == 0);
+}
+
+TEST_CASE("the measures see a wrong first height and an inverted cell", "[layers]") {
+  const Geometry g = build_geometry({box({-5, -5}, {5, 5}, 4, "far"), circle({0, 0}, 1.0, 32, "wall")});
+  const LayerSettings s = settings(1e-3, 1.2, 0.0, 5);
+  LayerMesh m = build_boundary_layers(g, {1}, s);
+  const int moved = m.rays[3].nodes[1];
+  m.nodes[moved] = m.nodes[moved] + 0.05e-3 * m.rays[3].direction;  // 5 % higher
+  LayerMeasures q = measure_layers(m, s.first_height);
+  CHECK(q.first_height_within_2pct == Approx(30.0 / 32.0));
+  CHECK(q.first_height_max_error == Approx(0.05).epsilon(0.02));
+  CHECK(q.inverted_cells == 0);
+  const int top = m.rays[7].nodes.back();
+  m.nodes[top] = m.nodes[m.rays[7].wall_node] - 1e-3 * m.rays[7].direction;  // inside the wall
+  q = measure_layers(m, s.first_height);
+  CHECK(q.inverted_cells >= 1);
+}
+
+TEST_CASE("bad layer settings are input errors naming the value", "[layers]") {
+  const Geometry g = build_geometry({box({-5, -5}, {5, 5}, 4, "far"), circle({0, 0}, 1.0, 32, "wall")});
+  using pdmesh_test::error_message;
+  auto msg = [&](const LayerSettings& s, std::vector<int> walls = {1}) {
+    return error_message<InputError>([&] { build_boundary_layers(g, walls, s); });
+  };
+  CHECK_THAT(msg(settings(1e-3, 1.0, 0.05)), Catch::Contains("growth = 1 must be greater than 1"));
+  CHECK_THAT(msg(settings(1e-3, 0.9, 0.05)), Catch::Contains("growth = 0.9"));
+  CHECK_THAT(msg(settings(0.1, 1.2, 0.05)), Catch::Contains("first_height = 0.1 is above the thickness = 0.05"));
+  CHECK_THAT(msg(settings(0.0, 1.2, 0.05)), Catch::Contains("first_height = 0 must be a positive number"));
+  CHECK_THAT(msg(settings(std::nan(""), 1.2, 0.05)), Catch::Contains("first_height = nan"));
+  CHECK_THAT(msg(settings(1e-3, 1.2, 0.0)), Catch::Contains("give either thickness or layers, not neither"));
+  CHECK_THAT(msg(settings(1e-3, 1.2, 0.05, 4)), Catch::Contains("not both"));
+  CHECK_THAT(msg(settings(1e-3, 1.2, 0.05), {}), Catch::Contains("the list of wall curves is empty"));
+  CHECK_THAT(msg(settings(1e-3, 1.2, 0.05), {7}), Catch::Contains("wall curve index 7"));
+  CHECK_THAT(error_message<InputError>([&] {
+               curves_by_name(g, {"wall", "flap"}, "boundary_layer.curves");
+             }),
+             Catch::Contains("boundary_layer.curves: unknown curve \"flap\" (the curves are: far, wall)"));
+  CHECK_THAT(msg(settings(1e-12, 1.000001, 1.0)), Catch::Contains("(at most 10000)"));
+  CHECK(msg(settings(1e-3, 1.2, 0.05)).empty());  // good settings pass
+}
+
+TEST_CASE("open wall chain: the end rays run along the curves that continue the boundary", "[layers]") {
+  // A channel [0,4] x [0,1]: the bottom is the wall, the inlet and outlet are upright, the top is
+  // slanted so that the outlet meets the bottom at a right angle and the inlet at 90 degrees too.
+  std::vector<RawCurve> raw;
+  auto add = [&](std::vector<Vec2> pts, const std::string& name) { raw.push_back({name, pts, "test", 1, {}}); };
+  std::vector<Vec2> bottom;
+  for (int i = 0; i <= 40; ++i) bottom.push_back({0.1 * i, 0.0});
+  add(bottom, "bottom");
+  add({{4, 0}, {4, 0.5}, {4, 1}}, "outlet");
+  add({{4, 1}, {0, 1}}, "top");
+  add({{0, 1}, {0, 0.5}, {0, 0}}, "inlet");
+  const Geometry g = build_geometry(raw);
+  const LayerSettings s = settings(1e-3, 1.2, 0.1);
+  const LayerMesh m = build_boundary_layers(g, curves_by_name(g, {"bottom"}, "test"), s);
+  const LayerMeasures q = measure_layers(m, s.first_height);
+  CHECK(m.repairs == 0);
+  CHECK(q.inverted_cells == 0);
+  CHECK(crossing_edges(m) == 0);
+  CHECK(q.max_thickness == Approx(0.1).epsilon(1e-9));
+  CHECK(q.min_thickness == Approx(0.1).epsilon(1e-9));  // the ends keep the full layer
+  REQUIRE(m.rays.size() == 41);
+  CHECK(m.rays.front().slide_segment >= 0);
+  CHECK(m.rays.back().slide_segment >= 0);
+  for (const int node : m.rays.front().nodes) CHECK(m.nodes[node].x == 0.0);  // on the inlet
+  for (const int node : m.rays.back().nodes) CHECK(m.nodes[node].x == 4.0);   // on the outlet
+  // The open front runs up the first ray, along the tops and down the last ray.
+  REQUIRE(m.fronts.size() == 1);
+  CHECK_FALSE(m.fronts[0].closed);
+  CHECK(m.fronts[0].nodes.front() == m.rays.front().wall_node);
+  CHECK(m.fronts[0].nodes.back() == m.rays.back().wall_node);
+}
+
+TEST_CASE("jagged star-shaped walls: valid layers whatever the collisions", "[layers]") {
+  // Star polygons with random radii in [1, 2] (a fixed generator: the same shapes everywhere), as
+  // holes in a box; thick layers collide with the star's own teeth.
+  std::uint64_t state = 12345;
+  auto next = [&state] {  // splitmix64
+    std::uint64_t z = (state += 0x9E3779B97F4A7C15ull);
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+    return static_cast<double>((z ^ (z >> 31)) >> 11) / 9007199254740992.0;
+  };
+  for (int shape = 0; shape < 6; ++shape) {
+    const int n = 12 + 8 * shape;
+    RawCurve star{"star", {}, "test", 1, {}};
+    for (int i = 0; i < n; ++i) {
+      const double a = 2 * kPi * i / n, r = 1.0 + next();
+      star.points.push_back({r * std::cos(a), r * std::sin(a)});
+    }
+    star.points.push_back(star.points.front());
+    const Geometry g = build_geometry({box({-4, -4}, {4, 4}, 4, "far"), star});
+    const LayerSettings s = settings(1e-3, 1.2, 0.4);
+    const LayerMesh m = build_boundary_layers(g, {1}, s);
+    const LayerMeasures q = measure_layers(m, s.first_height);
+    INFO("shape " << shape << ", " << n << " vertices, " << m.repairs << " repair rounds");
+    CHECK(q.inverted_cells == 0);
+    CHECK(crossing_edges(m) == 0);
+    CHECK(q.max_thickness_jump <= 1.3 + 1e-12);
+    CHECK(q.first_height_within_2pct == 1.0);
+    CHECK(q.max_thickness > 0.1);
+  }
+}
