@@ -300,7 +300,7 @@ TEST_CASE("cleanup's least move gain takes fewer moves and keeps every guarantee
 
 TEST_CASE("compound trials lift a triangle on a coarse boundary segment that no single edit can", "[cleanup]") {
   // The plate's octagonal cut-out (cases/corpus/plate) with the interior nodes the fast preset left
-  // around it (session 9's final.nodes, cropped to a box with boundary nodes every 0.1): a triangle
+  // around it (a fast-preset run's final.nodes, cropped to a box with boundary nodes every 0.1): a triangle
   // on an unsplit 0.31 octagon side between two fixed corners stays at 35 degrees with single edits.
   const std::string dir = PDMESH_SOURCE_DIR "/tests/data/cleanup/";
   const NodeFile file = read_node_file(dir + "plate_octagon.nodes");
