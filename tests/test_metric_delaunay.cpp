@@ -155,6 +155,39 @@ TEST_CASE("metric_incircle is the in-circle test of the mapped points, 0 on a ci
   CHECK(metric_incircle(on_ellipse(0.0), on_ellipse(2.0), on_ellipse(4.0), far, m) == -1);
 }
 
+TEST_CASE("the quadrilateral's mean metric never asks to undo a flip; the edge-midpoint metric does", "[metric_delaunay]") {
+  // Random convex quadrilaterals p, a, q, b across the layer of polar-1 (r near 0.5, where h_r
+  // changes 100-fold within 0.5): with the metric at the tested edge's midpoint, the edge a-b and
+  // the other diagonal p-q are judged in different metrics, and both can ask for a flip: the flip
+  // loop would turn such a quadrilateral forever. With the mean over the four vertices, never.
+  std::mt19937_64 rng(29);
+  auto mean_metric = [](Vec2 p, Vec2 a, Vec2 b, Vec2 q) {
+    return exp_metric(0.25 * (log_metric(polar1_metric(p)) + log_metric(polar1_metric(a)) + log_metric(polar1_metric(b)) +
+                              log_metric(polar1_metric(q))));
+  };
+  int midpoint_both = 0, mean_both = 0, tested = 0;
+  for (int k = 0; k < 20000; ++k) {
+    const double r0 = 0.45 + 0.1 * unit(rng), t0 = 0.2 + unit(rng);
+    auto jitter = [&](double dr, double dt) {
+      const double r = r0 + dr * (0.3 + unit(rng)), t = t0 + dt * (0.3 + unit(rng));
+      return Vec2{r * std::cos(t), r * std::sin(t)};
+    };
+    const double w = 0.05 * unit(rng);
+    const Vec2 p = jitter(-w, 0.0), q = jitter(w, 0.0), a = jitter(0.0, -0.1), b = jitter(0.0, 0.1);
+    // t = (p, a, b) and u = (q, b, a) counter-clockwise, p-a-q-b strictly convex.
+    if (!(orient2d(p, a, b) > 0.0 && orient2d(q, b, a) > 0.0 && orient2d(p, a, q) > 0.0 && orient2d(q, b, p) > 0.0)) continue;
+    ++tested;
+    const Metric mid_ab = polar1_metric(0.5 * (a + b)), mid_pq = polar1_metric(0.5 * (p + q));
+    midpoint_both += metric_incircle(p, a, b, q, mid_ab) > 0 && metric_incircle(a, q, p, b, mid_pq) > 0;
+    const Metric m = mean_metric(p, a, b, q);
+    mean_both += metric_incircle(p, a, b, q, m) > 0 && metric_incircle(a, q, p, b, m) > 0;
+  }
+  INFO("tested " << tested << ", both diagonals flip: midpoint " << midpoint_both << ", mean " << mean_both);
+  CHECK(tested > 5000);
+  CHECK(midpoint_both > 0);
+  CHECK(mean_both == 0);
+}
+
 TEST_CASE("in a constant metric the result is the Delaunay triangulation of the mapped points", "[metric_delaunay]") {
   const auto angle = GENERATE(0.0, 0.5, 2.0);
   const Metric m = metric_from_sizes(0.5, 0.01, angle);
