@@ -155,7 +155,7 @@ TEST_CASE("metric_incircle is the in-circle test of the mapped points, 0 on a ci
   CHECK(metric_incircle(on_ellipse(0.0), on_ellipse(2.0), on_ellipse(4.0), far, m) == -1);
 }
 
-TEST_CASE("the quadrilateral's mean metric never asks to undo a flip; the edge-midpoint metric does", "[metric_delaunay]") {
+TEST_CASE("the quadrilateral's mean metric never asks to undo a flip, the edge-midpoint metric does", "[metric_delaunay]") {
   // Random convex quadrilaterals p, a, q, b across the layer of polar-1 (r near 0.5, where h_r
   // changes 100-fold within 0.5): with the metric at the tested edge's midpoint, the edge a-b and
   // the other diagonal p-q are judged in different metrics, and both can ask for a flip: the flip
