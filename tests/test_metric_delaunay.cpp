@@ -19,6 +19,7 @@
 #include "mesh/triangulate_nodes.hpp"
 #include "seeded_random.hpp"
 #include "spacing/metric.hpp"
+#include "spacing/metric_field.hpp"
 
 using namespace pdmesh;
 using pdmesh_test::unit;
@@ -43,7 +44,8 @@ std::set<std::array<int, 3>> triangle_set(const std::vector<std::array<int, 3>>&
   return s;
 }
 
-// The closed square [0, 1]² as one curve with `per_side` nodes per side (counter-clockwise).
+// The closed square [lo, hi]² as one curve with `per_side` nodes per side, counter-clockwise (or
+// clockwise with `reverse`).
 void add_square(NodeSet& nodes, double lo, double hi, int per_side, int curve, bool reverse) {
   std::vector<int> loop;
   for (int side = 0; side < 4; ++side)
@@ -244,6 +246,9 @@ TEST_CASE("a unit mesh of the linear metric gets triangles with Q near 1", "[met
   for (double v : qs) near_one += v > 0.9;
   CHECK(near_one > 0.85 * static_cast<double>(qs.size()));
   CHECK(q.window_percent > 90.0);
+  // The same from the field as a muParser expression (the issue's case-file form).
+  const auto field = ExpressionMetricField::from_sizes("0.1", "0.001 + 0.198*abs(y-0.5)", "0");
+  CHECK(triangulate_in_metric(nodes, {}, field).triangles == mesh.triangles);
   // The isotropic triangulation of the same points is far from it.
   CHECK(iso.q_mean < 0.7);
   CHECK(iso.window_percent < 80.0);

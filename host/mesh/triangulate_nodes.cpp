@@ -67,6 +67,14 @@ Mesh triangulate_in_metric(const NodeSet& nodes, const std::vector<std::string>&
   return triangulate_nodes(nodes, curve_names, &metrics, options, stats);
 }
 
+Mesh triangulate_in_metric(const NodeSet& nodes, const std::vector<std::string>& curve_names, const MetricField& field,
+                           const MetricDelaunayOptions& options, MetricDelaunayStats* stats) {
+  std::vector<Metric> metrics;
+  metrics.reserve(nodes.x.size());
+  for (const Vec2& p : nodes.x) metrics.push_back(field.at(p));
+  return triangulate_nodes(nodes, curve_names, &metrics, options, stats);
+}
+
 bool triangulates(const Mesh& mesh, const NodeSet& nodes) {
   // Positions bit for bit (== on doubles would also take -0.0 for 0.0).
   if (mesh.points.size() != nodes.x.size() || mesh.kind != nodes.kind ||

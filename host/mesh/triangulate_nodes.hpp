@@ -5,6 +5,7 @@
 
 #include "mesh/mesh.hpp"
 #include "mesh/metric_delaunay.hpp"
+#include "spacing/metric_field.hpp"
 #include "nodes/node_set.hpp"
 
 namespace pdmesh {
@@ -24,6 +25,10 @@ Mesh triangulate(const NodeSet& nodes, const std::vector<std::string>& curve_nam
 Mesh triangulate_in_metric(const NodeSet& nodes, const std::vector<std::string>& curve_names,
                            const std::vector<Metric>& metrics, const MetricDelaunayOptions& options = {},
                            MetricDelaunayStats* stats = nullptr);
+// The same with the metrics field.at(node) (one thread: an expression field is not thread-safe);
+// the field's InputError names its source and the point.
+Mesh triangulate_in_metric(const NodeSet& nodes, const std::vector<std::string>& curve_names, const MetricField& field,
+                           const MetricDelaunayOptions& options = {}, MetricDelaunayStats* stats = nullptr);
 
 // Whether `mesh` is what triangulate makes of `nodes` (whatever the curve names): it was made from the
 // same positions, kinds and curve chains (triangulate is deterministic).
