@@ -112,6 +112,16 @@ TEST_CASE("fuzz corpus: the well-formed seeds parse", "[fuzz]") {
     CHECK(r.history.size() == static_cast<std::size_t>(c.state.iterations_done) + 2);
   }
   CHECK(pdmesh::read_checkpoint(corpus / "fuzz_checkpoint/square_3_iterations.pdmesh").state.iterations_done == 3);
+  // The Medit seeds: .mesh and .sol parts separated by a form feed.
+  for (const char* seed : {"square", "square_edges_clockwise"}) {
+    INFO(seed);
+    const std::string text = bytes_of(corpus / "fuzz_metric_reader_medit" / seed);
+    const std::size_t cut = text.find('\f');
+    REQUIRE(cut != std::string::npos);
+    const pdmesh::MetricMeshData d = pdmesh::parse_medit_metric("seed.mesh", text.substr(0, cut), "seed.sol", text.substr(cut + 1));
+    CHECK(d.metrics.size() == d.points.size());
+    CHECK_NOTHROW(pdmesh::make_mesh_metric_field(d));
+  }
   CHECK_THROWS_AS(pdmesh::read_checkpoint(corpus / "fuzz_checkpoint/square_truncated.pdmesh"), pdmesh::InputError);
 }
 
@@ -123,6 +133,7 @@ TEST_CASE("fuzz corpus: Gmsh reader", "[fuzz][io]") { CHECK(replay("fuzz_mesh_re
 TEST_CASE("fuzz corpus: VTU reader", "[fuzz][io]") { CHECK(replay("fuzz_mesh_reader_vtu") >= 1); }
 TEST_CASE("fuzz corpus: SU2 reader", "[fuzz][io]") { CHECK(replay("fuzz_mesh_reader_su2") >= 1); }
 TEST_CASE("fuzz corpus: Triangle reader", "[fuzz][io]") { CHECK(replay("fuzz_mesh_reader_triangle") >= 2); }
+TEST_CASE("fuzz corpus: Medit metric reader", "[fuzz][io]") { CHECK(replay("fuzz_metric_reader_medit") >= 2); }
 TEST_CASE("fuzz corpus: checkpoint reader, fit check and resumed simulation", "[fuzz][resume]") {
   CHECK(replay("fuzz_checkpoint") >= 3);
 }

@@ -156,4 +156,19 @@ TEST_CASE("MeshMetricField refuses bad data naming it", "[metric_field]") {
                MeshMetricField(points, {{0, 1, 2}}, {Metric{}}, "'m.vtu'");
              }),
              Contains("1 metrics for 3 points"));
+  // The same triangle twice leaves the mesh without a boundary edge (at() outside it found none:
+  // found by fuzzing the Medit reader); a triangle folded over another; an edge of three triangles.
+  CHECK_THAT(error_message<InputError>([&] {
+               MeshMetricField(points, {{0, 1, 2}, {1, 2, 0}}, good, "'m.mesh'");
+             }),
+             Contains("'m.mesh': the triangles 0 (0, 1, 2) and 1 (1, 2, 0) lie on the same side of their shared edge"));
+  const std::vector<Vec2> five{{0, 0}, {1, 0}, {1, 1}, {0.5, 2}, {0.5, -1}};
+  CHECK_THAT(error_message<InputError>([&] {
+               MeshMetricField(five, {{0, 1, 2}, {0, 1, 3}}, std::vector<Metric>(5, Metric{}), "'m.vtu'");
+             }),
+             Contains("lie on the same side of their shared edge point 0 (0, 0) - point 1 (1, 0)"));
+  CHECK_THAT(error_message<InputError>([&] {
+               MeshMetricField(five, {{0, 1, 2}, {1, 0, 4}, {0, 1, 3}}, std::vector<Metric>(5, Metric{}), "'m.vtu'");
+             }),
+             Contains("'m.vtu':") && Contains("triangles"));
 }

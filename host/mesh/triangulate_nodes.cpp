@@ -1,4 +1,5 @@
-// Node set -> constrained Delaunay mesh: Delaunay, boundary recovery, outside removal.
+// Node set -> constrained Delaunay mesh: Delaunay, boundary recovery, outside removal; optionally
+// then Delaunay in a metric.
 #include "mesh/triangulate_nodes.hpp"
 
 #include <fmt/format.h>
@@ -9,10 +10,17 @@
 #include "core/errors.hpp"
 #include "mesh/constrain.hpp"
 #include "mesh/delaunay.hpp"
+#include "mesh/metric_delaunay.hpp"
 
 namespace pdmesh {
 
-Mesh triangulate(const NodeSet& nodes, const std::vector<std::string>& curve_names) {
+namespace {
+
+// The triangulation of the nodes with each curve's chain of nodes constrained; with metrics, then
+// flipped to the Delaunay triangulation in the metric (mesh/metric_delaunay.hpp).
+Mesh triangulate_nodes(const NodeSet& nodes, const std::vector<std::string>& curve_names,
+                       const std::vector<Metric>* metrics, const MetricDelaunayOptions& options,
+                       MetricDelaunayStats* stats) {
   if (curve_names.size() != nodes.curve_nodes.size()) {
     throw InputError(fmt::format("triangulate: {} curve names for {} node curves", curve_names.size(),
                                  nodes.curve_nodes.size()));
@@ -32,19 +40,39 @@ Mesh triangulate(const NodeSet& nodes, const std::vector<std::string>& curve_nam
     }
   }
   Triangulation tri(nodes.x);
-  Mesh mesh;
-  if (edges.empty()) {
-    mesh.triangles = tri.inner_triangles();
-  } else {
-    recover_edges(tri, edges);
-    mesh.triangles = inside_triangles(tri);
+  if (!edges.empty()) recover_edges(tri, edges);
+  if (metrics) {
+    const MetricDelaunayStats s = make_metric_delaunay(tri, *metrics, options);
+    if (stats) *stats = s;
   }
+  Mesh mesh;
+  mesh.triangles = edges.empty() ? tri.inner_triangles() : inside_triangles(tri);
   mesh.points = nodes.x;
   mesh.kind = nodes.kind;
   mesh.curve_names = curve_names;
   mesh.boundary_edges.reserve(edges.size());
   for (const auto& e : edges) mesh.boundary_edges.push_back({e.a, e.b, e.curve});
   return mesh;
+}
+
+}  // namespace
+
+Mesh triangulate(const NodeSet& nodes, const std::vector<std::string>& curve_names) {
+  return triangulate_nodes(nodes, curve_names, nullptr, {}, nullptr);
+}
+
+Mesh triangulate_in_metric(const NodeSet& nodes, const std::vector<std::string>& curve_names,
+                           const std::vector<Metric>& metrics, const MetricDelaunayOptions& options,
+                           MetricDelaunayStats* stats) {
+  return triangulate_nodes(nodes, curve_names, &metrics, options, stats);
+}
+
+Mesh triangulate_in_metric(const NodeSet& nodes, const std::vector<std::string>& curve_names, const MetricField& field,
+                           const MetricDelaunayOptions& options, MetricDelaunayStats* stats) {
+  std::vector<Metric> metrics;
+  metrics.reserve(nodes.x.size());
+  for (const Vec2& p : nodes.x) metrics.push_back(field.at(p));
+  return triangulate_nodes(nodes, curve_names, &metrics, options, stats);
 }
 
 bool triangulates(const Mesh& mesh, const NodeSet& nodes) {

@@ -4,6 +4,8 @@
 #include <vector>
 
 #include "mesh/mesh.hpp"
+#include "mesh/metric_delaunay.hpp"
+#include "spacing/metric_field.hpp"
 #include "nodes/node_set.hpp"
 
 namespace pdmesh {
@@ -15,6 +17,18 @@ namespace pdmesh {
 // Throws InputError (duplicate points, curve name count mismatch) and GeometryError (collinear
 // points, a node inside a boundary edge, crossing boundary edges, an edge used by two curves).
 Mesh triangulate(const NodeSet& nodes, const std::vector<std::string>& curve_names);
+
+// The same, then flipped to the constrained Delaunay triangulation in the metric field given by
+// metrics[i] at node i (make_metric_delaunay; its counts in *stats when given). The boundary edges,
+// the removal of the outside and the errors are triangulate's; a metric that is not SPD is an
+// InputError naming the node.
+Mesh triangulate_in_metric(const NodeSet& nodes, const std::vector<std::string>& curve_names,
+                           const std::vector<Metric>& metrics, const MetricDelaunayOptions& options = {},
+                           MetricDelaunayStats* stats = nullptr);
+// The same with the metrics field.at(node) (one thread: an expression field is not thread-safe);
+// the field's InputError names its source and the point.
+Mesh triangulate_in_metric(const NodeSet& nodes, const std::vector<std::string>& curve_names, const MetricField& field,
+                           const MetricDelaunayOptions& options = {}, MetricDelaunayStats* stats = nullptr);
 
 // Whether `mesh` is what triangulate makes of `nodes` (whatever the curve names): it was made from the
 // same positions, kinds and curve chains (triangulate is deterministic).

@@ -36,6 +36,22 @@ MeshMetricField::MeshMetricField(std::vector<Vec2> points, std::vector<std::arra
   logs_.reserve(metrics_.size());
   for (const Metric& m : metrics_) logs_.push_back(log_metric(m));
   locator_ = std::make_unique<TriangleLocator>(points_, triangles_);
+  // Triangles over one another: at() would pick either, and the same triangle given twice leaves
+  // no boundary edge for the points outside.
+  const EdgeConflict& c = locator_->edge_conflict();
+  if (c.first >= 0) {
+    auto tri = [&](int t) {
+      const auto& v = triangles_[static_cast<std::size_t>(t)];
+      return fmt::format("{} ({}, {}, {})", t, v[0], v[1], v[2]);
+    };
+    const Vec2 pa = points_[static_cast<std::size_t>(c.a)], pb = points_[static_cast<std::size_t>(c.b)];
+    const std::string edge = fmt::format("point {} ({}, {}) - point {} ({}, {})", c.a, pa.x, pa.y, c.b, pb.x, pb.y);
+    throw InputError(c.same_side ? fmt::format("{}: the triangles {} and {} lie on the same side of their shared edge {} "
+                                               "(a folded or repeated triangle); a metric mesh must not overlap itself",
+                                               what_, tri(c.first), tri(c.second), edge)
+                                 : fmt::format("{}: the edge {} belongs to more than two triangles, among them {} and {}",
+                                               what_, edge, tri(c.first), tri(c.second)));
+  }
 }
 
 Metric MeshMetricField::at(Vec2 p) const {

@@ -19,7 +19,8 @@ class MeshMetricField final : public MetricField {
  public:
   // Throws InputError naming `what` and the value: no triangles; a triangle index outside the
   // points; a triangle of zero or negative area (the triangles must be counter-clockwise); a metric
-  // that is not finite and SPD (check_metric, naming the point); metrics.size() != points.size().
+  // that is not finite and SPD (check_metric, naming the point); metrics.size() != points.size();
+  // two triangles on the same side of a shared edge (folded or repeated), or an edge of three.
   MeshMetricField(std::vector<Vec2> points, std::vector<std::array<int, 3>> triangles, std::vector<Metric> metrics,
                   std::string what);
   MeshMetricField(const MeshMetricField&) = delete;

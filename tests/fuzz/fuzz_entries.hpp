@@ -18,7 +18,9 @@
 #include "geometry/curve_reader.hpp"
 #include "geometry/geometry_files.hpp"
 #include "geometry/poly_reader.hpp"
+#include "io/medit_reader.hpp"
 #include "io/mesh_formats.hpp"
+#include "io/metric_mesh_file.hpp"
 #include "nodes/node_file.hpp"
 #include "sim/checkpoint.hpp"
 #include "sim/simulation.hpp"
@@ -119,6 +121,12 @@ inline void read_mesh_file(const std::filesystem::path& path) {
     (void)field->at({0.5, 0.5});
   } catch (const InputError&) {
   }
+  // And as metric data: a 3-component array "metric" (io/metric_mesh_file).
+  try {
+    const auto field = make_mesh_metric_field(load_metric_mesh(path, "metric"));
+    (void)field->at({0.5, 0.5});
+  } catch (const InputError&) {
+  }
 }
 
 // .msh: both Gmsh 2.2 and 4.1 (the reader picks the version from $MeshFormat).
@@ -159,6 +167,20 @@ inline void mesh_reader_triangle(const std::uint8_t* data, std::size_t size) {
     std::filesystem::remove(poly, ignored);
   }
   read_mesh_file(ele);
+}
+
+// Medit metric data: the input is split at the first form feed ('\f') into STEM.mesh and STEM.sol
+// (an empty .sol when there is none); the pair is read, and its field built and evaluated.
+inline void metric_reader_medit(const std::uint8_t* data, std::size_t size) {
+  const std::string_view text = as_text(data, size);
+  const std::size_t cut = text.find('\f');
+  const auto mesh = write_scratch("input.mesh", text.substr(0, cut));
+  const auto sol = write_scratch("input.sol", cut == std::string_view::npos ? std::string_view() : text.substr(cut + 1));
+  try {
+    const auto field = make_mesh_metric_field(load_medit_metric(mesh, sol));
+    (void)field->at({0.5, 0.5});
+  } catch (const InputError&) {
+  }
 }
 
 // The fixed case the checkpoint entry continues: the unit square as two curves (so that a
@@ -225,7 +247,7 @@ inline const std::vector<Target>& targets() {
       {"fuzz_case_file", case_file},                {"fuzz_node_file", node_file},
       {"fuzz_mesh_reader_msh", mesh_reader_msh},    {"fuzz_mesh_reader_vtu", mesh_reader_vtu},
       {"fuzz_mesh_reader_su2", mesh_reader_su2},    {"fuzz_mesh_reader_triangle", mesh_reader_triangle},
-      {"fuzz_checkpoint", checkpoint_reader},
+      {"fuzz_checkpoint", checkpoint_reader},        {"fuzz_metric_reader_medit", metric_reader_medit},
   };
   return all;
 }
