@@ -14,7 +14,9 @@
 //     X = x / 0.1, Y = sign(y - 0.5) ln(1 + 0.198 |y - 0.5| / 0.001) / 0.198, which pull this case's
 //     metric back to the identity, so that their Delaunay triangulation is the metric one (a stand-in
 //     for the anisotropic Delaunay, which this case alone allows).
-// Usage: metric_linear [--iterations N] [--dt DT] [--momentum B] [--stability C] [--seed S]
+// --sliding 1: the side nodes but the corners slide along their sides (Boundary kind) instead of staying Fixed.
+// Usage: metric_linear [--iterations N] [--dt DT] [--momentum B] [--stability C] [--seed S] [--sliding 1] [--verbose 1]
+// (--verbose 1 lists the triangles with Q < 0.75 of the metric-coordinate triangulation.)
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -84,6 +86,8 @@ int main(int argc, char** argv) {
     const double beta = arg(argc, argv, "--momentum", 0.9);
     const double stability = arg(argc, argv, "--stability", 1.0);
     const auto seed = static_cast<std::uint64_t>(arg(argc, argv, "--seed", 1));
+    const bool verbose = arg(argc, argv, "--verbose", 0) != 0.0;
+    const bool sliding = arg(argc, argv, "--sliding", 0) != 0.0;
     const auto field = ExpressionMetricField::from_sizes("0.1", "0.001 + 0.198*abs(y-0.5)", "0");
     Box box;
     box.add({0.0, 0.0});
@@ -94,6 +98,20 @@ int main(int argc, char** argv) {
     const Vec2 corners[4] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
     for (int s = 0; s < 4; ++s) place_side(p, field, corners[s], corners[(s + 1) % 4]);
     const std::size_t boundary = p.size();
+    if (sliding) {
+      // Nodes inside the sides slide along them (Boundary kind: forces from the previous and next
+      // node of the loop, projected on the side); the corners stay Fixed.
+      for (std::size_t i = 0; i < boundary; ++i) {
+        const bool corner = (p.x[i] == 0.0 || p.x[i] == 1.0) && (p.y[i] == 0.0 || p.y[i] == 1.0);
+        if (corner) continue;
+        p.kind[i] = kSimBoundary;
+        p.prev[i] = static_cast<std::int32_t>((i + boundary - 1) % boundary);
+        p.next[i] = static_cast<std::int32_t>((i + 1) % boundary);
+        const bool vertical = p.x[i] == 0.0 || p.x[i] == 1.0;
+        p.tx[i] = vertical ? 0.0 : 1.0;
+        p.ty[i] = vertical ? 1.0 : 0.0;
+      }
+    }
     const double vertices = 2.0 * complexity / std::sqrt(3.0) + (static_cast<double>(boundary) + 2.0) / 2.0;
     const auto interior = static_cast<std::size_t>(std::lround(vertices)) - boundary;
 
@@ -123,7 +141,8 @@ int main(int argc, char** argv) {
       backend->time_step_and_move(p, forces, dt * dt, moves);
       if (beta > 0.0) backend->apply_momentum(p, forces, beta, moves, carried);
       const StepSums sums = backend->reduce(p, forces, moves);
-      for (std::size_t i = boundary; i < p.size(); ++i) {
+      for (std::size_t i = 0; i < p.size(); ++i) {
+        if (p.kind[i] == kSimFixed) continue;
         double x = p.x[i] + moves.dx[i], y = p.y[i] + moves.dy[i];
         if (x <= 0.0 || x >= 1.0) x = 0.5 * (p.x[i] + (x <= 0.0 ? 0.0 : 1.0));
         if (y <= 0.0 || y >= 1.0) y = 0.5 * (p.y[i] + (y <= 0.0 ? 0.0 : 1.0));
@@ -158,6 +177,17 @@ int main(int argc, char** argv) {
                  q.length_max);
       fmt::print("  Q min {:.3f}, Q mean {:.3f}, Q < 0.3: {:.2f} %, N / ideal = {:.3f}\n", q.q_min, q.q_mean,
                  q.q_below_0_3_percent, q.n_over_ideal);
+      if (in_metric && verbose) {
+        const std::vector<double> qs = metric_qualities(mesh.points, mesh.triangles, metrics);
+        for (std::size_t t = 0; t < qs.size(); ++t)
+          if (qs[t] < 0.75) {
+            const auto& tri = mesh.triangles[t];
+            int fixed = 0;
+            for (int v : tri) fixed += static_cast<std::size_t>(v) < boundary;
+            fmt::print("  Q {:.3f} at ({:.4f}, {:.4f}), {} boundary corners\n", qs[t], mesh.points[tri[0]].x,
+                       mesh.points[tri[0]].y, fixed);
+          }
+      }
     }
     return 0;
   } catch (const Error& e) {
