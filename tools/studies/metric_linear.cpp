@@ -159,6 +159,9 @@ int main(int argc, char** argv) {
                    sums.sum_force / static_cast<double>(sums.moving), sums.max_force);
     }
 
+    fmt::print("last neighbour build: {} pairs within the cut-off, {} candidates examined ({:.1f} per pair)\n",
+               flags.pairs_within, flags.pairs_examined,
+               static_cast<double>(flags.pairs_examined) / static_cast<double>(std::max<std::uint64_t>(1, flags.pairs_within)));
     Mesh mesh;
     std::vector<Metric> metrics;
     std::vector<Vec2> mapped;
