@@ -11,6 +11,7 @@
 
 #include "core/errors.hpp"
 #include "opencl/opencl_backend.hpp"
+#include "spacing/metric.hpp"
 #include "sim/reference/metric_pair.hpp"
 #include "sim/reference/reference_backend.hpp"
 #include "sim_fixtures.hpp"
@@ -23,11 +24,10 @@ using pdmesh_test::uniform;
 namespace {
 
 void set_metric(SimParticles& p, std::size_t i, double m11, double m12, double m22) {
-  if (!p.has_metric()) {
-    p.m11.assign(p.size(), 0.0);
-    p.m12.assign(p.size(), 0.0);
-    p.m22.assign(p.size(), 0.0);
-  }
+  // Nodes added since (sim_fixtures' add) get their entries here.
+  p.m11.resize(p.size(), 0.0);
+  p.m12.resize(p.size(), 0.0);
+  p.m22.resize(p.size(), 0.0);
   p.m11[i] = m11;
   p.m12[i] = m12;
   p.m22[i] = m22;
@@ -357,4 +357,81 @@ TEST_CASE("metric mode on the OpenCL backend in float follows the reference", "[
     REQUIRE(std::hypot(b.fx[i] - a.fx[i], b.fy[i] - a.fy[i]) <= 1e-4 * scale);
     REQUIRE(b.r0[i] == Approx(a.r0[i]).epsilon(1e-4));
   }
+}
+
+TEST_CASE("nodes relaxed in the linear case's metric sit at unit metric length from their nearest neighbours",
+          "[sim][metric]") {
+  // UGAWG's linear metric on the unit square (h_x = 0.1, h_y = 0.001 + 0.198 |y - 0.5|, aspect up to
+  // 100). Fixed boundary nodes at unit metric length (the sides' lengths in closed form: 10 along x,
+  // ln(100) / 0.198 per half along y); the interior as many random nodes as a unit mesh holds, with density
+  // sqrt(det M); 1500 iterations with the stability bound and momentum 0.9. Measured by the field's own
+  // yardstick (spacing/metric.hpp edge_length, independent of the pair mean the force uses).
+  auto metric_at = [](double y) {
+    const double hy = 0.001 + 0.198 * std::fabs(y - 0.5);
+    return Metric{100.0, 0.0, 1.0 / (hy * hy)};
+  };
+  SimParticles p;
+  auto put = [&](double x, double y, std::uint8_t kind) {
+    add(p, x, y, 0.1, kind);
+    const Metric m = metric_at(y);
+    set_metric(p, p.size() - 1, m.m11, m.m12, m.m22);
+  };
+  for (int k = 0; k < 10; ++k) {
+    put(0.1 * k, 0.0, kSimFixed);
+    put(1.0 - 0.1 * k, 1.0, kSimFixed);
+  }
+  // Along y: Y(y) = ln(1 + 0.198 |y - 0.5| / 0.001) / 0.198 is the metric length from y = 0.5; 23 pieces per half.
+  const double half = std::log(100.0) / 0.198;
+  for (int k = -23; k <= 23; ++k) {
+    if (k == -23 || k == 23) continue;  // the corners are placed above
+    const double t = half * std::fabs(k) / 23.0;
+    const double y = 0.5 + std::copysign((std::exp(0.198 * t) - 1.0) * 0.001 / 0.198, k);
+    put(0.0, y, kSimFixed);
+    put(1.0, y, kSimFixed);
+  }
+  const std::size_t boundary = p.size();
+  const double complexity = 2.0 * 10.0 * half;  // integral of sqrt(det M) = 10 / h_y over the square
+  const auto interior = static_cast<std::size_t>(2.0 * complexity / std::sqrt(3.0) - boundary / 2.0 + 1.0);
+  std::mt19937_64 rng(5);
+  while (p.size() < boundary + interior) {
+    const double x = uniform(rng), y = uniform(rng);
+    if (uniform(rng) * 1000.0 <= 1.0 / (0.001 + 0.198 * std::fabs(y - 0.5))) put(x, y, kSimInterior);
+  }
+  auto backend = make_reference_backend();
+  NeighbourList list;
+  NeighbourFlags flags;
+  ForceResult forces;
+  MoveResult moves;
+  MomentumState carried;
+  const ForceParams params{1.5, 15.0, false, 1.0};
+  for (int it = 0; it < 1500; ++it) {
+    build_neighbours_growing(*backend, p, 1.5, list, flags);
+    backend->compute_forces(p, list, params, forces);
+    backend->time_step_and_move(p, forces, 0.03 * 0.03, moves);
+    backend->apply_momentum(p, forces, 0.9, moves, carried);
+    for (std::size_t i = boundary; i < p.size(); ++i) {
+      double x = p.x[i] + moves.dx[i], y = p.y[i] + moves.dy[i];
+      if (x <= 0.0 || x >= 1.0) x = 0.5 * (p.x[i] + (x <= 0.0 ? 0.0 : 1.0));
+      if (y <= 0.0 || y >= 1.0) y = 0.5 * (p.y[i] + (y <= 0.0 ? 0.0 : 1.0));
+      p.x[i] = x;
+      p.y[i] = y;
+      const Metric m = metric_at(y);
+      set_metric(p, i, m.m11, m.m12, m.m22);
+    }
+  }
+  std::vector<double> nearest;
+  for (std::size_t i = boundary; i < p.size(); ++i) {
+    double best = HUGE_VAL;
+    for (std::size_t j = 0; j < p.size(); ++j)
+      if (j != i)
+        best = std::min(best, edge_length(metric_at(p.y[i]), metric_at(p.y[j]), Vec2{p.x[j] - p.x[i], p.y[j] - p.y[i]}));
+    nearest.push_back(best);
+  }
+  std::sort(nearest.begin(), nearest.end());
+  INFO("nearest-neighbour metric lengths: min " << nearest.front() << ", median " << nearest[nearest.size() / 2]
+                                                << ", max " << nearest.back());
+  REQUIRE(nearest.size() > 400);
+  REQUIRE(nearest[nearest.size() / 2] == Approx(1.0).margin(0.05));
+  REQUIRE(nearest.front() > 0.8);
+  REQUIRE(nearest.back() < 1.2);
 }
