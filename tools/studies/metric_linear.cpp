@@ -14,8 +14,9 @@
 //     X = x / 0.1, Y = sign(y - 0.5) ln(1 + 0.198 |y - 0.5| / 0.001) / 0.198, which pull this case's
 //     metric back to the identity, so that their Delaunay triangulation is the metric one (a stand-in
 //     for the anisotropic Delaunay, which this case alone allows).
+// --anneal A: interior nodes get random kicks of metric length up to A, shrinking to 0 at half the run.
 // --sliding 1: the side nodes but the corners slide along their sides (Boundary kind) instead of staying Fixed.
-// Usage: metric_linear [--iterations N] [--dt DT] [--momentum B] [--stability C] [--seed S] [--sliding 1] [--verbose 1]
+// Usage: metric_linear [--iterations N] [--dt DT] [--momentum B] [--stability C] [--seed S] [--sliding 1] [--anneal A] [--verbose 1]
 // (--verbose 1 lists the triangles with Q < 0.75 of the metric-coordinate triangulation.)
 #include <fmt/format.h>
 
@@ -88,6 +89,7 @@ int main(int argc, char** argv) {
     const auto seed = static_cast<std::uint64_t>(arg(argc, argv, "--seed", 1));
     const bool verbose = arg(argc, argv, "--verbose", 0) != 0.0;
     const bool sliding = arg(argc, argv, "--sliding", 0) != 0.0;
+    const double anneal = arg(argc, argv, "--anneal", 0.0);
     const auto field = ExpressionMetricField::from_sizes("0.1", "0.001 + 0.198*abs(y-0.5)", "0");
     Box box;
     box.add({0.0, 0.0});
@@ -144,6 +146,14 @@ int main(int argc, char** argv) {
       for (std::size_t i = 0; i < p.size(); ++i) {
         if (p.kind[i] == kSimFixed) continue;
         double x = p.x[i] + moves.dx[i], y = p.y[i] + moves.dy[i];
+        if (anneal > 0.0 && p.kind[i] == kSimInterior && 2 * it < iterations) {
+          // A random kick of metric length up to anneal, shrinking to 0 at half the run.
+          const double a = anneal * (1.0 - 2.0 * it / iterations);
+          const reference::Sym2 sz = reference::size_tensor(p.m11[i], p.m12[i], p.m22[i]);
+          const double u = a * (2.0 * uniform() - 1.0), v = a * (2.0 * uniform() - 1.0);
+          x += sz.a * u + sz.b * v;
+          y += sz.b * u + sz.c * v;
+        }
         if (x <= 0.0 || x >= 1.0) x = 0.5 * (p.x[i] + (x <= 0.0 ? 0.0 : 1.0));
         if (y <= 0.0 || y >= 1.0) y = 0.5 * (p.y[i] + (y <= 0.0 ? 0.0 : 1.0));
         p.x[i] = x;
