@@ -45,6 +45,20 @@ REAL metric_norm2(const REAL m11, const REAL m12, const REAL m22, const REAL vx,
   return m11 * vx * vx + (REAL)2 * m12 * vx * vy + m22 * vy * vy;
 }
 
+// |F|_M = sqrt(F^T M F). Double: that expression (the reference's). Float: F^T M F overflows for a
+// crowded pair in a fine metric (|F| ~ 1e16 with M ~ 1e6), which would stop the node for that step;
+// there F is scaled by the exact power of two 2^-64 first and the root scaled back (reduce.cl's
+// force_norm does the same for |F|).
+REAL metric_force_norm(const REAL m11, const REAL m12, const REAL m22, const REAL fx, const REAL fy) {
+#if PDMESH_DOUBLE
+  return sqrt(metric_norm2(m11, m12, m22, fx, fy));
+#else
+  const float f2 = metric_norm2(m11, m12, m22, fx, fy);
+  if (isinf(f2)) return sqrt(metric_norm2(m11, m12, m22, fx * 0x1p-64f, fy * 0x1p-64f)) * 0x1p64f;
+  return sqrt(f2);
+#endif
+}
+
 REAL4 node_size_tensor(const int j, __global const REAL* m11, __global const REAL* m12, __global const REAL* m22) {
   return metric_size_tensor(m11[j], m12[j], m22[j]);
 }
@@ -138,10 +152,10 @@ void time_step_and_move_metric(const int n, const REAL dt_gm2, const int has_lim
     dt2_out[i] = (REAL)0;
     return;
   }
-  const REAL f2 = metric_norm2(m11[i], m12[i], m22[i], fx[i], fy[i]);
+  const REAL f = metric_force_norm(m11[i], m12[i], m22[i], fx[i], fy[i]);
   REAL dt2 = dt_gm2;
-  if (f2 > (REAL)0 && r0[i] > (REAL)0) {
-    const REAL limit = (REAL)2 * r0[i] / ((REAL)3 * sqrt(f2));
+  if (f > (REAL)0 && r0[i] > (REAL)0) {  // double: f > 0 exactly when F^T M F > 0
+    const REAL limit = (REAL)2 * r0[i] / ((REAL)3 * f);
     dt2 = limit < dt_gm2 ? limit : dt_gm2;
   }
   if (has_limit) dt2 = dt2_limit[i] < dt2 ? dt2_limit[i] : dt2;
@@ -197,7 +211,13 @@ void metric_force_norms(const int n, __global const uchar* kind, __global const 
     kinetic_out[i] = (REAL)0;
     return;
   }
+#if PDMESH_DOUBLE
   const REAL f2 = metric_norm2(m11[i], m12[i], m22[i], fx[i], fy[i]);
   norm_out[i] = sqrt(f2);
-  kinetic_out[i] = REAL_C(0.125) * dt2[i] * f2;
+  kinetic_out[i] = REAL_C(0.125) * dt2[i] * f2;  // the reference's
+#else
+  const float f = metric_force_norm(m11[i], m12[i], m22[i], fx[i], fy[i]);
+  norm_out[i] = f;
+  kinetic_out[i] = REAL_C(0.125) * dt2[i] * f * f;
+#endif
 }
