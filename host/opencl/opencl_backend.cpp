@@ -4,11 +4,16 @@
 #include <algorithm>
 #include <cmath>
 
+#include <fmt/format.h>
+
+#include "core/errors.hpp"
+#include "sim/reference/reference_backend.hpp"
 #include "opencl/device_neighbours.hpp"
 #include "opencl/step_program.hpp"
 
 namespace pdmesh::ocl {
 namespace {
+
 
 template <typename Real>
 class OpenclBackend final : public StepBackend {
@@ -22,6 +27,12 @@ class OpenclBackend final : public StepBackend {
   }
 
   void build_neighbours(const SimParticles& p, double cutoff, NeighbourList& list, NeighbourFlags& flags) override {
+    if (p.has_metric()) {
+      // Metric mode: the exact list of the host reference (the contract's rows); the device's
+      // multi-level binning has no elliptic search yet.
+      reference::build_neighbours(p, cutoff, list, flags);
+      return;
+    }
     upload_particles(p);
     const std::size_t n = p.size();
     const int stride = std::max(list.stride, 2);
@@ -57,6 +68,10 @@ class OpenclBackend final : public StepBackend {
 
   void compute_forces(const SimParticles& p, const NeighbourList& list, const ForceParams& params,
                       ForceResult& out) override {
+    if (p.has_metric()) {
+      compute_forces_metric(p, list, params, out);
+      return;
+    }
     upload_particles(p);
     const std::size_t n = p.size();
     ensure_size(ctx_, count_, "count", n);
@@ -91,6 +106,10 @@ class OpenclBackend final : public StepBackend {
   }
 
   void time_step_and_move(const SimParticles& p, const ForceResult& forces, double dt_gm2, MoveResult& out) override {
+    if (p.has_metric()) {
+      time_step_and_move_metric(p, forces, dt_gm2, out);
+      return;
+    }
     const std::size_t n = p.size();
     upload_forces(p, forces);
     ensure_size(ctx_, r0_, "r0", n);
@@ -112,6 +131,10 @@ class OpenclBackend final : public StepBackend {
 
   void apply_momentum(const SimParticles& p, const ForceResult& forces, double beta, MoveResult& moves,
                       MomentumState& carried) override {
+    if (p.has_metric()) {
+      apply_momentum_metric(p, forces, beta, moves, carried);
+      return;
+    }
     const std::size_t n = p.size();
     carried.px.resize(n, 0.0);
     carried.py.resize(n, 0.0);
@@ -142,6 +165,7 @@ class OpenclBackend final : public StepBackend {
   }
 
   StepSums reduce(const SimParticles& p, const ForceResult& forces, const MoveResult& moves) override {
+    if (p.has_metric()) return reduce_metric(p, forces, moves);
     const std::size_t n = p.size();
     upload_forces(p, forces);
     ensure_size(ctx_, dt2_, "dt2", n);
@@ -163,6 +187,126 @@ class OpenclBackend final : public StepBackend {
   }
 
  private:
+  // Metric mode (kernels/metric.cl; the reference's forces_metric.cpp and time_step.cpp).
+  void compute_forces_metric(const SimParticles& p, const NeighbourList& list, const ForceParams& params,
+                             ForceResult& out) {
+    upload_particles(p);
+    upload_metric(p);
+    const std::size_t n = p.size();
+    ensure_size(ctx_, count_, "count", n);
+    ensure_size(ctx_, index_, "index", list.index.size());
+    count_.upload(ctx_.queue(), list.count);
+    index_.upload(ctx_.queue(), list.index);
+    ensure_size(ctx_, fx_, "fx", n);
+    ensure_size(ctx_, fy_, "fy", n);
+    ensure_size(ctx_, r0_, "r0", n);
+    ensure_size(ctx_, coincident_, "coincident", n);
+    ensure_size(ctx_, limit_, "dt2_limit", n);
+    ArgSetter args(program_.compute_forces_metric, "compute_forces_metric");
+    args(static_cast<cl_int>(n))(static_cast<cl_int>(list.stride))(static_cast<Real>(params.lj_a))(
+        static_cast<cl_int>(params.r0_any_direction ? 1 : 0))(static_cast<Real>(params.stability_factor))(xy_)(m11_)(
+        m12_)(m22_)(kind_)(tx_)(ty_)(count_)(index_)(fx_)(fy_)(r0_)(limit_)(coincident_);
+    launch(ctx_.queue(), program_.compute_forces_metric, "compute_forces_metric", n, program_.work_group);
+    out.fx = download(fx_, n);
+    out.fy = download(fy_, n);
+    out.r0 = download(r0_, n);
+    if (params.stability_factor > 0.0)
+      out.dt2_limit = download(limit_, n);  // Fixed nodes: INFINITY, the reference's HUGE_VAL
+    else
+      out.dt2_limit.clear();
+    std::vector<std::int32_t> c;
+    coincident_.download(ctx_.queue(), c, n);
+    out.coincident_pairs = 0;
+    for (auto v : c) out.coincident_pairs += static_cast<std::uint64_t>(v);
+  }
+
+  void time_step_and_move_metric(const SimParticles& p, const ForceResult& forces, double dt_gm2, MoveResult& out) {
+    const std::size_t n = p.size();
+    upload_forces(p, forces);
+    upload_metric(p);
+    ensure_size(ctx_, r0_, "r0", n);
+    r0_.upload(ctx_.queue(), to_real<Real>(forces.r0));
+    const bool has_limit = !forces.dt2_limit.empty();
+    ensure_size(ctx_, limit_, "dt2_limit", n);
+    if (has_limit) limit_.upload(ctx_.queue(), to_real<Real>(forces.dt2_limit));
+    ensure_size(ctx_, dx_, "dx", n);
+    ensure_size(ctx_, dy_, "dy", n);
+    ensure_size(ctx_, dt2_, "dt2", n);
+    ArgSetter args(program_.time_step_and_move_metric, "time_step_and_move_metric");
+    args(static_cast<cl_int>(n))(static_cast<Real>(dt_gm2))(static_cast<cl_int>(has_limit ? 1 : 0))(kind_)(fx_)(fy_)(
+        r0_)(limit_)(m11_)(m12_)(m22_)(dx_)(dy_)(dt2_);
+    launch(ctx_.queue(), program_.time_step_and_move_metric, "time_step_and_move_metric", n, program_.work_group);
+    out.dx = download(dx_, n);
+    out.dy = download(dy_, n);
+    out.dt2 = download(dt2_, n);
+  }
+
+  void apply_momentum_metric(const SimParticles& p, const ForceResult& forces, double beta, MoveResult& moves,
+                             MomentumState& carried) {
+    const std::size_t n = p.size();
+    carried.px.resize(n, 0.0);
+    carried.py.resize(n, 0.0);
+    upload_forces(p, forces);
+    upload_metric(p);
+    ensure_size(ctx_, r0_, "r0", n);
+    r0_.upload(ctx_.queue(), to_real<Real>(forces.r0));
+    ensure_size(ctx_, dx_, "dx", n);
+    ensure_size(ctx_, dy_, "dy", n);
+    ensure_size(ctx_, carried_, "momentum", 2 * n);
+    dx_.upload(ctx_.queue(), to_real<Real>(moves.dx));
+    dy_.upload(ctx_.queue(), to_real<Real>(moves.dy));
+    std::vector<Real> pxy(2 * n);
+    for (std::size_t i = 0; i < n; ++i) {
+      pxy[2 * i] = static_cast<Real>(carried.px[i]);
+      pxy[2 * i + 1] = static_cast<Real>(carried.py[i]);
+    }
+    carried_.upload(ctx_.queue(), pxy);
+    ArgSetter args(program_.apply_momentum_metric, "apply_momentum_metric");
+    args(static_cast<cl_int>(n))(static_cast<Real>(beta))(kind_)(fx_)(fy_)(r0_)(m11_)(m12_)(m22_)(dx_)(dy_)(carried_);
+    launch(ctx_.queue(), program_.apply_momentum_metric, "apply_momentum_metric", n, program_.work_group);
+    moves.dx = download(dx_, n);
+    moves.dy = download(dy_, n);
+    const std::vector<double> out = download(carried_, 2 * n);
+    for (std::size_t i = 0; i < n; ++i) {
+      carried.px[i] = out[2 * i];
+      carried.py[i] = out[2 * i + 1];
+    }
+  }
+
+  // Per-node |F|_M and kinetic terms on the device, summed here in node order as the reference sums.
+  StepSums reduce_metric(const SimParticles& p, const ForceResult& forces, const MoveResult& moves) {
+    const std::size_t n = p.size();
+    upload_forces(p, forces);
+    upload_metric(p);
+    ensure_size(ctx_, dt2_, "dt2", n);
+    dt2_.upload(ctx_.queue(), to_real<Real>(moves.dt2));
+    ensure_size(ctx_, norm_, "metric_norm", n);
+    ensure_size(ctx_, kinetic_, "kinetic", n);
+    ArgSetter args(program_.metric_force_norms, "metric_force_norms");
+    args(static_cast<cl_int>(n))(kind_)(fx_)(fy_)(dt2_)(m11_)(m12_)(m22_)(norm_)(kinetic_);
+    launch(ctx_.queue(), program_.metric_force_norms, "metric_force_norms", n, program_.work_group);
+    const std::vector<double> f = download(norm_, n), kinetic = download(kinetic_, n);
+    StepSums s;
+    for (std::size_t i = 0; i < n; ++i) {
+      if (p.kind[i] == kSimFixed) continue;
+      ++s.moving;
+      s.sum_force += f[i];
+      s.max_force = std::max(s.max_force, f[i]);
+      s.sum_kinetic += kinetic[i];
+    }
+    return s;
+  }
+
+  void upload_metric(const SimParticles& p) {
+    const std::size_t n = p.size();
+    ensure_size(ctx_, m11_, "m11", n);
+    ensure_size(ctx_, m12_, "m12", n);
+    ensure_size(ctx_, m22_, "m22", n);
+    m11_.upload(ctx_.queue(), to_real<Real>(p.m11));
+    m12_.upload(ctx_.queue(), to_real<Real>(p.m12));
+    m22_.upload(ctx_.queue(), to_real<Real>(p.m22));
+  }
+
   std::vector<double> download(Buffer<Real>& b, std::size_t n) {
     std::vector<Real> v;
     b.download(ctx_.queue(), v, n);
@@ -206,6 +350,7 @@ class OpenclBackend final : public StepBackend {
   StepProgram program_;
   DeviceNeighbours<Real> neighbours_;
   Buffer<Real> xy_, q_, tx_, ty_, fx_, fy_, r0_, limit_, dx_, dy_, dt2_, partials_, carried_;
+  Buffer<Real> m11_, m12_, m22_, norm_, kinetic_;  // metric mode only
   Buffer<std::uint8_t> kind_;
   Buffer<std::int32_t> prev_, next_, count_, index_, coincident_;
 };

@@ -93,7 +93,7 @@ ForceLoop resolve_force_loop(ForceLoop requested, const std::string& device_type
 
 const std::vector<std::string>& step_program_files() {
   static const std::vector<std::string> files = {"spacing_field.cl", "reduce.cl",     "forces.cl",
-                                                 "time_step.cl",     "binning.cl",    "neighbours.cl",
+                                                 "time_step.cl",     "metric.cl",     "binning.cl",    "neighbours.cl",
                                                  "clearance.cl",     "device_step.cl", "window.cl",
                                                  "boundary.cl"};  // boundary_snap_rule calls window.cl's rule
   return files;
@@ -158,7 +158,9 @@ StepProgram::StepProgram(Context& ctx, Precision p, ForceLoop loop, std::size_t 
       {&apply_momentum, "apply_momentum"},
       {&reduce, "reduce"},                     {&device_step, "device_step"},
       {&apply_host_moves, "apply_host_moves"}, {&boundary_snap, "boundary_snap"},
-      {&clearance_points, "clearance_points"}, {&refresh_budgets, "refresh_budgets"}};
+      {&clearance_points, "clearance_points"}, {&refresh_budgets, "refresh_budgets"},
+      {&compute_forces_metric, "compute_forces_metric"}, {&time_step_and_move_metric, "time_step_and_move_metric"},
+      {&apply_momentum_metric, "apply_momentum_metric"}, {&metric_force_norms, "metric_force_norms"}};
   // Every kernel declares reqd_work_group_size(WG_SIZE): a device that cannot run a group that size
   // (registers, local memory) would fail at the first enqueue with CL_INVALID_WORK_GROUP_SIZE or
   // CL_OUT_OF_RESOURCES; checked here, it fails before the run with the reason.

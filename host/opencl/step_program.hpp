@@ -1,5 +1,5 @@
 // The simulation kernels of one device and precision, built once: kernels/spacing_field.cl,
-// neighbours.cl, forces.cl, time_step.cl, reduce.cl and device_step.cl in one program, with the shape
+// neighbours.cl, forces.cl, time_step.cl, metric.cl, reduce.cl and device_step.cl in one program, with the shape
 // of the force loop chosen for the device (ForceLoop), plus the argument helper every launch uses
 // (errors name the kernel and the argument).
 #pragma once
@@ -120,6 +120,8 @@ struct StepProgram {
       apply_row_moves, bin_bounds, bin_rmin, bin_levels, bin_plan, bin_count, bucket_scan, bucket_offsets_add, bin_fill,
       compute_forces, time_step_and_move, apply_momentum, reduce, device_step, apply_host_moves, boundary_snap,
       clearance_points, refresh_budgets;  // refresh_budgets: launched by the Scalar shape only
+  // Metric mode of the StepBackend (kernels/metric.cl).
+  cl::Kernel compute_forces_metric, time_step_and_move_metric, apply_momentum_metric, metric_force_norms;
   // Only where the device has cl_khr_fp64 (kernels/window.cl): the rule alone, and boundary_snap with the
   // rule in its last work-group.
   cl::Kernel iteration_rule, boundary_snap_rule;

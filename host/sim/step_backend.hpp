@@ -22,10 +22,17 @@ struct SimParticles {
   std::vector<std::uint8_t> kind;      // kSimFixed / kSimBoundary / kSimInterior
   std::vector<std::int32_t> prev, next;  // Boundary nodes: previous/next node along the curve; else -1
   std::vector<double> tx, ty;          // Boundary nodes: unit tangent of the curve at the node; else 0
+  // Metric mode (off while m11 is empty, the isotropic default): node i's metric
+  // M_i = [[m11, m12], [m12, m22]], symmetric positive definite, with unit length = the desired edge
+  // (docs/metric-particles.md). Pairs are measured in the mean of the two nodes' size tensors
+  // M^(-1/2) (sim/reference/metric_pair.hpp); q is then not read by the step functions.
+  std::vector<double> m11, m12, m22;
+  bool has_metric() const { return !m11.empty(); }
   std::size_t size() const { return x.size(); }
   void resize(std::size_t n) {
     x.resize(n); y.resize(n); q.resize(n); kind.resize(n);
     prev.resize(n, -1); next.resize(n, -1); tx.resize(n); ty.resize(n);
+    if (has_metric()) { m11.resize(n); m12.resize(n); m22.resize(n); }
   }
 };
 
@@ -33,7 +40,8 @@ struct SimParticles {
 // index[i*stride + k] for k < min(count[i], stride), sorted by node index. count[i] is the TRUE
 // count; when it exceeds stride the list is incomplete and NeighbourFlags::overflow is set:
 // the caller grows stride to flags.max_count and builds again.
-// Interior nodes: every j != i with |x_j - x_i| <= cutoff * q_i (any kind, coincident nodes included).
+// Interior nodes: every j != i with |x_j - x_i| <= cutoff * q_i (any kind, coincident nodes included);
+// in metric mode every j != i with |x_j - x_i|_{M_ij} <= cutoff, M_ij the pair's metric (symmetric in i, j).
 // Boundary nodes: exactly {prev, next}. Fixed nodes: none.
 struct NeighbourList {
   int stride = 16;
@@ -45,7 +53,8 @@ struct NeighbourList {
 struct NeighbourFlags {
   std::uint32_t overflow = 0;          // 1 when some count[i] > stride
   std::int32_t max_count = 0;          // the largest count[i]
-  std::int32_t first_invalid = -1;     // lowest node index with non-finite x or y, or q not (finite and > 0); -1 if none
+  std::int32_t first_invalid = -1;     // lowest node index with non-finite x or y, or q not (finite and > 0),
+                                       // or in metric mode a metric not finite and positive definite; -1 if none
   std::uint64_t pairs_examined = 0;    // candidate pairs whose distance was computed
   std::uint64_t pairs_within = 0;      // of those, pairs within the cutoff (sum of interior counts)
 };
@@ -54,7 +63,8 @@ struct NeighbourFlags {
 struct ForceResult {
   std::vector<double> fx, fy;  // net force; Boundary nodes: projected onto (tx, ty); Fixed: 0
   std::vector<double> r0;      // distance to the nearest neighbour j with F_i . r_ij > 0 (see
-                               // ForceParams::r0_any_direction); 0 if none or F_i = 0
+                               // ForceParams::r0_any_direction); 0 if none or F_i = 0. Metric mode:
+                               // the pair's metric distance, and the half-plane F_i^T M_ij r_ij > 0
   std::uint64_t coincident_pairs = 0;  // neighbour pairs at distance 0 (skipped: no direction)
   // Only when ForceParams::stability_factor > 0 (else empty): the per-node stability bound on dt_i^2,
   // 2 c / K_i with K_i = sum_j max(|df/dr|, |f|/r) over i's list (HUGE_VAL when K_i = 0).
@@ -65,10 +75,12 @@ struct ForceResult {
 struct MoveResult {
   std::vector<double> dx, dy;  // displacement
   std::vector<double> dt2;     // local dt_i^2 used (dt_GM^2 when r0 = 0 or |F| = 0, each capped by
-                               // ForceResult::dt2_limit when that is filled); 0 for Fixed
+                               // ForceResult::dt2_limit when that is filled); 0 for Fixed. Metric mode:
+                               // |F| is measured in the node's metric, so the move is at most r0/3 in it
 };
 
 // Reductions over moving (Boundary + Interior) nodes, summed in node order by the reference.
+// Metric mode: |F_i| is measured in node i's metric.
 struct StepSums {
   std::size_t moving = 0;
   double sum_force = 0.0;    // sum |F_i|
@@ -112,7 +124,8 @@ class StepBackend {
                                   MoveResult& out) = 0;
   // Step 4, heavy-ball momentum (beta in (0, 1); callers skip it for beta = 0): turns moves' g_i =
   // dt_i^2/2 F_i into d_i = g_i + beta p_i; d_i = g_i where d_i . F_i < 0; then |d_i| capped to r0_i / 3
-  // where r0_i > 0. Fixed nodes: d_i = 0. Sets p_i = d_i (carried: n entries each, resized with zeros).
+  // where r0_i > 0 (metric mode: |d_i| in node i's metric). Fixed nodes: d_i = 0. Sets p_i = d_i
+  // (carried: n entries each, resized with zeros).
   virtual void apply_momentum(const SimParticles& p, const ForceResult& forces, double beta, MoveResult& moves,
                               MomentumState& carried) = 0;
   // Reductions for the history and the global time step rule.

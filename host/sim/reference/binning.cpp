@@ -17,6 +17,10 @@
 namespace pdmesh::reference {
 
 void build_neighbours(const SimParticles& p, double cutoff, NeighbourList& list, NeighbourFlags& flags) {
+  if (p.has_metric()) {
+    build_neighbours_metric(p, cutoff, list, flags);
+    return;
+  }
   start_list(p, list, flags);
   const std::size_t n = p.size();
   if (n == 0 || flags.first_invalid >= 0) return;
@@ -45,6 +49,10 @@ void build_neighbours(const SimParticles& p, double cutoff, NeighbourList& list,
 
 void build_neighbours_brute_force(const SimParticles& p, double cutoff, NeighbourList& list,
                                   NeighbourFlags& flags) {
+  if (p.has_metric()) {
+    build_neighbours_metric_brute_force(p, cutoff, list, flags);
+    return;
+  }
   start_list(p, list, flags);
   if (flags.first_invalid >= 0) return;
   const std::size_t n = p.size();

@@ -10,6 +10,10 @@ namespace pdmesh::reference {
 
 void compute_forces(const SimParticles& p, const NeighbourList& list, const ForceParams& params,
                     ForceResult& out) {
+  if (p.has_metric()) {
+    compute_forces_metric(p, list, params, out);
+    return;
+  }
   const std::size_t n = p.size();
   const auto stride = static_cast<std::size_t>(list.stride);
   out.fx.assign(n, 0.0);

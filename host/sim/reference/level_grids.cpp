@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "sim/cell_hash.hpp"
+#include "sim/reference/metric_pair.hpp"
 
 namespace pdmesh::reference {
 
@@ -60,6 +61,7 @@ void LevelGrids::build(const SimParticles& p, const std::vector<double>& radius)
   const std::size_t n = p.size();
   double r_min = HUGE_VAL;
   for (std::size_t j = 0; j < n; ++j) r_min = std::min(r_min, radius[j]);
+  r_min_ = r_min;
   level_.resize(n);
   int top = 0;
   for (std::size_t j = 0; j < n; ++j) {
@@ -91,6 +93,8 @@ void LevelGrids::build(const SimParticles& p, const std::vector<double>& radius)
 }
 
 bool valid_node(const SimParticles& p, std::size_t i) {
+  if (p.has_metric())
+    return std::isfinite(p.x[i]) && std::isfinite(p.y[i]) && valid_metric(p.m11[i], p.m12[i], p.m22[i]);
   return std::isfinite(p.x[i]) && std::isfinite(p.y[i]) && std::isfinite(p.q[i]) && p.q[i] > 0.0;
 }
 

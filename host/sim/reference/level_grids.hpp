@@ -1,6 +1,7 @@
 // The multi-level hashed cell grids behind the reference neighbour search (binning.cpp, and the
 // Verlet candidate lists of neighbour_cache.cpp), and the list helpers both builders share.
 #pragma once
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
@@ -36,6 +37,8 @@ class LevelGrids {
   void build(const SimParticles& p, const std::vector<double>& radius);
   int level(std::size_t j) const { return level_[j]; }
   std::size_t levels() const { return exact_.size(); }
+  // c_l, the cell size of level l: a node of level l has c_l <= radius < 2 c_l.
+  double cell_size(std::size_t l) const { return std::ldexp(r_min_, static_cast<int>(l)); }
   // visit(j) for every node j that may lie within reach(M) of (x, y), where M is the level of the
   // grid searched: l itself for C_l (holding levels <= l), M > l for E_M. reach must be monotone
   // enough for the caller's purpose: a node of level m <= l is found if within reach(l), a node of
@@ -48,6 +51,7 @@ class LevelGrids {
   }
 
  private:
+  double r_min_ = 0.0;
   std::vector<int> level_;
   std::vector<std::vector<std::int32_t>> members_;  // per level: its nodes, ascending
   std::vector<std::int32_t> cumulative_members_;
@@ -71,7 +75,8 @@ void LevelGrids::Grid::for_each_near(double x, double y, double r, Visit&& visit
   }
 }
 
-// Finite position and finite positive spacing.
+// Finite position and finite positive spacing; in metric mode finite position and a finite SPD metric
+// (q is not read).
 bool valid_node(const SimParticles& p, std::size_t i);
 
 // Resets the list for n nodes (padding -1) and the flags, records the first invalid node, and

@@ -3,6 +3,9 @@
 #pragma once
 #include <cmath>
 
+#include <vector>
+
+#include "sim/reference/metric_pair.hpp"
 #include "sim/step_backend.hpp"
 
 namespace pdmesh::reference {
@@ -14,9 +17,21 @@ void build_neighbours(const SimParticles& p, double cutoff, NeighbourList& list,
 void build_neighbours_brute_force(const SimParticles& p, double cutoff, NeighbourList& list,
                                   NeighbourFlags& flags);
 
+// Metric mode: every node's size tensor M^(-1/2) (metric_pair.hpp), in node order.
+std::vector<Sym2> size_tensors(const SimParticles& p);
+
+// Step 1 in metric mode (binning_metric.cpp; the two functions above forward to these).
+void build_neighbours_metric(const SimParticles& p, double cutoff, NeighbourList& list, NeighbourFlags& flags);
+void build_neighbours_metric_brute_force(const SimParticles& p, double cutoff, NeighbourList& list,
+                                         NeighbourFlags& flags);
+
 // Steps 2 and 3 (forces.cpp).
 void compute_forces(const SimParticles& p, const NeighbourList& list, const ForceParams& params,
                     ForceResult& out);
+
+// Steps 2 and 3 in metric mode (forces_metric.cpp; compute_forces forwards to it).
+void compute_forces_metric(const SimParticles& p, const NeighbourList& list, const ForceParams& params,
+                           ForceResult& out);
 
 // Step 4 and the reductions (time_step.cpp).
 void time_step_and_move(const SimParticles& p, const ForceResult& forces, double dt_gm2, MoveResult& out);
@@ -27,6 +42,9 @@ void apply_momentum(const SimParticles& p, const ForceResult& forces, double bet
 // momentum_move, has the same expressions in the same order, so that double results agree bit for bit).
 void momentum_move(double gx, double gy, double px, double py, double beta, double fx, double fy, double r0,
                    double& dx, double& dy);
+// Metric mode: the same rule with the cap |d|_M <= r0 / 3 in the node's metric M = [[m11, m12], [m12, m22]].
+void momentum_move_metric(double gx, double gy, double px, double py, double beta, double fx, double fy,
+                          double r0, double m11, double m12, double m22, double& dx, double& dy);
 StepSums reduce(const SimParticles& p, const ForceResult& forces, const MoveResult& moves);
 
 // The pair force of eq. 5.11 as a signed magnitude along +r_ij/r_ij (negative = repulsion),

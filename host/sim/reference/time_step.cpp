@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "sim/reference/metric_pair.hpp"
 #include "sim/reference/reference_backend.hpp"
 
 namespace pdmesh::reference {
@@ -12,10 +13,13 @@ void time_step_and_move(const SimParticles& p, const ForceResult& forces, double
   out.dx.assign(n, 0.0);
   out.dy.assign(n, 0.0);
   out.dt2.assign(n, 0.0);
+  const bool metric = p.has_metric();
   for (std::size_t i = 0; i < n; ++i) {
     if (p.kind[i] == kSimFixed) continue;
     const double fx = forces.fx[i], fy = forces.fy[i];
-    const double f2 = fx * fx + fy * fy;
+    // Metric mode: r0 is a metric distance and |F| is measured in the node's metric, so the move
+    // dt^2/2 F is at most r0/3 long in that metric (eq. 5.8 in metric units).
+    const double f2 = metric ? metric_norm2(p.m11[i], p.m12[i], p.m22[i], fx, fy) : fx * fx + fy * fy;
     // No force: no direction, no move; the step is the global maximum (r0 is undefined).
     // No neighbour in the force direction (r0 = 0): nothing limits the step but the global maximum.
     double dt2 = dt_gm2;
@@ -51,9 +55,29 @@ void momentum_move(double gx, double gy, double px, double py, double beta, doub
   }
 }
 
+void momentum_move_metric(double gx, double gy, double px, double py, double beta, double fx, double fy,
+                          double r0, double m11, double m12, double m22, double& dx, double& dy) {
+  dx = gx + beta * px;
+  dy = gy + beta * py;
+  if (dx * fx + dy * fy < 0.0) {
+    dx = gx;
+    dy = gy;
+  }
+  if (r0 > 0.0) {
+    const double cap = r0 / 3.0;
+    const double len = std::sqrt(metric_norm2(m11, m12, m22, dx, dy));
+    if (len > cap) {
+      const double s = cap / len;
+      dx = dx * s;
+      dy = dy * s;
+    }
+  }
+}
+
 void apply_momentum(const SimParticles& p, const ForceResult& forces, double beta, MoveResult& moves,
                     MomentumState& carried) {
   const std::size_t n = p.size();
+  const bool metric = p.has_metric();
   carried.px.resize(n, 0.0);
   carried.py.resize(n, 0.0);
   for (std::size_t i = 0; i < n; ++i) {
@@ -62,8 +86,12 @@ void apply_momentum(const SimParticles& p, const ForceResult& forces, double bet
       continue;
     }
     double dx, dy;
-    momentum_move(moves.dx[i], moves.dy[i], carried.px[i], carried.py[i], beta, forces.fx[i], forces.fy[i],
-                  forces.r0[i], dx, dy);
+    if (metric)
+      momentum_move_metric(moves.dx[i], moves.dy[i], carried.px[i], carried.py[i], beta, forces.fx[i],
+                           forces.fy[i], forces.r0[i], p.m11[i], p.m12[i], p.m22[i], dx, dy);
+    else
+      momentum_move(moves.dx[i], moves.dy[i], carried.px[i], carried.py[i], beta, forces.fx[i], forces.fy[i],
+                    forces.r0[i], dx, dy);
     moves.dx[i] = carried.px[i] = dx;
     moves.dy[i] = carried.py[i] = dy;
   }
@@ -71,9 +99,11 @@ void apply_momentum(const SimParticles& p, const ForceResult& forces, double bet
 
 StepSums reduce(const SimParticles& p, const ForceResult& forces, const MoveResult& moves) {
   StepSums s;
+  const bool metric = p.has_metric();
   for (std::size_t i = 0; i < p.size(); ++i) {
     if (p.kind[i] == kSimFixed) continue;
-    const double f2 = forces.fx[i] * forces.fx[i] + forces.fy[i] * forces.fy[i];
+    const double f2 = metric ? metric_norm2(p.m11[i], p.m12[i], p.m22[i], forces.fx[i], forces.fy[i])
+                             : forces.fx[i] * forces.fx[i] + forces.fy[i] * forces.fy[i];
     const double f = std::sqrt(f2);
     ++s.moving;
     s.sum_force += f;
