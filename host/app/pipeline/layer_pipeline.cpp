@@ -131,6 +131,25 @@ std::unique_ptr<LayeredCase> build_layers(const CaseConfig& config, const MeshIn
   return out;
 }
 
+NodeSet without_front_nodes(const NodeSet& nodes, const Geometry& core_geometry, std::size_t& dropped) {
+  std::vector<int> index(nodes.size(), -1);
+  NodeSet out;
+  dropped = 0;
+  for (std::size_t i = 0; i < nodes.size(); ++i) {
+    const int c = nodes.curve[i];
+    if (nodes.kind[i] == NodeKind::Boundary && c >= 0 && core_geometry.curves[static_cast<std::size_t>(c)].fixed_points) {
+      ++dropped;
+      continue;
+    }
+    index[i] = out.add(nodes.x[i], nodes.q[i], nodes.kind[i], c);
+  }
+  out.curve_nodes.resize(nodes.curve_nodes.size());
+  for (std::size_t c = 0; c < nodes.curve_nodes.size(); ++c)
+    for (const int n : nodes.curve_nodes[c])
+      if (index[static_cast<std::size_t>(n)] >= 0) out.curve_nodes[c].push_back(index[static_cast<std::size_t>(n)]);
+  return out;
+}
+
 namespace {
 
 // The layer cells and the core triangles in one mesh; the core's points first, each front node of

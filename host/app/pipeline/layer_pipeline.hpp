@@ -38,6 +38,10 @@ struct LayeredCase {
 std::unique_ptr<LayeredCase> build_layers(const CaseConfig& config, const MeshInputs& inputs,
                                           const SpacingStage& spacing);
 
+// The core's nodes without the Boundary nodes on a front: interior nodes that the simulation snapped onto
+// a front curve (its points are the layer's nodes; one between them would hang on a layer cell's edge).
+NodeSet without_front_nodes(const NodeSet& nodes, const Geometry& core_geometry, std::size_t& dropped);
+
 // The layer cells and the core mesh (the cleaned triangles of layered.core's nodes) as one mesh:
 // the mesh files, the pictures, the table and quality.json (with the layer measures).
 void write_layered_outputs(const CaseConfig& config, const MeshInputs& inputs, const LayeredCase& layered,
