@@ -11,6 +11,7 @@
 #include <string>
 
 #include "app/config/case_file.hpp"
+#include "app/pipeline/layer_pipeline.hpp"
 #include "app/pipeline/mesh_pipeline.hpp"
 #include "core/errors.hpp"
 
@@ -162,4 +163,28 @@ TEST_CASE("a run with layers writes one mesh of layer quads and core triangles",
   REQUIRE(run_mesh(layered_case(out, "wall", false)) == 0);
   CHECK_THAT(read(out / "mesh.msh"), !Catch::Contains("\n2 2 3 ") && Catch::Contains("\n2 2 2 "));
   fs::remove_all(out);
+}
+
+TEST_CASE("nodes the simulation snapped onto a layer front are left out of the core", "[app][layers]") {
+  // A front (fixed points) and a plain curve; node 3 was snapped onto the front between its points.
+  RawCurve far{"far", {{-2, -2}, {2, -2}, {2, 2}, {-2, 2}, {-2, -2}}, "memory", 1, {}};
+  RawCurve front{"wall_front", {{-0.5, -0.5}, {0.5, -0.5}, {0.5, 0.5}, {-0.5, 0.5}, {-0.5, -0.5}}, "memory", 1, {}, true};
+  const Geometry g = build_geometry({far, front});
+  NodeSet nodes;
+  const int f0 = nodes.add({-2, -2}, 0.1, NodeKind::Fixed, 0);
+  const int b0 = nodes.add({0, -2}, 0.1, NodeKind::Boundary, 0);
+  const int w0 = nodes.add({-0.5, -0.5}, 0.1, NodeKind::Fixed, 1);
+  const int snapped = nodes.add({0, -0.5}, 0.1, NodeKind::Boundary, 1);
+  const int w1 = nodes.add({0.5, -0.5}, 0.1, NodeKind::Fixed, 1);
+  const int inner = nodes.add({1, 1}, 0.1, NodeKind::Interior, -1);
+  nodes.curve_nodes = {{f0, b0, f0}, {w0, snapped, w1, w0}};
+  std::size_t dropped = 0;
+  const NodeSet out = without_front_nodes(nodes, g, dropped);
+  CHECK(dropped == 1);
+  REQUIRE(out.size() == 5);
+  CHECK(out.curve_nodes[0] == std::vector<int>{0, 1, 0});  // the plain curve's boundary node stays
+  CHECK(out.curve_nodes[1] == std::vector<int>{2, 3, 2});  // the front: its fixed nodes only
+  CHECK(out.x[3] == Vec2{0.5, -0.5});
+  CHECK(out.kind[4] == NodeKind::Interior);
+  (void)inner;
 }
