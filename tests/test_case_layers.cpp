@@ -188,3 +188,11 @@ TEST_CASE("nodes the simulation snapped onto a layer front are left out of the c
   CHECK(out.kind[4] == NodeKind::Interior);
   (void)inner;
 }
+
+TEST_CASE("the stages driven directly refuse a case with layers", "[app][layers]") {
+  // The Python API drives the stages itself: it must not mesh the whole domain without the layers.
+  const CaseConfig c = layered_case(fs::temp_directory_path() / "pdmesh_test_layers_stages", "wall", true);
+  const MeshInputs inputs(c);
+  const SpacingStage spacing(c, inputs);
+  CHECK_THROWS_WITH(make_initial(c, inputs, spacing), Catch::Contains("[[boundary_layer]] is only supported by"));
+}
