@@ -19,8 +19,8 @@
 #include <string>
 #include <vector>
 
-#include "app/case_file.hpp"
-#include "app/mesh_command.hpp"
+#include "app/config/case_file.hpp"
+#include "app/pipeline/mesh_pipeline.hpp"
 #include "core/atomic_file.hpp"
 #include "core/errors.hpp"
 #include "io/mesh_formats.hpp"
@@ -90,8 +90,9 @@ int main(int argc, char** argv) {
       settings.split_quads = true;
       first_view = 8;
     }
-    MeshInputs inputs(config);
-    const SpacingField& field = inputs.field();
+    const MeshInputs inputs(config);
+    const SpacingStage spacing(config, inputs, SpacingStage::Build::FieldOnly);
+    const SpacingField& field = spacing.field();
     const CoreSpacing core = [&field](Vec2 p) { return field.at(p); };
     const std::vector<int> walls = curves_by_name(inputs.geometry, split(argv[6], ','), "wall curves");
 
