@@ -119,6 +119,7 @@ bool TopologyOps::split_boundary(int t, int i) {
   int c = -1;
   double arc_a = 0.0, arc_b = 0.0;
   if (!m.boundary_edge_arcs(t, i, c, arc_a, arc_b)) return false;
+  if (geometry_.curves[c].fixed_points) return false;  // a layer front: the layer cells share its edges
   const double mid = 0.5 * (arc_a + arc_b);
   if (!(mid > std::min(arc_a, arc_b) && mid < std::max(arc_a, arc_b))) return false;
   const Vec2 at = closest_on_curve_range(geometry_.curves[c], {}, mid, mid).p;

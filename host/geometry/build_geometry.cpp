@@ -242,7 +242,7 @@ void find_critical_points(Geometry& g, const std::vector<Vec2>& joints, const st
       const Vec2 in = curve.points[k] - curve.points[k - 1];
       const Vec2 out = curve.points[k + 1] - curve.points[k];
       const double turn = std::atan2(std::fabs(cross(in, out)), dot(in, out));
-      if (turn > limit) {
+      if (turn > limit || curve.fixed_points) {
         curve.critical[k] = 1;
         g.critical.push_back({curve.points[k], {c}, {k}});
       }
@@ -334,6 +334,7 @@ Geometry build_geometry(std::vector<RawCurve> raw, const std::vector<RawHolePoin
     c.points = std::move(r.points);
     c.file = std::move(r.file);
     c.line = r.line;
+    c.fixed_points = r.fixed_points;
     for (const Vec2 p : c.points) g.extents.add(p);
     g.curves.push_back(std::move(c));
   }

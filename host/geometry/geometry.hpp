@@ -19,6 +19,9 @@ struct RawCurve {
   // Optional: the source line of each point (same size as points). When empty, point k is taken
   // to be on line `line + k`, which is right for one-point-per-line formats such as .crv.
   std::vector<int> lines;
+  // Every point is a critical point (a Fixed node that nothing moves, removes or splits): a boundary
+  // layer's front, whose nodes the layer cells share (docs/boundary-layers.md).
+  bool fixed_points = false;
 };
 
 // A hole point as read from a .poly file (Triangle's convention), before validation.
@@ -37,6 +40,7 @@ struct Curve {
   int first_segment = 0;           // index of its first segment in Geometry::segments
   std::string file;                // where it came from
   int line = 0;
+  bool fixed_points = false;       // RawCurve::fixed_points: every point critical, no node between them
   double length() const { return arc.empty() ? 0.0 : arc.back(); }
   int segment_count() const { return static_cast<int>(points.size()) - 1; }
 };

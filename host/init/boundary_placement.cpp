@@ -164,6 +164,10 @@ CurveStations spacing_stations(const Geometry& geometry, const SpacingField& spa
     std::vector<BoundaryStation>& out = stations[c];
     out.push_back({curve.points[0], 0, 0.0});
     for (Section& s : sections[c]) {
+      if (curve.fixed_points) {  // a layer front: its points are its nodes, none between them
+        out.push_back({curve.points[static_cast<std::size_t>(s.last)], s.last, curve.arc[static_cast<std::size_t>(s.last)]});
+        continue;
+      }
       std::vector<double> arcs;
       for (int round = 0;; ++round) {
         const int n = std::max(1, static_cast<int>(std::lround(section_integral(s))));

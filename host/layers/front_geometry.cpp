@@ -15,7 +15,7 @@ std::vector<RawCurve> front_curves(const Geometry& geometry, const std::vector<i
   for (std::size_t c = 0; c < geometry.curves.size(); ++c) {
     if (std::find(wall_curves.begin(), wall_curves.end(), static_cast<int>(c)) != wall_curves.end()) continue;
     const Curve& curve = geometry.curves[c];
-    out.push_back({curve.name, curve.points, curve.file, curve.line, {}});
+    out.push_back({curve.name, curve.points, curve.file, curve.line, {}, curve.fixed_points});
   }
   for (std::size_t k = 0; k < layers.fronts.size(); ++k) {
     const LayerFront& front = layers.fronts[k];
@@ -26,7 +26,8 @@ std::vector<RawCurve> front_curves(const Geometry& geometry, const std::vector<i
           fmt::format("boundary layer: the wall chain of curve \"{}\" is open; a core boundary from an "
                       "open front is not made yet",
                       geometry.curves[first.curve].name));
-    RawCurve curve{name, {}, "boundary layer", 0, {}};
+    // Its points are the layer cells' top nodes: the core keeps each one as a fixed node.
+    RawCurve curve{name, {}, "boundary layer", 0, {}, true};
     for (const int node : front.nodes) curve.points.push_back(layers.nodes[node]);
     curve.points.push_back(curve.points.front());
     out.push_back(std::move(curve));

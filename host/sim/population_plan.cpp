@@ -172,6 +172,7 @@ class Planner {
     const double arc = 0.5 * (arcs_[c][k - 1] + arcs_[c][k]);
     if (!(arcs_[c][k - 1] < arc && arc < arcs_[c][k])) return;
     const Curve& geometry_curve = tree_.geometry().curves[c];
+    if (geometry_curve.fixed_points) return;  // a layer front: its nodes are the layer cells'
     // The point on the curve (the same search BoundaryHandler::add_boundary makes).
     const Vec2 p = point_at_arc(geometry_curve, arc);
     const double qp = spacing_.at(p);

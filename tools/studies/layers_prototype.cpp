@@ -90,7 +90,7 @@ int main(int argc, char** argv) {
       settings.split_quads = true;
       first_view = 8;
     }
-    MeshInputs inputs(config);
+    const MeshInputs inputs(config);
     const SpacingStage spacing(config, inputs, SpacingStage::Build::FieldOnly);
     const SpacingField& field = spacing.field();
     const CoreSpacing core = [&field](Vec2 p) { return field.at(p); };

@@ -70,6 +70,20 @@ void check_keys(const Reader& r, const toml::table& t, const std::string& prefix
       check_keys(r, *node.as_table(), key);
       continue;
     }
+    if (key == "boundary_layer") {
+      // [boundary_layer] once or [[boundary_layer]] per curve set: each table's keys are checked.
+      if (node.is_table()) {
+        check_keys(r, *node.as_table(), key);
+      } else if (node.is_array()) {
+        for (const toml::node& e : *node.as_array()) {
+          if (!e.is_table()) r.wrong_type(key, e, "a table ([[boundary_layer]])");
+          check_keys(r, *e.as_table(), key);
+        }
+      } else {
+        r.wrong_type(key, node, "a table ([[boundary_layer]])");
+      }
+      continue;
+    }
     if (key == "simulation.dt_initial" && node.is_table()) {
       check_keys(r, *node.as_table(), key);
       continue;
@@ -215,6 +229,9 @@ const std::vector<std::string>& case_file_keys() {
       "cleanup.enabled", "cleanup.min_angle", "cleanup.iterations", "cleanup.topology", "cleanup.split_boundary",
       "cleanup.trials_per_triangle", "cleanup.min_trials",
       "output.formats", "output.tree_overlay", "output.views", "output.color_by", "output.spacing_picture",
+      "boundary_layer.curves", "boundary_layer.first_height", "boundary_layer.y_plus", "boundary_layer.reynolds",
+      "boundary_layer.reference_length", "boundary_layer.growth", "boundary_layer.thickness", "boundary_layer.layers",
+      "boundary_layer.elements",
   };
   return keys;
 }

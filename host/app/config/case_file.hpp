@@ -163,6 +163,19 @@ struct CaseConfig {
     std::int64_t min_trials = static_cast<std::int64_t>(CleanupOptions{}.min_trials);
   } cleanup;
 
+  // [[boundary_layer]] (docs/boundary-layers.md): layered cells grown from the named wall curves, the
+  // particle core meshed on their fronts. None by default (the outputs are then those of the core alone).
+  struct BoundaryLayer {
+    std::vector<std::string> curves;  // names from geometry.curve_names (or the files' curve names)
+    double first_height = 0.0;        // given, or from y_plus (flat-plate estimate, first_height_for_y_plus)
+    double y_plus = 0.0, reynolds = 0.0, reference_length = 0.0;  // 0 unless y_plus is given
+    double growth = 1.2;
+    double thickness = 0.0;  // or layers (exactly one of the two)
+    int layers = 0;
+    bool quads = false;  // elements = "quads": true quadrilaterals (mixed cells); "triangles": each split in 2
+  };
+  std::vector<BoundaryLayer> boundary_layers;
+
   struct Output {
     std::vector<std::string> formats{"msh", "vtu", "png"};
     bool tree_overlay = false;
@@ -189,6 +202,10 @@ struct CaseConfig {
   // false (the Python API): the stages compute only; nothing is written into out_dir.
   bool write_outputs = true;
 };
+
+// The first cell height for a target y+ on a flat plate (docs/boundary-layers.md): White's turbulent
+// skin friction Cf = 0.026 / Re^(1/7), u_tau = U sqrt(Cf / 2), y = y+ L / (Re sqrt(Cf / 2)).
+double first_height_for_y_plus(double y_plus, double reynolds, double reference_length);
 
 // Every valid dotted key, for docs and suggestions.
 const std::vector<std::string>& case_file_keys();

@@ -163,6 +163,9 @@ T choose(const Reader& r, const std::string& key, const toml::node& n,
   r.fail(key, &n, fmt::format("{} must be one of {}, got '{}'", key, valid, quote_input(v)));
 }
 
+// The [[boundary_layer]] tables into c.boundary_layers (case_layers.cpp).
+void read_boundary_layer_sections(const Reader& r, const toml::table& root, CaseConfig& c);
+
 // Every section's keys into `c` (case_sections.cpp), after the preset and the name.
 void read_case_sections(const Reader& r, const toml::table& root, CaseConfig& c);
 

@@ -412,6 +412,7 @@ void read_case_sections(const Reader& r, const toml::table& root, CaseConfig& c)
   read_population_section(r, root, c);
   read_cleanup_section(r, root, c);
   read_output_section(r, root, c);
+  read_boundary_layer_sections(r, root, c);
 }
 
 }  // namespace pdmesh::case_detail

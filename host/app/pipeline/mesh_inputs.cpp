@@ -212,6 +212,11 @@ double run_memory_bytes(double nodes, std::size_t field_bytes) {
 }
 
 InitialDistribution make_initial(const CaseConfig& config, const MeshInputs& inputs, const SpacingStage& spacing) {
+  // run_mesh meshes a layered case's core (a case without the tables); a caller driving the stages
+  // itself (the Python API) would mesh the whole domain without the layers.
+  if (!config.boundary_layers.empty())
+    throw InputError(fmt::format("{}: [[boundary_layer]] is only supported by `pdmesh mesh` (not by the Python API yet)",
+                                 config.source.string()));
   const BoundaryPlacement boundary = place_boundary(config, inputs, spacing);
   InitOptions options;
   options.method = config.init.method;

@@ -10,6 +10,7 @@
 
 #include "app/pipeline/exit_codes.hpp"
 #include "app/pipeline/interrupt.hpp"
+#include "app/pipeline/layer_pipeline.hpp"
 #include "app/pipeline/pipeline_detail.hpp"
 #include "app/pipeline/output_guard.hpp"
 #include "app/pipeline/resume.hpp"
@@ -141,8 +142,17 @@ void read_stage_report(const CaseConfig& config, const MeshInputs& inputs) {
 }
 
 // The stages simulation and mesh of a new run, from the initial nodes on (moved in place).
+// With [[boundary_layer]]: the case and inputs of the whole domain, the layers, and the core's inputs (which
+// `config` and `inputs` of simulate_and_mesh then are).
+struct LayeredRun {
+  const CaseConfig& config;
+  const MeshInputs& inputs;
+  const LayeredCase& layered;
+};
+
 void simulate_and_mesh(const CaseConfig& config, const MeshInputs& inputs, const SpacingStage& spacing, NodeSet& nodes,
-                       std::future<PreparedBackend>& prepared, bool use_prepared, RunPhases& phases) {
+                       std::future<PreparedBackend>& prepared, bool use_prepared, RunPhases& phases,
+                       const LayeredRun* layered = nullptr) {
   std::optional<SimState> finished;
   checkpoint_on_stop(config, nodes, finished, [&] {
     std::shared_ptr<const Mesh> final_mesh;
@@ -161,10 +171,25 @@ void simulate_and_mesh(const CaseConfig& config, const MeshInputs& inputs, const
       final_mesh = simulate(config, inputs, spacing, nodes, nullptr, &hooks, &phases).final_mesh;
     }
     // A converged run has triangulated its final nodes.
-    mesh_and_measure(config, inputs, spacing, nodes, &phases, final_mesh.get());
+    if (layered) {
+      // The core's cleaned mesh, written with the layer cells.
+      CaseConfig core = config;
+      core.write_outputs = false;
+      std::size_t dropped = 0;
+      const NodeSet core_nodes = without_front_nodes(nodes, inputs.geometry, dropped);
+      if (dropped > 0)
+        progress(config, "boundary layers: {} node(s) the simulation snapped onto a layer front left out", dropped);
+      const Mesh mesh = mesh_and_measure(core, inputs, spacing, core_nodes, &phases, dropped ? nullptr : final_mesh.get());
+      write_layered_outputs(layered->config, layered->inputs, layered->layered, inputs, mesh, phases);
+    } else {
+      mesh_and_measure(config, inputs, spacing, nodes, &phases, final_mesh.get());
+    }
     check_interrupt();  // a stop while the last pictures were abandoned
   });
 }
+
+void run_core(const CaseConfig& config, const MeshInputs& inputs, const SpacingStage& spacing,
+              std::future<PreparedBackend>& prepared, RunPhases& phases, const LayeredRun* layered);
 
 // Every stage in order (run_mesh without the stop handling).
 void run_stages(const CaseConfig& config, RunPhases& phases) {
@@ -179,6 +204,8 @@ void run_stages(const CaseConfig& config, RunPhases& phases) {
   // parallel_for's helpers before any backend starts: creating a thread waits while the backend's
   // dlopen runs (core/worker_pool.hpp), and the spacing phase's parallel loops would wait for it.
   start_workers();
+  if (config.resume && !config.boundary_layers.empty())
+    throw InputError(fmt::format("{}: --resume is not supported with [[boundary_layer]]", config.source.string()));
   if (config.resume) {
     resume_mesh(config, inputs, phases);
     return;
@@ -192,10 +219,34 @@ void run_stages(const CaseConfig& config, RunPhases& phases) {
   // The final spacing field and its quadtree (in the thesis preset eq. 3.6's lookup table, which the
   // node estimate and the simulation read), then the limits, before any large allocation.
   timer = phases.phase("spacing");
-  const SpacingStage spacing(config, inputs);
+  const SpacingStage case_spacing(config, inputs);
   timer.stop();
-  report_spacing(config, spacing);
-  timer = phases.phase("estimate");
+  report_spacing(config, case_spacing);
+  // With [[boundary_layer]] the later stages mesh the core: the case on the layer fronts.
+  std::unique_ptr<LayeredCase> layered;
+  std::unique_ptr<MeshInputs> core_inputs;
+  std::unique_ptr<SpacingStage> core_spacing;
+  if (!config.boundary_layers.empty()) {
+    timer = phases.phase("layers");
+    layered = build_layers(config, inputs, case_spacing);
+    timer.stop();
+    timer = phases.phase("core spacing");
+    core_inputs = std::make_unique<MeshInputs>(layered->core);
+    core_spacing = std::make_unique<SpacingStage>(layered->core, *core_inputs);
+    timer.stop();
+  }
+  if (!layered) {
+    run_core(config, inputs, case_spacing, prepared, phases, nullptr);
+    return;
+  }
+  const LayeredRun layered_run{config, inputs, *layered};
+  run_core(layered->core, *core_inputs, *core_spacing, prepared, phases, &layered_run);
+}
+
+// The stages from the node estimate on, for the case (or, with layers, for the core).
+void run_core(const CaseConfig& config, const MeshInputs& inputs, const SpacingStage& spacing,
+              std::future<PreparedBackend>& prepared, RunPhases& phases, const LayeredRun* layered) {
+  auto timer = phases.phase("estimate");
   const double estimate = check_node_limit(config, inputs, spacing);
   timer.stop();
   // `--device auto` on a small case takes the host reference: the backend set up beside the spacing
@@ -221,7 +272,7 @@ void run_stages(const CaseConfig& config, RunPhases& phases) {
   const PictureGuard guard(phases);
   write_initial_outputs(config, inputs, initial, &phases);
   // None with --iterations 0: the initial distribution is meshed.
-  simulate_and_mesh(config, inputs, spacing, nodes, prepared, use_prepared, phases);
+  simulate_and_mesh(config, inputs, spacing, nodes, prepared, use_prepared, phases, layered);
 }
 
 }  // namespace

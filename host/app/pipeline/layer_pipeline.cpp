@@ -1,0 +1,353 @@
+// The boundary-layer run (layer_pipeline.hpp): the layers of every [[boundary_layer]] table, the
+// core's case on their fronts, and the merged mesh's outputs.
+#include "app/pipeline/layer_pipeline.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <map>
+#include <fmt/format.h>
+
+#include "app/pipeline/pipeline_detail.hpp"
+#include "core/atomic_file.hpp"
+#include "core/errors.hpp"
+#include "io/mixed_mesh.hpp"
+#include "io/quality_report.hpp"
+#include "layers/front_geometry.hpp"
+#include "layers/layer_measures.hpp"
+#include "mesh/quality.hpp"
+#include "render/mesh_picture.hpp"
+
+namespace pdmesh {
+
+namespace fs = std::filesystem;
+using mesh_detail::progress;
+
+namespace {
+
+// The case's field, lowered near the layer fronts to q_i + gradation x distance from each front node
+// i, with q_i = growth x the last layer's height there: the core's first triangles continue the
+// layer's growth.
+class FrontSpacing final : public SpacingField {
+ public:
+  struct Source {
+    Vec2 p;
+    double q;
+  };
+  FrontSpacing(const SpacingField& base, std::vector<Source> sources, double gradation)
+      : base_(base), sources_(std::move(sources)), gradation_(gradation) {
+    std::sort(sources_.begin(), sources_.end(), [](const Source& a, const Source& b) { return a.p.x < b.p.x; });
+  }
+  double at(Vec2 p) const override {
+    double q = base_.at(p);
+    // Sources farther than q / gradation in x cannot lower q: scan outwards from p.x until then.
+    const auto mid = std::lower_bound(sources_.begin(), sources_.end(), p.x,
+                                      [](const Source& s, double x) { return s.p.x < x; });
+    for (auto it = mid; it != sources_.end() && gradation_ * (it->p.x - p.x) < q; ++it)
+      q = std::min(q, it->q + gradation_ * dist(p, it->p));
+    for (auto it = mid; it != sources_.begin();) {
+      --it;
+      if (gradation_ * (p.x - it->p.x) >= q) break;
+      q = std::min(q, it->q + gradation_ * dist(p, it->p));
+    }
+    return q;
+  }
+
+ private:
+  const SpacingField& base_;
+  std::vector<Source> sources_;
+  double gradation_;
+};
+
+// A ray's last layer height over the wall (its top two nodes' distance along the ray, times the
+// ray's correction); 0 for a ray without layers.
+double last_height(const LayerMesh& m, const LayerRay& ray) {
+  if (ray.nodes.size() < 2) return 0.0;
+  return ray.correction * dist(m.nodes[static_cast<std::size_t>(ray.nodes.back())],
+                               m.nodes[static_cast<std::size_t>(ray.nodes[ray.nodes.size() - 2])]);
+}
+
+void check_formats(const CaseConfig& config) {
+  for (const std::string& f : config.output.formats)
+    if (f == "msh22" || f == "triangle")
+      throw InputError(fmt::format("{}: output.formats: '{}' cannot hold the cells of [[boundary_layer]] (msh, vtu and "
+                                   "su2 can)",
+                                   config.source.string(), f));
+}
+
+}  // namespace
+
+std::unique_ptr<LayeredCase> build_layers(const CaseConfig& config, const MeshInputs& inputs,
+                                          const SpacingStage& spacing) {
+  const auto start = std::chrono::steady_clock::now();
+  if (config.resume)
+    throw InputError(fmt::format("{}: --resume is not supported with [[boundary_layer]]", config.source.string()));
+  check_formats(config);
+  auto out = std::make_unique<LayeredCase>();
+  const SpacingField& field = spacing.field();
+  const CoreSpacing core_spacing = [&field](Vec2 p) { return field.at(p); };
+  // Each table's layers on the geometry the ones before it left: their fronts are curves it stops at.
+  std::shared_ptr<const Geometry> geometry(&inputs.geometry, [](const Geometry*) {});
+  std::vector<RawCurve> curves;
+  GeometryOptions options;
+  options.join_tolerance = config.geometry.join_tolerance;
+  options.corner_angle_deg = config.geometry.corner_angle;
+  std::vector<FrontSpacing::Source> sources;
+  for (const CaseConfig::BoundaryLayer& b : config.boundary_layers) {
+    LayerSection s;
+    s.config = b;
+    s.settings.first_height = b.first_height;
+    s.settings.growth = b.growth;
+    s.settings.thickness = b.thickness;
+    s.settings.layers = b.layers;
+    s.settings.split_quads = !b.quads;
+    check_layer_settings(s.settings);
+    s.geometry = geometry;
+    s.walls = curves_by_name(*geometry, b.curves, "boundary_layer.curves");
+    s.mesh = build_boundary_layers(*geometry, s.walls, s.settings, core_spacing);
+    for (const LayerRay& ray : s.mesh.rays)
+      if (const double h = last_height(s.mesh, ray); h > 0.0)
+        sources.push_back({s.mesh.nodes[static_cast<std::size_t>(ray.nodes.back())], b.growth * h});
+    curves = front_curves(*geometry, s.walls, s.mesh);
+    geometry = std::make_shared<const Geometry>(build_geometry(curves, options));
+    out->sections.push_back(std::move(s));
+  }
+  CaseConfig& core = out->core;
+  core = config;
+  core.boundary_layers.clear();
+  core.geometry.files.clear();
+  core.geometry.curve_names.clear();
+  core.geometry.given_curves = std::move(curves);
+  core.geometry.curves = CurveKind::Polyline;  // the fronts are polylines of layer nodes
+  // The case's final field (already scaled) is the core's base field, lowered at the fronts.
+  const double gradation = config.spacing.gradation > 0.0 ? config.spacing.gradation : 0.2;
+  core.spacing.given = std::make_shared<FrontSpacing>(field, std::move(sources), gradation);
+  core.spacing.scale = 1.0;
+  out->seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  std::size_t cells = 0;
+  for (const LayerSection& s : out->sections) cells += s.mesh.cells.size();
+  progress(config, "boundary layers: {} table(s), {} cells, {:.3f} s; the core is meshed on their fronts",
+           out->sections.size(), cells, out->seconds);
+  return out;
+}
+
+NodeSet without_front_nodes(const NodeSet& nodes, const Geometry& core_geometry, std::size_t& dropped) {
+  std::vector<int> index(nodes.size(), -1);
+  NodeSet out;
+  dropped = 0;
+  for (std::size_t i = 0; i < nodes.size(); ++i) {
+    const int c = nodes.curve[i];
+    if (nodes.kind[i] == NodeKind::Boundary && c >= 0 && core_geometry.curves[static_cast<std::size_t>(c)].fixed_points) {
+      ++dropped;
+      continue;
+    }
+    index[i] = out.add(nodes.x[i], nodes.q[i], nodes.kind[i], c);
+  }
+  out.curve_nodes.resize(nodes.curve_nodes.size());
+  for (std::size_t c = 0; c < nodes.curve_nodes.size(); ++c)
+    for (const int n : nodes.curve_nodes[c])
+      if (index[static_cast<std::size_t>(n)] >= 0) out.curve_nodes[c].push_back(index[static_cast<std::size_t>(n)]);
+  return out;
+}
+
+namespace {
+
+// The layer cells and the core triangles in one mesh; the core's points first, each front node of
+// the layers mapped onto the core's point at exactly its place.
+MixedMesh merge(const MeshInputs& inputs, const LayeredCase& layered, const MeshInputs& core_inputs,
+                const Mesh& core) {
+  MixedMesh m;
+  m.points = core.points;
+  m.curve_names = inputs.curve_names();
+  const auto original = [&](const std::string& name) {
+    const auto it = std::find(m.curve_names.begin(), m.curve_names.end(), name);
+    if (it == m.curve_names.end()) throw Error(fmt::format("boundary layer: curve '{}' not in the input", name));
+    return static_cast<int>(it - m.curve_names.begin());
+  };
+  for (const auto& t : core.triangles) {
+    m.cells.push_back({t[0], t[1], t[2], -1});
+    m.layer.push_back(0);
+  }
+  for (const BoundaryEdge& e : core.boundary_edges) {
+    const Curve& c = core_inputs.geometry.curves[static_cast<std::size_t>(e.curve)];
+    if (c.fixed_points) continue;  // a front: inside the merged mesh
+    m.boundary_edges.push_back({e.a, e.b, original(c.name)});
+  }
+  std::map<std::pair<double, double>, int> at;
+  for (std::size_t i = 0; i < core.points.size(); ++i) at.emplace(std::make_pair(core.points[i].x, core.points[i].y), i);
+  for (const LayerSection& s : layered.sections) {
+    const LayerMesh& lm = s.mesh;
+    std::vector<int> index(lm.nodes.size(), -1);
+    for (const LayerFront& f : lm.fronts)
+      for (const int n : f.nodes) {
+        const Vec2 p = lm.nodes[static_cast<std::size_t>(n)];
+        const auto it = at.find({p.x, p.y});
+        if (it == at.end())
+          throw Error(fmt::format("boundary layer: front node ({}, {}) is not a node of the core mesh", p.x, p.y));
+        index[static_cast<std::size_t>(n)] = it->second;
+      }
+    for (std::size_t i = 0; i < lm.nodes.size(); ++i)
+      if (index[i] < 0) {
+        index[i] = static_cast<int>(m.points.size());
+        m.points.push_back(lm.nodes[i]);
+      }
+    for (const LayerCell& c : lm.cells) {
+      std::array<int, 4> v{-1, -1, -1, -1};
+      for (int k = 0; k < (c.triangle() ? 3 : 4); ++k)
+        v[static_cast<std::size_t>(k)] = index[static_cast<std::size_t>(c.v[static_cast<std::size_t>(k)])];
+      m.cells.push_back(v);
+      m.layer.push_back(1);
+    }
+    // The wall edges: consecutive wall nodes of each chain's rays (a fan's rays share one).
+    for (std::size_t chain = 0; chain + 1 < lm.chain_ray_begin.size(); ++chain) {
+      const int begin = lm.chain_ray_begin[chain], end = lm.chain_ray_begin[chain + 1];
+      const bool closed = lm.chain_closed[chain] != 0;
+      for (int r = begin; r < end; ++r) {
+        const int next = r + 1 < end ? r + 1 : (closed ? begin : -1);
+        if (next < 0) break;
+        const LayerRay& a = lm.rays[static_cast<std::size_t>(r)];
+        const LayerRay& b = lm.rays[static_cast<std::size_t>(next)];
+        if (a.wall_node == b.wall_node) continue;
+        const std::string& name = s.geometry->curves[static_cast<std::size_t>(b.curve)].name;
+        m.boundary_edges.push_back({index[static_cast<std::size_t>(a.wall_node)],
+                                    index[static_cast<std::size_t>(b.wall_node)], original(name)});
+      }
+    }
+  }
+  return m;
+}
+
+// Growth across the junction: for each front edge, the height of the core triangle on it over the
+// mean last layer height of its two nodes' rays.
+std::vector<double> junction_growth(const LayeredCase& layered, const Mesh& core) {
+  std::map<std::pair<double, double>, double> last;  // top node -> last layer height
+  for (const LayerSection& s : layered.sections)
+    for (const LayerRay& ray : s.mesh.rays)
+      if (const double h = last_height(s.mesh, ray); h > 0.0) {
+        const Vec2 p = s.mesh.nodes[static_cast<std::size_t>(ray.nodes.back())];
+        last[{p.x, p.y}] = h;
+      }
+  std::vector<double> ratios;
+  for (const auto& t : core.triangles)
+    for (int i = 0; i < 3; ++i) {
+      const Vec2 a = core.points[static_cast<std::size_t>(t[static_cast<std::size_t>(i)])];
+      const Vec2 b = core.points[static_cast<std::size_t>(t[static_cast<std::size_t>((i + 1) % 3)])];
+      const Vec2 c = core.points[static_cast<std::size_t>(t[static_cast<std::size_t>((i + 2) % 3)])];
+      const auto ha = last.find({a.x, a.y}), hb = last.find({b.x, b.y});
+      if (ha == last.end() || hb == last.end()) continue;
+      // Only edges of the front: both nodes consecutive on it is not known here, so the edge must
+      // be a boundary edge of the core (its other side is the layer).
+      const double height = std::fabs(cross(b - a, c - a)) / dist(a, b);
+      ratios.push_back(height / (0.5 * (ha->second + hb->second)));
+    }
+  return ratios;
+}
+
+double quantile(std::vector<double> v, double q) {
+  if (v.empty()) return 0.0;
+  std::sort(v.begin(), v.end());
+  return v[static_cast<std::size_t>(std::min<double>(static_cast<double>(v.size()) - 1, q * static_cast<double>(v.size())))];
+}
+
+}  // namespace
+
+void write_layered_outputs(const CaseConfig& config, const MeshInputs& inputs, const LayeredCase& layered,
+                           const MeshInputs& core_inputs, const Mesh& core_mesh, RunPhases& phases) {
+  auto timer = phases.phase("merge layers");
+  const MixedMesh mixed = merge(inputs, layered, core_inputs, core_mesh);
+  timer.stop();
+  timer = phases.phase("quality");
+  QualitySummary core_summary = summarize_quality(core_mesh);
+  core_summary.points = core_mesh.points.size();
+  // The junction: front edges only (edges of the core's boundary whose nodes are layer tops).
+  Mesh front_only = core_mesh;
+  {
+    std::map<std::pair<int, int>, bool> front_edge;
+    for (const BoundaryEdge& e : core_mesh.boundary_edges)
+      if (core_inputs.geometry.curves[static_cast<std::size_t>(e.curve)].fixed_points)
+        front_edge[{std::min(e.a, e.b), std::max(e.a, e.b)}] = true;
+    front_only.triangles.clear();
+    for (const auto& t : core_mesh.triangles) {
+      bool on = false;
+      for (int i = 0; i < 3; ++i) {
+        const int a = t[static_cast<std::size_t>(i)], b = t[static_cast<std::size_t>((i + 1) % 3)];
+        on = on || front_edge.count({std::min(a, b), std::max(a, b)}) > 0;
+      }
+      if (on) front_only.triangles.push_back(t);
+    }
+  }
+  const std::vector<double> junction = junction_growth(layered, front_only);
+  std::string table = format_quality_table(core_summary, config.name + " core");
+  std::string json_layers;
+  for (std::size_t k = 0; k < layered.sections.size(); ++k) {
+    const LayerSection& s = layered.sections[k];
+    const LayerMeasures lm = measure_layers(s.mesh, s.settings.first_height);
+    std::vector<std::string> names;
+    for (const Curve& c : s.geometry->curves) names.push_back(c.name);
+    table += fmt::format("boundary layer {} ({}; h1 {:.4g}, growth {}, {}):\n{}", k + 1, fmt::join(s.config.curves, ", "),
+                         s.settings.first_height, s.settings.growth, s.config.quads ? "quads" : "triangles",
+                         format_layer_measures(lm, names));
+    std::string fans;
+    for (const int f : lm.fan_sizes) fans += (fans.empty() ? "" : ", ") + std::to_string(f);
+    json_layers += fmt::format(
+        "{}    {{\"curves\": [\"{}\"], \"first_height\": {}, \"growth\": {}, \"cells\": {}, \"quads\": {}, "
+        "\"triangles\": {}, \"wall_cells\": {}, \"first_height_within_2pct\": {}, \"first_height_max_error\": {}, "
+        "\"growth_median\": {}, \"growth_p95\": {}, \"growth_max\": {}, \"max_angle\": {}, \"angles_above_150\": {}, "
+        "\"inverted_cells\": {}, \"fan_sizes\": [{}], \"max_thickness_jump\": {}, \"min_thickness\": {}, "
+        "\"max_thickness\": {}, \"max_layers\": {}}}",
+        k ? ",\n" : "", fmt::join(s.config.curves, "\", \""), s.settings.first_height, s.settings.growth, lm.cells,
+        lm.quads, lm.triangles, lm.wall_cells, lm.first_height_within_2pct, lm.first_height_max_error, lm.growth_median,
+        lm.growth_p95, lm.growth_max, lm.max_angle_deg, lm.angles_above_150, lm.inverted_cells, fans,
+        lm.max_thickness_jump, lm.min_thickness, lm.max_thickness, lm.max_layers);
+  }
+  const double j50 = quantile(junction, 0.5), j95 = quantile(junction, 0.95);
+  const double jmax = junction.empty() ? 0.0 : *std::max_element(junction.begin(), junction.end());
+  table += fmt::format("junction (core triangle height on a front edge / last layer height), {} edges: median {:.3f}, "
+                       "p95 {:.3f}, max {:.3f}\nmerged mesh: {} points, {} cells ({} quads)\n",
+                       junction.size(), j50, j95, jmax, mixed.points.size(), mixed.cells.size(), mixed.quads());
+  timer.stop();
+  if (!config.quiet) fmt::print("{}", table);
+  {
+    const auto json_timer = phases.phase("quality.json");
+    std::string json = quality_json(core_summary, config.name);
+    const auto close = json.find_last_of('}');
+    json.insert(close, fmt::format(",\n  \"boundary_layer\": {{\n  \"tables\": [\n{}\n  ],\n  \"junction\": {{\"edges\": {}, "
+                                   "\"median\": {}, \"p95\": {}, \"max\": {}}},\n  \"core_min_angle\": {},\n  "
+                                   "\"points\": {}, \"cells\": {}, \"quads\": {}\n  }}\n",
+                                   json_layers, junction.size(), j50, j95, jmax, core_summary.min_angle,
+                                   mixed.points.size(), mixed.cells.size(), mixed.quads()));
+    write_file_atomically(config.out_dir / "quality.json", json);
+  }
+  std::vector<std::string> formats;
+  for (const std::string& f : config.output.formats)
+    if (f == "msh" || f == "vtu" || f == "su2") formats.push_back(f);
+  std::vector<fs::path> written;
+  {
+    const auto writer_timer = phases.phase("mesh files");
+    written = write_mixed_mesh(mixed, config.out_dir, "mesh", formats);
+  }
+  std::vector<std::string> pictures;
+  if (config.output.wants("png")) {
+    const auto picture_timer = phases.phase("mesh pictures");
+    const Mesh drawn = triangulated(mixed);
+    MeshPictureOptions picture;
+    picture.title = fmt::format("{} - mesh ({} cells, {} in the boundary layer)", config.name, mixed.cells.size(),
+                                mixed.cells.size() - core_mesh.triangles.size());
+    write_mesh_picture(config.out_dir / "mesh.png", drawn, picture);
+    pictures.push_back("mesh.png");
+    for (const ViewWindow& view : config.output.views) {
+      MeshPictureOptions zoomed = picture;
+      zoomed.title += " - " + view.name;
+      zoomed.window = view.window;
+      write_mesh_picture(config.out_dir / fmt::format("mesh_{}.png", view.name), drawn, zoomed);
+      pictures.push_back(fmt::format("mesh_{}.png", view.name));
+    }
+  }
+  std::string names;
+  for (const auto& p : written) names += ", " + p.filename().string();
+  for (const auto& p : pictures) names += ", " + p;
+  progress(config, "mesh: {} cells ({} core triangles, {} layer cells); wrote {}/quality.json{}", mixed.cells.size(),
+           core_mesh.triangles.size(), mixed.cells.size() - core_mesh.triangles.size(), config.out_dir.string(), names);
+}
+
+}  // namespace pdmesh

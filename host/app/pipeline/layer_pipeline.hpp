@@ -1,0 +1,50 @@
+// `pdmesh mesh` with [[boundary_layer]] (docs/boundary-layers.md): after stage spacing the layers are
+// grown from the wall curves (the case's field as the core spacing they stop at), and the particle
+// core is the case again on the layer fronts: the fronts as curves whose every point is a fixed node,
+// and the case's field lowered near the fronts to growth x the last layer's height (graded). After
+// the core's stage mesh, the layer cells and the core triangles are one mesh (mixed cells or all
+// triangles) in the mesh files, the table and quality.json gain the layer measures.
+#pragma once
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "app/config/case_file.hpp"
+#include "app/pipeline/mesh_inputs.hpp"
+#include "app/pipeline/run_phases.hpp"
+#include "layers/boundary_layers.hpp"
+#include "mesh/mesh.hpp"
+
+namespace pdmesh {
+
+// One [[boundary_layer]] table, built.
+struct LayerSection {
+  CaseConfig::BoundaryLayer config;
+  LayerSettings settings;
+  std::shared_ptr<const Geometry> geometry;  // what it was built on: the input, with earlier sections' fronts
+  std::vector<int> walls;                    // its wall curves in `geometry`
+  LayerMesh mesh;
+};
+
+struct LayeredCase {
+  std::vector<LayerSection> sections;
+  CaseConfig core;  // the core's case: the front curves, their field, no [[boundary_layer]]
+  double seconds = 0.0;
+};
+
+// InputError (before anything is written) for an unknown curve name, an open wall chain, settings
+// the generator refuses, or an output format that cannot hold the layer cells (msh22, triangle),
+// and for --resume. Keeps a reference to `spacing`'s field in the core's case: it must outlive it.
+std::unique_ptr<LayeredCase> build_layers(const CaseConfig& config, const MeshInputs& inputs,
+                                          const SpacingStage& spacing);
+
+// The core's nodes without the Boundary nodes on a front: interior nodes that the simulation snapped onto
+// a front curve (its points are the layer's nodes; one between them would hang on a layer cell's edge).
+NodeSet without_front_nodes(const NodeSet& nodes, const Geometry& core_geometry, std::size_t& dropped);
+
+// The layer cells and the core mesh (the cleaned triangles of layered.core's nodes) as one mesh:
+// the mesh files, the pictures, the table and quality.json (with the layer measures).
+void write_layered_outputs(const CaseConfig& config, const MeshInputs& inputs, const LayeredCase& layered,
+                           const MeshInputs& core_inputs, const Mesh& core_mesh, RunPhases& phases);
+
+}  // namespace pdmesh

@@ -1,0 +1,205 @@
+// Writers of MixedMesh (io/mixed_mesh.hpp): the formats of msh_writer, vtu_writer and su2_writer with
+// quadrilaterals beside the triangles and the boundary layer as a region of its own.
+#include "io/mixed_mesh.hpp"
+
+#include <iterator>
+#include <fmt/format.h>
+
+#include "core/atomic_file.hpp"
+#include "core/errors.hpp"
+#include "core/g17.hpp"
+#include "io/mesh_io_common.hpp"
+
+namespace pdmesh {
+
+namespace {
+
+// The curves and boundary edges as a Mesh, for the labels and the per-curve order the writers share.
+Mesh curves_of(const MixedMesh& m) {
+  Mesh out;
+  out.boundary_edges = m.boundary_edges;
+  out.curve_names = m.curve_names;
+  return out;
+}
+
+void append_point(std::string& out, Vec2 p) {
+  append_g17(out, p.x);
+  out += ' ';
+  append_g17(out, p.y);
+}
+
+int size_of(const std::array<int, 4>& c) { return c[3] < 0 ? 3 : 4; }
+
+}  // namespace
+
+std::size_t MixedMesh::quads() const {
+  std::size_t n = 0;
+  for (const auto& c : cells) n += c[3] >= 0;
+  return n;
+}
+
+std::string mixed_msh41_string(const MixedMesh& mesh) {
+  const Mesh curves = curves_of(mesh);
+  const std::size_t nc = mesh.curve_names.size();
+  std::string out = "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n";
+  out += fmt::format("$PhysicalNames\n{}\n", nc + 2);
+  for (std::size_t c = 0; c < nc; ++c) out += fmt::format("1 {} \"{}\"\n", c + 1, curve_label(curves, c));
+  out += fmt::format("2 {} \"{}\"\n2 {} \"{}\"\n$EndPhysicalNames\n", nc + 1, kCoreRegion, nc + 2, kLayerRegion);
+  Box all;
+  for (const Vec2 p : mesh.points) all.add(p);
+  if (mesh.points.empty()) all.add({0.0, 0.0});
+  const auto box = [&](const Box& b) {
+    return fmt::format("{} {} 0 {} {} 0", coord(b.lo.x), coord(b.lo.y), coord(b.hi.x), coord(b.hi.y));
+  };
+  out += fmt::format("$Entities\n0 {} 2 0\n", nc);
+  for (std::size_t c = 0; c < nc; ++c) out += fmt::format("{} {} 1 {} 0\n", c + 1, box(all), c + 1);
+  out += fmt::format("1 {} 1 {} 0\n2 {} 1 {} 0\n$EndEntities\n", box(all), nc + 1, box(all), nc + 2);
+  const std::size_t n = mesh.points.size();
+  out += fmt::format("$Nodes\n1 {} 1 {}\n2 1 0 {}\n", n, n, n);
+  auto to = std::back_inserter(out);
+  for (std::size_t i = 0; i < n; ++i) fmt::format_to(to, "{}\n", i + 1);
+  for (const Vec2 p : mesh.points) {
+    append_point(out, p);
+    out += " 0\n";
+  }
+  out += "$EndNodes\n";
+  // Blocks: the lines of each curve, then (surface, type) = (1, 2), (2, 2), (2, 3) where not empty.
+  std::vector<std::size_t> per_curve(nc, 0);
+  for (const auto& e : mesh.boundary_edges) per_curve[static_cast<std::size_t>(e.curve)]++;
+  struct Block {
+    int entity, type;
+    std::vector<std::size_t> cells;
+  };
+  std::vector<Block> blocks = {{1, 2, {}}, {2, 2, {}}, {2, 3, {}}};
+  for (std::size_t k = 0; k < mesh.cells.size(); ++k) {
+    const bool quad = size_of(mesh.cells[k]) == 4;
+    blocks[mesh.layer[k] ? (quad ? 2 : 1) : 0].cells.push_back(k);
+  }
+  std::size_t block_count = 0;
+  for (auto k : per_curve) block_count += k > 0;
+  for (const Block& b : blocks) block_count += !b.cells.empty();
+  const std::size_t total = mesh.boundary_edges.size() + mesh.cells.size();
+  out += fmt::format("$Elements\n{} {} 1 {}\n", block_count, total, total);
+  std::size_t tag = 1, next = 0;
+  const auto order = boundary_edges_by_curve(curves);
+  for (std::size_t c = 0; c < nc; ++c) {
+    if (per_curve[c] == 0) continue;
+    out += fmt::format("1 {} 1 {}\n", c + 1, per_curve[c]);
+    for (std::size_t k = 0; k < per_curve[c]; ++k, ++next) {
+      const auto& e = mesh.boundary_edges[order[next]];
+      fmt::format_to(to, "{} {} {}\n", tag++, e.a + 1, e.b + 1);
+    }
+  }
+  for (const Block& b : blocks) {
+    if (b.cells.empty()) continue;
+    out += fmt::format("2 {} {} {}\n", b.entity, b.type, b.cells.size());
+    for (const std::size_t k : b.cells) {
+      const auto& c = mesh.cells[k];
+      fmt::format_to(to, "{}", tag++);
+      for (int i = 0; i < size_of(c); ++i) fmt::format_to(to, " {}", c[static_cast<std::size_t>(i)] + 1);
+      out += '\n';
+    }
+  }
+  out += "$EndElements\n";
+  return out;
+}
+
+std::string mixed_vtu_string(const MixedMesh& mesh) {
+  std::string out = fmt::format(
+      "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\">\n"
+      "<UnstructuredGrid>\n<Piece NumberOfPoints=\"{}\" NumberOfCells=\"{}\">\n<Points>\n"
+      "<DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">\n",
+      mesh.points.size(), mesh.cells.size());
+  for (const Vec2 p : mesh.points) {
+    append_point(out, p);
+    out += " 0\n";
+  }
+  out += "</DataArray>\n</Points>\n<Cells>\n<DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">\n";
+  auto to = std::back_inserter(out);
+  for (const auto& c : mesh.cells) {
+    for (int i = 0; i < size_of(c); ++i) fmt::format_to(to, "{}{}", i ? " " : "", c[static_cast<std::size_t>(i)]);
+    out += '\n';
+  }
+  out += "</DataArray>\n<DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">\n";
+  std::size_t offset = 0;
+  for (const auto& c : mesh.cells) fmt::format_to(to, "{}\n", offset += static_cast<std::size_t>(size_of(c)));
+  out += "</DataArray>\n<DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\">\n";
+  for (const auto& c : mesh.cells) out += size_of(c) == 4 ? "9\n" : "5\n";
+  out += fmt::format("</DataArray>\n</Cells>\n<CellData Scalars=\"{0}\">\n"
+                     "<DataArray type=\"UInt8\" Name=\"{0}\" format=\"ascii\">\n", kLayerRegion);
+  for (const auto l : mesh.layer) out += l ? "1\n" : "0\n";
+  out += "</DataArray>\n</CellData>\n</Piece>\n</UnstructuredGrid>\n</VTKFile>\n";
+  return out;
+}
+
+std::string mixed_su2_string(const MixedMesh& mesh) {
+  const Mesh curves = curves_of(mesh);
+  std::string out = fmt::format("NDIME= 2\nNELEM= {}\n", mesh.cells.size());
+  auto to = std::back_inserter(out);
+  std::size_t id = 0;
+  for (int region = 0; region < 2; ++region)
+    for (std::size_t k = 0; k < mesh.cells.size(); ++k) {
+      if (mesh.layer[k] != region) continue;
+      const auto& c = mesh.cells[k];
+      fmt::format_to(to, "{}", size_of(c) == 4 ? 9 : 5);
+      for (int i = 0; i < size_of(c); ++i) fmt::format_to(to, " {}", c[static_cast<std::size_t>(i)]);
+      fmt::format_to(to, " {}\n", id++);
+    }
+  out += fmt::format("NPOIN= {}\n", mesh.points.size());
+  for (std::size_t i = 0; i < mesh.points.size(); ++i) {
+    append_point(out, mesh.points[i]);
+    fmt::format_to(to, " {}\n", i);
+  }
+  const std::size_t nc = mesh.curve_names.size();
+  std::vector<std::vector<std::size_t>> per_curve(nc);
+  for (std::size_t k = 0; k < mesh.boundary_edges.size(); ++k)
+    per_curve[static_cast<std::size_t>(mesh.boundary_edges[k].curve)].push_back(k);
+  out += fmt::format("NMARK= {}\n", nc);
+  for (std::size_t c = 0; c < nc; ++c) {
+    out += fmt::format("MARKER_TAG= {}\nMARKER_ELEMS= {}\n", curve_label(curves, c, true), per_curve[c].size());
+    for (const std::size_t k : per_curve[c])
+      fmt::format_to(to, "3 {} {}\n", mesh.boundary_edges[k].a, mesh.boundary_edges[k].b);
+  }
+  return out;
+}
+
+std::vector<std::filesystem::path> write_mixed_mesh(const MixedMesh& mesh, const std::filesystem::path& dir,
+                                                    const std::string& stem, const std::vector<std::string>& formats) {
+  std::vector<std::filesystem::path> written;
+  for (const std::string& f : formats) {
+    std::string text;
+    if (f == "msh") text = mixed_msh41_string(mesh);
+    else if (f == "vtu") text = mixed_vtu_string(mesh);
+    else if (f == "su2") text = mixed_su2_string(mesh);
+    else throw InputError(fmt::format("output.formats: '{}' cannot hold a boundary-layer mesh (msh, vtu and su2 can)", f));
+    const std::filesystem::path path = dir / (stem + "." + f);
+    write_file_atomically(path, text);
+    written.push_back(path);
+  }
+  return written;
+}
+
+Mesh triangulated(const MixedMesh& mesh) {
+  Mesh out;
+  out.points = mesh.points;
+  out.boundary_edges = mesh.boundary_edges;
+  out.curve_names = mesh.curve_names;
+  out.triangles.reserve(mesh.cells.size() + mesh.quads());
+  for (const auto& c : mesh.cells) {
+    if (c[3] < 0) {
+      out.triangles.push_back({c[0], c[1], c[2]});
+      continue;
+    }
+    const auto p = [&](int i) { return mesh.points[static_cast<std::size_t>(c[static_cast<std::size_t>(i)])]; };
+    if (dist(p(0), p(2)) <= dist(p(1), p(3))) {
+      out.triangles.push_back({c[0], c[1], c[2]});
+      out.triangles.push_back({c[0], c[2], c[3]});
+    } else {
+      out.triangles.push_back({c[0], c[1], c[3]});
+      out.triangles.push_back({c[1], c[2], c[3]});
+    }
+  }
+  return out;
+}
+
+}  // namespace pdmesh

@@ -1,0 +1,45 @@
+// A mesh of triangles and quadrilaterals in two regions (the particle core and a boundary layer,
+// docs/boundary-layers.md), and its writers: Gmsh MSH 4.1 (triangles type 2, quadrangles type 3),
+// VTK XML unstructured grid (VTK_TRIANGLE 5, VTK_QUAD 9) and SU2 (5, 9). Only the boundary-layer
+// runs write it; Mesh (mesh/mesh.hpp) stays the triangle mesh every other stage uses.
+#pragma once
+#include <array>
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "mesh/mesh.hpp"
+
+namespace pdmesh {
+
+struct MixedMesh {
+  std::vector<Vec2> points;
+  std::vector<std::array<int, 4>> cells;  // counter-clockwise; v[3] = -1 for a triangle
+  std::vector<std::uint8_t> layer;        // per cell: 1 in the boundary layer, 0 in the core
+  std::vector<BoundaryEdge> boundary_edges;
+  std::vector<std::string> curve_names;
+  std::size_t quads() const;
+};
+
+// The region names: physical group / cell data of the layer cells and of the core's.
+inline constexpr const char* kLayerRegion = "boundary_layer";
+inline constexpr const char* kCoreRegion = "domain";
+
+// Physical groups: one per curve (dimension 1, tag c + 1), "domain" and "boundary_layer" (dimension
+// 2, surface entities 1 and 2). The layer's triangles and quadrangles are separate element blocks.
+std::string mixed_msh41_string(const MixedMesh& mesh);
+// Cell data "boundary_layer" (1 in the layer, 0 in the core); no boundary edges.
+std::string mixed_vtu_string(const MixedMesh& mesh);
+// Core cells first, then the layer's; one marker per curve (SU2 has no volume markers).
+std::string mixed_su2_string(const MixedMesh& mesh);
+
+// DIR/STEM.msh, .vtu, .su2 for the formats of `formats` among msh, vtu, su2, each atomic; returns
+// the paths written. Throws InputError for another mesh format (msh22, triangle).
+std::vector<std::filesystem::path> write_mixed_mesh(const MixedMesh& mesh, const std::filesystem::path& dir,
+                                                    const std::string& stem, const std::vector<std::string>& formats);
+
+// The mesh as triangles (each quad split along its shorter diagonal), for the pictures.
+Mesh triangulated(const MixedMesh& mesh);
+
+}  // namespace pdmesh

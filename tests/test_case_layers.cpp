@@ -1,0 +1,198 @@
+// Tests of [[boundary_layer]] (docs/boundary-layers.md): the case tables read and range-checked, and
+// a run with layers: unknown curves refused before anything is written, the merged mixed mesh.
+#include <catch2/catch.hpp>
+#include <fmt/format.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <numbers>
+#include <sstream>
+#include <string>
+
+#include "app/config/case_file.hpp"
+#include "app/pipeline/layer_pipeline.hpp"
+#include "app/pipeline/mesh_pipeline.hpp"
+#include "core/errors.hpp"
+
+namespace fs = std::filesystem;
+using namespace pdmesh;
+
+namespace {
+
+const fs::path kCase = "/cases/demo/case.toml";
+const std::string kGeometry = "[geometry]\nfiles = [\"a.crv\"]\ncurve_names = [\"wall\", \"far\"]\n";
+
+std::string error_of(const std::string& text) {
+  try {
+    parse_case_text(text, kCase);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+std::string layer(const std::string& body) { return kGeometry + "[[boundary_layer]]\n" + body; }
+
+std::string read(const fs::path& p) {
+  std::ifstream in(p);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// A circle of radius 0.5 (the wall) inside a square of side 4.
+std::vector<RawCurve> circle_in_square() {
+  RawCurve wall{"wall", {}, "memory", 1, {}};
+  const int n = 64;
+  for (int k = 0; k <= n; ++k) {
+    const double a = 2.0 * std::numbers::pi * (k % n) / n;
+    wall.points.push_back({0.5 * std::cos(a), 0.5 * std::sin(a)});
+  }
+  RawCurve far{"far", {{-2, -2}, {2, -2}, {2, 2}, {-2, 2}, {-2, -2}}, "memory", 1, {}};
+  return {far, wall};
+}
+
+CaseConfig layered_case(const fs::path& out, const std::string& wall_name, bool quads) {
+  CaseConfig c = case_for_curves(circle_in_square(), "circle",
+                                 {parse_set_option("simulation.iterations=60"),
+                                  parse_set_option("simulation.device=host"),
+                                  parse_set_option("output.formats=[\"msh\",\"vtu\",\"su2\"]")});
+  CaseConfig::BoundaryLayer b;
+  b.curves = {wall_name};
+  b.first_height = 1e-3;
+  b.growth = 1.2;
+  b.thickness = 0.05;
+  b.quads = quads;
+  c.boundary_layers.push_back(b);
+  c.out_dir = out;
+  c.quiet = true;
+  return c;
+}
+
+}  // namespace
+
+TEST_CASE("[[boundary_layer]] tables are read into CaseConfig", "[app][case][layers]") {
+  const CaseConfig c = parse_case_text(layer("curves = [\"wall\"]\nfirst_height = 1e-5\ngrowth = 1.15\n"
+                                             "thickness = 0.02\nelements = \"quads\"\n") +
+                                           "[[boundary_layer]]\ncurves = [\"far\"]\nfirst_height = 0.001\nlayers = 4\n",
+                                       kCase);
+  REQUIRE(c.boundary_layers.size() == 2);
+  const auto& a = c.boundary_layers[0];
+  CHECK(a.curves == std::vector<std::string>{"wall"});
+  CHECK(a.first_height == 1e-5);
+  CHECK(a.growth == 1.15);
+  CHECK(a.thickness == 0.02);
+  CHECK(a.layers == 0);
+  CHECK(a.quads);
+  const auto& b = c.boundary_layers[1];
+  CHECK(b.layers == 4);
+  CHECK(b.thickness == 0.0);
+  CHECK(b.growth == 1.2);  // the default
+  CHECK_FALSE(b.quads);    // triangles by default
+  // Without the section: none.
+  CHECK(parse_case_text(kGeometry, kCase).boundary_layers.empty());
+  // A single [boundary_layer] table is one section.
+  CHECK(parse_case_text(kGeometry + "[boundary_layer]\ncurves = [\"wall\"]\nfirst_height = 1e-5\nthickness = 0.1\n", kCase)
+            .boundary_layers.size() == 1);
+}
+
+TEST_CASE("[[boundary_layer]] y_plus gives White's flat-plate first height", "[app][case][layers]") {
+  const CaseConfig c =
+      parse_case_text(layer("curves = [\"wall\"]\ny_plus = 1\nreynolds = 9e6\nreference_length = 1\nthickness = 0.02\n"),
+                      kCase);
+  REQUIRE(c.boundary_layers.size() == 1);
+  // Cf = 0.026 / (9e6)^(1/7) = 0.002637; y = 1 / (9e6 sqrt(Cf / 2)) = 3.06e-6.
+  const double cf = 0.026 / std::pow(9e6, 1.0 / 7.0);
+  CHECK(c.boundary_layers[0].first_height == Approx(1.0 / (9e6 * std::sqrt(cf / 2))).epsilon(1e-12));
+  CHECK(c.boundary_layers[0].first_height == Approx(3.06e-6).epsilon(0.01));
+  CHECK(first_height_for_y_plus(2.0, 9e6, 0.5) == Approx(c.boundary_layers[0].first_height).epsilon(1e-12));
+}
+
+TEST_CASE("bad [[boundary_layer]] settings are input errors naming the key and the value", "[app][case][layers]") {
+  const std::string ok_tail = "first_height = 1e-5\nthickness = 0.05\n";
+  CHECK_THAT(error_of(layer("curves = [\"wing\"]\n" + ok_tail)),
+             Catch::Contains("boundary_layer.curves") && Catch::Contains("'wing'") && Catch::Contains(":5:"));
+  CHECK_THAT(error_of(layer("curves = [\"wall\"]\ngrowth = 1.0\n" + ok_tail)),
+             Catch::Contains("boundary_layer.growth must be in (1, 3], got 1"));
+  CHECK_THAT(error_of(layer("curves = [\"wall\"]\ngrowth = 0.9\n" + ok_tail)), Catch::Contains("got 0.9"));
+  CHECK_THAT(error_of(layer("curves = [\"wall\"]\nfirst_height = 0.1\nthickness = 0.05\n")),
+             Catch::Contains("first_height 0.1 is above boundary_layer.thickness 0.05"));
+  CHECK_THAT(error_of(layer("curves = [\"wall\"]\ngrwth = 1.2\n" + ok_tail)),
+             Catch::Contains("unknown key 'boundary_layer.grwth'; did you mean 'boundary_layer.growth'?"));
+  CHECK_THAT(error_of(layer("curves = [\"wall\"]\nfirst_height = -1\nthickness = 0.05\n")),
+             Catch::Contains("boundary_layer.first_height must be > 0, got -1"));
+  CHECK_THAT(error_of(layer("curves = [\"wall\"]\nfirst_height = 1e-5\n")),
+             Catch::Contains("exactly one of thickness and layers"));
+  CHECK_THAT(error_of(layer("curves = [\"wall\"]\nfirst_height = 1e-5\nthickness = 0.1\nlayers = 3\n")),
+             Catch::Contains("exactly one of thickness and layers"));
+  CHECK_THAT(error_of(layer("curves = [\"wall\"]\nthickness = 0.1\n")), Catch::Contains("first_height and y_plus"));
+  CHECK_THAT(error_of(layer("curves = [\"wall\"]\ny_plus = 1\nthickness = 0.1\n")),
+             Catch::Contains("boundary_layer.reynolds is required"));
+  CHECK_THAT(error_of(layer("curves = [\"wall\"]\n" + ok_tail + "elements = \"hexes\"\n")),
+             Catch::Contains("boundary_layer.elements must be one of triangles, quads, got 'hexes'"));
+  CHECK_THAT(error_of(layer("curves = []\n" + ok_tail)), Catch::Contains("at least one curve"));
+  CHECK_THAT(error_of(layer("curves = [\"wall\"]\n" + ok_tail) + "[[boundary_layer]]\ncurves = [\"wall\"]\n" + ok_tail),
+             Catch::Contains("curve 'wall' is in two [[boundary_layer]] tables"));
+  CHECK_THAT(error_of("boundary_layer = 3\n" + kGeometry), Catch::Contains("boundary_layer must be a table"));
+}
+
+TEST_CASE("a run with an unknown layer curve writes nothing", "[app][layers]") {
+  const fs::path out = fs::temp_directory_path() / "pdmesh_test_layers_unknown";
+  fs::remove_all(out);
+  const CaseConfig c = layered_case(out, "wing", true);
+  CHECK_THROWS_WITH(run_mesh(c), Catch::Contains("boundary_layer.curves") && Catch::Contains("wing"));
+  CHECK_FALSE(fs::exists(out));
+}
+
+TEST_CASE("a run with layers writes one mesh of layer quads and core triangles", "[app][layers]") {
+  const fs::path out = fs::temp_directory_path() / "pdmesh_test_layers_run";
+  fs::remove_all(out);
+  REQUIRE(run_mesh(layered_case(out, "wall", true)) == 0);
+  const std::string msh = read(out / "mesh.msh");
+  CHECK_THAT(msh, Catch::Contains("\"boundary_layer\""));
+  CHECK_THAT(msh, Catch::Contains("\n2 2 3 "));  // a block of quadrangles (type 3) in the layer's surface
+  CHECK_THAT(msh, Catch::Contains("\n2 1 2 "));  // the core's triangles
+  CHECK_THAT(read(out / "mesh.su2"), Catch::Contains("\n9 "));  // SU2 quadrilateral
+  CHECK_THAT(read(out / "mesh.su2"), Catch::Contains("MARKER_TAG= wall"));
+  CHECK_THAT(read(out / "mesh.vtu"), Catch::Contains("\n9\n"));
+  const std::string json = read(out / "quality.json");
+  CHECK_THAT(json, Catch::Contains("\"boundary_layer\"") && Catch::Contains("\"first_height_within_2pct\": 1"));
+  fs::remove_all(out);
+  // Triangles: no quadrangle anywhere.
+  REQUIRE(run_mesh(layered_case(out, "wall", false)) == 0);
+  CHECK_THAT(read(out / "mesh.msh"), !Catch::Contains("\n2 2 3 ") && Catch::Contains("\n2 2 2 "));
+  fs::remove_all(out);
+}
+
+TEST_CASE("nodes the simulation snapped onto a layer front are left out of the core", "[app][layers]") {
+  // A front (fixed points) and a plain curve; node 3 was snapped onto the front between its points.
+  RawCurve far{"far", {{-2, -2}, {2, -2}, {2, 2}, {-2, 2}, {-2, -2}}, "memory", 1, {}};
+  RawCurve front{"wall_front", {{-0.5, -0.5}, {0.5, -0.5}, {0.5, 0.5}, {-0.5, 0.5}, {-0.5, -0.5}}, "memory", 1, {}, true};
+  const Geometry g = build_geometry({far, front});
+  NodeSet nodes;
+  const int f0 = nodes.add({-2, -2}, 0.1, NodeKind::Fixed, 0);
+  const int b0 = nodes.add({0, -2}, 0.1, NodeKind::Boundary, 0);
+  const int w0 = nodes.add({-0.5, -0.5}, 0.1, NodeKind::Fixed, 1);
+  const int snapped = nodes.add({0, -0.5}, 0.1, NodeKind::Boundary, 1);
+  const int w1 = nodes.add({0.5, -0.5}, 0.1, NodeKind::Fixed, 1);
+  const int inner = nodes.add({1, 1}, 0.1, NodeKind::Interior, -1);
+  nodes.curve_nodes = {{f0, b0, f0}, {w0, snapped, w1, w0}};
+  std::size_t dropped = 0;
+  const NodeSet out = without_front_nodes(nodes, g, dropped);
+  CHECK(dropped == 1);
+  REQUIRE(out.size() == 5);
+  CHECK(out.curve_nodes[0] == std::vector<int>{0, 1, 0});  // the plain curve's boundary node stays
+  CHECK(out.curve_nodes[1] == std::vector<int>{2, 3, 2});  // the front: its fixed nodes only
+  CHECK(out.x[3] == Vec2{0.5, -0.5});
+  CHECK(out.kind[4] == NodeKind::Interior);
+  (void)inner;
+}
+
+TEST_CASE("the stages driven directly refuse a case with layers", "[app][layers]") {
+  // The Python API drives the stages itself: it must not mesh the whole domain without the layers.
+  const CaseConfig c = layered_case(fs::temp_directory_path() / "pdmesh_test_layers_stages", "wall", true);
+  const MeshInputs inputs(c);
+  const SpacingStage spacing(c, inputs);
+  CHECK_THROWS_WITH(make_initial(c, inputs, spacing), Catch::Contains("[[boundary_layer]] is only supported by"));
+}
