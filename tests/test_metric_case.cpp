@@ -5,6 +5,7 @@
 #include <catch2/catch.hpp>
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -12,6 +13,7 @@
 
 #include "app/config/case_file.hpp"
 #include "app/pipeline/mesh_inputs.hpp"
+#include "app/pipeline/resume.hpp"
 #include "core/errors.hpp"
 #include "run_pdmesh.hpp"
 #include "spacing/metric.hpp"
@@ -141,7 +143,42 @@ TEST_CASE("pdmesh mesh triangulates in the metric and measures in it", "[metric]
   CHECK_THAT(json, Contains("\"metric\": {\"edges\": "));
   CHECK_THAT(json, Contains("\"cleanup\": null"));
   CHECK(fs::exists(out / "mesh_metric_q.png"));
+  // pdmesh quality with the case measures the same mesh in the same metric.
+  const auto q = pdmesh_test::run_pdmesh(fmt::format("quality '{}' --geometry '{}/cases/aniso/linear/case.toml' --json -",
+                                                     (out / "mesh.msh").string(), source));
+  INFO(q.output);
+  CHECK(q.status == 0);
+  CHECK_THAT(q.output, Contains("Metric: quality Q"));
+  CHECK_THAT(q.output, Contains("\"metric\": {\"edges\": "));
   fs::remove_all(out);
+}
+
+TEST_CASE("a Medit .mesh + .sol metric runs, the .sol found by the .mesh's stem", "[metric][case][cli]") {
+  const fs::path dir = pdmesh_test::fresh_dir("metric_case_medit");
+  const std::string source = PDMESH_SOURCE_DIR;
+  // A constant metric, h = 0.05 along x and 0.1 along y, on two triangles around the unit square.
+  std::ofstream(dir / "bg.mesh") << "MeshVersionFormatted 2\nDimension 2\nVertices\n4\n-0.1 -0.1 0\n1.1 -0.1 0\n"
+                                    "1.1 1.1 0\n-0.1 1.1 0\nTriangles\n2\n1 2 3 0\n1 3 4 0\nEnd\n";
+  std::ofstream(dir / "bg.sol") << "MeshVersionFormatted 2\nDimension 2\nSolAtVertices\n4\n1 3\n400 0 100\n"
+                                   "400 0 100\n400 0 100\n400 0 100\nEnd\n";
+  std::ofstream(dir / "case.toml") << fmt::format(
+      "[geometry]\nfiles = [\"{}/cases/aniso/linear/domain.crv\"]\n[spacing]\nfield = \"metric\"\nfile = \"bg.mesh\"\n",
+      source);
+  const fs::path out = dir / "out";
+  const auto r = pdmesh_test::run_pdmesh(fmt::format("mesh '{}' --out '{}' -q", (dir / "case.toml").string(), out.string()));
+  INFO(r.output);
+  REQUIRE(r.status == 0);
+  const std::string json = pdmesh_test::slurp(out / "quality.json");
+  CHECK_THAT(json, Contains("\"metric\": {\"edges\": "));
+  // A .sol whose metric is not SPD: exit 2 naming the .sol, nothing written.
+  std::ofstream(dir / "bg.sol") << "MeshVersionFormatted 2\nDimension 2\nSolAtVertices\n4\n1 3\n400 0 100\n"
+                                   "400 300 100\n400 0 100\n400 0 100\nEnd\n";
+  const fs::path out2 = dir / "out2";
+  const auto bad = pdmesh_test::run_pdmesh(fmt::format("mesh '{}' --out '{}' -q", (dir / "case.toml").string(), out2.string()));
+  CHECK(bad.status == 2);
+  CHECK_THAT(bad.output, Contains("bg.sol"));
+  CHECK_FALSE(fs::exists(out2));
+  fs::remove_all(dir);
 }
 
 TEST_CASE("a metric that is not a size is exit 2, naming the expression, nothing written", "[metric][case][cli]") {
@@ -159,4 +196,19 @@ TEST_CASE("a metric that is not a size is exit 2, naming the expression, nothing
   CHECK_THAT(r.output, Contains("a size must be a finite positive number"));
   CHECK_FALSE(fs::exists(out));
   fs::remove_all(dir);
+}
+
+TEST_CASE("the metric keys are part of the checkpoint's case identity", "[metric][case][resume]") {
+  const fs::path file = fs::path(PDMESH_SOURCE_DIR) / "cases/aniso/linear/case.toml";
+  const auto identity = case_identity(load_case_file(file));
+  const auto other = case_identity(load_case_file(file, {parse_set_option("spacing.h1=0.2")}));
+  CHECK(identity != other);
+  const auto has = [&identity](const std::string& key, const std::string& value) {
+    return std::find(identity.begin(), identity.end(), std::pair{key, value}) != identity.end();
+  };
+  CHECK(has("spacing.field", "metric"));
+  CHECK(has("spacing.h2", "0.001 + 0.198*abs(y - 0.5)"));
+  // An isotropic case's identity has no metric keys (its checkpoints keep their identity).
+  const auto iso = case_identity(load_case_file(fs::path(PDMESH_SOURCE_DIR) / "cases/circle_circle/case.toml"));
+  for (const auto& [key, value] : iso) CHECK(key != "spacing.h1");
 }
