@@ -15,6 +15,8 @@
 #include "app/pipeline/mesh_inputs.hpp"
 #include "app/pipeline/resume.hpp"
 #include "core/errors.hpp"
+#include "error_message.hpp"
+#include "render/metric_picture.hpp"
 #include "run_pdmesh.hpp"
 #include "spacing/metric.hpp"
 #include "spacing/metric_size_field.hpp"
@@ -143,6 +145,7 @@ TEST_CASE("pdmesh mesh triangulates in the metric and measures in it", "[metric]
   CHECK_THAT(json, Contains("\"metric\": {\"edges\": "));
   CHECK_THAT(json, Contains("\"cleanup\": null"));
   CHECK(fs::exists(out / "mesh_metric_q.png"));
+  CHECK(fs::exists(out / "metric.png"));
   // pdmesh quality with the case measures the same mesh in the same metric.
   const auto q = pdmesh_test::run_pdmesh(fmt::format("quality '{}' --geometry '{}/cases/aniso/linear/case.toml' --json -",
                                                      (out / "mesh.msh").string(), source));
@@ -211,4 +214,16 @@ TEST_CASE("the metric keys are part of the checkpoint's case identity", "[metric
   // An isotropic case's identity has no metric keys (its checkpoints keep their identity).
   const auto iso = case_identity(load_case_file(fs::path(PDMESH_SOURCE_DIR) / "cases/circle_circle/case.toml"));
   for (const auto& [key, value] : iso) CHECK(key != "spacing.h1");
+}
+
+TEST_CASE("the metric picture needs one metric per point", "[metric][render]") {
+  Mesh mesh;
+  mesh.points = {{0, 0}, {1, 0}, {0, 1}};
+  mesh.triangles = {{0, 1, 2}};
+  const fs::path out = pdmesh_test::fresh_dir("metric_picture");
+  CHECK_THAT(pdmesh_test::error_message<Error>([&] { write_metric_picture(out / "m.png", mesh, {Metric{}}, {}); }),
+             Contains("1 metrics for 3 points"));
+  write_metric_picture(out / "m.png", mesh, std::vector<Metric>(3, metric_from_sizes(0.5, 0.1, 0.3)), {});
+  CHECK(fs::file_size(out / "m.png") > 0);
+  fs::remove_all(out);
 }

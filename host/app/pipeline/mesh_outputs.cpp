@@ -21,6 +21,7 @@
 #include "nodes/node_domain.hpp"
 #include "nodes/node_file.hpp"
 #include "render/mesh_picture.hpp"
+#include "render/metric_picture.hpp"
 #include "render/node_picture.hpp"
 #include "render/spacing_picture.hpp"
 
@@ -218,11 +219,13 @@ CleanedMesh clean_up(const CaseConfig& config, const MeshInputs& inputs, const S
 }
 
 // Queues mesh.png, mesh_<view>.png and mesh.svg as output.formats asks, and for a metric run
-// mesh_metric_q.png (the triangles coloured by their quality Q in the metric, 0 to 1); returns their
-// names. `mesh`, `values` and `metric_q` must stay unchanged until the pictures are drawn.
+// mesh_metric_q.png (the triangles coloured by their quality Q in the metric, 0 to 1) and metric.png
+// (the metric at the points as ellipses); returns their names. `mesh`, `values`, `metric_q` and
+// `metrics` must stay unchanged until the pictures are drawn.
 std::vector<std::string> queue_mesh_pictures(const CaseConfig& config, const Mesh& mesh,
                                              const std::vector<double>* values, RunPhases& phases,
-                                             const std::vector<double>* metric_q = nullptr) {
+                                             const std::vector<double>* metric_q = nullptr,
+                                             const std::vector<Metric>* metrics = nullptr) {
   MeshPictureOptions picture;
   picture.title = fmt::format("{} - mesh ({} triangles)", config.name, mesh.triangles.size());
   if (values) {
@@ -253,6 +256,14 @@ std::vector<std::string> queue_mesh_pictures(const CaseConfig& config, const Mes
     q.value_range = std::pair{0.0, 1.0};
     draw("mesh_metric_q.png", q);
   }
+  if (metrics != nullptr && config.output.wants("png")) {
+    MetricPictureOptions ellipses;
+    ellipses.title = fmt::format("{} - the metric", config.name);
+    phases.picture("metric.png", [&mesh, metrics, ellipses, path = dir / "metric.png"] {
+      write_metric_picture(path, mesh, *metrics, ellipses);
+    });
+    pictures.push_back("metric.png");
+  }
   return pictures;
 }
 
@@ -260,14 +271,14 @@ std::vector<std::string> queue_mesh_pictures(const CaseConfig& config, const Mes
 void write_mesh_outputs(const CaseConfig& config, const MeshInputs& inputs, const SpacingField& spacing,
                         const Mesh& mesh, const NodeSet& mesh_nodes, QualitySummary& summary,
                         const std::vector<TriangleQuality>& per_triangle, RunPhases& phases,
-                        const std::vector<double>* metric_q) {
+                        const std::vector<double>* metric_q, const std::vector<Metric>* metrics) {
   // The pictures are drawn on the background thread while the quality is measured and the files are
   // written; the mesh and the values stay alive until the wait below (also when something throws).
   std::vector<double> values;
   const PictureGuard guard(phases);
   if (config.output.color_by != "none") values = metric_values(per_triangle, config.output.color_by);
   const std::vector<std::string> pictures =
-      queue_mesh_pictures(config, mesh, config.output.color_by != "none" ? &values : nullptr, phases, metric_q);
+      queue_mesh_pictures(config, mesh, config.output.color_by != "none" ? &values : nullptr, phases, metric_q, metrics);
   {
     const auto conformance_timer = phases.phase("spacing conformance");
     summary.has_spacing = true;
@@ -353,7 +364,7 @@ Mesh mesh_and_measure(const CaseConfig& config, const MeshInputs& inputs, const 
   }
   quality_timer.stop();
   write_mesh_outputs(config, inputs, field, mesh, mesh_nodes, summary, cleaned.per_triangle, phases,
-                     metric != nullptr ? &metric_q : nullptr);
+                     metric != nullptr ? &metric_q : nullptr, metric != nullptr ? &metrics : nullptr);
   return mesh;
 }
 
