@@ -227,3 +227,19 @@ TEST_CASE("the metric picture needs one metric per point", "[metric][render]") {
   CHECK(fs::file_size(out / "m.png") > 0);
   fs::remove_all(out);
 }
+
+TEST_CASE("an output that would replace the metric file is refused", "[metric][cli][outputs]") {
+  const fs::path dir = pdmesh_test::fresh_dir("metric_case_guard");
+  fs::create_directories(dir / "out");
+  std::ofstream(dir / "out" / "mesh.vtu") << "the metric\n";
+  std::ofstream(dir / "case.toml") << fmt::format(
+      "[geometry]\nfiles = [\"{}/cases/aniso/linear/domain.crv\"]\n[spacing]\nfield = \"metric\"\nfile = \"out/mesh.vtu\"\n",
+      PDMESH_SOURCE_DIR);
+  const auto r = pdmesh_test::run_pdmesh(
+      fmt::format("mesh '{}' --out '{}' -q", (dir / "case.toml").string(), (dir / "out").string()));
+  INFO(r.output);
+  CHECK(r.status == 2);
+  CHECK_THAT(r.output, Contains("would replace the input"));
+  CHECK(pdmesh_test::slurp(dir / "out" / "mesh.vtu") == "the metric\n");
+  fs::remove_all(dir);
+}
