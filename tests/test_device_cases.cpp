@@ -83,7 +83,8 @@ TEST_CASE("device run: circle_circle over 2000 iterations in float gives the hos
 namespace {
 
 const std::vector<std::string> kBitIdenticalCases = {
-    "30p30n",      "circle_circle",     "corpus/bracket",         "corpus/coastline", "corpus/flap_airfoil",
+    "30p30n",      "aniso/linear",      "aniso/polar1",           "aniso/polar2",
+    "circle_circle",     "corpus/bracket",         "corpus/coastline", "corpus/flap_airfoil",
     "corpus/gear", "corpus/heatsink_channel", "corpus/plate", "naca0012",         "rods_coarse",
     "rods_fine",   "shock",             "shock_data", "square200"};
 
@@ -168,4 +169,15 @@ TEST_CASE("device run: corpus/heatsink_channel is bit-identical to the host over
 }
 TEST_CASE("device run: corpus/plate is bit-identical to the host over 200 iterations from both starts", "[opencl][device_sim][cases]") {
   compare_bit_for_bit("corpus/plate");
+}
+// The metric cases place their nodes isotropically at sqrt(h1 h2) (docs/metric-fields.md): the same
+// simulation, so the same contract.
+TEST_CASE("device run: aniso/linear is bit-identical to the host over 200 iterations from both starts", "[opencl][device_sim][cases]") {
+  compare_bit_for_bit("aniso/linear");
+}
+TEST_CASE("device run: aniso/polar1 is bit-identical to the host over 200 iterations from both starts", "[opencl][device_sim][cases]") {
+  compare_bit_for_bit("aniso/polar1");
+}
+TEST_CASE("device run: aniso/polar2 is bit-identical to the host over 200 iterations from both starts", "[opencl][device_sim][cases]") {
+  compare_bit_for_bit("aniso/polar2");
 }

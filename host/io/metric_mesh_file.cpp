@@ -72,6 +72,51 @@ MetricMeshData load_metric_mesh(const std::filesystem::path& file, const std::st
   return d;
 }
 
+ScalarMeshData load_scalar_mesh(const std::filesystem::path& file, const std::string& array) {
+  std::string ext = file.extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  if (ext != ".vtu" && ext != ".msh") {
+    throw InputError(fmt::format("{}: data for a Hessian metric must be on a .vtu or .msh mesh (got '{}')", file.string(), ext));
+  }
+  MeshPointData pd;
+  pd.wanted = array;
+  MeshReadReport report;
+  Mesh mesh = ext == ".vtu" ? read_vtu(file, report, &pd) : read_msh(file, report, &pd);
+  const std::string name = file.string();
+  if (mesh.triangles.empty())
+    throw InputError(fmt::format("{}: the mesh has no triangles; data for a Hessian metric needs triangle cells", name));
+  if (!pd.array) {
+    const std::string has = pd.point_arrays.empty() ? std::string("the file has no point data")
+                                                    : fmt::format("its point-data arrays are: {}", fmt::join(pd.point_arrays, ", "));
+    throw InputError(fmt::format("{}: no point-data array '{}' (the function of the Hessian metric); {}", name, array, has));
+  }
+  const PointDataArray& a = *pd.array;
+  const std::size_t n = mesh.points.size();
+  if (a.components != 1 || a.values.size() != n) {
+    throw InputError(fmt::format("{}: point-data array '{}' has {} components; the function must be a scalar (1 component)",
+                                 a.where, array, a.components));
+  }
+  std::vector<char> used(n, 0);
+  for (const auto& t : mesh.triangles)
+    for (int v : t) used[static_cast<std::size_t>(v)] = 1;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!used[i]) continue;
+    const Vec2 p = mesh.points[i];
+    const std::string label = i < pd.point_ids.size() ? fmt::format("node {}", pd.point_ids[i]) : fmt::format("point {}", i);
+    if (!a.given.empty() && !a.given[i])
+      throw InputError(fmt::format("{}: '{}' has no value for {} ({}, {}), a vertex of a triangle", a.where, array, label, p.x, p.y));
+    if (!std::isfinite(a.values[i]))
+      throw InputError(fmt::format("{}: '{}' at {} ({}, {}) is {}, not a finite number", a.where, array, label, p.x, p.y,
+                                   a.values[i]));
+  }
+  ScalarMeshData d;
+  d.points = std::move(mesh.points);
+  d.triangles = std::move(mesh.triangles);
+  d.values = a.values;
+  d.what = fmt::format("{} ('{}')", name, array);
+  return d;
+}
+
 std::unique_ptr<MeshMetricField> make_mesh_metric_field(MetricMeshData data) {
   return std::make_unique<MeshMetricField>(std::move(data.points), std::move(data.triangles), std::move(data.metrics),
                                            std::move(data.what));

@@ -31,6 +31,20 @@ struct MetricMeshData {
 // or not SPD (naming the point, its coordinates and the three values).
 MetricMeshData load_metric_mesh(const std::filesystem::path& file, const std::string& array);
 
+// Scalar data on a background triangle mesh (the function a Hessian metric is built from).
+struct ScalarMeshData {
+  std::vector<Vec2> points;
+  std::vector<std::array<int, 3>> triangles;
+  std::vector<double> values;
+  std::string what;  // the file and array, for messages
+};
+
+// Reads FILE (.vtu or .msh) and its point-data array `array` of 1 component. Throws InputError naming
+// the file (and the array's line) when it cannot be read, has no triangles, has no such array (listing
+// those it has), the array is not a scalar, or a vertex of a triangle has no value or a value that is
+// not finite (naming the point, its coordinates and the value).
+ScalarMeshData load_scalar_mesh(const std::filesystem::path& file, const std::string& array);
+
 // The field of the data (MeshMetricField's own checks follow: triangle areas, indices).
 std::unique_ptr<MeshMetricField> make_mesh_metric_field(MetricMeshData data);
 

@@ -35,7 +35,8 @@ std::string histogram_label(const Histogram& h, std::size_t k, int decimals) {
 }
 
 // `cleanup`: some column comes from a cleaned mesh (its rows are shown, '-' in the other columns).
-std::vector<Row> table_rows(const QualitySummary& first, const QualitySummary* cleanup) {
+// `metric`: some column was measured in a metric field (its rows are shown, '-' in the other columns).
+std::vector<Row> table_rows(const QualitySummary& first, const QualitySummary* cleanup, const QualitySummary* metric) {
   std::vector<Row> rows = {
       {"Number of Triangles", "", [](const QualitySummary& s) { return fmt::format("{}", s.triangles); }},
       {"Included Angle", "MIN", fixed(&QualitySummary::min_angle, 2)},
@@ -75,6 +76,32 @@ std::vector<Row> table_rows(const QualitySummary& first, const QualitySummary* c
     rows.push_back({"Cleanup: nodes", "inserted", cleanup_count(&CleanupEffect::inserted)});
     rows.push_back({"", "removed", cleanup_count(&CleanupEffect::removed)});
   }
+  if (metric != nullptr) {
+    // UGAWG's measures in the metric (docs/metric-fields.md, "Measures").
+    auto m = [](auto f) {
+      return [f](const QualitySummary& s) { return s.has_metric ? f(s.metric) : std::string("-"); };
+    };
+    rows.push_back({"Metric: edges in [0.71,1.41]", "%",
+                    m([](const MetricQualitySummary& q) { return fmt::format("{:.2f}", q.window_percent); })});
+    rows.push_back({"Metric: edge length", "MIN",
+                    m([](const MetricQualitySummary& q) { return fmt::format("{:.3f}", q.length_min); })});
+    rows.push_back({"", "MAX", m([](const MetricQualitySummary& q) { return fmt::format("{:.3f}", q.length_max); })});
+    rows.push_back({"Metric: quality Q", "MIN",
+                    m([](const MetricQualitySummary& q) { return fmt::format("{:.3f}", q.q_min); })});
+    rows.push_back({"", "mean", m([](const MetricQualitySummary& q) { return fmt::format("{:.3f}", q.q_mean); })});
+    rows.push_back({"", "< 0.3 %",
+                    m([](const MetricQualitySummary& q) { return fmt::format("{:.2f}", q.q_below_0_3_percent); })});
+    rows.push_back({"Metric: triangles / 4C/sqrt3", "",
+                    m([](const MetricQualitySummary& q) { return fmt::format("{:.3f}", q.n_over_ideal); })});
+    rows.push_back({"", "4C/sqrt3",
+                    m([](const MetricQualitySummary& q) { return fmt::format("{:.1f}", q.ideal_triangles); })});
+    for (std::size_t k = 0; k < kMetricQualityBins; ++k) {
+      const std::string bin = k == 0 ? "<0.1" : k + 1 == kMetricQualityBins ? ">=0.9" : fmt::format("[{:.1f},{:.1f})", k / 10.0, (k + 1) / 10.0);
+      rows.push_back({k == 0 ? "Metric: Q histogram" : "", bin, m([k](const MetricQualitySummary& q) {
+                        return fmt::format("{}", q.q_histogram[k]);
+                      })});
+    }
+  }
   const Histogram& ha = first.min_angle_histogram;
   for (std::size_t k = 0; k < ha.counts.size(); ++k) {
     rows.push_back({k == 0 ? "Min angle histogram" : "", histogram_label(ha, k, 0), [k](const QualitySummary& s) {
@@ -111,7 +138,10 @@ std::string format_quality_table(const std::vector<std::pair<std::string, Qualit
   const QualitySummary* cleanup = nullptr;
   for (const auto& column : columns)
     if (column.second.has_cleanup && cleanup == nullptr) cleanup = &column.second;
-  const auto rows = table_rows(columns.front().second, cleanup);
+  const QualitySummary* metric = nullptr;
+  for (const auto& column : columns)
+    if (column.second.has_metric && metric == nullptr) metric = &column.second;
+  const auto rows = table_rows(columns.front().second, cleanup, metric);
   std::size_t name_width = 0, sub_width = 0;
   for (const auto& r : rows) {
     name_width = std::max(name_width, r.name.size());
@@ -203,6 +233,19 @@ std::string quality_json(const QualitySummary& s, const std::string& source) {
         num(e.target_deg), e.below_before, e.below_after, num(e.min_angle_before), num(e.min_angle_after),
         num(e.max_angle_before), num(e.max_angle_after), e.triangles_before, e.points_before, e.inserted, e.removed,
         e.moves);
+  }
+  // Only for a mesh measured in a metric, so that every other quality.json stays as it was.
+  if (s.has_metric) {
+    const MetricQualitySummary& m = s.metric;
+    std::string histogram;
+    for (std::size_t k = 0; k < kMetricQualityBins; ++k) histogram += fmt::format("{}{}", k ? ", " : "", m.q_histogram[k]);
+    out += fmt::format(
+        "  \"metric\": {{\"edges\": {}, \"window\": [{}, {}], \"window_percent\": {}, \"length_min\": {}, "
+        "\"length_max\": {}, \"q_min\": {}, \"q_mean\": {}, \"q_below_0_3_percent\": {}, \"q_histogram\": [{}], "
+        "\"complexity\": {}, \"ideal_triangles\": {}, \"n_over_ideal\": {}}},\n",
+        m.edges, num(kMetricWindowLo), num(kMetricWindowHi), num(m.window_percent), num(m.length_min),
+        num(m.length_max), num(m.q_min), num(m.q_mean), num(m.q_below_0_3_percent), histogram, num(m.complexity),
+        num(m.ideal_triangles), num(m.n_over_ideal));
   }
   out += fmt::format("  \"cleanup\": {}\n", cleanup);
   out += "}\n";

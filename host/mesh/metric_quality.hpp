@@ -3,7 +3,7 @@
 // metric edge lengths and the share in the unit-mesh window [1/√2, √2], the mean-ratio quality
 // Q = 4√3 |K| sqrt(det M) / Σ l²_M (M the corner metric of largest det; 1 for a triangle equilateral
 // in M, <= 0 for an inverted one), and the element count against the ideal 4C/√3.
-// Not yet part of `pdmesh quality`: docs/metric-fields.md.
+// `pdmesh mesh` and `pdmesh quality` report them for a metric run: docs/metric-fields.md.
 #pragma once
 #include <array>
 #include <cmath>

@@ -8,6 +8,7 @@
 #include <utility>
 #include <vector>
 
+#include "mesh/metric_quality.hpp"
 #include "core/vec2.hpp"
 #include "mesh/mesh.hpp"
 
@@ -111,6 +112,8 @@ struct QualitySummary {
   SpacingConformance spacing;
   bool has_cleanup = false;  // the mesh is the output of the final cleanup, which `cleanup` describes
   CleanupEffect cleanup;
+  bool has_metric = false;  // measured in a metric field (mesh/metric_quality), which `metric` holds
+  MetricQualitySummary metric;
 };
 
 using SpacingCallback = std::function<double(Vec2)>;

@@ -1,6 +1,6 @@
 // Metric fields M(x): the anisotropic counterpart of SpacingField (spacing_field.hpp). A metric field
 // gives at every point the SPD matrix that measures edges there (spacing/metric.hpp); the unit mesh
-// of M has edges of metric length 1. Not yet read from case files: docs/metric-fields.md.
+// of M has edges of metric length 1. Read from case files by app/config/case_spacing (make_case_metric).
 #pragma once
 #include <memory>
 #include <string>

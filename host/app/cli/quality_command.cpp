@@ -15,7 +15,9 @@
 #include "io/text_file.hpp"
 #include "core/errors.hpp"
 #include "mesh/mesh_topology.hpp"
+#include "mesh/metric_quality.hpp"
 #include "mesh/quality.hpp"
+#include "spacing/metric_complexity.hpp"
 #include "io/quality_report.hpp"
 #include "render/mesh_picture.hpp"
 #include "spacing/spacing_field.hpp"
@@ -83,7 +85,17 @@ int run_quality(const std::string& mesh_path, const std::optional<std::string>& 
     const SpacingField* field = &spacing.spacing->field();
     q = [field](Vec2 p) { return field->at(p); };
   }
-  const QualitySummary summary = summarize_quality(mesh, q);
+  QualitySummary summary = summarize_quality(mesh, q);
+  // A case with a metric field: the mesh measured in it too (mesh/metric_quality), C by the P1 rule
+  // on the mesh.
+  if (geometry_path && spacing.spacing->metric() != nullptr) {
+    const MetricField& field = *spacing.spacing->metric();
+    std::vector<Metric> metrics;
+    metrics.reserve(mesh.points.size());
+    for (const Vec2& p : mesh.points) metrics.push_back(field.at(p));
+    summary.has_metric = true;
+    summary.metric = metric_quality(mesh, metrics, complexity_on_mesh(mesh.points, mesh.triangles, metrics));
+  }
   out << format_quality_table(summary, std::filesystem::path(mesh_path).filename().string());
 
   if (out_json) {

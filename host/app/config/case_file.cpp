@@ -106,6 +106,8 @@ void check_keys(const Reader& r, const toml::table& t, const std::string& prefix
 bool is_string_key(const std::string& key) {
   return key == "name" || key == "preset" || key == "geometry.curves" || key == "boundary.nodes" ||
          key == "spacing.field" || key == "spacing.expression" || key == "spacing.file" || key == "spacing.array" ||
+         key == "spacing.h1" || key == "spacing.h2" || key == "spacing.angle" || key == "spacing.m11" ||
+         key == "spacing.m12" || key == "spacing.m22" || key == "spacing.sol" || key == "spacing.function" ||
          key == "init.method" ||
          key == "simulation.device" || key == "simulation.precision" || key == "simulation.r0_rule" ||
          key == "simulation.stop" ||
@@ -216,7 +218,10 @@ const std::vector<std::string>& case_file_keys() {
       "geometry.files", "geometry.curve_names", "geometry.join_tolerance", "geometry.corner_angle",
       "geometry.curves", "spacing.field", "spacing.expression", "spacing.file", "spacing.array", "spacing.scale",
       "spacing.gradation", "spacing.rows_in_gap", "spacing.curvature_angle", "spacing.background_tolerance",
-      "spacing.background_min_side", "spacing.background_boundary_min_side", "boundary.nodes",
+      "spacing.background_min_side", "spacing.background_boundary_min_side", "spacing.h1", "spacing.h2",
+      "spacing.angle", "spacing.m11", "spacing.m12", "spacing.m22", "spacing.sol", "spacing.function",
+      "spacing.complexity", "spacing.hmin", "spacing.hmax", "spacing.max_anisotropy", "spacing.metric_gradation",
+      "boundary.nodes",
       "init.method", "init.seed", "init.total",
       "simulation.iterations", "simulation.stop", "simulation.stop_aspect", "simulation.stop_angle",
       "simulation.stop_every", "simulation.stop_window", "simulation.stop_min",

@@ -3,6 +3,7 @@
 #pragma once
 #include <cstdint>
 #include <filesystem>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <string>
@@ -20,7 +21,9 @@ namespace pdmesh {
 
 class SpacingField;
 
-enum class SpacingKind { Boundary, Expression, Mesh };
+// Metric and Hessian: an anisotropic metric field (docs/metric-fields.md); the pipeline's isotropic q is
+// derived from it (MetricSizeField, sqrt(h1 h2)).
+enum class SpacingKind { Boundary, Expression, Mesh, Metric, Hessian };
 // simulation.precision. Auto: float where the device lacks fp64 or runs it far slower (opencl/precision_probe).
 enum class Precision { Double, Float, Auto };
 // geometry.curves: the curve the points describe (docs/geometry-input.md, "Smooth curves").
@@ -83,6 +86,24 @@ struct CaseConfig {
     // directory when given by --set) and the name of its point-data array that holds q.
     std::filesystem::path file;
     std::string array = "q";
+    // field == Metric: muParser expressions in x and y, either sizes (h1 along the direction `angle`,
+    // in degrees from the x axis, h2 across it) or the components m11, m12, m22; or `file` (.vtu/.msh
+    // with a 3-component point array `array`, default "metric"; or a Medit .mesh with the .sol `sol`,
+    // default the same stem). Empty strings are keys not given.
+    std::string h1, h2, angle, m11, m12, m22;
+    std::filesystem::path sol;
+    // field == Hessian: the L2-optimal metric of a function, given as an expression `function` in x and
+    // y or as scalar data `array` (default "u") at the points of `file`, of complexity C = `complexity`,
+    // clipped to sizes in [hmin, hmax] and to max_anisotropy (spacing/hessian_metric.hpp).
+    std::string function;
+    double complexity = 0.0;  // required for Hessian
+    double hmin = 0.0;
+    double hmax = std::numeric_limits<double>::infinity();
+    double max_anisotropy = std::numeric_limits<double>::infinity();
+    // The metric gradation beta (> 1, the size ratio per unit metric length; 0 = off), applied to
+    // metrics given on a background mesh (spacing.file) along its edges (spacing/metric_gradation.hpp).
+    double metric_gradation = 0.0;
+    bool metric() const { return field == SpacingKind::Metric || field == SpacingKind::Hessian; }
     // A field given by the caller (the Python API: a size callable), not a case key. When set it
     // replaces `field`; MeshInputs samples it once into a background field, so that nothing later
     // evaluates it per point.

@@ -165,6 +165,13 @@ T choose(const Reader& r, const std::string& key, const toml::node& n,
 
 // The [[boundary_layer]] tables into c.boundary_layers (case_layers.cpp).
 void read_boundary_layer_sections(const Reader& r, const toml::table& root, CaseConfig& c);
+// The [spacing] keys of metric fields (case_metric_keys.cpp): read_metric_values reads and range-checks
+// each value given; check_metric_keys (the whole configuration) checks that they agree with
+// spacing.field and each other, and sets the defaults that depend on the source (array, sol).
+void read_metric_values(const Reader& r, const toml::table& root, CaseConfig& c);
+void check_metric_keys(const Reader& r, const toml::table& root, CaseConfig& c, const toml::node* file,
+                       const toml::node* array);
+const char* spacing_kind_name(SpacingKind kind);
 
 // Every section's keys into `c` (case_sections.cpp), after the preset and the name.
 void read_case_sections(const Reader& r, const toml::table& root, CaseConfig& c);

@@ -79,7 +79,8 @@ void read_spacing_section(const Reader& r, const toml::table& root, CaseConfig& 
     const std::string f = r.string("spacing.file", *file);
     std::string ext = fs::path(f).extension().string();
     std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char ch) { return static_cast<char>(std::tolower(ch)); });
-    if (ext != ".vtu" && ext != ".msh") {
+    // .mesh (Medit, with its .sol) is metric data only: read_metric_keys refuses it for other fields.
+    if (ext != ".vtu" && ext != ".msh" && ext != ".mesh") {
       r.fail("spacing.file", file, fmt::format("spacing.file '{}' must be a .vtu or .msh triangle mesh", quote_input(f)));
     }
     c.spacing.file = r.resolve("spacing.file", f);
@@ -92,15 +93,18 @@ void read_spacing_section(const Reader& r, const toml::table& root, CaseConfig& 
   if (field != nullptr) {
     c.spacing.field = choose<SpacingKind>(
         r, "spacing.field", *field,
-        {{"boundary", SpacingKind::Boundary}, {"expression", SpacingKind::Expression}, {"mesh", SpacingKind::Mesh}});
+        {{"boundary", SpacingKind::Boundary}, {"expression", SpacingKind::Expression}, {"mesh", SpacingKind::Mesh},
+         {"metric", SpacingKind::Metric}, {"hessian", SpacingKind::Hessian}});
   }
+  read_metric_values(r, root, c);
   if (r.partial()) return;  // the rest is how the keys agree: the whole configuration decides
   if (field == nullptr) {
     if (expression != nullptr && file != nullptr)
       r.fail("spacing.file", file, "spacing.expression and spacing.file are both set; choose one with spacing.field");
     c.spacing.field = expression != nullptr ? SpacingKind::Expression : file != nullptr ? SpacingKind::Mesh : SpacingKind::Boundary;
   }
-  const char* name = c.spacing.field == SpacingKind::Boundary ? "boundary" : c.spacing.field == SpacingKind::Expression ? "expression" : "mesh";
+  const char* name = spacing_kind_name(c.spacing.field);
+  check_metric_keys(r, root, c, file, array);
   if (c.spacing.field == SpacingKind::Expression && c.spacing.expression.empty()) {
     r.fail("spacing.field", field, "spacing.field is 'expression' but spacing.expression is missing or empty");
   }
@@ -110,10 +114,10 @@ void read_spacing_section(const Reader& r, const toml::table& root, CaseConfig& 
   if (c.spacing.field != SpacingKind::Expression && expression != nullptr) {
     r.fail("spacing.expression", expression, fmt::format("spacing.expression is set but spacing.field is '{}'", name));
   }
-  if (c.spacing.field != SpacingKind::Mesh && file != nullptr) {
+  if (c.spacing.field != SpacingKind::Mesh && !c.spacing.metric() && file != nullptr) {
     r.fail("spacing.file", file, fmt::format("spacing.file is set but spacing.field is '{}'", name));
   }
-  if (c.spacing.field != SpacingKind::Mesh && array != nullptr) {
+  if (c.spacing.field != SpacingKind::Mesh && !c.spacing.metric() && array != nullptr) {
     r.fail("spacing.array", array, fmt::format("spacing.array is set but spacing.field is '{}'", name));
   }
   if (const toml::node* n = find(root, "spacing", "scale")) c.spacing.scale = r.positive("spacing.scale", *n);

@@ -1,13 +1,25 @@
-// The case's spacing field: eq. 3.6, an expression, or a background mesh read from a file.
+// The case's spacing field: eq. 3.6, an expression, a background mesh read from a file, or the
+// isotropic size of a metric field; and the metric field itself.
 #include "app/config/case_spacing.hpp"
 
-#include "spacing/background_field.hpp"
+#include <algorithm>
+#include <cctype>
+#include <fmt/format.h>
+
+#include "core/errors.hpp"
+#include "io/medit_reader.hpp"
+#include "io/metric_mesh_file.hpp"
 #include "io/spacing_mesh_file.hpp"
+#include "spacing/background_field.hpp"
+#include "spacing/hessian_metric.hpp"
 #include "spacing/mesh_spacing.hpp"
+#include "spacing/metric_gradation.hpp"
+#include "spacing/metric_size_field.hpp"
 
 namespace pdmesh {
 
-std::unique_ptr<SpacingField> make_case_spacing(const CaseConfig& config, const GeometryTree& tree) {
+std::unique_ptr<SpacingField> make_case_spacing(const CaseConfig& config, const GeometryTree& tree,
+                                                const MetricField* metric) {
   // A caller's field (the Python API's size callable) is sampled once, in batches (at_many), into a
   // background field, so that nothing later evaluates it per point.
   if (config.spacing.given) return std::make_unique<BackgroundSpacing>(*config.spacing.given, tree);
@@ -19,10 +31,68 @@ std::unique_ptr<SpacingField> make_case_spacing(const CaseConfig& config, const 
       field->check_covers(tree.geometry());
       return field;
     }
+    case SpacingKind::Metric:
+    case SpacingKind::Hessian:
+      if (metric == nullptr) throw InputError("a metric spacing field needs its metric (make_case_metric)");
+      return std::make_unique<MetricSizeField>(*metric);
     case SpacingKind::Boundary:
       break;
   }
   return std::make_unique<BoundarySpacing>(tree);
+}
+
+namespace {
+
+bool is_medit(const std::filesystem::path& file) {
+  std::string ext = file.extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char ch) { return static_cast<char>(std::tolower(ch)); });
+  return ext == ".mesh";
+}
+
+// spacing.metric_gradation along the background mesh's edges, then the field of the data.
+std::unique_ptr<MetricField> mesh_field(const CaseConfig& config, MetricMeshData data) {
+  if (config.spacing.metric_gradation > 0.0) {
+    MetricGradationOptions options;
+    options.beta = config.spacing.metric_gradation;
+    limit_metric_gradation(data.points, triangle_edges(data.triangles), data.metrics, options);
+  }
+  return make_mesh_metric_field(std::move(data));
+}
+
+}  // namespace
+
+std::unique_ptr<MetricField> make_case_metric(const CaseConfig& config, const GeometryTree& tree) {
+  const auto& s = config.spacing;
+  if (s.field == SpacingKind::Metric) {
+    if (!s.file.empty()) {
+      return mesh_field(config, is_medit(s.file) ? load_medit_metric(s.file, s.sol) : load_metric_mesh(s.file, s.array));
+    }
+    if (!s.m11.empty()) {
+      return std::make_unique<ExpressionMetricField>(ExpressionMetricField::Form::components, s.m11, s.m12, s.m22);
+    }
+    return std::make_unique<ExpressionMetricField>(ExpressionMetricField::Form::sizes, s.h1, s.h2, s.angle);
+  }
+  if (s.field != SpacingKind::Hessian) return nullptr;
+  HessianMetricOptions options;
+  options.complexity = s.complexity;
+  options.hmin = s.hmin;
+  options.hmax = s.hmax;
+  options.max_anisotropy = s.max_anisotropy;
+  if (s.file.empty()) {
+    // The Hessian by central differences of a step 1e-5 of the geometry's extent (the rounding noise,
+    // ~1e-16 |u| / step², stays far below the scales of a solution's features), and D by the midpoint
+    // rule on a 1024 x 1024 grid over the extents (tools/eval's metric.py).
+    const Box box = tree.geometry().extents;
+    const double extent = std::max(box.hi.x - box.lo.x, box.hi.y - box.lo.y);
+    return std::make_unique<HessianMetricField>(s.function, box, options, 1e-5 * extent, 1024);
+  }
+  ScalarMeshData data = load_scalar_mesh(s.file, s.array);
+  MetricMeshData metric;
+  metric.metrics = hessian_metrics_on_mesh(data.points, data.triangles, data.values, options, data.what);
+  metric.points = std::move(data.points);
+  metric.triangles = std::move(data.triangles);
+  metric.what = data.what;
+  return mesh_field(config, std::move(metric));
 }
 
 }  // namespace pdmesh

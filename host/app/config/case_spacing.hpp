@@ -5,6 +5,7 @@
 
 #include "app/config/case_file.hpp"
 #include "geometry/geometry_tree.hpp"
+#include "spacing/metric_field.hpp"
 #include "spacing/spacing_field.hpp"
 
 namespace pdmesh {
@@ -14,6 +15,16 @@ namespace pdmesh {
 // checked to cover every point of the geometry). Throws InputError on bad expressions and bad files.
 // A field given by the caller (config.spacing.given, the Python API) replaces all of these: it is
 // sampled once into a BackgroundSpacing.
-std::unique_ptr<SpacingField> make_case_spacing(const CaseConfig& config, const GeometryTree& tree);
+// spacing.field "metric" or "hessian": the isotropic q derived from `metric` (MetricSizeField, which
+// refers to it), which must then be the field make_case_metric built.
+std::unique_ptr<SpacingField> make_case_spacing(const CaseConfig& config, const GeometryTree& tree,
+                                                const MetricField* metric = nullptr);
+
+// The metric field of spacing.field = "metric" (expressions, a .vtu/.msh with a 3-component array, or a
+// Medit .mesh + .sol) or "hessian" (the L2-optimal metric of spacing.function, or of the scalar data
+// spacing.array on spacing.file, over the geometry's extents), with spacing.metric_gradation applied
+// along the background mesh's edges; null for the isotropic fields. Throws InputError naming the
+// file, key or expression and the value.
+std::unique_ptr<MetricField> make_case_metric(const CaseConfig& config, const GeometryTree& tree);
 
 }  // namespace pdmesh

@@ -58,7 +58,14 @@ MeshInputs::MeshInputs(const CaseConfig& config) {
                                geometry.segments.size(), shortest->length, longest->length);
   }
   const auto spacing_start = std::chrono::steady_clock::now();
-  spacing = make_case_spacing(config, *tree);
+  metric = make_case_metric(config, *tree);
+  spacing = make_case_spacing(config, *tree, metric.get());
+  if (metric) {
+    spacing_summary = fmt::format("spacing: the metric field ({}) built in {:.3f} s; the nodes are placed isotropically "
+                                  "at q = sqrt(h1 h2) and triangulated in the metric (docs/metric-fields.md)",
+                                  config.spacing.field == SpacingKind::Hessian ? "hessian" : "metric",
+                                  std::chrono::duration<double>(std::chrono::steady_clock::now() - spacing_start).count());
+  }
   if (const auto* m = dynamic_cast<const MeshSpacing*>(spacing.get())) {
     const MeshFieldData& d = m->data();
     const auto [lo, hi] = std::minmax_element(d.q.begin(), d.q.end());
@@ -147,7 +154,7 @@ void refuse_above_limit(const std::string& source, std::uint64_t max_nodes, doub
 }  // namespace
 
 SpacingStage::SpacingStage(const CaseConfig& config, const MeshInputs& inputs, Build build)
-    : source_(config.source.string()), node_hint_(inputs.node_hint) {
+    : source_(config.source.string()), node_hint_(inputs.node_hint), metric_(inputs.metric.get()) {
   const std::uint64_t max_nodes = config.max_nodes;
   // The base field's quadtree is checked before the limits refine it (they only lower q).
   const auto check_base = [&inputs, max_nodes](const BackgroundSpacing& base_tree) {

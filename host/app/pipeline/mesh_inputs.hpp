@@ -16,6 +16,7 @@
 #include "init/initial_distribution.hpp"
 #include "nodes/node_set.hpp"
 #include "spacing/background_field.hpp"
+#include "spacing/metric_field.hpp"
 #include "spacing/spacing_field.hpp"
 #include "spacing/spacing_pipeline.hpp"
 
@@ -42,6 +43,9 @@ struct MeshInputs {
 
   Geometry geometry;                   // the input geometry (spacing field)
   std::unique_ptr<GeometryTree> tree;  // over `geometry`
+  // spacing.field "metric" or "hessian": the metric field (spacing/metric_field.hpp); null for the
+  // isotropic fields. `spacing` is then its isotropic size sqrt(h1 h2) (MetricSizeField).
+  std::unique_ptr<MetricField> metric;
   std::unique_ptr<SpacingField> spacing;  // the base field (eq. 3.6, an expression, data), exact
   SpacingOptions spacing_options;
   // One line about a spacing field read from a file (spacing.field = "mesh"); empty otherwise.
@@ -77,6 +81,9 @@ class SpacingStage {
 
   const SpacingPipeline& pipeline() const { return *pipeline_; }
   const SpacingField& field() const { return pipeline_->field(); }
+  // The metric field of a metric run (MeshInputs::metric), null for an isotropic one. The nodes are
+  // placed by field(), its isotropic size; the triangulation and the measures use the metric.
+  const MetricField* metric() const { return metric_; }
   // The quadtree (built by the constructor unless FieldOnly; then by the first call, not thread-safe).
   const BackgroundSpacing& background() const;
 
@@ -84,6 +91,7 @@ class SpacingStage {
   std::string source_;     // the case file, for messages
   std::string node_hint_;  // MeshInputs::node_hint
   std::unique_ptr<SpacingPipeline> pipeline_;
+  const MetricField* metric_ = nullptr;
 };
 
 // Stage spacing, its limits: refuses, with LimitError naming the numbers, a case whose

@@ -14,10 +14,14 @@
 #include "io/mesh_formats.hpp"
 #include "mesh/mesh_check.hpp"
 #include "io/quality_report.hpp"
+#include "mesh/metric_delaunay.hpp"
+#include "mesh/metric_quality.hpp"
 #include "mesh/triangulate_nodes.hpp"
+#include "spacing/metric_complexity.hpp"
 #include "nodes/node_domain.hpp"
 #include "nodes/node_file.hpp"
 #include "render/mesh_picture.hpp"
+#include "render/metric_picture.hpp"
 #include "render/node_picture.hpp"
 #include "render/spacing_picture.hpp"
 
@@ -138,11 +142,20 @@ void angle_figures(const std::vector<TriangleQuality>& per_triangle, double targ
 namespace {
 
 // The triangulation of `nodes` (or `triangulated`, when it is theirs), checked when config.check.
+// With a metric field (`metrics` the metric at each node), the constrained Delaunay triangulation in
+// the metric (triangulate_in_metric).
 Mesh triangulate_nodes(const CaseConfig& config, const MeshInputs& inputs, const NodeSet& nodes, RunPhases& phases,
-                       const Mesh* triangulated) {
+                       const Mesh* triangulated, const std::vector<Metric>* metrics) {
   auto timer = phases.phase("triangulation");
   Mesh mesh;
-  if (triangulated && triangulates(*triangulated, nodes)) {
+  if (metrics != nullptr) {
+    MetricDelaunayStats stats;
+    mesh = triangulate_in_metric(nodes, inputs.curve_names(), *metrics, {}, &stats);
+    timer.stop();
+    progress(config, "triangulation in the metric: {} flips{}", stats.flips,
+             stats.converged ? "" : fmt::format(" (stopped by the bound of {} flips)", stats.max_flips));
+    phases.note("metric flips", static_cast<double>(stats.flips));
+  } else if (triangulated && triangulates(*triangulated, nodes)) {
     mesh = *triangulated;  // the convergence rule's last measurement: the same mesh
     mesh.curve_names = inputs.curve_names();
   } else {
@@ -152,7 +165,10 @@ Mesh triangulate_nodes(const CaseConfig& config, const MeshInputs& inputs, const
   progress(config, "triangulation: {} triangles", mesh.triangles.size());
   phases.note("nodes", static_cast<double>(nodes.size()));
   phases.note("triangles", static_cast<double>(mesh.triangles.size()));
-  if (config.check) {
+  if (config.check && metrics != nullptr) {
+    // check_mesh tests the isotropic Delaunay property, which a triangulation in the metric lacks.
+    progress(config, "mesh check: skipped for a triangulation in a metric");
+  } else if (config.check) {
     const auto check_timer = phases.phase("check");
     check_or_throw(config, inputs, mesh, nodes, "triangulation");
   }
@@ -202,10 +218,14 @@ CleanedMesh clean_up(const CaseConfig& config, const MeshInputs& inputs, const S
   return out;
 }
 
-// Queues mesh.png, mesh_<view>.png and mesh.svg as output.formats asks; returns their names. `mesh`
-// and `values` must stay unchanged until the pictures are drawn.
+// Queues mesh.png, mesh_<view>.png and mesh.svg as output.formats asks, and for a metric run
+// mesh_metric_q.png (the triangles coloured by their quality Q in the metric, 0 to 1) and metric.png
+// (the metric at the points as ellipses); returns their names. `mesh`, `values`, `metric_q` and
+// `metrics` must stay unchanged until the pictures are drawn.
 std::vector<std::string> queue_mesh_pictures(const CaseConfig& config, const Mesh& mesh,
-                                             const std::vector<double>* values, RunPhases& phases) {
+                                             const std::vector<double>* values, RunPhases& phases,
+                                             const std::vector<double>* metric_q = nullptr,
+                                             const std::vector<Metric>* metrics = nullptr) {
   MeshPictureOptions picture;
   picture.title = fmt::format("{} - mesh ({} triangles)", config.name, mesh.triangles.size());
   if (values) {
@@ -228,20 +248,37 @@ std::vector<std::string> queue_mesh_pictures(const CaseConfig& config, const Mes
     }
   }
   if (config.output.wants("svg") && mesh.triangles.size() <= 2 * kSvgNodeLimit) draw("mesh.svg", picture);
+  if (metric_q != nullptr && config.output.wants("png")) {
+    MeshPictureOptions q = picture;
+    q.title = fmt::format("{} - quality Q in the metric ({} triangles)", config.name, mesh.triangles.size());
+    q.triangle_values = metric_q;
+    q.value_label = "metric Q";
+    q.value_range = std::pair{0.0, 1.0};
+    draw("mesh_metric_q.png", q);
+  }
+  if (metrics != nullptr && config.output.wants("png")) {
+    MetricPictureOptions ellipses;
+    ellipses.title = fmt::format("{} - the metric", config.name);
+    phases.picture("metric.png", [&mesh, metrics, ellipses, path = dir / "metric.png"] {
+      write_metric_picture(path, mesh, *metrics, ellipses);
+    });
+    pictures.push_back("metric.png");
+  }
   return pictures;
 }
 
 // The quality table, DIR/quality.json, the mesh files, mesh.nodes and the pictures of the mesh stage.
 void write_mesh_outputs(const CaseConfig& config, const MeshInputs& inputs, const SpacingField& spacing,
                         const Mesh& mesh, const NodeSet& mesh_nodes, QualitySummary& summary,
-                        const std::vector<TriangleQuality>& per_triangle, RunPhases& phases) {
+                        const std::vector<TriangleQuality>& per_triangle, RunPhases& phases,
+                        const std::vector<double>* metric_q, const std::vector<Metric>* metrics) {
   // The pictures are drawn on the background thread while the quality is measured and the files are
   // written; the mesh and the values stay alive until the wait below (also when something throws).
   std::vector<double> values;
   const PictureGuard guard(phases);
   if (config.output.color_by != "none") values = metric_values(per_triangle, config.output.color_by);
   const std::vector<std::string> pictures =
-      queue_mesh_pictures(config, mesh, config.output.color_by != "none" ? &values : nullptr, phases);
+      queue_mesh_pictures(config, mesh, config.output.color_by != "none" ? &values : nullptr, phases, metric_q, metrics);
   {
     const auto conformance_timer = phases.phase("spacing conformance");
     summary.has_spacing = true;
@@ -282,12 +319,28 @@ Mesh mesh_and_measure(const CaseConfig& config, const MeshInputs& inputs, const 
                       const NodeSet& nodes, RunPhases* run, const Mesh* triangulated) {
   RunPhases local(false);
   RunPhases& phases = run ? *run : local;
-  Mesh mesh = triangulate_nodes(config, inputs, nodes, phases, triangulated);
+  // A metric run: the metric at every node (one thread: an expression field is not thread-safe), for
+  // the triangulation in the metric and the measures.
+  const MetricField* metric = spacing.metric();
+  std::vector<Metric> metrics;
+  if (metric != nullptr) {
+    const auto metric_timer = phases.phase("metric at the nodes");
+    metrics.reserve(nodes.x.size());
+    for (const Vec2& p : nodes.x) metrics.push_back(metric->at(p));
+  }
+  Mesh mesh = triangulate_nodes(config, inputs, nodes, phases, triangulated, metric ? &metrics : nullptr);
   // The final cleanup: the mesh files and pictures show the cleaned mesh; final.nodes stays the
-  // simulation's result.
+  // simulation's result. A metric run skips it: today's cleanup works on angles, isotropically, and
+  // would undo the metric Delaunay's flips.
+  const bool cleanup = config.cleanup.enabled && metric == nullptr;
+  if (config.cleanup.enabled && metric != nullptr) {
+    progress(config, "cleanup: skipped for a metric field (the isotropic cleanup would undo the flips of the "
+             "triangulation in the metric)");
+    phases.note("cleanup", "skipped: metric field");
+  }
   CleanedMesh cleaned;
-  if (config.cleanup.enabled) cleaned = clean_up(config, inputs, spacing, mesh, nodes, phases);
-  const NodeSet& mesh_nodes = config.cleanup.enabled ? cleaned.nodes : nodes;
+  if (cleanup) cleaned = clean_up(config, inputs, spacing, mesh, nodes, phases);
+  const NodeSet& mesh_nodes = cleanup ? cleaned.nodes : nodes;
   const SpacingField& field = spacing.field();
   // The field at every node goes into the mesh files (point data "q"): a run's field can be read back
   // with spacing.field = "mesh", or edited (e.g. scaled by a solution's error indicator) first.
@@ -297,13 +350,21 @@ Mesh mesh_and_measure(const CaseConfig& config, const MeshInputs& inputs, const 
   }
   if (!config.write_outputs) return mesh;  // the Python API measures on demand (Mesh.quality())
   auto quality_timer = phases.phase("quality");
-  if (!config.cleanup.enabled) cleaned.per_triangle = triangle_qualities(mesh);
+  if (!cleanup) cleaned.per_triangle = triangle_qualities(mesh);
   QualitySummary summary = summarize_quality(cleaned.per_triangle);
   summary.points = mesh.points.size();
-  summary.has_cleanup = config.cleanup.enabled;
+  summary.has_cleanup = cleanup;
   summary.cleanup = cleaned.effect;
+  std::vector<double> metric_q;
+  if (metric != nullptr) {
+    // The mesh's points are the nodes (no cleanup), so metrics[i] is the metric at mesh.points[i].
+    summary.has_metric = true;
+    summary.metric = metric_quality(mesh, metrics, complexity_on_mesh(mesh.points, mesh.triangles, metrics));
+    metric_q = metric_qualities(mesh.points, mesh.triangles, metrics);
+  }
   quality_timer.stop();
-  write_mesh_outputs(config, inputs, field, mesh, mesh_nodes, summary, cleaned.per_triangle, phases);
+  write_mesh_outputs(config, inputs, field, mesh, mesh_nodes, summary, cleaned.per_triangle, phases,
+                     metric != nullptr ? &metric_q : nullptr, metric != nullptr ? &metrics : nullptr);
   return mesh;
 }
 

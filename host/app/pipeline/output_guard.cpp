@@ -56,7 +56,9 @@ std::vector<fs::path> input_files(const CaseConfig& config) {
   std::vector<fs::path> in;
   if (!config.source.empty()) in.push_back(config.source);
   for (const fs::path& f : config.geometry.files) in.push_back(f);
-  if (config.spacing.field == SpacingKind::Mesh && !config.spacing.file.empty()) in.push_back(config.spacing.file);
+  if ((config.spacing.field == SpacingKind::Mesh || config.spacing.metric()) && !config.spacing.file.empty())
+    in.push_back(config.spacing.file);
+  if (config.spacing.metric() && !config.spacing.sol.empty()) in.push_back(config.spacing.sol);
   return in;
 }
 

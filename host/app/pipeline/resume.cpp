@@ -58,14 +58,35 @@ std::vector<std::pair<std::string, std::string>> case_identity(const CaseConfig&
   if (config.boundary.nodes != BoundaryNodeRule::Input) keys.emplace_back("boundary.nodes", "spacing");
   keys.emplace_back("spacing.field", config.spacing.field == SpacingKind::Expression ? "expression"
                                      : config.spacing.field == SpacingKind::Mesh     ? "mesh"
+                                     : config.spacing.field == SpacingKind::Metric   ? "metric"
+                                     : config.spacing.field == SpacingKind::Hessian  ? "hessian"
                                                                                      : "boundary");
   keys.emplace_back("spacing.expression", config.spacing.expression);
-  // Only for a mesh field, so that checkpoints of the other fields keep their identity.
-  if (config.spacing.field == SpacingKind::Mesh) {
-    const std::string content = read_text_file(config.spacing.file, InputKind::Mesh);
-    keys.emplace_back("spacing.file", fmt::format("{} ({} bytes, FNV-1a {:016x})", config.spacing.file.filename().string(),
-                                                  content.size(), fnv1a64(content)));
-    keys.emplace_back("spacing.array", config.spacing.array);
+  const auto file_identity = [&keys](const char* key, const std::filesystem::path& file) {
+    const std::string content = read_text_file(file, InputKind::Mesh);
+    keys.emplace_back(key, fmt::format("{} ({} bytes, FNV-1a {:016x})", file.filename().string(), content.size(),
+                                       fnv1a64(content)));
+  };
+  // Only for a field read from a file, so that checkpoints of the other fields keep their identity.
+  if (config.spacing.field == SpacingKind::Mesh ||
+      (config.spacing.metric() && !config.spacing.file.empty())) {
+    file_identity("spacing.file", config.spacing.file);
+    if (!config.spacing.sol.empty()) file_identity("spacing.sol", config.spacing.sol);
+    else keys.emplace_back("spacing.array", config.spacing.array);
+  }
+  // The metric keys, only for a metric field (the other fields' checkpoints keep their identity).
+  if (config.spacing.metric()) {
+    const auto& s = config.spacing;
+    for (const auto& [key, value] : {std::pair{"spacing.h1", &s.h1}, {"spacing.h2", &s.h2}, {"spacing.angle", &s.angle},
+                                     {"spacing.m11", &s.m11}, {"spacing.m12", &s.m12}, {"spacing.m22", &s.m22},
+                                     {"spacing.function", &s.function}}) {
+      keys.emplace_back(key, *value);
+    }
+    keys.emplace_back("spacing.complexity", fmt::format("{}", s.complexity));
+    keys.emplace_back("spacing.hmin", fmt::format("{}", s.hmin));
+    keys.emplace_back("spacing.hmax", fmt::format("{}", s.hmax));
+    keys.emplace_back("spacing.max_anisotropy", fmt::format("{}", s.max_anisotropy));
+    keys.emplace_back("spacing.metric_gradation", fmt::format("{}", s.metric_gradation));
   }
   // The pipeline's keys change the field the run follows.
   keys.emplace_back("spacing.scale", fmt::format("{}", config.spacing.scale));

@@ -1,0 +1,245 @@
+// Metric fields from a case file (spacing.field = "metric" / "hessian"): the keys read, every
+// refusal naming the key and value, the isotropic size the pipeline uses, and `pdmesh mesh` end to end
+// (the triangulation in the metric, the measures in quality.json, a bad metric refused with exit 2
+// and nothing written).
+#include <catch2/catch.hpp>
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "app/config/case_file.hpp"
+#include "app/pipeline/mesh_inputs.hpp"
+#include "app/pipeline/resume.hpp"
+#include "core/errors.hpp"
+#include "error_message.hpp"
+#include "render/metric_picture.hpp"
+#include "run_pdmesh.hpp"
+#include "spacing/metric.hpp"
+#include "spacing/metric_size_field.hpp"
+#include "temp_files.hpp"
+
+namespace fs = std::filesystem;
+using namespace pdmesh;
+using Catch::Matchers::Contains;
+
+namespace {
+
+const fs::path kCase = "/cases/demo/case.toml";
+const std::string kGeometry = "[geometry]\nfiles = [\"a.crv\"]\n";
+
+std::string error_of(const std::string& spacing) {
+  try {
+    parse_case_text(kGeometry + "[spacing]\n" + spacing, kCase);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+CaseConfig parse(const std::string& spacing) { return parse_case_text(kGeometry + "[spacing]\n" + spacing, kCase); }
+
+}  // namespace
+
+TEST_CASE("metric keys are read: sizes, components, files", "[metric][case]") {
+  const CaseConfig sizes = parse("field = \"metric\"\nh1 = \"0.1\"\nh2 = \"0.001 + 0.198*abs(y-0.5)\"\n");
+  CHECK(sizes.spacing.field == SpacingKind::Metric);
+  CHECK(sizes.spacing.metric());
+  CHECK(sizes.spacing.h2 == "0.001 + 0.198*abs(y-0.5)");
+  CHECK(sizes.spacing.angle == "0");  // the default direction: the x axis
+  const CaseConfig comp = parse("field = \"metric\"\nm11 = \"100\"\nm12 = \"x\"\nm22 = \"400\"\n");
+  CHECK(comp.spacing.m12 == "x");
+  CHECK(comp.spacing.h1.empty());
+  const CaseConfig vtu = parse("field = \"metric\"\nfile = \"m.vtu\"\n");
+  CHECK(vtu.spacing.file == fs::path("/cases/demo/m.vtu"));
+  CHECK(vtu.spacing.array == "metric");  // the default array of a metric file
+  const CaseConfig medit = parse("field = \"metric\"\nfile = \"adapt.mesh\"\n");
+  CHECK(medit.spacing.sol == fs::path("/cases/demo/adapt.sol"));  // the same stem
+  const CaseConfig hessian = parse("field = \"hessian\"\nfunction = \"tanh(100*(y-0.5))\"\ncomplexity = 4000\n"
+                                   "hmin = 1e-5\nhmax = 0.3\nmax_anisotropy = 1000\n");
+  CHECK(hessian.spacing.field == SpacingKind::Hessian);
+  CHECK(hessian.spacing.complexity == 4000.0);
+  CHECK(hessian.spacing.hmin == 1e-5);
+  CHECK(hessian.spacing.hmax == 0.3);
+  CHECK(hessian.spacing.max_anisotropy == 1000.0);
+  const CaseConfig data = parse("field = \"hessian\"\nfile = \"u.vtu\"\ncomplexity = 100\nmetric_gradation = 1.5\n");
+  CHECK(data.spacing.array == "u");
+  CHECK(data.spacing.metric_gradation == 1.5);
+  // An isotropic case has no metric.
+  CHECK_FALSE(parse("expression = \"0.1\"\n").spacing.metric());
+}
+
+TEST_CASE("bad metric keys are refused naming the key and the value", "[metric][case]") {
+  // Sizes and components mixed.
+  CHECK_THAT(error_of("field = \"metric\"\nh1 = \"0.1\"\nh2 = \"0.1\"\nm11 = \"1\"\n"),
+             Contains("spacing.h1 and spacing.m11 are both set"));
+  // A missing size or component.
+  CHECK_THAT(error_of("field = \"metric\"\nh1 = \"0.1\"\n"), Contains("spacing.h2 is missing"));
+  CHECK_THAT(error_of("field = \"metric\"\nm11 = \"1\"\nm22 = \"1\"\n"), Contains("spacing.m12 is missing"));
+  CHECK_THAT(error_of("field = \"metric\"\n"), Contains("no metric is given"));
+  // Expressions and a file.
+  CHECK_THAT(error_of("field = \"metric\"\nh1 = \"0.1\"\nh2 = \"0.1\"\nfile = \"m.vtu\"\n"),
+             Contains("spacing.h1 and spacing.file are both set"));
+  // A metric key with another field, and a Hessian key with the metric field.
+  CHECK_THAT(error_of("expression = \"0.1\"\nh1 = \"0.1\"\n"), Contains("spacing.h1 is set but spacing.field is 'expression'"));
+  CHECK_THAT(error_of("field = \"metric\"\nh1 = \"1\"\nh2 = \"1\"\ncomplexity = 10\n"),
+             Contains("spacing.complexity is set but spacing.field is 'metric'"));
+  // Empty expressions, wrong types, out-of-range numbers: the key's line and the value.
+  CHECK_THAT(error_of("field = \"metric\"\nh1 = \"\"\nh2 = \"0.1\"\n"), Contains("/cases/demo/case.toml:5"));
+  CHECK_THAT(error_of("field = \"metric\"\nh1 = 0.1\nh2 = \"0.1\"\n"), Contains("spacing.h1 must be a string"));
+  CHECK_THAT(error_of("field = \"hessian\"\nfunction = \"x*x\"\ncomplexity = -3\n"),
+             Contains("spacing.complexity must be > 0, got -3"));
+  CHECK_THAT(error_of("field = \"hessian\"\nfunction = \"x*x\"\n"), Contains("spacing.complexity"));
+  CHECK_THAT(error_of("field = \"hessian\"\nfunction = \"x*x\"\ncomplexity = 10\nhmin = 0.5\nhmax = 0.1\n"),
+             Contains("got hmin 0.5 and hmax 0.1"));
+  CHECK_THAT(error_of("field = \"hessian\"\nfunction = \"x*x\"\ncomplexity = 10\nmax_anisotropy = 0.5\n"),
+             Contains("spacing.max_anisotropy must be >= 1, got 0.5"));
+  CHECK_THAT(error_of("field = \"hessian\"\ncomplexity = 10\n"), Contains("spacing.function"));
+  // Gradation needs a background mesh; a .mesh is metric data only; a .sol needs a .mesh.
+  CHECK_THAT(error_of("field = \"hessian\"\nfunction = \"x*x\"\ncomplexity = 10\nmetric_gradation = 1.5\n"),
+             Contains("spacing.metric_gradation needs the metric on a background mesh"));
+  CHECK_THAT(error_of("field = \"metric\"\nfile = \"m.vtu\"\nmetric_gradation = 0.5\n"),
+             Contains("got 0.5"));
+  CHECK_THAT(error_of("file = \"m.mesh\"\n"), Contains("is a Medit .mesh"));
+  CHECK_THAT(error_of("field = \"metric\"\nfile = \"m.vtu\"\nsol = \"m.sol\"\n"), Contains("not a Medit .mesh"));
+  CHECK_THAT(error_of("field = \"metric\"\nfile = \"m.mesh\"\nsol = \"m.txt\"\n"), Contains("'m.txt'"));
+  // A misspelt key is refused with a suggestion.
+  CHECK_THAT(error_of("field = \"metric\"\nh1 = \"1\"\nh3 = \"1\"\n"), Contains("spacing.h3"));
+}
+
+TEST_CASE("the isotropic size of a metric is sqrt(h1 h2)", "[metric][case]") {
+  CHECK(isotropic_size(metric_from_sizes(0.1, 0.001, 0.3)) == Approx(std::sqrt(0.1 * 0.001)).epsilon(1e-12));
+  CHECK(isotropic_size(metric_from_sizes(0.2, 0.2, 0.0)) == Approx(0.2).epsilon(1e-14));
+  // Through the case and the read stage: MeshInputs holds the metric, its base field is the size.
+  const CaseConfig c = load_case_file(fs::path(PDMESH_SOURCE_DIR) / "cases/aniso/linear/case.toml",
+                                      {parse_set_option("spacing.h2=0.01 + x*x"), parse_set_option("spacing.angle=30")});
+  const MeshInputs inputs(c);
+  REQUIRE(inputs.metric != nullptr);
+  const Metric m = inputs.metric->at({0.5, 0.2});
+  const Metric expected = metric_from_sizes(0.1, 0.26, 30.0 * M_PI / 180.0);
+  CHECK(m.m11 == Approx(expected.m11).epsilon(1e-12));
+  CHECK(m.m12 == Approx(expected.m12).epsilon(1e-12));
+  CHECK(inputs.spacing->at({0.5, 0.2}) == Approx(std::sqrt(0.1 * 0.26)).epsilon(1e-12));
+  const SpacingStage stage(c, inputs, SpacingStage::Build::FieldOnly);
+  CHECK(stage.metric() == inputs.metric.get());
+  // An isotropic case has none.
+  const MeshInputs iso(load_case_file(fs::path(PDMESH_SOURCE_DIR) / "cases/circle_circle/case.toml"));
+  CHECK(iso.metric == nullptr);
+}
+
+TEST_CASE("pdmesh mesh triangulates in the metric and measures in it", "[metric][case][cli]") {
+  const fs::path out = pdmesh_test::fresh_path("metric_case_out");
+  const std::string source = PDMESH_SOURCE_DIR;
+  const auto r = pdmesh_test::run_pdmesh(fmt::format("mesh '{}/cases/aniso/linear/case.toml' --out '{}' "
+                                                     "--set simulation.iterations=200",
+                                                     source, out.string()));
+  INFO(r.output);
+  REQUIRE(r.status == 0);
+  CHECK_THAT(r.output, Contains("triangulation in the metric"));
+  CHECK_THAT(r.output, Contains("cleanup: skipped for a metric field"));
+  CHECK_THAT(r.output, Contains("Metric: edges in [0.71,1.41]"));
+  const std::string json = pdmesh_test::slurp(out / "quality.json");
+  CHECK_THAT(json, Contains("\"metric\": {\"edges\": "));
+  CHECK_THAT(json, Contains("\"cleanup\": null"));
+  CHECK(fs::exists(out / "mesh_metric_q.png"));
+  CHECK(fs::exists(out / "metric.png"));
+  // pdmesh quality with the case measures the same mesh in the same metric.
+  const auto q = pdmesh_test::run_pdmesh(fmt::format("quality '{}' --geometry '{}/cases/aniso/linear/case.toml' --json -",
+                                                     (out / "mesh.msh").string(), source));
+  INFO(q.output);
+  CHECK(q.status == 0);
+  CHECK_THAT(q.output, Contains("Metric: quality Q"));
+  CHECK_THAT(q.output, Contains("\"metric\": {\"edges\": "));
+  fs::remove_all(out);
+}
+
+TEST_CASE("a Medit .mesh + .sol metric runs, the .sol found by the .mesh's stem", "[metric][case][cli]") {
+  const fs::path dir = pdmesh_test::fresh_dir("metric_case_medit");
+  const std::string source = PDMESH_SOURCE_DIR;
+  // A constant metric, h = 0.05 along x and 0.1 along y, on two triangles around the unit square.
+  std::ofstream(dir / "bg.mesh") << "MeshVersionFormatted 2\nDimension 2\nVertices\n4\n-0.1 -0.1 0\n1.1 -0.1 0\n"
+                                    "1.1 1.1 0\n-0.1 1.1 0\nTriangles\n2\n1 2 3 0\n1 3 4 0\nEnd\n";
+  std::ofstream(dir / "bg.sol") << "MeshVersionFormatted 2\nDimension 2\nSolAtVertices\n4\n1 3\n400 0 100\n"
+                                   "400 0 100\n400 0 100\n400 0 100\nEnd\n";
+  std::ofstream(dir / "case.toml") << fmt::format(
+      "[geometry]\nfiles = [\"{}/cases/aniso/linear/domain.crv\"]\n[spacing]\nfield = \"metric\"\nfile = \"bg.mesh\"\n",
+      source);
+  const fs::path out = dir / "out";
+  const auto r = pdmesh_test::run_pdmesh(fmt::format("mesh '{}' --out '{}' -q", (dir / "case.toml").string(), out.string()));
+  INFO(r.output);
+  REQUIRE(r.status == 0);
+  const std::string json = pdmesh_test::slurp(out / "quality.json");
+  CHECK_THAT(json, Contains("\"metric\": {\"edges\": "));
+  // A .sol whose metric is not SPD: exit 2 naming the .sol, nothing written.
+  std::ofstream(dir / "bg.sol") << "MeshVersionFormatted 2\nDimension 2\nSolAtVertices\n4\n1 3\n400 0 100\n"
+                                   "400 300 100\n400 0 100\n400 0 100\nEnd\n";
+  const fs::path out2 = dir / "out2";
+  const auto bad = pdmesh_test::run_pdmesh(fmt::format("mesh '{}' --out '{}' -q", (dir / "case.toml").string(), out2.string()));
+  CHECK(bad.status == 2);
+  CHECK_THAT(bad.output, Contains("bg.sol"));
+  CHECK_FALSE(fs::exists(out2));
+  fs::remove_all(dir);
+}
+
+TEST_CASE("a metric that is not a size is exit 2, naming the expression, nothing written", "[metric][case][cli]") {
+  const fs::path dir = pdmesh_test::fresh_dir("metric_case_bad");
+  const std::string source = PDMESH_SOURCE_DIR;
+  std::ofstream(dir / "case.toml") << fmt::format(
+      "[geometry]\nfiles = [\"{}/cases/aniso/linear/domain.crv\"]\n"
+      "[spacing]\nfield = \"metric\"\nh1 = \"0.1\"\nh2 = \"y - 0.5\"\n",
+      source);
+  const fs::path out = dir / "out";
+  const auto r = pdmesh_test::run_pdmesh(fmt::format("mesh '{}' --out '{}'", (dir / "case.toml").string(), out.string()));
+  INFO(r.output);
+  CHECK(r.status == 2);
+  CHECK_THAT(r.output, Contains("h2 = 'y - 0.5'"));
+  CHECK_THAT(r.output, Contains("a size must be a finite positive number"));
+  CHECK_FALSE(fs::exists(out));
+  fs::remove_all(dir);
+}
+
+TEST_CASE("the metric keys are part of the checkpoint's case identity", "[metric][case][resume]") {
+  const fs::path file = fs::path(PDMESH_SOURCE_DIR) / "cases/aniso/linear/case.toml";
+  const auto identity = case_identity(load_case_file(file));
+  const auto other = case_identity(load_case_file(file, {parse_set_option("spacing.h1=0.2")}));
+  CHECK(identity != other);
+  const auto has = [&identity](const std::string& key, const std::string& value) {
+    return std::find(identity.begin(), identity.end(), std::pair{key, value}) != identity.end();
+  };
+  CHECK(has("spacing.field", "metric"));
+  CHECK(has("spacing.h2", "0.001 + 0.198*abs(y - 0.5)"));
+  // An isotropic case's identity has no metric keys (its checkpoints keep their identity).
+  const auto iso = case_identity(load_case_file(fs::path(PDMESH_SOURCE_DIR) / "cases/circle_circle/case.toml"));
+  for (const auto& [key, value] : iso) CHECK(key != "spacing.h1");
+}
+
+TEST_CASE("the metric picture needs one metric per point", "[metric][render]") {
+  Mesh mesh;
+  mesh.points = {{0, 0}, {1, 0}, {0, 1}};
+  mesh.triangles = {{0, 1, 2}};
+  const fs::path out = pdmesh_test::fresh_dir("metric_picture");
+  CHECK_THAT(pdmesh_test::error_message<Error>([&] { write_metric_picture(out / "m.png", mesh, {Metric{}}, {}); }),
+             Contains("1 metrics for 3 points"));
+  write_metric_picture(out / "m.png", mesh, std::vector<Metric>(3, metric_from_sizes(0.5, 0.1, 0.3)), {});
+  CHECK(fs::file_size(out / "m.png") > 0);
+  fs::remove_all(out);
+}
+
+TEST_CASE("an output that would replace the metric file is refused", "[metric][cli][outputs]") {
+  const fs::path dir = pdmesh_test::fresh_dir("metric_case_guard");
+  fs::create_directories(dir / "out");
+  std::ofstream(dir / "out" / "mesh.vtu") << "the metric\n";
+  std::ofstream(dir / "case.toml") << fmt::format(
+      "[geometry]\nfiles = [\"{}/cases/aniso/linear/domain.crv\"]\n[spacing]\nfield = \"metric\"\nfile = \"out/mesh.vtu\"\n",
+      PDMESH_SOURCE_DIR);
+  const auto r = pdmesh_test::run_pdmesh(
+      fmt::format("mesh '{}' --out '{}' -q", (dir / "case.toml").string(), (dir / "out").string()));
+  INFO(r.output);
+  CHECK(r.status == 2);
+  CHECK_THAT(r.output, Contains("would replace the input"));
+  CHECK(pdmesh_test::slurp(dir / "out" / "mesh.vtu") == "the metric\n");
+  fs::remove_all(dir);
+}
