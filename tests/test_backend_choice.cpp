@@ -1,6 +1,7 @@
 // The app's choice of simulation backend (app/pipeline/backend_choice): `--device auto` falls back device by
 // device, then to the host, when the simulation program does not build (PDMESH_TEST_FAIL_BUILD
-// injects a driver's build failure); an explicit device does not fall back; precisions.
+// injects a driver's build failure); an explicit device does not fall back; precisions; a metric run's
+// choice (choose_metric_backend).
 #include <catch2/catch.hpp>
 
 #include <cmath>
@@ -12,6 +13,11 @@
 
 #include "app/pipeline/backend_choice.hpp"
 #include "core/errors.hpp"
+#include "geometry/geometry_tree.hpp"
+#include "geometry_fixtures.hpp"
+#include "init/initial_distribution.hpp"
+#include "spacing/metric_field.hpp"
+#include "spacing/spacing_field.hpp"
 #include "opencl/device_simulation.hpp"
 #include "opencl/devices.hpp"
 #include "opencl/precision_probe.hpp"
@@ -128,4 +134,39 @@ TEST_CASE("auto order: discrete GPU, fp64, compute units, then CPUs", "[opencl][
   std::vector<std::string> names;
   for (const auto& d : order) names.push_back(d.name);
   CHECK(names == std::vector<std::string>{"big", "small", "nofp64", "igpu", "cpu", "fpga"});
+}
+
+TEST_CASE("a metric run gets the host driver: the reference, or an explicit device's OpenCL step backend",
+          "[opencl][backend][metric]") {
+  const ocl::DeviceInfo d = first_device();
+  const Geometry geometry = fixtures::square(1.0, 4);
+  const GeometryTree tree(geometry);
+  const BoundarySpacing spacing(tree);
+  const NodeSet initial = make_initial_distribution(tree, spacing, {InitMethod::Structured, 1, {}}).nodes;
+  const ConstantMetricField metric(Metric{16.0, 0.0, 16.0});
+  SimOptions o;
+  o.iterations = 5;
+  o.quiet = true;
+  o.metric = &metric;
+  Notes notes;
+  const ChosenBackend host = choose_metric_backend("host", Precision::Double, notes.sink());
+  CHECK_FALSE(host.context);
+  CHECK(host.simulator->describe() == "the host reference (double)");
+  const ChosenBackend automatic = choose_metric_backend("auto", Precision::Auto, notes.sink());
+  CHECK_FALSE(automatic.context);
+  CHECK(notes.any("the host reference for a run with a metric field"));
+  NodeSet a = initial;
+  const SimResult ra = automatic.simulator->run(a, tree, spacing, o);
+  for (const Precision precision : {Precision::Double, Precision::Float}) {
+    const ChosenBackend device =
+        choose_metric_backend(fmt::format("opencl:{}:{}", d.platform, d.device), precision, notes.sink());
+    REQUIRE(device.context);
+    const std::string described = device.simulator->describe();
+    INFO(described);
+    CHECK(described.find("host-driven steps") != std::string::npos);
+    NodeSet b = initial;
+    const SimResult rb = device.simulator->run(b, tree, spacing, o);  // the device-resident run would refuse
+    REQUIRE(rb.history.size() == 5);
+    if (precision == Precision::Double && d.fp64) CHECK(b.x == a.x);
+  }
 }

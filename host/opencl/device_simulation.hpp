@@ -73,7 +73,8 @@ struct StepProgram;
 // The device-resident run as a Simulator (the contract of sim/simulation.hpp). Same contract as
 // run_simulation: updates nodes, returns the history; starts from options.resume when set (a SimState:
 // everything is uploaded from the host at the start, so a run can begin from any node set and state).
-// Throws InputError when options.exact_spacing is set (the device reads the background field),
+// Throws InputError when options.exact_spacing is set (the device reads the background field) or
+// options.metric is (no metric mode in the device-resident loop yet: the host driver runs metric runs),
 // LimitError from check_device_memory (before the first allocation, and when the neighbour rows grow
 // past what the device allows). Any error after the setup first hands the last good state to
 // callbacks.on_failure; an OpenCL error is rethrown as DeviceError "iteration K: <call> failed: CL_NAME (code)".

@@ -13,6 +13,7 @@
 #include "sim/iteration_loop.hpp"
 #include "sim/step_trace.hpp"
 #include "spacing/background_field.hpp"
+#include "spacing/metric_field.hpp"
 
 namespace pdmesh {
 namespace {
@@ -33,6 +34,26 @@ void load_particles(const NodeSet& nodes, const BoundaryHandler& boundary, SimPa
     const Vec2 t = boundary.tangent(static_cast<int>(i));
     p.tx[i] = t.x;
     p.ty[i] = t.y;
+  }
+}
+
+// Metric mode: every node's metric at its position (the arrays cleared otherwise: isotropic mode).
+void load_metric(const NodeSet& nodes, const MetricField* metric, SimParticles& p) {
+  if (!metric) {
+    p.m11.clear();
+    p.m12.clear();
+    p.m22.clear();
+    return;
+  }
+  const std::size_t n = nodes.size();
+  p.m11.resize(n);
+  p.m12.resize(n);
+  p.m22.resize(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const Metric m = metric->at(nodes.x[i]);
+    p.m11[i] = m.m11;
+    p.m12[i] = m.m12;
+    p.m22[i] = m.m22;
   }
 }
 
@@ -157,6 +178,8 @@ class HostSteps final : public IterationSteps {
 
 IterationStep HostSteps::compute(int iteration, const GlobalTimeStep& gm) {
   load_particles(nodes_, boundary_, particles_);
+  // Every step: the nodes moved (and population control may have changed the set) since the last.
+  load_metric(nodes_, options_.metric, particles_);
   build_neighbours_growing(backend_, particles_, options_.cutoff, list_, flags_);
   backend_.compute_forces(particles_, list_, params_, forces_);
   backend_.time_step_and_move(particles_, forces_, gm.dt2(), moves_);
@@ -213,6 +236,9 @@ IterationMoves HostSteps::apply(int iteration) {
 SimResult run_simulation(NodeSet& nodes, const GeometryTree& tree, const SpacingField& spacing,
                          const SimOptions& options, const SimCallbacks& callbacks) {
   check_node_set(nodes);
+  if (options.metric && options.population.enabled)
+    throw InputError("population control is not metric-aware yet (it inserts and merges nodes by the isotropic "
+                     "spacing): a run with a metric field needs population control off");
   std::unique_ptr<StepBackend> own_backend;
   StepBackend* backend = options.backend;
   if (!backend) {
@@ -242,8 +268,30 @@ class HostSimulator final : public Simulator {
   }
 };
 
+// The host driver over a step backend it owns.
+class HostDrivenSimulator final : public Simulator {
+ public:
+  HostDrivenSimulator(std::unique_ptr<StepBackend> backend, std::string description)
+      : backend_(std::move(backend)), description_(std::move(description)) {}
+  std::string describe() const override { return description_; }
+  SimResult run(NodeSet& nodes, const GeometryTree& tree, const SpacingField& spacing, const SimOptions& options,
+                const SimCallbacks& callbacks) override {
+    SimOptions with_backend = options;
+    with_backend.backend = backend_.get();
+    return run_simulation(nodes, tree, spacing, with_backend, callbacks);
+  }
+
+ private:
+  std::unique_ptr<StepBackend> backend_;
+  std::string description_;
+};
+
 }  // namespace
 
 std::unique_ptr<Simulator> make_host_simulator() { return std::make_unique<HostSimulator>(); }
+
+std::unique_ptr<Simulator> make_host_simulator(std::unique_ptr<StepBackend> backend, std::string description) {
+  return std::make_unique<HostDrivenSimulator>(std::move(backend), std::move(description));
+}
 
 }  // namespace pdmesh

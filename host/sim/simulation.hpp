@@ -22,6 +22,7 @@
 namespace pdmesh {
 
 class BackgroundSpacing;
+class MetricField;
 
 // The driver's state between iterations beyond the NodeSet itself: with the NodeSet, enough to
 // continue a run bit-identically on the host reference (host/sim/checkpoint.hpp stores it).
@@ -82,6 +83,15 @@ struct SimOptions {
   const SimState* resume = nullptr;
   // Node insertion and removal during the run (off by default: the thesis keeps the count fixed).
   PopulationOptions population;
+  // Non-null: a metric run (docs/metric-fields.md, "Particles in the metric"). The host driver sets every
+  // node's metric (SimParticles::m11, m12, m22) to metric->at(position) before each step, so the step
+  // backend runs in metric mode: pairs measured in the metric, sigma = 1 in metric units. The spacing
+  // field still gives NodeSet::q (read by messages, not by the step). Boundary handling is unchanged
+  // (it moves nodes along their curves by arc gaps, with no length scale). Population control is not
+  // metric-aware yet: run_simulation refuses a metric with population.enabled (InputError). The
+  // device-resident Simulator has no metric mode and refuses one (InputError). Null: isotropic.
+  // The field is read from the driver's thread only (ExpressionMetricField is not thread-safe).
+  const MetricField* metric = nullptr;
 };
 
 struct SimCallbacks {
@@ -155,6 +165,9 @@ class Simulator {
 
 // The host driver as a Simulator (run_simulation).
 std::unique_ptr<Simulator> make_host_simulator();
+// The host driver over `backend` (owned; e.g. the OpenCL StepBackend), which it sets as
+// SimOptions::backend of every run; describe() returns `description`.
+std::unique_ptr<Simulator> make_host_simulator(std::unique_ptr<StepBackend> backend, std::string description);
 
 // options.background, or a BackgroundSpacing of `spacing` built into `own` (default options).
 const BackgroundSpacing& background_for(const SimOptions& options, const SpacingField& spacing, const GeometryTree& tree,

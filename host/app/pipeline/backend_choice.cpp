@@ -8,6 +8,7 @@
 #include "core/errors.hpp"
 #include "opencl/device_simulation.hpp"
 #include "opencl/devices.hpp"
+#include "opencl/opencl_backend.hpp"
 #include "opencl/precision_probe.hpp"
 
 namespace pdmesh {
@@ -106,6 +107,28 @@ ChosenBackend choose_backend(const std::string& device, Precision precision,
     return host_backend(precision, note);
   }
   return choose_among(candidates, true, precision, note);
+}
+
+ChosenBackend choose_metric_backend(const std::string& device, Precision precision,
+                                    const std::function<void(const std::string&)>& note) {
+  ++setups;
+  if (device == "host") return host_backend(precision, note);
+  if (device == "auto") {
+    note("device auto: the host reference for a run with a metric field (the device-resident simulation has no "
+         "metric mode yet)");
+    ChosenBackend chosen;
+    chosen.simulator = make_host_simulator();
+    return chosen;
+  }
+  const ocl::DeviceInfo d = *ocl::select_device(device);  // InputError when absent
+  ChosenBackend chosen;
+  chosen.context = std::make_unique<ocl::Context>(d);
+  const ocl::Precision p = device_precision(precision, d, *chosen.context, note);
+  chosen.simulator = make_host_simulator(
+      ocl::make_opencl_backend(*chosen.context, p),
+      fmt::format("opencl:{}:{} ({}, {}, {}, host-driven steps: a metric run)", d.platform, d.device, d.name, d.type,
+                  p == ocl::Precision::Double ? "double" : "float"));
+  return chosen;
 }
 
 }  // namespace pdmesh

@@ -45,6 +45,14 @@ bool auto_prefers_host(const std::string& device, double nodes);
 ChosenBackend choose_backend_for(const std::string& device, Precision precision, double nodes,
                                  const std::function<void(const std::string&)>& note);
 
+// The backend of a run with a metric field (SimOptions::metric), which the device-resident run refuses:
+// "host" and "auto" the host reference (auto noted); an explicit opencl spec the host driver over that
+// device's OpenCL StepBackend (metric mode with the host's neighbour rows), in the precision chosen as
+// choose_backend chooses it. InputError when the device is not there, DeviceError when the program
+// does not build on it.
+ChosenBackend choose_metric_backend(const std::string& device, Precision precision,
+                                    const std::function<void(const std::string&)>& note);
+
 // How many backends choose_backend and choose_backend_for have set up in this process (a test hook:
 // a caller that keeps its backend, like the Python Mesher's steps, sets up one).
 std::size_t backend_setups();
