@@ -61,8 +61,8 @@ MeshInputs::MeshInputs(const CaseConfig& config) {
   metric = make_case_metric(config, *tree);
   spacing = make_case_spacing(config, *tree, metric.get());
   if (metric) {
-    spacing_summary = fmt::format("spacing: the metric field ({}) built in {:.3f} s; the nodes are placed isotropically "
-                                  "at q = sqrt(h1 h2) and triangulated in the metric (docs/metric-fields.md)",
+    spacing_summary = fmt::format("spacing: the metric field ({}) built in {:.3f} s; the nodes start at q = sqrt(h1 h2), "
+                                  "relax in the metric and are triangulated in it (docs/metric-fields.md)",
                                   config.spacing.field == SpacingKind::Hessian ? "hessian" : "metric",
                                   std::chrono::duration<double>(std::chrono::steady_clock::now() - spacing_start).count());
   }

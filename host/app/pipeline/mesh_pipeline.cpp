@@ -214,7 +214,8 @@ void run_stages(const CaseConfig& config, RunPhases& phases) {
   // 30P30N) is set up on a thread while this one builds the spacing field, estimates and fills, which
   // leave a core idle part of the time. Its notes and errors come out when the simulation starts.
   std::future<PreparedBackend> prepared;
-  if (config.simulation.iterations > 0 && config.simulation.device != "host")
+  // A metric run takes its backend in simulate (choose_metric_backend): nothing to prepare.
+  if (config.simulation.iterations > 0 && config.simulation.device != "host" && !config.spacing.metric())
     prepared = std::async(std::launch::async, [&config] { return prepare_backend(config); });
   // The final spacing field and its quadtree (in the thesis preset eq. 3.6's lookup table, which the
   // node estimate and the simulation read), then the limits, before any large allocation.
