@@ -72,18 +72,13 @@ std::vector<int> curves_by_name(const Geometry& geometry, const std::vector<std:
 
 namespace {
 
-LayerMesh assemble(const RaySet& set, const std::vector<int>& count, const std::vector<double>& top,
-                   const LayerSettings& settings, std::vector<int>& owner) {
-  LayerMesh m;
-  m.nodes = set.wall_points;
-  m.wall_nodes = static_cast<int>(m.nodes.size());
-  m.rays = set.rays;
-  m.chain_ray_begin = set.ray_begin;
-  m.chain_closed = set.closed;
-  m.fan_sizes = set.fan_sizes;
-  owner.assign(m.nodes.size(), -1);
+// Each ray's nodes: the wall node, then one node per layer at the stack's heights (the last at the
+// ray's thickness). Returns per ray each node's height over the wall; `owner` gets each node's ray.
+std::vector<std::vector<double>> place_ray_nodes(LayerMesh& m, const std::vector<int>& count,
+                                                 const std::vector<double>& top, const LayerSettings& settings,
+                                                 std::vector<int>& owner) {
   const double h1 = settings.first_height;
-  std::vector<std::vector<double>> height(m.rays.size());  // per ray: each node's height over the wall
+  std::vector<std::vector<double>> height(m.rays.size());
   for (std::size_t r = 0; r < m.rays.size(); ++r) {
     LayerRay& ray = m.rays[r];
     const Vec2 p = m.nodes[ray.wall_node];
@@ -100,93 +95,122 @@ LayerMesh assemble(const RaySet& set, const std::vector<int>& count, const std::
     ray.last_growth =
         n >= 2 ? (top[r] - stack_height(h1, settings.growth, n - 1)) / (h1 * std::pow(settings.growth, n - 2)) : 1.0;
   }
-  auto add = [&](std::array<int, 4> v, LayerCellKind kind, int curve, int layer) {
-    if (v[3] >= 0 && settings.split_quads) {
-      // The diagonal whose triangles have the smaller largest angle (cosines compared).
-      auto min_cos = [&](int a, int b, int c) {
-        double lo = 1.0;
-        const int t[3] = {a, b, c};
-        for (int i = 0; i < 3; ++i) {
-          const Vec2 u = m.nodes[t[(i + 1) % 3]] - m.nodes[t[i]], w = m.nodes[t[(i + 2) % 3]] - m.nodes[t[i]];
-          lo = std::min(lo, dot(u, w) / (norm(u) * norm(w)));
-        }
-        return lo;
-      };
-      const double d02 = std::min(min_cos(v[0], v[1], v[2]), min_cos(v[0], v[2], v[3]));
-      const double d13 = std::min(min_cos(v[0], v[1], v[3]), min_cos(v[1], v[2], v[3]));
-      const LayerCellKind k = kind == LayerCellKind::Quad ? LayerCellKind::Split : kind;
-      if (d02 >= d13) {
-        m.cells.push_back({{v[0], v[1], v[2], -1}, k, curve, layer});
-        m.cells.push_back({{v[0], v[2], v[3], -1}, k, curve, layer});
-      } else {
-        m.cells.push_back({{v[0], v[1], v[3], -1}, k, curve, layer});
-        m.cells.push_back({{v[1], v[2], v[3], -1}, k, curve, layer});
-      }
-      return;
+  return height;
+}
+
+// The smallest cosine of a triangle's angles (the larger, the smaller its largest angle).
+double min_cos(const LayerMesh& m, int a, int b, int c) {
+  double lo = 1.0;
+  const int t[3] = {a, b, c};
+  for (int i = 0; i < 3; ++i) {
+    const Vec2 u = m.nodes[t[(i + 1) % 3]] - m.nodes[t[i]], w = m.nodes[t[(i + 2) % 3]] - m.nodes[t[i]];
+    lo = std::min(lo, dot(u, w) / (norm(u) * norm(w)));
+  }
+  return lo;
+}
+
+// Adds a cell (v[3] < 0: a triangle); with split_quads a quad as two triangles, along the diagonal
+// whose triangles have the smaller largest angle (cosines compared).
+void add_cell(LayerMesh& m, bool split_quads, std::array<int, 4> v, LayerCellKind kind, int curve, int layer) {
+  if (v[3] >= 0 && split_quads) {
+    const double d02 = std::min(min_cos(m, v[0], v[1], v[2]), min_cos(m, v[0], v[2], v[3]));
+    const double d13 = std::min(min_cos(m, v[0], v[1], v[3]), min_cos(m, v[1], v[2], v[3]));
+    const LayerCellKind k = kind == LayerCellKind::Quad ? LayerCellKind::Split : kind;
+    if (d02 >= d13) {
+      m.cells.push_back({{v[0], v[1], v[2], -1}, k, curve, layer});
+      m.cells.push_back({{v[0], v[2], v[3], -1}, k, curve, layer});
+    } else {
+      m.cells.push_back({{v[0], v[1], v[3], -1}, k, curve, layer});
+      m.cells.push_back({{v[1], v[2], v[3], -1}, k, curve, layer});
     }
-    m.cells.push_back({v, kind, curve, layer});
+    return;
+  }
+  m.cells.push_back({v, kind, curve, layer});
+}
+
+// The cells between two neighbouring rays a and b (of heights ha, hb). Their columns are zipped
+// upwards: a quad while both its lower and its upper nodes are level (heights within half the
+// thinner layer and 0.3 x the width between them: no skewed quad), else a triangle advancing the
+// column whose next node is lower. A fan (two rays from one wall node) starts with a triangle.
+void zip_columns(LayerMesh& m, bool split_quads, int a, int b, const std::vector<double>& ha,
+                 const std::vector<double>& hb) {
+  const LayerRay& ra = m.rays[a];
+  const LayerRay& rb = m.rays[b];
+  const auto& ca = ra.nodes;
+  const auto& cb = rb.nodes;
+  const bool fan = ra.wall_node == rb.wall_node;
+  const int curve = ra.curve;
+  const int na = static_cast<int>(ca.size()) - 1, nb = static_cast<int>(cb.size()) - 1;
+  if (fan && std::min(na, nb) == 0) return;  // a fan ray without layers: nothing beside it
+  int i = 0, j = 0;
+  if (fan) {
+    add_cell(m, split_quads, {ca[0], cb[1], ca[1], -1}, LayerCellKind::Fan, curve, 0);
+    i = j = 1;
+  }
+  auto level = [&](int p, int q, double layer) {
+    return std::abs(ha[p] - hb[q]) <= std::min(0.5 * layer, 0.3 * dist(m.nodes[ca[p]], m.nodes[cb[q]]));
   };
+  while (i < na || j < nb) {
+    bool advance_a = i < na, advance_b = j < nb;
+    if (advance_a && advance_b) {
+      const double layer = std::min(ha[i + 1] - ha[i], hb[j + 1] - hb[j]);
+      if (!((i == 0 && j == 0) || level(i, j, layer)) || !level(i + 1, j + 1, layer)) {
+        advance_a = ha[i + 1] < hb[j + 1];
+        advance_b = !advance_a;
+      }
+    }
+    const int layer = std::max(i, j);
+    if (advance_a && advance_b) {
+      add_cell(m, split_quads, {ca[i], cb[j], cb[j + 1], ca[i + 1]}, fan ? LayerCellKind::Fan : LayerCellKind::Quad,
+               curve, layer);
+      ++i;
+      ++j;
+    } else if (advance_b) {
+      add_cell(m, split_quads, {ca[i], cb[j], cb[j + 1], -1}, LayerCellKind::Transition, curve, layer);
+      ++j;
+    } else {
+      add_cell(m, split_quads, {ca[i], cb[j], ca[i + 1], -1}, LayerCellKind::Transition, curve, layer);
+      ++i;
+    }
+  }
+}
+
+// A chain's front (its rays [b, e)): an open chain's first column upwards, the tops, its last column
+// downwards.
+LayerFront chain_front(const LayerMesh& m, int b, int e, bool closed) {
+  LayerFront front;
+  front.closed = closed;
+  auto push = [&](int node) {
+    if (front.nodes.empty() || front.nodes.back() != node) front.nodes.push_back(node);
+  };
+  if (!closed)
+    for (std::size_t j = 0; j + 1 < m.rays[b].nodes.size(); ++j) push(m.rays[b].nodes[j]);
+  for (int k = b; k < e; ++k) push(m.rays[k].nodes.back());
+  if (!closed)
+    for (std::size_t j = m.rays[e - 1].nodes.size(); j-- > 0;) push(m.rays[e - 1].nodes[j]);
+  if (closed && front.nodes.size() > 1 && front.nodes.front() == front.nodes.back()) front.nodes.pop_back();
+  return front;
+}
+
+LayerMesh assemble(const RaySet& set, const std::vector<int>& count, const std::vector<double>& top,
+                   const LayerSettings& settings, std::vector<int>& owner) {
+  LayerMesh m;
+  m.nodes = set.wall_points;
+  m.wall_nodes = static_cast<int>(m.nodes.size());
+  m.rays = set.rays;
+  m.chain_ray_begin = set.ray_begin;
+  m.chain_closed = set.closed;
+  m.fan_sizes = set.fan_sizes;
+  owner.assign(m.nodes.size(), -1);
+  const std::vector<std::vector<double>> height = place_ray_nodes(m, count, top, settings, owner);
   for (std::size_t c = 0; c + 1 < set.ray_begin.size(); ++c) {
     const int b = set.ray_begin[c], e = set.ray_begin[c + 1], n = e - b;
     const bool closed = set.closed[c] != 0;
-    LayerFront front;
-    front.closed = closed;
     for (int k = 0; k < (closed ? n : n - 1); ++k) {
-      const LayerRay& ra = m.rays[b + k];
-      const LayerRay& rb = m.rays[b + (k + 1) % n];
-      const auto& ca = ra.nodes;
-      const auto& cb = rb.nodes;
-      const bool fan = ra.wall_node == rb.wall_node;
-      const int curve = ra.curve;
-      const int na = static_cast<int>(ca.size()) - 1, nb = static_cast<int>(cb.size()) - 1;
-      if (fan && std::min(na, nb) == 0) continue;  // a fan ray without layers: nothing beside it
-      // Zip the two columns upwards: a quad while both its lower and its upper nodes are level
-      // (heights within half the thinner layer and 0.3 x the width between them: no skewed quad),
-      // else a triangle advancing the column whose next node is lower.
-      int i = 0, j = 0;
-      if (fan) {
-        add({ca[0], cb[1], ca[1], -1}, LayerCellKind::Fan, curve, 0);
-        i = j = 1;
-      }
-      const auto& ha = height[b + k];
-      const auto& hb = height[b + (k + 1) % n];
-      auto level = [&](int p, int q, double layer) {
-        return std::abs(ha[p] - hb[q]) <= std::min(0.5 * layer, 0.3 * dist(m.nodes[ca[p]], m.nodes[cb[q]]));
-      };
-      while (i < na || j < nb) {
-        bool advance_a = i < na, advance_b = j < nb;
-        if (advance_a && advance_b) {
-          const double layer = std::min(ha[i + 1] - ha[i], hb[j + 1] - hb[j]);
-          if (!((i == 0 && j == 0) || level(i, j, layer)) || !level(i + 1, j + 1, layer)) {
-            advance_a = ha[i + 1] < hb[j + 1];
-            advance_b = !advance_a;
-          }
-        }
-        const int layer = std::max(i, j);
-        if (advance_a && advance_b) {
-          add({ca[i], cb[j], cb[j + 1], ca[i + 1]}, fan ? LayerCellKind::Fan : LayerCellKind::Quad, curve, layer);
-          ++i;
-          ++j;
-        } else if (advance_b) {
-          add({ca[i], cb[j], cb[j + 1], -1}, LayerCellKind::Transition, curve, layer);
-          ++j;
-        } else {
-          add({ca[i], cb[j], ca[i + 1], -1}, LayerCellKind::Transition, curve, layer);
-          ++i;
-        }
-      }
+      const int a = b + k, next = b + (k + 1) % n;
+      zip_columns(m, settings.split_quads, a, next, height[a], height[next]);
     }
-    // The front: an open chain's first column upwards, the tops, its last column downwards.
-    auto push = [&](int node) {
-      if (front.nodes.empty() || front.nodes.back() != node) front.nodes.push_back(node);
-    };
-    if (!closed)
-      for (std::size_t j = 0; j + 1 < m.rays[b].nodes.size(); ++j) push(m.rays[b].nodes[j]);
-    for (int k = 0; k < n; ++k) push(m.rays[b + k].nodes.back());
-    if (!closed)
-      for (std::size_t j = m.rays[e - 1].nodes.size(); j-- > 0;) push(m.rays[e - 1].nodes[j]);
-    if (closed && front.nodes.size() > 1 && front.nodes.front() == front.nodes.back()) front.nodes.pop_back();
-    m.fronts.push_back(std::move(front));
+    m.fronts.push_back(chain_front(m, b, e, closed));
   }
   return m;
 }
