@@ -95,9 +95,11 @@ uint bin_bucket(const REAL xj, const REAL yj, const int L, __global const int* g
 }
 
 // state[BIN_FIRST_INVALID] must start at INT_MAX, the other entries at 0 (the host uploads them).
-__kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1)))
-void bin_bounds(const int n, const REAL radius_factor, __global const REAL2* xy,
-                __global const REAL* q, __global REAL* partial, __global int* state) {
+__kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void bin_bounds(const int n, const REAL radius_factor,
+                                                                              __global const REAL2* xy,
+                                                                              __global const REAL* q,
+                                                                              __global REAL* partial,
+                                                                              __global int* state) {
   __local REAL m[WG_SIZE];
   const int i = get_global_id(0), l = get_local_id(0);
   REAL r = INFINITY;
@@ -118,8 +120,7 @@ void bin_bounds(const int n, const REAL radius_factor, __global const REAL2* xy,
 }
 
 // One work-group: partial[groups] = the minimum of partial[0 .. groups) (R_min).
-__kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1)))
-void bin_rmin(const int groups, __global REAL* partial) {
+__kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void bin_rmin(const int groups, __global REAL* partial) {
   __local REAL m[WG_SIZE];
   const int l = get_local_id(0);
   REAL r = INFINITY;
@@ -137,9 +138,9 @@ void bin_rmin(const int groups, __global REAL* partial) {
 // The member counts and the top level are tallied per work-group in local memory first, then added
 // with one global atomic per level the group has: a global atomic per node on the same few words had
 // the CPU device's two threads pass their cache line back and forth for every node.
-__kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1)))
-void bin_levels(const int n, const int groups, const REAL radius_factor, __global const REAL* q,
-                __global const REAL* partial, __global int* level, __global int* state) {
+__kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void bin_levels(
+    const int n, const int groups, const REAL radius_factor, __global const REAL* q, __global const REAL* partial,
+    __global int* level, __global int* state) {
   __local int levels[WG_SIZE];
   const int i = get_global_id(0), l = get_local_id(0);
   const int valid = state[BIN_FIRST_INVALID] >= n;  // uniform: the same word for every work-item
@@ -175,10 +176,9 @@ void bin_levels(const int n, const int groups, const REAL radius_factor, __globa
 // One work-item: grid L (a level with nodes) gets 2^k buckets, 2^k >= its members / 2, at
 // grid_bucket_offset[L]; levels without nodes get no grid (mask -1: no node scans them). Cell size
 // R_min 2^L, as the reference.
-__kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1)))
-void bin_plan(const int n, const int groups, const uint bucket_capacity, const uint member_capacity,
-              __global const REAL* partial, __global int* state, __global int* grid_mask,
-              __global uint* grid_bucket_offset, __global REAL* grid_inv_cell) {
+__kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void bin_plan(
+    const int n, const int groups, const uint bucket_capacity, const uint member_capacity, __global const REAL* partial,
+    __global int* state, __global int* grid_mask, __global uint* grid_bucket_offset, __global REAL* grid_inv_cell) {
   if (get_global_id(0) != 0 || state[BIN_FIRST_INVALID] < n || state[BIN_TOO_MANY_LEVELS]) return;
   const REAL r_min = partial[groups];
   const int top = state[BIN_TOP];
@@ -250,10 +250,10 @@ int bin_group_take(__local const uint* b, __global volatile uint* bucket, __loca
 }
 
 // Each node in the grid of every level from its own up to the top (the cumulative grids).
-__kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1)))
-void bin_count(const int n, __global const REAL2* xy, __global const int* level,
-               __global const int* state, __global const int* grid_mask, __global const uint* grid_bucket_offset,
-               __global const REAL* grid_inv_cell, __global volatile uint* bucket) {
+__kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void bin_count(
+    const int n, __global const REAL2* xy, __global const int* level, __global const int* state,
+    __global const int* grid_mask, __global const uint* grid_bucket_offset, __global const REAL* grid_inv_cell,
+    __global volatile uint* bucket) {
   __local uint wg_bucket[WG_SIZE];
   __local int grouped;
   const int i = get_global_id(0), l = get_local_id(0);
@@ -276,17 +276,18 @@ void bin_count(const int n, __global const REAL2* xy, __global const int* level,
 }
 #else
 // Each node in the grid of every level from its own up to the top (the cumulative grids).
-__kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1)))
-void bin_count(const int n, __global const REAL2* xy, __global const int* level,
-               __global const int* state, __global const int* grid_mask, __global const uint* grid_bucket_offset,
-               __global const REAL* grid_inv_cell, __global volatile uint* bucket) {
+__kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void bin_count(
+    const int n, __global const REAL2* xy, __global const int* level, __global const int* state,
+    __global const int* grid_mask, __global const uint* grid_bucket_offset, __global const REAL* grid_inv_cell,
+    __global volatile uint* bucket) {
   const int i = get_global_id(0);
   if (i >= n || !bin_ok(state, n)) return;
   const REAL xi = xy[i].x, yi = xy[i].y;
   const int top = state[BIN_TOP];
   uint tag;
   for (int L = level[i]; L <= top; ++L)
-    if (grid_mask[L] >= 0) atomic_inc(&bucket[bin_bucket(xi, yi, L, grid_mask, grid_bucket_offset, grid_inv_cell, &tag)]);
+    if (grid_mask[L] >= 0)
+      atomic_inc(&bucket[bin_bucket(xi, yi, L, grid_mask, grid_bucket_offset, grid_inv_cell, &tag)]);
 }
 
 #endif
@@ -307,8 +308,8 @@ ulong group_inclusive_scan(const ulong v, __local ulong* tmp) {
 }
 
 // Exclusive prefix sum of bucket[0 .. m) in place, per work-group, the group totals to block_total.
-__kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1)))
-void bucket_scan(const uint m, __global uint* bucket, __global ulong* block_total) {
+__kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void bucket_scan(const uint m, __global uint* bucket,
+                                                                               __global ulong* block_total) {
   __local ulong tmp[WG_SIZE];
   const uint i = get_global_id(0);
   const ulong v = i < m ? bucket[i] : 0;
@@ -317,18 +318,18 @@ void bucket_scan(const uint m, __global uint* bucket, __global ulong* block_tota
   if (get_local_id(0) == WG_SIZE - 1) block_total[get_group_id(0)] = s;
 }
 
-__kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1)))
-void bucket_offsets_add(const uint m, __global uint* bucket, __global const ulong* block_total) {
+__kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void bucket_offsets_add(
+    const uint m, __global uint* bucket, __global const ulong* block_total) {
   const uint i = get_global_id(0);
   if (i < m) bucket[i] += (uint)block_total[get_group_id(0)];
 }
 
 #if PDMESH_FORCE_LOOP_VECTOR
 // bin_fill, CPU shape: the slots per level and work-group as bin_count takes its counts.
-__kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1)))
-void bin_fill(const int n, __global const REAL2* xy, __global const int* level,
-              __global const int* state, __global const int* grid_mask, __global const uint* grid_bucket_offset,
-              __global const REAL* grid_inv_cell, __global volatile uint* bucket, __global int* grid_nodes) {
+__kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void bin_fill(
+    const int n, __global const REAL2* xy, __global const int* level, __global const int* state,
+    __global const int* grid_mask, __global const uint* grid_bucket_offset, __global const REAL* grid_inv_cell,
+    __global volatile uint* bucket, __global int* grid_nodes) {
   __local uint wg_bucket[WG_SIZE], wg_slot[WG_SIZE];
   __local int grouped;
   const int i = get_global_id(0), l = get_local_id(0);
@@ -348,10 +349,10 @@ void bin_fill(const int n, __global const REAL2* xy, __global const int* level,
   }
 }
 #else
-__kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1)))
-void bin_fill(const int n, __global const REAL2* xy, __global const int* level,
-              __global const int* state, __global const int* grid_mask, __global const uint* grid_bucket_offset,
-              __global const REAL* grid_inv_cell, __global volatile uint* bucket, __global int* grid_nodes) {
+__kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void bin_fill(
+    const int n, __global const REAL2* xy, __global const int* level, __global const int* state,
+    __global const int* grid_mask, __global const uint* grid_bucket_offset, __global const REAL* grid_inv_cell,
+    __global volatile uint* bucket, __global int* grid_nodes) {
   const int i = get_global_id(0);
   if (i >= n || !bin_ok(state, n)) return;
   const REAL xi = xy[i].x, yi = xy[i].y;

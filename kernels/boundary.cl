@@ -87,17 +87,16 @@ void closest_on_curve(__global const REAL* p, __global const REAL* arc, const in
 // leaf (as apply_host_moves did with the host's result), its new (x, y, tx, ty) over its brec record
 // (what sync_boundary reads back), and per group: clamped moves, non-finite
 // targets (nothing is written for those: the host reports them), and the largest skin use (the
-// formula of device_step). step_counters[COUNTER_NON_FINITE] != 0 (device_step's flag for a move that is not finite): nothing is
-// written but the partials.
-// boundary_snap's arguments, shared by its two kernels.
-#define SNAP_ARGS                                                                                              \
-  const int m, __global const int *slot_node, __global const int *slot_curve, __global const int *slot_pos,    \
-      __global const int *curve_pt, __global const REAL *pts, __global const REAL *pt_arc,                      \
-      __global const REAL *arcs_in, __global REAL *arcs_out, __global REAL *brec, __global REAL2 *xy,           \
-      __global REAL *q, __global REAL *tx, __global REAL *ty, __global int *node_leaf,         \
-      __global const REAL2 *xy_build, __global const REAL *q_build, __global const uchar *skin_class,          \
-      const REAL cutoff, const REAL skin_cutoff, __global int *step_counters, __global REAL *partials, BG_ARGS
-#define SNAP_PASS                                                                                                \
+// formula of device_step). step_counters[COUNTER_NON_FINITE] != 0 (device_step's flag for a move that is not finite):
+// nothing is written but the partials. boundary_snap's arguments, shared by its two kernels.
+#define SNAP_ARGS                                                                                                      \
+  const int m, __global const int *slot_node, __global const int *slot_curve, __global const int *slot_pos,            \
+      __global const int *curve_pt, __global const REAL *pts, __global const REAL *pt_arc,                             \
+      __global const REAL *arcs_in, __global REAL *arcs_out, __global REAL *brec, __global REAL2 *xy,                  \
+      __global REAL *q, __global REAL *tx, __global REAL *ty, __global int *node_leaf, __global const REAL2 *xy_build, \
+      __global const REAL *q_build, __global const uchar *skin_class, const REAL cutoff, const REAL skin_cutoff,       \
+      __global int *step_counters, __global REAL *partials, BG_ARGS
+#define SNAP_PASS                                                                                               \
   m, slot_node, slot_curve, slot_pos, curve_pt, pts, pt_arc, arcs_in, arcs_out, brec, xy, q, tx, ty, node_leaf, \
       xy_build, q_build, skin_class, cutoff, skin_cutoff, step_counters, partials, BG_PASS
 
@@ -153,8 +152,7 @@ __attribute__((always_inline)) void boundary_snap_body(__local REAL* values, __l
   if (l < BOUNDARY_PARTIALS) atomic_store_real(partials + BOUNDARY_PARTIALS * get_group_id(0) + l, values[l * WG_SIZE]);
 }
 
-__kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1)))
-void boundary_snap(SNAP_ARGS) {
+__kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void boundary_snap(SNAP_ARGS) {
   __local REAL values[BOUNDARY_PARTIALS * WG_SIZE];
   __local int halt;
   boundary_snap_body(values, &halt, SNAP_PASS);
@@ -166,13 +164,13 @@ void boundary_snap(SNAP_ARGS) {
 // (step_counters[COUNTER_SNAP_DONE], an integer atomic) after the group's partials are written and
 // fenced; the group that counts last sums every group's partials (atomic reads, reduce.cl) and runs the rule,
 // and sets the count back to 0 for the next iteration. Arguments after boundary_snap's: iteration_rule's.
-__kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1)))
-void boundary_snap_rule(SNAP_ARGS, const int groups, __global const REAL* step_partials, __global double* state,
-                        __global double* ring, const int ring_rows, __global REAL* dt2_out) {
+__kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void boundary_snap_rule(
+    SNAP_ARGS, const int groups, __global const REAL* step_partials, __global double* state, __global double* ring,
+    const int ring_rows, __global REAL* dt2_out) {
   __local REAL values[BOUNDARY_PARTIALS * WG_SIZE];
   __local int halt;
   boundary_snap_body(values, &halt, SNAP_PASS);  // halted before this iteration: nothing (the rule neither)
-  barrier(CLK_GLOBAL_MEM_FENCE);  // this group's partials (work-items l < BOUNDARY_PARTIALS) are written
+  barrier(CLK_GLOBAL_MEM_FENCE);                 // this group's partials (work-items l < BOUNDARY_PARTIALS) are written
   if (get_local_id(0) == 0) {
     mem_fence(CLK_GLOBAL_MEM_FENCE);
     if (atomic_inc(&step_counters[COUNTER_SNAP_DONE]) == (int)get_num_groups(0) - 1) {

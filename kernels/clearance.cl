@@ -90,10 +90,9 @@ REAL clearance_refresh(const REAL ex, const REAL ey, const REAL px, const REAL p
 
 // For tests (tests/test_device_clearance.cpp): the refresh of m moves from (x, y) by (dx, dy), and the
 // bound at the new positions.
-__kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1)))
-void clearance_points(const int m, __global const REAL* x, __global const REAL* y, __global const REAL* dx,
-                      __global const REAL* dy, __global const REAL* segs, const int n_segs, const REAL seg_scale,
-                      __global REAL* bound, __global REAL* refreshed) {
+__kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void clearance_points(
+    const int m, __global const REAL* x, __global const REAL* y, __global const REAL* dx, __global const REAL* dy,
+    __global const REAL* segs, const int n_segs, const REAL seg_scale, __global REAL* bound, __global REAL* refreshed) {
   const int k = get_global_id(0);
   if (k >= m) return;
   const REAL px = x[k] + dx[k], py = y[k] + dy[k];

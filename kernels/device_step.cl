@@ -10,9 +10,9 @@
 // builder (host/opencl/step_program.hpp, device_window.hpp).
 
 // The background field's arrays, passed as one group of arguments (bg_cell: leaf_cell, 4 per leaf).
-#define BG_ARGS                                                                                      \
-  const REAL bg_origin_x, const REAL bg_origin_y, const REAL bg_inv_root, const int bg_grid,          \
-      __global const int *bg_root, __global const int *bg_child, __global const int *bg_corner,      \
+#define BG_ARGS                                                                                 \
+  const REAL bg_origin_x, const REAL bg_origin_y, const REAL bg_inv_root, const int bg_grid,    \
+      __global const int *bg_root, __global const int *bg_child, __global const int *bg_corner, \
       __global const int *bg_cell, __global const REAL *bg_q
 
 // Bilinear spacing at (u, v) in a leaf: spacing_at's expression.
@@ -47,28 +47,26 @@ REAL bg_spacing_cached(const REAL px, const REAL py, int* leaf, BG_ARGS) {
 #define STEP_PHASE()
 #endif
 
-// Inputs xy (positions, x and y interleaved), q (current), outputs xy_next, q_next. budget[i]: interior node i's clearance
-// budget (host/sim/boundary_handling.hpp, clearance_budget): a move whose cost (the same move_cost
-// formula, with this precision's epsilon) is below it stays inside the domain, exactly; the cost is
-// subtracted. A spent budget is refreshed from the segments segs (kernels/clearance.cl) when the move
-// is clearly inside. Other interior nodes (and non-finite moves) are appended to cand_index / cand_rec
-// (x, y, dx, dy) with an integer atomic counter (counters[COUNTER_CANDIDATES]) for the host's exact test (counters[COUNTER_NON_FINITE]:
-// set when a move is not finite); boundary
-// nodes write (x, y, dx, dy) to their slot bslot[i] of brec. beta > 0: the move is momentum's d
-// (carried: each node's previous d, x and y interleaved; any buffer when beta = 0). skin_use: (|x_next - x_build| + cutoff
-// max(0, q_next - q_build)) / (skin cutoff q_build) over the share its skin class allows (skin_use_of), maximised per group (interior nodes the host
-// does not touch; the host covers the rest).
-__kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1)))
-void device_step(const int n, const REAL cutoff, const REAL lj_a, const int r0_any_direction,
-                 const REAL stability_factor, __global const REAL* dt_gm2_in, const REAL skin_cutoff, __global const REAL2* xy,
-                 __global const REAL* q, __global const uchar* kind, __global const REAL* tx,
-                 __global const REAL* ty, __global const int* count, __global const ulong* row_offset,
-                 __global const int* index,
-                 __global const REAL2* xy_build, __global const REAL* q_build, __global const uchar* skin_class,
-                 __global const int* bslot, __global REAL2* xy_next, __global REAL* q_next,
-                 __global REAL* budget, __global int* node_leaf, __global REAL* brec, __global int* cand_index, __global REAL* cand_rec,
-                 __global int* counters, __global REAL* partials, __global const REAL* segs, const int n_segs,
-                 const REAL seg_scale, const REAL beta, __global REAL2* carried, BG_ARGS) {
+// Inputs xy (positions, x and y interleaved), q (current), outputs xy_next, q_next. budget[i]: interior node i's
+// clearance budget (host/sim/boundary_handling.hpp, clearance_budget): a move whose cost (the same move_cost formula,
+// with this precision's epsilon) is below it stays inside the domain, exactly; the cost is subtracted. A spent budget
+// is refreshed from the segments segs (kernels/clearance.cl) when the move is clearly inside. Other interior nodes (and
+// non-finite moves) are appended to cand_index / cand_rec (x, y, dx, dy) with an integer atomic counter
+// (counters[COUNTER_CANDIDATES]) for the host's exact test (counters[COUNTER_NON_FINITE]: set when a move is not
+// finite); boundary nodes write (x, y, dx, dy) to their slot bslot[i] of brec. beta > 0: the move is momentum's d
+// (carried: each node's previous d, x and y interleaved; any buffer when beta = 0). skin_use: (|x_next - x_build| +
+// cutoff max(0, q_next - q_build)) / (skin cutoff q_build) over the share its skin class allows (skin_use_of),
+// maximised per group (interior nodes the host does not touch; the host covers the rest).
+__kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void device_step(
+    const int n, const REAL cutoff, const REAL lj_a, const int r0_any_direction, const REAL stability_factor,
+    __global const REAL* dt_gm2_in, const REAL skin_cutoff, __global const REAL2* xy, __global const REAL* q,
+    __global const uchar* kind, __global const REAL* tx, __global const REAL* ty, __global const int* count,
+    __global const ulong* row_offset, __global const int* index, __global const REAL2* xy_build,
+    __global const REAL* q_build, __global const uchar* skin_class, __global const int* bslot, __global REAL2* xy_next,
+    __global REAL* q_next, __global REAL* budget, __global int* node_leaf, __global REAL* brec,
+    __global int* cand_index, __global REAL* cand_rec, __global int* counters, __global REAL* partials,
+    __global const REAL* segs, const int n_segs, const REAL seg_scale, const REAL beta, __global REAL2* carried,
+    BG_ARGS) {
   __local REAL values[STEP_PARTIALS * WG_SIZE];
   // The window was halted for the host (kernels/window.cl): this iteration does nothing (uniform exit).
   if (counters[WINDOW_HALT] != 0) return;
@@ -138,8 +136,8 @@ void device_step(const int n, const REAL cutoff, const REAL lj_a, const int r0_a
       const REAL fresh = (REAL)0;
       const int deferred = !(cost < b) && b > (REAL)0;
 #else
-      const REAL fresh = !(cost < b) && b > (REAL)0 ? clearance_refresh(ex, ey, xn, yn, segs, n_segs, seg_scale)
-                                                    : (REAL)0;
+      const REAL fresh =
+          !(cost < b) && b > (REAL)0 ? clearance_refresh(ex, ey, xn, yn, segs, n_segs, seg_scale) : (REAL)0;
       const int deferred = 0;
 #endif
       if (cost < b) {  // false for NaN
@@ -161,8 +159,10 @@ void device_step(const int n, const REAL cutoff, const REAL lj_a, const int r0_a
     q_next[i] = qn;
     // A move that is not finite halts the iteration for the host (counters[COUNTER_NON_FINITE]): boundary_snap then
     // writes nothing, so the state before this step stays whole on the device.
-    if (moving && !(isfinite(dx) && isfinite(dy) && isfinite(xn) && isfinite(yn))) atomic_or(&counters[COUNTER_NON_FINITE], 1);
-    if (!host && kind_i == 2) skin_use = skin_use_of((REAL2)(xn, yn), qn, xy_build[i], q_build[i], cutoff, skin_cutoff, skin_class[i]);
+    if (moving && !(isfinite(dx) && isfinite(dy) && isfinite(xn) && isfinite(yn)))
+      atomic_or(&counters[COUNTER_NON_FINITE], 1);
+    if (!host && kind_i == 2)
+      skin_use = skin_use_of((REAL2)(xn, yn), qn, xy_build[i], q_build[i], cutoff, skin_cutoff, skin_class[i]);
   }
   values[l] = f;
   values[WG_SIZE + l] = kinetic;
@@ -181,13 +181,11 @@ void device_step(const int n, const REAL cutoff, const REAL lj_a, const int r0_a
 // the maximum of step partials slot 6 of this group (only the maximum over all groups is used, and
 // a maximum does not depend on the grouping); the entry stays ~i, which the host skips. Otherwise
 // the entry becomes i, for the host's exact test (counters[COUNTER_HOST]).
-__kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1)))
-void refresh_budgets(const int n, __global int* counters, __global int* cand_index,
-                     __global const REAL* cand_rec, __global REAL* budget, __global const REAL* q_next,
-                     __global const REAL2* xy_build, __global const REAL* q_build,
-                     __global const uchar* skin_class, const REAL cutoff,
-                     const REAL skin_cutoff, __global const REAL* segs, const int n_segs, const REAL seg_scale,
-                     __global REAL* partials) {
+__kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void refresh_budgets(
+    const int n, __global int* counters, __global int* cand_index, __global const REAL* cand_rec, __global REAL* budget,
+    __global const REAL* q_next, __global const REAL2* xy_build, __global const REAL* q_build,
+    __global const uchar* skin_class, const REAL cutoff, const REAL skin_cutoff, __global const REAL* segs,
+    const int n_segs, const REAL seg_scale, __global REAL* partials) {
   __local REAL values[WG_SIZE];
   if (counters[WINDOW_HALT] != 0) return;  // uniform: the window was halted (kernels/window.cl)
   const int k = get_global_id(0), l = get_local_id(0);
@@ -219,10 +217,9 @@ void refresh_budgets(const int n, __global int* counters, __global int* cand_ind
 
 // Writes back the m positions the host decided (boundary nodes re-snapped, candidates moved or
 // snapped): rec = (x, y, tx, ty, budget) per entry; recomputes q and the leaf there.
-__kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1)))
-void apply_host_moves(const int m, __global const int* rec_index, __global const REAL* rec, __global REAL2* xy,
-                      __global REAL* q, __global REAL* tx, __global REAL* ty, __global REAL* budget,
-                      __global int* node_leaf, BG_ARGS) {
+__kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void apply_host_moves(
+    const int m, __global const int* rec_index, __global const REAL* rec, __global REAL2* xy, __global REAL* q,
+    __global REAL* tx, __global REAL* ty, __global REAL* budget, __global int* node_leaf, BG_ARGS) {
   const int k = get_global_id(0);
   if (k >= m) return;
   const int i = rec_index[k];

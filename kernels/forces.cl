@@ -12,7 +12,8 @@
 #pragma OPENCL FP_CONTRACT OFF
 
 #if PDMESH_FORCE_LOOP_VECTOR == PDMESH_FORCE_LOOP_SCALAR
-#error "exactly one of PDMESH_FORCE_LOOP_VECTOR and PDMESH_FORCE_LOOP_SCALAR must be 1 (the program builder defines both)"
+#error \
+    "exactly one of PDMESH_FORCE_LOOP_VECTOR and PDMESH_FORCE_LOOP_SCALAR must be 1 (the program builder defines both)"
 #endif
 
 // node_forces: net force and r0 of node i over row entries [base, base + stride), of which the first
@@ -33,8 +34,7 @@
 #define MASK8 int8
 #define CONVERT_MASK8 convert_int8
 #endif
-#define GATHER8(a, j) \
-  (REAL8)(a[j.s0], a[j.s1], a[j.s2], a[j.s3], a[j.s4], a[j.s5], a[j.s6], a[j.s7])
+#define GATHER8(a, j) (REAL8)(a[j.s0], a[j.s1], a[j.s2], a[j.s3], a[j.s4], a[j.s5], a[j.s6], a[j.s7])
 // The positions of eight nodes from the packed array xy (x, y interleaved): one 16-byte load per
 // entry fetches both coordinates, from one cache line, instead of a gather from each of two arrays.
 // On x86 with AVX-512 in double (PoCL's CPU device on such a machine): two gather instructions, of
@@ -44,31 +44,30 @@
 #if defined(__x86_64__) && defined(__AVX512F__) && PDMESH_DOUBLE
 typedef int gather_v8si __attribute__((vector_size(32)));
 typedef double gather_v8df __attribute__((vector_size(64)));
-#define GATHER8_XY(xy, j, px, py)                                                                         \
-  {                                                                                                       \
-    const gather_v8si j2 = __builtin_astype((j) * 2, gather_v8si);                                        \
-    const gather_v8df none = {0, 0, 0, 0, 0, 0, 0, 0};                                                    \
+#define GATHER8_XY(xy, j, px, py)                                                                                  \
+  {                                                                                                                \
+    const gather_v8si j2 = __builtin_astype((j)*2, gather_v8si);                                                   \
+    const gather_v8df none = {0, 0, 0, 0, 0, 0, 0, 0};                                                             \
     px = __builtin_astype(__builtin_ia32_gathersiv8df(none, (const void*)(ulong)(xy), j2, (uchar)0xFF, 8), REAL8); \
-    py = __builtin_astype(__builtin_ia32_gathersiv8df(none, (const void*)((ulong)(xy) + 8), j2, (uchar)0xFF, 8), \
-                          REAL8);                                                                         \
+    py = __builtin_astype(__builtin_ia32_gathersiv8df(none, (const void*)((ulong)(xy) + 8), j2, (uchar)0xFF, 8),   \
+                          REAL8);                                                                                  \
   }
 #else
-#define GATHER8_XY(xy, j, px, py)                                                                  \
-  {                                                                                                \
+#define GATHER8_XY(xy, j, px, py)                                                                         \
+  {                                                                                                       \
     const REAL2 p0 = xy[j.s0], p1 = xy[j.s1], p2 = xy[j.s2], p3 = xy[j.s3], p4 = xy[j.s4], p5 = xy[j.s5], \
-                p6 = xy[j.s6], p7 = xy[j.s7];                                                      \
-    px = (REAL8)(p0.x, p1.x, p2.x, p3.x, p4.x, p5.x, p6.x, p7.x);                                  \
-    py = (REAL8)(p0.y, p1.y, p2.y, p3.y, p4.y, p5.y, p6.y, p7.y);                                  \
+                p6 = xy[j.s6], p7 = xy[j.s7];                                                             \
+    px = (REAL8)(p0.x, p1.x, p2.x, p3.x, p4.x, p5.x, p6.x, p7.x);                                         \
+    py = (REAL8)(p0.y, p1.y, p2.y, p3.y, p4.y, p5.y, p6.y, p7.y);                                         \
   }
 #endif
 // Components in order: sums over a row add its entries in index order, as the reference does.
-#define ADD8_IN_ORDER(sum, v) \
-  sum = (((((((sum + v.s0) + v.s1) + v.s2) + v.s3) + v.s4) + v.s5) + v.s6) + v.s7
+#define ADD8_IN_ORDER(sum, v) sum = (((((((sum + v.s0) + v.s1) + v.s2) + v.s3) + v.s4) + v.s5) + v.s6) + v.s7
 #define COUNT8(m) (-((m).s0 + (m).s1 + (m).s2 + (m).s3 + (m).s4 + (m).s5 + (m).s6 + (m).s7))
 
 // Entries k0 .. k0 + 7 of a row as node indices; entries at or past `count` (padding, -1) become i.
-int8 row_chunk(const int i, const int stride, const int count, const long base, const int k0,
-               __global const int* index, int8* valid_out) {
+int8 row_chunk(const int i, const int stride, const int count, const long base, const int k0, __global const int* index,
+               int8* valid_out) {
   const int8 k = (int8)(k0) + (int8)(0, 1, 2, 3, 4, 5, 6, 7);
   const int8 valid = k < (int8)(count);
   int8 raw;
@@ -84,10 +83,9 @@ int8 row_chunk(const int i, const int stride, const int count, const long base, 
 
 // Chunk k0 of the row: node indices (*j_out), offsets from (xi, yi) and squared distances; returns
 // the mask of the entries that count (inside the row and, where `filter` is set, within rc2).
-MASK8 row_chunk_offsets(const int i, const int stride, const int count, const long base, const int k0,
-                        const REAL xi, const REAL yi, const MASK8 filter, const REAL rc2,
-                        __global const REAL2* xy, __global const int* index, int8* j_out,
-                        REAL8* dx_out, REAL8* dy_out, REAL8* r2_out) {
+MASK8 row_chunk_offsets(const int i, const int stride, const int count, const long base, const int k0, const REAL xi,
+                        const REAL yi, const MASK8 filter, const REAL rc2, __global const REAL2* xy,
+                        __global const int* index, int8* j_out, REAL8* dx_out, REAL8* dy_out, REAL8* r2_out) {
   int8 valid_i;
   const int8 j = row_chunk(i, stride, count, base, k0, index, &valid_i);
   REAL8 px, py;
@@ -128,20 +126,20 @@ typedef int pack_v8mask __attribute__((vector_size(32)));
 #define PACK_MASK_BITS(m) __builtin_ia32_cvtd2mask256(__builtin_astype(m, pack_v8mask))
 #define PACK_COMPRESS_REAL __builtin_ia32_compresssf256_mask
 #endif
-#define PACK_REAL(v, bits) \
-  __builtin_astype(PACK_COMPRESS_REAL(__builtin_astype(v, pack_v8real), __builtin_astype(zero, pack_v8real), bits), REAL8)
-#define PACK8                                                                                          \
-  {                                                                                                    \
-    const uchar bits = (uchar)PACK_MASK_BITS(use);                                                     \
-    vstore8(__builtin_astype(__builtin_ia32_compresssi256_mask(__builtin_astype(j, pack_v8si),         \
-                                                               __builtin_astype((int8)(0), pack_v8si), \
-                                                               bits),                                  \
-                             int8),                                                                    \
-            0, pj + packed);                                                                           \
-    vstore8(PACK_REAL(dx, bits), 0, pdx + packed);                                                     \
-    vstore8(PACK_REAL(dy, bits), 0, pdy + packed);                                                     \
-    vstore8(PACK_REAL(r2, bits), 0, pr2 + packed);                                                     \
-    packed += (int)popcount((uint)bits);                                                               \
+#define PACK_REAL(v, bits)                                                                                          \
+  __builtin_astype(PACK_COMPRESS_REAL(__builtin_astype(v, pack_v8real), __builtin_astype(zero, pack_v8real), bits), \
+                   REAL8)
+#define PACK8                                                                                                 \
+  {                                                                                                           \
+    const uchar bits = (uchar)PACK_MASK_BITS(use);                                                            \
+    vstore8(__builtin_astype(__builtin_ia32_compresssi256_mask(__builtin_astype(j, pack_v8si),                \
+                                                               __builtin_astype((int8)(0), pack_v8si), bits), \
+                             int8),                                                                           \
+            0, pj + packed);                                                                                  \
+    vstore8(PACK_REAL(dx, bits), 0, pdx + packed);                                                            \
+    vstore8(PACK_REAL(dy, bits), 0, pdy + packed);                                                            \
+    vstore8(PACK_REAL(r2, bits), 0, pr2 + packed);                                                            \
+    packed += (int)popcount((uint)bits);                                                                      \
   }
 #else
 #define PACK1(c)         \
@@ -177,11 +175,11 @@ void lj_chunk(const int8 j, const REAL8 dx, const REAL8 dy, const REAL8 r2, cons
 
 // Packed entries k .. k + 7 of the buffer, of which the first `valid` count (pk_use); the others may
 // be stale or unwritten slots: their node index becomes i, so the gather of q stays inside the arrays.
-#define PACKED_CHUNK(k, valid)                                                        \
-  const int8 pk_valid = (int8)(0, 1, 2, 3, 4, 5, 6, 7) < (int8)(valid);              \
-  const int8 pk_j = select((int8)(i), vload8(0, pj + (k)), pk_valid);                \
-  const REAL8 pk_dx = vload8(0, pdx + (k)), pk_dy = vload8(0, pdy + (k));             \
-  const REAL8 pk_r2 = vload8(0, pr2 + (k));                                           \
+#define PACKED_CHUNK(k, valid)                                            \
+  const int8 pk_valid = (int8)(0, 1, 2, 3, 4, 5, 6, 7) < (int8)(valid);   \
+  const int8 pk_j = select((int8)(i), vload8(0, pj + (k)), pk_valid);     \
+  const REAL8 pk_dx = vload8(0, pdx + (k)), pk_dy = vload8(0, pdy + (k)); \
+  const REAL8 pk_r2 = vload8(0, pr2 + (k));                               \
   const MASK8 pk_use = CONVERT_MASK8(pk_valid)
 
 // node_forces, vector shape: eight row entries at a time through the packing buffer, only as many
@@ -189,8 +187,8 @@ void lj_chunk(const int8 j, const REAL8 dx, const REAL8 dy, const REAL8 r2, cons
 void node_forces(const int i, const int stride, const int count, const long base, const REAL xi, const REAL yi,
                  const REAL qi, const int kind_i, const REAL rc2, const REAL tx, const REAL ty, const REAL lj_a,
                  const int r0_any_direction, const REAL stability_factor, __global const REAL2* xy,
-                 __global const REAL* q, __global const int* index, REAL* fx_out,
-                 REAL* fy_out, REAL* r0_out, REAL* dt2_limit_out, int* coincident_out, int* within_out) {
+                 __global const REAL* q, __global const int* index, REAL* fx_out, REAL* fy_out, REAL* r0_out,
+                 REAL* dt2_limit_out, int* coincident_out, int* within_out) {
   const MASK8 filter = (MASK8)(kind_i == 2 && rc2 >= (REAL)0 ? -1 : 0);
   const REAL8 zero = (REAL8)((REAL)0);
   // 8 spare slots: a chunk's packing writes all 8 components, past the last used one too.
@@ -202,7 +200,8 @@ void node_forces(const int i, const int stride, const int count, const long base
   for (int k0 = 0; k0 < count; k0 += 8) {
     int8 j;
     REAL8 dx, dy, r2;
-    const MASK8 in_range = row_chunk_offsets(i, stride, count, base, k0, xi, yi, filter, rc2, xy, index, &j, &dx, &dy, &r2);
+    const MASK8 in_range =
+        row_chunk_offsets(i, stride, count, base, k0, xi, yi, filter, rc2, xy, index, &j, &dx, &dy, &r2);
     within += (int)COUNT8(in_range);
     coincident += (int)COUNT8(in_range & (r2 == zero));
     const MASK8 use = in_range & (r2 > zero);
@@ -228,7 +227,8 @@ void node_forces(const int i, const int stride, const int count, const long base
     PACKED_CHUNK(done, packed - done);
     lj_chunk(pk_j, pk_dx, pk_dy, pk_r2, pk_use, qi, lj_a, q, &fx, &fy, &stiffness);
   }
-  *dt2_limit_out = stability_factor > (REAL)0 && stiffness > (REAL)0 ? (REAL)2 * stability_factor / stiffness : INFINITY;
+  *dt2_limit_out =
+      stability_factor > (REAL)0 && stiffness > (REAL)0 ? (REAL)2 * stability_factor / stiffness : INFINITY;
   // Boundary nodes slide along their curve: keep the tangential component only.
   const REAL ft = fx * tx + fy * ty;
   fx = kind_i == 1 ? ft * tx : fx;
@@ -240,7 +240,7 @@ void node_forces(const int i, const int stride, const int count, const long base
   if (!overflow) {  // the buffer holds every entry that counts (r^2 > 0 and in range)
     for (int k = 0; k < packed; k += 8) {
       PACKED_CHUNK(k, packed - k);
-      const MASK8 ok = pk_use & (any_direction | ((REAL8)(fx) * pk_dx + (REAL8)(fy) * pk_dy > zero));
+      const MASK8 ok = pk_use & (any_direction | ((REAL8)(fx)*pk_dx + (REAL8)(fy)*pk_dy > zero));
       best2 = select(best2, pk_r2, ok & (pk_r2 < best2));
       found |= ok;
     }
@@ -248,8 +248,9 @@ void node_forces(const int i, const int stride, const int count, const long base
     for (int k0 = 0; k0 < count; k0 += 8) {
       int8 j;
       REAL8 dx, dy, r2;
-      const MASK8 ok = row_chunk_offsets(i, stride, count, base, k0, xi, yi, filter, rc2, xy, index, &j, &dx, &dy, &r2) &
-                       (r2 > zero) & (any_direction | ((REAL8)(fx) * dx + (REAL8)(fy) * dy > zero));
+      const MASK8 ok =
+          row_chunk_offsets(i, stride, count, base, k0, xi, yi, filter, rc2, xy, index, &j, &dx, &dy, &r2) &
+          (r2 > zero) & (any_direction | ((REAL8)(fx)*dx + (REAL8)(fy)*dy > zero));
       best2 = select(best2, r2, ok & (r2 < best2));
       found |= ok;
     }
@@ -276,8 +277,8 @@ void node_forces(const int i, const int stride, const int count, const long base
 // them would cost registers or memory; recomputing costs three loads that hit the cache).
 // Returns whether the entry counts (rc2 < 0, or r^2 within rc2 when `filter`).
 int row_entry(const long base, const int k, const REAL xi, const REAL yi, const int filter, const REAL rc2,
-              __global const REAL2* xy, __global const int* index, int* j_out,
-              REAL* dx_out, REAL* dy_out, REAL* r2_out) {
+              __global const REAL2* xy, __global const int* index, int* j_out, REAL* dx_out, REAL* dy_out,
+              REAL* r2_out) {
   const int j = index[base + k];
   const REAL2 p = xy[j];  // one load: the packed array holds x and y side by side
   const REAL dx = p.x - xi, dy = p.y - yi;
@@ -294,8 +295,8 @@ int row_entry(const long base, const int k, const REAL xi, const REAL yi, const 
 void node_forces(const int i, const int stride, const int count, const long base, const REAL xi, const REAL yi,
                  const REAL qi, const int kind_i, const REAL rc2, const REAL tx, const REAL ty, const REAL lj_a,
                  const int r0_any_direction, const REAL stability_factor, __global const REAL2* xy,
-                 __global const REAL* q, __global const int* index, REAL* fx_out,
-                 REAL* fy_out, REAL* r0_out, REAL* dt2_limit_out, int* coincident_out, int* within_out) {
+                 __global const REAL* q, __global const int* index, REAL* fx_out, REAL* fy_out, REAL* r0_out,
+                 REAL* dt2_limit_out, int* coincident_out, int* within_out) {
   const int filter = kind_i == 2 && rc2 >= (REAL)0;
   const REAL four_a = (REAL)-4 * lj_a, four_a_pos = (REAL)4 * lj_a;
   REAL fx = (REAL)0, fy = (REAL)0, stiffness = (REAL)0;
@@ -324,7 +325,8 @@ void node_forces(const int i, const int stride, const int count, const long base
     const REAL transverse = fabs(scale * (s6 * s6 - s6));
     stiffness += radial > transverse ? radial : transverse;
   }
-  *dt2_limit_out = stability_factor > (REAL)0 && stiffness > (REAL)0 ? (REAL)2 * stability_factor / stiffness : INFINITY;
+  *dt2_limit_out =
+      stability_factor > (REAL)0 && stiffness > (REAL)0 ? (REAL)2 * stability_factor / stiffness : INFINITY;
   // Boundary nodes slide along their curve: keep the tangential component only.
   const REAL ft = fx * tx + fy * ty;
   fx = kind_i == 1 ? ft * tx : fx;
@@ -353,13 +355,11 @@ void node_forces(const int i, const int stride, const int count, const long base
 
 // The StepBackend kernel: forces and r0 of every node over a list that holds exactly the neighbours,
 // and the stability bound on dt^2 (INFINITY when off or without stiffness).
-__kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1)))
-void compute_forces(const int n, const int stride, const REAL lj_a, const int r0_any_direction,
-                    const REAL stability_factor,
-                    __global const REAL2* xy, __global const REAL* q, __global const uchar* kind, __global const REAL* tx, __global const REAL* ty,
-                    __global const int* count, __global const int* index, __global REAL* fx_out,
-                    __global REAL* fy_out, __global REAL* r0_out, __global REAL* limit_out,
-                    __global int* coincident_out) {
+__kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void compute_forces(
+    const int n, const int stride, const REAL lj_a, const int r0_any_direction, const REAL stability_factor,
+    __global const REAL2* xy, __global const REAL* q, __global const uchar* kind, __global const REAL* tx,
+    __global const REAL* ty, __global const int* count, __global const int* index, __global REAL* fx_out,
+    __global REAL* fy_out, __global REAL* r0_out, __global REAL* limit_out, __global int* coincident_out) {
   const int i = get_global_id(0);
   const int active = i < n;
   const int ic = active ? i : 0;  // padding work-items read node 0 and write nothing

@@ -32,8 +32,7 @@ REAL metric_pair_distance2(const REAL4 si, const REAL4 sj, const REAL dx, const 
 }
 
 // The sign of f^T S^-2 d (reference::pair_metric_dot_sign).
-REAL metric_pair_dot_sign(const REAL4 si, const REAL4 sj, const REAL fx, const REAL fy, const REAL dx,
-                          const REAL dy) {
+REAL metric_pair_dot_sign(const REAL4 si, const REAL4 sj, const REAL fx, const REAL fy, const REAL dx, const REAL dy) {
   const REAL a = REAL_C(0.5) * (si.x + sj.x), b = REAL_C(0.5) * (si.y + sj.y), c = REAL_C(0.5) * (si.z + sj.z);
   const REAL ux = c * fx - b * fy, uy = a * fy - b * fx;
   const REAL vx = c * dx - b * dy, vy = a * dy - b * dx;
@@ -64,13 +63,12 @@ REAL4 node_size_tensor(const int j, __global const REAL* m11, __global const REA
 }
 
 // StepBackend::compute_forces in metric mode (reference::compute_forces_metric).
-__kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1)))
-void compute_forces_metric(const int n, const int stride, const REAL lj_a, const int r0_any_direction,
-                           const REAL stability_factor, __global const REAL2* xy, __global const REAL* m11,
-                           __global const REAL* m12, __global const REAL* m22, __global const uchar* kind,
-                           __global const REAL* tx, __global const REAL* ty, __global const int* count,
-                           __global const int* index, __global REAL* fx_out, __global REAL* fy_out,
-                           __global REAL* r0_out, __global REAL* limit_out, __global int* coincident_out) {
+__kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void compute_forces_metric(
+    const int n, const int stride, const REAL lj_a, const int r0_any_direction, const REAL stability_factor,
+    __global const REAL2* xy, __global const REAL* m11, __global const REAL* m12, __global const REAL* m22,
+    __global const uchar* kind, __global const REAL* tx, __global const REAL* ty, __global const int* count,
+    __global const int* index, __global REAL* fx_out, __global REAL* fy_out, __global REAL* r0_out,
+    __global REAL* limit_out, __global int* coincident_out) {
   const int i = get_global_id(0);
   if (i >= n) return;
   const int kind_i = (int)kind[i];
@@ -138,12 +136,11 @@ void compute_forces_metric(const int n, const int stride, const REAL lj_a, const
 
 // StepBackend::time_step_and_move in metric mode: dt^2 = min(2 r0 / (3 |F|_M), dt_GM^2), capped by the
 // stability bound (INFINITY when off); Fixed nodes: 0.
-__kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1)))
-void time_step_and_move_metric(const int n, const REAL dt_gm2, const int has_limit, __global const uchar* kind,
-                               __global const REAL* fx, __global const REAL* fy, __global const REAL* r0,
-                               __global const REAL* dt2_limit, __global const REAL* m11, __global const REAL* m12,
-                               __global const REAL* m22, __global REAL* dx_out, __global REAL* dy_out,
-                               __global REAL* dt2_out) {
+__kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void time_step_and_move_metric(
+    const int n, const REAL dt_gm2, const int has_limit, __global const uchar* kind, __global const REAL* fx,
+    __global const REAL* fy, __global const REAL* r0, __global const REAL* dt2_limit, __global const REAL* m11,
+    __global const REAL* m12, __global const REAL* m22, __global REAL* dx_out, __global REAL* dy_out,
+    __global REAL* dt2_out) {
   const int i = get_global_id(0);
   if (i >= n) return;
   if (kind[i] == 0) {
@@ -165,11 +162,10 @@ void time_step_and_move_metric(const int n, const REAL dt_gm2, const int has_lim
 }
 
 // StepBackend::apply_momentum in metric mode (reference::momentum_move_metric): the cap |d|_M <= r0 / 3.
-__kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1)))
-void apply_momentum_metric(const int n, const REAL beta, __global const uchar* kind, __global const REAL* fx,
-                           __global const REAL* fy, __global const REAL* r0, __global const REAL* m11,
-                           __global const REAL* m12, __global const REAL* m22, __global REAL* dx_io,
-                           __global REAL* dy_io, __global REAL2* carried) {
+__kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void apply_momentum_metric(
+    const int n, const REAL beta, __global const uchar* kind, __global const REAL* fx, __global const REAL* fy,
+    __global const REAL* r0, __global const REAL* m11, __global const REAL* m12, __global const REAL* m22,
+    __global REAL* dx_io, __global REAL* dy_io, __global REAL2* carried) {
   const int i = get_global_id(0);
   if (i >= n) return;
   if (kind[i] == 0) {
@@ -200,10 +196,10 @@ void apply_momentum_metric(const int n, const REAL beta, __global const uchar* k
 
 // StepBackend::reduce in metric mode: per node |F|_M and the kinetic term dt^2 |F|_M^2 / 8 (the
 // reference's expressions); the host sums them in node order.
-__kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1)))
-void metric_force_norms(const int n, __global const uchar* kind, __global const REAL* fx, __global const REAL* fy,
-                        __global const REAL* dt2, __global const REAL* m11, __global const REAL* m12,
-                        __global const REAL* m22, __global REAL* norm_out, __global REAL* kinetic_out) {
+__kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void metric_force_norms(
+    const int n, __global const uchar* kind, __global const REAL* fx, __global const REAL* fy, __global const REAL* dt2,
+    __global const REAL* m11, __global const REAL* m12, __global const REAL* m22, __global REAL* norm_out,
+    __global REAL* kinetic_out) {
   const int i = get_global_id(0);
   if (i >= n) return;
   if (kind[i] == 0) {

@@ -41,15 +41,16 @@
 // row_block_offsets and row_offsets_add finish the prefix sum. With `estimate` set (a build without
 // counts), an interior row takes its level's estimated capacity level_cap[level[i]] instead, a
 // boundary row that of its 2 entries, any other that of none.
-__kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1)))
-void row_capacity_scan(const int n, const int spare_shift, const int spare_min, __global const int* count,
-                       const int estimate, __global const uchar* kind, __global const int* level,
-                       __global const int* level_cap, __global ulong* offset, __global ulong* block_total) {
+__kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void row_capacity_scan(
+    const int n, const int spare_shift, const int spare_min, __global const int* count, const int estimate,
+    __global const uchar* kind, __global const int* level, __global const int* level_cap, __global ulong* offset,
+    __global ulong* block_total) {
   __local ulong tmp[WG_SIZE];
   const int i = get_global_id(0);
   const int c = i >= n ? 0 : !estimate ? max(count[i], 0) : kind[i] == 1 ? 2 : 0;
   ulong cap = i < n ? (ulong)c + (ulong)(c >> spare_shift) + (ulong)spare_min : 0;
-  if (i < n && estimate && kind[i] == 2) cap = (ulong)max(level_cap[clamp(level[i], 0, PDMESH_GRID_LEVELS - 1)], spare_min);
+  if (i < n && estimate && kind[i] == 2)
+    cap = (ulong)max(level_cap[clamp(level[i], 0, PDMESH_GRID_LEVELS - 1)], spare_min);
   const ulong s = group_inclusive_scan(cap, tmp);
   if (i < n) offset[i + 1] = s;
   if (get_local_id(0) == WG_SIZE - 1) block_total[get_group_id(0)] = s;
@@ -57,8 +58,8 @@ void row_capacity_scan(const int n, const int spare_shift, const int spare_min, 
 
 // One work-group: block_total[g] becomes the exclusive prefix sum of the group totals (the offset of
 // group g's first row), block_total[groups] the sum of all capacities.
-__kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1)))
-void row_block_offsets(const int groups, __global ulong* block_total) {
+__kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void row_block_offsets(const int groups,
+                                                                                     __global ulong* block_total) {
   __local ulong tmp[WG_SIZE];
   const int l = get_local_id(0);
   ulong carry = 0;
@@ -72,8 +73,8 @@ void row_block_offsets(const int groups, __global ulong* block_total) {
   if (l == 0) block_total[groups] = carry;
 }
 
-__kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1)))
-void row_offsets_add(const int n, __global ulong* offset, __global const ulong* block_total) {
+__kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void row_offsets_add(const int n, __global ulong* offset,
+                                                                                   __global const ulong* block_total) {
   const int i = get_global_id(0);
   if (i == 0) offset[0] = 0;
   if (i < n) offset[i + 1] += block_total[get_group_id(0)];
@@ -130,15 +131,14 @@ void row_append_batch(const int r, const int* js, const int k, __global const ul
 // grids have inv_cell 0): inverse cell size, hash-table offset and mask, offsets into cell_start
 // (cells + 1 entries per grid) and cell_nodes. Rows: offset (n + 1, from the scan), count (zeroed by
 // the host), entries (entries_size slots), the spill list. counters[ROW_EXAMINED] += pairs examined.
-__kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1)))
-void gather_rows(const int n, const REAL radius_factor, __global const REAL2* xy,
-                 __global const REAL* q, __global const uchar* kind, __global const int* prev,
-                 __global const int* next, __global const int* level, __global const int* bin_state,
-                 __global const int* grid_mask, __global const uint* grid_bucket_offset,
-                 __global const REAL* grid_inv_cell, __global const uint* bucket, __global const int* grid_nodes,
-                 __global const ulong* offset, __global volatile int* count, const ulong entries_size,
-                 __global int* entries, const uint spill_capacity, __global int* spill, __global uint* counters,
-                 const int counting, const int sample_stride, __global uchar* skin_class, const REAL pair_skin) {
+__kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void gather_rows(
+    const int n, const REAL radius_factor, __global const REAL2* xy, __global const REAL* q, __global const uchar* kind,
+    __global const int* prev, __global const int* next, __global const int* level, __global const int* bin_state,
+    __global const int* grid_mask, __global const uint* grid_bucket_offset, __global const REAL* grid_inv_cell,
+    __global const uint* bucket, __global const int* grid_nodes, __global const ulong* offset,
+    __global volatile int* count, const ulong entries_size, __global int* entries, const uint spill_capacity,
+    __global int* spill, __global uint* counters, const int counting, const int sample_stride,
+    __global uchar* skin_class, const REAL pair_skin) {
   __local uint local_examined, local_ratio;
   if (get_local_id(0) == 0) {
     local_examined = 0;
@@ -263,7 +263,8 @@ void gather_rows(const int n, const REAL radius_factor, __global const REAL2* xy
               // s c; see the top): r_i = c (1 + s) q_i bounds it, so this scan sees every such pair.
               const REAL qj = q[j];
               const REAL rj = radius_factor * qj + (qj < qi ? pair_skin * (qi - qj) : (REAL)0);
-              if (d2 <= rj * rj) row_append(j, i, offset, count, entries_size, entries, spill_capacity, spill, counters, counting);
+              if (d2 <= rj * rj)
+                row_append(j, i, offset, count, entries_size, entries, spill_capacity, spill, counters, counting);
             }
           }
         }
@@ -298,9 +299,11 @@ void gather_rows(const int n, const REAL radius_factor, __global const REAL2* xy
 // After a sampled counting pass (see the top): per level L, tally[2 L] += the counts of its interior
 // rows and tally[2 L + 1] += its interior nodes; tally[2 PDMESH_GRID_LEVELS] += the boundary nodes.
 // Sums per work-group in local memory first (the levels are few, their atomics contended).
-__kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1)))
-void row_level_tally(const int n, __global const uchar* kind, __global const int* level, __global const int* count,
-                     __global uint* tally) {
+__kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void row_level_tally(const int n,
+                                                                                   __global const uchar* kind,
+                                                                                   __global const int* level,
+                                                                                   __global const int* count,
+                                                                                   __global uint* tally) {
   __local uint sums[2 * PDMESH_GRID_LEVELS + 1];
   const int l = get_local_id(0);
   for (int k = l; k < 2 * PDMESH_GRID_LEVELS + 1; k += WG_SIZE) sums[k] = 0;
@@ -330,8 +333,8 @@ __constant REAL skin_class_roots[SKIN_CLASS_STEPS] = {SKIN_CLASS_ROOTS};
 // (less the host's margin). The factor 2^(1 + c / SKIN_CLASS_STEPS) from a table and exact powers of 2,
 // as the host computes it (an exp2 per node and iteration cost a libm call on PoCL). One expression
 // for device_step, refresh_budgets and boundary_snap, so that they agree bit for bit.
-REAL skin_use_of(const REAL2 p, const REAL qn, const REAL2 pb, const REAL qb, const REAL cutoff,
-                 const REAL skin_cutoff, const uchar skin_class) {
+REAL skin_use_of(const REAL2 p, const REAL qn, const REAL2 pb, const REAL qb, const REAL cutoff, const REAL skin_cutoff,
+                 const uchar skin_class) {
   const REAL ex = p.x - pb.x, ey = p.y - pb.y;
   const REAL grow = qn > qb ? cutoff * (qn - qb) : (REAL)0;
   const REAL factor = (REAL)(2 << (skin_class / SKIN_CLASS_STEPS)) * skin_class_roots[skin_class % SKIN_CLASS_STEPS];
@@ -374,7 +377,8 @@ void sort_row(__global int* entries, const ulong base, const int c) {
     const rank_v16si x = __builtin_astype((int16)(v[a]), rank_v16si);
     uint rank = 0;
     for (int h = 0; h < chunks; ++h)
-      rank += popcount((uint)__builtin_ia32_cmpd512_mask(__builtin_astype(vload16(h, v), rank_v16si), x, 1, (ushort)0xFFFF));
+      rank += popcount(
+          (uint)__builtin_ia32_cmpd512_mask(__builtin_astype(vload16(h, v), rank_v16si), x, 1, (ushort)0xFFFF));
     out[rank] = v[a];
   }
   for (int k = 0; k < c; ++k) entries[base + k] = out[k];
@@ -387,9 +391,9 @@ void sort_row(__global int* entries, const ulong base, const int c) { insertion_
 // sorted by cell order). counters[ROW_OUTGROWN] = the rows that outgrew their capacities,
 // counters[ROW_ENTRIES] = the entries of all rows, counters[ROW_LARGEST] = the largest row (atomic
 // max), counters[ROW_WITHIN] = pairs within (interior rows).
-__kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1)))
-void sort_rows(const int n, __global const uchar* kind, __global const ulong* offset, __global const int* count,
-               const ulong entries_size, __global int* entries, __global uint* counters) {
+__kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void sort_rows(
+    const int n, __global const uchar* kind, __global const ulong* offset, __global const int* count,
+    const ulong entries_size, __global int* entries, __global uint* counters) {
   __local uint local_within, local_total, local_overflow;
   __local int local_max;
   if (get_local_id(0) == 0) {
@@ -437,11 +441,10 @@ int rows_move(__global const uint* counters, const uint spill_capacity, const ui
   return counters[ROW_SPILLED] <= spill_capacity && counters[ROW_OUTGROWN] <= move_capacity;
 }
 
-__kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1)))
-void relocate_rows(const int n, __global const uchar* kind, __global const ulong* offset, __global const int* count,
-                   const ulong entries_size, __global int* entries, const uint spill_capacity,
-                   __global const int* spill, const uint move_capacity, __global int* move_node,
-                   __global ulong* move_start, __global uint* counters) {
+__kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void relocate_rows(
+    const int n, __global const uchar* kind, __global const ulong* offset, __global const int* count,
+    const ulong entries_size, __global int* entries, const uint spill_capacity, __global const int* spill,
+    const uint move_capacity, __global int* move_node, __global ulong* move_start, __global uint* counters) {
   const int i = get_global_id(0);
   if (i >= n) return;
   const int c = count[i];
@@ -466,10 +469,9 @@ void relocate_rows(const int n, __global const uchar* kind, __global const ulong
 
 // One work-item per spilled entry (row r, node j): appended to r's moved row through the cursor
 // relocate_rows left in r's old slot.
-__kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1)))
-void place_spilled(const int n, __global const ulong* offset, __global volatile int* entries,
-                   const uint spill_capacity, __global const int* spill, const uint move_capacity,
-                   __global const uint* counters) {
+__kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void place_spilled(
+    const int n, __global const ulong* offset, __global volatile int* entries, const uint spill_capacity,
+    __global const int* spill, const uint move_capacity, __global const uint* counters) {
   const uint p = get_global_id(0);
   if (p >= min(counters[ROW_SPILLED], spill_capacity) || !rows_move(counters, spill_capacity, move_capacity) ||
       counters[ROW_SPARE_FULL])
@@ -481,9 +483,9 @@ void place_spilled(const int n, __global const ulong* offset, __global volatile 
   entries[offset[n] + rel + k] = spill[2 * p + 1];
 }
 
-__kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1)))
-void apply_row_moves(__global const int* move_node, __global const ulong* move_start, __global const uint* counters,
-                     __global const int* count, __global int* entries, __global ulong* offset) {
+__kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void apply_row_moves(
+    __global const int* move_node, __global const ulong* move_start, __global const uint* counters,
+    __global const int* count, __global int* entries, __global ulong* offset) {
   const uint k = get_global_id(0);
   if (k >= counters[ROW_MOVED] || counters[ROW_SPARE_FULL]) return;
   const int i = move_node[k];

@@ -76,9 +76,11 @@ REAL force_norm(const REAL fx, const REAL fy) {
 }
 
 // partials[4 g + k]: k = 0 sum |F|, 1 sum kinetic, 2 moving count, 3 max |F| of group g.
-__kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1)))
-void reduce(const int n, __global const uchar* kind, __global const REAL* fx, __global const REAL* fy,
-            __global const REAL* dt2, __global REAL* partials) {
+__kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void reduce(const int n, __global const uchar* kind,
+                                                                          __global const REAL* fx,
+                                                                          __global const REAL* fy,
+                                                                          __global const REAL* dt2,
+                                                                          __global REAL* partials) {
   __local REAL values[4 * WG_SIZE];
   const int i = get_global_id(0), l = get_local_id(0);
   const int moving = i < n && kind[i] != 0;

@@ -100,25 +100,23 @@ int domain_tag_at(REAL px, REAL py, REAL origin_x, REAL origin_y, REAL inv_root_
 }
 
 // Test kernel: spacing and tag at n points.
-__kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1)))
-void spacing_lookup(const int n, __global const REAL* px, __global const REAL* py, const REAL origin_x,
-                    const REAL origin_y, const REAL inv_root_size, const int grid, __global const int* root_node,
-                    __global const int* node_child, __global const int* leaf_corner, __global const int* leaf_tag,
-                    __global const REAL* corner_q, __global REAL* out_q, __global int* out_tag) {
+__kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void spacing_lookup(
+    const int n, __global const REAL* px, __global const REAL* py, const REAL origin_x, const REAL origin_y,
+    const REAL inv_root_size, const int grid, __global const int* root_node, __global const int* node_child,
+    __global const int* leaf_corner, __global const int* leaf_tag, __global const REAL* corner_q, __global REAL* out_q,
+    __global int* out_tag) {
   const int i = get_global_id(0);
   if (i >= n) return;
-  out_q[i] = spacing_at(px[i], py[i], origin_x, origin_y, inv_root_size, grid, root_node, node_child, leaf_corner,
-                        corner_q);
+  out_q[i] =
+      spacing_at(px[i], py[i], origin_x, origin_y, inv_root_size, grid, root_node, node_child, leaf_corner, corner_q);
   out_tag[i] = domain_tag_at(px[i], py[i], origin_x, origin_y, inv_root_size, grid, root_node, node_child, leaf_tag);
 }
 
 // Test kernel: bg_locate_cached from guess[i] against bg_locate, at n points: leaf and (u, v) of both.
-__kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1)))
-void locate_cached_lookup(const int n, __global const REAL* px, __global const REAL* py, const REAL origin_x,
-                          const REAL origin_y, const REAL inv_root_size, const int grid,
-                          __global const int* root_node, __global const int* node_child,
-                          __global const int* leaf_cell, __global const int* guess, __global int* out_leaf,
-                          __global REAL* out_uv) {
+__kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void locate_cached_lookup(
+    const int n, __global const REAL* px, __global const REAL* py, const REAL origin_x, const REAL origin_y,
+    const REAL inv_root_size, const int grid, __global const int* root_node, __global const int* node_child,
+    __global const int* leaf_cell, __global const int* guess, __global int* out_leaf, __global REAL* out_uv) {
   const int i = get_global_id(0);
   if (i >= n) return;
   REAL u, v, cu, cv;

@@ -15,11 +15,10 @@ REAL local_dt2(const REAL fx, const REAL fy, const REAL r0, const REAL dt_gm2, c
   return stability_limit < dt2 ? stability_limit : dt2;
 }
 
-__kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1)))
-void time_step_and_move(const int n, const REAL dt_gm2, const int has_limit, __global const uchar* kind,
-                        __global const REAL* fx, __global const REAL* fy, __global const REAL* r0,
-                        __global const REAL* dt2_limit, __global REAL* dx_out,
-                        __global REAL* dy_out, __global REAL* dt2_out) {
+__kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void time_step_and_move(
+    const int n, const REAL dt_gm2, const int has_limit, __global const uchar* kind, __global const REAL* fx,
+    __global const REAL* fy, __global const REAL* r0, __global const REAL* dt2_limit, __global REAL* dx_out,
+    __global REAL* dy_out, __global REAL* dt2_out) {
   const int i = get_global_id(0);
   if (i >= n) return;
   if (kind[i] == 0) {
@@ -58,10 +57,9 @@ REAL2 momentum_move(const REAL gx, const REAL gy, const REAL2 p, const REAL beta
 
 // StepBackend::apply_momentum: moves (dx, dy) in = g, out = d; carried (x and y interleaved) in = p,
 // out = d. Fixed nodes: d = p = 0.
-__kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1)))
-void apply_momentum(const int n, const REAL beta, __global const uchar* kind, __global const REAL* fx,
-                    __global const REAL* fy, __global const REAL* r0, __global REAL* dx, __global REAL* dy,
-                    __global REAL2* carried) {
+__kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void apply_momentum(
+    const int n, const REAL beta, __global const uchar* kind, __global const REAL* fx, __global const REAL* fy,
+    __global const REAL* r0, __global REAL* dx, __global REAL* dy, __global REAL2* carried) {
   const int i = get_global_id(0);
   if (i >= n) return;
   if (kind[i] == 0) {

@@ -19,8 +19,8 @@
 // In boundary_snap_rule other work-groups of the same launch wrote snap_partials and read the halt
 // flag: those go through atomics (reduce.cl, atomic_load_real).
 void iteration_rule_body(const int groups, __global const REAL* partials, const int snap_entries,
-                         __global REAL* snap_partials, __global int* step_counters,
-                         __global double* state, __global double* ring, const int ring_rows, __global REAL* dt2_out) {
+                         __global REAL* snap_partials, __global int* step_counters, __global double* state,
+                         __global double* ring, const int ring_rows, __global REAL* dt2_out) {
   if (atomic_or(&step_counters[WINDOW_HALT], 0) != 0) return;
   const int r = step_counters[WINDOW_ROWS];
   if (r >= ring_rows) {  // the host sizes the ring to the window: never, but never write past it
@@ -104,9 +104,8 @@ void iteration_rule_body(const int groups, __global const REAL* partials, const 
 }
 
 __kernel void iteration_rule(const int groups, __global const REAL* partials, const int snap_entries,
-                             __global REAL* snap_partials, __global int* step_counters,
-                             __global double* state, __global double* ring, const int ring_rows,
-                             __global REAL* dt2_out) {
+                             __global REAL* snap_partials, __global int* step_counters, __global double* state,
+                             __global double* ring, const int ring_rows, __global REAL* dt2_out) {
   if (get_global_id(0) != 0) return;
   iteration_rule_body(groups, partials, snap_entries, snap_partials, step_counters, state, ring, ring_rows, dt2_out);
 }

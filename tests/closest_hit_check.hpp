@@ -14,8 +14,8 @@ namespace pdmesh_test {
 inline void require_same(const pdmesh::ClosestHit& got, const pdmesh::ClosestHit& brute, pdmesh::Vec2 p,
                          int curve = -1) {
   INFO("query (" << p.x << ", " << p.y << ")" << (curve >= 0 ? " curve " + std::to_string(curve) : std::string())
-                 << ": segment " << got.segment << " at " << got.distance << ", brute force segment "
-                 << brute.segment << " at " << brute.distance);
+                 << ": segment " << got.segment << " at " << got.distance << ", brute force segment " << brute.segment
+                 << " at " << brute.distance);
   REQUIRE(got.segment == brute.segment);
   REQUIRE(got.distance == brute.distance);
   REQUIRE(got.point == brute.point);

@@ -59,9 +59,9 @@ inline Outcome run_from(const Case& c, const NodeSet& start, const SimOptions& o
                         ocl::ForceLoop loop = ocl::ForceLoop::Auto) {
   Outcome out{start, {}, {}};
   if (device) {
-    out.result = ocl::run_device_simulation(out.nodes, c.inputs->node_tree(), *c.inputs->spacing, o, test_context(),
-                                            use_float ? ocl::Precision::Float : ocl::Precision::Double, {}, &out.stats,
-                                            loop);
+    out.result =
+        ocl::run_device_simulation(out.nodes, c.inputs->node_tree(), *c.inputs->spacing, o, test_context(),
+                                   use_float ? ocl::Precision::Float : ocl::Precision::Double, {}, &out.stats, loop);
   } else {
     out.result = run_simulation(out.nodes, c.inputs->node_tree(), *c.inputs->spacing, o);
   }

@@ -69,10 +69,9 @@ inline std::vector<Vec2> rectangle(Vec2 lo, Vec2 hi, int per_side, bool ccw) {
 // Circle (radius 10) within circle (radius 3), each made of two semicircle curves (thesis fig. 4.1).
 inline Geometry circle_in_circle() {
   const double pi = std::acos(-1.0);
-  return make_geometry({arc_points({0, 0}, 10, 0, pi, 37, {10, 0}, {-10, 0}),
-                        arc_points({0, 0}, 10, pi, 2 * pi, 41, {-10, 0}, {10, 0}),
-                        arc_points({0, 0}, 3, 0, pi, 13, {3, 0}, {-3, 0}),
-                        arc_points({0, 0}, 3, pi, 2 * pi, 17, {-3, 0}, {3, 0})});
+  return make_geometry(
+      {arc_points({0, 0}, 10, 0, pi, 37, {10, 0}, {-10, 0}), arc_points({0, 0}, 10, pi, 2 * pi, 41, {-10, 0}, {10, 0}),
+       arc_points({0, 0}, 3, 0, pi, 13, {3, 0}, {-3, 0}), arc_points({0, 0}, 3, pi, 2 * pi, 17, {-3, 0}, {3, 0})});
 }
 
 // The square [0,4]^2 (4 segments a side) with the square hole [1.5,2.5]^2 (1 segment a side).

@@ -15,8 +15,7 @@ namespace pdmesh_test {
 // A double in [0, 1) from the top 53 bits (reproducible across standard libraries).
 inline double uniform(std::mt19937_64& rng) { return static_cast<double>(rng() >> 11) * 0x1.0p-53; }
 
-inline void add(pdmesh::SimParticles& p, double x, double y, double q,
-                std::uint8_t kind = pdmesh::kSimInterior) {
+inline void add(pdmesh::SimParticles& p, double x, double y, double q, std::uint8_t kind = pdmesh::kSimInterior) {
   p.x.push_back(x);
   p.y.push_back(y);
   p.q.push_back(q);

@@ -68,7 +68,6 @@ inline ocl::StepProgram& test_program(ocl::Precision precision) {
 
 using pdmesh_test::uniform;
 
-
 // Float backends see float inputs: the oracle gets the same rounded values.
 inline void round_to_float(SimParticles& p) {
   for (auto* v : {&p.x, &p.y, &p.q, &p.tx, &p.ty})
@@ -173,8 +172,8 @@ inline Input long_rows_input(bool is_float) {
   std::mt19937_64 rng(13);
   const double pitch = 1.0 / 80.0;
   for (int i = 0; i < 144; ++i)
-    pdmesh_test::add(in.p, pitch * (i % 12 + 0.4 * (uniform(rng) - 0.5)),
-                     pitch * (i / 12 + 0.4 * (uniform(rng) - 0.5)), 0.1);
+    pdmesh_test::add(in.p, pitch * (i % 12 + 0.4 * (uniform(rng) - 0.5)), pitch * (i / 12 + 0.4 * (uniform(rng) - 0.5)),
+                     0.1);
   for (std::size_t k : {5u, 70u, 131u}) pdmesh_test::add(in.p, in.p.x[k], in.p.y[k], in.p.q[k]);
   mix_kinds(in.p, rng, 9);
   if (is_float) round_to_float(in.p);
@@ -196,7 +195,8 @@ inline std::vector<double> pair_force_scale(const SimParticles& p, const Neighbo
   std::vector<double> s(p.size(), 0.0);
   for (std::size_t i = 0; i < p.size(); ++i) {
     for (int k = 0; k < list.count[i]; ++k) {
-      const auto j = static_cast<std::size_t>(list.index[i * static_cast<std::size_t>(list.stride) + static_cast<std::size_t>(k)]);
+      const auto j =
+          static_cast<std::size_t>(list.index[i * static_cast<std::size_t>(list.stride) + static_cast<std::size_t>(k)]);
       const double dx = p.x[j] - p.x[i], dy = p.y[j] - p.y[i], r2 = dx * dx + dy * dy;
       if (r2 > 0.0) s[i] += std::fabs(reference::lj_pair_magnitude(0.5 * (p.q[i] + p.q[j]), 1.0 / r2, lj_a));
     }

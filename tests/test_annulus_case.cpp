@@ -101,8 +101,9 @@ TEST_CASE("bench --whole-run: repeated runs of a generated case, every phase wit
   const std::string table = read_text_file(dir / "table.md");
   CHECK(table.find("| annulus_1500 | host |") != std::string::npos);
   CHECK(table.find("#### annulus_1500 on host") != std::string::npos);
-  for (const char* phase : {"| read |", "| spacing |", "| estimate |", "| fill |", "| simulation |", "| triangulation |",
-                            "| mesh msh |", "| pictures (background thread", "| **whole process** |"})
+  for (const char* phase :
+       {"| read |", "| spacing |", "| estimate |", "| fill |", "| simulation |", "| triangulation |", "| mesh msh |",
+        "| pictures (background thread", "| **whole process** |"})
     CHECK(table.find(phase) != std::string::npos);
   CHECK(table.find("min / median / max") != std::string::npos);
   // Each run a process of its own with its timings file (valid JSON); pictures kept by default.
@@ -115,8 +116,8 @@ TEST_CASE("bench --whole-run: repeated runs of a generated case, every phase wit
     CHECK(fs::is_regular_file(out / "mesh.msh"));
   }
   // A failing run fails the bench (exit 1), and --repeat 0 is refused (exit 2).
-  const pdmesh_test::Result bad = pdmesh_test::run_pdmesh("bench --whole-run --cases annulus_1500 --repeat 0 --work-dir '" +
-                                                          dir.string() + "'");
+  const pdmesh_test::Result bad =
+      pdmesh_test::run_pdmesh("bench --whole-run --cases annulus_1500 --repeat 0 --work-dir '" + dir.string() + "'");
   CHECK(bad.status == 2);
   const pdmesh_test::Result failing = pdmesh_test::run_pdmesh(
       "bench --whole-run --cases annulus_1500 --repeat 1 --backends host --set simulation.iterations=-1 --work-dir '" +

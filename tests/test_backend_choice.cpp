@@ -128,9 +128,10 @@ TEST_CASE("auto order: discrete GPU, fp64, compute units, then CPUs", "[opencl][
     d.compute_units = units;
     return d;
   };
-  const auto order = ocl::auto_order({make("cpu", "CPU", true, true, 64), make("igpu", "GPU", true, false, 96),
-                                      make("small", "GPU", false, true, 20), make("big", "GPU", false, true, 80),
-                                      make("nofp64", "GPU", false, false, 128), make("fpga", "accelerator", false, true, 8)});
+  const auto order =
+      ocl::auto_order({make("cpu", "CPU", true, true, 64), make("igpu", "GPU", true, false, 96),
+                       make("small", "GPU", false, true, 20), make("big", "GPU", false, true, 80),
+                       make("nofp64", "GPU", false, false, 128), make("fpga", "accelerator", false, true, 8)});
   std::vector<std::string> names;
   for (const auto& d : order) names.push_back(d.name);
   CHECK(names == std::vector<std::string>{"big", "small", "nofp64", "igpu", "cpu", "fpga"});

@@ -34,8 +34,8 @@ class RecursiveBuilder {
     d_.root_node.resize(g * g);
     for (std::size_t k = 0; k < g * g; ++k) {
       d_.root_node[k] = new_node();
-      const Cell cell{static_cast<std::uint32_t>(k % g) << resolution_, static_cast<std::uint32_t>(k / g) << resolution_,
-                      0};
+      const Cell cell{static_cast<std::uint32_t>(k % g) << resolution_,
+                      static_cast<std::uint32_t>(k / g) << resolution_, 0};
       build_cell(d_.root_node[k], cell, root_segments[k]);
     }
   }
@@ -103,7 +103,8 @@ class RecursiveBuilder {
       const int y1 = std::min(g - 1, cell_of(std::max(seg.a.y, seg.b.y), d_.origin_y) + 1);
       for (int y = y0; y <= y1; ++y)
         for (int x = x0; x <= x1; ++x) {
-          const Cell root{static_cast<std::uint32_t>(x) << resolution_, static_cast<std::uint32_t>(y) << resolution_, 0};
+          const Cell root{static_cast<std::uint32_t>(x) << resolution_, static_cast<std::uint32_t>(y) << resolution_,
+                          0};
           if (segment_touches_box(seg.a, seg.b, box(root)))
             root_segments[static_cast<std::size_t>(y) * static_cast<std::size_t>(g) + static_cast<std::size_t>(x)]
                 .push_back(static_cast<int>(s));
@@ -119,8 +120,8 @@ class RecursiveBuilder {
     static constexpr int kTests[9][2] = {{2, 2}, {2, 0}, {2, 4}, {0, 2}, {4, 2}, {1, 1}, {3, 1}, {1, 3}, {3, 3}};
     const std::uint32_t quarter = span(c.level) / 4;
     for (const auto& t : kTests) {
-      const double exact = sample(c.x + quarter * static_cast<std::uint32_t>(t[0]),
-                                  c.y + quarter * static_cast<std::uint32_t>(t[1]));
+      const double exact =
+          sample(c.x + quarter * static_cast<std::uint32_t>(t[0]), c.y + quarter * static_cast<std::uint32_t>(t[1]));
       const double u = t[0] / 4.0, v = t[1] / 4.0;
       const double bilinear = (1.0 - v) * ((1.0 - u) * q[0] + u * q[1]) + v * ((1.0 - u) * q[2] + u * q[3]);
       if (std::fabs(bilinear - exact) > 0.5 * opt_.tolerance * exact) return true;
@@ -138,8 +139,8 @@ class RecursiveBuilder {
       d_.node_child[static_cast<std::size_t>(node)] = -1 - static_cast<std::int32_t>(d_.leaf_tag.size());
       d_.leaf_tag.push_back(tag);
       const std::uint32_t below_root = (std::uint32_t{1} << resolution_) - 1;
-      d_.leaf_cell.push_back(static_cast<std::int32_t>((c.y >> resolution_) * static_cast<std::uint32_t>(d_.grid) +
-                                                       (c.x >> resolution_)));
+      d_.leaf_cell.push_back(
+          static_cast<std::int32_t>((c.y >> resolution_) * static_cast<std::uint32_t>(d_.grid) + (c.x >> resolution_)));
       d_.leaf_cell.push_back(c.level);
       d_.leaf_cell.push_back(static_cast<std::int32_t>((c.x & below_root) >> (resolution_ - c.level)));
       d_.leaf_cell.push_back(static_cast<std::int32_t>((c.y & below_root) >> (resolution_ - c.level)));
@@ -238,7 +239,9 @@ class SerialField final : public SpacingField {
   const SpacingField& inner_;
 };
 
-Geometry circle_circle() { return build_geometry(read_curve_file(PDMESH_SOURCE_DIR "/cases/circle_circle/circles.crv")); }
+Geometry circle_circle() {
+  return build_geometry(read_curve_file(PDMESH_SOURCE_DIR "/cases/circle_circle/circles.crv"));
+}
 
 }  // namespace
 
@@ -283,7 +286,10 @@ TEST_CASE("background builder: sample ids name the lattice points of the cells' 
   // Counts the points the builder evaluates.
   struct Counting : SpacingField {
     explicit Counting(const SpacingField& f) : f(f) {}
-    double at(Vec2 p) const override { ++points; return f.at(p); }
+    double at(Vec2 p) const override {
+      ++points;
+      return f.at(p);
+    }
     void at_many(const std::vector<Vec2>& p, std::vector<double>& q) const override {
       points += p.size();
       f.at_many(p, q);

@@ -27,7 +27,9 @@ constexpr std::uint64_t kSeed = 42;
 
 using pdmesh_test::unit;
 
-RawCurve polyline(const std::string& name, std::vector<Vec2> points) { return {name, std::move(points), "test", 1, {}}; }
+RawCurve polyline(const std::string& name, std::vector<Vec2> points) {
+  return {name, std::move(points), "test", 1, {}};
+}
 
 // A circle of `segments` equal segments as two curves (upper and lower half).
 void add_circle(std::vector<RawCurve>& raw, Vec2 c, double r, int segments, const std::string& name) {
@@ -107,10 +109,10 @@ std::vector<Vec2> random_points(const Box& box, std::size_t n, std::uint64_t see
 
 struct AccuracyReport {
   std::size_t inside = 0;
-  std::size_t excluded = 0;  // near a jump of eq. 3.6: the leaf's corners see other closest segments
-  std::size_t bad = 0;       // non-excluded points over the tolerance
+  std::size_t excluded = 0;      // near a jump of eq. 3.6: the leaf's corners see other closest segments
+  std::size_t bad = 0;           // non-excluded points over the tolerance
   std::size_t bad_excluded = 0;  // excluded points whose error exceeds the local jump + tolerance
-  double worst = 0.0;        // largest relative error over non-excluded points
+  double worst = 0.0;            // largest relative error over non-excluded points
 };
 
 // Eq. 3.6 jumps where a curve's closest segment changes to one of another length (equal lengths up
@@ -294,8 +296,8 @@ namespace {
 
 // A kernel of spacing_field.cl built for the precision and work-group size.
 cl::Kernel spacing_field_kernel(ocl::Context& ctx, const char* name, bool dbl, std::size_t wg) {
-  auto program = ctx.build({"spacing_field.cl"}, ocl::precision_defines(dbl ? ocl::Precision::Double
-                                                                             : ocl::Precision::Float, wg));
+  auto program =
+      ctx.build({"spacing_field.cl"}, ocl::precision_defines(dbl ? ocl::Precision::Double : ocl::Precision::Float, wg));
   cl_int err = CL_SUCCESS;
   cl::Kernel kernel(program, name, &err);
   ocl::check(err, std::string("clCreateKernel(") + name + ")");
@@ -376,8 +378,8 @@ void check_device(ocl::Context& ctx, const BackgroundSpacing& bg, const std::vec
           lo = std::min(lo, bg.at({p.x + sx, p.y + sy}));
           hi = std::max(hi, bg.at({p.x + sx, p.y + sy}));
         }
-      explained = explained || (static_cast<double>(q[i]) >= lo * (1 - tol) && static_cast<double>(q[i]) <= hi * (1 + tol) &&
-                                t[i] == host_tag);
+      explained = explained || (static_cast<double>(q[i]) >= lo * (1 - tol) &&
+                                static_cast<double>(q[i]) <= hi * (1 + tol) && t[i] == host_tag);
       CHECK(explained);
       ++near_faces;
     }
@@ -488,7 +490,8 @@ TEST_CASE("background field: the cached leaf lookup equals the descent bit for b
     for (const Vec2 p : random) {
       const Box b = background_leaf_box(d, p);
       const Vec2 m = b.centre();
-      for (const Vec2 s : {p, b.lo, b.hi, Vec2{b.lo.x, b.hi.y}, Vec2{b.hi.x, b.lo.y}, Vec2{m.x, b.lo.y}, Vec2{b.lo.x, m.y}})
+      for (const Vec2 s :
+           {p, b.lo, b.hi, Vec2{b.lo.x, b.hi.y}, Vec2{b.hi.x, b.lo.y}, Vec2{m.x, b.lo.y}, Vec2{b.lo.x, m.y}})
         points.push_back(s);
     }
     points.push_back({NAN, NAN});
@@ -510,7 +513,8 @@ TEST_CASE("background field: the cached leaf lookup equals the descent bit for b
       const Box b = background_leaf_box(d, random[i]);
       const double side = std::ldexp(d.root_size, -d.leaf_cell[4 * leaf + 1]);
       const int root = d.leaf_cell[4 * leaf];
-      CHECK(b.lo.x == d.origin_x + d.root_size * ((root % d.grid) + std::ldexp(d.leaf_cell[4 * leaf + 2], -d.leaf_cell[4 * leaf + 1])));
+      CHECK(b.lo.x == d.origin_x + d.root_size * ((root % d.grid) +
+                                                  std::ldexp(d.leaf_cell[4 * leaf + 2], -d.leaf_cell[4 * leaf + 1])));
       CHECK(b.hi.y - b.lo.y == Approx(side).epsilon(1e-9));
     }
     if (device->fp64) check_cached_locate<double>(ctx, bg, points, guesses);

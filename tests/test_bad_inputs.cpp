@@ -53,11 +53,11 @@ TEST_CASE("every broken input exits 2 with a clear message and writes nothing", 
     const auto r = pdmesh_test::run_pdmesh("mesh '" + input.string() + "' --out '" + out.string() + "'");
     INFO(r.output);
     CHECK(r.status == 2);
-    CHECK(r.output.rfind("pdmesh: error: ", 0) == 0);                       // the message comes first
-    CHECK(r.output.find(bad.expected) != std::string::npos);                // and says what is wrong
-    CHECK(r.output.find('\n') == r.output.size() - 1);                      // on one line
-    CHECK(r.output.find("terminate called") == std::string::npos);          // no library exception text
-    CHECK_FALSE(fs::exists(out));                                           // nothing written
+    CHECK(r.output.rfind("pdmesh: error: ", 0) == 0);               // the message comes first
+    CHECK(r.output.find(bad.expected) != std::string::npos);        // and says what is wrong
+    CHECK(r.output.find('\n') == r.output.size() - 1);              // on one line
+    CHECK(r.output.find("terminate called") == std::string::npos);  // no library exception text
+    CHECK_FALSE(fs::exists(out));                                   // nothing written
   }
   fs::remove_all(out_root);
 }

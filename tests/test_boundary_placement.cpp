@@ -32,12 +32,10 @@ using pdmesh::fixtures::ConstantSpacing;
 
 namespace {
 
-
 // A smoothly varying field: 0.25 to 0.75 along x over the test geometries.
 struct WavySpacing final : SpacingField {
   double at(Vec2 p) const override { return 0.5 + 0.25 * std::sin(0.4 * p.x + 0.2 * p.y); }
 };
-
 
 // A 12 x 8 rectangle (2 points a side: coarser than any q here) with a circular hole of radius 2
 // (40 points) at (6, 4). The bottom is three curves: one with a bump of 60- and 120-degree corners
@@ -81,7 +79,9 @@ TEST_CASE("spacing nodes: edges within 10% of q at their midpoints under a smoot
   for (const bool smooth : {false, true}) {
     INFO((smooth ? "smooth curves" : "polylines"));
     std::unique_ptr<DenseGeometry> dense;
-    if (smooth) dense = std::make_unique<DenseGeometry>(make_dense_geometry(SmoothCurves(g, 30.0), [&q](Vec2 p) { return q.at(p); }));
+    if (smooth)
+      dense =
+          std::make_unique<DenseGeometry>(make_dense_geometry(SmoothCurves(g, 30.0), [&q](Vec2 p) { return q.at(p); }));
     const Geometry& ng = smooth ? dense->geometry : g;
     const NodeSet nodes = place_boundary_nodes(ng, q, BoundaryNodeRule::Spacing, nullptr);
     const double worst = worst_edge_ratio(nodes, ng, q, 8);
@@ -138,7 +138,8 @@ TEST_CASE("spacing nodes: no chord strays from the curve by more than 0.1 (q_a +
     const double a = (i % 2 ? 1.0 : -1.0) * 14.5 * std::numbers::pi / 180;
     zig.push_back(zig.back() + Vec2{std::cos(a), std::sin(a)});
   }
-  const Geometry g = build_geometry({{"zig", zig, "test", 1, {}}, {"close", {zig.back(), {zig.back().x, -3}, {0, -3}, {0, 0}}, "test", 40, {}}});
+  const Geometry g = build_geometry(
+      {{"zig", zig, "test", 1, {}}, {"close", {zig.back(), {zig.back().x, -3}, {0, -3}, {0, 0}}, "test", 40, {}}});
   const ConstantSpacing q(1.3);
   PlacementOptions options;
   const CurveStations stations = spacing_stations(g, q, options);
@@ -204,8 +205,10 @@ TEST_CASE("input nodes through the station assembly are the thesis' rule", "[pla
   CHECK(d1.estimate == d2.estimate);
 }
 
-TEST_CASE("spacing nodes on smooth curves: the fill matches the estimate and a short run keeps "
-          "boundary nodes on the smooth curve", "[placement][smooth]") {
+TEST_CASE(
+    "spacing nodes on smooth curves: the fill matches the estimate and a short run keeps "
+    "boundary nodes on the smooth curve",
+    "[placement][smooth]") {
   // A coarsely segmented circle (16 points, radius 3) in a square.
   const RawCurve hole = fixtures::circle_curve(3.0, 16, 0.0, "hole");
   const Geometry g = build_geometry({{"box", {{-5, -5}, {5, -5}, {5, 5}, {-5, 5}, {-5, -5}}, "test", 1, {}}, hole});
@@ -273,10 +276,10 @@ TEST_CASE("pdmesh mesh: smooth curves with spacing nodes pass --check, and cross
   // A 16-point circle of radius 1 in a box with one point per corner: both far coarser than q = 0.1.
   const RawCurve hole = fixtures::circle_curve(1.0, 16, 0.0, "hole");
   write_crv(dir / "coarse.crv", {{{-2, -2}, {2, -2}, {2, 2}, {-2, 2}, {-2, -2}}, hole.points});
-  const auto r = pdmesh_test::run_pdmesh("mesh '" + (dir / "coarse.crv").string() + "' --out '" +
-                                         (dir / "out").string() +
-                                         "' --iterations 20 --device host --check --formats msh "
-                                         "--set spacing.expression=0.1 --set geometry.curves=smooth");
+  const auto r =
+      pdmesh_test::run_pdmesh("mesh '" + (dir / "coarse.crv").string() + "' --out '" + (dir / "out").string() +
+                              "' --iterations 20 --device host --check --formats msh "
+                              "--set spacing.expression=0.1 --set geometry.curves=smooth");
   INFO(r.output);
   REQUIRE(r.status == 0);
   CHECK_THAT(r.output, Catch::Contains("smooth curves (centripetal Catmull-Rom) as a dense polyline"));
@@ -292,9 +295,9 @@ TEST_CASE("pdmesh mesh: smooth curves with spacing nodes pass --check, and cross
   // Two coarse curves whose smooth versions cross (test_smooth_curve.cpp): a note, then polylines.
   const RawCurve hole16 = fixtures::circle_curve(1.0, 16, std::numbers::pi / 16, "hole");
   write_crv(dir / "crossing.crv", {{{-2, -2}, {0.99, -2}, {0.99, 2}, {-2, 2}, {-2, -2}}, hole16.points});
-  const auto f = pdmesh_test::run_pdmesh("mesh '" + (dir / "crossing.crv").string() + "' --out '" +
-                                         (dir / "out2").string() +
-                                         "' --iterations 5 --device host --check --formats msh --set geometry.curves=smooth");
+  const auto f =
+      pdmesh_test::run_pdmesh("mesh '" + (dir / "crossing.crv").string() + "' --out '" + (dir / "out2").string() +
+                              "' --iterations 5 --device host --check --formats msh --set geometry.curves=smooth");
   INFO(f.output);
   CHECK(f.status == 0);
   CHECK_THAT(f.output, Catch::Contains("note: geometry.curves = \"smooth\" fell back to the input polylines"));

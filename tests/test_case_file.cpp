@@ -125,9 +125,8 @@ TEST_CASE("omitted keys take the documented defaults", "[app][case]") {
 
 TEST_CASE("a single dt_initial applies to both methods, and an expression alone selects the expression field",
           "[app][case]") {
-  const CaseConfig c = parse_case_text(std::string(kMinimal) +
-                                           "[simulation]\ndt_initial = 0.009\n[spacing]\nexpression = \"2\"\n",
-                                       kCase);
+  const CaseConfig c = parse_case_text(
+      std::string(kMinimal) + "[simulation]\ndt_initial = 0.009\n[spacing]\nexpression = \"2\"\n", kCase);
   CHECK(c.simulation.dt_for(InitMethod::Structured) == 0.009);
   CHECK(c.simulation.dt_for(InitMethod::Random) == 0.009);
   CHECK(c.spacing.field == SpacingKind::Expression);
@@ -167,11 +166,13 @@ TEST_CASE("out-of-range values are rejected with the value", "[app][case]") {
   const std::string base = kMinimal;
   CHECK(error_of(base + "[simulation]\niterations = -1\n").find(":4:14: simulation.iterations must be >= 0, got -1") !=
         std::string::npos);
-  CHECK(error_of(base + "[simulation]\ncutoff = 0\n").find("simulation.cutoff must be > 0, got 0") != std::string::npos);
+  CHECK(error_of(base + "[simulation]\ncutoff = 0\n").find("simulation.cutoff must be > 0, got 0") !=
+        std::string::npos);
   CHECK(error_of(base + "[simulation]\ndt_initial = -0.5\n").find("simulation.dt_initial must be > 0, got -0.5") !=
         std::string::npos);
-  CHECK(error_of(base + "[simulation]\ndt_initial = { random = 0 }\n")
-            .find("simulation.dt_initial.random must be > 0") != std::string::npos);
+  CHECK(
+      error_of(base + "[simulation]\ndt_initial = { random = 0 }\n").find("simulation.dt_initial.random must be > 0") !=
+      std::string::npos);
   CHECK(error_of(base + "[init]\nmethod = \"spiral\"\n")
             .find("init.method must be one of structured, random, hexagonal, got 'spiral'") != std::string::npos);
   CHECK(error_of(base + "[simulation]\ndevice = \"cuda\"\n").find("got 'cuda'") != std::string::npos);
@@ -214,15 +215,17 @@ TEST_CASE("a case file is checked whole, also where an override replaces a value
         "/cases/demo/case.toml:4:14: simulation.iterations must be an integer, got string");
   CHECK(error_of(std::string(kMinimal) + "[simulation]\ncutoff = -1\n", {parse_set_option("simulation.cutoff=2")}) ==
         "/cases/demo/case.toml:4:10: simulation.cutoff must be > 0, got -1");
-  CHECK(error_of(std::string(kMinimal) + "[simulation]\nprecision = \"half\"\n", {{"simulation.precision", "float", "--precision float"}})
+  CHECK(error_of(std::string(kMinimal) + "[simulation]\nprecision = \"half\"\n",
+                 {{"simulation.precision", "float", "--precision float"}})
             .find("simulation.precision must be one of double, float, auto, got 'half'") != std::string::npos);
   // What only the whole configuration decides is left to it: overrides may complete a file.
-  const CaseConfig c = parse_case_text("[spacing]\nfield = \"expression\"\n",
-                                       kCase, {parse_set_option("geometry.files=[\"b.crv\"]"),
-                                               parse_set_option("spacing.expression=0.5")});
+  const CaseConfig c =
+      parse_case_text("[spacing]\nfield = \"expression\"\n", kCase,
+                      {parse_set_option("geometry.files=[\"b.crv\"]"), parse_set_option("spacing.expression=0.5")});
   CHECK(c.spacing.expression == "0.5");
   CHECK(c.geometry.files.size() == 1);
-  CHECK(parse_case_text(std::string(kMinimal) + "[simulation]\niterations = 7\n", kCase, iterations).simulation.iterations == 5);
+  CHECK(parse_case_text(std::string(kMinimal) + "[simulation]\niterations = 7\n", kCase, iterations)
+            .simulation.iterations == 5);
 }
 
 TEST_CASE("errors in overrides name the option, not the case file", "[app][case]") {
@@ -232,16 +235,16 @@ TEST_CASE("errors in overrides name the option, not the case file", "[app][case]
         "--set simulaton.cutoff=2: unknown key 'simulaton.cutoff'; did you mean 'simulation.cutoff'?");
   CHECK(error_of(kMinimal, {{"simulation.cutoff", "-1", "--cutoff -1"}}) ==
         "--cutoff -1: simulation.cutoff must be > 0, got -1");
-  CHECK(error_of(kMinimal, {parse_set_option("geometry.files.x=1")}).find("'geometry.files' is not a table (it is an array)") !=
-        std::string::npos);
+  CHECK(error_of(kMinimal, {parse_set_option("geometry.files.x=1")})
+            .find("'geometry.files' is not a table (it is an array)") != std::string::npos);
   CHECK(error_of(kMinimal, {parse_set_option("geometry.files.x=1")}).find("not a table") != std::string::npos);
   CHECK_THROWS_AS(parse_set_option("novalue"), InputError);
 }
 
 TEST_CASE("appending overrides (--view) append views", "[app][case]") {
   CaseOverride view{"output.views", "{ window = [0, 0, 1, 2] }", "--view 0,0,1,2", true};
-  const CaseConfig c = parse_case_text(std::string(kMinimal) + "[output]\nviews = [{ name = \"a\", window = [0,0,1,1] }]\n",
-                                       kCase, {view});
+  const CaseConfig c = parse_case_text(
+      std::string(kMinimal) + "[output]\nviews = [{ name = \"a\", window = [0,0,1,1] }]\n", kCase, {view});
   REQUIRE(c.output.views.size() == 2);
   CHECK(c.output.views[1].name == "view2");
   CHECK(c.output.views[1].window.hi.y == 2.0);
@@ -358,13 +361,13 @@ TEST_CASE("geometry.curves and boundary.nodes: preset defaults, file values, ove
   CHECK(thesis.geometry.curves == CurveKind::Polyline);
   CHECK(thesis.boundary.nodes == BoundaryNodeRule::Input);
   // A key the file sets wins over the preset; --set wins over the file.
-  const std::string text = std::string("preset = \"thesis\"\n") + kMinimal +
-                           "curves = \"smooth\"\n[boundary]\nnodes = \"spacing\"\n";
+  const std::string text =
+      std::string("preset = \"thesis\"\n") + kMinimal + "curves = \"smooth\"\n[boundary]\nnodes = \"spacing\"\n";
   const CaseConfig mixed = parse_case_text(text, kCase);
   CHECK(mixed.geometry.curves == CurveKind::Smooth);  // not the default of either preset
   CHECK(mixed.boundary.nodes == BoundaryNodeRule::Spacing);
-  const CaseConfig set = parse_case_text(text, kCase, {parse_set_option("boundary.nodes=input"),
-                                                       parse_set_option("geometry.curves=polyline")});
+  const CaseConfig set = parse_case_text(
+      text, kCase, {parse_set_option("boundary.nodes=input"), parse_set_option("geometry.curves=polyline")});
   CHECK(set.geometry.curves == CurveKind::Polyline);
   CHECK(set.boundary.nodes == BoundaryNodeRule::Input);
   CHECK_THAT(error_of(std::string(kMinimal) + "curves = \"spline\"\n"),
@@ -389,11 +392,12 @@ TEST_CASE("population keys: best runs it, thesis does not, every value is checke
   // The file wins over the preset.
   CHECK(parse_case_text(std::string("preset = \"thesis\"\n") + kMinimal + "[population]\nenabled = true\n", kCase)
             .population.enabled);
-  const CaseConfig set = parse_case_text(
-      std::string(kMinimal) + "[population]\nevery = 10\nstart = 50\nstop = 0.5\ninsert = [0.9, 0.8]\nmerge = 0.5\n"
-                              "remove_valence = 0\nboundary = false\nboundary_split = 1.4\n"
-                              "settle = 2e-3\nsettle_events = 3\n",
-      kCase);
+  const CaseConfig set =
+      parse_case_text(std::string(kMinimal) +
+                          "[population]\nevery = 10\nstart = 50\nstop = 0.5\ninsert = [0.9, 0.8]\nmerge = 0.5\n"
+                          "remove_valence = 0\nboundary = false\nboundary_split = 1.4\n"
+                          "settle = 2e-3\nsettle_events = 3\n",
+                      kCase);
   CHECK(set.population.settle == 2e-3);
   CHECK(set.population.settle_events == 3);
   CHECK(set.population.every == 10);
@@ -407,8 +411,8 @@ TEST_CASE("population keys: best runs it, thesis does not, every value is checke
   CHECK_FALSE(set.population.boundary);
   CHECK(set.population.boundary_split == 1.4);
   const std::string base = std::string(kMinimal) + "[population]\n";
-  CHECK_THAT(error_of(base + "every = 0\n"), Catch::Contains("population.every must be in 1..") &&
-                                                 Catch::Contains(":4:"));
+  CHECK_THAT(error_of(base + "every = 0\n"),
+             Catch::Contains("population.every must be in 1..") && Catch::Contains(":4:"));
   CHECK_THAT(error_of(base + "enabled = 1\n"), Catch::Contains("population.enabled must be a boolean"));
   CHECK_THAT(error_of(base + "stop = 1.5\n"), Catch::Contains("population.stop must be in (0, 1]"));
   CHECK_THAT(error_of(base + "insert = 0.5\n"), Catch::Contains("population.insert must be in (0.6, 3), got 0.5"));
@@ -479,7 +483,8 @@ TEST_CASE("cleanup trial budget keys: the presets' values, a file's values win, 
              Catch::Contains("cleanup.trials_per_triangle must be in [0, 100], got -1"));
   CHECK_THAT(error_of(std::string(kMinimal) + "[cleanup]\nmin_trials = -5\n"),
              Catch::Contains("cleanup.min_trials must be in 0..1000000000, got -5"));
-  CHECK_THAT(error_of(std::string(kMinimal) + "[cleanup]\nmin_trials = 2.5\n"), Catch::Contains("cleanup.min_trials must be"));
+  CHECK_THAT(error_of(std::string(kMinimal) + "[cleanup]\nmin_trials = 2.5\n"),
+             Catch::Contains("cleanup.min_trials must be"));
 }
 
 TEST_CASE("edit distance", "[app][case]") {
@@ -501,15 +506,16 @@ TEST_CASE("spacing.file selects a background-mesh field and its keys are checked
   CHECK(c.spacing.file == fs::path("/abs/f.MSH"));
   CHECK(c.spacing.array == "h");
   // Given by --set, a relative path is relative to the current directory, where it was typed.
-  c = parse_case_text(base, kCase, {parse_set_option("spacing.file=run1/mesh.vtu"), parse_set_option("spacing.array=2")});
+  c = parse_case_text(base, kCase,
+                      {parse_set_option("spacing.file=run1/mesh.vtu"), parse_set_option("spacing.array=2")});
   CHECK(c.spacing.field == SpacingKind::Mesh);
   CHECK(c.spacing.file == fs::path("run1/mesh.vtu"));
   CHECK(c.spacing.array == "2");  // a number given to a string key is its text
   // Contradictions and bad values.
-  CHECK(error_of(base + "[spacing]\nfield = \"mesh\"\n").find("spacing.file (a .vtu or .msh background mesh) is missing") !=
-        std::string::npos);
-  CHECK(error_of(base + "[spacing]\nfile = \"f.vtu\"\nexpression = \"1\"\n").find("both set; choose one with spacing.field") !=
-        std::string::npos);
+  CHECK(error_of(base + "[spacing]\nfield = \"mesh\"\n")
+            .find("spacing.file (a .vtu or .msh background mesh) is missing") != std::string::npos);
+  CHECK(error_of(base + "[spacing]\nfile = \"f.vtu\"\nexpression = \"1\"\n")
+            .find("both set; choose one with spacing.field") != std::string::npos);
   CHECK(error_of(base + "[spacing]\nfield = \"boundary\"\nfile = \"f.vtu\"\n")
             .find("spacing.file is set but spacing.field is 'boundary'") != std::string::npos);
   CHECK(error_of(base + "[spacing]\nfield = \"mesh\"\nfile = \"f.vtu\"\nexpression = \"1\"\n")
@@ -520,8 +526,8 @@ TEST_CASE("spacing.file selects a background-mesh field and its keys are checked
         std::string::npos);
   CHECK(error_of(base + "[spacing]\nfile = \"f.stl\"\n").find(":4:8: spacing.file 'f.stl' must be a .vtu or .msh") !=
         std::string::npos);
-  CHECK(error_of(base + "[spacing]\nfield = \"data\"\n").find("spacing.field must be one of boundary, expression, mesh") !=
-        std::string::npos);
+  CHECK(error_of(base + "[spacing]\nfield = \"data\"\n")
+            .find("spacing.field must be one of boundary, expression, mesh") != std::string::npos);
 }
 
 TEST_CASE("spacing pipeline keys: best and thesis defaults, values and ranges", "[app][case]") {
@@ -549,18 +555,21 @@ TEST_CASE("spacing pipeline keys: best and thesis defaults, values and ranges", 
   CHECK(set.output.spacing_picture);
   const std::string base = std::string(kMinimal) + "[spacing]\n";
   CHECK_THAT(error_of(base + "scale = 0\n"), Catch::Contains(":4:9: spacing.scale must be > 0, got 0"));
-  CHECK_THAT(error_of(base + "gradation = -0.1\n"), Catch::Contains("spacing.gradation must be in [0, 10] (0 = off), got -0.1"));
+  CHECK_THAT(error_of(base + "gradation = -0.1\n"),
+             Catch::Contains("spacing.gradation must be in [0, 10] (0 = off), got -0.1"));
   CHECK_THAT(error_of(base + "rows_in_gap = 0.5\n"),
              Catch::Contains("spacing.rows_in_gap must be 0 (off) or in [1, 100], got 0.5"));
   CHECK_THAT(error_of(base + "curvature_angle = 91\n"),
              Catch::Contains("spacing.curvature_angle must be in [0, 90] degrees (0 = off), got 91"));
-  CHECK_THAT(error_of(base + "gradation = \"steep\"\n"), Catch::Contains("spacing.gradation must be a number, got string"));
+  CHECK_THAT(error_of(base + "gradation = \"steep\"\n"),
+             Catch::Contains("spacing.gradation must be a number, got string"));
   CHECK_THAT(error_of(std::string(kMinimal) + "[output]\nspacing_picture = 1\n"),
              Catch::Contains("output.spacing_picture must be a boolean"));
   CHECK_THAT(error_of(base + "gradiation = 0.2\n"), Catch::Contains("did you mean 'spacing.gradation'?"));
 }
 
-TEST_CASE("spacing background keys: every preset keeps the builder's defaults, a file's values win, ranges", "[app][case]") {
+TEST_CASE("spacing background keys: every preset keeps the builder's defaults, a file's values win, ranges",
+          "[app][case]") {
   const BackgroundOptions builder;
   for (const char* preset : {"thesis", "best", "long"}) {
     const CaseConfig c = parse_case_text(fmt::format("preset = \"{}\"\n", preset) + kMinimal, kCase);
@@ -606,7 +615,8 @@ TEST_CASE("simulation.stop: best converges, thesis counts, a key wins over the p
              Catch::Contains("--set simulation.stop=never") && Catch::Contains("simulation.stop"));
 }
 
-TEST_CASE("simulation.stop_aspect / stop_angle: the convergence rule's tolerances, checked", "[app][case][convergence]") {
+TEST_CASE("simulation.stop_aspect / stop_angle: the convergence rule's tolerances, checked",
+          "[app][case][convergence]") {
   const CaseConfig best = parse_case_text(kMinimal, kCase);
   CHECK(best.simulation.stop_aspect == 1e-3);
   CHECK(best.simulation.stop_angle == 0.25);
@@ -623,7 +633,8 @@ TEST_CASE("simulation.stop_aspect / stop_angle: the convergence rule's tolerance
              Catch::Contains("simulation.stop_angle"));
 }
 
-TEST_CASE("simulation.stop_every / stop_window / stop_min: the rule's interval, window and earliest stop", "[app][case][convergence]") {
+TEST_CASE("simulation.stop_every / stop_window / stop_min: the rule's interval, window and earliest stop",
+          "[app][case][convergence]") {
   const CaseConfig set = parse_case_text(
       std::string(kMinimal) + "[simulation]\nstop_every = 25\nstop_window = 150\nstop_min = 0\n", kCase);
   CHECK(set.simulation.stop_every == 25);

@@ -54,10 +54,10 @@ std::vector<RawCurve> circle_in_square() {
 }
 
 CaseConfig layered_case(const fs::path& out, const std::string& wall_name, bool quads) {
-  CaseConfig c = case_for_curves(circle_in_square(), "circle",
-                                 {parse_set_option("simulation.iterations=60"),
-                                  parse_set_option("simulation.device=host"),
-                                  parse_set_option("output.formats=[\"msh\",\"vtu\",\"su2\"]")});
+  CaseConfig c =
+      case_for_curves(circle_in_square(), "circle",
+                      {parse_set_option("simulation.iterations=60"), parse_set_option("simulation.device=host"),
+                       parse_set_option("output.formats=[\"msh\",\"vtu\",\"su2\"]")});
   CaseConfig::BoundaryLayer b;
   b.curves = {wall_name};
   b.first_height = 1e-3;
@@ -93,14 +93,14 @@ TEST_CASE("[[boundary_layer]] tables are read into CaseConfig", "[app][case][lay
   // Without the section: none.
   CHECK(parse_case_text(kGeometry, kCase).boundary_layers.empty());
   // A single [boundary_layer] table is one section.
-  CHECK(parse_case_text(kGeometry + "[boundary_layer]\ncurves = [\"wall\"]\nfirst_height = 1e-5\nthickness = 0.1\n", kCase)
+  CHECK(parse_case_text(kGeometry + "[boundary_layer]\ncurves = [\"wall\"]\nfirst_height = 1e-5\nthickness = 0.1\n",
+                        kCase)
             .boundary_layers.size() == 1);
 }
 
 TEST_CASE("[[boundary_layer]] y_plus gives White's flat-plate first height", "[app][case][layers]") {
-  const CaseConfig c =
-      parse_case_text(layer("curves = [\"wall\"]\ny_plus = 1\nreynolds = 9e6\nreference_length = 1\nthickness = 0.02\n"),
-                      kCase);
+  const CaseConfig c = parse_case_text(
+      layer("curves = [\"wall\"]\ny_plus = 1\nreynolds = 9e6\nreference_length = 1\nthickness = 0.02\n"), kCase);
   REQUIRE(c.boundary_layers.size() == 1);
   // Cf = 0.026 / (9e6)^(1/7) = 0.002637; y = 1 / (9e6 sqrt(Cf / 2)) = 3.06e-6.
   const double cf = 0.026 / std::pow(9e6, 1.0 / 7.0);
@@ -168,7 +168,8 @@ TEST_CASE("a run with layers writes one mesh of layer quads and core triangles",
 TEST_CASE("nodes the simulation snapped onto a layer front are left out of the core", "[app][layers]") {
   // A front (fixed points) and a plain curve; node 3 was snapped onto the front between its points.
   RawCurve far{"far", {{-2, -2}, {2, -2}, {2, 2}, {-2, 2}, {-2, -2}}, "memory", 1, {}};
-  RawCurve front{"wall_front", {{-0.5, -0.5}, {0.5, -0.5}, {0.5, 0.5}, {-0.5, 0.5}, {-0.5, -0.5}}, "memory", 1, {}, true};
+  RawCurve front{"wall_front", {{-0.5, -0.5}, {0.5, -0.5}, {0.5, 0.5}, {-0.5, 0.5}, {-0.5, -0.5}}, "memory", 1, {},
+                 true};
   const Geometry g = build_geometry({far, front});
   NodeSet nodes;
   const int f0 = nodes.add({-2, -2}, 0.1, NodeKind::Fixed, 0);

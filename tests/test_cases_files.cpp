@@ -64,7 +64,7 @@ std::vector<std::size_t> sizes(const Case& c) {
   return s;
 }
 
-const std::vector<std::string> kAllCases = {"circle_circle", "naca0012", "30p30n", "rods_coarse",
+const std::vector<std::string> kAllCases = {"circle_circle", "naca0012",  "30p30n", "rods_coarse",
                                             "rods_fine",     "square200", "shock"};
 
 }  // namespace

@@ -20,12 +20,12 @@ namespace {
 struct Floors {
   const char* case_name;
   const char* method;
-  int iterations;             // reduced from the thesis' 2000 so the label runs in CI
-  std::size_t min_points;     // node count lower bound ...
-  std::size_t max_points;     // ... and upper bound (the initialization is deterministic)
-  double min_angle_deg;       // smallest included angle over the mesh must be at least this
-  double max_aspect_avg;      // average aspect ratio R/(2r) must be at most this
-  double max_small_share;     // share of triangles with min angle < 30 degrees at most this
+  int iterations;          // reduced from the thesis' 2000 so the label runs in CI
+  std::size_t min_points;  // node count lower bound ...
+  std::size_t max_points;  // ... and upper bound (the initialization is deterministic)
+  double min_angle_deg;    // smallest included angle over the mesh must be at least this
+  double max_aspect_avg;   // average aspect ratio R/(2r) must be at most this
+  double max_small_share;  // share of triangles with min angle < 30 degrees at most this
 };
 
 // clang-format off
@@ -50,9 +50,9 @@ const Floors kFloors[] = {
 
 void check_case(const Floors& f) {
   const fs::path dir = pdmesh_test::fresh_path(std::string("cases_") + f.case_name + "_" + f.method);
-  const std::string arguments = std::string("mesh '") + PDMESH_SOURCE_DIR + "/cases/" + f.case_name +
-                                "' --out '" + dir.string() + "' --method " + f.method +
-                                " --iterations " + std::to_string(f.iterations) +
+  const std::string arguments = std::string("mesh '") + PDMESH_SOURCE_DIR + "/cases/" + f.case_name + "' --out '" +
+                                dir.string() + "' --method " + f.method + " --iterations " +
+                                std::to_string(f.iterations) +
                                 " --device host --check -q --formats msh --set 'output.views=[]'";
   const pdmesh_test::Result run = pdmesh_test::run_pdmesh(arguments);
   INFO("pdmesh " << arguments << "\n" << run.output);
@@ -62,8 +62,7 @@ void check_case(const Floors& f) {
   const pdmesh::Mesh mesh = pdmesh::read_mesh(dir / "mesh.msh");
   const pdmesh::QualitySummary q = pdmesh::summarize_quality(mesh);
   INFO("points " << q.points << ", triangles " << q.triangles << ", min angle " << q.min_angle
-                 << ", aspect ratio average " << q.aspect_ratio_avg << ", small-angle share "
-                 << q.small_angle_share);
+                 << ", aspect ratio average " << q.aspect_ratio_avg << ", small-angle share " << q.small_angle_share);
   CHECK(q.points >= f.min_points);
   CHECK(q.points <= f.max_points);
   CHECK(q.min_angle >= f.min_angle_deg);

@@ -221,7 +221,8 @@ TEST_CASE("cleanup does no harm to a good mesh and leaves an equilateral one unt
   for (int i = -side; i <= side; ++i)
     for (int j = -side; j <= side; ++j) {
       const Vec2 p{i + 0.5 * j, j * std::sqrt(3.0) / 2};
-      if (std::abs(j) < side && std::abs(i + j) < side && std::abs(i) < side) lattice.add(p, 1.0, NodeKind::Interior, -1);
+      if (std::abs(j) < side && std::abs(i + j) < side && std::abs(i) < side)
+        lattice.add(p, 1.0, NodeKind::Interior, -1);
     }
   const Mesh mesh = triangulate(lattice, names(hex));
   const CleanupResult r = clean_mesh(mesh, lattice, hex_tree, unit, {});
@@ -266,7 +267,8 @@ TEST_CASE("cleanup is deterministic and its options act", "[cleanup]") {
   CHECK(a.stats.iterations_run > 1);
 }
 
-TEST_CASE("cleanup's least move gain takes fewer moves and keeps every guarantee, and the per-iteration record adds up", "[cleanup]") {
+TEST_CASE("cleanup's least move gain takes fewer moves and keeps every guarantee, and the per-iteration record adds up",
+          "[cleanup]") {
   const Geometry g = plate_with_hole();
   const GeometryTree tree(g);
   const BoundarySpacing spacing(tree);
@@ -288,8 +290,9 @@ TEST_CASE("cleanup's least move gain takes fewer moves and keeps every guarantee
     for (const CleanupIteration& it : r->stats.per_iteration) {
       moves += it.moves;
       CHECK(it.small_moves <= it.moves);
-      CHECK(it.min_angle >= last_min);       // the worst angle never drops ...
-      CHECK(it.aspect_mean <= last_aspect + 1e-12);  // ... and the mean aspect ratio never rises, iteration by iteration
+      CHECK(it.min_angle >= last_min);  // the worst angle never drops ...
+      CHECK(it.aspect_mean <=
+            last_aspect + 1e-12);  // ... and the mean aspect ratio never rises, iteration by iteration
       last_min = it.min_angle;
       last_aspect = it.aspect_mean;
     }

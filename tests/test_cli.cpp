@@ -52,9 +52,9 @@ TEST_CASE("pdmesh --help and pdmesh mesh --help list the commands and every opti
   CHECK(contains(top.output, "--version"));
   const Result mesh = run("mesh --help");
   CHECK(mesh.status == 0);
-  for (const char* option : {"INPUT", "--out", "--set", "--iterations", "--dt", "--cutoff", "--method", "--seed",
-                             "--total", "--device", "--precision", "--formats", "--view", "--tree", "--quiet",
-                             "--max-nodes"}) {
+  for (const char* option :
+       {"INPUT", "--out", "--set", "--iterations", "--dt", "--cutoff", "--method", "--seed", "--total", "--device",
+        "--precision", "--formats", "--view", "--tree", "--quiet", "--max-nodes"}) {
     INFO(option);
     CHECK(contains(mesh.output, option));
   }
@@ -70,10 +70,10 @@ TEST_CASE("command-line errors exit with status 2", "[cli]") {
   const Result unknown = run("mesh x.toml --out /tmp/x --no-such-option");
   CHECK(unknown.status == 2);
   CHECK(contains(unknown.output, "--no-such-option"));
-  CHECK(run("").status == 2);                     // no command
-  CHECK(run("frobnicate").status == 2);           // no such command
-  CHECK(run("mesh x.crv").status == 2);           // --out missing
-  CHECK(run("mesh --out /tmp/x").status == 2);    // INPUT missing
+  CHECK(run("").status == 2);                   // no command
+  CHECK(run("frobnicate").status == 2);         // no such command
+  CHECK(run("mesh x.crv").status == 2);         // --out missing
+  CHECK(run("mesh --out /tmp/x").status == 2);  // INPUT missing
 }
 
 TEST_CASE("a missing input file exits 2 naming the file and writes nothing", "[cli]") {
@@ -140,8 +140,8 @@ TEST_CASE("several geometry files make one geometry, and a case file takes no se
 TEST_CASE("the node limit (--max-nodes) refuses a case by its estimate", "[cli]") {
   const fs::path dir = fresh_dir("limit");
   write_rectangle(dir / "rect.crv");
-  const Result r = run("mesh '" + (dir / "rect.crv").string() + "' --out '" + (dir / "out").string() +
-                       "' --max-nodes 3");
+  const Result r =
+      run("mesh '" + (dir / "rect.crv").string() + "' --out '" + (dir / "out").string() + "' --max-nodes 3");
   CHECK(r.status == 2);
   CHECK(contains(r.output, "estimate"));
   // The best preset refuses by the base field's quadtree, on the level where its count passes the
@@ -163,14 +163,14 @@ TEST_CASE("pdmesh mesh writes every stage's files: initial, history, final, mesh
   CHECK(contains(r.output, "initial distribution: "));
   CHECK(contains(r.output, "by hexagonal packing"));
   CHECK(contains(r.output, "mesh check (triangulation): passed"));
-  CHECK(contains(r.output, "cleanup: "));  // the best preset cleans the mesh ...
+  CHECK(contains(r.output, "cleanup: "));                          // the best preset cleans the mesh ...
   CHECK(contains(r.output, "mesh check (cleaned mesh): passed"));  // ... and --check checks the result too
-  CHECK(contains(r.output, "Minimum Corner Jacobian"));  // the quality table
+  CHECK(contains(r.output, "Minimum Corner Jacobian"));            // the quality table
   CHECK(contains(r.output, "Cleanup: min angle"));
   // The default formats (msh, vtu, png): no SVG pictures (svg is opt-in).
   const std::vector<std::string> expected = {
-      "initial.nodes", "initial.png", "initial_corner.png", "initial_view2.png", "history.csv", "history.png",
-      "final.nodes",   "final.png",   "final_corner.png",   "final_view2.png",   "mesh.msh",    "mesh.vtu",
+      "initial.nodes", "initial.png", "initial_corner.png", "initial_view2.png", "history.csv",   "history.png",
+      "final.nodes",   "final.png",   "final_corner.png",   "final_view2.png",   "mesh.msh",      "mesh.vtu",
       "quality.json",  "mesh.nodes",  "mesh.png",           "mesh_corner.png",   "mesh_view2.png"};
   for (const std::string& f : expected) {
     INFO(f);
@@ -215,7 +215,8 @@ TEST_CASE("pdmesh mesh: a picture that cannot be written is refused before the r
   }
 }
 
-TEST_CASE("pdmesh mesh --plot-spacing writes spacing.png and one picture per view, and the field is reported", "[cli]") {
+TEST_CASE("pdmesh mesh --plot-spacing writes spacing.png and one picture per view, and the field is reported",
+          "[cli]") {
   const fs::path dir = fresh_dir("spacing");
   write_rectangle(dir / "rect.crv");
   const fs::path out = dir / "out";
@@ -261,8 +262,8 @@ TEST_CASE("pdmesh quality --geometry judges a mesh against the field pdmesh mesh
     for (const auto& [x, y] : pts) crv << x << " " << y << "\n";
   }
   const fs::path out = dir / "out";
-  const Result r = run("mesh '" + (dir / "strip.crv").string() + "' --out '" + out.string() +
-                       "' --iterations 0 --formats msh -q");
+  const Result r =
+      run("mesh '" + (dir / "strip.crv").string() + "' --out '" + out.string() + "' --iterations 0 --formats msh -q");
   REQUIRE(r.status == 0);
   auto conformance = [](const std::string& json) {
     const auto at = json.find("\"spacing_conformance\"");
@@ -271,13 +272,13 @@ TEST_CASE("pdmesh quality --geometry judges a mesh against the field pdmesh mesh
   std::ifstream mesh_json(out / "quality.json");
   const std::string from_mesh = conformance(std::string(std::istreambuf_iterator<char>(mesh_json), {}));
   REQUIRE_FALSE(from_mesh.empty());
-  const Result best = run("quality '" + (out / "mesh.msh").string() + "' --geometry '" + (dir / "strip.crv").string() +
-                          "' --json -");
+  const Result best =
+      run("quality '" + (out / "mesh.msh").string() + "' --geometry '" + (dir / "strip.crv").string() + "' --json -");
   REQUIRE(best.status == 0);
   CHECK(conformance(best.output) == from_mesh);
   std::ofstream(dir / "case.toml") << "preset = \"thesis\"\n[geometry]\nfiles = [\"strip.crv\"]\n";
-  const Result thesis = run("quality '" + (out / "mesh.msh").string() + "' --geometry '" + (dir / "case.toml").string() +
-                            "' --json -");
+  const Result thesis =
+      run("quality '" + (out / "mesh.msh").string() + "' --geometry '" + (dir / "case.toml").string() + "' --json -");
   REQUIRE(thesis.status == 0);
   CHECK(conformance(thesis.output) != from_mesh);
   fs::remove_all(dir);
@@ -332,9 +333,10 @@ TEST_CASE("pdmesh quality draws a picture, and bad picture options exit 2 before
   CHECK(fs::file_size(dir / "q.png") > 0);
   fs::remove(dir / "q.png");
   fs::remove(dir / "q.json");
-  for (const char* bad : {" --picture x.jpg", " --view 0,0,1,1", " --picture p.png --view 0,0,1", " --picture p.png --view 1,0,0,1",
-                          " --picture p.png --color-by angle", " --picture p.png --color-by min_angle --color-range 60,20",
-                          " --picture p.png --color-range 0,60", " --picture p.png --view 0,0,1,nan"}) {
+  for (const char* bad :
+       {" --picture x.jpg", " --view 0,0,1,1", " --picture p.png --view 0,0,1", " --picture p.png --view 1,0,0,1",
+        " --picture p.png --color-by angle", " --picture p.png --color-by min_angle --color-range 60,20",
+        " --picture p.png --color-range 0,60", " --picture p.png --view 0,0,1,nan"}) {
     INFO(bad);
     const Result r = run(mesh + bad);
     CHECK(r.status == 2);
@@ -358,7 +360,8 @@ TEST_CASE("pdmesh devices lists the OpenCL devices and checks each with a kernel
   CHECK(contains(r.output, "--precision auto picks double"));
 }
 
-TEST_CASE("pdmesh mesh --device auto simulates a small case on the host reference, without setting OpenCL up", "[cli]") {
+TEST_CASE("pdmesh mesh --device auto simulates a small case on the host reference, without setting OpenCL up",
+          "[cli]") {
   const fs::path dir = fresh_dir("auto_small");
   write_rectangle(dir / "rect.crv");
   const Result r = run("mesh '" + (dir / "rect.crv").string() + "' --out '" + (dir / "out").string() +
@@ -416,7 +419,8 @@ TEST_CASE("pdmesh mesh --stop: the rule is named in the progress output, a bad r
   REQUIRE(converged.status == 0);
   CHECK(contains(converged.output, "simulation: until converged, at most 10 iterations"));
   // A run that reached its maximum says which part of the rule held it.
-  CHECK(contains(converged.output, "simulation: not converged in 10 iterations: iteration 10 is before the earliest stop (300)"));
+  CHECK(contains(converged.output,
+                 "simulation: not converged in 10 iterations: iteration 10 is before the earliest stop (300)"));
   const Result counted = run(base + " --stop iterations");
   INFO(counted.output);
   REQUIRE(counted.status == 0);
@@ -430,7 +434,8 @@ TEST_CASE("pdmesh mesh --stop: the rule is named in the progress output, a bad r
 }
 
 // (No brackets or commas in test names: ctest passes the name to Catch as a test spec.)
-TEST_CASE("simulation.momentum out of range exits 2 naming the key and the value before any output", "[cli][momentum]") {
+TEST_CASE("simulation.momentum out of range exits 2 naming the key and the value before any output",
+          "[cli][momentum]") {
   const fs::path dir = fresh_dir("momentum");
   write_rectangle(dir / "rect.crv");
   const fs::path out = dir / "out";
@@ -441,7 +446,8 @@ TEST_CASE("simulation.momentum out of range exits 2 naming the key and the value
   std::ofstream(dir / "case.toml") << "[geometry]\nfiles = [\"rect.crv\"]\n[simulation]\nmomentum = -0.5\n";
   r = run("mesh '" + (dir / "case.toml").string() + "' --out '" + out.string() + "'");
   CHECK(r.status == 2);
-  CHECK(contains(r.output, "case.toml:4:12: simulation.momentum must be in [0, 1) (0 = plain gradient descent), got -0.5"));
+  CHECK(contains(r.output,
+                 "case.toml:4:12: simulation.momentum must be in [0, 1) (0 = plain gradient descent), got -0.5"));
   CHECK_FALSE(fs::exists(out));
   // In range: the run takes it (and says so).
   r = run("mesh '" + (dir / "rect.crv").string() + "' --out '" + out.string() +

@@ -46,8 +46,9 @@ MeshSample settling(int iteration) {
 
 // Feeds iterations 1 .. last to `monitor` (a sample at every due iteration from `sample`) and returns
 // the first iteration it reports converged, or 0.
-int first_converged(ConvergenceMonitor& monitor, int last, const std::function<MeshSample(int)>& sample,
-                    const std::function<bool(int)>& settled = [](int) { return true; }, int from = 1) {
+int first_converged(
+    ConvergenceMonitor& monitor, int last, const std::function<MeshSample(int)>& sample,
+    const std::function<bool(int)>& settled = [](int) { return true; }, int from = 1) {
   for (int it = from; it <= last; ++it) {
     HistoryRow row;
     row.iteration = it;
@@ -129,7 +130,8 @@ TEST_CASE("convergence: a monitor given the earlier measurements continues as th
     ConvergenceMonitor first(small_options());
     REQUIRE(first_converged(first, cut, settling) == 0);
     ConvergenceMonitor second(small_options(), first.samples());
-    CHECK(first_converged(second, 300, settling, [](int) { return true; }, cut + 1) == stop);
+    CHECK(first_converged(
+              second, 300, settling, [](int) { return true; }, cut + 1) == stop);
   }
   // Cut exactly where it converged: the measurements alone say so.
   ConvergenceMonitor first(small_options());
@@ -158,8 +160,10 @@ TEST_CASE("convergence options: invalid values are refused naming the option", "
   refused([](ConvergenceOptions& o) { o.min_iterations = -1; }, "min_iterations");
 }
 
-TEST_CASE("measure_mesh: the triangulated nodes' smallest angle and mean aspect ratio, NaN when they do not "
-          "triangulate", "[convergence]") {
+TEST_CASE(
+    "measure_mesh: the triangulated nodes' smallest angle and mean aspect ratio, NaN when they do not "
+    "triangulate",
+    "[convergence]") {
   // A unit square of four corners and one interior node off centre.
   NodeSet nodes;
   const Vec2 corners[4] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
@@ -315,8 +319,9 @@ TEST_CASE("convergence: a run that did not converge says which part of the rule 
     std::vector<MeshSample> samples;
     for (int it = 10; it <= 80; it += 10) samples.push_back({it, 20.0 + it / 10.0, 1.04});
     const ConvergenceMonitor m(o, samples);
-    CHECK(m.not_converged_reason(80) ==
-          "the smallest angle reached a new best over iterations 40-80: 28.00 deg against 24.00 before (tolerance 0.25)");
+    CHECK(
+        m.not_converged_reason(80) ==
+        "the smallest angle reached a new best over iterations 40-80: 28.00 deg against 24.00 before (tolerance 0.25)");
   }
   SECTION("settled, early, unsettled population, no window") {
     std::vector<MeshSample> samples;
@@ -335,24 +340,26 @@ TEST_CASE("convergence: a run that did not converge says which part of the rule 
 }
 
 TEST_CASE("simulation_options: the stop tolerances and population settling keys reach the drivers", "[convergence]") {
-  const CaseConfig config = load_case_file(
-      std::string(PDMESH_SOURCE_DIR) + "/cases/circle_circle/case.toml",
-      {{"simulation.stop_aspect", "1e-3", "test"}, {"simulation.stop_angle", "0.5", "test"},
-       {"population.settle", "2e-3", "test"}, {"population.settle_events", "3", "test"}});
+  const CaseConfig config = load_case_file(std::string(PDMESH_SOURCE_DIR) + "/cases/circle_circle/case.toml",
+                                           {{"simulation.stop_aspect", "1e-3", "test"},
+                                            {"simulation.stop_angle", "0.5", "test"},
+                                            {"population.settle", "2e-3", "test"},
+                                            {"population.settle_events", "3", "test"}});
   const SimOptions o = simulation_options(config);
   CHECK(o.convergence.aspect_tolerance == 1e-3);
   CHECK(o.convergence.angle_tolerance == 0.5);
   CHECK(o.population.settle == 2e-3);
   CHECK(o.population.settle_events == 3);
   const SimOptions r = simulation_options(load_case_file(
-      std::string(PDMESH_SOURCE_DIR) + "/cases/circle_circle/case.toml",
-      {{"simulation.stop_every", "50", "test"}, {"simulation.stop_window", "200", "test"},
-       {"simulation.stop_min", "300", "test"}}));
+      std::string(PDMESH_SOURCE_DIR) + "/cases/circle_circle/case.toml", {{"simulation.stop_every", "50", "test"},
+                                                                          {"simulation.stop_window", "200", "test"},
+                                                                          {"simulation.stop_min", "300", "test"}}));
   CHECK(r.convergence.check_every == 50);
   CHECK(r.convergence.window == 200);
   CHECK(r.convergence.min_iterations == 300);
   // The defaults are the rule's own.
-  const SimOptions d = simulation_options(load_case_file(std::string(PDMESH_SOURCE_DIR) + "/cases/circle_circle/case.toml"));
+  const SimOptions d =
+      simulation_options(load_case_file(std::string(PDMESH_SOURCE_DIR) + "/cases/circle_circle/case.toml"));
   CHECK(d.convergence.aspect_tolerance == ConvergenceOptions{}.aspect_tolerance);
   CHECK(d.convergence.angle_tolerance == ConvergenceOptions{}.angle_tolerance);
   CHECK(d.convergence.check_every == ConvergenceOptions{}.check_every);

@@ -160,7 +160,8 @@ TEST_CASE("random points in a square domain: checker passes, area is 1", "[mesh]
     NodeSet nodes;
     add_loop(nodes, square_loop(0, 1, 11, false), 0);
     std::mt19937_64 rng(7 + n);
-    for (int k = 0; k < n; ++k) nodes.add({0.01 + 0.98 * unit(rng), 0.01 + 0.98 * unit(rng)}, 0.1, NodeKind::Interior, -1);
+    for (int k = 0; k < n; ++k)
+      nodes.add({0.01 + 0.98 * unit(rng), 0.01 + 0.98 * unit(rng)}, 0.1, NodeKind::Interior, -1);
     const Mesh mesh = triangulate(nodes, {"square"});
     const auto report = check_mesh(mesh, 1.0);
     INFO(report.summary());

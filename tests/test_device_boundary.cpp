@@ -83,9 +83,14 @@ TEST_CASE("boundary_snap re-snaps every boundary node exactly as the host (doubl
     const double q = nodes.q[i];
     const double angle = 2.0 * M_PI * pdmesh_test::uniform(rng);
     switch (rng() % 4) {
-      case 0: break;
-      case 1: dx[i] = 0.1 * q * std::cos(angle), dy[i] = 0.1 * q * std::sin(angle); break;
-      case 2: dx[i] = 3.0 * q * std::cos(angle), dy[i] = 3.0 * q * std::sin(angle); break;
+      case 0:
+        break;
+      case 1:
+        dx[i] = 0.1 * q * std::cos(angle), dy[i] = 0.1 * q * std::sin(angle);
+        break;
+      case 2:
+        dx[i] = 3.0 * q * std::cos(angle), dy[i] = 3.0 * q * std::sin(angle);
+        break;
       default: {
         const Curve& curve = geometry.curves[static_cast<std::size_t>(nodes.curve[i])];
         const Vec2 v = curve.points[rng() % curve.points.size()];
@@ -127,13 +132,14 @@ TEST_CASE("boundary_snap re-snaps every boundary node exactly as the host (doubl
                       tx = buffer("tx", zero), ty = buffer("ty", zero), bg_q = buffer("bg_q", bg.corner_q);
   ocl::Buffer<std::int32_t> leaf = buffer("leaf", std::vector<std::int32_t>(n, 0)), root = buffer("root", bg.root_node),
                             child = buffer("child", bg.node_child), corner = buffer("corner", bg.leaf_corner),
-                            cell = buffer("cell", bg.leaf_cell), halt = buffer("halt", std::vector<std::int32_t>(ocl::kWindowCounters, 0));
+                            cell = buffer("cell", bg.leaf_cell),
+                            halt = buffer("halt", std::vector<std::int32_t>(ocl::kWindowCounters, 0));
   ocl::Buffer<std::uint8_t> skin_class = buffer("skin_class", std::vector<std::uint8_t>(n, 0));
-  device.enqueue(program, 0, brec, bxy, bq, tx, ty, leaf, bxy, bq, skin_class, options.cutoff, 0.3 * options.cutoff, halt,
-                 [&](ocl::ArgSetter& a) {
-                   a(bg.origin_x)(bg.origin_y)(bg.inv_root_size)(static_cast<cl_int>(bg.grid))(root)(child)(corner)(
-                       cell)(bg_q);
-                 });
+  device.enqueue(
+      program, 0, brec, bxy, bq, tx, ty, leaf, bxy, bq, skin_class, options.cutoff, 0.3 * options.cutoff, halt,
+      [&](ocl::ArgSetter& a) {
+        a(bg.origin_x)(bg.origin_y)(bg.inv_root_size)(static_cast<cl_int>(bg.grid))(root)(child)(corner)(cell)(bg_q);
+      });
   std::vector<double> out_xy, out_x(n), out_y(n), out_tx, out_ty, out_q, out_rec, partials;
   bxy.download(ctx.queue(), out_xy, 2 * n);
   for (std::size_t i = 0; i < n; ++i) out_x[i] = out_xy[2 * i], out_y[i] = out_xy[2 * i + 1];
@@ -153,8 +159,8 @@ TEST_CASE("boundary_snap re-snaps every boundary node exactly as the host (doubl
     const auto i = static_cast<std::size_t>(slots[s]);
     const Vec2 t = host_handler.tangent(slots[s]);
     const bool same = out_x[i] == host.x[i].x && out_y[i] == host.x[i].y && out_tx[i] == t.x && out_ty[i] == t.y &&
-                      out_rec[4 * s] == host.x[i].x && out_rec[4 * s + 1] == host.x[i].y &&
-                      out_rec[4 * s + 2] == t.x && out_rec[4 * s + 3] == t.y && out_q[i] == own->at(host.x[i]);
+                      out_rec[4 * s] == host.x[i].x && out_rec[4 * s + 1] == host.x[i].y && out_rec[4 * s + 2] == t.x &&
+                      out_rec[4 * s + 3] == t.y && out_q[i] == own->at(host.x[i]);
     if (!same && differ++ == 0) first = i;
     // A vertex hit from the inside of the range: the tangent is the mean of two segments' directions.
     const Curve& curve = geometry.curves[static_cast<std::size_t>(host.curve[i])];

@@ -76,17 +76,17 @@ TEST_CASE("device run: circle_circle over 2000 iterations in float gives the hos
   compare_whole_run("circle_circle", true);
 }
 
-// Every case in cases/ (the thesis cases and the corpus) from both starts, 200 iterations, node by node: the device run (PoCL, double)
-// repeats the host reference bit for bit, snaps, boundary order and history included. 200 iterations
+// Every case in cases/ (the thesis cases and the corpus) from both starts, 200 iterations, node by node: the device run
+// (PoCL, double) repeats the host reference bit for bit, snaps, boundary order and history included. 200 iterations
 // cover the transient (most snaps, rebuilds every iteration) and the start of the settled regime
 // (skin rebuilds, snaps the skin alone would not rebuild for).
 namespace {
 
 const std::vector<std::string> kBitIdenticalCases = {
-    "30p30n",      "aniso/linear",      "aniso/polar1",           "aniso/polar2",
-    "circle_circle",     "corpus/bracket",         "corpus/coastline", "corpus/flap_airfoil",
-    "corpus/gear", "corpus/heatsink_channel", "corpus/plate", "naca0012",         "rods_coarse",
-    "rods_fine",   "shock",             "shock_data", "square200"};
+    "30p30n",         "aniso/linear",     "aniso/polar1",        "aniso/polar2", "circle_circle",
+    "corpus/bracket", "corpus/coastline", "corpus/flap_airfoil", "corpus/gear",  "corpus/heatsink_channel",
+    "corpus/plate",   "naca0012",         "rods_coarse",         "rods_fine",    "shock",
+    "shock_data",     "square200"};
 
 void compare_bit_for_bit(const std::string& name) {
   for (const char* method : {"structured", "random"}) {
@@ -128,56 +128,73 @@ TEST_CASE("the bit-identity list names every case in cases/", "[cases]") {
   CHECK(dirs == kBitIdenticalCases);
 }
 
-TEST_CASE("device run: 30p30n is bit-identical to the host over 200 iterations from both starts", "[opencl][device_sim][cases]") {
+TEST_CASE("device run: 30p30n is bit-identical to the host over 200 iterations from both starts",
+          "[opencl][device_sim][cases]") {
   compare_bit_for_bit("30p30n");
 }
-TEST_CASE("device run: circle_circle is bit-identical to the host over 200 iterations from both starts", "[opencl][device_sim][cases]") {
+TEST_CASE("device run: circle_circle is bit-identical to the host over 200 iterations from both starts",
+          "[opencl][device_sim][cases]") {
   compare_bit_for_bit("circle_circle");
 }
-TEST_CASE("device run: naca0012 is bit-identical to the host over 200 iterations from both starts", "[opencl][device_sim][cases]") {
+TEST_CASE("device run: naca0012 is bit-identical to the host over 200 iterations from both starts",
+          "[opencl][device_sim][cases]") {
   compare_bit_for_bit("naca0012");
 }
-TEST_CASE("device run: rods_coarse is bit-identical to the host over 200 iterations from both starts", "[opencl][device_sim][cases]") {
+TEST_CASE("device run: rods_coarse is bit-identical to the host over 200 iterations from both starts",
+          "[opencl][device_sim][cases]") {
   compare_bit_for_bit("rods_coarse");
 }
-TEST_CASE("device run: rods_fine is bit-identical to the host over 200 iterations from both starts", "[opencl][device_sim][cases]") {
+TEST_CASE("device run: rods_fine is bit-identical to the host over 200 iterations from both starts",
+          "[opencl][device_sim][cases]") {
   compare_bit_for_bit("rods_fine");
 }
-TEST_CASE("device run: shock is bit-identical to the host over 200 iterations from both starts", "[opencl][device_sim][cases]") {
+TEST_CASE("device run: shock is bit-identical to the host over 200 iterations from both starts",
+          "[opencl][device_sim][cases]") {
   compare_bit_for_bit("shock");
 }
-TEST_CASE("device run: shock_data is bit-identical to the host over 200 iterations from both starts", "[opencl][device_sim][cases]") {
+TEST_CASE("device run: shock_data is bit-identical to the host over 200 iterations from both starts",
+          "[opencl][device_sim][cases]") {
   compare_bit_for_bit("shock_data");
 }
-TEST_CASE("device run: square200 is bit-identical to the host over 200 iterations from both starts", "[opencl][device_sim][cases]") {
+TEST_CASE("device run: square200 is bit-identical to the host over 200 iterations from both starts",
+          "[opencl][device_sim][cases]") {
   compare_bit_for_bit("square200");
 }
-TEST_CASE("device run: corpus/bracket is bit-identical to the host over 200 iterations from both starts", "[opencl][device_sim][cases]") {
+TEST_CASE("device run: corpus/bracket is bit-identical to the host over 200 iterations from both starts",
+          "[opencl][device_sim][cases]") {
   compare_bit_for_bit("corpus/bracket");
 }
-TEST_CASE("device run: corpus/coastline is bit-identical to the host over 200 iterations from both starts", "[opencl][device_sim][cases]") {
+TEST_CASE("device run: corpus/coastline is bit-identical to the host over 200 iterations from both starts",
+          "[opencl][device_sim][cases]") {
   compare_bit_for_bit("corpus/coastline");
 }
-TEST_CASE("device run: corpus/flap_airfoil is bit-identical to the host over 200 iterations from both starts", "[opencl][device_sim][cases]") {
+TEST_CASE("device run: corpus/flap_airfoil is bit-identical to the host over 200 iterations from both starts",
+          "[opencl][device_sim][cases]") {
   compare_bit_for_bit("corpus/flap_airfoil");
 }
-TEST_CASE("device run: corpus/gear is bit-identical to the host over 200 iterations from both starts", "[opencl][device_sim][cases]") {
+TEST_CASE("device run: corpus/gear is bit-identical to the host over 200 iterations from both starts",
+          "[opencl][device_sim][cases]") {
   compare_bit_for_bit("corpus/gear");
 }
-TEST_CASE("device run: corpus/heatsink_channel is bit-identical to the host over 200 iterations from both starts", "[opencl][device_sim][cases]") {
+TEST_CASE("device run: corpus/heatsink_channel is bit-identical to the host over 200 iterations from both starts",
+          "[opencl][device_sim][cases]") {
   compare_bit_for_bit("corpus/heatsink_channel");
 }
-TEST_CASE("device run: corpus/plate is bit-identical to the host over 200 iterations from both starts", "[opencl][device_sim][cases]") {
+TEST_CASE("device run: corpus/plate is bit-identical to the host over 200 iterations from both starts",
+          "[opencl][device_sim][cases]") {
   compare_bit_for_bit("corpus/plate");
 }
 // The metric cases place their nodes isotropically at sqrt(h1 h2) (docs/metric-fields.md): the same
 // simulation, so the same contract.
-TEST_CASE("device run: aniso/linear is bit-identical to the host over 200 iterations from both starts", "[opencl][device_sim][cases]") {
+TEST_CASE("device run: aniso/linear is bit-identical to the host over 200 iterations from both starts",
+          "[opencl][device_sim][cases]") {
   compare_bit_for_bit("aniso/linear");
 }
-TEST_CASE("device run: aniso/polar1 is bit-identical to the host over 200 iterations from both starts", "[opencl][device_sim][cases]") {
+TEST_CASE("device run: aniso/polar1 is bit-identical to the host over 200 iterations from both starts",
+          "[opencl][device_sim][cases]") {
   compare_bit_for_bit("aniso/polar1");
 }
-TEST_CASE("device run: aniso/polar2 is bit-identical to the host over 200 iterations from both starts", "[opencl][device_sim][cases]") {
+TEST_CASE("device run: aniso/polar2 is bit-identical to the host over 200 iterations from both starts",
+          "[opencl][device_sim][cases]") {
   compare_bit_for_bit("aniso/polar2");
 }

@@ -160,8 +160,10 @@ TEST_CASE("clearance refresh: one rule on the host and the device, checked again
           same += r.bound[k] == host.bound[k];
           // Where only the host's bound is not 0 (a point within 1e-12 of a segment, where the host's
           // exact on-segment test may snap the distance) the device leaves the move to the host.
-          if (r.bound[k] != 0.0 || host.bound[k] == 0.0) CHECK(r.budget[k] == host.budget[k]);
-          else CHECK(r.budget[k] == 0.0);
+          if (r.bound[k] != 0.0 || host.bound[k] == 0.0)
+            CHECK(r.budget[k] == host.budget[k]);
+          else
+            CHECK(r.budget[k] == 0.0);
         }
         CHECK(same + 3 * moves.x.size() / 1000 >= moves.x.size());
       }

@@ -30,9 +30,9 @@ void require_same_momentum(const SimState& a, const SimState& b) {
 // circle_circle from a random start with population control (events every 10 iterations from 20).
 Case population_case() {
   return test::load_case("circle_circle", {{"init.method", "random", "test"},
-                                            {"population.enabled", "true", "test"},
-                                            {"population.start", "20", "test"},
-                                            {"population.every", "10", "test"}});
+                                           {"population.enabled", "true", "test"},
+                                           {"population.start", "20", "test"},
+                                           {"population.every", "10", "test"}});
 }
 
 SimOptions momentum_options(const Case& c, int iterations, double beta) {

@@ -285,10 +285,9 @@ TEST_CASE("one very crowded row costs its own entries, not a stride for every no
   REQUIRE(rows.count[17] == 599);
   const std::uint64_t total = total_entries(in);
   // The rows with their slack, and the spare region for moved rows (2 max(4096, total / 64)).
-  const std::uint64_t bound =
-      total + (total >> ocl::DeviceNeighbours<double>::kSpareShift) +
-      static_cast<std::uint64_t>(ocl::DeviceNeighbours<double>::kSpareMin) * in.p.size() +
-      2 * std::max<std::uint64_t>(4096, total / 64) + ocl::kRowTail;
+  const std::uint64_t bound = total + (total >> ocl::DeviceNeighbours<double>::kSpareShift) +
+                              static_cast<std::uint64_t>(ocl::DeviceNeighbours<double>::kSpareMin) * in.p.size() +
+                              2 * std::max<std::uint64_t>(4096, total / 64) + ocl::kRowTail;
   CHECK(rows.offset.back() <= bound);
   CHECK(rows.index_size <= bound);
   CHECK(rows.index_size < in.p.size() * 599 / 10);
@@ -346,8 +345,8 @@ TEST_CASE("device binning puts every node in the cells the host binning does", "
       for (std::uint32_t k = 0; k < buckets; ++k) {
         const std::uint32_t bi = first + k;
         for (std::uint32_t e = bi > 0 ? bucket[bi - 1] : 0; e < bucket[bi]; ++e) {
-          const auto j = static_cast<std::int32_t>(static_cast<std::uint32_t>(nodes[e]) &
-                                                   ((1U << ocl::kGridNodeBits) - 1U));
+          const auto j =
+              static_cast<std::int32_t>(static_cast<std::uint32_t>(nodes[e]) & ((1U << ocl::kGridNodeBits) - 1U));
           const double ic = inv_cell[static_cast<std::size_t>(L)];
           const auto cell = std::pair{static_cast<std::int64_t>(std::floor(in.p.x[static_cast<std::size_t>(j)] * ic)),
                                       static_cast<std::int64_t>(std::floor(in.p.y[static_cast<std::size_t>(j)] * ic))};
@@ -383,9 +382,10 @@ TEST_CASE("a device build names the first invalid node and builds no rows", "[op
 // skin class is ceil(16 log2 rho) (+1 at most: the kernel's margin) of its largest ratio q_m / q_j over
 // the interior j of its own level within c (1 + s) q_m, never below it (host/opencl/device_run.hpp
 // rests on it). Brute force over every pair, with the device's grid levels.
-TEST_CASE("device rows of the run take coarser neighbours within c q_i + s c q_j, and skin classes bound the "
-          "spacing ratios of a level",
-          "[opencl][neighbour]") {
+TEST_CASE(
+    "device rows of the run take coarser neighbours within c q_i + s c q_j, and skin classes bound the "
+    "spacing ratios of a level",
+    "[opencl][neighbour]") {
   // Both programs: the GPU-shaped one gathers with floor() and the cell test everywhere.
   ocl::StepProgram scalar(test_context(), ocl::Precision::Double, ocl::ForceLoop::Scalar);
   const std::vector<Input> inputs{graded_input(false), random_input(3 * ocl::kStepWorkGroup + 5, 91, false),
@@ -436,4 +436,3 @@ TEST_CASE("device rows of the run take coarser neighbours within c q_i + s c q_j
     if (in.name == graded_input(false).name) CHECK(widened > 0);  // the widened radius is exercised
   }
 }
-

@@ -4,8 +4,8 @@
 // would choose, so the GPU-shaped loop is checked bit for bit on PoCL too.
 // Tolerances: double, 10 iterations: |x_device - x_host| <= 1e-9 q per node (the kernels repeat the
 // reference's arithmetic, so in practice the runs agree bit for bit); kinds and boundary order exact.
-// Float, 10 iterations: 2e-2 q (measured 6.6e-3: the unsettled start amplifies rounding). Whole run: same triangle count, min angle within 0.5 degrees, average
-// aspect ratio within 1%.
+// Float, 10 iterations: 2e-2 q (measured 6.6e-3: the unsettled start amplifies rounding). Whole run: same triangle
+// count, min angle within 0.5 degrees, average aspect ratio within 1%.
 #include <catch2/catch.hpp>
 
 #include <cmath>
@@ -19,10 +19,10 @@
 #include "device_run_fixtures.hpp"
 
 using namespace pdmesh;
-using pdmesh::test::require_identical_nodes;
 using pdmesh::test::Case;
-using pdmesh::test::Outcome;
 using pdmesh::test::options_for;
+using pdmesh::test::Outcome;
+using pdmesh::test::require_identical_nodes;
 
 namespace {
 
@@ -41,7 +41,8 @@ void require_same_nodes(const NodeSet& host, const NodeSet& dev, double tol_q) {
   }
   INFO("worst node " << worst_node << ": " << worst << " q apart");
   CHECK(worst <= tol_q);
-  for (std::size_t i = 0; i < host.size(); ++i) REQUIRE(std::fabs(dev.q[i] - host.q[i]) <= 1e-6 * host.q[i] + tol_q * host.q[i]);
+  for (std::size_t i = 0; i < host.size(); ++i)
+    REQUIRE(std::fabs(dev.q[i] - host.q[i]) <= 1e-6 * host.q[i] + tol_q * host.q[i]);
 }
 
 }  // namespace
@@ -53,11 +54,14 @@ TEST_CASE("device run: 10 iterations agree with the host node by node (double)",
   for (const char* name : {"circle_circle", "naca0012", "circle_circle+smooth"}) {
     INFO(name);
     const bool is_smooth = std::string(name) == "circle_circle+smooth";
-    const Case c = test::load_case(is_smooth ? "circle_circle" : name, is_smooth ? smooth : std::vector<CaseOverride>{});
+    const Case c =
+        test::load_case(is_smooth ? "circle_circle" : name, is_smooth ? smooth : std::vector<CaseOverride>{});
     if (is_smooth) REQUIRE(c.inputs->dense);
     const Outcome host = test::run_case(c, 10, false);
-    for (const auto& [skin, loop] : {std::pair{0.0, ocl::ForceLoop::Vector}, {0.3, ocl::ForceLoop::Vector},
-                                    {0.0, ocl::ForceLoop::Scalar}, {0.3, ocl::ForceLoop::Scalar}}) {
+    for (const auto& [skin, loop] : {std::pair{0.0, ocl::ForceLoop::Vector},
+                                     {0.3, ocl::ForceLoop::Vector},
+                                     {0.0, ocl::ForceLoop::Scalar},
+                                     {0.3, ocl::ForceLoop::Scalar}}) {
       INFO("skin " << skin << ", " << ocl::force_loop_name(loop) << " force loop");
       const Outcome dev = test::run_case(c, 10, true, false, skin, loop);
       require_same_nodes(host.nodes, dev.nodes, 1e-9);
@@ -87,7 +91,8 @@ TEST_CASE("device run: 10 iterations agree with the host node by node (double)",
 // The two ends of an iteration: the device's (iteration_rule, windows of iterations without a wait)
 // and the host's (devices without cl_khr_fp64: the partials read every iteration), both the host
 // reference's run bit for bit, history included; and a window does its iterations with one wait.
-TEST_CASE("device run: windows with the device's time-step rule and the host's rule repeat the host", "[opencl][device_sim]") {
+TEST_CASE("device run: windows with the device's time-step rule and the host's rule repeat the host",
+          "[opencl][device_sim]") {
   const Case c = test::load_case("naca0012");
   const Outcome host = test::run_case(c, 60, false);
   std::vector<HistoryRow> device_rows;  // of the device's rule, to compare the host's rule with
@@ -120,8 +125,10 @@ TEST_CASE("device run: windows with the device's time-step rule and the host's r
     CHECK(dev.result.state.time_step.consecutive_decreases == host.result.state.time_step.consecutive_decreases);
     CHECK(dev.result.stats.pairs_within == host.result.stats.pairs_within);
     // The device's rule runs whole windows (fewer than one per iteration); the host's one per iteration.
-    if (host_rule) CHECK(dev.stats.windows == 60);
-    else CHECK(dev.stats.windows < 60);
+    if (host_rule)
+      CHECK(dev.stats.windows == 60);
+    else
+      CHECK(dev.stats.windows < 60);
     if (!host_rule) device_rows = dev.result.history;
   }
   // The rule changed dt in these iterations (else the comparison of dt would say little).
@@ -156,8 +163,10 @@ TEST_CASE("device run without boundary nodes: the rule's own kernel repeats the 
 // A snap the Verlet skin does not rebuild for left the snapped node its stale interior row (and its new
 // curve neighbours their old rows): on shock from the structured start 4 nodes snap at iteration 11
 // with skin use 0.24, and the device run left the host there (0.28 q apart after 100 iterations).
-TEST_CASE("device run: shock from the structured start is bit-identical to the host over 100 iterations "
-          "(snaps the skin alone would not rebuild for)", "[opencl][device_sim]") {
+TEST_CASE(
+    "device run: shock from the structured start is bit-identical to the host over 100 iterations "
+    "(snaps the skin alone would not rebuild for)",
+    "[opencl][device_sim]") {
   const Case c = test::load_case("shock", {parse_set_option("init.method=structured")});
   const Outcome host = test::run_case(c, 100, false);
   for (const ocl::ForceLoop loop : test::kForceLoops) {
@@ -197,9 +206,12 @@ TEST_CASE("device run: randomized snap stress stays bit-identical to the host", 
         const double r = norm(host_nodes.x[i]), q = host_nodes.q[i];
         const double nudge = 1e-3 * q * (1.0 + 9.0 * pdmesh_test::uniform(rng));
         double to = 0.0;
-        if (r > 10.0 - 2.0 * q) to = 10.0 + nudge;
-        else if (r < 0.5 + 2.0 * q) to = 0.499 - nudge;
-        else continue;
+        if (r > 10.0 - 2.0 * q)
+          to = 10.0 + nudge;
+        else if (r < 0.5 + 2.0 * q)
+          to = 0.499 - nudge;
+        else
+          continue;
         host_nodes.x[i] = dev_nodes.x[i] = host_nodes.x[i] * (to / r);
         ++moved;
       }
@@ -210,7 +222,8 @@ TEST_CASE("device run: randomized snap stress stays bit-identical to the host", 
       test::Outcome dev = test::run_from(c, dev_nodes, o, true, false, loop);
       require_identical_nodes(host.nodes, dev.nodes);
       REQUIRE(dev.result.history.size() == host.result.history.size());
-      for (std::size_t k = 0; k < host.result.history.size(); ++k) CHECK(dev.result.history[k].snapped == host.result.history[k].snapped);
+      for (std::size_t k = 0; k < host.result.history.size(); ++k)
+        CHECK(dev.result.history[k].snapped == host.result.history[k].snapped);
       forced += dev.stats.snap_rebuilds;
       snaps += dev.result.stats.snapped;
       host_nodes = host.nodes;
@@ -231,8 +244,10 @@ namespace {
 Case circle_circle_with_population(const char* start) {
   Case c;
   c.config = load_case_file(pdmesh::test::source_dir() + "/cases/circle_circle/case.toml",
-                            {{"init.method", "random", "test"}, {"population.enabled", "true", "test"},
-                             {"population.start", start, "test"}, {"population.every", "10", "test"}});
+                            {{"init.method", "random", "test"},
+                             {"population.enabled", "true", "test"},
+                             {"population.start", start, "test"},
+                             {"population.every", "10", "test"}});
   c.config.quiet = true;
   c.inputs = std::make_unique<MeshInputs>(c.config);
   c.spacing = std::make_unique<SpacingStage>(c.config, *c.inputs, SpacingStage::Build::FieldOnly);
@@ -298,7 +313,8 @@ TEST_CASE("device run whose population control settles early: same events and no
 // Builds without counts (the run's first, and after every population event) laid out from a sampled
 // estimate (forced on this small case: PDMESH_TEST_SAMPLE_STRIDE; from 65536 nodes by default): rows
 // above their level's estimate move behind the others, and the run stays the host's bit for bit.
-TEST_CASE("device run with rows from a sampled estimate is bit-identical to the host", "[opencl][device_sim][population]") {
+TEST_CASE("device run with rows from a sampled estimate is bit-identical to the host",
+          "[opencl][device_sim][population]") {
   const Case c = circle_circle_with_population("10");
   SimOptions o = options_for(c, 40);
   o.population = c.config.population;
@@ -329,8 +345,10 @@ TEST_CASE("device run with rows from a sampled estimate is bit-identical to the 
   }
 }
 
-TEST_CASE("device run: the convergence rule stops a double run after the host's iteration, with the host's "
-          "measurements", "[opencl][device_sim][convergence]") {
+TEST_CASE(
+    "device run: the convergence rule stops a double run after the host's iteration, with the host's "
+    "measurements",
+    "[opencl][device_sim][convergence]") {
   // circle_circle with a short rule (measured every 20 iterations, window 60) so that it converges
   // within a few hundred iterations; in double the device repeats the host bit for bit, so the
   // measurements and the stop must be the same.

@@ -38,7 +38,8 @@ void check(const Geometry& g, int queries, std::uint64_t seed) {
     const Segment& s = g.segments[rng() % g.segments.size()];
     switch (i % 4) {
       case 0:
-        p = {e.lo.x - 0.1 * e.width() + 1.2 * e.width() * unit(rng), e.lo.y - 0.1 * e.height() + 1.2 * e.height() * unit(rng)};
+        p = {e.lo.x - 0.1 * e.width() + 1.2 * e.width() * unit(rng),
+             e.lo.y - 0.1 * e.height() + 1.2 * e.height() * unit(rng)};
         break;
       case 1:
         p = (rng() & 1) ? s.a : s.a + unit(rng) * (s.b - s.a);

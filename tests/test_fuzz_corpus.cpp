@@ -108,7 +108,8 @@ TEST_CASE("fuzz corpus: the well-formed seeds parse", "[fuzz]") {
     CHECK(c.nodes.size() > 8);
     CHECK(c.nodes.curve_nodes.size() == 2);
     CHECK_NOTHROW(pdmesh::check_checkpoint_fits(c, *world.tree, seed));
-    const pdmesh::SimResult r = pdmesh::run_simulation(c.nodes, *world.tree, world.spacing, pdmesh::fuzz::continue_options(c));
+    const pdmesh::SimResult r =
+        pdmesh::run_simulation(c.nodes, *world.tree, world.spacing, pdmesh::fuzz::continue_options(c));
     CHECK(r.history.size() == static_cast<std::size_t>(c.state.iterations_done) + 2);
   }
   CHECK(pdmesh::read_checkpoint(corpus / "fuzz_checkpoint/square_3_iterations.pdmesh").state.iterations_done == 3);
@@ -118,14 +119,17 @@ TEST_CASE("fuzz corpus: the well-formed seeds parse", "[fuzz]") {
     const std::string text = bytes_of(corpus / "fuzz_metric_reader_medit" / seed);
     const std::size_t cut = text.find('\f');
     REQUIRE(cut != std::string::npos);
-    const pdmesh::MetricMeshData d = pdmesh::parse_medit_metric("seed.mesh", text.substr(0, cut), "seed.sol", text.substr(cut + 1));
+    const pdmesh::MetricMeshData d =
+        pdmesh::parse_medit_metric("seed.mesh", text.substr(0, cut), "seed.sol", text.substr(cut + 1));
     CHECK(d.metrics.size() == d.points.size());
     CHECK_NOTHROW(pdmesh::make_mesh_metric_field(d));
   }
   CHECK_THROWS_AS(pdmesh::read_checkpoint(corpus / "fuzz_checkpoint/square_truncated.pdmesh"), pdmesh::InputError);
 }
 
-TEST_CASE("fuzz corpus: curve reader and read_geometry", "[fuzz][geometry]") { CHECK(replay("fuzz_curve_reader") >= 10); }
+TEST_CASE("fuzz corpus: curve reader and read_geometry", "[fuzz][geometry]") {
+  CHECK(replay("fuzz_curve_reader") >= 10);
+}
 TEST_CASE("fuzz corpus: poly reader and read_geometry", "[fuzz][geometry]") { CHECK(replay("fuzz_poly_reader") >= 5); }
 TEST_CASE("fuzz corpus: case file", "[fuzz][app]") { CHECK(replay("fuzz_case_file") >= 3); }
 TEST_CASE("fuzz corpus: node file", "[fuzz][nodes]") { CHECK(replay("fuzz_node_file") >= 1); }

@@ -24,10 +24,26 @@ std::string g17(double v) {
 }  // namespace
 
 TEST_CASE("append_g17 writes what fmt's {:.17g} writes", "[g17]") {
-  const double special[] = {0.0, -0.0, 1.0, -1.0, 0.1, 1e-5, 1e-4, 1e16, 1e17, 123456789012345678.0,
-                            5e-324, 2.2250738585072014e-308, std::numeric_limits<double>::max(),
-                            std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity(),
-                            std::numeric_limits<double>::quiet_NaN(), 1e300, -1e300, 0.35, 399.924};
+  const double special[] = {0.0,
+                            -0.0,
+                            1.0,
+                            -1.0,
+                            0.1,
+                            1e-5,
+                            1e-4,
+                            1e16,
+                            1e17,
+                            123456789012345678.0,
+                            5e-324,
+                            2.2250738585072014e-308,
+                            std::numeric_limits<double>::max(),
+                            std::numeric_limits<double>::infinity(),
+                            -std::numeric_limits<double>::infinity(),
+                            std::numeric_limits<double>::quiet_NaN(),
+                            1e300,
+                            -1e300,
+                            0.35,
+                            399.924};
   for (const double v : special) {
     INFO(fmt::format("{:.17g}", v));
     CHECK(g17(v) == fmt::format("{:.17g}", v));

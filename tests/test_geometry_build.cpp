@@ -124,8 +124,8 @@ TEST_CASE("a single closed curve with one sharp corner among gentle bends", "[ge
 }
 
 TEST_CASE("nesting depth of three nested squares and a separate one", "[geometry]") {
-  const Geometry g = build_geometry(
-      {square(0, 0, 6), square(1, 1, 4), square(2, 2, 2), square(10, 0, 1), curve({{10, 3}, {9, 4}, {10, 5}, {10, 3}})});
+  const Geometry g = build_geometry({square(0, 0, 6), square(1, 1, 4), square(2, 2, 2), square(10, 0, 1),
+                                     curve({{10, 3}, {9, 4}, {10, 5}, {10, 3}})});
   REQUIRE(g.loops.size() == 5);
   CHECK(g.loops[0].depth == 0);
   CHECK(g.loops[1].depth == 1);
@@ -165,9 +165,8 @@ TEST_CASE("geometry errors: point counts and values", "[geometry]") {
 
 TEST_CASE("geometry errors: repeated point", "[geometry]") {
   RawCurve c = curve({{0, 0}, {1, 0}, {1, 0}, {1, 1}, {0, 0}}, "rep", 10);
-  CHECK_THROWS_WITH(build_geometry({c}), Contains("test.crv:12") && Contains("curve 'rep'") &&
-                                             Contains("segment 1") && Contains("zero length") &&
-                                             Contains("(1, 0)"));
+  CHECK_THROWS_WITH(build_geometry({c}), Contains("test.crv:12") && Contains("curve 'rep'") && Contains("segment 1") &&
+                                             Contains("zero length") && Contains("(1, 0)"));
 }
 
 TEST_CASE("geometry errors: loop does not close", "[geometry]") {
@@ -180,8 +179,8 @@ TEST_CASE("geometry errors: loop does not close", "[geometry]") {
 TEST_CASE("geometry errors: three curve ends at one point", "[geometry]") {
   auto raw = unit_square_of_four();
   raw.push_back(curve({{0, 0}, {0.5, 0.5}, {1, 1}}, "diagonal"));
-  CHECK_THROWS_WITH(build_geometry(raw), Contains("3 curve ends meet at (0, 0)") && Contains("'diagonal'") &&
-                                             Contains("'curve3'"));
+  CHECK_THROWS_WITH(build_geometry(raw),
+                    Contains("3 curve ends meet at (0, 0)") && Contains("'diagonal'") && Contains("'curve3'"));
 }
 
 TEST_CASE("geometry errors: self-intersecting curve", "[geometry]") {
@@ -202,9 +201,9 @@ TEST_CASE("geometry errors: two crossing curves", "[geometry]") {
 
 TEST_CASE("geometry errors: T-junction and shared vertices", "[geometry]") {
   // A triangle whose corner touches the middle of the square's bottom edge.
-  CHECK_THROWS_WITH(build_geometry({square(0, 0, 2, "sq"), curve({{1, 0}, {1.5, -1}, {0.5, -1}, {1, 0}}, "tri")}),
-                    Contains("curves intersect") && Contains("'sq' segment 0") && Contains("'tri' segment") &&
-                        Contains("(1, 0)"));
+  CHECK_THROWS_WITH(
+      build_geometry({square(0, 0, 2, "sq"), curve({{1, 0}, {1.5, -1}, {0.5, -1}, {1, 0}}, "tri")}),
+      Contains("curves intersect") && Contains("'sq' segment 0") && Contains("'tri' segment") && Contains("(1, 0)"));
   // Two loops touching at a vertex: neither is a joint of two curve ends only.
   CHECK_THROWS_WITH(build_geometry({square(0, 0, 1, "p"), curve({{0, 1}, {1, 1}, {1, 2}, {0, 2}, {0, 1}}, "q")}),
                     Contains("intersect"));

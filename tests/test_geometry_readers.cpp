@@ -56,16 +56,16 @@ TEST_CASE("crv reader: the 30P30N high-lift airfoil makes 3 clockwise loops of 1
 }
 
 TEST_CASE("crv reader errors", "[geometry]") {
-  CHECK_THROWS_WITH(read_curve_file(data("no_such_file.crv")),
-                    Contains("cannot read geometry file") && Contains("no_such_file.crv") &&
-                        Contains("No such file or directory"));
+  CHECK_THROWS_WITH(read_curve_file(data("no_such_file.crv")), Contains("cannot read geometry file") &&
+                                                                   Contains("no_such_file.crv") &&
+                                                                   Contains("No such file or directory"));
   CHECK_THROWS_WITH(read_curve_file(data("")), Contains("directory"));
   CHECK_THROWS_WITH(read_curve_file(data("empty.crv")), Contains("empty.crv") && Contains("no curves"));
   CHECK_THROWS_WITH(read_curve_file(data("comments_only.crv")), Contains("no curves"));
   CHECK_THROWS_WITH(read_curve_file(data("garbage.crv")), Contains("garbage.crv:4") && Contains("not text"));
-  CHECK_THROWS_WITH(read_curve_file(data("truncated.crv")),
-                    Contains("truncated.crv:4") && Contains("block of 5 points is truncated") &&
-                        Contains("only 3 lines"));
+  CHECK_THROWS_WITH(read_curve_file(data("truncated.crv")), Contains("truncated.crv:4") &&
+                                                                Contains("block of 5 points is truncated") &&
+                                                                Contains("only 3 lines"));
   CHECK_THROWS_WITH(read_curve_file(data("negative_count.crv")),
                     Contains("negative_count.crv:1") && Contains("'-3' is negative"));
   CHECK_THROWS_WITH(read_curve_file(data("fractional_count.crv")),
@@ -131,9 +131,9 @@ TEST_CASE("poly reader: segments of one marker forming a cycle make one closed c
 }
 
 TEST_CASE("poly reader errors", "[geometry]") {
-  CHECK_THROWS_WITH(read_poly_file(data("missing_vertex.poly")),
-                    Contains("missing_vertex.poly:7") && Contains("segment 2 refers to vertex 9") &&
-                        Contains("1 to 3"));
+  CHECK_THROWS_WITH(read_poly_file(data("missing_vertex.poly")), Contains("missing_vertex.poly:7") &&
+                                                                     Contains("segment 2 refers to vertex 9") &&
+                                                                     Contains("1 to 3"));
   CHECK_THROWS_WITH(read_poly_file(data("node_file.poly")),
                     Contains("node_file.poly:1") && Contains(".node") && Contains("not support"));
   CHECK_THROWS_WITH(read_poly_file(data("three_d.poly")), Contains("three_d.poly:1") && Contains("dimension '3'"));
@@ -142,9 +142,9 @@ TEST_CASE("poly reader errors", "[geometry]") {
   CHECK_THROWS_WITH(read_poly_file(data("no_hole_line.poly")),
                     Contains("no_hole_line.poly:10") && Contains("hole count line"));
   CHECK_THROWS_WITH(read_poly_file(data("empty.crv")), Contains("empty"));
-  CHECK_THROWS_WITH(read_geometry({data("hole_in_domain.poly")}, {}),
-                    Contains("hole_in_domain.poly:12") && Contains("hole point (0.5, 0.5)") &&
-                        Contains("inside the domain"));
+  CHECK_THROWS_WITH(read_geometry({data("hole_in_domain.poly")}, {}), Contains("hole_in_domain.poly:12") &&
+                                                                          Contains("hole point (0.5, 0.5)") &&
+                                                                          Contains("inside the domain"));
 }
 
 TEST_CASE("read_geometry: extensions and curve names", "[geometry]") {

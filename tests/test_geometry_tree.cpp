@@ -132,20 +132,23 @@ TEST_CASE("Brute force matches closed forms on the square with a hole", "[tree]"
   std::mt19937_64 rng(42);
   for (int i = 0; i < 3000; ++i) {
     // Coordinates on a 1/1024 grid offset by 1/2048 never lie on the boundary lines 0, 1.5, 2.5, 4.
-    const Vec2 p{-1 + (static_cast<int>(rng() % 6144) + 0.5) / 1024.0, -1 + (static_cast<int>(rng() % 6144) + 0.5) / 1024.0};
+    const Vec2 p{-1 + (static_cast<int>(rng() % 6144) + 0.5) / 1024.0,
+                 -1 + (static_cast<int>(rng() % 6144) + 0.5) / 1024.0};
     const bool in_outer = p.x > 0 && p.x < 4 && p.y > 0 && p.y < 4;
     const bool in_hole = p.x > 1.5 && p.x < 2.5 && p.y > 1.5 && p.y < 2.5;
     INFO("p = (" << p.x << ", " << p.y << ")");
     REQUIRE(brute_force::inside(g, p) == (in_outer && !in_hole));
     // Distance to the outer square boundary (point inside or outside it), and to the hole.
     const auto box_boundary_distance = [](Vec2 q, double lo, double hi) {
-      const double dx = std::fmax(std::fmax(lo - q.x, q.x - hi), 0.0), dy = std::fmax(std::fmax(lo - q.y, q.y - hi), 0.0);
+      const double dx = std::fmax(std::fmax(lo - q.x, q.x - hi), 0.0),
+                   dy = std::fmax(std::fmax(lo - q.y, q.y - hi), 0.0);
       if (dx > 0 || dy > 0) return std::hypot(dx, dy);
       return std::fmin(std::fmin(q.x - lo, hi - q.x), std::fmin(q.y - lo, hi - q.y));
     };
     const double expected = std::fmin(box_boundary_distance(p, 0, 4), box_boundary_distance(p, 1.5, 2.5));
     REQUIRE(brute_force::closest(g, p).distance == Approx(expected).epsilon(1e-14));
-    REQUIRE(brute_force::closest_on_curve(g, p, 1).distance == Approx(box_boundary_distance(p, 1.5, 2.5)).epsilon(1e-14));
+    REQUIRE(brute_force::closest_on_curve(g, p, 1).distance ==
+            Approx(box_boundary_distance(p, 1.5, 2.5)).epsilon(1e-14));
   }
 }
 
@@ -162,7 +165,8 @@ TEST_CASE("Crossing number counts a vertex on the ray once", "[tree]") {
   CHECK(tree.inside({-1, 0}));     // a vertex
   CHECK_FALSE(tree.inside({0.5, 0.5 + 1e-16}));
   // A horizontal edge on the ray row: the U-shape (0,0)-(3,0)-(3,2)-(2,2)-(2,1)-(1,1)-(1,2)-(0,2).
-  const Geometry u = fixtures::make_geometry({{{0, 0}, {3, 0}, {3, 2}, {2, 2}, {2, 1}, {1, 1}, {1, 2}, {0, 2}, {0, 0}}});
+  const Geometry u =
+      fixtures::make_geometry({{{0, 0}, {3, 0}, {3, 2}, {2, 2}, {2, 1}, {1, 1}, {1, 2}, {0, 2}, {0, 0}}});
   const GeometryTree ut(u);
   CHECK(ut.inside({0.5, 1}));
   CHECK(ut.inside({1.5, 1}));  // on the horizontal edge
@@ -177,21 +181,21 @@ TEST_CASE("crosses_boundary by hand", "[tree]") {
   const Geometry g = fixtures::square_with_hole();  // [0,4]^2 minus [1.5,2.5]^2
   const GeometryTree tree(g);
   CHECK_FALSE(tree.crosses_boundary({0.5, 0.5}, {1.0, 1.0}));
-  CHECK(tree.crosses_boundary({0.5, 0.5}, {-1.0, 0.5}));   // leaves through the outer square
-  CHECK(tree.crosses_boundary({0.5, 0.5}, {0.0, 0.5}));    // ends on the boundary: touches
-  CHECK(tree.crosses_boundary({1.0, 2.0}, {3.0, 2.0}));    // through the hole
-  CHECK(tree.crosses_boundary({1.0, 1.0}, {3.0, 3.0}));    // through the hole's corners
-  CHECK(tree.crosses_boundary({1.0, 1.5}, {2.0, 1.5}));    // along the hole's edge
+  CHECK(tree.crosses_boundary({0.5, 0.5}, {-1.0, 0.5}));       // leaves through the outer square
+  CHECK(tree.crosses_boundary({0.5, 0.5}, {0.0, 0.5}));        // ends on the boundary: touches
+  CHECK(tree.crosses_boundary({1.0, 2.0}, {3.0, 2.0}));        // through the hole
+  CHECK(tree.crosses_boundary({1.0, 1.0}, {3.0, 3.0}));        // through the hole's corners
+  CHECK(tree.crosses_boundary({1.0, 1.5}, {2.0, 1.5}));        // along the hole's edge
   CHECK_FALSE(tree.crosses_boundary({0.0, 0.5}, {0.5, 0.5}));  // starts on the boundary, moves in
   CHECK_FALSE(tree.crosses_boundary({0.0, 0.0}, {0.5, 0.5}));  // starts at a corner, moves in
-  CHECK(tree.crosses_boundary({0.0, 0.5}, {0.0, 0.7}));    // slides along the boundary
+  CHECK(tree.crosses_boundary({0.0, 0.5}, {0.0, 0.7}));        // slides along the boundary
   // Leaves straight out from a boundary point: it meets the boundary only at a, which is allowed;
   // callers detect this by inside(b).
   CHECK_FALSE(tree.crosses_boundary({0.0, 0.5}, {-0.5, 0.5}));
   CHECK_FALSE(tree.inside({-0.5, 0.5}));
   CHECK_FALSE(tree.crosses_boundary({0.5, 0.5}, {0.5, 0.5}));  // no move
   CHECK_FALSE(tree.crosses_boundary({0.0, 4.0}, {0.0, 5.0}));  // from the corner away along the side's line
-  CHECK(tree.crosses_boundary({0.0, 4.0}, {0.0, 3.0}));    // from the corner along the side
+  CHECK(tree.crosses_boundary({0.0, 4.0}, {0.0, 3.0}));        // from the corner along the side
 }
 
 TEST_CASE("GeometryTree shape and leaf boxes", "[tree]") {

@@ -77,9 +77,10 @@ void check_interior(const Geometry& g, const SpacingField& spacing, const NodeSe
     if (nodes.kind[i] != NodeKind::Interior) continue;
     const Vec2 p = nodes.x[i];
     const double q = spacing.at(p);
-    const bool ok = brute_inside(g, p) && brute_distance(g, p) >= kInitBoundaryClearance * q &&
-                    nodes.q[i] == q && nodes.curve[i] == -1;
-    if (!ok && bad++ < 5) FAIL_CHECK("interior node " << i << " at (" << p.x << ", " << p.y << ") breaks the keep rule");
+    const bool ok = brute_inside(g, p) && brute_distance(g, p) >= kInitBoundaryClearance * q && nodes.q[i] == q &&
+                    nodes.curve[i] == -1;
+    if (!ok && bad++ < 5)
+      FAIL_CHECK("interior node " << i << " at (" << p.x << ", " << p.y << ") breaks the keep rule");
   }
   CHECK(bad == 0);
 }
@@ -261,9 +262,8 @@ TEST_CASE("node counts follow the estimate (square and circle in circle, both me
       const GeometryTree tree(g);
       const BoundarySpacing spacing(tree);
       const InitialDistribution d = make_initial_distribution(tree, spacing, {method, 42, {}});
-      WARN("circle in circle " << name_of(method) << ": nodes " << d.nodes.size() << " (interior "
-                               << d.tree_nodes << "), estimate " << d.estimate << ", ratio "
-                               << d.nodes.size() / d.estimate);
+      WARN("circle in circle " << name_of(method) << ": nodes " << d.nodes.size() << " (interior " << d.tree_nodes
+                               << "), estimate " << d.estimate << ", ratio " << d.nodes.size() / d.estimate);
       CHECK(std::abs(d.nodes.size() / d.estimate - 1.0) <= tolerance);
       check_interior(g, spacing, d.nodes);
     }
@@ -374,7 +374,8 @@ TEST_CASE("initialization tree: refined along the geometry, 2:1 balanced, outsid
     }
     // Segment lists are exact: a segment is listed iff it touches the closed box.
     for (std::size_t s = 0; s < g.segments.size(); s += 7) {
-      const bool listed = std::find(leaf.segments.begin(), leaf.segments.end(), static_cast<int>(s)) != leaf.segments.end();
+      const bool listed =
+          std::find(leaf.segments.begin(), leaf.segments.end(), static_cast<int>(s)) != leaf.segments.end();
       CHECK(listed == segment_touches_box(g.segments[s].a, g.segments[s].b, leaf.box));
     }
     CHECK(leaf.kept == (!leaf.segments.empty() || brute_inside(g, leaf.box.centre())));
@@ -396,12 +397,12 @@ TEST_CASE("initialization tree: refined along the geometry, 2:1 balanced, outsid
 
 TEST_CASE("segment_touches_box: corners, edges, crossings and misses", "[init]") {
   const Box b{{0, 0}, {1, 1}};
-  CHECK(segment_touches_box({-1, -1}, {0, 0}, b));      // ends on a corner
-  CHECK(segment_touches_box({-1, 0.5}, {2, 0.5}, b));   // crosses through
-  CHECK(segment_touches_box({0.2, 0.2}, {0.3, 0.4}, b)); // inside
-  CHECK(segment_touches_box({-1, 1}, {1, -1}, b));      // touches the corner (0, 0) only
+  CHECK(segment_touches_box({-1, -1}, {0, 0}, b));                  // ends on a corner
+  CHECK(segment_touches_box({-1, 0.5}, {2, 0.5}, b));               // crosses through
+  CHECK(segment_touches_box({0.2, 0.2}, {0.3, 0.4}, b));            // inside
+  CHECK(segment_touches_box({-1, 1}, {1, -1}, b));                  // touches the corner (0, 0) only
   CHECK(segment_touches_box({-1, 1.0000001}, {1.0000001, -1}, b));  // clips the corner
-  CHECK_FALSE(segment_touches_box({-1, 0.9}, {0.9, -1.1}, b));  // passes below-left of (0, 0)
+  CHECK_FALSE(segment_touches_box({-1, 0.9}, {0.9, -1.1}, b));      // passes below-left of (0, 0)
   CHECK_FALSE(segment_touches_box({2, 0}, {3, 5}, b));
-  CHECK(segment_touches_box({1, 2}, {1, -2}, b));       // along the right edge
+  CHECK(segment_touches_box({1, 2}, {1, -2}, b));  // along the right edge
 }

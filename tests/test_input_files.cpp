@@ -82,8 +82,10 @@ TEST_CASE("every reader refuses a directory, a device and a named pipe without r
         fs::path node = p;
         node.replace_extension(".node");
         fs::remove_all(node);
-        if (fs::is_directory(p)) fs::create_directories(node);
-        else fs::create_symlink(fs::read_symlink(p), node);
+        if (fs::is_directory(p))
+          fs::create_directories(node);
+        else
+          fs::create_symlink(fs::read_symlink(p), node);
       }
       r.read(p);
     };
@@ -94,7 +96,9 @@ TEST_CASE("every reader refuses a directory, a device and a named pipe without r
     CHECK(m_zero.find("it is a character device, not a regular file") != std::string::npos);
     CHECK(pdmesh_test::error_message<InputError>([&] { read(random); }).find("character device") != std::string::npos);
     // Opening a pipe without a writer would block: the reader must refuse it before.
-    CHECK(pdmesh_test::error_message<InputError>([&] { read(pipe); }).find("it is a named pipe (FIFO), not a regular file") != std::string::npos);
+    CHECK(pdmesh_test::error_message<InputError>([&] {
+            read(pipe);
+          }).find("it is a named pipe (FIFO), not a regular file") != std::string::npos);
   }
 }
 
@@ -117,8 +121,9 @@ TEST_CASE("a file larger than its kind's limit is refused by its size, before it
 
 TEST_CASE("a missing or unreadable file names the file and the reason", "[input]") {
   const fs::path dir = pdmesh_test::fresh_dir("input_missing");
-  CHECK(pdmesh_test::error_message<InputError>([&] { pdmesh::read_input_file(dir / "nope.crv", InputKind::Geometry); }) ==
-        "cannot read geometry file '" + (dir / "nope.crv").string() + "': No such file or directory");
+  CHECK(pdmesh_test::error_message<InputError>([&] {
+          pdmesh::read_input_file(dir / "nope.crv", InputKind::Geometry);
+        }) == "cannot read geometry file '" + (dir / "nope.crv").string() + "': No such file or directory");
 }
 
 TEST_CASE("a read that fails is an error naming the file", "[input]") {
@@ -129,7 +134,8 @@ TEST_CASE("a read that fails is an error naming the file", "[input]") {
 
 TEST_CASE("quote_input shows at most 100 characters, escaped", "[input]") {
   CHECK(pdmesh::quote_input("plain text 1.5") == "plain text 1.5");
-  CHECK(pdmesh::quote_input("\xEF\xBB\xBF" "4") == "\\xef\\xbb\\xbf4");
+  CHECK(pdmesh::quote_input("\xEF\xBB\xBF"
+                            "4") == "\\xef\\xbb\\xbf4");
   CHECK(pdmesh::quote_input(std::string("a\0b\x1b[2J\\", 8)) == "a\\x00b\\x1b[2J\\\\");
   const std::string long_text(50'000'000, 'x');
   const std::string q = pdmesh::quote_input(long_text);
@@ -149,8 +155,9 @@ TEST_CASE("a UTF-8 byte-order mark at the start of a .crv or .poly file is skipp
   write(dir / "case.toml", bom + "[geometry]\nfiles = [\"a.crv\"]\n");
   CHECK(pdmesh::load_case_file(dir / "case.toml").geometry.files.size() == 1);
   write(dir / "b.crv", "5\n0 0\n1 0\n" + bom + "1 1\n0 1\n0 0\n");
-  CHECK(pdmesh_test::error_message<InputError>([&] { pdmesh::read_curve_file((dir / "b.crv").string()); })
-            .find("x coordinate '\\xef\\xbb\\xbf1' is not a number") != std::string::npos);
+  CHECK(pdmesh_test::error_message<InputError>([&] {
+          pdmesh::read_curve_file((dir / "b.crv").string());
+        }).find("x coordinate '\\xef\\xbb\\xbf1' is not a number") != std::string::npos);
 }
 
 TEST_CASE("reader messages quote at most about 100 characters of the input, escaped", "[input]") {
@@ -172,11 +179,16 @@ TEST_CASE("reader messages quote at most about 100 characters of the input, esca
     const fs::path p = dir / name;
     const std::string ext = p.extension().string();
     const std::string m = pdmesh_test::error_message<InputError>([&] {
-      if (ext == ".crv") pdmesh::read_curve_file(p.string());
-      else if (ext == ".poly") pdmesh::read_poly_file(p.string());
-      else if (ext == ".nodes") pdmesh::read_node_file(p);
-      else if (ext == ".pdmesh") pdmesh::read_checkpoint(p);
-      else pdmesh::read_mesh(p);
+      if (ext == ".crv")
+        pdmesh::read_curve_file(p.string());
+      else if (ext == ".poly")
+        pdmesh::read_poly_file(p.string());
+      else if (ext == ".nodes")
+        pdmesh::read_node_file(p);
+      else if (ext == ".pdmesh")
+        pdmesh::read_checkpoint(p);
+      else
+        pdmesh::read_mesh(p);
     });
     CHECK(m.find(p.string()) == 0);
     CHECK(m.size() < 400);

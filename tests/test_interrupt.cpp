@@ -82,14 +82,17 @@ TEST_CASE("parallel_for ends with Interrupted at a stop request, and runs whole 
   const std::size_t n = 1 << 20;
   std::vector<int> done(n, 0);
   const FlagSet set;
-  CHECK_THROWS_AS(pdmesh::parallel_for(n, [&](std::size_t i) { done[i] = 1; }, 1024), pdmesh::Interrupted);
+  CHECK_THROWS_AS(pdmesh::parallel_for(
+                      n, [&](std::size_t i) { done[i] = 1; }, 1024),
+                  pdmesh::Interrupted);
   std::size_t count = 0;
   for (int d : done) count += static_cast<std::size_t>(d);
   CHECK(count < n);
   {
     const pdmesh::InterruptShield shield;
     std::fill(done.begin(), done.end(), 0);
-    pdmesh::parallel_for(n, [&](std::size_t i) { done[i] = 1; }, 1024);
+    pdmesh::parallel_for(
+        n, [&](std::size_t i) { done[i] = 1; }, 1024);
     count = 0;
     for (int d : done) count += static_cast<std::size_t>(d);
     CHECK(count == n);
@@ -157,7 +160,8 @@ TEST_CASE("a run stopped during the simulation writes the checkpoint and nothing
   REQUIRE(fs::exists(dir / "checkpoint.pdmesh"));
   CHECK(pdmesh::read_checkpoint(dir / "checkpoint.pdmesh").state.iterations_done == 23);
   // Nothing of the unsettled mesh: no history, final nodes, mesh or quality.
-  for (const char* name : {"history.csv", "final.nodes", "final.png", "mesh.msh", "mesh.nodes", "quality.json", "mesh.png"})
+  for (const char* name :
+       {"history.csv", "final.nodes", "final.png", "mesh.msh", "mesh.nodes", "quality.json", "mesh.png"})
     CHECK_FALSE(fs::exists(dir / name));
   CHECK_FALSE(has_temporaries(dir));
   // The printed commands, run as printed: the current nodes meshed (the checkpoint kept), then the run
@@ -199,8 +203,8 @@ TEST_CASE("SIGINT in any phase stops the run with exit 130, a message, and only 
   INFO("phase: " << phase.name);
   const fs::path dir = pdmesh_test::fresh_dir("interrupt_phase");
   fs::remove_all(dir);
-  const auto r = run_pdmesh(mesh_command(dir, "-q", kGeometry),
-                            std::string("'PDMESH_TEST_SIGNAL_IN_PHASE=") + phase.name + "'");
+  const auto r =
+      run_pdmesh(mesh_command(dir, "-q", kGeometry), std::string("'PDMESH_TEST_SIGNAL_IN_PHASE=") + phase.name + "'");
   CHECK_THAT(r.output, Catch::Contains("SIGINT sent at"));  // the phase ran
   INFO(r.output);
   CHECK(r.status == 130);

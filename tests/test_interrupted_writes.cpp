@@ -67,8 +67,8 @@ TEST_CASE("SIGKILL between writing and renaming mesh.msh leaves every output who
     ::dup2(null, STDERR_FILENO);
     ::setenv("PDMESH_TEST_STOP_BEFORE_RENAME", "mesh.msh", 1);
     const std::string out = dir.string();
-    ::execl(PDMESH_BINARY, PDMESH_BINARY, "mesh", kCase.c_str(), "--out", out.c_str(), "--device", "host",
-            "--formats", "msh,vtu", "--iterations", "9", "-q", static_cast<char*>(nullptr));
+    ::execl(PDMESH_BINARY, PDMESH_BINARY, "mesh", kCase.c_str(), "--out", out.c_str(), "--device", "host", "--formats",
+            "msh,vtu", "--iterations", "9", "-q", static_cast<char*>(nullptr));
     ::_exit(127);
   }
   int status = 0;
@@ -87,7 +87,7 @@ TEST_CASE("SIGKILL between writing and renaming mesh.msh leaves every output who
     INFO(name);
     CHECK((bytes == old_files.at(name) || bytes == new_files.at(name)));
   }
-  CHECK(after.at("mesh.msh") == old_files.at("mesh.msh"));      // killed before its rename
+  CHECK(after.at("mesh.msh") == old_files.at("mesh.msh"));        // killed before its rename
   CHECK(after.at("final.nodes") == new_files.at("final.nodes"));  // written before mesh.msh
   CHECK(after.at("history.csv") == new_files.at("history.csv"));
   CHECK(temporaries(dir) == std::vector<std::string>{tmp.filename().string()});

@@ -67,9 +67,12 @@ TEST_CASE("memory limit: the default is 3/4 of the address-space limit when that
 TEST_CASE("memory limit: check_memory refuses with what, how much and the limit", "[memory]") {
   const MemoryLimit limit = parse_memory_limit("1M");
   CHECK_NOTHROW(check_memory(limit, 1024.0 * 1024.0, "x", "y"));
-  const std::string m = pdmesh_test::error_message<LimitError>([&] { check_memory(limit, 3.5 * 1024 * 1024, "the thing", "raise it"); });
+  const std::string m =
+      pdmesh_test::error_message<LimitError>([&] { check_memory(limit, 3.5 * 1024 * 1024, "the thing", "raise it"); });
   CHECK(m == "the thing needs about 3.50 MiB of memory, more than --max-memory 1.00 MiB; raise it");
-  CHECK_FALSE(pdmesh_test::error_message<LimitError>([&] { check_memory(limit, std::numeric_limits<double>::infinity(), "t", "r"); }).empty());
+  CHECK_FALSE(pdmesh_test::error_message<LimitError>([&] {
+                check_memory(limit, std::numeric_limits<double>::infinity(), "t", "r");
+              }).empty());
   CHECK_NOTHROW(check_memory(MemoryLimit{}, 1e30, "no limit", "r"));
 }
 

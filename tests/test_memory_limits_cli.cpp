@@ -54,7 +54,8 @@ TEST_CASE("the memory limit (--max-memory) takes a size with a suffix and refuse
   fs::remove_all(dir);
 }
 
-TEST_CASE("the memory limit (--max-memory) refuses a run whose later stages would not fit, before they allocate", "[memory]") {
+TEST_CASE("the memory limit (--max-memory) refuses a run whose later stages would not fit, before they allocate",
+          "[memory]") {
   const fs::path dir = pdmesh_test::fresh_dir("max_memory_run");
   const auto r = mesh(write_square(dir), dir / "out", "--iterations 5 --max-memory 32M");
   check_refused(r, dir / "out", {"meshing about", "of memory, more than --max-memory 32.0 MiB"});
@@ -68,7 +69,8 @@ TEST_CASE("a field that asks for 1e9 nodes is refused on the quadtree's first le
   const fs::path dir = pdmesh_test::fresh_dir("uniform_1e9");
   // 3.4e-5 on the unit square: about 1e9 nodes, a quadtree of ~3e8 leaves at that resolution.
   const auto r = mesh(write_square(dir), dir / "out", "--set spacing.expression=3.4e-5");
-  check_refused(r, dir / "out", {"asks for about 9.9", "already on level 0 of its quadtree", "more than --max-nodes 20000000"});
+  check_refused(r, dir / "out",
+                {"asks for about 9.9", "already on level 0 of its quadtree", "more than --max-nodes 20000000"});
   // The thesis preset (the exact field's quadtree, built lazily) is refused the same way.
   const auto thesis = mesh(write_square(dir), dir / "out", "--set spacing.expression=3.4e-5 --set preset=thesis");
   check_refused(thesis, dir / "out", {"already on level 0 of its quadtree"});

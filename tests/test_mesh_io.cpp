@@ -107,10 +107,10 @@ const char* kMsh22 =
     "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n"
     "$Nodes\n4\n1 0 0 0\n2 1 0 0\n3 1 1 0\n4 0 1 0\n$EndNodes\n"
     "$Elements\n5\n"
-    "1 15 2 0 1 1\n"           // a point element: skipped
-    "2 1 2 7 3 1 2\n"          // a line in physical group 7
-    "3 3 2 0 1 1 2 3 4\n"      // a quadrangle: skipped
-    "4 2 2 0 1 1 3 2\n"        // a clockwise triangle: reoriented
+    "1 15 2 0 1 1\n"       // a point element: skipped
+    "2 1 2 7 3 1 2\n"      // a line in physical group 7
+    "3 3 2 0 1 1 2 3 4\n"  // a quadrangle: skipped
+    "4 2 2 0 1 1 3 2\n"    // a clockwise triangle: reoriented
     "5 2 2 0 1 1 3 4\n"
     "$EndElements\n";
 
@@ -295,11 +295,13 @@ TEST_CASE("SU2 reader skips other element types and checks indices", "[mesh_io]"
 
 TEST_CASE("Triangle reader checks indices and reads 0-based files without .poly", "[mesh_io]") {
   MeshReadReport r;
-  const Mesh m = parse_triangle("a.node", "3 2 0 0\n0 0 0\n1 1 0\n2 0 1\n", "a.ele", "1 3 0\n0 0 1 2\n", "a.poly", "", r);
+  const Mesh m =
+      parse_triangle("a.node", "3 2 0 0\n0 0 0\n1 1 0\n2 0 1\n", "a.ele", "1 3 0\n0 0 1 2\n", "a.poly", "", r);
   CHECK(m.triangles == std::vector<std::array<int, 3>>{{0, 1, 2}});
   CHECK(m.boundary_edges.empty());
-  message_has([&] { parse_triangle("a.node", "3 2 0 0\n1 0 0\n2 1 0\n3 0 1\n", "a.ele", "1 3 0\n1 1 2 4\n", "", "", r); },
-              "a.ele:2: point index 4 is out of range [1, 3]");
+  message_has(
+      [&] { parse_triangle("a.node", "3 2 0 0\n1 0 0\n2 1 0\n3 0 1\n", "a.ele", "1 3 0\n1 1 2 4\n", "", "", r); },
+      "a.ele:2: point index 4 is out of range [1, 3]");
   message_has([&] { parse_triangle("a.node", "3 2 0 0\n1 0 0\n2 1 0\n", "a.ele", "0 3 0\n", "", "", r); },
               "a.node:1: point count 3 cannot fit in the 12 bytes left in the file");
 }
@@ -332,8 +334,12 @@ TEST_CASE("base64 encoder: RFC 4648's test vectors, and a round trip through the
     return out;
   };
   // RFC 4648, section 10.
-  const std::pair<const char*, const char*> vectors[] = {{"", ""},         {"f", "Zg=="},         {"fo", "Zm8="},
-                                                         {"foo", "Zm9v"},  {"foob", "Zm9vYg=="},  {"fooba", "Zm9vYmE="},
+  const std::pair<const char*, const char*> vectors[] = {{"", ""},
+                                                         {"f", "Zg=="},
+                                                         {"fo", "Zm8="},
+                                                         {"foo", "Zm9v"},
+                                                         {"foob", "Zm9vYg=="},
+                                                         {"fooba", "Zm9vYmE="},
                                                          {"foobar", "Zm9vYmFy"}};
   for (const auto& [in, expected] : vectors) {
     CHECK(encode(in, 1) == expected);
@@ -366,7 +372,8 @@ TEST_CASE("VTU binary and ASCII forms hold the same mesh, and binary is what wri
   CHECK(ascii.find("format=\"binary\"") == std::string::npos);
   // 14 arrays: boundary_edges, curve_names, kind, q, 6 metrics, Points, connectivity, offsets, types.
   std::size_t arrays = 0;
-  for (auto at = binary.find("format=\"binary\""); at != std::string::npos; at = binary.find("format=\"binary\"", at + 1))
+  for (auto at = binary.find("format=\"binary\""); at != std::string::npos;
+       at = binary.find("format=\"binary\"", at + 1))
     ++arrays;
   CHECK(arrays == 14);
   MeshReadReport r;

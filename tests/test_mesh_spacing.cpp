@@ -91,7 +91,8 @@ int brute_locate(const MeshFieldData& d, Vec2 p) {
 double brute_boundary_distance(const MeshSpacing& field, Vec2 p) {
   double best = std::numeric_limits<double>::infinity();
   for (const auto& e : field.locator().boundary_edges()) {
-    const Vec2 a = field.data().points[static_cast<std::size_t>(e[0])], b = field.data().points[static_cast<std::size_t>(e[1])];
+    const Vec2 a = field.data().points[static_cast<std::size_t>(e[0])],
+               b = field.data().points[static_cast<std::size_t>(e[1])];
     const double t = std::clamp(dot(p - a, b - a) / norm2(b - a), 0.0, 1.0);
     best = std::min(best, dist(p, a + t * (b - a)));
   }
@@ -183,8 +184,10 @@ TEST_CASE("a piecewise-linear field matches at vertices and edge midpoints", "[m
   for (int i = 0; i < 2000; ++i) {
     const Vec2 p{unit(rng), unit(rng)};
     const auto& t = d.triangles[static_cast<std::size_t>(brute_locate(d, p))];
-    const double lo = std::min({d.q[static_cast<std::size_t>(t[0])], d.q[static_cast<std::size_t>(t[1])], d.q[static_cast<std::size_t>(t[2])]});
-    const double hi = std::max({d.q[static_cast<std::size_t>(t[0])], d.q[static_cast<std::size_t>(t[1])], d.q[static_cast<std::size_t>(t[2])]});
+    const double lo = std::min({d.q[static_cast<std::size_t>(t[0])], d.q[static_cast<std::size_t>(t[1])],
+                                d.q[static_cast<std::size_t>(t[2])]});
+    const double hi = std::max({d.q[static_cast<std::size_t>(t[0])], d.q[static_cast<std::size_t>(t[1])],
+                                d.q[static_cast<std::size_t>(t[2])]});
     const double v = field.at(p);
     CHECK((v >= lo && v <= hi));
   }
@@ -281,11 +284,10 @@ TEST_CASE("a written mesh with spacing reads back as the same field", "[mesh_spa
   mesh.triangles = d.triangles;
   mesh.spacing = d.q;
   const fs::path dir = pdmesh_test::fresh_dir("mesh_spacing_write");
-  const std::pair<const char*, std::string> files[] = {
-      {"a.vtu", vtu_string(mesh)},
-      {"ascii.vtu", vtu_string(mesh, VtuFormat::Ascii)},
-      {"a.msh", msh41_string(mesh)},
-      {"b.msh", msh22_string(mesh)}};
+  const std::pair<const char*, std::string> files[] = {{"a.vtu", vtu_string(mesh)},
+                                                       {"ascii.vtu", vtu_string(mesh, VtuFormat::Ascii)},
+                                                       {"a.msh", msh41_string(mesh)},
+                                                       {"b.msh", msh22_string(mesh)}};
   for (const auto& [name, text] : files) {
     INFO(name);
     std::ofstream(dir / name) << text;
@@ -306,8 +308,8 @@ TEST_CASE("bad background meshes are refused naming the file and the value", "[m
   SECTION("non-positive, non-finite and missing values at vertices") {
     MeshFieldData d = good;
     d.q[7] = -0.5;
-    CHECK_THAT(error_of([&] { MeshSpacing f(d); }), Catch::Contains("'q' is -0.5 at point 7 (") &&
-                                                          Catch::Contains("finite positive"));
+    CHECK_THAT(error_of([&] { MeshSpacing f(d); }),
+               Catch::Contains("'q' is -0.5 at point 7 (") && Catch::Contains("finite positive"));
     d.q[7] = std::numeric_limits<double>::quiet_NaN();
     CHECK_THAT(error_of([&] { MeshSpacing f(d); }), Catch::Contains("'q' is nan at point 7"));
     d.q[7] = std::numeric_limits<double>::infinity();
@@ -334,8 +336,8 @@ TEST_CASE("bad background meshes are refused naming the file and the value", "[m
     d.q.push_back(1);
     d.q.push_back(1);
     d.triangles.push_back({4, 25, 26});  // (1, 0), (2, 0), (3, 0)
-    CHECK_THAT(error_of([&] { MeshSpacing f(d); }), Catch::Contains("(point 4, point 25, point 26)") &&
-                                                          Catch::Contains("has zero area"));
+    CHECK_THAT(error_of([&] { MeshSpacing f(d); }),
+               Catch::Contains("(point 4, point 25, point 26)") && Catch::Contains("has zero area"));
   }
   SECTION("an inverted (folded) triangle, an edge of three triangles, overlapping meshes") {
     MeshFieldData d = good;
@@ -397,7 +399,8 @@ TEST_CASE("bad background meshes are refused naming the file and the value", "[m
 
 TEST_CASE("reading a background mesh: missing arrays are listed, vectors and odd files refused", "[mesh_spacing]") {
   CHECK_THAT(error_of([&] { load_mesh_spacing(kFixtures / "vtk_default.vtu", "h"); }),
-             Catch::Contains("vtk_default.vtu: no point-data array 'h' (spacing.array); its point-data arrays are: q, velocity"));
+             Catch::Contains(
+                 "vtk_default.vtu: no point-data array 'h' (spacing.array); its point-data arrays are: q, velocity"));
   CHECK_THAT(error_of([&] { load_mesh_spacing(kFixtures / "vtk_appended_raw_zlib.vtu", "velocity"); }),
              Catch::Contains("vtk_appended_raw_zlib.vtu:") && Catch::Contains("'velocity' has 3 components"));
   CHECK_THAT(error_of([&] { load_mesh_spacing(kFixtures / "gmsh_view_41.msh", "h"); }),
@@ -419,7 +422,8 @@ TEST_CASE("reading a background mesh: missing arrays are listed, vectors and odd
   std::string cut = text;
   cut.insert(data_at, "!");
   std::ofstream(dir / "cut.vtu") << cut;
-  CHECK_THAT(error_of([&] { load_mesh_spacing(dir / "cut.vtu", "q"); }), Catch::Contains("invalid base64 character '!'"));
+  CHECK_THAT(error_of([&] { load_mesh_spacing(dir / "cut.vtu", "q"); }),
+             Catch::Contains("invalid base64 character '!'"));
   fs::remove_all(dir);
 }
 
@@ -483,9 +487,9 @@ TEST_CASE("damaged background meshes give InputError or a field, nothing else", 
   const fs::path dir = pdmesh_test::fresh_dir("mesh_spacing_mutants");
   std::mt19937_64 rng(99);
   int refused = 0, read = 0;
-  for (const char* name : {"vtk_default.vtu", "vtk_appended_raw_zlib.vtu", "vtk_appended_raw_u64.vtu",
-                           "vtk_binary_zlib.vtu", "vtk_binary_bigendian.vtu", "meshio_binary_zlib.vtu",
-                           "gmsh_view_41.msh"}) {
+  for (const char* name :
+       {"vtk_default.vtu", "vtk_appended_raw_zlib.vtu", "vtk_appended_raw_u64.vtu", "vtk_binary_zlib.vtu",
+        "vtk_binary_bigendian.vtu", "meshio_binary_zlib.vtu", "gmsh_view_41.msh"}) {
     const std::string original = pdmesh_test::slurp(kFixtures / name);
     const std::string ext = fs::path(name).extension().string();
     for (int m = 0; m < 60; ++m) {

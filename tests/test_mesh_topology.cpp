@@ -36,9 +36,10 @@ TEST_CASE("find_fold_or_nonmanifold_edge names the folded pair and the shared ed
   // Triangle 1 lies on triangle 0's side of the edge 1-2 (point 4 at (0.2, 0.2)).
   const auto fold = pdmesh::find_fold_or_nonmanifold_edge(square({{0, 1, 2}, {2, 4, 1}}));
   REQUIRE(fold.has_value());
-  CHECK(*fold == "triangle 0 (points 0, 1, 2) and triangle 1 (points 2, 4, 1) lie on the same side of the edge between "
-                 "points 1 (1, 0) and 2 (0, 1): one is folded over the other (a triangle inverted in the file, or "
-                 "overlapping triangles)");
+  CHECK(*fold ==
+        "triangle 0 (points 0, 1, 2) and triangle 1 (points 2, 4, 1) lie on the same side of the edge between "
+        "points 1 (1, 0) and 2 (0, 1): one is folded over the other (a triangle inverted in the file, or "
+        "overlapping triangles)");
   const auto three = pdmesh::find_fold_or_nonmanifold_edge(square({{0, 1, 2}, {1, 3, 2}, {1, 3, 2}, {0, 1, 3}}));
   REQUIRE(three.has_value());
   CHECK(three->find("belongs to more than two triangles") != std::string::npos);
@@ -46,8 +47,8 @@ TEST_CASE("find_fold_or_nonmanifold_edge names the folded pair and the shared ed
 
 TEST_CASE("pdmesh quality refuses a folded mesh with exit 2 naming the triangles", "[quality][topology][cli]") {
   const fs::path dir = pdmesh_test::fresh_dir("quality_fold");
-  const auto folded = pdmesh_test::run_pdmesh("quality '" PDMESH_SOURCE_DIR "/tests/data/bad/field_folded.msh' --json '" +
-                                              (dir / "q.json").string() + "'");
+  const auto folded = pdmesh_test::run_pdmesh(
+      "quality '" PDMESH_SOURCE_DIR "/tests/data/bad/field_folded.msh' --json '" + (dir / "q.json").string() + "'");
   CHECK(folded.status == 2);
   CHECK(folded.output.find("pdmesh: error: ") != std::string::npos);
   CHECK(folded.output.find("field_folded.msh: triangle ") != std::string::npos);

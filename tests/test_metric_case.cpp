@@ -58,8 +58,9 @@ TEST_CASE("metric keys are read: sizes, components, files", "[metric][case]") {
   CHECK(vtu.spacing.array == "metric");  // the default array of a metric file
   const CaseConfig medit = parse("field = \"metric\"\nfile = \"adapt.mesh\"\n");
   CHECK(medit.spacing.sol == fs::path("/cases/demo/adapt.sol"));  // the same stem
-  const CaseConfig hessian = parse("field = \"hessian\"\nfunction = \"tanh(100*(y-0.5))\"\ncomplexity = 4000\n"
-                                   "hmin = 1e-5\nhmax = 0.3\nmax_anisotropy = 1000\n");
+  const CaseConfig hessian = parse(
+      "field = \"hessian\"\nfunction = \"tanh(100*(y-0.5))\"\ncomplexity = 4000\n"
+      "hmin = 1e-5\nhmax = 0.3\nmax_anisotropy = 1000\n");
   CHECK(hessian.spacing.field == SpacingKind::Hessian);
   CHECK(hessian.spacing.complexity == 4000.0);
   CHECK(hessian.spacing.hmin == 1e-5);
@@ -84,7 +85,8 @@ TEST_CASE("bad metric keys are refused naming the key and the value", "[metric][
   CHECK_THAT(error_of("field = \"metric\"\nh1 = \"0.1\"\nh2 = \"0.1\"\nfile = \"m.vtu\"\n"),
              Contains("spacing.h1 and spacing.file are both set"));
   // A metric key with another field, and a Hessian key with the metric field.
-  CHECK_THAT(error_of("expression = \"0.1\"\nh1 = \"0.1\"\n"), Contains("spacing.h1 is set but spacing.field is 'expression'"));
+  CHECK_THAT(error_of("expression = \"0.1\"\nh1 = \"0.1\"\n"),
+             Contains("spacing.h1 is set but spacing.field is 'expression'"));
   CHECK_THAT(error_of("field = \"metric\"\nh1 = \"1\"\nh2 = \"1\"\ncomplexity = 10\n"),
              Contains("spacing.complexity is set but spacing.field is 'metric'"));
   // Empty expressions, wrong types, out-of-range numbers: the key's line and the value.
@@ -101,8 +103,7 @@ TEST_CASE("bad metric keys are refused naming the key and the value", "[metric][
   // Gradation needs a background mesh; a .mesh is metric data only; a .sol needs a .mesh.
   CHECK_THAT(error_of("field = \"hessian\"\nfunction = \"x*x\"\ncomplexity = 10\nmetric_gradation = 1.5\n"),
              Contains("spacing.metric_gradation needs the metric on a background mesh"));
-  CHECK_THAT(error_of("field = \"metric\"\nfile = \"m.vtu\"\nmetric_gradation = 0.5\n"),
-             Contains("got 0.5"));
+  CHECK_THAT(error_of("field = \"metric\"\nfile = \"m.vtu\"\nmetric_gradation = 0.5\n"), Contains("got 0.5"));
   CHECK_THAT(error_of("file = \"m.mesh\"\n"), Contains("is a Medit .mesh"));
   CHECK_THAT(error_of("field = \"metric\"\nfile = \"m.vtu\"\nsol = \"m.sol\"\n"), Contains("not a Medit .mesh"));
   CHECK_THAT(error_of("field = \"metric\"\nfile = \"m.mesh\"\nsol = \"m.txt\"\n"), Contains("'m.txt'"));
@@ -114,8 +115,9 @@ TEST_CASE("the isotropic size of a metric is sqrt(h1 h2)", "[metric][case]") {
   CHECK(isotropic_size(metric_from_sizes(0.1, 0.001, 0.3)) == Approx(std::sqrt(0.1 * 0.001)).epsilon(1e-12));
   CHECK(isotropic_size(metric_from_sizes(0.2, 0.2, 0.0)) == Approx(0.2).epsilon(1e-14));
   // Through the case and the read stage: MeshInputs holds the metric, its base field is the size.
-  const CaseConfig c = load_case_file(fs::path(PDMESH_SOURCE_DIR) / "cases/aniso/linear/case.toml",
-                                      {parse_set_option("spacing.h2=0.01 + x*x"), parse_set_option("spacing.angle=30")});
+  const CaseConfig c =
+      load_case_file(fs::path(PDMESH_SOURCE_DIR) / "cases/aniso/linear/case.toml",
+                     {parse_set_option("spacing.h2=0.01 + x*x"), parse_set_option("spacing.angle=30")});
   const MeshInputs inputs(c);
   REQUIRE(inputs.metric != nullptr);
   const Metric m = inputs.metric->at({0.5, 0.2});
@@ -133,9 +135,10 @@ TEST_CASE("the isotropic size of a metric is sqrt(h1 h2)", "[metric][case]") {
 TEST_CASE("pdmesh mesh triangulates in the metric and measures in it", "[metric][case][cli]") {
   const fs::path out = pdmesh_test::fresh_path("metric_case_out");
   const std::string source = PDMESH_SOURCE_DIR;
-  const auto r = pdmesh_test::run_pdmesh(fmt::format("mesh '{}/cases/aniso/linear/case.toml' --out '{}' "
-                                                     "--set simulation.iterations=200",
-                                                     source, out.string()));
+  const auto r =
+      pdmesh_test::run_pdmesh(fmt::format("mesh '{}/cases/aniso/linear/case.toml' --out '{}' "
+                                          "--set simulation.iterations=200",
+                                          source, out.string()));
   INFO(r.output);
   REQUIRE(r.status == 0);
   CHECK_THAT(r.output, Contains("triangulation in the metric"));
@@ -147,8 +150,8 @@ TEST_CASE("pdmesh mesh triangulates in the metric and measures in it", "[metric]
   CHECK(fs::exists(out / "mesh_metric_q.png"));
   CHECK(fs::exists(out / "metric.png"));
   // pdmesh quality with the case measures the same mesh in the same metric.
-  const auto q = pdmesh_test::run_pdmesh(fmt::format("quality '{}' --geometry '{}/cases/aniso/linear/case.toml' --json -",
-                                                     (out / "mesh.msh").string(), source));
+  const auto q = pdmesh_test::run_pdmesh(fmt::format(
+      "quality '{}' --geometry '{}/cases/aniso/linear/case.toml' --json -", (out / "mesh.msh").string(), source));
   INFO(q.output);
   CHECK(q.status == 0);
   CHECK_THAT(q.output, Contains("Metric: quality Q"));
@@ -160,8 +163,8 @@ TEST_CASE("the nodes relax in the metric: the linear case's edges have unit metr
   // With the nodes left where the isotropic run at sqrt(h1 h2) puts them, 64 % of the edges are in
   // the window and Q min is 0.02; relaxed in the metric (the host driver's metric mode), 98.9 % and 0.56.
   const fs::path out = pdmesh_test::fresh_path("metric_relax_out");
-  const auto r = pdmesh_test::run_pdmesh(fmt::format("mesh '{}/cases/aniso/linear/case.toml' --out '{}' --formats msh",
-                                                     PDMESH_SOURCE_DIR, out.string()));
+  const auto r = pdmesh_test::run_pdmesh(
+      fmt::format("mesh '{}/cases/aniso/linear/case.toml' --out '{}' --formats msh", PDMESH_SOURCE_DIR, out.string()));
   INFO(r.output);
   REQUIRE(r.status == 0);
   CHECK_THAT(r.output, Contains("population control: off for a metric field"));
@@ -189,7 +192,8 @@ TEST_CASE("a Medit .mesh + .sol metric runs, the .sol found by the .mesh's stem"
       "[geometry]\nfiles = [\"{}/cases/aniso/linear/domain.crv\"]\n[spacing]\nfield = \"metric\"\nfile = \"bg.mesh\"\n",
       source);
   const fs::path out = dir / "out";
-  const auto r = pdmesh_test::run_pdmesh(fmt::format("mesh '{}' --out '{}' -q", (dir / "case.toml").string(), out.string()));
+  const auto r =
+      pdmesh_test::run_pdmesh(fmt::format("mesh '{}' --out '{}' -q", (dir / "case.toml").string(), out.string()));
   INFO(r.output);
   REQUIRE(r.status == 0);
   const std::string json = pdmesh_test::slurp(out / "quality.json");
@@ -198,7 +202,8 @@ TEST_CASE("a Medit .mesh + .sol metric runs, the .sol found by the .mesh's stem"
   std::ofstream(dir / "bg.sol") << "MeshVersionFormatted 2\nDimension 2\nSolAtVertices\n4\n1 3\n400 0 100\n"
                                    "400 300 100\n400 0 100\n400 0 100\nEnd\n";
   const fs::path out2 = dir / "out2";
-  const auto bad = pdmesh_test::run_pdmesh(fmt::format("mesh '{}' --out '{}' -q", (dir / "case.toml").string(), out2.string()));
+  const auto bad =
+      pdmesh_test::run_pdmesh(fmt::format("mesh '{}' --out '{}' -q", (dir / "case.toml").string(), out2.string()));
   CHECK(bad.status == 2);
   CHECK_THAT(bad.output, Contains("bg.sol"));
   CHECK_FALSE(fs::exists(out2));
@@ -213,7 +218,8 @@ TEST_CASE("a metric that is not a size is exit 2, naming the expression, nothing
       "[spacing]\nfield = \"metric\"\nh1 = \"0.1\"\nh2 = \"y - 0.5\"\n",
       source);
   const fs::path out = dir / "out";
-  const auto r = pdmesh_test::run_pdmesh(fmt::format("mesh '{}' --out '{}'", (dir / "case.toml").string(), out.string()));
+  const auto r =
+      pdmesh_test::run_pdmesh(fmt::format("mesh '{}' --out '{}'", (dir / "case.toml").string(), out.string()));
   INFO(r.output);
   CHECK(r.status == 2);
   CHECK_THAT(r.output, Contains("h2 = 'y - 0.5'"));
@@ -254,7 +260,8 @@ TEST_CASE("an output that would replace the metric file is refused", "[metric][c
   fs::create_directories(dir / "out");
   std::ofstream(dir / "out" / "mesh.vtu") << "the metric\n";
   std::ofstream(dir / "case.toml") << fmt::format(
-      "[geometry]\nfiles = [\"{}/cases/aniso/linear/domain.crv\"]\n[spacing]\nfield = \"metric\"\nfile = \"out/mesh.vtu\"\n",
+      "[geometry]\nfiles = [\"{}/cases/aniso/linear/domain.crv\"]\n[spacing]\nfield = \"metric\"\nfile = "
+      "\"out/mesh.vtu\"\n",
       PDMESH_SOURCE_DIR);
   const auto r = pdmesh_test::run_pdmesh(
       fmt::format("mesh '{}' --out '{}' -q", (dir / "case.toml").string(), (dir / "out").string()));

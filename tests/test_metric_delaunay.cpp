@@ -51,7 +51,10 @@ void add_square(NodeSet& nodes, double lo, double hi, int per_side, int curve, b
   for (int side = 0; side < 4; ++side)
     for (int k = 0; k < per_side; ++k) {
       const double s = lo + (hi - lo) * k / per_side;
-      const Vec2 p = side == 0 ? Vec2{s, lo} : side == 1 ? Vec2{hi, s} : side == 2 ? Vec2{hi + lo - s, hi} : Vec2{lo, hi + lo - s};
+      const Vec2 p = side == 0   ? Vec2{s, lo}
+                     : side == 1 ? Vec2{hi, s}
+                     : side == 2 ? Vec2{hi + lo - s, hi}
+                                 : Vec2{lo, hi + lo - s};
       loop.push_back(nodes.add(p, 0.1, NodeKind::Boundary, curve));
     }
   if (reverse) std::reverse(loop.begin(), loop.end());
@@ -75,9 +78,11 @@ std::vector<std::string> validity_problems(const Mesh& mesh, double area) {
     for (int i = 0; i < 3; ++i) ++directed[{t[i], t[(i + 1) % 3]}];
   }
   for (const auto& [e, count] : directed)
-    if (count != 1) problems.push_back("directed edge " + std::to_string(e.first) + "-" + std::to_string(e.second) +
-                                       " used " + std::to_string(count) + " times");
-  if (std::fabs(sum - area) > 1e-9 * area) problems.push_back("area " + std::to_string(sum) + " != " + std::to_string(area));
+    if (count != 1)
+      problems.push_back("directed edge " + std::to_string(e.first) + "-" + std::to_string(e.second) + " used " +
+                         std::to_string(count) + " times");
+  if (std::fabs(sum - area) > 1e-9 * area)
+    problems.push_back("area " + std::to_string(sum) + " != " + std::to_string(area));
   for (const auto& e : mesh.boundary_edges)
     if (!directed.count({e.a, e.b}) && !directed.count({e.b, e.a}))
       problems.push_back("boundary edge " + std::to_string(e.a) + "-" + std::to_string(e.b) + " missing");
@@ -86,7 +91,8 @@ std::vector<std::string> validity_problems(const Mesh& mesh, double area) {
 
 double triangles_area(const Mesh& mesh) {
   double sum = 0.0;
-  for (const auto& t : mesh.triangles) sum += 0.5 * cross(mesh.points[t[1]] - mesh.points[t[0]], mesh.points[t[2]] - mesh.points[t[0]]);
+  for (const auto& t : mesh.triangles)
+    sum += 0.5 * cross(mesh.points[t[1]] - mesh.points[t[0]], mesh.points[t[2]] - mesh.points[t[0]]);
   return sum;
 }
 
@@ -127,7 +133,8 @@ NodeSet linear_unit_mesh() {
 
 }  // namespace
 
-TEST_CASE("metric_incircle is the in-circle test of the mapped points, 0 on a circle of the metric", "[metric_delaunay]") {
+TEST_CASE("metric_incircle is the in-circle test of the mapped points, 0 on a circle of the metric",
+          "[metric_delaunay]") {
   std::mt19937_64 rng(5);
   const Metric m = metric_from_sizes(1.0, 0.02, 0.4);
   int agree = 0;
@@ -157,15 +164,16 @@ TEST_CASE("metric_incircle is the in-circle test of the mapped points, 0 on a ci
   CHECK(metric_incircle(on_ellipse(0.0), on_ellipse(2.0), on_ellipse(4.0), far, m) == -1);
 }
 
-TEST_CASE("the quadrilateral's mean metric never asks to undo a flip, the edge-midpoint metric does", "[metric_delaunay]") {
+TEST_CASE("the quadrilateral's mean metric never asks to undo a flip, the edge-midpoint metric does",
+          "[metric_delaunay]") {
   // Random convex quadrilaterals p, a, q, b across the layer of polar-1 (r near 0.5, where h_r
   // changes 100-fold within 0.5): with the metric at the tested edge's midpoint, the edge a-b and
   // the other diagonal p-q are judged in different metrics, and both can ask for a flip: the flip
   // loop would turn such a quadrilateral forever. With the mean over the four vertices, never.
   std::mt19937_64 rng(29);
   auto mean_metric = [](Vec2 p, Vec2 a, Vec2 b, Vec2 q) {
-    return exp_metric(0.25 * (log_metric(polar1_metric(p)) + log_metric(polar1_metric(a)) + log_metric(polar1_metric(b)) +
-                              log_metric(polar1_metric(q))));
+    return exp_metric(0.25 * (log_metric(polar1_metric(p)) + log_metric(polar1_metric(a)) +
+                              log_metric(polar1_metric(b)) + log_metric(polar1_metric(q))));
   };
   int midpoint_both = 0, mean_both = 0, tested = 0;
   for (int k = 0; k < 20000; ++k) {
@@ -177,7 +185,8 @@ TEST_CASE("the quadrilateral's mean metric never asks to undo a flip, the edge-m
     const double w = 0.05 * unit(rng);
     const Vec2 p = jitter(-w, 0.0), q = jitter(w, 0.0), a = jitter(0.0, -0.1), b = jitter(0.0, 0.1);
     // t = (p, a, b) and u = (q, b, a) counter-clockwise, p-a-q-b strictly convex.
-    if (!(orient2d(p, a, b) > 0.0 && orient2d(q, b, a) > 0.0 && orient2d(p, a, q) > 0.0 && orient2d(q, b, p) > 0.0)) continue;
+    if (!(orient2d(p, a, b) > 0.0 && orient2d(q, b, a) > 0.0 && orient2d(p, a, q) > 0.0 && orient2d(q, b, p) > 0.0))
+      continue;
     ++tested;
     const Metric mid_ab = polar1_metric(0.5 * (a + b)), mid_pq = polar1_metric(0.5 * (p + q));
     midpoint_both += metric_incircle(p, a, b, q, mid_ab) > 0 && metric_incircle(a, q, p, b, mid_pq) > 0;
@@ -285,7 +294,8 @@ TEST_CASE("no inverted triangle on random points in the polar-1 metric", "[metri
   NodeSet nodes;
   const bool constrained = seed % 2 == 0;
   if (constrained) add_square(nodes, 0.0, 1.0, 20, 0, false);
-  while (nodes.size() < 2000) nodes.add({0.005 + 0.99 * unit(rng), 0.005 + 0.99 * unit(rng)}, 0.1, NodeKind::Interior, -1);
+  while (nodes.size() < 2000)
+    nodes.add({0.005 + 0.99 * unit(rng), 0.005 + 0.99 * unit(rng)}, 0.1, NodeKind::Interior, -1);
   const auto metrics = metrics_at(nodes.x, polar1_metric);
   const std::vector<std::string> names = constrained ? std::vector<std::string>{"square"} : std::vector<std::string>{};
   MetricDelaunayStats stats;
@@ -314,8 +324,8 @@ TEST_CASE("cocircular points in the metric terminate without a flip", "[metric_d
     for (int j = 0; j < 20; ++j)
       for (int i = 0; i < 20; ++i) nodes.add({0.05 * i, 0.002 * j}, 0.1, NodeKind::Interior, -1);
     MetricDelaunayStats stats;
-    const Mesh mesh = triangulate_in_metric(nodes, {}, std::vector<Metric>(nodes.size(), metric_from_sizes(0.05, 0.002, 0.0)),
-                                            {}, &stats);
+    const Mesh mesh = triangulate_in_metric(
+        nodes, {}, std::vector<Metric>(nodes.size(), metric_from_sizes(0.05, 0.002, 0.0)), {}, &stats);
     CHECK(stats.converged);
     CHECK(stats.flips == 0);
     CHECK(mesh.triangles.size() == 2 * 19 * 19);
@@ -362,7 +372,8 @@ TEST_CASE("the flip bound stops the pass with a valid triangulation", "[metric_d
 
 TEST_CASE("metrics that are not SPD, or not one per point, are refused by name", "[metric_delaunay]") {
   NodeSet nodes;
-  for (int k = 0; k < 10; ++k) nodes.add({std::cos(0.6 * k) * (1 + 0.1 * k), std::sin(0.6 * k)}, 0.1, NodeKind::Interior, -1);
+  for (int k = 0; k < 10; ++k)
+    nodes.add({std::cos(0.6 * k) * (1 + 0.1 * k), std::sin(0.6 * k)}, 0.1, NodeKind::Interior, -1);
   std::vector<Metric> metrics(nodes.size(), Metric{});
   metrics[7] = {1.0, 2.0, 1.0};
   try {

@@ -58,7 +58,8 @@ std::string vtu_text(const Grid& g, const std::string& array, int components, co
   std::string s =
       "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
       "<UnstructuredGrid>\n<Piece NumberOfPoints=\"9\" NumberOfCells=\"8\">\n<PointData>\n";
-  s += fmt::format("<DataArray type=\"Float64\" Name=\"{}\" NumberOfComponents=\"{}\" format=\"ascii\">\n", array, components);
+  s += fmt::format("<DataArray type=\"Float64\" Name=\"{}\" NumberOfComponents=\"{}\" format=\"ascii\">\n", array,
+                   components);
   for (std::size_t i = 0; i < g.points.size(); ++i) {
     const Metric& m = g.metrics[i];
     if (i == 4 && !bad.empty()) {
@@ -84,10 +85,12 @@ std::string vtu_text(const Grid& g, const std::string& array, int components, co
 // MSH 2.2 with a $NodeData view "metric" of 3 components; `skip` leaves that node out of it.
 std::string msh_text(const Grid& g, int skip = -1) {
   std::string s = "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n9\n";
-  for (std::size_t i = 0; i < g.points.size(); ++i) s += fmt::format("{} {} {} 0\n", i + 1, g17(g.points[i].x), g17(g.points[i].y));
+  for (std::size_t i = 0; i < g.points.size(); ++i)
+    s += fmt::format("{} {} {} 0\n", i + 1, g17(g.points[i].x), g17(g.points[i].y));
   s += "$EndNodes\n$Elements\n8\n";
   for (std::size_t k = 0; k < g.triangles.size(); ++k)
-    s += fmt::format("{} 2 2 1 1 {} {} {}\n", k + 1, g.triangles[k][0] + 1, g.triangles[k][1] + 1, g.triangles[k][2] + 1);
+    s += fmt::format("{} 2 2 1 1 {} {} {}\n", k + 1, g.triangles[k][0] + 1, g.triangles[k][1] + 1,
+                     g.triangles[k][2] + 1);
   s += fmt::format("$EndElements\n$NodeData\n1\n\"metric\"\n1\n0.0\n3\n0\n3\n{}\n", skip >= 0 ? 8 : 9);
   for (std::size_t i = 0; i < g.points.size(); ++i) {
     if (static_cast<int>(i) == skip) continue;
@@ -105,8 +108,10 @@ std::string medit_mesh(const Grid& g) {
   s += "Edges\n2\n1 2 1\n2 3 1\nCorners\n1\n1\nTriangles\n8\n";
   for (std::size_t k = 0; k < g.triangles.size(); ++k) {
     const auto& t = g.triangles[k];
-    if (k == 3) s += fmt::format("{} {} {} 0\n", t[0] + 1, t[2] + 1, t[1] + 1);  // clockwise
-    else s += fmt::format("{} {} {} 0\n", t[0] + 1, t[1] + 1, t[2] + 1);
+    if (k == 3)
+      s += fmt::format("{} {} {} 0\n", t[0] + 1, t[2] + 1, t[1] + 1);  // clockwise
+    else
+      s += fmt::format("{} {} {} 0\n", t[0] + 1, t[1] + 1, t[2] + 1);
   }
   return s + "End\n";
 }
@@ -162,7 +167,8 @@ TEST_CASE("bad metric data on a .vtu or .msh is refused naming the file, the poi
   const std::string not_spd = error("a.vtu", vtu_text(g, "metric", 3, "1 2 1"));
   CHECK_THAT(not_spd, Catch::Contains("a.vtu:") && Catch::Contains("'metric' at point 4 (0.5, 0.5)") &&
                           Catch::Contains("(1, 2, 1) is not positive definite"));
-  CHECK_THAT(error("neg.vtu", vtu_text(g, "metric", 3, "-1 0 1")), Catch::Contains("(-1, 0, 1) is not positive definite"));
+  CHECK_THAT(error("neg.vtu", vtu_text(g, "metric", 3, "-1 0 1")),
+             Catch::Contains("(-1, 0, 1) is not positive definite"));
   // NaN.
   CHECK_THAT(error("nan.vtu", vtu_text(g, "metric", 3, "nan 0 1")), Catch::Contains("nan.vtu:"));
   // Wrong number of components, and a missing array (listing those there are).
@@ -171,7 +177,8 @@ TEST_CASE("bad metric data on a .vtu or .msh is refused naming the file, the poi
   CHECK_THAT(error("a.vtu", vtu_text(g, "metric", 3), "M"),
              Catch::Contains("no point-data array 'M'") && Catch::Contains("arrays are: metric"));
   // A node of a triangle without a value in the MSH view.
-  CHECK_THAT(error("skip.msh", msh_text(g, 4)), Catch::Contains("skip.msh:") && Catch::Contains("no value for node 5 (0.5, 0.5)"));
+  CHECK_THAT(error("skip.msh", msh_text(g, 4)),
+             Catch::Contains("skip.msh:") && Catch::Contains("no value for node 5 (0.5, 0.5)"));
   // Another extension.
   CHECK_THAT(error("m.txt", "x"), Catch::Contains("m.txt: a metric background mesh must be a .vtu or .msh file"));
 }
@@ -205,14 +212,18 @@ TEST_CASE("bad Medit input is refused naming the file, the line and the value", 
   // Wrong counts: more or fewer values than vertices, a count larger than the file.
   CHECK_THAT(sol_error(medit_sol(g, "SolAtVertices\n8\n1 3\n")),
              Catch::Contains("m.sol:6: SolAtVertices has 8 values for the 9 vertices of m.mesh"));
-  CHECK_THAT(sol_error(medit_sol(g, "SolAtVertices\n1000000\n1 3\n")), Catch::Contains("m.sol:6:") && Catch::Contains("cannot fit"));
+  CHECK_THAT(sol_error(medit_sol(g, "SolAtVertices\n1000000\n1 3\n")),
+             Catch::Contains("m.sol:6:") && Catch::Contains("cannot fit"));
   CHECK_THAT(sol_error("SolAtVertices\n9\n1 3\n1 0 1\n"), Catch::Contains("m.sol:") && Catch::Contains("cannot fit"));
   // Wrong type, several solutions, another dimension, no SolAtVertices.
   CHECK_THAT(sol_error(medit_sol(g, "SolAtVertices\n9\n1 1\n")),
              Catch::Contains("m.sol:7: solution type 1 is not a metric") && Catch::Contains("type 1 is a scalar size"));
-  CHECK_THAT(sol_error(medit_sol(g, "SolAtVertices\n9\n2 3 1\n")), Catch::Contains("m.sol:7: pdmesh reads one solution per vertex"));
-  CHECK_THAT(sol_error("MeshVersionFormatted 2\nDimension 3\n"), Catch::Contains("m.sol:2: pdmesh reads 2-D Medit files: Dimension must be 2 (got '3')"));
-  CHECK_THAT(sol_error("MeshVersionFormatted 2\nDimension 2\nEnd\n"), Catch::Contains("m.sol:3: no SolAtVertices section"));
+  CHECK_THAT(sol_error(medit_sol(g, "SolAtVertices\n9\n2 3 1\n")),
+             Catch::Contains("m.sol:7: pdmesh reads one solution per vertex"));
+  CHECK_THAT(sol_error("MeshVersionFormatted 2\nDimension 3\n"),
+             Catch::Contains("m.sol:2: pdmesh reads 2-D Medit files: Dimension must be 2 (got '3')"));
+  CHECK_THAT(sol_error("MeshVersionFormatted 2\nDimension 2\nEnd\n"),
+             Catch::Contains("m.sol:3: no SolAtVertices section"));
   CHECK_THAT(sol_error("SolAtTriangles\n8\n1 3\n"), Catch::Contains("m.sol:1: expected SolAtVertices"));
   // The mesh: an index out of range, an unknown keyword, no triangles, text for a coordinate.
   std::string bad_index = mesh;
@@ -220,8 +231,10 @@ TEST_CASE("bad Medit input is refused naming the file, the line and the value", 
   CHECK_THAT(mesh_error(bad_index), Catch::Contains("m.mesh:25: triangle vertex 10 is out of range [1, 9] (got '10')"));
   CHECK_THAT(mesh_error("MeshVersionFormatted 2\nDimension 2\nTetrahedra\n0\n"),
              Catch::Contains("m.mesh:3: unknown Medit keyword") && Catch::Contains("(got 'Tetrahedra')"));
-  CHECK_THAT(mesh_error("Dimension 2\nVertices\n3\n0 0 0\n1 0 0\n0 1 0\nEnd\n"), Catch::Contains("m.mesh:") && Catch::Contains("no Triangles"));
-  CHECK_THAT(mesh_error("Dimension 2\nVertices\n3\n0 0 0\n1 y 0\n0 1 0\n"), Catch::Contains("m.mesh:5: expected a finite number for a vertex y (got 'y')"));
+  CHECK_THAT(mesh_error("Dimension 2\nVertices\n3\n0 0 0\n1 0 0\n0 1 0\nEnd\n"),
+             Catch::Contains("m.mesh:") && Catch::Contains("no Triangles"));
+  CHECK_THAT(mesh_error("Dimension 2\nVertices\n3\n0 0 0\n1 y 0\n0 1 0\n"),
+             Catch::Contains("m.mesh:5: expected a finite number for a vertex y (got 'y')"));
   // Binary files and other extensions, and a missing file.
   const fs::path dir = pdmesh_test::fresh_dir("metric_medit_bad");
   write(dir / "m.mesh", mesh);
@@ -230,10 +243,12 @@ TEST_CASE("bad Medit input is refused naming the file, the line and the value", 
              Catch::Contains("m.meshb: binary Medit files (.meshb) are not read"));
   CHECK_THAT(error_message<InputError>([&] { load_medit_metric(dir / "m.mesh", dir / "m.txt"); }),
              Catch::Contains("m.txt: a Medit metric needs a .sol file"));
-  CHECK_THAT(error_message<InputError>([&] { load_medit_metric(dir / "m.mesh", dir / "none.sol"); }), Catch::Contains("none.sol"));
+  CHECK_THAT(error_message<InputError>([&] { load_medit_metric(dir / "m.mesh", dir / "none.sol"); }),
+             Catch::Contains("none.sol"));
   // A degenerate triangle is MeshMetricField's refusal, naming the files.
   std::string flat = mesh;
   flat.replace(flat.find("Triangles\n8\n1 2 5"), 17, "Triangles\n8\n1 2 3");
-  CHECK_THAT(error_message<InputError>([&] { make_mesh_metric_field(parse_medit_metric("m.mesh", flat, "m.sol", medit_sol(g))); }),
+  CHECK_THAT(error_message<InputError>(
+                 [&] { make_mesh_metric_field(parse_medit_metric("m.mesh", flat, "m.sol", medit_sol(g))); }),
              Catch::Contains("m.mesh with m.sol"));
 }

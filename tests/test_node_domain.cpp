@@ -13,8 +13,8 @@ namespace {
 // A closed square curve of side s centred at c with n points per side.
 RawCurve square(double s, Vec2 c, int n, bool clockwise) {
   RawCurve r;
-  std::vector<Vec2> corners = {{c.x - s / 2, c.y - s / 2}, {c.x + s / 2, c.y - s / 2}, {c.x + s / 2, c.y + s / 2},
-                               {c.x - s / 2, c.y + s / 2}};
+  std::vector<Vec2> corners = {
+      {c.x - s / 2, c.y - s / 2}, {c.x + s / 2, c.y - s / 2}, {c.x + s / 2, c.y + s / 2}, {c.x - s / 2, c.y + s / 2}};
   if (clockwise) std::swap(corners[1], corners[3]);
   for (int side = 0; side < 4; ++side)
     for (int k = 0; k < n; ++k) {

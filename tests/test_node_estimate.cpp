@@ -87,8 +87,10 @@ TEST_CASE("node estimate over the background field: a square with a square hole,
   const Vec2 outer[4] = {{0, 0}, {L, 0}, {L, L}, {0, L}};
   const Vec2 o{2.13, 3.37};
   const Vec2 hole[4] = {{o.x, o.y}, {o.x, o.y + l}, {o.x + l, o.y + l}, {o.x + l, o.y}};  // clockwise
-  for (int k = 0; k < 4; ++k) raw.push_back({"outer" + std::to_string(k), line(outer[k], outer[(k + 1) % 4], 32), "test", 0, {}});
-  for (int k = 0; k < 4; ++k) raw.push_back({"hole" + std::to_string(k), line(hole[k], hole[(k + 1) % 4], 8), "test", 0, {}});
+  for (int k = 0; k < 4; ++k)
+    raw.push_back({"outer" + std::to_string(k), line(outer[k], outer[(k + 1) % 4], 32), "test", 0, {}});
+  for (int k = 0; k < 4; ++k)
+    raw.push_back({"hole" + std::to_string(k), line(hole[k], hole[(k + 1) % 4], 8), "test", 0, {}});
   const Geometry g = build_geometry(std::move(raw));
   REQUIRE(g.area == Approx(L * L - l * l));
   const GeometryTree tree(g);

@@ -41,7 +41,8 @@ std::string error_of(const std::string& text) {
   return "";
 }
 
-const std::string kGood = "# pdmesh nodes v1\n3\n0 0 fixed 0 1\n1 0 boundary 0 1\n0.5 0.5 interior -1 1\ncurves 1\nc 2 0 1\n";
+const std::string kGood =
+    "# pdmesh nodes v1\n3\n0 0 fixed 0 1\n1 0 boundary 0 1\n0.5 0.5 interior -1 1\ncurves 1\nc 2 0 1\n";
 
 }  // namespace
 
@@ -100,7 +101,8 @@ TEST_CASE("malformed node files are rejected naming file and line", "[nodes][app
         "bad.nodes:3: expected a node line 'x y kind curve q' (5 fields), got 4 fields");
   CHECK(error_of("# pdmesh nodes v1\n1\n0 nan interior -1 1\ncurves 0\n") == "bad.nodes:3: y 'nan' is not finite");
   CHECK(error_of("# pdmesh nodes v1\n1\n0 1x interior -1 1\ncurves 0\n") == "bad.nodes:3: y '1x' is not a number");
-  CHECK(error_of("# pdmesh nodes v1\n1\n0 0 corner 0 1\ncurves 0\n").find("bad.nodes:3: unknown node kind 'corner'") == 0);
+  CHECK(error_of("# pdmesh nodes v1\n1\n0 0 corner 0 1\ncurves 0\n").find("bad.nodes:3: unknown node kind 'corner'") ==
+        0);
   CHECK(error_of("# pdmesh nodes v1\n1\n0 0 interior 2 1\ncurves 0\n") ==
         "bad.nodes:3: node 0: an interior node must have curve -1, got 2");
   CHECK(error_of("# pdmesh nodes v1\n1\n0 0 boundary 3 1\ncurves 1\nc 1 0\n") ==

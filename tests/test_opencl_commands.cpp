@@ -80,10 +80,10 @@ TEST_CASE("the wrapper counts launches, transfers, device copies and waits", "[o
   copy_buffer(ctx.queue(), by.get(), bz.get(), n * sizeof(float), "copy y to z");
   fill_zero(ctx.queue(), by.get(), n * sizeof(float), "clear y");
   std::vector<float> y, z, none;
-  by.download(ctx.queue(), y, n, false);  // non-blocking: a read
-  finish(ctx.queue(), "reads");           // a wait
-  bz.download(ctx.queue(), z);            // blocking: a read and a wait
-  bz.download(ctx.queue(), none, 0);      // nothing to read: no command
+  by.download(ctx.queue(), y, n, false);           // non-blocking: a read
+  finish(ctx.queue(), "reads");                    // a wait
+  bz.download(ctx.queue(), z);                     // blocking: a read and a wait
+  bz.download(ctx.queue(), none, 0);               // nothing to read: no command
   launch(ctx.queue(), k, "selftest_axpy", 0, wg);  // no work-items: no command
   const CommandCounts d = command_counts() - start;
 
@@ -141,8 +141,8 @@ TEST_CASE("a device run's iterations: 2 launches each, one wait per window witho
   for (const Chunk& k : chunks) {
     const CommandCounts d = k.d - k.rebuild;  // the iterations' own
     INFO(k.rows << " iterations, " << k.rebuilds << " rebuilds: " << d.launches << " launches, " << d.reads
-                << " reads, " << d.writes << " writes, " << d.copies << " copies, " << d.waits << " waits; the rebuilds "
-                << k.rebuild.launches << " launches, " << k.rebuild.waits << " waits");
+                << " reads, " << d.writes << " writes, " << d.copies << " copies, " << d.waits
+                << " waits; the rebuilds " << k.rebuild.launches << " launches, " << k.rebuild.waits << " waits");
     CHECK(d.waits >= 1);  // the window's rows are read once
     CHECK(d.reads >= 1);
     // device_step and boundary_snap_rule (the time-step rule in its last work-group) per iteration
@@ -152,7 +152,8 @@ TEST_CASE("a device run's iterations: 2 launches each, one wait per window witho
     CHECK(d.launches <= 2 * static_cast<std::uint64_t>(ocl::kWindowLength) + 1);
     CHECK(d.waits <= 2);
     CHECK(d.copies == 0);
-    if (k.rebuilds > 0) CHECK(k.rebuild.launches >= 2 * static_cast<std::uint64_t>(k.rebuilds));  // the neighbour kernels
+    if (k.rebuilds > 0)
+      CHECK(k.rebuild.launches >= 2 * static_cast<std::uint64_t>(k.rebuilds));  // the neighbour kernels
     rows += k.rows;
     waits += d.waits;
     rebuilds += k.rebuilds;

@@ -35,8 +35,9 @@ TEST_CASE("an output that would replace an input is refused before anything runs
   CHECK(slurp(dir / "mesh.poly") == before);
   CHECK(pdmesh_test::entries(dir) == 1);  // nothing written
   // --timings onto the input: refused the same way.
-  const auto t = run_pdmesh("mesh '" + (dir / "mesh.poly").string() + "' --out '" + (dir / "out").string() +
-                            "' --formats msh --iterations 5 --device host --timings '" + (dir / "mesh.poly").string() + "'");
+  const auto t =
+      run_pdmesh("mesh '" + (dir / "mesh.poly").string() + "' --out '" + (dir / "out").string() +
+                 "' --formats msh --iterations 5 --device host --timings '" + (dir / "mesh.poly").string() + "'");
   CHECK(t.status == 2);
   CHECK_THAT(t.output, Catch::Contains("would replace the input"));
   CHECK(slurp(dir / "mesh.poly") == before);
@@ -72,8 +73,8 @@ TEST_CASE("an unwritable --timings or --out is refused before the work starts", 
 
 TEST_CASE("a second run into an --out that another run holds is refused, a released one is not", "[cli][outputs]") {
   const fs::path dir = pdmesh_test::fresh_dir("guard_lock");
-  const std::string command = "mesh '" + (kCases / "square200" / "square.crv").string() + "' --out '" +
-                              dir.string() + "' --formats msh --iterations 5 --device host -q";
+  const std::string command = "mesh '" + (kCases / "square200" / "square.crv").string() + "' --out '" + dir.string() +
+                              "' --formats msh --iterations 5 --device host -q";
   // This process stands for the other run: it holds the lock.
   const int fd = ::open(dir.c_str(), O_RDONLY | O_DIRECTORY);
   REQUIRE(fd >= 0);
@@ -89,6 +90,7 @@ TEST_CASE("a second run into an --out that another run holds is refused, a relea
   INFO(free.output);
   CHECK(free.status == 0);
   CHECK(fs::exists(dir / "mesh.msh"));
-  for (const auto& e : fs::directory_iterator(dir)) CHECK(e.path().filename().string().find("lock") == std::string::npos);
+  for (const auto& e : fs::directory_iterator(dir))
+    CHECK(e.path().filename().string().find("lock") == std::string::npos);
   fs::remove_all(dir);
 }

@@ -23,7 +23,8 @@ TEST_CASE("parallel_for runs every index exactly once", "[core][parallel]") {
   for (const std::size_t n : {0u, 1u, 7u, 511u, 512u, 1023u, 10000u, 100003u}) {
     for (const std::size_t min_chunk : {1u, 64u, 512u, 4096u}) {
       std::vector<std::atomic<int>> seen(n);
-      parallel_for(n, [&](std::size_t i) { seen[i].fetch_add(1); }, min_chunk);
+      parallel_for(
+          n, [&](std::size_t i) { seen[i].fetch_add(1); }, min_chunk);
       std::size_t wrong = 0;
       for (const auto& s : seen) wrong += s.load() == 1 ? 0 : 1;
       INFO("n = " << n << ", min_chunk = " << min_chunk);
@@ -35,7 +36,8 @@ TEST_CASE("parallel_for runs every index exactly once", "[core][parallel]") {
 TEST_CASE("parallel_for keeps a range of one chunk on the calling thread", "[core][parallel]") {
   const std::thread::id caller = std::this_thread::get_id();
   std::atomic<int> elsewhere{0};
-  parallel_for(4096, [&](std::size_t) { elsewhere += std::this_thread::get_id() == caller ? 0 : 1; }, 4096);
+  parallel_for(
+      4096, [&](std::size_t) { elsewhere += std::this_thread::get_id() == caller ? 0 : 1; }, 4096);
   CHECK(elsewhere.load() == 0);
 }
 
@@ -46,9 +48,12 @@ TEST_CASE("parallel_for rethrows the exception of the lowest failing block", "[c
   const std::size_t n = 100000;
   std::string what;
   try {
-    parallel_for(n, [&](std::size_t i) {
-      if (i >= 1000) throw std::runtime_error(std::to_string(i));
-    }, 64);
+    parallel_for(
+        n,
+        [&](std::size_t i) {
+          if (i >= 1000) throw std::runtime_error(std::to_string(i));
+        },
+        64);
   } catch (const std::runtime_error& e) {
     what = e.what();
   }
@@ -121,7 +126,13 @@ TEST_CASE("WorkerPool runs job(0) on the caller and 1..count on its helpers, one
 TEST_CASE("parallel_for nested in parallel_for runs every index once", "[core][parallel]") {
   const std::size_t outer = 64, inner = 5000;
   std::vector<std::atomic<int>> seen(outer * inner);
-  parallel_for(outer, [&](std::size_t i) { parallel_for(inner, [&](std::size_t j) { seen[i * inner + j].fetch_add(1); }, 512); }, 1);
+  parallel_for(
+      outer,
+      [&](std::size_t i) {
+        parallel_for(
+            inner, [&](std::size_t j) { seen[i * inner + j].fetch_add(1); }, 512);
+      },
+      1);
   std::size_t wrong = 0;
   for (const auto& c : seen) wrong += c.load() != 1;
   CHECK(wrong == 0);
@@ -155,7 +166,8 @@ TEST_CASE("parallel_for in a child made by fork() runs on threads of its own", "
   REQUIRE(child >= 0);
   if (child == 0) {
     std::vector<std::atomic<int>> seen(100000);
-    parallel_for(seen.size(), [&](std::size_t i) { seen[i].fetch_add(1); }, 512);
+    parallel_for(
+        seen.size(), [&](std::size_t i) { seen[i].fetch_add(1); }, 512);
     for (const auto& c : seen)
       if (c.load() != 1) _exit(1);
     _exit(0);

@@ -112,8 +112,8 @@ TEST_CASE("PNG encoder: signature, IHDR, CRCs and the inflated rows follow the s
     const std::vector<Chunk> p = chunks(encode_png(again, level));
     std::vector<unsigned char> r(row * height);
     uLongf n = static_cast<uLongf>(r.size());
-    REQUIRE(uncompress(r.data(), &n, reinterpret_cast<const Bytef*>(p[1].data.data()), static_cast<uLong>(p[1].data.size())) ==
-            Z_OK);
+    REQUIRE(uncompress(r.data(), &n, reinterpret_cast<const Bytef*>(p[1].data.data()),
+                       static_cast<uLong>(p[1].data.size())) == Z_OK);
     CHECK(std::vector<unsigned char>(raw.begin(), raw.begin() + static_cast<std::ptrdiff_t>(row * height)) == r);
   }
   cairo_surface_destroy(again);

@@ -243,7 +243,7 @@ TEST_CASE("segment tests: hand cases", "[predicates]") {
   CHECK_FALSE(segments_cross_properly(o, x2, {1, 0}, {1, 5}));
   CHECK(segments_intersect(o, x2, {1, 0}, {3, 0}));  // collinear overlap
   CHECK_FALSE(segments_cross_properly(o, x2, {1, 0}, {3, 0}));
-  CHECK(segments_intersect(o, x2, {2, 0}, {3, 0}));  // collinear, touching
+  CHECK(segments_intersect(o, x2, {2, 0}, {3, 0}));          // collinear, touching
   CHECK_FALSE(segments_intersect(o, x2, {2.5, 0}, {3, 0}));  // collinear, disjoint
   CHECK_FALSE(segments_intersect(o, x2, {0, 1}, {2, 1}));    // parallel
   CHECK(segments_intersect(o, x2, {1, 0}, {1, 0}));          // point segment on ab

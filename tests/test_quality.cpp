@@ -127,8 +127,7 @@ TEST_CASE("metrics are invariant under rotation, scaling, translation and cyclic
     const double th = 2.0 * 3.14159265358979 * unit(rng), s = 0.001 + 1000.0 * unit(rng);
     const Vec2 shift{unit(rng) * 100.0 - 50.0, unit(rng) * 100.0 - 50.0};
     auto map = [&](Vec2 p) {
-      return Vec2{s * (std::cos(th) * p.x - std::sin(th) * p.y), s * (std::sin(th) * p.x + std::cos(th) * p.y)} +
-             shift;
+      return Vec2{s * (std::cos(th) * p.x - std::sin(th) * p.y), s * (std::sin(th) * p.x + std::cos(th) * p.y)} + shift;
     };
     check_same(triangle_quality(map(a), map(b), map(c)), ref);
   }
@@ -213,8 +212,8 @@ TEST_CASE("spacing conformance uses every unique edge once at its midpoint", "[q
 
 TEST_CASE("percentiles interpolate between closest ranks", "[quality]") {
   const std::vector<double> v = {1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11};
-  CHECK(percentile_sorted(v, 0.05) == Approx(1.5));  // position 0.5
-  CHECK(percentile_sorted(v, 0.95) == Approx(10.5)); // position 9.5
+  CHECK(percentile_sorted(v, 0.05) == Approx(1.5));   // position 0.5
+  CHECK(percentile_sorted(v, 0.95) == Approx(10.5));  // position 9.5
   CHECK(percentile_sorted(v, 0.5) == Approx(6.0));
   CHECK(percentile_sorted(v, 0.0) == 1.0);
   CHECK(percentile_sorted(v, 1.0) == 11.0);
@@ -244,11 +243,11 @@ TEST_CASE("quality table has the thesis rows with thesis precision", "[quality]"
     INFO(row);
     CHECK(t.find(row) != std::string::npos);
   }
-  CHECK(t.find("45.00") != std::string::npos);   // angle MIN, 2 decimals
-  CHECK(t.find("90.00") != std::string::npos);   // angle MAX
-  CHECK(t.find("1.207") != std::string::npos);   // aspect ratio MAX, 3 decimals
-  CHECK(t.find("1.414") != std::string::npos);   // skewness MAX
-  CHECK(t.find("0.707") != std::string::npos);   // minimum corner Jacobian
+  CHECK(t.find("45.00") != std::string::npos);  // angle MIN, 2 decimals
+  CHECK(t.find("90.00") != std::string::npos);  // angle MAX
+  CHECK(t.find("1.207") != std::string::npos);  // aspect ratio MAX, 3 decimals
+  CHECK(t.find("1.414") != std::string::npos);  // skewness MAX
+  CHECK(t.find("0.707") != std::string::npos);  // minimum corner Jacobian
 }
 
 TEST_CASE("json strings are escaped", "[quality]") {
@@ -268,11 +267,11 @@ TEST_CASE("quality.json holds the documented keys and is written atomically", "[
   CHECK(path == dir / "quality.json");
   CHECK(std::distance(std::filesystem::directory_iterator(dir), std::filesystem::directory_iterator()) == 1);
   const std::string j = read_text_file(path);
-  for (const char* key : {"\"format\": \"pdmesh-quality\"", "\"triangles\": 3", "\"points\": 5", "\"included_angle\"",
-                          "\"aspect_ratio\": {\"average\": null, \"max\": null}", "\"skewness\"",
-                          "\"weighted_condition_number\"", "\"minimum_corner_jacobian\": 0,", "\"small_angle\"",
-                          "\"histograms\"", "\"min_angle\"", "\"spacing_conformance\": {\"edges\":",
-                          "\"source\": \"dir/\\\"mesh\\\".msh\""}) {
+  for (const char* key :
+       {"\"format\": \"pdmesh-quality\"", "\"triangles\": 3", "\"points\": 5", "\"included_angle\"",
+        "\"aspect_ratio\": {\"average\": null, \"max\": null}", "\"skewness\"", "\"weighted_condition_number\"",
+        "\"minimum_corner_jacobian\": 0,", "\"small_angle\"", "\"histograms\"", "\"min_angle\"",
+        "\"spacing_conformance\": {\"edges\":", "\"source\": \"dir/\\\"mesh\\\".msh\""}) {
     INFO(key);
     CHECK(j.find(key) != std::string::npos);
   }
@@ -318,8 +317,9 @@ TEST_CASE("quality command reads a mesh file, prints the table and writes the JS
   m.boundary_edges = {{0, 1, 0}, {1, 2, 1}, {2, 3, 2}, {3, 0, 3}};
   write_mesh(m, dir, "square", {"su2"});
   write_text_file(dir / "square.crv", "2\n0 0\n1 0\n2\n1 0\n1 1\n2\n1 1\n0 1\n2\n0 1\n0 0\n");
-  write_text_file(dir / "case.toml", "[geometry]\nfiles = [\"square.crv\"]\n[spacing]\nfield = \"expression\"\n"
-                                     "expression = \"2\"\n");
+  write_text_file(dir / "case.toml",
+                  "[geometry]\nfiles = [\"square.crv\"]\n[spacing]\nfield = \"expression\"\n"
+                  "expression = \"2\"\n");
   std::ostringstream out, err;
   CHECK(run_quality((dir / "square.su2").string(), (dir / "square.crv").string(), dir.string(), out, err) == 0);
   CHECK(out.str().find("Number of Triangles") != std::string::npos);

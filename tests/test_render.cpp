@@ -83,7 +83,8 @@ Mesh grid_mesh(int k, Map map) {
       m.triangles.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
       m.triangles.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
     }
-  m.boundary_edges = {{id(0, 0), id(k, 0), 0}, {id(k, 0), id(k, k), 0}, {id(k, k), id(0, k), 0}, {id(0, k), id(0, 0), 0}};
+  m.boundary_edges = {
+      {id(0, 0), id(k, 0), 0}, {id(k, 0), id(k, k), 0}, {id(k, k), id(0, k), 0}, {id(0, k), id(0, 0), 0}};
   m.curve_names = {"square"};
   return m;
 }
@@ -125,7 +126,9 @@ TEST_CASE("node pictures are PNGs of the documented size with nodes and geometry
   CHECK(png.width() == 1600);
   CHECK(png.height() == 845 + 40);
   const double scale = 1600 / 2.12;
-  auto px = [&](Vec2 w) { return std::pair<int, int>(static_cast<int>((w.x + 0.06) * scale), static_cast<int>(40 + (1.06 - w.y) * scale)); };
+  auto px = [&](Vec2 w) {
+    return std::pair<int, int>(static_cast<int>((w.x + 0.06) * scale), static_cast<int>(40 + (1.06 - w.y) * scale));
+  };
   const auto [ix, iy] = px({1, 0.5});
   const Rgb interior = png.pixel(ix, iy);
   CHECK(interior.r > 200);
@@ -174,7 +177,8 @@ TEST_CASE("a view window zooms in and a tall window makes a tall image", "[rende
   fs::remove_all(dir);
 }
 
-TEST_CASE("the scale bar sits in the title band beside the title, over the plot only where there is no room", "[render]") {
+TEST_CASE("the scale bar sits in the title band beside the title, over the plot only where there is no room",
+          "[render]") {
   const fs::path dir = fresh_dir("scale_bar");
   // 2 x 1 window at 800 px: 400 px per unit, a 0.2 bar of 80 px, in the band from x = 700 to 780 at y = 32.
   NodeSet n;
@@ -226,7 +230,9 @@ TEST_CASE("mesh pictures fill triangles by value and draw a colour bar", "[rende
   CHECK(png.width() == 400 + 150);
   CHECK(png.height() == 400 + 40);
   const double scale = 400 / 1.06;
-  auto px = [&](Vec2 w) { return std::pair<int, int>(static_cast<int>((w.x + 0.03) * scale), static_cast<int>(40 + (1.03 - w.y) * scale)); };
+  auto px = [&](Vec2 w) {
+    return std::pair<int, int>(static_cast<int>((w.x + 0.03) * scale), static_cast<int>(40 + (1.03 - w.y) * scale));
+  };
   // Lower-right triangle has the minimum (ramp start), upper-left the maximum (ramp end).
   const auto [lx, ly] = px({0.8, 0.2});
   const Rgb low = png.pixel(lx, ly);
@@ -255,7 +261,9 @@ TEST_CASE("a fixed value range places values on the ramp and clamps those outsid
   Png png(dir / "range.png");
   REQUIRE(png.ok());
   const double scale = 400 / 1.06;
-  auto px = [&](Vec2 w) { return std::pair<int, int>(static_cast<int>((w.x + 0.03) * scale), static_cast<int>(40 + (1.03 - w.y) * scale)); };
+  auto px = [&](Vec2 w) {
+    return std::pair<int, int>(static_cast<int>((w.x + 0.03) * scale), static_cast<int>(40 + (1.03 - w.y) * scale));
+  };
   const auto [mx, my] = px({0.8, 0.2});
   const Rgb mid = png.pixel(mx, my);  // 30 of [0, 60]: the middle of the ramp, not its start
   CHECK(mid.g == Approx(255 * colour_ramp(0.5).g).margin(3));

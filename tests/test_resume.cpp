@@ -144,7 +144,8 @@ TEST_CASE("a checkpoint keeps the stopping rule's measurements exactly, and a fi
 
 TEST_CASE("a stopped and resumed run ends bit-identical to an uninterrupted one", "[resume][cli]") {
   // The thesis' settings, and boundary nodes placed by the field on smooth curves.
-  const std::string settings = GENERATE(std::string(""), std::string("--set boundary.nodes=spacing --set geometry.curves=smooth"));
+  const std::string settings =
+      GENERATE(std::string(""), std::string("--set boundary.nodes=spacing --set geometry.curves=smooth"));
   INFO("settings: " << settings);
   const fs::path whole = fresh_path("whole"), parts = fresh_path("parts");
   const auto full = run_pdmesh(mesh_command(whole, "-q " + settings));
@@ -180,7 +181,8 @@ namespace {
 std::string population_command(const fs::path& out, const std::string& extra) {
   return "mesh '" + std::string(PDMESH_SOURCE_DIR) + "/cases/circle_circle/circles.crv' --out '" + out.string() +
          "' --device host --formats msh --iterations 90 --method random --seed 3 -q --set population.start=20 "
-         "--set population.every=10 --set population.stop=0.8 " + extra;
+         "--set population.every=10 --set population.stop=0.8 " +
+         extra;
 }
 
 // Stops `parts`' run (made by `command`) after iteration 45 again, then resumes its checkpoint with
@@ -212,8 +214,8 @@ TEST_CASE("a run stopped after population events resumes bit-identical on the ho
   // Events ran after iterations 20, 30 and 40 and changed the node set.
   CHECK(c.state.population.last_event == 40);
   REQUIRE(inserted + removed > 0);
-  CHECK(c.nodes.size() == c.state.history.back().fixed + c.state.history.back().boundary +
-                              c.state.history.back().interior);
+  CHECK(c.nodes.size() ==
+        c.state.history.back().fixed + c.state.history.back().boundary + c.state.history.back().interior);
   const auto resumed = run_pdmesh(command(parts, "--resume '" + parts.string() + "'"));
   INFO(resumed.output);
   REQUIRE(resumed.status == 0);
@@ -290,7 +292,8 @@ TEST_CASE("a run whose population control settled early resumes bit-identical, w
 TEST_CASE("a checkpoint of another case or other settings is refused with exit 2", "[resume][cli]") {
   const fs::path dir = fresh_path("other");
   REQUIRE(run_pdmesh(mesh_command(dir, "-q --stop-after 3")).status == 130);
-  const auto other_settings = run_pdmesh(mesh_command(fresh_path("o2"), "--cutoff 1.6 --resume '" + dir.string() + "'"));
+  const auto other_settings =
+      run_pdmesh(mesh_command(fresh_path("o2"), "--cutoff 1.6 --resume '" + dir.string() + "'"));
   CHECK(other_settings.status == 2);
   CHECK_THAT(other_settings.output, Catch::Contains("another case") && Catch::Contains("simulation.cutoff"));
   // The spacing pipeline's keys change the field the run follows.
@@ -326,8 +329,8 @@ TEST_CASE("SIGINT stops a running mesh command with exit 130 and a readable chec
     const int null = ::open("/dev/null", O_WRONLY);
     ::dup2(null, STDOUT_FILENO);
     const std::string out = dir.string();
-    ::execl(PDMESH_BINARY, PDMESH_BINARY, "mesh", kCase.c_str(), "--out", out.c_str(), "--device", "host",
-            "--formats", "msh", "--iterations", "100000", static_cast<char*>(nullptr));
+    ::execl(PDMESH_BINARY, PDMESH_BINARY, "mesh", kCase.c_str(), "--out", out.c_str(), "--device", "host", "--formats",
+            "msh", "--iterations", "100000", static_cast<char*>(nullptr));
     ::_exit(127);
   }
   ::close(err[1]);
@@ -429,7 +432,8 @@ TEST_CASE("a checkpoint of a mesh field knows its file's content and array", "[r
   pdmesh::write_text_file(dir / "f.vtu", "two");
   CHECK(value(keys(""), "spacing.file") != value(first, "spacing.file"));
   // Other fields keep the keys (and so the checkpoints) they had.
-  const auto boundary = pdmesh::case_identity(pdmesh::parse_case_text(text.substr(0, text.find("[spacing]")), dir / "case.toml"));
+  const auto boundary =
+      pdmesh::case_identity(pdmesh::parse_case_text(text.substr(0, text.find("[spacing]")), dir / "case.toml"));
   CHECK(value(boundary, "spacing.file") == "(none)");
   fs::remove_all(dir);
 }
@@ -445,8 +449,7 @@ TEST_CASE("population control's identity names the settle keys only when settlin
   // Off (long's default): the string of the checkpoints written before the keys existed, so they resume.
   CHECK(schedule("") == "every 50 start 100 stop 0.8");
   CHECK(schedule("[population]\nsettle = 0.001\n") == "every 50 start 100 stop 0.8 settle 0.001 2");
-  CHECK(schedule("[population]\nsettle = 0.001\nsettle_events = 3\n") !=
-        schedule("[population]\nsettle = 0.001\n"));
+  CHECK(schedule("[population]\nsettle = 0.001\nsettle_events = 3\n") != schedule("[population]\nsettle = 0.001\n"));
 }
 
 TEST_CASE("the background's resolution is part of a checkpoint's identity only when it is not the default",

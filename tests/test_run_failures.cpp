@@ -142,7 +142,8 @@ TEST_CASE("two nodes 1e-30 apart: non-finite forces stop the host run naming bot
   SimCallbacks callbacks;
   callbacks.on_failure = [&](const SimState& s) { saved = s; };
   CHECK_THROWS_WITH(run_simulation(c.nodes, *c.tree, c.spacing, quiet_options(10), callbacks),
-                    Contains("iteration 1: non-finite force") && Contains(fmt::format("on node {} (interior) at (0, 0)", a)) &&
+                    Contains("iteration 1: non-finite force") &&
+                        Contains(fmt::format("on node {} (interior) at (0, 0)", a)) &&
                         Contains(fmt::format("node {} (interior) at (1.0000000000000001e-30, 0) distance 1e-30", b)));
   REQUIRE(saved);
   CHECK(saved->iterations_done == 0);
@@ -159,7 +160,8 @@ TEST_CASE("two nodes 1e-30 apart: the device run stops too and hands over its la
   SimCallbacks callbacks;
   callbacks.on_failure = [&](const SimState& s) { saved = s; };
   CHECK_THROWS_WITH(device.run(c.nodes, *c.tree, c.spacing, options, callbacks),
-                    Contains("iteration 1: non-finite force or move") && Contains(fmt::format("node {} (interior)", a)) &&
+                    Contains("iteration 1: non-finite force or move") &&
+                        Contains(fmt::format("node {} (interior)", a)) &&
                         Contains(fmt::format("node {} (interior)", b)) && Contains("distance 1e-30"));
   REQUIRE(saved);
   CHECK(saved->iterations_done == 0);
@@ -172,7 +174,8 @@ TEST_CASE("two nodes 1e-30 apart: the device run stops too and hands over its la
 // A boundary node's move that is not finite: device_step raises its flag, boundary_snap (which
 // re-snaps the boundary nodes on the device, updating tangents in place) writes nothing, and the state
 // handed over is the one before the step, boundary positions, tangents and arc positions included.
-TEST_CASE("a non-finite boundary move stops the device run with the boundary state before the step", "[failures][opencl]") {
+TEST_CASE("a non-finite boundary move stops the device run with the boundary state before the step",
+          "[failures][opencl]") {
   SquareCase c;
   std::size_t b = 0;  // the boundary node at (0, -1)
   while (!(c.nodes.kind[b] == NodeKind::Boundary && c.nodes.x[b].x == 0.0 && c.nodes.x[b].y == -1.0)) ++b;
@@ -185,9 +188,9 @@ TEST_CASE("a non-finite boundary move stops the device run with the boundary sta
   std::optional<SimState> saved;
   SimCallbacks callbacks;
   callbacks.on_failure = [&](const SimState& s) { saved = s; };
-  CHECK_THROWS_WITH(device.run(c.nodes, *c.tree, c.spacing, quiet_options(10), callbacks),
-                    Contains("iteration 1: non-finite force or move") &&
-                        Contains(fmt::format("node {} (boundary)", b)));
+  CHECK_THROWS_WITH(
+      device.run(c.nodes, *c.tree, c.spacing, quiet_options(10), callbacks),
+      Contains("iteration 1: non-finite force or move") && Contains(fmt::format("node {} (boundary)", b)));
   REQUIRE(saved);
   CHECK(saved->iterations_done == 0);
   CHECK(c.nodes.x == before.x);
@@ -202,7 +205,8 @@ TEST_CASE("a lost OpenCL device leaves a checkpoint of a good state that resumes
     INFO("PDMESH_TEST_FAIL_CL_AT=" << fault);
     const fs::path dir = fresh_path("lost");
     const std::string args = "mesh '" + kase + "' --out '" + dir.string() + "' --formats msh -q";
-    const auto r = run_pdmesh(args + " --device opencl --iterations 1000", std::string("PDMESH_TEST_FAIL_CL_AT=") + fault);
+    const auto r =
+        run_pdmesh(args + " --device opencl --iterations 1000", std::string("PDMESH_TEST_FAIL_CL_AT=") + fault);
     INFO(r.output);
     CHECK(r.status == 1);
     CHECK_THAT(r.output, Contains("pdmesh: error: iteration ") &&
@@ -215,8 +219,8 @@ TEST_CASE("a lost OpenCL device leaves a checkpoint of a good state that resumes
     CHECK(saved.state.history.size() == static_cast<std::size_t>(saved.state.iterations_done));
     // It continues on the host (the device being gone), five more iterations.
     const int until = saved.state.iterations_done + 5;
-    const auto resumed = run_pdmesh(args + " --device host --iterations " + std::to_string(until) + " --resume '" +
-                                    dir.string() + "'");
+    const auto resumed =
+        run_pdmesh(args + " --device host --iterations " + std::to_string(until) + " --resume '" + dir.string() + "'");
     INFO(resumed.output);
     CHECK(resumed.status == 0);
     CHECK(read_text_file(dir / "history.csv").find("\n" + std::to_string(until) + ",") != std::string::npos);
@@ -225,7 +229,8 @@ TEST_CASE("a lost OpenCL device leaves a checkpoint of a good state that resumes
   }
 }
 
-TEST_CASE("a device lost at any call: exit 1, and a checkpoint that resumes once the iterations began", "[failures][opencl][cli]") {
+TEST_CASE("a device lost at any call: exit 1, and a checkpoint that resumes once the iterations began",
+          "[failures][opencl][cli]") {
   // Every 53rd OpenCL call from the first until a run gets through: setup, first build, steps,
   // rebuilds, the final read-back. Failures before the first iteration leave no checkpoint.
   const std::string kase = PDMESH_SOURCE_DIR "/cases/circle_circle";
@@ -312,30 +317,35 @@ TEST_CASE("a device with too little memory is refused before allocating, exit 2"
                             "PDMESH_TEST_DEVICE_MEMORY=26000");  // float would fit: the message says so
   INFO(r.output);
   CHECK(r.status == 2);
-  CHECK_THAT(r.output, Contains("pdmesh: error: ") && Contains("nodes need at least") && Contains("bytes of device memory in double") &&
+  CHECK_THAT(r.output, Contains("pdmesh: error: ") && Contains("nodes need at least") &&
+                           Contains("bytes of device memory in double") &&
                            Contains("has 26000 bytes of global memory") && Contains("--precision float") &&
                            Contains("--device host"));
   CHECK_FALSE(fs::exists(dir / "checkpoint.pdmesh"));
   fs::remove_all(dir);
 }
 
-TEST_CASE("coordinates double precision cannot resolve at the spacing are refused with the figures", "[failures][geometry]") {
+TEST_CASE("coordinates double precision cannot resolve at the spacing are refused with the figures",
+          "[failures][geometry]") {
   // At 2^40 doubles are 2^-12 apart; 1e4 quanta are 2.44140625.
   const double m = 0x1p40;
   const auto square = [m](double side) {
-    return build_geometry({RawCurve{"sq", {{m, m}, {m + side, m}, {m + side, m + side}, {m, m + side}, {m, m}}, "sq.crv", 2, {}}});
+    return build_geometry(
+        {RawCurve{"sq", {{m, m}, {m + side, m}, {m + side, m + side}, {m, m + side}, {m, m}}, "sq.crv", 2, {}}});
   };
   const ExpressionSpacing wide("4");
   CHECK_NOTHROW(check_coordinate_resolution(square(4), wide));
   CHECK_THROWS_AS(check_coordinate_resolution(square(2), wide), LimitError);
   CHECK_THROWS_WITH(check_coordinate_resolution(square(2), wide),
-                    Contains("sq.crv:2: the segment 0 of curve 'sq'") && Contains("is 2, but the coordinates reach 1.09951e+12") &&
+                    Contains("sq.crv:2: the segment 0 of curve 'sq'") &&
+                        Contains("is 2, but the coordinates reach 1.09951e+12") &&
                         Contains("doubles are 0.000244 apart") && Contains("(2.44)"));
   // The segments are fine, the spacing is not.
   CHECK_THROWS_WITH(check_coordinate_resolution(square(4), ExpressionSpacing("2")),
                     Contains("the spacing at (") && Contains("is 2, but"));
   // Near the origin the same sizes are fine.
-  const Geometry small = build_geometry({RawCurve{"sq", {{0, 0}, {1e-9, 0}, {1e-9, 1e-9}, {0, 1e-9}, {0, 0}}, "s", 1, {}}});
+  const Geometry small =
+      build_geometry({RawCurve{"sq", {{0, 0}, {1e-9, 0}, {1e-9, 1e-9}, {0, 1e-9}, {0, 0}}, "s", 1, {}}});
   CHECK_NOTHROW(check_coordinate_resolution(small, ExpressionSpacing("1e-10")));
 }
 
@@ -356,11 +366,20 @@ TEST_CASE("a checkpoint that does not fit the geometry is refused", "[failures][
                       Contains("cp: the checkpoint does not fit the case's geometry: ") && Contains(text));
   };
   refused([](Checkpoint& k) { k.nodes.curve_nodes.emplace_back(); }, "node lists for 2 curves, the geometry has 1");
-  refused([&](Checkpoint& k) { k.nodes.x[interior] = {5.0, 0.0}; }, fmt::format("node {} at (5, 0) is outside", interior));
+  refused(
+      [&](Checkpoint& k) {
+        k.nodes.x[interior] = {5.0, 0.0};
+      },
+      fmt::format("node {} at (5, 0) is outside", interior));
   refused([&](Checkpoint& k) { k.nodes.q[interior] = 0.0; }, "has spacing 0");
-  refused([&](Checkpoint& k) { k.nodes.curve[interior] = 0; }, fmt::format("node {} (interior) names curve 0", interior));
-  refused([&](Checkpoint& k) { k.nodes.kind[interior] = NodeKind::Boundary; k.nodes.curve[interior] = 0; },
-          fmt::format("boundary node {} is listed 0 times", interior));
+  refused([&](Checkpoint& k) { k.nodes.curve[interior] = 0; },
+          fmt::format("node {} (interior) names curve 0", interior));
+  refused(
+      [&](Checkpoint& k) {
+        k.nodes.kind[interior] = NodeKind::Boundary;
+        k.nodes.curve[interior] = 0;
+      },
+      fmt::format("boundary node {} is listed 0 times", interior));
   refused([&](Checkpoint& k) { std::swap(k.state.arcs[0][1], k.state.arcs[0][2]); }, "arc position 2 is");
   refused([&](Checkpoint& k) { k.state.arcs[0].back() *= 2; }, "ends at arc position");
   refused([&](Checkpoint& k) { k.nodes.curve_nodes[0].front() = static_cast<int>(boundary); }, "at position 0");

@@ -50,9 +50,7 @@ TEST_CASE("json check: accepts JSON and refuses what is not", "[phases]") {
 
 TEST_CASE("run phases: timers, notes and pictures in the timings JSON", "[phases]") {
   RunPhases run;
-  {
-    const auto t = run.phase("read");
-  }
+  { const auto t = run.phase("read"); }
   auto t = run.phase("spacing");
   t.stop();
   t.stop();  // a second stop adds nothing
@@ -61,7 +59,7 @@ TEST_CASE("run phases: timers, notes and pictures in the timings JSON", "[phases
   t.stop();
   run.note("iterations", 520);
   run.note("nodes", 2304);
-  run.note("iterations", 600);  // a note set twice keeps its last value
+  run.note("iterations", 600);         // a note set twice keeps its last value
   run.note("estimate", std::nan(""));  // JSON has no NaN: null
   run.note("backend", std::string("opencl:0:0"));
   run.note("backend", std::string("the \"host\" reference"));  // a text note set twice keeps its last value
@@ -127,9 +125,7 @@ TEST_CASE("run phases: pictures run on the background thread while the caller go
   run.picture("next.png", [&] { second_done = true; });
   started.get_future().wait();
   CHECK_FALSE(first_done);
-  {
-    const auto t = run.phase("work meanwhile");
-  }
+  { const auto t = run.phase("work meanwhile"); }
   release.set_value();
   run.wait_pictures();
   CHECK(first_done);
@@ -220,8 +216,7 @@ TEST_CASE("run phases: a caller waiting for the pictures draws queued ones itsel
   for (const PhaseTime& p : run.phases()) CHECK(p.background);
 }
 
-TEST_CASE("run phases: a picture's exception surfaces from wait_pictures, once, and the others are drawn",
-          "[phases]") {
+TEST_CASE("run phases: a picture's exception surfaces from wait_pictures, once, and the others are drawn", "[phases]") {
   RunPhases run;
   bool after = false;
   run.picture("bad.png", [] { throw InputError("cannot write 'bad.png'"); });

@@ -264,7 +264,8 @@ TEST_CASE("clearance budget: a lower bound of the distance, and skipped moves st
   }
 }
 
-TEST_CASE("clearance budget: a node walking out is snapped in the same iteration as by the exact test", "[sim][boundary]") {
+TEST_CASE("clearance budget: a node walking out is snapped in the same iteration as by the exact test",
+          "[sim][boundary]") {
   // Steps of 0.07 from y = 0.9 towards the bottom side: every position is tested, the move from
   // y_12 = 0.9 - 12 * 0.07 (> 0) to y_13 (< 0) crosses, and only that one.
   const Geometry g = square();

@@ -107,8 +107,8 @@ TEST_CASE("the loop records each iteration's row and statistics from the steps",
   CHECK(result.stats.dt_initial == 0.01);
   const HistoryRow& row = result.history[1];
   CHECK(row.iteration == 2);
-  CHECK(row.average_force == 4.0);     // 8 / 2 moving nodes
-  CHECK(row.average_kinetic == 0.5);   // 1 / 2
+  CHECK(row.average_force == 4.0);    // 8 / 2 moving nodes
+  CHECK(row.average_kinetic == 0.5);  // 1 / 2
   CHECK(row.max_force == 8.0);
   CHECK(row.dt_gm == 0.01);
   CHECK(row.snapped == 1);
@@ -179,8 +179,7 @@ TEST_CASE("Interrupted from an iteration's computation stops the run after the p
   CHECK(result.state.iterations_done == 3);
 }
 
-TEST_CASE("FailureScope::Step hands the last good state over for a computation's SimulationError only",
-          "[sim]") {
+TEST_CASE("FailureScope::Step hands the last good state over for a computation's SimulationError only", "[sim]") {
   const NodeSet nodes = three_nodes();
   const SimOptions options = scripted_options(10);
   std::vector<int> handed;

@@ -69,7 +69,8 @@ TEST_CASE("with M = I / q^2 the metric force equals the isotropic force", "[sim]
   REQUIRE(flags.overflow == 0);
   REQUIRE(flags.pairs_within > 1000);
   SimParticles met = iso;
-  for (std::size_t i = 0; i < met.size(); ++i) set_metric(met, i, 1.0 / (met.q[i] * met.q[i]), 0.0, 1.0 / (met.q[i] * met.q[i]));
+  for (std::size_t i = 0; i < met.size(); ++i)
+    set_metric(met, i, 1.0 / (met.q[i] * met.q[i]), 0.0, 1.0 / (met.q[i] * met.q[i]));
   for (const double stability : {0.0, 0.5}) {
     const ForceParams params{1.5, 15.0, false, stability};
     ForceResult a, b;
@@ -284,7 +285,15 @@ std::vector<Trace> metric_run(StepBackend& backend, SimParticles p, int steps) {
       p.x[i] += moves.dx[i];
       p.y[i] += moves.dy[i];
     }
-    out.push_back({p.x, p.y, forces.fx, forces.fy, forces.r0, moves.dt2, forces.dt2_limit, list.count, list.index,
+    out.push_back({p.x,
+                   p.y,
+                   forces.fx,
+                   forces.fy,
+                   forces.r0,
+                   moves.dt2,
+                   forces.dt2_limit,
+                   list.count,
+                   list.index,
                    {static_cast<double>(sums.moving), sums.sum_force, sums.max_force, sums.sum_kinetic}});
   }
   return out;
@@ -424,7 +433,8 @@ TEST_CASE("nodes relaxed in the linear case's metric sit at unit metric length f
     double best = HUGE_VAL;
     for (std::size_t j = 0; j < p.size(); ++j)
       if (j != i)
-        best = std::min(best, edge_length(metric_at(p.y[i]), metric_at(p.y[j]), Vec2{p.x[j] - p.x[i], p.y[j] - p.y[i]}));
+        best =
+            std::min(best, edge_length(metric_at(p.y[i]), metric_at(p.y[j]), Vec2{p.x[j] - p.x[i], p.y[j] - p.y[i]}));
     nearest.push_back(best);
   }
   std::sort(nearest.begin(), nearest.end());

@@ -61,7 +61,8 @@ class LinearLargestSize final : public SpacingField {
 // Positions, kinds and the history of two runs agree bit for bit. The history's force sums of run b
 // are in units `scale` times run a's (a metric run measures |F| in the metric: |F|_M = |F| / q for
 // M = I / q^2, exact for q a power of two), its kinetic sums in scale^2.
-void require_same_run(const NodeSet& a, const SimResult& ra, const NodeSet& b, const SimResult& rb, double scale = 1.0) {
+void require_same_run(const NodeSet& a, const SimResult& ra, const NodeSet& b, const SimResult& rb,
+                      double scale = 1.0) {
   REQUIRE(a.size() == b.size());
   REQUIRE(a.kind == b.kind);
   REQUIRE(a.curve_nodes == b.curve_nodes);
@@ -95,7 +96,9 @@ NodeSet linear_case_nodes() {
   const int c00 = put({0, 0}, NodeKind::Fixed, 0), c10 = put({1, 0}, NodeKind::Fixed, 0);
   const int c11 = put({1, 1}, NodeKind::Fixed, 1), c01 = put({0, 1}, NodeKind::Fixed, 2);
   const double half = std::log(100.0) / 0.198;
-  auto y_at = [&](int k) { return 0.5 + std::copysign((std::exp(0.198 * half * std::abs(k) / 23.0) - 1.0) * 0.001 / 0.198, k); };
+  auto y_at = [&](int k) {
+    return 0.5 + std::copysign((std::exp(0.198 * half * std::abs(k) / 23.0) - 1.0) * 0.001 / 0.198, k);
+  };
   nodes.curve_nodes[0].push_back(c00);
   for (int k = 1; k < 10; ++k) put({0.1 * k, 0.0}, NodeKind::Boundary, 0);
   nodes.curve_nodes[0].push_back(c10);
@@ -159,7 +162,8 @@ TEST_CASE("run_simulation with a constant metric I / q^2 repeats the isotropic r
     // The run moved the nodes (a run that stood still would pass trivially).
     double moved = 0.0;
     for (std::size_t i = 0; i < iso.size(); ++i)
-      if (i < initial.size()) moved = std::max(moved, std::hypot(iso.x[i].x - initial.x[i].x, iso.x[i].y - initial.x[i].y));
+      if (i < initial.size())
+        moved = std::max(moved, std::hypot(iso.x[i].x - initial.x[i].x, iso.x[i].y - initial.x[i].y));
     REQUIRE(moved > 0.1 * q);
   }
 }
@@ -179,7 +183,8 @@ TEST_CASE("run_simulation in the linear metric relaxes the nodes to unit metric 
     double best = HUGE_VAL;
     for (std::size_t j = 0; j < nodes.size(); ++j)
       if (j != i)
-        best = std::min(best, edge_length(linear_metric(nodes.x[i].y), linear_metric(nodes.x[j].y), nodes.x[j] - nodes.x[i]));
+        best = std::min(best,
+                        edge_length(linear_metric(nodes.x[i].y), linear_metric(nodes.x[j].y), nodes.x[j] - nodes.x[i]));
     nearest.push_back(best);
   }
   std::sort(nearest.begin(), nearest.end());

@@ -161,8 +161,7 @@ TEST_CASE("reference backend: lists through build_neighbours_growing equal the e
   }
 }
 
-TEST_CASE("neighbour cache: pairs moving together by just under the skin while q grows stay exact",
-          "[sim][perf]") {
+TEST_CASE("neighbour cache: pairs moving together by just under the skin while q grows stay exact", "[sim][perf]") {
   // Pairs on a line at distances spread over [R, M + 2a] (R = cutoff q, M = R (1 + growth), a = skin R):
   // the worst case of the completeness argument. Each pair closes by just under 2a while one node's
   // q grows by just under the growth bound, so pairs up to M + 2a apart become neighbours without

@@ -30,8 +30,8 @@ struct Run {
   NodeSet nodes;
   SimResult result;
   int callbacks = 0;
-  bool interior_inside = true;  // every interior node inside the domain (exact test)
-  bool arcs_ordered = true;     // boundary nodes strictly ordered along every curve
+  bool interior_inside = true;         // every interior node inside the domain (exact test)
+  bool arcs_ordered = true;            // boundary nodes strictly ordered along every curve
   double worst_boundary_offset = 0.0;  // boundary nodes are on their curve up to rounding
 };
 
@@ -52,10 +52,11 @@ Run run_circle_circle(int iterations) {
   for (std::size_t i = 0; i < run.nodes.size(); ++i) {
     // Boundary nodes lie on their curve only up to rounding, so the exact inside test is for
     // interior nodes; boundary nodes are checked by their distance to the curve.
-    if (run.nodes.kind[i] == NodeKind::Interior) run.interior_inside = run.interior_inside && tree.inside(run.nodes.x[i]);
+    if (run.nodes.kind[i] == NodeKind::Interior)
+      run.interior_inside = run.interior_inside && tree.inside(run.nodes.x[i]);
     else
-      run.worst_boundary_offset = std::max(
-          run.worst_boundary_offset, tree.closest_on_curve(run.nodes.x[i], run.nodes.curve[i]).distance);
+      run.worst_boundary_offset =
+          std::max(run.worst_boundary_offset, tree.closest_on_curve(run.nodes.x[i], run.nodes.curve[i]).distance);
   }
   // The handler recomputes arc positions from scratch: they must still be strictly ordered.
   const BoundaryHandler check(tree, run.nodes);
@@ -139,8 +140,9 @@ TEST_CASE("history CSV and plot files", "[sim]") {
   std::ifstream in(dir / "history.csv");
   std::string line;
   std::getline(in, line);
-  CHECK(line == "iteration,average_force,average_kinetic_energy,max_force,dt_gm,snapped,clamped,fixed,boundary,interior,"
-                "inserted,removed");
+  CHECK(line ==
+        "iteration,average_force,average_kinetic_energy,max_force,dt_gm,snapped,clamped,fixed,boundary,interior,"
+        "inserted,removed");
   int lines = 0;
   std::string last;
   while (std::getline(in, line)) ++lines, last = line;

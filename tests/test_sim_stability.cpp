@@ -59,7 +59,7 @@ TEST_CASE("thesis step: a compressed node between two fixed ones grows a period-
   CHECK(xs[1] / xs[0] == Approx(factor).epsilon(1e-4));
   for (std::size_t k = 1; k < xs.size(); ++k) {
     INFO("iteration " << k << ": x = " << xs[k]);
-    CHECK(xs[k] * xs[k - 1] < 0.0);                   // the sign alternates (period 2)
+    CHECK(xs[k] * xs[k - 1] < 0.0);                  // the sign alternates (period 2)
     CHECK(std::fabs(xs[k]) > std::fabs(xs[k - 1]));  // and the amplitude grows
   }
   CHECK(std::fabs(xs.back()) > 1e3 * x0);

@@ -17,7 +17,6 @@ using namespace pdmesh;
 
 namespace {
 
-
 // A closed circle of radius r and n segments as one curve starting at angle a0.
 
 // Largest |distance from the origin - r| over the smooth curve, sampled 200 times per piece.
@@ -49,7 +48,8 @@ TEST_CASE("the dense polyline is within its chord tolerance of the smooth curve"
   const SmoothCurves s(g, 30.0);
   const double q = 0.1;
   DenseOptions options;
-  const DenseGeometry d = make_dense_geometry(s, [q](Vec2) { return q; }, options);
+  const DenseGeometry d = make_dense_geometry(
+      s, [q](Vec2) { return q; }, options);
   const GeometryTree tree(d.geometry);
   const double tol = options.tolerance * q;  // h = min(q, segment length) = q here
   double worst = 0.0;

@@ -16,9 +16,9 @@ using Catch::Matchers::Contains;
 
 // The call throws InputError and its message matches.
 #define CHECK_INPUT_ERROR(expr, matcher) \
-  do {                                  \
-    CHECK_THROWS_AS(expr, InputError);  \
-    CHECK_THROWS_WITH(expr, matcher);   \
+  do {                                   \
+    CHECK_THROWS_AS(expr, InputError);   \
+    CHECK_THROWS_WITH(expr, matcher);    \
   } while (false)
 
 namespace {
@@ -97,8 +97,8 @@ TEST_CASE("BoundarySpacing with several curves: weights follow each curve's clos
   const GeometryTree tree(g);
   const BoundarySpacing q(tree);
   CHECK(q.at({0.5, 0.5}) == Approx(1.0).epsilon(1e-14));
-  const Geometry g2 = fixtures::make_geometry({fixtures::rectangle({0, 0}, {4, 4}, 2, true),
-                                                fixtures::rectangle({1.5, 1.5}, {2.5, 2.5}, 4, false)});
+  const Geometry g2 = fixtures::make_geometry(
+      {fixtures::rectangle({0, 0}, {4, 4}, 2, true), fixtures::rectangle({1.5, 1.5}, {2.5, 2.5}, 4, false)});
   const GeometryTree tree2(g2);
   const BoundarySpacing q2(tree2);
   // Outer segments length 2 at distance 0.5 (from (0.5, 2)), hole segments length 0.25 at distance 1.

@@ -101,7 +101,8 @@ TEST_CASE("gradation: a point source in a large square gives min(q, q0 + g d)", 
   for (int i = 0; i < 20000; ++i) {
     // Half the points within 1 of the source, where q changes fastest.
     const bool close = i % 2 == 0;
-    const Vec2 p = close ? Vec2{y.x - 1 + 2 * unit(rng), y.y - 1 + 2 * unit(rng)} : Vec2{100 * unit(rng), 100 * unit(rng)};
+    const Vec2 p =
+        close ? Vec2{y.x - 1 + 2 * unit(rng), y.y - 1 + 2 * unit(rng)} : Vec2{100 * unit(rng), 100 * unit(rng)};
     const double exact = std::min(1.0, q0 + 0.2 * dist(p, y));
     const double got = f.at(p);
     const Box leaf = background_leaf_box(d, p);
@@ -141,7 +142,8 @@ TEST_CASE("gradation: limiting twice changes nothing and the gradient bound hold
   for (std::size_t l = 0; l < d.leaves(); ++l)
     for (int a = 0; a < 4; ++a)
       for (int b = a + 1; b < 4; ++b) {
-        const auto i = static_cast<std::size_t>(d.leaf_corner[4 * l + a]), j = static_cast<std::size_t>(d.leaf_corner[4 * l + b]);
+        const auto i = static_cast<std::size_t>(d.leaf_corner[4 * l + a]),
+                   j = static_cast<std::size_t>(d.leaf_corner[4 * l + b]);
         if (std::fabs(d.corner_q[i] - d.corner_q[j]) > 0.15 * dist(pos[i], pos[j]) * (1 + 1e-12)) ++violations;
       }
   CHECK(violations == 0);
@@ -174,8 +176,8 @@ TEST_CASE("gradation: each corner gets the smallest cone, not an 8-neighbour pat
 TEST_CASE("gradation: the sweep's start entries sort as std::sort sorts them", "[spacing]") {
   std::mt19937_64 rng(5);
   // Many equal values (the corner decides), zeros, tiny and huge values, infinity.
-  const std::vector<double> pool = {0.0, 1e-300, 0.01, 0.25, 0.25 + 1e-16, 1.0, 3.5, 1e300,
-                                    std::numeric_limits<double>::infinity()};
+  const std::vector<double> pool = {
+      0.0, 1e-300, 0.01, 0.25, 0.25 + 1e-16, 1.0, 3.5, 1e300, std::numeric_limits<double>::infinity()};
   for (int round = 0; round < 20; ++round) {
     std::vector<std::pair<double, std::int32_t>> entries;
     const int n = 1 + static_cast<int>(rng() % 5000);
@@ -232,7 +234,8 @@ TEST_CASE("gradation: relimit from repeated seeds is relimit from each seed once
 TEST_CASE("feature size: a slot of width w gets k node spacings across, and corners are no gaps", "[spacing]") {
   // A 10 x 4 chamber with a slot 0.5 wide and 3 deep opening from its bottom edge.
   const double w = 0.5;
-  const std::vector<Vec2> plate = {{0, 0}, {5 - w / 2, 0}, {5 - w / 2, -3}, {5 + w / 2, -3}, {5 + w / 2, 0}, {10, 0}, {10, 4}, {0, 4}};
+  const std::vector<Vec2> plate = {{0, 0},         {5 - w / 2, 0}, {5 - w / 2, -3}, {5 + w / 2, -3},
+                                   {5 + w / 2, 0}, {10, 0},        {10, 4},         {0, 4}};
   const double k = GENERATE(2.0, 3.0);
   SpacingOptions o;
   o.rows_in_gap = k;
@@ -272,8 +275,9 @@ TEST_CASE("curvature: q = R theta on a circle of known radius, growing by theta 
   const double radius = 2.0, theta = 10.0 * kPi / 180.0;
   SpacingOptions o;
   o.curvature_angle = 10.0;
-  const Field f({polygon({{-10, -10}, {10, -10}, {10, 10}, {-10, 10}}, 1.0, "box"), circle({0, 0}, radius, 240, "hole", false)},
-                "1", o);
+  const Field f(
+      {polygon({{-10, -10}, {10, -10}, {10, 10}, {-10, 10}}, 1.0, "box"), circle({0, 0}, radius, 240, "hole", false)},
+      "1", o);
   for (int i = 0; i < 24; ++i) {
     const double a = 2 * kPi * (i + 0.5) / 24;
     for (const double d : {0.0, 0.5, 2.0}) {

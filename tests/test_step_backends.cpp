@@ -36,7 +36,9 @@ struct HostReference {
 struct OpenclDouble {
   static constexpr bool is_float = false;
   static constexpr double tol = 1e-12, force_tol = 1e-12;
-  static std::unique_ptr<StepBackend> make() { return ocl::make_opencl_backend(test_context(), ocl::Precision::Double); }
+  static std::unique_ptr<StepBackend> make() {
+    return ocl::make_opencl_backend(test_context(), ocl::Precision::Double);
+  }
 };
 struct OpenclFloat {
   static constexpr bool is_float = true;
@@ -71,8 +73,9 @@ void require_close(const char* what, const std::vector<double>& oracle, const st
     if (std::isinf(oracle[i]) && got[i] == oracle[i]) continue;  // "no bound" (HUGE_VAL) on both sides
     const double scale = std::max(std::fabs(oracle[i]), floor.empty() ? 0.0 : floor[i]);
     if (!(std::fabs(got[i] - oracle[i]) <= tol * scale)) {
-      if (++bad <= 5) FAIL_CHECK(what << "[" << i << "]: oracle " << oracle[i] << ", backend " << got[i] << ", tol "
-                                      << tol << " x " << scale);
+      if (++bad <= 5)
+        FAIL_CHECK(what << "[" << i << "]: oracle " << oracle[i] << ", backend " << got[i] << ", tol " << tol << " x "
+                        << scale);
     }
   }
   REQUIRE(bad == 0);
@@ -112,7 +115,8 @@ void check_neighbours(const Input& in) {
     std::vector<int> diff;
     std::set_symmetric_difference(a.begin(), a.end(), b.begin(), b.end(), std::back_inserter(diff));
     for (int j : diff) {
-      const double dx = in.p.x[static_cast<std::size_t>(j)] - in.p.x[i], dy = in.p.y[static_cast<std::size_t>(j)] - in.p.y[i];
+      const double dx = in.p.x[static_cast<std::size_t>(j)] - in.p.x[i],
+                   dy = in.p.y[static_cast<std::size_t>(j)] - in.p.y[i];
       const double r = in.cutoff * in.p.q[i];
       INFO("node " << i << " neighbour " << j);
       REQUIRE(std::fabs((dx * dx + dy * dy) / (r * r) - 1.0) < 1e-5);

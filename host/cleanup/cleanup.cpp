@@ -88,7 +88,8 @@ struct Limits {
 };
 
 Limits limits_of(const CleanupOptions& options) {
-  const double smooth_below = options.smooth_below >= 0.0 ? options.smooth_below : std::min(options.min_angle + 20.0, 59.0);
+  const double smooth_below =
+      options.smooth_below >= 0.0 ? options.smooth_below : std::min(options.min_angle + 20.0, 59.0);
   const double topology_below =
       options.topology_below >= 0.0 ? options.topology_below : std::min(options.min_angle + 15.0, 59.0);
   return {cleanup::sine_from_degrees(smooth_below), cleanup::sine_from_degrees(topology_below),
@@ -126,8 +127,9 @@ class CleanupRun {
         limits_(limits_of(options)),
         m_(mesh, nodes.curve_nodes, boundary_arcs(tree.geometry(), nodes)),
         smoother_(m_, tree.geometry(), options.step_cap),
-        ops_(m_, smoother_, tree.geometry(), [&spacing, ratio](Vec2 p) { return ratio * spacing.at(p); },
-             topology_options_of(options, limits_)),
+        ops_(
+            m_, smoother_, tree.geometry(), [&spacing, ratio](Vec2 p) { return ratio * spacing.at(p); },
+            topology_options_of(options, limits_)),
         trial_budget_(static_cast<std::size_t>(
             std::max(options.min_trials, options.trials_per_triangle * static_cast<double>(mesh.triangles.size())))) {
     smoother_.set_sweep_gain(options.move_min_rise, options.move_aspect_drop);
@@ -233,8 +235,10 @@ std::size_t CleanupRun::topology_pass(const std::vector<std::uint8_t>& dirty, In
       failures_.insert(key);
       continue;
     }
-    if (kind == cleanup::RepairKind::Collapse) ++stats.collapsed;
-    else if (kind != cleanup::RepairKind::Compound) ++stats.inserted;  // a compound's nodes are counted in finish()
+    if (kind == cleanup::RepairKind::Collapse)
+      ++stats.collapsed;
+    else if (kind != cleanup::RepairKind::Compound)
+      ++stats.inserted;  // a compound's nodes are counted in finish()
     ++changed;
     record.trials_to_last_change = ops_.trials() - trials_before;
     record.last_change_angle = cleanup::degrees_from_sine(now);
@@ -303,8 +307,8 @@ void CleanupRun::finish(const Mesh& mesh, const NodeSet& nodes, const SpacingFie
 
 }  // namespace
 
-CleanupResult clean_mesh(const Mesh& mesh, const NodeSet& nodes, const GeometryTree& tree,
-                         const SpacingField& spacing, const CleanupOptions& options) {
+CleanupResult clean_mesh(const Mesh& mesh, const NodeSet& nodes, const GeometryTree& tree, const SpacingField& spacing,
+                         const CleanupOptions& options) {
   const auto start = std::chrono::steady_clock::now();
   CleanupResult result;
   CleanupRun run(mesh, nodes, tree, spacing, options, edge_to_spacing_ratio(mesh, spacing));

@@ -17,9 +17,9 @@
 namespace pdmesh {
 
 struct CleanupOptions {
-  double min_angle = 30.0;   // target: triangles below this (degrees) are repaired
-  int iterations = 16;       // outer iterations of {smoothing sweeps, topology pass} (JIGSAW's 16)
-  double step_cap = 0.5;     // smoothing step <= step_cap x smallest adjacent inradius (optimesh)
+  double min_angle = 30.0;  // target: triangles below this (degrees) are repaired
+  int iterations = 16;      // outer iterations of {smoothing sweeps, topology pass} (JIGSAW's 16)
+  double step_cap = 0.5;    // smoothing step <= step_cap x smallest adjacent inradius (optimesh)
   // Smoothing works on the vertices of triangles whose smallest angle is below this (degrees); above
   // the target so that the pass lifts the worst angles beyond it, as JIGSAW's optimiser does.
   // Defaults: min_angle + 20 and min_angle + 15 (at most 59), chosen from measurements on the thesis
@@ -32,7 +32,7 @@ struct CleanupOptions {
   // move_aspect_drop. 0 and 0: any strict improvement counts.
   double move_min_rise = 0.0;
   double move_aspect_drop = 0.0;
-  bool topology = true;      // insertions, collapses and splits (off: smoothing and flips only)
+  bool topology = true;  // insertions, collapses and splits (off: smoothing and flips only)
   // Boundary edges may be split by a new node on their curve (off: the boundary nodes stay the
   // simulation's, they only slide).
   bool split_boundary = true;
@@ -56,8 +56,8 @@ struct CleanupIteration {
   std::size_t small_moves = 0;  // ... of which lowered their star's mean aspect ratio by < 1e-4
   double aspect_drop = 0.0;     // sum over the moves of the drop of their star's aspect-ratio sum
   double small_aspect_drop = 0.0;
-  std::size_t topology = 0;     // topology changes made
-  std::size_t trials = 0;       // topology trials made ...
+  std::size_t topology = 0;               // topology changes made
+  std::size_t trials = 0;                 // topology trials made ...
   std::size_t trials_to_last_change = 0;  // ... up to and with the one that made the last change
   double last_change_angle = 0.0;         // the smallest angle (degrees) of the triangle it repaired
   double smoothing_seconds = 0.0, topology_seconds = 0.0;
@@ -65,11 +65,11 @@ struct CleanupIteration {
 };
 
 struct CleanupStats {
-  std::size_t moves = 0;       // accepted node moves
-  std::size_t inserted = 0;    // nodes inserted at circumcentres / off-centres / edge midpoints
-  std::size_t collapsed = 0;   // interior nodes removed by edge collapse
-  std::size_t rejected = 0;    // triangles no topology operation could repair
-  std::size_t trials = 0;      // topology trials (edit, relaxation, score, undo) made
+  std::size_t moves = 0;             // accepted node moves
+  std::size_t inserted = 0;          // nodes inserted at circumcentres / off-centres / edge midpoints
+  std::size_t collapsed = 0;         // interior nodes removed by edge collapse
+  std::size_t rejected = 0;          // triangles no topology operation could repair
+  std::size_t trials = 0;            // topology trials (edit, relaxation, score, undo) made
   std::size_t compound_trials = 0;   // of which pairs of edits (docs/cleanup.md) ...
   std::size_t compound_applied = 0;  // ... and pairs applied
   int iterations_run = 0;
@@ -80,15 +80,15 @@ struct CleanupStats {
 };
 
 struct CleanupResult {
-  Mesh mesh;          // the cleaned mesh (original nodes first, in order, less removed ones; new ones after)
-  NodeSet nodes;      // its nodes, with kinds and the curve chains (for the area of --check)
+  Mesh mesh;      // the cleaned mesh (original nodes first, in order, less removed ones; new ones after)
+  NodeSet nodes;  // its nodes, with kinds and the curve chains (for the area of --check)
   CleanupStats stats;
 };
 
 // Cleans the triangulation `mesh` of `nodes` (triangulate()'s output for them). `tree` gives the
 // curves boundary nodes slide on; `spacing` the size h for the topology decisions.
 // Deterministic: the same input gives bit-identical output.
-CleanupResult clean_mesh(const Mesh& mesh, const NodeSet& nodes, const GeometryTree& tree,
-                         const SpacingField& spacing, const CleanupOptions& options);
+CleanupResult clean_mesh(const Mesh& mesh, const NodeSet& nodes, const GeometryTree& tree, const SpacingField& spacing,
+                         const CleanupOptions& options);
 
 }  // namespace pdmesh

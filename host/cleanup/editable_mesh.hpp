@@ -31,10 +31,10 @@ class EditableMesh {
   // Vertices.
   std::vector<Vec2> p;
   std::vector<NodeKind> kind;
-  std::vector<int> curve;          // Boundary vertices: their curve; others -1
-  std::vector<double> arc;         // Boundary vertices: arc position on their curve
-  std::vector<int> prev, next;     // Boundary vertices: neighbours along the curve; others -1
-  std::vector<int> vt;             // one incident triangle; -1 for a removed vertex
+  std::vector<int> curve;       // Boundary vertices: their curve; others -1
+  std::vector<double> arc;      // Boundary vertices: arc position on their curve
+  std::vector<int> prev, next;  // Boundary vertices: neighbours along the curve; others -1
+  std::vector<int> vt;          // one incident triangle; -1 for a removed vertex
   // Triangles.
   std::vector<std::array<int, 3>> v;
   std::vector<std::array<int, 3>> n;
@@ -61,9 +61,7 @@ class EditableMesh {
   // Triangle t and local index i with edge a -> b counter-clockwise in t, opposite v[t][i];
   // {-1, -1} when there is no such edge.
   std::array<int, 2> find_edge(int a, int b) const;
-  static int index_of(const std::array<int, 3>& tv, int value) {
-    return tv[0] == value ? 0 : (tv[1] == value ? 1 : 2);
-  }
+  static int index_of(const std::array<int, 3>& tv, int value) { return tv[0] == value ? 0 : (tv[1] == value ? 1 : 2); }
 
   // Edits. Each keeps the adjacency consistent; with a transaction open each saves what it changes.
   void flip(int t, int i);
@@ -124,8 +122,7 @@ class EditableMesh {
   // The live triangles and vertices, renumbered in slot order; kinds kept. curve_nodes gets the
   // curve chains (boundary nodes are never removed; boundary splits add some), boundary_edges joins
   // their consecutive nodes as triangulate() does.
-  Mesh to_mesh(const Mesh& original, std::vector<std::vector<int>>& curve_nodes,
-               std::vector<int>& old_of_new) const;
+  Mesh to_mesh(const Mesh& original, std::vector<std::vector<int>>& curve_nodes, std::vector<int>& old_of_new) const;
 
  private:
   void touch_triangle(int t);
@@ -156,7 +153,7 @@ class EditableMesh {
   std::vector<SavedTriangle> tri_log_;
   std::vector<SavedVertex> vert_log_;
   int tri_size0_ = 0, vert_size0_ = 0;
-  std::vector<std::uint8_t> gone_;  // per vertex: removed by a collapse
+  std::vector<std::uint8_t> gone_;   // per vertex: removed by a collapse
   std::vector<std::uint8_t> dirty_;  // per vertex: see take_dirty()
   void mark_dirty(int t);
   mutable std::vector<int> scratch_;

@@ -68,7 +68,8 @@ bool Smoother::try_move(int a, Vec2 displacement, double old_min, double old_sum
     // otherwise keeps taking moves that change the mean aspect ratio in the sixth digit, docs/cleanup.md);
     // a trial's relaxation takes any gain (0: strict improvement).
     const bool sweep = !mesh_.in_transaction();
-    const double min_gain = sweep ? min_rise_ : 0.0, aspect_gain = sweep ? aspect_drop_ * static_cast<double>(fan_.size()) : 0.0;
+    const double min_gain = sweep ? min_rise_ : 0.0,
+                 aspect_gain = sweep ? aspect_drop_ * static_cast<double>(fan_.size()) : 0.0;
     // A step that is valid and harms nothing but gains too little ends the search: a shorter one
     // would gain less still, and trying the halvings is what a rejected move costs.
     if (!(new_min - old_min > min_gain || old_sum - new_sum > aspect_gain)) {

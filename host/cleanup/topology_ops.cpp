@@ -32,8 +32,10 @@ int TopologyOps::locate(int start, Vec2 at) const {
     int across = -2;
     for (int i = 0; i < 3 && across == -2; ++i) {
       const double side = orient2d(m.p[m.v[t][next3(i)]], m.p[m.v[t][prev3(i)]], at);
-      if (side < 0.0) across = m.n[t][i];
-      else if (side == 0.0) across = -1;  // on an edge: not a strictly interior point
+      if (side < 0.0)
+        across = m.n[t][i];
+      else if (side == 0.0)
+        across = -1;  // on an edge: not a strictly interior point
     }
     if (across == -2) return t;
     if (across < 0) return -1;
@@ -152,7 +154,9 @@ void TopologyOps::candidates(int t, std::vector<Trial>& trials) {
   const auto tv = m.v[t];
   const Vec2 a = m.p[tv[0]], b = m.p[tv[1]], c = m.p[tv[2]];
   const double shortest = std::min({dist(a, b), dist(b, c), dist(c, a)});
-  auto add = [&](RepairKind kind, std::function<bool()> apply) { trials.push_back({kind, std::move(apply), shortest}); };
+  auto add = [&](RepairKind kind, std::function<bool()> apply) {
+    trials.push_back({kind, std::move(apply), shortest});
+  };
   const Vec2 cc = circumcentre(a, b, c);
   add(RepairKind::Insert, [this, t, cc] { return insert_at(t, cc); });
   const Vec2 centroid = (1.0 / 3.0) * (a + b + c);
@@ -160,10 +164,14 @@ void TopologyOps::candidates(int t, std::vector<Trial>& trials) {
   for (int i = 0; i < 3; ++i) {
     const int x = tv[next3(i)], y = tv[prev3(i)];
     const bool x_free = m.kind[x] == NodeKind::Interior, y_free = m.kind[y] == NodeKind::Interior;
-    if (x_free) add(RepairKind::Collapse, [this, x, y] { return collapse_edge(x, y); });
-    else if (y_free) add(RepairKind::Collapse, [this, x, y] { return collapse_edge(y, x); });
-    if (m.n[t][i] >= 0) add(RepairKind::Split, [this, t, i] { return split(t, i); });
-    else if (options_.split_boundary) add(RepairKind::Split, [this, t, i] { return split_boundary(t, i); });
+    if (x_free)
+      add(RepairKind::Collapse, [this, x, y] { return collapse_edge(x, y); });
+    else if (y_free)
+      add(RepairKind::Collapse, [this, x, y] { return collapse_edge(y, x); });
+    if (m.n[t][i] >= 0)
+      add(RepairKind::Split, [this, t, i] { return split(t, i); });
+    else if (options_.split_boundary)
+      add(RepairKind::Split, [this, t, i] { return split_boundary(t, i); });
   }
   // A crowded interior vertex of the triangle: split each of its other edges, which gives a
   // neighbour the node it is missing (JIGSAW splits edges of valence-8 nodes). Valence 7 counts as
@@ -283,8 +291,10 @@ RepairKind TopologyOps::repair_compound(const std::vector<Trial>& first) {
   commit_chosen();
   ++compound_applied_;
   for (RepairKind kind : {first[best_k].kind, second[best_j].kind}) {
-    if (kind == RepairKind::Collapse) ++compound_removed_;
-    else ++compound_inserted_;
+    if (kind == RepairKind::Collapse)
+      ++compound_removed_;
+    else
+      ++compound_inserted_;
   }
   return RepairKind::Compound;
 }

@@ -34,8 +34,8 @@ struct TopologyOptions {
   // spacing.
   double min_edge = 0.6;
   double max_edge = 1.5;  // hill-climbing rounds over the new node and its neighbours after an edit
-  // Compound trials: a triangle the driver names (one below the target) that no single trial repairs gets every trial followed by every trial on the worst triangle the first
-  // one left (see repair()).
+  // Compound trials: a triangle the driver names (one below the target) that no single trial repairs gets every trial
+  // followed by every trial on the worst triangle the first one left (see repair()).
   bool compound = true;
 };
 
@@ -103,7 +103,7 @@ class TopologyOps {
   double aspect_sum_ = 0.0, aspect_count_ = 1.0;
   std::size_t trials_ = 0;
   std::size_t compound_trials_ = 0, compound_applied_ = 0, compound_inserted_ = 0, compound_removed_ = 0;
-  double shortest_ = 0.0;      // shortest edge of the triangle being repaired
+  double shortest_ = 0.0;  // shortest edge of the triangle being repaired
   // The nodes the open transaction's edits inserted or merged into, whether each was inserted, and
   // the repaired triangle's shortest edge then (for edges_fit); cleared by each trial.
   struct Fit {

@@ -46,8 +46,8 @@ class TemporaryGuard {
 
 void rename_into_place(const fs::path& tmp, const fs::path& path) {
   if (std::rename(tmp.c_str(), path.c_str()) != 0) {
-    throw InputError(fmt::format("cannot write '{}': rename from '{}' failed: {}", path.string(),
-                                 tmp.string(), std::strerror(errno)));
+    throw InputError(fmt::format("cannot write '{}': rename from '{}' failed: {}", path.string(), tmp.string(),
+                                 std::strerror(errno)));
   }
 }
 
@@ -90,8 +90,7 @@ void write_atomically(const fs::path& path, const std::function<void(const fs::p
   write(tmp);
   std::error_code ec;
   if (!fs::is_regular_file(tmp, ec)) {
-    throw InputError(fmt::format("cannot write '{}': the writer did not create '{}'", path.string(),
-                                 tmp.string()));
+    throw InputError(fmt::format("cannot write '{}': the writer did not create '{}'", path.string(), tmp.string()));
   }
   if (const char* stop = std::getenv("PDMESH_TEST_STOP_BEFORE_RENAME"); stop && path.filename() == stop)
     ::raise(SIGSTOP);

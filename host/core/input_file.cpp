@@ -54,24 +54,34 @@ class Descriptor {
 
 const char* input_noun(InputKind kind) {
   switch (kind) {
-    case InputKind::Geometry: return "geometry file";
-    case InputKind::Case: return "case file";
-    case InputKind::Mesh: return "mesh file";
-    case InputKind::NodeFile: return "node file";
-    case InputKind::Checkpoint: return "checkpoint";
-    case InputKind::Text: return "file";
+    case InputKind::Geometry:
+      return "geometry file";
+    case InputKind::Case:
+      return "case file";
+    case InputKind::Mesh:
+      return "mesh file";
+    case InputKind::NodeFile:
+      return "node file";
+    case InputKind::Checkpoint:
+      return "checkpoint";
+    case InputKind::Text:
+      return "file";
   }
   return "file";
 }
 
 std::uint64_t input_size_limit(InputKind kind) {
   switch (kind) {
-    case InputKind::Geometry: return kGiB;
-    case InputKind::Case: return kMiB;
+    case InputKind::Geometry:
+      return kGiB;
+    case InputKind::Case:
+      return kMiB;
     case InputKind::Mesh:
     case InputKind::NodeFile:
-    case InputKind::Checkpoint: return 8 * kGiB;
-    case InputKind::Text: return kGiB;
+    case InputKind::Checkpoint:
+      return 8 * kGiB;
+    case InputKind::Text:
+      return kGiB;
   }
   return kGiB;
 }
@@ -88,8 +98,8 @@ std::string read_input_file(const std::filesystem::path& path, InputKind kind) {
   if (!S_ISREG(st.st_mode)) refuse(fmt::format("it is {}, not a regular file", file_type(st.st_mode)));
   const std::uint64_t limit = input_size_limit(kind);
   const auto too_large = [&](std::uint64_t size) {
-    refuse(fmt::format("it has {} bytes, more than the {} a {} may have (docs/robustness.md)", size,
-                       size_text(limit), noun));
+    refuse(fmt::format("it has {} bytes, more than the {} a {} may have (docs/robustness.md)", size, size_text(limit),
+                       noun));
   };
   if (static_cast<std::uint64_t>(st.st_size) > limit) too_large(static_cast<std::uint64_t>(st.st_size));
   // Non-blocking, in case the name was replaced by a pipe since the stat(); fstat() then decides.
@@ -145,9 +155,10 @@ void check_count_fits(std::string_view where, std::string_view what, std::uint64
                       std::uint64_t min_bytes_each) {
   // The last item may lack its line break.
   if (min_bytes_each == 0 || count <= (bytes_left + 1) / min_bytes_each) return;
-  throw InputError(fmt::format("{}: {} {} cannot fit in the {} bytes left in the file (each needs at least {}): the "
-                               "count is wrong or the file is truncated",
-                               where, what, count, bytes_left, min_bytes_each));
+  throw InputError(
+      fmt::format("{}: {} {} cannot fit in the {} bytes left in the file (each needs at least {}): the "
+                  "count is wrong or the file is truncated",
+                  where, what, count, bytes_left, min_bytes_each));
 }
 
 }  // namespace pdmesh

@@ -38,9 +38,7 @@ inline bool interrupt_shielded() { return detail::interrupt_shield_depth > 0; }
 
 // Whether a stop has been asked (and this thread is not shielded); a relaxed load, cheap enough for
 // every few thousand loop steps.
-inline bool interrupt_requested() {
-  return !interrupt_shielded() && interrupt_flag().load(std::memory_order_relaxed);
-}
+inline bool interrupt_requested() { return !interrupt_shielded() && interrupt_flag().load(std::memory_order_relaxed); }
 
 // Throws Interrupted when a stop has been asked. Safe on any thread (parallel_for rethrows it on
 // the calling thread).

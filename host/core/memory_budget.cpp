@@ -68,15 +68,17 @@ MemoryLimit default_memory_limit() {
   MemoryLimit limit;
   if (least == 0) return limit;
   limit.bytes = static_cast<std::uint64_t>(kDefaultMemoryShare * static_cast<double>(least));
-  limit.described = fmt::format("the default --max-memory {} (3/4 of the {})", format_bytes(static_cast<double>(limit.bytes)), of);
+  limit.described =
+      fmt::format("the default --max-memory {} (3/4 of the {})", format_bytes(static_cast<double>(limit.bytes)), of);
   return limit;
 }
 
 MemoryLimit parse_memory_limit(const std::string& text, const char* option) {
   const auto bad = [&] {
-    return InputError(fmt::format("{} {}: expected a size in bytes, optionally with a suffix K, M, G or T "
-                                  "(powers of 1024), e.g. 4G or 512M, greater than 0",
-                                  option, text.size() > 100 ? text.substr(0, 100) + "..." : text));
+    return InputError(
+        fmt::format("{} {}: expected a size in bytes, optionally with a suffix K, M, G or T "
+                    "(powers of 1024), e.g. 4G or 512M, greater than 0",
+                    option, text.size() > 100 ? text.substr(0, 100) + "..." : text));
   };
   std::size_t used = 0;
   double value = 0.0;
@@ -90,11 +92,16 @@ MemoryLimit parse_memory_limit(const std::string& text, const char* option) {
   if (suffix.size() > 1 && (suffix.ends_with("IB") || suffix.ends_with("B")))
     suffix.erase(suffix.size() - (suffix.ends_with("IB") ? 2 : 1));
   double unit = 1.0;
-  if (suffix == "K") unit = kKiB;
-  else if (suffix == "M") unit = kKiB * kKiB;
-  else if (suffix == "G") unit = kKiB * kKiB * kKiB;
-  else if (suffix == "T") unit = kKiB * kKiB * kKiB * kKiB;
-  else if (!suffix.empty() && suffix != "B") throw bad();
+  if (suffix == "K")
+    unit = kKiB;
+  else if (suffix == "M")
+    unit = kKiB * kKiB;
+  else if (suffix == "G")
+    unit = kKiB * kKiB * kKiB;
+  else if (suffix == "T")
+    unit = kKiB * kKiB * kKiB * kKiB;
+  else if (!suffix.empty() && suffix != "B")
+    throw bad();
   const double bytes = value * unit;
   // At least one byte, and within what a 64-bit size holds.
   if (!(bytes >= 1.0) || !(bytes < 1.8e19)) throw bad();
@@ -106,8 +113,8 @@ MemoryLimit parse_memory_limit(const std::string& text, const char* option) {
 
 void check_memory(const MemoryLimit& limit, double bytes, const std::string& what, const std::string& advice) {
   if (!limit.limited() || (std::isfinite(bytes) && bytes <= static_cast<double>(limit.bytes))) return;
-  throw LimitError(fmt::format("{} needs about {} of memory, more than {}; {}", what, format_bytes(bytes),
-                               limit.described, advice));
+  throw LimitError(
+      fmt::format("{} needs about {} of memory, more than {}; {}", what, format_bytes(bytes), limit.described, advice));
 }
 
 }  // namespace pdmesh

@@ -73,8 +73,7 @@ int sum_expansions(const double* e, int elen, const double* f, int flen, double*
   if (elen == 0) return static_cast<int>(std::copy(f, f + flen, h) - h);
   if (flen == 0) return static_cast<int>(std::copy(e, e + elen, h) - h);
   // Merge into h first, then sum in place: the write index never overtakes the read index.
-  std::merge(e, e + elen, f, f + flen, h,
-             [](double u, double v) { return std::fabs(u) < std::fabs(v); });
+  std::merge(e, e + elen, f, f + flen, h, [](double u, double v) { return std::fabs(u) < std::fabs(v); });
   const int n = elen + flen;
   int hn = 0;
   double q = h[0];
@@ -123,8 +122,8 @@ int multiply(const double* e, int elen, const double* f, int flen, double* h, do
 double estimate_sign_value(const double* e, int n) { return n == 0 ? 0.0 : e[n - 1]; }
 
 // u*v - w*z with u, v, w, z expansions of at most two components; h needs 16.
-int minor2(const double* u, int un, const double* v, int vn, const double* w, int wn,
-           const double* z, int zn, double* h) {
+int minor2(const double* u, int un, const double* v, int vn, const double* w, int wn, const double* z, int zn,
+           double* h) {
   double p[8], q[8], s[16];
   const int pn = multiply(u, un, v, vn, p, s);
   const int qn = negate(q, multiply(w, wn, z, zn, q, s));
@@ -141,8 +140,7 @@ double orient2d_exact(Vec2 a, Vec2 b, Vec2 c) {
 }
 
 // lift * minor for one row of the incircle determinant.
-int incircle_term(const double* dx, int dxn, const double* dy, int dyn, const double* minor,
-                  int minorn, double* h) {
+int incircle_term(const double* dx, int dxn, const double* dy, int dyn, const double* minor, int minorn, double* h) {
   double sx[8], sy[8], lift[16], s[kTermCap];
   const int sxn = multiply(dx, dxn, dx, dxn, sx, s);
   const int syn = multiply(dy, dyn, dy, dyn, sy, s);

@@ -60,8 +60,8 @@ class PhaseProgress {
     const auto now = Clock::now();
     if (std::chrono::duration<double>(now - last_).count() < kProgressInterval) return;
     last_ = now;
-    progress_line(phase_ + ": " + std::forward<TextFn>(text)() +
-                  " (" + std::to_string(static_cast<long>(std::chrono::duration<double>(now - start_).count())) + " s)");
+    progress_line(phase_ + ": " + std::forward<TextFn>(text)() + " (" +
+                  std::to_string(static_cast<long>(std::chrono::duration<double>(now - start_).count())) + " s)");
   }
 
  private:

@@ -42,13 +42,13 @@ class WorkerPool {
 
   std::vector<std::thread> threads_;
   std::atomic<bool> busy_{false};  // set by the call being served (not a mutex: a nested call on the
-                                  // same thread must see it taken, and may not try_lock a mutex it holds)
+                                   // same thread must see it taken, and may not try_lock a mutex it holds)
   std::mutex mutex_;
   std::condition_variable wake_, done_;
   const std::function<void(std::size_t)>* job_ = nullptr;
-  std::size_t count_ = 0;        // helpers 1..count_ take part in the current job
-  std::size_t generation_ = 0;   // bumped for every job
-  std::size_t pending_ = 0;      // helpers of the current job still running
+  std::size_t count_ = 0;       // helpers 1..count_ take part in the current job
+  std::size_t generation_ = 0;  // bumped for every job
+  std::size_t pending_ = 0;     // helpers of the current job still running
   bool stop_ = false;
   int pid_;  // the process whose threads these are (getpid() at construction)
 };

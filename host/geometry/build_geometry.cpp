@@ -42,9 +42,8 @@ void check_points(std::vector<RawCurve>& raw, PointLines& lines) {
       for (std::size_t i = 0; i < ln.size(); ++i) ln[i] = r.line + static_cast<int>(i);
     }
     if (r.points.size() < 2) {
-      throw GeometryError(fmt::format("{}: curve '{}' has {} point{}; a curve needs at least 2",
-                                      where(r.file, r.line), r.name, r.points.size(),
-                                      r.points.size() == 1 ? "" : "s"));
+      throw GeometryError(fmt::format("{}: curve '{}' has {} point{}; a curve needs at least 2", where(r.file, r.line),
+                                      r.name, r.points.size(), r.points.size() == 1 ? "" : "s"));
     }
     for (std::size_t i = 0; i < r.points.size(); ++i) {
       const Vec2 p = r.points[i];
@@ -91,10 +90,10 @@ void check_zero_length(const std::vector<Curve>& curves, const PointLines& lines
     const auto& pts = curves[c].points;
     for (std::size_t k = 0; k + 1 < pts.size(); ++k) {
       if (pts[k] == pts[k + 1]) {
-        throw GeometryError(fmt::format(
-            "{}: curve '{}' segment {} has zero length: points {} and {} are both {} (repeated point{})",
-            where(curves[c].file, lines[c][k + 1]), curves[c].name, k, k, k + 1, format_point(pts[k]),
-            pts.size() == 2 ? ", or curve ends closer than the join tolerance" : ""));
+        throw GeometryError(
+            fmt::format("{}: curve '{}' segment {} has zero length: points {} and {} are both {} (repeated point{})",
+                        where(curves[c].file, lines[c][k + 1]), curves[c].name, k, k, k + 1, format_point(pts[k]),
+                        pts.size() == 2 ? ", or curve ends closer than the join tolerance" : ""));
       }
     }
   }
@@ -121,8 +120,8 @@ std::vector<std::vector<CurveEnd>> check_joints(const std::vector<Curve>& curves
       std::string list;
       for (const CurveEnd ce : at[j]) {
         if (!list.empty()) list += ", ";
-        list += fmt::format("{} of curve '{}' ({})", ce.end == 0 ? "start" : "end", curves[ce.curve].name,
-                            end_where(ce));
+        list +=
+            fmt::format("{} of curve '{}' ({})", ce.end == 0 ? "start" : "end", curves[ce.curve].name, end_where(ce));
       }
       throw GeometryError(fmt::format("{} curve ends meet at {}: {}; exactly two curve ends may meet at a joint",
                                       at[j].size(), format_point(joints[j]), list));
@@ -203,10 +202,10 @@ void check_loop_area(const Geometry& g, const Loop& loop, const PointLines& line
   const double finest = std::ldexp(perimeter, -31);
   if (width >= quantum && width >= finest) return;
   const Curve& first = g.curves[loop.curves[0]];
-  const std::string curves =
-      loop.curves.size() == 1 ? fmt::format("curve '{}'", first.name)
-                              : fmt::format("curve '{}' and {} more curve{}", first.name, loop.curves.size() - 1,
-                                            loop.curves.size() == 2 ? "" : "s");
+  const std::string curves = loop.curves.size() == 1
+                                 ? fmt::format("curve '{}'", first.name)
+                                 : fmt::format("curve '{}' and {} more curve{}", first.name, loop.curves.size() - 1,
+                                               loop.curves.size() == 2 ? "" : "s");
   throw GeometryError(fmt::format(
       "{}: the loop of {} encloses almost no area: area {:.3g} over its perimeter {:.6g} is a mean width of {:.3g}, "
       "below {:.3g} ({}); a loop needs an inside (is it a line traced out and back?)",
@@ -291,18 +290,18 @@ void check_holes(Geometry& g, const std::vector<RawHolePoint>& holes) {
   for (std::size_t s = 0; s < all.size(); ++s) all[s] = static_cast<int>(s);
   for (const RawHolePoint& h : holes) {
     if (!std::isfinite(h.p.x) || !std::isfinite(h.p.y)) {
-      throw GeometryError(fmt::format("{}: hole point ({}, {}) has a non-finite coordinate", where(h.file, h.line),
-                                      h.p.x, h.p.y));
+      throw GeometryError(
+          fmt::format("{}: hole point ({}, {}) has a non-finite coordinate", where(h.file, h.line), h.p.x, h.p.y));
     }
     if (detail::on_any_segment(g.segments, h.p)) {
       throw GeometryError(fmt::format("{}: hole point {} lies on the boundary; it must lie inside a hole",
                                       where(h.file, h.line), format_point(h.p)));
     }
     if (detail::ray_crossings(g.segments, all, h.p) % 2 == 1) {
-      throw GeometryError(fmt::format(
-          "{}: hole point {} lies inside the domain, not in a hole (the domain is the even-odd interior "
-          "of the loops)",
-          where(h.file, h.line), format_point(h.p)));
+      throw GeometryError(
+          fmt::format("{}: hole point {} lies inside the domain, not in a hole (the domain is the even-odd interior "
+                      "of the loops)",
+                      where(h.file, h.line), format_point(h.p)));
     }
     g.hole_points.push_back(h.p);
   }

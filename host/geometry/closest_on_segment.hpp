@@ -23,9 +23,9 @@ inline __attribute__((always_inline)) ClosestHit closest_on_segment_inline(Vec2 
     // std::max, not std::fmax (a library call, not inlined, on the hot path of every spacing
     // evaluation): the tree's segments are finite, and a NaN in p makes hit.distance NaN, which
     // fails the test below whatever scale is.
-    const double scale = std::max(std::max(std::fabs(p.x), std::fabs(p.y)),
-                                  std::max(std::max(std::fabs(s.a.x), std::fabs(s.a.y)),
-                                           std::max(std::fabs(s.b.x), std::fabs(s.b.y))));
+    const double scale =
+        std::max(std::max(std::fabs(p.x), std::fabs(p.y)),
+                 std::max(std::max(std::fabs(s.a.x), std::fabs(s.a.y)), std::max(std::fabs(s.b.x), std::fabs(s.b.y))));
     if (hit.distance <= 1e-12 * scale && point_on_segment(p, s.a, s.b)) {
       hit.point = p;
       hit.distance = 0.0;

@@ -40,8 +40,9 @@ std::vector<RawCurve> read_curve_file(const std::string& path) {
             row.number, k + 1, count, quote_input(row.tokens[0]), count, header.number));
       }
       if (row.tokens.size() > 3) {
-        throw InputError(fmt::format("{}:{}: extra text '{}' after point 'x y z'", path, row.number,
-                                     quote_input(fmt::format("{}", fmt::join(row.tokens.begin() + 3, row.tokens.end(), " ")))));
+        throw InputError(
+            fmt::format("{}:{}: extra text '{}' after point 'x y z'", path, row.number,
+                        quote_input(fmt::format("{}", fmt::join(row.tokens.begin() + 3, row.tokens.end(), " ")))));
       }
       const double x = detail::parse_coordinate(path, row.number, row.tokens[0], "x coordinate");
       const double y = detail::parse_coordinate(path, row.number, row.tokens[1], "y coordinate");

@@ -184,7 +184,7 @@ void CurveScan::closest(Vec2 p, std::vector<ClosestHit>& out, ClosestHit* by_squ
   alignas(64) double box2[kBatchChunks + kWidth], upper2[kBatchChunks + kWidth];
   alignas(64) double d2[kBatchLanes];
   int measured[kBatchChunks], measured_end[kBatchChunks];  // a curve has one chunk or more
-  int candidates[kBatchLanes];  // one curve's, as lanes of the batch
+  int candidates[kBatchLanes];                             // one curve's, as lanes of the batch
   double least[kBatchChunks], bound2[kBatchChunks];
   const double margin = this->margin(p);
   // The least squared distance, then the lowest index, over every hit measured exactly: each curve's
@@ -195,9 +195,9 @@ void CurveScan::closest(Vec2 p, std::vector<ClosestHit>& out, ClosestHit* by_squ
   for (const Batch& b : batches_) {
     const std::size_t f = b.first_lane, fc = f / kWidth;
     scan_batch(p.x, p.y, margin, ax_.data() + f, ay_.data() + f, dx_.data() + f, dy_.data() + f, inv_len2_.data() + f,
-               box_x0_.data() + fc, box_x1_.data() + fc, box_y0_.data() + fc, box_y1_.data() + fc,
-               start_x_.data() + fc, start_y_.data() + fc, scanned_lanes_.data() + b.first_curve, b.curves,
-               b.lanes / kWidth, box2, upper2, bound2, d2, measured, measured_end, least);
+               box_x0_.data() + fc, box_x1_.data() + fc, box_y0_.data() + fc, box_y1_.data() + fc, start_x_.data() + fc,
+               start_y_.data() + fc, scanned_lanes_.data() + b.first_curve, b.curves, b.lanes / kWidth, box2, upper2,
+               bound2, d2, measured, measured_end, least);
     int begin = 0;  // the curve's first measured chunk
     for (std::size_t k = 0; k < b.curves; ++k) {
       const Scanned& s = scanned_[b.first_curve + k];
@@ -218,7 +218,8 @@ void CurveScan::closest(Vec2 p, std::vector<ClosestHit>& out, ClosestHit* by_squ
       for (int c = 0; c < count; ++c) {
         const int id = id_[f + static_cast<std::size_t>(candidates[c])];
         const ClosestHit h = detail::closest_on_segment_inline(p, geometry_.segments[static_cast<std::size_t>(id)], id);
-        if (best.segment < 0 || h.distance < best.distance || (h.distance == best.distance && id < best.segment)) best = h;
+        if (best.segment < 0 || h.distance < best.distance || (h.distance == best.distance && id < best.segment))
+          best = h;
         const double h2 = h.distance * h.distance;
         if (h2 < square_best2 || (h2 == square_best2 && id < square_best.segment)) {
           square_best2 = h2;

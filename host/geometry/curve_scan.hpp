@@ -45,7 +45,8 @@ class CurveScan {
     int lanes = 0;  // a multiple of kWidth
   };
   static constexpr int kBatchLanes = 4096;
-  static_assert(kBatchLanes >= (kMaxSegments + kWidth - 1) / kWidth * kWidth, "a batch holds the largest scanned curve");
+  static_assert(kBatchLanes >= (kMaxSegments + kWidth - 1) / kWidth * kWidth,
+                "a batch holds the largest scanned curve");
   struct Batch {
     std::size_t first_curve = 0, curves = 0;  // into scanned_
     std::size_t first_lane = 0;

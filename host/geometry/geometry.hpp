@@ -35,12 +35,12 @@ struct RawHolePoint {
 struct Curve {
   std::string name;
   std::vector<Vec2> points;
-  std::vector<double> arc;         // cumulative arc length; arc[0] = 0, arc.back() = length
+  std::vector<double> arc;             // cumulative arc length; arc[0] = 0, arc.back() = length
   std::vector<std::uint8_t> critical;  // per point: 1 if it is a critical point (joint or sharp corner)
-  int first_segment = 0;           // index of its first segment in Geometry::segments
-  std::string file;                // where it came from
+  int first_segment = 0;               // index of its first segment in Geometry::segments
+  std::string file;                    // where it came from
   int line = 0;
-  bool fixed_points = false;       // RawCurve::fixed_points: every point critical, no node between them
+  bool fixed_points = false;  // RawCurve::fixed_points: every point critical, no node between them
   double length() const { return arc.empty() ? 0.0 : arc.back(); }
   int segment_count() const { return static_cast<int>(points.size()) - 1; }
 };
@@ -49,7 +49,7 @@ struct Curve {
 struct Segment {
   Vec2 a, b;
   int curve = 0;
-  int index = 0;       // k within the curve
+  int index = 0;  // k within the curve
   double length = 0.0;
 };
 

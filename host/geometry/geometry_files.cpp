@@ -23,9 +23,10 @@ void name_curves(std::vector<RawCurve>& curves, const std::vector<std::string>& 
                  const std::string& per_file) {
   if (!curve_names.empty()) {
     if (curve_names.size() != curves.size()) {
-      throw InputError(fmt::format("{} curve names given, but the geometry has {} curve{} ({}); give one name per "
-                                   "curve in file order, or none",
-                                   curve_names.size(), curves.size(), curves.size() == 1 ? "" : "s", per_file));
+      throw InputError(
+          fmt::format("{} curve names given, but the geometry has {} curve{} ({}); give one name per "
+                      "curve in file order, or none",
+                      curve_names.size(), curves.size(), curves.size() == 1 ? "" : "s", per_file));
     }
     std::set<std::string> seen;
     for (std::size_t k = 0; k < curves.size(); ++k) {
@@ -57,8 +58,8 @@ Geometry read_geometry(const std::vector<std::string>& paths, const std::vector<
       for (RawCurve& c : poly.curves) curves.push_back(std::move(c));
       for (RawHolePoint& h : poly.holes) holes.push_back(std::move(h));
     } else {
-      throw InputError(fmt::format("{}: unsupported geometry file extension '{}' (supported: .crv, .dat, .poly)",
-                                   path, ext));
+      throw InputError(
+          fmt::format("{}: unsupported geometry file extension '{}' (supported: .crv, .dat, .poly)", path, ext));
     }
     const std::size_t n = curves.size() - before;
     per_file += fmt::format("{}{}: {} curve{}", per_file.empty() ? "" : ", ", path, n, n == 1 ? "" : "s");

@@ -176,8 +176,8 @@ class IntersectionCheck {
     const Segment& t = g_.segments[worst_.t];
     const std::string near = format_point(worst_.near);
     if (s.curve == t.curve) {
-      throw GeometryError(fmt::format("curve '{}' intersects itself: {} and {} meet near {}",
-                                      g_.curves[s.curve].name, describe(worst_.s), describe(worst_.t), near));
+      throw GeometryError(fmt::format("curve '{}' intersects itself: {} and {} meet near {}", g_.curves[s.curve].name,
+                                      describe(worst_.s), describe(worst_.t), near));
     }
     throw GeometryError(fmt::format("curves intersect: curve '{}' {} and curve '{}' {} meet near {}",
                                     g_.curves[s.curve].name, describe(worst_.s), g_.curves[t.curve].name,

@@ -27,7 +27,9 @@ bool point_on_segment(Vec2 p, Vec2 a, Vec2 b) {
   return orient2d(a, b, p) == 0.0;
 }
 
-ClosestHit closest_on_segment(Vec2 p, const Segment& s, int index) { return detail::closest_on_segment_inline(p, s, index); }
+ClosestHit closest_on_segment(Vec2 p, const Segment& s, int index) {
+  return detail::closest_on_segment_inline(p, s, index);
+}
 
 int ray_crossing(Vec2 p, Vec2 a, Vec2 b, RayDirection direction) {
   if (point_on_segment(p, a, b)) return 2;
@@ -60,8 +62,8 @@ bool segment_touches_box(Vec2 a, Vec2 b, const Box& box) {
   if (std::fmax(a.y, b.y) < box.lo.y || std::fmin(a.y, b.y) > box.hi.y) return false;
   // Bounding boxes overlap; the segment misses the box only if its line has all four corners
   // strictly on one side.
-  const double o[4] = {orient2d(a, b, box.lo), orient2d(a, b, {box.hi.x, box.lo.y}),
-                       orient2d(a, b, box.hi), orient2d(a, b, {box.lo.x, box.hi.y})};
+  const double o[4] = {orient2d(a, b, box.lo), orient2d(a, b, {box.hi.x, box.lo.y}), orient2d(a, b, box.hi),
+                       orient2d(a, b, {box.lo.x, box.hi.y})};
   const bool all_pos = o[0] > 0 && o[1] > 0 && o[2] > 0 && o[3] > 0;
   const bool all_neg = o[0] < 0 && o[1] < 0 && o[2] < 0 && o[3] < 0;
   return !(all_pos || all_neg);
@@ -318,8 +320,7 @@ class Quadtree {
     // generously: the bound must never exceed a true distance (closest() adds its own margin too).
     double r = 0.0;
     for (const int id : ids)
-      for (const Vec2 e : {(*segments_)[id].a, (*segments_)[id].b})
-        r = std::max(r, axis_distance(e, node));
+      for (const Vec2 e : {(*segments_)[id].a, (*segments_)[id].b}) r = std::max(r, axis_distance(e, node));
     const Box& b = node.box;
     node.cap_r = r * (1.0 + 1e-9) + 1e-12 * std::fmax(b.width(), b.height());
   }

@@ -43,9 +43,10 @@ class Cursor {
   void check_count(const detail::TokenLine& header, long long count, const char* what) const {
     const std::size_t left = lines_.size() - pos_;
     if (static_cast<unsigned long long>(count) > left) {
-      throw InputError(fmt::format("{}:{}: {} {} is more than the {} line{} left in the file (one per item): the count "
-                                   "is wrong or the file is truncated",
-                                   path_, header.number, what, count, left, left == 1 ? "" : "s"));
+      throw InputError(
+          fmt::format("{}:{}: {} {} is more than the {} line{} left in the file (one per item): the count "
+                      "is wrong or the file is truncated",
+                      path_, header.number, what, count, left, left == 1 ? "" : "s"));
     }
   }
 
@@ -58,7 +59,8 @@ class Cursor {
 void expect_tokens(const std::string& path, const detail::TokenLine& line, std::size_t want, const char* what) {
   if (line.tokens.size() != want) {
     throw InputError(fmt::format("{}:{}: {} should have {} value{}, found {}: '{}'", path, line.number, what, want,
-                                 want == 1 ? "" : "s", line.tokens.size(), quote_input(fmt::format("{}", fmt::join(line.tokens, " ")))));
+                                 want == 1 ? "" : "s", line.tokens.size(),
+                                 quote_input(fmt::format("{}", fmt::join(line.tokens, " ")))));
   }
 }
 
@@ -70,13 +72,14 @@ std::vector<PolyVertex> read_vertices(const std::string& path, Cursor& cursor, i
   const long long attributes = detail::parse_count(path, header.number, header.tokens[2], "attribute count");
   const long long markers = detail::parse_count(path, header.number, header.tokens[3], "vertex marker count");
   if (count == 0) {
-    throw InputError(fmt::format("{}:{}: vertex count 0 means the vertices are in a separate .node file, "
-                                 "which pdmesh does not support; put them in the .poly file",
-                                 path, header.number));
+    throw InputError(
+        fmt::format("{}:{}: vertex count 0 means the vertices are in a separate .node file, "
+                    "which pdmesh does not support; put them in the .poly file",
+                    path, header.number));
   }
   if (dimension != 2) {
-    throw InputError(fmt::format("{}:{}: dimension '{}' is not supported; only 2-D geometry (2)", path,
-                                 header.number, quote_input(header.tokens[1])));
+    throw InputError(fmt::format("{}:{}: dimension '{}' is not supported; only 2-D geometry (2)", path, header.number,
+                                 quote_input(header.tokens[1])));
   }
   if (attributes > 1000) {
     throw InputError(fmt::format("{}:{}: attribute count '{}' is implausibly large", path, header.number,
@@ -140,15 +143,16 @@ std::vector<PolySegment> read_segments(const std::string& path, Cursor& cursor, 
     for (int e = 0; e < 2; ++e) {
       const long long v = detail::parse_integer(path, row.number, row.tokens[1 + e], "vertex index");
       if (v < base || v >= base + static_cast<long long>(nvertices)) {
-        throw InputError(fmt::format("{}:{}: segment {} refers to vertex {}, which does not exist (vertices are "
-                                     "numbered {} to {})",
-                                     path, row.number, index, v, base, base + nvertices - 1));
+        throw InputError(
+            fmt::format("{}:{}: segment {} refers to vertex {}, which does not exist (vertices are "
+                        "numbered {} to {})",
+                        path, row.number, index, v, base, base + nvertices - 1));
       }
       *ends[e] = static_cast<int>(v - base);
     }
     if (seg.a == seg.b) {
-      throw InputError(fmt::format("{}:{}: segment {} joins vertex {} to itself", path, row.number, index,
-                                   seg.a + base));
+      throw InputError(
+          fmt::format("{}:{}: segment {} joins vertex {} to itself", path, row.number, index, seg.a + base));
     }
     if (markers == 1) seg.marker = detail::parse_integer(path, row.number, row.tokens[3], "boundary marker");
     segments.push_back(seg);

@@ -69,12 +69,13 @@ double parse_coordinate(const std::string& file, int line, const std::string& to
     // from_chars says the same for a value too small for a double (1e-400) as for one too large:
     // strtod's result tells which (0 or a denormal when it underflows).
     if (std::fabs(std::strtod(token.c_str(), nullptr)) < DBL_MIN) {
-      throw InputError(fmt::format("{}:{}: {} '{}' is too small for a double: it underflows to 0 or a denormal "
-                                   "(write 0, or a value of at least {:g})",
-                                   file, line, what, quote_input(token), DBL_MIN));
+      throw InputError(
+          fmt::format("{}:{}: {} '{}' is too small for a double: it underflows to 0 or a denormal "
+                      "(write 0, or a value of at least {:g})",
+                      file, line, what, quote_input(token), DBL_MIN));
     }
-    throw InputError(fmt::format("{}:{}: {} '{}' is too large (|value| must be <= {:g})", file, line, what, quote_input(token),
-                                 kLargestCoordinate));
+    throw InputError(fmt::format("{}:{}: {} '{}' is too large (|value| must be <= {:g})", file, line, what,
+                                 quote_input(token), kLargestCoordinate));
   }
   if (ec != std::errc() || ptr != last) {
     throw InputError(fmt::format("{}:{}: {} '{}' is not a number", file, line, what, quote_input(token)));
@@ -83,8 +84,8 @@ double parse_coordinate(const std::string& file, int line, const std::string& to
     throw InputError(fmt::format("{}:{}: {} '{}' is not finite", file, line, what, quote_input(token)));
   }
   if (std::fabs(value) > kLargestCoordinate) {
-    throw InputError(fmt::format("{}:{}: {} '{}' is too large (|value| must be <= {:g})", file, line, what, quote_input(token),
-                                 kLargestCoordinate));
+    throw InputError(fmt::format("{}:{}: {} '{}' is too large (|value| must be <= {:g})", file, line, what,
+                                 quote_input(token), kLargestCoordinate));
   }
   return value;
 }

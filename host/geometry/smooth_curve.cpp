@@ -82,8 +82,8 @@ Vec2 corner_tangent(Vec2 chord, Vec2 neighbour_derivative) {
 
 // Recursive subdivision of piece k of curve c over [u0, u1] until the chord is within `tol` of the
 // curve (tested at the quarter points) or shorter than `min_len`; appends the points after p0.
-void subdivide(const SmoothCurves& s, int c, int k, double u0, Vec2 p0, double u1, Vec2 p1, double tol,
-               double min_len, int depth, std::vector<Vec2>& out) {
+void subdivide(const SmoothCurves& s, int c, int k, double u0, Vec2 p0, double u1, Vec2 p1, double tol, double min_len,
+               int depth, std::vector<Vec2>& out) {
   const Vec2 d = p1 - p0;
   const double len2 = norm2(d);
   double err = 0.0;

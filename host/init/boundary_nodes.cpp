@@ -51,8 +51,10 @@ NodeSet assemble_boundary_nodes(const Geometry& geometry, const SpacingField& sp
     const std::size_t n = curve.points.size();
     const std::vector<BoundaryStation>& list_in = stations[c];
     if (list_in.size() < 2 || list_in.front().vertex != 0 || list_in.back().vertex != static_cast<int>(n) - 1)
-      throw GeometryError(fmt::format("boundary nodes: curve {} ('{}') stations do not run from its first point to "
-                                      "its last", c, curve.name));
+      throw GeometryError(
+          fmt::format("boundary nodes: curve {} ('{}') stations do not run from its first point to "
+                      "its last",
+                      c, curve.name));
     std::vector<int>& list = nodes.curve_nodes[c];
     list.reserve(list_in.size());
     for (const BoundaryStation& s : list_in) {

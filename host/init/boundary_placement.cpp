@@ -31,9 +31,10 @@ struct Section {
 double checked_q(const SpacingField& spacing, const Curve& curve, Vec2 p) {
   const double q = spacing.at(p);
   if (!(q > 0.0) || !std::isfinite(q))
-    throw LimitError(fmt::format("boundary nodes: the spacing at ({}, {}) on curve '{}' is {}; it must be a positive "
-                                 "finite number",
-                                 p.x, p.y, curve.name, q));
+    throw LimitError(
+        fmt::format("boundary nodes: the spacing at ({}, {}) on curve '{}' is {}; it must be a positive "
+                    "finite number",
+                    p.x, p.y, curve.name, q));
   return q;
 }
 
@@ -124,10 +125,11 @@ double chord_deviation(const Curve& curve, double arc_a, double arc_b) {
 
 CurveStations spacing_stations(const Geometry& geometry, const SpacingField& spacing, const PlacementOptions& options) {
   const auto refuse = [&](double count) {
-    throw LimitError(fmt::format("the spacing field asks for about {:.0f} boundary nodes (estimate: the integral of "
-                                 "ds/q along the curves, boundary.nodes = \"spacing\"), more than --max-nodes {}; "
-                                 "coarsen the spacing or raise --max-nodes",
-                                 count, options.max_nodes));
+    throw LimitError(
+        fmt::format("the spacing field asks for about {:.0f} boundary nodes (estimate: the integral of "
+                    "ds/q along the curves, boundary.nodes = \"spacing\"), more than --max-nodes {}; "
+                    "coarsen the spacing or raise --max-nodes",
+                    count, options.max_nodes));
   };
   // A first count from q at the segment midpoints, so that an absurd field is refused before the
   // curves are sampled finely.
@@ -136,7 +138,8 @@ CurveStations spacing_stations(const Geometry& geometry, const SpacingField& spa
     for (const Curve& curve : geometry.curves)
       for (int k = 0; k < curve.segment_count(); ++k) {
         const auto i = static_cast<std::size_t>(k);
-        coarse += (curve.arc[i + 1] - curve.arc[i]) / checked_q(spacing, curve, 0.5 * (curve.points[i] + curve.points[i + 1]));
+        coarse += (curve.arc[i + 1] - curve.arc[i]) /
+                  checked_q(spacing, curve, 0.5 * (curve.points[i] + curve.points[i + 1]));
       }
     if (coarse > 2.0 * static_cast<double>(options.max_nodes)) refuse(coarse);
   }
@@ -149,7 +152,8 @@ CurveStations spacing_stations(const Geometry& geometry, const SpacingField& spa
     const int n = static_cast<int>(curve.points.size());
     int first = 0;
     for (int k = 1; k < n; ++k) {
-      const bool critical = k == n - 1 || (static_cast<std::size_t>(k) < curve.critical.size() && curve.critical[k] != 0);
+      const bool critical =
+          k == n - 1 || (static_cast<std::size_t>(k) < curve.critical.size() && curve.critical[k] != 0);
       if (!critical) continue;
       sections[c].push_back(sample_section(curve, spacing, first, k));
       count += std::max(1.0, std::round(section_integral(sections[c].back())));
@@ -165,7 +169,8 @@ CurveStations spacing_stations(const Geometry& geometry, const SpacingField& spa
     out.push_back({curve.points[0], 0, 0.0});
     for (Section& s : sections[c]) {
       if (curve.fixed_points) {  // a layer front: its points are its nodes, none between them
-        out.push_back({curve.points[static_cast<std::size_t>(s.last)], s.last, curve.arc[static_cast<std::size_t>(s.last)]});
+        out.push_back(
+            {curve.points[static_cast<std::size_t>(s.last)], s.last, curve.arc[static_cast<std::size_t>(s.last)]});
         continue;
       }
       std::vector<double> arcs;
@@ -180,7 +185,8 @@ CurveStations spacing_stations(const Geometry& geometry, const SpacingField& spa
         for (std::size_t e = 0; e + 1 < arcs.size(); ++e) {
           const double dev = chord_deviation(curve, arcs[e], arcs[e + 1]);
           if (dev == 0.0) continue;
-          const double sigma = 0.5 * (spacing.at(point_at_arc(curve, arcs[e])) + spacing.at(point_at_arc(curve, arcs[e + 1])));
+          const double sigma =
+              0.5 * (spacing.at(point_at_arc(curve, arcs[e])) + spacing.at(point_at_arc(curve, arcs[e + 1])));
           const double allowed = options.max_deviation * sigma;
           if (dev <= allowed) continue;
           // The deviation falls at least linearly with the edge length (a corner between the nodes);
@@ -192,7 +198,8 @@ CurveStations spacing_stations(const Geometry& geometry, const SpacingField& spa
         if (!breached) break;
       }
       for (std::size_t j = 1; j + 1 < arcs.size(); ++j) out.push_back({point_at_arc(curve, arcs[j]), -1, arcs[j]});
-      out.push_back({curve.points[static_cast<std::size_t>(s.last)], s.last, curve.arc[static_cast<std::size_t>(s.last)]});
+      out.push_back(
+          {curve.points[static_cast<std::size_t>(s.last)], s.last, curve.arc[static_cast<std::size_t>(s.last)]});
     }
   }
   return stations;

@@ -73,8 +73,8 @@ double estimate_quad(const GeometryTree& tree, const SpacingField& spacing, cons
   if ((crowded || cut) && depth < kEstimateMaxDepth) {
     const auto& segs = tree.geometry().segments;
     const Vec2 c = b.centre();
-    const Box children[4] = {Box{b.lo, c}, Box{{c.x, b.lo.y}, {b.hi.x, c.y}},
-                             Box{{b.lo.x, c.y}, {c.x, b.hi.y}}, Box{c, b.hi}};
+    const Box children[4] = {Box{b.lo, c}, Box{{c.x, b.lo.y}, {b.hi.x, c.y}}, Box{{b.lo.x, c.y}, {c.x, b.hi.y}},
+                             Box{c, b.hi}};
     double sum = 0.0;
     for (const Box& child : children) {
       if (known_inside) {
@@ -122,8 +122,8 @@ double estimate_over(const GeometryTree& tree, const SpacingField& spacing, cons
 
 // Adds `count` random interior points: a kept leaf drawn with probability proportional to its
 // area, a uniform point in it, kept by the same rule as the tree fill (rejection sampling).
-void overload(const GeometryTree& tree, const SpacingField& spacing, const InitTree& init,
-              std::size_t count, UnitRandom& rng, NodeSet& nodes) {
+void overload(const GeometryTree& tree, const SpacingField& spacing, const InitTree& init, std::size_t count,
+              UnitRandom& rng, NodeSet& nodes) {
   const auto& kept = init.kept();
   std::vector<double> cumulative;
   cumulative.reserve(kept.size());
@@ -139,10 +139,10 @@ void overload(const GeometryTree& tree, const SpacingField& spacing, const InitT
   std::size_t added = 0;
   for (std::size_t attempt = 0; added < count; ++attempt) {
     if (attempt >= max_attempts || kept.empty())
-      throw LimitError(fmt::format(
-          "initial distribution: could only place {} of {} overloading nodes in {} attempts "
-          "(the domain leaves too little room away from the boundary)",
-          added, count, attempt));
+      throw LimitError(
+          fmt::format("initial distribution: could only place {} of {} overloading nodes in {} attempts "
+                      "(the domain leaves too little room away from the boundary)",
+                      added, count, attempt));
     const double pick = rng.next() * total_area;
     const std::size_t idx = std::min<std::size_t>(
         static_cast<std::size_t>(std::upper_bound(cumulative.begin(), cumulative.end(), pick) - cumulative.begin()),
@@ -163,9 +163,12 @@ void overload(const GeometryTree& tree, const SpacingField& spacing, const InitT
 
 const char* to_string(InitMethod method) {
   switch (method) {
-    case InitMethod::Random: return "random";
-    case InitMethod::Hexagonal: return "hexagonal";
-    default: return "structured";
+    case InitMethod::Random:
+      return "random";
+    case InitMethod::Hexagonal:
+      return "hexagonal";
+    default:
+      return "structured";
   }
 }
 
@@ -195,7 +198,7 @@ InitialDistribution make_initial_distribution(const GeometryTree& tree, const Sp
 }
 
 double estimate_node_count(const GeometryTree& tree, const SpacingField& spacing,
-                          const std::vector<double>* segment_resolution) {
+                           const std::vector<double>* segment_resolution) {
   InitTreeOptions tree_options;
   tree_options.segment_resolution = segment_resolution;
   const InitTree init(tree, spacing, tree_options);

@@ -47,10 +47,10 @@ struct InitOptions {
 
 struct InitialDistribution {
   NodeSet nodes;
-  std::vector<Box> tree_quads;  // leaves of the initialization tree that are not fully outside
-  double estimate = 0.0;        // integral of 2 / (sqrt(3) q^2) dA over the domain (hexagonal packing);
-                                // NaN when InitOptions::with_estimate was false
-  std::size_t tree_nodes = 0;   // interior nodes from the tree fill
+  std::vector<Box> tree_quads;     // leaves of the initialization tree that are not fully outside
+  double estimate = 0.0;           // integral of 2 / (sqrt(3) q^2) dA over the domain (hexagonal packing);
+                                   // NaN when InitOptions::with_estimate was false
+  std::size_t tree_nodes = 0;      // interior nodes from the tree fill
   std::size_t overload_nodes = 0;  // interior nodes added to reach `total`
 };
 
@@ -64,6 +64,6 @@ InitialDistribution make_initial_distribution(const GeometryTree& tree, const Sp
 // The hexagonal-packing node-count estimate alone, by sampling q (any field; for a BackgroundSpacing the
 // overload in init/node_estimate.hpp integrates its leaves exactly and is the one pdmesh mesh uses).
 double estimate_node_count(const GeometryTree& tree, const SpacingField& spacing,
-                          const std::vector<double>* segment_resolution = nullptr);
+                           const std::vector<double>* segment_resolution = nullptr);
 
 }  // namespace pdmesh

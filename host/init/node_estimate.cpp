@@ -57,7 +57,8 @@ double boundary_part(const GeometryTree& tree, const Bilinear& q, const LeafBox&
   if (nodes > kBoundaryNodes && depth < kBoundaryMaxDepth) {
     const double k = 0.5 * h;
     return boundary_part(tree, q, leaf, u0, v0, k, depth + 1) + boundary_part(tree, q, leaf, u0 + k, v0, k, depth + 1) +
-           boundary_part(tree, q, leaf, u0, v0 + k, k, depth + 1) + boundary_part(tree, q, leaf, u0 + k, v0 + k, k, depth + 1);
+           boundary_part(tree, q, leaf, u0, v0 + k, k, depth + 1) +
+           boundary_part(tree, q, leaf, u0 + k, v0 + k, k, depth + 1);
   }
   const double signed_distance = tree.inside(centre) ? distance : -distance;
   const double fraction = std::clamp(0.5 + signed_distance / side, 0.0, 1.0);

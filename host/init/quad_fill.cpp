@@ -80,7 +80,8 @@ void place_hexagonal(FillContext& ctx, const Box& b, double q, bool known_inside
                                 (static_cast<std::uint64_t>(j & 0x1FFFFF) << 21) |
                                 static_cast<std::uint64_t>(i & 0x1FFFFF);
       if (!ctx.lattice_points->insert(key).second) continue;
-      place(ctx, Vec2{origin.x + static_cast<double>(i) * h + shift, origin.y + static_cast<double>(j) * v}, known_inside);
+      place(ctx, Vec2{origin.x + static_cast<double>(i) * h + shift, origin.y + static_cast<double>(j) * v},
+            known_inside);
     }
   }
 }
@@ -94,8 +95,8 @@ void fill_quad(FillContext& ctx, const Box& b, const std::vector<int>& segments,
   if (ratio > kInitSplitRatio && depth < kMaxFillDepth) {
     const auto& segs = ctx.tree.geometry().segments;
     const Vec2 c = b.centre();
-    const Box children[4] = {Box{b.lo, c}, Box{{c.x, b.lo.y}, {b.hi.x, c.y}},
-                             Box{{b.lo.x, c.y}, {c.x, b.hi.y}}, Box{c, b.hi}};
+    const Box children[4] = {Box{b.lo, c}, Box{{c.x, b.lo.y}, {b.hi.x, c.y}}, Box{{b.lo.x, c.y}, {c.x, b.hi.y}},
+                             Box{c, b.hi}};
     for (const Box& child : children) {
       if (known_inside) {
         fill_quad(ctx, child, segments, true, depth + 1);
@@ -114,7 +115,7 @@ void fill_quad(FillContext& ctx, const Box& b, const std::vector<int>& segments,
     }
     return;
   }
-  const int count = ctx.method == InitMethod::Random ? random_count(ratio)
+  const int count = ctx.method == InitMethod::Random       ? random_count(ratio)
                     : ctx.method == InitMethod::Structured ? structured_count(ratio)
                                                            : static_cast<int>(std::ceil(ratio));
   ctx.centre = b.centre();
@@ -157,8 +158,8 @@ int random_count(double ratio) {
   return static_cast<int>(std::clamp(std::round(ratio), 1.0, 9.0));
 }
 
-bool keep_interior_candidate(const GeometryTree& tree, const SpacingField& spacing, Vec2 p,
-                             bool known_inside, double& q, double distance_lower_bound) {
+bool keep_interior_candidate(const GeometryTree& tree, const SpacingField& spacing, Vec2 p, bool known_inside,
+                             double& q, double distance_lower_bound) {
   if (!known_inside && !tree.inside(p)) return false;
   q = spacing.at(p);
   if (!(q > 0.0) || !std::isfinite(q)) return false;
@@ -168,8 +169,8 @@ bool keep_interior_candidate(const GeometryTree& tree, const SpacingField& spaci
   return tree.closest(p).distance >= needed;
 }
 
-std::size_t fill_leaf(const GeometryTree& tree, const SpacingField& spacing, const InitLeaf& leaf,
-                      InitMethod method, UnitRandom& rng, NodeSet& nodes, LatticePoints* lattice) {
+std::size_t fill_leaf(const GeometryTree& tree, const SpacingField& spacing, const InitLeaf& leaf, InitMethod method,
+                      UnitRandom& rng, NodeSet& nodes, LatticePoints* lattice) {
   if (method == InitMethod::Hexagonal && lattice == nullptr)
     throw Error("fill_leaf: the hexagonal fill needs the set of lattice points placed so far");
   FillContext ctx{tree, spacing, method, rng, nodes, 0, {}, -1.0, lattice};

@@ -36,8 +36,8 @@ int random_count(double ratio);
 // kInitBoundaryClearance * q(p) from the closest boundary point. `known_inside` skips the
 // point-in-domain test for quads that no segment touches; a `distance_lower_bound` that already
 // clears the rule skips the closest-point query. q is set to q(p).
-bool keep_interior_candidate(const GeometryTree& tree, const SpacingField& spacing, Vec2 p,
-                             bool known_inside, double& q, double distance_lower_bound = -1.0);
+bool keep_interior_candidate(const GeometryTree& tree, const SpacingField& spacing, Vec2 p, bool known_inside,
+                             double& q, double distance_lower_bound = -1.0);
 
 // Lattice points the hexagonal fill has placed, by (level, row, column): shared by every leaf of
 // one fill, so that a point on the edge between two quads is placed once.
@@ -46,7 +46,7 @@ using LatticePoints = std::unordered_set<std::uint64_t>;
 // Fills one kept leaf, splitting it into four while its area ratio exceeds kInitSplitRatio.
 // Kept nodes are appended to `nodes` as Interior nodes. Returns how many were added. The hexagonal
 // fill needs `lattice` (the same set for every leaf of the fill).
-std::size_t fill_leaf(const GeometryTree& tree, const SpacingField& spacing, const InitLeaf& leaf,
-                      InitMethod method, UnitRandom& rng, NodeSet& nodes, LatticePoints* lattice = nullptr);
+std::size_t fill_leaf(const GeometryTree& tree, const SpacingField& spacing, const InitLeaf& leaf, InitMethod method,
+                      UnitRandom& rng, NodeSet& nodes, LatticePoints* lattice = nullptr);
 
 }  // namespace pdmesh

@@ -34,7 +34,8 @@ bool next_keyword(LineScanner& s, std::string_view& keyword) {
 }
 
 long long read_count(LineScanner& s, std::string_view keyword, std::size_t min_bytes_each) {
-  const long long n = s.to_int(next_token(s, fmt::format("the count of {}", keyword)), fmt::format("count of {}", keyword));
+  const long long n =
+      s.to_int(next_token(s, fmt::format("the count of {}", keyword)), fmt::format("count of {}", keyword));
   s.check_count(n, min_bytes_each, keyword);
   return n;
 }
@@ -49,10 +50,13 @@ void header_keyword(LineScanner& s, std::string_view keyword) {
 
 void check_extension(const std::filesystem::path& file, const char* want) {
   std::string ext = file.extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
   if (ext == std::string(want) + "b")
-    throw InputError(fmt::format("{}: binary Medit files ({}b) are not read; write the ASCII {}", file.string(), want, want));
-  if (ext != want) throw InputError(fmt::format("{}: a Medit metric needs a {} file (got '{}')", file.string(), want, ext));
+    throw InputError(
+        fmt::format("{}: binary Medit files ({}b) are not read; write the ASCII {}", file.string(), want, want));
+  if (ext != want)
+    throw InputError(fmt::format("{}: a Medit metric needs a {} file (got '{}')", file.string(), want, ext));
 }
 
 Mesh parse_mesh(LineScanner& s) {
@@ -78,22 +82,27 @@ Mesh parse_mesh(LineScanner& s) {
       const auto nv = static_cast<long long>(mesh.points.size());
       for (long long k = 0; k < n; ++k) {
         std::array<int, 3> t{};
-        for (int& v : t) v = static_cast<int>(s.to_index(next_token(s, "a triangle vertex"), 1, nv, "triangle vertex") - 1);
+        for (int& v : t)
+          v = static_cast<int>(s.to_index(next_token(s, "a triangle vertex"), 1, nv, "triangle vertex") - 1);
         s.to_int(next_token(s, "a triangle reference"), "triangle reference");
         mesh.triangles.push_back(t);
       }
     } else {
       // Sections read over, with their numbers per record.
       int per = 0;
-      if (kw == "Edges") per = 3;
-      else if (kw == "Quadrilaterals") per = 5;
+      if (kw == "Edges")
+        per = 3;
+      else if (kw == "Quadrilaterals")
+        per = 5;
       else if (kw == "Corners" || kw == "RequiredVertices" || kw == "Ridges" || kw == "RequiredEdges" ||
                kw == "RequiredTriangles" || kw == "RequiredQuadrilaterals")
         per = 1;
       if (per == 0)
-        s.fail("unknown Medit keyword (known: MeshVersionFormatted, Dimension, Vertices, Triangles, Edges, Quadrilaterals, "
-               "Corners, Ridges, RequiredVertices, RequiredEdges, RequiredTriangles, RequiredQuadrilaterals, End)",
-               kw);
+        s.fail(
+            "unknown Medit keyword (known: MeshVersionFormatted, Dimension, Vertices, Triangles, Edges, "
+            "Quadrilaterals, "
+            "Corners, Ridges, RequiredVertices, RequiredEdges, RequiredTriangles, RequiredQuadrilaterals, End)",
+            kw);
       const std::string section(kw);
       const long long n = read_count(s, section, 2 * static_cast<std::size_t>(per));
       for (long long k = 0; k < n * per; ++k) s.to_int(next_token(s, section), fmt::format("in {}", section));
@@ -122,8 +131,12 @@ std::vector<Metric> parse_sol(LineScanner& s, const Mesh& mesh, const std::strin
     const std::string_view type_tok = next_token(s, "the solution type");
     const long long type = s.to_int(type_tok, "solution type");
     if (type != 3)
-      s.fail(fmt::format("solution type {} is not a metric; pdmesh reads type 3, a symmetric tensor m11 m12 m22 per vertex{}",
-                         type, type == 1 ? " (type 1 is a scalar size)" : type == 2 ? " (type 2 is a vector)" : ""),
+      s.fail(fmt::format(
+                 "solution type {} is not a metric; pdmesh reads type 3, a symmetric tensor m11 m12 m22 per vertex{}",
+                 type,
+                 type == 1   ? " (type 1 is a scalar size)"
+                 : type == 2 ? " (type 2 is a vector)"
+                             : ""),
              type_tok);
     std::vector<Metric> metrics(static_cast<std::size_t>(n));
     for (std::size_t i = 0; i < metrics.size(); ++i) {

@@ -28,8 +28,8 @@ bool is_mesh_format(const std::string& name) {
   return std::find(n.begin(), n.end(), name) != n.end();
 }
 
-std::vector<std::filesystem::path> write_mesh(const Mesh& mesh, const std::filesystem::path& dir, const std::string& stem,
-                                              const std::vector<std::string>& formats) {
+std::vector<std::filesystem::path> write_mesh(const Mesh& mesh, const std::filesystem::path& dir,
+                                              const std::string& stem, const std::vector<std::string>& formats) {
   for (const auto& f : formats) {
     if (!is_mesh_format(f)) {
       throw InputError(fmt::format("unknown mesh format '{}' (known: {})", f, fmt::join(mesh_format_names(), ", ")));
@@ -66,7 +66,8 @@ std::vector<std::filesystem::path> write_mesh(const Mesh& mesh, const std::files
 
 Mesh read_mesh(const std::filesystem::path& path, MeshReadReport& report) {
   std::string ext = path.extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
   if (ext == ".msh") return read_msh(path, report);
   if (ext == ".vtu") return read_vtu(path, report);
   if (ext == ".su2") return read_su2(path, report);
@@ -75,7 +76,8 @@ Mesh read_mesh(const std::filesystem::path& path, MeshReadReport& report) {
     ele.replace_extension(".ele");
     return read_triangle(ele, report);
   }
-  throw InputError(fmt::format("{}: unknown mesh file extension '{}' (known: .msh, .vtu, .su2, .ele)", path.string(), ext));
+  throw InputError(
+      fmt::format("{}: unknown mesh file extension '{}' (known: .msh, .vtu, .su2, .ele)", path.string(), ext));
 }
 
 Mesh read_mesh(const std::filesystem::path& path) {

@@ -18,8 +18,8 @@ bool is_mesh_format(const std::string& name);
 // Writes DIR/STEM.msh (msh and msh22 cannot both be asked for: same file), .vtu, .su2 or
 // STEM.node/.ele/.poly, each atomically, and returns the paths written. Throws InputError on an
 // unknown format name (listing the known ones) or an unwritable directory.
-std::vector<std::filesystem::path> write_mesh(const Mesh& mesh, const std::filesystem::path& dir, const std::string& stem,
-                                              const std::vector<std::string>& formats);
+std::vector<std::filesystem::path> write_mesh(const Mesh& mesh, const std::filesystem::path& dir,
+                                              const std::string& stem, const std::vector<std::string>& formats);
 
 // Reads a mesh by extension: .msh (2.2 or 4.1, from $MeshFormat), .vtu, .su2, .ele (with its
 // .node and optional .poly; a .node or .poly path is taken to mean the same stem).

@@ -35,8 +35,8 @@ void check_mesh_for_writing(const Mesh& mesh, const std::string& what) {
   for (std::size_t e = 0; e < mesh.boundary_edges.size(); ++e) {
     const auto& be = mesh.boundary_edges[e];
     if (be.a < 0 || be.a >= n || be.b < 0 || be.b >= n) {
-      throw InputError(fmt::format("{}: boundary edge {} ({}-{}) refers to a point outside 0..{}", what, e, be.a, be.b,
-                                   n - 1));
+      throw InputError(
+          fmt::format("{}: boundary edge {} ({}-{}) refers to a point outside 0..{}", what, e, be.a, be.b, n - 1));
     }
     if (be.curve < 0 || be.curve >= curves) {
       throw InputError(fmt::format("{}: boundary edge {} is on curve {} but the mesh has {} curve names", what, e,

@@ -33,12 +33,12 @@ struct PointDataArray {
 // What a reader found besides the mesh, for data fields (spacing.field = "mesh"). The caller names
 // the array it wants; the reader decodes only that one and lists the names of the others.
 struct MeshPointData {
-  std::string wanted;                      // in: the point-data array to decode
-  std::optional<PointDataArray> array;     // out: that array, when the file has it
-  std::vector<std::string> point_arrays;   // out: the name of every point-data array, in file order
-  std::vector<std::string> other_arrays;   // out: other data ("NAME (cell data)"), for messages
-  std::vector<long long> point_ids;        // out: MSH node tag of each point (messages name nodes by
-                                           // tag); empty for VTU (points by index, ParaView's point id)
+  std::string wanted;                     // in: the point-data array to decode
+  std::optional<PointDataArray> array;    // out: that array, when the file has it
+  std::vector<std::string> point_arrays;  // out: the name of every point-data array, in file order
+  std::vector<std::string> other_arrays;  // out: other data ("NAME (cell data)"), for messages
+  std::vector<long long> point_ids;       // out: MSH node tag of each point (messages name nodes by
+                                          // tag); empty for VTU (points by index, ParaView's point id)
 };
 
 // The name of curve c as written: its name, or "curve<c>" when empty; double quotes and line

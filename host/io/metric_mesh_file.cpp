@@ -16,11 +16,13 @@ namespace pdmesh {
 
 MetricMeshData load_metric_mesh(const std::filesystem::path& file, const std::string& array) {
   std::string ext = file.extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
   if (ext != ".vtu" && ext != ".msh") {
-    throw InputError(fmt::format("{}: a metric background mesh must be a .vtu or .msh file, or a Medit .mesh with its .sol "
-                                 "(got '{}')",
-                                 file.string(), ext));
+    throw InputError(
+        fmt::format("{}: a metric background mesh must be a .vtu or .msh file, or a Medit .mesh with its .sol "
+                    "(got '{}')",
+                    file.string(), ext));
   }
   MeshPointData pd;
   pd.wanted = array;
@@ -28,18 +30,20 @@ MetricMeshData load_metric_mesh(const std::filesystem::path& file, const std::st
   Mesh mesh = ext == ".vtu" ? read_vtu(file, report, &pd) : read_msh(file, report, &pd);
   const std::string name = file.string();
   if (mesh.triangles.empty()) {
-    throw InputError(fmt::format("{}: the mesh has no triangles{}; a metric background mesh needs triangle cells", name,
-                                 report.skipped_elements > 0 ? fmt::format(" (it has {} other cells)", report.skipped_elements) : ""));
+    throw InputError(fmt::format(
+        "{}: the mesh has no triangles{}; a metric background mesh needs triangle cells", name,
+        report.skipped_elements > 0 ? fmt::format(" (it has {} other cells)", report.skipped_elements) : ""));
   }
   if (!pd.array) {
-    const std::string has = pd.point_arrays.empty() ? std::string("the file has no point data")
-                                                    : fmt::format("its point-data arrays are: {}", fmt::join(pd.point_arrays, ", "));
+    const std::string has = pd.point_arrays.empty()
+                                ? std::string("the file has no point data")
+                                : fmt::format("its point-data arrays are: {}", fmt::join(pd.point_arrays, ", "));
     throw InputError(fmt::format("{}: no point-data array '{}' (the metric's m11 m12 m22); {}", name, array, has));
   }
   const PointDataArray& a = *pd.array;
   if (a.components != 3) {
-    throw InputError(fmt::format("{}: point-data array '{}' has {} component{}; a metric needs 3 (m11 m12 m22)", a.where,
-                                 array, a.components, a.components == 1 ? "" : "s"));
+    throw InputError(fmt::format("{}: point-data array '{}' has {} component{}; a metric needs 3 (m11 m12 m22)",
+                                 a.where, array, a.components, a.components == 1 ? "" : "s"));
   }
   const std::size_t n = mesh.points.size();
   if (a.values.size() != 3 * n) {
@@ -74,9 +78,11 @@ MetricMeshData load_metric_mesh(const std::filesystem::path& file, const std::st
 
 ScalarMeshData load_scalar_mesh(const std::filesystem::path& file, const std::string& array) {
   std::string ext = file.extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
   if (ext != ".vtu" && ext != ".msh") {
-    throw InputError(fmt::format("{}: data for a Hessian metric must be on a .vtu or .msh mesh (got '{}')", file.string(), ext));
+    throw InputError(
+        fmt::format("{}: data for a Hessian metric must be on a .vtu or .msh mesh (got '{}')", file.string(), ext));
   }
   MeshPointData pd;
   pd.wanted = array;
@@ -84,17 +90,21 @@ ScalarMeshData load_scalar_mesh(const std::filesystem::path& file, const std::st
   Mesh mesh = ext == ".vtu" ? read_vtu(file, report, &pd) : read_msh(file, report, &pd);
   const std::string name = file.string();
   if (mesh.triangles.empty())
-    throw InputError(fmt::format("{}: the mesh has no triangles; data for a Hessian metric needs triangle cells", name));
+    throw InputError(
+        fmt::format("{}: the mesh has no triangles; data for a Hessian metric needs triangle cells", name));
   if (!pd.array) {
-    const std::string has = pd.point_arrays.empty() ? std::string("the file has no point data")
-                                                    : fmt::format("its point-data arrays are: {}", fmt::join(pd.point_arrays, ", "));
-    throw InputError(fmt::format("{}: no point-data array '{}' (the function of the Hessian metric); {}", name, array, has));
+    const std::string has = pd.point_arrays.empty()
+                                ? std::string("the file has no point data")
+                                : fmt::format("its point-data arrays are: {}", fmt::join(pd.point_arrays, ", "));
+    throw InputError(
+        fmt::format("{}: no point-data array '{}' (the function of the Hessian metric); {}", name, array, has));
   }
   const PointDataArray& a = *pd.array;
   const std::size_t n = mesh.points.size();
   if (a.components != 1 || a.values.size() != n) {
-    throw InputError(fmt::format("{}: point-data array '{}' has {} components; the function must be a scalar (1 component)",
-                                 a.where, array, a.components));
+    throw InputError(
+        fmt::format("{}: point-data array '{}' has {} components; the function must be a scalar (1 component)", a.where,
+                    array, a.components));
   }
   std::vector<char> used(n, 0);
   for (const auto& t : mesh.triangles)
@@ -102,12 +112,14 @@ ScalarMeshData load_scalar_mesh(const std::filesystem::path& file, const std::st
   for (std::size_t i = 0; i < n; ++i) {
     if (!used[i]) continue;
     const Vec2 p = mesh.points[i];
-    const std::string label = i < pd.point_ids.size() ? fmt::format("node {}", pd.point_ids[i]) : fmt::format("point {}", i);
+    const std::string label =
+        i < pd.point_ids.size() ? fmt::format("node {}", pd.point_ids[i]) : fmt::format("point {}", i);
     if (!a.given.empty() && !a.given[i])
-      throw InputError(fmt::format("{}: '{}' has no value for {} ({}, {}), a vertex of a triangle", a.where, array, label, p.x, p.y));
+      throw InputError(fmt::format("{}: '{}' has no value for {} ({}, {}), a vertex of a triangle", a.where, array,
+                                   label, p.x, p.y));
     if (!std::isfinite(a.values[i]))
-      throw InputError(fmt::format("{}: '{}' at {} ({}, {}) is {}, not a finite number", a.where, array, label, p.x, p.y,
-                                   a.values[i]));
+      throw InputError(fmt::format("{}: '{}' at {} ({}, {}) is {}, not a finite number", a.where, array, label, p.x,
+                                   p.y, a.values[i]));
   }
   ScalarMeshData d;
   d.points = std::move(mesh.points);

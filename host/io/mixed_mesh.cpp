@@ -125,8 +125,10 @@ std::string mixed_vtu_string(const MixedMesh& mesh) {
   for (const auto& c : mesh.cells) fmt::format_to(to, "{}\n", offset += static_cast<std::size_t>(size_of(c)));
   out += "</DataArray>\n<DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\">\n";
   for (const auto& c : mesh.cells) out += size_of(c) == 4 ? "9\n" : "5\n";
-  out += fmt::format("</DataArray>\n</Cells>\n<CellData Scalars=\"{0}\">\n"
-                     "<DataArray type=\"UInt8\" Name=\"{0}\" format=\"ascii\">\n", kLayerRegion);
+  out += fmt::format(
+      "</DataArray>\n</Cells>\n<CellData Scalars=\"{0}\">\n"
+      "<DataArray type=\"UInt8\" Name=\"{0}\" format=\"ascii\">\n",
+      kLayerRegion);
   for (const auto l : mesh.layer) out += l ? "1\n" : "0\n";
   out += "</DataArray>\n</CellData>\n</Piece>\n</UnstructuredGrid>\n</VTKFile>\n";
   return out;
@@ -168,10 +170,14 @@ std::vector<std::filesystem::path> write_mixed_mesh(const MixedMesh& mesh, const
   std::vector<std::filesystem::path> written;
   for (const std::string& f : formats) {
     std::string text;
-    if (f == "msh") text = mixed_msh41_string(mesh);
-    else if (f == "vtu") text = mixed_vtu_string(mesh);
-    else if (f == "su2") text = mixed_su2_string(mesh);
-    else throw InputError(fmt::format("output.formats: '{}' cannot hold a boundary-layer mesh (msh, vtu and su2 can)", f));
+    if (f == "msh")
+      text = mixed_msh41_string(mesh);
+    else if (f == "vtu")
+      text = mixed_vtu_string(mesh);
+    else if (f == "su2")
+      text = mixed_su2_string(mesh);
+    else
+      throw InputError(fmt::format("output.formats: '{}' cannot hold a boundary-layer mesh (msh, vtu and su2 can)", f));
     const std::filesystem::path path = dir / (stem + "." + f);
     write_file_atomically(path, text);
     written.push_back(path);

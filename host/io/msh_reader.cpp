@@ -45,20 +45,28 @@ struct MshData {
 
 const char* element_name(int type) {
   switch (type) {
-    case 3: return "quadrangle";
-    case 4: return "tetrahedron";
-    case 5: return "hexahedron";
-    case 8: return "3-node line";
-    case 9: return "6-node triangle";
-    case 15: return "point";
-    default: return "unsupported";
+    case 3:
+      return "quadrangle";
+    case 4:
+      return "tetrahedron";
+    case 5:
+      return "hexahedron";
+    case 8:
+      return "3-node line";
+    case 9:
+      return "6-node triangle";
+    case 15:
+      return "point";
+    default:
+      return "unsupported";
   }
 }
 
 void expect_end(LineScanner& s, std::string_view section) {
   const std::string want = fmt::format("$End{}", section);
   const auto tok = s.token(want);
-  if (tok != want) s.fail(fmt::format("expected {} (a count in this section is wrong or the file is truncated)", want), tok);
+  if (tok != want)
+    s.fail(fmt::format("expected {} (a count in this section is wrong or the file is truncated)", want), tok);
 }
 
 // A count of items that take at least `min_bytes_each` bytes each in the file; refused when that
@@ -203,8 +211,9 @@ void read_elements(LineScanner& s, MshData& d) {
       const long long entity = ntags > 1 ? s.to_int(toks[3], "elementary tag") : 0;
       const std::size_t skip = static_cast<std::size_t>(ntags) + 2;
       // The node tags are the rest of the line after the type, count and tags.
-      const std::string_view nodes =
-          toks.size() > skip ? rest.substr(static_cast<std::size_t>(toks[skip].data() - rest.data())) : std::string_view();
+      const std::string_view nodes = toks.size() > skip
+                                         ? rest.substr(static_cast<std::size_t>(toks[skip].data() - rest.data()))
+                                         : std::string_view();
       add_element(s, d, type, nodes, physical, entity);
     }
     expect_end(s, "Elements");
@@ -322,8 +331,8 @@ void assemble_point_data(MshData& d) {
   for (std::size_t i = 0; i < d.value_tags.size(); ++i) {
     const auto it = d.node_index.find(d.value_tags[i]);
     if (it == d.node_index.end()) {
-      throw InputError(fmt::format("{}: $NodeData '{}' gives a value for node {}, which is not in $Nodes", a.where, quote_input(a.name),
-                                   d.value_tags[i]));
+      throw InputError(fmt::format("{}: $NodeData '{}' gives a value for node {}, which is not in $Nodes", a.where,
+                                   quote_input(a.name), d.value_tags[i]));
     }
     const auto p = static_cast<std::size_t>(it->second);
     const auto nc = static_cast<std::size_t>(d.components);
@@ -336,7 +345,8 @@ void assemble_point_data(MshData& d) {
 
 int resolve(const MshData& d, const std::string& file, const RawElement& e, long long tag) {
   const auto it = d.node_index.find(tag);
-  if (it == d.node_index.end()) throw InputError(fmt::format("{}:{}: element refers to unknown node tag {}", file, e.line, tag));
+  if (it == d.node_index.end())
+    throw InputError(fmt::format("{}:{}: element refers to unknown node tag {}", file, e.line, tag));
   return it->second;
 }
 
@@ -348,21 +358,23 @@ Mesh assemble(const std::string& file, MshData& d, MeshReadReport& report) {
   for (const auto& [tag, name] : d.line_names) {
     curve_of[{0, tag}] = 0;
   }
-  for (const auto& e : d.lines) curve_of[e.physical > 0 ? std::pair<int, long long>{0, e.physical}
-                                                        : std::pair<int, long long>{1, e.entity}] = 0;
+  for (const auto& e : d.lines)
+    curve_of[e.physical > 0 ? std::pair<int, long long>{0, e.physical} : std::pair<int, long long>{1, e.entity}] = 0;
   for (auto& [key, index] : curve_of) {
     index = static_cast<int>(mesh.curve_names.size());
     const auto named = key.first == 0 ? d.line_names.find(key.second) : d.line_names.end();
     mesh.curve_names.push_back(named != d.line_names.end() ? named->second
-                               : key.first == 0       ? fmt::format("physical{}", key.second)
-                                                      : fmt::format("entity{}", key.second));
+                               : key.first == 0            ? fmt::format("physical{}", key.second)
+                                                           : fmt::format("entity{}", key.second));
   }
   for (const auto& e : d.lines) {
-    const int c = curve_of[e.physical > 0 ? std::pair<int, long long>{0, e.physical} : std::pair<int, long long>{1, e.entity}];
+    const int c =
+        curve_of[e.physical > 0 ? std::pair<int, long long>{0, e.physical} : std::pair<int, long long>{1, e.entity}];
     mesh.boundary_edges.push_back({resolve(d, file, e, e.nodes[0]), resolve(d, file, e, e.nodes[1]), c});
   }
   for (const auto& e : d.triangles) {
-    mesh.triangles.push_back({resolve(d, file, e, e.nodes[0]), resolve(d, file, e, e.nodes[1]), resolve(d, file, e, e.nodes[2])});
+    mesh.triangles.push_back(
+        {resolve(d, file, e, e.nodes[0]), resolve(d, file, e, e.nodes[1]), resolve(d, file, e, e.nodes[2])});
   }
   for (const auto& [type, n] : d.skipped) {
     report.skipped_elements += n;
@@ -398,7 +410,8 @@ Mesh parse_msh(const std::string& file_label, std::string content, MeshReadRepor
       read_node_data(s, d);
     } else if ((section == "$ElementData" || section == "$ElementNodeData") && d.data != nullptr) {
       const DataHeader h = read_data_header(s, section);
-      d.data->other_arrays.push_back(fmt::format("{} ({})", quote_input(h.name), section == "$ElementData" ? "element data" : "element node data"));
+      d.data->other_arrays.push_back(fmt::format("{} ({})", quote_input(h.name),
+                                                 section == "$ElementData" ? "element data" : "element node data"));
       skip_to_end(s, section);
     } else if (!section.empty() && section[0] == '$') {
       // A section we do not use ($PartitionedEntities, $NodeData, ...): skip to its end marker.

@@ -51,8 +51,8 @@ std::string msh41_string(const Mesh& mesh) {
   out += fmt::format("$Entities\n0 {} 1 0\n", curves);
   for (std::size_t c = 0; c < curves; ++c) {
     const Box b = curve_box[c].lo.x <= curve_box[c].hi.x ? curve_box[c] : all;
-    out += fmt::format("{} {} {} 0 {} {} 0 1 {} 0\n", c + 1, coord(b.lo.x), coord(b.lo.y), coord(b.hi.x),
-                       coord(b.hi.y), c + 1);
+    out += fmt::format("{} {} {} 0 {} {} 0 1 {} 0\n", c + 1, coord(b.lo.x), coord(b.lo.y), coord(b.hi.x), coord(b.hi.y),
+                       c + 1);
   }
   out += fmt::format("1 {} {} 0 {} {} 0 1 {} 0\n$EndEntities\n", coord(all.lo.x), coord(all.lo.y), coord(all.hi.x),
                      coord(all.hi.y), curves + 1);

@@ -60,7 +60,9 @@ std::vector<Row> table_rows(const QualitySummary& first, const QualitySummary* c
   };
   // The cleanup rows (docs/cleanup.md), shown when a column comes from a cleaned mesh.
   auto cleanup_count = [](std::size_t CleanupEffect::*field) {
-    return [field](const QualitySummary& s) { return s.has_cleanup ? fmt::format("{}", s.cleanup.*field) : std::string("-"); };
+    return [field](const QualitySummary& s) {
+      return s.has_cleanup ? fmt::format("{}", s.cleanup.*field) : std::string("-");
+    };
   };
   auto cleanup_angle = [](double CleanupEffect::*field) {
     return [field](const QualitySummary& s) {
@@ -86,20 +88,21 @@ std::vector<Row> table_rows(const QualitySummary& first, const QualitySummary* c
     rows.push_back({"Metric: edge length", "MIN",
                     m([](const MetricQualitySummary& q) { return fmt::format("{:.3f}", q.length_min); })});
     rows.push_back({"", "MAX", m([](const MetricQualitySummary& q) { return fmt::format("{:.3f}", q.length_max); })});
-    rows.push_back({"Metric: quality Q", "MIN",
-                    m([](const MetricQualitySummary& q) { return fmt::format("{:.3f}", q.q_min); })});
+    rows.push_back(
+        {"Metric: quality Q", "MIN", m([](const MetricQualitySummary& q) { return fmt::format("{:.3f}", q.q_min); })});
     rows.push_back({"", "mean", m([](const MetricQualitySummary& q) { return fmt::format("{:.3f}", q.q_mean); })});
-    rows.push_back({"", "< 0.3 %",
-                    m([](const MetricQualitySummary& q) { return fmt::format("{:.2f}", q.q_below_0_3_percent); })});
+    rows.push_back(
+        {"", "< 0.3 %", m([](const MetricQualitySummary& q) { return fmt::format("{:.2f}", q.q_below_0_3_percent); })});
     rows.push_back({"Metric: triangles / 4C/sqrt3", "",
                     m([](const MetricQualitySummary& q) { return fmt::format("{:.3f}", q.n_over_ideal); })});
-    rows.push_back({"", "4C/sqrt3",
-                    m([](const MetricQualitySummary& q) { return fmt::format("{:.1f}", q.ideal_triangles); })});
+    rows.push_back(
+        {"", "4C/sqrt3", m([](const MetricQualitySummary& q) { return fmt::format("{:.1f}", q.ideal_triangles); })});
     for (std::size_t k = 0; k < kMetricQualityBins; ++k) {
-      const std::string bin = k == 0 ? "<0.1" : k + 1 == kMetricQualityBins ? ">=0.9" : fmt::format("[{:.1f},{:.1f})", k / 10.0, (k + 1) / 10.0);
-      rows.push_back({k == 0 ? "Metric: Q histogram" : "", bin, m([k](const MetricQualitySummary& q) {
-                        return fmt::format("{}", q.q_histogram[k]);
-                      })});
+      const std::string bin = k == 0                        ? "<0.1"
+                              : k + 1 == kMetricQualityBins ? ">=0.9"
+                                                            : fmt::format("[{:.1f},{:.1f})", k / 10.0, (k + 1) / 10.0);
+      rows.push_back({k == 0 ? "Metric: Q histogram" : "", bin,
+                      m([k](const MetricQualitySummary& q) { return fmt::format("{}", q.q_histogram[k]); })});
     }
   }
   const Histogram& ha = first.min_angle_histogram;
@@ -166,7 +169,8 @@ std::string format_quality_table(const std::vector<std::pair<std::string, Qualit
       continue;
     }
     out += fmt::format("{:<{}}  {:<{}}", r.name, name_width, r.sub, sub_width);
-    for (std::size_t c = 0; c < columns.size(); ++c) out += fmt::format("  {:>{}}", r.value(columns[c].second), widths[c]);
+    for (std::size_t c = 0; c < columns.size(); ++c)
+      out += fmt::format("  {:>{}}", r.value(columns[c].second), widths[c]);
     out += '\n';
   }
   return out;
@@ -181,13 +185,27 @@ std::string json_string(const std::string& text) {
   for (const char ch : text) {
     const auto c = static_cast<unsigned char>(ch);
     switch (ch) {
-      case '"': out += "\\\""; break;
-      case '\\': out += "\\\\"; break;
-      case '\n': out += "\\n"; break;
-      case '\r': out += "\\r"; break;
-      case '\t': out += "\\t"; break;
-      case '\b': out += "\\b"; break;
-      case '\f': out += "\\f"; break;
+      case '"':
+        out += "\\\"";
+        break;
+      case '\\':
+        out += "\\\\";
+        break;
+      case '\n':
+        out += "\\n";
+        break;
+      case '\r':
+        out += "\\r";
+        break;
+      case '\t':
+        out += "\\t";
+        break;
+      case '\b':
+        out += "\\b";
+        break;
+      case '\f':
+        out += "\\f";
+        break;
       default:
         if (c < 0x20 || c == 0x7f) {
           out += fmt::format("\\u{:04x}", c);
@@ -238,7 +256,8 @@ std::string quality_json(const QualitySummary& s, const std::string& source) {
   if (s.has_metric) {
     const MetricQualitySummary& m = s.metric;
     std::string histogram;
-    for (std::size_t k = 0; k < kMetricQualityBins; ++k) histogram += fmt::format("{}{}", k ? ", " : "", m.q_histogram[k]);
+    for (std::size_t k = 0; k < kMetricQualityBins; ++k)
+      histogram += fmt::format("{}{}", k ? ", " : "", m.q_histogram[k]);
     out += fmt::format(
         "  \"metric\": {{\"edges\": {}, \"window\": [{}, {}], \"window_percent\": {}, \"length_min\": {}, "
         "\"length_max\": {}, \"q_min\": {}, \"q_mean\": {}, \"q_below_0_3_percent\": {}, \"q_histogram\": [{}], "

@@ -15,9 +15,11 @@ namespace pdmesh {
 
 std::unique_ptr<MeshSpacing> load_mesh_spacing(const std::filesystem::path& file, const std::string& array) {
   std::string ext = file.extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
   if (ext != ".vtu" && ext != ".msh") {
-    throw InputError(fmt::format("{}: a spacing background mesh must be a .vtu or .msh file (got '{}')", file.string(), ext));
+    throw InputError(
+        fmt::format("{}: a spacing background mesh must be a .vtu or .msh file (got '{}')", file.string(), ext));
   }
   MeshPointData pd;
   pd.wanted = array;
@@ -27,19 +29,22 @@ std::unique_ptr<MeshSpacing> load_mesh_spacing(const std::filesystem::path& file
   d.file = file.string();
   d.array = array;
   if (mesh.triangles.empty()) {
-    throw InputError(fmt::format("{}: the mesh has no triangles{}; a spacing background mesh needs triangle cells",
-                                 d.file, report.skipped_elements > 0 ? fmt::format(" (it has {} other cells)", report.skipped_elements) : ""));
+    throw InputError(fmt::format(
+        "{}: the mesh has no triangles{}; a spacing background mesh needs triangle cells", d.file,
+        report.skipped_elements > 0 ? fmt::format(" (it has {} other cells)", report.skipped_elements) : ""));
   }
   if (!pd.array) {
     const std::string has = pd.point_arrays.empty()
                                 ? std::string("the file has no point data")
                                 : fmt::format("its point-data arrays are: {}", fmt::join(pd.point_arrays, ", "));
-    const std::string other = pd.other_arrays.empty() ? std::string() : fmt::format(" (other data: {})", fmt::join(pd.other_arrays, ", "));
+    const std::string other =
+        pd.other_arrays.empty() ? std::string() : fmt::format(" (other data: {})", fmt::join(pd.other_arrays, ", "));
     throw InputError(fmt::format("{}: no point-data array '{}' (spacing.array); {}{}", d.file, array, has, other));
   }
   if (pd.array->components != 1) {
-    throw InputError(fmt::format("{}: point-data array '{}' has {} components; the spacing must be a scalar (1 component)",
-                                 pd.array->where, array, pd.array->components));
+    throw InputError(
+        fmt::format("{}: point-data array '{}' has {} components; the spacing must be a scalar (1 component)",
+                    pd.array->where, array, pd.array->components));
   }
   d.points = std::move(mesh.points);
   d.triangles = std::move(mesh.triangles);

@@ -16,14 +16,22 @@ namespace {
 // Points per element for the VTK type ids SU2 uses.
 int su2_nodes(int type) {
   switch (type) {
-    case 3: return 2;   // line
-    case 5: return 3;   // triangle
-    case 9: return 4;   // quadrilateral
-    case 10: return 4;  // tetrahedron
-    case 12: return 8;  // hexahedron
-    case 13: return 6;  // prism
-    case 14: return 5;  // pyramid
-    default: return 0;
+    case 3:
+      return 2;  // line
+    case 5:
+      return 3;  // triangle
+    case 9:
+      return 4;  // quadrilateral
+    case 10:
+      return 4;  // tetrahedron
+    case 12:
+      return 8;  // hexahedron
+    case 13:
+      return 6;  // prism
+    case 14:
+      return 5;  // pyramid
+    default:
+      return 0;
   }
 }
 
@@ -45,7 +53,12 @@ std::string_view keyed(LineScanner& s, std::string_view line, std::string_view k
 Mesh parse_su2(const std::string& file, std::string content, MeshReadReport& report) {
   LineScanner s(file, std::move(content));
   Mesh mesh;
-  struct Element { std::array<long long, 3> v; int line; bool triangle; int curve; };
+  struct Element {
+    std::array<long long, 3> v;
+    int line;
+    bool triangle;
+    int curve;
+  };
   std::vector<Element> elements;
   std::map<int, std::size_t> skipped;
   long long npoints = -1;
@@ -57,14 +70,16 @@ Mesh parse_su2(const std::string& file, std::string content, MeshReadReport& rep
     const auto type = static_cast<int>(s.to_int(toks.at(0), "element type"));
     const int n = su2_nodes(type);
     if (n == 0) s.fail("unknown SU2 element type", toks[0]);
-    if (static_cast<int>(toks.size()) < 1 + n) s.fail(fmt::format("element of type {} needs {} point indices", type, n));
+    if (static_cast<int>(toks.size()) < 1 + n)
+      s.fail(fmt::format("element of type {} needs {} point indices", type, n));
     const bool keep = curve >= 0 ? type == 3 : type == 5;
     if (!keep) {
       skipped[type]++;
       return;
     }
     Element e{{0, 0, 0}, s.line(), type == 5, curve};
-    for (int k = 0; k < n; ++k) e.v[static_cast<std::size_t>(k)] = s.to_int(toks[static_cast<std::size_t>(1 + k)], "point index");
+    for (int k = 0; k < n; ++k)
+      e.v[static_cast<std::size_t>(k)] = s.to_int(toks[static_cast<std::size_t>(1 + k)], "point index");
     elements.push_back(e);
   };
 
@@ -109,7 +124,8 @@ Mesh parse_su2(const std::string& file, std::string content, MeshReadReport& rep
         const auto tag = keyed(s, s.expect_line("MARKER_TAG=", '%'), "MARKER_TAG");
         const int curve = static_cast<int>(mesh.curve_names.size());
         mesh.curve_names.emplace_back(tag);
-        const long long n = s.to_int(keyed(s, s.expect_line("MARKER_ELEMS=", '%'), "MARKER_ELEMS"), "marker element count");
+        const long long n =
+            s.to_int(keyed(s, s.expect_line("MARKER_ELEMS=", '%'), "MARKER_ELEMS"), "marker element count");
         if (n < 0) s.fail("negative marker element count");
         s.check_count(n, 6, "marker element count");
         for (long long i = 0; i < n; ++i) read_element(curve);
@@ -121,9 +137,10 @@ Mesh parse_su2(const std::string& file, std::string content, MeshReadReport& rep
   if (!have_dim) throw InputError(fmt::format("{}: no NDIME= line", file));
   for (const auto& e : elements) {
     for (int k = 0; k < (e.triangle ? 3 : 2); ++k) {
-      if (e.v[static_cast<std::size_t>(k)] < 0 || e.v[static_cast<std::size_t>(k)] >= static_cast<long long>(mesh.points.size())) {
-        throw InputError(fmt::format("{}:{}: point index {} outside 0..{}", file, e.line, e.v[static_cast<std::size_t>(k)],
-                                     static_cast<long long>(mesh.points.size()) - 1));
+      if (e.v[static_cast<std::size_t>(k)] < 0 ||
+          e.v[static_cast<std::size_t>(k)] >= static_cast<long long>(mesh.points.size())) {
+        throw InputError(fmt::format("{}:{}: point index {} outside 0..{}", file, e.line,
+                                     e.v[static_cast<std::size_t>(k)], static_cast<long long>(mesh.points.size()) - 1));
       }
     }
     if (e.triangle) {

@@ -90,7 +90,8 @@ Mesh parse_triangle(const std::string& node_label, std::string node, const std::
       if (static_cast<long long>(t.size()) < 1 + per) s.fail(fmt::format("a triangle needs {} fields", 1 + per));
       std::array<int, 3> tri{};
       for (int k = 0; k < 3; ++k) {
-        tri[static_cast<std::size_t>(k)] = static_cast<int>(s.to_index(t[static_cast<std::size_t>(1 + k)], base, base + n - 1, "point index") - base);
+        tri[static_cast<std::size_t>(k)] =
+            static_cast<int>(s.to_index(t[static_cast<std::size_t>(1 + k)], base, base + n - 1, "point index") - base);
       }
       mesh.triangles.push_back(tri);
     }

@@ -109,12 +109,12 @@ bool parse_vtu_type(std::string_view name, VtuType& type) {
   };
   // The XML names, then the legacy names VTK still accepts.
   static constexpr Entry kTypes[] = {
-      {"Int8", {1, false, true}},      {"UInt8", {1, false, false}},    {"Int16", {2, false, true}},
-      {"UInt16", {2, false, false}},   {"Int32", {4, false, true}},     {"UInt32", {4, false, false}},
-      {"Int64", {8, false, true}},     {"UInt64", {8, false, false}},   {"Float32", {4, true, true}},
-      {"Float64", {8, true, true}},    {"Char", {1, false, true}},      {"UnsignedChar", {1, false, false}},
-      {"Short", {2, false, true}},     {"UnsignedShort", {2, false, false}}, {"Int", {4, false, true}},
-      {"UnsignedInt", {4, false, false}}, {"Float", {4, true, true}},   {"Double", {8, true, true}},
+      {"Int8", {1, false, true}},         {"UInt8", {1, false, false}},         {"Int16", {2, false, true}},
+      {"UInt16", {2, false, false}},      {"Int32", {4, false, true}},          {"UInt32", {4, false, false}},
+      {"Int64", {8, false, true}},        {"UInt64", {8, false, false}},        {"Float32", {4, true, true}},
+      {"Float64", {8, true, true}},       {"Char", {1, false, true}},           {"UnsignedChar", {1, false, false}},
+      {"Short", {2, false, true}},        {"UnsignedShort", {2, false, false}}, {"Int", {4, false, true}},
+      {"UnsignedInt", {4, false, false}}, {"Float", {4, true, true}},           {"Double", {8, true, true}},
   };
   for (const Entry& e : kTypes) {
     if (name == e.name) {
@@ -158,7 +158,8 @@ bool VtuBytes::next_group() {
   }
   if (n == 0) return false;
   if (n < 4 || padding > 2) throw InputError(fmt::format("{}: base64 data ends in the middle of a group", where_));
-  const std::uint32_t word = (static_cast<std::uint32_t>(values[0]) << 18) | (static_cast<std::uint32_t>(values[1]) << 12) |
+  const std::uint32_t word = (static_cast<std::uint32_t>(values[0]) << 18) |
+                             (static_cast<std::uint32_t>(values[1]) << 12) |
                              (static_cast<std::uint32_t>(values[2]) << 6) | static_cast<std::uint32_t>(values[3]);
   pending_[0] = static_cast<unsigned char>(word >> 16);
   pending_[1] = static_cast<unsigned char>(word >> 8);
@@ -170,8 +171,8 @@ bool VtuBytes::next_group() {
 
 void VtuBytes::read(std::size_t n, std::vector<unsigned char>& out, std::string_view what) {
   if (n > available()) {
-    throw InputError(fmt::format("{}: the data ends before {} ({} bytes wanted, at most {} left)", where_, what, n,
-                                 available()));
+    throw InputError(
+        fmt::format("{}: the data ends before {} ({} bytes wanted, at most {} left)", where_, what, n, available()));
   }
   out.reserve(out.size() + n);
   if (!base64_) {
@@ -224,8 +225,8 @@ std::vector<double> decode_vtu_binary(VtuBytes& bytes, const VtuEncoding& encodi
     bytes.read(hb, header, "the block header");
     const std::uint64_t n = header_item(0);
     if (n > bytes.available()) {
-      throw InputError(fmt::format("{}: the header announces {} bytes but at most {} follow", bytes.where(), n,
-                                   bytes.available()));
+      throw InputError(
+          fmt::format("{}: the header announces {} bytes but at most {} follow", bytes.where(), n, bytes.available()));
     }
     bytes.read(static_cast<std::size_t>(n), payload, "the end of the array");
   } else {
@@ -245,8 +246,8 @@ std::vector<double> decode_vtu_binary(VtuBytes& bytes, const VtuEncoding& encodi
     for (std::uint64_t b = 0; b < blocks; ++b) {
       const std::uint64_t csize = header_item(3 + b);
       if (csize > bytes.available()) {
-        throw InputError(fmt::format("{}: compressed block {} of {} bytes runs past the end of the data", bytes.where(), b,
-                                     csize));
+        throw InputError(
+            fmt::format("{}: compressed block {} of {} bytes runs past the end of the data", bytes.where(), b, csize));
       }
       compressed.clear();
       bytes.read(static_cast<std::size_t>(csize), compressed, fmt::format("the end of compressed block {}", b));

@@ -25,10 +25,10 @@ struct ArrayInfo {
   std::string name;
   VtuType type;
   int components = 1;
-  std::string format;               // ascii, binary or appended
-  std::size_t begin = 0, end = 0;   // element content (ascii, binary)
-  std::uint64_t offset = 0;         // into the appended data (appended)
-  std::size_t pos = 0;              // of the tag, for line numbers
+  std::string format;              // ascii, binary or appended
+  std::size_t begin = 0, end = 0;  // element content (ascii, binary)
+  std::uint64_t offset = 0;        // into the appended data (appended)
+  std::size_t pos = 0;             // of the tag, for line numbers
 };
 
 bool is_space(char c) { return c == ' ' || c == '\n' || c == '\t' || c == '\r'; }
@@ -56,8 +56,11 @@ std::map<std::string, std::string> attributes(std::string_view tag) {
     const char quote = tag[i++];
     const std::size_t value_end = std::min(tag.find(quote, i), tag.size());
     std::string value(tag.substr(i, value_end - i));
-    for (const auto& [entity, ch] : {std::pair<const char*, char>{"&lt;", '<'}, {"&gt;", '>'}, {"&quot;", '"'},
-                                     {"&apos;", '\''}, {"&amp;", '&'}}) {
+    for (const auto& [entity, ch] : {std::pair<const char*, char>{"&lt;", '<'},
+                                     {"&gt;", '>'},
+                                     {"&quot;", '"'},
+                                     {"&apos;", '\''},
+                                     {"&amp;", '&'}}) {
       for (std::size_t p; (p = value.find(entity)) != std::string::npos;) value.replace(p, std::strlen(entity), 1, ch);
     }
     out[key] = std::move(value);
@@ -76,13 +79,16 @@ class VtuFile {
   VtuFile(const std::string& file, const std::string& text) : file_(file), text_(text) {}
 
   int line_at(std::size_t pos) const {
-    return 1 + static_cast<int>(std::count(text_.begin(), text_.begin() + static_cast<long>(std::min(pos, text_.size())), '\n'));
+    return 1 + static_cast<int>(
+                   std::count(text_.begin(), text_.begin() + static_cast<long>(std::min(pos, text_.size())), '\n'));
   }
   [[noreturn]] void fail(std::size_t pos, const std::string& what) const {
     throw InputError(fmt::format("{}:{}: {}", file_, line_at(pos), what));
   }
   std::string location(std::size_t pos) const { return fmt::format("{}:{}", file_, line_at(pos)); }
-  std::string where(const ArrayInfo& a) const { return fmt::format("{}: DataArray '{}'", location(a.pos), quote_input(a.name)); }
+  std::string where(const ArrayInfo& a) const {
+    return fmt::format("{}: DataArray '{}'", location(a.pos), quote_input(a.name));
+  }
 
   void scan() {
     // Raw appended data may hold any byte, '<' included: the markup ends where it begins.
@@ -154,9 +160,11 @@ class VtuFile {
       VtuBytes bytes = VtuBytes::base64(std::string_view(text_).substr(a.begin, a.end - a.begin), where(a));
       return decode_vtu_binary(bytes, encoding_, a.type);
     }
-    if (appended_begin_ == std::string::npos) fail(a.pos, fmt::format("DataArray '{}' is appended but the file has no <AppendedData>", quote_input(a.name)));
+    if (appended_begin_ == std::string::npos)
+      fail(a.pos, fmt::format("DataArray '{}' is appended but the file has no <AppendedData>", quote_input(a.name)));
     if (a.offset > appended_end_ - appended_begin_) {
-      fail(a.pos, fmt::format("DataArray '{}' has offset {} past the end of the appended data", quote_input(a.name), a.offset));
+      fail(a.pos, fmt::format("DataArray '{}' has offset {} past the end of the appended data", quote_input(a.name),
+                              a.offset));
     }
     const std::size_t at = appended_begin_ + static_cast<std::size_t>(a.offset);
     const std::string_view data = std::string_view(text_).substr(at, appended_end_ - at);
@@ -167,21 +175,25 @@ class VtuFile {
  private:
   void read_root(std::size_t pos, const std::map<std::string, std::string>& a) {
     const std::string type = get(a, "type");
-    if (type != "UnstructuredGrid") fail(pos, fmt::format("VTK file type '{}' is not UnstructuredGrid", quote_input(type)));
+    if (type != "UnstructuredGrid")
+      fail(pos, fmt::format("VTK file type '{}' is not UnstructuredGrid", quote_input(type)));
     const std::string order = get(a, "byte_order");
-    if (!order.empty() && order != "LittleEndian" && order != "BigEndian") fail(pos, fmt::format("unknown byte_order '{}'", quote_input(order)));
+    if (!order.empty() && order != "LittleEndian" && order != "BigEndian")
+      fail(pos, fmt::format("unknown byte_order '{}'", quote_input(order)));
     encoding_.big_endian = order == "BigEndian";
     const std::string header = get(a, "header_type");
-    if (!header.empty() && header != "UInt32" && header != "UInt64") fail(pos, fmt::format("unknown header_type '{}'", quote_input(header)));
+    if (!header.empty() && header != "UInt32" && header != "UInt64")
+      fail(pos, fmt::format("unknown header_type '{}'", quote_input(header)));
     encoding_.header_uint64 = header == "UInt64";
     const std::string compressor = get(a, "compressor");
     if (compressor == "vtkZLibDataCompressor") {
       encoding_.compressor = VtuCompressor::ZLib;
     } else if (!compressor.empty()) {
       // Reported only if a binary array is actually read: ASCII arrays are never compressed.
-      compressor_error_ = fmt::format("compressor '{}' is not supported (pdmesh reads uncompressed data and "
-                                      "vtkZLibDataCompressor; in ParaView save with Compressor Type None or ZLib)",
-                                      quote_input(compressor));
+      compressor_error_ = fmt::format(
+          "compressor '{}' is not supported (pdmesh reads uncompressed data and "
+          "vtkZLibDataCompressor; in ParaView save with Compressor Type None or ZLib)",
+          quote_input(compressor));
     }
   }
 
@@ -189,7 +201,8 @@ class VtuFile {
     const auto close = text_.find('>', pos);
     if (close == std::string::npos) fail(pos, "unterminated <AppendedData> tag");
     const std::string encoding = get(attributes(std::string_view(text_).substr(pos, close - pos + 1)), "encoding");
-    if (encoding != "raw" && encoding != "base64") fail(pos, fmt::format("unknown AppendedData encoding '{}'", quote_input(encoding)));
+    if (encoding != "raw" && encoding != "base64")
+      fail(pos, fmt::format("unknown AppendedData encoding '{}'", quote_input(encoding)));
     appended_base64_ = encoding == "base64";
     const auto mark = text_.find('_', close);
     if (mark == std::string::npos) fail(pos, "<AppendedData> without the '_' that starts its data");
@@ -207,7 +220,8 @@ class VtuFile {
     a.format = get(attrs, "format");
     if (a.format.empty()) a.format = "ascii";
     const std::string type = get(attrs, "type");
-    if (!parse_vtu_type(type, a.type)) fail(pos, fmt::format("DataArray '{}' has unsupported type '{}'", quote_input(a.name), quote_input(type)));
+    if (!parse_vtu_type(type, a.type))
+      fail(pos, fmt::format("DataArray '{}' has unsupported type '{}'", quote_input(a.name), quote_input(type)));
     if (const std::string nc = get(attrs, "NumberOfComponents"); !nc.empty()) {
       const long long components = parse_count(pos, nc, "NumberOfComponents");
       if (components < 1 || components > kMaxComponents) {
@@ -231,11 +245,13 @@ class VtuFile {
       a.end = self_closing ? a.begin : std::min(text_.find('<', a.begin), markup_end_);
       if (!self_closing) {
         const auto end = text_.find("</DataArray>", a.end);
-        if (end == std::string::npos || end > markup_end_) fail(pos, "DataArray without </DataArray> (file truncated?)");
+        if (end == std::string::npos || end > markup_end_)
+          fail(pos, "DataArray without </DataArray> (file truncated?)");
         next = end + 12;
       }
     } else {
-      fail(pos, fmt::format("DataArray '{}' has unknown format '{}' (ascii, binary or appended)", quote_input(a.name), quote_input(a.format)));
+      fail(pos, fmt::format("DataArray '{}' has unknown format '{}' (ascii, binary or appended)", quote_input(a.name),
+                            quote_input(a.format)));
     }
     arrays_.push_back(std::move(a));
     return next;
@@ -244,7 +260,8 @@ class VtuFile {
   long long parse_count(std::size_t pos, const std::string& v, const char* what) const {
     long long n = -1;
     const auto [p, ec] = std::from_chars(v.data(), v.data() + v.size(), n);
-    if (ec != std::errc() || p != v.data() + v.size() || n < 0) fail(pos, fmt::format("bad {} '{}'", what, quote_input(v)));
+    if (ec != std::errc() || p != v.data() + v.size() || n < 0)
+      fail(pos, fmt::format("bad {} '{}'", what, quote_input(v)));
     return n;
   }
 
@@ -302,7 +319,8 @@ void read_cells(const VtuFile& f, Mesh& mesh, MeshReadReport& report, const std:
   std::size_t start = 0;
   mesh.triangles.reserve(static_cast<std::size_t>(ncells));
   for (long long c = 0; c < ncells; ++c) {
-    const auto stop = static_cast<std::size_t>(as_index(offs[c], static_cast<long long>(conn.size()) + 1, offs_info, f));
+    const auto stop =
+        static_cast<std::size_t>(as_index(offs[c], static_cast<long long>(conn.size()) + 1, offs_info, f));
     if (stop < start) f.fail(offs_info.pos, fmt::format("offsets decrease at cell {}", c));
     // VTK cell types are small integers (a UInt8 array); anything else would overflow the cast.
     if (!(types[c] >= 0 && types[c] <= 255)) f.fail(types_info.pos, fmt::format("cell {} has type {}", c, types[c]));
@@ -328,7 +346,8 @@ void read_pdmesh_arrays(const VtuFile& f, Mesh& mesh) {
   const auto npoints = static_cast<long long>(mesh.points.size());
   if (const ArrayInfo* a = f.find("PointData", "kind")) {
     const std::vector<double> k = f.values(*a);
-    if (static_cast<long long>(k.size()) != npoints) f.fail(a->pos, fmt::format("kind holds {} values for {} points", k.size(), npoints));
+    if (static_cast<long long>(k.size()) != npoints)
+      f.fail(a->pos, fmt::format("kind holds {} values for {} points", k.size(), npoints));
     if (std::any_of(k.begin(), k.end(), [](double v) { return v >= 0; })) {
       for (double v : k) {
         if (!(v == 0 || v == 1 || v == 2)) f.fail(a->pos, fmt::format("node kind {} is not 0, 1 or 2", v));
@@ -353,8 +372,8 @@ void read_pdmesh_arrays(const VtuFile& f, Mesh& mesh) {
     if (v.size() % 3 != 0) f.fail(a->pos, "boundary_edges is not a list of triples");
     const auto curves = static_cast<long long>(mesh.curve_names.size());
     for (std::size_t e = 0; e < v.size(); e += 3) {
-      mesh.boundary_edges.push_back({as_index(v[e], npoints, *a, f), as_index(v[e + 1], npoints, *a, f),
-                                     as_index(v[e + 2], curves, *a, f)});
+      mesh.boundary_edges.push_back(
+          {as_index(v[e], npoints, *a, f), as_index(v[e + 1], npoints, *a, f), as_index(v[e + 2], curves, *a, f)});
     }
   }
 }
@@ -364,7 +383,8 @@ void read_point_data(const VtuFile& f, MeshPointData& data) {
     if (a.section == "PointData") {
       data.point_arrays.push_back(a.name);
     } else if (a.section == "CellData" || a.section == "FieldData") {
-      data.other_arrays.push_back(fmt::format("{} ({})", quote_input(a.name), a.section == "CellData" ? "cell data" : "field data"));
+      data.other_arrays.push_back(
+          fmt::format("{} ({})", quote_input(a.name), a.section == "CellData" ? "cell data" : "field data"));
     }
   }
   const ArrayInfo* a = f.find("PointData", data.wanted);
@@ -375,8 +395,8 @@ void read_point_data(const VtuFile& f, MeshPointData& data) {
   out.where = f.location(a->pos);
   out.values = f.values(*a);
   if (static_cast<long long>(out.values.size()) != f.points() * a->components) {
-    f.fail(a->pos, fmt::format("point-data array '{}' holds {} values, expected {} components x {} points", quote_input(a->name),
-                               out.values.size(), a->components, f.points()));
+    f.fail(a->pos, fmt::format("point-data array '{}' holds {} values, expected {} components x {} points",
+                               quote_input(a->name), out.values.size(), a->components, f.points()));
   }
   data.array = std::move(out);
 }
@@ -389,7 +409,8 @@ Mesh parse_vtu(const std::string& file, const std::string& content, MeshReadRepo
   Mesh mesh;
   // The coordinates are the one DataArray inside <Points>, whatever its Name.
   const auto& arrays = f.arrays();
-  const auto points_it = std::find_if(arrays.begin(), arrays.end(), [](const ArrayInfo& a) { return a.section == "Points"; });
+  const auto points_it =
+      std::find_if(arrays.begin(), arrays.end(), [](const ArrayInfo& a) { return a.section == "Points"; });
   if (points_it == arrays.end()) throw InputError(fmt::format("{}: no DataArray inside <Points>", file));
   const std::vector<double> pts = f.values(*points_it);
   const long long npoints = f.points();

@@ -128,9 +128,8 @@ std::string vtu_string(const Mesh& mesh, VtuFormat format) {
          std::to_string(mesh.triangles.size()) + "\">\n";
   const std::string_view array = "        ";
   out += "      <PointData Scalars=\"kind\">\n";
-  data_array<std::int32_t>(out, format, array, "kind", "", mesh.points.size(), 1, [&](std::size_t i, int) {
-    return mesh.kind.empty() ? -1 : static_cast<int>(mesh.kind[i]);
-  });
+  data_array<std::int32_t>(out, format, array, "kind", "", mesh.points.size(), 1,
+                           [&](std::size_t i, int) { return mesh.kind.empty() ? -1 : static_cast<int>(mesh.kind[i]); });
   if (!mesh.spacing.empty())
     data_array<double>(out, format, array, "q", "", mesh.spacing.size(), 1,
                        [&](std::size_t i, int) { return mesh.spacing[i]; });
@@ -152,8 +151,9 @@ std::string vtu_string(const Mesh& mesh, VtuFormat format) {
     return c == 0 ? mesh.points[i].x : c == 1 ? mesh.points[i].y : 0.0;
   });
   out += "      </Points>\n      <Cells>\n";
-  data_array<std::int64_t>(out, format, array, "connectivity", "", mesh.triangles.size(), 3,
-                           [&](std::size_t k, int c) { return mesh.triangles[k][c]; }, false);
+  data_array<std::int64_t>(
+      out, format, array, "connectivity", "", mesh.triangles.size(), 3,
+      [&](std::size_t k, int c) { return mesh.triangles[k][c]; }, false);
   data_array<std::int64_t>(out, format, array, "offsets", "", mesh.triangles.size(), 1,
                            [](std::size_t k, int) { return static_cast<std::int64_t>(3 * (k + 1)); });
   data_array<std::uint8_t>(out, format, array, "types", "", mesh.triangles.size(), 1,

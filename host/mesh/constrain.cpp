@@ -30,8 +30,9 @@ std::string describe(const Triangulation& tri, const ConstrainedEdge& e) {
 
 [[noreturn]] void throw_point_on_edge(const Triangulation& tri, const ConstrainedEdge& e, int point) {
   const Vec2 p = tri.points[point];
-  throw GeometryError(fmt::format("point {} ({}, {}) lies inside boundary {}; boundary points may only be edge end points",
-                                  tri.input_index[point], p.x, p.y, describe(tri, e)));
+  throw GeometryError(
+      fmt::format("point {} ({}, {}) lies inside boundary {}; boundary points may only be edge end points",
+                  tri.input_index[point], p.x, p.y, describe(tri, e)));
 }
 
 // The crossed edges of the triangulation along segment a-b, as (right, left) vertex pairs,
@@ -58,9 +59,9 @@ std::vector<std::array<int, 2>> crossed_edges(const Triangulation& tri, const Co
   std::vector<std::array<int, 2>> crossed;
   for (;;) {
     if (tri.is_constrained(right, left)) {
-      throw GeometryError(fmt::format("boundary {} crosses the boundary edge from point {} ({}, {}) to point {} ({}, {})",
-                                      describe(tri, e), tri.input_index[right], P[right].x, P[right].y,
-                                      tri.input_index[left], P[left].x, P[left].y));
+      throw GeometryError(fmt::format(
+          "boundary {} crosses the boundary edge from point {} ({}, {}) to point {} ({}, {})", describe(tri, e),
+          tri.input_index[right], P[right].x, P[right].y, tri.input_index[left], P[left].x, P[left].y));
     }
     crossed.push_back({right, left});
     const int u = tri.n[t][third_index(tri.v[t], right, left)];

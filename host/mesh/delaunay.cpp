@@ -34,9 +34,10 @@ void check_input(const std::vector<Vec2>& pts) {
   for (std::size_t i = second + 1; i < pts.size(); ++i) {
     if (orient2d(pts[0], pts[second], pts[i]) != 0.0) return;
   }
-  throw GeometryError(fmt::format("all {} points are collinear (on the line through ({}, {}) and ({}, {})): "
-                                  "no triangle can be formed",
-                                  pts.size(), pts[0].x, pts[0].y, pts[second].x, pts[second].y));
+  throw GeometryError(
+      fmt::format("all {} points are collinear (on the line through ({}, {}) and ({}, {})): "
+                  "no triangle can be formed",
+                  pts.size(), pts[0].x, pts[0].y, pts[second].x, pts[second].y));
 }
 
 }  // namespace

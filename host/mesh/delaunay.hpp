@@ -14,21 +14,21 @@ namespace pdmesh {
 // the triangle across the edge opposite v[t][i] (-1 outside the super-triangle).
 // Vertices are stored in Hilbert order (so neighbouring triangles touch nearby memory):
 // vertex k is input point input_index[k], input point i is vertex vertex_of[i]; the three
-// super-triangle vertices follow the input_count input points. The super-triangle is finite (a box 100 times the input's extent), so the
-// triangles kept after removing it are Delaunay, but near the convex hull a few hull edges may be
-// missing; domain meshing constrains its boundary, so that never matters there.
+// super-triangle vertices follow the input_count input points. The super-triangle is finite (a box 100 times the
+// input's extent), so the triangles kept after removing it are Delaunay, but near the convex hull a few hull edges may
+// be missing; domain meshing constrains its boundary, so that never matters there.
 class Triangulation {
  public:
   // Throws InputError for fewer than 3 points, non-finite coordinates or a duplicate point
   // (naming both indices and the coordinates), GeometryError when all points are collinear.
   explicit Triangulation(const std::vector<Vec2>& input);
 
-  std::vector<Vec2> points;                 // input points in Hilbert order, then the 3 super vertices
-  std::vector<int> input_index;             // vertex -> input point index
-  std::vector<int> vertex_of;               // input point index -> vertex
-  std::vector<std::array<int, 3>> v;        // triangle vertices, counter-clockwise
-  std::vector<std::array<int, 3>> n;        // neighbours, n[t][i] opposite v[t][i]
-  std::vector<int> vertex_triangle;         // one triangle incident to each vertex
+  std::vector<Vec2> points;           // input points in Hilbert order, then the 3 super vertices
+  std::vector<int> input_index;       // vertex -> input point index
+  std::vector<int> vertex_of;         // input point index -> vertex
+  std::vector<std::array<int, 3>> v;  // triangle vertices, counter-clockwise
+  std::vector<std::array<int, 3>> n;  // neighbours, n[t][i] opposite v[t][i]
+  std::vector<int> vertex_triangle;   // one triangle incident to each vertex
   int input_count = 0;
 
   bool is_super(int vertex) const { return vertex >= input_count; }
@@ -64,9 +64,9 @@ class Triangulation {
   void insert(int vertex, int t);
   void legalize(std::vector<std::array<int, 2>>& stack);
   void replace_neighbour(int t, int old_neighbour, int new_neighbour);
-  std::vector<std::array<int, 2>> flip_stack_;  // reused by every insertion
+  std::vector<std::array<int, 2>> flip_stack_;     // reused by every insertion
   std::unordered_set<std::uint64_t> constrained_;  // edge_key of edges Lawson must not flip
-  std::vector<char> on_constraint_;               // per vertex: an end of a constrained edge
+  std::vector<char> on_constraint_;                // per vertex: an end of a constrained edge
 };
 
 // Delaunay triangles of the points (without constraints); see Triangulation for the hull caveat.

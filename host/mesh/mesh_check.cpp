@@ -85,9 +85,9 @@ class MeshChecker {
   Problems problems_;
   std::vector<bool> valid_;  // per triangle: its indices are in range and distinct
   std::unordered_map<std::uint64_t, std::vector<EdgeUse>> edges_;  // the valid triangles' edges
-  std::unordered_map<std::uint64_t, int> constrained_;  // edge -> index in boundary_edges
-  DisjointSets components_;  // triangles joined across their interior edges
-  DisjointSets loops_;       // vertices joined along the mesh boundary
+  std::unordered_map<std::uint64_t, int> constrained_;             // edge -> index in boundary_edges
+  DisjointSets components_;                                        // triangles joined across their interior edges
+  DisjointSets loops_;                                             // vertices joined along the mesh boundary
   std::unordered_set<int> boundary_vertices_;
   std::size_t boundary_edge_count_ = 0;
 };
@@ -112,7 +112,8 @@ void MeshChecker::check_triangles() {
     if (!seen.insert(sorted).second)
       problems_.add("duplicate", "triangle {} repeats vertices {}, {}, {}", t, pt(tv[0]), pt(tv[1]), pt(tv[2]));
     if (!(orient2d(P_[tv[0]], P_[tv[1]], P_[tv[2]]) > 0.0))
-      problems_.add("orientation", "triangle {} is not counter-clockwise: {}, {}, {}", t, pt(tv[0]), pt(tv[1]), pt(tv[2]));
+      problems_.add("orientation", "triangle {} is not counter-clockwise: {}, {}, {}", t, pt(tv[0]), pt(tv[1]),
+                    pt(tv[2]));
   }
 }
 
@@ -139,7 +140,8 @@ void MeshChecker::check_boundary_edges() {
     }
     constrained_.emplace(edge_key(e.a, e.b), static_cast<int>(k));
     if (edges_.find(edge_key(e.a, e.b)) == edges_.end())
-      problems_.add("boundary", "boundary edge {} of curve {} from {} to {} is not in the mesh", k, e.curve, pt(e.a), pt(e.b));
+      problems_.add("boundary", "boundary edge {} of curve {} from {} to {} is not in the mesh", k, e.curve, pt(e.a),
+                    pt(e.b));
   }
 }
 
@@ -153,8 +155,8 @@ void MeshChecker::check_interior_edge(const EdgeUse& u0, const EdgeUse& u1, bool
     return;
   }
   if (is_constrained) {
-    problems_.add("boundary", "boundary edge {} - {} has triangles {} and {} on both sides", pt(a), pt(b),
-                  u0.triangle, u1.triangle);
+    problems_.add("boundary", "boundary edge {} - {} has triangles {} and {} on both sides", pt(a), pt(b), u0.triangle,
+                  u1.triangle);
   }
   components_.unite(u0.triangle, u1.triangle);
   if (is_constrained) return;  // constrained Delaunay: boundary edges need not be Delaunay
@@ -198,11 +200,14 @@ void MeshChecker::check_euler() {
   for (int vtx : boundary_vertices_) loop_roots.insert(loops_.find(vtx));
   const long long euler = static_cast<long long>(used_vertices.size()) - static_cast<long long>(edges_.size()) +
                           static_cast<long long>(std::count(valid_.begin(), valid_.end(), true));
-  const long long expected = 2 * static_cast<long long>(component_roots.size()) - static_cast<long long>(loop_roots.size());
+  const long long expected =
+      2 * static_cast<long long>(component_roots.size()) - static_cast<long long>(loop_roots.size());
   if (euler != expected) {
-    problems_.add("euler", "V - E + F = {} but 2 * components - boundary loops = 2 * {} - {} (V {}, E {}, F {}, {} boundary edges)",
-                  euler, component_roots.size(), loop_roots.size(), used_vertices.size(), edges_.size(),
-                  std::count(valid_.begin(), valid_.end(), true), boundary_edge_count_);
+    problems_.add(
+        "euler",
+        "V - E + F = {} but 2 * components - boundary loops = 2 * {} - {} (V {}, E {}, F {}, {} boundary edges)", euler,
+        component_roots.size(), loop_roots.size(), used_vertices.size(), edges_.size(),
+        std::count(valid_.begin(), valid_.end(), true), boundary_edge_count_);
   }
 }
 

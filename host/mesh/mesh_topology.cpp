@@ -61,12 +61,14 @@ std::optional<std::string> find_fold_or_nonmanifold_edge(const Mesh& mesh) {
   };
   const std::string edge = fmt::format("the edge between points {} and {}", point(a), point(b));
   if (best_fold) {
-    return fmt::format("{} and {} lie on the same side of {}: one is folded over the other (a triangle inverted in "
-                       "the file, or overlapping triangles)",
-                       tri(uses[best].triangle), tri(uses[best + 1].triangle), edge);
+    return fmt::format(
+        "{} and {} lie on the same side of {}: one is folded over the other (a triangle inverted in "
+        "the file, or overlapping triangles)",
+        tri(uses[best].triangle), tri(uses[best + 1].triangle), edge);
   }
-  return fmt::format("{} belongs to more than two triangles, among them {}, {} and {}: the mesh is not a manifold there",
-                     edge, tri(uses[best].triangle), tri(uses[best + 1].triangle), tri(uses[best + 2].triangle));
+  return fmt::format(
+      "{} belongs to more than two triangles, among them {}, {} and {}: the mesh is not a manifold there", edge,
+      tri(uses[best].triangle), tri(uses[best + 1].triangle), tri(uses[best + 2].triangle));
 }
 
 }  // namespace pdmesh

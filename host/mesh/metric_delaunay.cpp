@@ -116,7 +116,8 @@ MetricDelaunayStats make_metric_delaunay(Triangulation& tri, const std::vector<M
   return stats;
 }
 
-std::vector<std::array<int, 2>> metric_delaunay_violations(const Triangulation& tri, const std::vector<Metric>& metrics) {
+std::vector<std::array<int, 2>> metric_delaunay_violations(const Triangulation& tri,
+                                                           const std::vector<Metric>& metrics) {
   const QuadMetric qm(tri, metrics);
   std::vector<std::array<int, 2>> out;
   std::size_t tests = 0;

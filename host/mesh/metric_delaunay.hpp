@@ -35,9 +35,9 @@ inline constexpr std::size_t kMetricFlipsPerEdge = 64;
 
 struct MetricDelaunayStats {
   std::size_t flips = 0;
-  std::size_t tests = 0;       // in-circle tests in the metric
-  std::size_t max_flips = 0;   // the bound used
-  bool converged = true;       // false when the bound stopped the pass
+  std::size_t tests = 0;      // in-circle tests in the metric
+  std::size_t max_flips = 0;  // the bound used
+  bool converged = true;      // false when the bound stopped the pass
 };
 
 // Flips the edges of `tri` until every edge that may flip passes the metric in-circle test, with
@@ -60,6 +60,7 @@ MetricDelaunayStats make_metric_delaunay(Triangulation& tri, const std::vector<M
 
 // The edges of `tri` (vertex pairs in input point indices) that make_metric_delaunay would flip
 // now: empty after a converged pass. For tests and diagnostics.
-std::vector<std::array<int, 2>> metric_delaunay_violations(const Triangulation& tri, const std::vector<Metric>& metrics);
+std::vector<std::array<int, 2>> metric_delaunay_violations(const Triangulation& tri,
+                                                           const std::vector<Metric>& metrics);
 
 }  // namespace pdmesh

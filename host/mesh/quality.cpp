@@ -114,15 +114,23 @@ std::vector<TriangleQuality> triangle_qualities(const Mesh& mesh) {
 
 std::vector<double> metric_values(const std::vector<TriangleQuality>& q, const std::string& metric) {
   double TriangleQuality::*member = nullptr;
-  if (metric == "min_angle") member = &TriangleQuality::min_angle;
-  else if (metric == "max_angle") member = &TriangleQuality::max_angle;
-  else if (metric == "aspect_ratio") member = &TriangleQuality::aspect_ratio;
-  else if (metric == "skewness") member = &TriangleQuality::skewness;
-  else if (metric == "condition_number") member = &TriangleQuality::condition_number;
-  else if (metric == "min_jacobian") member = &TriangleQuality::min_jacobian;
+  if (metric == "min_angle")
+    member = &TriangleQuality::min_angle;
+  else if (metric == "max_angle")
+    member = &TriangleQuality::max_angle;
+  else if (metric == "aspect_ratio")
+    member = &TriangleQuality::aspect_ratio;
+  else if (metric == "skewness")
+    member = &TriangleQuality::skewness;
+  else if (metric == "condition_number")
+    member = &TriangleQuality::condition_number;
+  else if (metric == "min_jacobian")
+    member = &TriangleQuality::min_jacobian;
   else {
-    throw InputError(fmt::format("unknown quality metric '{}' (choose min_angle, max_angle, aspect_ratio, skewness, "
-                                 "condition_number or min_jacobian)", metric));
+    throw InputError(
+        fmt::format("unknown quality metric '{}' (choose min_angle, max_angle, aspect_ratio, skewness, "
+                    "condition_number or min_jacobian)",
+                    metric));
   }
   std::vector<double> v;
   v.reserve(q.size());
@@ -155,8 +163,8 @@ QualitySummary summarize_quality(const std::vector<TriangleQuality>& per_triangl
   // Min angles never exceed 60 degrees; the 60-degree edge itself falls in the last bin.
   const auto angle_bins = static_cast<std::size_t>(std::ceil(60.0 / options.angle_bin_width));
   s.min_angle_histogram = Histogram{0.0, options.angle_bin_width, std::vector<std::size_t>(angle_bins, 0), 0};
-  s.aspect_ratio_histogram =
-      Histogram{1.0, options.aspect_bin_width, std::vector<std::size_t>(static_cast<std::size_t>(options.aspect_bins), 0), 0};
+  s.aspect_ratio_histogram = Histogram{1.0, options.aspect_bin_width,
+                                       std::vector<std::size_t>(static_cast<std::size_t>(options.aspect_bins), 0), 0};
   s.triangles = per_triangle.size();
   if (per_triangle.empty()) return s;
 
@@ -201,7 +209,8 @@ std::vector<std::pair<int, int>> unique_edges(const Mesh& mesh) {
   for (std::size_t i = 1; i < first.size(); ++i) first[i] += first[i - 1];
   std::vector<int> fill(first.begin(), first.end() - 1);
   for (const auto& tri : mesh.triangles)
-    for (int e = 0; e < 3; ++e) target[static_cast<std::size_t>(fill[static_cast<std::size_t>(tri[e])]++)] = tri[(e + 1) % 3];
+    for (int e = 0; e < 3; ++e)
+      target[static_cast<std::size_t>(fill[static_cast<std::size_t>(tri[e])]++)] = tri[(e + 1) % 3];
   const auto has_edge = [&](int a, int b) {
     for (int k = first[static_cast<std::size_t>(a)]; k < first[static_cast<std::size_t>(a) + 1]; ++k)
       if (target[static_cast<std::size_t>(k)] == b) return true;
@@ -222,15 +231,17 @@ SpacingConformance spacing_conformance(const Mesh& mesh, const SpacingBatch& q) 
   const std::vector<std::pair<int, int>> edges = unique_edges(mesh);
   std::vector<Vec2> mid(edges.size());
   for (std::size_t k = 0; k < edges.size(); ++k)
-    mid[k] = 0.5 * (mesh.points[static_cast<std::size_t>(edges[k].first)] + mesh.points[static_cast<std::size_t>(edges[k].second)]);
+    mid[k] = 0.5 * (mesh.points[static_cast<std::size_t>(edges[k].first)] +
+                    mesh.points[static_cast<std::size_t>(edges[k].second)]);
   std::vector<double> qm;
   q(mid, qm);
   std::vector<double> ratios(edges.size());
   for (std::size_t k = 0; k < edges.size(); ++k) {
     if (!(std::isfinite(qm[k]) && qm[k] > 0.0)) {
-      throw InputError(fmt::format("spacing q({:.17g}, {:.17g}) = {} at the midpoint of edge {}-{} is not a "
-                                   "finite positive number",
-                                   mid[k].x, mid[k].y, qm[k], edges[k].first, edges[k].second));
+      throw InputError(
+          fmt::format("spacing q({:.17g}, {:.17g}) = {} at the midpoint of edge {}-{} is not a "
+                      "finite positive number",
+                      mid[k].x, mid[k].y, qm[k], edges[k].first, edges[k].second));
     }
     const auto [i, j] = edges[k];
     ratios[k] = dist(mesh.points[static_cast<std::size_t>(i)], mesh.points[static_cast<std::size_t>(j)]) / qm[k];

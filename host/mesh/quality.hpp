@@ -102,7 +102,7 @@ struct QualitySummary {
   double aspect_ratio_avg = 0.0, aspect_ratio_max = 0.0;
   double skewness_avg = 0.0, skewness_max = 0.0;
   double condition_number_avg = 0.0, condition_number_max = 0.0;
-  double min_jacobian = 0.0;  // minimum corner Jacobian over all corners
+  double min_jacobian = 0.0;              // minimum corner Jacobian over all corners
   std::size_t small_angle_triangles = 0;  // min angle < options.small_angle_deg
   double small_angle_share = 0.0;         // small_angle_triangles / triangles
   double small_angle_deg = 30.0;
@@ -120,11 +120,9 @@ using SpacingCallback = std::function<double(Vec2)>;
 
 // Summarises a mesh. `q` is the desired spacing; when empty, spacing conformance is skipped.
 // An empty mesh gives a summary with zero counts and zero values.
-QualitySummary summarize_quality(const Mesh& mesh, const SpacingCallback& q = {},
-                                 const QualityOptions& options = {});
+QualitySummary summarize_quality(const Mesh& mesh, const SpacingCallback& q = {}, const QualityOptions& options = {});
 // The same from precomputed per-triangle metrics (no spacing conformance).
-QualitySummary summarize_quality(const std::vector<TriangleQuality>& per_triangle,
-                                 const QualityOptions& options = {});
+QualitySummary summarize_quality(const std::vector<TriangleQuality>& per_triangle, const QualityOptions& options = {});
 
 // q at many points at once (SpacingField::at_many, which may use threads).
 using SpacingBatch = std::function<void(const std::vector<Vec2>& points, std::vector<double>& q)>;

@@ -22,8 +22,8 @@ Mesh triangulate_nodes(const NodeSet& nodes, const std::vector<std::string>& cur
                        const std::vector<Metric>* metrics, const MetricDelaunayOptions& options,
                        MetricDelaunayStats* stats) {
   if (curve_names.size() != nodes.curve_nodes.size()) {
-    throw InputError(fmt::format("triangulate: {} curve names for {} node curves", curve_names.size(),
-                                 nodes.curve_nodes.size()));
+    throw InputError(
+        fmt::format("triangulate: {} curve names for {} node curves", curve_names.size(), nodes.curve_nodes.size()));
   }
   std::vector<ConstrainedEdge> edges;
   std::unordered_map<std::uint64_t, int> edge_curve;  // catches an edge claimed by two curves
@@ -33,8 +33,9 @@ Mesh triangulate_nodes(const NodeSet& nodes, const std::vector<std::string>& cur
       const ConstrainedEdge e{list[k], list[k + 1], static_cast<int>(c)};
       const auto [it, fresh] = edge_curve.emplace(Triangulation::edge_key(e.a, e.b), e.curve);
       if (!fresh) {
-        throw GeometryError(fmt::format("boundary edge between nodes {} and {} belongs to curve {} ('{}') and curve {} ('{}')",
-                                        e.a, e.b, it->second, curve_names[it->second], c, curve_names[c]));
+        throw GeometryError(
+            fmt::format("boundary edge between nodes {} and {} belongs to curve {} ('{}') and curve {} ('{}')", e.a,
+                        e.b, it->second, curve_names[it->second], c, curve_names[c]));
       }
       edges.push_back(e);
     }

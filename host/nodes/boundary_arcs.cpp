@@ -18,8 +18,8 @@ std::vector<std::vector<double>> boundary_arcs(const Geometry& geometry, const N
     const Curve& curve = geometry.curves[c];
     const std::vector<int>& list = nodes.curve_nodes[c];
     if (list.size() < 2)
-      throw SimulationError(fmt::format("curve {} ('{}') has {} boundary nodes; it needs its two end points",
-                                        c, curve.name, list.size()));
+      throw SimulationError(fmt::format("curve {} ('{}') has {} boundary nodes; it needs its two end points", c,
+                                        curve.name, list.size()));
     std::vector<double>& arcs = all[c];
     arcs.assign(list.size(), 0.0);
     arcs.back() = curve.length();

@@ -21,15 +21,12 @@ namespace {
 
 constexpr const char* kHeader = "# pdmesh nodes v1";
 
-bool has_space(const std::string& s) {
-  return s.empty() || s.find_first_of(" \t\r\n") != std::string::npos;
-}
+bool has_space(const std::string& s) { return s.empty() || s.find_first_of(" \t\r\n") != std::string::npos; }
 
 // Splits the text into numbered lines, skipping blank lines and '#' comments after the header.
 class LineReader {
  public:
-  LineReader(const std::string& text, std::string source)
-      : in_(text), size_(text.size()), source_(std::move(source)) {}
+  LineReader(const std::string& text, std::string source) : in_(text), size_(text.size()), source_(std::move(source)) {}
 
   // The fields of the next non-blank, non-comment line; `what` names the expected content.
   std::vector<std::string> next(const char* what) {
@@ -119,8 +116,8 @@ NodeKind kind_from(const LineReader& r, const std::string& s) {
 
 std::string format_node_file(const NodeSet& nodes, const std::vector<std::string>& curve_names) {
   if (curve_names.size() != nodes.curve_nodes.size()) {
-    throw InputError(fmt::format("node file: {} curve names for {} curves", curve_names.size(),
-                                 nodes.curve_nodes.size()));
+    throw InputError(
+        fmt::format("node file: {} curve names for {} curves", curve_names.size(), nodes.curve_nodes.size()));
   }
   fmt::memory_buffer out;
   fmt::format_to(std::back_inserter(out), "{}\n{}\n", kHeader, nodes.size());
@@ -137,7 +134,8 @@ std::string format_node_file(const NodeSet& nodes, const std::vector<std::string
   fmt::format_to(std::back_inserter(out), "curves {}\n", nodes.curve_nodes.size());
   for (std::size_t c = 0; c < nodes.curve_nodes.size(); ++c) {
     if (has_space(curve_names[c])) {
-      throw InputError(fmt::format("node file: curve {} name '{}' is empty or contains white space", c, curve_names[c]));
+      throw InputError(
+          fmt::format("node file: curve {} name '{}' is empty or contains white space", c, curve_names[c]));
     }
     fmt::format_to(std::back_inserter(out), "{} {}", curve_names[c], nodes.curve_nodes[c].size());
     for (int idx : nodes.curve_nodes[c]) fmt::format_to(std::back_inserter(out), " {}", idx);
@@ -177,9 +175,8 @@ NodeFile parse_node_file(const std::string& text, const std::string& source_name
     const NodeKind kind = kind_from(r, f[2]);
     const int curve = static_cast<int>(r.integer(f[3], "curve", -1, 1'000'000'000));
     if ((kind == NodeKind::Interior) != (curve == -1)) {
-      r.fail(fmt::format("node {}: {} {} node must have curve {}, got {}", i,
-                         kind == NodeKind::Interior ? "an" : "a", to_string(kind),
-                         kind == NodeKind::Interior ? "-1" : ">= 0", curve));
+      r.fail(fmt::format("node {}: {} {} node must have curve {}, got {}", i, kind == NodeKind::Interior ? "an" : "a",
+                         to_string(kind), kind == NodeKind::Interior ? "-1" : ">= 0", curve));
     }
     nodes.add(p, r.real(f[4], "q"), kind, curve);
   }

@@ -5,9 +5,12 @@ namespace pdmesh {
 
 const char* to_string(NodeKind kind) {
   switch (kind) {
-    case NodeKind::Fixed: return "fixed";
-    case NodeKind::Boundary: return "boundary";
-    case NodeKind::Interior: return "interior";
+    case NodeKind::Fixed:
+      return "fixed";
+    case NodeKind::Boundary:
+      return "boundary";
+    case NodeKind::Interior:
+      return "interior";
   }
   return "?";
 }

@@ -17,10 +17,10 @@ enum class NodeKind : std::uint8_t {
 const char* to_string(NodeKind kind);
 
 struct NodeSet {
-  std::vector<Vec2> x;          // positions
-  std::vector<double> q;        // desired spacing at x
+  std::vector<Vec2> x;    // positions
+  std::vector<double> q;  // desired spacing at x
   std::vector<NodeKind> kind;
-  std::vector<int> curve;       // curve of a Boundary node; first curve of a Fixed node; -1 for Interior
+  std::vector<int> curve;  // curve of a Boundary node; first curve of a Fixed node; -1 for Interior
   // For each geometry curve, its nodes in order from the curve's first point to its last,
   // both end points included (those are Fixed nodes shared with the neighbouring curves).
   std::vector<std::vector<int>> curve_nodes;

@@ -27,10 +27,11 @@ class Buffer {
     // (with a canary tail the tail starts right at count_, so even a 0-element buffer detects a write).
     std::size_t bytes = sizeof(T) * (tail_ ? count_ + tail_ : count_ ? count_ : 1);
     if (bytes > ctx.device().max_allocation)
-      throw LimitError(fmt::format("buffer '{}' needs {} bytes, more than the largest allocation {} allows "
-                                   "(CL_DEVICE_MAX_MEM_ALLOC_SIZE, {} bytes): use --precision float (half the bytes), "
-                                   "--device host (the host reference) or a coarser spacing (fewer nodes)",
-                                   name_, bytes, ctx.device().name, ctx.device().max_allocation));
+      throw LimitError(
+          fmt::format("buffer '{}' needs {} bytes, more than the largest allocation {} allows "
+                      "(CL_DEVICE_MAX_MEM_ALLOC_SIZE, {} bytes): use --precision float (half the bytes), "
+                      "--device host (the host reference) or a coarser spacing (fewer nodes)",
+                      name_, bytes, ctx.device().name, ctx.device().max_allocation));
     buffer_ = cl::Buffer(ctx.context(), flags, bytes, nullptr, &err);
     check(err, fmt::format("allocating buffer '{}' ({} bytes)", name_, bytes));
     if (tail_) {
@@ -53,7 +54,8 @@ class Buffer {
       throw DeviceError(fmt::format("upload of {} elements into buffer '{}' of {}", count, name_, count_));
     if (count == 0) return;
     // The message is formatted only on failure: transfers run every iteration.
-    const cl_int err = injected_fault(q.enqueueWriteBuffer(buffer_, blocking ? CL_TRUE : CL_FALSE, 0, sizeof(T) * count, data));
+    const cl_int err =
+        injected_fault(q.enqueueWriteBuffer(buffer_, blocking ? CL_TRUE : CL_FALSE, 0, sizeof(T) * count, data));
     if (err != CL_SUCCESS) check(err, fmt::format("upload to '{}'", name_));
     counting::write(sizeof(T) * count, blocking);
   }

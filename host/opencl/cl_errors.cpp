@@ -15,7 +15,8 @@ namespace pdmesh::ocl {
 const char* error_name(cl_int code) {
   switch (code) {
 #define PDMESH_CL_NAME(x) \
-  case x: return #x;
+  case x:                 \
+    return #x;
     PDMESH_CL_NAME(CL_SUCCESS)
     PDMESH_CL_NAME(CL_DEVICE_NOT_FOUND)
     PDMESH_CL_NAME(CL_DEVICE_NOT_AVAILABLE)
@@ -77,7 +78,8 @@ const char* error_name(cl_int code) {
     PDMESH_CL_NAME(CL_INVALID_DEVICE_PARTITION_COUNT)
     PDMESH_CL_NAME(CL_PLATFORM_NOT_FOUND_KHR)
 #undef PDMESH_CL_NAME
-    default: return "CL_UNKNOWN_ERROR";
+    default:
+      return "CL_UNKNOWN_ERROR";
   }
 }
 
@@ -110,8 +112,7 @@ cl_int injected_fault(cl_int code) {
 
 void check(cl_int code, std::string_view what) {
   code = injected_fault(code);
-  if (code != CL_SUCCESS)
-    throw DeviceError(fmt::format("{} failed: {} ({})", what, error_name(code), code));
+  if (code != CL_SUCCESS) throw DeviceError(fmt::format("{} failed: {} ({})", what, error_name(code), code));
 }
 
 }  // namespace pdmesh::ocl

@@ -89,7 +89,8 @@ void finish(cl::CommandQueue& queue, const std::string& what) {
 
 void flush(cl::CommandQueue& queue, const std::string& what) { check(queue.flush(), what); }
 
-void copy_buffer(cl::CommandQueue& queue, cl::Buffer& from, cl::Buffer& to, std::size_t bytes, const std::string& what) {
+void copy_buffer(cl::CommandQueue& queue, cl::Buffer& from, cl::Buffer& to, std::size_t bytes,
+                 const std::string& what) {
   check(queue.enqueueCopyBuffer(from, to, 0, 0, bytes), what);
   counting::copy();
 }

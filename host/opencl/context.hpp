@@ -56,8 +56,7 @@ std::map<std::string, std::string> precision_defines(Precision precision, std::s
 
 // Runs `kernel` over `count` work-items in groups of `local` (the global size is rounded up to a multiple
 // of `local`; kernels skip the extra items). Errors name the kernel.
-void launch(cl::CommandQueue& queue, cl::Kernel& kernel, const std::string& name, std::size_t count,
-            std::size_t local);
+void launch(cl::CommandQueue& queue, cl::Kernel& kernel, const std::string& name, std::size_t count, std::size_t local);
 
 // The other commands the simulation enqueues, checked (errors name `what`) and counted
 // (command_counts.hpp) like launch and the Buffer transfers: clFinish (a host wait), a device-side

@@ -45,7 +45,7 @@ void DeviceBoundary<Real>::upload_curves() {
 
 template <typename Real>
 const std::vector<std::int32_t>& DeviceBoundary<Real>::upload_topology(const NodeSet& nodes,
-                                                                        const std::vector<std::vector<double>>& arcs) {
+                                                                       const std::vector<std::vector<double>>& arcs) {
   std::vector<std::int32_t> slot(nodes.size(), -1);
   slot_nodes_.clear();
   for (std::size_t i = 0; i < nodes.size(); ++i) {
@@ -128,8 +128,7 @@ std::vector<std::vector<double>> DeviceBoundary<Real>::unflatten(const std::vect
 template <typename Real>
 std::size_t DeviceBoundary<Real>::bytes() const {
   return curve_pt_.bytes() + slot_node_.bytes() + slot_curve_.bytes() + slot_pos_.bytes() + pts_.bytes() +
-         pt_arc_.bytes() + arcs_[0].bytes() + arcs_[1].bytes() + partials_.bytes() +
-         segs_.bytes();
+         pt_arc_.bytes() + arcs_[0].bytes() + arcs_[1].bytes() + partials_.bytes() + segs_.bytes();
 }
 
 template class DeviceBoundary<float>;

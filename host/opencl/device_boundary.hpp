@@ -41,10 +41,10 @@ class DeviceBoundary {
   // boundary_snap_rule, which also ends the iteration (kernels/boundary.cl). No-op without boundary
   // nodes; returns whether it launched.
   template <typename BgArgs, typename RuleArgs = void(ArgSetter&)>
-  bool enqueue(StepProgram& program, int cur, Buffer<Real>& brec, Buffer<Real>& xy, Buffer<Real>& q,
-               Buffer<Real>& tx, Buffer<Real>& ty, Buffer<std::int32_t>& node_leaf, Buffer<Real>& xy_build,
-               Buffer<Real>& q_build, Buffer<std::uint8_t>& skin_class, double cutoff, double skin_cutoff,
-               Buffer<std::int32_t>& step_counters, BgArgs&& bg, RuleArgs* rule = nullptr) {
+  bool enqueue(StepProgram& program, int cur, Buffer<Real>& brec, Buffer<Real>& xy, Buffer<Real>& q, Buffer<Real>& tx,
+               Buffer<Real>& ty, Buffer<std::int32_t>& node_leaf, Buffer<Real>& xy_build, Buffer<Real>& q_build,
+               Buffer<std::uint8_t>& skin_class, double cutoff, double skin_cutoff, Buffer<std::int32_t>& step_counters,
+               BgArgs&& bg, RuleArgs* rule = nullptr) {
     if (slots() == 0) return false;
     cl::Kernel& kernel = rule ? program.boundary_snap_rule : program.boundary_snap;
     const char* name = rule ? "boundary_snap_rule" : "boundary_snap";

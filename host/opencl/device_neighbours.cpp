@@ -37,10 +37,10 @@ constexpr std::size_t kTallySize = 2 * kBinLevels + 1;
 
 template <typename Real>
 std::size_t DeviceNeighbours<Real>::device_bytes() const {
-  return count_.bytes() + offset_.bytes() + block_total_.bytes() + index_.bytes() + level_.bytes() + bin_state_.bytes() +
-         grid_mask_.bytes() + grid_bucket_offset_.bytes() + grid_inv_cell_.bytes() + bucket_.bytes() + grid_nodes_.bytes() +
-         bin_partial_.bytes() + counters_.bytes() + spill_.bytes() + move_node_.bytes() + move_start_.bytes() +
-         level_cap_.bytes() + tally_.bytes() + skin_class_.bytes();
+  return count_.bytes() + offset_.bytes() + block_total_.bytes() + index_.bytes() + level_.bytes() +
+         bin_state_.bytes() + grid_mask_.bytes() + grid_bucket_offset_.bytes() + grid_inv_cell_.bytes() +
+         bucket_.bytes() + grid_nodes_.bytes() + bin_partial_.bytes() + counters_.bytes() + spill_.bytes() +
+         move_node_.bytes() + move_start_.bytes() + level_cap_.bytes() + tally_.bytes() + skin_class_.bytes();
 }
 
 template <typename Real>
@@ -52,8 +52,8 @@ int DeviceNeighbours<Real>::stride_for(std::size_t n) const {
 }
 
 template <typename Real>
-NeighbourFlags DeviceNeighbours<Real>::build(std::size_t n, double radius_factor, Buffer<Real>& xy,
-                                             Buffer<Real>& q, Buffer<std::uint8_t>& kind, Buffer<std::int32_t>& prev,
+NeighbourFlags DeviceNeighbours<Real>::build(std::size_t n, double radius_factor, Buffer<Real>& xy, Buffer<Real>& q,
+                                             Buffer<std::uint8_t>& kind, Buffer<std::int32_t>& prev,
                                              Buffer<std::int32_t>& next, double pair_skin) {
   NeighbourFlags flags;
   attempts = 0;
@@ -162,8 +162,8 @@ void DeviceNeighbours<Real>::run_passes(const BuildArgs& a, bool have_counts, Ne
       counted_total_ = c[kRowEntries];
       // Rows that outgrew their capacities were moved behind the others, unless the spill list, the
       // move list or the spare region was too small: then build again with the counts (exact now).
-      if (!counting && (c[kRowOutgrown] == 0 || (c[kRowSpilled] <= caps.spill && c[kRowOutgrown] <= caps.move &&
-                                                   c[kRowSpareFull] == 0)))
+      if (!counting && (c[kRowOutgrown] == 0 ||
+                        (c[kRowSpilled] <= caps.spill && c[kRowOutgrown] <= caps.move && c[kRowSpareFull] == 0)))
         return;
     }
     if (attempt >= 4)
@@ -178,9 +178,10 @@ typename DeviceNeighbours<Real>::PassCapacities DeviceNeighbours<Real>::size_pas
                                                                                           bool binned, bool estimate) {
   constexpr std::uint64_t kMaxIndex = std::numeric_limits<std::int32_t>::max();
   if (bucket_capacity_ > kMaxIndex || member_capacity_ > kMaxIndex)
-    throw SimulationError(fmt::format("the neighbour grids of {} nodes need {} buckets and {} entries, more than "
-                                      "the device binning indexes (2^31)",
-                                      a.n, bucket_capacity_, member_capacity_));
+    throw SimulationError(
+        fmt::format("the neighbour grids of {} nodes need {} buckets and {} entries, more than "
+                    "the device binning indexes (2^31)",
+                    a.n, bucket_capacity_, member_capacity_));
   // A pass after one whose grids fit (a counting pass, or rows that outgrew) keeps those grids: the
   // positions are the same. Growing a grid buffer would drop its contents.
   if (!binned) {
@@ -227,13 +228,12 @@ void DeviceNeighbours<Real>::bin(const BuildArgs& a, const PassCapacities& caps)
   launch(ctx_.queue(), program_.bin_rmin, "bin_rmin", wg, wg);
   ArgSetter(program_.bin_levels, "bin_levels")(n_arg)(groups_arg)(a.radius)(a.q)(bin_partial_)(level_)(bin_state_);
   launch(ctx_.queue(), program_.bin_levels, "bin_levels", n, wg);
-  ArgSetter(program_.bin_plan, "bin_plan")(n_arg)(groups_arg)(static_cast<cl_uint>(buckets))(
-      static_cast<cl_uint>(grid_nodes_.size()))(bin_partial_)(bin_state_)(grid_mask_)(grid_bucket_offset_)(
-      grid_inv_cell_);
+  ArgSetter(program_.bin_plan, "bin_plan")(n_arg)(groups_arg)(static_cast<cl_uint>(buckets))(static_cast<cl_uint>(
+      grid_nodes_.size()))(bin_partial_)(bin_state_)(grid_mask_)(grid_bucket_offset_)(grid_inv_cell_);
   launch(ctx_.queue(), program_.bin_plan, "bin_plan", wg, wg);
   fill_zero(ctx_.queue(), bucket_.get(), buckets * sizeof(cl_uint), "clearing 'grid_bucket'");
-  ArgSetter(program_.bin_count, "bin_count")(n_arg)(a.xy)(level_)(bin_state_)(grid_mask_)(grid_bucket_offset_)(
-      grid_inv_cell_)(bucket_);
+  ArgSetter(program_.bin_count,
+            "bin_count")(n_arg)(a.xy)(level_)(bin_state_)(grid_mask_)(grid_bucket_offset_)(grid_inv_cell_)(bucket_);
   launch(ctx_.queue(), program_.bin_count, "bin_count", n, wg);
   ArgSetter(program_.bucket_scan, "bucket_scan")(static_cast<cl_uint>(buckets))(bucket_)(block_total_);
   launch(ctx_.queue(), program_.bucket_scan, "bucket_scan", buckets, wg);
@@ -241,8 +241,8 @@ void DeviceNeighbours<Real>::bin(const BuildArgs& a, const PassCapacities& caps)
   launch(ctx_.queue(), program_.row_block_offsets, "row_block_offsets", wg, wg);
   ArgSetter(program_.bucket_offsets_add, "bucket_offsets_add")(static_cast<cl_uint>(buckets))(bucket_)(block_total_);
   launch(ctx_.queue(), program_.bucket_offsets_add, "bucket_offsets_add", buckets, wg);
-  ArgSetter(program_.bin_fill, "bin_fill")(n_arg)(a.xy)(level_)(bin_state_)(grid_mask_)(grid_bucket_offset_)(
-      grid_inv_cell_)(bucket_)(grid_nodes_);
+  ArgSetter(program_.bin_fill, "bin_fill")(n_arg)(a.xy)(
+      level_)(bin_state_)(grid_mask_)(grid_bucket_offset_)(grid_inv_cell_)(bucket_)(grid_nodes_);
   launch(ctx_.queue(), program_.bin_fill, "bin_fill", n, wg);
   launches += 9;
 }
@@ -279,9 +279,9 @@ void DeviceNeighbours<Real>::gather_pass(const BuildArgs& a, const PassCapacitie
   const cl_ulong entries_size = caps.entries;
   const auto spill_capacity = static_cast<cl_uint>(caps.spill);
   const auto move_capacity = static_cast<cl_uint>(counting ? 0 : caps.move);
-  ArgSetter(program_.row_capacity_scan, "row_capacity_scan")(n_arg)(static_cast<cl_int>(kSpareShift))(
-      static_cast<cl_int>(kSpareMin))(count_)(static_cast<cl_int>(estimated ? 1 : 0))(a.kind)(level_)(level_cap_)(
-      offset_)(block_total_);
+  ArgSetter(program_.row_capacity_scan,
+            "row_capacity_scan")(n_arg)(static_cast<cl_int>(kSpareShift))(static_cast<cl_int>(kSpareMin))(
+      count_)(static_cast<cl_int>(estimated ? 1 : 0))(a.kind)(level_)(level_cap_)(offset_)(block_total_);
   launch(ctx_.queue(), program_.row_capacity_scan, "row_capacity_scan", n, wg);
   ArgSetter(program_.row_block_offsets, "row_block_offsets")(groups_arg)(block_total_);
   launch(ctx_.queue(), program_.row_block_offsets, "row_block_offsets", wg, wg);
@@ -292,11 +292,11 @@ void DeviceNeighbours<Real>::gather_pass(const BuildArgs& a, const PassCapacitie
   ++attempts;
   ArgSetter(program_.sort_rows, "sort_rows")(n_arg)(a.kind)(offset_)(count_)(entries_size)(index_)(counters_);
   launch(ctx_.queue(), program_.sort_rows, "sort_rows", n, wg);
-  ArgSetter(program_.relocate_rows, "relocate_rows")(n_arg)(a.kind)(offset_)(count_)(entries_size)(index_)(
-      spill_capacity)(spill_)(move_capacity)(move_node_)(move_start_)(counters_);
+  ArgSetter(program_.relocate_rows, "relocate_rows")(n_arg)(a.kind)(
+      offset_)(count_)(entries_size)(index_)(spill_capacity)(spill_)(move_capacity)(move_node_)(move_start_)(counters_);
   launch(ctx_.queue(), program_.relocate_rows, "relocate_rows", n, wg);
-  ArgSetter(program_.place_spilled, "place_spilled")(n_arg)(offset_)(index_)(spill_capacity)(spill_)(move_capacity)(
-      counters_);
+  ArgSetter(program_.place_spilled,
+            "place_spilled")(n_arg)(offset_)(index_)(spill_capacity)(spill_)(move_capacity)(counters_);
   launch(ctx_.queue(), program_.place_spilled, "place_spilled", caps.spill, wg);
   ArgSetter(program_.apply_row_moves, "apply_row_moves")(move_node_)(move_start_)(counters_)(count_)(index_)(offset_);
   launch(ctx_.queue(), program_.apply_row_moves, "apply_row_moves", caps.move, wg);
@@ -314,8 +314,9 @@ void DeviceNeighbours<Real>::carry_counts(const std::vector<int>& old_of_new, st
   std::uint64_t total = 0;
   for (std::size_t k = 0; k < n; ++k) {
     const int old = old_of_new[k];
-    counts[k] = old >= 0 && static_cast<std::size_t>(old) < old_n ? std::max(old_counts[static_cast<std::size_t>(old)], 0)
-                                                                  : mean;
+    counts[k] = old >= 0 && static_cast<std::size_t>(old) < old_n
+                    ? std::max(old_counts[static_cast<std::size_t>(old)], 0)
+                    : mean;
     total += static_cast<std::uint64_t>(counts[k]);
   }
   ensure_size(ctx_, count_, "neighbour_count", n);
@@ -337,26 +338,29 @@ bool DeviceNeighbours<Real>::take_bin_state(std::size_t n, NeighbourFlags& flags
     return false;
   }
   if (state[kBinTooManyLevels])
-    throw SimulationError(fmt::format("the list radii of the nodes span more than 2^{}: the device binning has {} "
-                                      "grid levels at most",
-                                      kBinLevels, kBinLevels));
-  member_capacity_ = std::max<std::uint64_t>(member_capacity_, with_slack(static_cast<std::uint64_t>(state[kBinMembers])));
-  bucket_capacity_ = std::max<std::uint64_t>(bucket_capacity_, with_slack(static_cast<std::uint64_t>(state[kBinBuckets])));
+    throw SimulationError(
+        fmt::format("the list radii of the nodes span more than 2^{}: the device binning has {} "
+                    "grid levels at most",
+                    kBinLevels, kBinLevels));
+  member_capacity_ =
+      std::max<std::uint64_t>(member_capacity_, with_slack(static_cast<std::uint64_t>(state[kBinMembers])));
+  bucket_capacity_ =
+      std::max<std::uint64_t>(bucket_capacity_, with_slack(static_cast<std::uint64_t>(state[kBinBuckets])));
   grids_fit = state[kBinTooSmall] == 0;
   return true;
 }
 
 template <typename Real>
 void DeviceNeighbours<Real>::gather(cl_int n_arg, Real radius, Buffer<Real>& xy, Buffer<Real>& q,
-                                    Buffer<std::uint8_t>& kind, Buffer<std::int32_t>& prev,
-                                    Buffer<std::int32_t>& next, cl_ulong entries_size, std::uint64_t spill_capacity,
-                                    bool counting, int stride) {
-  ArgSetter(program_.gather_rows, "gather_rows")(n_arg)(radius)(xy)(q)(kind)(prev)(next)(level_)(bin_state_)(
-      grid_mask_)(grid_bucket_offset_)(grid_inv_cell_)(bucket_)(grid_nodes_)(offset_)(count_)(entries_size)(index_)(
-      static_cast<cl_uint>(spill_capacity))(spill_)(counters_)(static_cast<cl_int>(counting ? 1 : 0))(
-      static_cast<cl_int>(stride))(skin_class_)(pair_skin_);
-  const std::size_t items = (static_cast<std::size_t>(n_arg) + static_cast<std::size_t>(stride) - 1) /
-                            static_cast<std::size_t>(stride);
+                                    Buffer<std::uint8_t>& kind, Buffer<std::int32_t>& prev, Buffer<std::int32_t>& next,
+                                    cl_ulong entries_size, std::uint64_t spill_capacity, bool counting, int stride) {
+  ArgSetter(program_.gather_rows, "gather_rows")(n_arg)(
+      radius)(xy)(q)(kind)(prev)(next)(level_)(bin_state_)(grid_mask_)(grid_bucket_offset_)(grid_inv_cell_)(bucket_)(grid_nodes_)(offset_)(count_)(entries_size)(index_)(static_cast<
+                                                                                                                                                                         cl_uint>(
+      spill_capacity))(spill_)(counters_)(static_cast<cl_int>(counting ? 1 : 0))(static_cast<cl_int>(stride))(
+      skin_class_)(pair_skin_);
+  const std::size_t items =
+      (static_cast<std::size_t>(n_arg) + static_cast<std::size_t>(stride) - 1) / static_cast<std::size_t>(stride);
   launch(ctx_.queue(), program_.gather_rows, "gather_rows", items, program_.work_group);
 }
 
@@ -373,8 +377,8 @@ std::uint64_t DeviceNeighbours<Real>::set_level_caps(const std::vector<std::uint
     if (nodes == 0) continue;
     const std::uint64_t sum = static_cast<std::uint64_t>(tally[2 * L]) * static_cast<std::uint64_t>(stride);
     const std::uint64_t mean = (sum + nodes / 2) / nodes;
-    const std::uint64_t c = std::min<std::uint64_t>(mean + (mean >> kSpareShift) + kSpareMin,
-                                                    std::numeric_limits<std::int32_t>::max());
+    const std::uint64_t c =
+        std::min<std::uint64_t>(mean + (mean >> kSpareShift) + kSpareMin, std::numeric_limits<std::int32_t>::max());
     cap[static_cast<std::size_t>(L)] = static_cast<std::int32_t>(c);
     total += mean * nodes;
   }

@@ -87,9 +87,9 @@ class DeviceNeighbours {
   Buffer<std::int32_t>& grid_nodes() { return grid_nodes_; }
   std::size_t uploaded_bytes = 0;  // by the last build
   double gather_seconds = 0.0;     // the whole build on the device (binning, rows), last build
-  int attempts = 0;                // gather passes of the last build (2 or 3 when the grids or a row outgrew their capacities)
-  bool sampled = false;            // the last build laid its rows out from a sampled estimate
-  int launches = 0;                // kernel launches of the last build
+  int attempts = 0;      // gather passes of the last build (2 or 3 when the grids or a row outgrew their capacities)
+  bool sampled = false;  // the last build laid its rows out from a sampled estimate
+  int launches = 0;      // kernel launches of the last build
   std::uint64_t outgrown_rows = 0;  // rows of the last build that outgrew their capacities (each pass)
   // The largest q_m / q_j over the pairs of the last build with j interior of m's grid level and
   // |x_m - x_j| <= the radius of m, rounded up to 1/kRowRatioScale (0: no such pair); kernels/neighbours.cl.
@@ -136,9 +136,9 @@ class DeviceNeighbours {
   Buffer<std::uint32_t> counters_;
   Buffer<Real> bin_partial_, grid_inv_cell_;
   Buffer<std::uint8_t> skin_class_;
-  Real pair_skin_ = 0;  // the last build's
+  Real pair_skin_ = 0;                                       // the last build's
   std::uint64_t bucket_capacity_ = 0, member_capacity_ = 0;  // wanted by the next build
-  std::size_t counted_n_ = 0;       // nodes whose counts count_ holds (the last build's n; 0: none)
+  std::size_t counted_n_ = 0;        // nodes whose counts count_ holds (the last build's n; 0: none)
   std::uint64_t counted_total_ = 0;  // their sum
   // Target of the build's non-blocking read of bin_state: a member, so that a read still in flight
   // when the build throws (the next download fails) never writes into freed memory.

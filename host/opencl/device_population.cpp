@@ -6,8 +6,7 @@ namespace pdmesh::ocl {
 std::optional<PopulationCounts> device_population_event(PopulationTracker& tracker, const PopulationOptions& options,
                                                         int iteration, int iterations, NodeSet& nodes,
                                                         BoundaryHandler& boundary, const BackgroundSpacing& background,
-                                                        std::vector<double>& budgets,
-                                                        std::vector<std::int32_t>& leaves,
+                                                        std::vector<double>& budgets, std::vector<std::int32_t>& leaves,
                                                         std::vector<int>* old_of_new_out) {
   const std::vector<Vec2> before = nodes.x;
   std::vector<int> old_of_new;

@@ -58,12 +58,19 @@ class DeviceRun final : public IterationSteps {
  public:
   DeviceRun(NodeSet& nodes, const GeometryTree& tree, const SpacingField& spacing, const SimOptions& options,
             Context& ctx, StepProgram& program, DeviceRunStats& stats)
-      : nodes_(nodes), options_(options), ctx_(ctx), stats_(stats), boundary_(tree, nodes),
-        background_(background_for(options, spacing, tree, own_background_)), program_(program), neighbours_(ctx, program_),
+      : nodes_(nodes),
+        options_(options),
+        ctx_(ctx),
+        stats_(stats),
+        boundary_(tree, nodes),
+        background_(background_for(options, spacing, tree, own_background_)),
+        program_(program),
+        neighbours_(ctx, program_),
         device_boundary_(ctx, tree.geometry()),
         n_(nodes.size()),
         window_(ctx, program.iteration_rule.get() != nullptr && !std::getenv("PDMESH_TEST_HOST_TIME_STEP_RULE")),
-        cpu_device_(ctx.device().type == "CPU"), loop_(nodes, options) {}
+        cpu_device_(ctx.device().type == "CPU"),
+        loop_(nodes, options) {}
   // Non-blocking uploads read host vectors of this object: wait for them (errors are moot here).
   ~DeviceRun() override { ctx_.queue().finish(); }
   DeviceRun(const DeviceRun&) = delete;
@@ -199,18 +206,17 @@ class DeviceRun final : public IterationSteps {
   DeviceBoundary<Real> device_boundary_;
   std::size_t n_;
   int largest_row_ = 0;  // the longest neighbour row any build found (rows are compact: for the stats)
-  int cur_ = 0;  // which of the double-buffered x, y, q is current
+  int cur_ = 0;          // which of the double-buffered x, y, q is current
   // Positions packed, x and y interleaved (2n entries): the force loop's gather of a neighbour fetches
   // both coordinates with one load, from one cache line (docs/journal/2026-11-24.md, "Step on PoCL").
-  Buffer<Real> xy_[2], q_[2], tx_, ty_, xy_build_, q_build_, brec_, cand_rec_, partials_, rec_, bg_q_,
-      budget_;
+  Buffer<Real> xy_[2], q_[2], tx_, ty_, xy_build_, q_build_, brec_, cand_rec_, partials_, rec_, bg_q_, budget_;
   Buffer<std::uint8_t> kind_;
   Buffer<std::int32_t> prev_, next_, bslot_, cand_index_, counters_, rec_index_, bg_root_, bg_child_, bg_corner_,
       bg_cell_, node_leaf_;
   Buffer<Real> carried_;  // momentum's carried moves, x and y interleaved (2 entries when momentum is off)
   // Host mirrors.
   std::vector<std::uint8_t> kind_host_;
-  std::vector<std::int32_t> boundary_nodes_;  // Boundary nodes in slot order
+  std::vector<std::int32_t> boundary_nodes_;         // Boundary nodes in slot order
   std::vector<double> build_x_, build_y_, build_q_;  // positions and spacings at the last build
   std::vector<double> dx_, dy_;                      // host displacement scratch (full size, sparse use)
   std::vector<std::int32_t> candidates_;
@@ -220,8 +226,8 @@ class DeviceRun final : public IterationSteps {
   // read still in flight must not write into freed memory (~DeviceRun waits for the queue first).
   std::vector<Real> positions_host_[2];  // xy, q
   std::vector<std::int32_t> cand_index_host_;
-  double skin_use_ = HUGE_VAL;                       // since the last build; HUGE_VAL forces a build
-  double skin_limit_ = skin_use_limit(0.0);  // the largest skin use over share the current lists allow
+  double skin_use_ = HUGE_VAL;                 // since the last build; HUGE_VAL forces a build
+  double skin_limit_ = skin_use_limit(0.0);    // the largest skin use over share the current lists allow
   std::vector<std::uint8_t> skin_class_host_;  // the last build's skin classes (host_boundary's test)
   std::uint64_t pairs_examined_ = 0;  // rebuild candidates (the loop adds the current lists' entries every iteration)
   std::uint64_t list_entries_ = 0;    // entries of the current lists (within the skin radius)
@@ -238,8 +244,8 @@ class DeviceRun final : public IterationSteps {
   bool tangents_ahead_ = false;  // boundary_snap has run in the iteration not yet complete
   // The device re-snapped the boundary nodes since the host last read their state (sync_boundary).
   bool boundary_stale_ = false;
-  int snap_arcs_ = 0;  // the arc buffer the last boundary_snap wrote
-  BoundarySnapResult snap_;  // of this iteration's boundary_snap
+  int snap_arcs_ = 0;         // the arc buffer the last boundary_snap wrote
+  BoundarySnapResult snap_;   // of this iteration's boundary_snap
   bool moves_finite_ = true;  // every move of the iteration take_row read is finite
   DeviceWindow<Real> window_;
   int window_rows_ = 0, window_next_ = 0;  // rows the last window ran, the next one to take
@@ -257,10 +263,10 @@ class DeviceRun final : public IterationSteps {
   // the state's momentum when the run stops there.
   std::vector<Real> momentum_at_check_;
   int since_build_ = 0, build_interval_ = 0;  // iterations since the last build; between the last two (0: unknown)
-  bool cpu_device_ = false;  // window_length's choice
-  double seconds_per_iteration_ = 0.0;  // the last window's wall time per iteration (0: none yet)
+  bool cpu_device_ = false;                   // window_length's choice
+  double seconds_per_iteration_ = 0.0;        // the last window's wall time per iteration (0: none yet)
   std::size_t fixed_ = 0, on_boundary_ = 0, interior_ = 0;  // node counts by kind after the last iteration
-  std::optional<SimState> failed_at_;  // the last good state, where a failure computed it already
+  std::optional<SimState> failed_at_;                       // the last good state, where a failure computed it already
   bool rebuilt_ahead_ = false;  // the lists were rebuilt while the device ran ahead of a measurement
   // The iterations' bookkeeping: history, time step rule, population schedule, stopping rule (its
   // samples go into every saved state). Last: it checks the options when the run is set up.

@@ -15,8 +15,9 @@ namespace pdmesh::ocl {
 template <typename Real>
 void DeviceRun<Real>::check_memory(std::uint64_t entries) const {
   const BackgroundFieldData& d = background_.data();
-  const std::uint64_t field = 4 * (d.root_node.size() + d.node_child.size() + d.leaf_corner.size() + d.leaf_cell.size()) +
-                              sizeof(Real) * d.corner_q.size();
+  const std::uint64_t field =
+      4 * (d.root_node.size() + d.node_child.size() + d.leaf_corner.size() + d.leaf_cell.size()) +
+      sizeof(Real) * d.corner_q.size();
   // The rows' entries as an average per node (the compact rows replace rows of one stride).
   const std::uint64_t per_node = n_ > 0 ? (entries + n_ - 1) / n_ : 0;
   check_device_memory(ctx_.device(), n_, nodes_.count(NodeKind::Boundary), field, sizeof(Real),
@@ -55,7 +56,8 @@ SimState DeviceRun<Real>::last_good_state() {
       if (finite) {
         if (boundary_stale_) sync_boundary_from(cur_);
         for (std::size_t i = 0; i < n_; ++i) {
-          if (nodes_.kind[i] == NodeKind::Interior) nodes_.x[i] = {static_cast<double>(x[i]), static_cast<double>(y[i])};
+          if (nodes_.kind[i] == NodeKind::Interior)
+            nodes_.x[i] = {static_cast<double>(x[i]), static_cast<double>(y[i])};
           nodes_.q[i] = static_cast<double>(q[i]);
         }
         return loop_.state(boundary_);
@@ -85,12 +87,13 @@ SimulationError DeviceRun<Real>::non_finite_error(int iteration, const SimState&
   }
   const std::string sums = fmt::format("sum |F| {}, sum kinetic {}", sum_force_, sum_kinetic_);
   if (bad == n_)
-    return SimulationError(fmt::format("iteration {}: non-finite force sums ({}); no node's new position is "
-                                       "non-finite (last good state: after iteration {})",
-                                       iteration, sums, good.iterations_done));
-  return SimulationError(fmt::format("iteration {}: non-finite force or move ({}) on {} (positions after iteration {})",
-                                     iteration, sums, describe_neighbourhood(nodes_, bad, options_.cutoff * nodes_.q[bad]),
-                                     good.iterations_done));
+    return SimulationError(
+        fmt::format("iteration {}: non-finite force sums ({}); no node's new position is "
+                    "non-finite (last good state: after iteration {})",
+                    iteration, sums, good.iterations_done));
+  return SimulationError(
+      fmt::format("iteration {}: non-finite force or move ({}) on {} (positions after iteration {})", iteration, sums,
+                  describe_neighbourhood(nodes_, bad, options_.cutoff * nodes_.q[bad]), good.iterations_done));
 }
 
 // The state after the last complete iteration into nodes_: interior positions and every q from the
@@ -167,10 +170,13 @@ void DeviceRun<Real>::upload_nodes(const std::vector<double>* budgets, const std
     // Clearance budgets of the interior nodes (exact test once, as the host reference's first
     // iteration): a point-in-domain test and a closest-segment search each, ~10 ms for 14k nodes on one
     // core at the start of the run, so on every core.
-    parallel_for(n, [&](std::size_t i) {
-      if (nodes_.kind[i] == NodeKind::Interior && boundary_.tree().inside(nodes_.x[i]))
-        budget[i] = device_budget(nodes_.x[i], boundary_.clearance_from(nodes_.x[i]));
-    }, 2048);
+    parallel_for(
+        n,
+        [&](std::size_t i) {
+          if (nodes_.kind[i] == NodeKind::Interior && boundary_.tree().inside(nodes_.x[i]))
+            budget[i] = device_budget(nodes_.x[i], boundary_.clearance_from(nodes_.x[i]));
+        },
+        2048);
   }
   for (int b = 0; b < 2; ++b) {
     xy_[b] = Buffer<Real>(ctx_, "xy", 2 * n);
@@ -193,10 +199,13 @@ void DeviceRun<Real>::upload_nodes(const std::vector<double>* budgets, const std
   if (leaves) {
     leaf = *leaves;
   } else {
-    parallel_for(n, [&](std::size_t i) {
-      double u, v;
-      leaf[i] = background_locate(background_.data(), nodes_.x[i], u, v);
-    }, 4096);
+    parallel_for(
+        n,
+        [&](std::size_t i) {
+          double u, v;
+          leaf[i] = background_locate(background_.data(), nodes_.x[i], u, v);
+        },
+        4096);
   }
   node_leaf_ = Buffer<std::int32_t>(ctx_, "node_leaf", n);
   write(node_leaf_, leaf);
@@ -236,8 +245,8 @@ std::optional<PopulationCounts> DeviceRun<Real>::population_event(int iteration)
   std::vector<double> budgets(budget.begin(), budget.end());
   std::vector<int> old_of_new;
   const std::size_t old_n = n_;
-  const auto counts = device_population_event(loop_.population(), options_.population, iteration, options_.iterations, nodes_,
-                                              boundary_, background_, budgets, leaves, &old_of_new);
+  const auto counts = device_population_event(loop_.population(), options_.population, iteration, options_.iterations,
+                                              nodes_, boundary_, background_, budgets, leaves, &old_of_new);
   if (counts && counts->changed()) {
     n_ = nodes_.size();
     // The next build lays its rows out from the last build's counts, renumbered (no counting pass).
@@ -261,7 +270,8 @@ void DeviceRun<Real>::upload_topology() {
   const std::uint64_t before = command_counts().writes;
   boundary_nodes_ = device_boundary_.upload_topology(nodes_, boundary_.arcs());
   stats_.transfers += command_counts().writes - before;
-  for (std::size_t s = 0; s < boundary_nodes_.size(); ++s) bslot[static_cast<std::size_t>(boundary_nodes_[s])] = static_cast<std::int32_t>(s);
+  for (std::size_t s = 0; s < boundary_nodes_.size(); ++s)
+    bslot[static_cast<std::size_t>(boundary_nodes_[s])] = static_cast<std::int32_t>(s);
   for (std::size_t i = 0; i < n; ++i) kind_host_[i] = static_cast<std::uint8_t>(nodes_.kind[i]);
   ensure_size(ctx_, kind_, "kind", n);
   ensure_size(ctx_, prev_, "prev", n);

@@ -26,8 +26,8 @@ void DeviceRun<Real>::rebuild() {
     read(q_[cur_], v[1], n, false);
   }
   const double radius = options_.cutoff * (1.0 + options_.verlet_skin);
-  NeighbourFlags flags = neighbours_.build(n, radius, xy_[cur_], q_[cur_], kind_, prev_, next_,
-                                           options_.verlet_skin * options_.cutoff);
+  NeighbourFlags flags =
+      neighbours_.build(n, radius, xy_[cur_], q_[cur_], kind_, prev_, next_, options_.verlet_skin * options_.cutoff);
   if (stats_.rebuilds > 0) {
     build_x_.resize(n);
     build_y_.resize(n);
@@ -71,22 +71,23 @@ template <typename Real>
 void DeviceRun<Real>::enqueue_iteration(int cur) {
   const int next = 1 - cur;
   ArgSetter a(program_.device_step, "device_step");
-  a(static_cast<cl_int>(n_))(static_cast<Real>(options_.cutoff))(
-      static_cast<Real>(options_.lj_a))(static_cast<cl_int>(options_.r0_any_direction ? 1 : 0))(
-      static_cast<Real>(options_.stability_factor))(window_.dt2())(static_cast<Real>(options_.verlet_skin * options_.cutoff))(xy_[cur])(
-      q_[cur])(kind_)(tx_)(ty_)(neighbours_.count())(neighbours_.offset())(neighbours_.index())(xy_build_)(q_build_)(neighbours_.skin_class())(bslot_)(
-      xy_[next])(q_[next])(budget_)(node_leaf_)(brec_)(cand_index_)(cand_rec_)(counters_)(partials_)(
-      device_boundary_.segments())(static_cast<cl_int>(device_boundary_.segment_count()))(
-      static_cast<Real>(device_boundary_.segment_scale()))(static_cast<Real>(options_.momentum))(carried_);
+  a(static_cast<cl_int>(n_))(static_cast<Real>(options_.cutoff))(static_cast<Real>(options_.lj_a))(
+      static_cast<cl_int>(options_.r0_any_direction ? 1 : 0))(static_cast<Real>(options_.stability_factor))(
+      window_.dt2())(static_cast<Real>(options_.verlet_skin * options_.cutoff))(xy_[cur])(q_[cur])(
+      kind_)(tx_)(ty_)(neighbours_.count())(neighbours_.offset())(neighbours_.index())(
+      xy_build_)(q_build_)(neighbours_.skin_class())(bslot_)(xy_[next])(q_[next])(
+      budget_)(node_leaf_)(brec_)(cand_index_)(cand_rec_)(counters_)(partials_)(device_boundary_.segments())(
+      static_cast<cl_int>(device_boundary_.segment_count()))(static_cast<Real>(device_boundary_.segment_scale()))(
+      static_cast<Real>(options_.momentum))(carried_);
   bg_args(a);
   launch(ctx_.queue(), program_.device_step, "device_step", n_, program_.work_group);
   ++stats_.launches;
   if (program_.force_loop == ForceLoop::Scalar) {  // PDMESH_REFRESH_KERNEL: the clearance refresh apart
     ArgSetter r(program_.refresh_budgets, "refresh_budgets");
-    r(static_cast<cl_int>(n_))(counters_)(cand_index_)(cand_rec_)(budget_)(q_[next])(xy_build_)(q_build_)(neighbours_.skin_class())(
-        static_cast<Real>(options_.cutoff))(static_cast<Real>(options_.verlet_skin * options_.cutoff))(
-        device_boundary_.segments())(static_cast<cl_int>(device_boundary_.segment_count()))(
-        static_cast<Real>(device_boundary_.segment_scale()))(partials_);
+    r(static_cast<cl_int>(n_))(counters_)(cand_index_)(cand_rec_)(budget_)(q_[next])(
+        xy_build_)(q_build_)(neighbours_.skin_class())(static_cast<Real>(options_.cutoff))(
+        static_cast<Real>(options_.verlet_skin * options_.cutoff))(device_boundary_.segments())(static_cast<cl_int>(
+        device_boundary_.segment_count()))(static_cast<Real>(device_boundary_.segment_scale()))(partials_);
     launch(ctx_.queue(), program_.refresh_budgets, "refresh_budgets", n_, program_.work_group);
     ++stats_.launches;
   }
@@ -95,10 +96,10 @@ void DeviceRun<Real>::enqueue_iteration(int cur) {
   auto rule = [this](ArgSetter& a) { window_.rule_args(a, groups(), partials_); };
   bool rule_done = false;
   if (!boundary_nodes_.empty() &&
-      device_boundary_.enqueue(program_, cur, brec_, xy_[next], q_[next], tx_, ty_, node_leaf_, xy_build_, q_build_,
-                               neighbours_.skin_class(),
-                               options_.cutoff, options_.verlet_skin * options_.cutoff, counters_,
-                               [this](ArgSetter& a) { bg_args(a); }, window_.device_rule() ? &rule : nullptr)) {
+      device_boundary_.enqueue(
+          program_, cur, brec_, xy_[next], q_[next], tx_, ty_, node_leaf_, xy_build_, q_build_,
+          neighbours_.skin_class(), options_.cutoff, options_.verlet_skin * options_.cutoff, counters_,
+          [this](ArgSetter& a) { bg_args(a); }, window_.device_rule() ? &rule : nullptr)) {
     ++stats_.launches;
     rule_done = window_.device_rule();
   }
@@ -168,8 +169,8 @@ template <typename Real>
 int DeviceRun<Real>::window_length() const {
   int most = window_.max_length();
   if (seconds_per_iteration_ > 0.0 && options_.window_seconds > 0.0)
-    most = static_cast<int>(std::clamp(std::floor(options_.window_seconds / seconds_per_iteration_), 1.0,
-                                       static_cast<double>(most)));
+    most = static_cast<int>(
+        std::clamp(std::floor(options_.window_seconds / seconds_per_iteration_), 1.0, static_cast<double>(most)));
   double predicted = 0.0;
   if (since_build_ > 0 && skin_use_ > 0.0 && skin_use_ <= skin_limit_)
     predicted = (skin_limit_ - skin_use_) * since_build_ / skin_use_;
@@ -337,8 +338,8 @@ bool DeviceRun<Real>::rebuild_if_due(int next_iteration) {
   // The device halts a window where the skin is used up, so no row of it is left here (and the run
   // ahead of a measurement begins none before a build).
   if (window_next_ < window_rows_ || window_pending_)
-    throw SimulationError(fmt::format("iteration {}: a rebuild is due with {} device iterations unread",
-                                      next_iteration, window_rows_ - window_next_));
+    throw SimulationError(fmt::format("iteration {}: a rebuild is due with {} device iterations unread", next_iteration,
+                                      window_rows_ - window_next_));
   const CommandCounts before = command_counts();
   rebuild();
   if (boundary_stale_) sync_boundary();  // the saved state needs the boundary's

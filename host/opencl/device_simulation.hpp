@@ -16,33 +16,33 @@ namespace pdmesh::ocl {
 // Where the time and the bytes went (pdmesh bench: docs/performance.md). Seconds are wall times.
 struct DeviceRunStats {
   int iterations = 0;
-  int rebuilds = 0;                  // neighbour-list builds (Verlet skin)
-  int windows = 0;                   // windows of iterations enqueued without a wait (device_window.hpp)
-  int ahead_windows = 0;             // of them, begun while the host measured a convergence check's mesh
-  CommandCounts rebuild_commands;    // the commands of the rebuilds (and the state they save), all of them
-  int snap_rebuilds = 0;             // of those, forced by a snap alone (the skin had room left)
+  int rebuilds = 0;                    // neighbour-list builds (Verlet skin)
+  int windows = 0;                     // windows of iterations enqueued without a wait (device_window.hpp)
+  int ahead_windows = 0;               // of them, begun while the host measured a convergence check's mesh
+  CommandCounts rebuild_commands;      // the commands of the rebuilds (and the state they save), all of them
+  int snap_rebuilds = 0;               // of those, forced by a snap alone (the skin had room left)
   double largest_spacing_ratio = 0.0;  // of any build (DeviceNeighbours::spacing_ratio; skin classes: device_run.hpp)
-  int gathers = 0;                   // neighbour build passes: one per rebuild, more when grids or rows outgrew their capacities
-  std::uint64_t outgrown_rows = 0;   // rows that outgrew their capacities, summed over the passes
-  std::size_t sampled_builds = 0;    // builds laid out from a sampled estimate (no counts yet: device_neighbours.hpp)
-  int stride = 0;                    // the longest neighbour row of any build (rows are compact)
-  std::uint64_t launches = 0;        // kernel launches
-  std::uint64_t transfers = 0;       // reads + writes enqueued
+  int gathers = 0;  // neighbour build passes: one per rebuild, more when grids or rows outgrew their capacities
+  std::uint64_t outgrown_rows = 0;  // rows that outgrew their capacities, summed over the passes
+  std::size_t sampled_builds = 0;   // builds laid out from a sampled estimate (no counts yet: device_neighbours.hpp)
+  int stride = 0;                   // the longest neighbour row of any build (rows are compact)
+  std::uint64_t launches = 0;       // kernel launches
+  std::uint64_t transfers = 0;      // reads + writes enqueued
   std::uint64_t bytes_down = 0, bytes_up = 0;  // all iterations, including rebuilds, excluding setup
-  std::uint64_t setup_bytes = 0;     // the initial upload (nodes, background field), not in bytes_up
-  std::uint64_t pairs_listed = 0;    // list entries within the skin radius, summed over builds
-  std::uint64_t rebuild_candidates = 0;  // candidate pairs whose distance the rebuilds computed
-  std::uint64_t candidates = 0;      // interior nodes handed to the host's exact test, all iterations
-  double bin_seconds = 0.0;          // host binning at rebuilds (0: the device bins, within gather_seconds)
-  double gather_seconds = 0.0;       // device neighbour build at rebuilds: binning, rows (one wait)
-  double step_seconds = 0.0;         // device_step and boundary_snap (+ the previous apply_host_moves,
-                                     // and the partials: one wait)
-  double download_seconds = 0.0;     // candidate records
-  double host_seconds = 0.0;         // the flagged interior nodes' exact test on the host
-  double upload_seconds = 0.0;       // enqueueing host positions back + apply_host_moves (not waited on)
-  double population_seconds = 0.0;   // population events: state read back, the host event, re-upload
-  double population_transfer_seconds = 0.0;  // of which the read-back and the re-upload
-  std::size_t device_bytes = 0;      // device buffers at the end
+  std::uint64_t setup_bytes = 0;               // the initial upload (nodes, background field), not in bytes_up
+  std::uint64_t pairs_listed = 0;              // list entries within the skin radius, summed over builds
+  std::uint64_t rebuild_candidates = 0;        // candidate pairs whose distance the rebuilds computed
+  std::uint64_t candidates = 0;                // interior nodes handed to the host's exact test, all iterations
+  double bin_seconds = 0.0;                    // host binning at rebuilds (0: the device bins, within gather_seconds)
+  double gather_seconds = 0.0;                 // device neighbour build at rebuilds: binning, rows (one wait)
+  double step_seconds = 0.0;                   // device_step and boundary_snap (+ the previous apply_host_moves,
+                                               // and the partials: one wait)
+  double download_seconds = 0.0;               // candidate records
+  double host_seconds = 0.0;                   // the flagged interior nodes' exact test on the host
+  double upload_seconds = 0.0;                 // enqueueing host positions back + apply_host_moves (not waited on)
+  double population_seconds = 0.0;             // population events: state read back, the host event, re-upload
+  double population_transfer_seconds = 0.0;    // of which the read-back and the re-upload
+  std::size_t device_bytes = 0;                // device buffers at the end
 };
 
 // The neighbour rows' entries per node assumed before the first build (the rows are compact: a build

@@ -27,11 +27,13 @@ SimResult DeviceSimulator::run(NodeSet& nodes, const GeometryTree& tree, const S
                                const SimOptions& options, const SimCallbacks& callbacks) {
   check_node_set(nodes);
   if (options.exact_spacing)
-    throw InputError("the device-resident simulation reads the background spacing field; exact_spacing needs --device host");
+    throw InputError(
+        "the device-resident simulation reads the background spacing field; exact_spacing needs --device host");
   if (options.metric)
-    throw InputError("the device-resident simulation has no metric mode yet (its loop keeps the isotropic spacing on "
-                     "the device); a run with a metric field needs the host driver (--device host) or the host-driven "
-                     "OpenCL step backend");
+    throw InputError(
+        "the device-resident simulation has no metric mode yet (its loop keeps the isotropic spacing on "
+        "the device); a run with a metric field needs the host driver (--device host) or the host-driven "
+        "OpenCL step backend");
   return run_device_resident(nodes, tree, spacing, options, ctx_, *program_, callbacks, stats_);
 }
 

@@ -11,16 +11,27 @@ namespace pdmesh::ocl {
 
 std::map<std::string, std::string> window_defines() {
   std::map<std::string, std::string> d;
-  for (const auto& [name, slot] :
-       {std::pair{"RING_FORCE", kRingForce}, {"RING_KINETIC", kRingKinetic}, {"RING_MOVING", kRingMoving},
-        {"RING_WITHIN", kRingWithin}, {"RING_COINCIDENT", kRingCoincident}, {"RING_MAX_FORCE", kRingMaxForce},
-        {"RING_SKIN", kRingSkin}, {"RING_CLAMPED", kRingClamped}, {"RING_SNAP_BAD", kRingSnapBad},
-        {"RING_SNAP_SKIN", kRingSnapSkin}, {"RING_DT", kRingDt}, {"RING_CANDIDATES", kRingCandidates},
-        {"RING_NON_FINITE", kRingNonFinite}, {"RING_SIZE", kRingSize}})
+  for (const auto& [name, slot] : {std::pair{"RING_FORCE", kRingForce},
+                                   {"RING_KINETIC", kRingKinetic},
+                                   {"RING_MOVING", kRingMoving},
+                                   {"RING_WITHIN", kRingWithin},
+                                   {"RING_COINCIDENT", kRingCoincident},
+                                   {"RING_MAX_FORCE", kRingMaxForce},
+                                   {"RING_SKIN", kRingSkin},
+                                   {"RING_CLAMPED", kRingClamped},
+                                   {"RING_SNAP_BAD", kRingSnapBad},
+                                   {"RING_SNAP_SKIN", kRingSnapSkin},
+                                   {"RING_DT", kRingDt},
+                                   {"RING_CANDIDATES", kRingCandidates},
+                                   {"RING_NON_FINITE", kRingNonFinite},
+                                   {"RING_SIZE", kRingSize}})
     d.emplace(name, std::to_string(static_cast<int>(slot)));
-  for (const auto& [name, slot] : {std::pair{"STATE_DT", kStateDt}, {"STATE_PREVIOUS", kStatePrevious},
-                                   {"STATE_HAS_PREVIOUS", kStateHasPrevious}, {"STATE_DECREASES", kStateDecreases},
-                                   {"STATE_INCREASES", kStateIncreases}, {"STATE_SKIN", kStateSkin},
+  for (const auto& [name, slot] : {std::pair{"STATE_DT", kStateDt},
+                                   {"STATE_PREVIOUS", kStatePrevious},
+                                   {"STATE_HAS_PREVIOUS", kStateHasPrevious},
+                                   {"STATE_DECREASES", kStateDecreases},
+                                   {"STATE_INCREASES", kStateIncreases},
+                                   {"STATE_SKIN", kStateSkin},
                                    {"STATE_SKIN_LIMIT", kStateSkinLimit}})
     d.emplace(name, std::to_string(static_cast<int>(slot)));
   d.emplace("COUNTER_CANDIDATES", std::to_string(static_cast<int>(kCounterCandidates)));
@@ -82,8 +93,8 @@ void DeviceWindow<Real>::enqueue_rule(StepProgram& program, std::size_t groups, 
                                       Buffer<std::int32_t>& counters) {
   if (!device_rule_) return;
   ArgSetter a(program.iteration_rule, "iteration_rule");
-  a(static_cast<cl_int>(groups))(partials)(static_cast<cl_int>(snap_entries))(snap_partials)(counters)(state_)(ring_)(
-      static_cast<cl_int>(kWindowLength))(dt2_);
+  a(static_cast<cl_int>(groups))(partials)(static_cast<cl_int>(snap_entries))(
+      snap_partials)(counters)(state_)(ring_)(static_cast<cl_int>(kWindowLength))(dt2_);
   launch(ctx_.queue(), program.iteration_rule, "iteration_rule", 1, 1);
 }
 

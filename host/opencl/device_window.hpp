@@ -25,19 +25,19 @@ namespace pdmesh::ocl {
 
 // One history row of the ring (doubles), as iteration_rule writes it.
 enum WindowRowSlot : int {
-  kRingForce = 0,       // sum of |F| over moving nodes
-  kRingKinetic = 1,     // sum of the kinetic terms
-  kRingMoving = 2,      // moving nodes
-  kRingWithin = 3,      // pairs within the cut-off
-  kRingCoincident = 4,  // coincident pairs
-  kRingMaxForce = 5,    // the largest |F|
-  kRingSkin = 6,        // the largest skin use of device_step's interior nodes
-  kRingClamped = 7,     // boundary_snap: clamped moves
-  kRingSnapBad = 8,     // boundary_snap: non-finite targets
-  kRingSnapSkin = 9,    // boundary_snap: the largest skin use
-  kRingDt = 10,         // the global time step this iteration used
-  kRingCandidates = 11, // interior nodes for the host's exact test
-  kRingNonFinite = 12,  // device_step's flag for a move that is not finite
+  kRingForce = 0,        // sum of |F| over moving nodes
+  kRingKinetic = 1,      // sum of the kinetic terms
+  kRingMoving = 2,       // moving nodes
+  kRingWithin = 3,       // pairs within the cut-off
+  kRingCoincident = 4,   // coincident pairs
+  kRingMaxForce = 5,     // the largest |F|
+  kRingSkin = 6,         // the largest skin use of device_step's interior nodes
+  kRingClamped = 7,      // boundary_snap: clamped moves
+  kRingSnapBad = 8,      // boundary_snap: non-finite targets
+  kRingSnapSkin = 9,     // boundary_snap: the largest skin use
+  kRingDt = 10,          // the global time step this iteration used
+  kRingCandidates = 11,  // interior nodes for the host's exact test
+  kRingNonFinite = 12,   // device_step's flag for a move that is not finite
   kRingSize = 13
 };
 // The rule's state on the device (doubles): GlobalTimeStep::State and the skin use since the last build.
@@ -97,7 +97,9 @@ class DeviceWindow {
   void enqueue_reads(Context& ctx, std::size_t groups, Buffer<Real>& partials, std::size_t snap_entries,
                      Buffer<Real>& snap_partials, Buffer<std::int32_t>& counters);
   int complete(Context& ctx, std::size_t groups, std::size_t snap_entries);
-  const double* row(int k) const { return rows_.data() + static_cast<std::size_t>(kRingSize) * static_cast<std::size_t>(k); }
+  const double* row(int k) const {
+    return rows_.data() + static_cast<std::size_t>(kRingSize) * static_cast<std::size_t>(k);
+  }
   // Transfers enqueued by the last begin() + enqueue_reads(), and their bytes (DeviceRunStats).
   std::uint64_t transfers = 0, bytes_up = 0, bytes_down = 0;
 

@@ -65,7 +65,8 @@ std::vector<DeviceInfo> list_devices() {
       // Deprecated since OpenCL 2.0 (still answered by the drivers we know): a device that does not
       // answer counts as discrete, which only affects auto's order.
       cl_bool unified = CL_FALSE;
-      i.unified_memory = devices[d].getInfo(CL_DEVICE_HOST_UNIFIED_MEMORY, &unified) == CL_SUCCESS && unified != CL_FALSE;
+      i.unified_memory =
+          devices[d].getInfo(CL_DEVICE_HOST_UNIFIED_MEMORY, &unified) == CL_SUCCESS && unified != CL_FALSE;
       out.push_back(std::move(i));
     }
   }
@@ -106,8 +107,7 @@ std::optional<DeviceInfo> select_device(const std::string& spec) {
     return std::nullopt;
   }
   if (spec == "opencl") {
-    if (devices.empty())
-      throw InputError("--device opencl: no OpenCL device is available.\n" + describe_all(devices));
+    if (devices.empty()) throw InputError("--device opencl: no OpenCL device is available.\n" + describe_all(devices));
     return devices.front();
   }
   int p = -1, d = -1;

@@ -28,7 +28,8 @@ struct DeviceInfo {
 // Every device of every platform. An absent ICD loader or no platform gives an empty list (no throw).
 std::vector<DeviceInfo> list_devices();
 
-// One line per device, for `pdmesh devices` and for error messages: "opencl:0:0  CPU  pthread-... (2 CUs, 23.4 GiB, fp64)".
+// One line per device, for `pdmesh devices` and for error messages: "opencl:0:0  CPU  pthread-... (2 CUs, 23.4 GiB,
+// fp64)".
 std::string describe(const DeviceInfo& d);
 std::string describe_all(const std::vector<DeviceInfo>& devices);
 

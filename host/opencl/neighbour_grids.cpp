@@ -103,7 +103,8 @@ void build_neighbour_grids(const double* x, const double* y, const double* q, st
   g.start_offset.assign(grids, 0);
   g.nodes_offset.assign(grids, 0);
   std::vector<std::vector<std::int32_t>> exact(static_cast<std::size_t>(g.levels));
-  for (std::size_t j = 0; j < n; ++j) exact[static_cast<std::size_t>(g.level[j])].push_back(static_cast<std::int32_t>(j));
+  for (std::size_t j = 0; j < n; ++j)
+    exact[static_cast<std::size_t>(g.level[j])].push_back(static_cast<std::int32_t>(j));
   // The cumulative grid of level L grows from level L-1's by merging in level L (both ascending).
   std::vector<std::int32_t> cumulative, merged;
   for (std::size_t l = 0; l < exact.size(); ++l) {

@@ -21,9 +21,9 @@ struct NeighbourGrids {
   std::vector<std::int32_t> start_offset;  // per grid: first entry in cell_start
   std::vector<std::int32_t> nodes_offset;  // per grid: first entry in cell_nodes
   std::vector<std::int64_t> table_cx, table_cy;
-  std::vector<std::int32_t> table_id;      // -1 = empty slot; else the dense cell id within its grid
-  std::vector<std::int32_t> cell_start;    // per grid: cells + 1 prefix offsets
-  std::vector<std::int32_t> cell_nodes;    // per grid: nodes grouped by cell, ascending within a cell
+  std::vector<std::int32_t> table_id;    // -1 = empty slot; else the dense cell id within its grid
+  std::vector<std::int32_t> cell_start;  // per grid: cells + 1 prefix offsets
+  std::vector<std::int32_t> cell_nodes;  // per grid: nodes grouped by cell, ascending within a cell
 
   std::size_t bytes() const;
 };

@@ -14,7 +14,6 @@
 namespace pdmesh::ocl {
 namespace {
 
-
 template <typename Real>
 class OpenclBackend final : public StepBackend {
  public:
@@ -61,7 +60,8 @@ class OpenclBackend final : public StepBackend {
     neighbours_.index().download(ctx_.queue(), entries);  // whole: moved rows lie behind offset[n]
     for (std::size_t i = 0; i < n; ++i) {
       const std::size_t listed = std::min<std::size_t>(static_cast<std::size_t>(list.count[i]), s);
-      std::copy_n(entries.begin() + static_cast<std::ptrdiff_t>(offset[i]), listed, list.index.begin() + static_cast<std::ptrdiff_t>(i * s));
+      std::copy_n(entries.begin() + static_cast<std::ptrdiff_t>(offset[i]), listed,
+                  list.index.begin() + static_cast<std::ptrdiff_t>(i * s));
     }
     flags.overflow = flags.max_count > stride ? 1U : 0U;
   }
@@ -85,8 +85,8 @@ class OpenclBackend final : public StepBackend {
     ensure_size(ctx_, limit_, "dt2_limit", n);
     ArgSetter args(program_.compute_forces, "compute_forces");
     args(static_cast<cl_int>(n))(static_cast<cl_int>(list.stride))(static_cast<Real>(params.lj_a))(
-        static_cast<cl_int>(params.r0_any_direction ? 1 : 0))(static_cast<Real>(params.stability_factor))(xy_)(q_)(
-        kind_)(tx_)(ty_)(count_)(index_)(fx_)(fy_)(r0_)(limit_)(coincident_);
+        static_cast<cl_int>(params.r0_any_direction ? 1 : 0))(static_cast<Real>(params.stability_factor))(
+        xy_)(q_)(kind_)(tx_)(ty_)(count_)(index_)(fx_)(fy_)(r0_)(limit_)(coincident_);
     launch(ctx_.queue(), program_.compute_forces, "compute_forces", n, program_.work_group);
     out.fx = download(fx_, n);
     out.fy = download(fy_, n);
@@ -121,8 +121,8 @@ class OpenclBackend final : public StepBackend {
     ensure_size(ctx_, dy_, "dy", n);
     ensure_size(ctx_, dt2_, "dt2", n);
     ArgSetter args(program_.time_step_and_move, "time_step_and_move");
-    args(static_cast<cl_int>(n))(static_cast<Real>(dt_gm2))(static_cast<cl_int>(has_limit ? 1 : 0))(kind_)(fx_)(fy_)(
-        r0_)(limit_)(dx_)(dy_)(dt2_);
+    args(static_cast<cl_int>(n))(static_cast<Real>(dt_gm2))(static_cast<cl_int>(has_limit ? 1 : 0))(
+        kind_)(fx_)(fy_)(r0_)(limit_)(dx_)(dy_)(dt2_);
     launch(ctx_.queue(), program_.time_step_and_move, "time_step_and_move", n, program_.work_group);
     out.dx = download(dx_, n);
     out.dy = download(dy_, n);
@@ -204,8 +204,8 @@ class OpenclBackend final : public StepBackend {
     ensure_size(ctx_, limit_, "dt2_limit", n);
     ArgSetter args(program_.compute_forces_metric, "compute_forces_metric");
     args(static_cast<cl_int>(n))(static_cast<cl_int>(list.stride))(static_cast<Real>(params.lj_a))(
-        static_cast<cl_int>(params.r0_any_direction ? 1 : 0))(static_cast<Real>(params.stability_factor))(xy_)(m11_)(
-        m12_)(m22_)(kind_)(tx_)(ty_)(count_)(index_)(fx_)(fy_)(r0_)(limit_)(coincident_);
+        static_cast<cl_int>(params.r0_any_direction ? 1 : 0))(static_cast<Real>(params.stability_factor))(
+        xy_)(m11_)(m12_)(m22_)(kind_)(tx_)(ty_)(count_)(index_)(fx_)(fy_)(r0_)(limit_)(coincident_);
     launch(ctx_.queue(), program_.compute_forces_metric, "compute_forces_metric", n, program_.work_group);
     out.fx = download(fx_, n);
     out.fy = download(fy_, n);
@@ -233,8 +233,8 @@ class OpenclBackend final : public StepBackend {
     ensure_size(ctx_, dy_, "dy", n);
     ensure_size(ctx_, dt2_, "dt2", n);
     ArgSetter args(program_.time_step_and_move_metric, "time_step_and_move_metric");
-    args(static_cast<cl_int>(n))(static_cast<Real>(dt_gm2))(static_cast<cl_int>(has_limit ? 1 : 0))(kind_)(fx_)(fy_)(
-        r0_)(limit_)(m11_)(m12_)(m22_)(dx_)(dy_)(dt2_);
+    args(static_cast<cl_int>(n))(static_cast<Real>(dt_gm2))(static_cast<cl_int>(has_limit ? 1 : 0))(
+        kind_)(fx_)(fy_)(r0_)(limit_)(m11_)(m12_)(m22_)(dx_)(dy_)(dt2_);
     launch(ctx_.queue(), program_.time_step_and_move_metric, "time_step_and_move_metric", n, program_.work_group);
     out.dx = download(dx_, n);
     out.dy = download(dy_, n);

@@ -16,15 +16,16 @@ namespace {
 
 constexpr std::size_t kGroup = 64;
 constexpr int kRounds = 256;
-constexpr double kTargetSeconds = 0.004;        // a float run at least this long
-constexpr std::size_t kMaxItems = 1u << 24;     // 16M work-items x 256 rounds x 8 flops: 34 GFLOP
+constexpr double kTargetSeconds = 0.004;     // a float run at least this long
+constexpr std::size_t kMaxItems = 1u << 24;  // 16M work-items x 256 rounds x 8 flops: 34 GFLOP
 
 template <typename Real>
 class RateProbe {
  public:
   explicit RateProbe(Context& ctx) : ctx_(ctx) {
-    program_ = ctx.build({"selftest.cl"},
-                         precision_defines(std::is_same_v<Real, double> ? Precision::Double : Precision::Float, kGroup));
+    program_ =
+        ctx.build({"selftest.cl"},
+                  precision_defines(std::is_same_v<Real, double> ? Precision::Double : Precision::Float, kGroup));
     cl_int err = CL_SUCCESS;
     kernel_ = cl::Kernel(program_, "selftest_rate", &err);
     check(err, "clCreateKernel(selftest_rate)");
@@ -32,8 +33,8 @@ class RateProbe {
   // Best of three runs over `items` work-items (after one untimed run), in seconds.
   double seconds(std::size_t items) {
     if (out_.size() < items) out_ = Buffer<Real>(ctx_, "rate_out", items);
-    ArgSetter(kernel_, "selftest_rate")(static_cast<cl_int>(kRounds))(static_cast<Real>(0.999))(static_cast<Real>(0.001))(
-        out_);
+    ArgSetter(kernel_,
+              "selftest_rate")(static_cast<cl_int>(kRounds))(static_cast<Real>(0.999))(static_cast<Real>(0.001))(out_);
     double best = 0.0;
     for (int run = 0; run < 4; ++run) {
       const auto t0 = std::chrono::steady_clock::now();
@@ -70,8 +71,7 @@ double measure_fp64_slowdown(Context& ctx) {
 
 PrecisionChoice choose_precision_auto(const DeviceInfo& device, const std::function<double()>& measure) {
   if (!device.fp64) return {Precision::Float, fmt::format("float ({} has no fp64)", device.name)};
-  if (device.type == "CPU")
-    return {Precision::Double, "double (a CPU device: fp64 at half the float rate or better)"};
+  if (device.type == "CPU") return {Precision::Double, "double (a CPU device: fp64 at half the float rate or better)"};
   const double slowdown = measure();
   const bool slow = slowdown > kFp64SlowdownLimit;
   return {slow ? Precision::Float : Precision::Double,

@@ -33,19 +33,21 @@ std::size_t group_info(cl::Kernel& k, const cl::Device& device, const char* kern
 void check_work_group(const std::string& kernel, const std::string& device, std::size_t work_group,
                       std::size_t kernel_limit) {
   if (work_group <= kernel_limit) return;
-  throw DeviceError(fmt::format("kernel '{}' runs at most {} work-items per group on {} (CL_KERNEL_WORK_GROUP_SIZE: "
-                                "too many registers or too much local memory for this device), but pdmesh's kernels "
-                                "need groups of {}: simulate on another device or with --device host",
-                                kernel, kernel_limit, device, work_group));
+  throw DeviceError(
+      fmt::format("kernel '{}' runs at most {} work-items per group on {} (CL_KERNEL_WORK_GROUP_SIZE: "
+                  "too many registers or too much local memory for this device), but pdmesh's kernels "
+                  "need groups of {}: simulate on another device or with --device host",
+                  kernel, kernel_limit, device, work_group));
 }
 
 std::string work_group_advice(const std::vector<KernelLimits>& limits, std::size_t work_group) {
   std::string advice;
   for (const KernelLimits& k : limits)
     if (k.preferred_multiple > 0 && work_group % k.preferred_multiple != 0)
-      advice += fmt::format("{}kernel '{}' prefers multiples of {} work-items (CL_KERNEL_PREFERRED_WORK_GROUP_SIZE_"
-                            "MULTIPLE), the group size {} is not one: part of each group idles",
-                            advice.empty() ? "" : "; ", k.name, k.preferred_multiple, work_group);
+      advice += fmt::format(
+          "{}kernel '{}' prefers multiples of {} work-items (CL_KERNEL_PREFERRED_WORK_GROUP_SIZE_"
+          "MULTIPLE), the group size {} is not one: part of each group idles",
+          advice.empty() ? "" : "; ", k.name, k.preferred_multiple, work_group);
   return advice;
 }
 
@@ -73,9 +75,12 @@ ForceLoop parse_force_loop(const std::string& text, const std::string& what) {
 
 const char* force_loop_name(ForceLoop loop) {
   switch (loop) {
-    case ForceLoop::Vector: return "vector";
-    case ForceLoop::Scalar: return "scalar";
-    case ForceLoop::Auto: break;
+    case ForceLoop::Vector:
+      return "vector";
+    case ForceLoop::Scalar:
+      return "scalar";
+    case ForceLoop::Auto:
+      break;
   }
   return "auto";
 }
@@ -92,10 +97,10 @@ ForceLoop resolve_force_loop(ForceLoop requested, const std::string& device_type
 }
 
 const std::vector<std::string>& step_program_files() {
-  static const std::vector<std::string> files = {"spacing_field.cl", "reduce.cl",     "forces.cl",
-                                                 "time_step.cl",     "metric.cl",     "binning.cl",    "neighbours.cl",
-                                                 "clearance.cl",     "device_step.cl", "window.cl",
-                                                 "boundary.cl"};  // boundary_snap_rule calls window.cl's rule
+  static const std::vector<std::string> files = {
+      "spacing_field.cl", "reduce.cl",    "forces.cl",      "time_step.cl", "metric.cl",  "binning.cl",
+      "neighbours.cl",    "clearance.cl", "device_step.cl", "window.cl",    "boundary.cl"};  // boundary_snap_rule calls
+                                                                                             // window.cl's rule
   return files;
 }
 
@@ -113,16 +118,24 @@ std::map<std::string, std::string> step_program_defines(Precision precision, std
   d.emplace("BOUNDARY_PARTIALS", std::to_string(kBoundaryPartials));
   // kernels/boundary.cl's Jacobi rule: the host's fraction (shortest round-trip text, so the same double).
   d.emplace("MAX_GAP_FRACTION", fmt::format("REAL_C({})", BoundaryHandler::kMaxGapFraction));
-  for (const auto& [name, slot] : {std::pair{"BIN_FIRST_INVALID", kBinFirstInvalid}, {"BIN_TOP", kBinTop},
-                                   {"BIN_TOO_MANY_LEVELS", kBinTooManyLevels}, {"BIN_BUCKETS", kBinBuckets},
-                                   {"BIN_MEMBERS", kBinMembers}, {"BIN_TOO_SMALL", kBinTooSmall},
+  for (const auto& [name, slot] : {std::pair{"BIN_FIRST_INVALID", kBinFirstInvalid},
+                                   {"BIN_TOP", kBinTop},
+                                   {"BIN_TOO_MANY_LEVELS", kBinTooManyLevels},
+                                   {"BIN_BUCKETS", kBinBuckets},
+                                   {"BIN_MEMBERS", kBinMembers},
+                                   {"BIN_TOO_SMALL", kBinTooSmall},
                                    {"BIN_LEVEL_COUNT", kBinHead}})
     d.emplace(name, std::to_string(static_cast<int>(slot)));
-  for (const auto& [name, slot] : {std::pair{"ROW_OUTGROWN", kRowOutgrown}, {"ROW_ENTRIES", kRowEntries},
-                                   {"ROW_LARGEST", kRowLargest}, {"ROW_EXAMINED", kRowExamined},
-                                   {"ROW_WITHIN", kRowWithin}, {"ROW_SPILLED", kRowSpilled},
-                                   {"ROW_SPARE_USED", kRowSpareUsed}, {"ROW_MOVED", kRowMoved},
-                                   {"ROW_SPARE_FULL", kRowSpareFull}, {"ROW_RATIO", kRowRatio}})
+  for (const auto& [name, slot] : {std::pair{"ROW_OUTGROWN", kRowOutgrown},
+                                   {"ROW_ENTRIES", kRowEntries},
+                                   {"ROW_LARGEST", kRowLargest},
+                                   {"ROW_EXAMINED", kRowExamined},
+                                   {"ROW_WITHIN", kRowWithin},
+                                   {"ROW_SPILLED", kRowSpilled},
+                                   {"ROW_SPARE_USED", kRowSpareUsed},
+                                   {"ROW_MOVED", kRowMoved},
+                                   {"ROW_SPARE_FULL", kRowSpareFull},
+                                   {"ROW_RATIO", kRowRatio}})
     d.emplace(name, std::to_string(static_cast<int>(slot)));
   d.emplace("ROW_RATIO_SCALE", std::to_string(kRowRatioScale));
   d.emplace("SKIN_CLASS_STEPS", std::to_string(kSkinClassSteps));
@@ -132,43 +145,61 @@ std::map<std::string, std::string> step_program_defines(Precision precision, std
     roots += fmt::format("{}REAL_C({:#})", k ? ", " : "", skin_class_root(k));
   d.emplace("SKIN_CLASS_ROOTS", roots);
   for (const auto& [name, value] : window_defines())
-    if (!d.emplace(name, value).second) throw DeviceError(fmt::format("step program: the define {} is given twice", name));
+    if (!d.emplace(name, value).second)
+      throw DeviceError(fmt::format("step program: the define {} is given twice", name));
   return d;
 }
 
 StepProgram::StepProgram(Context& ctx, Precision p, ForceLoop loop, std::size_t wg)
     : precision(p), force_loop(resolve_force_loop(loop, ctx.device().type)), work_group(wg) {
   if (p == Precision::Double && !ctx.device().fp64)
-    throw DeviceError(fmt::format("{} has no double precision (cl_khr_fp64): use --precision float", ctx.device().name));
+    throw DeviceError(
+        fmt::format("{} has no double precision (cl_khr_fp64): use --precision float", ctx.device().name));
   if (injected_build_failure())
-    throw DeviceError(fmt::format("building OpenCL program on {} failed: CL_BUILD_PROGRAM_FAILURE (-11) (injected by "
-                                  "PDMESH_TEST_FAIL_BUILD)\nbuild log:\n(none)", ctx.device().name));
+    throw DeviceError(
+        fmt::format("building OpenCL program on {} failed: CL_BUILD_PROGRAM_FAILURE (-11) (injected by "
+                    "PDMESH_TEST_FAIL_BUILD)\nbuild log:\n(none)",
+                    ctx.device().name));
   program = ctx.build(step_program_files(), step_program_defines(p, wg, force_loop));
-  const std::pair<cl::Kernel*, const char*> kernels[] = {
-      {&row_capacity_scan, "row_capacity_scan"}, {&row_block_offsets, "row_block_offsets"},
-      {&row_offsets_add, "row_offsets_add"},     {&gather_rows, "gather_rows"},
-      {&sort_rows, "sort_rows"},                 {&bin_bounds, "bin_bounds"},
-      {&bin_rmin, "bin_rmin"},                   {&bin_levels, "bin_levels"},
-      {&bin_plan, "bin_plan"},                   {&bin_count, "bin_count"},
-      {&bucket_scan, "bucket_scan"},             {&bucket_offsets_add, "bucket_offsets_add"},
-      {&bin_fill, "bin_fill"},                   {&relocate_rows, "relocate_rows"},
-      {&apply_row_moves, "apply_row_moves"},     {&row_level_tally, "row_level_tally"},
-      {&place_spilled, "place_spilled"},
-      {&compute_forces, "compute_forces"},     {&time_step_and_move, "time_step_and_move"},
-      {&apply_momentum, "apply_momentum"},
-      {&reduce, "reduce"},                     {&device_step, "device_step"},
-      {&apply_host_moves, "apply_host_moves"}, {&boundary_snap, "boundary_snap"},
-      {&clearance_points, "clearance_points"}, {&refresh_budgets, "refresh_budgets"},
-      {&compute_forces_metric, "compute_forces_metric"}, {&time_step_and_move_metric, "time_step_and_move_metric"},
-      {&apply_momentum_metric, "apply_momentum_metric"}, {&metric_force_norms, "metric_force_norms"}};
+  const std::pair<cl::Kernel*, const char*> kernels[] = {{&row_capacity_scan, "row_capacity_scan"},
+                                                         {&row_block_offsets, "row_block_offsets"},
+                                                         {&row_offsets_add, "row_offsets_add"},
+                                                         {&gather_rows, "gather_rows"},
+                                                         {&sort_rows, "sort_rows"},
+                                                         {&bin_bounds, "bin_bounds"},
+                                                         {&bin_rmin, "bin_rmin"},
+                                                         {&bin_levels, "bin_levels"},
+                                                         {&bin_plan, "bin_plan"},
+                                                         {&bin_count, "bin_count"},
+                                                         {&bucket_scan, "bucket_scan"},
+                                                         {&bucket_offsets_add, "bucket_offsets_add"},
+                                                         {&bin_fill, "bin_fill"},
+                                                         {&relocate_rows, "relocate_rows"},
+                                                         {&apply_row_moves, "apply_row_moves"},
+                                                         {&row_level_tally, "row_level_tally"},
+                                                         {&place_spilled, "place_spilled"},
+                                                         {&compute_forces, "compute_forces"},
+                                                         {&time_step_and_move, "time_step_and_move"},
+                                                         {&apply_momentum, "apply_momentum"},
+                                                         {&reduce, "reduce"},
+                                                         {&device_step, "device_step"},
+                                                         {&apply_host_moves, "apply_host_moves"},
+                                                         {&boundary_snap, "boundary_snap"},
+                                                         {&clearance_points, "clearance_points"},
+                                                         {&refresh_budgets, "refresh_budgets"},
+                                                         {&compute_forces_metric, "compute_forces_metric"},
+                                                         {&time_step_and_move_metric, "time_step_and_move_metric"},
+                                                         {&apply_momentum_metric, "apply_momentum_metric"},
+                                                         {&metric_force_norms, "metric_force_norms"}};
   // Every kernel declares reqd_work_group_size(WG_SIZE): a device that cannot run a group that size
   // (registers, local memory) would fail at the first enqueue with CL_INVALID_WORK_GROUP_SIZE or
   // CL_OUT_OF_RESOURCES; checked here, it fails before the run with the reason.
   for (const auto& [kernel, name] : kernels) {
     *kernel = make_kernel(program, name);
-    KernelLimits k{name, group_info<CL_KERNEL_WORK_GROUP_SIZE>(*kernel, ctx.device().handle, name, "CL_KERNEL_WORK_GROUP_SIZE"),
-                   group_info<CL_KERNEL_PREFERRED_WORK_GROUP_SIZE_MULTIPLE>(
-                       *kernel, ctx.device().handle, name, "CL_KERNEL_PREFERRED_WORK_GROUP_SIZE_MULTIPLE")};
+    KernelLimits k{
+        name, group_info<CL_KERNEL_WORK_GROUP_SIZE>(*kernel, ctx.device().handle, name, "CL_KERNEL_WORK_GROUP_SIZE"),
+        group_info<CL_KERNEL_PREFERRED_WORK_GROUP_SIZE_MULTIPLE>(*kernel, ctx.device().handle, name,
+                                                                 "CL_KERNEL_PREFERRED_WORK_GROUP_SIZE_MULTIPLE")};
     check_work_group(name, ctx.device().name, wg, std::min(k.max_work_group, ctx.device().max_work_group));
     limits.push_back(k);
   }
@@ -178,7 +209,9 @@ StepProgram::StepProgram(Context& ctx, Precision p, ForceLoop loop, std::size_t 
     iteration_rule = make_kernel(program, "iteration_rule");
     boundary_snap_rule = make_kernel(program, "boundary_snap_rule");
     const char* name = "boundary_snap_rule";
-    KernelLimits k{name, group_info<CL_KERNEL_WORK_GROUP_SIZE>(boundary_snap_rule, ctx.device().handle, name, "CL_KERNEL_WORK_GROUP_SIZE"),
+    KernelLimits k{name,
+                   group_info<CL_KERNEL_WORK_GROUP_SIZE>(boundary_snap_rule, ctx.device().handle, name,
+                                                         "CL_KERNEL_WORK_GROUP_SIZE"),
                    group_info<CL_KERNEL_PREFERRED_WORK_GROUP_SIZE_MULTIPLE>(
                        boundary_snap_rule, ctx.device().handle, name, "CL_KERNEL_PREFERRED_WORK_GROUP_SIZE_MULTIPLE")};
     check_work_group(name, ctx.device().name, wg, std::min(k.max_work_group, ctx.device().max_work_group));

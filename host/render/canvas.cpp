@@ -103,8 +103,8 @@ void Canvas::check(const char* what) const {
   const cairo_status_t ss = cairo_surface_status(surface_);
   const cairo_status_t bad = s != CAIRO_STATUS_SUCCESS ? s : ss;
   if (bad != CAIRO_STATUS_SUCCESS) {
-    throw Error(fmt::format("cannot draw '{}': cairo could not {}: {}", file_.string(), what,
-                            cairo_status_to_string(bad)));
+    throw Error(
+        fmt::format("cannot draw '{}': cairo could not {}: {}", file_.string(), what, cairo_status_to_string(bad)));
   }
 }
 
@@ -314,9 +314,7 @@ void FillBatch::flush(bool cut) {
   cairo_restore(cr);
 }
 
-DotBatch::DotBatch(Canvas& canvas, Rgb colour) : canvas_(canvas), colour_(colour) {
-  cairo_new_path(canvas_.context());
-}
+DotBatch::DotBatch(Canvas& canvas, Rgb colour) : canvas_(canvas), colour_(colour) { cairo_new_path(canvas_.context()); }
 
 void DotBatch::dot(Vec2 centre, double radius_px) {
   const Vec2 p = canvas_.to_pixel(centre);

@@ -17,7 +17,7 @@ struct Rgb {
 };
 
 namespace colours {
-inline constexpr Rgb kGeometry{0.0, 0.62, 0.0};   // green, as in the thesis figures
+inline constexpr Rgb kGeometry{0.0, 0.62, 0.0};  // green, as in the thesis figures
 inline constexpr Rgb kBoundaryNode{0.0, 0.0, 0.9};
 inline constexpr Rgb kInteriorNode{0.9, 0.0, 0.0};
 inline constexpr Rgb kTree{0.6, 0.6, 0.6};
@@ -35,10 +35,10 @@ ImageFormat image_format_for(const std::filesystem::path& path);
 Box padded_window(const Box& extents, double margin = 0.03);
 
 struct CanvasOptions {
-  Box window;               // world region to show
-  int long_side = 1600;     // pixels on the longer side of the plot area
-  int title_height = 40;    // band above the plot for the title
-  int side_width = 0;       // band right of the plot (colour bar); 0 = none
+  Box window;             // world region to show
+  int long_side = 1600;   // pixels on the longer side of the plot area
+  int title_height = 40;  // band above the plot for the title
+  int side_width = 0;     // band right of the plot (colour bar); 0 = none
 };
 
 // The pixel rows [first, first + count) of a picture that one Canvas draws (count < 0: to the
@@ -52,14 +52,13 @@ struct PixelRows {
 class Canvas {
  public:
   // Creates the surface; for SVG, `file` is written as drawing proceeds, for PNG at finish().
-  Canvas(const CanvasOptions& options, ImageFormat format, const std::filesystem::path& file,
-         PixelRows rows = {});
+  Canvas(const CanvasOptions& options, ImageFormat format, const std::filesystem::path& file, PixelRows rows = {});
   ~Canvas();
   Canvas(const Canvas&) = delete;
   Canvas& operator=(const Canvas&) = delete;
 
   int width() const { return width_; }
-  int height() const { return height_; }  // the whole picture's, whatever rows this canvas draws
+  int height() const { return height_; }   // the whole picture's, whatever rows this canvas draws
   double scale() const { return scale_; }  // pixels per world unit
   Vec2 to_pixel(Vec2 world) const;
   const Box& window() const { return window_; }
@@ -154,8 +153,8 @@ class FillBatch {
   FillBatch(const FillBatch&) = delete;
   FillBatch& operator=(const FillBatch&) = delete;
   void triangle(Vec2 a, Vec2 b, Vec2 c);  // world coordinates
-  void skip();                             // as StrokeBatch::skip
-  void flush(bool cut = false);            // cut: more triangles follow in another batch
+  void skip();                            // as StrokeBatch::skip
+  void flush(bool cut = false);           // cut: more triangles follow in another batch
 
  private:
   Canvas& canvas_;

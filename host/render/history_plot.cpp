@@ -37,8 +37,8 @@ void text(cairo_t* cr, double x, double y, const std::string& s, double align_x,
 }
 
 struct Frame {
-  double x0, x1;         // iteration range
-  double d0, d1;         // decades: log10 range of y
+  double x0, x1;  // iteration range
+  double d0, d1;  // decades: log10 range of y
   double px(double it) const { return kLeft + (it - x0) / (x1 - x0) * (kWidth - kLeft - kRight); }
   double py(double v) const { return kTop + (d1 - std::log10(v)) / (d1 - d0) * (kHeight - kTop - kBottom); }
 };
@@ -51,8 +51,10 @@ void draw_series(cairo_t* cr, const Frame& f, const std::vector<HistoryRow>& row
       pen_down = false;
       continue;
     }
-    if (pen_down) cairo_line_to(cr, f.px(r.iteration), f.py(v));
-    else cairo_move_to(cr, f.px(r.iteration), f.py(v));
+    if (pen_down)
+      cairo_line_to(cr, f.px(r.iteration), f.py(v));
+    else
+      cairo_move_to(cr, f.px(r.iteration), f.py(v));
     pen_down = true;
   }
   cairo_stroke(cr);

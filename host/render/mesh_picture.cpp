@@ -190,22 +190,28 @@ void write_mesh_picture(const std::filesystem::path& path, const Mesh& mesh, con
   const std::vector<std::pair<int, int>> edges = unique_edges(mesh);
 
   // Drawn in bands on several threads (PNG; render_picture): everything below only reads the mesh.
-  render_picture(path, layout, [&](Canvas& canvas) {
-    const double min_edge_world = kMinEdgePixels / canvas.scale();
-    // Value fills first, then the edges on top of them.
-    if (values == nullptr) draw_dense_shade(canvas, mesh, min_edge_world);
-    else draw_value_fills(canvas, mesh, *values, lo, hi);
-    const std::size_t skipped = draw_edges(canvas, mesh, edges, min_edge_world);
-    {
-      StrokeBatch boundary(canvas, colours::kBlack, 2.0);
-      for (const BoundaryEdge& e : mesh.boundary_edges) boundary.segment(mesh.points[e.a], mesh.points[e.b]);
-    }
-    canvas.title(fmt::format("{}   {} points, {} triangles{}", options.title, mesh.points.size(), mesh.triangles.size(),
-                             skipped > 0 ? fmt::format(" (edges under {} px not drawn)", kMinEdgePixels) : std::string()));
-    if (values != nullptr) {
-      draw_colour_bar(canvas, std::isfinite(lo) ? lo : 0.0, std::isfinite(hi) ? hi : 0.0, options.value_label);
-    }
-  }, options.bands);
+  render_picture(
+      path, layout,
+      [&](Canvas& canvas) {
+        const double min_edge_world = kMinEdgePixels / canvas.scale();
+        // Value fills first, then the edges on top of them.
+        if (values == nullptr)
+          draw_dense_shade(canvas, mesh, min_edge_world);
+        else
+          draw_value_fills(canvas, mesh, *values, lo, hi);
+        const std::size_t skipped = draw_edges(canvas, mesh, edges, min_edge_world);
+        {
+          StrokeBatch boundary(canvas, colours::kBlack, 2.0);
+          for (const BoundaryEdge& e : mesh.boundary_edges) boundary.segment(mesh.points[e.a], mesh.points[e.b]);
+        }
+        canvas.title(
+            fmt::format("{}   {} points, {} triangles{}", options.title, mesh.points.size(), mesh.triangles.size(),
+                        skipped > 0 ? fmt::format(" (edges under {} px not drawn)", kMinEdgePixels) : std::string()));
+        if (values != nullptr) {
+          draw_colour_bar(canvas, std::isfinite(lo) ? lo : 0.0, std::isfinite(hi) ? hi : 0.0, options.value_label);
+        }
+      },
+      options.bands);
 }
 
 }  // namespace pdmesh

@@ -14,9 +14,9 @@ namespace pdmesh {
 
 struct MeshPictureOptions {
   std::string title;
-  std::optional<Box> window;                          // default: the mesh's extents + 3%
+  std::optional<Box> window;                             // default: the mesh's extents + 3%
   const std::vector<double>* triangle_values = nullptr;  // one per triangle; fills and adds a colour bar
-  std::string value_label;                            // colour bar caption, e.g. "radius ratio"
+  std::string value_label;                               // colour bar caption, e.g. "radius ratio"
   // Values mapped to the two ends of the colour ramp (others clamped); default: the values'
   // finite minimum and maximum. A fixed range makes pictures of different meshes comparable.
   std::optional<std::pair<double, double>> value_range;

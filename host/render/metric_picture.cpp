@@ -45,18 +45,18 @@ void write_metric_picture(const std::filesystem::path& path, const Mesh& mesh, c
       // Flushed before the title, which would otherwise stroke the batch's last path in its colour.
       StrokeBatch ellipses(canvas, kEllipse, 0.8);
       for (std::size_t i = 0; i < mesh.points.size(); ++i) {
-      const MetricEigen e = eigen(metrics[i]);
-      // Semi-axes 1/(2 sqrt(lambda)): half the sizes h1 (along v1) and h2 (along v2).
-      const Vec2 a1 = e.v1() * (0.5 / std::sqrt(e.lambda1));
-      const Vec2 a2 = e.v2() * (0.5 / std::sqrt(e.lambda2));
-      const Vec2 c = mesh.points[i];
-      Vec2 prev = c + a1;
-      for (int k = 1; k <= kEllipseSegments; ++k) {
-        const double t = 2.0 * M_PI * k / kEllipseSegments;
-        const Vec2 next = c + a1 * std::cos(t) + a2 * std::sin(t);
-        ellipses.segment(prev, next);
-        prev = next;
-      }
+        const MetricEigen e = eigen(metrics[i]);
+        // Semi-axes 1/(2 sqrt(lambda)): half the sizes h1 (along v1) and h2 (along v2).
+        const Vec2 a1 = e.v1() * (0.5 / std::sqrt(e.lambda1));
+        const Vec2 a2 = e.v2() * (0.5 / std::sqrt(e.lambda2));
+        const Vec2 c = mesh.points[i];
+        Vec2 prev = c + a1;
+        for (int k = 1; k <= kEllipseSegments; ++k) {
+          const double t = 2.0 * M_PI * k / kEllipseSegments;
+          const Vec2 next = c + a1 * std::cos(t) + a2 * std::sin(t);
+          ellipses.segment(prev, next);
+          prev = next;
+        }
       }
     }
     canvas.title(fmt::format("{}   {} points, ellipses of half the metric's sizes", options.title, mesh.points.size()));

@@ -12,8 +12,8 @@
 namespace pdmesh {
 
 struct NodePictureOptions {
-  std::string title;                            // e.g. "naca0012 - initial"; node counts are appended
-  std::optional<Box> window;                    // default: geometry extents + 3%
+  std::string title;                             // e.g. "naca0012 - initial"; node counts are appended
+  std::optional<Box> window;                     // default: geometry extents + 3%
   const std::vector<Box>* tree_quads = nullptr;  // drawn as thin grey rectangles when set
   int long_side = 1600;
 };

@@ -64,17 +64,22 @@ void write_spacing_picture(const std::filesystem::path& path, const GeometryTree
     const Box& w = canvas.window();
     const Vec2 p0 = canvas.to_pixel({w.lo.x, w.hi.y}), p1 = canvas.to_pixel({w.hi.x, w.lo.y});
     const int x0 = static_cast<int>(std::floor(p0.x)), y0 = static_cast<int>(std::floor(p0.y));
-    const int nx = std::max(1, static_cast<int>(std::ceil(p1.x)) - x0), ny = std::max(1, static_cast<int>(std::ceil(p1.y)) - y0);
+    const int nx = std::max(1, static_cast<int>(std::ceil(p1.x)) - x0),
+              ny = std::max(1, static_cast<int>(std::ceil(p1.y)) - y0);
     const double scale = canvas.scale();
     std::vector<double> q(static_cast<std::size_t>(nx) * static_cast<std::size_t>(ny), NAN);
-    parallel_for(static_cast<std::size_t>(ny), [&](std::size_t row) {
-      for (int col = 0; col < nx; ++col) {
-        const Vec2 p{w.lo.x + (x0 + col + 0.5 - p0.x) / scale, w.hi.y - (y0 + static_cast<double>(row) + 0.5 - p0.y) / scale};
-        const int tag = field.tag_at(p);
-        if (tag == kTagOutside || (tag == kTagBoundary && !tree.inside(p))) continue;
-        q[row * static_cast<std::size_t>(nx) + static_cast<std::size_t>(col)] = field.at(p);
-      }
-    }, 16);
+    parallel_for(
+        static_cast<std::size_t>(ny),
+        [&](std::size_t row) {
+          for (int col = 0; col < nx; ++col) {
+            const Vec2 p{w.lo.x + (x0 + col + 0.5 - p0.x) / scale,
+                         w.hi.y - (y0 + static_cast<double>(row) + 0.5 - p0.y) / scale};
+            const int tag = field.tag_at(p);
+            if (tag == kTagOutside || (tag == kTagBoundary && !tree.inside(p))) continue;
+            q[row * static_cast<std::size_t>(nx) + static_cast<std::size_t>(col)] = field.at(p);
+          }
+        },
+        16);
     double lo = INFINITY, hi = 0.0;
     for (const double v : q)
       if (std::isfinite(v) && v > 0.0) {
@@ -90,7 +95,8 @@ void write_spacing_picture(const std::filesystem::path& path, const GeometryTree
     for (int row = 0; row < ny; ++row) {
       auto* px = reinterpret_cast<std::uint32_t*>(data + static_cast<std::ptrdiff_t>(row) * stride);
       for (int col = 0; col < nx; ++col) {
-        const double v = q[static_cast<std::size_t>(row) * static_cast<std::size_t>(nx) + static_cast<std::size_t>(col)];
+        const double v =
+            q[static_cast<std::size_t>(row) * static_cast<std::size_t>(nx) + static_cast<std::size_t>(col)];
         if (!std::isfinite(v)) {
           px[col] = 0xffffffffu;  // outside the domain: white
           continue;

@@ -95,8 +95,10 @@ void BoundaryHandler::move_boundary_nodes(NodeSet& nodes, const std::vector<doub
       const Vec2 target{nodes.x[node].x + dx[node], nodes.x[node].y + dy[node]};
       // The drivers check the moves before calling apply(); this keeps a NaN out of the curve search.
       if (!std::isfinite(target.x) || !std::isfinite(target.y))
-        throw SimulationError(fmt::format("boundary node {} of curve {} moved from ({}, {}) to a non-finite position "
-                                          "({}, {})", node, c, nodes.x[node].x, nodes.x[node].y, target.x, target.y));
+        throw SimulationError(
+            fmt::format("boundary node {} of curve {} moved from ({}, {}) to a non-finite position "
+                        "({}, {})",
+                        node, c, nodes.x[node].x, nodes.x[node].y, target.x, target.y));
       const CurvePoint cp = closest_on_curve_range(curve, target, lo, hi);
       if (cp.arc == lo || cp.arc == hi) ++counts.clamped;
       nodes.x[node] = cp.p;
@@ -265,8 +267,8 @@ void BoundaryHandler::insert_snapped(NodeSet& nodes, int node, Vec2 target) {
   auto pos = static_cast<std::size_t>(std::upper_bound(arcs.begin(), arcs.end(), arc) - arcs.begin());
   pos = std::clamp<std::size_t>(pos, 1, arcs.size() - 1);
   const double gap = arcs[pos] - arcs[pos - 1];
-  const CurvePoint cp = closest_on_curve_range(curve, target, arcs[pos - 1] + kInsertMargin * gap,
-                                               arcs[pos] - kInsertMargin * gap);
+  const CurvePoint cp =
+      closest_on_curve_range(curve, target, arcs[pos - 1] + kInsertMargin * gap, arcs[pos] - kInsertMargin * gap);
   const auto i = static_cast<std::size_t>(node);
   nodes.x[i] = cp.p;
   nodes.kind[i] = NodeKind::Boundary;

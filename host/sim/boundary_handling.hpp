@@ -13,8 +13,8 @@
 namespace pdmesh {
 
 struct BoundaryCounts {
-  std::size_t snapped = 0;   // interior nodes that left the domain and became boundary nodes
-  std::size_t clamped = 0;   // boundary nodes whose move was cut short at the allowed arc range
+  std::size_t snapped = 0;  // interior nodes that left the domain and became boundary nodes
+  std::size_t clamped = 0;  // boundary nodes whose move was cut short at the allowed arc range
 };
 
 class BoundaryHandler {
@@ -98,7 +98,7 @@ class BoundaryHandler {
 
   const GeometryTree& tree_;
   std::vector<std::vector<double>> arcs_;
-  std::vector<Vec2> tangent_;  // per node
+  std::vector<Vec2> tangent_;   // per node
   std::vector<double> budget_;  // per node: remaining clearance budget (0: none, run the exact test)
 };
 

@@ -77,7 +77,8 @@ std::vector<std::string_view> parse_case_keys(LineScanner& in, Checkpoint& c) {
     if (t.size() < 2) in.fail("expected 'case KEY VALUE'");
     // The value is the rest of the line after the key (it may hold spaces).
     const std::size_t key_end = static_cast<std::size_t>(t[1].data() - t[0].data()) + t[1].size();
-    const std::string_view whole(t[0].data(), static_cast<std::size_t>(t.back().data() + t.back().size() - t[0].data()));
+    const std::string_view whole(t[0].data(),
+                                 static_cast<std::size_t>(t.back().data() + t.back().size() - t[0].data()));
     std::string value = key_end < whole.size() ? std::string(whole.substr(key_end + 1)) : std::string();
     c.case_keys.emplace_back(std::string(t[1]), std::move(value));
     t = in.expect_tokens("a case line or iterations_done");
@@ -168,8 +169,8 @@ void parse_history(LineScanner& in, bool v1, SimState& s) {
     row.average_kinetic = parse_hex(in, t[2], "average kinetic energy");
     row.max_force = parse_hex(in, t[3], "maximum force");
     row.dt_gm = parse_hex(in, t[4], "dt_GM");
-    std::size_t* counts[] = {&row.snapped, &row.clamped, &row.fixed, &row.boundary, &row.interior,
-                             &row.inserted, &row.removed};
+    std::size_t* counts[] = {&row.snapped,  &row.clamped,  &row.fixed,  &row.boundary,
+                             &row.interior, &row.inserted, &row.removed};
     for (std::size_t f = 0; f + 5 < fields; ++f) *counts[f] = parse_count(in, t[5 + f], "history count");
     s.history.push_back(row);
   }
@@ -300,8 +301,10 @@ std::string format_checkpoint(const Checkpoint& c) {
   const SimState& s = c.state;
   std::string out = fmt::format("{}\n", kHeader);
   for (const auto& [key, value] : c.case_keys) {
-    if (key.empty() || key.find_first_of(" \t\r\n") != std::string::npos || value.find_first_of("\r\n") != std::string::npos)
-      throw InputError(fmt::format("checkpoint case key '{}' = '{}' has white space in the key or a line break", key, value));
+    if (key.empty() || key.find_first_of(" \t\r\n") != std::string::npos ||
+        value.find_first_of("\r\n") != std::string::npos)
+      throw InputError(
+          fmt::format("checkpoint case key '{}' = '{}' has white space in the key or a line break", key, value));
     out += fmt::format("case {} {}\n", key, value);
   }
   out += fmt::format("iterations_done {}\n", s.iterations_done);

@@ -38,7 +38,8 @@ void check_checkpoint_fits(const Checkpoint& c, const GeometryTree& tree, const 
     if (p.x < e.lo.x - margin || p.x > e.hi.x + margin || p.y < e.lo.y - margin || p.y > e.hi.y + margin)
       fail(fmt::format("node {} at ({}, {}) is outside the geometry's extents", i, p.x, p.y));
     const Vec2 t = s.tangents[i];
-    if (std::hypot(t.x, t.y) > 1.0 + 1e-9) fail(fmt::format("node {} has a tangent ({}, {}) longer than 1", i, t.x, t.y));
+    if (std::hypot(t.x, t.y) > 1.0 + 1e-9)
+      fail(fmt::format("node {} has a tangent ({}, {}) longer than 1", i, t.x, t.y));
     const int curve = nodes.curve[i];
     const bool interior = nodes.kind[i] == NodeKind::Interior;
     if (interior ? curve != -1 : (curve < 0 || static_cast<std::size_t>(curve) >= geometry.curves.size()))

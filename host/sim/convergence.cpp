@@ -20,8 +20,8 @@ void check_convergence_options(const ConvergenceOptions& o) {
   if (o.check_every < 1) throw InputError(fmt::format("convergence check_every must be >= 1, got {}", o.check_every));
   // The window starts at a measurement: measurements are taken at the multiples of check_every.
   if (o.window < o.check_every || o.window % o.check_every != 0)
-    throw InputError(
-        fmt::format("convergence window must be a positive multiple of check_every ({}), got {}", o.check_every, o.window));
+    throw InputError(fmt::format("convergence window must be a positive multiple of check_every ({}), got {}",
+                                 o.check_every, o.window));
   if (!(o.aspect_tolerance >= 0.0) || !std::isfinite(o.aspect_tolerance))
     throw InputError(fmt::format("convergence aspect tolerance must be >= 0, got {}", o.aspect_tolerance));
   if (!(o.angle_tolerance >= 0.0) || !std::isfinite(o.angle_tolerance))
@@ -109,13 +109,15 @@ ConvergenceMonitor::Verdict ConvergenceMonitor::judge(int iteration, bool popula
       aspect_hi = std::max(aspect_hi, it->aspect_ratio);
     }
     if (!finite) continue;
-    if (it < first_in) v.best_before = std::max(v.best_before, it->min_angle);
-    else v.best_within = std::max(v.best_within, it->min_angle);
+    if (it < first_in)
+      v.best_before = std::max(v.best_before, it->min_angle);
+    else
+      v.best_within = std::max(v.best_within, it->min_angle);
   }
   v.aspect_change = aspect_hi - aspect_lo;
   // The mean quality has stayed within the tolerance over the window (worsening counts too), and the
   // smallest angle has not reached a new best in it.
-  v.why = v.aspect_change > options_.aspect_tolerance              ? Why::Aspect
+  v.why = v.aspect_change > options_.aspect_tolerance                ? Why::Aspect
           : v.best_within > v.best_before + options_.angle_tolerance ? Why::Angle
                                                                      : Why::Converged;
   return v;
@@ -129,10 +131,14 @@ std::string ConvergenceMonitor::not_converged_reason(int iteration, bool populat
   using Why = Verdict::Why;
   const Verdict v = judge(iteration, population_settled);
   switch (v.why) {
-    case Why::Converged: return {};
-    case Why::Disabled: return "the stopping rule is off";
-    case Why::Population: return "population control had not settled";
-    case Why::Early: return fmt::format("iteration {} is before the earliest stop ({})", iteration, options_.min_iterations);
+    case Why::Converged:
+      return {};
+    case Why::Disabled:
+      return "the stopping rule is off";
+    case Why::Population:
+      return "population control had not settled";
+    case Why::Early:
+      return fmt::format("iteration {} is before the earliest stop ({})", iteration, options_.min_iterations);
     case Why::NoWindow:
       return fmt::format("no measured window of {} iterations ends at iteration {}", options_.window, iteration);
     case Why::NotFinite:
@@ -143,7 +149,8 @@ std::string ConvergenceMonitor::not_converged_reason(int iteration, bool populat
           v.aspect_change, v.window_start, iteration, options_.aspect_tolerance);
     case Why::Angle:
       return fmt::format(
-          "the smallest angle reached a new best over iterations {}-{}: {:.2f} deg against {:.2f} before (tolerance {:.2f})",
+          "the smallest angle reached a new best over iterations {}-{}: {:.2f} deg against {:.2f} before (tolerance "
+          "{:.2f})",
           v.window_start, iteration, v.best_within, v.best_before, options_.angle_tolerance);
   }
   return {};

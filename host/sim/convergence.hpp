@@ -18,9 +18,9 @@
 namespace pdmesh {
 
 struct ConvergenceOptions {
-  bool enabled = false;    // false: every iteration up to SimOptions::iterations runs (the thesis)
-  int check_every = 100;   // iterations between two measurements of the mesh
-  int window = 400;        // iterations over which the mesh must not have changed
+  bool enabled = false;   // false: every iteration up to SimOptions::iterations runs (the thesis)
+  int check_every = 100;  // iterations between two measurements of the mesh
+  int window = 400;       // iterations over which the mesh must not have changed
   // Converged: over the window the average aspect ratio (R / 2r, 1 = equilateral) of the
   // measurements has stayed within aspect_tolerance (max - min), and the smallest angle has not
   // reached a new best by more than angle_tolerance degrees. Calibrated on the thesis cases from

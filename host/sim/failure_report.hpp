@@ -11,7 +11,6 @@ namespace pdmesh {
 // "node 12 (interior) at (0.5, 0.25), spacing 0.01; within 0.015: node 7 at (0.51, 0.25) distance
 // 0.01, ... (3 more)" or "...; no other node within 0.015". Lists at most max_listed nodes, the
 // closest first, found by brute force (it runs once, on failure). Coordinates to 17 digits.
-std::string describe_neighbourhood(const NodeSet& nodes, std::size_t node, double radius,
-                                   std::size_t max_listed = 6);
+std::string describe_neighbourhood(const NodeSet& nodes, std::size_t node, double radius, std::size_t max_listed = 6);
 
 }  // namespace pdmesh

@@ -13,8 +13,8 @@ std::string history_csv(const std::vector<HistoryRow>& rows) {
       "removed\n";
   for (const HistoryRow& r : rows)
     out += fmt::format("{},{:.17g},{:.17g},{:.17g},{:.17g},{},{},{},{},{},{},{}\n", r.iteration, r.average_force,
-                       r.average_kinetic, r.max_force, r.dt_gm, r.snapped, r.clamped, r.fixed, r.boundary,
-                       r.interior, r.inserted, r.removed);
+                       r.average_kinetic, r.max_force, r.dt_gm, r.snapped, r.clamped, r.fixed, r.boundary, r.interior,
+                       r.inserted, r.removed);
   return out;
 }
 

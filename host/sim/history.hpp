@@ -16,7 +16,7 @@ struct HistoryRow {
   std::size_t snapped = 0;       // interior nodes snapped onto a curve in this iteration
   std::size_t clamped = 0;       // boundary moves cut short at the allowed arc range
   std::size_t fixed = 0, boundary = 0, interior = 0;  // node counts by kind after the iteration
-  std::size_t inserted = 0, removed = 0;  // nodes population control inserted and removed after it
+  std::size_t inserted = 0, removed = 0;              // nodes population control inserted and removed after it
 };
 
 // Header line and one line per row; numbers with 17 significant digits (round-trip exact).

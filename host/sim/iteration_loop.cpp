@@ -33,7 +33,9 @@ SimResult initial_result(const NodeSet& nodes, const SimOptions& options) {
 }  // namespace
 
 IterationLoop::IterationLoop(const NodeSet& nodes, const SimOptions& options)
-    : nodes_(nodes), options_(options), result_(initial_result(nodes, options)),
+    : nodes_(nodes),
+      options_(options),
+      result_(initial_result(nodes, options)),
       gm_(options.resume ? GlobalTimeStep(options.resume->time_step) : GlobalTimeStep(result_.stats.dt_initial)),
       convergence_(options.convergence, options.resume ? options.resume->convergence : std::vector<MeshSample>{}),
       done_(options.resume ? options.resume->iterations_done : 0) {

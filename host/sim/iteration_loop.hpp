@@ -26,10 +26,10 @@ namespace pdmesh {
 
 // What an iteration's computation (IterationSteps::compute) hands the history row and the statistics.
 struct IterationStep {
-  StepSums sums;                        // over the moving nodes, before the move
-  std::uint64_t pairs_examined = 0;     // SimStats::pairs_examined of this iteration
-  std::uint64_t pairs_within = 0;       // SimStats::pairs_within of this iteration
-  std::uint64_t coincident_pairs = 0;   // SimStats::coincident_pairs of this iteration
+  StepSums sums;                       // over the moving nodes, before the move
+  std::uint64_t pairs_examined = 0;    // SimStats::pairs_examined of this iteration
+  std::uint64_t pairs_within = 0;      // SimStats::pairs_within of this iteration
+  std::uint64_t coincident_pairs = 0;  // SimStats::coincident_pairs of this iteration
 };
 
 // What an iteration's moves (IterationSteps::apply) did: boundary handling, population control after

@@ -67,8 +67,8 @@ PopulationThresholds population_thresholds(const PopulationOptions& options, int
   return out;
 }
 
-PopulationStatus population_status(const PopulationOptions& options, const PopulationSchedule& schedule,
-                                   int iteration, int iterations) {
+PopulationStatus population_status(const PopulationOptions& options, const PopulationSchedule& schedule, int iteration,
+                                   int iterations) {
   PopulationStatus s;
   const int last = population_last_event(options, iterations);
   s.active = last > 0 && iteration < last && !schedule.finished(options);
@@ -99,9 +99,8 @@ PopulationCounts run_population_event(NodeSet& nodes, BoundaryHandler& boundary,
   }
   // Within a curve from the last gap back, so that the earlier gaps keep their positions.
   std::vector<PopulationPlan::BoundaryInsert> inserts = plan.boundary_inserts;
-  std::sort(inserts.begin(), inserts.end(), [](const auto& a, const auto& b) {
-    return std::tie(a.curve, b.gap) < std::tie(b.curve, a.gap);
-  });
+  std::sort(inserts.begin(), inserts.end(),
+            [](const auto& a, const auto& b) { return std::tie(a.curve, b.gap) < std::tie(b.curve, a.gap); });
   for (const auto& b : inserts) {
     const int node = boundary.add_boundary(nodes, b.curve, b.gap, b.arc, 0.0);
     nodes.q[static_cast<std::size_t>(node)] = spacing.at(nodes.x[static_cast<std::size_t>(node)]);
@@ -143,7 +142,7 @@ std::optional<PopulationCounts> PopulationTracker::after_iteration(const Populat
   static const bool trace = std::getenv("PDMESH_POPULATION_TRACE") != nullptr;
   if (trace) {
     const PopulationThresholds t = population_thresholds(options, iteration, iterations);
-    const char* state = schedule.finished(options) ? "; settled, no further event"
+    const char* state = schedule.finished(options)         ? "; settled, no further event"
                         : schedule.last_change < iteration ? "; quiet"
                                                            : "";
     fmt::print(stderr,

@@ -29,7 +29,7 @@ struct PopulationOptions {
   // to kPopulationQuietGrowth x every), one that changes more resets it to every: a settled run
   // triangulates rarely.
   int every = 50;
-  int start = 100;       // the first event comes after this iteration (the start's transient is over)
+  int start = 100;  // the first event comes after this iteration (the start's transient is over)
   // No event after this fraction of the run: the last event is at floor(stop * iterations), and the
   // lattice relaxes undisturbed after it.
   double stop = 0.8;
@@ -128,11 +128,11 @@ bool population_event_due(const PopulationOptions& options, const PopulationSche
 // Where population control stands after `iteration` (for a stopping rule: stop only once the
 // population has settled).
 struct PopulationStatus {
-  bool active = false;   // events are still to come in this run
-  bool settled = true;   // off, finished, past its last event, or the last event was quiet
+  bool active = false;  // events are still to come in this run
+  bool settled = true;  // off, finished, past its last event, or the last event was quiet
 };
-PopulationStatus population_status(const PopulationOptions& options, const PopulationSchedule& schedule,
-                                   int iteration, int iterations);
+PopulationStatus population_status(const PopulationOptions& options, const PopulationSchedule& schedule, int iteration,
+                                   int iterations);
 
 // What both simulation drivers keep between events: after each iteration they call after_iteration,
 // which runs the event when one is due, counts it and schedules the next.

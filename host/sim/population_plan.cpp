@@ -34,7 +34,7 @@ struct DelaunayGraph {
   std::vector<std::array<int, 3>> triangles;  // real triangles only (no super-triangle vertex)
   std::vector<std::size_t> first;             // node i's neighbours: adjacent[first[i] .. first[i + 1])
   std::vector<int> adjacent;
-  std::vector<char> on_hull;                  // joined to a super-triangle vertex
+  std::vector<char> on_hull;  // joined to a super-triangle vertex
 
   explicit DelaunayGraph(const std::vector<Vec2>& points) {
     const Triangulation dt(points);
@@ -80,7 +80,9 @@ struct DelaunayGraph {
     first = std::move(start);
   }
 
-  std::size_t valence(int i) const { return first[static_cast<std::size_t>(i) + 1] - first[static_cast<std::size_t>(i)]; }
+  std::size_t valence(int i) const {
+    return first[static_cast<std::size_t>(i) + 1] - first[static_cast<std::size_t>(i)];
+  }
   const int* begin(int i) const { return adjacent.data() + first[static_cast<std::size_t>(i)]; }
   const int* end(int i) const { return adjacent.data() + first[static_cast<std::size_t>(i) + 1]; }
 
@@ -108,8 +110,7 @@ class Planner {
  public:
   Planner(const NodeSet& nodes, const std::vector<std::vector<double>>& arcs, const GeometryTree& tree,
           const SpacingField& spacing, const PopulationThresholds& t)
-      : nodes_(nodes), arcs_(arcs), tree_(tree), spacing_(spacing), t_(t), graph_(nodes.x),
-        used_(nodes.size(), 0) {
+      : nodes_(nodes), arcs_(arcs), tree_(tree), spacing_(spacing), t_(t), graph_(nodes.x), used_(nodes.size(), 0) {
     plan_.remove.assign(nodes.size(), 0);
   }
 
@@ -341,9 +342,9 @@ class Planner {
   }
 
   static Vec2 point_at_arc(const Curve& curve, double arc) {
-    const auto k = static_cast<std::size_t>(std::clamp<std::ptrdiff_t>(
-        std::upper_bound(curve.arc.begin(), curve.arc.end(), arc) - curve.arc.begin() - 1, 0,
-        static_cast<std::ptrdiff_t>(curve.points.size()) - 2));
+    const auto k = static_cast<std::size_t>(
+        std::clamp<std::ptrdiff_t>(std::upper_bound(curve.arc.begin(), curve.arc.end(), arc) - curve.arc.begin() - 1, 0,
+                                   static_cast<std::ptrdiff_t>(curve.points.size()) - 2));
     const double len = curve.arc[k + 1] - curve.arc[k];
     const double t = len > 0.0 ? std::clamp((arc - curve.arc[k]) / len, 0.0, 1.0) : 0.0;
     return curve.points[k] + t * (curve.points[k + 1] - curve.points[k]);

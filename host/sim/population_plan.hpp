@@ -18,11 +18,11 @@ struct PopulationPlan {
     std::size_t gap = 0;  // between curve_nodes[curve][gap - 1] and [gap]
     double arc = 0.0;     // the gap's middle
   };
-  std::vector<Vec2> interior_inserts;              // vacancy points, best first
+  std::vector<Vec2> interior_inserts;  // vacancy points, best first
   std::vector<BoundaryInsert> boundary_inserts;
-  std::vector<std::pair<int, Vec2>> moves;         // merged pairs: the kept node and the pair's midpoint
-  std::vector<char> remove;                        // per node: removed by this event
-  PopulationCounts counts;                         // what the plan does (once applied)
+  std::vector<std::pair<int, Vec2>> moves;  // merged pairs: the kept node and the pair's midpoint
+  std::vector<char> remove;                 // per node: removed by this event
+  PopulationCounts counts;                  // what the plan does (once applied)
 };
 
 // Plans one event for `nodes`, whose boundary handler holds the arc positions `arcs` (parallel to

@@ -7,7 +7,10 @@
 namespace pdmesh {
 
 ProgressLine::ProgressLine(bool quiet, std::FILE* stream)
-    : quiet_(quiet), stream_(stream), start_(Clock::now()), last_draw_(start_),
+    : quiet_(quiet),
+      stream_(stream),
+      start_(Clock::now()),
+      last_draw_(start_),
       // A terminal gets one line redrawn in place; a log file gets a new line every few seconds.
       terminal_(isatty(fileno(stream)) != 0) {}
 

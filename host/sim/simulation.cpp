@@ -122,8 +122,8 @@ double default_dt_initial(const NodeSet& nodes, double lj_a) {
   return std::sqrt(2.0 * (median * kDefaultMoveFraction) / force);
 }
 
-const BackgroundSpacing& background_for(const SimOptions& options, const SpacingField& spacing, const GeometryTree& tree,
-                                        std::unique_ptr<BackgroundSpacing>& own) {
+const BackgroundSpacing& background_for(const SimOptions& options, const SpacingField& spacing,
+                                        const GeometryTree& tree, std::unique_ptr<BackgroundSpacing>& own) {
   if (options.background) return *options.background;
   own = std::make_unique<BackgroundSpacing>(spacing, tree);
   return *own;
@@ -138,7 +138,12 @@ class HostSteps final : public IterationSteps {
  public:
   HostSteps(NodeSet& nodes, const SimOptions& options, StepBackend& backend, BoundaryHandler& boundary,
             const SpacingField& spacing, IterationLoop& loop)
-      : nodes_(nodes), options_(options), backend_(backend), boundary_(boundary), spacing_(spacing), loop_(loop),
+      : nodes_(nodes),
+        options_(options),
+        backend_(backend),
+        boundary_(boundary),
+        spacing_(spacing),
+        loop_(loop),
         params_{options.cutoff, options.lj_a, options.r0_any_direction, options.stability_factor} {
     if (with_momentum_ && options.resume) momentum_from_state(options.resume->momentum, nodes.size(), carried_);
   }
@@ -203,12 +208,13 @@ void HostSteps::check_finite(int iteration, const StepSums& sums) const {
   const std::size_t bad = first_non_finite(forces_, moves_);
   if (bad >= nodes_.size() && std::isfinite(sums.sum_force) && std::isfinite(sums.sum_kinetic)) return;
   if (bad >= nodes_.size())
-    throw SimulationError(fmt::format("iteration {}: the force sums overflowed (sum |F| {}, sum kinetic {})",
-                                      iteration, sums.sum_force, sums.sum_kinetic));
+    throw SimulationError(fmt::format("iteration {}: the force sums overflowed (sum |F| {}, sum kinetic {})", iteration,
+                                      sums.sum_force, sums.sum_kinetic));
   const bool force = !std::isfinite(forces_.fx[bad]) || !std::isfinite(forces_.fy[bad]);
   throw SimulationError(fmt::format("iteration {}: non-finite {} (force ({}, {}), move ({}, {})) on {}", iteration,
                                     force ? "force" : "move", forces_.fx[bad], forces_.fy[bad], moves_.dx[bad],
-                                    moves_.dy[bad], describe_neighbourhood(nodes_, bad, options_.cutoff * nodes_.q[bad])));
+                                    moves_.dy[bad],
+                                    describe_neighbourhood(nodes_, bad, options_.cutoff * nodes_.q[bad])));
 }
 
 IterationMoves HostSteps::apply(int iteration) {
@@ -221,8 +227,8 @@ IterationMoves HostSteps::apply(int iteration) {
       if (static_cast<std::uint8_t>(nodes_.kind[i]) != particles_.kind[i]) carried_.px[i] = carried_.py[i] = 0.0;
   spacing_.at_many(nodes_.x, nodes_.q);
   // Population control between iterations: the next iteration loads the changed node set.
-  out.event = loop_.population().after_iteration(options_.population, iteration, options_.iterations, nodes_,
-                                                 boundary_, spacing_);
+  out.event = loop_.population().after_iteration(options_.population, iteration, options_.iterations, nodes_, boundary_,
+                                                 spacing_);
   // A changed node set starts without momentum (nodes were inserted, removed and renumbered).
   if (with_momentum_ && out.event && out.event->changed()) carried_ = MomentumState{};
   out.fixed = nodes_.count(NodeKind::Fixed);
@@ -237,8 +243,9 @@ SimResult run_simulation(NodeSet& nodes, const GeometryTree& tree, const Spacing
                          const SimOptions& options, const SimCallbacks& callbacks) {
   check_node_set(nodes);
   if (options.metric && options.population.enabled)
-    throw InputError("population control is not metric-aware yet (it inserts and merges nodes by the isotropic "
-                     "spacing): a run with a metric field needs population control off");
+    throw InputError(
+        "population control is not metric-aware yet (it inserts and merges nodes by the isotropic "
+        "spacing): a run with a metric field needs population control off");
   std::unique_ptr<StepBackend> own_backend;
   StepBackend* backend = options.backend;
   if (!backend) {
@@ -252,7 +259,8 @@ SimResult run_simulation(NodeSet& nodes, const GeometryTree& tree, const Spacing
   // a lookup, so it is built once here and read every iteration.
   std::unique_ptr<BackgroundSpacing> own_background;
   const SpacingField& iteration_spacing =
-      options.exact_spacing ? spacing : static_cast<const SpacingField&>(background_for(options, spacing, tree, own_background));
+      options.exact_spacing ? spacing
+                            : static_cast<const SpacingField&>(background_for(options, spacing, tree, own_background));
   HostSteps steps(nodes, options, *backend, boundary, iteration_spacing, loop);
   return loop.run(steps, callbacks, FailureScope::Step);
 }

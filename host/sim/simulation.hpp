@@ -28,13 +28,13 @@ class MetricField;
 // continue a run bit-identically on the host reference (host/sim/checkpoint.hpp stores it).
 struct SimState {
   int iterations_done = 0;
-  double dt_initial = 0.0;                 // the run's initial dt_GM (for the statistics)
-  GlobalTimeStep::State time_step;         // the global maximum time step rule
-  std::vector<std::vector<double>> arcs;   // BoundaryHandler arc positions, parallel to curve_nodes
-  std::vector<Vec2> tangents;              // BoundaryHandler tangent per node
-  std::vector<HistoryRow> history;         // rows 1 .. iterations_done
-  PopulationSchedule population;           // population control's schedule (sim/population.hpp)
-  std::vector<MeshSample> convergence;     // the stopping rule's measurements (sim/convergence.hpp)
+  double dt_initial = 0.0;                // the run's initial dt_GM (for the statistics)
+  GlobalTimeStep::State time_step;        // the global maximum time step rule
+  std::vector<std::vector<double>> arcs;  // BoundaryHandler arc positions, parallel to curve_nodes
+  std::vector<Vec2> tangents;             // BoundaryHandler tangent per node
+  std::vector<HistoryRow> history;        // rows 1 .. iterations_done
+  PopulationSchedule population;          // population control's schedule (sim/population.hpp)
+  std::vector<MeshSample> convergence;    // the stopping rule's measurements (sim/convergence.hpp)
   // With SimOptions::momentum > 0: each node's last move p_i (MomentumState); empty = all zero.
   std::vector<Vec2> momentum;
 };
@@ -42,8 +42,8 @@ struct SimState {
 // Verlet skin of device runs (list radius cutoff q (1 + skin)). With momentum the nodes move farther per
 // iteration early in a run and use up a 0.3 skin ~3x as often (30P30N curves alone, 500 iterations,
 // beta 0.9: 174 rebuilds at 0.3, 107 at 0.5, 88 at 0.6, 65 at 0.8, 50 at 1.0; docs/journal/2026-11-25.md,
-// "Rebuilds of a small run with momentum"). A larger skin costs more pairs examined per iteration but far fewer rebuilds, and on
-// PoCL a rebuild of 14k nodes (~11 ms) costs ~5 iterations' steps: 0.8 was ~7% faster per iteration
+// "Rebuilds of a small run with momentum"). A larger skin costs more pairs examined per iteration but far fewer
+// rebuilds, and on PoCL a rebuild of 14k nodes (~11 ms) costs ~5 iterations' steps: 0.8 was ~7% faster per iteration
 // than 0.6 there, 1.0 no faster than 0.8 and with longer rows (device bytes). The skin never changes a
 // result.
 inline constexpr double kVerletSkin = 0.3;
@@ -62,7 +62,7 @@ struct SimOptions {
   // Heavy-ball beta in [0, 1) (StepBackend::apply_momentum, docs/simulation.md "Momentum"); 0 = off:
   // the thesis' gradient-descent move, and no momentum arithmetic at all.
   double momentum = 0.0;
-  bool quiet = false;                // no progress line on stderr
+  bool quiet = false;  // no progress line on stderr
   // false: the per-iteration spacing update reads a BackgroundSpacing built once from the given field
   // (tolerance 1e-3, docs/spacing.md); true: evaluate the given field exactly every iteration.
   bool exact_spacing = false;
@@ -108,15 +108,15 @@ struct SimCallbacks {
 
 struct SimStats {
   std::string backend;
-  double dt_initial = 0.0;       // the initial dt_GM used (given or from the default rule)
-  double seconds = 0.0;          // wall time of the iterations
+  double dt_initial = 0.0;           // the initial dt_GM used (given or from the default rule)
+  double seconds = 0.0;              // wall time of the iterations
   std::uint64_t pairs_examined = 0;  // candidate pairs tested by the neighbour builds, all iterations
   std::uint64_t pairs_within = 0;    // pair interactions (interior neighbour-list entries), all iterations
   std::uint64_t coincident_pairs = 0;
-  std::size_t snapped = 0;           // interior nodes snapped onto curves, all iterations
+  std::size_t snapped = 0;                // interior nodes snapped onto curves, all iterations
   std::size_t inserted = 0, removed = 0;  // by population control, all events of this run
-  int population_events = 0;         // events run (including those that changed nothing)
-  double population_seconds = 0.0;   // wall time of the events (planning and editing the node set)
+  int population_events = 0;              // events run (including those that changed nothing)
+  double population_seconds = 0.0;        // wall time of the events (planning and editing the node set)
 };
 
 struct SimResult {
@@ -124,7 +124,7 @@ struct SimResult {
   SimStats stats;
   bool stopped = false;    // SimOptions::stop ended the run early
   bool converged = false;  // the convergence rule ended the run (before SimOptions::iterations)
-  SimState state;        // the state after the last iteration run (history included)
+  SimState state;          // the state after the last iteration run (history included)
   // A converged run: the mesh the rule measured in its last iteration, i.e. the final nodes'
   // triangulation (measure_mesh: curves named c0, c1, ...), which the mesh stage need not repeat.
   std::shared_ptr<const Mesh> final_mesh;
@@ -170,8 +170,8 @@ std::unique_ptr<Simulator> make_host_simulator();
 std::unique_ptr<Simulator> make_host_simulator(std::unique_ptr<StepBackend> backend, std::string description);
 
 // options.background, or a BackgroundSpacing of `spacing` built into `own` (default options).
-const BackgroundSpacing& background_for(const SimOptions& options, const SpacingField& spacing, const GeometryTree& tree,
-                                        std::unique_ptr<BackgroundSpacing>& own);
+const BackgroundSpacing& background_for(const SimOptions& options, const SpacingField& spacing,
+                                        const GeometryTree& tree, std::unique_ptr<BackgroundSpacing>& own);
 
 // The host driver: runs options.iterations iterations (or the remaining ones of options.resume) on
 // options.backend (the reference when null), updating nodes (positions, q, kinds, curve_nodes) in place.

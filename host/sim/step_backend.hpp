@@ -17,11 +17,11 @@ inline constexpr std::uint8_t kSimInterior = 2;
 // The particles as every backend sees them. The host owns and updates these arrays
 // (boundary handling and the spacing update run on the host between steps).
 struct SimParticles {
-  std::vector<double> x, y;            // positions
-  std::vector<double> q;               // desired spacing at (x, y)
-  std::vector<std::uint8_t> kind;      // kSimFixed / kSimBoundary / kSimInterior
+  std::vector<double> x, y;              // positions
+  std::vector<double> q;                 // desired spacing at (x, y)
+  std::vector<std::uint8_t> kind;        // kSimFixed / kSimBoundary / kSimInterior
   std::vector<std::int32_t> prev, next;  // Boundary nodes: previous/next node along the curve; else -1
-  std::vector<double> tx, ty;          // Boundary nodes: unit tangent of the curve at the node; else 0
+  std::vector<double> tx, ty;            // Boundary nodes: unit tangent of the curve at the node; else 0
   // Metric mode (off while m11 is empty, the isotropic default): node i's metric
   // M_i = [[m11, m12], [m12, m22]], symmetric positive definite, with unit length = the desired edge
   // (docs/metric-particles.md). Pairs are measured in the mean of the two nodes' size tensors
@@ -30,9 +30,19 @@ struct SimParticles {
   bool has_metric() const { return !m11.empty(); }
   std::size_t size() const { return x.size(); }
   void resize(std::size_t n) {
-    x.resize(n); y.resize(n); q.resize(n); kind.resize(n);
-    prev.resize(n, -1); next.resize(n, -1); tx.resize(n); ty.resize(n);
-    if (has_metric()) { m11.resize(n); m12.resize(n); m22.resize(n); }
+    x.resize(n);
+    y.resize(n);
+    q.resize(n);
+    kind.resize(n);
+    prev.resize(n, -1);
+    next.resize(n, -1);
+    tx.resize(n);
+    ty.resize(n);
+    if (has_metric()) {
+      m11.resize(n);
+      m12.resize(n);
+      m22.resize(n);
+    }
   }
 };
 
@@ -51,20 +61,20 @@ struct NeighbourList {
 
 // Condition flags of a neighbour build (HOOMD-style): set by every backend, checked by the host.
 struct NeighbourFlags {
-  std::uint32_t overflow = 0;          // 1 when some count[i] > stride
-  std::int32_t max_count = 0;          // the largest count[i]
-  std::int32_t first_invalid = -1;     // lowest node index with non-finite x or y, or q not (finite and > 0),
-                                       // or in metric mode a metric not finite and positive definite; -1 if none
-  std::uint64_t pairs_examined = 0;    // candidate pairs whose distance was computed
-  std::uint64_t pairs_within = 0;      // of those, pairs within the cutoff (sum of interior counts)
+  std::uint32_t overflow = 0;        // 1 when some count[i] > stride
+  std::int32_t max_count = 0;        // the largest count[i]
+  std::int32_t first_invalid = -1;   // lowest node index with non-finite x or y, or q not (finite and > 0),
+                                     // or in metric mode a metric not finite and positive definite; -1 if none
+  std::uint64_t pairs_examined = 0;  // candidate pairs whose distance was computed
+  std::uint64_t pairs_within = 0;    // of those, pairs within the cutoff (sum of interior counts)
 };
 
 // Per-node results of the force step (eq. 5.11 summed, eq. 5.3).
 struct ForceResult {
-  std::vector<double> fx, fy;  // net force; Boundary nodes: projected onto (tx, ty); Fixed: 0
-  std::vector<double> r0;      // distance to the nearest neighbour j with F_i . r_ij > 0 (see
-                               // ForceParams::r0_any_direction); 0 if none or F_i = 0. Metric mode:
-                               // the pair's metric distance, and the half-plane F_i^T M_ij r_ij > 0
+  std::vector<double> fx, fy;          // net force; Boundary nodes: projected onto (tx, ty); Fixed: 0
+  std::vector<double> r0;              // distance to the nearest neighbour j with F_i . r_ij > 0 (see
+                                       // ForceParams::r0_any_direction); 0 if none or F_i = 0. Metric mode:
+                                       // the pair's metric distance, and the half-plane F_i^T M_ij r_ij > 0
   std::uint64_t coincident_pairs = 0;  // neighbour pairs at distance 0 (skipped: no direction)
   // Only when ForceParams::stability_factor > 0 (else empty): the per-node stability bound on dt_i^2,
   // 2 c / K_i with K_i = sum_j max(|df/dr|, |f|/r) over i's list (HUGE_VAL when K_i = 0).
@@ -114,14 +124,12 @@ class StepBackend {
   virtual ~StepBackend() = default;
   virtual std::string name() const = 0;
   // Step 1: neighbour list (see NeighbourList). Resizes `list` arrays; never grows stride itself.
-  virtual void build_neighbours(const SimParticles& p, double cutoff, NeighbourList& list,
-                                NeighbourFlags& flags) = 0;
+  virtual void build_neighbours(const SimParticles& p, double cutoff, NeighbourList& list, NeighbourFlags& flags) = 0;
   // Steps 2 and 3: net forces and r0 over the neighbour list.
   virtual void compute_forces(const SimParticles& p, const NeighbourList& list, const ForceParams& params,
                               ForceResult& out) = 0;
   // Step 4: local time step and displacement. dt_gm2 is the squared global maximum time step.
-  virtual void time_step_and_move(const SimParticles& p, const ForceResult& forces, double dt_gm2,
-                                  MoveResult& out) = 0;
+  virtual void time_step_and_move(const SimParticles& p, const ForceResult& forces, double dt_gm2, MoveResult& out) = 0;
   // Step 4, heavy-ball momentum (beta in (0, 1); callers skip it for beta = 0): turns moves' g_i =
   // dt_i^2/2 F_i into d_i = g_i + beta p_i; d_i = g_i where d_i . F_i < 0; then |d_i| capped to r0_i / 3
   // where r0_i > 0 (metric mode: |d_i| in node i's metric). Fixed nodes: d_i = 0. Sets p_i = d_i
@@ -136,7 +144,7 @@ class StepBackend {
 std::unique_ptr<StepBackend> make_reference_backend();
 
 // Builds the list, growing stride to the reported maximum until nothing overflows (at most twice).
-void build_neighbours_growing(StepBackend& backend, const SimParticles& p, double cutoff,
-                              NeighbourList& list, NeighbourFlags& flags);
+void build_neighbours_growing(StepBackend& backend, const SimParticles& p, double cutoff, NeighbourList& list,
+                              NeighbourFlags& flags);
 
 }  // namespace pdmesh

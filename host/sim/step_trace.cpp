@@ -54,9 +54,8 @@ void trace_step(std::FILE* out, int iteration, const SimParticles& p, const Neig
     fmt::print(out,
                "it {} #{} node {} {} ({:.5f},{:.5f}) q {:.4f} |F| {:.4g} r0 {:.4f} nearest {:.4f} dt2 {:.4g}{} "
                "step {:.4g} step/q {:.4f} step/nearest {:.3f}\n",
-               iteration, t, i, kind_name(p.kind[i]), p.x[i], p.y[i], p.q[i], f, forces.r0[i], nearest,
-               moves.dt2[i], limit, step, step / p.q[i],
-               nearest < HUGE_VAL ? step / nearest : 0.0);
+               iteration, t, i, kind_name(p.kind[i]), p.x[i], p.y[i], p.q[i], f, forces.r0[i], nearest, moves.dt2[i],
+               limit, step, step / p.q[i], nearest < HUGE_VAL ? step / nearest : 0.0);
     for (int k = 0; k < cnt; ++k) {
       const auto j = static_cast<std::size_t>(list.index[base + static_cast<std::size_t>(k)]);
       const double dx = p.x[j] - p.x[i], dy = p.y[j] - p.y[i], r = std::hypot(dx, dy);

@@ -56,7 +56,8 @@ void BackgroundBuilder::sample_all(const std::vector<std::uint64_t>& keys, std::
     const std::uint64_t k = keys[i];
     const auto [id, fresh] = samples_.try_emplace(k, static_cast<std::int32_t>(first + points.size()));
     ids[i] = *id;
-    if (fresh) points.push_back(point(static_cast<std::uint32_t>(k >> 32), static_cast<std::uint32_t>(k & 0xffffffffu)));
+    if (fresh)
+      points.push_back(point(static_cast<std::uint32_t>(k >> 32), static_cast<std::uint32_t>(k & 0xffffffffu)));
   }
   if (points.empty()) return;
   std::vector<double> q;
@@ -86,7 +87,8 @@ void BackgroundBuilder::choose_grid() {
   side *= 1.0 + 1.0 / 64.0;
   std::vector<Vec2> points;
   for (int i = 0; i <= 8; ++i)
-    for (int j = 0; j <= 8; ++j) points.push_back({centre.x + side * (i / 8.0 - 0.5), centre.y + side * (j / 8.0 - 0.5)});
+    for (int j = 0; j <= 8; ++j)
+      points.push_back({centre.x + side * (i / 8.0 - 0.5), centre.y + side * (j / 8.0 - 0.5)});
   std::vector<double> q;
   exact_->at_many(points, q);
   ++batches_;
@@ -241,8 +243,8 @@ void BackgroundBuilder::check_budget(const std::vector<int>& level_cells, const 
 // test points; and the batch buffers (a batch's lattice keys and their sample ids).
 struct BackgroundBuilder::Level {
   std::vector<int> cells;
-  std::vector<double> corners;         // 4 per cell
-  std::vector<Decision> decision;      // per cell
+  std::vector<double> corners;     // 4 per cell
+  std::vector<Decision> decision;  // per cell
   std::vector<int> tested;
   std::vector<double> exact;           // 9 per tested cell
   std::vector<std::int32_t> test_ids;  // 9 per tested cell
@@ -328,20 +330,23 @@ void BackgroundBuilder::test_level(Level& level, const TestFn& test, const Sampl
     if (sampled) sampled(level.keys, level.ids);
     // The tests only read (the samples, the caller's state), and each writes its own cell's decision:
     // on all cores, with the decisions of one loop.
-    parallel_for(tested.size(), [&](std::size_t m) {
-      const auto n = static_cast<std::size_t>(tested[m]);
-      if (round == 1 && level.decision[n] == Decision::Split) return;
-      const Cell& c = cells_[static_cast<std::size_t>(level.cells[n])];
-      const int from = round == 0 ? 0 : kFirstQuarterTest;
-      const int count = round == 0 ? kFirstQuarterTest : 9;
-      for (int t = from; t < count; ++t) {
-        const std::int32_t id = level.ids[first_key[m] + static_cast<std::size_t>(t - from)];
-        level.test_ids[9 * m + static_cast<std::size_t>(t)] = id;
-        level.exact[9 * m + static_cast<std::size_t>(t)] = values_[static_cast<std::size_t>(id)];
-      }
-      const bool split = test(c, &level.corners[4 * n], &level.exact[9 * m], &level.test_ids[9 * m], count);
-      level.decision[n] = split ? Decision::Split : round == 0 ? Decision::Test : Decision::Leaf;
-    }, kTestsPerThread);
+    parallel_for(
+        tested.size(),
+        [&](std::size_t m) {
+          const auto n = static_cast<std::size_t>(tested[m]);
+          if (round == 1 && level.decision[n] == Decision::Split) return;
+          const Cell& c = cells_[static_cast<std::size_t>(level.cells[n])];
+          const int from = round == 0 ? 0 : kFirstQuarterTest;
+          const int count = round == 0 ? kFirstQuarterTest : 9;
+          for (int t = from; t < count; ++t) {
+            const std::int32_t id = level.ids[first_key[m] + static_cast<std::size_t>(t - from)];
+            level.test_ids[9 * m + static_cast<std::size_t>(t)] = id;
+            level.exact[9 * m + static_cast<std::size_t>(t)] = values_[static_cast<std::size_t>(id)];
+          }
+          const bool split = test(c, &level.corners[4 * n], &level.exact[9 * m], &level.test_ids[9 * m], count);
+          level.decision[n] = split ? Decision::Split : round == 0 ? Decision::Test : Decision::Leaf;
+        },
+        kTestsPerThread);
   }
 }
 
@@ -358,7 +363,8 @@ std::vector<int> BackgroundBuilder::split_cell(const Level& level, std::size_t n
     for (int k = 0; k < 4; ++k) at[k & 2 ? 2 : 0][k & 1 ? 2 : 0] = c.corner[k];
     if (m >= 0)
       for (int t = 0; t < kFirstQuarterTest; ++t)
-        at[kTests[t][1] / 2][kTests[t][0] / 2] = level.test_ids[9 * static_cast<std::size_t>(m) + static_cast<std::size_t>(t)];
+        at[kTests[t][1] / 2][kTests[t][0] / 2] =
+            level.test_ids[9 * static_cast<std::size_t>(m) + static_cast<std::size_t>(t)];
   }
   const auto parent = static_cast<std::size_t>(level.cells[n]);
   const auto first = static_cast<std::int32_t>(cells_.size());
@@ -376,7 +382,8 @@ std::vector<int> BackgroundBuilder::split_cell(const Level& level, std::size_t n
     child.y = p.y + (k & 2 ? h : 0u);
     child.level = static_cast<std::int8_t>(p.level + 1);
     child.parent = static_cast<std::int32_t>(parent);
-    for (int j = 0; j < 4; ++j) child.corner[j] = at[(k & 2 ? 1 : 0) + (j & 2 ? 1 : 0)][(k & 1 ? 1 : 0) + (j & 1 ? 1 : 0)];
+    for (int j = 0; j < 4; ++j)
+      child.corner[j] = at[(k & 2 ? 1 : 0) + (j & 2 ? 1 : 0)][(k & 1 ? 1 : 0) + (j & 1 ? 1 : 0)];
     cells_.push_back(child);
     next.push_back(first + k);
   }
@@ -407,17 +414,20 @@ void BackgroundBuilder::tag_children(const std::vector<int>& next, const std::ve
   const auto& segs = tree_.geometry().segments;
   std::vector<std::vector<int>> child_segments(next.size());
   std::vector<std::uint8_t> inside(next.size(), 0);
-  parallel_for(next.size(), [&](std::size_t i) {
-    const Cell& child = cells_[static_cast<std::size_t>(next[i])];
-    const std::uint32_t h = span(child.level);
-    Box b;
-    b.lo = point(child.x, child.y);
-    b.hi = point(child.x + h, child.y + h);
-    for (const int s : parent_lists[i / 4])
-      if (segment_touches_box(segs[static_cast<std::size_t>(s)].a, segs[static_cast<std::size_t>(s)].b, b))
-        child_segments[i].push_back(s);
-    if (child_segments[i].empty()) inside[i] = tree_.inside(point(child.x + h / 2, child.y + h / 2)) ? 1 : 0;
-  }, kChildrenPerThread);
+  parallel_for(
+      next.size(),
+      [&](std::size_t i) {
+        const Cell& child = cells_[static_cast<std::size_t>(next[i])];
+        const std::uint32_t h = span(child.level);
+        Box b;
+        b.lo = point(child.x, child.y);
+        b.hi = point(child.x + h, child.y + h);
+        for (const int s : parent_lists[i / 4])
+          if (segment_touches_box(segs[static_cast<std::size_t>(s)].a, segs[static_cast<std::size_t>(s)].b, b))
+            child_segments[i].push_back(s);
+        if (child_segments[i].empty()) inside[i] = tree_.inside(point(child.x + h / 2, child.y + h / 2)) ? 1 : 0;
+      },
+      kChildrenPerThread);
   for (std::size_t i = 0; i < next.size(); ++i)
     set_tag(cells_[static_cast<std::size_t>(next[i])], std::move(child_segments[i]), inside[i] != 0);
 }
@@ -437,8 +447,8 @@ std::size_t BackgroundBuilder::refine(std::vector<int> level_cells, const Decide
     // The next level, once the budgets allow it.
     check_budget(level.cells, level.decision, level.corners);
     progress.note([&] {
-      return fmt::format("quadtree level {}: {} cells, {} samples", cells_[static_cast<std::size_t>(level.cells.front())].level,
-                         cells_.size(), values_.size());
+      return fmt::format("quadtree level {}: {} cells, {} samples",
+                         cells_[static_cast<std::size_t>(level.cells.front())].level, cells_.size(), values_.size());
     });
     std::vector<std::vector<int>> parent_lists;  // per split cell, in order: its segments
     splits += split_level(level, next, parent_lists);
@@ -506,8 +516,8 @@ BackgroundFieldData BackgroundBuilder::emit(const ValueFn& corner_value) const {
     if (c.first_child < 0) {
       d.node_child[static_cast<std::size_t>(node)] = -1 - static_cast<std::int32_t>(d.leaf_tag.size());
       d.leaf_tag.push_back(c.tag);
-      d.leaf_cell.push_back(static_cast<std::int32_t>((c.y >> resolution_) * static_cast<std::uint32_t>(grid_) +
-                                                      (c.x >> resolution_)));
+      d.leaf_cell.push_back(
+          static_cast<std::int32_t>((c.y >> resolution_) * static_cast<std::uint32_t>(grid_) + (c.x >> resolution_)));
       d.leaf_cell.push_back(c.level);
       d.leaf_cell.push_back(static_cast<std::int32_t>((c.x & below_root) >> (resolution_ - c.level)));
       d.leaf_cell.push_back(static_cast<std::int32_t>((c.y & below_root) >> (resolution_ - c.level)));

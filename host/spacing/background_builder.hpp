@@ -23,8 +23,8 @@ class BackgroundBuilder {
     // Sample ids of the corners (x lo y lo, x hi y lo, x lo y hi, x hi y hi), set when the cell's level
     // is sampled: callers index their own per-sample arrays by them instead of hashing lattice keys.
     std::int32_t corner[4] = {-1, -1, -1, -1};
-    std::int8_t level = 0;          // 0 = root cell
-    std::int8_t tag = kTagBoundary; // a DomainTag
+    std::int8_t level = 0;           // 0 = root cell
+    std::int8_t tag = kTagBoundary;  // a DomainTag
   };
   enum class Decision { Leaf, Split, Test };
 
@@ -143,10 +143,10 @@ class BackgroundBuilder {
   double origin_x_ = 0.0, origin_y_ = 0.0, root_size_ = 1.0;
   std::vector<Cell> cells_;
   std::vector<std::vector<int>> segment_lists_;
-  FlatKeyMap<std::int32_t> samples_;  // lattice key -> sample id
-  std::vector<double> values_;         // by sample id
+  FlatKeyMap<std::int32_t> samples_;            // lattice key -> sample id
+  std::vector<double> values_;                  // by sample id
   const Geometry* closest_geometry_ = nullptr;  // collect_closest's
-  std::vector<std::int32_t> closest_;          // by sample id, while collecting (see collect_closest)
+  std::vector<std::int32_t> closest_;           // by sample id, while collecting (see collect_closest)
   std::size_t batches_ = 0;
   bool count_nodes_ = false;     // build() is refining: its cells' corner values are the exact field's
   double finished_nodes_ = 0.0;  // nodes in the inside leaves build() has finished

@@ -32,7 +32,8 @@ int background_locate(const BackgroundFieldData& d, Vec2 p, double& u, double& v
   v = s - gy;
   u = !(u >= 0.0) ? 0.0 : u > 1.0 ? 1.0 : u;
   v = !(v >= 0.0) ? 0.0 : v > 1.0 ? 1.0 : v;
-  int node = d.root_node[static_cast<std::size_t>(gy) * static_cast<std::size_t>(d.grid) + static_cast<std::size_t>(gx)];
+  int node =
+      d.root_node[static_cast<std::size_t>(gy) * static_cast<std::size_t>(d.grid) + static_cast<std::size_t>(gx)];
   int child;
   // Doubling and subtracting 0 or 1 are exact, so every level keeps (u, v) exact.
   while ((child = d.node_child[static_cast<std::size_t>(node)]) >= 0) {
@@ -53,7 +54,8 @@ Box background_leaf_box(const BackgroundFieldData& d, Vec2 p) {
   const int gy = !(fs >= 0.0) ? 0 : fs > d.grid - 1 ? d.grid - 1 : static_cast<int>(fs);
   double ru = std::clamp(t - gx, 0.0, 1.0), rv = std::clamp(s - gy, 0.0, 1.0);
   double lo_x = 0.0, lo_y = 0.0, side = 1.0;  // in root-cell units
-  int node = d.root_node[static_cast<std::size_t>(gy) * static_cast<std::size_t>(d.grid) + static_cast<std::size_t>(gx)];
+  int node =
+      d.root_node[static_cast<std::size_t>(gy) * static_cast<std::size_t>(d.grid) + static_cast<std::size_t>(gx)];
   int child;
   while ((child = d.node_child[static_cast<std::size_t>(node)]) >= 0) {
     const int cx = ru >= 0.5 ? 1 : 0, cy = rv >= 0.5 ? 1 : 0;
@@ -91,7 +93,8 @@ void check_background_options(const BackgroundOptions& o) {
     bad("boundary_min_side_fraction", o.boundary_min_side_fraction, "must be a positive number");
   if (o.max_depth < 0 || o.max_depth > BackgroundOptions::kMaxDepthLimit)
     bad("max_depth", o.max_depth, "must be in [0, 20]");
-  if (o.max_grid < 1 || o.max_grid > BackgroundOptions::kMaxGridLimit) bad("max_grid", o.max_grid, "must be in [1, 512]");
+  if (o.max_grid < 1 || o.max_grid > BackgroundOptions::kMaxGridLimit)
+    bad("max_grid", o.max_grid, "must be in [1, 512]");
 }
 
 BackgroundSpacing::BackgroundSpacing(const SpacingField& exact, const GeometryTree& tree,
@@ -130,7 +133,8 @@ void BackgroundSpacing::at_many(const std::vector<Vec2>& p, std::vector<double>&
   // A lookup is a descent of up to max_depth levels (~0.2-0.4 us on 30P30N's tree); large batches
   // (a population event's triangle circumcentres, every node of a mesh) are worth a second core.
   // Each value is at()'s whatever the thread.
-  parallel_for(p.size(), [&](std::size_t i) { q[i] = at(p[i]); }, 8192);
+  parallel_for(
+      p.size(), [&](std::size_t i) { q[i] = at(p[i]); }, 8192);
 }
 
 int BackgroundSpacing::tag_at(Vec2 p) const {

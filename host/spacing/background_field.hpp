@@ -29,11 +29,11 @@ enum DomainTag : std::int32_t {
 struct BackgroundFieldData {
   double origin_x = 0.0;
   double origin_y = 0.0;
-  double root_size = 1.0;      // side of one top-level cell
-  double inv_root_size = 1.0;  // 1 / root_size, as multiplied by the lookup
-  std::int32_t grid = 1;       // G
-  std::int32_t max_depth = 0;  // deepest leaf below its root
-  std::vector<std::int32_t> root_node;   // G * G, row-major (y outer): node index of each root cell
+  double root_size = 1.0;               // side of one top-level cell
+  double inv_root_size = 1.0;           // 1 / root_size, as multiplied by the lookup
+  std::int32_t grid = 1;                // G
+  std::int32_t max_depth = 0;           // deepest leaf below its root
+  std::vector<std::int32_t> root_node;  // G * G, row-major (y outer): node index of each root cell
   // Per node: >= 0: index of the first of its 4 consecutive children, ordered (x lo, y lo),
   // (x hi, y lo), (x lo, y hi), (x hi, y hi); < 0: a leaf, leaf index -1 - value.
   std::vector<std::int32_t> node_child;
@@ -43,7 +43,7 @@ struct BackgroundFieldData {
   // (ix, iy) in [0, 2^L) of the leaf within its root cell. Lets a lookup test a guessed leaf without
   // descending (kernels/spacing_field.cl, bg_locate_cached).
   std::vector<std::int32_t> leaf_cell;
-  std::vector<double> corner_q;           // exact q at every distinct leaf corner (shared corners once)
+  std::vector<double> corner_q;  // exact q at every distinct leaf corner (shared corners once)
 
   std::size_t bytes() const;
   std::size_t leaves() const { return leaf_tag.size(); }

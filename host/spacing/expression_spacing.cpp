@@ -46,9 +46,10 @@ double ExpressionSpacing::at(Vec2 p) const {
     throw InputError(fmt::format("spacing expression '{}' at ({}, {}): {}", impl_->expression, p.x, p.y, e.GetMsg()));
   }
   if (!std::isfinite(q) || q <= 0.0)
-    throw InputError(fmt::format("spacing expression '{}' at ({}, {}) gives {}; the spacing must be a finite "
-                                 "positive number",
-                                 impl_->expression, p.x, p.y, q));
+    throw InputError(
+        fmt::format("spacing expression '{}' at ({}, {}) gives {}; the spacing must be a finite "
+                    "positive number",
+                    impl_->expression, p.x, p.y, q));
   return q;
 }
 

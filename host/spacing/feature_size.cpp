@@ -57,7 +57,8 @@ FeatureSize::FeatureSize(const Geometry& geometry) : geometry_(geometry) {
         // unless the curve is traversed reversed.
         normal_[s] = (domain_left != reversed) ? left : Vec2{-left.x, -left.y};
         loop_[s] = static_cast<std::int32_t>(l);
-        arc_a_[s] = reversed ? offset + c.length() - c.arc[static_cast<std::size_t>(k)] : offset + c.arc[static_cast<std::size_t>(k)];
+        arc_a_[s] = reversed ? offset + c.length() - c.arc[static_cast<std::size_t>(k)]
+                             : offset + c.arc[static_cast<std::size_t>(k)];
         arc_sign_[s] = reversed ? -1.0 : 1.0;
       }
       offset += c.length();
@@ -102,13 +103,14 @@ void FeatureSize::build(std::int32_t node, std::int32_t begin, std::int32_t end)
   }
   const bool by_x = mids.width() >= mids.height();
   const std::int32_t mid = begin + (end - begin) / 2;
-  std::nth_element(order_.begin() + begin, order_.begin() + mid, order_.begin() + end, [&](std::int32_t a, std::int32_t b) {
-    const Segment& sa = segs[static_cast<std::size_t>(a)];
-    const Segment& sb = segs[static_cast<std::size_t>(b)];
-    const double ka = by_x ? sa.a.x + sa.b.x : sa.a.y + sa.b.y;
-    const double kb = by_x ? sb.a.x + sb.b.x : sb.a.y + sb.b.y;
-    return ka < kb || (ka == kb && a < b);
-  });
+  std::nth_element(order_.begin() + begin, order_.begin() + mid, order_.begin() + end,
+                   [&](std::int32_t a, std::int32_t b) {
+                     const Segment& sa = segs[static_cast<std::size_t>(a)];
+                     const Segment& sb = segs[static_cast<std::size_t>(b)];
+                     const double ka = by_x ? sa.a.x + sa.b.x : sa.a.y + sa.b.y;
+                     const double kb = by_x ? sb.a.x + sb.b.x : sb.a.y + sb.b.y;
+                     return ka < kb || (ka == kb && a < b);
+                   });
   const auto first = static_cast<std::int32_t>(nodes_.size());
   nodes_[static_cast<std::size_t>(node)].first = first;
   nodes_.emplace_back();

@@ -20,7 +20,8 @@ namespace pdmesh {
 GradationGraph::GradationGraph(std::vector<Vec2> corners, const std::vector<std::int32_t>& leaf_corner)
     : corners_(std::move(corners)) {
   const std::size_t n = corners_.size();
-  if (leaf_corner.size() % 4 != 0) throw Error(fmt::format("gradation graph: {} leaf corners is not 4 per leaf", leaf_corner.size()));
+  if (leaf_corner.size() % 4 != 0)
+    throw Error(fmt::format("gradation graph: {} leaf corners is not 4 per leaf", leaf_corner.size()));
   for (const std::int32_t c : leaf_corner)
     if (c < 0 || static_cast<std::size_t>(c) >= n) throw Error(fmt::format("gradation graph: corner {} of {}", c, n));
   // Each leaf joins its 4 corners pairwise (sides and diagonals); a corner shared by several leaves
@@ -123,10 +124,12 @@ void GradationGraph::sweep(double g, const std::vector<double>& q0, std::vector<
                            const std::vector<PointSource>& points) const {
   const std::size_t n = corners_.size();
   auto source_point = [&](std::int32_t s) {
-    return static_cast<std::size_t>(s) < n ? corners_[static_cast<std::size_t>(s)] : points[static_cast<std::size_t>(s) - n].p;
+    return static_cast<std::size_t>(s) < n ? corners_[static_cast<std::size_t>(s)]
+                                           : points[static_cast<std::size_t>(s) - n].p;
   };
   auto source_q = [&](std::int32_t s) {
-    return static_cast<std::size_t>(s) < n ? q0[static_cast<std::size_t>(s)] : points[static_cast<std::size_t>(s) - n].q;
+    return static_cast<std::size_t>(s) < n ? q0[static_cast<std::size_t>(s)]
+                                           : points[static_cast<std::size_t>(s) - n].q;
   };
   // Min-heap on (value, corner); stale entries (value above the corner's current q) are skipped.
   std::vector<Entry> start;
@@ -162,7 +165,8 @@ void GradationGraph::sweep(double g, const std::vector<double>& q0, std::vector<
     const std::int32_t s = source[static_cast<std::size_t>(i)];
     const Vec2 sp = source_point(s);
     const double sq = source_q(s);
-    for (std::int32_t e = neighbour_start_[static_cast<std::size_t>(i)]; e < neighbour_start_[static_cast<std::size_t>(i) + 1]; ++e) {
+    for (std::int32_t e = neighbour_start_[static_cast<std::size_t>(i)];
+         e < neighbour_start_[static_cast<std::size_t>(i) + 1]; ++e) {
       const auto j = static_cast<std::size_t>(neighbours_[static_cast<std::size_t>(e)]);
       const double v = sq + g * dist(corners_[j], sp);
       if (v < q[j]) {

@@ -52,7 +52,8 @@ class LimitedField {
       for (const int l : leaves) {
         const Cell& c = b_.cells()[static_cast<std::size_t>(l)];
         const std::uint32_t s = b_.span(c.level);
-        for (const auto& [dx, dy] : {std::pair{0u, 0u}, {s, 0u}, {0u, s}, {s, s}}) keys.push_back(BackgroundBuilder::key(c.x + dx, c.y + dy));
+        for (const auto& [dx, dy] : {std::pair{0u, 0u}, {s, 0u}, {0u, s}, {s, s}})
+          keys.push_back(BackgroundBuilder::key(c.x + dx, c.y + dy));
         ids.insert(ids.end(), c.corner, c.corner + 4);
       }
       add_corners(keys, ids);  // the base tree's corners in round 1; afterwards all known already
@@ -74,7 +75,8 @@ class LimitedField {
         if (!lowered && round == 1) {
           const Cell& c = b_.cells()[static_cast<std::size_t>(leaves[n])];
           double q_max = 0.0;
-          for (int a = 0; a < 4; ++a) q_max = std::max(q_max, q_[static_cast<std::size_t>(leaf_corner[4 * n + static_cast<std::size_t>(a)])]);
+          for (int a = 0; a < 4; ++a)
+            q_max = std::max(q_max, q_[static_cast<std::size_t>(leaf_corner[4 * n + static_cast<std::size_t>(a)])]);
           lowered = segment_minimum(c) < q_max;
         }
         if (lowered) candidates.push_back(leaves[n]);
@@ -86,8 +88,12 @@ class LimitedField {
           [this](const Cell& c, const double q[4], const double exact[9], const std::int32_t ids[9], int count) {
             return test(c, q, exact, ids, count);
           },
-          [this](const Cell& c, std::uint32_t x, std::uint32_t y, std::int32_t id) { return corner_value(c, x, y, id); },
-          [this](const std::vector<std::uint64_t>& sampled, const std::vector<std::int32_t>& ids) { add_sources(sampled, ids); });
+          [this](const Cell& c, std::uint32_t x, std::uint32_t y, std::int32_t id) {
+            return corner_value(c, x, y, id);
+          },
+          [this](const std::vector<std::uint64_t>& sampled, const std::vector<std::int32_t>& ids) {
+            add_sources(sampled, ids);
+          });
       stats_.refine_seconds += seconds_since(start);
       if (splits == 0) break;
     }
@@ -96,7 +102,8 @@ class LimitedField {
       // row would not match the boundary row); the floor is g-Lipschitz like the limited field, so the
       // max of the two still is.
       const auto start = Clock::now();
-      parallel_for(q_.size(), [&](std::size_t i) { q_[i] = sources_.floor_at(pos_[i], q_[i]); }, 256);
+      parallel_for(
+          q_.size(), [&](std::size_t i) { q_[i] = sources_.floor_at(pos_[i], q_[i]); }, 256);
       stats_.source_seconds += seconds_since(start);
     }
     for (std::size_t i = 0; i < q_.size(); ++i)
@@ -161,11 +168,14 @@ class LimitedField {
     }
     const auto start = Clock::now();
     // Each thread's last closest segment seeds its next search (the keys come in spatial order).
-    parallel_for_scratch<Seed>(fresh.size(), [&](Seed& seed, std::size_t i) {
-      const auto id = ids[fresh[i]];
-      source_at_[static_cast<std::size_t>(id)] =
-          sources_.at(lattice(b_, keys[fresh[i]]), b_.sample_value(id), &seed.segment, b_.sample_closest(id));
-    }, 256);
+    parallel_for_scratch<Seed>(
+        fresh.size(),
+        [&](Seed& seed, std::size_t i) {
+          const auto id = ids[fresh[i]];
+          source_at_[static_cast<std::size_t>(id)] =
+              sources_.at(lattice(b_, keys[fresh[i]]), b_.sample_value(id), &seed.segment, b_.sample_closest(id));
+        },
+        256);
     stats_.source_seconds += seconds_since(start);
   }
 
@@ -197,9 +207,12 @@ class LimitedField {
     const auto& segs = b_.geometry().segments;
     segment_q_.resize(segs.size());
     const auto start = Clock::now();
-    parallel_for(segs.size(), [&](std::size_t s) {
-      segment_q_[s] = sources_.at(0.5 * (segs[s].a + segs[s].b), std::numeric_limits<double>::max());
-    }, 256);
+    parallel_for(
+        segs.size(),
+        [&](std::size_t s) {
+          segment_q_[s] = sources_.at(0.5 * (segs[s].a + segs[s].b), std::numeric_limits<double>::max());
+        },
+        256);
     stats_.source_seconds += seconds_since(start);
   }
   double segment_minimum(const Cell& c) const {
@@ -252,8 +265,9 @@ class LimitedField {
         const bool fresh = std::any_of(leaf_corner.begin() + static_cast<std::ptrdiff_t>(l),
                                        leaf_corner.begin() + static_cast<std::ptrdiff_t>(l) + 4,
                                        [&](std::int32_t c) { return static_cast<std::size_t>(c) >= limited_; });
-        if (fresh) seeds.insert(seeds.end(), leaf_corner.begin() + static_cast<std::ptrdiff_t>(l),
-                                leaf_corner.begin() + static_cast<std::ptrdiff_t>(l) + 4);
+        if (fresh)
+          seeds.insert(seeds.end(), leaf_corner.begin() + static_cast<std::ptrdiff_t>(l),
+                       leaf_corner.begin() + static_cast<std::ptrdiff_t>(l) + 4);
       }
       graph.relimit(g_, q0_, q_, source, seeds, points_);
     }
@@ -324,7 +338,7 @@ class LimitedField {
   std::vector<double> base_, q0_, q_;
   std::vector<std::int32_t> source_;
   std::vector<double> segment_q_;  // the sources at each segment's midpoint
-  std::size_t limited_ = 0;  // corners [0, limited_) took part in the last sweep
+  std::size_t limited_ = 0;        // corners [0, limited_) took part in the last sweep
 };
 
 }  // namespace

@@ -46,11 +46,12 @@ MeshMetricField::MeshMetricField(std::vector<Vec2> points, std::vector<std::arra
     };
     const Vec2 pa = points_[static_cast<std::size_t>(c.a)], pb = points_[static_cast<std::size_t>(c.b)];
     const std::string edge = fmt::format("point {} ({}, {}) - point {} ({}, {})", c.a, pa.x, pa.y, c.b, pb.x, pb.y);
-    throw InputError(c.same_side ? fmt::format("{}: the triangles {} and {} lie on the same side of their shared edge {} "
-                                               "(a folded or repeated triangle); a metric mesh must not overlap itself",
-                                               what_, tri(c.first), tri(c.second), edge)
-                                 : fmt::format("{}: the edge {} belongs to more than two triangles, among them {} and {}",
-                                               what_, edge, tri(c.first), tri(c.second)));
+    throw InputError(c.same_side
+                         ? fmt::format("{}: the triangles {} and {} lie on the same side of their shared edge {} "
+                                       "(a folded or repeated triangle); a metric mesh must not overlap itself",
+                                       what_, tri(c.first), tri(c.second), edge)
+                         : fmt::format("{}: the edge {} belongs to more than two triangles, among them {} and {}",
+                                       what_, edge, tri(c.first), tri(c.second)));
   }
 }
 

@@ -16,7 +16,8 @@ namespace pdmesh {
 
 MeshSpacing::MeshSpacing(MeshFieldData data) : data_(std::move(data)) {
   if (data_.triangles.empty()) {
-    throw InputError(fmt::format("{}: the mesh has no triangles; a spacing background mesh needs triangle cells", data_.file));
+    throw InputError(
+        fmt::format("{}: the mesh has no triangles; a spacing background mesh needs triangle cells", data_.file));
   }
   if (data_.q.size() != data_.points.size()) {
     throw InputError(fmt::format("{}: '{}' has {} values for {} points", data_.file, data_.array, data_.q.size(),
@@ -32,12 +33,13 @@ MeshSpacing::MeshSpacing(MeshFieldData data) : data_(std::move(data)) {
       return fmt::format("({}, {}, {})", point_label(v[0]), point_label(v[1]), point_label(v[2]));
     };
     const auto pa = data_.points[static_cast<std::size_t>(c.a)], pb = data_.points[static_cast<std::size_t>(c.b)];
-    const std::string edge = fmt::format("{} - {} (({}, {}) - ({}, {}))", point_label(c.a), point_label(c.b), pa.x,
-                                         pa.y, pb.x, pb.y);
+    const std::string edge =
+        fmt::format("{} - {} (({}, {}) - ({}, {}))", point_label(c.a), point_label(c.b), pa.x, pa.y, pb.x, pb.y);
     const std::string what =
-        c.same_side ? fmt::format("the triangles {} and {} lie on the same side of their shared edge {} (an inverted or "
-                                  "folded triangle, or two overlapping meshes)",
-                                  tri(c.first), tri(c.second), edge)
+        c.same_side ? fmt::format(
+                          "the triangles {} and {} lie on the same side of their shared edge {} (an inverted or "
+                          "folded triangle, or two overlapping meshes)",
+                          tri(c.first), tri(c.second), edge)
                     : fmt::format("the edge {} belongs to more than two triangles, among them {} and {}", edge,
                                   tri(c.first), tri(c.second));
     throw InputError(fmt::format("{}: {}; a spacing background mesh must not overlap itself", data_.file, what));
@@ -99,16 +101,18 @@ void MeshSpacing::check_overlaps() const {
     if (!locator_->strictly_inside(locator_->position_of(static_cast<int>(t)), centroid, l)) continue;
     int other = -1;
     locator_->for_each_triangle_near(centroid, [&](int u) {
-      if (other < 0 && static_cast<std::size_t>(u) != t && locator_->strictly_inside(locator_->position_of(u), centroid, l)) {
+      if (other < 0 && static_cast<std::size_t>(u) != t &&
+          locator_->strictly_inside(locator_->position_of(u), centroid, l)) {
         other = u;
       }
     });
     if (other >= 0) {
       const auto& o = data_.triangles[static_cast<std::size_t>(other)];
-      throw InputError(fmt::format("{}: the triangles ({}, {}, {}) and ({}, {}, {}) overlap (the centroid ({}, {}) of "
-                                   "the first lies inside the second); a spacing background mesh must not overlap itself",
-                                   data_.file, point_label(v[0]), point_label(v[1]), point_label(v[2]),
-                                   point_label(o[0]), point_label(o[1]), point_label(o[2]), centroid.x, centroid.y));
+      throw InputError(
+          fmt::format("{}: the triangles ({}, {}, {}) and ({}, {}, {}) overlap (the centroid ({}, {}) of "
+                      "the first lies inside the second); a spacing background mesh must not overlap itself",
+                      data_.file, point_label(v[0]), point_label(v[1]), point_label(v[2]), point_label(o[0]),
+                      point_label(o[1]), point_label(o[2]), centroid.x, centroid.y));
     }
   }
 }
@@ -153,7 +157,8 @@ void MeshSpacing::check_covers(const Geometry& geometry) const {
       if (locator_->locate(p).triangle >= 0) continue;
       const BoundaryHit hit = locator_->nearest_boundary(p);
       const auto& e = locator_->boundary_edges()[static_cast<std::size_t>(hit.edge)];
-      const double edge = dist(data_.points[static_cast<std::size_t>(e[0])], data_.points[static_cast<std::size_t>(e[1])]);
+      const double edge =
+          dist(data_.points[static_cast<std::size_t>(e[0])], data_.points[static_cast<std::size_t>(e[1])]);
       const double allowed = std::max(absolute, kMeshCoverEdgeFraction * edge);
       if (hit.distance <= allowed) continue;
       throw InputError(fmt::format(

@@ -60,9 +60,10 @@ void check_coordinate_resolution(const Geometry& geometry, const SpacingField& s
   // A denormal spacing (an underflow, e.g. 1e-310) is too small at any coordinate: say so, not that
   // the coordinates are too large.
   if (smallest > 0.0 && smallest < DBL_MIN) {
-    throw LimitError(fmt::format("the spacing at ({}, {}) is {:.6g}, below the smallest normal double ({:g}): a value "
-                                 "that small underflows; the simulation needs spacings of at least {:.3g} here",
-                                 where.x, where.y, smallest, DBL_MIN, needed));
+    throw LimitError(
+        fmt::format("the spacing at ({}, {}) is {:.6g}, below the smallest normal double ({:g}): a value "
+                    "that small underflows; the simulation needs spacings of at least {:.3g} here",
+                    where.x, where.y, smallest, DBL_MIN, needed));
   }
   if (smallest < needed) refuse(fmt::format("the spacing at ({}, {})", where.x, where.y), smallest);
 }

@@ -29,7 +29,8 @@ double SizeSources::at(Vec2 p, double limit, int* seed, int closest) const {
   const double s = options_.scale;
   // With input boundary points, no source asks for less than (a fraction of) the closest segment:
   // the first node row could not match the boundary row.
-  const double floor = options_.input_boundary_floor * tree_.geometry().segments[static_cast<std::size_t>(hit.segment)].length;
+  const double floor =
+      options_.input_boundary_floor * tree_.geometry().segments[static_cast<std::size_t>(hit.segment)].length;
   double q = kNone;
   if (theta_ > 0.0) {
     // The concentric circle at distance d from a curve of radius R has radius R + d: the same angle

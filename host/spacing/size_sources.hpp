@@ -23,7 +23,7 @@ struct SizeSourceOptions {
   // sources' floor (it stops the feature size from asking for q -> 0 toward a sharp V tip); the final
   // floor would lift a fine field back to coarse input points' spacing.
   bool final_floor = true;
-  double scale = 1.0;            // multiplies every value (spacing.scale)
+  double scale = 1.0;  // multiplies every value (spacing.scale)
   bool active() const { return rows_in_gap > 0.0 || curvature_angle > 0.0; }
 };
 

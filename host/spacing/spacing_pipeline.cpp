@@ -46,7 +46,8 @@ void check_spacing_options(const SpacingOptions& o) {
     throw InputError(fmt::format("spacing.{} = {}: {}", name, value, rule));
   };
   if (!(o.scale > 0.0) || !std::isfinite(o.scale)) bad("scale", o.scale, "must be a positive number");
-  if (!(o.gradation >= 0.0) || !std::isfinite(o.gradation)) bad("gradation", o.gradation, "must be a number >= 0 (0 = off)");
+  if (!(o.gradation >= 0.0) || !std::isfinite(o.gradation))
+    bad("gradation", o.gradation, "must be a number >= 0 (0 = off)");
   if (!(o.rows_in_gap == 0.0 || (o.rows_in_gap >= 1.0 && std::isfinite(o.rows_in_gap))))
     bad("rows_in_gap", o.rows_in_gap, "must be 0 (off) or a number >= 1");
   if (!(o.curvature_angle >= 0.0 && o.curvature_angle <= 90.0))

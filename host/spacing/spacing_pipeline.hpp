@@ -19,10 +19,10 @@ namespace pdmesh {
 inline constexpr double kInputBoundaryFloor = 1.0;
 
 struct SpacingOptions {
-  double scale = 1.0;            // spacing.scale: multiplies the base field and the sources
-  double gradation = 0.0;        // spacing.gradation g: |grad q| <= g; 0 = off
-  double rows_in_gap = 0.0;      // spacing.rows_in_gap k; 0 = off
-  double curvature_angle = 0.0;  // spacing.curvature_angle theta in degrees; 0 = off
+  double scale = 1.0;                 // spacing.scale: multiplies the base field and the sources
+  double gradation = 0.0;             // spacing.gradation g: |grad q| <= g; 0 = off
+  double rows_in_gap = 0.0;           // spacing.rows_in_gap k; 0 = off
+  double curvature_angle = 0.0;       // spacing.curvature_angle theta in degrees; 0 = off
   double input_boundary_floor = 0.0;  // SizeSourceOptions::input_boundary_floor
   bool final_floor = true;            // SizeSourceOptions::final_floor
   std::vector<PointSource> points;    // sizes at points, limited like the rest (API and tests)
@@ -35,12 +35,12 @@ struct SpacingOptions {
 };
 
 struct SpacingStats {
-  double seconds = 0.0;          // the whole build
-  double base_seconds = 0.0;     // the base tree (exact base field samples)
-  double source_seconds = 0.0;   // feature size and curvature at the corners
-  double limit_seconds = 0.0;    // gradation sweeps
-  double refine_seconds = 0.0;   // refinement where the limited field needs it
-  int rounds = 0;                // limit-refine rounds
+  double seconds = 0.0;         // the whole build
+  double base_seconds = 0.0;    // the base tree (exact base field samples)
+  double source_seconds = 0.0;  // feature size and curvature at the corners
+  double limit_seconds = 0.0;   // gradation sweeps
+  double refine_seconds = 0.0;  // refinement where the limited field needs it
+  int rounds = 0;               // limit-refine rounds
   std::size_t base_leaves = 0;
   std::size_t reduced_corners = 0;  // corners where the final q is below the scaled base field
 };

@@ -80,7 +80,8 @@ static void build_subtree(BoxTree& t, const std::vector<Box>& boxes, Pending fir
     const auto first_child = static_cast<std::int32_t>(t.node_child.size());
     t.node_child[static_cast<std::size_t>(n.node)] = first_child;
     t.node_child.resize(t.node_child.size() + 4, -1);
-    for (int c = 3; c >= 0; --c) stack.push_back({first_child + c, child_box(n.box, c), n.level + 1, std::move(parts[c])});
+    for (int c = 3; c >= 0; --c)
+      stack.push_back({first_child + c, child_box(n.box, c), n.level + 1, std::move(parts[c])});
   }
 }
 
@@ -237,9 +238,8 @@ TriangleLocator::TriangleLocator(const std::vector<Vec2>& points, const std::vec
       edges.push_back({(lo << 32) | hi, a, b, static_cast<int>(t)});
     }
   }
-  std::sort(edges.begin(), edges.end(), [](const Directed& x, const Directed& y) {
-    return x.key != y.key ? x.key < y.key : x.t < y.t;
-  });
+  std::sort(edges.begin(), edges.end(),
+            [](const Directed& x, const Directed& y) { return x.key != y.key ? x.key < y.key : x.t < y.t; });
   for (std::size_t i = 0; i < edges.size();) {
     std::size_t j = i + 1;
     while (j < edges.size() && edges[j].key == edges[i].key) ++j;
@@ -266,7 +266,8 @@ bool TriangleLocator::contains(std::size_t position, Vec2 p, double w[3]) const 
 }
 
 bool TriangleLocator::strictly_inside(int position, Vec2 p, Located& out) const {
-  if (!contains(static_cast<std::size_t>(position), p, out.w) || !(out.w[0] > 0.0 && out.w[1] > 0.0 && out.w[2] > 0.0)) {
+  if (!contains(static_cast<std::size_t>(position), p, out.w) ||
+      !(out.w[0] > 0.0 && out.w[1] > 0.0 && out.w[2] > 0.0)) {
     return false;
   }
   out.position = position;

@@ -44,8 +44,9 @@ nb::dict geometry_of(const CaseConfig& c) {
     options.corner_angle_deg = c.geometry.corner_angle;
     std::vector<std::string> files;
     for (const auto& f : c.geometry.files) files.push_back(f.string());
-    g = c.geometry.given_curves.empty() ? read_geometry(files, c.geometry.curve_names, options)
-                                  : geometry_from_curves(c.geometry.given_curves, c.geometry.curve_names, options);
+    g = c.geometry.given_curves.empty()
+            ? read_geometry(files, c.geometry.curve_names, options)
+            : geometry_from_curves(c.geometry.given_curves, c.geometry.curve_names, options);
   }
   nb::list names, curves, loops;
   for (const Curve& curve : g.curves) {

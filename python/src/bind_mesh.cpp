@@ -21,9 +21,12 @@ namespace {
 
 // The per-triangle measures by their names (docs/quality.md; the command's --color-by names).
 const std::vector<std::pair<const char*, double TriangleQuality::*>> kMetrics = {
-    {"min_angle", &TriangleQuality::min_angle},       {"max_angle", &TriangleQuality::max_angle},
-    {"aspect_ratio", &TriangleQuality::aspect_ratio}, {"skewness", &TriangleQuality::skewness},
-    {"condition_number", &TriangleQuality::condition_number}, {"min_jacobian", &TriangleQuality::min_jacobian},
+    {"min_angle", &TriangleQuality::min_angle},
+    {"max_angle", &TriangleQuality::max_angle},
+    {"aspect_ratio", &TriangleQuality::aspect_ratio},
+    {"skewness", &TriangleQuality::skewness},
+    {"condition_number", &TriangleQuality::condition_number},
+    {"min_jacobian", &TriangleQuality::min_jacobian},
 };
 
 std::vector<double> metric_values(const std::vector<TriangleQuality>& q, double TriangleQuality::*member) {
@@ -77,7 +80,8 @@ nb::dict boundary_edges(const MeshHandle& h) {
   for (std::size_t c = 0; c < per.size(); ++c) {
     auto* v = new std::vector<std::int32_t>(std::move(per[c]));
     nb::capsule owner(v, [](void* p) noexcept { delete static_cast<std::vector<std::int32_t>*>(p); });
-    d[nb::str(mesh.curve_names[c].c_str())] = nb::ndarray<nb::numpy, std::int32_t>(v->data(), {v->size() / 2, 2}, owner);
+    d[nb::str(mesh.curve_names[c].c_str())] =
+        nb::ndarray<nb::numpy, std::int32_t>(v->data(), {v->size() / 2, 2}, owner);
   }
   return d;
 }
@@ -142,7 +146,8 @@ void bind_mesh(nb::module_& m) {
             const auto* k = reinterpret_cast<const std::uint8_t*>(h.mesh->kind.data());
             return shared_view<std::uint8_t, 1>(k, h.mesh->kind.size(), h.mesh);
           },
-          nb::rv_policy::automatic, "(N,) uint8 point kinds (0 fixed, 1 boundary, 2 interior); empty for a mesh read from a file.")
+          nb::rv_policy::automatic,
+          "(N,) uint8 point kinds (0 fixed, 1 boundary, 2 interior); empty for a mesh read from a file.")
       .def_prop_ro(
           "spacing",
           [](const MeshHandle& h) {

@@ -234,8 +234,8 @@ void bind_mesher(nb::module_& m) {
   m.def("_backend_setups", &backend_setups,
         "How many simulation backends this process has set up (choose_backend); for tests.");
   nb::class_<Mesher>(m, "Mesher", "One case's run in memory (use pdmesh.Mesher).")
-      .def(nb::init<const CaseConfig&, const std::string&, std::uint64_t>(), nb::arg("config"),
-           nb::arg("out_dir") = "", nb::arg("max_nodes") = 0,
+      .def(nb::init<const CaseConfig&, const std::string&, std::uint64_t>(), nb::arg("config"), nb::arg("out_dir") = "",
+           nb::arg("max_nodes") = 0,
            "Reads the geometry, builds the spacing field and the initial distribution; with out_dir, writes the "
            "command's outputs there as the run goes; max_nodes > 0 replaces the --max-nodes limit.")
       .def("step", &Mesher::step, nb::arg("target"), nb::arg("progress").none(), nb::arg("interval") = 0.1,

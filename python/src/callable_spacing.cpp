@@ -50,7 +50,8 @@ void CallableSpacing::at_many(const std::vector<Vec2>& p, std::vector<double>& q
                                    p[i].x, p[i].y));
     q[i] = v[i];
   }
-  nanoseconds_ += std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now() - start).count();
+  nanoseconds_ +=
+      std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now() - start).count();
 }
 
 }  // namespace pdmesh::py

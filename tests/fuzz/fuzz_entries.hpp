@@ -175,7 +175,8 @@ inline void metric_reader_medit(const std::uint8_t* data, std::size_t size) {
   const std::string_view text = as_text(data, size);
   const std::size_t cut = text.find('\f');
   const auto mesh = write_scratch("input.mesh", text.substr(0, cut));
-  const auto sol = write_scratch("input.sol", cut == std::string_view::npos ? std::string_view() : text.substr(cut + 1));
+  const auto sol =
+      write_scratch("input.sol", cut == std::string_view::npos ? std::string_view() : text.substr(cut + 1));
   try {
     const auto field = make_mesh_metric_field(load_medit_metric(mesh, sol));
     (void)field->at({0.5, 0.5});
@@ -243,11 +244,16 @@ struct Target {
 
 inline const std::vector<Target>& targets() {
   static const std::vector<Target> all{
-      {"fuzz_curve_reader", curve_reader},          {"fuzz_poly_reader", poly_reader},
-      {"fuzz_case_file", case_file},                {"fuzz_node_file", node_file},
-      {"fuzz_mesh_reader_msh", mesh_reader_msh},    {"fuzz_mesh_reader_vtu", mesh_reader_vtu},
-      {"fuzz_mesh_reader_su2", mesh_reader_su2},    {"fuzz_mesh_reader_triangle", mesh_reader_triangle},
-      {"fuzz_checkpoint", checkpoint_reader},        {"fuzz_metric_reader_medit", metric_reader_medit},
+      {"fuzz_curve_reader", curve_reader},
+      {"fuzz_poly_reader", poly_reader},
+      {"fuzz_case_file", case_file},
+      {"fuzz_node_file", node_file},
+      {"fuzz_mesh_reader_msh", mesh_reader_msh},
+      {"fuzz_mesh_reader_vtu", mesh_reader_vtu},
+      {"fuzz_mesh_reader_su2", mesh_reader_su2},
+      {"fuzz_mesh_reader_triangle", mesh_reader_triangle},
+      {"fuzz_checkpoint", checkpoint_reader},
+      {"fuzz_metric_reader_medit", metric_reader_medit},
   };
   return all;
 }

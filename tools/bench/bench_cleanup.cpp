@@ -2,7 +2,8 @@
 // (e.g. a run's final.nodes) over its geometry, cleans the mesh, checks it and prints the quality
 // before and after and the time of each stage, single-threaded.
 // Usage: bench_cleanup NODES GEOMETRY... [--min-angle D] [--iterations N] [--smooth-below D]
-//                      [--step-cap F] [--no-topology] [--no-compound] [--trials-per-triangle F] [--min-trials N] [--repeats N] [--png PREFIX] [--window x0,y0,x1,y1]
+//                      [--step-cap F] [--no-topology] [--no-compound] [--trials-per-triangle F] [--min-trials N]
+//                      [--repeats N] [--png PREFIX] [--window x0,y0,x1,y1]
 //                      [--spacing EXPRESSION] (default: the boundary spacing, eq. 3.6)
 //                      [--per-iteration] (a table of every outer iteration) [--write MESH.msh] (the cleaned mesh)
 //        bench_cleanup --write-graded N FILE.crv   (the graded_N geometry of `pdmesh bench` as a curve file)
@@ -35,9 +36,10 @@ using namespace pdmesh;
 namespace {
 
 void print_summary(const char* label, const QualitySummary& s) {
-  fmt::print("{:<7} triangles {:>8}  min {:7.3f}  max {:6.2f}  AR avg {:.6f}  edge/q mean {:.3f} std {:.4f}  <{:g}deg {}\n",
-             label, s.triangles, s.min_angle, s.max_angle, s.aspect_ratio_avg, s.spacing.mean, s.spacing.stddev,
-             s.small_angle_deg, s.small_angle_triangles);
+  fmt::print(
+      "{:<7} triangles {:>8}  min {:7.3f}  max {:6.2f}  AR avg {:.6f}  edge/q mean {:.3f} std {:.4f}  <{:g}deg {}\n",
+      label, s.triangles, s.min_angle, s.max_angle, s.aspect_ratio_avg, s.spacing.mean, s.spacing.stddev,
+      s.small_angle_deg, s.small_angle_triangles);
 }
 
 }  // namespace
@@ -58,23 +60,40 @@ int main(int argc, char** argv) {
         if (i + 1 >= argc) throw std::runtime_error(arg + " needs a value");
         return argv[++i];
       };
-      if (arg == "--min-angle") options.min_angle = std::stod(value());
-      else if (arg == "--iterations") options.iterations = std::stoi(value());
-      else if (arg == "--smooth-below") options.smooth_below = std::stod(value());
-      else if (arg == "--topology-below") options.topology_below = std::stod(value());
-      else if (arg == "--step-cap") options.step_cap = std::stod(value());
-      else if (arg == "--no-topology") options.topology = false;
-      else if (arg == "--no-compound") options.compound = false;
-      else if (arg == "--trials-per-triangle") options.trials_per_triangle = std::stod(value());
-      else if (arg == "--min-trials") options.min_trials = std::stod(value());
-      else if (arg == "--repeats") repeats = std::stoi(value());
-      else if (arg == "--png") png = value();
-      else if (arg == "--worst") worst = std::stoi(value());
-      else if (arg == "--move-min-rise") options.move_min_rise = std::stod(value());
-      else if (arg == "--move-aspect-drop") options.move_aspect_drop = std::stod(value());
-      else if (arg == "--per-iteration") options.measure_iterations = true;
-      else if (arg == "--write") mesh_out = value();
-      else if (arg == "--spacing") expression = value();
+      if (arg == "--min-angle")
+        options.min_angle = std::stod(value());
+      else if (arg == "--iterations")
+        options.iterations = std::stoi(value());
+      else if (arg == "--smooth-below")
+        options.smooth_below = std::stod(value());
+      else if (arg == "--topology-below")
+        options.topology_below = std::stod(value());
+      else if (arg == "--step-cap")
+        options.step_cap = std::stod(value());
+      else if (arg == "--no-topology")
+        options.topology = false;
+      else if (arg == "--no-compound")
+        options.compound = false;
+      else if (arg == "--trials-per-triangle")
+        options.trials_per_triangle = std::stod(value());
+      else if (arg == "--min-trials")
+        options.min_trials = std::stod(value());
+      else if (arg == "--repeats")
+        repeats = std::stoi(value());
+      else if (arg == "--png")
+        png = value();
+      else if (arg == "--worst")
+        worst = std::stoi(value());
+      else if (arg == "--move-min-rise")
+        options.move_min_rise = std::stod(value());
+      else if (arg == "--move-aspect-drop")
+        options.move_aspect_drop = std::stod(value());
+      else if (arg == "--per-iteration")
+        options.measure_iterations = true;
+      else if (arg == "--write")
+        mesh_out = value();
+      else if (arg == "--spacing")
+        expression = value();
       else if (arg == "--write-graded") {
         const auto target = static_cast<std::size_t>(std::stod(value()));
         const Geometry g = graded_case_geometry(graded_case_spacing(target));
@@ -85,15 +104,16 @@ int main(int argc, char** argv) {
         }
         write_text_file(value(), text);
         return 0;
-      }
-      else if (arg == "--window") {
+      } else if (arg == "--window") {
         Box b;
         double x0, y0, x1, y1;
-        if (std::sscanf(value().c_str(), "%lf,%lf,%lf,%lf", &x0, &y0, &x1, &y1) != 4) throw std::runtime_error("bad --window");
+        if (std::sscanf(value().c_str(), "%lf,%lf,%lf,%lf", &x0, &y0, &x1, &y1) != 4)
+          throw std::runtime_error("bad --window");
         b.add({x0, y0});
         b.add({x1, y1});
         window = b;
-      } else positional.push_back(arg);
+      } else
+        positional.push_back(arg);
     }
     if (positional.size() < 2) throw std::runtime_error("usage: bench_cleanup NODES GEOMETRY... [options]");
     const NodeFile file = read_node_file(positional[0]);
@@ -101,8 +121,10 @@ int main(int argc, char** argv) {
     const Geometry geometry = read_geometry(geometry_files, file.curve_names);
     const GeometryTree tree(geometry);
     std::unique_ptr<SpacingField> field;
-    if (expression.empty()) field = std::make_unique<BoundarySpacing>(tree);
-    else field = std::make_unique<ExpressionSpacing>(expression);
+    if (expression.empty())
+      field = std::make_unique<BoundarySpacing>(tree);
+    else
+      field = std::make_unique<ExpressionSpacing>(expression);
     const SpacingField& spacing = *field;
     const auto q = [&spacing](Vec2 p) { return spacing.at(p); };
     QualityOptions qo;
@@ -123,21 +145,26 @@ int main(int argc, char** argv) {
     }
     print_summary("after", summarize_quality(result.mesh, q, qo));
     const auto& st = result.stats;
-    fmt::print("cleanup: {} iterations, {} moves, {} inserted, {} collapsed, {} rejected, {} trials ({} compound, {} applied); "
-               "best of {}: wall {:.3f} s, cpu {:.3f} s (smoothing {:.3f} s, topology {:.3f} s wall; triangulation {:.3f} s)\n",
-               st.iterations_run, st.moves, st.inserted, st.collapsed, st.rejected, st.trials, st.compound_trials,
-               st.compound_applied, repeats, best, best_cpu,
-               st.smoothing_seconds, st.topology_seconds, triangulate_s);
+    fmt::print(
+        "cleanup: {} iterations, {} moves, {} inserted, {} collapsed, {} rejected, {} trials ({} compound, {} "
+        "applied); "
+        "best of {}: wall {:.3f} s, cpu {:.3f} s (smoothing {:.3f} s, topology {:.3f} s wall; triangulation {:.3f} "
+        "s)\n",
+        st.iterations_run, st.moves, st.inserted, st.collapsed, st.rejected, st.trials, st.compound_trials,
+        st.compound_applied, repeats, best, best_cpu, st.smoothing_seconds, st.topology_seconds, triangulate_s);
     if (options.measure_iterations) {
       // Where the work goes: per outer iteration the moves (and those that lowered their star's mean
       // aspect ratio by less than 1e-4), what they gained, and the mesh after it.
-      fmt::print("iter  moves  small  AR-drop(all)  AR-drop(small)  topo   trials last@trial last_deg  smooth_s  topo_s  min_deg  AR_mean\n");
+      fmt::print(
+          "iter  moves  small  AR-drop(all)  AR-drop(small)  topo   trials last@trial last_deg  smooth_s  topo_s  "
+          "min_deg  AR_mean\n");
       for (std::size_t k = 0; k < st.per_iteration.size(); ++k) {
         const CleanupIteration& it = st.per_iteration[k];
-        fmt::print("{:>4} {:>6} {:>6} {:>13.6g} {:>15.6g} {:>5} {:>8} {:>10} {:>8.3f} {:>9.3f} {:>7.3f} {:>8.3f} {:>8.6f}\n",
-                   k + 1, it.moves, it.small_moves, it.aspect_drop, it.small_aspect_drop, it.topology, it.trials,
-                   it.trials_to_last_change, it.last_change_angle, it.smoothing_seconds,
-                   it.topology_seconds, it.min_angle, it.aspect_mean);
+        fmt::print(
+            "{:>4} {:>6} {:>6} {:>13.6g} {:>15.6g} {:>5} {:>8} {:>10} {:>8.3f} {:>9.3f} {:>7.3f} {:>8.3f} {:>8.6f}\n",
+            k + 1, it.moves, it.small_moves, it.aspect_drop, it.small_aspect_drop, it.topology, it.trials,
+            it.trials_to_last_change, it.last_change_angle, it.smoothing_seconds, it.topology_seconds, it.min_angle,
+            it.aspect_mean);
       }
     }
     if (!mesh_out.empty()) write_text_file(mesh_out, msh41_string(result.mesh));  // to cmp two builds' output

@@ -25,7 +25,6 @@ using namespace pdmesh;
 
 namespace {
 
-
 double unit(std::mt19937_64& rng) { return static_cast<double>(rng() >> 11) * 0x1p-53; }
 
 // Processor time, not wall time: on a shared machine the wall time also counts the time other
@@ -67,7 +66,8 @@ void bench(const std::string& name, std::vector<Vec2> points, std::size_t querie
   for (auto& p : inside) p = {unit(rng), unit(rng)};
   for (auto& p : centroids) {
     const auto& t = triangles[static_cast<std::size_t>(rng() % triangles.size())];
-    p = (1.0 / 3.0) * (points[static_cast<std::size_t>(t[0])] + points[static_cast<std::size_t>(t[1])] + points[static_cast<std::size_t>(t[2])]);
+    p = (1.0 / 3.0) * (points[static_cast<std::size_t>(t[0])] + points[static_cast<std::size_t>(t[1])] +
+                       points[static_cast<std::size_t>(t[2])]);
   }
   for (auto& p : outside) {
     const double a = 2 * M_PI * unit(rng);
@@ -109,11 +109,12 @@ void bench(const std::string& name, std::vector<Vec2> points, std::size_t querie
 
   fmt::print("{}: {} points, {} triangles (Delaunay {:.2f} s)\n", name, points.size(), triangles.size(), delaunay);
   fmt::print("  build: TriangleLocator {:.3f} s; MeshSpacing with all checks {:.3f} s\n", locator_build, field_build);
-  fmt::print("  structure: {} leaves, depth {}, {:.2f} references per triangle, {} boundary edges, {:.1f} MB\n", s.leaves,
-             s.depth, static_cast<double>(s.references) / static_cast<double>(triangles.size()), s.boundary_edges,
-             static_cast<double>(s.bytes) / 1e6);
-  fmt::print("  at():      {:6.0f} ns/point random inside, {:6.0f} at triangle centroids, {:6.0f} outside, {:6.0f} in rows\n",
-             at_inside, at_centroids, at_outside, at_rows);
+  fmt::print("  structure: {} leaves, depth {}, {:.2f} references per triangle, {} boundary edges, {:.1f} MB\n",
+             s.leaves, s.depth, static_cast<double>(s.references) / static_cast<double>(triangles.size()),
+             s.boundary_edges, static_cast<double>(s.bytes) / 1e6);
+  fmt::print(
+      "  at():      {:6.0f} ns/point random inside, {:6.0f} at triangle centroids, {:6.0f} outside, {:6.0f} in rows\n",
+      at_inside, at_centroids, at_outside, at_rows);
   fmt::print("  at_many(): {:6.0f} ns/point random inside, {:6.0f} in rows\n", many_inside, many_rows);
   fmt::print("  ASCII .vtu of {:.0f} MB parsed in {:.2f} s ({} points back)   [checksum {:.3g}]\n",
              static_cast<double>(text.size()) / 1e6, parse, back.points.size(), sink);

@@ -81,9 +81,10 @@ std::vector<Vec2> polar1_points(double refine) {
 }
 
 std::string summary(const pdmesh::MetricQualitySummary& q) {
-  return fmt::format("{} triangles, {:.1f} % of edges in [1/sqrt2, sqrt2], L {:.3f}..{:.3f}, Q min {:.3f} mean {:.3f}, "
-                     "{:.2f} % below 0.3",
-                     q.triangles, q.window_percent, q.length_min, q.length_max, q.q_min, q.q_mean, q.q_below_0_3_percent);
+  return fmt::format(
+      "{} triangles, {:.1f} % of edges in [1/sqrt2, sqrt2], L {:.3f}..{:.3f}, Q min {:.3f} mean {:.3f}, "
+      "{:.2f} % below 0.3",
+      q.triangles, q.window_percent, q.length_min, q.length_max, q.q_min, q.q_mean, q.q_below_0_3_percent);
 }
 
 }  // namespace
@@ -125,10 +126,12 @@ int main(int argc, char** argv) {
     best_cpu = std::min(best_cpu, static_cast<double>(std::clock() - cpu) / CLOCKS_PER_SEC);
     best = std::min(best, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
   }
-  fmt::print("{} (refine {}): {} points; metric Delaunay {:.1f} ms wall ({:.1f} ms cpu; the isotropic triangulation alone {:.1f} ms wall, {:.1f} ms cpu), "
-             "{} flips ({:.2f} per point), {} tests, converged {}\n",
-             which, refine, pts.size(), 1e3 * best, 1e3 * best_cpu, 1e3 * iso_best, 1e3 * iso_cpu, stats.flips,
-             static_cast<double>(stats.flips) / static_cast<double>(pts.size()), stats.tests, stats.converged ? "yes" : "no");
+  fmt::print(
+      "{} (refine {}): {} points; metric Delaunay {:.1f} ms wall ({:.1f} ms cpu; the isotropic triangulation alone "
+      "{:.1f} ms wall, {:.1f} ms cpu), "
+      "{} flips ({:.2f} per point), {} tests, converged {}\n",
+      which, refine, pts.size(), 1e3 * best, 1e3 * best_cpu, 1e3 * iso_best, 1e3 * iso_cpu, stats.flips,
+      static_cast<double>(stats.flips) / static_cast<double>(pts.size()), stats.tests, stats.converged ? "yes" : "no");
   if (which == "polar1") {
     // The domain of polar-1 is [0, 1]² minus the disc r < 0.5: the triangles across the disc (the
     // points' convex hull spans it) are not part of the mesh.

@@ -34,10 +34,13 @@ std::pair<double, double> best_of(int repeats, const F& f) {
 int bench_node_file(const std::string& path, int repeats) {
   const pdmesh::NodeFile file = pdmesh::read_node_file(path);
   std::size_t triangles = 0;
-  const auto [mesh_s, mesh_cpu] = best_of(repeats, [&] { triangles = pdmesh::triangulate(file.nodes, file.curve_names).triangles.size(); });
+  const auto [mesh_s, mesh_cpu] =
+      best_of(repeats, [&] { triangles = pdmesh::triangulate(file.nodes, file.curve_names).triangles.size(); });
   const auto [dt_s, dt_cpu] = best_of(repeats, [&] { pdmesh::Triangulation tri(file.nodes.x); });
-  fmt::print("{}: {} nodes, {} triangles, best of {}: constrained mesh wall {:.2f} ms (cpu {:.2f} ms), Delaunay alone {:.2f} ms (cpu {:.2f} ms)\n",
-             path, file.nodes.x.size(), triangles, repeats, 1e3 * mesh_s, 1e3 * mesh_cpu, 1e3 * dt_s, 1e3 * dt_cpu);
+  fmt::print(
+      "{}: {} nodes, {} triangles, best of {}: constrained mesh wall {:.2f} ms (cpu {:.2f} ms), Delaunay alone {:.2f} "
+      "ms (cpu {:.2f} ms)\n",
+      path, file.nodes.x.size(), triangles, repeats, 1e3 * mesh_s, 1e3 * mesh_cpu, 1e3 * dt_s, 1e3 * dt_cpu);
   return 0;
 }
 
@@ -45,7 +48,8 @@ int bench_node_file(const std::string& path, int repeats) {
 
 int main(int argc, char** argv) {
   try {
-    if (argc > 2 && std::string(argv[1]) == "--nodes") return bench_node_file(argv[2], argc > 3 ? std::stoi(argv[3]) : 20);
+    if (argc > 2 && std::string(argv[1]) == "--nodes")
+      return bench_node_file(argv[2], argc > 3 ? std::stoi(argv[3]) : 20);
     const std::size_t count = argc > 1 ? static_cast<std::size_t>(std::stod(argv[1])) : 1000000;
     const std::uint64_t seed = argc > 2 ? std::stoull(argv[2]) : 1;
     const int repeats = argc > 3 ? std::stoi(argv[3]) : 3;
@@ -69,9 +73,11 @@ int main(int argc, char** argv) {
       triangles = tri.inner_triangles().size();
       best = std::min(best, seconds);
     }
-    fmt::print("{} points, {} triangles, best of {}: wall {:.3f} s ({:.3g} points/second), cpu {:.3f} s ({:.3g} points/second)\n",
-               count, triangles, repeats, best, static_cast<double>(count) / best, best_cpu,
-               static_cast<double>(count) / best_cpu);
+    fmt::print(
+        "{} points, {} triangles, best of {}: wall {:.3f} s ({:.3g} points/second), cpu {:.3f} s ({:.3g} "
+        "points/second)\n",
+        count, triangles, repeats, best, static_cast<double>(count) / best, best_cpu,
+        static_cast<double>(count) / best_cpu);
     return 0;
   } catch (const std::exception& e) {
     fmt::print(stderr, "bench_triangulation: {}\n", e.what());

@@ -27,7 +27,8 @@ int main(int argc, char** argv) {
     const ocl::ForceLoop loop = ocl::parse_force_loop(argv[2], "kernel_source: the force loop");
     if (loop == ocl::ForceLoop::Auto) throw InputError("kernel_source: name the force loop: vector or scalar");
     const ocl::Precision p = precision == "double" ? ocl::Precision::Double : ocl::Precision::Float;
-    fmt::print("{}", ocl::program_source(ocl::step_program_files(), ocl::step_program_defines(p, ocl::kStepWorkGroup, loop)));
+    fmt::print("{}",
+               ocl::program_source(ocl::step_program_files(), ocl::step_program_defines(p, ocl::kStepWorkGroup, loop)));
   } catch (const InputError& e) {
     fmt::print(stderr, "{}\n{}", e.what(), usage);
     return 2;

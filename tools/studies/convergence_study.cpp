@@ -29,15 +29,21 @@ int main(int argc, char** argv) {
     std::string history_file;
     for (int a = 1; a < argc; ++a) {
       const std::string arg = argv[a];
-      if (arg == "--set" && a + 1 < argc) overrides.push_back(parse_set_option(argv[++a]));
-      else if (arg == "--every" && a + 1 < argc) every = std::stoi(argv[++a]);
-      else if (arg == "--history" && a + 1 < argc) history_file = argv[++a];
-      else if (!arg.empty() && arg[0] != '-') inputs.push_back(arg);
-      else throw InputError(fmt::format("convergence_study: unknown argument '{}'", arg));
+      if (arg == "--set" && a + 1 < argc)
+        overrides.push_back(parse_set_option(argv[++a]));
+      else if (arg == "--every" && a + 1 < argc)
+        every = std::stoi(argv[++a]);
+      else if (arg == "--history" && a + 1 < argc)
+        history_file = argv[++a];
+      else if (!arg.empty() && arg[0] != '-')
+        inputs.push_back(arg);
+      else
+        throw InputError(fmt::format("convergence_study: unknown argument '{}'", arg));
     }
     if (inputs.empty() || every < 1) {
-      fmt::print(stderr, "usage: convergence_study CASE.toml|GEOMETRY... [--set KEY=VALUE ...] [--every N] "
-                         "[--history FILE]\n");
+      fmt::print(stderr,
+                 "usage: convergence_study CASE.toml|GEOMETRY... [--set KEY=VALUE ...] [--every N] "
+                 "[--history FILE]\n");
       return 2;
     }
     std::vector<std::filesystem::path> files(inputs.begin(), inputs.end());

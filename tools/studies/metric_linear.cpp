@@ -16,7 +16,8 @@
 //     for the anisotropic Delaunay, which this case alone allows).
 // --anneal A: interior nodes get random kicks of metric length up to A, shrinking to 0 at half the run.
 // --sliding 1: the side nodes but the corners slide along their sides (Boundary kind) instead of staying Fixed.
-// Usage: metric_linear [--iterations N] [--dt DT] [--momentum B] [--stability C] [--seed S] [--sliding 1] [--anneal A] [--verbose 1]
+// Usage: metric_linear [--iterations N] [--dt DT] [--momentum B] [--stability C] [--seed S] [--sliding 1] [--anneal A]
+// [--verbose 1]
 // (--verbose 1 lists the triangles with Q < 0.75 of the metric-coordinate triangulation.)
 #include <fmt/format.h>
 
@@ -119,7 +120,8 @@ int main(int argc, char** argv) {
 
     double density_max = 0.0;
     for (int i = 0; i <= 200; ++i)
-      for (int j = 0; j <= 200; ++j) density_max = std::max(density_max, std::sqrt(field.at({i / 200.0, j / 200.0}).det()));
+      for (int j = 0; j <= 200; ++j)
+        density_max = std::max(density_max, std::sqrt(field.at({i / 200.0, j / 200.0}).det()));
     std::mt19937_64 rng(seed);
     auto uniform = [&rng] { return static_cast<double>(rng() >> 11) * 0x1.0p-53; };
     while (p.size() < boundary + interior) {
@@ -171,7 +173,8 @@ int main(int argc, char** argv) {
 
     fmt::print("last neighbour build: {} pairs within the cut-off, {} candidates examined ({:.1f} per pair)\n",
                flags.pairs_within, flags.pairs_examined,
-               static_cast<double>(flags.pairs_examined) / static_cast<double>(std::max<std::uint64_t>(1, flags.pairs_within)));
+               static_cast<double>(flags.pairs_examined) /
+                   static_cast<double>(std::max<std::uint64_t>(1, flags.pairs_within)));
     Mesh mesh;
     std::vector<Metric> metrics;
     std::vector<Vec2> mapped;

@@ -135,20 +135,22 @@ std::string format_row(const Row& r) {
   if (r.device) {
     const ocl::DeviceRunStats& d = *r.device;
     const double it = d.iterations;
-    split = fmt::format("bin {:.2f} / gather {:.2f} / step {:.2f} / host {:.2f} / down {:.2f} / up {:.2f} ({} rebuilds, {} from a sample, {} build passes, {} rows outgrew; largest spacing ratio {:.2f})",
-                        1e3 * d.bin_seconds / it, 1e3 * d.gather_seconds / it, 1e3 * d.step_seconds / it,
-                        1e3 * d.host_seconds / it, 1e3 * d.download_seconds / it, 1e3 * d.upload_seconds / it,
-                        d.rebuilds, d.sampled_builds, d.gathers, d.outgrown_rows, d.largest_spacing_ratio);
+    split = fmt::format(
+        "bin {:.2f} / gather {:.2f} / step {:.2f} / host {:.2f} / down {:.2f} / up {:.2f} ({} rebuilds, {} from a "
+        "sample, {} build passes, {} rows outgrew; largest spacing ratio {:.2f})",
+        1e3 * d.bin_seconds / it, 1e3 * d.gather_seconds / it, 1e3 * d.step_seconds / it, 1e3 * d.host_seconds / it,
+        1e3 * d.download_seconds / it, 1e3 * d.upload_seconds / it, d.rebuilds, d.sampled_builds, d.gathers,
+        d.outgrown_rows, d.largest_spacing_ratio);
     traffic = fmt::format("{:.0f}", static_cast<double>(d.bytes_down + d.bytes_up) / it);
     device_mem = fmt::format("{:.0f}", static_cast<double>(d.device_bytes) / static_cast<double>(r.nodes));
     steady = r.commands.steady.format();
     rebuild = r.commands.rebuild.format("rebuilds");
     if (d.pairs_listed > 0)
-      examined = fmt::format("{:.2f} (rebuilds {:.2f} per listed entry, x{:.2f} skin, longest row {})",
-                             static_cast<double>(r.pairs_examined) / static_cast<double>(r.pairs_within),
-                             static_cast<double>(d.rebuild_candidates) / d.pairs_listed,
-                             static_cast<double>(d.pairs_listed) * it / d.rebuilds / static_cast<double>(r.pairs_within),
-                             d.stride);
+      examined = fmt::format(
+          "{:.2f} (rebuilds {:.2f} per listed entry, x{:.2f} skin, longest row {})",
+          static_cast<double>(r.pairs_examined) / static_cast<double>(r.pairs_within),
+          static_cast<double>(d.rebuild_candidates) / d.pairs_listed,
+          static_cast<double>(d.pairs_listed) * it / d.rebuilds / static_cast<double>(r.pairs_within), d.stride);
   } else if (r.pairs_within > 0) {
     examined = fmt::format("{:.2f}", static_cast<double>(r.pairs_examined) / static_cast<double>(r.pairs_within));
   }
@@ -158,15 +160,15 @@ std::string format_row(const Row& r) {
         r.device ? fmt::format(", transfers {:.2f}", 1e3 * r.device->population_transfer_seconds / r.iterations) : "";
     const double seconds = r.device ? r.device->population_seconds : r.stats.population_seconds;
     split = fmt::format("{}{}population {:.2f}{} ({} events, +{} -{})", split == "-" ? "" : split,
-                        split == "-" ? "" : " / ", 1e3 * seconds / r.iterations, transfer,
-                        r.stats.population_events, r.stats.inserted, r.stats.removed);
+                        split == "-" ? "" : " / ", 1e3 * seconds / r.iterations, transfer, r.stats.population_events,
+                        r.stats.inserted, r.stats.removed);
   }
   const std::string ratio = r.device && r.host_ms > 0.0 ? fmt::format("{:.2f}", r.host_ms / (1e3 * per_it)) : "-";
-  return fmt::format("| {} | {} | {} | {} | {:.3f} | {:.3g} | {:.3g} | {:.0f} | {} | {} | {} | {} | {} | {} | {} |\n",
-                     r.case_name, r.backend, r.nodes, r.iterations, 1e3 * per_it, node_its, pairs,
-                     1e9 * per_it / static_cast<double>(r.nodes), examined, split, traffic, steady, rebuild,
-                     fmt::format("{:.0f} / {}", static_cast<double>(r.peak_rss) / static_cast<double>(r.nodes), device_mem),
-                     ratio);
+  return fmt::format(
+      "| {} | {} | {} | {} | {:.3f} | {:.3g} | {:.3g} | {:.0f} | {} | {} | {} | {} | {} | {} | {} |\n", r.case_name,
+      r.backend, r.nodes, r.iterations, 1e3 * per_it, node_its, pairs, 1e9 * per_it / static_cast<double>(r.nodes),
+      examined, split, traffic, steady, rebuild,
+      fmt::format("{:.0f} / {}", static_cast<double>(r.peak_rss) / static_cast<double>(r.nodes), device_mem), ratio);
 }
 
 // InputError naming the first argument out of range.
@@ -248,8 +250,16 @@ Row device_row(const BenchCase& c, const ocl::DeviceInfo& info, const SimOptions
              fmt::format("opencl:{}:{} {} ({}, {} loop){}", info.platform, info.device, info.type,
                          precision == ocl::Precision::Float ? "float" : "double",
                          ocl::force_loop_name(simulator.force_loop()), suffix),
-             nodes.size(), o.iterations, r.stats.seconds, r.stats.pairs_within, r.stats.pairs_examined,
-             simulator.stats(), commands, peak_rss_bytes(), host_ms, r.stats};
+             nodes.size(),
+             o.iterations,
+             r.stats.seconds,
+             r.stats.pairs_within,
+             r.stats.pairs_examined,
+             simulator.stats(),
+             commands,
+             peak_rss_bytes(),
+             host_ms,
+             r.stats};
 }
 
 }  // namespace
@@ -295,8 +305,18 @@ int run_bench(const BenchArguments& args) {
     if (!args.skip_host && !(large && args.skip_host_large)) {
       NodeSet nodes = c->initial;
       const SimResult r = run_simulation(nodes, *c->tree, *c->spacing, options);
-      Row row{c->name, "host reference" + suffix, nodes.size(), options.iterations, r.stats.seconds,
-              r.stats.pairs_within, r.stats.pairs_examined, std::nullopt, {}, peak_rss_bytes(), 0.0, r.stats};
+      Row row{c->name,
+              "host reference" + suffix,
+              nodes.size(),
+              options.iterations,
+              r.stats.seconds,
+              r.stats.pairs_within,
+              r.stats.pairs_examined,
+              std::nullopt,
+              {},
+              peak_rss_bytes(),
+              0.0,
+              r.stats};
       host_ms = 1e3 * r.stats.seconds / options.iterations;
       emit(row);
     }

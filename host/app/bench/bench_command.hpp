@@ -34,11 +34,11 @@ struct BenchArguments {
   int population_every = 0;
   // --whole-run: the `mesh` command end to end instead (app/bench/whole_run_bench.hpp).
   bool whole_run = false;
-  int repeat = 3;                          // runs per case and backend
+  int repeat = 3;                                // runs per case and backend
   std::vector<std::string> backends = {"auto"};  // --device of each run
-  std::vector<std::string> sets;           // --set KEY=VALUE passed to every run
-  std::string work_dir = "bench_runs";     // outputs of the runs and the generated cases
-  bool keep_pictures = true;               // false: --formats msh (no pictures)
+  std::vector<std::string> sets;                 // --set KEY=VALUE passed to every run
+  std::string work_dir = "bench_runs";           // outputs of the runs and the generated cases
+  bool keep_pictures = true;                     // false: --formats msh (no pictures)
 };
 
 // Runs the benchmark and prints the table; returns the exit status.

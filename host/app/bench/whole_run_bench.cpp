@@ -26,12 +26,12 @@ namespace fs = std::filesystem;
 namespace {
 
 struct RunRecord {
-  double wall = 0.0, cpu = 0.0;  // the whole process: wall (fork to exit), user + system
-  double peak_rss = 0.0;         // bytes
-  std::vector<std::pair<std::string, double>> phases;      // foreground phases in order: wall
-  std::map<std::string, double> phase_cpu;                 // their process CPU time
-  std::map<std::string, double> notes;                    // iterations, converged, nodes, ...
-  double pictures = 0.0, picture_cpu = 0.0;  // the background picture jobs, summed: wall, thread CPU
+  double wall = 0.0, cpu = 0.0;                        // the whole process: wall (fork to exit), user + system
+  double peak_rss = 0.0;                               // bytes
+  std::vector<std::pair<std::string, double>> phases;  // foreground phases in order: wall
+  std::map<std::string, double> phase_cpu;             // their process CPU time
+  std::map<std::string, double> notes;                 // iterations, converged, nodes, ...
+  double pictures = 0.0, picture_cpu = 0.0;            // the background picture jobs, summed: wall, thread CPU
   double load_before = 0.0, load_after = 0.0;
 };
 
@@ -130,10 +130,12 @@ std::string case_table(const std::string& title, const std::vector<RunRecord>& r
     for (const RunRecord& r : runs) v.push_back(get(r));
     return spread(v);
   };
-  out += fmt::format("| pictures (background thread, overlapping the phases above; CPU of that thread) | {} | {:.3f} |\n",
-                     seconds(column([](const RunRecord& r) { return r.pictures; })),
-                     column([](const RunRecord& r) { return r.picture_cpu; }).median);
-  out += fmt::format("| **whole process** | **{}** | {:.3f} |\n", seconds(column([](const RunRecord& r) { return r.wall; })),
+  out +=
+      fmt::format("| pictures (background thread, overlapping the phases above; CPU of that thread) | {} | {:.3f} |\n",
+                  seconds(column([](const RunRecord& r) { return r.pictures; })),
+                  column([](const RunRecord& r) { return r.picture_cpu; }).median);
+  out += fmt::format("| **whole process** | **{}** | {:.3f} |\n",
+                     seconds(column([](const RunRecord& r) { return r.wall; })),
                      column([](const RunRecord& r) { return r.cpu; }).median);
   return out;
 }
@@ -169,7 +171,8 @@ int run_whole_run_bench(const BenchArguments& args) {
     for (const std::string& backend : args.backends) {
       std::vector<RunRecord> runs;
       for (int k = 0; k < args.repeat; ++k) {
-        const fs::path out = fs::path(args.work_dir) / fmt::format("{}_{}", fs::path(name).filename().string(), backend) /
+        const fs::path out = fs::path(args.work_dir) /
+                             fmt::format("{}_{}", fs::path(name).filename().string(), backend) /
                              fmt::format("run{}", k + 1);
         const fs::path timings = out / "timings.json";
         fs::create_directories(out);
@@ -198,8 +201,8 @@ int run_whole_run_bench(const BenchArguments& args) {
       const std::string iterations =
           note("iterations") + (conv != first.notes.end() && conv->second > 0 ? " (converged)" : "");
       summary += fmt::format("| {} | {} | {} | {} | {} | {} | {:.3f} | {:.0f} | {:.1f} / {:.1f} |\n", name, backend,
-                             note("nodes"), note("triangles"), iterations, seconds(spread(walls)),
-                             spread(cpus).median, spread(rss).median, runs.front().load_before, runs.back().load_after);
+                             note("nodes"), note("triangles"), iterations, seconds(spread(walls)), spread(cpus).median,
+                             spread(rss).median, runs.front().load_before, runs.back().load_after);
       tables += case_table(fmt::format("{} on {} ({} nodes, {} iterations, {} runs)", name, backend, note("nodes"),
                                        iterations, runs.size()),
                            runs);

@@ -38,8 +38,8 @@ struct MeshArguments {
   std::vector<std::string> inputs;
   std::string out;
   std::vector<std::string> sets;
-  std::optional<std::string> iterations, dt, cutoff, method, seed, total, device, precision, formats, r0_rule,
-      color_by, stability, momentum, stop, timings;
+  std::optional<std::string> iterations, dt, cutoff, method, seed, total, device, precision, formats, r0_rule, color_by,
+      stability, momentum, stop, timings;
   std::vector<std::string> views;
   bool tree = false;
   bool plot_spacing = false;
@@ -180,7 +180,8 @@ bool is_geometry_extension(const std::string& ext) { return ext == ".crv" || ext
 CaseConfig config_from(const MeshArguments& a) {
   std::error_code ec;
   for (const std::string& name : a.inputs) {
-    if (!fs::exists(fs::path(name), ec)) throw InputError(fmt::format("cannot read '{}': {}", name, std::strerror(ENOENT)));
+    if (!fs::exists(fs::path(name), ec))
+      throw InputError(fmt::format("cannot read '{}': {}", name, std::strerror(ENOENT)));
   }
   fs::path input(a.inputs.front());
   // A case directory stands for the case.toml inside it.
@@ -195,8 +196,10 @@ CaseConfig config_from(const MeshArguments& a) {
   CaseConfig config;
   if (ext == ".toml") {
     if (a.inputs.size() > 1) {
-      throw InputError(fmt::format("{}: a case file is meshed alone; '{}' would be a second input (name geometry "
-                                   "files in the case file's geometry.files)", a.inputs.front(), a.inputs[1]));
+      throw InputError(
+          fmt::format("{}: a case file is meshed alone; '{}' would be a second input (name geometry "
+                      "files in the case file's geometry.files)",
+                      a.inputs.front(), a.inputs[1]));
     }
     config = load_case_file(input, overrides);
   } else if (is_geometry_extension(ext)) {
@@ -212,8 +215,10 @@ CaseConfig config_from(const MeshArguments& a) {
     }
     config = case_for_geometry_files(files, overrides);
   } else {
-    throw InputError(fmt::format("{}: unknown input type '{}' (expected a case .toml, a case directory or a .crv, "
-                                 ".dat or .poly geometry file)", a.inputs.front(), ext));
+    throw InputError(
+        fmt::format("{}: unknown input type '{}' (expected a case .toml, a case directory or a .crv, "
+                    ".dat or .poly geometry file)",
+                    a.inputs.front(), ext));
   }
   config.out_dir = a.out;
   config.quiet = a.quiet;
@@ -222,7 +227,8 @@ CaseConfig config_from(const MeshArguments& a) {
   config.max_nodes = static_cast<std::uint64_t>(a.max_nodes);
   if (a.max_memory) config.max_memory = parse_memory_limit(*a.max_memory);
   if (a.resume) config.resume = fs::path(*a.resume);
-  if (a.stop_after < 0) throw InputError(fmt::format("--stop-after {}: expected an iteration number >= 1", a.stop_after));
+  if (a.stop_after < 0)
+    throw InputError(fmt::format("--stop-after {}: expected an iteration number >= 1", a.stop_after));
   config.stop_after = a.stop_after;
   config.command_line = a.command_line;
   if (a.timings) config.timings_file = fs::path(*a.timings);
@@ -249,12 +255,12 @@ void add_mesh_options(CLI::App& mesh, MeshArguments& a) {
   mesh.add_option("--cutoff", a.cutoff, "simulation.cutoff: cut-off distance factor times q_i (> 0)")->type_name("F");
   mesh.add_option("--method", a.method, "init.method: structured | random | hexagonal")->type_name("METHOD");
   mesh.add_option("--seed", a.seed, "init.seed: seed of the random fill and overloading (>= 0)")->type_name("N");
-  mesh.add_option("--total", a.total, "init.total: total node count to reach by overloading (0 = off)")
-      ->type_name("N");
+  mesh.add_option("--total", a.total, "init.total: total node count to reach by overloading (0 = off)")->type_name("N");
   mesh.add_option("--device", a.device, "simulation.device: auto | host | opencl | opencl:P:D")->type_name("DEV");
   mesh.add_option("--precision", a.precision, "simulation.precision: double | float")->type_name("P");
-  mesh.add_option("--r0-rule", a.r0_rule,
-                  "simulation.r0_rule: force_direction (thesis eq. 5.3) | any_direction (nearest neighbour limits the step)")
+  mesh.add_option(
+          "--r0-rule", a.r0_rule,
+          "simulation.r0_rule: force_direction (thesis eq. 5.3) | any_direction (nearest neighbour limits the step)")
       ->type_name("RULE");
   mesh.add_option("--stability", a.stability,
                   "simulation.stability_factor in [0, 1]: bound each step by the local stiffness (default 1; "
@@ -278,14 +284,14 @@ void add_mesh_options(CLI::App& mesh, MeshArguments& a) {
       ->type_name("[NAME=]x0,y0,x1,y1")
       ->allow_extra_args(false);
   mesh.add_flag("--tree", a.tree, "output.tree_overlay: draw the initialization tree on the initial pictures");
-  mesh.add_flag("--plot-spacing", a.plot_spacing,
-                "output.spacing_picture: draw the final spacing field as DIR/spacing.png (log colour scale, boundary drawn)");
+  mesh.add_flag(
+      "--plot-spacing", a.plot_spacing,
+      "output.spacing_picture: draw the final spacing field as DIR/spacing.png (log colour scale, boundary drawn)");
   mesh.add_flag("--quiet,-q", a.quiet, "No progress messages on stderr and no quality table on stdout");
   mesh.add_flag("--check", a.check,
                 "Check the mesh invariants (topology, orientation, constrained Delaunay, boundary edges, area); "
                 "exit 1 listing the problems if any fails");
-  mesh.add_option("--max-nodes", a.max_nodes,
-                  "Refuse cases whose estimated node count exceeds this (default 20000000)")
+  mesh.add_option("--max-nodes", a.max_nodes, "Refuse cases whose estimated node count exceeds this (default 20000000)")
       ->type_name("N");
   mesh.add_option("--max-memory", a.max_memory,
                   "Refuse, before allocating, a run whose stages would need more memory than this: bytes, or with "
@@ -300,15 +306,18 @@ void add_mesh_options(CLI::App& mesh, MeshArguments& a) {
       ->type_name("FILE");
   // Testing aid (docs/cli.md): behave as if interrupted after iteration N. Hidden from --help.
   mesh.add_option("--stop-after", a.stop_after, "")->group("")->type_name("N");
-  mesh.footer("Options other than --out, --quiet, --max-nodes and --max-memory override keys of the case file;\n"
-              "every key can be set with --set (see docs/cli.md). Direct options are applied after --set.");
+  mesh.footer(
+      "Options other than --out, --quiet, --max-nodes and --max-memory override keys of the case file;\n"
+      "every key can be set with --set (see docs/cli.md). Direct options are applied after --set.");
 }
 
 }  // namespace
 
-Cli::Cli() : app_(std::make_unique<CLI::App>("pdmesh: physics-based point placement and triangle meshing", "pdmesh")),
-             mesh_(std::make_unique<MeshArguments>()), quality_(std::make_unique<QualityArguments>()),
-             bench_(std::make_unique<BenchArguments>()) {
+Cli::Cli()
+    : app_(std::make_unique<CLI::App>("pdmesh: physics-based point placement and triangle meshing", "pdmesh")),
+      mesh_(std::make_unique<MeshArguments>()),
+      quality_(std::make_unique<QualityArguments>()),
+      bench_(std::make_unique<BenchArguments>()) {
   app_->set_version_flag("--version", std::string("pdmesh ") + PDMESH_VERSION);
   app_->require_subcommand(1);
   CLI::App* mesh = app_->add_subcommand("mesh", "Distribute nodes for a case and write them and their pictures");
@@ -319,49 +328,64 @@ Cli::Cli() : app_(std::make_unique<CLI::App>("pdmesh: physics-based point placem
   quality->add_option("MESH", quality_->mesh, "Mesh file: .msh (Gmsh 2.2 or 4.1), .vtu, .su2, or Triangle .ele/.node")
       ->required()
       ->type_name("FILE");
-  quality->add_option("--geometry,-g", quality_->geometry,
-                      "Case file or geometry file giving the desired spacing q (for spacing conformance)")
+  quality
+      ->add_option("--geometry,-g", quality_->geometry,
+                   "Case file or geometry file giving the desired spacing q (for spacing conformance)")
       ->type_name("FILE");
   quality->add_option("--json", quality_->json, "Also write the JSON summary: a file, a directory, or - for stdout")
       ->type_name("PATH");
   quality->add_option("--picture", quality_->picture, "Also draw the mesh: a .png or .svg file")->type_name("FILE");
   quality->add_option("--view", quality_->view, "Window of the picture (default: the whole mesh)")
       ->type_name("x0,y0,x1,y1");
-  quality->add_option("--color-by", quality_->color_by,
-                      "Fill the picture's triangles by a metric: none | min_angle | max_angle | aspect_ratio | "
-                      "skewness | condition_number | min_jacobian")
+  quality
+      ->add_option("--color-by", quality_->color_by,
+                   "Fill the picture's triangles by a metric: none | min_angle | max_angle | aspect_ratio | "
+                   "skewness | condition_number | min_jacobian")
       ->type_name("METRIC");
-  quality->add_option("--color-range", quality_->color_range,
-                      "Values at the two ends of the colour scale (default: the mesh's range), so that pictures "
-                      "of different meshes compare")
+  quality
+      ->add_option("--color-range", quality_->color_range,
+                   "Values at the two ends of the colour scale (default: the mesh's range), so that pictures "
+                   "of different meshes compare")
       ->type_name("LO,HI");
   commands_.emplace_back(quality, [this] {
     const auto picture = quality_picture(*quality_);
     return run_quality(quality_->mesh, quality_->geometry, quality_->json, picture);
   });
 
-  CLI::App* bench = app_->add_subcommand("bench", "Time the simulation on the host reference and on each OpenCL device");
+  CLI::App* bench =
+      app_->add_subcommand("bench", "Time the simulation on the host reference and on each OpenCL device");
   bench->add_option("--cases", bench_->cases, "Cases to run (graded_1m is generated in code)")->type_name("NAME...");
   bench->add_option("--cases-dir", bench_->cases_dir, "Directory holding the named cases")->type_name("DIR");
   bench->add_option("--iterations", bench_->iterations, "Iterations per case and backend")->type_name("N");
   bench->add_option("--large-iterations", bench_->large_iterations, "Iterations for graded_1m")->type_name("N");
   bench->add_option("--large-nodes", bench_->large_nodes, "Target node count of graded_1m")->type_name("N");
-  bench->add_option("--precision", bench_->precision, "double | float (devices without fp64 run float)")->type_name("P");
-  bench->add_option("--warmup", bench_->warmup, "Untimed iterations before timing, every backend from that state")->type_name("N");
+  bench->add_option("--precision", bench_->precision, "double | float (devices without fp64 run float)")
+      ->type_name("P");
+  bench->add_option("--warmup", bench_->warmup, "Untimed iterations before timing, every backend from that state")
+      ->type_name("N");
   bench->add_option("--large-warmup", bench_->large_warmup, "The same for graded_1m")->type_name("N");
-  bench->add_option("--skin", bench_->verlet_skin, "Verlet skin of the device runs (list radius cutoff q (1 + skin)); default as pdmesh mesh: 0.3, or 0.8 with momentum")->type_name("S");
-  bench->add_option("--population", bench_->population_every,
-                    "Population control during the timed iterations: an event every K iterations (0 = off)")
+  bench
+      ->add_option("--skin", bench_->verlet_skin,
+                   "Verlet skin of the device runs (list radius cutoff q (1 + skin)); default as pdmesh mesh: 0.3, or "
+                   "0.8 with momentum")
+      ->type_name("S");
+  bench
+      ->add_option("--population", bench_->population_every,
+                   "Population control during the timed iterations: an event every K iterations (0 = off)")
       ->type_name("K");
   bench->add_flag("--skip-host", bench_->skip_host, "Do not run the host reference");
   bench->add_flag("--skip-host-large", bench_->skip_host_large, "Do not run the host reference on graded_1m");
-  bench->add_option("--force-loop", bench_->force_loop, "Force loop of the device runs: auto | vector | scalar")->type_name("L");
+  bench->add_option("--force-loop", bench_->force_loop, "Force loop of the device runs: auto | vector | scalar")
+      ->type_name("L");
   bench->add_option("--out", bench_->out, "Also write the table (Markdown) to this file")->type_name("FILE");
-  bench->add_flag("--whole-run", bench_->whole_run,
-                  "Time the mesh command end to end instead: every phase, --repeat runs per case and backend, each "
-                  "a separate process")
+  bench
+      ->add_flag("--whole-run", bench_->whole_run,
+                 "Time the mesh command end to end instead: every phase, --repeat runs per case and backend, each "
+                 "a separate process")
       ->group("Whole runs");
-  bench->add_option("--repeat", bench_->repeat, "Runs per case and backend (--whole-run)")->type_name("N")->group("Whole runs");
+  bench->add_option("--repeat", bench_->repeat, "Runs per case and backend (--whole-run)")
+      ->type_name("N")
+      ->group("Whole runs");
   bench->add_option("--backends", bench_->backends, "--device of the runs, e.g. host auto (--whole-run)")
       ->type_name("DEV...")
       ->group("Whole runs");
@@ -372,8 +396,10 @@ Cli::Cli() : app_(std::make_unique<CLI::App>("pdmesh: physics-based point placem
   bench->add_option("--work-dir", bench_->work_dir, "Where the runs write (and annulus_N cases are generated)")
       ->type_name("DIR")
       ->group("Whole runs");
-  bench->add_flag("--no-pictures{false}", bench_->keep_pictures, "Runs write no pictures (--formats msh)")->group("Whole runs");
-  commands_.emplace_back(bench, [this] { return bench_->whole_run ? run_whole_run_bench(*bench_) : run_bench(*bench_); });
+  bench->add_flag("--no-pictures{false}", bench_->keep_pictures, "Runs write no pictures (--formats msh)")
+      ->group("Whole runs");
+  commands_.emplace_back(bench,
+                         [this] { return bench_->whole_run ? run_whole_run_bench(*bench_) : run_bench(*bench_); });
 
   CLI::App* devices = app_->add_subcommand("devices", "List the OpenCL platforms and devices (--device opencl:P:D)");
   devices->add_flag("--check", devices_check_, "Also build and run a small kernel on each device");

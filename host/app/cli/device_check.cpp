@@ -50,10 +50,10 @@ DeviceCheck check_device(const ocl::DeviceInfo& device) {
       ocl::StepProgram program(ctx, precision);  // the same program (built again, from the cache on PoCL)
       std::size_t limit = program.limits.front().max_work_group;
       for (const ocl::KernelLimits& k : program.limits) limit = std::min(limit, k.max_work_group);
-      check.lines.push_back(fmt::format("program: built in {}; work-groups of {} fit every kernel (the smallest "
-                                        "kernel limit is {}, preferred multiple {})",
-                                        precision_name, program.work_group, limit,
-                                        program.limits.front().preferred_multiple));
+      check.lines.push_back(
+          fmt::format("program: built in {}; work-groups of {} fit every kernel (the smallest "
+                      "kernel limit is {}, preferred multiple {})",
+                      precision_name, program.work_group, limit, program.limits.front().preferred_multiple));
       const std::string advice = ocl::work_group_advice(program.limits, program.work_group);
       if (!advice.empty()) check.lines.push_back("note: " + advice);
     }
@@ -78,36 +78,40 @@ DeviceCheck check_device(const ocl::DeviceInfo& device) {
       worst = std::max(worst, norm(dev.x[i] - host.x[i]) / host.q[i]);
     }
     const bool same_topology = dev.kind == host.kind && dev.curve_nodes == host.curve_nodes;
-    const std::string run = fmt::format("{} iterations of {} nodes (random start, {} snapped, {} neighbour-list builds)",
-                                        kIterations, start.size(), host_run.stats.snapped, simulator.stats().rebuilds);
+    const std::string run =
+        fmt::format("{} iterations of {} nodes (random start, {} snapped, {} neighbour-list builds)", kIterations,
+                    start.size(), host_run.stats.snapped, simulator.stats().rebuilds);
     check.bit_identical = precision == ocl::Precision::Double && same_topology && differ == 0;
     // Float rounds differently by design; a double run off by more than this is wrong, not just
     // rounded differently (a fused multiply-add changes the last bits, which the start amplifies).
     const double tolerance = precision == ocl::Precision::Double ? 1e-3 : 2e-2;
     if (check.bit_identical) {
-      check.lines.push_back(fmt::format("step: {} equal the host reference bit for bit (FP_CONTRACT OFF honoured, "
-                                        "double rounded as on the host)", run));
+      check.lines.push_back(
+          fmt::format("step: {} equal the host reference bit for bit (FP_CONTRACT OFF honoured, "
+                      "double rounded as on the host)",
+                      run));
     } else if (same_topology && worst <= tolerance) {
       check.lines.push_back(fmt::format("step: {}: {} of {} nodes differ from the host reference, by at most {:.2g} q",
                                         run, differ, host.size(), worst));
       if (precision == ocl::Precision::Double)
-        check.lines.push_back("warning: not bit-identical in double: this device contracts a * b + c into fused "
-                              "multiply-adds despite FP_CONTRACT OFF, or rounds double / or sqrt differently; its "
-                              "runs will not repeat the host's bit for bit (their quality is unaffected)");
+        check.lines.push_back(
+            "warning: not bit-identical in double: this device contracts a * b + c into fused "
+            "multiply-adds despite FP_CONTRACT OFF, or rounds double / or sqrt differently; its "
+            "runs will not repeat the host's bit for bit (their quality is unaffected)");
     } else {
-      check.lines.push_back(fmt::format("step: {}: {} of {} nodes differ from the host reference, by up to {:.3g} q{} "
-                                        "(more than the {:g} q a correct {} device stays within)",
-                                        run, differ, host.size(), worst,
-                                        same_topology ? "" : ", and the nodes on the curves differ", tolerance,
-                                        precision_name));
+      check.lines.push_back(
+          fmt::format("step: {}: {} of {} nodes differ from the host reference, by up to {:.3g} q{} "
+                      "(more than the {:g} q a correct {} device stays within)",
+                      run, differ, host.size(), worst, same_topology ? "" : ", and the nodes on the curves differ",
+                      tolerance, precision_name));
       return check;
     }
     (void)dev_run;
     if (device.fp64) {
       const double slowdown = ocl::measure_fp64_slowdown(ctx);
       const ocl::PrecisionChoice choice = ocl::choose_precision_auto(device, [slowdown] { return slowdown; });
-      check.lines.push_back(fmt::format("fp64: double took {:.1f}x as long as float (measured); --precision auto picks {}",
-                                        slowdown, choice.reason));
+      check.lines.push_back(fmt::format(
+          "fp64: double took {:.1f}x as long as float (measured); --precision auto picks {}", slowdown, choice.reason));
     } else {
       check.lines.push_back("fp64: none; --precision auto (and double) simulate in float");
     }

@@ -1,6 +1,6 @@
 // `pdmesh quality`: reads a mesh in any supported format, prints the thesis-style quality table
-// and optionally writes the JSON summary and a picture of the mesh. Spacing conformance needs the desired spacing q, which
-// comes from a case file (its geometry and [spacing]) or a bare geometry file (eq. 3.6).
+// and optionally writes the JSON summary and a picture of the mesh. Spacing conformance needs the desired spacing q,
+// which comes from a case file (its geometry and [spacing]) or a bare geometry file (eq. 3.6).
 #pragma once
 #include <array>
 #include <iosfwd>
@@ -12,9 +12,9 @@ namespace pdmesh {
 
 // `--picture`: the mesh drawn as a PNG or SVG, optionally zoomed and filled by a metric.
 struct QualityPicture {
-  std::string path;                                    // .png or .svg
-  std::optional<std::array<double, 4>> window;         // x0, y0, x1, y1; default the mesh's extents + 3%
-  std::string color_by = "none";                       // none or a metric name (metric_values)
+  std::string path;                                      // .png or .svg
+  std::optional<std::array<double, 4>> window;           // x0, y0, x1, y1; default the mesh's extents + 3%
+  std::string color_by = "none";                         // none or a metric name (metric_values)
   std::optional<std::pair<double, double>> color_range;  // colour scale; default the values' range
 };
 

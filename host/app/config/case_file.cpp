@@ -25,7 +25,8 @@ namespace {
 // Tables that may hold further keys; every other key is a leaf.
 constexpr std::size_t kMaxNameBytes = 200;
 
-const std::vector<std::string> kSections = {"geometry", "spacing", "boundary", "init", "simulation", "population", "cleanup", "output"};
+const std::vector<std::string> kSections = {"geometry",   "spacing",    "boundary", "init",
+                                            "simulation", "population", "cleanup",  "output"};
 
 std::string nearest_key(const std::string& key) {
   std::string best;
@@ -108,10 +109,8 @@ bool is_string_key(const std::string& key) {
          key == "spacing.field" || key == "spacing.expression" || key == "spacing.file" || key == "spacing.array" ||
          key == "spacing.h1" || key == "spacing.h2" || key == "spacing.angle" || key == "spacing.m11" ||
          key == "spacing.m12" || key == "spacing.m22" || key == "spacing.sol" || key == "spacing.function" ||
-         key == "init.method" ||
-         key == "simulation.device" || key == "simulation.precision" || key == "simulation.r0_rule" ||
-         key == "simulation.stop" ||
-         key == "output.color_by";
+         key == "init.method" || key == "simulation.device" || key == "simulation.precision" ||
+         key == "simulation.r0_rule" || key == "simulation.stop" || key == "output.color_by";
 }
 
 // Parses an override's value as TOML; a bare word that is not TOML (random, a.crv) is a string.
@@ -143,9 +142,9 @@ void apply_override(toml::table& root, const CaseOverride& o, Reader& r) {
       t->insert_or_assign(parts[i], toml::table{});
       n = t->get(parts[i]);
     } else if (!n->is_table()) {
-      throw InputError(fmt::format("{}: cannot set '{}': '{}' is not a table (it is {} {})", o.label, o.key, path,
-                                   std::string_view("aeiou").find(type_name(*n)[0]) == std::string_view::npos ? "a" : "an",
-                                   type_name(*n)));
+      throw InputError(fmt::format(
+          "{}: cannot set '{}': '{}' is not a table (it is {} {})", o.label, o.key, path,
+          std::string_view("aeiou").find(type_name(*n)[0]) == std::string_view::npos ? "a" : "an", type_name(*n)));
     }
     t = n->as_table();
   }
@@ -172,9 +171,9 @@ CaseConfig check_values(const toml::table& root, const Reader& r, CaseConfig c) 
   // overrides. c holds the long preset's values (CaseConfig's initializers) until then.
   Preset preset = Preset::Best;
   if (const toml::node* n = root.get("preset")) {
-    preset = choose<Preset>(r, "preset", *n,
-                            {{"best", Preset::Best}, {"thesis", Preset::Thesis}, {"long", Preset::Long},
-                             {"fast", Preset::Fast}});
+    preset = choose<Preset>(
+        r, "preset", *n,
+        {{"best", Preset::Best}, {"thesis", Preset::Thesis}, {"long", Preset::Long}, {"fast", Preset::Fast}});
   }
   apply_preset(c, preset);
   if (const toml::node* n = root.get("name")) {
@@ -182,8 +181,9 @@ CaseConfig check_values(const toml::table& root, const Reader& r, CaseConfig c) 
     if (c.name.empty()) r.fail("name", n, "name must not be empty");
     // The name titles pictures: a line of text, not a payload.
     if (c.name.size() > kMaxNameBytes) {
-      r.fail("name", n, fmt::format("name has {} bytes, more than {} (got '{}')", c.name.size(), kMaxNameBytes,
-                                    quote_input(c.name)));
+      r.fail(
+          "name", n,
+          fmt::format("name has {} bytes, more than {} (got '{}')", c.name.size(), kMaxNameBytes, quote_input(c.name)));
     }
     const auto control = [](char ch) { return static_cast<unsigned char>(ch) < 0x20 || ch == 0x7f; };
     if (std::any_of(c.name.begin(), c.name.end(), control)) {
@@ -214,28 +214,89 @@ bool CaseConfig::Output::wants(const std::string& format) const {
 
 const std::vector<std::string>& case_file_keys() {
   static const std::vector<std::string> keys = {
-      "name", "preset",
-      "geometry.files", "geometry.curve_names", "geometry.join_tolerance", "geometry.corner_angle",
-      "geometry.curves", "spacing.field", "spacing.expression", "spacing.file", "spacing.array", "spacing.scale",
-      "spacing.gradation", "spacing.rows_in_gap", "spacing.curvature_angle", "spacing.background_tolerance",
-      "spacing.background_min_side", "spacing.background_boundary_min_side", "spacing.h1", "spacing.h2",
-      "spacing.angle", "spacing.m11", "spacing.m12", "spacing.m22", "spacing.sol", "spacing.function",
-      "spacing.complexity", "spacing.hmin", "spacing.hmax", "spacing.max_anisotropy", "spacing.metric_gradation",
+      "name",
+      "preset",
+      "geometry.files",
+      "geometry.curve_names",
+      "geometry.join_tolerance",
+      "geometry.corner_angle",
+      "geometry.curves",
+      "spacing.field",
+      "spacing.expression",
+      "spacing.file",
+      "spacing.array",
+      "spacing.scale",
+      "spacing.gradation",
+      "spacing.rows_in_gap",
+      "spacing.curvature_angle",
+      "spacing.background_tolerance",
+      "spacing.background_min_side",
+      "spacing.background_boundary_min_side",
+      "spacing.h1",
+      "spacing.h2",
+      "spacing.angle",
+      "spacing.m11",
+      "spacing.m12",
+      "spacing.m22",
+      "spacing.sol",
+      "spacing.function",
+      "spacing.complexity",
+      "spacing.hmin",
+      "spacing.hmax",
+      "spacing.max_anisotropy",
+      "spacing.metric_gradation",
       "boundary.nodes",
-      "init.method", "init.seed", "init.total",
-      "simulation.iterations", "simulation.stop", "simulation.stop_aspect", "simulation.stop_angle",
-      "simulation.stop_every", "simulation.stop_window", "simulation.stop_min",
-      "simulation.dt_initial", "simulation.dt_initial.structured",
-      "simulation.dt_initial.random", "simulation.cutoff", "simulation.lj_a", "simulation.device",
-      "simulation.precision", "simulation.r0_rule", "simulation.stability_factor", "simulation.momentum",
-      "population.enabled", "population.every", "population.start", "population.stop", "population.insert",
-      "population.merge", "population.remove_valence", "population.boundary", "population.boundary_split",
-      "population.settle", "population.settle_events",
-      "cleanup.enabled", "cleanup.min_angle", "cleanup.iterations", "cleanup.topology", "cleanup.split_boundary",
-      "cleanup.trials_per_triangle", "cleanup.min_trials",
-      "output.formats", "output.tree_overlay", "output.views", "output.color_by", "output.spacing_picture",
-      "boundary_layer.curves", "boundary_layer.first_height", "boundary_layer.y_plus", "boundary_layer.reynolds",
-      "boundary_layer.reference_length", "boundary_layer.growth", "boundary_layer.thickness", "boundary_layer.layers",
+      "init.method",
+      "init.seed",
+      "init.total",
+      "simulation.iterations",
+      "simulation.stop",
+      "simulation.stop_aspect",
+      "simulation.stop_angle",
+      "simulation.stop_every",
+      "simulation.stop_window",
+      "simulation.stop_min",
+      "simulation.dt_initial",
+      "simulation.dt_initial.structured",
+      "simulation.dt_initial.random",
+      "simulation.cutoff",
+      "simulation.lj_a",
+      "simulation.device",
+      "simulation.precision",
+      "simulation.r0_rule",
+      "simulation.stability_factor",
+      "simulation.momentum",
+      "population.enabled",
+      "population.every",
+      "population.start",
+      "population.stop",
+      "population.insert",
+      "population.merge",
+      "population.remove_valence",
+      "population.boundary",
+      "population.boundary_split",
+      "population.settle",
+      "population.settle_events",
+      "cleanup.enabled",
+      "cleanup.min_angle",
+      "cleanup.iterations",
+      "cleanup.topology",
+      "cleanup.split_boundary",
+      "cleanup.trials_per_triangle",
+      "cleanup.min_trials",
+      "output.formats",
+      "output.tree_overlay",
+      "output.views",
+      "output.color_by",
+      "output.spacing_picture",
+      "boundary_layer.curves",
+      "boundary_layer.first_height",
+      "boundary_layer.y_plus",
+      "boundary_layer.reynolds",
+      "boundary_layer.reference_length",
+      "boundary_layer.growth",
+      "boundary_layer.thickness",
+      "boundary_layer.layers",
       "boundary_layer.elements",
   };
   return keys;
@@ -269,8 +330,8 @@ CaseConfig parse_case_text(std::string_view text, const fs::path& source, const 
   try {
     root = toml::parse(text, source.string());
   } catch (const toml::parse_error& e) {
-    throw InputError(fmt::format("{}:{}:{}: {}", source.string(), e.source().begin.line, e.source().begin.column,
-                                 e.description()));
+    throw InputError(
+        fmt::format("{}:{}:{}: {}", source.string(), e.source().begin.line, e.source().begin.column, e.description()));
   }
   Reader r(source.string(), source.parent_path());
   CaseConfig c;

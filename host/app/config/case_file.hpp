@@ -152,7 +152,7 @@ struct CaseConfig {
     std::optional<double> dt_random;
     double cutoff = 1.5;
     double lj_a = 15.0;
-    std::string device = "auto";  // auto | host | opencl | opencl:P:D
+    std::string device = "auto";            // auto | host | opencl | opencl:P:D
     Precision precision = Precision::Auto;  // the host reference always computes in double
     // true: r0 is the nearest neighbour in any direction ("any_direction"); false: in the force
     // direction, thesis eq. 5.3 ("force_direction", the default).
@@ -162,9 +162,7 @@ struct CaseConfig {
     double stability_factor = 1.0;
     double momentum = 0.0;  // SimOptions::momentum (heavy-ball beta in [0, 1); 0 = off)
     // A hexagonal start is a lattice like the structured one: it takes the structured value.
-    std::optional<double> dt_for(InitMethod m) const {
-      return m == InitMethod::Random ? dt_random : dt_structured;
-    }
+    std::optional<double> dt_for(InitMethod m) const { return m == InitMethod::Random ? dt_random : dt_structured; }
   } simulation;
 
   // Node insertion and removal during the run (sim/population.hpp, docs/cli.md "[population]"). Best:
@@ -214,7 +212,7 @@ struct CaseConfig {
   // --max-memory: what the run may allocate, checked by every stage before it allocates in proportion
   // to the input or the node count (default: a share of the machine's memory, core/memory_budget.hpp).
   MemoryLimit max_memory = default_memory_limit();
-  std::optional<std::filesystem::path> resume;  // --resume: continue from this checkpoint (file or directory)
+  std::optional<std::filesystem::path> resume;        // --resume: continue from this checkpoint (file or directory)
   std::optional<std::filesystem::path> timings_file;  // --timings: the phase times as JSON
   // The `pdmesh mesh` command line as given (argv), for the commands a stopped run prints; empty
   // for runs not started by the command.
@@ -233,8 +231,7 @@ const std::vector<std::string>& case_file_keys();
 
 // Parses and validates a case file. Throws InputError "FILE:LINE:COL: ..." on TOML syntax errors,
 // unknown keys (with the nearest valid key suggested), wrong types and out-of-range values.
-CaseConfig load_case_file(const std::filesystem::path& case_file,
-                          const std::vector<CaseOverride>& overrides = {});
+CaseConfig load_case_file(const std::filesystem::path& case_file, const std::vector<CaseOverride>& overrides = {});
 
 // The same from TOML text; `source` names it in messages and anchors relative paths.
 CaseConfig parse_case_text(std::string_view text, const std::filesystem::path& source,

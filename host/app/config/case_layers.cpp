@@ -28,8 +28,8 @@ CaseConfig::BoundaryLayer read_one(const Reader& r, const toml::table& t, const 
   CaseConfig::BoundaryLayer b;
   const auto required = [&](std::string_view key) -> const toml::node& {
     const toml::node* n = get(t, key);
-    if (n == nullptr) r.fail(fmt::format("boundary_layer.{}", key), &table_node,
-                             fmt::format("boundary_layer.{} is required", key));
+    if (n == nullptr)
+      r.fail(fmt::format("boundary_layer.{}", key), &table_node, fmt::format("boundary_layer.{} is required", key));
     return *n;
   };
   const toml::node& curves = required("curves");
@@ -59,8 +59,9 @@ CaseConfig::BoundaryLayer read_one(const Reader& r, const toml::table& t, const 
     b.reynolds = r.positive("boundary_layer.reynolds", required("reynolds"));
     b.reference_length = r.positive("boundary_layer.reference_length", required("reference_length"));
     if (b.reynolds < 1e3 || b.reynolds > 1e10)
-      r.fail("boundary_layer.reynolds", get(t, "reynolds"),
-             fmt::format("boundary_layer.reynolds must be in [1e3, 1e10] (the flat-plate estimate), got {}", b.reynolds));
+      r.fail(
+          "boundary_layer.reynolds", get(t, "reynolds"),
+          fmt::format("boundary_layer.reynolds must be in [1e3, 1e10] (the flat-plate estimate), got {}", b.reynolds));
     b.first_height = first_height_for_y_plus(b.y_plus, b.reynolds, b.reference_length);
   }
   if (const toml::node* n = get(t, "growth")) {
@@ -106,8 +107,9 @@ void read_boundary_layer_sections(const Reader& r, const toml::table& root, Case
       for (const std::string& name : c.boundary_layers[i].curves)
         if (std::find(c.boundary_layers[j].curves.begin(), c.boundary_layers[j].curves.end(), name) !=
             c.boundary_layers[j].curves.end())
-          r.fail("boundary_layer.curves", node->as_array()->get(i),
-                 fmt::format("boundary_layer.curves: curve '{}' is in two [[boundary_layer]] tables", quote_input(name)));
+          r.fail(
+              "boundary_layer.curves", node->as_array()->get(i),
+              fmt::format("boundary_layer.curves: curve '{}' is in two [[boundary_layer]] tables", quote_input(name)));
 }
 
 }  // namespace pdmesh::case_detail

@@ -18,7 +18,8 @@ const std::array<const char*, 5> kHessianKeys = {"function", "complexity", "hmin
 
 std::string lower_extension(const fs::path& p) {
   std::string ext = p.extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char ch) { return static_cast<char>(std::tolower(ch)); });
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char ch) { return static_cast<char>(std::tolower(ch)); });
   return ext;
 }
 
@@ -39,19 +40,29 @@ std::string expression(const Reader& r, const toml::node& n, const std::string& 
 
 const char* spacing_kind_name(SpacingKind kind) {
   switch (kind) {
-    case SpacingKind::Boundary: return "boundary";
-    case SpacingKind::Expression: return "expression";
-    case SpacingKind::Mesh: return "mesh";
-    case SpacingKind::Metric: return "metric";
-    case SpacingKind::Hessian: return "hessian";
+    case SpacingKind::Boundary:
+      return "boundary";
+    case SpacingKind::Expression:
+      return "expression";
+    case SpacingKind::Mesh:
+      return "mesh";
+    case SpacingKind::Metric:
+      return "metric";
+    case SpacingKind::Hessian:
+      return "hessian";
   }
   return "boundary";
 }
 
 void read_metric_values(const Reader& r, const toml::table& root, CaseConfig& c) {
   auto& s = c.spacing;
-  const std::array<std::pair<const char*, std::string*>, 7> strings = {{{"h1", &s.h1}, {"h2", &s.h2},
-      {"angle", &s.angle}, {"m11", &s.m11}, {"m12", &s.m12}, {"m22", &s.m22}, {"function", &s.function}}};
+  const std::array<std::pair<const char*, std::string*>, 7> strings = {{{"h1", &s.h1},
+                                                                        {"h2", &s.h2},
+                                                                        {"angle", &s.angle},
+                                                                        {"m11", &s.m11},
+                                                                        {"m12", &s.m12},
+                                                                        {"m22", &s.m22},
+                                                                        {"function", &s.function}}};
   for (const auto& [name, value] : strings) {
     if (const toml::node* n = find(root, "spacing", name)) *value = expression(r, *n, std::string("spacing.") + name);
   }
@@ -87,8 +98,7 @@ void check_metric_keys(const Reader& r, const toml::table& root, CaseConfig& c, 
   const auto node = [&root](const char* k) { return find(root, "spacing", k); };
   const auto refuse_unless = [&](bool allowed, const char* k) {
     if (!allowed && node(k) != nullptr)
-      r.fail(std::string("spacing.") + k, node(k),
-             fmt::format("spacing.{} is set but spacing.field is '{}'", k, name));
+      r.fail(std::string("spacing.") + k, node(k), fmt::format("spacing.{} is set but spacing.field is '{}'", k, name));
   };
   const bool metric = s.field == SpacingKind::Metric;
   const bool hessian = s.field == SpacingKind::Hessian;
@@ -101,7 +111,8 @@ void check_metric_keys(const Reader& r, const toml::table& root, CaseConfig& c, 
   if (medit && !metric) {
     r.fail("spacing.file", file,
            fmt::format("spacing.file '{}' is a Medit .mesh, which holds metric data only (spacing.field = 'metric'); "
-                       "spacing.field is '{}'", quote_input(s.file.string()), name));
+                       "spacing.field is '{}'",
+                       quote_input(s.file.string()), name));
   }
   if (!metric && !hessian) return;
 
@@ -111,20 +122,23 @@ void check_metric_keys(const Reader& r, const toml::table& root, CaseConfig& c, 
     if (sizes != nullptr && components != nullptr) {
       r.fail(std::string("spacing.") + components, node(components),
              fmt::format("spacing.{} and spacing.{} are both set: give the sizes (h1, h2, angle) or the components "
-                         "(m11, m12, m22) of the metric, not both", sizes, components));
+                         "(m11, m12, m22) of the metric, not both",
+                         sizes, components));
     }
     if (file != nullptr && (sizes != nullptr || components != nullptr)) {
       const char* k = sizes != nullptr ? sizes : components;
       r.fail(std::string("spacing.") + k, node(k),
              fmt::format("spacing.{} and spacing.file are both set: give the metric by expressions or by a file, "
-                         "not both", k));
+                         "not both",
+                         k));
     }
     if (sizes != nullptr) {
       for (const char* k : {"h1", "h2"}) {
         if (node(k) == nullptr)
           r.fail(std::string("spacing.") + sizes, node(sizes),
                  fmt::format("spacing.field is 'metric' with sizes but spacing.{} is missing (h1, h2 and optionally "
-                             "angle, in degrees)", k));
+                             "angle, in degrees)",
+                             k));
       }
       if (s.angle.empty()) s.angle = "0";
     } else if (components != nullptr) {
@@ -140,7 +154,8 @@ void check_metric_keys(const Reader& r, const toml::table& root, CaseConfig& c, 
     }
     if (medit) {
       if (array != nullptr)
-        r.fail("spacing.array", array, "spacing.array is set but spacing.file is a Medit .mesh (its metric is in the .sol)");
+        r.fail("spacing.array", array,
+               "spacing.array is set but spacing.file is a Medit .mesh (its metric is in the .sol)");
       if (s.sol.empty()) s.sol = fs::path(s.file).replace_extension(".sol");
     } else if (node("sol") != nullptr) {
       r.fail("spacing.sol", node("sol"), "spacing.sol is set but spacing.file is not a Medit .mesh");
@@ -157,14 +172,16 @@ void check_metric_keys(const Reader& r, const toml::table& root, CaseConfig& c, 
              "spacing.field is 'hessian' but spacing.function (an expression in x and y) or spacing.file (scalar data "
              "on a .vtu/.msh mesh) is missing");
     if (function && array != nullptr)
-      r.fail("spacing.array", array, "spacing.array is set but the Hessian's function is an expression (spacing.function)");
+      r.fail("spacing.array", array,
+             "spacing.array is set but the Hessian's function is an expression (spacing.function)");
     if (file != nullptr && array == nullptr) s.array = "u";
     if (node("complexity") == nullptr)
       r.fail("spacing.field", node("field"),
              "spacing.field is 'hessian' but spacing.complexity (the metric's complexity C: the mesh has about "
              "4C/sqrt(3) triangles) is missing");
     if (!(s.hmax > s.hmin))
-      r.fail(node("hmax") != nullptr ? "spacing.hmax" : "spacing.hmin", node("hmax") != nullptr ? node("hmax") : node("hmin"),
+      r.fail(node("hmax") != nullptr ? "spacing.hmax" : "spacing.hmin",
+             node("hmax") != nullptr ? node("hmax") : node("hmin"),
              fmt::format("spacing.hmax must be larger than spacing.hmin, got hmin {} and hmax {}", s.hmin, s.hmax));
   }
   if (s.metric_gradation > 0.0 && file == nullptr) {

@@ -27,7 +27,8 @@ void read_geometry_section(const Reader& r, const toml::table& root, CaseConfig&
   const toml::node* files = find(root, "geometry", "files");
   if (!c.geometry.given_curves.empty()) {
     // Curves given in memory (case_for_curves) are the geometry; files would be a second one.
-    if (files != nullptr) r.fail("geometry.files", files, "geometry.files cannot be set: the geometry is given as curves");
+    if (files != nullptr)
+      r.fail("geometry.files", files, "geometry.files cannot be set: the geometry is given as curves");
   } else if (files == nullptr && !r.partial()) {
     throw InputError(fmt::format("{}: geometry.files is required (the .crv/.dat/.poly files to mesh)", r.file()));
   }
@@ -42,7 +43,8 @@ void read_geometry_section(const Reader& r, const toml::table& root, CaseConfig&
       // Names appear in node files and mesh files, which separate fields by white space.
       if (!is_plain_name(name)) {
         r.fail("geometry.curve_names", n,
-               fmt::format("geometry.curve_names: '{}' is not a plain name (letters, digits, _ . + -)", quote_input(name)));
+               fmt::format("geometry.curve_names: '{}' is not a plain name (letters, digits, _ . + -)",
+                           quote_input(name)));
       }
     }
   }
@@ -64,8 +66,8 @@ void read_geometry_section(const Reader& r, const toml::table& root, CaseConfig&
 
 void read_boundary_section(const Reader& r, const toml::table& root, CaseConfig& c) {
   if (const toml::node* n = find(root, "boundary", "nodes")) {
-    c.boundary.nodes = choose<BoundaryNodeRule>(r, "boundary.nodes", *n,
-                                                {{"input", BoundaryNodeRule::Input}, {"spacing", BoundaryNodeRule::Spacing}});
+    c.boundary.nodes = choose<BoundaryNodeRule>(
+        r, "boundary.nodes", *n, {{"input", BoundaryNodeRule::Input}, {"spacing", BoundaryNodeRule::Spacing}});
   }
 }
 
@@ -78,10 +80,12 @@ void read_spacing_section(const Reader& r, const toml::table& root, CaseConfig& 
   if (file != nullptr) {
     const std::string f = r.string("spacing.file", *file);
     std::string ext = fs::path(f).extension().string();
-    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char ch) { return static_cast<char>(std::tolower(ch)); });
+    std::transform(ext.begin(), ext.end(), ext.begin(),
+                   [](unsigned char ch) { return static_cast<char>(std::tolower(ch)); });
     // .mesh (Medit, with its .sol) is metric data only: read_metric_keys refuses it for other fields.
     if (ext != ".vtu" && ext != ".msh" && ext != ".mesh") {
-      r.fail("spacing.file", file, fmt::format("spacing.file '{}' must be a .vtu or .msh triangle mesh", quote_input(f)));
+      r.fail("spacing.file", file,
+             fmt::format("spacing.file '{}' must be a .vtu or .msh triangle mesh", quote_input(f)));
     }
     c.spacing.file = r.resolve("spacing.file", f);
   }
@@ -91,17 +95,21 @@ void read_spacing_section(const Reader& r, const toml::table& root, CaseConfig& 
   }
   // An expression or a file alone selects its field; naming kinds contradictorily is an error.
   if (field != nullptr) {
-    c.spacing.field = choose<SpacingKind>(
-        r, "spacing.field", *field,
-        {{"boundary", SpacingKind::Boundary}, {"expression", SpacingKind::Expression}, {"mesh", SpacingKind::Mesh},
-         {"metric", SpacingKind::Metric}, {"hessian", SpacingKind::Hessian}});
+    c.spacing.field = choose<SpacingKind>(r, "spacing.field", *field,
+                                          {{"boundary", SpacingKind::Boundary},
+                                           {"expression", SpacingKind::Expression},
+                                           {"mesh", SpacingKind::Mesh},
+                                           {"metric", SpacingKind::Metric},
+                                           {"hessian", SpacingKind::Hessian}});
   }
   read_metric_values(r, root, c);
   if (r.partial()) return;  // the rest is how the keys agree: the whole configuration decides
   if (field == nullptr) {
     if (expression != nullptr && file != nullptr)
       r.fail("spacing.file", file, "spacing.expression and spacing.file are both set; choose one with spacing.field");
-    c.spacing.field = expression != nullptr ? SpacingKind::Expression : file != nullptr ? SpacingKind::Mesh : SpacingKind::Boundary;
+    c.spacing.field = expression != nullptr ? SpacingKind::Expression
+                      : file != nullptr     ? SpacingKind::Mesh
+                                            : SpacingKind::Boundary;
   }
   const char* name = spacing_kind_name(c.spacing.field);
   check_metric_keys(r, root, c, file, array);
@@ -109,7 +117,8 @@ void read_spacing_section(const Reader& r, const toml::table& root, CaseConfig& 
     r.fail("spacing.field", field, "spacing.field is 'expression' but spacing.expression is missing or empty");
   }
   if (c.spacing.field == SpacingKind::Mesh && file == nullptr) {
-    r.fail("spacing.field", field, "spacing.field is 'mesh' but spacing.file (a .vtu or .msh background mesh) is missing");
+    r.fail("spacing.field", field,
+           "spacing.field is 'mesh' but spacing.file (a .vtu or .msh background mesh) is missing");
   }
   if (c.spacing.field != SpacingKind::Expression && expression != nullptr) {
     r.fail("spacing.expression", expression, fmt::format("spacing.expression is set but spacing.field is '{}'", name));
@@ -124,7 +133,8 @@ void read_spacing_section(const Reader& r, const toml::table& root, CaseConfig& 
   if (const toml::node* n = find(root, "spacing", "gradation")) {
     c.spacing.gradation = r.number("spacing.gradation", *n);
     if (!(c.spacing.gradation >= 0.0 && c.spacing.gradation <= 10.0))
-      r.fail("spacing.gradation", n, fmt::format("spacing.gradation must be in [0, 10] (0 = off), got {}", c.spacing.gradation));
+      r.fail("spacing.gradation", n,
+             fmt::format("spacing.gradation must be in [0, 10] (0 = off), got {}", c.spacing.gradation));
   }
   if (const toml::node* n = find(root, "spacing", "rows_in_gap")) {
     c.spacing.rows_in_gap = r.number("spacing.rows_in_gap", *n);
@@ -147,7 +157,8 @@ void read_spacing_section(const Reader& r, const toml::table& root, CaseConfig& 
     c.spacing.curvature_angle = r.number("spacing.curvature_angle", *n);
     if (!(c.spacing.curvature_angle >= 0.0 && c.spacing.curvature_angle <= 90.0))
       r.fail("spacing.curvature_angle", n,
-             fmt::format("spacing.curvature_angle must be in [0, 90] degrees (0 = off), got {}", c.spacing.curvature_angle));
+             fmt::format("spacing.curvature_angle must be in [0, 90] degrees (0 = off), got {}",
+                         c.spacing.curvature_angle));
   }
 }
 
@@ -159,9 +170,9 @@ std::uint64_t non_negative(const Reader& r, const std::string& key, const toml::
 
 void read_init_section(const Reader& r, const toml::table& root, CaseConfig& c) {
   if (const toml::node* n = find(root, "init", "method")) {
-    c.init.method = choose<InitMethod>(r, "init.method", *n,
-                                       {{"structured", InitMethod::Structured}, {"random", InitMethod::Random},
-                                        {"hexagonal", InitMethod::Hexagonal}});
+    c.init.method = choose<InitMethod>(
+        r, "init.method", *n,
+        {{"structured", InitMethod::Structured}, {"random", InitMethod::Random}, {"hexagonal", InitMethod::Hexagonal}});
   }
   if (const toml::node* n = find(root, "init", "seed")) c.init.seed = non_negative(r, "init.seed", *n);
   if (const toml::node* n = find(root, "init", "total")) c.init.total = non_negative(r, "init.total", *n);
@@ -181,7 +192,8 @@ void read_simulation_section(const Reader& r, const toml::table& root, CaseConfi
     s.iterations = v;
   }
   if (const toml::node* n = find(root, "simulation", "stop")) {
-    s.stop = choose<StopRule>(r, "simulation.stop", *n, {{"converged", StopRule::Converged}, {"iterations", StopRule::Iterations}});
+    s.stop = choose<StopRule>(r, "simulation.stop", *n,
+                              {{"converged", StopRule::Converged}, {"iterations", StopRule::Iterations}});
   }
   for (auto [key, out, hi] : {std::tuple{"stop_aspect", &s.stop_aspect, 0.1}, {"stop_angle", &s.stop_angle, 10.0}})
     if (const toml::node* n = find(root, "simulation", key)) {
@@ -189,8 +201,8 @@ void read_simulation_section(const Reader& r, const toml::table& root, CaseConfi
       *out = r.number(name, *n);
       if (!(*out >= 0.0 && *out <= hi)) r.fail(name, n, fmt::format("{} must be in [0, {}], got {}", name, hi, *out));
     }
-  for (auto [key, out, lo] : {std::tuple{"stop_every", &s.stop_every, 1}, {"stop_window", &s.stop_window, 1},
-                              {"stop_min", &s.stop_min, 0}})
+  for (auto [key, out, lo] :
+       {std::tuple{"stop_every", &s.stop_every, 1}, {"stop_window", &s.stop_window, 1}, {"stop_min", &s.stop_min, 0}})
     if (const toml::node* n = find(root, "simulation", key)) {
       const std::string name = std::string("simulation.") + key;
       const std::int64_t v = r.integer(name, *n);
@@ -207,7 +219,8 @@ void read_simulation_section(const Reader& r, const toml::table& root, CaseConfi
   if (const toml::node* n = find(root, "simulation", "dt_initial")) {
     if (n->is_table()) {
       const toml::table& per = *n->as_table();
-      if (const toml::node* d = per.get("structured")) s.dt_structured = r.positive("simulation.dt_initial.structured", *d);
+      if (const toml::node* d = per.get("structured"))
+        s.dt_structured = r.positive("simulation.dt_initial.structured", *d);
       if (const toml::node* d = per.get("random")) s.dt_random = r.positive("simulation.dt_initial.random", *d);
     } else if (n->is_integer() || n->is_floating_point()) {
       s.dt_structured = s.dt_random = r.positive("simulation.dt_initial", *n);
@@ -220,12 +233,15 @@ void read_simulation_section(const Reader& r, const toml::table& root, CaseConfi
   if (const toml::node* n = find(root, "simulation", "device")) {
     s.device = r.string("simulation.device", *n);
     if (!valid_device(s.device)) {
-      r.fail("simulation.device", n,
-             fmt::format("simulation.device must be auto, host, opencl or opencl:P:D, got '{}'", quote_input(s.device)));
+      r.fail(
+          "simulation.device", n,
+          fmt::format("simulation.device must be auto, host, opencl or opencl:P:D, got '{}'", quote_input(s.device)));
     }
   }
   if (const toml::node* n = find(root, "simulation", "precision")) {
-    s.precision = choose<Precision>(r, "simulation.precision", *n, {{"double", Precision::Double}, {"float", Precision::Float}, {"auto", Precision::Auto}});
+    s.precision =
+        choose<Precision>(r, "simulation.precision", *n,
+                          {{"double", Precision::Double}, {"float", Precision::Float}, {"auto", Precision::Auto}});
   }
   if (const toml::node* n = find(root, "simulation", "stability_factor")) {
     s.stability_factor = r.number("simulation.stability_factor", *n);
@@ -243,7 +259,8 @@ void read_simulation_section(const Reader& r, const toml::table& root, CaseConfi
     }
   }
   if (const toml::node* n = find(root, "simulation", "r0_rule")) {
-    s.r0_any_direction = choose<bool>(r, "simulation.r0_rule", *n, {{"force_direction", false}, {"any_direction", true}});
+    s.r0_any_direction =
+        choose<bool>(r, "simulation.r0_rule", *n, {{"force_direction", false}, {"any_direction", true}});
   }
 }
 
@@ -253,7 +270,8 @@ PopulationRamp read_ramp(const Reader& r, const std::string& key, const toml::no
   PopulationRamp ramp;
   if (n.is_array()) {
     const toml::array& a = *n.as_array();
-    if (a.size() != 2) r.fail(key, &n, fmt::format("{} must be a number or [first, last], got {} numbers", key, a.size()));
+    if (a.size() != 2)
+      r.fail(key, &n, fmt::format("{} must be a number or [first, last], got {} numbers", key, a.size()));
     ramp = {r.number(key + "[0]", *a.get(0)), r.number(key + "[1]", *a.get(1))};
   } else {
     ramp.first = ramp.last = r.number(key, n);
@@ -287,10 +305,12 @@ void read_population_section(const Reader& r, const toml::table& root, CaseConfi
   if (const toml::node* n = find(root, "population", "stop")) {
     p.stop = r.number("population.stop", *n);
     if (!(p.stop > 0.0 && p.stop <= 1.0))
-      r.fail("population.stop", n, fmt::format("population.stop must be in (0, 1] (a fraction of the run), got {}", p.stop));
+      r.fail("population.stop", n,
+             fmt::format("population.stop must be in (0, 1] (a fraction of the run), got {}", p.stop));
   }
   // An equilateral lattice has circumradius q / sqrt(3) = 0.577 q: insert must stay above it.
-  if (const toml::node* n = find(root, "population", "insert")) p.insert = read_ramp(r, "population.insert", *n, 0.6, 3.0);
+  if (const toml::node* n = find(root, "population", "insert"))
+    p.insert = read_ramp(r, "population.insert", *n, 0.6, 3.0);
   if (const toml::node* n = find(root, "population", "merge")) p.merge = read_ramp(r, "population.merge", *n, 0.0, 1.0);
   const toml::node* merge = find(root, "population", "merge");
   if (std::max(p.merge.first, p.merge.last) >= std::min(p.insert.first, p.insert.last))
@@ -347,7 +367,8 @@ ViewWindow read_view(const Reader& r, const toml::node& entry, std::size_t i) {
     if (k == "name") {
       v.name = r.string(sub, n);
       if (!is_plain_name(v.name)) {
-        r.fail(sub, &n, fmt::format("{} '{}' must be a plain name (letters, digits, _ . + -)", sub, quote_input(v.name)));
+        r.fail(sub, &n,
+               fmt::format("{} '{}' must be a plain name (letters, digits, _ . + -)", sub, quote_input(v.name)));
       }
     } else if (k == "window") {
       window = &n;
@@ -358,7 +379,8 @@ ViewWindow read_view(const Reader& r, const toml::node& entry, std::size_t i) {
   }
   if (window == nullptr) r.fail(key, &entry, fmt::format("{} needs window = [x0, y0, x1, y1]", key));
   const toml::array& a = r.array(key + ".window", *window);
-  if (a.size() != 4) r.fail(key + ".window", window, fmt::format("{}.window must have 4 numbers, got {}", key, a.size()));
+  if (a.size() != 4)
+    r.fail(key + ".window", window, fmt::format("{}.window must have 4 numbers, got {}", key, a.size()));
   double w[4];
   for (std::size_t j = 0; j < 4; ++j) w[j] = r.number(fmt::format("{}.window[{}]", key, j), *a.get(j));
   if (!(w[0] < w[2] && w[1] < w[3])) {
@@ -376,7 +398,8 @@ void read_output_section(const Reader& r, const toml::table& root, CaseConfig& c
     for (const std::string& f : c.output.formats) {
       if (std::find(kFormats.begin(), kFormats.end(), f) == kFormats.end()) {
         r.fail("output.formats", n,
-               fmt::format("output.formats: unknown format '{}'; valid formats are {}", quote_input(f), fmt::join(kFormats, ", ")));
+               fmt::format("output.formats: unknown format '{}'; valid formats are {}", quote_input(f),
+                           fmt::join(kFormats, ", ")));
       }
     }
     if (c.output.wants("msh") && c.output.wants("msh22"))
@@ -384,11 +407,16 @@ void read_output_section(const Reader& r, const toml::table& root, CaseConfig& c
   }
   if (const toml::node* n = find(root, "output", "color_by")) {
     c.output.color_by = choose<std::string>(r, "output.color_by", *n,
-                                            {{"none", "none"}, {"min_angle", "min_angle"}, {"max_angle", "max_angle"},
-                                             {"aspect_ratio", "aspect_ratio"}, {"skewness", "skewness"},
-                                             {"condition_number", "condition_number"}, {"min_jacobian", "min_jacobian"}});
+                                            {{"none", "none"},
+                                             {"min_angle", "min_angle"},
+                                             {"max_angle", "max_angle"},
+                                             {"aspect_ratio", "aspect_ratio"},
+                                             {"skewness", "skewness"},
+                                             {"condition_number", "condition_number"},
+                                             {"min_jacobian", "min_jacobian"}});
   }
-  if (const toml::node* n = find(root, "output", "tree_overlay")) c.output.tree_overlay = r.boolean("output.tree_overlay", *n);
+  if (const toml::node* n = find(root, "output", "tree_overlay"))
+    c.output.tree_overlay = r.boolean("output.tree_overlay", *n);
   if (const toml::node* n = find(root, "output", "spacing_picture"))
     c.output.spacing_picture = r.boolean("output.spacing_picture", *n);
   if (const toml::node* n = find(root, "output", "views")) {
@@ -397,7 +425,8 @@ void read_output_section(const Reader& r, const toml::table& root, CaseConfig& c
       ViewWindow v = read_view(r, *a.get(i), i);
       for (const ViewWindow& earlier : c.output.views) {
         if (earlier.name == v.name) {
-          r.fail(fmt::format("output.views[{}]", i), a.get(i), fmt::format("view name '{}' is used twice", quote_input(v.name)));
+          r.fail(fmt::format("output.views[{}]", i), a.get(i),
+                 fmt::format("view name '{}' is used twice", quote_input(v.name)));
         }
       }
       c.output.views.push_back(std::move(v));

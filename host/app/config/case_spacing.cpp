@@ -45,7 +45,8 @@ namespace {
 
 bool is_medit(const std::filesystem::path& file) {
   std::string ext = file.extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char ch) { return static_cast<char>(std::tolower(ch)); });
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char ch) { return static_cast<char>(std::tolower(ch)); });
   return ext == ".mesh";
 }
 
@@ -65,7 +66,8 @@ std::unique_ptr<MetricField> make_case_metric(const CaseConfig& config, const Ge
   const auto& s = config.spacing;
   if (s.field == SpacingKind::Metric) {
     if (!s.file.empty()) {
-      return mesh_field(config, is_medit(s.file) ? load_medit_metric(s.file, s.sol) : load_metric_mesh(s.file, s.array));
+      return mesh_field(config,
+                        is_medit(s.file) ? load_medit_metric(s.file, s.sol) : load_metric_mesh(s.file, s.array));
     }
     if (!s.m11.empty()) {
       return std::make_unique<ExpressionMetricField>(ExpressionMetricField::Form::components, s.m11, s.m12, s.m22);

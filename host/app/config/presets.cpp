@@ -8,10 +8,14 @@ namespace pdmesh {
 
 const char* to_string(Preset preset) {
   switch (preset) {
-    case Preset::Thesis: return "thesis";
-    case Preset::Fast: return "fast";
-    case Preset::Long: return "long";
-    case Preset::Best: break;
+    case Preset::Thesis:
+      return "thesis";
+    case Preset::Fast:
+      return "fast";
+    case Preset::Long:
+      return "long";
+    case Preset::Best:
+      break;
   }
   return "best";
 }
@@ -102,8 +106,10 @@ void apply_preset(CaseConfig& c, Preset preset) {
   // Best's schedule (momentum, a compressed population schedule and rule, a 40-degree cleanup); the
   // thesis keeps long's values of those keys (no momentum; its rule, population control and cleanup
   // are off, but a file may switch them on).
-  if (preset == Preset::Best || preset == Preset::Fast) apply_momentum_schedule(c);
-  else apply_long_schedule(c);
+  if (preset == Preset::Best || preset == Preset::Fast)
+    apply_momentum_schedule(c);
+  else
+    apply_long_schedule(c);
 }
 
 }  // namespace pdmesh

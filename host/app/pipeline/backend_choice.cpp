@@ -32,7 +32,6 @@ ocl::Precision device_precision(Precision requested, const ocl::DeviceInfo& devi
   return choice.precision;
 }
 
-
 ChosenBackend host_backend(Precision precision, const std::function<void(const std::string&)>& note) {
   if (precision == Precision::Float)
     note("note: the host reference computes in double precision; --precision float is ignored");
@@ -57,10 +56,9 @@ ChosenBackend choose_among(const std::vector<ocl::DeviceInfo>& candidates, bool 
       if (!fall_back) throw;
       // A driver that cannot build the program (or run its work-group size) must not end a run that
       // another device or the host can do.
-      const std::string next = k + 1 < candidates.size()
-                                   ? fmt::format("opencl:{}:{} ({})", candidates[k + 1].platform,
-                                                 candidates[k + 1].device, candidates[k + 1].name)
-                                   : std::string("the host reference");
+      const std::string next = k + 1 < candidates.size() ? fmt::format("opencl:{}:{} ({})", candidates[k + 1].platform,
+                                                                       candidates[k + 1].device, candidates[k + 1].name)
+                                                         : std::string("the host reference");
       note(fmt::format("note: --device auto: opencl:{}:{} ({}) cannot run the simulation: {}; trying {}", d.platform,
                        d.device, d.name, first_line(e.what()), next));
     }
@@ -88,9 +86,10 @@ ChosenBackend choose_backend_for(const std::string& device, Precision precision,
                                  const std::function<void(const std::string&)>& note) {
   if (!auto_prefers_host(device, nodes)) return choose_backend(device, precision, note);
   ++setups;
-  note(fmt::format("device auto: the host reference for {:.0f} nodes (below {:.0f}, a whole run on the host ends "
-                   "sooner than on an OpenCL device; docs/devices.md)",
-                   nodes, auto_host_below()));
+  note(
+      fmt::format("device auto: the host reference for {:.0f} nodes (below {:.0f}, a whole run on the host ends "
+                  "sooner than on an OpenCL device; docs/devices.md)",
+                  nodes, auto_host_below()));
   ChosenBackend chosen;
   chosen.simulator = make_host_simulator();
   return chosen;
@@ -100,7 +99,8 @@ ChosenBackend choose_backend(const std::string& device, Precision precision,
                              const std::function<void(const std::string&)>& note) {
   ++setups;
   if (device == "host") return host_backend(precision, note);
-  if (device != "auto") return choose_among({*ocl::select_device(device)}, false, precision, note);  // InputError when absent
+  if (device != "auto")
+    return choose_among({*ocl::select_device(device)}, false, precision, note);  // InputError when absent
   const std::vector<ocl::DeviceInfo> candidates = ocl::auto_order(ocl::list_devices());
   if (candidates.empty()) {
     note("note: no OpenCL platform or device found; simulating on the host reference");
@@ -114,8 +114,9 @@ ChosenBackend choose_metric_backend(const std::string& device, Precision precisi
   ++setups;
   if (device == "host") return host_backend(precision, note);
   if (device == "auto") {
-    note("device auto: the host reference for a run with a metric field (the device-resident simulation has no "
-         "metric mode yet)");
+    note(
+        "device auto: the host reference for a run with a metric field (the device-resident simulation has no "
+        "metric mode yet)");
     ChosenBackend chosen;
     chosen.simulator = make_host_simulator();
     return chosen;
@@ -124,10 +125,10 @@ ChosenBackend choose_metric_backend(const std::string& device, Precision precisi
   ChosenBackend chosen;
   chosen.context = std::make_unique<ocl::Context>(d);
   const ocl::Precision p = device_precision(precision, d, *chosen.context, note);
-  chosen.simulator = make_host_simulator(
-      ocl::make_opencl_backend(*chosen.context, p),
-      fmt::format("opencl:{}:{} ({}, {}, {}, host-driven steps: a metric run)", d.platform, d.device, d.name, d.type,
-                  p == ocl::Precision::Double ? "double" : "float"));
+  chosen.simulator =
+      make_host_simulator(ocl::make_opencl_backend(*chosen.context, p),
+                          fmt::format("opencl:{}:{} ({}, {}, {}, host-driven steps: a metric run)", d.platform,
+                                      d.device, d.name, d.type, p == ocl::Precision::Double ? "double" : "float"));
   return chosen;
 }
 

@@ -41,8 +41,8 @@ class FrontSpacing final : public SpacingField {
   double at(Vec2 p) const override {
     double q = base_.at(p);
     // Sources farther than q / gradation in x cannot lower q: scan outwards from p.x until then.
-    const auto mid = std::lower_bound(sources_.begin(), sources_.end(), p.x,
-                                      [](const Source& s, double x) { return s.p.x < x; });
+    const auto mid =
+        std::lower_bound(sources_.begin(), sources_.end(), p.x, [](const Source& s, double x) { return s.p.x < x; });
     for (auto it = mid; it != sources_.end() && gradation_ * (it->p.x - p.x) < q; ++it)
       q = std::min(q, it->q + gradation_ * dist(p, it->p));
     for (auto it = mid; it != sources_.begin();) {
@@ -70,9 +70,10 @@ double last_height(const LayerMesh& m, const LayerRay& ray) {
 void check_formats(const CaseConfig& config) {
   for (const std::string& f : config.output.formats)
     if (f == "msh22" || f == "triangle")
-      throw InputError(fmt::format("{}: output.formats: '{}' cannot hold the cells of [[boundary_layer]] (msh, vtu and "
-                                   "su2 can)",
-                                   config.source.string(), f));
+      throw InputError(
+          fmt::format("{}: output.formats: '{}' cannot hold the cells of [[boundary_layer]] (msh, vtu and "
+                      "su2 can)",
+                      config.source.string(), f));
 }
 
 }  // namespace
@@ -137,7 +138,8 @@ NodeSet without_front_nodes(const NodeSet& nodes, const Geometry& core_geometry,
   dropped = 0;
   for (std::size_t i = 0; i < nodes.size(); ++i) {
     const int c = nodes.curve[i];
-    if (nodes.kind[i] == NodeKind::Boundary && c >= 0 && core_geometry.curves[static_cast<std::size_t>(c)].fixed_points) {
+    if (nodes.kind[i] == NodeKind::Boundary && c >= 0 &&
+        core_geometry.curves[static_cast<std::size_t>(c)].fixed_points) {
       ++dropped;
       continue;
     }
@@ -154,8 +156,7 @@ namespace {
 
 // The layer cells and the core triangles in one mesh; the core's points first, each front node of
 // the layers mapped onto the core's point at exactly its place.
-MixedMesh merge(const MeshInputs& inputs, const LayeredCase& layered, const MeshInputs& core_inputs,
-                const Mesh& core) {
+MixedMesh merge(const MeshInputs& inputs, const LayeredCase& layered, const MeshInputs& core_inputs, const Mesh& core) {
   MixedMesh m;
   m.points = core.points;
   m.curve_names = inputs.curve_names();
@@ -174,7 +175,8 @@ MixedMesh merge(const MeshInputs& inputs, const LayeredCase& layered, const Mesh
     m.boundary_edges.push_back({e.a, e.b, original(c.name)});
   }
   std::map<std::pair<double, double>, int> at;
-  for (std::size_t i = 0; i < core.points.size(); ++i) at.emplace(std::make_pair(core.points[i].x, core.points[i].y), i);
+  for (std::size_t i = 0; i < core.points.size(); ++i)
+    at.emplace(std::make_pair(core.points[i].x, core.points[i].y), i);
   for (const LayerSection& s : layered.sections) {
     const LayerMesh& lm = s.mesh;
     std::vector<int> index(lm.nodes.size(), -1);
@@ -246,7 +248,8 @@ std::vector<double> junction_growth(const LayeredCase& layered, const Mesh& core
 double quantile(std::vector<double> v, double q) {
   if (v.empty()) return 0.0;
   std::sort(v.begin(), v.end());
-  return v[static_cast<std::size_t>(std::min<double>(static_cast<double>(v.size()) - 1, q * static_cast<double>(v.size())))];
+  return v[static_cast<std::size_t>(
+      std::min<double>(static_cast<double>(v.size()) - 1, q * static_cast<double>(v.size())))];
 }
 
 }  // namespace
@@ -284,9 +287,9 @@ void write_layered_outputs(const CaseConfig& config, const MeshInputs& inputs, c
     const LayerMeasures lm = measure_layers(s.mesh, s.settings.first_height);
     std::vector<std::string> names;
     for (const Curve& c : s.geometry->curves) names.push_back(c.name);
-    table += fmt::format("boundary layer {} ({}; h1 {:.4g}, growth {}, {}):\n{}", k + 1, fmt::join(s.config.curves, ", "),
-                         s.settings.first_height, s.settings.growth, s.config.quads ? "quads" : "triangles",
-                         format_layer_measures(lm, names));
+    table += fmt::format("boundary layer {} ({}; h1 {:.4g}, growth {}, {}):\n{}", k + 1,
+                         fmt::join(s.config.curves, ", "), s.settings.first_height, s.settings.growth,
+                         s.config.quads ? "quads" : "triangles", format_layer_measures(lm, names));
     std::string fans;
     for (const int f : lm.fan_sizes) fans += (fans.empty() ? "" : ", ") + std::to_string(f);
     json_layers += fmt::format(
@@ -302,20 +305,22 @@ void write_layered_outputs(const CaseConfig& config, const MeshInputs& inputs, c
   }
   const double j50 = quantile(junction, 0.5), j95 = quantile(junction, 0.95);
   const double jmax = junction.empty() ? 0.0 : *std::max_element(junction.begin(), junction.end());
-  table += fmt::format("junction (core triangle height on a front edge / last layer height), {} edges: median {:.3f}, "
-                       "p95 {:.3f}, max {:.3f}\nmerged mesh: {} points, {} cells ({} quads)\n",
-                       junction.size(), j50, j95, jmax, mixed.points.size(), mixed.cells.size(), mixed.quads());
+  table += fmt::format(
+      "junction (core triangle height on a front edge / last layer height), {} edges: median {:.3f}, "
+      "p95 {:.3f}, max {:.3f}\nmerged mesh: {} points, {} cells ({} quads)\n",
+      junction.size(), j50, j95, jmax, mixed.points.size(), mixed.cells.size(), mixed.quads());
   timer.stop();
   if (!config.quiet) fmt::print("{}", table);
   {
     const auto json_timer = phases.phase("quality.json");
     std::string json = quality_json(core_summary, config.name);
     const auto close = json.find_last_of('}');
-    json.insert(close, fmt::format(",\n  \"boundary_layer\": {{\n  \"tables\": [\n{}\n  ],\n  \"junction\": {{\"edges\": {}, "
-                                   "\"median\": {}, \"p95\": {}, \"max\": {}}},\n  \"core_min_angle\": {},\n  "
-                                   "\"points\": {}, \"cells\": {}, \"quads\": {}\n  }}\n",
-                                   json_layers, junction.size(), j50, j95, jmax, core_summary.min_angle,
-                                   mixed.points.size(), mixed.cells.size(), mixed.quads()));
+    json.insert(close,
+                fmt::format(",\n  \"boundary_layer\": {{\n  \"tables\": [\n{}\n  ],\n  \"junction\": {{\"edges\": {}, "
+                            "\"median\": {}, \"p95\": {}, \"max\": {}}},\n  \"core_min_angle\": {},\n  "
+                            "\"points\": {}, \"cells\": {}, \"quads\": {}\n  }}\n",
+                            json_layers, junction.size(), j50, j95, jmax, core_summary.min_angle, mixed.points.size(),
+                            mixed.cells.size(), mixed.quads()));
     write_file_atomically(config.out_dir / "quality.json", json);
   }
   std::vector<std::string> formats;

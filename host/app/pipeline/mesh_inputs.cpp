@@ -32,47 +32,51 @@ MeshInputs::MeshInputs(const CaseConfig& config) {
   for (std::size_t c = 0; c < geometry.curves.size(); ++c) {
     const std::string& name = geometry.curves[c].name;
     if (name.empty() || name.find_first_of(" \t\r\n") != std::string::npos) {
-      throw InputError(fmt::format("{}:{}: curve {} name '{}' is empty or contains white space; name the curves "
-                                   "with geometry.curve_names",
-                                   geometry.curves[c].file, geometry.curves[c].line, c, name));
+      throw InputError(
+          fmt::format("{}:{}: curve {} name '{}' is empty or contains white space; name the curves "
+                      "with geometry.curve_names",
+                      geometry.curves[c].file, geometry.curves[c].line, c, name));
     }
   }
   // The geometry's quadtree and the queries' per-segment arrays, before they are made (the
   // geometry itself is read: its size was the file's).
-  check_memory(config.max_memory, GeometryTree::kBytesPerSegment * static_cast<double>(geometry.segments.size()),
-               fmt::format("{}: the geometry's quadtree over {} segments", config.source.string(),
-                           geometry.segments.size()),
-               "raise --max-memory");
+  check_memory(
+      config.max_memory, GeometryTree::kBytesPerSegment * static_cast<double>(geometry.segments.size()),
+      fmt::format("{}: the geometry's quadtree over {} segments", config.source.string(), geometry.segments.size()),
+      "raise --max-memory");
   tree = std::make_unique<GeometryTree>(geometry);
   spacing_options = pdmesh::spacing_options(config);
   check_spacing_options(spacing_options);
   if (config.spacing.field == SpacingKind::Boundary) {
     // A refusal by the node count says where eq. 3.6's q comes from: a dense input polyline asks for
     // nodes as fine as its segments everywhere.
-    const auto [shortest, longest] = std::minmax_element(
-        geometry.segments.begin(), geometry.segments.end(),
-        [](const Segment& a, const Segment& b) { return a.length < b.length; });
+    const auto [shortest, longest] =
+        std::minmax_element(geometry.segments.begin(), geometry.segments.end(),
+                            [](const Segment& a, const Segment& b) { return a.length < b.length; });
     if (shortest != geometry.segments.end())
-      node_hint = fmt::format(" (eq. 3.6 takes q from the lengths of the input's {} segments, {:.3g} to {:.3g}: a "
-                               "coarser polyline, spacing.scale or spacing.expression asks for fewer)",
-                               geometry.segments.size(), shortest->length, longest->length);
+      node_hint = fmt::format(
+          " (eq. 3.6 takes q from the lengths of the input's {} segments, {:.3g} to {:.3g}: a "
+          "coarser polyline, spacing.scale or spacing.expression asks for fewer)",
+          geometry.segments.size(), shortest->length, longest->length);
   }
   const auto spacing_start = std::chrono::steady_clock::now();
   metric = make_case_metric(config, *tree);
   spacing = make_case_spacing(config, *tree, metric.get());
   if (metric) {
-    spacing_summary = fmt::format("spacing: the metric field ({}) built in {:.3f} s; the nodes start at q = sqrt(h1 h2), "
-                                  "relax in the metric and are triangulated in it (docs/metric-fields.md)",
-                                  config.spacing.field == SpacingKind::Hessian ? "hessian" : "metric",
-                                  std::chrono::duration<double>(std::chrono::steady_clock::now() - spacing_start).count());
+    spacing_summary = fmt::format(
+        "spacing: the metric field ({}) built in {:.3f} s; the nodes start at q = sqrt(h1 h2), "
+        "relax in the metric and are triangulated in it (docs/metric-fields.md)",
+        config.spacing.field == SpacingKind::Hessian ? "hessian" : "metric",
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - spacing_start).count());
   }
   if (const auto* m = dynamic_cast<const MeshSpacing*>(spacing.get())) {
     const MeshFieldData& d = m->data();
     const auto [lo, hi] = std::minmax_element(d.q.begin(), d.q.end());
-    spacing_summary = fmt::format("spacing: '{}' on {} ({} triangles, {} points, q from {:.4g} to {:.4g}), read, checked and "
-                                  "indexed in {:.3f} s",
-                                  d.array, d.file, d.triangles.size(), d.points.size(), *lo, *hi,
-                                  std::chrono::duration<double>(std::chrono::steady_clock::now() - spacing_start).count());
+    spacing_summary = fmt::format(
+        "spacing: '{}' on {} ({} triangles, {} points, q from {:.4g} to {:.4g}), read, checked and "
+        "indexed in {:.3f} s",
+        d.array, d.file, d.triangles.size(), d.points.size(), *lo, *hi,
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - spacing_start).count());
   }
   // Before anything else uses them: with unresolvable coordinates the node estimate's tree could
   // refine without end.
@@ -82,9 +86,8 @@ MeshInputs::MeshInputs(const CaseConfig& config) {
     DenseOptions dense_options;
     dense_options.join_tolerance = config.geometry.join_tolerance;
     try {
-      dense = std::make_unique<DenseGeometry>(
-          make_dense_geometry(SmoothCurves(geometry, config.geometry.corner_angle),
-                              [&](Vec2 p) { return spacing->at(p); }, dense_options));
+      dense = std::make_unique<DenseGeometry>(make_dense_geometry(
+          SmoothCurves(geometry, config.geometry.corner_angle), [&](Vec2 p) { return spacing->at(p); }, dense_options));
     } catch (const GeometryError& e) {
       // Smooth curves through coarse points can cross where the polylines pass close to each other.
       smooth_fallback = e.what();
@@ -138,16 +141,18 @@ SpacingOptions spacing_options(const CaseConfig& config) {
 
 namespace {
 
-bool refused_by_nodes(const LimitError& e) { return std::string_view(e.what()).find("--max-nodes") != std::string_view::npos; }
+bool refused_by_nodes(const LimitError& e) {
+  return std::string_view(e.what()).find("--max-nodes") != std::string_view::npos;
+}
 
 // The hexagonal-packing estimate against --max-nodes (`source` prefixes the message unless empty).
 void refuse_above_limit(const std::string& source, std::uint64_t max_nodes, double estimate, const char* which) {
   if (!(estimate <= static_cast<double>(max_nodes))) {
-    throw LimitError(fmt::format("{}the {} asks for about {} nodes (hexagonal-packing estimate), "
-                                 "more than --max-nodes {}; coarsen the spacing or raise --max-nodes",
-                                 source.empty() ? std::string() : source + ": ", which,
-                                 std::isfinite(estimate) ? fmt::format("{:.0f}", estimate) : std::string("infinitely many"),
-                                 max_nodes));
+    throw LimitError(fmt::format(
+        "{}the {} asks for about {} nodes (hexagonal-packing estimate), "
+        "more than --max-nodes {}; coarsen the spacing or raise --max-nodes",
+        source.empty() ? std::string() : source + ": ", which,
+        std::isfinite(estimate) ? fmt::format("{:.0f}", estimate) : std::string("infinitely many"), max_nodes));
   }
 }
 
@@ -208,9 +213,10 @@ double check_node_limit(const CaseConfig& config, const MeshInputs& inputs, cons
   // The stages after this one (the fill, the simulation, the triangulation, the cleanup, the writers)
   // each hold arrays in proportion to the node count: the run's peak, before the first of them.
   const double nodes = std::max(estimate, static_cast<double>(config.init.total));
-  check_memory(config.max_memory, run_memory_bytes(nodes, background.stats().bytes),
-               fmt::format("{}: meshing about {:.0f} nodes (hexagonal-packing estimate)", config.source.string(), nodes),
-               "raise --max-memory, coarsen the spacing or lower --max-nodes");
+  check_memory(
+      config.max_memory, run_memory_bytes(nodes, background.stats().bytes),
+      fmt::format("{}: meshing about {:.0f} nodes (hexagonal-packing estimate)", config.source.string(), nodes),
+      "raise --max-memory, coarsen the spacing or lower --max-nodes");
   return estimate;
 }
 
@@ -222,8 +228,9 @@ InitialDistribution make_initial(const CaseConfig& config, const MeshInputs& inp
   // run_mesh meshes a layered case's core (a case without the tables); a caller driving the stages
   // itself (the Python API) would mesh the whole domain without the layers.
   if (!config.boundary_layers.empty())
-    throw InputError(fmt::format("{}: [[boundary_layer]] is only supported by `pdmesh mesh` (not by the Python API yet)",
-                                 config.source.string()));
+    throw InputError(
+        fmt::format("{}: [[boundary_layer]] is only supported by `pdmesh mesh` (not by the Python API yet)",
+                    config.source.string()));
   const BoundaryPlacement boundary = place_boundary(config, inputs, spacing);
   InitOptions options;
   options.method = config.init.method;

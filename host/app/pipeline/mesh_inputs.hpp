@@ -50,7 +50,7 @@ struct MeshInputs {
   SpacingOptions spacing_options;
   // One line about a spacing field read from a file (spacing.field = "mesh"); empty otherwise.
   std::string spacing_summary;
-  std::unique_ptr<DenseGeometry> dense;     // smooth curves; null for "polyline" (or after a fallback)
+  std::unique_ptr<DenseGeometry> dense;      // smooth curves; null for "polyline" (or after a fallback)
   std::unique_ptr<GeometryTree> dense_tree;  // over dense->geometry
   BoundaryNodeRule boundary_rule = BoundaryNodeRule::Input;
   // Why geometry.curves = "smooth" fell back to the polylines (the smooth curves intersect); empty

@@ -50,8 +50,8 @@ void prepare_output_directory(const CaseConfig& config) {
 
 // Declared in pipeline_detail.hpp (the simulation stage writes the final nodes with it).
 void mesh_detail::write_node_outputs(const CaseConfig& config, const MeshInputs& inputs, const NodeSet& nodes,
-                        const std::string& stage, const std::string& title, const std::vector<Box>* tree_quads,
-                        RunPhases& run) {
+                                     const std::string& stage, const std::string& title,
+                                     const std::vector<Box>* tree_quads, RunPhases& run) {
   const fs::path& dir = config.out_dir;
   {
     const auto timer = run.phase(stage + ".nodes");
@@ -64,7 +64,8 @@ void mesh_detail::write_node_outputs(const CaseConfig& config, const MeshInputs&
   const NodeSet* drawn = &nodes;
   std::vector<std::string> names;
   const auto draw = [&](const std::string& file, const NodePictureOptions& options) {
-    run.picture(file, [geometry, drawn, options, path = dir / file] { write_node_picture(path, *geometry, *drawn, options); });
+    run.picture(
+        file, [geometry, drawn, options, path = dir / file] { write_node_picture(path, *geometry, *drawn, options); });
     names.push_back(file);
   };
   if (config.output.wants("png")) {
@@ -87,7 +88,6 @@ void mesh_detail::write_node_outputs(const CaseConfig& config, const MeshInputs&
   progress(config, "wrote {}/{}.nodes{}", dir.string(), stage,
            names.empty() ? "" : fmt::format("; drawing {}", fmt::join(names, ", ")));
 }
-
 
 void write_spacing_picture(const CaseConfig& config, const MeshInputs& inputs, const SpacingStage& spacing) {
   const BackgroundSpacing& field = spacing.background();
@@ -121,8 +121,10 @@ void check_or_throw(const CaseConfig& config, const MeshInputs& inputs, const Me
   // where nodes have slid off geometry vertices; that area is what the check compares against.
   const double node_area = node_domain_area(nodes, inputs.node_geometry());
   const CheckReport report = check_mesh(mesh, node_area);
-  if (!report.ok()) throw SimulationError(fmt::format("the {} failed its invariant check:\n{}", which, report.summary()));
-  progress(config, "mesh check ({}): passed (topology, orientation, constrained Delaunay, boundary edges, area {:.10g}; "
+  if (!report.ok())
+    throw SimulationError(fmt::format("the {} failed its invariant check:\n{}", which, report.summary()));
+  progress(config,
+           "mesh check ({}): passed (topology, orientation, constrained Delaunay, boundary edges, area {:.10g}; "
            "the geometry's area is {:.10g}, relative difference {:.2g})",
            which, node_area, inputs.geometry.area, std::fabs(node_area - inputs.geometry.area) / inputs.geometry.area);
 }
@@ -209,7 +211,8 @@ CleanedMesh clean_up(const CaseConfig& config, const MeshInputs& inputs, const S
   effect.removed = cleaned.stats.collapsed;
   effect.moves = cleaned.stats.moves;
   effect.seconds = cleaned.stats.seconds;
-  progress(config, "cleanup: {:.3f} s; min angle {:.2f} -> {:.2f} deg, triangles below {:g} deg {} -> {}; "
+  progress(config,
+           "cleanup: {:.3f} s; min angle {:.2f} -> {:.2f} deg, triangles below {:g} deg {} -> {}; "
            "{} node moves, {} nodes inserted, {} removed ({} triangles)",
            effect.seconds, effect.min_angle_before, effect.min_angle_after, effect.target_deg, effect.below_before,
            effect.below_after, effect.moves, effect.inserted, effect.removed, mesh.triangles.size());
@@ -277,8 +280,8 @@ void write_mesh_outputs(const CaseConfig& config, const MeshInputs& inputs, cons
   std::vector<double> values;
   const PictureGuard guard(phases);
   if (config.output.color_by != "none") values = metric_values(per_triangle, config.output.color_by);
-  const std::vector<std::string> pictures =
-      queue_mesh_pictures(config, mesh, config.output.color_by != "none" ? &values : nullptr, phases, metric_q, metrics);
+  const std::vector<std::string> pictures = queue_mesh_pictures(
+      config, mesh, config.output.color_by != "none" ? &values : nullptr, phases, metric_q, metrics);
   {
     const auto conformance_timer = phases.phase("spacing conformance");
     summary.has_spacing = true;
@@ -334,7 +337,8 @@ Mesh mesh_and_measure(const CaseConfig& config, const MeshInputs& inputs, const 
   // would undo the metric Delaunay's flips.
   const bool cleanup = config.cleanup.enabled && metric == nullptr;
   if (config.cleanup.enabled && metric != nullptr) {
-    progress(config, "cleanup: skipped for a metric field (the isotropic cleanup would undo the flips of the "
+    progress(config,
+             "cleanup: skipped for a metric field (the isotropic cleanup would undo the flips of the "
              "triangulation in the metric)");
     phases.note("cleanup", "skipped: metric field");
   }

@@ -45,8 +45,8 @@ void report_spacing(const CaseConfig& config, const SpacingStage& spacing) {
            "spacing field: {:.3f} s (base {:.3f} s, sources {:.3f} s, gradation {:.3f} s, refinement {:.3f} s in {} "
            "rounds); scale {}, gradation {}, rows in gap {}, curvature angle {} deg; {} leaves ({} before the limits), "
            "q lowered at {} of {} corners",
-           s.seconds, s.base_seconds, s.source_seconds, s.limit_seconds, s.refine_seconds, s.rounds, o.scale, o.gradation,
-           o.rows_in_gap, o.curvature_angle, b.leaves, s.base_leaves, s.reduced_corners, b.corners);
+           s.seconds, s.base_seconds, s.source_seconds, s.limit_seconds, s.refine_seconds, s.rounds, o.scale,
+           o.gradation, o.rows_in_gap, o.curvature_angle, b.leaves, s.base_leaves, s.reduced_corners, b.corners);
 }
 
 // Runs `stages` (the simulation and what follows it). A stop request after the simulation has ended
@@ -64,9 +64,10 @@ void checkpoint_on_stop(const CaseConfig& config, const NodeSet& nodes, const st
       const InterruptShield shield;
       write_checkpoint(file, Checkpoint{case_identity(config), nodes, *finished});
     }
-    throw Interrupted(fmt::format("after the simulation had ended (iteration {}); wrote its nodes to {} (the files "
-                                  "written whole before the stop stay)",
-                                  finished->iterations_done, file.string()));
+    throw Interrupted(
+        fmt::format("after the simulation had ended (iteration {}); wrote its nodes to {} (the files "
+                    "written whole before the stop stay)",
+                    finished->iterations_done, file.string()));
   }
 }
 
@@ -135,7 +136,8 @@ void read_stage_report(const CaseConfig& config, const MeshInputs& inputs) {
            inputs.geometry.segments.size(), inputs.geometry.loops.size(), inputs.geometry.area);
   if (!inputs.spacing_summary.empty()) progress(config, "{}", inputs.spacing_summary);
   if (inputs.dense)
-    progress(config, "geometry: smooth curves (centripetal Catmull-Rom) as a dense polyline of {} segments, area {:.6g}",
+    progress(config,
+             "geometry: smooth curves (centripetal Catmull-Rom) as a dense polyline of {} segments, area {:.6g}",
              inputs.dense->geometry.segments.size(), inputs.dense->geometry.area);
   if (!inputs.smooth_fallback.empty())
     progress(config, "note: geometry.curves = \"smooth\" fell back to the input polylines: {}", inputs.smooth_fallback);
@@ -179,7 +181,8 @@ void simulate_and_mesh(const CaseConfig& config, const MeshInputs& inputs, const
       const NodeSet core_nodes = without_front_nodes(nodes, inputs.geometry, dropped);
       if (dropped > 0)
         progress(config, "boundary layers: {} node(s) the simulation snapped onto a layer front left out", dropped);
-      const Mesh mesh = mesh_and_measure(core, inputs, spacing, core_nodes, &phases, dropped ? nullptr : final_mesh.get());
+      const Mesh mesh =
+          mesh_and_measure(core, inputs, spacing, core_nodes, &phases, dropped ? nullptr : final_mesh.get());
       write_layered_outputs(layered->config, layered->inputs, layered->layered, inputs, mesh, phases);
     } else {
       mesh_and_measure(config, inputs, spacing, nodes, &phases, final_mesh.get());
@@ -256,7 +259,8 @@ void run_core(const CaseConfig& config, const MeshInputs& inputs, const SpacingS
   timer = phases.phase("fill");
   const InitialDistribution initial = make_initial(config, inputs, spacing);
   timer.stop();
-  progress(config, "initial distribution: {} nodes (estimate {:.0f} by hexagonal packing; {} fixed, {} boundary, "
+  progress(config,
+           "initial distribution: {} nodes (estimate {:.0f} by hexagonal packing; {} fixed, {} boundary, "
            "{} interior of which {} by overloading)",
            initial.nodes.size(), estimate, initial.nodes.count(NodeKind::Fixed),
            initial.nodes.count(NodeKind::Boundary), initial.nodes.count(NodeKind::Interior), initial.overload_nodes);

@@ -21,8 +21,8 @@ namespace pdmesh {
 namespace fs = std::filesystem;
 
 std::vector<fs::path> planned_outputs(const CaseConfig& config) {
-  std::vector<std::string> names{"initial.nodes", "final.nodes", "mesh.nodes", "history.csv", "quality.json",
-                                 checkpoint_path("").filename().string()};
+  std::vector<std::string> names{"initial.nodes", "final.nodes",  "mesh.nodes",
+                                 "history.csv",   "quality.json", checkpoint_path("").filename().string()};
   const bool png = config.output.wants("png"), svg = config.output.wants("svg");
   for (const std::string stage : {"initial", "final", "mesh"}) {
     if (png) {
@@ -81,8 +81,7 @@ fs::path existing_ancestor(fs::path dir) {
 
 void check_writable_directory(const fs::path& dir, const std::string& what) {
   std::error_code ec;
-  if (!fs::is_directory(dir, ec))
-    throw InputError(fmt::format("{}: '{}' is not a directory", what, dir.string()));
+  if (!fs::is_directory(dir, ec)) throw InputError(fmt::format("{}: '{}' is not a directory", what, dir.string()));
   if (::access(dir.c_str(), W_OK | X_OK) != 0)
     throw InputError(fmt::format("{}: cannot write in '{}': {}", what, dir.string(), std::strerror(errno)));
 }
@@ -93,15 +92,17 @@ void check_outputs(const CaseConfig& config) {
   if (!config.write_outputs) return;
   std::error_code ec;
   const fs::path resumed =
-      config.resume ? (fs::is_directory(*config.resume, ec) ? checkpoint_path(*config.resume) : *config.resume) : fs::path();
+      config.resume ? (fs::is_directory(*config.resume, ec) ? checkpoint_path(*config.resume) : *config.resume)
+                    : fs::path();
   const std::vector<fs::path> inputs = input_files(config);
   for (const fs::path& output : planned_outputs(config)) {
     if (!resumed.empty() && same_file(output, resumed)) continue;
     for (const fs::path& input : inputs)
       if (same_file(output, input))
-        throw InputError(fmt::format("the output '{}' would replace the input '{}': choose another --out (or "
-                                     "--timings) for this input",
-                                     output.string(), input.string()));
+        throw InputError(
+            fmt::format("the output '{}' would replace the input '{}': choose another --out (or "
+                        "--timings) for this input",
+                        output.string(), input.string()));
     if (fs::is_directory(output, ec))
       throw InputError(fmt::format("cannot write the output '{}': a directory of that name exists", output.string()));
   }
@@ -129,15 +130,16 @@ void lock_output_directory(const fs::path& dir) {
   // The directory itself is locked: nothing is added to it, and nothing is left behind to go stale.
   const int fd = ::open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
   if (fd < 0)
-    throw InputError(fmt::format("--out {}: cannot open the directory to lock it: {}", dir.string(),
-                                 std::strerror(errno)));
+    throw InputError(
+        fmt::format("--out {}: cannot open the directory to lock it: {}", dir.string(), std::strerror(errno)));
   if (::flock(fd, LOCK_EX | LOCK_NB) != 0) {
     const int error = errno;
     ::close(fd);
     if (error == EWOULDBLOCK)
-      throw InputError(fmt::format("--out {}: another pdmesh run is writing there (it holds the directory's lock); "
-                                   "wait for it to end or choose another --out",
-                                   dir.string()));
+      throw InputError(
+          fmt::format("--out {}: another pdmesh run is writing there (it holds the directory's lock); "
+                      "wait for it to end or choose another --out",
+                      dir.string()));
     throw InputError(fmt::format("--out {}: cannot lock the directory: {}", dir.string(), std::strerror(error)));
   }
   held.insert(key);  // the descriptor stays open (and locked) until the process ends

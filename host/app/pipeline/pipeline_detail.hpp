@@ -27,8 +27,10 @@ template <class... Args>
 void progress(const CaseConfig& config, fmt::format_string<Args...> format, Args&&... args) {
   if (config.quiet) return;
   const std::string line = fmt::format(format, std::forward<Args>(args)...);
-  if (has_progress_sink()) progress_line(line);
-  else fmt::print(stderr, "{}\n", line);
+  if (has_progress_sink())
+    progress_line(line);
+  else
+    fmt::print(stderr, "{}\n", line);
 }
 
 // STAGE.nodes, and (as output.formats asks) STAGE.png and STAGE_<view>.png, STAGE.svg, for one node

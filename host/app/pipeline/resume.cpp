@@ -43,9 +43,9 @@ std::vector<std::pair<std::string, std::string>> case_identity(const CaseConfig&
   for (std::size_t f = 0; f < config.geometry.files.size(); ++f) {
     const fs::path& file = config.geometry.files[f];
     const std::string content = read_text_file(file, InputKind::Geometry);
-    keys.emplace_back(fmt::format("geometry.file.{}", f), fmt::format("{} ({} bytes, FNV-1a {:016x})",
-                                                                      file.filename().string(), content.size(),
-                                                                      fnv1a64(content)));
+    keys.emplace_back(
+        fmt::format("geometry.file.{}", f),
+        fmt::format("{} ({} bytes, FNV-1a {:016x})", file.filename().string(), content.size(), fnv1a64(content)));
   }
   std::string names;
   for (const std::string& n : config.geometry.curve_names) names += (names.empty() ? "" : ",") + n;
@@ -64,21 +64,26 @@ std::vector<std::pair<std::string, std::string>> case_identity(const CaseConfig&
   keys.emplace_back("spacing.expression", config.spacing.expression);
   const auto file_identity = [&keys](const char* key, const std::filesystem::path& file) {
     const std::string content = read_text_file(file, InputKind::Mesh);
-    keys.emplace_back(key, fmt::format("{} ({} bytes, FNV-1a {:016x})", file.filename().string(), content.size(),
-                                       fnv1a64(content)));
+    keys.emplace_back(
+        key, fmt::format("{} ({} bytes, FNV-1a {:016x})", file.filename().string(), content.size(), fnv1a64(content)));
   };
   // Only for a field read from a file, so that checkpoints of the other fields keep their identity.
-  if (config.spacing.field == SpacingKind::Mesh ||
-      (config.spacing.metric() && !config.spacing.file.empty())) {
+  if (config.spacing.field == SpacingKind::Mesh || (config.spacing.metric() && !config.spacing.file.empty())) {
     file_identity("spacing.file", config.spacing.file);
-    if (!config.spacing.sol.empty()) file_identity("spacing.sol", config.spacing.sol);
-    else keys.emplace_back("spacing.array", config.spacing.array);
+    if (!config.spacing.sol.empty())
+      file_identity("spacing.sol", config.spacing.sol);
+    else
+      keys.emplace_back("spacing.array", config.spacing.array);
   }
   // The metric keys, only for a metric field (the other fields' checkpoints keep their identity).
   if (config.spacing.metric()) {
     const auto& s = config.spacing;
-    for (const auto& [key, value] : {std::pair{"spacing.h1", &s.h1}, {"spacing.h2", &s.h2}, {"spacing.angle", &s.angle},
-                                     {"spacing.m11", &s.m11}, {"spacing.m12", &s.m12}, {"spacing.m22", &s.m22},
+    for (const auto& [key, value] : {std::pair{"spacing.h1", &s.h1},
+                                     {"spacing.h2", &s.h2},
+                                     {"spacing.angle", &s.angle},
+                                     {"spacing.m11", &s.m11},
+                                     {"spacing.m12", &s.m12},
+                                     {"spacing.m22", &s.m22},
                                      {"spacing.function", &s.function}}) {
       keys.emplace_back(key, *value);
     }
@@ -123,14 +128,13 @@ std::vector<std::pair<std::string, std::string>> case_identity(const CaseConfig&
     keys.emplace_back("population.enabled", "true");
     // The settle keys only when settling is on (settle > 0): with it off the schedule is the one before
     // them, and so is its identity, so that earlier checkpoints of such runs still resume.
-    keys.emplace_back("population.schedule",
-                      p.settle > 0 ? fmt::format("every {} start {} stop {} settle {} {}", p.every, p.start, p.stop,
-                                                 p.settle, p.settle_events)
-                                   : fmt::format("every {} start {} stop {}", p.every, p.start, p.stop));
-    keys.emplace_back("population.thresholds",
-                      fmt::format("insert {} {} merge {} {} valence {} boundary {} split {}", p.insert.first,
-                                  p.insert.last, p.merge.first, p.merge.last, p.remove_valence, p.boundary,
-                                  p.boundary_split));
+    keys.emplace_back("population.schedule", p.settle > 0
+                                                 ? fmt::format("every {} start {} stop {} settle {} {}", p.every,
+                                                               p.start, p.stop, p.settle, p.settle_events)
+                                                 : fmt::format("every {} start {} stop {}", p.every, p.start, p.stop));
+    keys.emplace_back("population.thresholds", fmt::format("insert {} {} merge {} {} valence {} boundary {} split {}",
+                                                           p.insert.first, p.insert.last, p.merge.first, p.merge.last,
+                                                           p.remove_valence, p.boundary, p.boundary_split));
   }
   // Values are single lines (a checkpoint stores one key per line).
   for (auto& [k, v] : keys)
@@ -143,8 +147,10 @@ Checkpoint read_checkpoint_for(const fs::path& resume, const CaseConfig& config,
   std::error_code ec;
   const fs::path file = fs::is_directory(resume, ec) ? checkpoint_path(resume) : resume;
   if (!fs::exists(file, ec))
-    throw InputError(fmt::format("--resume {}: there is no checkpoint '{}' (a run leaves one only when it was "
-                                 "interrupted or failed)", resume.string(), file.string()));
+    throw InputError(
+        fmt::format("--resume {}: there is no checkpoint '{}' (a run leaves one only when it was "
+                    "interrupted or failed)",
+                    resume.string(), file.string()));
   Checkpoint checkpoint = read_checkpoint(file);
   const auto here = case_identity(config);
   for (const auto& [key, value] : here) {
@@ -164,8 +170,8 @@ Checkpoint read_checkpoint_for(const fs::path& resume, const CaseConfig& config,
   }
   // --iterations 0 meshes the checkpoint's nodes as they are (run_mesh).
   if (config.simulation.iterations > 0 && checkpoint.state.iterations_done > config.simulation.iterations)
-    throw InputError(fmt::format("{}: the checkpoint is after {} iterations, more than --iterations {}",
-                                 file.string(), checkpoint.state.iterations_done, config.simulation.iterations));
+    throw InputError(fmt::format("{}: the checkpoint is after {} iterations, more than --iterations {}", file.string(),
+                                 checkpoint.state.iterations_done, config.simulation.iterations));
   check_checkpoint_fits(checkpoint, tree, file.string());
   return checkpoint;
 }

@@ -21,7 +21,6 @@ std::vector<std::pair<std::string, std::string>> case_identity(const CaseConfig&
 // Reads the checkpoint named by --resume (a directory holding checkpoint.pdmesh, or the file) and
 // checks that it belongs to `config`'s case (InputError naming the first key that differs) and that
 // its state fits the case's geometry (check_checkpoint_fits).
-Checkpoint read_checkpoint_for(const std::filesystem::path& resume, const CaseConfig& config,
-                               const GeometryTree& tree);
+Checkpoint read_checkpoint_for(const std::filesystem::path& resume, const CaseConfig& config, const GeometryTree& tree);
 
 }  // namespace pdmesh

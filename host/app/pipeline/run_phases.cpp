@@ -176,9 +176,8 @@ void RunPhases::hold_pictures(bool hold, double max_seconds) {
     std::lock_guard lock(mutex_);
     held_ = hold;
     if (hold)
-      held_until_ = std::chrono::steady_clock::now() +
-                    std::chrono::duration_cast<std::chrono::steady_clock::duration>(
-                        std::chrono::duration<double>(std::min(max_seconds, 1e6)));
+      held_until_ = std::chrono::steady_clock::now() + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                                                           std::chrono::duration<double>(std::min(max_seconds, 1e6)));
   }
   cv_.notify_all();
 }
@@ -293,9 +292,9 @@ std::string RunPhases::json() const {
   out += "  \"phases\": [\n";
   for (std::size_t i = 0; i < all.size(); ++i) {
     const PhaseTime& p = all[i];
-    out += fmt::format("    {{\"name\": {}, \"wall\": {:.6f}, \"cpu\": {:.6f}, \"background\": {}}}{}\n",
-                       json_string(p.name), p.wall, p.cpu, p.background ? "true" : "false",
-                       i + 1 < all.size() ? "," : "");
+    out +=
+        fmt::format("    {{\"name\": {}, \"wall\": {:.6f}, \"cpu\": {:.6f}, \"background\": {}}}{}\n",
+                    json_string(p.name), p.wall, p.cpu, p.background ? "true" : "false", i + 1 < all.size() ? "," : "");
   }
   out += "  ]\n}\n";
   return out;

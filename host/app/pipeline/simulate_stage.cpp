@@ -68,10 +68,11 @@ SimResult run_on_backend(const CaseConfig& config, const MeshInputs& inputs, con
     };
   }
   std::optional<int> saved_after;  // the iteration of the last good state, once saved
-  if (config.write_outputs) callbacks.on_failure = [&](const SimState& state) {
-    write_checkpoint(checkpoint_file, Checkpoint{case_identity(config), nodes, state});
-    saved_after = state.iterations_done;
-  };
+  if (config.write_outputs)
+    callbacks.on_failure = [&](const SimState& state) {
+      write_checkpoint(checkpoint_file, Checkpoint{case_identity(config), nodes, state});
+      saved_after = state.iterations_done;
+    };
   // A failed run's message says where its last good state went and how to continue from it.
   const auto saved_note = [&] {
     return fmt::format("; the last good state (after iteration {}) is in {}: continue with --resume {}", *saved_after,
@@ -99,8 +100,8 @@ SimResult run_on_backend(const CaseConfig& config, const MeshInputs& inputs, con
 // The checkpoint after a run that writes outputs. Stopped by core/interrupt's flag: the nodes go to
 // the checkpoint and nothing else is written (throws Interrupted). Stopped by the caller's flag:
 // the checkpoint, and the outputs follow. Finished: a stale checkpoint is removed.
-void keep_checkpoint(const CaseConfig& config, const NodeSet& nodes, const SimResult& result,
-                     const SimOptions& options, const SimState* resume, const SimulateHooks* hooks) {
+void keep_checkpoint(const CaseConfig& config, const NodeSet& nodes, const SimResult& result, const SimOptions& options,
+                     const SimState* resume, const SimulateHooks* hooks) {
   const fs::path checkpoint_file = checkpoint_path(config.out_dir);
   if (interrupt_flag().load()) {
     // Ctrl-C (or --stop-after): triangulating and cleaning up an unsettled mesh would only delay the
@@ -111,9 +112,9 @@ void keep_checkpoint(const CaseConfig& config, const NodeSet& nodes, const SimRe
       const InterruptShield shield;
       write_checkpoint(checkpoint_file, Checkpoint{case_identity(config), nodes, result.state});
     }
-    throw Interrupted(fmt::format("after iteration {} of {}{}; wrote {} and nothing else",
-                                  result.state.iterations_done, options.iterations,
-                                  result.converged ? " (converged)" : "", checkpoint_file.string()));
+    throw Interrupted(fmt::format("after iteration {} of {}{}; wrote {} and nothing else", result.state.iterations_done,
+                                  options.iterations, result.converged ? " (converged)" : "",
+                                  checkpoint_file.string()));
   }
   if (hooks && hooks->finished) *hooks->finished = result.state;
   if (result.stopped) {
@@ -128,8 +129,8 @@ void keep_checkpoint(const CaseConfig& config, const NodeSet& nodes, const SimRe
 }
 
 // The last progress lines: how the run ended, and its figures.
-void report_result(const CaseConfig& config, const SimOptions& options, const SimResult& result,
-                   const SimState* resume, std::size_t nodes) {
+void report_result(const CaseConfig& config, const SimOptions& options, const SimResult& result, const SimState* resume,
+                   std::size_t nodes) {
   if (result.converged) {
     progress(config, "simulation: converged after {} iterations (of at most {})", result.state.iterations_done,
              options.iterations);
@@ -196,10 +197,9 @@ SimResult simulate(const CaseConfig& config, const MeshInputs& inputs, const Spa
   ChosenBackend own;
   const ChosenBackend& backend =
       metric ? (own = choose_metric_backend(config.simulation.device, config.simulation.precision, note))
-      : hooks && hooks->backend
-          ? hooks->backend(note)
-          : (own = choose_backend_for(config.simulation.device, config.simulation.precision,
-                                      static_cast<double>(nodes.size()), note));
+      : hooks && hooks->backend ? hooks->backend(note)
+                                : (own = choose_backend_for(config.simulation.device, config.simulation.precision,
+                                                            static_cast<double>(nodes.size()), note));
   SimOptions options = simulation_options(config);
   options.metric = metric;
   if (metric && options.population.enabled) {

@@ -63,8 +63,8 @@ std::vector<std::string> resume_command(const CaseConfig& config, bool mesh_as_i
 
 std::string stop_message(const CaseConfig& config, const std::string& phase, int signal,
                          const std::optional<std::string>& saved) {
-  const std::string by = signal == SIGINT    ? std::string("SIGINT (Ctrl-C)")
-                         : signal == SIGTERM ? std::string("SIGTERM")
+  const std::string by = signal == SIGINT        ? std::string("SIGINT (Ctrl-C)")
+                         : signal == SIGTERM     ? std::string("SIGTERM")
                          : config.stop_after > 0 ? fmt::format("--stop-after {}", config.stop_after)
                                                  : std::string("request");
   const std::string where = phase.empty() ? "while starting" : fmt::format("during {}", phase);
@@ -75,8 +75,9 @@ std::string stop_message(const CaseConfig& config, const std::string& phase, int
       text += fmt::format("; nothing was written, the checkpoint {} is unchanged\n",
                           checkpoint_path(config.out_dir).string());
     } else {
-      text += "; no iteration of the simulation had ended, so there is nothing to continue from: run the same "
-              "command again to start over\n";
+      text +=
+          "; no iteration of the simulation had ended, so there is nothing to continue from: run the same "
+          "command again to start over\n";
       return text;
     }
   } else {
@@ -84,8 +85,9 @@ std::string stop_message(const CaseConfig& config, const std::string& phase, int
   }
   const auto go_on = resume_command(config, false), as_is = resume_command(config, true);
   if (go_on.empty()) {
-    text += fmt::format("pdmesh: continue with --resume {}; mesh the nodes as they are with --resume {} --iterations 0\n",
-                        config.out_dir.string(), config.out_dir.string());
+    text +=
+        fmt::format("pdmesh: continue with --resume {}; mesh the nodes as they are with --resume {} --iterations 0\n",
+                    config.out_dir.string(), config.out_dir.string());
   } else {
     text += fmt::format("pdmesh: to continue the run:           {}\n", shell_command(go_on));
     text += fmt::format("pdmesh: to mesh the nodes as they are: {}\n", shell_command(as_is));

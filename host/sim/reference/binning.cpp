@@ -41,14 +41,14 @@ void build_neighbours(const SimParticles& p, double cutoff, NeighbourList& list,
       const double dx = p.x[static_cast<std::size_t>(j)] - xi, dy = p.y[static_cast<std::size_t>(j)] - yi;
       if (dx * dx + dy * dy <= r2) found.push_back(j);
     };
-    grids.for_each_near(xi, yi, static_cast<std::size_t>(grids.level(i)), [r](std::size_t) { return r; }, test);
+    grids.for_each_near(
+        xi, yi, static_cast<std::size_t>(grids.level(i)), [r](std::size_t) { return r; }, test);
     std::sort(found.begin(), found.end());
     store_sorted(i, found, list, flags);
   }
 }
 
-void build_neighbours_brute_force(const SimParticles& p, double cutoff, NeighbourList& list,
-                                  NeighbourFlags& flags) {
+void build_neighbours_brute_force(const SimParticles& p, double cutoff, NeighbourList& list, NeighbourFlags& flags) {
   if (p.has_metric()) {
     build_neighbours_metric_brute_force(p, cutoff, list, flags);
     return;

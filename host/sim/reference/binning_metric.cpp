@@ -40,8 +40,9 @@ void build_neighbours_metric(const SimParticles& p, double cutoff, NeighbourList
       const auto uj = static_cast<std::size_t>(j);
       if (pair_distance2(s[i], s[uj], p.x[uj] - xi, p.y[uj] - yi) <= c2) found.push_back(j);
     };
-    grids.for_each_near(xi, yi, static_cast<std::size_t>(grids.level(i)),
-                        [&](std::size_t l) { return std::max(ri, margin * grids.cell_size(l)); }, test);
+    grids.for_each_near(
+        xi, yi, static_cast<std::size_t>(grids.level(i)),
+        [&](std::size_t l) { return std::max(ri, margin * grids.cell_size(l)); }, test);
     std::sort(found.begin(), found.end());
     store_sorted(i, found, list, flags);
   }

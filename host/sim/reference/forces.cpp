@@ -8,8 +8,7 @@
 
 namespace pdmesh::reference {
 
-void compute_forces(const SimParticles& p, const NeighbourList& list, const ForceParams& params,
-                    ForceResult& out) {
+void compute_forces(const SimParticles& p, const NeighbourList& list, const ForceParams& params, ForceResult& out) {
   if (p.has_metric()) {
     compute_forces_metric(p, list, params, out);
     return;

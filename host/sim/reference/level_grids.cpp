@@ -73,7 +73,8 @@ void LevelGrids::build(const SimParticles& p, const std::vector<double>& radius)
   const std::size_t levels = n == 0 ? 0 : static_cast<std::size_t>(top) + 1;
   members_.resize(levels);
   for (auto& m : members_) m.clear();
-  for (std::size_t j = 0; j < n; ++j) members_[static_cast<std::size_t>(level_[j])].push_back(static_cast<std::int32_t>(j));
+  for (std::size_t j = 0; j < n; ++j)
+    members_[static_cast<std::size_t>(level_[j])].push_back(static_cast<std::int32_t>(j));
   cumulative_.resize(levels);
   exact_.resize(levels);
   for (std::size_t l = 0; l < levels; ++l) {
@@ -116,8 +117,7 @@ void start_list(const SimParticles& p, NeighbourList& list, NeighbourFlags& flag
   }
 }
 
-void store_sorted(std::size_t i, const std::vector<std::int32_t>& found, NeighbourList& list,
-                  NeighbourFlags& flags) {
+void store_sorted(std::size_t i, const std::vector<std::int32_t>& found, NeighbourList& list, NeighbourFlags& flags) {
   const auto count = static_cast<std::int32_t>(found.size());
   list.count[i] = count;
   flags.max_count = std::max(flags.max_count, count);

@@ -84,7 +84,6 @@ bool valid_node(const SimParticles& p, std::size_t i);
 void start_list(const SimParticles& p, NeighbourList& list, NeighbourFlags& flags);
 
 // Stores node i's neighbours (sorted ascending by the caller) into the padded list; updates flags.
-void store_sorted(std::size_t i, const std::vector<std::int32_t>& found, NeighbourList& list,
-                  NeighbourFlags& flags);
+void store_sorted(std::size_t i, const std::vector<std::int32_t>& found, NeighbourList& list, NeighbourFlags& flags);
 
 }  // namespace pdmesh::reference

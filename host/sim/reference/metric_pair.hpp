@@ -38,8 +38,7 @@ inline double largest_size(double m11, double m12, double m22) {
 
 // Finite and positive definite (m11 > 0 and det > 0), as the metric of a valid node must be.
 inline bool valid_metric(double m11, double m12, double m22) {
-  return std::isfinite(m11) && std::isfinite(m12) && std::isfinite(m22) && m11 > 0.0 &&
-         m11 * m22 - m12 * m12 > 0.0;
+  return std::isfinite(m11) && std::isfinite(m12) && std::isfinite(m22) && m11 > 0.0 && m11 * m22 - m12 * m12 > 0.0;
 }
 
 // rho^2 = |S^-1 d|^2 for the pair's mean size tensor S = (si + sj) / 2. S^-1 = adj(S) / det S. Since

@@ -13,16 +13,14 @@ namespace {
 class ReferenceBackend final : public StepBackend {
  public:
   std::string name() const override { return "host"; }
-  void build_neighbours(const SimParticles& p, double cutoff, NeighbourList& list,
-                        NeighbourFlags& flags) override {
+  void build_neighbours(const SimParticles& p, double cutoff, NeighbourList& list, NeighbourFlags& flags) override {
     cache_.build(p, cutoff, list, flags);
   }
   void compute_forces(const SimParticles& p, const NeighbourList& list, const ForceParams& params,
                       ForceResult& out) override {
     reference::compute_forces(p, list, params, out);
   }
-  void time_step_and_move(const SimParticles& p, const ForceResult& forces, double dt_gm2,
-                          MoveResult& out) override {
+  void time_step_and_move(const SimParticles& p, const ForceResult& forces, double dt_gm2, MoveResult& out) override {
     reference::time_step_and_move(p, forces, dt_gm2, out);
   }
   void apply_momentum(const SimParticles& p, const ForceResult& forces, double beta, MoveResult& moves,
@@ -41,21 +39,21 @@ class ReferenceBackend final : public StepBackend {
 
 std::unique_ptr<StepBackend> make_reference_backend() { return std::make_unique<ReferenceBackend>(); }
 
-void build_neighbours_growing(StepBackend& backend, const SimParticles& p, double cutoff,
-                              NeighbourList& list, NeighbourFlags& flags) {
+void build_neighbours_growing(StepBackend& backend, const SimParticles& p, double cutoff, NeighbourList& list,
+                              NeighbourFlags& flags) {
   for (int attempt = 0; attempt < 3; ++attempt) {
     backend.build_neighbours(p, cutoff, list, flags);
     if (flags.first_invalid >= 0) {
       const auto i = static_cast<std::size_t>(flags.first_invalid);
-      throw SimulationError(fmt::format("node {} is invalid before binning: x = ({}, {}), q = {}", i, p.x[i],
-                                        p.y[i], p.q[i]));
+      throw SimulationError(
+          fmt::format("node {} is invalid before binning: x = ({}, {}), q = {}", i, p.x[i], p.y[i], p.q[i]));
     }
     if (!flags.overflow) return;
     // Round up to a multiple of 8 so the padded rows stay aligned for the device.
     list.stride = (flags.max_count + 7) / 8 * 8;
   }
-  throw SimulationError(fmt::format("neighbour list still overflows at stride {} (max count {})", list.stride,
-                                    flags.max_count));
+  throw SimulationError(
+      fmt::format("neighbour list still overflows at stride {} (max count {})", list.stride, flags.max_count));
 }
 
 }  // namespace pdmesh

@@ -14,8 +14,7 @@ namespace pdmesh::reference {
 void build_neighbours(const SimParticles& p, double cutoff, NeighbourList& list, NeighbourFlags& flags);
 
 // Brute-force O(N^2) neighbour list with the same criterion; the oracle for the tests.
-void build_neighbours_brute_force(const SimParticles& p, double cutoff, NeighbourList& list,
-                                  NeighbourFlags& flags);
+void build_neighbours_brute_force(const SimParticles& p, double cutoff, NeighbourList& list, NeighbourFlags& flags);
 
 // Metric mode: every node's size tensor M^(-1/2) (metric_pair.hpp), in node order.
 std::vector<Sym2> size_tensors(const SimParticles& p);
@@ -26,8 +25,7 @@ void build_neighbours_metric_brute_force(const SimParticles& p, double cutoff, N
                                          NeighbourFlags& flags);
 
 // Steps 2 and 3 (forces.cpp).
-void compute_forces(const SimParticles& p, const NeighbourList& list, const ForceParams& params,
-                    ForceResult& out);
+void compute_forces(const SimParticles& p, const NeighbourList& list, const ForceParams& params, ForceResult& out);
 
 // Steps 2 and 3 in metric mode (forces_metric.cpp; compute_forces forwards to it).
 void compute_forces_metric(const SimParticles& p, const NeighbourList& list, const ForceParams& params,
@@ -40,11 +38,11 @@ void apply_momentum(const SimParticles& p, const ForceResult& forces, double bet
                     MomentumState& carried);
 // d = g + beta p, back to g against the force, capped to r0 / 3: one node's rule (kernels/time_step.cl,
 // momentum_move, has the same expressions in the same order, so that double results agree bit for bit).
-void momentum_move(double gx, double gy, double px, double py, double beta, double fx, double fy, double r0,
-                   double& dx, double& dy);
+void momentum_move(double gx, double gy, double px, double py, double beta, double fx, double fy, double r0, double& dx,
+                   double& dy);
 // Metric mode: the same rule with the cap |d|_M <= r0 / 3 in the node's metric M = [[m11, m12], [m12, m22]].
-void momentum_move_metric(double gx, double gy, double px, double py, double beta, double fx, double fy,
-                          double r0, double m11, double m12, double m22, double& dx, double& dy);
+void momentum_move_metric(double gx, double gy, double px, double py, double beta, double fx, double fy, double r0,
+                          double m11, double m12, double m22, double& dx, double& dy);
 StepSums reduce(const SimParticles& p, const ForceResult& forces, const MoveResult& moves);
 
 // The pair force of eq. 5.11 as a signed magnitude along +r_ij/r_ij (negative = repulsion),

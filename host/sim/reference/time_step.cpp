@@ -33,8 +33,8 @@ void time_step_and_move(const SimParticles& p, const ForceResult& forces, double
   }
 }
 
-void momentum_move(double gx, double gy, double px, double py, double beta, double fx, double fy, double r0,
-                   double& dx, double& dy) {
+void momentum_move(double gx, double gy, double px, double py, double beta, double fx, double fy, double r0, double& dx,
+                   double& dy) {
   dx = gx + beta * px;
   dy = gy + beta * py;
   // Motion carried against today's force would push the node uphill: the plain step instead.
@@ -55,8 +55,8 @@ void momentum_move(double gx, double gy, double px, double py, double beta, doub
   }
 }
 
-void momentum_move_metric(double gx, double gy, double px, double py, double beta, double fx, double fy,
-                          double r0, double m11, double m12, double m22, double& dx, double& dy) {
+void momentum_move_metric(double gx, double gy, double px, double py, double beta, double fx, double fy, double r0,
+                          double m11, double m12, double m22, double& dx, double& dy) {
   dx = gx + beta * px;
   dy = gy + beta * py;
   if (dx * fx + dy * fy < 0.0) {
@@ -87,8 +87,8 @@ void apply_momentum(const SimParticles& p, const ForceResult& forces, double bet
     }
     double dx, dy;
     if (metric)
-      momentum_move_metric(moves.dx[i], moves.dy[i], carried.px[i], carried.py[i], beta, forces.fx[i],
-                           forces.fy[i], forces.r0[i], p.m11[i], p.m12[i], p.m22[i], dx, dy);
+      momentum_move_metric(moves.dx[i], moves.dy[i], carried.px[i], carried.py[i], beta, forces.fx[i], forces.fy[i],
+                           forces.r0[i], p.m11[i], p.m12[i], p.m22[i], dx, dy);
     else
       momentum_move(moves.dx[i], moves.dy[i], carried.px[i], carried.py[i], beta, forces.fx[i], forces.fy[i],
                     forces.r0[i], dx, dy);
