@@ -140,7 +140,7 @@ void check_metric_keys(const Reader& r, const toml::table& root, CaseConfig& c, 
                              "angle, in degrees)",
                              k));
       }
-      if (s.angle.empty()) s.angle = "0";
+      if (s.angle.empty()) s.angle = std::string("0");  // a move: GCC 12 warns falsely (-Wrestrict) on = "0"
     } else if (components != nullptr) {
       for (const char* k : kComponentKeys) {
         if (node(k) == nullptr)
@@ -174,7 +174,7 @@ void check_metric_keys(const Reader& r, const toml::table& root, CaseConfig& c, 
     if (function && array != nullptr)
       r.fail("spacing.array", array,
              "spacing.array is set but the Hessian's function is an expression (spacing.function)");
-    if (file != nullptr && array == nullptr) s.array = "u";
+    if (file != nullptr && array == nullptr) s.array = std::string("u");
     if (node("complexity") == nullptr)
       r.fail("spacing.field", node("field"),
              "spacing.field is 'hessian' but spacing.complexity (the metric's complexity C: the mesh has about "
