@@ -13,13 +13,15 @@ namespace pdmesh {
 // muParser binds x and y by address: the parser and its variables live together on the heap.
 struct ScalarExpression::Impl {
   std::string expression;
+  std::string what;
   mu::Parser parser;
   double x = 0.0;
   double y = 0.0;
 };
 
-ScalarExpression::ScalarExpression(const std::string& expression) : impl_(std::make_unique<Impl>()) {
+ScalarExpression::ScalarExpression(const std::string& expression, std::string what) : impl_(std::make_unique<Impl>()) {
   impl_->expression = expression;
+  impl_->what = std::move(what);
   try {
     impl_->parser.DefineVar("x", &impl_->x);
     impl_->parser.DefineVar("y", &impl_->y);
@@ -27,7 +29,7 @@ ScalarExpression::ScalarExpression(const std::string& expression) : impl_(std::m
     impl_->parser.SetExpr(expression);
     impl_->parser.Eval();  // parses now, so that syntax errors are reported at set-up
   } catch (const mu::Parser::exception_type& e) {
-    throw InputError(fmt::format("expression '{}': {}", expression, e.GetMsg()));
+    throw InputError(fmt::format("{} '{}': {}", impl_->what, expression, e.GetMsg()));
   }
 }
 
@@ -36,18 +38,21 @@ ScalarExpression::ScalarExpression(ScalarExpression&&) noexcept = default;
 
 const std::string& ScalarExpression::expression() const { return impl_->expression; }
 
-double ScalarExpression::operator()(Vec2 p) const {
+double ScalarExpression::evaluate(Vec2 p) const {
   impl_->x = p.x;
   impl_->y = p.y;
-  double u;
   try {
-    u = impl_->parser.Eval();
+    return impl_->parser.Eval();
   } catch (const mu::Parser::exception_type& e) {
-    throw InputError(fmt::format("expression '{}' at ({}, {}): {}", impl_->expression, p.x, p.y, e.GetMsg()));
+    throw InputError(fmt::format("{} '{}' at ({}, {}): {}", impl_->what, impl_->expression, p.x, p.y, e.GetMsg()));
   }
+}
+
+double ScalarExpression::operator()(Vec2 p) const {
+  const double u = evaluate(p);
   if (!std::isfinite(u))
-    throw InputError(fmt::format("expression '{}' at ({}, {}) gives {}; it must be a finite number", impl_->expression,
-                                 p.x, p.y, u));
+    throw InputError(fmt::format("{} '{}' at ({}, {}) gives {}; it must be a finite number", impl_->what,
+                                 impl_->expression, p.x, p.y, u));
   return u;
 }
 
