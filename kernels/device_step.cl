@@ -39,7 +39,7 @@ REAL bg_spacing_cached(const REAL px, const REAL py, int* leaf, BG_ARGS) {
 // memory). PoCL runs each region between barriers as a loop over the group's work-items: the scalar
 // tail of one node (|F|'s square root, the division of eq. 5.8, momentum's square root and division,
 // each waiting for the one before) then overlaps with the next node's instead of waiting behind its
-// call of node_forces (the step ~10 % faster on 30P30N's curves with momentum; docs/journal/2026-11-28.md).
+// call of node_forces (the step ~10 % faster on 30P30N's curves with momentum; docs/journal/).
 // A GPU interleaves work-items in hardware: no barrier there.
 #if PDMESH_FORCE_LOOP_VECTOR
 #define STEP_PHASE() barrier(CLK_LOCAL_MEM_FENCE)

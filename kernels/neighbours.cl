@@ -359,7 +359,7 @@ void insertion_sort_row(__global int* entries, const ulong base, const int c) {
 // how many entries of the row are smaller (a row's entries are distinct nodes), counted 16 at a time
 // by a compare into a mask and a popcount. The insertion sort's branches mispredicted at nearly every
 // entry (rows come in cell order, not index order); the rank sort takes ~1 % of pdmesh bench's samples
-// on 30P30N's curves (docs/journal/2026-11-28.md). Longer rows and other
+// on 30P30N's curves (docs/journal/). Longer rows and other
 // devices keep the insertion sort; both give the one ascending order.
 #if defined(__x86_64__) && defined(__AVX512F__)
 #define RANK_SORT_CAP 256

@@ -21,7 +21,7 @@ namespace pdmesh {
 // through glibc's __cxa_thread_atexit_impl, which takes the dynamic loader's lock; while the OpenCL
 // backend's thread is inside dlopen (PoCL and LLVM, 170 MB, read from disk when the page cache has
 // dropped them) that lock is held for up to ~100 ms, and the spacing phase's threads stalled behind
-// it (docs/journal/2026-11-28.md; creating a thread waits for it too, hence the pool of
+// it (docs/journal/; creating a thread waits for it too, hence the pool of
 // core/worker_pool.hpp). Which thread and scratch serve an index changes nothing when body(scratch,
 // i)'s result does not depend on what an earlier index left in the scratch.
 template <class Scratch, class Body>

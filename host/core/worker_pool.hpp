@@ -4,7 +4,7 @@
 // dlopen holds for the whole load. The OpenCL backend is set up on its own thread while the spacing
 // field is built, and PoCL's dlopen of LLVM and clang (170 MB) takes ~0.15 s when the page cache has
 // dropped them (this machine drops them within a minute): every parallel_for of the spacing phase
-// waited for it before its helper could start (docs/journal/2026-11-28.md). The pool's
+// waited for it before its helper could start (docs/journal/). The pool's
 // threads are started before the backend (start_workers() in run_mesh), so no call creates one then.
 #pragma once
 #include <atomic>

@@ -17,7 +17,7 @@ class CurveScan {
  public:
   // Curves with more segments than this keep the tree (the box pass is linear in the chunk count).
   // Circles of a few thousand segments (annulus_1m's 2,448 and 1,224) are answered faster by the scan
-  // than by their trees, since seen from inside a circle every chord is near (docs/journal/2026-11-29.md).
+  // than by their trees, since seen from inside a circle every chord is near (docs/journal/).
   static constexpr int kMaxSegments = 4096;
 
   // segment_ids[c]: curve c's segment indices, ascending. Keeps a reference to geometry.

@@ -45,7 +45,7 @@ inline double since(Clock::time_point t0) { return std::chrono::duration<double>
 // least), the device divides each skin use by it (skin_use_of), and the lists hold while the largest
 // quotient stays at most 1 (less a margin far above the rounding). Rows of R_ij = c (1 + s) q_b,i with
 // every share 0.25 would assume rho <= 3 across levels, which the spacing does not guarantee (30P30N's
-// thesis case has pairs at 4.5: docs/journal/2026-11-25.md, "Neighbour work per iteration").
+// thesis case has pairs at 4.5: docs/journal/, "Neighbour work per iteration").
 // The limit on the quotient: 1 less the margin (a ratio beyond the largest class, which a level's
 // factor 2 rules out, would scale it down).
 inline double skin_use_limit(double largest_spacing_ratio) {
@@ -208,7 +208,7 @@ class DeviceRun final : public IterationSteps {
   int largest_row_ = 0;  // the longest neighbour row any build found (rows are compact: for the stats)
   int cur_ = 0;          // which of the double-buffered x, y, q is current
   // Positions packed, x and y interleaved (2n entries): the force loop's gather of a neighbour fetches
-  // both coordinates with one load, from one cache line (docs/journal/2026-11-24.md, "Step on PoCL").
+  // both coordinates with one load, from one cache line (docs/journal/, "Step on PoCL").
   Buffer<Real> xy_[2], q_[2], tx_, ty_, xy_build_, q_build_, brec_, cand_rec_, partials_, rec_, bg_q_, budget_;
   Buffer<std::uint8_t> kind_;
   Buffer<std::int32_t> prev_, next_, bslot_, cand_index_, counters_, rec_index_, bg_root_, bg_child_, bg_corner_,

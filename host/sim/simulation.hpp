@@ -41,7 +41,7 @@ struct SimState {
 
 // Verlet skin of device runs (list radius cutoff q (1 + skin)). With momentum the nodes move farther per
 // iteration early in a run and use up a 0.3 skin ~3x as often (30P30N curves alone, 500 iterations,
-// beta 0.9: 174 rebuilds at 0.3, 107 at 0.5, 88 at 0.6, 65 at 0.8, 50 at 1.0; docs/journal/2026-11-25.md,
+// beta 0.9: 174 rebuilds at 0.3, 107 at 0.5, 88 at 0.6, 65 at 0.8, 50 at 1.0; docs/journal/,
 // "Rebuilds of a small run with momentum"). A larger skin costs more pairs examined per iteration but far fewer
 // rebuilds, and on PoCL a rebuild of 14k nodes (~11 ms) costs ~5 iterations' steps: 0.8 was ~7% faster per iteration
 // than 0.6 there, 1.0 no faster than 0.8 and with longer rows (device bytes). The skin never changes a

@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Drops files from the page cache (posix_fadvise POSIX_FADV_DONTNEED), so that a benchmark can time a
 run that must read them from disk, as one after a pause does: this project's 2-core machine gives
-file pages back within minutes (docs/journal/2026-11-28.md).
+file pages back within minutes (docs/journal/).
 
     tools/bench/evict_page_cache.py [--pdmesh BIN] [FILE ...]
 

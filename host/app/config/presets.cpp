@@ -26,7 +26,7 @@ namespace {
 // stops after 500-750 iterations instead of 1300-2000 with a lower mean aspect ratio everywhere, and
 // with the cleanup's compound trials its smallest angle is within 0.5 degrees of long's or better on
 // all 16 (medians of 3); under other population intervals it loses 0.6-2.6 degrees on three of them,
-// all at or above 40.3 degrees (docs/journal/2026-11-25.md, "Momentum and an early stop" and "The
+// all at or above 40.3 degrees (docs/journal/, "Momentum and an early stop" and "The
 // cleanup's last defects").
 void apply_momentum_schedule(CaseConfig& c) {
   // Heavy-ball momentum: the lattice's defects anneal ~4x faster (docs/simulation.md, "Momentum").
@@ -41,7 +41,7 @@ void apply_momentum_schedule(CaseConfig& c) {
   // The rule on the faster time scale: measured every 50 iterations over a 150-iteration window, from
   // iteration 300, with twice long's aspect-ratio tolerance. A 150-iteration window stops ~50
   // iterations sooner than a 200-iteration one with a smallest angle as good over the study's runs
-  // (docs/journal/2026-11-28.md).
+  // (docs/journal/).
   c.simulation.stop_aspect = 1e-3;
   c.simulation.stop_every = 50;
   c.simulation.stop_window = 150;
@@ -53,7 +53,7 @@ void apply_momentum_schedule(CaseConfig& c) {
   // mostly on 40-55 degree triangles of a settled lattice, 0.12 s of the 30P30N curves' 0.23 s
   // cleanup; the triangles below the target still take a second budget. Over the stopping study's 16
   // runs (and its two other population intervals) the smallest angle moves by at most 0.3 degrees
-  // (docs/journal/2026-11-28.md).
+  // (docs/journal/).
   c.cleanup.trials_per_triangle = 0.2;
   c.cleanup.min_trials = 2000;
 }
