@@ -254,6 +254,11 @@ double quantile(std::vector<double> v, double q) {
 
 }  // namespace
 
+MixedMesh merged_layer_mesh(const MeshInputs& inputs, const LayeredCase& layered, const MeshInputs& core_inputs,
+                            const Mesh& core_mesh) {
+  return merge(inputs, layered, core_inputs, core_mesh);
+}
+
 void write_layered_outputs(const CaseConfig& config, const MeshInputs& inputs, const LayeredCase& layered,
                            const MeshInputs& core_inputs, const Mesh& core_mesh, RunPhases& phases) {
   auto timer = phases.phase("merge layers");
