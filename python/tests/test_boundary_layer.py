@@ -4,6 +4,8 @@ settings as typed errors. A circle of 24 segments in a square; few iterations on
 
 from __future__ import annotations
 
+import json
+
 import numpy as np
 import pytest
 
@@ -122,3 +124,16 @@ def test_formats_that_cannot_hold_quads_are_refused(rings, tmp_path):
         mesh.write(tmp_path / "m.ele")
     mesh.write(tmp_path / "m.vtu")
     assert (tmp_path / "m.vtu").stat().st_size > 0
+
+
+def test_a_mesher_with_out_writes_the_command_s_layered_outputs(rings, tmp_path):
+    geometry = pdmesh.Geometry(rings, names=["box", "hole"])
+    mesher = pdmesh.Mesher(geometry, out=tmp_path, boundary_layer=layer(["hole"]), iterations=20, device="host",
+                           formats=["msh", "su2"])
+    mesher.run()
+    mesh = mesher.triangulate()
+    quality = json.loads((tmp_path / "quality.json").read_text())
+    assert quality["boundary_layer"]["quads"] == len(mesh.quads)
+    assert quality["boundary_layer"]["tables"][0]["first_height_within_2pct"] == 1
+    assert "MARKER_TAG= hole" in (tmp_path / "mesh.su2").read_text()
+    assert (tmp_path / "mesh.msh").exists() and (tmp_path / "initial.nodes").exists()
