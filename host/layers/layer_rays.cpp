@@ -49,8 +49,8 @@ RaySet make_rays(const std::vector<WallChain>& chains, const Geometry& geometry,
                  const CoreSpacing& core_spacing) {
   RaySet set;
   const double fan_turn = settings.fan_angle_deg * std::numbers::pi / 180.0;
-  const double target = settings.layers > 0 ? stack_height(settings.first_height, settings.growth, settings.layers)
-                                            : settings.thickness;
+  const double target =
+      settings.layers > 0 ? stack_height(settings.first_height, settings.growth, settings.layers) : settings.thickness;
   for (const WallChain& chain : chains) {
     set.ray_begin.push_back(static_cast<int>(set.rays.size()));
     set.closed.push_back(chain.closed ? 1 : 0);

@@ -197,7 +197,8 @@ void bind_mesh(nb::module_& m) {
           nb::gil_scoped_release release;
           mesh = read_mesh(path);
         }
-        return MeshHandle{std::make_shared<const Mesh>(std::move(mesh)), nullptr, fs::path(path).stem().string(), nullptr};
+        return MeshHandle{std::make_shared<const Mesh>(std::move(mesh)), nullptr, fs::path(path).stem().string(),
+                          nullptr};
       },
       nb::arg("path"), "Reads a .msh (2.2/4.1), .vtu, .su2 or Triangle .ele mesh.");
 }
