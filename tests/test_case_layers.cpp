@@ -191,9 +191,27 @@ TEST_CASE("nodes the simulation snapped onto a layer front are left out of the c
 }
 
 TEST_CASE("the stages driven directly refuse a case with layers", "[app][layers]") {
-  // The Python API drives the stages itself: it must not mesh the whole domain without the layers.
+  // A caller driving the stages (as the Python Mesher does) must run them on the core's case.
   const CaseConfig c = layered_case(fs::temp_directory_path() / "pdmesh_test_layers_stages", "wall", true);
   const MeshInputs inputs(c);
   const SpacingStage spacing(c, inputs);
-  CHECK_THROWS_WITH(make_initial(c, inputs, spacing), Catch::Contains("[[boundary_layer]] is only supported by"));
+  CHECK_THROWS_WITH(make_initial(c, inputs, spacing), Catch::Contains("the stages mesh the core's case"));
+}
+
+TEST_CASE("the core's spacing at a front node is at least 0.8 of its longest front edge", "[app][layers]") {
+  // The circle's last layer (about 0.008) is far below its front edges (about 0.054): the core must
+  // not be sized by the last layer alone there, or it meets those edges with flat triangles.
+  const CaseConfig c = layered_case(fs::temp_directory_path() / "pdmesh_test_layers_front", "wall", true);
+  const MeshInputs inputs(c);
+  const SpacingStage spacing(c, inputs);
+  const auto layered = build_layers(c, inputs, spacing);
+  const LayerMesh& m = layered->sections.at(0).mesh;
+  const LayerFront& f = m.fronts.at(0);
+  REQUIRE(f.closed);
+  const std::size_t n = f.nodes.size();
+  for (std::size_t k = 0; k < n; ++k) {
+    const Vec2 p = m.nodes[f.nodes[k]];
+    const double longest = std::max(dist(p, m.nodes[f.nodes[(k + 1) % n]]), dist(p, m.nodes[f.nodes[(k + n - 1) % n]]));
+    CHECK(layered->core.spacing.given->at(p) >= std::min(spacing.field().at(p), 0.8 * longest) - 1e-12);
+  }
 }

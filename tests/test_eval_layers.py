@@ -83,6 +83,26 @@ class LayerMeasures(unittest.TestCase):
         self.assertEqual(m["core_triangles"], 0)
         self.assertTrue(math.isnan(m["core_min_angle"]))
 
+    def test_thickness_jumps_between_neighbouring_wall_nodes(self):
+        points, triangles, quads, wall = flat_layers()
+        # The top quad of the last column (x in [0.9, 1]) is not the layer's: the wall node at x = 1
+        # has one layer less than its neighbour at x = 0.9, whose column goes up the quads on its left.
+        top_last = max(range(len(quads)), key=lambda k: (points[quads[k][0]][1], points[quads[k][0]][0]))
+        layer = [False] * len(triangles) + [k != top_last for k in range(len(quads))]
+        regions = {"left": (0.0, -1.0, 0.5, 1.0), "right": (0.85, -1.0, 1.0, 1.0)}
+        m = bl.layer_measures(points, triangles, quads, wall, H1, THICKNESS, layer_cells=layer, regions=regions)
+        jumps = m["thickness_jumps"]
+        expected = THICKNESS / (H1 * (G ** (LAYERS - 1) - 1) / (G - 1))
+        self.assertEqual(jumps["all"]["edges"], 10)
+        self.assertAlmostEqual(jumps["all"]["max"], expected, delta=1e-9)
+        self.assertEqual(jumps["all"]["above_1_3"], 1)
+        self.assertAlmostEqual(jumps["all"]["at"][0], 0.95, delta=1e-12)
+        self.assertEqual(jumps["left"]["edges"], 5)
+        self.assertEqual(jumps["left"]["max"], 1.0)
+        self.assertAlmostEqual(jumps["right"]["max"], expected, delta=1e-9)
+        # Without the layer cells, no jumps are measured.
+        self.assertIsNone(bl.layer_measures(points, triangles, quads, wall, H1, THICKNESS)["thickness_jumps"])
+
 
 if __name__ == "__main__":
     unittest.main()

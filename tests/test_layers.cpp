@@ -123,6 +123,31 @@ TEST_CASE("square obstacle: fans of >= 5 elements per pi at its convex corners",
   CHECK(crossing_edges(m) == 0);
 }
 
+TEST_CASE("a fan has enough elements for its front edges to be no longer than the core's spacing", "[layers]") {
+  const Geometry g = build_geometry({box({-5, -5}, {5, 5}, 4, "far"), box({0, 0}, {1, 1}, 10, "wall")});
+  const LayerSettings s = settings(1e-3, 1.2, 0.05);
+  // At the corners' tops (0.05 out) the core asks for 0.01: a right angle's arc of 0.05 x pi/2 =
+  // 0.0785 needs ceil(7.85) = 8 elements (5 per pi alone would give 3).
+  const CoreSpacing core = [](Vec2) { return 0.01; };
+  const LayerMesh m = build_boundary_layers(g, curves_by_name(g, {"wall"}, "test"), s, core);
+  CHECK(m.fan_sizes == std::vector<int>{8, 8, 8, 8});
+  int fan_edges = 0;
+  for (std::size_t r = 0; r + 1 < m.rays.size(); ++r) {
+    const LayerRay& a = m.rays[r];
+    const LayerRay& b = m.rays[r + 1];
+    if (!a.fan || a.wall_node != b.wall_node) continue;
+    ++fan_edges;
+    CHECK(dist(m.nodes[a.nodes.back()], m.nodes[b.nodes.back()]) <= 0.01 + 1e-12);
+  }
+  CHECK(fan_edges == 4 * 8);
+  const LayerMeasures q = measure_layers(m, s.first_height, core);
+  CHECK(q.inverted_cells == 0);
+  CHECK(crossing_edges(m) == 0);
+  // A coarse core spacing leaves the 5-per-pi count.
+  const LayerMesh coarse = build_boundary_layers(g, curves_by_name(g, {"wall"}, "test"), s, [](Vec2) { return 1.0; });
+  CHECK(coarse.fan_sizes == std::vector<int>{3, 3, 3, 3});
+}
+
 TEST_CASE("square box with a square hole: concave corners without crossing, fans on the hole", "[layers]") {
   const Geometry g = build_geometry({box({0, 0}, {1, 1}, 12, "box"), box({0.4, 0.4}, {0.6, 0.6}, 4, "hole")});
   const LayerSettings s = settings(1e-3, 1.2, 0.08);

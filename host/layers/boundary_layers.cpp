@@ -303,7 +303,7 @@ LayerMesh build_boundary_layers(const Geometry& geometry, const std::vector<int>
     if (c < 0 || c >= static_cast<int>(geometry.curves.size()))
       throw InputError(fmt::format("boundary layer: wall curve index {} is not a curve of the geometry (it has {})", c,
                                    geometry.curves.size()));
-  RaySet set = make_rays(wall_chains(geometry, wall_curves), geometry, settings);
+  RaySet set = make_rays(wall_chains(geometry, wall_curves), geometry, settings, core_spacing);
   std::vector<double> allowed;
   free_and_collision_limits(set, geometry, settings, core_spacing, allowed);
   std::vector<int> count, owner;

@@ -10,6 +10,9 @@ namespace pdmesh::layers_detail {
 
 namespace {
 
+// The most elements a fan gets from the core spacing rule below.
+constexpr int kMaxFanElements = 32;
+
 struct Vertex {
   Vec2 n_in, n_out;  // left normals of the segments arriving and leaving (equal at an open end)
   bool has_in = false, has_out = false;
@@ -42,9 +45,12 @@ int slide_segment(const Geometry& geometry, Vec2 p, Vec2 n, const std::vector<in
 
 }  // namespace
 
-RaySet make_rays(const std::vector<WallChain>& chains, const Geometry& geometry, const LayerSettings& settings) {
+RaySet make_rays(const std::vector<WallChain>& chains, const Geometry& geometry, const LayerSettings& settings,
+                 const CoreSpacing& core_spacing) {
   RaySet set;
   const double fan_turn = settings.fan_angle_deg * std::numbers::pi / 180.0;
+  const double target =
+      settings.layers > 0 ? stack_height(settings.first_height, settings.growth, settings.layers) : settings.thickness;
   for (const WallChain& chain : chains) {
     set.ray_begin.push_back(static_cast<int>(set.rays.size()));
     set.closed.push_back(chain.closed ? 1 : 0);
@@ -68,9 +74,19 @@ RaySet make_rays(const std::vector<WallChain>& chains, const Geometry& geometry,
       if (v.has_in && v.has_out) {
         // The turn from the arriving to the leaving direction equals the turn of the normals.
         v.turn = std::atan2(cross(v.n_in, v.n_out), dot(v.n_in, v.n_out));
-        if (-v.turn > fan_turn)
+        if (-v.turn > fan_turn) {
           v.fan = std::max(
               2, static_cast<int>(std::ceil(settings.fan_elements_per_pi * -v.turn / std::numbers::pi - 1e-9)));
+          // Enough elements that the fan's front edges at the full thickness are no longer than
+          // the core's spacing there (at most kMaxFanElements): the core meets them with
+          // triangles of its own size rather than with flat ones.
+          if (core_spacing) {
+            const Vec2 mid = chain.points[i] + target * rotated(v.n_in, 0.5 * v.turn);
+            const double q = core_spacing(mid);
+            if (q > 0.0)
+              v.fan = std::clamp(static_cast<int>(std::ceil(-v.turn * target / q - 1e-9)), v.fan, kMaxFanElements);
+          }
+        }
       }
     }
     // Directions: fans fixed, the others the bisector, then smoothed (Jacobi passes over the

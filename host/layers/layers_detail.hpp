@@ -81,8 +81,10 @@ struct RaySet {
 };
 // An open chain's end ray runs along the first segment of the curve that continues the boundary
 // there (when that segment leaves into the domain side, more than acos 0.2 from the wall), else along
-// the wall's normal.
-RaySet make_rays(const std::vector<WallChain>& chains, const Geometry& geometry, const LayerSettings& settings);
+// the wall's normal. A fan has ceil(fan_elements_per_pi x turn / pi) elements (at least 2), or more
+// (up to 32) so that its edges at the full thickness are no longer than core_spacing there.
+RaySet make_rays(const std::vector<WallChain>& chains, const Geometry& geometry, const LayerSettings& settings,
+                 const CoreSpacing& core_spacing);
 
 // Cumulative height of n layers: h1 (g^n - 1) / (g - 1) (n h1 for g = 1).
 double stack_height(double h1, double g, int n);

@@ -23,7 +23,9 @@ _SVG_REPR_LIMIT = 20_000
 
 class Mesh:
     """A triangle mesh. ``points`` (N, 2) float64 and ``triangles`` (M, 3) int32 (0-based,
-    counter-clockwise) are read-only views of the mesh's own memory: no copy is made."""
+    counter-clockwise) are read-only views of the mesh's own memory: no copy is made. A mesh with
+    boundary layers (``boundary_layer=``) also has ``quads`` (K, 4) and ``triangle_layer`` (which
+    triangles are layer cells); its quality is the core's, as the command's table."""
 
     def __init__(self, core: Any):
         self._core = core
@@ -41,6 +43,18 @@ class Mesh:
     @property
     def triangles(self) -> np.ndarray:
         return self._core.triangles
+
+    @property
+    def quads(self) -> np.ndarray:
+        """(K, 4) int32 counter-clockwise quadrangles: the boundary layers' cells with
+        ``elements="quads"`` (empty otherwise)."""
+        return self._core.quads
+
+    @property
+    def triangle_layer(self) -> np.ndarray:
+        """(M,) uint8 per triangle: 1 for a boundary-layer cell, 0 for the core (empty without
+        boundary layers)."""
+        return self._core.triangle_layer
 
     @property
     def kinds(self) -> np.ndarray:
@@ -98,21 +112,32 @@ class Mesh:
                            None if window is None else [float(v) for v in window], int(long_side))
 
     def to_meshio(self):
-        """A meshio.Mesh (the ``io`` extra): triangles, and one "line" block per boundary curve with
-        a cell set named after the curve."""
+        """A meshio.Mesh (the ``io`` extra): triangles, the quads of boundary layers, and one "line"
+        block per boundary curve with a cell set named after the curve; with boundary layers, cell
+        data "boundary_layer" (1 for a layer cell)."""
         try:
             import meshio
         except ImportError as e:
             raise ImportError("Mesh.to_meshio needs meshio: pip install 'pdmesh[io]'") from e
         cells = [("triangle", np.asarray(self.triangles))]
+        layered = len(self.triangle_layer) > 0
+        if len(self.quads):
+            cells.append(("quad", np.asarray(self.quads)))
+        areas = len(cells)
         sets: dict[str, list[np.ndarray]] = {}
         edges = self.boundary_edges
-        for k, (name, e) in enumerate(edges.items()):
+        for name, e in edges.items():
             cells.append(("line", np.asarray(e)))
         for k, name in enumerate(edges):
-            sets[name] = [np.arange(len(e)) if j == k + 1 else np.zeros(0, dtype=int)
-                          for j, e in enumerate([self.triangles] + list(edges.values()))]
-        return meshio.Mesh(np.asarray(self.points), cells, cell_sets=sets)
+            sets[name] = [np.arange(len(c[1])) if j == areas + k else np.zeros(0, dtype=int)
+                          for j, c in enumerate(cells)]
+        data = None
+        if layered:
+            layer = [np.asarray(self.triangle_layer, dtype=np.int32)]
+            if len(self.quads):
+                layer.append(np.ones(len(self.quads), dtype=np.int32))
+            data = {"boundary_layer": layer + [np.zeros(len(e), dtype=np.int32) for e in edges.values()]}
+        return meshio.Mesh(np.asarray(self.points), cells, cell_sets=sets, cell_data=data)
 
     def plot(self, ax: Any = None, color_by: str | None = None, boundary: bool = True, **triplot: Any):
         """Draws the mesh with matplotlib (the ``plot`` extra) into ``ax`` (a new one if None):
@@ -165,5 +190,6 @@ class Mesh:
         return self._render(".svg", 800).decode("utf-8")
 
     def __repr__(self) -> str:
-        return (f"<pdmesh.Mesh {self._core.name!r}: {len(self.points)} points, {len(self.triangles)} triangles, "
-                f"curves {self.curve_names}>")
+        quads = f", {len(self.quads)} quads" if len(self.quads) else ""
+        return (f"<pdmesh.Mesh {self._core.name!r}: {len(self.points)} points, {len(self.triangles)} triangles"
+                f"{quads}, curves {self.curve_names}>")

@@ -192,6 +192,10 @@ def generate(geometry: Any, size: Any = None, *, device: str | None = None, seed
     ``iterations=500``, ``method="random"``, a section as a dict (``simulation={"cutoff": 1.6}``),
     or ``settings={"simulation.cutoff": 1.6}``; the values are checked exactly as the command
     checks a case file. A geometry alone runs with preset "best", as the command does.
+    ``boundary_layer={"curves": ["upper", "lower"], "first_height": 1e-5, "growth": 1.2,
+    "thickness": 0.05, "elements": "quads"}`` (or a list of such dicts, one per curve set; the keys
+    of the case file's [[boundary_layer]], docs/boundary-layers.md) grows layers from those curves
+    and meshes the core on their fronts: the mesh then has ``quads`` and ``triangle_layer``.
     ``max_nodes``: see Mesher.
     """
     if isinstance(geometry, (str, os.PathLike)):

@@ -9,6 +9,7 @@
 #include "bindings.hpp"
 #include "core/errors.hpp"
 #include "io/mesh_formats.hpp"
+#include "io/mixed_mesh.hpp"
 #include "mesh/quality.hpp"
 #include "io/quality_report.hpp"
 #include "render/mesh_picture.hpp"
@@ -44,12 +45,14 @@ double TriangleQuality::*metric_named(const std::string& name) {
   throw InputError(fmt::format("color_by: unknown metric '{}' ({})", name, names));
 }
 
+// With layers, the core's triangles (as the command's table and quality.json).
 std::string quality_json_of(const MeshHandle& h) {
   nb::gil_scoped_release release;
-  if (!h.session) return quality_json(summarize_quality(*h.mesh), h.name);
+  const Mesh& mesh = h.layers ? h.layers->core : *h.mesh;
+  if (!h.session) return quality_json(summarize_quality(mesh), h.name);
   std::lock_guard lock(h.session->mutex);
   const SpacingField& spacing = h.session->spacing->field();
-  return quality_json(summarize_quality(*h.mesh, [&spacing](Vec2 p) { return spacing.at(p); }), h.name);
+  return quality_json(summarize_quality(mesh, [&spacing](Vec2 p) { return spacing.at(p); }), h.name);
 }
 
 nb::dict triangle_metrics(const MeshHandle& h) {
@@ -93,7 +96,9 @@ std::vector<std::string> write(const MeshHandle& h, const std::string& path, con
   std::vector<fs::path> written;
   {
     nb::gil_scoped_release release;
-    written = write_mesh(*h.mesh, dir, p.stem().string(), {format});
+    // With layers the mixed-cell writers (msh, vtu, su2; InputError for the others).
+    written = h.layers ? write_mixed_mesh(h.layers->mixed, dir, p.stem().string(), {format})
+                       : write_mesh(*h.mesh, dir, p.stem().string(), {format});
   }
   std::vector<std::string> out;
   for (const fs::path& w : written) out.push_back(w.string());
@@ -112,13 +117,16 @@ void picture(const MeshHandle& h, const std::string& path, const std::string& co
   }
   double TriangleQuality::*member = color_by == "none" ? nullptr : metric_named(color_by);
   nb::gil_scoped_release release;
+  // With layers, the quads drawn split (as the command's mesh.png); coloured, the triangles alone.
+  const Mesh drawn = h.layers && member == nullptr ? triangulated(h.layers->mixed) : Mesh{};
+  const Mesh& mesh = h.layers && member == nullptr ? drawn : *h.mesh;
   std::vector<double> values;
   if (member != nullptr) {
-    values = metric_values(triangle_qualities(*h.mesh), member);
+    values = metric_values(triangle_qualities(mesh), member);
     options.triangle_values = &values;
     options.value_label = color_by;
   }
-  write_mesh_picture(path, *h.mesh, options);
+  write_mesh_picture(path, mesh, options);
 }
 
 }  // namespace
@@ -155,6 +163,23 @@ void bind_mesh(nb::module_& m) {
             return shared_view<double, 1>(q.data(), q.size(), h.mesh);
           },
           nb::rv_policy::automatic, "(N,) float64 spacing field q at each point (empty for a mesh read from a file).")
+      .def_prop_ro(
+          "quads",
+          [](const MeshHandle& h) {
+            static const std::vector<std::array<int, 4>> none;
+            const auto& q = h.layers ? h.layers->quads : none;
+            static_assert(sizeof(q[0]) == 4 * sizeof(int));
+            return shared_view<int, 4>(q.empty() ? nullptr : q[0].data(), q.size(), h.layers);
+          },
+          nb::rv_policy::automatic, "(K, 4) int32 counter-clockwise quadrangles (boundary-layer cells), no copy.")
+      .def_prop_ro(
+          "triangle_layer",
+          [](const MeshHandle& h) {
+            static const std::vector<std::uint8_t> none;
+            const auto& l = h.layers ? h.layers->triangle_layer : none;
+            return shared_view<std::uint8_t, 1>(l.data(), l.size(), h.layers);
+          },
+          nb::rv_policy::automatic, "(M,) uint8 per triangle: 1 in a boundary layer (empty without layers).")
       .def_prop_ro("curve_names", [](const MeshHandle& h) { return h.mesh->curve_names; })
       .def_prop_ro("name", [](const MeshHandle& h) { return h.name; })
       .def("boundary_edges", &boundary_edges, "Boundary edges by curve name, (K, 2) int32 each.")
@@ -172,7 +197,8 @@ void bind_mesh(nb::module_& m) {
           nb::gil_scoped_release release;
           mesh = read_mesh(path);
         }
-        return MeshHandle{std::make_shared<const Mesh>(std::move(mesh)), nullptr, fs::path(path).stem().string()};
+        return MeshHandle{std::make_shared<const Mesh>(std::move(mesh)), nullptr, fs::path(path).stem().string(),
+                          nullptr};
       },
       nb::arg("path"), "Reads a .msh (2.2/4.1), .vtu, .su2 or Triangle .ele mesh.");
 }

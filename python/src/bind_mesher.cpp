@@ -15,6 +15,7 @@
 #include <nanobind/stl/vector.h>
 
 #include "app/pipeline/backend_choice.hpp"
+#include "app/pipeline/layer_pipeline.hpp"
 #include "app/pipeline/mesh_pipeline.hpp"
 #include "bindings.hpp"
 #include "callable_spacing.hpp"
@@ -43,7 +44,6 @@ class Mesher {
     std::lock_guard lock(session_->mutex);
     const auto start = Clock::now();
     session_->inputs = std::make_unique<MeshInputs>(c);
-    const MeshInputs& inputs = *session_->inputs;
     // The size callable has been sampled into the inputs' background field; letting it go here keeps
     // no Python object alive from C++ (a callable that refers to its Mesher would make a cycle that
     // Python's collector cannot see).
@@ -56,7 +56,9 @@ class Mesher {
     // As the command: an explicit OpenCL device that is not there is refused before anything runs.
     if (c.simulation.iterations > 0 && c.simulation.device != "host" && c.simulation.device != "auto")
       (void)ocl::select_device(c.simulation.device);
-    session_->spacing = std::make_unique<SpacingStage>(c, inputs);
+    session_->spacing = std::make_unique<SpacingStage>(c, *session_->inputs);
+    if (!c.boundary_layers.empty()) run_on_core(c);
+    const MeshInputs& inputs = *session_->inputs;
     const SpacingStage& spacing = *session_->spacing;
     estimate_ = check_node_limit(c, inputs, spacing);
     InitialDistribution initial = make_initial(c, inputs, spacing);
@@ -156,12 +158,17 @@ class Mesher {
     config.simulation.iterations = iterations_done();
     std::shared_ptr<const NodeSet> nodes = nodes_;
     Mesh mesh;
+    std::shared_ptr<const LayerParts> layers;
     {
       nb::gil_scoped_release release;
       std::lock_guard lock(session_->mutex);
-      mesh = mesh_and_measure(config, *session_->inputs, *session_->spacing, *nodes);
+      if (session_->layered) {
+        layers = with_layers(config, *nodes, mesh);
+      } else {
+        mesh = mesh_and_measure(config, *session_->inputs, *session_->spacing, *nodes);
+      }
     }
-    return MeshHandle{std::make_shared<const Mesh>(std::move(mesh)), session_, config.name};
+    return MeshHandle{std::make_shared<const Mesh>(std::move(mesh)), session_, config.name, std::move(layers)};
   }
 
   int iterations_done() const { return state_ ? state_->iterations_done : 0; }
@@ -193,6 +200,55 @@ class Mesher {
    private:
     Mesher& m_;
   };
+
+  // As `pdmesh mesh` with [[boundary_layer]]: the layers are built on the case as given (its stages
+  // move to session_->layered), and `c` and the session's stages become the core's case on the
+  // layer fronts, which the steps then run.
+  void run_on_core(CaseConfig& c) {
+    auto l = std::make_unique<LayeredSession>();
+    l->config = c;
+    l->inputs = std::move(session_->inputs);
+    l->spacing = std::move(session_->spacing);
+    l->layers = build_layers(l->config, *l->inputs, *l->spacing);
+    c = l->layers->core;
+    session_->layered = std::move(l);
+    session_->inputs = std::make_unique<MeshInputs>(c);
+    session_->spacing = std::make_unique<SpacingStage>(c, *session_->inputs);
+  }
+
+  // The core's cleaned mesh of `nodes` (without the nodes the simulation snapped onto a front) merged
+  // with the layer cells, as the command writes it: `mesh` gets every point and triangle; with an
+  // output directory, the command's layered outputs are written there.
+  std::shared_ptr<const LayerParts> with_layers(const CaseConfig& config, const NodeSet& nodes, Mesh& mesh) {
+    const LayeredSession& l = *session_->layered;
+    CaseConfig core = config;
+    core.write_outputs = false;
+    std::size_t dropped = 0;
+    const NodeSet core_nodes = without_front_nodes(nodes, session_->inputs->geometry, dropped);
+    auto parts = std::make_shared<LayerParts>();
+    parts->core = mesh_and_measure(core, *session_->inputs, *session_->spacing, core_nodes);
+    if (config.write_outputs) {
+      RunPhases phases(false);
+      CaseConfig outer = l.config;
+      outer.simulation.iterations = config.simulation.iterations;
+      write_layered_outputs(outer, *l.inputs, *l.layers, *session_->inputs, parts->core, phases);
+    }
+    parts->mixed = merged_layer_mesh(*l.inputs, *l.layers, *session_->inputs, parts->core);
+    const MixedMesh& m = parts->mixed;
+    mesh.points = m.points;
+    mesh.boundary_edges = m.boundary_edges;
+    mesh.curve_names = m.curve_names;
+    for (std::size_t k = 0; k < m.cells.size(); ++k) {
+      const auto& v = m.cells[k];
+      if (v[3] >= 0) {
+        parts->quads.push_back(v);
+      } else {
+        mesh.triangles.push_back({v[0], v[1], v[2]});
+        parts->triangle_layer.push_back(m.layer[k]);
+      }
+    }
+    return parts;
+  }
 
   std::shared_ptr<Session> session_;
   std::shared_ptr<NodeSet> nodes_;

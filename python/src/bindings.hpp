@@ -1,6 +1,8 @@
 // Shared declarations of the pdmesh._core extension (nanobind): the objects the binding files
 // hand to each other, and one registration function per file.
 #pragma once
+#include <array>
+#include <cstdint>
 #include <memory>
 #include <mutex>
 #include <string>
@@ -10,7 +12,9 @@
 #include <nanobind/ndarray.h>
 
 #include "app/config/case_file.hpp"
+#include "app/pipeline/layer_pipeline.hpp"
 #include "app/pipeline/mesh_inputs.hpp"
+#include "io/mixed_mesh.hpp"
 #include "mesh/mesh.hpp"
 
 namespace pdmesh::py {
@@ -19,8 +23,18 @@ namespace nb = nanobind;
 
 // A validated case and the pipeline's first stages built from it (the inputs: geometry, tree, base
 // field; the final spacing field), shared by a Mesher and every mesh it makes: a mesh measures its
-// spacing conformance with the same field.
+// spacing conformance with the same field. With [[boundary_layer]] (as `pdmesh mesh`), `config`,
+// `inputs` and `spacing` are the core's (the case on the layer fronts) and `layered` holds the case
+// as given, its stages and the layers.
+struct LayeredSession {
+  CaseConfig config;
+  std::unique_ptr<MeshInputs> inputs;
+  std::unique_ptr<SpacingStage> spacing;  // over *inputs; the core's field refers to it
+  std::unique_ptr<LayeredCase> layers;
+};
+
 struct Session {
+  std::unique_ptr<LayeredSession> layered;  // first: the core's field below refers to its field
   CaseConfig config;
   std::unique_ptr<MeshInputs> inputs;
   std::unique_ptr<SpacingStage> spacing;  // over *inputs
@@ -29,11 +43,22 @@ struct Session {
   std::mutex mutex;
 };
 
-// A finished mesh and the session it came from (nullptr for a mesh read from a file).
+// The cells of a mesh with boundary layers beyond its triangles: the quadrangles, which triangles are
+// the layer's, the merged mesh as the writers take it, and the core's mesh (its quality).
+struct LayerParts {
+  MixedMesh mixed;
+  std::vector<std::array<int, 4>> quads;
+  std::vector<std::uint8_t> triangle_layer;  // per triangle of MeshHandle::mesh: 1 in the layer
+  Mesh core;
+};
+
+// A finished mesh and the session it came from (nullptr for a mesh read from a file). With layers,
+// `mesh` holds every point and every triangle (core and layer), and `layers` the rest.
 struct MeshHandle {
   std::shared_ptr<const Mesh> mesh;
   std::shared_ptr<Session> session;
   std::string name;  // picture titles
+  std::shared_ptr<const LayerParts> layers;
 };
 
 // A read-only numpy view of `count` rows of `Cols` values at `data`, kept alive by `keep` (a

@@ -6,10 +6,13 @@ wall corner of each body, Frontal-Delaunay core), beside pdmesh's mesh of the sa
 Setup (once): tools/eval/setup_anchors.sh. Run from the repository root:
     tools/.venv-anchors/bin/python tools/eval/layer_anchors.py CASE --walls upper,lower
         --first-height 1e-5 --growth 1.2 --thickness 0.05 [--quads] [--pdmesh DIR] [--json FILE]
+        [--region NAME=X0,Y0,X1,Y1 ...]
 
 CASE is a case file or folder (cases/naca0012); --walls names its wall curves (geometry.curve_names).
 --pdmesh DIR judges DIR/mesh.msh, pdmesh's mesh of the same case with the same layer settings, with
-the same evaluator. Gmsh's failure (it fails on 30P30N) is reported, not raised."""
+the same evaluator. The layer thickness jumps between neighbouring wall nodes are reported for the
+layer cells (Gmsh's quads with --quads; pdmesh's physical group boundary_layer), overall and per
+--region. Gmsh's failure (it fails on 30P30N) is reported, not raised."""
 
 import argparse
 import json
@@ -45,20 +48,30 @@ def wall_segments(curves, walls):
     return np.array(segs, dtype=float)
 
 
-def mesh_arrays(gmsh):
-    """Points (N, 2), triangles and quads (index tuples) of the model's 2-D mesh."""
+def mesh_arrays(gmsh, layer_group=None):
+    """Points (N, 2), triangles and quads (index tuples) of the model's 2-D mesh, and with
+    layer_group (a physical group's name) a bool per cell (triangles, then quads): in that group."""
     tags, coords, _ = gmsh.model.mesh.getNodes()
     index = {int(t): k for k, t in enumerate(tags)}
     points = np.asarray(coords, dtype=float).reshape(-1, 3)[:, :2]
-    triangles, quads = [], []
-    types, _, nodes = gmsh.model.mesh.getElements(2)
-    for etype, enodes in zip(types, nodes):
-        width = {2: 3, 3: 4}.get(int(etype))
-        if width is None:
-            continue
-        cells = [tuple(index[int(v)] for v in enodes[k:k + width]) for k in range(0, len(enodes), width)]
-        (triangles if width == 3 else quads).extend(cells)
-    return points, triangles, quads
+    layer_entities = set()
+    if layer_group is not None:
+        for dim, tag in gmsh.model.getPhysicalGroups(2):
+            if gmsh.model.getPhysicalName(dim, tag) == layer_group:
+                layer_entities.update(int(e) for e in gmsh.model.getEntitiesForPhysicalGroup(dim, tag))
+    triangles, quads, tri_layer, quad_layer = [], [], [], []
+    for _, entity in gmsh.model.getEntities(2):
+        types, _, nodes = gmsh.model.mesh.getElements(2, entity)
+        for etype, enodes in zip(types, nodes):
+            width = {2: 3, 3: 4}.get(int(etype))
+            if width is None:
+                continue
+            cells = [tuple(index[int(v)] for v in enodes[k:k + width]) for k in range(0, len(enodes), width)]
+            (triangles if width == 3 else quads).extend(cells)
+            (tri_layer if width == 3 else quad_layer).extend([entity in layer_entities] * len(cells))
+    if layer_group is None:
+        return points, triangles, quads
+    return points, triangles, quads, tri_layer + quad_layer
 
 
 def sharpest_corners(curves, walls):
@@ -137,13 +150,14 @@ def run_gmsh(case, curves, walls, args):
 
 
 def read_pdmesh(path):
+    """Points, triangles, quads and the layer flags (physical group boundary_layer) of a mesh.msh."""
     import gmsh
 
     gmsh.initialize()
     try:
         gmsh.option.setNumber("General.Terminal", 0)
         gmsh.open(path)
-        return mesh_arrays(gmsh)
+        return mesh_arrays(gmsh, "boundary_layer")
     finally:
         gmsh.finalize()
 
@@ -158,6 +172,9 @@ def main():
     ap.add_argument("--quads", action="store_true", help="Gmsh's layers as quads (Quads = 1)")
     ap.add_argument("--pdmesh", help="a pdmesh output folder holding mesh.msh of the same case")
     ap.add_argument("--json", help="write the measures here")
+    ap.add_argument("--region", action="append", default=[], metavar="NAME=X0,Y0,X1,Y1",
+                    help="a box in which the thickness jumps between neighbouring wall nodes are also "
+                         "reported (repeatable)")
     args = ap.parse_args()
 
     case = common.read_case(args.case)
@@ -167,12 +184,22 @@ def main():
     if unknown:
         common.fail(f"--walls: no curve named {unknown} (the case has {list(curves)})")
     segments = wall_segments(curves, walls)
+    regions = {}
+    for r in args.region:
+        name, _, box = r.partition("=")
+        try:
+            x0, y0, x1, y1 = (float(v) for v in box.split(","))
+        except ValueError:
+            common.fail(f"--region {r!r}: expected NAME=X0,Y0,X1,Y1")
+        regions[name] = (x0, y0, x1, y1)
     out = {"case": case.get("name", args.case), "walls": walls, "first_height": args.first_height,
            "growth": args.growth, "thickness": args.thickness}
 
     try:
         info, points, triangles, quads = run_gmsh(case, curves, walls, args)
-        m = bl.layer_measures(points, triangles, quads, segments, args.first_height, args.thickness)
+        layer = [False] * len(triangles) + [True] * len(quads) if args.quads else None
+        m = bl.layer_measures(points, triangles, quads, segments, args.first_height, args.thickness,
+                              layer_cells=layer, regions=regions)
         m.update(info)
         out["gmsh"] = m
         print(bl.format_measures(f"Gmsh {info['version']} BoundaryLayer ({info['seconds']:.2f} s)", m))
@@ -182,8 +209,9 @@ def main():
 
     if args.pdmesh:
         path = os.path.join(args.pdmesh, "mesh.msh")
-        points, triangles, quads = read_pdmesh(path)
-        m = bl.layer_measures(points, triangles, quads, segments, args.first_height, args.thickness)
+        points, triangles, quads, layer = read_pdmesh(path)
+        m = bl.layer_measures(points, triangles, quads, segments, args.first_height, args.thickness,
+                              layer_cells=layer, regions=regions)
         out["pdmesh"] = m
         print(bl.format_measures(f"pdmesh ({path})", m))
 

@@ -67,6 +67,27 @@ double last_height(const LayerMesh& m, const LayerRay& ray) {
                                m.nodes[static_cast<std::size_t>(ray.nodes[ray.nodes.size() - 2])]);
 }
 
+// The core's spacing at a front node is at least this share of the longest front edge at it: where
+// collisions thin the layer (30P30N's gaps and cove) or a fan spreads its tops, the last layer is
+// several times lower than the front's edges (the wall's node spacing), and a core sized by the
+// last layer alone meets those edges with flat triangles.
+constexpr double kFrontEdgeShare = 0.8;
+
+// Per layer node: the longest front edge at it (0 off the fronts).
+std::vector<double> longest_front_edge(const LayerMesh& m) {
+  std::vector<double> longest(m.nodes.size(), 0.0);
+  for (const LayerFront& f : m.fronts) {
+    const std::size_t n = f.nodes.size();
+    for (std::size_t k = 0; k + (f.closed ? 0 : 1) < n; ++k) {
+      const auto a = static_cast<std::size_t>(f.nodes[k]), b = static_cast<std::size_t>(f.nodes[(k + 1) % n]);
+      const double l = dist(m.nodes[a], m.nodes[b]);
+      longest[a] = std::max(longest[a], l);
+      longest[b] = std::max(longest[b], l);
+    }
+  }
+  return longest;
+}
+
 void check_formats(const CaseConfig& config) {
   for (const std::string& f : config.output.formats)
     if (f == "msh22" || f == "triangle")
@@ -106,9 +127,12 @@ std::unique_ptr<LayeredCase> build_layers(const CaseConfig& config, const MeshIn
     s.geometry = geometry;
     s.walls = curves_by_name(*geometry, b.curves, "boundary_layer.curves");
     s.mesh = build_boundary_layers(*geometry, s.walls, s.settings, core_spacing);
+    const std::vector<double> edge = longest_front_edge(s.mesh);
     for (const LayerRay& ray : s.mesh.rays)
-      if (const double h = last_height(s.mesh, ray); h > 0.0)
-        sources.push_back({s.mesh.nodes[static_cast<std::size_t>(ray.nodes.back())], b.growth * h});
+      if (const double h = last_height(s.mesh, ray); h > 0.0) {
+        const auto top = static_cast<std::size_t>(ray.nodes.back());
+        sources.push_back({s.mesh.nodes[top], std::max(b.growth * h, kFrontEdgeShare * edge[top])});
+      }
     curves = front_curves(*geometry, s.walls, s.mesh);
     geometry = std::make_shared<const Geometry>(build_geometry(curves, options));
     out->sections.push_back(std::move(s));
@@ -253,6 +277,11 @@ double quantile(std::vector<double> v, double q) {
 }
 
 }  // namespace
+
+MixedMesh merged_layer_mesh(const MeshInputs& inputs, const LayeredCase& layered, const MeshInputs& core_inputs,
+                            const Mesh& core_mesh) {
+  return merge(inputs, layered, core_inputs, core_mesh);
+}
 
 void write_layered_outputs(const CaseConfig& config, const MeshInputs& inputs, const LayeredCase& layered,
                            const MeshInputs& core_inputs, const Mesh& core_mesh, RunPhases& phases) {

@@ -12,6 +12,7 @@
 #include "app/config/case_file.hpp"
 #include "app/pipeline/mesh_inputs.hpp"
 #include "app/pipeline/run_phases.hpp"
+#include "io/mixed_mesh.hpp"
 #include "layers/boundary_layers.hpp"
 #include "mesh/mesh.hpp"
 
@@ -41,6 +42,11 @@ std::unique_ptr<LayeredCase> build_layers(const CaseConfig& config, const MeshIn
 // The core's nodes without the Boundary nodes on a front: interior nodes that the simulation snapped onto
 // a front curve (its points are the layer's nodes; one between them would hang on a layer cell's edge).
 NodeSet without_front_nodes(const NodeSet& nodes, const Geometry& core_geometry, std::size_t& dropped);
+
+// The layer cells and the core mesh as one mesh: the core's points first, each front node of the
+// layers mapped onto the core's point at exactly its place (the Python API's layered mesh).
+MixedMesh merged_layer_mesh(const MeshInputs& inputs, const LayeredCase& layered, const MeshInputs& core_inputs,
+                            const Mesh& core_mesh);
 
 // The layer cells and the core mesh (the cleaned triangles of layered.core's nodes) as one mesh:
 // the mesh files, the pictures, the table and quality.json (with the layer measures).

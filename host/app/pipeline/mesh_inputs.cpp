@@ -225,12 +225,11 @@ double run_memory_bytes(double nodes, std::size_t field_bytes) {
 }
 
 InitialDistribution make_initial(const CaseConfig& config, const MeshInputs& inputs, const SpacingStage& spacing) {
-  // run_mesh meshes a layered case's core (a case without the tables); a caller driving the stages
-  // itself (the Python API) would mesh the whole domain without the layers.
+  // run_mesh and the Python Mesher mesh a layered case's core (a case without the tables, from
+  // build_layers); a caller driving the stages with the tables would mesh the whole domain without them.
   if (!config.boundary_layers.empty())
-    throw InputError(
-        fmt::format("{}: [[boundary_layer]] is only supported by `pdmesh mesh` (not by the Python API yet)",
-                    config.source.string()));
+    throw InputError(fmt::format("{}: [[boundary_layer]]: the stages mesh the core's case (build_layers), not this one",
+                                 config.source.string()));
   const BoundaryPlacement boundary = place_boundary(config, inputs, spacing);
   InitOptions options;
   options.method = config.init.method;

@@ -12,7 +12,12 @@ wall normal, as a user's evaluator would.
   up to and including the first node beyond `thickness` (so the junction with the core counts);
 - angles: the largest cell angle and the count above 150 degrees (quads by their four corners);
 - core: the smallest angle of the triangles with no corner within `thickness` of a wall;
-- fan: the cells around the wall node where the wall turns most sharply (a trailing edge)."""
+- fan: the cells around the wall node where the wall turns most sharply (a trailing edge);
+- thickness jumps (given which cells are the layer's): at both ends of a wall edge, the layer
+  thickness is the wall distance of the last node of the column (started along the edge's normal,
+  so at a fan corner the fan's ray next to the edge) that is still a corner of a layer cell, and
+  the edge's jump is the ratio of the two (largest over smallest); the largest jump
+  and the share above 1.3 overall and per region (boxes; an edge is in a box when its midpoint is)."""
 
 import math
 
@@ -48,9 +53,12 @@ def _percentile(values, q):
     return float(np.percentile(values, q)) if len(values) else float("nan")
 
 
-def layer_measures(points, triangles, quads, wall_segments, first_height, thickness, min_cos=0.7):
+def layer_measures(points, triangles, quads, wall_segments, first_height, thickness, min_cos=0.7,
+                   layer_cells=None, regions=None):
     """The measures as a dict. points (N, 2); triangles, quads: lists of index tuples; wall_segments
-    (W, 2, 2); first_height and thickness: the layer settings asked for."""
+    (W, 2, 2); first_height and thickness: the layer settings asked for. layer_cells: a bool per
+    cell (the triangles, then the quads) saying which are the layer's (None: no thickness jumps);
+    regions: {name: (x0, y0, x1, y1)} for the jumps per region."""
     points = np.asarray(points, dtype=float)
     segments = np.asarray(wall_segments, dtype=float)
     cells = [tuple(c) for c in triangles] + [tuple(c) for c in quads]
@@ -153,6 +161,10 @@ def layer_measures(points, triangles, quads, wall_segments, first_height, thickn
         fan = {"node_angle_deg": turn_of[sharp], "cells": sum(sharp in c for c in cells),
                "at": [float(points[sharp][0]), float(points[sharp][1])]}
 
+    jumps = None
+    if layer_cells is not None:
+        jumps = thickness_jumps(points, cells, layer_cells, d, wall_edges, regions or {}, min_cos)
+
     ratios = np.array(ratios)
     worst = int(np.argmax(ratios)) if len(ratios) else None
     return {
@@ -167,8 +179,66 @@ def layer_measures(points, triangles, quads, wall_segments, first_height, thickn
         "growth_above_1_25_pct": 100.0 * float((ratios > 1.25).mean()) if len(ratios) else float("nan"),
         "max_angle": angles_max, "angles_above_150": int(above_150),
         "core_min_angle": core_min if core_count else float("nan"), "core_triangles": core_count,
-        "fan": fan,
+        "fan": fan, "thickness_jumps": jumps,
     }
+
+
+def thickness_jumps(points, cells, layer_cells, d, wall_edges, regions, min_cos):
+    """The layer thickness at both ends of each wall edge (the columns walked along the layer cells'
+    edges best aligned with the edge's normal, up to the last layer node), and their ratio:
+    {"all": {...}, region: {...}}, each with edges, max, at, above_1_3."""
+    layer_neighbours = {}
+    for c, in_layer in zip(cells, layer_cells):
+        if not in_layer:
+            continue
+        for k in range(len(c)):
+            i, j = c[k], c[(k + 1) % len(c)]
+            layer_neighbours.setdefault(i, set()).add(j)
+            layer_neighbours.setdefault(j, set()).add(i)
+
+    def column_top(w, direction):
+        cur = w
+        for _ in range(10000):
+            best, best_cos = None, min_cos
+            for v in layer_neighbours.get(cur, ()):
+                step = points[v] - points[cur]
+                length = math.hypot(*step)
+                if d[v] <= d[cur] or length == 0:
+                    continue
+                c = (step @ direction) / length
+                if c > best_cos:
+                    best, best_cos = v, c
+            if best is None:
+                break
+            direction = (points[best] - points[cur]) / math.hypot(*(points[best] - points[cur]))
+            cur = best
+        return float(d[cur])
+
+    out = {name: {"edges": 0, "max": 1.0, "at": None, "above_1_3": 0} for name in ["all"] + list(regions)}
+    for i, j, owners in wall_edges:
+        # Both columns start along this edge's normal into its layer cell: at a fan corner, the
+        # fan's ray next to the edge.
+        inside = [ci for ci in owners if layer_cells[ci]]
+        if not inside:
+            continue
+        e = points[j] - points[i]
+        n = np.array([-e[1], e[0]]) / math.hypot(*e)
+        if np.mean([(points[v] - points[i]) @ n for v in cells[inside[0]] if v not in (i, j)]) < 0:
+            n = -n
+        lo, hi = sorted((column_top(i, n), column_top(j, n)))
+        if hi == 0.0:
+            continue
+        jump = math.inf if lo == 0.0 else hi / lo
+        mid = 0.5 * (points[i] + points[j])
+        for name, box in [("all", None)] + list(regions.items()):
+            if box is not None and not (box[0] <= mid[0] <= box[2] and box[1] <= mid[1] <= box[3]):
+                continue
+            r = out[name]
+            r["edges"] += 1
+            r["above_1_3"] += jump > 1.3
+            if jump > r["max"]:
+                r["max"], r["at"] = jump, [float(mid[0]), float(mid[1])]
+    return out
 
 
 def format_measures(name, m):
@@ -180,4 +250,6 @@ def format_measures(name, m):
             f"{m['growth_median']:.3f} / {m['growth_p95']:.3f} / {m['growth_max']:.2f} "
             f"(max at d = {m['growth_max_at_distance']:.4g}; {m['growth_above_1_25_pct']:.1f} % above 1.25); "
             f"max angle {m['max_angle']:.1f} deg, {m['angles_above_150']} above 150; core min angle "
-            f"{m['core_min_angle']:.2f} deg ({m['core_triangles']} triangles); fan {fan_text}")
+            f"{m['core_min_angle']:.2f} deg ({m['core_triangles']} triangles); fan {fan_text}"
+            + "".join(f"\n  thickness jump {name}: max {r['max']:.3f} over {r['edges']} wall edges, "
+                      f"{r['above_1_3']} above 1.3" for name, r in (m.get("thickness_jumps") or {}).items()))

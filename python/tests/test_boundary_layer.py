@@ -1,0 +1,139 @@
+"""generate(..., boundary_layer=...): the case file's [[boundary_layer]] tables from Python (a dict or
+a list of dicts), the mixed mesh it returns (quads, the layer's triangles), its files, and bad
+settings as typed errors. A circle of 24 segments in a square; few iterations on the host."""
+
+from __future__ import annotations
+
+import json
+
+import numpy as np
+import pytest
+
+import pdmesh
+
+H1 = 1e-3
+
+
+def layer(curves, **keys):
+    table = {"curves": curves, "first_height": H1, "growth": 1.2, "thickness": 0.03, "elements": "quads"}
+    table.update(keys)
+    return table
+
+
+def run(rings, boundary_layer, **keywords):
+    geometry = pdmesh.Geometry(rings, names=["box", "hole"])
+    return pdmesh.generate(geometry, boundary_layer=boundary_layer, iterations=40, device="host", **keywords)
+
+
+def wall_quads(mesh, curve):
+    """The quads with an edge on the curve's boundary edges, and the heights of their other corners."""
+    wall = {frozenset(e) for e in mesh.boundary_edges[curve].tolist()}
+    heights = []
+    for q in mesh.quads.tolist():
+        for k in range(4):
+            a, b = q[k], q[(k + 1) % 4]
+            if frozenset((a, b)) in wall:
+                pa, pb = mesh.points[a], mesh.points[b]
+                d = pb - pa
+                n = np.array([-d[1], d[0]]) / np.hypot(*d)
+                heights += [abs((mesh.points[v] - pa) @ n) for v in q if v not in (a, b)]
+    return heights
+
+
+def test_a_layer_dict_gives_quads_on_the_wall_at_the_first_height(rings):
+    mesh = run(rings, layer(["hole"]))
+    heights = wall_quads(mesh, "hole")
+    assert len(heights) == 2 * 24  # one quad on each of the circle's segments
+    assert np.allclose(heights, H1, rtol=0.02)
+    assert mesh.quads.shape[1] == 4 and len(mesh.quads) > 24
+    # Every triangle is tagged; the core's are 0, and the layer's (transitions) are 1.
+    assert mesh.triangle_layer.shape == (len(mesh.triangles),)
+    assert set(np.unique(mesh.triangle_layer)) <= {0, 1}
+    assert (mesh.triangle_layer == 0).sum() > 100
+    # The wall curves are kept as boundary curves; the fronts are inside.
+    assert len(mesh.boundary_edges["hole"]) == 24
+    assert len(mesh.boundary_edges["box"]) >= 48  # placed by the core's spacing
+    assert "quads" in repr(mesh)
+
+
+def test_a_list_of_tables_and_triangles(rings):
+    mesh = run(rings, [layer(["hole"], elements="triangles"), layer(["box"], thickness=0.02)])
+    assert len(wall_quads(mesh, "box")) == 2 * 48  # the box's layer as quads
+    assert len(wall_quads(mesh, "hole")) == 0      # the hole's split into triangles
+    assert mesh.triangle_layer.sum() >= 2 * 24
+
+
+def test_without_layers_there_are_no_quads(rings):
+    mesh = pdmesh.generate(pdmesh.Geometry(rings, names=["box", "hole"]), iterations=5, device="host")
+    assert mesh.quads.shape == (0, 4)
+    assert len(mesh.triangle_layer) == 0
+
+
+@pytest.mark.parametrize("table, words", [
+    (layer(["nope"]), ["nope", "hole"]),
+    (layer(["hole"], growth=0.9), ["growth", "0.9"]),
+    (layer(["hole"], first_height=0.1, thickness=0.01), ["first_height", "thickness"]),
+    ({**layer(["hole"]), "frist_height": 1e-3}, ["frist_height"]),
+    (layer(["hole"], elements="hexagons"), ["elements", "hexagons"]),
+    (5, ["boundary_layer"]),
+])
+def test_bad_settings_are_input_errors(rings, table, words):
+    with pytest.raises(pdmesh.InputError) as e:
+        run(rings, table)
+    for w in words:
+        assert w in str(e.value)
+
+
+def test_the_mixed_files_load_in_meshio(rings, tmp_path):
+    meshio = pytest.importorskip("meshio")
+    mesh = run(rings, layer(["hole"]))
+    mesh.write(tmp_path / "m.msh")
+    mesh.write(tmp_path / "m.su2")
+    triangles, quads = len(mesh.triangles), len(mesh.quads)
+
+    def count(m, kind):
+        return sum(len(c.data) for c in m.cells if c.type == kind)
+
+    msh = meshio.read(tmp_path / "m.msh")
+    assert count(msh, "triangle") == triangles and count(msh, "quad") == quads
+    assert {"box", "hole", "domain", "boundary_layer"} <= set(msh.field_data)
+    layer_tag = msh.field_data["boundary_layer"][0]
+    tagged = {c.type: 0 for c in msh.cells}
+    for c, tags in zip(msh.cells, msh.cell_data["gmsh:physical"]):
+        tagged[c.type] += int((tags == layer_tag).sum())
+    assert tagged["quad"] == quads
+    assert tagged["triangle"] == int(mesh.triangle_layer.sum())
+
+    su2 = meshio.read(tmp_path / "m.su2")
+    assert count(su2, "triangle") == triangles and count(su2, "quad") == quads
+    markers = set()
+    for c, tags in zip(su2.cells, su2.cell_data["su2:tag"]):
+        if c.type == "line":
+            markers |= set(tags.tolist())
+    assert len(markers) == 2  # box and hole
+    assert "MARKER_TAG= hole" in (tmp_path / "m.su2").read_text()
+
+    m = mesh.to_meshio()
+    assert [c.type for c in m.cells][:2] == ["triangle", "quad"]
+    assert int(m.cell_data["boundary_layer"][1].sum()) == quads
+
+
+def test_formats_that_cannot_hold_quads_are_refused(rings, tmp_path):
+    mesh = run(rings, layer(["hole"]))
+    with pytest.raises(pdmesh.InputError, match="triangle"):
+        mesh.write(tmp_path / "m.ele")
+    mesh.write(tmp_path / "m.vtu")
+    assert (tmp_path / "m.vtu").stat().st_size > 0
+
+
+def test_a_mesher_with_out_writes_the_command_s_layered_outputs(rings, tmp_path):
+    geometry = pdmesh.Geometry(rings, names=["box", "hole"])
+    mesher = pdmesh.Mesher(geometry, out=tmp_path, boundary_layer=layer(["hole"]), iterations=20, device="host",
+                           formats=["msh", "su2"])
+    mesher.run()
+    mesh = mesher.triangulate()
+    quality = json.loads((tmp_path / "quality.json").read_text())
+    assert quality["boundary_layer"]["quads"] == len(mesh.quads)
+    assert quality["boundary_layer"]["tables"][0]["first_height_within_2pct"] == 1
+    assert "MARKER_TAG= hole" in (tmp_path / "mesh.su2").read_text()
+    assert (tmp_path / "mesh.msh").exists() and (tmp_path / "initial.nodes").exists()
