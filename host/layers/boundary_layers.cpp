@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <string>
 #include <unordered_set>
 
@@ -51,6 +52,10 @@ void check_layer_settings(const LayerSettings& s) {
     fail(fmt::format("gap_fraction = {} must be in (0, 0.5]", s.gap_fraction));
   if (!(s.cross_fraction > 0.0 && s.cross_fraction < 1.0))
     fail(fmt::format("cross_fraction = {} must be in (0, 1)", s.cross_fraction));
+}
+
+double fan_elements_matching_core(double growth, double at_least) {
+  return std::min(100.0, std::max(at_least, std::numbers::pi / (growth - 1.0)));
 }
 
 std::vector<int> curves_by_name(const Geometry& geometry, const std::vector<std::string>& names,

@@ -98,6 +98,11 @@ struct LayerMesh {
 LayerMesh build_boundary_layers(const Geometry& geometry, const std::vector<int>& wall_curves,
                                 const LayerSettings& settings, const CoreSpacing& core_spacing = {});
 
+// Fan elements per pi whose top edges match the core there: a fan of thickness t turning by theta
+// has a top arc of theta t, and the core continuing its growth wants about growth x the last layer,
+// (g - 1) t for a stack of growth g, so theta / (g - 1) elements; never fewer than `at_least` per pi.
+double fan_elements_matching_core(double growth, double at_least = 5.0);
+
 // The curve indices of the given names; InputError naming an unknown one (and `what`, e.g. the key).
 std::vector<int> curves_by_name(const Geometry& geometry, const std::vector<std::string>& names,
                                 const std::string& what);

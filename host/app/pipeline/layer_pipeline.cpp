@@ -102,6 +102,7 @@ std::unique_ptr<LayeredCase> build_layers(const CaseConfig& config, const MeshIn
     s.settings.thickness = b.thickness;
     s.settings.layers = b.layers;
     s.settings.split_quads = !b.quads;
+    s.settings.fan_elements_per_pi = fan_elements_matching_core(b.growth);
     check_layer_settings(s.settings);
     s.geometry = geometry;
     s.walls = curves_by_name(*geometry, b.curves, "boundary_layer.curves");
