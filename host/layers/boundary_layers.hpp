@@ -34,6 +34,11 @@ struct LayerSettings {
   double gap_fraction = 0.4;
   double cross_fraction = 0.5;
   bool split_quads = false;  // write each quad as 2 triangles (the diagonal with the smaller max angle)
+  // Columns merge where the rays are dense for their layers' height: a ray's column ends at layer k
+  // (its two neighbours close over it with three triangles) where the span between its neighbours'
+  // nodes there is at most merge_span x the next layer's height, so that the front's node spacing
+  // follows the last layer's height (the core's spacing there) instead of the wall's. 0: never.
+  double merge_span = 1.0;
 };
 
 // Throws InputError naming the setting and its value: h1 <= 0 or not finite, growth <= 1, neither
@@ -66,13 +71,16 @@ struct LayerRay {
   double last_growth = 1.0;     // the last layer's height over the one below (the others: settings.growth)
   double free_thickness = 0.0;  // what it would have had with no collision
   bool fan = false;
+  // Its column ends below the front (merge_span): its nodes stop at a layer where its neighbours'
+  // columns close over it; `thickness` stays the height it would have had.
+  bool merged = false;
   // At the end of an open chain: the geometry segment (of the curve that continues the boundary
   // there) that the ray runs along, so that the layer's side lies on that curve; -1 otherwise.
   int slide_segment = -1;
 };
 
 // The outer front of one wall chain: the boundary between the layer and the core. A closed chain's
-// front is closed (the rays' top nodes); an open chain's front runs from its first wall node up the
+// front is closed (the top nodes of the rays not merged); an open chain's front runs from its first wall node up the
 // first ray, along the top nodes and down the last ray to its last wall node.
 struct LayerFront {
   std::vector<int> nodes;

@@ -60,12 +60,14 @@ class FrontSpacing final : public SpacingField {
 };
 
 // A ray's last layer height over the wall (its top two nodes' distance along the ray, times the
-// ray's correction); 0 for a ray without layers.
+// ray's correction); 0 for a ray without layers or whose column is merged below the front.
 double last_height(const LayerMesh& m, const LayerRay& ray) {
-  if (ray.nodes.size() < 2) return 0.0;
+  if (ray.nodes.size() < 2 || ray.merged) return 0.0;
   return ray.correction * dist(m.nodes[static_cast<std::size_t>(ray.nodes.back())],
                                m.nodes[static_cast<std::size_t>(ray.nodes[ray.nodes.size() - 2])]);
 }
+
+constexpr double kCoreStopSlack = 1.5;
 
 void check_formats(const CaseConfig& config) {
   for (const std::string& f : config.output.formats)
@@ -86,7 +88,11 @@ std::unique_ptr<LayeredCase> build_layers(const CaseConfig& config, const MeshIn
   check_formats(config);
   auto out = std::make_unique<LayeredCase>();
   const SpacingField& field = spacing.field();
-  const CoreSpacing core_spacing = [&field](Vec2 p) { return field.at(p); };
+  // The layers stop where the case's spacing is below growth x their layer height / 1.5: the core's
+  // field is lowered to growth x the last layer at the fronts anyway, and a core up to 1.5 times
+  // finer than the front's spacing still meshes well on it, so a slightly finer case field (a
+  // trailing edge's clustered input points) does not cut the layer short of its thickness.
+  const CoreSpacing core_spacing = [&field](Vec2 p) { return kCoreStopSlack * field.at(p); };
   // Each table's layers on the geometry the ones before it left: their fronts are curves it stops at.
   std::shared_ptr<const Geometry> geometry(&inputs.geometry, [](const Geometry*) {});
   std::vector<RawCurve> curves;
