@@ -38,7 +38,7 @@ struct LayerSettings {
   // (its two neighbours close over it with three triangles) where the span between its neighbours'
   // nodes there is at most merge_span x the next layer's height, so that the front's node spacing
   // follows the last layer's height (the core's spacing there) instead of the wall's. 0: never.
-  double merge_span = 1.0;
+  double merge_span = 1.2;
 };
 
 // Throws InputError naming the setting and its value: h1 <= 0 or not finite, growth <= 1, neither

@@ -23,7 +23,7 @@ ColumnPlan plan_columns(const RaySet& set, const std::vector<std::vector<double>
     for (int k = 0; k < (closed ? n : n - 1); ++k) plan.pairs.push_back({b + k, b + (k + 1) % n, 0, -1});
     if (merge_span <= 0.0 || n < 4) continue;
     // The rays whose columns reach the current layer, in chain order; changed[r]: the layer at which
-    // r's neighbours last changed (a merge needs a quad between two templates).
+    // r's neighbours last changed (no ray of a merge is in another merge at the same layer).
     std::vector<int> active;
     for (int r = b; r < e; ++r) active.push_back(r);
     std::vector<int> changed(nr, -2);
@@ -44,11 +44,11 @@ ColumnPlan plan_columns(const RaySet& set, const std::vector<std::vector<double>
         const int nl = static_cast<int>(height[l].size()) - 1, nm = static_cast<int>(height[r].size()) - 1,
                   nx = static_cast<int>(height[x].size()) - 1;
         if (k >= nm || k >= nl || k >= nx) continue;
-        if (changed[l] > k - 2 || changed[r] > k - 2 || changed[x] > k - 2) continue;
         const double layer = std::min(height[l][k + 1] - height[l][k], height[x][k + 1] - height[x][k]);
         // The edge the merge makes between the neighbours' next nodes (diverging rays widen it).
         const double span = dist(node_at(l, k + 1), node_at(x, k + 1));
         if (span > merge_span * layer) continue;
+        if (changed[l] == k || changed[r] == k || changed[x] == k) continue;
         ends[p] = 1;
       }
       for (int p = 0; p < m; ++p) {
