@@ -54,6 +54,8 @@ void check_layer_settings(const LayerSettings& s) {
     fail(fmt::format("cross_fraction = {} must be in (0, 1)", s.cross_fraction));
   if (!(s.merge_span >= 0.0 && s.merge_span <= 100.0))
     fail(fmt::format("merge_span = {} must be in [0, 100]", s.merge_span));
+  if (!(s.split_span == 0.0 || (s.split_span >= 1.0 && s.split_span <= 100.0)))
+    fail(fmt::format("split_span = {} must be 0 or in [1, 100]", s.split_span));
 }
 
 double fan_elements_matching_core(double growth, double at_least) {
@@ -242,6 +244,14 @@ LayerMesh assemble(const RaySet& set, const std::vector<int>& count, const std::
   return m;
 }
 
+// The distance from p to the segment a -> b.
+double point_segment_distance(Vec2 p, Vec2 a, Vec2 b) {
+  const Vec2 d = b - a;
+  const double l2 = dot(d, d);
+  const double t = l2 > 0.0 ? std::clamp(dot(p - a, d) / l2, 0.0, 1.0) : 0.0;
+  return dist(p, a + t * d);
+}
+
 // The rays to shrink: those owning a node of an inverted cell, or of a cell edge that meets another
 // cell edge (not at a shared node) or a curve of the geometry (not at the wall node it starts from).
 std::vector<int> check(const LayerMesh& m, const std::vector<int>& owner, const Geometry& geometry) {
@@ -306,9 +316,10 @@ std::vector<int> check(const LayerMesh& m, const std::vector<int>& owner, const 
         const double side = orient2d(s.a, s.b, m.nodes[other]);
         if ((inside > 0 && side > 0) || (inside < 0 && side < 0)) return;
       }
+      // A wall node touches the segments it lies on (their ends, or inside one the wall was refined on).
       for (const Vec2 w : {pa, pb})
         if ((a < m.wall_nodes && w == pa) || (b < m.wall_nodes && w == pb))
-          if (s.a == w || s.b == w) return;
+          if (s.a == w || s.b == w || point_segment_distance(w, s.a, s.b) <= 1e-12 * s.length) return;
       if (!segments_intersect(pa, pb, s.a, s.b)) return;
       mark(a);
       mark(b);
@@ -330,9 +341,11 @@ LayerMesh build_boundary_layers(const Geometry& geometry, const std::vector<int>
     if (c < 0 || c >= static_cast<int>(geometry.curves.size()))
       throw InputError(fmt::format("boundary layer: wall curve index {} is not a curve of the geometry (it has {})", c,
                                    geometry.curves.size()));
-  RaySet set = make_rays(wall_chains(geometry, wall_curves), geometry, settings);
+  std::vector<WallChain> chains = wall_chains(geometry, wall_curves);
+  RaySet set = make_rays(chains, geometry, settings);
   std::vector<double> allowed;
   free_and_collision_limits(set, geometry, settings, core_spacing, allowed);
+  refine_sparse_walls(chains, geometry, settings, set, allowed);
   std::vector<int> count, owner;
   std::vector<double> top;
   constexpr int kMaxRepairs = 60;

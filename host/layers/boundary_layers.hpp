@@ -39,6 +39,10 @@ struct LayerSettings {
   // nodes there is at most merge_span x the next layer's height, so that the front's node spacing
   // follows the last layer's height (the core's spacing there) instead of the wall's. 0: never.
   double merge_span = 1.2;
+  // The wall is refined where the rays diverge: a wall segment whose rays' top nodes would be more
+  // than split_span x the last layer's height apart is split into equal parts (nodes on the
+  // segment) that are not (a leading edge's nose). 0: never.
+  double split_span = 1.6;
 };
 
 // Throws InputError naming the setting and its value: h1 <= 0 or not finite, growth <= 1, neither

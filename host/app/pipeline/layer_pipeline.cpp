@@ -26,8 +26,8 @@ using mesh_detail::progress;
 namespace {
 
 // The case's field, lowered near the layer fronts to q_i + gradation x distance from each front node
-// i, with q_i = growth x the last layer's height there: the core's first triangles continue the
-// layer's growth.
+// i, with q_i = growth x the last layer's height there (or the front's mean edge length at i where
+// that is shorter): the core's first triangles continue the layer's growth.
 class FrontSpacing final : public SpacingField {
  public:
   struct Source {
@@ -113,9 +113,25 @@ std::unique_ptr<LayeredCase> build_layers(const CaseConfig& config, const MeshIn
     s.geometry = geometry;
     s.walls = curves_by_name(*geometry, b.curves, "boundary_layer.curves");
     s.mesh = build_boundary_layers(*geometry, s.walls, s.settings, core_spacing);
+    // Each front node's mean edge length along the front: where the front is denser than growth x
+    // the last layer (a trailing edge whose columns could not all merge), the core's triangles on
+    // it are sized by its edges, not flat slivers of the layer's size.
+    std::map<int, double> front_edge;
+    for (const LayerFront& f : s.mesh.fronts) {
+      const std::size_t n = f.nodes.size();
+      for (std::size_t i = 0; i < n; ++i) {
+        if (!f.closed && (i == 0 || i + 1 == n)) continue;
+        const auto at = [&](std::size_t k) { return s.mesh.nodes[static_cast<std::size_t>(f.nodes[k % n])]; };
+        front_edge[f.nodes[i]] = 0.5 * (dist(at(i + n - 1), at(i)) + dist(at(i), at(i + 1)));
+      }
+    }
     for (const LayerRay& ray : s.mesh.rays)
-      if (const double h = last_height(s.mesh, ray); h > 0.0)
-        sources.push_back({s.mesh.nodes[static_cast<std::size_t>(ray.nodes.back())], b.growth * h});
+      if (const double h = last_height(s.mesh, ray); h > 0.0) {
+        double q = b.growth * h;
+        const auto e = front_edge.find(ray.nodes.back());
+        if (e != front_edge.end()) q = std::min(q, e->second);
+        sources.push_back({s.mesh.nodes[static_cast<std::size_t>(ray.nodes.back())], q});
+      }
     curves = front_curves(*geometry, s.walls, s.mesh);
     geometry = std::make_shared<const Geometry>(build_geometry(curves, options));
     out->sections.push_back(std::move(s));
