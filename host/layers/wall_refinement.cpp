@@ -2,6 +2,7 @@
 // leading edge's nose), their top nodes lie several last-layer heights apart, and the core's first
 // triangles on such a front edge are flat. The wall segment is split into equal parts (points on the
 // segment), each with its own ray, so that the front's nodes are spaced about like its last layer.
+#include <algorithm>
 #include <array>
 #include <cmath>
 
@@ -21,6 +22,8 @@ double last_layer(double t, const LayerSettings& s) {
   if (n >= 3 && last < 0.25 * h1 * std::pow(g, n - 2)) last += h1 * std::pow(g, n - 2);
   return last;
 }
+
+Vec2 chain_point(const WallChain& chain, std::size_t k) { return chain.points[k % chain.points.size()]; }
 
 }  // namespace
 
@@ -83,6 +86,29 @@ bool refine_sparse_walls(std::vector<WallChain>& chains, const Geometry& geometr
     const int rb = refined.ray_begin[c], re = refined.ray_begin[c + 1];
     if (re <= rb) continue;
     const int base = refined.rays[rb].wall_node;
+    // A new point's ray: the directions of its segment's end rays interpolated (the smoothing would
+    // tilt a ray on a straight segment as far as its neighbours' mean, and the thin cells beside it
+    // would be skewed), its correction over the segment's normal.
+    std::vector<int> first_new(source[c].size(), -1), last_new(source[c].size(), -1);
+    for (int r = rb; r < re; ++r) {
+      const int p = refined.rays[r].wall_node - base;
+      if (first_new[p] < 0) first_new[p] = r;
+      last_new[p] = r;
+    }
+    for (std::size_t p = 0; p < source[c].size(); ++p) {
+      const auto [i, j] = source[c][p];
+      if (i == j) continue;
+      std::size_t pi = p, pj = p;
+      while (source[c][pi][0] != source[c][pi][1]) --pi;
+      while (source[c][pj % source[c].size()][0] != source[c][pj % source[c].size()][1]) ++pj;
+      const double t = static_cast<double>(p - pi) / static_cast<double>(pj - pi);
+      const Vec2 da = refined.rays[last_new[pi]].direction;
+      const Vec2 db = refined.rays[first_new[pj % source[c].size()]].direction;
+      LayerRay& ray = refined.rays[first_new[p]];
+      ray.direction = normalized((1.0 - t) * da + t * db);
+      const Vec2 a = chain_point(chains[c], pi), b = chain_point(chains[c], pj);
+      ray.correction = std::max(0.2, dot(ray.direction, left_normal(a, b)));
+    }
     int previous_point = -1, fan_index = 0;
     for (int r = rb; r < re; ++r) {
       const int p = refined.rays[r].wall_node - base;
