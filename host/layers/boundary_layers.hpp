@@ -1,7 +1,7 @@
 // Boundary layers for viscous flow: layered cells advanced from wall curves along smoothed normals
 // (docs/boundary-layers.md). The input is the geometry and the wall curves (their polyline points,
 // which are the boundary nodes of the thesis' rule); the output is the layer nodes and cells and the
-// outer front, the boundary the particle core is to fill from. Not wired to the case file yet.
+// outer front, the boundary the particle core is to fill from.
 #pragma once
 #include <array>
 #include <cstdint>
