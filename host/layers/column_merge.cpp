@@ -8,67 +8,93 @@
 
 namespace pdmesh::layers_detail {
 
-ColumnPlan plan_columns(const RaySet& set, const std::vector<std::vector<double>>& height, double merge_span) {
-  ColumnPlan plan;
-  const int nr = static_cast<int>(set.rays.size());
-  plan.end.assign(nr, -1);
-  auto node_at = [&](int r, int k) {
-    const LayerRay& ray = set.rays[r];
-    return set.wall_points[ray.wall_node] + (height[r][k] / ray.correction) * ray.direction;
-  };
-  for (std::size_t c = 0; c + 1 < set.ray_begin.size(); ++c) {
-    const int b = set.ray_begin[c], e = set.ray_begin[c + 1], n = e - b;
-    const bool closed = set.closed[c] != 0;
-    const std::size_t first_pair = plan.pairs.size();
-    for (int k = 0; k < (closed ? n : n - 1); ++k) plan.pairs.push_back({b + k, b + (k + 1) % n, 0, -1});
-    if (merge_span <= 0.0 || n < 4) continue;
-    // The rays whose columns reach the current layer, in chain order; changed[r]: the layer at which
-    // r's neighbours last changed (no ray of a merge is in another merge at the same layer).
-    std::vector<int> active;
-    for (int r = b; r < e; ++r) active.push_back(r);
-    std::vector<int> changed(nr, -2);
+namespace {
+
+// One chain's merges, layer after layer. pair_left[r] / pair_right[r]: the open pair (index into
+// plan.pairs) whose b / a is ray r.
+class ChainMerger {
+ public:
+  ChainMerger(const RaySet& set, const std::vector<std::vector<double>>& height, double merge_span, ColumnPlan& plan)
+      : set_(set), height_(height), merge_span_(merge_span), plan_(plan) {}
+
+  void run(int b, int e, bool closed) {
+    const int n = e - b;
+    std::vector<int> pair_left(set_.rays.size(), -1), pair_right(set_.rays.size(), -1);
+    for (int k = 0; k < (closed ? n : n - 1); ++k) {
+      const int a = b + k, c = b + (k + 1) % n;
+      pair_right[a] = pair_left[c] = static_cast<int>(plan_.pairs.size());
+      plan_.pairs.push_back({a, c, 0, -1});
+    }
+    if (merge_span_ <= 0.0 || n < 4) return;
+    std::vector<int> active;  // the rays whose columns reach the current layer, in chain order
     int top = 0;
-    for (int r = b; r < e; ++r) top = std::max(top, static_cast<int>(height[r].size()) - 1);
-    for (int k = 1; k < top; ++k) {
+    for (int r = b; r < e; ++r) {
+      active.push_back(r);
+      top = std::max(top, layers(r));
+    }
+    for (int k = 1; k < top && active.size() >= 4; ++k) {
+      const std::vector<char> ends = ending(active, k, closed);
       std::vector<int> kept;
       const int m = static_cast<int>(active.size());
-      if (m < 4) break;
-      std::vector<char> ends(m, 0);
-      for (int p = closed ? 0 : 1; p < (closed ? m : m - 1); ++p) {
-        const int pl = (p + m - 1) % m, pr = (p + 1) % m;
-        if (ends[pl] || (closed && p == m - 1 && ends[0])) continue;  // never two neighbours at one layer
-        const int l = active[pl], r = active[p], x = active[pr];
-        const LayerRay& ray = set.rays[r];
-        if (ray.fan || ray.slide_segment >= 0) continue;
-        // Every layer up to k + 1 of the three is on the settings' stack (below their tops).
-        const int nl = static_cast<int>(height[l].size()) - 1, nm = static_cast<int>(height[r].size()) - 1,
-                  nx = static_cast<int>(height[x].size()) - 1;
-        if (k >= nm || k >= nl || k >= nx) continue;
-        const double layer = std::min(height[l][k + 1] - height[l][k], height[x][k + 1] - height[x][k]);
-        // The edge the merge makes between the neighbours' next nodes (diverging rays widen it).
-        const double span = dist(node_at(l, k + 1), node_at(x, k + 1));
-        if (span > merge_span * layer) continue;
-        if (changed[l] == k || changed[r] == k || changed[x] == k) continue;
-        ends[p] = 1;
-      }
       for (int p = 0; p < m; ++p) {
         if (!ends[p]) {
           kept.push_back(active[p]);
           continue;
         }
         const int l = active[(p + m - 1) % m], r = active[p], x = active[(p + 1) % m];
-        plan.end[r] = k;
-        changed[l] = changed[x] = k;
-        for (std::size_t q = first_pair; q < plan.pairs.size(); ++q) {
-          ColumnPair& pair = plan.pairs[q];
-          if (pair.to < 0 && ((pair.a == l && pair.b == r) || (pair.a == r && pair.b == x))) pair.to = k;
-        }
-        plan.merges.push_back({r, l, x, k});
-        plan.pairs.push_back({l, x, k + 1, -1});
+        plan_.end[r] = k;
+        plan_.pairs[pair_left[r]].to = plan_.pairs[pair_right[r]].to = k;
+        plan_.merges.push_back({r, l, x, k});
+        pair_right[l] = pair_left[x] = static_cast<int>(plan_.pairs.size());
+        plan_.pairs.push_back({l, x, k + 1, -1});
       }
       active = std::move(kept);
     }
   }
+
+ private:
+  int layers(int r) const { return static_cast<int>(height_[r].size()) - 1; }
+  Vec2 node_at(int r, int k) const {
+    const LayerRay& ray = set_.rays[r];
+    return set_.wall_points[ray.wall_node] + (height_[r][k] / ray.correction) * ray.direction;
+  }
+  // Which of the active rays' columns end at layer k: never two neighbours (the merge's triangles
+  // use both neighbours' nodes at k and k + 1).
+  std::vector<char> ending(const std::vector<int>& active, int k, bool closed) const {
+    const int m = static_cast<int>(active.size());
+    std::vector<char> ends(m, 0);
+    for (int p = closed ? 0 : 1; p < (closed ? m : m - 1); ++p) {
+      const int pl = (p + m - 1) % m, pr = (p + 1) % m;
+      if (ends[pl] || (closed && p == m - 1 && ends[0])) continue;
+      ends[p] = merges(active[pl], active[p], active[pr], k) ? 1 : 0;
+    }
+    return ends;
+  }
+  // Whether r's column ends at layer k between l and x.
+  bool merges(int l, int r, int x, int k) const {
+    const LayerRay& ray = set_.rays[r];
+    if (ray.fan || ray.slide_segment >= 0) return false;
+    // Every layer up to k + 1 of the three is on the settings' stack (below their tops).
+    if (k >= layers(r) || k >= layers(l) || k >= layers(x)) return false;
+    const double layer = std::min(height_[l][k + 1] - height_[l][k], height_[x][k + 1] - height_[x][k]);
+    // The edge the merge makes between the neighbours' next nodes (diverging rays widen it).
+    return dist(node_at(l, k + 1), node_at(x, k + 1)) <= merge_span_ * layer;
+  }
+
+  const RaySet& set_;
+  const std::vector<std::vector<double>>& height_;
+  double merge_span_;
+  ColumnPlan& plan_;
+};
+
+}  // namespace
+
+ColumnPlan plan_columns(const RaySet& set, const std::vector<std::vector<double>>& height, double merge_span) {
+  ColumnPlan plan;
+  plan.end.assign(set.rays.size(), -1);
+  ChainMerger merger(set, height, merge_span, plan);
+  for (std::size_t c = 0; c + 1 < set.ray_begin.size(); ++c)
+    merger.run(set.ray_begin[c], set.ray_begin[c + 1], set.closed[c] != 0);
   return plan;
 }
 

@@ -125,8 +125,8 @@ struct ColumnPlan {
 };
 // The columns of every chain: ray r's column ends at layer k where its current neighbours' nodes
 // at layer k + 1 are at most merge_span x their layer's height apart (not at fans, sliding end rays,
-// the ends of an open chain, or layers that are not on the settings' stack for all three; no ray in
-// two merges at one layer). height[r]: ray r's node heights over the wall (0 first).
+// the ends of an open chain, or layers that are not on the settings' stack for all three; never
+// two neighbours at one layer). height[r]: ray r's node heights over the wall (0 first).
 ColumnPlan plan_columns(const RaySet& set, const std::vector<std::vector<double>>& height, double merge_span);
 
 }  // namespace pdmesh::layers_detail
