@@ -40,12 +40,15 @@ RawCurve box(Vec2 lo, Vec2 hi, int per_side, const std::string& name) {
   return curve;
 }
 
+// The plain generator: no wall refinement and no column merging (their own tests turn them on).
 LayerSettings settings(double h1, double g, double thickness, int layers = 0) {
   LayerSettings s;
   s.first_height = h1;
   s.growth = g;
   s.thickness = thickness;
   s.layers = layers;
+  s.split_span = 0.0;
+  s.merge_span = 0.0;
   return s;
 }
 

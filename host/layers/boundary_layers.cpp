@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <string>
 #include <unordered_set>
 
@@ -51,6 +52,14 @@ void check_layer_settings(const LayerSettings& s) {
     fail(fmt::format("gap_fraction = {} must be in (0, 0.5]", s.gap_fraction));
   if (!(s.cross_fraction > 0.0 && s.cross_fraction < 1.0))
     fail(fmt::format("cross_fraction = {} must be in (0, 1)", s.cross_fraction));
+  if (!(s.merge_span >= 0.0 && s.merge_span <= 100.0))
+    fail(fmt::format("merge_span = {} must be in [0, 100]", s.merge_span));
+  if (!(s.split_span == 0.0 || (s.split_span >= 1.0 && s.split_span <= 100.0)))
+    fail(fmt::format("split_span = {} must be 0 or in [1, 100]", s.split_span));
+}
+
+double fan_elements_matching_core(double growth, double at_least) {
+  return std::min(100.0, std::max(at_least, std::numbers::pi / (growth - 1.0)));
 }
 
 std::vector<int> curves_by_name(const Geometry& geometry, const std::vector<std::string>& names,
@@ -72,30 +81,41 @@ std::vector<int> curves_by_name(const Geometry& geometry, const std::vector<std:
 
 namespace {
 
-// Each ray's nodes: the wall node, then one node per layer at the stack's heights (the last at the
-// ray's thickness). Returns per ray each node's height over the wall; `owner` gets each node's ray.
-std::vector<std::vector<double>> place_ray_nodes(LayerMesh& m, const std::vector<int>& count,
-                                                 const std::vector<double>& top, const LayerSettings& settings,
-                                                 std::vector<int>& owner) {
+// Each ray's node heights over the wall: 0, then the stack's heights, the last at the ray's thickness.
+std::vector<std::vector<double>> ray_heights(const std::vector<int>& count, const std::vector<double>& top,
+                                             const LayerSettings& settings) {
+  std::vector<std::vector<double>> height(count.size());
+  for (std::size_t r = 0; r < count.size(); ++r) {
+    height[r] = {0.0};
+    for (int k = 1; k <= count[r]; ++k)
+      height[r].push_back(k < count[r] ? stack_height(settings.first_height, settings.growth, k) : top[r]);
+  }
+  return height;
+}
+
+// Each ray's nodes: the wall node, then one node per height up to the layer its column ends at
+// (end[r], -1: all). `height` is cut there; `owner` gets each node's ray.
+void place_ray_nodes(LayerMesh& m, const std::vector<int>& count, const std::vector<double>& top,
+                     const std::vector<int>& end, const LayerSettings& settings,
+                     std::vector<std::vector<double>>& height, std::vector<int>& owner) {
   const double h1 = settings.first_height;
-  std::vector<std::vector<double>> height(m.rays.size());
   for (std::size_t r = 0; r < m.rays.size(); ++r) {
     LayerRay& ray = m.rays[r];
     const Vec2 p = m.nodes[ray.wall_node];
     ray.nodes = {ray.wall_node};
-    height[r] = {0.0};
+    ray.merged = end[r] >= 0;
+    if (ray.merged) height[r].resize(static_cast<std::size_t>(end[r]) + 1);
     const int n = count[r];
     ray.thickness = n > 0 ? top[r] : 0.0;
-    for (int k = 1; k <= n; ++k) {
-      height[r].push_back(k < n ? stack_height(h1, settings.growth, k) : top[r]);
+    for (std::size_t k = 1; k < height[r].size(); ++k) {
       ray.nodes.push_back(static_cast<int>(m.nodes.size()));
-      m.nodes.push_back(p + (height[r].back() / ray.correction) * ray.direction);
+      m.nodes.push_back(p + (height[r][k] / ray.correction) * ray.direction);
       owner.push_back(static_cast<int>(r));
     }
-    ray.last_growth =
-        n >= 2 ? (top[r] - stack_height(h1, settings.growth, n - 1)) / (h1 * std::pow(settings.growth, n - 2)) : 1.0;
+    ray.last_growth = n >= 2 && !ray.merged ? (top[r] - stack_height(h1, settings.growth, n - 1)) /
+                                                  (h1 * std::pow(settings.growth, n - 2))
+                                            : (n >= 2 ? settings.growth : 1.0);
   }
-  return height;
 }
 
 // The smallest cosine of a triangle's angles (the larger, the smaller its largest angle).
@@ -128,22 +148,23 @@ void add_cell(LayerMesh& m, bool split_quads, std::array<int, 4> v, LayerCellKin
   m.cells.push_back({v, kind, curve, layer});
 }
 
-// The cells between two neighbouring rays a and b (of heights ha, hb). Their columns are zipped
-// upwards: a quad while both its lower and its upper nodes are level (heights within half the
-// thinner layer and 0.3 x the width between them: no skewed quad), else a triangle advancing the
-// column whose next node is lower. A fan (two rays from one wall node) starts with a triangle.
+// The cells between two neighbouring rays a and b (of heights ha, hb) from layer `from` to layer `to`
+// of both (-1: their tops). Their columns are zipped upwards: a quad while both its lower and its
+// upper nodes are level (heights within half the thinner layer and 0.3 x the width between them: no
+// skewed quad), else a triangle advancing the column whose next node is lower. A fan (two rays
+// from one wall node) starts with a triangle.
 void zip_columns(LayerMesh& m, bool split_quads, int a, int b, const std::vector<double>& ha,
-                 const std::vector<double>& hb) {
+                 const std::vector<double>& hb, int from, int to) {
   const LayerRay& ra = m.rays[a];
   const LayerRay& rb = m.rays[b];
   const auto& ca = ra.nodes;
   const auto& cb = rb.nodes;
   const bool fan = ra.wall_node == rb.wall_node;
   const int curve = ra.curve;
-  const int na = static_cast<int>(ca.size()) - 1, nb = static_cast<int>(cb.size()) - 1;
+  const int na = to >= 0 ? to : static_cast<int>(ca.size()) - 1, nb = to >= 0 ? to : static_cast<int>(cb.size()) - 1;
   if (fan && std::min(na, nb) == 0) return;  // a fan ray without layers: nothing beside it
-  int i = 0, j = 0;
-  if (fan) {
+  int i = from, j = from;
+  if (fan && from == 0) {
     add_cell(m, split_quads, {ca[0], cb[1], ca[1], -1}, LayerCellKind::Fan, curve, 0);
     i = j = 1;
   }
@@ -154,7 +175,7 @@ void zip_columns(LayerMesh& m, bool split_quads, int a, int b, const std::vector
     bool advance_a = i < na, advance_b = j < nb;
     if (advance_a && advance_b) {
       const double layer = std::min(ha[i + 1] - ha[i], hb[j + 1] - hb[j]);
-      if (!((i == 0 && j == 0) || level(i, j, layer)) || !level(i + 1, j + 1, layer)) {
+      if (!((i == from && j == from) || level(i, j, layer)) || !level(i + 1, j + 1, layer)) {
         advance_a = ha[i + 1] < hb[j + 1];
         advance_b = !advance_a;
       }
@@ -185,7 +206,8 @@ LayerFront chain_front(const LayerMesh& m, int b, int e, bool closed) {
   };
   if (!closed)
     for (std::size_t j = 0; j + 1 < m.rays[b].nodes.size(); ++j) push(m.rays[b].nodes[j]);
-  for (int k = b; k < e; ++k) push(m.rays[k].nodes.back());
+  for (int k = b; k < e; ++k)
+    if (!m.rays[k].merged) push(m.rays[k].nodes.back());
   if (!closed)
     for (std::size_t j = m.rays[e - 1].nodes.size(); j-- > 0;) push(m.rays[e - 1].nodes[j]);
   if (closed && front.nodes.size() > 1 && front.nodes.front() == front.nodes.back()) front.nodes.pop_back();
@@ -202,17 +224,32 @@ LayerMesh assemble(const RaySet& set, const std::vector<int>& count, const std::
   m.chain_closed = set.closed;
   m.fan_sizes = set.fan_sizes;
   owner.assign(m.nodes.size(), -1);
-  const std::vector<std::vector<double>> height = place_ray_nodes(m, count, top, settings, owner);
-  for (std::size_t c = 0; c + 1 < set.ray_begin.size(); ++c) {
-    const int b = set.ray_begin[c], e = set.ray_begin[c + 1], n = e - b;
-    const bool closed = set.closed[c] != 0;
-    for (int k = 0; k < (closed ? n : n - 1); ++k) {
-      const int a = b + k, next = b + (k + 1) % n;
-      zip_columns(m, settings.split_quads, a, next, height[a], height[next]);
-    }
-    m.fronts.push_back(chain_front(m, b, e, closed));
+  std::vector<std::vector<double>> height = ray_heights(count, top, settings);
+  const ColumnPlan plan = plan_columns(set, height, settings.merge_span);
+  place_ray_nodes(m, count, top, plan.end, settings, height, owner);
+  for (const ColumnPair& p : plan.pairs)
+    zip_columns(m, settings.split_quads, p.a, p.b, height[p.a], height[p.b], p.from, p.to);
+  // A merged column's last node b_k under its neighbours' nodes l_k+1, r_k+1: three triangles.
+  for (const ColumnMerge& g : plan.merges) {
+    const auto node = [&](int ray, int k) { return m.rays[ray].nodes[static_cast<std::size_t>(k)]; };
+    const int k = g.layer, curve = m.rays[g.ray].curve;
+    add_cell(m, false, {node(g.left, k), node(g.ray, k), node(g.left, k + 1), -1}, LayerCellKind::Transition, curve, k);
+    add_cell(m, false, {node(g.ray, k), node(g.right, k), node(g.right, k + 1), -1}, LayerCellKind::Transition, curve,
+             k);
+    add_cell(m, false, {node(g.ray, k), node(g.right, k + 1), node(g.left, k + 1), -1}, LayerCellKind::Transition,
+             curve, k);
   }
+  for (std::size_t c = 0; c + 1 < set.ray_begin.size(); ++c)
+    m.fronts.push_back(chain_front(m, set.ray_begin[c], set.ray_begin[c + 1], set.closed[c] != 0));
   return m;
+}
+
+// The distance from p to the segment a -> b.
+double point_segment_distance(Vec2 p, Vec2 a, Vec2 b) {
+  const Vec2 d = b - a;
+  const double l2 = dot(d, d);
+  const double t = l2 > 0.0 ? std::clamp(dot(p - a, d) / l2, 0.0, 1.0) : 0.0;
+  return dist(p, a + t * d);
 }
 
 // The rays to shrink: those owning a node of an inverted cell, or of a cell edge that meets another
@@ -279,9 +316,10 @@ std::vector<int> check(const LayerMesh& m, const std::vector<int>& owner, const 
         const double side = orient2d(s.a, s.b, m.nodes[other]);
         if ((inside > 0 && side > 0) || (inside < 0 && side < 0)) return;
       }
+      // A wall node touches the segments it lies on (their ends, or inside one the wall was refined on).
       for (const Vec2 w : {pa, pb})
         if ((a < m.wall_nodes && w == pa) || (b < m.wall_nodes && w == pb))
-          if (s.a == w || s.b == w) return;
+          if (s.a == w || s.b == w || point_segment_distance(w, s.a, s.b) <= 1e-12 * s.length) return;
       if (!segments_intersect(pa, pb, s.a, s.b)) return;
       mark(a);
       mark(b);
@@ -303,9 +341,11 @@ LayerMesh build_boundary_layers(const Geometry& geometry, const std::vector<int>
     if (c < 0 || c >= static_cast<int>(geometry.curves.size()))
       throw InputError(fmt::format("boundary layer: wall curve index {} is not a curve of the geometry (it has {})", c,
                                    geometry.curves.size()));
-  RaySet set = make_rays(wall_chains(geometry, wall_curves), geometry, settings, core_spacing);
+  std::vector<WallChain> chains = wall_chains(geometry, wall_curves);
+  RaySet set = make_rays(chains, geometry, settings, core_spacing);
   std::vector<double> allowed;
   free_and_collision_limits(set, geometry, settings, core_spacing, allowed);
+  refine_sparse_walls(chains, geometry, settings, set, allowed);
   std::vector<int> count, owner;
   std::vector<double> top;
   constexpr int kMaxRepairs = 60;

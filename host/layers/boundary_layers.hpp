@@ -1,7 +1,7 @@
 // Boundary layers for viscous flow: layered cells advanced from wall curves along smoothed normals
 // (docs/boundary-layers.md). The input is the geometry and the wall curves (their polyline points,
 // which are the boundary nodes of the thesis' rule); the output is the layer nodes and cells and the
-// outer front, the boundary the particle core is to fill from. Not wired to the case file yet.
+// outer front, the boundary the particle core is to fill from.
 #pragma once
 #include <array>
 #include <cstdint>
@@ -34,6 +34,15 @@ struct LayerSettings {
   double gap_fraction = 0.4;
   double cross_fraction = 0.5;
   bool split_quads = false;  // write each quad as 2 triangles (the diagonal with the smaller max angle)
+  // Columns merge where the rays are dense for their layers' height: a ray's column ends at layer k
+  // (its two neighbours close over it with three triangles) where the span between its neighbours'
+  // nodes there is at most merge_span x the next layer's height, so that the front's node spacing
+  // follows the last layer's height (the core's spacing there) instead of the wall's. 0: never.
+  double merge_span = 1.2;
+  // The wall is refined where the rays diverge: a wall segment whose rays' top nodes would be more
+  // than split_span x the last layer's height apart is split into equal parts (nodes on the
+  // segment) that are not (a leading edge's nose). 0: never.
+  double split_span = 1.6;
 };
 
 // Throws InputError naming the setting and its value: h1 <= 0 or not finite, growth <= 1, neither
@@ -66,13 +75,16 @@ struct LayerRay {
   double last_growth = 1.0;     // the last layer's height over the one below (the others: settings.growth)
   double free_thickness = 0.0;  // what it would have had with no collision
   bool fan = false;
+  // Its column ends below the front (merge_span): its nodes stop at a layer where its neighbours'
+  // columns close over it; `thickness` stays the height it would have had.
+  bool merged = false;
   // At the end of an open chain: the geometry segment (of the curve that continues the boundary
   // there) that the ray runs along, so that the layer's side lies on that curve; -1 otherwise.
   int slide_segment = -1;
 };
 
 // The outer front of one wall chain: the boundary between the layer and the core. A closed chain's
-// front is closed (the rays' top nodes); an open chain's front runs from its first wall node up the
+// front is closed (the top nodes of the rays not merged); an open chain's front runs from its first wall node up the
 // first ray, along the top nodes and down the last ray to its last wall node.
 struct LayerFront {
   std::vector<int> nodes;
@@ -97,6 +109,11 @@ struct LayerMesh {
 // settings or an empty or out-of-range curve list; throws Error when no valid layer can be made.
 LayerMesh build_boundary_layers(const Geometry& geometry, const std::vector<int>& wall_curves,
                                 const LayerSettings& settings, const CoreSpacing& core_spacing = {});
+
+// Fan elements per pi whose top edges match the core there: a fan of thickness t turning by theta
+// has a top arc of theta t, and the core continuing its growth wants about growth x the last layer,
+// (g - 1) t for a stack of growth g, so theta / (g - 1) elements; never fewer than `at_least` per pi.
+double fan_elements_matching_core(double growth, double at_least = 5.0);
 
 // The curve indices of the given names; InputError naming an unknown one (and `what`, e.g. the key).
 std::vector<int> curves_by_name(const Geometry& geometry, const std::vector<std::string>& names,

@@ -79,7 +79,7 @@ LayerMeasures measure_layers(const LayerMesh& mesh, double first_height, const C
       if (k > 1) inside.push_back(t / last);
       last = t;
     }
-    if (n >= 1 && core_spacing) junction.push_back(core_spacing(x[ray.nodes.back()]) / last);
+    if (n >= 1 && core_spacing && !ray.merged) junction.push_back(core_spacing(x[ray.nodes.back()]) / last);
   }
   if (mesh.rays.empty()) out.min_thickness = 0.0;
   out.growth_median = quantile(inside, 0.5);

@@ -102,4 +102,33 @@ void grade_thickness(const RaySet& set, double max_jump, double max_slope, std::
 void layer_counts(const RaySet& set, const LayerSettings& settings, const std::vector<double>& allowed,
                   std::vector<int>& count, std::vector<double>& top);
 
+// Splits each wall segment whose neighbouring rays' top nodes (at their allowed thickness) are more
+// than split_span x the last layer's height apart into equal parts that are not, and remakes the
+// rays (make_rays) and their limits (an inserted ray: the smaller of its neighbours'; its wall node
+// lies on the segment, whose collision test would stop it at once) (wall_refinement.cpp). Returns
+// whether any segment was split.
+bool refine_sparse_walls(std::vector<WallChain>& chains, const Geometry& geometry, const LayerSettings& settings,
+                         RaySet& set, std::vector<double>& allowed);
+
+// Which columns are zipped with which, from which layer to which (column_merge.cpp).
+struct ColumnPair {
+  int a = -1, b = -1;  // neighbouring rays at these layers, a before b in the chain
+  int from = 0;        // the layer both start at (0: the wall)
+  int to = -1;         // the layer both end at (a merge's layer), -1: their tops
+};
+struct ColumnMerge {
+  int ray = -1, left = -1, right = -1;  // the ray whose column ends, its neighbours there
+  int layer = 0;                        // its last node's layer
+};
+struct ColumnPlan {
+  std::vector<ColumnPair> pairs;    // every chain's neighbouring rays in chain order, then the pairs merges make
+  std::vector<ColumnMerge> merges;  // in the order the layers are passed
+  std::vector<int> end;             // per ray: the layer its column ends at, -1: its top
+};
+// The columns of every chain: ray r's column ends at layer k where its current neighbours' nodes
+// at layer k + 1 are at most merge_span x their layer's height apart (not at fans, sliding end rays,
+// the ends of an open chain, or layers that are not on the settings' stack for all three; never
+// two neighbours at one layer). height[r]: ray r's node heights over the wall (0 first).
+ColumnPlan plan_columns(const RaySet& set, const std::vector<std::vector<double>>& height, double merge_span);
+
 }  // namespace pdmesh::layers_detail

@@ -156,10 +156,10 @@ int main(int argc, char** argv) {
       names_list += fmt::format("{}\"{}\"", names_list.empty() ? "" : ", ", c.name);
     }
     write_file_atomically(out / "core.crv", crv);
-    // Per top node of a ray: x, y, the last layer's height (for the junction with a core mesh).
+    // Per top node of a ray on the front: x, y, the last layer's height (for the junction with a core mesh).
     std::string tops = "# x y last_layer_height\n";
     for (const LayerRay& r : layers.rays)
-      if (r.nodes.size() >= 2) {
+      if (r.nodes.size() >= 2 && !r.merged) {
         const Vec2 t = layers.nodes[r.nodes.back()], u = layers.nodes[r.nodes[r.nodes.size() - 2]];
         tops += fmt::format("{:.17g} {:.17g} {:.17g}\n", t.x, t.y, dist(t, u) * r.correction);
       }

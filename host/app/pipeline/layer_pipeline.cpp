@@ -26,8 +26,8 @@ using mesh_detail::progress;
 namespace {
 
 // The case's field, lowered near the layer fronts to q_i + gradation x distance from each front node
-// i, with q_i = growth x the last layer's height there: the core's first triangles continue the
-// layer's growth.
+// i, with q_i = growth x the last layer's height there (or the front's mean edge length at i where
+// that is shorter): the core's first triangles continue the layer's growth.
 class FrontSpacing final : public SpacingField {
  public:
   struct Source {
@@ -60,9 +60,9 @@ class FrontSpacing final : public SpacingField {
 };
 
 // A ray's last layer height over the wall (its top two nodes' distance along the ray, times the
-// ray's correction); 0 for a ray without layers.
+// ray's correction); 0 for a ray without layers or whose column is merged below the front.
 double last_height(const LayerMesh& m, const LayerRay& ray) {
-  if (ray.nodes.size() < 2) return 0.0;
+  if (ray.nodes.size() < 2 || ray.merged) return 0.0;
   return ray.correction * dist(m.nodes[static_cast<std::size_t>(ray.nodes.back())],
                                m.nodes[static_cast<std::size_t>(ray.nodes[ray.nodes.size() - 2])]);
 }
@@ -88,6 +88,10 @@ std::vector<double> longest_front_edge(const LayerMesh& m) {
   return longest;
 }
 
+// The layer generator sees the case's spacing times this as the core's: layers stop where the case's
+// spacing is below growth x the layer height / this.
+constexpr double kCoreStopSlack = 1.5;
+
 void check_formats(const CaseConfig& config) {
   for (const std::string& f : config.output.formats)
     if (f == "msh22" || f == "triangle")
@@ -107,7 +111,11 @@ std::unique_ptr<LayeredCase> build_layers(const CaseConfig& config, const MeshIn
   check_formats(config);
   auto out = std::make_unique<LayeredCase>();
   const SpacingField& field = spacing.field();
-  const CoreSpacing core_spacing = [&field](Vec2 p) { return field.at(p); };
+  // The layers stop where the case's spacing is below growth x their layer height / 1.5: the core's
+  // field is lowered to growth x the last layer at the fronts anyway, and a core up to 1.5 times
+  // finer than the front's spacing still meshes well on it, so a slightly finer case field (a
+  // trailing edge's clustered input points) does not cut the layer short of its thickness.
+  const CoreSpacing core_spacing = [&field](Vec2 p) { return kCoreStopSlack * field.at(p); };
   // Each table's layers on the geometry the ones before it left: their fronts are curves it stops at.
   std::shared_ptr<const Geometry> geometry(&inputs.geometry, [](const Geometry*) {});
   std::vector<RawCurve> curves;
@@ -123,15 +131,35 @@ std::unique_ptr<LayeredCase> build_layers(const CaseConfig& config, const MeshIn
     s.settings.thickness = b.thickness;
     s.settings.layers = b.layers;
     s.settings.split_quads = !b.quads;
+    s.settings.fan_elements_per_pi = fan_elements_matching_core(b.growth);
     check_layer_settings(s.settings);
     s.geometry = geometry;
     s.walls = curves_by_name(*geometry, b.curves, "boundary_layer.curves");
     s.mesh = build_boundary_layers(*geometry, s.walls, s.settings, core_spacing);
-    const std::vector<double> edge = longest_front_edge(s.mesh);
+    // Each front node's mean edge length along the front and the longest front edge at it. The core's
+    // spacing there is growth x the last layer where the front's edges agree with it; where the front
+    // is denser (a trailing edge whose columns could not all merge) it is the mean edge, and where it
+    // is sparser (collisions thin the layer in 30P30N's gaps and cove, a fan spreads its tops) at
+    // least kFrontEdgeShare x the longest edge, so that the core's triangles on the front are not
+    // flat slivers of the layer's size.
+    const std::vector<double> longest = longest_front_edge(s.mesh);
+    std::map<int, double> front_edge;
+    for (const LayerFront& f : s.mesh.fronts) {
+      const std::size_t n = f.nodes.size();
+      for (std::size_t i = 0; i < n; ++i) {
+        if (!f.closed && (i == 0 || i + 1 == n)) continue;
+        const auto at = [&](std::size_t k) { return s.mesh.nodes[static_cast<std::size_t>(f.nodes[k % n])]; };
+        front_edge[f.nodes[i]] = 0.5 * (dist(at(i + n - 1), at(i)) + dist(at(i), at(i + 1)));
+      }
+    }
     for (const LayerRay& ray : s.mesh.rays)
       if (const double h = last_height(s.mesh, ray); h > 0.0) {
         const auto top = static_cast<std::size_t>(ray.nodes.back());
-        sources.push_back({s.mesh.nodes[top], std::max(b.growth * h, kFrontEdgeShare * edge[top])});
+        double q = b.growth * h;
+        const auto e = front_edge.find(ray.nodes.back());
+        if (e != front_edge.end()) q = std::min(q, e->second);
+        q = std::max(q, kFrontEdgeShare * longest[top]);
+        sources.push_back({s.mesh.nodes[top], q});
       }
     curves = front_curves(*geometry, s.walls, s.mesh);
     geometry = std::make_shared<const Geometry>(build_geometry(curves, options));

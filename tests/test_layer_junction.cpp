@@ -1,0 +1,207 @@
+// The junction of the layers and the core (docs/boundary-layers.md, "The junction"): fans whose top
+// edges match the core's spacing, columns that merge where the rays are dense, the wall refined
+// where they diverge, and a layered NACA 0012 run whose core triangles on the front are well shaped.
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <regex>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "app/config/case_file.hpp"
+#include "app/pipeline/mesh_pipeline.hpp"
+#include "core/predicates.hpp"
+#include "geometry/geometry.hpp"
+#include "layers/boundary_layers.hpp"
+#include "layers/layer_measures.hpp"
+#include "source_dir.hpp"
+
+namespace fs = std::filesystem;
+using namespace pdmesh;
+
+namespace {
+
+const double kPi = std::acos(-1.0);
+
+RawCurve circle(double r, int n, const std::string& name) {
+  RawCurve curve{name, {}, "test", 1, {}};
+  for (int i = 0; i < n; ++i) curve.points.push_back({r * std::cos(2 * kPi * i / n), r * std::sin(2 * kPi * i / n)});
+  curve.points.push_back(curve.points.front());
+  return curve;
+}
+
+RawCurve square(double half, const std::string& name) {
+  return {name, {{-half, -half}, {half, -half}, {half, half}, {-half, half}, {-half, -half}}, "test", 1, {}};
+}
+
+// Layers of a whole stack (the last layer is the stack's, not a thinner remainder).
+LayerSettings settings(double h1, double g, int layers) {
+  LayerSettings s;
+  s.first_height = h1;
+  s.growth = g;
+  s.layers = layers;
+  return s;
+}
+
+// Per front edge: its length over the mean last layer height of the rays whose tops are its ends.
+std::vector<double> front_edges_over_last_layer(const LayerMesh& m) {
+  std::vector<double> last(m.nodes.size(), 0.0);
+  for (const LayerRay& r : m.rays)
+    if (r.nodes.size() >= 2 && !r.merged)
+      last[r.nodes.back()] = r.correction * dist(m.nodes[r.nodes.back()], m.nodes[r.nodes[r.nodes.size() - 2]]);
+  std::vector<double> out;
+  for (const LayerFront& f : m.fronts)
+    for (std::size_t i = 0; i < f.nodes.size(); ++i) {
+      const int a = f.nodes[i], b = f.nodes[(i + 1) % f.nodes.size()];
+      REQUIRE(last[a] > 0.0);
+      REQUIRE(last[b] > 0.0);
+      out.push_back(dist(m.nodes[a], m.nodes[b]) / (0.5 * (last[a] + last[b])));
+    }
+  return out;
+}
+
+double polygon_area(const std::vector<Vec2>& p) {
+  double a = 0.0;
+  for (std::size_t i = 0; i < p.size(); ++i) a += cross(p[i], p[(i + 1) % p.size()]);
+  return 0.5 * a;
+}
+
+// The cells' area; with no inverted cell it equals the region between the wall and the front only
+// when they tile it (no overlap, no hole).
+double cell_area(const LayerMesh& m) {
+  double a = 0.0;
+  for (const LayerCell& c : m.cells) {
+    std::vector<Vec2> p;
+    for (int k = 0; k < (c.triangle() ? 3 : 4); ++k) p.push_back(m.nodes[c.v[k]]);
+    a += polygon_area(p);
+  }
+  return a;
+}
+
+double front_area(const LayerMesh& m) {
+  std::vector<Vec2> p;
+  for (const int n : m.fronts.at(0).nodes) p.push_back(m.nodes[n]);
+  return polygon_area(p);
+}
+
+std::string read(const fs::path& p) {
+  std::ifstream in(p);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+double json_number(const std::string& json, const std::string& key) {
+  std::smatch m;
+  REQUIRE(std::regex_search(json, m, std::regex("\"" + key + "\": ([-0-9.eE+]+)")));
+  return std::stod(m[1]);
+}
+
+}  // namespace
+
+TEST_CASE("fans with theta / (g - 1) elements: their top edges match growth x the last layer", "[layers]") {
+  // A square obstacle: four right-angle fans. 5 per pi gives 3 elements, top edges of about
+  // (pi / 6) x 0.057 = 0.03 against growth x the last layer (0.011).
+  const Geometry g = build_geometry({square(5.0, "far"), square(0.5, "wall")});
+  LayerSettings s = settings(1e-4, 1.2, 26);
+  s.fan_elements_per_pi = fan_elements_matching_core(s.growth);
+  CHECK(s.fan_elements_per_pi == Approx(kPi / 0.2));
+  CHECK(fan_elements_matching_core(3.0) == 5.0);  // never below 5 per pi
+  const LayerMesh m = build_boundary_layers(g, curves_by_name(g, {"wall"}, "test"), s);
+  REQUIRE(m.fan_sizes.size() == 4);
+  for (const int f : m.fan_sizes) CHECK(f == 8);
+  // Every fan's top edges (consecutive fan rays of one wall node).
+  int fan_edges = 0;
+  for (std::size_t r = 0; r + 1 < m.rays.size(); ++r) {
+    const LayerRay& a = m.rays[r];
+    const LayerRay& b = m.rays[r + 1];
+    if (a.wall_node != b.wall_node) continue;
+    const double last = dist(m.nodes[a.nodes.back()], m.nodes[a.nodes[a.nodes.size() - 2]]);
+    CHECK(dist(m.nodes[a.nodes.back()], m.nodes[b.nodes.back()]) <= 1.1 * s.growth * last);
+    ++fan_edges;
+  }
+  CHECK(fan_edges == 4 * 8);
+  CHECK(measure_layers(m, s.first_height).max_angle_deg <= 110.0);
+}
+
+TEST_CASE("dense wall nodes: columns merge so that the front's spacing follows the last layer", "[layers]") {
+  // 512 wall nodes on a circle of radius 1 (0.012 apart) under layers whose last is about 0.04 high:
+  // without merging the front's edges are a third of the last layer's height.
+  const Geometry g = build_geometry({square(5.0, "far"), circle(1.0, 512, "wall")});
+  LayerSettings s = settings(1e-3, 1.3, 14);
+  s.merge_span = 0.0;
+  const LayerMesh plain = build_boundary_layers(g, curves_by_name(g, {"wall"}, "test"), s);
+  const std::vector<double> before = front_edges_over_last_layer(plain);
+  CHECK(*std::max_element(before.begin(), before.end()) < 0.5);
+  s.merge_span = 1.2;
+  const LayerMesh m = build_boundary_layers(g, curves_by_name(g, {"wall"}, "test"), s);
+  const std::vector<double> after = front_edges_over_last_layer(m);
+  CHECK(*std::min_element(after.begin(), after.end()) >= 0.5);
+  CHECK(*std::max_element(after.begin(), after.end()) <= 1.2 + 1e-9);
+  int merged = 0;
+  for (const LayerRay& r : m.rays) merged += r.merged ? 1 : 0;
+  CHECK(merged >= 256);
+  CHECK(m.fronts.at(0).nodes.size() == m.rays.size() - static_cast<std::size_t>(merged));
+  const LayerMeasures q = measure_layers(m, s.first_height);
+  CHECK(q.first_height_within_2pct == 1.0);
+  CHECK(q.inverted_cells == 0);
+  CHECK(q.growth_max <= 1.25 * 1.3 + 1e-9);
+  CHECK(q.max_angle_deg <= 95.0);  // the merges' triangles: no angle above ~90 degrees
+  CHECK(cell_area(m) == Approx(std::abs(front_area(m)) - std::abs(polygon_area(g.curves[1].points))).epsilon(1e-9));
+}
+
+TEST_CASE("diverging rays: the wall is refined so that the front is as dense as its last layer", "[layers]") {
+  // A nose of radius 0.1 with 32 wall nodes under layers 0.057 thick: the rays diverge, the
+  // front's edges are 3.2 last layers long.
+  const Geometry g = build_geometry({square(5.0, "far"), circle(0.1, 32, "wall")});
+  LayerSettings s = settings(1e-4, 1.2, 26);
+  s.split_span = 0.0;
+  s.merge_span = 0.0;
+  const LayerMesh plain = build_boundary_layers(g, curves_by_name(g, {"wall"}, "test"), s);
+  const std::vector<double> before = front_edges_over_last_layer(plain);
+  CHECK(*std::min_element(before.begin(), before.end()) > 3.0);
+  s.split_span = 1.6;
+  const LayerMesh m = build_boundary_layers(g, curves_by_name(g, {"wall"}, "test"), s);
+  const std::vector<double> after = front_edges_over_last_layer(m);
+  CHECK(*std::max_element(after.begin(), after.end()) <= 1.6);
+  CHECK(m.wall_nodes == 32 * 3);  // each segment in three
+  // The new wall nodes lie on the wall's segments: the first cells are exact over them.
+  const LayerMeasures q = measure_layers(m, s.first_height);
+  CHECK(q.wall_cells == 32 * 3);
+  CHECK(q.first_height_within_2pct == 1.0);
+  CHECK(q.inverted_cells == 0);
+  CHECK(m.repairs == 0);
+  CHECK(cell_area(m) == Approx(std::abs(front_area(m)) - std::abs(polygon_area(g.curves[1].points))).epsilon(1e-9));
+}
+
+TEST_CASE("NACA 0012 with layers: the core's triangles on the front and the junction", "[app][layers]") {
+  // cases/naca0012's geometry with the default settings (the best preset) and the issue's layers.
+  const std::string dir = pdmesh::test::source_dir() + "/cases/naca0012/";
+  const fs::path out = fs::temp_directory_path() / "pdmesh_test_layer_junction";
+  fs::remove_all(out);
+  CaseConfig c = parse_case_text(
+      "[geometry]\nfiles = [\"" + dir + "airfoil.crv\", \"" + dir +
+          "farfield.crv\"]\ncurve_names = [\"upper\", \"lower\", \"bottom\", \"right\", \"top\", \"left\"]\n"
+          "[simulation]\ndevice = \"host\"\n[output]\nformats = [\"msh\"]\n"
+          "[[boundary_layer]]\ncurves = [\"upper\", \"lower\"]\nfirst_height = 1e-5\ngrowth = 1.2\n"
+          "thickness = 0.05\nelements = \"quads\"\n",
+      out / "case.toml");
+  c.out_dir = out;
+  c.quiet = true;
+  REQUIRE(run_mesh(c) == 0);
+  const std::string json = read(out / "quality.json");
+  // Every core triangle, those on the front included (26 degrees with 5 fan elements, unmerged
+  // columns and the nose's sparse front).
+  CHECK(json_number(json, "core_min_angle") >= 34.0);
+  CHECK(json_number(json, "first_height_within_2pct") == 1.0);
+  CHECK(json_number(json, "max_angle") <= 110.0);
+  // The junction: the core triangle's height on each front edge over the last layer's.
+  const std::size_t j = json.find("\"junction\"");
+  REQUIRE(j != std::string::npos);
+  CHECK(json_number(json.substr(j), "max") <= 1.5);
+  fs::remove_all(out);
+}
