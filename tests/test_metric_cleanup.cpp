@@ -2,7 +2,8 @@
 // anisotropic metric its splits and collapses bring the edges into the unit-mesh window
 // [1/√2, √2]; no triangle is ever inverted in physical space; boundary nodes stay on their own
 // curves in curve order and fixed nodes stay put; flips raise the smallest metric quality Q; the
-// case's cleanup settings act; the result is deterministic.
+// case's cleanup settings act; the result is deterministic; a boundary node's collapse into its curve
+// neighbour keeps the chains and is undone by the journal.
 #include <catch2/catch.hpp>
 
 #include <algorithm>
@@ -21,6 +22,7 @@
 #include "init/initial_distribution.hpp"
 #include "mesh/metric_quality.hpp"
 #include "mesh/triangulate_nodes.hpp"
+#include "nodes/boundary_arcs.hpp"
 #include "spacing/metric_field.hpp"
 #include "spacing/spacing_field.hpp"
 
@@ -213,4 +215,66 @@ TEST_CASE("metric cleanup: flips raise the smallest metric quality and never inv
   CHECK(c.result.stats.counts.flips > 0);
   CHECK(c.q_after.q_min >= c.q_before.q_min);
   CHECK(c.result.nodes.size() == nodes.size());
+}
+
+TEST_CASE("a boundary node collapses into its curve neighbour, and the journal undoes it", "[metric_cleanup]") {
+  const Geometry g = unit_square(6);
+  const GeometryTree tree(g);
+  const NodeSet nodes = square_nodes(tree, 0.15);
+  const Mesh mesh = triangulate(nodes, names(g));
+  cleanup::EditableMesh m(mesh, nodes.curve_nodes, boundary_arcs(g, nodes));
+  // A sliding node whose two curve neighbours slide too.
+  int a = -1;
+  for (int x = 0; x < m.vertex_slots() && a < 0; ++x)
+    if (m.kind[x] == NodeKind::Boundary && m.kind[m.prev[x]] == NodeKind::Boundary &&
+        m.kind[m.next[x]] == NodeKind::Boundary)
+      a = x;
+  REQUIRE(a >= 0);
+  const int before = m.prev[a], after = m.next[a];
+  const auto v0 = m.v, n0 = m.n;
+  // Not into a node that is not its curve neighbour; an interior node has no curve to collapse along.
+  int interior = -1;
+  for (int x = 0; x < m.vertex_slots() && interior < 0; ++x)
+    if (m.kind[x] == NodeKind::Interior) interior = x;
+  REQUIRE(interior >= 0);
+  CHECK_FALSE(m.collapse_boundary(a, interior));
+  CHECK_FALSE(m.collapse_boundary(interior, a));
+  CHECK(m.v == v0);
+
+  m.begin();
+  REQUIRE(m.collapse_boundary(a, after));
+  CHECK(m.removed(a));
+  CHECK(m.next[before] == after);
+  CHECK(m.prev[after] == before);
+  CHECK(m.star_valid(after));
+  m.rollback();
+  CHECK_FALSE(m.removed(a));
+  CHECK(m.next[before] == a);
+  CHECK(m.prev[after] == a);
+  CHECK(m.v == v0);
+  CHECK(m.n == n0);
+
+  REQUIRE(m.collapse_boundary(a, before));
+  std::vector<std::vector<int>> chains;
+  std::vector<int> old_of_new;
+  const Mesh out = m.to_mesh(mesh, chains, old_of_new);
+  CHECK(out.points.size() == mesh.points.size() - 1);
+  CHECK(out.triangles.size() == mesh.triangles.size() - 1);
+  CHECK(chains[0].size() == nodes.curve_nodes[0].size() - 1);
+  double area = 0.0;
+  for (const auto& t : out.triangles) {
+    CHECK(orient2d(out.points[t[0]], out.points[t[1]], out.points[t[2]]) > 0.0);
+    area += 0.5 * cross(out.points[t[1]] - out.points[t[0]], out.points[t[2]] - out.points[t[0]]);
+  }
+  // The domain loses the sliver between the removed node and the new boundary edge: none on a
+  // straight side.
+  CHECK(area == Approx(1.0).epsilon(1e-12));
+  // Every boundary edge joins consecutive chain nodes, and is an edge of a triangle.
+  for (const auto& e : out.boundary_edges) {
+    bool found = false;
+    for (const auto& t : out.triangles)
+      for (int k = 0; k < 3; ++k)
+        found = found || (t[k] == e.a && t[(k + 1) % 3] == e.b) || (t[k] == e.b && t[(k + 1) % 3] == e.a);
+    CHECK(found);
+  }
 }
