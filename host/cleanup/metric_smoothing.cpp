@@ -22,7 +22,7 @@ namespace {
 constexpr double kArcGapFraction = 0.45;
 // The climb's probe and step, in metric units.
 constexpr double kProbe = 1e-4;
-constexpr double kClimbStep = 0.05;
+constexpr double kClimbStep = 0.1;
 // The least relative gain of a move (rounding aside).
 constexpr double kMoveGain = 1e-9;
 
