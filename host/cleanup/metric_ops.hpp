@@ -8,6 +8,7 @@
 #pragma once
 #include <array>
 #include <cstddef>
+#include <cstdint>
 #include <vector>
 
 #include "cleanup/editable_mesh.hpp"
@@ -81,12 +82,18 @@ class MetricOps {
   Vec2 ascent(int a) const;
   bool try_position(int a, Vec2 to, double to_arc, double old_min, double old_error, int old_outside);
 
+  // The nodes whose ball changed since the smoothing (climb) last tried them: the editable mesh's
+  // dirty marks, taken by absorb_changes() before each sweep.
+  void absorb_changes();
+  bool pending(std::vector<std::uint8_t>& marks, int a) const;  // and clears the mark
+
   EditableMesh& m_;
   const MetricEvaluator& metric_;
   const Geometry& geometry_;
   MetricOpsOptions options_;
   MetricOpsCounts counts_;
   std::vector<int> fan_, ring_;
+  std::vector<std::uint8_t> smooth_pending_, climb_pending_;
 };
 
 }  // namespace pdmesh::cleanup

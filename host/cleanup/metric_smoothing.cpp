@@ -6,7 +6,10 @@
 // orient2d), the ball's smallest Q does not drop, no more of its edges than before lie outside the
 // window [1/√2, √2], and either that minimum rises or the ball's edges come nearer unit length (the
 // sum of ln² L drops). The metric at the new place is the field's. The climb moves the nodes of the
-// triangles below a Q up the gradient of their ball's worst Q instead (the same guards).
+// triangles below a Q up the gradient of their ball's worst Q instead (the same guards). A node is
+// tried again only when its ball changed since its last try (the editable mesh's dirty marks): with
+// the same ball it would make the same proposal and be refused again, so the sweeps end when nothing
+// is left to gain, and the result is the same as trying every node every time.
 #include <cmath>
 #include <limits>
 
@@ -131,9 +134,26 @@ bool MetricOps::move_vertex(int a, bool climb) {
   return false;
 }
 
+void MetricOps::absorb_changes() {
+  const std::vector<std::uint8_t> changed = m_.take_dirty();
+  for (auto* marks : {&smooth_pending_, &climb_pending_}) {
+    marks->resize(changed.size(), 1);  // new vertices are pending
+    for (std::size_t a = 0; a < changed.size(); ++a) (*marks)[a] |= changed[a];
+  }
+}
+
+bool MetricOps::pending(std::vector<std::uint8_t>& marks, int a) const {
+  const auto k = static_cast<std::size_t>(a);
+  const bool due = (k < marks.size() && marks[k] != 0) || m_.dirty(a);
+  if (k < marks.size()) marks[k] = 0;
+  return due;
+}
+
 std::size_t MetricOps::smooth() {
+  absorb_changes();
   std::size_t made = 0;
-  for (int a = 0; a < m_.vertex_slots(); ++a) made += move_vertex(a, false) ? 1 : 0;
+  for (int a = 0; a < m_.vertex_slots(); ++a)
+    if (pending(smooth_pending_, a)) made += move_vertex(a, false) ? 1 : 0;
   counts_.moves += made;
   return made;
 }
@@ -143,9 +163,10 @@ std::size_t MetricOps::climb(double below) {
   for (int t = 0; t < m_.triangle_slots(); ++t)
     if (m_.alive(t) && m_.quality(t) < below)
       for (int a : m_.v[t]) mark[static_cast<std::size_t>(a)] = 1;
+  absorb_changes();
   std::size_t made = 0;
   for (int a = 0; a < m_.vertex_slots(); ++a)
-    if (mark[static_cast<std::size_t>(a)]) made += move_vertex(a, true) ? 1 : 0;
+    if (mark[static_cast<std::size_t>(a)] && pending(climb_pending_, a)) made += move_vertex(a, true) ? 1 : 0;
   counts_.moves += made;
   return made;
 }
