@@ -181,10 +181,13 @@ TEST_CASE("the cleanup in the metric reaches issue 37's targets on the linear an
   for (const char* name : {"linear", "polar2"}) {
     INFO(name);
     const fs::path out = pdmesh_test::fresh_path(std::string("metric_cleanup_") + name);
-    const auto r = pdmesh_test::run_pdmesh(fmt::format("mesh '{}/cases/aniso/{}/case.toml' --out '{}' --formats msh",
-                                                       PDMESH_SOURCE_DIR, name, out.string()));
+    const auto r = pdmesh_test::run_pdmesh(fmt::format(
+        "mesh '{}/cases/aniso/{}/case.toml' --out '{}' --formats msh --check", PDMESH_SOURCE_DIR, name, out.string()));
     INFO(r.output);
     REQUIRE(r.status == 0);
+    // --check: all but the isotropic Delaunay test, on the triangulation and on the cleaned mesh.
+    CHECK_THAT(r.output, Contains("mesh check (triangulation in the metric): passed"));
+    CHECK_THAT(r.output, Contains("mesh check (mesh cleaned in the metric): passed"));
     const std::string json = pdmesh_test::slurp(out / "quality.json");
     const auto number_after = [&json](const std::string& key) {
       const auto at = json.find("\"" + key + "\": ");
