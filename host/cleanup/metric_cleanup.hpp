@@ -1,9 +1,9 @@
 // The cleanup in a metric (docs/metric-fields.md, "Cleanup in the metric"): what a metric run does
 // to its triangulation in the metric instead of the isotropic cleanup (cleanup.hpp), which works on
 // angles. Outer iterations of edge splits (metric length L > √2, a new node at the metric midpoint,
-// on its curve for a boundary edge), edge collapses (L < 1/√2), flips that raise the smallest
-// metric quality Q, and node smoothing in the metric, until an iteration changes nothing or the
-// iteration cap. It works on the isotropic cleanup's EditableMesh and its edits (mesh_edits.cpp),
+// on its curve for a boundary edge), edge collapses (L < MetricOpsOptions::collapse_below, 0.8),
+// flips that raise the smallest metric quality Q, and node smoothing and climbing in the metric,
+// until an iteration changes nothing or the iteration cap. It works on the isotropic cleanup's EditableMesh and its edits (mesh_edits.cpp),
 // scored by a MetricEvaluator; the metric at every node, new or moved, is the field's there.
 // Triangles stay strictly counter-clockwise in physical space (exact orient2d); fixed nodes never
 // move or go; boundary nodes slide and are inserted or removed only along their own curve.

@@ -50,7 +50,7 @@ class MetricOps {
 
   // One pass over the edges longer than √2, longest first. Returns the splits made.
   std::size_t split_long();
-  // One pass over the edges shorter than 1/√2, shortest first. Returns the collapses made.
+  // One pass over the edges shorter than collapse_below, shortest first. Returns the collapses made.
   std::size_t collapse_short();
   // Flips until no interior edge's flip raises the smallest Q of its two triangles (bounded by
   // max_rounds passes over the edges). Returns the flips made.
