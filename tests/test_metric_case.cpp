@@ -142,11 +142,11 @@ TEST_CASE("pdmesh mesh triangulates in the metric and measures in it", "[metric]
   INFO(r.output);
   REQUIRE(r.status == 0);
   CHECK_THAT(r.output, Contains("triangulation in the metric"));
-  CHECK_THAT(r.output, Contains("cleanup: skipped for a metric field"));
+  CHECK_THAT(r.output, Contains("cleanup in the metric: "));
   CHECK_THAT(r.output, Contains("Metric: edges in [0.71,1.41]"));
   const std::string json = pdmesh_test::slurp(out / "quality.json");
   CHECK_THAT(json, Contains("\"metric\": {\"edges\": "));
-  CHECK_THAT(json, Contains("\"cleanup\": null"));
+  CHECK_THAT(json, Contains("\"cleanup\": {"));
   CHECK(fs::exists(out / "mesh_metric_q.png"));
   CHECK(fs::exists(out / "metric.png"));
   // pdmesh quality with the case measures the same mesh in the same metric.
@@ -157,6 +157,48 @@ TEST_CASE("pdmesh mesh triangulates in the metric and measures in it", "[metric]
   CHECK_THAT(q.output, Contains("Metric: quality Q"));
   CHECK_THAT(q.output, Contains("\"metric\": {\"edges\": "));
   fs::remove_all(out);
+}
+
+TEST_CASE("cleanup.enabled = false leaves a metric run's triangulation in the metric as it is", "[metric][case][cli]") {
+  const fs::path out = pdmesh_test::fresh_path("metric_case_no_cleanup");
+  const auto r = pdmesh_test::run_pdmesh(fmt::format(
+      "mesh '{}/cases/aniso/linear/case.toml' --out '{}' --formats msh --set simulation.iterations=200 "
+      "--set cleanup.enabled=false",
+      PDMESH_SOURCE_DIR, out.string()));
+  INFO(r.output);
+  REQUIRE(r.status == 0);
+  CHECK_THAT(r.output, !Contains("cleanup in the metric"));
+  CHECK_THAT(pdmesh_test::slurp(out / "quality.json"), Contains("\"cleanup\": null"));
+  // The mesh's nodes are the simulation's.
+  CHECK(pdmesh_test::slurp(out / "mesh.nodes") == pdmesh_test::slurp(out / "final.nodes"));
+  fs::remove_all(out);
+}
+
+TEST_CASE("the cleanup in the metric reaches issue 37's targets on the linear and polar-2 cases", "[metric][case][cli]") {
+  // With the particles' nodes as they are, 98.9 % / Q min 0.561 (linear) and 82.1 % / 0.086
+  // (polar-2); the targets: >= 99.5 % of the edges in [1/sqrt2, sqrt2], Q min >= 0.75 and the
+  // element count within 10 % of 4C/sqrt3.
+  for (const char* name : {"linear", "polar2"}) {
+    INFO(name);
+    const fs::path out = pdmesh_test::fresh_path(std::string("metric_cleanup_") + name);
+    const auto r = pdmesh_test::run_pdmesh(fmt::format(
+        "mesh '{}/cases/aniso/{}/case.toml' --out '{}' --formats msh --check", PDMESH_SOURCE_DIR, name, out.string()));
+    INFO(r.output);
+    REQUIRE(r.status == 0);
+    // --check: all but the isotropic Delaunay test, on the triangulation and on the cleaned mesh.
+    CHECK_THAT(r.output, Contains("mesh check (triangulation in the metric): passed"));
+    CHECK_THAT(r.output, Contains("mesh check (mesh cleaned in the metric): passed"));
+    const std::string json = pdmesh_test::slurp(out / "quality.json");
+    const auto number_after = [&json](const std::string& key) {
+      const auto at = json.find("\"" + key + "\": ");
+      REQUIRE(at != std::string::npos);
+      return std::stod(json.substr(at + key.size() + 4));
+    };
+    CHECK(number_after("window_percent") >= 99.5);
+    CHECK(number_after("q_min") >= 0.75);
+    CHECK(std::abs(number_after("n_over_ideal") - 1.0) <= 0.1);
+    fs::remove_all(out);
+  }
 }
 
 TEST_CASE("the nodes relax in the metric: the linear case's edges have unit metric length", "[metric][case][cli]") {

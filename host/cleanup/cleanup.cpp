@@ -7,6 +7,7 @@
 #include <set>
 
 #include "core/interrupt.hpp"
+#include "cleanup/cleaned_nodes.hpp"
 #include "cleanup/editable_mesh.hpp"
 #include "cleanup/measures.hpp"
 #include "cleanup/smoothing.hpp"
@@ -290,19 +291,7 @@ void CleanupRun::finish(const Mesh& mesh, const NodeSet& nodes, const SpacingFie
   result.stats.collapsed += ops_.compound_removed();
   result.stats.compound_trials = ops_.compound_trials();
   result.stats.compound_applied = ops_.compound_applied();
-  std::vector<int> old_of_new;
-  std::vector<std::vector<int>> curve_nodes;
-  result.mesh = m_.to_mesh(mesh, curve_nodes, old_of_new);
-  NodeSet& out = result.nodes;
-  out.x = result.mesh.points;
-  out.kind = result.mesh.kind;
-  out.curve_nodes = std::move(curve_nodes);
-  for (std::size_t k = 0; k < old_of_new.size(); ++k) {
-    const auto a = static_cast<std::size_t>(old_of_new[k]);
-    const bool original = a < nodes.size();
-    out.q.push_back(original ? nodes.q[a] : spacing.at(out.x[k]));
-    out.curve.push_back(original ? nodes.curve[a] : m_.curve[a]);
-  }
+  cleanup::cleaned_mesh_and_nodes(m_, mesh, nodes, spacing, result.mesh, result.nodes);
 }
 
 }  // namespace

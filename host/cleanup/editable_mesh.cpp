@@ -81,7 +81,9 @@ EditableMesh::EditableMesh(const Mesh& mesh, const std::vector<std::vector<int>>
   tri_stamp_.assign(v.size(), 0);
 }
 
-double EditableMesh::quality(int t) const { return min_angle_sine(p[v[t][0]], p[v[t][1]], p[v[t][2]]); }
+double EditableMesh::quality(int t) const {
+  return score_ != nullptr ? score_->score(*this, t) : min_angle_sine(p[v[t][0]], p[v[t][1]], p[v[t][2]]);
+}
 double EditableMesh::aspect(int t) const { return aspect_ratio(p[v[t][0]], p[v[t][1]], p[v[t][2]]); }
 
 double EditableMesh::neighbour_arc(int a, int side) const {

@@ -16,6 +16,16 @@ namespace pdmesh::cleanup {
 inline int next3(int i) { return i == 2 ? 0 : i + 1; }
 inline int prev3(int i) { return i == 0 ? 2 : i - 1; }
 
+class EditableMesh;
+
+// The score quality(t) gives a live triangle, when not the default (the sine of its smallest angle):
+// the cleanup in a metric scores triangles by their quality in the metric (metric_evaluator.hpp).
+class TriangleScore {
+ public:
+  virtual ~TriangleScore() = default;
+  virtual double score(const EditableMesh& mesh, int t) const = 0;
+};
+
 // Triangle t has counter-clockwise vertices v[t] and neighbours n[t], n[t][i] across the edge
 // opposite v[t][i]; -1 there means the edge is on the domain boundary. In the constrained Delaunay
 // mesh of a domain every constrained edge is such a boundary edge (even-odd rule), so "n == -1"
@@ -44,7 +54,10 @@ class EditableMesh {
   bool alive(int t) const { return v[t][0] >= 0; }
   bool removed(int a) const { return gone_[a] != 0 || vt[a] < 0; }
   bool movable(int a) const { return kind[a] != NodeKind::Fixed; }
-  double quality(int t) const;  // min_angle_sine of triangle t
+  double quality(int t) const;  // min_angle_sine of triangle t, or the score set_score() gave
+  // The triangle score of quality() and of the journal from now on (nullptr: min_angle_sine). Set it
+  // before any transaction is opened; it must outlive the mesh's use.
+  void set_score(const TriangleScore* score) { score_ = score; }
   double aspect(int t) const;   // aspect ratio R / (2 r) of triangle t
   // Boundary vertex a: the arc position of its neighbour along the curve before (side 0) or after
   // (side 1) it; a boundary vertex slides strictly between the two.
@@ -88,6 +101,13 @@ class EditableMesh {
   // (and changes nothing) when the link condition fails (the collapse would pinch the mesh); the
   // caller checks the orientation of b's new star afterwards.
   bool collapse(int a, int b, Vec2 to, double b_arc);
+  // Removes boundary vertex a (one that slides on its curve) by collapsing the boundary edge a-b
+  // into b, its neighbour along the curve, which stays where it is. Returns false (and changes
+  // nothing) when the edge is not a boundary edge of a's chain, the triangle on it has another
+  // boundary edge, the link condition fails, or a's other curve neighbour and b are both fixed (the
+  // edge between them would have no sliding node to name its curve). The caller checks the
+  // orientation of b's new star afterwards.
+  bool collapse_boundary(int a, int b);
   // True when every triangle around a is strictly counter-clockwise (exact orient2d).
   bool star_valid(int a) const;
 
@@ -147,6 +167,7 @@ class EditableMesh {
     int prev, next;
     std::uint8_t gone;
   };
+  const TriangleScore* score_ = nullptr;
   bool open_ = false;
   std::uint32_t stamp_ = 0;
   std::vector<std::uint32_t> tri_stamp_, vert_stamp_;

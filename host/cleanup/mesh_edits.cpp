@@ -228,4 +228,57 @@ bool EditableMesh::collapse(int a, int b, Vec2 to, double b_arc) {
   return true;
 }
 
+//        c              t1 = (c, a, b) or (c, b, a) on the boundary edge a-b: a goes, b stays; the
+//       / \             triangles across c-a and b-c become neighbours, a's other triangles take b.
+//      a---b
+bool EditableMesh::collapse_boundary(int a, int b) {
+  if (kind[a] != NodeKind::Boundary || curve[a] < 0 || (b != prev[a] && b != next[a])) return false;
+  const int other = b == next[a] ? prev[a] : next[a];
+  if (other == b || (kind[other] != NodeKind::Boundary && kind[b] != NodeKind::Boundary)) return false;
+  std::array<int, 2> edge = find_edge(a, b);
+  if (edge[0] < 0) edge = find_edge(b, a);
+  const int t1 = edge[0], i1 = edge[1];
+  if (t1 < 0 || n[t1][i1] >= 0) return false;
+  const int c = v[t1][i1];
+  const int n_bc = n[t1][index_of(v[t1], a)], n_ca = n[t1][index_of(v[t1], b)];
+  if (n_bc < 0 || n_ca < 0) return false;
+  std::vector<int> ring_a, ring_b;
+  ring(a, ring_a);
+  ring(b, ring_b);
+  int common = 0;
+  for (int x : ring_a)
+    for (int y : ring_b) common += (x == y);
+  if (common != 1) return false;
+
+  touch_star(a);
+  touch_star(b);
+  star(a, star_scratch_);
+  const std::vector<int> fan = star_scratch_;
+  set_neighbour(n_ca, t1, n_bc);
+  set_neighbour(n_bc, t1, n_ca);
+  for (int t : fan) {
+    if (t == t1) continue;
+    touch_triangle(t);
+    v[t][index_of(v[t], a)] = b;
+  }
+  touch_triangle(t1);
+  v[t1] = {-1, -1, -1};
+  n[t1] = {-1, -1, -1};
+  set_vt(b, n_ca);
+  set_vt(c, n_ca);
+  touch_vertex(a);
+  vt[a] = -1;
+  gone_[a] = 1;
+  // The chain: other - b in a's place.
+  if (kind[other] == NodeKind::Boundary) {
+    touch_vertex(other);
+    (other == prev[a] ? next[other] : prev[other]) = b;
+  }
+  if (kind[b] == NodeKind::Boundary) {
+    touch_vertex(b);
+    (b == next[a] ? prev[b] : next[b]) = other;
+  }
+  return true;
+}
+
 }  // namespace pdmesh::cleanup

@@ -9,6 +9,7 @@
 #include "app/pipeline/pipeline_detail.hpp"
 #include "app/pipeline/output_guard.hpp"
 #include "cleanup/cleanup.hpp"
+#include "cleanup/metric_cleanup.hpp"
 #include "core/atomic_file.hpp"
 #include "core/errors.hpp"
 #include "io/mesh_formats.hpp"
@@ -129,6 +130,21 @@ void check_or_throw(const CaseConfig& config, const MeshInputs& inputs, const Me
            which, node_area, inputs.geometry.area, std::fabs(node_area - inputs.geometry.area) / inputs.geometry.area);
 }
 
+// --check for a mesh made in a metric: every invariant of check_mesh but the Delaunay test, which a
+// mesh that is Delaunay in the metric (or cleaned in it) need not pass.
+void check_metric_or_throw(const CaseConfig& config, const MeshInputs& inputs, const Mesh& mesh, const NodeSet& nodes,
+                           const char* which) {
+  const double node_area = node_domain_area(nodes, inputs.node_geometry());
+  CheckReport report = check_mesh(mesh, node_area);
+  std::erase_if(report.problems, [](const std::string& p) { return p.rfind("delaunay: ", 0) == 0; });
+  if (!report.ok())
+    throw SimulationError(fmt::format("the {} failed its invariant check:\n{}", which, report.summary()));
+  progress(config,
+           "mesh check ({}): passed (topology, orientation, boundary edges, area {:.10g}; not the isotropic "
+           "Delaunay test, for a mesh made in a metric)",
+           which, node_area);
+}
+
 // Smallest and largest angle and the triangles below `target` degrees.
 void angle_figures(const std::vector<TriangleQuality>& per_triangle, double target, double& min_angle,
                    double& max_angle, std::size_t& below) {
@@ -168,8 +184,8 @@ Mesh triangulate_nodes(const CaseConfig& config, const MeshInputs& inputs, const
   phases.note("nodes", static_cast<double>(nodes.size()));
   phases.note("triangles", static_cast<double>(mesh.triangles.size()));
   if (config.check && metrics != nullptr) {
-    // check_mesh tests the isotropic Delaunay property, which a triangulation in the metric lacks.
-    progress(config, "mesh check: skipped for a triangulation in a metric");
+    const auto check_timer = phases.phase("check");
+    check_metric_or_throw(config, inputs, mesh, nodes, "triangulation in the metric");
   } else if (config.check) {
     const auto check_timer = phases.phase("check");
     check_or_throw(config, inputs, mesh, nodes, "triangulation");
@@ -217,6 +233,51 @@ CleanedMesh clean_up(const CaseConfig& config, const MeshInputs& inputs, const S
            effect.seconds, effect.min_angle_before, effect.min_angle_after, effect.target_deg, effect.below_before,
            effect.below_after, effect.moves, effect.inserted, effect.removed, mesh.triangles.size());
   if (config.check) check_or_throw(config, inputs, mesh, cleaned.nodes, "cleaned mesh");
+  out.nodes = std::move(cleaned.nodes);
+  return out;
+}
+
+// The cleanup in the metric (cleanup/metric_cleanup.hpp) of a metric run's `mesh` in place, with the
+// case's cleanup settings (iterations, topology, split_boundary); `metrics` becomes the metric at the
+// cleaned mesh's points. The effect's angle figures are measured as for the isotropic cleanup.
+CleanedMesh clean_up_in_metric(const CaseConfig& config, const MeshInputs& inputs, const SpacingStage& spacing,
+                               const MetricField& metric, Mesh& mesh, const NodeSet& nodes,
+                               std::vector<Metric>& metrics, RunPhases& phases) {
+  const auto cleanup_timer = phases.phase("cleanup");
+  MetricCleanupOptions options;
+  options.iterations = static_cast<int>(config.cleanup.iterations);
+  options.topology = config.cleanup.topology;
+  options.split_boundary = config.cleanup.split_boundary;
+  CleanedMesh out;
+  CleanupEffect& effect = out.effect;
+  effect.target_deg = config.cleanup.min_angle;
+  effect.triangles_before = mesh.triangles.size();
+  effect.points_before = mesh.points.size();
+  angle_figures(triangle_qualities(mesh), effect.target_deg, effect.min_angle_before, effect.max_angle_before,
+                effect.below_before);
+  const MetricQualitySummary before = metric_quality(mesh, metrics);
+  MetricCleanupResult cleaned = clean_mesh_in_metric(mesh, nodes, inputs.node_tree(), spacing.field(), metric, options);
+  mesh = std::move(cleaned.mesh);
+  metrics = std::move(cleaned.metrics);
+  out.per_triangle = triangle_qualities(mesh);
+  angle_figures(out.per_triangle, effect.target_deg, effect.min_angle_after, effect.max_angle_after,
+                effect.below_after);
+  const cleanup::MetricOpsCounts& c = cleaned.stats.counts;
+  effect.inserted = c.splits + c.boundary_splits;
+  effect.removed = c.collapses + c.boundary_collapses;
+  effect.moves = c.moves;
+  effect.seconds = cleaned.stats.seconds;
+  const MetricQualitySummary after = metric_quality(mesh, metrics);
+  progress(config,
+           "cleanup in the metric: {:.3f} s, {} iterations; edges in [1/sqrt2, sqrt2] {:.1f} -> {:.1f} %, Q min "
+           "{:.3f} -> {:.3f}; {} splits ({} on the boundary), {} collapses ({} on the boundary), {} flips, {} node "
+           "moves ({} triangles)",
+           effect.seconds, cleaned.stats.iterations_run, before.window_percent, after.window_percent, before.q_min,
+           after.q_min, effect.inserted, c.boundary_splits, effect.removed, c.boundary_collapses, c.flips, c.moves,
+           mesh.triangles.size());
+  phases.note("metric splits", static_cast<double>(effect.inserted));
+  phases.note("metric collapses", static_cast<double>(effect.removed));
+  if (config.check) check_metric_or_throw(config, inputs, mesh, cleaned.nodes, "mesh cleaned in the metric");
   out.nodes = std::move(cleaned.nodes);
   return out;
 }
@@ -333,17 +394,13 @@ Mesh mesh_and_measure(const CaseConfig& config, const MeshInputs& inputs, const 
   }
   Mesh mesh = triangulate_nodes(config, inputs, nodes, phases, triangulated, metric ? &metrics : nullptr);
   // The final cleanup: the mesh files and pictures show the cleaned mesh; final.nodes stays the
-  // simulation's result. A metric run skips it: today's cleanup works on angles, isotropically, and
-  // would undo the metric Delaunay's flips.
-  const bool cleanup = config.cleanup.enabled && metric == nullptr;
-  if (config.cleanup.enabled && metric != nullptr) {
-    progress(config,
-             "cleanup: skipped for a metric field (the isotropic cleanup would undo the flips of the "
-             "triangulation in the metric)");
-    phases.note("cleanup", "skipped: metric field");
-  }
+  // simulation's result. A metric run has its own cleanup, in the metric: the isotropic one works on
+  // angles and would undo the metric Delaunay's flips.
+  const bool cleanup = config.cleanup.enabled;
   CleanedMesh cleaned;
-  if (cleanup) cleaned = clean_up(config, inputs, spacing, mesh, nodes, phases);
+  if (cleanup && metric == nullptr) cleaned = clean_up(config, inputs, spacing, mesh, nodes, phases);
+  if (cleanup && metric != nullptr)
+    cleaned = clean_up_in_metric(config, inputs, spacing, *metric, mesh, nodes, metrics, phases);
   const NodeSet& mesh_nodes = cleanup ? cleaned.nodes : nodes;
   const SpacingField& field = spacing.field();
   // The field at every node goes into the mesh files (point data "q"): a run's field can be read back
@@ -361,7 +418,7 @@ Mesh mesh_and_measure(const CaseConfig& config, const MeshInputs& inputs, const 
   summary.cleanup = cleaned.effect;
   std::vector<double> metric_q;
   if (metric != nullptr) {
-    // The mesh's points are the nodes (no cleanup), so metrics[i] is the metric at mesh.points[i].
+    // metrics[i] is the metric at mesh.points[i]: the nodes', or the cleaned mesh's points'.
     summary.has_metric = true;
     summary.metric = metric_quality(mesh, metrics, complexity_on_mesh(mesh.points, mesh.triangles, metrics));
     metric_q = metric_qualities(mesh.points, mesh.triangles, metrics);

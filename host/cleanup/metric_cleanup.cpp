@@ -1,0 +1,66 @@
+// The driver of the cleanup in a metric (metric_cleanup.hpp).
+#include "cleanup/metric_cleanup.hpp"
+
+#include <chrono>
+
+#include "cleanup/cleaned_nodes.hpp"
+#include "cleanup/editable_mesh.hpp"
+#include "cleanup/metric_evaluator.hpp"
+#include "core/interrupt.hpp"
+#include "nodes/boundary_arcs.hpp"
+
+namespace pdmesh {
+
+namespace {
+
+// Flip passes after each edit pass: flips raise the smallest Q of a quadrilateral, so few are needed.
+constexpr int kFlipRounds = 8;
+// The climb works on the nodes of the triangles below this Q.
+constexpr double kClimbBelow = 0.8;
+
+}  // namespace
+
+MetricCleanupResult clean_mesh_in_metric(const Mesh& mesh, const NodeSet& nodes, const GeometryTree& tree,
+                                         const SpacingField& spacing, const MetricField& metric,
+                                         const MetricCleanupOptions& options) {
+  const auto start = std::chrono::steady_clock::now();
+  cleanup::EditableMesh m(mesh, nodes.curve_nodes, boundary_arcs(tree.geometry(), nodes));
+  const cleanup::MetricEvaluator evaluator(m, metric);
+  m.set_score(&evaluator);
+  cleanup::MetricOpsOptions ops_options;
+  ops_options.split_boundary = options.split_boundary;
+  cleanup::MetricOps ops(m, evaluator, tree.geometry(), ops_options);
+  MetricCleanupResult result;
+  // A stop request ends the cleanup between two iterations (each leaves a valid mesh).
+  InterruptPoll poll(1);
+  for (int iteration = 0; iteration < options.iterations; ++iteration) {
+    poll.tick();
+    std::size_t changes = 0;
+    if (options.topology) {
+      changes += ops.split_long();
+      changes += ops.flip_all(kFlipRounds);
+      changes += ops.collapse_short();
+    }
+    changes += ops.flip_all(kFlipRounds);
+    for (int sweep = 0; sweep < options.smoothing_sweeps; ++sweep) {
+      const std::size_t moved = ops.smooth();
+      changes += moved + ops.flip_all(kFlipRounds);
+      if (moved == 0) break;
+    }
+    for (int sweep = 0; sweep < options.smoothing_sweeps; ++sweep) {
+      const std::size_t moved = ops.climb(kClimbBelow);
+      changes += moved + ops.flip_all(kFlipRounds);
+      if (moved == 0) break;
+    }
+    result.stats.iterations_run = iteration + 1;
+    if (changes == 0) break;
+  }
+  cleanup::cleaned_mesh_and_nodes(m, mesh, nodes, spacing, result.mesh, result.nodes);
+  result.metrics.reserve(result.mesh.points.size());
+  for (const Vec2& p : result.mesh.points) result.metrics.push_back(metric.at(p));
+  result.stats.counts = ops.counts();
+  result.stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return result;
+}
+
+}  // namespace pdmesh
