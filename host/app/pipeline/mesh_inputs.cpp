@@ -65,7 +65,7 @@ MeshInputs::MeshInputs(const CaseConfig& config) {
   spacing = make_case_spacing(config, *tree, metric.get());
   if (metric) {
     spacing_summary = fmt::format(
-        "spacing: the metric field ({}) built in {:.3f} s; the nodes start at q = sqrt(h1 h2), "
+        "spacing: the metric field ({}) built in {:.3f} s; the nodes start at unit metric length, "
         "relax in the metric and are triangulated in it (docs/metric-fields.md)",
         config.spacing.field == SpacingKind::Hessian ? "hessian" : "metric",
         std::chrono::duration<double>(std::chrono::steady_clock::now() - spacing_start).count());
