@@ -77,7 +77,8 @@ PopulationStatus population_status(const PopulationOptions& options, const Popul
 }
 
 PopulationCounts run_population_event(NodeSet& nodes, BoundaryHandler& boundary, const SpacingField& spacing,
-                                      const PopulationThresholds& thresholds, std::vector<int>* old_of_new) {
+                                      const PopulationThresholds& thresholds, std::vector<int>* old_of_new,
+                                      const MetricField* metric) {
   const std::size_t n = nodes.size();
   if (old_of_new) {
     old_of_new->resize(n);
@@ -85,7 +86,8 @@ PopulationCounts run_population_event(NodeSet& nodes, BoundaryHandler& boundary,
   }
   PopulationPlan plan;
   try {
-    plan = plan_population_event(nodes, boundary.arcs(), boundary.tree(), spacing, thresholds);
+    plan = metric ? plan_metric_population_event(nodes, boundary.arcs(), boundary.tree(), *metric, thresholds)
+                  : plan_population_event(nodes, boundary.arcs(), boundary.tree(), spacing, thresholds);
   } catch (const InputError&) {
     // Coincident (or all collinear) nodes cannot be triangulated; the forces separate coincident
     // nodes, and a later event sees them. GeometryError is an InputError.
@@ -124,11 +126,13 @@ std::optional<PopulationCounts> PopulationTracker::after_iteration(const Populat
                                                                    int iterations, NodeSet& nodes,
                                                                    BoundaryHandler& boundary,
                                                                    const SpacingField& spacing,
-                                                                   std::vector<int>* old_of_new) {
+                                                                   std::vector<int>* old_of_new,
+                                                                   const MetricField* metric) {
   if (!population_event_due(options, schedule, iteration, iterations)) return std::nullopt;
   const auto start = std::chrono::steady_clock::now();
   const PopulationCounts counts =
-      run_population_event(nodes, boundary, spacing, population_thresholds(options, iteration, iterations), old_of_new);
+      run_population_event(nodes, boundary, spacing, population_thresholds(options, iteration, iterations), old_of_new,
+                           metric);
   seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   ++events;
   inserted += counts.inserted();

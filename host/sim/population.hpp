@@ -16,6 +16,7 @@
 namespace pdmesh {
 
 class BoundaryHandler;
+class MetricField;
 
 // A threshold that moves linearly from `first` (the first event) to `last` (the last event).
 struct PopulationRamp {
@@ -101,8 +102,11 @@ PopulationThresholds population_thresholds(const PopulationOptions& options, int
 // nodes and thresholds give the same result. Kept nodes keep their order; inserted nodes are
 // appended. `old_of_new`, when given, receives the old index of every node after the event (-1 for
 // inserted ones).
+// With `metric` set (a metric run), the plan measures lengths in the metric
+// (plan_metric_population_event, sigma = 1 in metric units); q still comes from `spacing`.
 PopulationCounts run_population_event(NodeSet& nodes, BoundaryHandler& boundary, const SpacingField& spacing,
-                                      const PopulationThresholds& thresholds, std::vector<int>* old_of_new = nullptr);
+                                      const PopulationThresholds& thresholds, std::vector<int>* old_of_new = nullptr,
+                                      const MetricField* metric = nullptr);
 
 // The schedule's state between events (a checkpoint stores it): with the options and the run's
 // length it says when the next event comes.
@@ -144,7 +148,8 @@ struct PopulationTracker {
   // Runs the event due after `iteration` of a run of `iterations`, if one is; see run_population_event.
   std::optional<PopulationCounts> after_iteration(const PopulationOptions& options, int iteration, int iterations,
                                                   NodeSet& nodes, BoundaryHandler& boundary,
-                                                  const SpacingField& spacing, std::vector<int>* old_of_new = nullptr);
+                                                  const SpacingField& spacing, std::vector<int>* old_of_new = nullptr,
+                                                  const MetricField* metric = nullptr);
 };
 
 }  // namespace pdmesh

@@ -9,6 +9,7 @@
 
 #include "init/initial_distribution.hpp"
 #include "mesh/delaunay.hpp"
+#include "sim/delaunay_graph.hpp"
 
 namespace pdmesh {
 
@@ -29,82 +30,7 @@ void circumcircle(Vec2 a, Vec2 b, Vec2 c, Vec2& centre, double& radius) {
 
 namespace {
 
-// The Delaunay graph of the nodes (input indices), as sorted adjacency lists.
-struct DelaunayGraph {
-  std::vector<std::array<int, 3>> triangles;  // real triangles only (no super-triangle vertex)
-  std::vector<std::size_t> first;             // node i's neighbours: adjacent[first[i] .. first[i + 1])
-  std::vector<int> adjacent;
-  std::vector<char> on_hull;  // joined to a super-triangle vertex
-
-  explicit DelaunayGraph(const std::vector<Vec2>& points) {
-    const Triangulation dt(points);
-    const std::size_t n = points.size();
-    on_hull.assign(n, 0);
-    // Every side (a, b) with both ends real, of every triangle (the super-triangle's too): in a
-    // triangulation each directed edge is the side of one triangle, the one on its left, so a gets
-    // each neighbour b once from the sides a -> b.
-    std::vector<std::size_t> count(n + 1, 0);
-    for (const auto& tv : dt.v) {
-      const bool super[3] = {dt.is_super(tv[0]), dt.is_super(tv[1]), dt.is_super(tv[2])};
-      for (int k = 0; k < 3; ++k) {
-        if (super[k]) continue;
-        const int a = dt.input_index[static_cast<std::size_t>(tv[k])];
-        if (super[(k + 1) % 3] || super[(k + 2) % 3]) on_hull[static_cast<std::size_t>(a)] = 1;
-        if (!super[(k + 1) % 3]) ++count[static_cast<std::size_t>(a) + 1];
-      }
-      if (!super[0] && !super[1] && !super[2])
-        triangles.push_back({dt.input_index[static_cast<std::size_t>(tv[0])],
-                             dt.input_index[static_cast<std::size_t>(tv[1])],
-                             dt.input_index[static_cast<std::size_t>(tv[2])]});
-    }
-    for (std::size_t i = 0; i < n; ++i) count[i + 1] += count[i];
-    std::vector<int> all(count[n]);
-    std::vector<std::size_t> next(count.begin(), count.end() - 1);
-    for (const auto& tv : dt.v)
-      for (int k = 0; k < 3; ++k)
-        if (!dt.is_super(tv[k]) && !dt.is_super(tv[(k + 1) % 3]))
-          all[next[static_cast<std::size_t>(dt.input_index[static_cast<std::size_t>(tv[k])])]++] =
-              dt.input_index[static_cast<std::size_t>(tv[(k + 1) % 3])];
-    // Sorted; a repeat (none in a valid triangulation) is dropped as before.
-    adjacent.reserve(all.size());
-    std::vector<std::size_t> start(n + 1, 0);
-    for (std::size_t i = 0; i < n; ++i) {
-      auto b = all.begin() + static_cast<std::ptrdiff_t>(count[i]);
-      auto e = all.begin() + static_cast<std::ptrdiff_t>(count[i + 1]);
-      std::sort(b, e);
-      e = std::unique(b, e);
-      start[i] = adjacent.size();
-      adjacent.insert(adjacent.end(), b, e);
-    }
-    start[n] = adjacent.size();
-    first = std::move(start);
-  }
-
-  std::size_t valence(int i) const {
-    return first[static_cast<std::size_t>(i) + 1] - first[static_cast<std::size_t>(i)];
-  }
-  const int* begin(int i) const { return adjacent.data() + first[static_cast<std::size_t>(i)]; }
-  const int* end(int i) const { return adjacent.data() + first[static_cast<std::size_t>(i) + 1]; }
-
-  // The node nearest to p by a greedy walk from `start`: in a Delaunay graph, a node none of whose
-  // neighbours is closer to p is the nearest node of all.
-  int nearest(const std::vector<Vec2>& x, Vec2 p, int start) const {
-    int v = start;
-    double best = norm2(x[static_cast<std::size_t>(v)] - p);
-    for (;;) {
-      int next = v;
-      for (const int* u = begin(v); u != end(v); ++u) {
-        const double d = norm2(x[static_cast<std::size_t>(*u)] - p);
-        if (d < best) {
-          best = d;
-          next = *u;
-        }
-      }
-      if (next == v) return v;
-      v = next;
-    }
-  }
-};
+using population_detail::DelaunayGraph;
 
 class Planner {
  public:

@@ -12,6 +12,8 @@
 
 namespace pdmesh {
 
+class MetricField;
+
 struct PopulationPlan {
   struct BoundaryInsert {
     int curve = 0;
@@ -31,6 +33,17 @@ struct PopulationPlan {
 PopulationPlan plan_population_event(const NodeSet& nodes, const std::vector<std::vector<double>>& arcs,
                                      const GeometryTree& tree, const SpacingField& spacing,
                                      const PopulationThresholds& thresholds);
+
+// The same plan with every length measured in `metric` (sigma = 1 in metric units) on the nodes'
+// Delaunay graph in the metric (mesh/metric_delaunay): boundary gaps by the metric length of their
+// chord, clusters by the metric length of graph edges, the same valence rule, and vacancies where a
+// triangle's circumradius in the mean metric of its corners exceeds thresholds.insert (the node at
+// that circumcentre, else at the midpoint of its longest edge in the metric), kept insert from every
+// node and kInitBoundaryClearance from the boundary in the metric there
+// (sim/metric_population_plan.cpp). Throws as plan_population_event does.
+PopulationPlan plan_metric_population_event(const NodeSet& nodes, const std::vector<std::vector<double>>& arcs,
+                                            const GeometryTree& tree, const MetricField& metric,
+                                            const PopulationThresholds& thresholds);
 
 // The circumcentre and circumradius of triangle abc (radius 0 and centre a when degenerate).
 void circumcircle(Vec2 a, Vec2 b, Vec2 c, Vec2& centre, double& radius);

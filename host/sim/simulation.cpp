@@ -228,7 +228,7 @@ IterationMoves HostSteps::apply(int iteration) {
   spacing_.at_many(nodes_.x, nodes_.q);
   // Population control between iterations: the next iteration loads the changed node set.
   out.event = loop_.population().after_iteration(options_.population, iteration, options_.iterations, nodes_, boundary_,
-                                                 spacing_);
+                                                 spacing_, nullptr, options_.metric);
   // A changed node set starts without momentum (nodes were inserted, removed and renumbered).
   if (with_momentum_ && out.event && out.event->changed()) carried_ = MomentumState{};
   out.fixed = nodes_.count(NodeKind::Fixed);
@@ -242,10 +242,6 @@ IterationMoves HostSteps::apply(int iteration) {
 SimResult run_simulation(NodeSet& nodes, const GeometryTree& tree, const SpacingField& spacing,
                          const SimOptions& options, const SimCallbacks& callbacks) {
   check_node_set(nodes);
-  if (options.metric && options.population.enabled)
-    throw InputError(
-        "population control is not metric-aware yet (it inserts and merges nodes by the isotropic "
-        "spacing): a run with a metric field needs population control off");
   std::unique_ptr<StepBackend> own_backend;
   StepBackend* backend = options.backend;
   if (!backend) {

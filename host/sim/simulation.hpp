@@ -87,9 +87,9 @@ struct SimOptions {
   // node's metric (SimParticles::m11, m12, m22) to metric->at(position) before each step, so the step
   // backend runs in metric mode: pairs measured in the metric, sigma = 1 in metric units. The spacing
   // field still gives NodeSet::q (read by messages, not by the step). Boundary handling is unchanged
-  // (it moves nodes along their curves by arc gaps, with no length scale). Population control is not
-  // metric-aware yet: run_simulation refuses a metric with population.enabled (InputError). The
-  // device-resident Simulator has no metric mode and refuses one (InputError). Null: isotropic.
+  // (it moves nodes along their curves by arc gaps, with no length scale). Population control measures
+  // in the metric too (plan_metric_population_event, sigma = 1 in metric units). The device-resident
+  // Simulator has no metric mode and refuses one (InputError). Null: isotropic.
   // The field is read from the driver's thread only (ExpressionMetricField is not thread-safe).
   const MetricField* metric = nullptr;
 };

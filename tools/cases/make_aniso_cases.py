@@ -66,7 +66,7 @@ def main():
         with open(os.path.join(d, "case.toml"), "w") as f:
             f.write(HEADER)
             f.write(f'# Issue 37\'s "{name}" metric case (docs/metric-fields.md, "Cases"). The nodes start\n'
-                    "# isotropically at q = sqrt(h1 h2), relax in the metric and are triangulated in it.\n")
+                    "# at unit metric length, relax in the metric and are triangulated in it.\n")
             f.write(f'name = "aniso_{name}"\n\n[geometry]\nfiles = ["domain.crv"]\n')
             f.write("curve_names = [" + ", ".join(f'"{n}"' for n in names) + "]\n\n")
             f.write('[spacing]\nfield = "metric"\n' + metric)

@@ -13,6 +13,7 @@
 #include "core/errors.hpp"
 #include "core/memory_budget.hpp"
 #include "geometry/geometry_files.hpp"
+#include "init/metric_fill.hpp"
 #include "init/node_estimate.hpp"
 #include "spacing/mesh_spacing.hpp"
 #include "spacing/resolution_check.hpp"
@@ -64,7 +65,7 @@ MeshInputs::MeshInputs(const CaseConfig& config) {
   spacing = make_case_spacing(config, *tree, metric.get());
   if (metric) {
     spacing_summary = fmt::format(
-        "spacing: the metric field ({}) built in {:.3f} s; the nodes start at q = sqrt(h1 h2), "
+        "spacing: the metric field ({}) built in {:.3f} s; the nodes start at unit metric length, "
         "relax in the metric and are triangulated in it (docs/metric-fields.md)",
         config.spacing.field == SpacingKind::Hessian ? "hessian" : "metric",
         std::chrono::duration<double>(std::chrono::steady_clock::now() - spacing_start).count());
@@ -224,12 +225,31 @@ double run_memory_bytes(double nodes, std::size_t field_bytes) {
   return kRunBytesBase + kRunBytesPerNode * kRunNodeGrowth * nodes + static_cast<double>(field_bytes);
 }
 
+InitialDistribution make_metric_initial(const CaseConfig& config, const MeshInputs& inputs,
+                                        const SpacingStage& spacing) {
+  // Boundary stations at unit metric length along each curve (placed by the curve's tangent length in
+  // the metric, with the validity rule measured by it too), then the interior fill in the metric.
+  const Geometry& on = inputs.node_geometry();
+  const GeometryTree& tree = inputs.node_tree();
+  PlacementOptions placement;
+  placement.max_nodes = config.max_nodes;
+  const CurveMetricSpacing along(tree, *inputs.metric);
+  InitialDistribution initial;
+  initial.nodes = assemble_boundary_nodes(on, spacing.field(), spacing_stations(on, along, placement));
+  MetricFillOptions fill;
+  fill.max_nodes = config.max_nodes;
+  initial.tree_nodes = metric_fill(tree, *inputs.metric, spacing.field(), initial.nodes, fill);
+  initial.estimate = NAN;
+  return initial;
+}
+
 InitialDistribution make_initial(const CaseConfig& config, const MeshInputs& inputs, const SpacingStage& spacing) {
   // run_mesh and the Python Mesher mesh a layered case's core (a case without the tables, from
   // build_layers); a caller driving the stages with the tables would mesh the whole domain without them.
   if (!config.boundary_layers.empty())
     throw InputError(fmt::format("{}: [[boundary_layer]]: the stages mesh the core's case (build_layers), not this one",
                                  config.source.string()));
+  if (inputs.metric) return make_metric_initial(config, inputs, spacing);
   const BoundaryPlacement boundary = place_boundary(config, inputs, spacing);
   InitOptions options;
   options.method = config.init.method;

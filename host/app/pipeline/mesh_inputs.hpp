@@ -126,6 +126,12 @@ struct BoundaryPlacement {
 };
 BoundaryPlacement place_boundary(const CaseConfig& config, const MeshInputs& inputs, const SpacingStage& spacing);
 
+// Stage initial of a metric run: boundary stations at unit metric length along each curve
+// (CurveMetricSpacing), then the interior fill in the metric (init/metric_fill.hpp). make_initial
+// calls it when inputs.metric is set.
+InitialDistribution make_metric_initial(const CaseConfig& config, const MeshInputs& inputs,
+                                        const SpacingStage& spacing);
+
 // Stage initial: the initial distribution (the boundary placement, then the tree fill).
 InitialDistribution make_initial(const CaseConfig& config, const MeshInputs& inputs, const SpacingStage& spacing);
 

@@ -192,7 +192,7 @@ SimResult simulate(const CaseConfig& config, const MeshInputs& inputs, const Spa
   // spec that cannot be met throws InputError listing the devices (exit 2).
   const auto note = [&config](const std::string& line) { progress(config, "{}", line); };
   // A metric run: the host driver in metric mode (the device-resident loop has no metric mode), over
-  // the host reference or an explicit device's step backend; population control is isotropic, so off.
+  // the host reference or an explicit device's step backend; population control measures in the metric.
   const MetricField* metric = spacing.metric();
   ChosenBackend own;
   const ChosenBackend& backend =
@@ -202,10 +202,6 @@ SimResult simulate(const CaseConfig& config, const MeshInputs& inputs, const Spa
                                                             static_cast<double>(nodes.size()), note));
   SimOptions options = simulation_options(config);
   options.metric = metric;
-  if (metric && options.population.enabled) {
-    options.population.enabled = false;
-    note("population control: off for a metric field (its insertions and merges use the isotropic q)");
-  }
   options.stop = hooks && hooks->stop ? hooks->stop : &InterruptGuard::flag();
   options.resume = resume;
   // Smooth curves: the nodes live on the dense polyline, so the simulator builds its quadtree (leaves

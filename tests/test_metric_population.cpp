@@ -1,0 +1,137 @@
+// Population control in a metric (plan_metric_population_event through run_population_event): on a
+// hexagonal lattice of unit metric spacing in a constant anisotropic metric (a rhombus of the lattice
+// mapped by x -> A x, M = A^-T A^-1), the perfect lattice is left alone, a missing node comes back near
+// the hole, an extra node goes, and a boundary gap of metric length 2 gets a node; the isotropic
+// planner on the same nodes does otherwise.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <memory>
+#include <vector>
+
+#include "geometry/geometry.hpp"
+#include "geometry/geometry_tree.hpp"
+#include "init/initial_distribution.hpp"
+#include "sim/boundary_handling.hpp"
+#include "sim/population.hpp"
+#include "spacing/metric.hpp"
+#include "spacing/metric_field.hpp"
+#include "spacing/spacing_field.hpp"
+
+using namespace pdmesh;
+
+namespace {
+
+const double kH = std::sqrt(3.0) / 2.0;
+// A: sizes 0.2 along 30 degrees, 0.01 across it.
+const double kAngle = std::acos(-1.0) / 6.0;
+const double kLong = 0.2, kShort = 0.01;
+
+Vec2 map(Vec2 u) {
+  const double c = std::cos(kAngle), s = std::sin(kAngle);
+  const double a = kLong * u.x, b = kShort * u.y;
+  return {c * a - s * b, s * a + c * b};
+}
+Vec2 lattice(double i, double j) { return map({i + 0.5 * j, kH * j}); }
+
+class ConstantSpacing final : public SpacingField {
+ public:
+  double at(Vec2) const override { return kShort; }
+};
+
+// The mapped rhombus of m x m lattice cells, its curves with a point at every lattice node (every
+// `boundary_step` of them), and the metric in which the lattice has unit spacing.
+struct MappedRhombus {
+  int m;
+  Geometry geometry;
+  std::unique_ptr<GeometryTree> tree;
+  ConstantSpacing spacing;
+  ConstantMetricField metric{metric_from_sizes(kLong, kShort, kAngle)};
+  NodeSet nodes;
+
+  MappedRhombus(int m_, int boundary_step = 1) : m(m_) {
+    std::vector<RawCurve> raw;
+    const auto side = [&](const char* name, Vec2 a, Vec2 b) {
+      RawCurve c{name, {}, "rhombus", 1, {}};
+      for (int k = 0; k <= m; k += boundary_step) c.points.push_back(a + (static_cast<double>(k) / m) * (b - a));
+      c.points.front() = a;
+      c.points.back() = b;
+      raw.push_back(std::move(c));
+    };
+    const Vec2 a = lattice(0, 0), b = lattice(m, 0), c = lattice(m, m), d = lattice(0, m);
+    side("ab", a, b);
+    side("bc", b, c);
+    side("cd", c, d);
+    side("da", d, a);
+    geometry = build_geometry(std::move(raw));
+    tree = std::make_unique<GeometryTree>(geometry);
+    nodes = make_boundary_nodes(geometry, spacing);
+  }
+
+  void fill(int skip_i = -1, int skip_j = -1) {
+    for (int j = 1; j < m; ++j)
+      for (int i = 1; i < m; ++i)
+        if (i != skip_i || j != skip_j) nodes.add(lattice(i, j), kShort, NodeKind::Interior, -1);
+  }
+
+  PopulationCounts event(bool in_metric) {
+    PopulationOptions o;
+    o.enabled = true;
+    BoundaryHandler boundary(*tree, nodes);
+    return run_population_event(nodes, boundary, spacing, population_thresholds(o, o.start, 2000), nullptr,
+                                in_metric ? &metric : nullptr);
+  }
+};
+
+}  // namespace
+
+TEST_CASE("metric population control leaves a unit lattice in the metric alone", "[population][metric]") {
+  MappedRhombus r(8);
+  r.fill();
+  const std::size_t before = r.nodes.size();
+  const PopulationCounts c = r.event(true);
+  CHECK_FALSE(c.changed());
+  CHECK(r.nodes.size() == before);
+}
+
+TEST_CASE("metric population control fills a hole of the lattice in the metric", "[population][metric]") {
+  MappedRhombus r(8);
+  r.fill(4, 4);
+  const std::size_t before = r.nodes.size();
+  const PopulationCounts c = r.event(true);
+  CHECK(c.inserted_interior == 1);
+  CHECK(c.removed() == 0);
+  REQUIRE(r.nodes.size() == before + 1);
+  // The new node (appended) lies near the hole, measured in the metric.
+  const Metric m = r.metric.at({0, 0});
+  CHECK(m.length(r.nodes.x.back() - lattice(4, 4)) < 0.35);
+}
+
+TEST_CASE("metric population control merges two nodes too close in the metric", "[population][metric]") {
+  MappedRhombus r(8);
+  r.fill();
+  // An extra node a fifth of a metric unit from lattice node (3, 5).
+  r.nodes.add(lattice(3, 5) + map({0.2, 0.0}), kShort, NodeKind::Interior, -1);
+  const std::size_t before = r.nodes.size();
+  const PopulationCounts c = r.event(true);
+  CHECK(c.merged == 1);
+  CHECK(c.inserted() == 0);
+  CHECK(r.nodes.size() == before - 1);
+}
+
+TEST_CASE("metric population control splits a boundary gap of metric length 2", "[population][metric]") {
+  // The curves' points every second lattice node: the boundary nodes are 2 apart in the metric.
+  MappedRhombus r(8, 2);
+  r.fill();
+  const PopulationCounts c = r.event(true);
+  CHECK(c.inserted_boundary > 0);
+}
+
+TEST_CASE("the isotropic planner on the stretched lattice is not the metric one", "[population][metric]") {
+  // With q = the short size, the lattice's long edges (20 q) look like vacancies to the isotropic
+  // rules: the metric is what keeps the lattice as it is.
+  MappedRhombus r(8);
+  r.fill();
+  const PopulationCounts c = r.event(false);
+  CHECK(c.changed());
+}
