@@ -345,7 +345,7 @@ LayerMesh build_boundary_layers(const Geometry& geometry, const std::vector<int>
   RaySet set = make_rays(chains, geometry, settings, core_spacing);
   std::vector<double> allowed;
   free_and_collision_limits(set, geometry, settings, core_spacing, allowed);
-  refine_sparse_walls(chains, geometry, settings, set, allowed);
+  refine_sparse_walls(chains, geometry, settings, core_spacing, set, allowed);
   std::vector<int> count, owner;
   std::vector<double> top;
   constexpr int kMaxRepairs = 60;

@@ -105,10 +105,10 @@ void layer_counts(const RaySet& set, const LayerSettings& settings, const std::v
 // Splits each wall segment whose neighbouring rays' top nodes (at their allowed thickness) are more
 // than split_span x the last layer's height apart into equal parts that are not, and remakes the
 // rays (make_rays) and their limits (an inserted ray: the smaller of its neighbours'; its wall node
-// lies on the segment, whose collision test would stop it at once) (wall_refinement.cpp). Returns
-// whether any segment was split.
+// lies on the segment, whose collision test would stop it at once) (wall_refinement.cpp); the fans
+// are sized with core_spacing as make_rays sized them before. Returns whether any segment was split.
 bool refine_sparse_walls(std::vector<WallChain>& chains, const Geometry& geometry, const LayerSettings& settings,
-                         RaySet& set, std::vector<double>& allowed);
+                         const CoreSpacing& core_spacing, RaySet& set, std::vector<double>& allowed);
 
 // Which columns are zipped with which, from which layer to which (column_merge.cpp).
 struct ColumnPair {

@@ -118,7 +118,7 @@ void carry_limits(const RaySet& set, const std::vector<double>& allowed, const P
 }  // namespace
 
 bool refine_sparse_walls(std::vector<WallChain>& chains, const Geometry& geometry, const LayerSettings& settings,
-                         RaySet& set, std::vector<double>& allowed) {
+                         const CoreSpacing& core_spacing, RaySet& set, std::vector<double>& allowed) {
   if (settings.split_span <= 0.0) return false;
   bool split = false;
   std::vector<std::vector<std::array<int, 2>>> source(chains.size());
@@ -128,7 +128,7 @@ bool refine_sparse_walls(std::vector<WallChain>& chains, const Geometry& geometr
     split = split_chain(chains[c], old_rays[c], set, allowed, settings, source[c]) || split;
   }
   if (!split) return false;
-  RaySet refined = make_rays(chains, geometry, settings);
+  RaySet refined = make_rays(chains, geometry, settings, core_spacing);
   std::vector<double> limits(refined.rays.size(), 0.0);
   for (std::size_t c = 0; c < chains.size(); ++c) {
     interpolate_new_rays(refined, c, chains[c], source[c]);
