@@ -60,7 +60,7 @@ bool split_chain(WallChain& chain, const PointRays& rays, const RaySet& set, con
     const int j = i + 1 < n ? i + 1 : (chain.closed ? 0 : -1);
     if (j < 0 || rays.first[i] < 0 || rays.first[j] < 0) continue;
     const int a = rays.last[i], b = rays.first[j];
-    const double h = last_layer(std::min(allowed[a], allowed[b]), settings);
+    const double h = std::min(last_layer(allowed[a], settings), last_layer(allowed[b], settings));
     const double gap = dist(top(a), top(b));
     if (h <= 0.0) continue;
     double span = settings.split_span * h;
