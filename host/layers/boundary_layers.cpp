@@ -56,8 +56,6 @@ void check_layer_settings(const LayerSettings& s) {
     fail(fmt::format("merge_span = {} must be in [0, 100]", s.merge_span));
   if (!(s.split_span == 0.0 || (s.split_span >= 1.0 && s.split_span <= 100.0)))
     fail(fmt::format("split_span = {} must be 0 or in [1, 100]", s.split_span));
-  if (!(s.split_core >= 0.0 && s.split_core <= 100.0))
-    fail(fmt::format("split_core = {} must be in [0, 100]", s.split_core));
 }
 
 double fan_elements_matching_core(double growth, double at_least) {

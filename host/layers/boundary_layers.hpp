@@ -43,10 +43,6 @@ struct LayerSettings {
   // than split_span x the last layer's height apart is split into equal parts (nodes on the
   // segment) that are not (a leading edge's nose). 0: never.
   double split_span = 1.6;
-  // With a core spacing, also where they would be more than split_core x the core spacing at their
-  // midpoint apart (a layer stopped where the core is finer than the wall's node spacing: the core's
-  // triangles on such a front edge would be flat). 0: never.
-  double split_core = 0.8;
 };
 
 // Throws InputError naming the setting and its value: h1 <= 0 or not finite, growth <= 1, neither

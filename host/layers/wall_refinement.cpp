@@ -43,8 +43,7 @@ PointRays point_rays(const RaySet& set, std::size_t c, std::size_t n) {
 // Splits the chain's sparse segments; source gets, per new point, the old points it lies between
 // (equal for an old point). Returns whether any segment was split.
 bool split_chain(WallChain& chain, const PointRays& rays, const RaySet& set, const std::vector<double>& allowed,
-                 const LayerSettings& settings, const CoreSpacing& core_spacing,
-                 std::vector<std::array<int, 2>>& source) {
+                 const LayerSettings& settings, std::vector<std::array<int, 2>>& source) {
   const auto top = [&](int r) {
     const LayerRay& ray = set.rays[r];
     return set.wall_points[ray.wall_node] + (allowed[r] / ray.correction) * ray.direction;
@@ -62,13 +61,8 @@ bool split_chain(WallChain& chain, const PointRays& rays, const RaySet& set, con
     const int a = rays.last[i], b = rays.first[j];
     const double h = std::min(last_layer(allowed[a], settings), last_layer(allowed[b], settings));
     const double gap = dist(top(a), top(b));
-    if (h <= 0.0) continue;
-    double span = settings.split_span * h;
-    if (core_spacing && settings.split_core > 0.0) {
-      const double q = core_spacing(0.5 * (top(a) + top(b)));
-      if (q > 0.0) span = std::min(span, settings.split_core * q);
-    }
-    if (gap <= span) continue;
+    const double span = settings.split_span * h;
+    if (h <= 0.0 || gap <= span) continue;
     const int parts = static_cast<int>(std::ceil(gap / span));
     for (int k = 1; k < parts; ++k) {
       const double t = static_cast<double>(k) / parts;
@@ -136,7 +130,7 @@ bool refine_sparse_walls(std::vector<WallChain>& chains, const Geometry& geometr
   grade_thickness(set, settings.max_jump, settings.max_slope, graded);
   for (std::size_t c = 0; c < chains.size(); ++c) {
     old_rays.push_back(point_rays(set, c, chains[c].points.size()));
-    split = split_chain(chains[c], old_rays[c], set, graded, settings, core_spacing, source[c]) || split;
+    split = split_chain(chains[c], old_rays[c], set, graded, settings, source[c]) || split;
   }
   if (!split) return false;
   RaySet refined = make_rays(chains, geometry, settings, core_spacing);
