@@ -178,6 +178,44 @@ TEST_CASE("diverging rays: the wall is refined so that the front is as dense as 
   CHECK(cell_area(m) == Approx(std::abs(front_area(m)) - std::abs(polygon_area(g.curves[1].points))).epsilon(1e-9));
 }
 
+TEST_CASE("the wall is refined for the graded thickness where a collision thins the layer", "[layers]") {
+  // The nose of the test above with a small obstacle 0.02 off its wall: the ray facing it stops at
+  // 0.4 x 0.02, and the grading thins its neighbours too (jumps of at most 1.3). Their front edges
+  // are measured at the thickness they end with, not at the thickness they would have alone.
+  const Geometry g = build_geometry({square(5.0, "far"), circle(0.1, 32, "wall"), [] {
+                                       RawCurve box = square(0.01, "box");
+                                       for (Vec2& p : box.points) p.x += 0.13;
+                                       return box;
+                                     }()});
+  LayerSettings s = settings(1e-4, 1.2, 26);
+  s.merge_span = 0.0;
+  const LayerMesh m = build_boundary_layers(g, curves_by_name(g, {"wall"}, "test"), s);
+  const LayerMeasures q = measure_layers(m, s.first_height);
+  REQUIRE(q.min_thickness < 0.5 * q.max_thickness);  // the collision thinned the layer
+  CHECK(m.repairs == 0);
+  // Each front edge over the stack's last whole layer under the lower of its two tops (the last
+  // layer itself ends at the ray's thickness: a quarter to 1.25 of the stack's next).
+  std::vector<double> top_height(m.nodes.size(), -1.0);
+  for (const LayerRay& r : m.rays)
+    if (!r.nodes.empty()) top_height[r.nodes.back()] = r.correction * dist(m.nodes[r.nodes.back()], m.nodes[r.wall_node]);
+  double worst = 0.0;
+  const std::vector<int>& front = m.fronts.at(0).nodes;
+  for (std::size_t i = 0; i < front.size(); ++i) {
+    const int a = front[i], b = front[(i + 1) % front.size()];
+    const double t = std::min(top_height[a], top_height[b]);
+    double stack = 0.0, layer = s.first_height;
+    while (stack + layer < t * (1.0 - 1e-9)) {
+      stack += layer;
+      layer *= s.growth;
+    }
+    worst = std::max(worst, dist(m.nodes[a], m.nodes[b]) / (layer / s.growth));
+  }
+  CHECK(worst <= 1.6);  // 5.7 measured at the thickness each ray would have alone
+  CHECK(q.first_height_within_2pct == 1.0);
+  CHECK(q.inverted_cells == 0);
+  CHECK(q.max_thickness_jump <= 1.3 + 1e-9);
+}
+
 TEST_CASE("NACA 0012 with layers: the core's triangles on the front and the junction", "[app][layers]") {
   // cases/naca0012's geometry with the default settings (the best preset) and the issue's layers.
   const std::string dir = pdmesh::test::source_dir() + "/cases/naca0012/";

@@ -102,8 +102,9 @@ void grade_thickness(const RaySet& set, double max_jump, double max_slope, std::
 void layer_counts(const RaySet& set, const LayerSettings& settings, const std::vector<double>& allowed,
                   std::vector<int>& count, std::vector<double>& top);
 
-// Splits each wall segment whose neighbouring rays' top nodes (at their allowed thickness) are more
-// than split_span x the last layer's height apart into equal parts that are not, and remakes the
+// Splits each wall segment whose neighbouring rays' top nodes (at their allowed thickness, graded as
+// grade_thickness will grade it) are more than split_span x the thinner of their last layers apart
+// into equal parts that are not, and remakes the
 // rays (make_rays) and their limits (an inserted ray: the smaller of its neighbours'; its wall node
 // lies on the segment, whose collision test would stop it at once) (wall_refinement.cpp); the fans
 // are sized with core_spacing as make_rays sized them before. Returns whether any segment was split.

@@ -59,10 +59,11 @@ bool split_chain(WallChain& chain, const PointRays& rays, const RaySet& set, con
     const int j = i + 1 < n ? i + 1 : (chain.closed ? 0 : -1);
     if (j < 0 || rays.first[i] < 0 || rays.first[j] < 0) continue;
     const int a = rays.last[i], b = rays.first[j];
-    const double h = last_layer(std::min(allowed[a], allowed[b]), settings);
+    const double h = std::min(last_layer(allowed[a], settings), last_layer(allowed[b], settings));
     const double gap = dist(top(a), top(b));
-    if (h <= 0.0 || gap <= settings.split_span * h) continue;
-    const int parts = static_cast<int>(std::ceil(gap / (settings.split_span * h)));
+    const double span = settings.split_span * h;
+    if (h <= 0.0 || gap <= span) continue;
+    const int parts = static_cast<int>(std::ceil(gap / span));
     for (int k = 1; k < parts; ++k) {
       const double t = static_cast<double>(k) / parts;
       out.points.push_back(chain.points[i] + t * (chain.points[j] - chain.points[i]));
@@ -123,9 +124,13 @@ bool refine_sparse_walls(std::vector<WallChain>& chains, const Geometry& geometr
   bool split = false;
   std::vector<std::vector<std::array<int, 2>>> source(chains.size());
   std::vector<PointRays> old_rays;
+  // The tops where the layer will end: the limits graded along the chains as build_boundary_layers
+  // grades them (collisions thin a whole stretch of the layer, not only the colliding rays).
+  std::vector<double> graded = allowed;
+  grade_thickness(set, settings.max_jump, settings.max_slope, graded);
   for (std::size_t c = 0; c < chains.size(); ++c) {
     old_rays.push_back(point_rays(set, c, chains[c].points.size()));
-    split = split_chain(chains[c], old_rays[c], set, allowed, settings, source[c]) || split;
+    split = split_chain(chains[c], old_rays[c], set, graded, settings, source[c]) || split;
   }
   if (!split) return false;
   RaySet refined = make_rays(chains, geometry, settings, core_spacing);
