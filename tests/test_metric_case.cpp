@@ -69,6 +69,11 @@ TEST_CASE("metric keys are read: sizes, components, files", "[metric][case]") {
   const CaseConfig data = parse("field = \"hessian\"\nfile = \"u.vtu\"\ncomplexity = 100\nmetric_gradation = 1.5\n");
   CHECK(data.spacing.array == "u");
   CHECK(data.spacing.metric_gradation == 1.5);
+  // A function's or an expression's metric is graded too (sampled on a grid over the extents).
+  CHECK(parse("field = \"hessian\"\nfunction = \"x*x\"\ncomplexity = 10\nmetric_gradation = 1.5\n")
+            .spacing.metric_gradation == 1.5);
+  CHECK(parse("field = \"metric\"\nh1 = \"0.1\"\nh2 = \"0.01\"\nmetric_gradation = 2\n").spacing.metric_gradation ==
+        2.0);
   // An isotropic case has no metric.
   CHECK_FALSE(parse("expression = \"0.1\"\n").spacing.metric());
 }
@@ -100,9 +105,7 @@ TEST_CASE("bad metric keys are refused naming the key and the value", "[metric][
   CHECK_THAT(error_of("field = \"hessian\"\nfunction = \"x*x\"\ncomplexity = 10\nmax_anisotropy = 0.5\n"),
              Contains("spacing.max_anisotropy must be >= 1, got 0.5"));
   CHECK_THAT(error_of("field = \"hessian\"\ncomplexity = 10\n"), Contains("spacing.function"));
-  // Gradation needs a background mesh; a .mesh is metric data only; a .sol needs a .mesh.
-  CHECK_THAT(error_of("field = \"hessian\"\nfunction = \"x*x\"\ncomplexity = 10\nmetric_gradation = 1.5\n"),
-             Contains("spacing.metric_gradation needs the metric on a background mesh"));
+  // Gradation out of range; a .mesh is metric data only; a .sol needs a .mesh.
   CHECK_THAT(error_of("field = \"metric\"\nfile = \"m.vtu\"\nmetric_gradation = 0.5\n"), Contains("got 0.5"));
   CHECK_THAT(error_of("file = \"m.mesh\"\n"), Contains("is a Medit .mesh"));
   CHECK_THAT(error_of("field = \"metric\"\nfile = \"m.vtu\"\nsol = \"m.sol\"\n"), Contains("not a Medit .mesh"));

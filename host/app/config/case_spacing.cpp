@@ -60,6 +60,22 @@ std::unique_ptr<MetricField> mesh_field(const CaseConfig& config, MetricMeshData
   return make_mesh_metric_field(std::move(data));
 }
 
+// The cells per side of the grid over the geometry's extents on which a metric given by expressions is
+// sampled for spacing.metric_gradation: the grid's metric, interpolated log-Euclidean, replaces the
+// expressions. As fine as the data of issue 37's tanh layer (1024 x 1024).
+constexpr int kGradationGrid = 1024;
+
+// With spacing.metric_gradation, a metric given by expressions (`field`) sampled on a grid over the
+// extents, graded along the grid's edges; otherwise `field` itself.
+std::unique_ptr<MetricField> graded(const CaseConfig& config, const GeometryTree& tree,
+                                    std::unique_ptr<MetricField> field, std::string what) {
+  if (!(config.spacing.metric_gradation > 0.0)) return field;
+  MetricMeshData data;
+  sample_metric_grid(*field, tree.geometry().extents, kGradationGrid, data.points, data.triangles, data.metrics);
+  data.what = std::move(what);
+  return mesh_field(config, std::move(data));
+}
+
 }  // namespace
 
 std::unique_ptr<MetricField> make_case_metric(const CaseConfig& config, const GeometryTree& tree) {
@@ -70,9 +86,14 @@ std::unique_ptr<MetricField> make_case_metric(const CaseConfig& config, const Ge
                         is_medit(s.file) ? load_medit_metric(s.file, s.sol) : load_metric_mesh(s.file, s.array));
     }
     if (!s.m11.empty()) {
-      return std::make_unique<ExpressionMetricField>(ExpressionMetricField::Form::components, s.m11, s.m12, s.m22);
+      return graded(
+          config, tree,
+          std::make_unique<ExpressionMetricField>(ExpressionMetricField::Form::components, s.m11, s.m12, s.m22),
+          "the metric of spacing.m11, m12, m22 on a grid");
     }
-    return std::make_unique<ExpressionMetricField>(ExpressionMetricField::Form::sizes, s.h1, s.h2, s.angle);
+    return graded(config, tree,
+                  std::make_unique<ExpressionMetricField>(ExpressionMetricField::Form::sizes, s.h1, s.h2, s.angle),
+                  "the metric of spacing.h1, h2, angle on a grid");
   }
   if (s.field != SpacingKind::Hessian) return nullptr;
   HessianMetricOptions options;
@@ -86,7 +107,8 @@ std::unique_ptr<MetricField> make_case_metric(const CaseConfig& config, const Ge
     // rule on a 1024 x 1024 grid over the extents (tools/eval's metric.py).
     const Box box = tree.geometry().extents;
     const double extent = std::max(box.hi.x - box.lo.x, box.hi.y - box.lo.y);
-    return std::make_unique<HessianMetricField>(s.function, box, options, 1e-5 * extent, 1024);
+    return graded(config, tree, std::make_unique<HessianMetricField>(s.function, box, options, 1e-5 * extent, 1024),
+                  "the hessian metric of spacing.function on a grid");
   }
   ScalarMeshData data = load_scalar_mesh(s.file, s.array);
   MetricMeshData metric;
