@@ -102,12 +102,15 @@ std::unique_ptr<MetricField> make_case_metric(const CaseConfig& config, const Ge
   options.hmax = s.hmax;
   options.max_anisotropy = s.max_anisotropy;
   if (s.file.empty()) {
-    // The Hessian by central differences of a step 1e-5 of the geometry's extent (the rounding noise,
-    // ~1e-16 |u| / step², stays far below the scales of a solution's features), and D by the midpoint
-    // rule on a 1024 x 1024 grid over the extents (tools/eval's metric.py).
+    // The Hessian by central differences of a step of 2/1024 of the geometry's extent, and D by the
+    // midpoint rule on a 1024 x 1024 grid over the extents (as tools/eval's metric.py): u's curvature
+    // at the scale a least-squares fit sees in data sampled on that grid (its patch reaches about two
+    // cells). A step at rounding's scale resolves what no mesh of the complexity follows: at the
+    // inflection of a curved layer one eigenvalue vanishes, det|H| with it, and the metric leaves a
+    // hole in the node density there (docs/metric-fields.md, "Hessians and the L^p-optimal metric").
     const Box box = tree.geometry().extents;
     const double extent = std::max(box.hi.x - box.lo.x, box.hi.y - box.lo.y);
-    return graded(config, tree, std::make_unique<HessianMetricField>(s.function, box, options, 1e-5 * extent, 1024),
+    return graded(config, tree, std::make_unique<HessianMetricField>(s.function, box, options, extent / 512, 1024),
                   "the hessian metric of spacing.function on a grid");
   }
   ScalarMeshData data = load_scalar_mesh(s.file, s.array);
