@@ -18,6 +18,7 @@
 #include "error_message.hpp"
 #include "render/metric_picture.hpp"
 #include "run_pdmesh.hpp"
+#include "spacing/hessian_metric.hpp"
 #include "spacing/metric.hpp"
 #include "spacing/metric_size_field.hpp"
 #include "temp_files.hpp"
@@ -69,6 +70,11 @@ TEST_CASE("metric keys are read: sizes, components, files", "[metric][case]") {
   const CaseConfig data = parse("field = \"hessian\"\nfile = \"u.vtu\"\ncomplexity = 100\nmetric_gradation = 1.5\n");
   CHECK(data.spacing.array == "u");
   CHECK(data.spacing.metric_gradation == 1.5);
+  // A function's or an expression's metric is graded too (sampled on a grid over the extents).
+  CHECK(parse("field = \"hessian\"\nfunction = \"x*x\"\ncomplexity = 10\nmetric_gradation = 1.5\n")
+            .spacing.metric_gradation == 1.5);
+  CHECK(parse("field = \"metric\"\nh1 = \"0.1\"\nh2 = \"0.01\"\nmetric_gradation = 2\n").spacing.metric_gradation ==
+        2.0);
   // An isotropic case has no metric.
   CHECK_FALSE(parse("expression = \"0.1\"\n").spacing.metric());
 }
@@ -100,9 +106,7 @@ TEST_CASE("bad metric keys are refused naming the key and the value", "[metric][
   CHECK_THAT(error_of("field = \"hessian\"\nfunction = \"x*x\"\ncomplexity = 10\nmax_anisotropy = 0.5\n"),
              Contains("spacing.max_anisotropy must be >= 1, got 0.5"));
   CHECK_THAT(error_of("field = \"hessian\"\ncomplexity = 10\n"), Contains("spacing.function"));
-  // Gradation needs a background mesh; a .mesh is metric data only; a .sol needs a .mesh.
-  CHECK_THAT(error_of("field = \"hessian\"\nfunction = \"x*x\"\ncomplexity = 10\nmetric_gradation = 1.5\n"),
-             Contains("spacing.metric_gradation needs the metric on a background mesh"));
+  // Gradation out of range; a .mesh is metric data only; a .sol needs a .mesh.
   CHECK_THAT(error_of("field = \"metric\"\nfile = \"m.vtu\"\nmetric_gradation = 0.5\n"), Contains("got 0.5"));
   CHECK_THAT(error_of("file = \"m.mesh\"\n"), Contains("is a Medit .mesh"));
   CHECK_THAT(error_of("field = \"metric\"\nfile = \"m.vtu\"\nsol = \"m.sol\"\n"), Contains("not a Medit .mesh"));
@@ -130,6 +134,48 @@ TEST_CASE("the isotropic size of a metric is sqrt(h1 h2)", "[metric][case]") {
   // An isotropic case has none.
   const MeshInputs iso(load_case_file(fs::path(PDMESH_SOURCE_DIR) / "cases/circle_circle/case.toml"));
   CHECK(iso.metric == nullptr);
+}
+
+namespace {
+
+// ∫ sqrt(det M) dy across the tanh layer y = 0.5 + 0.25 sin 2πx at x, over ±0.03: the metric's node
+// density through the layer.
+double density_across(const MetricField& m, double x) {
+  const double y0 = 0.5 + 0.25 * std::sin(2.0 * M_PI * x);
+  double sum = 0.0;
+  for (int k = 0; k <= 600; ++k) sum += std::sqrt(m.at({x, y0 - 0.03 + 1e-4 * k}).det()) * 1e-4;
+  return sum;
+}
+
+}  // namespace
+
+TEST_CASE("a function's Hessian metric has no hole at a curved layer's inflection", "[metric][case][hessian]") {
+  // The tanh layer's along-layer curvature vanishes at x = 0.5. The exact Hessian's second eigenvalue
+  // vanishes with it, and so does det|H|^(1/3), the L2-optimal metric's node density: the run leaves
+  // the layer unresolved there. The case file's Hessian (differences at the scale of the 1024 grid)
+  // keeps the density there comparable to the rest of the layer.
+  const fs::path dir = pdmesh_test::fresh_path("metric_case_tanh");
+  fs::create_directories(dir);
+  {
+    std::ofstream f(dir / "case.toml");
+    f << "[geometry]\nfiles = ['" << (fs::path(PDMESH_SOURCE_DIR) / "cases/aniso/linear/domain.crv").string()
+      << "']\n[spacing]\nfield = 'hessian'\nfunction = 'tanh(100*(y - 0.5 - 0.25*sin(2*pi*x)))'\n"
+         "complexity = 4000\nhmin = 1e-5\nhmax = 0.3\ngradation = 0\n";
+  }
+  const CaseConfig c = load_case_file(dir / "case.toml");
+  const MeshInputs inputs(c);
+  REQUIRE(inputs.metric != nullptr);
+  const double inflection = density_across(*inputs.metric, 0.5);
+  const double elsewhere = density_across(*inputs.metric, 0.25);
+  CHECK(inflection > 0.5 * elsewhere);
+  // The Hessian exact to rounding (step 1e-5) has the hole.
+  HessianMetricOptions o;
+  o.complexity = 4000;
+  o.hmin = 1e-5;
+  o.hmax = 0.3;
+  const HessianMetricField exact(c.spacing.function, Box{{0, 0}, {1, 1}}, o, 1e-5, 1024);
+  CHECK(density_across(exact, 0.5) < 0.2 * density_across(exact, 0.25));
+  fs::remove_all(dir);
 }
 
 TEST_CASE("pdmesh mesh triangulates in the metric and measures in it", "[metric][case][cli]") {

@@ -1,7 +1,7 @@
 // Hessians (spacing/hessian.hpp) and the L^p-optimal metric (spacing/hessian_metric.hpp): central
 // differences and the least-squares patch fit exact on quadratics, errors naming the data; |H|,
 // clipping, the complexity of the metric from mesh data, and the metric of a function against the
-// Python evaluator (tools/eval/pdmesh_eval/metric.py).
+// Python evaluator (tools/eval/pdmesh_eval/metric.py); a field sampled on a grid.
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <vector>
@@ -22,6 +22,12 @@ namespace {
 // u = 3 + x - 2y + 1.5 x² - 0.7 xy + 0.25 y²: H = [[3, -0.7], [-0.7, 0.5]].
 double quadratic(Vec2 p) { return 3.0 + p.x - 2.0 * p.y + 1.5 * p.x * p.x - 0.7 * p.x * p.y + 0.25 * p.y * p.y; }
 constexpr Hessian kQuadraticH{3.0, -0.7, 0.5};
+
+bool same(const Metric& a, const Metric& b, double eps) {
+  const double scale = std::fabs(a.m11) + std::fabs(a.m22) + std::fabs(b.m11) + std::fabs(b.m22);
+  return std::fabs(a.m11 - b.m11) <= eps * scale && std::fabs(a.m12 - b.m12) <= eps * scale &&
+         std::fabs(a.m22 - b.m22) <= eps * scale;
+}
 
 // An n x n grid of [0,1]² with interior points moved by up to 0.3 of a cell (deterministic), two
 // triangles per cell with alternating diagonals.
@@ -206,4 +212,36 @@ TEST_CASE("HessianMetricField equals metric.py's l2_optimal_metric", "[hessian]"
                HessianMetricField("tanh(", Box{{0, 0}, {1, 1}}, t, 1e-5, 4);
              }),
              Contains("'tanh('"));
+}
+
+TEST_CASE("sample_metric_grid: the field at the vertices of a grid over the box widened by half a cell",
+          "[hessian][gradation]") {
+  const Box box{{-1.0, 2.0}, {3.0, 4.0}};
+  const int n = 8;
+  const ConstantMetricField constant(metric_from_sizes(0.1, 0.01, 0.3));
+  std::vector<Vec2> points;
+  std::vector<std::array<int, 3>> triangles;
+  std::vector<Metric> metrics;
+  sample_metric_grid(constant, box, n, points, triangles, metrics);
+  REQUIRE(points.size() == 81);
+  REQUIRE(triangles.size() == 128);
+  REQUIRE(metrics.size() == 81);
+  // Corners at lo - d/2 and hi + d/2 (d = 0.5 in x, 0.25 in y), row by row from lo.
+  CHECK(points.front().x == Approx(-1.25));
+  CHECK(points.front().y == Approx(1.875));
+  CHECK(points.back().x == Approx(3.25));
+  CHECK(points.back().y == Approx(4.125));
+  CHECK(points[1].x - points[0].x == Approx(4.5 / 8));
+  double area = 0.0;
+  for (const auto& t : triangles) {
+    const double a = 0.5 * cross(points[t[1]] - points[t[0]], points[t[2]] - points[t[0]]);
+    CHECK(a > 0.0);  // counter-clockwise
+    area += a;
+  }
+  CHECK(area == Approx(4.5 * 2.25).epsilon(1e-12));
+  for (const Metric& m : metrics) CHECK(same(m, constant.at({0, 0}), 0.0));
+  // A grid's metric field is a MeshMetricField that covers the box.
+  MeshMetricField field(points, triangles, metrics, "grid");
+  CHECK(same(field.at(box.hi), constant.at({0, 0}), 1e-12));
+  CHECK_THROWS_AS(sample_metric_grid(constant, box, 0, points, triangles, metrics), InputError);
 }

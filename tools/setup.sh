@@ -45,9 +45,9 @@ if [ -z "${PDMESH_NO_PYTHON:-}" ]; then
   [ -x "$venv/bin/python" ] || python3 -m venv "$venv"
   # The build requirements of pyproject.toml (installed here so that the package builds from build/
   # without a second compile) and numpy; with --tests also pytest and the extras the tests use
-  # (meshio, matplotlib, shapely). pip leaves what is already there.
+  # (meshio, matplotlib, shapely; scikit-fem for examples/adapt_poisson.py). pip leaves what is already there.
   requirements=("scikit-build-core>=0.10" "nanobind>=2.0" "numpy>=1.21")
-  [ -z "$tests" ] || requirements+=("pytest>=7" "meshio>=5" "matplotlib>=3.5" "shapely>=1.8")
+  [ -z "$tests" ] || requirements+=("pytest>=7" "meshio>=5" "matplotlib>=3.5" "shapely>=1.8" "scikit-fem>=10")
   "$venv/bin/python" -m pip install -q --disable-pip-version-check "${requirements[@]}"
   python_args=(-DPDMESH_PYTHON=ON "-DPython_EXECUTABLE=$venv/bin/python")
 fi

@@ -96,4 +96,28 @@ Hessian HessianMetricField::hessian(Vec2 p) const {
 
 Metric HessianMetricField::at(Vec2 p) const { return lp_optimal_metric(hessian(p), scale_, options_); }
 
+void sample_metric_grid(const MetricField& field, const Box& box, int n, std::vector<Vec2>& points,
+                        std::vector<std::array<int, 3>>& triangles, std::vector<Metric>& metrics) {
+  if (n < 1) throw InputError(fmt::format("sample_metric_grid: n = {} must be >= 1", n));
+  const double dx = box.width() / n, dy = box.height() / n;
+  const int row = n + 1;
+  points.clear();
+  triangles.clear();
+  metrics.clear();
+  // n + 1 points per row from lo - d/2 to hi + d/2.
+  const double sx = (box.width() + dx) / n, sy = (box.height() + dy) / n;
+  points.reserve(static_cast<std::size_t>(row) * row);
+  for (int j = 0; j <= n; ++j)
+    for (int i = 0; i <= n; ++i) points.push_back({box.lo.x - 0.5 * dx + i * sx, box.lo.y - 0.5 * dy + j * sy});
+  triangles.reserve(2 * static_cast<std::size_t>(n) * n);
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      const int a = j * row + i;
+      triangles.push_back({a, a + 1, a + row + 1});
+      triangles.push_back({a, a + row + 1, a + row});
+    }
+  metrics.reserve(points.size());
+  for (const Vec2 p : points) metrics.push_back(field.at(p));
+}
+
 }  // namespace pdmesh

@@ -68,4 +68,11 @@ class HessianMetricField final : public MetricField {
   double scale_ = 1.0;
 };
 
+// The metrics of `field` at the vertices of an n x n grid over `box`, widened by half a cell on every
+// side so that the box's edges lie inside: (n+1)² points, row by row from box.lo, and 2n² counter-
+// clockwise triangles. A function's metric as data on a background mesh, for metric gradation along
+// the grid's edges (spacing.metric_gradation with spacing.function). n >= 1.
+void sample_metric_grid(const MetricField& field, const Box& box, int n, std::vector<Vec2>& points,
+                        std::vector<std::array<int, 3>>& triangles, std::vector<Metric>& metrics);
+
 }  // namespace pdmesh

@@ -33,7 +33,11 @@ MetricGradationResult limit_metric_gradation(const std::vector<Vec2>& points,
   MetricGradationResult result;
   for (int sweep = 0; sweep < options.max_sweeps; ++sweep) {
     bool changed = false;
-    for (const auto& e : edges) {
+    // Forward and backward in turn: a sweep carries a small metric along the edge order in one
+    // pass, and the next carries it back against that order.
+    const bool backward = sweep % 2 == 1;
+    for (std::size_t k = 0; k < edges.size(); ++k) {
+      const auto& e = edges[backward ? edges.size() - 1 - k : k];
       const Vec2 v = points[e[1]] - points[e[0]];
       Metric& ma = metrics[e[0]];
       Metric& mb = metrics[e[1]];

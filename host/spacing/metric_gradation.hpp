@@ -13,7 +13,10 @@ namespace pdmesh {
 
 struct MetricGradationOptions {
   double beta = 1.5;  // the largest size ratio per unit of metric length (> 1)
-  double t = 0.125;   // 0: metric-space growth, 1: physical-space growth; Alauzet & Frazza use 1/8
+  // 0: metric-space growth (the shape of a metric is kept as it spreads, which is what lets a
+  // stretched layer's metric widen the layer rather than round it off); 1: physical-space growth;
+  // Alauzet & Frazza's mixed form uses 1/8.
+  double t = 0.0;
   int max_sweeps = 100;
   double tolerance = 1.01;  // an edge counts as limited when its gradation is <= tolerance * beta
 };
@@ -24,11 +27,11 @@ struct MetricGradationResult {
   double max_gradation = 1.0;  // over the edges after the last sweep
 };
 
-// Limits `metrics` (one per point) in place. Each sweep visits the edges in order and intersects each
-// end's metric with the other end's span along the edge, where the edge's gradation exceeds
-// tolerance * beta; intersection only adds, so the sweeps converge. Deterministic: the edge order
-// decides the result. Throws InputError naming the option for beta <= 1, t outside [0, 1], or a
-// tolerance < 1; edges must index points.
+// Limits `metrics` (one per point) in place. Each sweep visits the edges (in order and in reverse order
+// by turns) and intersects each end's metric with the other end's span along the edge, where the
+// edge's gradation exceeds tolerance * beta; intersection only adds, so the sweeps converge.
+// Deterministic: the edge order decides the result. Throws InputError naming the option for beta <= 1, t outside [0,
+// 1], or a tolerance < 1; edges must index points.
 MetricGradationResult limit_metric_gradation(const std::vector<Vec2>& points,
                                              const std::vector<std::array<int, 2>>& edges, std::vector<Metric>& metrics,
                                              const MetricGradationOptions& options);

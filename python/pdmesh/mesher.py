@@ -10,7 +10,7 @@ from typing import Any, Iterator, Mapping
 
 import numpy as np
 
-from . import _core, _progress, _settings, size as _size
+from . import _core, _progress, _settings, metric as _metric, size as _size
 from .errors import Cancelled, InputError
 from .geometry import Geometry
 from .mesh import Mesh
@@ -60,17 +60,34 @@ class Mesher:
                  settings: Mapping[str, Any] | None = None, out: str | os.PathLike | None = None,
                  max_nodes: int | None = None, **keywords: Any):
         overrides, sampler = _settings_for(size, device, seed, settings, keywords)
-        if isinstance(geo, Case):
-            config = geo._with(overrides)
-        else:
-            if not isinstance(geo, Geometry):
-                geo = Geometry(geo)
-            config = geo._config(overrides)
-        if sampler is not None:
-            config = config.with_size_callable(sampler)  # sampled, then let go, by the core's Mesher
+        if not isinstance(geo, (Case, Geometry)):
+            geo = Geometry(geo)
+        config = geo._with(overrides) if isinstance(geo, Case) else geo._config(overrides)
         if max_nodes is not None and int(max_nodes) < 1:
             raise InputError(f"max_nodes must be >= 1, got {max_nodes}")
-        self._core = _core.Mesher(config, os.fspath(out) if out is not None else "", int(max_nodes or 0))
+        out_dir = os.fspath(out) if out is not None else ""
+        if isinstance(sampler, _metric.Metric):
+            self._core = self._metric_core(geo, config, sampler, overrides, out_dir, max_nodes)
+            return
+        if sampler is not None:
+            config = config.with_size_callable(sampler)  # sampled, then let go, by the core's Mesher
+        try:
+            self._core = _core.Mesher(config, out_dir, int(max_nodes or 0))
+        except _metric.MetricResult:
+            # The callable's first batch came back as (N, 3) or (N, 2, 2) metrics.
+            self._core = self._metric_core(geo, config, _metric.Metric(sampler.function), overrides, out_dir,
+                                           max_nodes)
+
+    @staticmethod
+    def _metric_core(geo: Any, config: Any, metric: "_metric.Metric", overrides: list, out_dir: str,
+                     max_nodes: int | None) -> Any:
+        """The core run of a metric callable: sampled on a grid over the geometry's bounding box into a
+        temporary metric .vtu, which the core reads while it sets the run up."""
+        with _metric.temporary_directory() as directory:
+            keys = _metric.sample_to_file(metric.function, config.geometry()["extents"], metric.grid, directory)
+            pairs = overrides + _settings.overrides(_settings.flatten(keys))
+            config = geo._with(pairs) if isinstance(geo, Case) else geo._config(pairs)
+            return _core.Mesher(config, out_dir, int(max_nodes or 0))
 
     @property
     def name(self) -> str:

@@ -8,7 +8,9 @@
 - a callable ``h(xy) -> sizes``: called with an (N, 2) float64 array, returning N sizes. It is called
   vectorised, once per sampling pass, while pdmesh samples it into its own background field
   (an adaptive quadtree); it is never called per point nor during the iterations;
-- ``Background.read(path, array)``: sizes from data, a triangle mesh with a point-data array.
+- ``Background.read(path, array)``: sizes from data, a triangle mesh with a point-data array;
+- a callable returning (N, 3) (m11, m12, m22) or (N, 2, 2) metrics, or ``Metric(callable, grid)``:
+  an anisotropic metric field (pdmesh.metric).
 """
 
 from __future__ import annotations
@@ -20,6 +22,7 @@ from typing import Any, Callable
 import numpy as np
 
 from .errors import InputError
+from .metric import Metric, MetricResult, from_sizes, is_metric_shape, write_vtu
 
 
 class Background:
@@ -67,6 +70,8 @@ def sampler(function: Callable[[np.ndarray], Any]) -> Callable[[np.ndarray], np.
             raise InputError(f"size: the callable returned a {type(result).__name__} that is not numbers ({e})") from None
         if h.ndim == 0:
             return np.full(len(xy), float(h))
+        if is_metric_shape(h.shape, len(xy)):
+            raise MetricResult()  # a metric callable: the run is set up again as a metric run
         if h.shape != (len(xy),):
             h = h.reshape(-1) if h.size == len(xy) else h
             if h.shape != (len(xy),):
@@ -74,6 +79,7 @@ def sampler(function: Callable[[np.ndarray], Any]) -> Callable[[np.ndarray], np.
                                  f"it must return one size per point, shape ({len(xy)},)")
         return np.ascontiguousarray(h)
 
+    sample.function = function  # type: ignore[attr-defined]
     return sample
 
 
@@ -83,6 +89,8 @@ def resolve(size: Any) -> tuple[dict[str, Any], Callable | None]:
         return {}, None
     if isinstance(size, Background):
         return size.settings(), None
+    if isinstance(size, Metric):
+        return {}, size
     if isinstance(size, bool):
         raise InputError(f"size: {size!r} is not a size")
     if isinstance(size, numbers.Real):
@@ -97,4 +105,4 @@ def resolve(size: Any) -> tuple[dict[str, Any], Callable | None]:
     raise InputError(f"size: expected a number, an expression, a callable or a Background, got {type(size).__name__}")
 
 
-__all__ = ["Background", "resolve", "sampler"]
+__all__ = ["Background", "Metric", "from_sizes", "resolve", "sampler", "write_vtu"]

@@ -100,8 +100,9 @@ struct CaseConfig {
     double hmin = 0.0;
     double hmax = std::numeric_limits<double>::infinity();
     double max_anisotropy = std::numeric_limits<double>::infinity();
-    // The metric gradation beta (> 1, the size ratio per unit metric length; 0 = off), applied to
-    // metrics given on a background mesh (spacing.file) along its edges (spacing/metric_gradation.hpp).
+    // The metric gradation beta (> 1, the size ratio per unit metric length; 0 = off), in metric space,
+    // along a background mesh's edges: the file's, or a grid's for expressions and functions
+    // (spacing/metric_gradation.hpp, app/config/case_spacing.cpp).
     double metric_gradation = 0.0;
     bool metric() const { return field == SpacingKind::Metric || field == SpacingKind::Hessian; }
     // A field given by the caller (the Python API: a size callable), not a case key. When set it

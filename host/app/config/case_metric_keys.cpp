@@ -184,11 +184,6 @@ void check_metric_keys(const Reader& r, const toml::table& root, CaseConfig& c, 
              node("hmax") != nullptr ? node("hmax") : node("hmin"),
              fmt::format("spacing.hmax must be larger than spacing.hmin, got hmin {} and hmax {}", s.hmin, s.hmax));
   }
-  if (s.metric_gradation > 0.0 && file == nullptr) {
-    r.fail("spacing.metric_gradation", node("metric_gradation"),
-           "spacing.metric_gradation needs the metric on a background mesh (spacing.file); "
-           "a metric given by expressions is used as given");
-  }
 }
 
 }  // namespace pdmesh::case_detail

@@ -60,6 +60,22 @@ std::unique_ptr<MetricField> mesh_field(const CaseConfig& config, MetricMeshData
   return make_mesh_metric_field(std::move(data));
 }
 
+// The cells per side of the grid over the geometry's extents on which a metric given by expressions is
+// sampled for spacing.metric_gradation: the grid's metric, interpolated log-Euclidean, replaces the
+// expressions. As fine as the data of issue 37's tanh layer (1024 x 1024).
+constexpr int kGradationGrid = 1024;
+
+// With spacing.metric_gradation, a metric given by expressions (`field`) sampled on a grid over the
+// extents, graded along the grid's edges; otherwise `field` itself.
+std::unique_ptr<MetricField> graded(const CaseConfig& config, const GeometryTree& tree,
+                                    std::unique_ptr<MetricField> field, std::string what) {
+  if (!(config.spacing.metric_gradation > 0.0)) return field;
+  MetricMeshData data;
+  sample_metric_grid(*field, tree.geometry().extents, kGradationGrid, data.points, data.triangles, data.metrics);
+  data.what = std::move(what);
+  return mesh_field(config, std::move(data));
+}
+
 }  // namespace
 
 std::unique_ptr<MetricField> make_case_metric(const CaseConfig& config, const GeometryTree& tree) {
@@ -70,9 +86,14 @@ std::unique_ptr<MetricField> make_case_metric(const CaseConfig& config, const Ge
                         is_medit(s.file) ? load_medit_metric(s.file, s.sol) : load_metric_mesh(s.file, s.array));
     }
     if (!s.m11.empty()) {
-      return std::make_unique<ExpressionMetricField>(ExpressionMetricField::Form::components, s.m11, s.m12, s.m22);
+      return graded(
+          config, tree,
+          std::make_unique<ExpressionMetricField>(ExpressionMetricField::Form::components, s.m11, s.m12, s.m22),
+          "the metric of spacing.m11, m12, m22 on a grid");
     }
-    return std::make_unique<ExpressionMetricField>(ExpressionMetricField::Form::sizes, s.h1, s.h2, s.angle);
+    return graded(config, tree,
+                  std::make_unique<ExpressionMetricField>(ExpressionMetricField::Form::sizes, s.h1, s.h2, s.angle),
+                  "the metric of spacing.h1, h2, angle on a grid");
   }
   if (s.field != SpacingKind::Hessian) return nullptr;
   HessianMetricOptions options;
@@ -81,12 +102,16 @@ std::unique_ptr<MetricField> make_case_metric(const CaseConfig& config, const Ge
   options.hmax = s.hmax;
   options.max_anisotropy = s.max_anisotropy;
   if (s.file.empty()) {
-    // The Hessian by central differences of a step 1e-5 of the geometry's extent (the rounding noise,
-    // ~1e-16 |u| / step², stays far below the scales of a solution's features), and D by the midpoint
-    // rule on a 1024 x 1024 grid over the extents (tools/eval's metric.py).
+    // The Hessian by central differences of a step of 2/1024 of the geometry's extent, and D by the
+    // midpoint rule on a 1024 x 1024 grid over the extents (as tools/eval's metric.py): u's curvature
+    // at the scale a least-squares fit sees in data sampled on that grid (its patch reaches about two
+    // cells). A step at rounding's scale resolves what no mesh of the complexity follows: at the
+    // inflection of a curved layer one eigenvalue vanishes, det|H| with it, and the metric leaves a
+    // hole in the node density there (docs/metric-fields.md, "Hessians and the L^p-optimal metric").
     const Box box = tree.geometry().extents;
     const double extent = std::max(box.hi.x - box.lo.x, box.hi.y - box.lo.y);
-    return std::make_unique<HessianMetricField>(s.function, box, options, 1e-5 * extent, 1024);
+    return graded(config, tree, std::make_unique<HessianMetricField>(s.function, box, options, extent / 512, 1024),
+                  "the hessian metric of spacing.function on a grid");
   }
   ScalarMeshData data = load_scalar_mesh(s.file, s.array);
   MetricMeshData metric;

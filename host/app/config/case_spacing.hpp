@@ -23,7 +23,8 @@ std::unique_ptr<SpacingField> make_case_spacing(const CaseConfig& config, const 
 // The metric field of spacing.field = "metric" (expressions, a .vtu/.msh with a 3-component array, or a
 // Medit .mesh + .sol) or "hessian" (the L2-optimal metric of spacing.function, or of the scalar data
 // spacing.array on spacing.file, over the geometry's extents), with spacing.metric_gradation applied
-// along the background mesh's edges; null for the isotropic fields. Throws InputError naming the
+// along the background mesh's edges (expressions and functions: sampled on a grid over the extents
+// first); null for the isotropic fields. Throws InputError naming the
 // file, key or expression and the value.
 std::unique_ptr<MetricField> make_case_metric(const CaseConfig& config, const GeometryTree& tree);
 

@@ -1,0 +1,128 @@
+#!/usr/bin/env python3
+"""Mesh adaptation to a solution: -Δu = f on the unit square, solved by P1 finite elements with
+scikit-fem, re-meshed by pdmesh in the L2-optimal metric of the solution's Hessian, repeated.
+
+The exact solution is issue 37's layer, u = tanh(k (y - 0.5 - 0.25 sin 2πx)) (k = 100 in the issue;
+default here k = 50), with f = -Δu and u on the boundary. Each loop
+1. solves for the P1 solution u_h on the current mesh (scikit-fem),
+2. writes u_h to a .vtu (pdmesh.metric.write_vtu) and re-meshes with pdmesh's Hessian metric of that
+   data (case keys spacing.field = "hessian", spacing.file, spacing.array = "u",
+   spacing.complexity = C: the Hessian by a least-squares quadratic fit at every vertex, the
+   L2-optimal metric M = D det|H|^(-1/6) |H| whose unit mesh has about 2C/√3 vertices, graded
+   in metric space with β = 1.5 along the data mesh's edges: spacing.metric_gradation),
+3. prints the vertex count N_v, e_L2 = ||u_h - u||_L2 against the exact solution and e_L2·N_v.
+Each mesh starts from scratch: pdmesh's API does not take the previous nodes as a start.
+
+    .venv/bin/python examples/adapt_poisson.py [--k 50] [--complexity 1000] [--loops 5] [--out DIR]
+
+needs scikit-fem (pip install "pdmesh[adapt]", or .venv/bin/pip install scikit-fem). It stops when
+N_v and e_L2·N_v change by less than --tolerance (default 10 %) from one loop to the next.
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import tempfile
+from dataclasses import dataclass
+
+import numpy as np
+
+import pdmesh
+from pdmesh.metric import write_vtu
+
+SQUARE = [np.array([[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]])]
+
+
+@dataclass
+class Layer:
+    """u = tanh(k φ), φ = y - 0.5 - 0.25 sin 2πx, and f = -Δu."""
+
+    k: float = 50.0
+
+    def u(self, x, y):
+        return np.tanh(self.k * (y - 0.5 - 0.25 * np.sin(2 * np.pi * x)))
+
+    def f(self, x, y):
+        phi = y - 0.5 - 0.25 * np.sin(2 * np.pi * x)
+        t = np.tanh(self.k * phi)
+        s2 = 1.0 - t * t  # sech²
+        grad2 = (0.5 * np.pi * np.cos(2 * np.pi * x)) ** 2 + 1.0  # |∇φ|²
+        lap_phi = np.pi ** 2 * np.sin(2 * np.pi * x)  # Δφ
+        # Δ tanh(kφ) = k sech²(kφ) Δφ - 2 k² tanh(kφ) sech²(kφ) |∇φ|²
+        return -(self.k * s2 * lap_phi - 2 * self.k ** 2 * t * s2 * grad2)
+
+
+def solve(points: np.ndarray, triangles: np.ndarray, layer: Layer) -> tuple[np.ndarray, float]:
+    """The P1 solution at the points and its L2 error against the exact solution."""
+    import skfem
+    from skfem.models.poisson import laplace
+
+    mesh = skfem.MeshTri(np.ascontiguousarray(points.T), np.ascontiguousarray(triangles.T, dtype=np.int64))
+    basis = skfem.Basis(mesh, skfem.ElementTriP1(), intorder=4)
+
+    @skfem.LinearForm
+    def load(v, w):
+        return layer.f(w.x[0], w.x[1]) * v
+
+    a = laplace.assemble(basis)
+    b = load.assemble(basis)
+    boundary = mesh.boundary_nodes()
+    u = np.zeros(basis.N)
+    u[boundary] = layer.u(*mesh.p[:, boundary])
+    u = skfem.solve(*skfem.condense(a, b, x=u, D=boundary))
+
+    fine = skfem.Basis(mesh, skfem.ElementTriP1(), intorder=8)
+
+    @skfem.Functional
+    def squared_error(w):
+        return (w["uh"] - layer.u(w.x[0], w.x[1])) ** 2
+
+    error = float(np.sqrt(squared_error.assemble(fine, uh=fine.interpolate(u))))
+    return u, error
+
+
+def remesh(points, triangles, u, complexity, directory, seed):
+    """pdmesh's mesh of the square in the Hessian metric of the data u on (points, triangles)."""
+    path = os.path.join(directory, "u.vtu")
+    write_vtu(path, points, triangles, {"u": u})
+    mesh = pdmesh.generate(SQUARE, device="host", seed=seed,
+                           spacing={"field": "hessian", "file": path, "array": "u", "complexity": complexity,
+                                    "hmin": 1e-5, "hmax": 0.3, "gradation": 0,
+                                    "metric_gradation": 1.5})
+    return np.array(mesh.points), np.array(mesh.triangles)
+
+
+def adapt(layer: Layer, complexity: float, loops: int, tolerance: float = 0.1, start: float = 0.05, seed: int = 1,
+          report=print) -> list[dict]:
+    """The adaptation loop; returns one row per loop (vertices, e_L2, e_L2·N_v), the first on the
+    uniform start mesh of size `start`."""
+    mesh = pdmesh.generate(SQUARE, size=start, device="host", seed=seed)
+    points, triangles = np.array(mesh.points), np.array(mesh.triangles)
+    rows = []
+    with tempfile.TemporaryDirectory(prefix="pdmesh-adapt-") as directory:
+        for loop in range(loops + 1):
+            u, error = solve(points, triangles, layer)
+            rows.append({"loop": loop, "vertices": len(points), "e_L2": error, "e_L2_Nv": error * len(points)})
+            report(f"loop {loop}: N_v = {len(points):6d}   e_L2 = {error:.3e}   e_L2*N_v = {error * len(points):.3f}")
+            if loop >= 2 and all(abs(rows[-1][key] / rows[-2][key] - 1.0) < tolerance
+                                 for key in ("vertices", "e_L2_Nv")):
+                report(f"converged after {loop} adaptations (N_v and e_L2*N_v within {tolerance:.0%})")
+                break
+            if loop < loops:
+                points, triangles = remesh(points, triangles, u, complexity, directory, seed)
+    return rows
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    parser.add_argument("--k", type=float, default=50.0, help="the layer's steepness (issue 37: 100)")
+    parser.add_argument("--complexity", type=float, default=1000.0, help="C: about 2C/sqrt(3) vertices")
+    parser.add_argument("--loops", type=int, default=5, help="the most adaptations")
+    parser.add_argument("--tolerance", type=float, default=0.1)
+    args = parser.parse_args()
+    adapt(Layer(args.k), args.complexity, args.loops, args.tolerance)
+
+
+if __name__ == "__main__":
+    main()
