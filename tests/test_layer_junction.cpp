@@ -197,7 +197,8 @@ TEST_CASE("the wall is refined for the graded thickness where a collision thins 
   // layer itself ends at the ray's thickness: a quarter to 1.25 of the stack's next).
   std::vector<double> top_height(m.nodes.size(), -1.0);
   for (const LayerRay& r : m.rays)
-    if (!r.nodes.empty()) top_height[r.nodes.back()] = r.correction * dist(m.nodes[r.nodes.back()], m.nodes[r.wall_node]);
+    if (!r.nodes.empty())
+      top_height[r.nodes.back()] = r.correction * dist(m.nodes[r.nodes.back()], m.nodes[r.wall_node]);
   double worst = 0.0;
   const std::vector<int>& front = m.fronts.at(0).nodes;
   for (std::size_t i = 0; i < front.size(); ++i) {

@@ -207,10 +207,10 @@ TEST_CASE("pdmesh mesh triangulates in the metric and measures in it", "[metric]
 
 TEST_CASE("cleanup.enabled = false leaves a metric run's triangulation in the metric as it is", "[metric][case][cli]") {
   const fs::path out = pdmesh_test::fresh_path("metric_case_no_cleanup");
-  const auto r = pdmesh_test::run_pdmesh(fmt::format(
-      "mesh '{}/cases/aniso/linear/case.toml' --out '{}' --formats msh --set simulation.iterations=200 "
-      "--set cleanup.enabled=false",
-      PDMESH_SOURCE_DIR, out.string()));
+  const auto r = pdmesh_test::run_pdmesh(
+      fmt::format("mesh '{}/cases/aniso/linear/case.toml' --out '{}' --formats msh --set simulation.iterations=200 "
+                  "--set cleanup.enabled=false",
+                  PDMESH_SOURCE_DIR, out.string()));
   INFO(r.output);
   REQUIRE(r.status == 0);
   CHECK_THAT(r.output, !Contains("cleanup in the metric"));
@@ -220,7 +220,8 @@ TEST_CASE("cleanup.enabled = false leaves a metric run's triangulation in the me
   fs::remove_all(out);
 }
 
-TEST_CASE("the cleanup in the metric reaches issue 37's targets on the linear and polar-2 cases", "[metric][case][cli]") {
+TEST_CASE("the cleanup in the metric reaches issue 37's targets on the linear and polar-2 cases",
+          "[metric][case][cli]") {
   // With the particles' nodes as they are, 98.9 % / Q min 0.561 (linear) and 82.1 % / 0.086
   // (polar-2); the targets: >= 99.5 % of the edges in [1/sqrt2, sqrt2], Q min >= 0.75 and the
   // element count within 10 % of 4C/sqrt3.

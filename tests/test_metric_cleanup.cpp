@@ -106,7 +106,8 @@ Cleaned clean_and_verify(const Geometry& g, const GeometryTree& tree, const Node
   for (std::size_t k = 0; k < out.curve_nodes.size(); ++k) {
     double last_arc = -1.0;
     for (int a : out.curve_nodes[k]) {
-      const CurvePoint cp = closest_on_curve_range(g.curves[k], out.x[a], std::max(0.0, last_arc), g.curves[k].length());
+      const CurvePoint cp =
+          closest_on_curve_range(g.curves[k], out.x[a], std::max(0.0, last_arc), g.curves[k].length());
       CHECK(cp.distance <= 1e-12);
       CHECK(cp.arc > last_arc);
       last_arc = cp.arc;

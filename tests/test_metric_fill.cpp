@@ -59,7 +59,7 @@ TEST_CASE("CurveMetricSpacing is the length of a unit metric step along the curv
   // h = 0.1 along x, 0.01 along y.
   const ConstantMetricField metric(metric_from_sizes(0.1, 0.01, 0.0));
   const CurveMetricSpacing along(tree, metric);
-  CHECK(along.at({0.5, 0.0}) == Approx(0.1));   // bottom side: along x
+  CHECK(along.at({0.5, 0.0}) == Approx(0.1));    // bottom side: along x
   CHECK(along.at({0.0, 0.37}) == Approx(0.01));  // left side: along y
   // Placed at unit metric length: 10 edges on each horizontal side, 100 on each vertical one.
   const CurveStations stations = spacing_stations(g, along);

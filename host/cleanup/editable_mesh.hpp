@@ -58,7 +58,7 @@ class EditableMesh {
   // The triangle score of quality() and of the journal from now on (nullptr: min_angle_sine). Set it
   // before any transaction is opened; it must outlive the mesh's use.
   void set_score(const TriangleScore* score) { score_ = score; }
-  double aspect(int t) const;   // aspect ratio R / (2 r) of triangle t
+  double aspect(int t) const;  // aspect ratio R / (2 r) of triangle t
   // Boundary vertex a: the arc position of its neighbour along the curve before (side 0) or after
   // (side 1) it; a boundary vertex slides strictly between the two.
   double neighbour_arc(int a, int side) const;

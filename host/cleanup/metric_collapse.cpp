@@ -49,8 +49,7 @@ bool MetricOps::centre_on_curve(int a) {
 }
 
 bool MetricOps::collapse_edge(int a, int b) {
-  const double limit =
-      std::max(options_.collapse_max_length, std::max(longest_edge(a, b), longest_edge(b, a)));
+  const double limit = std::max(options_.collapse_max_length, std::max(longest_edge(a, b), longest_edge(b, a)));
   const Vec2 mid = metric_.midpoint(a, b);
   // Removes `gone` into `kept` (moved to the midpoint when `to_mid`) in an open transaction; false
   // (rolled back) when not allowed.

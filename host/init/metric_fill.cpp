@@ -175,10 +175,10 @@ std::size_t metric_fill(const GeometryTree& tree, const MetricField& metric, con
       const Metric mc = metric.at(c);
       if (grid.any_within(nodes.x, mc, c, options.min_distance) || !clears_curves(mc, c)) continue;
       if (options.max_nodes > 0 && added >= options.max_nodes)
-        throw LimitError(fmt::format(
-            "the metric field asks for more than --max-nodes {} nodes (the interior fill at unit metric "
-            "spacing); coarsen the metric or raise --max-nodes",
-            options.max_nodes));
+        throw LimitError(
+            fmt::format("the metric field asks for more than --max-nodes {} nodes (the interior fill at unit metric "
+                        "spacing); coarsen the metric or raise --max-nodes",
+                        options.max_nodes));
       const int id = nodes.add(c, q.at(c), NodeKind::Interior, -1);
       grid.add(c, id);
       front.push_back(id);

@@ -43,10 +43,10 @@ struct MetricFillOptions {
 // rows of defects): from each node in turn, six candidates at one metric step in the directions of a
 // hexagonal lattice of the metric there, one of them along the eigenvector of its larger size (so that
 // rows run along a layer, parallel to a wall aligned with it). Where the lattice cannot reach (a region
-// cut off from the seed), the other boundary nodes seed in turn. The step is measured in the metric at its midpoint, so that it stays a unit step
-// where the metric grades. A candidate is placed when it is inside the domain and clears the nodes and
-// the curves (MetricFillOptions). Deterministic. Returns the number of nodes added; the node density
-// follows sqrt(det M): about 2 / sqrt(3) nodes per unit metric area.
+// cut off from the seed), the other boundary nodes seed in turn. The step is measured in the metric at its midpoint, so
+// that it stays a unit step where the metric grades. A candidate is placed when it is inside the domain and clears the
+// nodes and the curves (MetricFillOptions). Deterministic. Returns the number of nodes added; the node density follows
+// sqrt(det M): about 2 / sqrt(3) nodes per unit metric area.
 std::size_t metric_fill(const GeometryTree& tree, const MetricField& metric, const SpacingField& q, NodeSet& nodes,
                         const MetricFillOptions& options = {});
 

@@ -41,8 +41,14 @@ class MetricPlanner {
  public:
   MetricPlanner(const NodeSet& nodes, const std::vector<std::vector<double>>& arcs, const GeometryTree& tree,
                 const MetricField& metric, const PopulationThresholds& t)
-      : nodes_(nodes), arcs_(arcs), tree_(tree), metric_(metric), t_(t), m_(metrics(nodes, metric)),
-        graph_(metric_graph(nodes.x, m_)), used_(nodes.size(), 0) {
+      : nodes_(nodes),
+        arcs_(arcs),
+        tree_(tree),
+        metric_(metric),
+        t_(t),
+        m_(metrics(nodes, metric)),
+        graph_(metric_graph(nodes.x, m_)),
+        used_(nodes.size(), 0) {
     plan_.remove.assign(nodes.size(), 0);
   }
 
@@ -163,9 +169,8 @@ class MetricPlanner {
         if (len < t_.merge) short_edges.push_back({len, a, b});
       }
     }
-    std::sort(short_edges.begin(), short_edges.end(), [](const Edge& e, const Edge& f) {
-      return std::tie(e.length, e.a, e.b) < std::tie(f.length, f.a, f.b);
-    });
+    std::sort(short_edges.begin(), short_edges.end(),
+              [](const Edge& e, const Edge& f) { return std::tie(e.length, e.a, e.b) < std::tie(f.length, f.a, f.b); });
     for (const Edge& e : short_edges) {
       if (used(e.a) || used(e.b)) continue;
       const bool a_in = is(e.a, NodeKind::Interior), b_in = is(e.b, NodeKind::Interior);

@@ -122,17 +122,13 @@ PopulationCounts run_population_event(NodeSet& nodes, BoundaryHandler& boundary,
   return plan.counts;
 }
 
-std::optional<PopulationCounts> PopulationTracker::after_iteration(const PopulationOptions& options, int iteration,
-                                                                   int iterations, NodeSet& nodes,
-                                                                   BoundaryHandler& boundary,
-                                                                   const SpacingField& spacing,
-                                                                   std::vector<int>* old_of_new,
-                                                                   const MetricField* metric) {
+std::optional<PopulationCounts> PopulationTracker::after_iteration(
+    const PopulationOptions& options, int iteration, int iterations, NodeSet& nodes, BoundaryHandler& boundary,
+    const SpacingField& spacing, std::vector<int>* old_of_new, const MetricField* metric) {
   if (!population_event_due(options, schedule, iteration, iterations)) return std::nullopt;
   const auto start = std::chrono::steady_clock::now();
-  const PopulationCounts counts =
-      run_population_event(nodes, boundary, spacing, population_thresholds(options, iteration, iterations), old_of_new,
-                           metric);
+  const PopulationCounts counts = run_population_event(
+      nodes, boundary, spacing, population_thresholds(options, iteration, iterations), old_of_new, metric);
   seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   ++events;
   inserted += counts.inserted();
