@@ -215,3 +215,17 @@ TEST_CASE("the core's spacing at a front node is at least 0.8 of its longest fro
     CHECK(layered->core.spacing.given->at(p) >= std::min(spacing.field().at(p), 0.8 * longest) - 1e-12);
   }
 }
+
+TEST_CASE("triangles keep the rays within 5 degrees of their walls' normals, quads do not", "[app][layers]") {
+  // A split wall cell has an angle of 90 degrees + its ray's tilt from the segment's normal
+  // (LayerSettings::max_ray_tilt_deg); quads keep the smoothed rays as they are.
+  for (const bool quads : {false, true}) {
+    const CaseConfig c = layered_case(fs::temp_directory_path() / "pdmesh_test_layers_tilt", "wall", quads);
+    const MeshInputs inputs(c);
+    const SpacingStage spacing(c, inputs);
+    const auto layered = build_layers(c, inputs, spacing);
+    const LayerSection& s = layered->sections.at(0);
+    CHECK(s.settings.split_quads == !quads);
+    CHECK(s.settings.max_ray_tilt_deg == (quads ? 0.0 : 5.0));
+  }
+}

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <numbers>
 #include <string>
 #include <vector>
 
@@ -322,4 +323,39 @@ TEST_CASE("jagged star-shaped walls: valid layers whatever the collisions", "[la
     CHECK(q.first_height_within_2pct == 1.0);
     CHECK(q.max_thickness > 0.1);
   }
+}
+
+TEST_CASE("max_ray_tilt: split wall cells of a 12-gon stay right-angled outside the fans", "[layers]") {
+  // Each vertex turns by 30 degrees, below the fan angle: the bisector rays are 15 degrees off
+  // both segments' normals and the split thin cells have 105 degrees. With max_ray_tilt 5 every
+  // vertex gets a fan and the cells between them are rectangles.
+  const Geometry g = build_geometry({box({-5, -5}, {5, 5}, 4, "far"), circle({0, 0}, 1.0, 12, "wall")});
+  LayerSettings s = settings(1e-3, 1.2, 0.0, 8);
+  s.split_quads = true;
+  auto max_outside_fans = [](const LayerMesh& m) {
+    double lo = 1.0;
+    for (const LayerCell& c : m.cells) {
+      if (c.kind == LayerCellKind::Fan) continue;
+      for (int i = 0; i < 3; ++i) {
+        const Vec2 u = m.nodes[c.v[(i + 1) % 3]] - m.nodes[c.v[i]], w = m.nodes[c.v[(i + 2) % 3]] - m.nodes[c.v[i]];
+        lo = std::min(lo, dot(u, w) / (norm(u) * norm(w)));
+      }
+    }
+    return std::acos(lo) * 180.0 / std::numbers::pi;
+  };
+  const LayerMesh plain = build_boundary_layers(g, {1}, s);
+  CHECK(plain.fan_sizes.empty());
+  CHECK(max_outside_fans(plain) > 104.0);
+  s.max_ray_tilt_deg = 5.0;
+  const LayerMesh m = build_boundary_layers(g, {1}, s);
+  CHECK(m.fan_sizes.size() == 12);
+  CHECK(max_outside_fans(m) < 90.5);
+  const LayerMeasures q = measure_layers(m, s.first_height);
+  CHECK(q.first_height_within_2pct == 1.0);
+  CHECK(q.inverted_cells == 0);
+  CHECK(q.quads == 0);
+  // Out of range: an input error naming the value.
+  s.max_ray_tilt_deg = 45.0;
+  CHECK_THAT(pdmesh_test::error_message<InputError>([&] { build_boundary_layers(g, {1}, s); }),
+             Catch::Contains("max_ray_tilt = 45 must be in [0, 45) degrees"));
 }

@@ -43,6 +43,8 @@ void check_layer_settings(const LayerSettings& s) {
     fail(fmt::format("fan_angle = {} must be in (0, 180) degrees", s.fan_angle_deg));
   if (!(s.fan_elements_per_pi >= 1.0 && s.fan_elements_per_pi <= 100.0))
     fail(fmt::format("fan_elements_per_pi = {} must be in [1, 100]", s.fan_elements_per_pi));
+  if (!(s.max_ray_tilt_deg >= 0.0 && s.max_ray_tilt_deg < 45.0))
+    fail(fmt::format("max_ray_tilt = {} must be in [0, 45) degrees", s.max_ray_tilt_deg));
   if (s.smoothing_passes < 0 || s.smoothing_passes > 1000)
     fail(fmt::format("smoothing_passes = {} must be in 0..1000", s.smoothing_passes));
   if (!(s.max_jump > 1.0 && s.max_jump <= 10.0)) fail(fmt::format("max_jump = {} must be in (1, 10]", s.max_jump));

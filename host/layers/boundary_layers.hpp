@@ -23,6 +23,13 @@ struct LayerSettings {
   double fan_angle_deg = 45.0;
   double fan_elements_per_pi = 5.0;  // a fan's elements: ceil(this x turn / pi), at least 2
   int smoothing_passes = 8;          // Laplacian passes over the normals (not at fans)
+  // The largest angle (degrees) between a ray and the normals of its two wall segments; 0: none
+  // beyond the smoothing's own limits. A thin wall cell whose side ray is tilted by a from its
+  // segment's normal has an angle of 90 + a, and so has either half of its split (the pipeline
+  // sets it with split quads). A convex vertex turning by more than twice this gets a fan (rays
+  // along both segments' normals) and the smoothing keeps every other ray within this of both
+  // normals. Must be in [0, 45).
+  double max_ray_tilt_deg = 0.0;
   double max_jump = 1.3;             // largest thickness ratio between neighbouring wall nodes
   // Largest change of thickness per unit distance between neighbouring rays (their wall nodes'
   // distance plus the arc between their directions at the thinner one's height): the front's slope

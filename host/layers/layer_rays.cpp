@@ -49,6 +49,9 @@ RaySet make_rays(const std::vector<WallChain>& chains, const Geometry& geometry,
                  const CoreSpacing& core_spacing) {
   RaySet set;
   const double fan_turn = settings.fan_angle_deg * std::numbers::pi / 180.0;
+  const double max_tilt = settings.max_ray_tilt_deg * std::numbers::pi / 180.0;
+  // Both normals of a ray's segments within max_tilt: the cosine to each at least this.
+  const double min_cos = max_tilt > 0.0 ? std::max(0.3, std::cos(max_tilt)) : 0.3;
   const double target =
       settings.layers > 0 ? stack_height(settings.first_height, settings.growth, settings.layers) : settings.thickness;
   for (const WallChain& chain : chains) {
@@ -74,7 +77,7 @@ RaySet make_rays(const std::vector<WallChain>& chains, const Geometry& geometry,
       if (v.has_in && v.has_out) {
         // The turn from the arriving to the leaving direction equals the turn of the normals.
         v.turn = std::atan2(cross(v.n_in, v.n_out), dot(v.n_in, v.n_out));
-        if (-v.turn > fan_turn) {
+        if (-v.turn > fan_turn || (max_tilt > 0.0 && -v.turn > 2.0 * max_tilt)) {
           v.fan = std::max(
               2, static_cast<int>(std::ceil(settings.fan_elements_per_pi * -v.turn / std::numbers::pi - 1e-9)));
           // Enough elements that the fan's front edges at the full thickness are no longer than
@@ -107,12 +110,13 @@ RaySet make_rays(const std::vector<WallChain>& chains, const Geometry& geometry,
         const int prev = (i + n - 1) % n, next = (i + 1) % n;
         if (!chain.closed && (i == 0 || i == n - 1)) continue;
         const Vec2 s = normalized(2.0 * dir[i] + near_ray(prev, true) + near_ray(next, false));
-        // Keep the ray clearly on the domain side of both its wall segments, and its first node's
+        // Keep the ray clearly on the domain side of both its wall segments (within max_tilt of
+        // both normals where that is set), and its first node's
         // heights over both within 1 % of the mean (a ray tilted from the bisector is higher over
         // one segment than over the other): the largest step towards s that does.
         auto fits = [&](Vec2 d) {
           const double a = dot(d, vx[i].n_in), b = dot(d, vx[i].n_out), c = 0.5 * (a + b);
-          return a > 0.3 && b > 0.3 && std::abs(a / c - 1.0) <= 0.01 && std::abs(b / c - 1.0) <= 0.01;
+          return a > min_cos && b > min_cos && std::abs(a / c - 1.0) <= 0.01 && std::abs(b / c - 1.0) <= 0.01;
         };
         for (const double w : {1.0, 0.5, 0.25, 0.125}) {
           const Vec2 d = normalized((1.0 - w) * dir[i] + w * s);

@@ -92,6 +92,10 @@ std::vector<double> longest_front_edge(const LayerMesh& m) {
 // spacing is below growth x the layer height / this.
 constexpr double kCoreStopSlack = 1.5;
 
+// With elements = "triangles": the largest tilt (degrees) of a ray from its wall segments' normals
+// (LayerSettings::max_ray_tilt_deg), so that the split wall cells stay within about 90 + this.
+constexpr double kSplitRayTilt = 5.0;
+
 void check_formats(const CaseConfig& config) {
   for (const std::string& f : config.output.formats)
     if (f == "msh22" || f == "triangle")
@@ -131,6 +135,9 @@ std::unique_ptr<LayeredCase> build_layers(const CaseConfig& config, const MeshIn
     s.settings.thickness = b.thickness;
     s.settings.layers = b.layers;
     s.settings.split_quads = !b.quads;
+    // Split wall cells with at most kSplitRayTilt + 90 degrees: their rays within that of their
+    // segments' normals, fans where the wall turns more.
+    if (s.settings.split_quads) s.settings.max_ray_tilt_deg = kSplitRayTilt;
     s.settings.fan_elements_per_pi = fan_elements_matching_core(b.growth);
     check_layer_settings(s.settings);
     s.geometry = geometry;
