@@ -30,7 +30,7 @@ struct LayerSettings {
   // along both segments' normals) and the smoothing keeps every other ray within this of both
   // normals. Must be in [0, 45).
   double max_ray_tilt_deg = 0.0;
-  double max_jump = 1.3;             // largest thickness ratio between neighbouring wall nodes
+  double max_jump = 1.3;  // largest thickness ratio between neighbouring wall nodes
   // Largest change of thickness per unit distance between neighbouring rays (their wall nodes'
   // distance plus the arc between their directions at the thinner one's height): the front's slope
   // against the wall, so that dense wall nodes do not let the front drop along the rays.
