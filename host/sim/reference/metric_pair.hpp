@@ -29,6 +29,20 @@ inline Sym2 pair_factor(double m11, double m12, double m22) {
   return Sym2{m11 * inv, m12 * inv, m22 * inv, std::sqrt(s)};
 }
 
+// A node's size tensor S = M^(-1/2) as the upper triangle [[a, b], [b, c]]: its bubble is the ellipse
+// S * unit disc (the study tools kick nodes by S times a random vector).
+struct SizeTensor {
+  double a = 0.0, b = 0.0, c = 0.0;
+};
+
+// With s = sqrt(det M) and t = sqrt(tr M + 2 s), M^(1/2) = (M + s I) / t, so M^(-1/2) = adj(M + s I) / (s t).
+inline SizeTensor size_tensor(double m11, double m12, double m22) {
+  const double s = std::sqrt(m11 * m22 - m12 * m12);
+  const double t = std::sqrt(m11 + m22 + 2.0 * s);
+  const double inv = 1.0 / (s * t);
+  return SizeTensor{(m22 + s) * inv, -m12 * inv, (m11 + s) * inv};
+}
+
 // The largest size of a metric, 1 / sqrt(lambda_min) = sqrt(lambda_max / det): the half-axis of the
 // bubble's long side, which bounds |d| for every pair within metric distance 1 (see pair_distance2).
 inline double largest_size(double m11, double m12, double m22) {
