@@ -1,8 +1,8 @@
 // Whole runs in a metric (SimOptions::metric): run_simulation with a constant M = I / q^2 repeats the
 // isotropic run with spacing q bit for bit; a run in UGAWG's linear metric relaxes to nodes at unit
-// metric length from their nearest neighbours; its stopping rule measures in the metric; the host driver over the OpenCL step backend repeats
-// the reference's metric run bit for bit in double; population control measures in the metric; the
-// device-resident simulator refuses a metric.
+// metric length from their nearest neighbours; its stopping rule measures in the metric; the host
+// driver over the OpenCL step backend repeats the reference's metric run bit for bit in double;
+// population control measures in the metric; the device-resident simulator refuses a metric.
 #include <catch2/catch.hpp>
 
 #include <algorithm>
