@@ -1,42 +1,37 @@
 // Metric mode on the device (mirror of host/sim/reference/forces_metric.cpp, time_step.cpp and
 // metric_pair.hpp): particles as ellipses, each node with its metric M = [[m11, m12], [m12, m22]].
-// A pair is measured in the mean of the two nodes' size tensors S = M^(-1/2); the force is eq. 5.11
+// A pair is measured in the geometric mean of the two nodes' metrics; the force is eq. 5.11
 // with sigma = 1 at the pair's metric distance rho, along d; r0 is the smallest rho in the half-plane
 // of F measured in the pair's metric, and |F| is measured in the node's metric. The same expressions
 // in the same order as the reference, one neighbour at a time in list order, so double results agree
 // with it bit for bit (no contraction). The neighbour rows come from the StepBackend's list.
 #pragma OPENCL FP_CONTRACT OFF
 
-// A size tensor [[a, b], [b, c]] as (a, b, c, unused).
+// A node's pair factor (N = M / sqrt(det M) as [[a, b], [b, c]], w = (det M)^(1/4)) as (a, b, c, w).
 #if PDMESH_DOUBLE
 #define REAL4 double4
 #else
 #define REAL4 float4
 #endif
 
-// S = M^(-1/2) = adj(M + s I) / (s t), s = sqrt(det M), t = sqrt(tr M + 2 s) (reference::size_tensor).
-REAL4 metric_size_tensor(const REAL m11, const REAL m12, const REAL m22) {
+// reference::pair_factor.
+REAL4 metric_pair_factor(const REAL m11, const REAL m12, const REAL m22) {
   const REAL s = sqrt(m11 * m22 - m12 * m12);
-  const REAL t = sqrt(m11 + m22 + (REAL)2 * s);
-  const REAL inv = (REAL)1 / (s * t);
-  return (REAL4)((m22 + s) * inv, -m12 * inv, (m11 + s) * inv, (REAL)0);
+  const REAL inv = (REAL)1 / s;
+  return (REAL4)(m11 * inv, m12 * inv, m22 * inv, sqrt(s));
 }
 
-// rho^2 = |S^-1 d|^2 with S the mean of si and sj (reference::pair_distance2).
+// rho^2 = d^T (M_i # M_j) d = w_i w_j (d^T G d) / sqrt(det G), G = N_i + N_j (reference::pair_distance2).
 REAL metric_pair_distance2(const REAL4 si, const REAL4 sj, const REAL dx, const REAL dy) {
-  const REAL a = REAL_C(0.5) * (si.x + sj.x), b = REAL_C(0.5) * (si.y + sj.y), c = REAL_C(0.5) * (si.z + sj.z);
-  const REAL inv_det = (REAL)1 / (a * c - b * b);
-  const REAL ex = (c * dx - b * dy) * inv_det;
-  const REAL ey = (a * dy - b * dx) * inv_det;
-  return ex * ex + ey * ey;
+  const REAL a = si.x + sj.x, b = si.y + sj.y, c = si.z + sj.z;
+  const REAL dgd = a * dx * dx + (REAL)2 * b * dx * dy + c * dy * dy;
+  return si.w * sj.w * dgd / sqrt(a * c - b * b);
 }
 
-// The sign of f^T S^-2 d (reference::pair_metric_dot_sign).
+// The sign of f^T G d (reference::pair_metric_dot_sign).
 REAL metric_pair_dot_sign(const REAL4 si, const REAL4 sj, const REAL fx, const REAL fy, const REAL dx, const REAL dy) {
-  const REAL a = REAL_C(0.5) * (si.x + sj.x), b = REAL_C(0.5) * (si.y + sj.y), c = REAL_C(0.5) * (si.z + sj.z);
-  const REAL ux = c * fx - b * fy, uy = a * fy - b * fx;
-  const REAL vx = c * dx - b * dy, vy = a * dy - b * dx;
-  return ux * vx + uy * vy;
+  const REAL a = si.x + sj.x, b = si.y + sj.y, c = si.z + sj.z;
+  return (a * fx + b * fy) * dx + (b * fx + c * fy) * dy;
 }
 
 // v^T M v (reference::metric_norm2).
@@ -58,8 +53,8 @@ REAL metric_force_norm(const REAL m11, const REAL m12, const REAL m22, const REA
 #endif
 }
 
-REAL4 node_size_tensor(const int j, __global const REAL* m11, __global const REAL* m12, __global const REAL* m22) {
-  return metric_size_tensor(m11[j], m12[j], m22[j]);
+REAL4 node_pair_factor(const int j, __global const REAL* m11, __global const REAL* m12, __global const REAL* m22) {
+  return metric_pair_factor(m11[j], m12[j], m22[j]);
 }
 
 // StepBackend::compute_forces in metric mode (reference::compute_forces_metric).
@@ -83,7 +78,7 @@ __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void compute_force
   const int row = min(count[i], stride);
   const long base = row_base(i, stride);
   const REAL2 pi = xy[i];
-  const REAL4 si = node_size_tensor(i, m11, m12, m22);
+  const REAL4 si = node_pair_factor(i, m11, m12, m22);
   const REAL four_a = (REAL)-4 * lj_a, four_a_pos = (REAL)4 * lj_a;
   REAL fx = (REAL)0, fy = (REAL)0, stiffness = (REAL)0;
   int coincident = 0;
@@ -91,7 +86,7 @@ __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void compute_force
     const int j = index[base + k];
     const REAL2 pj = xy[j];
     const REAL dx = pj.x - pi.x, dy = pj.y - pi.y;
-    const REAL rho2 = metric_pair_distance2(si, node_size_tensor(j, m11, m12, m22), dx, dy);
+    const REAL rho2 = metric_pair_distance2(si, node_pair_factor(j, m11, m12, m22), dx, dy);
     if (rho2 == (REAL)0) {
       ++coincident;
       continue;
@@ -121,7 +116,7 @@ __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void compute_force
     const int j = index[base + k];
     const REAL2 pj = xy[j];
     const REAL dx = pj.x - pi.x, dy = pj.y - pi.y;
-    const REAL4 sj = node_size_tensor(j, m11, m12, m22);
+    const REAL4 sj = node_pair_factor(j, m11, m12, m22);
     const REAL rho2 = metric_pair_distance2(si, sj, dx, dy);
     if (rho2 > (REAL)0 && rho2 < best2 && (any_direction || metric_pair_dot_sign(si, sj, fx, fy, dx, dy) > (REAL)0)) {
       best2 = rho2;

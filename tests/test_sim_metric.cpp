@@ -1,5 +1,6 @@
-// Particles in a metric (SimParticles::m11, m12, m22; host/sim/reference/metric_pair.hpp): the metric
-// force reduces to the isotropic one for M = I / q^2, a run in a constant stretched metric is the affine
+// Particles in a metric (SimParticles::m11, m12, m22; host/sim/reference/metric_pair.hpp): the pair
+// metric is the geometric mean of the two metrics, the force is eq. 5.11 with sigma = sqrt(q_i q_j) for
+// M = I / q^2, a run in a constant stretched metric is the affine
 // image of the isotropic run, the neighbour search finds exactly the pairs within the metric cut-off
 // for metrics of aspect 100, and the OpenCL backend (double) equals the reference bit for bit.
 #include <catch2/catch.hpp>
@@ -58,7 +59,59 @@ SimParticles graded(std::mt19937_64& rng, std::size_t n) {
 
 }  // namespace
 
-TEST_CASE("with M = I / q^2 the metric force equals the isotropic force", "[sim][metric]") {
+// 2x2 matrices [[a, b], [c, d]] for the geometric mean's definition below.
+struct Mat2 {
+  double a, b, c, d;
+};
+Mat2 mul(const Mat2& x, const Mat2& y) {
+  return {x.a * y.a + x.b * y.c, x.a * y.b + x.b * y.d, x.c * y.a + x.d * y.c, x.c * y.b + x.d * y.d};
+}
+Mat2 sqrtm(const Mat2& m) {  // SPD m: (M + s I) / sqrt(tr M + 2 s), s = sqrt(det M)
+  const double s = std::sqrt(m.a * m.d - m.b * m.c), t = std::sqrt(m.a + m.d + 2.0 * s);
+  return {(m.a + s) / t, m.b / t, m.c / t, (m.d + s) / t};
+}
+Mat2 inv(const Mat2& m) {
+  const double det = m.a * m.d - m.b * m.c;
+  return {m.d / det, -m.b / det, -m.c / det, m.a / det};
+}
+
+TEST_CASE("the pair metric is the geometric mean of the two metrics", "[sim][metric]") {
+  // A # B = A^1/2 (A^-1/2 B A^-1/2)^1/2 A^1/2, against the closed form of metric_pair.hpp, for random
+  // metrics of aspect up to 1000 and sizes 1e-5 to 0.3 (the tanh layer's range).
+  std::mt19937_64 rng(37);
+  for (int k = 0; k < 2000; ++k) {
+    SimParticles p;
+    add(p, 0.0, 0.0, 1.0);
+    add(p, 0.0, 0.0, 1.0);
+    for (std::size_t i = 0; i < 2; ++i) {
+      const double h1 = 1e-5 * std::pow(3e4, uniform(rng));
+      const double h2 = h1 * std::pow(1000.0, uniform(rng) - 0.5);
+      set_sizes(p, i, h1, h2, M_PI * uniform(rng));
+    }
+    const Mat2 a{p.m11[0], p.m12[0], p.m12[0], p.m22[0]}, b{p.m11[1], p.m12[1], p.m12[1], p.m22[1]};
+    const Mat2 ah = sqrtm(a), aih = inv(ah);
+    const Mat2 g = mul(mul(ah, sqrtm(mul(mul(aih, b), aih))), ah);
+    const double dx = uniform(rng) - 0.5, dy = uniform(rng) - 0.5;
+    const double expected = g.a * dx * dx + (g.b + g.c) * dx * dy + g.d * dy * dy;
+    const reference::Sym2 si = reference::pair_factor(a.a, a.b, a.d), sj = reference::pair_factor(b.a, b.b, b.d);
+    INFO("pair " << k);
+    REQUIRE(reference::pair_distance2(si, sj, dx, dy) == Approx(expected).epsilon(1e-6));
+    REQUIRE(reference::pair_distance2(sj, si, dx, dy) == reference::pair_distance2(si, sj, dx, dy));
+  }
+}
+
+TEST_CASE("across a steep size change the pair distance is the geometric mean of the two metric lengths",
+          "[sim][metric]") {
+  // Sizes 1e-4 and 0.1 (the tanh layer's edge): rho^2 = L_i L_j, not dominated by the coarse node
+  // (the mean of the size tensors measured rho = 2 |d| / (h_i + h_j), 0.02 here instead of 0.63).
+  const double hi = 1e-4, hj = 0.1, d = 0.002;
+  const reference::Sym2 si = reference::pair_factor(1.0 / (hi * hi), 0.0, 1.0 / (hi * hi));
+  const reference::Sym2 sj = reference::pair_factor(1.0 / (hj * hj), 0.0, 1.0 / (hj * hj));
+  REQUIRE(reference::pair_distance2(si, sj, d, 0.0) == Approx((d / hi) * (d / hj)).epsilon(1e-12));
+  REQUIRE(reference::pair_distance2(si, sj, 0.6 * d, 0.8 * d) == Approx((d / hi) * (d / hj)).epsilon(1e-12));
+}
+
+TEST_CASE("with M = I / q^2 the metric force is eq. 5.11 with sigma = sqrt(q_i q_j)", "[sim][metric]") {
   std::mt19937_64 rng(37);
   SimParticles iso = graded(rng, 400);
   iso.kind[5] = kSimFixed;
@@ -73,17 +126,27 @@ TEST_CASE("with M = I / q^2 the metric force equals the isotropic force", "[sim]
     set_metric(met, i, 1.0 / (met.q[i] * met.q[i]), 0.0, 1.0 / (met.q[i] * met.q[i]));
   for (const double stability : {0.0, 0.5}) {
     const ForceParams params{1.5, 15.0, false, stability};
-    ForceResult a, b;
-    reference::compute_forces(iso, list, params, a);
+    ForceResult b;
     reference::compute_forces(met, list, params, b);
-    REQUIRE(b.dt2_limit.size() == a.dt2_limit.size());
+    REQUIRE(b.dt2_limit.size() == (stability > 0.0 ? iso.size() : 0));
     for (std::size_t i = 0; i < iso.size(); ++i) {
       INFO("node " << i << " stability " << stability);
-      const double scale = std::hypot(a.fx[i], a.fy[i]) + 1e-300;
-      // Equal up to the rounding of the size tensor's closed form (q(1 + few ulp)) and rho = r / sigma.
-      REQUIRE(std::fabs(b.fx[i] - a.fx[i]) <= 1e-12 * scale + 1e-12);
-      REQUIRE(std::fabs(b.fy[i] - a.fy[i]) <= 1e-12 * scale + 1e-12);
-      if (stability > 0.0) REQUIRE(b.dt2_limit[i] == Approx(a.dt2_limit[i]).epsilon(1e-12));
+      double fx = 0.0, fy = 0.0, scale = 1e-300, stiffness = 0.0;
+      if (iso.kind[i] != kSimFixed)
+        for (int j : row(list, i)) {
+          const auto uj = static_cast<std::size_t>(j);
+          const double sigma = std::sqrt(iso.q[i] * iso.q[uj]);
+          const double dx = iso.x[uj] - iso.x[i], dy = iso.y[uj] - iso.y[i];
+          const double inv_rho2 = sigma * sigma / (dx * dx + dy * dy), inv_rho = std::sqrt(inv_rho2);
+          const double f = reference::lj_pair_magnitude(1.0, inv_rho2, 15.0) * inv_rho;
+          fx += f * dx;
+          fy += f * dy;
+          scale += std::fabs(f) * std::hypot(dx, dy);
+          stiffness += reference::lj_pair_stiffness(1.0, inv_rho2, inv_rho, 15.0);
+        }
+      REQUIRE(std::fabs(b.fx[i] - fx) <= 1e-12 * scale + 1e-12);
+      REQUIRE(std::fabs(b.fy[i] - fy) <= 1e-12 * scale + 1e-12);
+      if (stability > 0.0 && stiffness > 0.0) REQUIRE(b.dt2_limit[i] == Approx(1.0 / stiffness).epsilon(1e-12));
     }
   }
 }
@@ -201,7 +264,7 @@ TEST_CASE("the metric neighbour search finds exactly the pairs within the metric
   }
   SECTION("random directions, aspect 100, sizes varying 10x") {
     for (std::size_t i = 0; i < n; ++i) {
-      const double h = 0.01 + 0.09 * uniform(rng);
+      const double h = 0.05 + 0.45 * uniform(rng);
       set_sizes(p, i, h, h / 100.0, M_PI * uniform(rng));
     }
   }
@@ -223,7 +286,7 @@ TEST_CASE("the metric neighbour search finds exactly the pairs within the metric
   auto backend = make_reference_backend();
   build_neighbours_growing(*backend, p, 1.5, cached, fc);
   REQUIRE(fc.pairs_within == fb.pairs_within);
-  const std::vector<reference::Sym2> s = reference::size_tensors(p);
+  const std::vector<reference::Sym2> s = reference::pair_factors(p);
   for (std::size_t i = 0; i < n; ++i) {
     INFO("node " << i);
     REQUIRE(row(fast, i) == row(brute, i));
@@ -352,7 +415,7 @@ TEST_CASE("metric mode on the OpenCL backend in float follows the reference", "[
   ForceResult a, b;
   host->compute_forces(p, list, {1.5, 15.0, false, 1.0}, a);
   device->compute_forces(p, list, {1.5, 15.0, false, 1.0}, b);
-  const std::vector<reference::Sym2> s = reference::size_tensors(p);
+  const std::vector<reference::Sym2> s = reference::pair_factors(p);
   for (std::size_t i = 0; i < p.size(); ++i) {
     INFO("node " << i);
     // Float rounding relative to the sum of the pair forces' magnitudes (the net force may cancel).

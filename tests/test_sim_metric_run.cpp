@@ -1,8 +1,8 @@
 // Whole runs in a metric (SimOptions::metric): run_simulation with a constant M = I / q^2 repeats the
 // isotropic run with spacing q bit for bit; a run in UGAWG's linear metric relaxes to nodes at unit
-// metric length from their nearest neighbours; the host driver over the OpenCL step backend repeats
-// the reference's metric run bit for bit in double; population control measures in the metric; the
-// device-resident simulator refuses a metric.
+// metric length from their nearest neighbours; its stopping rule measures in the metric; the host
+// driver over the OpenCL step backend repeats the reference's metric run bit for bit in double;
+// population control measures in the metric; the device-resident simulator refuses a metric.
 #include <catch2/catch.hpp>
 
 #include <algorithm>
@@ -16,6 +16,7 @@
 #include "init/initial_distribution.hpp"
 #include "opencl/device_simulation.hpp"
 #include "opencl/opencl_backend.hpp"
+#include "sim/convergence.hpp"
 #include "sim/reference/metric_pair.hpp"
 #include "sim/simulation.hpp"
 #include "sim_fixtures.hpp"
@@ -200,6 +201,31 @@ TEST_CASE("run_simulation in the linear metric relaxes the nodes to unit metric 
       const Vec2 a = nodes.x[static_cast<std::size_t>(side[k - 1])], b = nodes.x[static_cast<std::size_t>(side[k])];
       REQUIRE(edge_length(linear_metric(a.y), linear_metric(b.y), b - a) == Approx(1.0).margin(0.25));
     }
+}
+
+TEST_CASE("the stopping rule of a metric run measures the mesh in the metric and stops the linear run",
+          "[sim][metric][convergence]") {
+  const Geometry geometry = fixtures::square(1.0, 4);
+  const GeometryTree tree(geometry);
+  const LinearLargestSize spacing;
+  const LinearMetric metric;
+  NodeSet nodes = linear_case_nodes();
+  SimOptions o = linear_options(metric, 3000);
+  o.convergence.enabled = true;
+  const SimResult r = run_simulation(nodes, tree, spacing, o);
+  // The measurements are the metric mesh's: mean 1/Q near 1 and 60 Q_min of a unit mesh. The
+  // isotropic ones (aspect ratio R/2r of triangles 100x stretched) are far from both.
+  REQUIRE(r.state.convergence.size() >= 4);
+  const MeshSample& last = r.state.convergence.back();
+  INFO("last measurement at " << last.iteration << ": mean 1/Q " << last.aspect_ratio << ", 60 Q_min "
+                              << last.min_angle);
+  REQUIRE(last.aspect_ratio < 1.1);
+  REQUIRE(last.min_angle > 30.0);
+  const MeshSample iso = measure_mesh(nodes, last.iteration);
+  REQUIRE(iso.aspect_ratio > 5.0);
+  // It stops: the mesh in the metric settles long before the maximum.
+  REQUIRE(r.converged);
+  REQUIRE(r.history.size() < 3000);
 }
 
 TEST_CASE("population control in a metric run measures in the metric", "[sim][metric][population]") {

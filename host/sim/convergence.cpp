@@ -11,6 +11,7 @@
 #include "core/errors.hpp"
 #include "core/interrupt.hpp"
 #include "core/parallel.hpp"
+#include "mesh/metric_quality.hpp"
 #include "mesh/quality.hpp"
 #include "mesh/triangulate_nodes.hpp"
 
@@ -57,6 +58,35 @@ MeshSample measure_mesh(const NodeSet& nodes, int iteration, Mesh* mesh_out) {
     throw;  // a stop request, not a measurement
   } catch (const Error&) {
     // Nodes that do not triangulate in mid-run (two coincident ones) are simply not converged.
+  }
+  return s;
+}
+
+MeshSample measure_mesh_in_metric(const NodeSet& nodes, int iteration, const MetricField& metric) {
+  constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+  MeshSample s{iteration, kNaN, kNaN};
+  std::vector<std::string> names(nodes.curve_nodes.size());
+  for (std::size_t c = 0; c < names.size(); ++c) names[c] = fmt::format("c{}", c);
+  try {
+    // One thread: an expression field is not thread-safe.
+    std::vector<Metric> metrics(nodes.size());
+    for (std::size_t i = 0; i < nodes.size(); ++i) metrics[i] = metric.at(nodes.x[i]);
+    const Mesh mesh = triangulate_in_metric(nodes, names, metrics);
+    if (mesh.triangles.empty()) return s;
+    const std::vector<double> q = metric_qualities(mesh.points, mesh.triangles, metrics);
+    double q_min = HUGE_VAL, inverse = 0.0;
+    for (const double v : q) {
+      q_min = std::min(q_min, v);
+      inverse += 1.0 / v;
+    }
+    // An inverted triangle (Q <= 0) is no measurement of a settled mesh.
+    if (!(q_min > 0.0)) return s;
+    s.min_angle = 60.0 * q_min;
+    s.aspect_ratio = inverse / static_cast<double>(q.size());
+  } catch (const Interrupted&) {
+    throw;
+  } catch (const Error&) {
+    // As measure_mesh: nodes that do not triangulate are not converged.
   }
   return s;
 }

@@ -14,6 +14,7 @@
 #include "mesh/mesh.hpp"
 #include "nodes/node_set.hpp"
 #include "sim/history.hpp"
+#include "spacing/metric_field.hpp"
 
 namespace pdmesh {
 
@@ -45,6 +46,15 @@ struct MeshSample {
 // `mesh` (optional) receives the mesh measured (its curves named c0, c1, ...; left as it was when the
 // nodes do not triangulate): a run that stops here has triangulated its final nodes already.
 MeshSample measure_mesh(const NodeSet& nodes, int iteration, Mesh* mesh = nullptr);
+
+// A metric run's measurement: the constrained Delaunay mesh in the metric (triangulate_in_metric with
+// metric.at(node)), measured in the metric (mesh/metric_quality: the mean-ratio Q, 1 = equilateral in
+// the metric). aspect_ratio is the mean of 1 / Q (1 for a unit mesh, like R / 2r) and min_angle is
+// 60 Q_min (60 for a unit mesh, on the scale of the smallest angle), so the rule and its tolerances
+// apply unchanged. The physical shapes a metric run aims at are far from equilateral, so the
+// isotropic measures never settle there. No mesh is handed back (the mesh stage triangulates a metric
+// run's nodes itself).
+MeshSample measure_mesh_in_metric(const NodeSet& nodes, int iteration, const MetricField& metric);
 
 class ConvergenceMonitor {
  public:

@@ -91,7 +91,9 @@ void IterationLoop::resume_checks() {
   if (!options_.resume) return;
   // A checkpoint written while the measurement after its last iteration was being taken (a stop
   // request ends the measurement) lacks it: taken now, so that the run goes on as if uninterrupted.
-  if (convergence_.missing_sample(done_)) convergence_.add_sample(measure_mesh(nodes_, done_));
+  if (convergence_.missing_sample(done_))
+    convergence_.add_sample(options_.metric ? measure_mesh_in_metric(nodes_, done_, *options_.metric)
+                                            : measure_mesh(nodes_, done_));
   // A run stopped in the iteration it converged in is complete (the uninterrupted run ended there).
   if (done_ < options_.iterations &&
       convergence_.converged_after(
@@ -172,7 +174,8 @@ bool IterationLoop::go_on(IterationSteps& steps, int iteration, const HistoryRow
     // The measurement (a triangulation of every node) stops at a stop request: the state after this
     // iteration is whole, and a resumed run takes the measurement first (resume_checks).
     try {
-      sample = measure_mesh(nodes_, iteration, &measured);
+      sample = options_.metric ? measure_mesh_in_metric(nodes_, iteration, *options_.metric)
+                               : measure_mesh(nodes_, iteration, &measured);
     } catch (const Interrupted&) {
       result_.stopped = true;
       return false;

@@ -24,8 +24,8 @@ struct SimParticles {
   std::vector<double> tx, ty;            // Boundary nodes: unit tangent of the curve at the node; else 0
   // Metric mode (off while m11 is empty, the isotropic default): node i's metric
   // M_i = [[m11, m12], [m12, m22]], symmetric positive definite, with unit length = the desired edge
-  // (docs/metric-particles.md). Pairs are measured in the mean of the two nodes' size tensors
-  // M^(-1/2) (sim/reference/metric_pair.hpp); q is then not read by the step functions.
+  // (docs/metric-fields.md). Pairs are measured in the geometric mean of the two nodes' metrics
+  // (sim/reference/metric_pair.hpp); q is then not read by the step functions.
   std::vector<double> m11, m12, m22;
   bool has_metric() const { return !m11.empty(); }
   std::size_t size() const { return x.size(); }

@@ -151,7 +151,7 @@ int main(int argc, char** argv) {
         if (anneal > 0.0 && p.kind[i] == kSimInterior && 2 * it < iterations) {
           // A random kick of metric length up to anneal, shrinking to 0 at half the run.
           const double a = anneal * (1.0 - 2.0 * it / iterations);
-          const reference::Sym2 sz = reference::size_tensor(p.m11[i], p.m12[i], p.m22[i]);
+          const reference::SizeTensor sz = reference::size_tensor(p.m11[i], p.m12[i], p.m22[i]);
           const double u = a * (2.0 * uniform() - 1.0), v = a * (2.0 * uniform() - 1.0);
           x += sz.a * u + sz.b * v;
           y += sz.b * u + sz.c * v;

@@ -21,7 +21,7 @@ void build_neighbours_metric(const SimParticles& p, double cutoff, NeighbourList
   if (n == 0 || flags.first_invalid >= 0) return;
   std::vector<double> radius(n);
   for (std::size_t j = 0; j < n; ++j) radius[j] = cutoff * largest_size(p.m11[j], p.m12[j], p.m22[j]);
-  const std::vector<Sym2> s = size_tensors(p);
+  const std::vector<Sym2> s = pair_factors(p);
   LevelGrids grids;
   grids.build(p, radius);
   const double c2 = cutoff * cutoff;
@@ -53,7 +53,7 @@ void build_neighbours_metric_brute_force(const SimParticles& p, double cutoff, N
   start_list(p, list, flags);
   if (flags.first_invalid >= 0) return;
   const std::size_t n = p.size();
-  const std::vector<Sym2> s = size_tensors(p);
+  const std::vector<Sym2> s = pair_factors(p);
   const double c2 = cutoff * cutoff;
   std::vector<std::int32_t> found;
   for (std::size_t i = 0; i < n; ++i) {

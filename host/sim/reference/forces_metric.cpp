@@ -1,9 +1,10 @@
 // Reference steps 2 and 3 in metric mode (SimParticles::m11, m12, m22; metric_pair.hpp): the pair
 // force of eq. 5.11 with sigma = 1 in the pair's metric, and r0 as the pair's metric distance.
-// In the metric coordinates xi = S^-1 x of a pair (S its mean size tensor) the pair is isotropic with
-// unit spacing: force g(rho) along the unit vector S^-1 d / rho. A move dxi maps back to S dxi, so the
-// physical force is S g(rho) S^-1 d / rho = g(rho) d / rho: along d, with g = eq. 5.11 at sigma = 1.
-// With M = I / q^2 this is the isotropic force (sigma = (q_i + q_j) / 2, rho = r / sigma).
+// In the metric coordinates xi = S^-1 x of a pair (S = M_ij^(-1/2), M_ij the geometric mean of the two
+// metrics) the pair is isotropic with unit spacing: force g(rho) along the unit vector S^-1 d / rho. A
+// move dxi maps back to S dxi, so the physical force is S g(rho) S^-1 d / rho = g(rho) d / rho: along
+// d, with g = eq. 5.11 at sigma = 1. With M = I / q^2 this is the isotropic force with
+// sigma = sqrt(q_i q_j), rho = r / sigma (eq. 5.11's (q_i + q_j) / 2 when q_i = q_j).
 #include <algorithm>
 #include <cmath>
 
@@ -13,9 +14,9 @@
 
 namespace pdmesh::reference {
 
-std::vector<Sym2> size_tensors(const SimParticles& p) {
+std::vector<Sym2> pair_factors(const SimParticles& p) {
   std::vector<Sym2> s(p.size());
-  for (std::size_t i = 0; i < p.size(); ++i) s[i] = size_tensor(p.m11[i], p.m12[i], p.m22[i]);
+  for (std::size_t i = 0; i < p.size(); ++i) s[i] = pair_factor(p.m11[i], p.m12[i], p.m22[i]);
   return s;
 }
 
@@ -32,7 +33,7 @@ void compute_forces_metric(const SimParticles& p, const NeighbourList& list, con
     out.dt2_limit.assign(n, HUGE_VAL);
   else
     out.dt2_limit.clear();
-  const std::vector<Sym2> s = size_tensors(p);
+  const std::vector<Sym2> s = pair_factors(p);
   for (std::size_t i = 0; i < n; ++i) {
     if ((i & 16383) == 0) check_interrupt();
     if (p.kind[i] == kSimFixed) continue;

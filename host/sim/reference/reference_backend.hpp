@@ -16,8 +16,8 @@ void build_neighbours(const SimParticles& p, double cutoff, NeighbourList& list,
 // Brute-force O(N^2) neighbour list with the same criterion; the oracle for the tests.
 void build_neighbours_brute_force(const SimParticles& p, double cutoff, NeighbourList& list, NeighbourFlags& flags);
 
-// Metric mode: every node's size tensor M^(-1/2) (metric_pair.hpp), in node order.
-std::vector<Sym2> size_tensors(const SimParticles& p);
+// Metric mode: every node's factor of the pair metric (metric_pair.hpp's pair_factor), in node order.
+std::vector<Sym2> pair_factors(const SimParticles& p);
 
 // Step 1 in metric mode (binning_metric.cpp; the two functions above forward to these).
 void build_neighbours_metric(const SimParticles& p, double cutoff, NeighbourList& list, NeighbourFlags& flags);
