@@ -106,6 +106,10 @@ TEST_CASE("bad metric keys are refused naming the key and the value", "[metric][
   CHECK_THAT(error_of("field = \"hessian\"\nfunction = \"x*x\"\ncomplexity = 10\nmax_anisotropy = 0.5\n"),
              Contains("spacing.max_anisotropy must be >= 1, got 0.5"));
   CHECK_THAT(error_of("field = \"hessian\"\ncomplexity = 10\n"), Contains("spacing.function"));
+  CHECK_THAT(error_of("field = \"hessian\"\nfunction = \"x*x\"\ncomplexity = 10\nhessian_step = 0\n"),
+             Contains("spacing.hessian_step must be in (0, 0.1], got 0"));
+  CHECK_THAT(error_of("field = \"metric\"\nh1 = \"1\"\nh2 = \"1\"\nhessian_step = 0.01\n"),
+             Contains("spacing.hessian_step is set but spacing.field is 'metric'"));
   // Gradation out of range; a .mesh is metric data only; a .sol needs a .mesh.
   CHECK_THAT(error_of("field = \"metric\"\nfile = \"m.vtu\"\nmetric_gradation = 0.5\n"), Contains("got 0.5"));
   CHECK_THAT(error_of("file = \"m.mesh\"\n"), Contains("is a Medit .mesh"));
@@ -149,20 +153,22 @@ double density_across(const MetricField& m, double x) {
 
 }  // namespace
 
-TEST_CASE("a function's Hessian metric has no hole at a curved layer's inflection", "[metric][case][hessian]") {
+TEST_CASE("spacing.hessian_step at the 1024 grid's scale leaves no hole at a curved layer's inflection",
+          "[metric][case][hessian]") {
   // The tanh layer's along-layer curvature vanishes at x = 0.5. The exact Hessian's second eigenvalue
-  // vanishes with it, and so does det|H|^(1/3), the L2-optimal metric's node density: the run leaves
-  // the layer unresolved there. The case file's Hessian (differences at the scale of the 1024 grid)
-  // keeps the density there comparable to the rest of the layer.
+  // vanishes with it, and so does det|H|^(1/3), the L2-optimal metric's node density. Differences at
+  // the scale of the 1024 grid (hessian_step = 2/1024) keep the density there comparable to the rest
+  // of the layer; the default step (1e-5, the exact Hessian) has the hole.
   const fs::path dir = pdmesh_test::fresh_path("metric_case_tanh");
   fs::create_directories(dir);
   {
     std::ofstream f(dir / "case.toml");
     f << "[geometry]\nfiles = ['" << (fs::path(PDMESH_SOURCE_DIR) / "cases/aniso/linear/domain.crv").string()
       << "']\n[spacing]\nfield = 'hessian'\nfunction = 'tanh(100*(y - 0.5 - 0.25*sin(2*pi*x)))'\n"
-         "complexity = 4000\nhmin = 1e-5\nhmax = 0.3\ngradation = 0\n";
+         "complexity = 4000\nhmin = 1e-5\nhmax = 0.3\ngradation = 0\nhessian_step = 0.001953125\n";
   }
   const CaseConfig c = load_case_file(dir / "case.toml");
+  CHECK(c.spacing.hessian_step == 0.001953125);
   const MeshInputs inputs(c);
   REQUIRE(inputs.metric != nullptr);
   const double inflection = density_across(*inputs.metric, 0.5);

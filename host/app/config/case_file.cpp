@@ -245,6 +245,7 @@ const std::vector<std::string>& case_file_keys() {
       "spacing.hmax",
       "spacing.max_anisotropy",
       "spacing.metric_gradation",
+      "spacing.hessian_step",
       "boundary.nodes",
       "init.method",
       "init.seed",

@@ -104,6 +104,10 @@ struct CaseConfig {
     // along a background mesh's edges: the file's, or a grid's for expressions and functions
     // (spacing/metric_gradation.hpp, app/config/case_spacing.cpp).
     double metric_gradation = 0.0;
+    // field == Hessian with `function`: the central differences' step as a share of the geometry's
+    // extent. The default resolves the function's own curvature; 2/1024 sees it as a fit to data on
+    // a 1024 x 1024 grid would (docs/metric-fields.md, "Hessians and the L^p-optimal metric").
+    double hessian_step = 1e-5;
     bool metric() const { return field == SpacingKind::Metric || field == SpacingKind::Hessian; }
     // A field given by the caller (the Python API: a size callable), not a case key. When set it
     // replaces `field`; MeshInputs samples it once into a background field, so that nothing later

@@ -89,6 +89,12 @@ void read_metric_values(const Reader& r, const toml::table& root, CaseConfig& c)
       r.fail("spacing.metric_gradation", n,
              fmt::format("spacing.metric_gradation must be 0 (off) or in (1, 100], got {}", s.metric_gradation));
   }
+  if (const toml::node* n = find(root, "spacing", "hessian_step")) {
+    s.hessian_step = r.number("spacing.hessian_step", *n);
+    if (!(s.hessian_step > 0.0 && s.hessian_step <= 0.1))
+      r.fail("spacing.hessian_step", n,
+             fmt::format("spacing.hessian_step must be in (0, 0.1], got {}", s.hessian_step));
+  }
 }
 
 void check_metric_keys(const Reader& r, const toml::table& root, CaseConfig& c, const toml::node* file,
@@ -107,6 +113,7 @@ void check_metric_keys(const Reader& r, const toml::table& root, CaseConfig& c, 
   for (const char* k : kHessianKeys) refuse_unless(hessian, k);
   refuse_unless(metric, "sol");
   refuse_unless(metric || hessian, "metric_gradation");
+  refuse_unless(hessian && !s.function.empty(), "hessian_step");
   const bool medit = file != nullptr && lower_extension(s.file) == ".mesh";
   if (medit && !metric) {
     r.fail("spacing.file", file,

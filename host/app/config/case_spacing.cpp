@@ -102,15 +102,16 @@ std::unique_ptr<MetricField> make_case_metric(const CaseConfig& config, const Ge
   options.hmax = s.hmax;
   options.max_anisotropy = s.max_anisotropy;
   if (s.file.empty()) {
-    // The Hessian by central differences of a step of 2/1024 of the geometry's extent, and D by the
-    // midpoint rule on a 1024 x 1024 grid over the extents (as tools/eval's metric.py): u's curvature
-    // at the scale a least-squares fit sees in data sampled on that grid (its patch reaches about two
-    // cells). A step at rounding's scale resolves what no mesh of the complexity follows: at the
-    // inflection of a curved layer one eigenvalue vanishes, det|H| with it, and the metric leaves a
-    // hole in the node density there (docs/metric-fields.md, "Hessians and the L^p-optimal metric").
+    // The Hessian by central differences of a step of spacing.hessian_step times the geometry's extent
+    // (default 1e-5: the function's own curvature, rounding noise ~1e-16 |u| / step² far below it),
+    // and D by the midpoint rule on a 1024 x 1024 grid over the extents (as tools/eval's metric.py).
+    // A step of 2/1024 sees u's curvature at the scale a fit to data on that grid sees; at the
+    // inflection of a curved layer the exact Hessian's second eigenvalue vanishes and the metric
+    // thins the node density there (docs/metric-fields.md, "Hessians and the L^p-optimal metric").
     const Box box = tree.geometry().extents;
     const double extent = std::max(box.hi.x - box.lo.x, box.hi.y - box.lo.y);
-    return graded(config, tree, std::make_unique<HessianMetricField>(s.function, box, options, extent / 512, 1024),
+    return graded(config, tree,
+                  std::make_unique<HessianMetricField>(s.function, box, options, s.hessian_step * extent, 1024),
                   "the hessian metric of spacing.function on a grid");
   }
   ScalarMeshData data = load_scalar_mesh(s.file, s.array);
