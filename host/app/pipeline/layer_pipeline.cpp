@@ -213,6 +213,99 @@ NodeSet without_front_nodes(const NodeSet& nodes, const Geometry& core_geometry,
 
 namespace {
 
+// A first-row target takes the nearest interior node within this share of its step (growth x the
+// last layer along the ray), and is left empty within this share of a front node other than its top
+// or of a target already taken (concave fronts, collisions, fans).
+constexpr double kClaimShare = 1.0;
+constexpr double kTargetClearance = 0.6;
+// Only where the front's edges at the top are at most this many steps long.
+constexpr double kMaxEdgeOverStep = 1.3;
+
+// Indices of `points` sorted by x, and the ones within `r` of p (by a scan of that x band).
+struct XIndex {
+  explicit XIndex(const std::vector<Vec2>& points) : pts(points), order(points.size()) {
+    for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+    std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return pts[a].x < pts[b].x; });
+  }
+  template <class F>
+  void near(Vec2 p, double r, F&& f) const {
+    auto it = std::lower_bound(order.begin(), order.end(), p.x - r,
+                               [&](std::size_t i, double x) { return pts[i].x < x; });
+    for (; it != order.end() && pts[*it].x <= p.x + r; ++it)
+      if (const double d = dist(pts[*it], p); d <= r) f(*it, d);
+  }
+  const std::vector<Vec2>& pts;
+  std::vector<std::size_t> order;
+};
+
+}  // namespace
+
+std::size_t place_first_row(NodeSet& nodes, const LayeredCase& layered) {
+  struct Target {
+    Vec2 p;
+    Vec2 top;
+    double step;
+  };
+  std::vector<Target> targets;
+  for (const LayerSection& s : layered.sections) {
+    const std::vector<double> longest = longest_front_edge(s.mesh);
+    for (const LayerRay& ray : s.mesh.rays) {
+      if (ray.nodes.size() < 2 || ray.merged) continue;
+      const auto top_node = static_cast<std::size_t>(ray.nodes.back());
+      const Vec2 top = s.mesh.nodes[top_node];
+      const Vec2 below = s.mesh.nodes[static_cast<std::size_t>(ray.nodes[ray.nodes.size() - 2])];
+      const Vec2 step = (top - below) * s.settings.growth;
+      const double length = std::hypot(step.x, step.y);
+      // Front edges much longer than the step: a pinned node there would make flat triangles.
+      if (longest[top_node] > kMaxEdgeOverStep * length) continue;
+      targets.push_back({top + step, top, length});
+    }
+  }
+  const XIndex index(nodes.x);
+  std::vector<Vec2> kept_at;
+  std::vector<double> kept_step;
+  struct Pair {
+    double d;
+    std::size_t target, node;
+  };
+  std::vector<Pair> pairs;
+  std::vector<std::size_t> kept;
+  for (std::size_t k = 0; k < targets.size(); ++k) {
+    const Target& t = targets[k];
+    const double clear = kTargetClearance * t.step;
+    bool blocked = false;
+    std::vector<Pair> mine;
+    index.near(t.p, std::max(clear, kClaimShare * t.step), [&](std::size_t i, double d) {
+      if (nodes.kind[i] != NodeKind::Interior) {
+        if (d < clear && dist(nodes.x[i], t.top) > 0.0) blocked = true;
+      } else if (d <= kClaimShare * t.step) {
+        mine.push_back({d, k, i});
+      }
+    });
+    if (blocked) continue;
+    // Targets of neighbouring rays that crowd each other (a concave front): the first one stays.
+    for (std::size_t j = 0; j < kept_at.size() && !blocked; ++j)
+      blocked = dist(kept_at[j], t.p) < kTargetClearance * std::min(t.step, kept_step[j]);
+    if (blocked) continue;
+    kept_at.push_back(t.p);
+    kept_step.push_back(t.step);
+    pairs.insert(pairs.end(), mine.begin(), mine.end());
+  }
+  std::sort(pairs.begin(), pairs.end(), [](const Pair& a, const Pair& b) { return a.d < b.d; });
+  std::vector<char> filled(targets.size(), 0), claimed(nodes.size(), 0);
+  std::size_t moved = 0;
+  for (const Pair& p : pairs) {
+    if (filled[p.target] || claimed[p.node]) continue;
+    filled[p.target] = claimed[p.node] = 1;
+    nodes.x[p.node] = targets[p.target].p;
+    nodes.kind[p.node] = NodeKind::Fixed;  // the cleanup's smoothing and collapses leave it there
+    ++moved;
+  }
+  return moved;
+}
+
+namespace {
+
 // The layer cells and the core triangles in one mesh; the core's points first, each front node of
 // the layers mapped onto the core's point at exactly its place.
 MixedMesh merge(const MeshInputs& inputs, const LayeredCase& layered, const MeshInputs& core_inputs, const Mesh& core) {

@@ -43,6 +43,13 @@ std::unique_ptr<LayeredCase> build_layers(const CaseConfig& config, const MeshIn
 // a front curve (its points are the layer's nodes; one between them would hang on a layer cell's edge).
 NodeSet without_front_nodes(const NodeSet& nodes, const Geometry& core_geometry, std::size_t& dropped);
 
+// The core's first row on the layers' rays: for each front node, the interior node nearest to the
+// point growth x its last layer beyond it along its ray (within 0.6 of that step) is moved there, so
+// that the core's cell above each top continues the layer's growth whatever the initial fill left
+// there. No target within 0.6 steps of another front node or of a target already taken; each node
+// moves at most once. Returns how many moved.
+std::size_t place_first_row(NodeSet& nodes, const LayeredCase& layered);
+
 // The layer cells and the core mesh as one mesh: the core's points first, each front node of the
 // layers mapped onto the core's point at exactly its place (the Python API's layered mesh).
 MixedMesh merged_layer_mesh(const MeshInputs& inputs, const LayeredCase& layered, const MeshInputs& core_inputs,
