@@ -216,10 +216,14 @@ namespace {
 // A first-row target takes the nearest interior node within this share of its step (growth x the
 // last layer along the ray), and is left empty within this share of a front node other than its top
 // or of a target already taken (concave fronts, collisions, fans).
-constexpr double kClaimShare = 1.0;
+constexpr double kClaimShare = 1.25;
 constexpr double kTargetClearance = 0.6;
-// Only where the front's edges at the top are at most this many steps long.
-constexpr double kMaxEdgeOverStep = 1.3;
+// Only where the front's edges at the top are at most this many steps (growth x the last layer)
+// long; the target is lifted where they are longer than kEdgeOverStep steps, by at most kMaxLift
+// (a junction growth of 1.2 x 1.2 = 1.44 at g = 1.2).
+constexpr double kMaxEdgeOverStep = 1.5;
+constexpr double kEdgeOverStep = 1.2;
+constexpr double kMaxLift = 1.2;
 
 // Indices of `points` sorted by x, and the ones within `r` of p (by a scan of that x band).
 struct XIndex {
@@ -240,7 +244,44 @@ struct XIndex {
 
 }  // namespace
 
-std::size_t place_first_row(NodeSet& nodes, const LayeredCase& layered) {
+std::vector<Vec2> steep_junctions(const LayeredCase& layered, const Mesh& core, double limit) {
+  std::map<std::pair<double, double>, int> at;
+  for (std::size_t i = 0; i < core.points.size(); ++i)
+    at.emplace(std::make_pair(core.points[i].x, core.points[i].y), static_cast<int>(i));
+  std::vector<std::vector<int>> neighbours(core.points.size());
+  for (const auto& t : core.triangles)
+    for (int i = 0; i < 3; ++i) {
+      const int a = t[static_cast<std::size_t>(i)], b = t[static_cast<std::size_t>((i + 1) % 3)];
+      neighbours[static_cast<std::size_t>(a)].push_back(b);
+      neighbours[static_cast<std::size_t>(b)].push_back(a);
+    }
+  std::vector<Vec2> steep;
+  for (const LayerSection& s : layered.sections)
+    for (const LayerRay& ray : s.mesh.rays) {
+      if (ray.nodes.size() < 2 || ray.merged) continue;
+      const Vec2 top = s.mesh.nodes[static_cast<std::size_t>(ray.nodes.back())];
+      const Vec2 below = s.mesh.nodes[static_cast<std::size_t>(ray.nodes[ray.nodes.size() - 2])];
+      const auto it = at.find({top.x, top.y});
+      if (it == at.end()) continue;
+      const double h = dist(top, below);
+      const Vec2 u = (top - below) * (1.0 / h);
+      // The core neighbour most in line with the ray (within acos 0.7, as the column walks of
+      // tools/eval do), and how far up the ray it lies.
+      double best_cos = 0.7, rise = 0.0;
+      for (const int v : neighbours[static_cast<std::size_t>(it->second)]) {
+        const Vec2 d = core.points[static_cast<std::size_t>(v)] - top;
+        const double l = std::hypot(d.x, d.y), along = d.x * u.x + d.y * u.y;
+        if (l > 0.0 && along / l > best_cos) best_cos = along / l, rise = along;
+      }
+      if (rise > limit * h) steep.push_back(top);
+    }
+  return steep;
+}
+
+std::size_t place_first_row(NodeSet& nodes, const LayeredCase& layered, const std::vector<Vec2>* only) {
+  std::map<std::pair<double, double>, bool> wanted;
+  if (only != nullptr)
+    for (const Vec2& p : *only) wanted[{p.x, p.y}] = true;
   struct Target {
     Vec2 p;
     Vec2 top;
@@ -253,11 +294,16 @@ std::size_t place_first_row(NodeSet& nodes, const LayeredCase& layered) {
       if (ray.nodes.size() < 2 || ray.merged) continue;
       const auto top_node = static_cast<std::size_t>(ray.nodes.back());
       const Vec2 top = s.mesh.nodes[top_node];
+      if (only != nullptr && wanted.count({top.x, top.y}) == 0) continue;
       const Vec2 below = s.mesh.nodes[static_cast<std::size_t>(ray.nodes[ray.nodes.size() - 2])];
-      const Vec2 step = (top - below) * s.settings.growth;
-      const double length = std::hypot(step.x, step.y);
+      const double plain = s.settings.growth * dist(top, below);
+      // Where the front's edges are longer than the step, the target is lifted (by at most
+      // kMaxLift) so that the triangles between the pinned nodes and the front are not flat.
+      const double lift = std::clamp(longest[top_node] / (kEdgeOverStep * plain), 1.0, kMaxLift);
+      const Vec2 step = (top - below) * (s.settings.growth * lift);
+      const double length = plain * lift;
       // Front edges much longer than the step: a pinned node there would make flat triangles.
-      if (longest[top_node] > kMaxEdgeOverStep * length) continue;
+      if (longest[top_node] > kMaxEdgeOverStep * plain) continue;
       targets.push_back({top + step, top, length});
     }
   }
@@ -269,7 +315,6 @@ std::size_t place_first_row(NodeSet& nodes, const LayeredCase& layered) {
     std::size_t target, node;
   };
   std::vector<Pair> pairs;
-  std::vector<std::size_t> kept;
   for (std::size_t k = 0; k < targets.size(); ++k) {
     const Target& t = targets[k];
     const double clear = kTargetClearance * t.step;

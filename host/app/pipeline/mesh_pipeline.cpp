@@ -146,6 +146,10 @@ void read_stage_report(const CaseConfig& config, const MeshInputs& inputs) {
 // The stages simulation and mesh of a new run, from the initial nodes on (moved in place).
 // With [[boundary_layer]]: the case and inputs of the whole domain, the layers, and the core's inputs (which
 // `config` and `inputs` of simulate_and_mesh then are).
+// A layer top whose core cell above reaches more than this many last layers up its ray is re-meshed
+// with a pinned first-row node (layer_pipeline.hpp, steep_junctions).
+constexpr double kSteepJunction = 1.45;
+
 struct LayeredRun {
   const CaseConfig& config;
   const MeshInputs& inputs;
@@ -181,10 +185,16 @@ void simulate_and_mesh(const CaseConfig& config, const MeshInputs& inputs, const
       NodeSet core_nodes = without_front_nodes(nodes, inputs.geometry, dropped);
       if (dropped > 0)
         progress(config, "boundary layers: {} node(s) the simulation snapped onto a layer front left out", dropped);
-      const std::size_t moved = place_first_row(core_nodes, layered->layered);
-      progress(config, "boundary layers: {} core node(s) moved onto the rays at growth x the last layer", moved);
-      const Mesh mesh = mesh_and_measure(core, inputs, spacing, core_nodes, &phases,
-                                         dropped || moved ? nullptr : final_mesh.get());
+      Mesh mesh = mesh_and_measure(core, inputs, spacing, core_nodes, &phases, dropped ? nullptr : final_mesh.get());
+      // Where the core's cell above a layer top is too tall, a core node is pinned on that ray at
+      // growth x the last layer and the core meshed again.
+      const std::vector<Vec2> steep = steep_junctions(layered->layered, mesh, kSteepJunction);
+      if (!steep.empty()) {
+        const std::size_t moved = place_first_row(core_nodes, layered->layered, &steep);
+        progress(config, "boundary layers: {} steep junction(s), {} core node(s) pinned on their rays", steep.size(),
+                 moved);
+        if (moved > 0) mesh = mesh_and_measure(core, inputs, spacing, core_nodes, &phases, nullptr);
+      }
       write_layered_outputs(layered->config, layered->inputs, layered->layered, inputs, mesh, phases);
     } else {
       mesh_and_measure(config, inputs, spacing, nodes, &phases, final_mesh.get());
