@@ -233,8 +233,8 @@ struct XIndex {
   }
   template <class F>
   void near(Vec2 p, double r, F&& f) const {
-    auto it = std::lower_bound(order.begin(), order.end(), p.x - r,
-                               [&](std::size_t i, double x) { return pts[i].x < x; });
+    auto it =
+        std::lower_bound(order.begin(), order.end(), p.x - r, [&](std::size_t i, double x) { return pts[i].x < x; });
     for (; it != order.end() && pts[*it].x <= p.x + r; ++it)
       if (const double d = dist(pts[*it], p); d <= r) f(*it, d);
   }
