@@ -187,8 +187,10 @@ void simulate_and_mesh(const CaseConfig& config, const MeshInputs& inputs, const
         progress(config, "boundary layers: {} node(s) the simulation snapped onto a layer front left out", dropped);
       Mesh mesh = mesh_and_measure(core, inputs, spacing, core_nodes, &phases, dropped ? nullptr : final_mesh.get());
       // Where the core's cell above a layer top is too tall, a core node is pinned on that ray at
-      // growth x the last layer and the core meshed again.
-      const std::vector<Vec2> steep = steep_junctions(layered->layered, mesh, kSteepJunction);
+      // growth x the last layer and the core meshed again; only with the cleanup, which makes the
+      // triangles around the moved node good again.
+      const std::vector<Vec2> steep =
+          config.cleanup.enabled ? steep_junctions(layered->layered, mesh, kSteepJunction) : std::vector<Vec2>{};
       if (!steep.empty()) {
         const std::size_t moved = place_first_row(core_nodes, layered->layered, &steep);
         progress(config, "boundary layers: {} steep junction(s), {} core node(s) pinned on their rays", steep.size(),
