@@ -8,6 +8,7 @@
 #include <map>
 #include <fmt/format.h>
 
+#include "app/pipeline/mesh_pipeline.hpp"
 #include "app/pipeline/pipeline_detail.hpp"
 #include "core/atomic_file.hpp"
 #include "core/errors.hpp"
@@ -347,6 +348,35 @@ std::size_t place_first_row(NodeSet& nodes, const LayeredCase& layered, const st
     ++moved;
   }
   return moved;
+}
+
+namespace {
+
+// A layer top whose core cell above reaches more than this many last layers up its ray gets a pinned
+// first-row node (steep_junctions, place_first_row).
+constexpr double kSteepJunction = 1.45;
+
+}  // namespace
+
+Mesh mesh_layered_core(const CaseConfig& config, const MeshInputs& inputs, const SpacingStage& spacing,
+                       const NodeSet& nodes, const LayeredCase& layered, RunPhases* phases, const Mesh* triangulated) {
+  CaseConfig core = config;
+  core.write_outputs = false;
+  std::size_t dropped = 0;
+  NodeSet core_nodes = without_front_nodes(nodes, inputs.geometry, dropped);
+  if (dropped > 0)
+    progress(config, "boundary layers: {} node(s) the simulation snapped onto a layer front left out", dropped);
+  Mesh mesh = mesh_and_measure(core, inputs, spacing, core_nodes, phases, dropped ? nullptr : triangulated);
+  // Only with the cleanup, which makes the triangles around a moved node good again.
+  const std::vector<Vec2> steep =
+      config.cleanup.enabled ? steep_junctions(layered, mesh, kSteepJunction) : std::vector<Vec2>{};
+  if (!steep.empty()) {
+    const std::size_t moved = place_first_row(core_nodes, layered, &steep);
+    progress(config, "boundary layers: {} steep junction(s), {} core node(s) pinned on their rays", steep.size(),
+             moved);
+    if (moved > 0) mesh = mesh_and_measure(core, inputs, spacing, core_nodes, phases, nullptr);
+  }
+  return mesh;
 }
 
 namespace {

@@ -56,6 +56,14 @@ std::vector<Vec2> steep_junctions(const LayeredCase& layered, const Mesh& core, 
 // point already taken; each node moves at most once. Returns how many moved.
 std::size_t place_first_row(NodeSet& nodes, const LayeredCase& layered, const std::vector<Vec2>* only = nullptr);
 
+// The core's cleaned mesh of the simulated `nodes` (config: the core's case, nothing written):
+// without the nodes snapped onto a front, and where the cleanup is on, meshed again with a pinned
+// first-row node at each steep junction (more than 1.45 last layers). `triangulated`: the
+// simulation's final mesh of `nodes`, or null.
+Mesh mesh_layered_core(const CaseConfig& config, const MeshInputs& inputs, const SpacingStage& spacing,
+                       const NodeSet& nodes, const LayeredCase& layered, RunPhases* phases = nullptr,
+                       const Mesh* triangulated = nullptr);
+
 // The layer cells and the core mesh as one mesh: the core's points first, each front node of the
 // layers mapped onto the core's point at exactly its place (the Python API's layered mesh).
 MixedMesh merged_layer_mesh(const MeshInputs& inputs, const LayeredCase& layered, const MeshInputs& core_inputs,

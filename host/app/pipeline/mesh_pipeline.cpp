@@ -146,10 +146,6 @@ void read_stage_report(const CaseConfig& config, const MeshInputs& inputs) {
 // The stages simulation and mesh of a new run, from the initial nodes on (moved in place).
 // With [[boundary_layer]]: the case and inputs of the whole domain, the layers, and the core's inputs (which
 // `config` and `inputs` of simulate_and_mesh then are).
-// A layer top whose core cell above reaches more than this many last layers up its ray is re-meshed
-// with a pinned first-row node (layer_pipeline.hpp, steep_junctions).
-constexpr double kSteepJunction = 1.45;
-
 struct LayeredRun {
   const CaseConfig& config;
   const MeshInputs& inputs;
@@ -179,24 +175,7 @@ void simulate_and_mesh(const CaseConfig& config, const MeshInputs& inputs, const
     // A converged run has triangulated its final nodes.
     if (layered) {
       // The core's cleaned mesh, written with the layer cells.
-      CaseConfig core = config;
-      core.write_outputs = false;
-      std::size_t dropped = 0;
-      NodeSet core_nodes = without_front_nodes(nodes, inputs.geometry, dropped);
-      if (dropped > 0)
-        progress(config, "boundary layers: {} node(s) the simulation snapped onto a layer front left out", dropped);
-      Mesh mesh = mesh_and_measure(core, inputs, spacing, core_nodes, &phases, dropped ? nullptr : final_mesh.get());
-      // Where the core's cell above a layer top is too tall, a core node is pinned on that ray at
-      // growth x the last layer and the core meshed again; only with the cleanup, which makes the
-      // triangles around the moved node good again.
-      const std::vector<Vec2> steep =
-          config.cleanup.enabled ? steep_junctions(layered->layered, mesh, kSteepJunction) : std::vector<Vec2>{};
-      if (!steep.empty()) {
-        const std::size_t moved = place_first_row(core_nodes, layered->layered, &steep);
-        progress(config, "boundary layers: {} steep junction(s), {} core node(s) pinned on their rays", steep.size(),
-                 moved);
-        if (moved > 0) mesh = mesh_and_measure(core, inputs, spacing, core_nodes, &phases, nullptr);
-      }
+      const Mesh mesh = mesh_layered_core(config, inputs, spacing, nodes, layered->layered, &phases, final_mesh.get());
       write_layered_outputs(layered->config, layered->inputs, layered->layered, inputs, mesh, phases);
     } else {
       mesh_and_measure(config, inputs, spacing, nodes, &phases, final_mesh.get());
