@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "app/config/case_file.hpp"
+#include "app/pipeline/layer_pipeline.hpp"
 #include "app/pipeline/mesh_pipeline.hpp"
 #include "core/predicates.hpp"
 #include "geometry/geometry.hpp"
@@ -243,4 +244,76 @@ TEST_CASE("NACA 0012 with layers: the core's triangles on the front and the junc
   REQUIRE(j != std::string::npos);
   CHECK(json_number(json.substr(j), "max") <= 1.5);
   fs::remove_all(out);
+}
+
+TEST_CASE("a steep junction gets a pinned core node on its ray at growth x the last layer", "[layers]") {
+  // A circle's layers; a core with one node straight up a ray at 1.8 last layers (a node of the
+  // core's second row joined to the top, as a random fill can leave it) and one at 1.2 up another.
+  const Geometry g = build_geometry({square(5.0, "far"), circle(0.5, 192, "wall")});
+  LayeredCase layered;
+  LayerSection section;
+  section.settings = settings(1e-3, 1.2, 20);
+  section.mesh = build_boundary_layers(g, curves_by_name(g, {"wall"}, "test"), section.settings);
+  layered.sections.push_back(std::move(section));
+  const LayerMesh& m = layered.sections[0].mesh;
+  const LayerFront& f = m.fronts.at(0);
+  REQUIRE(f.closed);
+  const std::size_t n = f.nodes.size();
+  // Two unmerged rays a quarter turn apart whose front edges are at most 1.2 steps long (no lift).
+  std::vector<const LayerRay*> picked;
+  std::vector<std::size_t> at_front;
+  for (const LayerRay& r : m.rays) {
+    if (r.merged || r.nodes.size() < 2) continue;
+    const auto k =
+        static_cast<std::size_t>(std::find(f.nodes.begin(), f.nodes.end(), r.nodes.back()) - f.nodes.begin());
+    REQUIRE(k < n);
+    const double step = 1.2 * dist(m.nodes[r.nodes.back()], m.nodes[r.nodes[r.nodes.size() - 2]]);
+    const double longest = std::max(dist(m.nodes[f.nodes[(k + n - 1) % n]], m.nodes[f.nodes[k]]),
+                                    dist(m.nodes[f.nodes[k]], m.nodes[f.nodes[(k + 1) % n]]));
+    if (longest > 1.2 * step) continue;
+    if (!at_front.empty() && std::min((k + n - at_front[0]) % n, (at_front[0] + n - k) % n) < n / 4) continue;
+    picked.push_back(&r);
+    at_front.push_back(k);
+    if (picked.size() == 2) break;
+  }
+  REQUIRE(picked.size() == 2);
+  const auto top = [&](const LayerRay& r) { return m.nodes[r.nodes.back()]; };
+  const auto below = [&](const LayerRay& r) { return m.nodes[r.nodes[r.nodes.size() - 2]]; };
+  Mesh core;
+  for (const int v : f.nodes) core.points.push_back(m.nodes[v]);
+  const Vec2 far = top(*picked[0]) + (top(*picked[0]) - below(*picked[0])) * 1.8;
+  const Vec2 fine = top(*picked[1]) + (top(*picked[1]) - below(*picked[1])) * 1.2;
+  const int far_i = static_cast<int>(core.points.size()), fine_i = far_i + 1;
+  core.points.push_back(far);
+  core.points.push_back(fine);
+  const auto fan_over = [&](std::size_t k, int apex) {
+    const int a = static_cast<int>((k + n - 1) % n), b = static_cast<int>(k), c = static_cast<int>((k + 1) % n);
+    core.triangles.push_back({a, b, apex});
+    core.triangles.push_back({b, c, apex});
+  };
+  fan_over(at_front[0], far_i);
+  fan_over(at_front[1], fine_i);
+
+  // The far node's top, and its front neighbours (the far node is within 45 degrees of their rays
+  // too); not the top with a node at 1.2 last layers.
+  const std::vector<Vec2> steep = steep_junctions(layered, core, 1.45);
+  const auto listed = [&](Vec2 p) {
+    return std::any_of(steep.begin(), steep.end(), [&](Vec2 q) { return q.x == p.x && q.y == p.y; });
+  };
+  CHECK(listed(top(*picked[0])));
+  CHECK_FALSE(listed(top(*picked[1])));
+  for (const Vec2& p : steep)
+    CHECK(dist(p, top(*picked[0])) <= 1.2 * 1.2 * dist(top(*picked[0]), below(*picked[0])) + 1e-12);
+
+  NodeSet nodes;
+  for (std::size_t i = 0; i < n; ++i) nodes.add(core.points[i], 0.01, NodeKind::Fixed, 0);
+  nodes.add(far, 0.01, NodeKind::Interior, -1);
+  nodes.add(fine, 0.01, NodeKind::Interior, -1);
+  REQUIRE(place_first_row(nodes, layered, &steep) == 1);
+  const Vec2 want = top(*picked[0]) + (top(*picked[0]) - below(*picked[0])) * 1.2;
+  CHECK(nodes.x[static_cast<std::size_t>(far_i)].x == Approx(want.x).margin(1e-12));
+  CHECK(nodes.x[static_cast<std::size_t>(far_i)].y == Approx(want.y).margin(1e-12));
+  CHECK(nodes.kind[static_cast<std::size_t>(far_i)] == NodeKind::Fixed);
+  CHECK(nodes.x[static_cast<std::size_t>(fine_i)].x == fine.x);
+  CHECK(nodes.kind[static_cast<std::size_t>(fine_i)] == NodeKind::Interior);
 }

@@ -221,12 +221,8 @@ class Mesher {
   // output directory, the command's layered outputs are written there.
   std::shared_ptr<const LayerParts> with_layers(const CaseConfig& config, const NodeSet& nodes, Mesh& mesh) {
     const LayeredSession& l = *session_->layered;
-    CaseConfig core = config;
-    core.write_outputs = false;
-    std::size_t dropped = 0;
-    const NodeSet core_nodes = without_front_nodes(nodes, session_->inputs->geometry, dropped);
     auto parts = std::make_shared<LayerParts>();
-    parts->core = mesh_and_measure(core, *session_->inputs, *session_->spacing, core_nodes);
+    parts->core = mesh_layered_core(config, *session_->inputs, *session_->spacing, nodes, *l.layers);
     if (config.write_outputs) {
       RunPhases phases(false);
       CaseConfig outer = l.config;

@@ -8,6 +8,7 @@
 #include <map>
 #include <fmt/format.h>
 
+#include "app/pipeline/mesh_pipeline.hpp"
 #include "app/pipeline/pipeline_detail.hpp"
 #include "core/atomic_file.hpp"
 #include "core/errors.hpp"
@@ -209,6 +210,173 @@ NodeSet without_front_nodes(const NodeSet& nodes, const Geometry& core_geometry,
     for (const int n : nodes.curve_nodes[c])
       if (index[static_cast<std::size_t>(n)] >= 0) out.curve_nodes[c].push_back(index[static_cast<std::size_t>(n)]);
   return out;
+}
+
+namespace {
+
+// A first-row target takes the nearest interior node within this share of its step (growth x the
+// last layer along the ray), and is left empty within this share of a front node other than its top
+// or of a target already taken (concave fronts, collisions, fans).
+constexpr double kClaimShare = 1.25;
+constexpr double kTargetClearance = 0.6;
+// Only where the front's edges at the top are at most this many steps (growth x the last layer)
+// long; the target is lifted where they are longer than kEdgeOverStep steps, by at most kMaxLift
+// (a junction growth of 1.2 x 1.2 = 1.44 at g = 1.2).
+constexpr double kMaxEdgeOverStep = 1.5;
+constexpr double kEdgeOverStep = 1.2;
+constexpr double kMaxLift = 1.2;
+
+// Indices of `points` sorted by x, and the ones within `r` of p (by a scan of that x band).
+struct XIndex {
+  explicit XIndex(const std::vector<Vec2>& points) : pts(points), order(points.size()) {
+    for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+    std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return pts[a].x < pts[b].x; });
+  }
+  template <class F>
+  void near(Vec2 p, double r, F&& f) const {
+    auto it =
+        std::lower_bound(order.begin(), order.end(), p.x - r, [&](std::size_t i, double x) { return pts[i].x < x; });
+    for (; it != order.end() && pts[*it].x <= p.x + r; ++it)
+      if (const double d = dist(pts[*it], p); d <= r) f(*it, d);
+  }
+  const std::vector<Vec2>& pts;
+  std::vector<std::size_t> order;
+};
+
+}  // namespace
+
+std::vector<Vec2> steep_junctions(const LayeredCase& layered, const Mesh& core, double limit) {
+  std::map<std::pair<double, double>, int> at;
+  for (std::size_t i = 0; i < core.points.size(); ++i)
+    at.emplace(std::make_pair(core.points[i].x, core.points[i].y), static_cast<int>(i));
+  std::vector<std::vector<int>> neighbours(core.points.size());
+  for (const auto& t : core.triangles)
+    for (int i = 0; i < 3; ++i) {
+      const int a = t[static_cast<std::size_t>(i)], b = t[static_cast<std::size_t>((i + 1) % 3)];
+      neighbours[static_cast<std::size_t>(a)].push_back(b);
+      neighbours[static_cast<std::size_t>(b)].push_back(a);
+    }
+  std::vector<Vec2> steep;
+  for (const LayerSection& s : layered.sections)
+    for (const LayerRay& ray : s.mesh.rays) {
+      if (ray.nodes.size() < 2 || ray.merged) continue;
+      const Vec2 top = s.mesh.nodes[static_cast<std::size_t>(ray.nodes.back())];
+      const Vec2 below = s.mesh.nodes[static_cast<std::size_t>(ray.nodes[ray.nodes.size() - 2])];
+      const auto it = at.find({top.x, top.y});
+      if (it == at.end()) continue;
+      const double h = dist(top, below);
+      const Vec2 u = (top - below) * (1.0 / h);
+      // The core neighbour most in line with the ray (within acos 0.7, as the column walks of
+      // tools/eval do), and how far up the ray it lies.
+      double best_cos = 0.7, rise = 0.0;
+      for (const int v : neighbours[static_cast<std::size_t>(it->second)]) {
+        const Vec2 d = core.points[static_cast<std::size_t>(v)] - top;
+        const double l = std::hypot(d.x, d.y), along = d.x * u.x + d.y * u.y;
+        if (l > 0.0 && along / l > best_cos) best_cos = along / l, rise = along;
+      }
+      if (rise > limit * h) steep.push_back(top);
+    }
+  return steep;
+}
+
+std::size_t place_first_row(NodeSet& nodes, const LayeredCase& layered, const std::vector<Vec2>* only) {
+  std::map<std::pair<double, double>, bool> wanted;
+  if (only != nullptr)
+    for (const Vec2& p : *only) wanted[{p.x, p.y}] = true;
+  struct Target {
+    Vec2 p;
+    Vec2 top;
+    double step;
+  };
+  std::vector<Target> targets;
+  for (const LayerSection& s : layered.sections) {
+    const std::vector<double> longest = longest_front_edge(s.mesh);
+    for (const LayerRay& ray : s.mesh.rays) {
+      if (ray.nodes.size() < 2 || ray.merged) continue;
+      const auto top_node = static_cast<std::size_t>(ray.nodes.back());
+      const Vec2 top = s.mesh.nodes[top_node];
+      if (only != nullptr && wanted.count({top.x, top.y}) == 0) continue;
+      const Vec2 below = s.mesh.nodes[static_cast<std::size_t>(ray.nodes[ray.nodes.size() - 2])];
+      const double plain = s.settings.growth * dist(top, below);
+      // Where the front's edges are longer than the step, the target is lifted (by at most
+      // kMaxLift) so that the triangles between the pinned nodes and the front are not flat.
+      const double lift = std::clamp(longest[top_node] / (kEdgeOverStep * plain), 1.0, kMaxLift);
+      const Vec2 step = (top - below) * (s.settings.growth * lift);
+      const double length = plain * lift;
+      // Front edges much longer than the step: a pinned node there would make flat triangles.
+      if (longest[top_node] > kMaxEdgeOverStep * plain) continue;
+      targets.push_back({top + step, top, length});
+    }
+  }
+  const XIndex index(nodes.x);
+  std::vector<Vec2> kept_at;
+  std::vector<double> kept_step;
+  struct Pair {
+    double d;
+    std::size_t target, node;
+  };
+  std::vector<Pair> pairs;
+  for (std::size_t k = 0; k < targets.size(); ++k) {
+    const Target& t = targets[k];
+    const double clear = kTargetClearance * t.step;
+    bool blocked = false;
+    std::vector<Pair> mine;
+    index.near(t.p, std::max(clear, kClaimShare * t.step), [&](std::size_t i, double d) {
+      if (nodes.kind[i] != NodeKind::Interior) {
+        if (d < clear && dist(nodes.x[i], t.top) > 0.0) blocked = true;
+      } else if (d <= kClaimShare * t.step) {
+        mine.push_back({d, k, i});
+      }
+    });
+    if (blocked) continue;
+    // Targets of neighbouring rays that crowd each other (a concave front): the first one stays.
+    for (std::size_t j = 0; j < kept_at.size() && !blocked; ++j)
+      blocked = dist(kept_at[j], t.p) < kTargetClearance * std::min(t.step, kept_step[j]);
+    if (blocked) continue;
+    kept_at.push_back(t.p);
+    kept_step.push_back(t.step);
+    pairs.insert(pairs.end(), mine.begin(), mine.end());
+  }
+  std::sort(pairs.begin(), pairs.end(), [](const Pair& a, const Pair& b) { return a.d < b.d; });
+  std::vector<char> filled(targets.size(), 0), claimed(nodes.size(), 0);
+  std::size_t moved = 0;
+  for (const Pair& p : pairs) {
+    if (filled[p.target] || claimed[p.node]) continue;
+    filled[p.target] = claimed[p.node] = 1;
+    nodes.x[p.node] = targets[p.target].p;
+    nodes.kind[p.node] = NodeKind::Fixed;  // the cleanup's smoothing and collapses leave it there
+    ++moved;
+  }
+  return moved;
+}
+
+namespace {
+
+// A layer top whose core cell above reaches more than this many last layers up its ray gets a pinned
+// first-row node (steep_junctions, place_first_row).
+constexpr double kSteepJunction = 1.45;
+
+}  // namespace
+
+Mesh mesh_layered_core(const CaseConfig& config, const MeshInputs& inputs, const SpacingStage& spacing,
+                       const NodeSet& nodes, const LayeredCase& layered, RunPhases* phases, const Mesh* triangulated) {
+  CaseConfig core = config;
+  core.write_outputs = false;
+  std::size_t dropped = 0;
+  NodeSet core_nodes = without_front_nodes(nodes, inputs.geometry, dropped);
+  if (dropped > 0)
+    progress(config, "boundary layers: {} node(s) the simulation snapped onto a layer front left out", dropped);
+  Mesh mesh = mesh_and_measure(core, inputs, spacing, core_nodes, phases, dropped ? nullptr : triangulated);
+  // Only with the cleanup, which makes the triangles around a moved node good again.
+  const std::vector<Vec2> steep =
+      config.cleanup.enabled ? steep_junctions(layered, mesh, kSteepJunction) : std::vector<Vec2>{};
+  if (!steep.empty()) {
+    const std::size_t moved = place_first_row(core_nodes, layered, &steep);
+    progress(config, "boundary layers: {} steep junction(s), {} core node(s) pinned on their rays", steep.size(),
+             moved);
+    if (moved > 0) mesh = mesh_and_measure(core, inputs, spacing, core_nodes, phases, nullptr);
+  }
+  return mesh;
 }
 
 namespace {

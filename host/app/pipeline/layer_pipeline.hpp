@@ -43,6 +43,27 @@ std::unique_ptr<LayeredCase> build_layers(const CaseConfig& config, const MeshIn
 // a front curve (its points are the layer's nodes; one between them would hang on a layer cell's edge).
 NodeSet without_front_nodes(const NodeSet& nodes, const Geometry& core_geometry, std::size_t& dropped);
 
+// The front nodes whose core cell above continues the layer too steeply: the core neighbour most in
+// line with the ray (within acos 0.7) lies more than `limit` last layers up the ray.
+std::vector<Vec2> steep_junctions(const LayeredCase& layered, const Mesh& core, double limit);
+
+// The core's first row on the layers' rays, for the front nodes in `only` (all where null): for
+// each, the interior node nearest to the point growth x its last layer beyond it along its ray
+// (within 1.25 of that step) is moved there and made Fixed, so that the cleanup leaves it: the
+// core's cell above the top then continues the layer's growth whatever the initial fill left there.
+// Where the front's edges at the top are longer than 1.2 steps the point is lifted (up to 1.2
+// steps) and above 1.5 steps there is none; none within 0.6 steps of another front node or of a
+// point already taken; each node moves at most once. Returns how many moved.
+std::size_t place_first_row(NodeSet& nodes, const LayeredCase& layered, const std::vector<Vec2>* only = nullptr);
+
+// The core's cleaned mesh of the simulated `nodes` (config: the core's case, nothing written):
+// without the nodes snapped onto a front, and where the cleanup is on, meshed again with a pinned
+// first-row node at each steep junction (more than 1.45 last layers). `triangulated`: the
+// simulation's final mesh of `nodes`, or null.
+Mesh mesh_layered_core(const CaseConfig& config, const MeshInputs& inputs, const SpacingStage& spacing,
+                       const NodeSet& nodes, const LayeredCase& layered, RunPhases* phases = nullptr,
+                       const Mesh* triangulated = nullptr);
+
 // The layer cells and the core mesh as one mesh: the core's points first, each front node of the
 // layers mapped onto the core's point at exactly its place (the Python API's layered mesh).
 MixedMesh merged_layer_mesh(const MeshInputs& inputs, const LayeredCase& layered, const MeshInputs& core_inputs,

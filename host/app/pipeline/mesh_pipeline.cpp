@@ -175,14 +175,7 @@ void simulate_and_mesh(const CaseConfig& config, const MeshInputs& inputs, const
     // A converged run has triangulated its final nodes.
     if (layered) {
       // The core's cleaned mesh, written with the layer cells.
-      CaseConfig core = config;
-      core.write_outputs = false;
-      std::size_t dropped = 0;
-      const NodeSet core_nodes = without_front_nodes(nodes, inputs.geometry, dropped);
-      if (dropped > 0)
-        progress(config, "boundary layers: {} node(s) the simulation snapped onto a layer front left out", dropped);
-      const Mesh mesh =
-          mesh_and_measure(core, inputs, spacing, core_nodes, &phases, dropped ? nullptr : final_mesh.get());
+      const Mesh mesh = mesh_layered_core(config, inputs, spacing, nodes, layered->layered, &phases, final_mesh.get());
       write_layered_outputs(layered->config, layered->inputs, layered->layered, inputs, mesh, phases);
     } else {
       mesh_and_measure(config, inputs, spacing, nodes, &phases, final_mesh.get());
