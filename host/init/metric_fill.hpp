@@ -4,6 +4,7 @@
 #pragma once
 #include <cstddef>
 #include <cstdint>
+#include <vector>
 
 #include "geometry/geometry_tree.hpp"
 #include "nodes/node_set.hpp"
@@ -49,5 +50,15 @@ struct MetricFillOptions {
 // sqrt(det M): about 2 / sqrt(3) nodes per unit metric area.
 std::size_t metric_fill(const GeometryTree& tree, const MetricField& metric, const SpacingField& q, NodeSet& nodes,
                         const MetricFillOptions& options = {});
+
+// The warm start (init.file, docs/metric-fields.md "Adaptation to a solution"): appends the given points
+// as interior nodes (q from `q`) to `nodes`, which holds the boundary nodes, in their order, keeping a
+// point when it is inside the domain, clears the curves (options.boundary_clearance) and is not closer
+// than options.min_distance to a node already kept, both measured in the point's metric: `metric`'s for a
+// metric run, the isotropic metric I / q(p)^2 when `metric` is null. The relaxation's population control
+// then fixes the density. Deterministic. Returns the number of nodes added; LimitError above
+// options.max_nodes.
+std::size_t warm_fill(const GeometryTree& tree, const MetricField* metric, const SpacingField& q, NodeSet& nodes,
+                      const std::vector<Vec2>& points, const MetricFillOptions& options = {});
 
 }  // namespace pdmesh
