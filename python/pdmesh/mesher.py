@@ -58,7 +58,7 @@ def _write_initial(initial: Any, directory: str) -> str:
     bad = np.flatnonzero(~np.isfinite(points).all(axis=1))
     if bad.size:
         i = int(bad[0])
-        raise InputError(f"initial: point {i} is ({points[i, 0]!r}, {points[i, 1]!r}), not finite")
+        raise InputError(f"initial: point {i} is ({float(points[i, 0])!r}, {float(points[i, 1])!r}), not finite")
     path = os.path.join(directory, "initial.nodes")
     with open(path, "w", encoding="ascii") as f:
         f.write(f"# pdmesh nodes v1\n{len(points)}\n")
