@@ -100,6 +100,28 @@ TEST_CASE("warm_fill measures the spacing in the run's metric") {
   CHECK_THROWS_AS(warm_fill(tree, &metric, q, again, points, limited), LimitError);
 }
 
+TEST_CASE("metric_fill grown from all nodes fills the gaps a warm start leaves") {
+  const Geometry g = fixtures::square(1.0, 4);
+  const GeometryTree tree(g);
+  const ConstantMetricField metric(metric_from_sizes(0.05, 0.01, 0.0));
+  const ConstantSpacing q(std::sqrt(0.05 * 0.01));
+  const CurveMetricSpacing along(tree, metric);
+  NodeSet nodes = square_boundary(tree, along);
+  const std::size_t boundary = nodes.size();
+  REQUIRE(warm_fill(tree, &metric, q, nodes, {{0.5, 0.5}, {0.51, 0.5}}) == 1);
+  MetricFillOptions fill;
+  fill.grow_from_interior = true;
+  metric_fill(tree, metric, q, nodes, fill);
+  // Within 10 % of the unit mesh's (4C/sqrt(3) + B + 2) / 2 nodes, C = 1 / (0.05 * 0.01); the kept
+  // points stay first.
+  const double ideal = (4.0 / (0.05 * 0.01) / std::sqrt(3.0) + static_cast<double>(boundary) + 2.0) / 2.0;
+  INFO(nodes.size() << " nodes, ideal " << ideal);
+  CHECK(static_cast<double>(nodes.size()) > 0.9 * ideal);
+  CHECK(static_cast<double>(nodes.size()) < 1.1 * ideal);
+  CHECK(nodes.x[boundary].x == 0.5);
+  CHECK(nodes.kind[boundary] == NodeKind::Interior);
+}
+
 TEST_CASE("read_warm_points reads a node file's points and refuses bad files by name") {
   const fs::path good = write_file("good.nodes",
                                    "# pdmesh nodes v1\n2\n0.25 0.5 interior -1 1\n0.75 0.5 interior -1 1\ncurves 0\n");

@@ -153,7 +153,12 @@ std::size_t metric_fill(const GeometryTree& tree, const MetricField& metric, con
   }
   std::deque<int> front;
   std::size_t next_seed = 0;
-  if (boundary > 0) front.push_back(static_cast<int>(seed));
+  if (options.grow_from_interior)
+    for (std::size_t i = 0; i < boundary; ++i)
+      if (nodes.kind[i] == NodeKind::Interior) front.push_back(static_cast<int>(i));
+  if (front.empty() && boundary > 0) {
+    front.push_back(static_cast<int>(seed));
+  }
   std::size_t added = 0;
   for (;;) {
     if (front.empty()) {

@@ -36,6 +36,10 @@ struct MetricFillOptions {
   double boundary_clearance = 0.6;
   // LimitError once the fill would place more interior nodes than this; 0: no limit.
   std::uint64_t max_nodes = 0;
+  // Grow from the interior nodes already in the set (a warm start's kept points), the boundary nodes
+  // seeding only where they do not reach: fills the gaps a warm start leaves where the metric asks for
+  // more nodes than it kept. Grown from every boundary node at once, fronts meet in rows of defects.
+  bool grow_from_interior = false;
 };
 
 // Appends interior nodes (NodeKind::Interior, q from `q`) to `nodes`, which holds the boundary nodes

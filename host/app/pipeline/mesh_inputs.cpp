@@ -239,10 +239,14 @@ InitialDistribution make_metric_initial(const CaseConfig& config, const MeshInpu
   initial.nodes = assemble_boundary_nodes(on, spacing.field(), spacing_stations(on, along, placement));
   MetricFillOptions fill;
   fill.max_nodes = config.max_nodes;
-  initial.tree_nodes = config.init.file.empty()
-                           ? metric_fill(tree, *inputs.metric, spacing.field(), initial.nodes, fill)
-                           : warm_fill(tree, inputs.metric.get(), spacing.field(), initial.nodes,
-                                       read_warm_points(config.init.file), fill);
+  if (config.init.file.empty()) {
+    initial.tree_nodes = metric_fill(tree, *inputs.metric, spacing.field(), initial.nodes, fill);
+  } else {
+    initial.tree_nodes = warm_fill(tree, inputs.metric.get(), spacing.field(), initial.nodes,
+                                   read_warm_points(config.init.file), fill);
+    fill.grow_from_interior = true;
+    initial.tree_nodes += metric_fill(tree, *inputs.metric, spacing.field(), initial.nodes, fill);
+  }
   initial.estimate = NAN;
   return initial;
 }
