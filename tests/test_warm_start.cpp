@@ -100,7 +100,7 @@ TEST_CASE("warm_fill measures the spacing in the run's metric") {
   CHECK_THROWS_AS(warm_fill(tree, &metric, q, again, points, limited), LimitError);
 }
 
-TEST_CASE("metric_fill grown from all nodes fills the gaps a warm start leaves") {
+TEST_CASE("metric_fill grown from the kept points fills the gaps a warm start leaves") {
   const Geometry g = fixtures::square(1.0, 4);
   const GeometryTree tree(g);
   const ConstantMetricField metric(metric_from_sizes(0.05, 0.01, 0.0));
