@@ -30,6 +30,24 @@ double metric_distance_to_segment(const Metric& m, Vec2 p, Vec2 a, Vec2 b) {
   return m.length(w - t * d);
 }
 
+// Whether p clears the curves by `clearance` in the metric m: the closest segment of each curve and its
+// neighbours along the curve (the closest in the metric can be a neighbour of the closest in length).
+bool clears_curves_in(const GeometryTree& tree, const Metric& m, Vec2 p, double clearance,
+                      std::vector<ClosestHit>& hits) {
+  const Geometry& geometry = tree.geometry();
+  tree.closest_per_curve(p, hits);
+  for (const ClosestHit& hit : hits) {
+    if (hit.segment < 0) continue;
+    const Segment& s = geometry.segments[static_cast<std::size_t>(hit.segment)];
+    const Curve& curve = geometry.curves[static_cast<std::size_t>(s.curve)];
+    for (int k = std::max(0, s.index - 2); k <= std::min(curve.segment_count() - 1, s.index + 2); ++k) {
+      const Segment& t = geometry.segments[static_cast<std::size_t>(curve.first_segment + k)];
+      if (metric_distance_to_segment(m, p, t.a, t.b) < clearance) return false;
+    }
+  }
+  return true;
+}
+
 // Nodes by grid cell over the geometry's bounding box, for the fill's spacing test.
 class NodeGrid {
  public:
@@ -78,13 +96,14 @@ void bounds(const Geometry& g, Vec2& lo, Vec2& hi) {
 
 // A grid cell side for about kNodesPerCell nodes per cell: the node count of the box, 2 / sqrt(3)
 // integral sqrt(det M) dA, by the midpoint rule on kCountSamples^2 cells.
-double cell_side(const MetricField& metric, Vec2 lo, Vec2 hi) {
+template <class MetricAt>
+double cell_side(const MetricAt& metric_at, Vec2 lo, Vec2 hi) {
   const double w = hi.x - lo.x, h = hi.y - lo.y;
   double c = 0.0;
   for (int j = 0; j < kCountSamples; ++j)
     for (int i = 0; i < kCountSamples; ++i) {
       const Vec2 p{lo.x + (i + 0.5) / kCountSamples * w, lo.y + (j + 0.5) / kCountSamples * h};
-      c += std::sqrt(metric.at(p).det());
+      c += std::sqrt(metric_at(p).det());
     }
   const double area = w * h;
   const double count = 2.0 / std::sqrt(3.0) * c * area / (kCountSamples * kCountSamples);
@@ -110,24 +129,12 @@ std::size_t metric_fill(const GeometryTree& tree, const MetricField& metric, con
   if (geometry.segments.empty()) return 0;
   Vec2 lo, hi;
   bounds(geometry, lo, hi);
-  NodeGrid grid(lo, hi, cell_side(metric, lo, hi));
+  NodeGrid grid(lo, hi, cell_side([&metric](Vec2 p) { return metric.at(p); }, lo, hi));
   for (std::size_t i = 0; i < nodes.size(); ++i) grid.add(nodes.x[i], static_cast<int>(i));
 
-  // The clearance from the curves, in the candidate's metric: the closest segment of each curve and its
-  // neighbours along the curve (the closest in the metric can be a neighbour of the closest in length).
   std::vector<ClosestHit> hits;
   const auto clears_curves = [&](const Metric& m, Vec2 p) {
-    tree.closest_per_curve(p, hits);
-    for (const ClosestHit& hit : hits) {
-      if (hit.segment < 0) continue;
-      const Segment& s = geometry.segments[static_cast<std::size_t>(hit.segment)];
-      const Curve& curve = geometry.curves[static_cast<std::size_t>(s.curve)];
-      for (int k = std::max(0, s.index - 2); k <= std::min(curve.segment_count() - 1, s.index + 2); ++k) {
-        const Segment& t = geometry.segments[static_cast<std::size_t>(curve.first_segment + k)];
-        if (metric_distance_to_segment(m, p, t.a, t.b) < options.boundary_clearance) return false;
-      }
-    }
-    return true;
+    return clears_curves_in(tree, m, p, options.boundary_clearance, hits);
   };
 
   // One lattice grown from one seed (the middle node of the curve with the most nodes), so that it
@@ -146,7 +153,12 @@ std::size_t metric_fill(const GeometryTree& tree, const MetricField& metric, con
   }
   std::deque<int> front;
   std::size_t next_seed = 0;
-  if (boundary > 0) front.push_back(static_cast<int>(seed));
+  if (options.grow_from_interior)
+    for (std::size_t i = 0; i < boundary; ++i)
+      if (nodes.kind[i] == NodeKind::Interior) front.push_back(static_cast<int>(i));
+  if (front.empty() && boundary > 0) {
+    front.push_back(static_cast<int>(seed));
+  }
   std::size_t added = 0;
   for (;;) {
     if (front.empty()) {
@@ -184,6 +196,36 @@ std::size_t metric_fill(const GeometryTree& tree, const MetricField& metric, con
       front.push_back(id);
       ++added;
     }
+  }
+  return added;
+}
+
+std::size_t warm_fill(const GeometryTree& tree, const MetricField* metric, const SpacingField& q, NodeSet& nodes,
+                      const std::vector<Vec2>& points, const MetricFillOptions& options) {
+  const Geometry& geometry = tree.geometry();
+  if (geometry.segments.empty()) return 0;
+  const auto metric_at = [metric, &q](Vec2 p) {
+    if (metric != nullptr) return metric->at(p);
+    const double s = q.at(p);
+    return Metric{1.0 / (s * s), 0.0, 1.0 / (s * s)};
+  };
+  Vec2 lo, hi;
+  bounds(geometry, lo, hi);
+  NodeGrid grid(lo, hi, cell_side(metric_at, lo, hi));
+  for (std::size_t i = 0; i < nodes.size(); ++i) grid.add(nodes.x[i], static_cast<int>(i));
+  std::vector<ClosestHit> hits;
+  std::size_t added = 0;
+  for (const Vec2 p : points) {
+    if (!tree.inside(p)) continue;
+    const Metric m = metric_at(p);
+    if (grid.any_within(nodes.x, m, p, options.min_distance) ||
+        !clears_curves_in(tree, m, p, options.boundary_clearance, hits))
+      continue;
+    if (options.max_nodes > 0 && added >= options.max_nodes)
+      throw LimitError(fmt::format("init.file: more than --max-nodes {} interior nodes; raise --max-nodes",
+                                   options.max_nodes));
+    grid.add(p, nodes.add(p, q.at(p), NodeKind::Interior, -1));
+    ++added;
   }
   return added;
 }

@@ -4,6 +4,7 @@
 #pragma once
 #include <cstddef>
 #include <cstdint>
+#include <vector>
 
 #include "geometry/geometry_tree.hpp"
 #include "nodes/node_set.hpp"
@@ -35,6 +36,10 @@ struct MetricFillOptions {
   double boundary_clearance = 0.6;
   // LimitError once the fill would place more interior nodes than this; 0: no limit.
   std::uint64_t max_nodes = 0;
+  // Grow from the interior nodes already in the set (a warm start's kept points), the boundary nodes
+  // seeding only where they do not reach: fills the gaps a warm start leaves where the metric asks for
+  // more nodes than it kept. Grown from every boundary node at once, fronts meet in rows of defects.
+  bool grow_from_interior = false;
 };
 
 // Appends interior nodes (NodeKind::Interior, q from `q`) to `nodes`, which holds the boundary nodes
@@ -49,5 +54,15 @@ struct MetricFillOptions {
 // sqrt(det M): about 2 / sqrt(3) nodes per unit metric area.
 std::size_t metric_fill(const GeometryTree& tree, const MetricField& metric, const SpacingField& q, NodeSet& nodes,
                         const MetricFillOptions& options = {});
+
+// The warm start (init.file, docs/metric-fields.md "Adaptation to a solution"): appends the given points
+// as interior nodes (q from `q`) to `nodes`, which holds the boundary nodes, in their order, keeping a
+// point when it is inside the domain, clears the curves (options.boundary_clearance) and is not closer
+// than options.min_distance to a node already kept, both measured in the point's metric: `metric`'s for a
+// metric run, the isotropic metric I / q(p)^2 when `metric` is null. The relaxation's population control
+// then fixes the density. Deterministic. Returns the number of nodes added; LimitError above
+// options.max_nodes.
+std::size_t warm_fill(const GeometryTree& tree, const MetricField* metric, const SpacingField& q, NodeSet& nodes,
+                      const std::vector<Vec2>& points, const MetricFillOptions& options = {});
 
 }  // namespace pdmesh

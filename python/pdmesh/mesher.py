@@ -42,6 +42,31 @@ class State:
     max_force: float
 
 
+def _settings_dict(settings: Mapping[str, Any] | None) -> dict:
+    return dict(settings) if settings is not None else {}
+
+
+def _write_initial(initial: Any, directory: str) -> str:
+    """The warm start's points, an (N, 2) array of finite numbers, as a node file in directory
+    (docs/node-file.md: interior nodes, no curves); InputError naming the value otherwise."""
+    try:
+        points = np.asarray(initial, dtype=float)
+    except (TypeError, ValueError) as e:
+        raise InputError(f"initial: not an (N, 2) array of numbers: {e}") from None
+    if points.ndim != 2 or points.shape[1] != 2 or points.shape[0] < 1:
+        raise InputError(f"initial: an (N, 2) array of points with N >= 1 is needed, got shape {points.shape}")
+    bad = np.flatnonzero(~np.isfinite(points).all(axis=1))
+    if bad.size:
+        i = int(bad[0])
+        raise InputError(f"initial: point {i} is ({float(points[i, 0])!r}, {float(points[i, 1])!r}), not finite")
+    path = os.path.join(directory, "initial.nodes")
+    with open(path, "w", encoding="ascii") as f:
+        f.write(f"# pdmesh nodes v1\n{len(points)}\n")
+        f.writelines(f"{x:.17g} {y:.17g} interior -1 1\n" for x, y in points)
+        f.write("curves 0\n")
+    return path
+
+
 class Mesher:
     """One run held in memory: the geometry, the spacing field and the nodes.
 
@@ -58,7 +83,19 @@ class Mesher:
 
     def __init__(self, geo: Any, size: Any = None, *, device: str | None = None, seed: int | None = None,
                  settings: Mapping[str, Any] | None = None, out: str | os.PathLike | None = None,
-                 max_nodes: int | None = None, **keywords: Any):
+                 max_nodes: int | None = None, initial: Any = None, **keywords: Any):
+        if initial is None:
+            self._start(geo, size, device, seed, settings, out, max_nodes, keywords)
+            return
+        # The warm start: the points go to the core as a node file (case key init.file), read while
+        # it places the initial nodes.
+        with _metric.temporary_directory() as directory:
+            path = _write_initial(initial, directory)
+            settings = {**_settings_dict(settings), "init.file": path}
+            self._start(geo, size, device, seed, settings, out, max_nodes, keywords)
+
+    def _start(self, geo: Any, size: Any, device: str | None, seed: int | None, settings: Any,
+               out: str | os.PathLike | None, max_nodes: int | None, keywords: dict) -> None:
         overrides, sampler = _settings_for(size, device, seed, settings, keywords)
         if not isinstance(geo, (Case, Geometry)):
             geo = Geometry(geo)
@@ -213,7 +250,9 @@ def generate(geometry: Any, size: Any = None, *, device: str | None = None, seed
     "thickness": 0.05, "elements": "quads"}`` (or a list of such dicts, one per curve set; the keys
     of the case file's [[boundary_layer]], docs/boundary-layers.md) grows layers from those curves
     and meshes the core on their fronts: the mesh then has ``quads`` and ``triangle_layer``.
-    ``max_nodes``: see Mesher.
+    ``max_nodes``: see Mesher. ``initial``: a warm start, an (N, 2) array of points (e.g. the previous
+    mesh's ``points`` in an adaptation loop) whose interior points are the initial interior nodes
+    (the case key init.file; docs/metric-fields.md, "Adaptation to a solution").
     """
     if isinstance(geometry, (str, os.PathLike)):
         path = os.fspath(geometry)

@@ -31,11 +31,12 @@ def test_the_layer_solves_its_own_equation():
     assert np.allclose(layer.f(x, y), -lap, rtol=1e-5, atol=1e-3)
 
 
-def test_adaptation_converges_within_five_loops():
+@pytest.mark.parametrize("warm", [True, False], ids=["warm", "cold"])
+def test_adaptation_converges_within_five_loops(warm):
     example = load_example()
     lines = []
     rows = example.adapt(example.Layer(k=20.0), complexity=150.0, loops=5, tolerance=0.1, start=0.1,
-                         report=lines.append)
+                         report=lines.append, warm=warm)
     assert any(line.startswith("converged after") for line in lines), "\n".join(lines)
     assert len(rows) - 1 <= 5
     first, last = rows[0], rows[-1]

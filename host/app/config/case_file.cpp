@@ -250,6 +250,7 @@ const std::vector<std::string>& case_file_keys() {
       "init.method",
       "init.seed",
       "init.total",
+      "init.file",
       "simulation.iterations",
       "simulation.stop",
       "simulation.stop_aspect",

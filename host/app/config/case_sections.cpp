@@ -7,6 +7,7 @@
 
 #include "app/config/case_reader.hpp"
 #include "core/input_file.hpp"
+#include "init/warm_points.hpp"
 
 namespace pdmesh::case_detail {
 
@@ -176,6 +177,16 @@ void read_init_section(const Reader& r, const toml::table& root, CaseConfig& c) 
   }
   if (const toml::node* n = find(root, "init", "seed")) c.init.seed = non_negative(r, "init.seed", *n);
   if (const toml::node* n = find(root, "init", "total")) c.init.total = non_negative(r, "init.total", *n);
+  if (const toml::node* n = find(root, "init", "file")) {
+    const std::string f = r.string("init.file", *n);
+    std::string ext = fs::path(f).extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(),
+                   [](unsigned char ch) { return static_cast<char>(std::tolower(ch)); });
+    if (!is_warm_points_extension(ext))
+      r.fail("init.file", n,
+             fmt::format("init.file '{}' must be a .nodes, .msh, .vtu, .su2 or .ele file", quote_input(f)));
+    c.init.file = r.resolve("init.file", f);
+  }
 }
 
 bool valid_device(const std::string& d) {

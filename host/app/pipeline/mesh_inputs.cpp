@@ -15,6 +15,7 @@
 #include "geometry/geometry_files.hpp"
 #include "init/metric_fill.hpp"
 #include "init/node_estimate.hpp"
+#include "init/warm_points.hpp"
 #include "spacing/mesh_spacing.hpp"
 #include "spacing/resolution_check.hpp"
 
@@ -238,10 +239,35 @@ InitialDistribution make_metric_initial(const CaseConfig& config, const MeshInpu
   initial.nodes = assemble_boundary_nodes(on, spacing.field(), spacing_stations(on, along, placement));
   MetricFillOptions fill;
   fill.max_nodes = config.max_nodes;
-  initial.tree_nodes = metric_fill(tree, *inputs.metric, spacing.field(), initial.nodes, fill);
+  if (config.init.file.empty()) {
+    initial.tree_nodes = metric_fill(tree, *inputs.metric, spacing.field(), initial.nodes, fill);
+  } else {
+    initial.tree_nodes = warm_fill(tree, inputs.metric.get(), spacing.field(), initial.nodes,
+                                   read_warm_points(config.init.file), fill);
+    fill.grow_from_interior = true;
+    initial.tree_nodes += metric_fill(tree, *inputs.metric, spacing.field(), initial.nodes, fill);
+  }
   initial.estimate = NAN;
   return initial;
 }
+
+namespace {
+
+// The warm start of an isotropic run: the boundary nodes as the case places them (by the field, or the
+// input's points), then the file's interior points, spaced by q (warm_fill with no metric).
+InitialDistribution make_warm_initial(const CaseConfig& config, const MeshInputs& inputs, const SpacingStage& spacing) {
+  const BoundaryPlacement boundary = place_boundary(config, inputs, spacing);
+  InitialDistribution initial;
+  initial.nodes = boundary.nodes ? *boundary.nodes : make_boundary_nodes(inputs.node_geometry(), spacing.field());
+  MetricFillOptions fill;
+  fill.max_nodes = config.max_nodes;
+  initial.tree_nodes = warm_fill(inputs.node_tree(), nullptr, spacing.field(), initial.nodes,
+                                 read_warm_points(config.init.file), fill);
+  initial.estimate = NAN;
+  return initial;
+}
+
+}  // namespace
 
 InitialDistribution make_initial(const CaseConfig& config, const MeshInputs& inputs, const SpacingStage& spacing) {
   // run_mesh and the Python Mesher mesh a layered case's core (a case without the tables, from
@@ -250,6 +276,7 @@ InitialDistribution make_initial(const CaseConfig& config, const MeshInputs& inp
     throw InputError(fmt::format("{}: [[boundary_layer]]: the stages mesh the core's case (build_layers), not this one",
                                  config.source.string()));
   if (inputs.metric) return make_metric_initial(config, inputs, spacing);
+  if (!config.init.file.empty()) return make_warm_initial(config, inputs, spacing);
   const BoundaryPlacement boundary = place_boundary(config, inputs, spacing);
   InitOptions options;
   options.method = config.init.method;
