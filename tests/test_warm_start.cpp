@@ -83,12 +83,11 @@ TEST_CASE("warm_fill measures the spacing in the run's metric") {
   NodeSet nodes = square_boundary(tree, along);
   const std::size_t boundary = nodes.size();
   const std::vector<Vec2> points{
-      {0.5, 0.5},
-      {0.5, 0.51},   // one metric unit across: kept
-      {0.52, 0.5},   // 0.2 metric units along: dropped
-      {0.5, 0.004},  // 0.4 metric units from the bottom: dropped
-      {0.04, 0.3},   // 0.4 metric units from the left side: dropped
-      {0.08, 0.3},   // 0.8: kept
+      {0.5, 0.5},   {0.5, 0.51},  // one metric unit across: kept
+      {0.52, 0.5},                // 0.2 metric units along: dropped
+      {0.5, 0.004},               // 0.4 metric units from the bottom: dropped
+      {0.04, 0.3},                // 0.4 metric units from the left side: dropped
+      {0.08, 0.3},                // 0.8: kept
   };
   CHECK(warm_fill(tree, &metric, q, nodes, points) == 3);
   REQUIRE(nodes.size() == boundary + 3);
@@ -123,8 +122,8 @@ TEST_CASE("metric_fill grown from the kept points fills the gaps a warm start le
 }
 
 TEST_CASE("read_warm_points reads a node file's points and refuses bad files by name") {
-  const fs::path good = write_file("good.nodes",
-                                   "# pdmesh nodes v1\n2\n0.25 0.5 interior -1 1\n0.75 0.5 interior -1 1\ncurves 0\n");
+  const fs::path good =
+      write_file("good.nodes", "# pdmesh nodes v1\n2\n0.25 0.5 interior -1 1\n0.75 0.5 interior -1 1\ncurves 0\n");
   const std::vector<Vec2> points = read_warm_points(good);
   REQUIRE(points.size() == 2);
   CHECK(points[0].x == 0.25);

@@ -222,8 +222,8 @@ std::size_t warm_fill(const GeometryTree& tree, const MetricField* metric, const
         !clears_curves_in(tree, m, p, options.boundary_clearance, hits))
       continue;
     if (options.max_nodes > 0 && added >= options.max_nodes)
-      throw LimitError(fmt::format("init.file: more than --max-nodes {} interior nodes; raise --max-nodes",
-                                   options.max_nodes));
+      throw LimitError(
+          fmt::format("init.file: more than --max-nodes {} interior nodes; raise --max-nodes", options.max_nodes));
     grid.add(p, nodes.add(p, q.at(p), NodeKind::Interior, -1));
     ++added;
   }

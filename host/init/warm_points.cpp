@@ -18,7 +18,8 @@ namespace {
 
 std::string lower_extension(const std::filesystem::path& path) {
   std::string ext = path.extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char ch) { return static_cast<char>(std::tolower(ch)); });
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char ch) { return static_cast<char>(std::tolower(ch)); });
   return ext;
 }
 
@@ -45,8 +46,8 @@ std::vector<Vec2> read_warm_points(const std::filesystem::path& path) {
   if (points.empty()) throw InputError(fmt::format("init.file '{}': the file has no points", path.string()));
   for (std::size_t i = 0; i < points.size(); ++i)
     if (!std::isfinite(points[i].x) || !std::isfinite(points[i].y))
-      throw InputError(fmt::format("init.file '{}': point {} is ({}, {}), not finite", path.string(), i, points[i].x,
-                                   points[i].y));
+      throw InputError(
+          fmt::format("init.file '{}': point {} is ({}, {}), not finite", path.string(), i, points[i].x, points[i].y));
   return points;
 }
 

@@ -242,8 +242,8 @@ InitialDistribution make_metric_initial(const CaseConfig& config, const MeshInpu
   if (config.init.file.empty()) {
     initial.tree_nodes = metric_fill(tree, *inputs.metric, spacing.field(), initial.nodes, fill);
   } else {
-    initial.tree_nodes = warm_fill(tree, inputs.metric.get(), spacing.field(), initial.nodes,
-                                   read_warm_points(config.init.file), fill);
+    initial.tree_nodes =
+        warm_fill(tree, inputs.metric.get(), spacing.field(), initial.nodes, read_warm_points(config.init.file), fill);
     fill.grow_from_interior = true;
     initial.tree_nodes += metric_fill(tree, *inputs.metric, spacing.field(), initial.nodes, fill);
   }
@@ -261,8 +261,8 @@ InitialDistribution make_warm_initial(const CaseConfig& config, const MeshInputs
   initial.nodes = boundary.nodes ? *boundary.nodes : make_boundary_nodes(inputs.node_geometry(), spacing.field());
   MetricFillOptions fill;
   fill.max_nodes = config.max_nodes;
-  initial.tree_nodes = warm_fill(inputs.node_tree(), nullptr, spacing.field(), initial.nodes,
-                                 read_warm_points(config.init.file), fill);
+  initial.tree_nodes =
+      warm_fill(inputs.node_tree(), nullptr, spacing.field(), initial.nodes, read_warm_points(config.init.file), fill);
   initial.estimate = NAN;
   return initial;
 }
