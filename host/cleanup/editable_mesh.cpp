@@ -163,6 +163,16 @@ void EditableMesh::ring(int a, std::vector<int>& out) const {
   }
 }
 
+int EditableMesh::common_neighbours(int a, int b) const {
+  std::vector<int> ring_a, ring_b;
+  ring(a, ring_a);
+  ring(b, ring_b);
+  int common = 0;
+  for (int x : ring_a)
+    for (int y : ring_b) common += (x == y);
+  return common;
+}
+
 std::array<int, 2> EditableMesh::find_edge(int a, int b) const {
   // Counter-clockwise around a from vt[a]; for an open fan also clockwise (no allocation: Lawson
   // flips call this for every edge they look at).

@@ -71,6 +71,8 @@ class EditableMesh {
   void star(int a, std::vector<int>& out) const;
   // The vertices joined to a, in the order of star(a) (for a boundary vertex one more than the fan).
   void ring(int a, std::vector<int>& out) const;
+  // The number of vertices joined to both a and b (the link condition of collapsing edge a-b).
+  int common_neighbours(int a, int b) const;
   // Triangle t and local index i with edge a -> b counter-clockwise in t, opposite v[t][i];
   // {-1, -1} when there is no such edge.
   std::array<int, 2> find_edge(int a, int b) const;

@@ -188,13 +188,7 @@ bool EditableMesh::collapse(int a, int b, Vec2 to, double b_arc) {
   const int c = v[t1][i1], d = v[t2][i2];
   // Link condition: a and b may share only c and d, or the collapse would pinch the mesh (and a
   // valence-3 neighbour would degenerate).
-  std::vector<int> ring_a, ring_b;
-  ring(a, ring_a);
-  ring(b, ring_b);
-  int common = 0;
-  for (int x : ring_a)
-    for (int y : ring_b) common += (x == y);
-  if (common != 2) return false;
+  if (common_neighbours(a, b) != 2) return false;
 
   touch_star(a);
   touch_star(b);
@@ -242,13 +236,7 @@ bool EditableMesh::collapse_boundary(int a, int b) {
   const int c = v[t1][i1];
   const int n_bc = n[t1][index_of(v[t1], a)], n_ca = n[t1][index_of(v[t1], b)];
   if (n_bc < 0 || n_ca < 0) return false;
-  std::vector<int> ring_a, ring_b;
-  ring(a, ring_a);
-  ring(b, ring_b);
-  int common = 0;
-  for (int x : ring_a)
-    for (int y : ring_b) common += (x == y);
-  if (common != 1) return false;
+  if (common_neighbours(a, b) != 1) return false;
 
   touch_star(a);
   touch_star(b);
