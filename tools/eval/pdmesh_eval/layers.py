@@ -115,15 +115,7 @@ def layer_measures(points, triangles, quads, wall_segments, first_height, thickn
         direction = ns / norm
         column, cur = [w], w
         while d[cur] <= thickness and len(column) < 10000:
-            best, best_cos = None, min_cos
-            for v in neighbours[cur]:
-                step = points[v] - points[cur]
-                length = math.hypot(*step)
-                if d[v] <= d[cur] or length == 0:
-                    continue
-                c = (step @ direction) / length
-                if c > best_cos:
-                    best, best_cos = v, c
+            best = step_up(points, d, neighbours[cur], cur, direction, min_cos)
             if best is None:
                 break
             column.append(best)
@@ -183,6 +175,21 @@ def layer_measures(points, triangles, quads, wall_segments, first_height, thickn
     }
 
 
+def step_up(points, d, candidates, cur, direction, min_cos):
+    """Of the candidates farther from the wall than cur (wall distance d), the one whose step from cur
+    is best aligned with direction (cosine above min_cos); None when there is none."""
+    best, best_cos = None, min_cos
+    for v in candidates:
+        step = points[v] - points[cur]
+        length = math.hypot(*step)
+        if d[v] <= d[cur] or length == 0:
+            continue
+        c = (step @ direction) / length
+        if c > best_cos:
+            best, best_cos = v, c
+    return best
+
+
 def thickness_jumps(points, cells, layer_cells, d, wall_edges, regions, min_cos):
     """The layer thickness at both ends of each wall edge (the columns walked along the layer cells'
     edges best aligned with the edge's normal, up to the last layer node), and their ratio:
@@ -199,15 +206,7 @@ def thickness_jumps(points, cells, layer_cells, d, wall_edges, regions, min_cos)
     def column_top(w, direction):
         cur = w
         for _ in range(10000):
-            best, best_cos = None, min_cos
-            for v in layer_neighbours.get(cur, ()):
-                step = points[v] - points[cur]
-                length = math.hypot(*step)
-                if d[v] <= d[cur] or length == 0:
-                    continue
-                c = (step @ direction) / length
-                if c > best_cos:
-                    best, best_cos = v, c
+            best = step_up(points, d, layer_neighbours.get(cur, ()), cur, direction, min_cos)
             if best is None:
                 break
             direction = (points[best] - points[cur]) / math.hypot(*(points[best] - points[cur]))
