@@ -22,6 +22,17 @@ struct RawCurve {
   // Every point is a critical point (a Fixed node that nothing moves, removes or splits): a boundary
   // layer's front, whose nodes the layer cells share (docs/boundary-layers.md).
   bool fixed_points = false;
+  // An embedded constraint: a polyline inside the domain (open, or a closed loop that bounds a
+  // subdomain rather than a hole) whose segments become chains of mesh edges and whose points
+  // become nodes. It does not bound the domain (docs/geometry-input.md, "Embedded constraints").
+  bool constraint = false;
+};
+
+// An isolated point inside the domain that must be a node of the mesh, as read from a file.
+struct RawPoint {
+  Vec2 p;
+  std::string file;
+  int line = 0;
 };
 
 // A hole point as read from a .poly file (Triangle's convention), before validation.
@@ -41,6 +52,7 @@ struct Curve {
   std::string file;                    // where it came from
   int line = 0;
   bool fixed_points = false;  // RawCurve::fixed_points: every point critical, no node between them
+  bool constraint = false;    // RawCurve::constraint: an embedded constraint, not a domain boundary
   double length() const { return arc.empty() ? 0.0 : arc.back(); }
   int segment_count() const { return static_cast<int>(points.size()) - 1; }
 };
@@ -94,6 +106,16 @@ struct Geometry {
   double area = 0.0;  // even-odd interior area of all loops
   // Hole points from .poly files: accepted, checked to lie in a hole, otherwise unused (even-odd rule).
   std::vector<Vec2> hole_points;
+  // Embedded points (RawPoint): nodes the mesh must have inside the domain.
+  std::vector<Vec2> embedded_points;
+};
+
+// Everything a geometry reader hands on: curves (boundaries and constraints), hole points and
+// embedded points, before validation.
+struct RawGeometry {
+  std::vector<RawCurve> curves;
+  std::vector<RawHolePoint> holes;
+  std::vector<RawPoint> points;
 };
 
 // Validates raw curves and derives everything else. Throws GeometryError naming the file, line,
