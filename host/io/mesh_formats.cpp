@@ -6,9 +6,11 @@
 #include <fmt/format.h>
 
 #include "core/errors.hpp"
+#include "io/fort14_writer.hpp"
 #include "io/msh_reader.hpp"
 #include "io/msh_writer.hpp"
 #include "io/su2_reader.hpp"
+#include "io/sms2dm_writer.hpp"
 #include "io/su2_writer.hpp"
 #include "io/text_file.hpp"
 #include "io/triangle_reader.hpp"
@@ -19,7 +21,7 @@
 namespace pdmesh {
 
 const std::vector<std::string>& mesh_format_names() {
-  static const std::vector<std::string> names = {"msh", "msh22", "vtu", "su2", "triangle"};
+  static const std::vector<std::string> names = {"msh", "msh22", "vtu", "su2", "triangle", "fort14", "2dm"};
   return names;
 }
 
@@ -29,7 +31,8 @@ bool is_mesh_format(const std::string& name) {
 }
 
 std::vector<std::filesystem::path> write_mesh(const Mesh& mesh, const std::filesystem::path& dir,
-                                              const std::string& stem, const std::vector<std::string>& formats) {
+                                              const std::string& stem, const std::vector<std::string>& formats,
+                                              const MeshWriteOptions& options) {
   for (const auto& f : formats) {
     if (!is_mesh_format(f)) {
       throw InputError(fmt::format("unknown mesh format '{}' (known: {})", f, fmt::join(mesh_format_names(), ", ")));
@@ -54,6 +57,10 @@ std::vector<std::filesystem::path> write_mesh(const Mesh& mesh, const std::files
       put(".vtu", vtu_string(mesh));
     } else if (f == "su2") {
       put(".su2", su2_string(mesh));
+    } else if (f == "fort14") {
+      put(".14", fort14_string(mesh, options.open_boundaries));
+    } else if (f == "2dm") {
+      put(".2dm", sms2dm_string(mesh));
     } else if (f == "triangle") {
       const auto files = triangle_strings(mesh);
       put(".node", files.node);

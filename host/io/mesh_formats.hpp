@@ -1,5 +1,6 @@
 // Mesh file formats by name (writing) and by extension (reading): msh (Gmsh 4.1), msh22
-// (Gmsh 2.2), vtu (VTK XML), su2 (SU2 native) and triangle (.node/.ele/.poly).
+// (Gmsh 2.2), vtu (VTK XML), su2 (SU2 native), triangle (.node/.ele/.poly), fort14 (ADCIRC/SCHISM,
+// STEM.14) and 2dm (SMS).
 #pragma once
 #include <filesystem>
 #include <string>
@@ -15,11 +16,18 @@ const std::vector<std::string>& mesh_format_names();
 // True for a name write_mesh accepts.
 bool is_mesh_format(const std::string& name);
 
-// Writes DIR/STEM.msh (msh and msh22 cannot both be asked for: same file), .vtu, .su2 or
+// What some formats need beyond the mesh: the curves that are open boundaries in fort14 (every other
+// boundary curve is land).
+struct MeshWriteOptions {
+  std::vector<std::string> open_boundaries;
+};
+
+// Writes DIR/STEM.msh (msh and msh22 cannot both be asked for: same file), .vtu, .su2, .14, .2dm or
 // STEM.node/.ele/.poly, each atomically, and returns the paths written. Throws InputError on an
 // unknown format name (listing the known ones) or an unwritable directory.
 std::vector<std::filesystem::path> write_mesh(const Mesh& mesh, const std::filesystem::path& dir,
-                                              const std::string& stem, const std::vector<std::string>& formats);
+                                              const std::string& stem, const std::vector<std::string>& formats,
+                                              const MeshWriteOptions& options = {});
 
 // Reads a mesh by extension: .msh (2.2 or 4.1, from $MeshFormat), .vtu, .su2, .ele (with its
 // .node and optional .poly; a .node or .poly path is taken to mean the same stem).

@@ -15,7 +15,7 @@ from .errors import InputError
 
 # Mesh formats by file suffix (the command's writers); .msh is Gmsh 4.1, format="msh22" for 2.2.
 _SUFFIX_FORMATS = {".msh": "msh", ".vtu": "vtu", ".su2": "su2", ".node": "triangle", ".ele": "triangle",
-                   ".poly": "triangle"}
+                   ".poly": "triangle", ".14": "fort14", ".2dm": "2dm"}
 _PICTURES = (".png", ".svg")
 # Jupyter: SVG for meshes up to this many triangles (each is an element), PNG beyond.
 _SVG_REPR_LIMIT = 20_000
@@ -86,10 +86,13 @@ class Mesh:
             summary["per_triangle"] = self._core.triangle_metrics()
         return summary
 
-    def write(self, path: str | os.PathLike, format: str | None = None) -> list[str]:
+    def write(self, path: str | os.PathLike, format: str | None = None,
+              open_boundaries: Sequence[str] = ()) -> list[str]:
         """Writes the mesh with the command's writers, the format from the suffix (.msh Gmsh 4.1,
-        .vtu, .su2, .node/.ele/.poly Triangle; .png/.svg a picture) or ``format`` (msh, msh22, vtu,
-        su2, triangle). Atomic, as the command's files. Returns the paths written."""
+        .vtu, .su2, .node/.ele/.poly Triangle, .14 ADCIRC/SCHISM, .2dm SMS; .png/.svg a picture) or
+        ``format`` (msh, msh22, vtu, su2, triangle, fort14, 2dm). ``open_boundaries``: the curves
+        fort14 writes as open boundaries (the others are land). Atomic, as the command's files.
+        Returns the paths written."""
         path = os.fspath(path)
         suffix = os.path.splitext(path)[1].lower()
         if format is None and suffix in _PICTURES:
@@ -98,9 +101,13 @@ class Mesh:
         if format is None:
             if suffix not in _SUFFIX_FORMATS:
                 raise InputError(f"{path}: unknown mesh suffix '{suffix}' (.msh, .vtu, .su2, .node/.ele/.poly, "
-                                 ".png, .svg; or give format=)")
+                                 ".14, .2dm, .png, .svg; or give format=)")
             format = _SUFFIX_FORMATS[suffix]
-        return list(self._core.write(path, format))
+        names = list(self.boundary_edges)
+        for name in open_boundaries:
+            if name not in names:
+                raise InputError(f"open_boundaries: unknown curve '{name}' (the curves are: {', '.join(names)})")
+        return list(self._core.write(path, format, [str(n) for n in open_boundaries]))
 
     def picture(self, path: str | os.PathLike, color_by: str | None = None, title: str | None = None,
                 window: Sequence[float] | None = None, long_side: int = 1600) -> None:

@@ -89,8 +89,10 @@ nb::dict boundary_edges(const MeshHandle& h) {
   return d;
 }
 
-// `format` is a write_mesh name (msh, msh22, vtu, su2, triangle); the file is DIR/STEM.<ext>.
-std::vector<std::string> write(const MeshHandle& h, const std::string& path, const std::string& format) {
+// `format` is a write_mesh name (msh, msh22, vtu, su2, triangle, fort14, 2dm); the file is
+// DIR/STEM.<ext>. `open_boundaries`: the curves fort14 writes as open boundaries.
+std::vector<std::string> write(const MeshHandle& h, const std::string& path, const std::string& format,
+                               const std::vector<std::string>& open_boundaries) {
   const fs::path p(path);
   const fs::path dir = p.parent_path().empty() ? fs::path(".") : p.parent_path();
   std::vector<fs::path> written;
@@ -98,7 +100,7 @@ std::vector<std::string> write(const MeshHandle& h, const std::string& path, con
     nb::gil_scoped_release release;
     // With layers the mixed-cell writers (msh, vtu, su2; InputError for the others).
     written = h.layers ? write_mixed_mesh(h.layers->mixed, dir, p.stem().string(), {format})
-                       : write_mesh(*h.mesh, dir, p.stem().string(), {format});
+                       : write_mesh(*h.mesh, dir, p.stem().string(), {format}, {open_boundaries});
   }
   std::vector<std::string> out;
   for (const fs::path& w : written) out.push_back(w.string());
@@ -185,7 +187,7 @@ void bind_mesh(nb::module_& m) {
       .def("boundary_edges", &boundary_edges, "Boundary edges by curve name, (K, 2) int32 each.")
       .def("quality_json", &quality_json_of, "The quality.json document of this mesh.")
       .def("triangle_metrics", &triangle_metrics, "Per-triangle quality arrays.")
-      .def("write", &write, nb::arg("path"), nb::arg("format"), "Writes the mesh; returns the paths written.")
+      .def("write", &write, nb::arg("path"), nb::arg("format"), nb::arg("open_boundaries"), "Writes the mesh; returns the paths written.")
       .def("picture", &picture, nb::arg("path"), nb::arg("color_by") = "none", nb::arg("title") = "",
            nb::arg("window").none() = nb::none(), nb::arg("long_side") = 1600, "Draws the mesh into a .png or .svg.");
 

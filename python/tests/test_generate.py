@@ -128,6 +128,26 @@ def test_quality_write_and_read_back(rings, tmp_path):
         mesh.write(tmp_path / "m.xyz")
 
 
+def test_coastal_formats(rings, tmp_path):
+    """fort.14 and .2dm: every node and triangle, the square an open or land string, the hole an island."""
+    mesh = pdmesh.generate(rings, **SETTINGS)
+    names = list(mesh.boundary_edges)
+    mesh.write(tmp_path / "m.14", open_boundaries=[names[0]])
+    lines = (tmp_path / "m.14").read_text().splitlines()
+    assert lines[1].split() == [str(len(mesh.triangles)), str(len(mesh.points))]
+    rest = lines[2 + len(mesh.points) + len(mesh.triangles):]
+    assert rest[0] == "1 = Number of open boundaries"
+    assert rest[int(rest[2].split()[0]) + 3] == "1 = Number of land boundaries"
+    assert rest[int(rest[2].split()[0]) + 5].split()[1] == "1"  # the hole: an island
+    mesh.write(tmp_path / "m.2dm")
+    text = (tmp_path / "m.2dm").read_text()
+    assert text.count("\nE3T ") == len(mesh.triangles) and text.count("\nND ") == len(mesh.points)
+    ns = [line.split()[1:] for line in text.splitlines() if line.startswith("NS ")]
+    assert sum(1 for words in ns for w in words if w.startswith("-")) == 2  # two strings, each ending in a negated id
+    with pytest.raises(pdmesh.InputError, match="unknown curve 'ocean'"):
+        mesh.write(tmp_path / "x.14", open_boundaries=["ocean"])
+
+
 def test_geo_interface_round_trip(rings):
     geo = pdmesh.Geometry(rings)
     gi = geo.__geo_interface__

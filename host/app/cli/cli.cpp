@@ -275,7 +275,7 @@ void add_mesh_options(CLI::App& mesh, MeshArguments& a) {
                   "skewness | condition_number | min_jacobian")
       ->type_name("METRIC");
   mesh.add_option("--formats", a.formats,
-                  "output.formats, comma-separated: msh,msh22,vtu,su2,triangle,png,svg (no png and no svg: no "
+                  "output.formats, comma-separated: msh,msh22,vtu,su2,triangle,fort14,2dm,png,svg (no png and no svg: no "
                   "pictures at all)")
       ->type_name("LIST");
   mesh.add_option("--view", a.views,

@@ -291,6 +291,7 @@ const std::vector<std::string>& case_file_keys() {
       "output.views",
       "output.color_by",
       "output.spacing_picture",
+      "output.open_boundaries",
       "boundary_layer.curves",
       "boundary_layer.first_height",
       "boundary_layer.y_plus",

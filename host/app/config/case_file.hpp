@@ -209,6 +209,8 @@ struct CaseConfig {
     std::vector<ViewWindow> views;
     std::string color_by = "none";  // mesh.png fill: none or a per-triangle quality metric
     bool spacing_picture = false;   // DIR/spacing.png: the final spacing field (--plot-spacing)
+    // Curves written as open boundaries in fort14 (the rest are land); checked against the curve names.
+    std::vector<std::string> open_boundaries;
     bool wants(const std::string& format) const;
   } output;
 

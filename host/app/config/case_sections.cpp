@@ -13,7 +13,7 @@ namespace pdmesh::case_detail {
 
 namespace {
 
-const std::vector<std::string> kFormats = {"msh", "msh22", "vtu", "su2", "triangle", "png", "svg"};
+const std::vector<std::string> kFormats = {"msh", "msh22", "vtu", "su2", "triangle", "fort14", "2dm", "png", "svg"};
 
 // A loop, not std::regex: libstdc++'s matcher recurses once per character, so a long name would
 // overflow the stack.
@@ -426,6 +426,8 @@ void read_output_section(const Reader& r, const toml::table& root, CaseConfig& c
                                              {"condition_number", "condition_number"},
                                              {"min_jacobian", "min_jacobian"}});
   }
+  if (const toml::node* n = find(root, "output", "open_boundaries"))
+    c.output.open_boundaries = r.strings("output.open_boundaries", *n);
   if (const toml::node* n = find(root, "output", "tree_overlay"))
     c.output.tree_overlay = r.boolean("output.tree_overlay", *n);
   if (const toml::node* n = find(root, "output", "spacing_picture"))

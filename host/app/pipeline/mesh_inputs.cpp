@@ -14,6 +14,7 @@
 #include "core/memory_budget.hpp"
 #include "geometry/geometry_files.hpp"
 #include "init/metric_fill.hpp"
+#include "layers/boundary_layers.hpp"
 #include "init/node_estimate.hpp"
 #include "init/warm_points.hpp"
 #include "spacing/mesh_spacing.hpp"
@@ -40,6 +41,8 @@ MeshInputs::MeshInputs(const CaseConfig& config) {
                       geometry.curves[c].file, geometry.curves[c].line, c, name));
     }
   }
+  // Checked here, before the run, so that a misspelt name writes nothing.
+  curves_by_name(geometry, config.output.open_boundaries, config.source.string() + ": output.open_boundaries");
   // The geometry's quadtree and the queries' per-segment arrays, before they are made (the
   // geometry itself is read: its size was the file's).
   check_memory(

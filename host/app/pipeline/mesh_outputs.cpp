@@ -359,7 +359,8 @@ void write_mesh_outputs(const CaseConfig& config, const MeshInputs& inputs, cons
   for (const std::string& f : config.output.formats) {
     if (!is_mesh_format(f)) continue;
     const auto writer_timer = phases.phase(fmt::format("mesh {}", f));
-    for (fs::path& p : write_mesh(mesh, dir, "mesh", {f})) written.push_back(std::move(p));
+    for (fs::path& p : write_mesh(mesh, dir, "mesh", {f}, {config.output.open_boundaries}))
+      written.push_back(std::move(p));
   }
   {
     // The nodes of the mesh with their q, kinds and curve chains (final.nodes after the cleanup; the

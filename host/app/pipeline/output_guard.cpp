@@ -40,6 +40,8 @@ std::vector<fs::path> planned_outputs(const CaseConfig& config) {
     if (f == "msh" || f == "msh22") names.emplace_back("mesh.msh");
     if (f == "vtu") names.emplace_back("mesh.vtu");
     if (f == "su2") names.emplace_back("mesh.su2");
+    if (f == "fort14") names.emplace_back("mesh.14");
+    if (f == "2dm") names.emplace_back("mesh.2dm");
     if (f == "triangle")
       for (const char* ext : {".node", ".ele", ".poly"}) names.push_back(std::string("mesh") + ext);
   }

@@ -1,0 +1,15 @@
+// SMS 2-D mesh writer (.2dm): triangles (E3T), nodes (ND) and one named node string (NS) per boundary
+// curve.
+#pragma once
+#include <string>
+
+#include "mesh/mesh.hpp"
+
+namespace pdmesh {
+
+// Every triangle has material 1. The node strings are those of io/boundary_strings (the domain on
+// their left, a closed curve's first node repeated last), at most ten ids per line, the last id
+// negative and followed by the curve's name (blanks made '_').
+std::string sms2dm_string(const Mesh& mesh);
+
+}  // namespace pdmesh
