@@ -39,13 +39,15 @@ CORPUS = os.path.join(REPO, "cases", "user_corpus")
 TARGET_DEG = {"airfoil": 30.0, "pslg": 30.0, "gis": 20.0}
 
 
-def corpus_names():
-    return sorted(d for d in os.listdir(CORPUS) if os.path.exists(os.path.join(CORPUS, d, "case.toml")))
+def corpus_names(corpus):
+    return sorted(d for d in os.listdir(corpus) if os.path.exists(os.path.join(corpus, d, "case.toml")))
 
 
 def kind_of(case):
     files = case.get("geometry", {}).get("files", [""])
     ext = os.path.splitext(files[0])[1].lower()
+    if "farfield" in case:
+        return "airfoil"
     return {".dat": "airfoil", ".poly": "pslg"}.get(ext, "gis")
 
 
@@ -65,7 +67,7 @@ def project_points(points, inp):
 
 
 def one_input(args, name):
-    case_dir = os.path.join(CORPUS, name)
+    case_dir = os.path.join(args.corpus, name)
     case = read_case(case_dir)
     work = os.path.join(args.out, name)
     os.makedirs(work, exist_ok=True)
@@ -172,6 +174,7 @@ def main():
     ap.add_argument("--pdmesh", default=os.path.join(REPO, "build", "pdmesh"))
     ap.add_argument("--python", default=sys.executable, help="a Python with the gmsh module (default: this one)")
     ap.add_argument("--out", default=os.path.join(REPO, "out", "corpus_anchors"))
+    ap.add_argument("--corpus", default=CORPUS, help="the directory of input directories (default: %(default)s)")
     ap.add_argument("--set", action="append", default=[], metavar="KEY=VALUE", help="passed to pdmesh mesh")
     ap.add_argument("--corner-deg", type=float, default=30.0,
                     help="a boundary vertex where the input turns by more than this ends Gmsh's curve (default 30)")
@@ -181,12 +184,13 @@ def main():
     ap.add_argument("--markdown", help="also write the table (with the commands and machine) to this file")
     ap.add_argument("--reuse", action="store_true", help="reuse a pdmesh run made by the same command")
     args = ap.parse_args()
+    args.corpus = os.path.abspath(args.corpus)
     if not os.access(args.pdmesh, os.X_OK):
         fail(f"{args.pdmesh}: no pdmesh executable (build it, or pass --pdmesh)")
-    names = args.names or corpus_names()
+    names = args.names or corpus_names(args.corpus)
     for n in names:
-        if not os.path.exists(os.path.join(CORPUS, n, "case.toml")):
-            fail(f"'{n}' is not an input under cases/user_corpus/ ({', '.join(corpus_names())})")
+        if not os.path.exists(os.path.join(args.corpus, n, "case.toml")):
+            fail(f"'{n}' is not an input under {args.corpus} ({', '.join(corpus_names(args.corpus))})")
     args.pdmesh, args.out = os.path.abspath(args.pdmesh), os.path.abspath(args.out)
     os.makedirs(args.out, exist_ok=True)
     rows = [one_input(args, n) for n in names]

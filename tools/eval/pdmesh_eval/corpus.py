@@ -52,6 +52,22 @@ def read_selig(path):
     return pts
 
 
+def read_crv_loops(path):
+    """pdmesh's point-count curve format (docs/geometry-input.md), each block a closed loop (its
+    last point repeating its first); other .crv files are not read here."""
+    rows = [ln.split() for ln in open(path).read().splitlines()]
+    rows = [r for r in rows if r and not r[0].startswith("#")]
+    loops, i = [], 0
+    while i < len(rows):
+        n = int(rows[i][0])
+        pts = [(float(r[0]), float(r[1])) for r in rows[i + 1:i + 1 + n]]
+        if pts[0] != pts[-1]:
+            raise Unsupported(f"{path}: a curve that is not a closed loop is not read here")
+        loops.append(pts[:-1])
+        i += 1 + n
+    return loops
+
+
 def read_poly(path):
     """Triangle's .poly file: (vertices {index: (x, y)}, segments [(a, b)], hole points)."""
     rows = [ln.split("#")[0].split() for ln in open(path).read().splitlines()]
@@ -208,8 +224,8 @@ def read_input(case):
     if not files:
         raise Unsupported("the case names no geometry file")
     ext = os.path.splitext(files[0])[1].lower()
-    if ext == ".dat":
-        body = read_selig(files[0])
+    if ext == ".dat" or (ext == ".crv" and "farfield" in case):
+        body = read_selig(files[0]) if ext == ".dat" else read_crv_loops(files[0])[0]
         inp = Input("airfoil")
         inp.body = body
         ff = case.get("farfield")
