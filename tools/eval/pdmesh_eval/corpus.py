@@ -26,6 +26,11 @@ class Input:
         self.projection, self.farfield, self.body = None, None, None
 
 
+def read_text(path, errors="strict"):
+    with open(path, errors=errors) as f:
+        return f.read()
+
+
 class Unsupported(Exception):
     """An input this module cannot read (a format or option the evaluation side lacks)."""
 
@@ -37,7 +42,7 @@ class Unsupported(Exception):
 def read_selig(path):
     """The closed loop of a Selig-format airfoil file: a name line, then x y pairs (the first and
     last point at the trailing edge; a repeated closing point dropped)."""
-    lines = [ln.split() for ln in open(path, errors="replace").read().splitlines()]
+    lines = [ln.split() for ln in read_text(path, errors="replace").splitlines()]
     pts = []
     for k, t in enumerate(lines[1:], 2):
         if not t:
@@ -55,7 +60,7 @@ def read_selig(path):
 def read_crv_loops(path):
     """pdmesh's point-count curve format (docs/geometry-input.md), each block a closed loop (its
     last point repeating its first); other .crv files are not read here."""
-    rows = [ln.split() for ln in open(path).read().splitlines()]
+    rows = [ln.split() for ln in read_text(path).splitlines()]
     rows = [r for r in rows if r and not r[0].startswith("#")]
     loops, i = [], 0
     while i < len(rows):
@@ -70,7 +75,7 @@ def read_crv_loops(path):
 
 def read_poly(path):
     """Triangle's .poly file: (vertices {index: (x, y)}, segments [(a, b)], hole points)."""
-    rows = [ln.split("#")[0].split() for ln in open(path).read().splitlines()]
+    rows = [ln.split("#")[0].split() for ln in read_text(path).splitlines()]
     rows = [r for r in rows if r]
     nv, _, nattr, nmark = (int(v) for v in rows[0][:4])
     vertices = {int(r[0]): (float(r[1]), float(r[2])) for r in rows[1:1 + nv]}
@@ -147,7 +152,8 @@ def merge_chains(segments):
 def shapefile_rings(path):
     """Every ring of every Polygon record of a .shp file (shapefile whitepaper: clockwise outer
     rings, counter-clockwise holes)."""
-    data = open(path, "rb").read()
+    with open(path, "rb") as f:
+        data = f.read()
     rings, pos = [], 100
     while pos < len(data):
         _, words = struct.unpack(">ii", data[pos:pos + 8])
@@ -196,7 +202,7 @@ def gis_input(paths):
 def project(inp):
     """geometry.projection = "equirectangular" as pdmesh does it: metres about the centre of the
     input's bounding box (lon0, lat0), x = R cos(lat0) (lon - lon0), y = R (lat - lat0)."""
-    from shapely.ops import transform
+    import shapely
     x0, y0, x1, y1 = inp.domain.bounds
     for c in inp.constraints:
         for x, y in c:
@@ -205,7 +211,7 @@ def project(inp):
         x0, y0, x1, y1 = min(x0, x), min(y0, y), max(x1, x), max(y1, y)
     inp.projection = (0.5 * (x0 + x1), 0.5 * (y0 + y1))
     f = lonlat_to_xy(inp.projection)
-    inp.domain = transform(lambda x, y, z=None: f(np.asarray(x), np.asarray(y)), inp.domain)
+    inp.domain = shapely.transform(inp.domain, lambda xy: np.column_stack(f(xy[:, 0], xy[:, 1])))
     inp.constraints = [[tuple(map(float, f(x, y))) for x, y in c] for c in inp.constraints]
     inp.points = [tuple(map(float, f(x, y))) for x, y in inp.points]
 
