@@ -113,6 +113,20 @@ class FreeBoundary(unittest.TestCase):
         self.assertEqual(text.count("Line("), 64)
 
 
+class SharpestCorner(unittest.TestCase):
+    def test_measured_on_the_domain_side(self):
+        from shapely.geometry import Polygon
+        inp = corpus.Input("pslg")
+        # a square with a 20-deg notch cut into its top side: the notch's tip is 20 deg seen from
+        # outside the domain, so the domain sees 340 deg there; the notch mouth corners are
+        # 180 - 80 = 100 deg; the square's corners 90 deg
+        h = 0.5 / math.tan(math.radians(10))
+        inp.domain = Polygon([(0, 0), (4, 0), (4, 4), (2.5, 4), (2, 4 - h), (1.5, 4), (0, 4)], [[(1, 1), (1, 1.5), (1.5, 1)]])
+        self.assertAlmostEqual(corpus.sharpest_corner(inp), 90.0, places=9)
+        inp.domain = Polygon([(0, 0), (4, 0), (2, h)])
+        self.assertAlmostEqual(corpus.sharpest_corner(inp), math.degrees(math.atan2(h, 2)), places=9)
+
+
 class Projection(unittest.TestCase):
     def test_lonlat_square_at_60_degrees_is_half_as_wide(self):
         from shapely.geometry import Polygon

@@ -29,7 +29,7 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 
 from pdmesh_eval.common import fail, fmt, git_description, log, machine_description, read_case, write_atomically  # noqa: E402
 from pdmesh_eval.corpus import (Unsupported, constraint_check, lonlat_to_xy, measures, read_input,  # noqa: E402
-                                run_gmsh_child, write_free_geo)
+                                run_gmsh_child, sharpest_corner, write_free_geo)
 from pdmesh_eval.gmsh import write_pos  # noqa: E402
 from pdmesh_eval.meshfiles import read_msh, read_node_file  # noqa: E402
 from pdmesh_eval.runs import RunError, run_mesh  # noqa: E402
@@ -71,9 +71,10 @@ def one_input(args, name):
     case = read_case(case_dir)
     work = os.path.join(args.out, name)
     os.makedirs(work, exist_ok=True)
-    row = {"input": name, "kind": kind_of(case), "pdmesh": None, "gmsh": None, "notes": []}
+    row = {"input": name, "kind": kind_of(case), "pdmesh": None, "gmsh": None, "notes": [], "sharpest_corner": None}
     try:
         inp = read_input(case)
+        row["sharpest_corner"] = sharpest_corner(inp)
     except Unsupported as e:
         inp = None
         row["notes"].append(f"evaluator: {e}")
@@ -132,7 +133,9 @@ def check(row, inp):
     problems = []
     target = TARGET_DEG[row["kind"]]
     if pd["min_angle"] < target:
-        problems.append(f"min angle < {target:.0f}°")
+        corner = row.get("sharpest_corner")
+        kept = f" (input corner {corner:.2f}°)" if corner is not None and corner < target else ""
+        problems.append(f"min angle < {target:.0f}°{kept}")
     present, missing = pd.get("constraints", (0, 0))
     if missing:
         problems.append(f"{missing} constraints missing")
@@ -160,6 +163,7 @@ def table(rows):
             ("< 30° %", pair("share_below_30", 2, 100.0)), ("mean AR", pair("mean_aspect_ratio", 3)),
             ("constraints", lambda r: f"{constraints_cell(r['pdmesh'])} / {constraints_cell(r['gmsh'])}"),
             ("wall s", pair("wall_seconds", 2)),
+            ("sharpest input corner °", lambda r: fmt(r.get("sharpest_corner"), 2)),
             ("target", lambda r: f"≥ {TARGET_DEG[r['kind']]:.0f}°"), ("check (pdmesh)", lambda r: r["check"])]
     out = ["| " + " | ".join(c for c, _ in cols) + " |", "|" + "---|" * len(cols)]
     for r in rows:

@@ -359,6 +359,24 @@ def which_surface(inp, p):
     return 1
 
 
+def sharpest_corner(inp):
+    """The smallest angle of the domain at an input boundary vertex (degrees, measured on the domain
+    side: a sharp trailing edge seen from the flow is about 345 deg): a mesh that keeps every input
+    vertex cannot have a larger minimum angle."""
+    from shapely.geometry.polygon import orient
+    best = 360.0
+    for poly in polygons(inp.domain):
+        poly = orient(poly, 1.0)  # the domain on the left of every ring
+        for ring in [poly.exterior] + list(poly.interiors):
+            pts = list(ring.coords)[:-1]
+            for k, b in enumerate(pts):
+                a, c = pts[k - 1], pts[(k + 1) % len(pts)]
+                u, v = (c[0] - b[0], c[1] - b[1]), (a[0] - b[0], a[1] - b[1])
+                angle = math.degrees(math.atan2(u[0] * v[1] - u[1] * v[0], u[0] * v[0] + u[1] * v[1])) % 360.0
+                best = min(best, angle)
+    return best
+
+
 # ---------------------------------------------------------------------------------------------
 # Measures
 
