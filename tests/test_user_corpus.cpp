@@ -73,7 +73,8 @@ TEST_CASE("every user corpus input the readers support meshes validly", "[user_c
       CHECK(r.output.find("pdmesh: error: ") != std::string::npos);
       CHECK_FALSE(std::filesystem::exists(out / "mesh.msh"));
       const auto at = r.output.find("error: ");
-      WARN("user corpus input " << name << " is not read yet: " << (at == std::string::npos ? r.output : r.output.substr(at)));
+      WARN("user corpus input " << name
+                                << " is not read yet: " << (at == std::string::npos ? r.output : r.output.substr(at)));
       continue;
     }
     REQUIRE(r.status == 0);
