@@ -2,8 +2,7 @@
 # Installs the anisotropic anchors that tools/eval/aniso_anchors.py runs, apart from the product's
 # dependencies: BAMG inside FreeFem++ (Debian `freefem++`) and, in the virtual environment
 # tools/.venv-anchors, Gmsh 4.15.2 and mmg2d (PyPI `mmgpy`, whose wheel ships the mmg2d_O3 binary)
-# with numpy for the evaluator, and shapely for tools/cases/make_user_corpus.py (the GSHHS clip) and
-# tools/eval/corpus_anchors.py (the inputs' domains for Gmsh). Idempotent.
+# with numpy for the evaluator. Idempotent.
 #
 #   tools/eval/setup_anchors.sh
 #   tools/.venv-anchors/bin/python tools/eval/aniso_anchors.py
@@ -19,6 +18,9 @@ fi
 
 venv=$PWD/tools/.venv-anchors
 [ -x "$venv/bin/python" ] || python3 -m venv "$venv"
-"$venv/bin/python" -m pip install -q --disable-pip-version-check "numpy>=1.21" "gmsh==4.15.2" "mmgpy==0.17.1" "shapely==2.2.0"
+"$venv/bin/python" -m pip install -q --disable-pip-version-check "numpy>=1.21" "gmsh==4.15.2" "mmgpy==0.17.1"
+# shapely for the user corpus: tools/cases/make_user_corpus.py (the GSHHS clip) and
+# tools/eval/corpus_anchors.py (the inputs' domains for Gmsh and the constraint check).
+"$venv/bin/python" -m pip install -q --disable-pip-version-check "shapely==2.2.0"
 ls "$venv/bin/mmg2d_O3" >/dev/null
 echo "setup_anchors: FreeFem++ $(command -v FreeFem++), gmsh $("$venv/bin/python" -c 'import gmsh; print(gmsh.__version__)'), mmg2d $venv/bin/mmg2d_O3"
