@@ -24,5 +24,8 @@ venv=$PWD/tools/.venv-anchors
 # package's other dependencies are not installed.
 "$venv/bin/python" -m pip install -q --disable-pip-version-check "py2dm==0.2.2" "pandas<3" "pyproj"
 "$venv/bin/python" -m pip install -q --disable-pip-version-check --no-deps "adcircpy==1.2.7"
+# shapely for the user corpus: tools/cases/make_user_corpus.py (the GSHHS clip) and
+# tools/eval/corpus_anchors.py (the inputs' domains for Gmsh and the constraint check).
+"$venv/bin/python" -m pip install -q --disable-pip-version-check "shapely==2.2.0"
 ls "$venv/bin/mmg2d_O3" >/dev/null
 echo "setup_anchors: FreeFem++ $(command -v FreeFem++), gmsh $("$venv/bin/python" -c 'import gmsh; print(gmsh.__version__)'), mmg2d $venv/bin/mmg2d_O3"
