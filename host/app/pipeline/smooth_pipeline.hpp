@@ -1,0 +1,65 @@
+// `pdmesh smooth MESH --geometry G`: pdmesh as a smoother of a triangle mesh made elsewhere
+// (docs/smoothing.md). The mesh is read and checked against the geometry, its nodes start a warm run
+// (init.file) and, by default, its own local edge lengths are the spacing field (the user's sizing
+// kept); the run is then `pdmesh mesh`'s (run_mesh), with the usual outputs.
+#pragma once
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "app/config/case_file.hpp"
+#include "geometry/geometry.hpp"
+#include "geometry/geometry_tree.hpp"
+#include "mesh/mesh.hpp"
+
+namespace pdmesh {
+
+// Where the spacing of a smoothing run comes from: the input mesh's local edge lengths (times
+// kSmoothMeshScale), or the case's own field.
+enum class SmoothField { Mesh, Case };
+
+// The factor on the mesh's edge lengths that keeps its node count: pdmesh's population control
+// settles with edges about 0.91 q long (docs/smoothing.md, "Node count"), so q = h / 0.91 gives edges
+// of about the input's length h. Applied as spacing.scale (a case key the user may override).
+inline constexpr double kSmoothMeshScale = 1.0 / 0.91;
+
+// A boundary node of the input mesh may lie this share of its boundary edges' mean length off the
+// geometry's curves (and always 1e-6 x the geometry's diagonal, for rounded coordinates).
+inline constexpr double kSmoothBoundaryTolerance = 0.1;
+
+// The input mesh read from `file` (any format read_mesh reads) and checked: triangles present; every
+// triangle of one orientation and of nonzero area. Throws InputError naming the file, the first
+// inverted or degenerate triangle (its index and its nodes' indices and positions).
+Mesh read_smooth_mesh(const std::filesystem::path& file);
+
+// The same checks on a mesh given in memory (the Python API); `label` names it in messages. Turns
+// clockwise triangles counter-clockwise when all are clockwise.
+void check_smooth_mesh(Mesh& mesh, const std::string& label);
+
+// Throws InputError naming `label` when the mesh is not a mesh of `geometry`: its extent does not
+// overlap the geometry's, a node on its boundary edges lies farther from the curves than
+// kSmoothBoundaryTolerance allows (the first such node: index, position, distance, allowed), or a
+// point of the geometry lies outside the mesh (MeshSpacing::check_covers).
+void check_mesh_on_geometry(const Mesh& mesh, const std::string& label, const Geometry& geometry,
+                            const GeometryTree& tree);
+
+// Per node: the mean length of the mesh edges at it.
+std::vector<double> node_edge_lengths(const Mesh& mesh);
+
+// The case keys a smoothing run sets before the user's --set overrides (which win): preset "best"
+// (population control and the converged stop; a thesis case's own preset would keep the count and
+// run its 2000 iterations), and with SmoothField::Mesh the mesh's field as it is (spacing.scale = kSmoothMeshScale; no feature size,
+// curvature rule or gradation limit on top of it).
+std::vector<CaseOverride> smooth_overrides(SmoothField field);
+
+// Makes `config` (a case or geometry file's, with smooth_overrides and the user's overrides applied)
+// the smoothing run of `mesh`, read from `file`: init.file = file, and with SmoothField::Mesh the
+// spacing field given as the node_edge_lengths on the mesh. Reads the geometry and runs
+// check_mesh_on_geometry.
+void make_smooth_config(CaseConfig& config, const Mesh& mesh, const std::filesystem::path& file,
+                        const std::string& label, SmoothField field);
+
+// The command: reads and checks MESH, then run_mesh. Nothing is written when a check fails.
+int run_smooth(CaseConfig config, const std::filesystem::path& mesh_file, SmoothField field);
+
+}  // namespace pdmesh
