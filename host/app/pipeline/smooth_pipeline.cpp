@@ -99,21 +99,33 @@ Mesh read_smooth_mesh(const std::filesystem::path& file) {
   return mesh;
 }
 
-std::vector<double> node_edge_lengths(const Mesh& mesh) {
-  std::vector<double> sum(mesh.points.size(), 0.0);
-  std::vector<int> count(mesh.points.size(), 0);
+std::vector<double> node_spacing(const Mesh& mesh) {
+  const std::size_t n = mesh.points.size();
+  // Interior: a third of the area of the triangles at the node is its share of the domain; an
+  // equilateral mesh with edges h gives every node (sqrt(3) / 2) h^2.
+  std::vector<double> area(n, 0.0);
+  for (const auto& t : mesh.triangles) {
+    const double a = 0.5 * std::abs(cross(mesh.points[t[1]] - mesh.points[t[0]], mesh.points[t[2]] - mesh.points[t[0]]));
+    for (const int v : t) area[static_cast<std::size_t>(v)] += a / 3.0;
+  }
+  std::vector<double> q(n, 0.0);
+  for (std::size_t i = 0; i < n; ++i) q[i] = std::sqrt(2.0 * area[i] / std::sqrt(3.0));
+  // Boundary: the mean length of its boundary edges.
+  std::vector<double> length(n, 0.0);
+  std::vector<int> count(n, 0);
   for (const auto& [key, triangles] : edge_counts(mesh)) {
-    (void)triangles;
+    if (triangles != 1) continue;
     const auto a = static_cast<std::size_t>(key >> 32);
     const auto b = static_cast<std::size_t>(key & 0xffffffffu);
     const double l = dist(mesh.points[a], mesh.points[b]);
-    sum[a] += l;
-    sum[b] += l;
+    length[a] += l;
+    length[b] += l;
     ++count[a];
     ++count[b];
   }
-  for (std::size_t i = 0; i < sum.size(); ++i) sum[i] = count[i] > 0 ? sum[i] / count[i] : 0.0;
-  return sum;
+  for (std::size_t i = 0; i < n; ++i)
+    if (count[i] > 0) q[i] = length[i] / count[i];
+  return q;
 }
 
 void check_mesh_on_geometry(const Mesh& mesh, const std::string& label, const Geometry& geometry,
@@ -160,7 +172,7 @@ std::vector<CaseOverride> smooth_overrides(SmoothField field) {
   if (field != SmoothField::Mesh) return out;
   const std::string by = "pdmesh smooth (--field mesh)";
   out.push_back({"spacing.scale", fmt::format("{}", kSmoothMeshScale), by});
-  out.push_back({"spacing.gradation", "0.0", by});
+  out.push_back({"spacing.gradation", fmt::format("{}", kSmoothGradation), by});
   out.push_back({"spacing.rows_in_gap", "0.0", by});
   out.push_back({"spacing.curvature_angle", "0.0", by});
   return out;
@@ -192,9 +204,9 @@ void make_smooth_config(CaseConfig& config, const Mesh& mesh, const std::filesys
   MeshFieldData data;
   data.points = mesh.points;
   data.triangles = mesh.triangles;
-  data.q = node_edge_lengths(mesh);
+  data.q = node_spacing(mesh);
   data.file = label;
-  data.array = "edge length";
+  data.array = "node spacing";
   auto spacing = std::make_shared<MeshSpacing>(std::move(data));
   spacing->check_covers(geometry);
   if (field == SmoothField::Mesh) config.spacing.given = std::move(spacing);
