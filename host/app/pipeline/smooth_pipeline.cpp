@@ -92,10 +92,10 @@ void check_smooth_mesh(Mesh& mesh, const std::string& label) {
   check_triangles(mesh, reoriented, label);
 }
 
-Mesh read_smooth_mesh(const std::filesystem::path& file) {
+Mesh read_smooth_mesh(const std::filesystem::path& file, const std::string& label) {
   MeshReadReport report;
   Mesh mesh = read_mesh(file, report);
-  check_triangles(mesh, report.reoriented, file.string());
+  check_triangles(mesh, report.reoriented, label.empty() ? file.string() : label);
   return mesh;
 }
 

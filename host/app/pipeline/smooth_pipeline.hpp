@@ -36,8 +36,9 @@ inline constexpr double kSmoothBoundaryTolerance = 0.1;
 
 // The input mesh read from `file` (any format read_mesh reads) and checked: triangles present; every
 // triangle of one orientation and of nonzero area. Throws InputError naming the file, the first
-// inverted or degenerate triangle (its index and its nodes' indices and positions).
-Mesh read_smooth_mesh(const std::filesystem::path& file);
+// inverted or degenerate triangle (its index and its nodes' indices and positions); `label` names the
+// mesh in those messages (empty: the file).
+Mesh read_smooth_mesh(const std::filesystem::path& file, const std::string& label = "");
 
 // The same checks on a mesh given in memory (the Python API); `label` names it in messages. Turns
 // clockwise triangles counter-clockwise when all are clockwise.
