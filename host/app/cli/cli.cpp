@@ -333,7 +333,9 @@ void add_mesh_options(CLI::App& mesh, MeshArguments& a) {
 }
 
 void add_smooth_options(CLI::App& smooth, SmoothArguments& a) {
-  smooth.add_option("MESH", a.mesh, "The triangle mesh to smooth: .msh (Gmsh 2.2 or 4.1), .vtu, .su2, or Triangle .ele/.node")
+  smooth
+      .add_option("MESH", a.mesh,
+                  "The triangle mesh to smooth: .msh (Gmsh 2.2 or 4.1), .vtu, .su2, or Triangle .ele/.node")
       ->required()
       ->type_name("FILE");
   smooth
@@ -341,8 +343,9 @@ void add_smooth_options(CLI::App& smooth, SmoothArguments& a) {
                   "Case file (.toml), case directory or geometry file (.crv, .dat, .poly) of the mesh's domain")
       ->required()
       ->type_name("FILE");
-  smooth.add_option("--field", a.field,
-                    "mesh: the spacing is the mesh's own local edge lengths (default) | case: the case's spacing field")
+  smooth
+      .add_option("--field", a.field,
+                  "mesh: the spacing is the mesh's own local edge lengths (default) | case: the case's spacing field")
       ->type_name("FIELD");
   add_run_options(smooth, a.run);
   smooth.footer(

@@ -66,9 +66,8 @@ void check_triangles(const Mesh& mesh, const std::vector<std::size_t>& reoriente
     for (const std::size_t t : reoriented) turned[t] = 1;
     while (turned[first]) ++first;
   }
-  throw InputError(fmt::format("{}: {} is inverted (its orientation is the opposite of {} of the {} triangles)",
-                               label, triangle_text(mesh, first), n - std::min(reoriented.size(), n - reoriented.size()),
-                               n));
+  throw InputError(fmt::format("{}: {} is inverted (its orientation is the opposite of {} of the {} triangles)", label,
+                               triangle_text(mesh, first), n - std::min(reoriented.size(), n - reoriented.size()), n));
 }
 
 }  // namespace
@@ -79,8 +78,8 @@ void check_smooth_mesh(Mesh& mesh, const std::string& label) {
     auto& v = mesh.triangles[t];
     for (const int i : v)
       if (i < 0 || static_cast<std::size_t>(i) >= mesh.points.size())
-        throw InputError(fmt::format("{}: triangle {} names node {}, not one of the {} points", label, t, i,
-                                     mesh.points.size()));
+        throw InputError(
+            fmt::format("{}: triangle {} names node {}, not one of the {} points", label, t, i, mesh.points.size()));
     if (orient2d(mesh.points[v[0]], mesh.points[v[1]], mesh.points[v[2]]) < 0.0) {
       std::swap(v[1], v[2]);
       reoriented.push_back(t);
@@ -105,7 +104,8 @@ std::vector<double> node_spacing(const Mesh& mesh) {
   // equilateral mesh with edges h gives every node (sqrt(3) / 2) h^2.
   std::vector<double> area(n, 0.0);
   for (const auto& t : mesh.triangles) {
-    const double a = 0.5 * std::abs(cross(mesh.points[t[1]] - mesh.points[t[0]], mesh.points[t[2]] - mesh.points[t[0]]));
+    const double a =
+        0.5 * std::abs(cross(mesh.points[t[1]] - mesh.points[t[0]], mesh.points[t[2]] - mesh.points[t[0]]));
     for (const int v : t) area[static_cast<std::size_t>(v)] += a / 3.0;
   }
   std::vector<double> q(n, 0.0);
@@ -215,7 +215,8 @@ void make_smooth_config(CaseConfig& config, const Mesh& mesh, const std::filesys
 
 int run_smooth(CaseConfig config, const std::filesystem::path& mesh_file, SmoothField field) {
   std::string ext = mesh_file.extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
   if (!is_warm_points_extension(ext) || ext == ".nodes")
     throw InputError(fmt::format("{}: not a .msh, .vtu, .su2 or Triangle .ele/.node mesh", mesh_file.string()));
   const Mesh mesh = read_smooth_mesh(mesh_file);
