@@ -46,12 +46,16 @@ def test_smooth_lifts_a_jittered_mesh_given_in_memory():
     assert 0.95 <= len(mesh.points) / len(points) <= 1.05
 
 
-def test_smooth_reads_a_mesh_file(tmp_path):
+def test_smooth_reads_a_mesh_file_and_a_mesh_object(tmp_path):
     points, triangles = square_mesh(12, 0.3)
     path = tmp_path / "input.msh"
-    pdmesh.smooth((points, triangles), SQUARE, device="host").write(path)
+    first = pdmesh.smooth((points, triangles), SQUARE, device="host")
+    first.write(path)
     again = pdmesh.smooth(str(path), SQUARE, device="host", field="case")
     assert min_angle(again) >= 38.0
+    # A pdmesh.Mesh in memory, smoothed again with its own spacing: the count stays.
+    twice = pdmesh.smooth(first, SQUARE, device="host")
+    assert 0.95 <= len(twice.points) / len(first.points) <= 1.05
 
 
 def test_smooth_refuses_an_inverted_triangle_and_a_node_off_the_curves():
