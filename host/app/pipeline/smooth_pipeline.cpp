@@ -209,7 +209,12 @@ void make_smooth_config(CaseConfig& config, const Mesh& mesh, const std::filesys
   data.array = "node spacing";
   auto spacing = std::make_shared<MeshSpacing>(std::move(data));
   spacing->check_covers(geometry);
-  if (field == SmoothField::Mesh) config.spacing.given = std::move(spacing);
+  if (field == SmoothField::Mesh) {
+    // The mesh's isotropic field replaces the case's, a metric one included (which would otherwise
+    // still make the run a metric run).
+    config.spacing.field = SpacingKind::Mesh;
+    config.spacing.given = std::move(spacing);
+  }
   config.init.file = file;
 }
 
