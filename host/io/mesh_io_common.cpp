@@ -82,9 +82,11 @@ std::string coord(double v) {
 
 void orient_triangles_ccw(Mesh& mesh, MeshReadReport& report) {
   std::size_t flipped = 0;
-  for (auto& t : mesh.triangles) {
+  for (std::size_t i = 0; i < mesh.triangles.size(); ++i) {
+    auto& t = mesh.triangles[i];
     if (orient2d(mesh.points[t[0]], mesh.points[t[1]], mesh.points[t[2]]) < 0.0) {
       std::swap(t[1], t[2]);
+      report.reoriented.push_back(i);
       ++flipped;
     }
   }

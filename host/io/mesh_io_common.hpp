@@ -16,6 +16,9 @@ namespace pdmesh {
 struct MeshReadReport {
   std::size_t skipped_elements = 0;
   std::size_t reoriented_triangles = 0;
+  // The indices (into Mesh::triangles) of those triangles, in order: a mesh whose triangles are not
+  // all of one orientation has inverted ones (pdmesh smooth names the first).
+  std::vector<std::size_t> reoriented;
   std::vector<std::string> notes;  // one line each, e.g. "skipped 4 elements of type 3 (quadrangle)"
 };
 

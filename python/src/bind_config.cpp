@@ -6,6 +6,7 @@
 #include <nanobind/stl/tuple.h>
 #include <nanobind/stl/vector.h>
 
+#include "app/pipeline/smooth_pipeline.hpp"
 #include "bindings.hpp"
 #include "callable_spacing.hpp"
 #include "core/errors.hpp"
@@ -105,8 +106,31 @@ void bind_config(nb::module_& m) {
             copy.spacing.given = std::make_shared<CallableSpacing>(std::move(sample));
             return copy;
           },
-          nb::arg("sample"), "A copy whose spacing field is `sample(xy[N,2]) -> h[N]` (sampled once, vectorised).");
+          nb::arg("sample"), "A copy whose spacing field is `sample(xy[N,2]) -> h[N]` (sampled once, vectorised).")
+      .def(
+          "for_smoothing",
+          [](const CaseConfig& c, const std::string& mesh_file, const std::string& label, bool by_mesh) {
+            CaseConfig copy = c;
+            {
+              nb::gil_scoped_release release;
+              const Mesh mesh = read_smooth_mesh(mesh_file, label);
+              make_smooth_config(copy, mesh, mesh_file, label, by_mesh ? SmoothField::Mesh : SmoothField::Case);
+            }
+            return copy;
+          },
+          nb::arg("mesh_file"), nb::arg("label"), nb::arg("by_mesh"),
+          "A copy that smooths the mesh in mesh_file (pdmesh smooth): checked against the geometry, its nodes "
+          "the warm start, its edge lengths the spacing when by_mesh.");
 
+  m.def(
+      "smooth_settings",
+      [](bool by_mesh) {
+        std::vector<Setting> out;
+        for (const CaseOverride& o : smooth_overrides(by_mesh ? SmoothField::Mesh : SmoothField::Case))
+          out.emplace_back(o.key, o.value, o.label);
+        return out;
+      },
+      nb::arg("by_mesh"), "The case keys pdmesh smooth sets before the caller's settings.");
   m.def(
       "case_keys", [] { return case_file_keys(); }, "Every valid dotted case-file key.");
   m.def(

@@ -19,6 +19,7 @@
 #include "app/bench/whole_run_bench.hpp"
 #include "app/cli/devices_command.hpp"
 #include "app/pipeline/mesh_pipeline.hpp"
+#include "app/pipeline/smooth_pipeline.hpp"
 #include "app/cli/quality_command.hpp"
 #include "core/errors.hpp"
 #include "core/interrupt.hpp"
@@ -49,7 +50,17 @@ struct MeshArguments {
   std::optional<std::string> max_memory;
   std::optional<std::string> resume;
   std::int64_t stop_after = 0;
+  std::optional<std::string> start;       // --start: init.file
+  std::vector<CaseOverride> defaults;     // keys a command sets before the user's --set (pdmesh smooth)
   std::vector<std::string> command_line;  // argv as given
+};
+
+// pdmesh smooth MESH --geometry G: the run's options are pdmesh mesh's (inputs = {G}).
+struct SmoothArguments {
+  MeshArguments run;
+  std::string mesh;
+  std::string geometry;
+  std::string field = "mesh";
 };
 
 namespace {
@@ -144,7 +155,7 @@ std::optional<QualityPicture> quality_picture(const QualityArguments& a) {
 }
 
 std::vector<CaseOverride> overrides_from(const MeshArguments& a) {
-  std::vector<CaseOverride> out;
+  std::vector<CaseOverride> out = a.defaults;
   for (const std::string& s : a.sets) out.push_back(parse_set_option(s));
   auto direct = [&](const std::optional<std::string>& v, const char* option, const char* key) {
     if (v) out.push_back({key, *v, fmt::format("{} {}", option, *v)});
@@ -162,6 +173,7 @@ std::vector<CaseOverride> overrides_from(const MeshArguments& a) {
   direct(a.stability, "--stability", "simulation.stability_factor");
   direct(a.momentum, "--momentum", "simulation.momentum");
   direct(a.color_by, "--color-by", "output.color_by");
+  if (a.start) out.push_back({"init.file", toml_text(toml::value<std::string>(*a.start)), "--start " + *a.start});
   if (a.formats) out.push_back({"output.formats", formats_value(*a.formats), "--formats " + *a.formats});
   if (a.tree) out.push_back({"output.tree_overlay", "true", "--tree"});
   if (a.plot_spacing) out.push_back({"output.spacing_picture", "true", "--plot-spacing"});
@@ -235,12 +247,8 @@ CaseConfig config_from(const MeshArguments& a) {
   return config;
 }
 
-void add_mesh_options(CLI::App& mesh, MeshArguments& a) {
-  mesh.add_option("INPUT", a.inputs,
-                  "Case file (.toml), case directory (holding case.toml), or one or more geometry files (.crv, .dat, "
-                  ".poly) that together make one geometry, meshed with the best settings (preset = \"best\")")
-      ->required()
-      ->type_name("FILE...");
+// The options of a run shared by pdmesh mesh and pdmesh smooth.
+void add_run_options(CLI::App& mesh, MeshArguments& a) {
   mesh.add_option("--out,-o", a.out, "Output directory (created if missing)")->required()->type_name("DIR");
   mesh.add_option("--set", a.sets,
                   "Override a case-file key: section.key=VALUE (TOML value; a bare word is a string). Repeatable")
@@ -298,17 +306,67 @@ void add_mesh_options(CLI::App& mesh, MeshArguments& a) {
                   "a suffix K, M, G, T (powers of 1024), e.g. 4G (default: 3/4 of the least of the RAM, ulimit -v "
                   "and the cgroup's memory.max)")
       ->type_name("SIZE");
+  mesh.add_option("--timings", a.timings, "Write the wall and CPU time of every phase of the run as JSON to FILE")
+      ->type_name("FILE");
+}
+
+void add_mesh_options(CLI::App& mesh, MeshArguments& a) {
+  mesh.add_option("INPUT", a.inputs,
+                  "Case file (.toml), case directory (holding case.toml), or one or more geometry files (.crv, .dat, "
+                  ".poly) that together make one geometry, meshed with the best settings (preset = \"best\")")
+      ->required()
+      ->type_name("FILE...");
+  add_run_options(mesh, a);
+  mesh.add_option("--start", a.start,
+                  "init.file: start warm from this node file or mesh (.nodes, .msh, .vtu, .su2, .ele); its interior "
+                  "points are the initial interior nodes (pdmesh smooth: docs/smoothing.md)")
+      ->type_name("FILE");
   mesh.add_option("--resume", a.resume,
                   "Continue an interrupted run from its checkpoint: DIR/checkpoint.pdmesh (or that file); the case "
                   "must be the same (--iterations may differ)")
       ->type_name("DIR");
-  mesh.add_option("--timings", a.timings, "Write the wall and CPU time of every phase of the run as JSON to FILE")
-      ->type_name("FILE");
   // Testing aid (docs/cli.md): behave as if interrupted after iteration N. Hidden from --help.
   mesh.add_option("--stop-after", a.stop_after, "")->group("")->type_name("N");
   mesh.footer(
       "Options other than --out, --quiet, --max-nodes and --max-memory override keys of the case file;\n"
       "every key can be set with --set (see docs/cli.md). Direct options are applied after --set.");
+}
+
+void add_smooth_options(CLI::App& smooth, SmoothArguments& a) {
+  smooth
+      .add_option("MESH", a.mesh,
+                  "The triangle mesh to smooth: .msh (Gmsh 2.2 or 4.1), .vtu, .su2, or Triangle .ele/.node")
+      ->required()
+      ->type_name("FILE");
+  smooth
+      .add_option("--geometry,-g", a.geometry,
+                  "Case file (.toml), case directory or geometry file (.crv, .dat, .poly) of the mesh's domain")
+      ->required()
+      ->type_name("FILE");
+  smooth
+      .add_option("--field", a.field,
+                  "mesh: the spacing is the mesh's own local edge lengths (default) | case: the case's spacing field")
+      ->type_name("FIELD");
+  add_run_options(smooth, a.run);
+  smooth.footer(
+      "The run is pdmesh mesh's from the mesh's nodes (docs/smoothing.md); its options and --set keys are\n"
+      "those of pdmesh mesh.");
+}
+
+SmoothField smooth_field(const std::string& name) {
+  if (name == "mesh") return SmoothField::Mesh;
+  if (name == "case") return SmoothField::Case;
+  throw InputError(fmt::format("--field {}: expected mesh or case", name));
+}
+
+int run_smooth_command(SmoothArguments& a) {
+  const SmoothField field = smooth_field(a.field);
+  a.run.inputs = {a.geometry};
+  a.run.defaults = smooth_overrides(field);
+  std::error_code ec;
+  if (!fs::exists(fs::path(a.mesh), ec))
+    throw InputError(fmt::format("cannot read '{}': {}", a.mesh, std::strerror(ENOENT)));
+  return run_smooth(config_from(a.run), fs::path(a.mesh), field);
 }
 
 }  // namespace
@@ -317,12 +375,18 @@ Cli::Cli()
     : app_(std::make_unique<CLI::App>("pdmesh: physics-based point placement and triangle meshing", "pdmesh")),
       mesh_(std::make_unique<MeshArguments>()),
       quality_(std::make_unique<QualityArguments>()),
-      bench_(std::make_unique<BenchArguments>()) {
+      bench_(std::make_unique<BenchArguments>()),
+      smooth_(std::make_unique<SmoothArguments>()) {
   app_->set_version_flag("--version", std::string("pdmesh ") + PDMESH_VERSION);
   app_->require_subcommand(1);
   CLI::App* mesh = app_->add_subcommand("mesh", "Distribute nodes for a case and write them and their pictures");
   add_mesh_options(*mesh, *mesh_);
   commands_.emplace_back(mesh, [this] { return run_mesh(config_from(*mesh_)); });
+
+  CLI::App* smooth =
+      app_->add_subcommand("smooth", "Improve a triangle mesh made elsewhere: its nodes relaxed, its sizing kept");
+  add_smooth_options(*smooth, *smooth_);
+  commands_.emplace_back(smooth, [this] { return run_smooth_command(*smooth_); });
 
   CLI::App* quality = app_->add_subcommand("quality", "Print the quality table of an existing mesh file");
   quality->add_option("MESH", quality_->mesh, "Mesh file: .msh (Gmsh 2.2 or 4.1), .vtu, .su2, or Triangle .ele/.node")
@@ -410,6 +474,7 @@ Cli::~Cli() = default;
 
 void Cli::parse(int argc, const char* const* argv) {
   mesh_->command_line.assign(argv, argv + argc);
+  smooth_->run.command_line.assign(argv, argv + argc);
   app_->parse(argc, argv);
 }
 

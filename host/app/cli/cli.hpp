@@ -15,6 +15,7 @@ namespace pdmesh {
 struct MeshArguments;
 struct QualityArguments;
 struct BenchArguments;
+struct SmoothArguments;
 
 class Cli {
  public:
@@ -36,6 +37,7 @@ class Cli {
   std::unique_ptr<MeshArguments> mesh_;
   std::unique_ptr<QualityArguments> quality_;
   std::unique_ptr<BenchArguments> bench_;
+  std::unique_ptr<SmoothArguments> smooth_;
   bool devices_check_ = false;
 };
 

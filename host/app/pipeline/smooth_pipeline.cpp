@@ -1,0 +1,232 @@
+// pdmesh smooth; see smooth_pipeline.hpp.
+#include "app/pipeline/smooth_pipeline.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <fmt/format.h>
+#include <memory>
+#include <unordered_map>
+#include <utility>
+
+#include "app/pipeline/mesh_pipeline.hpp"
+#include "core/errors.hpp"
+#include "core/predicates.hpp"
+#include "geometry/geometry_files.hpp"
+#include "init/warm_points.hpp"
+#include "io/mesh_formats.hpp"
+#include "spacing/mesh_spacing.hpp"
+
+namespace pdmesh {
+
+namespace {
+
+std::string node_text(const Mesh& mesh, int i) {
+  const Vec2 p = mesh.points[static_cast<std::size_t>(i)];
+  return fmt::format("{} ({}, {})", i, p.x, p.y);
+}
+
+std::string triangle_text(const Mesh& mesh, std::size_t t) {
+  const auto& v = mesh.triangles[t];
+  return fmt::format("triangle {} (nodes {}, {}, {})", t, node_text(mesh, v[0]), node_text(mesh, v[1]),
+                     node_text(mesh, v[2]));
+}
+
+std::uint64_t edge_key(int a, int b) {
+  if (a > b) std::swap(a, b);
+  return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(a)) << 32) | static_cast<std::uint32_t>(b);
+}
+
+// The mesh's edges with the number of triangles at each.
+std::unordered_map<std::uint64_t, int> edge_counts(const Mesh& mesh) {
+  std::unordered_map<std::uint64_t, int> count;
+  count.reserve(mesh.triangles.size() * 2);
+  for (const auto& t : mesh.triangles)
+    for (int k = 0; k < 3; ++k) ++count[edge_key(t[k], t[(k + 1) % 3])];
+  return count;
+}
+
+// Degenerate triangles and, where the reader turned some triangles but not all, the inverted ones:
+// those of the smaller orientation class (the first of them named).
+void check_triangles(const Mesh& mesh, const std::vector<std::size_t>& reoriented, const std::string& label) {
+  if (mesh.triangles.empty()) throw InputError(fmt::format("{}: the mesh has no triangles", label));
+  for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
+    const auto& v = mesh.triangles[t];
+    if (v[0] == v[1] || v[1] == v[2] || v[0] == v[2] ||
+        orient2d(mesh.points[v[0]], mesh.points[v[1]], mesh.points[v[2]]) == 0.0)
+      throw InputError(fmt::format("{}: {} has zero area", label, triangle_text(mesh, t)));
+  }
+  const std::size_t n = mesh.triangles.size();
+  if (reoriented.empty() || reoriented.size() == n) return;
+  std::size_t first = 0;
+  if (2 * reoriented.size() <= n) {
+    first = reoriented.front();
+  } else {
+    std::vector<std::uint8_t> turned(n, 0);
+    for (const std::size_t t : reoriented) turned[t] = 1;
+    while (turned[first]) ++first;
+  }
+  throw InputError(fmt::format("{}: {} is inverted (its orientation is the opposite of {} of the {} triangles)", label,
+                               triangle_text(mesh, first), n - std::min(reoriented.size(), n - reoriented.size()), n));
+}
+
+}  // namespace
+
+void check_smooth_mesh(Mesh& mesh, const std::string& label) {
+  std::vector<std::size_t> reoriented;
+  for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
+    auto& v = mesh.triangles[t];
+    for (const int i : v)
+      if (i < 0 || static_cast<std::size_t>(i) >= mesh.points.size())
+        throw InputError(
+            fmt::format("{}: triangle {} names node {}, not one of the {} points", label, t, i, mesh.points.size()));
+    if (orient2d(mesh.points[v[0]], mesh.points[v[1]], mesh.points[v[2]]) < 0.0) {
+      std::swap(v[1], v[2]);
+      reoriented.push_back(t);
+    }
+  }
+  for (std::size_t i = 0; i < mesh.points.size(); ++i)
+    if (!std::isfinite(mesh.points[i].x) || !std::isfinite(mesh.points[i].y))
+      throw InputError(fmt::format("{}: node {} is not finite", label, node_text(mesh, static_cast<int>(i))));
+  check_triangles(mesh, reoriented, label);
+}
+
+Mesh read_smooth_mesh(const std::filesystem::path& file, const std::string& label) {
+  MeshReadReport report;
+  Mesh mesh = read_mesh(file, report);
+  check_triangles(mesh, report.reoriented, label.empty() ? file.string() : label);
+  return mesh;
+}
+
+std::vector<double> node_spacing(const Mesh& mesh) {
+  const std::size_t n = mesh.points.size();
+  // Interior: a third of the area of the triangles at the node is its share of the domain; an
+  // equilateral mesh with edges h gives every node (sqrt(3) / 2) h^2.
+  std::vector<double> area(n, 0.0);
+  for (const auto& t : mesh.triangles) {
+    const double a =
+        0.5 * std::abs(cross(mesh.points[t[1]] - mesh.points[t[0]], mesh.points[t[2]] - mesh.points[t[0]]));
+    for (const int v : t) area[static_cast<std::size_t>(v)] += a / 3.0;
+  }
+  std::vector<double> q(n, 0.0);
+  for (std::size_t i = 0; i < n; ++i) q[i] = std::sqrt(2.0 * area[i] / std::sqrt(3.0));
+  // Boundary: the mean length of its boundary edges.
+  std::vector<double> length(n, 0.0);
+  std::vector<int> count(n, 0);
+  for (const auto& [key, triangles] : edge_counts(mesh)) {
+    if (triangles != 1) continue;
+    const auto a = static_cast<std::size_t>(key >> 32);
+    const auto b = static_cast<std::size_t>(key & 0xffffffffu);
+    const double l = dist(mesh.points[a], mesh.points[b]);
+    length[a] += l;
+    length[b] += l;
+    ++count[a];
+    ++count[b];
+  }
+  for (std::size_t i = 0; i < n; ++i)
+    if (count[i] > 0) q[i] = length[i] / count[i];
+  return q;
+}
+
+void check_mesh_on_geometry(const Mesh& mesh, const std::string& label, const Geometry& geometry,
+                            const GeometryTree& tree) {
+  Box box;
+  for (const Vec2 p : mesh.points) box.add(p);
+  const Box& g = geometry.extents;
+  if (box.hi.x < g.lo.x || box.lo.x > g.hi.x || box.hi.y < g.lo.y || box.lo.y > g.hi.y)
+    throw InputError(fmt::format(
+        "{}: the mesh [{}, {}] x [{}, {}] does not overlap the geometry [{}, {}] x [{}, {}]: a mesh of another "
+        "geometry?",
+        label, box.lo.x, box.hi.x, box.lo.y, box.hi.y, g.lo.x, g.hi.x, g.lo.y, g.hi.y));
+  // Boundary edges: the edges of one triangle. Each boundary node's allowance is a share of the mean
+  // length of its boundary edges.
+  std::vector<double> length(mesh.points.size(), 0.0);
+  std::vector<int> count(mesh.points.size(), 0);
+  for (const auto& [key, triangles] : edge_counts(mesh)) {
+    if (triangles != 1) continue;
+    const auto a = static_cast<std::size_t>(key >> 32);
+    const auto b = static_cast<std::size_t>(key & 0xffffffffu);
+    const double l = dist(mesh.points[a], mesh.points[b]);
+    length[a] += l;
+    length[b] += l;
+    ++count[a];
+    ++count[b];
+  }
+  const double absolute = 1e-6 * geometry.extents.diagonal();
+  for (std::size_t i = 0; i < mesh.points.size(); ++i) {
+    if (count[i] == 0) continue;
+    const double allowed = std::max(absolute, kSmoothBoundaryTolerance * length[i] / count[i]);
+    const ClosestHit hit = tree.closest(mesh.points[i]);
+    if (hit.segment >= 0 && hit.distance <= allowed) continue;
+    const std::string curve =
+        hit.segment >= 0 ? geometry.curves[static_cast<std::size_t>(geometry.segments[hit.segment].curve)].name : "";
+    throw InputError(fmt::format(
+        "{}: boundary node {} lies {:.6g} from the geometry's curves (nearest: '{}'); allowed {:.3g} ({} x the mean "
+        "length of its boundary edges): a mesh of another geometry, or nodes off the curves",
+        label, node_text(mesh, static_cast<int>(i)), hit.distance, curve, allowed, kSmoothBoundaryTolerance));
+  }
+}
+
+std::vector<CaseOverride> smooth_overrides(SmoothField field) {
+  std::vector<CaseOverride> out{{"preset", "\"best\"", "pdmesh smooth"}};
+  if (field != SmoothField::Mesh) return out;
+  const std::string by = "pdmesh smooth (--field mesh)";
+  out.push_back({"spacing.scale", fmt::format("{}", kSmoothMeshScale), by});
+  out.push_back({"spacing.gradation", fmt::format("{}", kSmoothGradation), by});
+  out.push_back({"spacing.rows_in_gap", "0.0", by});
+  out.push_back({"spacing.curvature_angle", "0.0", by});
+  return out;
+}
+
+namespace {
+
+Geometry case_geometry(const CaseConfig& config) {
+  std::vector<std::string> files;
+  for (const std::filesystem::path& f : config.geometry.files) files.push_back(f.string());
+  GeometryOptions options;
+  options.join_tolerance = config.geometry.join_tolerance;
+  options.corner_angle_deg = config.geometry.corner_angle;
+  return config.geometry.given_curves.empty()
+             ? read_geometry(files, config.geometry.curve_names, options)
+             : geometry_from_curves(config.geometry.given_curves, config.geometry.curve_names, options);
+}
+
+}  // namespace
+
+void make_smooth_config(CaseConfig& config, const Mesh& mesh, const std::filesystem::path& file,
+                        const std::string& label, SmoothField field) {
+  if (!config.boundary_layers.empty())
+    throw InputError(fmt::format("{}: pdmesh smooth does not grow [[boundary_layer]]s; remove them from the case",
+                                 config.source.string()));
+  const Geometry geometry = case_geometry(config);
+  const GeometryTree tree(geometry);
+  check_mesh_on_geometry(mesh, label, geometry, tree);
+  MeshFieldData data;
+  data.points = mesh.points;
+  data.triangles = mesh.triangles;
+  data.q = node_spacing(mesh);
+  data.file = label;
+  data.array = "node spacing";
+  auto spacing = std::make_shared<MeshSpacing>(std::move(data));
+  spacing->check_covers(geometry);
+  if (field == SmoothField::Mesh) {
+    // The mesh's isotropic field replaces the case's, a metric one included (which would otherwise
+    // still make the run a metric run).
+    config.spacing.field = SpacingKind::Mesh;
+    config.spacing.given = std::move(spacing);
+  }
+  config.init.file = file;
+}
+
+int run_smooth(CaseConfig config, const std::filesystem::path& mesh_file, SmoothField field) {
+  std::string ext = mesh_file.extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  if (!is_warm_points_extension(ext) || ext == ".nodes")
+    throw InputError(fmt::format("{}: not a .msh, .vtu, .su2 or Triangle .ele/.node mesh", mesh_file.string()));
+  const Mesh mesh = read_smooth_mesh(mesh_file);
+  make_smooth_config(config, mesh, mesh_file, mesh_file.string(), field);
+  return run_mesh(config);
+}
+
+}  // namespace pdmesh
