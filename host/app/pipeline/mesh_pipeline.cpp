@@ -173,6 +173,10 @@ void simulate_and_mesh(const CaseConfig& config, const MeshInputs& inputs, const
           return backend.emplace(std::move(p.backend));
         };
       }
+      // The node count that decides `--device auto` can differ from the estimate that set use_prepared:
+      // simulate may then set up an OpenCL backend itself, and PoCL's first platform queries are not
+      // safe beside the preparing thread's (a crash in clGetPlatformInfo): that thread ends first.
+      if (prepared.valid() && !use_prepared) prepared.wait();
       hooks.finished = &finished;
       final_mesh = simulate(config, inputs, spacing, nodes, nullptr, &hooks, &phases).final_mesh;
     }
