@@ -184,3 +184,18 @@ TEST_CASE("a closed body given alone meshes its inside and the message names --f
   CHECK(r.output.find("--farfield circle:20") != std::string::npos);
   std::filesystem::remove_all(out);
 }
+
+TEST_CASE("a far field with boundary layers: the core keeps the one far field, its group in the mesh") {
+  // The core's case holds the case's curves, the far field among them: adding it again was an error.
+  const auto out = fresh_path("farfield_layers");
+  const auto r = run_pdmesh("mesh '" + airfoil() +
+                            "' --farfield circle:20 --set 'boundary_layer={curves=[\"curve0\",\"curve1\"], "
+                            "first_height=1e-3, thickness=0.01}' --iterations 0 --formats msh --out '" +
+                            out.string() + "'");
+  INFO(r.output);
+  REQUIRE(r.status == 0);
+  MeshReadReport report;
+  const Mesh m = read_msh(out / "mesh.msh", report);
+  CHECK(std::count(m.curve_names.begin(), m.curve_names.end(), "farfield") == 1);
+  std::filesystem::remove_all(out);
+}
