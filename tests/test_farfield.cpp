@@ -106,9 +106,9 @@ TEST_CASE("with_farfield makes the body a hole: two loops, the area of the circl
   const double polygon = 0.5 * n * r * r * std::sin(2.0 * std::numbers::pi / n);
   CHECK(g.area == Approx(polygon - body.area).epsilon(1e-9));
   // A body curve already named farfield would make two groups of one name.
-  CHECK_THROWS_WITH(with_farfield(read_geometry({airfoil()}, {"farfield", "lower"}),
-                                  {FarfieldShape::Circle, 20.0, "test"}, 0.2, {}),
-                    Catch::Contains("far field's name"));
+  CHECK_THROWS_WITH(
+      with_farfield(read_geometry({airfoil()}, {"farfield", "lower"}), {FarfieldShape::Circle, 20.0, "test"}, 0.2, {}),
+      Catch::Contains("far field's name"));
 }
 
 TEST_CASE("pdmesh mesh airfoil.crv --farfield circle:20 meshes around the body, min angle >= 30, group farfield") {

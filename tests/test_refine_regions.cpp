@@ -50,13 +50,13 @@ TEST_CASE("region sizes: inside each shape its size, outside +inf; the field is 
   RefineRegion disc{.shape = RegionShape::Disc, .size = 0.2, .centre = {1.0, 1.0}, .radius = 0.5, .label = "r"};
   CHECK(region_size(disc, {1.3, 1.3}) == 0.2);
   CHECK(std::isinf(region_size(disc, {1.4, 1.4})));
-  RefineRegion line{.shape = RegionShape::Polyline, .size = 0.3, .radius = 0.1, .points = {{0, 0}, {1, 0}, {1, 1}},
-                    .label = "r"};
+  RefineRegion line{
+      .shape = RegionShape::Polyline, .size = 0.3, .radius = 0.1, .points = {{0, 0}, {1, 0}, {1, 1}}, .label = "r"};
   CHECK(region_size(line, {0.5, 0.09}) == 0.3);
   CHECK(region_size(line, {0.91, 0.5}) == 0.3);
   CHECK(std::isinf(region_size(line, {0.5, 0.11})));
-  RefineRegion points{.shape = RegionShape::Points, .size = 0.4, .radius = 0.1, .points = {{0, 0}, {1, 0}},
-                      .label = "r"};
+  RefineRegion points{
+      .shape = RegionShape::Points, .size = 0.4, .radius = 0.1, .points = {{0, 0}, {1, 0}}, .label = "r"};
   CHECK(region_size(points, {0.95, 0.0}) == 0.4);
   CHECK(std::isinf(region_size(points, {0.5, 0.0})));
   const RegionSpacing field(std::make_unique<UniformSpacing>(0.25), {disc, points});
@@ -75,13 +75,15 @@ TEST_CASE("bad regions name the key and the value") {
   disc.size = 1.0;
   disc.radius = 0.0;
   CHECK_THROWS_WITH(check_refine_region(disc), Catch::Contains("refine[0].radius = 0"));
-  RefineRegion line{.shape = RegionShape::Polyline, .size = 0.1, .radius = 1.0, .points = {{0, 0}}, .label = "refine[1]"};
+  RefineRegion line{
+      .shape = RegionShape::Polyline, .size = 0.1, .radius = 1.0, .points = {{0, 0}}, .label = "refine[1]"};
   CHECK_THROWS_WITH(check_refine_region(line), Catch::Contains("at least 2 points"));
 }
 
 TEST_CASE("spacing.size H on a square: mean edge within 10 % below H (edges run at 0.9-1.0 q)") {
   for (const double h : {0.05, 0.1}) {
-    const Mesh m = mesh_square("size_" + std::to_string(static_cast<int>(h * 100)), fmt::format("[spacing]\nsize = {}\n", h));
+    const Mesh m =
+        mesh_square("size_" + std::to_string(static_cast<int>(h * 100)), fmt::format("[spacing]\nsize = {}\n", h));
     const auto e = pdmesh_test::mean_edge(m, [](Vec2) { return true; });
     INFO("H = " << h << ": mean edge " << e.mean << " over " << e.count << " edges");
     CHECK(e.mean >= 0.88 * h);
@@ -129,12 +131,16 @@ TEST_CASE("bad sizes and regions in a case file exit 2 naming the key and the va
   for (const auto& [text, named] : std::vector<std::pair<std::string, std::string>>{
            {"[spacing]\nsize = -0.1\n", "spacing.size must be > 0, got -0.1"},
            {"[spacing]\nsize = 0.1\nexpression = \"0.1\"\n", "spacing.size is set but spacing.field is 'expression'"},
-           {"[[refine]]\nshape = \"box\"\nbox = [0.7, 0.3, 0.3, 0.7]\nsize = 0.02\n", "refine[0].box = [0.7, 0.3, 0.3, 0.7]"},
+           {"[[refine]]\nshape = \"box\"\nbox = [0.7, 0.3, 0.3, 0.7]\nsize = 0.02\n",
+            "refine[0].box = [0.7, 0.3, 0.3, 0.7]"},
            {"[[refine]]\nshape = \"disc\"\ncentre = [0.5, 0.5]\nradius = 0.2\nsize = -1\n", "refine[0].size = -1"},
-           {"[[refine]]\nshape = \"star\"\nsize = 1\n", "refine[0].shape must be one of box, disc, points, polyline, got 'star'"},
+           {"[[refine]]\nshape = \"star\"\nsize = 1\n",
+            "refine[0].shape must be one of box, disc, points, polyline, got 'star'"},
            {"[[refine]]\nshape = \"disc\"\ncentre = [0.5, 0.5]\nsize = 0.1\n", "refine[0].radius is required"},
-           {"[[refine]]\nshape = \"box\"\nbox = [0, 0, 1, 1]\nradius = 1\nsize = 0.1\n", "refine[0].radius does not go with"},
-           {"[[refine]]\nshape = \"disc\"\ncentre = [0.5, 0.5]\nradius = 0.2\nsize = 0.1\nsise = 1\n", "did you mean 'refine.size'"},
+           {"[[refine]]\nshape = \"box\"\nbox = [0, 0, 1, 1]\nradius = 1\nsize = 0.1\n",
+            "refine[0].radius does not go with"},
+           {"[[refine]]\nshape = \"disc\"\ncentre = [0.5, 0.5]\nradius = 0.2\nsize = 0.1\nsise = 1\n",
+            "did you mean 'refine.size'"},
        }) {
     std::ofstream(dir / "case.toml") << "[geometry]\nfiles = [\"" << kSquare << "\"]\n" << text;
     const auto r = run_pdmesh("mesh '" + dir.string() + "' --out '" + out.string() + "'");

@@ -61,10 +61,10 @@ RawCurve farfield_curve(const Box& extents, const Farfield& f, double body_spaci
   const double segment = farfield_segment_length(extents, f, body_spacing, gradation);
   const double min_size = farfield_min_size(extents, f, segment);
   if (!(f.size > min_size)) {
-    throw InputError(fmt::format(
-        "{}: a {} far field of size {} (x the largest extent {:.6g}) would cross or lie inside the input "
-        "(its bounding box {:.6g} x {:.6g}); the size must be above {:.4f}",
-        f.label, shape_name(f.shape), f.size, extent, extents.width(), extents.height(), min_size));
+    throw InputError(
+        fmt::format("{}: a {} far field of size {} (x the largest extent {:.6g}) would cross or lie inside the input "
+                    "(its bounding box {:.6g} x {:.6g}); the size must be above {:.4f}",
+                    f.label, shape_name(f.shape), f.size, extent, extents.width(), extents.height(), min_size));
   }
   RawCurve c;
   c.name = kFarfieldName;
@@ -79,8 +79,8 @@ RawCurve farfield_curve(const Box& extents, const Farfield& f, double body_spaci
     }
   } else {
     const int m = box_segments(reach, segment);
-    const Vec2 corners[4] = {{o.x - reach, o.y - reach}, {o.x + reach, o.y - reach}, {o.x + reach, o.y + reach},
-                             {o.x - reach, o.y + reach}};
+    const Vec2 corners[4] = {
+        {o.x - reach, o.y - reach}, {o.x + reach, o.y - reach}, {o.x + reach, o.y + reach}, {o.x - reach, o.y + reach}};
     for (int side = 0; side < 4; ++side) {
       const Vec2 a = corners[side], b = corners[(side + 1) % 4];
       for (int k = 0; k < m; ++k) {
@@ -99,9 +99,10 @@ Geometry with_farfield(const Geometry& body, const Farfield& f, double gradation
   std::size_t segments = 0;
   for (const Curve& c : body.curves) {
     if (c.name == kFarfieldName) {
-      throw InputError(fmt::format("{}:{}: curve '{}' has the far field's name; rename it (geometry.curve_names) "
-                                   "or leave out {}",
-                                   c.file, c.line, c.name, f.label));
+      throw InputError(
+          fmt::format("{}:{}: curve '{}' has the far field's name; rename it (geometry.curve_names) "
+                      "or leave out {}",
+                      c.file, c.line, c.name, f.label));
     }
     RawCurve r;
     r.name = c.name;

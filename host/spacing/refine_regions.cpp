@@ -49,8 +49,8 @@ void check_refine_region(const RefineRegion& r) {
   switch (r.shape) {
     case RegionShape::Box:
       if (!finite(r.box.lo) || !finite(r.box.hi) || !(r.box.lo.x < r.box.hi.x && r.box.lo.y < r.box.hi.y))
-        throw InputError(fmt::format("{}.box = [{}, {}, {}, {}]: needs finite x0 < x1 and y0 < y1", r.label,
-                                     r.box.lo.x, r.box.lo.y, r.box.hi.x, r.box.hi.y));
+        throw InputError(fmt::format("{}.box = [{}, {}, {}, {}]: needs finite x0 < x1 and y0 < y1", r.label, r.box.lo.x,
+                                     r.box.lo.y, r.box.hi.x, r.box.hi.y));
       return;
     case RegionShape::Disc:
       if (!finite(r.centre))
@@ -65,8 +65,8 @@ void check_refine_region(const RefineRegion& r) {
                                      least == 1 ? "" : "s", r.points.size()));
       for (std::size_t k = 0; k < r.points.size(); ++k)
         if (!finite(r.points[k]))
-          throw InputError(fmt::format("{}.points[{}] = [{}, {}]: must be finite", r.label, k, r.points[k].x,
-                                       r.points[k].y));
+          throw InputError(
+              fmt::format("{}.points[{}] = [{}, {}]: must be finite", r.label, k, r.points[k].x, r.points[k].y));
       break;
     }
   }

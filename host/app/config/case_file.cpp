@@ -78,7 +78,8 @@ void check_keys(const Reader& r, const toml::table& t, const std::string& prefix
         check_keys(r, *node.as_table(), key);
       } else if (node.is_array()) {
         for (const toml::node& e : *node.as_array()) {
-          if (!e.is_table()) r.wrong_type(key, e, key == "refine" ? "a table ([[refine]])" : "a table ([[boundary_layer]])");
+          if (!e.is_table())
+            r.wrong_type(key, e, key == "refine" ? "a table ([[refine]])" : "a table ([[boundary_layer]])");
           check_keys(r, *e.as_table(), key);
         }
       } else {
@@ -111,8 +112,7 @@ bool is_string_key(const std::string& key) {
          key == "spacing.h1" || key == "spacing.h2" || key == "spacing.angle" || key == "spacing.m11" ||
          key == "spacing.m12" || key == "spacing.m22" || key == "spacing.sol" || key == "spacing.function" ||
          key == "init.method" || key == "simulation.device" || key == "simulation.precision" ||
-         key == "simulation.r0_rule" || key == "simulation.stop" || key == "output.color_by" ||
-         key == "farfield.shape";
+         key == "simulation.r0_rule" || key == "simulation.stop" || key == "output.color_by" || key == "farfield.shape";
 }
 
 // Parses an override's value as TOML; a bare word that is not TOML (random, a.crv) is a string.

@@ -37,8 +37,8 @@ RefineRegion read_region(const Reader& r, const toml::table& t, const toml::node
   const bool boxed = g.shape == RegionShape::Box;
   const bool disc = g.shape == RegionShape::Disc;
   const bool listed = g.shape == RegionShape::Points || g.shape == RegionShape::Polyline;
-  for (const auto& [k, want] : {std::pair<const char*, bool>{"box", boxed}, {"centre", disc}, {"radius", !boxed},
-                                {"points", listed}}) {
+  for (const auto& [k, want] :
+       {std::pair<const char*, bool>{"box", boxed}, {"centre", disc}, {"radius", !boxed}, {"points", listed}}) {
     const toml::node* n = t.get(k);
     if (n != nullptr && !want)
       r.fail(key(k), n, fmt::format("{} does not go with shape = \"{}\"", key(k), r.string(key("shape"), shape)));
@@ -47,7 +47,8 @@ RefineRegion read_region(const Reader& r, const toml::table& t, const toml::node
   if (boxed) {
     const toml::node& b = required("box");
     const toml::array& a = r.array(key("box"), b);
-    if (a.size() != 4) r.fail(key("box"), &b, fmt::format("{} must be [x0, y0, x1, y1], got {} numbers", key("box"), a.size()));
+    if (a.size() != 4)
+      r.fail(key("box"), &b, fmt::format("{} must be [x0, y0, x1, y1], got {} numbers", key("box"), a.size()));
     double w[4];
     for (std::size_t j = 0; j < 4; ++j) w[j] = r.number(fmt::format("{}[{}]", key("box"), j), *a.get(j));
     g.box.lo = {w[0], w[1]};
@@ -61,7 +62,8 @@ RefineRegion read_region(const Reader& r, const toml::table& t, const toml::node
     } else {
       const toml::node& pts = required("points");
       const toml::array& a = r.array(key("points"), pts);
-      for (std::size_t j = 0; j < a.size(); ++j) g.points.push_back(read_point(r, fmt::format("{}[{}]", key("points"), j), *a.get(j)));
+      for (std::size_t j = 0; j < a.size(); ++j)
+        g.points.push_back(read_point(r, fmt::format("{}[{}]", key("points"), j), *a.get(j)));
       if (g.size > 0.0) checked = &pts;
     }
     if (g.size > 0.0 && !(g.radius > 0.0)) checked = &radius;
@@ -90,8 +92,8 @@ void read_size_sections(const Reader& r, const toml::table& root, CaseConfig& c)
     }
   }
   if (const toml::node* s = find(root, "farfield", "shape")) {
-    c.farfield.shape =
-        choose<FarfieldShape>(r, "farfield.shape", *s, {{"circle", FarfieldShape::Circle}, {"box", FarfieldShape::Box}});
+    c.farfield.shape = choose<FarfieldShape>(r, "farfield.shape", *s,
+                                             {{"circle", FarfieldShape::Circle}, {"box", FarfieldShape::Box}});
   }
   const toml::node* far = find(root, "farfield", "size");
   if (far != nullptr) {

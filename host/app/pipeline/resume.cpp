@@ -103,10 +103,10 @@ std::vector<std::pair<std::string, std::string>> case_identity(const CaseConfig&
     const RefineRegion& r = config.spacing.regions[k];
     std::string points;
     for (const Vec2 p : r.points) points += fmt::format(" {} {}", p.x, p.y);
-    keys.emplace_back(fmt::format("refine.{}", k),
-                      fmt::format("{} {} box {} {} {} {} centre {} {} radius {} points{}", static_cast<int>(r.shape),
-                                  r.size, r.box.lo.x, r.box.lo.y, r.box.hi.x, r.box.hi.y, r.centre.x, r.centre.y,
-                                  r.radius, points));
+    keys.emplace_back(
+        fmt::format("refine.{}", k),
+        fmt::format("{} {} box {} {} {} {} centre {} {} radius {} points{}", static_cast<int>(r.shape), r.size,
+                    r.box.lo.x, r.box.lo.y, r.box.hi.x, r.box.hi.y, r.centre.x, r.centre.y, r.radius, points));
   }
   // The pipeline's keys change the field the run follows.
   keys.emplace_back("spacing.scale", fmt::format("{}", config.spacing.scale));
