@@ -137,7 +137,7 @@ TEST_CASE("pdmesh mesh airfoil.crv --farfield circle:20 meshes around the body, 
   std::filesystem::remove_all(out);
 }
 
-TEST_CASE("a case file's [farfield] gives the same far field; bad values exit 2 and write nothing") {
+TEST_CASE("a case file's [farfield] gives the same far field, bad values exit 2 and write nothing") {
   const auto dir = pdmesh_test::fresh_dir("farfield_case");
   const auto write_case = [&](const std::string& farfield) {
     std::ofstream(dir / "case.toml") << "[geometry]\nfiles = [\"" << airfoil() << "\"]\n[simulation]\niterations = 0\n"

@@ -41,7 +41,7 @@ Mesh mesh_square(const std::string& tag, const std::string& extra) {
 
 }  // namespace
 
-TEST_CASE("region sizes: inside each shape its size, outside +inf; the field is the minimum with the base") {
+TEST_CASE("region sizes: inside each shape its size, outside +inf, the field is the minimum with the base") {
   RefineRegion box{.shape = RegionShape::Box, .size = 0.1, .label = "r"};
   box.box.add({0.0, 0.0});
   box.box.add({1.0, 2.0});
