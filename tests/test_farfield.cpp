@@ -199,3 +199,15 @@ TEST_CASE("a far field with boundary layers: the core keeps the one far field, i
   CHECK(std::count(m.curve_names.begin(), m.curve_names.end(), "farfield") == 1);
   std::filesystem::remove_all(out);
 }
+
+TEST_CASE("a checkpoint of a far-field run resumes only with the same far field") {
+  const auto out = fresh_path("farfield_resume");
+  const std::string run = "mesh '" + airfoil() + "' --device host --formats msh -q --out '" + out.string() + "'";
+  auto r = run_pdmesh(run + " --farfield circle:20 --stop-after 3");
+  REQUIRE(r.status == 130);
+  r = run_pdmesh(run + " --farfield circle:30 --resume '" + out.string() + "'");
+  INFO(r.output);
+  CHECK(r.status == 2);
+  CHECK(r.output.find("farfield is 'circle 20' there and 'circle 30'") != std::string::npos);
+  std::filesystem::remove_all(out);
+}
