@@ -61,11 +61,14 @@ def toml_value(value: Any, key: str) -> str:
 
 def flatten(settings: Mapping[str, Any] | None) -> list[tuple[str, Any]]:
     """Dotted keys from ``{"simulation.iterations": 5}``, ``{"simulation": {"iterations": 5}}`` or
-    shortcuts such as ``{"iterations": 5}``, in the order given."""
+    shortcuts such as ``{"iterations": 5}``, in the order given. ``farfield=("circle", 20)`` is
+    ``farfield={"shape": "circle", "size": 20}`` (the command's ``--farfield circle:20``)."""
     out: list[tuple[str, Any]] = []
     for key, value in (settings or {}).items():
         key = str(key)
-        if key in SECTIONS and isinstance(value, Mapping):
+        if key == "farfield" and isinstance(value, (tuple, list)) and len(value) == 2:
+            out.extend((("farfield.shape", value[0]), ("farfield.size", value[1])))
+        elif key in SECTIONS and isinstance(value, Mapping):
             out.extend((f"{key}.{k}", v) for k, v in value.items())
         else:
             out.append((SHORTCUTS.get(key, key), value))

@@ -40,7 +40,7 @@ struct MeshArguments {
   std::string out;
   std::vector<std::string> sets;
   std::optional<std::string> iterations, dt, cutoff, method, seed, total, device, precision, formats, r0_rule, color_by,
-      stability, momentum, stop, timings;
+      stability, momentum, stop, timings, farfield, size;
   std::vector<std::string> views;
   bool tree = false;
   bool plot_spacing = false;
@@ -174,6 +174,16 @@ std::vector<CaseOverride> overrides_from(const MeshArguments& a) {
   direct(a.momentum, "--momentum", "simulation.momentum");
   direct(a.color_by, "--color-by", "output.color_by");
   if (a.start) out.push_back({"init.file", toml_text(toml::value<std::string>(*a.start)), "--start " + *a.start});
+  direct(a.size, "--size", "spacing.size");
+  if (a.farfield) {
+    // SHAPE:SIZE as farfield.shape and farfield.size; the validator checks both values.
+    const std::string label = "--farfield " + *a.farfield;
+    const auto colon = a.farfield->find(':');
+    if (colon == std::string::npos)
+      throw InputError(fmt::format("{}: expected SHAPE:SIZE, e.g. circle:20 or box:10", label));
+    out.push_back({"farfield.shape", a.farfield->substr(0, colon), label});
+    out.push_back({"farfield.size", a.farfield->substr(colon + 1), label});
+  }
   if (a.formats) out.push_back({"output.formats", formats_value(*a.formats), "--formats " + *a.formats});
   if (a.tree) out.push_back({"output.tree_overlay", "true", "--tree"});
   if (a.plot_spacing) out.push_back({"output.spacing_picture", "true", "--plot-spacing"});
@@ -278,6 +288,14 @@ void add_run_options(CLI::App& mesh, MeshArguments& a) {
                   "simulation.momentum in [0, 1): heavy-ball beta, each move carries beta times the node's previous "
                   "one (default 0: plain gradient descent)")
       ->type_name("B");
+  mesh.add_option("--farfield", a.farfield,
+                  "farfield.shape and farfield.size: a closed curve named farfield around the geometry, a circle "
+                  "or box of radius or half-width SIZE times its largest extent (the body becomes a hole)")
+      ->type_name("SHAPE:SIZE");
+  mesh.add_option("--size", a.size,
+                  "spacing.size: the base field is H everywhere instead of eq. 3.6 (feature size, curvature and "
+                  "gradation still refine it)")
+      ->type_name("H");
   mesh.add_option("--color-by", a.color_by,
                   "output.color_by: fill mesh.png by a quality metric: none | min_angle | max_angle | aspect_ratio | "
                   "skewness | condition_number | min_jacobian")

@@ -25,8 +25,8 @@ namespace {
 // Tables that may hold further keys; every other key is a leaf.
 constexpr std::size_t kMaxNameBytes = 200;
 
-const std::vector<std::string> kSections = {"geometry",   "spacing",    "boundary", "init",
-                                            "simulation", "population", "cleanup",  "output"};
+const std::vector<std::string> kSections = {"geometry",   "spacing", "boundary", "init",    "simulation",
+                                            "population", "cleanup", "output",   "farfield"};
 
 std::string nearest_key(const std::string& key) {
   std::string best;
@@ -71,17 +71,19 @@ void check_keys(const Reader& r, const toml::table& t, const std::string& prefix
       check_keys(r, *node.as_table(), key);
       continue;
     }
-    if (key == "boundary_layer") {
-      // [boundary_layer] once or [[boundary_layer]] per curve set: each table's keys are checked.
+    if (key == "boundary_layer" || key == "refine") {
+      // [boundary_layer] once or [[boundary_layer]] per curve set (the same for [[refine]]): each
+      // table's keys are checked.
       if (node.is_table()) {
         check_keys(r, *node.as_table(), key);
       } else if (node.is_array()) {
         for (const toml::node& e : *node.as_array()) {
-          if (!e.is_table()) r.wrong_type(key, e, "a table ([[boundary_layer]])");
+          if (!e.is_table())
+            r.wrong_type(key, e, key == "refine" ? "a table ([[refine]])" : "a table ([[boundary_layer]])");
           check_keys(r, *e.as_table(), key);
         }
       } else {
-        r.wrong_type(key, node, "a table ([[boundary_layer]])");
+        r.wrong_type(key, node, key == "refine" ? "a table ([[refine]])" : "a table ([[boundary_layer]])");
       }
       continue;
     }
@@ -110,7 +112,7 @@ bool is_string_key(const std::string& key) {
          key == "spacing.h1" || key == "spacing.h2" || key == "spacing.angle" || key == "spacing.m11" ||
          key == "spacing.m12" || key == "spacing.m22" || key == "spacing.sol" || key == "spacing.function" ||
          key == "init.method" || key == "simulation.device" || key == "simulation.precision" ||
-         key == "simulation.r0_rule" || key == "simulation.stop" || key == "output.color_by";
+         key == "simulation.r0_rule" || key == "simulation.stop" || key == "output.color_by" || key == "farfield.shape";
 }
 
 // Parses an override's value as TOML; a bare word that is not TOML (random, a.crv) is a string.
@@ -246,6 +248,7 @@ const std::vector<std::string>& case_file_keys() {
       "spacing.max_anisotropy",
       "spacing.metric_gradation",
       "spacing.hessian_step",
+      "spacing.size",
       "boundary.nodes",
       "init.method",
       "init.seed",
@@ -301,6 +304,14 @@ const std::vector<std::string>& case_file_keys() {
       "boundary_layer.thickness",
       "boundary_layer.layers",
       "boundary_layer.elements",
+      "farfield.shape",
+      "farfield.size",
+      "refine.shape",
+      "refine.size",
+      "refine.box",
+      "refine.centre",
+      "refine.radius",
+      "refine.points",
   };
   return keys;
 }
@@ -363,6 +374,7 @@ CaseConfig case_for_geometry_files(const std::vector<fs::path>& geometry_files,
   Reader r(geometry_files.front().string(), fs::current_path());
   CaseConfig c;
   c.source = geometry_files.front();
+  c.geometry_alone = true;
   c.name = geometry_files.front().stem().string();
   return validate(root, r, overrides, std::move(c));
 }

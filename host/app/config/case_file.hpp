@@ -12,10 +12,12 @@
 #include "cleanup/cleanup.hpp"
 #include "core/memory_budget.hpp"
 #include "core/vec2.hpp"
+#include "geometry/farfield.hpp"
 #include "geometry/geometry.hpp"
 #include "init/initial_distribution.hpp"
 #include "sim/population.hpp"
 #include "spacing/background_field.hpp"
+#include "spacing/refine_regions.hpp"
 
 namespace pdmesh {
 
@@ -64,6 +66,7 @@ struct CaseOverride {
 
 struct CaseConfig {
   std::filesystem::path source;  // the case file, or the geometry file when meshing one directly
+  bool geometry_alone = false;   // meshing geometry files without a case file (case_for_geometry_files)
   std::string name;              // for titles; default: the case directory name (or geometry file stem)
   // Top-level key `preset`: "best" (a case file's default), "thesis", "long" or "fast". A CaseConfig
   // built in code holds the long preset's values until apply_preset() runs (a parsed one always has).
@@ -108,6 +111,11 @@ struct CaseConfig {
     // extent. The default resolves the function's own curvature; 2/1024 sees it as a fit to data on
     // a 1024 x 1024 grid would (docs/metric-fields.md, "Hessians and the L^p-optimal metric").
     double hessian_step = 1e-5;
+    // spacing.size (--size): the base field is this size everywhere instead of eq. 3.6 (0 = not given;
+    // only with field = boundary). The pipeline below still applies (docs/spacing.md).
+    double size = 0.0;
+    // [[refine]]: regions whose size the base field keeps to inside them (spacing/refine_regions.hpp).
+    std::vector<RefineRegion> regions;
     bool metric() const { return field == SpacingKind::Metric || field == SpacingKind::Hessian; }
     // A field given by the caller (the Python API: a size callable), not a case key. When set it
     // replaces `field`; MeshInputs samples it once into a background field, so that nothing later
@@ -128,6 +136,10 @@ struct CaseConfig {
     double background_min_side = BackgroundOptions{}.min_side_fraction;
     double background_boundary_min_side = BackgroundOptions{}.boundary_min_side_fraction;
   } spacing;
+
+  // [farfield] (--farfield SHAPE:SIZE): a closed curve named "farfield" around the geometry
+  // (geometry/farfield.hpp); size 0 = none.
+  Farfield farfield;
 
   struct Boundary {
     BoundaryNodeRule nodes = BoundaryNodeRule::Spacing;  // thesis: Input (every geometry point is a node)

@@ -183,6 +183,9 @@ void check_metric_keys(const Reader& r, const toml::table& root, CaseConfig& c, 
                        const toml::node* array);
 const char* spacing_kind_name(SpacingKind kind);
 
+// spacing.size, the [[refine]] tables into c.spacing.regions and [farfield] (case_sizes.cpp).
+void read_size_sections(const Reader& r, const toml::table& root, CaseConfig& c);
+
 // Every section's keys into `c` (case_sections.cpp), after the preset and the name.
 void read_case_sections(const Reader& r, const toml::table& root, CaseConfig& c);
 

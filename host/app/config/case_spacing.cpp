@@ -1,5 +1,5 @@
-// The case's spacing field: eq. 3.6, an expression, a background mesh read from a file, or the
-// isotropic size of a metric field; and the metric field itself.
+// The case's spacing field: eq. 3.6, a uniform size, an expression, a background mesh read from a file,
+// or the isotropic size of a metric field, lowered by the refinement regions; and the metric field itself.
 #include "app/config/case_spacing.hpp"
 
 #include <algorithm>
@@ -13,13 +13,16 @@
 #include "spacing/background_field.hpp"
 #include "spacing/hessian_metric.hpp"
 #include "spacing/mesh_spacing.hpp"
+#include "spacing/refine_regions.hpp"
 #include "spacing/metric_gradation.hpp"
 #include "spacing/metric_size_field.hpp"
 
 namespace pdmesh {
 
-std::unique_ptr<SpacingField> make_case_spacing(const CaseConfig& config, const GeometryTree& tree,
-                                                const MetricField* metric) {
+namespace {
+
+std::unique_ptr<SpacingField> base_spacing(const CaseConfig& config, const GeometryTree& tree,
+                                           const MetricField* metric) {
   // A caller's field (the Python API's size callable) is sampled once, in batches (at_many), into a
   // background field, so that nothing later evaluates it per point.
   if (config.spacing.given) return std::make_unique<BackgroundSpacing>(*config.spacing.given, tree);
@@ -38,7 +41,18 @@ std::unique_ptr<SpacingField> make_case_spacing(const CaseConfig& config, const 
     case SpacingKind::Boundary:
       break;
   }
+  if (config.spacing.size > 0.0) return std::make_unique<UniformSpacing>(config.spacing.size);
   return std::make_unique<BoundarySpacing>(tree);
+}
+
+}  // namespace
+
+std::unique_ptr<SpacingField> make_case_spacing(const CaseConfig& config, const GeometryTree& tree,
+                                                const MetricField* metric) {
+  std::unique_ptr<SpacingField> base = base_spacing(config, tree, metric);
+  // Refinement regions lower the base field inside them; the pipeline's sources and gradation apply after.
+  if (config.spacing.regions.empty()) return base;
+  return std::make_unique<RegionSpacing>(std::move(base), config.spacing.regions);
 }
 
 namespace {

@@ -16,7 +16,9 @@ namespace pdmesh {
 // A field given by the caller (config.spacing.given, the Python API) replaces all of these: it is
 // sampled once into a BackgroundSpacing.
 // spacing.field "metric" or "hessian": the isotropic q derived from `metric` (MetricSizeField, which
-// refers to it), which must then be the field make_case_metric built.
+// refers to it), which must then be the field make_case_metric built. spacing.size replaces eq. 3.6 by
+// that size everywhere; [[refine]] regions (spacing.regions) then lower the field inside them
+// (RegionSpacing, spacing/refine_regions.hpp).
 std::unique_ptr<SpacingField> make_case_spacing(const CaseConfig& config, const GeometryTree& tree,
                                                 const MetricField* metric = nullptr);
 

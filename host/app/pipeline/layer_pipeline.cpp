@@ -180,6 +180,8 @@ std::unique_ptr<LayeredCase> build_layers(const CaseConfig& config, const MeshIn
   core.geometry.curve_names.clear();
   core.geometry.given_curves = std::move(curves);
   core.geometry.curves = CurveKind::Polyline;  // the fronts are polylines of layer nodes
+  core.farfield = {};                          // the case's far field is among the curves already
+  core.spacing.regions.clear();                // and its regions in the case's field, `field`
   // The case's final field (already scaled) is the core's base field, lowered at the fronts.
   const double gradation = config.spacing.gradation > 0.0 ? config.spacing.gradation : 0.2;
   core.spacing.given = std::make_shared<FrontSpacing>(field, std::move(sources), gradation);

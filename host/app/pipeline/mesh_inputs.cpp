@@ -12,12 +12,14 @@
 #include "app/config/case_spacing.hpp"
 #include "core/errors.hpp"
 #include "core/memory_budget.hpp"
+#include "geometry/farfield.hpp"
 #include "geometry/geometry_files.hpp"
 #include "init/metric_fill.hpp"
 #include "layers/boundary_layers.hpp"
 #include "init/node_estimate.hpp"
 #include "init/warm_points.hpp"
 #include "spacing/mesh_spacing.hpp"
+#include "spacing/refine_regions.hpp"
 #include "spacing/resolution_check.hpp"
 
 namespace pdmesh {
@@ -31,6 +33,8 @@ MeshInputs::MeshInputs(const CaseConfig& config) {
   geometry = config.geometry.given_curves.empty()
                  ? read_geometry(files, config.geometry.curve_names, options)
                  : geometry_from_curves(config.geometry.given_curves, config.geometry.curve_names, options);
+  // The far field around everything given: the body becomes a hole by the even-odd rule.
+  if (config.farfield.given()) geometry = with_farfield(geometry, config.farfield, config.spacing.gradation, options);
   // Curve names are fields in node and mesh files; one with white space would break them later.
   for (std::size_t c = 0; c < geometry.curves.size(); ++c) {
     const std::string& name = geometry.curves[c].name;
@@ -74,7 +78,9 @@ MeshInputs::MeshInputs(const CaseConfig& config) {
         config.spacing.field == SpacingKind::Hessian ? "hessian" : "metric",
         std::chrono::duration<double>(std::chrono::steady_clock::now() - spacing_start).count());
   }
-  if (const auto* m = dynamic_cast<const MeshSpacing*>(spacing.get())) {
+  const SpacingField* base = spacing.get();
+  if (const auto* r = dynamic_cast<const RegionSpacing*>(base)) base = &r->base();
+  if (const auto* m = dynamic_cast<const MeshSpacing*>(base)) {
     const MeshFieldData& d = m->data();
     const auto [lo, hi] = std::minmax_element(d.q.begin(), d.q.end());
     spacing_summary = fmt::format(

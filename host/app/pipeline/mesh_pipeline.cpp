@@ -135,6 +135,10 @@ void read_stage_report(const CaseConfig& config, const MeshInputs& inputs) {
   progress(config, "geometry: {} curves, {} segments, {} loops, area {:.6g}", inputs.geometry.curves.size(),
            inputs.geometry.segments.size(), inputs.geometry.loops.size(), inputs.geometry.area);
   if (!inputs.spacing_summary.empty()) progress(config, "{}", inputs.spacing_summary);
+  if (config.geometry_alone && !config.farfield.given() && inputs.geometry.loops.size() == 1)
+    progress(config,
+             "note: the geometry is one closed loop: its inside is meshed; to mesh the domain around it, add "
+             "a far field, e.g. --farfield circle:20 (docs/geometry-input.md, \"Far field\")");
   if (inputs.dense)
     progress(config,
              "geometry: smooth curves (centripetal Catmull-Rom) as a dense polyline of {} segments, area {:.6g}",
@@ -169,6 +173,10 @@ void simulate_and_mesh(const CaseConfig& config, const MeshInputs& inputs, const
           return backend.emplace(std::move(p.backend));
         };
       }
+      // The node count that decides `--device auto` can differ from the estimate that set use_prepared:
+      // simulate may then set up an OpenCL backend itself, and PoCL's first platform queries are not
+      // safe beside the preparing thread's (a crash in clGetPlatformInfo): that thread ends first.
+      if (prepared.valid() && !use_prepared) prepared.wait();
       hooks.finished = &finished;
       final_mesh = simulate(config, inputs, spacing, nodes, nullptr, &hooks, &phases).final_mesh;
     }

@@ -93,6 +93,21 @@ std::vector<std::pair<std::string, std::string>> case_identity(const CaseConfig&
     keys.emplace_back("spacing.max_anisotropy", fmt::format("{}", s.max_anisotropy));
     keys.emplace_back("spacing.metric_gradation", fmt::format("{}", s.metric_gradation));
   }
+  // The far field, a uniform size and refinement regions: only when set, so that checkpoints of runs
+  // without them (older files too) identify the same way.
+  if (config.farfield.given())
+    keys.emplace_back("farfield", fmt::format("{} {}", config.farfield.shape == FarfieldShape::Box ? "box" : "circle",
+                                              config.farfield.size));
+  if (config.spacing.size > 0.0) keys.emplace_back("spacing.size", fmt::format("{}", config.spacing.size));
+  for (std::size_t k = 0; k < config.spacing.regions.size(); ++k) {
+    const RefineRegion& r = config.spacing.regions[k];
+    std::string points;
+    for (const Vec2 p : r.points) points += fmt::format(" {} {}", p.x, p.y);
+    keys.emplace_back(
+        fmt::format("refine.{}", k),
+        fmt::format("{} {} box {} {} {} {} centre {} {} radius {} points{}", static_cast<int>(r.shape), r.size,
+                    r.box.lo.x, r.box.lo.y, r.box.hi.x, r.box.hi.y, r.centre.x, r.centre.y, r.radius, points));
+  }
   // The pipeline's keys change the field the run follows.
   keys.emplace_back("spacing.scale", fmt::format("{}", config.spacing.scale));
   keys.emplace_back("spacing.gradation", fmt::format("{}", config.spacing.gradation));
