@@ -2,6 +2,7 @@
 // segments bound the domain and which are constraints, hole points, isolated vertices, regional
 // attributes, the convex hull, and the notes; on Triangle's own examples (tests/data/triangle).
 #include <algorithm>
+#include <filesystem>
 #include <string>
 
 #include <catch2/catch.hpp>
@@ -10,9 +11,12 @@
 #include "geometry/geometry_files.hpp"
 #include "geometry/planar_faces.hpp"
 #include "geometry/poly_reader.hpp"
+#include "run_pdmesh.hpp"
+#include "temp_files.hpp"
 
 using namespace pdmesh;
 using Catch::Matchers::Contains;
+namespace fs = std::filesystem;
 
 namespace {
 
@@ -156,4 +160,19 @@ TEST_CASE("poly semantics: bad regional attributes are input errors naming the l
                     Contains("region_short.poly:11") && Contains("should have 5 values, found 3"));
   CHECK_THROWS_WITH(read_poly_file(data("geometry/region_on_segment.poly")),
                     Contains("region_on_segment.poly:11") && Contains("(0.5, 0)") && Contains("on a segment"));
+}
+
+TEST_CASE("pdmesh mesh box.poly meshes the convex hull; geometry.hull = false refuses it", "[cli]") {
+  const fs::path dir = pdmesh_test::fresh_dir("poly_hull");
+  const std::string box = data("triangle/box.poly");
+  const auto r = pdmesh_test::run_pdmesh("mesh '" + box + "' --out '" + (dir / "out").string() +
+                                         "' --iterations 0 --formats msh --quiet");
+  CHECK(r.status == 0);
+  CHECK_THAT(r.output, Contains("pdmesh: note: ") && Contains("meshing the convex hull"));
+  CHECK(fs::exists(dir / "out" / "mesh.msh"));
+  const auto refused = pdmesh_test::run_pdmesh("mesh '" + box + "' --out '" + (dir / "refused").string() +
+                                               "' --iterations 0 --set geometry.hull=false");
+  CHECK(refused.status == 2);
+  CHECK_THAT(refused.output, Contains("box.poly") && Contains("geometry.hull is false"));
+  CHECK_FALSE(fs::exists(dir / "refused"));
 }

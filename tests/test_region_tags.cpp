@@ -2,7 +2,6 @@
 // surfaces, VTU cell data, Triangle .ele attribute), and end to end from a .poly file.
 #include <filesystem>
 #include <fstream>
-#include <sstream>
 #include <string>
 
 #include <catch2/catch.hpp>
@@ -12,6 +11,7 @@
 #include "io/vtu_writer.hpp"
 #include "mesh/region_tags.hpp"
 #include "run_pdmesh.hpp"
+#include "temp_files.hpp"
 
 using namespace pdmesh;
 using Catch::Matchers::Contains;
@@ -88,9 +88,7 @@ TEST_CASE("region tags in the mesh files", "[mesh][io]") {
 }
 
 TEST_CASE("pdmesh mesh on a .poly with a regional attribute writes its tag", "[cli]") {
-  const fs::path dir = fs::path(PDMESH_BINARY).parent_path() / "test_region_tags_cli";
-  fs::remove_all(dir);
-  fs::create_directories(dir);
+  const fs::path dir = pdmesh_test::fresh_dir("region_tags");
   // The unit square, one region with attribute 7 and a maximum area (noted, not applied).
   std::ofstream(dir / "square.poly") << "4 2 0 0\n1 0 0\n2 1 0\n3 1 1\n4 0 1\n4 0\n1 1 2\n2 2 3\n3 3 4\n4 4 1\n0\n"
                                         "1\n1 0.5 0.5 7 0.01\n";
@@ -99,8 +97,5 @@ TEST_CASE("pdmesh mesh on a .poly with a regional attribute writes its tag", "[c
                                          "' --iterations 0 --formats msh,vtu --quiet");
   CHECK(r.status == 0);
   CHECK_THAT(r.output, Contains("pdmesh: note: ") && Contains("square.poly:13: 1 region gives a maximum triangle area"));
-  std::ifstream in(out / "mesh.msh");
-  std::stringstream text;
-  text << in.rdbuf();
-  CHECK_THAT(text.str(), Contains("\"region_7\"") && !Contains("\"domain\""));
+  CHECK_THAT(pdmesh_test::slurp(out / "mesh.msh"), Contains("\"region_7\"") && !Contains("\"domain\""));
 }

@@ -43,7 +43,7 @@ int innermost(const PlanarFaces& f, const std::vector<Vec2>& vertices, const std
   for (int k = 0; k < static_cast<int>(f.outer.size()); ++k) {
     if (face_component[k] == skip_component) continue;
     if (best >= 0 && f.outer_area[k] >= f.outer_area[best]) continue;
-    if (inside_cycle(vertices, f.outer[k], p)) best = k;
+    if (f.outer_box[k].contains(p) && inside_cycle(vertices, f.outer[k], p)) best = k;
   }
   return best;
 }
@@ -116,6 +116,9 @@ PlanarFaces planar_faces(const std::vector<Vec2>& vertices, const std::vector<st
     if (outside_of[component[c]] == c) continue;
     face_of_cycle[c] = static_cast<int>(f.outer.size());
     f.outer.push_back(cycles[c]);
+    Box box;
+    for (const int v : cycles[c]) box.add(vertices[v]);
+    f.outer_box.push_back(box);
     f.outer_area.push_back(area[c]);
     face_component.push_back(component[c]);
   }
@@ -136,7 +139,7 @@ int locate_face(const PlanarFaces& faces, const std::vector<Vec2>& vertices,
   int best = -1;
   for (int k = 0; k < static_cast<int>(faces.outer.size()); ++k) {
     if (best >= 0 && faces.outer_area[k] >= faces.outer_area[best]) continue;
-    if (inside_cycle(vertices, faces.outer[k], p)) best = k;
+    if (faces.outer_box[k].contains(p) && inside_cycle(vertices, faces.outer[k], p)) best = k;
   }
   return best;
 }

@@ -19,6 +19,7 @@ struct PlanarFaces {
   // encloses (the face's own area plus that of whatever lies inside it).
   std::vector<std::vector<int>> outer;
   std::vector<double> outer_area;
+  std::vector<Box> outer_box;  // bounding box of each outer boundary, to skip the tests of far faces
 };
 
 // The faces of the graph. Edges are vertex index pairs (a != b); the caller guarantees that no two
