@@ -38,9 +38,10 @@ bool any_note(const PolyFile& poly, const std::string& text) {
 
 TEST_CASE("planar faces: a square with a diagonal, a dangling edge and a separate square inside", "[geometry]") {
   // 0..3: the square [0,4]^2; 4, 5: a dangling edge from corner 0; 6..9: the square [2.5,3.5]^2.
-  const std::vector<Vec2> v{{0, 0}, {4, 0}, {4, 4}, {0, 4}, {1, 0.5}, {9, 9},
-                            {2.5, 0.5}, {3.5, 0.5}, {3.5, 1.5}, {2.5, 1.5}};
-  const std::vector<std::array<int, 2>> e{{0, 1}, {1, 2}, {2, 3}, {3, 0}, {0, 2}, {0, 4}, {6, 7}, {7, 8}, {8, 9}, {9, 6}};
+  const std::vector<Vec2> v{{0, 0}, {4, 0},     {4, 4},     {0, 4},     {1, 0.5},
+                            {9, 9}, {2.5, 0.5}, {3.5, 0.5}, {3.5, 1.5}, {2.5, 1.5}};
+  const std::vector<std::array<int, 2>> e{{0, 1}, {1, 2}, {2, 3}, {3, 0}, {0, 2},
+                                          {0, 4}, {6, 7}, {7, 8}, {8, 9}, {9, 6}};
   const PlanarFaces f = planar_faces(v, e);
   REQUIRE(f.outer.size() == 3);  // two triangles and the small square
   // The outer square's sides have the unbounded face on their right, the diagonal two triangles.
@@ -94,7 +95,7 @@ TEST_CASE("poly semantics: a loop with a hole point stays a hole", "[geometry]")
 TEST_CASE("poly semantics: Triangle's face.poly: open segments inside are constraints, dimples are points",
           "[geometry]") {
   const PolyFile poly = read_poly_file(data("triangle/face.poly"));
-  CHECK(count_constraints(poly, false) == 4);  // the outline, the mouth and the two eyes
+  CHECK(count_constraints(poly, false) == 4);   // the outline, the mouth and the two eyes
   REQUIRE(count_constraints(poly, true) == 2);  // the nostrils
   for (const RawCurve& c : poly.curves) CHECK(closed(c) != c.constraint);
   REQUIRE(poly.points.size() == 2);

@@ -96,6 +96,7 @@ TEST_CASE("pdmesh mesh on a .poly with a regional attribute writes its tag", "[c
   const auto r = pdmesh_test::run_pdmesh("mesh '" + (dir / "square.poly").string() + "' --out '" + out.string() +
                                          "' --iterations 0 --formats msh,vtu --quiet");
   CHECK(r.status == 0);
-  CHECK_THAT(r.output, Contains("pdmesh: note: ") && Contains("square.poly:13: 1 region gives a maximum triangle area"));
+  CHECK_THAT(r.output,
+             Contains("pdmesh: note: ") && Contains("square.poly:13: 1 region gives a maximum triangle area"));
   CHECK_THAT(pdmesh_test::slurp(out / "mesh.msh"), Contains("\"region_7\"") && !Contains("\"domain\""));
 }

@@ -24,11 +24,11 @@ enum class Kind { Boundary, Constraint, Dropped };
 // The graph the faces are traced on: vertices merged where they coincide, segments without
 // repeats, and the convex hull's edges when asked for.
 struct Graph {
-  std::vector<Vec2> points;                // distinct vertex positions
-  std::vector<int> vertex_of;              // file vertex -> graph vertex
-  std::vector<int> first_vertex;           // graph vertex -> first file vertex there
-  std::vector<std::array<int, 2>> edges;   // graph vertex pairs
-  std::vector<int> segment;                // per edge: the file segment, -1 for a hull edge
+  std::vector<Vec2> points;               // distinct vertex positions
+  std::vector<int> vertex_of;             // file vertex -> graph vertex
+  std::vector<int> first_vertex;          // graph vertex -> first file vertex there
+  std::vector<std::array<int, 2>> edges;  // graph vertex pairs
+  std::vector<int> segment;               // per edge: the file segment, -1 for a hull edge
 };
 
 Graph make_graph(const std::string& path, int base, const std::vector<PolyVertex>& vertices,
@@ -47,9 +47,10 @@ Graph make_graph(const std::string& path, int base, const std::vector<PolyVertex
     g.vertex_of.push_back(it->second);
   }
   if (merged > 0) {
-    notes.push_back(fmt::format("{}:{}: {} vertex{} at the same point as an earlier one (the first: vertex {}) merged "
-                                "with it, as Triangle does",
-                                path, vertices[merged_first].line, merged, merged == 1 ? "" : "es", merged_first + base));
+    notes.push_back(
+        fmt::format("{}:{}: {} vertex{} at the same point as an earlier one (the first: vertex {}) merged "
+                    "with it, as Triangle does",
+                    path, vertices[merged_first].line, merged, merged == 1 ? "" : "es", merged_first + base));
   }
   std::map<std::pair<int, int>, int> seen;
   int repeats = 0, repeat_first = -1;
@@ -225,11 +226,12 @@ void apply_poly_semantics(const std::string& path, int base, const std::vector<P
     faces = planar_faces(g.points, g.edges);
   }
   if (!remove_holes(&result.notes)) {
-    throw InputError(fmt::format(
-        "{}: the segments enclose no area outside the holes{}: nothing to mesh{}", path,
-        use_hull ? "" : " and geometry.hull is false",
-        result.holes.empty() ? ""
-                             : fmt::format(" (is the hole point on line {} meant to be there?)", result.holes[0].line)));
+    throw InputError(
+        fmt::format("{}: the segments enclose no area outside the holes{}: nothing to mesh{}", path,
+                    use_hull ? "" : " and geometry.hull is false",
+                    result.holes.empty()
+                        ? ""
+                        : fmt::format(" (is the hole point on line {} meant to be there?)", result.holes[0].line)));
   }
   auto in_domain = [&](int f) { return f >= 0 && inside[f]; };
 
@@ -238,9 +240,10 @@ void apply_poly_semantics(const std::string& path, int base, const std::vector<P
   for (const GeometryRegion& r : regions) {
     const int f = locate_face(faces, g.points, g.edges, r.p);
     if (f == -2) {
-      throw InputError(fmt::format("{}: region point {} lies on a segment, between two regions; move it inside the "
-                                   "region it tags",
-                                   where(r.file, r.line), format_point(r.p)));
+      throw InputError(
+          fmt::format("{}: region point {} lies on a segment, between two regions; move it inside the "
+                      "region it tags",
+                      where(r.file, r.line), format_point(r.p)));
     }
     if (!in_domain(f)) {
       result.notes.push_back(fmt::format("{}: region point {} lies outside the domain ({}): its attribute {} is unused",
@@ -251,10 +254,10 @@ void apply_poly_semantics(const std::string& path, int base, const std::vector<P
     const auto [it, fresh] = region_of_face.emplace(f, result.regions.size());
     if (!fresh) {
       const GeometryRegion& earlier = result.regions[it->second];
-      result.notes.push_back(fmt::format("{}: region point {} lies in the same region as the one on line {}: its "
-                                         "attribute {} replaces {}, as in Triangle",
-                                         where(r.file, r.line), format_point(r.p), earlier.line, r.attribute,
-                                         earlier.attribute));
+      result.notes.push_back(
+          fmt::format("{}: region point {} lies in the same region as the one on line {}: its "
+                      "attribute {} replaces {}, as in Triangle",
+                      where(r.file, r.line), format_point(r.p), earlier.line, r.attribute, earlier.attribute));
       result.regions[it->second] = r;
     } else {
       result.regions.push_back(r);
@@ -291,10 +294,11 @@ void apply_poly_semantics(const std::string& path, int base, const std::vector<P
     for (const int v : g.edges[e]) ++kept_degree[v];
   }
   if (dropped > 0) {
-    result.notes.push_back(fmt::format("{}:{}: {} segment{} outside the domain (in a hole or outside every loop; the "
-                                       "first: segment {}) dropped",
-                                       path, segments[g.segment[dropped_first]].line, dropped, dropped == 1 ? "" : "s",
-                                       g.segment[dropped_first] + base));
+    result.notes.push_back(
+        fmt::format("{}:{}: {} segment{} outside the domain (in a hole or outside every loop; the "
+                    "first: segment {}) dropped",
+                    path, segments[g.segment[dropped_first]].line, dropped, dropped == 1 ? "" : "s",
+                    g.segment[dropped_first] + base));
   }
 
   // Curves: boundaries by marker (in order of first appearance), the hull's edges, then constraints.
@@ -338,17 +342,16 @@ void apply_poly_semantics(const std::string& path, int base, const std::vector<P
                                        path, kept, kept == 1 ? "ex" : "ices"));
   }
   if (outside > 0) {
-    result.notes.push_back(fmt::format("{}:{}: {} isolated vert{} outside the domain or on a segment (the first: "
-                                       "vertex {}) dropped",
-                                       path, vertices[outside_first].line, outside, outside == 1 ? "ex" : "ices",
-                                       outside_first + base));
+    result.notes.push_back(
+        fmt::format("{}:{}: {} isolated vert{} outside the domain or on a segment (the first: "
+                    "vertex {}) dropped",
+                    path, vertices[outside_first].line, outside, outside == 1 ? "ex" : "ices", outside_first + base));
   }
 
   // Where the even-odd rule of curve files would have read the file differently: loops around a
   // face it would have made a hole, which Triangle's rule (no hole point in it) keeps in the domain.
-  const bool loops_only = !use_hull && std::all_of(input_degree.begin(), input_degree.end(), [](int d) {
-    return d == 0 || d == 2;
-  });
+  const bool loops_only =
+      !use_hull && std::all_of(input_degree.begin(), input_degree.end(), [](int d) { return d == 0 || d == 2; });
   if (!loops_only) return;
   const std::vector<int> parity = face_parity(faces);
   for (std::size_t f = 0; f < faces.outer.size(); ++f) {

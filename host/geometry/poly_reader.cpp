@@ -182,7 +182,8 @@ std::vector<GeometryRegion> read_regions(const std::string& path, Cursor& cursor
   cursor.check_count(header, count, "region count");
   for (long long k = 0; k < count; ++k) {
     const detail::TokenLine& row = cursor.next("a region line");
-    if (row.tokens.size() != 4) expect_tokens(path, row, 5, "a region line '<region #> <x> <y> <attribute> <max area>'");
+    if (row.tokens.size() != 4)
+      expect_tokens(path, row, 5, "a region line '<region #> <x> <y> <attribute> <max area>'");
     const long long index = detail::parse_integer(path, row.number, row.tokens[0], "region index");
     if (index != base + k) {
       throw InputError(fmt::format("{}:{}: region index '{}' is out of order; expected {}", path, row.number,

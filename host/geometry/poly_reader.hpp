@@ -14,9 +14,9 @@ struct PolyFile {
   // (segments with the domain on both sides: RawCurve::constraint).
   std::vector<RawCurve> curves;
   std::vector<RawHolePoint> holes;
-  std::vector<RawPoint> points;       // isolated vertices inside the domain
+  std::vector<RawPoint> points;         // isolated vertices inside the domain
   std::vector<GeometryRegion> regions;  // regional attributes whose point lies in the domain
-  std::vector<std::string> notes;     // what differs from the plain reading, one line each, for stderr
+  std::vector<std::string> notes;       // what differs from the plain reading, one line each, for stderr
 };
 
 // The domain is what the segments enclose (with the convex hull when `hull` says so) less the faces

@@ -43,8 +43,8 @@ Surfaces surfaces_of(const Mesh& mesh) {
   attributes.erase(std::unique(attributes.begin(), attributes.end()), attributes.end());
   for (const double a : attributes) s.names.push_back(fmt::format("region_{}", a));
   for (std::size_t i = 0; i < mesh.triangles.size(); ++i)
-    s.of_triangle[i] = static_cast<int>(std::lower_bound(attributes.begin(), attributes.end(), mesh.region[i]) -
-                                        attributes.begin());
+    s.of_triangle[i] =
+        static_cast<int>(std::lower_bound(attributes.begin(), attributes.end(), mesh.region[i]) - attributes.begin());
   return s;
 }
 

@@ -13,7 +13,6 @@ namespace pdmesh {
 // none; empty when there are no regions. An edge blocks the flood when both its ends lie on one
 // segment of `geometry` (to 1e-6 of the edge's length). A region point in no triangle (rounding at a
 // curved boundary) starts from the triangle with the nearest centroid.
-std::vector<double> region_tags(const Mesh& mesh, const std::vector<GeometryRegion>& regions,
-                                const Geometry& geometry);
+std::vector<double> region_tags(const Mesh& mesh, const std::vector<GeometryRegion>& regions, const Geometry& geometry);
 
 }  // namespace pdmesh
