@@ -163,7 +163,7 @@ TEST_CASE("poly semantics: bad regional attributes are input errors naming the l
                     Contains("region_on_segment.poly:11") && Contains("(0.5, 0)") && Contains("on a segment"));
 }
 
-TEST_CASE("pdmesh mesh box.poly meshes the convex hull; geometry.hull = false refuses it", "[cli]") {
+TEST_CASE("pdmesh mesh box.poly meshes the convex hull, and geometry.hull = false refuses it", "[cli]") {
   const fs::path dir = pdmesh_test::fresh_dir("poly_hull");
   const std::string box = data("triangle/box.poly");
   const auto r = pdmesh_test::run_pdmesh("mesh '" + box + "' --out '" + (dir / "out").string() +
