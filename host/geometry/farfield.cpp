@@ -123,6 +123,8 @@ Geometry with_farfield(const Geometry& body, const Farfield& f, double gradation
   for (const Vec2 p : body.hole_points) holes.push_back({p, f.label, 0});
   Geometry g = build_geometry(std::move(raw), holes, options);
   g.embedded_points = body.embedded_points;
+  g.regions = body.regions;
+  g.notes = body.notes;
   return g;
 }
 

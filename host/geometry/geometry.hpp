@@ -42,6 +42,16 @@ struct RawHolePoint {
   int line = 0;
 };
 
+// A regional attribute from a .poly file (Triangle's convention): the subdomain (the region bounded
+// by segments) holding `p` is tagged with `attribute`; `max_area` > 0 caps its triangles' area.
+struct GeometryRegion {
+  Vec2 p;
+  double attribute = 0.0;
+  double max_area = -1.0;  // <= 0: no cap
+  std::string file;
+  int line = 0;
+};
+
 // One validated segmented boundary curve: an ordered polyline of >= 2 distinct consecutive points.
 struct Curve {
   std::string name;
@@ -90,11 +100,16 @@ struct CriticalPoint {
   std::vector<int> indices;  // the point index within each of those curves
 };
 
+// geometry.hull, for .poly files: mesh the convex hull of all vertices (Triangle's -c, its box.poly
+// convention). Automatic: only when the segments enclose no area (no closed loop).
+enum class PolyHull { Automatic, On, Off };
+
 struct GeometryOptions {
   // Curve end points closer than join_tolerance * (extents diagonal) are the same point.
   double join_tolerance = 1e-9;
   // A vertex inside a curve whose turning angle exceeds this (degrees) is a critical point.
   double corner_angle_deg = 30.0;
+  PolyHull hull = PolyHull::Automatic;  // .poly files only
 };
 
 struct Geometry {
@@ -108,6 +123,12 @@ struct Geometry {
   std::vector<Vec2> hole_points;
   // Embedded points (RawPoint): nodes the mesh must have inside the domain.
   std::vector<Vec2> embedded_points;
+  // Regional attributes (.poly files): the outputs tag each triangle with the attribute of the
+  // region it lies in (mesh/region_tags.hpp), 0 outside every region.
+  std::vector<GeometryRegion> regions;
+  // Remarks of the readers (a .poly read differently from the even-odd rule, vertices kept or
+  // dropped): printed on stderr by the command.
+  std::vector<std::string> notes;
 };
 
 // Everything a geometry reader hands on: curves (boundaries and constraints), hole points and

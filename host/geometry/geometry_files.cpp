@@ -46,6 +46,9 @@ Geometry read_geometry(const std::vector<std::string>& paths, const std::vector<
   if (paths.empty()) throw InputError("no geometry files given");
   std::vector<RawCurve> curves;
   std::vector<RawHolePoint> holes;
+  std::vector<RawPoint> points;
+  std::vector<GeometryRegion> regions;
+  std::vector<std::string> notes;
   std::string per_file;  // "a.crv: 4 curves, b.poly: 1 curve", for the names message
   for (const std::string& path : paths) {
     std::string ext = std::filesystem::path(path).extension().string();
@@ -54,9 +57,12 @@ Geometry read_geometry(const std::vector<std::string>& paths, const std::vector<
     if (ext == ".crv" || ext == ".dat") {
       for (RawCurve& c : read_curve_file(path)) curves.push_back(std::move(c));
     } else if (ext == ".poly") {
-      PolyFile poly = read_poly_file(path);
+      PolyFile poly = read_poly_file(path, options.hull);
       for (RawCurve& c : poly.curves) curves.push_back(std::move(c));
       for (RawHolePoint& h : poly.holes) holes.push_back(std::move(h));
+      for (RawPoint& p : poly.points) points.push_back(std::move(p));
+      for (GeometryRegion& r : poly.regions) regions.push_back(std::move(r));
+      for (std::string& n : poly.notes) notes.push_back(std::move(n));
     } else {
       throw InputError(
           fmt::format("{}: unsupported geometry file extension '{}' (supported: .crv, .dat, .poly)", path, ext));
@@ -65,7 +71,11 @@ Geometry read_geometry(const std::vector<std::string>& paths, const std::vector<
     per_file += fmt::format("{}{}: {} curve{}", per_file.empty() ? "" : ", ", path, n, n == 1 ? "" : "s");
   }
   name_curves(curves, curve_names, per_file);
-  return build_geometry(std::move(curves), holes, options);
+  Geometry g = build_geometry(std::move(curves), holes, options);
+  for (const RawPoint& p : points) g.embedded_points.push_back(p.p);
+  g.regions = std::move(regions);
+  g.notes = std::move(notes);
+  return g;
 }
 
 Geometry geometry_from_curves(std::vector<RawCurve> curves, const std::vector<std::string>& curve_names,

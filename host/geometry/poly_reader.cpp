@@ -1,29 +1,20 @@
-// .poly reader (Triangle's planar straight line graph format): parses the vertex, segment and hole
-// sections, then splits the segments into curves by boundary marker (see poly_reader.hpp).
+// .poly reader (Triangle's planar straight line graph format): parses the vertex, segment, hole and
+// regional attribute sections; geometry/poly_domain.cpp gives them Triangle's meaning.
 #include "geometry/poly_reader.hpp"
-
-#include <map>
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
 #include "core/errors.hpp"
 #include "core/input_file.hpp"
+#include "geometry/poly_domain.hpp"
 #include "geometry/reader_text.hpp"
 
 namespace pdmesh {
 namespace {
 
-struct PolyVertex {
-  Vec2 p;
-  int line = 0;
-};
-
-struct PolySegment {
-  int a = 0, b = 0;  // 0-based vertex indices
-  long long marker = 0;
-  int line = 0;
-};
+using detail::PolySegment;
+using detail::PolyVertex;
 
 // Walks the token lines in order, with messages that say which section is short.
 class Cursor {
@@ -125,7 +116,6 @@ std::vector<PolySegment> read_segments(const std::string& path, Cursor& cursor, 
     throw InputError(fmt::format("{}:{}: segment marker count '{}' must be 0 or 1", path, header.number,
                                  quote_input(header.tokens[1])));
   }
-  if (count == 0) throw InputError(fmt::format("{}:{}: the file has no segments", path, header.number));
   cursor.check_count(header, count, "segment count");
   std::vector<PolySegment> segments;
   segments.reserve(static_cast<std::size_t>(count));
@@ -178,55 +168,47 @@ std::vector<RawHolePoint> read_holes(const std::string& path, Cursor& cursor, in
     const double y = detail::parse_coordinate(path, row.number, row.tokens[2], "y coordinate");
     holes.push_back({{x, y}, path, row.number});
   }
-  // A regional attribute section may follow; pdmesh has no use for it.
   return holes;
 }
 
-// Splits the segments of one marker into chains (see poly_reader.hpp). `ids` are indices into
-// `segments`, in file order, so the result does not depend on anything but the file.
-void chain_marker(const std::string& path, const std::vector<PolyVertex>& vertices,
-                  const std::vector<PolySegment>& segments, const std::vector<int>& ids,
-                  std::vector<RawCurve>& curves) {
-  std::map<int, std::vector<int>> incident;  // vertex -> segment ids of this marker
-  for (const int s : ids) {
-    incident[segments[s].a].push_back(s);
-    incident[segments[s].b].push_back(s);
-  }
-  std::map<int, bool> used;
-  auto other = [&](int s, int v) { return segments[s].a == v ? segments[s].b : segments[s].a; };
-  auto walk = [&](int start_vertex, int first_segment) {
-    RawCurve curve;
-    curve.file = path;
-    curve.line = segments[first_segment].line;
-    auto add = [&](int v) {
-      curve.points.push_back(vertices[v].p);
-      curve.lines.push_back(vertices[v].line);
-    };
-    add(start_vertex);
-    int v = start_vertex;
-    int s = first_segment;
-    while (true) {
-      used[s] = true;
-      v = other(s, v);
-      add(v);
-      const auto& around = incident[v];
-      if (around.size() != 2 || v == start_vertex) break;
-      s = around[0] == s ? around[1] : around[0];
-      if (used[s]) break;
+// The optional regional attribute section: '<regions>', then '<region #> <x> <y> <attribute>
+// [<max area>]'. As in Triangle, a line without the max area uses its fourth value for both.
+std::vector<GeometryRegion> read_regions(const std::string& path, Cursor& cursor, int base) {
+  std::vector<GeometryRegion> regions;
+  if (cursor.at_end()) return regions;
+  const detail::TokenLine& header = cursor.next("the region count line");
+  expect_tokens(path, header, 1, "the regional attribute header '<regions>'");
+  const long long count = detail::parse_count(path, header.number, header.tokens[0], "region count");
+  cursor.check_count(header, count, "region count");
+  for (long long k = 0; k < count; ++k) {
+    const detail::TokenLine& row = cursor.next("a region line");
+    if (row.tokens.size() != 4)
+      expect_tokens(path, row, 5, "a region line '<region #> <x> <y> <attribute> <max area>'");
+    const long long index = detail::parse_integer(path, row.number, row.tokens[0], "region index");
+    if (index != base + k) {
+      throw InputError(fmt::format("{}:{}: region index '{}' is out of order; expected {}", path, row.number,
+                                   quote_input(row.tokens[0]), base + k));
     }
-    curves.push_back(std::move(curve));
-  };
-  for (const int s : ids) {
-    for (const int v : {segments[s].a, segments[s].b})
-      if (!used[s] && incident[v].size() != 2) walk(v, s);
+    GeometryRegion r;
+    r.p.x = detail::parse_coordinate(path, row.number, row.tokens[1], "x coordinate");
+    r.p.y = detail::parse_coordinate(path, row.number, row.tokens[2], "y coordinate");
+    r.attribute = detail::parse_coordinate(path, row.number, row.tokens[3], "regional attribute");
+    r.max_area = detail::parse_coordinate(path, row.number, row.tokens.back(), "maximum area");
+    r.file = path;
+    r.line = row.number;
+    regions.push_back(r);
   }
-  for (const int s : ids)
-    if (!used[s]) walk(segments[s].a, s);  // what is left forms cycles: closed curves
+  if (!cursor.at_end()) {
+    const detail::TokenLine& extra = cursor.next("nothing");
+    throw InputError(fmt::format("{}:{}: unexpected text after the regional attributes: '{}'", path, extra.number,
+                                 quote_input(fmt::format("{}", fmt::join(extra.tokens, " ")))));
+  }
+  return regions;
 }
 
 }  // namespace
 
-PolyFile read_poly_file(const std::string& path) {
+PolyFile read_poly_file(const std::string& path, PolyHull hull) {
   const std::vector<detail::TokenLine> lines = detail::read_token_lines(path);
   if (lines.empty()) throw InputError(fmt::format("{}: the file is empty or holds only comments", path));
   Cursor cursor(path, lines);
@@ -235,16 +217,8 @@ PolyFile read_poly_file(const std::string& path) {
   const std::vector<PolySegment> segments = read_segments(path, cursor, base, vertices.size());
   PolyFile result;
   result.holes = read_holes(path, cursor, base);
-
-  // Markers in order of first appearance.
-  std::vector<long long> order;
-  std::map<long long, std::vector<int>> by_marker;
-  for (int s = 0; s < static_cast<int>(segments.size()); ++s) {
-    auto& ids = by_marker[segments[s].marker];
-    if (ids.empty()) order.push_back(segments[s].marker);
-    ids.push_back(s);
-  }
-  for (const long long marker : order) chain_marker(path, vertices, segments, by_marker[marker], result.curves);
+  const std::vector<GeometryRegion> regions = read_regions(path, cursor, base);
+  detail::apply_poly_semantics(path, base, vertices, segments, regions, hull, result);
   return result;
 }
 

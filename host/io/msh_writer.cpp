@@ -5,6 +5,7 @@
 // (section 10.5 "MSH file format version 2 (Legacy)").
 #include "io/msh_writer.hpp"
 
+#include <algorithm>
 #include <iterator>
 
 #include <fmt/format.h>
@@ -23,11 +24,37 @@ Box box_of(const Mesh& mesh) {
   return b;
 }
 
-std::string physical_names(const Mesh& mesh) {
+// The physical surfaces: one "domain" without regional attributes, otherwise one "region_<attribute>"
+// per distinct attribute (ascending), surface entity j + 1 with physical tag curves + 1 + j.
+struct Surfaces {
+  std::vector<std::string> names;
+  std::vector<int> of_triangle;  // surface index per triangle
+};
+
+Surfaces surfaces_of(const Mesh& mesh) {
+  Surfaces s;
+  s.of_triangle.assign(mesh.triangles.size(), 0);
+  if (mesh.region.size() != mesh.triangles.size() || mesh.triangles.empty()) {
+    s.names = {"domain"};
+    return s;
+  }
+  std::vector<double> attributes = mesh.region;
+  std::sort(attributes.begin(), attributes.end());
+  attributes.erase(std::unique(attributes.begin(), attributes.end()), attributes.end());
+  for (const double a : attributes) s.names.push_back(fmt::format("region_{}", a));
+  for (std::size_t i = 0; i < mesh.triangles.size(); ++i)
+    s.of_triangle[i] =
+        static_cast<int>(std::lower_bound(attributes.begin(), attributes.end(), mesh.region[i]) - attributes.begin());
+  return s;
+}
+
+std::string physical_names(const Mesh& mesh, const Surfaces& surfaces) {
   const std::size_t curves = mesh.curve_names.size();
-  std::string out = fmt::format("$PhysicalNames\n{}\n", curves + 1);
+  std::string out = fmt::format("$PhysicalNames\n{}\n", curves + surfaces.names.size());
   for (std::size_t c = 0; c < curves; ++c) out += fmt::format("1 {} \"{}\"\n", c + 1, curve_label(mesh, c));
-  out += fmt::format("2 {} \"domain\"\n$EndPhysicalNames\n", curves + 1);
+  for (std::size_t j = 0; j < surfaces.names.size(); ++j)
+    out += fmt::format("2 {} \"{}\"\n", curves + 1 + j, surfaces.names[j]);
+  out += "$EndPhysicalNames\n";
   return out;
 }
 
@@ -38,24 +65,29 @@ std::string msh41_string(const Mesh& mesh) {
   const std::size_t curves = mesh.curve_names.size();
   const std::size_t n = mesh.points.size();
   std::string out = "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n";
-  out += physical_names(mesh);
+  const Surfaces surfaces = surfaces_of(mesh);
+  const std::size_t ns = surfaces.names.size();
+  out += physical_names(mesh, surfaces);
 
-  // Entities: no points; curve entity c + 1 carries physical tag c + 1; surface 1 carries the
-  // domain tag. Bounding boxes are per curve (its edges) and the mesh box for the surface.
+  // Entities: no points; curve entity c + 1 carries physical tag c + 1; surface j + 1 carries tag
+  // curves + 1 + j. Bounding boxes are per curve (its edges) and the mesh box for the surfaces.
   std::vector<Box> curve_box(curves);
   for (const auto& e : mesh.boundary_edges) {
     curve_box[static_cast<std::size_t>(e.curve)].add(mesh.points[static_cast<std::size_t>(e.a)]);
     curve_box[static_cast<std::size_t>(e.curve)].add(mesh.points[static_cast<std::size_t>(e.b)]);
   }
   const Box all = box_of(mesh);
-  out += fmt::format("$Entities\n0 {} 1 0\n", curves);
+  out += fmt::format("$Entities\n0 {} {} 0\n", curves, ns);
   for (std::size_t c = 0; c < curves; ++c) {
     const Box b = curve_box[c].lo.x <= curve_box[c].hi.x ? curve_box[c] : all;
     out += fmt::format("{} {} {} 0 {} {} 0 1 {} 0\n", c + 1, coord(b.lo.x), coord(b.lo.y), coord(b.hi.x), coord(b.hi.y),
                        c + 1);
   }
-  out += fmt::format("1 {} {} 0 {} {} 0 1 {} 0\n$EndEntities\n", coord(all.lo.x), coord(all.lo.y), coord(all.hi.x),
-                     coord(all.hi.y), curves + 1);
+  for (std::size_t j = 0; j < ns; ++j) {
+    out += fmt::format("{} {} {} 0 {} {} 0 1 {} 0\n", j + 1, coord(all.lo.x), coord(all.lo.y), coord(all.hi.x),
+                       coord(all.hi.y), curves + 1 + j);
+  }
+  out += "$EndEntities\n";
 
   // Nodes: all in the surface entity, not parametric (gmsh looks nodes up by tag, so the
   // boundary elements may use them from another entity).
@@ -80,7 +112,10 @@ std::string msh41_string(const Mesh& mesh) {
 
   // Elements: one block of 2-node lines (type 1) per curve with edges, then the triangles (type 2).
   const auto order = boundary_edges_by_curve(mesh);
-  std::size_t blocks = mesh.triangles.empty() ? 0 : 1;
+  std::vector<std::size_t> per_surface(ns, 0);
+  for (const int j : surfaces.of_triangle) per_surface[static_cast<std::size_t>(j)]++;
+  std::size_t blocks = 0;
+  for (auto k : per_surface) blocks += (k > 0);
   std::vector<std::size_t> per_curve(curves, 0);
   for (const auto& e : mesh.boundary_edges) per_curve[static_cast<std::size_t>(e.curve)]++;
   for (auto k : per_curve) blocks += (k > 0);
@@ -95,12 +130,22 @@ std::string msh41_string(const Mesh& mesh) {
       out += fmt::format("{} {} {}\n", tag++, e.a + 1, e.b + 1);
     }
   }
-  if (!mesh.triangles.empty()) {
-    out += fmt::format("2 1 2 {}\n", mesh.triangles.size());
+  // The triangles by surface, in mesh order within each (a counting sort).
+  std::vector<std::size_t> start(ns + 1, 0), by_surface(mesh.triangles.size());
+  for (std::size_t j = 0; j < ns; ++j) start[j + 1] = start[j] + per_surface[j];
+  {
+    std::vector<std::size_t> at(start.begin(), start.end() - 1);
+    for (std::size_t i = 0; i < mesh.triangles.size(); ++i)
+      by_surface[at[static_cast<std::size_t>(surfaces.of_triangle[i])]++] = i;
+  }
+  InterruptPoll poll(65536);
+  for (std::size_t j = 0; j < ns; ++j) {
+    if (per_surface[j] == 0) continue;
+    out += fmt::format("2 {} 2 {}\n", j + 1, per_surface[j]);
     auto to = std::back_inserter(out);
-    InterruptPoll poll(65536);
-    for (const auto& t : mesh.triangles) {
+    for (std::size_t k = start[j]; k < start[j + 1]; ++k) {
       poll.tick();
+      const auto& t = mesh.triangles[by_surface[k]];
       fmt::format_to(to, "{} {} {} {}\n", tag++, t[0] + 1, t[1] + 1, t[2] + 1);
     }
   }
@@ -113,7 +158,8 @@ std::string msh22_string(const Mesh& mesh) {
   check_mesh_for_writing(mesh, "MSH 2.2 writer");
   const std::size_t curves = mesh.curve_names.size();
   std::string out = "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n";
-  out += physical_names(mesh);
+  const Surfaces surfaces = surfaces_of(mesh);
+  out += physical_names(mesh, surfaces);
   out += fmt::format("$Nodes\n{}\n", mesh.points.size());
   auto to = std::back_inserter(out);
   for (std::size_t i = 0; i < mesh.points.size(); ++i) {
@@ -125,7 +171,8 @@ std::string msh22_string(const Mesh& mesh) {
     out += " 0\n";
   }
   out += "$EndNodes\n";
-  // Each element: tag, type, 2 tags (physical, elementary), nodes. Curve c is elementary entity c + 1.
+  // Each element: tag, type, 2 tags (physical, elementary), nodes. Curve c is elementary entity c + 1,
+  // surface j (msh41_string) elementary entity j + 1 with physical tag curves + 1 + j.
   out += fmt::format("$Elements\n{}\n", mesh.boundary_edges.size() + mesh.triangles.size());
   std::size_t tag = 1;
   for (auto k : boundary_edges_by_curve(mesh)) {
@@ -133,9 +180,11 @@ std::string msh22_string(const Mesh& mesh) {
     out += fmt::format("{} 1 2 {} {} {} {}\n", tag++, e.curve + 1, e.curve + 1, e.a + 1, e.b + 1);
   }
   InterruptPoll poll(65536);
-  for (const auto& t : mesh.triangles) {
+  for (std::size_t i = 0; i < mesh.triangles.size(); ++i) {
     poll.tick();
-    fmt::format_to(to, "{} 2 2 {} 1 {} {} {}\n", tag++, curves + 1, t[0] + 1, t[1] + 1, t[2] + 1);
+    const auto& t = mesh.triangles[i];
+    const int j = surfaces.of_triangle[i];
+    fmt::format_to(to, "{} 2 2 {} {} {} {} {}\n", tag++, curves + 1 + j, j + 1, t[0] + 1, t[1] + 1, t[2] + 1);
   }
   out += "$EndElements\n";
   out += msh_spacing_node_data(mesh);

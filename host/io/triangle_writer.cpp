@@ -33,11 +33,15 @@ TriangleFiles triangle_strings(const Mesh& mesh) {
     fmt::format_to(node, " {}\n", static_cast<int>(on_boundary[i]));
   }
 
-  f.ele = fmt::format("# Written by pdmesh (Triangle .ele format)\n{} 3 0\n", mesh.triangles.size());
+  // Regional attributes (Mesh::region) are the triangles' one attribute, as Triangle's -A writes them.
+  const bool regions = !mesh.region.empty() && mesh.region.size() == mesh.triangles.size();
+  f.ele = fmt::format("# Written by pdmesh (Triangle .ele format)\n{} 3 {}\n", mesh.triangles.size(), regions ? 1 : 0);
   for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
     if ((t & 65535) == 0) check_interrupt();
     const auto& tri = mesh.triangles[t];
-    fmt::format_to(std::back_inserter(f.ele), "{} {} {} {}\n", t + 1, tri[0] + 1, tri[1] + 1, tri[2] + 1);
+    fmt::format_to(std::back_inserter(f.ele), "{} {} {} {}", t + 1, tri[0] + 1, tri[1] + 1, tri[2] + 1);
+    if (regions) fmt::format_to(std::back_inserter(f.ele), " {:.17g}", mesh.region[t]);
+    f.ele += '\n';
   }
 
   f.poly = "# Written by pdmesh (Triangle .poly format); the points are in the .node file\n";

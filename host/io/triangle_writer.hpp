@@ -13,7 +13,8 @@ struct TriangleFiles {
 
 // Indices are 1-based. When the mesh knows node kinds, the .node file carries them as its one
 // attribute (announced by a "# pdmesh: attribute 1 = node kind" comment). The node boundary
-// marker is 1 for points on a boundary edge, else 0.
+// marker is 1 for points on a boundary edge, else 0. The .ele file carries Mesh::region, when set,
+// as each triangle's one attribute.
 TriangleFiles triangle_strings(const Mesh& mesh);
 
 }  // namespace pdmesh

@@ -145,6 +145,9 @@ std::string vtu_string(const Mesh& mesh, VtuFormat format) {
   metric("skewness", &TriangleQuality::skewness);
   metric("condition_number", &TriangleQuality::condition_number);
   metric("min_jacobian", &TriangleQuality::min_jacobian);
+  if (mesh.region.size() == mesh.triangles.size() && !mesh.region.empty())
+    data_array<double>(out, format, array, "region", "", mesh.region.size(), 1,
+                       [&](std::size_t i, int) { return mesh.region[i]; });
   out += "      </CellData>\n";
   out += "      <Points>\n";
   data_array<double>(out, format, array, "Points", "", mesh.points.size(), 3, [&](std::size_t i, int c) {

@@ -1,4 +1,5 @@
-// VTK XML UnstructuredGrid (.vtu) writer: triangles with per-triangle quality metrics as CellData,
+// VTK XML UnstructuredGrid (.vtu) writer: triangles with per-triangle quality metrics (and the
+// regional attribute "region" when Mesh::region is set) as CellData,
 // the node kind and the spacing field as PointData, and the boundary edges and curve names as
 // FieldData. Binary (base64) by default, as VTK and meshio write; ASCII on request.
 #pragma once

@@ -23,6 +23,10 @@ struct Mesh {
   // Per point, when known: the spacing field q there. Written as point data "q" (VTU PointData, MSH
   // $NodeData), so that a run's field can be read back as spacing.field = "mesh". Not read back.
   std::vector<double> spacing;
+  // Per triangle, when the geometry has regional attributes (.poly files): the attribute of the
+  // region it lies in, 0 outside every region (mesh/region_tags.hpp). Written as the physical surface
+  // of each triangle (MSH), cell data "region" (VTU) and the triangle attribute (Triangle .ele).
+  std::vector<double> region;
 };
 
 }  // namespace pdmesh

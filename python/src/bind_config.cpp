@@ -43,6 +43,7 @@ nb::dict geometry_of(const CaseConfig& c) {
     GeometryOptions options;
     options.join_tolerance = c.geometry.join_tolerance;
     options.corner_angle_deg = c.geometry.corner_angle;
+    options.hull = c.geometry.hull;
     std::vector<std::string> files;
     for (const auto& f : c.geometry.files) files.push_back(f.string());
     g = c.geometry.given_curves.empty()

@@ -222,6 +222,7 @@ const std::vector<std::string>& case_file_keys() {
       "geometry.curve_names",
       "geometry.join_tolerance",
       "geometry.corner_angle",
+      "geometry.hull",
       "geometry.curves",
       "spacing.field",
       "spacing.expression",

@@ -77,6 +77,8 @@ struct CaseConfig {
     std::vector<std::string> curve_names;      // optional, in file/curve order
     double join_tolerance = 1e-9;
     double corner_angle = 30.0;  // degrees
+    // geometry.hull (bool; absent: automatic): .poly files mesh the convex hull of their vertices.
+    PolyHull hull = PolyHull::Automatic;
     // Curves given in memory (the Python API) instead of files; see case_for_curves().
     std::vector<RawCurve> given_curves;
     CurveKind curves = CurveKind::Polyline;  // the same in both presets (docs/initialization.md, "Measured")

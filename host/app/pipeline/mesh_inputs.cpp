@@ -30,9 +30,13 @@ MeshInputs::MeshInputs(const CaseConfig& config) {
   GeometryOptions options;
   options.join_tolerance = config.geometry.join_tolerance;
   options.corner_angle_deg = config.geometry.corner_angle;
+  options.hull = config.geometry.hull;
   geometry = config.geometry.given_curves.empty()
                  ? read_geometry(files, config.geometry.curve_names, options)
                  : geometry_from_curves(config.geometry.given_curves, config.geometry.curve_names, options);
+  // What the readers did beyond the plain reading (a .poly's loops read as subdomains, vertices kept
+  // or dropped): always said, also when quiet, since the mesh differs from what the file may suggest.
+  for (const std::string& note : geometry.notes) fmt::print(stderr, "pdmesh: note: {}\n", note);
   // The far field around everything given: the body becomes a hole by the even-odd rule.
   if (config.farfield.given()) geometry = with_farfield(geometry, config.farfield, config.spacing.gradation, options);
   // Curve names are fields in node and mesh files; one with white space would break them later.

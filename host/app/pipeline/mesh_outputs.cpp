@@ -17,6 +17,7 @@
 #include "io/quality_report.hpp"
 #include "mesh/metric_delaunay.hpp"
 #include "mesh/metric_quality.hpp"
+#include "mesh/region_tags.hpp"
 #include "mesh/triangulate_nodes.hpp"
 #include "spacing/metric_complexity.hpp"
 #include "nodes/node_domain.hpp"
@@ -410,6 +411,7 @@ Mesh mesh_and_measure(const CaseConfig& config, const MeshInputs& inputs, const 
     const auto q_timer = phases.phase("q at the nodes");
     field.at_many(mesh.points, mesh.spacing);
   }
+  mesh.region = region_tags(mesh, inputs.geometry.regions, inputs.node_geometry());
   if (!config.write_outputs) return mesh;  // the Python API measures on demand (Mesh.quality())
   auto quality_timer = phases.phase("quality");
   if (!cleanup) cleaned.per_triangle = triangle_qualities(mesh);

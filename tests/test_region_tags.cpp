@@ -1,0 +1,102 @@
+// Regional attributes on the mesh (mesh/region_tags.cpp) and in the mesh files (MSH physical
+// surfaces, VTU cell data, Triangle .ele attribute), and end to end from a .poly file.
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include <catch2/catch.hpp>
+
+#include "io/msh_writer.hpp"
+#include "io/triangle_writer.hpp"
+#include "io/vtu_writer.hpp"
+#include "mesh/region_tags.hpp"
+#include "run_pdmesh.hpp"
+#include "temp_files.hpp"
+
+using namespace pdmesh;
+using Catch::Matchers::Contains;
+namespace fs = std::filesystem;
+
+namespace {
+
+// Two unit squares side by side, two triangles each; the edge 1-4 (x = 1) between them.
+Mesh two_squares() {
+  Mesh m;
+  m.points = {{0, 0}, {1, 0}, {2, 0}, {0, 1}, {1, 1}, {2, 1}};
+  m.triangles = {{0, 1, 4}, {0, 4, 3}, {1, 2, 5}, {1, 5, 4}};
+  m.curve_names = {"outer"};
+  m.boundary_edges = {{0, 1, 0}, {1, 2, 0}, {2, 5, 0}, {5, 4, 0}, {4, 3, 0}, {3, 0, 0}};
+  return m;
+}
+
+Geometry segments(const std::vector<std::pair<Vec2, Vec2>>& list) {
+  Geometry g;
+  for (const auto& [a, b] : list) {
+    g.segments.push_back({a, b, 0, static_cast<int>(g.segments.size()), dist(a, b)});
+    g.extents.add(a);
+    g.extents.add(b);
+  }
+  return g;
+}
+
+std::vector<GeometryRegion> two_regions() {
+  GeometryRegion left, right;
+  left.p = {0.3, 0.6};
+  left.attribute = 1;
+  right.p = {1.7, 0.2};
+  right.attribute = 2.5;
+  return {left, right};
+}
+
+}  // namespace
+
+TEST_CASE("region tags: the flood stops at edges on a geometry segment", "[mesh]") {
+  const Mesh m = two_squares();
+  // The constraint x = 1: the edge 1-4 lies on it.
+  const Geometry g = segments({{{1, 0}, {1, 1}}});
+  CHECK(region_tags(m, two_regions(), g) == std::vector<double>{1, 1, 2.5, 2.5});
+  // Without the segment the regions are one subdomain: the later region fills it all.
+  CHECK(region_tags(m, two_regions(), Geometry{}) == std::vector<double>{2.5, 2.5, 2.5, 2.5});
+  // A segment that the edge only touches at one end blocks nothing.
+  CHECK(region_tags(m, two_regions(), segments({{{1, 1}, {1, 2}}})) == std::vector<double>{2.5, 2.5, 2.5, 2.5});
+  // One region on the left only: the right stays 0.
+  CHECK(region_tags(m, {two_regions()[0]}, g) == std::vector<double>{1, 1, 0, 0});
+  CHECK(region_tags(m, {}, g).empty());
+}
+
+TEST_CASE("region tags in the mesh files", "[mesh][io]") {
+  Mesh m = two_squares();
+  m.region = {1, 1, 2.5, 2.5};
+  const std::string msh = msh41_string(m);
+  CHECK_THAT(msh, Contains("2 2 \"region_1\"\n2 3 \"region_2.5\"\n"));
+  CHECK_THAT(msh, Contains("$Entities\n0 1 2 0\n"));
+  CHECK_THAT(msh, Contains("2 1 2 2\n7 1 2 5\n8 1 5 4\n"));  // surface 1 holds the left triangles
+  CHECK_THAT(msh, Contains("2 2 2 2\n9 2 3 6\n10 2 6 5\n"));
+  CHECK_THAT(msh, !Contains("domain"));
+  const std::string msh22 = msh22_string(m);
+  CHECK_THAT(msh22, Contains("7 2 2 2 1 1 2 5\n"));
+  CHECK_THAT(msh22, Contains("9 2 2 3 2 2 3 6\n"));
+  CHECK_THAT(vtu_string(m, VtuFormat::Ascii), Contains("Name=\"region\""));
+  const TriangleFiles tri = triangle_strings(m);
+  CHECK_THAT(tri.ele, Contains("4 3 1\n1 1 2 5 1\n"));
+  CHECK_THAT(tri.ele, Contains("3 2 3 6 2.5\n"));
+  // Without regions: one "domain" surface, no region array, no attribute.
+  m.region.clear();
+  CHECK_THAT(msh41_string(m), Contains("2 2 \"domain\"\n") && Contains("$Entities\n0 1 1 0\n"));
+  CHECK_THAT(vtu_string(m, VtuFormat::Ascii), !Contains("Name=\"region\""));
+  CHECK_THAT(triangle_strings(m).ele, Contains("4 3 0\n1 1 2 5\n"));
+}
+
+TEST_CASE("pdmesh mesh on a .poly with a regional attribute writes its tag", "[cli]") {
+  const fs::path dir = pdmesh_test::fresh_dir("region_tags");
+  // The unit square, one region with attribute 7 and a maximum area (noted, not applied).
+  std::ofstream(dir / "square.poly") << "4 2 0 0\n1 0 0\n2 1 0\n3 1 1\n4 0 1\n4 0\n1 1 2\n2 2 3\n3 3 4\n4 4 1\n0\n"
+                                        "1\n1 0.5 0.5 7 0.01\n";
+  const fs::path out = dir / "out";
+  const auto r = pdmesh_test::run_pdmesh("mesh '" + (dir / "square.poly").string() + "' --out '" + out.string() +
+                                         "' --iterations 0 --formats msh,vtu --quiet");
+  CHECK(r.status == 0);
+  CHECK_THAT(r.output,
+             Contains("pdmesh: note: ") && Contains("square.poly:13: 1 region gives a maximum triangle area"));
+  CHECK_THAT(pdmesh_test::slurp(out / "mesh.msh"), Contains("\"region_7\"") && !Contains("\"domain\""));
+}
