@@ -221,6 +221,7 @@ const std::vector<std::string>& case_file_keys() {
       "geometry.join_tolerance",
       "geometry.corner_angle",
       "geometry.curves",
+      "geometry.heal",
       "spacing.field",
       "spacing.expression",
       "spacing.file",

@@ -59,6 +59,7 @@ void read_geometry_section(const Reader& r, const toml::table& root, CaseConfig&
     }
     c.geometry.corner_angle = a;
   }
+  if (const toml::node* n = find(root, "geometry", "heal")) c.geometry.heal = r.boolean("geometry.heal", *n);
   if (const toml::node* n = find(root, "geometry", "curves")) {
     c.geometry.curves =
         choose<CurveKind>(r, "geometry.curves", *n, {{"polyline", CurveKind::Polyline}, {"smooth", CurveKind::Smooth}});

@@ -14,6 +14,7 @@
 #include "core/memory_budget.hpp"
 #include "geometry/geometry_files.hpp"
 #include "init/metric_fill.hpp"
+#include "spacing/short_arcs.hpp"
 #include "init/node_estimate.hpp"
 #include "init/warm_points.hpp"
 #include "spacing/mesh_spacing.hpp"
@@ -27,9 +28,23 @@ MeshInputs::MeshInputs(const CaseConfig& config) {
   GeometryOptions options;
   options.join_tolerance = config.geometry.join_tolerance;
   options.corner_angle_deg = config.geometry.corner_angle;
+  PrepareCurves prepare;
+  if (config.geometry.heal) {
+    // Healing at the mesh's resolution, judged by eq. 3.6's spacing on the raw curves (heal.hpp); the
+    // spacing field is then built on the healed geometry.
+    prepare = [this, &config](std::vector<RawCurve>& curves) {
+      std::vector<std::vector<Vec2>> before;
+      for (const RawCurve& c : curves) before.push_back(c.points);
+      HealOptions heal;
+      heal.scale = config.spacing.scale;
+      heal.join_tolerance = config.geometry.join_tolerance;
+      healing = heal_curves(curves, heal);
+      if (!healing.changes.empty()) heal_input = std::move(before);
+    };
+  }
   geometry = config.geometry.given_curves.empty()
-                 ? read_geometry(files, config.geometry.curve_names, options)
-                 : geometry_from_curves(config.geometry.given_curves, config.geometry.curve_names, options);
+                 ? read_geometry(files, config.geometry.curve_names, options, prepare)
+                 : geometry_from_curves(config.geometry.given_curves, config.geometry.curve_names, options, prepare);
   // Curve names are fields in node and mesh files; one with white space would break them later.
   for (std::size_t c = 0; c < geometry.curves.size(); ++c) {
     const std::string& name = geometry.curves[c].name;
@@ -64,6 +79,11 @@ MeshInputs::MeshInputs(const CaseConfig& config) {
   const auto spacing_start = std::chrono::steady_clock::now();
   metric = make_case_metric(config, *tree);
   spacing = make_case_spacing(config, *tree, metric.get());
+  // Fixed nodes at both ends of a boundary arc much shorter than the field there: the field follows
+  // the arc (spacing/short_arcs.hpp). Only where the field places the boundary nodes and spreads
+  // sources (gradation): the thesis' field stays eq. 3.6 exactly.
+  if (!metric && config.boundary.nodes == BoundaryNodeRule::Spacing && spacing_options.gradation > 0.0)
+    for (const PointSource& s : short_arc_sources(geometry, *spacing)) spacing_options.points.push_back(s);
   if (metric) {
     spacing_summary = fmt::format(
         "spacing: the metric field ({}) built in {:.3f} s; the nodes start at unit metric length, "
