@@ -35,9 +35,10 @@ double shortest_segment(const std::vector<RawCurve>& curves) {
 
 // quality.json's "min" of "included_angle".
 double min_angle(const std::string& json) {
-  const std::size_t at = json.find("\"included_angle\": {\"min\": ");
+  const std::string key = "\"included_angle\": {\"min\": ";
+  const std::size_t at = json.find(key);
   REQUIRE(at != std::string::npos);
-  return std::stod(json.substr(at + 27));
+  return std::stod(json.substr(at + key.size()));
 }
 
 }  // namespace
@@ -48,7 +49,7 @@ TEST_CASE("merged polygons: the 0.3-2.6 m steps merge into their neighbours") {
   const HealResult r = heal_curves(curves);
   CHECK(r.count(HealKind::Merge) >= 4);
   CHECK(r.count(HealKind::Merge) == static_cast<int>(r.changes.size()));
-  CHECK(r.worst(HealKind::Merge)->size < 0.5);
+  CHECK(r.worst(HealKind::Merge)->size < 2.0);
   CHECK(shortest_segment(curves) > 250.0);
   CHECK_NOTHROW(build_geometry(curves));
 }
@@ -107,7 +108,7 @@ TEST_CASE("a 30 m island in a km-scale sea is dropped") {
 
 TEST_CASE("healing leaves clean inputs alone: corpus coastline, 30P30N, a blunt trailing edge, a tiny edge") {
   const std::string cases = std::string(PDMESH_SOURCE_DIR) + "/cases/";
-  for (const std::string file :
+  for (const std::string& file :
        {cases + "corpus/coastline/coast.crv", cases + "30p30n/airfoil.crv", cases + "30p30n/farfield.crv",
         cases + "naca0012/naca0012.crv", data("blunt_te.crv"), data("tiny_edge.crv")}) {
     if (!std::filesystem::exists(file)) continue;
@@ -139,7 +140,7 @@ TEST_CASE("the report: one line per kind with the worst instance, and the JSON o
 }
 
 TEST_CASE("short arcs between critical points get sources of their length") {
-  for (const std::string file : {data("blunt_te.crv"), data("tiny_edge.crv")}) {
+  for (const std::string& file : {data("blunt_te.crv"), data("tiny_edge.crv")}) {
     INFO(file);
     const Geometry g = build_geometry(read_curve_file(file));
     const GeometryTree tree(g);
@@ -186,13 +187,12 @@ TEST_CASE("pdmesh mesh on each defect: min angle >= 20 after default healing, ea
 TEST_CASE("geometry.heal = false meshes the input exactly: no change, no report, no picture") {
   const auto dir = pdmesh_test::fresh_dir("heal_off");
   const auto r =
-      pdmesh_test::run_pdmesh("mesh '" + data("island.crv") + "' --set geometry.heal=false --out '" + dir.string() + "'");
+      pdmesh_test::run_pdmesh("mesh '" + data("inlet.crv") + "' --set geometry.heal=false --out '" + dir.string() + "'");
   INFO(r.output);
   REQUIRE(r.status == 0);
   CHECK(r.output.find("healing:") == std::string::npos);
-  // The island is still a hole of the domain: the input's area, 20 km x 10 km less 30 m x 30 m.
-  CHECK(r.output.find("2 curves") != std::string::npos);
-  CHECK(r.output.find("area 1.99999e+08") != std::string::npos);
+  // The inlet is still there: the input's 67 segments and area, 20 km x 10 km and 100 m x 3 km.
+  CHECK(r.output.find("geometry: 1 curves, 67 segments, 1 loops, area 2.003e+08") != std::string::npos);
   const std::string json = pdmesh_test::slurp(dir / "quality.json");
   CHECK(json.find("\"healing\"") == std::string::npos);
   CHECK(!std::filesystem::exists(dir / "healing.png"));
@@ -200,7 +200,7 @@ TEST_CASE("geometry.heal = false meshes the input exactly: no change, no report,
 }
 
 TEST_CASE("the field follows a short segment that is kept: min angle >= 30 with healing on and off") {
-  for (const std::string file : {data("blunt_te.crv"), data("tiny_edge.crv")}) {
+  for (const std::string& file : {data("blunt_te.crv"), data("tiny_edge.crv")}) {
     for (const std::string heal : {"true", "false"}) {
       INFO(file << " heal = " << heal);
       const auto dir = pdmesh_test::fresh_dir("heal_short_arc");

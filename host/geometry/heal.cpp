@@ -171,8 +171,36 @@ class Healer {
     return ch;
   }
 
-  // Consecutive vertices closer than merge_fraction x h become their midpoint; an open curve's end
-  // points stay (the vertex next to one goes instead).
+  // Whether the run of short segments (below merge_fraction x h) through segment i -> i+1 is a jog: the
+  // boundary leaves it within kJogTurnDeg of the direction it came in (steps where polygons were
+  // merged, collinear extra points). A run across which the boundary turns further is a feature (a
+  // blunt trailing edge, a chamfer, an inlet's end) that stays; the field follows it
+  // (spacing/short_arcs.hpp). An open curve's run that reaches an end point is a jog.
+  static constexpr double kJogTurnDeg = 45.0;
+  bool is_jog(const Work& w, std::size_t i) const {
+    const std::size_t n = w.pts.size();
+    const auto short_seg = [&](std::size_t k) {
+      return dist(w.pts[k].p, w.pts[(k + 1) % n].p) < o_.merge_fraction * h_at(w, k);
+    };
+    std::size_t first = i, last = (i + 1) % n;  // the run's end vertices
+    for (std::size_t steps = 0; steps < n; ++steps) {
+      if (!w.closed && first == 0) return true;
+      const std::size_t prev = (first + n - 1) % n;
+      if (!short_seg(prev)) break;
+      first = prev;
+    }
+    for (std::size_t steps = 0; steps < n; ++steps) {
+      if (!w.closed && last == n - 1) return true;
+      if (!short_seg(last)) break;
+      last = (last + 1) % n;
+    }
+    const Vec2 in = w.pts[first].p - w.pts[(first + n - 1) % n].p;
+    const Vec2 out = w.pts[(last + 1) % n].p - w.pts[last].p;
+    return std::atan2(std::fabs(cross(in, out)), dot(in, out)) * 180.0 / kPi < kJogTurnDeg;
+  }
+
+  // Consecutive vertices closer than merge_fraction x h become their midpoint where they are a jog;
+  // an open curve's end points stay (the vertex next to one goes instead).
   bool merge(std::size_t c) {
     Work& w = work_[c];
     bool any = false;
@@ -184,7 +212,7 @@ class Healer {
       const std::size_t j = (i + 1) % n;
       const double d = dist(w.pts[i].p, w.pts[j].p);
       const double h = h_at(w, i);
-      if (!(d < o_.merge_fraction * h)) {
+      if (!(d < o_.merge_fraction * h) || !is_jog(w, i)) {
         ++i;
         continue;
       }
