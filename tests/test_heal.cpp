@@ -9,6 +9,8 @@
 #include <filesystem>
 #include <string>
 
+#include "app/config/case_file.hpp"
+#include "core/errors.hpp"
 #include "geometry/curve_reader.hpp"
 #include "geometry/geometry.hpp"
 #include "geometry/heal.hpp"
@@ -106,12 +108,12 @@ TEST_CASE("a 30 m island in a km-scale sea is dropped") {
   CHECK(curves.size() == 1);
 }
 
-TEST_CASE("healing leaves clean inputs alone: corpus coastline, 30P30N, a blunt trailing edge, a tiny edge") {
-  const std::string cases = std::string(PDMESH_SOURCE_DIR) + "/cases/";
-  for (const std::string& file :
-       {cases + "corpus/coastline/coast.crv", cases + "30p30n/airfoil.crv", cases + "30p30n/farfield.crv",
-        cases + "naca0012/naca0012.crv", data("blunt_te.crv"), data("tiny_edge.crv")}) {
-    if (!std::filesystem::exists(file)) continue;
+TEST_CASE("healing leaves clean inputs alone: every curve file of cases/, a blunt trailing edge, a tiny edge") {
+  std::vector<std::string> files = {data("blunt_te.crv"), data("tiny_edge.crv")};
+  for (const auto& e : std::filesystem::recursive_directory_iterator(std::string(PDMESH_SOURCE_DIR) + "/cases"))
+    if (e.path().extension() == ".crv") files.push_back(e.path().string());
+  REQUIRE(files.size() > 10);
+  for (const std::string& file : files) {
     INFO(file);
     std::vector<RawCurve> curves = read_curve_file(file);
     const std::vector<RawCurve> before = curves;
@@ -154,6 +156,17 @@ TEST_CASE("short arcs between critical points get sources of their length") {
   const Geometry g = build_geometry(read_curve_file(std::string(PDMESH_SOURCE_DIR) + "/cases/corpus/coastline/coast.crv"));
   const GeometryTree tree(g);
   CHECK(short_arc_sources(g, BoundarySpacing(tree)).empty());
+}
+
+TEST_CASE("geometry.heal: on in best, off in the thesis preset, a file's value wins, a non-boolean is refused") {
+  const std::filesystem::path source = "/cases/demo/case.toml";
+  const std::string minimal = "[geometry]\nfiles = [\"a.crv\"]\n";
+  CHECK(parse_case_text(minimal, source).geometry.heal);
+  CHECK_FALSE(parse_case_text("preset = \"thesis\"\n" + minimal, source).geometry.heal);
+  CHECK(parse_case_text("preset = \"thesis\"\n" + minimal + "heal = true\n", source).geometry.heal);
+  CHECK_FALSE(parse_case_text(minimal + "heal = false\n", source).geometry.heal);
+  CHECK_FALSE(case_for_geometry_file("a.crv", {parse_set_option("geometry.heal=false")}).geometry.heal);
+  CHECK_THROWS_AS(parse_case_text(minimal + "heal = 1\n", source), InputError);
 }
 
 // Whole runs of the command (best preset, defaults).
