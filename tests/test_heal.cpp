@@ -153,7 +153,8 @@ TEST_CASE("short arcs between critical points get sources of their length") {
     CHECK(dist(s[0].p, s[1].p) == Approx(s[0].q));
   }
   // Arcs as long as their neighbours: none.
-  const Geometry g = build_geometry(read_curve_file(std::string(PDMESH_SOURCE_DIR) + "/cases/corpus/coastline/coast.crv"));
+  const Geometry g =
+      build_geometry(read_curve_file(std::string(PDMESH_SOURCE_DIR) + "/cases/corpus/coastline/coast.crv"));
   const GeometryTree tree(g);
   CHECK(short_arc_sources(g, BoundarySpacing(tree)).empty());
 }
@@ -199,8 +200,8 @@ TEST_CASE("pdmesh mesh on each defect: min angle >= 20 after default healing, ea
 
 TEST_CASE("geometry.heal = false meshes the input exactly: no change, no report, no picture") {
   const auto dir = pdmesh_test::fresh_dir("heal_off");
-  const auto r =
-      pdmesh_test::run_pdmesh("mesh '" + data("inlet.crv") + "' --set geometry.heal=false --out '" + dir.string() + "'");
+  const auto r = pdmesh_test::run_pdmesh("mesh '" + data("inlet.crv") + "' --set geometry.heal=false --out '" +
+                                         dir.string() + "'");
   INFO(r.output);
   REQUIRE(r.status == 0);
   CHECK(r.output.find("healing:") == std::string::npos);

@@ -28,7 +28,8 @@ const char* to_string(HealKind kind) {
 }
 
 int HealResult::count(HealKind kind) const {
-  return static_cast<int>(std::count_if(changes.begin(), changes.end(), [&](const HealChange& c) { return c.kind == kind; }));
+  return static_cast<int>(
+      std::count_if(changes.begin(), changes.end(), [&](const HealChange& c) { return c.kind == kind; }));
 }
 
 const HealChange* HealResult::worst(HealKind kind) const {
@@ -231,7 +232,8 @@ class Healer {
       if (w.closed || i > 0) ch.removed.insert(ch.removed.begin(), before);
       if (w.closed || j < n - 1) ch.removed.push_back(after);
       ch.added = ch.removed;
-      ch.added.erase(ch.added.begin() + ((w.closed || i > 0) ? 1 : 0), ch.added.begin() + ((w.closed || i > 0) ? 3 : 2));
+      ch.added.erase(ch.added.begin() + ((w.closed || i > 0) ? 1 : 0),
+                     ch.added.begin() + ((w.closed || i > 0) ? 3 : 2));
       ch.added.insert(ch.added.begin() + ((w.closed || i > 0) ? 1 : 0), m);
       result_.changes.push_back(std::move(ch));
       const std::size_t keep = erase == j ? i : j;
@@ -254,8 +256,9 @@ class Healer {
       const std::size_t n = w.pts.size();
       if (w.closed ? (n < 5 || i >= n) : (n < 5 || i + 2 >= n)) break;
       const auto at = [&](std::ptrdiff_t k) {
-        return w.pts[static_cast<std::size_t>((static_cast<std::ptrdiff_t>(i) + k + static_cast<std::ptrdiff_t>(n)) %
-                                              static_cast<std::ptrdiff_t>(n))]
+        return w
+            .pts[static_cast<std::size_t>((static_cast<std::ptrdiff_t>(i) + k + static_cast<std::ptrdiff_t>(n)) %
+                                          static_cast<std::ptrdiff_t>(n))]
             .p;
       };
       const Vec2 a2 = at(-2), a = at(-1), p = at(0), b = at(1), b2 = at(2);
@@ -305,7 +308,8 @@ class Healer {
   // own closed curve splits the curve there into two pieces. The smaller one (by area) goes when it is
   // thin and about as wide as its mouth all along (try_cut), is a real fold (perimeter above 3x the
   // gap) and has no vertex sharper than 30 degrees besides the cut's ends (a wedge meeting at one
-  // vertex is a sharp corner, which stays). Of the candidates the one removing the most area is cut first, at the mouth.
+  // vertex is a sharp corner, which stays). Of the candidates the one removing the most area is cut first, at the
+  // mouth.
   bool inlets(std::size_t c) {
     Work& w = work_[c];
     bool any = false;
@@ -378,8 +382,10 @@ class Healer {
       fwd.push_back(w.pts[k]);
       if (k == j) break;
     }
-    if (at_jn) fwd.push_back(w.pts[jn]);
-    else if (!at_j) fwd.push_back(far);
+    if (at_jn)
+      fwd.push_back(w.pts[jn]);
+    else if (!at_j)
+      fwd.push_back(far);
     if (!at_j && !at_jn) bwd.push_back(far);
     for (std::size_t k = at_j ? j : jn;; k = (k + 1) % n) {
       bwd.push_back(w.pts[k]);
@@ -401,8 +407,7 @@ class Healer {
     // 0.7 of the mouth's width. A wedge (a trailing edge, a V-shaped bay) narrows from the mouth to
     // its tip, about half the mouth on average, and stays: its sharpness is the input's.
     const double mean_width = 2.0 * std::fabs(ag) / (pg - d);
-    if (g.size() < 4 || !(pg > 3.0 * d) || !(mean_width < threshold) || !(mean_width >= 0.7 * d))
-      return std::nullopt;
+    if (g.size() < 4 || !(pg > 3.0 * d) || !(mean_width < threshold) || !(mean_width >= 0.7 * d)) return std::nullopt;
     for (std::size_t k = 1; k + 1 < g.size(); ++k)
       if (angle_deg(g[k - 1], g[k], g[k + 1]) < 30.0) return std::nullopt;
     Cut cut;
@@ -436,7 +441,8 @@ class Healer {
     for (std::size_t c = 0; c < work_.size(); ++c) {
       if (c == largest || !work_[c].healable || !work_[c].closed || work_[c].dropped) continue;
       if (!(areas[c] < o_.area_fraction * global_h_ * global_h_)) continue;
-      HealChange ch = change(HealKind::Island, c, work_[c].pts.front().line, work_[c].pts.front().p, areas[c], global_h_);
+      HealChange ch =
+          change(HealKind::Island, c, work_[c].pts.front().line, work_[c].pts.front().p, areas[c], global_h_);
       for (const Pt& p : work_[c].pts) ch.removed.push_back(p.p);
       ch.removed.push_back(work_[c].pts.front().p);
       result_.changes.push_back(std::move(ch));

@@ -38,14 +38,14 @@ struct HealChange {
   HealKind kind = HealKind::Merge;
   std::string curve;  // the curve's name (or "curve<k>" when it has none yet)
   std::string file;
-  int line = 0;       // the source line of the first point concerned
-  Vec2 at;            // where (the merged point, the spike's tip, the mouth's middle, a loop's first point)
+  int line = 0;  // the source line of the first point concerned
+  Vec2 at;       // where (the merged point, the spike's tip, the mouth's middle, a loop's first point)
   // The measure that made it a defect: merge the distance, spike the angle (degrees), inlet the
   // width at the mouth, island the area.
   double size = 0.0;
-  double h = 0.0;                // the local spacing it was judged by
-  std::vector<Vec2> removed;     // the input polyline that is gone (a loop: closed)
-  std::vector<Vec2> added;       // the polyline that replaces it (empty for an island)
+  double h = 0.0;             // the local spacing it was judged by
+  std::vector<Vec2> removed;  // the input polyline that is gone (a loop: closed)
+  std::vector<Vec2> added;    // the polyline that replaces it (empty for an island)
 };
 
 struct HealResult {

@@ -55,7 +55,8 @@ std::string escaped(const std::string& s) {
 
 std::string points_json(const std::vector<Vec2>& pts) {
   std::string out = "[";
-  for (std::size_t k = 0; k < pts.size(); ++k) out += fmt::format("{}[{:.17g}, {:.17g}]", k ? ", " : "", pts[k].x, pts[k].y);
+  for (std::size_t k = 0; k < pts.size(); ++k)
+    out += fmt::format("{}[{:.17g}, {:.17g}]", k ? ", " : "", pts[k].x, pts[k].y);
   return out + "]";
 }
 
@@ -67,9 +68,10 @@ std::vector<std::string> heal_report_lines(const HealResult& result) {
     const auto kind = static_cast<HealKind>(k);
     const HealChange* w = result.worst(kind);
     if (w == nullptr) continue;
-    lines.push_back(fmt::format("healing: {} {} (worst: {:.4g} {}, local spacing {:.4g}, at ({:.10g}, {:.10g}), {}:{} curve {})",
-                                result.count(kind), to_string(kind), w->size, size_word(kind), w->h, w->at.x, w->at.y,
-                                w->file, w->line, w->curve));
+    lines.push_back(
+        fmt::format("healing: {} {} (worst: {:.4g} {}, local spacing {:.4g}, at ({:.10g}, {:.10g}), {}:{} curve {})",
+                    result.count(kind), to_string(kind), w->size, size_word(kind), w->h, w->at.x, w->at.y, w->file,
+                    w->line, w->curve));
   }
   return lines;
 }

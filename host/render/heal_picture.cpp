@@ -61,7 +61,8 @@ void write_heal_picture(const std::filesystem::path& path, const std::vector<std
     std::string counts;
     for (int k = 0; k < kHealKinds; ++k) {
       const auto kind = static_cast<HealKind>(k);
-      if (const int n = result.count(kind)) counts += fmt::format("{}{} {}", counts.empty() ? "" : ", ", n, to_string(kind));
+      if (const int n = result.count(kind))
+        counts += fmt::format("{}{} {}", counts.empty() ? "" : ", ", n, to_string(kind));
     }
     canvas.title(fmt::format("{} - healing: {}  (grey input, red removed, blue added)", title, counts));
   });
