@@ -42,7 +42,7 @@ void name_curves(std::vector<RawCurve>& curves, const std::vector<std::string>& 
 }  // namespace
 
 Geometry read_geometry(const std::vector<std::string>& paths, const std::vector<std::string>& curve_names,
-                       const GeometryOptions& options) {
+                       const GeometryOptions& options, const PrepareCurves& prepare) {
   if (paths.empty()) throw InputError("no geometry files given");
   std::vector<RawCurve> curves;
   std::vector<RawHolePoint> holes;
@@ -71,6 +71,7 @@ Geometry read_geometry(const std::vector<std::string>& paths, const std::vector<
     per_file += fmt::format("{}{}: {} curve{}", per_file.empty() ? "" : ", ", path, n, n == 1 ? "" : "s");
   }
   name_curves(curves, curve_names, per_file);
+  if (prepare) prepare(curves);
   Geometry g = build_geometry(std::move(curves), holes, options);
   for (const RawPoint& p : points) g.embedded_points.push_back(p.p);
   g.regions = std::move(regions);
@@ -79,9 +80,10 @@ Geometry read_geometry(const std::vector<std::string>& paths, const std::vector<
 }
 
 Geometry geometry_from_curves(std::vector<RawCurve> curves, const std::vector<std::string>& curve_names,
-                              const GeometryOptions& options) {
+                              const GeometryOptions& options, const PrepareCurves& prepare) {
   if (curves.empty()) throw InputError("the geometry has no curves");
   name_curves(curves, curve_names, "given in memory");
+  if (prepare) prepare(curves);
   return build_geometry(std::move(curves), options);
 }
 

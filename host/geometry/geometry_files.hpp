@@ -1,6 +1,7 @@
 // Reading the geometry of a case: one or more .crv/.dat/.poly files (or curves given in memory),
 // optional curve names, validated and processed by build_geometry().
 #pragma once
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -8,16 +9,19 @@
 
 namespace pdmesh {
 
+// Called on the named raw curves just before build_geometry (healing, geometry/heal.hpp).
+using PrepareCurves = std::function<void(std::vector<RawCurve>&)>;
+
 // Reads every file (by extension: .crv, .dat, .poly; case-insensitive), concatenates their curves in
 // order, names them from curve_names (empty: default names "curve<k>"), and builds the geometry.
 // InputError for an unsupported extension, a wrong number of names or a repeated name;
 // reader and build_geometry errors pass through.
 Geometry read_geometry(const std::vector<std::string>& paths, const std::vector<std::string>& curve_names,
-                       const GeometryOptions& options = {});
+                       const GeometryOptions& options = {}, const PrepareCurves& prepare = {});
 
 // The same for curves given in memory (the Python API): names them from curve_names like
 // read_geometry() (the same errors) and builds the geometry.
 Geometry geometry_from_curves(std::vector<RawCurve> curves, const std::vector<std::string>& curve_names,
-                              const GeometryOptions& options = {});
+                              const GeometryOptions& options = {}, const PrepareCurves& prepare = {});
 
 }  // namespace pdmesh

@@ -217,7 +217,7 @@ std::string json_string(const std::string& text) {
   return out + "\"";
 }
 
-std::string quality_json(const QualitySummary& s, const std::string& source) {
+std::string quality_json(const QualitySummary& s, const std::string& source, const std::string& healing) {
   std::string spacing = "null";
   if (s.has_spacing) {
     const auto& c = s.spacing;
@@ -266,15 +266,17 @@ std::string quality_json(const QualitySummary& s, const std::string& source) {
         num(m.length_max), num(m.q_min), num(m.q_mean), num(m.q_below_0_3_percent), histogram, num(m.complexity),
         num(m.ideal_triangles), num(m.n_over_ideal));
   }
+  // Only when healing changed the geometry, so that every other quality.json stays as it was.
+  if (!healing.empty()) out += fmt::format("  \"healing\": {},\n", healing);
   out += fmt::format("  \"cleanup\": {}\n", cleanup);
   out += "}\n";
   return out;
 }
 
 std::filesystem::path write_quality_json(const QualitySummary& summary, const std::filesystem::path& dir,
-                                         const std::string& source) {
+                                         const std::string& source, const std::string& healing) {
   const auto path = dir / "quality.json";
-  write_text_file(path, quality_json(summary, source));
+  write_text_file(path, quality_json(summary, source, healing));
   return path;
 }
 

@@ -224,6 +224,7 @@ const std::vector<std::string>& case_file_keys() {
       "geometry.corner_angle",
       "geometry.hull",
       "geometry.curves",
+      "geometry.heal",
       "spacing.field",
       "spacing.expression",
       "spacing.file",

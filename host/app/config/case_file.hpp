@@ -82,6 +82,8 @@ struct CaseConfig {
     // Curves given in memory (the Python API) instead of files; see case_for_curves().
     std::vector<RawCurve> given_curves;
     CurveKind curves = CurveKind::Polyline;  // the same in both presets (docs/initialization.md, "Measured")
+    // Healing at the mesh's resolution (geometry/heal.hpp); the preset sets it (off in the thesis).
+    bool heal = true;
   } geometry;
 
   struct Spacing {

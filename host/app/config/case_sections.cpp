@@ -62,6 +62,7 @@ void read_geometry_section(const Reader& r, const toml::table& root, CaseConfig&
   if (const toml::node* n = find(root, "geometry", "hull")) {
     c.geometry.hull = r.boolean("geometry.hull", *n) ? PolyHull::On : PolyHull::Off;
   }
+  if (const toml::node* n = find(root, "geometry", "heal")) c.geometry.heal = r.boolean("geometry.heal", *n);
   if (const toml::node* n = find(root, "geometry", "curves")) {
     c.geometry.curves =
         choose<CurveKind>(r, "geometry.curves", *n, {{"polyline", CurveKind::Polyline}, {"smooth", CurveKind::Smooth}});

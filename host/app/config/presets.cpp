@@ -95,6 +95,9 @@ void apply_preset(CaseConfig& c, Preset preset) {
   // by the spacing field. (geometry.curves is "polyline" in both: smooth curves did not measurably
   // help; docs/initialization.md, "Measured".)
   c.boundary.nodes = thesis ? BoundaryNodeRule::Input : BoundaryNodeRule::Spacing;
+  // The thesis meshes its input exactly; the others heal it at the mesh's resolution first
+  // (docs/geometry-input.md, "Healing").
+  c.geometry.heal = !thesis;
   // The thesis keeps the initial node count for the whole run (population control is its ch. 7
   // future work).
   c.population.enabled = !thesis;

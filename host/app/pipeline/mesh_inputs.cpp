@@ -16,6 +16,7 @@
 #include "geometry/geometry_files.hpp"
 #include "init/metric_fill.hpp"
 #include "layers/boundary_layers.hpp"
+#include "spacing/short_arcs.hpp"
 #include "init/node_estimate.hpp"
 #include "init/warm_points.hpp"
 #include "spacing/mesh_spacing.hpp"
@@ -31,9 +32,23 @@ MeshInputs::MeshInputs(const CaseConfig& config) {
   options.join_tolerance = config.geometry.join_tolerance;
   options.corner_angle_deg = config.geometry.corner_angle;
   options.hull = config.geometry.hull;
+  PrepareCurves prepare;
+  if (config.geometry.heal) {
+    // Healing at the mesh's resolution, judged by eq. 3.6's spacing on the raw curves (heal.hpp); the
+    // spacing field is then built on the healed geometry.
+    prepare = [this, &config](std::vector<RawCurve>& curves) {
+      std::vector<std::vector<Vec2>> before;
+      for (const RawCurve& c : curves) before.push_back(c.points);
+      HealOptions heal;
+      heal.scale = config.spacing.scale;
+      heal.join_tolerance = config.geometry.join_tolerance;
+      healing = heal_curves(curves, heal);
+      if (!healing.changes.empty()) heal_input = std::move(before);
+    };
+  }
   geometry = config.geometry.given_curves.empty()
-                 ? read_geometry(files, config.geometry.curve_names, options)
-                 : geometry_from_curves(config.geometry.given_curves, config.geometry.curve_names, options);
+                 ? read_geometry(files, config.geometry.curve_names, options, prepare)
+                 : geometry_from_curves(config.geometry.given_curves, config.geometry.curve_names, options, prepare);
   // What the readers did beyond the plain reading (a .poly's loops read as subdomains, vertices kept
   // or dropped): always said, also when quiet, since the mesh differs from what the file may suggest.
   for (const std::string& note : geometry.notes) fmt::print(stderr, "pdmesh: note: {}\n", note);
@@ -75,6 +90,11 @@ MeshInputs::MeshInputs(const CaseConfig& config) {
   const auto spacing_start = std::chrono::steady_clock::now();
   metric = make_case_metric(config, *tree);
   spacing = make_case_spacing(config, *tree, metric.get());
+  // Fixed nodes at both ends of a boundary arc much shorter than the field there: the field follows
+  // the arc (spacing/short_arcs.hpp). Only where the field places the boundary nodes and spreads
+  // sources (gradation): the thesis' field stays eq. 3.6 exactly.
+  if (!metric && config.boundary.nodes == BoundaryNodeRule::Spacing && spacing_options.gradation > 0.0)
+    for (const PointSource& s : short_arc_sources(geometry, *spacing)) spacing_options.points.push_back(s);
   if (metric) {
     spacing_summary = fmt::format(
         "spacing: the metric field ({}) built in {:.3f} s; the nodes start at unit metric length, "

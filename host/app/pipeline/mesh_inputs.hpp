@@ -12,6 +12,7 @@
 #include "app/config/case_file.hpp"
 #include "geometry/geometry.hpp"
 #include "geometry/geometry_tree.hpp"
+#include "geometry/heal.hpp"
 #include "geometry/smooth_curve.hpp"
 #include "init/initial_distribution.hpp"
 #include "nodes/node_set.hpp"
@@ -41,7 +42,11 @@ struct MeshInputs {
   MeshInputs(const MeshInputs&) = delete;
   MeshInputs& operator=(const MeshInputs&) = delete;
 
-  Geometry geometry;                   // the input geometry (spacing field)
+  Geometry geometry;                   // the input geometry (spacing field), healed with geometry.heal
+  // What healing changed (geometry.heal; empty when off or nothing changed), and the curves as read
+  // when it changed something (healing.png draws them).
+  HealResult healing;
+  std::vector<std::vector<Vec2>> heal_input;
   std::unique_ptr<GeometryTree> tree;  // over `geometry`
   // spacing.field "metric" or "hessian": the metric field (spacing/metric_field.hpp); null for the
   // isotropic fields. `spacing` is then its isotropic size sqrt(h1 h2) (MetricSizeField).

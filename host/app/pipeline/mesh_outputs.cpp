@@ -22,6 +22,8 @@
 #include "spacing/metric_complexity.hpp"
 #include "nodes/node_domain.hpp"
 #include "nodes/node_file.hpp"
+#include "geometry/heal_report.hpp"
+#include "render/heal_picture.hpp"
 #include "render/mesh_picture.hpp"
 #include "render/metric_picture.hpp"
 #include "render/node_picture.hpp"
@@ -354,7 +356,12 @@ void write_mesh_outputs(const CaseConfig& config, const MeshInputs& inputs, cons
   const fs::path& dir = config.out_dir;
   {
     const auto json_timer = phases.phase("quality.json");
-    write_quality_json(summary, dir, config.name);
+    write_quality_json(summary, dir, config.name,
+                       inputs.healing.changes.empty() ? std::string() : heal_json(inputs.healing));
+  }
+  if (!inputs.healing.changes.empty() && config.output.wants("png")) {
+    const auto heal_timer = phases.phase("healing.png");
+    write_heal_picture(dir / "healing.png", inputs.heal_input, inputs.healing, config.name);
   }
   std::vector<fs::path> written;
   for (const std::string& f : config.output.formats) {

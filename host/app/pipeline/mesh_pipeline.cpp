@@ -20,6 +20,7 @@
 #include "core/interrupt.hpp"
 #include "core/progress_notes.hpp"
 #include "core/worker_pool.hpp"
+#include "geometry/heal_report.hpp"
 
 namespace pdmesh {
 
@@ -134,6 +135,7 @@ void report_phases(const CaseConfig& config, const RunPhases& phases) {
 void read_stage_report(const CaseConfig& config, const MeshInputs& inputs) {
   progress(config, "geometry: {} curves, {} segments, {} loops, area {:.6g}", inputs.geometry.curves.size(),
            inputs.geometry.segments.size(), inputs.geometry.loops.size(), inputs.geometry.area);
+  for (const std::string& line : heal_report_lines(inputs.healing)) progress(config, "{}", line);
   if (!inputs.spacing_summary.empty()) progress(config, "{}", inputs.spacing_summary);
   if (config.geometry_alone && !config.farfield.given() && inputs.geometry.loops.size() == 1)
     progress(config,

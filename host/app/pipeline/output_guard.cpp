@@ -32,6 +32,7 @@ std::vector<fs::path> planned_outputs(const CaseConfig& config) {
     if (svg) names.push_back(stage + ".svg");
   }
   if (png) names.emplace_back("history.png");
+  if (png && config.geometry.heal) names.emplace_back("healing.png");
   if (config.output.spacing_picture) {
     names.emplace_back("spacing.png");
     for (const ViewWindow& view : config.output.views) names.push_back(fmt::format("spacing_{}.png", view.name));

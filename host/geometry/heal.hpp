@@ -1,0 +1,64 @@
+// Healing at the mesh's resolution (docs/geometry-input.md, "Healing"): before build_geometry, the
+// raw boundary curves lose the details the mesh cannot resolve: vertices closer than a fraction of
+// the local spacing merge, one-vertex spikes go, narrow inlets and narrow intrusions are cut off at
+// their mouth, and loops smaller than about h² are dropped. Every change is recorded with what it
+// removed and what it added, for the report, quality.json and healing.png.
+#pragma once
+#include <string>
+#include <vector>
+
+#include "geometry/geometry.hpp"
+
+namespace pdmesh {
+
+struct HealOptions {
+  // The local spacing h at a vertex is the median length of the kNeighbourhood input segments around
+  // it along its curve, times `scale` (spacing.scale): eq. 3.6's spacing on the raw geometry, without
+  // the outliers that healing is for. An island's h is the median of all input segments.
+  double scale = 1.0;
+  double merge_fraction = 0.25;   // consecutive vertices closer than this x h merge
+  double width_fraction = 0.5;    // inlets and intrusions narrower than this x h are cut off
+  double area_fraction = 1.0;     // loops with an area below this x h² are dropped
+  double spike_angle_deg = 20.0;  // a vertex sharper than this whose neighbours continue the line is a spike
+  double join_tolerance = 1e-9;   // GeometryOptions::join_tolerance: which curves close on themselves
+  static constexpr int kNeighbourhood = 8;
+};
+
+enum class HealKind {
+  Merge,        // two close vertices became one (their midpoint)
+  Spike,        // a one-vertex spike removed
+  InletClosed,  // a narrow part of the domain cut off at its mouth (the domain loses it)
+  InletOpened,  // a narrow intrusion into the domain cut off at its mouth (the domain gains it)
+  Island,       // a loop smaller than about h² dropped
+};
+const char* to_string(HealKind kind);
+inline constexpr int kHealKinds = 5;
+
+struct HealChange {
+  HealKind kind = HealKind::Merge;
+  std::string curve;  // the curve's name (or "curve<k>" when it has none yet)
+  std::string file;
+  int line = 0;  // the source line of the first point concerned
+  Vec2 at;       // where (the merged point, the spike's tip, the mouth's middle, a loop's first point)
+  // The measure that made it a defect: merge the distance, spike the angle (degrees), inlet the
+  // width at the mouth, island the area.
+  double size = 0.0;
+  double h = 0.0;             // the local spacing it was judged by
+  std::vector<Vec2> removed;  // the input polyline that is gone (a loop: closed)
+  std::vector<Vec2> added;    // the polyline that replaces it (empty for an island)
+};
+
+struct HealResult {
+  std::vector<HealChange> changes;
+  int count(HealKind kind) const;
+  // The worst change of a kind (the shortest merge, sharpest spike, narrowest inlet, smallest
+  // island); null when there is none.
+  const HealChange* worst(HealKind kind) const;
+};
+
+// Heals `curves` in place. Closed curves (first and last point within the join tolerance) take every
+// rule; open curves (parts of a loop of several curves) only merges and spikes between their end
+// points, which stay. Constraints and fixed-point curves are left as they are.
+HealResult heal_curves(std::vector<RawCurve>& curves, const HealOptions& options = {});
+
+}  // namespace pdmesh
