@@ -105,7 +105,8 @@ void check_keys(const Reader& r, const toml::table& t, const std::string& prefix
 
 // Keys whose value is a string: an override such as "spacing.expression=2" means the text.
 bool is_string_key(const std::string& key) {
-  return key == "name" || key == "preset" || key == "geometry.curves" || key == "boundary.nodes" ||
+  return key == "name" || key == "preset" || key == "geometry.curves" || key == "geometry.projection" ||
+         key == "boundary.nodes" ||
          key == "spacing.field" || key == "spacing.expression" || key == "spacing.file" || key == "spacing.array" ||
          key == "spacing.h1" || key == "spacing.h2" || key == "spacing.angle" || key == "spacing.m11" ||
          key == "spacing.m12" || key == "spacing.m22" || key == "spacing.sol" || key == "spacing.function" ||
@@ -221,6 +222,7 @@ const std::vector<std::string>& case_file_keys() {
       "geometry.join_tolerance",
       "geometry.corner_angle",
       "geometry.curves",
+      "geometry.projection",
       "spacing.field",
       "spacing.expression",
       "spacing.file",

@@ -13,6 +13,7 @@
 #include "core/memory_budget.hpp"
 #include "core/vec2.hpp"
 #include "geometry/geometry.hpp"
+#include "geometry/projection.hpp"
 #include "init/initial_distribution.hpp"
 #include "sim/population.hpp"
 #include "spacing/background_field.hpp"
@@ -77,6 +78,9 @@ struct CaseConfig {
     // Curves given in memory (the Python API) instead of files; see case_for_curves().
     std::vector<RawCurve> given_curves;
     CurveKind curves = CurveKind::Polyline;  // the same in both presets (docs/initialization.md, "Measured")
+    // "equirectangular": lon/lat input meshed in metres, outputs written back in lon/lat
+    // (geometry/projection.hpp, docs/geometry-input.md).
+    ProjectionKind projection = ProjectionKind::None;
   } geometry;
 
   struct Spacing {

@@ -27,9 +27,12 @@ MeshInputs::MeshInputs(const CaseConfig& config) {
   GeometryOptions options;
   options.join_tolerance = config.geometry.join_tolerance;
   options.corner_angle_deg = config.geometry.corner_angle;
+  Equirectangular used;
   geometry = config.geometry.given_curves.empty()
-                 ? read_geometry(files, config.geometry.curve_names, options)
-                 : geometry_from_curves(config.geometry.given_curves, config.geometry.curve_names, options);
+                 ? read_geometry(files, config.geometry.curve_names, options, config.geometry.projection, &used)
+                 : geometry_from_curves(config.geometry.given_curves, config.geometry.curve_names, options,
+                                        config.geometry.projection, &used);
+  if (config.geometry.projection == ProjectionKind::Equirectangular) projection = used;
   // Curve names are fields in node and mesh files; one with white space would break them later.
   for (std::size_t c = 0; c < geometry.curves.size(); ++c) {
     const std::string& name = geometry.curves[c].name;
