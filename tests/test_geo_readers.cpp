@@ -254,6 +254,12 @@ TEST_CASE("shapefiles: PolygonZ, PolyLine constraints, and a file of points only
   CHECK_THROWS_WITH(read_shapefile(data("gis/wells.shp")),
                     Contains("wells.shp: the file holds 2 points and no polygon or line: nothing bounds a domain"));
   CHECK_THROWS_WITH(read_shapefile(data("gis/no_such.shp")), Contains("no_such.shp") && Contains("cannot read"));
+  const auto dir = pdmesh_test::fresh_dir("shapefile_no_shx");
+  std::filesystem::copy_file(data("gis/lake.shp"), dir / "lake.shp");
+  const std::string msg = error_message<InputError>([&] { read_shapefile((dir / "lake.shp").string()); });
+  CHECK_THAT(msg, Contains("lake.shp: cannot read the shapefile: Unable to open") &&
+                      Contains("(a shapefile needs its .shx index beside it)"));
+  CHECK_THAT(msg, !Contains("SHAPE_RESTORE_SHX"));  // GDAL's option, not pdmesh's
 }
 
 TEST_CASE("equirectangular projection: metres about the centre, and back", "[geometry][projection]") {

@@ -10,6 +10,7 @@
 
 #include "core/errors.hpp"
 #include "core/input_file.hpp"
+#include "core/progress_notes.hpp"
 #include "geometry/gis_features.hpp"
 
 namespace pdmesh {
@@ -20,7 +21,12 @@ constexpr double kLargestCoordinate = 1e150;  // as for the text readers (reader
 
 // shapelib reports through its hooks' Error(); the last message is kept for ours.
 thread_local std::string last_shapelib_error;
-void keep_error(const char* message) { last_shapelib_error = message != nullptr ? message : ""; }
+void keep_error(const char* message) {
+  last_shapelib_error = message != nullptr ? message : "";
+  // shapelib's hint about a configuration option of GDAL's, which pdmesh does not have.
+  const std::size_t hint = last_shapelib_error.find(" Set SHAPE_RESTORE_SHX");
+  if (hint != std::string::npos) last_shapelib_error.resize(hint);
+}
 
 SAHooks hooks() {
   SAHooks h;
@@ -95,7 +101,10 @@ RawGeometry read_shapefile(const std::string& path) {
       throw InputError(fmt::format("{}:{}: record {} cannot be read: {}", path, i + 1, i + 1,
                                    last_shapelib_error.empty() ? "the file is truncated or corrupt" : last_shapelib_error));
     }
-    if (obj->nSHPType == SHPT_NULL) continue;
+    if (obj->nSHPType == SHPT_NULL) {
+      progress_line(fmt::format("geometry: {}:{}: record {} has no shape (Null); skipped", path, i + 1, i + 1));
+      continue;
+    }
     gis::FeatureSource src{path, i + 1, "", fmt::format("record {}", i + 1)};
     if (name_field >= 0 && i < DBFGetRecordCount(dbf.get()) && !DBFIsAttributeNULL(dbf.get(), i, name_field)) {
       const std::string name = DBFReadStringAttribute(dbf.get(), i, name_field);
