@@ -89,3 +89,46 @@ TEST_CASE("geometry.projection = equirectangular writes lon/lat mesh files", "[c
   CHECK(hi_y == Approx(50.1).margin(1e-9));
   fs::remove_all(out);
 }
+
+TEST_CASE("geometry.projection with a boundary layer: the mixed mesh is written in lon/lat", "[cli][projection]") {
+  // The layer fronts are already projected: the core must not project them again (they are metres,
+  // not lon/lat), and the mixed mesh's file must be mapped back like the triangle meshes'.
+  const fs::path dir = pdmesh_test::fresh_dir("cli_projection_layers");
+  std::ofstream(dir / "island.geojson")
+      << "{\"type\": \"Feature\", \"properties\": {\"name\": \"sea\"}, \"geometry\": {\"type\": \"Polygon\", "
+         "\"coordinates\": [[[10.0, 50.0], [10.1, 50.0], [10.1, 50.1], [10.0, 50.1], [10.0, 50.0]], "
+         "[[10.04, 50.04], [10.06, 50.04], [10.06, 50.06], [10.04, 50.06], [10.04, 50.04]]]}}\n";
+  std::ofstream(dir / "case.toml") << "geometry.files = [\"island.geojson\"]\ngeometry.projection = \"equirectangular\"\n"
+                                      "spacing.expression = \"400\"\n[[boundary_layer]]\ncurves = [\"sea_hole1\"]\n"
+                                      "first_height = 20\ngrowth = 1.2\nthickness = 200\nelements = \"quads\"\n";
+  const auto r = pdmesh_test::run_pdmesh("mesh '" + (dir / "case.toml").string() + "' --out '" +
+                                         (dir / "out").string() + "' --device host --iterations 0 --formats msh -q");
+  INFO(r.output);
+  REQUIRE(r.status == 0);
+  // Gmsh 4.1 $Nodes: a header "blocks nodes min max", one block "dim tag parametric n", its n tags,
+  // then its n coordinate lines.
+  std::istringstream msh(pdmesh_test::slurp(dir / "out" / "mesh.msh"));
+  std::string word;
+  while (msh >> word && word != "$Nodes") {
+  }
+  std::size_t blocks = 0, n = 0, lo = 0, hi = 0, parametric = 0;
+  int dim = 0, tag = 0;
+  msh >> blocks >> n >> lo >> hi >> dim >> tag >> parametric >> n;
+  REQUIRE(blocks == 1);
+  REQUIRE(n > 100);
+  for (std::size_t k = 0; k < n; ++k) msh >> lo;
+  double min_x = 1e9, max_x = -1e9, min_y = 1e9, max_y = -1e9;
+  for (std::size_t k = 0; k < n; ++k) {
+    double x = 0, y = 0, z = 0;
+    msh >> x >> y >> z;
+    min_x = std::min(min_x, x);
+    max_x = std::max(max_x, x);
+    min_y = std::min(min_y, y);
+    max_y = std::max(max_y, y);
+  }
+  CHECK(min_x == Approx(10.0).margin(1e-9));
+  CHECK(max_x == Approx(10.1).margin(1e-9));
+  CHECK(min_y == Approx(50.0).margin(1e-9));
+  CHECK(max_y == Approx(50.1).margin(1e-9));
+  fs::remove_all(dir);
+}

@@ -180,6 +180,9 @@ std::unique_ptr<LayeredCase> build_layers(const CaseConfig& config, const MeshIn
   core.geometry.curve_names.clear();
   core.geometry.given_curves = std::move(curves);
   core.geometry.curves = CurveKind::Polyline;  // the fronts are polylines of layer nodes
+  // The fronts are in the meshing plane already (geometry.projection); the caller hands the core
+  // the case's projection for its outputs.
+  core.geometry.projection = ProjectionKind::None;
   // The case's final field (already scaled) is the core's base field, lowered at the fronts.
   const double gradation = config.spacing.gradation > 0.0 ? config.spacing.gradation : 0.2;
   core.spacing.given = std::make_shared<FrontSpacing>(field, std::move(sources), gradation);
@@ -561,7 +564,13 @@ void write_layered_outputs(const CaseConfig& config, const MeshInputs& inputs, c
   std::vector<fs::path> written;
   {
     const auto writer_timer = phases.phase("mesh files");
-    written = write_mixed_mesh(mixed, config.out_dir, "mesh", formats);
+    // geometry.projection: the files get lon/lat, like the triangle meshes' (mesh_outputs.cpp).
+    MixedMesh lonlat;
+    if (inputs.projection) {
+      lonlat = mixed;
+      inputs.projection->inverse(lonlat.points);
+    }
+    written = write_mixed_mesh(inputs.projection ? lonlat : mixed, config.out_dir, "mesh", formats);
   }
   std::vector<std::string> pictures;
   if (config.output.wants("png")) {
