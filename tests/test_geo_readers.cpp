@@ -37,7 +37,7 @@ const RawCurve& named(const RawGeometry& g, const std::string& name) {
 
 }  // namespace
 
-TEST_CASE("a count-format .dat file is read as before; a name line makes it an airfoil", "[geometry][airfoil]") {
+TEST_CASE("a count-format .dat file is read as before, a name line makes it an airfoil", "[geometry][airfoil]") {
   const auto dir = pdmesh_test::fresh_dir("airfoil_detect");
   const std::string count = write(dir, "square.dat", "# square\n5\n0 0\n1 0\n1 1\n0 1\n0 0\n");
   const RawGeometry raw = read_geometry_files({count});
