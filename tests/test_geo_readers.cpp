@@ -62,7 +62,7 @@ TEST_CASE("Selig files: s1223 (sharp trailing edge) splits into upper and lower 
   CHECK(lower.points.back() == Vec2{1.0, 0.0});
   CHECK(upper.points.back() == lower.points.front());
   CHECK(upper.points.back().x == Approx(0.0).margin(1e-4));  // the leading edge
-  CHECK(upper.lines.front() == 2);  // the name line is line 1
+  CHECK(upper.lines.front() == 2);                           // the name line is line 1
   CHECK(upper.file == data("airfoils/s1223.dat"));
   const Geometry g = read_geometry({data("airfoils/s1223.dat")}, {});
   REQUIRE(g.loops.size() == 1);
@@ -141,8 +141,8 @@ TEST_CASE("two airfoil files get their file stems as name prefixes", "[geometry]
   const Geometry g = read_geometry({data("airfoils/naca2412.dat"), moved}, {});
   std::vector<std::string> names;
   for (const Curve& c : g.curves) names.push_back(c.name);
-  CHECK(names == std::vector<std::string>{"naca2412_upper", "naca2412_lower", "naca2412_te", "e387_upper",
-                                          "e387_lower"});
+  CHECK(names ==
+        std::vector<std::string>{"naca2412_upper", "naca2412_lower", "naca2412_te", "e387_upper", "e387_lower"});
   CHECK(g.loops.size() == 2);
 }
 
@@ -208,15 +208,16 @@ TEST_CASE("GeoJSON errors: malformed JSON with line and column, unknown types, s
                     Contains("x.geojson:3:1: malformed JSON") && Contains("syntax error"));
   CHECK_THROWS_WITH(read_geojson_text(f, "{\"type\": \"Polygon\" \"coordinates\": []}"),
                     Contains("x.geojson:1:32: malformed JSON") && Contains("expected '}'"));
-  CHECK_THROWS_WITH(read_geojson_text(f, "{\"type\": \"FeatureCollection\", \"features\": [\n"
-                                         "{\"type\": \"Feature\", \"properties\": {\"name\": \"c\"},\n"
-                                         " \"geometry\": {\"type\": \"Circle\", \"coordinates\": [0, 0]}}]}"),
+  CHECK_THROWS_WITH(read_geojson_text(f,
+                                      "{\"type\": \"FeatureCollection\", \"features\": [\n"
+                                      "{\"type\": \"Feature\", \"properties\": {\"name\": \"c\"},\n"
+                                      " \"geometry\": {\"type\": \"Circle\", \"coordinates\": [0, 0]}}]}"),
                     Contains("x.geojson:3: feature 0 ('c'): unknown GeoJSON geometry type 'Circle'"));
   CHECK_THROWS_WITH(read_geojson_text(f, "{\"type\": \"Polygon\", \"coordinates\": [[[0, 0], [1, 0], [0, 0]]]}"),
                     Contains("x.geojson:1: the geometry: ring 0 has 2 distinct points") && Contains("at least 3"));
-  CHECK_THROWS_WITH(read_geojson_text(f, "{\"type\": \"Polygon\", \"coordinates\": [[[0, 0], [1, \"a\"]]]}"),
-                    Contains("x.geojson:1") && Contains("a position must be an array of 2 or 3 numbers") &&
-                        Contains("[1,\"a\"]"));
+  CHECK_THROWS_WITH(
+      read_geojson_text(f, "{\"type\": \"Polygon\", \"coordinates\": [[[0, 0], [1, \"a\"]]]}"),
+      Contains("x.geojson:1") && Contains("a position must be an array of 2 or 3 numbers") && Contains("[1,\"a\"]"));
   CHECK_THROWS_WITH(read_geojson_text(f, "{\"type\": \"MultiPoint\", \"coordinates\": [[0, 0], [1, 1]]}"),
                     Contains("x.geojson: the file holds 2 points and no polygon or line"));
   CHECK_THROWS_WITH(read_geojson_text(f, "[1, 2]"), Contains("x.geojson:1: the top level is array"));
@@ -277,8 +278,7 @@ TEST_CASE("equirectangular projection: metres about the centre, and back", "[geo
   CHECK(back.y == Approx(50.0).margin(1e-12));
   // Through read_geometry: the box is about 7.2 km by 11.1 km.
   Equirectangular used;
-  const Geometry g =
-      read_geometry({data("gis/lonlat_square.geojson")}, {}, {}, ProjectionKind::Equirectangular, &used);
+  const Geometry g = read_geometry({data("gis/lonlat_square.geojson")}, {}, {}, ProjectionKind::Equirectangular, &used);
   CHECK(used.lat0 == p.lat0);
   CHECK(g.extents.hi.x - g.extents.lo.x == Approx(R * std::cos(50.05 * deg) * 0.1 * deg));
 }

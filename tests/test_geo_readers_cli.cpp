@@ -98,9 +98,10 @@ TEST_CASE("geometry.projection with a boundary layer: the mixed mesh is written 
       << "{\"type\": \"Feature\", \"properties\": {\"name\": \"sea\"}, \"geometry\": {\"type\": \"Polygon\", "
          "\"coordinates\": [[[10.0, 50.0], [10.1, 50.0], [10.1, 50.1], [10.0, 50.1], [10.0, 50.0]], "
          "[[10.04, 50.04], [10.06, 50.04], [10.06, 50.06], [10.04, 50.06], [10.04, 50.04]]]}}\n";
-  std::ofstream(dir / "case.toml") << "geometry.files = [\"island.geojson\"]\ngeometry.projection = \"equirectangular\"\n"
-                                      "spacing.expression = \"400\"\n[[boundary_layer]]\ncurves = [\"sea_hole1\"]\n"
-                                      "first_height = 20\ngrowth = 1.2\nthickness = 200\nelements = \"quads\"\n";
+  std::ofstream(dir / "case.toml")
+      << "geometry.files = [\"island.geojson\"]\ngeometry.projection = \"equirectangular\"\n"
+         "spacing.expression = \"400\"\n[[boundary_layer]]\ncurves = [\"sea_hole1\"]\n"
+         "first_height = 20\ngrowth = 1.2\nthickness = 200\nelements = \"quads\"\n";
   const auto r = pdmesh_test::run_pdmesh("mesh '" + (dir / "case.toml").string() + "' --out '" +
                                          (dir / "out").string() + "' --device host --iterations 0 --formats msh -q");
   INFO(r.output);

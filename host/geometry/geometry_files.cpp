@@ -49,16 +49,18 @@ void name_curves(std::vector<RawCurve>& curves, const std::vector<std::string>& 
 void refuse_embedded(const RawGeometry& raw) {
   for (const RawCurve& c : raw.curves) {
     if (c.constraint) {
-      throw InputError(fmt::format("{}:{}: curve '{}' is a line inside the domain (an embedded constraint), which "
-                                   "pdmesh mesh does not take yet; give polygons only",
-                                   c.file, c.line, c.name));
+      throw InputError(
+          fmt::format("{}:{}: curve '{}' is a line inside the domain (an embedded constraint), which "
+                      "pdmesh mesh does not take yet; give polygons only",
+                      c.file, c.line, c.name));
     }
   }
   if (!raw.points.empty()) {
     const RawPoint& p = raw.points.front();
-    throw InputError(fmt::format("{}:{}: point ({}, {}) is an embedded point, which pdmesh mesh does not take yet; "
-                                 "give polygons only",
-                                 p.file, p.line, p.p.x, p.p.y));
+    throw InputError(
+        fmt::format("{}:{}: point ({}, {}) is an embedded point, which pdmesh mesh does not take yet; "
+                    "give polygons only",
+                    p.file, p.line, p.p.x, p.p.y));
   }
 }
 

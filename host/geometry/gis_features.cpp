@@ -61,10 +61,11 @@ void add_polygon(RawGeometry& out, const FeatureSource& src, int part, std::vect
     std::size_t dropped = drop_repeats(ring);
     if (ring.size() > 1 && ring.front() == ring.back()) ring.pop_back();
     if (ring.size() < 3) {
-      throw InputError(fmt::format("{}:{}: {}: ring {} {}has {} distinct point{} ({} position{} given); a ring needs "
-                                   "at least 3",
-                                   src.file, src.line, src.what, r, part > 0 ? fmt::format("of polygon {} ", part) : "",
-                                   ring.size(), ring.size() == 1 ? "" : "s", given, given == 1 ? "" : "s"));
+      throw InputError(
+          fmt::format("{}:{}: {}: ring {} {}has {} distinct point{} ({} position{} given); a ring needs "
+                      "at least 3",
+                      src.file, src.line, src.what, r, part > 0 ? fmt::format("of polygon {} ", part) : "", ring.size(),
+                      ring.size() == 1 ? "" : "s", given, given == 1 ? "" : "s"));
     }
     if (dropped > 0) {
       progress_line(fmt::format("geometry: {}:{}: {}: ring {}: dropped {} repeated consecutive position{}", src.file,
@@ -96,9 +97,10 @@ void add_point(RawGeometry& out, const FeatureSource& src, Vec2 p) { out.points.
 void finish(RawGeometry& out, const std::string& file, std::size_t first_curve, std::size_t first_point) {
   if (out.curves.size() == first_curve) {
     const std::size_t points = out.points.size() - first_point;
-    throw InputError(fmt::format("{}: the file holds {} point{} and no polygon or line: nothing bounds a domain; "
-                                 "a GIS file needs a polygon (or lines, with the boundary given in another file)",
-                                 file, points, points == 1 ? "" : "s"));
+    throw InputError(
+        fmt::format("{}: the file holds {} point{} and no polygon or line: nothing bounds a domain; "
+                    "a GIS file needs a polygon (or lines, with the boundary given in another file)",
+                    file, points, points == 1 ? "" : "s"));
   }
   std::map<std::string, int> count;
   std::set<std::string> taken;

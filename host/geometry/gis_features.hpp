@@ -13,9 +13,9 @@ namespace pdmesh::gis {
 // Where a feature came from, for names and messages.
 struct FeatureSource {
   std::string file;
-  int line = 0;          // the feature's line (GeoJSON) or record number (shapefile)
-  std::string name;      // plain name (plain_name) or empty
-  std::string what;      // "feature 3 ('lake')", for messages
+  int line = 0;      // the feature's line (GeoJSON) or record number (shapefile)
+  std::string name;  // plain name (plain_name) or empty
+  std::string what;  // "feature 3 ('lake')", for messages
 };
 
 // A name made plain for node and mesh files: each character other than a letter, digit, _ . + -

@@ -18,10 +18,11 @@ constexpr double kRad = std::numbers::pi / 180.0;
 
 void check_lonlat(Vec2 p, const std::string& file, int line, const char* what) {
   if (std::fabs(p.x) > 180.0 || std::fabs(p.y) > 90.0) {
-    throw InputError(fmt::format("{}:{}: {} ({}, {}) is not longitude/latitude (|lon| <= 180, |lat| <= 90), but "
-                                 "geometry.projection = \"equirectangular\" takes lon/lat data; leave the projection "
-                                 "\"none\" for projected coordinates",
-                                 file, line, what, p.x, p.y));
+    throw InputError(
+        fmt::format("{}:{}: {} ({}, {}) is not longitude/latitude (|lon| <= 180, |lat| <= 90), but "
+                    "geometry.projection = \"equirectangular\" takes lon/lat data; leave the projection "
+                    "\"none\" for projected coordinates",
+                    file, line, what, p.x, p.y));
   }
 }
 
@@ -62,9 +63,10 @@ Equirectangular project_lonlat(RawGeometry& raw) {
   proj.lon0 = 0.5 * (lo.x + hi.x);
   proj.lat0 = 0.5 * (lo.y + hi.y);
   if (std::fabs(proj.lat0) >= 89.0) {
-    throw InputError(fmt::format("{}: the data's centre is at latitude {}, where an equirectangular projection "
-                                 "degenerates; project it (polar stereographic) and give projected coordinates",
-                                 raw.curves.empty() ? std::string("geometry") : raw.curves.front().file, proj.lat0));
+    throw InputError(
+        fmt::format("{}: the data's centre is at latitude {}, where an equirectangular projection "
+                    "degenerates; project it (polar stereographic) and give projected coordinates",
+                    raw.curves.empty() ? std::string("geometry") : raw.curves.front().file, proj.lat0));
   }
   for (RawCurve& c : raw.curves)
     for (Vec2& p : c.points) p = proj.forward(p);

@@ -55,11 +55,23 @@ double signed_area2(const std::vector<Vec2>& ring) {
 
 const char* shape_kind(int type) {
   switch (type) {
-    case SHPT_POINT: case SHPT_POINTZ: case SHPT_POINTM: case SHPT_MULTIPOINT: case SHPT_MULTIPOINTZ:
-    case SHPT_MULTIPOINTM: return "point";
-    case SHPT_ARC: case SHPT_ARCZ: case SHPT_ARCM: return "line";
-    case SHPT_POLYGON: case SHPT_POLYGONZ: case SHPT_POLYGONM: return "polygon";
-    default: return nullptr;
+    case SHPT_POINT:
+    case SHPT_POINTZ:
+    case SHPT_POINTM:
+    case SHPT_MULTIPOINT:
+    case SHPT_MULTIPOINTZ:
+    case SHPT_MULTIPOINTM:
+      return "point";
+    case SHPT_ARC:
+    case SHPT_ARCZ:
+    case SHPT_ARCM:
+      return "line";
+    case SHPT_POLYGON:
+    case SHPT_POLYGONZ:
+    case SHPT_POLYGONM:
+      return "polygon";
+    default:
+      return nullptr;
   }
 }
 
@@ -74,16 +86,17 @@ RawGeometry read_shapefile(const std::string& path) {
   last_shapelib_error.clear();
   std::unique_ptr<SHPInfo, ShpCloser> shp(SHPOpenLL(path.c_str(), "rb", &h));
   if (!shp) {
-    throw InputError(fmt::format("{}: cannot read the shapefile: {} (a shapefile needs its .shx index beside it)",
-                                 path, last_shapelib_error.empty() ? "shapelib cannot open it" : last_shapelib_error));
+    throw InputError(fmt::format("{}: cannot read the shapefile: {} (a shapefile needs its .shx index beside it)", path,
+                                 last_shapelib_error.empty() ? "shapelib cannot open it" : last_shapelib_error));
   }
   int count = 0, type = 0;
   double lo[4], hi[4];
   SHPGetInfo(shp.get(), &count, &type, lo, hi);
   if (shape_kind(type) == nullptr) {
-    throw InputError(fmt::format("{}: shape type {} ({}) is not supported (Point, MultiPoint, PolyLine, Polygon and "
-                                 "their Z and M variants are)",
-                                 path, type, SHPTypeName(type)));
+    throw InputError(
+        fmt::format("{}: shape type {} ({}) is not supported (Point, MultiPoint, PolyLine, Polygon and "
+                    "their Z and M variants are)",
+                    path, type, SHPTypeName(type)));
   }
   // The .dbf beside it, for names; without one the curves are unnamed.
   const std::string dbf_path = std::filesystem::path(path).replace_extension(".dbf").string();
@@ -98,8 +111,9 @@ RawGeometry read_shapefile(const std::string& path) {
   for (int i = 0; i < count; ++i) {
     std::unique_ptr<SHPObject, ObjectDestroyer> obj(SHPReadObject(shp.get(), i));
     if (!obj) {
-      throw InputError(fmt::format("{}:{}: record {} cannot be read: {}", path, i + 1, i + 1,
-                                   last_shapelib_error.empty() ? "the file is truncated or corrupt" : last_shapelib_error));
+      throw InputError(
+          fmt::format("{}:{}: record {} cannot be read: {}", path, i + 1, i + 1,
+                      last_shapelib_error.empty() ? "the file is truncated or corrupt" : last_shapelib_error));
     }
     if (obj->nSHPType == SHPT_NULL) {
       progress_line(fmt::format("geometry: {}:{}: record {} has no shape (Null); skipped", path, i + 1, i + 1));
@@ -116,9 +130,10 @@ RawGeometry read_shapefile(const std::string& path) {
     const int n = obj->nVertices;
     for (int k = 0; k < n; ++k) {
       if (!(std::fabs(obj->padfX[k]) <= kLargestCoordinate && std::fabs(obj->padfY[k]) <= kLargestCoordinate)) {
-        throw InputError(fmt::format("{}:{}: {}: vertex {} ({}, {}) is not finite or too large (|value| must be <= "
-                                     "{:g})",
-                                     path, i + 1, src.what, k, obj->padfX[k], obj->padfY[k], kLargestCoordinate));
+        throw InputError(
+            fmt::format("{}:{}: {}: vertex {} ({}, {}) is not finite or too large (|value| must be <= "
+                        "{:g})",
+                        path, i + 1, src.what, k, obj->padfX[k], obj->padfY[k], kLargestCoordinate));
       }
     }
     auto part = [&](int p) {

@@ -210,8 +210,9 @@ CaseConfig config_from(const MeshArguments& a) {
     for (const std::string& name : a.inputs) {
       const std::string e = lower_extension(fs::path(name));
       if (!is_geometry_extension(e) || fs::is_directory(fs::path(name), ec)) {
-        throw InputError(fmt::format("{}: expected a .crv, .dat, .poly, .geojson, .json or .shp geometry file after '{}', got '{}'", name,
-                                     a.inputs.front(), e.empty() ? name : e));
+        throw InputError(
+            fmt::format("{}: expected a .crv, .dat, .poly, .geojson, .json or .shp geometry file after '{}', got '{}'",
+                        name, a.inputs.front(), e.empty() ? name : e));
       }
       files.emplace_back(name);
     }

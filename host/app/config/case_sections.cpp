@@ -64,9 +64,9 @@ void read_geometry_section(const Reader& r, const toml::table& root, CaseConfig&
         choose<CurveKind>(r, "geometry.curves", *n, {{"polyline", CurveKind::Polyline}, {"smooth", CurveKind::Smooth}});
   }
   if (const toml::node* n = find(root, "geometry", "projection")) {
-    c.geometry.projection = choose<ProjectionKind>(
-        r, "geometry.projection", *n,
-        {{"none", ProjectionKind::None}, {"equirectangular", ProjectionKind::Equirectangular}});
+    c.geometry.projection =
+        choose<ProjectionKind>(r, "geometry.projection", *n,
+                               {{"none", ProjectionKind::None}, {"equirectangular", ProjectionKind::Equirectangular}});
   }
 }
 
