@@ -195,6 +195,19 @@ TEST_CASE("GeoJSON: every geometry type, collections, repeats and null geometrie
                     Contains("mixed.geojson:8") && Contains("'road'") && Contains("embedded constraint"));
 }
 
+TEST_CASE("GeoJSON: embedded points are refused by read_geometry, not dropped", "[geometry][geojson]") {
+  const auto dir = pdmesh_test::fresh_dir("geojson_points");
+  const std::string f = write(dir, "wells.geojson",
+                              "{\"type\": \"GeometryCollection\", \"geometries\": [\n"
+                              "{\"type\": \"Polygon\", \"coordinates\": [[[0, 0], [4, 0], [4, 4], [0, 0]]]},\n"
+                              "{\"type\": \"Point\", \"coordinates\": [3, 1]}]}\n");
+  const RawGeometry raw = read_geometry_files({f});
+  CHECK(raw.curves.size() == 1);
+  REQUIRE(raw.points.size() == 1);
+  CHECK(raw.points[0].p == Vec2{3, 1});
+  CHECK_THROWS_WITH(read_geometry({f}, {}), Contains("wells.geojson:1: point (3, 1) is an embedded point"));
+}
+
 TEST_CASE("GeoJSON: a bare geometry in a .json file", "[geometry][geojson]") {
   const Geometry g = read_geometry({data("gis/square.json")}, {});
   CHECK(g.area == 1.0);
