@@ -132,7 +132,7 @@ TEST_CASE("several geometry files make one geometry, and a case file takes no se
   r = run("mesh '" + (dir / "rect.crv").string() + "' '" + (dir / "case.toml").string() + "' --out '" +
           (dir / "out2").string() + "'");
   CHECK(r.status == 2);
-  CHECK(contains(r.output, "expected a .crv, .dat or .poly geometry file"));
+  CHECK(contains(r.output, "expected a .crv, .dat, .poly, .geojson, .json or .shp geometry file"));
   CHECK_FALSE(fs::exists(dir / "out2"));
   fs::remove_all(dir);
 }

@@ -24,7 +24,8 @@ done
 
 packages=(cmake g++ make pkg-config python3
           ocl-icd-opencl-dev opencl-headers opencl-clhpp-headers pocl-opencl-icd clinfo
-          libfmt-dev libcli11-dev libtomlplusplus-dev libmuparser-dev libcairo2-dev zlib1g-dev)
+          libfmt-dev libcli11-dev libtomlplusplus-dev libmuparser-dev libcairo2-dev zlib1g-dev
+          nlohmann-json3-dev libshp-dev)
 [ -n "${PDMESH_NO_PYTHON:-}" ] || packages+=(python3-venv python3-dev)
 [ -z "$tests" ] || packages+=(catch2 libgmp-dev oclgrind hyperfine clang-format-14)
 missing=()

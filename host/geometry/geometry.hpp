@@ -132,11 +132,14 @@ struct Geometry {
 };
 
 // Everything a geometry reader hands on: curves (boundaries and constraints), hole points and
-// embedded points, before validation.
+// embedded points, before validation; with .poly files also the regions and the readers' notes, which
+// build_geometry leaves to the caller (read_geometry copies them onto the Geometry).
 struct RawGeometry {
   std::vector<RawCurve> curves;
   std::vector<RawHolePoint> holes;
   std::vector<RawPoint> points;
+  std::vector<GeometryRegion> regions;
+  std::vector<std::string> notes;
 };
 
 // Validates raw curves and derives everything else. Throws GeometryError naming the file, line,

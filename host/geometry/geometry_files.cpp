@@ -1,5 +1,5 @@
-// read_geometry(): dispatches each geometry file to its reader by extension, applies the curve
-// names and hands everything to build_geometry().
+// read_geometry(): dispatches each geometry file to its reader by extension (and a .dat file by its
+// content), applies the curve names and hands everything to build_geometry().
 #include "geometry/geometry_files.hpp"
 
 #include <algorithm>
@@ -10,8 +10,13 @@
 #include <fmt/format.h>
 
 #include "core/errors.hpp"
+#include "core/progress_notes.hpp"
+#include "geometry/airfoil_reader.hpp"
 #include "geometry/curve_reader.hpp"
+#include "geometry/geojson_reader.hpp"
 #include "geometry/poly_reader.hpp"
+#include "geometry/reader_text.hpp"
+#include "geometry/shapefile_reader.hpp"
 
 namespace pdmesh {
 
@@ -39,52 +44,112 @@ void name_curves(std::vector<RawCurve>& curves, const std::vector<std::string>& 
   }
 }
 
+// A file name's stem as a plain curve-name prefix: characters other than letters, digits, _ . + -
+// become '_'.
+std::string plain_stem(const std::string& path) {
+  std::string stem = std::filesystem::path(path).stem().string();
+  for (char& ch : stem) {
+    const bool plain = (ch >= 'A' && ch <= 'Z') || (ch >= 'a' && ch <= 'z') || (ch >= '0' && ch <= '9') || ch == '_' ||
+                       ch == '.' || ch == '+' || ch == '-';
+    if (!plain) ch = '_';
+  }
+  return stem.empty() ? std::string("airfoil") : stem;
+}
+
 }  // namespace
 
-Geometry read_geometry(const std::vector<std::string>& paths, const std::vector<std::string>& curve_names,
-                       const GeometryOptions& options, const PrepareCurves& prepare) {
+RawGeometry read_geometry_files(const std::vector<std::string>& paths, PolyHull hull, std::string* per_file) {
   if (paths.empty()) throw InputError("no geometry files given");
-  std::vector<RawCurve> curves;
-  std::vector<RawHolePoint> holes;
-  std::vector<RawPoint> points;
-  std::vector<GeometryRegion> regions;
-  std::vector<std::string> notes;
-  std::string per_file;  // "a.crv: 4 curves, b.poly: 1 curve", for the names message
+  RawGeometry raw;
+  std::vector<std::pair<std::size_t, std::size_t>> airfoils;  // [first, last) curves of each airfoil file
+  std::vector<std::string> airfoil_paths;
+  std::string counts;  // "a.crv: 4 curves, b.poly: 1 curve", for the names message
   for (const std::string& path : paths) {
     std::string ext = std::filesystem::path(path).extension().string();
     std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
-    const std::size_t before = curves.size();
-    if (ext == ".crv" || ext == ".dat") {
-      for (RawCurve& c : read_curve_file(path)) curves.push_back(std::move(c));
+    const std::size_t before = raw.curves.size();
+    if (ext == ".crv") {
+      for (RawCurve& c : read_curve_file(path)) raw.curves.push_back(std::move(c));
+    } else if (ext == ".dat") {
+      const std::vector<detail::TokenLine> lines = detail::read_token_lines(path);
+      if (is_count_format(lines)) {
+        for (RawCurve& c : read_curve_file(path)) raw.curves.push_back(std::move(c));
+      } else {
+        AirfoilFile airfoil = read_airfoil_lines(path, lines);
+        for (const std::string& note : airfoil.notes) progress_line("geometry: " + note);
+        for (RawCurve& c : airfoil.curves) raw.curves.push_back(std::move(c));
+        airfoils.emplace_back(before, raw.curves.size());
+        airfoil_paths.push_back(path);
+      }
     } else if (ext == ".poly") {
-      PolyFile poly = read_poly_file(path, options.hull);
-      for (RawCurve& c : poly.curves) curves.push_back(std::move(c));
-      for (RawHolePoint& h : poly.holes) holes.push_back(std::move(h));
-      for (RawPoint& p : poly.points) points.push_back(std::move(p));
-      for (GeometryRegion& r : poly.regions) regions.push_back(std::move(r));
-      for (std::string& n : poly.notes) notes.push_back(std::move(n));
+      PolyFile poly = read_poly_file(path, hull);
+      for (RawCurve& c : poly.curves) raw.curves.push_back(std::move(c));
+      for (RawHolePoint& h : poly.holes) raw.holes.push_back(std::move(h));
+      for (RawPoint& p : poly.points) raw.points.push_back(std::move(p));
+      for (GeometryRegion& r : poly.regions) raw.regions.push_back(std::move(r));
+      for (std::string& n : poly.notes) raw.notes.push_back(std::move(n));
+    } else if (ext == ".geojson" || ext == ".json" || ext == ".shp") {
+      RawGeometry part = ext == ".shp" ? read_shapefile(path) : read_geojson_file(path);
+      for (RawCurve& c : part.curves) raw.curves.push_back(std::move(c));
+      for (RawPoint& p : part.points) raw.points.push_back(std::move(p));
     } else {
-      throw InputError(
-          fmt::format("{}: unsupported geometry file extension '{}' (supported: .crv, .dat, .poly)", path, ext));
+      throw InputError(fmt::format(
+          "{}: unsupported geometry file extension '{}' (supported: .crv, .dat, .poly, .geojson, .json, .shp)", path,
+          ext));
     }
-    const std::size_t n = curves.size() - before;
-    per_file += fmt::format("{}{}: {} curve{}", per_file.empty() ? "" : ", ", path, n, n == 1 ? "" : "s");
+    const std::size_t n = raw.curves.size() - before;
+    counts += fmt::format("{}{}: {} curve{}", counts.empty() ? "" : ", ", path, n, n == 1 ? "" : "s");
   }
-  name_curves(curves, curve_names, per_file);
-  if (prepare) prepare(curves);
-  Geometry g = build_geometry(std::move(curves), holes, options);
-  for (const RawPoint& p : points) g.embedded_points.push_back(p.p);
+  // Two airfoils would both have an `upper`: each name is prefixed by its file's stem.
+  if (airfoils.size() > 1) {
+    std::set<std::string> used;
+    for (std::size_t a = 0; a < airfoils.size(); ++a) {
+      std::string prefix = plain_stem(airfoil_paths[a]);
+      for (int k = 2; !used.insert(prefix).second; ++k) prefix = fmt::format("{}{}", plain_stem(airfoil_paths[a]), k);
+      for (std::size_t c = airfoils[a].first; c < airfoils[a].second; ++c)
+        raw.curves[c].name = prefix + "_" + raw.curves[c].name;
+    }
+  }
+  if (per_file != nullptr) *per_file = std::move(counts);
+  return raw;
+}
+
+namespace {
+
+// The steps after the naming: projection, the prepare step, build_geometry; the regions and notes
+// copied onto the result.
+Geometry build_read_geometry(RawGeometry raw, const GeometryOptions& options, const ReadSteps& steps) {
+  if (steps.projection == ProjectionKind::Equirectangular) {
+    const Equirectangular p = project_lonlat(raw);
+    if (steps.used != nullptr) *steps.used = p;
+  }
+  if (steps.prepare) steps.prepare(raw.curves);
+  std::vector<GeometryRegion> regions = std::move(raw.regions);
+  std::vector<std::string> notes = std::move(raw.notes);
+  Geometry g = build_geometry(std::move(raw), options);
   g.regions = std::move(regions);
   g.notes = std::move(notes);
   return g;
 }
 
+}  // namespace
+
+Geometry read_geometry(const std::vector<std::string>& paths, const std::vector<std::string>& curve_names,
+                       const GeometryOptions& options, const ReadSteps& steps) {
+  std::string per_file;
+  RawGeometry raw = read_geometry_files(paths, options.hull, &per_file);
+  name_curves(raw.curves, curve_names, per_file);
+  return build_read_geometry(std::move(raw), options, steps);
+}
+
 Geometry geometry_from_curves(std::vector<RawCurve> curves, const std::vector<std::string>& curve_names,
-                              const GeometryOptions& options, const PrepareCurves& prepare) {
+                              const GeometryOptions& options, std::vector<RawPoint> points, const ReadSteps& steps) {
   if (curves.empty()) throw InputError("the geometry has no curves");
   name_curves(curves, curve_names, "given in memory");
-  if (prepare) prepare(curves);
-  return build_geometry(std::move(curves), options);
+  RawGeometry raw;
+  raw.curves = std::move(curves);
+  raw.points = std::move(points);
+  return build_read_geometry(std::move(raw), options, steps);
 }
 
 }  // namespace pdmesh

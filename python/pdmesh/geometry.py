@@ -29,8 +29,8 @@ class Geometry:
 
     ``Geometry(rings, names=None)`` takes closed rings, (N, 2) arrays (a ring whose last point is
     not its first is closed for you), one curve each. ``Geometry.from_file(*paths)`` reads
-    .crv/.dat/.poly files, ``Geometry.from_curves(curves)`` takes open polylines that join at their
-    end points (as the curves of a .crv file), and ``Geometry.from_geo_interface(obj)`` (or passing
+    .crv/.dat/.poly/.geojson/.json/.shp files, ``Geometry.from_curves(curves)`` takes open
+    polylines that join at their end points (as the curves of a .crv file), and ``Geometry.from_geo_interface(obj)`` (or passing
     a shapely Polygon/MultiPolygon to the constructor) takes the rings of a GeoJSON-like polygon.
     A GeoJSON-like dict (``{"type": "Polygon", "coordinates": [...]}``) is taken as by
     ``from_geo_interface``. ``names`` names the curves (the boundary markers of the mesh files and ``Mesh.boundary_edges``).
@@ -61,7 +61,8 @@ class Geometry:
 
     @classmethod
     def from_file(cls, *paths: str | os.PathLike, names: Sequence[str] | None = None) -> "Geometry":
-        """Curves read from .crv/.dat/.poly files, in file order (the command's readers)."""
+        """Curves read from .crv/.dat/.poly/.geojson/.json/.shp files, in file order (the command's
+        readers)."""
         if not paths:
             raise InputError("Geometry.from_file: no geometry file given")
         g = cls.__new__(cls)

@@ -47,8 +47,9 @@ nb::dict geometry_of(const CaseConfig& c) {
     std::vector<std::string> files;
     for (const auto& f : c.geometry.files) files.push_back(f.string());
     g = c.geometry.given_curves.empty()
-            ? read_geometry(files, c.geometry.curve_names, options)
-            : geometry_from_curves(c.geometry.given_curves, c.geometry.curve_names, options);
+            ? read_geometry(files, c.geometry.curve_names, options, {c.geometry.projection, nullptr, {}})
+            : geometry_from_curves(c.geometry.given_curves, c.geometry.curve_names, options, {},
+                                   {c.geometry.projection, nullptr, {}});
   }
   nb::list names, curves, loops;
   for (const Curve& curve : g.curves) {

@@ -197,7 +197,9 @@ std::string lower_extension(const fs::path& p) {
   return ext;
 }
 
-bool is_geometry_extension(const std::string& ext) { return ext == ".crv" || ext == ".dat" || ext == ".poly"; }
+bool is_geometry_extension(const std::string& ext) {
+  return ext == ".crv" || ext == ".dat" || ext == ".poly" || ext == ".geojson" || ext == ".json" || ext == ".shp";
+}
 
 CaseConfig config_from(const MeshArguments& a) {
   std::error_code ec;
@@ -230,8 +232,9 @@ CaseConfig config_from(const MeshArguments& a) {
     for (const std::string& name : a.inputs) {
       const std::string e = lower_extension(fs::path(name));
       if (!is_geometry_extension(e) || fs::is_directory(fs::path(name), ec)) {
-        throw InputError(fmt::format("{}: expected a .crv, .dat or .poly geometry file after '{}', got '{}'", name,
-                                     a.inputs.front(), e.empty() ? name : e));
+        throw InputError(
+            fmt::format("{}: expected a .crv, .dat, .poly, .geojson, .json or .shp geometry file after '{}', got '{}'",
+                        name, a.inputs.front(), e.empty() ? name : e));
       }
       files.emplace_back(name);
     }
@@ -239,7 +242,7 @@ CaseConfig config_from(const MeshArguments& a) {
   } else {
     throw InputError(
         fmt::format("{}: unknown input type '{}' (expected a case .toml, a case directory or a .crv, "
-                    ".dat or .poly geometry file)",
+                    ".dat, .poly, .geojson, .json or .shp geometry file)",
                     a.inputs.front(), ext));
   }
   config.out_dir = a.out;

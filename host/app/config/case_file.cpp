@@ -107,12 +107,13 @@ void check_keys(const Reader& r, const toml::table& t, const std::string& prefix
 
 // Keys whose value is a string: an override such as "spacing.expression=2" means the text.
 bool is_string_key(const std::string& key) {
-  return key == "name" || key == "preset" || key == "geometry.curves" || key == "boundary.nodes" ||
-         key == "spacing.field" || key == "spacing.expression" || key == "spacing.file" || key == "spacing.array" ||
-         key == "spacing.h1" || key == "spacing.h2" || key == "spacing.angle" || key == "spacing.m11" ||
-         key == "spacing.m12" || key == "spacing.m22" || key == "spacing.sol" || key == "spacing.function" ||
-         key == "init.method" || key == "simulation.device" || key == "simulation.precision" ||
-         key == "simulation.r0_rule" || key == "simulation.stop" || key == "output.color_by" || key == "farfield.shape";
+  return key == "name" || key == "preset" || key == "geometry.curves" || key == "geometry.projection" ||
+         key == "boundary.nodes" || key == "spacing.field" || key == "spacing.expression" || key == "spacing.file" ||
+         key == "spacing.array" || key == "spacing.h1" || key == "spacing.h2" || key == "spacing.angle" ||
+         key == "spacing.m11" || key == "spacing.m12" || key == "spacing.m22" || key == "spacing.sol" ||
+         key == "spacing.function" || key == "init.method" || key == "simulation.device" ||
+         key == "simulation.precision" || key == "simulation.r0_rule" || key == "simulation.stop" ||
+         key == "output.color_by" || key == "farfield.shape";
 }
 
 // Parses an override's value as TOML; a bare word that is not TOML (random, a.crv) is a string.
@@ -225,6 +226,7 @@ const std::vector<std::string>& case_file_keys() {
       "geometry.hull",
       "geometry.curves",
       "geometry.heal",
+      "geometry.projection",
       "spacing.field",
       "spacing.expression",
       "spacing.file",

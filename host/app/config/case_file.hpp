@@ -14,6 +14,7 @@
 #include "core/vec2.hpp"
 #include "geometry/farfield.hpp"
 #include "geometry/geometry.hpp"
+#include "geometry/projection.hpp"
 #include "init/initial_distribution.hpp"
 #include "sim/population.hpp"
 #include "spacing/background_field.hpp"
@@ -84,6 +85,9 @@ struct CaseConfig {
     CurveKind curves = CurveKind::Polyline;  // the same in both presets (docs/initialization.md, "Measured")
     // Healing at the mesh's resolution (geometry/heal.hpp); the preset sets it (off in the thesis).
     bool heal = true;
+    // "equirectangular": lon/lat input meshed in metres, outputs written back in lon/lat
+    // (geometry/projection.hpp, docs/geometry-input.md).
+    ProjectionKind projection = ProjectionKind::None;
   } geometry;
 
   struct Spacing {

@@ -31,7 +31,7 @@ void read_geometry_section(const Reader& r, const toml::table& root, CaseConfig&
     if (files != nullptr)
       r.fail("geometry.files", files, "geometry.files cannot be set: the geometry is given as curves");
   } else if (files == nullptr && !r.partial()) {
-    throw InputError(fmt::format("{}: geometry.files is required (the .crv/.dat/.poly files to mesh)", r.file()));
+    throw InputError(fmt::format("{}: geometry.files is required (the geometry files to mesh)", r.file()));
   }
   if (files != nullptr && c.geometry.given_curves.empty()) {
     const std::vector<std::string> names = r.strings("geometry.files", *files);
@@ -66,6 +66,11 @@ void read_geometry_section(const Reader& r, const toml::table& root, CaseConfig&
   if (const toml::node* n = find(root, "geometry", "curves")) {
     c.geometry.curves =
         choose<CurveKind>(r, "geometry.curves", *n, {{"polyline", CurveKind::Polyline}, {"smooth", CurveKind::Smooth}});
+  }
+  if (const toml::node* n = find(root, "geometry", "projection")) {
+    c.geometry.projection =
+        choose<ProjectionKind>(r, "geometry.projection", *n,
+                               {{"none", ProjectionKind::None}, {"equirectangular", ProjectionKind::Equirectangular}});
   }
 }
 

@@ -182,6 +182,9 @@ std::unique_ptr<LayeredCase> build_layers(const CaseConfig& config, const MeshIn
   core.geometry.curves = CurveKind::Polyline;  // the fronts are polylines of layer nodes
   core.farfield = {};                          // the case's far field is among the curves already
   core.spacing.regions.clear();                // and its regions in the case's field, `field`
+  // The fronts are in the meshing plane already (geometry.projection); the caller hands the core
+  // the case's projection for its outputs.
+  core.geometry.projection = ProjectionKind::None;
   // The case's final field (already scaled) is the core's base field, lowered at the fronts.
   const double gradation = config.spacing.gradation > 0.0 ? config.spacing.gradation : 0.2;
   core.spacing.given = std::make_shared<FrontSpacing>(field, std::move(sources), gradation);
@@ -563,7 +566,13 @@ void write_layered_outputs(const CaseConfig& config, const MeshInputs& inputs, c
   std::vector<fs::path> written;
   {
     const auto writer_timer = phases.phase("mesh files");
-    written = write_mixed_mesh(mixed, config.out_dir, "mesh", formats);
+    // geometry.projection: the files get lon/lat, like the triangle meshes' (mesh_outputs.cpp).
+    MixedMesh lonlat;
+    if (inputs.projection) {
+      lonlat = mixed;
+      inputs.projection->inverse(lonlat.points);
+    }
+    written = write_mixed_mesh(inputs.projection ? lonlat : mixed, config.out_dir, "mesh", formats);
   }
   std::vector<std::string> pictures;
   if (config.output.wants("png")) {

@@ -46,9 +46,12 @@ MeshInputs::MeshInputs(const CaseConfig& config) {
       if (!healing.changes.empty()) heal_input = std::move(before);
     };
   }
+  Equirectangular used;
+  const ReadSteps steps{config.geometry.projection, &used, prepare};
   geometry = config.geometry.given_curves.empty()
-                 ? read_geometry(files, config.geometry.curve_names, options, prepare)
-                 : geometry_from_curves(config.geometry.given_curves, config.geometry.curve_names, options, prepare);
+                 ? read_geometry(files, config.geometry.curve_names, options, steps)
+                 : geometry_from_curves(config.geometry.given_curves, config.geometry.curve_names, options, {}, steps);
+  if (config.geometry.projection == ProjectionKind::Equirectangular) projection = used;
   // What the readers did beyond the plain reading (a .poly's loops read as subdomains, vertices kept
   // or dropped): always said, also when quiet, since the mesh differs from what the file may suggest.
   for (const std::string& note : geometry.notes) fmt::print(stderr, "pdmesh: note: {}\n", note);

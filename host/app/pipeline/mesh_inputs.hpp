@@ -13,6 +13,7 @@
 #include "geometry/geometry.hpp"
 #include "geometry/geometry_tree.hpp"
 #include "geometry/heal.hpp"
+#include "geometry/projection.hpp"
 #include "geometry/smooth_curve.hpp"
 #include "init/initial_distribution.hpp"
 #include "nodes/node_set.hpp"
@@ -64,6 +65,9 @@ struct MeshInputs {
   // What a refusal by --max-nodes appends: where eq. 3.6's q comes from (empty unless the field is
   // eq. 3.6 of the input segments).
   std::string node_hint;
+  // geometry.projection = "equirectangular": the projection the geometry was read through; the mesh
+  // and node files map their coordinates back with it (app/pipeline/mesh_outputs.cpp).
+  std::optional<Equirectangular> projection;
 
   const Geometry& node_geometry() const { return dense ? dense->geometry : geometry; }
   const GeometryTree& node_tree() const { return dense ? *dense_tree : *tree; }

@@ -36,6 +36,26 @@ using mesh_detail::kSvgNodeLimit;
 using mesh_detail::progress;
 using mesh_detail::write_node_outputs;
 
+namespace {
+
+// The one place where the coordinates handed to the mesh and node file writers leave the meshing
+// plane: with geometry.projection they are mapped back to lon/lat (a copy; the pipeline's stay in
+// metres, and so do the pictures, q and the quality figures).
+const Mesh& as_written(const MeshInputs& inputs, const Mesh& mesh, Mesh& copy) {
+  if (!inputs.projection) return mesh;
+  copy = mesh;
+  inputs.projection->inverse(copy.points);
+  return copy;
+}
+const NodeSet& as_written(const MeshInputs& inputs, const NodeSet& nodes, NodeSet& copy) {
+  if (!inputs.projection) return nodes;
+  copy = nodes;
+  inputs.projection->inverse(copy.x);
+  return copy;
+}
+
+}  // namespace
+
 void prepare_output_directory(const CaseConfig& config) {
   std::error_code ec;
   fs::create_directories(config.out_dir, ec);
@@ -59,7 +79,8 @@ void mesh_detail::write_node_outputs(const CaseConfig& config, const MeshInputs&
   const fs::path& dir = config.out_dir;
   {
     const auto timer = run.phase(stage + ".nodes");
-    write_node_file(dir / (stage + ".nodes"), nodes, inputs.curve_names());
+    NodeSet copy;
+    write_node_file(dir / (stage + ".nodes"), as_written(inputs, nodes, copy), inputs.curve_names());
   }
   NodePictureOptions picture;
   picture.title = title;
@@ -364,17 +385,20 @@ void write_mesh_outputs(const CaseConfig& config, const MeshInputs& inputs, cons
     write_heal_picture(dir / "healing.png", inputs.heal_input, inputs.healing, config.name);
   }
   std::vector<fs::path> written;
+  Mesh lonlat_mesh;
+  const Mesh& mesh_out = as_written(inputs, mesh, lonlat_mesh);
   for (const std::string& f : config.output.formats) {
     if (!is_mesh_format(f)) continue;
     const auto writer_timer = phases.phase(fmt::format("mesh {}", f));
-    for (fs::path& p : write_mesh(mesh, dir, "mesh", {f}, {config.output.open_boundaries}))
+    for (fs::path& p : write_mesh(mesh_out, dir, "mesh", {f}, {config.output.open_boundaries}))
       written.push_back(std::move(p));
   }
   {
     // The nodes of the mesh with their q, kinds and curve chains (final.nodes after the cleanup; the
     // same nodes without it), for tools that need the mesh's boundary chains, like tools/eval/compare.
     const auto nodes_timer = phases.phase("mesh.nodes");
-    write_node_file(dir / "mesh.nodes", mesh_nodes, inputs.curve_names());
+    NodeSet copy;
+    write_node_file(dir / "mesh.nodes", as_written(inputs, mesh_nodes, copy), inputs.curve_names());
   }
   {
     const auto wait_timer = phases.phase("waiting for pictures");

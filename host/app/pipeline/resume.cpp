@@ -56,6 +56,7 @@ std::vector<std::pair<std::string, std::string>> case_identity(const CaseConfig&
   // existed keep their identity.
   if (config.geometry.curves != CurveKind::Polyline) keys.emplace_back("geometry.curves", "smooth");
   if (config.boundary.nodes != BoundaryNodeRule::Input) keys.emplace_back("boundary.nodes", "spacing");
+  if (config.geometry.projection != ProjectionKind::None) keys.emplace_back("geometry.projection", "equirectangular");
   keys.emplace_back("spacing.field", config.spacing.field == SpacingKind::Expression ? "expression"
                                      : config.spacing.field == SpacingKind::Mesh     ? "mesh"
                                      : config.spacing.field == SpacingKind::Metric   ? "metric"
