@@ -69,10 +69,10 @@ Geometry read_geometry(const std::vector<std::string>& paths, const std::vector<
 }
 
 Geometry geometry_from_curves(std::vector<RawCurve> curves, const std::vector<std::string>& curve_names,
-                              const GeometryOptions& options) {
+                              const GeometryOptions& options, std::vector<RawPoint> points) {
   if (curves.empty()) throw InputError("the geometry has no curves");
   name_curves(curves, curve_names, "given in memory");
-  return build_geometry(std::move(curves), options);
+  return build_geometry(RawGeometry{std::move(curves), {}, std::move(points)}, options);
 }
 
 }  // namespace pdmesh

@@ -16,8 +16,8 @@ Geometry read_geometry(const std::vector<std::string>& paths, const std::vector<
                        const GeometryOptions& options = {});
 
 // The same for curves given in memory (the Python API): names them from curve_names like
-// read_geometry() (the same errors) and builds the geometry.
+// read_geometry() (the same errors) and builds the geometry, with the embedded `points`.
 Geometry geometry_from_curves(std::vector<RawCurve> curves, const std::vector<std::string>& curve_names,
-                              const GeometryOptions& options = {});
+                              const GeometryOptions& options = {}, std::vector<RawPoint> points = {});
 
 }  // namespace pdmesh

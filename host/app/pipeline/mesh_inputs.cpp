@@ -29,7 +29,8 @@ MeshInputs::MeshInputs(const CaseConfig& config) {
   options.corner_angle_deg = config.geometry.corner_angle;
   geometry = config.geometry.given_curves.empty()
                  ? read_geometry(files, config.geometry.curve_names, options)
-                 : geometry_from_curves(config.geometry.given_curves, config.geometry.curve_names, options);
+                 : geometry_from_curves(config.geometry.given_curves, config.geometry.curve_names, options,
+                                        config.geometry.given_points);
   // Curve names are fields in node and mesh files; one with white space would break them later.
   for (std::size_t c = 0; c < geometry.curves.size(); ++c) {
     const std::string& name = geometry.curves[c].name;
@@ -84,7 +85,13 @@ MeshInputs::MeshInputs(const CaseConfig& config) {
   // refine without end.
   check_coordinate_resolution(geometry, *spacing);
   boundary_rule = config.boundary.nodes;
-  if (config.geometry.curves == CurveKind::Smooth) {
+  const bool embedded = !geometry.embedded_points.empty() ||
+                        std::any_of(geometry.curves.begin(), geometry.curves.end(),
+                                    [](const Curve& c) { return c.constraint; });
+  if (config.geometry.curves == CurveKind::Smooth && embedded) {
+    // The dense curves would have to meet where the polylines do; the polylines are meshed instead.
+    smooth_fallback = "smooth curves do not support embedded constraints and points yet";
+  } else if (config.geometry.curves == CurveKind::Smooth) {
     DenseOptions dense_options;
     dense_options.join_tolerance = config.geometry.join_tolerance;
     try {
