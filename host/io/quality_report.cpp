@@ -266,6 +266,13 @@ std::string quality_json(const QualitySummary& s, const std::string& source) {
         num(m.length_max), num(m.q_min), num(m.q_mean), num(m.q_below_0_3_percent), histogram, num(m.complexity),
         num(m.ideal_triangles), num(m.n_over_ideal));
   }
+  if (!s.constraints.empty()) {
+    // Only with embedded constraints, so that other runs' files stay as they were.
+    std::string list;
+    for (const auto& [name, edges] : s.constraints)
+      list += fmt::format("{}{{\"curve\": {}, \"edges\": {}}}", list.empty() ? "" : ", ", json_string(name), edges);
+    out += fmt::format("  \"constraints\": [{}],\n", list);
+  }
   out += fmt::format("  \"cleanup\": {}\n", cleanup);
   out += "}\n";
   return out;
