@@ -243,6 +243,12 @@ class Splitter {
     } else {
       const Vec2 r = s.b - s.a, q = t.b - t.a;
       p = s.a + std::clamp(cross(t.a - s.a, q) / cross(r, q), 0.0, 1.0) * r;
+      // On an axis-parallel segment the crossing keeps its constant coordinate exactly (roads and
+      // grids cross so; the rounded point then lies on that segment).
+      for (const SegmentRef* u : {&s, &t}) {
+        if (u->a.x == u->b.x) p.x = u->a.x;
+        if (u->a.y == u->b.y) p.y = u->a.y;
+      }
     }
     add(s.curve, s.index, s.a, s.b, p);
     add(t.curve, t.index, t.a, t.b, p);
