@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <filesystem>
 #include <set>
 #include <string>
@@ -15,7 +16,6 @@
 #include "app/pipeline/mesh_inputs.hpp"
 #include "app/pipeline/mesh_pipeline.hpp"
 #include "core/errors.hpp"
-#include "core/predicates.hpp"
 #include "geometry/geometry.hpp"
 #include "geometry/geometry_tree.hpp"
 #include "mesh/mesh_check.hpp"
@@ -59,11 +59,13 @@ TEST_CASE("constraints: an open crack joins no loop and keeps the domain", "[geo
   REQUIRE(g.loops.size() == 1);
   CHECK(g.loops[0].curves == std::vector<int>{0});
   CHECK(g.area == 1.0);
-  // Both crack ends are critical points of the crack alone; its middle vertex is not (a 22-degree turn).
+  // Every crack vertex is a critical point of the crack alone (its middle one too: a constraint's
+  // input vertices are kept).
   REQUIRE(critical_at(g, {0.2, 0.3}) != nullptr);
   REQUIRE(critical_at(g, {0.8, 0.35}) != nullptr);
   CHECK(critical_at(g, {0.2, 0.3})->curves == std::vector<int>{1});
-  CHECK(critical_at(g, {0.5, 0.4}) == nullptr);
+  REQUIRE(critical_at(g, {0.5, 0.4}) != nullptr);
+  CHECK(g.curves[0].critical == std::vector<std::uint8_t>{1, 1, 1, 1, 1});
   // The tree's inside test and crossing test do not see the crack.
   const GeometryTree tree(g);
   CHECK(tree.inside({0.5, 0.2}));
@@ -171,8 +173,11 @@ struct Run {
 
 // The whole pipeline on curves and points given in memory (the Python API's path), host backend,
 // nothing written.
-Mesh mesh_of(const std::vector<RawCurve>& curves, const std::vector<RawPoint>& points, Geometry& geometry) {
-  CaseConfig config = case_for_curves(curves, "constraints", {parse_set_option("simulation.device=host")});
+Mesh mesh_of(const std::vector<RawCurve>& curves, const std::vector<RawPoint>& points, Geometry& geometry,
+             const std::vector<std::string>& settings = {}) {
+  std::vector<CaseOverride> overrides = {parse_set_option("simulation.device=host")};
+  for (const std::string& s : settings) overrides.push_back(parse_set_option(s));
+  CaseConfig config = case_for_curves(curves, "constraints", overrides);
   config.geometry.given_points = points;
   config.write_outputs = false;
   config.quiet = true;
@@ -203,25 +208,36 @@ double check_constrained(const Geometry& g, const Mesh& mesh, const std::vector<
     INFO("input vertex (" << p.x << ", " << p.y << ")");
     CHECK(node_at(p) >= 0);
   }
-  for (const Curve& c : g.curves) {
-    if (!c.constraint) continue;
-    for (std::size_t k = 0; k + 1 < c.points.size(); ++k) {
-      const Vec2 a = c.points[k], b = c.points[k + 1];
-      // The nodes on the segment, ordered along it, must be joined by mesh edges in order.
-      std::vector<std::pair<double, int>> on;
-      for (std::size_t i = 0; i < mesh.points.size(); ++i) {
-        const Vec2 p = mesh.points[i];
-        if (orient2d(a, b, p) != 0.0) continue;
-        const double t = dot(p - a, b - a) / dot(b - a, b - a);
-        if (t >= 0.0 && t <= 1.0) on.push_back({t, static_cast<int>(i)});
-      }
-      std::sort(on.begin(), on.end());
-      INFO("curve " << c.name << " segment " << k);
-      REQUIRE(on.size() >= 2);
-      CHECK(on.front().first == 0.0);
-      CHECK(on.back().first == 1.0);
-      for (std::size_t i = 0; i + 1 < on.size(); ++i) CHECK(edges.count(std::minmax(on[i].second, on[i + 1].second)));
+  // Each constraint's boundary edges form one chain of mesh edges from its first input point to its
+  // last, through every input point in order, every node of it on the input polyline.
+  for (std::size_t c = 0; c < g.curves.size(); ++c) {
+    const Curve& curve = g.curves[c];
+    if (!curve.constraint) continue;
+    INFO("constraint " << curve.name);
+    std::vector<int> chain;
+    for (const BoundaryEdge& e : mesh.boundary_edges) {
+      if (e.curve != static_cast<int>(c)) continue;
+      if (chain.empty()) chain.push_back(e.a);
+      CHECK(chain.back() == e.a);
+      chain.push_back(e.b);
+      CHECK(edges.count(std::minmax(e.a, e.b)));
     }
+    REQUIRE(chain.size() >= 2);
+    std::size_t next = 0;  // the next input point to meet along the chain
+    for (const int node : chain) {
+      const Vec2 p = mesh.points[static_cast<std::size_t>(node)];
+      if (next < curve.points.size() && p == curve.points[next]) ++next;
+      double d = HUGE_VAL;
+      for (std::size_t k = 0; k + 1 < curve.points.size(); ++k) {
+        const Vec2 a = curve.points[k], b = curve.points[k + 1];
+        const double t = std::clamp(dot(p - a, b - a) / dot(b - a, b - a), 0.0, 1.0);
+        d = std::min(d, dist(p, a + t * (b - a)));
+      }
+      CHECK(d <= 1e-12);
+    }
+    CHECK(next == curve.points.size());
+    CHECK(mesh.points[static_cast<std::size_t>(chain.front())] == curve.points.front());
+    CHECK(mesh.points[static_cast<std::size_t>(chain.back())] == curve.points.back());
   }
   double smallest = 180.0;
   for (const auto& t : mesh.triangles)

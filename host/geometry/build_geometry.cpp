@@ -268,7 +268,8 @@ void find_grouped_critical_points(Geometry& g, const std::vector<std::vector<std
     const int n = static_cast<int>(curve.points.size());
     curve.critical.assign(n, 0);
     for (int k = 0; k < n; ++k) {
-      bool critical = k == 0 || k == n - 1 || curve.fixed_points || forced[c][k];
+      // Every input vertex of a constraint is kept (a node of the mesh), like a critical point.
+      bool critical = k == 0 || k == n - 1 || curve.fixed_points || curve.constraint || forced[c][k];
       if (!critical) {
         const Vec2 in = curve.points[k] - curve.points[k - 1];
         const Vec2 out = curve.points[k + 1] - curve.points[k];
