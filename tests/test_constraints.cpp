@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
+#include <map>
 #include <set>
 #include <string>
 #include <vector>
@@ -18,6 +19,7 @@
 #include "core/errors.hpp"
 #include "geometry/geometry.hpp"
 #include "geometry/geometry_tree.hpp"
+#include "io/mesh_formats.hpp"
 #include "mesh/mesh_check.hpp"
 #include "mesh/quality.hpp"
 #include "temp_files.hpp"
@@ -280,11 +282,26 @@ TEST_CASE("constraints, whole run: a crack, a T, a crossing, a levee and points"
     for (const Vec2 p : curves[c].points) vertices.push_back(p);
   const double angle = check_constrained(g, mesh, vertices);
   CHECK(angle >= 30.0);
-  // The constraint edges carry their curves.
+  // The constraint edges carry their curves, and the mesh files keep them by name (line elements
+  // in .msh, markers in .su2, segments in Triangle's .poly).
   REQUIRE(mesh.constraint_curves.size() == curves.size());
-  std::set<int> curves_with_edges;
-  for (const BoundaryEdge& e : mesh.boundary_edges) curves_with_edges.insert(e.curve);
-  CHECK(curves_with_edges.size() == curves.size());
+  std::map<std::string, std::size_t> per_curve;
+  for (const BoundaryEdge& e : mesh.boundary_edges) ++per_curve[mesh.curve_names[static_cast<std::size_t>(e.curve)]];
+  CHECK(per_curve.size() == curves.size());
+  const auto dir = pdmesh_test::fresh_dir("constraints_formats");
+  write_mesh(mesh, dir, "mesh", {"msh", "su2", "triangle"});
+  for (const char* file : {"mesh.msh", "mesh.su2", "mesh.ele"}) {
+    INFO(file);
+    const Mesh back = read_mesh(dir / file);
+    CHECK(back.triangles.size() == mesh.triangles.size());
+    std::map<std::string, std::size_t> back_per_curve;
+    for (const BoundaryEdge& e : back.boundary_edges)
+      ++back_per_curve[back.curve_names.empty() ? std::to_string(e.curve)
+                                                : back.curve_names[static_cast<std::size_t>(e.curve)]];
+    if (std::string(file) != "mesh.ele") CHECK(back_per_curve == per_curve);
+    else CHECK(back.boundary_edges.size() == mesh.boundary_edges.size());
+  }
+  std::filesystem::remove_all(dir);
 }
 
 TEST_CASE("constraints, whole run: a closed constraint loop bounds a subdomain, not a hole", "[app][constraints]") {
