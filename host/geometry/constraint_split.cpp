@@ -50,20 +50,26 @@ class Splitter {
   // Constraint ends within the tolerance of another curve's vertex move onto it (before the ends are
   // snapped into joints, so that ends moved onto one vertex join).
   void snap_ends_to_vertices() {
-    for (Curve& c : curves_) {
-      if (!c.constraint) continue;
-      for (const std::size_t k : {std::size_t{0}, c.points.size() - 1}) {
-        Vec2& e = c.points[k];
+    // Every vertex by x (and its curve), for a range query around each end.
+    std::vector<std::pair<Vec2, std::size_t>> by_x;
+    for (std::size_t c = 0; c < curves_.size(); ++c)
+      for (const Vec2 v : curves_[c].points) by_x.push_back({v, c});
+    std::sort(by_x.begin(), by_x.end(), [](const auto& u, const auto& w) { return u.first.x < w.first.x; });
+    for (std::size_t c = 0; c < curves_.size(); ++c) {
+      Curve& curve = curves_[c];
+      if (!curve.constraint) continue;
+      for (const std::size_t k : {std::size_t{0}, curve.points.size() - 1}) {
+        Vec2& e = curve.points[k];
         double best = tolerance_;
         Vec2 to = e;
-        for (const Curve& d : curves_) {
-          if (&d == &c) continue;
-          for (const Vec2 v : d.points) {
-            const double dd = dist(e, v);
-            if (dd > 0.0 && dd <= best) {
-              best = dd;
-              to = v;
-            }
+        auto it = std::lower_bound(by_x.begin(), by_x.end(), e.x - tolerance_,
+                                   [](const auto& u, double x) { return u.first.x < x; });
+        for (; it != by_x.end() && it->first.x <= e.x + tolerance_; ++it) {
+          if (it->second == c) continue;
+          const double dd = dist(e, it->first);
+          if (dd > 0.0 && dd <= best) {
+            best = dd;
+            to = it->first;
           }
         }
         e = to;
@@ -80,16 +86,23 @@ class Splitter {
       for (std::size_t k = 0; k + 1 < pts.size(); ++k)
         all.push_back({static_cast<int>(c), static_cast<int>(k), pts[k], pts[k + 1]});
     }
-    // Sorted by the low x of their boxes: each constraint segment scans only those that can reach it.
+    // Sorted by the low x of their boxes: each constraint segment scans only those that can reach it,
+    // from the first whose low x is within the widest box's width (and the tolerance) of its own.
     std::sort(all.begin(), all.end(),
               [](const SegmentRef& s, const SegmentRef& t) { return std::min(s.a.x, s.b.x) < std::min(t.a.x, t.b.x); });
+    double widest = 0.0;
+    for (const SegmentRef& t : all) widest = std::max(widest, std::fabs(t.b.x - t.a.x));
     for (std::size_t i = 0; i < all.size(); ++i) {
       const SegmentRef& s = all[i];
       if (!curves_[s.curve].constraint) continue;
       const double hi_x = std::max(s.a.x, s.b.x) + tolerance_;
+      const double from_x = std::min(s.a.x, s.b.x) - tolerance_ - widest;
+      const auto first = std::lower_bound(all.begin(), all.end(), from_x, [](const SegmentRef& t, double x) {
+        return std::min(t.a.x, t.b.x) < x;
+      });
       // Segments before i whose box reaches s were scanned when they were s (if constraints) or are
       // scanned here (boundaries): go back over the boundaries among them.
-      for (std::size_t j = 0; j < all.size(); ++j) {
+      for (auto j = static_cast<std::size_t>(first - all.begin()); j < all.size(); ++j) {
         const SegmentRef& t = all[j];
         if (j > i && std::min(t.a.x, t.b.x) > hi_x) break;
         if (j == i || t.curve == s.curve) continue;
