@@ -82,7 +82,7 @@ TEST_CASE("constraints: an open crack joins no loop and keeps the domain", "[geo
 TEST_CASE("constraints: a T-junction and a crossing become shared critical vertices", "[geometry][constraints]") {
   RawGeometry raw;
   raw.curves = {unit_square(), curve({{0.2, 0.5}, {0.8, 0.5}}, "bar", true),
-                curve({{0.5, 0.2}, {0.5, 0.5}}, "stem", true),  // ends on the bar: a T
+                curve({{0.5, 0.2}, {0.5, 0.5}}, "stem", true),    // ends on the bar: a T
                 curve({{0.3, 0.3}, {0.3, 0.7}}, "cross", true)};  // crosses the bar at (0.3, 0.5)
   const Geometry g = build_geometry(raw);
   CHECK(has_vertex(g.curves[1], {0.5, 0.5}));
@@ -142,7 +142,8 @@ TEST_CASE("constraints: refused outside the domain, in a hole, along a curve", "
   const RawCurve hole = curve({{0.3, 0.3}, {0.6, 0.3}, {0.6, 0.6}, {0.3, 0.6}, {0.3, 0.3}}, "hole");
   RawGeometry raw;
   raw.curves = {unit_square(), curve({{1.2, 0.5}, {1.5, 0.5}}, "far", true, 7)};
-  CHECK_THROWS_WITH(build_geometry(raw), Contains("test.crv:7") && Contains("constraint curve 'far' leaves the domain") &&
+  CHECK_THROWS_WITH(build_geometry(raw), Contains("test.crv:7") &&
+                                             Contains("constraint curve 'far' leaves the domain") &&
                                              Contains("(1.2, 0.5)"));
   // Partly outside: it crosses the boundary (split there), the outer piece is named.
   raw.curves[1] = curve({{0.5, 0.5}, {1.5, 0.5}}, "out", true, 9);
@@ -153,7 +154,8 @@ TEST_CASE("constraints: refused outside the domain, in a hole, along a curve", "
   // A point in the hole.
   raw.curves = {unit_square(), hole, curve({{0.1, 0.1}, {0.2, 0.2}}, "ok", true)};
   raw.points = {{{0.45, 0.45}, "pts.txt", 2}};
-  CHECK_THROWS_WITH(build_geometry(raw), Contains("pts.txt:2") && Contains("point (0.45, 0.45) lies outside the domain"));
+  CHECK_THROWS_WITH(build_geometry(raw),
+                    Contains("pts.txt:2") && Contains("point (0.45, 0.45) lies outside the domain"));
   // Running along the boundary.
   raw.points.clear();
   raw.curves = {unit_square(), curve({{0.2, 0.0}, {0.7, 0.0}}, "along", true)};
@@ -267,13 +269,12 @@ TEST_CASE("constraints, whole run: the plain square's minimum angle for referenc
 }
 
 TEST_CASE("constraints, whole run: a crack, a T, a crossing, a levee and points", "[app][constraints]") {
-  const std::vector<RawCurve> curves = {
-      square_boundary(),
-      curve({{0.15, 0.3}, {0.45, 0.35}, {0.7, 0.3}}, "crack", true),
-      curve({{0.2, 0.7}, {0.8, 0.7}}, "bar", true),
-      curve({{0.5, 0.5}, {0.5, 0.7}}, "stem", true),   // a T under the bar
-      curve({{0.3, 0.6}, {0.3, 0.85}}, "cross", true),  // crosses the bar
-      curve({{1.0, 0.45}, {0.8, 0.5}}, "levee", true)};  // from the boundary inland
+  const std::vector<RawCurve> curves = {square_boundary(),
+                                        curve({{0.15, 0.3}, {0.45, 0.35}, {0.7, 0.3}}, "crack", true),
+                                        curve({{0.2, 0.7}, {0.8, 0.7}}, "bar", true),
+                                        curve({{0.5, 0.5}, {0.5, 0.7}}, "stem", true),     // a T under the bar
+                                        curve({{0.3, 0.6}, {0.3, 0.85}}, "cross", true),   // crosses the bar
+                                        curve({{1.0, 0.45}, {0.8, 0.5}}, "levee", true)};  // from the boundary inland
   const std::vector<RawPoint> points = {{{0.8, 0.15}, "pts", 1}, {{0.2, 0.12}, "pts", 2}};
   Geometry g;
   const Mesh mesh = mesh_of(curves, points, g);
@@ -298,8 +299,10 @@ TEST_CASE("constraints, whole run: a crack, a T, a crossing, a levee and points"
     for (const BoundaryEdge& e : back.boundary_edges)
       ++back_per_curve[back.curve_names.empty() ? std::to_string(e.curve)
                                                 : back.curve_names[static_cast<std::size_t>(e.curve)]];
-    if (std::string(file) != "mesh.ele") CHECK(back_per_curve == per_curve);
-    else CHECK(back.boundary_edges.size() == mesh.boundary_edges.size());
+    if (std::string(file) != "mesh.ele")
+      CHECK(back_per_curve == per_curve);
+    else
+      CHECK(back.boundary_edges.size() == mesh.boundary_edges.size());
   }
   std::filesystem::remove_all(dir);
 }

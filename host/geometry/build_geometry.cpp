@@ -433,8 +433,8 @@ Geometry build_geometry(RawGeometry raw, const GeometryOptions& options) {
                                                            [](const RawCurve& c) { return c.constraint; });
   if (!embedded) return build_geometry(std::move(raw.curves), raw.holes, options);
   if (std::all_of(raw.curves.begin(), raw.curves.end(), [](const RawCurve& c) { return c.constraint; })) {
-    const std::string first = raw.curves.empty() ? std::string("point input")
-                                                 : where(raw.curves[0].file, raw.curves[0].line);
+    const std::string first =
+        raw.curves.empty() ? std::string("point input") : where(raw.curves[0].file, raw.curves[0].line);
     throw GeometryError(fmt::format(
         "{}: the geometry has embedded constraints or points but no boundary curve; they need a domain to lie in",
         raw.curves.empty() && !raw.points.empty() ? where(raw.points[0].file, raw.points[0].line) : first));

@@ -97,9 +97,8 @@ class Splitter {
       if (!curves_[s.curve].constraint) continue;
       const double hi_x = std::max(s.a.x, s.b.x) + tolerance_;
       const double from_x = std::min(s.a.x, s.b.x) - tolerance_ - widest;
-      const auto first = std::lower_bound(all.begin(), all.end(), from_x, [](const SegmentRef& t, double x) {
-        return std::min(t.a.x, t.b.x) < x;
-      });
+      const auto first = std::lower_bound(all.begin(), all.end(), from_x,
+                                          [](const SegmentRef& t, double x) { return std::min(t.a.x, t.b.x) < x; });
       // Segments before i whose box reaches s were scanned when they were s (if constraints) or are
       // scanned here (boundaries): go back over the boundaries among them.
       for (auto j = static_cast<std::size_t>(first - all.begin()); j < all.size(); ++j) {
@@ -119,15 +118,16 @@ class Splitter {
     std::vector<RawPoint> free;
     for (const RawPoint& rp : points) {
       if (!std::isfinite(rp.p.x) || !std::isfinite(rp.p.y))
-        throw GeometryError(fmt::format("{}: point ({}, {}) has a non-finite coordinate", where(rp.file, rp.line),
-                                        rp.p.x, rp.p.y));
+        throw GeometryError(
+            fmt::format("{}: point ({}, {}) has a non-finite coordinate", where(rp.file, rp.line), rp.p.x, rp.p.y));
       int best_c = -1, best_k = -1;
       double best = tolerance_;
       Vec2 at;
       for (std::size_t c = 0; c < curves_.size(); ++c) {
         const auto& pts = curves_[c].points;
         for (std::size_t k = 0; k + 1 < pts.size(); ++k) {
-          const Vec2 q = point_on_segment_exact(pts[k], pts[k + 1], rp.p) ? rp.p : closest_point(pts[k], pts[k + 1], rp.p);
+          const Vec2 q =
+              point_on_segment_exact(pts[k], pts[k + 1], rp.p) ? rp.p : closest_point(pts[k], pts[k + 1], rp.p);
           const double d = dist(q, rp.p);
           if (d <= best && (best_c < 0 || d < best)) {
             best = d;

@@ -152,9 +152,8 @@ std::vector<std::array<int, 3>> inside_triangles(const Triangulation& tri,
         const int u = tri.n[t][i];
         if (u < 0 || layer[u] != -1) continue;
         const int a = tri.v[t][(i + 1) % 3], b = tri.v[t][(i + 2) % 3];
-        if (tri.is_constrained(a, b) &&
-            (open_edges.empty() ||
-             !open_edges.count(Triangulation::edge_key(tri.input_index[a], tri.input_index[b])))) {
+        if (tri.is_constrained(a, b) && (open_edges.empty() || !open_edges.count(Triangulation::edge_key(
+                                                                   tri.input_index[a], tri.input_index[b])))) {
           next.push_back(u);
         } else {
           layer[u] = depth;

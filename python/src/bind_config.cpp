@@ -46,8 +46,7 @@ nb::dict geometry_of(const CaseConfig& c) {
     for (const auto& f : c.geometry.files) files.push_back(f.string());
     g = c.geometry.given_curves.empty()
             ? read_geometry(files, c.geometry.curve_names, options)
-            : geometry_from_curves(c.geometry.given_curves, c.geometry.curve_names, options,
-                                   c.geometry.given_points);
+            : geometry_from_curves(c.geometry.given_curves, c.geometry.curve_names, options, c.geometry.given_points);
   }
   nb::list names, curves, loops;
   for (const Curve& curve : g.curves) {

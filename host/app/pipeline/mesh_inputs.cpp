@@ -85,9 +85,8 @@ MeshInputs::MeshInputs(const CaseConfig& config) {
   // refine without end.
   check_coordinate_resolution(geometry, *spacing);
   boundary_rule = config.boundary.nodes;
-  const bool embedded = !geometry.embedded_points.empty() ||
-                        std::any_of(geometry.curves.begin(), geometry.curves.end(),
-                                    [](const Curve& c) { return c.constraint; });
+  const bool embedded = !geometry.embedded_points.empty() || std::any_of(geometry.curves.begin(), geometry.curves.end(),
+                                                                         [](const Curve& c) { return c.constraint; });
   if (config.geometry.curves == CurveKind::Smooth && embedded) {
     // The dense curves would have to meet where the polylines do; the polylines are meshed instead.
     smooth_fallback = "smooth curves do not support embedded constraints and points yet";
