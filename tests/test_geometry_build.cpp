@@ -151,7 +151,7 @@ TEST_CASE("a polygon with thousands of segments passes the intersection check", 
 }
 
 TEST_CASE("geometry errors: point counts and values", "[geometry]") {
-  CHECK_THROWS_AS(build_geometry({}), GeometryError);
+  CHECK_THROWS_AS(build_geometry(std::vector<RawCurve>{}), GeometryError);
   CHECK_THROWS_WITH(build_geometry({curve({{0, 0}}, "lonely", 7)}),
                     Contains("test.crv:7") && Contains("curve 'lonely'") && Contains("1 point"));
   auto raw = unit_square_of_four();

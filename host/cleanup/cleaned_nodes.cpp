@@ -14,6 +14,7 @@ void cleaned_mesh_and_nodes(const EditableMesh& m, const Mesh& mesh, const NodeS
   out.x = out_mesh.points;
   out.kind = out_mesh.kind;
   out.curve_nodes = std::move(curve_nodes);
+  out.constraint_curves = nodes.constraint_curves;
   for (std::size_t k = 0; k < old_of_new.size(); ++k) {
     const auto a = static_cast<std::size_t>(old_of_new[k]);
     const bool original = a < nodes.size();

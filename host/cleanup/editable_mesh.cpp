@@ -8,6 +8,7 @@
 #include <limits>
 #include <algorithm>
 #include <unordered_map>
+#include <unordered_set>
 
 #include "cleanup/measures.hpp"
 #include "core/errors.hpp"
@@ -39,11 +40,22 @@ EditableMesh::EditableMesh(const Mesh& mesh, const std::vector<std::vector<int>>
   vert_stamp_.assign(np, 0);
   dirty_.assign(np, 1);
   // Nodes on a curve that the kinds do not mark (a mesh read without kinds) must not move either.
+  // An embedded constraint (Mesh::constraint_curves) has triangles on both sides: the mesh is cut
+  // along it (no neighbours across its edges, so no flip crosses it) and its nodes are pinned, so
+  // that no operation needs a vertex with two open fans; its edges are no splittable boundary edges.
+  std::unordered_set<std::uint64_t> cut;
   for (std::size_t c = 0; c < curve_nodes.size(); ++c) {
     const auto& list = curve_nodes[c];
+    const bool open = c < mesh.constraint_curves.size() && mesh.constraint_curves[c] != 0;
     for (std::size_t k = 0; k < list.size(); ++k) {
       const int a = list[k];
       const bool inner = k > 0 && k + 1 < list.size();
+      if (open) {
+        kind[a] = NodeKind::Fixed;
+        fixed_on_curve_[c].push_back({a, arcs[c][k]});
+        if (k > 0) cut.insert(directed_key(std::min(list[k - 1], a), std::max(list[k - 1], a)));
+        continue;
+      }
       if (!inner || kind[a] != NodeKind::Boundary) {
         kind[a] = NodeKind::Fixed;  // curve end points and critical corners never move
         fixed_on_curve_[c].push_back({a, arcs[c][k]});
@@ -66,7 +78,9 @@ EditableMesh::EditableMesh(const Mesh& mesh, const std::vector<std::vector<int>>
     for (int i = 0; i < 3; ++i) half_edges.emplace(directed_key(v[t][next3(i)], v[t][prev3(i)]), std::make_pair(t, i));
   for (int t = 0; t < static_cast<int>(v.size()); ++t) {
     for (int i = 0; i < 3; ++i) {
-      const auto it = half_edges.find(directed_key(v[t][prev3(i)], v[t][next3(i)]));
+      const int a = v[t][prev3(i)], b = v[t][next3(i)];
+      if (!cut.empty() && cut.count(directed_key(std::min(a, b), std::max(a, b)))) continue;
+      const auto it = half_edges.find(directed_key(a, b));
       if (it != half_edges.end()) n[t][i] = it->second.first;
     }
     for (int a : v[t]) vt[a] = t;
@@ -409,6 +423,7 @@ Mesh EditableMesh::to_mesh(const Mesh& original, std::vector<std::vector<int>>& 
   for (int t = 0; t < triangle_slots(); ++t)
     if (alive(t)) out.triangles.push_back({new_of_old[v[t][0]], new_of_old[v[t][1]], new_of_old[v[t][2]]});
   out.curve_names = original.curve_names;
+  out.constraint_curves = original.constraint_curves;
   // The curve chains: each curve's fixed nodes at their arcs merged with its sliding nodes, ordered by
   // arc (a sliding node stays strictly between its neighbours, so this is the chain order, with the
   // nodes that boundary splits added); the boundary edges join consecutive chain nodes.

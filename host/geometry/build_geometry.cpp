@@ -1,6 +1,7 @@
 // build_geometry(): validates raw curves, snaps curve ends into joints, chains curves into loops and
 // derives segments, arc lengths, critical points, loop areas, nesting depths and the domain area.
 #include <algorithm>
+#include <string>
 #include <array>
 #include <cmath>
 #include <map>
@@ -110,6 +111,11 @@ std::vector<std::vector<CurveEnd>> check_joints(const std::vector<Curve>& curves
     return where(curves[ce.curve].file, lines[ce.curve][end_point_index(curves[ce.curve], ce.end)]);
   };
   for (std::size_t j = 0; j < joints.size(); ++j) {
+    // Embedded constraints end anywhere: the rule is the boundary curves' (their ends are dropped
+    // from the list the loops are chained by; find_critical_points gets them all).
+    std::vector<CurveEnd>& here = at[j];
+    here.erase(std::remove_if(here.begin(), here.end(), [&](CurveEnd ce) { return curves[ce.curve].constraint; }),
+               here.end());
     if (at[j].size() == 1) {
       const CurveEnd ce = at[j][0];
       throw GeometryError(fmt::format("loop does not close: {} of curve '{}' ({}) at {} meets no other curve",
@@ -135,6 +141,7 @@ std::vector<Loop> chain_loops(const std::vector<Curve>& curves, const std::vecto
                               const std::vector<std::vector<CurveEnd>>& at) {
   std::vector<Loop> loops;
   std::vector<std::uint8_t> used(curves.size(), 0);
+  for (std::size_t c = 0; c < curves.size(); ++c) used[c] = curves[c].constraint ? 1 : 0;
   for (int c0 = 0; c0 < static_cast<int>(curves.size()); ++c0) {
     if (used[c0]) continue;
     Loop loop;
@@ -249,6 +256,37 @@ void find_critical_points(Geometry& g, const std::vector<Vec2>& joints, const st
   }
 }
 
+// With embedded constraints: a point is critical when it is a curve end, a sharp corner, a point of a
+// fixed_points curve or a meeting point (`forced`); the critical points at one location are one
+// entry (curves meet there with identical coordinates), in order of first appearance.
+void find_grouped_critical_points(Geometry& g, const std::vector<std::vector<std::uint8_t>>& forced,
+                                  double corner_angle_deg) {
+  const double limit = corner_angle_deg * std::numbers::pi / 180.0;
+  std::map<std::pair<double, double>, int> entry;
+  for (int c = 0; c < static_cast<int>(g.curves.size()); ++c) {
+    Curve& curve = g.curves[c];
+    const int n = static_cast<int>(curve.points.size());
+    curve.critical.assign(n, 0);
+    for (int k = 0; k < n; ++k) {
+      // Every input vertex of a constraint is kept (a node of the mesh), like a critical point.
+      bool critical = k == 0 || k == n - 1 || curve.fixed_points || curve.constraint || forced[c][k];
+      if (!critical) {
+        const Vec2 in = curve.points[k] - curve.points[k - 1];
+        const Vec2 out = curve.points[k + 1] - curve.points[k];
+        critical = std::atan2(std::fabs(cross(in, out)), dot(in, out)) > limit;
+      }
+      if (!critical) continue;
+      curve.critical[k] = 1;
+      const Vec2 p = curve.points[k];
+      const auto [it, fresh] = entry.emplace(std::pair{p.x, p.y}, static_cast<int>(g.critical.size()));
+      if (fresh) g.critical.push_back({p, {}, {}});
+      CriticalPoint& cp = g.critical[static_cast<std::size_t>(it->second)];
+      cp.curves.push_back(c);
+      cp.indices.push_back(k);
+    }
+  }
+}
+
 void fill_segments(Geometry& g) {
   for (int c = 0; c < static_cast<int>(g.curves.size()); ++c) {
     Curve& curve = g.curves[c];
@@ -285,15 +323,25 @@ void find_depths(Geometry& g) {
   }
 }
 
+// The segments of the boundary curves (the embedded constraints' left out).
+std::vector<int> wall_segments(const Geometry& g) {
+  std::vector<int> ids;
+  ids.reserve(g.segments.size());
+  for (std::size_t s = 0; s < g.segments.size(); ++s)
+    if (!g.curves[static_cast<std::size_t>(g.segments[s].curve)].constraint) ids.push_back(static_cast<int>(s));
+  return ids;
+}
+
 void check_holes(Geometry& g, const std::vector<RawHolePoint>& holes) {
-  std::vector<int> all(g.segments.size());
-  for (std::size_t s = 0; s < all.size(); ++s) all[s] = static_cast<int>(s);
+  const std::vector<int> all = wall_segments(g);
+  std::vector<Segment> walls;
+  for (const int s : all) walls.push_back(g.segments[static_cast<std::size_t>(s)]);
   for (const RawHolePoint& h : holes) {
     if (!std::isfinite(h.p.x) || !std::isfinite(h.p.y)) {
       throw GeometryError(
           fmt::format("{}: hole point ({}, {}) has a non-finite coordinate", where(h.file, h.line), h.p.x, h.p.y));
     }
-    if (detail::on_any_segment(g.segments, h.p)) {
+    if (detail::on_any_segment(walls, h.p)) {
       throw GeometryError(fmt::format("{}: hole point {} lies on the boundary; it must lie inside a hole",
                                       where(h.file, h.line), format_point(h.p)));
     }
@@ -307,7 +355,119 @@ void check_holes(Geometry& g, const std::vector<RawHolePoint>& holes) {
   }
 }
 
+// Every embedded constraint lies inside the domain: the pieces between its meeting points touch the
+// boundary curves only at their ends, so a point of each piece off the boundary decides it.
+void check_constraints_inside(const Geometry& g, const std::vector<int>& walls_ids, const PointLines& lines) {
+  std::vector<Segment> walls;
+  for (const int s : walls_ids) walls.push_back(g.segments[static_cast<std::size_t>(s)]);
+  auto outside = [&](Vec2 p) {
+    return !detail::on_any_segment(walls, p) && detail::ray_crossings(g.segments, walls_ids, p) % 2 == 0;
+  };
+  for (const Segment& s : g.segments) {
+    const Curve& c = g.curves[static_cast<std::size_t>(s.curve)];
+    if (!c.constraint) continue;
+    const Vec2 mid = 0.5 * (s.a + s.b);
+    if (!outside(mid)) continue;
+    // Name an input point of the piece when one is off the boundary, else its midpoint.
+    Vec2 at = mid;
+    int line = lines[static_cast<std::size_t>(s.curve)][static_cast<std::size_t>(s.index)];
+    if (!detail::on_any_segment(walls, s.a)) {
+      at = s.a;
+    } else if (!detail::on_any_segment(walls, s.b)) {
+      at = s.b;
+      line = lines[static_cast<std::size_t>(s.curve)][static_cast<std::size_t>(s.index) + 1];
+    }
+    throw GeometryError(fmt::format(
+        "{}: constraint curve '{}' leaves the domain: its point {} (segment {}) lies outside it, in a hole or "
+        "outside every loop; an embedded constraint must lie inside the domain",
+        where(c.file, line), c.name, format_point(at), s.index));
+  }
+}
+
+void check_points_inside(Geometry& g, const std::vector<int>& walls_ids, const std::vector<RawPoint>& points) {
+  for (const RawPoint& rp : points) {
+    if (detail::ray_crossings(g.segments, walls_ids, rp.p) % 2 == 0) {
+      throw GeometryError(fmt::format(
+          "{}: point {} lies outside the domain, in a hole or outside every loop; an embedded point must lie "
+          "inside the domain",
+          where(rp.file, rp.line), format_point(rp.p)));
+    }
+    g.embedded_points.push_back(rp.p);
+  }
+}
+
+void check_options(const GeometryOptions& options) {
+  if (!std::isfinite(options.join_tolerance) || options.join_tolerance < 0 || options.join_tolerance >= 1) {
+    throw GeometryError(fmt::format("join tolerance {} must be >= 0 and < 1", options.join_tolerance));
+  }
+  if (!std::isfinite(options.corner_angle_deg) || options.corner_angle_deg < 0 || options.corner_angle_deg > 180) {
+    throw GeometryError(fmt::format("corner angle {} degrees must be in [0, 180]", options.corner_angle_deg));
+  }
+}
+
+Curve make_curve(RawCurve& r) {
+  Curve c;
+  c.name = std::move(r.name);
+  c.points = std::move(r.points);
+  c.file = std::move(r.file);
+  c.line = r.line;
+  c.fixed_points = r.fixed_points;
+  c.constraint = r.constraint;
+  return c;
+}
+
+void finish_loops(Geometry& g, const PointLines& lines) {
+  for (Loop& loop : g.loops) {
+    loop.signed_area = signed_area(g.curves, loop);
+    check_loop_area(g, loop, lines);
+  }
+  find_depths(g);
+  g.area = 0.0;
+  for (const Loop& loop : g.loops) g.area += std::fabs(loop.signed_area) * (loop.depth % 2 == 0 ? 1.0 : -1.0);
+}
+
 }  // namespace
+
+Geometry build_geometry(RawGeometry raw, const GeometryOptions& options) {
+  const bool embedded = !raw.points.empty() || std::any_of(raw.curves.begin(), raw.curves.end(),
+                                                           [](const RawCurve& c) { return c.constraint; });
+  if (!embedded) return build_geometry(std::move(raw.curves), raw.holes, options);
+  if (std::all_of(raw.curves.begin(), raw.curves.end(), [](const RawCurve& c) { return c.constraint; })) {
+    const std::string first =
+        raw.curves.empty() ? std::string("point input") : where(raw.curves[0].file, raw.curves[0].line);
+    throw GeometryError(fmt::format(
+        "{}: the geometry has embedded constraints or points but no boundary curve; they need a domain to lie in",
+        raw.curves.empty() && !raw.points.empty() ? where(raw.points[0].file, raw.points[0].line) : first));
+  }
+  check_options(options);
+  PointLines lines;
+  check_points(raw.curves, lines);
+
+  Geometry g;
+  g.curves.reserve(raw.curves.size());
+  for (RawCurve& r : raw.curves) {
+    g.curves.push_back(make_curve(r));
+    for (const Vec2 p : g.curves.back().points) g.extents.add(p);
+  }
+  const double tolerance = options.join_tolerance * g.extents.diagonal();
+  detail::snap_constraint_ends(g.curves, tolerance);
+  std::vector<std::array<int, 2>> ends;
+  const std::vector<Vec2> joints = snap_ends(g.curves, tolerance, ends);
+  check_zero_length(g.curves, lines);
+  std::vector<RawPoint> free_points;
+  const auto forced = detail::split_at_constraints(g.curves, lines, raw.points, tolerance, free_points);
+  const auto at = check_joints(g.curves, lines, joints, ends);
+  g.loops = chain_loops(g.curves, ends, at);
+  find_grouped_critical_points(g, forced, options.corner_angle_deg);
+  fill_segments(g);
+  detail::check_intersections(g, lines);
+  finish_loops(g, lines);
+  check_holes(g, raw.holes);
+  const std::vector<int> walls = wall_segments(g);
+  check_constraints_inside(g, walls, lines);
+  check_points_inside(g, walls, free_points);
+  return g;
+}
 
 Geometry build_geometry(std::vector<RawCurve> raw, const GeometryOptions& options) {
   return build_geometry(std::move(raw), {}, options);
@@ -316,26 +476,17 @@ Geometry build_geometry(std::vector<RawCurve> raw, const GeometryOptions& option
 Geometry build_geometry(std::vector<RawCurve> raw, const std::vector<RawHolePoint>& holes,
                         const GeometryOptions& options) {
   if (raw.empty()) throw GeometryError("the geometry has no curves");
-  if (!std::isfinite(options.join_tolerance) || options.join_tolerance < 0 || options.join_tolerance >= 1) {
-    throw GeometryError(fmt::format("join tolerance {} must be >= 0 and < 1", options.join_tolerance));
-  }
-  if (!std::isfinite(options.corner_angle_deg) || options.corner_angle_deg < 0 || options.corner_angle_deg > 180) {
-    throw GeometryError(fmt::format("corner angle {} degrees must be in [0, 180]", options.corner_angle_deg));
-  }
+  if (std::any_of(raw.begin(), raw.end(), [](const RawCurve& c) { return c.constraint; }))
+    return build_geometry(RawGeometry{std::move(raw), holes, {}}, options);
+  check_options(options);
   PointLines lines;
   check_points(raw, lines);
 
   Geometry g;
   g.curves.reserve(raw.size());
   for (RawCurve& r : raw) {
-    Curve c;
-    c.name = std::move(r.name);
-    c.points = std::move(r.points);
-    c.file = std::move(r.file);
-    c.line = r.line;
-    c.fixed_points = r.fixed_points;
-    for (const Vec2 p : c.points) g.extents.add(p);
-    g.curves.push_back(std::move(c));
+    g.curves.push_back(make_curve(r));
+    for (const Vec2 p : g.curves.back().points) g.extents.add(p);
   }
 
   std::vector<std::array<int, 2>> ends;
@@ -347,13 +498,7 @@ Geometry build_geometry(std::vector<RawCurve> raw, const std::vector<RawHolePoin
   fill_segments(g);
   detail::check_intersections(g, lines);
 
-  for (Loop& loop : g.loops) {
-    loop.signed_area = signed_area(g.curves, loop);
-    check_loop_area(g, loop, lines);
-  }
-  find_depths(g);
-  g.area = 0.0;
-  for (const Loop& loop : g.loops) g.area += std::fabs(loop.signed_area) * (loop.depth % 2 == 0 ? 1.0 : -1.0);
+  finish_loops(g, lines);
   check_holes(g, holes);
   return g;
 }

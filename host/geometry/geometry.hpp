@@ -150,5 +150,14 @@ Geometry build_geometry(std::vector<RawCurve> raw, const GeometryOptions& option
 // loop), otherwise GeometryError naming its file and line. They end up in Geometry::hole_points.
 Geometry build_geometry(std::vector<RawCurve> raw, const std::vector<RawHolePoint>& holes,
                         const GeometryOptions& options = {});
+// The same for everything a reader hands on, embedded constraints and points included
+// (docs/geometry-input.md, "Embedded constraints"). Constraint curves are checked like boundary
+// curves but join no loop and may be open; where they meet each other or a boundary curve (a
+// crossing, a T-junction, an end on a curve, within the join tolerance) the meeting point becomes a
+// vertex of both and a critical point. Every constraint and point must lie inside the domain
+// (GeometryError naming its file, line, curve and the point otherwise); a point within the join
+// tolerance of a curve becomes a critical vertex of that curve, the others end up in
+// Geometry::embedded_points. Without constraints and points: exactly the overload above.
+Geometry build_geometry(RawGeometry raw, const GeometryOptions& options = {});
 
 }  // namespace pdmesh

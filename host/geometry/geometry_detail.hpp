@@ -1,6 +1,7 @@
 // Internal helpers shared by the build_geometry source files (not part of the public interface):
 // source locations for messages, the even-odd crossing test and the intersection check.
 #pragma once
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -26,5 +27,18 @@ bool on_any_segment(const std::vector<Segment>& segments, Vec2 p);
 // not share: anything but consecutive segments of one curve at their common vertex, or two curve
 // ends meeting at a joint. Uses a uniform grid so the cost is about linear in the segment count.
 void check_intersections(const Geometry& geometry, const PointLines& lines);
+
+// Embedded constraints (geometry/constraint_split.cpp). Moves every constraint curve end that lies
+// within `tolerance` of another curve's vertex onto that vertex.
+void snap_constraint_ends(std::vector<Curve>& curves, double tolerance);
+// Inserts, into both curves, the points where a constraint segment meets a segment of another curve
+// (crossings, T-junctions, an end within `tolerance` of a segment) and puts embedded points within
+// `tolerance` of a curve on it. Returns per curve and point whether the point must be critical (a
+// meeting point or a placed embedded point); `lines` follows the inserted points; `free_points`
+// receives the points that lie on no curve (duplicates within `tolerance` merged). GeometryError
+// when a constraint runs along another curve.
+std::vector<std::vector<std::uint8_t>> split_at_constraints(std::vector<Curve>& curves, PointLines& lines,
+                                                            const std::vector<RawPoint>& points, double tolerance,
+                                                            std::vector<RawPoint>& free_points);
 
 }  // namespace pdmesh::detail

@@ -105,8 +105,8 @@ class IntersectionCheck {
   bool is_curve_start(const Segment& s) const { return s.index == 0; }
   bool is_curve_end(const Segment& s) const { return s.index == g_.curves[s.curve].segment_count() - 1; }
 
-  // Legitimately shared points of segments s and t (at most two).
-  int shared_ends(const Segment& s, const Segment& t, SharedEnd out[2]) const {
+  // Legitimately shared points of segments s and t (at most four).
+  int shared_ends(const Segment& s, const Segment& t, SharedEnd out[4]) const {
     int count = 0;
     const bool same_curve = s.curve == t.curve;
     auto add = [&](Vec2 at, Vec2 u, Vec2 v) { out[count++] = {at, u, v}; };
@@ -115,8 +115,11 @@ class IntersectionCheck {
     if (same_curve && s.index == t.index + 1) add(s.a, s.b, t.a);
     // Curve ends at a joint (this includes the closing point of a closed curve). After snapping,
     // ends at one joint have identical coordinates and ends at different joints differ.
-    const bool s_ends[2] = {is_curve_start(s), is_curve_end(s)};
-    const bool t_ends[2] = {is_curve_start(t), is_curve_end(t)};
+    // A constraint shares any vertex with another curve: build_geometry made each meeting point a
+    // vertex of both.
+    const bool meeting = !same_curve && (g_.curves[s.curve].constraint || g_.curves[t.curve].constraint);
+    const bool s_ends[2] = {meeting || is_curve_start(s), meeting || is_curve_end(s)};
+    const bool t_ends[2] = {meeting || is_curve_start(t), meeting || is_curve_end(t)};
     for (int es = 0; es < 2; ++es) {
       for (int et = 0; et < 2; ++et) {
         if (!s_ends[es] || !t_ends[et]) continue;
@@ -139,7 +142,7 @@ class IntersectionCheck {
     if (cell_of({std::max(alo.x, blo.x), std::max(alo.y, blo.y)}) != std::pair{ix, iy}) return;
     if (worst_.s >= 0 && std::pair{s, t} >= std::pair{worst_.s, worst_.t}) return;
 
-    SharedEnd shared[2];
+    SharedEnd shared[4];
     const int count = shared_ends(a, b, shared);
     std::optional<Vec2> near;
     if (count == 0) {

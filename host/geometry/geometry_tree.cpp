@@ -396,6 +396,13 @@ struct GeometryTree::Impl {
   std::vector<signed char> centre_inside;
   // The small curves' segments for one vectorized pass each (closest_per_curve*).
   std::unique_ptr<CurveScan> scan;
+  // With embedded constraints: the tree over the boundary curves' segments alone and its
+  // centre_inside, for inside(), crosses_boundary() and closest_wall(). Null without constraints
+  // (`all` serves).
+  std::unique_ptr<Quadtree> walls;
+  std::vector<signed char> walls_centre_inside;
+  const Quadtree& wall_tree() const { return walls ? *walls : all; }
+  const std::vector<signed char>& wall_centres() const { return walls ? walls_centre_inside : centre_inside; }
 };
 
 namespace {
@@ -422,27 +429,35 @@ GeometryTree::GeometryTree(const Geometry& geometry) : geometry_(geometry) {
                           " has a non-finite end point");
     by_curve[s.curve].push_back(static_cast<int>(i));
   }
-  impl_ = std::make_unique<Impl>(Impl{Quadtree(segs, all_ids(segs.size())), {}, {}, {}});
+  impl_ = std::make_unique<Impl>(Impl{Quadtree(segs, all_ids(segs.size())), {}, {}, {}, {}, {}});
   impl_->scan = std::make_unique<CurveScan>(geometry, by_curve);
   impl_->per_curve.reserve(curves);
   for (int c = 0; c < curves; ++c) impl_->per_curve.emplace_back(segs, std::move(by_curve[c]));
-  const auto& nodes = impl_->all.nodes();
-  impl_->centre_inside.assign(nodes.size(), -1);
+  std::vector<int> wall_ids;
+  for (std::size_t i = 0; i < segs.size(); ++i)
+    if (!geometry.curves[static_cast<std::size_t>(segs[i].curve)].constraint) wall_ids.push_back(static_cast<int>(i));
+  if (wall_ids.size() < segs.size()) impl_->walls = std::make_unique<Quadtree>(segs, std::move(wall_ids));
+  const Quadtree& walls = impl_->wall_tree();
+  std::vector<signed char>& centres = impl_->walls ? impl_->walls_centre_inside : impl_->centre_inside;
+  const auto& nodes = walls.nodes();
+  centres.assign(nodes.size(), -1);
   for (std::size_t n = 0; n < nodes.size(); ++n) {
     if (nodes[n].first_child >= 0) continue;
     const Vec2 c = nodes[n].box.centre();
     bool on_boundary = false;
     for (int i = nodes[n].begin; i < nodes[n].begin + nodes[n].count; ++i) {
-      const Segment& seg = segs[impl_->all.items()[i]];
+      const Segment& seg = segs[walls.items()[i]];
       on_boundary = on_boundary || point_on_segment(c, seg.a, seg.b);
     }
-    if (!on_boundary) impl_->centre_inside[n] = ray_inside(c) ? 1 : 0;
+    if (!on_boundary) centres[n] = ray_inside(c) ? 1 : 0;
   }
 }
 
 GeometryTree::~GeometryTree() = default;
 
 ClosestHit GeometryTree::closest(Vec2 p) const { return impl_->all.closest(p); }
+
+ClosestHit GeometryTree::closest_wall(Vec2 p) const { return impl_->wall_tree().closest(p); }
 
 ClosestHit GeometryTree::closest_on_curve(Vec2 p, int curve) const {
   if (curve < 0 || curve >= static_cast<int>(impl_->per_curve.size()))
@@ -499,10 +514,10 @@ bool GeometryTree::inside(Vec2 p) const {
   // segment that could cross the segment pc touches the leaf and is in its list. inside(p) is
   // inside(c) flipped once per proper crossing; anything degenerate (pc through a vertex or along
   // a segment) falls back to the ray cast. An empty leaf has no crossings: its centre decides.
-  const Quadtree& tree = impl_->all;
+  const Quadtree& tree = impl_->wall_tree();
   const int leaf = tree.locate(p);
   if (leaf < 0) return false;  // outside the root box, which holds every segment
-  const signed char centre = impl_->centre_inside[static_cast<std::size_t>(leaf)];
+  const signed char centre = impl_->wall_centres()[static_cast<std::size_t>(leaf)];
   if (centre >= 0) {
     const Node& node = tree.nodes()[static_cast<std::size_t>(leaf)];
     const Vec2 c = node.box.centre();
@@ -531,7 +546,7 @@ bool GeometryTree::inside(Vec2 p) const {
 }
 
 bool GeometryTree::ray_inside(Vec2 p) const {
-  const Quadtree& tree = impl_->all;
+  const Quadtree& tree = impl_->wall_tree();
   // Segments straddling several leaves along the ray must be counted once: gather, sort, unique.
   // A local, not a thread_local (see parallel_for_scratch): the ray cast is the rare fallback.
   std::vector<int> candidates;
@@ -562,7 +577,7 @@ bool GeometryTree::ray_inside(Vec2 p) const {
 }
 
 bool GeometryTree::crosses_boundary(Vec2 a, Vec2 b) const {
-  const Quadtree& tree = impl_->all;
+  const Quadtree& tree = impl_->wall_tree();
   // Both ends in one empty leaf: the move stays in a closed box that no segment touches.
   const int leaf = tree.locate(a);
   if (leaf >= 0) {

@@ -63,7 +63,11 @@ class GeometryTree {
   // lowest index (FeatureSize::closest's rule), found with the per-curve answers; segment -1 where
   // they do not settle it (a curve on its own tree as near as the best, a point beyond the scan's range).
   void closest_per_curve_near(Vec2 p, std::vector<ClosestHit>& out, ClosestHit* by_square = nullptr) const;
-  // Even-odd point-in-domain test. Points exactly on a segment count as inside.
+  // Closest point over the boundary curves' segments alone (embedded constraints left out): where a
+  // node that left the domain is put back. The same as closest() for a geometry without constraints.
+  ClosestHit closest_wall(Vec2 p) const;
+  // Even-odd point-in-domain test. Points exactly on a segment count as inside. Embedded constraint
+  // curves bound nothing: inside() and crosses_boundary() look at the boundary curves alone.
   bool inside(Vec2 p) const;
   // True when the move a->b touches or crosses any boundary segment at a point other than a
   // (a on the boundary is allowed; b on the boundary counts as touching).

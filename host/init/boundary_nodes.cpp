@@ -76,7 +76,13 @@ NodeSet assemble_boundary_nodes(const Geometry& geometry, const SpacingField& sp
       }
       list.push_back(id);
     }
+    if (curve.constraint) {
+      nodes.constraint_curves.resize(curve_count, 0);
+      nodes.constraint_curves[c] = 1;
+    }
   }
+  // 3. The embedded points (Geometry::embedded_points): Fixed nodes on no curve.
+  for (const Vec2 p : geometry.embedded_points) fixed_node(p, -1);
   return nodes;
 }
 

@@ -52,7 +52,8 @@ double boundary_part(const GeometryTree& tree, const Bilinear& q, const LeafBox&
   const Vec2 centre{leaf.x0 + leaf.side * (u0 + 0.5 * h), leaf.y0 + leaf.side * (v0 + 0.5 * h)};
   const double nodes = kHexFactor * side * side / (q.at(u0 + 0.5 * h, v0 + 0.5 * h) * q.at(u0 + 0.5 * h, v0 + 0.5 * h));
   // Farther from every segment than the half diagonal: nothing cuts the sub-quad, its centre decides.
-  const double distance = tree.closest(centre).distance;
+  // (Embedded constraints cut nothing off: the boundary curves' segments alone.)
+  const double distance = tree.closest_wall(centre).distance;
   if (distance > 0.7072 * side) return tree.inside(centre) ? sub_integral(q, leaf.side, u0, v0, u0 + h, v0 + h) : 0.0;
   if (nodes > kBoundaryNodes && depth < kBoundaryMaxDepth) {
     const double k = 0.5 * h;

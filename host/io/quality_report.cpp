@@ -268,6 +268,13 @@ std::string quality_json(const QualitySummary& s, const std::string& source, con
   }
   // Only when healing changed the geometry, so that every other quality.json stays as it was.
   if (!healing.empty()) out += fmt::format("  \"healing\": {},\n", healing);
+  if (!s.constraints.empty()) {
+    // Only with embedded constraints, so that other runs' files stay as they were.
+    std::string list;
+    for (const auto& [name, edges] : s.constraints)
+      list += fmt::format("{}{{\"curve\": {}, \"edges\": {}}}", list.empty() ? "" : ", ", json_string(name), edges);
+    out += fmt::format("  \"constraints\": [{}],\n", list);
+  }
   out += fmt::format("  \"cleanup\": {}\n", cleanup);
   out += "}\n";
   return out;

@@ -130,7 +130,8 @@ void recover_edges(Triangulation& tri, const std::vector<ConstrainedEdge>& edges
   if (flipped) tri.make_delaunay();
 }
 
-std::vector<std::array<int, 3>> inside_triangles(const Triangulation& tri) {
+std::vector<std::array<int, 3>> inside_triangles(const Triangulation& tri,
+                                                 const std::unordered_set<std::uint64_t>& open_edges) {
   const int count = static_cast<int>(tri.v.size());
   std::vector<int> layer(count, -1);
   std::vector<int> current, stack, next;
@@ -150,7 +151,9 @@ std::vector<std::array<int, 3>> inside_triangles(const Triangulation& tri) {
       for (int i = 0; i < 3; ++i) {
         const int u = tri.n[t][i];
         if (u < 0 || layer[u] != -1) continue;
-        if (tri.is_constrained(tri.v[t][(i + 1) % 3], tri.v[t][(i + 2) % 3])) {
+        const int a = tri.v[t][(i + 1) % 3], b = tri.v[t][(i + 2) % 3];
+        if (tri.is_constrained(a, b) && (open_edges.empty() || !open_edges.count(Triangulation::edge_key(
+                                                                   tri.input_index[a], tri.input_index[b])))) {
           next.push_back(u);
         } else {
           layer[u] = depth;

@@ -2,6 +2,8 @@
 // Delaunay restoration, and removal of the triangles outside the domain by parity flood fill.
 #pragma once
 #include <array>
+#include <cstdint>
+#include <unordered_set>
 #include <vector>
 
 #include "mesh/delaunay.hpp"
@@ -21,7 +23,10 @@ void recover_edges(Triangulation& tri, const std::vector<ConstrainedEdge>& edges
 
 // The triangles inside the domain bounded by the constrained edges: a triangle is inside when
 // an odd number of constrained edges separates it from the super-triangle (even-odd rule,
-// so holes and islands in holes come out right).
-std::vector<std::array<int, 3>> inside_triangles(const Triangulation& tri);
+// so holes and islands in holes come out right). Constrained edges whose key
+// (Triangulation::edge_key of the input point indices) is in `open_edges` (embedded constraints)
+// bound nothing: the fill passes them.
+std::vector<std::array<int, 3>> inside_triangles(const Triangulation& tri,
+                                                 const std::unordered_set<std::uint64_t>& open_edges = {});
 
 }  // namespace pdmesh

@@ -1,6 +1,7 @@
 // A triangle mesh: points, counter-clockwise triangles, and the boundary edges per curve.
 #pragma once
 #include <array>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -19,6 +20,9 @@ struct Mesh {
   std::vector<std::array<int, 3>> triangles;  // counter-clockwise
   std::vector<BoundaryEdge> boundary_edges;
   std::vector<std::string> curve_names;
+  // Per curve_names entry, when known: 1 for an embedded constraint, whose edges have triangles on
+  // both sides (docs/geometry-input.md, "Embedded constraints"). Empty: every curve bounds the domain.
+  std::vector<std::uint8_t> constraint_curves;
   std::vector<NodeKind> kind;  // per point, when known (empty for meshes read from files)
   // Per point, when known: the spacing field q there. Written as point data "q" (VTU PointData, MSH
   // $NodeData), so that a run's field can be read back as spacing.field = "mesh". Not read back.

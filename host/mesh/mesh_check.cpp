@@ -78,6 +78,14 @@ class MeshChecker {
  private:
   std::string pt(int i) const { return fmt::format("{} ({}, {})", i, P_[i].x, P_[i].y); }
   void check_interior_edge(const EdgeUse& u0, const EdgeUse& u1, bool is_constrained);
+  // The edge a-b is a boundary edge of an embedded constraint (Mesh::constraint_curves).
+  bool open_constraint(int a, int b) const {
+    if (mesh_.constraint_curves.empty()) return false;
+    const auto it = constrained_.find(edge_key(a, b));
+    if (it == constrained_.end()) return false;
+    const auto c = static_cast<std::size_t>(mesh_.boundary_edges[static_cast<std::size_t>(it->second)].curve);
+    return c < mesh_.constraint_curves.size() && mesh_.constraint_curves[c] != 0;
+  }
 
   const Mesh& mesh_;
   const std::vector<Vec2>& P_;
@@ -154,7 +162,7 @@ void MeshChecker::check_interior_edge(const EdgeUse& u0, const EdgeUse& u1, bool
                   u1.triangle, pt(a), pt(b));
     return;
   }
-  if (is_constrained) {
+  if (is_constrained && !open_constraint(a, b)) {
     problems_.add("boundary", "boundary edge {} - {} has triangles {} and {} on both sides", pt(a), pt(b), u0.triangle,
                   u1.triangle);
   }
@@ -180,6 +188,9 @@ void MeshChecker::check_edges() {
       loops_.unite(a, b);
       if (!is_constrained)
         problems_.add("boundary", "edge {} - {} of triangle {} is on the mesh boundary but is no boundary edge", pt(a),
+                      pt(b), uses[0].triangle);
+      else if (open_constraint(a, b))
+        problems_.add("boundary", "edge {} - {} of an embedded constraint has triangle {} on one side only", pt(a),
                       pt(b), uses[0].triangle);
     } else if (uses.size() == 2) {
       check_interior_edge(uses[0], uses[1], is_constrained);

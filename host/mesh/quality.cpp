@@ -279,9 +279,19 @@ SpacingConformance spacing_conformance(const Mesh& mesh, const SpacingCallback& 
   });
 }
 
+void list_constraints(const Mesh& mesh, QualitySummary& summary) {
+  summary.constraints.clear();
+  std::vector<std::size_t> edges(mesh.constraint_curves.size(), 0);
+  for (const BoundaryEdge& e : mesh.boundary_edges)
+    if (static_cast<std::size_t>(e.curve) < edges.size()) ++edges[static_cast<std::size_t>(e.curve)];
+  for (std::size_t c = 0; c < mesh.constraint_curves.size() && c < mesh.curve_names.size(); ++c)
+    if (mesh.constraint_curves[c]) summary.constraints.emplace_back(mesh.curve_names[c], edges[c]);
+}
+
 QualitySummary summarize_quality(const Mesh& mesh, const SpacingCallback& q, const QualityOptions& options) {
   QualitySummary s = summarize_quality(triangle_qualities(mesh), options);
   s.points = mesh.points.size();
+  list_constraints(mesh, s);
   if (q) {
     s.has_spacing = true;
     s.spacing = spacing_conformance(mesh, q);

@@ -114,9 +114,14 @@ struct QualitySummary {
   CleanupEffect cleanup;
   bool has_metric = false;  // measured in a metric field (mesh/metric_quality), which `metric` holds
   MetricQualitySummary metric;
+  // The embedded constraint curves (Mesh::constraint_curves), each with its number of mesh edges.
+  std::vector<std::pair<std::string, std::size_t>> constraints;
 };
 
 using SpacingCallback = std::function<double(Vec2)>;
+
+// Fills summary.constraints from the mesh's embedded constraint curves (none: left empty).
+void list_constraints(const Mesh& mesh, QualitySummary& summary);
 
 // Summarises a mesh. `q` is the desired spacing; when empty, spacing conformance is skipped.
 // An empty mesh gives a summary with zero counts and zero values.

@@ -6,6 +6,7 @@
 
 #include <cstring>
 #include <unordered_map>
+#include <unordered_set>
 
 #include "core/errors.hpp"
 #include "mesh/constrain.hpp"
@@ -27,6 +28,8 @@ Mesh triangulate_nodes(const NodeSet& nodes, const std::vector<std::string>& cur
   }
   std::vector<ConstrainedEdge> edges;
   std::unordered_map<std::uint64_t, int> edge_curve;  // catches an edge claimed by two curves
+  std::unordered_set<std::uint64_t> open_edges;       // the embedded constraints' edges
+  const auto& open = nodes.constraint_curves;
   for (std::size_t c = 0; c < nodes.curve_nodes.size(); ++c) {
     const auto& list = nodes.curve_nodes[c];
     for (std::size_t k = 0; k + 1 < list.size(); ++k) {
@@ -38,6 +41,7 @@ Mesh triangulate_nodes(const NodeSet& nodes, const std::vector<std::string>& cur
                         e.b, it->second, curve_names[it->second], c, curve_names[c]));
       }
       edges.push_back(e);
+      if (c < open.size() && open[c]) open_edges.insert(Triangulation::edge_key(e.a, e.b));
     }
   }
   Triangulation tri(nodes.x);
@@ -47,10 +51,11 @@ Mesh triangulate_nodes(const NodeSet& nodes, const std::vector<std::string>& cur
     if (stats) *stats = s;
   }
   Mesh mesh;
-  mesh.triangles = edges.empty() ? tri.inner_triangles() : inside_triangles(tri);
+  mesh.triangles = edges.empty() ? tri.inner_triangles() : inside_triangles(tri, open_edges);
   mesh.points = nodes.x;
   mesh.kind = nodes.kind;
   mesh.curve_names = curve_names;
+  if (!open_edges.empty()) mesh.constraint_curves.assign(open.begin(), open.end());
   mesh.boundary_edges.reserve(edges.size());
   for (const auto& e : edges) mesh.boundary_edges.push_back({e.a, e.b, e.curve});
   return mesh;

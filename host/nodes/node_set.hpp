@@ -24,6 +24,9 @@ struct NodeSet {
   // For each geometry curve, its nodes in order from the curve's first point to its last,
   // both end points included (those are Fixed nodes shared with the neighbouring curves).
   std::vector<std::vector<int>> curve_nodes;
+  // Per curve_nodes entry: 1 for an embedded constraint (Curve::constraint), whose chain of edges
+  // has the domain on both sides; empty when no curve is one.
+  std::vector<std::uint8_t> constraint_curves;
 
   std::size_t size() const { return x.size(); }
   int add(Vec2 p, double spacing, NodeKind k, int c) {

@@ -252,7 +252,7 @@ double BoundaryHandler::move_cost(double ex, double ey, double px, double py, do
 
 void BoundaryHandler::insert_snapped(NodeSet& nodes, int node, Vec2 target) {
   const Geometry& geometry = tree_.geometry();
-  const ClosestHit hit = tree_.closest(target);
+  const ClosestHit hit = tree_.closest_wall(target);
   if (hit.segment < 0)
     throw SimulationError(fmt::format("node {} left the domain at ({}, {}) and there is no boundary to snap it to",
                                       node, target.x, target.y));

@@ -65,6 +65,36 @@ FeatureSize::FeatureSize(const Geometry& geometry) : geometry_(geometry) {
     }
     loop_length_.push_back(offset);
   }
+  // Embedded constraints: one loop each, arc along the curve; the left normal stands for the inward
+  // one (both sides are the domain). Then the points where curves of different loops meet.
+  for (std::size_t c = 0; c < geometry.curves.size(); ++c) {
+    const Curve& curve = geometry.curves[c];
+    if (!curve.constraint) continue;
+    const auto l = static_cast<std::int32_t>(loop_length_.size());
+    for (int k = 0; k < curve.segment_count(); ++k) {
+      const auto s = static_cast<std::size_t>(curve.first_segment + k);
+      const Vec2 d = segs[s].b - segs[s].a;
+      const double len = norm(d);
+      normal_[s] = {-d.y / len, d.x / len};
+      loop_[s] = l;
+      arc_a_[s] = curve.arc[static_cast<std::size_t>(k)];
+    }
+    const bool closed = curve.points.front() == curve.points.back();
+    loop_length_.push_back(closed ? curve.length() : std::numeric_limits<double>::infinity());
+  }
+  if (loop_length_.size() > geometry.loops.size()) {
+    for (const CriticalPoint& cp : geometry.critical) {
+      std::vector<std::int32_t> loops;
+      for (const int c : cp.curves) {
+        const Curve& curve = geometry.curves[static_cast<std::size_t>(c)];
+        if (curve.segment_count() > 0) loops.push_back(loop_[static_cast<std::size_t>(curve.first_segment)]);
+      }
+      std::sort(loops.begin(), loops.end());
+      loops.erase(std::unique(loops.begin(), loops.end()), loops.end());
+      for (std::size_t i = 0; i < loops.size(); ++i)
+        for (std::size_t j = i + 1; j < loops.size(); ++j) junctions_.push_back({{loops[i], loops[j]}, cp.p});
+    }
+  }
   for (std::size_t s = 0; s < n; ++s)
     if (loop_[s] < 0)
       throw Error(fmt::format("feature size: segment {} of curve {} belongs to no loop", segs[s].index, segs[s].curve));
@@ -117,6 +147,13 @@ void FeatureSize::build(std::int32_t node, std::int32_t begin, std::int32_t end)
   nodes_.emplace_back();
   build(first, begin, mid);
   build(first + 1, mid, end);
+}
+
+bool FeatureSize::junction_corner(std::int32_t loop1, std::int32_t loop2, Vec2 p1, Vec2 p2, double chord) const {
+  const std::pair<std::int32_t, std::int32_t> key{std::min(loop1, loop2), std::max(loop1, loop2)};
+  for (const auto& [loops, j] : junctions_)
+    if (loops == key && !(dist(p1, j) + dist(j, p2) > kArcRatio * chord)) return true;
+  return false;
 }
 
 double FeatureSize::loop_arc(int segment, double t) const {
@@ -249,7 +286,9 @@ double FeatureSize::width(Vec2 x, const ClosestHit& nearest, bool inside, double
         const double d2 = norm2(p2 - from);
         if (d2 >= best2) return;
         // Facing: another loop, or far enough along this one (decided at the candidate point).
-        if (loop_[static_cast<std::size_t>(si)] == loop1) {
+        const std::int32_t loop2 = loop_[static_cast<std::size_t>(si)];
+        if (loop2 != loop1 && !junctions_.empty() && junction_corner(loop1, loop2, p1, p2, dist(p1, p2))) return;
+        if (loop2 == loop1) {
           // p2 == p1 (a neighbour segment's shared vertex) is no gap, however the two arc positions round.
           const double chord = dist(p1, p2);
           const double along = std::fabs(loop_arc(si, t) - arc1);

@@ -2,6 +2,7 @@
 // closest boundary point that faces it (docs/spacing.md, "Feature size").
 #pragma once
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "geometry/geometry.hpp"
@@ -65,7 +66,13 @@ class FeatureSize {
   std::vector<std::int32_t> loop_;   // per segment: its loop
   std::vector<double> arc_a_;        // per segment: loop arc at its point a ...
   std::vector<double> arc_sign_;     // ... and +1 / -1 as the loop runs a->b / b->a
-  std::vector<double> loop_length_;  // per loop
+  std::vector<double> loop_length_;  // per loop (an open embedded constraint: +inf, it does not wrap)
+  // Embedded constraints (docs/geometry-input.md): each constraint curve is a loop of its own here
+  // (after the geometry's loops), and where curves of two such loops meet, the meeting point, by
+  // the pair of loops (lower index first). Two points of loops that meet at J face each other only
+  // when |p1 - J| + |J - p2| > kArcRatio |p1 - p2|: a junction is a corner, not a gap.
+  std::vector<std::pair<std::pair<std::int32_t, std::int32_t>, Vec2>> junctions_;
+  bool junction_corner(std::int32_t loop1, std::int32_t loop2, Vec2 p1, Vec2 p2, double chord) const;
   double scale_ = 0.0;               // coordinate_magnitude of the segments
   std::vector<Node> nodes_;          // bounding-volume hierarchy over segments; root is nodes_[0]
   std::vector<std::int32_t> order_;  // segment indices, leaf by leaf

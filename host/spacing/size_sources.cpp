@@ -48,7 +48,12 @@ double SizeSources::at(Vec2 p, double limit, int* seed, int closest) const {
 }
 
 bool SizeSources::inside(Vec2 p, const ClosestHit& hit) const {
-  if (hit.distance > 0.0 && hit.t > 0.0 && hit.t < 1.0)
+  // Beside an embedded constraint both sides are the domain's or neither: the tree decides.
+  const Geometry& g = tree_.geometry();
+  const bool open =
+      hit.segment >= 0 &&
+      g.curves[static_cast<std::size_t>(g.segments[static_cast<std::size_t>(hit.segment)].curve)].constraint;
+  if (hit.distance > 0.0 && hit.t > 0.0 && hit.t < 1.0 && !open)
     return dot(p - hit.point, feature_->inward_normal(hit.segment)) > 0.0;
   return tree_.inside(p);
 }

@@ -34,13 +34,21 @@ class Geometry:
     a shapely Polygon/MultiPolygon to the constructor) takes the rings of a GeoJSON-like polygon.
     A GeoJSON-like dict (``{"type": "Polygon", "coordinates": [...]}``) is taken as by
     ``from_geo_interface``. ``names`` names the curves (the boundary markers of the mesh files and ``Mesh.boundary_edges``).
+
+    Embedded constraints: ``constraints=[...]`` (in the constructor and ``from_curves``) adds
+    polylines, (N, 2) arrays, open or closed, that lie inside the domain and become chains of mesh
+    edges (roads, levees, cracks, material interfaces; a closed one bounds a subdomain, not a hole);
+    ``points=`` an (M, 2) array of points that become mesh nodes. ``names`` then names the boundary
+    curves first, then the constraints (docs/geometry-input.md, "Embedded constraints").
     """
 
-    def __init__(self, rings: Iterable[Any] | Any, names: Sequence[str] | None = None):
+    def __init__(self, rings: Iterable[Any] | Any, names: Sequence[str] | None = None, *,
+                 constraints: Iterable[Any] | None = None, points: Any = None):
         # A GeoJSON-like mapping ({"type": "Polygon", "coordinates": ...}) as a shapely polygon.
         if hasattr(rings, "__geo_interface__") or isinstance(rings, Mapping):
             other = Geometry.from_geo_interface(rings, names)
             self._init(other._files, other._curves, other._names, other._label)
+            self._embed(constraints, points)
             return
         if isinstance(rings, np.ndarray) and rings.ndim == 2:
             rings = [rings]  # one ring given as an (N, 2) array
@@ -51,6 +59,7 @@ class Geometry:
                 xy = np.vstack([xy, xy[:1]])
             curves.append(xy)
         self._init(None, curves, names, "rings")
+        self._embed(constraints, points)
 
     def _init(self, files, curves, names, label) -> None:
         self._files = files
@@ -58,6 +67,21 @@ class Geometry:
         self._label = label
         self._names = list(names) if names is not None else None
         self._info = None
+        self._constraints: list[np.ndarray] = []
+        self._points = np.zeros((0, 2))
+
+    def _embed(self, constraints: Iterable[Any] | None, points: Any) -> None:
+        if constraints is not None:
+            if isinstance(constraints, np.ndarray) and constraints.ndim == 2:
+                constraints = [constraints]  # one polyline given as an (N, 2) array
+            self._constraints = [_as_xy(c, f"constraints[{k}]") for k, c in enumerate(constraints)]
+        if points is not None:
+            xy = np.asarray(points, dtype=np.float64)
+            if xy.ndim == 1 and xy.shape[0] in (2, 3):
+                xy = xy[None, :]  # one point
+            self._points = _as_xy(xy if len(xy) else np.zeros((0, 2)), "points")
+        if (self._constraints or len(self._points)) and self._files is not None:
+            raise InputError("constraints= and points= go with curves given in memory, not with geometry files")
 
     @classmethod
     def from_file(cls, *paths: str | os.PathLike, names: Sequence[str] | None = None) -> "Geometry":
@@ -70,10 +94,13 @@ class Geometry:
         return g
 
     @classmethod
-    def from_curves(cls, curves: Iterable[Any], names: Sequence[str] | None = None) -> "Geometry":
-        """Open polylines, (N, 2) arrays, joined where their end points coincide (like a .crv file)."""
+    def from_curves(cls, curves: Iterable[Any], names: Sequence[str] | None = None, *,
+                    constraints: Iterable[Any] | None = None, points: Any = None) -> "Geometry":
+        """Open polylines, (N, 2) arrays, joined where their end points coincide (like a .crv file);
+        ``constraints`` and ``points`` as in the constructor."""
         g = cls.__new__(cls)
         g._init(None, [_as_xy(c, f"curves[{k}]") for k, c in enumerate(curves)], names, "curves")
+        g._embed(constraints, points)
         return g
 
     @classmethod
@@ -103,7 +130,10 @@ class Geometry:
         if self._files is not None:
             return _core.case_for_files(self._files, extra + settings)
         labels = [f"{self._label}[{k}]" for k in range(len(self._curves))]
-        return _core.case_for_curves(self._curves, labels, self._label, extra + settings)
+        labels += [f"constraints[{k}]" for k in range(len(self._constraints))]
+        flags = [0] * len(self._curves) + [1] * len(self._constraints)
+        return _core.case_for_curves(self._curves + self._constraints, labels, self._label, extra + settings, flags,
+                                     np.ascontiguousarray(self._points, dtype=np.float64), "points")
 
     def _geometry(self) -> dict:
         if self._info is None:

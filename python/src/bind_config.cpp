@@ -48,7 +48,7 @@ nb::dict geometry_of(const CaseConfig& c) {
     for (const auto& f : c.geometry.files) files.push_back(f.string());
     g = c.geometry.given_curves.empty()
             ? read_geometry(files, c.geometry.curve_names, options, {c.geometry.projection, nullptr, {}})
-            : geometry_from_curves(c.geometry.given_curves, c.geometry.curve_names, options, {},
+            : geometry_from_curves(c.geometry.given_curves, c.geometry.curve_names, options, c.geometry.given_points,
                                    {c.geometry.projection, nullptr, {}});
   }
   nb::list names, curves, loops;
@@ -151,13 +151,17 @@ void bind_config(nb::module_& m) {
   m.def(
       "case_for_curves",
       [](const std::vector<Ring>& curves, const std::vector<std::string>& labels, const std::string& source,
-         const std::vector<Setting>& settings) {
+         const std::vector<Setting>& settings, const std::vector<int>& constraint, const Ring& points,
+         const std::string& points_label) {
         if (labels.size() != curves.size())
           throw InputError(fmt::format("{} curves but {} labels", curves.size(), labels.size()));
+        if (!constraint.empty() && constraint.size() != curves.size())
+          throw InputError(fmt::format("{} curves but {} constraint flags", curves.size(), constraint.size()));
         std::vector<RawCurve> raw;
         for (std::size_t k = 0; k < curves.size(); ++k) {
           RawCurve c;
           c.file = labels[k];
+          c.constraint = !constraint.empty() && constraint[k] != 0;
           const Ring& a = curves[k];
           for (std::size_t i = 0; i < a.shape(0); ++i) {
             c.points.push_back({a(i, 0), a(i, 1)});
@@ -165,10 +169,15 @@ void bind_config(nb::module_& m) {
           }
           raw.push_back(std::move(c));
         }
-        return case_for_curves(std::move(raw), source, overrides_from(settings));
+        CaseConfig config = case_for_curves(std::move(raw), source, overrides_from(settings));
+        for (std::size_t i = 0; i < points.shape(0); ++i)  // messages say "POINTS_LABEL:i" for point i
+          config.geometry.given_points.push_back({{points(i, 0), points(i, 1)}, points_label, static_cast<int>(i)});
+        return config;
       },
-      nb::arg("curves"), nb::arg("labels"), nb::arg("source"), nb::arg("settings"),
-      "A case for curves given as (N, 2) arrays; labels name each in messages.");
+      nb::arg("curves"), nb::arg("labels"), nb::arg("source"), nb::arg("settings"), nb::arg("constraint"),
+      nb::arg("points"), nb::arg("points_label"),
+      "A case for curves given as (N, 2) arrays (constraint[k]: curve k is an embedded constraint) and embedded "
+      "points given as an (M, 2) array; labels name each in messages.");
 }
 
 }  // namespace pdmesh::py

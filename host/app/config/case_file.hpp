@@ -82,6 +82,9 @@ struct CaseConfig {
     PolyHull hull = PolyHull::Automatic;
     // Curves given in memory (the Python API) instead of files; see case_for_curves().
     std::vector<RawCurve> given_curves;
+    // Embedded points given in memory (the Python API): nodes the mesh must have
+    // (docs/geometry-input.md, "Embedded constraints").
+    std::vector<RawPoint> given_points;
     CurveKind curves = CurveKind::Polyline;  // the same in both presets (docs/initialization.md, "Measured")
     // Healing at the mesh's resolution (geometry/heal.hpp); the preset sets it (off in the thesis).
     bool heal = true;

@@ -50,7 +50,8 @@ MeshInputs::MeshInputs(const CaseConfig& config) {
   const ReadSteps steps{config.geometry.projection, &used, prepare};
   geometry = config.geometry.given_curves.empty()
                  ? read_geometry(files, config.geometry.curve_names, options, steps)
-                 : geometry_from_curves(config.geometry.given_curves, config.geometry.curve_names, options, {}, steps);
+                 : geometry_from_curves(config.geometry.given_curves, config.geometry.curve_names, options,
+                                        config.geometry.given_points, steps);
   if (config.geometry.projection == ProjectionKind::Equirectangular) projection = used;
   // What the readers did beyond the plain reading (a .poly's loops read as subdomains, vertices kept
   // or dropped): always said, also when quiet, since the mesh differs from what the file may suggest.
@@ -120,7 +121,12 @@ MeshInputs::MeshInputs(const CaseConfig& config) {
   // refine without end.
   check_coordinate_resolution(geometry, *spacing);
   boundary_rule = config.boundary.nodes;
-  if (config.geometry.curves == CurveKind::Smooth) {
+  const bool embedded = !geometry.embedded_points.empty() || std::any_of(geometry.curves.begin(), geometry.curves.end(),
+                                                                         [](const Curve& c) { return c.constraint; });
+  if (config.geometry.curves == CurveKind::Smooth && embedded) {
+    // The dense curves would have to meet where the polylines do; the polylines are meshed instead.
+    smooth_fallback = "smooth curves do not support embedded constraints and points yet";
+  } else if (config.geometry.curves == CurveKind::Smooth) {
     DenseOptions dense_options;
     dense_options.join_tolerance = config.geometry.join_tolerance;
     try {

@@ -448,6 +448,7 @@ Mesh mesh_and_measure(const CaseConfig& config, const MeshInputs& inputs, const 
   if (!cleanup) cleaned.per_triangle = triangle_qualities(mesh);
   QualitySummary summary = summarize_quality(cleaned.per_triangle);
   summary.points = mesh.points.size();
+  list_constraints(mesh, summary);
   summary.has_cleanup = cleanup;
   summary.cleanup = cleaned.effect;
   std::vector<double> metric_q;

@@ -189,6 +189,13 @@ Checkpoint read_checkpoint_for(const fs::path& resume, const CaseConfig& config,
     throw InputError(fmt::format("{}: the checkpoint is after {} iterations, more than --iterations {}", file.string(),
                                  checkpoint.state.iterations_done, config.simulation.iterations));
   check_checkpoint_fits(checkpoint, tree, file.string());
+  // Which curves are embedded constraints is the geometry's, not the checkpoint's.
+  const Geometry& g = tree.geometry();
+  for (std::size_t c = 0; c < g.curves.size() && c < checkpoint.nodes.curve_nodes.size(); ++c) {
+    if (!g.curves[c].constraint) continue;
+    checkpoint.nodes.constraint_curves.resize(checkpoint.nodes.curve_nodes.size(), 0);
+    checkpoint.nodes.constraint_curves[c] = 1;
+  }
   return checkpoint;
 }
 
