@@ -14,6 +14,15 @@ struct BoundaryEdge {
   int curve = 0;     // index into Mesh::curve_names
 };
 
+// A point-data array beside a mesh's own (a motion run's "node_id", the arrays `pdmesh transfer`
+// interpolates): `components` values per point, point-major; `integer` writes them as integers.
+struct PointValues {
+  std::string name;
+  int components = 1;
+  std::vector<double> values;
+  bool integer = false;
+};
+
 struct Mesh {
   std::vector<Vec2> points;
   std::vector<std::array<int, 3>> triangles;  // counter-clockwise
@@ -23,6 +32,8 @@ struct Mesh {
   // Per point, when known: the spacing field q there. Written as point data "q" (VTU PointData, MSH
   // $NodeData), so that a run's field can be read back as spacing.field = "mesh". Not read back.
   std::vector<double> spacing;
+  // More point data, written by the VTU writer after "kind" and "q" (empty for a normal run).
+  std::vector<PointValues> point_data;
 };
 
 }  // namespace pdmesh

@@ -24,9 +24,15 @@ struct NodeSet {
   // For each geometry curve, its nodes in order from the curve's first point to its last,
   // both end points included (those are Fixed nodes shared with the neighbouring curves).
   std::vector<std::vector<int>> curve_nodes;
+  // Persistent node ids (a moving-geometry run, docs/motion.md): empty, or one per node. While the
+  // column is there, every edit keeps it parallel: add() appends -1 (a new node, numbered by the
+  // caller, nodes/node_ids.hpp), removals drop the removed nodes' ids, the cleanup carries them.
+  std::vector<std::int64_t> id;
 
   std::size_t size() const { return x.size(); }
+  bool has_ids() const { return !id.empty() && id.size() == x.size(); }
   int add(Vec2 p, double spacing, NodeKind k, int c) {
+    if (has_ids()) id.push_back(-1);
     x.push_back(p);
     q.push_back(spacing);
     kind.push_back(k);

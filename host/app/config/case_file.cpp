@@ -26,7 +26,7 @@ namespace {
 constexpr std::size_t kMaxNameBytes = 200;
 
 const std::vector<std::string> kSections = {"geometry",   "spacing",    "boundary", "init",
-                                            "simulation", "population", "cleanup",  "output"};
+                                            "simulation", "population", "cleanup",  "output", "motion"};
 
 std::string nearest_key(const std::string& key) {
   std::string best;
@@ -110,7 +110,8 @@ bool is_string_key(const std::string& key) {
          key == "spacing.h1" || key == "spacing.h2" || key == "spacing.angle" || key == "spacing.m11" ||
          key == "spacing.m12" || key == "spacing.m22" || key == "spacing.sol" || key == "spacing.function" ||
          key == "init.method" || key == "simulation.device" || key == "simulation.precision" ||
-         key == "simulation.r0_rule" || key == "simulation.stop" || key == "output.color_by";
+         key == "simulation.r0_rule" || key == "simulation.stop" || key == "output.color_by" ||
+         key == "motion.rotate";
 }
 
 // Parses an override's value as TOML; a bare word that is not TOML (random, a.crv) is a string.
@@ -300,6 +301,13 @@ const std::vector<std::string>& case_file_keys() {
       "boundary_layer.thickness",
       "boundary_layer.layers",
       "boundary_layer.elements",
+      "motion.curves",
+      "motion.rotate",
+      "motion.pivot",
+      "motion.translate",
+      "motion.steps",
+      "motion.iterations",
+      "motion.blend",
   };
   return keys;
 }

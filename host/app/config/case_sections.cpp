@@ -457,6 +457,7 @@ void read_case_sections(const Reader& r, const toml::table& root, CaseConfig& c)
   read_cleanup_section(r, root, c);
   read_output_section(r, root, c);
   read_boundary_layer_sections(r, root, c);
+  read_motion_section(r, root, c);
 }
 
 }  // namespace pdmesh::case_detail
