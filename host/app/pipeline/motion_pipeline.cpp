@@ -37,6 +37,7 @@
 #include "nodes/node_domain.hpp"
 #include "nodes/node_ids.hpp"
 #include "render/mesh_picture.hpp"
+#include "spacing/background_field.hpp"
 
 namespace pdmesh {
 
@@ -105,6 +106,47 @@ double blend_radius(const CaseConfig& config, const GeometryTree& tree, const st
     }
   }
   return radius;
+}
+
+// The spacing field of step 0 moved with the body: q(x) = q0(y), y = x + w(r) (P0(Pk^-1(x)) - x), with
+// P0 and Pk the body's poses at step 0 and now, r the distance from the body's centre and w 1 within
+// the body's circumscribed circle, falling smoothly to 0 at `outer` (the carry's radius). Near the
+// body the field moves rigidly with it, beyond `outer` it stays. Its quadtree is built on the moved
+// geometry (tags and refinement there) from lookups in step 0's quadtree: a fraction of a rebuild of
+// the spacing pipeline (docs/motion.md, "The spacing field").
+class MovedSpacing final : public SpacingField {
+ public:
+  MovedSpacing(const SpacingField& rest, const RigidPose& rest_pose, const RigidPose& pose, Vec2 centre, double inner,
+               double outer)
+      : rest_(rest), change_{pose, rest_pose}, centre_(PoseChange{rest_pose, pose}(centre)), inner_(inner),
+        outer_(std::max(outer, inner)) {}
+  double at(Vec2 x) const override { return rest_.at(source(x)); }
+  void at_many(const std::vector<Vec2>& p, std::vector<double>& q) const override {
+    std::vector<Vec2> y(p.size());
+    for (std::size_t i = 0; i < p.size(); ++i) y[i] = source(p[i]);
+    rest_.at_many(y, q);
+  }
+
+ private:
+  Vec2 source(Vec2 x) const {
+    const double r = std::sqrt(norm2(x - centre_));
+    const double w = r <= inner_ ? 1.0 : carry_weight(r - inner_, outer_ - inner_);
+    return w <= 0.0 ? x : x + w * (change_(x) - x);
+  }
+  const SpacingField& rest_;
+  PoseChange change_;  // now -> step 0
+  Vec2 centre_;        // the body's centre now
+  double inner_, outer_;
+};
+
+// The centre and circumscribed radius of the moving curves' box.
+std::pair<Vec2, double> body_circle(const Geometry& g, const std::vector<char>& moving) {
+  double x0 = std::numeric_limits<double>::infinity(), y0 = x0, x1 = -x0, y1 = -x0;
+  for (std::size_t c = 0; c < g.curves.size(); ++c)
+    if (moving[c])
+      for (const Vec2& p : g.curves[c].points)
+        x0 = std::min(x0, p.x), y0 = std::min(y0, p.y), x1 = std::max(x1, p.x), y1 = std::max(y1, p.y);
+  return {{0.5 * (x0 + x1), 0.5 * (y0 + y1)}, 0.5 * std::hypot(x1 - x0, y1 - y0)};
 }
 
 // The carried nodes of the moving curves placed exactly on the moved node geometry: Boundary nodes
@@ -207,6 +249,11 @@ void run_motion_steps(const CaseConfig& config, const std::function<void(const M
   }
   auto spacing = std::make_unique<SpacingStage>(step_config, *inputs);
   const double estimate = check_node_limit(step_config, *inputs, *spacing);
+  // Step 0's inputs and field stay: the later steps' fields are it, moved (MovedSpacing).
+  const std::unique_ptr<MeshInputs> rest_inputs = std::move(inputs);
+  const std::unique_ptr<SpacingStage> rest_spacing = std::move(spacing);
+  std::unique_ptr<MeshInputs> moved_inputs;  // a later step's geometry
+  const MeshInputs* now = rest_inputs.get();  // this step's
   start_workers();
   if (config.write_outputs) prepare_output_directory(config);
 
@@ -220,6 +267,8 @@ void run_motion_steps(const CaseConfig& config, const std::function<void(const M
   std::int64_t next_id = 0;
   NodeSet previous;
   Mesh previous_mesh;
+  std::unique_ptr<MovedSpacing> moved;
+  std::unique_ptr<BackgroundSpacing> moved_background;
   for (int k = 0; k <= static_cast<int>(m.steps); ++k) {
     MotionStepRecord rec;
     rec.step = k;
@@ -228,7 +277,7 @@ void run_motion_steps(const CaseConfig& config, const std::function<void(const M
     CaseConfig sim_config = step_config;
     if (k == 0) {
       rec.spacing_s = since(t0);
-      InitialDistribution initial = make_initial(step_config, *inputs, *spacing);
+      InitialDistribution initial = make_initial(step_config, *rest_inputs, *rest_spacing);
       nodes = std::move(initial.nodes);
     } else {
       t0 = Clock::now();
@@ -236,43 +285,54 @@ void run_motion_steps(const CaseConfig& config, const std::function<void(const M
       CarryRequest carry;
       carry.nodes = &previous;
       carry.triangles = &previous_mesh.triangles;
-      carry.tree = &inputs->node_tree();
+      carry.tree = &now->node_tree();
       carry.moving = moving;
-      carry.radius = blend_radius(config, inputs->node_tree(), moving);
+      carry.radius = blend_radius(config, now->node_tree(), moving);
       carry.from = poses[static_cast<std::size_t>(k - 1)];
       carry.to = poses[static_cast<std::size_t>(k)];
       const CarryResult carried = carry_nodes(carry);
       rec.carry_substeps = carried.substeps;
-      // The moved geometry and its spacing field.
+      // The moved geometry, and step 0's spacing field moved with the body.
       const auto spacing_start = Clock::now();
       step_config.geometry.given_curves = posed_curves(input_geometry, moving, poses[static_cast<std::size_t>(k)]);
-      spacing.reset();
-      inputs = std::make_unique<MeshInputs>(step_config);
-      spacing = std::make_unique<SpacingStage>(step_config, *inputs);
+      moved_inputs = std::make_unique<MeshInputs>(step_config);
+      now = moved_inputs.get();
+      const auto [centre, inner] = body_circle(rest_inputs->geometry, moving);
+      moved = std::make_unique<MovedSpacing>(rest_spacing->background(), poses[0], poses[static_cast<std::size_t>(k)],
+                                             centre, inner, carry.radius);
+      moved_background = std::make_unique<BackgroundSpacing>(*moved, now->node_tree());
       rec.spacing_s = since(spacing_start);
       nodes = previous;
       nodes.x = carried.x;
-      settle_on_moved_curves(nodes, moving_nodes(nodes, moving), inputs->node_tree(), moving);
-      spacing->field().at_many(nodes.x, nodes.q);
+      settle_on_moved_curves(nodes, moving_nodes(nodes, moving), now->node_tree(), moving);
+      moved_background->at_many(nodes.x, nodes.q);
       sim_config = warm_config(step_config);
     }
     // Relax, triangulate, clean up.
     const auto sim_start = Clock::now();
-    if (sim_config.simulation.iterations > 0) {
-      const SimResult result = simulate(sim_config, *inputs, *spacing, nodes, nullptr, &hooks);
+    const SpacingField& field = k == 0 ? rest_spacing->field() : *moved_background;
+    if (k == 0 && sim_config.simulation.iterations > 0) {
+      const SimResult result = simulate(sim_config, *now, *rest_spacing, nodes, nullptr, &hooks);
+      rec.iterations = result.state.iterations_done;
+    } else if (sim_config.simulation.iterations > 0) {
+      // simulate()'s run on the backend, with the moved field's quadtree as the background.
+      SimOptions options = simulation_options(sim_config);
+      options.background = moved_background.get();
+      options.stop = &InterruptGuard::flag();
+      const SimResult result = backend.simulator->run(nodes, now->node_tree(), field, options, {});
       rec.iterations = result.state.iterations_done;
     }
     rec.simulation_s = since(sim_start);
     const auto cleanup_start = Clock::now();
-    Mesh mesh = triangulate(nodes, inputs->curve_names());
+    Mesh mesh = triangulate(nodes, now->curve_names());
     if (config.cleanup.enabled) {
-      CleanupResult cleaned = clean_mesh(mesh, nodes, inputs->node_tree(), spacing->field(), cleanup_options(config));
+      CleanupResult cleaned = clean_mesh(mesh, nodes, now->node_tree(), field, cleanup_options(config));
       mesh = std::move(cleaned.mesh);
       nodes = std::move(cleaned.nodes);
     }
     rec.cleanup_s = since(cleanup_start);
     number_new_nodes(nodes, next_id);
-    spacing->field().at_many(mesh.points, mesh.spacing);
+    field.at_many(mesh.points, mesh.spacing);
     PointValues ids{"node_id", 1, {}, true};
     ids.values.assign(nodes.id.begin(), nodes.id.end());
     mesh.point_data.push_back(std::move(ids));
@@ -288,7 +348,7 @@ void run_motion_steps(const CaseConfig& config, const std::function<void(const M
       rec.inverted += orient2d(mesh.points[static_cast<std::size_t>(t[0])], mesh.points[static_cast<std::size_t>(t[1])],
                                mesh.points[static_cast<std::size_t>(t[2])]) <= 0.0;
     if (config.check) {
-      const CheckReport report = check_mesh(mesh, node_domain_area(nodes, inputs->node_geometry()));
+      const CheckReport report = check_mesh(mesh, node_domain_area(nodes, now->node_geometry()));
       if (!report.ok())
         throw SimulationError(fmt::format("motion step {} (t = {}): the mesh failed its invariant check:\n{}", k,
                                           rec.t, report.summary()));
