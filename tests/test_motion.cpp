@@ -278,7 +278,7 @@ TEST_CASE("pdmesh mesh with [motion]: step meshes, motion.pvd and motion.json; t
   for (const std::string& f : files) CHECK(fs::exists(out / f));
   CHECK(pvd.find("timestep=\"0.5\"") != std::string::npos);
   const std::string json = pdmesh_test::slurp(out / "motion.json");
-  const std::regex row(R"re(\{"step": (\d+), "t": [^,]+, "wall_s": [^,]+, "iterations": \d+, "nodes": \d+, "ids_kept": [^,]+, "min_angle": [^,]+, "inverted": 0,)re");
+  const std::regex row(R"re(\{"step": (\d+), "t": [^,]+, "wall_s": [^,]+, "cpu_s": [^,]+, "iterations": \d+, "nodes": \d+, "ids_kept": [^,]+, "min_angle": [^,]+, "inverted": 0,)re");
   std::size_t rows = 0;
   for (auto it = std::sregex_iterator(json.begin(), json.end(), row); it != std::sregex_iterator(); ++it) ++rows;
   CHECK(rows == 3);

@@ -213,7 +213,7 @@ struct CaseConfig {
     std::array<double, 2> pivot{0.0, 0.0};
     std::array<std::string, 2> translate{"0", "0"};  // x(t), y(t)
     std::int64_t steps = 0;                      // t = k / steps, k = 0 .. steps
-    std::int64_t iterations = 60;                // the warm relaxation of each later step, at most
+    std::int64_t iterations = 30;                // the warm relaxation of each later step, at most
     double blend = 4.0;                          // carried-node blending radius, in body sizes
   } motion;
 

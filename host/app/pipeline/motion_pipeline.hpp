@@ -22,6 +22,7 @@ struct MotionStepRecord {
   int step = 0;
   double t = 0.0;
   double wall_s = 0.0;
+  double cpu_s = 0.0;  // the process's CPU time over the step (all threads)
   int iterations = 0;
   std::size_t nodes = 0;
   double ids_kept = 1.0;  // share of the previous step's ids this step still has (1 at step 0)
