@@ -198,6 +198,7 @@ TEST_CASE("motion: a rigid rotation keeps the body's nodes on the moved curves a
   const fs::path dir = pdmesh_test::fresh_dir("motion_rotate");
   CaseConfig c = motion_case(
       dir, "[motion]\ncurves = [\"upper\", \"lower\"]\nrotate = \"30*t\"\npivot = [0.2, 0.0]\nsteps = 3\n");
+  c.check = true;  // every step's mesh through the invariant checker (a SimulationError if one fails)
   const Geometry g = read_geometry({(dir / "far.crv").string(), (dir / "body.crv").string()}, {"far", "upper", "lower"});
   std::vector<MotionStep> steps;
   run_motion_steps(c, [&](const MotionStep& s) { steps.push_back(s); });
