@@ -84,7 +84,8 @@ double distance_to_polyline(Vec2 p, const std::vector<Vec2>& pts) {
 TEST_CASE("node ids: NodeSet::add appends a new id, remove_nodes drops the removed ones, new ones are numbered") {
   const fs::path dir = pdmesh_test::fresh_dir("motion_ids");
   write_geometry(dir);
-  const Geometry g = read_geometry({(dir / "far.crv").string(), (dir / "body.crv").string()}, {"far", "upper", "lower"});
+  const Geometry g =
+      read_geometry({(dir / "far.crv").string(), (dir / "body.crv").string()}, {"far", "upper", "lower"});
   const GeometryTree tree(g);
   const ConstantSpacing spacing(0.5);
   NodeSet nodes = make_boundary_nodes(g, spacing);
@@ -113,7 +114,8 @@ TEST_CASE("node ids: NodeSet::add appends a new id, remove_nodes drops the remov
 TEST_CASE("node ids: the cleanup keeps the ids of the nodes it keeps") {
   const fs::path dir = pdmesh_test::fresh_dir("motion_cleanup_ids");
   write_geometry(dir);
-  const Geometry g = read_geometry({(dir / "far.crv").string(), (dir / "body.crv").string()}, {"far", "upper", "lower"});
+  const Geometry g =
+      read_geometry({(dir / "far.crv").string(), (dir / "body.crv").string()}, {"far", "upper", "lower"});
   const GeometryTree tree(g);
   const ConstantSpacing spacing(0.4);
   NodeSet nodes = make_boundary_nodes(g, spacing);
@@ -146,7 +148,8 @@ TEST_CASE("node ids: the cleanup keeps the ids of the nodes it keeps") {
 TEST_CASE("carry: a large rotation is split into sub-steps and never inverts a triangle") {
   const fs::path dir = pdmesh_test::fresh_dir("motion_carry");
   write_geometry(dir);
-  const Geometry g = read_geometry({(dir / "far.crv").string(), (dir / "body.crv").string()}, {"far", "upper", "lower"});
+  const Geometry g =
+      read_geometry({(dir / "far.crv").string(), (dir / "body.crv").string()}, {"far", "upper", "lower"});
   const GeometryTree tree(g);
   const ConstantSpacing spacing(0.25);
   NodeSet nodes = make_boundary_nodes(g, spacing);
@@ -184,7 +187,8 @@ TEST_CASE("carry: a large rotation is split into sub-steps and never inverts a t
 
 TEST_CASE("motion: a step with zero motion keeps every id and a valid mesh") {
   const fs::path dir = pdmesh_test::fresh_dir("motion_zero");
-  CaseConfig c = motion_case(dir, "[motion]\ncurves = [\"upper\", \"lower\"]\nrotate = \"0\"\nsteps = 1\niterations = 0\n");
+  CaseConfig c =
+      motion_case(dir, "[motion]\ncurves = [\"upper\", \"lower\"]\nrotate = \"0\"\nsteps = 1\niterations = 0\n");
   std::vector<MotionStep> steps;
   run_motion_steps(c, [&](const MotionStep& s) { steps.push_back(s); });
   REQUIRE(steps.size() == 2);
@@ -196,10 +200,11 @@ TEST_CASE("motion: a step with zero motion keeps every id and a valid mesh") {
 
 TEST_CASE("motion: a rigid rotation keeps the body's nodes on the moved curves and the ids mostly kept") {
   const fs::path dir = pdmesh_test::fresh_dir("motion_rotate");
-  CaseConfig c = motion_case(
-      dir, "[motion]\ncurves = [\"upper\", \"lower\"]\nrotate = \"30*t\"\npivot = [0.2, 0.0]\nsteps = 3\n");
+  CaseConfig c =
+      motion_case(dir, "[motion]\ncurves = [\"upper\", \"lower\"]\nrotate = \"30*t\"\npivot = [0.2, 0.0]\nsteps = 3\n");
   c.check = true;  // every step's mesh through the invariant checker (a SimulationError if one fails)
-  const Geometry g = read_geometry({(dir / "far.crv").string(), (dir / "body.crv").string()}, {"far", "upper", "lower"});
+  const Geometry g =
+      read_geometry({(dir / "far.crv").string(), (dir / "body.crv").string()}, {"far", "upper", "lower"});
   std::vector<MotionStep> steps;
   run_motion_steps(c, [&](const MotionStep& s) { steps.push_back(s); });
   REQUIRE(steps.size() == 4);
@@ -228,7 +233,8 @@ TEST_CASE("motion: a rigid rotation keeps the body's nodes on the moved curves a
 TEST_CASE("transfer: a linear function is interpolated exactly, also outside the source mesh") {
   const fs::path dir = pdmesh_test::fresh_dir("motion_transfer");
   write_geometry(dir);
-  const Geometry g = read_geometry({(dir / "far.crv").string(), (dir / "body.crv").string()}, {"far", "upper", "lower"});
+  const Geometry g =
+      read_geometry({(dir / "far.crv").string(), (dir / "body.crv").string()}, {"far", "upper", "lower"});
   const ConstantSpacing spacing(0.3);
   NodeSet nodes = make_boundary_nodes(g, spacing);
   for (int i = -9; i <= 9; ++i)
@@ -279,16 +285,17 @@ TEST_CASE("pdmesh mesh with [motion]: step meshes, motion.pvd and motion.json; t
   for (const std::string& f : files) CHECK(fs::exists(out / f));
   CHECK(pvd.find("timestep=\"0.5\"") != std::string::npos);
   const std::string json = pdmesh_test::slurp(out / "motion.json");
-  const std::regex row(R"re(\{"step": (\d+), "t": [^,]+, "wall_s": [^,]+, "cpu_s": [^,]+, "iterations": \d+, "nodes": \d+, "ids_kept": [^,]+, "min_angle": [^,]+, "inverted": 0,)re");
+  const std::regex row(
+      R"re(\{"step": (\d+), "t": [^,]+, "wall_s": [^,]+, "cpu_s": [^,]+, "iterations": \d+, "nodes": \d+, "ids_kept": [^,]+, "min_angle": [^,]+, "inverted": 0,)re");
   std::size_t rows = 0;
   for (auto it = std::sregex_iterator(json.begin(), json.end(), row); it != std::sregex_iterator(); ++it) ++rows;
   CHECK(rows == 3);
   CHECK(pdmesh_test::slurp(out / "step_0001/mesh.vtu").find("Name=\"node_id\"") != std::string::npos);
   // Transfer step 0's q onto step 1.
   const fs::path moved = dir / "transferred.vtu";
-  const auto t = pdmesh_test::run_pdmesh("transfer '" + (out / "step_0000/mesh.vtu").string() + "' '" +
-                                         (out / "step_0001/mesh.vtu").string() + "' --arrays q --out '" +
-                                         moved.string() + "'");
+  const auto t =
+      pdmesh_test::run_pdmesh("transfer '" + (out / "step_0000/mesh.vtu").string() + "' '" +
+                              (out / "step_0001/mesh.vtu").string() + "' --arrays q --out '" + moved.string() + "'");
   INFO(t.output);
   CHECK(t.status == 0);
   const std::string text = pdmesh_test::slurp(moved);
@@ -329,7 +336,8 @@ TEST_CASE("pdmesh mesh with bad [motion] keys: exit 2 naming the key, nothing wr
   // The curve check against names read from the files (no geometry.curve_names in the case).
   std::ofstream(dir / "case.toml") << "[geometry]\nfiles = [\"far.crv\", \"body.crv\"]\n[motion]\ncurves = "
                                       "[\"wing\"]\nsteps = 2\n";
-  const auto r = pdmesh_test::run_pdmesh("mesh '" + (dir / "case.toml").string() + "' --out '" + (dir / "out2").string() + "'");
+  const auto r =
+      pdmesh_test::run_pdmesh("mesh '" + (dir / "case.toml").string() + "' --out '" + (dir / "out2").string() + "'");
   INFO(r.output);
   CHECK(r.status == 2);
   CHECK(r.output.find("unknown curve 'wing'") != std::string::npos);

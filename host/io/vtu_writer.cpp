@@ -137,7 +137,8 @@ std::string vtu_string(const Mesh& mesh, VtuFormat format) {
   for (const PointValues& d : mesh.point_data) {
     const auto at = [&d](std::size_t i, int c) { return d.values[i * static_cast<std::size_t>(d.components) + c]; };
     std::string name = d.name;  // an attribute value: no markup characters
-    std::replace_if(name.begin(), name.end(), [](char ch) { return ch == '"' || ch == '<' || ch == '>' || ch == '&'; }, '_');
+    std::replace_if(
+        name.begin(), name.end(), [](char ch) { return ch == '"' || ch == '<' || ch == '>' || ch == '&'; }, '_');
     if (d.integer)
       data_array<std::int64_t>(out, format, array, name, "", mesh.points.size(), d.components,
                                [&](std::size_t i, int c) { return static_cast<std::int64_t>(at(i, c)); });

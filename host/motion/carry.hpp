@@ -15,11 +15,11 @@
 namespace pdmesh {
 
 struct CarryRequest {
-  const NodeSet* nodes = nullptr;                          // the previous step's nodes (pose `from`)
+  const NodeSet* nodes = nullptr;                              // the previous step's nodes (pose `from`)
   const std::vector<std::array<int, 3>>* triangles = nullptr;  // its mesh over them, counter-clockwise
-  const GeometryTree* tree = nullptr;                      // the geometry at pose `from`
-  std::vector<char> moving;                                // per curve of tree->geometry(): 1 if it moves
-  double radius = 1.0;                                     // where the weight reaches 0
+  const GeometryTree* tree = nullptr;                          // the geometry at pose `from`
+  std::vector<char> moving;                                    // per curve of tree->geometry(): 1 if it moves
+  double radius = 1.0;                                         // where the weight reaches 0
   RigidPose from, to;
   int max_halvings = 8;  // at most 2^max_halvings sub-steps
 };

@@ -43,8 +43,8 @@ double TimeExpression::operator()(double t) const {
     throw InputError(fmt::format("{} '{}' at t = {}: {}", impl_->what, impl_->expression, t, e.GetMsg()));
   }
   if (!std::isfinite(v))
-    throw InputError(fmt::format("{} '{}' at t = {} gives {}; it must be a finite number", impl_->what,
-                                 impl_->expression, t, v));
+    throw InputError(
+        fmt::format("{} '{}' at t = {} gives {}; it must be a finite number", impl_->what, impl_->expression, t, v));
   return v;
 }
 

@@ -426,8 +426,8 @@ Cli::Cli()
       ->delimiter(',')
       ->type_name("NAME,...");
   transfer->add_flag("--quiet,-q", targs->quiet, "No summary line on stderr");
-  commands_.emplace_back(transfer,
-                         [targs] { return run_transfer(targs->from, targs->to, targs->out, targs->arrays, targs->quiet); });
+  commands_.emplace_back(
+      transfer, [targs] { return run_transfer(targs->from, targs->to, targs->out, targs->arrays, targs->quiet); });
 
   CLI::App* devices = app_->add_subcommand("devices", "List the OpenCL platforms and devices (--device opencl:P:D)");
   devices->add_flag("--check", devices_check_, "Also build and run a small kernel on each device");

@@ -47,13 +47,14 @@ int run_transfer(const std::string& from, const std::string& to, const std::stri
     for (const std::string& n : listing.point_arrays)
       if (n != "kind" && n != "q" && n != "node_id") names.push_back(n);
     if (names.empty())
-      throw InputError(fmt::format("{}: no point data to transfer (point arrays: {})", from,
-                                   listing.point_arrays.empty() ? "none" : fmt::format("{}", fmt::join(listing.point_arrays, ", "))));
+      throw InputError(fmt::format(
+          "{}: no point data to transfer (point arrays: {})", from,
+          listing.point_arrays.empty() ? "none" : fmt::format("{}", fmt::join(listing.point_arrays, ", "))));
   }
   for (const std::string& n : names)
     if (std::find(listing.point_arrays.begin(), listing.point_arrays.end(), n) == listing.point_arrays.end())
-      throw InputError(fmt::format("{}: no point array '{}' (point arrays: {})", from, n,
-                                   fmt::join(listing.point_arrays, ", ")));
+      throw InputError(
+          fmt::format("{}: no point array '{}' (point arrays: {})", from, n, fmt::join(listing.point_arrays, ", ")));
   if (source.triangles.empty()) throw InputError(fmt::format("{}: the mesh has no triangles", from));
   MeshReadReport report;
   Mesh target = read_mesh(to, report);
@@ -70,7 +71,8 @@ int run_transfer(const std::string& from, const std::string& to, const std::stri
     data.wanted = n;
     (void)read_with_data(from, data);
     const PointDataArray& a = *data.array;
-    PointValues v{n, a.components, transfer_point_values(source, a.values, a.components, target.points, &counts), false};
+    PointValues v{n, a.components, transfer_point_values(source, a.values, a.components, target.points, &counts),
+                  false};
     target.point_data.push_back(std::move(v));
   }
   write_file_atomically(out, vtu_string(target));
@@ -78,8 +80,8 @@ int run_transfer(const std::string& from, const std::string& to, const std::stri
     fmt::print(stderr,
                "transfer: {} ({}) from {} ({} points) onto {} ({} points): {} points in a triangle, {} outside the "
                "mesh (nearest triangle, at most {:.3g} away); wrote {}\n",
-               fmt::join(names, ", "), names.size(), from, source.points.size(), to, target.points.size(), counts.inside,
-               counts.outside, counts.max_distance, out);
+               fmt::join(names, ", "), names.size(), from, source.points.size(), to, target.points.size(),
+               counts.inside, counts.outside, counts.max_distance, out);
   return 0;
 }
 

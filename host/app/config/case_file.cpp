@@ -25,8 +25,8 @@ namespace {
 // Tables that may hold further keys; every other key is a leaf.
 constexpr std::size_t kMaxNameBytes = 200;
 
-const std::vector<std::string> kSections = {"geometry",   "spacing",    "boundary", "init",
-                                            "simulation", "population", "cleanup",  "output", "motion"};
+const std::vector<std::string> kSections = {"geometry",   "spacing", "boundary", "init",  "simulation",
+                                            "population", "cleanup", "output",   "motion"};
 
 std::string nearest_key(const std::string& key) {
   std::string best;
@@ -110,8 +110,7 @@ bool is_string_key(const std::string& key) {
          key == "spacing.h1" || key == "spacing.h2" || key == "spacing.angle" || key == "spacing.m11" ||
          key == "spacing.m12" || key == "spacing.m22" || key == "spacing.sol" || key == "spacing.function" ||
          key == "init.method" || key == "simulation.device" || key == "simulation.precision" ||
-         key == "simulation.r0_rule" || key == "simulation.stop" || key == "output.color_by" ||
-         key == "motion.rotate";
+         key == "simulation.r0_rule" || key == "simulation.stop" || key == "output.color_by" || key == "motion.rotate";
 }
 
 // Parses an override's value as TOML; a bare word that is not TOML (random, a.crv) is a string.

@@ -208,13 +208,13 @@ struct CaseConfig {
   // Absent (enabled false) by default: a normal run.
   struct Motion {
     bool enabled = false;
-    std::vector<std::string> curves;             // names from geometry.curve_names (or the files')
-    std::string rotate = "0";                    // degrees about pivot, counter-clockwise, muParser in t
+    std::vector<std::string> curves;  // names from geometry.curve_names (or the files')
+    std::string rotate = "0";         // degrees about pivot, counter-clockwise, muParser in t
     std::array<double, 2> pivot{0.0, 0.0};
     std::array<std::string, 2> translate{"0", "0"};  // x(t), y(t)
-    std::int64_t steps = 0;                      // t = k / steps, k = 0 .. steps
-    std::int64_t iterations = 30;                // the warm relaxation of each later step, at most
-    double blend = 4.0;                          // carried-node blending radius, in body sizes
+    std::int64_t steps = 0;                          // t = k / steps, k = 0 .. steps
+    std::int64_t iterations = 30;                    // the warm relaxation of each later step, at most
+    double blend = 4.0;                              // carried-node blending radius, in body sizes
   } motion;
 
   struct Output {

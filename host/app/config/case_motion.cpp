@@ -42,12 +42,15 @@ void read_motion_section(const Reader& r, const toml::table& root, CaseConfig& c
   if (const toml::node* n = t.get("rotate")) m.rotate = expression("motion.rotate", *n);
   if (const toml::node* n = t.get("translate")) {
     const toml::array& a = r.array("motion.translate", *n);
-    if (a.size() != 2) r.fail("motion.translate", n, fmt::format("motion.translate must hold 2 expressions [x(t), y(t)], got {}", a.size()));
+    if (a.size() != 2)
+      r.fail("motion.translate", n,
+             fmt::format("motion.translate must hold 2 expressions [x(t), y(t)], got {}", a.size()));
     for (std::size_t k = 0; k < 2; ++k) m.translate[k] = expression(fmt::format("motion.translate[{}]", k), *a.get(k));
   }
   if (const toml::node* n = t.get("pivot")) {
     const toml::array& a = r.array("motion.pivot", *n);
-    if (a.size() != 2) r.fail("motion.pivot", n, fmt::format("motion.pivot must hold 2 numbers [x, y], got {}", a.size()));
+    if (a.size() != 2)
+      r.fail("motion.pivot", n, fmt::format("motion.pivot must hold 2 numbers [x, y], got {}", a.size()));
     for (std::size_t k = 0; k < 2; ++k) m.pivot[k] = r.number(fmt::format("motion.pivot[{}]", k), *a.get(k));
   }
   if (const toml::node* n = t.get("steps")) {

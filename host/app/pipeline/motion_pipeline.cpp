@@ -119,7 +119,10 @@ class MovedSpacing final : public SpacingField {
  public:
   MovedSpacing(const SpacingField& rest, const RigidPose& rest_pose, const RigidPose& pose, Vec2 centre, double inner,
                double outer)
-      : rest_(rest), change_{pose, rest_pose}, centre_(PoseChange{rest_pose, pose}(centre)), inner_(inner),
+      : rest_(rest),
+        change_{pose, rest_pose},
+        centre_(PoseChange{rest_pose, pose}(centre)),
+        inner_(inner),
         outer_(std::max(outer, inner)) {}
   double at(Vec2 x) const override { return rest_.at(source(x)); }
   void at_many(const std::vector<Vec2>& p, std::vector<double>& q) const override {
@@ -213,11 +216,13 @@ std::string motion_json(const std::vector<MotionStepRecord>& records) {
       return s;
     };
     out += fmt::format(
-        "  {{\"step\": {}, \"t\": {}, \"wall_s\": {}, \"cpu_s\": {}, \"iterations\": {}, \"nodes\": {}, \"ids_kept\": {}, "
+        "  {{\"step\": {}, \"t\": {}, \"wall_s\": {}, \"cpu_s\": {}, \"iterations\": {}, \"nodes\": {}, \"ids_kept\": "
+        "{}, "
         "\"min_angle\": {}, \"inverted\": {}, \"carry_substeps\": {}, \"spacing_s\": {}, \"simulation_s\": {}, "
         "\"cleanup_s\": {}}}{}\n",
-        r.step, num(r.t), num(r.wall_s), num(r.cpu_s), r.iterations, r.nodes, num(r.ids_kept), num(r.min_angle), r.inverted,
-        r.carry_substeps, num(r.spacing_s), num(r.simulation_s), num(r.cleanup_s), k + 1 < records.size() ? "," : "");
+        r.step, num(r.t), num(r.wall_s), num(r.cpu_s), r.iterations, r.nodes, num(r.ids_kept), num(r.min_angle),
+        r.inverted, r.carry_substeps, num(r.spacing_s), num(r.simulation_s), num(r.cleanup_s),
+        k + 1 < records.size() ? "," : "");
   }
   out += "]\n";
   return out;
@@ -231,13 +236,15 @@ void run_motion_steps(const CaseConfig& config, const std::function<void(const M
   if (config.spacing.metric())
     throw InputError(fmt::format("{}: [motion] with a metric spacing field is not supported (docs/motion.md)",
                                  config.source.string()));
-  if (config.resume) throw InputError(fmt::format("{}: --resume is not supported with [motion]", config.source.string()));
+  if (config.resume)
+    throw InputError(fmt::format("{}: --resume is not supported with [motion]", config.source.string()));
   CaseConfig base = config;
   base.write_outputs = false;
   // Every pose before anything runs: an expression that is not finite at some step is bad input.
   const MotionPath path(m.rotate, m.pivot, m.translate);
   std::vector<RigidPose> poses;
-  for (std::int64_t k = 0; k <= m.steps; ++k) poses.push_back(path.at(static_cast<double>(k) / static_cast<double>(m.steps)));
+  for (std::int64_t k = 0; k <= m.steps; ++k)
+    poses.push_back(path.at(static_cast<double>(k) / static_cast<double>(m.steps)));
 
   auto t0 = Clock::now();
   std::clock_t c0 = std::clock();
@@ -254,7 +261,7 @@ void run_motion_steps(const CaseConfig& config, const std::function<void(const M
   // Step 0's inputs and field stay: the later steps' fields are it, moved (MovedSpacing).
   const std::unique_ptr<MeshInputs> rest_inputs = std::move(inputs);
   const std::unique_ptr<SpacingStage> rest_spacing = std::move(spacing);
-  std::unique_ptr<MeshInputs> moved_inputs;  // a later step's geometry
+  std::unique_ptr<MeshInputs> moved_inputs;   // a later step's geometry
   const MeshInputs* now = rest_inputs.get();  // this step's
   start_workers();
   if (config.write_outputs) prepare_output_directory(config);
@@ -353,8 +360,8 @@ void run_motion_steps(const CaseConfig& config, const std::function<void(const M
     if (config.check) {
       const CheckReport report = check_mesh(mesh, node_domain_area(nodes, now->node_geometry()));
       if (!report.ok())
-        throw SimulationError(fmt::format("motion step {} (t = {}): the mesh failed its invariant check:\n{}", k,
-                                          rec.t, report.summary()));
+        throw SimulationError(fmt::format("motion step {} (t = {}): the mesh failed its invariant check:\n{}", k, rec.t,
+                                          report.summary()));
     }
     if (config.write_outputs) {
       const fs::path dir = config.out_dir / step_name(k);
@@ -365,8 +372,8 @@ void run_motion_steps(const CaseConfig& config, const std::function<void(const M
       write_mesh(mesh, dir, "mesh", formats);
       if (config.output.wants("png")) {
         MeshPictureOptions picture;
-        picture.title = fmt::format("{} - step {} t = {:.4g} ({} triangles)", config.name, k, rec.t,
-                                    mesh.triangles.size());
+        picture.title =
+            fmt::format("{} - step {} t = {:.4g} ({} triangles)", config.name, k, rec.t, mesh.triangles.size());
         if (!config.output.views.empty()) picture.window = config.output.views.front().window;
         write_mesh_picture(dir / "mesh.png", mesh, picture);
       }
