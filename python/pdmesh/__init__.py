@@ -16,6 +16,7 @@ from .errors import Cancelled, DeviceError, Error, GeometryError, InputError, Li
 from .geometry import Geometry
 from .mesh import Mesh
 from .mesher import Case, Mesher, State, generate
+from .motion import MotionStep, run_motion, transfer
 
 __version__ = _core.version
 
@@ -27,5 +28,6 @@ def case_keys() -> list[str]:
 
 __all__ = [
     "Cancelled", "Case", "DeviceError", "Error", "Geometry", "GeometryError", "InputError", "LimitError", "Mesh",
-    "Mesher", "Progress", "SimulationError", "State", "case_keys", "generate", "size", "__version__",
+    "Mesher", "MotionStep", "Progress", "SimulationError", "State", "case_keys", "generate", "run_motion", "size",
+    "transfer", "__version__",
 ]
