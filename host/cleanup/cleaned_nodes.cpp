@@ -15,11 +15,14 @@ void cleaned_mesh_and_nodes(const EditableMesh& m, const Mesh& mesh, const NodeS
   out.kind = out_mesh.kind;
   out.curve_nodes = std::move(curve_nodes);
   out.constraint_curves = nodes.constraint_curves;
+  // Persistent ids: a node the cleanup kept keeps its id; one it inserted is new (-1).
+  const bool ids = nodes.has_ids();
   for (std::size_t k = 0; k < old_of_new.size(); ++k) {
     const auto a = static_cast<std::size_t>(old_of_new[k]);
     const bool original = a < nodes.size();
     out.q.push_back(original ? nodes.q[a] : spacing.at(out.x[k]));
     out.curve.push_back(original ? nodes.curve[a] : m.curve[a]);
+    if (ids) out.id.push_back(original ? nodes.id[a] : -1);
   }
 }
 

@@ -49,6 +49,10 @@ void check_mesh_for_writing(const Mesh& mesh, const std::string& what) {
   if (!mesh.spacing.empty() && mesh.spacing.size() != mesh.points.size()) {
     throw InputError(fmt::format("{}: {} spacing values for {} points", what, mesh.spacing.size(), n));
   }
+  for (const PointValues& d : mesh.point_data)
+    if (d.components < 1 || d.values.size() != static_cast<std::size_t>(d.components) * mesh.points.size())
+      throw InputError(fmt::format("{}: point data '{}' has {} values for {} points of {} components", what, d.name,
+                                   d.values.size(), n, d.components));
 }
 
 std::vector<std::size_t> boundary_edges_by_curve(const Mesh& mesh) {

@@ -5,6 +5,7 @@
 // arrays with the same names, types and values.
 #include "io/vtu_writer.hpp"
 
+#include <algorithm>
 #include <bit>
 #include <cmath>
 #include <cstdint>
@@ -133,6 +134,18 @@ std::string vtu_string(const Mesh& mesh, VtuFormat format) {
   if (!mesh.spacing.empty())
     data_array<double>(out, format, array, "q", "", mesh.spacing.size(), 1,
                        [&](std::size_t i, int) { return mesh.spacing[i]; });
+  for (const PointValues& d : mesh.point_data) {
+    const auto at = [&d](std::size_t i, int c) { return d.values[i * static_cast<std::size_t>(d.components) + c]; };
+    std::string name = d.name;  // an attribute value: no markup characters
+    std::replace_if(
+        name.begin(), name.end(), [](char ch) { return ch == '"' || ch == '<' || ch == '>' || ch == '&'; }, '_');
+    if (d.integer)
+      data_array<std::int64_t>(out, format, array, name, "", mesh.points.size(), d.components,
+                               [&](std::size_t i, int c) { return static_cast<std::int64_t>(at(i, c)); });
+    else
+      data_array<double>(out, format, array, name, "", mesh.points.size(), d.components,
+                         [&](std::size_t i, int c) { return finite_or_big(at(i, c)); });
+  }
   out += "      </PointData>\n";
   out += "      <CellData Scalars=\"min_angle\">\n";
   const auto metric = [&](const char* name, double TriangleQuality::*m) {

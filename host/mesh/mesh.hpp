@@ -15,6 +15,15 @@ struct BoundaryEdge {
   int curve = 0;     // index into Mesh::curve_names
 };
 
+// A point-data array beside a mesh's own (a motion run's "node_id", the arrays `pdmesh transfer`
+// interpolates): `components` values per point, point-major; `integer` writes them as integers.
+struct PointValues {
+  std::string name;
+  int components = 1;
+  std::vector<double> values;
+  bool integer = false;
+};
+
 struct Mesh {
   std::vector<Vec2> points;
   std::vector<std::array<int, 3>> triangles;  // counter-clockwise
@@ -31,6 +40,8 @@ struct Mesh {
   // region it lies in, 0 outside every region (mesh/region_tags.hpp). Written as the physical surface
   // of each triangle (MSH), cell data "region" (VTU) and the triangle attribute (Triangle .ele).
   std::vector<double> region;
+  // More point data, written by the VTU writer after "kind" and "q" (empty for a normal run).
+  std::vector<PointValues> point_data;
 };
 
 }  // namespace pdmesh

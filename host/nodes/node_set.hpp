@@ -27,9 +27,15 @@ struct NodeSet {
   // Per curve_nodes entry: 1 for an embedded constraint (Curve::constraint), whose chain of edges
   // has the domain on both sides; empty when no curve is one.
   std::vector<std::uint8_t> constraint_curves;
+  // Persistent node ids (a moving-geometry run, docs/motion.md): empty, or one per node. While the
+  // column is there, every edit keeps it parallel: add() appends -1 (a new node, numbered by the
+  // caller, nodes/node_ids.hpp), removals drop the removed nodes' ids, the cleanup carries them.
+  std::vector<std::int64_t> id;
 
   std::size_t size() const { return x.size(); }
+  bool has_ids() const { return !id.empty() && id.size() == x.size(); }
   int add(Vec2 p, double spacing, NodeKind k, int c) {
+    if (has_ids()) id.push_back(-1);
     x.push_back(p);
     q.push_back(spacing);
     kind.push_back(k);

@@ -184,6 +184,7 @@ void BoundaryHandler::move_interior(NodeSet& nodes, int node, Vec2 p) {
 
 std::vector<int> BoundaryHandler::remove_nodes(NodeSet& nodes, const std::vector<char>& remove) {
   const std::size_t n = nodes.size();
+  const bool ids = nodes.has_ids();
   std::vector<int> new_of_old(n, -1), old_of_new;
   old_of_new.reserve(n);
   for (std::size_t i = 0; i < n; ++i) {
@@ -216,6 +217,7 @@ std::vector<int> BoundaryHandler::remove_nodes(NodeSet& nodes, const std::vector
     nodes.q[k] = nodes.q[i];
     nodes.kind[k] = nodes.kind[i];
     nodes.curve[k] = nodes.curve[i];
+    if (ids) nodes.id[k] = nodes.id[i];
     tangent_[k] = tangent_[i];
     budget_[k] = budget_[i];
   }
@@ -224,6 +226,7 @@ std::vector<int> BoundaryHandler::remove_nodes(NodeSet& nodes, const std::vector
   nodes.q.resize(m);
   nodes.kind.resize(m);
   nodes.curve.resize(m);
+  if (ids) nodes.id.resize(m);
   tangent_.resize(m);
   budget_.resize(m);
   return old_of_new;

@@ -17,6 +17,7 @@ from .geometry import Geometry
 from .mesh import Mesh
 from .mesher import Case, Mesher, State, generate
 from ._smooth import smooth
+from .motion import MotionStep, run_motion, transfer
 
 __version__ = _core.version
 
@@ -28,5 +29,6 @@ def case_keys() -> list[str]:
 
 __all__ = [
     "Cancelled", "Case", "DeviceError", "Error", "Geometry", "GeometryError", "InputError", "LimitError", "Mesh",
-    "Mesher", "Progress", "SimulationError", "State", "case_keys", "generate", "size", "smooth", "__version__",
+    "Mesher", "MotionStep", "Progress", "SimulationError", "State", "case_keys", "generate", "run_motion", "size",
+    "smooth", "transfer", "__version__",
 ]

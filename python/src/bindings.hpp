@@ -81,5 +81,6 @@ void bind_config(nb::module_& m);
 void bind_mesher(nb::module_& m);
 void bind_mesh(nb::module_& m);
 void bind_cli(nb::module_& m);
+void bind_motion(nb::module_& m);
 
 }  // namespace pdmesh::py

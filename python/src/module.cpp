@@ -53,4 +53,5 @@ NB_MODULE(_core, m) {
   bind_mesher(m);
   bind_mesh(m);
   bind_cli(m);
+  bind_motion(m);
 }

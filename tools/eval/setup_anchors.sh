@@ -2,7 +2,8 @@
 # Installs the anisotropic anchors that tools/eval/aniso_anchors.py runs, apart from the product's
 # dependencies: BAMG inside FreeFem++ (Debian `freefem++`) and, in the virtual environment
 # tools/.venv-anchors, Gmsh 4.15.2 and mmg2d (PyPI `mmgpy`, whose wheel ships the mmg2d_O3 binary)
-# with numpy for the evaluator, and the coastal formats' third-party readers. Idempotent.
+# with numpy for the evaluator, the coastal formats' third-party readers, and those
+# tools/eval/motion_check.py opens a motion run's .pvd with (pyvista with its vtk wheel, meshio). Idempotent.
 #
 #   tools/eval/setup_anchors.sh
 #   tools/.venv-anchors/bin/python tools/eval/aniso_anchors.py
@@ -18,7 +19,8 @@ fi
 
 venv=$PWD/tools/.venv-anchors
 [ -x "$venv/bin/python" ] || python3 -m venv "$venv"
-"$venv/bin/python" -m pip install -q --disable-pip-version-check "numpy>=1.21" "gmsh==4.15.2" "mmgpy==0.17.1"
+"$venv/bin/python" -m pip install -q --disable-pip-version-check "numpy>=1.21" "gmsh==4.15.2" "mmgpy==0.17.1" \
+  "pyvista==0.49.1" "meshio==5.3.5"
 # Third-party readers of the coastal formats (tools/eval/check_coastal_formats.py): py2dm for .2dm and
 # adcircpy's fort.14 parser, which needs only pandas (< 3: it passes delim_whitespace) and pyproj; the
 # package's other dependencies are not installed.

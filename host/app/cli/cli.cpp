@@ -2,6 +2,7 @@
 // into case-file overrides so that one validator checks every value.
 #include "app/cli/cli.hpp"
 
+#include <memory>
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <cerrno>
@@ -21,6 +22,8 @@
 #include "app/pipeline/mesh_pipeline.hpp"
 #include "app/pipeline/smooth_pipeline.hpp"
 #include "app/cli/quality_command.hpp"
+#include "app/cli/transfer_command.hpp"
+#include "app/pipeline/motion_pipeline.hpp"
 #include "core/errors.hpp"
 #include "core/interrupt.hpp"
 #include "core/memory_budget.hpp"
@@ -402,7 +405,10 @@ Cli::Cli()
   app_->require_subcommand(1);
   CLI::App* mesh = app_->add_subcommand("mesh", "Distribute nodes for a case and write them and their pictures");
   add_mesh_options(*mesh, *mesh_);
-  commands_.emplace_back(mesh, [this] { return run_mesh(config_from(*mesh_)); });
+  commands_.emplace_back(mesh, [this] {
+    const CaseConfig config = config_from(*mesh_);
+    return config.motion.enabled ? run_motion(config) : run_mesh(config);
+  });
 
   CLI::App* smooth =
       app_->add_subcommand("smooth", "Improve a triangle mesh made elsewhere: its nodes relaxed, its sizing kept");
@@ -485,6 +491,28 @@ Cli::Cli()
       ->group("Whole runs");
   commands_.emplace_back(bench,
                          [this] { return bench_->whole_run ? run_whole_run_bench(*bench_) : run_bench(*bench_); });
+
+  CLI::App* transfer = app_->add_subcommand(
+      "transfer", "Interpolate the point data of one mesh onto the points of another (a motion run's steps)");
+  struct TransferArguments {
+    std::string from, to, out;
+    std::vector<std::string> arrays;
+    bool quiet = false;
+  };
+  auto targs = std::make_shared<TransferArguments>();
+  transfer->add_option("FROM", targs->from, "Mesh with the point data: .vtu or .msh")->required()->type_name("FILE");
+  transfer->add_option("TO", targs->to, "Mesh whose points receive the data (any format pdmesh reads)")
+      ->required()
+      ->type_name("FILE");
+  transfer->add_option("--out,-o", targs->out, "Output .vtu: TO with the interpolated point data")
+      ->required()
+      ->type_name("FILE");
+  transfer->add_option("--arrays", targs->arrays, "Point arrays to transfer (default: all but kind, q and node_id)")
+      ->delimiter(',')
+      ->type_name("NAME,...");
+  transfer->add_flag("--quiet,-q", targs->quiet, "No summary line on stderr");
+  commands_.emplace_back(
+      transfer, [targs] { return run_transfer(targs->from, targs->to, targs->out, targs->arrays, targs->quiet); });
 
   CLI::App* devices = app_->add_subcommand("devices", "List the OpenCL platforms and devices (--device opencl:P:D)");
   devices->add_flag("--check", devices_check_, "Also build and run a small kernel on each device");

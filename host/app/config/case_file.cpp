@@ -25,8 +25,8 @@ namespace {
 // Tables that may hold further keys; every other key is a leaf.
 constexpr std::size_t kMaxNameBytes = 200;
 
-const std::vector<std::string> kSections = {"geometry",   "spacing", "boundary", "init",    "simulation",
-                                            "population", "cleanup", "output",   "farfield"};
+const std::vector<std::string> kSections = {"geometry", "spacing", "boundary", "init",     "simulation",
+                                            "population", "cleanup", "output", "farfield", "motion"};
 
 std::string nearest_key(const std::string& key) {
   std::string best;
@@ -113,7 +113,7 @@ bool is_string_key(const std::string& key) {
          key == "spacing.m11" || key == "spacing.m12" || key == "spacing.m22" || key == "spacing.sol" ||
          key == "spacing.function" || key == "init.method" || key == "simulation.device" ||
          key == "simulation.precision" || key == "simulation.r0_rule" || key == "simulation.stop" ||
-         key == "output.color_by" || key == "farfield.shape";
+         key == "output.color_by" || key == "farfield.shape" || key == "motion.rotate";
 }
 
 // Parses an override's value as TOML; a bare word that is not TOML (random, a.crv) is a string.
@@ -316,6 +316,13 @@ const std::vector<std::string>& case_file_keys() {
       "refine.centre",
       "refine.radius",
       "refine.points",
+      "motion.curves",
+      "motion.rotate",
+      "motion.pivot",
+      "motion.translate",
+      "motion.steps",
+      "motion.iterations",
+      "motion.blend",
   };
   return keys;
 }

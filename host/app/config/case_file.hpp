@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <limits>
 #include <memory>
+#include <array>
 #include <optional>
 #include <string>
 #include <vector>
@@ -225,6 +226,19 @@ struct CaseConfig {
     bool quads = false;  // elements = "quads": true quadrilaterals (mixed cells); "triangles": each split in 2
   };
   std::vector<BoundaryLayer> boundary_layers;
+
+  // [motion] (docs/motion.md): the named curves move rigidly, the mesh follows them in `steps` steps.
+  // Absent (enabled false) by default: a normal run.
+  struct Motion {
+    bool enabled = false;
+    std::vector<std::string> curves;  // names from geometry.curve_names (or the files')
+    std::string rotate = "0";         // degrees about pivot, counter-clockwise, muParser in t
+    std::array<double, 2> pivot{0.0, 0.0};
+    std::array<std::string, 2> translate{"0", "0"};  // x(t), y(t)
+    std::int64_t steps = 0;                          // t = k / steps, k = 0 .. steps
+    std::int64_t iterations = 30;                    // the warm relaxation of each later step, at most
+    double blend = 4.0;                              // carried-node blending radius, in body sizes
+  } motion;
 
   struct Output {
     std::vector<std::string> formats{"msh", "vtu", "png"};

@@ -175,6 +175,9 @@ T choose(const Reader& r, const std::string& key, const toml::node& n,
 
 // The [[boundary_layer]] tables into c.boundary_layers (case_layers.cpp).
 void read_boundary_layer_sections(const Reader& r, const toml::table& root, CaseConfig& c);
+// The [motion] section into c.motion (case_motion.cpp): expressions parsed, steps and ranges checked;
+// the curve names are checked against the geometry once it is read (app/pipeline/motion_pipeline.cpp).
+void read_motion_section(const Reader& r, const toml::table& root, CaseConfig& c);
 // The [spacing] keys of metric fields (case_metric_keys.cpp): read_metric_values reads and range-checks
 // each value given; check_metric_keys (the whole configuration) checks that they agree with
 // spacing.field and each other, and sets the defaults that depend on the source (array, sol).

@@ -469,6 +469,7 @@ void read_case_sections(const Reader& r, const toml::table& root, CaseConfig& c)
   read_output_section(r, root, c);
   read_boundary_layer_sections(r, root, c);
   read_size_sections(r, root, c);
+  read_motion_section(r, root, c);
 }
 
 }  // namespace pdmesh::case_detail

@@ -1,0 +1,88 @@
+// The transfer command (transfer_command.hpp).
+#include "app/cli/transfer_command.hpp"
+
+#include <algorithm>
+#include <filesystem>
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
+#include "core/atomic_file.hpp"
+#include "core/errors.hpp"
+#include "io/mesh_formats.hpp"
+#include "io/msh_reader.hpp"
+#include "io/vtu_reader.hpp"
+#include "io/vtu_writer.hpp"
+#include "mesh/transfer.hpp"
+
+namespace pdmesh {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string extension(const fs::path& p) {
+  std::string e = p.extension().string();
+  std::transform(e.begin(), e.end(), e.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return e;
+}
+
+// The mesh of a .vtu or .msh file with point array `wanted` (when the file has it) and the names of all.
+Mesh read_with_data(const fs::path& path, MeshPointData& data) {
+  MeshReadReport report;
+  const std::string e = extension(path);
+  if (e == ".vtu") return read_vtu(path, report, &data);
+  if (e == ".msh") return read_msh(path, report, &data);
+  throw InputError(fmt::format("{}: transfer reads point data from .vtu or .msh files only", path.string()));
+}
+
+}  // namespace
+
+int run_transfer(const std::string& from, const std::string& to, const std::string& out,
+                 const std::vector<std::string>& arrays, bool quiet) {
+  if (extension(out) != ".vtu") throw InputError(fmt::format("--out {}: the output must be a .vtu file", out));
+  MeshPointData listing;
+  const Mesh source = read_with_data(from, listing);
+  std::vector<std::string> names = arrays;
+  if (names.empty()) {
+    for (const std::string& n : listing.point_arrays)
+      if (n != "kind" && n != "q" && n != "node_id") names.push_back(n);
+    if (names.empty())
+      throw InputError(fmt::format(
+          "{}: no point data to transfer (point arrays: {})", from,
+          listing.point_arrays.empty() ? "none" : fmt::format("{}", fmt::join(listing.point_arrays, ", "))));
+  }
+  for (const std::string& n : names)
+    if (std::find(listing.point_arrays.begin(), listing.point_arrays.end(), n) == listing.point_arrays.end())
+      throw InputError(
+          fmt::format("{}: no point array '{}' (point arrays: {})", from, n, fmt::join(listing.point_arrays, ", ")));
+  if (source.triangles.empty()) throw InputError(fmt::format("{}: the mesh has no triangles", from));
+  MeshReadReport report;
+  Mesh target = read_mesh(to, report);
+  // A motion step's own ids stay with its points.
+  if (extension(to) == ".vtu") {
+    MeshPointData ids;
+    ids.wanted = "node_id";
+    (void)read_vtu(to, report, &ids);
+    if (ids.array && ids.array->components == 1) target.point_data.push_back({"node_id", 1, ids.array->values, true});
+  }
+  TransferCounts counts;
+  for (const std::string& n : names) {
+    MeshPointData data;
+    data.wanted = n;
+    (void)read_with_data(from, data);
+    const PointDataArray& a = *data.array;
+    PointValues v{n, a.components, transfer_point_values(source, a.values, a.components, target.points, &counts),
+                  false};
+    target.point_data.push_back(std::move(v));
+  }
+  write_file_atomically(out, vtu_string(target));
+  if (!quiet)
+    fmt::print(stderr,
+               "transfer: {} ({}) from {} ({} points) onto {} ({} points): {} points in a triangle, {} outside the "
+               "mesh (nearest triangle, at most {:.3g} away); wrote {}\n",
+               fmt::join(names, ", "), names.size(), from, source.points.size(), to, target.points.size(),
+               counts.inside, counts.outside, counts.max_distance, out);
+  return 0;
+}
+
+}  // namespace pdmesh

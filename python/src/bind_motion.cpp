@@ -1,0 +1,75 @@
+// pdmesh._core.motion_steps and transfer: a [motion] case's steps (app/pipeline/motion_pipeline), each
+// handed to a Python callable with its mesh and persistent node ids, and the solution transfer between
+// two meshes (mesh/transfer); pdmesh.motion wraps them (docs/motion.md, "From Python").
+#include <fmt/format.h>
+#include <nanobind/stl/string.h>
+#include <nanobind/stl/vector.h>
+
+#include "app/pipeline/motion_pipeline.hpp"
+#include "bindings.hpp"
+#include "core/errors.hpp"
+#include "mesh/transfer.hpp"
+
+namespace pdmesh::py {
+
+namespace {
+
+using Values = nb::ndarray<const double, nb::ndim<2>, nb::c_contig, nb::device::cpu>;
+using Points = nb::ndarray<const double, nb::shape<-1, 2>, nb::c_contig, nb::device::cpu>;
+
+}  // namespace
+
+void bind_motion(nb::module_& m) {
+  m.def(
+      "motion_steps",
+      [](const CaseConfig& c, const std::string& out_dir, nb::callable each) {
+        if (!c.motion.enabled) throw InputError(fmt::format("{}: the case has no [motion] section", c.source.string()));
+        CaseConfig config = c;
+        config.quiet = true;
+        config.write_outputs = !out_dir.empty();
+        if (!out_dir.empty()) config.out_dir = out_dir;
+        nb::gil_scoped_release release;
+        run_motion_steps(config, [&](const MotionStep& s) {
+          nb::gil_scoped_acquire acquire;
+          MeshHandle handle;
+          handle.mesh = std::make_shared<const Mesh>(s.mesh);
+          handle.name = config.name;
+          const MotionStepRecord& r = s.record;
+          nb::dict record;
+          record["step"] = r.step;
+          record["t"] = r.t;
+          record["wall_s"] = r.wall_s;
+          record["iterations"] = r.iterations;
+          record["nodes"] = r.nodes;
+          record["ids_kept"] = r.ids_kept;
+          record["min_angle"] = r.min_angle;
+          record["inverted"] = r.inverted;
+          record["node_id"] = s.nodes.id;
+          each(handle, record);
+        });
+      },
+      nb::arg("config"), nb::arg("out_dir"), nb::arg("each"),
+      "Runs a [motion] case's steps; each(mesh, record) after every step (record['node_id']: the ids).");
+  m.def(
+      "transfer",
+      [](const MeshHandle& from, Values values, Points at) {
+        const Mesh& mesh = *from.mesh;
+        if (values.shape(0) != mesh.points.size())
+          throw InputError(
+              fmt::format("transfer: {} rows of values for a mesh of {} points", values.shape(0), mesh.points.size()));
+        const auto nc = static_cast<int>(values.shape(1));
+        std::vector<double> v(values.data(), values.data() + values.shape(0) * values.shape(1));
+        std::vector<Vec2> p(at.shape(0));
+        for (std::size_t i = 0; i < p.size(); ++i) p[i] = {at(i, 0), at(i, 1)};
+        std::vector<double> out;
+        {
+          nb::gil_scoped_release release;
+          out = transfer_point_values(mesh, v, nc, p);
+        }
+        return out;
+      },
+      nb::arg("mesh"), nb::arg("values"), nb::arg("points"),
+      "Point values (N, k) of `mesh` interpolated linearly at points (M, 2); a flat list of M * k values.");
+}
+
+}  // namespace pdmesh::py
