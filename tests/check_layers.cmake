@@ -10,7 +10,7 @@
 cmake_minimum_required(VERSION 3.20)
 
 # Lowest first. main is host/main.cpp.
-set(PDMESH_LAYERS core geometry spacing nodes mesh layers io init cleanup sim render opencl
+set(PDMESH_LAYERS core geometry spacing nodes mesh layers io init motion cleanup sim render opencl
                   app/config app/pipeline app/bench app/cli main)
 set(PYTHON_LAYER app/pipeline)   # the highest layer the binding may include
 set(PYTHON_CLI_FILES bind_cli.cpp)

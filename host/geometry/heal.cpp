@@ -9,6 +9,8 @@
 
 #include <fmt/format.h>
 
+#include "core/predicates.hpp"
+
 namespace pdmesh {
 
 const char* to_string(HealKind kind) {
@@ -422,8 +424,30 @@ class Healer {
     return cut;
   }
 
-  // Closed curves with an area below area_fraction x h² (h: the median input segment), except the
-  // largest one when no other curve bounds the domain (it is the domain then).
+  // Whether a segment of closed curve c meets a segment of another curve still there: such a loop is
+  // no island but crosses or touches the rest, which build_geometry reports (or joins) as given.
+  bool meets_other_curve(std::size_t c) const {
+    const std::vector<Pt>& ring = work_[c].pts;
+    Box box;
+    for (const Pt& p : ring) box.add(p.p);
+    for (std::size_t o = 0; o < work_.size(); ++o) {
+      if (o == c || work_[o].dropped) continue;
+      const std::vector<Pt>& other = work_[o].pts;
+      const std::size_t segments = work_[o].closed ? other.size() : other.size() - 1;
+      for (std::size_t j = 0; j < segments; ++j) {
+        const Vec2 a = other[j].p, b = other[(j + 1) % other.size()].p;
+        if (std::max(a.x, b.x) < box.lo.x || std::min(a.x, b.x) > box.hi.x || std::max(a.y, b.y) < box.lo.y ||
+            std::min(a.y, b.y) > box.hi.y)
+          continue;
+        for (std::size_t i = 0; i < ring.size(); ++i)
+          if (segments_intersect(ring[i].p, ring[(i + 1) % ring.size()].p, a, b)) return true;
+      }
+    }
+    return false;
+  }
+
+  // Closed curves with an area below area_fraction x h² (h: the median input segment) that meet no
+  // other curve, except the largest one when no other curve bounds the domain (it is the domain then).
   bool islands() {
     bool open_boundary = false;
     for (const Work& w : work_) open_boundary |= w.healable && !w.closed && !w.dropped;
@@ -440,7 +464,7 @@ class Healer {
     bool any = false;
     for (std::size_t c = 0; c < work_.size(); ++c) {
       if (c == largest || !work_[c].healable || !work_[c].closed || work_[c].dropped) continue;
-      if (!(areas[c] < o_.area_fraction * global_h_ * global_h_)) continue;
+      if (!(areas[c] < o_.area_fraction * global_h_ * global_h_) || meets_other_curve(c)) continue;
       HealChange ch =
           change(HealKind::Island, c, work_[c].pts.front().line, work_[c].pts.front().p, areas[c], global_h_);
       for (const Pt& p : work_[c].pts) ch.removed.push_back(p.p);

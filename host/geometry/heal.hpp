@@ -18,7 +18,9 @@ struct HealOptions {
   double scale = 1.0;
   double merge_fraction = 0.25;   // consecutive vertices closer than this x h merge
   double width_fraction = 0.5;    // inlets and intrusions narrower than this x h are cut off
-  double area_fraction = 1.0;     // loops with an area below this x h² are dropped
+  // Loops with an area below this x h² are dropped: (0.25 h)², a loop narrower than the merge
+  // distance, below the mesh's resolution; a larger one is a hole or island the field resolves.
+  double area_fraction = 0.0625;
   double spike_angle_deg = 20.0;  // a vertex sharper than this whose neighbours continue the line is a spike
   double join_tolerance = 1e-9;   // GeometryOptions::join_tolerance: which curves close on themselves
   static constexpr int kNeighbourhood = 8;
