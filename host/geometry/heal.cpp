@@ -159,8 +159,11 @@ class Healer {
       const int first = std::clamp(static_cast<int>(i) - half, 0, static_cast<int>(segs) - 2 * half);
       for (int s = first; s < first + 2 * half; ++s) l.push_back(dist(w.pts[s].p, w.pts[s + 1].p));
     }
-    return median(std::move(l)) * o_.scale;
+    return capped(median(std::move(l)) * o_.scale, w.pts[i].p);
   }
+
+  // h no larger than the case's stated size at p (HealOptions::size).
+  double capped(double h, Vec2 p) const { return o_.size ? std::min(h, o_.size(p) * o_.scale) : h; }
 
   HealChange change(HealKind kind, std::size_t c, int line, Vec2 at, double size, double h) {
     HealChange ch;
@@ -464,9 +467,9 @@ class Healer {
     bool any = false;
     for (std::size_t c = 0; c < work_.size(); ++c) {
       if (c == largest || !work_[c].healable || !work_[c].closed || work_[c].dropped) continue;
-      if (!(areas[c] < o_.area_fraction * global_h_ * global_h_) || meets_other_curve(c)) continue;
-      HealChange ch =
-          change(HealKind::Island, c, work_[c].pts.front().line, work_[c].pts.front().p, areas[c], global_h_);
+      const double h = capped(global_h_, work_[c].pts.front().p);
+      if (!(areas[c] < o_.area_fraction * h * h) || meets_other_curve(c)) continue;
+      HealChange ch = change(HealKind::Island, c, work_[c].pts.front().line, work_[c].pts.front().p, areas[c], h);
       for (const Pt& p : work_[c].pts) ch.removed.push_back(p.p);
       ch.removed.push_back(work_[c].pts.front().p);
       result_.changes.push_back(std::move(ch));

@@ -4,6 +4,7 @@
 // their mouth, and loops smaller than about h² are dropped. Every change is recorded with what it
 // removed and what it added, for the report, quality.json and healing.png.
 #pragma once
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -16,6 +17,9 @@ struct HealOptions {
   // it along its curve, times `scale` (spacing.scale): eq. 3.6's spacing on the raw geometry, without
   // the outliers that healing is for. An island's h is the median of all input segments.
   double scale = 1.0;
+  // The size the case states at a point (spacing.size, a spacing expression), when it states one:
+  // h is then no larger than it, so that what the case asks to resolve is not healed away.
+  std::function<double(Vec2)> size;
   double merge_fraction = 0.25;   // consecutive vertices closer than this x h merge
   double width_fraction = 0.5;    // inlets and intrusions narrower than this x h are cut off
   // Loops with an area below this x h² are dropped: (0.25 h)², a loop narrower than the merge

@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cmath>
 #include <filesystem>
+#include <memory>
 #include <string_view>
 #include <fmt/format.h>
 
@@ -20,6 +21,7 @@
 #include "init/node_estimate.hpp"
 #include "init/warm_points.hpp"
 #include "spacing/mesh_spacing.hpp"
+#include "spacing/spacing_field.hpp"
 #include "spacing/refine_regions.hpp"
 #include "spacing/resolution_check.hpp"
 
@@ -41,6 +43,12 @@ MeshInputs::MeshInputs(const CaseConfig& config) {
       for (const RawCurve& c : curves) before.push_back(c.points);
       HealOptions heal;
       heal.scale = config.spacing.scale;
+      if (config.spacing.size > 0.0) {
+        heal.size = [size = config.spacing.size](Vec2) { return size; };
+      } else if (config.spacing.field == SpacingKind::Expression) {
+        auto expression = std::make_shared<ExpressionSpacing>(config.spacing.expression);
+        heal.size = [expression](Vec2 p) { return expression->at(p); };
+      }
       heal.join_tolerance = config.geometry.join_tolerance;
       healing = heal_curves(curves, heal);
       if (!healing.changes.empty()) heal_input = std::move(before);
