@@ -190,12 +190,18 @@ TEST_CASE("GeoJSON: every geometry type, collections, repeats and null geometrie
   CHECK(raw.points[0].p == Vec2{1, 3});
   CHECK(raw.points[2].p == Vec2{3, 3});
   CHECK(raw.points[0].line == 12);
-  // Not meshed yet: build_geometry takes no constraints, so read_geometry refuses them by name.
-  CHECK_THROWS_WITH(read_geometry({data("gis/mixed.geojson")}, {}),
-                    Contains("mixed.geojson:8") && Contains("'road'") && Contains("embedded constraint"));
+  // Built: the lines are constraints of the geometry, the points embedded points.
+  const Geometry g = read_geometry({data("gis/mixed.geojson")}, {});
+  int constraints = 0;
+  for (const Curve& c : g.curves) constraints += c.constraint;
+  CHECK(constraints >= 3);  // road and the two unnamed lines (split where they meet)
+  bool road = false;
+  for (const Curve& c : g.curves) road |= c.name == "road" && c.constraint;
+  CHECK(road);
+  CHECK(g.embedded_points.size() == 3);
 }
 
-TEST_CASE("GeoJSON: embedded points are refused by read_geometry, not dropped", "[geometry][geojson]") {
+TEST_CASE("GeoJSON: embedded points are kept by read_geometry", "[geometry][geojson]") {
   const auto dir = pdmesh_test::fresh_dir("geojson_points");
   const std::string f = write(dir, "wells.geojson",
                               "{\"type\": \"GeometryCollection\", \"geometries\": [\n"
@@ -205,7 +211,7 @@ TEST_CASE("GeoJSON: embedded points are refused by read_geometry, not dropped", 
   CHECK(raw.curves.size() == 1);
   REQUIRE(raw.points.size() == 1);
   CHECK(raw.points[0].p == Vec2{3, 1});
-  CHECK_THROWS_WITH(read_geometry({f}, {}), Contains("wells.geojson:1: point (3, 1) is an embedded point"));
+  CHECK(read_geometry({f}, {}).embedded_points == std::vector<Vec2>{{3, 1}});
 }
 
 TEST_CASE("GeoJSON: a bare geometry in a .json file", "[geometry][geojson]") {
