@@ -297,7 +297,8 @@ TEST_CASE("equirectangular projection: metres about the centre, and back", "[geo
   CHECK(back.y == Approx(50.0).margin(1e-12));
   // Through read_geometry: the box is about 7.2 km by 11.1 km.
   Equirectangular used;
-  const Geometry g = read_geometry({data("gis/lonlat_square.geojson")}, {}, {}, {ProjectionKind::Equirectangular, &used, {}});
+  const Geometry g =
+      read_geometry({data("gis/lonlat_square.geojson")}, {}, {}, {ProjectionKind::Equirectangular, &used, {}});
   CHECK(used.lat0 == p.lat0);
   CHECK(g.extents.hi.x - g.extents.lo.x == Approx(R * std::cos(50.05 * deg) * 0.1 * deg));
 }

@@ -265,7 +265,8 @@ TEST_CASE("transfer: a linear function is interpolated exactly, also outside the
   CHECK(counts.inside + counts.outside == at.size());
 }
 
-TEST_CASE("pdmesh mesh with [motion] writes the step meshes, motion.pvd and motion.json, and pdmesh transfer reads them") {
+TEST_CASE(
+    "pdmesh mesh with [motion] writes the step meshes, motion.pvd and motion.json, and pdmesh transfer reads them") {
   const fs::path dir = pdmesh_test::fresh_dir("motion_cli");
   write_geometry(dir);
   {

@@ -20,8 +20,8 @@ struct HealOptions {
   // The size the case states at a point (spacing.size, a spacing expression), when it states one:
   // h is then no larger than it, so that what the case asks to resolve is not healed away.
   std::function<double(Vec2)> size;
-  double merge_fraction = 0.25;   // consecutive vertices closer than this x h merge
-  double width_fraction = 0.5;    // inlets and intrusions narrower than this x h are cut off
+  double merge_fraction = 0.25;  // consecutive vertices closer than this x h merge
+  double width_fraction = 0.5;   // inlets and intrusions narrower than this x h are cut off
   // Loops with an area below this x h² are dropped: (0.25 h)², a loop narrower than the merge
   // distance, below the mesh's resolution; a larger one is a hole or island the field resolves.
   double area_fraction = 0.0625;

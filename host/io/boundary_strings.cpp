@@ -37,7 +37,8 @@ std::unordered_map<std::uint64_t, int> boundary_directed_edges(const Mesh& mesh)
 std::unordered_map<std::uint64_t, bool> loop_is_hole(const Mesh& mesh,
                                                      const std::unordered_map<std::uint64_t, int>& boundary) {
   std::unordered_multimap<int, int> next;  // start node -> end node
-  for (const auto& [key, count] : boundary) next.emplace(static_cast<int>(key >> 32), static_cast<int>(key & 0xffffffffu));
+  for (const auto& [key, count] : boundary)
+    next.emplace(static_cast<int>(key >> 32), static_cast<int>(key & 0xffffffffu));
   std::unordered_map<std::uint64_t, bool> hole;
   for (const auto& [key, count] : boundary) {
     if (hole.count(key)) continue;
@@ -92,8 +93,8 @@ std::vector<BoundaryString> boundary_strings(const Mesh& mesh) {
       flush();
       continue;
     }
-    const bool continues = !current.nodes.empty() && current.curve == be.curve &&
-                           current.internal == h->second && current.nodes.back() == be.a;
+    const bool continues = !current.nodes.empty() && current.curve == be.curve && current.internal == h->second &&
+                           current.nodes.back() == be.a;
     if (!continues) {
       flush();
       current.curve = be.curve;

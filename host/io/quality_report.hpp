@@ -18,7 +18,8 @@ std::string format_quality_table(const QualitySummary& summary, const std::strin
 // The summary as a JSON document; `source` (e.g. the mesh file) is recorded under "source".
 // Non-finite numbers (degenerate triangles) are written as null.
 // `healing` (geometry/heal_report.hpp's heal_json) is written as the "healing" object when not empty.
-std::string quality_json(const QualitySummary& summary, const std::string& source = "", const std::string& healing = "");
+std::string quality_json(const QualitySummary& summary, const std::string& source = "",
+                         const std::string& healing = "");
 
 // Writes DIR/quality.json atomically and returns its path.
 std::filesystem::path write_quality_json(const QualitySummary& summary, const std::filesystem::path& dir,

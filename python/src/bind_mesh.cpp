@@ -187,7 +187,8 @@ void bind_mesh(nb::module_& m) {
       .def("boundary_edges", &boundary_edges, "Boundary edges by curve name, (K, 2) int32 each.")
       .def("quality_json", &quality_json_of, "The quality.json document of this mesh.")
       .def("triangle_metrics", &triangle_metrics, "Per-triangle quality arrays.")
-      .def("write", &write, nb::arg("path"), nb::arg("format"), nb::arg("open_boundaries"), "Writes the mesh; returns the paths written.")
+      .def("write", &write, nb::arg("path"), nb::arg("format"), nb::arg("open_boundaries"),
+           "Writes the mesh; returns the paths written.")
       .def("picture", &picture, nb::arg("path"), nb::arg("color_by") = "none", nb::arg("title") = "",
            nb::arg("window").none() = nb::none(), nb::arg("long_side") = 1600, "Draws the mesh into a .png or .svg.");
 

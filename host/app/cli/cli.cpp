@@ -306,9 +306,10 @@ void add_run_options(CLI::App& mesh, MeshArguments& a) {
                   "output.color_by: fill mesh.png by a quality metric: none | min_angle | max_angle | aspect_ratio | "
                   "skewness | condition_number | min_jacobian")
       ->type_name("METRIC");
-  mesh.add_option("--formats", a.formats,
-                  "output.formats, comma-separated: msh,msh22,vtu,su2,triangle,fort14,2dm,png,svg (no png and no svg: no "
-                  "pictures at all)")
+  mesh.add_option(
+          "--formats", a.formats,
+          "output.formats, comma-separated: msh,msh22,vtu,su2,triangle,fort14,2dm,png,svg (no png and no svg: no "
+          "pictures at all)")
       ->type_name("LIST");
   mesh.add_option("--view", a.views,
                   "Extra zoomed picture initial_NAME.png of the window x0,y0,x1,y1 (NAME defaults to viewK). "

@@ -25,8 +25,8 @@ namespace {
 // Tables that may hold further keys; every other key is a leaf.
 constexpr std::size_t kMaxNameBytes = 200;
 
-const std::vector<std::string> kSections = {"geometry", "spacing", "boundary", "init",     "simulation",
-                                            "population", "cleanup", "output", "farfield", "motion"};
+const std::vector<std::string> kSections = {"geometry",   "spacing", "boundary", "init",     "simulation",
+                                            "population", "cleanup", "output",   "farfield", "motion"};
 
 std::string nearest_key(const std::string& key) {
   std::string best;

@@ -43,7 +43,7 @@ struct MeshInputs {
   MeshInputs(const MeshInputs&) = delete;
   MeshInputs& operator=(const MeshInputs&) = delete;
 
-  Geometry geometry;                   // the input geometry (spacing field), healed with geometry.heal
+  Geometry geometry;  // the input geometry (spacing field), healed with geometry.heal
   // What healing changed (geometry.heal; empty when off or nothing changed), and the curves as read
   // when it changed something (healing.png draws them).
   HealResult healing;
