@@ -360,20 +360,57 @@ def which_surface(inp, p):
 
 
 def sharpest_corner(inp):
-    """The smallest angle of the domain at an input boundary vertex (degrees, measured on the domain
-    side: a sharp trailing edge seen from the flow is about 345 deg): a mesh that keeps every input
-    vertex cannot have a larger minimum angle."""
+    """The smallest angle of the domain at an input vertex (degrees, measured on the domain side: a
+    sharp trailing edge seen from the flow is about 345 deg), between boundary segments and, where
+    embedded constraints meet a vertex, between any two segments there whose wedge lies in the
+    domain: a mesh that keeps every input vertex and segment cannot have a larger minimum angle."""
     from shapely.geometry.polygon import orient
     best = 360.0
+    rings = []
     for poly in polygons(inp.domain):
         poly = orient(poly, 1.0)  # the domain on the left of every ring
         for ring in [poly.exterior] + list(poly.interiors):
-            pts = list(ring.coords)[:-1]
+            pts = [tuple(p) for p in list(ring.coords)[:-1]]
+            rings.append(pts)
             for k, b in enumerate(pts):
                 a, c = pts[k - 1], pts[(k + 1) % len(pts)]
                 u, v = (c[0] - b[0], c[1] - b[1]), (a[0] - b[0], a[1] - b[1])
                 angle = math.degrees(math.atan2(u[0] * v[1] - u[1] * v[0], u[0] * v[0] + u[1] * v[1])) % 360.0
                 best = min(best, angle)
+    return min(best, sharpest_constraint_wedge(inp, rings))
+
+
+def sharpest_constraint_wedge(inp, rings):
+    """The smallest angle between consecutive segments around a vertex that a constraint touches,
+    counting only wedges inside the domain (360 without constraints)."""
+    from shapely.geometry import Point
+    neighbours = {}
+
+    def add(a, b):
+        neighbours.setdefault(a, set()).add(b)
+        neighbours.setdefault(b, set()).add(a)
+
+    for c in inp.constraints:
+        for a, b in zip(c, c[1:]):
+            add(tuple(a), tuple(b))
+    touched = set(neighbours)
+    for pts in rings:
+        for k, b in enumerate(pts):
+            if b in touched:
+                add(b, pts[k - 1])
+                add(b, pts[(k + 1) % len(pts)])
+    domain = polygons(inp.domain)
+    best = 360.0
+    for v in touched:
+        angles = sorted(math.atan2(n[1] - v[1], n[0] - v[0]) for n in neighbours[v])
+        reach = min(math.dist(v, n) for n in neighbours[v]) * 1e-3
+        for k, lo in enumerate(angles):
+            hi = angles[(k + 1) % len(angles)] + (2 * math.pi if k + 1 == len(angles) else 0.0)
+            gap = math.degrees(hi - lo)
+            mid = (lo + hi) / 2
+            probe = Point(v[0] + reach * math.cos(mid), v[1] + reach * math.sin(mid))
+            if gap < best and any(poly.covers(probe) for poly in domain):
+                best = gap
     return best
 
 
