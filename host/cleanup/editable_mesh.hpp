@@ -18,6 +18,12 @@ inline int prev3(int i) { return i == 0 ? 2 : i - 1; }
 
 class EditableMesh;
 
+// An edge for EditableMesh::legalize(): its vertices a, b and a triangle t that has it (in either
+// direction) when it is pushed.
+struct EdgeRef {
+  int a, b, t;
+};
+
 // The score quality(t) gives a live triangle, when not the default (the sine of its smallest angle):
 // the cleanup in a metric scores triangles by their quality in the metric (metric_evaluator.hpp).
 class TriangleScore {
@@ -81,11 +87,13 @@ class EditableMesh {
   // Edits. Each keeps the adjacency consistent; with a transaction open each saves what it changes.
   void flip(int t, int i);
   // Lawson flips of non-boundary edges whose opposite vertex lies strictly inside the circumcircle
-  // (exact incircle), starting from the given edges (vertex pairs) and spreading to the edges of
-  // every flipped quadrilateral. Restores the constrained Delaunay property around an edit.
-  void legalize(std::vector<std::array<int, 2>>& edges);
+  // (exact incircle), starting from the given edges and spreading to the edges of every flipped
+  // quadrilateral. Restores the constrained Delaunay property around an edit. Each edge is found
+  // through the triangle it names, not by a walk around a vertex: a node of an embedded constraint
+  // has one open fan on each side of the cut, and a walk from vt[] sees only one of them.
+  void legalize(std::vector<EdgeRef>& edges);
   // Pushes the edges of a's link (the ones opposite a) for legalize().
-  void push_link_edges(int a, std::vector<std::array<int, 2>>& edges) const;
+  void push_link_edges(int a, std::vector<EdgeRef>& edges) const;
   void move(int a, Vec2 to, double new_arc);
   // The same for a caller that holds a's star (star(a)), as the smoother does.
   void move(int a, Vec2 to, double new_arc, const std::vector<int>& a_star);

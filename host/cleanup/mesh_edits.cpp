@@ -36,33 +36,43 @@ void EditableMesh::flip(int t, int i) {
   set_vt(q, u);
 }
 
-void EditableMesh::legalize(std::vector<std::array<int, 2>>& edges) {
+void EditableMesh::legalize(std::vector<EdgeRef>& edges) {
   while (!edges.empty()) {
-    const auto [a, b] = edges.back();
+    const auto [a, b, h] = edges.back();
     edges.pop_back();
-    if (gone_[a] || gone_[b]) continue;
-    const auto [t, i] = find_edge(a, b);
-    if (t < 0) continue;  // flipped away meanwhile; its replacement was pushed then
+    if (gone_[a] || gone_[b] || !alive(h)) continue;
+    // The triangle t with a -> b counter-clockwise, opposite v[t][i]. When h no longer has the edge, a
+    // flip changed h after the push: that flip pushed the edge again with its new triangle (it pushes
+    // its quadrilateral's four sides) and that entry, above this one, has been handled; or the edge
+    // was flipped away.
+    const int ha = index_of(v[h], a), hb = index_of(v[h], b);
+    if (v[h][ha] != a || v[h][hb] != b) continue;
+    int t = h, i = 3 - ha - hb;
+    if (v[h][next3(ha)] != b) {  // h has b -> a: t is its neighbour across the edge
+      t = n[h][i];
+      if (t < 0) continue;  // boundary edges are constrained
+      i = index_of(n[t], h);
+    }
     const int u = n[t][i];
     if (u < 0) continue;  // boundary edges are constrained
     const int pv = v[t][i];
     const int q = v[u][index_of(n[u], t)];
     if (incircle(p[pv], p[a], p[b], p[q]) > 0.0) {
-      flip(t, i);
-      edges.push_back({pv, a});
-      edges.push_back({a, q});
-      edges.push_back({q, b});
-      edges.push_back({b, pv});
+      flip(t, i);  // t = (pv, a, q), u = (q, b, pv)
+      edges.push_back({pv, a, t});
+      edges.push_back({a, q, t});
+      edges.push_back({q, b, u});
+      edges.push_back({b, pv, u});
     }
   }
 }
 
-void EditableMesh::push_link_edges(int a, std::vector<std::array<int, 2>>& edges) const {
+void EditableMesh::push_link_edges(int a, std::vector<EdgeRef>& edges) const {
   std::vector<int>& fan = scratch_;
   star(a, fan);
   for (int t : fan) {
     const int k = index_of(v[t], a);
-    edges.push_back({v[t][next3(k)], v[t][prev3(k)]});
+    edges.push_back({v[t][next3(k)], v[t][prev3(k)], t});
   }
 }
 

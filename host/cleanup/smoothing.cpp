@@ -93,7 +93,7 @@ bool Smoother::try_move(int a, Vec2 displacement, double old_min, double old_sum
     edges_.clear();
     for (int t : fan_) {
       const auto& tv = m.v[t];
-      for (int i = 0; i < 3; ++i) edges_.push_back({tv[next3(i)], tv[prev3(i)]});
+      for (int i = 0; i < 3; ++i) edges_.push_back({tv[next3(i)], tv[prev3(i)], t});
     }
     mesh_.legalize(edges_);
     if (own) {

@@ -49,7 +49,7 @@ class Smoother {
   const Geometry& geometry_;
   double step_cap_;
   std::vector<int> fan_;
-  std::vector<std::array<int, 2>> edges_;
+  std::vector<EdgeRef> edges_;
   MoveGain last_gain_;
   double min_rise_ = 0.0, aspect_drop_ = 0.0;
 };

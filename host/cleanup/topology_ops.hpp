@@ -113,7 +113,7 @@ class TopologyOps {
   };
   std::vector<Fit> fit_;
   std::vector<int> ring_, ring2_;
-  std::vector<std::array<int, 2>> edges_;
+  std::vector<EdgeRef> edges_;
 };
 
 }  // namespace pdmesh::cleanup
