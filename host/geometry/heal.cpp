@@ -289,8 +289,10 @@ class Healer {
   }
 
   // Whether the interior of closed curve c is in the domain: even-odd over every other boundary curve.
-  bool interior_is_domain(std::size_t c) const {
-    const Vec2 q = work_[c].pts.front().p;
+  bool interior_is_domain(std::size_t c) const { return inside_others(c, work_[c].pts.front().p); }
+
+  // Whether q is inside an odd number of the boundary curves other than c.
+  bool inside_others(std::size_t c, Vec2 q) const {
     int crossings = 0;
     for (std::size_t o = 0; o < work_.size(); ++o) {
       if (o == c || work_[o].dropped || curves_[o].constraint) continue;
@@ -430,12 +432,17 @@ class Healer {
     return cut;
   }
 
-  // The ring of closed curve c with the domain on its left.
+  // The ring of closed curve c with the domain on its left (even-odd over the other curves).
   std::vector<Pt> domain_left(std::size_t c) const {
     std::vector<Pt> pts = work_[c].pts;
     std::vector<Vec2> ring;
     for (const Pt& p : pts) ring.push_back(p.p);
-    if ((signed_area(ring) > 0.0) != interior_is_domain(c)) std::reverse(pts.begin(), pts.end());
+    // A vote of up to 9 vertices spread along it: a ring that crosses another has some vertices on the
+    // wrong side of it.
+    int votes = 0;
+    const std::size_t step = std::max<std::size_t>(1, pts.size() / 9);
+    for (std::size_t k = 0; k < pts.size(); k += step) votes += inside_others(c, pts[k].p) ? 1 : -1;
+    if ((signed_area(ring) > 0.0) != (votes >= 0)) std::reverse(pts.begin(), pts.end());
     return pts;
   }
 
