@@ -10,6 +10,7 @@
 #include <fmt/format.h>
 
 #include "core/predicates.hpp"
+#include "geometry/heal_join.hpp"
 
 namespace pdmesh {
 
@@ -25,6 +26,8 @@ const char* to_string(HealKind kind) {
       return "inlets opened";
     case HealKind::Island:
       return "islands dropped";
+    case HealKind::Joined:
+      return "rings joined";
   }
   return "?";
 }
@@ -119,7 +122,7 @@ class Healer {
 
   HealResult run() {
     for (int round = 0; round < 50; ++round) {
-      bool any = false;
+      bool any = joins();
       for (std::size_t c = 0; c < work_.size(); ++c) {
         if (!work_[c].healable || work_[c].dropped) continue;
         // Inlets first: merging first would fold a narrow inlet's end (shorter than the merge
@@ -286,8 +289,10 @@ class Healer {
   }
 
   // Whether the interior of closed curve c is in the domain: even-odd over every other boundary curve.
-  bool interior_is_domain(std::size_t c) const {
-    const Vec2 q = work_[c].pts.front().p;
+  bool interior_is_domain(std::size_t c) const { return inside_others(c, work_[c].pts.front().p); }
+
+  // Whether q is inside an odd number of the boundary curves other than c.
+  bool inside_others(std::size_t c, Vec2 q) const {
     int crossings = 0;
     for (std::size_t o = 0; o < work_.size(); ++o) {
       if (o == c || work_[o].dropped || curves_[o].constraint) continue;
@@ -425,6 +430,84 @@ class Healer {
     cut.gone_is_lobe = (ag > 0.0) == (ring_area > 0.0);
     cut.line = w.pts[i].line;
     return cut;
+  }
+
+  // The ring of closed curve c with the domain on its left (even-odd over the other curves).
+  std::vector<Pt> domain_left(std::size_t c) const {
+    std::vector<Pt> pts = work_[c].pts;
+    std::vector<Vec2> ring;
+    for (const Pt& p : pts) ring.push_back(p.p);
+    // A vote of up to 9 vertices spread along it: a ring that crosses another has some vertices on the
+    // wrong side of it.
+    int votes = 0;
+    const std::size_t step = std::max<std::size_t>(1, pts.size() / 9);
+    for (std::size_t k = 0; k < pts.size(); k += step) votes += inside_others(c, pts[k].p) ? 1 : -1;
+    if ((signed_area(ring) > 0.0) != (votes >= 0)) std::reverse(pts.begin(), pts.end());
+    return pts;
+  }
+
+  // Closed curves that touch or overlap in one place become one ring (detail::join_rings): the later
+  // curve joins the earlier one (an outer ring before its holes) and is gone.
+  bool joins() {
+    bool any = false;
+    std::vector<Box> boxes(work_.size());
+    const auto ring_curve = [&](std::size_t c) { return work_[c].healable && work_[c].closed && !work_[c].dropped; };
+    for (std::size_t c = 0; c < work_.size(); ++c)
+      if (ring_curve(c))
+        for (const Pt& p : work_[c].pts) boxes[c].add(p.p);
+    for (std::size_t a = 0; a < work_.size(); ++a) {
+      if (!ring_curve(a)) continue;
+      for (std::size_t b = a + 1; b < work_.size(); ++b) {
+        if (!ring_curve(b) || boxes[b].hi.x < boxes[a].lo.x || boxes[a].hi.x < boxes[b].lo.x ||
+            boxes[b].hi.y < boxes[a].lo.y || boxes[a].hi.y < boxes[b].lo.y)
+          continue;
+        const std::vector<Pt> pa = domain_left(a), pb = domain_left(b);
+        std::vector<Vec2> ra, rb;
+        for (const Pt& p : pa) ra.push_back(p.p);
+        for (const Pt& p : pb) rb.push_back(p.p);
+        const auto h = [&](Vec2 q) {
+          double best = INFINITY;
+          for (const std::size_t c : {a, b}) {
+            std::size_t near = 0;
+            for (std::size_t k = 1; k < work_[c].pts.size(); ++k)
+              if (dist(work_[c].pts[k].p, q) < dist(work_[c].pts[near].p, q)) near = k;
+            best = std::min(best, h_at(work_[c], near));
+          }
+          return best;
+        };
+        const std::optional<detail::JoinedRings> joined = detail::join_rings(ra, rb, h);
+        if (!joined || chords_meet_others(*joined, a, b)) continue;
+        std::vector<Pt> pts;
+        for (std::size_t k = 0; k < joined->ring.size(); ++k) {
+          const auto [which, origin] = joined->origin[k];
+          pts.push_back({joined->ring[k], (which == 0 ? pa : pb)[static_cast<std::size_t>(origin)].line});
+        }
+        const int line = pb[static_cast<std::size_t>(joined->origin.back().second)].line;
+        HealChange ch = change(HealKind::Joined, b, line, joined->centre, joined->radius, joined->h);
+        ch.removed = joined->removed;
+        ch.added = joined->added;
+        result_.changes.push_back(std::move(ch));
+        work_[a].pts = std::move(pts);
+        work_[a].changed = true;
+        work_[b].dropped = any = true;
+        for (const Pt& p : work_[b].pts) boxes[a].add(p.p);
+      }
+    }
+    return any;
+  }
+
+  // Whether a chord of `joined` meets a curve other than a and b.
+  bool chords_meet_others(const detail::JoinedRings& joined, std::size_t a, std::size_t b) const {
+    const std::vector<Vec2>& ch = joined.added;
+    for (std::size_t o = 0; o < work_.size(); ++o) {
+      if (o == a || o == b || work_[o].dropped) continue;
+      const std::vector<Pt>& other = work_[o].pts;
+      const std::size_t segments = work_[o].closed ? other.size() : other.size() - 1;
+      for (std::size_t j = 0; j < segments; ++j)
+        for (const std::size_t k : {std::size_t{0}, std::size_t{2}})
+          if (segments_intersect(ch[k], ch[k + 1], other[j].p, other[(j + 1) % other.size()].p)) return true;
+    }
+    return false;
   }
 
   // Whether a segment of closed curve c meets a segment of another curve still there: such a loop is

@@ -1,7 +1,8 @@
 // Healing at the mesh's resolution (docs/geometry-input.md, "Healing"): before build_geometry, the
 // raw boundary curves lose the details the mesh cannot resolve: vertices closer than a fraction of
 // the local spacing merge, one-vertex spikes go, narrow inlets and narrow intrusions are cut off at
-// their mouth, and loops smaller than about h² are dropped. Every change is recorded with what it
+// their mouth, loops smaller than about h² are dropped, and closed curves that touch or overlap in one
+// place (a hole touching the outer ring, as OGC polygons allow) are joined into one ring. Every change is recorded with what it
 // removed and what it added, for the report, quality.json and healing.png.
 #pragma once
 #include <functional>
@@ -36,9 +37,10 @@ enum class HealKind {
   InletClosed,  // a narrow part of the domain cut off at its mouth (the domain loses it)
   InletOpened,  // a narrow intrusion into the domain cut off at its mouth (the domain gains it)
   Island,       // a loop smaller than about h² dropped
+  Joined,       // two closed curves that touch or overlap in one place became one ring through a neck
 };
 const char* to_string(HealKind kind);
-inline constexpr int kHealKinds = 5;
+inline constexpr int kHealKinds = 6;
 
 struct HealChange {
   HealKind kind = HealKind::Merge;
@@ -47,7 +49,7 @@ struct HealChange {
   int line = 0;  // the source line of the first point concerned
   Vec2 at;       // where (the merged point, the spike's tip, the mouth's middle, a loop's first point)
   // The measure that made it a defect: merge the distance, spike the angle (degrees), inlet the
-  // width at the mouth, island the area.
+  // width at the mouth, island the area, joined the neck's radius.
   double size = 0.0;
   double h = 0.0;             // the local spacing it was judged by
   std::vector<Vec2> removed;  // the input polyline that is gone (a loop: closed)

@@ -18,6 +18,8 @@ const char* size_word(HealKind kind) {
       return "wide";
     case HealKind::Island:
       return "in area";
+    case HealKind::Joined:
+      return "neck radius";
   }
   return "";
 }
@@ -34,6 +36,8 @@ const char* json_kind(HealKind kind) {
       return "inlet_opened";
     case HealKind::Island:
       return "island";
+    case HealKind::Joined:
+      return "joined";
   }
   return "";
 }

@@ -7,6 +7,9 @@ a coastline (km scale, coast sampled at 1 km). Run from anywhere; edit this scri
   inlet.crv      a coast with an inlet 100 m wide and 3 km deep (rectangular end)
   spike.crv      a coast with a one-vertex spike 700 m long on a 10 m base
   island.crv     a coast box with a 30 m island
+  touch.crv      a 10 km square sea sampled at 500 m with a diamond hole whose tip touches its bottom
+                 side at a vertex, as OGC polygons allow
+  overlap.crv    the same sea with a diamond hole whose tip crosses its bottom side by 100 m
   blunt_te.crv   an airfoil-like loop (NACA 0012 thickness, chord 1) sampled at 0.05 chord whose
                  blunt trailing edge is closed by a 0.001-chord segment, in a box far field
   tiny_edge.crv  a 1 x 0.5 rectangle sampled at 0.05 with one 0.002 edge cut off a corner
@@ -73,6 +76,11 @@ def main():
 
     island = [(8000.0, 5000.0), (8000.0, 5030.0), (8030.0, 5030.0), (8030.0, 5000.0), (8000.0, 5000.0)]
     write("island.crv", [coast(line((0.0, 0.0), (20000.0, 0.0), 1000.0)), island])
+
+    sea = closed([(0.0, 0.0), (10000.0, 0.0), (10000.0, 10000.0), (0.0, 10000.0)], 500.0)
+    diamond = lambda x, y: closed([(x, y), (x - 1000.0, y + 1000.0), (x, y + 2000.0), (x + 1000.0, y + 1000.0)], 500.0)
+    write("touch.crv", [sea, diamond(4000.0, 0.0)])
+    write("overlap.crv", [sea, diamond(7000.0, -100.0)])
 
     # NACA 0012 thickness with the open trailing edge scaled to 0.001 chord.
     def half(x):
