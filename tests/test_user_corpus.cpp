@@ -25,6 +25,7 @@ const std::filesystem::path kCorpus = std::filesystem::path(PDMESH_SOURCE_DIR) /
 const std::set<std::string> kMustMesh = {"A",
                                          "box",
                                          "clarky",
+                                         "cyclades",
                                          "double_hex",
                                          "e387",
                                          "face",
