@@ -186,184 +186,241 @@ std::vector<int> face_parity(const PlanarFaces& faces) {
   return parity;
 }
 
-}  // namespace
+// The passes of apply_poly_semantics over one file's planar graph, run in this order by it: the
+// domain (holes, the hull), the regions, the edges' kinds, the curves, the isolated vertices, and the
+// notes on where the even-odd rule would differ.
+class PolySemantics {
+ public:
+  PolySemantics(const std::string& path, int base, const std::vector<PolyVertex>& vertices,
+                const std::vector<PolySegment>& segments, PolyFile& result)
+      : path_(path),
+        base_(base),
+        vertices_(vertices),
+        segments_(segments),
+        result_(result),
+        g_(make_graph(path, base, vertices, segments, result.notes)),
+        input_edges_(g_.edges.size()),
+        faces_(planar_faces(g_.points, g_.edges)) {}
 
-void apply_poly_semantics(const std::string& path, int base, const std::vector<PolyVertex>& vertices,
-                          const std::vector<PolySegment>& segments, const std::vector<GeometryRegion>& regions,
-                          PolyHull hull, PolyFile& result) {
-  Graph g = make_graph(path, base, vertices, segments, result.notes);
-  const std::size_t input_edges = g.edges.size();
-  PlanarFaces faces = planar_faces(g.points, g.edges);
-  // The domain: every bounded face but those holding a hole point.
-  std::vector<std::uint8_t> inside;
-  auto remove_holes = [&](std::vector<std::string>* notes) {
-    inside.assign(faces.outer.size(), 1);
-    for (const RawHolePoint& h : result.holes) {
-      const int f = locate_face(faces, g.points, g.edges, h.p);
-      if (f == -2) {
-        throw InputError(fmt::format("{}: hole point {} lies on a segment; it must lie inside the hole it makes",
-                                     where(h.file, h.line), format_point(h.p)));
+  // The domain: every bounded face but those holding a hole point; the convex hull's with
+  // geometry.hull (or automatically when the segments enclose nothing).
+  void find_domain(PolyHull hull) {
+    const bool enclosed = remove_holes(nullptr);
+    use_hull_ = hull == PolyHull::On || (hull == PolyHull::Automatic && !enclosed);
+    if (use_hull_) {
+      if (hull == PolyHull::Automatic) {
+        result_.notes.push_back(
+            fmt::format("{}: the segments enclose no area outside the holes: meshing the convex hull of the "
+                        "vertices, as Triangle's -c does (geometry.hull)",
+                        path_));
       }
-      if (f >= 0) {
-        inside[f] = 0;
-      } else if (notes != nullptr) {
-        notes->push_back(fmt::format("{}: hole point {} lies outside every loop: it removes nothing",
-                                     where(h.file, h.line), format_point(h.p)));
-      }
+      add_hull(path_, g_);
+      faces_ = planar_faces(g_.points, g_.edges);
     }
-    return std::find(inside.begin(), inside.end(), 1) != inside.end();
-  };
-  const bool enclosed = remove_holes(nullptr);
-  const bool use_hull = hull == PolyHull::On || (hull == PolyHull::Automatic && !enclosed);
-  if (use_hull) {
-    if (hull == PolyHull::Automatic) {
-      result.notes.push_back(
-          fmt::format("{}: the segments enclose no area outside the holes: meshing the convex hull of the vertices, "
-                      "as Triangle's -c does (geometry.hull)",
-                      path));
+    if (!remove_holes(&result_.notes)) {
+      throw InputError(
+          fmt::format("{}: the segments enclose no area outside the holes{}: nothing to mesh{}", path_,
+                      use_hull_ ? "" : " and geometry.hull is false",
+                      result_.holes.empty()
+                          ? ""
+                          : fmt::format(" (is the hole point on line {} meant to be there?)", result_.holes[0].line)));
     }
-    add_hull(path, g);
-    faces = planar_faces(g.points, g.edges);
   }
-  if (!remove_holes(&result.notes)) {
-    throw InputError(
-        fmt::format("{}: the segments enclose no area outside the holes{}: nothing to mesh{}", path,
-                    use_hull ? "" : " and geometry.hull is false",
-                    result.holes.empty()
-                        ? ""
-                        : fmt::format(" (is the hole point on line {} meant to be there?)", result.holes[0].line)));
-  }
-  auto in_domain = [&](int f) { return f >= 0 && inside[f]; };
 
   // Regional attributes: the face holding each point; a later one for the same face wins, as in Triangle.
-  std::map<int, std::size_t> region_of_face;
-  for (const GeometryRegion& r : regions) {
-    const int f = locate_face(faces, g.points, g.edges, r.p);
-    if (f == -2) {
-      throw InputError(
-          fmt::format("{}: region point {} lies on a segment, between two regions; move it inside the "
-                      "region it tags",
-                      where(r.file, r.line), format_point(r.p)));
-    }
-    if (!in_domain(f)) {
-      result.notes.push_back(fmt::format("{}: region point {} lies outside the domain ({}): its attribute {} is unused",
-                                         where(r.file, r.line), format_point(r.p),
-                                         f < 0 ? "outside every loop" : "in a hole", r.attribute));
-      continue;
-    }
-    const auto [it, fresh] = region_of_face.emplace(f, result.regions.size());
-    if (!fresh) {
-      const GeometryRegion& earlier = result.regions[it->second];
-      result.notes.push_back(
-          fmt::format("{}: region point {} lies in the same region as the one on line {}: its "
-                      "attribute {} replaces {}, as in Triangle",
-                      where(r.file, r.line), format_point(r.p), earlier.line, r.attribute, earlier.attribute));
-      result.regions[it->second] = r;
-    } else {
-      result.regions.push_back(r);
+  void tag_regions(const std::vector<GeometryRegion>& regions) {
+    std::map<int, std::size_t> region_of_face;
+    for (const GeometryRegion& r : regions) {
+      const int f = locate_face(faces_, g_.points, g_.edges, r.p);
+      if (f == -2) {
+        throw InputError(
+            fmt::format("{}: region point {} lies on a segment, between two regions; move it inside the "
+                        "region it tags",
+                        where(r.file, r.line), format_point(r.p)));
+      }
+      if (!in_domain(f)) {
+        result_.notes.push_back(fmt::format(
+            "{}: region point {} lies outside the domain ({}): its attribute {} is unused", where(r.file, r.line),
+            format_point(r.p), f < 0 ? "outside every loop" : "in a hole", r.attribute));
+        continue;
+      }
+      const auto [it, fresh] = region_of_face.emplace(f, result_.regions.size());
+      if (!fresh) {
+        const GeometryRegion& earlier = result_.regions[it->second];
+        result_.notes.push_back(
+            fmt::format("{}: region point {} lies in the same region as the one on line {}: its "
+                        "attribute {} replaces {}, as in Triangle",
+                        where(r.file, r.line), format_point(r.p), earlier.line, r.attribute, earlier.attribute));
+        result_.regions[it->second] = r;
+      } else {
+        result_.regions.push_back(r);
+      }
     }
   }
 
   // Triangle's maximum areas (its -a): pdmesh sizes by spacing, so they are said, with the spacing
   // of equilateral triangles of that area, q = sqrt(4 A / sqrt(3)), not applied.
-  const auto capped = std::count_if(result.regions.begin(), result.regions.end(),
+  void note_max_areas() {
+    const auto capped = std::count_if(result_.regions.begin(), result_.regions.end(),
+                                      [](const GeometryRegion& r) { return r.max_area > 0; });
+    if (capped == 0) return;
+    const auto first = std::find_if(result_.regions.begin(), result_.regions.end(),
                                     [](const GeometryRegion& r) { return r.max_area > 0; });
-  if (capped > 0) {
-    const auto first = std::find_if(result.regions.begin(), result.regions.end(),
-                                    [](const GeometryRegion& r) { return r.max_area > 0; });
-    result.notes.push_back(fmt::format(
+    result_.notes.push_back(fmt::format(
         "{}:{}: {} region{} give{} a maximum triangle area (the first: {}, the area of equilateral triangles of side "
         "{:.4g}); pdmesh does not apply regional maximum areas: set the size with the spacing options",
-        path, first->line, capped, capped == 1 ? "" : "s", capped == 1 ? "s" : "", first->max_area,
+        path_, first->line, capped, capped == 1 ? "" : "s", capped == 1 ? "s" : "", first->max_area,
         std::sqrt(4.0 * first->max_area / std::sqrt(3.0))));
   }
 
-  // Each edge's kind from the faces on its sides.
-  std::vector<Kind> kind(g.edges.size());
-  std::vector<int> kept_degree(g.points.size(), 0), input_degree(g.points.size(), 0);
-  int dropped = 0, dropped_first = -1;
-  for (std::size_t e = 0; e < g.edges.size(); ++e) {
-    const int sides = (in_domain(faces.sides[e][0]) ? 1 : 0) + (in_domain(faces.sides[e][1]) ? 1 : 0);
-    kind[e] = sides == 2 ? Kind::Constraint : sides == 1 ? Kind::Boundary : Kind::Dropped;
-    if (e < input_edges)
-      for (const int v : g.edges[e]) ++input_degree[v];
-    if (kind[e] == Kind::Dropped) {
-      if (dropped++ == 0) dropped_first = static_cast<int>(e);
-      continue;
+  // Each edge's kind from the faces on its sides, and the vertices' degrees (input and kept edges).
+  void classify_edges() {
+    kind_.assign(g_.edges.size(), Kind::Dropped);
+    kept_degree_.assign(g_.points.size(), 0);
+    input_degree_.assign(g_.points.size(), 0);
+    int dropped = 0, dropped_first = -1;
+    for (std::size_t e = 0; e < g_.edges.size(); ++e) {
+      const int sides = (in_domain(faces_.sides[e][0]) ? 1 : 0) + (in_domain(faces_.sides[e][1]) ? 1 : 0);
+      kind_[e] = sides == 2 ? Kind::Constraint : sides == 1 ? Kind::Boundary : Kind::Dropped;
+      if (e < input_edges_)
+        for (const int v : g_.edges[e]) ++input_degree_[v];
+      if (kind_[e] == Kind::Dropped) {
+        if (dropped++ == 0) dropped_first = static_cast<int>(e);
+        continue;
+      }
+      for (const int v : g_.edges[e]) ++kept_degree_[v];
     }
-    for (const int v : g.edges[e]) ++kept_degree[v];
-  }
-  if (dropped > 0) {
-    result.notes.push_back(
-        fmt::format("{}:{}: {} segment{} outside the domain (in a hole or outside every loop; the "
-                    "first: segment {}) dropped",
-                    path, segments[g.segment[dropped_first]].line, dropped, dropped == 1 ? "" : "s",
-                    g.segment[dropped_first] + base));
+    if (dropped > 0) {
+      result_.notes.push_back(
+          fmt::format("{}:{}: {} segment{} outside the domain (in a hole or outside every loop; the "
+                      "first: segment {}) dropped",
+                      path_, segments_[g_.segment[dropped_first]].line, dropped, dropped == 1 ? "" : "s",
+                      g_.segment[dropped_first] + base_));
+    }
   }
 
   // Curves: boundaries by marker (in order of first appearance), the hull's edges, then constraints.
-  const Chainer chainer{g, vertices, segments, kept_degree};
-  for (const Kind k : {Kind::Boundary, Kind::Constraint}) {
-    std::vector<long long> order;
-    std::map<long long, std::vector<int>> by_marker;
-    std::vector<int> hull_edges;
-    for (std::size_t e = 0; e < g.edges.size(); ++e) {
-      if (kind[e] != k) continue;
-      if (g.segment[e] < 0) {
-        hull_edges.push_back(static_cast<int>(e));
-        continue;
+  void chain_curves() const {
+    const Chainer chainer{g_, vertices_, segments_, kept_degree_};
+    for (const Kind k : {Kind::Boundary, Kind::Constraint}) {
+      std::vector<long long> order;
+      std::map<long long, std::vector<int>> by_marker;
+      std::vector<int> hull_edges;
+      for (std::size_t e = 0; e < g_.edges.size(); ++e) {
+        if (kind_[e] != k) continue;
+        if (g_.segment[e] < 0) {
+          hull_edges.push_back(static_cast<int>(e));
+          continue;
+        }
+        auto& ids = by_marker[segments_[g_.segment[e]].marker];
+        if (ids.empty()) order.push_back(segments_[g_.segment[e]].marker);
+        ids.push_back(static_cast<int>(e));
       }
-      auto& ids = by_marker[segments[g.segment[e]].marker];
-      if (ids.empty()) order.push_back(segments[g.segment[e]].marker);
-      ids.push_back(static_cast<int>(e));
+      for (const long long marker : order)
+        chainer.chain(by_marker[marker], k == Kind::Constraint, result_.curves, path_);
+      const std::size_t first_hull = result_.curves.size();
+      chainer.chain(hull_edges, k == Kind::Constraint, result_.curves, path_);
+      for (std::size_t c = first_hull; c < result_.curves.size(); ++c)
+        result_.curves[c].name =
+            result_.curves.size() - first_hull == 1 ? "hull" : fmt::format("hull{}", c - first_hull);
     }
-    for (const long long marker : order) chainer.chain(by_marker[marker], k == Kind::Constraint, result.curves, path);
-    const std::size_t first_hull = result.curves.size();
-    chainer.chain(hull_edges, k == Kind::Constraint, result.curves, path);
-    for (std::size_t c = first_hull; c < result.curves.size(); ++c)
-      result.curves[c].name = result.curves.size() - first_hull == 1 ? "hull" : fmt::format("hull{}", c - first_hull);
   }
 
   // Isolated vertices: nodes of the mesh where they lie in the domain.
-  int kept = 0, outside = 0, outside_first = -1;
-  for (std::size_t v = 0; v < g.points.size(); ++v) {
-    if (input_degree[v] > 0 || kept_degree[v] > 0) continue;
-    const int f = locate_face(faces, g.points, g.edges, g.points[v]);
-    const PolyVertex& pv = vertices[g.first_vertex[v]];
-    if (in_domain(f)) {
-      result.points.push_back({pv.p, path, pv.line});
-      ++kept;
-    } else if (outside++ == 0) {
-      outside_first = g.first_vertex[v];
+  void keep_isolated_vertices() {
+    int kept = 0, outside = 0, outside_first = -1;
+    for (std::size_t v = 0; v < g_.points.size(); ++v) {
+      if (input_degree_[v] > 0 || kept_degree_[v] > 0) continue;
+      const int f = locate_face(faces_, g_.points, g_.edges, g_.points[v]);
+      const PolyVertex& pv = vertices_[g_.first_vertex[v]];
+      if (in_domain(f)) {
+        result_.points.push_back({pv.p, path_, pv.line});
+        ++kept;
+      } else if (outside++ == 0) {
+        outside_first = g_.first_vertex[v];
+      }
     }
-  }
-  if (kept > 0) {
-    result.notes.push_back(fmt::format("{}: {} isolated vert{} (on no segment) inside the domain kept as mesh nodes",
-                                       path, kept, kept == 1 ? "ex" : "ices"));
-  }
-  if (outside > 0) {
-    result.notes.push_back(
-        fmt::format("{}:{}: {} isolated vert{} outside the domain or on a segment (the first: "
-                    "vertex {}) dropped",
-                    path, vertices[outside_first].line, outside, outside == 1 ? "ex" : "ices", outside_first + base));
+    if (kept > 0) {
+      result_.notes.push_back(fmt::format("{}: {} isolated vert{} (on no segment) inside the domain kept as mesh nodes",
+                                          path_, kept, kept == 1 ? "ex" : "ices"));
+    }
+    if (outside > 0) {
+      result_.notes.push_back(fmt::format(
+          "{}:{}: {} isolated vert{} outside the domain or on a segment (the first: "
+          "vertex {}) dropped",
+          path_, vertices_[outside_first].line, outside, outside == 1 ? "ex" : "ices", outside_first + base_));
+    }
   }
 
   // Where the even-odd rule of curve files would have read the file differently: loops around a
   // face it would have made a hole, which Triangle's rule (no hole point in it) keeps in the domain.
-  const bool loops_only =
-      !use_hull && std::all_of(input_degree.begin(), input_degree.end(), [](int d) { return d == 0 || d == 2; });
-  if (!loops_only) return;
-  const std::vector<int> parity = face_parity(faces);
-  for (std::size_t f = 0; f < faces.outer.size(); ++f) {
-    if (parity[f] != 0 || !inside[f]) continue;
-    const int v = *std::min_element(faces.outer[f].begin(), faces.outer[f].end(),
-                                    [&](int a, int b) { return g.first_vertex[a] < g.first_vertex[b]; });
-    const PolyVertex& pv = vertices[g.first_vertex[v]];
-    result.notes.push_back(fmt::format(
-        "{}:{}: the face inside the loop through vertex {} is meshed as a subdomain, not a hole: no hole point lies "
-        "in it (Triangle's rule for .poly files; the even-odd rule of curve files would make it a hole)",
-        path, pv.line, g.first_vertex[v] + base));
+  void note_even_odd_differences() {
+    const bool loops_only =
+        !use_hull_ && std::all_of(input_degree_.begin(), input_degree_.end(), [](int d) { return d == 0 || d == 2; });
+    if (!loops_only) return;
+    const std::vector<int> parity = face_parity(faces_);
+    for (std::size_t f = 0; f < faces_.outer.size(); ++f) {
+      if (parity[f] != 0 || !inside_[f]) continue;
+      const int v = *std::min_element(faces_.outer[f].begin(), faces_.outer[f].end(),
+                                      [&](int a, int b) { return g_.first_vertex[a] < g_.first_vertex[b]; });
+      const PolyVertex& pv = vertices_[g_.first_vertex[v]];
+      result_.notes.push_back(fmt::format(
+          "{}:{}: the face inside the loop through vertex {} is meshed as a subdomain, not a hole: no hole point "
+          "lies in it (Triangle's rule for .poly files; the even-odd rule of curve files would make it a hole)",
+          path_, pv.line, g_.first_vertex[v] + base_));
+    }
   }
+
+ private:
+  // Marks the faces holding a hole point out of the domain (noting hole points outside every loop
+  // when `notes` is given); whether any face is left.
+  bool remove_holes(std::vector<std::string>* notes) {
+    inside_.assign(faces_.outer.size(), 1);
+    for (const RawHolePoint& h : result_.holes) {
+      const int f = locate_face(faces_, g_.points, g_.edges, h.p);
+      if (f == -2) {
+        throw InputError(fmt::format("{}: hole point {} lies on a segment; it must lie inside the hole it makes",
+                                     where(h.file, h.line), format_point(h.p)));
+      }
+      if (f >= 0) {
+        inside_[f] = 0;
+      } else if (notes != nullptr) {
+        notes->push_back(fmt::format("{}: hole point {} lies outside every loop: it removes nothing",
+                                     where(h.file, h.line), format_point(h.p)));
+      }
+    }
+    return std::find(inside_.begin(), inside_.end(), 1) != inside_.end();
+  }
+
+  bool in_domain(int f) const { return f >= 0 && inside_[f]; }
+
+  const std::string& path_;
+  int base_;
+  const std::vector<PolyVertex>& vertices_;
+  const std::vector<PolySegment>& segments_;
+  PolyFile& result_;
+  Graph g_;
+  std::size_t input_edges_;  // the file's segments; the hull's edges come after them
+  PlanarFaces faces_;
+  std::vector<std::uint8_t> inside_;  // per bounded face: in the domain
+  bool use_hull_ = false;
+  std::vector<Kind> kind_;
+  std::vector<int> kept_degree_, input_degree_;
+};
+
+}  // namespace
+
+void apply_poly_semantics(const std::string& path, int base, const std::vector<PolyVertex>& vertices,
+                          const std::vector<PolySegment>& segments, const std::vector<GeometryRegion>& regions,
+                          PolyHull hull, PolyFile& result) {
+  PolySemantics passes(path, base, vertices, segments, result);
+  passes.find_domain(hull);
+  passes.tag_regions(regions);
+  passes.note_max_areas();
+  passes.classify_edges();
+  passes.chain_curves();
+  passes.keep_isolated_vertices();
+  passes.note_even_odd_differences();
 }
 
 }  // namespace pdmesh::detail

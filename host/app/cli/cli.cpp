@@ -378,6 +378,76 @@ void add_smooth_options(CLI::App& smooth, SmoothArguments& a) {
       "those of pdmesh mesh.");
 }
 
+void add_quality_options(CLI::App& quality, QualityArguments& a) {
+  quality.add_option("MESH", a.mesh, "Mesh file: .msh (Gmsh 2.2 or 4.1), .vtu, .su2, or Triangle .ele/.node")
+      ->required()
+      ->type_name("FILE");
+  quality
+      .add_option("--geometry,-g", a.geometry,
+                  "Case file or geometry file giving the desired spacing q (for spacing conformance)")
+      ->type_name("FILE");
+  quality.add_option("--json", a.json, "Also write the JSON summary: a file, a directory, or - for stdout")
+      ->type_name("PATH");
+  quality.add_option("--picture", a.picture, "Also draw the mesh: a .png or .svg file")->type_name("FILE");
+  quality.add_option("--view", a.view, "Window of the picture (default: the whole mesh)")->type_name("x0,y0,x1,y1");
+  quality
+      .add_option("--color-by", a.color_by,
+                  "Fill the picture's triangles by a metric: none | min_angle | max_angle | aspect_ratio | "
+                  "skewness | condition_number | min_jacobian")
+      ->type_name("METRIC");
+  quality
+      .add_option("--color-range", a.color_range,
+                  "Values at the two ends of the colour scale (default: the mesh's range), so that pictures "
+                  "of different meshes compare")
+      ->type_name("LO,HI");
+}
+
+void add_bench_options(CLI::App& bench, BenchArguments& a) {
+  bench.add_option("--cases", a.cases, "Cases to run (graded_1m is generated in code)")->type_name("NAME...");
+  bench.add_option("--cases-dir", a.cases_dir, "Directory holding the named cases")->type_name("DIR");
+  bench.add_option("--iterations", a.iterations, "Iterations per case and backend")->type_name("N");
+  bench.add_option("--large-iterations", a.large_iterations, "Iterations for graded_1m")->type_name("N");
+  bench.add_option("--large-nodes", a.large_nodes, "Target node count of graded_1m")->type_name("N");
+  bench.add_option("--precision", a.precision, "double | float (devices without fp64 run float)")->type_name("P");
+  bench.add_option("--warmup", a.warmup, "Untimed iterations before timing, every backend from that state")
+      ->type_name("N");
+  bench.add_option("--large-warmup", a.large_warmup, "The same for graded_1m")->type_name("N");
+  bench
+      .add_option("--skin", a.verlet_skin,
+                  "Verlet skin of the device runs (list radius cutoff q (1 + skin)); default as pdmesh mesh: 0.3, or "
+                  "0.8 with momentum")
+      ->type_name("S");
+  bench
+      .add_option("--population", a.population_every,
+                  "Population control during the timed iterations: an event every K iterations (0 = off)")
+      ->type_name("K");
+  bench.add_flag("--skip-host", a.skip_host, "Do not run the host reference");
+  bench.add_flag("--skip-host-large", a.skip_host_large, "Do not run the host reference on graded_1m");
+  bench.add_option("--force-loop", a.force_loop, "Force loop of the device runs: auto | vector | scalar")
+      ->type_name("L");
+  bench.add_option("--out", a.out, "Also write the table (Markdown) to this file")->type_name("FILE");
+  bench
+      .add_flag("--whole-run", a.whole_run,
+                "Time the mesh command end to end instead: every phase, --repeat runs per case and backend, each "
+                "a separate process")
+      ->group("Whole runs");
+  bench.add_option("--repeat", a.repeat, "Runs per case and backend (--whole-run)")
+      ->type_name("N")
+      ->group("Whole runs");
+  bench.add_option("--backends", a.backends, "--device of the runs, e.g. host auto (--whole-run)")
+      ->type_name("DEV...")
+      ->group("Whole runs");
+  bench.add_option("--set", a.sets, "Case key passed to every run as --set (--whole-run)")
+      ->type_name("KEY=VALUE")
+      ->allow_extra_args(false)
+      ->group("Whole runs");
+  bench.add_option("--work-dir", a.work_dir, "Where the runs write (and annulus_N cases are generated)")
+      ->type_name("DIR")
+      ->group("Whole runs");
+  bench.add_flag("--no-pictures{false}", a.keep_pictures, "Runs write no pictures (--formats msh)")
+      ->group("Whole runs");
+}
+
 SmoothField smooth_field(const std::string& name) {
   if (name == "mesh") return SmoothField::Mesh;
   if (name == "case") return SmoothField::Case;
@@ -417,28 +487,7 @@ Cli::Cli()
   commands_.emplace_back(smooth, [this] { return run_smooth_command(*smooth_); });
 
   CLI::App* quality = app_->add_subcommand("quality", "Print the quality table of an existing mesh file");
-  quality->add_option("MESH", quality_->mesh, "Mesh file: .msh (Gmsh 2.2 or 4.1), .vtu, .su2, or Triangle .ele/.node")
-      ->required()
-      ->type_name("FILE");
-  quality
-      ->add_option("--geometry,-g", quality_->geometry,
-                   "Case file or geometry file giving the desired spacing q (for spacing conformance)")
-      ->type_name("FILE");
-  quality->add_option("--json", quality_->json, "Also write the JSON summary: a file, a directory, or - for stdout")
-      ->type_name("PATH");
-  quality->add_option("--picture", quality_->picture, "Also draw the mesh: a .png or .svg file")->type_name("FILE");
-  quality->add_option("--view", quality_->view, "Window of the picture (default: the whole mesh)")
-      ->type_name("x0,y0,x1,y1");
-  quality
-      ->add_option("--color-by", quality_->color_by,
-                   "Fill the picture's triangles by a metric: none | min_angle | max_angle | aspect_ratio | "
-                   "skewness | condition_number | min_jacobian")
-      ->type_name("METRIC");
-  quality
-      ->add_option("--color-range", quality_->color_range,
-                   "Values at the two ends of the colour scale (default: the mesh's range), so that pictures "
-                   "of different meshes compare")
-      ->type_name("LO,HI");
+  add_quality_options(*quality, *quality_);
   commands_.emplace_back(quality, [this] {
     const auto picture = quality_picture(*quality_);
     return run_quality(quality_->mesh, quality_->geometry, quality_->json, picture);
@@ -446,50 +495,7 @@ Cli::Cli()
 
   CLI::App* bench =
       app_->add_subcommand("bench", "Time the simulation on the host reference and on each OpenCL device");
-  bench->add_option("--cases", bench_->cases, "Cases to run (graded_1m is generated in code)")->type_name("NAME...");
-  bench->add_option("--cases-dir", bench_->cases_dir, "Directory holding the named cases")->type_name("DIR");
-  bench->add_option("--iterations", bench_->iterations, "Iterations per case and backend")->type_name("N");
-  bench->add_option("--large-iterations", bench_->large_iterations, "Iterations for graded_1m")->type_name("N");
-  bench->add_option("--large-nodes", bench_->large_nodes, "Target node count of graded_1m")->type_name("N");
-  bench->add_option("--precision", bench_->precision, "double | float (devices without fp64 run float)")
-      ->type_name("P");
-  bench->add_option("--warmup", bench_->warmup, "Untimed iterations before timing, every backend from that state")
-      ->type_name("N");
-  bench->add_option("--large-warmup", bench_->large_warmup, "The same for graded_1m")->type_name("N");
-  bench
-      ->add_option("--skin", bench_->verlet_skin,
-                   "Verlet skin of the device runs (list radius cutoff q (1 + skin)); default as pdmesh mesh: 0.3, or "
-                   "0.8 with momentum")
-      ->type_name("S");
-  bench
-      ->add_option("--population", bench_->population_every,
-                   "Population control during the timed iterations: an event every K iterations (0 = off)")
-      ->type_name("K");
-  bench->add_flag("--skip-host", bench_->skip_host, "Do not run the host reference");
-  bench->add_flag("--skip-host-large", bench_->skip_host_large, "Do not run the host reference on graded_1m");
-  bench->add_option("--force-loop", bench_->force_loop, "Force loop of the device runs: auto | vector | scalar")
-      ->type_name("L");
-  bench->add_option("--out", bench_->out, "Also write the table (Markdown) to this file")->type_name("FILE");
-  bench
-      ->add_flag("--whole-run", bench_->whole_run,
-                 "Time the mesh command end to end instead: every phase, --repeat runs per case and backend, each "
-                 "a separate process")
-      ->group("Whole runs");
-  bench->add_option("--repeat", bench_->repeat, "Runs per case and backend (--whole-run)")
-      ->type_name("N")
-      ->group("Whole runs");
-  bench->add_option("--backends", bench_->backends, "--device of the runs, e.g. host auto (--whole-run)")
-      ->type_name("DEV...")
-      ->group("Whole runs");
-  bench->add_option("--set", bench_->sets, "Case key passed to every run as --set (--whole-run)")
-      ->type_name("KEY=VALUE")
-      ->allow_extra_args(false)
-      ->group("Whole runs");
-  bench->add_option("--work-dir", bench_->work_dir, "Where the runs write (and annulus_N cases are generated)")
-      ->type_name("DIR")
-      ->group("Whole runs");
-  bench->add_flag("--no-pictures{false}", bench_->keep_pictures, "Runs write no pictures (--formats msh)")
-      ->group("Whole runs");
+  add_bench_options(*bench, *bench_);
   commands_.emplace_back(bench,
                          [this] { return bench_->whole_run ? run_whole_run_bench(*bench_) : run_bench(*bench_); });
 

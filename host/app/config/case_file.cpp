@@ -209,24 +209,25 @@ CaseConfig validate(toml::table& root, Reader& r, const std::vector<CaseOverride
   return check_values(root, r, c);
 }
 
-}  // namespace
-
-bool CaseConfig::Output::wants(const std::string& format) const {
-  return std::find(formats.begin(), formats.end(), format) != formats.end();
-}
-
-const std::vector<std::string>& case_file_keys() {
+// The valid keys of each case-file section (top-level keys first); case_file_keys() joins them.
+const std::vector<std::string>& top_level_keys() {
   static const std::vector<std::string> keys = {
       "name",
       "preset",
-      "geometry.files",
-      "geometry.curve_names",
-      "geometry.join_tolerance",
-      "geometry.corner_angle",
-      "geometry.hull",
-      "geometry.curves",
-      "geometry.heal",
-      "geometry.projection",
+  };
+  return keys;
+}
+
+const std::vector<std::string>& geometry_keys() {
+  static const std::vector<std::string> keys = {
+      "geometry.files", "geometry.curve_names", "geometry.join_tolerance", "geometry.corner_angle",
+      "geometry.hull",  "geometry.curves",      "geometry.heal",           "geometry.projection",
+  };
+  return keys;
+}
+
+const std::vector<std::string>& spacing_keys() {
+  static const std::vector<std::string> keys = {
       "spacing.field",
       "spacing.expression",
       "spacing.file",
@@ -253,11 +254,29 @@ const std::vector<std::string>& case_file_keys() {
       "spacing.metric_gradation",
       "spacing.hessian_step",
       "spacing.size",
+  };
+  return keys;
+}
+
+const std::vector<std::string>& boundary_keys() {
+  static const std::vector<std::string> keys = {
       "boundary.nodes",
+  };
+  return keys;
+}
+
+const std::vector<std::string>& init_keys() {
+  static const std::vector<std::string> keys = {
       "init.method",
       "init.seed",
       "init.total",
       "init.file",
+  };
+  return keys;
+}
+
+const std::vector<std::string>& simulation_keys() {
+  static const std::vector<std::string> keys = {
       "simulation.iterations",
       "simulation.stop",
       "simulation.stop_aspect",
@@ -275,55 +294,83 @@ const std::vector<std::string>& case_file_keys() {
       "simulation.r0_rule",
       "simulation.stability_factor",
       "simulation.momentum",
-      "population.enabled",
-      "population.every",
-      "population.start",
-      "population.stop",
-      "population.insert",
-      "population.merge",
-      "population.remove_valence",
-      "population.boundary",
-      "population.boundary_split",
-      "population.settle",
-      "population.settle_events",
-      "cleanup.enabled",
-      "cleanup.min_angle",
-      "cleanup.iterations",
-      "cleanup.topology",
-      "cleanup.split_boundary",
-      "cleanup.trials_per_triangle",
-      "cleanup.min_trials",
-      "output.formats",
-      "output.tree_overlay",
-      "output.views",
-      "output.color_by",
-      "output.spacing_picture",
-      "output.open_boundaries",
-      "boundary_layer.curves",
-      "boundary_layer.first_height",
-      "boundary_layer.y_plus",
-      "boundary_layer.reynolds",
-      "boundary_layer.reference_length",
-      "boundary_layer.growth",
-      "boundary_layer.thickness",
-      "boundary_layer.layers",
-      "boundary_layer.elements",
+  };
+  return keys;
+}
+
+const std::vector<std::string>& population_keys() {
+  static const std::vector<std::string> keys = {
+      "population.enabled",        "population.every",  "population.start",          "population.stop",
+      "population.insert",         "population.merge",  "population.remove_valence", "population.boundary",
+      "population.boundary_split", "population.settle", "population.settle_events",
+  };
+  return keys;
+}
+
+const std::vector<std::string>& cleanup_keys() {
+  static const std::vector<std::string> keys = {
+      "cleanup.enabled",        "cleanup.min_angle",           "cleanup.iterations", "cleanup.topology",
+      "cleanup.split_boundary", "cleanup.trials_per_triangle", "cleanup.min_trials",
+  };
+  return keys;
+}
+
+const std::vector<std::string>& output_keys() {
+  static const std::vector<std::string> keys = {
+      "output.formats",  "output.tree_overlay",    "output.views",
+      "output.color_by", "output.spacing_picture", "output.open_boundaries",
+  };
+  return keys;
+}
+
+const std::vector<std::string>& boundary_layer_keys() {
+  static const std::vector<std::string> keys = {
+      "boundary_layer.curves",    "boundary_layer.first_height",     "boundary_layer.y_plus",
+      "boundary_layer.reynolds",  "boundary_layer.reference_length", "boundary_layer.growth",
+      "boundary_layer.thickness", "boundary_layer.layers",           "boundary_layer.elements",
+  };
+  return keys;
+}
+
+const std::vector<std::string>& farfield_keys() {
+  static const std::vector<std::string> keys = {
       "farfield.shape",
       "farfield.size",
-      "refine.shape",
-      "refine.size",
-      "refine.box",
-      "refine.centre",
-      "refine.radius",
-      "refine.points",
-      "motion.curves",
-      "motion.rotate",
-      "motion.pivot",
-      "motion.translate",
-      "motion.steps",
-      "motion.iterations",
-      "motion.blend",
   };
+  return keys;
+}
+
+const std::vector<std::string>& refine_keys() {
+  static const std::vector<std::string> keys = {
+      "refine.shape", "refine.size", "refine.box", "refine.centre", "refine.radius", "refine.points",
+  };
+  return keys;
+}
+
+const std::vector<std::string>& motion_keys() {
+  static const std::vector<std::string> keys = {
+      "motion.curves", "motion.rotate",     "motion.pivot", "motion.translate",
+      "motion.steps",  "motion.iterations", "motion.blend",
+  };
+  return keys;
+}
+
+}  // namespace
+
+bool CaseConfig::Output::wants(const std::string& format) const {
+  return std::find(formats.begin(), formats.end(), format) != formats.end();
+}
+
+const std::vector<std::string>& case_file_keys() {
+  static const std::vector<std::string> keys = [] {
+    std::vector<std::string> all;
+    for (const auto* section : {&top_level_keys(), &geometry_keys(), &spacing_keys(), &boundary_keys(), &init_keys(),
+                                &simulation_keys(), &population_keys(), &cleanup_keys(), &output_keys(),
+                                &boundary_layer_keys(), &farfield_keys(), &refine_keys(), &motion_keys()}) {
+      all.insert(all.end(), section->begin(), section->end());
+    }
+    return all;
+  }();
   return keys;
 }
 

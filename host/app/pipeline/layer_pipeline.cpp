@@ -484,6 +484,64 @@ double quantile(std::vector<double> v, double q) {
       std::min<double>(static_cast<double>(v.size()) - 1, q * static_cast<double>(v.size())))];
 }
 
+// The core triangles with an edge on the front (a core boundary edge on a curve of fixed points,
+// i.e. whose nodes are layer tops): the junction is measured on them only.
+Mesh front_triangles(const MeshInputs& core_inputs, const Mesh& core_mesh) {
+  Mesh front_only = core_mesh;
+  std::map<std::pair<int, int>, bool> front_edge;
+  for (const BoundaryEdge& e : core_mesh.boundary_edges)
+    if (core_inputs.geometry.curves[static_cast<std::size_t>(e.curve)].fixed_points)
+      front_edge[{std::min(e.a, e.b), std::max(e.a, e.b)}] = true;
+  front_only.triangles.clear();
+  for (const auto& t : core_mesh.triangles) {
+    bool on = false;
+    for (int i = 0; i < 3; ++i) {
+      const int a = t[static_cast<std::size_t>(i)], b = t[static_cast<std::size_t>((i + 1) % 3)];
+      on = on || front_edge.count({std::min(a, b), std::max(a, b)}) > 0;
+    }
+    if (on) front_only.triangles.push_back(t);
+  }
+  return front_only;
+}
+
+// The mixed mesh in the mesh-file formats the case asks for; returns the files written.
+std::vector<fs::path> write_layered_mesh_files(const CaseConfig& config, const MeshInputs& inputs,
+                                               const MixedMesh& mixed, RunPhases& phases) {
+  std::vector<std::string> formats;
+  for (const std::string& f : config.output.formats)
+    if (f == "msh" || f == "vtu" || f == "su2") formats.push_back(f);
+  const auto writer_timer = phases.phase("mesh files");
+  // geometry.projection: the files get lon/lat, like the triangle meshes' (mesh_outputs.cpp).
+  MixedMesh lonlat;
+  if (inputs.projection) {
+    lonlat = mixed;
+    inputs.projection->inverse(lonlat.points);
+  }
+  return write_mixed_mesh(inputs.projection ? lonlat : mixed, config.out_dir, "mesh", formats);
+}
+
+// mesh.png and one picture per output view, when the case asks for png; returns the file names.
+std::vector<std::string> write_layered_pictures(const CaseConfig& config, const MixedMesh& mixed, const Mesh& core_mesh,
+                                                RunPhases& phases) {
+  std::vector<std::string> pictures;
+  if (!config.output.wants("png")) return pictures;
+  const auto picture_timer = phases.phase("mesh pictures");
+  const Mesh drawn = triangulated(mixed);
+  MeshPictureOptions picture;
+  picture.title = fmt::format("{} - mesh ({} cells, {} in the boundary layer)", config.name, mixed.cells.size(),
+                              mixed.cells.size() - core_mesh.triangles.size());
+  write_mesh_picture(config.out_dir / "mesh.png", drawn, picture);
+  pictures.push_back("mesh.png");
+  for (const ViewWindow& view : config.output.views) {
+    MeshPictureOptions zoomed = picture;
+    zoomed.title += " - " + view.name;
+    zoomed.window = view.window;
+    write_mesh_picture(config.out_dir / fmt::format("mesh_{}.png", view.name), drawn, zoomed);
+    pictures.push_back(fmt::format("mesh_{}.png", view.name));
+  }
+  return pictures;
+}
+
 }  // namespace
 
 MixedMesh merged_layer_mesh(const MeshInputs& inputs, const LayeredCase& layered, const MeshInputs& core_inputs,
@@ -499,24 +557,7 @@ void write_layered_outputs(const CaseConfig& config, const MeshInputs& inputs, c
   timer = phases.phase("quality");
   QualitySummary core_summary = summarize_quality(core_mesh);
   core_summary.points = core_mesh.points.size();
-  // The junction: front edges only (edges of the core's boundary whose nodes are layer tops).
-  Mesh front_only = core_mesh;
-  {
-    std::map<std::pair<int, int>, bool> front_edge;
-    for (const BoundaryEdge& e : core_mesh.boundary_edges)
-      if (core_inputs.geometry.curves[static_cast<std::size_t>(e.curve)].fixed_points)
-        front_edge[{std::min(e.a, e.b), std::max(e.a, e.b)}] = true;
-    front_only.triangles.clear();
-    for (const auto& t : core_mesh.triangles) {
-      bool on = false;
-      for (int i = 0; i < 3; ++i) {
-        const int a = t[static_cast<std::size_t>(i)], b = t[static_cast<std::size_t>((i + 1) % 3)];
-        on = on || front_edge.count({std::min(a, b), std::max(a, b)}) > 0;
-      }
-      if (on) front_only.triangles.push_back(t);
-    }
-  }
-  const std::vector<double> junction = junction_growth(layered, front_only);
+  const std::vector<double> junction = junction_growth(layered, front_triangles(core_inputs, core_mesh));
   std::string table = format_quality_table(core_summary, config.name + " core");
   std::string json_layers;
   for (std::size_t k = 0; k < layered.sections.size(); ++k) {
@@ -560,37 +601,8 @@ void write_layered_outputs(const CaseConfig& config, const MeshInputs& inputs, c
                             mixed.cells.size(), mixed.quads()));
     write_file_atomically(config.out_dir / "quality.json", json);
   }
-  std::vector<std::string> formats;
-  for (const std::string& f : config.output.formats)
-    if (f == "msh" || f == "vtu" || f == "su2") formats.push_back(f);
-  std::vector<fs::path> written;
-  {
-    const auto writer_timer = phases.phase("mesh files");
-    // geometry.projection: the files get lon/lat, like the triangle meshes' (mesh_outputs.cpp).
-    MixedMesh lonlat;
-    if (inputs.projection) {
-      lonlat = mixed;
-      inputs.projection->inverse(lonlat.points);
-    }
-    written = write_mixed_mesh(inputs.projection ? lonlat : mixed, config.out_dir, "mesh", formats);
-  }
-  std::vector<std::string> pictures;
-  if (config.output.wants("png")) {
-    const auto picture_timer = phases.phase("mesh pictures");
-    const Mesh drawn = triangulated(mixed);
-    MeshPictureOptions picture;
-    picture.title = fmt::format("{} - mesh ({} cells, {} in the boundary layer)", config.name, mixed.cells.size(),
-                                mixed.cells.size() - core_mesh.triangles.size());
-    write_mesh_picture(config.out_dir / "mesh.png", drawn, picture);
-    pictures.push_back("mesh.png");
-    for (const ViewWindow& view : config.output.views) {
-      MeshPictureOptions zoomed = picture;
-      zoomed.title += " - " + view.name;
-      zoomed.window = view.window;
-      write_mesh_picture(config.out_dir / fmt::format("mesh_{}.png", view.name), drawn, zoomed);
-      pictures.push_back(fmt::format("mesh_{}.png", view.name));
-    }
-  }
+  const std::vector<fs::path> written = write_layered_mesh_files(config, inputs, mixed, phases);
+  const std::vector<std::string> pictures = write_layered_pictures(config, mixed, core_mesh, phases);
   std::string names;
   for (const auto& p : written) names += ", " + p.filename().string();
   for (const auto& p : pictures) names += ", " + p;

@@ -27,46 +27,56 @@
 
 namespace pdmesh {
 
-MeshInputs::MeshInputs(const CaseConfig& config) {
+namespace {
+
+// geometry.heal: the step that heals the raw curves at the mesh's resolution, judged by eq. 3.6's
+// spacing on them (heal.hpp), recording in `in` what it changed; the spacing field is then built on
+// the healed geometry. Empty when healing is off.
+PrepareCurves healing_step(const CaseConfig& config, MeshInputs& in) {
+  if (!config.geometry.heal) return {};
+  return [&in, &config](std::vector<RawCurve>& curves) {
+    std::vector<std::vector<Vec2>> before;
+    for (const RawCurve& c : curves) before.push_back(c.points);
+    HealOptions heal;
+    heal.scale = config.spacing.scale;
+    if (config.spacing.size > 0.0) {
+      heal.size = [size = config.spacing.size](Vec2) { return size; };
+    } else if (config.spacing.field == SpacingKind::Expression) {
+      auto expression = std::make_shared<ExpressionSpacing>(config.spacing.expression);
+      heal.size = [expression](Vec2 p) { return expression->at(p); };
+    }
+    heal.join_tolerance = config.geometry.join_tolerance;
+    in.healing = heal_curves(curves, heal);
+    if (!in.healing.changes.empty()) in.heal_input = std::move(before);
+  };
+}
+
+// The case's geometry into in.geometry: read from the files or the given curves (healed, projected),
+// the readers' notes printed, and the far field put around it.
+void read_case_geometry(const CaseConfig& config, MeshInputs& in) {
   std::vector<std::string> files;
   for (const std::filesystem::path& f : config.geometry.files) files.push_back(f.string());
   GeometryOptions options;
   options.join_tolerance = config.geometry.join_tolerance;
   options.corner_angle_deg = config.geometry.corner_angle;
   options.hull = config.geometry.hull;
-  PrepareCurves prepare;
-  if (config.geometry.heal) {
-    // Healing at the mesh's resolution, judged by eq. 3.6's spacing on the raw curves (heal.hpp); the
-    // spacing field is then built on the healed geometry.
-    prepare = [this, &config](std::vector<RawCurve>& curves) {
-      std::vector<std::vector<Vec2>> before;
-      for (const RawCurve& c : curves) before.push_back(c.points);
-      HealOptions heal;
-      heal.scale = config.spacing.scale;
-      if (config.spacing.size > 0.0) {
-        heal.size = [size = config.spacing.size](Vec2) { return size; };
-      } else if (config.spacing.field == SpacingKind::Expression) {
-        auto expression = std::make_shared<ExpressionSpacing>(config.spacing.expression);
-        heal.size = [expression](Vec2 p) { return expression->at(p); };
-      }
-      heal.join_tolerance = config.geometry.join_tolerance;
-      healing = heal_curves(curves, heal);
-      if (!healing.changes.empty()) heal_input = std::move(before);
-    };
-  }
   Equirectangular used;
-  const ReadSteps steps{config.geometry.projection, &used, prepare};
-  geometry = config.geometry.given_curves.empty()
-                 ? read_geometry(files, config.geometry.curve_names, options, steps)
-                 : geometry_from_curves(config.geometry.given_curves, config.geometry.curve_names, options,
-                                        config.geometry.given_points, steps);
-  if (config.geometry.projection == ProjectionKind::Equirectangular) projection = used;
+  const ReadSteps steps{config.geometry.projection, &used, healing_step(config, in)};
+  in.geometry = config.geometry.given_curves.empty()
+                    ? read_geometry(files, config.geometry.curve_names, options, steps)
+                    : geometry_from_curves(config.geometry.given_curves, config.geometry.curve_names, options,
+                                           config.geometry.given_points, steps);
+  if (config.geometry.projection == ProjectionKind::Equirectangular) in.projection = used;
   // What the readers did beyond the plain reading (a .poly's loops read as subdomains, vertices kept
   // or dropped): always said, also when quiet, since the mesh differs from what the file may suggest.
-  for (const std::string& note : geometry.notes) fmt::print(stderr, "pdmesh: note: {}\n", note);
+  for (const std::string& note : in.geometry.notes) fmt::print(stderr, "pdmesh: note: {}\n", note);
   // The far field around everything given: the body becomes a hole by the even-odd rule.
-  if (config.farfield.given()) geometry = with_farfield(geometry, config.farfield, config.spacing.gradation, options);
-  // Curve names are fields in node and mesh files; one with white space would break them later.
+  if (config.farfield.given())
+    in.geometry = with_farfield(in.geometry, config.farfield, config.spacing.gradation, options);
+}
+
+// Curve names are fields in node and mesh files; one with white space would break them later.
+void check_curve_names(const Geometry& geometry) {
   for (std::size_t c = 0; c < geometry.curves.size(); ++c) {
     const std::string& name = geometry.curves[c].name;
     if (name.empty() || name.find_first_of(" \t\r\n") != std::string::npos) {
@@ -76,6 +86,80 @@ MeshInputs::MeshInputs(const CaseConfig& config) {
                       geometry.curves[c].file, geometry.curves[c].line, c, name));
     }
   }
+}
+
+// For spacing.field = "boundary": what a refusal by the node count appends, where eq. 3.6's q comes
+// from (a dense input polyline asks for nodes as fine as its segments everywhere); empty without
+// segments.
+std::string segment_length_hint(const Geometry& geometry) {
+  const auto [shortest, longest] =
+      std::minmax_element(geometry.segments.begin(), geometry.segments.end(),
+                          [](const Segment& a, const Segment& b) { return a.length < b.length; });
+  if (shortest == geometry.segments.end()) return {};
+  return fmt::format(
+      " (eq. 3.6 takes q from the lengths of the input's {} segments, {:.3g} to {:.3g}: a "
+      "coarser polyline, spacing.scale or spacing.expression asks for fewer)",
+      geometry.segments.size(), shortest->length, longest->length);
+}
+
+// The line about a metric field or a spacing field read from a file, with the time since `start`;
+// empty for the other fields.
+std::string spacing_summary_line(const CaseConfig& config, const MeshInputs& in,
+                                 std::chrono::steady_clock::time_point start) {
+  std::string summary;
+  if (in.metric) {
+    summary = fmt::format(
+        "spacing: the metric field ({}) built in {:.3f} s; the nodes start at unit metric length, "
+        "relax in the metric and are triangulated in it (docs/metric-fields.md)",
+        config.spacing.field == SpacingKind::Hessian ? "hessian" : "metric",
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+  }
+  const SpacingField* base = in.spacing.get();
+  if (const auto* r = dynamic_cast<const RegionSpacing*>(base)) base = &r->base();
+  if (const auto* m = dynamic_cast<const MeshSpacing*>(base)) {
+    const MeshFieldData& d = m->data();
+    const auto [lo, hi] = std::minmax_element(d.q.begin(), d.q.end());
+    summary = fmt::format(
+        "spacing: '{}' on {} ({} triangles, {} points, q from {:.4g} to {:.4g}), read, checked and "
+        "indexed in {:.3f} s",
+        d.array, d.file, d.triangles.size(), d.points.size(), *lo, *hi,
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+  }
+  return summary;
+}
+
+// geometry.curves = "smooth": the dense polyline of the smooth curves and its tree, or the reason
+// the polylines are meshed instead (in.smooth_fallback).
+void build_smooth_curves(const CaseConfig& config, MeshInputs& in) {
+  const Geometry& geometry = in.geometry;
+  const bool embedded = !geometry.embedded_points.empty() || std::any_of(geometry.curves.begin(), geometry.curves.end(),
+                                                                         [](const Curve& c) { return c.constraint; });
+  if (config.geometry.curves == CurveKind::Smooth && embedded) {
+    // The dense curves would have to meet where the polylines do; the polylines are meshed instead.
+    in.smooth_fallback = "smooth curves do not support embedded constraints and points yet";
+  } else if (config.geometry.curves == CurveKind::Smooth) {
+    DenseOptions dense_options;
+    dense_options.join_tolerance = config.geometry.join_tolerance;
+    try {
+      in.dense = std::make_unique<DenseGeometry>(make_dense_geometry(
+          SmoothCurves(geometry, config.geometry.corner_angle), [&](Vec2 p) { return in.spacing->at(p); },
+          dense_options));
+    } catch (const GeometryError& e) {
+      // Smooth curves through coarse points can cross where the polylines pass close to each other.
+      in.smooth_fallback = e.what();
+    }
+    if (in.dense) {
+      check_coordinate_resolution(in.dense->geometry, *in.spacing);
+      in.dense_tree = std::make_unique<GeometryTree>(in.dense->geometry);
+    }
+  }
+}
+
+}  // namespace
+
+MeshInputs::MeshInputs(const CaseConfig& config) {
+  read_case_geometry(config, *this);
+  check_curve_names(geometry);
   // Checked here, before the run, so that a misspelt name writes nothing.
   curves_by_name(geometry, config.output.open_boundaries, config.source.string() + ": output.open_boundaries");
   // The geometry's quadtree and the queries' per-segment arrays, before they are made (the
@@ -87,18 +171,7 @@ MeshInputs::MeshInputs(const CaseConfig& config) {
   tree = std::make_unique<GeometryTree>(geometry);
   spacing_options = pdmesh::spacing_options(config);
   check_spacing_options(spacing_options);
-  if (config.spacing.field == SpacingKind::Boundary) {
-    // A refusal by the node count says where eq. 3.6's q comes from: a dense input polyline asks for
-    // nodes as fine as its segments everywhere.
-    const auto [shortest, longest] =
-        std::minmax_element(geometry.segments.begin(), geometry.segments.end(),
-                            [](const Segment& a, const Segment& b) { return a.length < b.length; });
-    if (shortest != geometry.segments.end())
-      node_hint = fmt::format(
-          " (eq. 3.6 takes q from the lengths of the input's {} segments, {:.3g} to {:.3g}: a "
-          "coarser polyline, spacing.scale or spacing.expression asks for fewer)",
-          geometry.segments.size(), shortest->length, longest->length);
-  }
+  if (config.spacing.field == SpacingKind::Boundary) node_hint = segment_length_hint(geometry);
   const auto spacing_start = std::chrono::steady_clock::now();
   metric = make_case_metric(config, *tree);
   spacing = make_case_spacing(config, *tree, metric.get());
@@ -107,48 +180,12 @@ MeshInputs::MeshInputs(const CaseConfig& config) {
   // sources (gradation): the thesis' field stays eq. 3.6 exactly.
   if (!metric && config.boundary.nodes == BoundaryNodeRule::Spacing && spacing_options.gradation > 0.0)
     for (const PointSource& s : short_arc_sources(geometry, *spacing)) spacing_options.points.push_back(s);
-  if (metric) {
-    spacing_summary = fmt::format(
-        "spacing: the metric field ({}) built in {:.3f} s; the nodes start at unit metric length, "
-        "relax in the metric and are triangulated in it (docs/metric-fields.md)",
-        config.spacing.field == SpacingKind::Hessian ? "hessian" : "metric",
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - spacing_start).count());
-  }
-  const SpacingField* base = spacing.get();
-  if (const auto* r = dynamic_cast<const RegionSpacing*>(base)) base = &r->base();
-  if (const auto* m = dynamic_cast<const MeshSpacing*>(base)) {
-    const MeshFieldData& d = m->data();
-    const auto [lo, hi] = std::minmax_element(d.q.begin(), d.q.end());
-    spacing_summary = fmt::format(
-        "spacing: '{}' on {} ({} triangles, {} points, q from {:.4g} to {:.4g}), read, checked and "
-        "indexed in {:.3f} s",
-        d.array, d.file, d.triangles.size(), d.points.size(), *lo, *hi,
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - spacing_start).count());
-  }
+  spacing_summary = spacing_summary_line(config, *this, spacing_start);
   // Before anything else uses them: with unresolvable coordinates the node estimate's tree could
   // refine without end.
   check_coordinate_resolution(geometry, *spacing);
   boundary_rule = config.boundary.nodes;
-  const bool embedded = !geometry.embedded_points.empty() || std::any_of(geometry.curves.begin(), geometry.curves.end(),
-                                                                         [](const Curve& c) { return c.constraint; });
-  if (config.geometry.curves == CurveKind::Smooth && embedded) {
-    // The dense curves would have to meet where the polylines do; the polylines are meshed instead.
-    smooth_fallback = "smooth curves do not support embedded constraints and points yet";
-  } else if (config.geometry.curves == CurveKind::Smooth) {
-    DenseOptions dense_options;
-    dense_options.join_tolerance = config.geometry.join_tolerance;
-    try {
-      dense = std::make_unique<DenseGeometry>(make_dense_geometry(
-          SmoothCurves(geometry, config.geometry.corner_angle), [&](Vec2 p) { return spacing->at(p); }, dense_options));
-    } catch (const GeometryError& e) {
-      // Smooth curves through coarse points can cross where the polylines pass close to each other.
-      smooth_fallback = e.what();
-    }
-    if (dense) {
-      check_coordinate_resolution(dense->geometry, *spacing);
-      dense_tree = std::make_unique<GeometryTree>(dense->geometry);
-    }
-  }
+  build_smooth_curves(config, *this);
 }
 
 BoundaryPlacement place_boundary(const CaseConfig& config, const MeshInputs& inputs, const SpacingStage& spacing) {

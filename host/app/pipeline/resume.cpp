@@ -13,6 +13,9 @@ namespace fs = std::filesystem;
 
 namespace {
 
+// The (key, value) lines that identify a case in its checkpoint.
+using Identity = std::vector<std::pair<std::string, std::string>>;
+
 // FNV-1a, 64 bits: identifies a geometry file's content (not a security measure).
 std::uint64_t fnv1a64(const std::string& bytes) {
   std::uint64_t h = 14695981039346656037ull;
@@ -34,12 +37,8 @@ std::string find_value(const std::vector<std::pair<std::string, std::string>>& k
   return {};
 }
 
-}  // namespace
-
-fs::path checkpoint_path(const fs::path& dir) { return dir / "checkpoint.pdmesh"; }
-
-std::vector<std::pair<std::string, std::string>> case_identity(const CaseConfig& config) {
-  std::vector<std::pair<std::string, std::string>> keys;
+// The geometry files (by content), how they are joined, and the boundary-node rule.
+void add_geometry_identity(const CaseConfig& config, Identity& keys) {
   for (std::size_t f = 0; f < config.geometry.files.size(); ++f) {
     const fs::path& file = config.geometry.files[f];
     const std::string content = read_text_file(file, InputKind::Geometry);
@@ -57,6 +56,10 @@ std::vector<std::pair<std::string, std::string>> case_identity(const CaseConfig&
   if (config.geometry.curves != CurveKind::Polyline) keys.emplace_back("geometry.curves", "smooth");
   if (config.boundary.nodes != BoundaryNodeRule::Input) keys.emplace_back("boundary.nodes", "spacing");
   if (config.geometry.projection != ProjectionKind::None) keys.emplace_back("geometry.projection", "equirectangular");
+}
+
+// The spacing field's kind and the inputs it is built from.
+void add_spacing_field_identity(const CaseConfig& config, Identity& keys) {
   keys.emplace_back("spacing.field", config.spacing.field == SpacingKind::Expression ? "expression"
                                      : config.spacing.field == SpacingKind::Mesh     ? "mesh"
                                      : config.spacing.field == SpacingKind::Metric   ? "metric"
@@ -94,6 +97,10 @@ std::vector<std::pair<std::string, std::string>> case_identity(const CaseConfig&
     keys.emplace_back("spacing.max_anisotropy", fmt::format("{}", s.max_anisotropy));
     keys.emplace_back("spacing.metric_gradation", fmt::format("{}", s.metric_gradation));
   }
+}
+
+// The far field, a uniform size and the refinement regions.
+void add_region_identity(const CaseConfig& config, Identity& keys) {
   // The far field, a uniform size and refinement regions: only when set, so that checkpoints of runs
   // without them (older files too) identify the same way.
   if (config.farfield.given())
@@ -109,6 +116,10 @@ std::vector<std::pair<std::string, std::string>> case_identity(const CaseConfig&
         fmt::format("{} {} box {} {} {} {} centre {} {} radius {} points{}", static_cast<int>(r.shape), r.size,
                     r.box.lo.x, r.box.lo.y, r.box.hi.x, r.box.hi.y, r.centre.x, r.centre.y, r.radius, points));
   }
+}
+
+// The keys of the spacing pipeline and its background.
+void add_spacing_pipeline_identity(const CaseConfig& config, Identity& keys) {
   // The pipeline's keys change the field the run follows.
   keys.emplace_back("spacing.scale", fmt::format("{}", config.spacing.scale));
   keys.emplace_back("spacing.gradation", fmt::format("{}", config.spacing.gradation));
@@ -125,6 +136,10 @@ std::vector<std::pair<std::string, std::string>> case_identity(const CaseConfig&
     keys.emplace_back("spacing.background_boundary_min_side",
                       fmt::format("{}", config.spacing.background_boundary_min_side));
   }
+}
+
+// The initial distribution and the simulation's parameters.
+void add_simulation_identity(const CaseConfig& config, Identity& keys) {
   keys.emplace_back("init.method", to_string(config.init.method));
   keys.emplace_back("init.seed", fmt::format("{}", config.init.seed));
   keys.emplace_back("init.total", fmt::format("{}", config.init.total));
@@ -137,6 +152,10 @@ std::vector<std::pair<std::string, std::string>> case_identity(const CaseConfig&
   // Only when on, so that checkpoints of runs without momentum (older files too) identify the same way.
   if (config.simulation.momentum > 0.0)
     keys.emplace_back("simulation.momentum", fmt::format("{}", config.simulation.momentum));
+}
+
+// Population control's schedule and thresholds.
+void add_population_identity(const CaseConfig& config, Identity& keys) {
   // Population control shapes the node set; its keys are named only when it is on, so that a
   // checkpoint of a run without it (older files too) identifies the same way.
   const PopulationOptions& p = config.population;
@@ -152,6 +171,20 @@ std::vector<std::pair<std::string, std::string>> case_identity(const CaseConfig&
                                                            p.insert.first, p.insert.last, p.merge.first, p.merge.last,
                                                            p.remove_valence, p.boundary, p.boundary_split));
   }
+}
+
+}  // namespace
+
+fs::path checkpoint_path(const fs::path& dir) { return dir / "checkpoint.pdmesh"; }
+
+std::vector<std::pair<std::string, std::string>> case_identity(const CaseConfig& config) {
+  Identity keys;
+  add_geometry_identity(config, keys);
+  add_spacing_field_identity(config, keys);
+  add_region_identity(config, keys);
+  add_spacing_pipeline_identity(config, keys);
+  add_simulation_identity(config, keys);
+  add_population_identity(config, keys);
   // Values are single lines (a checkpoint stores one key per line).
   for (auto& [k, v] : keys)
     for (char& c : v)
