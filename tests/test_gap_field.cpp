@@ -27,9 +27,8 @@ double min_angle(const std::string& quality_json) {
 TEST_CASE("a narrow gap between loops beside long segments meshes with angles of 30 degrees or more", "[gap]") {
   const std::string source(PDMESH_SOURCE_DIR);
   const auto dir = pdmesh_test::fresh_dir("gap_field");
-  for (const std::string input :
-       {source + "/cases/user_corpus/face", source + "/tests/data/gap/constraint_gap.poly",
-        source + "/tests/data/gap/hole_gap.poly"}) {
+  for (const std::string& input : {source + "/cases/user_corpus/face", source + "/tests/data/gap/constraint_gap.poly",
+                                   source + "/tests/data/gap/hole_gap.poly"}) {
     INFO(input);
     const auto out = dir / std::filesystem::path(input).stem();
     const auto r = pdmesh_test::run_pdmesh("mesh '" + input + "' --out '" + out.string() +
