@@ -112,3 +112,46 @@ TEST_CASE("The size sources with eq. 3.6's closest segments equal those that sea
   CHECK(q == q_plain);
   CHECK(std::count(closest.begin(), closest.end(), -1) == static_cast<std::ptrdiff_t>(points.size()));
 }
+
+namespace {
+
+Geometry gap_geometry(const std::string& name) {
+  return read_geometry({std::string(PDMESH_SOURCE_DIR) + "/tests/data/gap/" + name + ".poly"}, {});
+}
+
+double source_at(const Geometry& g, Vec2 p, bool final_floor, double floor = 1.0) {
+  const GeometryTree tree(g);
+  SizeSourceOptions options;
+  options.rows_in_gap = 2.0;
+  options.input_boundary_floor = floor;
+  options.final_floor = final_floor;
+  return SizeSources(tree, options).at(p, 10.0);
+}
+
+}  // namespace
+
+TEST_CASE("A gap between two loops that never meet gets W / k beside long segments", "[spacing][feature]") {
+  // A gap 0.05 wide between the unit square's bottom side (1 long) and a constraint segment or a
+  // hole's side (0.8 long): k = 2 spacings of 0.025 across it, at the wall, mid-gap and next to the
+  // inner side, when the boundary nodes are placed by the field.
+  for (const std::string name : {"constraint_gap", "hole_gap"}) {
+    INFO(name);
+    const Geometry g = gap_geometry(name);
+    for (const Vec2 p : {Vec2{0.5, 0.0}, Vec2{0.5, 0.025}, Vec2{0.3, 0.04}, Vec2{0.8, 0.01}}) {
+      INFO("at (" << p.x << ", " << p.y << ")");
+      CHECK(source_at(g, p, false) == Approx(0.025).epsilon(1e-9));
+      // With the input points as boundary nodes the sources keep to the closest segment's length.
+      CHECK(source_at(g, p, true) >= 0.8);
+    }
+  }
+}
+
+TEST_CASE("A gap that narrows to a tip within one loop keeps the sources' floor", "[spacing][feature]") {
+  // Near the 11.3 degree corner of the wedge W / k tends to 0; the floor keeps the closest segment's length.
+  const Geometry g = gap_geometry("wedge");
+  for (const Vec2 p : {Vec2{0.9, 0.005}, Vec2{0.8, 0.02}}) {
+    INFO("at (" << p.x << ", " << p.y << ")");
+    CHECK(source_at(g, p, false, 0.0) < 0.05);  // the gap is seen
+    CHECK(source_at(g, p, false) >= 1.0);
+  }
+}

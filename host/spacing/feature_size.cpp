@@ -82,6 +82,19 @@ FeatureSize::FeatureSize(const Geometry& geometry) : geometry_(geometry) {
     const bool closed = curve.points.front() == curve.points.back();
     loop_length_.push_back(closed ? curve.length() : std::numeric_limits<double>::infinity());
   }
+  for (const CriticalPoint& cp : geometry.critical) {
+    std::vector<std::int32_t> loops;
+    for (const int c : cp.curves) {
+      const Curve& curve = geometry.curves[static_cast<std::size_t>(c)];
+      if (curve.segment_count() > 0) loops.push_back(loop_[static_cast<std::size_t>(curve.first_segment)]);
+    }
+    std::sort(loops.begin(), loops.end());
+    loops.erase(std::unique(loops.begin(), loops.end()), loops.end());
+    for (std::size_t i = 0; i < loops.size(); ++i)
+      for (std::size_t j = i + 1; j < loops.size(); ++j) touching_.push_back({loops[i], loops[j]});
+  }
+  std::sort(touching_.begin(), touching_.end());
+  touching_.erase(std::unique(touching_.begin(), touching_.end()), touching_.end());
   if (loop_length_.size() > geometry.loops.size()) {
     for (const CriticalPoint& cp : geometry.critical) {
       std::vector<std::int32_t> loops;
@@ -154,6 +167,11 @@ bool FeatureSize::junction_corner(std::int32_t loop1, std::int32_t loop2, Vec2 p
   for (const auto& [loops, j] : junctions_)
     if (loops == key && !(dist(p1, j) + dist(j, p2) > kArcRatio * chord)) return true;
   return false;
+}
+
+bool FeatureSize::touch(std::int32_t loop1, std::int32_t loop2) const {
+  const std::pair<std::int32_t, std::int32_t> key{std::min(loop1, loop2), std::max(loop1, loop2)};
+  return std::binary_search(touching_.begin(), touching_.end(), key);
 }
 
 double FeatureSize::loop_arc(int segment, double t) const {
@@ -245,8 +263,9 @@ double FeatureSize::segment_lower_envelope(Vec2 x, double fraction, double slope
   return best;
 }
 
-double FeatureSize::width(Vec2 x, const ClosestHit& nearest, bool inside, double max_width) const {
+double FeatureSize::width(Vec2 x, const ClosestHit& nearest, bool inside, double max_width, bool* apart) const {
   constexpr double kNone = std::numeric_limits<double>::infinity();
+  if (apart) *apart = false;
   if (nearest.segment < 0 || !(max_width > 0.0)) return kNone;
   const Vec2 p1 = nearest.point;
   // Ahead: inside, away from p1 through x; otherwise from p1 along its segment's inward normal.
@@ -267,6 +286,7 @@ double FeatureSize::width(Vec2 x, const ClosestHit& nearest, bool inside, double
   const auto& segs = geometry_.segments;
   double best2 = radius * radius;
   bool found = false;
+  std::int32_t found_loop = -1;
   // Pruned by distance and by the half-plane.
   traverse(
       from, [&](const Node& n) { return box_distance2(n.box, from) >= best2 || box_behind(n.box, from, ahead); },
@@ -297,8 +317,11 @@ double FeatureSize::width(Vec2 x, const ClosestHit& nearest, bool inside, double
         }
         best2 = d2;
         found = true;
+        found_loop = loop2;
       });
-  return found ? d1 + std::sqrt(best2) : kNone;
+  if (!found) return kNone;
+  if (apart) *apart = found_loop != loop1 && !touch(loop1, found_loop);
+  return d1 + std::sqrt(best2);
 }
 
 }  // namespace pdmesh

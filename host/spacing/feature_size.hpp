@@ -27,7 +27,9 @@ class FeatureSize {
   // x - p1) that faces p1. On the boundary or outside, x is replaced by p1 and "ahead" is along the
   // inward normal of p1's segment, so W = |p1 - p2|. Returns +inf when no such p2 makes W < max_width
   // (max_width bounds the search: wider gaps do not matter to the caller).
-  double width(Vec2 x, const ClosestHit& nearest, bool inside, double max_width) const;
+  // apart (optional): set to whether p2 lies on a loop that never meets p1's (another loop with no
+  // point in common with it): then W is at least the two loops' distance, and cannot shrink to 0.
+  double width(Vec2 x, const ClosestHit& nearest, bool inside, double max_width, bool* apart = nullptr) const;
 
   // The closest boundary point to x (the least squared distance, then the lowest segment index), by
   // this hierarchy, which prunes far-away segments faster than the geometry quadtree for points far
@@ -73,6 +75,10 @@ class FeatureSize {
   // when |p1 - J| + |J - p2| > kArcRatio |p1 - p2|: a junction is a corner, not a gap.
   std::vector<std::pair<std::pair<std::int32_t, std::int32_t>, Vec2>> junctions_;
   bool junction_corner(std::int32_t loop1, std::int32_t loop2, Vec2 p1, Vec2 p2, double chord) const;
+  // Pairs of loops (lower index first) with a critical point in common, of any kind of loop: a gap
+  // between two loops that meet can narrow to nothing at the meeting point.
+  std::vector<std::pair<std::int32_t, std::int32_t>> touching_;
+  bool touch(std::int32_t loop1, std::int32_t loop2) const;
   double scale_ = 0.0;               // coordinate_magnitude of the segments
   std::vector<Node> nodes_;          // bounding-volume hierarchy over segments; root is nodes_[0]
   std::vector<std::int32_t> order_;  // segment indices, leaf by leaf

@@ -41,8 +41,13 @@ double SizeSources::at(Vec2 p, double limit, int* seed, int closest) const {
   if (options_.rows_in_gap > 0.0) {
     const double k = options_.rows_in_gap;
     // Only gaps narrower than k * limit / scale can ask for less than the limit.
-    const double w = feature_->width(p, hit, inside(p, hit), k * std::min(limit, q * s) / s);
-    if (std::isfinite(w)) q = std::min(q, std::max(w / k, floor / s));
+    bool apart = false;
+    const double w = feature_->width(p, hit, inside(p, hit), k * std::min(limit, q * s) / s, &apart);
+    // Across a gap between two loops that never meet, boundary nodes placed by the field need no
+    // floor: W is bounded below by the loops' distance (no sharp V tip asks for q -> 0 there), and a
+    // floor of the closest segment's length would leave a gap beside a long segment unresolved.
+    const bool floored = options_.final_floor || !apart;
+    if (std::isfinite(w)) q = std::min(q, floored ? std::max(w / k, floor / s) : w / k);
   }
   return s * q;
 }
