@@ -75,8 +75,8 @@ TEST_CASE("geometry.heal = false: a touching or overlapping hole stays an inters
   for (const char* file : {"touch.crv", "overlap.crv"}) {
     INFO(file);
     const auto dir = pdmesh_test::fresh_dir(std::string("heal_join_off_") + file);
-    const auto r = pdmesh_test::run_pdmesh("mesh '" + data(file) + "' --set geometry.heal=false --out '" +
-                                           dir.string() + "'");
+    const auto r =
+        pdmesh_test::run_pdmesh("mesh '" + data(file) + "' --set geometry.heal=false --out '" + dir.string() + "'");
     INFO(r.output);
     CHECK(r.status == 2);
     CHECK(r.output.find("curves intersect") != std::string::npos);

@@ -22,26 +22,11 @@ const std::filesystem::path kCorpus = std::filesystem::path(PDMESH_SOURCE_DIR) /
 
 // The inputs the readers on this branch support; every other input may still be refused with exit 2.
 // Add an input here when the reader or option it needs is in (docs/cases.md, "User corpus").
-const std::set<std::string> kMustMesh = {"A",
-                                         "box",
-                                         "clarky",
-                                         "cyclades",
-                                         "double_hex",
-                                         "e387",
-                                         "face",
-                                         "fx63137",
-                                         "fx77w270",
-                                         "greece",
-                                         "indonesia_java",
-                                         "japan",
-                                         "joukowsk",
-                                         "la",
-                                         "naca0012",
-                                         "norway",
-                                         "puget_sound",
-                                         "s1223",
-                                         "sc20714",
-                                         "square_circle_hole"};
+const std::set<std::string> kMustMesh = {"A",           "box",    "clarky",         "cyclades",
+                                         "double_hex",  "e387",   "face",           "fx63137",
+                                         "fx77w270",    "greece", "indonesia_java", "japan",
+                                         "joukowsk",    "la",     "naca0012",       "norway",
+                                         "puget_sound", "s1223",  "sc20714",        "square_circle_hole"};
 
 std::vector<std::string> corpus_inputs() {
   std::vector<std::string> names;

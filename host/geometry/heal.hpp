@@ -2,8 +2,8 @@
 // raw boundary curves lose the details the mesh cannot resolve: vertices closer than a fraction of
 // the local spacing merge, one-vertex spikes go, narrow inlets and narrow intrusions are cut off at
 // their mouth, loops smaller than about h² are dropped, and closed curves that touch or overlap in one
-// place (a hole touching the outer ring, as OGC polygons allow) are joined into one ring. Every change is recorded with what it
-// removed and what it added, for the report, quality.json and healing.png.
+// place (a hole touching the outer ring, as OGC polygons allow) are joined into one ring. Every change is recorded with
+// what it removed and what it added, for the report, quality.json and healing.png.
 #pragma once
 #include <functional>
 #include <string>

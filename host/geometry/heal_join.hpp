@@ -12,11 +12,11 @@
 namespace pdmesh::detail {
 
 struct JoinedRings {
-  std::vector<Vec2> ring;                     // the joined ring (no repeated last point)
-  std::vector<std::pair<int, int>> origin;    // per point: (0 for a, 1 for b; the vertex it is or follows)
-  std::vector<Vec2> removed, added;           // the parts inside the neck's disc, and the two chords
-  Vec2 centre;                                // the middle of where they meet
-  double radius = 0.0;                        // the disc cut out around it
+  std::vector<Vec2> ring;                   // the joined ring (no repeated last point)
+  std::vector<std::pair<int, int>> origin;  // per point: (0 for a, 1 for b; the vertex it is or follows)
+  std::vector<Vec2> removed, added;         // the parts inside the neck's disc, and the two chords
+  Vec2 centre;                              // the middle of where they meet
+  double radius = 0.0;                      // the disc cut out around it
   double h = 0.0;
 };
 

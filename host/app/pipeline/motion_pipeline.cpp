@@ -349,7 +349,7 @@ void run_motion_steps(const CaseConfig& config, const std::function<void(const M
     Mesh mesh = triangulate(nodes, now->curve_names());
     if (config.cleanup.enabled) {
       CleanupResult cleaned = clean_mesh(mesh, nodes, now->node_tree(), field,
-                                          k == 0 ? cleanup_options(config) : warm_cleanup_options(config));
+                                         k == 0 ? cleanup_options(config) : warm_cleanup_options(config));
       mesh = std::move(cleaned.mesh);
       nodes = std::move(cleaned.nodes);
     }
