@@ -98,6 +98,29 @@ Mesh read_smooth_mesh(const std::filesystem::path& file, const std::string& labe
   return mesh;
 }
 
+namespace {
+
+// Per point: the mean length of its boundary edges (the edges of one triangle); 0 off the boundary.
+std::vector<double> mean_boundary_edge(const Mesh& mesh) {
+  std::vector<double> length(mesh.points.size(), 0.0);
+  std::vector<int> count(mesh.points.size(), 0);
+  for (const auto& [key, triangles] : edge_counts(mesh)) {
+    if (triangles != 1) continue;
+    const auto a = static_cast<std::size_t>(key >> 32);
+    const auto b = static_cast<std::size_t>(key & 0xffffffffu);
+    const double l = dist(mesh.points[a], mesh.points[b]);
+    length[a] += l;
+    length[b] += l;
+    ++count[a];
+    ++count[b];
+  }
+  for (std::size_t i = 0; i < length.size(); ++i)
+    if (count[i] > 0) length[i] /= count[i];
+  return length;
+}
+
+}  // namespace
+
 std::vector<double> node_spacing(const Mesh& mesh) {
   const std::size_t n = mesh.points.size();
   // Interior: a third of the area of the triangles at the node is its share of the domain; an
@@ -111,20 +134,9 @@ std::vector<double> node_spacing(const Mesh& mesh) {
   std::vector<double> q(n, 0.0);
   for (std::size_t i = 0; i < n; ++i) q[i] = std::sqrt(2.0 * area[i] / std::sqrt(3.0));
   // Boundary: the mean length of its boundary edges.
-  std::vector<double> length(n, 0.0);
-  std::vector<int> count(n, 0);
-  for (const auto& [key, triangles] : edge_counts(mesh)) {
-    if (triangles != 1) continue;
-    const auto a = static_cast<std::size_t>(key >> 32);
-    const auto b = static_cast<std::size_t>(key & 0xffffffffu);
-    const double l = dist(mesh.points[a], mesh.points[b]);
-    length[a] += l;
-    length[b] += l;
-    ++count[a];
-    ++count[b];
-  }
+  const std::vector<double> boundary = mean_boundary_edge(mesh);
   for (std::size_t i = 0; i < n; ++i)
-    if (count[i] > 0) q[i] = length[i] / count[i];
+    if (boundary[i] > 0.0) q[i] = boundary[i];
   return q;
 }
 
@@ -138,24 +150,12 @@ void check_mesh_on_geometry(const Mesh& mesh, const std::string& label, const Ge
         "{}: the mesh [{}, {}] x [{}, {}] does not overlap the geometry [{}, {}] x [{}, {}]: a mesh of another "
         "geometry?",
         label, box.lo.x, box.hi.x, box.lo.y, box.hi.y, g.lo.x, g.hi.x, g.lo.y, g.hi.y));
-  // Boundary edges: the edges of one triangle. Each boundary node's allowance is a share of the mean
-  // length of its boundary edges.
-  std::vector<double> length(mesh.points.size(), 0.0);
-  std::vector<int> count(mesh.points.size(), 0);
-  for (const auto& [key, triangles] : edge_counts(mesh)) {
-    if (triangles != 1) continue;
-    const auto a = static_cast<std::size_t>(key >> 32);
-    const auto b = static_cast<std::size_t>(key & 0xffffffffu);
-    const double l = dist(mesh.points[a], mesh.points[b]);
-    length[a] += l;
-    length[b] += l;
-    ++count[a];
-    ++count[b];
-  }
+  // Each boundary node's allowance is a share of the mean length of its boundary edges.
+  const std::vector<double> boundary = mean_boundary_edge(mesh);
   const double absolute = 1e-6 * geometry.extents.diagonal();
   for (std::size_t i = 0; i < mesh.points.size(); ++i) {
-    if (count[i] == 0) continue;
-    const double allowed = std::max(absolute, kSmoothBoundaryTolerance * length[i] / count[i]);
+    if (boundary[i] == 0.0) continue;
+    const double allowed = std::max(absolute, kSmoothBoundaryTolerance * boundary[i]);
     const ClosestHit hit = tree.closest(mesh.points[i]);
     if (hit.segment >= 0 && hit.distance <= allowed) continue;
     const std::string curve =
