@@ -240,8 +240,10 @@ std::string motion_json(const std::vector<MotionStepRecord>& records) {
   return out;
 }
 
-void run_motion_steps(const CaseConfig& config, const std::function<void(const MotionStep&)>& each) {
-  const CaseConfig::Motion& m = config.motion;
+namespace {
+
+// What a motion run cannot take (yet): refused before anything runs.
+void refuse_unsupported(const CaseConfig& config) {
   if (!config.boundary_layers.empty())
     throw InputError(fmt::format("{}: [motion] with [[boundary_layer]] is not supported yet (docs/motion.md)",
                                  config.source.string()));
@@ -250,6 +252,107 @@ void run_motion_steps(const CaseConfig& config, const std::function<void(const M
                                  config.source.string()));
   if (config.resume)
     throw InputError(fmt::format("{}: --resume is not supported with [motion]", config.source.string()));
+}
+
+// The step's figures from its mesh: node count, share of ids kept, smallest angle, inverted triangles.
+void measure_step(const Mesh& mesh, const NodeSet& nodes, const NodeSet& previous, MotionStepRecord& rec) {
+  rec.nodes = nodes.size();
+  rec.ids_kept = rec.step == 0 || previous.size() == 0
+                     ? 1.0
+                     : static_cast<double>(ids_kept(previous.id, nodes.id)) / static_cast<double>(previous.size());
+  double min_angle = 180.0;
+  for (const TriangleQuality& q : triangle_qualities(mesh)) min_angle = std::min(min_angle, q.min_angle);
+  rec.min_angle = mesh.triangles.empty() ? 0.0 : min_angle;
+  rec.inverted = 0;
+  for (const auto& t : mesh.triangles)
+    rec.inverted += orient2d(mesh.points[static_cast<std::size_t>(t[0])], mesh.points[static_cast<std::size_t>(t[1])],
+                             mesh.points[static_cast<std::size_t>(t[2])]) <= 0.0;
+}
+
+// DIR/step_NNNN/: mesh.vtu, the other mesh formats asked for, and mesh.png.
+void write_step_files(const CaseConfig& config, const MotionStepRecord& rec, const Mesh& mesh) {
+  const fs::path dir = config.out_dir / step_name(rec.step);
+  fs::create_directories(dir);
+  std::vector<std::string> formats{"vtu"};
+  for (const std::string& f : config.output.formats)
+    if (is_mesh_format(f) && f != "vtu") formats.push_back(f);
+  write_mesh(mesh, dir, "mesh", formats);
+  if (config.output.wants("png")) {
+    MeshPictureOptions picture;
+    picture.title =
+        fmt::format("{} - step {} t = {:.4g} ({} triangles)", config.name, rec.step, rec.t, mesh.triangles.size());
+    if (!config.output.views.empty()) picture.window = config.output.views.front().window;
+    write_mesh_picture(dir / "mesh.png", mesh, picture);
+  }
+}
+
+// The step's relaxation: step 0 as `pdmesh mesh` simulates; a later step on step 0's backend with the
+// moved field's quadtree as the background.
+void relax_step(const CaseConfig& sim_config, const MeshInputs& now, const SpacingStage& rest_spacing,
+                BackgroundSpacing* moved_background, ChosenBackend& backend, SimulateHooks& hooks, NodeSet& nodes,
+                MotionStepRecord& rec) {
+  const auto sim_start = Clock::now();
+  if (sim_config.simulation.iterations > 0 && rec.step == 0) {
+    rec.iterations = simulate(sim_config, now, rest_spacing, nodes, nullptr, &hooks).state.iterations_done;
+  } else if (sim_config.simulation.iterations > 0) {
+    SimOptions options = simulation_options(sim_config);
+    options.background = moved_background;
+    options.stop = &InterruptGuard::flag();
+    rec.iterations =
+        backend.simulator->run(nodes, now.node_tree(), *moved_background, options, {}).state.iterations_done;
+  }
+  rec.simulation_s = since(sim_start);
+}
+
+// The relaxed nodes triangulated and cleaned up (step 0 with the case's cleanup, later steps with
+// warm_cleanup_options); the nodes become the cleaned ones.
+Mesh mesh_step(const CaseConfig& config, const MeshInputs& now, const SpacingField& field, NodeSet& nodes,
+               MotionStepRecord& rec) {
+  const auto cleanup_start = Clock::now();
+  Mesh mesh = triangulate(nodes, now.curve_names());
+  if (config.cleanup.enabled) {
+    CleanupResult cleaned = clean_mesh(mesh, nodes, now.node_tree(), field,
+                                       rec.step == 0 ? cleanup_options(config) : warm_cleanup_options(config));
+    mesh = std::move(cleaned.mesh);
+    nodes = std::move(cleaned.nodes);
+  }
+  rec.cleanup_s = since(cleanup_start);
+  return mesh;
+}
+
+// With --check, the step's mesh through the invariant checker.
+void check_step(const CaseConfig& config, const MeshInputs& now, const Mesh& mesh, const NodeSet& nodes,
+                const MotionStepRecord& rec) {
+  if (!config.check) return;
+  const CheckReport report = check_mesh(mesh, node_domain_area(nodes, now.node_geometry()));
+  if (!report.ok())
+    throw SimulationError(fmt::format("motion step {} (t = {}): the mesh failed its invariant check:\n{}", rec.step,
+                                      rec.t, report.summary()));
+}
+
+// The step's line on the progress sink.
+void report_step(const CaseConfig& config, const MotionStepRecord& rec) {
+  progress(config,
+           "motion: step {}/{} t = {:.4g}: {} nodes, {:.1f} % of the ids kept, min angle {:.2f} deg, {} inverted, "
+           "{} iterations, carry in {} sub-step(s); {:.3f} s (spacing {:.3f}, simulation {:.3f}, mesh and cleanup "
+           "{:.3f})",
+           rec.step, config.motion.steps, rec.t, rec.nodes, 100.0 * rec.ids_kept, rec.min_angle, rec.inverted,
+           rec.iterations, rec.carry_substeps, rec.wall_s, rec.spacing_s, rec.simulation_s, rec.cleanup_s);
+}
+
+// motion.pvd and motion.json rewritten with the steps so far, so that a stopped run lists its steps.
+void write_series(const CaseConfig& config, const std::vector<MotionStepRecord>& records, std::vector<PvdEntry>& pvd) {
+  const MotionStepRecord& rec = records.back();
+  pvd.push_back({rec.t, step_name(rec.step) + "/mesh.vtu"});
+  write_pvd(config.out_dir / "motion.pvd", pvd);
+  write_file_atomically(config.out_dir / "motion.json", motion_json(records));
+}
+
+}  // namespace
+
+void run_motion_steps(const CaseConfig& config, const std::function<void(const MotionStep&)>& each) {
+  const CaseConfig::Motion& m = config.motion;
+  refuse_unsupported(config);
   CaseConfig base = config;
   base.write_outputs = false;
   // Every pose before anything runs: an expression that is not finite at some step is bad input.
@@ -331,80 +434,22 @@ void run_motion_steps(const CaseConfig& config, const std::function<void(const M
       sim_config = warm_config(step_config);
     }
     // Relax, triangulate, clean up.
-    const auto sim_start = Clock::now();
+    relax_step(sim_config, *now, *rest_spacing, moved_background.get(), backend, hooks, nodes, rec);
     const SpacingField& field = k == 0 ? rest_spacing->field() : *moved_background;
-    if (k == 0 && sim_config.simulation.iterations > 0) {
-      const SimResult result = simulate(sim_config, *now, *rest_spacing, nodes, nullptr, &hooks);
-      rec.iterations = result.state.iterations_done;
-    } else if (sim_config.simulation.iterations > 0) {
-      // simulate()'s run on the backend, with the moved field's quadtree as the background.
-      SimOptions options = simulation_options(sim_config);
-      options.background = moved_background.get();
-      options.stop = &InterruptGuard::flag();
-      const SimResult result = backend.simulator->run(nodes, now->node_tree(), field, options, {});
-      rec.iterations = result.state.iterations_done;
-    }
-    rec.simulation_s = since(sim_start);
-    const auto cleanup_start = Clock::now();
-    Mesh mesh = triangulate(nodes, now->curve_names());
-    if (config.cleanup.enabled) {
-      CleanupResult cleaned = clean_mesh(mesh, nodes, now->node_tree(), field,
-                                         k == 0 ? cleanup_options(config) : warm_cleanup_options(config));
-      mesh = std::move(cleaned.mesh);
-      nodes = std::move(cleaned.nodes);
-    }
-    rec.cleanup_s = since(cleanup_start);
+    Mesh mesh = mesh_step(config, *now, field, nodes, rec);
     number_new_nodes(nodes, next_id);
     field.at_many(mesh.points, mesh.spacing);
     PointValues ids{"node_id", 1, {}, true};
     ids.values.assign(nodes.id.begin(), nodes.id.end());
     mesh.point_data.push_back(std::move(ids));
-    rec.nodes = nodes.size();
-    rec.ids_kept = k == 0 || previous.size() == 0
-                       ? 1.0
-                       : static_cast<double>(ids_kept(previous.id, nodes.id)) / static_cast<double>(previous.size());
-    double min_angle = 180.0;
-    for (const TriangleQuality& q : triangle_qualities(mesh)) min_angle = std::min(min_angle, q.min_angle);
-    rec.min_angle = mesh.triangles.empty() ? 0.0 : min_angle;
-    rec.inverted = 0;
-    for (const auto& t : mesh.triangles)
-      rec.inverted += orient2d(mesh.points[static_cast<std::size_t>(t[0])], mesh.points[static_cast<std::size_t>(t[1])],
-                               mesh.points[static_cast<std::size_t>(t[2])]) <= 0.0;
-    if (config.check) {
-      const CheckReport report = check_mesh(mesh, node_domain_area(nodes, now->node_geometry()));
-      if (!report.ok())
-        throw SimulationError(fmt::format("motion step {} (t = {}): the mesh failed its invariant check:\n{}", k, rec.t,
-                                          report.summary()));
-    }
-    if (config.write_outputs) {
-      const fs::path dir = config.out_dir / step_name(k);
-      fs::create_directories(dir);
-      std::vector<std::string> formats{"vtu"};
-      for (const std::string& f : config.output.formats)
-        if (is_mesh_format(f) && f != "vtu") formats.push_back(f);
-      write_mesh(mesh, dir, "mesh", formats);
-      if (config.output.wants("png")) {
-        MeshPictureOptions picture;
-        picture.title =
-            fmt::format("{} - step {} t = {:.4g} ({} triangles)", config.name, k, rec.t, mesh.triangles.size());
-        if (!config.output.views.empty()) picture.window = config.output.views.front().window;
-        write_mesh_picture(dir / "mesh.png", mesh, picture);
-      }
-    }
+    measure_step(mesh, nodes, previous, rec);
+    check_step(config, *now, mesh, nodes, rec);
+    if (config.write_outputs) write_step_files(config, rec, mesh);
     rec.wall_s = since(t0);
     rec.cpu_s = static_cast<double>(std::clock() - c0) / CLOCKS_PER_SEC;
     records.push_back(rec);
-    if (config.write_outputs) {
-      pvd.push_back({rec.t, step_name(k) + "/mesh.vtu"});
-      write_pvd(config.out_dir / "motion.pvd", pvd);
-      write_file_atomically(config.out_dir / "motion.json", motion_json(records));
-    }
-    progress(config,
-             "motion: step {}/{} t = {:.4g}: {} nodes, {:.1f} % of the ids kept, min angle {:.2f} deg, {} inverted, "
-             "{} iterations, carry in {} sub-step(s); {:.3f} s (spacing {:.3f}, simulation {:.3f}, mesh and cleanup "
-             "{:.3f})",
-             k, m.steps, rec.t, rec.nodes, 100.0 * rec.ids_kept, rec.min_angle, rec.inverted, rec.iterations,
-             rec.carry_substeps, rec.wall_s, rec.spacing_s, rec.simulation_s, rec.cleanup_s);
+    if (config.write_outputs) write_series(config, records, pvd);
+    report_step(config, rec);
     if (each) each(MotionStep{mesh, nodes, rec});
     check_interrupt();
     previous = std::move(nodes);
