@@ -10,7 +10,6 @@
 
 #include <fmt/format.h>
 
-#include "core/g17.hpp"
 #include "core/interrupt.hpp"
 #include "io/boundary_strings.hpp"
 #include "io/mesh_io_common.hpp"
@@ -37,14 +36,7 @@ std::string fort14_string(const Mesh& mesh, const std::vector<std::string>& open
   std::string out = "pdmesh mesh\n";
   out += fmt::format("{} {}\n", mesh.triangles.size(), mesh.points.size());
   auto to = std::back_inserter(out);
-  for (std::size_t i = 0; i < mesh.points.size(); ++i) {
-    if ((i & 65535) == 0) check_interrupt();
-    fmt::format_to(to, "{} ", i + 1);
-    append_g17(out, mesh.points[i].x);
-    out += ' ';
-    append_g17(out, mesh.points[i].y);
-    out += " 0\n";
-  }
+  append_point_lines(out, mesh, "");
   for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
     if ((t & 65535) == 0) check_interrupt();
     const auto& tri = mesh.triangles[t];

@@ -9,6 +9,7 @@
 
 #include "core/errors.hpp"
 #include "core/g17.hpp"
+#include "core/interrupt.hpp"
 #include "core/predicates.hpp"
 
 namespace pdmesh {
@@ -53,6 +54,18 @@ void check_mesh_for_writing(const Mesh& mesh, const std::string& what) {
     if (d.components < 1 || d.values.size() != static_cast<std::size_t>(d.components) * mesh.points.size())
       throw InputError(fmt::format("{}: point data '{}' has {} values for {} points of {} components", what, d.name,
                                    d.values.size(), n, d.components));
+}
+
+void append_point_lines(std::string& out, const Mesh& mesh, const char* prefix) {
+  auto to = std::back_inserter(out);
+  for (std::size_t i = 0; i < mesh.points.size(); ++i) {
+    if ((i & 65535) == 0) check_interrupt();
+    fmt::format_to(to, "{}{} ", prefix, i + 1);
+    append_g17(out, mesh.points[i].x);
+    out += ' ';
+    append_g17(out, mesh.points[i].y);
+    out += " 0\n";
+  }
 }
 
 std::vector<std::size_t> boundary_edges_by_curve(const Mesh& mesh) {

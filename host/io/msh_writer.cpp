@@ -162,14 +162,7 @@ std::string msh22_string(const Mesh& mesh) {
   out += physical_names(mesh, surfaces);
   out += fmt::format("$Nodes\n{}\n", mesh.points.size());
   auto to = std::back_inserter(out);
-  for (std::size_t i = 0; i < mesh.points.size(); ++i) {
-    if ((i & 65535) == 0) check_interrupt();
-    fmt::format_to(to, "{} ", i + 1);
-    append_g17(out, mesh.points[i].x);
-    out += ' ';
-    append_g17(out, mesh.points[i].y);
-    out += " 0\n";
-  }
+  append_point_lines(out, mesh, "");
   out += "$EndNodes\n";
   // Each element: tag, type, 2 tags (physical, elementary), nodes. Curve c is elementary entity c + 1,
   // surface j (msh41_string) elementary entity j + 1 with physical tag curves + 1 + j.

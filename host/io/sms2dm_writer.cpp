@@ -7,7 +7,6 @@
 
 #include <fmt/format.h>
 
-#include "core/g17.hpp"
 #include "core/interrupt.hpp"
 #include "io/boundary_strings.hpp"
 #include "io/mesh_io_common.hpp"
@@ -23,14 +22,7 @@ std::string sms2dm_string(const Mesh& mesh) {
     const auto& tri = mesh.triangles[t];
     fmt::format_to(to, "E3T {} {} {} {} 1\n", t + 1, tri[0] + 1, tri[1] + 1, tri[2] + 1);
   }
-  for (std::size_t i = 0; i < mesh.points.size(); ++i) {
-    if ((i & 65535) == 0) check_interrupt();
-    fmt::format_to(to, "ND {} ", i + 1);
-    append_g17(out, mesh.points[i].x);
-    out += ' ';
-    append_g17(out, mesh.points[i].y);
-    out += " 0\n";
-  }
+  append_point_lines(out, mesh, "ND ");
   for (const BoundaryString& s : boundary_strings(mesh)) {
     for (std::size_t j = 0; j < s.nodes.size(); ++j) {
       const bool last = j + 1 == s.nodes.size();

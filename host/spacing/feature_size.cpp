@@ -82,6 +82,9 @@ FeatureSize::FeatureSize(const Geometry& geometry) : geometry_(geometry) {
     const bool closed = curve.points.front() == curve.points.back();
     loop_length_.push_back(closed ? curve.length() : std::numeric_limits<double>::infinity());
   }
+  // The loops meeting at each critical point: every pair touches, and with constraints (more loops
+  // than the geometry's) the pair is also a junction at that point.
+  const bool constraints = loop_length_.size() > geometry.loops.size();
   for (const CriticalPoint& cp : geometry.critical) {
     std::vector<std::int32_t> loops;
     for (const int c : cp.curves) {
@@ -91,23 +94,13 @@ FeatureSize::FeatureSize(const Geometry& geometry) : geometry_(geometry) {
     std::sort(loops.begin(), loops.end());
     loops.erase(std::unique(loops.begin(), loops.end()), loops.end());
     for (std::size_t i = 0; i < loops.size(); ++i)
-      for (std::size_t j = i + 1; j < loops.size(); ++j) touching_.push_back({loops[i], loops[j]});
+      for (std::size_t j = i + 1; j < loops.size(); ++j) {
+        touching_.push_back({loops[i], loops[j]});
+        if (constraints) junctions_.push_back({{loops[i], loops[j]}, cp.p});
+      }
   }
   std::sort(touching_.begin(), touching_.end());
   touching_.erase(std::unique(touching_.begin(), touching_.end()), touching_.end());
-  if (loop_length_.size() > geometry.loops.size()) {
-    for (const CriticalPoint& cp : geometry.critical) {
-      std::vector<std::int32_t> loops;
-      for (const int c : cp.curves) {
-        const Curve& curve = geometry.curves[static_cast<std::size_t>(c)];
-        if (curve.segment_count() > 0) loops.push_back(loop_[static_cast<std::size_t>(curve.first_segment)]);
-      }
-      std::sort(loops.begin(), loops.end());
-      loops.erase(std::unique(loops.begin(), loops.end()), loops.end());
-      for (std::size_t i = 0; i < loops.size(); ++i)
-        for (std::size_t j = i + 1; j < loops.size(); ++j) junctions_.push_back({{loops[i], loops[j]}, cp.p});
-    }
-  }
   for (std::size_t s = 0; s < n; ++s)
     if (loop_[s] < 0)
       throw Error(fmt::format("feature size: segment {} of curve {} belongs to no loop", segs[s].index, segs[s].curve));
