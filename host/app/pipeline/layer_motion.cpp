@@ -33,7 +33,8 @@ bool segments_meet(Vec2 a, Vec2 b, Vec2 c, Vec2 d) {
     return std::max(std::min(a.x, b.x), std::min(c.x, d.x)) <= std::min(std::max(a.x, b.x), std::max(c.x, d.x)) &&
            std::max(std::min(a.y, b.y), std::min(c.y, d.y)) <= std::min(std::max(a.y, b.y), std::max(c.y, d.y));
   }
-  return ((o1 <= 0.0 && o2 >= 0.0) || (o1 >= 0.0 && o2 <= 0.0)) && ((o3 <= 0.0 && o4 >= 0.0) || (o3 >= 0.0 && o4 <= 0.0));
+  return ((o1 <= 0.0 && o2 >= 0.0) || (o1 >= 0.0 && o2 <= 0.0)) &&
+         ((o3 <= 0.0 && o4 >= 0.0) || (o3 >= 0.0 && o4 <= 0.0));
 }
 
 // Whether p lies inside the closed polyline `loop` (even-odd rule).
@@ -161,14 +162,13 @@ Mesh LayerMotion::mesh_core(NodeSet& nodes, bool cleanup, const std::function<Me
     core.id.clear();
     for (std::size_t i = 0; i < nodes.size(); ++i) {
       const int c = nodes.curve[i];
-      const bool on_front = nodes.kind[i] == NodeKind::Boundary && c >= 0 &&
-                            core_rest_.curves[static_cast<std::size_t>(c)].fixed_points;
+      const bool on_front =
+          nodes.kind[i] == NodeKind::Boundary && c >= 0 && core_rest_.curves[static_cast<std::size_t>(c)].fixed_points;
       if (!on_front) core.id.push_back(nodes.id[i]);
     }
   }
   if (dropped > 0)
-    progress(layered_->core, "boundary layers: {} node(s) the simulation snapped onto a layer front left out",
-             dropped);
+    progress(layered_->core, "boundary layers: {} node(s) the simulation snapped onto a layer front left out", dropped);
   NodeSet before = core;
   Mesh mesh = remesh(core);
   const std::vector<Vec2> steep = cleanup ? steep_junctions(*layered_, mesh, kSteepJunction) : std::vector<Vec2>{};
@@ -211,9 +211,9 @@ MotionStep LayerMotion::join(const MeshInputs& core_now, const Mesh& core_mesh, 
   out.mesh.point_data.push_back(std::move(ids));
   // The records over every node and cell; min_angle stays the core's.
   rec.nodes = n;
-  rec.ids_kept = previous_ids_.empty() ? 1.0
-                                        : static_cast<double>(ids_kept(previous_ids_, all.id)) /
-                                              static_cast<double>(previous_ids_.size());
+  rec.ids_kept = previous_ids_.empty()
+                     ? 1.0
+                     : static_cast<double>(ids_kept(previous_ids_, all.id)) / static_cast<double>(previous_ids_.size());
   previous_ids_ = all.id;
   rec.steep_junctions = steep_;
   rec.layer_first_height_within_2pct = 1.0;

@@ -66,14 +66,14 @@ class LayerMotion {
   void write_step_files(const CaseConfig& config, const std::filesystem::path& dir, const MotionStep& step) const;
 
  private:
-  std::unique_ptr<MeshInputs> inputs_;   // the case's, at step 0
+  std::unique_ptr<MeshInputs> inputs_;  // the case's, at step 0
   std::unique_ptr<SpacingStage> spacing_;
   std::unique_ptr<LayeredCase> layered_;  // its sections' nodes at the current step's places
   std::unique_ptr<MeshInputs> core_inputs_;
   std::unique_ptr<SpacingStage> core_spacing_;
   std::vector<char> core_moving_;
   Geometry core_rest_;
-  std::vector<std::uint8_t> section_moves_;   // per section
+  std::vector<std::uint8_t> section_moves_;    // per section
   std::vector<std::vector<Vec2>> rest_nodes_;  // per section: its nodes with pose0 undone
   std::vector<std::int64_t> layer_ids_;        // the ids of the nodes the join appends, in its order
   std::vector<std::int64_t> previous_ids_;     // the previous step's, for ids_kept

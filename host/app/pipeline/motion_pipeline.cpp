@@ -364,6 +364,21 @@ void write_series(const CaseConfig& config, const std::vector<MotionStepRecord>&
   write_file_atomically(config.out_dir / "motion.json", motion_json(records));
 }
 
+// With [[boundary_layer]] the steps mesh the core, the case on the layers' fronts, whose moving fronts
+// are its moving curves; the layers move rigidly with the body (layer_motion.hpp). The case's step-0
+// config, inputs, spacing, moving curves and rest curves become the core's.
+std::unique_ptr<LayerMotion> start_layers(CaseConfig& step_config, std::unique_ptr<MeshInputs>& inputs,
+                                          std::unique_ptr<SpacingStage>& spacing, std::vector<char>& moving,
+                                          Geometry& input_geometry, const RigidPose& pose0) {
+  auto layers = std::make_unique<LayerMotion>(step_config, std::move(inputs), std::move(spacing), pose0);
+  step_config = layers->core_config();
+  inputs = layers->take_core_inputs();
+  spacing = layers->take_core_spacing();
+  moving = layers->core_moving();
+  input_geometry = layers->core_rest_geometry();
+  return layers;
+}
+
 }  // namespace
 
 void run_motion_steps(const CaseConfig& config, const std::function<void(const MotionStep&)>& each) {
@@ -388,17 +403,9 @@ void run_motion_steps(const CaseConfig& config, const std::function<void(const M
     inputs = std::make_unique<MeshInputs>(step_config);
   }
   auto spacing = std::make_unique<SpacingStage>(step_config, *inputs);
-  // With [[boundary_layer]] the steps mesh the core, the case on the layers' fronts, whose moving
-  // fronts are its moving curves; the layers move rigidly with the body (layer_motion.hpp).
-  std::unique_ptr<LayerMotion> layers;
-  if (!config.boundary_layers.empty()) {
-    layers = std::make_unique<LayerMotion>(step_config, std::move(inputs), std::move(spacing), poses[0]);
-    step_config = layers->core_config();
-    inputs = layers->take_core_inputs();
-    spacing = layers->take_core_spacing();
-    moving = layers->core_moving();
-    input_geometry = layers->core_rest_geometry();
-  }
+  const std::unique_ptr<LayerMotion> layers =
+      config.boundary_layers.empty() ? nullptr
+                                     : start_layers(step_config, inputs, spacing, moving, input_geometry, poses[0]);
   const double estimate = check_node_limit(step_config, *inputs, *spacing);
   // Step 0's inputs and field stay: the later steps' fields are it, moved (MovedSpacing).
   const std::unique_ptr<MeshInputs> rest_inputs = std::move(inputs);
