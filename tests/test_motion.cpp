@@ -323,9 +323,6 @@ TEST_CASE("pdmesh mesh with bad [motion] keys: exit 2 naming the key, nothing wr
       {"[motion]\ncurves = [\"upper\"]\n", "motion.steps is required"},
       {"[motion]\ncurves = [\"upper\"]\nsteps = 2\ntranslate = [\"t\"]\n", "motion.translate"},
       {"[motion]\ncurves = [\"upper\"]\nsteps = 2\nspeed = 3\n", "motion.speed"},
-      {"[motion]\ncurves = [\"upper\", \"lower\"]\nsteps = 2\n[[boundary_layer]]\ncurves = [\"upper\", "
-       "\"lower\"]\nfirst_height = 1e-3\nlayers = 3\n",
-       "[motion] with [[boundary_layer]] is not supported"},
   };
   for (const auto& [motion, message] : bad) {
     INFO(motion);

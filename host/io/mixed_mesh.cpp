@@ -2,7 +2,9 @@
 // quadrilaterals beside the triangles and the boundary layer as a region of its own.
 #include "io/mixed_mesh.hpp"
 
+#include <cstdint>
 #include <iterator>
+#include <string>
 #include <fmt/format.h>
 
 #include "core/atomic_file.hpp"
@@ -29,6 +31,28 @@ void append_point(std::string& out, Vec2 p) {
 }
 
 int size_of(const std::array<int, 4>& c) { return c[3] < 0 ? 3 : 4; }
+
+// <PointData> with the mesh's extra arrays (a motion run's node_id), ASCII like the rest of the file.
+void append_point_data(std::string& out, const MixedMesh& mesh) {
+  out += "<PointData>\n";
+  for (const PointValues& d : mesh.point_data) {
+    std::string name = d.name;  // an attribute value: no markup characters
+    for (char& ch : name)
+      if (ch == '"' || ch == '<' || ch == '>' || ch == '&') ch = '_';
+    out += fmt::format("<DataArray type=\"{}\" Name=\"{}\" NumberOfComponents=\"{}\" format=\"ascii\">\n",
+                       d.integer ? "Int64" : "Float64", name, d.components);
+    const auto per_point = static_cast<std::size_t>(d.components);
+    for (std::size_t i = 0; i < d.values.size(); ++i) {
+      if (d.integer)
+        out += std::to_string(static_cast<std::int64_t>(d.values[i]));
+      else
+        append_g17(out, d.values[i]);
+      out += (i + 1) % per_point == 0 ? '\n' : ' ';
+    }
+    out += "</DataArray>\n";
+  }
+  out += "</PointData>\n";
+}
 
 }  // namespace
 
@@ -114,8 +138,10 @@ std::string mixed_vtu_string(const MixedMesh& mesh) {
     append_point(out, p);
     out += " 0\n";
   }
-  out += "</DataArray>\n</Points>\n<Cells>\n<DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">\n";
+  out += "</DataArray>\n</Points>\n";
   auto to = std::back_inserter(out);
+  if (!mesh.point_data.empty()) append_point_data(out, mesh);
+  out += "<Cells>\n<DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">\n";
   for (const auto& c : mesh.cells) {
     for (int i = 0; i < size_of(c); ++i) fmt::format_to(to, "{}{}", i ? " " : "", c[static_cast<std::size_t>(i)]);
     out += '\n';

@@ -19,6 +19,7 @@ struct MixedMesh {
   std::vector<std::uint8_t> layer;        // per cell: 1 in the boundary layer, 0 in the core
   std::vector<BoundaryEdge> boundary_edges;
   std::vector<std::string> curve_names;
+  std::vector<PointValues> point_data;  // written as VTU point data (a motion run's node_id); usually none
   std::size_t quads() const;
 };
 
@@ -29,7 +30,8 @@ inline constexpr const char* kCoreRegion = "domain";
 // Physical groups: one per curve (dimension 1, tag c + 1), "domain" and "boundary_layer" (dimension
 // 2, surface entities 1 and 2). The layer's triangles and quadrangles are separate element blocks.
 std::string mixed_msh41_string(const MixedMesh& mesh);
-// Cell data "boundary_layer" (1 in the layer, 0 in the core); no boundary edges.
+// Cell data "boundary_layer" (1 in the layer, 0 in the core), the point data when there is some; no
+// boundary edges.
 std::string mixed_vtu_string(const MixedMesh& mesh);
 // Core cells first, then the layer's; one marker per curve (SU2 has no volume markers).
 std::string mixed_su2_string(const MixedMesh& mesh);

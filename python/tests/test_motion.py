@@ -70,3 +70,34 @@ def test_a_case_without_motion_is_refused(tmp_path, case_file):
     (tmp_path / "still.toml").write_text(CASE.split("[motion]")[0])
     with pytest.raises(pdmesh.InputError, match="no \\[motion\\] section"):
         pdmesh.run_motion(tmp_path / "still.toml")
+
+
+LAYERS = """[[boundary_layer]]
+curves = ["upper", "lower"]
+first_height = 0.005
+growth = 1.2
+layers = 5
+elements = "quads"
+"""
+
+
+def test_run_motion_with_boundary_layers_keeps_the_layer_nodes(case_file, tmp_path):
+    (tmp_path / "layers.toml").write_text(CASE.replace("steps = 2", "steps = 1") + LAYERS)
+    steps = pdmesh.run_motion(tmp_path / "layers.toml")
+    assert [s.step for s in steps] == [0, 1]
+    a, b = steps
+    for s in steps:
+        assert s.node_id.shape == (len(s.mesh.points),)
+        assert len(np.unique(s.node_id)) == len(s.node_id)
+        assert s.min_angle > 30  # the core's
+    # The layer nodes lie within 0.03 of the wall at step 0; each keeps its id and moves rigidly
+    # (rotate 20 t degrees about (0.2, 0): 20 degrees at t = 1).
+    near = np.abs(np.hypot(a.mesh.points[:, 0] / 0.8, a.mesh.points[:, 1] / 0.3) - 1.0) < 0.01
+    ids = a.node_id[near]
+    where = {int(i): k for k, i in enumerate(b.node_id)}
+    assert all(int(i) in where for i in ids)
+    c, s = np.cos(np.radians(20.0)), np.sin(np.radians(20.0))
+    p = a.mesh.points[near] - [0.2, 0.0]
+    moved = np.column_stack([c * p[:, 0] - s * p[:, 1], s * p[:, 0] + c * p[:, 1]]) + [0.2, 0.0]
+    got = b.mesh.points[[where[int(i)] for i in ids]]
+    assert np.abs(got - moved).max() < 1e-9

@@ -355,14 +355,6 @@ std::size_t place_first_row(NodeSet& nodes, const LayeredCase& layered, const st
   return moved;
 }
 
-namespace {
-
-// A layer top whose core cell above reaches more than this many last layers up its ray gets a pinned
-// first-row node (steep_junctions, place_first_row).
-constexpr double kSteepJunction = 1.45;
-
-}  // namespace
-
 Mesh mesh_layered_core(const CaseConfig& config, const MeshInputs& inputs, const SpacingStage& spacing,
                        const NodeSet& nodes, const LayeredCase& layered, RunPhases* phases, const Mesh* triangulated) {
   CaseConfig core = config;

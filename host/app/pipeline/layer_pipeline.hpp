@@ -43,6 +43,10 @@ std::unique_ptr<LayeredCase> build_layers(const CaseConfig& config, const MeshIn
 // a front curve (its points are the layer's nodes; one between them would hang on a layer cell's edge).
 NodeSet without_front_nodes(const NodeSet& nodes, const Geometry& core_geometry, std::size_t& dropped);
 
+// A layer top whose core cell above reaches more than this many last layers up its ray gets a pinned
+// first-row node (steep_junctions, place_first_row).
+inline constexpr double kSteepJunction = 1.45;
+
 // The front nodes whose core cell above continues the layer too steeply: the core neighbour most in
 // line with the ray (within acos 0.7) lies more than `limit` last layers up the ray.
 std::vector<Vec2> steep_junctions(const LayeredCase& layered, const Mesh& core, double limit);

@@ -15,6 +15,7 @@
 #include "app/pipeline/backend_choice.hpp"
 #include "app/pipeline/exit_codes.hpp"
 #include "app/pipeline/interrupt.hpp"
+#include "app/pipeline/layer_motion.hpp"
 #include "app/pipeline/mesh_inputs.hpp"
 #include "app/pipeline/mesh_pipeline.hpp"
 #include "app/pipeline/output_guard.hpp"
@@ -218,6 +219,24 @@ std::string step_name(int k) { return fmt::format("step_{:04d}", k); }
 
 }  // namespace
 
+namespace {
+
+// With [[boundary_layer]], the layer cells' keys of a motion.json row; nothing without layers.
+std::string layer_json(const MotionStepRecord& r) {
+  if (r.layer_cells == 0) return {};
+  std::string out = fmt::format(", \"layer_cells\": {}, \"layer_inverted\": {}, \"layer_max_angle\": ", r.layer_cells,
+                                r.layer_inverted);
+  append_g17(out, r.layer_max_angle);
+  out += ", \"layer_first_height_within_2pct\": ";
+  append_g17(out, r.layer_first_height_within_2pct);
+  out += ", \"layer_growth_max\": ";
+  append_g17(out, r.layer_growth_max);
+  out += fmt::format(", \"steep_junctions\": {}", r.steep_junctions);
+  return out;
+}
+
+}  // namespace
+
 std::string motion_json(const std::vector<MotionStepRecord>& records) {
   std::string out = "[\n";
   for (std::size_t k = 0; k < records.size(); ++k) {
@@ -231,9 +250,9 @@ std::string motion_json(const std::vector<MotionStepRecord>& records) {
         "  {{\"step\": {}, \"t\": {}, \"wall_s\": {}, \"cpu_s\": {}, \"iterations\": {}, \"nodes\": {}, \"ids_kept\": "
         "{}, "
         "\"min_angle\": {}, \"inverted\": {}, \"carry_substeps\": {}, \"spacing_s\": {}, \"simulation_s\": {}, "
-        "\"cleanup_s\": {}}}{}\n",
+        "\"cleanup_s\": {}{}}}{}\n",
         r.step, num(r.t), num(r.wall_s), num(r.cpu_s), r.iterations, r.nodes, num(r.ids_kept), num(r.min_angle),
-        r.inverted, r.carry_substeps, num(r.spacing_s), num(r.simulation_s), num(r.cleanup_s),
+        r.inverted, r.carry_substeps, num(r.spacing_s), num(r.simulation_s), num(r.cleanup_s), layer_json(r),
         k + 1 < records.size() ? "," : "");
   }
   out += "]\n";
@@ -244,9 +263,6 @@ namespace {
 
 // What a motion run cannot take (yet): refused before anything runs.
 void refuse_unsupported(const CaseConfig& config) {
-  if (!config.boundary_layers.empty())
-    throw InputError(fmt::format("{}: [motion] with [[boundary_layer]] is not supported yet (docs/motion.md)",
-                                 config.source.string()));
   if (config.spacing.metric())
     throw InputError(fmt::format("{}: [motion] with a metric spacing field is not supported (docs/motion.md)",
                                  config.source.string()));
@@ -348,6 +364,21 @@ void write_series(const CaseConfig& config, const std::vector<MotionStepRecord>&
   write_file_atomically(config.out_dir / "motion.json", motion_json(records));
 }
 
+// With [[boundary_layer]] the steps mesh the core, the case on the layers' fronts, whose moving fronts
+// are its moving curves; the layers move rigidly with the body (layer_motion.hpp). The case's step-0
+// config, inputs, spacing, moving curves and rest curves become the core's.
+std::unique_ptr<LayerMotion> start_layers(CaseConfig& step_config, std::unique_ptr<MeshInputs>& inputs,
+                                          std::unique_ptr<SpacingStage>& spacing, std::vector<char>& moving,
+                                          Geometry& input_geometry, const RigidPose& pose0) {
+  auto layers = std::make_unique<LayerMotion>(step_config, std::move(inputs), std::move(spacing), pose0);
+  step_config = layers->core_config();
+  inputs = layers->take_core_inputs();
+  spacing = layers->take_core_spacing();
+  moving = layers->core_moving();
+  input_geometry = layers->core_rest_geometry();
+  return layers;
+}
+
 }  // namespace
 
 void run_motion_steps(const CaseConfig& config, const std::function<void(const MotionStep&)>& each) {
@@ -364,14 +395,17 @@ void run_motion_steps(const CaseConfig& config, const std::function<void(const M
   auto t0 = Clock::now();
   std::clock_t c0 = std::clock();
   auto inputs = std::make_unique<MeshInputs>(base);
-  const std::vector<char> moving = moving_curves(config, inputs->geometry);
-  const Geometry input_geometry = inputs->geometry;  // the curves at rest (t's pose applied to them)
+  std::vector<char> moving = moving_curves(config, inputs->geometry);
+  Geometry input_geometry = inputs->geometry;  // the curves at rest (t's pose applied to them)
   CaseConfig step_config = base;
   if (!poses[0].identity()) {
     step_config.geometry.given_curves = posed_curves(input_geometry, moving, poses[0]);
     inputs = std::make_unique<MeshInputs>(step_config);
   }
   auto spacing = std::make_unique<SpacingStage>(step_config, *inputs);
+  const std::unique_ptr<LayerMotion> layers =
+      config.boundary_layers.empty() ? nullptr
+                                     : start_layers(step_config, inputs, spacing, moving, input_geometry, poses[0]);
   const double estimate = check_node_limit(step_config, *inputs, *spacing);
   // Step 0's inputs and field stay: the later steps' fields are it, moved (MovedSpacing).
   const std::unique_ptr<MeshInputs> rest_inputs = std::move(inputs);
@@ -406,6 +440,7 @@ void run_motion_steps(const CaseConfig& config, const std::function<void(const M
       nodes = std::move(initial.nodes);
     } else {
       t0 = Clock::now();
+      if (layers) layers->place(k, rec.t, poses[static_cast<std::size_t>(k)], previous);
       // Carry the previous nodes with the motion from the previous pose to this one.
       CarryRequest carry;
       carry.nodes = &previous;
@@ -436,7 +471,13 @@ void run_motion_steps(const CaseConfig& config, const std::function<void(const M
     // Relax, triangulate, clean up.
     relax_step(sim_config, *now, *rest_spacing, moved_background.get(), backend, hooks, nodes, rec);
     const SpacingField& field = k == 0 ? rest_spacing->field() : *moved_background;
-    Mesh mesh = mesh_step(config, *now, field, nodes, rec);
+    const auto remesh = [&](NodeSet& n) {
+      const double spent = rec.cleanup_s;
+      Mesh m = mesh_step(config, *now, field, n, rec);
+      rec.cleanup_s += spent;
+      return m;
+    };
+    Mesh mesh = layers ? layers->mesh_core(nodes, config.cleanup.enabled, remesh) : remesh(nodes);
     number_new_nodes(nodes, next_id);
     field.at_many(mesh.points, mesh.spacing);
     PointValues ids{"node_id", 1, {}, true};
@@ -444,13 +485,17 @@ void run_motion_steps(const CaseConfig& config, const std::function<void(const M
     mesh.point_data.push_back(std::move(ids));
     measure_step(mesh, nodes, previous, rec);
     check_step(config, *now, mesh, nodes, rec);
-    if (config.write_outputs) write_step_files(config, rec, mesh);
+    std::optional<MotionStep> joined;  // with layers: the layer cells and the core as one mesh
+    if (layers) joined = layers->join(*now, mesh, nodes, rec, next_id);
+    if (config.write_outputs && joined) layers->write_step_files(config, config.out_dir / step_name(k), *joined);
+    if (config.write_outputs && !joined) write_step_files(config, rec, mesh);
     rec.wall_s = since(t0);
     rec.cpu_s = static_cast<double>(std::clock() - c0) / CLOCKS_PER_SEC;
     records.push_back(rec);
     if (config.write_outputs) write_series(config, records, pvd);
     report_step(config, rec);
-    if (each) each(MotionStep{mesh, nodes, rec});
+    if (each && joined) joined->record = rec;
+    if (each) each(joined ? *joined : MotionStep{mesh, nodes, rec, {}});
     check_interrupt();
     previous = std::move(nodes);
     previous_mesh = std::move(mesh);

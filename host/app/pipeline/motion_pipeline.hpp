@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "app/config/case_file.hpp"
+#include "io/mixed_mesh.hpp"
 #include "mesh/mesh.hpp"
 #include "nodes/node_set.hpp"
 
@@ -32,21 +33,32 @@ struct MotionStepRecord {
   double spacing_s = 0.0;    // of wall_s: reading the moved geometry and rebuilding the spacing field
   double simulation_s = 0.0;
   double cleanup_s = 0.0;
+  // With [[boundary_layer]] (layer_motion.hpp): min_angle is the core's, nodes, ids_kept and inverted
+  // count every node and cell; the layer cells and their measures (layers/layer_measures.hpp) over all
+  // tables. layer_cells is 0 without layers.
+  std::size_t layer_cells = 0;
+  std::size_t layer_inverted = 0;
+  double layer_max_angle = 0.0;
+  double layer_first_height_within_2pct = 0.0;
+  double layer_growth_max = 0.0;
+  std::size_t steep_junctions = 0;  // layer tops given a pinned first-row node of the core
 };
 
 // One finished step for a caller that keeps the meshes (tests, the Python API): the cleaned mesh
-// with point data node_id, its nodes (with ids), and the record.
+// with point data node_id, its nodes (with ids, one per mesh point), and the record. With
+// [[boundary_layer]] `mixed` holds the layer cells and core triangles, and `mesh` is it as triangles.
 struct MotionStep {
   Mesh mesh;
   NodeSet nodes;
   MotionStepRecord record;
+  MixedMesh mixed;
 };
 
 // Runs every step; `each` (when set) receives each step as it finishes. With config.write_outputs the
 // outputs above are written (each atomically; motion.json and motion.pvd rewritten after every step).
 // Throws InputError (exit 2) before anything is written when [motion] names an unknown curve, when a
-// motion expression is not finite at some step's t, or with [[boundary_layer]], a metric field or
-// --resume, which the motion does not support.
+// motion expression is not finite at some step's t, for a [[boundary_layer]] table whose walls move
+// only in part, or with a metric field or --resume, which the motion does not support.
 void run_motion_steps(const CaseConfig& config, const std::function<void(const MotionStep&)>& each = {});
 
 // The command: run_motion_steps with the progress lines, the interrupt guard and the output checks of
