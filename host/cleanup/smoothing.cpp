@@ -188,7 +188,8 @@ bool Smoother::climb(int a) {
     return min_angle_sine_except(q[0], q[1], q[2], skip);
   };
   const double h = 1e-3 * r_min;
-  const Vec2 g{score_at(x + Vec2{h, 0}) - score_at(x - Vec2{h, 0}), score_at(x + Vec2{0, h}) - score_at(x - Vec2{0, h})};
+  const Vec2 g{score_at(x + Vec2{h, 0}) - score_at(x - Vec2{h, 0}),
+               score_at(x + Vec2{0, h}) - score_at(x - Vec2{0, h})};
   const double length = norm(g);
   if (!(length > 0.0)) return false;
   return try_move(a, (step_cap_ * r_min / length) * g, old_min, old_sum);
