@@ -171,8 +171,7 @@ void check_mesh_on_geometry(const Mesh& mesh, const std::string& label, const Ge
 
 std::vector<CaseOverride> smooth_overrides(SmoothField field) {
   std::vector<CaseOverride> out{{"preset", "\"best\"", "pdmesh smooth"},
-                                {"cleanup.sharp_corners", "true", "pdmesh smooth"},
-                                {"cleanup.polish", fmt::format("{}", kSmoothPolish), "pdmesh smooth"}};
+                                {"cleanup.sharp_corners", "true", "pdmesh smooth"}};
   if (field != SmoothField::Mesh) return out;
   const std::string by = "pdmesh smooth (--field mesh)";
   out.push_back({"spacing.scale", fmt::format("{}", kSmoothMeshScale), by});
@@ -219,8 +218,9 @@ double min_angle_apart_from_sharp_corners(const Mesh& mesh, double degrees) {
 namespace {
 
 // Keeps the input's nodes when the mesh is at the cleanup's target already (docs/smoothing.md, "A mesh
-// at the target"): no simulation, and the cleanup without topology changes, so only its polishing
-// sweeps move nodes, which never lower the smallest angle nor raise the mean aspect ratio.
+// at the target"): no simulation, and the cleanup without topology changes, so only its smoothing
+// sweeps move nodes, each move kept only when it lowers neither its star's smallest angle nor raises
+// its aspect-ratio sum.
 void keep_if_at_target(CaseConfig& config, const Mesh& mesh, const Geometry& geometry, const GeometryTree& tree) {
   if (!config.cleanup.enabled || config.geometry.projection != ProjectionKind::None ||
       config.geometry.curves != CurveKind::Polyline || config.farfield.given())

@@ -30,11 +30,6 @@ inline constexpr double kSmoothMeshScale = 1.08;
 // of them); 0.4 keeps the count and reaches 40 degrees (docs/smoothing.md). spacing.gradation.
 inline constexpr double kSmoothGradation = 0.4;
 
-// The cleanup's polishing sweeps in a smoothing run (cleanup.polish): the repairs move only the nodes of
-// triangles below 59 degrees, which leaves the mean aspect ratio of a small, nearly regular mesh above
-// the input's; the sweeps over every node stop when one moves nothing, well before this bound.
-inline constexpr int kSmoothPolish = 50;
-
 // A boundary node of the input mesh may lie this share of its boundary edges' mean length off the
 // geometry's curves (and always 1e-6 x the geometry's diagonal, for rounded coordinates).
 inline constexpr double kSmoothBoundaryTolerance = 0.1;
@@ -65,8 +60,8 @@ std::vector<double> node_spacing(const Mesh& mesh);
 
 // The case keys a smoothing run sets before the user's --set overrides (which win): preset "best"
 // (population control and the converged stop; a thesis case's own preset would keep the count and
-// run its 2000 iterations), the cleanup's sharp corners and polishing sweeps (cleanup.sharp_corners,
-// cleanup.polish = kSmoothPolish), and with SmoothField::Mesh the mesh's field (spacing.scale =
+// run its 2000 iterations), the cleanup's sharp-corner scores (cleanup.sharp_corners), and with
+// SmoothField::Mesh the mesh's field (spacing.scale =
 // kSmoothMeshScale, spacing.gradation = kSmoothGradation; no feature size or curvature rule).
 std::vector<CaseOverride> smooth_overrides(SmoothField field);
 
@@ -80,7 +75,7 @@ double min_angle_apart_from_sharp_corners(const Mesh& mesh, double degrees);
 // spacing field given as the node_spacing on the mesh. Reads the geometry and runs
 // check_mesh_on_geometry. A mesh at the cleanup's target already (min_angle_apart_from_sharp_corners at
 // least cleanup.min_angle) whose nodes match the curves keeps them (init.kept): no iterations, and the
-// cleanup's polishing sweeps without topology changes.
+// cleanup's smoothing sweeps without topology changes.
 void make_smooth_config(CaseConfig& config, const Mesh& mesh, const std::filesystem::path& file,
                         const std::string& label, SmoothField field);
 
