@@ -450,6 +450,14 @@ TEST_CASE("cleanup keys: best cleans, thesis does not, a key wins over the prese
   CHECK(set.cleanup.iterations == 4);
   CHECK_FALSE(set.cleanup.topology);
   CHECK_FALSE(set.cleanup.split_boundary);
+  CHECK_FALSE(best.cleanup.sharp_corners);
+  CHECK(best.cleanup.polish == 0);
+  const CaseConfig polished =
+      parse_case_text(std::string(kMinimal) + "[cleanup]\nsharp_corners = true\npolish = 7\n", kCase);
+  CHECK(polished.cleanup.sharp_corners);
+  CHECK(polished.cleanup.polish == 7);
+  CHECK_THAT(error_of(std::string(kMinimal) + "[cleanup]\npolish = -1\n"),
+             Catch::Contains("cleanup.polish must be in 0..1000, got -1"));
   CHECK_THAT(error_of(std::string(kMinimal) + "[cleanup]\nmin_angle = 60\n"),
              Catch::Contains("case.toml:4:13: cleanup.min_angle must be in (0, 60) degrees, got 60"));
   CHECK_THAT(error_of(kMinimal, {parse_set_option("cleanup.min_angle=0")}),

@@ -9,6 +9,8 @@
 #include <random>
 
 #include "cleanup/cleanup.hpp"
+#include "cleanup/editable_mesh.hpp"
+#include "cleanup/measures.hpp"
 #include "geometry/geometry.hpp"
 #include "geometry/geometry_files.hpp"
 #include "geometry/geometry_tree.hpp"
@@ -345,4 +347,69 @@ TEST_CASE("compound trials refuse what no pair of edits can lift", "[cleanup]") 
   CHECK(r.stats.compound_applied == 0);
   CHECK(r.mesh.points == mesh.points);
   CHECK(r.mesh.triangles == mesh.triangles);
+}
+
+TEST_CASE("sharp corners: a triangle alone at a corner sharper than the target is scored by its other angles",
+          "[cleanup]") {
+  using cleanup::EditableMesh;
+  const double a = 15.0 * M_PI / 180.0;
+  Mesh m;
+  m.points = {{0, 0}, {1, 0}, {std::cos(a), std::sin(a)}, {1.25, 0.3}};
+  m.triangles = {{0, 1, 2}, {1, 3, 2}};
+  m.kind.assign(m.points.size(), NodeKind::Fixed);
+  EditableMesh e(m, {}, {});
+  const double other = e.quality(1);
+  CHECK(e.quality(0) == Approx(std::sin(a)));
+  e.set_sharp_corners(40.0);
+  CHECK(e.sharp_corner_of(0) == 0);
+  CHECK(e.sharp_corner_of(1) == -1);
+  // The tip triangle is isosceles: its other two angles are (180 - 15) / 2.
+  CHECK(e.quality(0) == Approx(std::sin(82.5 * M_PI / 180.0)));
+  CHECK(e.quality(1) == other);
+  // The same skipping each vertex in turn: the smaller of the other two angles, by their sines.
+  const Vec2 x{0, 0}, y{1, 0.2}, z{0.3, 0.9};
+  auto angle_at = [](Vec2 p, Vec2 q, Vec2 r) {
+    const Vec2 u = q - p, v = r - p;
+    return std::atan2(std::abs(cross(u, v)), dot(u, v));
+  };
+  const double ax = angle_at(x, y, z), ay = angle_at(y, z, x), az = angle_at(z, x, y);
+  CHECK(cleanup::min_angle_sine_except(x, y, z, 0) == Approx(std::sin(std::min(ay, az))));
+  CHECK(cleanup::min_angle_sine_except(x, y, z, 1) == Approx(std::sin(std::min(ax, az))));
+  CHECK(cleanup::min_angle_sine_except(x, y, z, 2) == Approx(std::sin(std::min(ax, ay))));
+
+  // A corner split between two triangles keeps their own scores, so no edit gains by splitting it.
+  Mesh split;
+  split.points = {{0, 0}, {1, 0}, {std::cos(a), std::sin(a)}, {0.8 * std::cos(a / 2), 0.8 * std::sin(a / 2)}};
+  split.triangles = {{0, 1, 3}, {1, 2, 3}, {2, 0, 3}};
+  split.kind.assign(split.points.size(), NodeKind::Fixed);
+  EditableMesh s(split, {}, {});
+  s.set_sharp_corners(40.0);
+  for (int t = 0; t < 3; ++t) {
+    CHECK(s.sharp_corner_of(t) == -1);
+    const auto& v = split.triangles[static_cast<std::size_t>(t)];
+    CHECK(s.quality(t) == cleanup::min_angle_sine(split.points[v[0]], split.points[v[1]], split.points[v[2]]));
+  }
+}
+
+TEST_CASE("polishing sweeps lower the mean aspect ratio and keep every guarantee", "[cleanup]") {
+  const Geometry g = plate_with_hole();
+  const GeometryTree tree(g);
+  const BoundarySpacing spacing(tree);
+  const NodeSet nodes = make_initial_distribution(tree, spacing, {InitMethod::Random, 3, {}, false}).nodes;
+  CleanupOptions plain;
+  CleanupOptions polished = plain;
+  polished.polish = 50;
+  const CleanupResult a = clean_and_verify(g, tree, spacing, nodes, plain);
+  const CleanupResult p = clean_and_verify(g, tree, spacing, nodes, polished);
+  CHECK(a.stats.polish_sweeps == 0);
+  CHECK(p.stats.polish_sweeps >= 1);
+  CHECK(p.stats.polish_sweeps <= 50);
+  CHECK(p.stats.polish_moves > 0);
+  // The same repairs first: the sweeps only move nodes.
+  CHECK(p.mesh.points.size() == a.mesh.points.size());
+  CHECK(p.stats.moves == a.stats.moves + p.stats.polish_moves);
+  const QualitySummary qa = summarize_quality(a.mesh), qp = summarize_quality(p.mesh);
+  INFO("mean aspect ratio " << qa.aspect_ratio_avg << " -> " << qp.aspect_ratio_avg);
+  CHECK(qp.aspect_ratio_avg < qa.aspect_ratio_avg);
+  CHECK(qp.min_angle >= qa.min_angle);
 }

@@ -133,6 +133,61 @@ TEST_CASE("pdmesh smooth lifts a jittered square mesh above 38 degrees, keeping 
   CHECK(boundary_off_square(out) <= 1e-12);
 }
 
+// The mean aspect ratio R / (2 r) of the mesh's triangles (mesh/quality.cpp's formula).
+double mean_aspect_ratio(const Mesh& m) {
+  double sum = 0.0;
+  for (const auto& t : m.triangles) {
+    const Vec2 a = m.points[t[0]], b = m.points[t[1]], c = m.points[t[2]];
+    const double la = dist(b, c), lb = dist(c, a), lc = dist(a, b), area = 0.5 * std::abs(cross(b - a, c - a));
+    sum += la * lb * lc * 0.5 * (la + lb + lc) / (8.0 * area * area);
+  }
+  return sum / static_cast<double>(m.triangles.size());
+}
+
+TEST_CASE("pdmesh smooth keeps the nodes of a mesh at the target and never makes it worse") {
+  // A grid of right triangles moved by up to 3 % of a cell: every angle above 40 degrees (the target
+  // of the cleanup), so the run keeps its nodes and only polishes them.
+  const Mesh input = square_mesh(12, 0.03);
+  REQUIRE(min_angle_deg(input) > 40.0);
+  REQUIRE(min_angle_apart_from_sharp_corners(input, 40.0) == Approx(min_angle_deg(input)));
+  const Files f = write_case("at_target", input);
+  const auto r = run_pdmesh(smooth_command(f));
+  INFO(r.output);
+  REQUIRE(r.status == 0);
+  const Mesh out = read_mesh(f.out / "mesh.msh");
+  CHECK(out.points.size() == input.points.size());
+  CHECK(out.triangles.size() == input.triangles.size());
+  CHECK(min_angle_deg(out) >= min_angle_deg(input) - 1e-9);
+  INFO("mean aspect ratio " << mean_aspect_ratio(input) << " -> " << mean_aspect_ratio(out));
+  CHECK(mean_aspect_ratio(out) <= mean_aspect_ratio(input) + 1e-12);
+  CHECK(boundary_off_square(out) <= 1e-12);
+  // Every input node is still there or moved by less than a cell (no node re-placed elsewhere).
+  double farthest = 0.0;
+  for (const Vec2 p : input.points) {
+    double nearest = HUGE_VAL;
+    for (const Vec2 q : out.points) nearest = std::min(nearest, dist(p, q));
+    farthest = std::max(farthest, nearest);
+  }
+  CHECK(farthest < 0.5 / 12);
+}
+
+TEST_CASE("the smallest angle apart from sharp corners leaves out only a triangle alone at a sharp corner") {
+  // A 20-degree wedge of two triangles: the tip's triangle alone at the tip, and its neighbour.
+  Mesh m;
+  const double a = 20.0 * kPi / 180.0;
+  m.points = {{0, 0}, {1, 0}, {std::cos(a), std::sin(a)}, {1.25, 0.3}};
+  m.triangles = {{0, 1, 2}, {1, 3, 2}};
+  CHECK(min_angle_deg(m) == Approx(20.0));
+  // Left out below 40 degrees: the neighbour's smallest angle remains.
+  const double rest = min_angle_apart_from_sharp_corners(m, 40.0);
+  CHECK(rest > 20.0);
+  Mesh second = m;
+  second.triangles = {m.triangles[1]};
+  CHECK(rest == Approx(std::min(80.0, min_angle_deg(second))));
+  // Below 15 degrees the tip counts.
+  CHECK(min_angle_apart_from_sharp_corners(m, 15.0) == Approx(20.0));
+}
+
 TEST_CASE("the mesh's own spacing: its boundary edges on the boundary, its node density inside") {
   const Mesh m = square_mesh(4, 0.0);
   const std::vector<double> q = node_spacing(m);

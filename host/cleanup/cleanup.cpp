@@ -134,11 +134,14 @@ class CleanupRun {
         trial_budget_(static_cast<std::size_t>(
             std::max(options.min_trials, options.trials_per_triangle * static_cast<double>(mesh.triangles.size())))) {
     smoother_.set_sweep_gain(options.move_min_rise, options.move_aspect_drop);
+    if (options.sharp_corners) m_.set_sharp_corners(options.min_angle);
   }
 
   // One outer iteration: the smoothing sweeps, then the topology pass; its record goes to `stats`.
   // Returns the number of changes it made (node moves and topology changes).
   std::size_t iterate(int iteration, CleanupStats& stats);
+  // The polishing sweeps (CleanupOptions::polish) after the iterations.
+  void polish(CleanupStats& stats);
 
   // The cleaned mesh and its node set, and the topology operations' counts in `result.stats`.
   void finish(const Mesh& mesh, const NodeSet& nodes, const SpacingField& spacing, CleanupResult& result);
@@ -298,6 +301,26 @@ std::size_t CleanupRun::iterate(int iteration, CleanupStats& stats) {
   return record.moves + record.topology;
 }
 
+void CleanupRun::polish(CleanupStats& stats) {
+  InterruptPoll poll(256);
+  // The first sweep tries every node (the repairs' sweeps tried only those of bad triangles); later
+  // ones only the nodes whose star changed since, which alone can propose something new.
+  m_.take_dirty();
+  std::vector<std::uint8_t> worth(static_cast<std::size_t>(m_.vertex_slots()), 1);
+  for (int sweep = 0; sweep < options_.polish; ++sweep) {
+    std::size_t moved = 0;
+    for (int a = 0; a < m_.vertex_slots(); ++a) {
+      poll.tick();
+      if (static_cast<std::size_t>(a) < worth.size() && worth[a] && smoother_.relax(a)) ++moved;
+    }
+    stats.polish_sweeps = sweep + 1;
+    stats.polish_moves += moved;
+    stats.moves += moved;
+    if (moved == 0) break;
+    worth = m_.take_dirty();
+  }
+}
+
 void CleanupRun::finish(const Mesh& mesh, const NodeSet& nodes, const SpacingField& spacing, CleanupResult& result) {
   result.stats.trials = ops_.trials();
   result.stats.inserted += ops_.compound_inserted();
@@ -317,6 +340,7 @@ CleanupResult clean_mesh(const Mesh& mesh, const NodeSet& nodes, const GeometryT
   CleanupRun run(mesh, nodes, tree, spacing, options, edge_to_spacing_ratio(mesh, spacing));
   for (int iteration = 0; iteration < options.iterations; ++iteration)
     if (run.iterate(iteration, result.stats) == 0) break;
+  run.polish(result.stats);
   run.finish(mesh, nodes, spacing, result);
   result.stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;

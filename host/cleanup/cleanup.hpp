@@ -45,6 +45,15 @@ struct CleanupOptions {
   // and cleanup.min_trials.
   double trials_per_triangle = 0.5;
   double min_trials = 10000.0;
+  // Sharp corners (EditableMesh::set_sharp_corners): a triangle that alone fills a domain corner
+  // sharper than min_angle is scored by its other two angles, so the rows next to the corner can be
+  // repaired. Off: every angle counts (pdmesh mesh's default); pdmesh smooth turns it on.
+  bool sharp_corners = false;
+  // Polishing sweeps after the repairs: every movable node (not only those of triangles below the
+  // smoothing limit) proposes its ODT point and keeps it under the sweeps' rule (the star's smallest
+  // score does not drop, its aspect-ratio sum does not rise, one of them strictly improves), until a
+  // sweep moves nothing or this many sweeps. 0: none (pdmesh mesh's default).
+  int polish = 0;
   // Measure the whole mesh after every outer iteration (CleanupIteration's min_angle, aspect_mean): a
   // scan of every triangle per iteration, for bench_cleanup's per-iteration table; off in runs.
   bool measure_iterations = false;
@@ -66,6 +75,8 @@ struct CleanupIteration {
 
 struct CleanupStats {
   std::size_t moves = 0;             // accepted node moves
+  std::size_t polish_moves = 0;      // of which in the polishing sweeps
+  int polish_sweeps = 0;             // polishing sweeps made
   std::size_t inserted = 0;          // nodes inserted at circumcentres / off-centres / edge midpoints
   std::size_t collapsed = 0;         // interior nodes removed by edge collapse
   std::size_t rejected = 0;          // triangles no topology operation could repair

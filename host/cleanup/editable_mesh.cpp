@@ -96,7 +96,42 @@ EditableMesh::EditableMesh(const Mesh& mesh, const std::vector<std::vector<int>>
 }
 
 double EditableMesh::quality(int t) const {
-  return score_ != nullptr ? score_->score(*this, t) : min_angle_sine(p[v[t][0]], p[v[t][1]], p[v[t][2]]);
+  return score_ != nullptr ? score_->score(*this, t) : score_of(t, p[v[t][0]], p[v[t][1]], p[v[t][2]]);
+}
+
+int EditableMesh::sharp_corner_of(int t) const {
+  if (sharp_.empty()) return -1;
+  // Vertices added after set_sharp_corners() are no corners. Both edges at the corner on the
+  // boundary: t is the only triangle there.
+  for (int k = 0; k < 3; ++k)
+    if (static_cast<std::size_t>(v[t][k]) < sharp_.size() && sharp_[v[t][k]] && n[t][next3(k)] < 0 &&
+        n[t][prev3(k)] < 0)
+      return k;
+  return -1;
+}
+
+double EditableMesh::score_of(int t, Vec2 x, Vec2 y, Vec2 z) const {
+  const int k = sharp_corner_of(t);
+  return k < 0 ? min_angle_sine(x, y, z) : min_angle_sine_except(x, y, z, k);
+}
+
+void EditableMesh::set_sharp_corners(double degrees) {
+  sharp_.assign(p.size(), 0);
+  std::vector<int> fan;
+  for (int a = 0; a < vertex_slots(); ++a) {
+    if (kind[a] != NodeKind::Fixed || removed(a)) continue;
+    star(a, fan);
+    double sum = 0.0;
+    bool open = false;
+    for (int t : fan) {
+      const int k = index_of(v[t], a);
+      const Vec2 u = p[v[t][next3(k)]] - p[a], w = p[v[t][prev3(k)]] - p[a];
+      sum += std::atan2(cross(u, w), u.x * w.x + u.y * w.y);
+      open = open || n[t][next3(k)] < 0;
+    }
+    // A closed star (an interior fixed node) has 360 degrees around it.
+    if (open && sum * 57.29577951308232 < degrees) sharp_[a] = 1;
+  }
 }
 double EditableMesh::aspect(int t) const { return aspect_ratio(p[v[t][0]], p[v[t][1]], p[v[t][2]]); }
 

@@ -60,7 +60,19 @@ class EditableMesh {
   bool alive(int t) const { return v[t][0] >= 0; }
   bool removed(int a) const { return gone_[a] != 0 || vt[a] < 0; }
   bool movable(int a) const { return kind[a] != NodeKind::Fixed; }
-  double quality(int t) const;  // min_angle_sine of triangle t, or the score set_score() gave
+  double quality(int t) const;  // score_of(t, its points), or the score set_score() gave
+  // The default score of triangle t with its vertices at x, y, z (v[t] in order): min_angle_sine,
+  // less the angle at a sharp corner (set_sharp_corners) when t alone fills that corner.
+  double score_of(int t, Vec2 x, Vec2 y, Vec2 z) const;
+  // Marks the fixed vertices at a domain corner whose angle (the sum of their star's angles) is below
+  // `degrees`. A triangle that alone fills such a corner has an angle there below any target, which no
+  // edit changes; scored with it, it would stand for every star and region it is in, so no move or
+  // repair near the corner could show a gain (the second row of a narrow inlet stayed below the target).
+  // Such a triangle is scored by its other two angles; a corner shared by several triangles keeps
+  // their own scores, so no edit gains by splitting the corner.
+  void set_sharp_corners(double degrees);
+  // The local index of the sharp corner triangle t alone fills, or -1.
+  int sharp_corner_of(int t) const;
   // The triangle score of quality() and of the journal from now on (nullptr: min_angle_sine). Set it
   // before any transaction is opened; it must outlive the mesh's use.
   void set_score(const TriangleScore* score) { score_ = score; }
@@ -185,6 +197,7 @@ class EditableMesh {
   std::vector<SavedVertex> vert_log_;
   int tri_size0_ = 0, vert_size0_ = 0;
   std::vector<std::uint8_t> gone_;   // per vertex: removed by a collapse
+  std::vector<std::uint8_t> sharp_;  // per vertex: a sharp corner (set_sharp_corners); empty: none
   std::vector<std::uint8_t> dirty_;  // per vertex: see take_dirty()
   void mark_dirty(int t);
   mutable std::vector<int> scratch_;

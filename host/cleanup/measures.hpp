@@ -21,6 +21,18 @@ inline double min_angle_sine(Vec2 a, Vec2 b, Vec2 c) {
   return product > 0.0 ? twice_area / std::sqrt(product) : -1.0;
 }
 
+// The sine of the smaller of the two angles of (a, b, c) other than the one at vertex `skip` (0, 1, 2 for
+// a, b, c); negative for a clockwise triangle. Of two angles whose sum is below 180 degrees the smaller
+// has the smaller sine, so this ranks as the smaller angle does, as min_angle_sine does.
+inline double min_angle_sine_except(Vec2 a, Vec2 b, Vec2 c, int skip) {
+  const double ab = dist(a, b), bc = dist(b, c), ca = dist(c, a);
+  const double twice_area = cross(b - a, c - a);
+  // The sine of the angle at a vertex is 2A over the product of the two edges that meet there.
+  const double at_a = ab * ca, at_b = ab * bc, at_c = bc * ca;
+  const double p1 = skip == 0 ? at_b : at_a, p2 = skip == 2 ? at_b : at_c;
+  return p1 > 0.0 && p2 > 0.0 ? std::min(twice_area / p1, twice_area / p2) : -1.0;
+}
+
 // The sine of an angle in degrees (targets are given in degrees), and back (a score as an angle,
 // for reports).
 inline double sine_from_degrees(double d) { return std::sin(d / 57.29577951308232); }

@@ -54,7 +54,7 @@ bool Smoother::try_move(int a, Vec2 displacement, double old_min, double old_sum
         valid = false;
         break;
       }
-      new_min = std::min(new_min, min_angle_sine(x, y, z));
+      new_min = std::min(new_min, m.score_of(t, x, y, z));
       new_sum += aspect_ratio(x, y, z);
       // Rejected already (aspect ratios are positive, so the sum only grows): the rest of the star
       // cannot change the verdict below, so the step ends here.
@@ -141,7 +141,7 @@ bool Smoother::relax(int a) {
   for (int t : fan_) {
     const auto& tv = m.v[t];
     const Vec2 x = m.p[tv[0]], y = m.p[tv[1]], z = m.p[tv[2]];
-    old_min = std::min(old_min, min_angle_sine(x, y, z));
+    old_min = std::min(old_min, m.score_of(t, x, y, z));
     old_sum += aspect_ratio(x, y, z);
     const double area = 0.5 * cross(y - x, z - x);
     weighted = weighted + area * circumcentre(x, y, z);
@@ -167,7 +167,7 @@ bool Smoother::climb(int a) {
   for (int t : fan_) {
     const auto& tv = m.v[t];
     const Vec2 x = m.p[tv[0]], y = m.p[tv[1]], z = m.p[tv[2]];
-    const double q = min_angle_sine(x, y, z);
+    const double q = m.score_of(t, x, y, z);
     if (q < old_min) {
       old_min = q;
       worst = t;
@@ -180,9 +180,16 @@ bool Smoother::climb(int a) {
   const auto& tv = m.v[worst];
   const int k = EditableMesh::index_of(tv, a);
   const Vec2 y = m.p[tv[next3(k)]], z = m.p[tv[prev3(k)]], x = m.p[a];
+  const int skip = m.sharp_corner_of(worst);
+  auto score_at = [&](Vec2 at) {
+    if (skip < 0) return min_angle_sine(at, y, z);
+    std::array<Vec2, 3> q{m.p[tv[0]], m.p[tv[1]], m.p[tv[2]]};
+    q[static_cast<std::size_t>(k)] = at;
+    return min_angle_sine_except(q[0], q[1], q[2], skip);
+  };
   const double h = 1e-3 * r_min;
-  const Vec2 g{min_angle_sine(x + Vec2{h, 0}, y, z) - min_angle_sine(x - Vec2{h, 0}, y, z),
-               min_angle_sine(x + Vec2{0, h}, y, z) - min_angle_sine(x - Vec2{0, h}, y, z)};
+  const Vec2 g{score_at(x + Vec2{h, 0}) - score_at(x - Vec2{h, 0}),
+               score_at(x + Vec2{0, h}) - score_at(x - Vec2{0, h})};
   const double length = norm(g);
   if (!(length > 0.0)) return false;
   return try_move(a, (step_cap_ * r_min / length) * g, old_min, old_sum);

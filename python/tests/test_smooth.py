@@ -3,6 +3,8 @@
 
 from __future__ import annotations
 
+from types import SimpleNamespace
+
 import numpy as np
 import pytest
 
@@ -44,6 +46,26 @@ def test_smooth_lifts_a_jittered_mesh_given_in_memory():
     assert isinstance(mesh, pdmesh.Mesh)
     assert min_angle(mesh) >= 38.0
     assert 0.95 <= len(mesh.points) / len(points) <= 1.05
+
+
+def mean_aspect_ratio(mesh) -> float:
+    """The mean of R / (2 r) over the triangles (pdmesh quality's aspect ratio)."""
+    p = mesh.points[mesh.triangles]
+    la, lb, lc = (np.linalg.norm(p[:, (k + 1) % 3] - p[:, (k + 2) % 3], axis=1) for k in range(3))
+    u, v = p[:, 1] - p[:, 0], p[:, 2] - p[:, 0]
+    area = 0.5 * np.abs(u[:, 0] * v[:, 1] - u[:, 1] * v[:, 0])
+    return float(np.mean(la * lb * lc * 0.5 * (la + lb + lc) / (8.0 * area * area)))
+
+
+def test_smooth_keeps_a_mesh_at_the_target_and_never_makes_it_worse():
+    points, triangles = square_mesh(10, 0.03)
+    given = SimpleNamespace(points=points, triangles=triangles)
+    assert min_angle(given) > 40.0  # at the cleanup's target: the nodes are kept and polished
+    mesh = pdmesh.smooth((points, triangles), SQUARE, device="host")
+    assert len(mesh.points) == len(points)
+    assert len(mesh.triangles) == len(triangles)
+    assert min_angle(mesh) >= min_angle(given) - 1e-9
+    assert mean_aspect_ratio(mesh) <= mean_aspect_ratio(given) + 1e-12
 
 
 def test_smooth_reads_a_mesh_file_and_a_mesh_object(tmp_path):

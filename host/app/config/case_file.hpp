@@ -59,6 +59,8 @@ struct ViewWindow {
 
 // One "--set section.key=VALUE" (or a direct option translated into one). `label` is how
 // messages name it, e.g. "--set simulation.iterations=abc" or "--iterations abc".
+struct KeptNodes;
+
 struct CaseOverride {
   std::string key;    // dotted key, e.g. "simulation.iterations"
   std::string value;  // TOML value syntax; a bare word that is not valid TOML is taken as a string
@@ -164,6 +166,9 @@ struct CaseConfig {
     // The warm start: a node or mesh file whose interior points are the initial interior nodes
     // (init/warm_points.hpp, init/metric_fill.hpp warm_fill); empty: the usual fill.
     std::filesystem::path file;
+    // The initial nodes as they are (pdmesh smooth of a mesh already at the target; init/kept_nodes.hpp),
+    // set in memory, never by a key; null: the usual start. Beats `file`.
+    std::shared_ptr<const KeptNodes> kept;
   } init;
 
   struct Simulation {
@@ -212,6 +217,9 @@ struct CaseConfig {
     // (CleanupOptions' defaults; best lowers both).
     double trials_per_triangle = CleanupOptions{}.trials_per_triangle;
     std::int64_t min_trials = static_cast<std::int64_t>(CleanupOptions{}.min_trials);
+    // CleanupOptions::sharp_corners and polish (off in every preset; pdmesh smooth turns both on).
+    bool sharp_corners = false;
+    std::int64_t polish = 0;
   } cleanup;
 
   // [[boundary_layer]] (docs/boundary-layers.md): layered cells grown from the named wall curves, the

@@ -374,6 +374,13 @@ void read_cleanup_section(const Reader& r, const toml::table& root, CaseConfig& 
     if (k.min_trials < 0 || k.min_trials > 1000000000)
       r.fail("cleanup.min_trials", n, fmt::format("cleanup.min_trials must be in 0..1000000000, got {}", k.min_trials));
   }
+  if (const toml::node* n = find(root, "cleanup", "sharp_corners"))
+    k.sharp_corners = r.boolean("cleanup.sharp_corners", *n);
+  if (const toml::node* n = find(root, "cleanup", "polish")) {
+    k.polish = r.integer("cleanup.polish", *n);
+    if (k.polish < 0 || k.polish > 1000)
+      r.fail("cleanup.polish", n, fmt::format("cleanup.polish must be in 0..1000, got {}", k.polish));
+  }
 }
 
 ViewWindow read_view(const Reader& r, const toml::node& entry, std::size_t i) {

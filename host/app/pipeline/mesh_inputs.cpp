@@ -15,6 +15,7 @@
 #include "core/memory_budget.hpp"
 #include "geometry/farfield.hpp"
 #include "geometry/geometry_files.hpp"
+#include "init/kept_nodes.hpp"
 #include "init/metric_fill.hpp"
 #include "layers/boundary_layers.hpp"
 #include "spacing/short_arcs.hpp"
@@ -363,6 +364,12 @@ InitialDistribution make_initial(const CaseConfig& config, const MeshInputs& inp
     throw InputError(fmt::format("{}: [[boundary_layer]]: the stages mesh the core's case (build_layers), not this one",
                                  config.source.string()));
   if (inputs.metric) return make_metric_initial(config, inputs, spacing);
+  if (config.init.kept) {
+    InitialDistribution initial;
+    initial.nodes = kept_node_set(*config.init.kept, inputs.node_geometry(), spacing.field());
+    initial.estimate = NAN;
+    return initial;
+  }
   if (!config.init.file.empty()) return make_warm_initial(config, inputs, spacing);
   const BoundaryPlacement boundary = place_boundary(config, inputs, spacing);
   InitOptions options;

@@ -235,6 +235,8 @@ CleanedMesh clean_up(const CaseConfig& config, const MeshInputs& inputs, const S
   options.split_boundary = config.cleanup.split_boundary;
   options.trials_per_triangle = config.cleanup.trials_per_triangle;
   options.min_trials = static_cast<double>(config.cleanup.min_trials);
+  options.sharp_corners = config.cleanup.sharp_corners;
+  options.polish = static_cast<int>(config.cleanup.polish);
   CleanedMesh out;
   CleanupEffect& effect = out.effect;
   effect.target_deg = options.min_angle;

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <fmt/format.h>
 #include <memory>
+#include <optional>
 #include <unordered_map>
 #include <utility>
 
@@ -13,6 +14,7 @@
 #include "core/errors.hpp"
 #include "core/predicates.hpp"
 #include "geometry/geometry_files.hpp"
+#include "init/kept_nodes.hpp"
 #include "init/warm_points.hpp"
 #include "io/mesh_formats.hpp"
 #include "spacing/mesh_spacing.hpp"
@@ -168,7 +170,8 @@ void check_mesh_on_geometry(const Mesh& mesh, const std::string& label, const Ge
 }
 
 std::vector<CaseOverride> smooth_overrides(SmoothField field) {
-  std::vector<CaseOverride> out{{"preset", "\"best\"", "pdmesh smooth"}};
+  std::vector<CaseOverride> out{{"preset", "\"best\"", "pdmesh smooth"},
+                                {"cleanup.sharp_corners", "true", "pdmesh smooth"}};
   if (field != SmoothField::Mesh) return out;
   const std::string by = "pdmesh smooth (--field mesh)";
   out.push_back({"spacing.scale", fmt::format("{}", kSmoothMeshScale), by});
@@ -189,6 +192,47 @@ Geometry case_geometry(const CaseConfig& config) {
   return config.geometry.given_curves.empty()
              ? read_geometry(files, config.geometry.curve_names, options)
              : geometry_from_curves(config.geometry.given_curves, config.geometry.curve_names, options);
+}
+
+}  // namespace
+
+double min_angle_apart_from_sharp_corners(const Mesh& mesh, double degrees) {
+  const std::size_t n = mesh.points.size();
+  std::vector<int> triangles(n, 0);
+  for (const auto& t : mesh.triangles)
+    for (const int v : t) ++triangles[static_cast<std::size_t>(v)];
+  const std::vector<double> boundary = mean_boundary_edge(mesh);
+  double worst = 180.0;
+  for (const auto& t : mesh.triangles)
+    for (int k = 0; k < 3; ++k) {
+      const Vec2 a = mesh.points[t[k]], b = mesh.points[t[(k + 1) % 3]], c = mesh.points[t[(k + 2) % 3]];
+      const double angle = std::atan2(std::abs(cross(b - a, c - a)), dot(b - a, c - a)) * 57.29577951308232;
+      // Alone at a boundary node: the domain's angle there.
+      const auto v = static_cast<std::size_t>(t[k]);
+      if (boundary[v] > 0.0 && triangles[v] == 1 && angle < degrees) continue;
+      worst = std::min(worst, angle);
+    }
+  return worst;
+}
+
+namespace {
+
+// Keeps the input's nodes when the mesh is at the cleanup's target already (docs/smoothing.md, "A mesh
+// at the target"): no simulation, and the cleanup without topology changes, so only its smoothing
+// sweeps move nodes, each move kept only when it lowers neither its star's smallest angle nor raises
+// its aspect-ratio sum.
+void keep_if_at_target(CaseConfig& config, const Mesh& mesh, const Geometry& geometry, const GeometryTree& tree) {
+  if (!config.cleanup.enabled || config.geometry.projection != ProjectionKind::None ||
+      config.geometry.curves != CurveKind::Polyline || config.farfield.given())
+    return;
+  if (min_angle_apart_from_sharp_corners(mesh, config.cleanup.min_angle) < config.cleanup.min_angle) return;
+  std::optional<KeptNodes> kept = keep_mesh_nodes(mesh, geometry, tree, 1e-6 * geometry.extents.diagonal());
+  if (!kept) return;
+  config.init.kept = std::make_shared<const KeptNodes>(std::move(*kept));
+  config.simulation.iterations = 0;
+  config.cleanup.topology = false;
+  // The nodes were matched to the curves as given.
+  config.geometry.heal = false;
 }
 
 }  // namespace
@@ -216,6 +260,7 @@ void make_smooth_config(CaseConfig& config, const Mesh& mesh, const std::filesys
     config.spacing.given = std::move(spacing);
   }
   config.init.file = file;
+  keep_if_at_target(config, mesh, geometry, tree);
 }
 
 int run_smooth(CaseConfig config, const std::filesystem::path& mesh_file, SmoothField field) {

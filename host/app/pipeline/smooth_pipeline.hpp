@@ -60,14 +60,22 @@ std::vector<double> node_spacing(const Mesh& mesh);
 
 // The case keys a smoothing run sets before the user's --set overrides (which win): preset "best"
 // (population control and the converged stop; a thesis case's own preset would keep the count and
-// run its 2000 iterations), and with SmoothField::Mesh the mesh's field (spacing.scale =
+// run its 2000 iterations), the cleanup's sharp-corner scores (cleanup.sharp_corners), and with
+// SmoothField::Mesh the mesh's field (spacing.scale =
 // kSmoothMeshScale, spacing.gradation = kSmoothGradation; no feature size or curvature rule).
 std::vector<CaseOverride> smooth_overrides(SmoothField field);
+
+// The smallest angle (degrees) of the mesh's triangles, leaving out the angle of a triangle alone at a
+// boundary node where that angle (the domain's there) is below `degrees`: no mesh with a node there does
+// better.
+double min_angle_apart_from_sharp_corners(const Mesh& mesh, double degrees);
 
 // Makes `config` (a case or geometry file's, with smooth_overrides and the user's overrides applied)
 // the smoothing run of `mesh`, read from `file`: init.file = file, and with SmoothField::Mesh the
 // spacing field given as the node_spacing on the mesh. Reads the geometry and runs
-// check_mesh_on_geometry.
+// check_mesh_on_geometry. A mesh at the cleanup's target already (min_angle_apart_from_sharp_corners at
+// least cleanup.min_angle) whose nodes match the curves keeps them (init.kept): no iterations, and the
+// cleanup's smoothing sweeps without topology changes.
 void make_smooth_config(CaseConfig& config, const Mesh& mesh, const std::filesystem::path& file,
                         const std::string& label, SmoothField field);
 
