@@ -12,16 +12,19 @@
 #include <string>
 
 #include "core/errors.hpp"
+#include "io/fort14_writer.hpp"
 #include "io/mesh_formats.hpp"
 #include "io/msh_reader.hpp"
 #include "io/msh_writer.hpp"
 #include "io/su2_reader.hpp"
+#include "io/sms2dm_writer.hpp"
 #include "io/su2_writer.hpp"
 #include "io/text_file.hpp"
 #include "io/triangle_reader.hpp"
 #include "io/vtu_data.hpp"
 #include "io/vtu_reader.hpp"
 #include "io/vtu_writer.hpp"
+#include "nodes/node_file.hpp"
 #include "temp_files.hpp"
 #include "seeded_random.hpp"
 
@@ -65,6 +68,31 @@ Mesh grid_mesh() {
 }
 
 using pdmesh_test::fresh_dir;
+
+// An n x n grid of the unit square with q at every point: large enough that each format's text is
+// several of core/text_sink.hpp's 8 MB pieces.
+Mesh big_grid_mesh(int n) {
+  Mesh m;
+  const auto id = [n](int i, int j) { return j * n + i; };
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      m.points.push_back({i / (n - 1.0) + 1e-9 * j, j / (n - 1.0)});
+      const bool side = i == 0 || j == 0 || i == n - 1 || j == n - 1;
+      m.kind.push_back(side ? NodeKind::Boundary : NodeKind::Interior);
+      m.spacing.push_back(1.0 / (n - 1.0) + 1e-12 * i);
+    }
+  for (int j = 0; j + 1 < n; ++j)
+    for (int i = 0; i + 1 < n; ++i) {
+      m.triangles.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
+      m.triangles.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
+    }
+  m.curve_names = {"outline"};
+  for (int i = 0; i + 1 < n; ++i) m.boundary_edges.push_back({id(i, 0), id(i + 1, 0), 0});
+  for (int j = 0; j + 1 < n; ++j) m.boundary_edges.push_back({id(n - 1, j), id(n - 1, j + 1), 0});
+  for (int i = n - 1; i > 0; --i) m.boundary_edges.push_back({id(i, n - 1), id(i - 1, n - 1), 0});
+  for (int j = n - 1; j > 0; --j) m.boundary_edges.push_back({id(0, j), id(0, j - 1), 0});
+  return m;
+}
 
 // Edges grouped by curve as the writers store them (stable within a curve).
 std::vector<std::array<int, 3>> grouped_edges(const Mesh& m) {
@@ -404,4 +432,32 @@ TEST_CASE("format dispatch rejects unknown names and extensions", "[mesh_io]") {
   message_has([&] { read_mesh(dir / "missing.msh"); }, "missing.msh");
   CHECK(std::filesystem::is_empty(dir));
   std::filesystem::remove_all(dir);
+}
+
+TEST_CASE("mesh and node files written in pieces are their whole texts byte for byte", "[mesh_io]") {
+  // 300 x 300 points: the .msh text is about 12 MB, the .vtu text about 20 MB.
+  const Mesh m = big_grid_mesh(300);
+  const auto dir = fresh_dir("pieces");
+  const auto read = [&](const std::string& name) { return read_text_file(dir / name, InputKind::Mesh); };
+  write_mesh(m, dir, "a", {"msh", "vtu", "su2", "fort14", "2dm"});
+  const std::string msh = msh41_string(m);
+  CHECK(msh.size() > 8u << 20);
+  CHECK(read("a.msh") == msh);
+  CHECK(read("a.vtu") == vtu_string(m));
+  CHECK(read("a.su2") == su2_string(m));
+  CHECK(read("a.14") == fort14_string(m, {}));
+  CHECK(read("a.2dm") == sms2dm_string(m));
+  write_mesh(m, dir, "b", {"msh22"});
+  CHECK(read("b.msh") == msh22_string(m));
+  NodeSet nodes;
+  for (std::size_t i = 0; i < m.points.size(); ++i) nodes.add(m.points[i], m.spacing[i], NodeKind::Interior, -1);
+  nodes.curve_nodes = {{0, 1, 2}};
+  nodes.kind[0] = nodes.kind[1] = nodes.kind[2] = NodeKind::Boundary;
+  nodes.curve[0] = nodes.curve[1] = nodes.curve[2] = 0;
+  write_node_file(dir / "a.nodes", nodes, {"outline"});
+  CHECK(read("a.nodes") == format_node_file(nodes, {"outline"}));
+  // A failure while writing (a curve name the format cannot hold) leaves no file and no temporary.
+  CHECK_THROWS_AS(write_node_file(dir / "c.nodes", nodes, {"has space"}), InputError);
+  CHECK_FALSE(std::filesystem::exists(dir / "c.nodes"));
+  CHECK(std::distance(std::filesystem::directory_iterator(dir), std::filesystem::directory_iterator{}) == 7);
 }

@@ -2,6 +2,7 @@
 // two-triangle mesh, percentiles, the table and the JSON document.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
@@ -16,6 +17,7 @@
 #include "io/mesh_formats.hpp"
 #include "io/text_file.hpp"
 #include "mesh/quality.hpp"
+#include "mesh/quality_sum.hpp"
 #include "io/quality_report.hpp"
 #include "seeded_random.hpp"
 
@@ -349,4 +351,98 @@ TEST_CASE("metric values by name are the per-triangle fields and unknown names a
   CHECK(metric_values(per, "condition_number")[1] == per[1].condition_number);
   CHECK(metric_values(per, "min_jacobian")[0] == Approx(kSqrt3 / 2));
   CHECK_THROWS_AS(metric_values(per, "minangle"), InputError);
+}
+
+namespace {
+
+// A jittered n x n grid of the unit square, two triangles per cell (counter-clockwise).
+Mesh jittered_grid(int n) {
+  std::mt19937_64 rng(42);
+  Mesh m;
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      const bool side = i == 0 || j == 0 || i == n - 1 || j == n - 1;
+      Vec2 p{i / (n - 1.0), j / (n - 1.0)};
+      if (!side) p = p + Vec2{0.3 * (unit(rng) - 0.5) / n, 0.3 * (unit(rng) - 0.5) / n};
+      m.points.push_back(p);
+    }
+  const auto id = [n](int i, int j) { return j * n + i; };
+  for (int j = 0; j + 1 < n; ++j)
+    for (int i = 0; i + 1 < n; ++i) {
+      m.triangles.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
+      m.triangles.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
+    }
+  return m;
+}
+
+}  // namespace
+
+TEST_CASE("the summary measured triangle by triangle is the per-triangle loop's, bit for bit", "[quality]") {
+  const Mesh m = jittered_grid(40);
+  const std::vector<TriangleQuality> q = triangle_qualities(m);
+  const QualitySummary s = summarize_quality_of(m);
+  // The figures as one loop over the per-triangle metrics computes them, in triangle order.
+  double min_angle = HUGE_VAL, max_angle = -HUGE_VAL, ar = 0.0, skew = 0.0, k = 0.0, jac = HUGE_VAL, ar_max = 0.0;
+  for (const TriangleQuality& t : q) {
+    min_angle = std::min(min_angle, t.min_angle);
+    max_angle = std::max(max_angle, t.max_angle);
+    jac = std::min(jac, t.min_jacobian);
+    ar_max = std::max(ar_max, t.aspect_ratio);
+    ar += t.aspect_ratio;
+    skew += t.skewness;
+    k += t.condition_number;
+  }
+  const double n = static_cast<double>(q.size());
+  CHECK(s.triangles == q.size());
+  CHECK(s.min_angle == min_angle);
+  CHECK(s.max_angle == max_angle);
+  CHECK(s.min_jacobian == jac);
+  CHECK(s.aspect_ratio_max == ar_max);
+  CHECK(s.aspect_ratio_avg == ar / n);
+  CHECK(s.skewness_avg == skew / n);
+  CHECK(s.condition_number_avg == k / n);
+  const QualitySummary whole = summarize_quality(q);
+  CHECK(whole.min_angle_histogram.counts == s.min_angle_histogram.counts);
+  CHECK(whole.aspect_ratio_histogram.counts == s.aspect_ratio_histogram.counts);
+  // The values of one metric for a picture, without the per-triangle array.
+  CHECK(mesh_metric_values(m, "skewness") == metric_values(q, "skewness"));
+  CHECK_THROWS_AS(mesh_metric_values(m, "nope"), InputError);
+  // No triangle: the empty summary.
+  const QualitySummary none = summarize_quality_of(Mesh{});
+  CHECK(none.triangles == 0);
+  CHECK(none.min_angle == 0.0);
+  CHECK(none.aspect_ratio_max == 0.0);
+}
+
+TEST_CASE("spacing conformance asks for q in batches and measures every edge as one batch would", "[quality]") {
+  // 200 x 200 points: about 119k unique edges, two batches of midpoints and a partial third.
+  const Mesh m = jittered_grid(200);
+  std::size_t calls = 0, largest = 0;
+  const auto q = [](Vec2 p) { return 0.004 + 0.002 * p.x * p.y; };
+  const SpacingConformance c = spacing_conformance(m, [&](const std::vector<Vec2>& p, std::vector<double>& out) {
+    ++calls;
+    largest = std::max(largest, p.size());
+    out.resize(p.size());
+    for (std::size_t k = 0; k < p.size(); ++k) out[k] = q(p[k]);
+  });
+  CHECK(calls > 1);
+  CHECK(largest <= (std::size_t{1} << 16));
+  // Every unique edge's ratio, with its q asked for alone.
+  std::vector<double> ratios;
+  for (const auto& [i, j] : unique_edges(m))
+    ratios.push_back(dist(m.points[static_cast<std::size_t>(i)], m.points[static_cast<std::size_t>(j)]) /
+                     q(0.5 * (m.points[static_cast<std::size_t>(i)] + m.points[static_cast<std::size_t>(j)])));
+  double sum = 0.0;
+  for (double r : ratios) sum += r;
+  CHECK(c.edges == ratios.size());
+  CHECK(c.mean == sum / static_cast<double>(ratios.size()));
+  CHECK(c.min == *std::min_element(ratios.begin(), ratios.end()));
+  CHECK(c.max == *std::max_element(ratios.begin(), ratios.end()));
+  // A bad q in a later batch is still named by its edge.
+  const auto bad = [&](const std::vector<Vec2>& p, std::vector<double>& out) {
+    out.assign(p.size(), 1.0);
+    for (std::size_t k = 0; k < p.size(); ++k)
+      if (p[k].x > 0.99 && p[k].y > 0.99) out[k] = -1.0;
+  };
+  CHECK_THROWS_AS(spacing_conformance(m, bad), InputError);
 }

@@ -13,6 +13,7 @@
 #include "core/interrupt.hpp"
 #include "io/boundary_strings.hpp"
 #include "io/mesh_io_common.hpp"
+#include "io/mesh_text.hpp"
 
 namespace pdmesh {
 
@@ -31,16 +32,18 @@ std::size_t node_count(const std::vector<const BoundaryString*>& strings) {
 
 }  // namespace
 
-std::string fort14_string(const Mesh& mesh, const std::vector<std::string>& open_curves) {
+void write_fort14(const Mesh& mesh, const std::vector<std::string>& open_curves, TextSink& sink) {
   check_mesh_for_writing(mesh, "fort.14 writer");
-  std::string out = "pdmesh mesh\n";
+  std::string& out = sink.text();
+  out += "pdmesh mesh\n";
   out += fmt::format("{} {}\n", mesh.triangles.size(), mesh.points.size());
   auto to = std::back_inserter(out);
-  append_point_lines(out, mesh, "");
+  append_point_lines(sink, mesh, "");
   for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
     if ((t & 65535) == 0) check_interrupt();
     const auto& tri = mesh.triangles[t];
     fmt::format_to(to, "{} 3 {} {} {}\n", t + 1, tri[0] + 1, tri[1] + 1, tri[2] + 1);
+    sink.piece_done();
   }
   std::vector<BoundaryString> strings = boundary_strings(mesh);
   // Outer boundary first, then islands (ADCIRC lists external boundaries before internal ones).
@@ -49,7 +52,10 @@ std::string fort14_string(const Mesh& mesh, const std::vector<std::string>& open
   std::vector<const BoundaryString*> open, land;
   for (const BoundaryString& s : strings) (is_open(mesh, s, open_curves) ? open : land).push_back(&s);
   const auto put_nodes = [&](const BoundaryString& s) {
-    for (const int v : s.nodes) fmt::format_to(to, "{}\n", v + 1);
+    for (const int v : s.nodes) {
+      fmt::format_to(to, "{}\n", v + 1);
+      sink.piece_done();
+    }
   };
   fmt::format_to(to, "{} = Number of open boundaries\n{} = Total number of open boundary nodes\n", open.size(),
                  node_count(open));
@@ -65,7 +71,12 @@ std::string fort14_string(const Mesh& mesh, const std::vector<std::string>& open
                    land[k]->internal ? 1 : 0, k + 1, curve_label(mesh, static_cast<std::size_t>(land[k]->curve), true));
     put_nodes(*land[k]);
   }
-  return out;
+}
+
+std::string fort14_string(const Mesh& mesh, const std::vector<std::string>& open_curves) {
+  TextSink sink;
+  write_fort14(mesh, open_curves, sink);
+  return sink.take();
 }
 
 }  // namespace pdmesh

@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "core/text_sink.hpp"
 #include "mesh/mesh.hpp"
 
 namespace pdmesh {
@@ -13,6 +14,8 @@ namespace pdmesh {
 // boundary: IBTYPE 0 on the outer boundary, 1 around an island. Each boundary is one node string per
 // curve with the domain on its left; outer-boundary strings come before island strings, and a closed
 // curve repeats its first node last (ADCIRC's convention). Embedded constraints are not boundaries.
+// write_fort14 appends the file's text to `sink` in pieces; fort14_string returns it whole.
+void write_fort14(const Mesh& mesh, const std::vector<std::string>& open_curves, TextSink& sink);
 std::string fort14_string(const Mesh& mesh, const std::vector<std::string>& open_curves);
 
 }  // namespace pdmesh

@@ -2,10 +2,12 @@
 #include "io/mesh_formats.hpp"
 
 #include <algorithm>
+#include <functional>
 
 #include <fmt/format.h>
 
 #include "core/errors.hpp"
+#include "core/text_sink.hpp"
 #include "io/fort14_writer.hpp"
 #include "io/msh_reader.hpp"
 #include "io/msh_writer.hpp"
@@ -48,19 +50,26 @@ std::vector<std::filesystem::path> write_mesh(const Mesh& mesh, const std::files
     write_text_file(path, content);
     written.push_back(path);
   };
+  // The large formats go out in pieces (core/text_sink.hpp): a writer holds a few megabytes of its
+  // file, not the whole file, beside the mesh.
+  const auto stream = [&](const std::string& ext, const std::function<void(TextSink&)>& write) {
+    const auto path = dir / (stem + ext);
+    write_text_atomically(path, write);
+    written.push_back(path);
+  };
   for (const auto& f : formats) {
     if (f == "msh") {
-      put(".msh", msh41_string(mesh));
+      stream(".msh", [&](TextSink& sink) { write_msh41(mesh, sink); });
     } else if (f == "msh22") {
-      put(".msh", msh22_string(mesh));
+      stream(".msh", [&](TextSink& sink) { write_msh22(mesh, sink); });
     } else if (f == "vtu") {
-      put(".vtu", vtu_string(mesh));
+      stream(".vtu", [&](TextSink& sink) { write_vtu(mesh, sink); });
     } else if (f == "su2") {
-      put(".su2", su2_string(mesh));
+      stream(".su2", [&](TextSink& sink) { write_su2(mesh, sink); });
     } else if (f == "fort14") {
-      put(".14", fort14_string(mesh, options.open_boundaries));
+      stream(".14", [&](TextSink& sink) { write_fort14(mesh, options.open_boundaries, sink); });
     } else if (f == "2dm") {
-      put(".2dm", sms2dm_string(mesh));
+      stream(".2dm", [&](TextSink& sink) { write_sms2dm(mesh, sink); });
     } else if (f == "triangle") {
       const auto files = triangle_strings(mesh);
       put(".node", files.node);

@@ -2,14 +2,12 @@
 #include "io/mesh_io_common.hpp"
 
 #include <algorithm>
-#include <iterator>
 #include <numeric>
 
 #include <fmt/format.h>
 
 #include "core/errors.hpp"
 #include "core/g17.hpp"
-#include "core/interrupt.hpp"
 #include "core/predicates.hpp"
 
 namespace pdmesh {
@@ -56,18 +54,6 @@ void check_mesh_for_writing(const Mesh& mesh, const std::string& what) {
                                    d.values.size(), n, d.components));
 }
 
-void append_point_lines(std::string& out, const Mesh& mesh, const char* prefix) {
-  auto to = std::back_inserter(out);
-  for (std::size_t i = 0; i < mesh.points.size(); ++i) {
-    if ((i & 65535) == 0) check_interrupt();
-    fmt::format_to(to, "{}{} ", prefix, i + 1);
-    append_g17(out, mesh.points[i].x);
-    out += ' ';
-    append_g17(out, mesh.points[i].y);
-    out += " 0\n";
-  }
-}
-
 std::vector<std::size_t> boundary_edges_by_curve(const Mesh& mesh) {
   std::vector<std::size_t> order(mesh.boundary_edges.size());
   std::iota(order.begin(), order.end(), std::size_t{0});
@@ -75,20 +61,6 @@ std::vector<std::size_t> boundary_edges_by_curve(const Mesh& mesh) {
     return mesh.boundary_edges[i].curve < mesh.boundary_edges[j].curve;
   });
   return order;
-}
-
-std::string msh_spacing_node_data(const Mesh& mesh) {
-  if (mesh.spacing.empty()) return {};
-  // One view "q": time 0, time step 0, 1 component, a value per node (node tag = point index + 1).
-  std::string out = fmt::format("$NodeData\n1\n\"q\"\n1\n0\n3\n0\n1\n{}\n", mesh.spacing.size());
-  auto to = std::back_inserter(out);
-  for (std::size_t i = 0; i < mesh.spacing.size(); ++i) {
-    fmt::format_to(to, "{} ", i + 1);
-    append_g17(out, mesh.spacing[i]);
-    out += '\n';
-  }
-  out += "$EndNodeData\n";
-  return out;
 }
 
 std::string coord(double v) {

@@ -52,16 +52,8 @@ std::string curve_label(const Mesh& mesh, std::size_t c, bool no_blanks = false)
 // `kind` is neither empty nor one per point. Every writer calls this first.
 void check_mesh_for_writing(const Mesh& mesh, const std::string& what);
 
-// One line per point, "PREFIX<i+1> x y 0" with 17-digit coordinates (MSH 2.2 $Nodes, fort.14's
-// nodes with depth 0, .2dm's ND cards).
-void append_point_lines(std::string& out, const Mesh& mesh, const char* prefix);
-
 // Boundary edge indices grouped by curve (stable: curve order, then file order within a curve).
 std::vector<std::size_t> boundary_edges_by_curve(const Mesh& mesh);
-
-// The $NodeData section (MSH 2.2 and 4.1 alike) holding mesh.spacing as the view "q"; empty when
-// the mesh has no spacing values.
-std::string msh_spacing_node_data(const Mesh& mesh);
 
 // Coordinates are written with 17 significant digits, which reads back to the same double.
 std::string coord(double v);

@@ -13,6 +13,7 @@
 #include "core/interrupt.hpp"
 #include "core/g17.hpp"
 #include "io/mesh_io_common.hpp"
+#include "io/mesh_text.hpp"
 
 namespace pdmesh {
 namespace {
@@ -60,11 +61,12 @@ std::string physical_names(const Mesh& mesh, const Surfaces& surfaces) {
 
 }  // namespace
 
-std::string msh41_string(const Mesh& mesh) {
+void write_msh41(const Mesh& mesh, TextSink& sink) {
   check_mesh_for_writing(mesh, "MSH 4.1 writer");
   const std::size_t curves = mesh.curve_names.size();
   const std::size_t n = mesh.points.size();
-  std::string out = "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n";
+  std::string& out = sink.text();
+  out += "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n";
   const Surfaces surfaces = surfaces_of(mesh);
   const std::size_t ns = surfaces.names.size();
   out += physical_names(mesh, surfaces);
@@ -98,7 +100,10 @@ std::string msh41_string(const Mesh& mesh) {
     // Formatted straight into `out` (a temporary string per number was most of the time at millions
     // of nodes); numbers as coord() writes them.
     auto to = std::back_inserter(out);
-    for (std::size_t i = 0; i < n; ++i) fmt::format_to(to, "{}\n", i + 1);
+    for (std::size_t i = 0; i < n; ++i) {
+      fmt::format_to(to, "{}\n", i + 1);
+      sink.piece_done();
+    }
     InterruptPoll poll(65536);
     for (const auto& p : mesh.points) {
       poll.tick();
@@ -106,6 +111,7 @@ std::string msh41_string(const Mesh& mesh) {
       out += ' ';
       append_g17(out, p.y);
       out += " 0\n";
+      sink.piece_done();
     }
     out += "$EndNodes\n";
   }
@@ -128,6 +134,7 @@ std::string msh41_string(const Mesh& mesh) {
     for (std::size_t k = 0; k < per_curve[c]; ++k, ++next) {
       const auto& e = mesh.boundary_edges[order[next]];
       out += fmt::format("{} {} {}\n", tag++, e.a + 1, e.b + 1);
+      sink.piece_done();
     }
   }
   // The triangles by surface, in mesh order within each (a counting sort).
@@ -147,22 +154,23 @@ std::string msh41_string(const Mesh& mesh) {
       poll.tick();
       const auto& t = mesh.triangles[by_surface[k]];
       fmt::format_to(to, "{} {} {} {}\n", tag++, t[0] + 1, t[1] + 1, t[2] + 1);
+      sink.piece_done();
     }
   }
   out += "$EndElements\n";
-  out += msh_spacing_node_data(mesh);
-  return out;
+  append_msh_spacing_node_data(sink, mesh);
 }
 
-std::string msh22_string(const Mesh& mesh) {
+void write_msh22(const Mesh& mesh, TextSink& sink) {
   check_mesh_for_writing(mesh, "MSH 2.2 writer");
   const std::size_t curves = mesh.curve_names.size();
-  std::string out = "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n";
+  std::string& out = sink.text();
+  out += "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n";
   const Surfaces surfaces = surfaces_of(mesh);
   out += physical_names(mesh, surfaces);
   out += fmt::format("$Nodes\n{}\n", mesh.points.size());
   auto to = std::back_inserter(out);
-  append_point_lines(out, mesh, "");
+  append_point_lines(sink, mesh, "");
   out += "$EndNodes\n";
   // Each element: tag, type, 2 tags (physical, elementary), nodes. Curve c is elementary entity c + 1,
   // surface j (msh41_string) elementary entity j + 1 with physical tag curves + 1 + j.
@@ -171,6 +179,7 @@ std::string msh22_string(const Mesh& mesh) {
   for (auto k : boundary_edges_by_curve(mesh)) {
     const auto& e = mesh.boundary_edges[k];
     out += fmt::format("{} 1 2 {} {} {} {}\n", tag++, e.curve + 1, e.curve + 1, e.a + 1, e.b + 1);
+    sink.piece_done();
   }
   InterruptPoll poll(65536);
   for (std::size_t i = 0; i < mesh.triangles.size(); ++i) {
@@ -178,10 +187,22 @@ std::string msh22_string(const Mesh& mesh) {
     const auto& t = mesh.triangles[i];
     const int j = surfaces.of_triangle[i];
     fmt::format_to(to, "{} 2 2 {} {} {} {} {}\n", tag++, curves + 1 + j, j + 1, t[0] + 1, t[1] + 1, t[2] + 1);
+    sink.piece_done();
   }
   out += "$EndElements\n";
-  out += msh_spacing_node_data(mesh);
-  return out;
+  append_msh_spacing_node_data(sink, mesh);
+}
+
+std::string msh41_string(const Mesh& mesh) {
+  TextSink sink;
+  write_msh41(mesh, sink);
+  return sink.take();
+}
+
+std::string msh22_string(const Mesh& mesh) {
+  TextSink sink;
+  write_msh22(mesh, sink);
+  return sink.take();
 }
 
 }  // namespace pdmesh

@@ -11,9 +11,10 @@
 
 namespace pdmesh {
 
-std::string su2_string(const Mesh& mesh) {
+void write_su2(const Mesh& mesh, TextSink& sink) {
   check_mesh_for_writing(mesh, "SU2 writer");
-  std::string out = "% Written by pdmesh\nNDIME= 2\n";
+  std::string& out = sink.text();
+  out += "% Written by pdmesh\nNDIME= 2\n";
   out += fmt::format("NELEM= {}\n", mesh.triangles.size());
   // Formatted straight into `out`, numbers as coord() writes them (a temporary string per number was
   // most of the time at millions of cells).
@@ -22,11 +23,13 @@ std::string su2_string(const Mesh& mesh) {
     if ((t & 65535) == 0) check_interrupt();
     const auto& tri = mesh.triangles[t];
     fmt::format_to(to, "5 {} {} {} {}\n", tri[0], tri[1], tri[2], t);
+    sink.piece_done();
   }
   out += fmt::format("NPOIN= {}\n", mesh.points.size());
   for (std::size_t i = 0; i < mesh.points.size(); ++i) {
     if ((i & 65535) == 0) check_interrupt();
     fmt::format_to(to, "{:.17g} {:.17g} {}\n", mesh.points[i].x, mesh.points[i].y, i);
+    sink.piece_done();
   }
   std::vector<std::vector<std::size_t>> per_curve(mesh.curve_names.size());
   for (std::size_t e = 0; e < mesh.boundary_edges.size(); ++e) {
@@ -35,9 +38,17 @@ std::string su2_string(const Mesh& mesh) {
   out += fmt::format("NMARK= {}\n", mesh.curve_names.size());
   for (std::size_t c = 0; c < per_curve.size(); ++c) {
     out += fmt::format("MARKER_TAG= {}\nMARKER_ELEMS= {}\n", curve_label(mesh, c, true), per_curve[c].size());
-    for (auto e : per_curve[c]) out += fmt::format("3 {} {}\n", mesh.boundary_edges[e].a, mesh.boundary_edges[e].b);
+    for (auto e : per_curve[c]) {
+      out += fmt::format("3 {} {}\n", mesh.boundary_edges[e].a, mesh.boundary_edges[e].b);
+      sink.piece_done();
+    }
   }
-  return out;
+}
+
+std::string su2_string(const Mesh& mesh) {
+  TextSink sink;
+  write_su2(mesh, sink);
+  return sink.take();
 }
 
 }  // namespace pdmesh

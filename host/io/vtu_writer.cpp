@@ -48,8 +48,9 @@ void append_ascii(std::string& out, T v) {
 // attributes (NumberOfTuples, ...). Connectivity is a flat list in VTK (no NumberOfComponents) that
 // we still write a triangle per line: `declare` false.
 template <class T, class Value>
-void data_array(std::string& out, VtuFormat format, std::string_view indent, std::string_view name,
+void data_array(TextSink& sink, VtuFormat format, std::string_view indent, std::string_view name,
                 std::string_view extra, std::size_t tuples, int components, Value value, bool declare = true) {
+  std::string& out = sink.text();
   out += indent;
   out += "<DataArray type=\"";
   out += vtk_type_name<T>();
@@ -73,6 +74,7 @@ void data_array(std::string& out, VtuFormat format, std::string_view indent, std
         append_ascii(out, static_cast<T>(value(i, c)));
       }
       out += '\n';
+      sink.piece_done();
     }
   } else {
     // The header (header_type UInt64): the byte count of the data that follows, encoded with it
@@ -88,6 +90,7 @@ void data_array(std::string& out, VtuFormat format, std::string_view indent, std
         const T v = static_cast<T>(value(i, c));
         encoder.put(&v, sizeof v);
       }
+      sink.piece_done();
     }
     encoder.finish();
     out += '\n';
@@ -98,11 +101,12 @@ void data_array(std::string& out, VtuFormat format, std::string_view indent, std
 
 }  // namespace
 
-std::string vtu_string(const Mesh& mesh, VtuFormat format) {
+void write_vtu(const Mesh& mesh, TextSink& sink, VtuFormat format) {
   check_mesh_for_writing(mesh, "VTU writer");
   const auto quality = triangle_qualities(mesh);
   // The binary arrays are in this machine's byte order, which the file declares.
-  std::string out = "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"";
+  std::string& out = sink.text();
+  out += "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"";
   out += std::endian::native == std::endian::big ? "BigEndian" : "LittleEndian";
   out += "\" header_type=\"UInt64\">\n  <UnstructuredGrid>\n";
   // FieldData: boundary edges (point a, point b, curve) and the curve names as bytes, each name
@@ -115,13 +119,13 @@ std::string vtu_string(const Mesh& mesh, VtuFormat format) {
   const std::string_view field = "      ";
   out += "    <FieldData>\n";
   const auto edge_tuples = " NumberOfTuples=\"" + std::to_string(mesh.boundary_edges.size()) + '"';
-  data_array<std::int64_t>(out, format, field, "boundary_edges", edge_tuples, mesh.boundary_edges.size(), 3,
+  data_array<std::int64_t>(sink, format, field, "boundary_edges", edge_tuples, mesh.boundary_edges.size(), 3,
                            [&](std::size_t i, int c) -> std::int64_t {
                              const auto& e = mesh.boundary_edges[i];
                              return c == 0 ? e.a : c == 1 ? e.b : e.curve;
                            });
   const auto name_tuples = " NumberOfTuples=\"" + std::to_string(names.size()) + '"';
-  data_array<std::uint8_t>(out, format, field, "curve_names", name_tuples, names.size(), 1,
+  data_array<std::uint8_t>(sink, format, field, "curve_names", name_tuples, names.size(), 1,
                            [&](std::size_t i, int) { return static_cast<unsigned char>(names[i]); });
   out += "    </FieldData>\n";
 
@@ -129,10 +133,10 @@ std::string vtu_string(const Mesh& mesh, VtuFormat format) {
          std::to_string(mesh.triangles.size()) + "\">\n";
   const std::string_view array = "        ";
   out += "      <PointData Scalars=\"kind\">\n";
-  data_array<std::int32_t>(out, format, array, "kind", "", mesh.points.size(), 1,
+  data_array<std::int32_t>(sink, format, array, "kind", "", mesh.points.size(), 1,
                            [&](std::size_t i, int) { return mesh.kind.empty() ? -1 : static_cast<int>(mesh.kind[i]); });
   if (!mesh.spacing.empty())
-    data_array<double>(out, format, array, "q", "", mesh.spacing.size(), 1,
+    data_array<double>(sink, format, array, "q", "", mesh.spacing.size(), 1,
                        [&](std::size_t i, int) { return mesh.spacing[i]; });
   for (const PointValues& d : mesh.point_data) {
     const auto at = [&d](std::size_t i, int c) { return d.values[i * static_cast<std::size_t>(d.components) + c]; };
@@ -140,16 +144,16 @@ std::string vtu_string(const Mesh& mesh, VtuFormat format) {
     std::replace_if(
         name.begin(), name.end(), [](char ch) { return ch == '"' || ch == '<' || ch == '>' || ch == '&'; }, '_');
     if (d.integer)
-      data_array<std::int64_t>(out, format, array, name, "", mesh.points.size(), d.components,
+      data_array<std::int64_t>(sink, format, array, name, "", mesh.points.size(), d.components,
                                [&](std::size_t i, int c) { return static_cast<std::int64_t>(at(i, c)); });
     else
-      data_array<double>(out, format, array, name, "", mesh.points.size(), d.components,
+      data_array<double>(sink, format, array, name, "", mesh.points.size(), d.components,
                          [&](std::size_t i, int c) { return finite_or_big(at(i, c)); });
   }
   out += "      </PointData>\n";
   out += "      <CellData Scalars=\"min_angle\">\n";
   const auto metric = [&](const char* name, double TriangleQuality::*m) {
-    data_array<double>(out, format, array, name, "", quality.size(), 1,
+    data_array<double>(sink, format, array, name, "", quality.size(), 1,
                        [&](std::size_t i, int) { return finite_or_big(quality[i].*m); });
   };
   metric("min_angle", &TriangleQuality::min_angle);
@@ -159,23 +163,28 @@ std::string vtu_string(const Mesh& mesh, VtuFormat format) {
   metric("condition_number", &TriangleQuality::condition_number);
   metric("min_jacobian", &TriangleQuality::min_jacobian);
   if (mesh.region.size() == mesh.triangles.size() && !mesh.region.empty())
-    data_array<double>(out, format, array, "region", "", mesh.region.size(), 1,
+    data_array<double>(sink, format, array, "region", "", mesh.region.size(), 1,
                        [&](std::size_t i, int) { return mesh.region[i]; });
   out += "      </CellData>\n";
   out += "      <Points>\n";
-  data_array<double>(out, format, array, "Points", "", mesh.points.size(), 3, [&](std::size_t i, int c) {
+  data_array<double>(sink, format, array, "Points", "", mesh.points.size(), 3, [&](std::size_t i, int c) {
     return c == 0 ? mesh.points[i].x : c == 1 ? mesh.points[i].y : 0.0;
   });
   out += "      </Points>\n      <Cells>\n";
   data_array<std::int64_t>(
-      out, format, array, "connectivity", "", mesh.triangles.size(), 3,
+      sink, format, array, "connectivity", "", mesh.triangles.size(), 3,
       [&](std::size_t k, int c) { return mesh.triangles[k][c]; }, false);
-  data_array<std::int64_t>(out, format, array, "offsets", "", mesh.triangles.size(), 1,
+  data_array<std::int64_t>(sink, format, array, "offsets", "", mesh.triangles.size(), 1,
                            [](std::size_t k, int) { return static_cast<std::int64_t>(3 * (k + 1)); });
-  data_array<std::uint8_t>(out, format, array, "types", "", mesh.triangles.size(), 1,
+  data_array<std::uint8_t>(sink, format, array, "types", "", mesh.triangles.size(), 1,
                            [](std::size_t, int) { return 5; });
   out += "      </Cells>\n    </Piece>\n  </UnstructuredGrid>\n</VTKFile>\n";
-  return out;
+}
+
+std::string vtu_string(const Mesh& mesh, VtuFormat format) {
+  TextSink sink;
+  write_vtu(mesh, sink, format);
+  return sink.take();
 }
 
 }  // namespace pdmesh

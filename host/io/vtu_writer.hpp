@@ -5,6 +5,7 @@
 #pragma once
 #include <string>
 
+#include "core/text_sink.hpp"
 #include "mesh/mesh.hpp"
 
 namespace pdmesh {
@@ -20,6 +21,8 @@ enum class VtuFormat {
 
 // Non-finite metric values (degenerate triangles) are written as +-1e300 in both forms, because
 // VTK's ASCII parser does not read "inf". Kind is -1 for every point when the mesh does not know it.
+// write_vtu appends the file's text to `sink` in pieces; vtu_string returns it whole.
+void write_vtu(const Mesh& mesh, TextSink& sink, VtuFormat format = VtuFormat::Binary);
 std::string vtu_string(const Mesh& mesh, VtuFormat format = VtuFormat::Binary);
 
 }  // namespace pdmesh

@@ -1,6 +1,8 @@
 // Mesh quality metrics of the thesis appendix, per triangle and summarised over a mesh.
 #include "mesh/quality.hpp"
 
+#include "mesh/quality_sum.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -96,42 +98,43 @@ TriangleShape triangle_shape(Vec2 a, Vec2 b, Vec2 c) {
   return {std::min({s.angles[0], s.angles[1], s.angles[2]}), s.aspect_ratio};
 }
 
+namespace {
+
+// InputError naming the first triangle that refers to a point the mesh does not have.
+void check_triangle_indices(const Mesh& mesh) {
+  const auto n = static_cast<int>(mesh.points.size());
+  for (std::size_t t = 0; t < mesh.triangles.size(); ++t)
+    for (int v : mesh.triangles[t])
+      if (v < 0 || v >= n)
+        throw InputError(fmt::format("mesh triangle {} refers to point {} but the mesh has {} points", t, v, n));
+}
+
+double TriangleQuality::*metric_member(const std::string& metric) {
+  if (metric == "min_angle") return &TriangleQuality::min_angle;
+  if (metric == "max_angle") return &TriangleQuality::max_angle;
+  if (metric == "aspect_ratio") return &TriangleQuality::aspect_ratio;
+  if (metric == "skewness") return &TriangleQuality::skewness;
+  if (metric == "condition_number") return &TriangleQuality::condition_number;
+  if (metric == "min_jacobian") return &TriangleQuality::min_jacobian;
+  throw InputError(
+      fmt::format("unknown quality metric '{}' (choose min_angle, max_angle, aspect_ratio, skewness, "
+                  "condition_number or min_jacobian)",
+                  metric));
+}
+
+}  // namespace
+
 std::vector<TriangleQuality> triangle_qualities(const Mesh& mesh) {
+  check_triangle_indices(mesh);
   std::vector<TriangleQuality> out;
   out.reserve(mesh.triangles.size());
-  const auto n = static_cast<int>(mesh.points.size());
-  for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
-    const auto& tri = mesh.triangles[t];
-    for (int v : tri) {
-      if (v < 0 || v >= n) {
-        throw InputError(fmt::format("mesh triangle {} refers to point {} but the mesh has {} points", t, v, n));
-      }
-    }
+  for (const auto& tri : mesh.triangles)
     out.push_back(triangle_quality(mesh.points[tri[0]], mesh.points[tri[1]], mesh.points[tri[2]]));
-  }
   return out;
 }
 
 std::vector<double> metric_values(const std::vector<TriangleQuality>& q, const std::string& metric) {
-  double TriangleQuality::*member = nullptr;
-  if (metric == "min_angle")
-    member = &TriangleQuality::min_angle;
-  else if (metric == "max_angle")
-    member = &TriangleQuality::max_angle;
-  else if (metric == "aspect_ratio")
-    member = &TriangleQuality::aspect_ratio;
-  else if (metric == "skewness")
-    member = &TriangleQuality::skewness;
-  else if (metric == "condition_number")
-    member = &TriangleQuality::condition_number;
-  else if (metric == "min_jacobian")
-    member = &TriangleQuality::min_jacobian;
-  else {
-    throw InputError(
-        fmt::format("unknown quality metric '{}' (choose min_angle, max_angle, aspect_ratio, skewness, "
-                    "condition_number or min_jacobian)",
-                    metric));
-  }
+  double TriangleQuality::*member = metric_member(metric);
   std::vector<double> v;
   v.reserve(q.size());
   for (const TriangleQuality& t : q) v.push_back(t.*member);
@@ -157,43 +160,76 @@ double percentile_sorted(const std::vector<double>& sorted, double p) {
   return sorted[lo] + frac * (sorted[hi] - sorted[lo]);
 }
 
-QualitySummary summarize_quality(const std::vector<TriangleQuality>& per_triangle, const QualityOptions& options) {
-  QualitySummary s;
+QualityAccumulator::QualityAccumulator(const QualityOptions& options) : options_(options) {
+  QualitySummary& s = s_;
   s.small_angle_deg = options.small_angle_deg;
   // Min angles never exceed 60 degrees; the 60-degree edge itself falls in the last bin.
   const auto angle_bins = static_cast<std::size_t>(std::ceil(60.0 / options.angle_bin_width));
   s.min_angle_histogram = Histogram{0.0, options.angle_bin_width, std::vector<std::size_t>(angle_bins, 0), 0};
   s.aspect_ratio_histogram = Histogram{1.0, options.aspect_bin_width,
                                        std::vector<std::size_t>(static_cast<std::size_t>(options.aspect_bins), 0), 0};
-  s.triangles = per_triangle.size();
-  if (per_triangle.empty()) return s;
-
   s.min_angle = kInf;
   s.max_angle = -kInf;
   s.min_jacobian = kInf;
   s.aspect_ratio_max = s.skewness_max = s.condition_number_max = -kInf;
-  double ar_sum = 0.0, skew_sum = 0.0, k_sum = 0.0;
-  for (const auto& t : per_triangle) {
-    s.min_angle = std::min(s.min_angle, t.min_angle);
-    s.max_angle = std::max(s.max_angle, t.max_angle);
-    s.min_jacobian = std::min(s.min_jacobian, t.min_jacobian);
-    s.aspect_ratio_max = std::max(s.aspect_ratio_max, t.aspect_ratio);
-    s.skewness_max = std::max(s.skewness_max, t.skewness);
-    s.condition_number_max = std::max(s.condition_number_max, t.condition_number);
-    ar_sum += t.aspect_ratio;
-    skew_sum += t.skewness;
-    k_sum += t.condition_number;
-    s.small_angle_triangles += (t.min_angle < options.small_angle_deg);
-    // The 60-degree edge belongs to the last bin (an equilateral triangle is not "overflow").
-    s.min_angle_histogram.add(std::min(t.min_angle, 60.0 - 0.5 * options.angle_bin_width));
-    s.aspect_ratio_histogram.add(t.aspect_ratio);
+}
+
+void QualityAccumulator::add(const TriangleQuality& t) {
+  QualitySummary& s = s_;
+  ++s.triangles;
+  s.min_angle = std::min(s.min_angle, t.min_angle);
+  s.max_angle = std::max(s.max_angle, t.max_angle);
+  s.min_jacobian = std::min(s.min_jacobian, t.min_jacobian);
+  s.aspect_ratio_max = std::max(s.aspect_ratio_max, t.aspect_ratio);
+  s.skewness_max = std::max(s.skewness_max, t.skewness);
+  s.condition_number_max = std::max(s.condition_number_max, t.condition_number);
+  ar_sum_ += t.aspect_ratio;
+  skew_sum_ += t.skewness;
+  k_sum_ += t.condition_number;
+  s.small_angle_triangles += (t.min_angle < options_.small_angle_deg);
+  // The 60-degree edge belongs to the last bin (an equilateral triangle is not "overflow").
+  s.min_angle_histogram.add(std::min(t.min_angle, 60.0 - 0.5 * options_.angle_bin_width));
+  s.aspect_ratio_histogram.add(t.aspect_ratio);
+}
+
+QualitySummary QualityAccumulator::summary() const {
+  QualitySummary s = s_;
+  if (s.triangles == 0) {
+    // No triangle: zero values, as an empty mesh's summary has.
+    s.min_angle = s.max_angle = s.min_jacobian = 0.0;
+    s.aspect_ratio_max = s.skewness_max = s.condition_number_max = 0.0;
+    return s;
   }
-  const auto n = static_cast<double>(per_triangle.size());
-  s.aspect_ratio_avg = ar_sum / n;
-  s.skewness_avg = skew_sum / n;
-  s.condition_number_avg = k_sum / n;
+  const auto n = static_cast<double>(s.triangles);
+  s.aspect_ratio_avg = ar_sum_ / n;
+  s.skewness_avg = skew_sum_ / n;
+  s.condition_number_avg = k_sum_ / n;
   s.small_angle_share = static_cast<double>(s.small_angle_triangles) / n;
   return s;
+}
+
+QualitySummary summarize_quality(const std::vector<TriangleQuality>& per_triangle, const QualityOptions& options) {
+  QualityAccumulator sum(options);
+  for (const TriangleQuality& t : per_triangle) sum.add(t);
+  return sum.summary();
+}
+
+QualitySummary summarize_quality_of(const Mesh& mesh, const QualityOptions& options) {
+  check_triangle_indices(mesh);
+  QualityAccumulator sum(options);
+  for (const auto& tri : mesh.triangles)
+    sum.add(triangle_quality(mesh.points[tri[0]], mesh.points[tri[1]], mesh.points[tri[2]]));
+  return sum.summary();
+}
+
+std::vector<double> mesh_metric_values(const Mesh& mesh, const std::string& metric) {
+  double TriangleQuality::*member = metric_member(metric);
+  check_triangle_indices(mesh);
+  std::vector<double> v;
+  v.reserve(mesh.triangles.size());
+  for (const auto& tri : mesh.triangles)
+    v.push_back(triangle_quality(mesh.points[tri[0]], mesh.points[tri[1]], mesh.points[tri[2]]).*member);
+  return v;
 }
 
 std::vector<std::pair<int, int>> unique_edges(const Mesh& mesh) {
@@ -229,22 +265,30 @@ std::vector<std::pair<int, int>> unique_edges(const Mesh& mesh) {
 
 SpacingConformance spacing_conformance(const Mesh& mesh, const SpacingBatch& q) {
   const std::vector<std::pair<int, int>> edges = unique_edges(mesh);
-  std::vector<Vec2> mid(edges.size());
-  for (std::size_t k = 0; k < edges.size(); ++k)
-    mid[k] = 0.5 * (mesh.points[static_cast<std::size_t>(edges[k].first)] +
-                    mesh.points[static_cast<std::size_t>(edges[k].second)]);
-  std::vector<double> qm;
-  q(mid, qm);
   std::vector<double> ratios(edges.size());
-  for (std::size_t k = 0; k < edges.size(); ++k) {
-    if (!(std::isfinite(qm[k]) && qm[k] > 0.0)) {
-      throw InputError(
-          fmt::format("spacing q({:.17g}, {:.17g}) = {} at the midpoint of edge {}-{} is not a "
-                      "finite positive number",
-                      mid[k].x, mid[k].y, qm[k], edges[k].first, edges[k].second));
+  // The midpoints and their q in batches of kBatch edges (q at a point does not depend on the batch
+  // it is asked in): a million-node mesh's three million midpoints are never all held at once.
+  constexpr std::size_t kBatch = std::size_t{1} << 16;
+  std::vector<Vec2> mid;
+  std::vector<double> qm;
+  for (std::size_t first = 0; first < edges.size(); first += kBatch) {
+    const std::size_t count = std::min(kBatch, edges.size() - first);
+    mid.resize(count);
+    for (std::size_t b = 0; b < count; ++b)
+      mid[b] = 0.5 * (mesh.points[static_cast<std::size_t>(edges[first + b].first)] +
+                      mesh.points[static_cast<std::size_t>(edges[first + b].second)]);
+    q(mid, qm);
+    for (std::size_t b = 0; b < count; ++b) {
+      const std::size_t k = first + b;
+      if (!(std::isfinite(qm[b]) && qm[b] > 0.0)) {
+        throw InputError(
+            fmt::format("spacing q({:.17g}, {:.17g}) = {} at the midpoint of edge {}-{} is not a "
+                        "finite positive number",
+                        mid[b].x, mid[b].y, qm[b], edges[k].first, edges[k].second));
+      }
+      const auto [i, j] = edges[k];
+      ratios[k] = dist(mesh.points[static_cast<std::size_t>(i)], mesh.points[static_cast<std::size_t>(j)]) / qm[b];
     }
-    const auto [i, j] = edges[k];
-    ratios[k] = dist(mesh.points[static_cast<std::size_t>(i)], mesh.points[static_cast<std::size_t>(j)]) / qm[k];
   }
   SpacingConformance c;
   c.edges = ratios.size();
@@ -289,7 +333,7 @@ void list_constraints(const Mesh& mesh, QualitySummary& summary) {
 }
 
 QualitySummary summarize_quality(const Mesh& mesh, const SpacingCallback& q, const QualityOptions& options) {
-  QualitySummary s = summarize_quality(triangle_qualities(mesh), options);
+  QualitySummary s = summarize_quality_of(mesh, options);
   s.points = mesh.points.size();
   list_constraints(mesh, s);
   if (q) {

@@ -14,6 +14,7 @@
 #include "core/errors.hpp"
 #include "core/g17.hpp"
 #include "core/input_file.hpp"
+#include "core/text_sink.hpp"
 
 namespace pdmesh {
 
@@ -114,12 +115,15 @@ NodeKind kind_from(const LineReader& r, const std::string& s) {
 
 }  // namespace
 
-std::string format_node_file(const NodeSet& nodes, const std::vector<std::string>& curve_names) {
+namespace {
+
+// The file's text, appended to `sink` in pieces.
+void write_node_text(const NodeSet& nodes, const std::vector<std::string>& curve_names, TextSink& sink) {
   if (curve_names.size() != nodes.curve_nodes.size()) {
     throw InputError(
         fmt::format("node file: {} curve names for {} curves", curve_names.size(), nodes.curve_nodes.size()));
   }
-  fmt::memory_buffer out;
+  std::string& out = sink.text();
   fmt::format_to(std::back_inserter(out), "{}\n{}\n", kHeader, nodes.size());
   for (std::size_t i = 0; i < nodes.size(); ++i) {
     if ((i & 65535) == 0) check_interrupt();
@@ -130,6 +134,7 @@ std::string format_node_file(const NodeSet& nodes, const std::vector<std::string
                    nodes.kind[i] == NodeKind::Interior ? -1 : nodes.curve[i]);
     append_g17(out, nodes.q[i]);
     out.push_back('\n');
+    sink.piece_done();
   }
   fmt::format_to(std::back_inserter(out), "curves {}\n", nodes.curve_nodes.size());
   for (std::size_t c = 0; c < nodes.curve_nodes.size(); ++c) {
@@ -138,15 +143,25 @@ std::string format_node_file(const NodeSet& nodes, const std::vector<std::string
           fmt::format("node file: curve {} name '{}' is empty or contains white space", c, curve_names[c]));
     }
     fmt::format_to(std::back_inserter(out), "{} {}", curve_names[c], nodes.curve_nodes[c].size());
-    for (int idx : nodes.curve_nodes[c]) fmt::format_to(std::back_inserter(out), " {}", idx);
+    for (int idx : nodes.curve_nodes[c]) {
+      fmt::format_to(std::back_inserter(out), " {}", idx);
+      sink.piece_done();
+    }
     out.push_back('\n');
   }
-  return fmt::to_string(out);
+}
+
+}  // namespace
+
+std::string format_node_file(const NodeSet& nodes, const std::vector<std::string>& curve_names) {
+  TextSink sink;
+  write_node_text(nodes, curve_names, sink);
+  return sink.take();
 }
 
 void write_node_file(const std::filesystem::path& path, const NodeSet& nodes,
                      const std::vector<std::string>& curve_names) {
-  write_file_atomically(path, format_node_file(nodes, curve_names));
+  write_text_atomically(path, [&](TextSink& sink) { write_node_text(nodes, curve_names, sink); });
 }
 
 NodeFile parse_node_file(const std::string& text, const std::string& source_name) {

@@ -40,16 +40,21 @@ MeshSample measure_mesh(const NodeSet& nodes, int iteration, Mesh* mesh_out) {
     Mesh mesh = triangulate(nodes, names);
     if (mesh.triangles.empty()) return s;
     // The shapes on every core (the device waits for this check), then the minimum and the sum in
-    // triangle order on this thread: the same bits as one loop.
-    std::vector<TriangleShape> shapes(mesh.triangles.size());
-    parallel_for(mesh.triangles.size(), [&](std::size_t k) {
-      const auto& t = mesh.triangles[k];
-      shapes[k] = triangle_shape(mesh.points[t[0]], mesh.points[t[1]], mesh.points[t[2]]);
-    });
+    // triangle order on this thread: the same bits as one loop. In batches, so that the shapes of a
+    // multi-million-triangle mesh are never all held at once.
+    constexpr std::size_t kBatch = std::size_t{1} << 16;
+    std::vector<TriangleShape> shapes;
     double angle = 180.0, aspect = 0.0;
-    for (const TriangleShape& q : shapes) {
-      angle = std::min(angle, q.min_angle);
-      aspect += q.aspect_ratio;
+    for (std::size_t first = 0; first < mesh.triangles.size(); first += kBatch) {
+      shapes.resize(std::min(kBatch, mesh.triangles.size() - first));
+      parallel_for(shapes.size(), [&](std::size_t b) {
+        const auto& t = mesh.triangles[first + b];
+        shapes[b] = triangle_shape(mesh.points[t[0]], mesh.points[t[1]], mesh.points[t[2]]);
+      });
+      for (const TriangleShape& q : shapes) {
+        angle = std::min(angle, q.min_angle);
+        aspect += q.aspect_ratio;
+      }
     }
     s.min_angle = angle;
     s.aspect_ratio = aspect / static_cast<double>(mesh.triangles.size());

@@ -1,6 +1,7 @@
 // `pdmesh mesh`, the outputs: the output directory, the node files and pictures of a stage, the spacing
 // picture, and stage mesh (triangulation, check, cleanup, quality, mesh files and pictures).
 #include "app/pipeline/mesh_pipeline.hpp"
+#include "app/pipeline/mesh_handover.hpp"
 
 #include <cmath>
 #include <filesystem>
@@ -17,6 +18,7 @@
 #include "io/quality_report.hpp"
 #include "mesh/metric_delaunay.hpp"
 #include "mesh/metric_quality.hpp"
+#include "mesh/quality_sum.hpp"
 #include "mesh/region_tags.hpp"
 #include "mesh/triangulate_nodes.hpp"
 #include "spacing/metric_complexity.hpp"
@@ -169,14 +171,22 @@ void check_metric_or_throw(const CaseConfig& config, const MeshInputs& inputs, c
            which, node_area);
 }
 
-// Smallest and largest angle and the triangles below `target` degrees.
-void angle_figures(const std::vector<TriangleQuality>& per_triangle, double target, double& min_angle,
-                   double& max_angle, std::size_t& below) {
-  const QualitySummary s = summarize_quality(per_triangle);
+// The quality summary of the mesh's triangles (summarize_quality_of), with the smallest and largest
+// angle and the triangles below `target` degrees; measured triangle by triangle, keeping no
+// per-triangle array.
+QualitySummary angle_figures(const Mesh& mesh, double target, double& min_angle, double& max_angle,
+                             std::size_t& below) {
+  QualityAccumulator sum;
+  below = 0;
+  for (const auto& tri : mesh.triangles) {
+    const TriangleQuality t = triangle_quality(mesh.points[tri[0]], mesh.points[tri[1]], mesh.points[tri[2]]);
+    sum.add(t);
+    below += t.min_angle < target;
+  }
+  const QualitySummary s = sum.summary();
   min_angle = s.min_angle;
   max_angle = s.max_angle;
-  below = 0;
-  for (const TriangleQuality& t : per_triangle) below += t.min_angle < target;
+  return s;
 }
 
 }  // namespace
@@ -186,8 +196,10 @@ namespace {
 // The triangulation of `nodes` (or `triangulated`, when it is theirs), checked when config.check.
 // With a metric field (`metrics` the metric at each node), the constrained Delaunay triangulation in
 // the metric (triangulate_in_metric).
+// `owner`, when given, holds `triangulated` and is reset once it has been copied.
 Mesh triangulate_nodes(const CaseConfig& config, const MeshInputs& inputs, const NodeSet& nodes, RunPhases& phases,
-                       const Mesh* triangulated, const std::vector<Metric>* metrics) {
+                       const Mesh* triangulated, std::shared_ptr<const Mesh>* owner,
+                       const std::vector<Metric>* metrics) {
   auto timer = phases.phase("triangulation");
   Mesh mesh;
   if (metrics != nullptr) {
@@ -203,6 +215,7 @@ Mesh triangulate_nodes(const CaseConfig& config, const MeshInputs& inputs, const
   } else {
     mesh = triangulate(nodes, inputs.curve_names());
   }
+  if (owner) owner->reset();
   timer.stop();
   progress(config, "triangulation: {} triangles", mesh.triangles.size());
   phases.note("nodes", static_cast<double>(nodes.size()));
@@ -222,7 +235,7 @@ Mesh triangulate_nodes(const CaseConfig& config, const MeshInputs& inputs, const
 struct CleanedMesh {
   NodeSet nodes;
   CleanupEffect effect;
-  std::vector<TriangleQuality> per_triangle;
+  QualitySummary quality;  // of the cleaned mesh's triangles (summarize_quality_of)
 };
 
 CleanedMesh clean_up(const CaseConfig& config, const MeshInputs& inputs, const SpacingStage& spacing, Mesh& mesh,
@@ -242,13 +255,12 @@ CleanedMesh clean_up(const CaseConfig& config, const MeshInputs& inputs, const S
   effect.target_deg = options.min_angle;
   effect.triangles_before = mesh.triangles.size();
   effect.points_before = mesh.points.size();
-  angle_figures(triangle_qualities(mesh), options.min_angle, effect.min_angle_before, effect.max_angle_before,
-                effect.below_before);
+  angle_figures(mesh, options.min_angle, effect.min_angle_before, effect.max_angle_before, effect.below_before);
   CleanupResult cleaned = clean_mesh(mesh, nodes, inputs.node_tree(), spacing.field(), options);
   mesh = std::move(cleaned.mesh);
-  out.per_triangle = triangle_qualities(mesh);  // the cleaned mesh's, reused by the quality summary
-  angle_figures(out.per_triangle, options.min_angle, effect.min_angle_after, effect.max_angle_after,
-                effect.below_after);
+  // The cleaned mesh's figures, reused by the quality summary.
+  out.quality =
+      angle_figures(mesh, options.min_angle, effect.min_angle_after, effect.max_angle_after, effect.below_after);
   effect.inserted = cleaned.stats.inserted;
   effect.removed = cleaned.stats.collapsed;
   effect.moves = cleaned.stats.moves;
@@ -279,15 +291,13 @@ CleanedMesh clean_up_in_metric(const CaseConfig& config, const MeshInputs& input
   effect.target_deg = config.cleanup.min_angle;
   effect.triangles_before = mesh.triangles.size();
   effect.points_before = mesh.points.size();
-  angle_figures(triangle_qualities(mesh), effect.target_deg, effect.min_angle_before, effect.max_angle_before,
-                effect.below_before);
+  angle_figures(mesh, effect.target_deg, effect.min_angle_before, effect.max_angle_before, effect.below_before);
   const MetricQualitySummary before = metric_quality(mesh, metrics);
   MetricCleanupResult cleaned = clean_mesh_in_metric(mesh, nodes, inputs.node_tree(), spacing.field(), metric, options);
   mesh = std::move(cleaned.mesh);
   metrics = std::move(cleaned.metrics);
-  out.per_triangle = triangle_qualities(mesh);
-  angle_figures(out.per_triangle, effect.target_deg, effect.min_angle_after, effect.max_angle_after,
-                effect.below_after);
+  out.quality =
+      angle_figures(mesh, effect.target_deg, effect.min_angle_after, effect.max_angle_after, effect.below_after);
   const cleanup::MetricOpsCounts& c = cleaned.stats.counts;
   effect.inserted = c.splits + c.boundary_splits;
   effect.removed = c.collapses + c.boundary_collapses;
@@ -359,14 +369,13 @@ std::vector<std::string> queue_mesh_pictures(const CaseConfig& config, const Mes
 
 // The quality table, DIR/quality.json, the mesh files, mesh.nodes and the pictures of the mesh stage.
 void write_mesh_outputs(const CaseConfig& config, const MeshInputs& inputs, const SpacingField& spacing,
-                        const Mesh& mesh, const NodeSet& mesh_nodes, QualitySummary& summary,
-                        const std::vector<TriangleQuality>& per_triangle, RunPhases& phases,
+                        const Mesh& mesh, const NodeSet& mesh_nodes, QualitySummary& summary, RunPhases& phases,
                         const std::vector<double>* metric_q, const std::vector<Metric>* metrics) {
   // The pictures are drawn on the background thread while the quality is measured and the files are
   // written; the mesh and the values stay alive until the wait below (also when something throws).
   std::vector<double> values;
   const PictureGuard guard(phases);
-  if (config.output.color_by != "none") values = metric_values(per_triangle, config.output.color_by);
+  if (config.output.color_by != "none") values = mesh_metric_values(mesh, config.output.color_by);
   const std::vector<std::string> pictures = queue_mesh_pictures(
       config, mesh, config.output.color_by != "none" ? &values : nullptr, phases, metric_q, metrics);
   {
@@ -414,8 +423,11 @@ void write_mesh_outputs(const CaseConfig& config, const MeshInputs& inputs, cons
 
 }  // namespace
 
-Mesh mesh_and_measure(const CaseConfig& config, const MeshInputs& inputs, const SpacingStage& spacing,
-                      const NodeSet& nodes, RunPhases* run, const Mesh* triangulated) {
+namespace {
+
+// mesh_and_measure, with the owner of `triangulated` when the caller hands it over.
+Mesh mesh_stage(const CaseConfig& config, const MeshInputs& inputs, const SpacingStage& spacing, const NodeSet& nodes,
+                RunPhases* run, const Mesh* triangulated, std::shared_ptr<const Mesh>* owner) {
   RunPhases local(false);
   RunPhases& phases = run ? *run : local;
   // A metric run: the metric at every node (one thread: an expression field is not thread-safe), for
@@ -427,7 +439,7 @@ Mesh mesh_and_measure(const CaseConfig& config, const MeshInputs& inputs, const 
     metrics.reserve(nodes.x.size());
     for (const Vec2& p : nodes.x) metrics.push_back(metric->at(p));
   }
-  Mesh mesh = triangulate_nodes(config, inputs, nodes, phases, triangulated, metric ? &metrics : nullptr);
+  Mesh mesh = triangulate_nodes(config, inputs, nodes, phases, triangulated, owner, metric ? &metrics : nullptr);
   // The final cleanup: the mesh files and pictures show the cleaned mesh; final.nodes stays the
   // simulation's result. A metric run has its own cleanup, in the metric: the isotropic one works on
   // angles and would undo the metric Delaunay's flips.
@@ -447,8 +459,7 @@ Mesh mesh_and_measure(const CaseConfig& config, const MeshInputs& inputs, const 
   mesh.region = region_tags(mesh, inputs.geometry.regions, inputs.node_geometry());
   if (!config.write_outputs) return mesh;  // the Python API measures on demand (Mesh.quality())
   auto quality_timer = phases.phase("quality");
-  if (!cleanup) cleaned.per_triangle = triangle_qualities(mesh);
-  QualitySummary summary = summarize_quality(cleaned.per_triangle);
+  QualitySummary summary = cleanup ? std::move(cleaned.quality) : summarize_quality_of(mesh);
   summary.points = mesh.points.size();
   list_constraints(mesh, summary);
   summary.has_cleanup = cleanup;
@@ -461,9 +472,22 @@ Mesh mesh_and_measure(const CaseConfig& config, const MeshInputs& inputs, const 
     metric_q = metric_qualities(mesh.points, mesh.triangles, metrics);
   }
   quality_timer.stop();
-  write_mesh_outputs(config, inputs, field, mesh, mesh_nodes, summary, cleaned.per_triangle, phases,
-                     metric != nullptr ? &metric_q : nullptr, metric != nullptr ? &metrics : nullptr);
+  write_mesh_outputs(config, inputs, field, mesh, mesh_nodes, summary, phases, metric != nullptr ? &metric_q : nullptr,
+                     metric != nullptr ? &metrics : nullptr);
   return mesh;
+}
+
+}  // namespace
+
+Mesh mesh_and_measure(const CaseConfig& config, const MeshInputs& inputs, const SpacingStage& spacing,
+                      const NodeSet& nodes, RunPhases* run, const Mesh* triangulated) {
+  return mesh_stage(config, inputs, spacing, nodes, run, triangulated, nullptr);
+}
+
+Mesh mesh_and_measure(const CaseConfig& config, const MeshInputs& inputs, const SpacingStage& spacing,
+                      const NodeSet& nodes, RunPhases* run, std::shared_ptr<const Mesh>&& triangulated) {
+  std::shared_ptr<const Mesh> owner = std::move(triangulated);
+  return mesh_stage(config, inputs, spacing, nodes, run, owner.get(), &owner);
 }
 
 }  // namespace pdmesh

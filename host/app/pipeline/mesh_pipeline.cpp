@@ -10,6 +10,7 @@
 
 #include "app/pipeline/exit_codes.hpp"
 #include "app/pipeline/interrupt.hpp"
+#include "app/pipeline/mesh_handover.hpp"
 #include "app/pipeline/layer_pipeline.hpp"
 #include "app/pipeline/pipeline_detail.hpp"
 #include "app/pipeline/output_guard.hpp"
@@ -188,7 +189,7 @@ void simulate_and_mesh(const CaseConfig& config, const MeshInputs& inputs, const
       const Mesh mesh = mesh_layered_core(config, inputs, spacing, nodes, layered->layered, &phases, final_mesh.get());
       write_layered_outputs(layered->config, layered->inputs, layered->layered, inputs, mesh, phases);
     } else {
-      mesh_and_measure(config, inputs, spacing, nodes, &phases, final_mesh.get());
+      mesh_and_measure(config, inputs, spacing, nodes, &phases, std::move(final_mesh));
     }
     check_interrupt();  // a stop while the last pictures were abandoned
   });
