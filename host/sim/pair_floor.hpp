@@ -79,8 +79,10 @@ struct FloorResult {
   FloorTime memory;   // the same bytes streamed alone (read x, y, q; write two arrays)
   FloorTime binning;  // the counting sort of the nodes into the cells, one thread
   std::string isa;
-  // The floor: the faster of the two loops.
-  double seconds() const { return scalar.wall < vector.wall ? scalar.wall : vector.wall; }
+  // The floor: the faster of the two loops (its wall time, and that repeat's CPU time, which on a
+  // loaded machine is the figure to compare).
+  const FloorTime& best() const { return scalar.wall < vector.wall ? scalar : vector; }
+  double seconds() const { return best().wall; }
   double checks_per_core_second(const FloorTime& t) const;
 };
 

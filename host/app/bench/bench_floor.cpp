@@ -33,4 +33,14 @@ std::string floor_ratio_cell(const FloorResult* floor, double seconds_per_iterat
   return fmt::format("{:.2f}", seconds_per_iteration / floor->seconds());
 }
 
+std::string floor_cpu_ms_cell(const FloorResult* floor) {
+  if (floor == nullptr) return "-";
+  return fmt::format("{:.3f}", 1e3 * floor->best().cpu);
+}
+
+std::string floor_cpu_ratio_cell(const FloorResult* floor, double cpu_seconds_per_iteration) {
+  if (floor == nullptr || !(floor->best().cpu > 0.0)) return "-";
+  return fmt::format("{:.2f}", cpu_seconds_per_iteration / floor->best().cpu);
+}
+
 }  // namespace pdmesh

@@ -16,5 +16,9 @@ const FloorResult& bench_floor(std::size_t nodes, int repeat, double cutoff = 1.
 // to the floor (the faster loop); "-" and "-" without a floor.
 std::string floor_ms_cell(const FloorResult* floor);
 std::string floor_ratio_cell(const FloorResult* floor, double seconds_per_iteration);
+// The same for CPU time (every thread of the process): the faster loop's CPU ms per iteration, and the
+// ratio of `cpu_seconds_per_iteration` to it.
+std::string floor_cpu_ms_cell(const FloorResult* floor);
+std::string floor_cpu_ratio_cell(const FloorResult* floor, double cpu_seconds_per_iteration);
 
 }  // namespace pdmesh

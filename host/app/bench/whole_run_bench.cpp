@@ -113,20 +113,26 @@ double phase_wall(const RunRecord& r, const std::string& name) {
   return sum;
 }
 
-// The summary's simulation cells: ms per iteration (the median run's simulation phase over its
-// iterations), the pair-force floor at the run's final node count, and the ratio.
+// The summary's simulation cells: wall and CPU ms per iteration (the simulation phase's medians over
+// the iterations), the pair-force floor at the run's final node count (wall of both loops, CPU of the
+// faster), and the ratios of wall to wall and CPU to CPU.
 std::string simulation_cells(const std::vector<RunRecord>& runs, int floor_repeat) {
   const auto it = runs.front().notes.find("iterations");
   const auto nodes = runs.front().notes.find("nodes");
   if (it == runs.front().notes.end() || it->second < 1) return "- | - | -";
-  std::vector<double> sim;
-  for (const RunRecord& r : runs) sim.push_back(phase_wall(r, "simulation"));
-  const double per_iteration = spread(sim).median / it->second;
+  std::vector<double> sim, sim_cpu;
+  for (const RunRecord& r : runs) {
+    sim.push_back(phase_wall(r, "simulation"));
+    const auto cpu = r.phase_cpu.find("simulation");
+    sim_cpu.push_back(cpu == r.phase_cpu.end() ? 0.0 : cpu->second);
+  }
+  const double per_iteration = spread(sim).median / it->second, cpu_per_iteration = spread(sim_cpu).median / it->second;
   const FloorResult* floor = nullptr;
   if (floor_repeat > 0 && nodes != runs.front().notes.end() && nodes->second >= 2)
     floor = &bench_floor(static_cast<std::size_t>(nodes->second), floor_repeat);
-  return fmt::format("{:.3f} | {} | {}", 1e3 * per_iteration, floor_ms_cell(floor),
-                     floor_ratio_cell(floor, per_iteration));
+  return fmt::format("{:.3f} / {:.3f} | {}; CPU {} | {} / {}", 1e3 * per_iteration, 1e3 * cpu_per_iteration,
+                     floor_ms_cell(floor), floor_cpu_ms_cell(floor), floor_ratio_cell(floor, per_iteration),
+                     floor_cpu_ratio_cell(floor, cpu_per_iteration));
 }
 
 std::string case_table(const std::string& title, const std::vector<RunRecord>& runs) {
@@ -185,8 +191,9 @@ int run_whole_run_bench(const BenchArguments& args) {
   std::string tables;
   std::string summary =
       "| case | backend | nodes | triangles | iterations | wall s, min / median / max | CPU s, median | peak RSS MB, "
-      "median | load average before / after | simulation ms/iteration, median | pair-force floor ms/iteration at "
-      "the final nodes: scalar / vector | x floor |\n|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+      "median | load average before / after | simulation ms/iteration, median: wall / CPU | pair-force floor "
+      "ms/iteration at the final nodes: wall scalar / vector; CPU of the faster | x floor: wall / CPU "
+      "|\n|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   for (const std::string& name : args.cases) {
     const std::vector<std::string> inputs = whole_run_inputs(name, args.cases_dir, args.work_dir);
     for (const std::string& backend : args.backends) {
