@@ -261,4 +261,12 @@ TEST_CASE("bench reports the force loop and the commands per iteration", "[openc
   CHECK(table.find("launches / reads / writes / copies / waits") != std::string::npos);
   CHECK(table.find("(double, scalar loop)") != std::string::npos);
   CHECK(table.find(" it. in ") != std::string::npos);  // the iterations of at least one window were counted
+  // The pair-force floor at the case's node count: its line, and the row's ratio to it (the last cell).
+  CHECK(table.find("circle_circle: pair-force floor at ") != std::string::npos);
+  CHECK(table.find("| x floor |") != std::string::npos);
+  const std::size_t row = table.find("| circle_circle | opencl");
+  REQUIRE(row != std::string::npos);
+  const std::string line = table.substr(row, table.find('\n', row) - row);
+  const std::size_t last = line.rfind("| ", line.size() - 2);
+  CHECK(std::stod(line.substr(last + 2)) > 0.0);
 }

@@ -27,7 +27,7 @@ packages=(cmake g++ make pkg-config python3
           libfmt-dev libcli11-dev libtomlplusplus-dev libmuparser-dev libcairo2-dev zlib1g-dev
           nlohmann-json3-dev libshp-dev)
 [ -n "${PDMESH_NO_PYTHON:-}" ] || packages+=(python3-venv python3-dev)
-[ -z "$tests" ] || packages+=(catch2 libgmp-dev oclgrind hyperfine clang-format-14)
+[ -z "$tests" ] || packages+=(catch2 libgmp-dev oclgrind hyperfine clang-format-14 libbenchmark-dev)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

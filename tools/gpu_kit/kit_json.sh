@@ -44,7 +44,8 @@ json_tail() {
 # The rows of a `pdmesh bench` table (printed to the log as they finish), one JSON object per row,
 # joined by ",\n". Columns: case | backend | nodes | iterations | ms/iteration | node-iterations/s |
 # pair interactions/s | ns per node-iteration | pairs examined | device split | bytes/iteration |
-# commands per iteration | per rebuild | host RSS / device bytes per node | host/device time.
+# commands per iteration | per rebuild | host RSS / device bytes per node | host/device time, and in
+# tables with the pair-force floor: floor ms/iteration (scalar / vector) | x floor.
 bench_rows_json() {
   awk -F'|' '
     function q(s) { gsub(/^ +| +$/, "", s); gsub(/\\/, "\\\\", s); gsub(/"/, "\\\"", s); return "\"" s "\"" }
@@ -59,7 +60,9 @@ bench_rows_json() {
              n($9), q($10), q($11)
       printf "\"bytes_per_iteration\": %s, \"commands_per_iteration\": %s, \"commands_per_rebuild\": %s, ", \
              n($12), q($13), q($14)
-      printf "\"host_rss_and_device_bytes_per_node\": %s, \"host_over_device\": %s}", q($15), n($16)
+      printf "\"host_rss_and_device_bytes_per_node\": %s, \"host_over_device\": %s", q($15), n($16)
+      if (NF >= 19) printf ", \"floor_ms_scalar_vector\": %s, \"over_floor\": %s", q($17), n($18)
+      printf "}"
     }' "$1"
 }
 

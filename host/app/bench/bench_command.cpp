@@ -13,6 +13,7 @@
 
 #include "app/config/case_file.hpp"
 #include "app/config/case_spacing.hpp"
+#include "app/bench/bench_floor.hpp"
 #include "app/bench/graded_case.hpp"
 #include "app/pipeline/mesh_pipeline.hpp"
 #include "app/pipeline/run_phases.hpp"
@@ -123,8 +124,9 @@ struct Row {
   std::optional<ocl::DeviceRunStats> device;
   IterationCommands commands;
   std::size_t peak_rss = 0;
-  double host_ms = 0.0;  // the host reference's ms/iteration in the same run (for the ratio)
-  SimStats stats;        // population events
+  double host_ms = 0.0;                // the host reference's ms/iteration in the same run (for the ratio)
+  SimStats stats;                      // population events
+  const FloorResult* floor = nullptr;  // the pair-force floor at the case's node count (none: nullptr)
 };
 
 std::string format_row(const Row& r) {
@@ -165,10 +167,11 @@ std::string format_row(const Row& r) {
   }
   const std::string ratio = r.device && r.host_ms > 0.0 ? fmt::format("{:.2f}", r.host_ms / (1e3 * per_it)) : "-";
   return fmt::format(
-      "| {} | {} | {} | {} | {:.3f} | {:.3g} | {:.3g} | {:.0f} | {} | {} | {} | {} | {} | {} | {} |\n", r.case_name,
-      r.backend, r.nodes, r.iterations, 1e3 * per_it, node_its, pairs, 1e9 * per_it / static_cast<double>(r.nodes),
-      examined, split, traffic, steady, rebuild,
-      fmt::format("{:.0f} / {}", static_cast<double>(r.peak_rss) / static_cast<double>(r.nodes), device_mem), ratio);
+      "| {} | {} | {} | {} | {:.3f} | {:.3g} | {:.3g} | {:.0f} | {} | {} | {} | {} | {} | {} | {} | {} | {} |\n",
+      r.case_name, r.backend, r.nodes, r.iterations, 1e3 * per_it, node_its, pairs,
+      1e9 * per_it / static_cast<double>(r.nodes), examined, split, traffic, steady, rebuild,
+      fmt::format("{:.0f} / {}", static_cast<double>(r.peak_rss) / static_cast<double>(r.nodes), device_mem), ratio,
+      floor_ms_cell(r.floor), floor_ratio_cell(r.floor, per_it));
 }
 
 // InputError naming the first argument out of range.
@@ -182,6 +185,8 @@ void check_arguments(const BenchArguments& args) {
     throw InputError(fmt::format("bench: --skin must be in [0, 4], got {}", args.verlet_skin));
   if (args.population_every < 0)
     throw InputError(fmt::format("bench: --population must be >= 0, got {}", args.population_every));
+  if (args.floor_repeat < 0)
+    throw InputError(fmt::format("bench: --floor-repeat must be >= 0, got {}", args.floor_repeat));
   if (args.precision != "double" && args.precision != "float")
     throw InputError(fmt::format("bench: --precision must be double or float, got '{}'", args.precision));
 }
@@ -275,8 +280,10 @@ int run_bench(const BenchArguments& args) {
       "| case | backend | nodes | iterations | ms/iteration | node-iterations/s | pair interactions/s | ns per "
       "node-iteration | pairs examined per pair | device split, ms/iteration | bytes/iteration | commands per "
       "iteration, rebuilds left out: launches / reads / writes / copies / waits | the same per rebuild "
-      "| peak host RSS / device bytes per node | host/device time |\n"
-      "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+      "| peak host RSS / device bytes per node | host/device time | pair-force floor, ms/iteration: scalar / vector "
+      "| x floor |\n"
+      "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+  std::string floors;
   fmt::print("{}", table);
   for (const std::string& name : args.cases) {
     const bool large = name == "graded_1m";
@@ -296,12 +303,10 @@ int run_bench(const BenchArguments& args) {
       options.population.stop = 1.0;
     }
     double host_ms = 0.0;
-    auto emit = [&](const Row& row) {
-      const std::string line = format_row(row);
-      fmt::print("{}", line);
-      std::fflush(stdout);
-      table += line;
-    };
+    // A case's rows are printed after its floor is measured, which comes after its runs, so that the
+    // floor's arrays do not count in the runs' peak memory.
+    std::vector<Row> rows;
+    auto emit = [&](const Row& row) { rows.push_back(row); };
     if (!args.skip_host && !(large && args.skip_host_large)) {
       NodeSet nodes = c->initial;
       const SimResult r = run_simulation(nodes, *c->tree, *c->spacing, options);
@@ -322,6 +327,23 @@ int run_bench(const BenchArguments& args) {
     }
     for (const ocl::DeviceInfo& info : devices)
       emit(device_row(*c, info, options, precision_on(info), loop, suffix, host_ms));
+    const FloorResult* floor = nullptr;
+    if (args.floor_repeat > 0 && !rows.empty()) {
+      floor = &bench_floor(rows.front().nodes, args.floor_repeat, options.cutoff, options.lj_a);
+      floors += fmt::format("- {}: {}\n", c->name, format_floor(*floor));
+    }
+    for (Row& row : rows) {
+      row.floor = floor;
+      const std::string line = format_row(row);
+      fmt::print("{}", line);
+      std::fflush(stdout);
+      table += line;
+    }
+  }
+  if (!floors.empty()) {
+    floors = "\nThe pair-force floor (sim/pair_floor.hpp) at each case's node count:\n\n" + floors;
+    fmt::print("{}", floors);
+    table += floors;
   }
   if (!args.out.empty()) write_file_atomically(args.out, table);
   return 0;

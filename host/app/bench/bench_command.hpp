@@ -32,6 +32,9 @@ struct BenchArguments {
   // > 0: population control during the timed iterations, an event every this many iterations (the
   // first after as many, none skipped for settling), so that the cost of events and re-uploads shows.
   int population_every = 0;
+  // Repetitions of the pair-force floor (sim/pair_floor.hpp) measured at each case's node count, whose
+  // best gives each row's ratio to the floor; 0: no floor.
+  int floor_repeat = 5;
   // --whole-run: the `mesh` command end to end instead (app/bench/whole_run_bench.hpp).
   bool whole_run = false;
   int repeat = 3;                                // runs per case and backend

@@ -16,6 +16,7 @@
 #include <fmt/format.h>
 
 #include "app/bench/annulus_case.hpp"
+#include "app/bench/bench_floor.hpp"
 #include "app/config/case_file.hpp"
 #include "core/atomic_file.hpp"
 #include "core/errors.hpp"
@@ -104,6 +105,36 @@ Spread spread(std::vector<double> v) {
 }
 std::string seconds(const Spread& s) { return fmt::format("{:.3f} / {:.3f} / {:.3f}", s.min, s.median, s.max); }
 
+// A phase's wall time in a run (its entries summed; 0 when absent).
+double phase_wall(const RunRecord& r, const std::string& name) {
+  double sum = 0.0;
+  for (const auto& [n, w] : r.phases)
+    if (n == name) sum += w;
+  return sum;
+}
+
+// The summary's simulation cells: wall and CPU ms per iteration (the simulation phase's medians over
+// the iterations), the pair-force floor at the run's final node count (wall of both loops, CPU of the
+// faster), and the ratios of wall to wall and CPU to CPU.
+std::string simulation_cells(const std::vector<RunRecord>& runs, int floor_repeat) {
+  const auto it = runs.front().notes.find("iterations");
+  const auto nodes = runs.front().notes.find("nodes");
+  if (it == runs.front().notes.end() || it->second < 1) return "- | - | -";
+  std::vector<double> sim, sim_cpu;
+  for (const RunRecord& r : runs) {
+    sim.push_back(phase_wall(r, "simulation"));
+    const auto cpu = r.phase_cpu.find("simulation");
+    sim_cpu.push_back(cpu == r.phase_cpu.end() ? 0.0 : cpu->second);
+  }
+  const double per_iteration = spread(sim).median / it->second, cpu_per_iteration = spread(sim_cpu).median / it->second;
+  const FloorResult* floor = nullptr;
+  if (floor_repeat > 0 && nodes != runs.front().notes.end() && nodes->second >= 2)
+    floor = &bench_floor(static_cast<std::size_t>(nodes->second), floor_repeat);
+  return fmt::format("{:.3f} / {:.3f} | {}; CPU {} | {} / {}", 1e3 * per_iteration, 1e3 * cpu_per_iteration,
+                     floor_ms_cell(floor), floor_cpu_ms_cell(floor), floor_ratio_cell(floor, per_iteration),
+                     floor_cpu_ratio_cell(floor, cpu_per_iteration));
+}
+
 std::string case_table(const std::string& title, const std::vector<RunRecord>& runs) {
   std::string out = fmt::format(
       "\n#### {}\n\n| phase | wall s, min / median / max | CPU s (process, all threads), median |\n|---|---|---|\n",
@@ -112,12 +143,7 @@ std::string case_table(const std::string& title, const std::vector<RunRecord>& r
   for (const auto& [name, unused] : runs.front().phases) {
     (void)unused;
     std::vector<double> v;
-    for (const RunRecord& r : runs) {
-      double sum = 0.0;
-      for (const auto& [n, w] : r.phases)
-        if (n == name) sum += w;
-      v.push_back(sum);
-    }
+    for (const RunRecord& r : runs) v.push_back(phase_wall(r, name));
     std::vector<double> c;
     for (const RunRecord& r : runs) {
       const auto it = r.phase_cpu.find(name);
@@ -165,7 +191,9 @@ int run_whole_run_bench(const BenchArguments& args) {
   std::string tables;
   std::string summary =
       "| case | backend | nodes | triangles | iterations | wall s, min / median / max | CPU s, median | peak RSS MB, "
-      "median | load average before / after |\n|---|---|---|---|---|---|---|---|---|\n";
+      "median | load average before / after | simulation ms/iteration, median: wall / CPU | pair-force floor "
+      "ms/iteration at the final nodes: wall scalar / vector; CPU of the faster | x floor: wall / CPU "
+      "|\n|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   for (const std::string& name : args.cases) {
     const std::vector<std::string> inputs = whole_run_inputs(name, args.cases_dir, args.work_dir);
     for (const std::string& backend : args.backends) {
@@ -200,9 +228,10 @@ int run_whole_run_bench(const BenchArguments& args) {
       const auto conv = first.notes.find("converged");
       const std::string iterations =
           note("iterations") + (conv != first.notes.end() && conv->second > 0 ? " (converged)" : "");
-      summary += fmt::format("| {} | {} | {} | {} | {} | {} | {:.3f} | {:.0f} | {:.1f} / {:.1f} |\n", name, backend,
-                             note("nodes"), note("triangles"), iterations, seconds(spread(walls)), spread(cpus).median,
-                             spread(rss).median, runs.front().load_before, runs.back().load_after);
+      summary += fmt::format("| {} | {} | {} | {} | {} | {} | {:.3f} | {:.0f} | {:.1f} / {:.1f} | {} |\n", name,
+                             backend, note("nodes"), note("triangles"), iterations, seconds(spread(walls)),
+                             spread(cpus).median, spread(rss).median, runs.front().load_before, runs.back().load_after,
+                             simulation_cells(runs, args.floor_repeat));
       tables += case_table(fmt::format("{} on {} ({} nodes, {} iterations, {} runs)", name, backend, note("nodes"),
                                        iterations, runs.size()),
                            runs);

@@ -421,6 +421,11 @@ void add_bench_options(CLI::App& bench, BenchArguments& a) {
       .add_option("--population", a.population_every,
                   "Population control during the timed iterations: an event every K iterations (0 = off)")
       ->type_name("K");
+  bench
+      .add_option("--floor-repeat", a.floor_repeat,
+                  "Repetitions of the pair-force floor measured at each case's node count (the table's ratio to "
+                  "it; 0 = none)")
+      ->type_name("N");
   bench.add_flag("--skip-host", a.skip_host, "Do not run the host reference");
   bench.add_flag("--skip-host-large", a.skip_host_large, "Do not run the host reference on graded_1m");
   bench.add_option("--force-loop", a.force_loop, "Force loop of the device runs: auto | vector | scalar")
