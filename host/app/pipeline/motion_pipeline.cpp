@@ -439,6 +439,8 @@ void run_motion_steps(const CaseConfig& config, const std::function<void(const M
     Mesh mesh = mesh_step(config, *now, field, nodes, rec);
     number_new_nodes(nodes, next_id);
     field.at_many(mesh.points, mesh.spacing);
+    // The mesh's q as asked, as SpacingStage::asked() gives it (the nodes relax at relax_scale x it).
+    for (double& v : mesh.spacing) v *= 1.0 / rest_spacing->relax_scale();
     PointValues ids{"node_id", 1, {}, true};
     ids.values.assign(nodes.id.begin(), nodes.id.end());
     mesh.point_data.push_back(std::move(ids));
