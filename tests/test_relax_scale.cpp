@@ -67,11 +67,12 @@ TEST_CASE("relax_scale: the nodes follow relax_scale x the field, asked() is the
   CHECK(spacing_options(metric).scale == 1.0);
 }
 
-TEST_CASE("relax_scale: best's mean edge is q, where relax_scale 1 packs edges at about 0.91 q", "[app][spacing][cli]") {
+TEST_CASE("relax_scale: best's mean edge is q, where relax_scale 1 packs edges at about 0.91 q",
+          "[app][spacing][cli]") {
   const fs::path dir = fresh_dir("relax_scale");
   const auto mesh = [&](const std::string& name, const std::string& sets) {
-    const auto r = run_pdmesh("mesh '" + kCircles.string() + "' --out '" + (dir / name).string() +
-                              "' --formats msh -q " + sets);
+    const auto r =
+        run_pdmesh("mesh '" + kCircles.string() + "' --out '" + (dir / name).string() + "' --formats msh -q " + sets);
     REQUIRE(r.status == 0);
     return dir / name / "quality.json";
   };
