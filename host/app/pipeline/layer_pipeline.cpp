@@ -169,7 +169,10 @@ std::unique_ptr<LayeredCase> build_layers(const CaseConfig& config, const MeshIn
         const auto e = front_edge.find(ray.nodes.back());
         if (e != front_edge.end()) q = std::min(q, e->second);
         q = std::max(q, kFrontEdgeShare * longest[top]);
-        sources.push_back({s.mesh.nodes[top], q});
+        // A node spacing at the front for the relaxation, which runs at relax_scale x the core's
+        // field: divided by it, the core's first rows relax at q as they did at relax_scale 1 (the
+        // junction's limits were measured so).
+        sources.push_back({s.mesh.nodes[top], q / spacing.relax_scale()});
       }
     curves = front_curves(*geometry, s.walls, s.mesh);
     geometry = std::make_shared<const Geometry>(build_geometry(curves, options));
