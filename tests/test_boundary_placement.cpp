@@ -285,12 +285,13 @@ TEST_CASE("pdmesh mesh: smooth curves with spacing nodes pass --check, and cross
   CHECK_THAT(r.output, Catch::Contains("smooth curves (centripetal Catmull-Rom) as a dense polyline"));
   CHECK_THAT(r.output, Catch::Contains("mesh check (triangulation): passed"));
   CHECK_THAT(r.output, Catch::Contains("mesh check (cleaned mesh): passed"));
-  // The best preset placed the boundary nodes by the field: about 2 pi / 0.1 on the circle and
-  // 4 / 0.1 a side on the box, where the input gives 16 + 4.
+  // The best preset placed the boundary nodes by the field it relaxes at (spacing.relax_scale 1.09 x
+  // 0.1): about 2 pi / 0.109 = 58 on the circle and 4 / 0.109 = 37 a side on the box, where the input
+  // gives 16 + 4.
   const NodeFile initial = read_node_file(dir / "out" / "initial.nodes");
   const std::size_t on_boundary = initial.nodes.count(NodeKind::Boundary) + initial.nodes.count(NodeKind::Fixed);
-  CHECK(on_boundary >= 63 + 160 - 4);
-  CHECK(on_boundary <= 63 + 160 + 4);
+  CHECK(on_boundary >= 58 + 148 - 4);
+  CHECK(on_boundary <= 58 + 148 + 4);
 
   // Two coarse curves whose smooth versions cross (test_smooth_curve.cpp): a note, then polylines.
   const RawCurve hole16 = fixtures::circle_curve(1.0, 16, std::numbers::pi / 16, "hole");

@@ -325,6 +325,7 @@ TEST_CASE("the best preset is long with momentum, a compressed schedule and rule
     CHECK(c->simulation.stop_min == 300);
     CHECK(c->cleanup.min_angle == 40.0);
     CHECK(c->cleanup.iterations == 32);
+    CHECK(c->spacing.relax_scale == 1.09);
   }
   for (const CaseConfig* c : {&long_, &thesis, &initializers}) {
     CHECK(c->simulation.momentum == 0.0);
@@ -338,6 +339,7 @@ TEST_CASE("the best preset is long with momentum, a compressed schedule and rule
     CHECK(c->simulation.stop_min == 400);
     CHECK(c->cleanup.min_angle == 30.0);
     CHECK(c->cleanup.iterations == 16);
+    CHECK(c->spacing.relax_scale == 1.0);
   }
   // Applying one preset after another leaves nothing of the first behind.
   CaseConfig by_hand = best;
@@ -345,6 +347,7 @@ TEST_CASE("the best preset is long with momentum, a compressed schedule and rule
   CHECK(by_hand.simulation.momentum == 0.0);
   CHECK(by_hand.simulation.stop_every == 100);
   CHECK(by_hand.cleanup.min_angle == 30.0);
+  CHECK(by_hand.spacing.relax_scale == 1.0);
   apply_preset(by_hand, Preset::Best);
   CHECK(by_hand.simulation.momentum == 0.9);
   // A key the file sets wins over the preset, and --set selects it.
@@ -554,15 +557,20 @@ TEST_CASE("spacing pipeline keys: best and thesis defaults, values and ranges", 
   // Keys the file sets win over the preset.
   const CaseConfig set = parse_case_text(std::string("preset = \"thesis\"\n") + kMinimal +
                                              "[spacing]\nscale = 0.5\ngradation = 0.3\nrows_in_gap = 3\n"
-                                             "curvature_angle = 12.5\n[output]\nspacing_picture = true\n",
+                                             "curvature_angle = 12.5\nrelax_scale = 1.25\n[output]\n"
+                                             "spacing_picture = true\n",
                                          kCase);
   CHECK(set.spacing.scale == 0.5);
+  CHECK(set.spacing.relax_scale == 1.25);
+  CHECK(parse_case_text(kMinimal, kCase, {parse_set_option("spacing.relax_scale=1")}).spacing.relax_scale == 1.0);
   CHECK(set.spacing.gradation == 0.3);
   CHECK(set.spacing.rows_in_gap == 3.0);
   CHECK(set.spacing.curvature_angle == 12.5);
   CHECK(set.output.spacing_picture);
   const std::string base = std::string(kMinimal) + "[spacing]\n";
   CHECK_THAT(error_of(base + "scale = 0\n"), Catch::Contains(":4:9: spacing.scale must be > 0, got 0"));
+  CHECK_THAT(error_of(base + "relax_scale = 2.5\n"),
+             Catch::Contains(":4:15: spacing.relax_scale must be in [0.5, 2], got 2.5"));
   CHECK_THAT(error_of(base + "gradation = -0.1\n"),
              Catch::Contains("spacing.gradation must be in [0, 10] (0 = off), got -0.1"));
   CHECK_THAT(error_of(base + "rows_in_gap = 0.5\n"),

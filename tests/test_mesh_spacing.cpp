@@ -448,12 +448,13 @@ TEST_CASE("pdmesh mesh runs with a background-mesh field and writes it back as p
   INFO(r.output);
   REQUIRE(r.status == 0);
   CHECK(r.output.find("spacing: 'q' on ") != std::string::npos);
-  // The output's point data q is the run's final field at the nodes: the background data through the
-  // spacing pipeline (its floor lifts q toward the 0.1 segments next to the boundary).
+  // The output's point data q is the run's final field at the nodes, as asked: the background data
+  // through the spacing pipeline (its floor lifts q toward the 0.1 segments next to the boundary),
+  // not the relax_scale x it the nodes relaxed at.
   const CaseConfig config = load_case_file(dir / "case.toml");
   const MeshInputs inputs(config);
   const SpacingStage spacing(config, inputs, SpacingStage::Build::FieldOnly);
-  const SpacingField& field = spacing.field();
+  const SpacingField& field = spacing.asked();
   const auto written = load_mesh_spacing(out / "mesh.vtu", "q");
   const MeshFieldData& w = written->data();
   REQUIRE(w.points.size() > 100);  // about 154 by hexagonal packing

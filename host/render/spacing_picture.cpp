@@ -76,7 +76,7 @@ void write_spacing_picture(const std::filesystem::path& path, const GeometryTree
                          w.hi.y - (y0 + static_cast<double>(row) + 0.5 - p0.y) / scale};
             const int tag = field.tag_at(p);
             if (tag == kTagOutside || (tag == kTagBoundary && !tree.inside(p))) continue;
-            q[row * static_cast<std::size_t>(nx) + static_cast<std::size_t>(col)] = field.at(p);
+            q[row * static_cast<std::size_t>(nx) + static_cast<std::size_t>(col)] = options.value_scale * field.at(p);
           }
         },
         16);

@@ -14,6 +14,9 @@ struct SpacingPictureOptions {
   std::string title;          // e.g. "30p30n - spacing field"
   std::optional<Box> window;  // default: the geometry's extents + 3%
   int long_side = 1600;
+  // The picture shows value_scale x the field (the field as asked where the nodes relax at a multiple
+  // of it, SpacingStage::asked()).
+  double value_scale = 1.0;
 };
 
 // Samples `field` at every pixel centre inside the domain (outside is white), colours log q with the

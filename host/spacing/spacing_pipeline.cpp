@@ -10,6 +10,7 @@
 #include "core/errors.hpp"
 #include "spacing/background_builder.hpp"
 #include "spacing/limited_field.hpp"
+#include "spacing/scaled_spacing.hpp"
 
 namespace pdmesh {
 
@@ -18,26 +19,6 @@ namespace {
 using Clock = std::chrono::steady_clock;
 
 double seconds_since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
-
-// base x scale, evaluated through the base's own at_many so that batches stay batches.
-class ScaledSpacing final : public SpacingField {
- public:
-  ScaledSpacing(const SpacingField& base, double scale) : base_(base), scale_(scale) {}
-  double at(Vec2 p) const override { return scale_ * base_.at(p); }
-  void at_many(const std::vector<Vec2>& p, std::vector<double>& q) const override {
-    base_.at_many(p, q);
-    for (double& v : q) v *= scale_;
-  }
-  void at_many_closest(const std::vector<Vec2>& p, std::vector<double>& q, std::vector<int>& closest,
-                       const Geometry& geometry) const override {
-    base_.at_many_closest(p, q, closest, geometry);
-    for (double& v : q) v *= scale_;
-  }
-
- private:
-  const SpacingField& base_;
-  double scale_;
-};
 
 }  // namespace
 

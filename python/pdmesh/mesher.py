@@ -213,7 +213,13 @@ class Mesher:
         # A run whose stopping rule (simulation.stop = "converged") has ended it before `target`
         # stays where it is: no further step would move it.
         while self.iteration < target and not self.converged:
-            yield self._run_to(min(target, self.iteration + every), progress)
+            before = self.iteration
+            state = self._run_to(min(target, self.iteration + every), progress)
+            # The stopping rule may end the run where it stands (a run that converged exactly at the
+            # last step's end): that state was yielded already.
+            if self.iteration == before:
+                return
+            yield state
 
     def _run_to(self, target: int, progress: Any) -> State:
         report, bar = _progress.callback(progress)

@@ -51,7 +51,7 @@ std::string quality_json_of(const MeshHandle& h) {
   const Mesh& mesh = h.layers ? h.layers->core : *h.mesh;
   if (!h.session) return quality_json(summarize_quality(mesh), h.name);
   std::lock_guard lock(h.session->mutex);
-  const SpacingField& spacing = h.session->spacing->field();
+  const SpacingField& spacing = h.session->spacing->asked();
   return quality_json(summarize_quality(mesh, [&spacing](Vec2 p) { return spacing.at(p); }), h.name);
 }
 

@@ -39,7 +39,11 @@ def test_callable_is_called_once_per_sampling_pass(rings):
 def test_callable_shapes_the_mesh(rings):
     fine = pdmesh.generate(rings, size=lambda xy: np.full(len(xy), 0.05), device="host", iterations=30)
     coarse = pdmesh.generate(rings, size=0.1, device="host", iterations=30)
-    assert len(fine.points) > 3 * len(coarse.points)
+    # Four times the density at most; after 30 iterations (before population control's first event)
+    # the counts are the structured fill's 1/4/5/9-node patterns at 1.09 x each size (the best
+    # preset's spacing.relax_scale), whose steps lose more of the fine run: measured 1249 / 435 = 2.87
+    # (1904 / 540 = 3.53 at relax_scale 1).
+    assert len(fine.points) > 2.5 * len(coarse.points)
     edges = fine.points[fine.triangles[:, [0, 1]]]
     length = np.hypot(*(edges[:, 1] - edges[:, 0]).T)
     assert 0.035 < np.median(length) < 0.065

@@ -82,7 +82,7 @@ int run_quality(const std::string& mesh_path, const std::optional<std::string>& 
   SpacingCallback q;
   if (geometry_path) {
     spacing = load_spacing(*geometry_path);
-    const SpacingField* field = &spacing.spacing->field();
+    const SpacingField* field = &spacing.spacing->asked();
     q = [field](Vec2 p) { return field->at(p); };
   }
   QualitySummary summary = summarize_quality(mesh, q);

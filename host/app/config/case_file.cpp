@@ -233,6 +233,7 @@ const std::vector<std::string>& spacing_keys() {
       "spacing.file",
       "spacing.array",
       "spacing.scale",
+      "spacing.relax_scale",
       "spacing.gradation",
       "spacing.rows_in_gap",
       "spacing.curvature_angle",

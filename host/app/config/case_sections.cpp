@@ -140,6 +140,13 @@ void read_spacing_section(const Reader& r, const toml::table& root, CaseConfig& 
     r.fail("spacing.array", array, fmt::format("spacing.array is set but spacing.field is '{}'", name));
   }
   if (const toml::node* n = find(root, "spacing", "scale")) c.spacing.scale = r.positive("spacing.scale", *n);
+  if (const toml::node* n = find(root, "spacing", "relax_scale")) {
+    c.spacing.relax_scale = r.number("spacing.relax_scale", *n);
+    // Beyond these the lattice would no longer be near the field at all.
+    if (!(c.spacing.relax_scale >= 0.5 && c.spacing.relax_scale <= 2.0))
+      r.fail("spacing.relax_scale", n,
+             fmt::format("spacing.relax_scale must be in [0.5, 2], got {}", c.spacing.relax_scale));
+  }
   if (const toml::node* n = find(root, "spacing", "gradation")) {
     c.spacing.gradation = r.number("spacing.gradation", *n);
     if (!(c.spacing.gradation >= 0.0 && c.spacing.gradation <= 10.0))

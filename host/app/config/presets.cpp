@@ -22,6 +22,9 @@ const char* to_string(Preset preset) {
 
 namespace {
 
+// The best preset's spacing.relax_scale: measured, see apply_momentum_schedule.
+constexpr double kBestRelaxScale = 1.09;
+
 // Best (and fast) = long plus these: over the 16 runs of the stopping study (tools/studies/stop_study) it
 // stops after 500-750 iterations instead of 1300-2000 with a lower mean aspect ratio everywhere, and
 // with the cleanup's compound trials its smallest angle is within 0.5 degrees of long's or better on
@@ -56,6 +59,9 @@ void apply_momentum_schedule(CaseConfig& c) {
   // (docs/journal/).
   c.cleanup.trials_per_triangle = 0.2;
   c.cleanup.min_trials = 2000;
+  // Relaxed at kBestRelaxScale x q, the lattice's edges come out at q (mean edge/q 0.91 at 1; docs/spacing.md,
+  // "The node count").
+  c.spacing.relax_scale = kBestRelaxScale;
 }
 
 // The long preset's values of the keys apply_momentum_schedule sets: CaseConfig's initializers. So
@@ -75,6 +81,7 @@ void apply_long_schedule(CaseConfig& c) {
   c.cleanup.iterations = long_values.cleanup.iterations;
   c.cleanup.trials_per_triangle = long_values.cleanup.trials_per_triangle;
   c.cleanup.min_trials = long_values.cleanup.min_trials;
+  c.spacing.relax_scale = long_values.spacing.relax_scale;
 }
 
 }  // namespace

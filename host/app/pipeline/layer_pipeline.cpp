@@ -115,7 +115,9 @@ std::unique_ptr<LayeredCase> build_layers(const CaseConfig& config, const MeshIn
     throw InputError(fmt::format("{}: --resume is not supported with [[boundary_layer]]", config.source.string()));
   check_formats(config);
   auto out = std::make_unique<LayeredCase>();
-  const SpacingField& field = spacing.field();
+  // The field as asked: the core relaxes at spacing.relax_scale x its own field (FrontSpacing below)
+  // as any case does, so that its edges at the fronts come out at the sources' q.
+  const SpacingField& field = spacing.asked();
   // The layers stop where the case's spacing is below growth x their layer height / 1.5: the core's
   // field is lowered to growth x the last layer at the fronts anyway, and a core up to 1.5 times
   // finer than the front's spacing still meshes well on it, so a slightly finer case field (a
@@ -167,7 +169,10 @@ std::unique_ptr<LayeredCase> build_layers(const CaseConfig& config, const MeshIn
         const auto e = front_edge.find(ray.nodes.back());
         if (e != front_edge.end()) q = std::min(q, e->second);
         q = std::max(q, kFrontEdgeShare * longest[top]);
-        sources.push_back({s.mesh.nodes[top], q});
+        // A node spacing at the front for the relaxation, which runs at relax_scale x the core's
+        // field: divided by it, the core's first rows relax at q as they did at relax_scale 1 (the
+        // junction's limits were measured so).
+        sources.push_back({s.mesh.nodes[top], q / spacing.relax_scale()});
       }
     curves = front_curves(*geometry, s.walls, s.mesh);
     geometry = std::make_shared<const Geometry>(build_geometry(curves, options));
@@ -185,7 +190,8 @@ std::unique_ptr<LayeredCase> build_layers(const CaseConfig& config, const MeshIn
   // The fronts are in the meshing plane already (geometry.projection); the caller hands the core
   // the case's projection for its outputs.
   core.geometry.projection = ProjectionKind::None;
-  // The case's final field (already scaled) is the core's base field, lowered at the fronts.
+  // The case's final field as asked (already scaled by spacing.scale) is the core's base field, lowered
+  // at the fronts; the core keeps the case's relax_scale.
   const double gradation = config.spacing.gradation > 0.0 ? config.spacing.gradation : 0.2;
   core.spacing.given = std::make_shared<FrontSpacing>(field, std::move(sources), gradation);
   core.spacing.scale = 1.0;

@@ -24,6 +24,7 @@
 #include "spacing/mesh_spacing.hpp"
 #include "spacing/spacing_field.hpp"
 #include "spacing/refine_regions.hpp"
+#include "spacing/scaled_spacing.hpp"
 #include "spacing/resolution_check.hpp"
 
 namespace pdmesh {
@@ -207,9 +208,16 @@ BoundaryPlacement place_boundary(const CaseConfig& config, const MeshInputs& inp
   return placed;
 }
 
+double relax_scale(const CaseConfig& config) {
+  // A metric run relaxes in the metric (sigma = 1 there), which this scale does not reach: its
+  // isotropic size stays as asked.
+  return config.spacing.metric() ? 1.0 : config.spacing.relax_scale;
+}
+
 SpacingOptions spacing_options(const CaseConfig& config) {
   SpacingOptions o;
-  o.scale = config.spacing.scale;
+  // The field the nodes follow; SpacingStage::asked() divides relax_scale out again for the reports.
+  o.scale = config.spacing.scale * relax_scale(config);
   o.gradation = config.spacing.gradation;
   o.rows_in_gap = config.spacing.rows_in_gap;
   o.curvature_angle = config.spacing.curvature_angle;
@@ -270,6 +278,8 @@ SpacingStage::SpacingStage(const CaseConfig& config, const MeshInputs& inputs, B
   }
   // The sources lower q: the final field must be resolvable too.
   if (!pipeline_->exact()) check_coordinate_resolution(inputs.geometry, pipeline_->field());
+  relax_scale_ = pdmesh::relax_scale(config);
+  if (relax_scale_ != 1.0) asked_ = std::make_unique<ScaledSpacing>(pipeline_->field(), 1.0 / relax_scale_);
   if (build == Build::Meshing) (void)background();
 }
 

@@ -24,8 +24,11 @@
 
 namespace pdmesh {
 
+// spacing.relax_scale where it applies (an isotropic run), else 1.
+double relax_scale(const CaseConfig& config);
 // The case's spacing keys as pipeline options (boundary nodes are the input points: the sources
-// keep to kInputBoundaryFloor of the input segments next to them, docs/spacing.md).
+// keep to kInputBoundaryFloor of the input segments next to them, docs/spacing.md); the scale is
+// spacing.scale x relax_scale(config).
 SpacingOptions spacing_options(const CaseConfig& config);
 
 // Stage read: the geometry, its tree and the base spacing field; throws LimitError for coordinates
@@ -90,6 +93,11 @@ class SpacingStage {
 
   const SpacingPipeline& pipeline() const { return *pipeline_; }
   const SpacingField& field() const { return pipeline_->field(); }
+  // The field as the case asks for it: field() / spacing.relax_scale (field() itself where that is 1),
+  // which the quality's spacing conformance, the mesh's point data q and spacing.png report.
+  const SpacingField& asked() const { return asked_ ? *asked_ : field(); }
+  // What field() is of asked(): spacing.relax_scale.
+  double relax_scale() const { return relax_scale_; }
   // The metric field of a metric run (MeshInputs::metric), null for an isotropic one. The nodes are
   // placed by field(), its isotropic size; the triangulation and the measures use the metric.
   const MetricField* metric() const { return metric_; }
@@ -100,6 +108,8 @@ class SpacingStage {
   std::string source_;     // the case file, for messages
   std::string node_hint_;  // MeshInputs::node_hint
   std::unique_ptr<SpacingPipeline> pipeline_;
+  double relax_scale_ = 1.0;
+  std::unique_ptr<SpacingField> asked_;  // field() / relax_scale_, when that is not 1
   const MetricField* metric_ = nullptr;
 };
 

@@ -120,6 +120,7 @@ void write_spacing_picture(const CaseConfig& config, const MeshInputs& inputs, c
   const BackgroundSpacing& field = spacing.background();
   SpacingPictureOptions picture;
   picture.title = fmt::format("{} - spacing field", config.name);
+  picture.value_scale = 1.0 / spacing.relax_scale();
   write_spacing_picture(config.out_dir / "spacing.png", *inputs.tree, field, picture);
   for (const ViewWindow& view : config.output.views) {
     SpacingPictureOptions zoomed = picture;
@@ -449,7 +450,8 @@ Mesh mesh_stage(const CaseConfig& config, const MeshInputs& inputs, const Spacin
   if (cleanup && metric != nullptr)
     cleaned = clean_up_in_metric(config, inputs, spacing, *metric, mesh, nodes, metrics, phases);
   const NodeSet& mesh_nodes = cleanup ? cleaned.nodes : nodes;
-  const SpacingField& field = spacing.field();
+  // The field as asked, not the one the nodes relaxed at (spacing.relax_scale x it).
+  const SpacingField& field = spacing.asked();
   // The field at every node goes into the mesh files (point data "q"): a run's field can be read back
   // with spacing.field = "mesh", or edited (e.g. scaled by a solution's error indicator) first.
   {

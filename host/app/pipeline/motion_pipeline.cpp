@@ -480,6 +480,8 @@ void run_motion_steps(const CaseConfig& config, const std::function<void(const M
     Mesh mesh = layers ? layers->mesh_core(nodes, config.cleanup.enabled, remesh) : remesh(nodes);
     number_new_nodes(nodes, next_id);
     field.at_many(mesh.points, mesh.spacing);
+    // The mesh's q as asked, as SpacingStage::asked() gives it (the nodes relax at relax_scale x it).
+    for (double& v : mesh.spacing) v *= 1.0 / rest_spacing->relax_scale();
     PointValues ids{"node_id", 1, {}, true};
     ids.values.assign(nodes.id.begin(), nodes.id.end());
     mesh.point_data.push_back(std::move(ids));

@@ -122,6 +122,10 @@ void add_region_identity(const CaseConfig& config, Identity& keys) {
 void add_spacing_pipeline_identity(const CaseConfig& config, Identity& keys) {
   // The pipeline's keys change the field the run follows.
   keys.emplace_back("spacing.scale", fmt::format("{}", config.spacing.scale));
+  // Only when not 1 (the thesis' and long's value), so that checkpoints written before the key existed
+  // identify the same way.
+  if (config.spacing.relax_scale != 1.0)
+    keys.emplace_back("spacing.relax_scale", fmt::format("{}", config.spacing.relax_scale));
   keys.emplace_back("spacing.gradation", fmt::format("{}", config.spacing.gradation));
   keys.emplace_back("spacing.rows_in_gap", fmt::format("{}", config.spacing.rows_in_gap));
   keys.emplace_back("spacing.curvature_angle", fmt::format("{}", config.spacing.curvature_angle));

@@ -18,11 +18,10 @@ namespace pdmesh {
 // kSmoothMeshScale), or the case's own field.
 enum class SmoothField { Mesh, Case };
 
-// The factor on the mesh's spacing that keeps its node count: pdmesh's population control settles with
-// edges about 0.91 q long (docs/smoothing.md, "Node count"), so q = h / 0.91 would give edges of about
-// the input's h; 1.08, a little less, centres the counts measured on Gmsh's meshes. Applied as
-// spacing.scale (a case key the user may override).
-inline constexpr double kSmoothMeshScale = 1.08;
+// The factor on the mesh's spacing that keeps its node count: the best preset's relax_scale brings the
+// mean edge to about q (docs/smoothing.md, "Node count"), and 0.98, a little less than 1, centres the
+// counts measured on Gmsh's meshes. Applied as spacing.scale (a case key the user may override).
+inline constexpr double kSmoothMeshScale = 0.98;
 
 // The gradation limit of a smoothing run with the mesh's field: Gmsh grows its sizes away from the
 // boundary faster than pdmesh's default 0.2 allows (0.2 adds 8-12 % nodes to its airfoil meshes), and
