@@ -370,8 +370,8 @@ TEST_CASE("motion stepper: the steps of run_motion_steps for the same poses, bit
 }
 
 TEST_CASE(
-    "motion stepper: unknown or no curves, and poses that are not finite or turn about another pivot, are "
-    "InputErrors") {
+    "motion stepper: unknown or no curves and poses not finite or about another pivot are InputErrors, and a "
+    "carry that folds is refused with the stepper kept") {
   const fs::path dir = pdmesh_test::fresh_dir("motion_stepper_bad");
   CaseConfig c = motion_case(dir, "");
   const RigidPose rest = pose_in_degrees(0.0, {0.2, 0.0}, {0.0, 0.0});
