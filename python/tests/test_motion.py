@@ -72,6 +72,20 @@ def test_a_case_without_motion_is_refused(tmp_path, case_file):
         pdmesh.run_motion(tmp_path / "still.toml")
 
 
+def assert_valid(mesh):
+    """Every triangle counter-clockwise with positive area, every edge in one or two triangles, the
+    edges in one triangle exactly the boundary edges, every point in some triangle."""
+    p, t = mesh.points, mesh.triangles.astype(np.int64)
+    a, b, c = p[t[:, 0]], p[t[:, 1]], p[t[:, 2]]
+    assert ((b - a)[:, 0] * (c - a)[:, 1] - (b - a)[:, 1] * (c - a)[:, 0] > 0).all()
+    edges = np.sort(np.concatenate([t[:, [0, 1]], t[:, [1, 2]], t[:, [2, 0]]]), axis=1)
+    unique, counts = np.unique(edges, axis=0, return_counts=True)
+    assert counts.max() <= 2
+    boundary = np.sort(np.concatenate(list(mesh.boundary_edges.values())), axis=1)
+    assert {tuple(e) for e in unique[counts == 1]} == {tuple(e) for e in boundary}
+    assert np.unique(t).size == len(p)
+
+
 def test_moving_mesher_reproduces_run_motion_for_the_same_poses(case_file, tmp_path):
     steps = pdmesh.run_motion(case_file)
     m = pdmesh.MovingMesher(pdmesh.Case(case_file))  # moving curves and pivot from the case's [motion]
@@ -107,6 +121,7 @@ def test_moving_mesher_ids_persist_and_every_mesh_is_valid(case_file, tmp_path):
         top = max(top, s.node_id.max())
         assert s.min_angle >= 30
         assert m.record["inverted"] == 0
+        assert_valid(s.mesh)
         previous = s
     assert (tmp_path / "series" / "motion.pvd").read_text().count("<DataSet") == 4
     assert (tmp_path / "series" / "step_0003" / "mesh.vtu").exists()
