@@ -344,3 +344,51 @@ TEST_CASE("pdmesh mesh with bad [motion] keys: exit 2 naming the key, nothing wr
   CHECK(r.output.find("unknown curve 'wing'") != std::string::npos);
   CHECK(!fs::exists(dir / "out2"));
 }
+
+TEST_CASE("motion stepper: the steps of run_motion_steps for the same poses, bit for bit") {
+  const fs::path dir = pdmesh_test::fresh_dir("motion_stepper");
+  const CaseConfig c =
+      motion_case(dir, "[motion]\ncurves = [\"upper\", \"lower\"]\nrotate = \"30*t\"\npivot = [0.2, 0.0]\nsteps = 2\n");
+  std::vector<MotionStep> run;
+  run_motion_steps(c, [&](const MotionStep& s) { run.push_back(s); });
+  REQUIRE(run.size() == 3);
+  // The stepper driven by hand, with the case's curve names given as a caller would.
+  MotionStepper stepper(c, {{"upper", "lower"}, "moving"}, pose_in_degrees(0.0, {0.2, 0.0}, {0.0, 0.0}));
+  std::vector<MotionStep> by_hand{stepper.start(0.0)};
+  for (int k = 1; k <= 2; ++k)
+    by_hand.push_back(stepper.step(pose_in_degrees(15.0 * k, {0.2, 0.0}, {0.0, 0.0}), 0.5 * k));
+  for (int k = 0; k <= 2; ++k) {
+    INFO("step " << k);
+    CHECK(by_hand[k].mesh.points == run[k].mesh.points);
+    CHECK(by_hand[k].mesh.triangles == run[k].mesh.triangles);
+    CHECK(by_hand[k].nodes.id == run[k].nodes.id);
+    CHECK(by_hand[k].record.ids_kept == run[k].record.ids_kept);
+  }
+}
+
+TEST_CASE(
+    "motion stepper: unknown or no curves and poses not finite or about another pivot are InputErrors, and a "
+    "carry that folds is refused with the stepper kept") {
+  const fs::path dir = pdmesh_test::fresh_dir("motion_stepper_bad");
+  CaseConfig c = motion_case(dir, "");
+  const RigidPose rest = pose_in_degrees(0.0, {0.2, 0.0}, {0.0, 0.0});
+  CHECK_THROWS_WITH(MotionStepper(c, {{"upper", "wing"}, "moving"}, rest),
+                    Catch::Contains("moving: unknown curve 'wing'") && Catch::Contains("far, upper, lower"));
+  CHECK_THROWS_AS(MotionStepper(c, {{}, "moving"}, rest), InputError);
+  CHECK_THROWS_WITH(MotionStepper(c, {{"upper"}, "moving"}, pose_in_degrees(NAN, {0.2, 0.0}, {0.0, 0.0})),
+                    Catch::Contains("start pose") && Catch::Contains("not finite"));
+  c.motion.iterations = 5;
+  MotionStepper stepper(c, {{"upper", "lower"}, "moving"}, rest);
+  stepper.start(0.0);
+  CHECK_THROWS_WITH(stepper.step(pose_in_degrees(5.0, {0.2, 0.0}, {INFINITY, 0.0}), 1.0),
+                    Catch::Contains("motion step 1") && Catch::Contains("not finite"));
+  CHECK_THROWS_WITH(stepper.step(pose_in_degrees(5.0, {0.0, 0.0}, {0.0, 0.0}), 1.0), Catch::Contains("pivot"));
+  // A motion too large for one step (the body pushed to the far field): the carry would fold the mesh
+  // and is refused; the stepper stays at its last step and goes on from there.
+  CHECK_THROWS_WITH(stepper.step(pose_in_degrees(0.0, {0.2, 0.0}, {2.5, 0.0}), 1.0),
+                    Catch::Contains("carrying the nodes inverts"));
+  const MotionStep& s = stepper.step(pose_in_degrees(5.0, {0.2, 0.0}, {0.0, 0.0}), 1.0);
+  CHECK(s.record.step == 1);
+  CHECK(s.record.inverted == 0);
+  CHECK(check_mesh(s.mesh).ok());
+}

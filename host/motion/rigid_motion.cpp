@@ -17,6 +17,14 @@ Vec2 RigidPose::apply_inverse(Vec2 p) const {
   return {pivot.x + c * dx + s * dy, pivot.y - s * dx + c * dy};
 }
 
+RigidPose pose_in_degrees(double rotate_deg, Vec2 pivot, Vec2 shift) {
+  RigidPose p;
+  p.angle = rotate_deg * M_PI / 180.0;
+  p.pivot = pivot;
+  p.shift = shift;
+  return p;
+}
+
 RigidPose between(const RigidPose& a, const RigidPose& b, double s) {
   RigidPose p;
   p.pivot = a.pivot;
@@ -33,11 +41,9 @@ MotionPath::MotionPath(const std::string& rotate_deg, std::array<double, 2> pivo
       ty_(translate[1], "motion.translate[1]") {}
 
 RigidPose MotionPath::at(double t) const {
-  RigidPose p;
-  p.angle = rotate_(t) * M_PI / 180.0;
-  p.pivot = pivot_;
-  p.shift = {tx_(t), ty_(t)};
-  return p;
+  const double angle = rotate_(t);  // first: its error is the one reported when several fail
+  const double x = tx_(t);
+  return pose_in_degrees(angle, pivot_, {x, ty_(t)});
 }
 
 }  // namespace pdmesh

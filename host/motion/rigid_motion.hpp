@@ -19,6 +19,10 @@ struct RigidPose {
   bool identity() const { return angle == 0.0 && shift.x == 0.0 && shift.y == 0.0; }
 };
 
+// The pose of a rotation by rotate_deg degrees (counter-clockwise) about pivot, then a shift: the one
+// conversion from degrees, which MotionPath and Python's MovingMesher share (the same poses bit for bit).
+RigidPose pose_in_degrees(double rotate_deg, Vec2 pivot, Vec2 shift);
+
 // The pose part way from a to b (same pivot): angle and shift interpolated linearly, s in [0, 1].
 RigidPose between(const RigidPose& a, const RigidPose& b, double s);
 

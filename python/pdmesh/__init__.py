@@ -17,7 +17,7 @@ from .geometry import Geometry
 from .mesh import Mesh
 from .mesher import Case, Mesher, State, generate
 from ._smooth import smooth
-from .motion import MotionStep, run_motion, transfer
+from .motion import MotionStep, MovingMesher, run_motion, transfer
 
 __version__ = _core.version
 
@@ -29,6 +29,6 @@ def case_keys() -> list[str]:
 
 __all__ = [
     "Cancelled", "Case", "DeviceError", "Error", "Geometry", "GeometryError", "InputError", "LimitError", "Mesh",
-    "Mesher", "MotionStep", "Progress", "SimulationError", "State", "case_keys", "generate", "run_motion", "size",
+    "Mesher", "MotionStep", "MovingMesher", "Progress", "SimulationError", "State", "case_keys", "generate", "run_motion", "size",
     "smooth", "transfer", "__version__",
 ]

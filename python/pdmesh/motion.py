@@ -1,17 +1,22 @@
 """Moving geometry (docs/motion.md): a case with ``[motion]`` meshed step by step, each step warm from
-the previous one, with persistent node ids; and the solution transfer between two steps' meshes."""
+the previous one, with persistent node ids (``run_motion``); the same steps with poses that the
+caller decides one at a time (``MovingMesher``, for a solver's loop); and the solution transfer
+between two steps' meshes."""
 
 from __future__ import annotations
 
+import math
 import os
 from dataclasses import dataclass
-from typing import Any, Callable
+from typing import Any, Callable, Mapping, Sequence
 
 import numpy as np
 
 from . import _core
+from .errors import InputError
+from .geometry import Geometry
 from .mesh import Mesh
-from .mesher import Case
+from .mesher import Case, _settings_for
 
 
 @dataclass(frozen=True)
@@ -50,6 +55,138 @@ def run_motion(case: Case | str | os.PathLike, out: str | os.PathLike | None = N
 
     _core.motion_steps(case._config_obj, os.fspath(out) if out is not None else "", each)
     return steps
+
+
+def _step_of(core: Any) -> MotionStep:
+    r = core.record
+    return MotionStep(step=int(r["step"]), t=float(r["t"]), mesh=Mesh(core.mesh), node_id=np.asarray(core.node_id),
+                      ids_kept=float(r["ids_kept"]), min_angle=float(r["min_angle"]),
+                      iterations=int(r["iterations"]), wall_s=float(r["wall_s"]))
+
+
+def _number(value: Any, name: str) -> float:
+    """value as a finite float, or InputError naming it."""
+    try:
+        v = float(value)
+    except (TypeError, ValueError):
+        raise InputError(f"{name} must be a number, got {value!r}") from None
+    if not math.isfinite(v):
+        raise InputError(f"{name} = {v!r} is not finite")
+    return v
+
+
+def _pair(value: Any, name: str) -> tuple[float, float]:
+    """value as two finite floats (x, y), or InputError naming it."""
+    try:
+        items = list(value)
+    except TypeError:
+        items = []
+    if len(items) != 2:
+        raise InputError(f"{name} must be a pair of numbers (x, y), got {value!r}")
+    return _number(items[0], f"{name}[0]"), _number(items[1], f"{name}[1]")
+
+
+class MovingMesher:
+    """A mesh that moves with some of its curves, posed by the caller one step at a time: the steps of
+    ``[motion]`` (docs/motion.md) for a solver that decides the motion as it goes.
+
+    ``MovingMesher(geo, moving, pivot, rotate=0, translate=(0, 0), ...)`` reads the geometry (what
+    ``Mesher`` takes: a Geometry, rings, a Case or a case file), places the ``moving`` curves (names)
+    at the start pose and meshes it cold: step 0. Then ``move(rotate, translate)`` sets the moving
+    curves' next pose (absolute, from their place as read: degrees counter-clockwise about ``pivot``,
+    then the translation) and ``step()`` meshes it warm from the previous step: the nodes carried with
+    the body, relaxed, repopulated and cleaned, with persistent ``node_id``. A case with ``[motion]``
+    gives the defaults of ``moving`` and ``pivot`` (its ``rotate``/``translate``/``steps`` are not
+    used), and ``warm_iterations``/``blend`` default to its motion.iterations/motion.blend (30, 4).
+    With ``out`` the steps' files are written there as the command writes them (step_NNNN/,
+    motion.pvd, motion.json). ``size``, ``device``, ``seed``, ``settings`` and keywords as in
+    ``Mesher``; a size callable is not taken (each step rebuilds the geometry's inputs).
+    """
+
+    def __init__(self, geo: Any, moving: Sequence[str] | None = None, pivot: Sequence[float] | None = None, *,
+                 rotate: float = 0.0, translate: Sequence[float] = (0.0, 0.0), size: Any = None,
+                 device: str | None = None, seed: int | None = None, settings: Mapping[str, Any] | None = None,
+                 out: str | os.PathLike | None = None, warm_iterations: int | None = None,
+                 blend: float | None = None, **keywords: Any):
+        overrides, sampler = _settings_for(size, device, seed, settings, keywords)
+        if sampler is not None:
+            raise InputError("MovingMesher: size must be a number, an expression or a Background, not a callable")
+        if isinstance(geo, (str, os.PathLike)):
+            path = os.fspath(geo)
+            geo = Case(path) if path.lower().endswith(".toml") else Geometry.from_file(path)
+        if not isinstance(geo, (Case, Geometry)):
+            geo = Geometry(geo)
+        config = geo._with(overrides) if isinstance(geo, Case) else geo._config(overrides)
+        motion = config.motion
+        if moving is None:
+            moving = motion["curves"] if motion["enabled"] else []
+        if isinstance(moving, str):
+            moving = [moving]
+        if pivot is None:
+            pivot = motion["pivot"] if motion["enabled"] else (0.0, 0.0)
+        self._pivot = _pair(pivot, "pivot")
+        angle, shift = _number(rotate, "rotate"), _pair(translate, "translate")
+        self._target = (angle, shift)
+        self._core = _core.MotionStepper(config, [str(n) for n in moving], self._pivot, angle, shift,
+                                         -1 if warm_iterations is None else int(warm_iterations),
+                                         float("nan") if blend is None else float(blend),
+                                         os.fspath(out) if out is not None else "")
+        self._last = _step_of(self._core)
+
+    def move(self, rotate: float | None = None, translate: Sequence[float] | None = None) -> None:
+        """Sets the moving curves' pose for the next step: ``rotate`` degrees counter-clockwise about the
+        pivot, then ``translate`` (x, y), both absolute (from the curves as read); one left out keeps
+        its last value. Nothing is meshed until ``step()``."""
+        angle, shift = self._target
+        self._target = (angle if rotate is None else _number(rotate, "move: rotate"),
+                        shift if translate is None else _pair(translate, "move: translate"))
+
+    def step(self, t: float | None = None) -> MotionStep:
+        """Meshes the next step at the pose of the last ``move()`` (warm from the previous step) and
+        returns it; ``t`` is its time in the records and motion.pvd (default: the step's number)."""
+        angle, shift = self._target
+        k = self._last.step + 1
+        self._core.step(angle, shift, float(k) if t is None else float(t))
+        self._last = _step_of(self._core)
+        return self._last
+
+    @property
+    def last(self) -> MotionStep:
+        """The last step (step 0 after construction)."""
+        return self._last
+
+    @property
+    def mesh(self) -> Mesh:
+        """The last step's mesh (point data ``node_id`` in its .vtu)."""
+        return self._last.mesh
+
+    @property
+    def node_id(self) -> np.ndarray:
+        """(N,) int64 persistent ids of the last step's points."""
+        return self._last.node_id
+
+    @property
+    def record(self) -> dict[str, float]:
+        """The last step's row of motion.json: step, t, wall_s, cpu_s, iterations, nodes, ids_kept,
+        min_angle, inverted, carry_substeps, spacing_s, simulation_s, cleanup_s."""
+        return dict(self._core.record)
+
+    @property
+    def pose(self) -> tuple[float, tuple[float, float]]:
+        """The last step's pose: (degrees, (x, y))."""
+        return float(self._core.rotate), tuple(self._core.translate)
+
+    @property
+    def pivot(self) -> tuple[float, float]:
+        return self._pivot
+
+    @property
+    def backend(self) -> str:
+        """Where the simulation runs (chosen for step 0 and kept)."""
+        return self._core.backend
+
+    def __repr__(self) -> str:
+        return f"<pdmesh.MovingMesher: step {self._last.step}, {len(self._last.node_id)} nodes>"
 
 
 def transfer(source: Mesh, values: Any, points: Any) -> np.ndarray:

@@ -82,5 +82,6 @@ void bind_mesher(nb::module_& m);
 void bind_mesh(nb::module_& m);
 void bind_cli(nb::module_& m);
 void bind_motion(nb::module_& m);
+void bind_stepper(nb::module_& m);
 
 }  // namespace pdmesh::py

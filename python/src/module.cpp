@@ -54,4 +54,5 @@ NB_MODULE(_core, m) {
   bind_mesh(m);
   bind_cli(m);
   bind_motion(m);
+  bind_stepper(m);
 }

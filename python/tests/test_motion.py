@@ -101,3 +101,83 @@ def test_run_motion_with_boundary_layers_keeps_the_layer_nodes(case_file, tmp_pa
     moved = np.column_stack([c * p[:, 0] - s * p[:, 1], s * p[:, 0] + c * p[:, 1]]) + [0.2, 0.0]
     got = b.mesh.points[[where[int(i)] for i in ids]]
     assert np.abs(got - moved).max() < 1e-9
+
+
+def assert_valid(mesh):
+    """Every triangle counter-clockwise with positive area, every edge in one or two triangles, the
+    edges in one triangle exactly the boundary edges, every point in some triangle."""
+    p, t = mesh.points, mesh.triangles.astype(np.int64)
+    a, b, c = p[t[:, 0]], p[t[:, 1]], p[t[:, 2]]
+    assert ((b - a)[:, 0] * (c - a)[:, 1] - (b - a)[:, 1] * (c - a)[:, 0] > 0).all()
+    edges = np.sort(np.concatenate([t[:, [0, 1]], t[:, [1, 2]], t[:, [2, 0]]]), axis=1)
+    unique, counts = np.unique(edges, axis=0, return_counts=True)
+    assert counts.max() <= 2
+    boundary = np.sort(np.concatenate(list(mesh.boundary_edges.values())), axis=1)
+    assert {tuple(e) for e in unique[counts == 1]} == {tuple(e) for e in boundary}
+    assert np.unique(t).size == len(p)
+
+
+def test_moving_mesher_reproduces_run_motion_for_the_same_poses(case_file, tmp_path):
+    steps = pdmesh.run_motion(case_file)
+    m = pdmesh.MovingMesher(pdmesh.Case(case_file))  # moving curves and pivot from the case's [motion]
+    assert m.pivot == (0.2, 0.0)
+    mine = [m.last]
+    for k in (1, 2):
+        m.move(rotate=20 * k / 2)
+        mine.append(m.step(t=k / 2))
+    for a, b in zip(mine, steps):
+        assert np.array_equal(a.mesh.points, b.mesh.points)
+        assert np.array_equal(a.mesh.triangles, b.mesh.triangles)
+        assert np.array_equal(a.node_id, b.node_id)
+        assert a.ids_kept == b.ids_kept and a.t == b.t
+    assert m.pose == (20.0, (0.0, 0.0))
+
+
+def test_moving_mesher_ids_persist_and_every_mesh_is_valid(case_file, tmp_path):
+    geo = pdmesh.Case(case_file).geometry
+    m = pdmesh.MovingMesher(geo, moving=["upper", "lower"], pivot=(0.2, 0.0), out=tmp_path / "series",
+                            spacing={"expression": "0.12 + 0.1 * sqrt(x*x + y*y)"}, iterations=300, device="host")
+    previous = m.last
+    top = previous.node_id.max()  # ids are never reused: a new node's is above every earlier one
+    for k in range(1, 4):
+        m.move(rotate=8.0 * np.sin(2 * np.pi * k / 4), translate=(0.05 * k, 0.0))
+        s = m.step()
+        assert s.step == k and s.t == float(k)
+        assert s.node_id.shape == (len(s.mesh.points),)
+        assert len(np.unique(s.node_id)) == len(s.node_id)
+        kept = np.intersect1d(previous.node_id, s.node_id).size / previous.node_id.size
+        assert kept == pytest.approx(s.ids_kept) and kept > 0.8
+        new = np.setdiff1d(s.node_id, previous.node_id)
+        assert new.size == 0 or new.min() > top
+        top = max(top, s.node_id.max())
+        assert s.min_angle >= 30
+        assert m.record["inverted"] == 0
+        assert_valid(s.mesh)
+        previous = s
+    assert (tmp_path / "series" / "motion.pvd").read_text().count("<DataSet") == 4
+    assert (tmp_path / "series" / "step_0003" / "mesh.vtu").exists()
+
+
+def test_moving_mesher_errors(case_file):
+    case = pdmesh.Case(case_file)
+    with pytest.raises(pdmesh.InputError, match="moving: unknown curve 'wing'"):
+        pdmesh.MovingMesher(case, moving=["upper", "wing"])
+    with pytest.raises(pdmesh.InputError, match="no moving curve"):
+        pdmesh.MovingMesher(case.geometry, iterations=50)
+    with pytest.raises(pdmesh.InputError, match="pivot"):
+        pdmesh.MovingMesher(case, pivot=(0.0, float("nan")))
+    with pytest.raises(pdmesh.InputError, match="callable"):
+        pdmesh.MovingMesher(case, size=lambda xy: 0.1 + 0 * xy[:, 0])
+    m = pdmesh.MovingMesher(case, warm_iterations=5)
+    with pytest.raises(pdmesh.InputError, match="rotate"):
+        m.move(rotate=float("inf"))
+    with pytest.raises(pdmesh.InputError, match="translate"):
+        m.move(translate=(0.0, float("nan")))
+    # A motion too large for one step (the body pushed to the far field): the carry would fold the mesh
+    # and is refused; the mesher stays at step 0 and goes on from there.
+    m.move(translate=(2.5, 0.0))
+    with pytest.raises(pdmesh.SimulationError, match="carrying the nodes inverts"):
+        m.step()
+    assert m.last.step == 0
+    m.move(rotate=5.0, translate=(0.0, 0.0))
+    assert m.step().step == 1

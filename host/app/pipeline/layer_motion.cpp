@@ -230,19 +230,19 @@ MotionStep LayerMotion::join(const MeshInputs& core_now, const Mesh& core_mesh, 
   return out;
 }
 
-void LayerMotion::write_step_files(const CaseConfig& config, const fs::path& dir, const MotionStep& step) const {
+void LayerMotion::write_step_files(const CaseConfig& config, const fs::path& dir, const MixedMesh& mixed,
+                                   const Mesh& mesh, const MotionStepRecord& rec) {
   fs::create_directories(dir);
   std::vector<std::string> formats{"vtu"};
   for (const std::string& f : config.output.formats)
     if (f == "msh" || f == "su2") formats.push_back(f);
-  write_mixed_mesh(step.mixed, dir, "mesh", formats);
+  write_mixed_mesh(mixed, dir, "mesh", formats);
   if (!config.output.wants("png")) return;
-  const MotionStepRecord& rec = step.record;
   MeshPictureOptions picture;
   picture.title = fmt::format("{} - step {} t = {:.4g} ({} cells, {} in the boundary layer)", config.name, rec.step,
-                              rec.t, step.mixed.cells.size(), rec.layer_cells);
+                              rec.t, mixed.cells.size(), rec.layer_cells);
   if (!config.output.views.empty()) picture.window = config.output.views.front().window;
-  write_mesh_picture(dir / "mesh.png", step.mesh, picture);
+  write_mesh_picture(dir / "mesh.png", mesh, picture);
 }
 
 }  // namespace pdmesh

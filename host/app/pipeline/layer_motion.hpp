@@ -4,7 +4,7 @@
 // rigidly with the body (the same nodes, cells and ids: stretched, not regrown; the others stay),
 // their fronts are the core's moving curves, and the core is carried, relaxed and cleaned as any
 // motion step's; then the layer cells and the core's triangles are joined as in the layer pipeline.
-// motion_pipeline.cpp holds the step loop; this class is its hook for the layers.
+// MotionStepper (motion_stepper.hpp) runs the steps; this class is its hook for the layers.
 #pragma once
 #include <cstdint>
 #include <filesystem>
@@ -16,7 +16,8 @@
 #include "app/config/case_file.hpp"
 #include "app/pipeline/layer_pipeline.hpp"
 #include "app/pipeline/mesh_inputs.hpp"
-#include "app/pipeline/motion_pipeline.hpp"
+#include "app/pipeline/motion_stepper.hpp"
+#include "io/mixed_mesh.hpp"
 #include "mesh/mesh.hpp"
 #include "motion/rigid_motion.hpp"
 #include "nodes/node_set.hpp"
@@ -63,7 +64,9 @@ class LayerMotion {
 
   // DIR/mesh.vtu (with node_id) and the mixed-cell formats of output.formats (msh, su2), and mesh.png
   // (the first of output.views as its window) when the case asks for png.
-  void write_step_files(const CaseConfig& config, const std::filesystem::path& dir, const MotionStep& step) const;
+  // `mixed` is the step's joined mesh, `mesh` it as triangles (for the picture).
+  static void write_step_files(const CaseConfig& config, const std::filesystem::path& dir, const MixedMesh& mixed,
+                               const Mesh& mesh, const MotionStepRecord& rec);
 
  private:
   std::unique_ptr<MeshInputs> inputs_;  // the case's, at step 0
