@@ -72,7 +72,7 @@ TEST_CASE("floor lattice: the same seed gives the same nodes, another seed other
   REQUIRE(make_floor_lattice(o).x != a.x);
 }
 
-TEST_CASE("floor counts: pairs within the cut-off as brute force; a settled lattice has six per node") {
+TEST_CASE("floor counts: pairs within the cut-off as brute force, and six per node on a settled lattice") {
   FloorOptions o = small(3000);
   o.jitter = 0.0;
   const FloorLattice l = make_floor_lattice(o);
