@@ -80,14 +80,16 @@ TEST_CASE("bad regions name the key and the value") {
   CHECK_THROWS_WITH(check_refine_region(line), Catch::Contains("at least 2 points"));
 }
 
-TEST_CASE("spacing.size H on a square: mean edge within 10 % below H (edges run at 0.9-1.0 q)") {
+// The best preset relaxes at spacing.relax_scale x q (1.09), calibrated so that graded meshes average
+// q; a uniform square's lattice packs less tightly and averages 1.05-1.09 H (docs/spacing.md, "The node count").
+TEST_CASE("spacing.size H on a square: mean edge within 10 % of H") {
   for (const double h : {0.05, 0.1}) {
     const Mesh m =
         mesh_square("size_" + std::to_string(static_cast<int>(h * 100)), fmt::format("[spacing]\nsize = {}\n", h));
     const auto e = pdmesh_test::mean_edge(m, [](Vec2) { return true; });
     INFO("H = " << h << ": mean edge " << e.mean << " over " << e.count << " edges");
-    CHECK(e.mean >= 0.88 * h);
-    CHECK(e.mean <= 1.02 * h);
+    CHECK(e.mean >= 0.97 * h);
+    CHECK(e.mean <= 1.10 * h);
     CHECK(pdmesh_test::min_angle_deg(m) >= 30.0);
   }
 }
