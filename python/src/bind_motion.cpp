@@ -34,16 +34,7 @@ void bind_motion(nb::module_& m) {
           MeshHandle handle;
           handle.mesh = std::make_shared<const Mesh>(s.mesh);
           handle.name = config.name;
-          const MotionStepRecord& r = s.record;
-          nb::dict record;
-          record["step"] = r.step;
-          record["t"] = r.t;
-          record["wall_s"] = r.wall_s;
-          record["iterations"] = r.iterations;
-          record["nodes"] = r.nodes;
-          record["ids_kept"] = r.ids_kept;
-          record["min_angle"] = r.min_angle;
-          record["inverted"] = r.inverted;
+          nb::dict record = motion_record_dict(s.record);
           record["node_id"] = s.nodes.id;
           each(handle, record);
         });

@@ -103,7 +103,9 @@ class Stepper {
   bool busy_ = false;
 };
 
-nb::dict record_dict(const MotionStepRecord& r) {
+}  // namespace
+
+nb::dict motion_record_dict(const MotionStepRecord& r) {
   nb::dict d;
   d["step"] = r.step;
   d["t"] = r.t;
@@ -118,10 +120,16 @@ nb::dict record_dict(const MotionStepRecord& r) {
   d["spacing_s"] = r.spacing_s;
   d["simulation_s"] = r.simulation_s;
   d["cleanup_s"] = r.cleanup_s;
+  if (r.layer_cells > 0) {  // with [[boundary_layer]]: motion.json's layer keys
+    d["layer_cells"] = r.layer_cells;
+    d["layer_inverted"] = r.layer_inverted;
+    d["layer_max_angle"] = r.layer_max_angle;
+    d["layer_first_height_within_2pct"] = r.layer_first_height_within_2pct;
+    d["layer_growth_max"] = r.layer_growth_max;
+    d["steep_junctions"] = r.steep_junctions;
+  }
   return d;
 }
-
-}  // namespace
 
 void bind_stepper(nb::module_& m) {
   nb::class_<Stepper>(m, "MotionStepper", "A moving-geometry run stepped pose by pose (use pdmesh.MovingMesher).")
@@ -133,7 +141,7 @@ void bind_stepper(nb::module_& m) {
       .def("step", &Stepper::step, nb::arg("rotate"), nb::arg("translate"), nb::arg("t"),
            "One warm step with the moving curves at this pose (degrees, translation).")
       .def_prop_ro("mesh", &Stepper::mesh, "The last step's mesh (point data node_id).")
-      .def_prop_ro("record", [](const Stepper& s) { return record_dict(s.record()); })
+      .def_prop_ro("record", [](const Stepper& s) { return motion_record_dict(s.record()); })
       .def_prop_ro("node_id", &Stepper::ids, nb::rv_policy::automatic,
                    "The last step's persistent node ids, one per point of its mesh (a copy).")
       .def_prop_ro("backend", &Stepper::backend)

@@ -14,6 +14,7 @@
 #include "app/config/case_file.hpp"
 #include "app/pipeline/layer_pipeline.hpp"
 #include "app/pipeline/mesh_inputs.hpp"
+#include "app/pipeline/motion_stepper.hpp"
 #include "io/mixed_mesh.hpp"
 #include "mesh/mesh.hpp"
 
@@ -76,6 +77,10 @@ nb::ndarray<nb::numpy, const T> shared_view(const T* data, std::size_t count, st
 
 // Python's pdmesh.errors module (imported on first use).
 nb::object errors_module();
+
+// A motion step's row of motion.json as a dict (bind_stepper.cpp): the records of `run_motion` and
+// `MovingMesher`.
+nb::dict motion_record_dict(const MotionStepRecord& r);
 
 void bind_config(nb::module_& m);
 void bind_mesher(nb::module_& m);

@@ -34,6 +34,19 @@
 namespace pdmesh {
 
 namespace fs = std::filesystem;
+
+CleanupOptions mesh_detail::cleanup_options(const CaseConfig& config) {
+  CleanupOptions o;
+  o.min_angle = config.cleanup.min_angle;
+  o.iterations = static_cast<int>(config.cleanup.iterations);
+  o.topology = config.cleanup.topology;
+  o.split_boundary = config.cleanup.split_boundary;
+  o.trials_per_triangle = config.cleanup.trials_per_triangle;
+  o.min_trials = static_cast<double>(config.cleanup.min_trials);
+  o.sharp_corners = config.cleanup.sharp_corners;
+  o.polish = static_cast<int>(config.cleanup.polish);
+  return o;
+}
 using mesh_detail::kSvgNodeLimit;
 using mesh_detail::progress;
 using mesh_detail::write_node_outputs;
@@ -242,15 +255,7 @@ struct CleanedMesh {
 CleanedMesh clean_up(const CaseConfig& config, const MeshInputs& inputs, const SpacingStage& spacing, Mesh& mesh,
                      const NodeSet& nodes, RunPhases& phases) {
   const auto cleanup_timer = phases.phase("cleanup");
-  CleanupOptions options;
-  options.min_angle = config.cleanup.min_angle;
-  options.iterations = static_cast<int>(config.cleanup.iterations);
-  options.topology = config.cleanup.topology;
-  options.split_boundary = config.cleanup.split_boundary;
-  options.trials_per_triangle = config.cleanup.trials_per_triangle;
-  options.min_trials = static_cast<double>(config.cleanup.min_trials);
-  options.sharp_corners = config.cleanup.sharp_corners;
-  options.polish = static_cast<int>(config.cleanup.polish);
+  const CleanupOptions options = mesh_detail::cleanup_options(config);
   CleanedMesh out;
   CleanupEffect& effect = out.effect;
   effect.target_deg = options.min_angle;

@@ -164,17 +164,6 @@ void settle_on_moved_curves(NodeSet& nodes, const std::vector<char>& rigid, cons
   }
 }
 
-CleanupOptions cleanup_options(const CaseConfig& config) {
-  CleanupOptions o;
-  o.min_angle = config.cleanup.min_angle;
-  o.iterations = static_cast<int>(config.cleanup.iterations);
-  o.topology = config.cleanup.topology;
-  o.split_boundary = config.cleanup.split_boundary;
-  o.trials_per_triangle = config.cleanup.trials_per_triangle;
-  o.min_trials = static_cast<double>(config.cleanup.min_trials);
-  return o;
-}
-
 // The warm relaxation of a later step: motion.iterations iterations exactly, with two population
 // events, a third and two thirds of the way. The carried nodes are the previous step's settled ones in
 // a field moved with them, so the events find little to do, and each costs about as much as several
@@ -196,7 +185,7 @@ CaseConfig warm_config(const CaseConfig& base) {
 // pass over its 40-45 degree triangles that a cold mesh gets spent the whole trial budget at every
 // step for no gain the motion's targets need (docs/motion.md, "A step").
 CleanupOptions warm_cleanup_options(const CaseConfig& config) {
-  CleanupOptions o = cleanup_options(config);
+  CleanupOptions o = mesh_detail::cleanup_options(config);
   o.topology_below = o.min_angle;
   return o;
 }
@@ -241,8 +230,9 @@ Mesh mesh_step(const CaseConfig& config, const MeshInputs& now, const SpacingFie
   const auto cleanup_start = Clock::now();
   Mesh mesh = triangulate(nodes, now.curve_names());
   if (config.cleanup.enabled) {
-    CleanupResult cleaned = clean_mesh(mesh, nodes, now.node_tree(), field,
-                                       rec.step == 0 ? cleanup_options(config) : warm_cleanup_options(config));
+    CleanupResult cleaned =
+        clean_mesh(mesh, nodes, now.node_tree(), field,
+                   rec.step == 0 ? mesh_detail::cleanup_options(config) : warm_cleanup_options(config));
     mesh = std::move(cleaned.mesh);
     nodes = std::move(cleaned.nodes);
   }

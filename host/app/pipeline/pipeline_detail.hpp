@@ -11,6 +11,7 @@
 #include "app/config/case_file.hpp"
 #include "app/pipeline/mesh_pipeline.hpp"
 #include "app/pipeline/run_phases.hpp"
+#include "cleanup/cleanup.hpp"
 #include "core/progress_notes.hpp"
 #include "geometry/geometry.hpp"
 #include "nodes/node_set.hpp"
@@ -39,5 +40,9 @@ void progress(const CaseConfig& config, fmt::format_string<Args...> format, Args
 void write_node_outputs(const CaseConfig& config, const MeshInputs& inputs, const NodeSet& nodes,
                         const std::string& stage, const std::string& title, const std::vector<Box>* tree_quads,
                         RunPhases& run);
+
+// The cleanup's options as the case's [cleanup] keys give them (mesh_outputs.cpp); the motion's steps
+// start from them too.
+CleanupOptions cleanup_options(const CaseConfig& config);
 
 }  // namespace pdmesh::mesh_detail
