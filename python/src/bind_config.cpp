@@ -80,6 +80,18 @@ nb::dict geometry_of(const CaseConfig& c) {
   return d;
 }
 
+// The [motion] keys a MovingMesher takes its defaults from.
+nb::dict motion_keys(const CaseConfig& c) {
+  const CaseConfig::Motion& mo = c.motion;
+  nb::dict d;
+  d["enabled"] = mo.enabled;
+  d["curves"] = mo.curves;
+  d["pivot"] = nb::make_tuple(mo.pivot[0], mo.pivot[1]);
+  d["iterations"] = mo.iterations;
+  d["blend"] = mo.blend;
+  return d;
+}
+
 }  // namespace
 
 void bind_config(nb::module_& m) {
@@ -99,19 +111,7 @@ void bind_config(nb::module_& m) {
       .def_prop_ro("seed", [](const CaseConfig& c) { return c.init.seed; })
       .def_prop_ro("method", [](const CaseConfig& c) { return std::string(method_name(c.init.method)); })
       .def_prop_ro("formats", [](const CaseConfig& c) { return c.output.formats; })
-      .def_prop_ro(
-          "motion",
-          [](const CaseConfig& c) {
-            const CaseConfig::Motion& mo = c.motion;
-            nb::dict d;
-            d["enabled"] = mo.enabled;
-            d["curves"] = mo.curves;
-            d["pivot"] = nb::make_tuple(mo.pivot[0], mo.pivot[1]);
-            d["iterations"] = mo.iterations;
-            d["blend"] = mo.blend;
-            return d;
-          },
-          "The [motion] section's keys (enabled False without one).")
+      .def_prop_ro("motion", &motion_keys, "The [motion] section's keys (enabled False without one).")
       .def("geometry", &geometry_of, "The validated geometry: curves, loops, area, extents.")
       .def_prop_ro("has_size_callable", [](const CaseConfig& c) { return c.spacing.given != nullptr; })
       .def(
