@@ -18,11 +18,11 @@ enum class RegionShape { Box, Disc, Points, Polyline };
 struct RefineRegion {
   RegionShape shape = RegionShape::Box;
   double size = 0.0;         // the size asked for inside the region
-  Box box;                   // Box: [x0, x1] x [y0, y1]
-  Vec2 centre;               // Disc
-  double radius = 0.0;       // Disc: its radius; Points, Polyline: the distance within which `size` holds
-  std::vector<Vec2> points;  // Points (>= 1), Polyline (>= 2)
-  std::string label;         // where it was given, e.g. "refine[0]", for messages
+  Box box{};                   // Box: [x0, x1] x [y0, y1]
+  Vec2 centre{};               // Disc
+  double radius = 0.0;         // Disc: its radius; Points, Polyline: the distance within which `size` holds
+  std::vector<Vec2> points{};  // Points (>= 1), Polyline (>= 2)
+  std::string label{};         // where it was given, e.g. "refine[0]", for messages
 };
 
 // The region's size at p: `size` inside it (a box or disc, or within `radius` of a point or of the
