@@ -17,7 +17,7 @@ enum class RegionShape { Box, Disc, Points, Polyline };
 
 struct RefineRegion {
   RegionShape shape = RegionShape::Box;
-  double size = 0.0;         // the size asked for inside the region
+  double size = 0.0;           // the size asked for inside the region
   Box box{};                   // Box: [x0, x1] x [y0, y1]
   Vec2 centre{};               // Disc
   double radius = 0.0;         // Disc: its radius; Points, Polyline: the distance within which `size` holds
