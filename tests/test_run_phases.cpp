@@ -8,6 +8,7 @@
 #include <chrono>
 #include <cmath>
 #include <future>
+#include <memory>
 #include <stdexcept>
 #include <string>
 #include <thread>
@@ -254,4 +255,20 @@ TEST_CASE("run phases: the guard waits for the pictures when an exception unwind
     CHECK(std::string(e.what()) == "the run failed");
   }
   CHECK(drawn);  // the guard waited before the data the job reads went away
+}
+
+// The pipeline lets a queued picture own what it draws (the initial distribution): that must go when
+// the picture is done, not when the run waits for its pictures at its end.
+TEST_CASE("run phases: a drawn picture's captures are released before the next picture runs", "[phases]") {
+  RunPhases run;
+  auto data = std::make_shared<std::vector<int>>(1000, 7);
+  const std::weak_ptr<std::vector<int>> watch = data;
+  std::promise<bool> first_saw, released;
+  run.picture("first.png", [data, &first_saw] { first_saw.set_value(data->at(999) == 7); });
+  data.reset();
+  // One background thread draws the queue in order: this job runs after the first one has ended.
+  run.picture("second.png", [watch, &released] { released.set_value(watch.expired()); });
+  CHECK(first_saw.get_future().get());
+  CHECK(released.get_future().get());
+  run.wait_pictures();
 }

@@ -224,7 +224,7 @@ class DeviceRun final : public IterationSteps {
   std::vector<std::int32_t> rec_index_host_;
   // Targets of non-blocking downloads are members too: when a wait fails and the error unwinds, a
   // read still in flight must not write into freed memory (~DeviceRun waits for the queue first).
-  std::vector<Real> positions_host_[2];  // xy, q
+  std::vector<Real> positions_host_[2];  // xy, q: a build's reads, emptied once copied into build_x_ ..
   std::vector<std::int32_t> cand_index_host_;
   double skin_use_ = HUGE_VAL;                 // since the last build; HUGE_VAL forces a build
   double skin_limit_ = skin_use_limit(0.0);    // the largest skin use over share the current lists allow
@@ -260,7 +260,7 @@ class DeviceRun final : public IterationSteps {
   int pending_first_ = 0, pending_length_ = 0;
   Clock::time_point pending_t0_;
   // The carried moves after a convergence check's iteration, read before the device ran ahead of it:
-  // the state's momentum when the run stops there.
+  // the state's momentum when the run stops there (emptied when it goes on).
   std::vector<Real> momentum_at_check_;
   int since_build_ = 0, build_interval_ = 0;  // iterations since the last build; between the last two (0: unknown)
   bool cpu_device_ = false;                   // window_length's choice

@@ -36,6 +36,9 @@ void DeviceRun<Real>::rebuild() {
       build_y_[i] = static_cast<double>(v[0][2 * i + 1]);
     }
     build_q_.assign(v[1].begin(), v[1].end());
+    // Read targets only (the build waited for the reads): not kept between builds.
+    std::vector<Real>().swap(v[0]);
+    std::vector<Real>().swap(v[1]);
   }
   if (flags.first_invalid >= 0) {
     const auto i = static_cast<std::size_t>(flags.first_invalid);
@@ -357,6 +360,8 @@ IterationStep DeviceRun<Real>::compute(int iteration, const GlobalTimeStep& gm) 
   if (window_pending_) {  // begun while the host measured the last iteration's mesh
     end_window();
     host_ahead_ = false;  // as at the start of every iteration: the device holds the state after loop_.done()
+    // The run goes on past the check: its carried moves are no state of it any more.
+    std::vector<Real>().swap(momentum_at_check_);
   } else if (window_next_ >= window_rows_) {
     start_window(iteration, gm);
   }

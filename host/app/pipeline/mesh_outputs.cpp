@@ -90,7 +90,8 @@ void prepare_output_directory(const CaseConfig& config) {
 // Declared in pipeline_detail.hpp (the simulation stage writes the final nodes with it).
 void mesh_detail::write_node_outputs(const CaseConfig& config, const MeshInputs& inputs, const NodeSet& nodes,
                                      const std::string& stage, const std::string& title,
-                                     const std::vector<Box>* tree_quads, RunPhases& run) {
+                                     const std::vector<Box>* tree_quads, RunPhases& run,
+                                     const std::shared_ptr<const void>& keep) {
   const fs::path& dir = config.out_dir;
   {
     const auto timer = run.phase(stage + ".nodes");
@@ -104,8 +105,9 @@ void mesh_detail::write_node_outputs(const CaseConfig& config, const MeshInputs&
   const NodeSet* drawn = &nodes;
   std::vector<std::string> names;
   const auto draw = [&](const std::string& file, const NodePictureOptions& options) {
-    run.picture(
-        file, [geometry, drawn, options, path = dir / file] { write_node_picture(path, *geometry, *drawn, options); });
+    run.picture(file, [geometry, drawn, options, keep, path = dir / file] {
+      write_node_picture(path, *geometry, *drawn, options);
+    });
     names.push_back(file);
   };
   if (config.output.wants("png")) {
@@ -151,6 +153,13 @@ void write_initial_outputs(const CaseConfig& config, const MeshInputs& inputs, c
   write_node_outputs(config, inputs, initial.nodes, "initial",
                      fmt::format("{} - initial distribution ({})", config.name, to_string(config.init.method)),
                      config.output.tree_overlay ? &initial.tree_quads : nullptr, run ? *run : local);
+}
+
+void write_initial_outputs(const CaseConfig& config, const MeshInputs& inputs,
+                           const std::shared_ptr<const InitialDistribution>& initial, RunPhases& run) {
+  write_node_outputs(config, inputs, initial->nodes, "initial",
+                     fmt::format("{} - initial distribution ({})", config.name, to_string(config.init.method)),
+                     config.output.tree_overlay ? &initial->tree_quads : nullptr, run, initial);
 }
 
 namespace {

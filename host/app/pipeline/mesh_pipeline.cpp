@@ -262,25 +262,28 @@ void run_core(const CaseConfig& config, const MeshInputs& inputs, const SpacingS
   // phase is then left unused (the run waits for its thread only at its end).
   const bool use_prepared = !auto_prefers_host(config.simulation.device, estimate);
   timer = phases.phase("fill");
-  const InitialDistribution initial = make_initial(config, inputs, spacing);
+  auto initial = std::make_shared<const InitialDistribution>(make_initial(config, inputs, spacing));
   timer.stop();
   progress(config,
            "initial distribution: {} nodes (estimate {:.0f} by hexagonal packing; {} fixed, {} boundary, "
            "{} interior of which {} by overloading)",
-           initial.nodes.size(), estimate, initial.nodes.count(NodeKind::Fixed),
-           initial.nodes.count(NodeKind::Boundary), initial.nodes.count(NodeKind::Interior), initial.overload_nodes);
+           initial->nodes.size(), estimate, initial->nodes.count(NodeKind::Fixed),
+           initial->nodes.count(NodeKind::Boundary), initial->nodes.count(NodeKind::Interior), initial->overload_nodes);
   phases.note("estimate", estimate);
-  phases.note("initial_nodes", static_cast<double>(initial.nodes.size()));
+  phases.note("initial_nodes", static_cast<double>(initial->nodes.size()));
   // The outputs: every later stage computes, then writes atomically into the directory prepared here.
   prepare_output_directory(config);
   if (config.output.spacing_picture) {
     const auto spacing_picture_timer = phases.phase("spacing.png");
     write_spacing_picture(config, inputs, spacing);
   }
-  NodeSet nodes = initial.nodes;
-  // The initial pictures read `initial` while the simulation moves `nodes`.
+  NodeSet nodes = initial->nodes;
+  // The initial pictures hold `initial` while the simulation moves `nodes`; it is freed once they are
+  // drawn (on a CPU device a few seconds into the simulation), not kept to the end of the run. The
+  // guard: the final pictures read `nodes`.
   const PictureGuard guard(phases);
-  write_initial_outputs(config, inputs, initial, &phases);
+  write_initial_outputs(config, inputs, initial, phases);
+  initial.reset();
   // None with --iterations 0: the initial distribution is meshed.
   simulate_and_mesh(config, inputs, spacing, nodes, prepared, use_prepared, phases, layered);
 }

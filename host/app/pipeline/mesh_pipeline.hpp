@@ -41,6 +41,11 @@ void write_spacing_picture(const CaseConfig& config, const MeshInputs& inputs, c
 // initial_<view>.png per view (png), initial.svg (svg), each atomic.
 void write_initial_outputs(const CaseConfig& config, const MeshInputs& inputs, const InitialDistribution& initial,
                            RunPhases* run = nullptr);
+// The same, the pictures queued on `run` holding `initial` until they are drawn: the caller may let
+// go of it at once, and the distribution (a node set as large as the run's) is freed when its last
+// picture is done rather than at the end of the run.
+void write_initial_outputs(const CaseConfig& config, const MeshInputs& inputs,
+                           const std::shared_ptr<const InitialDistribution>& initial, RunPhases& run);
 
 // The simulation settings of the case (iterations, stopping rule, time step, forces, population
 // control); the backend, stop flag, background field and resume state are the caller's to add.

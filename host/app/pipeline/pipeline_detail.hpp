@@ -3,6 +3,7 @@
 #pragma once
 #include <cstddef>
 #include <cstdio>
+#include <memory>
 #include <string>
 #include <utility>
 #include <vector>
@@ -36,10 +37,11 @@ void progress(const CaseConfig& config, fmt::format_string<Args...> format, Args
 
 // STAGE.nodes, and (as output.formats asks) STAGE.png and STAGE_<view>.png, STAGE.svg, for one node
 // distribution (mesh_outputs.cpp). The pictures go to `run`'s background thread: `nodes` (and the tree
-// quads) must stay unchanged until run.wait_pictures().
+// quads) must stay unchanged until run.wait_pictures(), or, when `keep` owns them, until the pictures
+// are drawn (each queued picture holds `keep`, so what it reads goes when the last one is done).
 void write_node_outputs(const CaseConfig& config, const MeshInputs& inputs, const NodeSet& nodes,
                         const std::string& stage, const std::string& title, const std::vector<Box>* tree_quads,
-                        RunPhases& run);
+                        RunPhases& run, const std::shared_ptr<const void>& keep = nullptr);
 
 // The cleanup's options as the case's [cleanup] keys give them (mesh_outputs.cpp); the motion's steps
 // start from them too.
