@@ -147,19 +147,27 @@ void write_spacing_picture(const CaseConfig& config, const MeshInputs& inputs, c
            config.output.views.empty() ? "" : fmt::format(" and {} view(s)", config.output.views.size()));
 }
 
+namespace {
+
+// The initial distribution's outputs, the pictures queued on `run` holding `keep` (if set).
+void write_initial_node_outputs(const CaseConfig& config, const MeshInputs& inputs, const InitialDistribution& initial,
+                                RunPhases& run, const std::shared_ptr<const void>& keep) {
+  write_node_outputs(config, inputs, initial.nodes, "initial",
+                     fmt::format("{} - initial distribution ({})", config.name, to_string(config.init.method)),
+                     config.output.tree_overlay ? &initial.tree_quads : nullptr, run, keep);
+}
+
+}  // namespace
+
 void write_initial_outputs(const CaseConfig& config, const MeshInputs& inputs, const InitialDistribution& initial,
                            RunPhases* run) {
   RunPhases local(false);
-  write_node_outputs(config, inputs, initial.nodes, "initial",
-                     fmt::format("{} - initial distribution ({})", config.name, to_string(config.init.method)),
-                     config.output.tree_overlay ? &initial.tree_quads : nullptr, run ? *run : local);
+  write_initial_node_outputs(config, inputs, initial, run ? *run : local, nullptr);
 }
 
 void write_initial_outputs(const CaseConfig& config, const MeshInputs& inputs,
                            const std::shared_ptr<const InitialDistribution>& initial, RunPhases& run) {
-  write_node_outputs(config, inputs, initial->nodes, "initial",
-                     fmt::format("{} - initial distribution ({})", config.name, to_string(config.init.method)),
-                     config.output.tree_overlay ? &initial->tree_quads : nullptr, run, initial);
+  write_initial_node_outputs(config, inputs, *initial, run, initial);
 }
 
 namespace {
