@@ -155,19 +155,33 @@ TEST_CASE("spacing pipeline: limits that ask for far more nodes than max_nodes a
           "[memory]") {
   const Geometry g = fixtures::square(1.0, 4);
   const GeometryTree tree(g);
-  // The base field asks for about one node per unit area; a point size of 1e-4 spreading by a
-  // gradation of 0.001 asks for millions.
-  const fixtures::ConstantSpacing base(1.0);
+  // A point size of 1e-4 spreading by a gradation of 0.001 asks for millions of nodes.
   SpacingOptions options;
   options.gradation = 0.001;
   options.points.push_back({{0.5, 0.5}, 1e-4});
   options.background.max_nodes = 1000.0;
-  const std::string m = pdmesh_test::error_message<LimitError>([&] { SpacingPipeline pipeline(base, tree, options); });
-  INFO(m);
-  CHECK(contains(m, "the spacing field with its limits"));
-  CHECK(contains(m, "before they are refined for it, more than --max-nodes 1000"));
-  // Within the budget it builds.
-  options.background.max_nodes = 1e9;
-  options.points.front().q = 0.05;
-  CHECK_NOTHROW(SpacingPipeline(base, tree, options));
+  SECTION("a base field fine enough for inside leaves: refused on the base tree's leaves") {
+    const fixtures::ConstantSpacing base(0.05);
+    const std::string m =
+        pdmesh_test::error_message<LimitError>([&] { SpacingPipeline pipeline(base, tree, options); });
+    INFO(m);
+    CHECK(contains(m, "the spacing field with its limits"));
+    CHECK(contains(m, "before they are refined for it, more than --max-nodes 1000"));
+  }
+  SECTION("a base field whose leaves all cross the boundary: refused on a coarse level of the refinement") {
+    // One node per unit area: no base leaf lies inside the square, so only the refinement's own count
+    // sees the limit's nodes; it refuses on level 2 (cells of side ~0.25), long before the ~1e-4 cells.
+    const fixtures::ConstantSpacing base(1.0);
+    const std::string m =
+        pdmesh_test::error_message<LimitError>([&] { SpacingPipeline pipeline(base, tree, options); });
+    INFO(m);
+    CHECK(contains(m, "nodes already on level 2 of its quadtree"));
+    CHECK(contains(m, "more than --max-nodes 1000"));
+  }
+  SECTION("within the budget it builds") {
+    const fixtures::ConstantSpacing base(1.0);
+    options.background.max_nodes = 1e9;
+    options.points.front().q = 0.05;
+    CHECK_NOTHROW(SpacingPipeline(base, tree, options));
+  }
 }

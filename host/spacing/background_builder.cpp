@@ -165,12 +165,6 @@ void BackgroundBuilder::build() {
   make_roots();
   std::vector<int> roots(cells_.size());
   for (std::size_t k = 0; k < roots.size(); ++k) roots[k] = static_cast<int>(k);
-  count_nodes_ = true;
-  finished_nodes_ = 0.0;
-  struct Off {
-    bool& flag;
-    ~Off() { flag = false; }
-  } off{count_nodes_};
   refine(
       std::move(roots), [this](const Cell& c, const double q[4]) { return default_decide(c, q); },
       [this](const Cell&, const double q[4], const double exact[9], const std::int32_t*, int count) {
@@ -203,7 +197,7 @@ void BackgroundBuilder::check_budget(const std::vector<int>& level_cells, const 
                                      const std::vector<double>& corners) {
   std::size_t splits = 0;
   for (const Decision d : decision) splits += d == Decision::Split ? 1 : 0;
-  if (count_nodes_ && opt_.max_nodes > 0.0) {
+  if (opt_.max_nodes > 0.0) {
     // The hexagonal-packing count of the inside cells, on their bilinear q: exact for the leaves' final
     // field and converging to it level by level for the cells that split. Boundary cells are left
     // out (the part of them inside the domain is not known here; counting them whole would refuse a
@@ -435,6 +429,7 @@ void BackgroundBuilder::tag_children(const std::vector<int>& next, const std::ve
 std::size_t BackgroundBuilder::refine(std::vector<int> level_cells, const DecideFn& decide, const TestFn& test,
                                       const CornerFn& corner_value, const SampledFn& sampled) {
   PhaseProgress progress("spacing field");
+  finished_nodes_ = 0.0;
   std::size_t splits = 0;
   Level level;
   level.cells = std::move(level_cells);

@@ -44,6 +44,10 @@ class BackgroundBuilder {
   // bulk. `test` also sees the sample ids of the test points. Returns the number of cells split.
   // `test` is called from several threads at once: it may only read (decide and corner_value are
   // called on the calling thread, in the cells' order).
+  // The corner values are spacings: before a level is split, the nodes that the inside cells of this
+  // call ask for are held to max_nodes (check_budget), so a caller that lowers q (the limited field)
+  // is refused on a coarse level, before the fine levels are made. Cells not given to the call are not
+  // counted, so the count stays below the whole field's.
   using DecideFn = std::function<Decision(const Cell&, const double q[4])>;
   using TestFn =
       std::function<bool(const Cell&, const double q[4], const double exact[9], const std::int32_t ids[9], int count)>;
@@ -107,7 +111,7 @@ class BackgroundBuilder {
   // Measured 620-680 bytes per cell on uniform fields of 0.26-1.3 M cells, the case with the most
   // samples per cell (docs/robustness.md, "Memory").
   static constexpr double kBytesPerCell = 768.0;
-  // build() refuses once the nodes that its inside cells ask for pass max_nodes times this. The count
+  // build() and refine() refuse once the nodes that its inside cells ask for pass max_nodes times this. The count
   // grows level by level toward the finished field's estimate: on the 14 case files in both presets
   // it stayed below it at every level (at most 0.996 of it), so the margin only covers fields whose
   // coarse bilinear q overestimates; the exact estimate is checked against max_nodes itself.
@@ -148,8 +152,7 @@ class BackgroundBuilder {
   const Geometry* closest_geometry_ = nullptr;  // collect_closest's
   std::vector<std::int32_t> closest_;           // by sample id, while collecting (see collect_closest)
   std::size_t batches_ = 0;
-  bool count_nodes_ = false;     // build() is refining: its cells' corner values are the exact field's
-  double finished_nodes_ = 0.0;  // nodes in the inside leaves build() has finished
+  double finished_nodes_ = 0.0;  // nodes in the inside leaves the running refine() has finished
 };
 
 }  // namespace pdmesh
