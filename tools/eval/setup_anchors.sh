@@ -10,11 +10,12 @@
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 
-if ! command -v FreeFem++ >/dev/null; then
+# Debian `time` gives tools/bench/scale_vs_gmsh.py each command's peak RSS (/usr/bin/time -v).
+if ! command -v FreeFem++ >/dev/null || [ ! -x /usr/bin/time ]; then
   sudo_cmd=()
   [ "$(id -u)" -eq 0 ] || sudo_cmd=(sudo)
   "${sudo_cmd[@]}" apt-get update -qq
-  DEBIAN_FRONTEND=noninteractive "${sudo_cmd[@]}" apt-get install -y -qq --no-install-recommends freefem++
+  DEBIAN_FRONTEND=noninteractive "${sudo_cmd[@]}" apt-get install -y -qq --no-install-recommends freefem++ time
 fi
 
 venv=$PWD/tools/.venv-anchors
