@@ -303,6 +303,39 @@ TEST_CASE("cleanup's least move gain takes fewer moves and keeps every guarantee
   }
 }
 
+TEST_CASE("settling ends the repairs after a quiet iteration, with the smallest angle of the full run", "[cleanup]") {
+  const Geometry g = plate_with_hole();
+  const GeometryTree tree(g);
+  const BoundarySpacing spacing(tree);
+  const NodeSet nodes = make_initial_distribution(tree, spacing, {InitMethod::Random, 3, {}, false}).nodes;
+  CleanupOptions full;
+  full.min_angle = 35.0;
+  full.iterations = 32;
+  full.measure_iterations = true;
+  CleanupOptions settling = full;
+  settling.settled_aspect_drop = 1e-4;
+  const CleanupResult a = clean_and_verify(g, tree, spacing, nodes, full);
+  const CleanupResult s = clean_and_verify(g, tree, spacing, nodes, settling);
+  CHECK_FALSE(a.stats.settled);
+  REQUIRE(s.stats.settled);
+  CHECK(s.stats.iterations_run < a.stats.iterations_run);
+  CHECK(s.stats.moves < a.stats.moves);
+  // The iterations both made are the same; the last one settling made was quiet.
+  REQUIRE(s.stats.iterations_run >= 2);
+  const auto n = static_cast<std::size_t>(s.stats.iterations_run);
+  for (std::size_t k = 0; k < n; ++k) {
+    CHECK(s.stats.per_iteration[k].moves == a.stats.per_iteration[k].moves);
+    CHECK(s.stats.per_iteration[k].min_angle == a.stats.per_iteration[k].min_angle);
+  }
+  const CleanupIteration& last = s.stats.per_iteration[n - 1];
+  CHECK(last.topology == 0);
+  CHECK(last.min_angle == s.stats.per_iteration[n - 2].min_angle);
+  CHECK(last.aspect_drop < settling.settled_aspect_drop * static_cast<double>(s.mesh.triangles.size()));
+  // Here the later iterations only polish the mean aspect ratio: the smallest angle is the full run's.
+  CHECK(summarize_quality(s.mesh).min_angle == Approx(summarize_quality(a.mesh).min_angle).margin(1e-9));
+  CHECK(summarize_quality(s.mesh).aspect_ratio_avg <= summarize_quality(a.mesh).aspect_ratio_avg + 1e-3);
+}
+
 TEST_CASE("compound trials lift a triangle on a coarse boundary segment that no single edit can", "[cleanup]") {
   // The plate's octagonal cut-out (cases/corpus/plate) with the interior nodes the fast preset left
   // around it (a fast-preset run's final.nodes, cropped to a box with boundary nodes every 0.1): a triangle

@@ -140,6 +140,8 @@ class CleanupRun {
   // One outer iteration: the smoothing sweeps, then the topology pass; its record goes to `stats`.
   // Returns the number of changes it made (node moves and topology changes).
   std::size_t iterate(int iteration, CleanupStats& stats);
+  // Whether the iterations have settled with the one just made (CleanupOptions::settled_aspect_drop).
+  bool settled(int iteration, const CleanupIteration& record);
   // The polishing sweeps (CleanupOptions::polish) after the iterations.
   void polish(CleanupStats& stats);
 
@@ -164,6 +166,7 @@ class CleanupRun {
   std::vector<std::uint8_t> mark_;
   Scores scores_;
   std::set<std::array<int, 3>> failures_;
+  double last_worst_ = -1.0;  // the smallest score after the previous iteration (settled())
 };
 
 // The sweeps over the vertices of the bad triangles: relaxation below the smoothing limit, then
@@ -265,6 +268,20 @@ void CleanupRun::measure(CleanupIteration& record) const {
   record.aspect_mean = count > 0.0 ? aspect_sum / count : 0.0;
 }
 
+bool CleanupRun::settled(int iteration, const CleanupIteration& record) {
+  if (!(options_.settled_aspect_drop > 0.0)) return false;
+  double worst = 1.0, count = 0.0;
+  for (int t = 0; t < m_.triangle_slots(); ++t)
+    if (m_.alive(t)) {
+      worst = std::min(worst, m_.quality(t));
+      count += 1.0;
+    }
+  const bool quiet = iteration > 0 && record.topology == 0 && worst <= last_worst_ &&
+                     record.aspect_drop < options_.settled_aspect_drop * count;
+  last_worst_ = worst;
+  return quiet;
+}
+
 // Lawson flips over every edge of the mesh. Each edit legalises the edges it can make illegal but one:
 // an edge collapse moves the kept node and legalises only its link, not its spokes, and a spoke left
 // illegal there is mostly flipped by a later move of the node or of a neighbour, but not always (the
@@ -338,8 +355,13 @@ CleanupResult clean_mesh(const Mesh& mesh, const NodeSet& nodes, const GeometryT
   const auto start = std::chrono::steady_clock::now();
   CleanupResult result;
   CleanupRun run(mesh, nodes, tree, spacing, options, edge_to_spacing_ratio(mesh, spacing));
-  for (int iteration = 0; iteration < options.iterations; ++iteration)
+  for (int iteration = 0; iteration < options.iterations; ++iteration) {
     if (run.iterate(iteration, result.stats) == 0) break;
+    if (run.settled(iteration, result.stats.per_iteration.back())) {
+      result.stats.settled = true;
+      break;
+    }
+  }
   run.polish(result.stats);
   run.finish(mesh, nodes, spacing, result);
   result.stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -32,6 +32,11 @@ struct CleanupOptions {
   // move_aspect_drop. 0 and 0: any strict improvement counts.
   double move_min_rise = 0.0;
   double move_aspect_drop = 0.0;
+  // Settling (0: off): the repairs end after an iteration (not the first) that made no topology
+  // change, left the mesh's smallest angle where it was and lowered its mean aspect ratio by less
+  // than this. On a settled lattice the sweeps go on moving tens of thousands of nodes per iteration
+  // for drops of ~1e-6 each (docs/cleanup.md, "Settling").
+  double settled_aspect_drop = 0.0;
   bool topology = true;  // insertions, collapses and splits (off: smoothing and flips only)
   // Boundary edges may be split by a new node on their curve (off: the boundary nodes stay the
   // simulation's, they only slide).
@@ -84,6 +89,7 @@ struct CleanupStats {
   std::size_t compound_trials = 0;   // of which pairs of edits (docs/cleanup.md) ...
   std::size_t compound_applied = 0;  // ... and pairs applied
   int iterations_run = 0;
+  bool settled = false;  // the iterations ended by CleanupOptions::settled_aspect_drop
   double seconds = 0.0;
   double smoothing_seconds = 0.0;  // of which in the smoothing sweeps ...
   double topology_seconds = 0.0;   // ... and in the topology passes

@@ -5,6 +5,7 @@
 //                      [--step-cap F] [--no-topology] [--no-compound] [--trials-per-triangle F] [--min-trials N]
 //                      [--repeats N] [--png PREFIX] [--window x0,y0,x1,y1]
 //                      [--spacing EXPRESSION] (default: the boundary spacing, eq. 3.6)
+//                      [--settled-aspect-drop D] (CleanupOptions::settled_aspect_drop)
 //                      [--per-iteration] (a table of every outer iteration) [--write MESH.msh] (the cleaned mesh)
 //        bench_cleanup --write-graded N FILE.crv   (the graded_N geometry of `pdmesh bench` as a curve file)
 #include <fmt/format.h>
@@ -88,6 +89,8 @@ int main(int argc, char** argv) {
         options.move_min_rise = std::stod(value());
       else if (arg == "--move-aspect-drop")
         options.move_aspect_drop = std::stod(value());
+      else if (arg == "--settled-aspect-drop")
+        options.settled_aspect_drop = std::stod(value());
       else if (arg == "--per-iteration")
         options.measure_iterations = true;
       else if (arg == "--write")
@@ -146,12 +149,13 @@ int main(int argc, char** argv) {
     print_summary("after", summarize_quality(result.mesh, q, qo));
     const auto& st = result.stats;
     fmt::print(
-        "cleanup: {} iterations, {} moves, {} inserted, {} collapsed, {} rejected, {} trials ({} compound, {} "
+        "cleanup: {} iterations{}, {} moves, {} inserted, {} collapsed, {} rejected, {} trials ({} compound, {} "
         "applied); "
         "best of {}: wall {:.3f} s, cpu {:.3f} s (smoothing {:.3f} s, topology {:.3f} s wall; triangulation {:.3f} "
         "s)\n",
-        st.iterations_run, st.moves, st.inserted, st.collapsed, st.rejected, st.trials, st.compound_trials,
-        st.compound_applied, repeats, best, best_cpu, st.smoothing_seconds, st.topology_seconds, triangulate_s);
+        st.iterations_run, st.settled ? " (settled)" : "", st.moves, st.inserted, st.collapsed, st.rejected, st.trials,
+        st.compound_trials, st.compound_applied, repeats, best, best_cpu, st.smoothing_seconds, st.topology_seconds,
+        triangulate_s);
     if (options.measure_iterations) {
       // Where the work goes: per outer iteration the moves (and those that lowered their star's mean
       // aspect ratio by less than 1e-4), what they gained, and the mesh after it.

@@ -312,7 +312,8 @@ const std::vector<std::string>& cleanup_keys() {
   static const std::vector<std::string> keys = {
       "cleanup.enabled",    "cleanup.min_angle",      "cleanup.iterations",
       "cleanup.topology",   "cleanup.split_boundary", "cleanup.trials_per_triangle",
-      "cleanup.min_trials", "cleanup.sharp_corners",  "cleanup.polish",
+      "cleanup.min_trials", "cleanup.settle",         "cleanup.sharp_corners",
+      "cleanup.polish",
   };
   return keys;
 }

@@ -381,6 +381,11 @@ void read_cleanup_section(const Reader& r, const toml::table& root, CaseConfig& 
     if (k.min_trials < 0 || k.min_trials > 1000000000)
       r.fail("cleanup.min_trials", n, fmt::format("cleanup.min_trials must be in 0..1000000000, got {}", k.min_trials));
   }
+  if (const toml::node* n = find(root, "cleanup", "settle")) {
+    k.settle = r.number("cleanup.settle", *n);
+    if (!(k.settle >= 0.0 && k.settle <= 0.01))
+      r.fail("cleanup.settle", n, fmt::format("cleanup.settle must be in [0, 0.01], got {}", k.settle));
+  }
   if (const toml::node* n = find(root, "cleanup", "sharp_corners"))
     k.sharp_corners = r.boolean("cleanup.sharp_corners", *n);
   if (const toml::node* n = find(root, "cleanup", "polish")) {

@@ -24,6 +24,8 @@ namespace {
 
 // The best preset's spacing.relax_scale: measured, see apply_momentum_schedule.
 constexpr double kBestRelaxScale = 1.09;
+// The best preset's cleanup.settle: measured, see apply_momentum_schedule.
+constexpr double kBestCleanupSettle = 1e-5;
 
 // Best (and fast) = long plus these: over the 16 runs of the stopping study (tools/studies/stop_study) it
 // stops after 500-750 iterations instead of 1300-2000 with a lower mean aspect ratio everywhere, and
@@ -59,6 +61,9 @@ void apply_momentum_schedule(CaseConfig& c) {
   // (docs/journal/).
   c.cleanup.trials_per_triangle = 0.2;
   c.cleanup.min_trials = 2000;
+  // Its repairs end once an iteration only lowers the mean aspect ratio by < 1e-5: the sweeps' long
+  // tail of tiny moves (docs/cleanup.md, "Settling").
+  c.cleanup.settle = kBestCleanupSettle;
   // Relaxed at kBestRelaxScale x q, the lattice's edges come out at q (mean edge/q 0.91 at 1; docs/spacing.md,
   // "The node count").
   c.spacing.relax_scale = kBestRelaxScale;
@@ -81,6 +86,7 @@ void apply_long_schedule(CaseConfig& c) {
   c.cleanup.iterations = long_values.cleanup.iterations;
   c.cleanup.trials_per_triangle = long_values.cleanup.trials_per_triangle;
   c.cleanup.min_trials = long_values.cleanup.min_trials;
+  c.cleanup.settle = long_values.cleanup.settle;
   c.spacing.relax_scale = long_values.spacing.relax_scale;
 }
 

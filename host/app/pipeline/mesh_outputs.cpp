@@ -43,6 +43,7 @@ CleanupOptions mesh_detail::cleanup_options(const CaseConfig& config) {
   o.split_boundary = config.cleanup.split_boundary;
   o.trials_per_triangle = config.cleanup.trials_per_triangle;
   o.min_trials = static_cast<double>(config.cleanup.min_trials);
+  o.settled_aspect_drop = config.cleanup.settle;
   o.sharp_corners = config.cleanup.sharp_corners;
   o.polish = static_cast<int>(config.cleanup.polish);
   return o;
