@@ -484,7 +484,7 @@ TEST_CASE("cleanup trial budget keys: the presets' values, a file's values win, 
   CHECK(static_cast<double>(thesis.cleanup.min_trials) == options.min_trials);
   // best: a smaller first budget (app/config/presets.cpp).
   const CaseConfig best = parse_case_text(kMinimal, kCase);
-  CHECK(best.cleanup.trials_per_triangle == 0.2);
+  CHECK(best.cleanup.trials_per_triangle == 0.05);
   CHECK(best.cleanup.min_trials == 2000);
   const CaseConfig set =
       parse_case_text(std::string(kMinimal) + "[cleanup]\ntrials_per_triangle = 1.5\nmin_trials = 300\n", kCase);
