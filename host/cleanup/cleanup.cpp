@@ -154,6 +154,11 @@ class CleanupRun {
   void set_aspect_totals();
   std::size_t topology_pass(const std::vector<std::uint8_t>& dirty, InterruptPoll& poll, CleanupIteration& record,
                             CleanupStats& stats);
+  // The smallest score, the aspect-ratio sum and the count of the live triangles.
+  struct MeshScan {
+    double worst = 1.0, aspect_sum = 0.0, count = 0.0;
+  };
+  MeshScan scan() const;
   void measure(CleanupIteration& record) const;
   void legalize_all();
 
@@ -255,30 +260,30 @@ std::size_t CleanupRun::topology_pass(const std::vector<std::uint8_t>& dirty, In
   return changed;
 }
 
-// The whole mesh's smallest angle and mean aspect ratio after an iteration.
-void CleanupRun::measure(CleanupIteration& record) const {
-  double worst = 1.0, aspect_sum = 0.0, count = 0.0;
+CleanupRun::MeshScan CleanupRun::scan() const {
+  MeshScan s;
   for (int t = 0; t < m_.triangle_slots(); ++t)
     if (m_.alive(t)) {
-      worst = std::min(worst, m_.quality(t));
-      aspect_sum += m_.aspect(t);
-      count += 1.0;
+      s.worst = std::min(s.worst, m_.quality(t));
+      s.aspect_sum += m_.aspect(t);
+      s.count += 1.0;
     }
-  record.min_angle = cleanup::degrees_from_sine(worst);
-  record.aspect_mean = count > 0.0 ? aspect_sum / count : 0.0;
+  return s;
+}
+
+// The whole mesh's smallest angle and mean aspect ratio after an iteration.
+void CleanupRun::measure(CleanupIteration& record) const {
+  const MeshScan s = scan();
+  record.min_angle = cleanup::degrees_from_sine(s.worst);
+  record.aspect_mean = s.count > 0.0 ? s.aspect_sum / s.count : 0.0;
 }
 
 bool CleanupRun::settled(int iteration, const CleanupIteration& record) {
   if (!(options_.settled_aspect_drop > 0.0)) return false;
-  double worst = 1.0, count = 0.0;
-  for (int t = 0; t < m_.triangle_slots(); ++t)
-    if (m_.alive(t)) {
-      worst = std::min(worst, m_.quality(t));
-      count += 1.0;
-    }
-  const bool quiet = iteration > 0 && record.topology == 0 && worst <= last_worst_ &&
-                     record.aspect_drop < options_.settled_aspect_drop * count;
-  last_worst_ = worst;
+  const MeshScan s = scan();
+  const bool quiet = iteration > 0 && record.topology == 0 && s.worst <= last_worst_ &&
+                     record.aspect_drop < options_.settled_aspect_drop * s.count;
+  last_worst_ = s.worst;
   return quiet;
 }
 

@@ -111,10 +111,10 @@ class BackgroundBuilder {
   // Measured 620-680 bytes per cell on uniform fields of 0.26-1.3 M cells, the case with the most
   // samples per cell (docs/robustness.md, "Memory").
   static constexpr double kBytesPerCell = 768.0;
-  // build() and refine() refuse once the nodes that its inside cells ask for pass max_nodes times this. The count
-  // grows level by level toward the finished field's estimate: on the 14 case files in both presets
-  // it stayed below it at every level (at most 0.996 of it), so the margin only covers fields whose
-  // coarse bilinear q overestimates; the exact estimate is checked against max_nodes itself.
+  // refine() (and so build()) refuses once the nodes that its inside cells ask for pass max_nodes
+  // times this. The count grows level by level toward the finished field's estimate: on the 14 case files in both
+  // presets it stayed below it at every level (at most 0.996 of it), so the margin only covers fields whose coarse
+  // bilinear q overestimates; the exact estimate is checked against max_nodes itself.
   static constexpr double kEarlyNodeMargin = 1.25;
 
  private:

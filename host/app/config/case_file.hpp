@@ -224,7 +224,7 @@ struct CaseConfig {
     double trials_per_triangle = CleanupOptions{}.trials_per_triangle;
     std::int64_t min_trials = static_cast<std::int64_t>(CleanupOptions{}.min_trials);
     // CleanupOptions::settled_aspect_drop: the repairs end once an iteration changes the mean aspect
-    // ratio by less than this and nothing else (0: they run to `iterations`; best sets it).
+    // ratio by less than this and nothing else (0, every preset's: they run to `iterations`).
     double settle = CleanupOptions{}.settled_aspect_drop;
     // CleanupOptions::sharp_corners and polish (off in every preset; pdmesh smooth turns both on).
     bool sharp_corners = false;

@@ -56,9 +56,8 @@ void apply_momentum_schedule(CaseConfig& c) {
   // mostly on 40-55 degree triangles of a settled lattice, 0.12 s of the 30P30N curves' 0.23 s
   // cleanup; the triangles below the target still take a second budget. Over the stopping study's 16
   // runs (and its two other population intervals) the smallest angle moves by at most 0.3 degrees
-  // (docs/journal/). 0.05 x triangles rather than 0.2: at scale the bound is what the first pass spends
-  // (annulus_250k: 105k trials, 3.2 s, for a mean aspect ratio 0.00004 lower and the same smallest
-  // angle; docs/journal/2026-12-02d-integration.md); small runs keep the 2000 floor.
+  // (docs/journal/). At scale the bound is what the first pass spends, on triangles already above the
+  // target (docs/cleanup.md, "The pass"); small runs keep the 2000 floor.
   c.cleanup.trials_per_triangle = 0.05;
   c.cleanup.min_trials = 2000;
   // Relaxed at kBestRelaxScale x q, the lattice's edges come out at q (mean edge/q 0.91 at 1; docs/spacing.md,
