@@ -128,8 +128,9 @@ double check_node_limit(const CaseConfig& config, const MeshInputs& inputs, cons
 // arenas, the pictures' bands) and the field. Measured (docs/journal/2026-12-02d-sim-memory2.md): the
 // unit square at q = 2e-3 (243k estimated nodes in the best preset, 289k in the thesis one), 30
 // iterations, peaked at 180-223 MB on the host and 268 MB on PoCL; annulus_1m (841k estimated, 1.06M
-// final nodes, converged) at 1.21 GB before the simulation's diet and 0.98 GB after it: 1.2-1.45 KB per
-// estimated node base included. 256 MiB + 1 KiB x 1.25 per estimated node bounds them all.
+// final nodes, converged) at 1.11-1.21 GB before the simulation's diet and 0.88 GB after it:
+// 1.05-1.45 KB per estimated node base included. 256 MiB + 1 KiB x 1.25 per estimated node bounds
+// them all.
 inline constexpr double kRunBytesBase = 256.0 * 1024 * 1024;
 inline constexpr double kRunBytesPerNode = 1024.0;
 // Population control inserts nodes where the estimate is low: a few percent on the corpus, 26 % on
