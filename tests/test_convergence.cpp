@@ -170,13 +170,17 @@ TEST_CASE(
   for (int k = 0; k < 4; ++k) nodes.add(corners[k], 0.5, NodeKind::Fixed, k);
   nodes.add({0.4, 0.45}, 0.5, NodeKind::Interior, -1);
   nodes.curve_nodes = {{0, 1}, {1, 2}, {2, 3}, {3, 0}};
-  Mesh kept;
-  const MeshSample s = measure_mesh(nodes, 7, &kept);
+  std::vector<std::array<int, 3>> triangles;
+  const MeshSample s = measure_mesh(nodes, 7, &triangles);
   CHECK(s.iteration == 7);
   const Mesh direct = triangulate(nodes, {"c0", "c1", "c2", "c3"});
   const QualitySummary q = summarize_quality(direct);
-  // The mesh it measured, handed out: triangulate's, and recognised as these nodes' mesh.
+  // The triangles it measured, handed out, make triangulate's mesh, recognised as these nodes' mesh.
+  CHECK(triangles == direct.triangles);
+  const Mesh kept = measured_mesh(nodes, triangles);
   CHECK(kept.triangles == direct.triangles);
+  CHECK(kept.boundary_edges.size() == direct.boundary_edges.size());
+  CHECK(kept.kind == direct.kind);
   CHECK(kept.points == direct.points);
   CHECK(kept.curve_names == direct.curve_names);
   CHECK(triangulates(kept, nodes));
@@ -199,10 +203,10 @@ TEST_CASE(
   CHECK(s.aspect_ratio == Approx(q.aspect_ratio_avg).epsilon(1e-12));
   // A second interior node on top of the first: no triangulation, NaN values (not an exception).
   nodes.add({0.4, 0.45}, 0.5, NodeKind::Interior, -1);
-  const MeshSample bad = measure_mesh(nodes, 8, &kept);
+  const MeshSample bad = measure_mesh(nodes, 8, &triangles);
   CHECK(std::isnan(bad.min_angle));
   CHECK(std::isnan(bad.aspect_ratio));
-  CHECK(kept.triangles == direct.triangles);  // left as it was
+  CHECK(triangles == direct.triangles);  // left as they were
 }
 
 namespace {

@@ -244,6 +244,38 @@ TEST_CASE("square with a square hole: hole removed, area right", "[mesh]") {
   }
 }
 
+TEST_CASE("triangulate in two halves: triangulate_triangles then mesh_of_triangles is triangulate", "[mesh]") {
+  // A square with a square inner loop, as a hole and as a closed embedded constraint (a subdomain).
+  for (bool constraint : {false, true}) {
+    NodeSet nodes;
+    add_loop(nodes, square_loop(0, 1, 10, false), 0);
+    add_loop(nodes, square_loop(0.4, 0.6, 2, false), 1);
+    if (constraint) nodes.constraint_curves = {0, 1};
+    std::mt19937_64 rng(29);
+    for (int k = 0; k < 300; ++k)
+      nodes.add({0.02 + 0.96 * unit(rng), 0.02 + 0.96 * unit(rng)}, 0.1, NodeKind::Interior, -1);
+    const std::vector<std::string> names = {"outer", "inner"};
+    const Mesh whole = triangulate(nodes, names);
+    const Mesh halves = mesh_of_triangles(nodes, names, triangulate_triangles(nodes, names));
+    CHECK(halves.triangles == whole.triangles);
+    CHECK(halves.points == whole.points);
+    CHECK(halves.kind == whole.kind);
+    CHECK(halves.curve_names == whole.curve_names);
+    CHECK(halves.constraint_curves == whole.constraint_curves);
+    CHECK(halves.constraint_curves.empty() == !constraint);
+    REQUIRE(halves.boundary_edges.size() == whole.boundary_edges.size());
+    for (std::size_t k = 0; k < whole.boundary_edges.size(); ++k) {
+      CHECK(halves.boundary_edges[k].a == whole.boundary_edges[k].a);
+      CHECK(halves.boundary_edges[k].b == whole.boundary_edges[k].b);
+      CHECK(halves.boundary_edges[k].curve == whole.boundary_edges[k].curve);
+    }
+  }
+  // The same errors: a curve name count that does not match.
+  NodeSet nodes;
+  add_loop(nodes, square_loop(0, 1, 4, false), 0);
+  CHECK_THROWS_AS(triangulate_triangles(nodes, {}), InputError);
+}
+
 TEST_CASE("circle in a circle: annulus area, boundary edges present", "[mesh]") {
   NodeSet nodes;
   const auto outer = add_loop(nodes, circle_loop(1.0, 96), 0);

@@ -17,18 +17,20 @@ namespace pdmesh {
 
 namespace {
 
-// The triangulation of the nodes with each curve's chain of nodes constrained; with metrics, then
-// flipped to the Delaunay triangulation in the metric (mesh/metric_delaunay.hpp).
-Mesh triangulate_nodes(const NodeSet& nodes, const std::vector<std::string>& curve_names,
-                       const std::vector<Metric>* metrics, const MetricDelaunayOptions& options,
-                       MetricDelaunayStats* stats) {
+// Each curve's chain of nodes as constrained edges, in curve order; the embedded constraints' edges
+// also in `open_edges`. Throws GeometryError for an edge claimed by two curves.
+struct Chains {
+  std::vector<ConstrainedEdge> edges;
+  std::unordered_set<std::uint64_t> open_edges;
+};
+
+Chains curve_chains(const NodeSet& nodes, const std::vector<std::string>& curve_names) {
   if (curve_names.size() != nodes.curve_nodes.size()) {
     throw InputError(
         fmt::format("triangulate: {} curve names for {} node curves", curve_names.size(), nodes.curve_nodes.size()));
   }
-  std::vector<ConstrainedEdge> edges;
+  Chains chains;
   std::unordered_map<std::uint64_t, int> edge_curve;  // catches an edge claimed by two curves
-  std::unordered_set<std::uint64_t> open_edges;       // the embedded constraints' edges
   const auto& open = nodes.constraint_curves;
   for (std::size_t c = 0; c < nodes.curve_nodes.size(); ++c) {
     const auto& list = nodes.curve_nodes[c];
@@ -40,31 +42,63 @@ Mesh triangulate_nodes(const NodeSet& nodes, const std::vector<std::string>& cur
             fmt::format("boundary edge between nodes {} and {} belongs to curve {} ('{}') and curve {} ('{}')", e.a,
                         e.b, it->second, curve_names[it->second], c, curve_names[c]));
       }
-      edges.push_back(e);
-      if (c < open.size() && open[c]) open_edges.insert(Triangulation::edge_key(e.a, e.b));
+      chains.edges.push_back(e);
+      if (c < open.size() && open[c]) chains.open_edges.insert(Triangulation::edge_key(e.a, e.b));
     }
   }
+  return chains;
+}
+
+// The triangles of the nodes with the chains constrained; with metrics, flipped to the Delaunay
+// triangulation in the metric (mesh/metric_delaunay.hpp). The Triangulation is freed on return.
+std::vector<std::array<int, 3>> chain_triangles(const NodeSet& nodes, const Chains& chains,
+                                                const std::vector<Metric>* metrics,
+                                                const MetricDelaunayOptions& options, MetricDelaunayStats* stats) {
   Triangulation tri(nodes.x);
-  if (!edges.empty()) recover_edges(tri, edges);
+  if (!chains.edges.empty()) recover_edges(tri, chains.edges);
   if (metrics) {
     const MetricDelaunayStats s = make_metric_delaunay(tri, *metrics, options);
     if (stats) *stats = s;
   }
+  return chains.edges.empty() ? tri.inner_triangles() : inside_triangles(tri, chains.open_edges);
+}
+
+Mesh chain_mesh(const NodeSet& nodes, const std::vector<std::string>& curve_names, const Chains& chains,
+                std::vector<std::array<int, 3>> triangles) {
   Mesh mesh;
-  mesh.triangles = edges.empty() ? tri.inner_triangles() : inside_triangles(tri, open_edges);
+  mesh.triangles = std::move(triangles);
   mesh.points = nodes.x;
   mesh.kind = nodes.kind;
   mesh.curve_names = curve_names;
-  if (!open_edges.empty()) mesh.constraint_curves.assign(open.begin(), open.end());
-  mesh.boundary_edges.reserve(edges.size());
-  for (const auto& e : edges) mesh.boundary_edges.push_back({e.a, e.b, e.curve});
+  const auto& open = nodes.constraint_curves;
+  if (!chains.open_edges.empty()) mesh.constraint_curves.assign(open.begin(), open.end());
+  mesh.boundary_edges.reserve(chains.edges.size());
+  for (const auto& e : chains.edges) mesh.boundary_edges.push_back({e.a, e.b, e.curve});
   return mesh;
+}
+
+// The triangulation of the nodes with each curve's chain of nodes constrained, as a Mesh.
+Mesh triangulate_nodes(const NodeSet& nodes, const std::vector<std::string>& curve_names,
+                       const std::vector<Metric>* metrics, const MetricDelaunayOptions& options,
+                       MetricDelaunayStats* stats) {
+  const Chains chains = curve_chains(nodes, curve_names);
+  return chain_mesh(nodes, curve_names, chains, chain_triangles(nodes, chains, metrics, options, stats));
 }
 
 }  // namespace
 
 Mesh triangulate(const NodeSet& nodes, const std::vector<std::string>& curve_names) {
   return triangulate_nodes(nodes, curve_names, nullptr, {}, nullptr);
+}
+
+std::vector<std::array<int, 3>> triangulate_triangles(const NodeSet& nodes,
+                                                      const std::vector<std::string>& curve_names) {
+  return chain_triangles(nodes, curve_chains(nodes, curve_names), nullptr, {}, nullptr);
+}
+
+Mesh mesh_of_triangles(const NodeSet& nodes, const std::vector<std::string>& curve_names,
+                       std::vector<std::array<int, 3>> triangles) {
+  return chain_mesh(nodes, curve_names, curve_chains(nodes, curve_names), std::move(triangles));
 }
 
 Mesh triangulate_in_metric(const NodeSet& nodes, const std::vector<std::string>& curve_names,

@@ -1,5 +1,6 @@
 // Node set -> boundary-conforming constrained Delaunay mesh of the domain.
 #pragma once
+#include <array>
 #include <string>
 #include <vector>
 
@@ -17,6 +18,15 @@ namespace pdmesh {
 // Throws InputError (duplicate points, curve name count mismatch) and GeometryError (collinear
 // points, a node inside a boundary edge, crossing boundary edges, an edge used by two curves).
 Mesh triangulate(const NodeSet& nodes, const std::vector<std::string>& curve_names);
+
+// triangulate in two halves, for a caller that may not need the Mesh (the stopping rule's
+// measurement): its triangles, with the same errors (the triangulation's working arrays are freed on
+// return), then, given them, the rest of its Mesh. mesh_of_triangles(nodes, names,
+// triangulate_triangles(nodes, names)) is triangulate(nodes, names).
+std::vector<std::array<int, 3>> triangulate_triangles(const NodeSet& nodes,
+                                                      const std::vector<std::string>& curve_names);
+Mesh mesh_of_triangles(const NodeSet& nodes, const std::vector<std::string>& curve_names,
+                       std::vector<std::array<int, 3>> triangles);
 
 // The same, then flipped to the constrained Delaunay triangulation in the metric field given by
 // metrics[i] at node i (make_metric_delaunay; its counts in *stats when given). The boundary edges,

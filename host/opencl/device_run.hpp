@@ -12,6 +12,7 @@
 #include <limits>
 #include <optional>
 #include <type_traits>
+#include <utility>
 
 #include "opencl/command_counts.hpp"
 #include "opencl/device_boundary.hpp"
@@ -216,15 +217,14 @@ class DeviceRun final : public IterationSteps {
   Buffer<Real> carried_;  // momentum's carried moves, x and y interleaved (2 entries when momentum is off)
   // Host mirrors.
   std::vector<std::uint8_t> kind_host_;
-  std::vector<std::int32_t> boundary_nodes_;         // Boundary nodes in slot order
-  std::vector<double> build_x_, build_y_, build_q_;  // positions and spacings at the last build
-  std::vector<double> dx_, dy_;                      // host displacement scratch (full size, sparse use)
-  std::vector<std::int32_t> candidates_;
+  std::vector<std::int32_t> boundary_nodes_;  // Boundary nodes in slot order
+  std::vector<std::int32_t> candidates_;      // the step's candidates for the host's exact test
+  std::vector<Vec2> moves_;                   // their moves, parallel to candidates_
   std::vector<Real> brec_host_, arcs_host_, cand_rec_host_, rec_host_;
   std::vector<std::int32_t> rec_index_host_;
   // Targets of non-blocking downloads are members too: when a wait fails and the error unwinds, a
   // read still in flight must not write into freed memory (~DeviceRun waits for the queue first).
-  std::vector<Real> positions_host_[2];  // xy, q: a build's reads, emptied once copied into build_x_ ..
+  std::vector<Real> positions_host_[2];  // xy, q: a build's reads, emptied once remember() has them
   std::vector<std::int32_t> cand_index_host_;
   double skin_use_ = HUGE_VAL;                 // since the last build; HUGE_VAL forces a build
   double skin_limit_ = skin_use_limit(0.0);    // the largest skin use over share the current lists allow
@@ -237,7 +237,9 @@ class DeviceRun final : public IterationSteps {
   // iteration and after every neighbour-list build (which reads every position anyway). Its history
   // is the first saved_rows_ rows of the run's.
   NodeSet saved_nodes_;
-  SimState saved_state_;
+  SimState saved_state_;  // its tangents empty: the nonzero ones are saved_tangents_
+  std::vector<std::pair<std::size_t, Vec2>> saved_tangents_;
+  std::size_t saved_tangent_count_ = 0;
   std::size_t saved_rows_ = 0;
   // host_boundary has moved nodes on the host that xy_[cur_] does not hold yet (until the iteration ends).
   bool host_ahead_ = false;

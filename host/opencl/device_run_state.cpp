@@ -4,8 +4,10 @@
 #include "opencl/device_run.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 #include "core/errors.hpp"
+#include "core/free_memory.hpp"
 #include "core/parallel.hpp"
 #include "sim/failure_report.hpp"
 #include "spacing/background_field.hpp"
@@ -26,13 +28,31 @@ void DeviceRun<Real>::check_memory(std::uint64_t entries) const {
 
 template <typename Real>
 void DeviceRun<Real>::remember() {
-  // Interior positions and every q as the build read them from the device; boundary nodes the host's.
+  // Interior positions and every q as the build read them from the device (at the start: as uploaded,
+  // nodes_'s); boundary nodes the host's. The host's skin test measures from them too.
   saved_nodes_ = nodes_;
-  for (std::size_t i = 0; i < n_; ++i) {
-    if (saved_nodes_.kind[i] == NodeKind::Interior) saved_nodes_.x[i] = {build_x_[i], build_y_[i]};
-    saved_nodes_.q[i] = build_q_[i];
+  std::vector<Real>* v = positions_host_;
+  if (!v[0].empty()) {
+    for (std::size_t i = 0; i < n_; ++i) {
+      if (saved_nodes_.kind[i] == NodeKind::Interior)
+        saved_nodes_.x[i] = {static_cast<double>(v[0][2 * i]), static_cast<double>(v[0][2 * i + 1])};
+      saved_nodes_.q[i] = static_cast<double>(v[1][i]);
+    }
+    // Read targets only (the build waited for the reads): not kept between builds.
+    std::vector<Real>().swap(v[0]);
+    std::vector<Real>().swap(v[1]);
   }
   saved_state_ = loop_.state(boundary_, false);
+  // The tangents are zero but at the boundary nodes (a few in a thousand at a million nodes): kept as
+  // those alone, bit for bit (a -0.0 is kept too), and expanded in last_good_state.
+  std::vector<Vec2>& tangents = saved_state_.tangents;
+  saved_tangent_count_ = tangents.size();
+  saved_tangents_.clear();
+  for (std::size_t i = 0; i < tangents.size(); ++i) {
+    const Vec2 t = tangents[i];
+    if (t.x != 0.0 || t.y != 0.0 || std::signbit(t.x) || std::signbit(t.y)) saved_tangents_.emplace_back(i, t);
+  }
+  std::vector<Vec2>().swap(tangents);
   // The device is not ahead here (a build or the start: no window is running).
   if (with_momentum()) saved_state_.momentum = read_momentum();
   saved_rows_ = loop_.history().size();
@@ -68,6 +88,8 @@ SimState DeviceRun<Real>::last_good_state() {
   }
   nodes_ = saved_nodes_;
   SimState state = saved_state_;
+  state.tangents.assign(saved_tangent_count_, Vec2{});
+  for (const auto& [i, t] : saved_tangents_) state.tangents[i] = t;
   const std::vector<HistoryRow>& history = loop_.history();
   state.history.assign(history.begin(), history.begin() + static_cast<std::ptrdiff_t>(saved_rows_));
   return state;
@@ -215,11 +237,6 @@ void DeviceRun<Real>::upload_nodes(const std::vector<double>* budgets, const std
   write(carried_, std::vector<Real>(with_momentum() ? 2 * n : 2, Real(0)));
   kind_host_.resize(n);
   upload_topology();
-  dx_.assign(n, 0.0);
-  dy_.assign(n, 0.0);
-  build_x_ = x;
-  build_y_ = y;
-  build_q_ = nodes_.q;
 }
 
 // Population control on the device run: the whole state comes back (interior positions and every q
@@ -230,19 +247,24 @@ template <typename Real>
 std::optional<PopulationCounts> DeviceRun<Real>::population_event(int iteration) {
   if (!population_event_due(options_.population, loop_.population().schedule, iteration, options_.iterations))
     return std::nullopt;
+  // The event triangulates the nodes: without the free pages of the builds before it.
+  give_back_free_memory();
   const auto t0 = Clock::now();
   if (boundary_stale_) sync_boundary();
-  std::vector<Real> x, y, q, budget;
   std::vector<std::int32_t> leaves;
-  read_positions(cur_, x, y);
-  for (auto [from, to] : {std::pair{&q_[cur_], &q}, {&budget_, &budget}}) read(*from, *to, n_);
-  read(node_leaf_, leaves, n_);
-  stats_.population_transfer_seconds += since(t0);
-  for (std::size_t i = 0; i < n_; ++i) {
-    if (nodes_.kind[i] == NodeKind::Interior) nodes_.x[i] = {static_cast<double>(x[i]), static_cast<double>(y[i])};
-    nodes_.q[i] = static_cast<double>(q[i]);
+  std::vector<double> budgets;
+  {  // The read targets are freed before the event's own arrays are made.
+    std::vector<Real> x, y, q, budget;
+    read_positions(cur_, x, y);
+    for (auto [from, to] : {std::pair{&q_[cur_], &q}, {&budget_, &budget}}) read(*from, *to, n_);
+    read(node_leaf_, leaves, n_);
+    stats_.population_transfer_seconds += since(t0);
+    for (std::size_t i = 0; i < n_; ++i) {
+      if (nodes_.kind[i] == NodeKind::Interior) nodes_.x[i] = {static_cast<double>(x[i]), static_cast<double>(y[i])};
+      nodes_.q[i] = static_cast<double>(q[i]);
+    }
+    budgets.assign(budget.begin(), budget.end());
   }
-  std::vector<double> budgets(budget.begin(), budget.end());
   std::vector<int> old_of_new;
   const std::size_t old_n = n_;
   const auto counts = device_population_event(loop_.population(), options_.population, iteration, options_.iterations,

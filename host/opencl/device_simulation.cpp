@@ -20,30 +20,22 @@ void DeviceRun<Real>::rebuild() {
   const std::size_t n = n_;
   std::vector<Real>* v = positions_host_;
   if (stats_.rebuilds > 0) {
-    // The host's copy of the build state, for its boundary handling's skin test and the saved state
-    // (remember); the binning no longer needs it. Not waited on: the build's one wait completes it.
+    // The host's copy of the build state, for the saved state (remember, which the host's skin test
+    // reads); the binning no longer needs it. Not waited on: the build's one wait completes it. The
+    // first build's is the state just uploaded (nodes_).
     read(xy_[cur_], v[0], 2 * n, false);
     read(q_[cur_], v[1], n, false);
   }
   const double radius = options_.cutoff * (1.0 + options_.verlet_skin);
   NeighbourFlags flags =
       neighbours_.build(n, radius, xy_[cur_], q_[cur_], kind_, prev_, next_, options_.verlet_skin * options_.cutoff);
-  if (stats_.rebuilds > 0) {
-    build_x_.resize(n);
-    build_y_.resize(n);
-    for (std::size_t i = 0; i < n; ++i) {
-      build_x_[i] = static_cast<double>(v[0][2 * i]);
-      build_y_[i] = static_cast<double>(v[0][2 * i + 1]);
-    }
-    build_q_.assign(v[1].begin(), v[1].end());
-    // Read targets only (the build waited for the reads): not kept between builds.
-    std::vector<Real>().swap(v[0]);
-    std::vector<Real>().swap(v[1]);
-  }
   if (flags.first_invalid >= 0) {
     const auto i = static_cast<std::size_t>(flags.first_invalid);
-    throw SimulationError(fmt::format("node {} is invalid before binning: x = ({}, {}), q = {}", i, build_x_[i],
-                                      build_y_[i], build_q_[i]));
+    const bool read_back = !v[0].empty();
+    const double x = read_back ? static_cast<double>(v[0][2 * i]) : nodes_.x[i].x;
+    const double y = read_back ? static_cast<double>(v[0][2 * i + 1]) : nodes_.x[i].y;
+    const double q = read_back ? static_cast<double>(v[1][i]) : nodes_.q[i];
+    throw SimulationError(fmt::format("node {} is invalid before binning: x = ({}, {}), q = {}", i, x, y, q));
   }
   largest_row_ = std::max(largest_row_, flags.max_count);
   stats_.gather_seconds += neighbours_.gather_seconds;
@@ -221,13 +213,13 @@ void DeviceRun<Real>::take_row() {
     if (cand[k] >= 0) order.push_back(k);
   std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return cand[a] < cand[b]; });
   candidates_.resize(order.size());
+  moves_.resize(order.size());
   for (std::size_t k = 0; k < order.size(); ++k) {
     const std::size_t o = order[k];
     const auto i = static_cast<std::size_t>(cand[o]);
     candidates_[k] = cand[o];
     nodes_.x[i] = {static_cast<double>(cand_rec_host_[4 * o]), static_cast<double>(cand_rec_host_[4 * o + 1])};
-    dx_[i] = static_cast<double>(cand_rec_host_[4 * o + 2]);
-    dy_[i] = static_cast<double>(cand_rec_host_[4 * o + 3]);
+    moves_[k] = {static_cast<double>(cand_rec_host_[4 * o + 2]), static_cast<double>(cand_rec_host_[4 * o + 3])};
   }
   stats_.candidates += order.size();
   // Every move must be finite (the sums may not show a single NaN move): boundary_snap counted the
@@ -236,9 +228,7 @@ void DeviceRun<Real>::take_row() {
   // boundary_snap updated the tangents in place: the device's state before this step is no longer
   // whole, unless the flag stopped it (last_good_state).
   tangents_ahead_ = !boundary_nodes_.empty() && !non_finite_move;
-  for (std::int32_t node : candidates_)
-    moves_finite_ = moves_finite_ && std::isfinite(dx_[static_cast<std::size_t>(node)]) &&
-                    std::isfinite(dy_[static_cast<std::size_t>(node)]);
+  for (const Vec2 d : moves_) moves_finite_ = moves_finite_ && std::isfinite(d.x) && std::isfinite(d.y);
 }
 
 template <typename Real>
@@ -246,7 +236,7 @@ BoundaryCounts DeviceRun<Real>::host_boundary(double& skin_use) {
   auto t0 = Clock::now();
   host_ahead_ = true;
   // The device re-snapped the boundary nodes; a snap reads their arc positions (after the re-snap).
-  BoundaryCounts counts = boundary_.apply_interior(nodes_, dx_, dy_, candidates_, [this] {
+  BoundaryCounts counts = boundary_.apply_interior(nodes_, candidates_, moves_, [this] {
     if (boundary_stale_) sync_boundary();
   });
   counts.clamped = snap_.clamped;
@@ -277,12 +267,15 @@ BoundaryCounts DeviceRun<Real>::host_boundary(double& skin_use) {
         nodes_.kind[i] == NodeKind::Interior ? device_budget(p, boundary_.clearance_budget(node)) : 0.0;
     index.push_back(node);
     for (double v : {p.x, p.y, t.x, t.y, budget}) rec.push_back(static_cast<Real>(v));
-    const double ex = p.x - build_x_[i], ey = p.y - build_y_[i];
+    // The position and q at the last build: the saved state's (the candidates were interior nodes then).
+    const Vec2 b = saved_nodes_.x[i];
+    const double qb = saved_nodes_.q[i];
+    const double ex = p.x - b.x, ey = p.y - b.y;
     const double q = background_.at(p);
-    const double grow = q > build_q_[i] ? options_.cutoff * (q - build_q_[i]) : 0.0;
-    skin_use = std::max(skin_use, (std::sqrt(ex * ex + ey * ey) + grow) /
-                                      (options_.verlet_skin * options_.cutoff * build_q_[i]) *
-                                      skin_class_factor(skin_class_host_[i]));
+    const double grow = q > qb ? options_.cutoff * (q - qb) : 0.0;
+    skin_use =
+        std::max(skin_use, (std::sqrt(ex * ex + ey * ey) + grow) / (options_.verlet_skin * options_.cutoff * qb) *
+                               skin_class_factor(skin_class_host_[i]));
   };
   for (std::int32_t node : candidates_) add(node);
   stats_.host_seconds += since(t0);

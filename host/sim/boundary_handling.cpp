@@ -51,7 +51,7 @@ BoundaryCounts BoundaryHandler::apply(NodeSet& nodes, const std::vector<double>&
   move_boundary_nodes(nodes, dx, dy, counts);
   // 2. Interior nodes, in index order (snapped nodes change curve_nodes for the ones after them).
   for (std::size_t i = 0; i < nodes.size(); ++i)
-    if (nodes.kind[i] == NodeKind::Interior) move_interior_node(nodes, i, dx, dy, counts);
+    if (nodes.kind[i] == NodeKind::Interior) move_interior_node(nodes, i, {dx[i], dy[i]}, counts);
   return counts;
 }
 
@@ -59,20 +59,25 @@ BoundaryCounts BoundaryHandler::apply_subset(NodeSet& nodes, const std::vector<d
                                              const std::vector<double>& dy, const std::vector<int>& interior) {
   BoundaryCounts counts;
   move_boundary_nodes(nodes, dx, dy, counts);
-  const BoundaryCounts inner = apply_interior(nodes, dx, dy, interior, {});
+  std::vector<Vec2> moves(interior.size());
+  for (std::size_t k = 0; k < interior.size(); ++k) {
+    const auto i = static_cast<std::size_t>(interior[k]);
+    moves[k] = {dx[i], dy[i]};
+  }
+  const BoundaryCounts inner = apply_interior(nodes, interior, moves, {});
   counts.snapped = inner.snapped;
   return counts;
 }
 
-BoundaryCounts BoundaryHandler::apply_interior(NodeSet& nodes, const std::vector<double>& dx,
-                                               const std::vector<double>& dy, const std::vector<int>& interior,
+BoundaryCounts BoundaryHandler::apply_interior(NodeSet& nodes, const std::vector<int>& interior,
+                                               const std::vector<Vec2>& moves,
                                                const std::function<void()>& before_snap) {
   BoundaryCounts counts;
-  for (int node : interior) {
-    const auto i = static_cast<std::size_t>(node);
+  for (std::size_t k = 0; k < interior.size(); ++k) {
+    const auto i = static_cast<std::size_t>(interior[k]);
     // The device moved this node since the host last saw it: the host's budget no longer holds.
     budget_[i] = 0.0;
-    if (nodes.kind[i] == NodeKind::Interior) move_interior_node(nodes, i, dx, dy, counts, &before_snap);
+    if (nodes.kind[i] == NodeKind::Interior) move_interior_node(nodes, i, moves[k], counts, &before_snap);
   }
   return counts;
 }
@@ -108,11 +113,10 @@ void BoundaryHandler::move_boundary_nodes(NodeSet& nodes, const std::vector<doub
   }
 }
 
-void BoundaryHandler::move_interior_node(NodeSet& nodes, std::size_t i, const std::vector<double>& dx,
-                                         const std::vector<double>& dy, BoundaryCounts& counts,
+void BoundaryHandler::move_interior_node(NodeSet& nodes, std::size_t i, Vec2 move, BoundaryCounts& counts,
                                          const std::function<void()>* before_snap) {
   const Vec2 from = nodes.x[i];
-  const Vec2 target{from.x + dx[i], from.y + dy[i]};
+  const Vec2 target{from.x + move.x, from.y + move.y};
   if (!std::isfinite(target.x) || !std::isfinite(target.y))
     throw SimulationError(fmt::format("node {} moved from ({}, {}) to a non-finite position ({}, {})", i, from.x,
                                       from.y, target.x, target.y));

@@ -39,10 +39,11 @@ class BoundaryHandler {
   BoundaryCounts apply_subset(NodeSet& nodes, const std::vector<double>& dx, const std::vector<double>& dy,
                               const std::vector<int>& interior);
   // apply_subset without the boundary nodes, which the device re-snapped already (kernels/boundary.cl):
-  // the interior step of `interior` only. before_snap (when set) runs before each escaped node is
+  // the interior step of `interior` only, node interior[k] moved by moves[k] (the device's few
+  // candidates: no array of every node). before_snap (when set) runs before each escaped node is
   // snapped onto a curve, which reads the arc positions: the device run brings them up to date there.
-  BoundaryCounts apply_interior(NodeSet& nodes, const std::vector<double>& dx, const std::vector<double>& dy,
-                                const std::vector<int>& interior, const std::function<void()>& before_snap);
+  BoundaryCounts apply_interior(NodeSet& nodes, const std::vector<int>& interior, const std::vector<Vec2>& moves,
+                                const std::function<void()>& before_snap);
 
   const GeometryTree& tree() const { return tree_; }
   // Unit tangent of a Boundary node (zero for other kinds).
@@ -93,8 +94,8 @@ class BoundaryHandler {
   void insert_snapped(NodeSet& nodes, int node, Vec2 target);
   void move_boundary_nodes(NodeSet& nodes, const std::vector<double>& dx, const std::vector<double>& dy,
                            BoundaryCounts& counts);
-  void move_interior_node(NodeSet& nodes, std::size_t i, const std::vector<double>& dx, const std::vector<double>& dy,
-                          BoundaryCounts& counts, const std::function<void()>* before_snap = nullptr);
+  void move_interior_node(NodeSet& nodes, std::size_t i, Vec2 move, BoundaryCounts& counts,
+                          const std::function<void()>* before_snap = nullptr);
 
   const GeometryTree& tree_;
   std::vector<std::vector<double>> arcs_;

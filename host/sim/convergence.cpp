@@ -31,25 +31,36 @@ void check_convergence_options(const ConvergenceOptions& o) {
     throw InputError(fmt::format("convergence min_iterations must be >= 0, got {}", o.min_iterations));
 }
 
-MeshSample measure_mesh(const NodeSet& nodes, int iteration, Mesh* mesh_out) {
-  constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-  MeshSample s{iteration, kNaN, kNaN};
+namespace {
+
+std::vector<std::string> chain_names(const NodeSet& nodes) {
   std::vector<std::string> names(nodes.curve_nodes.size());
   for (std::size_t c = 0; c < names.size(); ++c) names[c] = fmt::format("c{}", c);
+  return names;
+}
+
+}  // namespace
+
+MeshSample measure_mesh(const NodeSet& nodes, int iteration, std::vector<std::array<int, 3>>* triangles_out) {
+  constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+  MeshSample s{iteration, kNaN, kNaN};
   try {
-    Mesh mesh = triangulate(nodes, names);
-    if (mesh.triangles.empty()) return s;
+    // The triangles only: a Mesh (a copy of the points and kinds) is made for the last measurement
+    // alone (measured_mesh), and the triangulation's arrays are freed before the shapes are measured.
+    std::vector<std::array<int, 3>> triangles = triangulate_triangles(nodes, chain_names(nodes));
+    if (triangles.empty()) return s;
     // The shapes on every core (the device waits for this check), then the minimum and the sum in
     // triangle order on this thread: the same bits as one loop. In batches, so that the shapes of a
     // multi-million-triangle mesh are never all held at once.
     constexpr std::size_t kBatch = std::size_t{1} << 16;
     std::vector<TriangleShape> shapes;
+    const std::vector<Vec2>& p = nodes.x;
     double angle = 180.0, aspect = 0.0;
-    for (std::size_t first = 0; first < mesh.triangles.size(); first += kBatch) {
-      shapes.resize(std::min(kBatch, mesh.triangles.size() - first));
+    for (std::size_t first = 0; first < triangles.size(); first += kBatch) {
+      shapes.resize(std::min(kBatch, triangles.size() - first));
       parallel_for(shapes.size(), [&](std::size_t b) {
-        const auto& t = mesh.triangles[first + b];
-        shapes[b] = triangle_shape(mesh.points[t[0]], mesh.points[t[1]], mesh.points[t[2]]);
+        const auto& t = triangles[first + b];
+        shapes[b] = triangle_shape(p[t[0]], p[t[1]], p[t[2]]);
       });
       for (const TriangleShape& q : shapes) {
         angle = std::min(angle, q.min_angle);
@@ -57,8 +68,8 @@ MeshSample measure_mesh(const NodeSet& nodes, int iteration, Mesh* mesh_out) {
       }
     }
     s.min_angle = angle;
-    s.aspect_ratio = aspect / static_cast<double>(mesh.triangles.size());
-    if (mesh_out) *mesh_out = std::move(mesh);
+    s.aspect_ratio = aspect / static_cast<double>(triangles.size());
+    if (triangles_out) *triangles_out = std::move(triangles);
   } catch (const Interrupted&) {
     throw;  // a stop request, not a measurement
   } catch (const Error&) {
@@ -67,11 +78,14 @@ MeshSample measure_mesh(const NodeSet& nodes, int iteration, Mesh* mesh_out) {
   return s;
 }
 
+Mesh measured_mesh(const NodeSet& nodes, std::vector<std::array<int, 3>> triangles) {
+  return mesh_of_triangles(nodes, chain_names(nodes), std::move(triangles));
+}
+
 MeshSample measure_mesh_in_metric(const NodeSet& nodes, int iteration, const MetricField& metric) {
   constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
   MeshSample s{iteration, kNaN, kNaN};
-  std::vector<std::string> names(nodes.curve_nodes.size());
-  for (std::size_t c = 0; c < names.size(); ++c) names[c] = fmt::format("c{}", c);
+  const std::vector<std::string> names = chain_names(nodes);
   try {
     // One thread: an expression field is not thread-safe.
     std::vector<Metric> metrics(nodes.size());

@@ -7,6 +7,7 @@
 // (docs/simulation.md, "When a run stops", has the measurements). Both drivers call it the same way,
 // so a host run and a double-precision device run stop after the same iteration.
 #pragma once
+#include <array>
 #include <cstddef>
 #include <string>
 #include <vector>
@@ -43,9 +44,13 @@ struct MeshSample {
 
 // The constrained Delaunay mesh of the nodes (mesh/triangulate_nodes), measured. A node set that does
 // not triangulate (coincident nodes in mid-run) gives NaN values, which never count as converged.
-// `mesh` (optional) receives the mesh measured (its curves named c0, c1, ...; left as it was when the
-// nodes do not triangulate): a run that stops here has triangulated its final nodes already.
-MeshSample measure_mesh(const NodeSet& nodes, int iteration, Mesh* mesh = nullptr);
+// `triangles` (optional) receives the triangles measured (left as they were when the nodes do not
+// triangulate): a run that stops here has triangulated its final nodes already (measured_mesh).
+MeshSample measure_mesh(const NodeSet& nodes, int iteration, std::vector<std::array<int, 3>>* triangles = nullptr);
+
+// The Mesh of the nodes whose triangles measure_mesh handed out (its curves named c0, c1, ...):
+// triangulate's, made only for the measurement a run stops at.
+Mesh measured_mesh(const NodeSet& nodes, std::vector<std::array<int, 3>> triangles);
 
 // A metric run's measurement: the constrained Delaunay mesh in the metric (triangulate_in_metric with
 // metric.at(node)), measured in the metric (mesh/metric_quality: the mean-ratio Q, 1 = equilateral in

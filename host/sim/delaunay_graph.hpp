@@ -27,6 +27,7 @@ struct DelaunayGraph {
     // triangulation each directed edge is the side of one triangle, the one on its left, so a gets
     // each neighbour b once from the sides a -> b.
     std::vector<std::size_t> count(n + 1, 0);
+    triangles.reserve(dt.v.size());  // never grown by doubling: a million-node event's largest arrays
     for (const auto& tv : dt.v) {
       const bool super[3] = {dt.is_super(tv[0]), dt.is_super(tv[1]), dt.is_super(tv[2])};
       for (int k = 0; k < 3; ++k) {
@@ -42,25 +43,31 @@ struct DelaunayGraph {
     }
     for (std::size_t i = 0; i < n; ++i) count[i + 1] += count[i];
     std::vector<int> all(count[n]);
-    std::vector<std::size_t> next(count.begin(), count.end() - 1);
-    for (const auto& tv : dt.v)
-      for (int k = 0; k < 3; ++k)
-        if (!dt.is_super(tv[k]) && !dt.is_super(tv[(k + 1) % 3]))
-          all[next[static_cast<std::size_t>(dt.input_index[static_cast<std::size_t>(tv[k])])]++] =
-              dt.input_index[static_cast<std::size_t>(tv[(k + 1) % 3])];
-    // Sorted; a repeat (none in a valid triangulation) is dropped as before.
-    adjacent.reserve(all.size());
-    std::vector<std::size_t> start(n + 1, 0);
-    for (std::size_t i = 0; i < n; ++i) {
-      auto b = all.begin() + static_cast<std::ptrdiff_t>(count[i]);
-      auto e = all.begin() + static_cast<std::ptrdiff_t>(count[i + 1]);
-      std::sort(b, e);
-      e = std::unique(b, e);
-      start[i] = adjacent.size();
-      adjacent.insert(adjacent.end(), b, e);
+    {
+      std::vector<std::size_t> next(count.begin(), count.end() - 1);
+      for (const auto& tv : dt.v)
+        for (int k = 0; k < 3; ++k)
+          if (!dt.is_super(tv[k]) && !dt.is_super(tv[(k + 1) % 3]))
+            all[next[static_cast<std::size_t>(dt.input_index[static_cast<std::size_t>(tv[k])])]++] =
+                dt.input_index[static_cast<std::size_t>(tv[(k + 1) % 3])];
     }
-    start[n] = adjacent.size();
-    first = std::move(start);
+    // Sorted; a repeat (none in a valid triangulation) is dropped. Compacted in place (a list never
+    // moves forward), count becoming the lists' starts: no second copy of the lists.
+    std::size_t written = 0, b = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+      const std::size_t e = count[i + 1];
+      const auto lo = all.begin() + static_cast<std::ptrdiff_t>(b), end = all.begin() + static_cast<std::ptrdiff_t>(e);
+      std::sort(lo, end);
+      const auto hi = std::unique(lo, end);
+      count[i] = written;
+      if (written != b) std::copy(lo, hi, all.begin() + static_cast<std::ptrdiff_t>(written));  // written < b
+      written += static_cast<std::size_t>(hi - lo);
+      b = e;
+    }
+    count[n] = written;
+    all.resize(written);
+    adjacent = std::move(all);
+    first = std::move(count);
   }
 
   std::size_t valence(int i) const {

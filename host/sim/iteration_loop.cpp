@@ -9,6 +9,7 @@
 #include <fmt/format.h>
 
 #include "core/errors.hpp"
+#include "core/free_memory.hpp"
 #include "core/interrupt.hpp"
 
 namespace pdmesh {
@@ -119,6 +120,8 @@ bool IterationLoop::run_iteration(IterationSteps& steps, int iteration) {
     const IterationMoves moves = steps.apply(iteration);
     row = record(iteration, dt_gm, step, moves);
     steps.after_row();
+    // A population event's plan and read-backs are freed: their pages go back before the next build.
+    if (moves.event) give_back_free_memory();
   }
   return go_on(steps, iteration, row);
 }
@@ -168,9 +171,12 @@ HistoryRow IterationLoop::record(int iteration, double dt_gm, const IterationSte
 // an iteration the run is stopped after, so that a resumed run has every measurement.
 bool IterationLoop::go_on(IterationSteps& steps, int iteration, const HistoryRow& row) {
   std::optional<MeshSample> sample;
-  Mesh measured;
+  std::vector<std::array<int, 3>> measured;
   if (convergence_.due(iteration)) {
     steps.before_measure(iteration, gm_);
+    // The measurement's triangulation is the run's largest transient: it starts without the free pages
+    // of the builds and read-backs before it, and leaves none behind (core/free_memory.hpp).
+    give_back_free_memory();
     // The measurement (a triangulation of every node) stops at a stop request: the state after this
     // iteration is whole, and a resumed run takes the measurement first (resume_checks).
     try {
@@ -188,8 +194,13 @@ bool IterationLoop::go_on(IterationSteps& steps, int iteration, const HistoryRow
   steps.after_observe();
   if (converged && iteration < options_.iterations) {
     result_.converged = true;
-    if (!measured.triangles.empty()) result_.final_mesh = std::make_shared<const Mesh>(std::move(measured));
+    if (!measured.empty())
+      result_.final_mesh = std::make_shared<const Mesh>(measured_mesh(nodes_, std::move(measured)));
     return false;
+  }
+  if (sample) {
+    std::vector<std::array<int, 3>>().swap(measured);
+    give_back_free_memory();
   }
   if (options_.stop && options_.stop->load() && iteration < options_.iterations && steps.may_stop()) {
     result_.stopped = true;

@@ -124,12 +124,17 @@ double check_node_limit(const CaseConfig& config, const MeshInputs& inputs, cons
 // The memory model of a run's stages after the spacing field (docs/robustness.md, "Memory"): what a
 // run holds per node at its peak (the node set and initialization tree, the simulation's arrays and
 // neighbour grid, an OpenCL CPU device's buffers, which are host memory, the triangulation and the
-// cleanup's editable mesh, the writers' text), plus the process's base and the field. Measured on a
-// 289k-node estimate (q = 2e-3 on the unit square, 30 iterations, every stage): 1.3 KB per estimated
-// node on the host, 1.7 KB with PoCL; 2 KB x 1.25 leaves room for the population's growth.
-inline constexpr double kRunBytesBase = 64.0 * 1024 * 1024;
-inline constexpr double kRunBytesPerNode = 2048.0;
-// Population control inserts nodes where the estimate is low, at most a few percent on the corpus.
+// cleanup's editable mesh, the writers' text), plus the process's base (the libraries, PoCL's worker
+// arenas, the pictures' bands) and the field. Measured (docs/journal/2026-12-02d-sim-memory2.md): the
+// unit square at q = 2e-3 (243k estimated nodes in the best preset, 289k in the thesis one), 30
+// iterations, peaked at 180-223 MB on the host and 268 MB on PoCL; annulus_1m (841k estimated, 1.06M
+// final nodes, converged) at 1.11-1.21 GB before the simulation's diet and 0.88 GB after it:
+// 1.05-1.45 KB per estimated node base included. 256 MiB + 1 KiB x 1.25 per estimated node bounds
+// them all.
+inline constexpr double kRunBytesBase = 256.0 * 1024 * 1024;
+inline constexpr double kRunBytesPerNode = 1024.0;
+// Population control inserts nodes where the estimate is low: a few percent on the corpus, 26 % on
+// the annulus benchmark cases (their estimate is of the initial fill's field).
 inline constexpr double kRunNodeGrowth = 1.25;
 double run_memory_bytes(double nodes, std::size_t field_bytes);
 

@@ -11,12 +11,10 @@
 #include <signal.h>
 #include <unistd.h>
 #include <fstream>
-#if defined(__GLIBC__)
-#include <malloc.h>
-#endif
 
 #include <fmt/format.h>
 
+#include "core/free_memory.hpp"
 #include "core/interrupt.hpp"
 #include "core/progress_notes.hpp"
 #include "io/quality_report.hpp"
@@ -54,16 +52,6 @@ void signal_in_phase(const std::string& name) {
   } else {
     send();
   }
-}
-
-// What the phases before have freed stays in the process until it is given back: glibc keeps freed
-// blocks below its mmap threshold, which rises to 32 MB as large blocks are freed (a million-node
-// run's node arrays are 8-16 MB), in its heaps. Each phase begins by giving back their free pages, so
-// that its peak does not carry what the phases before it freed (tools/bench/rss_trace.py).
-void give_back_free_memory() {
-#if defined(__GLIBC__)
-  malloc_trim(0);
-#endif
 }
 
 }  // namespace
@@ -105,6 +93,8 @@ RunPhases::~RunPhases() {
 
 RunPhases::Timer::Timer(RunPhases& phases, std::string name)
     : phases_(&phases), name_(std::move(name)), wall0_(wall_seconds()), cpu0_(process_cpu_seconds()) {
+  // Each phase begins without the free pages of the phases before it, so that its peak does not carry
+  // what they freed (tools/bench/rss_trace.py).
   give_back_free_memory();
   set_current_phase(name_);  // for the progress heartbeat (core/progress_notes.hpp)
   {
