@@ -319,10 +319,10 @@ TEST_CASE("the best preset is long with momentum, a compressed schedule and rule
     CHECK(c->population.insert.last == 0.7);
     CHECK(c->population.settle == 1e-3);
     CHECK(c->population.settle_events == 2);
-    CHECK(c->simulation.stop_aspect == 1e-3);
+    CHECK(c->simulation.stop_aspect == 7e-4);
     CHECK(c->simulation.stop_every == 50);
-    CHECK(c->simulation.stop_window == 150);
-    CHECK(c->simulation.stop_min == 300);
+    CHECK(c->simulation.stop_window == 100);
+    CHECK(c->simulation.stop_min == 200);
     CHECK(c->cleanup.min_angle == 40.0);
     CHECK(c->cleanup.iterations == 32);
     CHECK(c->spacing.relax_scale == 1.09);
@@ -645,7 +645,7 @@ TEST_CASE("simulation.stop: best converges, thesis counts, a key wins over the p
 TEST_CASE("simulation.stop_aspect / stop_angle: the convergence rule's tolerances, checked",
           "[app][case][convergence]") {
   const CaseConfig best = parse_case_text(kMinimal, kCase);
-  CHECK(best.simulation.stop_aspect == 1e-3);
+  CHECK(best.simulation.stop_aspect == 7e-4);
   CHECK(best.simulation.stop_angle == 0.25);
   const CaseConfig set =
       parse_case_text(std::string(kMinimal) + "[simulation]\nstop_aspect = 2e-3\nstop_angle = 0.5\n", kCase);
@@ -673,8 +673,8 @@ TEST_CASE("simulation.stop_every / stop_window / stop_min: the rule's interval, 
              Catch::Contains("simulation.stop_min must be in [0, 1000000], got -5"));
   CHECK_THAT(error_of(std::string(kMinimal) + "[simulation]\nstop_window = 2.5\n"),
              Catch::Contains("simulation.stop_window must be an integer"));
-  // The window starts at a measurement, so it is a multiple of the interval (best's 150 is not of 100).
-  CHECK_THAT(error_of(std::string(kMinimal) + "[simulation]\nstop_every = 100\n"),
-             Catch::Contains("simulation.stop_window must be a multiple of simulation.stop_every (100), got 150") &&
+  // The window starts at a measurement, so it is a multiple of the interval (best's 100 is not of 40).
+  CHECK_THAT(error_of(std::string(kMinimal) + "[simulation]\nstop_every = 40\n"),
+             Catch::Contains("simulation.stop_window must be a multiple of simulation.stop_every (40), got 100") &&
                  Catch::Contains(":4:"));
 }

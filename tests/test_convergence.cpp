@@ -374,8 +374,8 @@ TEST_CASE("simulation_options: the stop tolerances and population settling keys 
 TEST_CASE("the best preset converges a geometry alone in a fraction of long's iterations (host driver)",
           "[convergence][sim][preset]") {
   // circle_circle with the best preset over its file's thesis one: momentum, population control to
-  // iteration 400 at most, the rule every 50 over 200 from 300. The long preset's schedule (events to
-  // iteration 1600, a 400-iteration window) cannot stop before 1000.
+  // iteration 200 at most (a fifth of 1000), the rule every 50 over 100 from 200. The long preset's
+  // schedule (events to iteration 800, a 400-iteration window) cannot stop before 1000.
   const auto run = [](const char* preset) {
     CaseConfig config = load_case_file(std::string(PDMESH_SOURCE_DIR) + "/cases/circle_circle/case.toml",
                                        {{"preset", preset, "test"}, {"simulation.iterations", "1000", "test"}});
@@ -394,8 +394,8 @@ TEST_CASE("the best preset converges a geometry alone in a fraction of long's it
   REQUIRE(fast.converged);
   const int stop = fast.state.iterations_done;
   INFO("the best preset converged after " << stop);
-  CHECK(stop % 50 == 0);
-  CHECK(stop >= 300);
+  CHECK(stop % fast_options.convergence.check_every == 0);
+  CHECK(stop >= fast_options.convergence.min_iterations);
   CHECK(stop < 1000);
   const auto [long_options, long_run] = run("long");
   CHECK(long_options.momentum == 0.0);

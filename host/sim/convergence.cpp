@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <limits>
 #include <string>
 
@@ -122,7 +123,15 @@ bool ConvergenceMonitor::due(int iteration) const {
 bool ConvergenceMonitor::observe(const HistoryRow& row, const MeshSample* sample, bool population_settled) {
   if (!sample) return false;
   samples_.push_back(*sample);
-  return converged_after(row.iteration, population_settled);
+  const bool converged = converged_after(row.iteration, population_settled);
+  // PDMESH_CONVERGENCE_TRACE=1: one line per measurement on stderr, with what holds the run (tuning
+  // and diagnosis: which condition of the rule decides when a large run stops).
+  static const bool trace = std::getenv("PDMESH_CONVERGENCE_TRACE") != nullptr;
+  if (trace)
+    fmt::print(stderr, "convergence after iteration {}: min angle {:.2f} mean aspect ratio {:.5f}; {}\n", row.iteration,
+               sample->min_angle, sample->aspect_ratio,
+               converged ? std::string("converged") : not_converged_reason(row.iteration, population_settled));
+  return converged;
 }
 
 struct ConvergenceMonitor::Verdict {
