@@ -144,10 +144,11 @@ def factor_for(samples, nodes):
 
 
 def write_case(pdmesh, work, case):
-    """The generated annulus case (pdmesh bench writes it; one iteration, the case file is kept)."""
+    """The generated annulus case (pdmesh bench writes it; no iteration and no cleanup, the case file is kept)."""
     bench_dir = os.path.join(work, "bench")
     subprocess.run([pdmesh, "bench", "--whole-run", "--cases", case, "--repeat", "1", "--backends", "host",
-                    "--set", "simulation.iterations=1", "--work-dir", bench_dir], check=True,
+                    "--set", "simulation.iterations=0", "--set", "cleanup.enabled=false", "--work-dir", bench_dir],
+                   check=True,
                    stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
     case_dir = os.path.join(bench_dir, "cases", case)
     if not os.path.exists(os.path.join(case_dir, "case.toml")):
