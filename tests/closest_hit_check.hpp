@@ -1,4 +1,4 @@
-// The check of the closest-segment searches (GeometryTree, CurveScan, FeatureSize) against the
+// The check of the closest-segment searches (GeometryTree, FeatureSize) against the
 // brute-force oracle (geometry/brute_force_queries): the same segment, distance, point and parameter,
 // bit for bit.
 #pragma once

@@ -76,43 +76,6 @@ TEST_CASE("FeatureSize::closest equals brute force, seeded or not", "[spacing][f
   }
 }
 
-TEST_CASE("The size sources with eq. 3.6's closest segments equal those that search for them", "[spacing][feature]") {
-  const Geometry g = read_geometry({std::string(PDMESH_SOURCE_DIR) + "/cases/corpus/plate/plate.poly"}, {});
-  const GeometryTree tree(g);
-  SizeSourceOptions options;
-  options.rows_in_gap = 2.0;
-  options.curvature_angle = 10.0;
-  const SizeSources sources(tree, options);
-  const BoundarySpacing field(tree);
-  // A dyadic lattice over the plate (the background tree's kind of points: ties at shared vertices).
-  std::vector<Vec2> points;
-  const Box& e = g.extents;
-  const double step = std::ldexp(std::max(e.width(), e.height()), -7);
-  for (double y = e.lo.y - step; y <= e.hi.y + step; y += step)
-    for (double x = e.lo.x - step; x <= e.hi.x + step; x += step) points.push_back({x, y});
-  std::vector<double> q, q_plain;
-  std::vector<int> closest;
-  field.at_many_closest(points, q, closest, g);
-  field.at_many(points, q_plain);
-  CHECK(q == q_plain);
-  const FeatureSize feature(g);
-  int known = 0;
-  for (std::size_t i = 0; i < points.size(); ++i) {
-    if (closest[i] < 0) continue;
-    ++known;
-    INFO("point (" << points[i].x << ", " << points[i].y << ")");
-    REQUIRE(closest[i] == feature.closest(points[i]).segment);
-    for (const double limit : {0.05, 0.5, 5.0})
-      REQUIRE(sources.at(points[i], limit, nullptr, closest[i]) == sources.at(points[i], limit));
-  }
-  CHECK(known == static_cast<int>(points.size()));  // every plate curve is scanned
-  // Another geometry object (the same curves): the field does not know its segments.
-  const Geometry other = g;
-  field.at_many_closest(points, q, closest, other);
-  CHECK(q == q_plain);
-  CHECK(std::count(closest.begin(), closest.end(), -1) == static_cast<std::ptrdiff_t>(points.size()));
-}
-
 namespace {
 
 Geometry gap_geometry(const std::string& name) {

@@ -10,7 +10,7 @@ namespace pdmesh::brute_force {
 
 ClosestHit closest(const Geometry& g, Vec2 p);
 // The closest segment by the least squared distance (h.distance * h.distance), then the lowest index:
-// FeatureSize::closest's rule and GeometryTree::closest_per_curve_near's by_square.
+// FeatureSize::closest's rule.
 ClosestHit closest_by_square(const Geometry& g, Vec2 p);
 ClosestHit closest_on_curve(const Geometry& g, Vec2 p, int curve);
 void closest_per_curve(const Geometry& g, Vec2 p, std::vector<ClosestHit>& out);

@@ -76,7 +76,7 @@ struct Segment {
 };
 
 // The largest |coordinate| of any segment end (0 for none): the scale of the rounding in distances
-// to the segments, for the margins of exact searches (geometry/curve_scan, spacing/feature_size).
+// to the segments, for the margins of exact searches (spacing/feature_size).
 inline double coordinate_magnitude(const std::vector<Segment>& segments) {
   double m = 0.0;
   for (const Segment& s : segments)

@@ -14,7 +14,6 @@
 #include "core/errors.hpp"
 #include "core/predicates.hpp"
 #include "geometry/closest_on_segment.hpp"
-#include "geometry/curve_scan.hpp"
 
 namespace pdmesh {
 
@@ -394,8 +393,6 @@ struct GeometryTree::Impl {
   // Per node of `all` (leaves only): whether the leaf's centre is inside (1), outside (0), or on
   // the boundary (-1: the local test below cannot start from it).
   std::vector<signed char> centre_inside;
-  // The small curves' segments for one vectorized pass each (closest_per_curve*).
-  std::unique_ptr<CurveScan> scan;
   // With embedded constraints: the tree over the boundary curves' segments alone and its
   // centre_inside, for inside(), crosses_boundary() and closest_wall(). Null without constraints
   // (`all` serves).
@@ -429,8 +426,7 @@ GeometryTree::GeometryTree(const Geometry& geometry) : geometry_(geometry) {
                           " has a non-finite end point");
     by_curve[s.curve].push_back(static_cast<int>(i));
   }
-  impl_ = std::make_unique<Impl>(Impl{Quadtree(segs, all_ids(segs.size())), {}, {}, {}, {}, {}});
-  impl_->scan = std::make_unique<CurveScan>(geometry, by_curve);
+  impl_ = std::make_unique<Impl>(Impl{Quadtree(segs, all_ids(segs.size())), {}, {}, {}, {}});
   impl_->per_curve.reserve(curves);
   for (int c = 0; c < curves; ++c) impl_->per_curve.emplace_back(segs, std::move(by_curve[c]));
   std::vector<int> wall_ids;
@@ -465,47 +461,21 @@ ClosestHit GeometryTree::closest_on_curve(Vec2 p, int curve) const {
   return impl_->per_curve[curve].closest(p);
 }
 
-namespace {
-// The scan needs finite coordinates of moderate size (see CurveScan); other points use the trees.
-bool scannable(Vec2 p) {
-  return std::fabs(p.x) <= CurveScan::kMaxMagnitude && std::fabs(p.y) <= CurveScan::kMaxMagnitude;
-}
-}  // namespace
-
 void GeometryTree::closest_per_curve(Vec2 p, std::vector<ClosestHit>& out) const {
   out.resize(impl_->per_curve.size());
-  const bool scan = scannable(p);
-  if (scan) impl_->scan->closest(p, out);
-  for (std::size_t c = 0; c < out.size(); ++c)
-    if (!scan || !impl_->scan->covers(static_cast<int>(c))) out[c] = impl_->per_curve[c].closest(p);
+  for (std::size_t c = 0; c < out.size(); ++c) out[c] = impl_->per_curve[c].closest(p);
 }
 
-void GeometryTree::closest_per_curve_near(Vec2 p, std::vector<ClosestHit>& out, ClosestHit* by_square) const {
+void GeometryTree::closest_per_curve_near(Vec2 p, std::vector<ClosestHit>& out) const {
   const std::size_t curves = impl_->per_curve.size();
   const auto& segs = geometry_.segments;
   const bool hinted = out.size() == curves;
   out.resize(curves);
-  // The scan writes only its own curves' entries: the others keep their hints for the trees.
-  const bool scan = scannable(p);
-  if (by_square) *by_square = ClosestHit{};
-  if (scan) impl_->scan->closest(p, out, by_square);
   for (std::size_t c = 0; c < curves; ++c) {
-    if (scan && impl_->scan->covers(static_cast<int>(c))) continue;
     const int s = hinted ? out[c].segment : -1;
     const bool valid = s >= 0 && static_cast<std::size_t>(s) < segs.size() &&
                        segs[static_cast<std::size_t>(s)].curve == static_cast<int>(c);
     out[c] = impl_->per_curve[c].closest(p, valid ? s : -1);
-  }
-  // A curve on its tree reports its own closest segment only: were it within the scan's margin of the
-  // scanned curves' least, one of its other segments could tie by its square, so the answer is left
-  // undetermined. Farther off, all of its segments are strictly farther by their squares too.
-  if (by_square && by_square->segment >= 0) {
-    const double limit = by_square->distance + impl_->scan->margin(p);
-    for (std::size_t c = 0; c < curves; ++c)
-      if (!impl_->scan->covers(static_cast<int>(c)) && out[c].segment >= 0 && !(out[c].distance > limit)) {
-        *by_square = ClosestHit{};
-        break;
-      }
   }
 }
 

@@ -51,18 +51,14 @@ class GeometryTree {
   ClosestHit closest(Vec2 p) const;
   // Closest point on one curve (ties: lowest segment index). Throws std::out_of_range on a bad curve.
   ClosestHit closest_on_curve(Vec2 p, int curve) const;
-  // For every curve, its closest segment (out[c] for curve c). Used by the boundary spacing field.
-  // Curves of up to CurveScan::kMaxSegments segments are answered by one vectorized pass over their
-  // segments (geometry/curve_scan.hpp), larger ones by their own quadtree: the same answers.
+  // For every curve, its closest segment (out[c] for curve c), from the curve's own quadtree. Used by
+  // the boundary spacing field.
   void closest_per_curve(Vec2 p, std::vector<ClosestHit>& out) const;
   // The same result, bit for bit, faster when out holds this tree's answer for a nearby point (the
   // previous query of a spatially ordered batch): each curve's search starts from that segment's
   // distance, which prunes most of the tree at once. Entries that are not such an answer (wrong size,
   // segment -1, a segment of another curve) are ignored.
-  // by_square (optional): the closest segment over all curves by the least squared distance, then the
-  // lowest index (FeatureSize::closest's rule), found with the per-curve answers; segment -1 where
-  // they do not settle it (a curve on its own tree as near as the best, a point beyond the scan's range).
-  void closest_per_curve_near(Vec2 p, std::vector<ClosestHit>& out, ClosestHit* by_square = nullptr) const;
+  void closest_per_curve_near(Vec2 p, std::vector<ClosestHit>& out) const;
   // Closest point over the boundary curves' segments alone (embedded constraints left out): where a
   // node that left the domain is put back. The same as closest() for a geometry without constraints.
   ClosestHit closest_wall(Vec2 p) const;

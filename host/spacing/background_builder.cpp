@@ -61,14 +61,7 @@ void BackgroundBuilder::sample_all(const std::vector<std::uint64_t>& keys, std::
   }
   if (points.empty()) return;
   std::vector<double> q;
-  if (closest_geometry_) {
-    std::vector<int> closest;
-    exact_->at_many_closest(points, q, closest, *closest_geometry_);
-    closest_.resize(first, -1);  // samples taken before collecting: unknown
-    closest_.insert(closest_.end(), closest.begin(), closest.end());
-  } else {
-    exact_->at_many(points, q);
-  }
+  exact_->at_many(points, q);
   ++batches_;
   values_.insert(values_.end(), q.begin(), q.end());
 }

@@ -92,13 +92,6 @@ class BackgroundBuilder {
   // Takes later samples from `field` instead (kept by reference): the pipeline refines for the
   // limited field with the base tree's own interpolation, not new exact evaluations.
   void sample_from(const SpacingField& field) { exact_ = &field; }
-  // From now on every sample also records the closest segment of `geometry` by its square where the
-  // field finds it (SpacingField::at_many_closest; eq. 3.6 does), for the size sources at the same
-  // points. -1 where it did not, and for samples taken before.
-  void collect_closest(const Geometry& geometry) { closest_geometry_ = &geometry; }
-  std::int32_t sample_closest(std::int32_t id) const {
-    return static_cast<std::size_t>(id) < closest_.size() ? closest_[static_cast<std::size_t>(id)] : -1;
-  }
   // The 9 test points of a cell in lattice quarters: centre, edge midpoints, quarter points.
   static constexpr int kTests[9][2] = {{2, 2}, {2, 0}, {2, 4}, {0, 2}, {4, 2}, {1, 1}, {3, 1}, {1, 3}, {3, 3}};
   static constexpr int kFirstQuarterTest = 5;  // tests 0-4 are the children's corners
@@ -147,10 +140,8 @@ class BackgroundBuilder {
   double origin_x_ = 0.0, origin_y_ = 0.0, root_size_ = 1.0;
   std::vector<Cell> cells_;
   std::vector<std::vector<int>> segment_lists_;
-  FlatKeyMap<std::int32_t> samples_;            // lattice key -> sample id
-  std::vector<double> values_;                  // by sample id
-  const Geometry* closest_geometry_ = nullptr;  // collect_closest's
-  std::vector<std::int32_t> closest_;           // by sample id, while collecting (see collect_closest)
+  FlatKeyMap<std::int32_t> samples_;  // lattice key -> sample id
+  std::vector<double> values_;        // by sample id
   std::size_t batches_ = 0;
   double finished_nodes_ = 0.0;  // nodes in the inside leaves the running refine() has finished
 };

@@ -17,9 +17,8 @@ namespace {
 // searches: at_many's batches are spatially ordered (cell corners and test points level by level), so
 // the last segment is usually the answer or close to it. The result does not depend on the seed
 // (GeometryTree::closest_per_curve_near).
-double boundary_spacing_at(const GeometryTree& tree, Vec2 p, std::vector<ClosestHit>& hits,
-                           ClosestHit* by_square = nullptr) {
-  tree.closest_per_curve_near(p, hits, by_square);
+double boundary_spacing_at(const GeometryTree& tree, Vec2 p, std::vector<ClosestHit>& hits) {
+  tree.closest_per_curve_near(p, hits);
   const auto& segs = tree.geometry().segments;
   double d_min = -1.0;
   for (const ClosestHit& h : hits)
@@ -53,32 +52,15 @@ double BoundarySpacing::at(Vec2 p) const {
   return boundary_spacing_at(tree_, p, hits);
 }
 
-void BoundarySpacing::evaluate(const std::vector<Vec2>& p, std::vector<double>& q, std::vector<int>* closest) const {
+void BoundarySpacing::at_many(const std::vector<Vec2>& p, std::vector<double>& q) const {
   q.resize(p.size());
-  if (closest) closest->resize(p.size());
   // Every point is independent, so the values are at()'s whatever the thread count; each thread's
   // previous answer seeds its next searches. A point costs about 3 us on 30P30N (15 curve searches),
   // so 512 points (1.5 ms) are worth a thread (~50 us to start): with 4096, 35k of the 263k points of
   // the thesis 30P30N quadtree, in its small early and late batches, were evaluated on one core.
   parallel_for_scratch<std::vector<ClosestHit>>(
-      p.size(),
-      [&](std::vector<ClosestHit>& hits, std::size_t i) {
-        ClosestHit by_square;
-        q[i] = boundary_spacing_at(tree_, p[i], hits, closest ? &by_square : nullptr);
-        if (closest) (*closest)[i] = by_square.segment;
-      },
+      p.size(), [&](std::vector<ClosestHit>& hits, std::size_t i) { q[i] = boundary_spacing_at(tree_, p[i], hits); },
       512, kMaxThreads);
-}
-
-void BoundarySpacing::at_many(const std::vector<Vec2>& p, std::vector<double>& q) const { evaluate(p, q, nullptr); }
-
-void BoundarySpacing::at_many_closest(const std::vector<Vec2>& p, std::vector<double>& q, std::vector<int>& closest,
-                                      const Geometry& geometry) const {
-  if (&geometry != &tree_.geometry()) {
-    SpacingField::at_many_closest(p, q, closest, geometry);
-    return;
-  }
-  evaluate(p, q, &closest);
 }
 
 }  // namespace pdmesh

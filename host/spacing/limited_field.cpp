@@ -173,7 +173,7 @@ class LimitedField {
         [&](Seed& seed, std::size_t i) {
           const auto id = ids[fresh[i]];
           source_at_[static_cast<std::size_t>(id)] =
-              sources_.at(lattice(b_, keys[fresh[i]]), b_.sample_value(id), &seed.segment, b_.sample_closest(id));
+              sources_.at(lattice(b_, keys[fresh[i]]), b_.sample_value(id), &seed.segment);
         },
         256);
     stats_.source_seconds += seconds_since(start);

@@ -92,10 +92,4 @@ void RegionSpacing::at_many(const std::vector<Vec2>& p, std::vector<double>& q) 
   for (std::size_t i = 0; i < p.size(); ++i) q[i] = std::min(q[i], regions_at(p[i]));
 }
 
-void RegionSpacing::at_many_closest(const std::vector<Vec2>& p, std::vector<double>& q, std::vector<int>& closest,
-                                    const Geometry& geometry) const {
-  base_->at_many_closest(p, q, closest, geometry);
-  for (std::size_t i = 0; i < p.size(); ++i) q[i] = std::min(q[i], regions_at(p[i]));
-}
-
 }  // namespace pdmesh

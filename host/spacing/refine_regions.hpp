@@ -52,8 +52,6 @@ class RegionSpacing final : public SpacingField {
   RegionSpacing(std::unique_ptr<SpacingField> base, std::vector<RefineRegion> regions);
   double at(Vec2 p) const override;
   void at_many(const std::vector<Vec2>& p, std::vector<double>& q) const override;
-  void at_many_closest(const std::vector<Vec2>& p, std::vector<double>& q, std::vector<int>& closest,
-                       const Geometry& geometry) const override;
   const SpacingField& base() const { return *base_; }
   const std::vector<RefineRegion>& regions() const { return regions_; }
 

@@ -17,11 +17,6 @@ class ScaledSpacing final : public SpacingField {
     base_.at_many(p, q);
     for (double& v : q) v *= scale_;
   }
-  void at_many_closest(const std::vector<Vec2>& p, std::vector<double>& q, std::vector<int>& closest,
-                       const Geometry& geometry) const override {
-    base_.at_many_closest(p, q, closest, geometry);
-    for (double& v : q) v *= scale_;
-  }
 
  private:
   const SpacingField& base_;

@@ -17,13 +17,10 @@ SizeSources::SizeSources(const GeometryTree& tree, const SizeSourceOptions& opti
   }
 }
 
-double SizeSources::at(Vec2 p, double limit, int* seed, int closest) const {
+double SizeSources::at(Vec2 p, double limit, int* seed) const {
   constexpr double kNone = std::numeric_limits<double>::infinity();
   if (!options_.active()) return kNone;
-  const auto& segs = tree_.geometry().segments;
-  const ClosestHit hit = closest >= 0 && static_cast<std::size_t>(closest) < segs.size()
-                             ? closest_on_segment(p, segs[static_cast<std::size_t>(closest)], closest)
-                             : feature_->closest(p, seed ? *seed : -1);
+  const ClosestHit hit = feature_->closest(p, seed ? *seed : -1);
   if (seed) *seed = hit.segment;
   if (hit.segment < 0) return kNone;
   const double s = options_.scale;

@@ -37,9 +37,7 @@ class SizeSources {
   // gap search stops there). Thread-safe. seed (optional): the closest segment of the caller's last
   // point, which starts this point's search (faster for a nearby point; the same value), and is set
   // to this point's.
-  // closest >= 0: p's closest boundary segment by FeatureSize::closest's rule, known already (eq. 3.6
-  // found it at the same point: BackgroundBuilder::sample_closest); no search then.
-  double at(Vec2 p, double limit, int* seed = nullptr, int closest = -1) const;
+  double at(Vec2 p, double limit, int* seed = nullptr) const;
   // The input-boundary floor at p (see input_boundary_floor) when it exceeds `q`, else q. Thread-safe.
   double floor_at(Vec2 p, double q) const;
   bool has_floor() const { return options_.input_boundary_floor > 0.0 && options_.final_floor; }

@@ -18,11 +18,6 @@ class SpacingField {
   virtual double at(Vec2 p) const = 0;
   // Evaluates many points (the simulation's spacing update); the default loops over at().
   virtual void at_many(const std::vector<Vec2>& p, std::vector<double>& q) const;
-  // at_many, and per point the closest segment of `geometry` by the least squared distance, then the
-  // lowest index (FeatureSize::closest's answer), where the field found it on the way (eq. 3.6 does),
-  // else -1. The default: at_many and -1 everywhere.
-  virtual void at_many_closest(const std::vector<Vec2>& p, std::vector<double>& q, std::vector<int>& closest,
-                               const Geometry& geometry) const;
 };
 
 // The fewest lookups worth a thread in a thread-safe field's at_many (parallel_for's min_chunk):
@@ -38,15 +33,9 @@ class BoundarySpacing final : public SpacingField {
   double at(Vec2 p) const override;
   // The same values as at() per point, computed on up to kMaxThreads threads for large batches.
   void at_many(const std::vector<Vec2>& p, std::vector<double>& q) const override;
-  // The closest segments come from eq. 3.6's per-curve searches (GeometryTree::closest_per_curve_near's
-  // by_square), when `geometry` is this field's.
-  void at_many_closest(const std::vector<Vec2>& p, std::vector<double>& q, std::vector<int>& closest,
-                       const Geometry& geometry) const override;
   static constexpr std::size_t kMaxThreads = 8;
 
  private:
-  // at_many's body; closest (when set) gets the closest segments by their square.
-  void evaluate(const std::vector<Vec2>& p, std::vector<double>& q, std::vector<int>* closest) const;
   const GeometryTree& tree_;
 };
 

@@ -75,9 +75,6 @@ void SpacingPipeline::build() {
   so.final_floor = options_.final_floor;
   so.scale = options_.scale;
   BackgroundBuilder builder(scaled, tree_, options_.background);
-  // The sources need each sample's closest boundary segment: eq. 3.6 finds it on the way, and the
-  // sources then need not search for it again.
-  if (so.active()) builder.collect_closest(tree_.geometry());
   builder.build();
   BackgroundStats bs;
   bs.exact_evaluations = builder.samples();
