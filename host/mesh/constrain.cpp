@@ -170,9 +170,9 @@ std::vector<std::array<int, 3>> inside_triangles(Triangulation&& tri,
     }
     next.clear();
   }
-  // The inside triangles are written over the triangulation's own list, in order (t only grows faster
-  // than the written count), after the arrays the fill needed are freed: no second triangle list is
-  // held beside the triangulation (a convergence check's peak at a million nodes).
+  // The inside triangles are written over the triangulation's own list, in order (the written count
+  // never passes t), after the arrays the fill needed are freed: no second triangle list is held
+  // beside the triangulation (a convergence check's largest moment).
   std::vector<std::array<int, 3>>().swap(tri.n);
   std::vector<Vec2>().swap(tri.points);
   std::vector<int>().swap(tri.vertex_of);

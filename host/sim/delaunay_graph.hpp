@@ -20,7 +20,7 @@ struct DelaunayGraph {
 
   explicit DelaunayGraph(const std::vector<Vec2>& points) : DelaunayGraph(Triangulation(points)) {}
   // A triangulation made for the graph alone: the arrays the graph does not read (points, neighbours,
-  // vertex maps) are freed before the graph's own are made, which sets a million-node event's peak.
+  // vertex maps) are freed before the graph's own are made (a population event's largest moment).
   explicit DelaunayGraph(Triangulation&& dt) : DelaunayGraph(static_cast<const Triangulation&>(keep_triangles(dt))) {}
   // The graph of a triangulation of the nodes (e.g. one flipped to the metric's Delaunay).
   explicit DelaunayGraph(const Triangulation& dt) {
