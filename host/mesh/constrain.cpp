@@ -130,7 +130,7 @@ void recover_edges(Triangulation& tri, const std::vector<ConstrainedEdge>& edges
   if (flipped) tri.make_delaunay();
 }
 
-std::vector<std::array<int, 3>> inside_triangles(const Triangulation& tri,
+std::vector<std::array<int, 3>> inside_triangles(Triangulation&& tri,
                                                  const std::unordered_set<std::uint64_t>& open_edges) {
   const int count = static_cast<int>(tri.v.size());
   std::vector<int> layer(count, -1);
@@ -170,12 +170,21 @@ std::vector<std::array<int, 3>> inside_triangles(const Triangulation& tri,
     }
     next.clear();
   }
-  std::vector<std::array<int, 3>> inside;
+  // The inside triangles are written over the triangulation's own list, in order (the written count
+  // never passes t), after the arrays the fill needed are freed: no second triangle list is held
+  // beside the triangulation (a convergence check's largest moment).
+  std::vector<std::array<int, 3>>().swap(tri.n);
+  std::vector<Vec2>().swap(tri.points);
+  std::vector<int>().swap(tri.vertex_of);
+  std::vector<int>().swap(tri.vertex_triangle);
+  std::vector<std::array<int, 3>> inside = std::move(tri.v);
+  std::size_t written = 0;
   for (int t = 0; t < count; ++t)
     if (layer[t] % 2 == 1) {
-      const auto& tv = tri.v[t];
-      inside.push_back({tri.input_index[tv[0]], tri.input_index[tv[1]], tri.input_index[tv[2]]});
+      const auto tv = inside[t];
+      inside[written++] = {tri.input_index[tv[0]], tri.input_index[tv[1]], tri.input_index[tv[2]]};
     }
+  inside.resize(written);
   return inside;
 }
 

@@ -25,8 +25,9 @@ void recover_edges(Triangulation& tri, const std::vector<ConstrainedEdge>& edges
 // an odd number of constrained edges separates it from the super-triangle (even-odd rule,
 // so holes and islands in holes come out right). Constrained edges whose key
 // (Triangulation::edge_key of the input point indices) is in `open_edges` (embedded constraints)
-// bound nothing: the fill passes them.
-std::vector<std::array<int, 3>> inside_triangles(const Triangulation& tri,
+// bound nothing: the fill passes them. Consumes the triangulation: its arrays are freed and its
+// triangle list becomes the result.
+std::vector<std::array<int, 3>> inside_triangles(Triangulation&& tri,
                                                  const std::unordered_set<std::uint64_t>& open_edges = {});
 
 }  // namespace pdmesh

@@ -7,6 +7,7 @@
 #include <cstring>
 #include <unordered_map>
 #include <unordered_set>
+#include <utility>
 
 #include "core/errors.hpp"
 #include "mesh/constrain.hpp"
@@ -60,7 +61,7 @@ std::vector<std::array<int, 3>> chain_triangles(const NodeSet& nodes, const Chai
     const MetricDelaunayStats s = make_metric_delaunay(tri, *metrics, options);
     if (stats) *stats = s;
   }
-  return chains.edges.empty() ? tri.inner_triangles() : inside_triangles(tri, chains.open_edges);
+  return chains.edges.empty() ? tri.inner_triangles() : inside_triangles(std::move(tri), chains.open_edges);
 }
 
 Mesh chain_mesh(const NodeSet& nodes, const std::vector<std::string>& curve_names, const Chains& chains,

@@ -30,6 +30,14 @@ const std::array<std::int32_t, kBinStateSize> kBinStateInit = [] {
 
 std::uint64_t with_slack(std::uint64_t v) { return v + v / 8 + 64; }
 
+// Sizes a grid buffer to `count` elements: grown when smaller, and made again when it holds more than
+// half as many again (the first build's guess, or a node set that shrank), the old allocation first.
+template <typename T>
+void fit_size(Context& ctx, Buffer<T>& b, const std::string& name, std::size_t count) {
+  if (b.size() > count + count / 2) b = Buffer<T>();
+  ensure_size(ctx, b, name, count);
+}
+
 // row_level_tally's output: per level its interior rows' sampled counts and nodes, then the boundary nodes.
 constexpr std::size_t kTallySize = 2 * kBinLevels + 1;
 
@@ -185,8 +193,8 @@ typename DeviceNeighbours<Real>::PassCapacities DeviceNeighbours<Real>::size_pas
   // A pass after one whose grids fit (a counting pass, or rows that outgrew) keeps those grids: the
   // positions are the same. Growing a grid buffer would drop its contents.
   if (!binned) {
-    ensure_size(ctx_, bucket_, "grid_bucket", bucket_capacity_);
-    ensure_size(ctx_, grid_nodes_, "grid_nodes", member_capacity_);
+    fit_size(ctx_, bucket_, "grid_bucket", bucket_capacity_);
+    fit_size(ctx_, grid_nodes_, "grid_nodes", member_capacity_);
   }
   PassCapacities caps;
   caps.buckets = bucket_.size();
@@ -304,6 +312,16 @@ void DeviceNeighbours<Real>::gather_pass(const BuildArgs& a, const PassCapacitie
 }
 
 template <typename Real>
+void DeviceNeighbours<Real>::release_rows() {
+  index_ = Buffer<std::int32_t>();
+  grid_nodes_ = Buffer<std::int32_t>();
+  bucket_ = Buffer<std::uint32_t>();
+  spill_ = Buffer<std::int32_t>();
+  move_node_ = Buffer<std::int32_t>();
+  move_start_ = Buffer<std::uint64_t>();
+}
+
+template <typename Real>
 void DeviceNeighbours<Real>::carry_counts(const std::vector<int>& old_of_new, std::size_t old_n) {
   if (old_n == 0 || counted_n_ != old_n || count_.size() < old_n || old_of_new.empty()) return;
   std::vector<std::int32_t> old_counts;
@@ -342,10 +360,11 @@ bool DeviceNeighbours<Real>::take_bin_state(std::size_t n, NeighbourFlags& flags
         fmt::format("the list radii of the nodes span more than 2^{}: the device binning has {} "
                     "grid levels at most",
                     kBinLevels, kBinLevels));
-  member_capacity_ =
-      std::max<std::uint64_t>(member_capacity_, with_slack(static_cast<std::uint64_t>(state[kBinMembers])));
-  bucket_capacity_ =
-      std::max<std::uint64_t>(bucket_capacity_, with_slack(static_cast<std::uint64_t>(state[kBinBuckets])));
+  // What this binning needed, with slack, also when that is less than the first guess (4n entries,
+  // 2n buckets): the next build's grids shrink to it (fit_size). The sizes decide only whether a build
+  // bins again, never the grids' layout (bin_plan's masks come from the level counts).
+  member_capacity_ = with_slack(static_cast<std::uint64_t>(state[kBinMembers]));
+  bucket_capacity_ = with_slack(static_cast<std::uint64_t>(state[kBinBuckets]));
   grids_fit = state[kBinTooSmall] == 0;
   return true;
 }

@@ -56,6 +56,11 @@ class DeviceNeighbours {
   // extra gather per event). Only the layout depends on the counts: the rows are the same, and those
   // that outgrow their estimate move as in any build. Nothing happens without counts of old_n nodes.
   void carry_counts(const std::vector<int>& old_of_new, std::size_t old_n);
+  // Frees the rows and the grids (index, grid nodes and buckets, spill and move lists): the next build
+  // makes them again at its own capacities. The counts, offsets, levels and skin classes stay, so that
+  // the next build may lay its rows out from the counts. For a population event's host work, which
+  // sets a device run's peak memory while the lists wait for a rebuild.
+  void release_rows();
 
   // A row's capacity is c + (c >> kSpareShift) + kSpareMin for the count c of the last build: rows
   // grow a little between rebuilds as nodes move (docs/opencl.md, "Neighbour lists: Verlet skin").

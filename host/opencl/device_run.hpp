@@ -115,6 +115,10 @@ class DeviceRun final : public IterationSteps {
   // computed from the node set: at the start and after a population event.
   void upload_nodes(const std::vector<double>* budgets, const std::vector<std::int32_t>* leaves);
   std::optional<PopulationCounts> population_event(int iteration);
+  // The buffers the next step writes before it reads them (xy_ and q_ of 1 - cur_, the candidates):
+  // freed during a population event's host work, made again for n_ nodes.
+  void release_step_outputs();
+  void allocate_step_outputs();
   void read_back_nodes();
   void upload_topology();  // kind, prev, next, boundary slots and arc positions (start and after snapping)
   // The boundary state (positions of the Boundary nodes, tangents, arc positions) into nodes_ and

@@ -178,6 +178,12 @@ void DeviceRun<Real>::reset_momentum(const std::vector<std::int32_t>& nodes) {
 template <typename Real>
 void DeviceRun<Real>::upload_nodes(const std::vector<double>* budgets, const std::vector<std::int32_t>* leaves) {
   const std::size_t n = n_;
+  // Every node buffer is made again below: the old ones go first (a population event's re-upload).
+  for (auto* b : {&xy_[0], &xy_[1], &q_[0], &q_[1], &tx_, &ty_, &q_build_, &xy_build_, &budget_, &cand_rec_, &partials_,
+                  &carried_})
+    *b = Buffer<Real>();
+  cand_index_ = Buffer<std::int32_t>();
+  node_leaf_ = Buffer<std::int32_t>();
   std::vector<double> x(n), y(n), tx(n), ty(n), budget(n, 0.0);
   for (std::size_t i = 0; i < n; ++i) {
     x[i] = nodes_.x[i].x;
@@ -200,11 +206,9 @@ void DeviceRun<Real>::upload_nodes(const std::vector<double>* budgets, const std
         },
         2048);
   }
-  for (int b = 0; b < 2; ++b) {
-    xy_[b] = Buffer<Real>(ctx_, "xy", 2 * n);
-    q_[b] = Buffer<Real>(ctx_, "q", n);
-  }
   cur_ = 0;
+  xy_[0] = Buffer<Real>(ctx_, "xy", 2 * n);
+  q_[0] = Buffer<Real>(ctx_, "q", n);
   for (auto* b : {&tx_, &ty_, &q_build_}) *b = Buffer<Real>(ctx_, "node_array", n);
   xy_build_ = Buffer<Real>(ctx_, "xy_build", 2 * n);
   budget_ = Buffer<Real>(ctx_, "clearance_budget", n);
@@ -213,8 +217,7 @@ void DeviceRun<Real>::upload_nodes(const std::vector<double>* budgets, const std
   write(tx_, to_real<Real>(tx));
   write(ty_, to_real<Real>(ty));
   write(budget_, to_real<Real>(budget));
-  cand_index_ = Buffer<std::int32_t>(ctx_, "cand_index", n);
-  cand_rec_ = Buffer<Real>(ctx_, "cand_rec", 4 * n);
+  allocate_step_outputs();
   partials_ = Buffer<Real>(ctx_, "partials", kStepPartials * groups());
   // Each node's leaf: the guess the step kernel tests before descending.
   std::vector<std::int32_t> leaf(n);
@@ -239,6 +242,22 @@ void DeviceRun<Real>::upload_nodes(const std::vector<double>* budgets, const std
   upload_topology();
 }
 
+template <typename Real>
+void DeviceRun<Real>::release_step_outputs() {
+  xy_[1 - cur_] = Buffer<Real>();
+  q_[1 - cur_] = Buffer<Real>();
+  cand_index_ = Buffer<std::int32_t>();
+  cand_rec_ = Buffer<Real>();
+}
+
+template <typename Real>
+void DeviceRun<Real>::allocate_step_outputs() {
+  xy_[1 - cur_] = Buffer<Real>(ctx_, "xy", 2 * n_);
+  q_[1 - cur_] = Buffer<Real>(ctx_, "q", n_);
+  cand_index_ = Buffer<std::int32_t>(ctx_, "cand_index", n_);
+  cand_rec_ = Buffer<Real>(ctx_, "cand_rec", 4 * n_);
+}
+
 // Population control on the device run: the whole state comes back (interior positions and every q
 // from the device; boundary positions are the host's), the event runs on the host exactly as in the
 // host reference, and when it changed the node set the node arrays go up again (kept nodes keep their
@@ -247,10 +266,19 @@ template <typename Real>
 std::optional<PopulationCounts> DeviceRun<Real>::population_event(int iteration) {
   if (!population_event_due(options_.population, loop_.population().schedule, iteration, options_.iterations))
     return std::nullopt;
-  // The event triangulates the nodes: without the free pages of the builds before it.
-  give_back_free_memory();
   const auto t0 = Clock::now();
   if (boundary_stale_) sync_boundary();
+  // The step's outputs and candidate records are rewritten by the next step before they are read:
+  // they are freed while the host's event runs (its triangulation sets the run's peak) and made again
+  // after it, by upload_nodes when the node set changed. So are the neighbour rows and grids: the
+  // lists are built again before the next step, also when the event changed nothing (the forces
+  // filter every row by the cut-off and rows are sorted by node index, so a build at another
+  // iteration gives the same forces).
+  release_step_outputs();
+  neighbours_.release_rows();
+  skin_use_ = HUGE_VAL;
+  // The event triangulates the nodes: without the free pages of the builds before it.
+  give_back_free_memory();
   std::vector<std::int32_t> leaves;
   std::vector<double> budgets;
   {  // The read targets are freed before the event's own arrays are made.
@@ -277,7 +305,8 @@ std::optional<PopulationCounts> DeviceRun<Real>::population_event(int iteration)
     upload_nodes(&budgets, &leaves);
     finish(ctx_.queue(), "population re-upload");
     stats_.population_transfer_seconds += since(t1);
-    skin_use_ = HUGE_VAL;  // the lists are rebuilt before the next step
+  } else {
+    allocate_step_outputs();
   }
   stats_.population_seconds += since(t0);
   return counts;

@@ -155,10 +155,14 @@ class ArgSetter {
   cl_uint index_ = 0;
 };
 
-// Grows a buffer (new allocation, contents lost) when it holds fewer than `count` elements.
+// Grows a buffer (new allocation, contents lost) when it holds fewer than `count` elements. The old
+// allocation goes first, so that the two are never held together (a device run's peak memory).
 template <typename T>
 void ensure_size(Context& ctx, Buffer<T>& b, const std::string& name, std::size_t count) {
-  if (b.size() < count || b.name().empty()) b = Buffer<T>(ctx, name, count);
+  if (b.size() < count || b.name().empty()) {
+    b = Buffer<T>();
+    b = Buffer<T>(ctx, name, count);
+  }
 }
 
 // Host doubles as the device's REAL.

@@ -19,6 +19,9 @@ struct DelaunayGraph {
   std::vector<char> on_hull;  // joined to a super-triangle vertex
 
   explicit DelaunayGraph(const std::vector<Vec2>& points) : DelaunayGraph(Triangulation(points)) {}
+  // A triangulation made for the graph alone: the arrays the graph does not read (points, neighbours,
+  // vertex maps) are freed before the graph's own are made (a population event's largest moment).
+  explicit DelaunayGraph(Triangulation&& dt) : DelaunayGraph(static_cast<const Triangulation&>(keep_triangles(dt))) {}
   // The graph of a triangulation of the nodes (e.g. one flipped to the metric's Delaunay).
   explicit DelaunayGraph(const Triangulation& dt) {
     const auto n = static_cast<std::size_t>(dt.input_count);
@@ -68,6 +71,14 @@ struct DelaunayGraph {
     all.resize(written);
     adjacent = std::move(all);
     first = std::move(count);
+  }
+
+  static Triangulation& keep_triangles(Triangulation& dt) {
+    std::vector<Vec2>().swap(dt.points);
+    std::vector<int>().swap(dt.vertex_of);
+    std::vector<std::array<int, 3>>().swap(dt.n);
+    std::vector<int>().swap(dt.vertex_triangle);
+    return dt;
   }
 
   std::size_t valence(int i) const {

@@ -3,6 +3,7 @@
 // metric units, on the nodes' Delaunay graph in the metric (mesh/metric_delaunay).
 #include <cmath>
 #include <optional>
+#include <utility>
 
 #include "mesh/delaunay.hpp"
 #include "mesh/metric_delaunay.hpp"
@@ -21,7 +22,7 @@ using population_detail::Vacancy;
 DelaunayGraph metric_graph(const std::vector<Vec2>& x, const std::vector<Metric>& metrics) {
   Triangulation dt(x);
   make_metric_delaunay(dt, metrics);
-  return DelaunayGraph(dt);
+  return DelaunayGraph(std::move(dt));
 }
 
 // The circumcentre and circumradius of triangle abc in the constant metric m: the circle through the

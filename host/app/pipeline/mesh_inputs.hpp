@@ -125,14 +125,15 @@ double check_node_limit(const CaseConfig& config, const MeshInputs& inputs, cons
 // run holds per node at its peak (the node set and initialization tree, the simulation's arrays and
 // neighbour grid, an OpenCL CPU device's buffers, which are host memory, the triangulation and the
 // cleanup's editable mesh, the writers' text), plus the process's base (the libraries, PoCL's worker
-// arenas, the pictures' bands) and the field. Measured (docs/journal/2026-12-02d-sim-memory2.md): the
-// unit square at q = 2e-3 (243k estimated nodes in the best preset, 289k in the thesis one), 30
-// iterations, peaked at 180-223 MB on the host and 268 MB on PoCL; annulus_1m (841k estimated, 1.06M
-// final nodes, converged) at 1.11-1.21 GB before the simulation's diet and 0.88 GB after it:
-// 1.05-1.45 KB per estimated node base included. 256 MiB + 1 KiB x 1.25 per estimated node bounds
-// them all.
+// arenas, the pictures' bands) and the field. Measured on PoCL (docs/journal/2026-12-03-mem-1m.md):
+// annulus_100k (84k estimated) 263 MB, annulus_250k (211k) 414 MB (the mesh stage; the simulation
+// 311 MB), annulus_1m (841k) 0.77-0.85 GB by the load, the simulation's peak growing ~840 B per estimated
+// node; the unit square at q = 2e-3 (243k estimated) 180-268 MB (docs/journal/2026-12-02d-sim-memory2.md).
+// 256 MiB + 768 B x 1.25 per estimated node bounds them all (1.08 GB at annulus_1m) and lets a
+// 20M-node annulus (16.8M estimated, ~15.7 GiB with its field) run under a 24 GB machine's default
+// --max-memory.
 inline constexpr double kRunBytesBase = 256.0 * 1024 * 1024;
-inline constexpr double kRunBytesPerNode = 1024.0;
+inline constexpr double kRunBytesPerNode = 768.0;
 // Population control inserts nodes where the estimate is low: a few percent on the corpus, 26 % on
 // the annulus benchmark cases (their estimate is of the initial fill's field).
 inline constexpr double kRunNodeGrowth = 1.25;
