@@ -336,6 +336,39 @@ TEST_CASE("settling ends the repairs after a quiet iteration, with the smallest 
   CHECK(summarize_quality(s.mesh).aspect_ratio_avg <= summarize_quality(a.mesh).aspect_ratio_avg + 1e-3);
 }
 
+TEST_CASE("settling goes on while the sweeps still lift triangles below the target", "[cleanup]") {
+  // A target the plate's random nodes cannot reach: triangles stay below it and the sweeps lift some
+  // of them in iterations that make no topology change and leave the smallest angle where it was.
+  // With a drop threshold every iteration meets, only those conditions decide when settling ends.
+  const Geometry g = plate_with_hole();
+  const GeometryTree tree(g);
+  const BoundarySpacing spacing(tree);
+  const NodeSet nodes = make_initial_distribution(tree, spacing, {InitMethod::Random, 3, {}, false}).nodes;
+  CleanupOptions full;
+  full.min_angle = 50.0;
+  full.iterations = 24;
+  full.measure_iterations = true;
+  CleanupOptions settling = full;
+  settling.settled_aspect_drop = 1e6;
+  const CleanupResult a = clean_and_verify(g, tree, spacing, nodes, full);
+  const CleanupResult s = clean_and_verify(g, tree, spacing, nodes, settling);
+  const auto n = static_cast<std::size_t>(s.stats.iterations_run);
+  REQUIRE(n >= 2);
+  std::size_t lifted_only = 0;  // iterations that went on only because the shortfall shrank
+  for (std::size_t k = 0; k < n; ++k) {
+    const CleanupIteration& it = s.stats.per_iteration[k];
+    CHECK(it.moves == a.stats.per_iteration[k].moves);
+    if (k == 0) continue;
+    const CleanupIteration& before = s.stats.per_iteration[k - 1];
+    const bool lifted = it.deficit < before.deficit;
+    const bool quiet = it.topology == 0 && it.min_angle <= before.min_angle && !lifted;
+    // Settling ends exactly at the first quiet iteration.
+    CHECK(quiet == (s.stats.settled && k + 1 == n));
+    if (it.topology == 0 && it.min_angle <= before.min_angle && lifted) ++lifted_only;
+  }
+  CHECK(lifted_only > 0);
+}
+
 TEST_CASE("compound trials lift a triangle on a coarse boundary segment that no single edit can", "[cleanup]") {
   // The plate's octagonal cut-out (cases/corpus/plate) with the interior nodes the fast preset left
   // around it (a fast-preset run's final.nodes, cropped to a box with boundary nodes every 0.1): a triangle

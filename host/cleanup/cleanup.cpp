@@ -154,9 +154,10 @@ class CleanupRun {
   void set_aspect_totals();
   std::size_t topology_pass(const std::vector<std::uint8_t>& dirty, InterruptPoll& poll, CleanupIteration& record,
                             CleanupStats& stats);
-  // The smallest score, the aspect-ratio sum and the count of the live triangles.
+  // The smallest score, the aspect-ratio sum and the count of the live triangles, and the summed
+  // shortfall of the triangles below the target (target score - score).
   struct MeshScan {
-    double worst = 1.0, aspect_sum = 0.0, count = 0.0;
+    double worst = 1.0, aspect_sum = 0.0, count = 0.0, deficit = 0.0;
   };
   MeshScan scan() const;
   void measure(CleanupIteration& record) const;
@@ -171,7 +172,9 @@ class CleanupRun {
   std::vector<std::uint8_t> mark_;
   Scores scores_;
   std::set<std::array<int, 3>> failures_;
-  double last_worst_ = -1.0;  // the smallest score after the previous iteration (settled())
+  std::vector<std::uint8_t> since_;  // the dirty marks taken at the start of the iteration
+  double last_worst_ = -1.0;         // the smallest score after the previous iteration (settled()) ...
+  double last_deficit_ = -1.0;       // ... and the shortfall below the target
 };
 
 // The sweeps over the vertices of the bad triangles: relaxation below the smoothing limit, then
@@ -264,7 +267,9 @@ CleanupRun::MeshScan CleanupRun::scan() const {
   MeshScan s;
   for (int t = 0; t < m_.triangle_slots(); ++t)
     if (m_.alive(t)) {
-      s.worst = std::min(s.worst, m_.quality(t));
+      const double q = m_.quality(t);
+      s.worst = std::min(s.worst, q);
+      if (q < limits_.target) s.deficit += limits_.target - q;
       s.aspect_sum += m_.aspect(t);
       s.count += 1.0;
     }
@@ -276,14 +281,29 @@ void CleanupRun::measure(CleanupIteration& record) const {
   const MeshScan s = scan();
   record.min_angle = cleanup::degrees_from_sine(s.worst);
   record.aspect_mean = s.count > 0.0 ? s.aspect_sum / s.count : 0.0;
+  record.deficit = s.deficit;
 }
 
+// Quiet: no topology change, and the sweeps neither raised the smallest score nor lifted any triangle
+// below the target (the shortfall below it did not shrink), and lowered the mean aspect ratio by less
+// than the setting. A cleanup whose sweeps still lift triangles below the target goes on however little
+// the mean aspect ratio moves (a mesh that cannot reach the target, or whose worst triangles rise slowly).
 bool CleanupRun::settled(int iteration, const CleanupIteration& record) {
   if (!(options_.settled_aspect_drop > 0.0)) return false;
-  const MeshScan s = scan();
-  const bool quiet = iteration > 0 && record.topology == 0 && s.worst <= last_worst_ &&
+  // The kept scores brought up to date (only the triangles the iteration changed are scored again):
+  // the values quality() gives, without a scan of every triangle's angles per iteration.
+  const std::vector<double>& score = scores_.update(m_, since_);
+  MeshScan s;
+  for (int t = 0; t < m_.triangle_slots(); ++t)
+    if (m_.alive(t)) {
+      s.worst = std::min(s.worst, score[t]);
+      if (score[t] < limits_.target) s.deficit += limits_.target - score[t];
+      s.count += 1.0;
+    }
+  const bool quiet = iteration > 0 && record.topology == 0 && s.worst <= last_worst_ && s.deficit >= last_deficit_ &&
                      record.aspect_drop < options_.settled_aspect_drop * s.count;
   last_worst_ = s.worst;
+  last_deficit_ = s.deficit;
   return quiet;
 }
 
@@ -301,7 +321,8 @@ void CleanupRun::legalize_all() {
 
 std::size_t CleanupRun::iterate(int iteration, CleanupStats& stats) {
   // Only nodes whose neighbourhood changed since the last sweep can propose something new.
-  const std::vector<std::uint8_t> dirty = m_.take_dirty();
+  since_ = m_.take_dirty();
+  const std::vector<std::uint8_t>& dirty = since_;
   const auto timer = std::chrono::steady_clock::now();
   CleanupIteration record;
   // A stop request ends the cleanup between two node moves or repairs (each leaves a valid mesh).

@@ -33,9 +33,10 @@ struct CleanupOptions {
   double move_min_rise = 0.0;
   double move_aspect_drop = 0.0;
   // Settling (0: off): the repairs end after an iteration (not the first) that made no topology
-  // change, left the mesh's smallest angle where it was and lowered its mean aspect ratio by less
-  // than this. On a settled lattice the sweeps go on moving tens of thousands of nodes per iteration
-  // for drops of ~1e-6 each (docs/cleanup.md, "Settling").
+  // change, left the mesh's smallest angle where it was, lifted no triangle below the target (their
+  // summed shortfall did not shrink) and lowered its mean aspect ratio by less than this. On a
+  // settled lattice the sweeps go on moving tens of thousands of nodes per iteration for drops of
+  // ~1e-6 each (docs/cleanup.md, "Settling").
   double settled_aspect_drop = 0.0;
   bool topology = true;  // insertions, collapses and splits (off: smoothing and flips only)
   // Boundary edges may be split by a new node on their curve (off: the boundary nodes stay the
@@ -75,7 +76,8 @@ struct CleanupIteration {
   std::size_t trials_to_last_change = 0;  // ... up to and with the one that made the last change
   double last_change_angle = 0.0;         // the smallest angle (degrees) of the triangle it repaired
   double smoothing_seconds = 0.0, topology_seconds = 0.0;
-  double min_angle = 0.0, aspect_mean = 0.0;  // after it (degrees; measure_iterations only)
+  double min_angle = 0.0, aspect_mean = 0.0;  // after it (degrees; measure_iterations only) ...
+  double deficit = 0.0;                       // ... and the summed shortfall of the triangles below the target (sines)
 };
 
 struct CleanupStats {
