@@ -257,6 +257,10 @@ TEST_CASE("convergence in the host driver: the run stops at a measurement, and a
   CHECK(stop < 600);
   CHECK(full.history.size() == static_cast<std::size_t>(stop));
   CHECK(full.state.convergence.size() == static_cast<std::size_t>(stop / c.options.convergence.check_every));
+  // The timings file's split counts every measurement this run took, and times them.
+  CHECK(full.stats.measurements == stop / c.options.convergence.check_every);
+  CHECK(full.stats.measure_seconds > 0.0);
+  CHECK(full.stats.measure_cpu_seconds > 0.0);
   // The last measurement's mesh, for the mesh stage: the final nodes' triangulation.
   REQUIRE(full.final_mesh);
   CHECK(triangulates(*full.final_mesh, whole));
@@ -307,6 +311,8 @@ TEST_CASE("convergence off (simulation.stop = iterations): every iteration runs,
   CHECK_FALSE(r.converged);
   CHECK(r.state.iterations_done == 150);
   CHECK(r.state.convergence.empty());
+  CHECK(r.stats.measurements == 0);
+  CHECK(r.stats.measure_seconds == 0.0);
 }
 
 TEST_CASE("convergence: a run that did not converge says which part of the rule held it", "[convergence]") {

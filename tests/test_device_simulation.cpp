@@ -8,6 +8,7 @@
 // count, min angle within 0.5 degrees, average aspect ratio within 1%.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 
@@ -290,6 +291,13 @@ TEST_CASE("device run with population control: same node changes as the host", "
   require_identical_nodes(host.nodes, dev.nodes);
   CHECK(dev.result.state.population.last_event == 80);
   CHECK(dev.stats.population_seconds > 0.0);
+  // The timings file's split of the device run carries its population events' time; the host has none.
+  CHECK(host.result.stats.split.empty());
+  const auto& split = dev.result.stats.split;
+  const auto named = std::find_if(split.begin(), split.end(),
+                                  [](const auto& entry) { return entry.first == "device_population_seconds"; });
+  REQUIRE(named != split.end());
+  CHECK(named->second == dev.stats.population_seconds);
 }
 
 TEST_CASE("device run whose population control settles early: same events and nodes as the host",

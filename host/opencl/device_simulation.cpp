@@ -464,6 +464,17 @@ void DeviceRun<Real>::end_run(SimResult& result) {
   result.stats.pairs_examined += pairs_examined_;
   stats_.stride = largest_row_;
   stats_.device_bytes = device_bytes();
+  const DeviceRunStats& d = stats_;
+  result.stats.split = {{"device_step_seconds", d.step_seconds},
+                        {"device_build_seconds", d.bin_seconds + d.gather_seconds},
+                        {"device_host_test_seconds", d.host_seconds},
+                        {"device_download_seconds", d.download_seconds},
+                        {"device_upload_seconds", d.upload_seconds},
+                        {"device_population_seconds", d.population_seconds},
+                        {"device_population_transfer_seconds", d.population_transfer_seconds},
+                        {"device_rebuilds", static_cast<double>(d.rebuilds)},
+                        {"device_windows", static_cast<double>(d.windows)},
+                        {"device_ahead_windows", static_cast<double>(d.ahead_windows)}};
 }
 
 template <typename Real>

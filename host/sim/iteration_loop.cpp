@@ -3,6 +3,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <ctime>
 #include <memory>
 #include <utility>
 
@@ -21,6 +22,13 @@ double initial_dt(const NodeSet& nodes, const SimOptions& options) {
   if (!(dt > 0.0) || !std::isfinite(dt))
     throw InputError(fmt::format("simulation.dt_initial must be a positive number, got {}", dt));
   return options.resume ? options.resume->dt_initial : dt;
+}
+
+// CPU seconds of the calling thread (the stopping rule's measurement runs on the loop's thread).
+double thread_cpu_seconds() {
+  timespec ts{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
 }
 
 SimResult initial_result(const NodeSet& nodes, const SimOptions& options) {
@@ -173,6 +181,8 @@ bool IterationLoop::go_on(IterationSteps& steps, int iteration, const HistoryRow
   std::optional<MeshSample> sample;
   std::vector<std::array<int, 3>> measured;
   if (convergence_.due(iteration)) {
+    const auto wall0 = std::chrono::steady_clock::now();
+    const double cpu0 = thread_cpu_seconds();
     steps.before_measure(iteration, gm_);
     // The measurement's triangulation is the run's largest transient: it starts without the free pages
     // of the builds and read-backs before it, and leaves none behind (core/free_memory.hpp).
@@ -186,6 +196,10 @@ bool IterationLoop::go_on(IterationSteps& steps, int iteration, const HistoryRow
       result_.stopped = true;
       return false;
     }
+    SimStats& stats = result_.stats;
+    ++stats.measurements;
+    stats.measure_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
+    stats.measure_cpu_seconds += thread_cpu_seconds() - cpu0;
   }
   // Never while population control may still change the node set.
   const bool settled =

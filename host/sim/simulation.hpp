@@ -8,6 +8,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "geometry/geometry_tree.hpp"
@@ -117,6 +118,12 @@ struct SimStats {
   std::size_t inserted = 0, removed = 0;  // by population control, all events of this run
   int population_events = 0;              // events run (including those that changed nothing)
   double population_seconds = 0.0;        // wall time of the events (planning and editing the node set)
+  int measurements = 0;                   // the stopping rule's measurements of the mesh
+  double measure_seconds = 0.0;           // their wall time: the driver's read-back and the triangulation
+  double measure_cpu_seconds = 0.0;       // the CPU time of the thread that measured (not the shapes' workers)
+  // The driver's own split of the iterations' wall time, by name for the timings file (the device run:
+  // its steps, neighbour builds, the host's exact test, transfers, population events); empty for the host.
+  std::vector<std::pair<std::string, double>> split;
 };
 
 struct SimResult {

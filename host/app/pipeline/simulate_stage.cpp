@@ -217,6 +217,14 @@ SimResult simulate(const CaseConfig& config, const MeshInputs& inputs, const Spa
   phases.note("iterations", result.state.iterations_done);
   phases.note("converged", result.converged ? 1 : 0);
   phases.note("simulation_seconds", result.stats.seconds);
+  // Where the iterations' time went: the stopping rule's measurements and the population events (the
+  // host-serial parts), then the driver's own split.
+  phases.note("measurements", result.stats.measurements);
+  phases.note("measure_seconds", result.stats.measure_seconds);
+  phases.note("measure_cpu_seconds", result.stats.measure_cpu_seconds);
+  phases.note("population_events", result.stats.population_events);
+  phases.note("population_seconds", result.stats.population_seconds);
+  for (const auto& [name, seconds] : result.stats.split) phases.note(name, seconds);
   phases.note("backend", backend.simulator->describe());
   write_outputs(config, inputs, nodes, result, phases);
   return result;
