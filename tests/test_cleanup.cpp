@@ -303,19 +303,39 @@ TEST_CASE("cleanup's least move gain takes fewer moves and keeps every guarantee
   }
 }
 
-TEST_CASE("settling ends the repairs after a quiet iteration, with the smallest angle of the full run", "[cleanup]") {
+namespace {
+
+// The plate's random nodes cleaned twice with the same options, once without settling and once with
+// the drop threshold `drop`: the full run and the settling run.
+struct SettlingRuns {
+  CleanupOptions settling;
+  CleanupResult full_run;
+  CleanupResult settling_run;
+};
+
+SettlingRuns settling_runs(double min_angle, int iterations, double drop) {
   const Geometry g = plate_with_hole();
   const GeometryTree tree(g);
   const BoundarySpacing spacing(tree);
   const NodeSet nodes = make_initial_distribution(tree, spacing, {InitMethod::Random, 3, {}, false}).nodes;
   CleanupOptions full;
-  full.min_angle = 35.0;
-  full.iterations = 32;
+  full.min_angle = min_angle;
+  full.iterations = iterations;
   full.measure_iterations = true;
   CleanupOptions settling = full;
-  settling.settled_aspect_drop = 1e-4;
-  const CleanupResult a = clean_and_verify(g, tree, spacing, nodes, full);
-  const CleanupResult s = clean_and_verify(g, tree, spacing, nodes, settling);
+  settling.settled_aspect_drop = drop;
+  CleanupResult a = clean_and_verify(g, tree, spacing, nodes, full);
+  CleanupResult s = clean_and_verify(g, tree, spacing, nodes, settling);
+  return {settling, std::move(a), std::move(s)};
+}
+
+}  // namespace
+
+TEST_CASE("settling ends the repairs after a quiet iteration, with the smallest angle of the full run", "[cleanup]") {
+  const SettlingRuns runs = settling_runs(35.0, 32, 1e-4);
+  const CleanupOptions& settling = runs.settling;
+  const CleanupResult& a = runs.full_run;
+  const CleanupResult& s = runs.settling_run;
   CHECK_FALSE(a.stats.settled);
   REQUIRE(s.stats.settled);
   CHECK(s.stats.iterations_run < a.stats.iterations_run);
@@ -340,18 +360,9 @@ TEST_CASE("settling goes on while the sweeps still lift triangles below the targ
   // A target the plate's random nodes cannot reach: triangles stay below it and the sweeps lift some
   // of them in iterations that make no topology change and leave the smallest angle where it was.
   // With a drop threshold every iteration meets, only those conditions decide when settling ends.
-  const Geometry g = plate_with_hole();
-  const GeometryTree tree(g);
-  const BoundarySpacing spacing(tree);
-  const NodeSet nodes = make_initial_distribution(tree, spacing, {InitMethod::Random, 3, {}, false}).nodes;
-  CleanupOptions full;
-  full.min_angle = 50.0;
-  full.iterations = 24;
-  full.measure_iterations = true;
-  CleanupOptions settling = full;
-  settling.settled_aspect_drop = 1e6;
-  const CleanupResult a = clean_and_verify(g, tree, spacing, nodes, full);
-  const CleanupResult s = clean_and_verify(g, tree, spacing, nodes, settling);
+  const SettlingRuns runs = settling_runs(50.0, 24, 1e6);
+  const CleanupResult& a = runs.full_run;
+  const CleanupResult& s = runs.settling_run;
   const auto n = static_cast<std::size_t>(s.stats.iterations_run);
   REQUIRE(n >= 2);
   std::size_t lifted_only = 0;  // iterations that went on only because the shortfall shrank
