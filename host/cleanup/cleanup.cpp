@@ -159,7 +159,9 @@ class CleanupRun {
   struct MeshScan {
     double worst = 1.0, aspect_sum = 0.0, count = 0.0, deficit = 0.0;
   };
-  MeshScan scan() const;
+  // Over the live triangles: their scores from `score` (the kept scores, by slot) or, without it, from
+  // the mesh, with the aspect-ratio sum.
+  MeshScan scan(const std::vector<double>* score = nullptr) const;
   void measure(CleanupIteration& record) const;
   void legalize_all();
 
@@ -263,14 +265,14 @@ std::size_t CleanupRun::topology_pass(const std::vector<std::uint8_t>& dirty, In
   return changed;
 }
 
-CleanupRun::MeshScan CleanupRun::scan() const {
+CleanupRun::MeshScan CleanupRun::scan(const std::vector<double>* score) const {
   MeshScan s;
   for (int t = 0; t < m_.triangle_slots(); ++t)
     if (m_.alive(t)) {
-      const double q = m_.quality(t);
+      const double q = score ? (*score)[static_cast<std::size_t>(t)] : m_.quality(t);
       s.worst = std::min(s.worst, q);
       if (q < limits_.target) s.deficit += limits_.target - q;
-      s.aspect_sum += m_.aspect(t);
+      if (!score) s.aspect_sum += m_.aspect(t);
       s.count += 1.0;
     }
   return s;
@@ -292,14 +294,7 @@ bool CleanupRun::settled(int iteration, const CleanupIteration& record) {
   if (!(options_.settled_aspect_drop > 0.0)) return false;
   // The kept scores brought up to date (only the triangles the iteration changed are scored again):
   // the values quality() gives, without a scan of every triangle's angles per iteration.
-  const std::vector<double>& score = scores_.update(m_, since_);
-  MeshScan s;
-  for (int t = 0; t < m_.triangle_slots(); ++t)
-    if (m_.alive(t)) {
-      s.worst = std::min(s.worst, score[t]);
-      if (score[t] < limits_.target) s.deficit += limits_.target - score[t];
-      s.count += 1.0;
-    }
+  const MeshScan s = scan(&scores_.update(m_, since_));
   const bool quiet = iteration > 0 && record.topology == 0 && s.worst <= last_worst_ && s.deficit >= last_deficit_ &&
                      record.aspect_drop < options_.settled_aspect_drop * s.count;
   last_worst_ = s.worst;

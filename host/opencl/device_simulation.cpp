@@ -21,7 +21,7 @@ void DeviceRun<Real>::rebuild() {
   std::vector<Real>* v = positions_host_;
   if (stats_.rebuilds > 0) {
     // The host's copy of the build state, for the saved state (remember, which the host's skin test
-    // reads); the binning no longer needs it. Not waited on: the build's one wait completes it. The
+    // reads); the binning does not read it. Not waited on: the build's one wait completes it. The
     // first build's is the state just uploaded (nodes_).
     read(xy_[cur_], v[0], 2 * n, false);
     read(q_[cur_], v[1], n, false);

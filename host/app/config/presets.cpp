@@ -44,11 +44,9 @@ void apply_momentum_schedule(CaseConfig& c) {
   c.population.settle = 1e-3;
   c.population.settle_events = 2;
   // The rule on the faster time scale: measured every 50 iterations over a 100-iteration window, from
-  // iteration 200, with a mean aspect ratio that moved less than 7e-4 over the window (the drift per
-  // iteration that 1e-3 over 150 allowed, judged 50 iterations sooner). What holds a run to its
-  // stop is that drift, at 14k and at 1M nodes alike; the tolerance 1e-3 over 100 iterations
-  // stops 17 % sooner still but leaves rods_fine's mean aspect ratio 0.0012 higher
-  // (docs/simulation.md, "When a run stops").
+  // iteration 200, with a mean aspect ratio that moved less than 7e-4 over the window. What holds a
+  // run to its stop is that drift, at 14k and at 1M nodes alike; a looser tolerance stops sooner but
+  // leaves a higher mean aspect ratio (docs/simulation.md, "When a run stops").
   c.simulation.stop_aspect = 7e-4;
   c.simulation.stop_every = 50;
   c.simulation.stop_window = 100;
@@ -65,8 +63,8 @@ void apply_momentum_schedule(CaseConfig& c) {
   c.cleanup.trials_per_triangle = 0.05;
   c.cleanup.min_trials = 2000;
   // Its repairs end once an iteration lifts nothing below the target and lowers the mean aspect ratio
-  // by < 1e-6: the sweeps' long tail of tiny moves on a settled lattice. 1e-5 stops some runs before a
-  // late rise of the smallest angle (NACA 0012 curves 41.632 -> 41.618 deg; docs/cleanup.md, "Settling").
+  // by < kBestCleanupSettle: the sweeps' long tail of tiny moves on a settled lattice. A larger value
+  // can stop a run before a late rise of its smallest angle (docs/cleanup.md, "Settling").
   c.cleanup.settle = kBestCleanupSettle;
   // Relaxed at kBestRelaxScale x q, the lattice's edges come out at q (mean edge/q 0.91 at 1; docs/spacing.md,
   // "The node count").

@@ -125,12 +125,9 @@ double check_node_limit(const CaseConfig& config, const MeshInputs& inputs, cons
 // run holds per node at its peak (the node set and initialization tree, the simulation's arrays and
 // neighbour grid, an OpenCL CPU device's buffers, which are host memory, the triangulation and the
 // cleanup's editable mesh, the writers' text), plus the process's base (the libraries, PoCL's worker
-// arenas, the pictures' bands) and the field. Measured on PoCL (docs/journal/2026-12-03-mem-1m.md):
-// annulus_100k (84k estimated) 263 MB, annulus_250k (211k) 414 MB (the mesh stage; the simulation
-// 311 MB), annulus_1m (841k) 0.77-0.85 GB by the load, the simulation's peak growing ~840 B per estimated
-// node; the unit square at q = 2e-3 (243k estimated) 180-268 MB (docs/journal/2026-12-02d-sim-memory2.md).
-// 256 MiB + 768 B x 1.25 per estimated node bounds them all (1.08 GB at annulus_1m) and lets a
-// 20M-node annulus (16.8M estimated, ~15.7 GiB with its field) run under a 24 GB machine's default
+// arenas, the pictures' bands) and the field. kRunBytesBase + kRunBytesPerNode x kRunNodeGrowth
+// per estimated node bounds the peaks measured on the annulus cases and the unit square
+// (docs/robustness.md, "Memory") and keeps a 20M-node annulus within a 24 GB machine's default
 // --max-memory.
 inline constexpr double kRunBytesBase = 256.0 * 1024 * 1024;
 inline constexpr double kRunBytesPerNode = 768.0;
