@@ -134,6 +134,8 @@ class CleanupRun {
         trial_budget_(static_cast<std::size_t>(
             std::max(options.min_trials, options.trials_per_triangle * static_cast<double>(mesh.triangles.size())))) {
     smoother_.set_sweep_gain(options.move_min_rise, options.move_aspect_drop);
+    if (options.lift)
+      smoother_.set_lift(limits_.target, [this](int t) { return failures_.count(sorted_key(m_.v[t])) > 0; });
     if (options.sharp_corners) m_.set_sharp_corners(options.min_angle);
   }
 
@@ -251,6 +253,11 @@ std::size_t CleanupRun::topology_pass(const std::vector<std::uint8_t>& dirty, In
     if (kind == cleanup::RepairKind::None) {
       ++stats.rejected;
       failures_.insert(key);
+      // Its vertices get lifting climbs in the next sweeps, which their unchanged stars would skip.
+      if (options_.lift && now < limits_.target) {
+        m_.mark_changed(t);
+        ++record.stuck;
+      }
       continue;
     }
     if (kind == cleanup::RepairKind::Collapse)
@@ -295,8 +302,8 @@ bool CleanupRun::settled(int iteration, const CleanupIteration& record) {
   // The kept scores brought up to date (only the triangles the iteration changed are scored again):
   // the values quality() gives, without a scan of every triangle's angles per iteration.
   const MeshScan s = scan(&scores_.update(m_, since_));
-  const bool quiet = iteration > 0 && record.topology == 0 && s.worst <= last_worst_ && s.deficit >= last_deficit_ &&
-                     record.aspect_drop < options_.settled_aspect_drop * s.count;
+  const bool quiet = iteration > 0 && record.topology == 0 && record.stuck == 0 && s.worst <= last_worst_ &&
+                     s.deficit >= last_deficit_ && record.aspect_drop < options_.settled_aspect_drop * s.count;
   last_worst_ = s.worst;
   last_deficit_ = s.deficit;
   return quiet;
@@ -336,7 +343,8 @@ std::size_t CleanupRun::iterate(int iteration, CleanupStats& stats) {
   if (options_.measure_iterations) measure(record);
   stats.per_iteration.push_back(record);
   stats.iterations_run = iteration + 1;
-  return record.moves + record.topology;
+  // A triangle newly found stuck below the target gets its lifting climbs in the next iteration.
+  return record.moves + record.topology + record.stuck;
 }
 
 void CleanupRun::polish(CleanupStats& stats) {
