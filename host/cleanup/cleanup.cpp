@@ -85,7 +85,8 @@ double edge_to_spacing_ratio(const Mesh& mesh, const SpacingField& spacing) {
 struct Limits {
   double smooth;    // the sweeps work on the vertices of the triangles below this ...
   double topology;  // ... the topology pass on the triangles below this ...
-  double target;    // ... and these are the triangles to repair
+  double target;    // ... and these are the triangles to repair;
+  double lift;      // those below this that no topology change repairs get lifting climbs
 };
 
 Limits limits_of(const CleanupOptions& options) {
@@ -94,7 +95,8 @@ Limits limits_of(const CleanupOptions& options) {
   const double topology_below =
       options.topology_below >= 0.0 ? options.topology_below : std::min(options.min_angle + 15.0, 59.0);
   return {cleanup::sine_from_degrees(smooth_below), cleanup::sine_from_degrees(topology_below),
-          cleanup::sine_from_degrees(options.min_angle)};
+          cleanup::sine_from_degrees(options.min_angle),
+          cleanup::sine_from_degrees(std::min(options.min_angle + options.lift_above, topology_below))};
 }
 
 cleanup::TopologyOptions topology_options_of(const CleanupOptions& options, const Limits& limits) {
@@ -135,7 +137,7 @@ class CleanupRun {
             std::max(options.min_trials, options.trials_per_triangle * static_cast<double>(mesh.triangles.size())))) {
     smoother_.set_sweep_gain(options.move_min_rise, options.move_aspect_drop);
     if (options.lift)
-      smoother_.set_lift(limits_.target, [this](int t) { return failures_.count(sorted_key(m_.v[t])) > 0; });
+      smoother_.set_lift(limits_.lift, [this](int t) { return failures_.count(sorted_key(m_.v[t])) > 0; });
     if (options.sharp_corners) m_.set_sharp_corners(options.min_angle);
   }
 
@@ -254,7 +256,7 @@ std::size_t CleanupRun::topology_pass(const std::vector<std::uint8_t>& dirty, In
       ++stats.rejected;
       failures_.insert(key);
       // Its vertices get lifting climbs in the next sweeps, which their unchanged stars would skip.
-      if (options_.lift && now < limits_.target) {
+      if (options_.lift && now < limits_.lift) {
         m_.mark_changed(t);
         ++record.stuck;
       }
