@@ -85,7 +85,8 @@ double edge_to_spacing_ratio(const Mesh& mesh, const SpacingField& spacing) {
 struct Limits {
   double smooth;    // the sweeps work on the vertices of the triangles below this ...
   double topology;  // ... the topology pass on the triangles below this ...
-  double target;    // ... and these are the triangles to repair
+  double target;    // ... and these are the triangles to repair;
+  double lift;      // those below this that no topology change repairs get lifting climbs
 };
 
 Limits limits_of(const CleanupOptions& options) {
@@ -94,7 +95,8 @@ Limits limits_of(const CleanupOptions& options) {
   const double topology_below =
       options.topology_below >= 0.0 ? options.topology_below : std::min(options.min_angle + 15.0, 59.0);
   return {cleanup::sine_from_degrees(smooth_below), cleanup::sine_from_degrees(topology_below),
-          cleanup::sine_from_degrees(options.min_angle)};
+          cleanup::sine_from_degrees(options.min_angle),
+          cleanup::sine_from_degrees(std::min(options.min_angle + options.lift_above, topology_below))};
 }
 
 cleanup::TopologyOptions topology_options_of(const CleanupOptions& options, const Limits& limits) {
@@ -134,6 +136,8 @@ class CleanupRun {
         trial_budget_(static_cast<std::size_t>(
             std::max(options.min_trials, options.trials_per_triangle * static_cast<double>(mesh.triangles.size())))) {
     smoother_.set_sweep_gain(options.move_min_rise, options.move_aspect_drop);
+    if (options.lift)
+      smoother_.set_lift(limits_.lift, [this](int t) { return failures_.count(sorted_key(m_.v[t])) > 0; });
     if (options.sharp_corners) m_.set_sharp_corners(options.min_angle);
   }
 
@@ -251,6 +255,11 @@ std::size_t CleanupRun::topology_pass(const std::vector<std::uint8_t>& dirty, In
     if (kind == cleanup::RepairKind::None) {
       ++stats.rejected;
       failures_.insert(key);
+      // Its vertices get lifting climbs in the next sweeps, which their unchanged stars would skip.
+      if (options_.lift && now < limits_.lift) {
+        m_.mark_changed(t);
+        ++record.stuck;
+      }
       continue;
     }
     if (kind == cleanup::RepairKind::Collapse)
@@ -295,8 +304,8 @@ bool CleanupRun::settled(int iteration, const CleanupIteration& record) {
   // The kept scores brought up to date (only the triangles the iteration changed are scored again):
   // the values quality() gives, without a scan of every triangle's angles per iteration.
   const MeshScan s = scan(&scores_.update(m_, since_));
-  const bool quiet = iteration > 0 && record.topology == 0 && s.worst <= last_worst_ && s.deficit >= last_deficit_ &&
-                     record.aspect_drop < options_.settled_aspect_drop * s.count;
+  const bool quiet = iteration > 0 && record.topology == 0 && record.stuck == 0 && s.worst <= last_worst_ &&
+                     s.deficit >= last_deficit_ && record.aspect_drop < options_.settled_aspect_drop * s.count;
   last_worst_ = s.worst;
   last_deficit_ = s.deficit;
   return quiet;
@@ -336,7 +345,8 @@ std::size_t CleanupRun::iterate(int iteration, CleanupStats& stats) {
   if (options_.measure_iterations) measure(record);
   stats.per_iteration.push_back(record);
   stats.iterations_run = iteration + 1;
-  return record.moves + record.topology;
+  // A triangle newly found stuck below the target gets its lifting climbs in the next iteration.
+  return record.moves + record.topology + record.stuck;
 }
 
 void CleanupRun::polish(CleanupStats& stats) {

@@ -158,6 +158,8 @@ class EditableMesh {
   // by rollback() leave no mark.
   std::vector<std::uint8_t> take_dirty();
   bool dirty(int a) const { return dirty_[a] != 0; }
+  // Marks triangle t's vertices as if their stars had changed, so the next sweeps try them again.
+  void mark_changed(int t) { mark_dirty(t); }
   // Vertices created by the open transaction (or since the last begin()).
   int first_new_vertex() const { return vert_size0_; }
 

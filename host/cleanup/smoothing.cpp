@@ -36,8 +36,9 @@ Vec2 Smoother::on_curve(int a, Vec2 candidate, double& new_arc) const {
 // Moves a by `displacement` (projected onto its curve for a boundary vertex), halving the step
 // until no adjacent triangle inverts, the adjacent minimum does not drop, the adjacent sum of aspect
 // ratios does not rise, and one of the two strictly improves (so sweeps end, and neither the worst
-// angle nor the mesh's average aspect ratio can get worse). fan_ holds a's star.
-bool Smoother::try_move(int a, Vec2 displacement, double old_min, double old_sum) {
+// angle nor the mesh's average aspect ratio can get worse). A lifting move (`lift`) needs only the
+// adjacent minimum to rise strictly; its aspect-ratio sum may rise. fan_ holds a's star.
+bool Smoother::try_move(int a, Vec2 displacement, double old_min, double old_sum, bool lift) {
   const auto& m = mesh_;
   const Vec2 from = m.p[a];
   const bool sliding = m.kind[a] == NodeKind::Boundary;
@@ -58,12 +59,12 @@ bool Smoother::try_move(int a, Vec2 displacement, double old_min, double old_sum
       new_sum += aspect_ratio(x, y, z);
       // Rejected already (aspect ratios are positive, so the sum only grows): the rest of the star
       // cannot change the verdict below, so the step ends here.
-      if (new_min < old_min || new_sum > old_sum) {
+      if (new_min < old_min || (!lift && new_sum > old_sum)) {
         valid = false;
         break;
       }
     }
-    if (!valid || new_min < old_min || new_sum > old_sum) continue;
+    if (!valid || new_min < old_min || (!lift && new_sum > old_sum)) continue;
     // The move must gain something: outside a trial at least the sweep gains (a settled lattice
     // otherwise keeps taking moves that change the mean aspect ratio in the sixth digit, docs/cleanup.md);
     // a trial's relaxation takes any gain (0: strict improvement).
@@ -98,7 +99,7 @@ bool Smoother::try_move(int a, Vec2 displacement, double old_min, double old_sum
     mesh_.legalize(edges_);
     if (own) {
       int n_before = 0, n_after = 0;
-      if (mesh_.touched_aspect_after(n_after) > mesh_.touched_aspect_before(n_before)) {
+      if (!lift && mesh_.touched_aspect_after(n_after) > mesh_.touched_aspect_before(n_before)) {
         mesh_.rollback();
         continue;
       }
@@ -156,43 +157,64 @@ bool Smoother::relax(int a) {
   return try_move(a, d, old_min, old_sum);
 }
 
-bool Smoother::climb(int a) {
-  auto& m = mesh_;
-  if (m.removed(a) || !m.movable(a)) return false;
-  if (m.kind[a] == NodeKind::Boundary && m.curve[a] < 0) return false;
-  m.star(a, fan_);
-  double old_min = std::numeric_limits<double>::infinity(), old_sum = 0.0;
-  double r_min = std::numeric_limits<double>::infinity();
-  int worst = -1;
-  for (int t : fan_) {
-    const auto& tv = m.v[t];
-    const Vec2 x = m.p[tv[0]], y = m.p[tv[1]], z = m.p[tv[2]];
-    const double q = m.score_of(t, x, y, z);
-    if (q < old_min) {
-      old_min = q;
-      worst = t;
-    }
-    old_sum += aspect_ratio(x, y, z);
-    r_min = std::min(r_min, inradius(x, y, z));
-  }
-  if (worst < 0 || !(r_min > 0.0)) return false;
-  // Central differences of the worst triangle's score in a's position.
-  const auto& tv = m.v[worst];
+// The gradient of triangle t's score in the position of its vertex a (central differences, probe h).
+Vec2 Smoother::score_gradient(int t, int a, double h) const {
+  const auto& m = mesh_;
+  const auto& tv = m.v[t];
   const int k = EditableMesh::index_of(tv, a);
   const Vec2 y = m.p[tv[next3(k)]], z = m.p[tv[prev3(k)]], x = m.p[a];
-  const int skip = m.sharp_corner_of(worst);
+  const int skip = m.sharp_corner_of(t);
   auto score_at = [&](Vec2 at) {
     if (skip < 0) return min_angle_sine(at, y, z);
     std::array<Vec2, 3> q{m.p[tv[0]], m.p[tv[1]], m.p[tv[2]]};
     q[static_cast<std::size_t>(k)] = at;
     return min_angle_sine_except(q[0], q[1], q[2], skip);
   };
+  return {score_at(x + Vec2{h, 0}) - score_at(x - Vec2{h, 0}), score_at(x + Vec2{0, h}) - score_at(x - Vec2{0, h})};
+}
+
+bool Smoother::climb(int a) {
+  auto& m = mesh_;
+  if (m.removed(a) || !m.movable(a)) return false;
+  if (m.kind[a] == NodeKind::Boundary && m.curve[a] < 0) return false;
+  m.star(a, fan_);
+  double old_min = std::numeric_limits<double>::infinity(), second_min = old_min, old_sum = 0.0;
+  double r_min = std::numeric_limits<double>::infinity();
+  int worst = -1, second = -1;
+  for (int t : fan_) {
+    const auto& tv = m.v[t];
+    const Vec2 x = m.p[tv[0]], y = m.p[tv[1]], z = m.p[tv[2]];
+    const double q = m.score_of(t, x, y, z);
+    if (q < old_min) {
+      second_min = old_min;
+      second = worst;
+      old_min = q;
+      worst = t;
+    } else if (q < second_min) {
+      second_min = q;
+      second = t;
+    }
+    old_sum += aspect_ratio(x, y, z);
+    r_min = std::min(r_min, inradius(x, y, z));
+  }
+  if (worst < 0 || !(r_min > 0.0)) return false;
   const double h = 1e-3 * r_min;
-  const Vec2 g{score_at(x + Vec2{h, 0}) - score_at(x - Vec2{h, 0}),
-               score_at(x + Vec2{0, h}) - score_at(x - Vec2{0, h})};
+  const Vec2 g = score_gradient(worst, a, h);
   const double length = norm(g);
   if (!(length > 0.0)) return false;
-  return try_move(a, (step_cap_ * r_min / length) * g, old_min, old_sum);
+  const bool lift = old_min < lift_below_ && stuck_ && stuck_(worst);
+  if (try_move(a, (step_cap_ * r_min / length) * g, old_min, old_sum, lift)) return true;
+  if (!lift || second < 0) return false;
+  // A lifting climb that stalls where the worst triangle's rise is the second worst's fall (two
+  // triangles at nearly the same smallest angle, the kink of the star's smallest angle) steps along
+  // the bisector of their two gradients, which raises both.
+  const Vec2 g2 = score_gradient(second, a, h);
+  const double length2 = norm(g2);
+  if (!(length2 > 0.0)) return false;
+  const Vec2 b = (1.0 / length) * g + (1.0 / length2) * g2;
+  const double length_b = norm(b);
+  if (!(length_b > 0.0)) return false;
+  return try_move(a, (step_cap_ * r_min / length_b) * b, old_min, old_sum, true);
 }
 
 }  // namespace pdmesh::cleanup

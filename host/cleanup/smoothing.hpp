@@ -5,6 +5,8 @@
 // adjacent minimum angle does not drop (JIGSAW / MESH2D hill-climbing). Lawson flips follow.
 #pragma once
 #include <array>
+#include <functional>
+#include <utility>
 #include <vector>
 
 #include "cleanup/editable_mesh.hpp"
@@ -39,10 +41,22 @@ class Smoother {
     min_rise_ = min_rise;
     aspect_drop_ = aspect_drop;
   }
+  // Lifting climbs: a climb of a vertex whose star's worst triangle scores below `score` (the
+  // target's or a little above) and is one `stuck` names (one no topology change could repair) is judged by the star's
+  // smallest score alone, so it may raise the star's aspect-ratio sum. A tall triangle whose apex is a
+  // far-field node above a finer interior row (clarky: 39.5 degrees) is lifted only by moving a row
+  // node so that its 50-56 degree neighbours stretch, which raises their aspect ratios more than it
+  // lowers the bad one's (docs/cleanup.md, "Lifting climbs"). Off until set.
+  void set_lift(double score, std::function<bool(int)> stuck) {
+    lift_below_ = score;
+    stuck_ = std::move(stuck);
+  }
 
  private:
-  bool try_move(int a, Vec2 displacement, double old_min, double old_sum);
+  // lift: judged by the star's smallest score alone (set_lift).
+  bool try_move(int a, Vec2 displacement, double old_min, double old_sum, bool lift = false);
   Vec2 on_curve(int a, Vec2 candidate, double& new_arc) const;
+  Vec2 score_gradient(int t, int a, double h) const;
   bool flips_needed(int a, Vec2 to) const;
 
   EditableMesh& mesh_;
@@ -52,6 +66,8 @@ class Smoother {
   std::vector<EdgeRef> edges_;
   MoveGain last_gain_;
   double min_rise_ = 0.0, aspect_drop_ = 0.0;
+  double lift_below_ = -1.0;
+  std::function<bool(int)> stuck_;
 };
 
 }  // namespace pdmesh::cleanup
