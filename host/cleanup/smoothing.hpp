@@ -39,6 +39,11 @@ class Smoother {
     min_rise_ = min_rise;
     aspect_drop_ = aspect_drop;
   }
+  // Deferring (the strip sweeps of strip_sweeps.hpp): a move that would need Lawson flips is not
+  // made; relax() and climb() return false and deferred() is true until the next call. With it on, a
+  // move writes only the vertex's position and arc and its star's dirty marks, never the topology.
+  void set_defer_flips(bool on) { defer_flips_ = on; }
+  bool deferred() const { return deferred_; }
 
  private:
   bool try_move(int a, Vec2 displacement, double old_min, double old_sum);
@@ -52,6 +57,7 @@ class Smoother {
   std::vector<EdgeRef> edges_;
   MoveGain last_gain_;
   double min_rise_ = 0.0, aspect_drop_ = 0.0;
+  bool defer_flips_ = false, deferred_ = false;
 };
 
 }  // namespace pdmesh::cleanup
