@@ -95,9 +95,9 @@ TEST_CASE("sweeps in strips give the same mesh on 1, 2 and 3 threads and keep th
   for (const InitMethod method : {InitMethod::Random, InitMethod::Structured}) {
     INFO("init " << static_cast<int>(method));
     const Plate p(method);
-    REQUIRE(p.mesh.points.size() >= 4 * in_strips(1).strip_vertices);
+    REQUIRE(p.mesh.points.size() >= CleanupOptions::kMinStrips * in_strips(1).strip_vertices);
     const CleanupResult one = clean_mesh(p.mesh, p.nodes, p.tree, p.spacing, in_strips(1));
-    REQUIRE(one.stats.strips >= 4);
+    REQUIRE(one.stats.strips >= static_cast<int>(CleanupOptions::kMinStrips));
     // The strips take most of the sweeps' vertices; the serial pass some (the strips' edges, flips).
     CHECK(one.stats.strip_taken > 4 * one.stats.strip_left);
     CHECK(one.stats.strip_left > 0);
@@ -135,7 +135,7 @@ TEST_CASE("sweeps in strips repair a perturbed lattice as well as the serial swe
   const CleanupResult s = clean_mesh(p.mesh, p.nodes, p.tree, p.spacing, serial);
   const CleanupResult r = clean_mesh(p.mesh, p.nodes, p.tree, p.spacing, strips);
   CHECK(s.stats.strips == 0);
-  REQUIRE(r.stats.strips >= 4);
+  REQUIRE(r.stats.strips >= static_cast<int>(CleanupOptions::kMinStrips));
   check_guarantees(p, r);
   QualityOptions qo;
   qo.small_angle_deg = strips.min_angle;

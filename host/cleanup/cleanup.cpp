@@ -140,7 +140,9 @@ void tally_moves(const cleanup::SweepTally& t, CleanupIteration& record) {
 int strips_for(std::size_t vertices, const CleanupOptions& options) {
   if (options.strip_vertices == 0) return 0;
   const std::size_t strips = vertices / options.strip_vertices;
-  return strips < 4 ? 0 : static_cast<int>(std::min<std::size_t>(strips, CleanupOptions::kMaxStrips));
+  return strips < CleanupOptions::kMinStrips
+             ? 0
+             : static_cast<int>(std::min<std::size_t>(strips, CleanupOptions::kMaxStrips));
 }
 
 // The mesh being cleaned, its smoother and topology operations, and what the outer iterations carry

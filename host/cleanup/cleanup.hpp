@@ -60,13 +60,16 @@ struct CleanupOptions {
   // score does not drop, its aspect-ratio sum does not rise, one of them strictly improves), until a
   // sweep moves nothing or this many sweeps. 0: none (pdmesh mesh's default).
   int polish = 0;
-  // Sweeps in strips (cleanup/strip_sweeps.hpp): a mesh of at least 4 x strip_vertices vertices is
-  // cut into vertices / strip_vertices strips along x (at most kMaxStrips), whose sweeps run on up to
-  // `threads` threads (0: the hardware's, at most 8). The strips fix the order of the moves, so the
-  // result is the same for any thread count; it differs from the serial sweeps' (every vertex in
-  // ascending order), which smaller meshes keep. strip_vertices 0: serial sweeps always.
+  // Sweeps in strips (cleanup/strip_sweeps.hpp): a mesh of at least kMinStrips x strip_vertices
+  // vertices is cut into vertices / strip_vertices strips along x (at most kMaxStrips), whose sweeps
+  // run on up to `threads` threads (0: the hardware's, at most 8). The strips fix the order of the
+  // moves, so the result is the same for any thread count; it differs from the serial sweeps' (every
+  // vertex in ascending order), which smaller meshes keep: below 200,000 vertices the cleanup takes
+  // under ~2 CPU s, and with 4 strips annulus_100k's largest aspect ratio rose from 1.198 to 1.208
+  // (docs/journal/2026-12-03-cleanup-par.md). strip_vertices 0: serial sweeps always.
   std::size_t strip_vertices = 25000;
   std::size_t threads = 0;
+  static constexpr std::size_t kMinStrips = 8;
   static constexpr int kMaxStrips = 64;
   // Measure the whole mesh after every outer iteration (CleanupIteration's min_angle, aspect_mean): a
   // scan of every triangle per iteration, for bench_cleanup's per-iteration table; off in runs.

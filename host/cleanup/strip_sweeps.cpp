@@ -52,8 +52,10 @@ void StripSweeps::label_new(const EditableMesh& mesh) {
   for (int a = initial_; a < mesh.vertex_slots(); ++a) label_[a] = strip_of(mesh.p[a].x);
 }
 
-// Whether strip s may move a: its star's vertices are all in s, the vertices across its star's edges
-// in s or a neighbouring strip, and so are its neighbours along its curve (whose arcs bound its slide).
+// Whether strip s may move a: its star's vertices are all in s, the vertices across its link edges
+// (the edges opposite a, which Smoother::flips_needed tests) in s or a neighbouring strip, and so are
+// its neighbours along its curve (whose arcs bound its slide). A star's spokes lie between two of its
+// triangles or on the boundary, so what lies across them is in the star already.
 bool StripSweeps::inside(const EditableMesh& mesh, int a, int s, std::vector<int>& fan) const {
   if (mesh.removed(a) || !mesh.movable(a)) return true;  // relax() and climb() write nothing then
   auto near = [&](int x) { return std::abs(label_[x] - s) <= 1; };
@@ -61,12 +63,11 @@ bool StripSweeps::inside(const EditableMesh& mesh, int a, int s, std::vector<int
   if (mesh.next[a] >= 0 && !near(mesh.next[a])) return false;
   mesh.star(a, fan);
   for (int t : fan) {
-    for (int x : mesh.v[t])
-      if (label_[x] != s) return false;
-    for (int u : mesh.n[t]) {
-      if (u < 0) continue;
-      if (!near(mesh.v[u][EditableMesh::index_of(mesh.n[u], t)])) return false;
-    }
+    const auto& tv = mesh.v[t];
+    const int k = EditableMesh::index_of(tv, a);
+    if (label_[tv[next3(k)]] != s || label_[tv[prev3(k)]] != s) return false;
+    const int u = mesh.n[t][k];
+    if (u >= 0 && !near(mesh.v[u][EditableMesh::index_of(mesh.n[u], t)])) return false;
   }
   return true;
 }
