@@ -402,6 +402,7 @@ void CleanupRun::finish(const Mesh& mesh, const NodeSet& nodes, const SpacingFie
     result.stats.strips = strips_->strips();
     result.stats.strip_taken = strips_->taken();
     result.stats.strip_left = strips_->left();
+    result.stats.strip_seconds = strips_->parallel_seconds();
   }
   result.stats.trials = ops_.trials();
   result.stats.inserted += ops_.compound_inserted();

@@ -107,6 +107,7 @@ struct CleanupStats {
   int strips = 0;                  // strips of the sweeps (0: serial sweeps)
   std::size_t strip_taken = 0;     // vertices of the sweeps' lists the strips took ...
   std::size_t strip_left = 0;      // ... and left to the serial pass (over all sweeps)
+  double strip_seconds = 0.0;      // wall seconds in the strips' parallel loops
   double smoothing_seconds = 0.0;  // of which in the smoothing sweeps ...
   double topology_seconds = 0.0;   // ... and in the topology passes
   std::vector<CleanupIteration> per_iteration;

@@ -2,6 +2,7 @@
 #include "cleanup/strip_sweeps.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cstdlib>
 
 #include "core/parallel.hpp"
@@ -100,12 +101,14 @@ SweepTally StripSweeps::sweep(EditableMesh& mesh, Smoother& serial, const std::v
         tally[k].add(smoother.last_gain());
     }
   };
+  const auto start = std::chrono::steady_clock::now();
   for (int colour = 0; colour < 2; ++colour) {
     std::vector<int> ids;
     for (int s = colour; s < n; s += 2) ids.push_back(s);
     parallel_for(
         ids.size(), [&](std::size_t i) { run_strip(ids[i]); }, 1, limit(threads_));
   }
+  parallel_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   std::vector<int> rest;
   for (const auto& l : later) rest.insert(rest.end(), l.begin(), l.end());
   std::sort(rest.begin(), rest.end());

@@ -51,6 +51,8 @@ class StripSweeps {
   // How many vertices the strips took and how many they left to the serial pass, over all sweeps.
   std::size_t taken() const { return taken_; }
   std::size_t left() const { return left_; }
+  // Wall seconds in the two colours' parallel loops, over all sweeps (the rest of a sweep is serial).
+  double parallel_seconds() const { return parallel_seconds_; }
 
  private:
   static std::size_t limit(std::size_t threads);  // parallel_for's max_threads for `threads`
@@ -63,6 +65,7 @@ class StripSweeps {
   int initial_ = 0;            // the slots labelled at construction; later ones are labelled per sweep
   std::size_t threads_;
   std::size_t taken_ = 0, left_ = 0;
+  double parallel_seconds_ = 0.0;
 };
 
 }  // namespace pdmesh::cleanup

@@ -162,8 +162,8 @@ int main(int argc, char** argv) {
         st.compound_trials, st.compound_applied, repeats, best, best_cpu, st.smoothing_seconds, st.topology_seconds,
         triangulate_s);
     if (st.strips > 0)
-      fmt::print("strips: {}, vertices swept in strips {}, left to the serial pass {}\n", st.strips, st.strip_taken,
-                 st.strip_left);
+      fmt::print("strips: {}, vertices swept in strips {}, left to the serial pass {}; {:.3f} s wall in the strips\n",
+                 st.strips, st.strip_taken, st.strip_left, st.strip_seconds);
     if (options.measure_iterations) {
       // Where the work goes: per outer iteration the moves (and those that lowered their star's mean
       // aspect ratio by less than 1e-4), what they gained, and the mesh after it.
