@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <memory>
 #include <set>
 
 #include "core/interrupt.hpp"
@@ -11,7 +12,9 @@
 #include "cleanup/editable_mesh.hpp"
 #include "cleanup/measures.hpp"
 #include "cleanup/smoothing.hpp"
+#include "cleanup/strip_sweeps.hpp"
 #include "cleanup/topology_ops.hpp"
+#include "core/parallel.hpp"
 #include "nodes/boundary_arcs.hpp"
 
 namespace pdmesh {
@@ -27,14 +30,20 @@ namespace {
 // triangle, the same points. Late iterations change little of a large mesh.
 class Scores {
  public:
+  explicit Scores(std::size_t threads) : threads_(threads == 0 ? 8 : threads) {}
   const std::vector<double>& update(const EditableMesh& m, const std::vector<std::uint8_t>& since) {
     auto changed = [&](int a) { return (a < static_cast<int>(since.size()) && since[a]) || m.dirty(a); };
     score_.resize(m.triangle_slots(), 0.0);
-    for (int t = 0; t < m.triangle_slots(); ++t) {
-      if (!m.alive(t)) continue;
-      const auto& tv = m.v[t];
-      if (t >= known_ || changed(tv[0]) || changed(tv[1]) || changed(tv[2])) score_[t] = m.quality(t);
-    }
+    // Each index writes only its own score: the same scores on any number of threads.
+    parallel_for(
+        static_cast<std::size_t>(m.triangle_slots()),
+        [&](std::size_t slot) {
+          const int t = static_cast<int>(slot);
+          if (!m.alive(t)) return;
+          const auto& tv = m.v[t];
+          if (t >= known_ || changed(tv[0]) || changed(tv[1]) || changed(tv[2])) score_[t] = m.quality(t);
+        },
+        16384, threads_);
     known_ = m.triangle_slots();
     return score_;
   }
@@ -42,6 +51,7 @@ class Scores {
  private:
   std::vector<double> score_;
   int known_ = 0;  // slots scored by the last update
+  std::size_t threads_;
 };
 
 // The vertices of the live triangles whose score is below `limit`, ascending (deterministic order).
@@ -120,6 +130,23 @@ void tally_move(bool moved, const cleanup::Smoother& smoother, CleanupIteration&
   }
 }
 
+// Adds a sweep's moves made in strips to the iteration's record.
+void tally_moves(const cleanup::SweepTally& t, CleanupIteration& record) {
+  record.moves += t.moves;
+  record.small_moves += t.small_moves;
+  record.aspect_drop += t.aspect_drop;
+  record.small_aspect_drop += t.small_aspect_drop;
+}
+
+// The strips of a mesh of `vertices` vertices (CleanupOptions::strip_vertices); 0: serial sweeps.
+int strips_for(std::size_t vertices, const CleanupOptions& options) {
+  if (options.strip_vertices == 0) return 0;
+  const std::size_t strips = vertices / options.strip_vertices;
+  return strips < CleanupOptions::kMinStrips
+             ? 0
+             : static_cast<int>(std::min<std::size_t>(strips, CleanupOptions::kMaxStrips));
+}
+
 // The mesh being cleaned, its smoother and topology operations, and what the outer iterations carry
 // from one to the next: the kept scores and the triangles no operation could repair.
 class CleanupRun {
@@ -139,6 +166,8 @@ class CleanupRun {
     if (options.lift)
       smoother_.set_lift(limits_.lift, [this](int t) { return failures_.count(sorted_key(m_.v[t])) > 0; });
     if (options.sharp_corners) m_.set_sharp_corners(options.min_angle);
+    if (const int strips = strips_for(mesh.points.size(), options); strips > 0)
+      strips_ = std::make_unique<cleanup::StripSweeps>(m_, strips, options.threads);
   }
 
   // One outer iteration: the smoothing sweeps, then the topology pass; its record goes to `stats`.
@@ -176,7 +205,8 @@ class CleanupRun {
   cleanup::TopologyOps ops_;
   const std::size_t trial_budget_;
   std::vector<std::uint8_t> mark_;
-  Scores scores_;
+  Scores scores_{options_.threads};
+  std::unique_ptr<cleanup::StripSweeps> strips_;  // null: serial sweeps
   std::set<std::array<int, 3>> failures_;
   std::vector<std::uint8_t> since_;  // the dirty marks taken at the start of the iteration
   double last_worst_ = -1.0;         // the smallest score after the previous iteration (settled()) ...
@@ -190,6 +220,14 @@ void CleanupRun::sweeps(const std::vector<std::uint8_t>& dirty, InterruptPoll& p
   // of trying it (the same proposal is rejected again); checked when its turn comes, since an earlier
   // move in the same sweep may have changed it.
   auto worth = [&](int a) { return (a < static_cast<int>(dirty.size()) && dirty[a]) || m_.dirty(a); };
+  if (strips_) {
+    for (const auto move : {cleanup::SweepMove::Relax, cleanup::SweepMove::Climb}) {
+      const double below = move == cleanup::SweepMove::Relax ? limits_.smooth : limits_.topology;
+      const auto list = vertices_of_bad_triangles(m_, scores_.update(m_, dirty), below, mark_);
+      tally_moves(strips_->sweep(m_, smoother_, list, move, worth, poll), record);
+    }
+    return;
+  }
   for (int a : vertices_of_bad_triangles(m_, scores_.update(m_, dirty), limits_.smooth, mark_)) {
     poll.tick();
     if (worth(a)) tally_move(smoother_.relax(a), smoother_, record);
@@ -370,6 +408,12 @@ void CleanupRun::polish(CleanupStats& stats) {
 }
 
 void CleanupRun::finish(const Mesh& mesh, const NodeSet& nodes, const SpacingField& spacing, CleanupResult& result) {
+  if (strips_) {
+    result.stats.strips = strips_->strips();
+    result.stats.strip_taken = strips_->taken();
+    result.stats.strip_left = strips_->left();
+    result.stats.strip_seconds = strips_->parallel_seconds();
+  }
   result.stats.trials = ops_.trials();
   result.stats.inserted += ops_.compound_inserted();
   result.stats.collapsed += ops_.compound_removed();

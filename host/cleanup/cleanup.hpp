@@ -66,6 +66,17 @@ struct CleanupOptions {
   // score does not drop, its aspect-ratio sum does not rise, one of them strictly improves), until a
   // sweep moves nothing or this many sweeps. 0: none (pdmesh mesh's default).
   int polish = 0;
+  // Sweeps in strips (cleanup/strip_sweeps.hpp): a mesh of at least kMinStrips x strip_vertices
+  // vertices is cut into vertices / strip_vertices strips along x (at most kMaxStrips), whose sweeps
+  // run on up to `threads` threads (0: the hardware's, at most 8). The strips fix the order of the
+  // moves, so the result is the same for any thread count; it differs from the serial sweeps' (every
+  // vertex in ascending order), which smaller meshes keep: below 200,000 vertices the cleanup takes
+  // under ~2 CPU s, and with 4 strips annulus_100k's largest aspect ratio rose from 1.198 to 1.208
+  // (docs/journal/2026-12-03-cleanup-par.md). strip_vertices 0: serial sweeps always.
+  std::size_t strip_vertices = 25000;
+  std::size_t threads = 0;
+  static constexpr std::size_t kMinStrips = 8;
+  static constexpr int kMaxStrips = 64;
   // Measure the whole mesh after every outer iteration (CleanupIteration's min_angle, aspect_mean): a
   // scan of every triangle per iteration, for bench_cleanup's per-iteration table; off in runs.
   bool measure_iterations = false;
@@ -100,6 +111,10 @@ struct CleanupStats {
   int iterations_run = 0;
   bool settled = false;  // the iterations ended by CleanupOptions::settled_aspect_drop
   double seconds = 0.0;
+  int strips = 0;                  // strips of the sweeps (0: serial sweeps)
+  std::size_t strip_taken = 0;     // vertices of the sweeps' lists the strips took ...
+  std::size_t strip_left = 0;      // ... and left to the serial pass (over all sweeps)
+  double strip_seconds = 0.0;      // wall seconds in the strips' parallel loops
   double smoothing_seconds = 0.0;  // of which in the smoothing sweeps ...
   double topology_seconds = 0.0;   // ... and in the topology passes
   std::vector<CleanupIteration> per_iteration;

@@ -89,6 +89,10 @@ bool Smoother::try_move(int a, Vec2 displacement, double old_min, double old_sum
       mesh_.move(a, to, new_arc, fan_);  // in a trial it journals the star; outside one it marks it dirty
       return true;
     }
+    if (defer_flips_) {
+      deferred_ = true;
+      return false;
+    }
     if (own) mesh_.begin();
     mesh_.move(a, to, new_arc, fan_);
     edges_.clear();
@@ -133,6 +137,7 @@ bool Smoother::flips_needed(int a, Vec2 to) const {
 
 bool Smoother::relax(int a) {
   auto& m = mesh_;
+  deferred_ = false;
   if (m.removed(a) || !m.movable(a)) return false;
   if (m.kind[a] == NodeKind::Boundary && m.curve[a] < 0) return false;
   m.star(a, fan_);
@@ -175,6 +180,7 @@ Vec2 Smoother::score_gradient(int t, int a, double h) const {
 
 bool Smoother::climb(int a) {
   auto& m = mesh_;
+  deferred_ = false;
   if (m.removed(a) || !m.movable(a)) return false;
   if (m.kind[a] == NodeKind::Boundary && m.curve[a] < 0) return false;
   m.star(a, fan_);

@@ -51,6 +51,11 @@ class Smoother {
     lift_below_ = score;
     stuck_ = std::move(stuck);
   }
+  // Deferring (the strip sweeps of strip_sweeps.hpp): a move that would need Lawson flips is not
+  // made; relax() and climb() return false and deferred() is true until the next call. With it on, a
+  // move writes only the vertex's position and arc and its star's dirty marks, never the topology.
+  void set_defer_flips(bool on) { defer_flips_ = on; }
+  bool deferred() const { return deferred_; }
 
  private:
   // lift: judged by the star's smallest score alone (set_lift).
@@ -68,6 +73,7 @@ class Smoother {
   double min_rise_ = 0.0, aspect_drop_ = 0.0;
   double lift_below_ = -1.0;
   std::function<bool(int)> stuck_;
+  bool defer_flips_ = false, deferred_ = false;
 };
 
 }  // namespace pdmesh::cleanup

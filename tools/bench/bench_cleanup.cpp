@@ -1,11 +1,12 @@
 // Benchmark and inspection tool for the final cleanup (docs/cleanup.md): triangulates a node file
 // (e.g. a run's final.nodes) over its geometry, cleans the mesh, checks it and prints the quality
-// before and after and the time of each stage, single-threaded.
+// before and after and the time of each stage.
 // Usage: bench_cleanup NODES GEOMETRY... [--min-angle D] [--iterations N] [--smooth-below D]
 //                      [--step-cap F] [--no-topology] [--no-compound] [--trials-per-triangle F] [--min-trials N]
 //                      [--repeats N] [--png PREFIX] [--window x0,y0,x1,y1]
 //                      [--spacing EXPRESSION] (default: the boundary spacing, eq. 3.6)
 //                      [--settled-aspect-drop D] (CleanupOptions::settled_aspect_drop)
+//                      [--threads N] [--strip-vertices N] (CleanupOptions::threads, ::strip_vertices)
 //                      [--per-iteration] (a table of every outer iteration) [--write MESH.msh] (the cleaned mesh)
 //        bench_cleanup --write-graded N FILE.crv   (the graded_N geometry of `pdmesh bench` as a curve file)
 #include <fmt/format.h>
@@ -91,6 +92,10 @@ int main(int argc, char** argv) {
         options.move_aspect_drop = std::stod(value());
       else if (arg == "--settled-aspect-drop")
         options.settled_aspect_drop = std::stod(value());
+      else if (arg == "--threads")
+        options.threads = static_cast<std::size_t>(std::stoul(value()));
+      else if (arg == "--strip-vertices")
+        options.strip_vertices = static_cast<std::size_t>(std::stoul(value()));
       else if (arg == "--per-iteration")
         options.measure_iterations = true;
       else if (arg == "--write")
@@ -156,6 +161,9 @@ int main(int argc, char** argv) {
         st.iterations_run, st.settled ? " (settled)" : "", st.moves, st.inserted, st.collapsed, st.rejected, st.trials,
         st.compound_trials, st.compound_applied, repeats, best, best_cpu, st.smoothing_seconds, st.topology_seconds,
         triangulate_s);
+    if (st.strips > 0)
+      fmt::print("strips: {}, vertices swept in strips {}, left to the serial pass {}; {:.3f} s wall in the strips\n",
+                 st.strips, st.strip_taken, st.strip_left, st.strip_seconds);
     if (options.measure_iterations) {
       // Where the work goes: per outer iteration the moves (and those that lowered their star's mean
       // aspect ratio by less than 1e-4), what they gained, and the mesh after it.

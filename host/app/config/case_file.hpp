@@ -229,6 +229,8 @@ struct CaseConfig {
     // CleanupOptions::sharp_corners and polish (off in every preset; pdmesh smooth turns both on).
     bool sharp_corners = false;
     std::int64_t polish = 0;
+    // CleanupOptions::threads: the sweeps' threads (0: the hardware's); the mesh is the same for any.
+    std::int64_t threads = 0;
   } cleanup;
 
   // [[boundary_layer]] (docs/boundary-layers.md): layered cells grown from the named wall curves, the

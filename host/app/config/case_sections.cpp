@@ -393,6 +393,11 @@ void read_cleanup_section(const Reader& r, const toml::table& root, CaseConfig& 
     if (k.polish < 0 || k.polish > 1000)
       r.fail("cleanup.polish", n, fmt::format("cleanup.polish must be in 0..1000, got {}", k.polish));
   }
+  if (const toml::node* n = find(root, "cleanup", "threads")) {
+    k.threads = r.integer("cleanup.threads", *n);
+    if (k.threads < 0 || k.threads > 256)
+      r.fail("cleanup.threads", n, fmt::format("cleanup.threads must be in 0..256, got {}", k.threads));
+  }
 }
 
 ViewWindow read_view(const Reader& r, const toml::node& entry, std::size_t i) {

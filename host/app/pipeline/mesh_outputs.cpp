@@ -46,6 +46,7 @@ CleanupOptions mesh_detail::cleanup_options(const CaseConfig& config) {
   o.settled_aspect_drop = config.cleanup.settle;
   o.sharp_corners = config.cleanup.sharp_corners;
   o.polish = static_cast<int>(config.cleanup.polish);
+  o.threads = static_cast<std::size_t>(config.cleanup.threads);
   return o;
 }
 using mesh_detail::kSvgNodeLimit;
