@@ -14,6 +14,15 @@
 
 namespace pdmesh::fixtures {
 
+// An input curve as a reader would return it, from the file "test".
+inline RawCurve raw_polyline(std::vector<Vec2> points, const std::string& name) {
+  RawCurve r;
+  r.name = name;
+  r.points = std::move(points);
+  r.file = "test";
+  return r;
+}
+
 // Fills curves (points, arc, critical = 0, first_segment), segments and extents from polylines.
 // Loops and the area are left empty: the tree and spacing fields do not read them.
 inline Geometry make_geometry(const std::vector<std::vector<Vec2>>& polylines) {

@@ -22,18 +22,11 @@
 #include "nodes/node_domain.hpp"
 #include "sim/boundary_handling.hpp"
 #include "spacing/spacing_field.hpp"
+#include "geometry_fixtures.hpp"
 
 using namespace pdmesh;
 
 namespace {
-
-RawCurve polyline(std::vector<Vec2> points, const std::string& name) {
-  RawCurve r;
-  r.name = name;
-  r.points = std::move(points);
-  r.file = "test";
-  return r;
-}
 
 // A closed rectangle curve with `nx` x `ny` segments a side (counter-clockwise unless hole).
 RawCurve rectangle(Vec2 lo, Vec2 hi, int nx, int ny, bool hole, const std::string& name) {
@@ -45,7 +38,7 @@ RawCurve rectangle(Vec2 lo, Vec2 hi, int nx, int ny, bool hole, const std::strin
   }
   pts.push_back(lo);
   if (hole) std::reverse(pts.begin(), pts.end());
-  return polyline(pts, name);
+  return fixtures::raw_polyline(pts, name);
 }
 
 // Two semicircles of radius r about c, `n` segments each (a hole when clockwise).
@@ -59,7 +52,7 @@ std::vector<RawCurve> circle(Vec2 c, double r, int n, const std::string& name) {
     }
     pts.front() = {c.x + (half == 0 ? r : -r), c.y};
     pts.back() = {c.x + (half == 0 ? -r : r), c.y};
-    out.push_back(polyline(pts, name + std::to_string(half)));
+    out.push_back(fixtures::raw_polyline(pts, name + std::to_string(half)));
   }
   return out;
 }
@@ -216,7 +209,7 @@ TEST_CASE("cleanup does no harm to a good mesh and leaves an equilateral one unt
     for (int k = 0; k < side; ++k) hexagon.push_back(a + (static_cast<double>(k) / side) * (b - a));
   }
   hexagon.push_back(hexagon.front());
-  const Geometry hex = build_geometry({polyline(hexagon, "hexagon")});
+  const Geometry hex = build_geometry({fixtures::raw_polyline(hexagon, "hexagon")});
   const GeometryTree hex_tree(hex);
   const ExpressionSpacing unit("1");
   NodeSet lattice = make_boundary_nodes(hex, unit);
@@ -416,7 +409,8 @@ TEST_CASE("compound trials refuse what no pair of edits can lift", "[cleanup]") 
   // corner keeps an angle of at most 20 degrees, so no edit or pair of edits may raise the worst
   // angle or lower the number below the target. The pairs are tried and all refused.
   const double a = 20.0 / 180.0 * M_PI;
-  const Geometry g = build_geometry({polyline({{0, 0}, {3, 0}, {3 * std::cos(a), 3 * std::sin(a)}, {0, 0}}, "wedge")});
+  const Geometry g =
+      build_geometry({fixtures::raw_polyline({{0, 0}, {3, 0}, {3 * std::cos(a), 3 * std::sin(a)}, {0, 0}}, "wedge")});
   const GeometryTree tree(g);
   const ExpressionSpacing spacing("10");
   const NodeSet nodes = make_boundary_nodes(g, spacing);

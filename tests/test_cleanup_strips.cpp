@@ -16,18 +16,11 @@
 #include "mesh/triangulate_nodes.hpp"
 #include "nodes/node_domain.hpp"
 #include "spacing/spacing_field.hpp"
+#include "geometry_fixtures.hpp"
 
 using namespace pdmesh;
 
 namespace {
-
-RawCurve polyline(std::vector<Vec2> points, const std::string& name) {
-  RawCurve r;
-  r.name = name;
-  r.points = std::move(points);
-  r.file = "test";
-  return r;
-}
 
 // A square of side 8 with `n` segments a side, and a circular hole of `m` segments a half: about
 // (n / 8)^2 x 60 nodes from the boundary spacing.
@@ -37,7 +30,7 @@ Geometry plate(int n, int m) {
   for (int side = 0; side < 4; ++side)
     for (int k = 0; k < n; ++k) pts.push_back(c[side] + (static_cast<double>(k) / n) * (c[(side + 1) % 4] - c[side]));
   pts.push_back(c[0]);
-  std::vector<RawCurve> raw = {polyline(pts, "square")};
+  std::vector<RawCurve> raw = {fixtures::raw_polyline(pts, "square")};
   for (int half = 0; half < 2; ++half) {
     std::vector<Vec2> arc;
     for (int i = 0; i <= m; ++i) {
@@ -46,7 +39,7 @@ Geometry plate(int n, int m) {
     }
     arc.front() = {half == 0 ? 5.8 : 2.8, 3.7};
     arc.back() = {half == 0 ? 2.8 : 5.8, 3.7};
-    raw.push_back(polyline(arc, "hole" + std::to_string(half)));
+    raw.push_back(fixtures::raw_polyline(arc, "hole" + std::to_string(half)));
   }
   return build_geometry(std::move(raw));
 }

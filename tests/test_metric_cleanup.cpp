@@ -25,18 +25,11 @@
 #include "nodes/boundary_arcs.hpp"
 #include "spacing/metric_field.hpp"
 #include "spacing/spacing_field.hpp"
+#include "geometry_fixtures.hpp"
 
 using namespace pdmesh;
 
 namespace {
-
-RawCurve polyline(std::vector<Vec2> points, const std::string& name) {
-  RawCurve r;
-  r.name = name;
-  r.points = std::move(points);
-  r.file = "test";
-  return r;
-}
 
 // The unit square as one closed curve with n segments a side (the boundary nodes' places).
 Geometry unit_square(int n) {
@@ -45,7 +38,7 @@ Geometry unit_square(int n) {
   for (int side = 0; side < 4; ++side)
     for (int k = 0; k < n; ++k) pts.push_back(c[side] + (static_cast<double>(k) / n) * (c[(side + 1) % 4] - c[side]));
   pts.push_back(c[0]);
-  return build_geometry({polyline(pts, "square")});
+  return build_geometry({fixtures::raw_polyline(pts, "square")});
 }
 
 std::vector<std::string> names(const Geometry& g) {
