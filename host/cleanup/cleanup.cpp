@@ -30,7 +30,7 @@ namespace {
 // triangle, the same points. Late iterations change little of a large mesh.
 class Scores {
  public:
-  explicit Scores(std::size_t threads) : threads_(threads == 0 ? 8 : threads) {}
+  explicit Scores(std::size_t threads) : threads_(cleanup::sweep_thread_limit(threads)) {}
   const std::vector<double>& update(const EditableMesh& m, const std::vector<std::uint8_t>& since) {
     auto changed = [&](int a) { return (a < static_cast<int>(since.size()) && since[a]) || m.dirty(a); };
     score_.resize(m.triangle_slots(), 0.0);
@@ -121,21 +121,7 @@ cleanup::TopologyOptions topology_options_of(const CleanupOptions& options, cons
 // Adds a sweep's accepted move (if it moved) to the iteration's record.
 void tally_move(bool moved, const cleanup::Smoother& smoother, CleanupIteration& record) {
   if (!moved) return;
-  const cleanup::MoveGain& g = smoother.last_gain();
-  ++record.moves;
-  record.aspect_drop += g.aspect_drop;
-  if (g.aspect_drop < 1e-4 * g.triangles) {
-    ++record.small_moves;
-    record.small_aspect_drop += g.aspect_drop;
-  }
-}
-
-// Adds a sweep's moves made in strips to the iteration's record.
-void tally_moves(const cleanup::SweepTally& t, CleanupIteration& record) {
-  record.moves += t.moves;
-  record.small_moves += t.small_moves;
-  record.aspect_drop += t.aspect_drop;
-  record.small_aspect_drop += t.small_aspect_drop;
+  cleanup::count_move(record, smoother.last_gain());
 }
 
 // The strips of a mesh of `vertices` vertices (CleanupOptions::strip_vertices); 0: serial sweeps.
@@ -224,7 +210,7 @@ void CleanupRun::sweeps(const std::vector<std::uint8_t>& dirty, InterruptPoll& p
     for (const auto move : {cleanup::SweepMove::Relax, cleanup::SweepMove::Climb}) {
       const double below = move == cleanup::SweepMove::Relax ? limits_.smooth : limits_.topology;
       const auto list = vertices_of_bad_triangles(m_, scores_.update(m_, dirty), below, mark_);
-      tally_moves(strips_->sweep(m_, smoother_, list, move, worth, poll), record);
+      cleanup::add_moves(record, strips_->sweep(m_, smoother_, list, move, worth, poll));
     }
     return;
   }

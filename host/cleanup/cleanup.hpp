@@ -70,9 +70,9 @@ struct CleanupOptions {
   // vertices is cut into vertices / strip_vertices strips along x (at most kMaxStrips), whose sweeps
   // run on up to `threads` threads (0: the hardware's, at most 8). The strips fix the order of the
   // moves, so the result is the same for any thread count; it differs from the serial sweeps' (every
-  // vertex in ascending order), which smaller meshes keep: below 200,000 vertices the cleanup takes
-  // under ~2 CPU s, and with 4 strips annulus_100k's largest aspect ratio rose from 1.198 to 1.208
-  // (docs/journal/2026-12-03-cleanup-par.md). strip_vertices 0: serial sweeps always.
+  // vertex in ascending order), which smaller meshes keep: their cleanup is short, and a few wide
+  // strips change their meshes more than many narrow ones (docs/cleanup.md, "Sweeps in strips").
+  // strip_vertices 0: serial sweeps always.
   std::size_t strip_vertices = 25000;
   std::size_t threads = 0;
   static constexpr std::size_t kMinStrips = 8;

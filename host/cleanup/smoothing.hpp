@@ -22,6 +22,28 @@ struct MoveGain {
   int triangles = 0;
 };
 
+// Counts an accepted move into a record of the sweeps' moves (CleanupIteration, SweepTally: moves,
+// small_moves, aspect_drop, small_aspect_drop); a small move lowered its star's mean aspect ratio by
+// less than 1e-4.
+template <class Record>
+void count_move(Record& r, const MoveGain& g) {
+  ++r.moves;
+  r.aspect_drop += g.aspect_drop;
+  if (g.aspect_drop < 1e-4 * g.triangles) {
+    ++r.small_moves;
+    r.small_aspect_drop += g.aspect_drop;
+  }
+}
+
+// Adds one record of the sweeps' moves to another.
+template <class Record, class From>
+void add_moves(Record& r, const From& f) {
+  r.moves += f.moves;
+  r.small_moves += f.small_moves;
+  r.aspect_drop += f.aspect_drop;
+  r.small_aspect_drop += f.small_aspect_drop;
+}
+
 class Smoother {
  public:
   // step_cap: the largest step as a fraction of the smallest inradius of the adjacent triangles.

@@ -9,22 +9,6 @@
 
 namespace pdmesh::cleanup {
 
-void SweepTally::add(const MoveGain& g) {
-  ++moves;
-  aspect_drop += g.aspect_drop;
-  if (g.aspect_drop < 1e-4 * g.triangles) {
-    ++small_moves;
-    small_aspect_drop += g.aspect_drop;
-  }
-}
-
-void SweepTally::add(const SweepTally& t) {
-  moves += t.moves;
-  small_moves += t.small_moves;
-  aspect_drop += t.aspect_drop;
-  small_aspect_drop += t.small_aspect_drop;
-}
-
 StripSweeps::StripSweeps(const EditableMesh& mesh, int strips, std::size_t threads) : threads_(threads) {
   std::vector<double> xs;
   xs.reserve(static_cast<std::size_t>(mesh.vertex_slots()));
@@ -37,10 +21,8 @@ StripSweeps::StripSweeps(const EditableMesh& mesh, int strips, std::size_t threa
   initial_ = mesh.vertex_slots();
   label_.resize(static_cast<std::size_t>(initial_));
   parallel_for(
-      label_.size(), [&](std::size_t a) { label_[a] = strip_of(mesh.p[a].x); }, 16384, limit(threads_));
+      label_.size(), [&](std::size_t a) { label_[a] = strip_of(mesh.p[a].x); }, 16384, sweep_thread_limit(threads_));
 }
-
-std::size_t StripSweeps::limit(std::size_t threads) { return threads == 0 ? 8 : threads; }
 
 int StripSweeps::strip_of(double x) const {
   return static_cast<int>(std::upper_bound(edges_.begin(), edges_.end(), x) - edges_.begin());
@@ -106,7 +88,7 @@ SweepTally StripSweeps::sweep(EditableMesh& mesh, Smoother& serial, const std::v
     std::vector<int> ids;
     for (int s = colour; s < n; s += 2) ids.push_back(s);
     parallel_for(
-        ids.size(), [&](std::size_t i) { run_strip(ids[i]); }, 1, limit(threads_));
+        ids.size(), [&](std::size_t i) { run_strip(ids[i]); }, 1, sweep_thread_limit(threads_));
   }
   parallel_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   std::vector<int> rest;

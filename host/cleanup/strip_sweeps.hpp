@@ -26,11 +26,15 @@ struct SweepTally {
   std::size_t moves = 0;
   std::size_t small_moves = 0;  // ... of which lowered their star's mean aspect ratio by < 1e-4
   double aspect_drop = 0.0, small_aspect_drop = 0.0;
-  void add(const MoveGain& g);
-  void add(const SweepTally& t);
+  void add(const MoveGain& g) { count_move(*this, g); }
+  void add(const SweepTally& t) { add_moves(*this, t); }
 };
 
 enum class SweepMove { Relax, Climb };
+
+// The most threads the cleanup's parallel loops use for CleanupOptions::threads (0: parallel_for's
+// default limit).
+inline std::size_t sweep_thread_limit(std::size_t threads) { return threads == 0 ? 8 : threads; }
 
 class StripSweeps {
  public:
@@ -55,7 +59,6 @@ class StripSweeps {
   double parallel_seconds() const { return parallel_seconds_; }
 
  private:
-  static std::size_t limit(std::size_t threads);  // parallel_for's max_threads for `threads`
   int strip_of(double x) const;
   void label_new(const EditableMesh& mesh);
   bool inside(const EditableMesh& mesh, int a, int s, std::vector<int>& fan) const;
