@@ -26,12 +26,16 @@ constexpr std::size_t kChildrenPerThread = 1024;
 
 BackgroundBuilder::BackgroundBuilder(const SpacingField& exact, const GeometryTree& tree,
                                      const BackgroundOptions& options)
-    : exact_(&exact), tree_(tree), opt_(options), resolution_(options.max_depth + 2) {}
+    : exact_(&exact),
+      tree_(tree),
+      opt_(options),
+      resolution_(options.max_depth + 2),
+      lattice_unit_(std::ldexp(1.0, -resolution_)) {}
 
 // Level R = max_depth + 2 resolves the quarter points of the finest cells, so every sample point has
 // integer lattice coordinates and a 64-bit key; samples shared by neighbouring cells are evaluated once.
 double BackgroundBuilder::coord(double origin, std::uint32_t lattice) const {
-  return origin + root_size_ * std::ldexp(static_cast<double>(lattice), -resolution_);
+  return origin + root_size_ * (static_cast<double>(lattice) * lattice_unit_);
 }
 
 double BackgroundBuilder::side(int level) const { return std::ldexp(root_size_, -level); }
