@@ -167,7 +167,7 @@ class Quadtree {
     // are a superset of the best-first search's, so the result is the same: every segment that could
     // beat or tie the best hit is examined, ties going to the lowest index.
     // Entries without a default initializer: std::pair's would zero the whole stack (1 KB) on every
-    // search, ~5 % of eq. 3.6's time; only entries below `top` are ever read.
+    // search; only entries below `top` are ever read.
     struct Pending {
       double d;
       int n;

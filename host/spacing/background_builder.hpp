@@ -137,7 +137,7 @@ class BackgroundBuilder {
   const BackgroundOptions& opt_;
   const int resolution_;
   // 2^-resolution_: a lattice coordinate times it is ldexp's value exactly (a power of two), without its
-  // library call (two million points of the 30P30N curves' spacing).
+  // library call per sample point.
   const double lattice_unit_;
   int grid_ = 1;
   double origin_x_ = 0.0, origin_y_ = 0.0, root_size_ = 1.0;
