@@ -55,10 +55,10 @@ TEST_CASE("profiled launches are timed by kernel at the next finish", "[opencl]"
 TEST_CASE("a profiled run writes each kernel's launches and seconds at exit", "[opencl][device_sim]") {
   const auto dir = pdmesh_test::fresh_dir("kernel_profile_run");
   const auto file = dir / "kernels.tsv";
-  const pdmesh_test::Result r = pdmesh_test::run_pdmesh(
-      "mesh '" + std::string(PDMESH_SOURCE_DIR) + "/cases/circle_circle/case.toml' --out '" + (dir / "out").string() +
-          "' -q --device auto --iterations 3 --formats msh",
-      "PDMESH_KERNEL_PROFILE='" + file.string() + "'");
+  const pdmesh_test::Result r =
+      pdmesh_test::run_pdmesh("mesh '" + std::string(PDMESH_SOURCE_DIR) + "/cases/circle_circle/case.toml' --out '" +
+                                  (dir / "out").string() + "' -q --device auto --iterations 3 --formats msh",
+                              "PDMESH_KERNEL_PROFILE='" + file.string() + "'");
   INFO(r.output);
   REQUIRE(r.status == 0);
   const std::string text = pdmesh_test::slurp(file);
