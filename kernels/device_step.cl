@@ -51,7 +51,7 @@ REAL bg_spacing_cached(const REAL px, const REAL py, int* leaf, BG_ARGS) {
 // arrays is prefetched into the cache a few work-items ahead (STEP_PREFETCH_AHEAD): the positions and
 // spacings of its row entries, and its spacing leaf's cell and corners. PoCL runs a group's
 // work-items one after the other on one core, and without it the force loop's gathers of xy and q
-// and the spacing lookup wait for memory (annulus_250k: the step kernel ~20 % faster; docs/journal/).
+// and the spacing lookup wait for memory (docs/opencl.md, "Kernels written for PoCL's CPU device").
 // A prefetch changes no value. Elsewhere (a GPU interleaves work-items in hardware) it does nothing.
 #define STEP_PREFETCH_AHEAD 2
 void step_prefetch(const int a, const int n, __global const uchar* kind, __global const int* count,
