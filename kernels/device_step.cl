@@ -47,6 +47,32 @@ REAL bg_spacing_cached(const REAL px, const REAL py, int* leaf, BG_ARGS) {
 #define STEP_PHASE()
 #endif
 
+// step_prefetch: on a CPU (the vector shape on x86), what node a's step will read from anywhere in the
+// arrays is prefetched into the cache a few work-items ahead (STEP_PREFETCH_AHEAD): the positions and
+// spacings of its row entries, and its spacing leaf's cell and corners. PoCL runs a group's
+// work-items one after the other on one core, and without it the force loop's gathers of xy and q
+// and the spacing lookup wait for memory (docs/opencl.md, "Kernels written for PoCL's CPU device").
+// A prefetch changes no value. Elsewhere (a GPU interleaves work-items in hardware) it does nothing.
+#define STEP_PREFETCH_AHEAD 2
+void step_prefetch(const int a, const int n, __global const uchar* kind, __global const int* count,
+                   __global const ulong* row_offset, __global const int* index, __global const REAL2* xy,
+                   __global const REAL* q, __global const int* node_leaf, __global const int* bg_cell,
+                   __global const int* bg_corner) {
+#if PDMESH_FORCE_LOOP_VECTOR && defined(__x86_64__)
+  if (a >= n || kind[a] == 0) return;
+  const int entries = count[a];
+  const long start = (long)row_offset[a];
+  for (int k = 0; k < entries; ++k) {
+    const int j = index[start + k];
+    __builtin_prefetch((const void*)(ulong)(xy + j));
+    __builtin_prefetch((const void*)(ulong)(q + j));
+  }
+  const int leaf = node_leaf[a];
+  __builtin_prefetch((const void*)(ulong)(bg_cell + 4 * leaf));
+  __builtin_prefetch((const void*)(ulong)(bg_corner + 4 * leaf));
+#endif
+}
+
 // Inputs xy (positions, x and y interleaved), q (current), outputs xy_next, q_next. budget[i]: interior node i's
 // clearance budget (host/sim/boundary_handling.hpp, clearance_budget): a move whose cost (the same move_cost formula,
 // with this precision's epsilon) is below it stays inside the domain, exactly; the cost is subtracted. A spent budget
@@ -85,6 +111,7 @@ __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void device_step(
   const REAL2 pi = xy[ic];
   const REAL xi = pi.x, yi = pi.y, qi = q[ic];
   const REAL rc = cutoff * qi;
+  step_prefetch(i + STEP_PREFETCH_AHEAD, n, kind, count, row_offset, index, xy, q, node_leaf, bg_cell, bg_corner);
   REAL fx, fy, r0, limit;
   int coincident, within;
   node_forces(ic, (row + 7) & ~7, row, row_start, xi, yi, qi, kind_i, rc * rc, tx[ic], ty[ic], lj_a, r0_any_direction,

@@ -1,12 +1,15 @@
 // OpenCL context, queue, program builder (shared defines + common.cl + embedded kernels) and launch helper.
 #include "opencl/context.hpp"
 
+#include <utility>
+
 #include <fmt/format.h>
 
 #include "core/embedded_kernels.hpp"
 #include "core/errors.hpp"
 #include "opencl/cl_errors.hpp"
 #include "opencl/command_counts.hpp"
+#include "opencl/kernel_profile.hpp"
 
 namespace pdmesh::ocl {
 
@@ -14,7 +17,7 @@ Context::Context(const DeviceInfo& device) : device_(device) {
   cl_int err = CL_SUCCESS;
   context_ = cl::Context(device_.handle, nullptr, nullptr, nullptr, &err);
   check(err, fmt::format("clCreateContext on {}", device_.name));
-  queue_ = cl::CommandQueue(context_, device_.handle, 0, &err);
+  queue_ = cl::CommandQueue(context_, device_.handle, kernel_profiling() ? CL_QUEUE_PROFILING_ENABLE : 0, &err);
   check(err, fmt::format("clCreateCommandQueue on {}", device_.name));
 }
 
@@ -76,15 +79,19 @@ void launch(cl::CommandQueue& queue, cl::Kernel& kernel, const std::string& name
   if (count == 0) return;
   std::size_t global = (count + local - 1) / local * local;
   // The message is formatted only on failure: launches run every iteration.
-  const cl_int err =
-      injected_fault(queue.enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange(global), cl::NDRange(local)));
+  cl::Event event;
+  const bool timed = kernel_profiling();
+  const cl_int err = injected_fault(queue.enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange(global),
+                                                               cl::NDRange(local), nullptr, timed ? &event : nullptr));
   if (err != CL_SUCCESS) check(err, fmt::format("enqueue '{}' ({} work-items, local size {})", name, global, local));
   counting::launch();
+  if (timed) keep_kernel_event(name, std::move(event));
 }
 
 void finish(cl::CommandQueue& queue, const std::string& what) {
   check(queue.finish(), what);
   counting::wait();
+  if (kernel_profiling()) collect_kernel_times();
 }
 
 void flush(cl::CommandQueue& queue, const std::string& what) { check(queue.flush(), what); }
