@@ -37,6 +37,9 @@ void DeviceRun<Real>::rebuild() {
     const double q = read_back ? static_cast<double>(v[1][i]) : nodes_.q[i];
     throw SimulationError(fmt::format("node {} is invalid before binning: x = ({}, {}), q = {}", i, x, y, q));
   }
+  // The grids, levels, spill and move lists are the build's own (the step reads the rows): freed until
+  // the next build, so that they never sit beside a convergence check's triangulation.
+  neighbours_.release_build_scratch();
   largest_row_ = std::max(largest_row_, flags.max_count);
   stats_.gather_seconds += neighbours_.gather_seconds;
   stats_.gathers += neighbours_.attempts;
