@@ -233,6 +233,40 @@ TEST_CASE("device rows that outgrow their capacities are gathered again and equa
   }
 }
 
+// A device run frees what only a build reads between its builds (release_build_scratch): the rows
+// the step reads stay whole, and the next build bins again into grids made at the capacities the
+// last one found, with the same rows and layout.
+TEST_CASE("device rows built after the build's scratch was freed equal the reference", "[opencl][neighbour]") {
+  for (const Input& in : {crowded_input(false), graded_input(false)}) {
+    DeviceBuilder b;
+    const DeviceRows first = b.build(in.p, in.cutoff);
+    check_rows(in, first);
+    const DeviceRows settled = b.build(in.p, in.cutoff);
+    ocl::DeviceNeighbours<double>& nb = b.neighbours();
+    nb.release_build_scratch();
+    CHECK(nb.grid_nodes().size() == 0);
+    CHECK(nb.bucket().size() == 0);
+    CHECK(nb.level().size() == 0);
+    // The rows stay: what the step reads after the build.
+    CHECK(nb.index().size() == settled.index_size);
+    CHECK(nb.count().size() >= in.p.size());
+    const DeviceRows again = b.build(in.p, in.cutoff);
+    check_rows(in, again);
+    CHECK(again.offset == settled.offset);
+    CHECK(again.level == settled.level);
+    CHECK(again.attempts == 1);
+    CHECK(nb.grid_nodes().size() > 0);
+    // Moved nodes after another release: the grids are made again for their positions.
+    Input moved = in;
+    for (std::size_t i = 0; i < moved.p.size(); ++i) {
+      moved.p.x[i] = in.p.x[0] + 0.5 * (moved.p.x[i] - in.p.x[0]);
+      moved.p.y[i] = in.p.y[0] + 0.5 * (moved.p.y[i] - in.p.y[0]);
+    }
+    nb.release_build_scratch();
+    check_rows(moved, b.build(moved.p, moved.cutoff));
+  }
+}
+
 // A build without counts from kSampleFrom nodes on lays its rows out from a sample (every stride-th
 // node's scan counted, one capacity per grid level); forced here on small inputs. The rows above
 // their level's estimate move behind the others in the same pass (random inputs: counts spread

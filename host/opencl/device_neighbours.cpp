@@ -314,8 +314,14 @@ void DeviceNeighbours<Real>::gather_pass(const BuildArgs& a, const PassCapacitie
 template <typename Real>
 void DeviceNeighbours<Real>::release_rows() {
   index_ = Buffer<std::int32_t>();
+  release_build_scratch();
+}
+
+template <typename Real>
+void DeviceNeighbours<Real>::release_build_scratch() {
   grid_nodes_ = Buffer<std::int32_t>();
   bucket_ = Buffer<std::uint32_t>();
+  level_ = Buffer<std::int32_t>();
   spill_ = Buffer<std::int32_t>();
   move_node_ = Buffer<std::int32_t>();
   move_start_ = Buffer<std::uint64_t>();

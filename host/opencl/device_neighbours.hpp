@@ -56,11 +56,17 @@ class DeviceNeighbours {
   // extra gather per event). Only the layout depends on the counts: the rows are the same, and those
   // that outgrow their estimate move as in any build. Nothing happens without counts of old_n nodes.
   void carry_counts(const std::vector<int>& old_of_new, std::size_t old_n);
-  // Frees the rows and the grids (index, grid nodes and buckets, spill and move lists): the next build
-  // makes them again at its own capacities. The counts, offsets, levels and skin classes stay, so that
-  // the next build may lay its rows out from the counts. For a population event's host work, which
-  // sets a device run's peak memory while the lists wait for a rebuild.
+  // Frees the rows and the build's scratch (release_build_scratch): the next build makes them again
+  // at its own capacities. The counts, offsets and skin classes stay, so that the next build may lay
+  // its rows out from the counts. For a population event's host work, which sets a device run's peak
+  // memory while the lists wait for a rebuild.
   void release_rows();
+  // Frees what only a build reads (the grids' nodes and buckets, the levels, the spill and move
+  // lists): every build bins again and sizes them from the capacities the last one found, which stay.
+  // The rows, counts, offsets and skin classes (what the step reads) stay. For a device run between
+  // builds, where these would sit beside a convergence check's triangulation; the grid accessors
+  // below are then empty until the next build.
+  void release_build_scratch();
 
   // A row's capacity is c + (c >> kSpareShift) + kSpareMin for the count c of the last build: rows
   // grow a little between rebuilds as nodes move (docs/opencl.md, "Neighbour lists: Verlet skin").

@@ -266,8 +266,11 @@ class DeviceRun final : public IterationSteps {
   int pending_first_ = 0, pending_length_ = 0;
   Clock::time_point pending_t0_;
   // The carried moves after a convergence check's iteration, read before the device ran ahead of it:
-  // the state's momentum when the run stops there (emptied when it goes on).
+  // the state's momentum when the run stops there (emptied when it goes on). Not read when the lists
+  // were rebuilt just before the check (check_momentum_saved_): the saved state's momentum, read by
+  // that build's remember(), is the same, and a second copy would sit beside the check's triangulation.
   std::vector<Real> momentum_at_check_;
+  bool check_momentum_saved_ = false;
   int since_build_ = 0, build_interval_ = 0;  // iterations since the last build; between the last two (0: unknown)
   bool cpu_device_ = false;                   // window_length's choice
   double seconds_per_iteration_ = 0.0;        // the last window's wall time per iteration (0: none yet)

@@ -37,6 +37,9 @@ void DeviceRun<Real>::rebuild() {
     const double q = read_back ? static_cast<double>(v[1][i]) : nodes_.q[i];
     throw SimulationError(fmt::format("node {} is invalid before binning: x = ({}, {}), q = {}", i, x, y, q));
   }
+  // The grids, levels, spill and move lists are the build's own (the step reads the rows): freed until
+  // the next build, so that they never sit beside a convergence check's triangulation.
+  neighbours_.release_build_scratch();
   largest_row_ = std::max(largest_row_, flags.max_count);
   stats_.gather_seconds += neighbours_.gather_seconds;
   stats_.gathers += neighbours_.attempts;
@@ -355,6 +358,7 @@ IterationStep DeviceRun<Real>::compute(int iteration, const GlobalTimeStep& gm) 
     host_ahead_ = false;  // as at the start of every iteration: the device holds the state after loop_.done()
     // The run goes on past the check: its carried moves are no state of it any more.
     std::vector<Real>().swap(momentum_at_check_);
+    check_momentum_saved_ = false;
   } else if (window_next_ >= window_rows_) {
     start_window(iteration, gm);
   }
@@ -424,7 +428,8 @@ void DeviceRun<Real>::before_measure(int iteration, const GlobalTimeStep& gm) {
   if (run_ahead_ && iteration < options_.iterations && window_next_ >= window_rows_ &&
       !(options_.stop && options_.stop->load())) {
     rebuilt_ahead_ = rebuild_if_due(iteration + 1);
-    if (with_momentum()) read(carried_, momentum_at_check_, 2 * n_, false);
+    check_momentum_saved_ = with_momentum() && rebuilt_ahead_;
+    if (with_momentum() && !rebuilt_ahead_) read(carried_, momentum_at_check_, 2 * n_, false);
     host_ahead_ = true;  // a failure from here on falls back on the saved state: the device moves on
     begin_window(iteration + 1, gm, cpu_device_ ? kAheadIterations : window_.max_length());
     ++stats_.ahead_windows;
@@ -448,6 +453,7 @@ void DeviceRun<Real>::after_iterations() {
   } else {
     read_back_nodes();  // the final state
     momentum_at_check_.clear();
+    check_momentum_saved_ = false;
   }
 }
 
@@ -479,6 +485,8 @@ void DeviceRun<Real>::end_run(SimResult& result) {
 
 template <typename Real>
 std::vector<Vec2> DeviceRun<Real>::final_momentum() {
+  // The device ran ahead of a check just after a build: remember() read the same carried moves.
+  if (check_momentum_saved_) return saved_state_.momentum;
   if (momentum_at_check_.empty()) return read_momentum();
   // The carried moves after loop_.done(), read before the device ran ahead.
   std::vector<Vec2> momentum(n_);
