@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "core/errors.hpp"
+#include "mesh/quality.hpp"
 #include "render/canvas.hpp"
 #include "render/mesh_picture.hpp"
 #include "render/node_picture.hpp"
@@ -331,6 +332,47 @@ TEST_CASE("mesh pictures shade triangles too small to draw instead of painting t
   for (int dy = -1; dy <= 1; ++dy) darkest = std::min(darkest, c.pixel(x, y + dy).r);
   CHECK(darkest < 128);
   fs::remove_all(dir);
+}
+
+TEST_CASE("a mesh too dense for its picture gets a close-up around its smallest angle", "[render]") {
+  // The unit square as a 300 x 300 grid (1.3 px cells at 400 px): one node moved towards its right
+  // neighbour makes the smallest angles next to it.
+  const int k = 300;
+  Mesh m = grid_mesh(k, [](double x, double y) { return Vec2{x, y}; });
+  const int moved = 200 * (k + 1) + 100;  // the node at (100/300, 200/300)
+  m.points[moved].x += 0.6 / k;
+  const Box whole = padded_window(Box{{0, 0}, {1, 1}});
+  const std::optional<CloseUp> close_up = dense_mesh_close_up(m, whole, 400);
+  REQUIRE(close_up.has_value());
+  CHECK(close_up->window.contains(m.points[moved]));
+  // About kCloseUpEdges of the worst triangle's longest edge (here between 1 and 1.6 cells) across.
+  CHECK(close_up->window.width() == Approx(close_up->window.height()));
+  CHECK(close_up->window.width() > kCloseUpEdges * 1.0 / k);
+  CHECK(close_up->window.width() < kCloseUpEdges * 1.7 / k);
+  double smallest = 180;
+  for (const auto& t : m.triangles)
+    smallest = std::min(smallest, triangle_quality(m.points[t[0]], m.points[t[1]], m.points[t[2]]).min_angle);
+  CHECK(close_up->min_angle == smallest);
+  CHECK(close_up->min_angle < 30.0);
+
+  // Drawn at the close-up's window, the edges show: dark pixels, not only the dense shade.
+  const fs::path dir = fresh_dir("close_up");
+  MeshPictureOptions o;
+  o.long_side = 400;
+  o.window = close_up->window;
+  write_mesh_picture(dir / "close.png", m, o);
+  Png png(dir / "close.png");
+  REQUIRE(png.ok());
+  int dark = 0;
+  for (int y = 40; y < png.height(); ++y)
+    for (int x = 0; x < png.width(); ++x) dark += png.pixel(x, y).r < 100 ? 1 : 0;
+  CHECK(dark > 400 * 40);
+  fs::remove_all(dir);
+
+  // The whole square at 4000 px draws its edges (13 px cells), as does a coarse mesh: no close-up.
+  CHECK_FALSE(dense_mesh_close_up(m, whole, 4000).has_value());
+  CHECK_FALSE(dense_mesh_close_up(unit_square_mesh(), whole, 400).has_value());
+  CHECK_FALSE(dense_mesh_close_up(Mesh{}, whole, 400).has_value());
 }
 
 TEST_CASE("a mesh picture drawn in bands is the picture one canvas draws, pixel for pixel", "[render]") {

@@ -174,6 +174,40 @@ Rgb colour_ramp(double t) {
   return {a.r + f * (b.r - a.r), a.g + f * (b.g - a.g), a.b + f * (b.b - a.b)};
 }
 
+std::optional<CloseUp> dense_mesh_close_up(const Mesh& mesh, const Box& window, int long_side) {
+  if (mesh.triangles.empty()) return std::nullopt;
+  const double side = std::max(window.width(), window.height());
+  const double min_edge_world = kMinEdgePixels * side / long_side;
+  std::size_t short_edges = 0;
+  std::size_t worst = 0;
+  double worst_angle = INFINITY;
+  InterruptPoll poll(65536);
+  for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
+    poll.tick();
+    const auto& tri = mesh.triangles[t];
+    const Vec2 a = mesh.points[tri[0]], b = mesh.points[tri[1]], c = mesh.points[tri[2]];
+    short_edges += static_cast<std::size_t>(!shown(a, b, min_edge_world)) +
+                   static_cast<std::size_t>(!shown(b, c, min_edge_world)) +
+                   static_cast<std::size_t>(!shown(c, a, min_edge_world));
+    const double angle = triangle_shape(a, b, c).min_angle;
+    if (angle < worst_angle) {
+      worst_angle = angle;
+      worst = t;
+    }
+  }
+  if (2 * short_edges <= 3 * mesh.triangles.size()) return std::nullopt;
+  const auto& tri = mesh.triangles[worst];
+  const Vec2 a = mesh.points[tri[0]], b = mesh.points[tri[1]], c = mesh.points[tri[2]];
+  const double longest = std::max({dist(a, b), dist(b, c), dist(c, a)});
+  const double half = 0.5 * std::min(kCloseUpEdges * longest, side);
+  const Vec2 centre{(a.x + b.x + c.x) / 3.0, (a.y + b.y + c.y) / 3.0};
+  CloseUp close_up;
+  close_up.window.add({centre.x - half, centre.y - half});
+  close_up.window.add({centre.x + half, centre.y + half});
+  close_up.min_angle = worst_angle;
+  return close_up;
+}
+
 void write_mesh_picture(const std::filesystem::path& path, const Mesh& mesh, const MeshPictureOptions& options) {
   const std::vector<double>* values = options.triangle_values;
   check_picture_inputs(path, mesh, values);

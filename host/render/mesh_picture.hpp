@@ -39,4 +39,16 @@ ColourBarBox draw_colour_ramp_bar(Canvas& canvas);
 // Writes a .png or .svg atomically. Throws Error when triangle_values has the wrong size.
 void write_mesh_picture(const std::filesystem::path& path, const Mesh& mesh, const MeshPictureOptions& options);
 
+// A close-up for a mesh too dense for its picture: when more than half of the triangles' edges would be
+// shorter than the smallest edge a picture of `window` at `long_side` pixels draws, the window
+// around the triangle with the smallest angle (the lowest index among equals), about kCloseUpEdges of
+// that triangle's longest edges wide and never wider than `window`. nullopt for a mesh whose picture
+// shows its edges, or one without triangles.
+struct CloseUp {
+  Box window;
+  double min_angle = 0.0;  // the triangle's smallest angle, degrees
+};
+inline constexpr double kCloseUpEdges = 40.0;
+std::optional<CloseUp> dense_mesh_close_up(const Mesh& mesh, const Box& window, int long_side);
+
 }  // namespace pdmesh

@@ -371,6 +371,15 @@ std::vector<std::string> queue_mesh_pictures(const CaseConfig& config, const Mes
       zoomed.window = view.window;
       draw(fmt::format("mesh_{}.png", view.name), zoomed);
     }
+    // A mesh.png too dense to show edges (millions of triangles) gets a close-up that does.
+    Box extents;
+    for (const Vec2& p : mesh.points) extents.add(p);
+    if (const std::optional<CloseUp> close_up = dense_mesh_close_up(mesh, padded_window(extents), picture.long_side)) {
+      MeshPictureOptions zoomed = picture;
+      zoomed.title += fmt::format(" - around the smallest angle, {:.2f} deg", close_up->min_angle);
+      zoomed.window = close_up->window;
+      draw("mesh_smallest_angle.png", zoomed);
+    }
   }
   if (config.output.wants("svg") && mesh.triangles.size() <= 2 * kSvgNodeLimit) draw("mesh.svg", picture);
   if (metric_q != nullptr && config.output.wants("png")) {
