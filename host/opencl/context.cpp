@@ -1,6 +1,9 @@
 // OpenCL context, queue, program builder (shared defines + common.cl + embedded kernels) and launch helper.
 #include "opencl/context.hpp"
 
+#include <cstdlib>
+#include <cstring>
+
 #include <fmt/format.h>
 
 #include "core/embedded_kernels.hpp"
@@ -14,7 +17,13 @@ Context::Context(const DeviceInfo& device) : device_(device) {
   cl_int err = CL_SUCCESS;
   context_ = cl::Context(device_.handle, nullptr, nullptr, nullptr, &err);
   check(err, fmt::format("clCreateContext on {}", device_.name));
-  queue_ = cl::CommandQueue(context_, device_.handle, 0, &err);
+  // PDMESH_CL_PROFILING=1: a profiling queue, so that a tracer (PoCL's POCL_TRACING=text) records
+  // each command's start and end (tools/bench/cl_trace_summary.py sums them per kernel). Only the
+  // timestamps change: the commands and their order are the same.
+  const char* profiling = std::getenv("PDMESH_CL_PROFILING");
+  const cl_command_queue_properties properties =
+      profiling != nullptr && std::strcmp(profiling, "1") == 0 ? CL_QUEUE_PROFILING_ENABLE : 0;
+  queue_ = cl::CommandQueue(context_, device_.handle, properties, &err);
   check(err, fmt::format("clCreateCommandQueue on {}", device_.name));
 }
 
