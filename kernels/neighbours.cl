@@ -73,11 +73,20 @@ __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void row_block_off
   if (l == 0) block_total[groups] = carry;
 }
 
+// Also sets each row's count to 0 for the gather (row_capacity_scan has read it), but only when the
+// binning left usable grids: a pass whose grids were too small gathers nothing and runs again with the
+// grids at their size, and from these counts (carried over an event, or the last build's), not from
+// zero counts, which would make every row outgrow and the pass after it gather a third time.
 __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void row_offsets_add(const int n, __global ulong* offset,
-                                                                                   __global const ulong* block_total) {
+                                                                                   __global const ulong* block_total,
+                                                                                   __global const int* bin_state,
+                                                                                   __global int* count) {
   const int i = get_global_id(0);
   if (i == 0) offset[0] = 0;
-  if (i < n) offset[i + 1] += block_total[get_group_id(0)];
+  if (i < n) {
+    offset[i + 1] += block_total[get_group_id(0)];
+    if (bin_ok(bin_state, n)) count[i] = 0;
+  }
 }
 
 // Writes j into slot s of row r (a slot reserved from the row's count): inside the capacity in place;

@@ -295,9 +295,9 @@ void DeviceNeighbours<Real>::gather_pass(const BuildArgs& a, const PassCapacitie
   launch(ctx_.queue(), program_.row_capacity_scan, "row_capacity_scan", n, wg);
   ArgSetter(program_.row_block_offsets, "row_block_offsets")(groups_arg)(block_total_);
   launch(ctx_.queue(), program_.row_block_offsets, "row_block_offsets", wg, wg);
-  ArgSetter(program_.row_offsets_add, "row_offsets_add")(n_arg)(offset_)(block_total_);
+  // row_offsets_add also zeroes the counts for the gather (when the grids fit: see the kernel).
+  ArgSetter(program_.row_offsets_add, "row_offsets_add")(n_arg)(offset_)(block_total_)(bin_state_)(count_);
   launch(ctx_.queue(), program_.row_offsets_add, "row_offsets_add", n, wg);
-  fill_zero(ctx_.queue(), count_.get(), n * sizeof(cl_int), "clearing 'neighbour_count'");
   gather(n_arg, a.radius, a.xy, a.q, a.kind, a.prev, a.next, entries_size, caps.spill, counting, 1);
   ++attempts;
   ArgSetter(program_.sort_rows, "sort_rows")(n_arg)(a.kind)(offset_)(count_)(entries_size)(index_)(counters_);
