@@ -300,7 +300,8 @@ void DeviceNeighbours<Real>::gather_pass(const BuildArgs& a, const PassCapacitie
   launch(ctx_.queue(), program_.row_offsets_add, "row_offsets_add", n, wg);
   gather(n_arg, a.radius, a.xy, a.q, a.kind, a.prev, a.next, entries_size, caps.spill, counting, 1);
   ++attempts;
-  ArgSetter(program_.sort_rows, "sort_rows")(n_arg)(a.kind)(offset_)(count_)(entries_size)(index_)(counters_);
+  ArgSetter(program_.sort_rows,
+            "sort_rows")(n_arg)(a.kind)(offset_)(count_)(entries_size)(index_)(counters_)(bin_state_);
   launch(ctx_.queue(), program_.sort_rows, "sort_rows", n, wg);
   ArgSetter(program_.relocate_rows, "relocate_rows")(n_arg)(a.kind)(
       offset_)(count_)(entries_size)(index_)(spill_capacity)(spill_)(move_capacity)(move_node_)(move_start_)(counters_);
