@@ -301,7 +301,7 @@ void DeviceNeighbours<Real>::gather_pass(const BuildArgs& a, const PassCapacitie
   gather(n_arg, a.radius, a.xy, a.q, a.kind, a.prev, a.next, entries_size, caps.spill, counting, 1);
   ++attempts;
   ArgSetter(program_.sort_rows,
-            "sort_rows")(n_arg)(a.kind)(offset_)(count_)(entries_size)(index_)(counters_)(bin_state_);
+            "sort_rows")(n_arg)(a.kind)(offset_)(count_)(entries_size)(index_)(counters_)(bin_state_)(spill_capacity);
   launch(ctx_.queue(), program_.sort_rows, "sort_rows", n, wg);
   ArgSetter(program_.relocate_rows, "relocate_rows")(n_arg)(a.kind)(
       offset_)(count_)(entries_size)(index_)(spill_capacity)(spill_)(move_capacity)(move_node_)(move_start_)(counters_);
