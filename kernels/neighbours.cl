@@ -73,11 +73,20 @@ __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void row_block_off
   if (l == 0) block_total[groups] = carry;
 }
 
+// Also sets each row's count to 0 for the gather (row_capacity_scan has read it), but only when the
+// binning left usable grids: a pass whose grids were too small gathers nothing and runs again with the
+// grids at their size, and from these counts (carried over an event, or the last build's), not from
+// zero counts, which would make every row outgrow and the pass after it gather a third time.
 __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void row_offsets_add(const int n, __global ulong* offset,
-                                                                                   __global const ulong* block_total) {
+                                                                                   __global const ulong* block_total,
+                                                                                   __global const int* bin_state,
+                                                                                   __global int* count) {
   const int i = get_global_id(0);
   if (i == 0) offset[0] = 0;
-  if (i < n) offset[i + 1] += block_total[get_group_id(0)];
+  if (i < n) {
+    offset[i + 1] += block_total[get_group_id(0)];
+    if (bin_ok(bin_state, n)) count[i] = 0;
+  }
 }
 
 // Writes j into slot s of row r (a slot reserved from the row's count): inside the capacity in place;
@@ -391,9 +400,12 @@ void sort_row(__global int* entries, const ulong base, const int c) { insertion_
 // sorted by cell order). counters[ROW_OUTGROWN] = the rows that outgrew their capacities,
 // counters[ROW_ENTRIES] = the entries of all rows, counters[ROW_LARGEST] = the largest row (atomic
 // max), counters[ROW_WITHIN] = pairs within (interior rows).
+// No row is sorted in a pass the host will run again: its grids were too small (nothing gathered), or
+// more entries spilled than the spill list holds (every run's first build, laid out from a sample).
 __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void sort_rows(
     const int n, __global const uchar* kind, __global const ulong* offset, __global const int* count,
-    const ulong entries_size, __global int* entries, __global uint* counters) {
+    const ulong entries_size, __global int* entries, __global uint* counters, __global const int* bin_state,
+    const uint spill_capacity) {
   __local uint local_within, local_total, local_overflow;
   __local int local_max;
   if (get_local_id(0) == 0) {
@@ -409,7 +421,7 @@ __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void sort_rows(
     const ulong base = offset[i];
     if (base + (ulong)c > offset[i + 1] || offset[i + 1] > entries_size) {
       atomic_inc(&local_overflow);
-    } else if (kind[i] == 2) {
+    } else if (kind[i] == 2 && bin_ok(bin_state, n) && counters[ROW_SPILLED] <= spill_capacity) {
       sort_row(entries, base, c);
     }
     if (kind[i] == 2) atomic_add(&local_within, (uint)c);

@@ -307,6 +307,26 @@ TEST_CASE("device rows laid out from a sampled estimate move the outgrown rows a
   CHECK(exact.attempts == 2);
 }
 
+// A build from the last counts whose grids no longer fit (two nodes' spacing raised tenfold: new
+// coarse levels, each a cumulative grid of every node) bins again at the grids' size and gathers
+// once more with those counts, not from zero counts: only the two grown rows outgrow and move. From
+// zero counts every row would outgrow, the spill list overflow, and a third gather follow (annulus_1m
+// after a population event: 1,045,372 rows outgrown, 32 million entries spilled).
+TEST_CASE("a build whose grids no longer fit keeps the last counts", "[opencl][neighbour]") {
+  Input in = random_input(2000, 53, false);
+  DeviceBuilder b;
+  b.build(in.p, in.cutoff);
+  REQUIRE(b.build(in.p, in.cutoff).attempts == 1);
+  for (const std::size_t i : {100u, 1500u}) {
+    in.p.kind[i] = kSimInterior;
+    in.p.q[i] *= 10.0;
+  }
+  const DeviceRows grown = b.build(in.p, in.cutoff);
+  check_rows(in, grown);
+  CHECK(grown.outgrown_rows == 2);
+  CHECK(grown.attempts == 2);  // the pass whose grids were too small, then the gather
+}
+
 // One node whose radius covers every other node: its row holds them all, every other row a few. Rows
 // of one stride would take n x (n - 1) entries; the compact rows take about the total.
 TEST_CASE("one very crowded row costs its own entries, not a stride for every node", "[opencl][neighbour]") {

@@ -144,7 +144,7 @@ void DeviceNeighbours<Real>::run_passes(const BuildArgs& a, bool have_counts, Ne
   bool estimate = false;  // rows laid out with the sampled estimate (level_cap_)
   bool binned = false;    // the grids of these positions are built (an earlier pass of this build)
   for (int attempt = 0;; ++attempt) {
-    const PassCapacities caps = size_pass_buffers(a, binned, estimate);
+    const PassCapacities caps = size_pass_buffers(a, binned);
     if (!binned) bin(a, caps);
     // Without counts: count (a sample, or every row), then build with the estimate or the counts.
     const bool counting = !have_counts && !estimate;
@@ -183,7 +183,7 @@ void DeviceNeighbours<Real>::run_passes(const BuildArgs& a, bool have_counts, Ne
 // be built again).
 template <typename Real>
 typename DeviceNeighbours<Real>::PassCapacities DeviceNeighbours<Real>::size_pass_buffers(const BuildArgs& a,
-                                                                                          bool binned, bool estimate) {
+                                                                                          bool binned) {
   constexpr std::uint64_t kMaxIndex = std::numeric_limits<std::int32_t>::max();
   if (bucket_capacity_ > kMaxIndex || member_capacity_ > kMaxIndex)
     throw SimulationError(
@@ -203,11 +203,13 @@ typename DeviceNeighbours<Real>::PassCapacities DeviceNeighbours<Real>::size_pas
   // Every capacity sum bounds offset[n]: sum(c + c >> s + m) <= total + total >> s + m n (an
   // estimated layout's sum is the same with the estimated total); behind the rows a spare region
   // for the rows that outgrow their capacities (relocate_rows). The spill list holds the entries
-  // past the capacities (a few per outgrown row), the move list the outgrown rows: an estimated
-  // layout leaves more of them (~0.8% of the rows at 1M nodes) than one from the last counts.
+  // past the capacities (a few per outgrown row), the move list the outgrown rows: n / 64 rows, as
+  // many rows of the mean count as half the spare region holds. A layout from the last counts can
+  // leave more than n / 256 of them: annulus_250k's second build, early in its transient, had 2,036
+  // of 260,524 rows outgrow (0.78 %), and a list of n / 256 made that build gather twice.
   const std::uint64_t spare_capacity = std::max<std::uint64_t>(4096, counted_total_ / 64);
   caps.spill = std::max<std::uint64_t>(4096, counted_total_ / 256);
-  caps.move = std::max<std::uint64_t>(1024, estimate ? a.n / 64 : a.n / 256);
+  caps.move = std::max<std::uint64_t>(1024, a.n / 64);
   const std::uint64_t bound = counted_total_ + (counted_total_ >> kSpareShift) +
                               static_cast<std::uint64_t>(kSpareMin) * a.n + 2 * spare_capacity + kRowTail;
   ensure_size(ctx_, spill_, "neighbour_spill", 2 * caps.spill);
@@ -293,12 +295,13 @@ void DeviceNeighbours<Real>::gather_pass(const BuildArgs& a, const PassCapacitie
   launch(ctx_.queue(), program_.row_capacity_scan, "row_capacity_scan", n, wg);
   ArgSetter(program_.row_block_offsets, "row_block_offsets")(groups_arg)(block_total_);
   launch(ctx_.queue(), program_.row_block_offsets, "row_block_offsets", wg, wg);
-  ArgSetter(program_.row_offsets_add, "row_offsets_add")(n_arg)(offset_)(block_total_);
+  // row_offsets_add also zeroes the counts for the gather (when the grids fit: see the kernel).
+  ArgSetter(program_.row_offsets_add, "row_offsets_add")(n_arg)(offset_)(block_total_)(bin_state_)(count_);
   launch(ctx_.queue(), program_.row_offsets_add, "row_offsets_add", n, wg);
-  fill_zero(ctx_.queue(), count_.get(), n * sizeof(cl_int), "clearing 'neighbour_count'");
   gather(n_arg, a.radius, a.xy, a.q, a.kind, a.prev, a.next, entries_size, caps.spill, counting, 1);
   ++attempts;
-  ArgSetter(program_.sort_rows, "sort_rows")(n_arg)(a.kind)(offset_)(count_)(entries_size)(index_)(counters_);
+  ArgSetter(program_.sort_rows,
+            "sort_rows")(n_arg)(a.kind)(offset_)(count_)(entries_size)(index_)(counters_)(bin_state_)(spill_capacity);
   launch(ctx_.queue(), program_.sort_rows, "sort_rows", n, wg);
   ArgSetter(program_.relocate_rows, "relocate_rows")(n_arg)(a.kind)(
       offset_)(count_)(entries_size)(index_)(spill_capacity)(spill_)(move_capacity)(move_node_)(move_start_)(counters_);

@@ -129,7 +129,7 @@ class DeviceNeighbours {
   void build_empty();
   void size_node_buffers(const BuildArgs& a);
   void run_passes(const BuildArgs& a, bool have_counts, NeighbourFlags& flags, std::vector<std::uint32_t>& c);
-  PassCapacities size_pass_buffers(const BuildArgs& a, bool binned, bool estimate);
+  PassCapacities size_pass_buffers(const BuildArgs& a, bool binned);
   void bin(const BuildArgs& a, const PassCapacities& caps);
   bool sample_counts(const BuildArgs& a, int stride, NeighbourFlags& flags, bool& grids_fit);
   void gather_pass(const BuildArgs& a, const PassCapacities& caps, bool counting, bool estimated);
