@@ -13,6 +13,7 @@
 #include "opencl/context.hpp"
 #include "opencl/kernel_profile.hpp"
 #include "run_pdmesh.hpp"
+#include "selftest_axpy.hpp"
 #include "temp_files.hpp"
 
 using namespace pdmesh;
@@ -26,19 +27,12 @@ TEST_CASE("profiled launches are timed by kernel at the next finish", "[opencl]"
   REQUIRE(info.has_value());
   Context ctx(*info);
   const std::size_t wg = 8;
-  cl::Program program = ctx.build({"selftest.cl"}, precision_defines(ocl::Precision::Float, wg));
-  cl_int err = CL_SUCCESS;
-  cl::Kernel k(program, "selftest_axpy", &err);
-  check(err, "clCreateKernel(selftest_axpy)");
   const int n = 13;
   const std::vector<float> x(n, 1.5f);
   Buffer<float> bx(ctx, "x", n), by(ctx, "y", n);
   bx.upload(ctx.queue(), x);
   by.upload(ctx.queue(), x);
-  k.setArg(0, n);
-  k.setArg(1, 2.0f);
-  k.setArg(2, bx.get());
-  k.setArg(3, by.get());
+  cl::Kernel k = pdmesh::test::selftest_axpy(ctx, wg, n, bx, by);
   launch(ctx.queue(), k, "selftest_axpy", n, wg);
   launch(ctx.queue(), k, "selftest_axpy", n, wg);
   CHECK(kernel_times().count("selftest_axpy") == 0);  // not collected before the finish

@@ -24,6 +24,7 @@
 #include "opencl/command_counts.hpp"
 #include "opencl/context.hpp"
 #include "opencl/step_program.hpp"
+#include "selftest_axpy.hpp"
 
 using namespace pdmesh;
 using namespace pdmesh::ocl;
@@ -61,21 +62,14 @@ TEST_CASE("the wrapper counts launches, transfers, device copies and waits", "[o
   REQUIRE(info.has_value());
   Context ctx(*info);  // no canary tail: its checks are not counted anyway
   const std::size_t wg = 8;
-  cl::Program program = ctx.build({"selftest.cl"}, precision_defines(ocl::Precision::Float, wg));
-  cl_int err = CL_SUCCESS;
-  cl::Kernel k(program, "selftest_axpy", &err);
-  check(err, "clCreateKernel(selftest_axpy)");
   const int n = 13;
   const std::vector<float> x(n, 1.5f);
   Buffer<float> bx(ctx, "x", n), by(ctx, "y", n), bz(ctx, "z", n);
+  cl::Kernel k = pdmesh::test::selftest_axpy(ctx, wg, n, bx, by);
 
   const CommandCounts start = command_counts();
   bx.upload(ctx.queue(), x);         // blocking: a write and a wait
   by.upload(ctx.queue(), x, false);  // non-blocking: a write
-  k.setArg(0, n);
-  k.setArg(1, 2.0f);
-  k.setArg(2, bx.get());
-  k.setArg(3, by.get());
   launch(ctx.queue(), k, "selftest_axpy", n, wg);
   copy_buffer(ctx.queue(), by.get(), bz.get(), n * sizeof(float), "copy y to z");
   fill_zero(ctx.queue(), by.get(), n * sizeof(float), "clear y");
