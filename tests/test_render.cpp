@@ -369,6 +369,17 @@ TEST_CASE("a mesh too dense for its picture gets a close-up around its smallest 
   CHECK(dark > 400 * 40);
   fs::remove_all(dir);
 
+  // A worst triangle on the boundary: the square moves half-way towards the mesh beside it, still
+  // showing the triangle.
+  Mesh edge = grid_mesh(k, [](double x, double y) { return Vec2{x, y}; });
+  const int on_wall = 150;  // the node at (150/300, 0) on the bottom side
+  edge.points[on_wall].x += 0.6 / k;
+  const std::optional<CloseUp> wall_close_up = dense_mesh_close_up(edge, whole, 400);
+  REQUIRE(wall_close_up.has_value());
+  CHECK(wall_close_up->window.contains(edge.points[on_wall]));
+  CHECK(wall_close_up->window.centre().y > 0.1 * wall_close_up->window.height());  // unmoved: 0.008
+  CHECK(wall_close_up->window.centre().x == Approx(edge.points[on_wall].x).margin(1.0 / k));
+
   // The whole square at 4000 px draws its edges (13 px cells), as does a coarse mesh: no close-up.
   CHECK_FALSE(dense_mesh_close_up(m, whole, 4000).has_value());
   CHECK_FALSE(dense_mesh_close_up(unit_square_mesh(), whole, 400).has_value());

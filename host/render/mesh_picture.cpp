@@ -200,7 +200,20 @@ std::optional<CloseUp> dense_mesh_close_up(const Mesh& mesh, const Box& window, 
   const Vec2 a = mesh.points[tri[0]], b = mesh.points[tri[1]], c = mesh.points[tri[2]];
   const double longest = std::max({dist(a, b), dist(b, c), dist(c, a)});
   const double half = 0.5 * std::min(kCloseUpEdges * longest, side);
-  const Vec2 centre{(a.x + b.x + c.x) / 3.0, (a.y + b.y + c.y) / 3.0};
+  const Vec2 worst_centre{(a.x + b.x + c.x) / 3.0, (a.y + b.y + c.y) / 3.0};
+  // Half-way towards the mean of the points in the square: a triangle on the domain's edge keeps the
+  // mesh beside it in view instead of the empty outside (the triangle stays within a quarter side of
+  // the centre).
+  Vec2 sum{0, 0};
+  std::size_t inside = 0;
+  for (const Vec2& p : mesh.points) {
+    if (std::abs(p.x - worst_centre.x) <= half && std::abs(p.y - worst_centre.y) <= half) {
+      sum = sum + p;
+      ++inside;
+    }
+  }
+  const Vec2 mean = inside > 0 ? sum * (1.0 / static_cast<double>(inside)) : worst_centre;
+  const Vec2 centre = worst_centre + (mean - worst_centre) * 0.5;
   CloseUp close_up;
   close_up.window.add({centre.x - half, centre.y - half});
   close_up.window.add({centre.x + half, centre.y + half});

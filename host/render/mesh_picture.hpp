@@ -42,8 +42,9 @@ void write_mesh_picture(const std::filesystem::path& path, const Mesh& mesh, con
 // A close-up for a mesh too dense for its picture: when more than half of the triangles' edges would be
 // shorter than the smallest edge a picture of `window` at `long_side` pixels draws, the window
 // around the triangle with the smallest angle (the lowest index among equals), about kCloseUpEdges of
-// that triangle's longest edges wide and never wider than `window`. nullopt for a mesh whose picture
-// shows its edges, or one without triangles.
+// that triangle's longest edges wide and never wider than `window`, its centre moved half-way towards
+// the mean of the mesh points in it (a triangle on the boundary shows the mesh beside it). nullopt for a mesh whose
+// picture shows its edges, or one without triangles.
 struct CloseUp {
   Box window;
   double min_angle = 0.0;  // the triangle's smallest angle, degrees
