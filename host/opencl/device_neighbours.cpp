@@ -205,8 +205,8 @@ typename DeviceNeighbours<Real>::PassCapacities DeviceNeighbours<Real>::size_pas
   // for the rows that outgrow their capacities (relocate_rows). The spill list holds the entries
   // past the capacities (a few per outgrown row), the move list the outgrown rows: n / 64 rows, as
   // many rows of the mean count as half the spare region holds. A layout from the last counts can
-  // leave more than n / 256 of them: annulus_250k's second build, early in its transient, had 2,036
-  // of 260,524 rows outgrow (0.78 %), and a list of n / 256 made that build gather twice.
+  // leave more outgrown rows early in a run's transient than a smaller list holds, and a list
+  // that overflows makes the build gather twice (docs/opencl.md, the rebuild's commands).
   const std::uint64_t spare_capacity = std::max<std::uint64_t>(4096, counted_total_ / 64);
   caps.spill = std::max<std::uint64_t>(4096, counted_total_ / 256);
   caps.move = std::max<std::uint64_t>(1024, a.n / 64);
