@@ -380,6 +380,15 @@ TEST_CASE("a mesh too dense for its picture gets a close-up around its smallest 
   CHECK(wall_close_up->window.centre().y > 0.1 * wall_close_up->window.height());  // unmoved: 0.008
   CHECK(wall_close_up->window.centre().x == Approx(edge.points[on_wall].x).margin(1.0 / k));
 
+  // The worst triangle a large one beside the dense grid (a coarse far field's): its close-up would be
+  // as wide as the whole picture, so there is none.
+  Mesh far = grid_mesh(k, [](double x, double y) { return Vec2{x, y}; });
+  const int first = static_cast<int>(far.points.size());
+  far.points.insert(far.points.end(), {{1.5, 0.0}, {2.5, 0.0}, {2.0, 0.2}});  // angles 21.8, 21.8, 136.4
+  far.triangles.push_back({first, first + 1, first + 2});
+  const Box far_window = padded_window(Box{{0, 0}, {2.5, 1}});
+  CHECK_FALSE(dense_mesh_close_up(far, far_window, 400).has_value());
+
   // The whole square at 4000 px draws its edges (13 px cells), as does a coarse mesh: no close-up.
   CHECK_FALSE(dense_mesh_close_up(m, whole, 4000).has_value());
   CHECK_FALSE(dense_mesh_close_up(unit_square_mesh(), whole, 400).has_value());

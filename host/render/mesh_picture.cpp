@@ -199,7 +199,10 @@ std::optional<CloseUp> dense_mesh_close_up(const Mesh& mesh, const Box& window, 
   const auto& tri = mesh.triangles[worst];
   const Vec2 a = mesh.points[tri[0]], b = mesh.points[tri[1]], c = mesh.points[tri[2]];
   const double longest = std::max({dist(a, b), dist(b, c), dist(c, a)});
-  const double half = 0.5 * std::min(kCloseUpEdges * longest, side);
+  // A worst triangle among the largest (a graded far field's) would give a square nearly as wide as
+  // mesh.png's window: no close-up.
+  if (kCloseUpEdges * longest > kCloseUpLargest * side) return std::nullopt;
+  const double half = 0.5 * kCloseUpEdges * longest;
   const Vec2 worst_centre{(a.x + b.x + c.x) / 3.0, (a.y + b.y + c.y) / 3.0};
   // Half-way towards the mean of the points in the square: a triangle on the domain's edge keeps the
   // mesh beside it in view instead of the empty outside (the triangle stays within a quarter side of

@@ -41,15 +41,17 @@ void write_mesh_picture(const std::filesystem::path& path, const Mesh& mesh, con
 
 // A close-up for a mesh too dense for its picture: when more than half of the triangles' edges would be
 // shorter than the smallest edge a picture of `window` at `long_side` pixels draws, the window
-// around the triangle with the smallest angle (the lowest index among equals), about kCloseUpEdges of
-// that triangle's longest edges wide and never wider than `window`, its centre moved half-way towards
-// the mean of the mesh points in it (a triangle on the boundary shows the mesh beside it). nullopt for a mesh whose
-// picture shows its edges, or one without triangles.
+// around the triangle with the smallest angle (the lowest index among equals), kCloseUpEdges of
+// that triangle's longest edges wide, its centre moved half-way towards the mean of the mesh points
+// in it (a triangle on the boundary shows the mesh beside it). nullopt for a mesh whose picture shows
+// its edges, one without triangles, or one whose close-up would be wider than kCloseUpLargest of
+// the window's longer side (a worst triangle in a graded mesh's coarse far field).
 struct CloseUp {
   Box window;
   double min_angle = 0.0;  // the triangle's smallest angle, degrees
 };
 inline constexpr double kCloseUpEdges = 40.0;
+inline constexpr double kCloseUpLargest = 0.25;
 std::optional<CloseUp> dense_mesh_close_up(const Mesh& mesh, const Box& window, int long_side);
 
 }  // namespace pdmesh

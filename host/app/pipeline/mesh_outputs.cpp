@@ -371,7 +371,7 @@ std::vector<std::string> queue_mesh_pictures(const CaseConfig& config, const Mes
       zoomed.window = view.window;
       draw(fmt::format("mesh_{}.png", view.name), zoomed);
     }
-    // A mesh.png too dense to show edges (millions of triangles) gets a close-up that does.
+    // A mesh.png too dense to show edges (millions of nearly uniform triangles) gets a close-up that does.
     Box extents;
     for (const Vec2& p : mesh.points) extents.add(p);
     if (const std::optional<CloseUp> close_up = dense_mesh_close_up(mesh, padded_window(extents), picture.long_side)) {
