@@ -176,3 +176,10 @@ TEST_CASE("momentum 0.9 with the convergence rule and a build before every check
   // (DeviceRun::check_momentum_saved_): what the device ran ahead must not be taken for them.
   require_run_ahead_changes_nothing(1e-6);
 }
+
+TEST_CASE("momentum 0.9 with the convergence rule and a zero skin: a build every iteration, ahead of the checks too",
+          "[opencl][device_sim][momentum][convergence]") {
+  // A zero skin builds before every iteration; the window run ahead of a check starts with its own
+  // build, and the iteration it begins must not build again.
+  require_run_ahead_changes_nothing(0.0);
+}

@@ -352,7 +352,9 @@ bool DeviceRun<Real>::rebuild_if_due(int next_iteration) {
 // The iteration's computation: the next row of the current window, or of a new one.
 template <typename Real>
 IterationStep DeviceRun<Real>::compute(int iteration, const GlobalTimeStep& gm) {
-  rebuild_if_due(iteration);
+  // A window begun ahead of a measurement was preceded by the build it needed (before_measure), and
+  // its rows are not read yet: a zero skin, always due, must not build again under it.
+  if (!window_pending_) rebuild_if_due(iteration);
   if (window_pending_) {  // begun while the host measured the last iteration's mesh
     end_window();
     host_ahead_ = false;  // as at the start of every iteration: the device holds the state after loop_.done()
