@@ -321,6 +321,10 @@ CaseConfig case_for_curves(std::vector<RawCurve> curves, const std::string& sour
 void apply_preset(CaseConfig& config, Preset preset);
 // "best" or "thesis".
 const char* to_string(Preset preset);
+// spacing.relax_scale's default under `preset` for a fill by `method` (best: 1.09 for the structured
+// and random fills, 1.03 for the hexagonal one; thesis and long: 1). A case that sets the key keeps
+// its value.
+double preset_relax_scale(Preset preset, InitMethod method);
 
 // Splits "section.key=VALUE" into an override; throws InputError when there is no '=' or key.
 CaseOverride parse_set_option(const std::string& text);

@@ -494,6 +494,10 @@ void read_case_sections(const Reader& r, const toml::table& root, CaseConfig& c)
   read_boundary_layer_sections(r, root, c);
   read_size_sections(r, root, c);
   read_motion_section(r, root, c);
+  // The preset set relax_scale for the structured fill; a case that names another fill and not the
+  // key gets that fill's value.
+  if (find(root, "spacing", "relax_scale") == nullptr)
+    c.spacing.relax_scale = preset_relax_scale(c.preset, c.init.method);
 }
 
 }  // namespace pdmesh::case_detail
