@@ -301,6 +301,11 @@ class Case:
         return self._config_obj.iterations
 
     @property
+    def method(self) -> str:
+        """The initial fill (init.method): "structured", "random" or "hexagonal"."""
+        return self._config_obj.method
+
+    @property
     def device(self) -> str:
         return self._config_obj.device
 

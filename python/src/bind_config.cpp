@@ -26,7 +26,18 @@ std::vector<CaseOverride> overrides_from(const std::vector<Setting>& settings) {
   return out;
 }
 
-const char* method_name(InitMethod m) { return m == InitMethod::Structured ? "structured" : "random"; }
+// The case file's word for the fill (init.method).
+const char* method_name(InitMethod m) {
+  switch (m) {
+    case InitMethod::Structured:
+      return "structured";
+    case InitMethod::Random:
+      return "random";
+    case InitMethod::Hexagonal:
+      return "hexagonal";
+  }
+  return "unknown";
+}
 
 nb::ndarray<nb::numpy, double> points_array(const std::vector<Vec2>& points) {
   auto* v = new std::vector<Vec2>(points);

@@ -77,6 +77,12 @@ def test_thesis_case_file_runs_its_preset():
     assert len(mesh.triangles) > 100
 
 
+def test_case_reports_its_fill_method():
+    for method in ("structured", "random", "hexagonal"):
+        case = pdmesh.Case.from_toml(pdmesh_case("circle_circle"), method=method)
+        assert case.method == method
+
+
 def pdmesh_case(name: str):
     from conftest import SOURCE_DIR
     return SOURCE_DIR / "cases" / name / "case.toml"
