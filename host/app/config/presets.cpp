@@ -98,10 +98,9 @@ void apply_long_schedule(CaseConfig& c) {
 
 double preset_relax_scale(Preset preset, InitMethod method) {
   if (preset != Preset::Best && preset != Preset::Fast) return 1.0;
-  // The structured patterns start above the hexagonal-packing estimate (1.6 x it in the narrow gaps
-  // of rods_coarse), so their factor is larger and centres fewer geometries; the hexagonal fill starts
-  // near the estimate, and 1.03 puts every run of tools/studies/edge_calib.py at a mean edge/q of
-  // 0.979-1.011 (docs/spacing.md, "The node count").
+  // The structured patterns start above the hexagonal-packing estimate, by a share that differs
+  // between geometries, so one factor cannot centre them all; the hexagonal fill starts near the
+  // estimate everywhere and needs a smaller one (docs/spacing.md, "The node count").
   return method == InitMethod::Hexagonal ? kBestHexagonalRelaxScale : kBestRelaxScale;
 }
 
