@@ -24,7 +24,9 @@ RowLocality row_locality(const NodeSet& nodes, double radius_factor) {
   if (!(cell > 0.0)) return out;
   double lo_x = nodes.x[0].x, lo_y = nodes.x[0].y;
   for (const Vec2& p : nodes.x) lo_x = std::min(lo_x, p.x), lo_y = std::min(lo_y, p.y);
-  auto key = [&](std::int64_t cx, std::int64_t cy) { return (static_cast<std::uint64_t>(cx) << 32) | static_cast<std::uint64_t>(cy); };
+  auto key = [&](std::int64_t cx, std::int64_t cy) {
+    return (static_cast<std::uint64_t>(cx) << 32) | static_cast<std::uint64_t>(cy);
+  };
   auto cx_of = [&](double x) { return static_cast<std::int64_t>(std::floor((x - lo_x) / cell)); };
   auto cy_of = [&](double y) { return static_cast<std::int64_t>(std::floor((y - lo_y) / cell)); };
   std::vector<std::pair<std::uint64_t, int>> binned(n);
