@@ -17,8 +17,6 @@
 #include "core/errors.hpp"
 #include "mesh/quality.hpp"
 #include "mesh/triangulate_nodes.hpp"
-#include "sim/node_order.hpp"
-#include "sim/row_locality.hpp"
 #include "device_run_fixtures.hpp"
 
 using namespace pdmesh;
@@ -300,21 +298,6 @@ TEST_CASE("device run with population control: same node changes as the host", "
                                   [](const auto& entry) { return entry.first == "device_population_seconds"; });
   REQUIRE(named != split.end());
   CHECK(named->second == dev.stats.population_seconds);
-}
-
-TEST_CASE("device run with population control in Hilbert order: the host's nodes bit for bit, rows more local",
-          "[opencl][device_sim][population]") {
-  // The start and every event that changes the node set renumber it in shared host code; the device's
-  // carried state (budgets, leaves, counts) follows the event's old_of_new.
-  Case c = circle_circle_with_population("20");
-  const Outcome input = run_with_population(c, false);
-  c.config.population.node_order = NodeOrder::Hilbert;
-  const Outcome host = run_with_population(c, false), dev = run_with_population(c, true);
-  REQUIRE(host.result.stats.inserted + host.result.stats.removed > 0);
-  CHECK(dev.result.stats.inserted == host.result.stats.inserted);
-  CHECK(dev.result.stats.removed == host.result.stats.removed);
-  require_identical_nodes(host.nodes, dev.nodes);
-  CHECK(row_locality(host.nodes, 2.7).mean_distance < 0.5 * row_locality(input.nodes, 2.7).mean_distance);
 }
 
 TEST_CASE("device run whose population control settles early: same events and nodes as the host",

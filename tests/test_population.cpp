@@ -14,7 +14,6 @@
 #include "geometry/geometry_tree.hpp"
 #include "init/initial_distribution.hpp"
 #include "sim/boundary_handling.hpp"
-#include "sim/node_order.hpp"
 #include "sim/population.hpp"
 #include "sim/population_plan.hpp"
 #include "spacing/spacing_field.hpp"
@@ -140,46 +139,6 @@ TEST_CASE("population: a lattice with one missing node gets one node back near t
   check_consistent(r.nodes, boundary, *r.tree);
   // The hole is filled: a second event finds nothing.
   CHECK_FALSE(run_population_event(r.nodes, boundary, r.spacing, first_event()).changed());
-}
-
-TEST_CASE("population: in Hilbert order an event renumbers every node, and old_of_new follows", "[population]") {
-  Rhombus r(12);
-  r.fill(0.02, 6, 6);
-  BoundaryHandler boundary(*r.tree, r.nodes);
-  const NodeSet before = r.nodes;
-  PopulationThresholds t = first_event();
-  t.node_order = NodeOrder::Hilbert;
-  std::vector<int> old_of_new;
-  const PopulationCounts counts = run_population_event(r.nodes, boundary, r.spacing, t, &old_of_new);
-  REQUIRE(counts.inserted() == 1);
-  REQUIRE(r.nodes.size() == before.size() + 1);
-  REQUIRE(old_of_new.size() == r.nodes.size());
-  // The node set is in its own Hilbert order, which is not the input's (boundary nodes first).
-  const std::vector<int> order = spatial_order(r.nodes);
-  for (std::size_t k = 0; k < order.size(); ++k) CHECK(order[k] == static_cast<int>(k));
-  std::size_t moved = 0, inserted = 0;
-  for (std::size_t k = 0; k < r.nodes.size(); ++k) {
-    const int old = old_of_new[k];
-    if (old < 0) {
-      ++inserted;
-      CHECK(dist(r.nodes.x[k], lattice(6, 6)) < 0.1);
-      continue;
-    }
-    moved += old != static_cast<int>(k);
-    const auto o = static_cast<std::size_t>(old);
-    CHECK(r.nodes.x[k] == before.x[o]);
-    CHECK(r.nodes.kind[k] == before.kind[o]);
-    CHECK(r.nodes.curve[k] == before.curve[o]);
-  }
-  CHECK(inserted == 1);
-  CHECK(moved > r.nodes.size() / 2);
-  check_consistent(r.nodes, boundary, *r.tree);
-  // The tangents moved with their nodes.
-  const BoundaryHandler fresh(*r.tree, r.nodes);
-  for (std::size_t k = 0; k < r.nodes.size(); ++k) {
-    CHECK(boundary.tangent(static_cast<int>(k)).x == Approx(fresh.tangent(static_cast<int>(k)).x).margin(1e-12));
-    CHECK(boundary.tangent(static_cast<int>(k)).y == Approx(fresh.tangent(static_cast<int>(k)).y).margin(1e-12));
-  }
 }
 
 TEST_CASE("population: a lattice with one extra node loses one", "[population]") {

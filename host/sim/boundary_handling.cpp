@@ -11,7 +11,6 @@
 
 #include "core/errors.hpp"
 #include "nodes/boundary_arcs.hpp"
-#include "sim/node_order.hpp"
 
 namespace pdmesh {
 BoundaryHandler::BoundaryHandler(const GeometryTree& tree, const NodeSet& nodes) : tree_(tree) {
@@ -235,19 +234,6 @@ std::vector<int> BoundaryHandler::remove_nodes(NodeSet& nodes, const std::vector
   tangent_.resize(m);
   budget_.resize(m);
   return old_of_new;
-}
-
-void BoundaryHandler::permute(NodeSet& nodes, const std::vector<int>& old_of_new) {
-  permute_nodes(nodes, old_of_new);
-  std::vector<Vec2> tangents(old_of_new.size());
-  std::vector<double> budgets(old_of_new.size());
-  for (std::size_t k = 0; k < old_of_new.size(); ++k) {
-    const auto old = static_cast<std::size_t>(old_of_new[k]);
-    tangents[k] = tangent_[old];
-    budgets[k] = budget_[old];
-  }
-  tangent_ = std::move(tangents);
-  budget_ = std::move(budgets);
 }
 
 double BoundaryHandler::clearance_from(Vec2 p) const {

@@ -71,9 +71,6 @@ class BoundaryHandler {
   // Removes the flagged nodes (never Fixed ones: SimulationError) and renumbers the rest in their order;
   // removed Boundary nodes leave their curve lists. Returns the old index of every kept node.
   std::vector<int> remove_nodes(NodeSet& nodes, const std::vector<char>& remove);
-  // Renumbers the node set (permute_nodes, sim/node_order.hpp: new node k was old node old_of_new[k])
-  // with the tangents and budgets; the arc positions stay parallel to the renamed curve lists.
-  void permute(NodeSet& nodes, const std::vector<int>& old_of_new);
 
   // The exact shortcut for interior moves (see move_interior_node): an interior node whose exact
   // test accepted position p gets the budget clearance_from(p), a lower bound of the distance from p

@@ -65,7 +65,6 @@ PopulationThresholds population_thresholds(const PopulationOptions& options, int
   out.remove_valence = options.remove_valence;
   out.boundary_split = options.boundary_split;
   out.boundary = options.boundary;
-  out.node_order = options.node_order;
   return out;
 }
 
@@ -118,15 +117,6 @@ PopulationCounts run_population_event(NodeSet& nodes, BoundaryHandler& boundary,
     if (old_of_new) {
       std::vector<int> composed(kept.size());
       for (std::size_t k = 0; k < kept.size(); ++k) composed[k] = (*old_of_new)[static_cast<std::size_t>(kept[k])];
-      *old_of_new = std::move(composed);
-    }
-  }
-  if (plan.counts.changed() && renumbers(thresholds.node_order, nodes.size())) {
-    const std::vector<int> order = spatial_order(nodes);
-    boundary.permute(nodes, order);
-    if (old_of_new) {
-      std::vector<int> composed(order.size());
-      for (std::size_t k = 0; k < order.size(); ++k) composed[k] = (*old_of_new)[static_cast<std::size_t>(order[k])];
       *old_of_new = std::move(composed);
     }
   }

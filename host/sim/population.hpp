@@ -11,7 +11,6 @@
 
 #include "geometry/geometry_tree.hpp"
 #include "nodes/node_set.hpp"
-#include "sim/node_order.hpp"
 #include "spacing/spacing_field.hpp"
 
 namespace pdmesh {
@@ -57,11 +56,6 @@ struct PopulationOptions {
   // circle_circle (docs/simulation.md, "Population control", "Settling early: measured").
   double settle = 0.0;
   int settle_events = 2;  // 1..kPopulationMaxSettleEvents
-  // The numbering an event that changed the node set leaves (sim/node_order.hpp; the case key
-  // simulation.node_order): Input keeps the kept nodes' order and appends the inserted ones; Hilbert
-  // then renumbers every node along a Hilbert curve, and a fresh run starts so numbered too; Auto does
-  // so from kNodeOrderMinNodes nodes (sim/node_order.hpp, renumbers).
-  NodeOrder node_order = NodeOrder::Input;
 };
 
 // The thresholds of one event (population_thresholds gives them for an iteration of a run).
@@ -71,7 +65,6 @@ struct PopulationThresholds {
   int remove_valence = 4;
   double boundary_split = 1.5;
   bool boundary = true;
-  NodeOrder node_order = NodeOrder::Input;  // PopulationOptions::node_order
 };
 
 // What one event did.
@@ -107,9 +100,8 @@ PopulationThresholds population_thresholds(const PopulationOptions& options, int
 // curve lists, arc positions, tangents stay consistent). New nodes get q from `spacing` and no
 // velocity (the method has none); they enter the next force evaluation. Deterministic: the same
 // nodes and thresholds give the same result. Kept nodes keep their order; inserted nodes are
-// appended; then, where thresholds.node_order says so (renumbers, sim/node_order.hpp), an event that
-// changed the node set renumbers it in spatial order (BoundaryHandler::permute). `old_of_new`, when
-// given, receives the old index of every node after the event (-1 for inserted ones).
+// appended. `old_of_new`, when given, receives the old index of every node after the event (-1 for
+// inserted ones).
 // With `metric` set (a metric run), the plan measures lengths in the metric
 // (plan_metric_population_event, sigma = 1 in metric units); q still comes from `spacing`.
 PopulationCounts run_population_event(NodeSet& nodes, BoundaryHandler& boundary, const SpacingField& spacing,

@@ -11,7 +11,6 @@
 #include "sim/boundary_handling.hpp"
 #include "sim/failure_report.hpp"
 #include "sim/iteration_loop.hpp"
-#include "sim/node_order.hpp"
 #include "sim/row_locality.hpp"
 #include "sim/step_trace.hpp"
 #include "spacing/background_field.hpp"
@@ -68,12 +67,8 @@ void check_node_set(const NodeSet& nodes) {
                                       nodes.q.size(), nodes.kind.size(), nodes.curve.size()));
 }
 
-void order_nodes_for_run(NodeSet& nodes, const SimOptions& options) {
-  if (options.resume || !options.population.enabled) return;
-  trace_row_locality("at the start", nodes);
-  if (!renumbers(options.population.node_order, nodes.size())) return;
-  permute_nodes(nodes, spatial_order(nodes));
-  trace_row_locality("at the start, renumbered", nodes);
+void trace_nodes_at_start(const NodeSet& nodes, const SimOptions& options) {
+  if (!options.resume && options.population.enabled) trace_row_locality("at the start", nodes);
 }
 
 void momentum_from_state(const std::vector<Vec2>& saved, std::size_t n, MomentumState& carried) {
@@ -252,7 +247,7 @@ IterationMoves HostSteps::apply(int iteration) {
 SimResult run_simulation(NodeSet& nodes, const GeometryTree& tree, const SpacingField& spacing,
                          const SimOptions& options, const SimCallbacks& callbacks) {
   check_node_set(nodes);
-  order_nodes_for_run(nodes, options);
+  trace_nodes_at_start(nodes, options);
   std::unique_ptr<StepBackend> own_backend;
   StepBackend* backend = options.backend;
   if (!backend) {

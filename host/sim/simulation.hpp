@@ -154,12 +154,9 @@ std::vector<Vec2> momentum_to_state(const MomentumState& carried, std::size_t n)
 // Throws SimulationError when the node set's arrays differ in length (every Simulator checks first).
 void check_node_set(const NodeSet& nodes);
 
-// Both drivers, before the run's boundary handler reads the node set: a fresh run (no options.resume)
-// with population control on renumbers the nodes in spatial order where options.population.node_order
-// says so (renumbers, sim/node_order.hpp), with the row locality trace (sim/row_locality.hpp) before and
-// after. A resumed run keeps its checkpoint's numbering, and a run without population control the
-// caller's (whose node indices then stay those it passed).
-void order_nodes_for_run(NodeSet& nodes, const SimOptions& options);
+// Both drivers, before the run: the row locality trace (sim/row_locality.hpp) of a fresh run (no
+// options.resume) with population control on; the events trace theirs.
+void trace_nodes_at_start(const NodeSet& nodes, const SimOptions& options);
 
 // The simulation contract: one whole run, whatever computes it. Implemented by the host driver below
 // (make_host_simulator: run_simulation over a StepBackend) and by the device-resident run

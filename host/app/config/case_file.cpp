@@ -112,8 +112,8 @@ bool is_string_key(const std::string& key) {
          key == "spacing.array" || key == "spacing.h1" || key == "spacing.h2" || key == "spacing.angle" ||
          key == "spacing.m11" || key == "spacing.m12" || key == "spacing.m22" || key == "spacing.sol" ||
          key == "spacing.function" || key == "init.method" || key == "simulation.device" ||
-         key == "simulation.precision" || key == "simulation.r0_rule" || key == "simulation.node_order" ||
-         key == "simulation.stop" || key == "output.color_by" || key == "farfield.shape" || key == "motion.rotate";
+         key == "simulation.precision" || key == "simulation.r0_rule" || key == "simulation.stop" ||
+         key == "output.color_by" || key == "farfield.shape" || key == "motion.rotate";
 }
 
 // Parses an override's value as TOML; a bare word that is not TOML (random, a.crv) is a string.
@@ -293,7 +293,6 @@ const std::vector<std::string>& simulation_keys() {
       "simulation.device",
       "simulation.precision",
       "simulation.r0_rule",
-      "simulation.node_order",
       "simulation.stability_factor",
       "simulation.momentum",
   };

@@ -289,12 +289,6 @@ void read_simulation_section(const Reader& r, const toml::table& root, CaseConfi
     s.r0_any_direction =
         choose<bool>(r, "simulation.r0_rule", *n, {{"force_direction", false}, {"any_direction", true}});
   }
-  // Stored with population control, whose events renumber the nodes (PopulationOptions::node_order).
-  if (const toml::node* n = find(root, "simulation", "node_order")) {
-    c.population.node_order =
-        choose<NodeOrder>(r, "simulation.node_order", *n,
-                          {{"input", NodeOrder::Input}, {"hilbert", NodeOrder::Hilbert}, {"auto", NodeOrder::Auto}});
-  }
 }
 
 // A threshold given as one number (constant over the run) or [first, last] (ramped from the first

@@ -69,10 +69,6 @@ void apply_momentum_schedule(CaseConfig& c) {
   // Relaxed at kBestRelaxScale x q, the lattice's edges come out at q (mean edge/q 0.91 at 1; docs/spacing.md,
   // "The node count").
   c.spacing.relax_scale = kBestRelaxScale;
-  // From kNodeOrderMinNodes nodes, numbered along a Hilbert curve at the start and after each
-  // population event: the step's gathers of a node's list entries stay near its own index
-  // (docs/simulation.md, "Node order").
-  c.population.node_order = NodeOrder::Auto;
 }
 
 // The long preset's values of the keys apply_momentum_schedule sets: CaseConfig's initializers. So
@@ -94,7 +90,6 @@ void apply_long_schedule(CaseConfig& c) {
   c.cleanup.min_trials = long_values.cleanup.min_trials;
   c.cleanup.settle = long_values.cleanup.settle;
   c.spacing.relax_scale = long_values.spacing.relax_scale;
-  c.population.node_order = long_values.population.node_order;
 }
 
 }  // namespace

@@ -165,8 +165,6 @@ void add_population_identity(const CaseConfig& config, Identity& keys) {
   const PopulationOptions& p = config.population;
   if (p.enabled) {
     keys.emplace_back("population.enabled", "true");
-    // The numbering only when it is not the input order, so that earlier checkpoints identify the same way.
-    if (p.node_order != NodeOrder::Input) keys.emplace_back("simulation.node_order", to_string(p.node_order));
     // The settle keys only when settling is on (settle > 0): with it off the schedule is the one before
     // them, and so is its identity, so that earlier checkpoints of such runs still resume.
     keys.emplace_back("population.schedule", p.settle > 0
