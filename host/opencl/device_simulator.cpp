@@ -34,6 +34,7 @@ SimResult DeviceSimulator::run(NodeSet& nodes, const GeometryTree& tree, const S
         "the device-resident simulation has no metric mode yet (its loop keeps the isotropic spacing on "
         "the device); a run with a metric field needs the host driver (--device host) or the host-driven "
         "OpenCL step backend");
+  trace_nodes_at_start(nodes, options);
   return run_device_resident(nodes, tree, spacing, options, ctx_, *program_, callbacks, stats_);
 }
 

@@ -13,6 +13,7 @@
 #include "core/errors.hpp"
 #include "sim/boundary_handling.hpp"
 #include "sim/population_plan.hpp"
+#include "sim/row_locality.hpp"
 
 namespace pdmesh {
 
@@ -130,6 +131,7 @@ std::optional<PopulationCounts> PopulationTracker::after_iteration(
   const PopulationCounts counts = run_population_event(
       nodes, boundary, spacing, population_thresholds(options, iteration, iterations), old_of_new, metric);
   seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (counts.changed()) trace_row_locality(fmt::format("after the event after iteration {}", iteration).c_str(), nodes);
   ++events;
   inserted += counts.inserted();
   removed += counts.removed();

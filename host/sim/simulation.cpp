@@ -11,6 +11,7 @@
 #include "sim/boundary_handling.hpp"
 #include "sim/failure_report.hpp"
 #include "sim/iteration_loop.hpp"
+#include "sim/row_locality.hpp"
 #include "sim/step_trace.hpp"
 #include "spacing/background_field.hpp"
 #include "spacing/metric_field.hpp"
@@ -64,6 +65,10 @@ void check_node_set(const NodeSet& nodes) {
   if (nodes.q.size() != n || nodes.kind.size() != n || nodes.curve.size() != n)
     throw SimulationError(fmt::format("inconsistent node set: {} positions, {} spacings, {} kinds, {} curves", n,
                                       nodes.q.size(), nodes.kind.size(), nodes.curve.size()));
+}
+
+void trace_nodes_at_start(const NodeSet& nodes, const SimOptions& options) {
+  if (!options.resume && options.population.enabled) trace_row_locality("at the start", nodes);
 }
 
 void momentum_from_state(const std::vector<Vec2>& saved, std::size_t n, MomentumState& carried) {
@@ -242,6 +247,7 @@ IterationMoves HostSteps::apply(int iteration) {
 SimResult run_simulation(NodeSet& nodes, const GeometryTree& tree, const SpacingField& spacing,
                          const SimOptions& options, const SimCallbacks& callbacks) {
   check_node_set(nodes);
+  trace_nodes_at_start(nodes, options);
   std::unique_ptr<StepBackend> own_backend;
   StepBackend* backend = options.backend;
   if (!backend) {

@@ -154,6 +154,10 @@ std::vector<Vec2> momentum_to_state(const MomentumState& carried, std::size_t n)
 // Throws SimulationError when the node set's arrays differ in length (every Simulator checks first).
 void check_node_set(const NodeSet& nodes);
 
+// Both drivers, before the run: the row locality trace (sim/row_locality.hpp) of a fresh run (no
+// options.resume) with population control on; the events trace theirs.
+void trace_nodes_at_start(const NodeSet& nodes, const SimOptions& options);
+
 // The simulation contract: one whole run, whatever computes it. Implemented by the host driver below
 // (make_host_simulator: run_simulation over a StepBackend) and by the device-resident run
 // (host/opencl/device_simulation.hpp: ocl::DeviceSimulator); the app chooses one (app/pipeline/backend_choice),
