@@ -261,7 +261,7 @@ TEST_CASE("convergence in the host driver: the run stops at a measurement, and a
   CHECK(full.stats.measurements == stop / c.options.convergence.check_every);
   CHECK(full.stats.measure_seconds > 0.0);
   CHECK(full.stats.measure_cpu_seconds > 0.0);
-  // The host driver leaves nothing running beside a measurement: its waits are a small part.
+  // The host driver has nothing to do before a measurement: its wait is a small part of it.
   CHECK(full.stats.measure_wait_seconds >= 0.0);
   CHECK(full.stats.measure_wait_seconds < full.stats.measure_seconds);
   // The last measurement's mesh, for the mesh stage: the final nodes' triangulation.

@@ -9,7 +9,6 @@
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
-#include <future>
 #include <limits>
 #include <optional>
 #include <type_traits>
@@ -74,10 +73,7 @@ class DeviceRun final : public IterationSteps {
         cpu_device_(ctx.device().type == "CPU"),
         loop_(nodes, options) {}
   // Non-blocking uploads read host vectors of this object: wait for them (errors are moot here).
-  ~DeviceRun() override {
-    join_ahead(false);
-    ctx_.queue().finish();
-  }
+  ~DeviceRun() override { ctx_.queue().finish(); }
   DeviceRun(const DeviceRun&) = delete;
   DeviceRun& operator=(const DeviceRun&) = delete;
 
@@ -90,19 +86,12 @@ class DeviceRun final : public IterationSteps {
   IterationMoves apply(int iteration) override;
   void after_row() override;
   void before_measure(int iteration, const GlobalTimeStep& gm) override;
-  void after_measure() override { join_ahead(true); }
   void after_observe() override;
   bool may_stop() const override { return window_next_ >= window_rows_; }  // not while the device is ahead
   void after_iterations() override;
   SimState failure_state() override;
   void end_run(SimResult& result) override;
 
-  // The device's run ahead of a measurement (before_measure): the rebuild due next, if any, and the
-  // first window after the measured iteration.
-  void run_ahead(int iteration, const GlobalTimeStep& gm);
-  // Waits for the thread that started run_ahead beside the measurement; `rethrow`: its error is thrown
-  // (false where the run is failing or ending already).
-  void join_ahead(bool rethrow);
   // Before the iteration after loop_.done(): the lists rebuilt when the skin is used up; true when they were.
   bool rebuild_if_due(int next_iteration);
   // The row take_row read: throws SimulationError when the device's dt differs from the host's or a
@@ -291,9 +280,6 @@ class DeviceRun final : public IterationSteps {
   // The iterations' bookkeeping: history, time step rule, population schedule, stopping rule (its
   // samples go into every saved state). Last: it checks the options when the run is set up.
   IterationLoop loop_;
-  // run_ahead on its own thread while the host measures (before_measure to after_measure). Last, so that
-  // it is complete before any member it reads goes (~DeviceRun joins it first in any case).
-  std::future<void> ahead_;
 };
 
 }  // namespace pdmesh::ocl

@@ -422,44 +422,17 @@ void DeviceRun<Real>::after_row() {
 // triangulates (run_ahead_): the rebuild the next iteration would start with, if one is due, then the
 // next window, split after kAheadIterations (CPU devices). Its commands are the same, so the run is the
 // same bit for bit; a run that stops here discards what it ran (after_iterations).
-// The run ahead is enqueued from a thread of its own: a rebuild waits for the device once, and after a
-// population event (which drops the lists) one is always due, so the host triangulates during it
-// rather than after it. The measurement reads only nodes_ and the run ahead writes nothing it reads
-// (read_back_nodes has synchronized the boundary, so the rebuild does not); the main thread touches
-// the device again only after after_measure has joined it.
 template <typename Real>
 void DeviceRun<Real>::before_measure(int iteration, const GlobalTimeStep& gm) {
   read_back_nodes();
   if (run_ahead_ && iteration < options_.iterations && window_next_ >= window_rows_ &&
       !(options_.stop && options_.stop->load())) {
-    ahead_ = std::async(std::launch::async, [this, iteration, &gm] {
-      const InterruptShield shield;  // as the main thread's around the whole run
-      run_ahead(iteration, gm);
-    });
-  }
-}
-
-template <typename Real>
-void DeviceRun<Real>::run_ahead(int iteration, const GlobalTimeStep& gm) {
-  rebuilt_ahead_ = rebuild_if_due(iteration + 1);
-  check_momentum_saved_ = with_momentum() && rebuilt_ahead_;
-  if (with_momentum() && !rebuilt_ahead_) read(carried_, momentum_at_check_, 2 * n_, false);
-  host_ahead_ = true;  // a failure from here on falls back on the saved state: the device moves on
-  begin_window(iteration + 1, gm, cpu_device_ ? kAheadIterations : window_.max_length());
-  ++stats_.ahead_windows;
-}
-
-template <typename Real>
-void DeviceRun<Real>::join_ahead(bool rethrow) {
-  if (!ahead_.valid()) return;
-  if (rethrow) {
-    ahead_.get();
-    return;
-  }
-  try {
-    ahead_.get();
-  } catch (...) {
-    // The run is failing or ending already: the first error is the one reported.
+    rebuilt_ahead_ = rebuild_if_due(iteration + 1);
+    check_momentum_saved_ = with_momentum() && rebuilt_ahead_;
+    if (with_momentum() && !rebuilt_ahead_) read(carried_, momentum_at_check_, 2 * n_, false);
+    host_ahead_ = true;  // a failure from here on falls back on the saved state: the device moves on
+    begin_window(iteration + 1, gm, cpu_device_ ? kAheadIterations : window_.max_length());
+    ++stats_.ahead_windows;
   }
 }
 
@@ -472,7 +445,6 @@ void DeviceRun<Real>::after_observe() {
 
 template <typename Real>
 void DeviceRun<Real>::after_iterations() {
-  join_ahead(false);
   if (window_pending_) {
     // Stopped after a convergence check while the device ran ahead: nodes_ and the boundary state
     // hold the state after loop_.done() (read for the check); what the device ran since is dropped.
@@ -487,7 +459,6 @@ void DeviceRun<Real>::after_iterations() {
 
 template <typename Real>
 SimState DeviceRun<Real>::failure_state() {
-  join_ahead(false);
   if (!failed_at_) failed_at_ = last_good_state();
   return *failed_at_;
 }

@@ -184,13 +184,8 @@ bool IterationLoop::go_on(IterationSteps& steps, int iteration, const HistoryRow
     const auto wall0 = std::chrono::steady_clock::now();
     const double cpu0 = thread_cpu_seconds();
     steps.before_measure(iteration, gm_);
-    double wait = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
-    // The driver's part after the measurement: what it left running beside it completes.
-    const auto finish_measure = [&] {
-      const auto join0 = std::chrono::steady_clock::now();
-      steps.after_measure();
-      wait += std::chrono::duration<double>(std::chrono::steady_clock::now() - join0).count();
-    };
+    // The driver's part (a device run's read-back, and its rebuild when one is due) apart.
+    const double wait = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
     // The measurement's triangulation is the run's largest transient: it starts without the free pages
     // of the builds and read-backs before it, and leaves none behind (core/free_memory.hpp).
     give_back_free_memory();
@@ -200,11 +195,9 @@ bool IterationLoop::go_on(IterationSteps& steps, int iteration, const HistoryRow
       sample = options_.metric ? measure_mesh_in_metric(nodes_, iteration, *options_.metric)
                                : measure_mesh(nodes_, iteration, &measured);
     } catch (const Interrupted&) {
-      finish_measure();
       result_.stopped = true;
       return false;
     }
-    finish_measure();
     SimStats& stats = result_.stats;
     ++stats.measurements;
     stats.measure_wait_seconds += wait;

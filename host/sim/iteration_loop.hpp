@@ -56,9 +56,6 @@ class IterationSteps {
   virtual void after_row() {}
   // Before the stopping rule measures the mesh after `iteration`: the node set must hold its positions.
   virtual void before_measure(int /*iteration*/, const GlobalTimeStep& /*gm*/) {}
-  // After the measurement (also one a stop request ended): what before_measure left running beside it
-  // is complete, and its errors are thrown here.
-  virtual void after_measure() {}
   // After the stopping rule has seen the iteration (measured or not).
   virtual void after_observe() {}
   // Whether a stop request may end the run after the iteration just done.
