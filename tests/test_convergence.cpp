@@ -261,6 +261,9 @@ TEST_CASE("convergence in the host driver: the run stops at a measurement, and a
   CHECK(full.stats.measurements == stop / c.options.convergence.check_every);
   CHECK(full.stats.measure_seconds > 0.0);
   CHECK(full.stats.measure_cpu_seconds > 0.0);
+  // The host driver has nothing to do before a measurement: its wait is a small part of it.
+  CHECK(full.stats.measure_wait_seconds >= 0.0);
+  CHECK(full.stats.measure_wait_seconds < full.stats.measure_seconds);
   // The last measurement's mesh, for the mesh stage: the final nodes' triangulation.
   REQUIRE(full.final_mesh);
   CHECK(triangulates(*full.final_mesh, whole));
@@ -313,6 +316,7 @@ TEST_CASE("convergence off (simulation.stop = iterations): every iteration runs,
   CHECK(r.state.convergence.empty());
   CHECK(r.stats.measurements == 0);
   CHECK(r.stats.measure_seconds == 0.0);
+  CHECK(r.stats.measure_wait_seconds == 0.0);
 }
 
 TEST_CASE("convergence: a run that did not converge says which part of the rule held it", "[convergence]") {

@@ -184,6 +184,8 @@ bool IterationLoop::go_on(IterationSteps& steps, int iteration, const HistoryRow
     const auto wall0 = std::chrono::steady_clock::now();
     const double cpu0 = thread_cpu_seconds();
     steps.before_measure(iteration, gm_);
+    // The driver's part (a device run's read-back, and its rebuild when one is due) apart.
+    const double wait = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
     // The measurement's triangulation is the run's largest transient: it starts without the free pages
     // of the builds and read-backs before it, and leaves none behind (core/free_memory.hpp).
     give_back_free_memory();
@@ -198,6 +200,7 @@ bool IterationLoop::go_on(IterationSteps& steps, int iteration, const HistoryRow
     }
     SimStats& stats = result_.stats;
     ++stats.measurements;
+    stats.measure_wait_seconds += wait;
     stats.measure_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
     stats.measure_cpu_seconds += thread_cpu_seconds() - cpu0;
   }

@@ -121,6 +121,9 @@ struct SimStats {
   int measurements = 0;                   // the stopping rule's measurements of the mesh
   double measure_seconds = 0.0;           // their wall time: the driver's read-back and the triangulation
   double measure_cpu_seconds = 0.0;       // the CPU time of the thread that measured (not the shapes' workers)
+  // Of measure_seconds, the driver's part before the triangulation (IterationSteps::before_measure: the
+  // device run's read-back, and the neighbour build it makes before running ahead when one is due).
+  double measure_wait_seconds = 0.0;
   // The driver's own split of the iterations' wall time, by name for the timings file (the device run:
   // its steps, neighbour builds, the host's exact test, transfers, population events); empty for the host.
   std::vector<std::pair<std::string, double>> split;

@@ -222,6 +222,7 @@ SimResult simulate(const CaseConfig& config, const MeshInputs& inputs, const Spa
   phases.note("measurements", result.stats.measurements);
   phases.note("measure_seconds", result.stats.measure_seconds);
   phases.note("measure_cpu_seconds", result.stats.measure_cpu_seconds);
+  phases.note("measure_wait_seconds", result.stats.measure_wait_seconds);
   phases.note("population_events", result.stats.population_events);
   phases.note("population_seconds", result.stats.population_seconds);
   for (const auto& [name, seconds] : result.stats.split) phases.note(name, seconds);
