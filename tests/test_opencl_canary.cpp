@@ -87,7 +87,7 @@ TEST_CASE("without the hook buffers carry no tail", "[opencl][canary]") {
   REQUIRE_NOTHROW(b.check_canary(ctx.queue()));
 }
 
-TEST_CASE("a buffer over a host array: kernels read the host's values; with a canary tail it is a copy",
+TEST_CASE("a buffer over a host array: kernels read the host's values, and with a canary tail it is a copy",
           "[opencl][canary]") {
   const std::vector<std::int32_t> host{3, 1, 4, 1, 5, 9, 2, 6, 5};
   Context ctx(test::test_context().device());  // no tail: the buffer is the host's array
