@@ -9,6 +9,7 @@
 #include <algorithm>
 
 #include "core/errors.hpp"
+#include "core/free_memory.hpp"
 #include "core/interrupt.hpp"
 #include "sim/failure_report.hpp"
 #include "spacing/background_field.hpp"
@@ -357,6 +358,8 @@ bool DeviceRun<Real>::rebuild_if_due(int next_iteration) {
 // The iteration's computation: the next row of the current window, or of a new one.
 template <typename Real>
 IterationStep DeviceRun<Real>::compute(int iteration, const GlobalTimeStep& gm) {
+  // After a check the device ran ahead of, when the run goes on (a run that stops there needs none).
+  restore_saved_positions();
   rebuild_if_due(iteration);
   if (window_pending_) {  // begun while the host measured the last iteration's mesh
     end_window();
@@ -446,7 +449,6 @@ void DeviceRun<Real>::before_measure(int iteration, const GlobalTimeStep& gm) {
 
 template <typename Real>
 void DeviceRun<Real>::after_observe() {
-  restore_saved_positions();
   // A build made before this iteration's measurement saved the state without it.
   if (rebuilt_ahead_) saved_state_.convergence = loop_.convergence().samples();
   rebuilt_ahead_ = false;
@@ -464,6 +466,13 @@ void DeviceRun<Real>::after_iterations() {
     momentum_at_check_.clear();
     check_momentum_saved_ = false;
   }
+  // No step follows: the rows and the step's outputs go before end_run builds the final state beside
+  // the measured mesh (the end of a converged run was its peak). The carried moves stay (end_run may
+  // read them).
+  stats_.device_bytes = device_bytes();
+  neighbours_.release_rows();
+  release_step_outputs();
+  give_back_free_memory();
 }
 
 template <typename Real>
@@ -478,7 +487,6 @@ void DeviceRun<Real>::end_run(SimResult& result) {
   if (with_momentum()) result.state.momentum = final_momentum();
   result.stats.pairs_examined += pairs_examined_;
   stats_.stride = largest_row_;
-  stats_.device_bytes = device_bytes();
   const DeviceRunStats& d = stats_;
   result.stats.split = {{"device_step_seconds", d.step_seconds},
                         {"device_build_seconds", d.bin_seconds + d.gather_seconds},
