@@ -105,7 +105,8 @@ class DeviceRun final : public IterationSteps {
   void remember();
   // A convergence check's triangulation runs beside the saved state: while the device runs ahead of
   // it, the saved positions and q (the build state, also on the device: xy_build_, q_build_) are
-  // freed, and read back from the device once the check is observed. Only where they are the device's
+  // freed, and read back from the device when the next iteration is computed (compute; none when the
+  // run stops at the check). Only where they are the device's
   // build state bit for bit (saved_is_build_state_); the positions of the nodes that are not interior
   // are the host's, kept aside. Meanwhile the state after the check stands in for the saved state.
   void release_saved_positions();
