@@ -137,12 +137,20 @@ void require_run_ahead_changes_nothing(double skin) {
   const Outcome host = test::run_from(c, c.initial, o, false);
   REQUIRE(host.result.converged);
   INFO("the host run converged after " << host.result.state.iterations_done);
+  // While the device runs ahead the saved positions are freed and read back after the check: the
+  // run throws if what comes back is not the saved state bit for bit.
+  ::setenv("PDMESH_TEST_CHECK_SAVED_RESTORE", "1", 1);
   const Outcome ahead = test::run_from(c, c.initial, o, true);
+  ::unsetenv("PDMESH_TEST_CHECK_SAVED_RESTORE");
   ::setenv("PDMESH_TEST_NO_RUN_AHEAD", "1", 1);
   const Outcome in_step = test::run_from(c, c.initial, o, true);
   ::unsetenv("PDMESH_TEST_NO_RUN_AHEAD");
   CHECK(ahead.stats.ahead_windows > 0);
   CHECK(in_step.stats.ahead_windows == 0);
+  // The checks the device ran ahead of read the saved state back (in float not before the second build).
+  CHECK(ahead.stats.saved_restores > 0);
+  CHECK(ahead.stats.saved_restores <= ahead.stats.ahead_windows);
+  CHECK(in_step.stats.saved_restores == 0);
   CHECK(ahead.stats.iterations == in_step.stats.iterations);
   // skin >= 0 builds before the converged check too: ahead of an iteration the stop then drops.
   CHECK(ahead.stats.rebuilds == in_step.stats.rebuilds + (skin >= 0.0 ? 1 : 0));

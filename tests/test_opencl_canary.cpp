@@ -86,3 +86,35 @@ TEST_CASE("without the hook buffers carry no tail", "[opencl][canary]") {
   CHECK(b.canary_tail() == 0);
   REQUIRE_NOTHROW(b.check_canary(ctx.queue()));
 }
+
+TEST_CASE("a buffer over a host array: kernels read the host's values, and with a canary tail it is a copy",
+          "[opencl][canary]") {
+  const std::vector<std::int32_t> host{3, 1, 4, 1, 5, 9, 2, 6, 5};
+  Context ctx(test::test_context().device());  // no tail: the buffer is the host's array
+  auto in = Buffer<std::int32_t>::over_host(ctx, "field", host);
+  CHECK(in.size() == host.size());
+  CHECK(in.canary_tail() == 0);
+  const char* source =
+      "__kernel void twice(int n, __global const int* in, __global int* out) {\n"
+      "  int i = get_global_id(0); if (i < n) out[i] = 2 * in[i]; }\n";
+  cl::Program program = ctx.build_source("over_host.cl", source, "-cl-std=CL1.2");
+  cl_int err = CL_SUCCESS;
+  cl::Kernel kernel(program, "twice", &err);
+  check(err, "twice");
+  Buffer<std::int32_t> out(ctx, "out", host.size());
+  const int n = static_cast<int>(host.size());
+  check(kernel.setArg(0, n), "setArg 0");
+  check(kernel.setArg(1, in.get()), "setArg 1");
+  check(kernel.setArg(2, out.get()), "setArg 2");
+  launch(ctx.queue(), kernel, "twice", host.size(), 8);
+  std::vector<std::int32_t> doubled, back;
+  out.download(ctx.queue(), doubled);
+  in.download(ctx.queue(), back);
+  CHECK(back == host);
+  for (std::size_t i = 0; i < host.size(); ++i) CHECK(doubled[i] == 2 * host[i]);
+  // The test context's tail needs room past the array: a copy with its tail, checked on download.
+  auto copy = Buffer<std::int32_t>::over_host(test::test_context(), "field", host);
+  CHECK(copy.canary_tail() == test::kCanaryTail);
+  REQUIRE_NOTHROW(copy.download(test::test_context().queue(), back));
+  CHECK(back == host);
+}

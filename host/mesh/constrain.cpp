@@ -133,7 +133,14 @@ void recover_edges(Triangulation& tri, const std::vector<ConstrainedEdge>& edges
 std::vector<std::array<int, 3>> inside_triangles(Triangulation&& tri,
                                                  const std::unordered_set<std::uint64_t>& open_edges) {
   const int count = static_cast<int>(tri.v.size());
-  std::vector<int> layer(count, -1);
+  // The fill reads neither map from points to vertices nor the vertex-to-triangle map: freed before
+  // the layers are made (a convergence check's triangulation is the largest moment of a run).
+  std::vector<int>().swap(tri.vertex_of);
+  std::vector<int>().swap(tri.vertex_triangle);
+  // Per triangle the parity of its layer (only the parity decides inside), kUnreached until reached:
+  // one byte per triangle.
+  constexpr std::uint8_t kUnreached = 0xff;
+  std::vector<std::uint8_t> layer(count, kUnreached);
   std::vector<int> current, stack, next;
   for (int t = 0; t < count; ++t) {
     const auto& tv = tri.v[t];
@@ -150,21 +157,21 @@ std::vector<std::array<int, 3>> inside_triangles(Triangulation&& tri,
       stack.pop_back();
       for (int i = 0; i < 3; ++i) {
         const int u = tri.n[t][i];
-        if (u < 0 || layer[u] != -1) continue;
+        if (u < 0 || layer[u] != kUnreached) continue;
         const int a = tri.v[t][(i + 1) % 3], b = tri.v[t][(i + 2) % 3];
         if (tri.is_constrained(a, b) && (open_edges.empty() || !open_edges.count(Triangulation::edge_key(
                                                                    tri.input_index[a], tri.input_index[b])))) {
           next.push_back(u);
         } else {
-          layer[u] = depth;
+          layer[u] = static_cast<std::uint8_t>(depth & 1);
           stack.push_back(u);
         }
       }
     }
     current.clear();
     for (int u : next) {
-      if (layer[u] == -1) {
-        layer[u] = depth + 1;
+      if (layer[u] == kUnreached) {
+        layer[u] = static_cast<std::uint8_t>((depth + 1) & 1);
         current.push_back(u);
       }
     }
@@ -175,12 +182,10 @@ std::vector<std::array<int, 3>> inside_triangles(Triangulation&& tri,
   // beside the triangulation (a convergence check's largest moment).
   std::vector<std::array<int, 3>>().swap(tri.n);
   std::vector<Vec2>().swap(tri.points);
-  std::vector<int>().swap(tri.vertex_of);
-  std::vector<int>().swap(tri.vertex_triangle);
   std::vector<std::array<int, 3>> inside = std::move(tri.v);
   std::size_t written = 0;
   for (int t = 0; t < count; ++t)
-    if (layer[t] % 2 == 1) {
+    if (layer[t] == 1) {
       const auto tv = inside[t];
       inside[written++] = {tri.input_index[tv[0]], tri.input_index[tv[1]], tri.input_index[tv[2]]};
     }

@@ -41,6 +41,25 @@ class Buffer {
     }
   }
 
+  // A read-only buffer over `host` itself (CL_MEM_USE_HOST_PTR), no copy made: for a CPU device,
+  // whose memory is the host's, so that an array the host keeps anyway is not held twice. `host` must
+  // stay alive and unchanged while the buffer is used. Not with a canary tail (a copy then).
+  static Buffer over_host(Context& ctx, std::string name, const std::vector<T>& host) {
+    if (ctx.canary_tail() || host.empty()) {
+      Buffer b(ctx, std::move(name), host.size());
+      b.upload(ctx.queue(), host);
+      return b;
+    }
+    Buffer b;
+    b.name_ = std::move(name);
+    b.count_ = host.size();
+    cl_int err = CL_SUCCESS;
+    b.buffer_ = cl::Buffer(ctx.context(), CL_MEM_READ_ONLY | CL_MEM_USE_HOST_PTR, sizeof(T) * host.size(),
+                           const_cast<T*>(host.data()), &err);
+    check(err, fmt::format("allocating buffer '{}' over the host's array ({} bytes)", b.name_, b.bytes()));
+    return b;
+  }
+
   const std::string& name() const { return name_; }
   std::size_t size() const { return count_; }
   std::size_t bytes() const { return sizeof(T) * count_; }

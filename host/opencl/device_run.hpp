@@ -103,6 +103,14 @@ class DeviceRun final : public IterationSteps {
   void check_memory(std::uint64_t entries) const;
   // The state after loop_.done() (its history rows by count), to fall back on (see saved_state_).
   void remember();
+  // A convergence check's triangulation runs beside the saved state: while the device runs ahead of
+  // it, the saved positions and q (the build state, also on the device: xy_build_, q_build_) are
+  // freed, and read back from the device when the next iteration is computed (compute; none when the
+  // run stops at the check). Only where they are the device's
+  // build state bit for bit (saved_is_build_state_); the positions of the nodes that are not interior
+  // are the host's, kept aside. Meanwhile the state after the check stands in for the saved state.
+  void release_saved_positions();
+  void restore_saved_positions();
   SimState last_good_state();
   SimulationError non_finite_error(int iteration, const SimState& good);
   void upload_initial();
@@ -243,6 +251,15 @@ class DeviceRun final : public IterationSteps {
   NodeSet saved_nodes_;
   SimState saved_state_;  // its tangents empty: the nonzero ones are saved_tangents_
   std::vector<std::pair<std::size_t, Vec2>> saved_tangents_;
+  // saved_nodes_'s interior positions and every q are xy_build_ and q_build_ read back (in double
+  // always; in float from the second build on, when the build read them from the device).
+  bool saved_is_build_state_ = false;
+  bool saved_released_ = false;  // saved_nodes_.x and .q are freed (release_saved_positions)
+  std::vector<std::pair<std::size_t, Vec2>> saved_off_interior_;  // their non-interior positions meanwhile
+  // PDMESH_TEST_CHECK_SAVED_RESTORE: a copy of what was released, which the restore must reproduce bit
+  // for bit (else a SimulationError; tests/test_device_momentum.cpp).
+  const bool check_restore_ = std::getenv("PDMESH_TEST_CHECK_SAVED_RESTORE") != nullptr;
+  NodeSet released_copy_;
   std::size_t saved_tangent_count_ = 0;
   std::size_t saved_rows_ = 0;
   // host_boundary has moved nodes on the host that xy_[cur_] does not hold yet (until the iteration ends).

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 
 #include "core/errors.hpp"
 #include "core/free_memory.hpp"
@@ -38,7 +39,7 @@ void DeviceRun<Real>::remember() {
         saved_nodes_.x[i] = {static_cast<double>(v[0][2 * i]), static_cast<double>(v[0][2 * i + 1])};
       saved_nodes_.q[i] = static_cast<double>(v[1][i]);
     }
-    // Read targets only (the build waited for the reads): not kept between builds.
+    // Read targets only (read after the build, blocking): not kept between builds.
     std::vector<Real>().swap(v[0]);
     std::vector<Real>().swap(v[1]);
   }
@@ -63,7 +64,55 @@ void DeviceRun<Real>::remember() {
 // device cannot be read or what it holds is not finite, the state saved at the last build. With
 // momentum always the saved state: a failed step has already overwritten the carried moves.
 template <typename Real>
+void DeviceRun<Real>::release_saved_positions() {
+  if (!saved_is_build_state_ || saved_released_) return;
+  if (check_restore_) released_copy_ = saved_nodes_;
+  saved_off_interior_.clear();
+  for (std::size_t i = 0; i < n_; ++i)
+    if (saved_nodes_.kind[i] != NodeKind::Interior) saved_off_interior_.emplace_back(i, saved_nodes_.x[i]);
+  std::vector<Vec2>().swap(saved_nodes_.x);
+  std::vector<double>().swap(saved_nodes_.q);
+  saved_released_ = true;
+}
+
+// Blocking: waits for what the device runs ahead (the next iteration's computation waits for it too).
+template <typename Real>
+void DeviceRun<Real>::restore_saved_positions() {
+  if (!saved_released_) return;
+  {
+    std::vector<Real> xy, q;
+    xy_build_.download(ctx_.queue(), xy, 2 * n_);
+    q_build_.download(ctx_.queue(), q, n_);
+    saved_nodes_.x.resize(n_);
+    saved_nodes_.q.resize(n_);
+    for (std::size_t i = 0; i < n_; ++i) {
+      saved_nodes_.x[i] = {static_cast<double>(xy[2 * i]), static_cast<double>(xy[2 * i + 1])};
+      saved_nodes_.q[i] = static_cast<double>(q[i]);
+    }
+  }
+  for (const auto& [i, p] : saved_off_interior_) saved_nodes_.x[i] = p;
+  std::vector<std::pair<std::size_t, Vec2>>().swap(saved_off_interior_);
+  saved_released_ = false;
+  ++stats_.saved_restores;
+  if (check_restore_) {
+    for (std::size_t i = 0; i < n_; ++i)
+      if (std::memcmp(&saved_nodes_.x[i], &released_copy_.x[i], sizeof(Vec2)) != 0 ||
+          std::memcmp(&saved_nodes_.q[i], &released_copy_.q[i], sizeof(double)) != 0)
+        throw SimulationError(fmt::format("node {}: the saved state read back from the device differs", i));
+    released_copy_ = NodeSet{};
+  }
+}
+
+template <typename Real>
 SimState DeviceRun<Real>::last_good_state() {
+  if (saved_released_) {
+    // During a convergence check the device runs ahead of: the host holds the state after
+    // loop_.done() whole (nodes_ and the boundary read for the check; the carried moves read before
+    // the device went ahead, final_momentum), newer than the saved one.
+    SimState state = loop_.state(boundary_);
+    if (with_momentum()) state.momentum = final_momentum();
+    return state;
+  }
   if (!host_ahead_ && !tangents_ahead_ && !with_momentum()) {
     try {
       std::vector<Real> x, y, q;
@@ -138,16 +187,30 @@ void DeviceRun<Real>::read_back_nodes() {
 template <typename Real>
 void DeviceRun<Real>::upload_initial() {
   const BackgroundFieldData& d = background_.data();
-  bg_root_ = Buffer<std::int32_t>(ctx_, "bg_root_node", d.root_node.size());
-  bg_child_ = Buffer<std::int32_t>(ctx_, "bg_node_child", d.node_child.size());
-  bg_corner_ = Buffer<std::int32_t>(ctx_, "bg_leaf_corner", d.leaf_corner.size());
-  bg_cell_ = Buffer<std::int32_t>(ctx_, "bg_leaf_cell", d.leaf_cell.size());
-  bg_q_ = Buffer<Real>(ctx_, "bg_corner_q", d.corner_q.size());
-  write(bg_root_, d.root_node);
-  write(bg_child_, d.node_child);
-  write(bg_corner_, d.leaf_corner);
-  write(bg_cell_, d.leaf_cell);
-  write(bg_q_, to_real<Real>(d.corner_q));
+  if (cpu_device_) {
+    // The host keeps the field for the whole run (background_): a CPU device reads its arrays in place.
+    using I = Buffer<std::int32_t>;
+    bg_root_ = I::over_host(ctx_, "bg_root_node", d.root_node);
+    bg_child_ = I::over_host(ctx_, "bg_node_child", d.node_child);
+    bg_corner_ = I::over_host(ctx_, "bg_leaf_corner", d.leaf_corner);
+    bg_cell_ = I::over_host(ctx_, "bg_leaf_cell", d.leaf_cell);
+  } else {
+    bg_root_ = Buffer<std::int32_t>(ctx_, "bg_root_node", d.root_node.size());
+    bg_child_ = Buffer<std::int32_t>(ctx_, "bg_node_child", d.node_child.size());
+    bg_corner_ = Buffer<std::int32_t>(ctx_, "bg_leaf_corner", d.leaf_corner.size());
+    bg_cell_ = Buffer<std::int32_t>(ctx_, "bg_leaf_cell", d.leaf_cell.size());
+    write(bg_root_, d.root_node);
+    write(bg_child_, d.node_child);
+    write(bg_corner_, d.leaf_corner);
+    write(bg_cell_, d.leaf_cell);
+  }
+  if constexpr (std::is_same_v<Real, double>) {
+    if (cpu_device_) bg_q_ = Buffer<double>::over_host(ctx_, "bg_corner_q", d.corner_q);
+  }
+  if (bg_q_.size() != d.corner_q.size() || d.corner_q.empty()) {
+    bg_q_ = Buffer<Real>(ctx_, "bg_corner_q", d.corner_q.size());
+    write(bg_q_, to_real<Real>(d.corner_q));
+  }
   counters_ = Buffer<std::int32_t>(ctx_, "step_counters", kWindowCounters);  // device_window.hpp, WindowCounter
   device_boundary_.upload_curves();
   upload_nodes(nullptr, nullptr);
@@ -168,6 +231,18 @@ std::vector<Vec2> DeviceRun<Real>::read_momentum() {
 }
 
 template <typename Real>
+std::vector<Vec2> DeviceRun<Real>::final_momentum() {
+  // The device ran ahead of a check just after a build: remember() read the same carried moves.
+  if (check_momentum_saved_) return saved_state_.momentum;
+  if (momentum_at_check_.empty()) return read_momentum();
+  // The carried moves after loop_.done(), read before the device ran ahead.
+  std::vector<Vec2> momentum(n_);
+  for (std::size_t i = 0; i < n_; ++i)
+    momentum[i] = {static_cast<double>(momentum_at_check_[2 * i]), static_cast<double>(momentum_at_check_[2 * i + 1])};
+  return momentum;
+}
+
+template <typename Real>
 void DeviceRun<Real>::reset_momentum(const std::vector<std::int32_t>& nodes) {
   std::vector<Real> xy;
   read(carried_, xy, 2 * n_);
@@ -178,6 +253,7 @@ void DeviceRun<Real>::reset_momentum(const std::vector<std::int32_t>& nodes) {
 template <typename Real>
 void DeviceRun<Real>::upload_nodes(const std::vector<double>* budgets, const std::vector<std::int32_t>* leaves) {
   const std::size_t n = n_;
+  saved_is_build_state_ = false;  // xy_build_ and q_build_ hold nothing until the next build
   // Every node buffer is made again below: the old ones go first (a population event's re-upload).
   for (auto* b : {&xy_[0], &xy_[1], &q_[0], &q_[1], &tx_, &ty_, &q_build_, &xy_build_, &budget_, &cand_rec_, &partials_,
                   &carried_})

@@ -9,6 +9,7 @@
 #include <algorithm>
 
 #include "core/errors.hpp"
+#include "core/free_memory.hpp"
 #include "core/interrupt.hpp"
 #include "sim/failure_report.hpp"
 #include "spacing/background_field.hpp"
@@ -19,19 +20,21 @@ template <typename Real>
 void DeviceRun<Real>::rebuild() {
   const std::size_t n = n_;
   std::vector<Real>* v = positions_host_;
-  if (stats_.rebuilds > 0) {
-    // The host's copy of the build state, for the saved state (remember, which the host's skin test
-    // reads); the binning does not read it. Not waited on: the build's one wait completes it. The
-    // first build's is the state just uploaded (nodes_).
+  // The host's copy of the build state, for the saved state (remember, which the host's skin test
+  // reads); the binning does not read it, so it is read after the build, once the build's scratch is
+  // freed (the two together would add to a build's peak). The first build's is the state just
+  // uploaded (nodes_).
+  const bool read_back = stats_.rebuilds > 0;
+  auto read_build_state = [&] {
     read(xy_[cur_], v[0], 2 * n, false);
-    read(q_[cur_], v[1], n, false);
-  }
+    read(q_[cur_], v[1], n);
+  };
   const double radius = options_.cutoff * (1.0 + options_.verlet_skin);
   NeighbourFlags flags =
       neighbours_.build(n, radius, xy_[cur_], q_[cur_], kind_, prev_, next_, options_.verlet_skin * options_.cutoff);
   if (flags.first_invalid >= 0) {
+    if (read_back) read_build_state();
     const auto i = static_cast<std::size_t>(flags.first_invalid);
-    const bool read_back = !v[0].empty();
     const double x = read_back ? static_cast<double>(v[0][2 * i]) : nodes_.x[i].x;
     const double y = read_back ? static_cast<double>(v[0][2 * i + 1]) : nodes_.x[i].y;
     const double q = read_back ? static_cast<double>(v[1][i]) : nodes_.q[i];
@@ -40,6 +43,7 @@ void DeviceRun<Real>::rebuild() {
   // The grids, levels, spill and move lists are the build's own (the step reads the rows): freed until
   // the next build, so that they never sit beside a convergence check's triangulation.
   neighbours_.release_build_scratch();
+  if (read_back) read_build_state();
   largest_row_ = std::max(largest_row_, flags.max_count);
   stats_.gather_seconds += neighbours_.gather_seconds;
   stats_.gathers += neighbours_.attempts;
@@ -340,9 +344,11 @@ bool DeviceRun<Real>::rebuild_if_due(int next_iteration) {
     throw SimulationError(fmt::format("iteration {}: a rebuild is due with {} device iterations unread", next_iteration,
                                       window_rows_ - window_next_));
   const CommandCounts before = command_counts();
+  const bool read_back = stats_.rebuilds > 0;  // rebuild reads the build state back (in float: not the same as nodes_)
   rebuild();
   if (boundary_stale_) sync_boundary();  // the saved state needs the boundary's
   remember();
+  saved_is_build_state_ = std::is_same_v<Real, double> || read_back;
   stats_.rebuild_commands = stats_.rebuild_commands + (command_counts() - before);
   if (stats_.rebuilds > 1) build_interval_ = since_build_;
   since_build_ = 0;
@@ -352,6 +358,8 @@ bool DeviceRun<Real>::rebuild_if_due(int next_iteration) {
 // The iteration's computation: the next row of the current window, or of a new one.
 template <typename Real>
 IterationStep DeviceRun<Real>::compute(int iteration, const GlobalTimeStep& gm) {
+  // After a check the device ran ahead of, when the run goes on (a run that stops there needs none).
+  restore_saved_positions();
   // A window begun ahead of a measurement was preceded by the build it needed (before_measure), and
   // its rows are not read yet: a zero skin, always due, must not build again under it.
   if (!window_pending_) rebuild_if_due(iteration);
@@ -431,10 +439,13 @@ void DeviceRun<Real>::before_measure(int iteration, const GlobalTimeStep& gm) {
       !(options_.stop && options_.stop->load())) {
     rebuilt_ahead_ = rebuild_if_due(iteration + 1);
     check_momentum_saved_ = with_momentum() && rebuilt_ahead_;
-    if (with_momentum() && !rebuilt_ahead_) read(carried_, momentum_at_check_, 2 * n_, false);
+    // Blocking: the state after this iteration stands in for the saved state during the check
+    // (last_good_state), and needs its carried moves whole even when the device fails later.
+    if (with_momentum() && !rebuilt_ahead_) read(carried_, momentum_at_check_, 2 * n_);
     host_ahead_ = true;  // a failure from here on falls back on the saved state: the device moves on
     begin_window(iteration + 1, gm, cpu_device_ ? kAheadIterations : window_.max_length());
     ++stats_.ahead_windows;
+    release_saved_positions();
   }
 }
 
@@ -457,6 +468,13 @@ void DeviceRun<Real>::after_iterations() {
     momentum_at_check_.clear();
     check_momentum_saved_ = false;
   }
+  // No step follows: the rows and the step's outputs go before end_run builds the final state beside
+  // the measured mesh (the end of a converged run was its peak). The carried moves stay (end_run may
+  // read them).
+  stats_.device_bytes = device_bytes();
+  neighbours_.release_rows();
+  release_step_outputs();
+  give_back_free_memory();
 }
 
 template <typename Real>
@@ -471,7 +489,6 @@ void DeviceRun<Real>::end_run(SimResult& result) {
   if (with_momentum()) result.state.momentum = final_momentum();
   result.stats.pairs_examined += pairs_examined_;
   stats_.stride = largest_row_;
-  stats_.device_bytes = device_bytes();
   const DeviceRunStats& d = stats_;
   result.stats.split = {{"device_step_seconds", d.step_seconds},
                         {"device_build_seconds", d.bin_seconds + d.gather_seconds},
@@ -483,18 +500,6 @@ void DeviceRun<Real>::end_run(SimResult& result) {
                         {"device_rebuilds", static_cast<double>(d.rebuilds)},
                         {"device_windows", static_cast<double>(d.windows)},
                         {"device_ahead_windows", static_cast<double>(d.ahead_windows)}};
-}
-
-template <typename Real>
-std::vector<Vec2> DeviceRun<Real>::final_momentum() {
-  // The device ran ahead of a check just after a build: remember() read the same carried moves.
-  if (check_momentum_saved_) return saved_state_.momentum;
-  if (momentum_at_check_.empty()) return read_momentum();
-  // The carried moves after loop_.done(), read before the device ran ahead.
-  std::vector<Vec2> momentum(n_);
-  for (std::size_t i = 0; i < n_; ++i)
-    momentum[i] = {static_cast<double>(momentum_at_check_[2 * i]), static_cast<double>(momentum_at_check_[2 * i + 1])};
-  return momentum;
 }
 
 template <typename Real>

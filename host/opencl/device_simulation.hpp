@@ -19,6 +19,7 @@ struct DeviceRunStats {
   int rebuilds = 0;                    // neighbour-list builds (Verlet skin)
   int windows = 0;                     // windows of iterations enqueued without a wait (device_window.hpp)
   int ahead_windows = 0;               // of them, begun while the host measured a convergence check's mesh
+  int saved_restores = 0;              // saved positions read back from the device's build state after such a check
   CommandCounts rebuild_commands;      // the commands of the rebuilds (and the state they save), all of them
   int snap_rebuilds = 0;               // of those, forced by a snap alone (the skin had room left)
   double largest_spacing_ratio = 0.0;  // of any build (DeviceNeighbours::spacing_ratio; skin classes: device_run.hpp)
