@@ -11,28 +11,19 @@
 
 #include "app/config/case_file.hpp"
 #include "app/pipeline/mesh_inputs.hpp"
+#include "quality_json.hpp"
 #include "run_pdmesh.hpp"
 #include "temp_files.hpp"
 
 using namespace pdmesh;
 namespace fs = std::filesystem;
+using pdmesh_test::conformance_value;
 using pdmesh_test::fresh_dir;
 using pdmesh_test::run_pdmesh;
 
 namespace {
 
 const fs::path kCircles = fs::path(PDMESH_SOURCE_DIR) / "cases" / "circle_circle" / "circles.crv";
-
-// The value of "key": in quality.json's spacing_conformance object.
-double conformance_value(const fs::path& quality_json, const std::string& key) {
-  std::ifstream f(quality_json);
-  const std::string text(std::istreambuf_iterator<char>(f), {});
-  const auto object = text.find("\"spacing_conformance\"");
-  REQUIRE(object != std::string::npos);
-  const auto at = text.find("\"" + key + "\": ", object);
-  REQUIRE(at != std::string::npos);
-  return std::stod(text.substr(at + key.size() + 4));
-}
 
 }  // namespace
 

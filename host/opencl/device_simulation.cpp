@@ -469,7 +469,7 @@ void DeviceRun<Real>::after_iterations() {
     check_momentum_saved_ = false;
   }
   // No step follows: the rows and the step's outputs go before end_run builds the final state beside
-  // the measured mesh (the end of a converged run was its peak). The carried moves stay (end_run may
+  // the measured mesh (they would set the peak of a converged run). The carried moves stay (end_run may
   // read them).
   stats_.device_bytes = device_bytes();
   neighbours_.release_rows();
