@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <type_traits>
 
 #include "core/errors.hpp"
 #include "core/free_memory.hpp"
@@ -187,27 +188,22 @@ void DeviceRun<Real>::read_back_nodes() {
 template <typename Real>
 void DeviceRun<Real>::upload_initial() {
   const BackgroundFieldData& d = background_.data();
-  if (cpu_device_) {
-    // The host keeps the field for the whole run (background_): a CPU device reads its arrays in place.
-    using I = Buffer<std::int32_t>;
-    bg_root_ = I::over_host(ctx_, "bg_root_node", d.root_node);
-    bg_child_ = I::over_host(ctx_, "bg_node_child", d.node_child);
-    bg_corner_ = I::over_host(ctx_, "bg_leaf_corner", d.leaf_corner);
-    bg_cell_ = I::over_host(ctx_, "bg_leaf_cell", d.leaf_cell);
-  } else {
-    bg_root_ = Buffer<std::int32_t>(ctx_, "bg_root_node", d.root_node.size());
-    bg_child_ = Buffer<std::int32_t>(ctx_, "bg_node_child", d.node_child.size());
-    bg_corner_ = Buffer<std::int32_t>(ctx_, "bg_leaf_corner", d.leaf_corner.size());
-    bg_cell_ = Buffer<std::int32_t>(ctx_, "bg_leaf_cell", d.leaf_cell.size());
-    write(bg_root_, d.root_node);
-    write(bg_child_, d.node_child);
-    write(bg_corner_, d.leaf_corner);
-    write(bg_cell_, d.leaf_cell);
-  }
+  // The host keeps the field for the whole run (background_): a CPU device reads its arrays in place,
+  // another gets a copy.
+  const auto field = [&](const char* name, const auto& host) {
+    using T = typename std::decay_t<decltype(host)>::value_type;
+    if (cpu_device_) return Buffer<T>::over_host(ctx_, name, host);
+    Buffer<T> b(ctx_, name, host.size());
+    write(b, host);
+    return b;
+  };
+  bg_root_ = field("bg_root_node", d.root_node);
+  bg_child_ = field("bg_node_child", d.node_child);
+  bg_corner_ = field("bg_leaf_corner", d.leaf_corner);
+  bg_cell_ = field("bg_leaf_cell", d.leaf_cell);
   if constexpr (std::is_same_v<Real, double>) {
-    if (cpu_device_) bg_q_ = Buffer<double>::over_host(ctx_, "bg_corner_q", d.corner_q);
-  }
-  if (bg_q_.size() != d.corner_q.size() || d.corner_q.empty()) {
+    bg_q_ = field("bg_corner_q", d.corner_q);
+  } else {
     bg_q_ = Buffer<Real>(ctx_, "bg_corner_q", d.corner_q.size());
     write(bg_q_, to_real<Real>(d.corner_q));
   }

@@ -224,15 +224,19 @@ std::optional<CloseUp> dense_mesh_close_up(const Mesh& mesh, const Box& window, 
   return close_up;
 }
 
+Box default_mesh_window(const Mesh& mesh) {
+  Box extents;
+  for (const Vec2& p : mesh.points) extents.add(p);
+  return padded_window(extents);
+}
+
 void write_mesh_picture(const std::filesystem::path& path, const Mesh& mesh, const MeshPictureOptions& options) {
   const std::vector<double>* values = options.triangle_values;
   check_picture_inputs(path, mesh, values);
   const std::pair<double, double> range = ramp_range(values, options);
   const double lo = range.first, hi = range.second;
-  Box extents;
-  for (const Vec2& p : mesh.points) extents.add(p);
   CanvasOptions layout;
-  layout.window = options.window ? *options.window : padded_window(extents);
+  layout.window = options.window ? *options.window : default_mesh_window(mesh);
   layout.long_side = options.long_side;
   layout.side_width = values != nullptr ? kColourBarBand : 0;
 

@@ -36,6 +36,9 @@ struct ColourBarBox {
 // Draws the ramp as a framed vertical bar in the canvas' side band, the ramp's top (t = 1) at the top.
 ColourBarBox draw_colour_ramp_bar(Canvas& canvas);
 
+// The window a mesh picture shows unless told otherwise: the points' extents, padded (padded_window).
+Box default_mesh_window(const Mesh& mesh);
+
 // Writes a .png or .svg atomically. Throws Error when triangle_values has the wrong size.
 void write_mesh_picture(const std::filesystem::path& path, const Mesh& mesh, const MeshPictureOptions& options);
 

@@ -1,12 +1,14 @@
 // The locality measure of the neighbour rows; see row_locality.hpp.
 #include "sim/row_locality.hpp"
 
-#include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdlib>
 #include <cstdio>
 
 #include <fmt/format.h>
+
+#include "sim/reference/reference_backend.hpp"
 
 namespace pdmesh {
 
@@ -14,44 +16,33 @@ RowLocality row_locality(const NodeSet& nodes, double radius_factor) {
   RowLocality out;
   const std::size_t n = nodes.size();
   if (n == 0) return out;
-  // A uniform grid with cells of the median radius; a node with a larger radius searches more cells
-  // (where q is larger the nodes are sparser, so the work per node stays about the same).
-  std::vector<double> radii(n);
-  for (std::size_t i = 0; i < n; ++i) radii[i] = radius_factor * nodes.q[i];
-  std::vector<double> sorted = radii;
-  std::nth_element(sorted.begin(), sorted.begin() + static_cast<std::ptrdiff_t>(n / 2), sorted.end());
-  const double cell = sorted[n / 2];
-  if (!(cell > 0.0)) return out;
-  double lo_x = nodes.x[0].x, lo_y = nodes.x[0].y;
-  for (const Vec2& p : nodes.x) lo_x = std::min(lo_x, p.x), lo_y = std::min(lo_y, p.y);
-  auto key = [&](std::int64_t cx, std::int64_t cy) {
-    return (static_cast<std::uint64_t>(cx) << 32) | static_cast<std::uint64_t>(cy);
-  };
-  auto cx_of = [&](double x) { return static_cast<std::int64_t>(std::floor((x - lo_x) / cell)); };
-  auto cy_of = [&](double y) { return static_cast<std::int64_t>(std::floor((y - lo_y) / cell)); };
-  std::vector<std::pair<std::uint64_t, int>> binned(n);
-  for (std::size_t i = 0; i < n; ++i) binned[i] = {key(cx_of(nodes.x[i].x), cy_of(nodes.x[i].y)), static_cast<int>(i)};
-  std::sort(binned.begin(), binned.end());
+  // The rows as the reference search builds them (sim/reference/binning.cpp), at radius_factor q_i.
+  SimParticles p;
+  p.resize(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    p.x[i] = nodes.x[i].x;
+    p.y[i] = nodes.x[i].y;
+    p.q[i] = nodes.q[i];
+    p.kind[i] = static_cast<std::uint8_t>(nodes.kind[i]);
+  }
+  NeighbourList list;
+  NeighbourFlags flags;
+  reference::build_neighbours(p, radius_factor, list, flags);
+  if (flags.overflow != 0) {
+    list.stride = flags.max_count;
+    reference::build_neighbours(p, radius_factor, list, flags);
+  }
   double sum = 0.0;
   std::uint64_t near64 = 0, near1024 = 0;
   for (std::size_t i = 0; i < n; ++i) {
-    if (nodes.kind[i] != NodeKind::Interior) continue;
-    const Vec2 p = nodes.x[i];
-    const double r = radii[i];
-    for (std::int64_t cx = cx_of(p.x - r); cx <= cx_of(p.x + r); ++cx) {
-      for (std::int64_t cy = cy_of(p.y - r); cy <= cy_of(p.y + r); ++cy) {
-        if (cx < 0 || cy < 0) continue;
-        auto it = std::lower_bound(binned.begin(), binned.end(), std::pair<std::uint64_t, int>{key(cx, cy), -1});
-        for (; it != binned.end() && it->first == key(cx, cy); ++it) {
-          const auto j = static_cast<std::size_t>(it->second);
-          if (j == i || norm(nodes.x[j] - p) > r) continue;
-          const double d = std::fabs(static_cast<double>(i) - static_cast<double>(j));
-          ++out.entries;
-          sum += d;
-          near64 += d <= 64.0;
-          near1024 += d <= 1024.0;
-        }
-      }
+    if (p.kind[i] != kSimInterior) continue;
+    const std::size_t base = i * static_cast<std::size_t>(list.stride);
+    for (int k = 0; k < list.count[i]; ++k) {
+      const double d = std::fabs(static_cast<double>(i) - static_cast<double>(list.index[base + k]));
+      ++out.entries;
+      sum += d;
+      near64 += d <= 64.0;
+      near1024 += d <= 1024.0;
     }
   }
   if (out.entries == 0) return out;

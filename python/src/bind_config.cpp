@@ -11,6 +11,7 @@
 #include "callable_spacing.hpp"
 #include "core/errors.hpp"
 #include "geometry/geometry_files.hpp"
+#include "init/initial_distribution.hpp"
 
 namespace pdmesh::py {
 
@@ -24,19 +25,6 @@ std::vector<CaseOverride> overrides_from(const std::vector<Setting>& settings) {
   std::vector<CaseOverride> out;
   for (const auto& [key, value, label] : settings) out.push_back({key, value, label});
   return out;
-}
-
-// The case file's word for the fill (init.method).
-const char* method_name(InitMethod m) {
-  switch (m) {
-    case InitMethod::Structured:
-      return "structured";
-    case InitMethod::Random:
-      return "random";
-    case InitMethod::Hexagonal:
-      return "hexagonal";
-  }
-  return "unknown";
 }
 
 nb::ndarray<nb::numpy, double> points_array(const std::vector<Vec2>& points) {
@@ -120,7 +108,7 @@ void bind_config(nb::module_& m) {
       .def_prop_ro("iterations", [](const CaseConfig& c) { return c.simulation.iterations; })
       .def_prop_ro("device", [](const CaseConfig& c) { return c.simulation.device; })
       .def_prop_ro("seed", [](const CaseConfig& c) { return c.init.seed; })
-      .def_prop_ro("method", [](const CaseConfig& c) { return std::string(method_name(c.init.method)); })
+      .def_prop_ro("method", [](const CaseConfig& c) { return std::string(to_string(c.init.method)); })
       .def_prop_ro("formats", [](const CaseConfig& c) { return c.output.formats; })
       .def_prop_ro("motion", &motion_keys, "The [motion] section's keys (enabled False without one).")
       .def("geometry", &geometry_of, "The validated geometry: curves, loops, area, extents.")

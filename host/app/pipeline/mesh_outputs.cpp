@@ -372,9 +372,8 @@ std::vector<std::string> queue_mesh_pictures(const CaseConfig& config, const Mes
       draw(fmt::format("mesh_{}.png", view.name), zoomed);
     }
     // A mesh.png too dense to show edges (millions of nearly uniform triangles) gets a close-up that does.
-    Box extents;
-    for (const Vec2& p : mesh.points) extents.add(p);
-    if (const std::optional<CloseUp> close_up = dense_mesh_close_up(mesh, padded_window(extents), picture.long_side)) {
+    if (const std::optional<CloseUp> close_up =
+            dense_mesh_close_up(mesh, default_mesh_window(mesh), picture.long_side)) {
       MeshPictureOptions zoomed = picture;
       zoomed.title += fmt::format(" - around the smallest angle, {:.2f} deg", close_up->min_angle);
       zoomed.window = close_up->window;
