@@ -178,7 +178,14 @@ class Quadtree {
   // hint >= 0: a segment of this tree whose hit seeds the search. The result does not depend on it:
   // every segment at least as close as the seed is still examined (the bounds keep their margin and
   // ties go to the lowest index), so only the number of nodes visited changes.
-  ClosestHit closest(Vec2 p, int hint = -1) const {
+  ClosestHit closest(Vec2 query, int hint = -1) const {
+    double px = query.x, py = query.y;
+#if defined(__SSE2__) && defined(__GNUC__)
+    // The coordinates stay in registers: without this barrier the vectorizer packed them into one
+    // register by two 8-byte stores and a 16-byte load, a store-forwarding stall in every search.
+    asm("" : "+x"(px), "+x"(py));
+#endif
+    const Vec2 p{px, py};
     ClosestHit best;
     best.distance = std::numeric_limits<double>::infinity();
     if (nodes_.empty()) return ClosestHit{};
