@@ -245,6 +245,40 @@ TEST_CASE("GeometryTree edge cases", "[tree]") {
     }
     CHECK(tree.closest({0, 0}).segment == 0);  // all 24 tie at distance 0
   }
+  SECTION("leaves of more than 64 segments") {
+    // closest() scans a leaf's entries in blocks of 64. Segments that all meet at the root centre
+    // stay in one leaf however deep the split: 150 curves of one segment each (one leaf of 150 in
+    // the tree over all segments) and one zigzag curve of 300 segments that all touch the centre (one
+    // leaf of 300 in that curve's tree). The answers must be the brute force's, whichever block holds
+    // the closest segment, seeded by the previous point's answers or not.
+    std::vector<std::vector<Vec2>> curves;
+    for (int i = 0; i < 150; ++i) {
+      const double a = 2 * M_PI * i / 150;
+      curves.push_back({{0, 0}, {std::cos(a), std::sin(a)}});
+    }
+    std::vector<Vec2> zigzag{{0, 0}};
+    for (int i = 0; i < 150; ++i) {
+      const double a = 2 * M_PI * (i + 0.5) / 150;
+      zigzag.push_back({0.5 * std::cos(a), 0.5 * std::sin(a)});
+      zigzag.push_back({0, 0});
+    }
+    curves.push_back(zigzag);
+    const Geometry g = fixtures::make_geometry(curves);
+    const GeometryTree tree(g);
+    CHECK(tree.stats().max_depth <= 1);  // no split separates them: the leaves are the long ones
+    std::mt19937_64 rng(5);
+    std::vector<ClosestHit> near, brute;
+    for (int i = 0; i < 2000; ++i) {
+      const double r = (i % 2 == 0 ? 0.3 : 1.5) * unit(rng), a = 2 * M_PI * unit(rng);
+      const Vec2 p = i % 7 == 0 ? query_point(g, rng) : Vec2{r * std::cos(a), r * std::sin(a)};
+      require_same(tree.closest(p), brute_force::closest(g, p), p);
+      require_same(tree.closest_on_curve(p, 150), brute_force::closest_on_curve(g, p, 150), p);
+      tree.closest_per_curve_near(p, near);
+      brute_force::closest_per_curve(g, p, brute);
+      REQUIRE(near.size() == brute.size());
+      for (std::size_t k = 0; k < near.size(); ++k) require_same(near[k], brute[k], p);
+    }
+  }
   SECTION("no segments") {
     const Geometry g;
     const GeometryTree tree(g);

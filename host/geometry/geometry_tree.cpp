@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
+#include <cstdint>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -14,6 +16,10 @@
 #include "core/errors.hpp"
 #include "core/predicates.hpp"
 #include "geometry/closest_on_segment.hpp"
+
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
 
 namespace pdmesh {
 
@@ -93,12 +99,25 @@ struct Node {
 // fmax(v, 0) without the library call: NaN (a NaN query point) gives 0, as fmax does.
 inline double positive_part(double v) { return v > 0.0 ? v : 0.0; }
 
-// Squared distance from p to the closed box b (0 inside).
+// Squared distance from p to the closed box b (0 inside): the inner loop of closest(), for every child
+// and every leaf entry it looks at. The SSE2 form computes both axes at once and gives the same bits
+// as the scalar one: maxpd(a, b) is a > b ? a : b lane by lane, so maxpd(v, u) is std::max(u, v) and
+// maxpd(w, 0) is positive_part(w), NaN included, and dx * dx + dy * dy is one multiply per lane and
+// the same addition.
 inline double box_distance2(Vec2 p, const Box& b) {
+#if defined(__SSE2__)
+  const __m128d q = _mm_set_pd(p.y, p.x);
+  const __m128d u = _mm_sub_pd(_mm_loadu_pd(&b.lo.x), q);  // (lo.x - p.x, lo.y - p.y)
+  const __m128d v = _mm_sub_pd(q, _mm_loadu_pd(&b.hi.x));  // (p.x - hi.x, p.y - hi.y)
+  const __m128d w = _mm_max_pd(_mm_max_pd(v, u), _mm_setzero_pd());
+  const __m128d w2 = _mm_mul_pd(w, w);
+  return _mm_cvtsd_f64(w2) + _mm_cvtsd_f64(_mm_unpackhi_pd(w2, w2));
+#else
   // Both differences are NaN together (NaN p) or both are numbers, so std::max agrees with fmax.
   const double dx = positive_part(std::max(b.lo.x - p.x, p.x - b.hi.x));
   const double dy = positive_part(std::max(b.lo.y - p.y, p.y - b.hi.y));
   return dx * dx + dy * dy;
+#endif
 }
 
 // Distance from p to the node's capsule axis. Along the unit direction, without point_segment_
@@ -111,11 +130,14 @@ inline double axis_distance(Vec2 p, const Node& n) {
   return std::sqrt(ex * ex + ey * ey);
 }
 
-// Squared distance from p to the bounding box of segment s.
-inline double segment_box_distance2(Vec2 p, const Segment& s) {
-  const double dx = positive_part(std::max(std::min(s.a.x, s.b.x) - p.x, p.x - std::max(s.a.x, s.b.x)));
-  const double dy = positive_part(std::max(std::min(s.a.y, s.b.y) - p.y, p.y - std::max(s.a.y, s.b.y)));
-  return dx * dx + dy * dy;
+// The bounding box of a leaf's segment, stored beside the leaf's segment ids (item_boxes_): the leaf
+// scan of closest() reads these 32 contiguous bytes per entry instead of the 48-byte segment and its
+// min/max, and most entries are rejected by them.
+Box item_box(const Segment& s) {
+  Box b;
+  b.lo = {std::min(s.a.x, s.b.x), std::min(s.a.y, s.b.y)};
+  b.hi = {std::max(s.a.x, s.b.x), std::max(s.a.y, s.b.y)};
+  return b;
 }
 
 // A square box around the given segments (square so that leaves stay square, whatever the
@@ -156,7 +178,14 @@ class Quadtree {
   // hint >= 0: a segment of this tree whose hit seeds the search. The result does not depend on it:
   // every segment at least as close as the seed is still examined (the bounds keep their margin and
   // ties go to the lowest index), so only the number of nodes visited changes.
-  ClosestHit closest(Vec2 p, int hint = -1) const {
+  ClosestHit closest(Vec2 query, int hint = -1) const {
+    double px = query.x, py = query.y;
+#if defined(__SSE2__) && defined(__GNUC__)
+    // The coordinates stay in registers: without this barrier the vectorizer packed them into one
+    // register by two 8-byte stores and a 16-byte load, a store-forwarding stall in every search.
+    asm("" : "+x"(px), "+x"(py));
+#endif
+    const Vec2 p{px, py};
     ClosestHit best;
     best.distance = std::numeric_limits<double>::infinity();
     if (nodes_.empty()) return ClosestHit{};
@@ -166,64 +195,99 @@ class Quadtree {
     // inner loop of every eq. 3.6 evaluation: 15 searches per point on 30P30N). The nodes visited
     // are a superset of the best-first search's, so the result is the same: every segment that could
     // beat or tie the best hit is examined, ties going to the lowest index.
-    // Entries without a default initializer: std::pair's would zero the whole stack (1 KB) on every
-    // search; only entries below `top` are ever read.
-    struct Pending {
-      double d;
-      int n;
-    };
-    std::array<Pending, 3 * GeometryTree::kMaxDepth + 8> stack;
+    // Plain arrays without initializers (zeroing them would cost more than most searches; only
+    // entries below `top` are ever read), and two of them rather than one of {d, n} pairs: the
+    // insertion sort below moves entries written a moment before, and a pair moved as one 16-byte
+    // load would wait for its two field stores to retire (store forwarding fails).
+    constexpr int kStack = 3 * GeometryTree::kMaxDepth + 8;
+    double stack_d[kStack];
+    int stack_n[kStack];
     int top = 0;
     // The root goes on without its bound (0 is a lower bound too): it is expanded whatever its
     // bound, since its children's bounds decide the same pruning (15 searches per eq. 3.6 point).
-    stack[top++] = {0.0, 0};
+    stack_d[top] = 0.0;
+    stack_n[top] = 0;
+    ++top;
     while (top > 0) {
-      const auto [d, n] = stack[--top];
+      --top;
+      const double d = stack_d[top];
+      const int n = stack_n[top];
       if (d > bound(best.distance)) continue;
       const Node& node = nodes_[n];
       if (node.first_child < 0) {
-        for (int i = node.begin; i < node.begin + node.count; ++i) {
-          const int id = items_[i];
-          // The seed was measured first, and measuring it again cannot change the best hit (a tie
-          // goes to the lower index either way). It is the answer in 93% of the searches of 30P30N's
-          // eq. 3.6 and lies in several of the leaves visited: skipping it saves two of every three
-          // closest_on_segment calls there (9.2M -> 3.0M).
-          if (id == hint) continue;
-          const Segment& seg = (*segments_)[id];
-          // The segment's bounding box is a lower bound on its distance, with the same margin as
-          // the node boxes: a segment skipped here could neither beat nor tie the best hit.
-          // Skips most of the divisions and square roots of closest_on_segment.
-          if (best.segment >= 0) {
-            const double limit = bound(best.distance);
-            if (segment_box_distance2(p, seg) > limit * limit) continue;
+        // The segment's bounding box is a lower bound on its distance, with the same margin as the
+        // node boxes: a segment skipped by it could neither beat nor tie the best hit. It skips most
+        // of the divisions and square roots of closest_on_segment. Before any hit there is no bound
+        // (limit2 is +inf, and a NaN query point's NaN limit2 skips nothing either).
+        double limit2 = std::numeric_limits<double>::infinity();
+        if (best.segment >= 0) {
+          const double limit = bound(best.distance);
+          limit2 = limit * limit;
+        }
+        // Local pointers: the loop reads nothing through `this` (kept in registers, not reloaded).
+        const int* const ids = items_.data() + node.begin;
+        const Box* const boxes = item_boxes_.data() + node.begin;
+        const Segment* const segments = segments_->data();
+        // In blocks of 64 entries: first every entry's box distance and a bit mask of those within
+        // the bound, without a branch per entry (whether an entry passes follows no pattern, and a
+        // mispredicted branch costs more than the test); then the entries of the mask in order,
+        // tested again against the bound of the moment, which a hit may have lowered. The entries
+        // measured are the same as one test per entry in order would measure.
+        for (int first = 0; first < node.count; first += 64) {
+          const int block = std::min(64, node.count - first);
+          double d2[64];
+          std::uint64_t within = 0;
+          for (int i = 0; i < block; ++i) {
+            d2[i] = box_distance2(p, boxes[first + i]);
+            within |= static_cast<std::uint64_t>(!(d2[i] > limit2)) << i;
           }
-          const ClosestHit h = detail::closest_on_segment_inline(p, seg, id);
-          if (h.distance < best.distance || (h.distance == best.distance && id < best.segment)) best = h;
+          while (within != 0) {
+            const int i = std::countr_zero(within);
+            within &= within - 1;
+            if (d2[i] > limit2) continue;
+            const int id = ids[first + i];
+            // The seed was measured first, and measuring it again cannot change the best hit (a
+            // tie goes to the lower index either way). It is the answer in 93% of the searches of
+            // 30P30N's eq. 3.6 and lies in several of the leaves visited: skipping it saves two of
+            // every three closest_on_segment calls there (9.2M -> 3.0M).
+            if (id == hint) continue;
+            const ClosestHit h = detail::closest_on_segment_inline(p, segments[id], id);
+            if (h.distance < best.distance || (h.distance == best.distance && id < best.segment)) {
+              best = h;
+              const double limit = bound(best.distance);
+              limit2 = limit * limit;
+            }
+          }
         }
         continue;
       }
-      Pending kids[4];
-      int count = 0;
+      // The surviving children go straight onto the stack above `base`, insertion-sorted farthest
+      // first so that the nearest is popped next: sorted in place, with no copy from a separate array.
+      const int base = top;
+      const double limit = bound(best.distance);
+      const double limit2 = limit * limit;
       for (int c = node.first_child; c < node.first_child + 4; ++c) {
         const Node& kid = nodes_[c];
-        if (kid.first_child < 0 && kid.count == 0) continue;  // empty leaf
         // The content box first, squared: most children are pruned by it without the capsule's
         // division and square roots (the same children are pruned as by the larger of the two bounds).
-        const double limit = bound(best.distance);
+        // An empty leaf needs no test of its own (whether a child is one follows no pattern, and the
+        // branch was mispredicted millions of times on 30P30N): its content box is the empty Box{}
+        // (lo 1e300, hi -1e300), at a squared distance of +inf, so it is pruned here once any segment
+        // has been measured, and if pushed before that it is popped with nothing to measure.
         const double box2 = box_distance2(p, kid.content);
-        if (box2 > limit * limit) continue;
+        if (box2 > limit2) continue;
         double kd = std::sqrt(box2);
         if (kid.cap_r >= 0.0) kd = std::max(kd, axis_distance(p, kid) - kid.cap_r);
         if (kd > limit) continue;
-        // Insertion into kids, farthest first, so that the nearest is pushed last and popped next.
-        int k = count++;
-        while (k > 0 && kids[k - 1].d < kd) {
-          kids[k] = kids[k - 1];
+        int k = top++;
+        while (k > base && stack_d[k - 1] < kd) {
+          stack_d[k] = stack_d[k - 1];
+          stack_n[k] = stack_n[k - 1];
           --k;
         }
-        kids[k] = {kd, c};
+        stack_d[k] = kd;
+        stack_n[k] = c;
       }
-      for (int k = 0; k < count; ++k) stack[top++] = kids[k];
     }
     return best;
   }
@@ -373,6 +437,7 @@ class Quadtree {
     nodes_[n].begin = static_cast<int>(items_.size());
     nodes_[n].count = static_cast<int>(ids.size());
     items_.insert(items_.end(), ids.begin(), ids.end());
+    for (const int id : ids) item_boxes_.push_back(item_box((*segments_)[id]));
     Box bb;
     for (const int id : ids) {
       bb.add((*segments_)[id].a);
@@ -387,6 +452,7 @@ class Quadtree {
   const std::vector<Segment>* segments_;
   std::vector<Node> nodes_;
   std::vector<int> items_;
+  std::vector<Box> item_boxes_;  // the bounding box of each items_ entry's segment (item_box)
   Box bounds_;
   double slack_ = 0.0;
 };

@@ -105,6 +105,11 @@ FeatureSize::FeatureSize(const Geometry& geometry) : geometry_(geometry) {
     if (loop_[s] < 0)
       throw Error(fmt::format("feature size: segment {} of curve {} belongs to no loop", segs[s].index, segs[s].curve));
   scale_ = coordinate_magnitude(segs);
+  segment_box_.resize(n);
+  for (std::size_t s = 0; s < n; ++s) {
+    segment_box_[s].add(segs[s].a);
+    segment_box_[s].add(segs[s].b);
+  }
   order_.resize(n);
   for (std::size_t s = 0; s < n; ++s) order_[s] = static_cast<std::int32_t>(s);
   if (n > 0) {
@@ -221,11 +226,7 @@ ClosestHit FeatureSize::closest(Vec2 x, int hint) const {
       x, [&](const Node& n) { return box_distance2(n.box, x) > skip2; },
       [&](std::int32_t si) {
         if (seeded && si == hint) return;  // measured first
-        const Segment& s = segs[static_cast<std::size_t>(si)];
-        Box b;
-        b.add(s.a);
-        b.add(s.b);
-        if (box_distance2(b, x) > skip2) return;
+        if (box_distance2(segment_box_[static_cast<std::size_t>(si)], x) > skip2) return;
         measure(si);
       });
   return best;

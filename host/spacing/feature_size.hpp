@@ -82,6 +82,7 @@ class FeatureSize {
   double scale_ = 0.0;               // coordinate_magnitude of the segments
   std::vector<Node> nodes_;          // bounding-volume hierarchy over segments; root is nodes_[0]
   std::vector<std::int32_t> order_;  // segment indices, leaf by leaf
+  std::vector<Box> segment_box_;     // per segment: its bounding box (closest() skips most segments by it)
 };
 
 }  // namespace pdmesh
