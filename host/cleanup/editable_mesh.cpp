@@ -74,8 +74,8 @@ EditableMesh::EditableMesh(const Mesh& mesh, const std::vector<std::vector<int>>
   v = mesh.triangles;
   n.assign(v.size(), {-1, -1, -1});
   // The triangles around each vertex, ascending (compressed rows: `first[a]` .. `first[a + 1]`). The
-  // neighbour across t's edge a -> b is the triangle with b -> a counter-clockwise, found among a's
-  // triangles; where a broken mesh has several, the lowest (triangle, local index) is taken. Each
+  // neighbour across t's edge b -> a (counter-clockwise in t) is the triangle with a -> b, found among
+  // a's triangles; where a broken mesh has several, the lowest (triangle, local index) is taken. Each
   // triangle writes only its own neighbours, so the search runs on several threads.
   std::vector<std::size_t> first(np + 1, 0);
   for (const auto& tv : v)
