@@ -141,7 +141,8 @@ class CleanupRun {
              const CleanupOptions& options, double ratio)
       : options_(options),
         limits_(limits_of(options)),
-        m_(mesh, nodes.curve_nodes, boundary_arcs(tree.geometry(), nodes)),
+        m_(mesh, nodes.curve_nodes, boundary_arcs(tree.geometry(), nodes),
+           cleanup::sweep_thread_limit(options.threads)),
         smoother_(m_, tree.geometry(), options.step_cap),
         ops_(
             m_, smoother_, tree.geometry(), [&spacing, ratio](Vec2 p) { return ratio * spacing.at(p); },
@@ -191,6 +192,7 @@ class CleanupRun {
   cleanup::TopologyOps ops_;
   const std::size_t trial_budget_;
   std::vector<std::uint8_t> mark_;
+  std::vector<double> aspect_;  // set_aspect_totals()'s aspect ratios, by slot
   Scores scores_{options_.threads};
   std::unique_ptr<cleanup::StripSweeps> strips_;  // null: serial sweeps
   std::set<std::array<int, 3>> failures_;
@@ -242,11 +244,21 @@ std::vector<std::pair<double, int>> CleanupRun::topology_list(const std::vector<
 }
 
 // The sum and count of the live triangles' aspect ratios, which the topology operations' gain measures.
+// The aspect ratios are computed on several threads, each slot its own; the sum is then taken on one
+// thread in slot order, so it is the same number on any thread count.
 void CleanupRun::set_aspect_totals() {
+  aspect_.resize(static_cast<std::size_t>(m_.triangle_slots()));
+  parallel_for(
+      aspect_.size(),
+      [&](std::size_t slot) {
+        const int t = static_cast<int>(slot);
+        if (m_.alive(t)) aspect_[slot] = m_.aspect(t);
+      },
+      16384, cleanup::sweep_thread_limit(options_.threads));
   double aspect_sum = 0.0, count = 0.0;
   for (int t = 0; t < m_.triangle_slots(); ++t)
     if (m_.alive(t)) {
-      aspect_sum += m_.aspect(t);
+      aspect_sum += aspect_[static_cast<std::size_t>(t)];
       count += 1.0;
     }
   ops_.set_aspect_totals(aspect_sum, count);
@@ -338,8 +350,10 @@ bool CleanupRun::settled(int iteration, const CleanupIteration& record) {
 // Lawson flips over every edge of the mesh. Each edit legalises the edges it can make illegal but one:
 // an edge collapse moves the kept node and legalises only its link, not its spokes, and a spoke left
 // illegal there is mostly flipped by a later move of the node or of a neighbour, but not always (the
-// user corpus's square_circle_hole). A mesh that is constrained Delaunay already flips nothing here.
+// user corpus's square_circle_hole). A mesh that is constrained Delaunay already flips nothing here,
+// which the test on several threads finds without the list of every edge.
 void CleanupRun::legalize_all() {
+  if (m_.locally_delaunay(cleanup::sweep_thread_limit(options_.threads))) return;
   std::vector<cleanup::EdgeRef> edges;
   for (int t = 0; t < m_.triangle_slots(); ++t)
     if (m_.alive(t))

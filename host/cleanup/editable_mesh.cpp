@@ -12,6 +12,7 @@
 
 #include "cleanup/measures.hpp"
 #include "core/errors.hpp"
+#include "core/parallel.hpp"
 #include "core/predicates.hpp"
 
 namespace pdmesh::cleanup {
@@ -26,7 +27,7 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 }  // namespace
 
 EditableMesh::EditableMesh(const Mesh& mesh, const std::vector<std::vector<int>>& curve_nodes,
-                           const std::vector<std::vector<double>>& arcs)
+                           const std::vector<std::vector<double>>& arcs, std::size_t threads)
     : fixed_on_curve_(curve_nodes.size()) {
   const std::size_t np = mesh.points.size();
   p = mesh.points;
@@ -72,19 +73,42 @@ EditableMesh::EditableMesh(const Mesh& mesh, const std::vector<std::vector<int>>
   }
   v = mesh.triangles;
   n.assign(v.size(), {-1, -1, -1});
-  std::unordered_map<std::uint64_t, std::pair<int, int>> half_edges;
-  half_edges.reserve(3 * v.size());
-  for (int t = 0; t < static_cast<int>(v.size()); ++t)
-    for (int i = 0; i < 3; ++i) half_edges.emplace(directed_key(v[t][next3(i)], v[t][prev3(i)]), std::make_pair(t, i));
-  for (int t = 0; t < static_cast<int>(v.size()); ++t) {
-    for (int i = 0; i < 3; ++i) {
-      const int a = v[t][prev3(i)], b = v[t][next3(i)];
-      if (!cut.empty() && cut.count(directed_key(std::min(a, b), std::max(a, b)))) continue;
-      const auto it = half_edges.find(directed_key(a, b));
-      if (it != half_edges.end()) n[t][i] = it->second.first;
-    }
-    for (int a : v[t]) vt[a] = t;
+  // The triangles around each vertex, ascending (compressed rows: `first[a]` .. `first[a + 1]`). The
+  // neighbour across t's edge b -> a (counter-clockwise in t) is the triangle with a -> b, found among
+  // a's triangles; where a broken mesh has several, the lowest (triangle, local index) is taken. Each
+  // triangle writes only its own neighbours, so the search runs on several threads.
+  std::vector<std::size_t> first(np + 1, 0);
+  for (const auto& tv : v)
+    for (int a : tv) ++first[static_cast<std::size_t>(a) + 1];
+  for (std::size_t a = 0; a < np; ++a) first[a + 1] += first[a];
+  std::vector<int> around(first[np]);
+  {
+    std::vector<std::size_t> fill(first.begin(), first.end() - 1);
+    for (int t = 0; t < static_cast<int>(v.size()); ++t)
+      for (int a : v[t]) around[fill[static_cast<std::size_t>(a)]++] = t;
   }
+  // A vertex's incident triangle: the last one that has it.
+  for (std::size_t a = 0; a < np; ++a)
+    if (first[a + 1] > first[a]) vt[a] = around[first[a + 1] - 1];
+  parallel_for(
+      v.size(),
+      [&](std::size_t slot) {
+        const auto& tv = v[slot];
+        for (int i = 0; i < 3; ++i) {
+          const int a = tv[prev3(i)], b = tv[next3(i)];
+          if (!cut.empty() && cut.count(directed_key(std::min(a, b), std::max(a, b)))) continue;
+          const auto ua = static_cast<std::size_t>(a);
+          for (std::size_t k = first[ua]; k < first[ua + 1] && n[slot][i] < 0; ++k) {
+            const auto& sv = v[static_cast<std::size_t>(around[k])];
+            for (int j = 0; j < 3; ++j)
+              if (sv[next3(j)] == a && sv[prev3(j)] == b) {
+                n[slot][i] = around[k];
+                break;
+              }
+          }
+        }
+      },
+      16384, threads);
   // A vertex inside the domain must have a closed star; the kinds decide what may move, so an
   // interior vertex on the mesh boundary (a mesh that does not conform) is pinned.
   for (int t = 0; t < static_cast<int>(v.size()); ++t)

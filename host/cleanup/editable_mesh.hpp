@@ -4,6 +4,7 @@
 // operation can be measured and undone (editable_mesh.cpp).
 #pragma once
 #include <array>
+#include <cstddef>
 #include <cstdint>
 #include <unordered_map>
 #include <vector>
@@ -40,9 +41,10 @@ class TriangleScore {
 class EditableMesh {
  public:
   // mesh: a boundary-conforming triangulation with kinds (triangulate()'s output); curve_nodes:
-  // per curve, its nodes in order (NodeSet::curve_nodes); arcs: their arc positions on the curve.
+  // per curve, its nodes in order (NodeSet::curve_nodes); arcs: their arc positions on the curve;
+  // threads: at most this many threads find the triangles' neighbours (the same mesh on any number).
   EditableMesh(const Mesh& mesh, const std::vector<std::vector<int>>& curve_nodes,
-               const std::vector<std::vector<double>>& arcs);
+               const std::vector<std::vector<double>>& arcs, std::size_t threads = 8);
 
   // Vertices.
   std::vector<Vec2> p;
@@ -104,6 +106,10 @@ class EditableMesh {
   // through the triangle it names, not by a walk around a vertex: a node of an embedded constraint
   // has one open fan on each side of the cut, and a walk from vt[] sees only one of them.
   void legalize(std::vector<EdgeRef>& edges);
+  // Whether legalize() given every edge of the live triangles would flip none: no edge between two
+  // triangles has the opposite vertex strictly inside the circumcircle (exact incircle, the test
+  // legalize() makes). Read-only, on at most `threads` threads.
+  bool locally_delaunay(std::size_t threads) const;
   // Pushes the edges of a's link (the ones opposite a) for legalize().
   void push_link_edges(int a, std::vector<EdgeRef>& edges) const;
   void move(int a, Vec2 to, double new_arc);

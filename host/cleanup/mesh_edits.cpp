@@ -1,9 +1,12 @@
 // The local edits of the editable mesh (editable_mesh.hpp): flip, Lawson legalisation, vertex move,
 // 1->3 insertion, interior and boundary edge splits, edge collapse. Each goes through the journal
-// hooks of editable_mesh.cpp, so a trial edit can be measured and undone.
+// hooks of editable_mesh.cpp, so a trial edit can be measured and undone. Also the Delaunay test of
+// the whole mesh that legalize() would make.
 #include <algorithm>
+#include <atomic>
 
 #include "cleanup/editable_mesh.hpp"
+#include "core/parallel.hpp"
 #include "core/predicates.hpp"
 
 namespace pdmesh::cleanup {
@@ -65,6 +68,25 @@ void EditableMesh::legalize(std::vector<EdgeRef>& edges) {
       edges.push_back({b, pv, u});
     }
   }
+}
+
+bool EditableMesh::locally_delaunay(std::size_t threads) const {
+  std::atomic<bool> illegal{false};
+  parallel_for(
+      static_cast<std::size_t>(triangle_slots()),
+      [&](std::size_t slot) {
+        const int t = static_cast<int>(slot);
+        if (!alive(t) || illegal.load(std::memory_order_relaxed)) return;
+        for (int i = 0; i < 3; ++i) {
+          // The edge a -> b opposite v[t][i], as legalize() tests it from t.
+          const int a = v[t][next3(i)], b = v[t][prev3(i)], u = n[t][i];
+          if (u < 0 || gone_[a] || gone_[b]) continue;
+          const int q = v[u][index_of(n[u], t)];
+          if (incircle(p[v[t][i]], p[a], p[b], p[q]) > 0.0) illegal.store(true, std::memory_order_relaxed);
+        }
+      },
+      16384, threads);
+  return !illegal.load();
 }
 
 void EditableMesh::push_link_edges(int a, std::vector<EdgeRef>& edges) const {

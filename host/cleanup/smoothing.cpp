@@ -135,12 +135,14 @@ bool Smoother::flips_needed(int a, Vec2 to) const {
   return false;
 }
 
-bool Smoother::relax(int a) {
+bool Smoother::relax(int a) { return relax(a, false); }
+
+bool Smoother::relax(int a, bool star_known) {
   auto& m = mesh_;
   deferred_ = false;
   if (m.removed(a) || !m.movable(a)) return false;
   if (m.kind[a] == NodeKind::Boundary && m.curve[a] < 0) return false;
-  m.star(a, fan_);
+  if (!star_known) m.star(a, fan_);
   double old_min = std::numeric_limits<double>::infinity(), old_sum = 0.0, area_sum = 0.0;
   double r_min = std::numeric_limits<double>::infinity();
   Vec2 weighted{};
@@ -178,12 +180,14 @@ Vec2 Smoother::score_gradient(int t, int a, double h) const {
   return {score_at(x + Vec2{h, 0}) - score_at(x - Vec2{h, 0}), score_at(x + Vec2{0, h}) - score_at(x - Vec2{0, h})};
 }
 
-bool Smoother::climb(int a) {
+bool Smoother::climb(int a) { return climb(a, false); }
+
+bool Smoother::climb(int a, bool star_known) {
   auto& m = mesh_;
   deferred_ = false;
   if (m.removed(a) || !m.movable(a)) return false;
   if (m.kind[a] == NodeKind::Boundary && m.curve[a] < 0) return false;
-  m.star(a, fan_);
+  if (!star_known) m.star(a, fan_);
   double old_min = std::numeric_limits<double>::infinity(), second_min = old_min, old_sum = 0.0;
   double r_min = std::numeric_limits<double>::infinity();
   int worst = -1, second = -1;

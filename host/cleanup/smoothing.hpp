@@ -55,6 +55,11 @@ class Smoother {
   // Gradient move: a step that raises the smallest angle of a's worst adjacent triangle, for
   // vertices whose ODT point does not help (same guards as relax).
   bool climb(int a);
+  // relax() and climb() for a caller that has put a's star (EditableMesh::star(a)) in star_buffer(),
+  // with no edit since: they use it rather than walk the star again (the strip sweeps' test walks it).
+  bool relax_with_star(int a) { return relax(a, true); }
+  bool climb_with_star(int a) { return climb(a, true); }
+  std::vector<int>& star_buffer() { return fan_; }
   const MoveGain& last_gain() const { return last_gain_; }
   // The least gain a sweep move must make (a trial's relaxation takes any): a rise of the star's
   // smallest score above min_rise, or a drop of its aspect-ratio sum above aspect_drop per star
@@ -80,6 +85,9 @@ class Smoother {
   bool deferred() const { return deferred_; }
 
  private:
+  // star_known: fan_ holds a's star already.
+  bool relax(int a, bool star_known);
+  bool climb(int a, bool star_known);
   // lift: judged by the star's smallest score alone (set_lift).
   bool try_move(int a, Vec2 displacement, double old_min, double old_sum, bool lift = false);
   Vec2 on_curve(int a, Vec2 candidate, double& new_arc) const;

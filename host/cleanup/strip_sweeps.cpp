@@ -38,7 +38,8 @@ void StripSweeps::label_new(const EditableMesh& mesh) {
 // Whether strip s may move a: its star's vertices are all in s, the vertices across its link edges
 // (the edges opposite a, which Smoother::flips_needed tests) in s or a neighbouring strip, and so are
 // its neighbours along its curve (whose arcs bound its slide). A star's spokes lie between two of its
-// triangles or on the boundary, so what lies across them is in the star already.
+// triangles or on the boundary, so what lies across them is in the star already. When a may move and
+// the test reaches the star, `fan` holds a's star afterwards (whatever the answer).
 bool StripSweeps::inside(const EditableMesh& mesh, int a, int s, std::vector<int>& fan) const {
   if (mesh.removed(a) || !mesh.movable(a)) return true;  // relax() and climb() write nothing then
   auto near = [&](int x) { return std::abs(label_[x] - s) <= 1; };
@@ -68,15 +69,15 @@ SweepTally StripSweeps::sweep(EditableMesh& mesh, Smoother& serial, const std::v
   auto run_strip = [&](int s) {
     Smoother smoother = serial;  // its settings; its own buffers
     smoother.set_defer_flips(true);
-    std::vector<int> fan;
     const auto k = static_cast<std::size_t>(s);
     for (int a : bucket[k]) {
       if (!worth(a)) continue;
-      if (!inside(mesh, a, s, fan)) {
+      // inside() leaves a's star in the smoother's buffer wherever the move needs it.
+      if (!inside(mesh, a, s, smoother.star_buffer())) {
         later[k].push_back(a);
         continue;
       }
-      const bool moved = step(smoother, a);
+      const bool moved = move == SweepMove::Relax ? smoother.relax_with_star(a) : smoother.climb_with_star(a);
       if (smoother.deferred())
         later[k].push_back(a);
       else if (moved)

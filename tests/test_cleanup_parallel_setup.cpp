@@ -1,0 +1,134 @@
+// The cleanup's shortcuts around its sweeps (issue 41) against the serial ways they replace: the
+// editable mesh's neighbours found on several threads against a map of half-edges, the Delaunay test
+// of the whole mesh against Lawson flips over every edge, and a sweep move given the star the strips'
+// test walked against one that walks it.
+#include <catch2/catch.hpp>
+
+#include <cstdint>
+#include <random>
+#include <unordered_map>
+#include <vector>
+
+#include "cleanup/editable_mesh.hpp"
+#include "cleanup/smoothing.hpp"
+#include "geometry/geometry_tree.hpp"
+#include "init/initial_distribution.hpp"
+#include "mesh/triangulate_nodes.hpp"
+#include "nodes/boundary_arcs.hpp"
+#include "spacing/spacing_field.hpp"
+#include "geometry_fixtures.hpp"
+
+using namespace pdmesh;
+using cleanup::EditableMesh;
+
+namespace {
+
+// The square [0, 8]^2 with the square hole [3, 5]^2, fine boundary segments: about 22,000 triangles from
+// the boundary spacing, more than one block (16,384) of the parallel loops, so they take two threads.
+struct Holed {
+  Geometry g = fixtures::make_geometry(
+      {fixtures::rectangle({0, 0}, {8, 8}, 96, true), fixtures::rectangle({3, 3}, {5, 5}, 24, false)});
+  GeometryTree tree{g};
+  BoundarySpacing spacing{tree};
+  NodeSet nodes;
+  Mesh mesh;
+  Holed() {
+    nodes = make_initial_distribution(tree, spacing, {InitMethod::Random, 11, {}, false}).nodes;
+    std::vector<std::string> names;
+    for (const Curve& c : g.curves) names.push_back(c.name);
+    mesh = triangulate(nodes, names);
+  }
+  EditableMesh editable(std::size_t threads) const {
+    return EditableMesh(mesh, nodes.curve_nodes, boundary_arcs(g, nodes), threads);
+  }
+};
+
+std::uint64_t key(int a, int b) {
+  return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(a)) << 32) | static_cast<std::uint32_t>(b);
+}
+
+// Lawson flips from every edge of the live triangles; true when any edge was flipped.
+bool legalize_everything(EditableMesh& m) {
+  const auto before = m.v;
+  std::vector<cleanup::EdgeRef> edges;
+  for (int t = 0; t < m.triangle_slots(); ++t)
+    if (m.alive(t))
+      for (int i = 0; i < 3; ++i) edges.push_back({m.v[t][cleanup::next3(i)], m.v[t][cleanup::prev3(i)], t});
+  m.legalize(edges);
+  return m.v != before;
+}
+
+}  // namespace
+
+TEST_CASE("the editable mesh's neighbours and vertex records on 1 and 2 threads are a half-edge map's", "[cleanup]") {
+  const Holed h;
+  REQUIRE(h.mesh.triangles.size() > 16384);
+  // The reference: each triangle's edges in a map of directed half-edges (the first one kept), every
+  // edge looked up reversed; a vertex's record names the last triangle that has it.
+  const auto& tri = h.mesh.triangles;
+  std::unordered_map<std::uint64_t, int> half_edges;
+  for (int t = 0; t < static_cast<int>(tri.size()); ++t)
+    for (int i = 0; i < 3; ++i) half_edges.emplace(key(tri[t][cleanup::next3(i)], tri[t][cleanup::prev3(i)]), t);
+  std::vector<std::array<int, 3>> n(tri.size(), {-1, -1, -1});
+  std::vector<int> vt(h.mesh.points.size(), -1);
+  for (int t = 0; t < static_cast<int>(tri.size()); ++t) {
+    for (int i = 0; i < 3; ++i) {
+      const auto it = half_edges.find(key(tri[t][cleanup::prev3(i)], tri[t][cleanup::next3(i)]));
+      if (it != half_edges.end()) n[t][i] = it->second;
+    }
+    for (int a : tri[t]) vt[a] = t;
+  }
+  for (const std::size_t threads : {1, 2}) {
+    INFO(threads << " threads");
+    const EditableMesh m = h.editable(threads);
+    CHECK(m.n == n);
+    CHECK(m.vt == vt);
+  }
+}
+
+TEST_CASE("the whole mesh's Delaunay test answers whether Lawson flips over every edge flip any", "[cleanup]") {
+  const Holed h;
+  {
+    EditableMesh m = h.editable(2);
+    CHECK(m.locally_delaunay(1));
+    CHECK(m.locally_delaunay(2));
+    CHECK_FALSE(legalize_everything(m));
+  }
+  // Interior nodes pushed about by up to `push` (no push: no illegal edge), a push kept only where no
+  // triangle of the node's star inverts, so that the flips work on a valid mesh.
+  std::mt19937_64 rng(5);
+  for (const double push : {0.0, 0.002, 0.02}) {
+    INFO("push " << push);
+    EditableMesh m = h.editable(2);
+    std::uniform_real_distribution<double> d(-push, push);
+    for (int a = 0; a < m.vertex_slots(); ++a) {
+      if (m.kind[a] != NodeKind::Interior) continue;
+      const Vec2 was = m.p[a];
+      m.p[a] = was + Vec2{d(rng), d(rng)};
+      if (!m.star_valid(a)) m.p[a] = was;
+    }
+    const bool one = m.locally_delaunay(1), two = m.locally_delaunay(2);
+    CHECK(one == two);
+    CHECK(one == !legalize_everything(m));
+    if (push > 0.01) CHECK_FALSE(one);  // so the test can fail both ways
+  }
+}
+
+TEST_CASE("a sweep move given the star the strips' test walked is the move that walks it", "[cleanup]") {
+  const Holed h;
+  EditableMesh walked = h.editable(1), given = h.editable(2);
+  cleanup::Smoother walks(walked, h.g, 0.5), takes(given, h.g, 0.5);
+  std::size_t moved = 0;
+  for (int sweep = 0; sweep < 2; ++sweep)
+    for (int a = 0; a < walked.vertex_slots(); ++a) {
+      const bool climb = (a + sweep) % 2 == 1;
+      given.star(a, takes.star_buffer());
+      const bool x = climb ? walks.climb(a) : walks.relax(a);
+      const bool y = climb ? takes.climb_with_star(a) : takes.relax_with_star(a);
+      REQUIRE(x == y);
+      moved += x;
+    }
+  CHECK(moved > 1000);
+  CHECK(walked.p == given.p);
+  CHECK(walked.v == given.v);
+}
