@@ -270,8 +270,8 @@ class Quadtree {
         const Node& kid = nodes_[c];
         // The content box first, squared: most children are pruned by it without the capsule's
         // division and square roots (the same children are pruned as by the larger of the two bounds).
-        // An empty leaf needs no test of its own (whether a child is one follows no pattern, and the
-        // branch was mispredicted millions of times on 30P30N): its content box is the empty Box{}
+        // An empty leaf needs no test of its own (whether a child is one follows no pattern, so a branch
+        // on it would be mispredicted often): its content box is the empty Box{}
         // (lo 1e300, hi -1e300), at a squared distance of +inf, so it is pruned here once any segment
         // has been measured, and if pushed before that it is popped with nothing to measure.
         const double box2 = box_distance2(p, kid.content);
