@@ -8,14 +8,37 @@
 #include <iterator>
 #include <sstream>
 #include <string>
+#include <system_error>
+#include <vector>
 
 namespace pdmesh_test {
 
+// The fresh paths this process handed out, removed when it exits: a whole suite's outputs would
+// otherwise stay in the temporary directory, on a disk that CI shares.
+class TempPaths {
+ public:
+  ~TempPaths() {
+    std::error_code ignored;
+    for (const auto& p : paths_) std::filesystem::remove_all(p, ignored);
+  }
+  void add(const std::filesystem::path& p) { paths_.push_back(p); }
+
+ private:
+  std::vector<std::filesystem::path> paths_;
+};
+
+inline TempPaths& temp_paths() {
+  static TempPaths paths;
+  return paths;
+}
+
 // A path in the temporary directory named after the tag and this process, removed if an earlier run
-// left it: for a command that must create its output folder itself, or write nothing there.
+// left it (and when this process exits): for a command that must create its output folder itself,
+// or write nothing there.
 inline std::filesystem::path fresh_path(const std::string& tag) {
   const auto d = std::filesystem::temp_directory_path() / ("pdmesh_test_" + tag + "_" + std::to_string(::getpid()));
   std::filesystem::remove_all(d);
+  temp_paths().add(d);
   return d;
 }
 
