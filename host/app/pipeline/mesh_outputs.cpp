@@ -12,6 +12,7 @@
 #include "app/pipeline/output_guard.hpp"
 #include "cleanup/cleanup.hpp"
 #include "cleanup/metric_cleanup.hpp"
+#include "cleanup/strip_sweeps.hpp"
 #include "core/atomic_file.hpp"
 #include "core/errors.hpp"
 #include "core/parallel.hpp"
@@ -208,8 +209,8 @@ void check_metric_or_throw(const CaseConfig& config, const MeshInputs& inputs, c
 
 // The quality summary of the mesh's triangles (summarize_quality_of), with the smallest and largest
 // angle and the triangles below `target` degrees. The triangles are measured a block at a time on up
-// to `threads` threads (0: parallel_for's limit) and added up on one thread in triangle order, so the
-// sums are those of one thread; no per-triangle array of the whole mesh is kept.
+// to `threads` threads (the cleanup's setting, 0 as the cleanup reads it) and added up on one thread
+// in triangle order, so the sums are those of one thread; no per-triangle array is kept.
 QualitySummary angle_figures(const Mesh& mesh, double target, double& min_angle, double& max_angle, std::size_t& below,
                              std::size_t threads = 0) {
   constexpr std::size_t kBlock = 1 << 16;
@@ -224,7 +225,7 @@ QualitySummary angle_figures(const Mesh& mesh, double target, double& min_angle,
           const auto& tri = mesh.triangles[begin + k];
           block[k] = triangle_quality(mesh.points[tri[0]], mesh.points[tri[1]], mesh.points[tri[2]]);
         },
-        8192, threads == 0 ? 8 : threads);
+        8192, cleanup::sweep_thread_limit(threads));
     for (const TriangleQuality& t : block) {
       sum.add(t);
       below += t.min_angle < target;
