@@ -150,8 +150,7 @@ class CleanupRun {
         trial_budget_(static_cast<std::size_t>(
             std::max(options.min_trials, options.trials_per_triangle * static_cast<double>(mesh.triangles.size())))) {
     smoother_.set_sweep_gain(options.move_min_rise, options.move_aspect_drop);
-    if (options.lift)
-      smoother_.set_lift(limits_.lift, [this](int t) { return failures_.count(sorted_key(m_.v[t])) > 0; });
+    if (options.lift) smoother_.set_lift(limits_.lift, [this](int t) { return stuck(t); });
     if (options.sharp_corners) m_.set_sharp_corners(options.min_angle);
     if (const int strips = strips_for(mesh.points.size(), options); strips > 0)
       strips_ = std::make_unique<cleanup::StripSweeps>(m_, strips, options.threads);
@@ -184,6 +183,15 @@ class CleanupRun {
   MeshScan scan(const std::vector<double>* score = nullptr) const;
   void measure(CleanupIteration& record) const;
   void legalize_all();
+  // Whether triangle t is stuck (lifting climbs): no topology change could repair it, or it is above
+  // the target once the first trial budget is spent, when no topology pass lists it again.
+  bool stuck(int t) const {
+    return failures_.count(sorted_key(m_.v[t])) > 0 || (unlisted_ && m_.quality(t) >= limits_.target);
+  }
+  // Called once the first trial budget is spent: the triangles from the target to the lifting level
+  // are stuck from now on. Marks their vertices for the next sweeps (their stars may not have changed
+  // since they were last tried) and counts them in record.stuck.
+  void mark_unlisted(CleanupIteration& record);
 
   const CleanupOptions& options_;
   const Limits limits_;
@@ -199,6 +207,7 @@ class CleanupRun {
   std::vector<std::uint8_t> since_;  // the dirty marks taken at the start of the iteration
   double last_worst_ = -1.0;         // the smallest score after the previous iteration (settled()) ...
   double last_deficit_ = -1.0;       // ... and the shortfall below the target
+  bool unlisted_ = false;            // the first trial budget is spent (mark_unlisted())
 };
 
 // The sweeps over the vertices of the bad triangles: relaxation below the smoothing limit, then
@@ -307,7 +316,20 @@ std::size_t CleanupRun::topology_pass(const std::vector<std::uint8_t>& dirty, In
     record.last_change_angle = cleanup::degrees_from_sine(now);
   }
   record.trials = ops_.trials() - trials_before;
+  if (options_.lift && !unlisted_ && ops_.trials() >= trial_budget_) mark_unlisted(record);
   return changed;
+}
+
+void CleanupRun::mark_unlisted(CleanupIteration& record) {
+  unlisted_ = true;
+  for (int t = 0; t < m_.triangle_slots(); ++t) {
+    if (!m_.alive(t)) continue;
+    const double q = m_.quality(t);
+    if (q >= limits_.target && q < limits_.lift) {
+      m_.mark_changed(t);
+      ++record.stuck;
+    }
+  }
 }
 
 CleanupRun::MeshScan CleanupRun::scan(const std::vector<double>* score) const {

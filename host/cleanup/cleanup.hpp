@@ -39,11 +39,12 @@ struct CleanupOptions {
   // ~1e-6 each (docs/cleanup.md, "Settling").
   double settled_aspect_drop = 0.0;
   // Lifting climbs (Smoother::set_lift): a climb of a vertex of a triangle below the target +
-  // lift_above (degrees; at most the topology limit) that no topology change could repair is judged by
+  // lift_above (degrees; at most the topology limit) that no topology change could repair, or that no
+  // topology pass will try again (above the target once the first trial budget is spent), is judged by
   // its star's smallest angle alone, so the mean aspect ratio may rise by what lifts it. Above the
   // target, so that the worst angles go on rising where the topology pass leaves them (docs/cleanup.md).
   bool lift = true;
-  double lift_above = 3.0;
+  double lift_above = 4.0;
   bool topology = true;  // insertions, collapses and splits (off: smoothing and flips only)
   // Boundary edges may be split by a new node on their curve (off: the boundary nodes stay the
   // simulation's, they only slide).
@@ -89,7 +90,7 @@ struct CleanupIteration {
   double aspect_drop = 0.0;     // sum over the moves of the drop of their star's aspect-ratio sum
   double small_aspect_drop = 0.0;
   std::size_t topology = 0;  // topology changes made
-  std::size_t stuck = 0;     // triangles below the lifting level no topology change repaired (lifting climbs)
+  std::size_t stuck = 0;     // triangles newly stuck below the lifting level (lifting climbs; docs/cleanup.md)
   std::size_t trials = 0;    // topology trials made ...
   std::size_t trials_to_last_change = 0;  // ... up to and with the one that made the last change
   double last_change_angle = 0.0;         // the smallest angle (degrees) of the triangle it repaired

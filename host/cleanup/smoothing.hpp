@@ -69,11 +69,11 @@ class Smoother {
     aspect_drop_ = aspect_drop;
   }
   // Lifting climbs: a climb of a vertex whose star's worst triangle scores below `score` (the
-  // target's or a little above) and is one `stuck` names (one no topology change could repair) is judged by the star's
-  // smallest score alone, so it may raise the star's aspect-ratio sum. A tall triangle whose apex is a
-  // far-field node above a finer interior row is lifted only by moving a row node so that its nearly
-  // equilateral neighbours stretch, which raises their aspect ratios more than it lowers the bad one's
-  // (docs/cleanup.md, "Lifting climbs"). Off until set.
+  // target's or a little above) and is one `stuck` names (one no topology change could repair, or one
+  // no topology pass will try again) is judged by the star's smallest score alone, so it may raise the star's
+  // aspect-ratio sum. A tall triangle whose apex is a far-field node above a finer interior row is lifted only by
+  // moving a row node so that its nearly equilateral neighbours stretch, which raises their aspect ratios more than it
+  // lowers the bad one's (docs/cleanup.md, "Lifting climbs"). Off until set.
   void set_lift(double score, std::function<bool(int)> stuck) {
     lift_below_ = score;
     stuck_ = std::move(stuck);
