@@ -35,8 +35,7 @@ std::set<std::pair<double, double>> interior_points(const NodeSet& nodes) {
 
 }  // namespace
 
-TEST_CASE("hybrid fill: the structured patterns next to the boundary, a lattice at 0.92 q inside",
-          "[init][hybrid]") {
+TEST_CASE("hybrid fill: the structured patterns next to the boundary, a lattice at 0.92 q inside", "[init][hybrid]") {
   // 20 x 20 with boundary segments 0.5 long: q ~ 0.5 everywhere (eq. 3.6).
   const Geometry g = fixtures::square(20.0, 40);
   const GeometryTree tree(g);
@@ -75,8 +74,8 @@ TEST_CASE("hybrid fill: the structured patterns next to the boundary, a lattice 
     on_lattice += std::abs(nearest / h - 1.0) <= 1e-9 && six == 6;
   }
   WARN("hybrid: " << hybrid.tree_nodes << " interior nodes (structured " << structured.tree_nodes << "), "
-                  << lattice_points << " off the patterns; near " << near_as_structured << " of " << near
-                  << "; far " << on_lattice << " of " << far << " on the lattice");
+                  << lattice_points << " off the patterns; near " << near_as_structured << " of " << near << "; far "
+                  << on_lattice << " of " << far << " on the lattice");
   CHECK(near > 0);
   CHECK(near_as_structured == near);
   CHECK(far > 0);
