@@ -174,7 +174,8 @@ TEST_CASE("out-of-range values are rejected with the value", "[app][case]") {
       error_of(base + "[simulation]\ndt_initial = { random = 0 }\n").find("simulation.dt_initial.random must be > 0") !=
       std::string::npos);
   CHECK(error_of(base + "[init]\nmethod = \"spiral\"\n")
-            .find("init.method must be one of structured, random, hexagonal, got 'spiral'") != std::string::npos);
+            .find("init.method must be one of structured, random, hexagonal, hybrid, got 'spiral'") !=
+        std::string::npos);
   CHECK(error_of(base + "[simulation]\ndevice = \"cuda\"\n").find("got 'cuda'") != std::string::npos);
   CHECK(error_of(base + "[simulation]\ndevice = \"opencl:1\"\n").find("got 'opencl:1'") != std::string::npos);
   CHECK(error_of(base + "[simulation]\nprecision = \"half\"\n").find("got 'half'") != std::string::npos);

@@ -49,6 +49,11 @@ TEST_CASE("relax_scale per fill: best takes 1.03 for the hexagonal fill unless t
   CHECK(preset_relax_scale(Preset::Fast, InitMethod::Hexagonal) == 1.03);
   CHECK(preset_relax_scale(Preset::Thesis, InitMethod::Hexagonal) == 1.0);
   CHECK(preset_relax_scale(Preset::Long, InitMethod::Hexagonal) == 1.0);
+  // The hybrid fill keeps the patterns where they decide the count (docs/spacing.md).
+  CHECK(preset_relax_scale(Preset::Best, InitMethod::Hybrid) == 1.09);
+  const CaseConfig hybrid = case_for_geometry_files({kCircles}, {parse_set_option("init.method=hybrid")});
+  CHECK(hybrid.init.method == InitMethod::Hybrid);
+  CHECK(hybrid.spacing.relax_scale == 1.09);
 
   const CaseConfig hexagonal = case_for_geometry_files({kCircles}, {parse_set_option("init.method=hexagonal")});
   CHECK(hexagonal.init.method == InitMethod::Hexagonal);

@@ -167,6 +167,8 @@ const char* to_string(InitMethod method) {
       return "random";
     case InitMethod::Hexagonal:
       return "hexagonal";
+    case InitMethod::Hybrid:
+      return "hybrid";
     default:
       return "structured";
   }

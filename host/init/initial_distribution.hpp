@@ -17,10 +17,11 @@
 namespace pdmesh {
 
 // How a leaf of the initialization tree is filled (docs/initialization.md): the thesis' structured
-// patterns (1, 4, 5 or 9 nodes) and random points, and rows of an equilateral lattice (thesis ch. 7).
-enum class InitMethod { Structured, Random, Hexagonal };
+// patterns (1, 4, 5 or 9 nodes) and random points, rows of an equilateral lattice (thesis ch. 7), and
+// the hybrid: the lattice away from the boundary where q is nearly flat, the patterns elsewhere.
+enum class InitMethod { Structured, Random, Hexagonal, Hybrid };
 
-// "structured", "random" or "hexagonal".
+// "structured", "random", "hexagonal" or "hybrid".
 const char* to_string(InitMethod method);
 
 // A quad is split into four while its area / (pi q_mid^2 / 4) exceeds this (thesis: 9.5).

@@ -45,7 +45,7 @@ using LatticePoints = std::unordered_set<std::uint64_t>;
 
 // Fills one kept leaf, splitting it into four while its area ratio exceeds kInitSplitRatio.
 // Kept nodes are appended to `nodes` as Interior nodes. Returns how many were added. The hexagonal
-// fill needs `lattice` (the same set for every leaf of the fill).
+// and hybrid fills need `lattice` (the same set for every leaf of the fill).
 std::size_t fill_leaf(const GeometryTree& tree, const SpacingField& spacing, const InitLeaf& leaf, InitMethod method,
                       UnitRandom& rng, NodeSet& nodes, LatticePoints* lattice = nullptr);
 

@@ -302,7 +302,7 @@ class Case:
 
     @property
     def method(self) -> str:
-        """The initial fill (init.method): "structured", "random" or "hexagonal"."""
+        """The initial fill (init.method): "structured", "random", "hexagonal" or "hybrid"."""
         return self._config_obj.method
 
     @property

@@ -37,7 +37,7 @@ def test_unknown_key_suggests_the_nearest(rings):
     with pytest.raises(pdmesh.InputError, match=re.escape("unknown key 'simulation.iteratons'; did you mean "
                                                           "'simulation.iterations'?")):
         pdmesh.generate(rings, simulation={"iteratons": 5})
-    with pytest.raises(pdmesh.InputError, match="init.method must be one of structured, random, hexagonal, got 'hex'"):
+    with pytest.raises(pdmesh.InputError, match="init.method must be one of structured, random, hexagonal, hybrid, got 'hex'"):
         pdmesh.generate(rings, method="hex")
 
 

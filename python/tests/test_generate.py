@@ -78,7 +78,7 @@ def test_thesis_case_file_runs_its_preset():
 
 
 def test_case_reports_its_fill_method():
-    for method in ("structured", "random", "hexagonal"):
+    for method in ("structured", "random", "hexagonal", "hybrid"):
         case = pdmesh.Case.from_toml(pdmesh_case("circle_circle"), method=method)
         assert case.method == method
 

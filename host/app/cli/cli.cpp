@@ -277,7 +277,7 @@ void add_run_options(CLI::App& mesh, MeshArguments& a) {
       ->type_name("RULE");
   mesh.add_option("--dt", a.dt, "simulation.dt_initial: initial global maximum time step (> 0)")->type_name("DT");
   mesh.add_option("--cutoff", a.cutoff, "simulation.cutoff: cut-off distance factor times q_i (> 0)")->type_name("F");
-  mesh.add_option("--method", a.method, "init.method: structured | random | hexagonal")->type_name("METHOD");
+  mesh.add_option("--method", a.method, "init.method: structured | random | hexagonal | hybrid")->type_name("METHOD");
   mesh.add_option("--seed", a.seed, "init.seed: seed of the random fill and overloading (>= 0)")->type_name("N");
   mesh.add_option("--total", a.total, "init.total: total node count to reach by overloading (0 = off)")->type_name("N");
   mesh.add_option("--device", a.device, "simulation.device: auto | host | opencl | opencl:P:D")->type_name("DEV");

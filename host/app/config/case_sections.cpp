@@ -187,9 +187,11 @@ std::uint64_t non_negative(const Reader& r, const std::string& key, const toml::
 
 void read_init_section(const Reader& r, const toml::table& root, CaseConfig& c) {
   if (const toml::node* n = find(root, "init", "method")) {
-    c.init.method = choose<InitMethod>(
-        r, "init.method", *n,
-        {{"structured", InitMethod::Structured}, {"random", InitMethod::Random}, {"hexagonal", InitMethod::Hexagonal}});
+    c.init.method = choose<InitMethod>(r, "init.method", *n,
+                                       {{"structured", InitMethod::Structured},
+                                        {"random", InitMethod::Random},
+                                        {"hexagonal", InitMethod::Hexagonal},
+                                        {"hybrid", InitMethod::Hybrid}});
   }
   if (const toml::node* n = find(root, "init", "seed")) c.init.seed = non_negative(r, "init.seed", *n);
   if (const toml::node* n = find(root, "init", "total")) c.init.total = non_negative(r, "init.total", *n);

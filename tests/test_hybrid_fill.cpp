@@ -1,0 +1,91 @@
+// The hybrid initial fill (docs/initialization.md, "The hybrid fill"): the hexagonal lattice, at 0.92
+// of q, in quads well inside the domain where q is nearly flat; the structured patterns elsewhere.
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <set>
+
+#include "geometry/geometry.hpp"
+#include "geometry/geometry_tree.hpp"
+#include "geometry_fixtures.hpp"
+#include "init/initial_distribution.hpp"
+#include "spacing/spacing_field.hpp"
+
+using namespace pdmesh;
+
+namespace {
+
+double brute_distance(const Geometry& g, Vec2 p) {
+  double best = INFINITY;
+  for (const Segment& s : g.segments) {
+    const Vec2 d = s.b - s.a;
+    const double t = std::clamp(dot(p - s.a, d) / norm2(d), 0.0, 1.0);
+    best = std::fmin(best, dist(p, s.a + t * d));
+  }
+  return best;
+}
+
+std::set<std::pair<double, double>> interior_points(const NodeSet& nodes) {
+  std::set<std::pair<double, double>> out;
+  for (std::size_t i = 0; i < nodes.size(); ++i)
+    if (nodes.kind[i] == NodeKind::Interior) out.insert({nodes.x[i].x, nodes.x[i].y});
+  return out;
+}
+
+}  // namespace
+
+TEST_CASE("hybrid fill: the structured patterns next to the boundary, a lattice at 0.92 q inside", "[init][hybrid]") {
+  // 20 x 20 with boundary segments 0.5 long: q ~ 0.5 everywhere (eq. 3.6).
+  const Geometry g = fixtures::square(20.0, 40);
+  const GeometryTree tree(g);
+  const BoundarySpacing spacing(tree);
+  const InitialDistribution hybrid = make_initial_distribution(tree, spacing, {InitMethod::Hybrid, 1, {}});
+  const InitialDistribution structured = make_initial_distribution(tree, spacing, {InitMethod::Structured, 1, {}});
+  const auto pattern_points = interior_points(structured.nodes);
+
+  std::size_t near = 0, near_as_structured = 0, far = 0, on_lattice = 0, lattice_points = 0;
+  for (std::size_t i = 0; i < hybrid.nodes.size(); ++i) {
+    if (hybrid.nodes.kind[i] != NodeKind::Interior) continue;
+    const Vec2 p = hybrid.nodes.x[i];
+    const double q = hybrid.nodes.q[i];
+    const double d = brute_distance(g, p);
+    CHECK(d >= kInitBoundaryClearance * q);
+    const bool pattern = pattern_points.count({p.x, p.y}) > 0;
+    lattice_points += !pattern;
+    // A lattice quad's centre is at least 2 q beyond its half-diagonal from the boundary, so every
+    // node within 2 q of it comes from a pattern, at the structured fill's place.
+    if (d < 2.0 * q) {
+      ++near;
+      near_as_structured += pattern;
+    }
+    // A node 6.5 q inside lies in a quad (at most ~2.7 q wide) whose centre passes that test.
+    if (d < 6.5 * q) continue;
+    ++far;
+    const double h = std::exp2(std::round(8.0 * std::log2(0.92 * q)) / 8.0);
+    double nearest = HUGE_VAL;
+    int six = 0;
+    for (std::size_t j = 0; j < hybrid.nodes.size(); ++j) {
+      if (j == i) continue;
+      const double r = dist(p, hybrid.nodes.x[j]);
+      nearest = std::min(nearest, r);
+      six += r < 1.2 * h;
+    }
+    on_lattice += std::abs(nearest / h - 1.0) <= 1e-9 && six == 6;
+  }
+  WARN("hybrid: " << hybrid.tree_nodes << " interior nodes (structured " << structured.tree_nodes << "), "
+                  << lattice_points << " off the patterns; near " << near_as_structured << " of " << near << "; far "
+                  << on_lattice << " of " << far << " on the lattice");
+  CHECK(near > 0);
+  CHECK(near_as_structured == near);
+  CHECK(far > 0);
+  CHECK(on_lattice >= 0.95 * far);
+  CHECK(lattice_points > 0);
+
+  // Deterministic, whatever the seed.
+  const InitialDistribution again = make_initial_distribution(tree, spacing, {InitMethod::Hybrid, 8, {}});
+  REQUIRE(again.nodes.size() == hybrid.nodes.size());
+  bool identical = true;
+  for (std::size_t i = 0; i < again.nodes.size(); ++i) identical = identical && again.nodes.x[i] == hybrid.nodes.x[i];
+  CHECK(identical);
+}
