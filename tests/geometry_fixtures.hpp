@@ -160,4 +160,16 @@ inline Geometry square(double L, int m, Vec2 o = {0, 0}) {
   return build_geometry(std::move(raw));
 }
 
+// Distance from p to the closest segment by a scan of every segment: an oracle independent of
+// GeometryTree.
+inline double brute_distance(const Geometry& g, Vec2 p) {
+  double best = INFINITY;
+  for (const Segment& s : g.segments) {
+    const Vec2 d = s.b - s.a;
+    const double t = std::clamp(dot(p - s.a, d) / norm2(d), 0.0, 1.0);
+    best = std::fmin(best, dist(p, s.a + t * d));
+  }
+  return best;
+}
+
 }  // namespace pdmesh::fixtures

@@ -19,17 +19,28 @@
 
 using namespace pdmesh;
 
+namespace {
+
+// The ring of the star of the interior node of clarky's worst triangle after the best preset's cleanup
+// (coordinates less (17, 5)).
+RawCurve clarky_star_ring() {
+  RawCurve ring;
+  ring.name = "ring";
+  ring.file = "test";
+  ring.points = {{-0.4015, -0.3878}, {0.4167, -1.0575}, {1.7659, -0.9118}, {2.6866, 0.6306},
+                 {0.8248, 1.4174},   {-0.3358, 0.7177}, {-0.4015, -0.3878}};
+  return ring;
+}
+
+}  // namespace
+
 TEST_CASE("a lifting climb raises a star's smallest angle that only an aspect-ratio rise can raise", "[cleanup]") {
   // The star of the interior node of clarky's worst triangle after the best preset's cleanup (39.48
   // degrees, far-field node at (19.687, 5.631) above the interior row; coordinates less (17, 5)): the
   // ring is fixed (every corner turns by more than 30 degrees), so only the centre node can move. The
   // position with the largest smallest angle (41.0 degrees) stretches the star's 50-56 degree
   // triangles and raises its aspect-ratio sum; without that rise the star reaches 39.56 at most.
-  RawCurve ring;
-  ring.name = "ring";
-  ring.file = "test";
-  ring.points = {{-0.4015, -0.3878}, {0.4167, -1.0575}, {1.7659, -0.9118}, {2.6866, 0.6306},
-                 {0.8248, 1.4174},   {-0.3358, 0.7177}, {-0.4015, -0.3878}};
+  const RawCurve ring = clarky_star_ring();
   const Geometry g = build_geometry({ring});
   const GeometryTree tree(g);
   const ExpressionSpacing spacing("10");
@@ -82,13 +93,8 @@ TEST_CASE("a triangle no topology pass lists again gets lifting climbs", "[clean
   // one trial on. The later passes list only triangles below the target, so the star's triangles are
   // never tried: they are stuck as triangles no topology pass lists again, and the climbs reach the
   // star's best, 41.0 degrees; lifting only the triangles that failed their trials, it stays at 39.48
-  // (clarky's far-field row
-  // with the hexagonal fill: docs/cleanup.md, "Lifting climbs").
-  RawCurve ring;
-  ring.name = "ring";
-  ring.file = "test";
-  ring.points = {{-0.4015, -0.3878}, {0.4167, -1.0575}, {1.7659, -0.9118}, {2.6866, 0.6306},
-                 {0.8248, 1.4174},   {-0.3358, 0.7177}, {-0.4015, -0.3878}};
+  // (clarky's far-field row with the hexagonal fill: docs/cleanup.md, "Lifting climbs").
+  const RawCurve ring = clarky_star_ring();
   RawCurve sliver;
   sliver.name = "sliver";
   sliver.file = "test";

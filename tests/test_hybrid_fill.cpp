@@ -16,16 +16,6 @@ using namespace pdmesh;
 
 namespace {
 
-double brute_distance(const Geometry& g, Vec2 p) {
-  double best = INFINITY;
-  for (const Segment& s : g.segments) {
-    const Vec2 d = s.b - s.a;
-    const double t = std::clamp(dot(p - s.a, d) / norm2(d), 0.0, 1.0);
-    best = std::fmin(best, dist(p, s.a + t * d));
-  }
-  return best;
-}
-
 std::set<std::pair<double, double>> interior_points(const NodeSet& nodes) {
   std::set<std::pair<double, double>> out;
   for (std::size_t i = 0; i < nodes.size(); ++i)
@@ -49,7 +39,7 @@ TEST_CASE("hybrid fill: the structured patterns next to the boundary, a lattice 
     if (hybrid.nodes.kind[i] != NodeKind::Interior) continue;
     const Vec2 p = hybrid.nodes.x[i];
     const double q = hybrid.nodes.q[i];
-    const double d = brute_distance(g, p);
+    const double d = fixtures::brute_distance(g, p);
     CHECK(d >= kInitBoundaryClearance * q);
     const bool pattern = pattern_points.count({p.x, p.y}) > 0;
     lattice_points += !pattern;

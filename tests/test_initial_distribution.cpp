@@ -21,6 +21,7 @@ namespace {
 
 constexpr double kPi = std::numbers::pi;
 
+using fixtures::brute_distance;
 using fixtures::line;
 using fixtures::square;
 
@@ -48,17 +49,7 @@ Geometry circle_in_circle() {
   return build_geometry(std::move(raw));
 }
 
-// Brute-force oracles, independent of GeometryTree.
-double brute_distance(const Geometry& g, Vec2 p) {
-  double best = INFINITY;
-  for (const Segment& s : g.segments) {
-    const Vec2 d = s.b - s.a;
-    const double t = std::clamp(dot(p - s.a, d) / norm2(d), 0.0, 1.0);
-    best = std::fmin(best, dist(p, s.a + t * d));
-  }
-  return best;
-}
-
+// A brute-force oracle, independent of GeometryTree (brute_distance: geometry_fixtures.hpp).
 bool brute_inside(const Geometry& g, Vec2 p) {
   bool in = false;
   for (const Segment& s : g.segments) {
