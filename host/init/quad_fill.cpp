@@ -25,20 +25,19 @@ constexpr int kMaxFillDepth = 30;
 constexpr double kHexLevelsPerOctave = 8.0;
 
 // The hybrid fill puts the lattice only where it starts near equilibrium, and the structured patterns
-// elsewhere (docs/initialization.md, "The hybrid fill"): in a quad at least kHybridClearance q beyond
-// its half-diagonal from the boundary (the lattice's rows meet a curved boundary as grain boundaries
-// the relaxation has to anneal), where q at its centre and at its eight neighbours' centres spans at
-// most a factor 1 + kHybridSpread (where q is graded more, neighbouring quads take lattices of other
-// levels that meet with arbitrary phase). Share of the quads that take the lattice, measured: 1M
-// annulus 97.5 % (for 0.05 and 0.1 alike), 250k annulus 38 % (0.1: 95 %), 100k annulus 0 (0.1:
-// 64 %), the 30P30N curves at 1/4 scale 0.2 % (0.1: 32 %, and 500 iterations against 450).
+// elsewhere (docs/initialization.md, "The hybrid fill", with the shares of quads that pass on the
+// bench annuli): in a quad at least kHybridClearance q beyond its half-diagonal from the boundary
+// (the lattice's rows meet a curved boundary as grain boundaries the relaxation has to anneal), where
+// q at its centre and at its eight neighbours' centres spans at most a factor 1 + kHybridSpread (where
+// q is graded more, neighbouring quads take lattices of other levels that meet with arbitrary phase).
 constexpr double kHybridClearance = 2.0;
 constexpr double kHybridSpread = 0.05;
 // The hybrid's lattice spacing per unit of the field the fill sees. The structured patterns
 // overfill, which the best preset's relax_scale 1.09 offsets; the lattice does not, so it is placed
 // finer by about 1.03 / 1.09 (the hexagonal fill's and the structured fill's relax_scale) and a
-// little more: 0.92 × 1.09 = 1.003 of the field as asked (the 1M annulus ends at a mean edge/q of
-// 1.002, 0.945 gave 1.030 on annulus_100k).
+// little more: 0.92 × 1.09 = 1.003 of the field as asked. The level rounding above moves a quad's
+// lattice by up to half a level (±4.4 %) from that, so the count of a flat region depends on where
+// its q falls between two levels (docs/initialization.md, "The hybrid fill").
 constexpr double kHybridLatticeScale = 0.92;
 
 struct FillContext {
