@@ -107,7 +107,7 @@ TEST_CASE("omitted keys take the documented defaults", "[app][case]") {
   CHECK(c.geometry.join_tolerance == 1e-9);
   CHECK(c.geometry.corner_angle == 30.0);
   CHECK(c.spacing.field == SpacingKind::Boundary);
-  CHECK(c.init.method == InitMethod::Structured);
+  CHECK(c.init.method == InitMethod::Hybrid);  // the best preset's fill
   CHECK(c.init.seed == 1);
   CHECK(c.init.total == 0);
   CHECK(c.simulation.iterations == 2000);

@@ -68,6 +68,14 @@ TEST_CASE("relax_scale per fill: best takes 1.03 for the hexagonal fill unless t
   CHECK(case_for_geometry_files(
             {kCircles}, {parse_set_option("spacing.relax_scale=1.09"), parse_set_option("init.method=hexagonal")})
             .spacing.relax_scale == 1.09);
+  // The fill itself is a preset default: best fills with the hybrid, thesis and long with the
+  // patterns, and a case's key wins over either.
+  CHECK(case_for_geometry_files({kCircles}).init.method == InitMethod::Hybrid);
+  CHECK(case_for_geometry_files({kCircles}, {parse_set_option("preset=fast")}).init.method == InitMethod::Hybrid);
+  CHECK(case_for_geometry_files({kCircles}, {parse_set_option("preset=thesis")}).init.method == InitMethod::Structured);
+  CHECK(case_for_geometry_files({kCircles}, {parse_set_option("preset=long")}).init.method == InitMethod::Structured);
+  CHECK(case_for_geometry_files({kCircles}, {parse_set_option("init.method=structured")}).init.method ==
+        InitMethod::Structured);
   // The thesis preset keeps the thesis' rule whatever the fill.
   CHECK(case_for_geometry_files({kCircles},
                                 {parse_set_option("preset=thesis"), parse_set_option("init.method=hexagonal")})

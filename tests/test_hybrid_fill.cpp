@@ -1,5 +1,6 @@
-// The hybrid initial fill (docs/initialization.md, "The hybrid fill"): the hexagonal lattice, at 0.92
-// of q, in quads well inside the domain where q is nearly flat; the structured patterns elsewhere.
+// The hybrid initial fill (docs/initialization.md, "The hybrid fill"): an equilateral lattice as dense
+// as the structured patterns in quads well inside the domain where q is nearly flat; the patterns
+// elsewhere.
 #include <catch2/catch.hpp>
 
 #include <algorithm>
@@ -25,7 +26,8 @@ std::set<std::pair<double, double>> interior_points(const NodeSet& nodes) {
 
 }  // namespace
 
-TEST_CASE("hybrid fill: the structured patterns next to the boundary, a lattice at 0.92 q inside", "[init][hybrid]") {
+TEST_CASE("hybrid fill: the structured patterns next to the boundary, a lattice of their density inside",
+          "[init][hybrid]") {
   // 20 x 20 with boundary segments 0.5 long: q ~ 0.5 everywhere (eq. 3.6).
   const Geometry g = fixtures::square(20.0, 40);
   const GeometryTree tree(g);
@@ -52,16 +54,14 @@ TEST_CASE("hybrid fill: the structured patterns next to the boundary, a lattice 
     // A node 6.5 q inside lies in a quad (at most ~2.7 q wide) whose centre passes that test.
     if (d < 6.5 * q) continue;
     ++far;
-    const double h = std::exp2(std::round(8.0 * std::log2(0.92 * q)) / 8.0);
+    // On a lattice: six neighbours at the nearest distance, to rounding.
     double nearest = HUGE_VAL;
+    for (std::size_t j = 0; j < hybrid.nodes.size(); ++j)
+      if (j != i) nearest = std::min(nearest, dist(p, hybrid.nodes.x[j]));
     int six = 0;
-    for (std::size_t j = 0; j < hybrid.nodes.size(); ++j) {
-      if (j == i) continue;
-      const double r = dist(p, hybrid.nodes.x[j]);
-      nearest = std::min(nearest, r);
-      six += r < 1.2 * h;
-    }
-    on_lattice += std::abs(nearest / h - 1.0) <= 1e-9 && six == 6;
+    for (std::size_t j = 0; j < hybrid.nodes.size(); ++j)
+      if (j != i) six += std::abs(dist(p, hybrid.nodes.x[j]) / nearest - 1.0) <= 1e-9;
+    on_lattice += six == 6;
   }
   WARN("hybrid: " << hybrid.tree_nodes << " interior nodes (structured " << structured.tree_nodes << "), "
                   << lattice_points << " off the patterns; near " << near_as_structured << " of " << near << "; far "
@@ -71,6 +71,8 @@ TEST_CASE("hybrid fill: the structured patterns next to the boundary, a lattice 
   CHECK(far > 0);
   CHECK(on_lattice >= 0.95 * far);
   CHECK(lattice_points > 0);
+  // The lattice is as dense as the patterns it replaces, so the count stays the structured fill's.
+  CHECK(std::abs(static_cast<double>(hybrid.tree_nodes) / static_cast<double>(structured.tree_nodes) - 1.0) <= 0.03);
 
   // Deterministic, whatever the seed.
   const InitialDistribution again = make_initial_distribution(tree, spacing, {InitMethod::Hybrid, 8, {}});

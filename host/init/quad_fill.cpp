@@ -32,13 +32,6 @@ constexpr double kHexLevelsPerOctave = 8.0;
 // q is graded more, neighbouring quads take lattices of other levels that meet with arbitrary phase).
 constexpr double kHybridClearance = 2.0;
 constexpr double kHybridSpread = 0.05;
-// The hybrid's lattice spacing per unit of the field the fill sees. The structured patterns
-// overfill, which the best preset's relax_scale 1.09 offsets; the lattice does not, so it is placed
-// finer by about 1.03 / 1.09 (the hexagonal fill's and the structured fill's relax_scale) and a
-// little more: 0.92 × 1.09 = 1.003 of the field as asked. The level rounding above moves a quad's
-// lattice by up to half a level (±4.4 %) from that, so the count of a flat region depends on where
-// its q falls between two levels (docs/initialization.md, "The hybrid fill").
-constexpr double kHybridLatticeScale = 0.92;
 
 struct FillContext {
   const GeometryTree& tree;
@@ -98,10 +91,9 @@ bool hybrid_lattice_quad(FillContext& ctx, const Box& b, double q_mid, bool know
   return q_hi <= (1.0 + kHybridSpread) * q_lo;
 }
 
-// The lattice points of q's level inside quad b (closed), each placed once.
-void place_hexagonal(FillContext& ctx, const Box& b, double q, bool known_inside) {
-  const auto level = static_cast<std::int64_t>(std::lround(kHexLevelsPerOctave * std::log2(q)));
-  const double h = std::exp2(static_cast<double>(level) / kHexLevelsPerOctave);
+// The points of the lattice of spacing h inside quad b (closed), each placed once: `level` names the
+// lattice, so quads of one level continue one lattice without a seam.
+void place_lattice(FillContext& ctx, const Box& b, std::int64_t level, double h, bool known_inside) {
   const double v = 0.5 * std::sqrt(3.0) * h;
   const Vec2 origin = ctx.tree.geometry().extents.lo;
   const auto j_lo = static_cast<std::int64_t>(std::ceil((b.lo.y - origin.y) / v));
@@ -120,6 +112,24 @@ void place_hexagonal(FillContext& ctx, const Box& b, double q, bool known_inside
             known_inside);
     }
   }
+}
+
+// The hexagonal fill: the lattice of q's level.
+void place_hexagonal(FillContext& ctx, const Box& b, double q, bool known_inside) {
+  const auto level = static_cast<std::int64_t>(std::lround(kHexLevelsPerOctave * std::log2(q)));
+  place_lattice(ctx, b, level, std::exp2(static_cast<double>(level) / kHexLevelsPerOctave), known_inside);
+}
+
+// The hybrid fill's lattice quad: a lattice as dense as the structured pattern the quad would get
+// (structured_count(ratio) nodes over its area), so a region holds the patterns' count whichever of
+// the two fills each of its quads, and the best preset's relax_scale, set for the patterns, holds for
+// both. The spacing follows from the quad's size and count alone, so same-sized quads with the same
+// count (a flat field) continue one lattice; its level is log2 h in 1/1024 octaves.
+void place_hybrid_lattice(FillContext& ctx, const Box& b, double ratio, bool known_inside) {
+  const double area = b.width() * b.height();
+  const double h = std::sqrt(2.0 * area / (std::sqrt(3.0) * static_cast<double>(structured_count(ratio))));
+  const auto level = static_cast<std::int64_t>(std::lround(1024.0 * std::log2(h)));
+  place_lattice(ctx, b, level, h, known_inside);
 }
 
 void fill_quad(FillContext& ctx, const Box& b, const std::vector<int>& segments, bool known_inside, int depth) {
@@ -160,7 +170,10 @@ void fill_quad(FillContext& ctx, const Box& b, const std::vector<int>& segments,
   ctx.centre = b.centre();
   ctx.centre_distance = known_inside && count > 1 ? ctx.tree.closest(ctx.centre).distance : -1.0;
   if (lattice) {
-    place_hexagonal(ctx, b, hybrid ? kHybridLatticeScale * q_mid : q_mid, known_inside);
+    if (hybrid)
+      place_hybrid_lattice(ctx, b, ratio, known_inside);
+    else
+      place_hexagonal(ctx, b, q_mid, known_inside);
     return;
   }
   if (ctx.method != InitMethod::Random) {
