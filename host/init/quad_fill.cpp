@@ -71,12 +71,12 @@ void place_structured(FillContext& ctx, const Box& b, int count, bool known_insi
   }
 }
 
-// The hybrid fill's test: is quad b (a leaf's final quad, q_mid at its centre) far enough from the
-// boundary and q flat enough around it for a lattice?
-bool hybrid_lattice_quad(FillContext& ctx, const Box& b, double q_mid, bool known_inside) {
-  if (!known_inside) return false;
+// The hybrid fill's test: is quad b (a leaf's final quad wholly inside, q_mid at its centre, its centre
+// `centre_distance` from the boundary) far enough from the boundary and q flat enough around it for a
+// lattice?
+bool hybrid_lattice_quad(FillContext& ctx, const Box& b, double q_mid, double centre_distance) {
   const double half_diagonal = 0.5 * std::hypot(b.width(), b.height());
-  if (ctx.tree.closest(b.centre()).distance < kHybridClearance * q_mid + half_diagonal) return false;
+  if (centre_distance < kHybridClearance * q_mid + half_diagonal) return false;
   const Vec2 c = b.centre();
   double q_lo = q_mid, q_hi = q_mid;
   for (int j = -1; j <= 1; ++j) {
@@ -162,13 +162,18 @@ void fill_quad(FillContext& ctx, const Box& b, const std::vector<int>& segments,
     return;
   }
   const bool hybrid = ctx.method == InitMethod::Hybrid;
-  const bool lattice =
-      ctx.method == InitMethod::Hexagonal || (hybrid && hybrid_lattice_quad(ctx, b, q_mid, known_inside));
+  ctx.centre = b.centre();
+  // The centre's distance to the boundary, found once: the hybrid's test reads it, and so does the keep
+  // rule's bound when the quad gets more than one candidate.
+  const double centre_distance = known_inside && hybrid ? ctx.tree.closest(ctx.centre).distance : -1.0;
+  const bool lattice = ctx.method == InitMethod::Hexagonal ||
+                       (hybrid && known_inside && hybrid_lattice_quad(ctx, b, q_mid, centre_distance));
   const int count = ctx.method == InitMethod::Random ? random_count(ratio)
                     : lattice                        ? static_cast<int>(std::ceil(ratio))
                                                      : structured_count(ratio);
-  ctx.centre = b.centre();
-  ctx.centre_distance = known_inside && count > 1 ? ctx.tree.closest(ctx.centre).distance : -1.0;
+  ctx.centre_distance = !known_inside || count <= 1 ? -1.0
+                        : hybrid                    ? centre_distance
+                                                    : ctx.tree.closest(ctx.centre).distance;
   if (lattice) {
     if (hybrid)
       place_hybrid_lattice(ctx, b, ratio, known_inside);
