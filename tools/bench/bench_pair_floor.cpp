@@ -71,7 +71,7 @@ void binning(benchmark::State& state) {
 double best(const std::vector<double>& v) { return *std::min_element(v.begin(), v.end()); }
 
 void sizes(benchmark::internal::Benchmark* b) {
-  for (const long n : {14'000L, 250'000L, 1'000'000L, 5'000'000L}) b->Arg(n);
+  for (const long n : {14'000L, 250'000L, 1'000'000L, 5'000'000L, 20'000'000L}) b->Arg(n);
   b->UseRealTime()->Unit(benchmark::kMillisecond)->Repetitions(5)->ComputeStatistics("min", best);
 }
 
