@@ -438,6 +438,132 @@ TEST_CASE("a mesh picture drawn in bands is the picture one canvas draws, pixel 
     if (!coloured) CHECK(grey > 1000);
     CHECK(dark > 1000);
   }
+  // Denser than a quarter of the pixels: the shade is a PixelSplat (180,000 triangles at 400 px).
+  const Mesh fine = grid_mesh(300, [](double x, double y) { return Vec2{x * x * x, y * y}; });
+  MeshPictureOptions f;
+  f.long_side = 400;
+  f.bands = 1;
+  write_mesh_picture(dir / "one.png", fine, f);
+  for (const int bands : {3, 7}) {
+    f.bands = bands;
+    write_mesh_picture(dir / "bands.png", fine, f);
+    Png one(dir / "one.png"), banded(dir / "bands.png");
+    REQUIRE(one.ok());
+    REQUIRE(banded.ok());
+    int differing = 0;
+    for (int y = 0; y < one.height(); ++y)
+      for (int x = 0; x < one.width(); ++x) {
+        const Rgb a = one.pixel(x, y), b = banded.pixel(x, y);
+        differing += a.r != b.r || a.g != b.g || a.b != b.b;
+      }
+    INFO("splat, bands " << bands);
+    CHECK(differing == 0);
+  }
   CHECK(entries(dir) == 2);  // no temporary left behind
+  fs::remove_all(dir);
+}
+
+TEST_CASE("a pixel splat covers a box's pixels and spreads a dot's area over the four pixels around it", "[render]") {
+  const fs::path dir = fresh_dir("splat");
+  // World [0, 200]^2 on a 200 x 200 plot without a title band: world (x, y) is pixel (x, 200 - y).
+  CanvasOptions options;
+  options.window = Box{{0, 0}, {200, 200}};
+  options.long_side = 200;
+  options.title_height = 0;
+  const auto grey = [](Canvas& c, int x, int y) {  // the red channel of picture pixel (x, y), 0-255
+    cairo_surface_flush(c.surface());
+    const unsigned char* row =
+        cairo_image_surface_get_data(c.surface()) + (y - c.first_row()) * cairo_image_surface_get_stride(c.surface());
+    return static_cast<int>((*reinterpret_cast<const std::uint32_t*>(row + 4 * x) >> 16) & 255);
+  };
+  {
+    Canvas canvas(options, ImageFormat::Png, dir / "a.png");
+    REQUIRE(canvas.scale() == 1.0);
+    REQUIRE(canvas.to_pixel({0, 200}).x == 0.0);
+    REQUIRE(canvas.to_pixel({0, 200}).y == 0.0);
+    {
+      PixelSplat splat(canvas, colours::kBlack);
+      splat.box(Box{{10.2, 180.5}, {12.7, 185.1}});   // pixels x 10-12, rows 14.9-19.5: 14-19
+      splat.dot({50.5, 149.5}, 1 / std::sqrt(M_PI));  // area 1 at pixel (50, 50)'s centre
+      splat.dot({71.0, 149.5}, 1 / std::sqrt(M_PI));  // area 1 on the line between pixels 70 and 71
+      splat.dot({30.5, 149.5}, 2.0);                  // area 4pi at one pixel's centre: full, not more
+    }
+    for (int y = 14; y <= 19; ++y)
+      for (int x = 10; x <= 12; ++x) CHECK(grey(canvas, x, y) == 0);
+    CHECK(grey(canvas, 9, 16) == 255);
+    CHECK(grey(canvas, 13, 16) == 255);
+    CHECK(grey(canvas, 11, 13) == 255);
+    CHECK(grey(canvas, 11, 20) == 255);
+    CHECK(grey(canvas, 50, 50) == 0);
+    CHECK(grey(canvas, 51, 50) == 255);
+    CHECK(grey(canvas, 50, 49) == 255);
+    CHECK(std::abs(grey(canvas, 70, 50) - 128) <= 1);
+    CHECK(std::abs(grey(canvas, 71, 50) - 128) <= 1);
+    CHECK(grey(canvas, 72, 50) == 255);
+    CHECK(grey(canvas, 30, 50) == 0);
+    CHECK(grey(canvas, 31, 50) == 255);
+  }
+  {
+    // A band of rows 40-69 covers only its own rows, at the picture's pixel positions.
+    Canvas band(options, ImageFormat::Png, dir / "b.png", PixelRows{40, 30});
+    {
+      PixelSplat splat(band, colours::kBlack);
+      splat.dot({50.5, 149.5}, 1 / std::sqrt(M_PI));  // row 50: in the band
+      splat.dot({50.5, 189.5}, 1 / std::sqrt(M_PI));  // row 10: another band's
+      splat.box(Box{{20, 120}, {21, 170}});           // rows 30-80: the band's part only
+    }
+    CHECK(grey(band, 50, 50) == 0);
+    CHECK(grey(band, 50, 40) == 255);
+    for (int y = 40; y < 70; ++y) CHECK(grey(band, 20, y) == 0);
+  }
+  // Dense enough: more items than a quarter of the plot's 200 x 200 pixels, and a PNG.
+  Canvas png(options, ImageFormat::Png, dir / "c.png");
+  CHECK_FALSE(splat_worthwhile(png, 10000));
+  CHECK(splat_worthwhile(png, 10001));
+  Canvas svg(options, ImageFormat::Svg, dir / "d.svg");
+  CHECK_FALSE(splat_worthwhile(svg, 1000000));
+  fs::remove_all(dir);
+}
+
+TEST_CASE("a node picture of more nodes than a quarter of its pixels shades by the nodes' density", "[render]") {
+  const fs::path dir = fresh_dir("dense_nodes");
+  // Interior nodes 0.005 units (0.94 px at 400 px) apart on the rectangle [0, 2] x [0, 1], only every
+  // other column and row in its left half (1.88 px apart). Their dots have the smallest radius,
+  // 0.8 px (area 2.01 px^2): the right half is covered, the left one by 2.01 / 1.88^2 = 57 %.
+  const Geometry g = rectangle_geometry();
+  NodeSet n;
+  const double step = 2.0 / 400;
+  for (int j = 0; j < 200; ++j)
+    for (int i = 0; i < 400; ++i) {
+      if (i < 200 && (i % 2 != 0 || j % 2 != 0)) continue;
+      n.add({(i + 0.5) * step, (j + 0.5) * step}, 1e-4, NodeKind::Interior, -1);
+    }
+  NodePictureOptions o;
+  o.long_side = 400;
+  write_node_picture(dir / "n.png", g, n, o);
+  Png png(dir / "n.png");
+  REQUIRE(png.ok());
+  // The picture's transform, from a canvas of the same layout.
+  CanvasOptions layout;
+  layout.window = padded_window(g.extents);
+  layout.long_side = 400;
+  Canvas same(layout, ImageFormat::Png, dir / "layout.png");
+  REQUIRE(splat_worthwhile(same, n.size()));
+  const double px = 1 / same.scale();
+  // The mean green channel (255 on paper, 0 under a red dot) well inside a part of the rectangle.
+  const auto mean_green = [&](double x0, double x1) {
+    double sum = 0;
+    int count = 0;
+    for (double wy = 0.3; wy <= 0.7; wy += px)
+      for (double wx = x0; wx <= x1; wx += px) {
+        const Vec2 p = same.to_pixel({wx, wy});
+        sum += png.pixel(static_cast<int>(p.x), static_cast<int>(p.y)).g;
+        ++count;
+      }
+    return sum / count;
+  };
+  const double spacing_px = 2 * step * same.scale();
+  CHECK(mean_green(1.3, 1.7) < 10);
+  CHECK(mean_green(0.3, 0.7) == Approx(255 * (1 - M_PI * 0.8 * 0.8 / (spacing_px * spacing_px))).margin(20));
   fs::remove_all(dir);
 }

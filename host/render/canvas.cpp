@@ -332,6 +332,70 @@ void DotBatch::flush() {
   count_ = 0;
 }
 
+PixelSplat::PixelSplat(Canvas& canvas, Rgb colour) : canvas_(canvas), colour_(colour) {
+  width_ = canvas.width();
+  rows_ = std::max(canvas.end_row() - canvas.first_row(), 1);
+  coverage_.assign(static_cast<std::size_t>(width_) * static_cast<std::size_t>(rows_), 0.0f);
+}
+
+void PixelSplat::add(int x, int y, float area) {
+  const int row = y - canvas_.first_row();
+  if (x < 0 || x >= width_ || row < 0 || row >= rows_) return;
+  coverage_[static_cast<std::size_t>(row) * static_cast<std::size_t>(width_) + static_cast<std::size_t>(x)] += area;
+  any_ = true;
+}
+
+void PixelSplat::box(const Box& world) {
+  // Pixel i covers [i, i + 1): the box meets pixels floor(lo) to floor(hi). Clamped in double first,
+  // so far-away items cannot overflow the integer conversion.
+  const Vec2 a = canvas_.to_pixel(world.lo), b = canvas_.to_pixel(world.hi);  // world y up, rows down
+  const double first = canvas_.first_row(), end = first + rows_;
+  const double x0 = std::floor(std::max(a.x, 0.0)), x1 = std::floor(std::min(b.x, width_ - 1.0));
+  const double y0 = std::floor(std::max(b.y, first)), y1 = std::floor(std::min(a.y, end - 1.0));
+  if (!(x0 <= x1 && y0 <= y1)) return;
+  for (int y = static_cast<int>(y0); y <= static_cast<int>(y1); ++y) {
+    for (int x = static_cast<int>(x0); x <= static_cast<int>(x1); ++x) add(x, y, 1.0f);
+  }
+}
+
+void PixelSplat::dot(Vec2 centre, double radius_px) {
+  const Vec2 p = canvas_.to_pixel(centre);
+  const double fx = p.x - 0.5, fy = p.y - 0.5;  // pixel (i, j)'s centre is (i + 0.5, j + 0.5)
+  if (!(std::abs(fx) < 1e9 && std::abs(fy) < 1e9)) return;
+  const double ix = std::floor(fx), iy = std::floor(fy);
+  const double tx = fx - ix, ty = fy - iy;
+  const double area = M_PI * radius_px * radius_px;
+  const int x = static_cast<int>(ix), y = static_cast<int>(iy);
+  add(x, y, static_cast<float>(area * (1 - tx) * (1 - ty)));
+  add(x + 1, y, static_cast<float>(area * tx * (1 - ty)));
+  add(x, y + 1, static_cast<float>(area * (1 - tx) * ty));
+  add(x + 1, y + 1, static_cast<float>(area * tx * ty));
+}
+
+void PixelSplat::paint() {
+  if (!any_) return;
+  any_ = false;
+  const int stride = cairo_format_stride_for_width(CAIRO_FORMAT_A8, width_);
+  std::vector<unsigned char> alpha(static_cast<std::size_t>(stride) * static_cast<std::size_t>(rows_), 0);
+  for (int row = 0; row < rows_; ++row) {
+    const float* c = coverage_.data() + static_cast<std::size_t>(row) * static_cast<std::size_t>(width_);
+    unsigned char* out = alpha.data() + static_cast<std::size_t>(row) * static_cast<std::size_t>(stride);
+    for (int x = 0; x < width_; ++x) out[x] = static_cast<unsigned char>(std::lround(255.0f * std::min(c[x], 1.0f)));
+  }
+  cairo_surface_t* mask = cairo_image_surface_create_for_data(alpha.data(), CAIRO_FORMAT_A8, width_, rows_, stride);
+  cairo_t* cr = canvas_.context();
+  cairo_set_source_rgb(cr, colour_.r, colour_.g, colour_.b);
+  // The context is translated up by the canvas' first row: the mask's row 0 is that row.
+  cairo_mask_surface(cr, mask, 0, canvas_.first_row());
+  cairo_surface_destroy(mask);
+  std::fill(coverage_.begin(), coverage_.end(), 0.0f);
+  canvas_.check_drawn();
+}
+
+bool splat_worthwhile(const Canvas& canvas, std::size_t items) {
+  return canvas.raster() && static_cast<double>(items) > 0.25 * canvas.plot_width() * canvas.plot_height();
+}
+
 void render_picture(const fs::path& path, const CanvasOptions& options, const std::function<void(Canvas&)>& draw,
                     int bands) {
   const ImageFormat format = image_format_for(path);

@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <functional>
 #include <string>
+#include <vector>
 
 #include "core/vec2.hpp"
 
@@ -84,6 +85,7 @@ class Canvas {
   void text(double px, double py, const std::string& s, double size, Rgb colour);
   cairo_t* context() { return cr_; }  // for decorations that need cairo directly (colour bars)
   double plot_right() const { return plot_x0_ + plot_w_; }
+  double plot_width() const { return plot_w_; }
   double plot_top() const { return plot_y0_; }
   double plot_height() const { return plot_h_; }
 
@@ -92,6 +94,10 @@ class Canvas {
   // Checks cairo's status (throws Error naming the file); for a band, whose rows another writes.
   void check_drawn() const { check("draw"); }
   cairo_surface_t* surface() { return surface_; }
+  // A PNG canvas draws into pixels (PixelSplat needs them); an SVG one into vector paths.
+  bool raster() const { return format_ == ImageFormat::Png; }
+  int first_row() const { return static_cast<int>(rows_lo_); }  // this canvas' rows of the picture
+  int end_row() const { return static_cast<int>(rows_hi_); }
 
  private:
   void scale_bar(double title_right);  // title()'s bar, clear of a title ending at x = title_right
@@ -179,6 +185,43 @@ class DotBatch {
   Rgb colour_;
   int count_ = 0;
 };
+
+// Items about a pixel in size or smaller, millions of them, as one coverage bitmap that paint() fills
+// with one colour in one cairo call: a cairo path costs about a microsecond per item, most of a
+// multi-million-node picture's time. A box (a triangle of a dense mesh) covers every pixel its
+// pixel-space bounding box meets, so a dense region reads as one solid area. A dot adds its area
+// (pi r^2 pixels) to the four pixels around its centre, bilinearly: what shows is the dots' density
+// (a pixel is full where they would cover it), without the beats a node lattice near the pixel
+// spacing would give, as cairo's anti-aliased dots show it. Pictures use it where
+// splat_worthwhile() says so, and keep cairo's paths elsewhere, so smaller pictures keep their
+// pixels. A PNG canvas only; a band covers only its own rows, so banded pictures stay pixel for pixel
+// one canvas' picture.
+class PixelSplat {
+ public:
+  PixelSplat(Canvas& canvas, Rgb colour);
+  ~PixelSplat() {
+    if (std::uncaught_exceptions() == 0) paint();
+  }
+  PixelSplat(const PixelSplat&) = delete;
+  PixelSplat& operator=(const PixelSplat&) = delete;
+  void box(const Box& world);               // covers the pixels of a world box
+  void dot(Vec2 centre, double radius_px);  // adds a dot's area around its centre
+  void paint();                             // fills the covered pixels and clears the bitmap
+
+ private:
+  void add(int x, int y, float area);  // picture pixel (x, y); nothing outside this canvas
+
+  Canvas& canvas_;
+  Rgb colour_;
+  int width_ = 0;
+  int rows_ = 0;
+  std::vector<float> coverage_;  // pixel areas covered, this canvas' rows; 1 = full
+  bool any_ = false;
+};
+
+// Whether `items` drawn on `canvas` are dense enough for a PixelSplat: a PNG, and more items than a
+// quarter of the plot's pixels (a million nodes in a 1600 x 1600 plot, not a 30P30N mesh).
+bool splat_worthwhile(const Canvas& canvas, std::size_t items);
 
 // Draws with `draw` into a new Canvas and writes it atomically to `path` (format by extension).
 // bands > 1 (PNG only): the picture is cut into that many horizontal bands, each drawn by `draw`

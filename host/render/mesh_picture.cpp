@@ -1,6 +1,8 @@
 // Mesh pictures: value fill, edges, boundary edges, then the colour bar in a band on the right.
 #include "render/mesh_picture.hpp"
 
+#include <optional>
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -83,17 +85,25 @@ bool shown(Vec2 a, Vec2 b, double min_edge_world) { return dist(a, b) >= min_edg
 
 // Without a value fill, a triangle with an edge too short to draw is shaded grey instead, so dense
 // parts read as meshed, not as empty.
+// In a mesh of more triangles than a quarter of the plot's pixels, a triangle whose three edges are
+// all too short spans at most a few pixels and is set in a PixelSplat (its bounding box's pixels)
+// instead of a path: the union is what shows, at a fraction of the cost.
 void draw_dense_shade(Canvas& canvas, const Mesh& mesh, double min_edge_world) {
+  std::optional<PixelSplat> splat;
+  if (splat_worthwhile(canvas, mesh.triangles.size())) splat.emplace(canvas, kDenseShade);
   FillBatch dense(canvas, kDenseShade);
   InterruptPoll poll(65536);
   for (const auto& tri : mesh.triangles) {
     poll.tick();
     const Vec2 a = mesh.points[tri[0]], b = mesh.points[tri[1]], c = mesh.points[tri[2]];
-    if (shown(a, b, min_edge_world) && shown(b, c, min_edge_world) && shown(c, a, min_edge_world)) continue;
+    const bool ab = shown(a, b, min_edge_world), bc = shown(b, c, min_edge_world), ca = shown(c, a, min_edge_world);
+    if (ab && bc && ca) continue;
     Box box;
     for (int v : tri) box.add(mesh.points[v]);
     if (!canvas.in_window(box)) continue;
-    if (canvas.visible(box)) {
+    if (splat && !ab && !bc && !ca) {
+      if (canvas.visible(box)) splat->box(box);
+    } else if (canvas.visible(box)) {
       dense.triangle(a, b, c);
     } else {
       dense.skip();  // in another band (see draw_edges)

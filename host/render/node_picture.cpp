@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <fmt/format.h>
 
 #include "core/interrupt.hpp"
@@ -38,14 +39,24 @@ void write_node_picture(const std::filesystem::path& path, const Geometry& geome
       }
     }
     // Interior nodes first so that boundary nodes stay visible where they overlap.
+    // Interior nodes outnumbering a quarter of the plot's pixels are set in a PixelSplat (each dot's
+    // square) instead of drawn as paths: at that density the dots' union is what shows.
     for (NodeKind pass : {NodeKind::Interior, NodeKind::Boundary, NodeKind::Fixed}) {
-      DotBatch dots(canvas, pass == NodeKind::Interior ? colours::kInteriorNode : colours::kBoundaryNode);
+      const Rgb colour = pass == NodeKind::Interior ? colours::kInteriorNode : colours::kBoundaryNode;
+      std::optional<PixelSplat> splat;
+      if (pass == NodeKind::Interior && splat_worthwhile(canvas, nodes.count(NodeKind::Interior)))
+        splat.emplace(canvas, colour);
+      DotBatch dots(canvas, colour);
       for (std::size_t i = 0; i < nodes.size(); ++i) {
         if ((i & 65535) == 0) check_interrupt();
         if (nodes.kind[i] != pass) continue;
         const double q = i < nodes.q.size() ? nodes.q[i] : 0.0;
         const double r = node_dot_radius(q, canvas.scale(), pass == NodeKind::Fixed);
-        if (canvas.visible(nodes.x[i], r)) dots.dot(nodes.x[i], r);
+        if (!canvas.visible(nodes.x[i], r)) continue;
+        if (splat)
+          splat->dot(nodes.x[i], r);
+        else
+          dots.dot(nodes.x[i], r);
       }
     }
     canvas.title(fmt::format("{}   {} nodes: {} fixed, {} boundary, {} interior", options.title, nodes.size(),
