@@ -234,9 +234,6 @@ namespace {
 // Items per stroke or fill: large enough that cairo's per-call cost vanishes, small enough that the
 // path it tessellates at once stays in cache.
 constexpr int kBatchItems = 4096;
-// Triangles per fill: one fill is their union, seamless, so as many as memory allows (a cairo path
-// holds ~100 bytes a triangle); more only in meshes of over ~64k tiny triangles.
-constexpr int kFillBatchItems = 1 << 16;
 }  // namespace
 
 StrokeBatch::StrokeBatch(Canvas& canvas, Rgb colour, double width_px)
@@ -275,7 +272,7 @@ void StrokeBatch::flush() {
   count_ = 0;
 }
 
-FillBatch::FillBatch(Canvas& canvas, Rgb colour) : canvas_(canvas), colour_(colour) {
+FillBatch::FillBatch(Canvas& canvas, Rgb colour, bool sharp) : canvas_(canvas), colour_(colour), sharp_(sharp) {
   cairo_new_path(canvas_.context());
 }
 
@@ -286,11 +283,11 @@ void FillBatch::triangle(Vec2 a, Vec2 b, Vec2 c) {
   cairo_line_to(cr, pb.x, pb.y);
   cairo_line_to(cr, pc.x, pc.y);
   cairo_close_path(cr);
-  if (++count_ >= kFillBatchItems) flush(true);
+  if (++count_ >= kItems) flush(true);
 }
 
 void FillBatch::skip() {
-  if (++count_ >= kFillBatchItems) flush(true);
+  if (++count_ >= kItems) flush(true);
 }
 
 void FillBatch::flush(bool cut) {
@@ -300,6 +297,13 @@ void FillBatch::flush(bool cut) {
   cut_ = cut_ || cut;
   if (!cairo_has_current_point(cr)) return;  // only skipped items since the last flush
   cairo_set_source_rgb(cr, colour_.r, colour_.g, colour_.b);
+  if (sharp_) {
+    cairo_save(cr);
+    cairo_set_antialias(cr, CAIRO_ANTIALIAS_NONE);
+    cairo_fill(cr);  // also clears the path
+    cairo_restore(cr);
+    return;
+  }
   if (!cut_) {
     cairo_fill(cr);  // the union of every triangle: no seams inside it
     return;
@@ -319,8 +323,15 @@ DotBatch::DotBatch(Canvas& canvas, Rgb colour) : canvas_(canvas), colour_(colour
 void DotBatch::dot(Vec2 centre, double radius_px) {
   const Vec2 p = canvas_.to_pixel(centre);
   cairo_t* cr = canvas_.context();
-  cairo_new_sub_path(cr);
-  cairo_arc(cr, p.x, p.y, radius_px, 0, 2 * M_PI);
+  if (radius_px < kSquareDotRadius) {
+    // The square of the circle's area: anti-aliased, it shades the pixels of a dot this small nearly as
+    // the circle does, and its path is four lines where the circle's is curves to flatten.
+    const double half = 0.886226925452758 * radius_px;  // sqrt(pi) / 2
+    cairo_rectangle(cr, p.x - half, p.y - half, 2.0 * half, 2.0 * half);
+  } else {
+    cairo_new_sub_path(cr);
+    cairo_arc(cr, p.x, p.y, radius_px, 0, 2 * M_PI);
+  }
   if (++count_ >= kBatchItems) flush();
 }
 

@@ -1,6 +1,7 @@
 // A drawing surface for pdmesh pictures (cairo, PNG or SVG): a world window mapped to pixels with
 // the aspect ratio preserved, a title band on top, an optional side band (colour bars) and a scale bar.
 #pragma once
+#include <cstddef>
 #include <exception>
 #include <cairo.h>
 
@@ -143,10 +144,17 @@ class StrokeBatch {
 // Many triangles of one colour filled as one path: their union, without the anti-aliasing seams that
 // separate fills leave between neighbours (Canvas::fill_triangle closes them with a hairline stroke
 // per triangle, which cost most of a 30P30N mesh picture). A mesh with more triangles than one batch
-// holds gets the hairline once per batch, where batches meet.
+// holds gets the hairline once per batch, where batches meet, unless the batch is `sharp`: filled
+// without anti-aliasing, a pixel takes the colour when its centre lies in a triangle, so batches meet
+// without seams and need no stroke (the stroke of every triangle was most of a million-node
+// mesh.png).
 class FillBatch {
  public:
-  FillBatch(Canvas& canvas, Rgb colour);
+  // Triangles per fill: one fill is their union, seamless, so as many as memory allows (a cairo path
+  // holds ~100 bytes a triangle); more only in meshes of over ~64k tiny triangles.
+  static constexpr std::size_t kItems = std::size_t{1} << 16;
+
+  FillBatch(Canvas& canvas, Rgb colour, bool sharp = false);
   ~FillBatch() {
     if (std::uncaught_exceptions() == 0) flush();
   }
@@ -159,12 +167,16 @@ class FillBatch {
  private:
   Canvas& canvas_;
   Rgb colour_;
-  int count_ = 0;
+  std::size_t count_ = 0;
   bool cut_ = false;
+  bool sharp_ = false;
 };
 
 class DotBatch {
  public:
+  // Dots of a smaller radius (pixels) are drawn as squares of their area (a million nodes' picture).
+  static constexpr double kSquareDotRadius = 1.25;
+
   DotBatch(Canvas& canvas, Rgb colour);
   ~DotBatch() {
     if (std::uncaught_exceptions() == 0) flush();
