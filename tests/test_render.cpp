@@ -567,3 +567,70 @@ TEST_CASE("a node picture of more nodes than a quarter of its pixels shades by t
   CHECK(mean_green(0.3, 0.7) == Approx(255 * (1 - M_PI * 0.8 * 0.8 / (spacing_px * spacing_px))).margin(20));
   fs::remove_all(dir);
 }
+
+TEST_CASE("a mesh denser than a quarter of its pixels is shaded without seams, the same in bands", "[render]") {
+  const fs::path dir = fresh_dir("sharp_shade");
+  // A 300 x 300 grid of split cells (180,000 triangles, a PixelSplat's shade): at 400 pixels a cell is
+  // about 1.3 pixels wide and its diagonal under 2, so the whole square is shaded and no edge drawn.
+  const Mesh m = grid_mesh(300, [](double x, double y) { return Vec2{x, y}; });
+  REQUIRE(m.triangles.size() > 0.25 * 400 * 400);
+  MeshPictureOptions o;
+  o.long_side = 400;
+  o.bands = 1;
+  write_mesh_picture(dir / "one.png", m, o);
+  Png one(dir / "one.png");
+  REQUIRE(one.ok());
+  // Inside the square (above the scale bar at its bottom left) every pixel is the shade itself: no
+  // lighter pixels where the triangles meet.
+  const double scale = 400 / 1.06;
+  const int x0 = static_cast<int>((0.03 + 0.05) * scale), x1 = static_cast<int>((0.03 + 0.95) * scale);
+  const int y0 = static_cast<int>(40 + (1.03 - 0.95) * scale), y1 = static_cast<int>(40 + (1.03 - 0.2) * scale);
+  const double shade = std::round(255 * 0.55);
+  int off = 0;
+  for (int y = y0; y < y1; ++y)
+    for (int x = x0; x < x1; ++x) {
+      const Rgb p = one.pixel(x, y);
+      off += p.r != shade || p.g != shade || p.b != shade;
+    }
+  CHECK(off == 0);
+  for (const int bands : {2, 5}) {
+    o.bands = bands;
+    write_mesh_picture(dir / "bands.png", m, o);
+    Png banded(dir / "bands.png");
+    REQUIRE(banded.ok());
+    REQUIRE(banded.width() == one.width());
+    REQUIRE(banded.height() == one.height());
+    int differing = 0;
+    for (int y = 0; y < one.height(); ++y)
+      for (int x = 0; x < one.width(); ++x) {
+        const Rgb a = one.pixel(x, y), b = banded.pixel(x, y);
+        differing += a.r != b.r || a.g != b.g || a.b != b.b;
+      }
+    INFO("bands " << bands);
+    CHECK(differing == 0);
+  }
+  fs::remove_all(dir);
+}
+
+TEST_CASE("a node dot covers its circle's area", "[render]") {
+  const fs::path dir = fresh_dir("small_dots");
+  const Geometry g = rectangle_geometry();
+  const double scale = 1600 / 2.12;  // the node picture's pixels per unit (see the first test)
+  // Each node alone in the middle of the rectangle.
+  for (const double radius : {0.9, 1.1, 1.6, 3.0}) {
+    NodeSet n;
+    n.add({0.9, 0.4}, radius / (0.12 * scale), NodeKind::Interior, -1);
+    REQUIRE(node_dot_radius(n.q[0], scale, false) == Approx(radius));
+    write_node_picture(dir / "dot.png", g, n, NodePictureOptions{});
+    Png png(dir / "dot.png");
+    REQUIRE(png.ok());
+    // The dot's coverage summed over its pixels: the green channel falls from 255 (paper) to 0.
+    const int cx = static_cast<int>((0.9 + 0.06) * scale), cy = static_cast<int>(40 + (1.06 - 0.4) * scale);
+    double covered = 0;
+    for (int y = cy - 6; y <= cy + 6; ++y)
+      for (int x = cx - 6; x <= cx + 6; ++x) covered += (255.0 - png.pixel(x, y).g) / 255.0;
+    INFO("radius " << radius);
+    CHECK(covered == Approx(M_PI * radius * radius).epsilon(0.1));
+  }
+  fs::remove_all(dir);
+}

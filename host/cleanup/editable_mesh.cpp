@@ -119,12 +119,7 @@ EditableMesh::EditableMesh(const Mesh& mesh, const std::vector<std::vector<int>>
   tri_stamp_.assign(v.size(), 0);
 }
 
-double EditableMesh::quality(int t) const {
-  return score_ != nullptr ? score_->score(*this, t) : score_of(t, p[v[t][0]], p[v[t][1]], p[v[t][2]]);
-}
-
-int EditableMesh::sharp_corner_of(int t) const {
-  if (sharp_.empty()) return -1;
+int EditableMesh::sharp_corner_in(int t) const {
   // Vertices added after set_sharp_corners() are no corners. Both edges at the corner on the
   // boundary: t is the only triangle there.
   for (int k = 0; k < 3; ++k)
@@ -132,11 +127,6 @@ int EditableMesh::sharp_corner_of(int t) const {
         n[t][prev3(k)] < 0)
       return k;
   return -1;
-}
-
-double EditableMesh::score_of(int t, Vec2 x, Vec2 y, Vec2 z) const {
-  const int k = sharp_corner_of(t);
-  return k < 0 ? min_angle_sine(x, y, z) : min_angle_sine_except(x, y, z, k);
 }
 
 void EditableMesh::set_sharp_corners(double degrees) {

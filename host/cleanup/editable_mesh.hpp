@@ -9,6 +9,7 @@
 #include <unordered_map>
 #include <vector>
 
+#include "cleanup/measures.hpp"
 #include "core/vec2.hpp"
 #include "mesh/mesh.hpp"
 
@@ -208,6 +209,7 @@ class EditableMesh {
   std::vector<std::uint8_t> sharp_;  // per vertex: a sharp corner (set_sharp_corners); empty: none
   std::vector<std::uint8_t> dirty_;  // per vertex: see take_dirty()
   void mark_dirty(int t);
+  int sharp_corner_in(int t) const;  // sharp_corner_of() once some corner is sharp
   mutable std::vector<int> scratch_;
   std::vector<int> star_scratch_;
   // Per curve, its fixed nodes (ends and critical corners) in chain order with their arc positions.
@@ -228,5 +230,20 @@ class EditableMesh {
     return (static_cast<std::uint64_t>(hi) << 32) | lo;
   }
 };
+
+// In the header: the sweeps score every triangle of every star they try, several times per move.
+inline double EditableMesh::score_of(int t, Vec2 x, Vec2 y, Vec2 z) const {
+  const int k = sharp_corner_of(t);
+  return k < 0 ? min_angle_sine(x, y, z) : min_angle_sine_except(x, y, z, k);
+}
+
+inline int EditableMesh::sharp_corner_of(int t) const {
+  if (sharp_.empty()) return -1;
+  return sharp_corner_in(t);
+}
+
+inline double EditableMesh::quality(int t) const {
+  return score_ != nullptr ? score_->score(*this, t) : score_of(t, p[v[t][0]], p[v[t][1]], p[v[t][2]]);
+}
 
 }  // namespace pdmesh::cleanup

@@ -60,4 +60,17 @@ inline double inradius(Vec2 a, Vec2 b, Vec2 c) {
   return perimeter > 0.0 ? std::fabs(cross(b - a, c - a)) / perimeter : 0.0;
 }
 
+// aspect_ratio(a, b, c), and inradius(a, b, c) in `r`, from one computation of the three edge lengths
+// (the smoother's moves need both for every triangle of a star): the same operations in the same
+// order as the two functions, so the same values bit for bit (dist(x, y) == dist(y, x) exactly).
+inline double aspect_ratio_and_inradius(Vec2 a, Vec2 b, Vec2 c, double& r) {
+  const double la = dist(b, c), lb = dist(c, a), lc = dist(a, b);
+  const double twice_area = cross(b - a, c - a);
+  const double perimeter = lc + la + lb;
+  r = perimeter > 0.0 ? std::fabs(twice_area) / perimeter : 0.0;
+  const double area = 0.5 * twice_area;
+  const double s = 0.5 * (la + lb + lc);
+  return area > 0.0 ? la * lb * lc * s / (8.0 * area * area) : HUGE_VAL;
+}
+
 }  // namespace pdmesh::cleanup

@@ -56,10 +56,15 @@ bool Smoother::try_move(int a, Vec2 displacement, double old_min, double old_sum
         break;
       }
       new_min = std::min(new_min, m.score_of(t, x, y, z));
-      new_sum += aspect_ratio(x, y, z);
       // Rejected already (aspect ratios are positive, so the sum only grows): the rest of the star
-      // cannot change the verdict below, so the step ends here.
-      if (new_min < old_min || (!lift && new_sum > old_sum)) {
+      // cannot change the verdict below, so the step ends here, before the aspect ratio when the
+      // smallest score decides it.
+      if (new_min < old_min) {
+        valid = false;
+        break;
+      }
+      new_sum += aspect_ratio(x, y, z);
+      if (!lift && new_sum > old_sum) {
         valid = false;
         break;
       }
@@ -150,11 +155,12 @@ bool Smoother::relax(int a, bool star_known) {
     const auto& tv = m.v[t];
     const Vec2 x = m.p[tv[0]], y = m.p[tv[1]], z = m.p[tv[2]];
     old_min = std::min(old_min, m.score_of(t, x, y, z));
-    old_sum += aspect_ratio(x, y, z);
+    double r = 0.0;
+    old_sum += aspect_ratio_and_inradius(x, y, z, r);
     const double area = 0.5 * cross(y - x, z - x);
     weighted = weighted + area * circumcentre(x, y, z);
     area_sum += area;
-    r_min = std::min(r_min, inradius(x, y, z));
+    r_min = std::min(r_min, r);
   }
   if (!(area_sum > 0.0)) return false;
   Vec2 d = (1.0 / area_sum) * weighted - m.p[a];
@@ -204,8 +210,9 @@ bool Smoother::climb(int a, bool star_known) {
       second_min = q;
       second = t;
     }
-    old_sum += aspect_ratio(x, y, z);
-    r_min = std::min(r_min, inradius(x, y, z));
+    double r = 0.0;
+    old_sum += aspect_ratio_and_inradius(x, y, z, r);
+    r_min = std::min(r_min, r);
   }
   if (worst < 0 || !(r_min > 0.0)) return false;
   const double h = 1e-3 * r_min;

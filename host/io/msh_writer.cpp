@@ -10,8 +10,8 @@
 
 #include <fmt/format.h>
 
-#include "core/interrupt.hpp"
 #include "core/g17.hpp"
+#include "core/text_blocks.hpp"
 #include "io/mesh_io_common.hpp"
 #include "io/mesh_text.hpp"
 
@@ -97,22 +97,16 @@ void write_msh41(const Mesh& mesh, TextSink& sink) {
     out += "$Nodes\n0 0 0 0\n$EndNodes\n";
   } else {
     out += fmt::format("$Nodes\n1 {} 1 {}\n2 1 0 {}\n", n, n, n);
-    // Formatted straight into `out` (a temporary string per number was most of the time at millions
-    // of nodes); numbers as coord() writes them.
-    auto to = std::back_inserter(out);
-    for (std::size_t i = 0; i < n; ++i) {
-      fmt::format_to(to, "{}\n", i + 1);
-      sink.piece_done();
-    }
-    InterruptPoll poll(65536);
-    for (const auto& p : mesh.points) {
-      poll.tick();
-      append_g17(out, p.x);
-      out += ' ';
-      append_g17(out, p.y);
-      out += " 0\n";
-      sink.piece_done();
-    }
+    // Formatted straight into the block's text (a temporary string per number was most of the time at
+    // millions of nodes); numbers as coord() writes them.
+    append_items(sink, n,
+                 [](std::string& line, std::size_t i) { fmt::format_to(std::back_inserter(line), "{}\n", i + 1); });
+    append_items(sink, n, [&mesh](std::string& line, std::size_t i) {
+      append_g17(line, mesh.points[i].x);
+      line += ' ';
+      append_g17(line, mesh.points[i].y);
+      line += " 0\n";
+    });
     out += "$EndNodes\n";
   }
 
@@ -145,17 +139,16 @@ void write_msh41(const Mesh& mesh, TextSink& sink) {
     for (std::size_t i = 0; i < mesh.triangles.size(); ++i)
       by_surface[at[static_cast<std::size_t>(surfaces.of_triangle[i])]++] = i;
   }
-  InterruptPoll poll(65536);
   for (std::size_t j = 0; j < ns; ++j) {
     if (per_surface[j] == 0) continue;
     out += fmt::format("2 {} 2 {}\n", j + 1, per_surface[j]);
-    auto to = std::back_inserter(out);
-    for (std::size_t k = start[j]; k < start[j + 1]; ++k) {
-      poll.tick();
-      const auto& t = mesh.triangles[by_surface[k]];
-      fmt::format_to(to, "{} {} {} {}\n", tag++, t[0] + 1, t[1] + 1, t[2] + 1);
-      sink.piece_done();
-    }
+    // Triangle k of the surface's block gets the tag first_tag + k: tags run on from the elements before.
+    const std::size_t first = start[j], first_tag = tag;
+    append_items(sink, per_surface[j], [&](std::string& line, std::size_t k) {
+      const auto& t = mesh.triangles[by_surface[first + k]];
+      fmt::format_to(std::back_inserter(line), "{} {} {} {}\n", first_tag + k, t[0] + 1, t[1] + 1, t[2] + 1);
+    });
+    tag += per_surface[j];
   }
   out += "$EndElements\n";
   append_msh_spacing_node_data(sink, mesh);
@@ -169,7 +162,6 @@ void write_msh22(const Mesh& mesh, TextSink& sink) {
   const Surfaces surfaces = surfaces_of(mesh);
   out += physical_names(mesh, surfaces);
   out += fmt::format("$Nodes\n{}\n", mesh.points.size());
-  auto to = std::back_inserter(out);
   append_point_lines(sink, mesh, "");
   out += "$EndNodes\n";
   // Each element: tag, type, 2 tags (physical, elementary), nodes. Curve c is elementary entity c + 1,
@@ -181,14 +173,13 @@ void write_msh22(const Mesh& mesh, TextSink& sink) {
     out += fmt::format("{} 1 2 {} {} {} {}\n", tag++, e.curve + 1, e.curve + 1, e.a + 1, e.b + 1);
     sink.piece_done();
   }
-  InterruptPoll poll(65536);
-  for (std::size_t i = 0; i < mesh.triangles.size(); ++i) {
-    poll.tick();
+  const std::size_t first_tag = tag;
+  append_items(sink, mesh.triangles.size(), [&](std::string& line, std::size_t i) {
     const auto& t = mesh.triangles[i];
     const int j = surfaces.of_triangle[i];
-    fmt::format_to(to, "{} 2 2 {} {} {} {} {}\n", tag++, curves + 1 + j, j + 1, t[0] + 1, t[1] + 1, t[2] + 1);
-    sink.piece_done();
-  }
+    fmt::format_to(std::back_inserter(line), "{} 2 2 {} {} {} {} {}\n", first_tag + i, curves + 1 + j, j + 1, t[0] + 1,
+                   t[1] + 1, t[2] + 1);
+  });
   out += "$EndElements\n";
   append_msh_spacing_node_data(sink, mesh);
 }

@@ -9,14 +9,17 @@
 #include <bit>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <iterator>
 #include <string_view>
 #include <type_traits>
+#include <vector>
 
 #include <fmt/format.h>
 
-#include "core/interrupt.hpp"
 #include "core/g17.hpp"
+#include "core/interrupt.hpp"
+#include "core/parallel.hpp"
 #include "io/mesh_io_common.hpp"
 #include "io/vtu_data.hpp"
 #include "mesh/quality.hpp"
@@ -40,6 +43,61 @@ void append_ascii(std::string& out, T v) {
     append_g17(out, v);
   } else {
     fmt::format_to(std::back_inserter(out), "{}", static_cast<std::int64_t>(v));
+  }
+}
+
+// The base64 text of the binary form of `count` values of type T (value(e), e = tuple * components +
+// component), after their header (header_type UInt64: the byte count of the data that follows, encoded
+// with it; an empty array still has its header, as VTK writes it and as readers expect). The stream
+// of header and data bytes is cut into pieces of kBinaryPiece bytes, a multiple of 3, so that each
+// piece encodes to whole base64 groups on its own: the pieces are encoded on several threads and
+// appended in order, the text one encoder over the whole stream writes.
+constexpr std::size_t kBinaryPiece = 3 << 17;
+constexpr std::size_t kBinaryPiecesPerRound = 16;
+
+template <class T, class Value>
+void append_binary(TextSink& sink, std::size_t count, const Value& value) {
+  const std::uint64_t bytes = static_cast<std::uint64_t>(count) * sizeof(T);
+  unsigned char header[sizeof bytes];
+  std::memcpy(header, &bytes, sizeof bytes);
+  const std::size_t total = sizeof header + static_cast<std::size_t>(bytes);
+  // Stream bytes [begin, end) into `raw`: the header's, then those of the values they fall in.
+  const auto fill = [&](std::size_t begin, std::size_t end, std::vector<unsigned char>& raw) {
+    raw.resize(end - begin);
+    unsigned char* out = raw.data();
+    for (std::size_t pos = begin; pos < std::min(end, sizeof header); ++pos) *out++ = header[pos];
+    if (end <= sizeof header) return;
+    const std::size_t from = std::max(begin, sizeof header) - sizeof header, to = end - sizeof header;
+    for (std::size_t e = from / sizeof(T); e * sizeof(T) < to; ++e) {
+      unsigned char v[sizeof(T)];
+      const T x = value(e);
+      std::memcpy(v, &x, sizeof(T));
+      // The part of value e inside the piece: all of it but at the piece's ends.
+      const std::size_t lo = std::max(from, e * sizeof(T)) - e * sizeof(T);
+      const std::size_t hi = std::min(to, (e + 1) * sizeof(T)) - e * sizeof(T);
+      std::memcpy(out, v + lo, hi - lo);
+      out += hi - lo;
+    }
+  };
+  const std::size_t pieces = (total + kBinaryPiece - 1) / kBinaryPiece;
+  std::vector<std::string> texts(std::min(kBinaryPiecesPerRound, pieces));
+  for (std::size_t first = 0; first < pieces; first += kBinaryPiecesPerRound) {
+    const std::size_t round = std::min(kBinaryPiecesPerRound, pieces - first);
+    parallel_for_scratch<std::vector<unsigned char>>(
+        round,
+        [&](std::vector<unsigned char>& raw, std::size_t k) {
+          const std::size_t begin = (first + k) * kBinaryPiece, end = std::min(total, begin + kBinaryPiece);
+          fill(begin, end, raw);
+          texts[k].clear();
+          Base64Encoder encoder(texts[k]);
+          encoder.put(raw.data(), raw.size());
+          encoder.finish();  // padding only after the last piece: the others are whole groups
+        },
+        1);
+    for (std::size_t k = 0; k < round; ++k) {
+      sink.text() += texts[k];
+      sink.piece_done();
+    }
   }
 }
 
@@ -77,22 +135,11 @@ void data_array(TextSink& sink, VtuFormat format, std::string_view indent, std::
       sink.piece_done();
     }
   } else {
-    // The header (header_type UInt64): the byte count of the data that follows, encoded with it
-    // (an empty array still has its header, as VTK writes it and as readers expect).
     out += indent;
     out += "  ";
-    Base64Encoder encoder(out);
-    const std::uint64_t bytes = static_cast<std::uint64_t>(tuples) * components * sizeof(T);
-    encoder.put(&bytes, sizeof bytes);
-    for (std::size_t i = 0; i < tuples; ++i) {
-      if ((i & 65535) == 0) check_interrupt();
-      for (int c = 0; c < components; ++c) {
-        const T v = static_cast<T>(value(i, c));
-        encoder.put(&v, sizeof v);
-      }
-      sink.piece_done();
-    }
-    encoder.finish();
+    append_binary<T>(sink, tuples * static_cast<std::size_t>(components), [&](std::size_t e) {
+      return static_cast<T>(value(e / static_cast<std::size_t>(components), static_cast<int>(e % components)));
+    });
     out += '\n';
   }
   out += indent;

@@ -14,6 +14,7 @@
 #include "core/errors.hpp"
 #include "core/g17.hpp"
 #include "core/input_file.hpp"
+#include "core/text_blocks.hpp"
 #include "core/text_sink.hpp"
 
 namespace pdmesh {
@@ -125,17 +126,15 @@ void write_node_text(const NodeSet& nodes, const std::vector<std::string>& curve
   }
   std::string& out = sink.text();
   fmt::format_to(std::back_inserter(out), "{}\n{}\n", kHeader, nodes.size());
-  for (std::size_t i = 0; i < nodes.size(); ++i) {
-    if ((i & 65535) == 0) check_interrupt();
-    append_g17(out, nodes.x[i].x);
-    out.push_back(' ');
-    append_g17(out, nodes.x[i].y);
-    fmt::format_to(std::back_inserter(out), " {} {} ", to_string(nodes.kind[i]),
+  append_items(sink, nodes.size(), [&nodes](std::string& line, std::size_t i) {
+    append_g17(line, nodes.x[i].x);
+    line.push_back(' ');
+    append_g17(line, nodes.x[i].y);
+    fmt::format_to(std::back_inserter(line), " {} {} ", to_string(nodes.kind[i]),
                    nodes.kind[i] == NodeKind::Interior ? -1 : nodes.curve[i]);
-    append_g17(out, nodes.q[i]);
-    out.push_back('\n');
-    sink.piece_done();
-  }
+    append_g17(line, nodes.q[i]);
+    line.push_back('\n');
+  });
   fmt::format_to(std::back_inserter(out), "curves {}\n", nodes.curve_nodes.size());
   for (std::size_t c = 0; c < nodes.curve_nodes.size(); ++c) {
     if (has_space(curve_names[c])) {

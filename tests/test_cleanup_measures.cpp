@@ -1,0 +1,40 @@
+// Tests of the cleanup's triangle measures (cleanup/measures.hpp) that stand for one another.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <cstring>
+#include <random>
+
+#include "cleanup/measures.hpp"
+#include "seeded_random.hpp"
+
+using namespace pdmesh;
+using namespace pdmesh::cleanup;
+
+namespace {
+
+// Bit for bit: == alone would take -0.0 for 0.0.
+bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
+
+}  // namespace
+
+TEST_CASE("aspect_ratio_and_inradius gives aspect_ratio and inradius bit for bit", "[cleanup]") {
+  std::mt19937_64 rng(20261204);
+  for (int k = 0; k < 200000; ++k) {
+    // Counter-clockwise, clockwise and nearly degenerate triangles at several scales and offsets.
+    const double scale = std::pow(10.0, 6.0 * pdmesh_test::unit(rng) - 3.0);
+    const Vec2 o{1e3 * (pdmesh_test::unit(rng) - 0.5), 1e3 * (pdmesh_test::unit(rng) - 0.5)};
+    const auto at = [&] { return o + scale * Vec2{pdmesh_test::unit(rng), pdmesh_test::unit(rng)}; };
+    const Vec2 a = at(), b = at();
+    const Vec2 c = k % 5 == 0 ? a + 0.5 * (b - a) : at();  // every fifth nearly on a line
+    double r = -1.0;
+    const double ar = aspect_ratio_and_inradius(a, b, c, r);
+    INFO("triangle " << k);
+    CHECK(same_bits(ar, aspect_ratio(a, b, c)));
+    CHECK(same_bits(r, inradius(a, b, c)));
+  }
+  // Two equal points: a zero area, an infinite aspect ratio and a zero inradius.
+  double r = -1.0;
+  CHECK(std::isinf(aspect_ratio_and_inradius({0, 0}, {0, 0}, {1, 0}, r)));
+  CHECK(r == 0.0);
+}
