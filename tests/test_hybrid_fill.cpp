@@ -11,6 +11,7 @@
 #include "geometry/geometry_tree.hpp"
 #include "geometry_fixtures.hpp"
 #include "init/initial_distribution.hpp"
+#include "spacing/refine_regions.hpp"
 #include "spacing/spacing_field.hpp"
 
 using namespace pdmesh;
@@ -80,4 +81,38 @@ TEST_CASE("hybrid fill: the structured patterns next to the boundary, a lattice 
   bool identical = true;
   for (std::size_t i = 0; i < again.nodes.size(); ++i) identical = identical && again.nodes.x[i] == hybrid.nodes.x[i];
   CHECK(identical);
+}
+
+TEST_CASE("hybrid fill with a density: the start follows the estimate whatever the quads' area ratios",
+          "[init][hybrid]") {
+  // Squares of side 20 at uniform spacings whose quads fall at different places of the patterns'
+  // ratio bands (the tree's leaves are the root side / 2^k). The structured patterns overfill the
+  // estimate by a share that depends on where the ratios fall; with init.density the interior start
+  // is that density times the estimate of the part beyond the keep rule's clearance, whatever q.
+  const double density = 1.21;
+  double lo = HUGE_VAL, hi = 0.0, lo_structured = HUGE_VAL, hi_structured = 0.0;
+  for (const double q : {0.40, 0.43, 0.46, 0.50, 0.53, 0.57, 0.61, 0.66}) {
+    const int m = static_cast<int>(std::lround(20.0 / q));
+    const Geometry g = fixtures::square(20.0, m);
+    const GeometryTree tree(g);
+    const UniformSpacing spacing(q);
+    InitOptions options{InitMethod::Hybrid, 1, {}};
+    options.density = density;
+    const InitialDistribution d = make_initial_distribution(tree, spacing, options);
+    const InitialDistribution s = make_initial_distribution(tree, spacing, {InitMethod::Structured, 1, {}});
+    // The estimate of the interior beyond the clearance: the square less a band of 0.5 q.
+    const double inner = (20.0 - q) * (20.0 - q) * 2.0 / (std::sqrt(3.0) * q * q);
+    const double r = static_cast<double>(d.tree_nodes) / inner;
+    const double rs = static_cast<double>(s.tree_nodes) / inner;
+    WARN("q " << q << ": hybrid with density " << d.tree_nodes << " interior nodes (" << r << " x the estimate), "
+              << "structured " << s.tree_nodes << " (" << rs << ")");
+    lo = std::min(lo, r);
+    hi = std::max(hi, r);
+    lo_structured = std::min(lo_structured, rs);
+    hi_structured = std::max(hi_structured, rs);
+  }
+  CHECK(lo >= 0.9 * density);
+  CHECK(hi <= 1.1 * density);
+  // What the density corrects: the patterns' share of the estimate moves with q.
+  CHECK(hi_structured / lo_structured > 1.2);
 }

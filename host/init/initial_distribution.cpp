@@ -184,13 +184,14 @@ InitialDistribution make_initial_distribution(const GeometryTree& tree, const Sp
   out.estimate = options.with_estimate ? estimate_over(tree, spacing, init) : std::nan("");
 
   UnitRandom rng(options.seed);
-  LatticePoints lattice;
+  FillState fill;
+  fill.density = options.method == InitMethod::Hybrid ? options.density : 0.0;
   InterruptPoll poll(1024);
   for (int k : init.kept()) {
     poll.tick();
     const InitLeaf& leaf = init.leaves()[k];
     out.tree_quads.push_back(leaf.box);
-    out.tree_nodes += fill_leaf(tree, spacing, leaf, options.method, rng, out.nodes, &lattice);
+    out.tree_nodes += fill_leaf(tree, spacing, leaf, options.method, rng, out.nodes, &fill);
   }
   if (options.total && *options.total > out.nodes.size()) {
     out.overload_nodes = *options.total - out.nodes.size();

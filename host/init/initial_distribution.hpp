@@ -35,6 +35,11 @@ struct InitOptions {
   // If set and larger than what the tree fill produced, the remainder is added as random
   // interior points (the thesis' "overloading").
   std::optional<std::size_t> total;
+  // The hybrid fill only: 0 = its quads take the structured patterns' counts (its lattice quads as
+  // dense as the pattern each replaces); d > 0 = every quad wholly inside starts at d times the
+  // hexagonal-packing estimate of its part beyond the keep rule's clearance (docs/initialization.md,
+  // "The hybrid fill's density").
+  double density = 0.0;
   // Compute InitialDistribution::estimate (it costs more than the fill itself: 4x4 spacing samples
   // per leaf and more near the boundary). The mesh command already has it from its limit check.
   bool with_estimate = true;

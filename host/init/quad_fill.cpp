@@ -33,6 +33,15 @@ constexpr double kHexLevelsPerOctave = 8.0;
 constexpr double kHybridClearance = 2.0;
 constexpr double kHybridSpread = 0.05;
 
+// With a density d (InitOptions::density) the hybrid fill starts every quad wholly inside the domain
+// at d times the hexagonal-packing estimate of its part beyond the keep rule's clearance: the
+// structured patterns overfill that estimate by a share that depends on where the quads' area ratios
+// fall (0.72-1.61 on the uniform fields of tools/studies/edge_calib.py, 1.15-1.25 on its graded ones). Its lattice
+// quads then take the spacing level nearest q_mid / sqrt(d) on a scale of kHybridLatticeLevels levels per octave
+// (within 4.4 %), one global lattice per level, so that neighbouring quads of one level continue one lattice whatever
+// their sizes.
+constexpr double kHybridLatticeLevels = 8.0;
+
 struct FillContext {
   const GeometryTree& tree;
   const SpacingField& spacing;
@@ -45,7 +54,7 @@ struct FillContext {
   // spares most closest-point queries in quads away from the boundary.
   Vec2 centre;
   double centre_distance = -1.0;
-  LatticePoints* lattice_points = nullptr;  // hexagonal fill only
+  FillState* state = nullptr;  // hexagonal and hybrid fills only
 };
 
 void place(FillContext& ctx, Vec2 p, bool known_inside) {
@@ -107,7 +116,7 @@ void place_lattice(FillContext& ctx, const Box& b, std::int64_t level, double h,
       const std::uint64_t key = (static_cast<std::uint64_t>(level & 0x1FFFFF) << 42) |
                                 (static_cast<std::uint64_t>(j & 0x1FFFFF) << 21) |
                                 static_cast<std::uint64_t>(i & 0x1FFFFF);
-      if (!ctx.lattice_points->insert(key).second) continue;
+      if (!ctx.state->lattice.insert(key).second) continue;
       place(ctx, Vec2{origin.x + static_cast<double>(i) * h + shift, origin.y + static_cast<double>(j) * v},
             known_inside);
     }
@@ -120,16 +129,58 @@ void place_hexagonal(FillContext& ctx, const Box& b, double q, bool known_inside
   place_lattice(ctx, b, level, std::exp2(static_cast<double>(level) / kHexLevelsPerOctave), known_inside);
 }
 
-// The hybrid fill's lattice quad: a lattice as dense as the structured pattern the quad would get
-// (structured_count(ratio) nodes over its area), so a region holds the patterns' count whichever of
-// the two fills each of its quads, and the best preset's relax_scale, set for the patterns, holds for
-// both. The spacing follows from the quad's size and count alone, so same-sized quads with the same
-// count (a flat field) continue one lattice; its level is log2 h in 1/1024 octaves.
-void place_hybrid_lattice(FillContext& ctx, const Box& b, double ratio, bool known_inside) {
+// The hybrid fill's lattice quad. Without a density: a lattice as dense as the structured pattern the
+// quad would get (structured_count(ratio) nodes over its area), so a region holds the patterns' count
+// whichever of the two fills each of its quads; the spacing follows from the quad's size and count
+// alone, so same-sized quads with the same count (a flat field) continue one lattice, its level log2 h
+// in 1/1024 octaves. With a density d: the lattice of the level nearest q_mid / sqrt(d), which holds d
+// times the estimate, as the patterns around it do.
+void place_hybrid_lattice(FillContext& ctx, const Box& b, double ratio, double q_mid, bool known_inside) {
+  const double d = ctx.state->density;
+  if (d > 0.0) {
+    const auto level = static_cast<std::int64_t>(std::lround(kHybridLatticeLevels * std::log2(q_mid / std::sqrt(d))));
+    place_lattice(ctx, b, level, std::exp2(static_cast<double>(level) / kHybridLatticeLevels), known_inside);
+    return;
+  }
   const double area = b.width() * b.height();
   const double h = std::sqrt(2.0 * area / (std::sqrt(3.0) * static_cast<double>(structured_count(ratio))));
   const auto level = static_cast<std::int64_t>(std::lround(1024.0 * std::log2(h)));
   place_lattice(ctx, b, level, h, known_inside);
+}
+
+// The share of quad b (wholly inside, centre ctx.centre at ctx.centre_distance from the boundary, or
+// -1) whose points pass the keep rule, from 4 x 4 samples: the part the estimate counts for the fill.
+double kept_share(FillContext& ctx, const Box& b) {
+  int kept = 0;
+  for (int j = 0; j < 4; ++j) {
+    for (int i = 0; i < 4; ++i) {
+      const Vec2 p{b.lo.x + (i + 0.5) / 4.0 * b.width(), b.lo.y + (j + 0.5) / 4.0 * b.height()};
+      const double bound = ctx.centre_distance >= 0.0 ? ctx.centre_distance - dist(p, ctx.centre) : -1.0;
+      double q = 0.0;
+      kept += keep_interior_candidate(ctx.tree, ctx.spacing, p, true, q, bound);
+    }
+  }
+  return kept / 16.0;
+}
+
+// The hybrid fill's pattern quad wholly inside, with a density d: the pattern of {1, 4, 5, 9} nodes
+// nearest to its target (d times the estimate of its kept part) plus what the quads filled before it fell
+// short by (error diffusion along the fill's depth-first order), so that any stretch of such quads holds
+// its target to within a few nodes whatever their area ratios.
+void place_hybrid_pattern(FillContext& ctx, const Box& b, double q_mid, double centre_distance) {
+  ctx.centre_distance = centre_distance;
+  const double half_diagonal = 0.5 * std::hypot(b.width(), b.height());
+  // Only a quad within the clearance (+ 20 % for q's variation) of the boundary loses any of its part.
+  const double share =
+      centre_distance < half_diagonal + 1.2 * kInitBoundaryClearance * q_mid ? kept_share(ctx, b) : 1.0;
+  const double target = ctx.state->density * share * b.width() * b.height() * 2.0 / (std::sqrt(3.0) * q_mid * q_mid);
+  const double wanted = ctx.state->shortfall + target;
+  int count = 1;
+  for (const int n : {4, 5, 9})
+    if (std::fabs(wanted - n) < std::fabs(wanted - count)) count = n;
+  const std::size_t before = ctx.added;
+  place_structured(ctx, b, count, true);
+  ctx.state->shortfall = wanted - static_cast<double>(ctx.added - before);
 }
 
 void fill_quad(FillContext& ctx, const Box& b, const std::vector<int>& segments, bool known_inside, int depth) {
@@ -176,9 +227,15 @@ void fill_quad(FillContext& ctx, const Box& b, const std::vector<int>& segments,
                                                     : ctx.tree.closest(ctx.centre).distance;
   if (lattice) {
     if (hybrid)
-      place_hybrid_lattice(ctx, b, ratio, known_inside);
+      place_hybrid_lattice(ctx, b, ratio, q_mid, known_inside);
     else
       place_hexagonal(ctx, b, q_mid, known_inside);
+    return;
+  }
+  // The quads a segment cuts keep the structured patterns: the boundary nodes own the band along the
+  // curves, and the keep rule already thins the patterns there.
+  if (hybrid && known_inside && ctx.state->density > 0.0) {
+    place_hybrid_pattern(ctx, b, q_mid, centre_distance);
     return;
   }
   if (ctx.method != InitMethod::Random) {
@@ -227,10 +284,10 @@ bool keep_interior_candidate(const GeometryTree& tree, const SpacingField& spaci
 }
 
 std::size_t fill_leaf(const GeometryTree& tree, const SpacingField& spacing, const InitLeaf& leaf, InitMethod method,
-                      UnitRandom& rng, NodeSet& nodes, LatticePoints* lattice) {
-  if ((method == InitMethod::Hexagonal || method == InitMethod::Hybrid) && lattice == nullptr)
-    throw Error("fill_leaf: the hexagonal and hybrid fills need the set of lattice points placed so far");
-  FillContext ctx{tree, spacing, method, rng, nodes, 0, {}, -1.0, lattice};
+                      UnitRandom& rng, NodeSet& nodes, FillState* state) {
+  if ((method == InitMethod::Hexagonal || method == InitMethod::Hybrid) && state == nullptr)
+    throw Error("fill_leaf: the hexagonal and hybrid fills need the fill's state (lattice points, shortfall)");
+  FillContext ctx{tree, spacing, method, rng, nodes, 0, {}, -1.0, state};
   // Kept leaves without segments lie wholly inside (InitTree keeps only those whose centre is inside).
   fill_quad(ctx, leaf.box, leaf.segments, leaf.segments.empty(), 0);
   return ctx.added;

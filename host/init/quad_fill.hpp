@@ -43,10 +43,19 @@ bool keep_interior_candidate(const GeometryTree& tree, const SpacingField& spaci
 // one fill, so that a point on the edge between two quads is placed once.
 using LatticePoints = std::unordered_set<std::uint64_t>;
 
+// What one fill carries from leaf to leaf: the lattice points placed so far, and for the hybrid fill
+// with a density (InitOptions::density; 0 = the patterns' counts) the nodes its pattern quads fell
+// short of their targets by so far (negative: over).
+struct FillState {
+  LatticePoints lattice;
+  double density = 0.0;
+  double shortfall = 0.0;
+};
+
 // Fills one kept leaf, splitting it into four while its area ratio exceeds kInitSplitRatio.
 // Kept nodes are appended to `nodes` as Interior nodes. Returns how many were added. The hexagonal
-// and hybrid fills need `lattice` (the same set for every leaf of the fill).
+// and hybrid fills need `state` (the same for every leaf of the fill, in the fill's order).
 std::size_t fill_leaf(const GeometryTree& tree, const SpacingField& spacing, const InitLeaf& leaf, InitMethod method,
-                      UnitRandom& rng, NodeSet& nodes, LatticePoints* lattice = nullptr);
+                      UnitRandom& rng, NodeSet& nodes, FillState* state = nullptr);
 
 }  // namespace pdmesh

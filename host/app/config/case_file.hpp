@@ -169,6 +169,8 @@ struct CaseConfig {
     InitMethod method = InitMethod::Structured;
     std::uint64_t seed = 1;
     std::uint64_t total = 0;  // 0 = no overloading
+    // The hybrid fill's start density (InitOptions::density): 0 = the structured patterns' counts.
+    double density = 0.0;
     // The warm start: a node or mesh file whose interior points are the initial interior nodes
     // (init/warm_points.hpp, init/metric_fill.hpp warm_fill); empty: the usual fill.
     std::filesystem::path file;

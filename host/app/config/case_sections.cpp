@@ -195,6 +195,12 @@ void read_init_section(const Reader& r, const toml::table& root, CaseConfig& c) 
   }
   if (const toml::node* n = find(root, "init", "seed")) c.init.seed = non_negative(r, "init.seed", *n);
   if (const toml::node* n = find(root, "init", "total")) c.init.total = non_negative(r, "init.total", *n);
+  if (const toml::node* n = find(root, "init", "density")) {
+    const double v = r.number("init.density", *n);
+    if (!(v == 0.0 || (v >= 0.5 && v <= 2.0)))
+      r.fail("init.density", n, fmt::format("init.density must be 0 or in [0.5, 2], got {}", v));
+    c.init.density = v;
+  }
   if (const toml::node* n = find(root, "init", "file")) {
     const std::string f = r.string("init.file", *n);
     std::string ext = fs::path(f).extension().string();
