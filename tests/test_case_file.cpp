@@ -326,7 +326,8 @@ TEST_CASE("the best preset is long with momentum, a compressed schedule and rule
     CHECK(c->simulation.stop_aspect == 7e-4);
     CHECK(c->simulation.stop_every == 50);
     CHECK(c->simulation.stop_window == 100);
-    CHECK(c->simulation.stop_min == 200);
+    CHECK(c->simulation.stop_min == 150);
+    CHECK(c->simulation.stop_angle == 2.0);
     CHECK(c->cleanup.min_angle == 40.0);
     CHECK(c->cleanup.iterations == 32);
     CHECK(c->spacing.relax_scale == 1.09);
@@ -341,6 +342,7 @@ TEST_CASE("the best preset is long with momentum, a compressed schedule and rule
     CHECK(c->simulation.stop_every == 100);
     CHECK(c->simulation.stop_window == 400);
     CHECK(c->simulation.stop_min == 400);
+    CHECK(c->simulation.stop_angle == 0.25);
     CHECK(c->cleanup.min_angle == 30.0);
     CHECK(c->cleanup.iterations == 16);
     CHECK(c->spacing.relax_scale == 1.0);
@@ -350,6 +352,7 @@ TEST_CASE("the best preset is long with momentum, a compressed schedule and rule
   apply_preset(by_hand, Preset::Long);
   CHECK(by_hand.simulation.momentum == 0.0);
   CHECK(by_hand.simulation.stop_every == 100);
+  CHECK(by_hand.simulation.stop_angle == 0.25);
   CHECK(by_hand.cleanup.min_angle == 30.0);
   CHECK(by_hand.spacing.relax_scale == 1.0);
   apply_preset(by_hand, Preset::Best);
@@ -655,7 +658,7 @@ TEST_CASE("simulation.stop_aspect / stop_angle: the convergence rule's tolerance
           "[app][case][convergence]") {
   const CaseConfig best = parse_case_text(kMinimal, kCase);
   CHECK(best.simulation.stop_aspect == 7e-4);
-  CHECK(best.simulation.stop_angle == 0.25);
+  CHECK(best.simulation.stop_angle == 2.0);
   const CaseConfig set =
       parse_case_text(std::string(kMinimal) + "[simulation]\nstop_aspect = 2e-3\nstop_angle = 0.5\n", kCase);
   CHECK(set.simulation.stop_aspect == 2e-3);

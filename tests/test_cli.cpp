@@ -423,7 +423,7 @@ TEST_CASE("pdmesh mesh --stop: the rule is named in the progress output, a bad r
   CHECK(contains(converged.output, "simulation: until converged, at most 10 iterations"));
   // A run that reached its maximum says which part of the rule held it.
   CHECK(contains(converged.output,
-                 "simulation: not converged in 10 iterations: iteration 10 is before the earliest stop (200)"));
+                 "simulation: not converged in 10 iterations: iteration 10 is before the earliest stop (150)"));
   const Result counted = run(base + " --stop iterations");
   INFO(counted.output);
   REQUIRE(counted.status == 0);
