@@ -132,3 +132,41 @@ TEST_CASE("a sweep move given the star the strips' test walked is the move that 
   CHECK(walked.p == given.p);
   CHECK(walked.v == given.v);
 }
+
+TEST_CASE("the marks' epochs: a vertex is marked in an epoch when its star changed since it began", "[cleanup]") {
+  const Holed h;
+  EditableMesh m = h.editable(2);
+  // Every vertex is new to the first epoch; none is marked in the next one until an edit marks it.
+  const std::uint32_t first = m.epoch();
+  CHECK(m.marked_in(0, first));
+  m.next_epoch();
+  const std::uint32_t e = m.epoch();
+  for (int a = 0; a < m.vertex_slots(); ++a) REQUIRE_FALSE(m.marked_in(a, e));
+  // An interior vertex moved a little outside a transaction: its star's vertices are marked, and only they.
+  int a = 0;
+  while (m.kind[a] != NodeKind::Interior) ++a;
+  std::vector<int> star, ring;
+  m.star(a, star);
+  m.ring(a, ring);
+  m.move(a, m.p[a] + Vec2{1e-6, 0.0}, m.arc[a]);
+  int marked = 0;
+  for (int b = 0; b < m.vertex_slots(); ++b) marked += m.marked_in(b, e) ? 1 : 0;
+  CHECK(m.marked_in(a, e));
+  for (int b : ring) CHECK(m.marked_in(b, e));
+  CHECK(marked == 1 + static_cast<int>(ring.size()));
+  // take_dirty() clears the dirty flags, not the epochs' marks.
+  m.take_dirty();
+  CHECK(m.marked_in(a, e));
+  // In a new epoch: an edit rolled back marks nothing, a committed one marks its triangles' vertices.
+  m.next_epoch();
+  const std::uint32_t e2 = m.epoch();
+  m.begin();
+  m.move(a, m.p[a] + Vec2{1e-6, 0.0}, m.arc[a]);
+  m.rollback();
+  for (int b = 0; b < m.vertex_slots(); ++b) REQUIRE_FALSE(m.marked_in(b, e2));
+  m.begin();
+  m.move(a, m.p[a] + Vec2{1e-6, 0.0}, m.arc[a]);
+  m.commit();
+  CHECK(m.marked_in(a, e2));
+  for (int b : ring) CHECK(m.marked_in(b, e2));
+}

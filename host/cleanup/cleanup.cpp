@@ -24,15 +24,17 @@ using cleanup::EditableMesh;
 namespace {
 
 // The scores of the live triangles, for the sweeps' candidate lists. A triangle none of whose vertices
-// is marked changed since the last call (the journal marks the vertices of every changed triangle and
-// of every moved vertex's star; `since` holds the marks taken at the start of the iteration, the mesh
-// those made since) keeps the score computed then, which is the score quality() would give: the same
-// triangle, the same points. Late iterations change little of a large mesh.
+// was marked since the last call (the journal marks the vertices of every changed triangle and of every
+// moved vertex's star, each mark with the mesh's epoch, which each call ends by advancing) keeps the
+// score computed then, which is the score quality() would give: the same triangle, the same points.
+// Late iterations change little of a large mesh, and the calls within one iteration (two sweeps, the
+// topology pass, settling) score again only what changed in between.
 class Scores {
  public:
   explicit Scores(std::size_t threads) : threads_(cleanup::sweep_thread_limit(threads)) {}
-  const std::vector<double>& update(const EditableMesh& m, const std::vector<std::uint8_t>& since) {
-    auto changed = [&](int a) { return (a < static_cast<int>(since.size()) && since[a]) || m.dirty(a); };
+  const std::vector<double>& update(EditableMesh& m) {
+    const std::uint32_t since = since_;
+    auto changed = [&](int a) { return m.marked_in(a, since); };
     score_.resize(m.triangle_slots(), 0.0);
     // Each index writes only its own score: the same scores on any number of threads.
     parallel_for(
@@ -45,12 +47,15 @@ class Scores {
         },
         16384, threads_);
     known_ = m.triangle_slots();
+    m.next_epoch();
+    since_ = m.epoch();
     return score_;
   }
 
  private:
   std::vector<double> score_;
-  int known_ = 0;  // slots scored by the last update
+  int known_ = 0;            // slots scored by the last update
+  std::uint32_t since_ = 0;  // the epoch begun by the last update: marks from then on are new
   std::size_t threads_;
 };
 
@@ -169,10 +174,9 @@ class CleanupRun {
 
  private:
   void sweeps(const std::vector<std::uint8_t>& dirty, InterruptPoll& poll, CleanupIteration& record);
-  std::vector<std::pair<double, int>> topology_list(const std::vector<std::uint8_t>& dirty, double below);
+  std::vector<std::pair<double, int>> topology_list(double below);
   void set_aspect_totals();
-  std::size_t topology_pass(const std::vector<std::uint8_t>& dirty, InterruptPoll& poll, CleanupIteration& record,
-                            CleanupStats& stats);
+  std::size_t topology_pass(InterruptPoll& poll, CleanupIteration& record, CleanupStats& stats);
   // The smallest score, the aspect-ratio sum and the count of the live triangles, and the summed
   // shortfall of the triangles below the target (target score - score).
   struct MeshScan {
@@ -220,16 +224,16 @@ void CleanupRun::sweeps(const std::vector<std::uint8_t>& dirty, InterruptPoll& p
   if (strips_) {
     for (const auto move : {cleanup::SweepMove::Relax, cleanup::SweepMove::Climb}) {
       const double below = move == cleanup::SweepMove::Relax ? limits_.smooth : limits_.topology;
-      const auto list = vertices_of_bad_triangles(m_, scores_.update(m_, dirty), below, mark_);
+      const auto list = vertices_of_bad_triangles(m_, scores_.update(m_), below, mark_);
       cleanup::add_moves(record, strips_->sweep(m_, smoother_, list, move, worth, poll));
     }
     return;
   }
-  for (int a : vertices_of_bad_triangles(m_, scores_.update(m_, dirty), limits_.smooth, mark_)) {
+  for (int a : vertices_of_bad_triangles(m_, scores_.update(m_), limits_.smooth, mark_)) {
     poll.tick();
     if (worth(a)) tally_move(smoother_.relax(a), smoother_, record);
   }
-  for (int a : vertices_of_bad_triangles(m_, scores_.update(m_, dirty), limits_.topology, mark_)) {
+  for (int a : vertices_of_bad_triangles(m_, scores_.update(m_), limits_.topology, mark_)) {
     poll.tick();
     if (worth(a)) tally_move(smoother_.climb(a), smoother_, record);
   }
@@ -238,10 +242,10 @@ void CleanupRun::sweeps(const std::vector<std::uint8_t>& dirty, InterruptPoll& p
 // The live triangles scored below `below` that have not failed before, worst first. Triangles that
 // failed before are dropped before the sort rather than after it: after the first pass they are nearly
 // all of the list, and the order of the others is the same.
-std::vector<std::pair<double, int>> CleanupRun::topology_list(const std::vector<std::uint8_t>& dirty, double below) {
+std::vector<std::pair<double, int>> CleanupRun::topology_list(double below) {
   // The scores the sweeps' lists keep, brought up to date: triangles the sweeps did not change keep
   // theirs, rather than every triangle's being computed again.
-  const std::vector<double>& score = scores_.update(m_, dirty);
+  const std::vector<double>& score = scores_.update(m_);
   std::vector<std::pair<double, int>> bad;
   for (int t = 0; t < m_.triangle_slots(); ++t) {
     if (!m_.alive(t)) continue;
@@ -279,10 +283,9 @@ void CleanupRun::set_aspect_totals() {
 // (docs/cleanup.md). So once the first budget is spent only the triangles below the target are listed
 // (the pass would stop at the first other one), and a pass with none to try, the common case on a
 // settled lattice after its first pass, is not made at all. Returns the number of changes it made.
-std::size_t CleanupRun::topology_pass(const std::vector<std::uint8_t>& dirty, InterruptPoll& poll,
-                                      CleanupIteration& record, CleanupStats& stats) {
+std::size_t CleanupRun::topology_pass(InterruptPoll& poll, CleanupIteration& record, CleanupStats& stats) {
   const bool first_spent = ops_.trials() >= trial_budget_;
-  const auto bad = topology_list(dirty, first_spent ? limits_.target : limits_.topology);
+  const auto bad = topology_list(first_spent ? limits_.target : limits_.topology);
   if (!bad.empty()) set_aspect_totals();
   std::size_t changed = 0;
   const std::size_t trials_before = ops_.trials();
@@ -361,7 +364,7 @@ bool CleanupRun::settled(int iteration, const CleanupIteration& record) {
   if (!(options_.settled_aspect_drop > 0.0)) return false;
   // The kept scores brought up to date (only the triangles the iteration changed are scored again):
   // the values quality() gives, without a scan of every triangle's angles per iteration.
-  const MeshScan s = scan(&scores_.update(m_, since_));
+  const MeshScan s = scan(&scores_.update(m_));
   const bool quiet = iteration > 0 && record.topology == 0 && record.stuck == 0 && s.worst <= last_worst_ &&
                      s.deficit >= last_deficit_ && record.aspect_drop < options_.settled_aspect_drop * s.count;
   last_worst_ = s.worst;
@@ -398,7 +401,7 @@ std::size_t CleanupRun::iterate(int iteration, CleanupStats& stats) {
   stats.moves += record.moves;
   // Not in the last iteration, which only smooths.
   if (options_.topology && iteration + 1 < options_.iterations && ops_.trials() < 2 * trial_budget_) {
-    record.topology = topology_pass(dirty, poll, record, stats);
+    record.topology = topology_pass(poll, record, stats);
     record.topology_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - smoothed).count();
     stats.topology_seconds += record.topology_seconds;
   }

@@ -40,6 +40,7 @@ EditableMesh::EditableMesh(const Mesh& mesh, const std::vector<std::vector<int>>
   gone_.assign(np, 0);
   vert_stamp_.assign(np, 0);
   dirty_.assign(np, 1);
+  marked_at_.assign(np, epoch_);
   // Nodes on a curve that the kinds do not mark (a mesh read without kinds) must not move either.
   // An embedded constraint (Mesh::constraint_curves) has triangles on both sides: the mesh is cut
   // along it (no neighbours across its edges, so no flip crosses it) and its nodes are pinned, so
@@ -268,7 +269,7 @@ bool EditableMesh::star_valid(int a) const {
 
 void EditableMesh::mark_dirty(int t) {
   if (t < 0 || !alive(t)) return;
-  for (int a : v[t]) dirty_[a] = 1;
+  for (int a : v[t]) mark_vertex(a);
 }
 
 std::vector<std::uint8_t> EditableMesh::take_dirty() {
@@ -309,7 +310,7 @@ void EditableMesh::commit() {
   for (const SavedTriangle& s : tri_log_) {
     mark_dirty(s.t);
     if (s.v[0] >= 0)
-      for (int a : s.v) dirty_[a] = 1;
+      for (int a : s.v) mark_vertex(a);
   }
   for (int t = tri_size0_; t < triangle_slots(); ++t) mark_dirty(t);
   open_ = false;
@@ -340,6 +341,7 @@ void EditableMesh::rollback() {
   gone_.resize(vert_size0_);
   vert_stamp_.resize(vert_size0_);
   dirty_.resize(vert_size0_);
+  marked_at_.resize(vert_size0_);
   tri_log_.clear();
   vert_log_.clear();
   open_ = false;
@@ -449,6 +451,7 @@ int EditableMesh::new_vertex(Vec2 at) {
   gone_.push_back(0);
   vert_stamp_.push_back(0);
   dirty_.push_back(1);
+  marked_at_.push_back(epoch_);
   return vertex_slots() - 1;
 }
 

@@ -165,6 +165,13 @@ class EditableMesh {
   // by rollback() leave no mark.
   std::vector<std::uint8_t> take_dirty();
   bool dirty(int a) const { return dirty_[a] != 0; }
+  // Epochs of the marks: every mark of vertex a (the ones take_dirty() returns) also records the
+  // current epoch for it. A caller that keeps values computed from the mesh (the cleanup's kept
+  // triangle scores) starts a new epoch after bringing them up to date; marked_in(a, e) then says
+  // whether a's star changed since epoch e began, however many take_dirty() came between.
+  std::uint32_t epoch() const { return epoch_; }
+  void next_epoch() { ++epoch_; }
+  bool marked_in(int a, std::uint32_t e) const { return marked_at_[a] >= e; }
   // Marks triangle t's vertices as if their stars had changed, so the next sweeps try them again.
   void mark_changed(int t) { mark_dirty(t); }
   // Vertices created by the open transaction (or since the last begin()).
@@ -205,9 +212,15 @@ class EditableMesh {
   std::vector<SavedTriangle> tri_log_;
   std::vector<SavedVertex> vert_log_;
   int tri_size0_ = 0, vert_size0_ = 0;
-  std::vector<std::uint8_t> gone_;   // per vertex: removed by a collapse
-  std::vector<std::uint8_t> sharp_;  // per vertex: a sharp corner (set_sharp_corners); empty: none
-  std::vector<std::uint8_t> dirty_;  // per vertex: see take_dirty()
+  std::vector<std::uint8_t> gone_;        // per vertex: removed by a collapse
+  std::vector<std::uint8_t> sharp_;       // per vertex: a sharp corner (set_sharp_corners); empty: none
+  std::vector<std::uint8_t> dirty_;       // per vertex: see take_dirty()
+  std::vector<std::uint32_t> marked_at_;  // per vertex: the epoch of its last mark
+  std::uint32_t epoch_ = 1;
+  void mark_vertex(int a) {
+    dirty_[a] = 1;
+    marked_at_[a] = epoch_;
+  }
   void mark_dirty(int t);
   int sharp_corner_in(int t) const;  // sharp_corner_of() once some corner is sharp
   mutable std::vector<int> scratch_;
