@@ -24,6 +24,7 @@
 #include "io/vtu_data.hpp"
 #include "io/vtu_reader.hpp"
 #include "io/vtu_writer.hpp"
+#include "mesh_fixtures.hpp"
 #include "nodes/node_file.hpp"
 #include "temp_files.hpp"
 #include "seeded_random.hpp"
@@ -72,26 +73,7 @@ using pdmesh_test::fresh_dir;
 // An n x n grid of the unit square with q at every point: large enough that each format's text is
 // several of core/text_sink.hpp's 8 MB pieces.
 Mesh big_grid_mesh(int n) {
-  Mesh m;
-  const auto id = [n](int i, int j) { return j * n + i; };
-  for (int j = 0; j < n; ++j)
-    for (int i = 0; i < n; ++i) {
-      m.points.push_back({i / (n - 1.0) + 1e-9 * j, j / (n - 1.0)});
-      const bool side = i == 0 || j == 0 || i == n - 1 || j == n - 1;
-      m.kind.push_back(side ? NodeKind::Boundary : NodeKind::Interior);
-      m.spacing.push_back(1.0 / (n - 1.0) + 1e-12 * i);
-    }
-  for (int j = 0; j + 1 < n; ++j)
-    for (int i = 0; i + 1 < n; ++i) {
-      m.triangles.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
-      m.triangles.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
-    }
-  m.curve_names = {"outline"};
-  for (int i = 0; i + 1 < n; ++i) m.boundary_edges.push_back({id(i, 0), id(i + 1, 0), 0});
-  for (int j = 0; j + 1 < n; ++j) m.boundary_edges.push_back({id(n - 1, j), id(n - 1, j + 1), 0});
-  for (int i = n - 1; i > 0; --i) m.boundary_edges.push_back({id(i, n - 1), id(i - 1, n - 1), 0});
-  for (int j = n - 1; j > 0; --j) m.boundary_edges.push_back({id(0, j), id(0, j - 1), 0});
-  return m;
+  return fixtures::grid_mesh_of(n, [n](int i, int j, bool) { return Vec2{i / (n - 1.0) + 1e-9 * j, j / (n - 1.0)}; });
 }
 
 // Edges grouped by curve as the writers store them (stable within a curve).

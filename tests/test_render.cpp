@@ -41,6 +41,17 @@ struct Png {
   }
 };
 
+// How many pixels of two pictures of the same size differ in any channel.
+int differing_pixels(const Png& one, const Png& other) {
+  int differing = 0;
+  for (int y = 0; y < one.height(); ++y)
+    for (int x = 0; x < one.width(); ++x) {
+      const Rgb a = one.pixel(x, y), b = other.pixel(x, y);
+      differing += a.r != b.r || a.g != b.g || a.b != b.b;
+    }
+  return differing;
+}
+
 // The unit square [0, 2] x [0, 1] as four segments (only what pictures use).
 Geometry rectangle_geometry() {
   Geometry g;
@@ -417,12 +428,7 @@ TEST_CASE("a mesh picture drawn in bands is the picture one canvas draws, pixel 
       REQUIRE(banded.ok());
       REQUIRE(banded.width() == one.width());
       REQUIRE(banded.height() == one.height());
-      int differing = 0;
-      for (int y = 0; y < one.height(); ++y)
-        for (int x = 0; x < one.width(); ++x) {
-          const Rgb a = one.pixel(x, y), b = banded.pixel(x, y);
-          differing += a.r != b.r || a.g != b.g || a.b != b.b;
-        }
+      const int differing = differing_pixels(one, banded);
       INFO("coloured " << coloured << ", bands " << bands);
       CHECK(differing == 0);
     }
@@ -450,12 +456,7 @@ TEST_CASE("a mesh picture drawn in bands is the picture one canvas draws, pixel 
     Png one(dir / "one.png"), banded(dir / "bands.png");
     REQUIRE(one.ok());
     REQUIRE(banded.ok());
-    int differing = 0;
-    for (int y = 0; y < one.height(); ++y)
-      for (int x = 0; x < one.width(); ++x) {
-        const Rgb a = one.pixel(x, y), b = banded.pixel(x, y);
-        differing += a.r != b.r || a.g != b.g || a.b != b.b;
-      }
+    const int differing = differing_pixels(one, banded);
     INFO("splat, bands " << bands);
     CHECK(differing == 0);
   }
@@ -600,12 +601,7 @@ TEST_CASE("a mesh denser than a quarter of its pixels is shaded without seams, t
     REQUIRE(banded.ok());
     REQUIRE(banded.width() == one.width());
     REQUIRE(banded.height() == one.height());
-    int differing = 0;
-    for (int y = 0; y < one.height(); ++y)
-      for (int x = 0; x < one.width(); ++x) {
-        const Rgb a = one.pixel(x, y), b = banded.pixel(x, y);
-        differing += a.r != b.r || a.g != b.g || a.b != b.b;
-      }
+    const int differing = differing_pixels(one, banded);
     INFO("bands " << bands);
     CHECK(differing == 0);
   }

@@ -13,6 +13,7 @@
 #include "io/vtu_data.hpp"
 #include "io/vtu_writer.hpp"
 #include "mesh/quality.hpp"
+#include "mesh_fixtures.hpp"
 
 using namespace pdmesh;
 
@@ -30,27 +31,10 @@ void item_line(std::string& out, std::size_t i) {
 
 // An n x n grid of the unit square, its points jittered so that no two triangles have the same shape.
 Mesh jittered_grid(int n) {
-  Mesh m;
-  const auto id = [n](int i, int j) { return j * n + i; };
-  for (int j = 0; j < n; ++j)
-    for (int i = 0; i < n; ++i) {
-      const bool side = i == 0 || j == 0 || i == n - 1 || j == n - 1;
-      const double jx = side ? 0.0 : 0.2 * std::sin(1.7 * i + 3.1 * j), jy = side ? 0.0 : 0.2 * std::cos(2.3 * i - j);
-      m.points.push_back({(i + jx) / (n - 1.0), (j + jy) / (n - 1.0)});
-      m.kind.push_back(side ? NodeKind::Boundary : NodeKind::Interior);
-      m.spacing.push_back(1.0 / (n - 1.0) + 1e-12 * i);
-    }
-  for (int j = 0; j + 1 < n; ++j)
-    for (int i = 0; i + 1 < n; ++i) {
-      m.triangles.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
-      m.triangles.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
-    }
-  m.curve_names = {"outline"};
-  for (int i = 0; i + 1 < n; ++i) m.boundary_edges.push_back({id(i, 0), id(i + 1, 0), 0});
-  for (int j = 0; j + 1 < n; ++j) m.boundary_edges.push_back({id(n - 1, j), id(n - 1, j + 1), 0});
-  for (int i = n - 1; i > 0; --i) m.boundary_edges.push_back({id(i, n - 1), id(i - 1, n - 1), 0});
-  for (int j = n - 1; j > 0; --j) m.boundary_edges.push_back({id(0, j), id(0, j - 1), 0});
-  return m;
+  return fixtures::grid_mesh_of(n, [n](int i, int j, bool side) {
+    const double jx = side ? 0.0 : 0.2 * std::sin(1.7 * i + 3.1 * j), jy = side ? 0.0 : 0.2 * std::cos(2.3 * i - j);
+    return Vec2{(i + jx) / (n - 1.0), (j + jy) / (n - 1.0)};
+  });
 }
 
 // The base64 line of a binary DataArray as one encoder over its header and all its values writes it.
