@@ -194,22 +194,33 @@ double FeatureSize::loop_arc(int segment, double t) const {
   return arc_a_[s] + arc_sign_[s] * t * geometry_.segments[s].length;
 }
 
-// Depth first over the hierarchy, the child whose box is nearer to x first: skip(node) prunes a node
-// (it may use what `segment` found so far); segment(index) sees every segment of the leaves reached.
+// Depth first over the hierarchy, the child whose box is nearer to x first: skip(node, d2) prunes a
+// node, d2 being its box's squared distance from x (it may use what `segment` found so far);
+// segment(index) sees every segment of the leaves reached. Each node's d2 is computed once, when its
+// parent orders its children, and kept beside it on the stack (two arrays, not one of pairs: a pair
+// read as one 16-byte load right after its two stores would wait for them, store forwarding fails).
 template <class Skip, class Visit>
 void FeatureSize::traverse(Vec2 x, const Skip& skip, const Visit& segment) const {
   if (nodes_.empty()) return;
-  std::int32_t stack[64];  // the depth is about log2(segments / kLeafSize); 64 is far beyond it
+  // The depth is about log2(segments / kLeafSize), and each level leaves one node on the stack; 64
+  // is far beyond it.
+  double stack_d[64];
+  std::int32_t stack_n[64];
   int top = 0;
-  stack[top++] = 0;
+  stack_d[top] = box_distance2(nodes_[0].box, x);
+  stack_n[top++] = 0;
   while (top > 0) {
-    const Node& node = nodes_[static_cast<std::size_t>(stack[--top])];
-    if (skip(node)) continue;
+    --top;
+    const Node& node = nodes_[static_cast<std::size_t>(stack_n[top])];
+    if (skip(node, stack_d[top])) continue;
     if (node.count == 0) {
-      const bool a_first = box_distance2(nodes_[static_cast<std::size_t>(node.first)].box, x) <=
-                           box_distance2(nodes_[static_cast<std::size_t>(node.first + 1)].box, x);
-      stack[top++] = a_first ? node.first + 1 : node.first;
-      stack[top++] = a_first ? node.first : node.first + 1;
+      const double da = box_distance2(nodes_[static_cast<std::size_t>(node.first)].box, x);
+      const double db = box_distance2(nodes_[static_cast<std::size_t>(node.first + 1)].box, x);
+      const bool a_first = da <= db;
+      stack_d[top] = a_first ? db : da;
+      stack_n[top++] = a_first ? node.first + 1 : node.first;
+      stack_d[top] = a_first ? da : db;
+      stack_n[top++] = a_first ? node.first : node.first + 1;
       continue;
     }
     for (std::int32_t i = node.first; i < node.first + node.count; ++i) segment(order_[static_cast<std::size_t>(i)]);
@@ -240,7 +251,7 @@ ClosestHit FeatureSize::closest(Vec2 x, int hint) const {
   const bool seeded = hint >= 0 && static_cast<std::size_t>(hint) < segs.size();
   if (seeded) measure(hint);
   traverse(
-      x, [&](const Node& n) { return box_distance2(n.box, x) > skip2; },
+      x, [&](const Node&, double d2) { return d2 > skip2; },
       [&](std::int32_t si) {
         if (seeded && si == hint) return;  // measured first
         if (box_distance2(segment_box_[static_cast<std::size_t>(si)], x) > skip2) return;
@@ -254,7 +265,7 @@ double FeatureSize::segment_envelope(Vec2 x, double fraction, double slope, doub
   const auto& segs = geometry_.segments;
   // No segment below a node can beat `best`: its length is at most max_length, its distance at least the box's.
   traverse(
-      x, [&](const Node& n) { return fraction * n.max_length - slope * std::sqrt(box_distance2(n.box, x)) <= best; },
+      x, [&](const Node& n, double d2) { return fraction * n.max_length - slope * std::sqrt(d2) <= best; },
       [&](std::int32_t si) {
         const Segment& s = segs[static_cast<std::size_t>(si)];
         best = std::max(best, fraction * s.length - slope * closest_on_segment(x, s, si).distance);
@@ -266,7 +277,7 @@ double FeatureSize::segment_lower_envelope(Vec2 x, double fraction, double slope
   double best = std::numeric_limits<double>::infinity();
   const auto& segs = geometry_.segments;
   traverse(
-      x, [&](const Node& n) { return fraction * n.min_length + slope * std::sqrt(box_distance2(n.box, x)) >= best; },
+      x, [&](const Node& n, double d2) { return fraction * n.min_length + slope * std::sqrt(d2) >= best; },
       [&](std::int32_t si) {
         const Segment& s = segs[static_cast<std::size_t>(si)];
         best = std::min(best, fraction * s.length + slope * closest_on_segment(x, s, si).distance);
@@ -300,7 +311,7 @@ double FeatureSize::width(Vec2 x, const ClosestHit& nearest, bool inside, double
   std::int32_t found_loop = -1;
   // Pruned by distance and by the half-plane.
   traverse(
-      from, [&](const Node& n) { return box_distance2(n.box, from) >= best2 || box_behind(n.box, from, ahead); },
+      from, [&](const Node& n, double d2) { return d2 >= best2 || box_behind(n.box, from, ahead); },
       [&](std::int32_t si) {
         if (si == nearest.segment) return;  // a straight segment never faces itself
         const Segment& s = segs[static_cast<std::size_t>(si)];
