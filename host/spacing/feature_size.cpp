@@ -11,16 +11,33 @@
 #include "core/errors.hpp"
 #include "geometry/closest_on_segment.hpp"
 
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
 namespace pdmesh {
 
 namespace {
 
 constexpr int kLeafSize = 4;
 
-double box_distance2(const Box& b, Vec2 p) {
+// Squared distance from p to the closed box b (0 inside): the test of every node the traversals look
+// at. The SSE2 form computes both axes at once with the same bits as the scalar one: maxpd picks the
+// larger lane by lane, the differences are finite numbers (finite boxes and points), and a zero of
+// either sign squares to +0, so dx * dx and dy * dy and their sum are the scalar form's.
+inline double box_distance2(const Box& b, Vec2 p) {
+#if defined(__SSE2__)
+  const __m128d q = _mm_set_pd(p.y, p.x);
+  const __m128d u = _mm_sub_pd(_mm_loadu_pd(&b.lo.x), q);  // (lo.x - p.x, lo.y - p.y)
+  const __m128d v = _mm_sub_pd(q, _mm_loadu_pd(&b.hi.x));  // (p.x - hi.x, p.y - hi.y)
+  const __m128d w = _mm_max_pd(_mm_max_pd(v, u), _mm_setzero_pd());
+  const __m128d w2 = _mm_mul_pd(w, w);
+  return _mm_cvtsd_f64(w2) + _mm_cvtsd_f64(_mm_unpackhi_pd(w2, w2));
+#else
   const double dx = std::max({b.lo.x - p.x, 0.0, p.x - b.hi.x});
   const double dy = std::max({b.lo.y - p.y, 0.0, p.y - b.hi.y});
   return dx * dx + dy * dy;
+#endif
 }
 
 // True when the whole box lies on or behind the line through x perpendicular to n.
@@ -177,22 +194,33 @@ double FeatureSize::loop_arc(int segment, double t) const {
   return arc_a_[s] + arc_sign_[s] * t * geometry_.segments[s].length;
 }
 
-// Depth first over the hierarchy, the child whose box is nearer to x first: skip(node) prunes a node
-// (it may use what `segment` found so far); segment(index) sees every segment of the leaves reached.
+// Depth first over the hierarchy, the child whose box is nearer to x first: skip(node, d2) prunes a
+// node, d2 being its box's squared distance from x (it may use what `segment` found so far);
+// segment(index) sees every segment of the leaves reached. Each node's d2 is computed once, when its
+// parent orders its children, and kept beside it on the stack (two arrays, not one of pairs: a pair
+// read as one 16-byte load right after its two stores would wait for them, store forwarding fails).
 template <class Skip, class Visit>
 void FeatureSize::traverse(Vec2 x, const Skip& skip, const Visit& segment) const {
   if (nodes_.empty()) return;
-  std::int32_t stack[64];  // the depth is about log2(segments / kLeafSize); 64 is far beyond it
+  // The depth is about log2(segments / kLeafSize), and each level leaves one node on the stack; 64
+  // is far beyond it.
+  double stack_d[64];
+  std::int32_t stack_n[64];
   int top = 0;
-  stack[top++] = 0;
+  stack_d[top] = box_distance2(nodes_[0].box, x);
+  stack_n[top++] = 0;
   while (top > 0) {
-    const Node& node = nodes_[static_cast<std::size_t>(stack[--top])];
-    if (skip(node)) continue;
+    --top;
+    const Node& node = nodes_[static_cast<std::size_t>(stack_n[top])];
+    if (skip(node, stack_d[top])) continue;
     if (node.count == 0) {
-      const bool a_first = box_distance2(nodes_[static_cast<std::size_t>(node.first)].box, x) <=
-                           box_distance2(nodes_[static_cast<std::size_t>(node.first + 1)].box, x);
-      stack[top++] = a_first ? node.first + 1 : node.first;
-      stack[top++] = a_first ? node.first : node.first + 1;
+      const double da = box_distance2(nodes_[static_cast<std::size_t>(node.first)].box, x);
+      const double db = box_distance2(nodes_[static_cast<std::size_t>(node.first + 1)].box, x);
+      const bool a_first = da <= db;
+      stack_d[top] = a_first ? db : da;
+      stack_n[top++] = a_first ? node.first + 1 : node.first;
+      stack_d[top] = a_first ? da : db;
+      stack_n[top++] = a_first ? node.first : node.first + 1;
       continue;
     }
     for (std::int32_t i = node.first; i < node.first + node.count; ++i) segment(order_[static_cast<std::size_t>(i)]);
@@ -223,7 +251,7 @@ ClosestHit FeatureSize::closest(Vec2 x, int hint) const {
   const bool seeded = hint >= 0 && static_cast<std::size_t>(hint) < segs.size();
   if (seeded) measure(hint);
   traverse(
-      x, [&](const Node& n) { return box_distance2(n.box, x) > skip2; },
+      x, [&](const Node&, double d2) { return d2 > skip2; },
       [&](std::int32_t si) {
         if (seeded && si == hint) return;  // measured first
         if (box_distance2(segment_box_[static_cast<std::size_t>(si)], x) > skip2) return;
@@ -237,7 +265,7 @@ double FeatureSize::segment_envelope(Vec2 x, double fraction, double slope, doub
   const auto& segs = geometry_.segments;
   // No segment below a node can beat `best`: its length is at most max_length, its distance at least the box's.
   traverse(
-      x, [&](const Node& n) { return fraction * n.max_length - slope * std::sqrt(box_distance2(n.box, x)) <= best; },
+      x, [&](const Node& n, double d2) { return fraction * n.max_length - slope * std::sqrt(d2) <= best; },
       [&](std::int32_t si) {
         const Segment& s = segs[static_cast<std::size_t>(si)];
         best = std::max(best, fraction * s.length - slope * closest_on_segment(x, s, si).distance);
@@ -249,7 +277,7 @@ double FeatureSize::segment_lower_envelope(Vec2 x, double fraction, double slope
   double best = std::numeric_limits<double>::infinity();
   const auto& segs = geometry_.segments;
   traverse(
-      x, [&](const Node& n) { return fraction * n.min_length + slope * std::sqrt(box_distance2(n.box, x)) >= best; },
+      x, [&](const Node& n, double d2) { return fraction * n.min_length + slope * std::sqrt(d2) >= best; },
       [&](std::int32_t si) {
         const Segment& s = segs[static_cast<std::size_t>(si)];
         best = std::min(best, fraction * s.length + slope * closest_on_segment(x, s, si).distance);
@@ -283,7 +311,7 @@ double FeatureSize::width(Vec2 x, const ClosestHit& nearest, bool inside, double
   std::int32_t found_loop = -1;
   // Pruned by distance and by the half-plane.
   traverse(
-      from, [&](const Node& n) { return box_distance2(n.box, from) >= best2 || box_behind(n.box, from, ahead); },
+      from, [&](const Node& n, double d2) { return d2 >= best2 || box_behind(n.box, from, ahead); },
       [&](std::int32_t si) {
         if (si == nearest.segment) return;  // a straight segment never faces itself
         const Segment& s = segs[static_cast<std::size_t>(si)];
