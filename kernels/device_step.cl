@@ -73,6 +73,23 @@ void step_prefetch(const int a, const int n, __global const uchar* kind, __globa
 #endif
 }
 
+// step_prefetch_spacing: the same for the spacing lookup's second level, in the phase that makes the
+// lookups: the corner spacings bg_q of node a's leaf. Its bg_corner entries were prefetched by
+// step_prefetch in the forces' phase, so reading them here rarely waits; the corner spacings are
+// loaded through them and otherwise miss (the background field is larger than the caches near the
+// cores). Node a's leaf is the one before its move, which a move rarely leaves.
+void step_prefetch_spacing(const int a, const int n, __global const int* node_leaf, __global const int* bg_corner,
+                           __global const REAL* bg_q) {
+#if PDMESH_FORCE_LOOP_VECTOR && defined(__x86_64__)
+  if (a >= n) return;
+  const int4 c = vload4(node_leaf[a], bg_corner);
+  __builtin_prefetch((const void*)(ulong)(bg_q + c.x));
+  __builtin_prefetch((const void*)(ulong)(bg_q + c.y));
+  __builtin_prefetch((const void*)(ulong)(bg_q + c.z));
+  __builtin_prefetch((const void*)(ulong)(bg_q + c.w));
+#endif
+}
+
 // Inputs xy (positions, x and y interleaved), q (current), outputs xy_next, q_next. budget[i]: interior node i's
 // clearance budget (host/sim/boundary_handling.hpp, clearance_budget): a move whose cost (the same move_cost formula,
 // with this precision's epsilon) is below it stays inside the domain, exactly; the cost is subtracted. A spent budget
@@ -138,6 +155,7 @@ __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void device_step(
 #endif
   REAL skin_use = (REAL)0;
   STEP_PHASE();
+  step_prefetch_spacing(i + STEP_PREFETCH_AHEAD, n, node_leaf, bg_corner, bg_q);
   if (active) {
     const REAL xn = xi + dx, yn = yi + dy;
     int leaf = node_leaf[i];
