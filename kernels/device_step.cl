@@ -53,19 +53,25 @@ REAL bg_spacing_cached(const REAL px, const REAL py, int* leaf, BG_ARGS) {
 // work-items one after the other on one core, and without it the force loop's gathers of xy and q
 // and the spacing lookup wait for memory (docs/opencl.md, "Kernels written for PoCL's CPU device").
 // A prefetch changes no value. Elsewhere (a GPU interleaves work-items in hardware) it does nothing.
+// The row entries' positions and spacings only from STEP_PREFETCH_ROWS_FROM nodes on: below, the
+// arrays they are gathered from (24 B per node in double) stay in the cores' caches, and the loop over
+// the row costs more than it saves (PoCL's CPU device, AVX-512: docs/journal/2026-12-04b-small-sim.md).
 #define STEP_PREFETCH_AHEAD 2
+#define STEP_PREFETCH_ROWS_FROM 32768
 void step_prefetch(const int a, const int n, __global const uchar* kind, __global const int* count,
                    __global const ulong* row_offset, __global const int* index, __global const REAL2* xy,
                    __global const REAL* q, __global const int* node_leaf, __global const int* bg_cell,
                    __global const int* bg_corner) {
 #if PDMESH_FORCE_LOOP_VECTOR && defined(__x86_64__)
   if (a >= n || kind[a] == 0) return;
-  const int entries = count[a];
-  const long start = (long)row_offset[a];
-  for (int k = 0; k < entries; ++k) {
-    const int j = index[start + k];
-    __builtin_prefetch((const void*)(ulong)(xy + j));
-    __builtin_prefetch((const void*)(ulong)(q + j));
+  if (n >= STEP_PREFETCH_ROWS_FROM) {
+    const int entries = count[a];
+    const long start = (long)row_offset[a];
+    for (int k = 0; k < entries; ++k) {
+      const int j = index[start + k];
+      __builtin_prefetch((const void*)(ulong)(xy + j));
+      __builtin_prefetch((const void*)(ulong)(q + j));
+    }
   }
   const int leaf = node_leaf[a];
   __builtin_prefetch((const void*)(ulong)(bg_cell + 4 * leaf));
