@@ -53,23 +53,46 @@ REAL bg_spacing_cached(const REAL px, const REAL py, int* leaf, BG_ARGS) {
 // work-items one after the other on one core, and without it the force loop's gathers of xy and q
 // and the spacing lookup wait for memory (docs/opencl.md, "Kernels written for PoCL's CPU device").
 // A prefetch changes no value. Elsewhere (a GPU interleaves work-items in hardware) it does nothing.
+// The row entries' positions and spacings only from STEP_PREFETCH_ROWS_FROM nodes on: below, the
+// arrays they are gathered from (24 B per node in double) stay in the cores' caches, and the loop over
+// the row costs more than it saves (PoCL's CPU device, AVX-512: docs/journal/2026-12-04b-small-sim.md).
 #define STEP_PREFETCH_AHEAD 2
+#define STEP_PREFETCH_ROWS_FROM 32768
 void step_prefetch(const int a, const int n, __global const uchar* kind, __global const int* count,
                    __global const ulong* row_offset, __global const int* index, __global const REAL2* xy,
                    __global const REAL* q, __global const int* node_leaf, __global const int* bg_cell,
                    __global const int* bg_corner) {
 #if PDMESH_FORCE_LOOP_VECTOR && defined(__x86_64__)
   if (a >= n || kind[a] == 0) return;
-  const int entries = count[a];
-  const long start = (long)row_offset[a];
-  for (int k = 0; k < entries; ++k) {
-    const int j = index[start + k];
-    __builtin_prefetch((const void*)(ulong)(xy + j));
-    __builtin_prefetch((const void*)(ulong)(q + j));
+  if (n >= STEP_PREFETCH_ROWS_FROM) {
+    const int entries = count[a];
+    const long start = (long)row_offset[a];
+    for (int k = 0; k < entries; ++k) {
+      const int j = index[start + k];
+      __builtin_prefetch((const void*)(ulong)(xy + j));
+      __builtin_prefetch((const void*)(ulong)(q + j));
+    }
   }
   const int leaf = node_leaf[a];
   __builtin_prefetch((const void*)(ulong)(bg_cell + 4 * leaf));
   __builtin_prefetch((const void*)(ulong)(bg_corner + 4 * leaf));
+#endif
+}
+
+// step_prefetch_spacing: the same for the spacing lookup's second level, in the phase that makes the
+// lookups: the corner spacings bg_q of node a's leaf. Its bg_corner entries were prefetched by
+// step_prefetch in the forces' phase, so reading them here rarely waits; the corner spacings are
+// loaded through them and otherwise miss (the background field is larger than the caches near the
+// cores). Node a's leaf is the one before its move, which a move rarely leaves.
+void step_prefetch_spacing(const int a, const int n, __global const int* node_leaf, __global const int* bg_corner,
+                           __global const REAL* bg_q) {
+#if PDMESH_FORCE_LOOP_VECTOR && defined(__x86_64__)
+  if (a >= n) return;
+  const int4 c = vload4(node_leaf[a], bg_corner);
+  __builtin_prefetch((const void*)(ulong)(bg_q + c.x));
+  __builtin_prefetch((const void*)(ulong)(bg_q + c.y));
+  __builtin_prefetch((const void*)(ulong)(bg_q + c.z));
+  __builtin_prefetch((const void*)(ulong)(bg_q + c.w));
 #endif
 }
 
@@ -138,6 +161,7 @@ __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void device_step(
 #endif
   REAL skin_use = (REAL)0;
   STEP_PHASE();
+  step_prefetch_spacing(i + STEP_PREFETCH_AHEAD, n, node_leaf, bg_corner, bg_q);
   if (active) {
     const REAL xn = xi + dx, yn = yi + dy;
     int leaf = node_leaf[i];
