@@ -110,7 +110,10 @@ TEST_CASE("omitted keys take the documented defaults", "[app][case]") {
   CHECK(c.init.method == InitMethod::Hybrid);  // the best preset's fill
   CHECK(c.init.seed == 1);
   CHECK(c.init.total == 0);
-  CHECK(c.init.density == 0.0);  // the hybrid takes the patterns' counts unless the case sets it
+  // The best preset's hybrid: the quads where q is flat start at 1.25 x the estimate, the others take the
+  // patterns' counts.
+  CHECK(c.init.density == 1.25);
+  CHECK(c.init.density_where == DensityWhere::Flat);
   CHECK(c.simulation.iterations == 2000);
   CHECK_FALSE(c.simulation.dt_structured.has_value());
   CHECK_FALSE(c.simulation.dt_random.has_value());
@@ -179,6 +182,8 @@ TEST_CASE("out-of-range values are rejected with the value", "[app][case]") {
         std::string::npos);
   CHECK(error_of(base + "[init]\ndensity = 3\n").find("init.density must be 0 or in [0.5, 2], got 3") !=
         std::string::npos);
+  CHECK(error_of(base + "[init]\ndensity_where = \"edges\"\n")
+            .find("init.density_where must be one of inside, flat, got 'edges'") != std::string::npos);
   CHECK(error_of(base + "[simulation]\ndevice = \"cuda\"\n").find("got 'cuda'") != std::string::npos);
   CHECK(error_of(base + "[simulation]\ndevice = \"opencl:1\"\n").find("got 'opencl:1'") != std::string::npos);
   CHECK(error_of(base + "[simulation]\nprecision = \"half\"\n").find("got 'half'") != std::string::npos);

@@ -186,6 +186,7 @@ InitialDistribution make_initial_distribution(const GeometryTree& tree, const Sp
   UnitRandom rng(options.seed);
   FillState fill;
   fill.density = options.method == InitMethod::Hybrid ? options.density : 0.0;
+  fill.density_where = options.density_where;
   InterruptPoll poll(1024);
   for (int k : init.kept()) {
     poll.tick();

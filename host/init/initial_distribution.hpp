@@ -21,6 +21,10 @@ namespace pdmesh {
 // the hybrid: the lattice away from the boundary where q is nearly flat, the patterns elsewhere.
 enum class InitMethod { Structured, Random, Hexagonal, Hybrid };
 
+// Where the hybrid fill's density (InitOptions::density) applies: every quad wholly inside the domain,
+// or only those where q is flat around the quad (the lattice test's spread, without its clearance).
+enum class DensityWhere { Inside, Flat };
+
 // "structured", "random", "hexagonal" or "hybrid".
 const char* to_string(InitMethod method);
 
@@ -40,6 +44,10 @@ struct InitOptions {
   // hexagonal-packing estimate of its part beyond the keep rule's clearance (docs/initialization.md,
   // "The hybrid fill's density").
   double density = 0.0;
+  // Which quads the density applies to. Flat: where q spans at most a factor 1.05 over the quad's centre
+  // and its eight same-sized neighbours' centres; the other quads keep the patterns, which on a graded
+  // field already average about 1.21 times the estimate (their area ratios spread over the bands).
+  DensityWhere density_where = DensityWhere::Inside;
   // Compute InitialDistribution::estimate (it costs more than the fill itself: 4x4 spacing samples
   // per leaf and more near the boundary). The mesh command already has it from its limit check.
   bool with_estimate = true;

@@ -49,6 +49,7 @@ using LatticePoints = std::unordered_set<std::uint64_t>;
 struct FillState {
   LatticePoints lattice;
   double density = 0.0;
+  DensityWhere density_where = DensityWhere::Inside;
   double shortfall = 0.0;
 };
 

@@ -171,6 +171,8 @@ struct CaseConfig {
     std::uint64_t total = 0;  // 0 = no overloading
     // The hybrid fill's start density (InitOptions::density): 0 = the structured patterns' counts.
     double density = 0.0;
+    // Which quads it applies to (InitOptions::density_where).
+    DensityWhere density_where = DensityWhere::Inside;
     // The warm start: a node or mesh file whose interior points are the initial interior nodes
     // (init/warm_points.hpp, init/metric_fill.hpp warm_fill); empty: the usual fill.
     std::filesystem::path file;

@@ -201,6 +201,10 @@ void read_init_section(const Reader& r, const toml::table& root, CaseConfig& c) 
       r.fail("init.density", n, fmt::format("init.density must be 0 or in [0.5, 2], got {}", v));
     c.init.density = v;
   }
+  if (const toml::node* n = find(root, "init", "density_where")) {
+    c.init.density_where = choose<DensityWhere>(r, "init.density_where", *n,
+                                                {{"inside", DensityWhere::Inside}, {"flat", DensityWhere::Flat}});
+  }
   if (const toml::node* n = find(root, "init", "file")) {
     const std::string f = r.string("init.file", *n);
     std::string ext = fs::path(f).extension().string();

@@ -28,6 +28,10 @@ constexpr double kBestRelaxScale = 1.09;
 constexpr double kBestHexagonalRelaxScale = 1.03;
 // The best preset's cleanup.settle: measured, see apply_momentum_schedule.
 constexpr double kBestCleanupSettle = 1e-6;
+// The best preset's init.density, in units of the hexagonal-packing estimate: the structured patterns hold
+// about 1.21 on a graded field; 1.25 also brings rods_fine, whose lattice quads keep the patterns' 1.05,
+// within 1 +- 0.03 (docs/initialization.md, "The hybrid fill's density").
+constexpr double kBestDensity = 1.25;
 
 // Best (and fast) = long plus these: over the 16 runs of the stopping study (tools/studies/stop_study) it
 // stops after 500-750 iterations instead of 1300-2000 with a lower mean aspect ratio everywhere, and
@@ -80,6 +84,12 @@ void apply_momentum_schedule(CaseConfig& c) {
   // patterns next to the boundary and where q is graded, so small and strongly graded runs start as
   // before (docs/initialization.md, "The hybrid fill").
   c.init.method = InitMethod::Hybrid;
+  // Where q is flat the patterns' count depends on the one band the quads' area ratio falls in (0.72-1.61
+  // x the estimate on the uniform fields of tools/studies/edge_calib.py); there the quads start at the
+  // graded fields' average instead, so that one relax_scale centres the mean edge/q on both. Graded quads
+  // keep the patterns: the runs on graded fields start as before.
+  c.init.density = kBestDensity;
+  c.init.density_where = DensityWhere::Flat;
   // Relaxed at kBestRelaxScale x q, the lattice's edges come out at q (mean edge/q 0.91 at 1; docs/spacing.md,
   // "The node count").
   c.spacing.relax_scale = preset_relax_scale(Preset::Best, c.init.method);
@@ -106,6 +116,8 @@ void apply_long_schedule(CaseConfig& c) {
   c.cleanup.settle = long_values.cleanup.settle;
   c.spacing.relax_scale = long_values.spacing.relax_scale;
   c.init.method = long_values.init.method;
+  c.init.density = long_values.init.density;
+  c.init.density_where = long_values.init.density_where;
 }
 
 }  // namespace

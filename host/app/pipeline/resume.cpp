@@ -149,6 +149,8 @@ void add_simulation_identity(const CaseConfig& config, Identity& keys) {
   keys.emplace_back("init.total", fmt::format("{}", config.init.total));
   // Named only when set, so that checkpoints of runs without it keep their identity.
   if (config.init.density != 0.0) keys.emplace_back("init.density", fmt::format("{}", config.init.density));
+  if (config.init.density != 0.0 && config.init.density_where == DensityWhere::Flat)
+    keys.emplace_back("init.density_where", "flat");
   const auto dt = config.simulation.dt_for(config.init.method);
   keys.emplace_back("simulation.dt_initial", dt ? fmt::format("{}", *dt) : std::string("auto"));
   keys.emplace_back("simulation.cutoff", fmt::format("{}", config.simulation.cutoff));
