@@ -8,37 +8,15 @@
 
 #include <fmt/format.h>
 
+#include "core/box_distance.hpp"
 #include "core/errors.hpp"
 #include "geometry/closest_on_segment.hpp"
-
-#if defined(__SSE2__)
-#include <emmintrin.h>
-#endif
 
 namespace pdmesh {
 
 namespace {
 
 constexpr int kLeafSize = 4;
-
-// Squared distance from p to the closed box b (0 inside): the test of every node the traversals look
-// at. The SSE2 form computes both axes at once with the same bits as the scalar one: maxpd picks the
-// larger lane by lane, the differences are finite numbers (finite boxes and points), and a zero of
-// either sign squares to +0, so dx * dx and dy * dy and their sum are the scalar form's.
-inline double box_distance2(const Box& b, Vec2 p) {
-#if defined(__SSE2__)
-  const __m128d q = _mm_set_pd(p.y, p.x);
-  const __m128d u = _mm_sub_pd(_mm_loadu_pd(&b.lo.x), q);  // (lo.x - p.x, lo.y - p.y)
-  const __m128d v = _mm_sub_pd(q, _mm_loadu_pd(&b.hi.x));  // (p.x - hi.x, p.y - hi.y)
-  const __m128d w = _mm_max_pd(_mm_max_pd(v, u), _mm_setzero_pd());
-  const __m128d w2 = _mm_mul_pd(w, w);
-  return _mm_cvtsd_f64(w2) + _mm_cvtsd_f64(_mm_unpackhi_pd(w2, w2));
-#else
-  const double dx = std::max({b.lo.x - p.x, 0.0, p.x - b.hi.x});
-  const double dy = std::max({b.lo.y - p.y, 0.0, p.y - b.hi.y});
-  return dx * dx + dy * dy;
-#endif
-}
 
 // True when the whole box lies on or behind the line through x perpendicular to n.
 bool box_behind(const Box& b, Vec2 x, Vec2 n) {
@@ -207,15 +185,15 @@ void FeatureSize::traverse(Vec2 x, const Skip& skip, const Visit& segment) const
   double stack_d[64];
   std::int32_t stack_n[64];
   int top = 0;
-  stack_d[top] = box_distance2(nodes_[0].box, x);
+  stack_d[top] = box_distance2(x, nodes_[0].box);
   stack_n[top++] = 0;
   while (top > 0) {
     --top;
     const Node& node = nodes_[static_cast<std::size_t>(stack_n[top])];
     if (skip(node, stack_d[top])) continue;
     if (node.count == 0) {
-      const double da = box_distance2(nodes_[static_cast<std::size_t>(node.first)].box, x);
-      const double db = box_distance2(nodes_[static_cast<std::size_t>(node.first + 1)].box, x);
+      const double da = box_distance2(x, nodes_[static_cast<std::size_t>(node.first)].box);
+      const double db = box_distance2(x, nodes_[static_cast<std::size_t>(node.first + 1)].box);
       const bool a_first = da <= db;
       stack_d[top] = a_first ? db : da;
       stack_n[top++] = a_first ? node.first + 1 : node.first;
@@ -254,7 +232,7 @@ ClosestHit FeatureSize::closest(Vec2 x, int hint) const {
       x, [&](const Node&, double d2) { return d2 > skip2; },
       [&](std::int32_t si) {
         if (seeded && si == hint) return;  // measured first
-        if (box_distance2(segment_box_[static_cast<std::size_t>(si)], x) > skip2) return;
+        if (box_distance2(x, segment_box_[static_cast<std::size_t>(si)]) > skip2) return;
         measure(si);
       });
   return best;
