@@ -111,18 +111,10 @@ void closest_on_curve(__global const REAL* p, __global const REAL* arc, const in
 void snap_prefetch(const int s, const int m, __global const int* slot_node, __global const int* node_leaf,
                    __global const int* bg_cell, __global const int* bg_corner, __global const REAL* bg_q) {
 #if PDMESH_FORCE_LOOP_VECTOR && defined(__x86_64__)
-  if (s + SNAP_PREFETCH_AHEAD < m) {
-    const int leaf = node_leaf[slot_node[s + SNAP_PREFETCH_AHEAD]];
-    __builtin_prefetch((const void*)(ulong)(bg_cell + 4 * leaf));
-    __builtin_prefetch((const void*)(ulong)(bg_corner + 4 * leaf));
-  }
-  if (s + SNAP_PREFETCH_AHEAD / 2 < m) {
-    const int4 c = vload4(node_leaf[slot_node[s + SNAP_PREFETCH_AHEAD / 2]], bg_corner);
-    __builtin_prefetch((const void*)(ulong)(bg_q + c.x));
-    __builtin_prefetch((const void*)(ulong)(bg_q + c.y));
-    __builtin_prefetch((const void*)(ulong)(bg_q + c.z));
-    __builtin_prefetch((const void*)(ulong)(bg_q + c.w));
-  }
+  if (s + SNAP_PREFETCH_AHEAD < m)
+    prefetch_leaf_lookup(node_leaf[slot_node[s + SNAP_PREFETCH_AHEAD]], bg_cell, bg_corner);
+  if (s + SNAP_PREFETCH_AHEAD / 2 < m)
+    prefetch_leaf_spacings(node_leaf[slot_node[s + SNAP_PREFETCH_AHEAD / 2]], bg_corner, bg_q);
 #endif
 }
 

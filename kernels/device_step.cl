@@ -47,6 +47,26 @@ REAL bg_spacing_cached(const REAL px, const REAL py, int* leaf, BG_ARGS) {
 #define STEP_PHASE()
 #endif
 
+// The two levels of a spacing lookup in spacing leaf `leaf`, prefetched (step_prefetch, step_prefetch_spacing
+// and boundary.cl's snap_prefetch): the leaf's cell and corner indices, then the corner spacings the
+// corner indices point to. No-ops where the prefetches do nothing (see step_prefetch).
+void prefetch_leaf_lookup(const int leaf, __global const int* bg_cell, __global const int* bg_corner) {
+#if PDMESH_FORCE_LOOP_VECTOR && defined(__x86_64__)
+  __builtin_prefetch((const void*)(ulong)(bg_cell + 4 * leaf));
+  __builtin_prefetch((const void*)(ulong)(bg_corner + 4 * leaf));
+#endif
+}
+
+void prefetch_leaf_spacings(const int leaf, __global const int* bg_corner, __global const REAL* bg_q) {
+#if PDMESH_FORCE_LOOP_VECTOR && defined(__x86_64__)
+  const int4 c = vload4(leaf, bg_corner);
+  __builtin_prefetch((const void*)(ulong)(bg_q + c.x));
+  __builtin_prefetch((const void*)(ulong)(bg_q + c.y));
+  __builtin_prefetch((const void*)(ulong)(bg_q + c.z));
+  __builtin_prefetch((const void*)(ulong)(bg_q + c.w));
+#endif
+}
+
 // step_prefetch: on a CPU (the vector shape on x86), what node a's step will read from anywhere in the
 // arrays is prefetched into the cache a few work-items ahead (STEP_PREFETCH_AHEAD): the positions and
 // spacings of its row entries, and its spacing leaf's cell and corners. PoCL runs a group's
@@ -55,7 +75,7 @@ REAL bg_spacing_cached(const REAL px, const REAL py, int* leaf, BG_ARGS) {
 // A prefetch changes no value. Elsewhere (a GPU interleaves work-items in hardware) it does nothing.
 // The row entries' positions and spacings only from STEP_PREFETCH_ROWS_FROM nodes on: below, the
 // arrays they are gathered from (24 B per node in double) stay in the cores' caches, and the loop over
-// the row costs more than it saves (PoCL's CPU device, AVX-512: docs/journal/2026-12-04b-small-sim.md).
+// the row costs more than it saves (docs/opencl.md).
 #define STEP_PREFETCH_AHEAD 2
 #define STEP_PREFETCH_ROWS_FROM 32768
 void step_prefetch(const int a, const int n, __global const uchar* kind, __global const int* count,
@@ -73,9 +93,7 @@ void step_prefetch(const int a, const int n, __global const uchar* kind, __globa
       __builtin_prefetch((const void*)(ulong)(q + j));
     }
   }
-  const int leaf = node_leaf[a];
-  __builtin_prefetch((const void*)(ulong)(bg_cell + 4 * leaf));
-  __builtin_prefetch((const void*)(ulong)(bg_corner + 4 * leaf));
+  prefetch_leaf_lookup(node_leaf[a], bg_cell, bg_corner);
 #endif
 }
 
@@ -88,11 +106,7 @@ void step_prefetch_spacing(const int a, const int n, __global const int* node_le
                            __global const REAL* bg_q) {
 #if PDMESH_FORCE_LOOP_VECTOR && defined(__x86_64__)
   if (a >= n) return;
-  const int4 c = vload4(node_leaf[a], bg_corner);
-  __builtin_prefetch((const void*)(ulong)(bg_q + c.x));
-  __builtin_prefetch((const void*)(ulong)(bg_q + c.y));
-  __builtin_prefetch((const void*)(ulong)(bg_q + c.z));
-  __builtin_prefetch((const void*)(ulong)(bg_q + c.w));
+  prefetch_leaf_spacings(node_leaf[a], bg_corner, bg_q);
 #endif
 }
 

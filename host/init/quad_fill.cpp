@@ -97,13 +97,12 @@ bool q_flat_around(FillContext& ctx, const Box& b, double q_mid) {
   return q_hi <= (1.0 + kHybridSpread) * q_lo;
 }
 
-// The hybrid fill's test: is quad b (a leaf's final quad wholly inside, q_mid at its centre, its centre
-// `centre_distance` from the boundary) far enough from the boundary and q flat enough around it for a
-// lattice?
-bool hybrid_lattice_quad(FillContext& ctx, const Box& b, double q_mid, double centre_distance) {
+// The hybrid fill's first test for a lattice: is quad b (a leaf's final quad wholly inside, q_mid at its
+// centre, its centre `centre_distance` from the boundary) far enough from the boundary? The second is
+// q_flat_around.
+bool hybrid_clear_of_boundary(const Box& b, double q_mid, double centre_distance) {
   const double half_diagonal = 0.5 * std::hypot(b.width(), b.height());
-  if (centre_distance < kHybridClearance * q_mid + half_diagonal) return false;
-  return q_flat_around(ctx, b, q_mid);
+  return centre_distance >= kHybridClearance * q_mid + half_diagonal;
 }
 
 // The points of the lattice of spacing h inside quad b (closed), each placed once: `level` names the
@@ -142,8 +141,8 @@ void place_hexagonal(FillContext& ctx, const Box& b, double q, bool known_inside
 // in 1/1024 octaves. With a density d: the lattice of the level nearest q_mid / sqrt(d), which holds d
 // times the estimate, as the patterns around it do.
 void place_hybrid_lattice(FillContext& ctx, const Box& b, double ratio, double q_mid, bool known_inside) {
-  // With DensityWhere::Flat the lattice keeps the patterns' density: its lattices of few levels start the
-  // 1M annulus near equilibrium (150 iterations), those on levels of q / sqrt(d) do not (250).
+  // With DensityWhere::Flat the lattice keeps the patterns' density: the lattices on levels of q / sqrt(d)
+  // meet at seams that population control fills, which prolongs a large run (docs/initialization.md).
   const double d = ctx.state->density_where == DensityWhere::Flat ? 0.0 : ctx.state->density;
   if (d > 0.0) {
     const auto level = static_cast<std::int64_t>(std::lround(kHybridLatticeLevels * std::log2(q_mid / std::sqrt(d))));
@@ -225,8 +224,15 @@ void fill_quad(FillContext& ctx, const Box& b, const std::vector<int>& segments,
   // The centre's distance to the boundary, found once: the hybrid's test reads it, and so does the keep
   // rule's bound when the quad gets more than one candidate.
   const double centre_distance = known_inside && hybrid ? ctx.tree.closest(ctx.centre).distance : -1.0;
+  // Whether q is flat around the quad, computed at most once: the lattice test and the density's
+  // DensityWhere::Flat both ask, and the clearance decides first whether the lattice test needs it.
+  int flat_state = -1;  // -1 not computed, else 0 or 1
+  const auto flat = [&] {
+    if (flat_state < 0) flat_state = q_flat_around(ctx, b, q_mid) ? 1 : 0;
+    return flat_state == 1;
+  };
   const bool lattice = ctx.method == InitMethod::Hexagonal ||
-                       (hybrid && known_inside && hybrid_lattice_quad(ctx, b, q_mid, centre_distance));
+                       (hybrid && known_inside && hybrid_clear_of_boundary(b, q_mid, centre_distance) && flat());
   const int count = ctx.method == InitMethod::Random ? random_count(ratio)
                     : lattice                        ? static_cast<int>(std::ceil(ratio))
                                                      : structured_count(ratio);
@@ -245,7 +251,7 @@ void fill_quad(FillContext& ctx, const Box& b, const std::vector<int>& segments,
   // where q is graded: their area ratios spread over the bands, so their patterns already hold about
   // 1.21 times the estimate on average, and only a flat field (all quads in one band) strays from it.
   if (hybrid && known_inside && ctx.state->density > 0.0 &&
-      (ctx.state->density_where == DensityWhere::Inside || q_flat_around(ctx, b, q_mid))) {
+      (ctx.state->density_where == DensityWhere::Inside || flat())) {
     place_hybrid_pattern(ctx, b, q_mid, centre_distance);
     return;
   }

@@ -87,7 +87,7 @@ void apply_momentum_schedule(CaseConfig& c) {
   // Where q is flat the patterns' count depends on the one band the quads' area ratio falls in (0.72-1.61
   // x the estimate on the uniform fields of tools/studies/edge_calib.py); there the quads start at the
   // graded fields' average instead, so that one relax_scale centres the mean edge/q on both. Graded quads
-  // keep the patterns: the runs on graded fields start as before.
+  // keep the patterns, which hold about that average already.
   c.init.density = kBestDensity;
   c.init.density_where = DensityWhere::Flat;
   // Relaxed at kBestRelaxScale x q, the lattice's edges come out at q (mean edge/q 0.91 at 1; docs/spacing.md,
