@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstdlib>
 #include <unordered_map>
 #include <vector>
 
@@ -13,7 +14,11 @@ namespace {
 
 // A candidate fills a hole when no node is nearer than this many lattice spacings h. In the lattice the
 // nearest node is h away; across a seam the rows of the two sides lie 0-2 rows apart.
-constexpr double kSeamClearance = 0.6;
+// Experiment knob (journal 2026-12-04c-seams): PDMESH_SEAM_TAU sets it, <= 0 turns the seam fill off.
+double seam_clearance() {
+  if (const char* s = std::getenv("PDMESH_SEAM_TAU")) return std::atof(s);
+  return 0.6;
+}
 
 // The nodes by cell of a grid per octave of q: a node of spacing q in [2^(k-1), 2^k) sits in grid k,
 // whose cells are 2^k wide; a query looks into the grids of the octaves around its own.
@@ -83,7 +88,8 @@ class NodeGrid {
 
 std::size_t close_lattice_seams(const GeometryTree& tree, const SpacingField& spacing, FillState& state,
                                 NodeSet& nodes) {
-  if (state.level_quads.empty()) return 0;
+  const double clearance = seam_clearance();
+  if (state.level_quads.empty() || clearance <= 0.0) return 0;
   const Vec2 origin = tree.geometry().extents.lo;
   NodeGrid grid(nodes, origin);
   std::size_t added = 0;
@@ -97,7 +103,7 @@ std::size_t close_lattice_seams(const GeometryTree& tree, const SpacingField& sp
         const std::uint64_t key = lattice_key(quad.level, i, j);
         if (state.lattice.count(key) != 0) continue;  // a neighbour of the same level placed it
         const Vec2 p = lattice_point(origin, quad.h, i, j);
-        if (grid.any_within(p, kSeamClearance * quad.h)) continue;
+        if (grid.any_within(p, clearance * quad.h)) continue;
         double q = 0.0;
         // The quad lies kHybridClearance q beyond its half-diagonal from the boundary: p is inside.
         if (!keep_interior_candidate(tree, spacing, p, true, q)) continue;

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <numbers>
 
 #include "core/errors.hpp"
@@ -133,10 +134,14 @@ void place_hexagonal(FillContext& ctx, const Box& b, double q, bool known_inside
 void place_hybrid_lattice(FillContext& ctx, const Box& b, double ratio, double q_mid, bool known_inside) {
   // With DensityWhere::Flat the lattice keeps the patterns' density: the lattices on levels of q / sqrt(d)
   // meet at seams that population control fills, which prolongs a large run (docs/initialization.md).
-  const double d = ctx.state->density_where == DensityWhere::Flat ? 0.0 : ctx.state->density;
+  // Experiment knobs (journal 2026-12-04c-seams): PDMESH_FLAT_LEVELS puts DensityWhere::Flat's lattice quads
+  // on levels too, PDMESH_LEVELS sets the levels per octave.
+  static const bool levels = std::getenv("PDMESH_FLAT_LEVELS") != nullptr;
+  const double d = ctx.state->density_where == DensityWhere::Flat && !levels ? 0.0 : ctx.state->density;
   if (d > 0.0) {
-    const auto level = static_cast<std::int64_t>(std::lround(kHybridLatticeLevels * std::log2(q_mid / std::sqrt(d))));
-    const double h = std::exp2(static_cast<double>(level) / kHybridLatticeLevels);
+    static const double per = std::getenv("PDMESH_LEVELS") ? std::atof(std::getenv("PDMESH_LEVELS")) : kHybridLatticeLevels;
+    const auto level = static_cast<std::int64_t>(std::lround(per * std::log2(q_mid / std::sqrt(d))));
+    const double h = std::exp2(static_cast<double>(level) / per);
     place_lattice(ctx, b, level, h, known_inside);
     ctx.state->level_quads.push_back({b, level, h});
     return;
