@@ -11,7 +11,6 @@
 #include "core/errors.hpp"
 #include "fmt/format.h"
 #include "init/init_tree.hpp"
-#include "init/lattice_seams.hpp"
 #include "init/quad_fill.hpp"
 
 namespace pdmesh {
@@ -195,7 +194,6 @@ InitialDistribution make_initial_distribution(const GeometryTree& tree, const Sp
     out.tree_quads.push_back(leaf.box);
     out.tree_nodes += fill_leaf(tree, spacing, leaf, options.method, rng, out.nodes, &fill);
   }
-  out.tree_nodes += close_lattice_seams(tree, spacing, fill, out.nodes);
   if (options.total && *options.total > out.nodes.size()) {
     out.overload_nodes = *options.total - out.nodes.size();
     overload(tree, spacing, init, out.overload_nodes, rng, out.nodes);

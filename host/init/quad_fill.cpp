@@ -3,7 +3,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdlib>
 #include <numbers>
 
 #include "core/errors.hpp"
@@ -109,12 +108,22 @@ bool hybrid_clear_of_boundary(const Box& b, double q_mid, double centre_distance
 // The points of the lattice of spacing h inside quad b (closed), each placed once: `level` names the
 // lattice, so quads of one level continue one lattice without a seam.
 void place_lattice(FillContext& ctx, const Box& b, std::int64_t level, double h, bool known_inside) {
-  const LatticeSpan span = lattice_span(ctx.tree.geometry().extents.lo, b, h);
-  for (std::int64_t j = span.j_lo; j <= span.j_hi; ++j) {
-    const std::int64_t i_hi = span.i_hi(j);
-    for (std::int64_t i = span.i_lo(j); i <= i_hi; ++i) {
-      if (!ctx.state->lattice.insert(lattice_key(level, i, j)).second) continue;
-      place(ctx, lattice_point(span.origin, h, i, j), known_inside);
+  const double v = 0.5 * std::sqrt(3.0) * h;
+  const Vec2 origin = ctx.tree.geometry().extents.lo;
+  const auto j_lo = static_cast<std::int64_t>(std::ceil((b.lo.y - origin.y) / v));
+  const auto j_hi = static_cast<std::int64_t>(std::floor((b.hi.y - origin.y) / v));
+  for (std::int64_t j = j_lo; j <= j_hi; ++j) {
+    const double shift = (j % 2 != 0) ? 0.5 * h : 0.0;
+    const auto i_lo = static_cast<std::int64_t>(std::ceil((b.lo.x - origin.x - shift) / h));
+    const auto i_hi = static_cast<std::int64_t>(std::floor((b.hi.x - origin.x - shift) / h));
+    for (std::int64_t i = i_lo; i <= i_hi; ++i) {
+      // Level, row and column packed into one key (21 bits each, far more than any lattice needs).
+      const std::uint64_t key = (static_cast<std::uint64_t>(level & 0x1FFFFF) << 42) |
+                                (static_cast<std::uint64_t>(j & 0x1FFFFF) << 21) |
+                                static_cast<std::uint64_t>(i & 0x1FFFFF);
+      if (!ctx.state->lattice.insert(key).second) continue;
+      place(ctx, Vec2{origin.x + static_cast<double>(i) * h + shift, origin.y + static_cast<double>(j) * v},
+            known_inside);
     }
   }
 }
@@ -134,16 +143,10 @@ void place_hexagonal(FillContext& ctx, const Box& b, double q, bool known_inside
 void place_hybrid_lattice(FillContext& ctx, const Box& b, double ratio, double q_mid, bool known_inside) {
   // With DensityWhere::Flat the lattice keeps the patterns' density: the lattices on levels of q / sqrt(d)
   // meet at seams that population control fills, which prolongs a large run (docs/initialization.md).
-  // Experiment knobs (journal 2026-12-04c-seams): PDMESH_FLAT_LEVELS puts DensityWhere::Flat's lattice quads
-  // on levels too, PDMESH_LEVELS sets the levels per octave.
-  static const bool levels = std::getenv("PDMESH_FLAT_LEVELS") != nullptr;
-  const double d = ctx.state->density_where == DensityWhere::Flat && !levels ? 0.0 : ctx.state->density;
+  const double d = ctx.state->density_where == DensityWhere::Flat ? 0.0 : ctx.state->density;
   if (d > 0.0) {
-    static const double per = std::getenv("PDMESH_LEVELS") ? std::atof(std::getenv("PDMESH_LEVELS")) : kHybridLatticeLevels;
-    const auto level = static_cast<std::int64_t>(std::lround(per * std::log2(q_mid / std::sqrt(d))));
-    const double h = std::exp2(static_cast<double>(level) / per);
-    place_lattice(ctx, b, level, h, known_inside);
-    ctx.state->level_quads.push_back({b, level, h});
+    const auto level = static_cast<std::int64_t>(std::lround(kHybridLatticeLevels * std::log2(q_mid / std::sqrt(d))));
+    place_lattice(ctx, b, level, std::exp2(static_cast<double>(level) / kHybridLatticeLevels), known_inside);
     return;
   }
   const double area = b.width() * b.height();

@@ -2,7 +2,6 @@
 // Distribution" and "Random Quad Distribution"; ch. 7's hexagonal packing), plus the keep rule and
 // the seeded unit RNG.
 #pragma once
-#include <cmath>
 #include <cstdint>
 #include <random>
 #include <unordered_set>
@@ -44,48 +43,6 @@ bool keep_interior_candidate(const GeometryTree& tree, const SpacingField& spaci
 // one fill, so that a point on the edge between two quads is placed once.
 using LatticePoints = std::unordered_set<std::uint64_t>;
 
-// A point of the lattice `level` (spacing h): rows h sqrt(3)/2 apart counted from `origin` (the geometry's
-// lower-left corner), odd rows shifted by h / 2; its key packs level, row and column (21 bits each, far
-// more than any lattice needs).
-inline Vec2 lattice_point(Vec2 origin, double h, std::int64_t i, std::int64_t j) {
-  const double shift = (j % 2 != 0) ? 0.5 * h : 0.0;
-  return Vec2{origin.x + static_cast<double>(i) * h + shift, origin.y + static_cast<double>(j) * (0.5 * std::sqrt(3.0) * h)};
-}
-inline std::uint64_t lattice_key(std::int64_t level, std::int64_t i, std::int64_t j) {
-  return (static_cast<std::uint64_t>(level & 0x1FFFFF) << 42) | (static_cast<std::uint64_t>(j & 0x1FFFFF) << 21) |
-         static_cast<std::uint64_t>(i & 0x1FFFFF);
-}
-
-// The rows and columns of the lattice of spacing h whose points lie in box b (closed): rows j_lo..j_hi,
-// and in row j the columns i_lo(j)..i_hi(j).
-struct LatticeSpan {
-  std::int64_t j_lo, j_hi;
-  Vec2 origin;
-  Box box;
-  double h;
-  std::int64_t i_lo(std::int64_t j) const {
-    const double shift = (j % 2 != 0) ? 0.5 * h : 0.0;
-    return static_cast<std::int64_t>(std::ceil((box.lo.x - origin.x - shift) / h));
-  }
-  std::int64_t i_hi(std::int64_t j) const {
-    const double shift = (j % 2 != 0) ? 0.5 * h : 0.0;
-    return static_cast<std::int64_t>(std::floor((box.hi.x - origin.x - shift) / h));
-  }
-};
-inline LatticeSpan lattice_span(Vec2 origin, const Box& b, double h) {
-  const double v = 0.5 * std::sqrt(3.0) * h;
-  return LatticeSpan{static_cast<std::int64_t>(std::ceil((b.lo.y - origin.y) / v)),
-                     static_cast<std::int64_t>(std::floor((b.hi.y - origin.y) / v)), origin, b, h};
-}
-
-// A quad the hybrid fill gave the lattice of a spacing level (with a density): the seams where it meets
-// quads of other levels are closed after the fill (init/lattice_seams.hpp).
-struct LevelQuad {
-  Box box;
-  std::int64_t level;
-  double h;
-};
-
 // What one fill carries from leaf to leaf: the lattice points placed so far, and for the hybrid fill
 // with a density (InitOptions::density; 0 = the patterns' counts) the nodes its pattern quads fell
 // short of their targets by so far (negative: over).
@@ -94,7 +51,6 @@ struct FillState {
   double density = 0.0;
   DensityWhere density_where = DensityWhere::Inside;
   double shortfall = 0.0;
-  std::vector<LevelQuad> level_quads;  // in the fill's order
 };
 
 // Fills one kept leaf, splitting it into four while its area ratio exceeds kInitSplitRatio.
