@@ -249,20 +249,37 @@ int bin_group_take(__local const uint* b, __global volatile uint* bucket, __loca
   return 1;
 }
 
+// The group's finest level (PDMESH_GRID_LEVELS when it has no node), through `scratch`: bin_count's and
+// bin_fill's level loops start there, since a level below it has no node of the group (the loop bound
+// is the same for every work-item, so each reaches every barrier of it).
+int group_first_level(const int own, __local uint* scratch, __local int* first) {
+  const int l = get_local_id(0);
+  scratch[l] = (uint)own;
+  barrier(CLK_LOCAL_MEM_FENCE);
+  if (l == 0) {
+    int m = PDMESH_GRID_LEVELS;
+    for (int k = 0; k < WG_SIZE; ++k) m = min(m, (int)scratch[k]);
+    *first = max(m, 0);  // (a failed binning's levels may be stale: its loops run no level anyway)
+  }
+  barrier(CLK_LOCAL_MEM_FENCE);
+  return *first;
+}
+
 // Each node in the grid of every level from its own up to the top (the cumulative grids).
 __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void bin_count(
     const int n, __global const REAL2* xy, __global const int* level, __global const int* state,
     __global const int* grid_mask, __global const uint* grid_bucket_offset, __global const REAL* grid_inv_cell,
     __global volatile uint* bucket) {
   __local uint wg_bucket[WG_SIZE];
-  __local int grouped;
+  __local int grouped, first_level;
   const int i = get_global_id(0), l = get_local_id(0);
   const REAL2 p = i < n ? xy[i] : (REAL2)((REAL)0, (REAL)0);
   const int own = i < n ? level[i] : PDMESH_GRID_LEVELS;
   // No levels when the binning failed (the same words for every work-item: no return before a barrier).
   const int top = bin_ok(state, n) ? state[BIN_TOP] : -1;
   // Every work-item reaches every barrier: a level without a grid (grid_mask -1) just has no buckets.
-  for (int L = 0; L <= top; ++L) {
+  const int first = group_first_level(own, wg_bucket, &first_level);
+  for (int L = first; L <= top; ++L) {
     uint tag;
     const uint b = own <= L && grid_mask[L] >= 0
                        ? bin_bucket(p.x, p.y, L, grid_mask, grid_bucket_offset, grid_inv_cell, &tag)
@@ -292,18 +309,31 @@ __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void bin_count(
 
 #endif
 
-// Inclusive prefix sum of v over the work-group (Hillis-Steele in local memory; every work-item of
-// the group must call it). Used here and by the row offsets (neighbours.cl).
+// Inclusive prefix sum of v over the work-group (every work-item of the group must call it). Used
+// here and by the row offsets (neighbours.cl). The CPU shape sums in one work-item: PoCL runs a
+// group's work-items as a loop per region between barriers, and Hillis-Steele's 13 regions cost
+// more than the 64 additions. Either way the sums are exact integers, the same.
 ulong group_inclusive_scan(const ulong v, __local ulong* tmp) {
   const int l = get_local_id(0);
   tmp[l] = v;
   barrier(CLK_LOCAL_MEM_FENCE);
+#if PDMESH_FORCE_LOOP_VECTOR
+  if (l == 0) {
+    ulong s = 0;
+    for (int k = 0; k < WG_SIZE; ++k) {
+      s += tmp[k];
+      tmp[k] = s;
+    }
+  }
+  barrier(CLK_LOCAL_MEM_FENCE);
+#else
   for (int d = 1; d < WG_SIZE; d <<= 1) {
     const ulong add = l >= d ? tmp[l - d] : 0;
     barrier(CLK_LOCAL_MEM_FENCE);
     tmp[l] += add;
     barrier(CLK_LOCAL_MEM_FENCE);
   }
+#endif
   return tmp[l];
 }
 
@@ -331,12 +361,13 @@ __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void bin_fill(
     __global const int* grid_mask, __global const uint* grid_bucket_offset, __global const REAL* grid_inv_cell,
     __global volatile uint* bucket, __global int* grid_nodes) {
   __local uint wg_bucket[WG_SIZE], wg_slot[WG_SIZE];
-  __local int grouped;
+  __local int grouped, first_level;
   const int i = get_global_id(0), l = get_local_id(0);
   const REAL2 p = i < n ? xy[i] : (REAL2)((REAL)0, (REAL)0);
   const int own = i < n ? level[i] : PDMESH_GRID_LEVELS;
   const int top = bin_ok(state, n) ? state[BIN_TOP] : -1;  // as in bin_count
-  for (int L = 0; L <= top; ++L) {
+  const int first = group_first_level(own, wg_bucket, &first_level);
+  for (int L = first; L <= top; ++L) {
     uint tag = 0;
     const uint b = own <= L && grid_mask[L] >= 0
                        ? bin_bucket(p.x, p.y, L, grid_mask, grid_bucket_offset, grid_inv_cell, &tag)

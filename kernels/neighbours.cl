@@ -128,6 +128,12 @@ void row_append_batch(const int r, const int* js, const int k, __global const ul
                       const uint spill_capacity, __global int* spill, __global uint* counters, const int counting) {
   const ulong s = (ulong)atomic_add(&count[r], k);
   if (counting) return;
+  // The bounds once for the batch: in place when all k fit (row_place's test for each), else entry by entry.
+  const ulong first = offset[r] + s;
+  if (first + (ulong)k <= min(offset[r + 1], entries_size)) {
+    for (int t = 0; t < k; ++t) entries[first + (ulong)t] = js[t];
+    return;
+  }
   for (int t = 0; t < k; ++t)
     row_place(r, s + (ulong)t, js[t], offset, entries_size, entries, spill_capacity, spill, counters);
 }
