@@ -66,6 +66,12 @@ struct BackgroundOptions {
   // The same for leaves a boundary segment touches: eq. 3.6 has a kink on the boundary itself (the
   // distance is unsigned), so the bilinear error there falls only linearly with the side.
   double boundary_min_side_fraction = 1.0 / 16.0;
+  // Inside the domain, a cell between min_side_fraction and this (when finer) of its smallest corner q
+  // is split only where the test error exceeds jump_tolerance: the small jumps of eq. 3.6 stop at
+  // min_side_fraction, while a large one (the edge of a refinement region, a factor of a few) is still
+  // narrowed to this fraction. No band when min_side_fraction is not above it (the default).
+  double jump_min_side_fraction = 1.0 / 4.0;
+  double jump_tolerance = 0.1;
   int max_depth = 16;  // levels below a root cell, at most kMaxDepthLimit
   int max_grid = 512;  // top grid at most max_grid x max_grid, at most kMaxGridLimit
   static constexpr int kMaxDepthLimit = 20;

@@ -34,9 +34,10 @@ constexpr double kBestCleanupSettle = 1e-6;
 constexpr double kBestDensity = 1.25;
 // The best preset's spacing.background_min_side, in units of the smallest corner q: inside the domain the
 // cells still failing the interpolation test below q/2 straddle the jumps of eq. 3.6 (the rays where a
-// curve's closest segment changes to one of another length), which no cell size resolves; stopping them
-// at q/2 instead of q/4 leaves 44 % fewer leaves on a UIUC airfoil in its far field and changes no smooth
-// field's tree (docs/spacing.md, "Defaults").
+// curve's closest segment changes to one of another length), which no cell size resolves. Between q/4 and
+// q/2 a cell is split only for an error above BackgroundOptions::jump_tolerance (10 %), so the edge of a
+// refinement region (a jump by a factor) is narrowed to q/4 all the same (docs/spacing.md, "The best
+// preset's interior cap").
 constexpr double kBestBackgroundMinSide = 0.5;
 
 // Best (and fast) = long plus these: over the 16 runs of the stopping study (tools/studies/stop_study) it
@@ -99,8 +100,8 @@ void apply_momentum_schedule(CaseConfig& c) {
   // Relaxed at kBestRelaxScale x q, the lattice's edges come out at q (mean edge/q 0.91 at 1; docs/spacing.md,
   // "The node count").
   c.spacing.relax_scale = preset_relax_scale(Preset::Best, c.init.method);
-  // Interior cells of the background stop refining for accuracy at q/2: below that only eq. 3.6's jumps
-  // still fail the test.
+  // Interior cells of the background stop refining for small errors at q/2: below that only eq. 3.6's
+  // jumps still fail the test.
   c.spacing.background_min_side = kBestBackgroundMinSide;
 }
 
