@@ -321,9 +321,9 @@ TEST_CASE("background field: below min_side_fraction only a jump above jump_tole
   const GeometryTree tree(g);
   BackgroundOptions fine;  // the defaults: every jump narrowed to q/4 (leaves between q/8 and q/4)
   BackgroundOptions band = fine;
-  band.min_side_fraction = 0.5;  // the best preset's cap, with the default band down to q/4 for 10 % jumps
+  band.min_side_fraction = 0.5;  // the best preset's cap, with the default band down to q/4 for jumps over 25 %
   REQUIRE(band.jump_min_side_fraction == 0.25);
-  REQUIRE(band.jump_tolerance == 0.1);
+  REQUIRE(band.jump_tolerance == 0.25);
   // A 4 % jump (q_min 1) stops at the cap: its leaves are twice the default's.
   const StepField small(1.04);
   const double small_fine = smallest_leaf_at_jump(BackgroundSpacing(small, tree, fine));

@@ -164,8 +164,8 @@ void BackgroundBuilder::build() {
   for (std::size_t k = 0; k < roots.size(); ++k) roots[k] = static_cast<int>(k);
   refine(
       std::move(roots), [this](const Cell& c, const double q[4]) { return default_decide(c, q); },
-      [this](const Cell& c, const double q[4], const double exact[9], const std::int32_t*, int count) {
-        return default_test(q, exact, count, test_tolerance(c, q));
+      [this](const Cell&, const double q[4], const double exact[9], const std::int32_t*, int count) {
+        return default_test(q, exact, count);
       },
       [this](const Cell&, std::uint32_t, std::uint32_t, std::int32_t id) { return sample_value(id); });
 }
@@ -175,25 +175,21 @@ BackgroundBuilder::Decision BackgroundBuilder::default_decide(const Cell& c, con
   const double q_min = std::min(std::min(q[0], q[1]), std::min(q[2], q[3]));
   const double s = side(c.level);
   if (s > opt_.size_factor * q_min) return Decision::Split;
-  const double cap = c.tag == kTagBoundary ? opt_.boundary_min_side_fraction
-                                            : std::min(opt_.min_side_fraction, opt_.jump_min_side_fraction);
-  if (s < cap * q_min) return Decision::Leaf;
-  return Decision::Test;
+  if (c.tag == kTagBoundary) return s < opt_.boundary_min_side_fraction * q_min ? Decision::Leaf : Decision::Test;
+  if (s < std::min(opt_.min_side_fraction, opt_.jump_min_side_fraction) * q_min) return Decision::Leaf;
+  if (s >= opt_.min_side_fraction * q_min) return Decision::Test;
+  // The band below the cap: only a cell whose corners differ by a factor, which may straddle a large jump
+  // (a refinement region's edge), is tested; any other stops here, without test samples.
+  const double q_max = std::max(std::max(q[0], q[1]), std::max(q[2], q[3]));
+  return q_max > (1.0 + opt_.jump_tolerance) * q_min ? Decision::Test : Decision::Leaf;
 }
 
-double BackgroundBuilder::test_tolerance(const Cell& c, const double q[4]) const {
-  if (c.tag == kTagBoundary) return opt_.tolerance;
-  const double q_min = std::min(std::min(q[0], q[1]), std::min(q[2], q[3]));
-  return side(c.level) < opt_.min_side_fraction * q_min ? std::max(opt_.tolerance, opt_.jump_tolerance)
-                                                        : opt_.tolerance;
-}
-
-bool BackgroundBuilder::default_test(const double q[4], const double exact[9], int count, double tolerance) const {
+bool BackgroundBuilder::default_test(const double q[4], const double exact[9], int count) const {
   for (int t = 0; t < count; ++t) {
     const double u = kTests[t][0] / 4.0, v = kTests[t][1] / 4.0;
     const double bilinear = (1.0 - v) * ((1.0 - u) * q[0] + u * q[1]) + v * ((1.0 - u) * q[2] + u * q[3]);
     // Half the tolerance: the 9 test points see most, but not all, of the worst error in the cell.
-    if (std::fabs(bilinear - exact[t]) > 0.5 * tolerance * exact[t]) return true;
+    if (std::fabs(bilinear - exact[t]) > 0.5 * opt_.tolerance * exact[t]) return true;
   }
   return false;
 }

@@ -65,10 +65,7 @@ class BackgroundBuilder {
 
   // The rules of BackgroundSpacing's own refinement (docs/spacing.md), for a caller to reuse.
   Decision default_decide(const Cell& c, const double q[4]) const;
-  bool default_test(const double q[4], const double exact[9], int count, double tolerance) const;
-  // The tolerance of a cell's interpolation test: BackgroundOptions::tolerance, or jump_tolerance in
-  // the band below min_side_fraction (BackgroundOptions::jump_min_side_fraction).
-  double test_tolerance(const Cell& c, const double q[4]) const;
+  bool default_test(const double q[4], const double exact[9], int count) const;
 
   // Lattice and geometry of the tree.
   const std::vector<Cell>& cells() const { return cells_; }

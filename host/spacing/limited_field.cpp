@@ -311,7 +311,7 @@ class LimitedField {
     const std::uint32_t s = b_.span(c.level), quarter = s / 4;
     std::int32_t corner_source[4];
     for (int k = 0; k < 4; ++k) corner_source[k] = source_[static_cast<std::size_t>(corner_id(c.corner[k]))];
-    const double tolerance = b_.test_tolerance(c, q);
+    const double tolerance = b_.options().tolerance;
     for (int t = 0; t < count; ++t) {
       const std::uint32_t x = c.x + quarter * static_cast<std::uint32_t>(BackgroundBuilder::kTests[t][0]);
       const std::uint32_t y = c.y + quarter * static_cast<std::uint32_t>(BackgroundBuilder::kTests[t][1]);
