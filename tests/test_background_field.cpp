@@ -308,7 +308,8 @@ double smallest_leaf_at_jump(const BackgroundSpacing& bg) {
   double smallest = std::numeric_limits<double>::infinity();
   for (int i = 0; i <= 400; ++i) {
     const double y = 1.0 + 2.0 * i / 400.0;
-    for (const double x : {2.0 - 1e-9, 2.0 + 1e-9}) smallest = std::min(smallest, background_leaf_box(bg.data(), {x, y}).width());
+    for (const double x : {2.0 - 1e-9, 2.0 + 1e-9})
+      smallest = std::min(smallest, background_leaf_box(bg.data(), {x, y}).width());
   }
   return smallest;
 }
