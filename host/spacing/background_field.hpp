@@ -70,7 +70,7 @@ struct BackgroundOptions {
   // is tested (and split by the tolerance) only where its corner values differ by more than the factor
   // 1 + jump_tolerance: it may straddle a large jump (the edge of a refinement region), which is then
   // narrowed to this fraction, while eq. 3.6's small jumps stop at min_side_fraction without test
-  // samples. Slopes up to the gradation limit's 0.2 change q by at most 15 % across such a cell's
+  // samples. Slopes up to the gradation limit's 0.2 change q by less than 15 % across such a cell's
   // diagonal. No band when min_side_fraction is not above this (the default).
   double jump_min_side_fraction = 1.0 / 4.0;
   double jump_tolerance = 0.25;

@@ -35,9 +35,9 @@ constexpr double kBestDensity = 1.25;
 // The best preset's spacing.background_min_side, in units of the smallest corner q: inside the domain the
 // cells still failing the interpolation test below q/2 straddle the jumps of eq. 3.6 (the rays where a
 // curve's closest segment changes to one of another length), which no cell size resolves. Between q/4 and
-// q/2 a cell is split only where its corners differ by more than BackgroundOptions::jump_tolerance (25 %),
-// so the edge of a refinement region (a jump by a factor) is narrowed to q/4 all the same (docs/spacing.md, "The best
-// preset's interior cap").
+// q/2 a cell is tested only where its corners differ by more than BackgroundOptions::jump_tolerance
+// (25 %), so the edge of a refinement region (a jump by a factor) is narrowed to q/4 all the same
+// (docs/spacing.md, "The best preset's interior cap").
 constexpr double kBestBackgroundMinSide = 0.5;
 
 // Best (and fast) = long plus these: over the 16 runs of the stopping study (tools/studies/stop_study) it
