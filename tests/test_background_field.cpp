@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <cstdio>
 #include <cstdlib>
+#include <limits>
 #include <random>
 
 #include "geometry/curve_reader.hpp"
@@ -290,6 +291,58 @@ TEST_CASE("background field: options are checked", "[spacing]") {
   CHECK(std::isfinite(bg.at({1e300, -1e300})));
   CHECK(std::isfinite(bg.at({NAN, NAN})));
   CHECK(bg.tag_at({1e6, 0}) != kTagInside);
+}
+
+namespace {
+
+// q = 1 left of x = 2 and `right` beyond it: a jump across a straight line, as eq. 3.6 has along its
+// rays (a few per cent) and a refinement region at its edge (a factor).
+struct StepField final : SpacingField {
+  explicit StepField(double r) : right(r) {}
+  double at(Vec2 p) const override { return p.x < 2.0 ? 1.0 : right; }
+  double right;
+};
+
+// The smallest side of the leaves along the jump, away from the square's sides.
+double smallest_leaf_at_jump(const BackgroundSpacing& bg) {
+  double smallest = std::numeric_limits<double>::infinity();
+  for (int i = 0; i <= 400; ++i) {
+    const double y = 1.0 + 2.0 * i / 400.0;
+    for (const double x : {2.0 - 1e-9, 2.0 + 1e-9})
+      smallest = std::min(smallest, background_leaf_box(bg.data(), {x, y}).width());
+  }
+  return smallest;
+}
+
+}  // namespace
+
+TEST_CASE("background field: below min_side_fraction only a jump above jump_tolerance is narrowed further",
+          "[spacing]") {
+  const Geometry g = build_geometry({polyline("square", {{0, 0}, {4, 0}, {4, 4}, {0, 4}, {0, 0}})});
+  const GeometryTree tree(g);
+  BackgroundOptions fine;  // the defaults: every jump narrowed to q/4 (leaves between q/8 and q/4)
+  BackgroundOptions band = fine;
+  band.min_side_fraction = 0.5;  // the best preset's cap, with the default band down to q/4 for jumps over 25 %
+  REQUIRE(band.jump_min_side_fraction == 0.25);
+  REQUIRE(band.jump_tolerance == 0.25);
+  // A 4 % jump (q_min 1) stops at the cap: its leaves are twice the default's.
+  const StepField small(1.04);
+  const double small_fine = smallest_leaf_at_jump(BackgroundSpacing(small, tree, fine));
+  const double small_band = smallest_leaf_at_jump(BackgroundSpacing(small, tree, band));
+  INFO("4 % jump: smallest leaf " << small_fine << " (defaults), " << small_band << " (cap q/2)");
+  CHECK(small_fine < 0.25);
+  CHECK(small_fine >= 0.125);
+  CHECK(small_band == 2.0 * small_fine);
+  // A factor of 4 (q_min 0.25) is narrowed as far as the defaults do.
+  const StepField large(0.25);
+  const double large_fine = smallest_leaf_at_jump(BackgroundSpacing(large, tree, fine));
+  const double large_band = smallest_leaf_at_jump(BackgroundSpacing(large, tree, band));
+  INFO("factor 4: smallest leaf " << large_fine << " (defaults), " << large_band << " (cap q/2)");
+  CHECK(large_fine < 0.25 * 0.25);
+  CHECK(large_band == large_fine);
+  // Without the band (jump_min_side_fraction at the cap) the large jump stops at the cap too.
+  band.jump_min_side_fraction = 0.5;
+  CHECK(smallest_leaf_at_jump(BackgroundSpacing(large, tree, band)) == 2.0 * large_fine);
 }
 
 namespace {

@@ -612,16 +612,23 @@ TEST_CASE("spacing pipeline keys: best and thesis defaults, values and ranges", 
   CHECK_THAT(error_of(base + "gradiation = 0.2\n"), Catch::Contains("did you mean 'spacing.gradation'?"));
 }
 
-TEST_CASE("spacing background keys: every preset keeps the builder's defaults, a file's values win, ranges",
+TEST_CASE("spacing background keys: the builder's defaults but best's interior cap, a file's values win, ranges",
           "[app][case]") {
   const BackgroundOptions builder;
-  for (const char* preset : {"thesis", "best", "long"}) {
+  for (const char* preset : {"thesis", "best", "fast", "long"}) {
     const CaseConfig c = parse_case_text(fmt::format("preset = \"{}\"\n", preset) + kMinimal, kCase);
     INFO("preset " << preset);
+    const bool best = std::string(preset) == "best" || std::string(preset) == "fast";
     CHECK(c.spacing.background_tolerance == builder.tolerance);
-    CHECK(c.spacing.background_min_side == builder.min_side_fraction);
+    CHECK(c.spacing.background_min_side == (best ? 0.5 : builder.min_side_fraction));
     CHECK(c.spacing.background_boundary_min_side == builder.boundary_min_side_fraction);
   }
+  // Applying one preset after another leaves nothing of the first behind.
+  CaseConfig by_hand = parse_case_text(kMinimal, kCase);
+  apply_preset(by_hand, Preset::Long);
+  CHECK(by_hand.spacing.background_min_side == builder.min_side_fraction);
+  apply_preset(by_hand, Preset::Best);
+  CHECK(by_hand.spacing.background_min_side == 0.5);
   const CaseConfig set = parse_case_text(std::string(kMinimal) +
                                              "[spacing]\nbackground_tolerance = 0.03\nbackground_min_side = 0.5\n"
                                              "background_boundary_min_side = 0.125\n",

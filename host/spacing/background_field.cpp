@@ -91,6 +91,10 @@ void check_background_options(const BackgroundOptions& o) {
     bad("min_side_fraction", o.min_side_fraction, "must be a positive number");
   if (!(o.boundary_min_side_fraction > 0.0) || !std::isfinite(o.boundary_min_side_fraction))
     bad("boundary_min_side_fraction", o.boundary_min_side_fraction, "must be a positive number");
+  if (!(o.jump_min_side_fraction > 0.0) || !std::isfinite(o.jump_min_side_fraction))
+    bad("jump_min_side_fraction", o.jump_min_side_fraction, "must be a positive number");
+  if (!(o.jump_tolerance > 0.0) || !std::isfinite(o.jump_tolerance))
+    bad("jump_tolerance", o.jump_tolerance, "must be a positive number");
   if (o.max_depth < 0 || o.max_depth > BackgroundOptions::kMaxDepthLimit)
     bad("max_depth", o.max_depth, "must be in [0, 20]");
   if (o.max_grid < 1 || o.max_grid > BackgroundOptions::kMaxGridLimit)

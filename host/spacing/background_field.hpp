@@ -66,6 +66,14 @@ struct BackgroundOptions {
   // The same for leaves a boundary segment touches: eq. 3.6 has a kink on the boundary itself (the
   // distance is unsigned), so the bilinear error there falls only linearly with the side.
   double boundary_min_side_fraction = 1.0 / 16.0;
+  // Inside the domain, a cell between this (when finer) and min_side_fraction of its smallest corner q
+  // is tested (and split by the tolerance) only where its corner values differ by more than the factor
+  // 1 + jump_tolerance: it may straddle a large jump (the edge of a refinement region), which is then
+  // narrowed to this fraction, while eq. 3.6's small jumps stop at min_side_fraction without test
+  // samples. Slopes up to the gradation limit's 0.2 change q by less than 15 % across such a cell's
+  // diagonal. No band when min_side_fraction is not above this (the default).
+  double jump_min_side_fraction = 1.0 / 4.0;
+  double jump_tolerance = 0.25;
   int max_depth = 16;  // levels below a root cell, at most kMaxDepthLimit
   int max_grid = 512;  // top grid at most max_grid x max_grid, at most kMaxGridLimit
   static constexpr int kMaxDepthLimit = 20;

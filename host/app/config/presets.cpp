@@ -32,6 +32,13 @@ constexpr double kBestCleanupSettle = 1e-6;
 // about 1.21 on a graded field; 1.25 also brings rods_fine, whose lattice quads keep the patterns' 1.05,
 // within 1 +- 0.03 (docs/initialization.md, "The hybrid fill's density").
 constexpr double kBestDensity = 1.25;
+// The best preset's spacing.background_min_side, in units of the smallest corner q: inside the domain the
+// cells still failing the interpolation test below q/2 straddle the jumps of eq. 3.6 (the rays where a
+// curve's closest segment changes to one of another length), which no cell size resolves. Between q/4 and
+// q/2 a cell is tested only where its corners differ by more than BackgroundOptions::jump_tolerance
+// (25 %), so the edge of a refinement region (a jump by a factor) is narrowed to q/4 all the same
+// (docs/spacing.md, "The best preset's interior cap").
+constexpr double kBestBackgroundMinSide = 0.5;
 
 // Best (and fast) = long plus these: over the 16 runs of the stopping study (tools/studies/stop_study) it
 // stops after 500-750 iterations instead of 1300-2000 with a lower mean aspect ratio everywhere, and
@@ -93,6 +100,9 @@ void apply_momentum_schedule(CaseConfig& c) {
   // Relaxed at kBestRelaxScale x q, the lattice's edges come out at q (mean edge/q 0.91 at 1; docs/spacing.md,
   // "The node count").
   c.spacing.relax_scale = preset_relax_scale(Preset::Best, c.init.method);
+  // Interior cells of the background stop refining for small errors at q/2: below that only eq. 3.6's
+  // jumps still fail the test.
+  c.spacing.background_min_side = kBestBackgroundMinSide;
 }
 
 // The long preset's values of the keys apply_momentum_schedule sets: CaseConfig's initializers. So
@@ -118,6 +128,7 @@ void apply_long_schedule(CaseConfig& c) {
   c.init.method = long_values.init.method;
   c.init.density = long_values.init.density;
   c.init.density_where = long_values.init.density_where;
+  c.spacing.background_min_side = long_values.spacing.background_min_side;
 }
 
 }  // namespace
