@@ -114,6 +114,7 @@ TEST_CASE("omitted keys take the documented defaults", "[app][case]") {
   // patterns' counts.
   CHECK(c.init.density == 1.25);
   CHECK(c.init.density_where == DensityWhere::Flat);
+  CHECK(c.init.lattice_levels == 0);
   CHECK(c.simulation.iterations == 2000);
   CHECK_FALSE(c.simulation.dt_structured.has_value());
   CHECK_FALSE(c.simulation.dt_random.has_value());
@@ -184,6 +185,13 @@ TEST_CASE("out-of-range values are rejected with the value", "[app][case]") {
         std::string::npos);
   CHECK(error_of(base + "[init]\ndensity_where = \"edges\"\n")
             .find("init.density_where must be one of inside, flat, got 'edges'") != std::string::npos);
+  CHECK(error_of(base + "[init]\nlattice_levels = -1\n").find("init.lattice_levels must be 0 or in [1, 64], got -1") !=
+        std::string::npos);
+  CHECK(error_of(base + "[init]\nlattice_levels = 65\n").find("init.lattice_levels must be 0 or in [1, 64], got 65") !=
+        std::string::npos);
+  CHECK(error_of(base + "[init]\nlattice_levels = 2.5\n").find("init.lattice_levels") != std::string::npos);
+  CHECK(parse_case_text(base + "[init]\nlattice_levels = 8\n", kCase).init.lattice_levels == 8);
+  CHECK(parse_case_text(base, kCase, {parse_set_option("init.lattice_levels=0")}).init.lattice_levels == 0);
   CHECK(error_of(base + "[simulation]\ndevice = \"cuda\"\n").find("got 'cuda'") != std::string::npos);
   CHECK(error_of(base + "[simulation]\ndevice = \"opencl:1\"\n").find("got 'opencl:1'") != std::string::npos);
   CHECK(error_of(base + "[simulation]\nprecision = \"half\"\n").find("got 'half'") != std::string::npos);

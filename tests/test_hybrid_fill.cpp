@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <set>
+#include <vector>
 
 #include "geometry/geometry.hpp"
 #include "geometry/geometry_tree.hpp"
@@ -160,4 +161,71 @@ TEST_CASE("hybrid fill with a density where q is flat: graded quads keep the pat
     }
     CHECK(off < off_plain);
   }
+}
+
+namespace {
+
+// The median over the interior nodes at least 6.5 q from the boundary (in lattice quads, see the first
+// test) of the distance to their nearest node: the spacing of the lattice there.
+double far_lattice_spacing(const Geometry& g, const NodeSet& nodes, double q) {
+  std::vector<double> nearest;
+  for (std::size_t i = 0; i < nodes.size(); ++i) {
+    if (nodes.kind[i] != NodeKind::Interior || fixtures::brute_distance(g, nodes.x[i]) < 6.5 * q) continue;
+    double d = HUGE_VAL;
+    for (std::size_t j = 0; j < nodes.size(); ++j)
+      if (j != i) d = std::min(d, dist(nodes.x[i], nodes.x[j]));
+    nearest.push_back(d);
+  }
+  if (nearest.empty()) return NAN;
+  std::nth_element(nearest.begin(), nearest.begin() + nearest.size() / 2, nearest.end());
+  return nearest[nearest.size() / 2];
+}
+
+}  // namespace
+
+TEST_CASE("hybrid fill: init.lattice_levels puts the lattice quads on that many levels of q / sqrt(d) per octave",
+          "[init][hybrid]") {
+  const double density = 1.25;
+  int off_grid_without = 0;
+  for (const double q : {0.43, 0.50, 0.57}) {
+    const int m = static_cast<int>(std::lround(20.0 / q));
+    const Geometry g = fixtures::square(20.0, m);
+    const GeometryTree tree(g);
+    const UniformSpacing spacing(q);
+    for (const DensityWhere where : {DensityWhere::Flat, DensityWhere::Inside}) {
+      for (const int levels : {4, 3}) {
+        InitOptions options{InitMethod::Hybrid, 1, {}};
+        options.density = density;
+        options.density_where = where;
+        options.lattice_levels = levels;
+        const double h = far_lattice_spacing(g, make_initial_distribution(tree, spacing, options).nodes, q);
+        const double level = std::round(levels * std::log2(q / std::sqrt(density)));
+        INFO("q " << q << ", " << levels << " levels, " << (where == DensityWhere::Flat ? "flat" : "inside"));
+        CHECK(std::fabs(h / std::exp2(level / levels) - 1.0) <= 1e-9);
+      }
+    }
+    // Without the key, "flat" keeps the lattice of the patterns' density, off the 4-level grid in general,
+    // and "inside" takes 8 levels per octave.
+    InitOptions flat{InitMethod::Hybrid, 1, {}};
+    flat.density = density;
+    flat.density_where = DensityWhere::Flat;
+    const double h_flat = far_lattice_spacing(g, make_initial_distribution(tree, spacing, flat).nodes, q);
+    const double k = 4.0 * std::log2(h_flat);
+    off_grid_without += std::fabs(k - std::round(k)) > 1e-6;
+    InitOptions inside = flat;
+    inside.density_where = DensityWhere::Inside;
+    const double h_inside = far_lattice_spacing(g, make_initial_distribution(tree, spacing, inside).nodes, q);
+    const double level = std::round(8.0 * std::log2(q / std::sqrt(density)));
+    CHECK(std::fabs(h_inside / std::exp2(level / 8.0) - 1.0) <= 1e-9);
+  }
+  CHECK(off_grid_without > 0);
+  // Without a density there is no level to take: the key changes nothing.
+  const Geometry g = fixtures::square(20.0, 40);
+  const GeometryTree tree(g);
+  const UniformSpacing spacing(0.5);
+  InitOptions plain{InitMethod::Hybrid, 1, {}};
+  InitOptions levels = plain;
+  levels.lattice_levels = 4;
+  CHECK(interior_points(make_initial_distribution(tree, spacing, levels).nodes) ==
+        interior_points(make_initial_distribution(tree, spacing, plain).nodes));
 }

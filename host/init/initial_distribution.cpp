@@ -187,6 +187,7 @@ InitialDistribution make_initial_distribution(const GeometryTree& tree, const Sp
   FillState fill;
   fill.density = options.method == InitMethod::Hybrid ? options.density : 0.0;
   fill.density_where = options.density_where;
+  fill.lattice_levels = options.lattice_levels;
   InterruptPoll poll(1024);
   for (int k : init.kept()) {
     poll.tick();

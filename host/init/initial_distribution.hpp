@@ -32,6 +32,9 @@ const char* to_string(InitMethod method);
 inline constexpr double kInitSplitRatio = 9.5;
 // An interior candidate closer than this times q(candidate) to the boundary is dropped.
 inline constexpr double kInitBoundaryClearance = 0.5;
+// The most levels per octave InitOptions::lattice_levels may ask (finer levels than 1.1 % apart hold no
+// lattice across a graded field anyway).
+inline constexpr int kMaxLatticeLevels = 64;
 
 struct InitOptions {
   InitMethod method = InitMethod::Structured;
@@ -48,6 +51,10 @@ struct InitOptions {
   // and its eight same-sized neighbours' centres; the other quads keep the patterns, which on a graded
   // field already average about 1.21 times the estimate (their area ratios spread over the bands).
   DensityWhere density_where = DensityWhere::Inside;
+  // With a density, the levels per octave of the lattice quads' levels of q / sqrt(d), which then apply
+  // with either density_where; 0 = 8 with Inside, and with Flat the lattice quads keep the patterns'
+  // density (docs/initialization.md, "The lattice's levels").
+  int lattice_levels = 0;
   // Compute InitialDistribution::estimate (it costs more than the fill itself: 4x4 spacing samples
   // per leaf and more near the boundary). The mesh command already has it from its limit check.
   bool with_estimate = true;

@@ -39,8 +39,8 @@ constexpr double kHybridSpread = 0.05;
 // fall (0.72-1.61 on the uniform fields of tools/studies/edge_calib.py, 1.15-1.25 on its graded ones). Its lattice
 // quads then take the spacing level nearest q_mid / sqrt(d) on a scale of kHybridLatticeLevels levels per octave
 // (within 4.4 %), one global lattice per level, so that neighbouring quads of one level continue one lattice whatever
-// their sizes.
-constexpr double kHybridLatticeLevels = 8.0;
+// their sizes; InitOptions::lattice_levels sets another number of levels.
+constexpr int kHybridLatticeLevels = 8;
 
 struct FillContext {
   const GeometryTree& tree;
@@ -141,12 +141,17 @@ void place_hexagonal(FillContext& ctx, const Box& b, double q, bool known_inside
 // in 1/1024 octaves. With a density d: the lattice of the level nearest q_mid / sqrt(d), which holds d
 // times the estimate, as the patterns around it do.
 void place_hybrid_lattice(FillContext& ctx, const Box& b, double ratio, double q_mid, bool known_inside) {
-  // With DensityWhere::Flat the lattice keeps the patterns' density: the lattices on levels of q / sqrt(d)
-  // meet at seams that population control fills, which prolongs a large run (docs/initialization.md).
-  const double d = ctx.state->density_where == DensityWhere::Flat ? 0.0 : ctx.state->density;
+  // With DensityWhere::Flat and no lattice_levels the lattice keeps the patterns' density: 8 levels per
+  // octave meet at seams that population control fills, which prolongs a large run; 4 levels leave fewer
+  // seams (docs/initialization.md, "The lattice's levels").
+  const int levels = ctx.state->lattice_levels > 0                      ? ctx.state->lattice_levels
+                     : ctx.state->density_where == DensityWhere::Inside ? kHybridLatticeLevels
+                                                                        : 0;
+  const double d = levels > 0 ? ctx.state->density : 0.0;
   if (d > 0.0) {
-    const auto level = static_cast<std::int64_t>(std::lround(kHybridLatticeLevels * std::log2(q_mid / std::sqrt(d))));
-    place_lattice(ctx, b, level, std::exp2(static_cast<double>(level) / kHybridLatticeLevels), known_inside);
+    const double per_octave = static_cast<double>(levels);
+    const auto level = static_cast<std::int64_t>(std::lround(per_octave * std::log2(q_mid / std::sqrt(d))));
+    place_lattice(ctx, b, level, std::exp2(static_cast<double>(level) / per_octave), known_inside);
     return;
   }
   const double area = b.width() * b.height();

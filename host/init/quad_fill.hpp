@@ -50,6 +50,7 @@ struct FillState {
   LatticePoints lattice;
   double density = 0.0;
   DensityWhere density_where = DensityWhere::Inside;
+  int lattice_levels = 0;  // InitOptions::lattice_levels
   double shortfall = 0.0;
 };
 

@@ -173,6 +173,8 @@ struct CaseConfig {
     double density = 0.0;
     // Which quads it applies to (InitOptions::density_where).
     DensityWhere density_where = DensityWhere::Inside;
+    // The levels per octave of its lattice on q's levels (InitOptions::lattice_levels): 0 = the fill's own.
+    int lattice_levels = 0;
     // The warm start: a node or mesh file whose interior points are the initial interior nodes
     // (init/warm_points.hpp, init/metric_fill.hpp warm_fill); empty: the usual fill.
     std::filesystem::path file;

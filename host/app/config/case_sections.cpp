@@ -205,6 +205,13 @@ void read_init_section(const Reader& r, const toml::table& root, CaseConfig& c) 
     c.init.density_where = choose<DensityWhere>(r, "init.density_where", *n,
                                                 {{"inside", DensityWhere::Inside}, {"flat", DensityWhere::Flat}});
   }
+  if (const toml::node* n = find(root, "init", "lattice_levels")) {
+    const std::int64_t v = r.integer("init.lattice_levels", *n);
+    if (v < 0 || v > kMaxLatticeLevels)
+      r.fail("init.lattice_levels", n,
+             fmt::format("init.lattice_levels must be 0 or in [1, {}], got {}", kMaxLatticeLevels, v));
+    c.init.lattice_levels = static_cast<int>(v);
+  }
   if (const toml::node* n = find(root, "init", "file")) {
     const std::string f = r.string("init.file", *n);
     std::string ext = fs::path(f).extension().string();
