@@ -222,7 +222,13 @@ SpacingOptions spacing_options(const CaseConfig& config) {
   o.rows_in_gap = config.spacing.rows_in_gap;
   o.curvature_angle = config.spacing.curvature_angle;
   o.background.tolerance = config.spacing.background_tolerance;
-  o.background.min_side_fraction = config.spacing.background_min_side;
+  // A cap above the default (the best preset's q/2) is for eq. 3.6's jumps, which only the boundary field
+  // has: a given field (an expression, a mesh's sizes: pdmesh smooth keeps them) is sampled at least as
+  // finely as the default (docs/spacing.md, "The best preset's interior cap").
+  o.background.min_side_fraction =
+      config.spacing.field == SpacingKind::Boundary
+          ? config.spacing.background_min_side
+          : std::min(config.spacing.background_min_side, BackgroundOptions{}.min_side_fraction);
   o.background.boundary_min_side_fraction = config.spacing.background_boundary_min_side;
   // The budgets the quadtree is built within (a field that asks for 1e9 nodes is refused on a coarse
   // level, before the tree at its resolution exists).
