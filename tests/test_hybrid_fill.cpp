@@ -186,46 +186,67 @@ double far_lattice_spacing(const Geometry& g, const NodeSet& nodes, double q) {
 TEST_CASE("hybrid fill: init.lattice_levels puts the lattice quads on that many levels of q / sqrt(d) per octave",
           "[init][hybrid]") {
   const double density = 1.25;
-  int off_grid_without = 0;
-  for (const double q : {0.43, 0.50, 0.57}) {
-    const int m = static_cast<int>(std::lround(20.0 / q));
-    const Geometry g = fixtures::square(20.0, m);
-    const GeometryTree tree(g);
-    const UniformSpacing spacing(q);
-    for (const DensityWhere where : {DensityWhere::Flat, DensityWhere::Inside}) {
-      for (const int levels : {4, 3}) {
-        InitOptions options{InitMethod::Hybrid, 1, {}};
-        options.density = density;
-        options.density_where = where;
-        options.lattice_levels = levels;
-        const double h = far_lattice_spacing(g, make_initial_distribution(tree, spacing, options).nodes, q);
-        const double level = std::round(levels * std::log2(q / std::sqrt(density)));
-        INFO("q " << q << ", " << levels << " levels, " << (where == DensityWhere::Flat ? "flat" : "inside"));
-        CHECK(std::fabs(h / std::exp2(level / levels) - 1.0) <= 1e-9);
+  const auto density_options = [&](DensityWhere where, int levels) {
+    InitOptions options{InitMethod::Hybrid, 1, {}};
+    options.density = density;
+    options.density_where = where;
+    options.lattice_levels = levels;
+    return options;
+  };
+  SECTION("where q is graded, with either density_where") {
+    // q grows by 0.02 over the square, 0.14 % across a quad: every quad well inside is flat but none lies on
+    // a plateau, and over the square q / sqrt(d) stays nearer one level than any other for 4 and 3 levels.
+    for (const double q0 : {0.44, 0.54}) {
+      const Geometry g = fixtures::square(20.0, static_cast<int>(std::lround(20.0 / q0)));
+      const GeometryTree tree(g);
+      const ExpressionSpacing spacing(std::to_string(q0) + " + 0.001 * x");
+      for (const DensityWhere where : {DensityWhere::Flat, DensityWhere::Inside}) {
+        for (const int levels : {4, 3}) {
+          const double h = far_lattice_spacing(
+              g, make_initial_distribution(tree, spacing, density_options(where, levels)).nodes, q0);
+          const double level = std::round(levels * std::log2(q0 / std::sqrt(density)));
+          INFO("q0 " << q0 << ", " << levels << " levels, " << (where == DensityWhere::Flat ? "flat" : "inside"));
+          CHECK(std::fabs(h / std::exp2(level / levels) - 1.0) <= 1e-9);
+        }
       }
     }
-    // Without the key, "flat" keeps the lattice of the patterns' density, off the 4-level grid in general,
-    // and "inside" takes 8 levels per octave.
-    InitOptions flat{InitMethod::Hybrid, 1, {}};
-    flat.density = density;
-    flat.density_where = DensityWhere::Flat;
-    const double h_flat = far_lattice_spacing(g, make_initial_distribution(tree, spacing, flat).nodes, q);
-    const double k = 4.0 * std::log2(h_flat);
-    off_grid_without += std::fabs(k - std::round(k)) > 1e-6;
-    InitOptions inside = flat;
-    inside.density_where = DensityWhere::Inside;
-    const double h_inside = far_lattice_spacing(g, make_initial_distribution(tree, spacing, inside).nodes, q);
-    const double level = std::round(8.0 * std::log2(q / std::sqrt(density)));
-    CHECK(std::fabs(h_inside / std::exp2(level / 8.0) - 1.0) <= 1e-9);
   }
-  CHECK(off_grid_without > 0);
-  // Without a density there is no level to take: the key changes nothing.
-  const Geometry g = fixtures::square(20.0, 40);
-  const GeometryTree tree(g);
-  const UniformSpacing spacing(0.5);
-  InitOptions plain{InitMethod::Hybrid, 1, {}};
-  InitOptions levels = plain;
-  levels.lattice_levels = 4;
-  CHECK(interior_points(make_initial_distribution(tree, spacing, levels).nodes) ==
-        interior_points(make_initial_distribution(tree, spacing, plain).nodes));
+  SECTION("where q is uniform, \"flat\" keeps the patterns' density and \"inside\" takes the levels") {
+    int off_grid_without = 0;
+    for (const double q : {0.43, 0.50, 0.57}) {
+      const Geometry g = fixtures::square(20.0, static_cast<int>(std::lround(20.0 / q)));
+      const GeometryTree tree(g);
+      const UniformSpacing spacing(q);
+      // "flat": a uniform field is one plateau, whose lattice quads keep the patterns' lattice, off the
+      // 4-level grid in general, with or without the key.
+      const auto flat_points =
+          interior_points(make_initial_distribution(tree, spacing, density_options(DensityWhere::Flat, 0)).nodes);
+      CHECK(interior_points(make_initial_distribution(tree, spacing, density_options(DensityWhere::Flat, 4)).nodes) ==
+            flat_points);
+      const double h_flat = far_lattice_spacing(
+          g, make_initial_distribution(tree, spacing, density_options(DensityWhere::Flat, 0)).nodes, q);
+      const double k = 4.0 * std::log2(h_flat);
+      off_grid_without += std::fabs(k - std::round(k)) > 1e-6;
+      // "inside": the key's levels, and without it 8 levels per octave.
+      for (const int levels : {4, 3, 0}) {
+        const double n = levels > 0 ? levels : 8.0;
+        const double h = far_lattice_spacing(
+            g, make_initial_distribution(tree, spacing, density_options(DensityWhere::Inside, levels)).nodes, q);
+        const double level = std::round(n * std::log2(q / std::sqrt(density)));
+        INFO("q " << q << ", inside, " << levels << " levels");
+        CHECK(std::fabs(h / std::exp2(level / n) - 1.0) <= 1e-9);
+      }
+    }
+    CHECK(off_grid_without > 0);
+  }
+  SECTION("without a density there is no level to take: the key changes nothing") {
+    const Geometry g = fixtures::square(20.0, 40);
+    const GeometryTree tree(g);
+    const UniformSpacing spacing(0.5);
+    InitOptions plain{InitMethod::Hybrid, 1, {}};
+    InitOptions levels = plain;
+    levels.lattice_levels = 4;
+    CHECK(interior_points(make_initial_distribution(tree, spacing, levels).nodes) ==
+          interior_points(make_initial_distribution(tree, spacing, plain).nodes));
+  }
 }

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <optional>
 
 #include "core/errors.hpp"
 #include "fmt/format.h"
@@ -80,9 +81,17 @@ void place_structured(FillContext& ctx, const Box& b, int count, bool known_insi
   }
 }
 
-// Is q flat around quad b (q_mid at its centre): does it span at most a factor 1 + kHybridSpread over its
-// centre and its eight same-sized neighbours' centres?
-bool q_flat_around(FillContext& ctx, const Box& b, double q_mid) {
+// The smallest and largest q of a quad's centre and its eight same-sized neighbours' centres: q is flat
+// around the quad where they lie within a factor 1 + kHybridSpread; the quad lies on a plateau of q where
+// its centre's q is one of the two (inside a region of constant size up to its rim, or on a capped far
+// field; on a graded field the centre's q lies strictly between its neighbours').
+struct QSpan {
+  double lo, hi;
+  bool within(double spread) const { return hi <= (1.0 + spread) * lo; }
+  bool plateau(double q_mid) const { return q_mid <= lo || q_mid >= hi; }
+};
+
+QSpan q_span_around(FillContext& ctx, const Box& b, double q_mid) {
   const Vec2 c = b.centre();
   double q_lo = q_mid, q_hi = q_mid;
   for (int j = -1; j <= 1; ++j) {
@@ -94,12 +103,12 @@ bool q_flat_around(FillContext& ctx, const Box& b, double q_mid) {
       q_hi = std::fmax(q_hi, q);
     }
   }
-  return q_hi <= (1.0 + kHybridSpread) * q_lo;
+  return {q_lo, q_hi};
 }
 
 // The hybrid fill's first test for a lattice: is quad b (a leaf's final quad wholly inside, q_mid at its
 // centre, its centre `centre_distance` from the boundary) far enough from the boundary? The second is
-// q_flat_around.
+// q_span_around.
 bool hybrid_clear_of_boundary(const Box& b, double q_mid, double centre_distance) {
   const double half_diagonal = 0.5 * std::hypot(b.width(), b.height());
   return centre_distance >= kHybridClearance * q_mid + half_diagonal;
@@ -139,15 +148,21 @@ void place_hexagonal(FillContext& ctx, const Box& b, double q, bool known_inside
 // whichever of the two fills each of its quads; the spacing follows from the quad's size and count
 // alone, so same-sized quads with the same count (a flat field) continue one lattice, its level log2 h
 // in 1/1024 octaves. With a density d: the lattice of the level nearest q_mid / sqrt(d), which holds d
-// times the estimate, as the patterns around it do.
-void place_hybrid_lattice(FillContext& ctx, const Box& b, double ratio, double q_mid, bool known_inside) {
+// times the estimate, as the patterns around it do. With DensityWhere::Flat, a quad on a plateau of q
+// (QSpan::plateau) keeps the patterns' density whatever the levels: such quads fill the core of a region
+// of constant size, whose graded rim (patterns) holds the patterns' band-dependent share (1.65 x the
+// estimate in the cores of tests/test_refine_regions.cpp's squares); a core at d x the estimate starts the
+// whole square ~5 % short, which population control does not refill, and the edges around the region
+// come out that much longer (docs/initialization.md, "The lattice's levels").
+void place_hybrid_lattice(FillContext& ctx, const Box& b, double ratio, double q_mid, bool plateau, bool known_inside) {
   // With DensityWhere::Flat and no lattice_levels the lattice keeps the patterns' density: 8 levels per
   // octave meet at seams that population control fills, which prolongs a large run; 4 levels leave fewer
   // seams (docs/initialization.md, "The lattice's levels").
   const int levels = ctx.state->lattice_levels > 0                      ? ctx.state->lattice_levels
                      : ctx.state->density_where == DensityWhere::Inside ? kHybridLatticeLevels
                                                                         : 0;
-  const double d = levels > 0 ? ctx.state->density : 0.0;
+  const bool patterns_density = plateau && ctx.state->density_where == DensityWhere::Flat;
+  const double d = levels > 0 && !patterns_density ? ctx.state->density : 0.0;
   if (d > 0.0) {
     const double per_octave = static_cast<double>(levels);
     const auto level = static_cast<std::int64_t>(std::lround(per_octave * std::log2(q_mid / std::sqrt(d))));
@@ -231,10 +246,10 @@ void fill_quad(FillContext& ctx, const Box& b, const std::vector<int>& segments,
   const double centre_distance = known_inside && hybrid ? ctx.tree.closest(ctx.centre).distance : -1.0;
   // Whether q is flat around the quad, computed at most once: the lattice test and the density's
   // DensityWhere::Flat both ask, and the clearance decides first whether the lattice test needs it.
-  int flat_state = -1;  // -1 not computed, else 0 or 1
+  std::optional<QSpan> span;
   const auto flat = [&] {
-    if (flat_state < 0) flat_state = q_flat_around(ctx, b, q_mid) ? 1 : 0;
-    return flat_state == 1;
+    if (!span) span = q_span_around(ctx, b, q_mid);
+    return span->within(kHybridSpread);
   };
   const bool lattice = ctx.method == InitMethod::Hexagonal ||
                        (hybrid && known_inside && hybrid_clear_of_boundary(b, q_mid, centre_distance) && flat());
@@ -246,7 +261,7 @@ void fill_quad(FillContext& ctx, const Box& b, const std::vector<int>& segments,
                                                     : ctx.tree.closest(ctx.centre).distance;
   if (lattice) {
     if (hybrid)
-      place_hybrid_lattice(ctx, b, ratio, q_mid, known_inside);
+      place_hybrid_lattice(ctx, b, ratio, q_mid, span->plateau(q_mid), known_inside);
     else
       place_hexagonal(ctx, b, q_mid, known_inside);
     return;
