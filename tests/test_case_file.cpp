@@ -111,10 +111,10 @@ TEST_CASE("omitted keys take the documented defaults", "[app][case]") {
   CHECK(c.init.seed == 1);
   CHECK(c.init.total == 0);
   // The best preset's hybrid: the quads where q is flat start at 1.25 x the estimate, the others take the
-  // patterns' counts.
+  // patterns' counts; its lattice quads off q's plateaus on 4 levels per octave.
   CHECK(c.init.density == 1.25);
   CHECK(c.init.density_where == DensityWhere::Flat);
-  CHECK(c.init.lattice_levels == 0);
+  CHECK(c.init.lattice_levels == 4);
   CHECK(c.simulation.iterations == 2000);
   CHECK_FALSE(c.simulation.dt_structured.has_value());
   CHECK_FALSE(c.simulation.dt_random.has_value());
@@ -340,7 +340,8 @@ TEST_CASE("the best preset is long with momentum, a compressed schedule and rule
     CHECK(c->simulation.stop_every == 50);
     CHECK(c->simulation.stop_window == 100);
     CHECK(c->simulation.stop_min == 150);
-    CHECK(c->simulation.stop_angle == 2.0);
+    CHECK(c->simulation.stop_angle == 3.0);
+    CHECK(c->init.lattice_levels == 4);
     CHECK(c->cleanup.min_angle == 40.0);
     CHECK(c->cleanup.iterations == 32);
     CHECK(c->spacing.relax_scale == 1.09);
@@ -356,6 +357,7 @@ TEST_CASE("the best preset is long with momentum, a compressed schedule and rule
     CHECK(c->simulation.stop_window == 400);
     CHECK(c->simulation.stop_min == 400);
     CHECK(c->simulation.stop_angle == 0.25);
+    CHECK(c->init.lattice_levels == 0);
     CHECK(c->cleanup.min_angle == 30.0);
     CHECK(c->cleanup.iterations == 16);
     CHECK(c->spacing.relax_scale == 1.0);
@@ -366,6 +368,7 @@ TEST_CASE("the best preset is long with momentum, a compressed schedule and rule
   CHECK(by_hand.simulation.momentum == 0.0);
   CHECK(by_hand.simulation.stop_every == 100);
   CHECK(by_hand.simulation.stop_angle == 0.25);
+  CHECK(by_hand.init.lattice_levels == 0);
   CHECK(by_hand.cleanup.min_angle == 30.0);
   CHECK(by_hand.spacing.relax_scale == 1.0);
   apply_preset(by_hand, Preset::Best);
@@ -678,7 +681,7 @@ TEST_CASE("simulation.stop_aspect / stop_angle: the convergence rule's tolerance
           "[app][case][convergence]") {
   const CaseConfig best = parse_case_text(kMinimal, kCase);
   CHECK(best.simulation.stop_aspect == 7e-4);
-  CHECK(best.simulation.stop_angle == 2.0);
+  CHECK(best.simulation.stop_angle == 3.0);
   const CaseConfig set =
       parse_case_text(std::string(kMinimal) + "[simulation]\nstop_aspect = 2e-3\nstop_angle = 0.5\n", kCase);
   CHECK(set.simulation.stop_aspect == 2e-3);
