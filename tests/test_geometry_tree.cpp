@@ -107,6 +107,43 @@ TEST_CASE("GeometryTree queries equal brute force", "[tree]") {
   }
 }
 
+TEST_CASE("GeometryTree: closest_on_curve_many equals brute force per point, whatever its seed", "[tree]") {
+  for (const Named& n : all_geometries()) {
+    SECTION(n.name) {
+      const Geometry& g = n.geometry;
+      const GeometryTree tree(g);
+      REQUIRE(tree.curve_count() == static_cast<int>(g.curves.size()));
+      std::mt19937_64 rng(20261204);
+      // Runs of nearby points (the seeds are the answers) and scattered ones; points on vertices too.
+      std::vector<Vec2> p(300);
+      for (std::size_t i = 0; i < p.size(); ++i) {
+        p[i] = i % 50 < 25 && i > 0 ? p[i - 1] + 1e-3 * (query_point(g, rng) - p[i - 1]) : query_point(g, rng);
+        if (i % 23 == 4) p[i] = g.segments[rng() % g.segments.size()].b;
+      }
+      for (int c = 0; c < tree.curve_count(); ++c) {
+        std::vector<double> distance(p.size());
+        std::vector<int> segment(p.size());
+        // Seeds: none, another curve's segment, one out of range, a segment of this curve.
+        for (const int seed0 : {-1, static_cast<int>(rng() % g.segments.size()), static_cast<int>(g.segments.size()) + 3}) {
+          int seed = seed0;
+          tree.closest_on_curve_many(p.data(), p.size(), c, distance.data(), segment.data(), &seed);
+          for (std::size_t i = 0; i < p.size(); ++i) {
+            const ClosestHit b = brute_force::closest_on_curve(g, p[i], c);
+            INFO("curve " << c << ", point " << i << " (" << p[i].x << ", " << p[i].y << "), seed " << seed0);
+            REQUIRE(segment[i] == b.segment);
+            REQUIRE(distance[i] == b.distance);
+          }
+          CHECK(seed == segment.back());
+        }
+      }
+      int seed = -1;
+      double d = 0.0;
+      int s = 0;
+      CHECK_THROWS_AS(tree.closest_on_curve_many(p.data(), 1, tree.curve_count(), &d, &s, &seed), std::out_of_range);
+    }
+  }
+}
+
 TEST_CASE("GeometryTree: every point on the boundary is inside", "[tree]") {
   for (const Named& n : all_geometries()) {
     const Geometry& g = n.geometry;

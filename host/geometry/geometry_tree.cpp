@@ -524,6 +524,26 @@ void GeometryTree::closest_per_curve_near(Vec2 p, std::vector<ClosestHit>& out) 
   }
 }
 
+int GeometryTree::curve_count() const { return static_cast<int>(impl_->per_curve.size()); }
+
+void GeometryTree::closest_on_curve_many(const Vec2* p, std::size_t n, int curve, double* distance, int* segment,
+                                         int* seed) const {
+  if (curve < 0 || curve >= static_cast<int>(impl_->per_curve.size()))
+    throw std::out_of_range("GeometryTree::closest_on_curve_many: no curve " + std::to_string(curve));
+  const Quadtree& tree = impl_->per_curve[static_cast<std::size_t>(curve)];
+  const auto& segs = geometry_.segments;
+  int s = *seed;
+  if (!(s >= 0 && static_cast<std::size_t>(s) < segs.size() && segs[static_cast<std::size_t>(s)].curve == curve))
+    s = -1;
+  for (std::size_t i = 0; i < n; ++i) {
+    const ClosestHit h = tree.closest(p[i], s);
+    distance[i] = h.distance;
+    segment[i] = h.segment;
+    s = h.segment;
+  }
+  *seed = s;
+}
+
 bool GeometryTree::inside(Vec2 p) const {
   // Local test: p and its leaf's centre c lie in the same closed leaf box, so every boundary
   // segment that could cross the segment pc touches the leaf and is in its list. inside(p) is
