@@ -124,7 +124,8 @@ TEST_CASE("GeometryTree: closest_on_curve_many equals brute force per point, wha
         std::vector<double> distance(p.size());
         std::vector<int> segment(p.size());
         // Seeds: none, another curve's segment, one out of range, a segment of this curve.
-        for (const int seed0 : {-1, static_cast<int>(rng() % g.segments.size()), static_cast<int>(g.segments.size()) + 3}) {
+        for (const int seed0 :
+             {-1, static_cast<int>(rng() % g.segments.size()), static_cast<int>(g.segments.size()) + 3}) {
           int seed = seed0;
           tree.closest_on_curve_many(p.data(), p.size(), c, distance.data(), segment.data(), &seed);
           for (std::size_t i = 0; i < p.size(); ++i) {

@@ -79,8 +79,7 @@ void reference_sweep(const Leaves& l, double g, const std::vector<double>& q0, s
 
 }  // namespace
 
-TEST_CASE("gradation: the sweep equals a binary-heap Dijkstra over explicit neighbour lists bit for bit",
-          "[spacing]") {
+TEST_CASE("gradation: the sweep equals a binary-heap Dijkstra over explicit neighbour lists bit for bit", "[spacing]") {
   std::mt19937_64 rng(11);
   for (int round = 0; round < 12; ++round) {
     const Leaves l = random_leaves(rng, 4 + round);
@@ -89,7 +88,8 @@ TEST_CASE("gradation: the sweep equals a binary-heap Dijkstra over explicit neig
     // Values on a coarse ladder (many ties, so the corner order decides) or continuous.
     std::vector<double> q0(n);
     for (double& v : q0)
-      v = round % 2 == 0 ? 0.05 * static_cast<double>(1 + rng() % 8) : 0.01 + std::ldexp(static_cast<double>(rng() >> 11), -53);
+      v = round % 2 == 0 ? 0.05 * static_cast<double>(1 + rng() % 8)
+                         : 0.01 + std::ldexp(static_cast<double>(rng() >> 11), -53);
     INFO("round " << round << ", " << n << " corners, g " << g);
 
     const GradationGraph graph(l.pos, l.leaf_corner);

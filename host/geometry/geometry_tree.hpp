@@ -64,8 +64,7 @@ class GeometryTree {
   // segment of this curve or -1, seeds the first search; each later one starts from the previous
   // point's answer, and *seed is left at the last answer. One curve over many points keeps that
   // curve's tree in the first-level cache and its branches predictable (the boundary spacing field).
-  void closest_on_curve_many(const Vec2* p, std::size_t n, int curve, double* distance, int* segment,
-                             int* seed) const;
+  void closest_on_curve_many(const Vec2* p, std::size_t n, int curve, double* distance, int* segment, int* seed) const;
   // The number of curves (the per-curve trees).
   int curve_count() const;
   // Closest point over the boundary curves' segments alone (embedded constraints left out): where a

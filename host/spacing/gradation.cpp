@@ -32,7 +32,8 @@ GradationGraph::GradationGraph(std::vector<Vec2> corners, const std::vector<std:
   leaf_start_ = count;
   leaf_of_.resize(leaf_corner.size());
   for (std::size_t k = 0; k < leaf_corner.size(); ++k)
-    leaf_of_[static_cast<std::size_t>(count[static_cast<std::size_t>(leaf_corner[k])]++)] = static_cast<std::int32_t>(k);
+    leaf_of_[static_cast<std::size_t>(count[static_cast<std::size_t>(leaf_corner[k])]++)] =
+        static_cast<std::int32_t>(k);
 }
 
 void GradationGraph::limit(double g, const std::vector<double>& q0, std::vector<double>& q,
