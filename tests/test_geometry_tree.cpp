@@ -145,6 +145,36 @@ TEST_CASE("GeometryTree: closest_on_curve_many equals brute force per point, wha
   }
 }
 
+TEST_CASE("GeometryTree: a curve around its queries (the sector bounds) gives brute force's answers", "[tree]") {
+  // A far-field circle of 71 segments (one curve, and as two halves), off the origin, queried near its
+  // centre, exactly at it (every segment nearly tied: the lowest index among the nearest must win),
+  // along the rays through its vertices and out to the circle itself.
+  const double pi = std::acos(-1.0);
+  const Vec2 c{3.7, -1.2};
+  const double r = 20.0;
+  const auto circle = fixtures::arc_points(c, r, 0.0, 2.0 * pi, 71, {c.x + r, c.y}, {c.x + r, c.y});
+  const std::vector<Vec2> upper(circle.begin(), circle.begin() + 36), lower(circle.begin() + 35, circle.end());
+  for (const bool halves : {false, true}) {
+    const Geometry g = halves ? fixtures::make_geometry({upper, lower}) : fixtures::make_geometry({circle});
+    const GeometryTree tree(g);
+    std::mt19937_64 rng(71);
+    std::vector<Vec2> p = {c};
+    for (int i = 0; i < 3000; ++i) {
+      const double a = 2.0 * pi * unit(rng);
+      const double rho = i % 3 == 0 ? 1e-9 * unit(rng) : i % 3 == 1 ? 2.0 * unit(rng) : r * unit(rng);
+      p.push_back({c.x + rho * std::cos(a), c.y + rho * std::sin(a)});
+    }
+    for (std::size_t k = 0; k + 1 < circle.size(); k += 5)
+      for (const double f : {1e-6, 0.1, 0.5, 0.999}) p.push_back(c + f * (circle[k] - c));
+    std::vector<ClosestHit> per_curve;
+    for (const Vec2 q : p) {
+      tree.closest_per_curve(q, per_curve);
+      for (int k = 0; k < tree.curve_count(); ++k)
+        require_same(per_curve[static_cast<std::size_t>(k)], brute_force::closest_on_curve(g, q, k), q);
+    }
+  }
+}
+
 TEST_CASE("GeometryTree: every point on the boundary is inside", "[tree]") {
   for (const Named& n : all_geometries()) {
     const Geometry& g = n.geometry;
