@@ -160,8 +160,9 @@ Box square_box(const std::vector<Segment>& segments, const std::vector<int>& ids
 
 class Quadtree {
  public:
-  // sectors: give the nodes sector bounds around the centre of the segments' bounding box (the
-  // per-curve trees: a curve that surrounds its queries, such as a far-field circle).
+  // sectors: give the nodes sector bounds around the centre of the segments' bounding box where the
+  // segments form a ring around it (the per-curve trees: a curve that surrounds its queries, such as
+  // a far-field circle).
   Quadtree(const std::vector<Segment>& segments, std::vector<int> ids, bool sectors = false) : segments_(&segments) {
     if (ids.empty()) return;
     nodes_.push_back(Node{square_box(segments, ids), Box{}, -1, 0, 0, 0});
@@ -170,8 +171,19 @@ class Quadtree {
       bounds_.add(segments[id].a);
       bounds_.add(segments[id].b);
     }
-    sectors_ = sectors;
     centre_ = bounds_.centre();
+    // Only for a ring-like curve (every segment at least half as far from the centre as its farthest
+    // point: a circle, an ellipse, a closed far field): elsewhere the bound rarely prunes and its test
+    // in every child costs more than it saves (an airfoil's curves on 30P30N).
+    if (sectors) {
+      double r_min = HUGE_VAL, r_max = 0.0;
+      for (const int id : ids) {
+        const Segment& sg = segments[static_cast<std::size_t>(id)];
+        r_min = std::min(r_min, detail::closest_on_segment_inline(centre_, sg, id).distance);
+        r_max = std::max({r_max, dist(sg.a, centre_), dist(sg.b, centre_)});
+      }
+      sectors_ = r_min >= 0.5 * r_max;
+    }
     build(0, std::move(ids));
     const Box& r = nodes_[0].box;
     slack_ = 1e-12 * std::fmax(r.width(), r.height());
