@@ -380,12 +380,15 @@ TEST_CASE("BoundarySpacing::at_many equals at() point by point on large batches"
   const Geometry g = p30n();
   const GeometryTree tree(g);
   const BoundarySpacing exact(tree);
-  // Sizes around the per-thread chunk and an odd prime.
-  for (const std::size_t n : {std::size_t{1}, std::size_t{4095}, std::size_t{4097}, std::size_t{20011}}) {
+  // Sizes around the blocks of 64 points, the per-thread chunk and an odd prime; every 37th point on a
+  // segment's end (distance 0: the boundary's limit of eq. 3.6).
+  for (const std::size_t n :
+       {std::size_t{1}, std::size_t{63}, std::size_t{65}, std::size_t{4095}, std::size_t{4097}, std::size_t{20011}}) {
     std::vector<Vec2> p(n);
     for (std::size_t i = 0; i < n; ++i) {
       const double t = static_cast<double>(i) / static_cast<double>(n);
       p[i] = {-2.0 + 5.0 * t, -1.0 + 2.0 * std::sin(97.0 * t)};
+      if (i % 37 == 5) p[i] = g.segments[(7 * i) % g.segments.size()].a;
     }
     std::vector<double> q;
     exact.at_many(p, q);

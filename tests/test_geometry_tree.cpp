@@ -107,6 +107,74 @@ TEST_CASE("GeometryTree queries equal brute force", "[tree]") {
   }
 }
 
+TEST_CASE("GeometryTree: closest_on_curve_many equals brute force per point, whatever its seed", "[tree]") {
+  for (const Named& n : all_geometries()) {
+    SECTION(n.name) {
+      const Geometry& g = n.geometry;
+      const GeometryTree tree(g);
+      REQUIRE(tree.curve_count() == static_cast<int>(g.curves.size()));
+      std::mt19937_64 rng(20261204);
+      // Runs of nearby points (the seeds are the answers) and scattered ones; points on vertices too.
+      std::vector<Vec2> p(300);
+      for (std::size_t i = 0; i < p.size(); ++i) {
+        p[i] = i % 50 < 25 && i > 0 ? p[i - 1] + 1e-3 * (query_point(g, rng) - p[i - 1]) : query_point(g, rng);
+        if (i % 23 == 4) p[i] = g.segments[rng() % g.segments.size()].b;
+      }
+      for (int c = 0; c < tree.curve_count(); ++c) {
+        std::vector<double> distance(p.size());
+        std::vector<int> segment(p.size());
+        // Seeds: none, another curve's segment, one out of range, a segment of this curve.
+        for (const int seed0 :
+             {-1, static_cast<int>(rng() % g.segments.size()), static_cast<int>(g.segments.size()) + 3}) {
+          int seed = seed0;
+          tree.closest_on_curve_many(p.data(), p.size(), c, distance.data(), segment.data(), &seed);
+          for (std::size_t i = 0; i < p.size(); ++i) {
+            const ClosestHit b = brute_force::closest_on_curve(g, p[i], c);
+            INFO("curve " << c << ", point " << i << " (" << p[i].x << ", " << p[i].y << "), seed " << seed0);
+            REQUIRE(segment[i] == b.segment);
+            REQUIRE(distance[i] == b.distance);
+          }
+          CHECK(seed == segment.back());
+        }
+      }
+      int seed = -1;
+      double d = 0.0;
+      int s = 0;
+      CHECK_THROWS_AS(tree.closest_on_curve_many(p.data(), 1, tree.curve_count(), &d, &s, &seed), std::out_of_range);
+    }
+  }
+}
+
+TEST_CASE("GeometryTree: a curve around its queries (the sector bounds) gives brute force's answers", "[tree]") {
+  // A far-field circle of 71 segments (one curve, and as two halves), off the origin, queried near its
+  // centre, exactly at it (every segment nearly tied: the lowest index among the nearest must win),
+  // along the rays through its vertices and out to the circle itself.
+  const double pi = std::acos(-1.0);
+  const Vec2 c{3.7, -1.2};
+  const double r = 20.0;
+  const auto circle = fixtures::arc_points(c, r, 0.0, 2.0 * pi, 71, {c.x + r, c.y}, {c.x + r, c.y});
+  const std::vector<Vec2> upper(circle.begin(), circle.begin() + 36), lower(circle.begin() + 35, circle.end());
+  for (const bool halves : {false, true}) {
+    const Geometry g = halves ? fixtures::make_geometry({upper, lower}) : fixtures::make_geometry({circle});
+    const GeometryTree tree(g);
+    std::mt19937_64 rng(71);
+    std::vector<Vec2> p = {c};
+    for (int i = 0; i < 3000; ++i) {
+      const double a = 2.0 * pi * unit(rng);
+      const double rho = i % 3 == 0 ? 1e-9 * unit(rng) : i % 3 == 1 ? 2.0 * unit(rng) : r * unit(rng);
+      p.push_back({c.x + rho * std::cos(a), c.y + rho * std::sin(a)});
+    }
+    for (std::size_t k = 0; k + 1 < circle.size(); k += 5)
+      for (const double f : {1e-6, 0.1, 0.5, 0.999}) p.push_back(c + f * (circle[k] - c));
+    std::vector<ClosestHit> per_curve;
+    for (const Vec2 q : p) {
+      tree.closest_per_curve(q, per_curve);
+      for (int k = 0; k < tree.curve_count(); ++k)
+        require_same(per_curve[static_cast<std::size_t>(k)], brute_force::closest_on_curve(g, q, k), q);
+    }
+  }
+}
+
 TEST_CASE("GeometryTree: every point on the boundary is inside", "[tree]") {
   for (const Named& n : all_geometries()) {
     const Geometry& g = n.geometry;

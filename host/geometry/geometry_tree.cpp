@@ -91,6 +91,13 @@ struct Node {
   Vec2 cap_a{}, cap_u{};  // the axis: cap_a + t cap_u, t in [0, cap_len], cap_u a unit vector
   double cap_len = 0.0;
   double cap_r = -1.0;  // < 0: no capsule (no segments)
+  // A sector seen from the tree's centre c (per-curve trees only): every point of the node's segments
+  // lies at least sec_r from c, between the rays from c along sec_u1 and sec_u2 (counter-clockwise from
+  // sec_u1, less than a half-turn apart). For a query nearer c than sec_r this bounds the distance
+  // far more tightly than the box or the capsule where the curve surrounds the query (a far-field
+  // circle seen from inside, where every arc's box and capsule lie nearer than the arc).
+  Vec2 sec_u1{}, sec_u2{};
+  double sec_r = -1.0;  // <= 0: no sector bound
 };
 
 // Distance from p to the node's capsule axis. Along the unit direction, without point_segment_
@@ -101,6 +108,28 @@ inline double axis_distance(Vec2 p, const Node& n) {
   t = t < 0.0 ? 0.0 : (t > n.cap_len ? n.cap_len : t);
   const double ex = px - t * n.cap_u.x, ey = py - t * n.cap_u.y;
   return std::sqrt(ex * ex + ey * ey);
+}
+
+// A lower bound on the distance from p to the node's segments by its sector (see Node::sec_r); 0
+// when p is not nearer the centre than sec_r. The points at least sec_r from c within the sector are
+// nearest to p (inside the disc of radius sec_r) on the arc of radius sec_r: at p's own direction when
+// that lies in the sector (sec_r - |p - c|, the triangle inequality), else at the arc's nearer end.
+inline double sector_distance(Vec2 p, Vec2 c, const Node& n) {
+  const double vx = p.x - c.x, vy = p.y - c.y;
+  const double rho2 = vx * vx + vy * vy;
+  if (!(rho2 < n.sec_r * n.sec_r)) return 0.0;
+  const double rho = std::sqrt(rho2);
+  double d;
+  if (n.sec_u1.x * vy - n.sec_u1.y * vx >= 0.0 && vx * n.sec_u2.y - vy * n.sec_u2.x >= 0.0) {
+    d = n.sec_r - rho;
+  } else {
+    const double ax = c.x + n.sec_r * n.sec_u1.x - p.x, ay = c.y + n.sec_r * n.sec_u1.y - p.y;
+    const double bx = c.x + n.sec_r * n.sec_u2.x - p.x, by = c.y + n.sec_r * n.sec_u2.y - p.y;
+    d = std::sqrt(std::min(ax * ax + ay * ay, bx * bx + by * by));
+  }
+  // Rounded down (the arc's end points and rho carry a few ulps of the centre's magnitude): the bound
+  // must never exceed a true distance.
+  return d * (1.0 - 1e-9) - 1e-12 * (std::fabs(c.x) + std::fabs(c.y) + n.sec_r);
 }
 
 // The bounding box of a leaf's segment, stored beside the leaf's segment ids (item_boxes_): the leaf
@@ -131,13 +160,29 @@ Box square_box(const std::vector<Segment>& segments, const std::vector<int>& ids
 
 class Quadtree {
  public:
-  Quadtree(const std::vector<Segment>& segments, std::vector<int> ids) : segments_(&segments) {
+  // sectors: give the nodes sector bounds around the centre of the segments' bounding box where the
+  // segments form a ring around it (the per-curve trees: a curve that surrounds its queries, such as
+  // a far-field circle).
+  Quadtree(const std::vector<Segment>& segments, std::vector<int> ids, bool sectors = false) : segments_(&segments) {
     if (ids.empty()) return;
     nodes_.push_back(Node{square_box(segments, ids), Box{}, -1, 0, 0, 0});
     bounds_ = Box{};
     for (const int id : ids) {
       bounds_.add(segments[id].a);
       bounds_.add(segments[id].b);
+    }
+    centre_ = bounds_.centre();
+    // Only for a ring-like curve (every segment at least half as far from the centre as its farthest
+    // point: a circle, an ellipse, a closed far field): elsewhere the bound rarely prunes and its test
+    // in every child costs more than it saves (an airfoil's curves on 30P30N).
+    if (sectors) {
+      double r_min = HUGE_VAL, r_max = 0.0;
+      for (const int id : ids) {
+        const Segment& sg = segments[static_cast<std::size_t>(id)];
+        r_min = std::min(r_min, detail::closest_on_segment_inline(centre_, sg, id).distance);
+        r_max = std::max({r_max, dist(sg.a, centre_), dist(sg.b, centre_)});
+      }
+      sectors_ = r_min >= 0.5 * r_max;
     }
     build(0, std::move(ids));
     const Box& r = nodes_[0].box;
@@ -251,6 +296,7 @@ class Quadtree {
         if (box2 > limit2) continue;
         double kd = std::sqrt(box2);
         if (kid.cap_r >= 0.0) kd = std::max(kd, axis_distance(p, kid) - kid.cap_r);
+        if (kid.sec_r > 0.0) kd = std::max(kd, sector_distance(p, centre_, kid));
         if (kd > limit) continue;
         int k = top++;
         while (k > base && stack_d[k - 1] < kd) {
@@ -367,8 +413,41 @@ class Quadtree {
     node.cap_r = r * (1.0 + 1e-9) + 1e-12 * std::fmax(b.width(), b.height());
   }
 
+  // The sector of node n around centre_ (see Node::sec_r), left off where the segments span half a
+  // turn or more around it or pass near it.
+  void set_sector(int n, const std::vector<int>& ids) {
+    if (!sectors_ || ids.empty()) return;
+    const Segment& first = (*segments_)[static_cast<std::size_t>(ids.front())];
+    const double ref = std::atan2(first.a.y - centre_.y, first.a.x - centre_.x);
+    double lo = 0.0, hi = 0.0;
+    double r = HUGE_VAL;
+    for (const int id : ids) {
+      const Segment& sg = (*segments_)[static_cast<std::size_t>(id)];
+      for (const Vec2 e : {sg.a, sg.b}) {
+        double t = std::atan2(e.y - centre_.y, e.x - centre_.x) - ref;
+        if (t > M_PI) t -= 2.0 * M_PI;
+        if (t < -M_PI) t += 2.0 * M_PI;
+        lo = std::min(lo, t);
+        hi = std::max(hi, t);
+      }
+      r = std::min(r, detail::closest_on_segment_inline(centre_, sg, id).distance);
+    }
+    // Widened by a small angle and the radius lowered, for the rounding of atan2, cos and sin here.
+    lo -= 1e-9;
+    hi += 1e-9;
+    if (!(hi - lo < 0.9 * M_PI)) return;
+    const Box& b = nodes_[static_cast<std::size_t>(n)].box;
+    r = r * (1.0 - 1e-9) - 1e-12 * (std::fabs(centre_.x) + std::fabs(centre_.y) + std::fmax(b.width(), b.height()));
+    if (!(r > 0.0)) return;
+    Node& node = nodes_[static_cast<std::size_t>(n)];
+    node.sec_u1 = {std::cos(ref + lo), std::sin(ref + lo)};
+    node.sec_u2 = {std::cos(ref + hi), std::sin(ref + hi)};
+    node.sec_r = r;
+  }
+
   void build(int n, std::vector<int> ids) {
     set_capsule(n, ids);
+    set_sector(n, ids);
     const Box box = nodes_[n].box;
     const int depth = nodes_[n].depth;
     if (static_cast<int>(ids.size()) <= GeometryTree::kLeafCapacity || depth >= GeometryTree::kMaxDepth) {
@@ -423,6 +502,8 @@ class Quadtree {
   }
 
   const std::vector<Segment>* segments_;
+  bool sectors_ = false;
+  Vec2 centre_{};  // the sectors' centre
   std::vector<Node> nodes_;
   std::vector<int> items_;
   std::vector<Box> item_boxes_;  // the bounding box of each items_ entry's segment (item_box)
@@ -473,7 +554,7 @@ GeometryTree::GeometryTree(const Geometry& geometry) : geometry_(geometry) {
   }
   impl_ = std::make_unique<Impl>(Impl{Quadtree(segs, all_ids(segs.size())), {}, {}, {}, {}});
   impl_->per_curve.reserve(curves);
-  for (int c = 0; c < curves; ++c) impl_->per_curve.emplace_back(segs, std::move(by_curve[c]));
+  for (int c = 0; c < curves; ++c) impl_->per_curve.emplace_back(segs, std::move(by_curve[c]), true);
   std::vector<int> wall_ids;
   for (std::size_t i = 0; i < segs.size(); ++i)
     if (!geometry.curves[static_cast<std::size_t>(segs[i].curve)].constraint) wall_ids.push_back(static_cast<int>(i));
@@ -522,6 +603,26 @@ void GeometryTree::closest_per_curve_near(Vec2 p, std::vector<ClosestHit>& out) 
                        segs[static_cast<std::size_t>(s)].curve == static_cast<int>(c);
     out[c] = impl_->per_curve[c].closest(p, valid ? s : -1);
   }
+}
+
+int GeometryTree::curve_count() const { return static_cast<int>(impl_->per_curve.size()); }
+
+void GeometryTree::closest_on_curve_many(const Vec2* p, std::size_t n, int curve, double* distance, int* segment,
+                                         int* seed) const {
+  if (curve < 0 || curve >= static_cast<int>(impl_->per_curve.size()))
+    throw std::out_of_range("GeometryTree::closest_on_curve_many: no curve " + std::to_string(curve));
+  const Quadtree& tree = impl_->per_curve[static_cast<std::size_t>(curve)];
+  const auto& segs = geometry_.segments;
+  int s = *seed;
+  if (!(s >= 0 && static_cast<std::size_t>(s) < segs.size() && segs[static_cast<std::size_t>(s)].curve == curve))
+    s = -1;
+  for (std::size_t i = 0; i < n; ++i) {
+    const ClosestHit h = tree.closest(p[i], s);
+    distance[i] = h.distance;
+    segment[i] = h.segment;
+    s = h.segment;
+  }
+  *seed = s;
 }
 
 bool GeometryTree::inside(Vec2 p) const {

@@ -59,6 +59,14 @@ class GeometryTree {
   // distance, which prunes most of the tree at once. Entries that are not such an answer (wrong size,
   // segment -1, a segment of another curve) are ignored.
   void closest_per_curve_near(Vec2 p, std::vector<ClosestHit>& out) const;
+  // Curve `curve`'s closest segment to each of p[0 .. n) (its distance and index: distance[i],
+  // segment[i], -1 when the curve has none), the same bits as closest_on_curve per point. *seed, a
+  // segment of this curve or -1, seeds the first search; each later one starts from the previous
+  // point's answer, and *seed is left at the last answer. One curve over many points keeps that
+  // curve's tree in the first-level cache and its branches predictable (the boundary spacing field).
+  void closest_on_curve_many(const Vec2* p, std::size_t n, int curve, double* distance, int* segment, int* seed) const;
+  // The number of curves (the per-curve trees).
+  int curve_count() const;
   // Closest point over the boundary curves' segments alone (embedded constraints left out): where a
   // node that left the domain is put back. The same as closest() for a geometry without constraints.
   ClosestHit closest_wall(Vec2 p) const;

@@ -404,7 +404,10 @@ std::size_t BackgroundBuilder::split_level(const Level& level, std::vector<int>&
 
 // The children's segment lists (exact segment-box tests) and, for those without segments, the inside
 // test of their centre: on all cores, each child writing its own entries; then the tags in the
-// children's order, as set_tag always numbered the lists.
+// children's order, as set_tag always numbered the lists. The children of a cell without segments
+// take its tag without a test: its closed box touches no segment, so every point of it (the
+// children's centres among them, point() being monotonic) lies on the same side of the boundary as
+// its centre, and the exact even-odd test would give each of them the parent's answer.
 void BackgroundBuilder::tag_children(const std::vector<int>& next, const std::vector<std::vector<int>>& parent_lists) {
   const auto& segs = tree_.geometry().segments;
   std::vector<std::vector<int>> child_segments(next.size());
@@ -413,6 +416,11 @@ void BackgroundBuilder::tag_children(const std::vector<int>& next, const std::ve
       next.size(),
       [&](std::size_t i) {
         const Cell& child = cells_[static_cast<std::size_t>(next[i])];
+        const std::int8_t parent_tag = cells_[static_cast<std::size_t>(child.parent)].tag;
+        if (parent_tag != kTagBoundary) {
+          inside[i] = parent_tag == kTagInside ? 1 : 0;
+          return;
+        }
         const std::uint32_t h = span(child.level);
         Box b;
         b.lo = point(child.x, child.y);

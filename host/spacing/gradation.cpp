@@ -8,7 +8,6 @@
 #include <cstdint>
 #include <cstring>
 #include <functional>
-#include <queue>
 #include <utility>
 
 #include <fmt/format.h>
@@ -18,26 +17,23 @@
 namespace pdmesh {
 
 GradationGraph::GradationGraph(std::vector<Vec2> corners, const std::vector<std::int32_t>& leaf_corner)
-    : corners_(std::move(corners)) {
+    : corners_(std::move(corners)), leaf_corner_(leaf_corner) {
   const std::size_t n = corners_.size();
   if (leaf_corner.size() % 4 != 0)
     throw Error(fmt::format("gradation graph: {} leaf corners is not 4 per leaf", leaf_corner.size()));
   for (const std::int32_t c : leaf_corner)
     if (c < 0 || static_cast<std::size_t>(c) >= n) throw Error(fmt::format("gradation graph: corner {} of {}", c, n));
-  // Each leaf joins its 4 corners pairwise (sides and diagonals); a corner shared by several leaves
-  // gets a neighbour twice at most, which costs a repeated relaxation and nothing else.
+  // Each leaf joins its 4 corners pairwise (sides and diagonals): a corner's neighbours are the other
+  // corners of its leaves, in the leaves' order. A corner shared by several leaves gets a neighbour
+  // twice at most, which costs a repeated relaxation and nothing else.
   std::vector<std::int32_t> count(n + 1, 0);
-  for (std::size_t l = 0; l < leaf_corner.size(); l += 4)
-    for (int a = 0; a < 4; ++a) count[static_cast<std::size_t>(leaf_corner[l + a]) + 1] += 3;
+  for (const std::int32_t c : leaf_corner) ++count[static_cast<std::size_t>(c) + 1];
   for (std::size_t i = 0; i < n; ++i) count[i + 1] += count[i];
-  neighbour_start_ = count;
-  neighbours_.resize(static_cast<std::size_t>(count[n]));
-  for (std::size_t l = 0; l < leaf_corner.size(); l += 4)
-    for (int a = 0; a < 4; ++a) {
-      const auto from = static_cast<std::size_t>(leaf_corner[l + a]);
-      for (int b = 0; b < 4; ++b)
-        if (b != a) neighbours_[static_cast<std::size_t>(count[from]++)] = leaf_corner[l + b];
-    }
+  leaf_start_ = count;
+  leaf_of_.resize(leaf_corner.size());
+  for (std::size_t k = 0; k < leaf_corner.size(); ++k)
+    leaf_of_[static_cast<std::size_t>(count[static_cast<std::size_t>(leaf_corner[k])]++)] =
+        static_cast<std::int32_t>(k);
 }
 
 void GradationGraph::limit(double g, const std::vector<double>& q0, std::vector<double>& q,
@@ -75,6 +71,50 @@ void GradationGraph::relimit(double g, const std::vector<double>& q0, std::vecto
 
 namespace {
 using Entry = std::pair<double, std::int32_t>;
+
+// An exact min-queue of (value, corner) entries: a 4-ary heap, shallower than std::priority_queue's
+// binary one (half the levels per pop). The entries are totally ordered, so any exact min-queue pops
+// the same sequence.
+class MinQueue {
+ public:
+  bool empty() const { return h_.empty(); }
+  const Entry& top() const { return h_.front(); }
+  void push(Entry e) {
+    std::size_t i = h_.size();
+    h_.push_back(e);
+    while (i > 0) {
+      const std::size_t parent = (i - 1) / 4;
+      if (!(e < h_[parent])) break;
+      h_[i] = h_[parent];
+      i = parent;
+    }
+    h_[i] = e;
+  }
+  Entry pop() {
+    const Entry out = h_.front();
+    const Entry last = h_.back();
+    h_.pop_back();
+    const std::size_t n = h_.size();
+    if (n == 0) return out;
+    std::size_t i = 0;
+    for (;;) {
+      const std::size_t first = 4 * i + 1;
+      if (first >= n) break;
+      std::size_t best = first;
+      const std::size_t end = std::min(first + 4, n);
+      for (std::size_t c = first + 1; c < end; ++c)
+        if (h_[c] < h_[best]) best = c;
+      if (!(h_[best] < last)) break;
+      h_[i] = h_[best];
+      i = best;
+    }
+    h_[i] = last;
+    return out;
+  }
+
+ private:
+  std::vector<Entry> h_;
+};
 }  // namespace
 
 // Values that are all >= 0 (none -0.0 or NaN) order as their bit patterns do, so a stable LSD radix
@@ -151,28 +191,32 @@ void GradationGraph::sweep(double g, const std::vector<double>& q0, std::vector<
   // without sifting the n start entries through a heap of n.
   detail::sort_gradation_entries(start);  // given in corner order
   std::size_t next = 0;
-  std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>> heap;
+  MinQueue heap;
   while (next < start.size() || !heap.empty()) {
     Entry top;
     if (heap.empty() || (next < start.size() && start[next] < heap.top())) {
       top = start[next++];
     } else {
-      top = heap.top();
-      heap.pop();
+      top = heap.pop();
     }
     const auto [value, i] = top;
     if (value > q[static_cast<std::size_t>(i)]) continue;
     const std::int32_t s = source[static_cast<std::size_t>(i)];
     const Vec2 sp = source_point(s);
     const double sq = source_q(s);
-    for (std::int32_t e = neighbour_start_[static_cast<std::size_t>(i)];
-         e < neighbour_start_[static_cast<std::size_t>(i) + 1]; ++e) {
-      const auto j = static_cast<std::size_t>(neighbours_[static_cast<std::size_t>(e)]);
-      const double v = sq + g * dist(corners_[j], sp);
-      if (v < q[j]) {
-        q[j] = v;
-        source[j] = s;
-        heap.push({v, static_cast<std::int32_t>(j)});
+    for (std::int32_t e = leaf_start_[static_cast<std::size_t>(i)]; e < leaf_start_[static_cast<std::size_t>(i) + 1];
+         ++e) {
+      const auto at = static_cast<std::size_t>(leaf_of_[static_cast<std::size_t>(e)]);
+      const std::size_t first = at & ~std::size_t{3};
+      for (std::size_t k = first; k < first + 4; ++k) {
+        if (k == at) continue;
+        const auto j = static_cast<std::size_t>(leaf_corner_[k]);
+        const double v = sq + g * dist(corners_[j], sp);
+        if (v < q[j]) {
+          q[j] = v;
+          source[j] = s;
+          heap.push({v, static_cast<std::int32_t>(j)});
+        }
       }
     }
   }

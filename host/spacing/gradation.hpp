@@ -47,8 +47,12 @@ class GradationGraph {
              const std::vector<std::int32_t>* seeds, const std::vector<PointSource>& points) const;
 
   std::vector<Vec2> corners_;
-  std::vector<std::int32_t> neighbour_start_;  // CSR: corner -> its graph neighbours
-  std::vector<std::int32_t> neighbours_;
+  // The graph without its edge list: each corner's leaves (CSR: corner -> positions 4 l + a in
+  // leaf_corner_ where it is corner a of leaf l), whose other three corners are its neighbours. A
+  // third of the entries of a neighbour list, written once per leaf corner.
+  std::vector<std::int32_t> leaf_corner_;
+  std::vector<std::int32_t> leaf_start_;
+  std::vector<std::int32_t> leaf_of_;
 };
 
 namespace detail {
