@@ -124,28 +124,14 @@ class LimitedField {
     // most side^2 / q_min^2 (inverse_square_integral's rounding, ~1e-12 relative, is covered by the
     // 1e-6). Where the bound is clearly within the limit, so is the count, and its logarithms are
     // skipped: the same refusals.
-    double bound = 0.0;
-    for (std::size_t n = 0; n < leaves.size(); ++n) {
-      const Cell& c = b_.cells()[static_cast<std::size_t>(leaves[n])];
-      if (c.tag != kTagInside) continue;
-      double q[4];
-      for (int a = 0; a < 4; ++a) q[a] = q_[static_cast<std::size_t>(leaf_corner[4 * n + static_cast<std::size_t>(a)])];
-      if (!(q[0] > 0.0 && q[1] > 0.0 && q[2] > 0.0 && q[3] > 0.0)) continue;
-      const double side = b_.side(c.level);
+    const double bound = sum_over_inside_leaves(leaves, leaf_corner, [hex](double side, const double* q) {
       const double q_min = std::min(std::min(q[0], q[1]), std::min(q[2], q[3]));
-      bound += hex * side * side / (q_min * q_min);
-    }
+      return hex * side * side / (q_min * q_min);
+    });
     if (std::isfinite(bound) && bound * (1.0 + 1e-6) <= allowed) return;
-    double nodes = 0.0;
-    for (std::size_t n = 0; n < leaves.size(); ++n) {
-      const Cell& c = b_.cells()[static_cast<std::size_t>(leaves[n])];
-      if (c.tag != kTagInside) continue;
-      double q[4];
-      for (int a = 0; a < 4; ++a) q[a] = q_[static_cast<std::size_t>(leaf_corner[4 * n + static_cast<std::size_t>(a)])];
-      if (!(q[0] > 0.0 && q[1] > 0.0 && q[2] > 0.0 && q[3] > 0.0)) continue;
-      const double side = b_.side(c.level);
-      nodes += hex * side * side * inverse_square_integral(q[0], q[1], q[2], q[3]);
-    }
+    const double nodes = sum_over_inside_leaves(leaves, leaf_corner, [hex](double side, const double* q) {
+      return hex * side * side * inverse_square_integral(q[0], q[1], q[2], q[3]);
+    });
     if (nodes <= allowed) return;
     throw LimitError(fmt::format(
         "the spacing field with its limits (feature size, curvature, gradation, point sizes) asks for about {} "
@@ -153,6 +139,23 @@ class LimitedField {
         "--max-nodes {:.0f}; coarsen the spacing, relax spacing.rows_in_gap or spacing.curvature_angle, or raise "
         "--max-nodes",
         std::isfinite(nodes) ? fmt::format("{:.3g}", nodes) : std::string("infinitely many"), max_nodes));
+  }
+
+  // The sum of term(side, corner q's) over the inside leaves whose four corners have a positive q, in
+  // the leaves' order.
+  template <class Term>
+  double sum_over_inside_leaves(const std::vector<int>& leaves, const std::vector<std::int32_t>& leaf_corner,
+                                Term term) const {
+    double sum = 0.0;
+    for (std::size_t n = 0; n < leaves.size(); ++n) {
+      const Cell& c = b_.cells()[static_cast<std::size_t>(leaves[n])];
+      if (c.tag != kTagInside) continue;
+      double q[4];
+      for (int a = 0; a < 4; ++a) q[a] = q_[static_cast<std::size_t>(leaf_corner[4 * n + static_cast<std::size_t>(a)])];
+      if (!(q[0] > 0.0 && q[1] > 0.0 && q[2] > 0.0 && q[3] > 0.0)) continue;
+      sum += term(b_.side(c.level), q);
+    }
+    return sum;
   }
 
   static Vec2 lattice(const BackgroundBuilder& b, std::uint64_t k) {
