@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <cstring>
 #include <functional>
+#include <queue>
 #include <utility>
 
 #include <fmt/format.h>
@@ -72,49 +73,6 @@ void GradationGraph::relimit(double g, const std::vector<double>& q0, std::vecto
 namespace {
 using Entry = std::pair<double, std::int32_t>;
 
-// An exact min-queue of (value, corner) entries: a 4-ary heap, shallower than std::priority_queue's
-// binary one (half the levels per pop). The entries are totally ordered, so any exact min-queue pops
-// the same sequence.
-class MinQueue {
- public:
-  bool empty() const { return h_.empty(); }
-  const Entry& top() const { return h_.front(); }
-  void push(Entry e) {
-    std::size_t i = h_.size();
-    h_.push_back(e);
-    while (i > 0) {
-      const std::size_t parent = (i - 1) / 4;
-      if (!(e < h_[parent])) break;
-      h_[i] = h_[parent];
-      i = parent;
-    }
-    h_[i] = e;
-  }
-  Entry pop() {
-    const Entry out = h_.front();
-    const Entry last = h_.back();
-    h_.pop_back();
-    const std::size_t n = h_.size();
-    if (n == 0) return out;
-    std::size_t i = 0;
-    for (;;) {
-      const std::size_t first = 4 * i + 1;
-      if (first >= n) break;
-      std::size_t best = first;
-      const std::size_t end = std::min(first + 4, n);
-      for (std::size_t c = first + 1; c < end; ++c)
-        if (h_[c] < h_[best]) best = c;
-      if (!(h_[best] < last)) break;
-      h_[i] = h_[best];
-      i = best;
-    }
-    h_[i] = last;
-    return out;
-  }
-
- private:
-  std::vector<Entry> h_;
-};
 }  // namespace
 
 // Values that are all >= 0 (none -0.0 or NaN) order as their bit patterns do, so a stable LSD radix
@@ -191,13 +149,14 @@ void GradationGraph::sweep(double g, const std::vector<double>& q0, std::vector<
   // without sifting the n start entries through a heap of n.
   detail::sort_gradation_entries(start);  // given in corner order
   std::size_t next = 0;
-  MinQueue heap;
+  std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>> heap;
   while (next < start.size() || !heap.empty()) {
     Entry top;
     if (heap.empty() || (next < start.size() && start[next] < heap.top())) {
       top = start[next++];
     } else {
-      top = heap.pop();
+      top = heap.top();
+      heap.pop();
     }
     const auto [value, i] = top;
     if (value > q[static_cast<std::size_t>(i)]) continue;
