@@ -125,3 +125,11 @@ whole_run_wall() {
     { k = $2; gsub(/^ +| +$/, "", k) }
     k == c && NF >= 10 { w = $7; split(w, parts, "/"); m = parts[2]; gsub(/ /, "", m); print m; exit }' "$2"
 }
+
+# A PDMESH_KERNEL_PROFILE file (a "kernel launches seconds" header, then tab-separated lines) as
+# {"kernel": {"launches": N, "seconds": S}, ...}; {} when the file is missing.
+kernel_profile_json() {
+  [ -f "$1" ] || { printf '{}'; return; }
+  awk -F'\t' 'NR > 1 && NF == 3 { printf "%s\"%s\": {\"launches\": %s, \"seconds\": %s}", n++ ? ", " : "{", $1, $2, $3 }
+    END { printf n ? "}" : "{}" }' "$1"
+}

@@ -218,20 +218,26 @@ step_tests() {
 }
 
 # whole_case NAME LOG BUDGET: one `pdmesh mesh` run of case NAME on the device, as
-# `pdmesh bench --whole-run` times it (pictures included), its timings file into WHOLE_JSON.
+# `pdmesh bench --whole-run` times it (pictures included), its timings file into WHOLE_JSON: the
+# phase sums, and the whole file as "timings" (the simulation's split: device steps, builds, the
+# stopping rule's measurements, population events), with each kernel's launches and device seconds
+# (PDMESH_KERNEL_PROFILE) as "kernels".
 whole_case() {
   local name=$1 log=$2 want=$3
-  run_step "whole $name" "$want" "$log" "$PDMESH" bench --whole-run --cases "$name" --cases-dir "$CASES" --repeat 1 \
-    --backends opencl --work-dir "$WORK/whole"
+  local kernels=$WORK/whole/${name//[^A-Za-z0-9_]/_}.kernels.tsv
+  mkdir -p "$WORK/whole"
+  run_step "whole $name" "$want" "$log" env PDMESH_KERNEL_PROFILE="$kernels" "$PDMESH" bench --whole-run --cases "$name" \
+    --cases-dir "$CASES" --repeat 1 --backends opencl --work-dir "$WORK/whole"
   local status=$STEP_STATUS timings=$WORK/whole/${name}_opencl/run1/timings.json
   if [ -f "$timings" ]; then
-    WHOLE_JSON+=("$(printf '{"case": %s, "status": "%s", "wall_s": %s, "wall_in_process_s": %s, "cpu_s": %s, "peak_rss_bytes": %s, "nodes": %s, "triangles": %s, "iterations": %s, "converged": %s, "simulation_s": %s, "backend": %s, "phases": %s}' \
+    WHOLE_JSON+=("$(printf '{"case": %s, "status": "%s", "wall_s": %s, "wall_in_process_s": %s, "cpu_s": %s, "peak_rss_bytes": %s, "nodes": %s, "triangles": %s, "iterations": %s, "converged": %s, "simulation_s": %s, "backend": %s, "phases": %s, "timings": %s, "kernels": %s}' \
       "$(json_str "$name")" "$status" "$(json_num "$(whole_run_wall "$name" "$out/$log")")" \
       "$(json_num "$(timings_value wall "$timings")")" "$(json_num "$(timings_value cpu "$timings")")" \
       "$(json_num "$(timings_value peak_rss_bytes "$timings")")" "$(json_num "$(timings_value nodes "$timings")")" \
       "$(json_num "$(timings_value triangles "$timings")")" "$(json_num "$(timings_value iterations "$timings")")" \
       "$(json_num "$(timings_value converged "$timings")")" "$(json_num "$(timings_value simulation_seconds "$timings")")" \
-      "$(json_str "$(timings_value backend "$timings")")" "$(timings_phases_json "$timings")")")
+      "$(json_str "$(timings_value backend "$timings")")" "$(timings_phases_json "$timings")" "$(cat "$timings")" \
+      "$(kernel_profile_json "$kernels")")")
   elif [ "$status" = skipped ]; then
     WHOLE_JSON+=("$(printf '{"case": %s, "status": "skipped", "wall_s": null, "phases": {}, "note": "out of time"}' "$(json_str "$name")")")
   else
