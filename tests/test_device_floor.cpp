@@ -102,6 +102,7 @@ TEST_CASE("device floor measurement: times, bytes and its line", "[opencl][floor
   REQUIRE(r.bytes == 40.0 * 2000 + 4.0 * static_cast<double>(l.cell_start.size()));
   REQUIRE(r.device_seconds > 0.0);
   REQUIRE(r.wall_seconds > 0.0);
+  REQUIRE(r.cpu_seconds >= 0.0);
   REQUIRE(r.repeats == 2);
   const std::string line = ocl::format_device_floor(r);
   REQUIRE(line.find("2000 nodes") != std::string::npos);

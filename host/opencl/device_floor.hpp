@@ -23,6 +23,9 @@ struct DeviceFloorResult {
   double bytes = 0.0;           // per iteration: x, y, q read and two arrays written per node, 4 B per cell
   double device_seconds = 0.0;  // the best repeat's kernel time (CL_PROFILING_COMMAND_END - START)
   double wall_seconds = 0.0;    // the best repeat's wall time from the enqueue to the end of clFinish
+  // The process's CPU time (every thread: a CPU device's work is on its threads) over the repeat of
+  // the best kernel time: on a loaded machine the figure to compare with the CPU floor's.
+  double cpu_seconds = 0.0;
   int repeats = 0;
 };
 
@@ -36,9 +39,9 @@ class DeviceFloor {
   DeviceFloor(const DeviceFloor&) = delete;
   DeviceFloor& operator=(const DeviceFloor&) = delete;
 
-  // One floor iteration, waited for: its kernel time and wall time in seconds.
+  // One floor iteration, waited for: its kernel time, wall time and the process's CPU time in seconds.
   struct Times {
-    double device = 0.0, wall = 0.0;
+    double device = 0.0, wall = 0.0, cpu = 0.0;
   };
   Times run(double dt2);
   // The last iteration's new positions, as doubles.
