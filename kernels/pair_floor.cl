@@ -9,8 +9,8 @@
 #pragma OPENCL FP_CONTRACT OFF
 
 __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void pair_floor(
-    const int n, const int cells_x, const int cells_y, const REAL x0, const REAL y0, const REAL cell,
-    const REAL cutoff, const REAL minus_four_a, const REAL half_dt2, __global const REAL* x, __global const REAL* y,
+    const int n, const int cells_x, const int cells_y, const REAL x0, const REAL y0, const REAL cell, const REAL cutoff,
+    const REAL minus_four_a, const REAL half_dt2, __global const REAL* x, __global const REAL* y,
     __global const REAL* q, __global const uint* cell_start, __global REAL* new_x, __global REAL* new_y) {
   const int i = get_global_id(0);
   if (i >= n) return;

@@ -265,7 +265,8 @@ TEST_CASE("bench reports the force loop and the commands per iteration", "[openc
   REQUIRE(row != std::string::npos);
   const std::string line = table.substr(row, table.find('\n', row) - row);
   std::vector<std::string> cells;
-  for (std::size_t b = 1, e; (e = line.find(" |", b)) != std::string::npos; b = e + 2) cells.push_back(line.substr(b + 1, e - b - 1));
+  for (std::size_t b = 1, e; (e = line.find(" |", b)) != std::string::npos; b = e + 2)
+    cells.push_back(line.substr(b + 1, e - b - 1));
   REQUIRE(cells.size() == 17);
   const std::string floor = cells[15];
   REQUIRE(floor.rfind("device ", 0) == 0);

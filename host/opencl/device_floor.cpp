@@ -3,7 +3,9 @@
 
 #include <time.h>
 
+#include <algorithm>
 #include <chrono>
+#include <cstdint>
 #include <type_traits>
 
 #include <fmt/format.h>
@@ -62,16 +64,16 @@ class FloorOnDevice final : public DeviceFloor::State {
     const FloorLattice& l = lattice_;
     // The host loop's constants, computed as it computes them (sim/pair_floor_kernel.hpp).
     const double minus_four_a = -4.0 * l.lj_a, half_dt2 = 0.5 * dt2;
-    ArgSetter(kernel_, "pair_floor")(static_cast<cl_int>(n_))(static_cast<cl_int>(l.cells_x))(
-        static_cast<cl_int>(l.cells_y))(static_cast<Real>(l.x0))(static_cast<Real>(l.y0))(static_cast<Real>(l.cell))(
-        static_cast<Real>(l.cutoff))(static_cast<Real>(minus_four_a))(static_cast<Real>(half_dt2))(x_)(y_)(q_)(
-        starts_)(new_x_)(new_y_);
+    ArgSetter(kernel_,
+              "pair_floor")(static_cast<cl_int>(n_))(static_cast<cl_int>(l.cells_x))(static_cast<cl_int>(l.cells_y))(
+        static_cast<Real>(l.x0))(static_cast<Real>(l.y0))(static_cast<Real>(l.cell))(static_cast<Real>(l.cutoff))(
+        static_cast<Real>(minus_four_a))(static_cast<Real>(half_dt2))(x_)(y_)(q_)(starts_)(new_x_)(new_y_);
     const std::size_t global = (n_ + kStepWorkGroup - 1) / kStepWorkGroup * kStepWorkGroup;
     cl::Event event;
     const double cpu0 = process_cpu_seconds();
     const auto t0 = std::chrono::steady_clock::now();
-    check(queue_.enqueueNDRangeKernel(kernel_, cl::NullRange, cl::NDRange(global), cl::NDRange(kStepWorkGroup),
-                                      nullptr, &event),
+    check(queue_.enqueueNDRangeKernel(kernel_, cl::NullRange, cl::NDRange(global), cl::NDRange(kStepWorkGroup), nullptr,
+                                      &event),
           fmt::format("enqueue 'pair_floor' ({} work-items)", global));
     counting::launch();
     check(queue_.finish(), "pair_floor");
@@ -113,8 +115,8 @@ class FloorOnDevice final : public DeviceFloor::State {
 
 DeviceFloor::DeviceFloor(Context& ctx, const FloorLattice& lattice, Precision precision) {
   if (precision == Precision::Double && !ctx.device().fp64)
-    throw DeviceError(fmt::format("{} has no double precision (cl_khr_fp64) for the pair-force floor in double",
-                                  ctx.device().name));
+    throw DeviceError(
+        fmt::format("{} has no double precision (cl_khr_fp64) for the pair-force floor in double", ctx.device().name));
   if (lattice.size() > static_cast<std::size_t>(INT32_MAX) || lattice.cell_start.size() > INT32_MAX)
     throw LimitError(fmt::format("device pair-force floor: {} nodes in {} cells are more than a kernel's int indexes",
                                  lattice.size(), lattice.cell_start.size()));
@@ -133,8 +135,7 @@ void DeviceFloor::download(std::vector<double>& new_x, std::vector<double>& new_
 double DeviceFloor::bytes() const { return state_->bytes(); }
 
 DeviceFloorResult measure_device_floor(Context& ctx, const FloorOptions& options, Precision precision) {
-  if (options.repeats < 1)
-    throw InputError(fmt::format("pair floor: repeats must be >= 1, got {}", options.repeats));
+  if (options.repeats < 1) throw InputError(fmt::format("pair floor: repeats must be >= 1, got {}", options.repeats));
   const FloorLattice lattice = make_floor_lattice(options);
   DeviceFloor floor(ctx, lattice, precision);
   constexpr double kDt2 = 1e-6;  // as measure_pair_floor: moves of ~1e-4 edges

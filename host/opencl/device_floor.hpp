@@ -29,9 +29,9 @@ struct DeviceFloorResult {
   int repeats = 0;
 };
 
-// The lattice on ctx's device with the floor program built (DeviceError: Double without fp64, a failed
-// build, a work-group the kernel cannot run). Its own in-order queue with profiling, whatever
-// PDMESH_KERNEL_PROFILE says.
+// The lattice on ctx's device (`lattice` must outlive the DeviceFloor) with the floor program built (DeviceError:
+// Double without fp64, a failed build, a work-group the kernel cannot run). Its own in-order queue with profiling,
+// whatever PDMESH_KERNEL_PROFILE says.
 class DeviceFloor {
  public:
   DeviceFloor(Context& ctx, const FloorLattice& lattice, Precision precision);

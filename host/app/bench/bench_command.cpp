@@ -260,19 +260,19 @@ Row device_row(const BenchCase& c, const ocl::DeviceInfo& info, const SimOptions
   const SimResult r = simulator.run(nodes, *c.tree, *c.spacing, o, callbacks);
   close_window();
   Row row{c.name,
-             fmt::format("opencl:{}:{} {} ({}, {} loop){}", info.platform, info.device, info.type,
-                         precision == ocl::Precision::Float ? "float" : "double",
-                         ocl::force_loop_name(simulator.force_loop()), suffix),
-             nodes.size(),
-             o.iterations,
-             r.stats.seconds,
-             r.stats.pairs_within,
-             r.stats.pairs_examined,
-             simulator.stats(),
-             commands,
-             peak_rss_bytes(),
-             host_ms,
-             r.stats};
+          fmt::format("opencl:{}:{} {} ({}, {} loop){}", info.platform, info.device, info.type,
+                      precision == ocl::Precision::Float ? "float" : "double",
+                      ocl::force_loop_name(simulator.force_loop()), suffix),
+          nodes.size(),
+          o.iterations,
+          r.stats.seconds,
+          r.stats.pairs_within,
+          r.stats.pairs_examined,
+          simulator.stats(),
+          commands,
+          peak_rss_bytes(),
+          host_ms,
+          r.stats};
   row.device_info = info;
   row.precision = precision;
   return row;
@@ -346,8 +346,8 @@ int run_bench(const BenchArguments& args) {
     for (Row& row : rows) {
       row.floor = floor;
       if (args.floor_repeat > 0 && row.device_info) {
-        row.device_floor =
-            bench_device_floor(*row.device_info, row.precision, row.nodes, args.floor_repeat, options.cutoff, options.lj_a);
+        row.device_floor = bench_device_floor(*row.device_info, row.precision, row.nodes, args.floor_repeat,
+                                              options.cutoff, options.lj_a);
         if (row.device_floor != nullptr)
           floors += fmt::format("- {}: {}\n", c->name, ocl::format_device_floor(*row.device_floor));
       }
