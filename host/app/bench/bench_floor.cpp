@@ -46,6 +46,8 @@ const ocl::DeviceFloorResult* bench_device_floor(const ocl::DeviceInfo& device, 
     fmt::print(stderr, "bench: {}\n", ocl::format_device_floor(*r));
   } catch (const DeviceError& e) {
     fmt::print(stderr, "bench: no device pair-force floor on {}: {}\n", device.name, e.what());
+  } catch (const LimitError& e) {  // a buffer past the device's largest allocation
+    fmt::print(stderr, "bench: no device pair-force floor on {}: {}\n", device.name, e.what());
   }
   const auto& kept = measured.emplace(key, std::move(r)).first->second;
   return kept ? &*kept : nullptr;

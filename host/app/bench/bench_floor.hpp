@@ -28,7 +28,8 @@ std::string floor_cpu_ratio_cell(const FloorResult* floor, double cpu_seconds_pe
 // The floor on `device` in `precision` at `nodes` nodes, best of `repeat` (>= 1) kernel times, with
 // pdmesh's cut-off and a; measured once per device, precision, node count and repeat in a process.
 // Prints its line (format_device_floor) to stderr. Null, with the reason on stderr, when the device
-// cannot run it (DeviceError): its rows then have no floor.
+// cannot run it (DeviceError, or LimitError: an array past its largest allocation): its rows then have
+// no floor.
 const ocl::DeviceFloorResult* bench_device_floor(const ocl::DeviceInfo& device, ocl::Precision precision,
                                                  std::size_t nodes, int repeat, double cutoff = 1.5,
                                                  double lj_a = 15.0);
