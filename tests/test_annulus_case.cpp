@@ -127,3 +127,31 @@ TEST_CASE("bench --whole-run: repeated runs of a generated case, every phase wit
   CHECK(failing.status == 1);
   fs::remove_all(dir);
 }
+
+TEST_CASE("bench --whole-run: a device-resident run's floor is its device's and the host reference's the CPU's",
+          "[bench][annulus][cli][opencl]") {
+  const fs::path dir = pdmesh_test::fresh_dir("whole_run_bench_floor");
+  const pdmesh_test::Result r = pdmesh_test::run_pdmesh(
+      "bench --whole-run --cases annulus_1500 --repeat 1 --backends host opencl --no-pictures --floor-repeat 1 "
+      "--set simulation.iterations=5 --work-dir '" +
+      dir.string() + "' --out '" + (dir / "table.md").string() + "'");
+  INFO(r.output);
+  REQUIRE(r.status == 0);
+  const std::string table = read_text_file(dir / "table.md");
+  INFO(table);
+  // The summary rows' floor cells (the second last cell): "S / V; CPU C" for the host, "device T; CPU C"
+  // for PoCL's CPU device.
+  const auto floor_cell = [&](const std::string& backend) {
+    const std::size_t row = table.find("| annulus_1500 | " + backend + " |");
+    REQUIRE(row != std::string::npos);
+    const std::string line = table.substr(row, table.find('\n', row) - row);
+    const std::size_t last = line.rfind(" | ", line.size() - 3);
+    const std::size_t before = line.rfind(" | ", last - 1);
+    return line.substr(before + 3, last - before - 3);
+  };
+  CHECK(floor_cell("host").find(" / ") != std::string::npos);
+  CHECK(floor_cell("host").rfind("device ", 0) == std::string::npos);
+  CHECK(floor_cell("opencl").rfind("device ", 0) == 0);
+  CHECK(floor_cell("opencl").find("; CPU ") != std::string::npos);
+  fs::remove_all(dir);
+}

@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <fmt/format.h>
 
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -255,12 +256,22 @@ TEST_CASE("bench reports the force loop and the commands per iteration", "[openc
   CHECK(table.find("launches / reads / writes / copies / waits") != std::string::npos);
   CHECK(table.find("(double, scalar loop)") != std::string::npos);
   CHECK(table.find(" it. in ") != std::string::npos);  // the iterations of at least one window were counted
-  // The pair-force floor at the case's node count: its line, and the row's ratio to it (the last cell).
+  // The pair-force floor at the case's node count, on the CPU and on the device: their lines, and the
+  // device row's ratio to its device's floor (the last two cells: "device T" and ms/iteration over T).
   CHECK(table.find("circle_circle: pair-force floor at ") != std::string::npos);
-  CHECK(table.find("| x floor |") != std::string::npos);
+  CHECK(table.find("circle_circle: device pair-force floor at ") != std::string::npos);
+  CHECK(table.find("| x floor") != std::string::npos);
   const std::size_t row = table.find("| circle_circle | opencl");
   REQUIRE(row != std::string::npos);
   const std::string line = table.substr(row, table.find('\n', row) - row);
-  const std::size_t last = line.rfind("| ", line.size() - 2);
-  CHECK(std::stod(line.substr(last + 2)) > 0.0);
+  std::vector<std::string> cells;
+  for (std::size_t b = 1, e; (e = line.find(" |", b)) != std::string::npos; b = e + 2)
+    cells.push_back(line.substr(b + 1, e - b - 1));
+  REQUIRE(cells.size() == 17);
+  const std::string floor = cells[15];
+  REQUIRE(floor.rfind("device ", 0) == 0);
+  const double ms = std::stod(cells[4]), floor_ms = std::stod(floor.substr(7)), ratio = std::stod(cells[16]);
+  CHECK(ratio > 0.0);
+  // Both printed rounded: ms to 3 decimals, the floor to 3, the ratio to 2.
+  CHECK(std::abs(ratio - ms / floor_ms) <= 1.1 * (0.005 + 0.0005 / floor_ms + 0.0005 * ms / (floor_ms * floor_ms)));
 }

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Compiles the simulation program exactly as the host builds it (build/kernel_source prints it: the
-# program builder's defines, common.cl and StepProgram's files in order), followed by selftest.cl, with
+# program builder's defines, common.cl and StepProgram's files in order), followed by selftest.cl and
+# pair_floor.cl (programs of their own, built with the same common defines), with
 # clang-14 for a generic SPIR target, in float without cl_khr_fp64 and in double, with each force loop
 # (vector, scalar), and prints clang's diagnostics: what a strict vendor compiler may reject
 # (docs/opencl.md, "Portability"). Needs clang-14 (not a build dependency) and the kernel_source target.
@@ -18,8 +19,10 @@ for precision in float double; do
   for loop in vector scalar; do
     src=$(mktemp --suffix=.cl)
     "$build/kernel_source" "$precision" "$loop" >"$src"
-    printf '\n// ---- selftest.cl ----\n' >>"$src"
-    cat kernels/selftest.cl >>"$src"
+    for extra in selftest.cl pair_floor.cl; do
+      printf '\n// ---- %s ----\n' "$extra" >>"$src"
+      cat "kernels/$extra" >>"$src"
+    done
     if [ "$precision" = float ]; then ext=-cl_khr_fp64; else ext=+cl_khr_fp64; fi
     log=$(clang-14 -x cl -cl-std=CL1.2 -target spir64 -Xclang -finclude-default-header -Xclang "-cl-ext=$ext" \
           -fsyntax-only "$src" 2>&1 || true)

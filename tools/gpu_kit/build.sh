@@ -10,9 +10,9 @@ root=$(cd "$(dirname "$0")/../.." && pwd)
 cd "$root"
 
 # The device-test executables the kit runs (tests/test_*.cpp that need an OpenCL device).
-TESTS=(test_device_boundary test_device_cases test_device_clearance test_device_momentum test_device_neighbours
-       test_device_row_offsets test_device_simulation test_opencl_canary test_opencl_commands test_opencl_infra
-       test_step_backends)
+TESTS=(test_device_boundary test_device_cases test_device_clearance test_device_floor test_device_momentum
+       test_device_neighbours test_device_row_offsets test_device_simulation test_opencl_canary test_opencl_commands
+       test_opencl_infra test_step_backends)
 # glibc's own libraries: the machine's are used (they cannot be carried; BUILD_INFO names the oldest
 # glibc the kit runs on).
 GLIBC='^(linux-vdso|ld-linux-x86-64|libc|libm|libmvec|libpthread|libdl|librt|libresolv|libutil|libanl|libnsl)\.so'

@@ -52,6 +52,7 @@ def check_schema(r, p):
         p.need(isinstance(row.get("case"), str) and isinstance(row.get("backend"), str), f"bench row {row} lacks case or backend")
         p.need(isinstance(row.get("nodes"), int), f"bench row {row.get('case')} has no node count")
         p.need(num_or_null(row.get("ms_per_iteration")), f"bench row {row.get('case')}: ms_per_iteration is not a number")
+        p.need(num_or_null(row.get("device_floor_ms")), f"bench row {row.get('case')}: device_floor_ms is not a number")
     for run in r.get("whole_runs", []) if p.need(isinstance(r.get("whole_runs"), list), "whole_runs is not a list") else []:
         p.need(isinstance(run.get("case"), str), f"whole run {run} has no case")
         p.need(num_or_null(run.get("wall_s")), f"whole run {run.get('case')}: wall_s is not a number")
@@ -73,6 +74,8 @@ def check_device_run(r, p, steps):
         p.need(len(r["bench"]) > 0, "no bench rows")
         for row in r["bench"]:
             p.need(is_num(row.get("ms_per_iteration")), f"bench {row['case']} {row['backend']}: no ms/iteration")
+            if not row["backend"].startswith("host"):
+                p.need(is_num(row.get("device_floor_ms")), f"bench {row['case']} {row['backend']}: no device floor")
         cases = {row["case"] for row in r["bench"] if not row["backend"].startswith("host")}
         p.need(len(cases) == 3, f"device bench rows for {sorted(cases)}, not 3 cases")
     if "tests" in steps:
@@ -110,7 +113,10 @@ def summary(r):
     t = r.get("tests") or {}
     print(f"tests: {t.get('passed')} passed, {t.get('failed')} failed, unfinished {t.get('unfinished')}")
     for row in r.get("bench", []):
-        print(f"bench {row['case']:>14} {row['backend'][:48]:<48} {row['nodes']:>9} nodes {row['ms_per_iteration']} ms/iteration")
+        floor = f"device floor {row['device_floor_ms']} ms" if row.get("device_floor_ms") is not None else \
+            f"CPU floor {row.get('floor_ms_scalar_vector')} ms"
+        print(f"bench {row['case']:>14} {row['backend'][:48]:<48} {row['nodes']:>9} nodes {row['ms_per_iteration']} ms/iteration"
+              f" ({floor}, x floor {row.get('over_floor')})")
     for run in r.get("whole_runs", []):
         top = sorted(run.get("phases", {}).items(), key=lambda kv: -kv[1])[:4]
         print(f"whole {run['case']}: {run.get('wall_s')} s ({run.get('nodes')} nodes, {run.get('iterations')} iterations); "

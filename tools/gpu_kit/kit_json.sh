@@ -45,7 +45,9 @@ json_tail() {
 # joined by ",\n". Columns: case | backend | nodes | iterations | ms/iteration | node-iterations/s |
 # pair interactions/s | ns per node-iteration | pairs examined | device split | bytes/iteration |
 # commands per iteration | per rebuild | host RSS / device bytes per node | host/device time, and in
-# tables with the pair-force floor: floor ms/iteration (scalar / vector) | x floor.
+# tables with the pair-force floor: floor ms/iteration | x floor. The floor cell of a host row is the
+# host CPU's "scalar / vector" (floor_ms_scalar_vector), of a device row "device T", the device's own
+# floor (device_floor_ms); x floor is the row's time over its own floor.
 bench_rows_json() {
   awk -F'|' '
     function q(s) { gsub(/^ +| +$/, "", s); gsub(/\\/, "\\\\", s); gsub(/"/, "\\\"", s); return "\"" s "\"" }
@@ -61,7 +63,11 @@ bench_rows_json() {
       printf "\"bytes_per_iteration\": %s, \"commands_per_iteration\": %s, \"commands_per_rebuild\": %s, ", \
              n($12), q($13), q($14)
       printf "\"host_rss_and_device_bytes_per_node\": %s, \"host_over_device\": %s", q($15), n($16)
-      if (NF >= 19) printf ", \"floor_ms_scalar_vector\": %s, \"over_floor\": %s", q($17), n($18)
+      if (NF >= 19) {
+        cell = $17; gsub(/^ +| +$/, "", cell)
+        if (cell ~ /^device /) { sub(/^device /, "", cell); cpu = "null"; dev = n(cell) } else { cpu = q(cell); dev = "null" }
+        printf ", \"floor_ms_scalar_vector\": %s, \"device_floor_ms\": %s, \"over_floor\": %s", cpu, dev, n($18)
+      }
       printf "}"
     }' "$1"
 }

@@ -132,7 +132,7 @@ step_bench() {
 # enough to show that every kind runs from the kit, finds its cases and is counted.
 declare -A LOCAL_TESTS=(
   [test_opencl_infra]="" [test_opencl_canary]="" [test_device_row_offsets]="" [test_device_boundary]=""
-  [test_device_clearance]=""
+  [test_device_clearance]="" [test_device_floor]=""
   [test_device_cases]="the bit-identity list names every case in cases/,device run: square200 is bit-identical to the host over 200 iterations from both starts"
   [test_device_simulation]="device run: 10 iterations agree with the host node by node (double),device run in float stays close to the host for 10 iterations"
 )

@@ -51,6 +51,18 @@ EOF
     grep -q '"backend": "opencl:0:0 CPU (double, vector loop)", "nodes": 14412, "iterations": 2000, "ms_per_iteration": 1.527' <<<"$rows" ||
       fail "bench row fields: $rows"
     grep -q '"host_over_device": 2.56}' <<<"$rows" || fail "bench ratio: $rows"
+    # With the floor: the host row against the CPU's floor, the device row against the device's.
+    cat >"$tmp/bench_floor.log" <<'EOF'
+| case | backend | nodes | iterations | ms/iteration | node-iterations/s | pair interactions/s | ns per node-iteration | pairs examined per pair | device split, ms/iteration | bytes/iteration | commands | rebuild | peak | host/device time | floor | x floor |
+|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|
+| 30p30n | host reference | 11093 | 20 | 10.229 | 1.08e+06 | 8.49e+06 | 922 | 2.67 | - | - | - | - | 23996 / - | - | 0.268 / 0.251 | 40.71 |
+| 30p30n | opencl:0:0 GPU (double, scalar loop) | 11093 | 20 | 0.165 | 2.65e+06 | 2.08e+07 | 377 | 2.82 | bin 0.00 | 49631 | 2.00 | 17.00 | 23996 / 705 | 2.45 | device 0.031 | 5.32 |
+EOF
+    rows=$(bench_rows_json "$tmp/bench_floor.log")
+    grep -q '"host_over_device": null, "floor_ms_scalar_vector": "0.268 / 0.251", "device_floor_ms": null, "over_floor": 40.71}' <<<"$rows" ||
+      fail "bench host floor: $rows"
+    grep -q '"host_over_device": 2.45, "floor_ms_scalar_vector": null, "device_floor_ms": 0.031, "over_floor": 5.32}' <<<"$rows" ||
+      fail "bench device floor: $rows"
     printf '%s\n' "====" "All tests passed (1234 assertions in 12 test cases)" >"$tmp/pass.log"
     expect_eq "$(catch_counts "$tmp/pass.log")" "12 0" "Catch2 all passed"
     dashes=-------------------------------------------------------------------------------

@@ -126,7 +126,11 @@ struct Row {
   std::size_t peak_rss = 0;
   double host_ms = 0.0;                // the host reference's ms/iteration in the same run (for the ratio)
   SimStats stats;                      // population events
-  const FloorResult* floor = nullptr;  // the pair-force floor at the case's node count (none: nullptr)
+  const FloorResult* floor = nullptr;  // the host CPU's pair-force floor at the case's node count (none: nullptr)
+  // A device row: its device and precision, and that device's floor at the row's node count (none: nullptr).
+  std::optional<ocl::DeviceInfo> device_info = std::nullopt;
+  ocl::Precision precision = ocl::Precision::Double;
+  const ocl::DeviceFloorResult* device_floor = nullptr;
 };
 
 std::string format_row(const Row& r) {
@@ -166,12 +170,16 @@ std::string format_row(const Row& r) {
                         r.stats.inserted, r.stats.removed);
   }
   const std::string ratio = r.device && r.host_ms > 0.0 ? fmt::format("{:.2f}", r.host_ms / (1e3 * per_it)) : "-";
+  // A device row against its device's floor, the host reference's against the CPU's.
+  const std::string floor_ms = r.device_info ? device_floor_ms_cell(r.device_floor) : floor_ms_cell(r.floor);
+  const std::string over_floor =
+      r.device_info ? device_floor_ratio_cell(r.device_floor, per_it) : floor_ratio_cell(r.floor, per_it);
   return fmt::format(
       "| {} | {} | {} | {} | {:.3f} | {:.3g} | {:.3g} | {:.0f} | {} | {} | {} | {} | {} | {} | {} | {} | {} |\n",
       r.case_name, r.backend, r.nodes, r.iterations, 1e3 * per_it, node_its, pairs,
       1e9 * per_it / static_cast<double>(r.nodes), examined, split, traffic, steady, rebuild,
       fmt::format("{:.0f} / {}", static_cast<double>(r.peak_rss) / static_cast<double>(r.nodes), device_mem), ratio,
-      floor_ms_cell(r.floor), floor_ratio_cell(r.floor, per_it));
+      floor_ms, over_floor);
 }
 
 // InputError naming the first argument out of range.
@@ -251,20 +259,23 @@ Row device_row(const BenchCase& c, const ocl::DeviceInfo& info, const SimOptions
   };
   const SimResult r = simulator.run(nodes, *c.tree, *c.spacing, o, callbacks);
   close_window();
-  return Row{c.name,
-             fmt::format("opencl:{}:{} {} ({}, {} loop){}", info.platform, info.device, info.type,
-                         precision == ocl::Precision::Float ? "float" : "double",
-                         ocl::force_loop_name(simulator.force_loop()), suffix),
-             nodes.size(),
-             o.iterations,
-             r.stats.seconds,
-             r.stats.pairs_within,
-             r.stats.pairs_examined,
-             simulator.stats(),
-             commands,
-             peak_rss_bytes(),
-             host_ms,
-             r.stats};
+  Row row{c.name,
+          fmt::format("opencl:{}:{} {} ({}, {} loop){}", info.platform, info.device, info.type,
+                      precision == ocl::Precision::Float ? "float" : "double",
+                      ocl::force_loop_name(simulator.force_loop()), suffix),
+          nodes.size(),
+          o.iterations,
+          r.stats.seconds,
+          r.stats.pairs_within,
+          r.stats.pairs_examined,
+          simulator.stats(),
+          commands,
+          peak_rss_bytes(),
+          host_ms,
+          r.stats};
+  row.device_info = info;
+  row.precision = precision;
+  return row;
 }
 
 }  // namespace
@@ -280,8 +291,8 @@ int run_bench(const BenchArguments& args) {
       "| case | backend | nodes | iterations | ms/iteration | node-iterations/s | pair interactions/s | ns per "
       "node-iteration | pairs examined per pair | device split, ms/iteration | bytes/iteration | commands per "
       "iteration, rebuilds left out: launches / reads / writes / copies / waits | the same per rebuild "
-      "| peak host RSS / device bytes per node | host/device time | pair-force floor, ms/iteration: scalar / vector "
-      "| x floor |\n"
+      "| peak host RSS / device bytes per node | host/device time | pair-force floor, ms/iteration: the host CPU's "
+      "scalar / vector (host rows), the device's (OpenCL rows) | x floor (of the row's own floor) |\n"
       "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   std::string floors;
   fmt::print("{}", table);
@@ -334,6 +345,12 @@ int run_bench(const BenchArguments& args) {
     }
     for (Row& row : rows) {
       row.floor = floor;
+      if (args.floor_repeat > 0 && row.device_info) {
+        row.device_floor = bench_device_floor(*row.device_info, row.precision, row.nodes, args.floor_repeat,
+                                              options.cutoff, options.lj_a);
+        if (row.device_floor != nullptr)
+          floors += fmt::format("- {}: {}\n", c->name, ocl::format_device_floor(*row.device_floor));
+      }
       const std::string line = format_row(row);
       fmt::print("{}", line);
       std::fflush(stdout);
@@ -341,7 +358,11 @@ int run_bench(const BenchArguments& args) {
     }
   }
   if (!floors.empty()) {
-    floors = "\nThe pair-force floor (sim/pair_floor.hpp) at each case's node count:\n\n" + floors;
+    floors =
+        "\nThe pair-force floor at each case's node count: on the host CPU (sim/pair_floor.hpp), the host "
+        "reference rows' x floor; on each OpenCL device (opencl/device_floor.hpp, the same iteration in "
+        "kernels/pair_floor.cl, its best kernel time), that device's rows' x floor:\n\n" +
+        floors;
     fmt::print("{}", floors);
     table += floors;
   }

@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <optional>
 #include <regex>
 #include <sstream>
 
@@ -21,6 +22,7 @@
 #include "core/atomic_file.hpp"
 #include "core/errors.hpp"
 #include "io/text_file.hpp"
+#include "opencl/devices.hpp"
 
 namespace pdmesh {
 namespace fs = std::filesystem;
@@ -32,6 +34,7 @@ struct RunRecord {
   std::vector<std::pair<std::string, double>> phases;  // foreground phases in order: wall
   std::map<std::string, double> phase_cpu;             // their process CPU time
   std::map<std::string, double> notes;                 // iterations, converged, nodes, ...
+  std::string backend;                                 // what ran the simulation, as the timings file says
   double pictures = 0.0, picture_cpu = 0.0;            // the background picture jobs, summed: wall, thread CPU
   double load_before = 0.0, load_after = 0.0;
 };
@@ -75,6 +78,7 @@ RunRecord run_process(const std::vector<std::string>& args, const fs::path& timi
   static const std::regex phase(
       R"re(\{"name": "([^"]*)", "wall": ([-0-9.eE+]+), "cpu": ([-0-9.eE+]+), "background": (true|false)\})re");
   static const std::regex note(R"re(^  "([a-z_]+)": ([-0-9.eE+]+),$)re");
+  static const std::regex backend(R"re(^  "backend": "(.*)",$)re");
   std::istringstream in(text);
   for (std::string line; std::getline(in, line);) {
     std::smatch m;
@@ -88,6 +92,8 @@ RunRecord run_process(const std::vector<std::string>& args, const fs::path& timi
       }
     } else if (std::regex_match(line, m, note)) {
       r.notes[m[1].str()] = std::stod(m[2].str());
+    } else if (std::regex_match(line, m, backend)) {
+      r.backend = m[1].str();
     }
   }
   return r;
@@ -113,9 +119,23 @@ double phase_wall(const RunRecord& r, const std::string& name) {
   return sum;
 }
 
+// The device of a device-resident run and its precision, from the timings file's backend
+// ("opencl:P:D (NAME, TYPE, double, device-resident, ...)", ocl::DeviceSimulator::describe); none for
+// every other backend (the host reference, a metric run's host driver over a device's steps).
+std::optional<std::pair<ocl::DeviceInfo, ocl::Precision>> run_device(const std::string& backend) {
+  static const std::regex resident(R"re(^(opencl:[0-9]+:[0-9]+) \(.*, (double|float), device-resident, )re");
+  std::smatch m;
+  if (!std::regex_search(backend, m, resident)) return std::nullopt;
+  std::optional<ocl::DeviceInfo> info = ocl::select_device(m[1].str());
+  if (!info) return std::nullopt;
+  return std::make_pair(*info, m[2] == "double" ? ocl::Precision::Double : ocl::Precision::Float);
+}
+
 // The summary's simulation cells: wall and CPU ms per iteration (the simulation phase's medians over
 // the iterations), the pair-force floor at the run's final node count (wall of both loops, CPU of the
-// faster), and the ratios of wall to wall and CPU to CPU.
+// faster), and the ratios of wall to wall and CPU to CPU. A device-resident run's floor is its device's
+// (bench_device_floor: "device T", its kernel ms; the CPU ratio only for a CPU device, whose work is
+// the process's CPU time).
 std::string simulation_cells(const std::vector<RunRecord>& runs, int floor_repeat) {
   const auto it = runs.front().notes.find("iterations");
   const auto nodes = runs.front().notes.find("nodes");
@@ -127,9 +147,17 @@ std::string simulation_cells(const std::vector<RunRecord>& runs, int floor_repea
     sim_cpu.push_back(cpu == r.phase_cpu.end() ? 0.0 : cpu->second);
   }
   const double per_iteration = spread(sim).median / it->second, cpu_per_iteration = spread(sim_cpu).median / it->second;
-  const FloorResult* floor = nullptr;
-  if (floor_repeat > 0 && nodes != runs.front().notes.end() && nodes->second >= 2)
-    floor = &bench_floor(static_cast<std::size_t>(nodes->second), floor_repeat);
+  const bool measured = floor_repeat > 0 && nodes != runs.front().notes.end() && nodes->second >= 2;
+  if (const auto device = measured ? run_device(runs.front().backend) : std::nullopt) {
+    const ocl::DeviceFloorResult* floor =
+        bench_device_floor(device->first, device->second, static_cast<std::size_t>(nodes->second), floor_repeat);
+    const bool cpu = floor != nullptr && device->first.type == "CPU" && floor->cpu_seconds > 0.0;
+    return fmt::format("{:.3f} / {:.3f} | {}; CPU {} | {} / {}", 1e3 * per_iteration, 1e3 * cpu_per_iteration,
+                       device_floor_ms_cell(floor), cpu ? fmt::format("{:.3f}", 1e3 * floor->cpu_seconds) : "-",
+                       device_floor_ratio_cell(floor, per_iteration),
+                       cpu ? fmt::format("{:.2f}", cpu_per_iteration / floor->cpu_seconds) : "-");
+  }
+  const FloorResult* floor = measured ? &bench_floor(static_cast<std::size_t>(nodes->second), floor_repeat) : nullptr;
   return fmt::format("{:.3f} / {:.3f} | {}; CPU {} | {} / {}", 1e3 * per_iteration, 1e3 * cpu_per_iteration,
                      floor_ms_cell(floor), floor_cpu_ms_cell(floor), floor_ratio_cell(floor, per_iteration),
                      floor_cpu_ratio_cell(floor, cpu_per_iteration));
@@ -192,7 +220,8 @@ int run_whole_run_bench(const BenchArguments& args) {
   std::string summary =
       "| case | backend | nodes | triangles | iterations | wall s, min / median / max | CPU s, median | peak RSS MB, "
       "median | load average before / after | simulation ms/iteration, median: wall / CPU | pair-force floor "
-      "ms/iteration at the final nodes: wall scalar / vector; CPU of the faster | x floor: wall / CPU "
+      "ms/iteration at the final nodes: the host CPU's wall scalar / vector; CPU of the faster (a device run: "
+      "its device's kernel; CPU on a CPU device) | x floor: wall / CPU "
       "|\n|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   for (const std::string& name : args.cases) {
     const std::vector<std::string> inputs = whole_run_inputs(name, args.cases_dir, args.work_dir);
