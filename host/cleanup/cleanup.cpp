@@ -174,6 +174,8 @@ class CleanupRun {
 
  private:
   void sweeps(const std::vector<std::uint8_t>& dirty, InterruptPoll& poll, CleanupIteration& record);
+  // The vertices of the live triangles scored below `below`, ascending (the sweeps' lists).
+  std::vector<int> bad_vertices(double below);
   std::vector<std::pair<double, int>> topology_list(double below);
   void set_aspect_totals();
   std::size_t topology_pass(InterruptPoll& poll, CleanupIteration& record, CleanupStats& stats);
@@ -212,6 +214,7 @@ class CleanupRun {
   double last_worst_ = -1.0;         // the smallest score after the previous iteration (settled()) ...
   double last_deficit_ = -1.0;       // ... and the shortfall below the target
   bool unlisted_ = false;            // the first trial budget is spent (mark_unlisted())
+  double list_seconds_ = 0.0;        // CleanupStats::list_seconds
 };
 
 // The sweeps over the vertices of the bad triangles: relaxation below the smoothing limit, then
@@ -224,25 +227,33 @@ void CleanupRun::sweeps(const std::vector<std::uint8_t>& dirty, InterruptPoll& p
   if (strips_) {
     for (const auto move : {cleanup::SweepMove::Relax, cleanup::SweepMove::Climb}) {
       const double below = move == cleanup::SweepMove::Relax ? limits_.smooth : limits_.topology;
-      const auto list = vertices_of_bad_triangles(m_, scores_.update(m_), below, mark_);
+      const auto list = bad_vertices(below);
       cleanup::add_moves(record, strips_->sweep(m_, smoother_, list, move, worth, poll));
     }
     return;
   }
-  for (int a : vertices_of_bad_triangles(m_, scores_.update(m_), limits_.smooth, mark_)) {
+  for (int a : bad_vertices(limits_.smooth)) {
     poll.tick();
     if (worth(a)) tally_move(smoother_.relax(a), smoother_, record);
   }
-  for (int a : vertices_of_bad_triangles(m_, scores_.update(m_), limits_.topology, mark_)) {
+  for (int a : bad_vertices(limits_.topology)) {
     poll.tick();
     if (worth(a)) tally_move(smoother_.climb(a), smoother_, record);
   }
+}
+
+std::vector<int> CleanupRun::bad_vertices(double below) {
+  const auto start = std::chrono::steady_clock::now();
+  auto list = vertices_of_bad_triangles(m_, scores_.update(m_), below, mark_);
+  list_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return list;
 }
 
 // The live triangles scored below `below` that have not failed before, worst first. Triangles that
 // failed before are dropped before the sort rather than after it: after the first pass they are nearly
 // all of the list, and the order of the others is the same.
 std::vector<std::pair<double, int>> CleanupRun::topology_list(double below) {
+  const auto start = std::chrono::steady_clock::now();
   // The scores the sweeps' lists keep, brought up to date: triangles the sweeps did not change keep
   // theirs, rather than every triangle's being computed again.
   const std::vector<double>& score = scores_.update(m_);
@@ -253,6 +264,7 @@ std::vector<std::pair<double, int>> CleanupRun::topology_list(double below) {
     if (q < below && (failures_.empty() || failures_.count(sorted_key(m_.v[t])) == 0)) bad.push_back({q, t});
   }
   std::sort(bad.begin(), bad.end());
+  list_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return bad;
 }
 
@@ -433,7 +445,10 @@ void CleanupRun::polish(CleanupStats& stats) {
 }
 
 void CleanupRun::finish(const Mesh& mesh, const NodeSet& nodes, const SpacingField& spacing, CleanupResult& result) {
+  const auto start = std::chrono::steady_clock::now();
+  result.stats.list_seconds = list_seconds_;
   if (strips_) {
+    result.stats.strip_serial_seconds = strips_->serial_seconds();
     result.stats.strips = strips_->strips();
     result.stats.strip_taken = strips_->taken();
     result.stats.strip_left = strips_->left();
@@ -446,6 +461,7 @@ void CleanupRun::finish(const Mesh& mesh, const NodeSet& nodes, const SpacingFie
   result.stats.compound_applied = ops_.compound_applied();
   legalize_all();
   cleanup::cleaned_mesh_and_nodes(m_, mesh, nodes, spacing, result.mesh, result.nodes);
+  result.stats.finish_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
 }  // namespace
@@ -455,6 +471,7 @@ CleanupResult clean_mesh(const Mesh& mesh, const NodeSet& nodes, const GeometryT
   const auto start = std::chrono::steady_clock::now();
   CleanupResult result;
   CleanupRun run(mesh, nodes, tree, spacing, options, edge_to_spacing_ratio(mesh, spacing));
+  result.stats.setup_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   for (int iteration = 0; iteration < options.iterations; ++iteration) {
     if (run.iterate(iteration, result.stats) == 0) break;
     if (run.settled(iteration, result.stats.per_iteration.back())) {
