@@ -72,8 +72,7 @@ TEST_CASE("run_strips runs every strip once, odd strips after their even neighbo
   }
 }
 
-TEST_CASE("run_strips overlaps the colours: an odd strip may start before the last even one",
-          "[cleanup][strips]") {
+TEST_CASE("run_strips overlaps the colours: an odd strip may start before the last even one", "[cleanup][strips]") {
   if (std::thread::hardware_concurrency() < 2) return;  // one worker runs the strips in turn
   // Strip 6 has the most work, so it starts first, and it does not return until an odd strip has
   // started (or 20 s have passed): with 2 threads the other one runs 0, 2 and 4 and then strip 1 or 3,

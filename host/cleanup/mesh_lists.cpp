@@ -27,7 +27,8 @@ std::vector<int> vertices_of_bad_triangles(const EditableMesh& m, const std::vec
         for (std::size_t slot = b * kBlock; slot < end; ++slot) {
           const int t = static_cast<int>(slot);
           if (!m.alive(t) || !(score[slot] < limit)) continue;
-          for (int a : m.v[t]) std::atomic_ref<std::uint8_t>(mark[static_cast<std::size_t>(a)]).store(1, std::memory_order_relaxed);
+          for (int a : m.v[t])
+            std::atomic_ref<std::uint8_t>(mark[static_cast<std::size_t>(a)]).store(1, std::memory_order_relaxed);
         }
       },
       1, threads);
@@ -49,9 +50,8 @@ std::vector<int> vertices_of_bad_triangles(const EditableMesh& m, const std::vec
   return out;
 }
 
-std::vector<std::pair<double, int>> bad_triangles(const EditableMesh& m, const std::vector<double>& score,
-                                                  double below, const std::function<bool(int)>& keep,
-                                                  std::size_t threads) {
+std::vector<std::pair<double, int>> bad_triangles(const EditableMesh& m, const std::vector<double>& score, double below,
+                                                  const std::function<bool(int)>& keep, std::size_t threads) {
   const auto slots = static_cast<std::size_t>(m.triangle_slots());
   std::vector<std::vector<std::pair<double, int>>> part(blocks_of(slots));
   parallel_for(

@@ -20,9 +20,8 @@ std::vector<int> vertices_of_bad_triangles(const EditableMesh& m, const std::vec
 
 // The live triangles t with score[t] < below for which keep(t) holds, as (score, t), sorted. keep is
 // called on several threads at once: it may only read.
-std::vector<std::pair<double, int>> bad_triangles(const EditableMesh& m, const std::vector<double>& score,
-                                                  double below, const std::function<bool(int)>& keep,
-                                                  std::size_t threads);
+std::vector<std::pair<double, int>> bad_triangles(const EditableMesh& m, const std::vector<double>& score, double below,
+                                                  const std::function<bool(int)>& keep, std::size_t threads);
 
 // Over the live triangles: the smallest score (1 when none is smaller), their count, and the shortfall
 // sum of (target - score) over those below target, added in slot order.
