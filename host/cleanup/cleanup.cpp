@@ -11,6 +11,7 @@
 #include "cleanup/cleaned_nodes.hpp"
 #include "cleanup/editable_mesh.hpp"
 #include "cleanup/measures.hpp"
+#include "cleanup/mesh_lists.hpp"
 #include "cleanup/smoothing.hpp"
 #include "cleanup/strip_sweeps.hpp"
 #include "cleanup/topology_ops.hpp"
@@ -35,6 +36,10 @@ class Scores {
   const std::vector<double>& update(EditableMesh& m) {
     const std::uint32_t since = since_;
     auto changed = [&](int a) { return m.marked_in(a, since); };
+    // No new slot and no vertex marked since the last call (the sweeps' first list after settling's
+    // scan, or settling's scan after a topology pass that changed nothing): every kept score stands.
+    // The vertices' marks are a fraction of what the triangles' pass reads.
+    if (m.triangle_slots() == known_ && !any_marked(m, since)) return score_;
     score_.resize(m.triangle_slots(), 0.0);
     // Each index writes only its own score: the same scores on any number of threads.
     parallel_for(
@@ -53,25 +58,26 @@ class Scores {
   }
 
  private:
+  bool any_marked(const EditableMesh& m, std::uint32_t since) const {
+    const auto vertices = static_cast<std::size_t>(m.vertex_slots());
+    constexpr std::size_t kBlock = 65536;
+    std::vector<std::uint8_t> marked((vertices + kBlock - 1) / kBlock, 0);
+    parallel_for(
+        marked.size(),
+        [&](std::size_t b) {
+          const std::size_t end = std::min(vertices, (b + 1) * kBlock);
+          for (std::size_t a = b * kBlock; a < end && !marked[b]; ++a)
+            if (m.marked_in(static_cast<int>(a), since)) marked[b] = 1;
+        },
+        1, threads_);
+    return std::find(marked.begin(), marked.end(), 1) != marked.end();
+  }
+
   std::vector<double> score_;
   int known_ = 0;            // slots scored by the last update
   std::uint32_t since_ = 0;  // the epoch begun by the last update: marks from then on are new
   std::size_t threads_;
 };
-
-// The vertices of the live triangles whose score is below `limit`, ascending (deterministic order).
-std::vector<int> vertices_of_bad_triangles(const EditableMesh& m, const std::vector<double>& score, double limit,
-                                           std::vector<std::uint8_t>& mark) {
-  mark.assign(m.vertex_slots(), 0);
-  for (int t = 0; t < m.triangle_slots(); ++t) {
-    if (!m.alive(t) || !(score[t] < limit)) continue;
-    for (int a : m.v[t]) mark[a] = 1;
-  }
-  std::vector<int> out;
-  for (int a = 0; a < m.vertex_slots(); ++a)
-    if (mark[a]) out.push_back(a);
-  return out;
-}
 
 // A triangle's vertices in ascending order: its name in the set of triangles no operation could repair.
 std::array<int, 3> sorted_key(std::array<int, 3> key) {
@@ -174,6 +180,8 @@ class CleanupRun {
 
  private:
   void sweeps(const std::vector<std::uint8_t>& dirty, InterruptPoll& poll, CleanupIteration& record);
+  // The vertices of the live triangles scored below `below`, ascending (the sweeps' lists).
+  std::vector<int> bad_vertices(double below);
   std::vector<std::pair<double, int>> topology_list(double below);
   void set_aspect_totals();
   std::size_t topology_pass(InterruptPoll& poll, CleanupIteration& record, CleanupStats& stats);
@@ -182,9 +190,8 @@ class CleanupRun {
   struct MeshScan {
     double worst = 1.0, aspect_sum = 0.0, count = 0.0, deficit = 0.0;
   };
-  // Over the live triangles: their scores from `score` (the kept scores, by slot) or, without it, from
-  // the mesh, with the aspect-ratio sum.
-  MeshScan scan(const std::vector<double>* score = nullptr) const;
+  // Over the live triangles, their scores and aspect ratios computed from the mesh.
+  MeshScan scan() const;
   void measure(CleanupIteration& record) const;
   void legalize_all();
   // Whether triangle t is stuck (lifting climbs): no topology change could repair it, or it is above
@@ -212,6 +219,8 @@ class CleanupRun {
   double last_worst_ = -1.0;         // the smallest score after the previous iteration (settled()) ...
   double last_deficit_ = -1.0;       // ... and the shortfall below the target
   bool unlisted_ = false;            // the first trial budget is spent (mark_unlisted())
+  double list_seconds_ = 0.0;        // CleanupStats::list_seconds
+  const std::size_t threads_ = cleanup::sweep_thread_limit(options_.threads);  // of the whole-mesh lists
 };
 
 // The sweeps over the vertices of the bad triangles: relaxation below the smoothing limit, then
@@ -224,35 +233,40 @@ void CleanupRun::sweeps(const std::vector<std::uint8_t>& dirty, InterruptPoll& p
   if (strips_) {
     for (const auto move : {cleanup::SweepMove::Relax, cleanup::SweepMove::Climb}) {
       const double below = move == cleanup::SweepMove::Relax ? limits_.smooth : limits_.topology;
-      const auto list = vertices_of_bad_triangles(m_, scores_.update(m_), below, mark_);
+      const auto list = bad_vertices(below);
       cleanup::add_moves(record, strips_->sweep(m_, smoother_, list, move, worth, poll));
     }
     return;
   }
-  for (int a : vertices_of_bad_triangles(m_, scores_.update(m_), limits_.smooth, mark_)) {
+  for (int a : bad_vertices(limits_.smooth)) {
     poll.tick();
     if (worth(a)) tally_move(smoother_.relax(a), smoother_, record);
   }
-  for (int a : vertices_of_bad_triangles(m_, scores_.update(m_), limits_.topology, mark_)) {
+  for (int a : bad_vertices(limits_.topology)) {
     poll.tick();
     if (worth(a)) tally_move(smoother_.climb(a), smoother_, record);
   }
+}
+
+std::vector<int> CleanupRun::bad_vertices(double below) {
+  const auto start = std::chrono::steady_clock::now();
+  auto list = cleanup::vertices_of_bad_triangles(m_, scores_.update(m_), below, mark_, threads_);
+  list_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return list;
 }
 
 // The live triangles scored below `below` that have not failed before, worst first. Triangles that
 // failed before are dropped before the sort rather than after it: after the first pass they are nearly
 // all of the list, and the order of the others is the same.
 std::vector<std::pair<double, int>> CleanupRun::topology_list(double below) {
+  const auto start = std::chrono::steady_clock::now();
   // The scores the sweeps' lists keep, brought up to date: triangles the sweeps did not change keep
   // theirs, rather than every triangle's being computed again.
   const std::vector<double>& score = scores_.update(m_);
-  std::vector<std::pair<double, int>> bad;
-  for (int t = 0; t < m_.triangle_slots(); ++t) {
-    if (!m_.alive(t)) continue;
-    const double q = score[t];
-    if (q < below && (failures_.empty() || failures_.count(sorted_key(m_.v[t])) == 0)) bad.push_back({q, t});
-  }
-  std::sort(bad.begin(), bad.end());
+  auto bad = cleanup::bad_triangles(
+      m_, score, below, [&](int t) { return failures_.empty() || failures_.count(sorted_key(m_.v[t])) == 0; },
+      threads_);
+  list_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return bad;
 }
 
@@ -335,14 +349,14 @@ void CleanupRun::mark_unlisted(CleanupIteration& record) {
   }
 }
 
-CleanupRun::MeshScan CleanupRun::scan(const std::vector<double>* score) const {
+CleanupRun::MeshScan CleanupRun::scan() const {
   MeshScan s;
   for (int t = 0; t < m_.triangle_slots(); ++t)
     if (m_.alive(t)) {
-      const double q = score ? (*score)[static_cast<std::size_t>(t)] : m_.quality(t);
+      const double q = m_.quality(t);
       s.worst = std::min(s.worst, q);
       if (q < limits_.target) s.deficit += limits_.target - q;
-      if (!score) s.aspect_sum += m_.aspect(t);
+      s.aspect_sum += m_.aspect(t);
       s.count += 1.0;
     }
   return s;
@@ -364,7 +378,7 @@ bool CleanupRun::settled(int iteration, const CleanupIteration& record) {
   if (!(options_.settled_aspect_drop > 0.0)) return false;
   // The kept scores brought up to date (only the triangles the iteration changed are scored again):
   // the values quality() gives, without a scan of every triangle's angles per iteration.
-  const MeshScan s = scan(&scores_.update(m_));
+  const cleanup::ScoreScan s = cleanup::scan_scores(m_, scores_.update(m_), limits_.target, threads_);
   const bool quiet = iteration > 0 && record.topology == 0 && record.stuck == 0 && s.worst <= last_worst_ &&
                      s.deficit >= last_deficit_ && record.aspect_drop < options_.settled_aspect_drop * s.count;
   last_worst_ = s.worst;
@@ -433,7 +447,10 @@ void CleanupRun::polish(CleanupStats& stats) {
 }
 
 void CleanupRun::finish(const Mesh& mesh, const NodeSet& nodes, const SpacingField& spacing, CleanupResult& result) {
+  const auto start = std::chrono::steady_clock::now();
+  result.stats.list_seconds = list_seconds_;
   if (strips_) {
+    result.stats.strip_serial_seconds = strips_->serial_seconds();
     result.stats.strips = strips_->strips();
     result.stats.strip_taken = strips_->taken();
     result.stats.strip_left = strips_->left();
@@ -446,6 +463,7 @@ void CleanupRun::finish(const Mesh& mesh, const NodeSet& nodes, const SpacingFie
   result.stats.compound_applied = ops_.compound_applied();
   legalize_all();
   cleanup::cleaned_mesh_and_nodes(m_, mesh, nodes, spacing, result.mesh, result.nodes);
+  result.stats.finish_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
 }  // namespace
@@ -455,6 +473,7 @@ CleanupResult clean_mesh(const Mesh& mesh, const NodeSet& nodes, const GeometryT
   const auto start = std::chrono::steady_clock::now();
   CleanupResult result;
   CleanupRun run(mesh, nodes, tree, spacing, options, edge_to_spacing_ratio(mesh, spacing));
+  result.stats.setup_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   for (int iteration = 0; iteration < options.iterations; ++iteration) {
     if (run.iterate(iteration, result.stats) == 0) break;
     if (run.settled(iteration, result.stats.per_iteration.back())) {

@@ -69,7 +69,7 @@ struct CleanupOptions {
   int polish = 0;
   // Sweeps in strips (cleanup/strip_sweeps.hpp): a mesh of at least kMinStrips x strip_vertices
   // vertices is cut into vertices / strip_vertices strips along x (at most kMaxStrips), whose sweeps
-  // run on up to `threads` threads (0: the hardware's, at most 8). The strips fix the order of the
+  // run on up to `threads` threads (0: every hardware thread). The strips fix the order of the
   // moves, so the result is the same for any thread count; it differs from the serial sweeps' (every
   // vertex in ascending order), which smaller meshes keep: their cleanup is short, and a few wide
   // strips change their meshes more than many narrow ones (docs/cleanup.md, "Sweeps in strips").
@@ -118,6 +118,14 @@ struct CleanupStats {
   double strip_seconds = 0.0;      // wall seconds in the strips' parallel loops
   double smoothing_seconds = 0.0;  // of which in the smoothing sweeps ...
   double topology_seconds = 0.0;   // ... and in the topology passes
+  // Where the wall time went (the --timings notes cleanup_*_seconds): the editable mesh and the strips
+  // before the first iteration; the strips' serial pass (of smoothing_seconds); the sweeps' and the
+  // topology passes' lists of bad vertices and triangles with the kept scores (of smoothing_seconds and
+  // topology_seconds); the final Lawson pass and the cleaned mesh and node set after the last iteration.
+  double setup_seconds = 0.0;
+  double strip_serial_seconds = 0.0;
+  double list_seconds = 0.0;
+  double finish_seconds = 0.0;
   std::vector<CleanupIteration> per_iteration;
 };
 

@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cstdlib>
 
+#include "cleanup/strip_schedule.hpp"
 #include "core/parallel.hpp"
 
 namespace pdmesh::cleanup {
@@ -85,12 +86,9 @@ SweepTally StripSweeps::sweep(EditableMesh& mesh, Smoother& serial, const std::v
     }
   };
   const auto start = std::chrono::steady_clock::now();
-  for (int colour = 0; colour < 2; ++colour) {
-    std::vector<int> ids;
-    for (int s = colour; s < n; s += 2) ids.push_back(s);
-    parallel_for(
-        ids.size(), [&](std::size_t i) { run_strip(ids[i]); }, 1, sweep_thread_limit(threads_));
-  }
+  std::vector<std::size_t> work(bucket.size());
+  for (std::size_t k = 0; k < bucket.size(); ++k) work[k] = bucket[k].size();
+  run_strips(n, work, run_strip, sweep_thread_limit(threads_));
   parallel_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   std::vector<int> rest;
   for (const auto& l : later) rest.insert(rest.end(), l.begin(), l.end());
@@ -100,10 +98,12 @@ SweepTally StripSweeps::sweep(EditableMesh& mesh, Smoother& serial, const std::v
   taken_ += list.size() - rest.size();
   left_ += rest.size();
   SweepTally tail;
+  const auto serial_start = std::chrono::steady_clock::now();
   for (int a : rest) {
     poll.tick();
     if (worth(a) && step(serial, a)) tail.add(serial.last_gain());
   }
+  serial_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - serial_start).count();
   total.add(tail);
   return total;
 }

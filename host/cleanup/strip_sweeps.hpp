@@ -1,9 +1,10 @@
 // The cleanup's smoothing sweeps on several threads, with a result that does not depend on how many
 // (issue 41; docs/cleanup.md, "Sweeps in strips"). The mesh is cut into strips along x; the vertices
 // of the even strips are swept (each strip in ascending vertex order, the strips in parallel), then
-// those of the odd strips, then, on one thread and in ascending order, the vertices a strip could not
-// take: those whose star reaches another strip, or whose move would need Lawson flips. So the strips
-// fix the order of the moves, not the threads.
+// those of the odd strips (each once its two even neighbours are done: strip_schedule.hpp), then, on
+// one thread and in ascending order, the vertices a strip could not take: those whose star reaches
+// another strip, or whose move would need Lawson flips. So the strips fix the order of the moves, not
+// the threads.
 //
 // Why two strips of one colour never meet: a vertex swept in a strip has its star in that strip and
 // the vertices across its star's edges in that strip or a neighbouring one, and its move (without
@@ -13,6 +14,7 @@
 #pragma once
 #include <cstddef>
 #include <functional>
+#include <limits>
 #include <vector>
 
 #include "cleanup/editable_mesh.hpp"
@@ -32,16 +34,18 @@ struct SweepTally {
 
 enum class SweepMove { Relax, Climb };
 
-// The most threads the cleanup's parallel loops use for CleanupOptions::threads (0: parallel_for's
-// default limit).
-inline std::size_t sweep_thread_limit(std::size_t threads) { return threads == 0 ? 8 : threads; }
+// The most threads the cleanup's parallel loops use for CleanupOptions::threads (0: no limit but the
+// hardware's, which parallel_for applies). Every loop's result is the same on any number.
+inline std::size_t sweep_thread_limit(std::size_t threads) {
+  return threads == 0 ? std::numeric_limits<std::size_t>::max() : threads;
+}
 
 class StripSweeps {
  public:
   // Cuts the mesh into `strips` (>= 2) strips along x with equal numbers of its live vertices, and
   // labels each vertex with its strip. The labels stay for the whole cleanup (the moves are small);
   // vertices added later are labelled at the start of each sweep. threads: at most this many threads
-  // (0: parallel_for's own limit).
+  // (sweep_thread_limit's).
   StripSweeps(const EditableMesh& mesh, int strips, std::size_t threads);
 
   int strips() const { return static_cast<int>(edges_.size()) + 1; }
@@ -57,6 +61,8 @@ class StripSweeps {
   std::size_t left() const { return left_; }
   // Wall seconds in the two colours' parallel loops, over all sweeps (the rest of a sweep is serial).
   double parallel_seconds() const { return parallel_seconds_; }
+  // Wall seconds in the serial pass over the vertices the strips left, over all sweeps.
+  double serial_seconds() const { return serial_seconds_; }
 
  private:
   int strip_of(double x) const;
@@ -68,7 +74,7 @@ class StripSweeps {
   int initial_ = 0;            // the slots labelled at construction; later ones are labelled per sweep
   std::size_t threads_;
   std::size_t taken_ = 0, left_ = 0;
-  double parallel_seconds_ = 0.0;
+  double parallel_seconds_ = 0.0, serial_seconds_ = 0.0;
 };
 
 }  // namespace pdmesh::cleanup

@@ -286,6 +286,20 @@ struct CleanedMesh {
   QualitySummary quality;  // of the cleaned mesh's triangles (summarize_quality_of)
 };
 
+// Where the cleanup's wall time went, as notes of the timings file (CleanupStats; docs/cli.md).
+void note_cleanup_parts(const CleanupStats& stats, RunPhases& phases) {
+  phases.note("cleanup_seconds", stats.seconds);
+  phases.note("cleanup_iterations", stats.iterations_run);
+  phases.note("cleanup_setup_seconds", stats.setup_seconds);
+  phases.note("cleanup_smoothing_seconds", stats.smoothing_seconds);
+  phases.note("cleanup_strips", stats.strips);
+  phases.note("cleanup_strips_parallel_seconds", stats.strip_seconds);
+  phases.note("cleanup_strips_serial_seconds", stats.strip_serial_seconds);
+  phases.note("cleanup_topology_seconds", stats.topology_seconds);
+  phases.note("cleanup_lists_seconds", stats.list_seconds);
+  phases.note("cleanup_finish_seconds", stats.finish_seconds);
+}
+
 CleanedMesh clean_up(const CaseConfig& config, const MeshInputs& inputs, const SpacingStage& spacing, Mesh& mesh,
                      const NodeSet& nodes, RunPhases& phases) {
   const auto cleanup_timer = phases.phase("cleanup");
@@ -306,6 +320,7 @@ CleanedMesh clean_up(const CaseConfig& config, const MeshInputs& inputs, const S
   effect.removed = cleaned.stats.collapsed;
   effect.moves = cleaned.stats.moves;
   effect.seconds = cleaned.stats.seconds;
+  note_cleanup_parts(cleaned.stats, phases);
   progress(config,
            "cleanup: {:.3f} s; min angle {:.2f} -> {:.2f} deg, triangles below {:g} deg {} -> {}; "
            "{} node moves, {} nodes inserted, {} removed ({} triangles)",
