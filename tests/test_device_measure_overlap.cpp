@@ -113,7 +113,7 @@ void require_overlap_changes_nothing(double momentum, double skin) {
 
 }  // namespace
 
-TEST_CASE("overlapped measurement, momentum 0.9: held rows taken once, in order; the converged check's state",
+TEST_CASE("overlapped measurement, momentum 0.9: held rows taken once, in order, the converged check's state",
           "[opencl][device_sim][momentum][convergence]") {
   // The best preset's momentum; a skin small enough that builds come between the checks.
   require_overlap_changes_nothing(0.9, 0.05);
