@@ -127,3 +127,8 @@ TEST_CASE("overlapped measurement with the options' own skin: the same run bit f
           "[opencl][device_sim][momentum][convergence]") {
   require_overlap_changes_nothing(0.9, default_verlet_skin(0.9));
 }
+
+TEST_CASE("overlapped measurement with a zero skin: a build before every iteration run ahead",
+          "[opencl][device_sim][momentum][convergence]") {
+  require_overlap_changes_nothing(0.9, 0.0);
+}

@@ -360,6 +360,7 @@ class DeviceRun final : public IterationSteps {
   };
   std::vector<HeldRow> held_;
   std::size_t held_next_ = 0;
+  bool ahead_window_ = false;  // run_ahead left its last window as the current one (its rows unread)
   int ahead_builds_ = 0;     // builds run_ahead made for the last measurement
   int ahead_build_at_ = 0;   // the iteration the last of them preceded
   int ahead_snap_arcs_ = 0;  // the arc buffer the last held row's boundary_snap wrote

@@ -371,9 +371,10 @@ IterationStep DeviceRun<Real>::compute(int iteration, const GlobalTimeStep& gm) 
   if (held_next_ < held_.size()) {
     take_held_row();
   } else {
-    // A window begun ahead of a measurement was preceded by the build it needed (before_measure), and
-    // its rows are not read yet: a zero skin, always due, must not build again under it.
-    if (!window_pending_) rebuild_if_due(iteration);
+    // A window begun ahead of a measurement was preceded by the build it needed (before_measure or
+    // run_ahead), and its rows are not read yet: a zero skin, always due, must not build again under it.
+    if (!window_pending_ && !ahead_window_) rebuild_if_due(iteration);
+    ahead_window_ = false;
     if (window_pending_) {  // begun while the host measured the last iteration's mesh
       end_window();
       host_ahead_ = false;  // as at the start of every iteration: the device holds the state after loop_.done()
@@ -425,7 +426,10 @@ void DeviceRun<Real>::run_ahead(int first, GlobalTimeStep gm) {
         host_acts = r[kRingCandidates] > 0.0 || r[kRingNonFinite] != 0.0 || r[kRingSnapBad] != 0.0 ||
                     !std::isfinite(r[kRingForce]) || !std::isfinite(r[kRingKinetic]);
       }
-      if (host_acts || stopping()) return;
+      if (host_acts || stopping()) {
+        ahead_window_ = true;
+        return;
+      }
       // The device's side of each iteration (take_row's and apply's without candidates); the loop's
       // side when the rule has gone on (take_held_row).
       for (int k = 0; k < window_rows_; ++k) {
@@ -653,7 +657,9 @@ void DeviceRun<Real>::after_iterations() {
     held_.clear();
     held_next_ = 0;
     window_rows_ = window_next_ = 0;
+    ahead_window_ = false;
     ahead_builds_ = 0;
+    carried_build_ = Buffer<Real>();
     pairs_examined_ = pairs_examined_at_check_;
     largest_row_ = largest_row_at_check_;
   } else if (window_pending_) {
