@@ -715,7 +715,8 @@ std::size_t DeviceRun<Real>::device_bytes() const {
   return neighbours_.device_bytes() + partials_.bytes() + cand_index_.bytes() + cand_rec_.bytes() + brec_.bytes() +
          kind_.bytes() + budget_.bytes() + prev_.bytes() + next_.bytes() + bslot_.bytes() + bg_q_.bytes() +
          bg_root_.bytes() + bg_child_.bytes() + bg_corner_.bytes() + bg_cell_.bytes() + node_leaf_.bytes() +
-         rec_.bytes() + rec_index_.bytes() + device_boundary_.bytes() + carried_.bytes() + (6 + 5) * n_ * sizeof(Real);
+         rec_.bytes() + rec_index_.bytes() + device_boundary_.bytes() + carried_.bytes() + carried_build_.bytes() +
+         (6 + 5) * n_ * sizeof(Real);
 }
 
 SimResult run_device_resident(NodeSet& nodes, const GeometryTree& tree, const SpacingField& spacing,
