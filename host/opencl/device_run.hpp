@@ -99,9 +99,7 @@ class DeviceRun final : public IterationSteps {
   void after_measure() override;
   void after_observe() override;
   // Not while the device is ahead, but at the measurement it ran ahead of (what it ran is dropped).
-  bool may_stop() const override {
-    return ahead_used_ || (window_next_ >= window_rows_ && held_next_ >= held_.size());
-  }
+  bool may_stop() const override { return ahead_used_ || (window_next_ >= window_rows_ && held_next_ >= held_.size()); }
   void after_iterations() override;
   SimState failure_state() override;
   void end_run(SimResult& result) override;
@@ -360,15 +358,15 @@ class DeviceRun final : public IterationSteps {
   };
   std::vector<HeldRow> held_;
   std::size_t held_next_ = 0;
-  bool ahead_window_ = false;  // run_ahead left its last window as the current one (its rows unread)
-  int ahead_builds_ = 0;     // builds run_ahead made for the last measurement
-  int ahead_build_at_ = 0;   // the iteration the last of them preceded
-  int ahead_snap_arcs_ = 0;  // the arc buffer the last held row's boundary_snap wrote
-  bool ahead_stale_ = false;                      // and whether one did
-  std::vector<Real> ahead_brec_, ahead_arcs_;     // the boundary state the last build ahead is saved with
-  Buffer<Real> carried_build_;                    // and its carried moves (momentum), on the device
-  std::uint64_t pairs_examined_at_check_ = 0;     // pairs_examined_ and largest_row_ at the measurement
-  int largest_row_at_check_ = 0;                  // (a stop there drops what the builds ahead added)
+  bool ahead_window_ = false;                  // run_ahead left its last window as the current one (its rows unread)
+  int ahead_builds_ = 0;                       // builds run_ahead made for the last measurement
+  int ahead_build_at_ = 0;                     // the iteration the last of them preceded
+  int ahead_snap_arcs_ = 0;                    // the arc buffer the last held row's boundary_snap wrote
+  bool ahead_stale_ = false;                   // and whether one did
+  std::vector<Real> ahead_brec_, ahead_arcs_;  // the boundary state the last build ahead is saved with
+  Buffer<Real> carried_build_;                 // and its carried moves (momentum), on the device
+  std::uint64_t pairs_examined_at_check_ = 0;  // pairs_examined_ and largest_row_ at the measurement
+  int largest_row_at_check_ = 0;               // (a stop there drops what the builds ahead added)
   // The iterations' bookkeeping: history, time step rule, population schedule, stopping rule (its
   // samples go into every saved state). Last: it checks the options when the run is set up.
   IterationLoop loop_;

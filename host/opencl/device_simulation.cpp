@@ -389,8 +389,7 @@ IterationStep DeviceRun<Real>::compute(int iteration, const GlobalTimeStep& gm) 
   }
   check_row(iteration, gm.dt());
   // The step kernel computes the distance of every list entry.
-  return IterationStep{StepSums{sum_moving_, sum_force_, max_force_, sum_kinetic_}, row_entries_, within_,
-                       coincident_};
+  return IterationStep{StepSums{sum_moving_, sum_force_, max_force_, sum_kinetic_}, row_entries_, within_, coincident_};
 }
 
 // The measurement is taken: run_ahead stops after its window or build (unless told to run to where the

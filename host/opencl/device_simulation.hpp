@@ -16,10 +16,10 @@ namespace pdmesh::ocl {
 // Where the time and the bytes went (pdmesh bench: docs/performance.md). Seconds are wall times.
 struct DeviceRunStats {
   int iterations = 0;
-  int rebuilds = 0;                    // neighbour-list builds (Verlet skin)
-  int windows = 0;                     // windows of iterations enqueued without a wait (device_window.hpp)
-  int ahead_windows = 0;               // of them, begun while the host measured a convergence check's mesh
-  int saved_restores = 0;              // saved positions read back from the device's build state after such a check
+  int rebuilds = 0;        // neighbour-list builds (Verlet skin)
+  int windows = 0;         // windows of iterations enqueued without a wait (device_window.hpp)
+  int ahead_windows = 0;   // of them, begun while the host measured a convergence check's mesh
+  int saved_restores = 0;  // saved positions read back from the device's build state after such a check
   // With the measurement overlapped (DeviceRun::overlap_): iterations the device ran while the host measured,
   // beyond the window it ends on (their rows held back until the rule went on, or dropped at a stop), and
   // the neighbour-list builds among them.
