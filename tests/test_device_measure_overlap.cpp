@@ -8,13 +8,21 @@
 #include <catch2/catch.hpp>
 
 #include <cstdlib>
+#include <filesystem>
+#include <string>
 
+#include "io/text_file.hpp"
 #include "device_run_fixtures.hpp"
+#include "run_pdmesh.hpp"
+#include "temp_files.hpp"
 
 using namespace pdmesh;
 using pdmesh::test::Case;
 using pdmesh::test::Outcome;
 using pdmesh::test::require_identical_nodes;
+using pdmesh_test::fresh_path;
+using pdmesh_test::run_pdmesh;
+namespace fs = std::filesystem;
 
 namespace {
 
@@ -131,4 +139,44 @@ TEST_CASE("overlapped measurement with the options' own skin: the same run bit f
 TEST_CASE("overlapped measurement with a zero skin: a build before every iteration run ahead",
           "[opencl][device_sim][momentum][convergence]") {
   require_overlap_changes_nothing(0.9, 0.0);
+}
+
+TEST_CASE("a device lost while it runs ahead of the checks: the last good state resumes to the uninterrupted run",
+          "[failures][opencl][cli][convergence]") {
+  // The 30P30N curves (best preset: checks every 50 iterations from 150), the device running ahead of
+  // every check. The faults land at OpenCL calls spread over the run (ahead of a check, while the
+  // held rows are taken, in ordinary windows): each run that fails hands over a good state, and the
+  // run resumed from its checkpoint ends with the uninterrupted run's nodes and history, bit for bit.
+  const std::string curves =
+      "'" PDMESH_SOURCE_DIR "/cases/30p30n/airfoil.crv' '" PDMESH_SOURCE_DIR "/cases/30p30n/farfield.crv'";
+  const std::string env = "PDMESH_MEASURE_OVERLAP=full";
+  const fs::path whole = fresh_path("overlap_whole");
+  const auto uninterrupted = run_pdmesh("mesh " + curves + " --out '" + whole.string() + "' --formats msh -q", env);
+  INFO(uninterrupted.output);
+  REQUIRE(uninterrupted.status == 0);
+  int failed = 0;
+  for (const int fault : {1200, 2200, 3300}) {
+    INFO("PDMESH_TEST_FAIL_CL_AT=" << fault);
+    const fs::path dir = fresh_path("overlap_lost");
+    const std::string args = "mesh " + curves + " --out '" + dir.string() + "' --formats msh -q";
+    const auto r = run_pdmesh(args, env + " PDMESH_TEST_FAIL_CL_AT=" + std::to_string(fault));
+    INFO(r.output);
+    if (r.status == 0) {  // the run made fewer calls
+      fs::remove_all(dir);
+      continue;
+    }
+    ++failed;
+    CHECK(r.status == 1);
+    REQUIRE(fs::exists(dir / "checkpoint.pdmesh"));
+    const auto resumed = run_pdmesh(args + " --resume '" + dir.string() + "'", env);
+    INFO(resumed.output);
+    REQUIRE(resumed.status == 0);
+    for (const char* file : {"final.nodes", "history.csv", "mesh.msh"}) {
+      INFO(file);
+      CHECK(read_text_file(dir / file) == read_text_file(whole / file));
+    }
+    fs::remove_all(dir);
+  }
+  CHECK(failed > 0);
+  fs::remove_all(whole);
 }
