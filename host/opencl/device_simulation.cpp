@@ -482,8 +482,10 @@ void DeviceRun<Real>::build_ahead(int next) {
 template <typename Real>
 void DeviceRun<Real>::go_on_after_ahead() {
   join_ahead();
-  ahead_used_ = false;
+  // An error of the thread is the run's (still marked as ahead: whatever ends the run then, the state
+  // is the check's, and nothing is read back from the device).
   if (ahead_error_) std::rethrow_exception(std::exchange(ahead_error_, nullptr));
+  ahead_used_ = false;
   if (ahead_builds_ > 0 && saved_released_) {
     // The builds ahead replaced the build state the saved positions were freed against: the state
     // after the measurement's iteration (nodes_, read for it) is the saved state until the loop
