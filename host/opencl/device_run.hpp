@@ -6,11 +6,16 @@
 // iteration's steps).
 #pragma once
 #include <algorithm>
+#include <array>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
+#include <cstring>
+#include <exception>
 #include <limits>
 #include <optional>
+#include <thread>
 #include <type_traits>
 #include <utility>
 
@@ -72,8 +77,13 @@ class DeviceRun final : public IterationSteps {
         window_(ctx, program.iteration_rule.get() != nullptr && !std::getenv("PDMESH_TEST_HOST_TIME_STEP_RULE")),
         cpu_device_(ctx.device().type == "CPU"),
         loop_(nodes, options) {}
-  // Non-blocking uploads read host vectors of this object: wait for them (errors are moot here).
-  ~DeviceRun() override { ctx_.queue().finish(); }
+  // Non-blocking uploads read host vectors of this object: wait for them (errors are moot here), and
+  // for the thread that runs ahead of a measurement.
+  ~DeviceRun() override {
+    ahead_stop_ = true;
+    join_ahead();
+    ctx_.queue().finish();
+  }
   DeviceRun(const DeviceRun&) = delete;
   DeviceRun& operator=(const DeviceRun&) = delete;
 
@@ -86,8 +96,10 @@ class DeviceRun final : public IterationSteps {
   IterationMoves apply(int iteration) override;
   void after_row() override;
   void before_measure(int iteration, const GlobalTimeStep& gm) override;
+  void after_measure() override;
   void after_observe() override;
-  bool may_stop() const override { return window_next_ >= window_rows_; }  // not while the device is ahead
+  // Not while the device is ahead, but at the measurement it ran ahead of (what it ran is dropped).
+  bool may_stop() const override { return ahead_used_ || (window_next_ >= window_rows_ && held_next_ >= held_.size()); }
   void after_iterations() override;
   SimState failure_state() override;
   void end_run(SimResult& result) override;
@@ -101,8 +113,9 @@ class DeviceRun final : public IterationSteps {
   std::vector<Vec2> final_momentum();
   std::size_t device_bytes() const;
   void check_memory(std::uint64_t entries) const;
-  // The state after loop_.done() (its history rows by count), to fall back on (see saved_state_).
-  void remember();
+  // The state after loop_.done() (its history rows by count), to fall back on (see saved_state_); its
+  // carried moves `momentum` when given, else read from the device's.
+  void remember(std::optional<std::vector<Vec2>> momentum = std::nullopt);
   // A convergence check's triangulation runs beside the saved state: while the device runs ahead of
   // it, the saved positions and q (the build state, also on the device: xy_build_, q_build_) are
   // freed, and read back from the device when the next iteration is computed (compute; none when the
@@ -116,7 +129,8 @@ class DeviceRun final : public IterationSteps {
   void upload_initial();
   bool with_momentum() const { return options_.momentum > 0.0; }
   // The carried moves (SimState::momentum) from the device; the device must not be ahead of the host.
-  std::vector<Vec2> read_momentum();
+  std::vector<Vec2> read_momentum(Buffer<Real>& carried);
+  std::vector<Vec2> read_momentum() { return read_momentum(carried_); }
   // Zeroes the carried moves of `nodes` (interior nodes just snapped onto a curve), on the device.
   void reset_momentum(const std::vector<std::int32_t>& nodes);
   // The node arrays for n_ nodes, with the given clearance budgets and background leaves, or (null)
@@ -140,7 +154,29 @@ class DeviceRun final : public IterationSteps {
   // positions, in double), as the host computed them before the device re-snapped: the rounding of
   // the device's float copy stays on the device. Nothing to do in double.
   void boundary_positions_on_curves();
-  void rebuild();
+  // read_state: the build state read back for the saved state (remember); not while running ahead of
+  // a measurement (run_ahead reads it when the loop reaches the build).
+  void rebuild(bool read_state = true);
+  // The overlapped measurement (overlap_; on its own thread while the host measures the mesh after
+  // iteration first - 1): windows and the builds between them from iteration `first` at `gm`, up to
+  // where the host must act (a population event, the next measurement, the last iteration, a window
+  // that halted for the host's exact test or a move that is not finite) or until after_measure asks
+  // it to stop. The rows of every window but the last are held back (held_), the device's side of
+  // their iterations done (the double buffers, the skin, the builds); the last window stays the
+  // current one. Touches neither nodes_ nor the loop's state (the measurement reads nodes_).
+  void run_ahead(int first, GlobalTimeStep gm);
+  // The build run_ahead makes before iteration `next`: the boundary state it is saved with kept aside.
+  void build_ahead(int next);
+  // Waits for run_ahead's thread (asks it to stop first); its error, if any, stays in ahead_error_.
+  void join_ahead();
+  // The run goes on past a measurement the device ran ahead of (the first compute after it).
+  void go_on_after_ahead();
+  // The next held row as the iteration's row (take_row's part for a row without candidates).
+  void take_held_row();
+  // At the iteration a build run ahead of the measurement preceded (the last of them): its saved state.
+  void remember_build_ahead();
+  // The boundary state from a boundary_snap's records and arc positions read back (sync_boundary's).
+  void restore_boundary(const std::vector<Real>& rec, const std::vector<Real>& arcs);
   void enqueue_iteration(int cur);
   void start_window(int first, const GlobalTimeStep& gm);
   // start_window in two halves: the window's iterations (at most `most`) enqueued, then its rows
@@ -245,6 +281,9 @@ class DeviceRun final : public IterationSteps {
   std::uint64_t list_entries_ = 0;    // entries of the current lists (within the skin radius)
   std::size_t within_ = 0, coincident_ = 0, sum_moving_ = 0;
   double sum_force_ = 0, sum_kinetic_ = 0, max_force_ = 0, device_skin_use_ = 0;
+  double row_dt_ = 0;              // the global time step the iteration's row used (the device's rule)
+  std::uint64_t row_entries_ = 0;  // the list entries of the row's iteration
+  bool row_held_ = false;          // the iteration's row was held back (take_held_row)
   // The state to fall back on when the device cannot be read after a failure: saved before the first
   // iteration and after every neighbour-list build (which reads every position anyway). Its history
   // is the first saved_rows_ rows of the run's.
@@ -294,6 +333,40 @@ class DeviceRun final : public IterationSteps {
   std::size_t fixed_ = 0, on_boundary_ = 0, interior_ = 0;  // node counts by kind after the last iteration
   std::optional<SimState> failed_at_;                       // the last good state, where a failure computed it already
   bool rebuilt_ahead_ = false;  // the lists were rebuilt while the device ran ahead of a measurement
+  // The overlapped measurement (run_ahead): while the host triangulates, the device runs on through
+  // windows and builds, not one window only. Where the host's threads are the device's (a CPU device)
+  // they compete with the triangulation: there by choice only, PDMESH_MEASURE_OVERLAP=1 (also for
+  // the tests on PoCL; =0 off anywhere). PDMESH_MEASURE_OVERLAP=full runs ahead to where the host must
+  // act, however soon the measurement ends (tests: the same runs whatever the timing).
+  static int overlap_mode(bool cpu_device) {
+    const char* v = std::getenv("PDMESH_MEASURE_OVERLAP");
+    if (!v) return cpu_device ? 0 : 1;
+    if (std::strcmp(v, "full") == 0) return 2;
+    return std::strcmp(v, "0") == 0 ? 0 : 1;
+  }
+  const int overlap_ = overlap_mode(cpu_device_);
+  std::thread ahead_thread_;
+  std::atomic<bool> ahead_stop_{false};
+  std::exception_ptr ahead_error_;
+  bool ahead_used_ = false;  // run_ahead ran for the last measurement: the device holds iterations past loop_.done()
+  // A row of a window run ahead, held back: the window's row, the list entries of its iteration, the
+  // arc buffer its boundary_snap wrote (-1: none).
+  struct HeldRow {
+    std::array<double, kRingSize> row{};
+    std::uint64_t entries = 0;
+    int snap_arcs = -1;
+  };
+  std::vector<HeldRow> held_;
+  std::size_t held_next_ = 0;
+  bool ahead_window_ = false;                  // run_ahead left its last window as the current one (its rows unread)
+  int ahead_builds_ = 0;                       // builds run_ahead made for the last measurement
+  int ahead_build_at_ = 0;                     // the iteration the last of them preceded
+  int ahead_snap_arcs_ = 0;                    // the arc buffer the last held row's boundary_snap wrote
+  bool ahead_stale_ = false;                   // and whether one did
+  std::vector<Real> ahead_brec_, ahead_arcs_;  // the boundary state the last build ahead is saved with
+  Buffer<Real> carried_build_;                 // and its carried moves (momentum), on the device
+  std::uint64_t pairs_examined_at_check_ = 0;  // pairs_examined_ and largest_row_ at the measurement
+  int largest_row_at_check_ = 0;               // (a stop there drops what the builds ahead added)
   // The iterations' bookkeeping: history, time step rule, population schedule, stopping rule (its
   // samples go into every saved state). Last: it checks the options when the run is set up.
   IterationLoop loop_;

@@ -29,7 +29,7 @@ void DeviceRun<Real>::check_memory(std::uint64_t entries) const {
 }
 
 template <typename Real>
-void DeviceRun<Real>::remember() {
+void DeviceRun<Real>::remember(std::optional<std::vector<Vec2>> momentum) {
   // Interior positions and every q as the build read them from the device (at the start: as uploaded,
   // nodes_'s); boundary nodes the host's. The host's skin test measures from them too.
   saved_nodes_ = nodes_;
@@ -55,8 +55,9 @@ void DeviceRun<Real>::remember() {
     if (t.x != 0.0 || t.y != 0.0 || std::signbit(t.x) || std::signbit(t.y)) saved_tangents_.emplace_back(i, t);
   }
   std::vector<Vec2>().swap(tangents);
-  // The device is not ahead here (a build or the start: no window is running).
-  if (with_momentum()) saved_state_.momentum = read_momentum();
+  // The device is not ahead here (a build or the start: no window is running), unless the carried
+  // moves are given (a build run ahead of a measurement: its copy on the device).
+  if (with_momentum()) saved_state_.momentum = momentum ? std::move(*momentum) : read_momentum();
   saved_rows_ = loop_.history().size();
 }
 
@@ -218,9 +219,9 @@ void DeviceRun<Real>::upload_initial() {
 }
 
 template <typename Real>
-std::vector<Vec2> DeviceRun<Real>::read_momentum() {
+std::vector<Vec2> DeviceRun<Real>::read_momentum(Buffer<Real>& carried) {
   std::vector<Real> xy;
-  carried_.download(ctx_.queue(), xy, 2 * n_);
+  carried.download(ctx_.queue(), xy, 2 * n_);
   std::vector<Vec2> out(n_);
   for (std::size_t i = 0; i < n_; ++i) out[i] = {static_cast<double>(xy[2 * i]), static_cast<double>(xy[2 * i + 1])};
   return out;
@@ -433,7 +434,12 @@ void DeviceRun<Real>::sync_boundary() {
   ++stats_.transfers;
   finish(ctx_.queue(), "boundary state");
   stats_.bytes_down += arcs_host_.size() * sizeof(Real);
-  std::vector<std::vector<double>> arcs = DeviceBoundary<Real>::unflatten(arcs_host_, nodes_);
+  restore_boundary(rec, arcs_host_);
+}
+
+template <typename Real>
+void DeviceRun<Real>::restore_boundary(const std::vector<Real>& rec, const std::vector<Real>& flat_arcs) {
+  std::vector<std::vector<double>> arcs = DeviceBoundary<Real>::unflatten(flat_arcs, nodes_);
   std::vector<Vec2> tangents = boundary_.tangents();
   for (std::size_t s = 0; s < boundary_nodes_.size(); ++s) {
     const auto i = static_cast<std::size_t>(boundary_nodes_[s]);

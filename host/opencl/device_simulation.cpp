@@ -7,6 +7,9 @@
 #include "opencl/device_run.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <thread>
+#include <utility>
 
 #include "core/errors.hpp"
 #include "core/free_memory.hpp"
@@ -17,7 +20,7 @@
 namespace pdmesh::ocl {
 
 template <typename Real>
-void DeviceRun<Real>::rebuild() {
+void DeviceRun<Real>::rebuild(bool read_state) {
   const std::size_t n = n_;
   std::vector<Real>* v = positions_host_;
   // The host's copy of the build state, for the saved state (remember, which the host's skin test
@@ -43,7 +46,7 @@ void DeviceRun<Real>::rebuild() {
   // The grids, levels, spill and move lists are the build's own (the step reads the rows): freed until
   // the next build, so that they never sit beside a convergence check's triangulation.
   neighbours_.release_build_scratch();
-  if (read_back) read_build_state();
+  if (read_back && read_state) read_build_state();
   largest_row_ = std::max(largest_row_, flags.max_count);
   stats_.gather_seconds += neighbours_.gather_seconds;
   stats_.gathers += neighbours_.attempts;
@@ -189,6 +192,9 @@ int DeviceRun<Real>::window_length() const {
 template <typename Real>
 void DeviceRun<Real>::take_row() {
   const double* r = window_.row(window_next_++);
+  row_dt_ = r[kRingDt];
+  row_entries_ = list_entries_;
+  row_held_ = false;
   sum_force_ = r[kRingForce];
   sum_kinetic_ = r[kRingKinetic];
   sum_moving_ = static_cast<std::size_t>(r[kRingMoving]);
@@ -358,32 +364,192 @@ bool DeviceRun<Real>::rebuild_if_due(int next_iteration) {
 // The iteration's computation: the next row of the current window, or of a new one.
 template <typename Real>
 IterationStep DeviceRun<Real>::compute(int iteration, const GlobalTimeStep& gm) {
+  if (ahead_used_) go_on_after_ahead();
   // After a check the device ran ahead of, when the run goes on (a run that stops there needs none).
   restore_saved_positions();
-  // A window begun ahead of a measurement was preceded by the build it needed (before_measure), and
-  // its rows are not read yet: a zero skin, always due, must not build again under it.
-  if (!window_pending_) rebuild_if_due(iteration);
-  if (window_pending_) {  // begun while the host measured the last iteration's mesh
-    end_window();
-    host_ahead_ = false;  // as at the start of every iteration: the device holds the state after loop_.done()
-    // The run goes on past the check: its carried moves are no state of it any more.
-    std::vector<Real>().swap(momentum_at_check_);
-    check_momentum_saved_ = false;
-  } else if (window_next_ >= window_rows_) {
-    start_window(iteration, gm);
+  if (ahead_builds_ > 0 && iteration == ahead_build_at_) remember_build_ahead();
+  if (held_next_ < held_.size()) {
+    take_held_row();
+  } else {
+    // A window begun ahead of a measurement was preceded by the build it needed (before_measure or
+    // run_ahead), and its rows are not read yet: a zero skin, always due, must not build again under it.
+    if (!window_pending_ && !ahead_window_) rebuild_if_due(iteration);
+    ahead_window_ = false;
+    if (window_pending_) {  // begun while the host measured the last iteration's mesh
+      end_window();
+      host_ahead_ = false;  // as at the start of every iteration: the device holds the state after loop_.done()
+      // The run goes on past the check: its carried moves are no state of it any more.
+      std::vector<Real>().swap(momentum_at_check_);
+      check_momentum_saved_ = false;
+    } else if (window_next_ >= window_rows_) {
+      start_window(iteration, gm);
+    }
+    take_row();
+    ++since_build_;
   }
-  take_row();
-  ++since_build_;
   check_row(iteration, gm.dt());
   // The step kernel computes the distance of every list entry.
-  return IterationStep{StepSums{sum_moving_, sum_force_, max_force_, sum_kinetic_}, list_entries_, within_,
-                       coincident_};
+  return IterationStep{StepSums{sum_moving_, sum_force_, max_force_, sum_kinetic_}, row_entries_, within_, coincident_};
+}
+
+// The measurement is taken: run_ahead stops after its window or build (unless told to run to where the
+// host must act: the tests' PDMESH_MEASURE_OVERLAP=full).
+template <typename Real>
+void DeviceRun<Real>::after_measure() {
+  if (overlap_ != 2) ahead_stop_ = true;
+}
+
+template <typename Real>
+void DeviceRun<Real>::join_ahead() {
+  if (!ahead_thread_.joinable()) return;
+  ahead_thread_.join();
+}
+
+template <typename Real>
+void DeviceRun<Real>::run_ahead(int first, GlobalTimeStep gm) {
+  const auto stopping = [this] {
+    return (overlap_ != 2 && ahead_stop_.load()) || (options_.stop && options_.stop->load());
+  };
+  try {
+    for (int next = first;;) {
+      begin_window(next, gm, window_.max_length());
+      ++stats_.ahead_windows;
+      end_window();
+      const int last = next + window_rows_ - 1;
+      // Where the host acts on the window's last row anyway, it is left to the loop (the current window).
+      bool host_acts =
+          last >= options_.iterations || loop_.convergence().due(last) ||
+          population_event_due(options_.population, loop_.population().schedule, last, options_.iterations);
+      for (int k = 0; k < window_rows_ && !host_acts; ++k) {
+        const double* r = window_.row(k);
+        host_acts = r[kRingCandidates] > 0.0 || r[kRingNonFinite] != 0.0 || r[kRingSnapBad] != 0.0 ||
+                    !std::isfinite(r[kRingForce]) || !std::isfinite(r[kRingKinetic]);
+      }
+      if (host_acts || stopping()) {
+        ahead_window_ = true;
+        return;
+      }
+      // The device's side of each iteration (take_row's and apply's without candidates); the loop's
+      // side when the rule has gone on (take_held_row).
+      for (int k = 0; k < window_rows_; ++k) {
+        const double* r = window_.row(k);
+        HeldRow h;
+        std::copy(r, r + kRingSize, h.row.begin());
+        h.entries = list_entries_;
+        if (!boundary_nodes_.empty()) h.snap_arcs = 1 - cur_;
+        held_.push_back(h);
+        gm.update(r[kRingMaxForce]);
+        skin_use_ = std::max({skin_use_, r[kRingSkin], r[kRingSnapSkin]});
+        cur_ = 1 - cur_;
+        ++since_build_;
+        ++stats_.ahead_rows;
+      }
+      window_next_ = window_rows_;
+      next = last + 1;
+      if (stopping()) return;
+      if (skin_use_ > skin_limit_ || options_.verlet_skin == 0.0) build_ahead(next);
+    }
+  } catch (...) {
+    ahead_error_ = std::current_exception();
+  }
+}
+
+template <typename Real>
+void DeviceRun<Real>::build_ahead(int next) {
+  // The build's saved state is made when the loop reaches it (remember_build_ahead); its boundary state
+  // is the last held row's, read now (the device moves on), beside nodes_, which the measurement reads.
+  if (!boundary_nodes_.empty()) {
+    read(brec_, ahead_brec_, 4 * boundary_nodes_.size(), false);
+    device_boundary_.read_arcs(held_.back().snap_arcs, ahead_arcs_, false);
+    ++stats_.transfers;
+    finish(ctx_.queue(), "boundary state ahead of a build");
+  }
+  const CommandCounts before = command_counts();
+  rebuild(false);
+  if (with_momentum()) {  // the carried moves it is saved with: a copy on the device
+    ensure_size(ctx_, carried_build_, "momentum_at_build", 2 * n_);
+    copy_buffer(ctx_.queue(), carried_.get(), carried_build_.get(), 2 * n_ * sizeof(Real),
+                "copy of the carried moves at a build");
+  }
+  stats_.rebuild_commands = stats_.rebuild_commands + (command_counts() - before);
+  if (stats_.rebuilds > 1) build_interval_ = since_build_;
+  since_build_ = 0;
+  ++ahead_builds_;
+  ahead_build_at_ = next;
+  ++stats_.ahead_rebuilds;
+}
+
+template <typename Real>
+void DeviceRun<Real>::go_on_after_ahead() {
+  join_ahead();
+  // An error of the thread is the run's (still marked as ahead: whatever ends the run then, the state
+  // is the check's, and nothing is read back from the device).
+  if (ahead_error_) std::rethrow_exception(std::exchange(ahead_error_, nullptr));
+  ahead_used_ = false;
+  if (ahead_builds_ > 0 && saved_released_) {
+    // The builds ahead replaced the build state the saved positions were freed against: the state
+    // after the measurement's iteration (nodes_, read for it) is the saved state until the loop
+    // reaches the last of them.
+    std::optional<std::vector<Vec2>> momentum;
+    if (with_momentum()) momentum = final_momentum();
+    saved_released_ = false;
+    std::vector<std::pair<std::size_t, Vec2>>().swap(saved_off_interior_);
+    released_copy_ = NodeSet{};
+    remember(std::move(momentum));
+    saved_is_build_state_ = false;
+  }
+  // The run goes on past the check: its carried moves are no state of it any more.
+  std::vector<Real>().swap(momentum_at_check_);
+  check_momentum_saved_ = false;
+  host_ahead_ = !held_.empty();  // else the device holds the state after loop_.done() (the current window's start)
+}
+
+template <typename Real>
+void DeviceRun<Real>::take_held_row() {
+  const HeldRow& h = held_[held_next_++];
+  const double* r = h.row.data();
+  row_dt_ = r[kRingDt];
+  row_entries_ = h.entries;
+  row_held_ = true;
+  sum_force_ = r[kRingForce];
+  sum_kinetic_ = r[kRingKinetic];
+  sum_moving_ = static_cast<std::size_t>(r[kRingMoving]);
+  within_ = static_cast<std::size_t>(r[kRingWithin]);
+  coincident_ = static_cast<std::size_t>(r[kRingCoincident]);
+  max_force_ = r[kRingMaxForce];
+  device_skin_use_ = r[kRingSkin];
+  snap_ = BoundarySnapResult{static_cast<std::size_t>(r[kRingClamped]), static_cast<std::size_t>(r[kRingSnapBad]),
+                             r[kRingSnapSkin]};
+  if (h.snap_arcs >= 0) {
+    boundary_stale_ = true;
+    snap_arcs_ = h.snap_arcs;
+  }
+  candidates_.clear();
+  moves_.clear();
+  moves_finite_ = true;  // run_ahead holds no row with a move that is not finite
+}
+
+template <typename Real>
+void DeviceRun<Real>::remember_build_ahead() {
+  // loop_.done() is the iteration before the build: its boundary state as read then, its build state
+  // and carried moves as the build left them on the device (no build since).
+  if (!boundary_nodes_.empty()) restore_boundary(ahead_brec_, ahead_arcs_);
+  std::vector<Real>().swap(ahead_brec_);
+  std::vector<Real>().swap(ahead_arcs_);
+  read(xy_build_, positions_host_[0], 2 * n_);
+  read(q_build_, positions_host_[1], n_);
+  std::optional<std::vector<Vec2>> momentum;
+  if (with_momentum()) momentum = read_momentum(carried_build_);
+  carried_build_ = Buffer<Real>();
+  remember(std::move(momentum));
+  saved_is_build_state_ = true;
+  ahead_builds_ = 0;
 }
 
 template <typename Real>
 void DeviceRun<Real>::check_row(int iteration, double dt_gm) {
   // The device's rule ran on a copy of the host's state: its dt must be the host's, bit for bit.
-  const double device_dt = window_.row(window_next_ - 1)[kRingDt];
+  const double device_dt = row_dt_;
   if (window_.device_rule() && device_dt != dt_gm)
     throw SimulationError(fmt::format("iteration {}: the device's global time step {} differs from the host's {}",
                                       iteration, device_dt, dt_gm));
@@ -397,10 +563,15 @@ void DeviceRun<Real>::check_row(int iteration, double dt_gm) {
 template <typename Real>
 IterationMoves DeviceRun<Real>::apply(int iteration) {
   IterationMoves out;
-  double skin_use = device_skin_use_;
-  out.boundary = host_boundary(skin_use);
-  cur_ = 1 - cur_;
-  skin_use_ = std::max(skin_use_, skin_use);
+  if (row_held_) {
+    // No candidates; the device's side (the buffers, the skin) was done ahead (run_ahead).
+    out.boundary.clamped = snap_.clamped;
+  } else {
+    double skin_use = device_skin_use_;
+    out.boundary = host_boundary(skin_use);
+    cur_ = 1 - cur_;
+    skin_use_ = std::max(skin_use_, skin_use);
+  }
   if (out.boundary.snapped > 0) {
     // The rows are stale after a snap: the snapped node still holds its interior row (node_forces
     // does not filter a boundary node's row) and its new curve neighbours their old [prev, next].
@@ -424,7 +595,11 @@ IterationMoves DeviceRun<Real>::apply(int iteration) {
 template <typename Real>
 void DeviceRun<Real>::after_row() {
   ++stats_.iterations;
-  host_ahead_ = false;
+  if (held_next_ >= held_.size()) {
+    held_.clear();
+    held_next_ = 0;
+  }
+  host_ahead_ = !held_.empty();  // the device ran past the held rows
   tangents_ahead_ = false;
 }
 
@@ -443,6 +618,19 @@ void DeviceRun<Real>::before_measure(int iteration, const GlobalTimeStep& gm) {
     // (last_good_state), and needs its carried moves whole even when the device fails later.
     if (with_momentum() && !rebuilt_ahead_) read(carried_, momentum_at_check_, 2 * n_);
     host_ahead_ = true;  // a failure from here on falls back on the saved state: the device moves on
+    if (overlap_ > 0) {
+      held_.clear();
+      held_next_ = 0;
+      ahead_builds_ = 0;
+      ahead_stop_ = false;
+      ahead_error_ = nullptr;
+      pairs_examined_at_check_ = pairs_examined_;
+      largest_row_at_check_ = largest_row_;
+      ahead_used_ = true;
+      release_saved_positions();
+      ahead_thread_ = std::thread([this, first = iteration + 1, gm] { run_ahead(first, gm); });
+      return;
+    }
     begin_window(iteration + 1, gm, cpu_device_ ? kAheadIterations : window_.max_length());
     ++stats_.ahead_windows;
     release_saved_positions();
@@ -458,7 +646,24 @@ void DeviceRun<Real>::after_observe() {
 
 template <typename Real>
 void DeviceRun<Real>::after_iterations() {
-  if (window_pending_) {
+  if (ahead_used_) {
+    // Stopped after a measurement the device ran ahead of (run_ahead): nodes_ and the boundary state
+    // hold the state after loop_.done(); the iterations, rows and builds since are dropped, and so is
+    // an error of theirs (past the stop).
+    ahead_stop_ = true;
+    join_ahead();
+    ahead_used_ = false;
+    ahead_error_ = nullptr;
+    finish(ctx_.queue(), "iterations run ahead of a stop");
+    held_.clear();
+    held_next_ = 0;
+    window_rows_ = window_next_ = 0;
+    ahead_window_ = false;
+    ahead_builds_ = 0;
+    carried_build_ = Buffer<Real>();
+    pairs_examined_ = pairs_examined_at_check_;
+    largest_row_ = largest_row_at_check_;
+  } else if (window_pending_) {
     // Stopped after a convergence check while the device ran ahead: nodes_ and the boundary state
     // hold the state after loop_.done() (read for the check); what the device ran since is dropped.
     finish(ctx_.queue(), "iterations run ahead of a stop");
@@ -479,6 +684,8 @@ void DeviceRun<Real>::after_iterations() {
 
 template <typename Real>
 SimState DeviceRun<Real>::failure_state() {
+  ahead_stop_ = true;
+  join_ahead();
   if (!failed_at_) failed_at_ = last_good_state();
   return *failed_at_;
 }
@@ -499,7 +706,9 @@ void DeviceRun<Real>::end_run(SimResult& result) {
                         {"device_population_transfer_seconds", d.population_transfer_seconds},
                         {"device_rebuilds", static_cast<double>(d.rebuilds)},
                         {"device_windows", static_cast<double>(d.windows)},
-                        {"device_ahead_windows", static_cast<double>(d.ahead_windows)}};
+                        {"device_ahead_windows", static_cast<double>(d.ahead_windows)},
+                        {"device_ahead_rows", static_cast<double>(d.ahead_rows)},
+                        {"device_ahead_rebuilds", static_cast<double>(d.ahead_rebuilds)}};
 }
 
 template <typename Real>
@@ -507,7 +716,8 @@ std::size_t DeviceRun<Real>::device_bytes() const {
   return neighbours_.device_bytes() + partials_.bytes() + cand_index_.bytes() + cand_rec_.bytes() + brec_.bytes() +
          kind_.bytes() + budget_.bytes() + prev_.bytes() + next_.bytes() + bslot_.bytes() + bg_q_.bytes() +
          bg_root_.bytes() + bg_child_.bytes() + bg_corner_.bytes() + bg_cell_.bytes() + node_leaf_.bytes() +
-         rec_.bytes() + rec_index_.bytes() + device_boundary_.bytes() + carried_.bytes() + (6 + 5) * n_ * sizeof(Real);
+         rec_.bytes() + rec_index_.bytes() + device_boundary_.bytes() + carried_.bytes() + carried_build_.bytes() +
+         (6 + 5) * n_ * sizeof(Real);
 }
 
 SimResult run_device_resident(NodeSet& nodes, const GeometryTree& tree, const SpacingField& spacing,

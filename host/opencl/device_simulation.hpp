@@ -16,10 +16,15 @@ namespace pdmesh::ocl {
 // Where the time and the bytes went (pdmesh bench: docs/performance.md). Seconds are wall times.
 struct DeviceRunStats {
   int iterations = 0;
-  int rebuilds = 0;                    // neighbour-list builds (Verlet skin)
-  int windows = 0;                     // windows of iterations enqueued without a wait (device_window.hpp)
-  int ahead_windows = 0;               // of them, begun while the host measured a convergence check's mesh
-  int saved_restores = 0;              // saved positions read back from the device's build state after such a check
+  int rebuilds = 0;        // neighbour-list builds (Verlet skin)
+  int windows = 0;         // windows of iterations enqueued without a wait (device_window.hpp)
+  int ahead_windows = 0;   // of them, begun while the host measured a convergence check's mesh
+  int saved_restores = 0;  // saved positions read back from the device's build state after such a check
+  // With the measurement overlapped (DeviceRun::overlap_): iterations the device ran while the host measured,
+  // beyond the window it ends on (their rows held back until the rule went on, or dropped at a stop), and
+  // the neighbour-list builds among them.
+  int ahead_rows = 0;
+  int ahead_rebuilds = 0;
   CommandCounts rebuild_commands;      // the commands of the rebuilds (and the state they save), all of them
   int snap_rebuilds = 0;               // of those, forced by a snap alone (the skin had room left)
   double largest_spacing_ratio = 0.0;  // of any build (DeviceNeighbours::spacing_ratio; skin classes: device_run.hpp)

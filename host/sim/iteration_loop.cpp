@@ -195,9 +195,11 @@ bool IterationLoop::go_on(IterationSteps& steps, int iteration, const HistoryRow
       sample = options_.metric ? measure_mesh_in_metric(nodes_, iteration, *options_.metric)
                                : measure_mesh(nodes_, iteration, &measured);
     } catch (const Interrupted&) {
+      steps.after_measure();
       result_.stopped = true;
       return false;
     }
+    steps.after_measure();
     SimStats& stats = result_.stats;
     ++stats.measurements;
     stats.measure_wait_seconds += wait;

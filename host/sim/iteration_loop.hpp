@@ -56,6 +56,9 @@ class IterationSteps {
   virtual void after_row() {}
   // Before the stopping rule measures the mesh after `iteration`: the node set must hold its positions.
   virtual void before_measure(int /*iteration*/, const GlobalTimeStep& /*gm*/) {}
+  // Right after the measurement (taken, or ended by a stop request), before the stopping rule sees it:
+  // a driver that worked on while the host measured stops there.
+  virtual void after_measure() {}
   // After the stopping rule has seen the iteration (measured or not).
   virtual void after_observe() {}
   // Whether a stop request may end the run after the iteration just done.
