@@ -12,9 +12,14 @@
 #include "core/free_memory.hpp"
 #include "core/parallel.hpp"
 #include "sim/failure_report.hpp"
+#include "sim/population_profile.hpp"
 #include "spacing/background_field.hpp"
 
 namespace pdmesh::ocl {
+
+// The per-node loops of a population event's read-back and re-upload: index by index, on every core
+// for a large node set (memory-bound copies, a few ns an index).
+constexpr std::size_t kNodeChunk = 65536;
 
 template <typename Real>
 void DeviceRun<Real>::check_memory(std::uint64_t entries) const {
@@ -257,13 +262,16 @@ void DeviceRun<Real>::upload_nodes(const std::vector<double>* budgets, const std
   cand_index_ = Buffer<std::int32_t>();
   node_leaf_ = Buffer<std::int32_t>();
   std::vector<double> x(n), y(n), tx(n), ty(n), budget(n, 0.0);
-  for (std::size_t i = 0; i < n; ++i) {
-    x[i] = nodes_.x[i].x;
-    y[i] = nodes_.x[i].y;
-    const Vec2 t = boundary_.tangent(static_cast<int>(i));
-    tx[i] = t.x;
-    ty[i] = t.y;
-  }
+  parallel_for(
+      n,
+      [&](std::size_t i) {
+        x[i] = nodes_.x[i].x;
+        y[i] = nodes_.x[i].y;
+        const Vec2 t = boundary_.tangent(static_cast<int>(i));
+        tx[i] = t.x;
+        ty[i] = t.y;
+      },
+      kNodeChunk);
   if (budgets) {
     budget = *budgets;
   } else {
@@ -351,6 +359,8 @@ std::optional<PopulationCounts> DeviceRun<Real>::population_event(int iteration)
   skin_use_ = HUGE_VAL;
   // The event triangulates the nodes: without the free pages of the builds before it.
   give_back_free_memory();
+  population_profile::add("release", since(t0));
+  const auto t_read = Clock::now();
   std::vector<std::int32_t> leaves;
   std::vector<double> budgets;
   {  // The read targets are freed before the event's own arrays are made.
@@ -359,12 +369,17 @@ std::optional<PopulationCounts> DeviceRun<Real>::population_event(int iteration)
     for (auto [from, to] : {std::pair{&q_[cur_], &q}, {&budget_, &budget}}) read(*from, *to, n_);
     read(node_leaf_, leaves, n_);
     stats_.population_transfer_seconds += since(t0);
-    for (std::size_t i = 0; i < n_; ++i) {
-      if (nodes_.kind[i] == NodeKind::Interior) nodes_.x[i] = {static_cast<double>(x[i]), static_cast<double>(y[i])};
-      nodes_.q[i] = static_cast<double>(q[i]);
-    }
+    parallel_for(
+        n_,
+        [&](std::size_t i) {
+          if (nodes_.kind[i] == NodeKind::Interior)
+            nodes_.x[i] = {static_cast<double>(x[i]), static_cast<double>(y[i])};
+          nodes_.q[i] = static_cast<double>(q[i]);
+        },
+        kNodeChunk);
     budgets.assign(budget.begin(), budget.end());
   }
+  population_profile::add("read back", since(t_read));
   std::vector<int> old_of_new;
   const std::size_t old_n = n_;
   const auto counts = device_population_event(loop_.population(), options_.population, iteration, options_.iterations,
@@ -377,10 +392,13 @@ std::optional<PopulationCounts> DeviceRun<Real>::population_event(int iteration)
     upload_nodes(&budgets, &leaves);
     finish(ctx_.queue(), "population re-upload");
     stats_.population_transfer_seconds += since(t1);
+    population_profile::add("re-upload", since(t1));
   } else {
     allocate_step_outputs();
   }
   stats_.population_seconds += since(t0);
+  population_profile::add("device event", since(t0));
+  population_profile::print(fmt::format("after iteration {}", iteration).c_str());
   return counts;
 }
 
