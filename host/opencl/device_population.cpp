@@ -1,7 +1,6 @@
 // Mapping the device's per-node state across a population-control event; see device_population.hpp.
 #include "opencl/device_population.hpp"
 
-#include "core/parallel.hpp"
 #include "sim/population_profile.hpp"
 
 namespace pdmesh::ocl {
@@ -24,20 +23,16 @@ std::optional<PopulationCounts> device_population_event(PopulationTracker& track
   const population_profile::Timer timer("map budgets and leaves");
   std::vector<double> new_budgets(nodes.size(), 0.0);
   std::vector<std::int32_t> new_leaves(nodes.size());
-  // Index by index (each writes its own entries), on every core for a large node set.
-  parallel_for(
-      nodes.size(),
-      [&](std::size_t k) {
-        const int old = old_of_new[k];
-        if (old >= 0 && nodes.x[k] == before[static_cast<std::size_t>(old)]) {
-          new_budgets[k] = budgets[static_cast<std::size_t>(old)];
-          new_leaves[k] = leaves[static_cast<std::size_t>(old)];
-        } else {
-          double u, v;
-          new_leaves[k] = background_locate(background.data(), nodes.x[k], u, v);
-        }
-      },
-      65536);
+  for (std::size_t k = 0; k < nodes.size(); ++k) {
+    const int old = old_of_new[k];
+    if (old >= 0 && nodes.x[k] == before[static_cast<std::size_t>(old)]) {
+      new_budgets[k] = budgets[static_cast<std::size_t>(old)];
+      new_leaves[k] = leaves[static_cast<std::size_t>(old)];
+    } else {
+      double u, v;
+      new_leaves[k] = background_locate(background.data(), nodes.x[k], u, v);
+    }
+  }
   budgets = std::move(new_budgets);
   leaves = std::move(new_leaves);
   return counts;

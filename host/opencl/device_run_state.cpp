@@ -17,10 +17,6 @@
 
 namespace pdmesh::ocl {
 
-// The per-node loops of a population event's read-back and re-upload: index by index, on every core
-// for a large node set (memory-bound copies, a few ns an index).
-constexpr std::size_t kNodeChunk = 65536;
-
 template <typename Real>
 void DeviceRun<Real>::check_memory(std::uint64_t entries) const {
   const BackgroundFieldData& d = background_.data();
@@ -262,16 +258,13 @@ void DeviceRun<Real>::upload_nodes(const std::vector<double>* budgets, const std
   cand_index_ = Buffer<std::int32_t>();
   node_leaf_ = Buffer<std::int32_t>();
   std::vector<double> x(n), y(n), tx(n), ty(n), budget(n, 0.0);
-  parallel_for(
-      n,
-      [&](std::size_t i) {
-        x[i] = nodes_.x[i].x;
-        y[i] = nodes_.x[i].y;
-        const Vec2 t = boundary_.tangent(static_cast<int>(i));
-        tx[i] = t.x;
-        ty[i] = t.y;
-      },
-      kNodeChunk);
+  for (std::size_t i = 0; i < n; ++i) {
+    x[i] = nodes_.x[i].x;
+    y[i] = nodes_.x[i].y;
+    const Vec2 t = boundary_.tangent(static_cast<int>(i));
+    tx[i] = t.x;
+    ty[i] = t.y;
+  }
   if (budgets) {
     budget = *budgets;
   } else {
@@ -369,14 +362,10 @@ std::optional<PopulationCounts> DeviceRun<Real>::population_event(int iteration)
     for (auto [from, to] : {std::pair{&q_[cur_], &q}, {&budget_, &budget}}) read(*from, *to, n_);
     read(node_leaf_, leaves, n_);
     stats_.population_transfer_seconds += since(t0);
-    parallel_for(
-        n_,
-        [&](std::size_t i) {
-          if (nodes_.kind[i] == NodeKind::Interior)
-            nodes_.x[i] = {static_cast<double>(x[i]), static_cast<double>(y[i])};
-          nodes_.q[i] = static_cast<double>(q[i]);
-        },
-        kNodeChunk);
+    for (std::size_t i = 0; i < n_; ++i) {
+      if (nodes_.kind[i] == NodeKind::Interior) nodes_.x[i] = {static_cast<double>(x[i]), static_cast<double>(y[i])};
+      nodes_.q[i] = static_cast<double>(q[i]);
+    }
     budgets.assign(budget.begin(), budget.end());
   }
   population_profile::add("read back", since(t_read));
