@@ -156,10 +156,10 @@ TEST_CASE("population: a lattice with one extra node loses one", "[population]")
   check_consistent(r.nodes, boundary, *r.tree);
 }
 
-// The vacancy filter and the cluster scan run in blocks (of triangles and of nodes) on every core:
-// holes and extra nodes spread over a lattice of many blocks are each found once.
+// At scale (tens of thousands of nodes, the triangles in the triangulation's order): holes and extra
+// nodes spread over the whole lattice are each found once.
 TEST_CASE("population: holes and extra nodes spread over a large lattice are each handled once", "[population]") {
-  Rhombus r(220);  // ~48k interior nodes, ~96k triangles: several blocks of each scan
+  Rhombus r(220);  // ~48k interior nodes, ~96k triangles
   std::vector<Vec2> holes, extras;
   std::mt19937_64 rng(11);
   const auto u = [&] { return static_cast<double>(rng() >> 11) * 0x1.0p-53 - 0.5; };

@@ -4,8 +4,6 @@
 #include <algorithm>
 #include <cstdint>
 
-#include "core/parallel.hpp"
-
 namespace pdmesh {
 namespace {
 
@@ -38,21 +36,17 @@ std::vector<int> hilbert_order(const std::vector<Vec2>& points) {
   // Pack key (high 32 bits) and index (low 32 bits), then sort by key with an LSD radix sort
   // on the key's 2 * bits bits, a byte at a time: linear time, and stable, so equal keys keep
   // input order.
-  // The keys on every core (each its own; a twentieth of a population event's triangulation).
   std::vector<std::uint64_t> items(n), scratch(n);
-  parallel_for(
-      n,
-      [&](std::size_t i) {
-        auto cell = [&](double v, double lo) {
-          const double c = (v - lo) * scale;
-          if (!(c > 0.0)) return 0u;  // also catches NaN, which the triangulation rejects anyway
-          if (c >= grid - 1) return grid - 1;
-          return static_cast<std::uint32_t>(c);
-        };
-        const std::uint32_t key = hilbert_key(cell(points[i].x, box.lo.x), cell(points[i].y, box.lo.y), bits);
-        items[i] = (static_cast<std::uint64_t>(key) << 32) | static_cast<std::uint32_t>(i);
-      },
-      65536);
+  for (std::size_t i = 0; i < n; ++i) {
+    auto cell = [&](double v, double lo) {
+      const double c = (v - lo) * scale;
+      if (!(c > 0.0)) return 0u;  // also catches NaN, which the triangulation rejects anyway
+      if (c >= grid - 1) return grid - 1;
+      return static_cast<std::uint32_t>(c);
+    };
+    const std::uint32_t key = hilbert_key(cell(points[i].x, box.lo.x), cell(points[i].y, box.lo.y), bits);
+    items[i] = (static_cast<std::uint64_t>(key) << 32) | static_cast<std::uint32_t>(i);
+  }
   for (int shift = 32; shift < 32 + 2 * bits; shift += 8) {
     std::size_t count[257] = {};
     for (std::uint64_t v : items) ++count[((v >> shift) & 0xff) + 1];

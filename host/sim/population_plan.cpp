@@ -7,8 +7,6 @@
 #include <cmath>
 #include <optional>
 
-#include "core/parallel.hpp"
-
 #include "sim/delaunay_graph.hpp"
 #include "sim/population_rules.hpp"
 
@@ -68,45 +66,21 @@ class SpacingRuler {
     const auto& tris = graph.triangles;
     // The triangles past the cheap filter, then q at all their circumcentres in one batch (at_many:
     // the same values as at(), on every core; in a settled lattice most triangles pass the filter).
-    // The filter runs on every core, a block of triangles each, writing its passes from the block's
-    // own start; the blocks are then closed up in order, so the passes keep triangle order whatever
-    // the thread count. The arrays are made once at the triangle count (in a settled lattice nearly
-    // every triangle passes).
-    constexpr std::size_t kBlock = 16384;
-    const std::size_t blocks = (tris.size() + kBlock - 1) / kBlock;
-    std::vector<std::size_t> passed(tris.size()), end(blocks);
-    std::vector<Vec2> centres(tris.size());
-    std::vector<double> radii(tris.size());
-    parallel_for(
-        blocks,
-        [&](std::size_t k) {
-          std::size_t out = k * kBlock;
-          for (std::size_t t = k * kBlock, last = std::min(tris.size(), t + kBlock); t < last; ++t) {
-            const auto [a, b, c] = tris[t];
-            Vec2 centre;
-            double radius = 0.0;
-            circumcircle(x(a), x(b), x(c), centre, radius);
-            // Cheap filter first: q varies little over a circumradius (a graded field by at most ~25%).
-            const double q_min = std::min({q(a), q(b), q(c)});
-            if (!(radius > 0.75 * insert * q_min)) continue;
-            passed[out] = t;
-            centres[out] = centre;
-            radii[out] = radius;
-            ++out;
-          }
-          end[k] = out;
-        },
-        1);
-    std::size_t count = 0;
-    for (std::size_t k = 0; k < blocks; ++k)
-      for (std::size_t from = k * kBlock; from < end[k]; ++from, ++count) {
-        passed[count] = passed[from];
-        centres[count] = centres[from];
-        radii[count] = radii[from];
-      }
-    passed.resize(count);
-    centres.resize(count);
-    radii.resize(count);
+    std::vector<std::size_t> passed;
+    std::vector<Vec2> centres;
+    std::vector<double> radii;
+    for (std::size_t t = 0; t < tris.size(); ++t) {
+      const auto [a, b, c] = tris[t];
+      Vec2 centre;
+      double radius = 0.0;
+      circumcircle(x(a), x(b), x(c), centre, radius);
+      // Cheap filter first: q varies little over a circumradius (a graded field by at most ~25%).
+      const double q_min = std::min({q(a), q(b), q(c)});
+      if (!(radius > 0.75 * insert * q_min)) continue;
+      passed.push_back(t);
+      centres.push_back(centre);
+      radii.push_back(radius);
+    }
     std::vector<double> qcs;
     spacing_.at_many(centres, qcs);
     for (std::size_t k = 0; k < passed.size(); ++k) {

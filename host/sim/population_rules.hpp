@@ -21,7 +21,6 @@
 #include <tuple>
 #include <vector>
 
-#include "core/parallel.hpp"
 #include "geometry/geometry_tree.hpp"
 #include "init/initial_distribution.hpp"
 #include "nodes/node_set.hpp"
@@ -161,27 +160,16 @@ class Planner {
       double ratio;
       int a, b;
     };
-    // Found on every core, a block of nodes each (few edges are short); the sort below orders them
-    // whatever order the blocks come in.
-    constexpr std::size_t kBlock = 16384;
-    const std::size_t blocks = (nodes_.size() + kBlock - 1) / kBlock;
-    std::vector<std::vector<Edge>> found(blocks);
-    parallel_for(
-        blocks,
-        [&](std::size_t k) {
-          for (std::size_t i = k * kBlock, end = std::min(nodes_.size(), i + kBlock); i < end; ++i) {
-            const int a = static_cast<int>(i);
-            for (const int* u = graph_.begin(a); u != graph_.end(a); ++u) {
-              const int b = *u;
-              if (b <= a || (!is(a, NodeKind::Interior) && !is(b, NodeKind::Interior))) continue;
-              const double ratio = ruler_.edge_ratio(a, b);
-              if (ratio < t_.merge) found[k].push_back({ratio, a, b});
-            }
-          }
-        },
-        1);
     std::vector<Edge> short_edges;
-    for (const std::vector<Edge>& f : found) short_edges.insert(short_edges.end(), f.begin(), f.end());
+    for (std::size_t i = 0; i < nodes_.size(); ++i) {
+      const int a = static_cast<int>(i);
+      for (const int* u = graph_.begin(a); u != graph_.end(a); ++u) {
+        const int b = *u;
+        if (b <= a || (!is(a, NodeKind::Interior) && !is(b, NodeKind::Interior))) continue;
+        const double ratio = ruler_.edge_ratio(a, b);
+        if (ratio < t_.merge) short_edges.push_back({ratio, a, b});
+      }
+    }
     std::sort(short_edges.begin(), short_edges.end(),
               [](const Edge& e, const Edge& f) { return std::tie(e.ratio, e.a, e.b) < std::tie(f.ratio, f.a, f.b); });
     for (const Edge& e : short_edges) {
