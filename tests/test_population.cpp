@@ -156,6 +156,46 @@ TEST_CASE("population: a lattice with one extra node loses one", "[population]")
   check_consistent(r.nodes, boundary, *r.tree);
 }
 
+// At scale (tens of thousands of nodes, the triangles in the triangulation's order): holes and extra
+// nodes spread over the whole lattice are each found once.
+TEST_CASE("population: holes and extra nodes spread over a large lattice are each handled once", "[population]") {
+  Rhombus r(220);  // ~48k interior nodes, ~96k triangles
+  std::vector<Vec2> holes, extras;
+  std::mt19937_64 rng(11);
+  const auto u = [&] { return static_cast<double>(rng() >> 11) * 0x1.0p-53 - 0.5; };
+  for (int j = 1; j < r.m; ++j)
+    for (int i = 1; i < r.m; ++i) {
+      if (i % 40 == 20 && j % 40 == 20) {
+        holes.push_back(lattice(i, j));
+        continue;
+      }
+      const Vec2 p = lattice(i, j) + Vec2{0.04 * u(), 0.04 * u()};
+      r.nodes.add(p, 1.0, NodeKind::Interior, -1);
+      if (i % 40 == 0 && j % 40 == 0) {
+        extras.push_back(p + Vec2{0.4 * std::cos(0.5), 0.4 * std::sin(0.5)});
+        r.nodes.add(extras.back(), 1.0, NodeKind::Interior, -1);
+      }
+    }
+  REQUIRE(holes.size() == 25);
+  REQUIRE(extras.size() == 25);
+  BoundaryHandler boundary(*r.tree, r.nodes);
+  const std::size_t n = r.nodes.size();
+  const PopulationCounts counts = run_population_event(r.nodes, boundary, r.spacing, first_event());
+  CHECK(counts.inserted_interior == holes.size());
+  CHECK(counts.inserted() == holes.size());
+  CHECK(counts.merged == extras.size());
+  CHECK(counts.removed() == extras.size());
+  REQUIRE(r.nodes.size() == n);
+  // Each hole has a node near its centre again: one of the appended nodes.
+  for (const Vec2& hole : holes) {
+    std::size_t near = 0;
+    for (std::size_t k = n - holes.size(); k < n; ++k) near += dist(r.nodes.x[k], hole) < 0.1 ? 1 : 0;
+    CHECK(near == 1);
+  }
+  // A second event finds nothing.
+  CHECK_FALSE(run_population_event(r.nodes, boundary, r.spacing, first_event()).changed());
+}
+
 TEST_CASE("population: an extra node inside a lattice triangle (four neighbours) is removed", "[population]") {
   Rhombus r(12);
   r.fill(0.0);

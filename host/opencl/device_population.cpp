@@ -1,6 +1,8 @@
 // Mapping the device's per-node state across a population-control event; see device_population.hpp.
 #include "opencl/device_population.hpp"
 
+#include "sim/population_profile.hpp"
+
 namespace pdmesh::ocl {
 
 std::optional<PopulationCounts> device_population_event(PopulationTracker& tracker, const PopulationOptions& options,
@@ -8,12 +10,17 @@ std::optional<PopulationCounts> device_population_event(PopulationTracker& track
                                                         BoundaryHandler& boundary, const BackgroundSpacing& background,
                                                         std::vector<double>& budgets, std::vector<std::int32_t>& leaves,
                                                         std::vector<int>* old_of_new_out) {
-  const std::vector<Vec2> before = nodes.x;
+  std::vector<Vec2> before;
+  {
+    const population_profile::Timer timer("copy before");
+    before = nodes.x;
+  }
   std::vector<int> old_of_new;
   const auto counts = tracker.after_iteration(options, iteration, iterations, nodes, boundary, background, &old_of_new);
   if (old_of_new_out) old_of_new_out->clear();
   if (!counts || !counts->changed()) return counts;
   if (old_of_new_out) *old_of_new_out = old_of_new;
+  const population_profile::Timer timer("map budgets and leaves");
   std::vector<double> new_budgets(nodes.size(), 0.0);
   std::vector<std::int32_t> new_leaves(nodes.size());
   for (std::size_t k = 0; k < nodes.size(); ++k) {

@@ -12,6 +12,7 @@
 #include "core/free_memory.hpp"
 #include "core/parallel.hpp"
 #include "sim/failure_report.hpp"
+#include "sim/population_profile.hpp"
 #include "spacing/background_field.hpp"
 
 namespace pdmesh::ocl {
@@ -352,6 +353,8 @@ std::optional<PopulationCounts> DeviceRun<Real>::population_event(int iteration)
   skin_use_ = HUGE_VAL;
   // The event triangulates the nodes: without the free pages of the builds before it.
   give_back_free_memory();
+  population_profile::add("release", since(t0));
+  const auto t_read = Clock::now();
   std::vector<std::int32_t> leaves;
   std::vector<double> budgets;
   {  // The read targets are freed before the event's own arrays are made.
@@ -366,6 +369,7 @@ std::optional<PopulationCounts> DeviceRun<Real>::population_event(int iteration)
     }
     budgets.assign(budget.begin(), budget.end());
   }
+  population_profile::add("read back", since(t_read));
   std::vector<int> old_of_new;
   const std::size_t old_n = n_;
   const auto counts = device_population_event(loop_.population(), options_.population, iteration, options_.iterations,
@@ -378,10 +382,13 @@ std::optional<PopulationCounts> DeviceRun<Real>::population_event(int iteration)
     upload_nodes(&budgets, &leaves);
     finish(ctx_.queue(), "population re-upload");
     stats_.population_transfer_seconds += since(t1);
+    population_profile::add("re-upload", since(t1));
   } else {
     allocate_step_outputs();
   }
   stats_.population_seconds += since(t0);
+  population_profile::add("device event", since(t0));
+  population_profile::print(fmt::format("after iteration {}", iteration).c_str());
   return counts;
 }
 

@@ -8,6 +8,7 @@
 
 #include "core/vec2.hpp"
 #include "mesh/delaunay.hpp"
+#include "sim/population_profile.hpp"
 
 namespace pdmesh::population_detail {
 
@@ -18,12 +19,13 @@ struct DelaunayGraph {
   std::vector<int> adjacent;
   std::vector<char> on_hull;  // joined to a super-triangle vertex
 
-  explicit DelaunayGraph(const std::vector<Vec2>& points) : DelaunayGraph(Triangulation(points)) {}
+  explicit DelaunayGraph(const std::vector<Vec2>& points) : DelaunayGraph(triangulate(points)) {}
   // A triangulation made for the graph alone: the arrays the graph does not read (points, neighbours,
   // vertex maps) are freed before the graph's own are made (a population event's largest moment).
   explicit DelaunayGraph(Triangulation&& dt) : DelaunayGraph(static_cast<const Triangulation&>(keep_triangles(dt))) {}
   // The graph of a triangulation of the nodes (e.g. one flipped to the metric's Delaunay).
   explicit DelaunayGraph(const Triangulation& dt) {
+    const population_profile::Timer timer("graph");
     const auto n = static_cast<std::size_t>(dt.input_count);
     on_hull.assign(n, 0);
     // Every side (a, b) with both ends real, of every triangle (the super-triangle's too): in a
@@ -71,6 +73,11 @@ struct DelaunayGraph {
     all.resize(written);
     adjacent = std::move(all);
     first = std::move(count);
+  }
+
+  static Triangulation triangulate(const std::vector<Vec2>& points) {
+    const population_profile::Timer timer("triangulation");
+    return Triangulation(points);
   }
 
   static Triangulation& keep_triangles(Triangulation& dt) {

@@ -13,6 +13,7 @@
 #include "core/errors.hpp"
 #include "sim/boundary_handling.hpp"
 #include "sim/population_plan.hpp"
+#include "sim/population_profile.hpp"
 #include "sim/row_locality.hpp"
 
 namespace pdmesh {
@@ -87,6 +88,7 @@ PopulationCounts run_population_event(NodeSet& nodes, BoundaryHandler& boundary,
   }
   PopulationPlan plan;
   try {
+    const population_profile::Timer timer("plan");
     plan = metric ? plan_metric_population_event(nodes, boundary.arcs(), boundary.tree(), *metric, thresholds)
                   : plan_population_event(nodes, boundary.arcs(), boundary.tree(), spacing, thresholds);
   } catch (const InputError&) {
@@ -96,6 +98,7 @@ PopulationCounts run_population_event(NodeSet& nodes, BoundaryHandler& boundary,
     skipped.skipped = true;
     return skipped;
   }
+  const population_profile::Timer timer("apply");
   for (const auto& [node, p] : plan.moves) {
     boundary.move_interior(nodes, node, p);
     nodes.q[static_cast<std::size_t>(node)] = spacing.at(p);

@@ -26,6 +26,7 @@
 #include "nodes/node_set.hpp"
 #include "sim/delaunay_graph.hpp"
 #include "sim/population_plan.hpp"
+#include "sim/population_profile.hpp"
 
 namespace pdmesh::population_detail {
 
@@ -46,9 +47,19 @@ class Planner {
   }
 
   PopulationPlan run() {
-    if (t_.boundary) boundary_gaps();
-    clusters();
-    if (t_.remove_valence > 0) low_valence();
+    if (t_.boundary) {
+      const population_profile::Timer timer("boundary gaps");
+      boundary_gaps();
+    }
+    {
+      const population_profile::Timer timer("clusters");
+      clusters();
+    }
+    if (t_.remove_valence > 0) {
+      const population_profile::Timer timer("low valence");
+      low_valence();
+    }
+    const population_profile::Timer timer("vacancies");
     vacancies();
     return std::move(plan_);
   }

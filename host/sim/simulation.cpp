@@ -11,6 +11,7 @@
 #include "sim/boundary_handling.hpp"
 #include "sim/failure_report.hpp"
 #include "sim/iteration_loop.hpp"
+#include "sim/population_profile.hpp"
 #include "sim/row_locality.hpp"
 #include "sim/step_trace.hpp"
 #include "spacing/background_field.hpp"
@@ -234,6 +235,7 @@ IterationMoves HostSteps::apply(int iteration) {
   // Population control between iterations: the next iteration loads the changed node set.
   out.event = loop_.population().after_iteration(options_.population, iteration, options_.iterations, nodes_, boundary_,
                                                  spacing_, nullptr, options_.metric);
+  if (out.event) population_profile::print(fmt::format("after iteration {}", iteration).c_str());
   // A changed node set starts without momentum (nodes were inserted, removed and renumbered).
   if (with_momentum_ && out.event && out.event->changed()) carried_ = MomentumState{};
   out.fixed = nodes_.count(NodeKind::Fixed);
