@@ -258,8 +258,8 @@ __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void refresh_budge
   if (counters[WINDOW_HALT] != 0) return;  // uniform: the window was halted (kernels/window.cl)
   const int l = get_local_id(0), g = get_group_id(0);
   const int m = counters[COUNTER_CANDIDATES];
-  if (g >= m) return;  // uniform: no entry for this group
-  REAL skin_use = (REAL)0;  // work-item 0's
+  if (g >= m) return;                               // uniform: no entry for this group
+  REAL skin_use = (REAL)0;                          // work-item 0's
   for (int k = g; k < m; k += get_num_groups(0)) {  // uniform
     const int entry = cand_index[k];
     if (entry >= 0) continue;  // uniform: a candidate for the host
