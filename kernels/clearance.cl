@@ -100,10 +100,12 @@ REAL clearance_bound(const REAL px, const REAL py, __global const REAL* segs, co
 // cannot matter.
 REAL clearance_bound_group(const REAL px, const REAL py, __global const REAL* segs, const int n_segs,
                            const REAL seg_scale, __local REAL* lane_best) {
-  if (!(isfinite(px) && isfinite(py))) return (REAL)0;  // uniform: the same point for every work-item
+  // A non-finite p (0: the host decides) passes the barriers too: a caller may rely on them
+  // (refresh_budgets rewrites its list entry after every work-item read it).
+  const int finite = isfinite(px) && isfinite(py);
   const int l = get_local_id(0);
   const REAL scale = fabs(px) + fabs(py) + seg_scale;
-  lane_best[l] = clearance_nearest2(px, py, segs, l, WG_SIZE, n_segs, clearance_margin(scale));
+  lane_best[l] = finite ? clearance_nearest2(px, py, segs, l, WG_SIZE, n_segs, clearance_margin(scale)) : INFINITY;
   for (int width = WG_SIZE / 2; width > 0; width /= 2) {
     barrier(CLK_LOCAL_MEM_FENCE);
     if (l < width) {
@@ -114,7 +116,7 @@ REAL clearance_bound_group(const REAL px, const REAL py, __global const REAL* se
   barrier(CLK_LOCAL_MEM_FENCE);
   const REAL best2 = lane_best[0];
   barrier(CLK_LOCAL_MEM_FENCE);  // read by every work-item before the next call writes
-  return clearance_from_nearest2(best2, px, py, scale);
+  return finite ? clearance_from_nearest2(best2, px, py, scale) : (REAL)0;
 }
 
 // BoundaryHandler::move_cost with this precision's epsilon: an upper bound of what a move by (ex, ey)

@@ -267,6 +267,7 @@ __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void refresh_budge
     const REAL xi = cand_rec[4 * k], yi = cand_rec[4 * k + 1], dx = cand_rec[4 * k + 2], dy = cand_rec[4 * k + 3];
     const REAL xn = xi + dx, yn = yi + dy;
     const REAL ex = xn - xi, ey = yn - yi;
+    // Its barriers order every work-item's read of cand_index[k] before work-item 0 rewrites it.
     const REAL d = clearance_bound_group(xn, yn, segs, n_segs, seg_scale, lane_best);
     if (l == 0) {
       const REAL fresh = clearance_accept(ex, ey, xn, yn, d);
