@@ -240,43 +240,51 @@ __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void device_step(
   if (l < STEP_PARTIALS) partials[STEP_PARTIALS * get_group_id(0) + l] = values[l * WG_SIZE];
 }
 
-// The clearance refresh of the nodes device_step listed as ~i (PDMESH_REFRESH_KERNEL; the same rule and
-// expressions as its inline refresh): entry k of the list (counters[COUNTER_CANDIDATES] entries; the
-// launch covers n). Accepted: the node's new budget, and its skin use (device_step's formula) into
-// the maximum of step partials slot 6 of this group (only the maximum over all groups is used, and
-// a maximum does not depend on the grouping); the entry stays ~i, which the host skips. Otherwise
-// the entry becomes i, for the host's exact test (counters[COUNTER_HOST]).
+// The clearance refresh of the nodes device_step listed as ~i (PDMESH_REFRESH_KERNEL, the GPU shape;
+// the same rule and expressions as its inline refresh): entry k of the list (counters[COUNTER_CANDIDATES]
+// entries) by work-group k, k + groups, ... (the launch covers n: as many groups as device_step's).
+// The whole group searches the segments for one entry (kernels/clearance.cl, clearance_bound_group:
+// bit for bit one work-item's search), so an entry costs a walk over n_segs / WG_SIZE segments per
+// work-item instead of one work-item's walk over all of them. Accepted: the node's new budget, and
+// its skin use (device_step's formula) into the maximum of step partials slot 6 of this group (only
+// the maximum over all groups is used, and a maximum does not depend on the grouping); the entry stays
+// ~i, which the host skips. Otherwise the entry becomes i, for the host's exact test (counters[COUNTER_HOST]).
 __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void refresh_budgets(
     const int n, __global int* counters, __global int* cand_index, __global const REAL* cand_rec, __global REAL* budget,
     __global const REAL* q_next, __global const REAL2* xy_build, __global const REAL* q_build,
     __global const uchar* skin_class, const REAL cutoff, const REAL skin_cutoff, __global const REAL* segs,
     const int n_segs, const REAL seg_scale, __global REAL* partials) {
-  __local REAL values[WG_SIZE];
+  __local REAL lane_best[WG_SIZE];
   if (counters[WINDOW_HALT] != 0) return;  // uniform: the window was halted (kernels/window.cl)
-  const int k = get_global_id(0), l = get_local_id(0);
+  const int l = get_local_id(0), g = get_group_id(0);
   const int m = counters[COUNTER_CANDIDATES];
-  REAL skin_use = (REAL)0;
-  const int entry = k < m ? cand_index[k] : 0;
-  if (k < m && entry < 0) {
+  if (g >= m) return;                               // uniform: no entry for this group
+  REAL skin_use = (REAL)0;                          // work-item 0's
+  for (int k = g; k < m; k += get_num_groups(0)) {  // uniform
+    const int entry = cand_index[k];
+    if (entry >= 0) continue;  // uniform: a candidate for the host
     const int i = ~entry;
     const REAL xi = cand_rec[4 * k], yi = cand_rec[4 * k + 1], dx = cand_rec[4 * k + 2], dy = cand_rec[4 * k + 3];
     const REAL xn = xi + dx, yn = yi + dy;
     const REAL ex = xn - xi, ey = yn - yi;
-    const REAL fresh = clearance_refresh(ex, ey, xn, yn, segs, n_segs, seg_scale);
-    if (fresh > (REAL)0) {
-      budget[i] = fresh;
-      skin_use = skin_use_of((REAL2)(xn, yn), q_next[i], xy_build[i], q_build[i], cutoff, skin_cutoff, skin_class[i]);
-    } else {
-      cand_index[k] = i;
-      atomic_or(&counters[COUNTER_HOST], 1);
+    // Its barriers order every work-item's read of cand_index[k] before work-item 0 rewrites it.
+    const REAL d = clearance_bound_group(xn, yn, segs, n_segs, seg_scale, lane_best);
+    if (l == 0) {
+      const REAL fresh = clearance_accept(ex, ey, xn, yn, d);
+      if (fresh > (REAL)0) {
+        budget[i] = fresh;
+        const REAL s =
+            skin_use_of((REAL2)(xn, yn), q_next[i], xy_build[i], q_build[i], cutoff, skin_cutoff, skin_class[i]);
+        skin_use = s > skin_use ? s : skin_use;
+      } else {
+        cand_index[k] = i;
+        atomic_or(&counters[COUNTER_HOST], 1);
+      }
     }
   }
-  if (get_group_id(0) * WG_SIZE >= m) return;  // uniform: no entry in this group
-  values[l] = skin_use;
-  group_reduce(values, 1, 0);
   if (l == 0) {
-    const REAL old = partials[STEP_PARTIALS * get_group_id(0) + 6];
-    partials[STEP_PARTIALS * get_group_id(0) + 6] = values[0] > old ? values[0] : old;
+    const REAL old = partials[STEP_PARTIALS * g + 6];
+    partials[STEP_PARTIALS * g + 6] = skin_use > old ? skin_use : old;
   }
 }
 

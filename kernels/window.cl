@@ -18,6 +18,22 @@
 // last work-group of boundary_snap_rule (kernels/boundary.cl), which saves a launch per iteration.
 // In boundary_snap_rule other work-groups of the same launch wrote snap_partials and read the halt
 // flag: those go through atomics (reduce.cl, atomic_load_real).
+
+// RULE_AHEAD groups' partials in named values (an array might live in memory, each load then
+// waiting before the next), then added in group order.
+#define RULE_AHEAD 8
+#define RULE_LOAD(j)                                                                                            \
+  const REAL f##j = p[STEP_PARTIALS * j], e##j = p[STEP_PARTIALS * j + 1], m##j = p[STEP_PARTIALS * j + 2],     \
+             w##j = p[STEP_PARTIALS * j + 3], c##j = p[STEP_PARTIALS * j + 4], x##j = p[STEP_PARTIALS * j + 5], \
+             s##j = p[STEP_PARTIALS * j + 6]
+#define RULE_ADD(j)                                                \
+  force += (double)f##j;                                           \
+  kinetic += (double)e##j;                                         \
+  moving += (long)m##j;                                            \
+  within += (long)w##j;                                            \
+  coincident += (long)c##j;                                        \
+  max_force = max_force < (double)x##j ? (double)x##j : max_force; \
+  skin = skin < (double)s##j ? (double)s##j : skin
 void iteration_rule_body(const int groups, __global const REAL* partials, const int snap_entries,
                          __global REAL* snap_partials, __global int* step_counters, __global double* state,
                          __global double* ring, const int ring_rows, __global REAL* dt2_out) {
@@ -29,9 +45,33 @@ void iteration_rule_body(const int groups, __global const REAL* partials, const 
   }
   // DeviceRun's sums, in group order: |F| and kinetic energy in double, the counts as integers,
   // the maxima by std::max's comparison.
+  // The partials of RULE_AHEAD groups are loaded before any of them is added: a GPU issues one
+  // work-item's instructions in order, so a loop that adds each group's partials right after loading
+  // them waits a memory latency per group (at millions of nodes longer than the step itself). The
+  // same additions and comparisons in the same order, so the same bits.
   double force = 0.0, kinetic = 0.0, max_force = 0.0, skin = 0.0;
   long moving = 0, within = 0, coincident = 0;
-  for (int g = 0; g < groups; ++g) {
+  int g = 0;
+  for (; g + RULE_AHEAD <= groups; g += RULE_AHEAD) {
+    __global const REAL* p = partials + STEP_PARTIALS * g;
+    RULE_LOAD(0);
+    RULE_LOAD(1);
+    RULE_LOAD(2);
+    RULE_LOAD(3);
+    RULE_LOAD(4);
+    RULE_LOAD(5);
+    RULE_LOAD(6);
+    RULE_LOAD(7);
+    RULE_ADD(0);
+    RULE_ADD(1);
+    RULE_ADD(2);
+    RULE_ADD(3);
+    RULE_ADD(4);
+    RULE_ADD(5);
+    RULE_ADD(6);
+    RULE_ADD(7);
+  }
+  for (; g < groups; ++g) {
     __global const REAL* p = partials + STEP_PARTIALS * g;
     force += (double)p[0];
     kinetic += (double)p[1];

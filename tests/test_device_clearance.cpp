@@ -69,8 +69,10 @@ Refresh host_refresh(const BoundaryHandler& handler, const Moves& m) {
   return r;
 }
 
+// group: clearance_points_group (a work-group per move, the search of refresh_budgets) instead of
+// clearance_points (a work-item per move, device_step's inline refresh).
 template <typename Real>
-Refresh device_refresh(const Geometry& geometry, const Moves& m, ocl::Precision precision) {
+Refresh device_refresh(const Geometry& geometry, const Moves& m, ocl::Precision precision, bool group = false) {
   ocl::Context& ctx = test::test_context();
   ocl::StepProgram& program = test::test_program(precision);
   ocl::DeviceBoundary<Real> boundary(ctx, geometry);
@@ -83,10 +85,12 @@ Refresh device_refresh(const Geometry& geometry, const Moves& m, ocl::Precision 
   };
   ocl::Buffer<Real> x = up("x", m.x), y = up("y", m.y), dx = up("dx", m.dx), dy = up("dy", m.dy);
   ocl::Buffer<Real> bound(ctx, "bound", n), budget(ctx, "budget", n);
-  ocl::ArgSetter a(program.clearance_points, "clearance_points");
+  cl::Kernel& kernel = group ? program.clearance_points_group : program.clearance_points;
+  const char* name = group ? "clearance_points_group" : "clearance_points";
+  ocl::ArgSetter a(kernel, name);
   a(static_cast<cl_int>(n))(x)(y)(dx)(dy)(boundary.segments())(static_cast<cl_int>(boundary.segment_count()))(
       static_cast<Real>(boundary.segment_scale()))(bound)(budget);
-  ocl::launch(ctx.queue(), program.clearance_points, "clearance_points", n, program.work_group);
+  ocl::launch(ctx.queue(), kernel, name, group ? n * program.work_group : n, program.work_group);
   std::vector<Real> b, u;
   bound.download(ctx.queue(), b, n);
   budget.download(ctx.queue(), u, n);
@@ -168,5 +172,34 @@ TEST_CASE("clearance refresh: one rule on the host and the device, checked again
         CHECK(same + 3 * moves.x.size() / 1000 >= moves.x.size());
       }
     }
+  }
+}
+
+TEST_CASE("clearance refresh: a work-group's search gives one work-item's bounds bit for bit",
+          "[opencl][boundary][clearance]") {
+  const test::Case c = test::load_case("naca0012");
+  const GeometryTree& tree = c.inputs->node_tree();
+  const BoundaryHandler handler(tree, c.initial);
+  const Moves moves = make_moves(handler, c.initial);
+  // More segments than work-items in a group: every work-item walks several, and the group's minimum
+  // comes from different work-items for different moves.
+  REQUIRE(tree.geometry().segments.size() > 4 * ocl::kStepWorkGroup);
+  const auto check_same = [&](const Refresh& one, const Refresh& group) {
+    std::size_t positive = 0;
+    for (std::size_t k = 0; k < moves.x.size(); ++k) {
+      INFO("move " << k);
+      CHECK(group.bound[k] == one.bound[k]);
+      CHECK(group.budget[k] == one.budget[k]);
+      positive += one.bound[k] > 0.0;
+    }
+    CHECK(positive > moves.x.size() / 2);
+  };
+  SECTION("double") {
+    check_same(device_refresh<double>(tree.geometry(), moves, ocl::Precision::Double),
+               device_refresh<double>(tree.geometry(), moves, ocl::Precision::Double, true));
+  }
+  SECTION("float") {
+    check_same(device_refresh<float>(tree.geometry(), moves, ocl::Precision::Float),
+               device_refresh<float>(tree.geometry(), moves, ocl::Precision::Float, true));
   }
 }

@@ -186,6 +186,7 @@ StepProgram::StepProgram(Context& ctx, Precision p, ForceLoop loop, std::size_t 
                                                          {&apply_host_moves, "apply_host_moves"},
                                                          {&boundary_snap, "boundary_snap"},
                                                          {&clearance_points, "clearance_points"},
+                                                         {&clearance_points_group, "clearance_points_group"},
                                                          {&refresh_budgets, "refresh_budgets"},
                                                          {&compute_forces_metric, "compute_forces_metric"},
                                                          {&time_step_and_move_metric, "time_step_and_move_metric"},

@@ -119,7 +119,7 @@ struct StepProgram {
   cl::Kernel row_capacity_scan, row_level_tally, place_spilled, row_block_offsets, row_offsets_add, gather_rows,
       sort_rows, relocate_rows, apply_row_moves, bin_bounds, bin_rmin, bin_levels, bin_plan, bin_count, bucket_scan,
       bucket_offsets_add, bin_fill, compute_forces, time_step_and_move, apply_momentum, reduce, device_step,
-      apply_host_moves, boundary_snap, clearance_points,
+      apply_host_moves, boundary_snap, clearance_points, clearance_points_group,
       refresh_budgets;  // refresh_budgets: launched by the Scalar shape only
   // Metric mode of the StepBackend (kernels/metric.cl).
   cl::Kernel compute_forces_metric, time_step_and_move_metric, apply_momentum_metric, metric_force_norms;
