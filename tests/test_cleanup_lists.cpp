@@ -15,28 +15,16 @@
 #include "mesh/triangulate_nodes.hpp"
 #include "nodes/boundary_arcs.hpp"
 #include "spacing/spacing_field.hpp"
-#include "geometry_fixtures.hpp"
+#include "holed_square_mesh.hpp"
 
 using namespace pdmesh;
 using cleanup::EditableMesh;
 
 namespace {
 
-// The square [0, 8]^2 with the square hole [3, 5]^2: about 22,000 triangles, more than one block of
-// the lists' loops, so they take several threads.
-struct Holed {
-  Geometry g = fixtures::make_geometry(
-      {fixtures::rectangle({0, 0}, {8, 8}, 96, true), fixtures::rectangle({3, 3}, {5, 5}, 24, false)});
-  GeometryTree tree{g};
-  BoundarySpacing spacing{tree};
-  NodeSet nodes;
-  Mesh mesh;
-  Holed() {
-    nodes = make_initial_distribution(tree, spacing, {InitMethod::Random, 5, {}, false}).nodes;
-    std::vector<std::string> names;
-    for (const Curve& c : g.curves) names.push_back(c.name);
-    mesh = triangulate(nodes, names);
-  }
+// The holed square (holed_square_mesh.hpp), seeded 5.
+struct Holed : fixtures::HoledSquareMesh {
+  Holed() : HoledSquareMesh(5) {}
 };
 
 }  // namespace

@@ -16,28 +16,16 @@
 #include "mesh/triangulate_nodes.hpp"
 #include "nodes/boundary_arcs.hpp"
 #include "spacing/spacing_field.hpp"
-#include "geometry_fixtures.hpp"
+#include "holed_square_mesh.hpp"
 
 using namespace pdmesh;
 using cleanup::EditableMesh;
 
 namespace {
 
-// The square [0, 8]^2 with the square hole [3, 5]^2, fine boundary segments: about 22,000 triangles from
-// the boundary spacing, more than one block (16,384) of the parallel loops, so they take two threads.
-struct Holed {
-  Geometry g = fixtures::make_geometry(
-      {fixtures::rectangle({0, 0}, {8, 8}, 96, true), fixtures::rectangle({3, 3}, {5, 5}, 24, false)});
-  GeometryTree tree{g};
-  BoundarySpacing spacing{tree};
-  NodeSet nodes;
-  Mesh mesh;
-  Holed() {
-    nodes = make_initial_distribution(tree, spacing, {InitMethod::Random, 11, {}, false}).nodes;
-    std::vector<std::string> names;
-    for (const Curve& c : g.curves) names.push_back(c.name);
-    mesh = triangulate(nodes, names);
-  }
+// The holed square (holed_square_mesh.hpp), seeded 11.
+struct Holed : fixtures::HoledSquareMesh {
+  Holed() : HoledSquareMesh(11) {}
   EditableMesh editable(std::size_t threads) const {
     return EditableMesh(mesh, nodes.curve_nodes, boundary_arcs(g, nodes), threads);
   }

@@ -184,6 +184,7 @@ class DeviceRun final : public IterationSteps {
   void begin_window(int first, const GlobalTimeStep& gm, int most);
   void end_window();
   void take_row();
+  void take_row_sums(const double* row);
   int window_length() const;
   BoundaryCounts host_boundary(double& skin_use);
   void bg_args(ArgSetter& a) {

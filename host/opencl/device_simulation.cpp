@@ -187,14 +187,9 @@ int DeviceRun<Real>::window_length() const {
   return length >= most ? most : std::max(1, static_cast<int>(length));
 }
 
-// The next row of the window into the iteration's sums, and (the window's last row only) the interior
-// nodes for the host's exact test (a second wait).
+// A history row's sums (the ring's layout, kernels/window.cl) into the iteration's.
 template <typename Real>
-void DeviceRun<Real>::take_row() {
-  const double* r = window_.row(window_next_++);
-  row_dt_ = r[kRingDt];
-  row_entries_ = list_entries_;
-  row_held_ = false;
+void DeviceRun<Real>::take_row_sums(const double* r) {
   sum_force_ = r[kRingForce];
   sum_kinetic_ = r[kRingKinetic];
   sum_moving_ = static_cast<std::size_t>(r[kRingMoving]);
@@ -204,6 +199,17 @@ void DeviceRun<Real>::take_row() {
   device_skin_use_ = r[kRingSkin];
   snap_ = BoundarySnapResult{static_cast<std::size_t>(r[kRingClamped]), static_cast<std::size_t>(r[kRingSnapBad]),
                              r[kRingSnapSkin]};
+}
+
+// The next row of the window into the iteration's sums, and (the window's last row only) the interior
+// nodes for the host's exact test (a second wait).
+template <typename Real>
+void DeviceRun<Real>::take_row() {
+  const double* r = window_.row(window_next_++);
+  row_dt_ = r[kRingDt];
+  row_entries_ = list_entries_;
+  row_held_ = false;
+  take_row_sums(r);
   const auto m = static_cast<std::size_t>(r[kRingCandidates]);
   const bool non_finite_move = r[kRingNonFinite] != 0.0;
   if (!boundary_nodes_.empty() && !non_finite_move) {  // boundary_snap wrote the next buffers
@@ -511,15 +517,7 @@ void DeviceRun<Real>::take_held_row() {
   row_dt_ = r[kRingDt];
   row_entries_ = h.entries;
   row_held_ = true;
-  sum_force_ = r[kRingForce];
-  sum_kinetic_ = r[kRingKinetic];
-  sum_moving_ = static_cast<std::size_t>(r[kRingMoving]);
-  within_ = static_cast<std::size_t>(r[kRingWithin]);
-  coincident_ = static_cast<std::size_t>(r[kRingCoincident]);
-  max_force_ = r[kRingMaxForce];
-  device_skin_use_ = r[kRingSkin];
-  snap_ = BoundarySnapResult{static_cast<std::size_t>(r[kRingClamped]), static_cast<std::size_t>(r[kRingSnapBad]),
-                             r[kRingSnapSkin]};
+  take_row_sums(r);
   if (h.snap_arcs >= 0) {
     boundary_stale_ = true;
     snap_arcs_ = h.snap_arcs;
