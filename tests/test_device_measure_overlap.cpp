@@ -180,3 +180,14 @@ TEST_CASE("a device lost while it runs ahead of the checks: the last good state 
   CHECK(failed > 0);
   fs::remove_all(whole);
 }
+
+TEST_CASE("PDMESH_MEASURE_OVERLAP other than 0, 1 or full is an input error naming it", "[opencl][cli]") {
+  const fs::path dir = fresh_path("overlap_bad_value");
+  const auto r = run_pdmesh(
+      "mesh '" PDMESH_SOURCE_DIR "/cases/circle_circle/case.toml' --out '" + dir.string() + "' --device opencl -q",
+      "PDMESH_MEASURE_OVERLAP=off");
+  INFO(r.output);
+  CHECK(r.status == 2);
+  CHECK(r.output.find("PDMESH_MEASURE_OVERLAP must be 0, 1 or full, got 'off'") != std::string::npos);
+  fs::remove_all(dir);
+}

@@ -339,13 +339,16 @@ class DeviceRun final : public IterationSteps {
   // they compete with the triangulation: there by choice only, PDMESH_MEASURE_OVERLAP=1 (also for
   // the tests on PoCL; =0 off anywhere). PDMESH_MEASURE_OVERLAP=full runs ahead to where the host must
   // act, however soon the measurement ends (tests: the same runs whatever the timing).
-  static int overlap_mode(bool cpu_device) {
+  enum class Overlap { Off, On, Full };
+  static Overlap overlap_mode(bool cpu_device) {
     const char* v = std::getenv("PDMESH_MEASURE_OVERLAP");
-    if (!v) return cpu_device ? 0 : 1;
-    if (std::strcmp(v, "full") == 0) return 2;
-    return std::strcmp(v, "0") == 0 ? 0 : 1;
+    if (!v) return cpu_device ? Overlap::Off : Overlap::On;
+    if (std::strcmp(v, "0") == 0) return Overlap::Off;
+    if (std::strcmp(v, "1") == 0) return Overlap::On;
+    if (std::strcmp(v, "full") == 0) return Overlap::Full;
+    throw InputError(fmt::format("the environment variable PDMESH_MEASURE_OVERLAP must be 0, 1 or full, got '{}'", v));
   }
-  const int overlap_ = overlap_mode(cpu_device_);
+  const Overlap overlap_ = overlap_mode(cpu_device_);
   std::thread ahead_thread_;
   std::atomic<bool> ahead_stop_{false};
   std::exception_ptr ahead_error_;
