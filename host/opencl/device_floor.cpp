@@ -1,8 +1,6 @@
 // The pair-force floor on an OpenCL device; see device_floor.hpp.
 #include "opencl/device_floor.hpp"
 
-#include <time.h>
-
 #include <algorithm>
 #include <chrono>
 #include <cstdint>
@@ -10,6 +8,7 @@
 
 #include <fmt/format.h>
 
+#include "core/cpu_time.hpp"
 #include "core/errors.hpp"
 #include "opencl/buffer.hpp"
 #include "opencl/cl_errors.hpp"
@@ -26,12 +25,6 @@ struct DeviceFloor::State {
 };
 
 namespace {
-
-double process_cpu_seconds() {
-  timespec t{};
-  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
-  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
-}
 
 // The floor's buffers and kernel in one precision.
 template <typename Real>

@@ -3,12 +3,12 @@
 
 #include <chrono>
 #include <cmath>
-#include <ctime>
 #include <memory>
 #include <utility>
 
 #include <fmt/format.h>
 
+#include "core/cpu_time.hpp"
 #include "core/errors.hpp"
 #include "core/free_memory.hpp"
 #include "core/interrupt.hpp"
@@ -22,13 +22,6 @@ double initial_dt(const NodeSet& nodes, const SimOptions& options) {
   if (!(dt > 0.0) || !std::isfinite(dt))
     throw InputError(fmt::format("simulation.dt_initial must be a positive number, got {}", dt));
   return options.resume ? options.resume->dt_initial : dt;
-}
-
-// CPU seconds of the calling thread (the stopping rule's measurement runs on the loop's thread).
-double thread_cpu_seconds() {
-  timespec ts{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
 }
 
 SimResult initial_result(const NodeSet& nodes, const SimOptions& options) {

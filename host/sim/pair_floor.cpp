@@ -2,8 +2,6 @@
 // force loop itself is in pair_floor_kernel.hpp (compiled by pair_floor_scalar.cpp and _vector.cpp).
 #include "sim/pair_floor.hpp"
 
-#include <time.h>
-
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -12,6 +10,7 @@
 
 #include <fmt/format.h>
 
+#include "core/cpu_time.hpp"
 #include "core/errors.hpp"
 #include "core/parallel.hpp"
 
@@ -30,12 +29,6 @@ void check_options(const FloorOptions& o) {
   if (!(o.lj_a > 0.0 && std::isfinite(o.lj_a)))
     throw InputError(fmt::format("pair floor: lj_a must be finite and > 0, got {}", o.lj_a));
   if (o.repeats < 1) throw InputError(fmt::format("pair floor: repeats must be >= 1, got {}", o.repeats));
-}
-
-double process_cpu_seconds() {
-  timespec t{};
-  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
-  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
 }
 
 // Times f() and keeps it in `best` when its wall time is the smallest so far.

@@ -22,12 +22,6 @@
 namespace pdmesh {
 namespace {
 
-double clock_seconds(clockid_t id) {
-  timespec ts{};
-  clock_gettime(id, &ts);
-  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
-}
-
 // Test hook (docs/robustness.md): PDMESH_TEST_SIGNAL_IN_PHASE=NAME[@SECONDS] sends this process a
 // SIGINT when the phase NAME begins (after SECONDS, from a thread, when given), and notes on stderr
 // the wall-clock time it did, so that a test or tools/bench/interrupt_latency.sh can stop a run in any
@@ -56,8 +50,6 @@ void signal_in_phase(const std::string& name) {
 
 }  // namespace
 
-double process_cpu_seconds() { return clock_seconds(CLOCK_PROCESS_CPUTIME_ID); }
-double thread_cpu_seconds() { return clock_seconds(CLOCK_THREAD_CPUTIME_ID); }
 double wall_seconds() {
   return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
 }

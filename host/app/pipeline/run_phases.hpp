@@ -17,6 +17,8 @@
 #include <utility>
 #include <vector>
 
+#include "core/cpu_time.hpp"  // process_cpu_seconds, thread_cpu_seconds: the phases' CPU times
+
 namespace pdmesh {
 
 struct PhaseTime {
@@ -29,10 +31,6 @@ struct PhaseTime {
   // RunPhases::wait_pictures while it waits.
   bool background = false;
 };
-
-// Seconds of the process's CPU time (all threads) and of the calling thread's.
-double process_cpu_seconds();
-double thread_cpu_seconds();
 
 class RunPhases {
  public:
