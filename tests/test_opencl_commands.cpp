@@ -21,6 +21,7 @@
 #include "app/bench/bench_command.hpp"
 #include "core/errors.hpp"
 #include "device_run_fixtures.hpp"
+#include "scoped_env.hpp"
 #include "opencl/buffer.hpp"
 #include "opencl/command_counts.hpp"
 #include "opencl/context.hpp"
@@ -30,33 +31,7 @@
 using namespace pdmesh;
 using namespace pdmesh::ocl;
 
-namespace {
-
-// Sets (or, with nullopt, removes) an environment variable for one scope, restoring the old value.
-class ScopedEnv {
- public:
-  ScopedEnv(const char* name, std::optional<std::string> value) : name_(name) {
-    if (const char* old = std::getenv(name)) old_ = old;
-    if (value)
-      ::setenv(name, value->c_str(), 1);
-    else
-      ::unsetenv(name);
-  }
-  ~ScopedEnv() {
-    if (old_)
-      ::setenv(name_, old_->c_str(), 1);
-    else
-      ::unsetenv(name_);
-  }
-  ScopedEnv(const ScopedEnv&) = delete;
-  ScopedEnv& operator=(const ScopedEnv&) = delete;
-
- private:
-  const char* name_;
-  std::optional<std::string> old_;
-};
-
-}  // namespace
+using pdmesh_test::ScopedEnv;
 
 TEST_CASE("the wrapper counts launches, transfers, device copies and waits", "[opencl]") {
   auto info = select_device("auto");

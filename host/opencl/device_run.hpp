@@ -11,7 +11,6 @@
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
-#include <cstring>
 #include <exception>
 #include <limits>
 #include <optional>
@@ -25,6 +24,7 @@
 #include "opencl/device_population.hpp"
 #include "opencl/device_simulation.hpp"
 #include "opencl/device_window.hpp"
+#include "opencl/measure_overlap.hpp"
 #include "opencl/step_program.hpp"
 #include "sim/boundary_handling.hpp"
 #include "sim/global_time_step.hpp"
@@ -335,20 +335,8 @@ class DeviceRun final : public IterationSteps {
   std::optional<SimState> failed_at_;                       // the last good state, where a failure computed it already
   bool rebuilt_ahead_ = false;  // the lists were rebuilt while the device ran ahead of a measurement
   // The overlapped measurement (run_ahead): while the host triangulates, the device runs on through
-  // windows and builds, not one window only. Where the host's threads are the device's (a CPU device)
-  // they compete with the triangulation: there by choice only, PDMESH_MEASURE_OVERLAP=1 (also for
-  // the tests on PoCL; =0 off anywhere). PDMESH_MEASURE_OVERLAP=full runs ahead to where the host must
-  // act, however soon the measurement ends (tests: the same runs whatever the timing).
-  enum class Overlap { Off, On, Full };
-  static Overlap overlap_mode(bool cpu_device) {
-    const char* v = std::getenv("PDMESH_MEASURE_OVERLAP");
-    if (!v) return cpu_device ? Overlap::Off : Overlap::On;
-    if (std::strcmp(v, "0") == 0) return Overlap::Off;
-    if (std::strcmp(v, "1") == 0) return Overlap::On;
-    if (std::strcmp(v, "full") == 0) return Overlap::Full;
-    throw InputError(fmt::format("the environment variable PDMESH_MEASURE_OVERLAP must be 0, 1 or full, got '{}'", v));
-  }
-  const Overlap overlap_ = overlap_mode(cpu_device_);
+  // windows and builds, not one window only (opencl/measure_overlap.hpp: PDMESH_MEASURE_OVERLAP).
+  const MeasureOverlap overlap_ = measure_overlap(cpu_device_);
   std::thread ahead_thread_;
   std::atomic<bool> ahead_stop_{false};
   std::exception_ptr ahead_error_;

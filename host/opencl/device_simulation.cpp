@@ -402,7 +402,7 @@ IterationStep DeviceRun<Real>::compute(int iteration, const GlobalTimeStep& gm) 
 // host must act: the tests' PDMESH_MEASURE_OVERLAP=full).
 template <typename Real>
 void DeviceRun<Real>::after_measure() {
-  if (overlap_ != Overlap::Full) ahead_stop_ = true;
+  if (overlap_ != MeasureOverlap::Full) ahead_stop_ = true;
 }
 
 template <typename Real>
@@ -414,7 +414,7 @@ void DeviceRun<Real>::join_ahead() {
 template <typename Real>
 void DeviceRun<Real>::run_ahead(int first, GlobalTimeStep gm) {
   const auto stopping = [this] {
-    return (overlap_ != Overlap::Full && ahead_stop_.load()) || (options_.stop && options_.stop->load());
+    return (overlap_ != MeasureOverlap::Full && ahead_stop_.load()) || (options_.stop && options_.stop->load());
   };
   try {
     for (int next = first;;) {
@@ -616,7 +616,7 @@ void DeviceRun<Real>::before_measure(int iteration, const GlobalTimeStep& gm) {
     // (last_good_state), and needs its carried moves whole even when the device fails later.
     if (with_momentum() && !rebuilt_ahead_) read(carried_, momentum_at_check_, 2 * n_);
     host_ahead_ = true;  // a failure from here on falls back on the saved state: the device moves on
-    if (overlap_ != Overlap::Off) {
+    if (overlap_ != MeasureOverlap::Off) {
       held_.clear();
       held_next_ = 0;
       ahead_builds_ = 0;

@@ -9,6 +9,7 @@
 #include <fmt/format.h>
 
 #include "core/errors.hpp"
+#include "core/input_file.hpp"
 #include "sim/boundary_handling.hpp"
 
 namespace pdmesh::ocl {
@@ -70,7 +71,7 @@ ForceLoop parse_force_loop(const std::string& text, const std::string& what) {
   if (text == "auto") return ForceLoop::Auto;
   if (text == "vector") return ForceLoop::Vector;
   if (text == "scalar") return ForceLoop::Scalar;
-  throw InputError(fmt::format("{} must be auto, vector or scalar, got '{}'", what, text));
+  throw InputError(fmt::format("{} must be auto, vector or scalar, got '{}'", what, quote_input(text)));
 }
 
 const char* force_loop_name(ForceLoop loop) {

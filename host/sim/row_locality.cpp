@@ -8,6 +8,8 @@
 
 #include <fmt/format.h>
 
+#include "core/errors.hpp"
+#include "core/input_file.hpp"
 #include "sim/reference/reference_backend.hpp"
 
 namespace pdmesh {
@@ -53,17 +55,28 @@ RowLocality row_locality(const NodeSet& nodes, double radius_factor) {
   return out;
 }
 
-void trace_row_locality(const char* when, const NodeSet& nodes) {
+std::optional<double> row_locality_factor() {
   const char* value = std::getenv("PDMESH_ROW_LOCALITY");
-  if (!value) return;
+  if (!value) return std::nullopt;
+  if (*value == '\0') return 2.7;
   char* end = nullptr;
-  double factor = std::strtod(value, &end);
-  if (end == value || !(factor > 0.0) || !std::isfinite(factor)) factor = 2.7;
-  const RowLocality r = row_locality(nodes, factor);
+  const double factor = std::strtod(value, &end);
+  if (end == value || *end != '\0' || !(factor > 0.0) || !std::isfinite(factor))
+    throw InputError(
+        fmt::format("the environment variable PDMESH_ROW_LOCALITY must be a positive number (a radius "
+                    "in q) or empty, got '{}'",
+                    quote_input(value)));
+  return factor;
+}
+
+void trace_row_locality(const char* when, const NodeSet& nodes) {
+  const std::optional<double> factor = row_locality_factor();
+  if (!factor) return;
+  const RowLocality r = row_locality(nodes, *factor);
   fmt::print(stderr,
              "row locality {}: {} nodes, {} row entries (radius {} q), mean |i - j| {:.1f}, within 64: {:.4f}, "
              "within 1024: {:.4f}\n",
-             when, nodes.size(), r.entries, factor, r.mean_distance, r.within_64, r.within_1024);
+             when, nodes.size(), r.entries, *factor, r.mean_distance, r.within_64, r.within_1024);
 }
 
 }  // namespace pdmesh

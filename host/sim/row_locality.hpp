@@ -3,6 +3,7 @@
 // the more of them lie in lines that nearby nodes already brought into the cache.
 #pragma once
 #include <cstdint>
+#include <optional>
 
 #include "nodes/node_set.hpp"
 
@@ -19,8 +20,12 @@ struct RowLocality {
 };
 RowLocality row_locality(const NodeSet& nodes, double radius_factor);
 
-// With PDMESH_ROW_LOCALITY set (to the radius factor; a value that is not a positive number means
-// 2.7, the best preset's cut-off 1.5 times 1 + skin 0.8): one line on stderr with row_locality,
+// PDMESH_ROW_LOCALITY's radius factor: nothing when unset, 2.7 (the best preset's cut-off 1.5 times
+// 1 + skin 0.8) when set but empty; a value that is not a positive finite number throws InputError
+// naming the variable and the value.
+std::optional<double> row_locality_factor();
+
+// With PDMESH_ROW_LOCALITY set: one line on stderr with row_locality at row_locality_factor(),
 // labelled `when`. Costs a neighbour search over every node, so it is a diagnosis only.
 void trace_row_locality(const char* when, const NodeSet& nodes);
 

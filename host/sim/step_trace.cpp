@@ -9,12 +9,21 @@
 
 #include <fmt/format.h>
 
+#include "core/errors.hpp"
+#include "core/input_file.hpp"
+
 namespace pdmesh {
 
 TraceRange TraceRange::from_environment() {
   TraceRange range;
   const char* text = std::getenv("PDMESH_SIM_TRACE");
-  if (text && std::sscanf(text, "%d-%d", &range.first, &range.last) != 2) range = TraceRange{};
+  if (!text) return range;
+  int consumed = 0;
+  if (std::sscanf(text, "%d-%d%n", &range.first, &range.last, &consumed) != 2 || text[consumed] != '\0' ||
+      range.first < 0 || range.last < range.first)
+    throw InputError(fmt::format(
+        "the environment variable PDMESH_SIM_TRACE must be FIRST-LAST (iterations, 0 <= FIRST <= LAST), got '{}'",
+        quote_input(text)));
   return range;
 }
 

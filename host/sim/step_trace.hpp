@@ -10,6 +10,8 @@ namespace pdmesh {
 
 struct TraceRange {
   int first = 0, last = -1;  // iterations to trace (inclusive); empty when last < first
+  // PDMESH_SIM_TRACE: empty when unset; a value other than FIRST-LAST with 0 <= FIRST <= LAST throws
+  // InputError naming the variable and the value.
   static TraceRange from_environment();
   bool covers(int iteration) const { return iteration >= first && iteration <= last; }
 };

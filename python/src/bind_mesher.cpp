@@ -14,6 +14,7 @@
 #include <nanobind/stl/string.h>
 #include <nanobind/stl/vector.h>
 
+#include "app/config/environment.hpp"
 #include "app/pipeline/backend_choice.hpp"
 #include "app/pipeline/layer_pipeline.hpp"
 #include "app/pipeline/mesh_pipeline.hpp"
@@ -34,6 +35,7 @@ class Mesher {
  public:
   Mesher(const CaseConfig& config, const std::string& out_dir, std::uint64_t max_nodes)
       : session_(std::make_shared<Session>()) {
+    check_environment();  // as the command: a malformed variable is refused before anything is read or written
     CaseConfig& c = session_->config;
     c = config;
     if (max_nodes > 0) c.max_nodes = max_nodes;

@@ -80,3 +80,11 @@ def test_device_and_limit_errors(rings):
     with pytest.raises(pdmesh.LimitError, match="more than --max-nodes 100;") as e:
         pdmesh.generate(rings, size=0.02, max_nodes=100)
     assert isinstance(e.value, pdmesh.InputError)
+
+
+def test_malformed_environment_variable_is_refused_before_anything_is_written(rings, tmp_path, monkeypatch):
+    monkeypatch.setenv("PDMESH_MEASURE_OVERLAP", "off")
+    out = tmp_path / "o"
+    with pytest.raises(pdmesh.InputError, match=re.escape("PDMESH_MEASURE_OVERLAP must be 0, 1 or full, got 'off'")):
+        pdmesh.Mesher(rings, out=out)
+    assert not out.exists()

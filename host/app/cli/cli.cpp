@@ -15,6 +15,7 @@
 #include <toml++/toml.h>
 
 #include "app/config/case_file.hpp"
+#include "app/config/environment.hpp"
 #include "app/pipeline/exit_codes.hpp"
 #include "app/bench/bench_command.hpp"
 #include "app/bench/whole_run_bench.hpp"
@@ -555,6 +556,7 @@ int run_command_line(int argc, const char* const* argv) {
       // --help and --version arrive here too, with exit code 0.
       return cli.app().exit(e) == 0 ? kExitOk : kExitInput;
     }
+    check_environment();
     return cli.run();
   } catch (const Interrupted&) {  // a stop request outside run_mesh's own handling
     fmt::print(stderr, "pdmesh: stopped\n");
