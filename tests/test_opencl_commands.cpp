@@ -25,38 +25,13 @@
 #include "opencl/command_counts.hpp"
 #include "opencl/context.hpp"
 #include "opencl/step_program.hpp"
+#include "scoped_env.hpp"
 #include "selftest_axpy.hpp"
 
 using namespace pdmesh;
 using namespace pdmesh::ocl;
+using pdmesh::test::ScopedEnv;
 
-namespace {
-
-// Sets (or, with nullopt, removes) an environment variable for one scope, restoring the old value.
-class ScopedEnv {
- public:
-  ScopedEnv(const char* name, std::optional<std::string> value) : name_(name) {
-    if (const char* old = std::getenv(name)) old_ = old;
-    if (value)
-      ::setenv(name, value->c_str(), 1);
-    else
-      ::unsetenv(name);
-  }
-  ~ScopedEnv() {
-    if (old_)
-      ::setenv(name_, old_->c_str(), 1);
-    else
-      ::unsetenv(name_);
-  }
-  ScopedEnv(const ScopedEnv&) = delete;
-  ScopedEnv& operator=(const ScopedEnv&) = delete;
-
- private:
-  const char* name_;
-  std::optional<std::string> old_;
-};
-
-}  // namespace
 
 TEST_CASE("the wrapper counts launches, transfers, device copies and waits", "[opencl]") {
   auto info = select_device("auto");
