@@ -209,9 +209,10 @@ void rule_sums_group(const int groups, __global const REAL* partials, const int 
   double force = 0.0, kinetic = 0.0, max_force = 0.0, skin = 0.0;
   long moving = 0, within = 0, coincident = 0;
   for (int base = 0; base < groups; base += RULE_CHUNK) {
-    for (int j = l; j < RULE_CHUNK; j += WG_SIZE) {
-      const int g = base + j;
-      if (g < groups) {
+#pragma unroll
+    for (int k = 0; k < (RULE_CHUNK + WG_SIZE - 1) / WG_SIZE; ++k) {  // the chunk's loads issued before their use
+      const int j = k * WG_SIZE + l, g = base + j;
+      if (j < RULE_CHUNK && g < groups) {
         __global const REAL* p = partials + STEP_PARTIALS * g;
         stage[j] = (double)p[0];
         stage[RULE_CHUNK + j] = (double)p[1];
@@ -225,7 +226,8 @@ void rule_sums_group(const int groups, __global const REAL* partials, const int 
     barrier(CLK_LOCAL_MEM_FENCE);
     if (l == 0) {
       const int n = groups - base < RULE_CHUNK ? groups - base : RULE_CHUNK;
-      for (int j = 0; j < n; ++j) {
+#pragma unroll 8
+      for (int j = 0; j < n; ++j) {  // unrolled: the local loads run ahead of the two chains of additions
         force += stage[j];
         kinetic += stage[RULE_CHUNK + j];
       }
