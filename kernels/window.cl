@@ -184,24 +184,25 @@ void iteration_rule_body(const int groups, __global const REAL* partials, const 
 }
 
 #if PDMESH_RULE_GROUP
-// The sums by a whole work-group (the GPU shape, PDMESH_RULE_GROUP): one work-item adding every group's
-// partials waits for its loads and converts and compares 7 values per group in one dependent stream
-// (at millions of nodes ten times the step itself). Here the work-items load RULE_CHUNK groups at a
-// time (RULE_CHUNK / WG_SIZE each, adjacent work-items adjacent groups), keep the counts and maxima of the groups
-// they loaded, and stage |F| and kinetic energy in local memory; work-item 0 adds those two in group
-// order, two independent additions per group. The counts are integers and the maxima are of +0.0 and
-// whatever the comparison lets past it (never -0.0 or NaN), so the per-work-item results combined give
-// the same values in any order; the two double sums are the same additions in the same order as
-// rule_sums_serial's: the same bits.
 // Local memory of the group-wide rule, declared by its kernels.
-#define RULE_LOCALS                             \
-  __local double rule_stage[2 * RULE_CHUNK];   \
-  __local long rule_counts[5 * WG_SIZE];       \
-  __local double rule_maxima[3 * WG_SIZE];     \
+#define RULE_LOCALS                          \
+  __local double rule_stage[2 * RULE_CHUNK]; \
+  __local long rule_counts[5 * WG_SIZE];     \
+  __local double rule_maxima[3 * WG_SIZE];   \
   __local int rule_row
 #define RULE_LOCALS_PASS rule_stage, rule_counts, rule_maxima, &rule_row
 #define RULE_MAX(a, b) ((a) < (b) ? (b) : (a))
-// Called by every work-item of the group (it has barriers).
+// The sums by a whole work-group (the GPU shape, PDMESH_RULE_GROUP): one work-item adding every group's
+// partials waits for its loads and converts and compares 7 values per group in one dependent stream
+// (at millions of nodes ten times the step itself). Here the work-items load RULE_CHUNK groups at a
+// time (RULE_CHUNK / WG_SIZE each, adjacent work-items adjacent groups), keep the counts and maxima
+// of the groups they loaded, and stage |F| and kinetic energy in local memory; work-item 0 adds those
+// two in group order, two independent additions per group. The counts are integers and the maxima
+// are of +0.0 and whatever the comparison lets past it (never -0.0 or NaN), so the per-work-item
+// results combined give the same values in any order; the two double sums are the same additions in
+// the same order as rule_sums_serial's: the same bits.
+// Called by every work-item of the group (it has barriers). Data live across its barriers stays a
+// few scalars per work-item: PoCL 3.1 keeps such data per work-item on its worker thread's stack.
 void rule_sums_group(const int groups, __global const REAL* partials, const int snap_entries,
                      __global REAL* snap_partials, RuleSums* sums, __local double* stage, __local long* counts,
                      __local double* maxima) {

@@ -32,7 +32,6 @@ using namespace pdmesh;
 using namespace pdmesh::ocl;
 using pdmesh::test::ScopedEnv;
 
-
 TEST_CASE("the wrapper counts launches, transfers, device copies and waits", "[opencl]") {
   auto info = select_device("auto");
   REQUIRE(info.has_value());
