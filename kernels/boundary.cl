@@ -190,6 +190,24 @@ __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void boundary_snap
   __local int halt;
   boundary_snap_body(values, &halt, SNAP_PASS);  // halted before this iteration: nothing (the rule neither)
   barrier(CLK_GLOBAL_MEM_FENCE);                 // this group's partials (work-items l < BOUNDARY_PARTIALS) are written
+#if PDMESH_RULE_GROUP
+  // The whole last group runs the rule (window.cl, iteration_rule_group): work-item 0's count decides
+  // for the group, through local memory.
+  RULE_LOCALS;
+  __local int last;
+  if (get_local_id(0) == 0) {
+    mem_fence(CLK_GLOBAL_MEM_FENCE);
+    last = atomic_inc(&step_counters[COUNTER_SNAP_DONE]) == (int)get_num_groups(0) - 1;
+    if (last) {
+      mem_fence(CLK_GLOBAL_MEM_FENCE);  // every other group's partials were written before its count
+      atomic_xchg(&step_counters[COUNTER_SNAP_DONE], 0);
+    }
+  }
+  barrier(CLK_LOCAL_MEM_FENCE | CLK_GLOBAL_MEM_FENCE);
+  if (last)  // the same for the whole group
+    iteration_rule_group(groups, step_partials, BOUNDARY_PARTIALS * (int)get_num_groups(0), partials, step_counters,
+                         state, ring, ring_rows, dt2_out, RULE_LOCALS_PASS);
+#else
   if (get_local_id(0) == 0) {
     mem_fence(CLK_GLOBAL_MEM_FENCE);
     if (atomic_inc(&step_counters[COUNTER_SNAP_DONE]) == (int)get_num_groups(0) - 1) {
@@ -199,5 +217,6 @@ __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void boundary_snap
                           state, ring, ring_rows, dt2_out);
     }
   }
+#endif
 }
 #endif

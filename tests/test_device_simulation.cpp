@@ -18,6 +18,7 @@
 #include "mesh/quality.hpp"
 #include "mesh/triangulate_nodes.hpp"
 #include "device_run_fixtures.hpp"
+#include "scoped_env.hpp"
 
 using namespace pdmesh;
 using pdmesh::test::Case;
@@ -134,6 +135,50 @@ TEST_CASE("device run: windows with the device's time-step rule and the host's r
   }
   // The rule changed dt in these iterations (else the comparison of dt would say little).
   CHECK(host.result.state.time_step.dt != c.config.simulation.dt_for(c.config.init.method));
+}
+
+// The GPU shape's rule (ForceLoop::Scalar, PDMESH_RULE_GROUP: the whole last group of boundary_snap_rule,
+// or iteration_rule launched as one group) sums the same partials as the host's rule does (devices
+// without cl_khr_fp64: DeviceWindow::complete, one after the other in group order), in double and float:
+// the same history bit for bit. Chunks of 8 step groups (PDMESH_TEST_RULE_CHUNK) so that these small
+// runs stage many chunks, the last one partial, as millions of nodes do with the default chunk.
+TEST_CASE("device run: the rule by a whole work-group sums as the host's rule, bit for bit", "[opencl][device_sim]") {
+  Case held = test::load_case("circle_circle");  // no boundary nodes: iteration_rule
+  for (auto& k : held.initial.kind)
+    if (k == NodeKind::Boundary) k = NodeKind::Fixed;
+  const Case with_boundary = test::load_case("naca0012");  // boundary_snap_rule's last group
+  const pdmesh_test::ScopedEnv chunk("PDMESH_TEST_RULE_CHUNK", "8");
+  for (const Case* c : {&with_boundary, static_cast<const Case*>(&held)}) {
+    INFO((c == &held ? "circle_circle without boundary nodes" : "naca0012"));
+    REQUIRE(c->initial.size() > 3 * 8 * ocl::kStepWorkGroup);  // 3 chunks at least
+    for (const bool use_float : {false, true}) {
+      INFO((use_float ? "float" : "double"));
+      SimOptions o = options_for(*c, 20);
+      o.window_seconds = 0.0;  // windows as long as the ring, however slow the device (Oclgrind)
+      const Outcome group = test::run_from(*c, c->initial, o, true, use_float, ocl::ForceLoop::Scalar);
+      const Outcome host_rule = [&] {
+        const pdmesh_test::ScopedEnv host("PDMESH_TEST_HOST_TIME_STEP_RULE", "1");
+        return test::run_from(*c, c->initial, o, true, use_float, ocl::ForceLoop::Scalar);
+      }();
+      CHECK(group.stats.windows < 20);  // the device's rule ran
+      CHECK(host_rule.stats.windows == 20);
+      require_identical_nodes(host_rule.nodes, group.nodes);
+      REQUIRE(group.result.history.size() == host_rule.result.history.size());
+      for (std::size_t k = 0; k < group.result.history.size(); ++k) {
+        const HistoryRow &h = host_rule.result.history[k], &d = group.result.history[k];
+        INFO("iteration " << h.iteration);
+        CHECK(d.average_force == h.average_force);
+        CHECK(d.average_kinetic == h.average_kinetic);
+        CHECK(d.max_force == h.max_force);
+        CHECK(d.dt_gm == h.dt_gm);
+        CHECK(d.snapped == h.snapped);
+        CHECK(d.clamped == h.clamped);
+        CHECK(d.interior == h.interior);
+      }
+      CHECK(group.result.stats.pairs_within == host_rule.result.stats.pairs_within);
+      CHECK(group.result.state.time_step.dt == host_rule.result.state.time_step.dt);
+    }
+  }
 }
 
 // With boundary nodes the rule runs in boundary_snap_rule's last work-group; without any (here every

@@ -95,7 +95,8 @@ void DeviceWindow<Real>::enqueue_rule(StepProgram& program, std::size_t groups, 
   ArgSetter a(program.iteration_rule, "iteration_rule");
   a(static_cast<cl_int>(groups))(partials)(static_cast<cl_int>(snap_entries))(
       snap_partials)(counters)(state_)(ring_)(static_cast<cl_int>(kWindowLength))(dt2_);
-  launch(ctx_.queue(), program.iteration_rule, "iteration_rule", 1, 1);
+  const std::size_t items = rule_by_group(program.force_loop) ? program.work_group : 1;
+  launch(ctx_.queue(), program.iteration_rule, "iteration_rule", items, items);
 }
 
 template <typename Real>

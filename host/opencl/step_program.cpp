@@ -67,6 +67,15 @@ bool injected_build_failure() {
 
 }  // namespace
 
+int rule_chunk() {
+  const char* v = std::getenv("PDMESH_TEST_RULE_CHUNK");
+  if (!v) return kRuleChunk;
+  const long chunk = std::strtol(v, nullptr, 10);
+  if (chunk < 1 || chunk > kRuleChunk)
+    throw InputError(fmt::format("PDMESH_TEST_RULE_CHUNK must be 1 to {}, got '{}'", kRuleChunk, v));
+  return static_cast<int>(chunk);
+}
+
 ForceLoop parse_force_loop(const std::string& text, const std::string& what) {
   if (text == "auto") return ForceLoop::Auto;
   if (text == "vector") return ForceLoop::Vector;
@@ -113,6 +122,8 @@ std::map<std::string, std::string> step_program_defines(Precision precision, std
   // The GPU shape refreshes clearance budgets in their own kernel (refresh_budgets): device_step keeps
   // fewer registers. The CPU shape keeps it inline: a launch costs more there than the registers.
   d.emplace("PDMESH_REFRESH_KERNEL", loop == ForceLoop::Scalar ? "1" : "0");
+  d.emplace("PDMESH_RULE_GROUP", rule_by_group(loop) ? "1" : "0");
+  d.emplace("RULE_CHUNK", std::to_string(rule_chunk()));
   d.emplace("PDMESH_GRID_LEVELS", std::to_string(kBinLevels));
   d.emplace("GRID_NODE_BITS", std::to_string(kGridNodeBits));
   d.emplace("STEP_PARTIALS", std::to_string(kStepPartials));

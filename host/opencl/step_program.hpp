@@ -40,6 +40,16 @@ const char* force_loop_name(ForceLoop loop);
 // Never Auto: `requested` unless Auto, then PDMESH_FORCE_LOOP, then the device's type.
 ForceLoop resolve_force_loop(ForceLoop requested, const std::string& device_type);
 
+// The device's time-step rule (kernels/window.cl) by a whole work-group (the Scalar shape, for GPUs:
+// PDMESH_RULE_GROUP, iteration_rule launched as one group) or by one work-item (the Vector shape: a CPU
+// device runs a group's work-items one after the other, so the group's shape only adds work there).
+inline bool rule_by_group(ForceLoop loop) { return loop == ForceLoop::Scalar; }
+// Step groups the group-wide rule loads at a time (RULE_CHUNK; each work-item kRuleChunk / work_group
+// of them): kRuleChunk, or PDMESH_TEST_RULE_CHUNK (1 to kRuleChunk) so that tests' small runs span
+// several chunks.
+inline constexpr int kRuleChunk = 512;
+int rule_chunk();
+
 // The program StepProgram builds, as data (tools/check/kernel_registers.sh compiles the same text for GPU
 // targets): its kernel files in build order, and its defines (precision_defines plus
 // PDMESH_FORCE_LOOP_VECTOR / PDMESH_FORCE_LOOP_SCALAR, one of them 1). `loop` must not be Auto.

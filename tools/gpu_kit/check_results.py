@@ -106,6 +106,9 @@ def summary(r):
     dev = r.get("device") or {}
     smi = r.get("nvidia_smi") or {}
     print(f"mode {r.get('mode')}, complete {r.get('complete')}, {r.get('wall_s')} s of {r.get('budget_s')}")
+    # The tree the kit's binaries were built from: a run's figures and test counts belong to that commit only.
+    kit = r.get("kit") or {}
+    print(f"kit: commit {kit.get('commit')}, uncommitted changes {kit.get('uncommitted_changes')}, built {kit.get('built')}")
     print(f"device: {dev.get('spec')} {dev.get('description') or ''} check: {dev.get('check')}; "
           f"bit-identical in double: {dev.get('bit_identical_double')}" + (f"; nvidia-smi: {smi.get('query')}" if smi else ""))
     if not dev.get("found"):
