@@ -47,7 +47,8 @@ const std::vector<BadValue>& bad_values() {
       {"PDMESH_KERNEL_PROFILE", "/nonexistent-pdmesh-folder/k.tsv",
        "PDMESH_KERNEL_PROFILE names '/nonexistent-pdmesh-folder/k.tsv', whose folder '/nonexistent-pdmesh-folder' "
        "does not exist"},
-      {"PDMESH_ROW_LOCALITY", "wide", "PDMESH_ROW_LOCALITY must be a positive number (a radius in q) or empty, got 'wide'"},
+      {"PDMESH_ROW_LOCALITY", "wide",
+       "PDMESH_ROW_LOCALITY must be a positive number (a radius in q) or empty, got 'wide'"},
       {"PDMESH_ROW_LOCALITY", "-1", "got '-1'"},
       {"PDMESH_ROW_LOCALITY", "2.7q", "got '2.7q'"},
       {"PDMESH_SIM_TRACE", "5", "PDMESH_SIM_TRACE must be FIRST-LAST (iterations, 0 <= FIRST <= LAST), got '5'"},

@@ -26,9 +26,10 @@ void check_kernel_profile_file() {
   const std::filesystem::path folder = file.has_parent_path() ? file.parent_path() : std::filesystem::path(".");
   std::error_code ec;
   if (!std::filesystem::is_directory(folder, ec))
-    throw InputError(fmt::format("the environment variable PDMESH_KERNEL_PROFILE names '{}', whose folder '{}' does "
-                                 "not exist",
-                                 quote_input(v), quote_input(folder.string())));
+    throw InputError(
+        fmt::format("the environment variable PDMESH_KERNEL_PROFILE names '{}', whose folder '{}' does "
+                    "not exist",
+                    quote_input(v), quote_input(folder.string())));
   if (std::filesystem::is_directory(file, ec))
     throw InputError(fmt::format(
         "the environment variable PDMESH_KERNEL_PROFILE names '{}', a folder: it must name the file to write",
