@@ -192,6 +192,13 @@ TEST_CASE("out-of-range values are rejected with the value", "[app][case]") {
   CHECK(error_of(base + "[init]\nlattice_levels = 2.5\n").find("init.lattice_levels") != std::string::npos);
   CHECK(parse_case_text(base + "[init]\nlattice_levels = 8\n", kCase).init.lattice_levels == 8);
   CHECK(parse_case_text(base, kCase, {parse_set_option("init.lattice_levels=0")}).init.lattice_levels == 0);
+  CHECK(error_of(base + "[init]\nhybrid_spread = -0.1\n").find("init.hybrid_spread must be in [0, 1], got -0.1") !=
+        std::string::npos);
+  CHECK(error_of(base + "[init]\nhybrid_spread = 1.5\n").find("init.hybrid_spread must be in [0, 1], got 1.5") !=
+        std::string::npos);
+  CHECK(error_of(base + "[init]\nhybrid_spread = \"wide\"\n").find("init.hybrid_spread") != std::string::npos);
+  CHECK(parse_case_text(base + "[init]\nhybrid_spread = 0.1\n", kCase).init.hybrid_spread == 0.1);
+  CHECK(parse_case_text(base, kCase, {parse_set_option("init.hybrid_spread=0.05")}).init.hybrid_spread == 0.05);
   CHECK(error_of(base + "[simulation]\ndevice = \"cuda\"\n").find("got 'cuda'") != std::string::npos);
   CHECK(error_of(base + "[simulation]\ndevice = \"opencl:1\"\n").find("got 'opencl:1'") != std::string::npos);
   CHECK(error_of(base + "[simulation]\nprecision = \"half\"\n").find("got 'half'") != std::string::npos);
@@ -342,6 +349,7 @@ TEST_CASE("the best preset is long with momentum, a compressed schedule and rule
     CHECK(c->simulation.stop_min == 150);
     CHECK(c->simulation.stop_angle == 3.0);
     CHECK(c->init.lattice_levels == 4);
+    CHECK(c->init.hybrid_spread == 0.2);
     CHECK(c->cleanup.min_angle == 40.0);
     CHECK(c->cleanup.iterations == 32);
     CHECK(c->spacing.relax_scale == 1.09);
@@ -358,6 +366,7 @@ TEST_CASE("the best preset is long with momentum, a compressed schedule and rule
     CHECK(c->simulation.stop_min == 400);
     CHECK(c->simulation.stop_angle == 0.25);
     CHECK(c->init.lattice_levels == 0);
+    CHECK(c->init.hybrid_spread == 0.05);
     CHECK(c->cleanup.min_angle == 30.0);
     CHECK(c->cleanup.iterations == 16);
     CHECK(c->spacing.relax_scale == 1.0);

@@ -250,3 +250,54 @@ TEST_CASE("hybrid fill: init.lattice_levels puts the lattice quads on that many 
           interior_points(make_initial_distribution(tree, spacing, plain).nodes));
   }
 }
+
+namespace {
+
+// The share of the interior nodes at least `far` from the boundary whose nearest node lies at a spacing of
+// the lattice levels 2^(k / levels): the nodes that started on one of the level lattices.
+double share_on_levels(const Geometry& g, const NodeSet& nodes, double far, int levels) {
+  int on = 0, all = 0;
+  for (std::size_t i = 0; i < nodes.size(); ++i) {
+    if (nodes.kind[i] != NodeKind::Interior || fixtures::brute_distance(g, nodes.x[i]) < far) continue;
+    double d = HUGE_VAL;
+    for (std::size_t j = 0; j < nodes.size(); ++j)
+      if (j != i) d = std::min(d, dist(nodes.x[i], nodes.x[j]));
+    const double k = levels * std::log2(d);
+    on += std::fabs(k - std::round(k)) <= 1e-9;
+    ++all;
+  }
+  return all > 0 ? static_cast<double>(on) / all : NAN;
+}
+
+}  // namespace
+
+TEST_CASE("hybrid fill: init.hybrid_spread sets how flat q must be around a lattice quad", "[init][hybrid]") {
+  // q grows from 0.5 to 0.9 across the square: by about 10 % over a quad and its two neighbours, more than the
+  // factor 1.05 allows but within 1.2.
+  const Geometry g = fixtures::square(20.0, 30);
+  const GeometryTree tree(g);
+  const ExpressionSpacing spacing("0.5 + 0.02 * x");
+  const auto options = [](double spread) {
+    InitOptions o{InitMethod::Hybrid, 1, {}};
+    o.density = 1.25;
+    o.density_where = DensityWhere::Flat;
+    o.lattice_levels = 4;
+    o.hybrid_spread = spread;
+    return o;
+  };
+  const double far = 4.0;  // beyond the lattice test's clearance (2 q plus a quad's half-diagonal)
+  const double narrow =
+      share_on_levels(g, make_initial_distribution(tree, spacing, options(kHybridSpread)).nodes, far, 4);
+  const double wide = share_on_levels(g, make_initial_distribution(tree, spacing, options(0.2)).nodes, far, 4);
+  INFO("share of far nodes on a level lattice: spread 0.05 " << narrow << ", 0.2 " << wide);
+  CHECK(narrow < 0.1);
+  CHECK(wide > 0.8);
+  SECTION("the default is the factor 1.05, and the key applies without a density too") {
+    InitOptions plain{InitMethod::Hybrid, 1, {}};
+    CHECK(plain.hybrid_spread == kHybridSpread);
+    InitOptions wider = plain;
+    wider.hybrid_spread = 0.2;
+    CHECK(interior_points(make_initial_distribution(tree, spacing, wider).nodes) !=
+          interior_points(make_initial_distribution(tree, spacing, plain).nodes));
+  }
+}

@@ -188,6 +188,7 @@ InitialDistribution make_initial_distribution(const GeometryTree& tree, const Sp
   fill.density = options.method == InitMethod::Hybrid ? options.density : 0.0;
   fill.density_where = options.density_where;
   fill.lattice_levels = options.lattice_levels;
+  fill.hybrid_spread = options.hybrid_spread;
   InterruptPoll poll(1024);
   for (int k : init.kept()) {
     poll.tick();

@@ -22,7 +22,8 @@ namespace pdmesh {
 enum class InitMethod { Structured, Random, Hexagonal, Hybrid };
 
 // Where the hybrid fill's density (InitOptions::density) applies: every quad wholly inside the domain,
-// or only those where q is flat around the quad (the lattice test's spread, without its clearance).
+// or only those where q is flat around the quad (within kHybridSpread, the lattice test's default spread,
+// without its clearance).
 enum class DensityWhere { Inside, Flat };
 
 // "structured", "random", "hexagonal" or "hybrid".
@@ -35,6 +36,10 @@ inline constexpr double kInitBoundaryClearance = 0.5;
 // The most levels per octave InitOptions::lattice_levels may ask (finer levels than 1.1 % apart hold no
 // lattice across a graded field anyway).
 inline constexpr int kMaxLatticeLevels = 64;
+// The hybrid fill's spread of q around a quad (a factor 1 + this over its centre and its eight same-sized
+// neighbours' centres) within which q counts as flat: for the lattice test unless InitOptions::hybrid_spread
+// says otherwise, and for DensityWhere::Flat.
+inline constexpr double kHybridSpread = 0.05;
 
 struct InitOptions {
   InitMethod method = InitMethod::Structured;
@@ -55,6 +60,10 @@ struct InitOptions {
   // with either density_where; 0 = 8 with Inside, and with Flat the lattice quads keep the patterns'
   // density (docs/initialization.md, "The lattice's levels").
   int lattice_levels = 0;
+  // The hybrid fill's lattice test: a quad clear of the boundary takes the lattice where q at its centre and
+  // at its eight same-sized neighbours' centres spans at most a factor 1 + hybrid_spread
+  // (docs/initialization.md, "The lattice test's spread").
+  double hybrid_spread = kHybridSpread;
   // Compute InitialDistribution::estimate (it costs more than the fill itself: 4x4 spacing samples
   // per leaf and more near the boundary). The mesh command already has it from its limit check.
   bool with_estimate = true;

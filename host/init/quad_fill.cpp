@@ -29,10 +29,9 @@ constexpr double kHexLevelsPerOctave = 8.0;
 // elsewhere (docs/initialization.md, "The hybrid fill", with the shares of quads that pass on the
 // bench annuli): in a quad at least kHybridClearance q beyond its half-diagonal from the boundary
 // (the lattice's rows meet a curved boundary as grain boundaries the relaxation has to anneal), where
-// q at its centre and at its eight neighbours' centres spans at most a factor 1 + kHybridSpread (where
-// q is graded more, neighbouring quads take lattices of other levels that meet with arbitrary phase).
+// q at its centre and at its eight neighbours' centres spans at most a factor 1 + InitOptions::hybrid_spread
+// (where q is graded more, neighbouring quads take lattices of other levels that meet with arbitrary phase).
 constexpr double kHybridClearance = 2.0;
-constexpr double kHybridSpread = 0.05;
 
 // With a density d (InitOptions::density) the hybrid fill starts every quad wholly inside the domain
 // at d times the hexagonal-packing estimate of its part beyond the keep rule's clearance: the
@@ -82,7 +81,7 @@ void place_structured(FillContext& ctx, const Box& b, int count, bool known_insi
 }
 
 // The smallest and largest q of a quad's centre and its eight same-sized neighbours' centres: q is flat
-// around the quad where they lie within a factor 1 + kHybridSpread; the quad lies on a plateau of q where
+// around the quad where they lie within a factor 1 + a spread; the quad lies on a plateau of q where
 // its centre's q is one of the two (inside a region of constant size up to its rim, or on a capped far
 // field; on a graded field the centre's q lies strictly between its neighbours').
 struct QSpan {
@@ -244,15 +243,20 @@ void fill_quad(FillContext& ctx, const Box& b, const std::vector<int>& segments,
   // The centre's distance to the boundary, found once: the hybrid's test reads it, and so does the keep
   // rule's bound when the quad gets more than one candidate.
   const double centre_distance = known_inside && hybrid ? ctx.tree.closest(ctx.centre).distance : -1.0;
-  // Whether q is flat around the quad, computed at most once: the lattice test and the density's
-  // DensityWhere::Flat both ask, and the clearance decides first whether the lattice test needs it.
+  // q's span around the quad, computed at most once: the lattice test and the density's DensityWhere::Flat
+  // both ask, and the clearance decides first whether the lattice test needs it.
   std::optional<QSpan> span;
-  const auto flat = [&] {
+  const auto around = [&]() -> const QSpan& {
     if (!span) span = q_span_around(ctx, b, q_mid);
-    return span->within(kHybridSpread);
+    return *span;
   };
+  // DensityWhere::Flat keeps the factor 1.05 whatever the lattice test's spread: a wider one would give the
+  // density's targets to graded pattern quads next to the boundary, whose patterns already hold the graded
+  // average (below).
+  const auto flat = [&] { return around().within(kHybridSpread); };
   const bool lattice = ctx.method == InitMethod::Hexagonal ||
-                       (hybrid && known_inside && hybrid_clear_of_boundary(b, q_mid, centre_distance) && flat());
+                       (hybrid && known_inside && hybrid_clear_of_boundary(b, q_mid, centre_distance) &&
+                        around().within(ctx.state->hybrid_spread));
   const int count = ctx.method == InitMethod::Random ? random_count(ratio)
                     : lattice                        ? static_cast<int>(std::ceil(ratio))
                                                      : structured_count(ratio);

@@ -50,7 +50,8 @@ struct FillState {
   LatticePoints lattice;
   double density = 0.0;
   DensityWhere density_where = DensityWhere::Inside;
-  int lattice_levels = 0;  // InitOptions::lattice_levels
+  int lattice_levels = 0;                // InitOptions::lattice_levels
+  double hybrid_spread = kHybridSpread;  // InitOptions::hybrid_spread
   double shortfall = 0.0;
 };
 

@@ -268,8 +268,8 @@ const std::vector<std::string>& boundary_keys() {
 
 const std::vector<std::string>& init_keys() {
   static const std::vector<std::string> keys = {
-      "init.method",        "init.seed",           "init.total", "init.density",
-      "init.density_where", "init.lattice_levels", "init.file",
+      "init.method",        "init.seed",           "init.total",         "init.density",
+      "init.density_where", "init.lattice_levels", "init.hybrid_spread", "init.file",
   };
   return keys;
 }

@@ -175,6 +175,8 @@ struct CaseConfig {
     DensityWhere density_where = DensityWhere::Inside;
     // The levels per octave of its lattice on q's levels (InitOptions::lattice_levels): 0 = the fill's own.
     int lattice_levels = 0;
+    // The hybrid fill's lattice test: q flat within a factor 1 + this around a quad (InitOptions::hybrid_spread).
+    double hybrid_spread = kHybridSpread;
     // The warm start: a node or mesh file whose interior points are the initial interior nodes
     // (init/warm_points.hpp, init/metric_fill.hpp warm_fill); empty: the usual fill.
     std::filesystem::path file;

@@ -212,6 +212,12 @@ void read_init_section(const Reader& r, const toml::table& root, CaseConfig& c) 
              fmt::format("init.lattice_levels must be 0 or in [1, {}], got {}", kMaxLatticeLevels, v));
     c.init.lattice_levels = static_cast<int>(v);
   }
+  if (const toml::node* n = find(root, "init", "hybrid_spread")) {
+    const double v = r.number("init.hybrid_spread", *n);
+    if (!(v >= 0.0 && v <= 1.0))
+      r.fail("init.hybrid_spread", n, fmt::format("init.hybrid_spread must be in [0, 1], got {}", v));
+    c.init.hybrid_spread = v;
+  }
   if (const toml::node* n = find(root, "init", "file")) {
     const std::string f = r.string("init.file", *n);
     std::string ext = fs::path(f).extension().string();

@@ -32,6 +32,8 @@ constexpr double kBestCleanupSettle = 1e-6;
 // about 1.21 on a graded field; 1.25 also brings rods_fine, whose lattice quads keep the patterns' 1.05,
 // within 1 +- 0.03 (docs/initialization.md, "The hybrid fill's density").
 constexpr double kBestDensity = 1.25;
+// The best preset's init.hybrid_spread: measured, see apply_momentum_schedule.
+constexpr double kBestHybridSpread = 0.2;
 // The best preset's spacing.background_min_side, in units of the smallest corner q: inside the domain the
 // cells still failing the interpolation test below q/2 straddle the jumps of eq. 3.6 (the rays where a
 // curve's closest segment changes to one of another length), which no cell size resolves. Between q/4 and
@@ -103,6 +105,11 @@ void apply_momentum_schedule(CaseConfig& c) {
   // 0.033 against 0.079 with the patterns' band-dependent density); those on a plateau of q keep the
   // patterns' density (docs/initialization.md, "The lattice's levels").
   c.init.lattice_levels = 4;
+  // A quad clear of the boundary takes the lattice where q spans at most a factor 1.2 around it: 1.05 over
+  // three quads is relative to the quads' size and held for no quad of annulus_100k and 38 % of
+  // annulus_250k's, which then started far from equilibrium and ran 450 and 500 iterations (250 and 250 with
+  // 1.2; docs/initialization.md, "The lattice test's spread").
+  c.init.hybrid_spread = kBestHybridSpread;
   // Relaxed at kBestRelaxScale x q, the lattice's edges come out at q (mean edge/q 0.91 at 1; docs/spacing.md,
   // "The node count").
   c.spacing.relax_scale = preset_relax_scale(Preset::Best, c.init.method);
@@ -135,6 +142,7 @@ void apply_long_schedule(CaseConfig& c) {
   c.init.density = long_values.init.density;
   c.init.density_where = long_values.init.density_where;
   c.init.lattice_levels = long_values.init.lattice_levels;
+  c.init.hybrid_spread = long_values.init.hybrid_spread;
   c.spacing.background_min_side = long_values.spacing.background_min_side;
 }
 

@@ -394,6 +394,7 @@ InitialDistribution make_initial(const CaseConfig& config, const MeshInputs& inp
   options.density = config.init.density;
   options.density_where = config.init.density_where;
   options.lattice_levels = config.init.lattice_levels;
+  options.hybrid_spread = config.init.hybrid_spread;
   if (config.init.total > 0) options.total = static_cast<std::size_t>(config.init.total);
   options.with_estimate = false;  // check_node_limit computed it just before
   options.boundary = boundary.nodes ? &*boundary.nodes : nullptr;

@@ -153,6 +153,8 @@ void add_simulation_identity(const CaseConfig& config, Identity& keys) {
     keys.emplace_back("init.density_where", "flat");
   if (config.init.density != 0.0 && config.init.lattice_levels != 0)
     keys.emplace_back("init.lattice_levels", fmt::format("{}", config.init.lattice_levels));
+  if (config.init.method == InitMethod::Hybrid && config.init.hybrid_spread != kHybridSpread)
+    keys.emplace_back("init.hybrid_spread", fmt::format("{}", config.init.hybrid_spread));
   const auto dt = config.simulation.dt_for(config.init.method);
   keys.emplace_back("simulation.dt_initial", dt ? fmt::format("{}", *dt) : std::string("auto"));
   keys.emplace_back("simulation.cutoff", fmt::format("{}", config.simulation.cutoff));
