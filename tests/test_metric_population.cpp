@@ -12,6 +12,7 @@
 #include "geometry/geometry.hpp"
 #include "geometry/geometry_tree.hpp"
 #include "init/initial_distribution.hpp"
+#include "lattice_rhombus.hpp"
 #include "sim/boundary_handling.hpp"
 #include "sim/population.hpp"
 #include "spacing/metric.hpp"
@@ -50,20 +51,7 @@ struct MappedRhombus {
   NodeSet nodes;
 
   MappedRhombus(int m_, int boundary_step = 1) : m(m_) {
-    std::vector<RawCurve> raw;
-    const auto side = [&](const char* name, Vec2 a, Vec2 b) {
-      RawCurve c{name, {}, "rhombus", 1, {}};
-      for (int k = 0; k <= m; k += boundary_step) c.points.push_back(a + (static_cast<double>(k) / m) * (b - a));
-      c.points.front() = a;
-      c.points.back() = b;
-      raw.push_back(std::move(c));
-    };
-    const Vec2 a = lattice(0, 0), b = lattice(m, 0), c = lattice(m, m), d = lattice(0, m);
-    side("ab", a, b);
-    side("bc", b, c);
-    side("cd", c, d);
-    side("da", d, a);
-    geometry = build_geometry(std::move(raw));
+    geometry = pdmesh_test::lattice_rhombus(m, lattice, boundary_step);
     tree = std::make_unique<GeometryTree>(geometry);
     nodes = make_boundary_nodes(geometry, spacing);
   }
