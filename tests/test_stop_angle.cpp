@@ -26,7 +26,9 @@ double stop_angle(const std::string& text, const std::vector<CaseOverride>& over
   return parse_case_text(text, kCase, overrides).simulation.stop_angle;
 }
 
-std::vector<RawCurve> unit_square() { return {RawCurve{"box", {{0, 0}, {1, 0}, {1, 1}, {0, 1}, {0, 0}}, "memory", 1, {}}}; }
+std::vector<RawCurve> unit_square() {
+  return {RawCurve{"box", {{0, 0}, {1, 0}, {1, 1}, {0, 1}, {0, 0}}, "memory", 1, {}}};
+}
 
 }  // namespace
 
