@@ -347,7 +347,7 @@ TEST_CASE("the best preset is long with momentum, a compressed schedule and rule
     CHECK(c->simulation.stop_every == 50);
     CHECK(c->simulation.stop_window == 100);
     CHECK(c->simulation.stop_min == 150);
-    CHECK(c->simulation.stop_angle == 3.0);
+    CHECK(c->simulation.stop_angle == 6.0);
     CHECK(c->init.lattice_levels == 4);
     CHECK(c->init.hybrid_spread == 0.2);
     CHECK(c->cleanup.min_angle == 40.0);
@@ -690,7 +690,7 @@ TEST_CASE("simulation.stop_aspect / stop_angle: the convergence rule's tolerance
           "[app][case][convergence]") {
   const CaseConfig best = parse_case_text(kMinimal, kCase);
   CHECK(best.simulation.stop_aspect == 7e-4);
-  CHECK(best.simulation.stop_angle == 3.0);
+  CHECK(best.simulation.stop_angle == 6.0);
   const CaseConfig set =
       parse_case_text(std::string(kMinimal) + "[simulation]\nstop_aspect = 2e-3\nstop_angle = 0.5\n", kCase);
   CHECK(set.simulation.stop_aspect == 2e-3);

@@ -333,6 +333,10 @@ const char* to_string(Preset preset);
 // and random fills, 1.03 for the hexagonal one; thesis and long: 1). A case that sets the key keeps
 // its value.
 double preset_relax_scale(Preset preset, InitMethod method);
+// simulation.stop_angle's default under `preset` for a metric run (`metric`: spacing.metric()) or an
+// isotropic one (best: 6 degrees isotropic, 3 in a metric; thesis and long: 0.25 for both). A case
+// that sets the key keeps its value.
+double preset_stop_angle(Preset preset, bool metric);
 
 // Splits "section.key=VALUE" into an override; throws InputError when there is no '=' or key.
 CaseOverride parse_set_option(const std::string& text);

@@ -523,6 +523,9 @@ void read_case_sections(const Reader& r, const toml::table& root, CaseConfig& c)
   // key gets that fill's value.
   if (find(root, "spacing", "relax_scale") == nullptr)
     c.spacing.relax_scale = preset_relax_scale(c.preset, c.init.method);
+  // Likewise stop_angle, set for an isotropic run: a metric case without the key gets the metric value.
+  if (find(root, "simulation", "stop_angle") == nullptr)
+    c.simulation.stop_angle = preset_stop_angle(c.preset, c.spacing.metric());
 }
 
 }  // namespace pdmesh::case_detail
