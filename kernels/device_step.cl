@@ -15,11 +15,6 @@
       __global const int *bg_root, __global const int *bg_child, __global const int *bg_corner, \
       __global const int *bg_cell, __global const REAL *bg_q
 
-#ifdef ABL_NO_CLEARANCE
-#define ABL_CLEAR_OFF 1
-#else
-#define ABL_CLEAR_OFF 0
-#endif
 // Bilinear spacing at (u, v) in a leaf: spacing_at's expression.
 REAL bg_interpolate(const int leaf, const REAL u, const REAL v, __global const int* bg_corner,
                     __global const REAL* bg_q) {
@@ -46,7 +41,7 @@ REAL bg_spacing_cached(const REAL px, const REAL py, int* leaf, BG_ARGS) {
 // each waiting for the one before) then overlaps with the next node's instead of waiting behind its
 // call of node_forces (the step ~10 % faster on 30P30N's curves with momentum; docs/journal/).
 // A GPU interleaves work-items in hardware: no barrier there.
-#if PDMESH_FORCE_LOOP_VECTOR && !defined(ABL_NO_PHASE)
+#if PDMESH_FORCE_LOOP_VECTOR
 #define STEP_PHASE() barrier(CLK_LOCAL_MEM_FENCE)
 #else
 #define STEP_PHASE()
@@ -87,45 +82,16 @@ void step_prefetch(const int a, const int n, __global const uchar* kind, __globa
                    __global const ulong* row_offset, __global const int* index, __global const REAL2* xy,
                    __global const REAL* q, __global const int* node_leaf, __global const int* bg_cell,
                    __global const int* bg_corner) {
-#if PDMESH_FORCE_LOOP_VECTOR && defined(__x86_64__) && !defined(ABL_NO_PREFETCH)
+#if PDMESH_FORCE_LOOP_VECTOR && defined(__x86_64__)
   if (a >= n || kind[a] == 0) return;
   if (n >= STEP_PREFETCH_ROWS_FROM) {
     const int entries = count[a];
     const long start = (long)row_offset[a];
-#ifdef EXP_PREFIDX
-    if (a + EXP_PREFIDX < n) {
-      const long ahead = (long)row_offset[a + EXP_PREFIDX];
-      __builtin_prefetch((const void*)(ulong)(index + ahead));
-      __builtin_prefetch((const void*)(ulong)(index + ahead + 16));
-    }
-#endif
-#ifdef EXP_PREF8
-    for (int k = 0; k < entries; k += 8) {
-      const int8 j = vload8(0, index + start + k);
-      __builtin_prefetch((const void*)(ulong)(xy + j.s0));
-      __builtin_prefetch((const void*)(ulong)(q + j.s0));
-      __builtin_prefetch((const void*)(ulong)(xy + j.s1));
-      __builtin_prefetch((const void*)(ulong)(q + j.s1));
-      __builtin_prefetch((const void*)(ulong)(xy + j.s2));
-      __builtin_prefetch((const void*)(ulong)(q + j.s2));
-      __builtin_prefetch((const void*)(ulong)(xy + j.s3));
-      __builtin_prefetch((const void*)(ulong)(q + j.s3));
-      __builtin_prefetch((const void*)(ulong)(xy + j.s4));
-      __builtin_prefetch((const void*)(ulong)(q + j.s4));
-      __builtin_prefetch((const void*)(ulong)(xy + j.s5));
-      __builtin_prefetch((const void*)(ulong)(q + j.s5));
-      __builtin_prefetch((const void*)(ulong)(xy + j.s6));
-      __builtin_prefetch((const void*)(ulong)(q + j.s6));
-      __builtin_prefetch((const void*)(ulong)(xy + j.s7));
-      __builtin_prefetch((const void*)(ulong)(q + j.s7));
-    }
-#else
     for (int k = 0; k < entries; ++k) {
       const int j = index[start + k];
       __builtin_prefetch((const void*)(ulong)(xy + j));
       __builtin_prefetch((const void*)(ulong)(q + j));
     }
-#endif
   }
   prefetch_leaf_lookup(node_leaf[a], bg_cell, bg_corner);
 #endif
@@ -138,7 +104,7 @@ void step_prefetch(const int a, const int n, __global const uchar* kind, __globa
 // cores). Node a's leaf is the one before its move, which a move rarely leaves.
 void step_prefetch_spacing(const int a, const int n, __global const int* node_leaf, __global const int* bg_corner,
                            __global const REAL* bg_q) {
-#if PDMESH_FORCE_LOOP_VECTOR && defined(__x86_64__) && !defined(ABL_NO_PREFETCH)
+#if PDMESH_FORCE_LOOP_VECTOR && defined(__x86_64__)
   if (a >= n) return;
   prefetch_leaf_spacings(node_leaf[a], bg_corner, bg_q);
 #endif
@@ -177,11 +143,7 @@ __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void device_step(
   // Row ic: count[ic] entries at index[row_offset[ic] ..] (CSR, kernels/neighbours.cl). The vector loop
   // reads whole chunks of 8 (its `stride` argument: the row rounded up to 8); the index buffer has 8
   // readable entries past the last row, and entries past the row are masked.
-#ifdef ABL_NO_ROWS
-  const int row = 0;
-#else
   const int row = moving ? count[ic] : 0;
-#endif
   const long row_start = (long)row_offset[ic];
   const REAL2 pi = xy[ic];
   const REAL xi = pi.x, yi = pi.y, qi = q[ic];
@@ -197,11 +159,7 @@ __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void device_step(
   REAL dy = moving ? REAL_C(0.5) * dt2 * fy : (REAL)0;
   // Heavy-ball momentum (beta > 0 only, uniform; kernels/time_step.cl, momentum_move): node i alone
   // reads and writes its carried move, so one buffer serves (no double buffering). Fixed: p = 0.
-#ifdef ABL_NO_MOMENTUM
-  if (0) {
-#else
   if (beta > (REAL)0 && active) {
-#endif
     if (moving) {
       const REAL2 d = momentum_move(dx, dy, carried[i], beta, fx, fy, r0);
       dx = d.x;
@@ -218,29 +176,11 @@ __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void device_step(
   REAL skin_use = (REAL)0;
   STEP_PHASE();
   step_prefetch_spacing(i + STEP_PREFETCH_AHEAD, n, node_leaf, bg_corner, bg_q);
-#ifdef EXP_PHASE3
-  REAL qn_split = (REAL)0;
   if (active) {
     const REAL xn = xi + dx, yn = yi + dy;
     int leaf = node_leaf[i];
-    qn_split = bg_spacing_cached(xn, yn, &leaf, BG_PASS);
-    if (leaf != node_leaf[i]) node_leaf[i] = leaf;
-  }
-  STEP_PHASE();
-#endif
-  if (active) {
-    const REAL xn = xi + dx, yn = yi + dy;
-#ifdef EXP_PHASE3
-    const REAL qn = qn_split;
-#else
-    int leaf = node_leaf[i];
-#ifdef ABL_NO_SPACING
-    const REAL qn = qi;
-#else
     const REAL qn = bg_spacing_cached(xn, yn, &leaf, BG_PASS);
-#endif
     if (leaf != node_leaf[i]) node_leaf[i] = leaf;
-#endif
     int host = 0;
     if (kind_i == 1) {
       const int s = bslot[i];
@@ -249,7 +189,7 @@ __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void device_step(
       brec[4 * s + 2] = dx;
       brec[4 * s + 3] = dy;
       host = 1;
-    } else if (kind_i == 2 && !ABL_CLEAR_OFF) {
+    } else if (kind_i == 2) {
       const REAL b = budget[i];
       const REAL ex = xn - xi, ey = yn - yi;
       const REAL cost = clearance_move_cost(ex, ey, xn, yn, b);

@@ -24,11 +24,6 @@
 // nodes, the entries within the cut-off. Both shapes below compute the reference's expressions per
 // entry in its summation order (row order), so double results match it bit for bit.
 #if PDMESH_FORCE_LOOP_VECTOR
-#ifdef ABL_NO_R0
-#define ABL_R0_OFF 1
-#else
-#define ABL_R0_OFF 0
-#endif
 
 #if PDMESH_DOUBLE
 #define REAL8 double8
@@ -146,15 +141,6 @@ typedef int pack_v8mask __attribute__((vector_size(32)));
     vstore8(PACK_REAL(r2, bits), 0, pr2 + packed);                                                            \
     packed += (int)popcount((uint)bits);                                                                      \
   }
-#define PACK8_J                                                                                               \
-  {                                                                                                           \
-    const uchar bits = (uchar)PACK_MASK_BITS(use);                                                            \
-    vstore8(__builtin_astype(__builtin_ia32_compresssi256_mask(__builtin_astype(j, pack_v8si),                \
-                                                               __builtin_astype((int8)(0), pack_v8si), bits), \
-                             int8),                                                                           \
-            0, pj + packed);                                                                                  \
-    packed += (int)popcount((uint)bits);                                                                      \
-  }
 #else
 #define PACK1(c)         \
   pj[packed] = j.s##c;   \
@@ -163,10 +149,6 @@ typedef int pack_v8mask __attribute__((vector_size(32)));
   pr2[packed] = r2.s##c; \
   packed -= (int)use.s##c;
 #define PACK8 PACK1(0) PACK1(1) PACK1(2) PACK1(3) PACK1(4) PACK1(5) PACK1(6) PACK1(7)
-#define PACK1_J(c)     \
-  pj[packed] = j.s##c; \
-  packed -= (int)use.s##c;
-#define PACK8_J PACK1_J(0) PACK1_J(1) PACK1_J(2) PACK1_J(3) PACK1_J(4) PACK1_J(5) PACK1_J(6) PACK1_J(7)
 #endif
 
 // The LJ force and the stability bound's pair stiffness of eight packed entries, added in entry order
@@ -176,29 +158,19 @@ void lj_chunk(const int8 j, const REAL8 dx, const REAL8 dy, const REAL8 r2, cons
   const REAL8 zero = (REAL8)((REAL)0), one = (REAL8)((REAL)1);
   const REAL8 inv_r2 = one / select(one, r2, use);
   const REAL8 inv_r = sqrt(inv_r2);
-#if defined(EXP_QGATHER) && defined(__x86_64__) && defined(__AVX512F__) && PDMESH_DOUBLE
-  const gather_v8df qnone = {0, 0, 0, 0, 0, 0, 0, 0};
-  const REAL8 qj = __builtin_astype(
-      __builtin_ia32_gathersiv8df(qnone, (const void*)(ulong)(q), __builtin_astype(j, gather_v8si), (uchar)0xFF, 8),
-      REAL8);
-#else
-  const REAL8 qj = GATHER8(q, j);
-#endif
-  const REAL8 sigma = REAL_C(0.5) * ((REAL8)(qi) + qj);
+  const REAL8 sigma = REAL_C(0.5) * ((REAL8)(qi) + GATHER8(q, j));
   const REAL8 s2 = sigma * sigma * inv_r2;
   const REAL8 s6 = s2 * s2 * s2;
   const REAL8 f = (REAL8)((REAL)-4 * lj_a) * sigma * (s6 * s6 - s6) * inv_r;
   const REAL8 cx = select(zero, f * dx, use), cy = select(zero, f * dy, use);
   ADD8_IN_ORDER(*fx, cx);
   ADD8_IN_ORDER(*fy, cy);
-#ifndef ABL_NO_STIFF
   // The stability bound's pair stiffness max(|df/dr|, |f|/r) (reference::lj_pair_stiffness).
   const REAL8 scale = (REAL8)((REAL)4 * lj_a) * sigma * inv_r;
   const REAL8 radial = fabs(scale * ((REAL)12 * s6 * s6 - (REAL)6 * s6));
   const REAL8 transverse = fabs(scale * (s6 * s6 - s6));
   const REAL8 cs = select(zero, select(transverse, radial, radial > transverse), use);
   ADD8_IN_ORDER(*stiffness, cs);
-#endif
 }
 
 // Packed entries k .. k + 7 of the buffer, of which the first `valid` count (pk_use); the others may
@@ -209,28 +181,6 @@ void lj_chunk(const int8 j, const REAL8 dx, const REAL8 dy, const REAL8 r2, cons
   const REAL8 pk_dx = vload8(0, pdx + (k)), pk_dy = vload8(0, pdy + (k)); \
   const REAL8 pk_r2 = vload8(0, pr2 + (k));                               \
   const MASK8 pk_use = CONVERT_MASK8(pk_valid)
-
-// EXP_PACKJ: packed entries k .. k + 7 from their node indices alone: the positions gathered again
-// (the same loads and expressions as the row scan, so the same bits), and the offsets stored densely
-// at k for the r0 pass.
-#define PACKED_J_CHUNK(k, valid)                                              \
-  const int8 pk_valid = (int8)(0, 1, 2, 3, 4, 5, 6, 7) < (int8)(valid);       \
-  const int8 pk_j = select((int8)(i), vload8(0, pj + (k)), pk_valid);         \
-  REAL8 pk_px, pk_py;                                                         \
-  GATHER8_XY(xy, pk_j, pk_px, pk_py);                                         \
-  const REAL8 pk_dx = pk_px - (REAL8)(xi), pk_dy = pk_py - (REAL8)(yi);       \
-  const REAL8 pk_r2 = pk_dx * pk_dx + pk_dy * pk_dy;                          \
-  vstore8(pk_dx, 0, pdx + (k));                                               \
-  vstore8(pk_dy, 0, pdy + (k));                                               \
-  vstore8(pk_r2, 0, pr2 + (k));                                               \
-  const MASK8 pk_use = CONVERT_MASK8(pk_valid)
-#ifdef EXP_PACKJ
-#define PACK_ROW PACK8_J
-#define LJ_CHUNK_AT PACKED_J_CHUNK
-#else
-#define PACK_ROW PACK8
-#define LJ_CHUNK_AT PACKED_CHUNK
-#endif
 
 // node_forces, vector shape: eight row entries at a time through the packing buffer, only as many
 // chunks as the row needs (boundary rows: one).
@@ -255,22 +205,18 @@ void node_forces(const int i, const int stride, const int count, const long base
     within += (int)COUNT8(in_range);
     coincident += (int)COUNT8(in_range & (r2 == zero));
     const MASK8 use = in_range & (r2 > zero);
-    PACK_ROW
+    PACK8
     if (packed - done >= 8) {
-      LJ_CHUNK_AT(done, 8);
-#ifndef ABL_NO_LJ
+      PACKED_CHUNK(done, 8);
       lj_chunk(pk_j, pk_dx, pk_dy, pk_r2, pk_use, qi, lj_a, q, &fx, &fy, &stiffness);
-#endif
       done += 8;
     }
     if (packed + 8 > PACK_CAP) {  // no room for another chunk: keep the entries not yet computed only
       for (int k = done; k < packed; ++k) {
         pj[k - done] = pj[k];
-#ifndef EXP_PACKJ
         pdx[k - done] = pdx[k];
         pdy[k - done] = pdy[k];
         pr2[k - done] = pr2[k];
-#endif
       }
       packed -= done;
       done = 0;
@@ -278,10 +224,8 @@ void node_forces(const int i, const int stride, const int count, const long base
     }
   }
   if (packed > done) {
-    LJ_CHUNK_AT(done, packed - done);
-#ifndef ABL_NO_LJ
+    PACKED_CHUNK(done, packed - done);
     lj_chunk(pk_j, pk_dx, pk_dy, pk_r2, pk_use, qi, lj_a, q, &fx, &fy, &stiffness);
-#endif
   }
   *dt2_limit_out =
       stability_factor > (REAL)0 && stiffness > (REAL)0 ? (REAL)2 * stability_factor / stiffness : INFINITY;
@@ -293,18 +237,14 @@ void node_forces(const int i, const int stride, const int count, const long base
   // r0: the smallest r^2 among the qualifying entries (a minimum: the order does not matter).
   REAL8 best2 = (REAL8)(INFINITY);
   MASK8 found = (MASK8)(0);
-#ifdef ABL_NO_R0
-  if (0) {
-#else
   if (!overflow) {  // the buffer holds every entry that counts (r^2 > 0 and in range)
-#endif
     for (int k = 0; k < packed; k += 8) {
       PACKED_CHUNK(k, packed - k);
       const MASK8 ok = pk_use & (any_direction | ((REAL8)(fx)*pk_dx + (REAL8)(fy)*pk_dy > zero));
       best2 = select(best2, pk_r2, ok & (pk_r2 < best2));
       found |= ok;
     }
-  } else if (!ABL_R0_OFF) {
+  } else {
     for (int k0 = 0; k0 < count; k0 += 8) {
       int8 j;
       REAL8 dx, dy, r2;
@@ -315,10 +255,6 @@ void node_forces(const int i, const int stride, const int count, const long base
       found |= ok;
     }
   }
-#ifdef EXP_TREEMIN
-  const REAL b = fmin(fmin(fmin(best2.s0, best2.s1), fmin(best2.s2, best2.s3)),
-                      fmin(fmin(best2.s4, best2.s5), fmin(best2.s6, best2.s7)));
-#else
   REAL b = best2.s0;
   b = best2.s1 < b ? best2.s1 : b;
   b = best2.s2 < b ? best2.s2 : b;
@@ -327,15 +263,10 @@ void node_forces(const int i, const int stride, const int count, const long base
   b = best2.s5 < b ? best2.s5 : b;
   b = best2.s6 < b ? best2.s6 : b;
   b = best2.s7 < b ? best2.s7 : b;
-#endif
   *fx_out = fx;
   *fy_out = fy;
   // An entry found with r^2 = INFINITY (overflow) gives r0 = INFINITY, as in the reference.
-#ifdef ABL_NO_R0
-  *r0_out = count > 0 ? qi : (REAL)0;
-#else
   *r0_out = any(found) ? sqrt(b) : (REAL)0;
-#endif
   *coincident_out = coincident;
   *within_out = kind_i == 2 ? within : 0;
 }

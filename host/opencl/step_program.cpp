@@ -156,22 +156,6 @@ std::map<std::string, std::string> step_program_defines(Precision precision, std
     // Shortest round trip (the same double), always with a point or an exponent: REAL_C(1.0) pastes an f in float.
     roots += fmt::format("{}REAL_C({:#})", k ? ", " : "", skin_class_root(k));
   d.emplace("SKIN_CLASS_ROOTS", roots);
-  // MEASUREMENT ONLY (throw-away, branch step-excess): PDMESH_STEP_ABLATE=A,B defines ABL_A, ABL_B.
-  if (const char* v = std::getenv("PDMESH_STEP_ABLATE")) {
-    std::string list(v), item;
-    for (char c : list + ",") {
-      if (c == ',') {
-        const auto eq = item.find('=');
-        if (item.rfind("EXP_", 0) == 0)
-          d.emplace(item.substr(0, eq), eq == std::string::npos ? "1" : item.substr(eq + 1));
-        else if (!item.empty())
-          d.emplace("ABL_" + item, "1");
-        item.clear();
-      } else {
-        item += c;
-      }
-    }
-  }
   for (const auto& [name, value] : window_defines())
     if (!d.emplace(name, value).second)
       throw DeviceError(fmt::format("step program: the define {} is given twice", name));
