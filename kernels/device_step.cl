@@ -131,6 +131,11 @@ __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void device_step(
     __global const REAL* segs, const int n_segs, const REAL seg_scale, const REAL beta, __global REAL2* carried,
     BG_ARGS) {
   __local REAL values[STEP_PARTIALS * WG_SIZE];
+#if PDMESH_FORCE_LOOP_VECTOR
+  // The packed row entries between node_forces_scan and node_forces_finish (kernels/forces.cl).
+  __local int split_j[WG_SIZE * SPLIT_PACK];
+  __local REAL split_dx[WG_SIZE * SPLIT_PACK], split_dy[WG_SIZE * SPLIT_PACK], split_r2[WG_SIZE * SPLIT_PACK];
+#endif
   // The window was halted for the host (kernels/window.cl): this iteration does nothing (uniform exit).
   if (counters[WINDOW_HALT] != 0) return;
   const REAL dt_gm2 = dt_gm2_in[0];  // the time-step rule's (iteration_rule or the host)
@@ -151,8 +156,20 @@ __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void device_step(
   step_prefetch(i + STEP_PREFETCH_AHEAD, n, kind, count, row_offset, index, xy, q, node_leaf, bg_cell, bg_corner);
   REAL fx, fy, r0, limit;
   int coincident, within;
+#if PDMESH_FORCE_LOOP_VECTOR
+  const int split = SPLIT_PACK * l;
+  const int packed = node_forces_scan(ic, (row + 7) & ~7, row, row_start, xi, yi, qi, kind_i, rc * rc, tx[ic], ty[ic],
+                                      lj_a, r0_any_direction, stability_factor, xy, q, index, split_j + split,
+                                      split_dx + split, split_dy + split, split_r2 + split, &fx, &fy, &r0, &limit,
+                                      &coincident, &within);
+  STEP_PHASE();
+  if (packed >= 0)
+    node_forces_finish(ic, packed, kind_i, qi, tx[ic], ty[ic], lj_a, r0_any_direction, stability_factor, q,
+                       split_j + split, split_dx + split, split_dy + split, split_r2 + split, &fx, &fy, &r0, &limit);
+#else
   node_forces(ic, (row + 7) & ~7, row, row_start, xi, yi, qi, kind_i, rc * rc, tx[ic], ty[ic], lj_a, r0_any_direction,
               stability_factor, xy, q, index, &fx, &fy, &r0, &limit, &coincident, &within);
+#endif
   STEP_PHASE();
   const REAL dt2 = local_dt2(fx, fy, r0, dt_gm2, limit);
   REAL dx = moving ? REAL_C(0.5) * dt2 * fx : (REAL)0;
