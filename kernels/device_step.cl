@@ -166,6 +166,8 @@ __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void device_step(
   if (packed >= 0)
     node_forces_finish(ic, packed, kind_i, qi, tx[ic], ty[ic], lj_a, r0_any_direction, stability_factor, q,
                        split_j + split, split_dx + split, split_dy + split, split_r2 + split, &fx, &fy, &r0, &limit);
+  STEP_PHASE();
+  if (packed >= 0) r0 = node_r0_finish(packed, fx, fy, r0_any_direction, split_dx + split, split_dy + split, split_r2 + split);
 #else
   node_forces(ic, (row + 7) & ~7, row, row_start, xi, yi, qi, kind_i, rc * rc, tx[ic], ty[ic], lj_a, r0_any_direction,
               stability_factor, xy, q, index, &fx, &fy, &r0, &limit, &coincident, &within);

@@ -340,6 +340,13 @@ void node_forces_finish(const int i, const int packed, const int kind_i, const R
   const REAL ft = fx * tx + fy * ty;
   fx = kind_i == 1 ? ft * tx : fx;
   fy = kind_i == 1 ? ft * ty : fy;
+  *fx_out = fx;
+  *fy_out = fy;
+}
+
+REAL node_r0_finish(const int packed, const REAL fx, const REAL fy, const int r0_any_direction,
+                    __local const REAL* ldx, __local const REAL* ldy, __local const REAL* lr2) {
+  const REAL8 zero = (REAL8)((REAL)0);
   const MASK8 any_direction = (MASK8)(r0_any_direction && (fx != (REAL)0 || fy != (REAL)0) ? -1 : 0);
   REAL8 best2 = (REAL8)(INFINITY);
   MASK8 found = (MASK8)(0);
@@ -358,9 +365,7 @@ void node_forces_finish(const int i, const int packed, const int kind_i, const R
   b = best2.s5 < b ? best2.s5 : b;
   b = best2.s6 < b ? best2.s6 : b;
   b = best2.s7 < b ? best2.s7 : b;
-  *fx_out = fx;
-  *fy_out = fy;
-  *r0_out = any(found) ? sqrt(b) : (REAL)0;
+  return any(found) ? sqrt(b) : (REAL)0;
 }
 
 #else  // PDMESH_FORCE_LOOP_SCALAR
