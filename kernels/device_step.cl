@@ -35,12 +35,14 @@ REAL bg_spacing_cached(const REAL px, const REAL py, int* leaf, BG_ARGS) {
 #define BG_PASS bg_origin_x, bg_origin_y, bg_inv_root, bg_grid, bg_root, bg_child, bg_corner, bg_cell, bg_q
 
 // STEP_PHASE: where the CPU shape (PDMESH_FORCE_LOOP_VECTOR) splits device_step into phases with a
-// barrier that changes nothing else (every work-item reaches it; nothing is shared through local
-// memory). PoCL runs each region between barriers as a loop over the group's work-items: the scalar
-// tail of one node (|F|'s square root, the division of eq. 5.8, momentum's square root and division,
-// each waiting for the one before) then overlaps with the next node's instead of waiting behind its
-// call of node_forces (the step ~10 % faster on 30P30N's curves with momentum; docs/journal/).
-// A GPU interleaves work-items in hardware: no barrier there.
+// barrier that changes nothing else (every work-item reaches it; no work-item reads another's data:
+// the force phases pass each work-item's packed row entries through its own slice of local memory).
+// PoCL runs each region between barriers as a loop over the group's work-items: a node's dependency
+// chains (the force's sums and r0: kernels/forces.cl, node_forces_scan; then |F|'s square root, the
+// division of eq. 5.8, momentum's square root and division, each waiting for the one before) then
+// overlap with the next node's instead of waiting behind its row scan (the step ~10 % faster on
+// 30P30N's curves with momentum with the time-step barrier; the force phases ~14 % more:
+// docs/journal/). A GPU interleaves work-items in hardware: no barrier there.
 #if PDMESH_FORCE_LOOP_VECTOR
 #define STEP_PHASE() barrier(CLK_LOCAL_MEM_FENCE)
 #else
@@ -132,7 +134,7 @@ __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void device_step(
     BG_ARGS) {
   __local REAL values[STEP_PARTIALS * WG_SIZE];
 #if PDMESH_FORCE_LOOP_VECTOR
-  // The packed row entries between node_forces_scan and node_forces_finish (kernels/forces.cl).
+  // The packed row entries between the phases of node_forces (kernels/forces.cl, node_forces_scan).
   __local int split_j[WG_SIZE * SPLIT_PACK];
   __local REAL split_dx[WG_SIZE * SPLIT_PACK], split_dy[WG_SIZE * SPLIT_PACK], split_r2[WG_SIZE * SPLIT_PACK];
 #endif
@@ -157,17 +159,19 @@ __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void device_step(
   REAL fx, fy, r0, limit;
   int coincident, within;
 #if PDMESH_FORCE_LOOP_VECTOR
+  // node_forces in three phases (kernels/forces.cl, node_forces_scan): the row, the LJ sums, r0.
   const int split = SPLIT_PACK * l;
+  __local int* const lj = split_j + split;
+  __local REAL *const ldx = split_dx + split, *const ldy = split_dy + split, *const lr2 = split_r2 + split;
   const int packed = node_forces_scan(ic, (row + 7) & ~7, row, row_start, xi, yi, qi, kind_i, rc * rc, tx[ic], ty[ic],
-                                      lj_a, r0_any_direction, stability_factor, xy, q, index, split_j + split,
-                                      split_dx + split, split_dy + split, split_r2 + split, &fx, &fy, &r0, &limit,
-                                      &coincident, &within);
+                                      lj_a, r0_any_direction, stability_factor, xy, q, index, lj, ldx, ldy, lr2, &fx,
+                                      &fy, &r0, &limit, &coincident, &within);
   STEP_PHASE();
   if (packed >= 0)
-    node_forces_finish(ic, packed, kind_i, qi, tx[ic], ty[ic], lj_a, r0_any_direction, stability_factor, q,
-                       split_j + split, split_dx + split, split_dy + split, split_r2 + split, &fx, &fy, &r0, &limit);
+    node_forces_lj(ic, packed, kind_i, qi, tx[ic], ty[ic], lj_a, stability_factor, q, lj, ldx, ldy, lr2, &fx, &fy,
+                   &limit);
   STEP_PHASE();
-  if (packed >= 0) r0 = node_r0_finish(packed, fx, fy, r0_any_direction, split_dx + split, split_dy + split, split_r2 + split);
+  if (packed >= 0) r0 = node_forces_r0(packed, fx, fy, r0_any_direction, ldx, ldy, lr2);
 #else
   node_forces(ic, (row + 7) & ~7, row, row_start, xi, yi, qi, kind_i, rc * rc, tx[ic], ty[ic], lj_a, r0_any_direction,
               stability_factor, xy, q, index, &fx, &fy, &r0, &limit, &coincident, &within);

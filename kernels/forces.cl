@@ -271,18 +271,21 @@ void node_forces(const int i, const int stride, const int count, const long base
   *within_out = kind_i == 2 ? within : 0;
 }
 
-// node_forces in two halves for device_step's CPU shape, split by a phase barrier (STEP_PHASE):
-// node_forces_scan walks the row and packs the entries that count; node_forces_finish computes their
-// LJ force, stiffness and r0. PoCL runs each half as a loop over the group's work-items, so the
-// finish's chain (division, square root, the in-order sums, the r0 pass that waits for the final
-// force) of one node overlaps with the next node's instead of stalling behind it. A node's packed
-// entries (at most SPLIT_PACK: the settled lattice has ~6 within the cut-off) cross the barrier in
-// local memory; a node with more gets node_forces whole in the scan's phase (the same values).
-// The sums add the packed entries in row order with +0 for unused lanes, as node_forces does, so
-// the results are node_forces' bit for bit.
+// node_forces in three parts for device_step's CPU shape, which runs them in three phases split by
+// barriers (STEP_PHASE, kernels/device_step.cl): node_forces_scan walks the row and packs the entries
+// that count; node_forces_lj sums their LJ force and stiffness; node_forces_r0 takes r0 from the final
+// force. PoCL runs each phase as a loop over the group's work-items, so the dependency chains of one
+// node's sums (division, square root, the sums in row order) and of its r0 (which waits for the final
+// force, then a minimum and a square root) overlap with the next nodes' instead of holding the core
+// while the next node's row waits behind them (the step's CPU about 14 % less on 30P30N's curves and
+// 9 % less at 1M nodes: docs/journal/2026-12-04g-step-excess.md). A node's packed entries cross the
+// barriers in local memory, at most SPLIT_PACK of them (the settled lattice has ~6 within the
+// cut-off; a boundary row has at most 8); a node with more gets node_forces whole in the scan's phase.
+// The LJ part adds the packed entries in row order, unused lanes adding +0, as node_forces does, and
+// r0 is the same minimum: the results are node_forces' bit for bit.
 #define SPLIT_PACK 16
 
-// Returns the packed count (<= SPLIT_PACK; its entries written to lj/ldx/ldy/lr2 and the coincident
+// Returns the packed count (<= SPLIT_PACK: its entries written to lj, ldx, ldy, lr2, the coincident
 // and within counts to the outputs) or -1 when node_forces ran whole (every output written).
 int node_forces_scan(const int i, const int stride, const int count, const long base, const REAL xi, const REAL yi,
                      const REAL qi, const int kind_i, const REAL rc2, const REAL tx, const REAL ty, const REAL lj_a,
@@ -292,6 +295,7 @@ int node_forces_scan(const int i, const int stride, const int count, const long 
                      REAL* dt2_limit_out, int* coincident_out, int* within_out) {
   const MASK8 filter = (MASK8)(kind_i == 2 && rc2 >= (REAL)0 ? -1 : 0);
   const REAL8 zero = (REAL8)((REAL)0);
+  // 8 spare slots: a chunk's packing writes all 8 components, past the last used one too.
   int pj[SPLIT_PACK + 8];
   REAL pdx[SPLIT_PACK + 8], pdy[SPLIT_PACK + 8], pr2[SPLIT_PACK + 8];
   int coincident = 0, within = 0, packed = 0;
@@ -321,13 +325,12 @@ int node_forces_scan(const int i, const int stride, const int count, const long 
   return packed;
 }
 
-// The rest of node_forces for `packed` entries that node_forces_scan left in local memory.
-void node_forces_finish(const int i, const int packed, const int kind_i, const REAL qi, const REAL tx, const REAL ty,
-                        const REAL lj_a, const int r0_any_direction, const REAL stability_factor,
-                        __global const REAL* q, __local const int* lj, __local const REAL* ldx,
-                        __local const REAL* ldy, __local const REAL* lr2, REAL* fx_out, REAL* fy_out, REAL* r0_out,
-                        REAL* dt2_limit_out) {
-  const REAL8 zero = (REAL8)((REAL)0);
+// The LJ force (tangential for boundary nodes) and the stability bound of the `packed` entries
+// node_forces_scan left in local memory; slots past `packed` are masked (their node index becomes i).
+void node_forces_lj(const int i, const int packed, const int kind_i, const REAL qi, const REAL tx, const REAL ty,
+                    const REAL lj_a, const REAL stability_factor, __global const REAL* q, __local const int* lj,
+                    __local const REAL* ldx, __local const REAL* ldy, __local const REAL* lr2, REAL* fx_out,
+                    REAL* fy_out, REAL* dt2_limit_out) {
   REAL fx = (REAL)0, fy = (REAL)0, stiffness = (REAL)0;
   for (int k = 0; k < packed; k += 8) {
     const int8 pk_valid = (int8)(0, 1, 2, 3, 4, 5, 6, 7) < (int8)(packed - k);
@@ -337,14 +340,14 @@ void node_forces_finish(const int i, const int packed, const int kind_i, const R
   }
   *dt2_limit_out =
       stability_factor > (REAL)0 && stiffness > (REAL)0 ? (REAL)2 * stability_factor / stiffness : INFINITY;
+  // Boundary nodes slide along their curve: keep the tangential component only.
   const REAL ft = fx * tx + fy * ty;
-  fx = kind_i == 1 ? ft * tx : fx;
-  fy = kind_i == 1 ? ft * ty : fy;
-  *fx_out = fx;
-  *fy_out = fy;
+  *fx_out = kind_i == 1 ? ft * tx : fx;
+  *fy_out = kind_i == 1 ? ft * ty : fy;
 }
 
-REAL node_r0_finish(const int packed, const REAL fx, const REAL fy, const int r0_any_direction,
+// r0 over the `packed` entries in local memory, given the node's final force (fx, fy): node_forces' r0 pass.
+REAL node_forces_r0(const int packed, const REAL fx, const REAL fy, const int r0_any_direction,
                     __local const REAL* ldx, __local const REAL* ldy, __local const REAL* lr2) {
   const REAL8 zero = (REAL8)((REAL)0);
   const MASK8 any_direction = (MASK8)(r0_any_direction && (fx != (REAL)0 || fy != (REAL)0) ? -1 : 0);
@@ -365,6 +368,7 @@ REAL node_r0_finish(const int packed, const REAL fx, const REAL fy, const int r0
   b = best2.s5 < b ? best2.s5 : b;
   b = best2.s6 < b ? best2.s6 : b;
   b = best2.s7 < b ? best2.s7 : b;
+  // An entry found with r^2 = INFINITY (overflow) gives r0 = INFINITY, as in the reference.
   return any(found) ? sqrt(b) : (REAL)0;
 }
 
