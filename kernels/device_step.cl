@@ -134,9 +134,13 @@ __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void device_step(
     BG_ARGS) {
   __local REAL values[STEP_PARTIALS * WG_SIZE];
 #if PDMESH_FORCE_LOOP_VECTOR
-  // The packed row entries between the phases of node_forces (kernels/forces.cl, node_forces_scan).
+  // The packed row entries between the phases of node_forces (kernels/forces.cl, node_forces_scan),
+  // and their count (-1: node_forces ran whole). The count goes through local memory too: held in a
+  // private variable across the barriers, PoCL 3.1's build read a wrong count in the r0 phase for
+  // some work-items of groups that mix the two cases (a crash on a fresh 30P30N run; not understood).
   __local int split_j[WG_SIZE * SPLIT_PACK];
   __local REAL split_dx[WG_SIZE * SPLIT_PACK], split_dy[WG_SIZE * SPLIT_PACK], split_r2[WG_SIZE * SPLIT_PACK];
+  __local int split_n[WG_SIZE];
 #endif
   // The window was halted for the host (kernels/window.cl): this iteration does nothing (uniform exit).
   if (counters[WINDOW_HALT] != 0) return;
@@ -160,18 +164,18 @@ __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void device_step(
   int coincident, within;
 #if PDMESH_FORCE_LOOP_VECTOR
   // node_forces in three phases (kernels/forces.cl, node_forces_scan): the row, the LJ sums, r0.
-  const int split = SPLIT_PACK * l;
-  __local int* const lj = split_j + split;
-  __local REAL *const ldx = split_dx + split, *const ldy = split_dy + split, *const lr2 = split_r2 + split;
-  const int packed = node_forces_scan(ic, (row + 7) & ~7, row, row_start, xi, yi, qi, kind_i, rc * rc, tx[ic], ty[ic],
-                                      lj_a, r0_any_direction, stability_factor, xy, q, index, lj, ldx, ldy, lr2, &fx,
-                                      &fy, &r0, &limit, &coincident, &within);
+  split_n[l] = node_forces_scan(ic, (row + 7) & ~7, row, row_start, xi, yi, qi, kind_i, rc * rc, tx[ic], ty[ic], lj_a,
+                                r0_any_direction, stability_factor, xy, q, index, split_j + SPLIT_PACK * l,
+                                split_dx + SPLIT_PACK * l, split_dy + SPLIT_PACK * l, split_r2 + SPLIT_PACK * l, &fx,
+                                &fy, &r0, &limit, &coincident, &within);
   STEP_PHASE();
-  if (packed >= 0)
-    node_forces_lj(ic, packed, kind_i, qi, tx[ic], ty[ic], lj_a, stability_factor, q, lj, ldx, ldy, lr2, &fx, &fy,
-                   &limit);
+  if (split_n[l] >= 0)
+    node_forces_lj(ic, split_n[l], kind_i, qi, tx[ic], ty[ic], lj_a, stability_factor, q, split_j + SPLIT_PACK * l,
+                   split_dx + SPLIT_PACK * l, split_dy + SPLIT_PACK * l, split_r2 + SPLIT_PACK * l, &fx, &fy, &limit);
   STEP_PHASE();
-  if (packed >= 0) r0 = node_forces_r0(packed, fx, fy, r0_any_direction, ldx, ldy, lr2);
+  if (split_n[l] >= 0)
+    r0 = node_forces_r0(split_n[l], fx, fy, r0_any_direction, split_dx + SPLIT_PACK * l, split_dy + SPLIT_PACK * l,
+                        split_r2 + SPLIT_PACK * l);
 #else
   node_forces(ic, (row + 7) & ~7, row, row_start, xi, yi, qi, kind_i, rc * rc, tx[ic], ty[ic], lj_a, r0_any_direction,
               stability_factor, xy, q, index, &fx, &fy, &r0, &limit, &coincident, &within);

@@ -347,8 +347,8 @@ void node_forces_lj(const int i, const int packed, const int kind_i, const REAL 
 }
 
 // r0 over the `packed` entries in local memory, given the node's final force (fx, fy): node_forces' r0 pass.
-REAL node_forces_r0(const int packed, const REAL fx, const REAL fy, const int r0_any_direction,
-                    __local const REAL* ldx, __local const REAL* ldy, __local const REAL* lr2) {
+REAL node_forces_r0(const int packed, const REAL fx, const REAL fy, const int r0_any_direction, __local const REAL* ldx,
+                    __local const REAL* ldy, __local const REAL* lr2) {
   const REAL8 zero = (REAL8)((REAL)0);
   const MASK8 any_direction = (MASK8)(r0_any_direction && (fx != (REAL)0 || fy != (REAL)0) ? -1 : 0);
   REAL8 best2 = (REAL8)(INFINITY);
