@@ -35,12 +35,14 @@ REAL bg_spacing_cached(const REAL px, const REAL py, int* leaf, BG_ARGS) {
 #define BG_PASS bg_origin_x, bg_origin_y, bg_inv_root, bg_grid, bg_root, bg_child, bg_corner, bg_cell, bg_q
 
 // STEP_PHASE: where the CPU shape (PDMESH_FORCE_LOOP_VECTOR) splits device_step into phases with a
-// barrier that changes nothing else (every work-item reaches it; nothing is shared through local
-// memory). PoCL runs each region between barriers as a loop over the group's work-items: the scalar
-// tail of one node (|F|'s square root, the division of eq. 5.8, momentum's square root and division,
-// each waiting for the one before) then overlaps with the next node's instead of waiting behind its
-// call of node_forces (the step ~10 % faster on 30P30N's curves with momentum; docs/journal/).
-// A GPU interleaves work-items in hardware: no barrier there.
+// barrier that changes nothing else (every work-item reaches it; no work-item reads another's data:
+// the force phases pass each work-item's packed row entries through its own slice of local memory).
+// PoCL runs each region between barriers as a loop over the group's work-items: a node's dependency
+// chains (the force's sums and r0: kernels/forces.cl, node_forces_scan; then |F|'s square root, the
+// division of eq. 5.8, momentum's square root and division, each waiting for the one before) then
+// overlap with the next node's instead of waiting behind its row scan (the step ~10 % faster on
+// 30P30N's curves with momentum with the time-step barrier; the force phases ~14 % more:
+// docs/journal/). A GPU interleaves work-items in hardware: no barrier there.
 #if PDMESH_FORCE_LOOP_VECTOR
 #define STEP_PHASE() barrier(CLK_LOCAL_MEM_FENCE)
 #else
@@ -131,6 +133,15 @@ __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void device_step(
     __global const REAL* segs, const int n_segs, const REAL seg_scale, const REAL beta, __global REAL2* carried,
     BG_ARGS) {
   __local REAL values[STEP_PARTIALS * WG_SIZE];
+#if PDMESH_FORCE_LOOP_VECTOR
+  // The packed row entries between the phases of node_forces (kernels/forces.cl, node_forces_scan),
+  // and their count (-1: node_forces ran whole). The count goes through local memory too: held in a
+  // private variable across the barriers, PoCL 3.1's build read a wrong count in the r0 phase for
+  // some work-items of groups that mix the two cases (a crash on a fresh 30P30N run; not understood).
+  __local int split_j[WG_SIZE * SPLIT_PACK];
+  __local REAL split_dx[WG_SIZE * SPLIT_PACK], split_dy[WG_SIZE * SPLIT_PACK], split_r2[WG_SIZE * SPLIT_PACK];
+  __local int split_n[WG_SIZE];
+#endif
   // The window was halted for the host (kernels/window.cl): this iteration does nothing (uniform exit).
   if (counters[WINDOW_HALT] != 0) return;
   const REAL dt_gm2 = dt_gm2_in[0];  // the time-step rule's (iteration_rule or the host)
@@ -151,8 +162,24 @@ __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void device_step(
   step_prefetch(i + STEP_PREFETCH_AHEAD, n, kind, count, row_offset, index, xy, q, node_leaf, bg_cell, bg_corner);
   REAL fx, fy, r0, limit;
   int coincident, within;
+#if PDMESH_FORCE_LOOP_VECTOR
+  // node_forces in three phases (kernels/forces.cl, node_forces_scan): the row, the LJ sums, r0.
+  split_n[l] = node_forces_scan(ic, (row + 7) & ~7, row, row_start, xi, yi, qi, kind_i, rc * rc, tx[ic], ty[ic], lj_a,
+                                r0_any_direction, stability_factor, xy, q, index, split_j + SPLIT_PACK * l,
+                                split_dx + SPLIT_PACK * l, split_dy + SPLIT_PACK * l, split_r2 + SPLIT_PACK * l, &fx,
+                                &fy, &r0, &limit, &coincident, &within);
+  STEP_PHASE();
+  if (split_n[l] >= 0)
+    node_forces_lj(ic, split_n[l], kind_i, qi, tx[ic], ty[ic], lj_a, stability_factor, q, split_j + SPLIT_PACK * l,
+                   split_dx + SPLIT_PACK * l, split_dy + SPLIT_PACK * l, split_r2 + SPLIT_PACK * l, &fx, &fy, &limit);
+  STEP_PHASE();
+  if (split_n[l] >= 0)
+    r0 = node_forces_r0(split_n[l], fx, fy, r0_any_direction, split_dx + SPLIT_PACK * l, split_dy + SPLIT_PACK * l,
+                        split_r2 + SPLIT_PACK * l);
+#else
   node_forces(ic, (row + 7) & ~7, row, row_start, xi, yi, qi, kind_i, rc * rc, tx[ic], ty[ic], lj_a, r0_any_direction,
               stability_factor, xy, q, index, &fx, &fy, &r0, &limit, &coincident, &within);
+#endif
   STEP_PHASE();
   const REAL dt2 = local_dt2(fx, fy, r0, dt_gm2, limit);
   REAL dx = moving ? REAL_C(0.5) * dt2 * fx : (REAL)0;

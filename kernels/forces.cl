@@ -271,6 +271,107 @@ void node_forces(const int i, const int stride, const int count, const long base
   *within_out = kind_i == 2 ? within : 0;
 }
 
+// node_forces in three parts for device_step's CPU shape, which runs them in three phases split by
+// barriers (STEP_PHASE, kernels/device_step.cl): node_forces_scan walks the row and packs the entries
+// that count; node_forces_lj sums their LJ force and stiffness; node_forces_r0 takes r0 from the final
+// force. PoCL runs each phase as a loop over the group's work-items, so the dependency chains of one
+// node's sums (division, square root, the sums in row order) and of its r0 (which waits for the final
+// force, then a minimum and a square root) overlap with the next nodes' instead of holding the core
+// while the next node's row waits behind them (the step's CPU about 14 % less on 30P30N's curves and
+// 9 % less at 1M nodes: docs/journal/2026-12-04g-step-excess.md). A node's packed entries cross the
+// barriers in local memory, at most SPLIT_PACK of them (the settled lattice has ~6 within the
+// cut-off; a boundary row has at most 8); a node with more gets node_forces whole in the scan's phase.
+// The LJ part adds the packed entries in row order, unused lanes adding +0, as node_forces does, and
+// r0 is the same minimum: the results are node_forces' bit for bit.
+#define SPLIT_PACK 16
+
+// Returns the packed count (<= SPLIT_PACK: its entries written to lj, ldx, ldy, lr2, the coincident
+// and within counts to the outputs) or -1 when node_forces ran whole (every output written).
+int node_forces_scan(const int i, const int stride, const int count, const long base, const REAL xi, const REAL yi,
+                     const REAL qi, const int kind_i, const REAL rc2, const REAL tx, const REAL ty, const REAL lj_a,
+                     const int r0_any_direction, const REAL stability_factor, __global const REAL2* xy,
+                     __global const REAL* q, __global const int* index, __local int* lj, __local REAL* ldx,
+                     __local REAL* ldy, __local REAL* lr2, REAL* fx_out, REAL* fy_out, REAL* r0_out,
+                     REAL* dt2_limit_out, int* coincident_out, int* within_out) {
+  const MASK8 filter = (MASK8)(kind_i == 2 && rc2 >= (REAL)0 ? -1 : 0);
+  const REAL8 zero = (REAL8)((REAL)0);
+  // 8 spare slots: a chunk's packing writes all 8 components, past the last used one too.
+  int pj[SPLIT_PACK + 8];
+  REAL pdx[SPLIT_PACK + 8], pdy[SPLIT_PACK + 8], pr2[SPLIT_PACK + 8];
+  int coincident = 0, within = 0, packed = 0;
+  for (int k0 = 0; k0 < count; k0 += 8) {
+    int8 j;
+    REAL8 dx, dy, r2;
+    const MASK8 in_range =
+        row_chunk_offsets(i, stride, count, base, k0, xi, yi, filter, rc2, xy, index, &j, &dx, &dy, &r2);
+    within += (int)COUNT8(in_range);
+    coincident += (int)COUNT8(in_range & (r2 == zero));
+    const MASK8 use = in_range & (r2 > zero);
+    PACK8
+    if (packed > SPLIT_PACK) {
+      node_forces(i, stride, count, base, xi, yi, qi, kind_i, rc2, tx, ty, lj_a, r0_any_direction, stability_factor, xy,
+                  q, index, fx_out, fy_out, r0_out, dt2_limit_out, coincident_out, within_out);
+      return -1;
+    }
+  }
+  for (int k = 0; k < packed; k += 8) {
+    vstore8(vload8(0, pj + k), 0, lj + k);
+    vstore8(vload8(0, pdx + k), 0, ldx + k);
+    vstore8(vload8(0, pdy + k), 0, ldy + k);
+    vstore8(vload8(0, pr2 + k), 0, lr2 + k);
+  }
+  *coincident_out = coincident;
+  *within_out = kind_i == 2 ? within : 0;
+  return packed;
+}
+
+// The LJ force (tangential for boundary nodes) and the stability bound of the `packed` entries
+// node_forces_scan left in local memory; slots past `packed` are masked (their node index becomes i).
+void node_forces_lj(const int i, const int packed, const int kind_i, const REAL qi, const REAL tx, const REAL ty,
+                    const REAL lj_a, const REAL stability_factor, __global const REAL* q, __local const int* lj,
+                    __local const REAL* ldx, __local const REAL* ldy, __local const REAL* lr2, REAL* fx_out,
+                    REAL* fy_out, REAL* dt2_limit_out) {
+  REAL fx = (REAL)0, fy = (REAL)0, stiffness = (REAL)0;
+  for (int k = 0; k < packed; k += 8) {
+    const int8 pk_valid = (int8)(0, 1, 2, 3, 4, 5, 6, 7) < (int8)(packed - k);
+    const int8 pk_j = select((int8)(i), vload8(0, lj + k), pk_valid);
+    const REAL8 pk_dx = vload8(0, ldx + k), pk_dy = vload8(0, ldy + k), pk_r2 = vload8(0, lr2 + k);
+    lj_chunk(pk_j, pk_dx, pk_dy, pk_r2, CONVERT_MASK8(pk_valid), qi, lj_a, q, &fx, &fy, &stiffness);
+  }
+  *dt2_limit_out =
+      stability_factor > (REAL)0 && stiffness > (REAL)0 ? (REAL)2 * stability_factor / stiffness : INFINITY;
+  // Boundary nodes slide along their curve: keep the tangential component only.
+  const REAL ft = fx * tx + fy * ty;
+  *fx_out = kind_i == 1 ? ft * tx : fx;
+  *fy_out = kind_i == 1 ? ft * ty : fy;
+}
+
+// r0 over the `packed` entries in local memory, given the node's final force (fx, fy): node_forces' r0 pass.
+REAL node_forces_r0(const int packed, const REAL fx, const REAL fy, const int r0_any_direction, __local const REAL* ldx,
+                    __local const REAL* ldy, __local const REAL* lr2) {
+  const REAL8 zero = (REAL8)((REAL)0);
+  const MASK8 any_direction = (MASK8)(r0_any_direction && (fx != (REAL)0 || fy != (REAL)0) ? -1 : 0);
+  REAL8 best2 = (REAL8)(INFINITY);
+  MASK8 found = (MASK8)(0);
+  for (int k = 0; k < packed; k += 8) {
+    const MASK8 pk_use = CONVERT_MASK8((int8)(0, 1, 2, 3, 4, 5, 6, 7) < (int8)(packed - k));
+    const REAL8 pk_dx = vload8(0, ldx + k), pk_dy = vload8(0, ldy + k), pk_r2 = vload8(0, lr2 + k);
+    const MASK8 ok = pk_use & (any_direction | ((REAL8)(fx)*pk_dx + (REAL8)(fy)*pk_dy > zero));
+    best2 = select(best2, pk_r2, ok & (pk_r2 < best2));
+    found |= ok;
+  }
+  REAL b = best2.s0;
+  b = best2.s1 < b ? best2.s1 : b;
+  b = best2.s2 < b ? best2.s2 : b;
+  b = best2.s3 < b ? best2.s3 : b;
+  b = best2.s4 < b ? best2.s4 : b;
+  b = best2.s5 < b ? best2.s5 : b;
+  b = best2.s6 < b ? best2.s6 : b;
+  b = best2.s7 < b ? best2.s7 : b;
+  // An entry found with r^2 = INFINITY (overflow) gives r0 = INFINITY, as in the reference.
+  return any(found) ? sqrt(b) : (REAL)0;
+}
+
 #else  // PDMESH_FORCE_LOOP_SCALAR
 
 // Entry k of the row relative to (xi, yi): the offsets and r^2 (what both passes recompute: keeping
