@@ -41,7 +41,7 @@ REAL bg_spacing_cached(const REAL px, const REAL py, int* leaf, BG_ARGS) {
 // chains (the force's sums and r0: kernels/forces.cl, node_forces_scan; then |F|'s square root, the
 // division of eq. 5.8, momentum's square root and division, each waiting for the one before) then
 // overlap with the next node's instead of waiting behind its row scan (the step ~10 % faster on
-// 30P30N's curves with momentum with the time-step barrier; the force phases ~14 % more:
+// 30P30N's curves with momentum with the time-step barrier; the force phases 0.85x of that step's CPU:
 // docs/journal/). A GPU interleaves work-items in hardware: no barrier there.
 #if PDMESH_FORCE_LOOP_VECTOR
 #define STEP_PHASE() barrier(CLK_LOCAL_MEM_FENCE)

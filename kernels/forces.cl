@@ -277,10 +277,12 @@ void node_forces(const int i, const int stride, const int count, const long base
 // force. PoCL runs each phase as a loop over the group's work-items, so the dependency chains of one
 // node's sums (division, square root, the sums in row order) and of its r0 (which waits for the final
 // force, then a minimum and a square root) overlap with the next nodes' instead of holding the core
-// while the next node's row waits behind them (the step's CPU about 14 % less on 30P30N's curves and
-// 9 % less at 1M nodes: docs/journal/2026-12-04g-step-excess.md). A node's packed entries cross the
-// barriers in local memory, at most SPLIT_PACK of them (the settled lattice has ~6 within the
-// cut-off; a boundary row has at most 8); a node with more gets node_forces whole in the scan's phase.
+// while the next node's row waits behind them (the step's CPU 0.85x on 30P30N's curves and 0.93x at
+// 1M nodes: docs/journal/2026-12-04g-step-excess.md). A node's packed entries cross the barriers in
+// local memory, at most SPLIT_PACK of them (the settled lattice has ~6 within the cut-off; a boundary
+// row has at most 8); a node with more gets node_forces whole in the scan's phase. With device_step's
+// partial sums the group's local memory is 32,512 bytes in double at 64 work-items: within the
+// 32 KiB every OpenCL device offers (Oclgrind's size), so a larger SPLIT_PACK needs a smaller group.
 // The LJ part adds the packed entries in row order, unused lanes adding +0, as node_forces does, and
 // r0 is the same minimum: the results are node_forces' bit for bit.
 #define SPLIT_PACK 16
