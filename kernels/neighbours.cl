@@ -292,8 +292,8 @@ __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void gather_rows(
 #if defined(PACK_MASK_BITS)
               // A masked load (no fault past the end, no store-to-load stall of lane-by-lane writes).
               e = __builtin_astype(__builtin_ia32_loaddqusi256_mask((const int*)(ulong)(grid_nodes + k0),
-                                                                     __builtin_astype((int8)(i), pack_v8si),
-                                                                     (uchar)((1U << (end - k0)) - 1U)),
+                                                                    __builtin_astype((int8)(i), pack_v8si),
+                                                                    (uchar)((1U << (end - k0)) - 1U)),
                                    int8);
 #else
               e = (int8)(i);
@@ -339,9 +339,9 @@ __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void gather_rows(
             }
 #endif
             if (listed > GATHER_LIST_CAP - 8) {  // room for the next chunk's 8
-              q_min = gather_emit(i, kind_i, own, qi, list_j, list_d2, listed, q_min, radius_factor, pair_skin, q, kind,
-                                  level, offset, count, entries_size, entries, spill_capacity, spill, counters,
-                                  counting);
+              q_min =
+                  gather_emit(i, kind_i, own, qi, list_j, list_d2, listed, q_min, radius_factor, pair_skin, q, kind,
+                              level, offset, count, entries_size, entries, spill_capacity, spill, counters, counting);
               listed = 0;
             }
           }
@@ -381,8 +381,8 @@ __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void gather_rows(
       }
 #if PDMESH_FORCE_LOOP_VECTOR
       if (listed > 0)
-        q_min = gather_emit(i, kind_i, own, qi, list_j, list_d2, listed, q_min, radius_factor, pair_skin, q, kind, level,
-                            offset, count, entries_size, entries, spill_capacity, spill, counters, counting);
+        q_min = gather_emit(i, kind_i, own, qi, list_j, list_d2, listed, q_min, radius_factor, pair_skin, q, kind,
+                            level, offset, count, entries_size, entries, spill_capacity, spill, counters, counting);
 #endif
     }
     atomic_add(&local_examined, examined);
