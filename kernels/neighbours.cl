@@ -474,7 +474,37 @@ void insertion_sort_row(__global int* entries, const ulong base, const int c) {
 #if defined(__x86_64__) && defined(__AVX512F__)
 #define RANK_SORT_CAP 256
 typedef int rank_v16si __attribute__((vector_size(64)));
+// A row of up to 32 entries (most rows) is ranked in two registers: its entries loaded by masked
+// loads (the lanes past the row hold INT_MAX, no load past it), each entry broadcast and compared
+// with all 32 lanes at once, each lane's rank counted in its own lane (no popcount chain, no copy of
+// the row into private memory to be read back as vectors). The same ranks, so the same order.
+#define RANK_SORT_REG 32
+void sort_row_reg(__global int* entries, const ulong base, const int c) {
+  const uint m = c >= 32 ? 0xFFFFFFFFU : (1U << c) - 1U;
+  const rank_v16si pad = __builtin_astype((int16)(INT_MAX), rank_v16si);
+  const int16 v0 =
+      __builtin_astype(__builtin_ia32_loaddqusi512_mask((const int*)(ulong)(entries + base), pad, (ushort)m), int16);
+  const int16 v1 = __builtin_astype(
+      __builtin_ia32_loaddqusi512_mask((const int*)(ulong)(entries + base + 16), pad, (ushort)(m >> 16)), int16);
+  int16 r0 = (int16)(0), r1 = (int16)(0);
+  for (int b = 0; b < c; ++b) {
+    const int16 x = (int16)(entries[base + b]);
+    r0 -= x < v0;  // -1 where true
+    r1 -= x < v1;
+  }
+  int rank[RANK_SORT_REG], v[RANK_SORT_REG];
+  vstore16(r0, 0, rank);
+  vstore16(r1, 1, rank);
+  vstore16(v0, 0, v);
+  vstore16(v1, 1, v);
+  for (int a = 0; a < c; ++a) entries[base + rank[a]] = v[a];
+}
+
 void sort_row(__global int* entries, const ulong base, const int c) {
+  if (c <= RANK_SORT_REG) {
+    sort_row_reg(entries, base, c);
+    return;
+  }
   if (c > RANK_SORT_CAP) {
     insertion_sort_row(entries, base, c);
     return;
