@@ -137,9 +137,49 @@ void row_append_batch(const int r, const int* js, const int k, __global const ul
   for (int t = 0; t < k; ++t)
     row_place(r, s + (ulong)t, js[t], offset, entries_size, entries, spill_capacity, spill, counters);
 }
-// Entries of a node's own row gathered before one row_append_batch (the CPU loop only: on a GPU the
-// array would live in scratch memory).
-#define OWN_ROW_BATCH 32
+
+// The CPU loop walks a bucket 8 entries at a time in vector types (PoCL's CPU device does not
+// vectorise across work-items; forces.cl's GATHER8_XY and compress builtins, which the program places
+// before this file): the tag, distance and cell tests of 8 entries at once, without a branch on
+// each entry's outcome (a bucket's entries are in node order, its cells mixed: the scalar loop's
+// branches on them mispredicted at most entries). The accepted pairs (j and d2) are compressed into a
+// private list of GATHER_LIST_CAP; gather_emit appends them to the rows when it is nearly full and
+// after the scan. The rows end up with the same entries (sort_rows orders them; an entry past the
+// capacity spills, as row_append's); only the order of the appends differs.
+#define GATHER_LIST_CAP 64
+#if PDMESH_DOUBLE
+#define GATHER_MASK_T long
+#else
+#define GATHER_MASK_T int
+#endif
+
+// Appends the k listed pairs (i, js[t]) at squared distances d2s[t] of node i (kind kind_i, level own,
+// spacing qi) to the rows, as the GPU-shaped loop does per pair: all to i's own row when i is
+// interior (one batch), each to the row of a finer interior j within j's radius; returns q_min lowered
+// by the listed interior j of i's own level (building passes only).
+REAL gather_emit(const int i, const int kind_i, const int own, const REAL qi, const int* js, const REAL* d2s,
+                 const int k, REAL q_min, const REAL radius_factor, const REAL pair_skin, __global const REAL* q,
+                 __global const uchar* kind, __global const int* level, __global const ulong* offset,
+                 __global volatile int* count, const ulong entries_size, __global int* entries,
+                 const uint spill_capacity, __global int* spill, __global uint* counters, const int counting) {
+  if (kind_i == 2)
+    row_append_batch(i, js, k, offset, count, entries_size, entries, spill_capacity, spill, counters, counting);
+  for (int t = 0; t < k; ++t) {
+    const int j = js[t];
+    if (kind[j] != 2) continue;
+    const int level_j = level[j];
+    if (!counting && level_j == own) q_min = fmin(q_min, q[j]);
+    if (level_j < own) {
+      // The finer row's radius, widened for its coarser neighbour to c q_j + s c q_i (pair_skin =
+      // s c; see the top): r_i = c (1 + s) q_i bounds it, so this scan sees every such pair.
+      const REAL qj = q[j];
+      const REAL rj = radius_factor * qj + (qj < qi ? pair_skin * (qi - qj) : (REAL)0);
+      if (d2s[t] <= rj * rj)
+        row_append(j, i, offset, count, entries_size, entries, spill_capacity, spill, counters, counting);
+    }
+  }
+  return q_min;
+}
 #endif
 
 // Kernel arguments: per grid g (2 per occupied level: cumulative C_L at 2L, exact E_L at 2L+1; absent
@@ -173,8 +213,9 @@ __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void gather_rows(
     }
     {  // every kind scans: boundary and fixed nodes scatter to finer interior rows too
 #if PDMESH_FORCE_LOOP_VECTOR
-      int own_batch[OWN_ROW_BATCH];
-      int own_count = 0;
+      int list_j[GATHER_LIST_CAP];
+      REAL list_d2[GATHER_LIST_CAP];
+      int listed = 0;
 #endif
       const REAL2 pi = xy[i];  // positions: x, y interleaved (the step's layout)
       const REAL xi = pi.x, yi = pi.y;
@@ -242,6 +283,69 @@ __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void gather_rows(
 #endif
           const uint tag = nb_tag(cx, cy);
           const uint end = bucket[b];
+#if PDMESH_FORCE_LOOP_VECTOR
+          for (uint k0 = b > 0 ? bucket[b - 1] : 0; k0 < end; k0 += 8) {
+            int8 e;
+            if (k0 + 8 <= end) {
+              e = vload8(0, grid_nodes + k0);
+            } else {  // the bucket's last, partial chunk: the lanes past it hold i (never a candidate)
+#if defined(PACK_MASK_BITS)
+              // A masked load (no fault past the end, no store-to-load stall of lane-by-lane writes).
+              e = __builtin_astype(__builtin_ia32_loaddqusi256_mask((const int*)(ulong)(grid_nodes + k0),
+                                                                    __builtin_astype((int8)(i), pack_v8si),
+                                                                    (uchar)((1U << (end - k0)) - 1U)),
+                                   int8);
+#else
+              e = (int8)(i);
+              for (uint c = 0; k0 + c < end; ++c) ((int*)&e)[c] = grid_nodes[k0 + c];
+#endif
+            }
+            const int8 j = e & (int8)((int)GRID_NODE_MASK);
+            const int8 candidate = ((e & (int8)((int)~GRID_NODE_MASK)) == (int8)((int)tag)) & (j != (int8)(i));
+#if defined(PACK_MASK_BITS)
+            examined += popcount((uint)(uchar)__builtin_ia32_cvtd2mask256(__builtin_astype(candidate, pack_v8si)));
+#else
+            examined += (uint)COUNT8(candidate);
+#endif
+            REAL8 px, py;
+            GATHER8_XY(xy, j, px, py);  // j is a node whatever its cell: every lane's load is valid
+            // -(x[i] - x[j]) exactly, as the GPU-shaped loop below.
+            const REAL8 dx = px - (REAL8)(xi), dy = py - (REAL8)(yi), d2 = dx * dx + dy * dy;
+            MASK8 use = CONVERT_MASK8(candidate) & (d2 <= (REAL8)(r2));
+            const MASK8 fast = tags_apart ? (fabs(dx) < (REAL8)(inside)) & (fabs(dy) < (REAL8)(inside)) : (MASK8)(0);
+            const MASK8 check = use & ~fast;
+            if (any(check)) {  // the cell test near the box's edge (see `tags_apart`)
+              for (int c = 0; c < 8; ++c)
+                if (((GATHER_MASK_T*)&check)[c] &&
+                    (nb_cell_coord(((REAL*)&px)[c], inv_cell) != cx || nb_cell_coord(((REAL*)&py)[c], inv_cell) != cy))
+                  ((GATHER_MASK_T*)&use)[c] = 0;
+            }
+#if defined(PACK_MASK_BITS)
+            const uchar bits = (uchar)PACK_MASK_BITS(use);
+            vstore8(__builtin_astype(__builtin_ia32_compresssi256_mask(__builtin_astype(j, pack_v8si),
+                                                                       __builtin_astype((int8)(0), pack_v8si), bits),
+                                     int8),
+                    0, list_j + listed);
+            vstore8(__builtin_astype(PACK_COMPRESS_REAL(__builtin_astype(d2, pack_v8real),
+                                                        __builtin_astype((REAL8)((REAL)0), pack_v8real), bits),
+                                     REAL8),
+                    0, list_d2 + listed);
+            listed += (int)popcount((uint)bits);
+#else
+            for (int c = 0; c < 8; ++c) {
+              list_j[listed] = ((int*)&j)[c];
+              list_d2[listed] = ((REAL*)&d2)[c];
+              listed -= (int)((GATHER_MASK_T*)&use)[c];
+            }
+#endif
+            if (listed > GATHER_LIST_CAP - 8) {  // room for the next chunk's 8
+              q_min =
+                  gather_emit(i, kind_i, own, qi, list_j, list_d2, listed, q_min, radius_factor, pair_skin, q, kind,
+                              level, offset, count, entries_size, entries, spill_capacity, spill, counters, counting);
+              listed = 0;
+            }
+          }
+#else
           for (uint k = b > 0 ? bucket[b - 1] : 0; k < end; ++k) {
             const uint e = (uint)grid_nodes[k];
             if ((e & ~GRID_NODE_MASK) != tag) continue;  // another cell (most of them: no position loads)
@@ -259,18 +363,8 @@ __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void gather_rows(
             if (!(tags_apart && fabs(dx) < inside && fabs(dy) < inside) &&
                 (nb_cell_coord(pj.x, inv_cell) != cx || nb_cell_coord(pj.y, inv_cell) != cy))
               continue;
-            if (kind_i == 2) {
-#if PDMESH_FORCE_LOOP_VECTOR
-              own_batch[own_count++] = j;
-              if (own_count == OWN_ROW_BATCH) {
-                row_append_batch(i, own_batch, own_count, offset, count, entries_size, entries, spill_capacity, spill,
-                                 counters, counting);
-                own_count = 0;
-              }
-#else
+            if (kind_i == 2)
               row_append(i, j, offset, count, entries_size, entries, spill_capacity, spill, counters, counting);
-#endif
-            }
             const int interior_j = kind[j] == 2;
             if (interior_j && !counting && level[j] == own) q_min = fmin(q_min, q[j]);
             if (level[j] < own && interior_j) {
@@ -282,12 +376,13 @@ __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void gather_rows(
                 row_append(j, i, offset, count, entries_size, entries, spill_capacity, spill, counters, counting);
             }
           }
+#endif
         }
       }
 #if PDMESH_FORCE_LOOP_VECTOR
-      if (own_count > 0)
-        row_append_batch(i, own_batch, own_count, offset, count, entries_size, entries, spill_capacity, spill, counters,
-                         counting);
+      if (listed > 0)
+        q_min = gather_emit(i, kind_i, own, qi, list_j, list_d2, listed, q_min, radius_factor, pair_skin, q, kind,
+                            level, offset, count, entries_size, entries, spill_capacity, spill, counters, counting);
 #endif
     }
     atomic_add(&local_examined, examined);
@@ -379,7 +474,37 @@ void insertion_sort_row(__global int* entries, const ulong base, const int c) {
 #if defined(__x86_64__) && defined(__AVX512F__)
 #define RANK_SORT_CAP 256
 typedef int rank_v16si __attribute__((vector_size(64)));
+// A row of up to 32 entries (most rows) is ranked in two registers: its entries loaded by masked
+// loads (the lanes past the row hold INT_MAX, no load past it), each entry broadcast and compared
+// with all 32 lanes at once, each lane's rank counted in its own lane (no popcount chain, no copy of
+// the row into private memory to be read back as vectors). The same ranks, so the same order.
+#define RANK_SORT_REG 32
+void sort_row_reg(__global int* entries, const ulong base, const int c) {
+  const uint m = c >= 32 ? 0xFFFFFFFFU : (1U << c) - 1U;
+  const rank_v16si pad = __builtin_astype((int16)(INT_MAX), rank_v16si);
+  const int16 v0 =
+      __builtin_astype(__builtin_ia32_loaddqusi512_mask((const int*)(ulong)(entries + base), pad, (ushort)m), int16);
+  const int16 v1 = __builtin_astype(
+      __builtin_ia32_loaddqusi512_mask((const int*)(ulong)(entries + base + 16), pad, (ushort)(m >> 16)), int16);
+  int16 r0 = (int16)(0), r1 = (int16)(0);
+  for (int b = 0; b < c; ++b) {
+    const int16 x = (int16)(entries[base + b]);
+    r0 -= x < v0;  // -1 where true
+    r1 -= x < v1;
+  }
+  int rank[RANK_SORT_REG], v[RANK_SORT_REG];
+  vstore16(r0, 0, rank);
+  vstore16(r1, 1, rank);
+  vstore16(v0, 0, v);
+  vstore16(v1, 1, v);
+  for (int a = 0; a < c; ++a) entries[base + rank[a]] = v[a];
+}
+
 void sort_row(__global int* entries, const ulong base, const int c) {
+  if (c <= RANK_SORT_REG) {
+    sort_row_reg(entries, base, c);
+    return;
+  }
   if (c > RANK_SORT_CAP) {
     insertion_sort_row(entries, base, c);
     return;
