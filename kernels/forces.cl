@@ -182,6 +182,21 @@ void lj_chunk(const int8 j, const REAL8 dx, const REAL8 dy, const REAL8 r2, cons
   const REAL8 pk_r2 = vload8(0, pr2 + (k));                               \
   const MASK8 pk_use = CONVERT_MASK8(pk_valid)
 
+// r0 from each lane's least r^2 among the entries that count (`found`: lanes that saw one): the lanes'
+// minimum taken s0 to s7 with the reference's comparison, then its square root; 0 when no entry
+// counted. An entry found with r^2 = INFINITY (overflow) gives r0 = INFINITY, as in the reference.
+REAL r0_of_lanes(const REAL8 best2, const MASK8 found) {
+  REAL b = best2.s0;
+  b = best2.s1 < b ? best2.s1 : b;
+  b = best2.s2 < b ? best2.s2 : b;
+  b = best2.s3 < b ? best2.s3 : b;
+  b = best2.s4 < b ? best2.s4 : b;
+  b = best2.s5 < b ? best2.s5 : b;
+  b = best2.s6 < b ? best2.s6 : b;
+  b = best2.s7 < b ? best2.s7 : b;
+  return any(found) ? sqrt(b) : (REAL)0;
+}
+
 // node_forces, vector shape: eight row entries at a time through the packing buffer, only as many
 // chunks as the row needs (boundary rows: one).
 void node_forces(const int i, const int stride, const int count, const long base, const REAL xi, const REAL yi,
@@ -255,18 +270,9 @@ void node_forces(const int i, const int stride, const int count, const long base
       found |= ok;
     }
   }
-  REAL b = best2.s0;
-  b = best2.s1 < b ? best2.s1 : b;
-  b = best2.s2 < b ? best2.s2 : b;
-  b = best2.s3 < b ? best2.s3 : b;
-  b = best2.s4 < b ? best2.s4 : b;
-  b = best2.s5 < b ? best2.s5 : b;
-  b = best2.s6 < b ? best2.s6 : b;
-  b = best2.s7 < b ? best2.s7 : b;
   *fx_out = fx;
   *fy_out = fy;
-  // An entry found with r^2 = INFINITY (overflow) gives r0 = INFINITY, as in the reference.
-  *r0_out = any(found) ? sqrt(b) : (REAL)0;
+  *r0_out = r0_of_lanes(best2, found);
   *coincident_out = coincident;
   *within_out = kind_i == 2 ? within : 0;
 }
@@ -362,16 +368,7 @@ REAL node_forces_r0(const int packed, const REAL fx, const REAL fy, const int r0
     best2 = select(best2, pk_r2, ok & (pk_r2 < best2));
     found |= ok;
   }
-  REAL b = best2.s0;
-  b = best2.s1 < b ? best2.s1 : b;
-  b = best2.s2 < b ? best2.s2 : b;
-  b = best2.s3 < b ? best2.s3 : b;
-  b = best2.s4 < b ? best2.s4 : b;
-  b = best2.s5 < b ? best2.s5 : b;
-  b = best2.s6 < b ? best2.s6 : b;
-  b = best2.s7 < b ? best2.s7 : b;
-  // An entry found with r^2 = INFINITY (overflow) gives r0 = INFINITY, as in the reference.
-  return any(found) ? sqrt(b) : (REAL)0;
+  return r0_of_lanes(best2, found);
 }
 
 #else  // PDMESH_FORCE_LOOP_SCALAR
