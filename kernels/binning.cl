@@ -270,10 +270,9 @@ long8 bin_cell_coord8(const BIN_REAL8 v, const REAL inv_cell) {
 // grid L; BIN_NO_BUCKET for the nodes without one there (their level is above L) and past count.
 // Eight nodes at a time in vectors (nb_tag's and nb_bucket's integer expressions lane by lane: the
 // same values); the group's last, partial chunk by the scalar functions.
-void bin_group_buckets(const int i0, const int count, const int L, __global const REAL2* xy,
-                       __global const int* level, __global const int* grid_mask,
-                       __global const uint* grid_bucket_offset, __global const REAL* grid_inv_cell, uint* b,
-                       uint* tag) {
+void bin_group_buckets(const int i0, const int count, const int L, __global const REAL2* xy, __global const int* level,
+                       __global const int* grid_mask, __global const uint* grid_bucket_offset,
+                       __global const REAL* grid_inv_cell, uint* b, uint* tag) {
   const REAL inv_cell = grid_inv_cell[L];
   const ulong mask = (ulong)grid_mask[L];
   const uint offset = grid_bucket_offset[L];
