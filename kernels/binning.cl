@@ -207,10 +207,10 @@ __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void bin_plan(
 }
 
 #if PDMESH_FORCE_LOOP_VECTOR
-// The CPU shape counts and fills per level and work-group, in work-item 0 alone (no barriers: PoCL
-// runs a group's work-items as one loop per region between barriers, and the two barriers a level
-// cost more than the level's work). It groups the group's buckets and takes each distinct bucket's
-// slots with one atomic_add when the group's nodes fall in at most BIN_GROUP_BUCKETS buckets (the
+// The CPU shape counts and fills per level and work-group, in work-item 0 alone: no barriers (PoCL
+// runs a group's work-items as one loop per region between barriers), and the buckets of the group's
+// nodes are computed 8 at a time in explicit vectors (bin_group_buckets). It groups the group's buckets and takes each
+// distinct bucket's slots with one atomic_add when the group's nodes fall in at most BIN_GROUP_BUCKETS buckets (the
 // coarse levels, whose few cells every node of the group falls in); otherwise it takes one slot per
 // node. A global atomic per node and level on the few buckets of a coarse grid had the CPU device's
 // two threads pass their cache lines back and forth (94 % of bin_count's and bin_fill's samples
