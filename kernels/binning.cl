@@ -207,62 +207,114 @@ __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void bin_plan(
 }
 
 #if PDMESH_FORCE_LOOP_VECTOR
-// The CPU shape counts and fills per level and work-group: work-item 0 groups the work-items' buckets
-// and takes each distinct bucket's slots with one atomic_add, when the group's nodes fall in at most
-// BIN_GROUP_BUCKETS buckets (the coarse levels, whose few cells every node of the group falls in);
-// otherwise every work-item takes its own slot. A global atomic per node and level on the few
-// buckets of a coarse grid had the CPU device's two threads pass their cache lines back and forth
-// (94 % of bin_count's and bin_fill's samples were their atomics). Within a bucket the order is the
-// group's (ascending nodes, groups in the atomics' order): the rows the gather makes are sorted.
-// Every work-item reaches every barrier of these kernels: PoCL's CPU device crashed on a level loop
-// that skipped a level's barriers with `continue`, uniform as the skip was.
+// The CPU shape counts and fills per level and work-group, in work-item 0 alone: no barriers (PoCL
+// runs a group's work-items as one loop per region between barriers), and the buckets of the group's
+// nodes are computed 8 at a time in explicit vectors (bin_group_buckets). It groups the group's buckets and takes each
+// distinct bucket's slots with one atomic_add when the group's nodes fall in at most BIN_GROUP_BUCKETS buckets (the
+// coarse levels, whose few cells every node of the group falls in); otherwise it takes one slot per
+// node. A global atomic per node and level on the few buckets of a coarse grid had the CPU device's
+// two threads pass their cache lines back and forth (94 % of bin_count's and bin_fill's samples
+// were their atomics). Within a bucket the order is the group's (ascending nodes, groups in the
+// atomics' order): the rows the gather makes are sorted.
 #define BIN_GROUP_BUCKETS 8
-// Work-item 0: groups b[0 .. WG_SIZE) (BIN_NO_BUCKET: none) by bucket; returns 0 when there are more
-// than BIN_GROUP_BUCKETS distinct ones (nothing done), else takes their slots (one atomic_add per
-// bucket) and, where slot is given, writes each work-item's slot, in work-item order.
+// Groups b[0 .. WG_SIZE) (BIN_NO_BUCKET: none) by bucket; returns 0 when there are more than
+// BIN_GROUP_BUCKETS distinct ones (nothing done), else takes their slots (one atomic_add per bucket)
+// and, where slot is given, writes each node's slot, in node order.
 #define BIN_NO_BUCKET 0xFFFFFFFFU
-int bin_group_take(__local const uint* b, __global volatile uint* bucket, __local uint* slot) {
+int bin_group_take(const uint* b, __global volatile uint* bucket, uint* slot) {
   uint distinct[BIN_GROUP_BUCKETS], next[BIN_GROUP_BUCKETS];
-  int nd = 0;
+  uchar which[WG_SIZE];  // each node's index in distinct (read only where b[k] is a bucket)
+  int nd = 0, last = 0;
   for (int k = 0; k < WG_SIZE; ++k) {
     const uint v = b[k];
     if (v == BIN_NO_BUCKET) continue;
-    int j = 0;
-    while (j < nd && distinct[j] != v) ++j;
-    if (j == nd) {
-      if (nd == BIN_GROUP_BUCKETS) return 0;
-      distinct[nd] = v;
-      next[nd++] = 0;
+    int j = last;  // consecutive nodes mostly share a bucket: the previous node's first
+    if (nd == 0 || distinct[j] != v) {
+      j = 0;
+      while (j < nd && distinct[j] != v) ++j;
+      if (j == nd) {
+        if (nd == BIN_GROUP_BUCKETS) return 0;
+        distinct[nd] = v;
+        next[nd++] = 0;
+      }
     }
+    last = j;
+    which[k] = (uchar)j;
     ++next[j];
   }
   for (int j = 0; j < nd; ++j) next[j] = atomic_add(&bucket[distinct[j]], next[j]);
-  if (slot) {
-    for (int k = 0; k < WG_SIZE; ++k) {
-      const uint v = b[k];
-      if (v == BIN_NO_BUCKET) continue;
-      int j = 0;
-      while (distinct[j] != v) ++j;
-      slot[k] = next[j]++;
-    }
-  }
+  if (slot)
+    for (int k = 0; k < WG_SIZE; ++k)
+      if (b[k] != BIN_NO_BUCKET) slot[k] = next[which[k]]++;
   return 1;
 }
 
-// The group's finest level (PDMESH_GRID_LEVELS when it has no node), through `scratch`: bin_count's and
-// bin_fill's level loops start there, since a level below it has no node of the group (the loop bound
-// is the same for every work-item, so each reaches every barrier of it).
-int group_first_level(const int own, __local uint* scratch, __local int* first) {
-  const int l = get_local_id(0);
-  scratch[l] = (uint)own;
-  barrier(CLK_LOCAL_MEM_FENCE);
-  if (l == 0) {
-    int m = PDMESH_GRID_LEVELS;
-    for (int k = 0; k < WG_SIZE; ++k) m = min(m, (int)scratch[k]);
-    *first = max(m, 0);  // (a failed binning's levels may be stale: its loops run no level anyway)
+#if PDMESH_DOUBLE
+#define BIN_REAL8 double8
+#define BIN_REAL16 double16
+#define BIN_CONVERT_REAL8 convert_double8
+#else
+#define BIN_REAL8 float8
+#define BIN_REAL16 float16
+#define BIN_CONVERT_REAL8 convert_float8
+#endif
+// nb_cell_coord (CPU shape) for 8 values: the same expressions lane by lane (a conversion to long
+// truncates, one to REAL rounds to nearest, as the scalar casts), so the same integers.
+long8 bin_cell_coord8(const BIN_REAL8 v, const REAL inv_cell) {
+  const BIN_REAL8 c = clamp(v * inv_cell, -REAL_C(4.0e18), REAL_C(4.0e18));
+  const long8 t = convert_long8(c);
+  return t + convert_long8(BIN_CONVERT_REAL8(t) > c);  // a true compare is -1
+}
+
+// The buckets (and, where tag is given, the cell tags) of the group's nodes i0 + k (k < count) in
+// grid L; BIN_NO_BUCKET for the nodes without one there (their level is above L) and past count.
+// Eight nodes at a time in vectors (nb_tag's and nb_bucket's integer expressions lane by lane: the
+// same values); the group's last, partial chunk by the scalar functions.
+void bin_group_buckets(const int i0, const int count, const int L, __global const REAL2* xy, __global const int* level,
+                       __global const int* grid_mask, __global const uint* grid_bucket_offset,
+                       __global const REAL* grid_inv_cell, uint* b, uint* tag) {
+  const REAL inv_cell = grid_inv_cell[L];
+  const ulong mask = (ulong)grid_mask[L];
+  const uint offset = grid_bucket_offset[L];
+  for (int k0 = 0; k0 < WG_SIZE; k0 += 8) {
+    if (k0 + 8 <= count) {
+      const BIN_REAL16 v = vload16(0, (__global const REAL*)(xy + i0 + k0));  // x, y interleaved
+      const ulong8 cx = as_ulong8(bin_cell_coord8(v.even, inv_cell));
+      const ulong8 cy = as_ulong8(bin_cell_coord8(v.odd, inv_cell));
+      if (tag) {
+        const ulong8 t = cx * 0xD6E8FEB86659FD93UL + cy * 0xA0761D6478BD642FUL;
+        vstore8(convert_uint8(t >> (ulong)(32 + GRID_NODE_BITS)) << (uint)GRID_NODE_BITS, 0, tag + k0);
+      }
+      ulong8 h = ((cx >> 2UL) * 0x9E3779B97F4A7C15UL) ^ (cy >> 2UL);
+      h ^= h >> 30UL;
+      h *= 0xBF58476D1CE4E5B9UL;
+      h ^= h >> 27UL;
+      h *= 0x94D049BB133111EBUL;
+      h ^= h >> 31UL;
+      const uint8 bk = convert_uint8(((h << 4UL) | ((cy & 3UL) << 2UL) | (cx & 3UL)) & mask) + offset;
+      const int8 lv = vload8(0, level + i0 + k0);
+      vstore8(select((uint8)(BIN_NO_BUCKET), bk, lv <= (int8)(L)), 0, b + k0);
+      continue;
+    }
+    for (int k = k0; k < min(k0 + 8, WG_SIZE); ++k) {
+      b[k] = BIN_NO_BUCKET;
+      if (k >= count || level[i0 + k] > L) continue;
+      const REAL2 p = xy[i0 + k];
+      const long cx = nb_cell_coord(p.x, inv_cell), cy = nb_cell_coord(p.y, inv_cell);
+      if (tag) tag[k] = nb_tag(cx, cy);
+      b[k] = offset + nb_bucket(cx, cy, mask);
+    }
   }
-  barrier(CLK_LOCAL_MEM_FENCE);
-  return *first;
+}
+
+// The group's first node, its node count and its finest level (-1: nothing to bin).
+int bin_group_range(const int n, __global const int* level, __global const int* state, int* i0, int* count) {
+  *i0 = (int)get_group_id(0) * WG_SIZE;
+  *count = min(WG_SIZE, n - *i0);
+  if (get_local_id(0) != 0 || *count <= 0 || !bin_ok(state, n)) return -1;
+  int first = PDMESH_GRID_LEVELS;
+  for (int k = 0; k < *count; ++k) first = min(first, level[*i0 + k]);
+  return first;
 }
 
 // Each node in the grid of every level from its own up to the top (the cumulative grids).
@@ -270,25 +322,17 @@ __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void bin_count(
     const int n, __global const REAL2* xy, __global const int* level, __global const int* state,
     __global const int* grid_mask, __global const uint* grid_bucket_offset, __global const REAL* grid_inv_cell,
     __global volatile uint* bucket) {
-  __local uint wg_bucket[WG_SIZE];
-  __local int grouped, first_level;
-  const int i = get_global_id(0), l = get_local_id(0);
-  const REAL2 p = i < n ? xy[i] : (REAL2)((REAL)0, (REAL)0);
-  const int own = i < n ? level[i] : PDMESH_GRID_LEVELS;
-  // No levels when the binning failed (the same words for every work-item: no return before a barrier).
-  const int top = bin_ok(state, n) ? state[BIN_TOP] : -1;
-  // Every work-item reaches every barrier: a level without a grid (grid_mask -1) just has no buckets.
-  const int first = group_first_level(own, wg_bucket, &first_level);
+  int i0, count;
+  const int first = bin_group_range(n, level, state, &i0, &count);
+  if (first < 0) return;
+  const int top = state[BIN_TOP];
+  uint b[WG_SIZE];
   for (int L = first; L <= top; ++L) {
-    uint tag;
-    const uint b = own <= L && grid_mask[L] >= 0
-                       ? bin_bucket(p.x, p.y, L, grid_mask, grid_bucket_offset, grid_inv_cell, &tag)
-                       : BIN_NO_BUCKET;
-    wg_bucket[l] = b;
-    barrier(CLK_LOCAL_MEM_FENCE);
-    if (l == 0) grouped = bin_group_take(wg_bucket, bucket, 0);
-    barrier(CLK_LOCAL_MEM_FENCE);
-    if (!grouped && b != BIN_NO_BUCKET) atomic_inc(&bucket[b]);
+    if (grid_mask[L] < 0) continue;  // a level without a grid
+    bin_group_buckets(i0, count, L, xy, level, grid_mask, grid_bucket_offset, grid_inv_cell, b, 0);
+    if (!bin_group_take(b, bucket, 0))
+      for (int k = 0; k < WG_SIZE; ++k)
+        if (b[k] != BIN_NO_BUCKET) atomic_inc(&bucket[b[k]]);
   }
 }
 #else
@@ -360,23 +404,18 @@ __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void bin_fill(
     const int n, __global const REAL2* xy, __global const int* level, __global const int* state,
     __global const int* grid_mask, __global const uint* grid_bucket_offset, __global const REAL* grid_inv_cell,
     __global volatile uint* bucket, __global int* grid_nodes) {
-  __local uint wg_bucket[WG_SIZE], wg_slot[WG_SIZE];
-  __local int grouped, first_level;
-  const int i = get_global_id(0), l = get_local_id(0);
-  const REAL2 p = i < n ? xy[i] : (REAL2)((REAL)0, (REAL)0);
-  const int own = i < n ? level[i] : PDMESH_GRID_LEVELS;
-  const int top = bin_ok(state, n) ? state[BIN_TOP] : -1;  // as in bin_count
-  const int first = group_first_level(own, wg_bucket, &first_level);
+  int i0, count;
+  const int first = bin_group_range(n, level, state, &i0, &count);
+  if (first < 0) return;
+  const int top = state[BIN_TOP];
+  uint b[WG_SIZE], tag[WG_SIZE], slot[WG_SIZE];
   for (int L = first; L <= top; ++L) {
-    uint tag = 0;
-    const uint b = own <= L && grid_mask[L] >= 0
-                       ? bin_bucket(p.x, p.y, L, grid_mask, grid_bucket_offset, grid_inv_cell, &tag)
-                       : BIN_NO_BUCKET;
-    wg_bucket[l] = b;
-    barrier(CLK_LOCAL_MEM_FENCE);
-    if (l == 0) grouped = bin_group_take(wg_bucket, bucket, wg_slot);
-    barrier(CLK_LOCAL_MEM_FENCE);
-    if (b != BIN_NO_BUCKET) grid_nodes[grouped ? wg_slot[l] : atomic_inc(&bucket[b])] = (int)((uint)i | tag);
+    if (grid_mask[L] < 0) continue;
+    bin_group_buckets(i0, count, L, xy, level, grid_mask, grid_bucket_offset, grid_inv_cell, b, tag);
+    const int grouped = bin_group_take(b, bucket, slot);
+    for (int k = 0; k < WG_SIZE; ++k)
+      if (b[k] != BIN_NO_BUCKET)
+        grid_nodes[grouped ? slot[k] : atomic_inc(&bucket[b[k]])] = (int)((uint)(i0 + k) | tag[k]);
   }
 }
 #else

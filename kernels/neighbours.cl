@@ -302,13 +302,29 @@ __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void gather_rows(
             }
             const int8 j = e & (int8)((int)GRID_NODE_MASK);
             const int8 candidate = ((e & (int8)((int)~GRID_NODE_MASK)) == (int8)((int)tag)) & (j != (int8)(i));
+            REAL8 px, py;
+#if defined(PACK_MASK_BITS) && PDMESH_DOUBLE
+            // Only the candidates' positions are loaded (the other lanes are 0, never used: `use`
+            // holds candidates only); a chunk without a candidate loads nothing.
+            const uchar cand_bits = (uchar)__builtin_ia32_cvtd2mask256(__builtin_astype(candidate, pack_v8si));
+            if (!cand_bits) continue;
+            examined += popcount((uint)cand_bits);
+            {
+              const gather_v8si j2 = __builtin_astype(j * 2, gather_v8si);
+              const gather_v8df none = {0, 0, 0, 0, 0, 0, 0, 0};
+              px = __builtin_astype(__builtin_ia32_gathersiv8df(none, (const void*)(ulong)(xy), j2, cand_bits, 8),
+                                    REAL8);
+              py = __builtin_astype(__builtin_ia32_gathersiv8df(none, (const void*)((ulong)(xy) + 8), j2, cand_bits, 8),
+                                    REAL8);
+            }
+#else
 #if defined(PACK_MASK_BITS)
             examined += popcount((uint)(uchar)__builtin_ia32_cvtd2mask256(__builtin_astype(candidate, pack_v8si)));
 #else
             examined += (uint)COUNT8(candidate);
 #endif
-            REAL8 px, py;
             GATHER8_XY(xy, j, px, py);  // j is a node whatever its cell: every lane's load is valid
+#endif
             // -(x[i] - x[j]) exactly, as the GPU-shaped loop below.
             const REAL8 dx = px - (REAL8)(xi), dy = py - (REAL8)(yi), d2 = dx * dx + dy * dy;
             MASK8 use = CONVERT_MASK8(candidate) & (d2 <= (REAL8)(r2));
