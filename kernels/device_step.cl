@@ -40,9 +40,8 @@ REAL bg_spacing_cached(const REAL px, const REAL py, int* leaf, BG_ARGS) {
 // PoCL runs each region between barriers as a loop over the group's work-items: a node's dependency
 // chains (the force's sums and r0: kernels/forces.cl, node_forces_scan; then |F|'s square root, the
 // division of eq. 5.8, momentum's square root and division, each waiting for the one before) then
-// overlap with the next node's instead of waiting behind its row scan (the step ~10 % faster on
-// 30P30N's curves with momentum with the time-step barrier; the force phases 0.85x of that step's CPU:
-// docs/journal/). A GPU interleaves work-items in hardware: no barrier there.
+// overlap with the next node's instead of waiting behind its row scan (docs/opencl.md, "Kernels
+// written for PoCL's CPU device"). A GPU interleaves work-items in hardware: no barrier there.
 #if PDMESH_FORCE_LOOP_VECTOR
 #define STEP_PHASE() barrier(CLK_LOCAL_MEM_FENCE)
 #else
@@ -135,9 +134,8 @@ __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void device_step(
   __local REAL values[STEP_PARTIALS * WG_SIZE];
 #if PDMESH_FORCE_LOOP_VECTOR
   // The packed row entries between the phases of node_forces (kernels/forces.cl, node_forces_scan),
-  // and their count (-1: node_forces ran whole). The count goes through local memory too: held in a
-  // private variable across the barriers, PoCL 3.1's build read a wrong count in the r0 phase for
-  // some work-items of groups that mix the two cases (a crash on a fresh 30P30N run; not understood).
+  // and their count (-1: node_forces ran whole). The count goes through local memory too: PoCL 3.1
+  // misreads a private count held across these barriers in groups that mix the two cases.
   __local int split_j[WG_SIZE * SPLIT_PACK];
   __local REAL split_dx[WG_SIZE * SPLIT_PACK], split_dy[WG_SIZE * SPLIT_PACK], split_r2[WG_SIZE * SPLIT_PACK];
   __local int split_n[WG_SIZE];
@@ -174,8 +172,8 @@ __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void device_step(
                    split_dx + SPLIT_PACK * l, split_dy + SPLIT_PACK * l, split_r2 + SPLIT_PACK * l, &fx, &fy, &limit);
   STEP_PHASE();
   if (split_n[l] >= 0)
-    r0 = node_forces_r0(split_n[l], fx, fy, r0_any_direction, split_dx + SPLIT_PACK * l, split_dy + SPLIT_PACK * l,
-                        split_r2 + SPLIT_PACK * l);
+    r0 = node_forces_r0(ic, split_n[l], fx, fy, r0_any_direction, split_j + SPLIT_PACK * l, split_dx + SPLIT_PACK * l,
+                        split_dy + SPLIT_PACK * l, split_r2 + SPLIT_PACK * l);
 #else
   node_forces(ic, (row + 7) & ~7, row, row_start, xi, yi, qi, kind_i, rc * rc, tx[ic], ty[ic], lj_a, r0_any_direction,
               stability_factor, xy, q, index, &fx, &fy, &r0, &limit, &coincident, &within);

@@ -173,14 +173,38 @@ void lj_chunk(const int8 j, const REAL8 dx, const REAL8 dy, const REAL8 r2, cons
   ADD8_IN_ORDER(*stiffness, cs);
 }
 
-// Packed entries k .. k + 7 of the buffer, of which the first `valid` count (pk_use); the others may
-// be stale or unwritten slots: their node index becomes i, so the gather of q stays inside the arrays.
-#define PACKED_CHUNK(k, valid)                                            \
-  const int8 pk_valid = (int8)(0, 1, 2, 3, 4, 5, 6, 7) < (int8)(valid);   \
-  const int8 pk_j = select((int8)(i), vload8(0, pj + (k)), pk_valid);     \
-  const REAL8 pk_dx = vload8(0, pdx + (k)), pk_dy = vload8(0, pdy + (k)); \
-  const REAL8 pk_r2 = vload8(0, pr2 + (k));                               \
+// Packed entries k .. k + 7 of the arrays J, DX, DY, R2 (private or local), of which the first `valid`
+// count (pk_use); the others may be stale or unwritten slots: their node index becomes i, so the gather
+// of q stays inside the arrays.
+#define PACKED_CHUNK(k, valid, J, DX, DY, R2)                               \
+  const int8 pk_valid = (int8)(0, 1, 2, 3, 4, 5, 6, 7) < (int8)(valid);     \
+  const int8 pk_j = select((int8)(i), vload8(0, (J) + (k)), pk_valid);      \
+  const REAL8 pk_dx = vload8(0, (DX) + (k)), pk_dy = vload8(0, (DY) + (k)); \
+  const REAL8 pk_r2 = vload8(0, (R2) + (k));                                \
   const MASK8 pk_use = CONVERT_MASK8(pk_valid)
+
+// r0's pass over `packed` entries of DX, DY, R2: each lane's least r^2 (best2) among the entries in the
+// direction of the force (fx, fy), or in any direction (`any_direction`), and the lanes that saw one
+// (found); J gives PACKED_CHUNK its node indices, which r0 does not read.
+#define R0_CHUNKS(packed, J, DX, DY, R2)                                                        \
+  for (int k = 0; k < (packed); k += 8) {                                                       \
+    PACKED_CHUNK(k, (packed)-k, J, DX, DY, R2);                                                 \
+    const MASK8 ok = pk_use & (any_direction | ((REAL8)(fx)*pk_dx + (REAL8)(fy)*pk_dy > zero)); \
+    best2 = select(best2, pk_r2, ok & (pk_r2 < best2));                                         \
+    found |= ok;                                                                                \
+  }
+
+// One chunk of 8 row entries from k0: their indices, offsets and r^2 (j, dx, dy, r2), the within and
+// coincident counts, and the entries that count (in range, r^2 > 0) packed after `packed` (PACK8).
+#define SCAN_CHUNK(k0)                                                                                    \
+  int8 j;                                                                                                 \
+  REAL8 dx, dy, r2;                                                                                       \
+  const MASK8 in_range =                                                                                  \
+      row_chunk_offsets(i, stride, count, base, (k0), xi, yi, filter, rc2, xy, index, &j, &dx, &dy, &r2); \
+  within += (int)COUNT8(in_range);                                                                        \
+  coincident += (int)COUNT8(in_range & (r2 == zero));                                                     \
+  const MASK8 use = in_range & (r2 > zero);                                                               \
+  PACK8
 
 // r0 from each lane's least r^2 among the entries that count (`found`: lanes that saw one): the lanes'
 // minimum taken s0 to s7 with the reference's comparison, then its square root; 0 when no entry
@@ -213,16 +237,9 @@ void node_forces(const int i, const int stride, const int count, const long base
   int coincident = 0, within = 0;
   int packed = 0, done = 0, overflow = 0;  // buffer entries; of them computed; whether any were dropped
   for (int k0 = 0; k0 < count; k0 += 8) {
-    int8 j;
-    REAL8 dx, dy, r2;
-    const MASK8 in_range =
-        row_chunk_offsets(i, stride, count, base, k0, xi, yi, filter, rc2, xy, index, &j, &dx, &dy, &r2);
-    within += (int)COUNT8(in_range);
-    coincident += (int)COUNT8(in_range & (r2 == zero));
-    const MASK8 use = in_range & (r2 > zero);
-    PACK8
+    SCAN_CHUNK(k0)
     if (packed - done >= 8) {
-      PACKED_CHUNK(done, 8);
+      PACKED_CHUNK(done, 8, pj, pdx, pdy, pr2);
       lj_chunk(pk_j, pk_dx, pk_dy, pk_r2, pk_use, qi, lj_a, q, &fx, &fy, &stiffness);
       done += 8;
     }
@@ -239,7 +256,7 @@ void node_forces(const int i, const int stride, const int count, const long base
     }
   }
   if (packed > done) {
-    PACKED_CHUNK(done, packed - done);
+    PACKED_CHUNK(done, packed - done, pj, pdx, pdy, pr2);
     lj_chunk(pk_j, pk_dx, pk_dy, pk_r2, pk_use, qi, lj_a, q, &fx, &fy, &stiffness);
   }
   *dt2_limit_out =
@@ -253,12 +270,7 @@ void node_forces(const int i, const int stride, const int count, const long base
   REAL8 best2 = (REAL8)(INFINITY);
   MASK8 found = (MASK8)(0);
   if (!overflow) {  // the buffer holds every entry that counts (r^2 > 0 and in range)
-    for (int k = 0; k < packed; k += 8) {
-      PACKED_CHUNK(k, packed - k);
-      const MASK8 ok = pk_use & (any_direction | ((REAL8)(fx)*pk_dx + (REAL8)(fy)*pk_dy > zero));
-      best2 = select(best2, pk_r2, ok & (pk_r2 < best2));
-      found |= ok;
-    }
+    R0_CHUNKS(packed, pj, pdx, pdy, pr2)
   } else {
     for (int k0 = 0; k0 < count; k0 += 8) {
       int8 j;
@@ -283,8 +295,7 @@ void node_forces(const int i, const int stride, const int count, const long base
 // force. PoCL runs each phase as a loop over the group's work-items, so the dependency chains of one
 // node's sums (division, square root, the sums in row order) and of its r0 (which waits for the final
 // force, then a minimum and a square root) overlap with the next nodes' instead of holding the core
-// while the next node's row waits behind them (the step's CPU 0.85x on 30P30N's curves and 0.93x at
-// 1M nodes: docs/journal/2026-12-04g-step-excess.md). A node's packed entries cross the barriers in
+// while the next node's row waits behind them. A node's packed entries cross the barriers in
 // local memory, at most SPLIT_PACK of them (the settled lattice has ~6 within the cut-off; a boundary
 // row has at most 8); a node with more gets node_forces whole in the scan's phase. With device_step's
 // partial sums the group's local memory is 32,512 bytes in double at 64 work-items: within the
@@ -308,14 +319,7 @@ int node_forces_scan(const int i, const int stride, const int count, const long 
   REAL pdx[SPLIT_PACK + 8], pdy[SPLIT_PACK + 8], pr2[SPLIT_PACK + 8];
   int coincident = 0, within = 0, packed = 0;
   for (int k0 = 0; k0 < count; k0 += 8) {
-    int8 j;
-    REAL8 dx, dy, r2;
-    const MASK8 in_range =
-        row_chunk_offsets(i, stride, count, base, k0, xi, yi, filter, rc2, xy, index, &j, &dx, &dy, &r2);
-    within += (int)COUNT8(in_range);
-    coincident += (int)COUNT8(in_range & (r2 == zero));
-    const MASK8 use = in_range & (r2 > zero);
-    PACK8
+    SCAN_CHUNK(k0)
     if (packed > SPLIT_PACK) {
       node_forces(i, stride, count, base, xi, yi, qi, kind_i, rc2, tx, ty, lj_a, r0_any_direction, stability_factor, xy,
                   q, index, fx_out, fy_out, r0_out, dt2_limit_out, coincident_out, within_out);
@@ -341,10 +345,8 @@ void node_forces_lj(const int i, const int packed, const int kind_i, const REAL 
                     REAL* fy_out, REAL* dt2_limit_out) {
   REAL fx = (REAL)0, fy = (REAL)0, stiffness = (REAL)0;
   for (int k = 0; k < packed; k += 8) {
-    const int8 pk_valid = (int8)(0, 1, 2, 3, 4, 5, 6, 7) < (int8)(packed - k);
-    const int8 pk_j = select((int8)(i), vload8(0, lj + k), pk_valid);
-    const REAL8 pk_dx = vload8(0, ldx + k), pk_dy = vload8(0, ldy + k), pk_r2 = vload8(0, lr2 + k);
-    lj_chunk(pk_j, pk_dx, pk_dy, pk_r2, CONVERT_MASK8(pk_valid), qi, lj_a, q, &fx, &fy, &stiffness);
+    PACKED_CHUNK(k, packed - k, lj, ldx, ldy, lr2);
+    lj_chunk(pk_j, pk_dx, pk_dy, pk_r2, pk_use, qi, lj_a, q, &fx, &fy, &stiffness);
   }
   *dt2_limit_out =
       stability_factor > (REAL)0 && stiffness > (REAL)0 ? (REAL)2 * stability_factor / stiffness : INFINITY;
@@ -355,19 +357,13 @@ void node_forces_lj(const int i, const int packed, const int kind_i, const REAL 
 }
 
 // r0 over the `packed` entries in local memory, given the node's final force (fx, fy): node_forces' r0 pass.
-REAL node_forces_r0(const int packed, const REAL fx, const REAL fy, const int r0_any_direction, __local const REAL* ldx,
-                    __local const REAL* ldy, __local const REAL* lr2) {
+REAL node_forces_r0(const int i, const int packed, const REAL fx, const REAL fy, const int r0_any_direction,
+                    __local const int* lj, __local const REAL* ldx, __local const REAL* ldy, __local const REAL* lr2) {
   const REAL8 zero = (REAL8)((REAL)0);
   const MASK8 any_direction = (MASK8)(r0_any_direction && (fx != (REAL)0 || fy != (REAL)0) ? -1 : 0);
   REAL8 best2 = (REAL8)(INFINITY);
   MASK8 found = (MASK8)(0);
-  for (int k = 0; k < packed; k += 8) {
-    const MASK8 pk_use = CONVERT_MASK8((int8)(0, 1, 2, 3, 4, 5, 6, 7) < (int8)(packed - k));
-    const REAL8 pk_dx = vload8(0, ldx + k), pk_dy = vload8(0, ldy + k), pk_r2 = vload8(0, lr2 + k);
-    const MASK8 ok = pk_use & (any_direction | ((REAL8)(fx)*pk_dx + (REAL8)(fy)*pk_dy > zero));
-    best2 = select(best2, pk_r2, ok & (pk_r2 < best2));
-    found |= ok;
-  }
+  R0_CHUNKS(packed, lj, ldx, ldy, lr2)
   return r0_of_lanes(best2, found);
 }
 
