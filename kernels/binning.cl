@@ -212,9 +212,8 @@ __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void bin_plan(
 // nodes are computed 8 at a time in explicit vectors (bin_group_buckets). It groups the group's buckets and takes each
 // distinct bucket's slots with one atomic_add when the group's nodes fall in at most BIN_GROUP_BUCKETS buckets (the
 // coarse levels, whose few cells every node of the group falls in); otherwise it takes one slot per
-// node. A global atomic per node and level on the few buckets of a coarse grid had the CPU device's
-// two threads pass their cache lines back and forth (94 % of bin_count's and bin_fill's samples
-// were their atomics). Within a bucket the order is the group's (ascending nodes, groups in the
+// node. A global atomic per node and level on the few buckets of a coarse grid would have the CPU
+// device's threads pass those cache lines back and forth. Within a bucket the order is the group's (ascending nodes, groups in the
 // atomics' order): the rows the gather makes are sorted.
 #define BIN_GROUP_BUCKETS 8
 // Groups b[0 .. WG_SIZE) (BIN_NO_BUCKET: none) by bucket; returns 0 when there are more than
