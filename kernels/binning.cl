@@ -213,8 +213,8 @@ __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void bin_plan(
 // distinct bucket's slots with one atomic_add when the group's nodes fall in at most BIN_GROUP_BUCKETS buckets (the
 // coarse levels, whose few cells every node of the group falls in); otherwise it takes one slot per
 // node. A global atomic per node and level on the few buckets of a coarse grid would have the CPU
-// device's threads pass those cache lines back and forth. Within a bucket the order is the group's (ascending nodes, groups in the
-// atomics' order): the rows the gather makes are sorted.
+// device's threads pass those cache lines back and forth. Within a bucket the order is the group's (ascending nodes,
+// groups in the atomics' order): the rows the gather makes are sorted.
 #define BIN_GROUP_BUCKETS 8
 // Groups b[0 .. WG_SIZE) (BIN_NO_BUCKET: none) by bucket; returns 0 when there are more than
 // BIN_GROUP_BUCKETS distinct ones (nothing done), else takes their slots (one atomic_add per bucket)
