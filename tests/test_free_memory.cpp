@@ -9,7 +9,7 @@
 
 #include "core/free_memory.hpp"
 
-#if defined(__GLIBC__)
+#if defined(__GLIBC__) && __GLIBC_PREREQ(2, 33)
 #include <malloc.h>
 #include <unistd.h>
 
