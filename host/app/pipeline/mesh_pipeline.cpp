@@ -279,9 +279,15 @@ void run_core(const CaseConfig& config, const MeshInputs& inputs, const SpacingS
   }
   NodeSet nodes = initial->nodes;
   // The initial pictures hold `initial` while the simulation moves `nodes`; it is freed once they are
-  // drawn (on a CPU device a few seconds into the simulation), not kept to the end of the run. The
+  // drawn (on a CPU device after the simulation, or 2 s into it), not kept to the end of the run. The
   // guard: the final pictures read `nodes`.
   const PictureGuard guard(phases);
+  // A simulation on the backend prepared beside the spacing phase may run on a CPU device, whose
+  // kernels a picture drawn beside them would slow (mesh_detail::kPictureHoldSeconds): the initial
+  // pictures are held from the start, not only once the simulation has begun (by then the background
+  // thread would be drawing them); the simulation lets them go if the device is not a CPU.
+  const PictureHold hold(phases, config.simulation.iterations > 0 && prepared.valid() && use_prepared,
+                         mesh_detail::kPictureHoldSeconds);
   write_initial_outputs(config, inputs, initial, phases);
   initial.reset();
   // None with --iterations 0: the initial distribution is meshed.

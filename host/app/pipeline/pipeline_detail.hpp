@@ -23,6 +23,13 @@ namespace pdmesh::mesh_detail {
 // megabytes, so only the PNG pictures (and zoomed views) are written.
 inline constexpr std::size_t kSvgNodeLimit = 500'000;
 
+// How long queued pictures wait for a simulation on a CPU device (run_core holds the initial ones before
+// they are queued, simulate's run_on_backend for the simulation itself): on such a device the kernels
+// keep every core busy, and a picture drawn beside them slows every kernel (each waits for its slowest
+// thread); held, they are drawn beside the serial work after the simulation (the cleanup). 2 s at most,
+// so that a long run still shows its initial pictures early.
+inline constexpr double kPictureHoldSeconds = 2.0;
+
 // One progress line on stderr unless the case is quiet (through the progress sink when run_mesh set
 // one, so that the heartbeat knows the run is not silent).
 template <class... Args>

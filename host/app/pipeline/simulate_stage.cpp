@@ -41,9 +41,6 @@ SimOptions simulation_options(const CaseConfig& config) {
 
 namespace {
 
-// How long the initial pictures wait for a simulation on a CPU device (see run_on_backend).
-constexpr double kPictureHoldSeconds = 2.0;
-
 // The first progress lines of the stage: the settings and the backend.
 void announce(const CaseConfig& config, const SimOptions& options, const Simulator& simulator, const SimState* resume) {
   progress(config, "simulation: {}{} iterations on {}, cutoff {}, a = {}, r0 rule {}, stability factor {}{}",
@@ -79,11 +76,12 @@ SimResult run_on_backend(const CaseConfig& config, const MeshInputs& inputs, con
                        checkpoint_file.string(), config.out_dir.string());
   };
   SimResult result;
-  // On a CPU device the kernels keep every core busy, and a picture drawn beside them slows every
-  // kernel (each waits for its slowest thread): the pictures queued so far (the initial ones) wait
-  // for the simulation to end, and are drawn beside the serial work after it (the cleanup); for 2 s
-  // at most, so that a long run still shows its initial pictures early.
-  const PictureHold hold(phases, backend.context && backend.context->device().type == "CPU", kPictureHoldSeconds);
+  // On a CPU device the pictures queued so far (the initial ones) wait for the simulation to end
+  // (mesh_detail::kPictureHoldSeconds). run_core may have held them already, before it knew the device:
+  // on any other device they are let go now.
+  const bool cpu_device = backend.context && backend.context->device().type == "CPU";
+  const PictureHold hold(phases, cpu_device, mesh_detail::kPictureHoldSeconds);
+  if (!cpu_device) phases.hold_pictures(false);
   try {
     result = backend.simulator->run(nodes, inputs.node_tree(), spacing.field(), options, callbacks);
   } catch (const DeviceError& e) {
