@@ -321,7 +321,13 @@ void gather_node(const int i, const REAL radius_factor, __global const REAL2* xy
           MASK8 use = CONVERT_MASK8(candidate) & (d2 <= (REAL8)(r2));
           const MASK8 fast = tags_apart ? (fabs(dx) < (REAL8)(inside)) & (fabs(dy) < (REAL8)(inside)) : (MASK8)(0);
           const MASK8 check = use & ~fast;
-          if (any(check)) {  // the cell test near the box's edge (see `tags_apart`)
+#if defined(PACK_MASK_BITS)
+          // One mask test (any() on a long8 became a chain of four extracts and branches).
+          const uint check_bits = (uint)(uchar)PACK_MASK_BITS(check);
+#else
+          const uint check_bits = any(check) ? 0xFFU : 0U;
+#endif
+          if (check_bits) {  // the cell test near the box's edge (see `tags_apart`)
             for (int c = 0; c < 8; ++c)
               if (((GATHER_MASK_T*)&check)[c] &&
                   (nb_cell_coord(((REAL*)&px)[c], inv_cell) != cx || nb_cell_coord(((REAL*)&py)[c], inv_cell) != cy))
