@@ -352,9 +352,8 @@ void gather_node(const int i, const REAL radius_factor, __global const REAL2* xy
           }
 #endif
           if (listed > GATHER_LIST_CAP - 8) {  // room for the next chunk's 8
-            q_min =
-                gather_emit(i, kind_i, own, qi, list_j, list_d2, listed, q_min, radius_factor, pair_skin, q, kind,
-                            level, offset, count, entries_size, entries, spill_capacity, spill, counters, counting);
+            q_min = gather_emit(i, kind_i, own, qi, list_j, list_d2, listed, q_min, radius_factor, pair_skin, q, kind,
+                                level, offset, count, entries_size, entries, spill_capacity, spill, counters, counting);
             listed = 0;
           }
         }
@@ -394,8 +393,8 @@ void gather_node(const int i, const REAL radius_factor, __global const REAL2* xy
     }
 #if PDMESH_FORCE_LOOP_VECTOR
     if (listed > 0)
-      q_min = gather_emit(i, kind_i, own, qi, list_j, list_d2, listed, q_min, radius_factor, pair_skin, q, kind,
-                          level, offset, count, entries_size, entries, spill_capacity, spill, counters, counting);
+      q_min = gather_emit(i, kind_i, own, qi, list_j, list_d2, listed, q_min, radius_factor, pair_skin, q, kind, level,
+                          offset, count, entries_size, entries, spill_capacity, spill, counters, counting);
 #endif
   }
   *examined_out = examined;
