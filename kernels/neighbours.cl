@@ -182,6 +182,236 @@ REAL gather_emit(const int i, const int kind_i, const int own, const REAL qi, co
 }
 #endif
 
+// Node i's scan (see the top): its rows' entries appended, its skin class written; *examined_out: the
+// candidates it examined, *ratio_out: its spacing ratio scaled for counters[ROW_RATIO] (0: none).
+void gather_node(const int i, const REAL radius_factor, __global const REAL2* xy, __global const REAL* q,
+                 __global const uchar* kind, __global const int* prev, __global const int* next,
+                 __global const int* level, __global const int* grid_mask, __global const uint* grid_bucket_offset,
+                 __global const REAL* grid_inv_cell, __global const uint* bucket, __global const int* grid_nodes,
+                 __global const ulong* offset, __global volatile int* count, const ulong entries_size,
+                 __global int* entries, const uint spill_capacity, __global int* spill, __global uint* counters,
+                 const int counting, __global uchar* skin_class, const REAL pair_skin, uint* examined_out,
+                 uint* ratio_out) {
+  *ratio_out = 0;
+  const int kind_i = kind[i];
+  uint examined = 0;
+  // The smallest q_j of the interior j within r_i (building passes only): q_i over it is the largest
+  // spacing ratio of a pair this scan owns, for the device run's skin-use limit (see the top).
+  REAL q_min = INFINITY;
+  if (kind_i == 1) {  // [prev, next], in that order (no other work-item writes a boundary row)
+    row_append(i, prev[i], offset, count, entries_size, entries, spill_capacity, spill, counters, counting);
+    row_append(i, next[i], offset, count, entries_size, entries, spill_capacity, spill, counters, counting);
+  }
+  {  // every kind scans: boundary and fixed nodes scatter to finer interior rows too
+#if PDMESH_FORCE_LOOP_VECTOR
+    int list_j[GATHER_LIST_CAP];
+    REAL list_d2[GATHER_LIST_CAP];
+    int listed = 0;
+#endif
+    const REAL2 pi = xy[i];  // positions: x, y interleaved (the step's layout)
+    const REAL xi = pi.x, yi = pi.y;
+    const REAL qi = q[i];
+    const REAL r = radius_factor * qi, r2 = r * r;
+#if PDMESH_DOUBLE
+    const REAL box = r;
+#else
+    // The cells and the box are computed in float: widen the box so rounding cannot drop a cell.
+    const REAL box = r * REAL_C(1.0001) + (fabs(xi) + fabs(yi)) * REAL_C(1e-6);
+#endif
+    const int own = level[i];
+    const REAL inv_cell = grid_inv_cell[own];
+    const long x0 = nb_cell_coord(xi - box, inv_cell), x1 = nb_cell_coord(xi + box, inv_cell);
+    const long y0 = nb_cell_coord(yi - box, inv_cell), y1 = nb_cell_coord(yi + box, inv_cell);
+    const uint bucket_base = grid_bucket_offset[own];
+    const ulong mask = (ulong)grid_mask[own];
+    // Cells of the box that no point within r reaches (its corners) are skipped: the gap from
+    // (xi, yi) to the cell, shrunk by `slack` (far above the rounding of the cell bounds and of d2),
+    // exceeds r. Only the work changes: a node in a skipped cell is farther than r, in no row.
+    const REAL cell = (REAL)1 / inv_cell;
+#if PDMESH_DOUBLE
+    const REAL slack = (fabs(xi) + fabs(yi) + r + cell) * REAL_C(1e-12);
+#else
+    const REAL slack = (fabs(xi) + fabs(yi) + r + cell) * REAL_C(1e-4);
+#endif
+    // A box spanning at most 5 cells a side (r < 2 cells: always in double) lies in at most 2 x 2
+    // blocks of 4 x 4 cells (nb_bucket), whose hashes the CPU loop computes once (the GPU-shaped
+    // program hashes per cell: 4 more 64-bit values cost 22 VGPRs on gfx90a). In a grid of 16 buckets or
+    // more, two cells share a bucket only at the same place in their blocks, so two cells of such a
+    // box in one bucket are (4a, 4b) apart with a, b in {-1, 0, 1}, and their tags differ (nb_tag
+    // is linear: its top 4 bits move by those of 4a M + 4b N, which are neither 0 nor 15 for these
+    // eight offsets; tests/test_device_neighbours.cpp checks the constants). So an entry carrying a
+    // probed cell's tag from another cell lies outside the box: a candidate inside the box by more
+    // than `slack` on both axes is of the probed cell without the cell test (the same rows); nearer
+    // the box's edge, in larger boxes (float) or in smaller grids the cell test decides, as before.
+    const int small_box = x1 - x0 <= 4 && y1 - y0 <= 4;
+#if PDMESH_FORCE_LOOP_VECTOR
+    const ulong bx0 = (ulong)x0 >> 2, by0 = (ulong)y0 >> 2;
+    const ulong h00 = nb_hash((long)bx0, (long)by0), h10 = nb_hash((long)((ulong)x1 >> 2), (long)by0);
+    const ulong h01 = nb_hash((long)bx0, (long)((ulong)y1 >> 2));
+    const ulong h11 = nb_hash((long)((ulong)x1 >> 2), (long)((ulong)y1 >> 2));
+#endif
+#if PDMESH_FORCE_LOOP_VECTOR
+    const int tags_apart = small_box && mask >= 15;
+#else
+    const int tags_apart = 0;  // GPU-shaped: floor() is cheap there, and this path cost 6 VGPRs (gfx90a)
+#endif
+    const REAL inside = r - slack;
+    for (long cy = y0; cy <= y1; ++cy) {
+      const REAL gy = fmax(fmax((REAL)cy * cell - yi, yi - (REAL)(cy + 1) * cell) - slack, (REAL)0);
+#if PDMESH_FORCE_LOOP_VECTOR
+      const int second_y = ((ulong)cy >> 2) != by0;
+#endif
+      for (long cx = x0; cx <= x1; ++cx) {
+        const REAL gx = fmax(fmax((REAL)cx * cell - xi, xi - (REAL)(cx + 1) * cell) - slack, (REAL)0);
+        if (gx * gx + gy * gy > r2) continue;
+#if PDMESH_FORCE_LOOP_VECTOR
+        const int second_x = ((ulong)cx >> 2) != bx0;
+        const ulong hb = second_y ? (second_x ? h11 : h01) : (second_x ? h10 : h00);
+        const uint in_block = (uint)((((ulong)cy & 3UL) << 2) | ((ulong)cx & 3UL));
+        const uint b = bucket_base + (small_box ? (uint)(((hb << 4) | in_block) & mask) : nb_bucket(cx, cy, mask));
+#else
+        const uint b = bucket_base + nb_bucket(cx, cy, mask);
+#endif
+        const uint tag = nb_tag(cx, cy);
+        const uint end = bucket[b];
+#if PDMESH_FORCE_LOOP_VECTOR
+        for (uint k0 = b > 0 ? bucket[b - 1] : 0; k0 < end; k0 += 8) {
+          int8 e;
+          if (k0 + 8 <= end) {
+            e = vload8(0, grid_nodes + k0);
+          } else {  // the bucket's last, partial chunk: the lanes past it hold i (never a candidate)
+#if defined(PACK_MASK_BITS)
+            // A masked load (no fault past the end, no store-to-load stall of lane-by-lane writes).
+            e = __builtin_astype(__builtin_ia32_loaddqusi256_mask((const int*)(ulong)(grid_nodes + k0),
+                                                                  __builtin_astype((int8)(i), pack_v8si),
+                                                                  (uchar)((1U << (end - k0)) - 1U)),
+                                 int8);
+#else
+            e = (int8)(i);
+            for (uint c = 0; k0 + c < end; ++c) ((int*)&e)[c] = grid_nodes[k0 + c];
+#endif
+          }
+          const int8 j = e & (int8)((int)GRID_NODE_MASK);
+          const int8 candidate = ((e & (int8)((int)~GRID_NODE_MASK)) == (int8)((int)tag)) & (j != (int8)(i));
+          REAL8 px, py;
+#if defined(PACK_MASK_BITS) && PDMESH_DOUBLE
+          // A chunk without a candidate loads no position. The others load every lane's x and y by one
+          // 16-byte load each (j is a node whatever its cell: every load is valid; `use` holds candidates
+          // only): on this project's AMD EPYC (Zen 5) they cost less than two masked vgatherdpd of the
+          // candidates' lanes, at 14k nodes (in cache) and at 1M (docs/journal/2026-12-05-build-cost.md).
+          const uchar cand_bits = (uchar)__builtin_ia32_cvtd2mask256(__builtin_astype(candidate, pack_v8si));
+          if (!cand_bits) continue;
+          examined += popcount((uint)cand_bits);
+          {
+            const REAL2 p0 = xy[j.s0], p1 = xy[j.s1], p2 = xy[j.s2], p3 = xy[j.s3], p4 = xy[j.s4], p5 = xy[j.s5],
+                        p6 = xy[j.s6], p7 = xy[j.s7];
+            px = (REAL8)(p0.x, p1.x, p2.x, p3.x, p4.x, p5.x, p6.x, p7.x);
+            py = (REAL8)(p0.y, p1.y, p2.y, p3.y, p4.y, p5.y, p6.y, p7.y);
+          }
+#else
+#if defined(PACK_MASK_BITS)
+          examined += popcount((uint)(uchar)__builtin_ia32_cvtd2mask256(__builtin_astype(candidate, pack_v8si)));
+#else
+          examined += (uint)COUNT8(candidate);
+#endif
+          GATHER8_XY(xy, j, px, py);  // j is a node whatever its cell: every lane's load is valid
+#endif
+          // -(x[i] - x[j]) exactly, as the GPU-shaped loop below.
+          const REAL8 dx = px - (REAL8)(xi), dy = py - (REAL8)(yi), d2 = dx * dx + dy * dy;
+          MASK8 use = CONVERT_MASK8(candidate) & (d2 <= (REAL8)(r2));
+          const MASK8 fast = tags_apart ? (fabs(dx) < (REAL8)(inside)) & (fabs(dy) < (REAL8)(inside)) : (MASK8)(0);
+          const MASK8 check = use & ~fast;
+#if defined(PACK_MASK_BITS)
+          // One mask test (any() on a long8 became a chain of four extracts and branches).
+          const uint check_bits = (uint)(uchar)PACK_MASK_BITS(check);
+#else
+          const uint check_bits = any(check) ? 0xFFU : 0U;
+#endif
+          if (check_bits) {  // the cell test near the box's edge (see `tags_apart`)
+            for (int c = 0; c < 8; ++c)
+              if (((GATHER_MASK_T*)&check)[c] &&
+                  (nb_cell_coord(((REAL*)&px)[c], inv_cell) != cx || nb_cell_coord(((REAL*)&py)[c], inv_cell) != cy))
+                ((GATHER_MASK_T*)&use)[c] = 0;
+          }
+#if defined(PACK_MASK_BITS)
+          const uchar bits = (uchar)PACK_MASK_BITS(use);
+          vstore8(__builtin_astype(__builtin_ia32_compresssi256_mask(__builtin_astype(j, pack_v8si),
+                                                                     __builtin_astype((int8)(0), pack_v8si), bits),
+                                   int8),
+                  0, list_j + listed);
+          vstore8(__builtin_astype(PACK_COMPRESS_REAL(__builtin_astype(d2, pack_v8real),
+                                                      __builtin_astype((REAL8)((REAL)0), pack_v8real), bits),
+                                   REAL8),
+                  0, list_d2 + listed);
+          listed += (int)popcount((uint)bits);
+#else
+          for (int c = 0; c < 8; ++c) {
+            list_j[listed] = ((int*)&j)[c];
+            list_d2[listed] = ((REAL*)&d2)[c];
+            listed -= (int)((GATHER_MASK_T*)&use)[c];
+          }
+#endif
+          if (listed > GATHER_LIST_CAP - 8) {  // room for the next chunk's 8
+            q_min = gather_emit(i, kind_i, own, qi, list_j, list_d2, listed, q_min, radius_factor, pair_skin, q, kind,
+                                level, offset, count, entries_size, entries, spill_capacity, spill, counters, counting);
+            listed = 0;
+          }
+        }
+#else
+        for (uint k = b > 0 ? bucket[b - 1] : 0; k < end; ++k) {
+          const uint e = (uint)grid_nodes[k];
+          if ((e & ~GRID_NODE_MASK) != tag) continue;  // another cell (most of them: no position loads)
+          const int j = (int)(e & GRID_NODE_MASK);
+          if (j == i) continue;
+          ++examined;
+          // -(x[i] - x[j]) exactly: the same squared distance row j's own scan would compute.
+          const REAL2 pj = xy[j];
+          const REAL dx = pj.x - xi, dy = pj.y - yi, d2 = dx * dx + dy * dy;
+          // Every pair this scan lists is within r: r_j < r_i for a finer j (level[j] < own), so
+          // d2 <= r_j^2 implies d2 <= r2. Farther candidates need no cell test.
+          if (!(d2 <= r2)) continue;
+          // Only the probed cell's nodes (a bucket may hold other cells, one of them probed too);
+          // see `tags_apart` above.
+          if (!(tags_apart && fabs(dx) < inside && fabs(dy) < inside) &&
+              (nb_cell_coord(pj.x, inv_cell) != cx || nb_cell_coord(pj.y, inv_cell) != cy))
+            continue;
+          if (kind_i == 2)
+            row_append(i, j, offset, count, entries_size, entries, spill_capacity, spill, counters, counting);
+          const int interior_j = kind[j] == 2;
+          if (interior_j && !counting && level[j] == own) q_min = fmin(q_min, q[j]);
+          if (level[j] < own && interior_j) {
+            // The finer row's radius, widened for its coarser neighbour to c q_j + s c q_i (pair_skin =
+            // s c; see the top): r_i = c (1 + s) q_i bounds it, so this scan sees every such pair.
+            const REAL qj = q[j];
+            const REAL rj = radius_factor * qj + (qj < qi ? pair_skin * (qi - qj) : (REAL)0);
+            if (d2 <= rj * rj)
+              row_append(j, i, offset, count, entries_size, entries, spill_capacity, spill, counters, counting);
+          }
+        }
+#endif
+      }
+    }
+#if PDMESH_FORCE_LOOP_VECTOR
+    if (listed > 0)
+      q_min = gather_emit(i, kind_i, own, qi, list_j, list_d2, listed, q_min, radius_factor, pair_skin, q, kind, level,
+                          offset, count, entries_size, entries, spill_capacity, spill, counters, counting);
+#endif
+  }
+  *examined_out = examined;
+  const REAL ratio = q_min < INFINITY ? q[i] / q_min : (REAL)0;
+  if (q_min < INFINITY) {
+    // Rounded up to the next 1/ROW_RATIO_SCALE (the unit covers a float quotient's rounding).
+    const REAL scaled = ratio * (REAL)ROW_RATIO_SCALE;
+    *ratio_out = scaled < (REAL)2.0e9 ? (uint)scaled + 1U : 2000000000U;
+  }
+  // Node i's skin class: ceil(SKIN_CLASS_STEPS log2 rho) for rho = max(1, ratio), plus a margin far
+  // above log2's rounding; 255 at most (larger ratios: the host scales its limit, device_run.hpp).
+  if (!counting) {
+    const REAL steps = ratio > (REAL)1 ? (REAL)SKIN_CLASS_STEPS * log2(ratio) + REAL_C(0.001) : (REAL)0;
+    skin_class[i] = steps < (REAL)254 ? (uchar)ceil(steps) : (uchar)255;
+  }
+}
+
 // Kernel arguments: per grid g (2 per occupied level: cumulative C_L at 2L, exact E_L at 2L+1; absent
 // grids have inv_cell 0): inverse cell size, hash-table offset and mask, offsets into cell_start
 // (cells + 1 entries per grid) and cell_nodes. Rows: offset (n + 1, from the scan), count (zeroed by
@@ -194,6 +424,26 @@ __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void gather_rows(
     __global volatile int* count, const ulong entries_size, __global int* entries, const uint spill_capacity,
     __global int* spill, __global uint* counters, const int counting, const int sample_stride,
     __global uchar* skin_class, const REAL pair_skin) {
+#if PDMESH_FORCE_LOOP_VECTOR
+  // The CPU shape scans the group's nodes in work-item 0 alone, without barriers: PoCL gives each
+  // work-item of a kernel with barriers its own copy of the private arrays (the scan's lists, ~1 KB:
+  // a 67 KB stack frame for the group, more than the L1 cache), one copy here.
+  if (get_local_id(0) != 0 || !bin_ok(bin_state, n)) return;
+  uint group_examined = 0, group_ratio = 0;
+  const int first = (int)(get_global_id(0) - get_local_id(0));  // launched over ceil(n / sample_stride) work-items
+  for (int l = 0; l < WG_SIZE; ++l) {
+    const int i = (first + l) * sample_stride;
+    if (i >= n) break;
+    uint examined, ratio;
+    gather_node(i, radius_factor, xy, q, kind, prev, next, level, grid_mask, grid_bucket_offset, grid_inv_cell, bucket,
+                grid_nodes, offset, count, entries_size, entries, spill_capacity, spill, counters, counting, skin_class,
+                pair_skin, &examined, &ratio);
+    group_examined += examined;
+    group_ratio = max(group_ratio, ratio);
+  }
+  atomic_add(&counters[ROW_EXAMINED], group_examined);
+  atomic_max(&counters[ROW_RATIO], group_ratio);
+#else
   __local uint local_examined, local_ratio;
   if (get_local_id(0) == 0) {
     local_examined = 0;
@@ -202,224 +452,19 @@ __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void gather_rows(
   barrier(CLK_LOCAL_MEM_FENCE);
   const int i = (int)get_global_id(0) * sample_stride;  // launched over ceil(n / sample_stride) work-items
   if (i < n && bin_ok(bin_state, n)) {
-    const int kind_i = kind[i];
-    uint examined = 0;
-    // The smallest q_j of the interior j within r_i (building passes only): q_i over it is the largest
-    // spacing ratio of a pair this scan owns, for the device run's skin-use limit (see the top).
-    REAL q_min = INFINITY;
-    if (kind_i == 1) {  // [prev, next], in that order (no other work-item writes a boundary row)
-      row_append(i, prev[i], offset, count, entries_size, entries, spill_capacity, spill, counters, counting);
-      row_append(i, next[i], offset, count, entries_size, entries, spill_capacity, spill, counters, counting);
-    }
-    {  // every kind scans: boundary and fixed nodes scatter to finer interior rows too
-#if PDMESH_FORCE_LOOP_VECTOR
-      int list_j[GATHER_LIST_CAP];
-      REAL list_d2[GATHER_LIST_CAP];
-      int listed = 0;
-#endif
-      const REAL2 pi = xy[i];  // positions: x, y interleaved (the step's layout)
-      const REAL xi = pi.x, yi = pi.y;
-      const REAL qi = q[i];
-      const REAL r = radius_factor * qi, r2 = r * r;
-#if PDMESH_DOUBLE
-      const REAL box = r;
-#else
-      // The cells and the box are computed in float: widen the box so rounding cannot drop a cell.
-      const REAL box = r * REAL_C(1.0001) + (fabs(xi) + fabs(yi)) * REAL_C(1e-6);
-#endif
-      const int own = level[i];
-      const REAL inv_cell = grid_inv_cell[own];
-      const long x0 = nb_cell_coord(xi - box, inv_cell), x1 = nb_cell_coord(xi + box, inv_cell);
-      const long y0 = nb_cell_coord(yi - box, inv_cell), y1 = nb_cell_coord(yi + box, inv_cell);
-      const uint bucket_base = grid_bucket_offset[own];
-      const ulong mask = (ulong)grid_mask[own];
-      // Cells of the box that no point within r reaches (its corners) are skipped: the gap from
-      // (xi, yi) to the cell, shrunk by `slack` (far above the rounding of the cell bounds and of d2),
-      // exceeds r. Only the work changes: a node in a skipped cell is farther than r, in no row.
-      const REAL cell = (REAL)1 / inv_cell;
-#if PDMESH_DOUBLE
-      const REAL slack = (fabs(xi) + fabs(yi) + r + cell) * REAL_C(1e-12);
-#else
-      const REAL slack = (fabs(xi) + fabs(yi) + r + cell) * REAL_C(1e-4);
-#endif
-      // A box spanning at most 5 cells a side (r < 2 cells: always in double) lies in at most 2 x 2
-      // blocks of 4 x 4 cells (nb_bucket), whose hashes the CPU loop computes once (the GPU-shaped
-      // program hashes per cell: 4 more 64-bit values cost 22 VGPRs on gfx90a). In a grid of 16 buckets or
-      // more, two cells share a bucket only at the same place in their blocks, so two cells of such a
-      // box in one bucket are (4a, 4b) apart with a, b in {-1, 0, 1}, and their tags differ (nb_tag
-      // is linear: its top 4 bits move by those of 4a M + 4b N, which are neither 0 nor 15 for these
-      // eight offsets; tests/test_device_neighbours.cpp checks the constants). So an entry carrying a
-      // probed cell's tag from another cell lies outside the box: a candidate inside the box by more
-      // than `slack` on both axes is of the probed cell without the cell test (the same rows); nearer
-      // the box's edge, in larger boxes (float) or in smaller grids the cell test decides, as before.
-      const int small_box = x1 - x0 <= 4 && y1 - y0 <= 4;
-#if PDMESH_FORCE_LOOP_VECTOR
-      const ulong bx0 = (ulong)x0 >> 2, by0 = (ulong)y0 >> 2;
-      const ulong h00 = nb_hash((long)bx0, (long)by0), h10 = nb_hash((long)((ulong)x1 >> 2), (long)by0);
-      const ulong h01 = nb_hash((long)bx0, (long)((ulong)y1 >> 2));
-      const ulong h11 = nb_hash((long)((ulong)x1 >> 2), (long)((ulong)y1 >> 2));
-#endif
-#if PDMESH_FORCE_LOOP_VECTOR
-      const int tags_apart = small_box && mask >= 15;
-#else
-      const int tags_apart = 0;  // GPU-shaped: floor() is cheap there, and this path cost 6 VGPRs (gfx90a)
-#endif
-      const REAL inside = r - slack;
-      for (long cy = y0; cy <= y1; ++cy) {
-        const REAL gy = fmax(fmax((REAL)cy * cell - yi, yi - (REAL)(cy + 1) * cell) - slack, (REAL)0);
-#if PDMESH_FORCE_LOOP_VECTOR
-        const int second_y = ((ulong)cy >> 2) != by0;
-#endif
-        for (long cx = x0; cx <= x1; ++cx) {
-          const REAL gx = fmax(fmax((REAL)cx * cell - xi, xi - (REAL)(cx + 1) * cell) - slack, (REAL)0);
-          if (gx * gx + gy * gy > r2) continue;
-#if PDMESH_FORCE_LOOP_VECTOR
-          const int second_x = ((ulong)cx >> 2) != bx0;
-          const ulong hb = second_y ? (second_x ? h11 : h01) : (second_x ? h10 : h00);
-          const uint in_block = (uint)((((ulong)cy & 3UL) << 2) | ((ulong)cx & 3UL));
-          const uint b = bucket_base + (small_box ? (uint)(((hb << 4) | in_block) & mask) : nb_bucket(cx, cy, mask));
-#else
-          const uint b = bucket_base + nb_bucket(cx, cy, mask);
-#endif
-          const uint tag = nb_tag(cx, cy);
-          const uint end = bucket[b];
-#if PDMESH_FORCE_LOOP_VECTOR
-          for (uint k0 = b > 0 ? bucket[b - 1] : 0; k0 < end; k0 += 8) {
-            int8 e;
-            if (k0 + 8 <= end) {
-              e = vload8(0, grid_nodes + k0);
-            } else {  // the bucket's last, partial chunk: the lanes past it hold i (never a candidate)
-#if defined(PACK_MASK_BITS)
-              // A masked load (no fault past the end, no store-to-load stall of lane-by-lane writes).
-              e = __builtin_astype(__builtin_ia32_loaddqusi256_mask((const int*)(ulong)(grid_nodes + k0),
-                                                                    __builtin_astype((int8)(i), pack_v8si),
-                                                                    (uchar)((1U << (end - k0)) - 1U)),
-                                   int8);
-#else
-              e = (int8)(i);
-              for (uint c = 0; k0 + c < end; ++c) ((int*)&e)[c] = grid_nodes[k0 + c];
-#endif
-            }
-            const int8 j = e & (int8)((int)GRID_NODE_MASK);
-            const int8 candidate = ((e & (int8)((int)~GRID_NODE_MASK)) == (int8)((int)tag)) & (j != (int8)(i));
-            REAL8 px, py;
-#if defined(PACK_MASK_BITS) && PDMESH_DOUBLE
-            // Only the candidates' positions are loaded (the other lanes are 0, never used: `use`
-            // holds candidates only); a chunk without a candidate loads nothing.
-            const uchar cand_bits = (uchar)__builtin_ia32_cvtd2mask256(__builtin_astype(candidate, pack_v8si));
-            if (!cand_bits) continue;
-            examined += popcount((uint)cand_bits);
-            {
-              const gather_v8si j2 = __builtin_astype(j * 2, gather_v8si);
-              const gather_v8df none = {0, 0, 0, 0, 0, 0, 0, 0};
-              px = __builtin_astype(__builtin_ia32_gathersiv8df(none, (const void*)(ulong)(xy), j2, cand_bits, 8),
-                                    REAL8);
-              py = __builtin_astype(__builtin_ia32_gathersiv8df(none, (const void*)((ulong)(xy) + 8), j2, cand_bits, 8),
-                                    REAL8);
-            }
-#else
-#if defined(PACK_MASK_BITS)
-            examined += popcount((uint)(uchar)__builtin_ia32_cvtd2mask256(__builtin_astype(candidate, pack_v8si)));
-#else
-            examined += (uint)COUNT8(candidate);
-#endif
-            GATHER8_XY(xy, j, px, py);  // j is a node whatever its cell: every lane's load is valid
-#endif
-            // -(x[i] - x[j]) exactly, as the GPU-shaped loop below.
-            const REAL8 dx = px - (REAL8)(xi), dy = py - (REAL8)(yi), d2 = dx * dx + dy * dy;
-            MASK8 use = CONVERT_MASK8(candidate) & (d2 <= (REAL8)(r2));
-            const MASK8 fast = tags_apart ? (fabs(dx) < (REAL8)(inside)) & (fabs(dy) < (REAL8)(inside)) : (MASK8)(0);
-            const MASK8 check = use & ~fast;
-            if (any(check)) {  // the cell test near the box's edge (see `tags_apart`)
-              for (int c = 0; c < 8; ++c)
-                if (((GATHER_MASK_T*)&check)[c] &&
-                    (nb_cell_coord(((REAL*)&px)[c], inv_cell) != cx || nb_cell_coord(((REAL*)&py)[c], inv_cell) != cy))
-                  ((GATHER_MASK_T*)&use)[c] = 0;
-            }
-#if defined(PACK_MASK_BITS)
-            const uchar bits = (uchar)PACK_MASK_BITS(use);
-            vstore8(__builtin_astype(__builtin_ia32_compresssi256_mask(__builtin_astype(j, pack_v8si),
-                                                                       __builtin_astype((int8)(0), pack_v8si), bits),
-                                     int8),
-                    0, list_j + listed);
-            vstore8(__builtin_astype(PACK_COMPRESS_REAL(__builtin_astype(d2, pack_v8real),
-                                                        __builtin_astype((REAL8)((REAL)0), pack_v8real), bits),
-                                     REAL8),
-                    0, list_d2 + listed);
-            listed += (int)popcount((uint)bits);
-#else
-            for (int c = 0; c < 8; ++c) {
-              list_j[listed] = ((int*)&j)[c];
-              list_d2[listed] = ((REAL*)&d2)[c];
-              listed -= (int)((GATHER_MASK_T*)&use)[c];
-            }
-#endif
-            if (listed > GATHER_LIST_CAP - 8) {  // room for the next chunk's 8
-              q_min =
-                  gather_emit(i, kind_i, own, qi, list_j, list_d2, listed, q_min, radius_factor, pair_skin, q, kind,
-                              level, offset, count, entries_size, entries, spill_capacity, spill, counters, counting);
-              listed = 0;
-            }
-          }
-#else
-          for (uint k = b > 0 ? bucket[b - 1] : 0; k < end; ++k) {
-            const uint e = (uint)grid_nodes[k];
-            if ((e & ~GRID_NODE_MASK) != tag) continue;  // another cell (most of them: no position loads)
-            const int j = (int)(e & GRID_NODE_MASK);
-            if (j == i) continue;
-            ++examined;
-            // -(x[i] - x[j]) exactly: the same squared distance row j's own scan would compute.
-            const REAL2 pj = xy[j];
-            const REAL dx = pj.x - xi, dy = pj.y - yi, d2 = dx * dx + dy * dy;
-            // Every pair this scan lists is within r: r_j < r_i for a finer j (level[j] < own), so
-            // d2 <= r_j^2 implies d2 <= r2. Farther candidates need no cell test.
-            if (!(d2 <= r2)) continue;
-            // Only the probed cell's nodes (a bucket may hold other cells, one of them probed too);
-            // see `tags_apart` above.
-            if (!(tags_apart && fabs(dx) < inside && fabs(dy) < inside) &&
-                (nb_cell_coord(pj.x, inv_cell) != cx || nb_cell_coord(pj.y, inv_cell) != cy))
-              continue;
-            if (kind_i == 2)
-              row_append(i, j, offset, count, entries_size, entries, spill_capacity, spill, counters, counting);
-            const int interior_j = kind[j] == 2;
-            if (interior_j && !counting && level[j] == own) q_min = fmin(q_min, q[j]);
-            if (level[j] < own && interior_j) {
-              // The finer row's radius, widened for its coarser neighbour to c q_j + s c q_i (pair_skin =
-              // s c; see the top): r_i = c (1 + s) q_i bounds it, so this scan sees every such pair.
-              const REAL qj = q[j];
-              const REAL rj = radius_factor * qj + (qj < qi ? pair_skin * (qi - qj) : (REAL)0);
-              if (d2 <= rj * rj)
-                row_append(j, i, offset, count, entries_size, entries, spill_capacity, spill, counters, counting);
-            }
-          }
-#endif
-        }
-      }
-#if PDMESH_FORCE_LOOP_VECTOR
-      if (listed > 0)
-        q_min = gather_emit(i, kind_i, own, qi, list_j, list_d2, listed, q_min, radius_factor, pair_skin, q, kind,
-                            level, offset, count, entries_size, entries, spill_capacity, spill, counters, counting);
-#endif
-    }
+    uint examined, ratio;
+    gather_node(i, radius_factor, xy, q, kind, prev, next, level, grid_mask, grid_bucket_offset, grid_inv_cell, bucket,
+                grid_nodes, offset, count, entries_size, entries, spill_capacity, spill, counters, counting, skin_class,
+                pair_skin, &examined, &ratio);
     atomic_add(&local_examined, examined);
-    const REAL ratio = q_min < INFINITY ? q[i] / q_min : (REAL)0;
-    if (q_min < INFINITY) {
-      // Rounded up to the next 1/ROW_RATIO_SCALE (the unit covers a float quotient's rounding).
-      const REAL scaled = ratio * (REAL)ROW_RATIO_SCALE;
-      atomic_max(&local_ratio, scaled < (REAL)2.0e9 ? (uint)scaled + 1U : 2000000000U);
-    }
-    // Node i's skin class: ceil(SKIN_CLASS_STEPS log2 rho) for rho = max(1, ratio), plus a margin far
-    // above log2's rounding; 255 at most (larger ratios: the host scales its limit, device_run.hpp).
-    if (!counting) {
-      const REAL steps = ratio > (REAL)1 ? (REAL)SKIN_CLASS_STEPS * log2(ratio) + REAL_C(0.001) : (REAL)0;
-      skin_class[i] = steps < (REAL)254 ? (uchar)ceil(steps) : (uchar)255;
-    }
+    atomic_max(&local_ratio, ratio);
   }
   barrier(CLK_LOCAL_MEM_FENCE);
   if (get_local_id(0) == 0) {
     atomic_add(&counters[ROW_EXAMINED], local_examined);
     atomic_max(&counters[ROW_RATIO], local_ratio);
   }
+#endif
 }
 
 // After a sampled counting pass (see the top): per level L, tally[2 L] += the counts of its interior
@@ -516,9 +561,45 @@ void sort_row_reg(__global int* entries, const ulong base, const int c) {
   for (int a = 0; a < c; ++a) entries[base + rank[a]] = v[a];
 }
 
+// Rows of 33 to 64 entries the same way in four registers (the device run's lists with the Verlet skin
+// average ~31 entries a row on 30P30N, many rows are longer): the chunked rank count below takes a
+// compare, a mask move and a popcount per 16 entries for each entry.
+#define RANK_SORT_REG4 64
+void sort_row_reg4(__global int* entries, const ulong base, const int c) {
+  const ulong m = c >= 64 ? ~0UL : (1UL << c) - 1UL;
+  const rank_v16si pad = __builtin_astype((int16)(INT_MAX), rank_v16si);
+  const int* row = (const int*)(ulong)(entries + base);
+  const int16 v0 = __builtin_astype(__builtin_ia32_loaddqusi512_mask(row, pad, (ushort)m), int16);
+  const int16 v1 = __builtin_astype(__builtin_ia32_loaddqusi512_mask(row + 16, pad, (ushort)(m >> 16)), int16);
+  const int16 v2 = __builtin_astype(__builtin_ia32_loaddqusi512_mask(row + 32, pad, (ushort)(m >> 32)), int16);
+  const int16 v3 = __builtin_astype(__builtin_ia32_loaddqusi512_mask(row + 48, pad, (ushort)(m >> 48)), int16);
+  int16 r0 = (int16)(0), r1 = (int16)(0), r2 = (int16)(0), r3 = (int16)(0);
+  for (int b = 0; b < c; ++b) {
+    const int16 x = (int16)(entries[base + b]);
+    r0 -= x < v0;  // -1 where true
+    r1 -= x < v1;
+    r2 -= x < v2;
+    r3 -= x < v3;
+  }
+  int rank[RANK_SORT_REG4], v[RANK_SORT_REG4];
+  vstore16(r0, 0, rank);
+  vstore16(r1, 1, rank);
+  vstore16(r2, 2, rank);
+  vstore16(r3, 3, rank);
+  vstore16(v0, 0, v);
+  vstore16(v1, 1, v);
+  vstore16(v2, 2, v);
+  vstore16(v3, 3, v);
+  for (int a = 0; a < c; ++a) entries[base + rank[a]] = v[a];
+}
+
 void sort_row(__global int* entries, const ulong base, const int c) {
   if (c <= RANK_SORT_REG) {
     sort_row_reg(entries, base, c);
+    return;
+  }
+  if (c <= RANK_SORT_REG4) {
+    sort_row_reg4(entries, base, c);
     return;
   }
   if (c > RANK_SORT_CAP) {

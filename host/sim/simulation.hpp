@@ -44,11 +44,13 @@ struct SimState {
 // iteration early in a run and use up a 0.3 skin ~3x as often (30P30N curves alone, 500 iterations,
 // beta 0.9: 174 rebuilds at 0.3, 107 at 0.5, 88 at 0.6, 65 at 0.8, 50 at 1.0; docs/journal/,
 // "Rebuilds of a small run with momentum"). A larger skin costs more pairs examined per iteration but far fewer
-// rebuilds, and on PoCL a rebuild of 14k nodes (~11 ms) costs ~5 iterations' steps: 0.8 was ~7% faster per iteration
-// than 0.6 there, 1.0 no faster than 0.8 and with longer rows (device bytes). The skin never changes a
-// result.
+// rebuilds. With momentum 0.5: its rows hold ~2/3 of 0.8's entries (the step's traffic, and the whole
+// command's peak memory: 1M-node annulus 576-593 MiB against 650-668 MiB) for about twice the
+// rebuilds; on PoCL the whole command took 0.965x 0.8's CPU at 250k nodes, 0.96-1.00x (median 0.98)
+// at 1M and 0.996x (noise) on the 30P30N curves (docs/journal/2026-12-05-build-cost.md).
+// The skin never changes a result.
 inline constexpr double kVerletSkin = 0.3;
-inline constexpr double kMomentumVerletSkin = 0.8;
+inline constexpr double kMomentumVerletSkin = 0.5;
 inline double default_verlet_skin(double momentum) { return momentum > 0.0 ? kMomentumVerletSkin : kVerletSkin; }
 
 struct SimOptions {

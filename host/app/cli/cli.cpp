@@ -416,7 +416,7 @@ void add_bench_options(CLI::App& bench, BenchArguments& a) {
   bench
       .add_option("--skin", a.verlet_skin,
                   "Verlet skin of the device runs (list radius cutoff q (1 + skin)); default as pdmesh mesh: 0.3, or "
-                  "0.8 with momentum")
+                  "0.5 with momentum")
       ->type_name("S");
   bench
       .add_option("--population", a.population_every,
