@@ -337,6 +337,12 @@ double preset_relax_scale(Preset preset, InitMethod method);
 // isotropic one (best: 6 degrees isotropic, 3 in a metric; thesis and long: 0.25 for both). A case
 // that sets the key keeps its value.
 double preset_stop_angle(Preset preset, bool metric);
+// simulation.stop_aspect, population.stop and simulation.dt_initial.structured under `preset` for a metric
+// run or an isotropic one (best: 9e-4, 0.15 and 0.016 isotropic; 7e-4, 0.2 and the automatic rule in a
+// metric; thesis and long: CaseConfig's initializers for both). A case that sets the key keeps its value.
+double preset_stop_aspect(Preset preset, bool metric);
+double preset_population_stop(Preset preset, bool metric);
+std::optional<double> preset_dt_structured(Preset preset, bool metric);
 
 // Splits "section.key=VALUE" into an override; throws InputError when there is no '=' or key.
 CaseOverride parse_set_option(const std::string& text);
