@@ -149,8 +149,7 @@ TEST_CASE("pdmesh smooth keeps population control to 0.2 and the drift tolerance
   CHECK(parsed(kGeometry).simulation.stop_aspect != kSmoothStopAspect);
 }
 
-TEST_CASE("simulation.dt_initial \"auto\" is the automatic rule, also under a preset that sets a step",
-          "[app][case]") {
+TEST_CASE("simulation.dt_initial \"auto\" is the automatic rule, also under a preset that sets a step", "[app][case]") {
   CHECK_FALSE(parsed(kGeometry + "[simulation]\ndt_initial = \"auto\"\n").simulation.dt_structured.has_value());
   const CaseConfig per = parsed(kGeometry + "[simulation]\ndt_initial = { structured = \"auto\", random = 0.02 }\n");
   CHECK_FALSE(per.simulation.dt_structured.has_value());

@@ -272,8 +272,8 @@ void read_simulation_section(const Reader& r, const toml::table& root, CaseConfi
     // "auto": the automatic rule (default_dt_initial), also where the preset sets a step.
     const auto step = [&r](const std::string& key, const toml::node& d) -> std::optional<double> {
       if (d.is_string() && d.as_string()->get() == "auto") return std::nullopt;
-      if (d.is_string()) r.fail(key, &d, fmt::format("{} must be a number > 0 or \"auto\", got '{}'", key,
-                                                     d.as_string()->get()));
+      if (d.is_string())
+        r.fail(key, &d, fmt::format("{} must be a number > 0 or \"auto\", got '{}'", key, d.as_string()->get()));
       return r.positive(key, d);
     };
     if (n->is_table()) {

@@ -170,12 +170,11 @@ void check_mesh_on_geometry(const Mesh& mesh, const std::string& label, const Ge
 }
 
 std::vector<CaseOverride> smooth_overrides(SmoothField field) {
-  std::vector<CaseOverride> out{
-      {"preset", "\"best\"", "pdmesh smooth"},
-      {"cleanup.sharp_corners", "true", "pdmesh smooth"},
-      {"population.stop", fmt::format("{}", kSmoothPopulationStop), "pdmesh smooth"},
-      {"simulation.stop_aspect", fmt::format("{}", kSmoothStopAspect), "pdmesh smooth"},
-      {"simulation.dt_initial", "\"auto\"", "pdmesh smooth"}};
+  std::vector<CaseOverride> out{{"preset", "\"best\"", "pdmesh smooth"},
+                                {"cleanup.sharp_corners", "true", "pdmesh smooth"},
+                                {"population.stop", fmt::format("{}", kSmoothPopulationStop), "pdmesh smooth"},
+                                {"simulation.stop_aspect", fmt::format("{}", kSmoothStopAspect), "pdmesh smooth"},
+                                {"simulation.dt_initial", "\"auto\"", "pdmesh smooth"}};
   if (field != SmoothField::Mesh) return out;
   const std::string by = "pdmesh smooth (--field mesh)";
   out.push_back({"spacing.scale", fmt::format("{}", kSmoothMeshScale), by});

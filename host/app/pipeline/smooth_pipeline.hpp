@@ -33,9 +33,10 @@ inline constexpr double kSmoothGradation = 0.3;
 
 // population.stop and simulation.stop_aspect of a smoothing run, which also keeps the automatic step
 // (simulation.dt_initial "auto"): the values its measurements were made with (docs/smoothing.md,
-// "Measured"); the best preset's larger step took the jittered square of test_smooth from 289 to 273 nodes. Another mesher's mesh starts further from the count the field asks for
-// than pdmesh's fill (Gmsh's 30P30N mesh: +3.5 % nodes after smoothing), and ending population control
-// at iteration 300 (the best preset's 0.15) left it at 37.8 degrees against 43.5 (docs/journal/2026-12-05-small-iter.md).
+// "Measured"). Another mesher's mesh starts further from the count the field asks for than pdmesh's
+// fill: ending population control at iteration 300 (the best preset's 0.15) left Gmsh's 30P30N mesh at
+// 37.8 degrees against 43.5, and the best preset's step took test_smooth's jittered square from 289 to
+// 273 nodes (docs/journal/2026-12-05-small-iter.md).
 inline constexpr double kSmoothPopulationStop = 0.2;
 inline constexpr double kSmoothStopAspect = 7e-4;
 
