@@ -144,6 +144,25 @@ TEST_CASE("pdmesh smooth keeps population control to 0.2 and the drift tolerance
     CHECK(u.population.stop == 0.5);
     CHECK(u.simulation.stop_aspect == 2e-3);
   }
+  // They yield to the case file's own values, a step set as one number or per start included.
+  for (const std::string& dt : {"dt_initial = 0.01\n", "dt_initial = { structured = 0.01 }\n"}) {
+    INFO(dt);
+    const CaseConfig own = parsed(kGeometry + "[simulation]\nstop_aspect = 2e-3\n" + dt + "[population]\nstop = 0.5\n",
+                                  smooth_overrides(SmoothField::Case));
+    CHECK(own.population.stop == 0.5);
+    CHECK(own.simulation.stop_aspect == 2e-3);
+    CHECK(own.simulation.dt_structured == 0.01);
+  }
+  const CaseConfig random_only =
+      parsed(kGeometry + "[simulation]\ndt_initial = { random = 0.025 }\n", smooth_overrides(SmoothField::Case));
+  CHECK_FALSE(random_only.simulation.dt_structured.has_value());
+  CHECK(random_only.simulation.dt_random == 0.025);
+  // The user's --set comes after them, for the whole step or one start's.
+  for (const char* set : {"simulation.dt_initial=0.05", "simulation.dt_initial.structured=0.05"}) {
+    std::vector<CaseOverride> with_user = smooth_overrides(SmoothField::Mesh);
+    with_user.push_back(parse_set_option(set));
+    CHECK(parsed(kGeometry, with_user).simulation.dt_structured == 0.05);
+  }
   // Not the best preset's own for a mesh run.
   CHECK(parsed(kGeometry).population.stop != kSmoothPopulationStop);
   CHECK(parsed(kGeometry).simulation.stop_aspect != kSmoothStopAspect);

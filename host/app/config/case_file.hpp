@@ -66,6 +66,9 @@ struct CaseOverride {
   std::string value;  // TOML value syntax; a bare word that is not valid TOML is taken as a string
   std::string label;
   bool append = false;  // append the value to the array at `key` instead of replacing it (--view)
+  // A command's default that yields to the case file: not applied where the file (or an earlier
+  // override) already sets `key` or a key above it (pdmesh smooth's schedule).
+  bool if_unset = false;
 };
 
 struct CaseConfig {
