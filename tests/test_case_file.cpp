@@ -116,7 +116,8 @@ TEST_CASE("omitted keys take the documented defaults", "[app][case]") {
   CHECK(c.init.density_where == DensityWhere::Flat);
   CHECK(c.init.lattice_levels == 4);
   CHECK(c.simulation.iterations == 2000);
-  CHECK_FALSE(c.simulation.dt_structured.has_value());
+  // The best preset's larger step for structured (and hybrid) starts; a random start keeps the automatic rule.
+  CHECK(c.simulation.dt_structured == 0.016);
   CHECK_FALSE(c.simulation.dt_random.has_value());
   CHECK(c.simulation.cutoff == 1.5);
   CHECK(c.simulation.lj_a == 15.0);
@@ -338,12 +339,14 @@ TEST_CASE("the best preset is long with momentum, a compressed schedule and rule
   CHECK(initializers.preset == Preset::Long);
   for (const CaseConfig* c : {&best, &fast}) {
     CHECK(c->simulation.momentum == 0.9);
-    CHECK(c->population.stop == 0.2);
+    CHECK(c->population.stop == 0.15);
+    CHECK(c->simulation.dt_structured == 0.016);
+    CHECK_FALSE(c->simulation.dt_random.has_value());
     CHECK(c->population.insert.first == 0.7);
     CHECK(c->population.insert.last == 0.7);
     CHECK(c->population.settle == 1e-3);
     CHECK(c->population.settle_events == 2);
-    CHECK(c->simulation.stop_aspect == 7e-4);
+    CHECK(c->simulation.stop_aspect == 9e-4);
     CHECK(c->simulation.stop_every == 50);
     CHECK(c->simulation.stop_window == 100);
     CHECK(c->simulation.stop_min == 150);
@@ -357,6 +360,7 @@ TEST_CASE("the best preset is long with momentum, a compressed schedule and rule
   for (const CaseConfig* c : {&long_, &thesis, &initializers}) {
     CHECK(c->simulation.momentum == 0.0);
     CHECK(c->population.stop == 0.8);
+    CHECK_FALSE(c->simulation.dt_structured.has_value());
     CHECK(c->population.insert.first == 0.75);
     CHECK(c->population.insert.last == 0.7);
     CHECK(c->population.settle == 0.0);
@@ -420,7 +424,7 @@ TEST_CASE("population keys: best runs it, thesis does not, every value is checke
   CHECK(best.population.enabled);
   CHECK(best.population.every == 50);
   CHECK(best.population.start == 100);
-  CHECK(best.population.stop == 0.2);
+  CHECK(best.population.stop == 0.15);
   CHECK(best.population.settle == 1e-3);
   CHECK(best.population.settle_events == 2);
   CHECK_FALSE(parse_case_text(std::string("preset = \"thesis\"\n") + kMinimal, kCase).population.enabled);
@@ -689,7 +693,7 @@ TEST_CASE("simulation.stop: best converges, thesis counts, a key wins over the p
 TEST_CASE("simulation.stop_aspect / stop_angle: the convergence rule's tolerances, checked",
           "[app][case][convergence]") {
   const CaseConfig best = parse_case_text(kMinimal, kCase);
-  CHECK(best.simulation.stop_aspect == 7e-4);
+  CHECK(best.simulation.stop_aspect == 9e-4);
   CHECK(best.simulation.stop_angle == 6.0);
   const CaseConfig set =
       parse_case_text(std::string(kMinimal) + "[simulation]\nstop_aspect = 2e-3\nstop_angle = 0.5\n", kCase);

@@ -141,6 +141,7 @@ void apply_override(toml::table& root, const CaseOverride& o, Reader& r) {
     if (i > 0) path += '.';
     path += parts[i];
     toml::node* n = t->get(parts[i]);
+    if (o.if_unset && n != nullptr && !n->is_table()) return;  // set above the key: the file's value stands
     if (n == nullptr) {
       t->insert_or_assign(parts[i], toml::table{});
       n = t->get(parts[i]);
@@ -151,6 +152,7 @@ void apply_override(toml::table& root, const CaseOverride& o, Reader& r) {
     }
     t = n->as_table();
   }
+  if (o.if_unset && t->get(parts.back()) != nullptr) return;
   const toml::table value = override_value(o);
   const toml::node& v = *value.get("v");
   if (o.append) {

@@ -66,6 +66,9 @@ struct CaseOverride {
   std::string value;  // TOML value syntax; a bare word that is not valid TOML is taken as a string
   std::string label;
   bool append = false;  // append the value to the array at `key` instead of replacing it (--view)
+  // A command's default that yields to the case file: not applied where the file (or an earlier
+  // override) already sets `key` or a key above it (pdmesh smooth's schedule).
+  bool if_unset = false;
 };
 
 struct CaseConfig {
@@ -337,6 +340,12 @@ double preset_relax_scale(Preset preset, InitMethod method);
 // isotropic one (best: 6 degrees isotropic, 3 in a metric; thesis and long: 0.25 for both). A case
 // that sets the key keeps its value.
 double preset_stop_angle(Preset preset, bool metric);
+// simulation.stop_aspect, population.stop and simulation.dt_initial.structured under `preset` for a metric
+// run or an isotropic one (best: 9e-4, 0.15 and 0.016 isotropic; 7e-4, 0.2 and the automatic rule in a
+// metric; thesis and long: CaseConfig's initializers for both). A case that sets the key keeps its value.
+double preset_stop_aspect(Preset preset, bool metric);
+double preset_population_stop(Preset preset, bool metric);
+std::optional<double> preset_dt_structured(Preset preset, bool metric);
 
 // Splits "section.key=VALUE" into an override; throws InputError when there is no '=' or key.
 CaseOverride parse_set_option(const std::string& text);

@@ -269,15 +269,21 @@ void read_simulation_section(const Reader& r, const toml::table& root, CaseConfi
                        s.stop_window));
   }
   if (const toml::node* n = find(root, "simulation", "dt_initial")) {
+    // "auto": the automatic rule (default_dt_initial), also where the preset sets a step.
+    const auto step = [&r](const std::string& key, const toml::node& d) -> std::optional<double> {
+      if (d.is_string() && d.as_string()->get() == "auto") return std::nullopt;
+      if (d.is_string())
+        r.fail(key, &d, fmt::format("{} must be a number > 0 or \"auto\", got '{}'", key, d.as_string()->get()));
+      return r.positive(key, d);
+    };
     if (n->is_table()) {
       const toml::table& per = *n->as_table();
-      if (const toml::node* d = per.get("structured"))
-        s.dt_structured = r.positive("simulation.dt_initial.structured", *d);
-      if (const toml::node* d = per.get("random")) s.dt_random = r.positive("simulation.dt_initial.random", *d);
-    } else if (n->is_integer() || n->is_floating_point()) {
-      s.dt_structured = s.dt_random = r.positive("simulation.dt_initial", *n);
+      if (const toml::node* d = per.get("structured")) s.dt_structured = step("simulation.dt_initial.structured", *d);
+      if (const toml::node* d = per.get("random")) s.dt_random = step("simulation.dt_initial.random", *d);
+    } else if (n->is_integer() || n->is_floating_point() || n->is_string()) {
+      s.dt_structured = s.dt_random = step("simulation.dt_initial", *n);
     } else {
-      r.wrong_type("simulation.dt_initial", *n, "a number or a table { structured = ..., random = ... }");
+      r.wrong_type("simulation.dt_initial", *n, "a number, \"auto\" or a table { structured = ..., random = ... }");
     }
   }
   if (const toml::node* n = find(root, "simulation", "cutoff")) s.cutoff = r.positive("simulation.cutoff", *n);
@@ -526,6 +532,14 @@ void read_case_sections(const Reader& r, const toml::table& root, CaseConfig& c)
   // Likewise stop_angle, set for an isotropic run: a metric case without the key gets the metric value.
   if (find(root, "simulation", "stop_angle") == nullptr)
     c.simulation.stop_angle = preset_stop_angle(c.preset, c.spacing.metric());
+  // And the drift tolerance, population control's stop and the structured start's step, set for an
+  // isotropic run too.
+  if (find(root, "simulation", "stop_aspect") == nullptr)
+    c.simulation.stop_aspect = preset_stop_aspect(c.preset, c.spacing.metric());
+  if (find(root, "population", "stop") == nullptr)
+    c.population.stop = preset_population_stop(c.preset, c.spacing.metric());
+  if (find(root, "simulation", "dt_initial") == nullptr)
+    c.simulation.dt_structured = preset_dt_structured(c.preset, c.spacing.metric());
 }
 
 }  // namespace pdmesh::case_detail

@@ -170,8 +170,19 @@ void check_mesh_on_geometry(const Mesh& mesh, const std::string& label, const Ge
 }
 
 std::vector<CaseOverride> smooth_overrides(SmoothField field) {
-  std::vector<CaseOverride> out{{"preset", "\"best\"", "pdmesh smooth"},
-                                {"cleanup.sharp_corners", "true", "pdmesh smooth"}};
+  std::vector<CaseOverride> out{
+      {"preset", "\"best\"", "pdmesh smooth"},
+      {"cleanup.sharp_corners", "true", "pdmesh smooth"},
+      // The schedule its measurements were made with, where the case sets none.
+      {.key = "population.stop",
+       .value = fmt::format("{}", kSmoothPopulationStop),
+       .label = "pdmesh smooth",
+       .if_unset = true},
+      {.key = "simulation.stop_aspect",
+       .value = fmt::format("{}", kSmoothStopAspect),
+       .label = "pdmesh smooth",
+       .if_unset = true},
+      {.key = "simulation.dt_initial.structured", .value = "\"auto\"", .label = "pdmesh smooth", .if_unset = true}};
   if (field != SmoothField::Mesh) return out;
   const std::string by = "pdmesh smooth (--field mesh)";
   out.push_back({"spacing.scale", fmt::format("{}", kSmoothMeshScale), by});
