@@ -145,7 +145,7 @@ TEST_CASE("pdmesh smooth keeps population control to 0.2 and the drift tolerance
     CHECK(u.simulation.stop_aspect == 2e-3);
   }
   // They yield to the case file's own values, a step set as one number or per start included.
-  for (const std::string& dt : {"dt_initial = 0.01\n", "dt_initial = { structured = 0.01 }\n"}) {
+  for (const char* dt : {"dt_initial = 0.01\n", "dt_initial = { structured = 0.01 }\n"}) {
     INFO(dt);
     const CaseConfig own = parsed(kGeometry + "[simulation]\nstop_aspect = 2e-3\n" + dt + "[population]\nstop = 0.5\n",
                                   smooth_overrides(SmoothField::Case));
