@@ -207,10 +207,10 @@ void lj_chunk(const int8 j, const REAL8 dx, const REAL8 dy, const REAL8 r2, cons
   PACK8
 
 // r0 from each lane's least r^2 among the entries that count (`found`: lanes that saw one): the lanes'
-// minimum taken s0 to s7 with the reference's comparison, then its square root; 0 when no entry
-// counted. An entry found with r^2 = INFINITY (overflow) gives r0 = INFINITY, as in the reference.
-// The lanes hold r^2 > 0 or INFINITY only (the masks admit r^2 > 0: no NaN, no zero), so the minimum
-// is the same in any order: a tree of three steps instead of a chain of seven.
+// minimum, then its square root; 0 when no entry counted. An entry found with r^2 = INFINITY (overflow)
+// gives r0 = INFINITY, as in the reference. The lanes hold r^2 > 0 or INFINITY only (the masks admit
+// r^2 > 0: no NaN, no zero), so the minimum is the same value in any order: a tree of three steps
+// (halves, quarters, pair) rather than a chain of seven dependent compares, which the r0 phase waits on.
 REAL r0_of_lanes(const REAL8 best2, const MASK8 found) {
   const __typeof__(best2.lo) m4 = select(best2.lo, best2.hi, best2.hi < best2.lo);
   const REAL2 m2 = select(m4.lo, m4.hi, m4.hi < m4.lo);
