@@ -207,18 +207,20 @@ void lj_chunk(const int8 j, const REAL8 dx, const REAL8 dy, const REAL8 r2, cons
   PACK8
 
 // r0 from each lane's least r^2 among the entries that count (`found`: lanes that saw one): the lanes'
-// minimum taken s0 to s7 with the reference's comparison, then its square root; 0 when no entry
-// counted. An entry found with r^2 = INFINITY (overflow) gives r0 = INFINITY, as in the reference.
+// minimum, then its square root; 0 when no entry counted. An entry found with r^2 = INFINITY (overflow)
+// gives r0 = INFINITY, as in the reference. The lanes hold r^2 > 0 or INFINITY only (the masks admit
+// r^2 > 0: no NaN, no zero), so the minimum is the same value in any order: a tree of three steps
+// (halves, quarters, pair) rather than a chain of seven dependent compares, which the r0 phase waits on.
 REAL r0_of_lanes(const REAL8 best2, const MASK8 found) {
-  REAL b = best2.s0;
-  b = best2.s1 < b ? best2.s1 : b;
-  b = best2.s2 < b ? best2.s2 : b;
-  b = best2.s3 < b ? best2.s3 : b;
-  b = best2.s4 < b ? best2.s4 : b;
-  b = best2.s5 < b ? best2.s5 : b;
-  b = best2.s6 < b ? best2.s6 : b;
-  b = best2.s7 < b ? best2.s7 : b;
-  return any(found) ? sqrt(b) : (REAL)0;
+  const __typeof__(best2.lo) m4 = select(best2.lo, best2.hi, best2.hi < best2.lo);
+  const REAL2 m2 = select(m4.lo, m4.hi, m4.hi < m4.lo);
+  const REAL b = m2.y < m2.x ? m2.y : m2.x;
+#if defined(PACK_MASK_BITS)
+  const int any_found = (uchar)PACK_MASK_BITS(found) != 0;  // one mask test, not a chain of extracts
+#else
+  const int any_found = any(found);
+#endif
+  return any_found ? sqrt(b) : (REAL)0;
 }
 
 // node_forces, vector shape: eight row entries at a time through the packing buffer, only as many
