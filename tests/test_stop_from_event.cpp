@@ -61,8 +61,7 @@ CaseConfig parsed(const std::string& text, const std::vector<CaseOverride>& over
 
 }  // namespace
 
-TEST_CASE("stop from the last event: the event's step no longer holds the rule for a whole window",
-          "[convergence]") {
+TEST_CASE("stop from the last event: the event's step no longer holds the rule for a whole window", "[convergence]") {
   // The whole window holds the step until it has passed: 50-90.
   ConvergenceMonitor whole(options(false));
   CHECK(first_converged(whole, 300, 50) == 90);
@@ -77,8 +76,7 @@ TEST_CASE("stop from the last event: the event's step no longer holds the rule f
   CHECK(m.converged_after(60, true, 50));
 }
 
-TEST_CASE("stop from the last event: the whole window decides while no interval follows the event",
-          "[convergence]") {
+TEST_CASE("stop from the last event: the whole window decides while no interval follows the event", "[convergence]") {
   std::vector<MeshSample> samples;
   for (int it = 10; it <= 50; it += 10) samples.push_back(stepped(it));
   // The event after the newest measurement leaves no interval after it: the whole window's verdict.

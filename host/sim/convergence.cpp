@@ -129,9 +129,10 @@ bool ConvergenceMonitor::observe(const HistoryRow& row, const MeshSample* sample
   // and diagnosis: which condition of the rule decides when a large run stops).
   static const bool trace = std::getenv("PDMESH_CONVERGENCE_TRACE") != nullptr;
   if (trace)
-    fmt::print(stderr, "convergence after iteration {}: min angle {:.2f} mean aspect ratio {:.5f}; {}\n", row.iteration,
-               sample->min_angle, sample->aspect_ratio,
-               converged ? std::string("converged") : not_converged_reason(row.iteration, population_settled, last_change));
+    fmt::print(
+        stderr, "convergence after iteration {}: min angle {:.2f} mean aspect ratio {:.5f}; {}\n", row.iteration,
+        sample->min_angle, sample->aspect_ratio,
+        converged ? std::string("converged") : not_converged_reason(row.iteration, population_settled, last_change));
   return converged;
 }
 

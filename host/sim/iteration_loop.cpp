@@ -203,7 +203,8 @@ bool IterationLoop::go_on(IterationSteps& steps, int iteration, const HistoryRow
   // Never while population control may still change the node set.
   const bool settled =
       population_status(options_.population, population_.schedule, iteration, options_.iterations).settled;
-  const bool converged = convergence_.observe(row, sample ? &*sample : nullptr, settled, population_.schedule.last_change);
+  const bool converged =
+      convergence_.observe(row, sample ? &*sample : nullptr, settled, population_.schedule.last_change);
   steps.after_observe();
   if (converged && iteration < options_.iterations) {
     result_.converged = true;

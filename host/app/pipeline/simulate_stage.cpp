@@ -138,8 +138,7 @@ void report_result(const CaseConfig& config, const SimOptions& options, const Si
     const int done = result.state.iterations_done;
     const bool settled =
         population_status(options.population, result.state.population, done, options.iterations).settled;
-    const std::string why =
-        ConvergenceMonitor(options.convergence, result.state.convergence)
+    const std::string why = ConvergenceMonitor(options.convergence, result.state.convergence)
                                 .not_converged_reason(done, settled, result.state.population.last_change);
     if (why.empty())
       progress(config, "simulation: the stopping rule's conditions were met at the last iteration allowed, {}", done);
