@@ -1,7 +1,8 @@
 // The stopping rule judged from population control's last change on too (ConvergenceOptions::
 // from_last_event, simulation.stop_from_event): when an event that changed the node set ran inside the
 // window, the window from the first measurement after it converges as well; the
-// key per preset and kind of run (best: on for an isotropic run, off in a metric; thesis and long: off),
+// key per preset and kind of run (best: on for an isotropic run without boundary layers, off in a metric
+// or with layers; thesis and long: off),
 // a case's value wins, and pdmesh smooth keeps the whole window.
 #include <catch2/catch.hpp>
 
@@ -54,6 +55,8 @@ int first_converged(ConvergenceMonitor& monitor, int last, int event) {
 const std::filesystem::path kCase = "/cases/demo/case.toml";
 const std::string kGeometry = "[geometry]\nfiles = [\"a.crv\"]\n";
 const std::string kMetric = "[spacing]\nfield = \"metric\"\nh1 = \"0.1\"\nh2 = \"0.01\"\n";
+const std::string kLayers =
+    "[[boundary_layer]]\ncurves = [\"c0\"]\nfirst_height = 1e-3\ngrowth = 1.2\nthickness = 0.01\n";
 
 CaseConfig parsed(const std::string& text, const std::vector<CaseOverride>& overrides = {}) {
   return parse_case_text(text, kCase, overrides);
@@ -96,13 +99,16 @@ TEST_CASE("stop from the last event: the whole window decides while no interval 
 
 TEST_CASE("simulation.stop_from_event: best isotropic on, metric and the other presets off, a case's value wins",
           "[case][convergence]") {
-  CHECK(preset_stop_from_event(Preset::Best, false));
-  CHECK(preset_stop_from_event(Preset::Fast, false));
-  CHECK_FALSE(preset_stop_from_event(Preset::Best, true));
-  CHECK_FALSE(preset_stop_from_event(Preset::Thesis, false));
-  CHECK_FALSE(preset_stop_from_event(Preset::Long, false));
+  CHECK(preset_stop_from_event(Preset::Best, false, false));
+  CHECK(preset_stop_from_event(Preset::Fast, false, false));
+  CHECK_FALSE(preset_stop_from_event(Preset::Best, true, false));
+  CHECK_FALSE(preset_stop_from_event(Preset::Best, false, true));
+  CHECK_FALSE(preset_stop_from_event(Preset::Thesis, false, false));
+  CHECK_FALSE(preset_stop_from_event(Preset::Long, false, false));
   CHECK(parsed(kGeometry).simulation.stop_from_event);
   CHECK_FALSE(parsed(kGeometry + kMetric).simulation.stop_from_event);
+  CHECK_FALSE(parsed(kGeometry + kLayers).simulation.stop_from_event);
+  CHECK(parsed(kGeometry + kLayers + "[simulation]\nstop_from_event = true\n").simulation.stop_from_event);
   CHECK_FALSE(parsed("preset = \"thesis\"\n" + kGeometry).simulation.stop_from_event);
   CHECK_FALSE(parsed("preset = \"long\"\n" + kGeometry).simulation.stop_from_event);
   CHECK_FALSE(parsed(kGeometry + "[simulation]\nstop_from_event = false\n").simulation.stop_from_event);

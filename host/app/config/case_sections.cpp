@@ -539,7 +539,7 @@ void read_case_sections(const Reader& r, const toml::table& root, CaseConfig& c)
   if (find(root, "simulation", "stop_aspect") == nullptr)
     c.simulation.stop_aspect = preset_stop_aspect(c.preset, c.spacing.metric());
   if (find(root, "simulation", "stop_from_event") == nullptr)
-    c.simulation.stop_from_event = preset_stop_from_event(c.preset, c.spacing.metric());
+    c.simulation.stop_from_event = preset_stop_from_event(c.preset, c.spacing.metric(), !c.boundary_layers.empty());
   if (find(root, "population", "stop") == nullptr)
     c.population.stop = preset_population_stop(c.preset, c.spacing.metric());
   if (find(root, "simulation", "dt_initial") == nullptr)
