@@ -120,17 +120,19 @@ bool ConvergenceMonitor::due(int iteration) const {
   return options_.enabled && iteration > 0 && iteration % options_.check_every == 0;
 }
 
-bool ConvergenceMonitor::observe(const HistoryRow& row, const MeshSample* sample, bool population_settled) {
+bool ConvergenceMonitor::observe(const HistoryRow& row, const MeshSample* sample, bool population_settled,
+                                 int last_change) {
   if (!sample) return false;
   samples_.push_back(*sample);
-  const bool converged = converged_after(row.iteration, population_settled);
+  const bool converged = converged_after(row.iteration, population_settled, last_change);
   // PDMESH_CONVERGENCE_TRACE=1: one line per measurement on stderr, with what holds the run (tuning
   // and diagnosis: which condition of the rule decides when a large run stops).
   static const bool trace = std::getenv("PDMESH_CONVERGENCE_TRACE") != nullptr;
   if (trace)
-    fmt::print(stderr, "convergence after iteration {}: min angle {:.2f} mean aspect ratio {:.5f}; {}\n", row.iteration,
-               sample->min_angle, sample->aspect_ratio,
-               converged ? std::string("converged") : not_converged_reason(row.iteration, population_settled));
+    fmt::print(
+        stderr, "convergence after iteration {}: min angle {:.2f} mean aspect ratio {:.5f}; {}\n", row.iteration,
+        sample->min_angle, sample->aspect_ratio,
+        converged ? std::string("converged") : not_converged_reason(row.iteration, population_settled, last_change));
   return converged;
 }
 
@@ -140,7 +142,7 @@ struct ConvergenceMonitor::Verdict {
   double aspect_change = 0.0, best_before = -1.0, best_within = -1.0;
 };
 
-ConvergenceMonitor::Verdict ConvergenceMonitor::judge(int iteration, bool population_settled) const {
+ConvergenceMonitor::Verdict ConvergenceMonitor::judge(int iteration, bool population_settled, int last_change) const {
   using Why = Verdict::Why;
   Verdict v;
   if (!options_.enabled) return v;
@@ -151,8 +153,23 @@ ConvergenceMonitor::Verdict ConvergenceMonitor::judge(int iteration, bool popula
   // Only at a measurement: the newest sample must be of this iteration.
   v.why = Why::NoWindow;
   if (samples_.empty() || samples_.back().iteration != iteration) return v;
-  // The window: the measurements after iteration now - window, and the one at its start.
   const int start = iteration - options_.window;
+  v = judge_window(start);
+  if (v.why == Why::Converged || !options_.from_last_event || last_change <= start) return v;
+  // Or from the first measurement after the event on (a measurement after the event's iteration is
+  // taken after the event), over at least one measurement interval.
+  const auto after = std::find_if(samples_.begin(), samples_.end(),
+                                  [last_change](const MeshSample& s) { return s.iteration >= last_change; });
+  if (after == samples_.end() || iteration - after->iteration < options_.check_every) return v;
+  const Verdict since_event = judge_window(after->iteration);
+  return since_event.why == Why::Converged ? since_event : v;
+}
+
+ConvergenceMonitor::Verdict ConvergenceMonitor::judge_window(int start) const {
+  using Why = Verdict::Why;
+  // The window: the measurements after `start`, and the one at its start.
+  Verdict v;
+  v.why = Why::NoWindow;
   v.window_start = start;
   const auto first_in =
       std::find_if(samples_.begin(), samples_.end(), [start](const MeshSample& s) { return s.iteration > start; });
@@ -181,13 +198,13 @@ ConvergenceMonitor::Verdict ConvergenceMonitor::judge(int iteration, bool popula
   return v;
 }
 
-bool ConvergenceMonitor::converged_after(int iteration, bool population_settled) const {
-  return judge(iteration, population_settled).why == Verdict::Why::Converged;
+bool ConvergenceMonitor::converged_after(int iteration, bool population_settled, int last_change) const {
+  return judge(iteration, population_settled, last_change).why == Verdict::Why::Converged;
 }
 
-std::string ConvergenceMonitor::not_converged_reason(int iteration, bool population_settled) const {
+std::string ConvergenceMonitor::not_converged_reason(int iteration, bool population_settled, int last_change) const {
   using Why = Verdict::Why;
-  const Verdict v = judge(iteration, population_settled);
+  const Verdict v = judge(iteration, population_settled, last_change);
   switch (v.why) {
     case Why::Converged:
       return {};

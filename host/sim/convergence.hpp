@@ -30,6 +30,13 @@ struct ConvergenceOptions {
   double aspect_tolerance = 5e-4;
   double angle_tolerance = 0.25;
   int min_iterations = 400;  // never stop before this iteration
+  // Judged from population control's last change on too: when an event that changed the node set
+  // (one that was not quiet, PopulationSchedule::last_change) ran after an iteration inside the window,
+  // the window from the first measurement after it (at least check_every iterations long) converges
+  // as well. The event's insertions move the mean aspect ratio in a step that is no drift of the
+  // settling nodes; the whole window alone would hold the run until the step has left it. A quiet
+  // event changes too little to move it, and a window that spans it is judged whole.
+  bool from_last_event = false;
 };
 
 // Throws InputError naming the first invalid option.
@@ -71,11 +78,13 @@ class ConvergenceMonitor {
   // After each iteration: true when the run has converged with this row and should stop after it.
   // `sample` is the measurement after this iteration when due() asked for one (else null);
   // `population_settled` false while population control may still change the node set.
-  bool observe(const HistoryRow& row, const MeshSample* sample, bool population_settled = true);
+  // `last_change`: the iteration after which population control's last event that was not quiet ran
+  // (PopulationSchedule::last_change; 0: none), for ConvergenceOptions::from_last_event.
+  bool observe(const HistoryRow& row, const MeshSample* sample, bool population_settled = true, int last_change = 0);
   // Whether the measurements so far say the run has converged after `iteration` (the rule observe()
   // applies). A resumed run asks this first: a run that converged in the very iteration it was
   // interrupted after is complete, as the uninterrupted run would have been.
-  bool converged_after(int iteration, bool population_settled = true) const;
+  bool converged_after(int iteration, bool population_settled = true, int last_change = 0) const;
   const std::vector<MeshSample>& samples() const { return samples_; }
   // Whether the measurement after `iteration` is due and not among the samples: a checkpoint written
   // when a stop request ended that measurement. The resumed run takes it (add_sample) first.
@@ -87,12 +96,14 @@ class ConvergenceMonitor {
   // that ran to its maximum): population control not settled, too early, no window of measurements
   // yet, a measurement that did not triangulate, the aspect ratio's change over the window, or the
   // smallest angle's new best. Empty when it has converged.
-  std::string not_converged_reason(int iteration, bool population_settled = true) const;
+  std::string not_converged_reason(int iteration, bool population_settled = true, int last_change = 0) const;
 
  private:
   // The rule's verdict after `iteration` and, when it is no, why (converged_after, not_converged_reason).
   struct Verdict;
-  Verdict judge(int iteration, bool population_settled) const;
+  Verdict judge(int iteration, bool population_settled, int last_change) const;
+  // The rule over the measurements from `start` (one of them) to the newest.
+  Verdict judge_window(int start) const;
   ConvergenceOptions options_;
   std::vector<MeshSample> samples_;
 };

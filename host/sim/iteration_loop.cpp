@@ -99,7 +99,8 @@ void IterationLoop::resume_checks() {
   // A run stopped in the iteration it converged in is complete (the uninterrupted run ended there).
   if (done_ < options_.iterations &&
       convergence_.converged_after(
-          done_, population_status(options_.population, population_.schedule, done_, options_.iterations).settled))
+          done_, population_status(options_.population, population_.schedule, done_, options_.iterations).settled,
+          population_.schedule.last_change))
     result_.converged = true;
 }
 
@@ -202,7 +203,8 @@ bool IterationLoop::go_on(IterationSteps& steps, int iteration, const HistoryRow
   // Never while population control may still change the node set.
   const bool settled =
       population_status(options_.population, population_.schedule, iteration, options_.iterations).settled;
-  const bool converged = convergence_.observe(row, sample ? &*sample : nullptr, settled);
+  const bool converged =
+      convergence_.observe(row, sample ? &*sample : nullptr, settled, population_.schedule.last_change);
   steps.after_observe();
   if (converged && iteration < options_.iterations) {
     result_.converged = true;

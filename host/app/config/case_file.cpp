@@ -285,6 +285,7 @@ const std::vector<std::string>& simulation_keys() {
       "simulation.stop_every",
       "simulation.stop_window",
       "simulation.stop_min",
+      "simulation.stop_from_event",
       "simulation.dt_initial",
       "simulation.dt_initial.structured",
       "simulation.dt_initial.random",

@@ -201,6 +201,9 @@ struct CaseConfig {
     int stop_every = 100;
     int stop_window = 400;
     int stop_min = 400;
+    // ConvergenceOptions::from_last_event: the drift window starts no earlier than the first measurement
+    // after population control's last event.
+    bool stop_from_event = false;
     // Initial global maximum time step per init method; empty = the automatic rule.
     std::optional<double> dt_structured;
     std::optional<double> dt_random;
@@ -346,6 +349,10 @@ double preset_stop_angle(Preset preset, bool metric);
 double preset_stop_aspect(Preset preset, bool metric);
 double preset_population_stop(Preset preset, bool metric);
 std::optional<double> preset_dt_structured(Preset preset, bool metric);
+// simulation.stop_from_event's default under `preset` for a metric run or an isotropic one, with
+// boundary layers (`layers`) or without (best: true for an isotropic run without layers, else false;
+// thesis and long: false). A case that sets the key keeps its value.
+bool preset_stop_from_event(Preset preset, bool metric, bool layers);
 
 // Splits "section.key=VALUE" into an override; throws InputError when there is no '=' or key.
 CaseOverride parse_set_option(const std::string& text);

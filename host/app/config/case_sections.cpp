@@ -261,6 +261,8 @@ void read_simulation_section(const Reader& r, const toml::table& root, CaseConfi
       if (v < lo || v > 1000000) r.fail(name, n, fmt::format("{} must be in [{}, 1000000], got {}", name, lo, v));
       *out = static_cast<int>(v);
     }
+  if (const toml::node* n = find(root, "simulation", "stop_from_event"))
+    s.stop_from_event = r.boolean("simulation.stop_from_event", *n);
   if (s.stop_window % s.stop_every != 0) {
     const toml::node* n = find(root, "simulation", "stop_window");
     if (!n) n = find(root, "simulation", "stop_every");
@@ -536,6 +538,8 @@ void read_case_sections(const Reader& r, const toml::table& root, CaseConfig& c)
   // isotropic run too.
   if (find(root, "simulation", "stop_aspect") == nullptr)
     c.simulation.stop_aspect = preset_stop_aspect(c.preset, c.spacing.metric());
+  if (find(root, "simulation", "stop_from_event") == nullptr)
+    c.simulation.stop_from_event = preset_stop_from_event(c.preset, c.spacing.metric(), !c.boundary_layers.empty());
   if (find(root, "population", "stop") == nullptr)
     c.population.stop = preset_population_stop(c.preset, c.spacing.metric());
   if (find(root, "simulation", "dt_initial") == nullptr)

@@ -27,6 +27,7 @@ SimOptions simulation_options(const CaseConfig& config) {
   options.convergence.check_every = config.simulation.stop_every;
   options.convergence.window = config.simulation.stop_window;
   options.convergence.min_iterations = config.simulation.stop_min;
+  options.convergence.from_last_event = config.simulation.stop_from_event;
   options.dt_initial = config.simulation.dt_for(config.init.method);
   options.cutoff = config.simulation.cutoff;
   options.lj_a = config.simulation.lj_a;
@@ -137,8 +138,8 @@ void report_result(const CaseConfig& config, const SimOptions& options, const Si
     const int done = result.state.iterations_done;
     const bool settled =
         population_status(options.population, result.state.population, done, options.iterations).settled;
-    const std::string why =
-        ConvergenceMonitor(options.convergence, result.state.convergence).not_converged_reason(done, settled);
+    const std::string why = ConvergenceMonitor(options.convergence, result.state.convergence)
+                                .not_converged_reason(done, settled, result.state.population.last_change);
     if (why.empty())
       progress(config, "simulation: the stopping rule's conditions were met at the last iteration allowed, {}", done);
     else

@@ -182,7 +182,8 @@ std::vector<CaseOverride> smooth_overrides(SmoothField field) {
        .value = fmt::format("{}", kSmoothStopAspect),
        .label = "pdmesh smooth",
        .if_unset = true},
-      {.key = "simulation.dt_initial.structured", .value = "\"auto\"", .label = "pdmesh smooth", .if_unset = true}};
+      {.key = "simulation.dt_initial.structured", .value = "\"auto\"", .label = "pdmesh smooth", .if_unset = true},
+      {.key = "simulation.stop_from_event", .value = "false", .label = "pdmesh smooth", .if_unset = true}};
   if (field != SmoothField::Mesh) return out;
   const std::string by = "pdmesh smooth (--field mesh)";
   out.push_back({"spacing.scale", fmt::format("{}", kSmoothMeshScale), by});
