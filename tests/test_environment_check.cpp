@@ -72,7 +72,7 @@ TEST_CASE("the environment check accepts every well-formed value and unset varia
   const ScopedEnv trace("PDMESH_SIM_TRACE", "3-7");
   CHECK_NOTHROW(check_environment());
   CHECK(ocl::measure_overlap(true) == ocl::MeasureOverlap::Full);
-  CHECK(row_locality_factor() == 2.7);  // empty: the best preset's list radius
+  CHECK(row_locality_factor() == 2.25);  // empty: the best preset's list radius
   const TraceRange range = TraceRange::from_environment();
   CHECK((range.first == 3 && range.last == 7));
   fs::remove_all(profile.parent_path());

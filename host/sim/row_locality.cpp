@@ -58,7 +58,7 @@ RowLocality row_locality(const NodeSet& nodes, double radius_factor) {
 std::optional<double> row_locality_factor() {
   const char* value = std::getenv("PDMESH_ROW_LOCALITY");
   if (!value) return std::nullopt;
-  if (*value == '\0') return 2.7;
+  if (*value == '\0') return 2.25;
   char* end = nullptr;
   const double factor = std::strtod(value, &end);
   if (end == value || *end != '\0' || !(factor > 0.0) || !std::isfinite(factor))

@@ -20,9 +20,9 @@ struct RowLocality {
 };
 RowLocality row_locality(const NodeSet& nodes, double radius_factor);
 
-// PDMESH_ROW_LOCALITY's radius factor: nothing when unset, 2.7 (the best preset's cut-off 1.5 times
-// 1 + skin 0.8) when set but empty; a value that is not a positive finite number throws InputError
-// naming the variable and the value.
+// PDMESH_ROW_LOCALITY's radius factor: nothing when unset, 2.25 (the best preset's cut-off 1.5 times
+// 1 + skin 0.5, the skin of a run with momentum) when set but empty; a value that is not a positive finite number
+// throws InputError naming the variable and the value.
 std::optional<double> row_locality_factor();
 
 // With PDMESH_ROW_LOCALITY set: one line on stderr with row_locality at row_locality_factor(),
