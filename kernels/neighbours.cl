@@ -297,8 +297,8 @@ void gather_node(const int i, const REAL radius_factor, __global const REAL2* xy
 #if defined(PACK_MASK_BITS) && PDMESH_DOUBLE
           // A chunk without a candidate loads no position. The others load every lane's x and y by one
           // 16-byte load each (j is a node whatever its cell: every load is valid; `use` holds candidates
-          // only): on this project's AMD EPYC (Zen 5) they cost less than two masked vgatherdpd of the
-          // candidates' lanes, at 14k nodes (in cache) and at 1M (docs/journal/2026-12-05-build-cost.md).
+          // only): on AVX-512 CPUs such as Zen 5 they cost less than two masked vgatherdpd of the
+          // candidates' lanes, in cache and out of it.
           const uchar cand_bits = (uchar)__builtin_ia32_cvtd2mask256(__builtin_astype(candidate, pack_v8si));
           if (!cand_bits) continue;
           examined += popcount((uint)cand_bits);

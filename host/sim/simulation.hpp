@@ -45,9 +45,7 @@ struct SimState {
 // beta 0.9: 174 rebuilds at 0.3, 107 at 0.5, 88 at 0.6, 65 at 0.8, 50 at 1.0; docs/journal/,
 // "Rebuilds of a small run with momentum"). A larger skin costs more pairs examined per iteration but far fewer
 // rebuilds. With momentum 0.5: its rows hold ~2/3 of 0.8's entries (the step's traffic, and the whole
-// command's peak memory: 1M-node annulus 576-593 MiB against 650-668 MiB) for about twice the
-// rebuilds; on PoCL the whole command took 0.965x 0.8's CPU at 250k nodes, 0.96-1.00x (median 0.98)
-// at 1M and 0.996x (noise) on the 30P30N curves (docs/journal/2026-12-05-build-cost.md).
+// command's peak memory) for about twice the rebuilds (docs/performance.md, "Large runs").
 // The skin never changes a result.
 inline constexpr double kVerletSkin = 0.3;
 inline constexpr double kMomentumVerletSkin = 0.5;

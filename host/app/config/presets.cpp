@@ -86,30 +86,26 @@ void apply_momentum_schedule(CaseConfig& c) {
   c.simulation.stop_min = 150;
   // The drift judged from population control's last change on too: an event's insertions lower the mean
   // aspect ratio in a step that is no drift of the settling lattice and would hold the rule until it has
-  // left the window. Over the 19 calibration runs' five draws 35,050 -> 31,750 iterations within the
-  // quality bars; counting quiet events too stopped circle_circle on two measurements that happened to
-  // agree (docs/simulation.md, "When a run stops"). A metric run keeps the whole window alone, and so
-  // does a run with boundary layers: stopped at 300 instead of 400, NACA 0012's core met its layers'
-  // front with triangles up to 1.58 x the last layer's height (test_layer_junction wants <= 1.5)
+  // left the window. Quiet events do not count: after one, two measurements that happen to agree would
+  // stop an unsettled run (docs/simulation.md, "When a run stops"). A metric run keeps the whole window
+  // alone, and so does a run with boundary layers, whose core must settle against the layers' front for
+  // the junction's triangles to match the last layer's height (test_layer_junction)
   // (preset_stop_from_event).
   c.simulation.stop_from_event = preset_stop_from_event(Preset::Best, c.spacing.metric(), !c.boundary_layers.empty());
   // The smallest angle before the cleanup is one triangle's and moves by 0.5-2.5 degrees between
   // measurements of a settled lattice, while the 40-degree cleanup lifts the final meshes to 43-44
   // degrees whatever the stop: a rise of up to 6 degrees over the earlier best counts as such a move,
-  // not as progress to wait for. On the lattice's 4 levels (below) the seams anneal with rises of
-  // 2.2-2.9 degrees over iterations 50-150 on annulus_1m and of 5.2 degrees over 100-200 on
-  // annulus_500k, which 3 degrees ran to 300. A metric run keeps 3 (preset_stop_angle): its cleanup
-  // works in the metric on the nodes as they stopped, and 6 stopped issue 37's polar-2 case after 400
-  // iterations instead of 1050, with Q min 0.64 after the cleanup instead of 0.81 (docs/simulation.md,
-  // "When a run stops").
+  // not as progress to wait for; on the lattice's 4 levels (below) the seams anneal with rises of
+  // 2-5 degrees. A metric run keeps 3 (preset_stop_angle): its cleanup works in the metric on the
+  // nodes as they stopped, and a 6-degree tolerance stops issue 37's polar-2 case before its cleanup can
+  // reach the metric quality test_metric_case asks (docs/simulation.md, "When a run stops").
   c.simulation.stop_angle = preset_stop_angle(Preset::Best, c.spacing.metric());
   // A structured (or hybrid) start's lattice takes larger steps where nothing nearer limits them (dt_GM
   // binds where the forces are small, late in a run): it reaches a given mean aspect ratio sooner, so
   // the drift rule above lets it go sooner without a worse mesh. 1.6 x the automatic rule's 0.0100 (at
-  // lj_a 15, default_dt_initial): 0.015-0.02 gave the same iterations and quality on the 19 runs,
-  // 0.015 and 0.02 moved the unit square's corners' mean edge by +1 % (test_refine_regions) and 0.02
-  // held annulus_500k to 300 iterations on a smallest-angle rise (docs/simulation.md, "Initial
-  // dt_GM"). A random start, and a metric run, keep the automatic rule (preset_dt_structured).
+  // lj_a 15, default_dt_initial); the steps around it that were measured and why they were not taken are
+  // in docs/simulation.md, "Initial dt_GM". A random start, and a metric run, keep the automatic rule
+  // (preset_dt_structured).
   c.simulation.dt_structured = preset_dt_structured(Preset::Best, c.spacing.metric());
   // A cleanup that works harder on the worst triangles of the shorter run.
   c.cleanup.min_angle = 40.0;

@@ -34,9 +34,8 @@ inline constexpr double kSmoothGradation = 0.3;
 // population.stop and simulation.stop_aspect of a smoothing run, which also keeps the automatic step
 // (simulation.dt_initial "auto"): the values its measurements were made with (docs/smoothing.md,
 // "Measured"). Another mesher's mesh starts further from the count the field asks for than pdmesh's
-// fill: ending population control at iteration 300 (the best preset's 0.15) left Gmsh's 30P30N mesh at
-// 37.8 degrees against 43.5, and the best preset's step took test_smooth's jittered square from 289 to
-// 273 nodes (docs/journal/2026-12-05-small-iter.md).
+// fill, so its population control needs longer than the best preset's 0.15 gives it, and its nodes
+// the automatic step.
 inline constexpr double kSmoothPopulationStop = 0.2;
 inline constexpr double kSmoothStopAspect = 7e-4;
 
