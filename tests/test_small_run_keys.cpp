@@ -60,6 +60,10 @@ TEST_CASE("best's drift tolerance, population stop and structured step differ be
     CHECK(c.simulation.stop_aspect == 7e-4);
     CHECK(c.population.stop == 0.2);
     CHECK_FALSE(c.simulation.dt_structured.has_value());
+    // A step for the random start alone leaves the structured start's to the kind of run.
+    const CaseConfig random_only = parsed(text + "[simulation]\ndt_initial = { random = 0.025 }\n");
+    CHECK_FALSE(random_only.simulation.dt_structured.has_value());
+    CHECK(random_only.simulation.dt_random == 0.025);
   }
   const CaseConfig linear = load_case_file(kAnisoLinear);
   CHECK(linear.simulation.stop_aspect == 7e-4);

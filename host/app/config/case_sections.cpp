@@ -542,7 +542,9 @@ void read_case_sections(const Reader& r, const toml::table& root, CaseConfig& c)
     c.simulation.stop_from_event = preset_stop_from_event(c.preset, c.spacing.metric(), !c.boundary_layers.empty());
   if (find(root, "population", "stop") == nullptr)
     c.population.stop = preset_population_stop(c.preset, c.spacing.metric());
-  if (find(root, "simulation", "dt_initial") == nullptr)
+  // A dt_initial table that sets only the random start's step leaves the structured one to the preset.
+  const toml::node* dt = find(root, "simulation", "dt_initial");
+  if (dt == nullptr || (dt->is_table() && dt->as_table()->get("structured") == nullptr))
     c.simulation.dt_structured = preset_dt_structured(c.preset, c.spacing.metric());
 }
 
