@@ -311,6 +311,61 @@ class Quadtree {
     return best;
   }
 
+  // closest() at each of p[0 .. n), each search seeded by the previous answer (*seed first; left at
+  // the last answer). A tree that is one leaf (a curve of at most kLeafCapacity segments: 8 of the 15
+  // curves of 30P30N, half of eq. 3.6's searches) is scanned directly, without the search's stack: the
+  // answer is the lowest (distance, index) over the same closest_on_segment values either way, so the
+  // bits are closest()'s.
+  void closest_many(const Vec2* p, std::size_t n, double* distance, int* segment, int* seed) const {
+    int s = *seed;
+    if (nodes_.empty() || nodes_[0].first_child >= 0) {
+      for (std::size_t i = 0; i < n; ++i) {
+        const ClosestHit h = closest(p[i], s);
+        distance[i] = h.distance;
+        segment[i] = h.segment;
+        s = h.segment;
+      }
+      *seed = s;
+      return;
+    }
+    const Node& leaf = nodes_[0];
+    const int* const ids = items_.data() + leaf.begin;
+    const Box* const boxes = item_boxes_.data() + leaf.begin;
+    const Segment* const segments = segments_->data();
+    const int count = leaf.count;
+    for (std::size_t k = 0; k < n; ++k) {
+      double px = p[k].x, py = p[k].y;
+#if defined(__SSE2__) && defined(__GNUC__)
+      asm("" : "+x"(px), "+x"(py));  // as in closest(): the coordinates stay in two registers
+#endif
+      const Vec2 q{px, py};
+      // The seed's hit first, then every other entry whose box lies within the bound of the moment:
+      // closest()'s leaf scan, whose entries skipped by the box could neither beat nor tie the best.
+      ClosestHit best;
+      best.distance = std::numeric_limits<double>::infinity();
+      double limit2 = std::numeric_limits<double>::infinity();
+      if (s >= 0) {
+        best = detail::closest_on_segment_inline(q, segments[s], s);
+        const double limit = bound(best.distance);
+        limit2 = limit * limit;
+      }
+      for (int i = 0; i < count; ++i) {
+        const int id = ids[i];
+        if (id == s || box_distance2(q, boxes[i]) > limit2) continue;
+        const ClosestHit h = detail::closest_on_segment_inline(q, segments[id], id);
+        if (h.distance < best.distance || (h.distance == best.distance && id < best.segment)) {
+          best = h;
+          const double limit = bound(best.distance);
+          limit2 = limit * limit;
+        }
+      }
+      distance[k] = best.distance;
+      segment[k] = best.segment;
+      s = best.segment;
+    }
+    *seed = s;
+  }
+
   // Calls visit(node) for every leaf whose box satisfies wanted(box), stopping when visit returns true.
   template <class Wanted, class Visit>
   bool any_leaf(Wanted wanted, Visit visit) const {
@@ -616,12 +671,7 @@ void GeometryTree::closest_on_curve_many(const Vec2* p, std::size_t n, int curve
   int s = *seed;
   if (!(s >= 0 && static_cast<std::size_t>(s) < segs.size() && segs[static_cast<std::size_t>(s)].curve == curve))
     s = -1;
-  for (std::size_t i = 0; i < n; ++i) {
-    const ClosestHit h = tree.closest(p[i], s);
-    distance[i] = h.distance;
-    segment[i] = h.segment;
-    s = h.segment;
-  }
+  tree.closest_many(p, n, distance, segment, &s);
   *seed = s;
 }
 
