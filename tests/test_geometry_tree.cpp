@@ -151,28 +151,40 @@ TEST_CASE("GeometryTree: closest_on_curve_many over lattice rows (grouped search
   // points shares one descent of a curve's tree, and a spread-out group falls back to a search per
   // point. The curves: fine arcs (trees of many levels) with vertices on the lattice's rows, a square
   // whose sides meet at lattice points (ties between two segments along the diagonals), a short
-  // polyline of a few segments (a tree of one leaf), and the fixtures' geometries.
+  // polyline of a few segments (a tree of one leaf), a wave of 300 segments and a spiral (trees that
+  // are not ring-like: the grouped searches), and the fixtures' geometries.
   const double pi = std::acos(-1.0);
+  std::vector<Vec2> wave, spiral;
+  for (int i = 0; i <= 300; ++i) wave.push_back({-1.5 + 0.01 * i, -1.6 + 0.1 * std::sin(8.0 * (-1.5 + 0.01 * i))});
+  for (int i = 0; i <= 240; ++i) {
+    const double a = 6.0 * pi * i / 240.0;
+    spiral.push_back({2.5 + 0.02 * a * std::cos(a), 0.02 * a * std::sin(a)});
+  }
   std::vector<Geometry> geometries = {
       fixtures::make_geometry({fixtures::arc_points({0.0, 0.0}, 1.0, 0.0, 2.0 * pi, 400, {1.0, 0.0}, {1.0, 0.0}),
                                fixtures::rectangle({-0.25, -0.25}, {0.25, 0.25}, 40, false),
-                               {{1.5, 1.5}, {1.75, 1.5}, {1.75, 1.75}, {1.5, 1.75}}}),
+                               {{1.5, 1.5}, {1.75, 1.5}, {1.75, 1.75}, {1.5, 1.75}}, wave, spiral}),
       fixtures::circle_in_circle(), fixtures::jagged_polygon(1501, 7), fixtures::multiscale()};
   for (std::size_t k = 0; k < geometries.size(); ++k) {
     const Geometry& g = geometries[k];
     const GeometryTree tree(g);
     const Box& e = g.extents;
     std::vector<Vec2> p;
-    // Coarse rows over a margin around the extents, then fine rows near the first curve's first vertex
-    // (groups among many close segments), then points in scattered pairs.
+    // Coarse rows over a margin around the extents, then fine rows near each curve's first vertex
+    // (groups among many close segments), then scattered points.
     for (int j = 0; j <= 40; ++j)
       for (int i = 0; i <= 40; ++i)
         p.push_back({e.lo.x - 0.25 * e.width() + 1.5 * e.width() * i / 40.0,
                      e.lo.y - 0.25 * e.height() + 1.5 * e.height() * j / 40.0});
-    const Vec2 v = g.segments.front().a;
-    const double h = g.segments.front().length / 8.0;
-    for (int j = -16; j <= 16; ++j)
-      for (int i = -16; i <= 16; ++i) p.push_back({v.x + h * i, v.y + h * j});
+    for (std::size_t c = 0; c < g.curves.size(); ++c) {
+      const Segment* first = nullptr;
+      for (const Segment& sg : g.segments)
+        if (sg.curve == static_cast<int>(c) && !first) first = &sg;
+      if (!first) continue;
+      const double h = first->length / 8.0;
+      for (int j = -16; j <= 16; ++j)
+        for (int i = -16; i <= 16; ++i) p.push_back({first->a.x + h * i, first->a.y + h * j});
+    }
     std::mt19937_64 rng(20261205);
     for (int i = 0; i < 200; ++i) p.push_back(query_point(g, rng));
     for (int c = 0; c < tree.curve_count(); ++c) {

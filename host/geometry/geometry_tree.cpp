@@ -314,7 +314,8 @@ class Quadtree {
   // closest() at each of p[0 .. n), each search seeded by the previous answer (*seed first; left at
   // the last answer). A tree that is one leaf (a curve of at most kLeafCapacity segments: 8 of the 15
   // curves of 30P30N, half of eq. 3.6's searches) is scanned directly, without the search's stack; a
-  // tree of kGroupMinEntries entries or more is searched in groups of kGroup points (closest_group).
+  // tree of kGroupMinEntries entries or more, not ring-like, is searched in groups of kGroup points
+  // (closest_group).
   // Every way gives the lowest (distance, index) over the same closest_on_segment values, so the bits
   // are closest()'s.
   void closest_many(const Vec2* p, std::size_t n, double* distance, int* segment, int* seed) const {
@@ -330,7 +331,7 @@ class Quadtree {
     if (nodes_[0].first_child >= 0) {
       for (std::size_t first = 0; first < n; first += kGroup) {
         const std::size_t m = std::min(kGroup, n - first);
-        if (s < 0 || items_.size() < kGroupMinEntries ||
+        if (s < 0 || items_.size() < kGroupMinEntries || sectors_ ||
             !closest_group(p + first, m, distance + first, segment + first, s)) {
           for (std::size_t i = first; i < first + m; ++i) {
             const ClosestHit h = closest(p[i], s);
@@ -389,7 +390,9 @@ class Quadtree {
   static constexpr int kGroupCandidates = 32;
   // Trees with fewer leaf entries search point by point: their searches are short, and a group there
   // gathers most of the curve (clarky's and e387's airfoil curves of 30-66 segments, where the groups
-  // cost more CPU than the searches they replace; 30P30N's curves of 110-441 segments gain).
+  // cost more CPU than the searches they replace; 30P30N's curves of 110-441 segments gain). So do
+  // ring-like curves (sectors_): seen from inside, a group's bound reaches much of the ring (the
+  // annulus cases' circles, where the groups cost more CPU too).
   static constexpr std::size_t kGroupMinEntries = 100;
 
   // closest() at the m points p[0 .. m) of a small group at once: seg, a segment of this tree, bounds
@@ -430,8 +433,6 @@ class Quadtree {
           const Node& kid = nodes_[static_cast<std::size_t>(c)];
           if (box_box_distance2(group, kid.content) > reach2) continue;
           if (kid.cap_r >= 0.0 && axis_distance(centre, kid) - kid.cap_r - spread > reach) continue;
-          // The sector bound is a distance to a set too (rounded down), so it also holds less spread.
-          if (kid.sec_r > 0.0 && sector_distance(centre, centre_, kid) - spread > reach) continue;
           stack[top++] = c;
         }
         continue;
