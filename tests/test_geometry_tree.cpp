@@ -163,7 +163,9 @@ TEST_CASE("GeometryTree: closest_on_curve_many over lattice rows (grouped search
   std::vector<Geometry> geometries = {
       fixtures::make_geometry({fixtures::arc_points({0.0, 0.0}, 1.0, 0.0, 2.0 * pi, 400, {1.0, 0.0}, {1.0, 0.0}),
                                fixtures::rectangle({-0.25, -0.25}, {0.25, 0.25}, 40, false),
-                               {{1.5, 1.5}, {1.75, 1.5}, {1.75, 1.75}, {1.5, 1.75}}, wave, spiral}),
+                               {{1.5, 1.5}, {1.75, 1.5}, {1.75, 1.75}, {1.5, 1.75}},
+                               wave,
+                               spiral}),
       fixtures::circle_in_circle(), fixtures::jagged_polygon(1501, 7), fixtures::multiscale()};
   for (std::size_t k = 0; k < geometries.size(); ++k) {
     const Geometry& g = geometries[k];

@@ -418,9 +418,8 @@ class Quadtree {
     // of it (rounded up), so its distance to a node's segments is at least the centre's capsule
     // distance less `spread`.
     const Vec2 centre = group.centre();
-    const double spread = 0.5 * std::sqrt(group.width() * group.width() + group.height() * group.height()) *
-                              (1.0 + 1e-12) +
-                          slack_;
+    const double spread =
+        0.5 * std::sqrt(group.width() * group.width() + group.height() * group.height()) * (1.0 + 1e-12) + slack_;
     int candidates[kGroupCandidates];
     int found = 0;
     int stack[3 * GeometryTree::kMaxDepth + 8];
