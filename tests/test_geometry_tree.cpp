@@ -3,6 +3,7 @@
 // against closed forms.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 #include <vector>
@@ -141,6 +142,68 @@ TEST_CASE("GeometryTree: closest_on_curve_many equals brute force per point, wha
       double d = 0.0;
       int s = 0;
       CHECK_THROWS_AS(tree.closest_on_curve_many(p.data(), 1, tree.curve_count(), &d, &s, &seed), std::out_of_range);
+    }
+  }
+}
+
+TEST_CASE("GeometryTree: closest_on_curve_many over lattice rows (grouped searches) equals brute force", "[tree]") {
+  // Runs of lattice points, as the background field's batches give them: a group of a few nearby
+  // points shares one descent of a curve's tree, and a spread-out group falls back to a search per
+  // point. The curves: fine arcs (trees of many levels) with vertices on the lattice's rows, a square
+  // whose sides meet at lattice points (ties between two segments along the diagonals), a short
+  // polyline of a few segments (a tree of one leaf), a wave of 300 segments and a spiral (trees that
+  // are not ring-like: the grouped searches), and the fixtures' geometries.
+  const double pi = std::acos(-1.0);
+  std::vector<Vec2> wave, spiral;
+  for (int i = 0; i <= 300; ++i) wave.push_back({-1.5 + 0.01 * i, -1.6 + 0.1 * std::sin(8.0 * (-1.5 + 0.01 * i))});
+  for (int i = 0; i <= 240; ++i) {
+    const double a = 6.0 * pi * i / 240.0;
+    spiral.push_back({2.5 + 0.02 * a * std::cos(a), 0.02 * a * std::sin(a)});
+  }
+  std::vector<Geometry> geometries = {
+      fixtures::make_geometry({fixtures::arc_points({0.0, 0.0}, 1.0, 0.0, 2.0 * pi, 400, {1.0, 0.0}, {1.0, 0.0}),
+                               fixtures::rectangle({-0.25, -0.25}, {0.25, 0.25}, 40, false),
+                               {{1.5, 1.5}, {1.75, 1.5}, {1.75, 1.75}, {1.5, 1.75}},
+                               wave,
+                               spiral}),
+      fixtures::circle_in_circle(), fixtures::jagged_polygon(1501, 7), fixtures::multiscale()};
+  for (std::size_t k = 0; k < geometries.size(); ++k) {
+    const Geometry& g = geometries[k];
+    const GeometryTree tree(g);
+    const Box& e = g.extents;
+    std::vector<Vec2> p;
+    // Coarse rows over a margin around the extents, then fine rows near each curve's first vertex
+    // (groups among many close segments), then scattered points.
+    for (int j = 0; j <= 40; ++j)
+      for (int i = 0; i <= 40; ++i)
+        p.push_back({e.lo.x - 0.25 * e.width() + 1.5 * e.width() * i / 40.0,
+                     e.lo.y - 0.25 * e.height() + 1.5 * e.height() * j / 40.0});
+    for (std::size_t c = 0; c < g.curves.size(); ++c) {
+      const Segment* first = nullptr;
+      for (const Segment& sg : g.segments)
+        if (sg.curve == static_cast<int>(c) && !first) first = &sg;
+      if (!first) continue;
+      const double h = first->length / 8.0;
+      for (int j = -16; j <= 16; ++j)
+        for (int i = -16; i <= 16; ++i) p.push_back({first->a.x + h * i, first->a.y + h * j});
+    }
+    std::mt19937_64 rng(20261205);
+    for (int i = 0; i < 200; ++i) p.push_back(query_point(g, rng));
+    for (int c = 0; c < tree.curve_count(); ++c) {
+      std::vector<double> distance(p.size());
+      std::vector<int> segment(p.size());
+      int seed = -1;
+      // In batches of uneven lengths (a batch's last group is short).
+      for (std::size_t first = 0; first < p.size(); first += 61) {
+        const std::size_t n = std::min<std::size_t>(61, p.size() - first);
+        tree.closest_on_curve_many(&p[first], n, c, &distance[first], &segment[first], &seed);
+      }
+      for (std::size_t i = 0; i < p.size(); ++i) {
+        const ClosestHit b = brute_force::closest_on_curve(g, p[i], c);
+        INFO("geometry " << k << ", curve " << c << ", point " << i << " (" << p[i].x << ", " << p[i].y << ")");
+        REQUIRE(segment[i] == b.segment);
+        REQUIRE(distance[i] == b.distance);
+      }
     }
   }
 }

@@ -34,4 +34,12 @@ inline double box_distance2(Vec2 p, const Box& b) {
 #endif
 }
 
+// Squared distance between the closed boxes a and b (0 where they meet): a lower bound on the squared
+// distance from any point of a to any point of b. An empty box (lo 1e300, hi -1e300) is at +inf.
+inline double box_box_distance2(const Box& a, const Box& b) {
+  const double dx = positive_part(std::max(a.lo.x - b.hi.x, b.lo.x - a.hi.x));
+  const double dy = positive_part(std::max(a.lo.y - b.hi.y, b.lo.y - a.hi.y));
+  return dx * dx + dy * dy;
+}
+
 }  // namespace pdmesh

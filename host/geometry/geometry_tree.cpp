@@ -311,6 +311,165 @@ class Quadtree {
     return best;
   }
 
+  // closest() at each of p[0 .. n), each search seeded by the previous answer (*seed first; left at
+  // the last answer). A tree that is one leaf (a curve of at most kLeafCapacity segments: 8 of the 15
+  // curves of 30P30N, half of eq. 3.6's searches) is scanned directly, without the search's stack; a
+  // tree of kGroupMinEntries entries or more, not ring-like, is searched in groups of kGroup points
+  // (closest_group).
+  // Every way gives the lowest (distance, index) over the same closest_on_segment values, so the bits
+  // are closest()'s.
+  void closest_many(const Vec2* p, std::size_t n, double* distance, int* segment, int* seed) const {
+    int s = *seed;
+    if (nodes_.empty()) {
+      for (std::size_t i = 0; i < n; ++i) {
+        distance[i] = 0.0;
+        segment[i] = -1;
+      }
+      if (n > 0) *seed = -1;
+      return;
+    }
+    if (nodes_[0].first_child >= 0) {
+      for (std::size_t first = 0; first < n; first += kGroup) {
+        const std::size_t m = std::min(kGroup, n - first);
+        if (s < 0 || items_.size() < kGroupMinEntries || sectors_ ||
+            !closest_group(p + first, m, distance + first, segment + first, s)) {
+          for (std::size_t i = first; i < first + m; ++i) {
+            const ClosestHit h = closest(p[i], s);
+            distance[i] = h.distance;
+            segment[i] = h.segment;
+            s = h.segment;
+          }
+        } else {
+          s = segment[first + m - 1];
+        }
+      }
+      *seed = s;
+      return;
+    }
+    const Node& leaf = nodes_[0];
+    const int* const ids = items_.data() + leaf.begin;
+    const Box* const boxes = item_boxes_.data() + leaf.begin;
+    const Segment* const segments = segments_->data();
+    const int count = leaf.count;
+    for (std::size_t k = 0; k < n; ++k) {
+      double px = p[k].x, py = p[k].y;
+#if defined(__SSE2__) && defined(__GNUC__)
+      asm("" : "+x"(px), "+x"(py));  // as in closest(): the coordinates stay in two registers
+#endif
+      const Vec2 q{px, py};
+      // The seed's hit first, then every other entry whose box lies within the bound of the moment:
+      // closest()'s leaf scan, whose entries skipped by the box could neither beat nor tie the best.
+      ClosestHit best;
+      best.distance = std::numeric_limits<double>::infinity();
+      double limit2 = std::numeric_limits<double>::infinity();
+      if (s >= 0) {
+        best = detail::closest_on_segment_inline(q, segments[s], s);
+        const double limit = bound(best.distance);
+        limit2 = limit * limit;
+      }
+      for (int i = 0; i < count; ++i) {
+        const int id = ids[i];
+        if (id == s || box_distance2(q, boxes[i]) > limit2) continue;
+        const ClosestHit h = detail::closest_on_segment_inline(q, segments[id], id);
+        if (h.distance < best.distance || (h.distance == best.distance && id < best.segment)) {
+          best = h;
+          const double limit = bound(best.distance);
+          limit2 = limit * limit;
+        }
+      }
+      distance[k] = best.distance;
+      segment[k] = best.segment;
+      s = best.segment;
+    }
+    *seed = s;
+  }
+
+  // Points per group of closest_group.
+  static constexpr std::size_t kGroup = 16;
+  // Leaf entries a group may gather before it gives up (its points are searched one by one).
+  static constexpr int kGroupCandidates = 32;
+  // Trees with fewer leaf entries search point by point: their searches are short, and a group there
+  // gathers most of the curve (clarky's and e387's airfoil curves of 30-66 segments, where the groups
+  // cost more CPU than the searches they replace; 30P30N's curves of 110-441 segments gain). So do
+  // ring-like curves (sectors_): seen from inside, a group's bound reaches much of the ring (the
+  // annulus cases' circles, where the groups cost more CPU too).
+  static constexpr std::size_t kGroupMinEntries = 100;
+
+  // closest() at the m points p[0 .. m) of a small group at once: seg, a segment of this tree, bounds
+  // every point's answer (its distance from p plus the margin, D the largest over the group); the leaf
+  // entries whose boxes lie within D of the group's bounding box are gathered by one descent, and each
+  // point scans those alone. An entry left out is farther than D from every point of the group, so it
+  // could neither beat nor tie that point's bound: each answer is the lowest (distance, index) over the
+  // same closest_on_segment values as closest()'s. Returns false (nothing written) where the group
+  // gathers more than kGroupCandidates entries (a spread-out group, near a finely segmented curve).
+  bool closest_group(const Vec2* p, std::size_t m, double* distance, int* segment, int seg) const {
+    const Segment* const segments = segments_->data();
+    ClosestHit hint[kGroup];
+    Box group;
+    double reach = 0.0;
+    for (std::size_t i = 0; i < m; ++i) {
+      hint[i] = detail::closest_on_segment_inline(p[i], segments[seg], seg);
+      reach = std::max(reach, bound(hint[i].distance));
+      group.add(p[i]);
+    }
+    if (!(reach < std::numeric_limits<double>::infinity())) return false;
+    const double reach2 = reach * reach;
+    // The capsules bound the nodes from the group's centre: a point of the group lies within `spread`
+    // of it (rounded up), so its distance to a node's segments is at least the centre's capsule
+    // distance less `spread`.
+    const Vec2 centre = group.centre();
+    const double spread =
+        0.5 * std::sqrt(group.width() * group.width() + group.height() * group.height()) * (1.0 + 1e-12) + slack_;
+    int candidates[kGroupCandidates];
+    int found = 0;
+    int stack[3 * GeometryTree::kMaxDepth + 8];
+    int top = 0;
+    stack[top++] = 0;
+    while (top > 0) {
+      const Node& node = nodes_[static_cast<std::size_t>(stack[--top])];
+      if (node.first_child >= 0) {
+        for (int c = node.first_child; c < node.first_child + 4; ++c) {
+          const Node& kid = nodes_[static_cast<std::size_t>(c)];
+          if (box_box_distance2(group, kid.content) > reach2) continue;
+          if (kid.cap_r >= 0.0 && axis_distance(centre, kid) - kid.cap_r - spread > reach) continue;
+          stack[top++] = c;
+        }
+        continue;
+      }
+      for (int e = node.begin; e < node.begin + node.count; ++e) {
+        if (items_[static_cast<std::size_t>(e)] == seg ||
+            box_box_distance2(group, item_boxes_[static_cast<std::size_t>(e)]) > reach2)
+          continue;
+        if (found == kGroupCandidates) return false;
+        candidates[found++] = e;
+      }
+    }
+    for (std::size_t i = 0; i < m; ++i) {
+      double px = p[i].x, py = p[i].y;
+#if defined(__SSE2__) && defined(__GNUC__)
+      asm("" : "+x"(px), "+x"(py));  // as in closest(): the coordinates stay in two registers
+#endif
+      const Vec2 q{px, py};
+      ClosestHit best = hint[i];
+      double limit = bound(best.distance);
+      double limit2 = limit * limit;
+      for (int k = 0; k < found; ++k) {
+        const auto e = static_cast<std::size_t>(candidates[k]);
+        if (box_distance2(q, item_boxes_[e]) > limit2) continue;
+        const int id = items_[e];
+        const ClosestHit h = detail::closest_on_segment_inline(q, segments[id], id);
+        if (h.distance < best.distance || (h.distance == best.distance && id < best.segment)) {
+          best = h;
+          limit = bound(best.distance);
+          limit2 = limit * limit;
+        }
+      }
+      distance[i] = best.distance;
+      segment[i] = best.segment;
+    }
+    return true;
+  }
+
   // Calls visit(node) for every leaf whose box satisfies wanted(box), stopping when visit returns true.
   template <class Wanted, class Visit>
   bool any_leaf(Wanted wanted, Visit visit) const {
@@ -616,12 +775,7 @@ void GeometryTree::closest_on_curve_many(const Vec2* p, std::size_t n, int curve
   int s = *seed;
   if (!(s >= 0 && static_cast<std::size_t>(s) < segs.size() && segs[static_cast<std::size_t>(s)].curve == curve))
     s = -1;
-  for (std::size_t i = 0; i < n; ++i) {
-    const ClosestHit h = tree.closest(p[i], s);
-    distance[i] = h.distance;
-    segment[i] = h.segment;
-    s = h.segment;
-  }
+  tree.closest_many(p, n, distance, segment, &s);
   *seed = s;
 }
 

@@ -47,14 +47,17 @@ class LimitedField {
       std::vector<int> leaves = b_.leaves();
       std::vector<std::int32_t> leaf_corner;
       leaf_corner.reserve(4 * leaves.size());
-      std::vector<std::uint64_t> keys;
-      std::vector<std::int32_t> ids;
-      for (const int l : leaves) {
-        const Cell& c = b_.cells()[static_cast<std::size_t>(l)];
+      std::vector<std::uint64_t> keys(4 * leaves.size());
+      std::vector<std::int32_t> ids(4 * leaves.size());
+      // Written in place (an insert of four ids per leaf was a library memcpy call each).
+      for (std::size_t n = 0; n < leaves.size(); ++n) {
+        const Cell& c = b_.cells()[static_cast<std::size_t>(leaves[n])];
         const std::uint32_t s = b_.span(c.level);
-        for (const auto& [dx, dy] : {std::pair{0u, 0u}, {s, 0u}, {0u, s}, {s, s}})
-          keys.push_back(BackgroundBuilder::key(c.x + dx, c.y + dy));
-        ids.insert(ids.end(), c.corner, c.corner + 4);
+        keys[4 * n] = BackgroundBuilder::key(c.x, c.y);
+        keys[4 * n + 1] = BackgroundBuilder::key(c.x + s, c.y);
+        keys[4 * n + 2] = BackgroundBuilder::key(c.x, c.y + s);
+        keys[4 * n + 3] = BackgroundBuilder::key(c.x + s, c.y + s);
+        for (std::size_t a = 0; a < 4; ++a) ids[4 * n + a] = c.corner[a];
       }
       add_corners(keys, ids);  // the base tree's corners in round 1; afterwards all known already
       for (const std::int32_t id : ids) leaf_corner.push_back(corner_id(id));
