@@ -33,6 +33,42 @@ Vec2 Smoother::on_curve(int a, Vec2 candidate, double& new_arc) const {
   return cp.p;
 }
 
+// The star's triangles with what a move of a leaves as it is: their other two points and the squared
+// length of the edge opposite a, computed as min_angle_sine computes it there.
+void Smoother::set_star_edges(int a) {
+  const auto& m = mesh_;
+  star_edges_.clear();
+  for (int t : fan_) {
+    const auto& tv = m.v[t];
+    StarEdge e;
+    e.k = EditableMesh::index_of(tv, a);
+    e.sharp = m.sharp_corner_of(t);
+    e.x = m.p[tv[0]];
+    e.y = m.p[tv[1]];
+    e.z = m.p[tv[2]];
+    // min_angle_sine's ab = norm2(y - x), bc = norm2(z - y), ca = norm2(x - z); the one without a.
+    e.opposite = e.k == 0 ? norm2(e.z - e.y) : (e.k == 1 ? norm2(e.x - e.z) : norm2(e.y - e.x));
+    star_edges_.push_back(e);
+  }
+}
+
+// EditableMesh::score_of(t, x, y, z) for star triangle e with a at its corner e.k, and the squared
+// lengths of its sides ab, bc, ca (min_angle_sine's names) in `sides`, for the aspect ratio.
+inline double Smoother::score_at(const StarEdge& e, Vec2 x, Vec2 y, Vec2 z, double twice_area, double* sides) const {
+  sides[0] = e.k == 2 ? e.opposite : norm2(y - x);
+  sides[1] = e.k == 0 ? e.opposite : norm2(z - y);
+  sides[2] = e.k == 1 ? e.opposite : norm2(x - z);
+  if (e.sharp >= 0) return min_angle_sine_except(x, y, z, e.sharp);
+  return min_angle_sine_of_squares(sides[0], sides[1], sides[2], twice_area);
+}
+
+inline double Smoother::score_at(std::size_t j, Vec2 to) const {
+  const StarEdge& e = star_edges_[j];
+  const Vec2 x = e.k == 0 ? to : e.x, y = e.k == 1 ? to : e.y, z = e.k == 2 ? to : e.z;
+  double sides[3];
+  return score_at(e, x, y, z, cross(y - x, z - x), sides);
+}
+
 // Moves a by `displacement` (projected onto its curve for a boundary vertex), halving the step
 // until no adjacent triangle inverts, the adjacent minimum does not drop, the adjacent sum of aspect
 // ratios does not rise, and one of the two strictly improves (so sweeps end, and neither the worst
@@ -42,28 +78,40 @@ bool Smoother::try_move(int a, Vec2 displacement, double old_min, double old_sum
   const auto& m = mesh_;
   const Vec2 from = m.p[a];
   const bool sliding = m.kind[a] == NodeKind::Boundary;
+  set_star_edges(a);
+  // Most steps are rejected, mostly because one triangle's score falls below old_min, and a triangle
+  // that falls below it at one step mostly does at half that step too. Any triangle below old_min
+  // rejects a step, whatever the others are, so that triangle is scored first at the next step, and
+  // when it is below old_min again the rest of the star is not looked at: the same verdict.
+  std::size_t culprit = star_edges_.size();
   for (int k = 0; k < kLineSearchSteps; ++k, displacement = 0.5 * displacement) {
     double new_arc = m.arc[a];
     const Vec2 to = sliding ? on_curve(a, from + displacement, new_arc) : from + displacement;
     if (to == from) return false;
+    if (culprit < star_edges_.size() && score_at(culprit, to) < old_min) continue;
     double new_min = std::numeric_limits<double>::infinity(), new_sum = 0.0;
     bool valid = true;
-    for (int t : fan_) {
-      const auto& tv = m.v[t];
-      const Vec2 x = tv[0] == a ? to : m.p[tv[0]], y = tv[1] == a ? to : m.p[tv[1]], z = tv[2] == a ? to : m.p[tv[2]];
+    for (std::size_t j = 0; j < star_edges_.size(); ++j) {
+      const StarEdge& e = star_edges_[j];
+      const Vec2 x = e.k == 0 ? to : e.x, y = e.k == 1 ? to : e.y, z = e.k == 2 ? to : e.z;
       if (!(orient2d(x, y, z) > 0.0)) {
+        culprit = j;
         valid = false;
         break;
       }
-      new_min = std::min(new_min, m.score_of(t, x, y, z));
+      double sides[3];
+      const double twice_area = cross(y - x, z - x);
+      const double score = score_at(e, x, y, z, twice_area, sides);
+      new_min = std::min(new_min, score);
       // Rejected already (aspect ratios are positive, so the sum only grows): the rest of the star
       // cannot change the verdict below, so the step ends here, before the aspect ratio when the
       // smallest score decides it.
       if (new_min < old_min) {
+        culprit = j;
         valid = false;
         break;
       }
-      new_sum += aspect_ratio(x, y, z);
+      new_sum += aspect_ratio_of_squares(sides[0], sides[1], sides[2], twice_area);
       if (!lift && new_sum > old_sum) {
         valid = false;
         break;
