@@ -55,13 +55,18 @@ inline double aspect_ratio(Vec2 a, Vec2 b, Vec2 c) {
   return area > 0.0 ? la * lb * lc * s / (8.0 * area * area) : HUGE_VAL;
 }
 
-// aspect_ratio(a, b, c) from the squared edge lengths and twice_area of min_angle_sine_of_squares: the
-// same operations (dist(b, c) is the square root of norm2(c - b), and so on), so the same value bit for bit.
-inline double aspect_ratio_of_squares(double ab, double bc, double ca, double twice_area) {
-  const double la = std::sqrt(bc), lb = std::sqrt(ca), lc = std::sqrt(ab);
+// aspect_ratio(a, b, c) from la = dist(b, c), lb = dist(c, a), lc = dist(a, b) and twice_area =
+// cross(b - a, c - a): the same operations, so the same value bit for bit.
+inline double aspect_ratio_of_lengths(double la, double lb, double lc, double twice_area) {
   const double area = 0.5 * twice_area;
   const double s = 0.5 * (la + lb + lc);
   return area > 0.0 ? la * lb * lc * s / (8.0 * area * area) : HUGE_VAL;
+}
+
+// aspect_ratio(a, b, c) from the squared edge lengths and twice_area of min_angle_sine_of_squares: the
+// same operations (dist(b, c) is the square root of norm2(c - b), and so on), so the same value bit for bit.
+inline double aspect_ratio_of_squares(double ab, double bc, double ca, double twice_area) {
+  return aspect_ratio_of_lengths(std::sqrt(bc), std::sqrt(ca), std::sqrt(ab), twice_area);
 }
 
 // Circumcentre of a non-degenerate triangle (relative to a for accuracy).

@@ -34,7 +34,8 @@ Vec2 Smoother::on_curve(int a, Vec2 candidate, double& new_arc) const {
 }
 
 // The star's triangles with what a move of a leaves as it is: their other two points and the squared
-// length of the edge opposite a, computed as min_angle_sine computes it there.
+// length of the edge opposite a, computed as min_angle_sine computes it there, and its length as
+// aspect_ratio computes it (dist(), the square root of the same number).
 void Smoother::set_star_edges(int a) {
   const auto& m = mesh_;
   star_edges_.clear();
@@ -48,6 +49,7 @@ void Smoother::set_star_edges(int a) {
     e.z = m.p[tv[2]];
     // min_angle_sine's ab = norm2(y - x), bc = norm2(z - y), ca = norm2(x - z); the one without a.
     e.opposite = e.k == 0 ? norm2(e.z - e.y) : (e.k == 1 ? norm2(e.x - e.z) : norm2(e.y - e.x));
+    e.opposite_length = std::sqrt(e.opposite);
     star_edges_.push_back(e);
   }
 }
@@ -60,6 +62,24 @@ inline double Smoother::score_at(const StarEdge& e, Vec2 x, Vec2 y, Vec2 z, doub
   sides[2] = e.k == 1 ? e.opposite : norm2(x - z);
   if (e.sharp >= 0) return min_angle_sine_except(x, y, z, e.sharp);
   return min_angle_sine_of_squares(sides[0], sides[1], sides[2], twice_area);
+}
+
+// aspect_ratio(x, y, z) of star triangle e from score_at()'s sides: the side opposite the vertex is
+// the star's length, the other two the square roots of their squares.
+inline double Smoother::aspect_at(const StarEdge& e, const double* sides, double twice_area) {
+  double la, lb, lc;
+  switch (e.k) {
+    case 0:
+      la = e.opposite_length, lb = std::sqrt(sides[2]), lc = std::sqrt(sides[0]);
+      break;
+    case 1:
+      la = std::sqrt(sides[1]), lb = e.opposite_length, lc = std::sqrt(sides[0]);
+      break;
+    default:
+      la = std::sqrt(sides[1]), lb = std::sqrt(sides[2]), lc = e.opposite_length;
+      break;
+  }
+  return aspect_ratio_of_lengths(la, lb, lc, twice_area);
 }
 
 inline double Smoother::score_at(std::size_t j, Vec2 to) const {
@@ -111,7 +131,7 @@ bool Smoother::try_move(int a, Vec2 displacement, double old_min, double old_sum
         valid = false;
         break;
       }
-      new_sum += aspect_ratio_of_squares(sides[0], sides[1], sides[2], twice_area);
+      new_sum += aspect_at(e, sides, twice_area);
       if (!lift && new_sum > old_sum) {
         valid = false;
         break;

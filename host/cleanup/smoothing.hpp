@@ -95,12 +95,13 @@ class Smoother {
   bool flips_needed(int a, Vec2 to) const;
   // A triangle of the star of the vertex try_move() moves: its corner k holds the vertex, x, y, z are
   // its points before the move, `opposite` the squared length of the side opposite the vertex, sharp
-  // EditableMesh::sharp_corner_of(t).
+  // EditableMesh::sharp_corner_of(t), opposite_length that side's length.
   struct StarEdge {
     int k, sharp;
     Vec2 x, y, z;
-    double opposite;
+    double opposite, opposite_length;
   };
+  static double aspect_at(const StarEdge& e, const double* sides, double twice_area);
   void set_star_edges(int a);
   double score_at(const StarEdge& e, Vec2 x, Vec2 y, Vec2 z, double twice_area, double* sides) const;
   // Star triangle j's score with the vertex at `to`.
