@@ -100,8 +100,10 @@ class Smoother {
     int k, sharp;
     Vec2 x, y, z;
     double opposite, opposite_length;
+    double twice_area, score, aspect, inradius;  // before the move
   };
   static double aspect_at(const StarEdge& e, const double* sides, double twice_area);
+  // star_edges_ for a's star in fan_, in its order (relax() and climb() measure the star with it).
   void set_star_edges(int a);
   double score_at(const StarEdge& e, Vec2 x, Vec2 y, Vec2 z, double twice_area, double* sides) const;
   // Star triangle j's score with the vertex at `to`.
