@@ -32,7 +32,7 @@ namespace {
 // topology pass, settling) score again only what changed in between.
 class Scores {
  public:
-  explicit Scores(std::size_t threads) : threads_(threads) {}
+  explicit Scores(std::size_t threads) : threads_(cleanup::sweep_thread_limit(threads)) {}
   const std::vector<double>& update(EditableMesh& m) {
     const std::uint32_t since = since_;
     auto changed = [&](int a) { return m.marked_in(a, since); };
@@ -144,17 +144,6 @@ int strips_for(std::size_t vertices, const CleanupOptions& options) {
              : static_cast<int>(std::min<std::size_t>(strips, CleanupOptions::kMaxStrips));
 }
 
-// The threads of the lists' passes over the whole mesh (the kept scores, the sweeps' and the topology
-// pass's lists, settling's scan): those of the strips where the sweeps run in strips, else one. A pass
-// over a mesh of serial sweeps (below kMinStrips x strip_vertices vertices) takes well under a
-// millisecond, about what handing half of it to a pool thread costs (waking it and waiting for it),
-// and a run calls ~8 per iteration while its pictures are drawn on the other core: with two threads
-// the lists of the 30P30N curves, clarky and annulus_100k took longer than on one
-// (docs/journal/2026-12-05b-cleanup-small.md). The lists are the same on any number of threads.
-std::size_t list_threads(std::size_t vertices, const CleanupOptions& options) {
-  return strips_for(vertices, options) > 0 ? cleanup::sweep_thread_limit(options.threads) : 1;
-}
-
 // The mesh being cleaned, its smoother and topology operations, and what the outer iterations carry
 // from one to the next: the kept scores and the triangles no operation could repair.
 class CleanupRun {
@@ -170,8 +159,7 @@ class CleanupRun {
             m_, smoother_, tree.geometry(), [&spacing, ratio](Vec2 p) { return ratio * spacing.at(p); },
             topology_options_of(options, limits_)),
         trial_budget_(static_cast<std::size_t>(
-            std::max(options.min_trials, options.trials_per_triangle * static_cast<double>(mesh.triangles.size())))),
-        threads_(list_threads(mesh.points.size(), options)) {
+            std::max(options.min_trials, options.trials_per_triangle * static_cast<double>(mesh.triangles.size())))) {
     smoother_.set_sweep_gain(options.move_min_rise, options.move_aspect_drop);
     if (options.lift) smoother_.set_lift(limits_.lift, [this](int t) { return stuck(t); });
     if (options.sharp_corners) m_.set_sharp_corners(options.min_angle);
@@ -224,8 +212,7 @@ class CleanupRun {
   const std::size_t trial_budget_;
   std::vector<std::uint8_t> mark_;
   std::vector<double> aspect_;  // set_aspect_totals()'s aspect ratios, by slot
-  const std::size_t threads_;   // of the whole-mesh lists (list_threads())
-  Scores scores_{threads_};
+  Scores scores_{options_.threads};
   std::unique_ptr<cleanup::StripSweeps> strips_;  // null: serial sweeps
   std::set<std::array<int, 3>> failures_;
   std::vector<std::uint8_t> since_;  // the dirty marks taken at the start of the iteration
@@ -233,6 +220,7 @@ class CleanupRun {
   double last_deficit_ = -1.0;       // ... and the shortfall below the target
   bool unlisted_ = false;            // the first trial budget is spent (mark_unlisted())
   double list_seconds_ = 0.0;        // CleanupStats::list_seconds
+  const std::size_t threads_ = cleanup::sweep_thread_limit(options_.threads);  // of the whole-mesh lists
 };
 
 // The sweeps over the vertices of the bad triangles: relaxation below the smoothing limit, then
