@@ -21,6 +21,14 @@ inline double min_angle_sine(Vec2 a, Vec2 b, Vec2 c) {
   return product > 0.0 ? twice_area / std::sqrt(product) : -1.0;
 }
 
+// min_angle_sine(a, b, c) from ab = norm2(b - a), bc = norm2(c - b), ca = norm2(a - c) and twice_area =
+// cross(b - a, c - a): the same operations, so the same value bit for bit.
+inline double min_angle_sine_of_squares(double ab, double bc, double ca, double twice_area) {
+  const double shortest = std::min({ab, bc, ca});
+  const double product = shortest == ab ? bc * ca : (shortest == bc ? ab * ca : ab * bc);
+  return product > 0.0 ? twice_area / std::sqrt(product) : -1.0;
+}
+
 // The sine of the smaller of the two angles of (a, b, c) other than the one at vertex `skip` (0, 1, 2 for
 // a, b, c); negative for a clockwise triangle. Of two angles whose sum is below 180 degrees the smaller
 // has the smaller sine, so this ranks as the smaller angle does, as min_angle_sine does.
@@ -45,6 +53,20 @@ inline double aspect_ratio(Vec2 a, Vec2 b, Vec2 c) {
   const double area = 0.5 * cross(b - a, c - a);
   const double s = 0.5 * (la + lb + lc);
   return area > 0.0 ? la * lb * lc * s / (8.0 * area * area) : HUGE_VAL;
+}
+
+// aspect_ratio(a, b, c) from la = dist(b, c), lb = dist(c, a), lc = dist(a, b) and twice_area =
+// cross(b - a, c - a): the same operations, so the same value bit for bit.
+inline double aspect_ratio_of_lengths(double la, double lb, double lc, double twice_area) {
+  const double area = 0.5 * twice_area;
+  const double s = 0.5 * (la + lb + lc);
+  return area > 0.0 ? la * lb * lc * s / (8.0 * area * area) : HUGE_VAL;
+}
+
+// aspect_ratio(a, b, c) from the squared edge lengths and twice_area of min_angle_sine_of_squares: the
+// same operations (dist(b, c) is the square root of norm2(c - b), and so on), so the same value bit for bit.
+inline double aspect_ratio_of_squares(double ab, double bc, double ca, double twice_area) {
+  return aspect_ratio_of_lengths(std::sqrt(bc), std::sqrt(ca), std::sqrt(ab), twice_area);
 }
 
 // Circumcentre of a non-degenerate triangle (relative to a for accuracy).

@@ -33,37 +33,114 @@ Vec2 Smoother::on_curve(int a, Vec2 candidate, double& new_arc) const {
   return cp.p;
 }
 
+// The star's triangles with what a move of a leaves as it is: their other two points, the squared
+// length of the side opposite a as min_angle_sine computes it and its length as aspect_ratio computes
+// it (dist(), the square root of the same number); and each triangle's score, aspect ratio and
+// inradius now, as score_of() and aspect_ratio_and_inradius() give them (the same operations).
+void Smoother::set_star_edges(int a) {
+  const auto& m = mesh_;
+  star_edges_.clear();
+  for (int t : fan_) {
+    const auto& tv = m.v[t];
+    StarEdge e;
+    e.k = EditableMesh::index_of(tv, a);
+    e.sharp = m.sharp_corner_of(t);
+    const Vec2 x = m.p[tv[0]], y = m.p[tv[1]], z = m.p[tv[2]];
+    e.x = x;
+    e.y = y;
+    e.z = z;
+    const double ab = norm2(y - x), bc = norm2(z - y), ca = norm2(x - z);
+    e.twice_area = cross(y - x, z - x);
+    e.score =
+        e.sharp >= 0 ? min_angle_sine_except(x, y, z, e.sharp) : min_angle_sine_of_squares(ab, bc, ca, e.twice_area);
+    const double la = std::sqrt(bc), lb = std::sqrt(ca), lc = std::sqrt(ab);
+    const double perimeter = lc + la + lb;
+    e.inradius = perimeter > 0.0 ? std::fabs(e.twice_area) / perimeter : 0.0;
+    e.aspect = aspect_ratio_of_lengths(la, lb, lc, e.twice_area);
+    e.opposite = e.k == 0 ? bc : (e.k == 1 ? ca : ab);
+    e.opposite_length = e.k == 0 ? la : (e.k == 1 ? lb : lc);
+    star_edges_.push_back(e);
+  }
+}
+
+// EditableMesh::score_of(t, x, y, z) for star triangle e with a at its corner e.k, and the squared
+// lengths of its sides ab, bc, ca (min_angle_sine's names) in `sides`, for the aspect ratio.
+inline double Smoother::score_at(const StarEdge& e, Vec2 x, Vec2 y, Vec2 z, double twice_area, double* sides) const {
+  sides[0] = e.k == 2 ? e.opposite : norm2(y - x);
+  sides[1] = e.k == 0 ? e.opposite : norm2(z - y);
+  sides[2] = e.k == 1 ? e.opposite : norm2(x - z);
+  if (e.sharp >= 0) return min_angle_sine_except(x, y, z, e.sharp);
+  return min_angle_sine_of_squares(sides[0], sides[1], sides[2], twice_area);
+}
+
+// aspect_ratio(x, y, z) of star triangle e from score_at()'s sides: the side opposite the vertex is
+// the star's length, the other two the square roots of their squares.
+inline double Smoother::aspect_at(const StarEdge& e, const double* sides, double twice_area) {
+  double la, lb, lc;
+  switch (e.k) {
+    case 0:
+      la = e.opposite_length, lb = std::sqrt(sides[2]), lc = std::sqrt(sides[0]);
+      break;
+    case 1:
+      la = std::sqrt(sides[1]), lb = e.opposite_length, lc = std::sqrt(sides[0]);
+      break;
+    default:
+      la = std::sqrt(sides[1]), lb = std::sqrt(sides[2]), lc = e.opposite_length;
+      break;
+  }
+  return aspect_ratio_of_lengths(la, lb, lc, twice_area);
+}
+
+inline double Smoother::score_at(std::size_t j, Vec2 to) const {
+  const StarEdge& e = star_edges_[j];
+  const Vec2 x = e.k == 0 ? to : e.x, y = e.k == 1 ? to : e.y, z = e.k == 2 ? to : e.z;
+  double sides[3];
+  return score_at(e, x, y, z, cross(y - x, z - x), sides);
+}
+
 // Moves a by `displacement` (projected onto its curve for a boundary vertex), halving the step
 // until no adjacent triangle inverts, the adjacent minimum does not drop, the adjacent sum of aspect
 // ratios does not rise, and one of the two strictly improves (so sweeps end, and neither the worst
 // angle nor the mesh's average aspect ratio can get worse). A lifting move (`lift`) needs only the
-// adjacent minimum to rise strictly; its aspect-ratio sum may rise. fan_ holds a's star.
+// adjacent minimum to rise strictly; its aspect-ratio sum may rise. fan_ holds a's star, and
+// star_edges_ its triangles (set_star_edges()).
 bool Smoother::try_move(int a, Vec2 displacement, double old_min, double old_sum, bool lift) {
   const auto& m = mesh_;
   const Vec2 from = m.p[a];
   const bool sliding = m.kind[a] == NodeKind::Boundary;
+  // Most steps are rejected, mostly because one triangle's score falls below old_min, and a triangle
+  // that falls below it at one step mostly does at half that step too. Any triangle below old_min
+  // rejects a step, whatever the others are, so that triangle is scored first at the next step, and
+  // when it is below old_min again the rest of the star is not looked at: the same verdict.
+  std::size_t culprit = star_edges_.size();
   for (int k = 0; k < kLineSearchSteps; ++k, displacement = 0.5 * displacement) {
     double new_arc = m.arc[a];
     const Vec2 to = sliding ? on_curve(a, from + displacement, new_arc) : from + displacement;
     if (to == from) return false;
+    if (culprit < star_edges_.size() && score_at(culprit, to) < old_min) continue;
     double new_min = std::numeric_limits<double>::infinity(), new_sum = 0.0;
     bool valid = true;
-    for (int t : fan_) {
-      const auto& tv = m.v[t];
-      const Vec2 x = tv[0] == a ? to : m.p[tv[0]], y = tv[1] == a ? to : m.p[tv[1]], z = tv[2] == a ? to : m.p[tv[2]];
+    for (std::size_t j = 0; j < star_edges_.size(); ++j) {
+      const StarEdge& e = star_edges_[j];
+      const Vec2 x = e.k == 0 ? to : e.x, y = e.k == 1 ? to : e.y, z = e.k == 2 ? to : e.z;
       if (!(orient2d(x, y, z) > 0.0)) {
+        culprit = j;
         valid = false;
         break;
       }
-      new_min = std::min(new_min, m.score_of(t, x, y, z));
+      double sides[3];
+      const double twice_area = cross(y - x, z - x);
+      const double score = score_at(e, x, y, z, twice_area, sides);
+      new_min = std::min(new_min, score);
       // Rejected already (aspect ratios are positive, so the sum only grows): the rest of the star
       // cannot change the verdict below, so the step ends here, before the aspect ratio when the
       // smallest score decides it.
       if (new_min < old_min) {
+        culprit = j;
         valid = false;
         break;
       }
-      new_sum += aspect_ratio(x, y, z);
+      new_sum += aspect_at(e, sides, twice_area);
       if (!lift && new_sum > old_sum) {
         valid = false;
         break;
@@ -151,16 +228,14 @@ bool Smoother::relax(int a, bool star_known) {
   double old_min = std::numeric_limits<double>::infinity(), old_sum = 0.0, area_sum = 0.0;
   double r_min = std::numeric_limits<double>::infinity();
   Vec2 weighted{};
-  for (int t : fan_) {
-    const auto& tv = m.v[t];
-    const Vec2 x = m.p[tv[0]], y = m.p[tv[1]], z = m.p[tv[2]];
-    old_min = std::min(old_min, m.score_of(t, x, y, z));
-    double r = 0.0;
-    old_sum += aspect_ratio_and_inradius(x, y, z, r);
-    const double area = 0.5 * cross(y - x, z - x);
-    weighted = weighted + area * circumcentre(x, y, z);
+  set_star_edges(a);
+  for (const StarEdge& e : star_edges_) {
+    old_min = std::min(old_min, e.score);
+    old_sum += e.aspect;
+    const double area = 0.5 * e.twice_area;
+    weighted = weighted + area * circumcentre(e.x, e.y, e.z);
     area_sum += area;
-    r_min = std::min(r_min, r);
+    r_min = std::min(r_min, e.inradius);
   }
   if (!(area_sum > 0.0)) return false;
   Vec2 d = (1.0 / area_sum) * weighted - m.p[a];
@@ -197,10 +272,11 @@ bool Smoother::climb(int a, bool star_known) {
   double old_min = std::numeric_limits<double>::infinity(), second_min = old_min, old_sum = 0.0;
   double r_min = std::numeric_limits<double>::infinity();
   int worst = -1, second = -1;
-  for (int t : fan_) {
-    const auto& tv = m.v[t];
-    const Vec2 x = m.p[tv[0]], y = m.p[tv[1]], z = m.p[tv[2]];
-    const double q = m.score_of(t, x, y, z);
+  set_star_edges(a);
+  for (std::size_t j = 0; j < star_edges_.size(); ++j) {
+    const StarEdge& e = star_edges_[j];
+    const int t = fan_[j];
+    const double q = e.score;
     if (q < old_min) {
       second_min = old_min;
       second = worst;
@@ -210,9 +286,8 @@ bool Smoother::climb(int a, bool star_known) {
       second_min = q;
       second = t;
     }
-    double r = 0.0;
-    old_sum += aspect_ratio_and_inradius(x, y, z, r);
-    r_min = std::min(r_min, r);
+    old_sum += e.aspect;
+    r_min = std::min(r_min, e.inradius);
   }
   if (worst < 0 || !(r_min > 0.0)) return false;
   const double h = 1e-3 * r_min;

@@ -93,12 +93,28 @@ class Smoother {
   Vec2 on_curve(int a, Vec2 candidate, double& new_arc) const;
   Vec2 score_gradient(int t, int a, double h) const;
   bool flips_needed(int a, Vec2 to) const;
+  // A triangle of the star of the vertex try_move() moves: its corner k holds the vertex, x, y, z are
+  // its points before the move, `opposite` the squared length of the side opposite the vertex, sharp
+  // EditableMesh::sharp_corner_of(t), opposite_length that side's length.
+  struct StarEdge {
+    int k, sharp;
+    Vec2 x, y, z;
+    double opposite, opposite_length;
+    double twice_area, score, aspect, inradius;  // before the move
+  };
+  static double aspect_at(const StarEdge& e, const double* sides, double twice_area);
+  // star_edges_ for a's star in fan_, in its order (relax() and climb() measure the star with it).
+  void set_star_edges(int a);
+  double score_at(const StarEdge& e, Vec2 x, Vec2 y, Vec2 z, double twice_area, double* sides) const;
+  // Star triangle j's score with the vertex at `to`.
+  double score_at(std::size_t j, Vec2 to) const;
 
   EditableMesh& mesh_;
   const Geometry& geometry_;
   double step_cap_;
   std::vector<int> fan_;
   std::vector<EdgeRef> edges_;
+  std::vector<StarEdge> star_edges_;  // set_star_edges()
   MoveGain last_gain_;
   double min_rise_ = 0.0, aspect_drop_ = 0.0;
   double lift_below_ = -1.0;
