@@ -133,7 +133,7 @@ TEST_CASE("overlapped measurement without momentum: the same run bit for bit", "
 
 TEST_CASE("overlapped measurement with the options' own skin: the same run bit for bit",
           "[opencl][device_sim][momentum][convergence]") {
-  require_overlap_changes_nothing(0.9, default_verlet_skin(0.9));
+  require_overlap_changes_nothing(0.9, auto_verlet_skin(0.9, 0));
 }
 
 TEST_CASE("overlapped measurement with a zero skin: a build before every iteration run ahead",

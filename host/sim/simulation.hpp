@@ -18,6 +18,7 @@
 #include "sim/history.hpp"
 #include "sim/population.hpp"
 #include "sim/step_backend.hpp"
+#include "sim/verlet_skin.hpp"
 #include "spacing/spacing_field.hpp"
 
 namespace pdmesh {
@@ -39,17 +40,6 @@ struct SimState {
   // With SimOptions::momentum > 0: each node's last move p_i (MomentumState); empty = all zero.
   std::vector<Vec2> momentum;
 };
-
-// Verlet skin of device runs (list radius cutoff q (1 + skin)). With momentum the nodes move farther per
-// iteration early in a run and use up a 0.3 skin ~3x as often (30P30N curves alone, 500 iterations,
-// beta 0.9: 174 rebuilds at 0.3, 107 at 0.5, 88 at 0.6, 65 at 0.8, 50 at 1.0; docs/journal/,
-// "Rebuilds of a small run with momentum"). A larger skin costs more pairs examined per iteration but far fewer
-// rebuilds. With momentum 0.5: its rows hold ~2/3 of 0.8's entries (the step's traffic, and the whole
-// command's peak memory) for about twice the rebuilds (docs/performance.md, "Large runs").
-// The skin never changes a result.
-inline constexpr double kVerletSkin = 0.3;
-inline constexpr double kMomentumVerletSkin = 0.5;
-inline double default_verlet_skin(double momentum) { return momentum > 0.0 ? kMomentumVerletSkin : kVerletSkin; }
 
 struct SimOptions {
   int iterations = 2000;  // the run's length, or with convergence.enabled the most it may take

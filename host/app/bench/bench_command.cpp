@@ -302,7 +302,8 @@ int run_bench(const BenchArguments& args) {
     SimOptions options = c->options;
     options.iterations = large ? args.large_iterations : args.iterations;
     options.quiet = true;
-    options.verlet_skin = args.verlet_skin == kAutomaticSkin ? default_verlet_skin(options.momentum) : args.verlet_skin;
+    options.verlet_skin =
+        args.verlet_skin == kAutomaticSkin ? auto_verlet_skin(options.momentum, c->initial.size()) : args.verlet_skin;
     const std::string suffix =
         args.population_every > 0 ? fmt::format(", population every {}", args.population_every) : std::string();
     options.dt_initial = warm_up(*c, options, large ? args.large_warmup : args.warmup, devices,

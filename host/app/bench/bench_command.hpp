@@ -23,7 +23,7 @@ struct BenchArguments {
   int large_warmup = 20;
   std::string precision = "double";
   // Device runs: Verlet list radius cutoff q (1 + skin); kAutomaticSkin: as pdmesh mesh picks it
-  // (default_verlet_skin: 0.3, or 0.5 for a case with momentum).
+  // for the case's node count (auto_verlet_skin).
   double verlet_skin = kAutomaticSkin;
   bool skip_host = false;           // devices only
   bool skip_host_large = false;     // the host reference takes seconds per iteration at 1M nodes

@@ -415,8 +415,8 @@ void add_bench_options(CLI::App& bench, BenchArguments& a) {
   bench.add_option("--large-warmup", a.large_warmup, "The same for graded_1m")->type_name("N");
   bench
       .add_option("--skin", a.verlet_skin,
-                  "Verlet skin of the device runs (list radius cutoff q (1 + skin)); default as pdmesh mesh: 0.3, or "
-                  "0.5 with momentum")
+                  "Verlet skin of the device runs (list radius cutoff q (1 + skin)); default as pdmesh mesh picks it "
+                  "for the case's node count (simulation.verlet_skin = \"auto\")")
       ->type_name("S");
   bench
       .add_option("--population", a.population_every,

@@ -218,6 +218,9 @@ struct CaseConfig {
     // thesis' rule exactly; c in (0, 1] keeps every step within the forward-Euler stability limit.
     double stability_factor = 1.0;
     double momentum = 0.0;  // SimOptions::momentum (heavy-ball beta in [0, 1); 0 = off)
+    // SimOptions::verlet_skin of a device run, in [0, 4]; empty = "auto" (auto_verlet_skin: by the
+    // momentum and the node count). Never changes a result, only the rebuilds and the rows' memory.
+    std::optional<double> verlet_skin;
     // A hexagonal start is a lattice like the structured one: it takes the structured value.
     std::optional<double> dt_for(InitMethod m) const { return m == InitMethod::Random ? dt_random : dt_structured; }
   } simulation;

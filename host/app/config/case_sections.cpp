@@ -318,6 +318,22 @@ void read_simulation_section(const Reader& r, const toml::table& root, CaseConfi
              fmt::format("simulation.momentum must be in [0, 1) (0 = plain gradient descent), got {}", s.momentum));
     }
   }
+  if (const toml::node* n = find(root, "simulation", "verlet_skin")) {
+    // "auto": auto_verlet_skin (sim/verlet_skin.hpp), the default.
+    if (n->is_string() && n->as_string()->get() == "auto") {
+      s.verlet_skin.reset();
+    } else if (n->is_string()) {
+      r.fail("simulation.verlet_skin", n,
+             fmt::format("simulation.verlet_skin must be a number in [0, 4] or \"auto\", got '{}'",
+                         quote_input(n->as_string()->get())));
+    } else {
+      const double v = r.number("simulation.verlet_skin", *n);
+      if (!(v >= 0.0 && v <= 4.0))
+        r.fail("simulation.verlet_skin", n,
+               fmt::format("simulation.verlet_skin must be a number in [0, 4] or \"auto\", got {}", v));
+      s.verlet_skin = v;
+    }
+  }
   if (const toml::node* n = find(root, "simulation", "r0_rule")) {
     s.r0_any_direction =
         choose<bool>(r, "simulation.r0_rule", *n, {{"force_direction", false}, {"any_direction", true}});

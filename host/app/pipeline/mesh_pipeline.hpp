@@ -48,8 +48,9 @@ void write_initial_outputs(const CaseConfig& config, const MeshInputs& inputs,
                            const std::shared_ptr<const InitialDistribution>& initial, RunPhases& run);
 
 // The simulation settings of the case (iterations, stopping rule, time step, forces, population
-// control); the backend, stop flag, background field and resume state are the caller's to add.
-SimOptions simulation_options(const CaseConfig& config);
+// control); the backend, stop flag, background field and resume state are the caller's to add. `nodes`:
+// the node count the automatic Verlet skin is chosen for (auto_verlet_skin; 0: a small run's).
+SimOptions simulation_options(const CaseConfig& config, std::size_t nodes = 0);
 
 // For callers that drive the stages themselves (the Python API, python/src/): a callback after every
 // iteration, on top of the command's own, and the stop flag to poll instead of InterruptGuard::flag().

@@ -229,7 +229,7 @@ void relax_step(const CaseConfig& sim_config, const MeshInputs& now, const Spaci
   if (sim_config.simulation.iterations > 0 && rec.step == 0) {
     rec.iterations = simulate(sim_config, now, rest_spacing, nodes, nullptr, &hooks).state.iterations_done;
   } else if (sim_config.simulation.iterations > 0) {
-    SimOptions options = simulation_options(sim_config);
+    SimOptions options = simulation_options(sim_config, nodes.size());
     options.background = moved_background;
     options.stop = &InterruptGuard::flag();
     rec.iterations =

@@ -18,7 +18,7 @@ namespace fs = std::filesystem;
 using mesh_detail::progress;
 using mesh_detail::write_node_outputs;
 
-SimOptions simulation_options(const CaseConfig& config) {
+SimOptions simulation_options(const CaseConfig& config, std::size_t nodes) {
   SimOptions options;
   options.iterations = static_cast<int>(config.simulation.iterations);
   options.convergence.enabled = config.simulation.stop == StopRule::Converged;
@@ -34,7 +34,7 @@ SimOptions simulation_options(const CaseConfig& config) {
   options.r0_any_direction = config.simulation.r0_any_direction;
   options.stability_factor = config.simulation.stability_factor;
   options.momentum = config.simulation.momentum;
-  options.verlet_skin = default_verlet_skin(options.momentum);
+  options.verlet_skin = config.simulation.verlet_skin.value_or(auto_verlet_skin(options.momentum, nodes));
   options.population = config.population;
   options.quiet = config.quiet;
   return options;
@@ -199,7 +199,7 @@ SimResult simulate(const CaseConfig& config, const MeshInputs& inputs, const Spa
       : hooks && hooks->backend ? hooks->backend(note)
                                 : (own = choose_backend_for(config.simulation.device, config.simulation.precision,
                                                             static_cast<double>(nodes.size()), note));
-  SimOptions options = simulation_options(config);
+  SimOptions options = simulation_options(config, nodes.size());
   options.metric = metric;
   options.stop = hooks && hooks->stop ? hooks->stop : &InterruptGuard::flag();
   options.resume = resume;
