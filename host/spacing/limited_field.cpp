@@ -49,7 +49,7 @@ class LimitedField {
       leaf_corner.reserve(4 * leaves.size());
       std::vector<std::uint64_t> keys(4 * leaves.size());
       std::vector<std::int32_t> ids(4 * leaves.size());
-      // Written in place (an insert of four ids per leaf was a library memcpy call each).
+      // Each leaf's four corner keys and ids written in place into arrays sized once per round.
       for (std::size_t n = 0; n < leaves.size(); ++n) {
         const Cell& c = b_.cells()[static_cast<std::size_t>(leaves[n])];
         const std::uint32_t s = b_.span(c.level);
