@@ -608,6 +608,42 @@ TEST_CASE("a mesh denser than a quarter of its pixels is shaded without seams, t
   fs::remove_all(dir);
 }
 
+TEST_CASE("a banded picture with colour in some bands only is one RGB PNG, pixel for pixel one canvas' picture",
+          "[render]") {
+  const fs::path dir = fresh_dir("mixed_bands");
+  CanvasOptions layout;
+  layout.window = Box{{0, 0}, {1, 1}};
+  layout.long_side = 300;
+  // Black lines everywhere (grey bands), one red square in the bottom quarter only.
+  const auto draw = [](Canvas& canvas) {
+    StrokeBatch lines(canvas, colours::kBlack, 0.6);
+    for (int k = 0; k <= 20; ++k) {
+      const double t = k / 20.0;
+      lines.segment({t, 0}, {1 - t, 1});
+    }
+    lines.flush();
+    FillBatch red(canvas, colours::kInteriorNode);
+    red.triangle({0.4, 0.05}, {0.6, 0.05}, {0.6, 0.2});
+    red.triangle({0.4, 0.05}, {0.6, 0.2}, {0.4, 0.2});
+  };
+  render_picture(dir / "one.png", layout, draw, 1);
+  render_picture(dir / "bands.png", layout, draw, 4);
+  for (const char* name : {"one.png", "bands.png"}) {
+    const std::string bytes = slurp(dir / name);
+    REQUIRE(bytes.size() > 26);
+    INFO(name);
+    CHECK(bytes[25] == 2);  // IHDR's colour type: RGB
+  }
+  Png one(dir / "one.png"), banded(dir / "bands.png");
+  REQUIRE(one.ok());
+  REQUIRE(banded.ok());
+  CHECK(differing_pixels(one, banded) == 0);
+  const Rgb p = banded.pixel(150, 40 + 300 - 37);  // inside the red square
+  CHECK(p.r > 200);
+  CHECK(p.g < 50);
+  fs::remove_all(dir);
+}
+
 TEST_CASE("a node dot covers its circle's area", "[render]") {
   const fs::path dir = fresh_dir("small_dots");
   const Geometry g = rectangle_geometry();

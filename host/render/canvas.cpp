@@ -431,8 +431,10 @@ void render_picture(const fs::path& path, const CanvasOptions& options, const st
           draw(canvas);
           canvas.check_drawn();
           check_interrupt();
-          // Encoded where it was drawn, while other bands are still being drawn.
-          deflated[static_cast<std::size_t>(k)] = deflate_band(canvas.surface(), k == bands - 1);
+          // Encoded where it was drawn, while other bands are still being drawn; grey if this band
+          // is (most likely the whole picture is too).
+          deflated[static_cast<std::size_t>(k)] =
+              deflate_band(canvas.surface(), k == bands - 1, 1, grey_surface(canvas.surface()));
         } catch (...) {
           failed[static_cast<std::size_t>(k)] = std::current_exception();
         }
@@ -446,6 +448,13 @@ void render_picture(const fs::path& path, const CanvasOptions& options, const st
     for (const std::exception_ptr& e : failed)
       if (e) std::rethrow_exception(e);
     check_interrupt();
+    // A picture with colour in some bands only: its grey bands again as RGB (one PNG, one colour type).
+    const bool all_grey =
+        std::all_of(deflated.begin(), deflated.end(), [](const DeflatedBand& b) { return b.grey; });
+    for (int k = 0; k < bands && !all_grey; ++k) {
+      if (deflated[static_cast<std::size_t>(k)].grey)
+        deflated[static_cast<std::size_t>(k)] = deflate_band(canvases[static_cast<std::size_t>(k)]->surface(), k == bands - 1);
+    }
     write_bytes(tmp, png_from_bands(deflated));
   });
 }
