@@ -12,6 +12,7 @@
 #include "core/errors.hpp"
 #include "mesh/quality.hpp"
 #include "render/canvas.hpp"
+#include "render/line_mask.hpp"
 #include "render/mesh_picture.hpp"
 #include "render/node_picture.hpp"
 #include "temp_files.hpp"
@@ -374,9 +375,11 @@ TEST_CASE("a mesh too dense for its picture gets a close-up around its smallest 
   write_mesh_picture(dir / "close.png", m, o);
   Png png(dir / "close.png");
   REQUIRE(png.ok());
+  // Dark: darker than the dense shade (0.55 x 255), as a 0.6 px edge makes the pixels it crosses.
   int dark = 0;
   for (int y = 40; y < png.height(); ++y)
-    for (int x = 0; x < png.width(); ++x) dark += png.pixel(x, y).r < 100 ? 1 : 0;
+    for (int x = 0; x < png.width(); ++x) dark += png.pixel(x, y).r < 128 ? 1 : 0;
+  INFO("dark pixels " << dark);
   CHECK(dark > 400 * 40);
   fs::remove_all(dir);
 
@@ -641,6 +644,53 @@ TEST_CASE("a banded picture with colour in some bands only is one RGB PNG, pixel
   const Rgb p = banded.pixel(150, 40 + 300 - 37);  // inside the red square
   CHECK(p.r > 200);
   CHECK(p.g < 50);
+  fs::remove_all(dir);
+}
+
+TEST_CASE("a line mask covers a thin line's area, as cairo's stroke does, and a line along the grid exactly",
+          "[render]") {
+  const fs::path dir = fresh_dir("line_mask");
+  CanvasOptions layout;
+  layout.window = Box{{0, 0}, {1, 1}};
+  layout.long_side = 400;  // 400 px a unit; pixel rows start 40 px down (the title band)
+  // The ink of a picture: coverage summed over the plot's pixels (red channel, black on white).
+  const auto ink = [](const fs::path& file) {
+    Png png(file);
+    REQUIRE(png.ok());
+    double sum = 0;
+    for (int y = 40; y < png.height(); ++y)
+      for (int x = 0; x < png.width(); ++x) sum += (255.0 - png.pixel(x, y).r) / 255.0;
+    return sum;
+  };
+  const double width = 0.6;
+  // Along the grid, diagonal, shallow and steep, and a segment shorter than a pixel.
+  const std::vector<std::pair<Vec2, Vec2>> segments = {{{0.1, 0.50125}, {0.9, 0.50125}},
+                                                       {{0.2, 0.2}, {0.8, 0.8}},
+                                                       {{0.1, 0.3}, {0.9, 0.42}},
+                                                       {{0.61, 0.05}, {0.55, 0.95}},
+                                                       {{0.5, 0.5}, {0.501, 0.5}}};
+  for (const auto& [a, b] : segments) {
+    INFO("segment " << a.x << "," << a.y << " - " << b.x << "," << b.y);
+    render_picture(dir / "mask.png", layout, [&](Canvas& c) { LineMask(c, colours::kBlack, width).segment(a, b); });
+    render_picture(dir / "cairo.png", layout, [&](Canvas& c) { StrokeBatch(c, colours::kBlack, width).segment(a, b); });
+    const double length_px = 400 * dist(a, b);
+    // The line's area with its round ends: length x width + a disc of the width.
+    const double area = length_px * width + M_PI * 0.25 * width * width;
+    CHECK(ink(dir / "mask.png") == Approx(area).epsilon(0.05));
+    CHECK(ink(dir / "mask.png") == Approx(ink(dir / "cairo.png")).epsilon(0.05));
+  }
+  // The horizontal line sits on the centres of pixel row 40 + 199 (y = 0.50125): 0.6 of each pixel.
+  render_picture(dir / "mask.png", layout, [&](Canvas& c) {
+    LineMask(c, colours::kBlack, width).segment(segments[0].first, segments[0].second);
+  });
+  Png png(dir / "mask.png");
+  REQUIRE(png.ok());
+  CHECK(png.pixel(200, 40 + 199).r == Approx(255 * (1 - width)).margin(1));
+  CHECK(png.pixel(200, 40 + 198).r == 255);
+  CHECK(png.pixel(200, 40 + 200).r == 255);
+  // Only a PNG canvas has pixels to mask.
+  CHECK_THROWS_AS(render_picture(dir / "mask.svg", layout, [&](Canvas& c) { LineMask(c, colours::kBlack, width); }),
+                  Error);
   fs::remove_all(dir);
 }
 

@@ -13,6 +13,7 @@
 #include "core/interrupt.hpp"
 #include "core/parallel.hpp"
 #include "mesh/quality.hpp"
+#include "render/line_mask.hpp"
 
 namespace pdmesh {
 
@@ -129,10 +130,17 @@ void draw_value_fills(Canvas& canvas, const Mesh& mesh, const std::vector<double
 }
 
 // The edges long enough to draw, thin and black; returns how many in the window were too short.
+// A PNG's edges go into a LineMask (a tenth of cairo's time for a 30P30N mesh's 36k edges), an SVG's
+// are cairo paths.
 std::size_t draw_edges(Canvas& canvas, const Mesh& mesh, const std::vector<std::pair<int, int>>& edges,
                        double min_edge_world) {
   const double edge_width = 0.6;
-  StrokeBatch lines(canvas, colours::kBlack, edge_width);
+  std::optional<LineMask> mask;
+  std::optional<StrokeBatch> lines;
+  if (canvas.raster())
+    mask.emplace(canvas, colours::kBlack, edge_width);
+  else
+    lines.emplace(canvas, colours::kBlack, edge_width);
   std::size_t skipped = 0;
   InterruptPoll poll(65536);
   for (const auto& [i, j] : edges) {
@@ -145,12 +153,16 @@ std::size_t draw_edges(Canvas& canvas, const Mesh& mesh, const std::vector<std::
     if (!shown(a, b, min_edge_world)) {
       ++skipped;  // counted over the whole window: every band draws the same title
     } else if (canvas.visible(box)) {
-      lines.segment(a, b);
-    } else {
-      lines.skip();  // in another band: this band's batches end where the whole picture's do
+      if (mask)
+        mask->segment(a, b);
+      else
+        lines->segment(a, b);
+    } else if (lines) {
+      lines->skip();  // in another band: this band's batches end where the whole picture's do
     }
   }
-  lines.flush();
+  if (mask) mask->paint();
+  if (lines) lines->flush();
   return skipped;
 }
 
