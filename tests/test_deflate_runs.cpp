@@ -56,8 +56,8 @@ TEST_CASE("run deflater: zlib inflates its stream to the rows, runs of every len
           "[render][png]") {
   std::mt19937 rng(7);
   // Runs (in pixels) around the match pieces' limits: 258 bytes is 258 grey or 86 RGB pixels.
-  const std::vector<int> runs = {0, 1, 2, 3, 4, 5, 85, 86, 87, 88, 171, 172, 173, 257, 258, 259, 260, 261, 262,
-                                 515, 516, 517, 518, 519, 1600};
+  const std::vector<int> runs = {0,   1,   2,   3,   4,   5,   85,  86,  87,  88,  171, 172, 173,
+                                 257, 258, 259, 260, 261, 262, 515, 516, 517, 518, 519, 1600};
   for (const int pixel_bytes : {1, 3, 4}) {
     INFO("bytes a pixel " << pixel_bytes);
     RunDeflater deflater(pixel_bytes, true);
@@ -76,9 +76,10 @@ TEST_CASE("run deflater: zlib inflates its stream to the rows, runs of every len
     deflater.row(flat.data(), flat.size());
     all.insert(all.end(), noise.begin(), noise.end());
     all.insert(all.end(), flat.begin(), flat.end());
+    CHECK(deflater.literal_share() < 0.25);  // the runs are matches, not literals
     const std::string deflated = deflater.finish();
     CHECK(inflate_raw(deflated, all.size()) == all);
-    CHECK(deflated.size() < all.size() / 4);  // the runs are matches, not literals
+    CHECK(deflated.size() < all.size() / 4);
   }
 }
 
@@ -101,6 +102,12 @@ TEST_CASE("run deflater: a stream that is not the last ends byte-aligned for ano
     joined += bytes;
   }
   CHECK(inflate_raw(joined, all.size()) == all);
+  // Random bytes are literals, all but the filter byte's neighbours that happen to repeat.
+  RunDeflater noise(3, true);
+  std::vector<unsigned char> bytes(3001);
+  for (auto& b : bytes) b = static_cast<unsigned char>(rng());
+  noise.row(bytes.data(), bytes.size());
+  CHECK(noise.literal_share() > 0.99);
   CHECK_THROWS_AS(RunDeflater(0, true), Error);
   CHECK_THROWS_AS(RunDeflater(5, true), Error);
 }

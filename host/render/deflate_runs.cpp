@@ -71,7 +71,7 @@ RunDeflater::RunDeflater(int pixel_bytes, bool last) : pixel_bytes_(pixel_bytes)
   // Distances 1 to 4 are distance codes 0 to 3, 5 bits, no extra bits.
   distance_code_ = reversed(static_cast<std::uint32_t>(pixel_bytes - 1), 5);
   put(last ? 1 : 0, 1);  // BFINAL
-  put(1, 2);  // BTYPE 01: fixed Huffman codes
+  put(1, 2);             // BTYPE 01: fixed Huffman codes
 }
 
 void RunDeflater::put(std::uint32_t bits, int count) {
@@ -87,6 +87,7 @@ void RunDeflater::put(std::uint32_t bits, int count) {
 }
 
 void RunDeflater::literal(unsigned char byte) {
+  ++literals_;
   const FixedCodes& c = fixed_codes();
   put(c.literal_bits[byte], c.literal_count[byte]);
 }
@@ -104,6 +105,7 @@ void RunDeflater::match(std::size_t length) {
 
 void RunDeflater::row(const unsigned char* bytes, std::size_t length) {
   const auto d = static_cast<std::size_t>(pixel_bytes_);
+  bytes_ += length;
   std::size_t at = 0;
   for (; at < length && at < d; ++at) literal(bytes[at]);
   while (at < length) {

@@ -23,6 +23,12 @@ class RunDeflater {
   void row(const unsigned char* bytes, std::size_t length);
   // The deflate data of every row so far; the deflater is spent.
   std::string finish();
+  // The share of the rows' bytes written as literals (0 before the first row): where it is large
+  // (a dense node picture's anti-aliased density, no runs), zlib's matches at every distance and its
+  // own codes make a file several times smaller.
+  double literal_share() const {
+    return bytes_ > 0 ? static_cast<double>(literals_) / static_cast<double>(bytes_) : 0.0;
+  }
 
  private:
   void put(std::uint32_t bits, int count);
@@ -34,6 +40,7 @@ class RunDeflater {
   bool last_;
   std::uint32_t distance_code_;  // the fixed 5-bit code of the distance, bit-reversed
   std::string out_;
+  std::size_t bytes_ = 0, literals_ = 0;
   std::uint64_t pending_ = 0;  // bits not yet in out_, least significant first
   int pending_count_ = 0;
 };
