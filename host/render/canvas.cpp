@@ -453,11 +453,11 @@ void render_picture(const fs::path& path, const CanvasOptions& options, const st
       if (e) std::rethrow_exception(e);
     check_interrupt();
     // A picture with colour in some bands only: its grey bands again as RGB (one PNG, one colour type).
-    const bool all_grey =
-        std::all_of(deflated.begin(), deflated.end(), [](const DeflatedBand& b) { return b.grey; });
+    const bool all_grey = std::all_of(deflated.begin(), deflated.end(), [](const DeflatedBand& b) { return b.grey; });
     for (int k = 0; k < bands && !all_grey; ++k) {
       if (deflated[static_cast<std::size_t>(k)].grey)
-        deflated[static_cast<std::size_t>(k)] = deflate_band(canvases[static_cast<std::size_t>(k)]->surface(), k == bands - 1);
+        deflated[static_cast<std::size_t>(k)] =
+            deflate_band(canvases[static_cast<std::size_t>(k)]->surface(), k == bands - 1);
     }
     write_bytes(tmp, png_from_bands(deflated));
   });

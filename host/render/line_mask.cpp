@@ -22,7 +22,8 @@ LineMask::LineMask(Canvas& canvas, Rgb colour, double width_px)
 void LineMask::cover(int x, int y, float coverage) {
   const int row = y - first_row_;
   if (x < 0 || x >= width_ || row < 0 || row >= rows_) return;
-  unsigned char& m = alpha_[static_cast<std::size_t>(row) * static_cast<std::size_t>(stride_) + static_cast<std::size_t>(x)];
+  unsigned char& m =
+      alpha_[static_cast<std::size_t>(row) * static_cast<std::size_t>(stride_) + static_cast<std::size_t>(x)];
   const float before = m / 255.0f;
   const float after = before + std::min(coverage, 1.0f) * (1.0f - before);
   m = static_cast<unsigned char>(std::lround(255.0f * after));
@@ -107,8 +108,7 @@ void LineMask::segment(Vec2 wa, Vec2 wb) {
 void LineMask::paint() {
   if (!any_) return;
   any_ = false;
-  cairo_surface_t* mask =
-      cairo_image_surface_create_for_data(alpha_.data(), CAIRO_FORMAT_A8, width_, rows_, stride_);
+  cairo_surface_t* mask = cairo_image_surface_create_for_data(alpha_.data(), CAIRO_FORMAT_A8, width_, rows_, stride_);
   cairo_t* cr = canvas_.context();
   cairo_set_source_rgb(cr, colour_.r, colour_.g, colour_.b);
   // The context is translated up by the canvas' first row: the mask's row 0 is that row.

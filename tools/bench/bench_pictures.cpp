@@ -93,7 +93,8 @@ int main(int argc, char** argv) {
     }
   }
   if (geometry_files.empty() || run.empty()) {
-    fmt::print(stderr, "usage: bench_pictures --geometry FILE [--geometry FILE ...] --run DIR [--repeats N] [--out DIR]\n");
+    fmt::print(stderr,
+               "usage: bench_pictures --geometry FILE [--geometry FILE ...] --run DIR [--repeats N] [--out DIR]\n");
     return 2;
   }
   fs::create_directories(out);
@@ -123,8 +124,7 @@ int main(int argc, char** argv) {
       options.bands = 4;
       options.window = close_up->window;
       const fs::path zoomed = out / "mesh_smallest_angle.png";
-      report("mesh_smallest_angle.png",
-             repeat(repeats, [&] { pdmesh::write_mesh_picture(zoomed, mesh, options); }));
+      report("mesh_smallest_angle.png", repeat(repeats, [&] { pdmesh::write_mesh_picture(zoomed, mesh, options); }));
       report_encoder(zoomed, repeats);
     }
   }
