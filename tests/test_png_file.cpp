@@ -274,32 +274,37 @@ TEST_CASE("PNG encoder: a grey picture is written as 8-bit greyscale with the sa
   std::filesystem::remove_all(dir);
 }
 
-TEST_CASE("PNG encoder: a picture without runs (all literals to the run deflater) is deflated by zlib",
+TEST_CASE("PNG encoder: a picture without runs of one colour, grey or RGB, is as small as zlib's matches make it",
           "[render][png]") {
-  // Pixels repeating every 7 (no two neighbours equal): nothing for runs, everything for zlib's
-  // matches 21 bytes back. The run deflater's fixed codes would take more than the raw bytes.
+  // Pixels repeating every 7 (no two neighbours equal): nothing for zlib's run-length strategy (one
+  // byte back), everything for its default strategy's matches 7 pixels back.
   const int width = 400, height = 60;
-  cairo_surface_t* s = cairo_image_surface_create(CAIRO_FORMAT_RGB24, width, height);
-  cairo_surface_flush(s);
-  for (int y = 0; y < height; ++y) {
-    auto* row =
-        reinterpret_cast<std::uint32_t*>(cairo_image_surface_get_data(s) + y * cairo_image_surface_get_stride(s));
-    for (int x = 0; x < width; ++x) {
-      const auto k = static_cast<std::uint32_t>((x + y) % 7);
-      row[x] = 0xFF000000u | ((40 * k) << 16) | ((255 - 30 * k) << 8) | (17 * k + 3);
+  for (const bool grey : {true, false}) {
+    INFO((grey ? "grey" : "RGB"));
+    cairo_surface_t* s = cairo_image_surface_create(CAIRO_FORMAT_RGB24, width, height);
+    cairo_surface_flush(s);
+    for (int y = 0; y < height; ++y) {
+      auto* row =
+          reinterpret_cast<std::uint32_t*>(cairo_image_surface_get_data(s) + y * cairo_image_surface_get_stride(s));
+      for (int x = 0; x < width; ++x) {
+        const auto k = static_cast<std::uint32_t>((x + y) % 7);
+        row[x] = grey ? 0xFF000000u | ((30 * k + 10) * 0x010101u)
+                      : 0xFF000000u | ((40 * k) << 16) | ((255 - 30 * k) << 8) | (17 * k + 3);
+      }
     }
+    cairo_surface_mark_dirty(s);
+    const std::string png = encode_png(s);
+    const std::size_t raw = static_cast<std::size_t>(height) * (1 + (grey ? 1 : 3) * width);
+    INFO("PNG bytes " << png.size() << " for " << raw << " bytes of scanlines");
+    CHECK(png.size() < raw / 10);
+    const std::vector<Chunk> parts = chunks(png);
+    CHECK(static_cast<unsigned char>(parts[0].data[9]) == (grey ? 0 : 2));  // IHDR colour type
+    std::vector<unsigned char> rows(raw + 16);
+    uLongf size = static_cast<uLongf>(rows.size());
+    REQUIRE(uncompress(rows.data(), &size, reinterpret_cast<const Bytef*>(parts[1].data.data()),
+                       static_cast<uLong>(parts[1].data.size())) == Z_OK);
+    CHECK(size == raw);
+    CHECK(rows[1 + (grey ? 1 : 3) * 5] == (grey ? 30 * 5 + 10 : 40 * 5));  // pixel (5, 0): k = 5
+    cairo_surface_destroy(s);
   }
-  cairo_surface_mark_dirty(s);
-  const std::string png = encode_png(s);
-  const std::size_t raw = static_cast<std::size_t>(height) * (1 + 3 * width);
-  INFO("PNG bytes " << png.size() << " for " << raw << " bytes of scanlines");
-  CHECK(png.size() < raw / 10);
-  const std::vector<Chunk> parts = chunks(png);
-  std::vector<unsigned char> rows(raw + 16);
-  uLongf size = static_cast<uLongf>(rows.size());
-  REQUIRE(uncompress(rows.data(), &size, reinterpret_cast<const Bytef*>(parts[1].data.data()),
-                     static_cast<uLong>(parts[1].data.size())) == Z_OK);
-  CHECK(size == raw);
-  CHECK(rows[1 + 3 * 5] == 40 * 5);  // pixel (5, 0): k = 5
-  cairo_surface_destroy(s);
 }

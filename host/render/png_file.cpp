@@ -12,7 +12,6 @@
 #include <fmt/format.h>
 
 #include "core/errors.hpp"
-#include "render/deflate_runs.hpp"
 
 namespace pdmesh {
 namespace {
@@ -65,72 +64,20 @@ bool grey_surface(cairo_surface_t* surface) {
 
 namespace {
 
-// The literal share above which a band goes to zlib (RunDeflater::literal_share).
-constexpr double kMostlyLiterals = 1.0 / 3.0;
-
-// The band's scanlines one by one (filter byte 0, then the pixels' bytes) to `take`; every
-// `step`-th one only when step > 1.
-template <class Take>
-void scanlines(cairo_surface_t* surface, bool grey, const Take& take, int step = 1) {
-  const int width = cairo_image_surface_get_width(surface);
-  const int height = cairo_image_surface_get_height(surface);
-  const int stride = cairo_image_surface_get_stride(surface);
-  const unsigned char* data = cairo_image_surface_get_data(surface);
-  std::vector<unsigned char> row(1 + (grey ? 1 : 3) * static_cast<std::size_t>(width));
-  // Filter type 0 (none): measured on a 30P30N mesh picture, zlib's level 1 then gives a smaller
-  // file (0.98 MB) than the Sub or Up filters (1.16, 1.17 MB) or cairo's writer (1.10 MB), as fast;
-  // and the runs of one colour that RunDeflater matches are runs of equal pixels only without one.
-  row[0] = 0;
-  for (int y = 0; y < height; y += step) {
+// zlib's run-length strategy (matches one byte back only) for a grey band whose sampled rows (every
+// 16th) are at least two thirds pixels equal to their left neighbour: a mesh picture's white, the
+// dense shade and long black lines, smaller and faster than the default strategy there (30P30N
+// mesh.png 0.55 MB in 8.5 ms against 0.64 MB in 14.8 ms). A band with fewer runs (a mesh too dense
+// for its picture, all anti-aliased greys) keeps the default strategy, whose longer-distance matches
+// make it smaller there.
+int grey_strategy(const unsigned char* data, int width, int height, int stride) {
+  std::size_t equal = 0, total = 0;
+  for (int y = 0; y < height; y += 16) {
     const auto* pixels = reinterpret_cast<const std::uint32_t*>(data + static_cast<std::ptrdiff_t>(y) * stride);
-    if (grey) {
-      for (int x = 0; x < width; ++x) row[1 + x] = static_cast<unsigned char>(pixels[x]);  // blue = red = green
-    } else {
-      for (int x = 0; x < width; ++x) {
-        const std::uint32_t p = pixels[x];  // 0xAARRGGBB in native order
-        row[1 + 3 * x] = static_cast<unsigned char>(p >> 16);
-        row[2 + 3 * x] = static_cast<unsigned char>(p >> 8);
-        row[3 + 3 * x] = static_cast<unsigned char>(p);
-      }
-    }
-    take(row);
+    for (int x = 1; x < width; ++x) equal += ((pixels[x] ^ pixels[x - 1]) & 0xFFu) == 0 ? 1 : 0;
+    total += static_cast<std::size_t>(width > 1 ? width - 1 : 0);
   }
-}
-
-// zlib's deflate at `level` (grey pictures with its run-length strategy: smaller and faster there).
-std::string zlib_deflate(cairo_surface_t* surface, bool last, int level, bool grey, DeflatedBand& band) {
-  // Raw deflate (no zlib header or trailer: png_from_bands writes them once for all bands).
-  z_stream z{};
-  if (deflateInit2(&z, level, Z_DEFLATED, -15, 8, grey ? Z_RLE : Z_DEFAULT_STRATEGY) != Z_OK)
-    throw Error("PNG encoder: deflateInit failed");
-  std::string bytes;
-  std::vector<unsigned char> buffer(1 << 16);
-  const auto drain = [&](int flush) {
-    do {
-      z.next_out = buffer.data();
-      z.avail_out = static_cast<uInt>(buffer.size());
-      const int rc = deflate(&z, flush);
-      if (rc == Z_STREAM_ERROR) {
-        deflateEnd(&z);
-        throw Error("PNG encoder: deflate failed");
-      }
-      bytes.append(reinterpret_cast<const char*>(buffer.data()), buffer.size() - z.avail_out);
-    } while (z.avail_out == 0);
-  };
-  scanlines(surface, grey, [&](std::vector<unsigned char>& row) {
-    band.adler = adler32(band.adler, row.data(), static_cast<uInt>(row.size()));
-    band.length += row.size();
-    z.next_in = row.data();
-    z.avail_in = static_cast<uInt>(row.size());
-    drain(Z_NO_FLUSH);
-  });
-  z.next_in = nullptr;
-  z.avail_in = 0;
-  // A band that others follow ends with a sync flush: byte-aligned and without the final-block bit,
-  // so the next band's deflate data may follow it (each band's back-references stay within itself).
-  drain(last ? Z_FINISH : Z_SYNC_FLUSH);
-  deflateEnd(&z);
-  return bytes;
+  return 3 * equal >= 2 * total ? Z_RLE : Z_DEFAULT_STRATEGY;
 }
 
 }  // namespace
@@ -142,28 +89,56 @@ DeflatedBand deflate_band(cairo_surface_t* surface, bool last, int level, bool g
   band.width = cairo_image_surface_get_width(surface);
   band.height = cairo_image_surface_get_height(surface);
   band.grey = grey;
+  const int stride = cairo_image_surface_get_stride(surface);
+  const unsigned char* data = cairo_image_surface_get_data(surface);
+  const std::size_t channels = grey ? 1 : 3;
+
+  // Raw deflate (no zlib header or trailer: png_from_bands writes them once for all bands).
+  z_stream z{};
+  const int strategy = grey ? grey_strategy(data, band.width, band.height, stride) : Z_DEFAULT_STRATEGY;
+  if (deflateInit2(&z, level, Z_DEFLATED, -15, 8, strategy) != Z_OK) throw Error("PNG encoder: deflateInit failed");
+  std::vector<unsigned char> row(1 + channels * static_cast<std::size_t>(band.width));
+  std::vector<unsigned char> buffer(1 << 16);
+  const auto drain = [&](int flush) {
+    do {
+      z.next_out = buffer.data();
+      z.avail_out = static_cast<uInt>(buffer.size());
+      const int rc = deflate(&z, flush);
+      if (rc == Z_STREAM_ERROR) {
+        deflateEnd(&z);
+        throw Error("PNG encoder: deflate failed");
+      }
+      band.bytes.append(reinterpret_cast<const char*>(buffer.data()), buffer.size() - z.avail_out);
+    } while (z.avail_out == 0);
+  };
   band.adler = adler32(0L, Z_NULL, 0);
-  if (level != 1) {
-    band.bytes = zlib_deflate(surface, last, level, grey, band);
-    return band;
-  }
-  // Mostly literals in every 16th row (measured over whole pictures: the node pictures of a 1M-node
-  // run, 44 % of their bytes, 2.5x zlib's file; a 30P30N run's pictures 4-20 %): zlib, as fast as
-  // these pictures were before.
-  RunDeflater sample(grey ? 1 : 3, true);
-  scanlines(
-      surface, grey, [&](std::vector<unsigned char>& row) { sample.row(row.data(), row.size()); }, 16);
-  if (sample.literal_share() > kMostlyLiterals) {
-    band.bytes = zlib_deflate(surface, last, 1, grey, band);
-    return band;
-  }
-  RunDeflater runs(grey ? 1 : 3, last);
-  scanlines(surface, grey, [&](std::vector<unsigned char>& row) {
+  for (int y = 0; y < band.height; ++y) {
+    const auto* pixels = reinterpret_cast<const std::uint32_t*>(data + static_cast<std::ptrdiff_t>(y) * stride);
+    if (grey) {
+      for (int x = 0; x < band.width; ++x) row[1 + x] = static_cast<unsigned char>(pixels[x]);  // blue = red = green
+    } else {
+      for (int x = 0; x < band.width; ++x) {
+        const std::uint32_t p = pixels[x];  // 0xAARRGGBB in native order
+        row[1 + 3 * x] = static_cast<unsigned char>(p >> 16);
+        row[2 + 3 * x] = static_cast<unsigned char>(p >> 8);
+        row[3 + 3 * x] = static_cast<unsigned char>(p);
+      }
+    }
+    // Filter type 0 (none): measured on a 30P30N mesh picture, level 1 then gives a smaller file
+    // (0.98 MB) than the Sub or Up filters (1.16, 1.17 MB) or cairo's writer (1.10 MB), as fast.
+    row[0] = 0;
     band.adler = adler32(band.adler, row.data(), static_cast<uInt>(row.size()));
     band.length += row.size();
-    runs.row(row.data(), row.size());
-  });
-  band.bytes = runs.finish();
+    z.next_in = row.data();
+    z.avail_in = static_cast<uInt>(row.size());
+    drain(Z_NO_FLUSH);
+  }
+  z.next_in = nullptr;
+  z.avail_in = 0;
+  // A band that others follow ends with a sync flush: byte-aligned and without the final-block bit,
+  // so the next band's deflate data may follow it (each band's back-references stay within itself).
+  drain(last ? Z_FINISH : Z_SYNC_FLUSH);
+  deflateEnd(&z);
   return band;
 }
 

@@ -1,8 +1,7 @@
-// PNG files from cairo image surfaces, written directly: cairo's own writer goes through libpng at
-// zlib's default level, which took about half the time of a 1600 px picture. A picture of lines and
-// dots on white is mostly runs of one colour: at level 1 (the default) RunDeflater
-// (render/deflate_runs) codes them as matches a pixel back, several times faster than zlib's level 1
-// (docs/cli.md, "Pictures while the run goes on"); other levels are zlib's.
+// PNG files from cairo image surfaces, written with zlib directly: cairo's own writer goes through
+// libpng at zlib's default level, which took about half the time of a 1600 px picture; a picture
+// of lines and dots on white compresses as well at level 1 without a row filter, several times
+// faster (docs/cli.md, "Pictures while the run goes on").
 #pragma once
 #include <cairo.h>
 
@@ -12,10 +11,11 @@
 
 namespace pdmesh {
 
-// The PNG bytes of an RGB24 or ARGB32 image surface (alpha dropped), deflated at `level`: 8-bit
+// The PNG bytes of an RGB24 or ARGB32 image surface (alpha dropped), zlib at `level`: 8-bit
 // greyscale when every pixel is grey (red = green = blue: a mesh picture without a value fill), one
-// byte a pixel where RGB takes three, so a third of the bytes to deflate for the same pixels; else
-// 8-bit RGB. Throws Error when the surface is not an image surface of those formats or zlib fails.
+// byte a pixel where RGB takes three, so a third of the bytes to deflate for the same pixels, with
+// zlib's run-length strategy where the rows are mostly runs; else 8-bit RGB, zlib's default strategy. Throws Error when
+// the surface is not an image surface of those formats or zlib fails.
 std::string encode_png(cairo_surface_t* surface, int level = 1);
 
 // Whether every pixel of an RGB24 or ARGB32 image surface has red = green = blue.
