@@ -12,7 +12,6 @@
 #include "core/errors.hpp"
 #include "mesh/quality.hpp"
 #include "render/canvas.hpp"
-#include "render/line_mask.hpp"
 #include "render/mesh_picture.hpp"
 #include "render/node_picture.hpp"
 #include "temp_files.hpp"
@@ -647,50 +646,28 @@ TEST_CASE("a banded picture with colour in some bands only is one RGB PNG, pixel
   fs::remove_all(dir);
 }
 
-TEST_CASE("a line mask covers a thin line's area, as cairo's stroke does, and a line along the grid exactly",
+TEST_CASE("a stroke batch with butt ends stops at the segment's ends, a default batch after it has round ends",
           "[render]") {
-  const fs::path dir = fresh_dir("line_mask");
+  const fs::path dir = fresh_dir("butt_ends");
   CanvasOptions layout;
   layout.window = Box{{0, 0}, {1, 1}};
   layout.long_side = 400;  // 400 px a unit; pixel rows start 40 px down (the title band)
-  // The ink of a picture: coverage summed over the plot's pixels (red channel, black on white).
-  const auto ink = [](const fs::path& file) {
-    Png png(file);
-    REQUIRE(png.ok());
-    double sum = 0;
-    for (int y = 40; y < png.height(); ++y)
-      for (int x = 0; x < png.width(); ++x) sum += (255.0 - png.pixel(x, y).r) / 255.0;
-    return sum;
-  };
-  const double width = 0.6;
-  // Along the grid, diagonal, shallow and steep, and a segment shorter than a pixel.
-  const std::vector<std::pair<Vec2, Vec2>> segments = {{{0.1, 0.50125}, {0.9, 0.50125}},
-                                                       {{0.2, 0.2}, {0.8, 0.8}},
-                                                       {{0.1, 0.3}, {0.9, 0.42}},
-                                                       {{0.61, 0.05}, {0.55, 0.95}},
-                                                       {{0.5, 0.5}, {0.501, 0.5}}};
-  for (const auto& [a, b] : segments) {
-    INFO("segment " << a.x << "," << a.y << " - " << b.x << "," << b.y);
-    render_picture(dir / "mask.png", layout, [&](Canvas& c) { LineMask(c, colours::kBlack, width).segment(a, b); });
-    render_picture(dir / "cairo.png", layout, [&](Canvas& c) { StrokeBatch(c, colours::kBlack, width).segment(a, b); });
-    const double length_px = 400 * dist(a, b);
-    // The line's area with its round ends: length x width + a disc of the width.
-    const double area = length_px * width + M_PI * 0.25 * width * width;
-    CHECK(ink(dir / "mask.png") == Approx(area).epsilon(0.05));
-    CHECK(ink(dir / "mask.png") == Approx(ink(dir / "cairo.png")).epsilon(0.05));
-  }
-  // The horizontal line sits on the centres of pixel row 40 + 199 (y = 0.50125): 0.6 of each pixel.
-  render_picture(dir / "mask.png", layout, [&](Canvas& c) {
-    LineMask(c, colours::kBlack, width).segment(segments[0].first, segments[0].second);
+  // Two horizontal 0.6 px lines on pixel rows 40 + 199 and 40 + 99, from x = 100 px to 300 px (pixel
+  // edges): the first with butt ends, the second in a batch with the default (round) ends after it.
+  render_picture(dir / "ends.png", layout, [&](Canvas& c) {
+    StrokeBatch(c, colours::kBlack, 0.6, CAIRO_LINE_CAP_BUTT).segment({0.25, 0.50125}, {0.75, 0.50125});
+    StrokeBatch(c, colours::kBlack, 0.6).segment({0.25, 0.75125}, {0.75, 0.75125});
   });
-  Png png(dir / "mask.png");
+  Png png(dir / "ends.png");
   REQUIRE(png.ok());
-  CHECK(png.pixel(200, 40 + 199).r == Approx(255 * (1 - width)).margin(1));
-  CHECK(png.pixel(200, 40 + 198).r == 255);
-  CHECK(png.pixel(200, 40 + 200).r == 255);
-  // Only a PNG canvas has pixels to mask.
-  CHECK_THROWS_AS(render_picture(dir / "mask.svg", layout, [&](Canvas& c) { LineMask(c, colours::kBlack, width); }),
-                  Error);
+  // Butt: the pixels beside the ends are white, the line's own pixels 0.6 covered.
+  CHECK(png.pixel(99, 40 + 199).r == 255);
+  CHECK(png.pixel(300, 40 + 199).r == 255);
+  CHECK(png.pixel(100, 40 + 199).r == Approx(255 * 0.4).margin(2));
+  CHECK(png.pixel(299, 40 + 199).r == Approx(255 * 0.4).margin(2));
+  // Round: half a disc of 0.3 px beyond each end (0.14 of a pixel).
+  CHECK(png.pixel(99, 40 + 99).r < 240);
+  CHECK(png.pixel(300, 40 + 99).r < 240);
   fs::remove_all(dir);
 }
 

@@ -239,8 +239,8 @@ constexpr int kBatchItems = 4096;
 constexpr int kFillBatchItems = 1 << 16;
 }  // namespace
 
-StrokeBatch::StrokeBatch(Canvas& canvas, Rgb colour, double width_px)
-    : canvas_(canvas), colour_(colour), width_(width_px) {
+StrokeBatch::StrokeBatch(Canvas& canvas, Rgb colour, double width_px, cairo_line_cap_t cap)
+    : canvas_(canvas), colour_(colour), width_(width_px), cap_(cap) {
   cairo_new_path(canvas_.context());
 }
 
@@ -271,7 +271,9 @@ void StrokeBatch::flush() {
   }
   cairo_set_source_rgb(cr, colour_.r, colour_.g, colour_.b);
   cairo_set_line_width(cr, width_);
-  cairo_stroke(cr);  // also clears the path
+  cairo_set_line_cap(cr, cap_);
+  cairo_stroke(cr);                              // also clears the path
+  cairo_set_line_cap(cr, CAIRO_LINE_CAP_ROUND);  // the canvas's own cap
   count_ = 0;
 }
 
