@@ -205,3 +205,106 @@ TEST_CASE("PNG encoder: bands deflated apart join into one valid stream of the w
   for (cairo_surface_t* s : parts) cairo_surface_destroy(s);
   cairo_surface_destroy(whole);
 }
+
+TEST_CASE("PNG encoder: a grey picture is written as 8-bit greyscale with the same pixels, a coloured one as RGB",
+          "[render][png]") {
+  // A 300 x 17 surface of greys (long runs of white, a ramp, runs of one grey), then the same with
+  // one pixel coloured.
+  const int width = 300, height = 17;
+  const auto grey_pattern = [&](bool one_coloured) {
+    cairo_surface_t* s = cairo_image_surface_create(CAIRO_FORMAT_RGB24, width, height);
+    cairo_surface_flush(s);
+    for (int y = 0; y < height; ++y) {
+      auto* row =
+          reinterpret_cast<std::uint32_t*>(cairo_image_surface_get_data(s) + y * cairo_image_surface_get_stride(s));
+      for (int x = 0; x < width; ++x) {
+        const std::uint32_t g = x < 100 ? 255u : x < 200 ? static_cast<std::uint32_t>((x + 3 * y) % 256) : 140u;
+        row[x] = 0xFF000000u | (g << 16) | (g << 8) | g;
+      }
+    }
+    if (one_coloured) {
+      auto* row =
+          reinterpret_cast<std::uint32_t*>(cairo_image_surface_get_data(s) + 9 * cairo_image_surface_get_stride(s));
+      row[250] = 0xFF000000u | (140u << 16) | (140u << 8) | 141u;  // blue one above red and green
+    }
+    cairo_surface_mark_dirty(s);
+    return s;
+  };
+  const auto dir = pdmesh_test::fresh_dir("png_grey");
+  for (const bool coloured : {false, true}) {
+    INFO("one pixel coloured " << coloured);
+    cairo_surface_t* surface = grey_pattern(coloured);
+    CHECK(grey_surface(surface) == !coloured);
+    const std::string png = encode_png(surface);
+    const std::vector<Chunk> parts = chunks(png);
+    REQUIRE(parts.size() == 3);
+    CHECK(parts[0].data[9] == (coloured ? 2 : 0));  // colour type: RGB or greyscale
+    // The inflated rows: a filter byte, then one byte a pixel (grey) or three (RGB).
+    const std::size_t channels = coloured ? 3 : 1;
+    const std::size_t row = 1 + channels * width;
+    std::vector<unsigned char> raw(row * height + 16);
+    uLongf size = static_cast<uLongf>(raw.size());
+    REQUIRE(uncompress(raw.data(), &size, reinterpret_cast<const Bytef*>(parts[1].data.data()),
+                       static_cast<uLong>(parts[1].data.size())) == Z_OK);
+    CHECK(size == row * height);
+    // libpng reads back every pixel as drawn.
+    const auto file = dir / "g.png";
+    write_bytes(file, png);
+    cairo_surface_t* back = cairo_image_surface_create_from_png(file.c_str());
+    REQUIRE(cairo_surface_status(back) == CAIRO_STATUS_SUCCESS);
+    cairo_surface_flush(back);
+    std::size_t differ = 0;
+    for (int y = 0; y < height; ++y) {
+      const auto* a = reinterpret_cast<const std::uint32_t*>(cairo_image_surface_get_data(surface) +
+                                                             y * cairo_image_surface_get_stride(surface));
+      const auto* b = reinterpret_cast<const std::uint32_t*>(cairo_image_surface_get_data(back) +
+                                                             y * cairo_image_surface_get_stride(back));
+      for (int x = 0; x < width; ++x) differ += (a[x] & 0xFFFFFFu) != (b[x] & 0xFFFFFFu);
+    }
+    CHECK(differ == 0);
+    cairo_surface_destroy(back);
+    // Grey and RGB bands do not make one PNG.
+    if (!coloured) {
+      cairo_surface_t* rgb = pattern(width, 3);
+      CHECK_THROWS_AS(png_from_bands({deflate_band(surface, false, 1, true), deflate_band(rgb, true)}), Error);
+      cairo_surface_destroy(rgb);
+    }
+    cairo_surface_destroy(surface);
+  }
+  std::filesystem::remove_all(dir);
+}
+
+TEST_CASE("PNG encoder: a picture without runs of one colour, grey or RGB, is as small as zlib's matches make it",
+          "[render][png]") {
+  // Pixels repeating every 7 (no two neighbours equal): nothing for zlib's run-length strategy (one
+  // byte back), everything for its default strategy's matches 7 pixels back.
+  const int width = 400, height = 60;
+  for (const bool grey : {true, false}) {
+    INFO((grey ? "grey" : "RGB"));
+    cairo_surface_t* s = cairo_image_surface_create(CAIRO_FORMAT_RGB24, width, height);
+    cairo_surface_flush(s);
+    for (int y = 0; y < height; ++y) {
+      auto* row =
+          reinterpret_cast<std::uint32_t*>(cairo_image_surface_get_data(s) + y * cairo_image_surface_get_stride(s));
+      for (int x = 0; x < width; ++x) {
+        const auto k = static_cast<std::uint32_t>((x + y) % 7);
+        row[x] = grey ? 0xFF000000u | ((30 * k + 10) * 0x010101u)
+                      : 0xFF000000u | ((40 * k) << 16) | ((255 - 30 * k) << 8) | (17 * k + 3);
+      }
+    }
+    cairo_surface_mark_dirty(s);
+    const std::string png = encode_png(s);
+    const std::size_t raw = static_cast<std::size_t>(height) * (1 + (grey ? 1 : 3) * width);
+    INFO("PNG bytes " << png.size() << " for " << raw << " bytes of scanlines");
+    CHECK(png.size() < raw / 10);
+    const std::vector<Chunk> parts = chunks(png);
+    CHECK(static_cast<unsigned char>(parts[0].data[9]) == (grey ? 0 : 2));  // IHDR colour type
+    std::vector<unsigned char> rows(raw + 16);
+    uLongf size = static_cast<uLongf>(rows.size());
+    REQUIRE(uncompress(rows.data(), &size, reinterpret_cast<const Bytef*>(parts[1].data.data()),
+                       static_cast<uLong>(parts[1].data.size())) == Z_OK);
+    CHECK(size == raw);
+    CHECK(rows[1 + (grey ? 1 : 3) * 5] == (grey ? 30 * 5 + 10 : 40 * 5));  // pixel (5, 0): k = 5
+    cairo_surface_destroy(s);
+  }
+}

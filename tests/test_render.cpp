@@ -374,9 +374,11 @@ TEST_CASE("a mesh too dense for its picture gets a close-up around its smallest 
   write_mesh_picture(dir / "close.png", m, o);
   Png png(dir / "close.png");
   REQUIRE(png.ok());
+  // Dark: darker than the dense shade (0.55 x 255), as a 0.6 px edge makes the pixels it crosses.
   int dark = 0;
   for (int y = 40; y < png.height(); ++y)
-    for (int x = 0; x < png.width(); ++x) dark += png.pixel(x, y).r < 100 ? 1 : 0;
+    for (int x = 0; x < png.width(); ++x) dark += png.pixel(x, y).r < 128 ? 1 : 0;
+  INFO("dark pixels " << dark);
   CHECK(dark > 400 * 40);
   fs::remove_all(dir);
 
@@ -605,6 +607,67 @@ TEST_CASE("a mesh denser than a quarter of its pixels is shaded without seams, t
     INFO("bands " << bands);
     CHECK(differing == 0);
   }
+  fs::remove_all(dir);
+}
+
+TEST_CASE("a banded picture with colour in some bands only is one RGB PNG, pixel for pixel one canvas' picture",
+          "[render]") {
+  const fs::path dir = fresh_dir("mixed_bands");
+  CanvasOptions layout;
+  layout.window = Box{{0, 0}, {1, 1}};
+  layout.long_side = 300;
+  // Black lines everywhere (grey bands), one red square in the bottom quarter only.
+  const auto draw = [](Canvas& canvas) {
+    StrokeBatch lines(canvas, colours::kBlack, 0.6);
+    for (int k = 0; k <= 20; ++k) {
+      const double t = k / 20.0;
+      lines.segment({t, 0}, {1 - t, 1});
+    }
+    lines.flush();
+    FillBatch red(canvas, colours::kInteriorNode);
+    red.triangle({0.4, 0.05}, {0.6, 0.05}, {0.6, 0.2});
+    red.triangle({0.4, 0.05}, {0.6, 0.2}, {0.4, 0.2});
+  };
+  render_picture(dir / "one.png", layout, draw, 1);
+  render_picture(dir / "bands.png", layout, draw, 4);
+  for (const char* name : {"one.png", "bands.png"}) {
+    const std::string bytes = slurp(dir / name);
+    REQUIRE(bytes.size() > 26);
+    INFO(name);
+    CHECK(bytes[25] == 2);  // IHDR's colour type: RGB
+  }
+  Png one(dir / "one.png"), banded(dir / "bands.png");
+  REQUIRE(one.ok());
+  REQUIRE(banded.ok());
+  CHECK(differing_pixels(one, banded) == 0);
+  const Rgb p = banded.pixel(150, 40 + 300 - 37);  // inside the red square
+  CHECK(p.r > 200);
+  CHECK(p.g < 50);
+  fs::remove_all(dir);
+}
+
+TEST_CASE("a stroke batch with butt ends stops at the segment's ends, a default batch after it has round ends",
+          "[render]") {
+  const fs::path dir = fresh_dir("butt_ends");
+  CanvasOptions layout;
+  layout.window = Box{{0, 0}, {1, 1}};
+  layout.long_side = 400;  // 400 px a unit; pixel rows start 40 px down (the title band)
+  // Two horizontal 0.6 px lines on pixel rows 40 + 199 and 40 + 99, from x = 100 px to 300 px (pixel
+  // edges): the first with butt ends, the second in a batch with the default (round) ends after it.
+  render_picture(dir / "ends.png", layout, [&](Canvas& c) {
+    StrokeBatch(c, colours::kBlack, 0.6, CAIRO_LINE_CAP_BUTT).segment({0.25, 0.50125}, {0.75, 0.50125});
+    StrokeBatch(c, colours::kBlack, 0.6).segment({0.25, 0.75125}, {0.75, 0.75125});
+  });
+  Png png(dir / "ends.png");
+  REQUIRE(png.ok());
+  // Butt: the pixels beside the ends are white, the line's own pixels 0.6 covered.
+  CHECK(png.pixel(99, 40 + 199).r == 255);
+  CHECK(png.pixel(300, 40 + 199).r == 255);
+  CHECK(png.pixel(100, 40 + 199).r == Approx(255 * 0.4).margin(2));
+  CHECK(png.pixel(299, 40 + 199).r == Approx(255 * 0.4).margin(2));
+  // Round: half a disc of 0.3 px beyond each end (0.14 of a pixel).
+  CHECK(png.pixel(99, 40 + 99).r < 240);
+  CHECK(png.pixel(300, 40 + 99).r < 240);
   fs::remove_all(dir);
 }
 

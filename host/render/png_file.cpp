@@ -42,20 +42,62 @@ void check_surface(cairo_surface_t* surface) {
 
 }  // namespace
 
-DeflatedBand deflate_band(cairo_surface_t* surface, bool last, int level) {
+bool grey_surface(cairo_surface_t* surface) {
+  check_surface(surface);
+  cairo_surface_flush(surface);
+  const int width = cairo_image_surface_get_width(surface);
+  const int height = cairo_image_surface_get_height(surface);
+  const int stride = cairo_image_surface_get_stride(surface);
+  const unsigned char* data = cairo_image_surface_get_data(surface);
+  for (int y = 0; y < height; ++y) {
+    const auto* pixels = reinterpret_cast<const std::uint32_t*>(data + static_cast<std::ptrdiff_t>(y) * stride);
+    std::uint32_t differ = 0;  // a whole row without a branch per pixel (vectorised)
+    for (int x = 0; x < width; ++x) {
+      const std::uint32_t p = pixels[x];
+      differ |= ((p >> 16) ^ p) & 0xFFu;
+      differ |= ((p >> 8) ^ p) & 0xFFu;
+    }
+    if (differ != 0) return false;
+  }
+  return true;
+}
+
+namespace {
+
+// zlib's run-length strategy (matches one byte back only) for a grey band whose sampled rows (every
+// 16th) are at least a quarter pixels equal to their left neighbour; the default strategy below.
+// Measured on whole pictures at level 1: a 30P30N mesh.png (0.81 of pixels equal to their left)
+// 0.55 MB in 8.1 ms under Z_RLE against 0.64 MB in 14.6 ms; a 1M-node mesh.png (0.52) 1.254 MB in
+// 8.8 ms against 1.260 MB in 19.6 ms. Rows without runs (anti-aliased texture repeating at a longer
+// distance) need the default strategy's matches at any distance.
+int grey_strategy(const unsigned char* data, int width, int height, int stride) {
+  std::size_t equal = 0, total = 0;
+  for (int y = 0; y < height; y += 16) {
+    const auto* pixels = reinterpret_cast<const std::uint32_t*>(data + static_cast<std::ptrdiff_t>(y) * stride);
+    for (int x = 1; x < width; ++x) equal += ((pixels[x] ^ pixels[x - 1]) & 0xFFu) == 0 ? 1 : 0;
+    total += static_cast<std::size_t>(width > 1 ? width - 1 : 0);
+  }
+  return 4 * equal >= total ? Z_RLE : Z_DEFAULT_STRATEGY;
+}
+
+}  // namespace
+
+DeflatedBand deflate_band(cairo_surface_t* surface, bool last, int level, bool grey) {
   check_surface(surface);
   cairo_surface_flush(surface);
   DeflatedBand band;
   band.width = cairo_image_surface_get_width(surface);
   band.height = cairo_image_surface_get_height(surface);
+  band.grey = grey;
   const int stride = cairo_image_surface_get_stride(surface);
   const unsigned char* data = cairo_image_surface_get_data(surface);
+  const std::size_t channels = grey ? 1 : 3;
 
   // Raw deflate (no zlib header or trailer: png_from_bands writes them once for all bands).
   z_stream z{};
-  if (deflateInit2(&z, level, Z_DEFLATED, -15, 8, Z_DEFAULT_STRATEGY) != Z_OK)
-    throw Error("PNG encoder: deflateInit failed");
-  std::vector<unsigned char> row(1 + 3 * static_cast<std::size_t>(band.width));
+  const int strategy = grey ? grey_strategy(data, band.width, band.height, stride) : Z_DEFAULT_STRATEGY;
+  if (deflateInit2(&z, level, Z_DEFLATED, -15, 8, strategy) != Z_OK) throw Error("PNG encoder: deflateInit failed");
+  std::vector<unsigned char> row(1 + channels * static_cast<std::size_t>(band.width));
   std::vector<unsigned char> buffer(1 << 16);
   const auto drain = [&](int flush) {
     do {
@@ -72,11 +114,15 @@ DeflatedBand deflate_band(cairo_surface_t* surface, bool last, int level) {
   band.adler = adler32(0L, Z_NULL, 0);
   for (int y = 0; y < band.height; ++y) {
     const auto* pixels = reinterpret_cast<const std::uint32_t*>(data + static_cast<std::ptrdiff_t>(y) * stride);
-    for (int x = 0; x < band.width; ++x) {
-      const std::uint32_t p = pixels[x];  // 0xAARRGGBB in native order
-      row[1 + 3 * x] = static_cast<unsigned char>(p >> 16);
-      row[2 + 3 * x] = static_cast<unsigned char>(p >> 8);
-      row[3 + 3 * x] = static_cast<unsigned char>(p);
+    if (grey) {
+      for (int x = 0; x < band.width; ++x) row[1 + x] = static_cast<unsigned char>(pixels[x]);  // blue = red = green
+    } else {
+      for (int x = 0; x < band.width; ++x) {
+        const std::uint32_t p = pixels[x];  // 0xAARRGGBB in native order
+        row[1 + 3 * x] = static_cast<unsigned char>(p >> 16);
+        row[2 + 3 * x] = static_cast<unsigned char>(p >> 8);
+        row[3 + 3 * x] = static_cast<unsigned char>(p);
+      }
     }
     // Filter type 0 (none): measured on a 30P30N mesh picture, level 1 then gives a smaller file
     // (0.98 MB) than the Sub or Up filters (1.16, 1.17 MB) or cairo's writer (1.10 MB), as fast.
@@ -101,6 +147,7 @@ std::string png_from_bands(const std::vector<DeflatedBand>& bands) {
   int height = 0;
   for (const DeflatedBand& b : bands) {
     if (b.width != bands.front().width) throw Error("PNG encoder: bands of different widths");
+    if (b.grey != bands.front().grey) throw Error("PNG encoder: grey and RGB bands");
     height += b.height;
   }
   // The zlib stream: header (deflate, 32K window, level 1's "fastest" flag: what deflateInit2 writes
@@ -117,11 +164,11 @@ std::string png_from_bands(const std::vector<DeflatedBand>& bands) {
   std::string header;
   put32(header, static_cast<std::uint32_t>(bands.front().width));
   put32(header, static_cast<std::uint32_t>(height));
-  header += '\x08';  // bit depth
-  header += '\x02';  // colour type: RGB
-  header += '\x00';  // compression: deflate
-  header += '\x00';  // filter method 0
-  header += '\x00';  // no interlace
+  header += '\x08';                                // bit depth
+  header += bands.front().grey ? '\x00' : '\x02';  // colour type: greyscale or RGB
+  header += '\x00';                                // compression: deflate
+  header += '\x00';                                // filter method 0
+  header += '\x00';                                // no interlace
   chunk(out, "IHDR", header);
   chunk(out, "IDAT", idat);
   chunk(out, "IEND", "");
@@ -129,7 +176,7 @@ std::string png_from_bands(const std::vector<DeflatedBand>& bands) {
 }
 
 std::string encode_png(cairo_surface_t* surface, int level) {
-  return png_from_bands({deflate_band(surface, true, level)});
+  return png_from_bands({deflate_band(surface, true, level, grey_surface(surface))});
 }
 
 void write_bytes(const std::filesystem::path& path, const std::string& bytes) {
