@@ -1,6 +1,7 @@
 // Tests of the cleanup's triangle measures (cleanup/measures.hpp) that stand for one another.
 #include <catch2/catch.hpp>
 
+#include <array>
 #include <cmath>
 #include <cstring>
 #include <random>
@@ -13,6 +14,17 @@ using namespace pdmesh::cleanup;
 
 namespace {
 
+// The k-th of a run of counter-clockwise, clockwise and nearly degenerate triangles at several scales
+// and offsets: every fifth has its third corner nearly on the line through the first two.
+std::array<Vec2, 3> random_triangle(std::mt19937_64& rng, int k) {
+  const double scale = std::pow(10.0, 6.0 * pdmesh_test::unit(rng) - 3.0);
+  const Vec2 o{1e3 * (pdmesh_test::unit(rng) - 0.5), 1e3 * (pdmesh_test::unit(rng) - 0.5)};
+  const auto at = [&] { return o + scale * Vec2{pdmesh_test::unit(rng), pdmesh_test::unit(rng)}; };
+  const Vec2 a = at(), b = at();
+  const Vec2 c = k % 5 == 0 ? a + 0.5 * (b - a) : at();
+  return {a, b, c};
+}
+
 // Bit for bit: == alone would take -0.0 for 0.0.
 bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
 
@@ -21,12 +33,7 @@ bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; 
 TEST_CASE("aspect_ratio_and_inradius gives aspect_ratio and inradius bit for bit", "[cleanup]") {
   std::mt19937_64 rng(20261204);
   for (int k = 0; k < 200000; ++k) {
-    // Counter-clockwise, clockwise and nearly degenerate triangles at several scales and offsets.
-    const double scale = std::pow(10.0, 6.0 * pdmesh_test::unit(rng) - 3.0);
-    const Vec2 o{1e3 * (pdmesh_test::unit(rng) - 0.5), 1e3 * (pdmesh_test::unit(rng) - 0.5)};
-    const auto at = [&] { return o + scale * Vec2{pdmesh_test::unit(rng), pdmesh_test::unit(rng)}; };
-    const Vec2 a = at(), b = at();
-    const Vec2 c = k % 5 == 0 ? a + 0.5 * (b - a) : at();  // every fifth nearly on a line
+    const auto [a, b, c] = random_triangle(rng, k);
     double r = -1.0;
     const double ar = aspect_ratio_and_inradius(a, b, c, r);
     INFO("triangle " << k);
@@ -42,11 +49,7 @@ TEST_CASE("aspect_ratio_and_inradius gives aspect_ratio and inradius bit for bit
 TEST_CASE("the measures from squared sides give min_angle_sine and aspect_ratio bit for bit", "[cleanup]") {
   std::mt19937_64 rng(20261205);
   for (int k = 0; k < 200000; ++k) {
-    const double scale = std::pow(10.0, 6.0 * pdmesh_test::unit(rng) - 3.0);
-    const Vec2 o{1e3 * (pdmesh_test::unit(rng) - 0.5), 1e3 * (pdmesh_test::unit(rng) - 0.5)};
-    const auto at = [&] { return o + scale * Vec2{pdmesh_test::unit(rng), pdmesh_test::unit(rng)}; };
-    const Vec2 a = at(), b = at();
-    const Vec2 c = k % 5 == 0 ? a + 0.5 * (b - a) : at();  // every fifth nearly on a line
+    const auto [a, b, c] = random_triangle(rng, k);
     // The sides as the smoother takes them: the one opposite a moved vertex once, the others from
     // either end (norm2(b - a) and norm2(a - b) are the same number).
     const double ab = k % 2 == 0 ? norm2(b - a) : norm2(a - b), bc = norm2(c - b), ca = norm2(a - c);

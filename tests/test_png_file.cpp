@@ -19,6 +19,20 @@ using namespace pdmesh;
 
 namespace {
 
+// A width x height RGB24 image surface whose pixel (x, y) is pixel(x, y) (0xAARRGGBB).
+template <class Pixel>
+cairo_surface_t* surface_of(int width, int height, Pixel pixel) {
+  cairo_surface_t* s = cairo_image_surface_create(CAIRO_FORMAT_RGB24, width, height);
+  cairo_surface_flush(s);
+  for (int y = 0; y < height; ++y) {
+    auto* row =
+        reinterpret_cast<std::uint32_t*>(cairo_image_surface_get_data(s) + y * cairo_image_surface_get_stride(s));
+    for (int x = 0; x < width; ++x) row[x] = pixel(x, y);
+  }
+  cairo_surface_mark_dirty(s);
+  return s;
+}
+
 std::uint32_t be32(const std::string& s, std::size_t at) {
   return (static_cast<std::uint32_t>(static_cast<unsigned char>(s[at])) << 24) |
          (static_cast<std::uint32_t>(static_cast<unsigned char>(s[at + 1])) << 16) |
@@ -212,23 +226,11 @@ TEST_CASE("PNG encoder: a grey picture is written as 8-bit greyscale with the sa
   // one pixel coloured.
   const int width = 300, height = 17;
   const auto grey_pattern = [&](bool one_coloured) {
-    cairo_surface_t* s = cairo_image_surface_create(CAIRO_FORMAT_RGB24, width, height);
-    cairo_surface_flush(s);
-    for (int y = 0; y < height; ++y) {
-      auto* row =
-          reinterpret_cast<std::uint32_t*>(cairo_image_surface_get_data(s) + y * cairo_image_surface_get_stride(s));
-      for (int x = 0; x < width; ++x) {
-        const std::uint32_t g = x < 100 ? 255u : x < 200 ? static_cast<std::uint32_t>((x + 3 * y) % 256) : 140u;
-        row[x] = 0xFF000000u | (g << 16) | (g << 8) | g;
-      }
-    }
-    if (one_coloured) {
-      auto* row =
-          reinterpret_cast<std::uint32_t*>(cairo_image_surface_get_data(s) + 9 * cairo_image_surface_get_stride(s));
-      row[250] = 0xFF000000u | (140u << 16) | (140u << 8) | 141u;  // blue one above red and green
-    }
-    cairo_surface_mark_dirty(s);
-    return s;
+    return surface_of(width, height, [&](int x, int y) {
+      if (one_coloured && x == 250 && y == 9) return 0xFF000000u | (140u << 16) | (140u << 8) | 141u;  // blue above
+      const std::uint32_t g = x < 100 ? 255u : x < 200 ? static_cast<std::uint32_t>((x + 3 * y) % 256) : 140u;
+      return 0xFF000000u | (g << 16) | (g << 8) | g;
+    });
   };
   const auto dir = pdmesh_test::fresh_dir("png_grey");
   for (const bool coloured : {false, true}) {
@@ -281,18 +283,11 @@ TEST_CASE("PNG encoder: a picture without runs of one colour, grey or RGB, is as
   const int width = 400, height = 60;
   for (const bool grey : {true, false}) {
     INFO((grey ? "grey" : "RGB"));
-    cairo_surface_t* s = cairo_image_surface_create(CAIRO_FORMAT_RGB24, width, height);
-    cairo_surface_flush(s);
-    for (int y = 0; y < height; ++y) {
-      auto* row =
-          reinterpret_cast<std::uint32_t*>(cairo_image_surface_get_data(s) + y * cairo_image_surface_get_stride(s));
-      for (int x = 0; x < width; ++x) {
-        const auto k = static_cast<std::uint32_t>((x + y) % 7);
-        row[x] = grey ? 0xFF000000u | ((30 * k + 10) * 0x010101u)
-                      : 0xFF000000u | ((40 * k) << 16) | ((255 - 30 * k) << 8) | (17 * k + 3);
-      }
-    }
-    cairo_surface_mark_dirty(s);
+    cairo_surface_t* s = surface_of(width, height, [&](int x, int y) {
+      const auto k = static_cast<std::uint32_t>((x + y) % 7);
+      return grey ? 0xFF000000u | ((30 * k + 10) * 0x010101u)
+                  : 0xFF000000u | ((40 * k) << 16) | ((255 - 30 * k) << 8) | (17 * k + 3);
+    });
     const std::string png = encode_png(s);
     const std::size_t raw = static_cast<std::size_t>(height) * (1 + (grey ? 1 : 3) * width);
     INFO("PNG bytes " << png.size() << " for " << raw << " bytes of scanlines");
