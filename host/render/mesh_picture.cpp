@@ -130,8 +130,8 @@ void draw_value_fills(Canvas& canvas, const Mesh& mesh, const std::vector<double
 
 // The edges long enough to draw, thin and black; returns how many in the window were too short.
 // Each edge once (unique_edges), with butt ends: at 0.6 px a round cap adds no ink that reads (the
-// edges meeting at a vertex cover it) but its arc's vertices cost cairo's stroker and scan converter
-// ~15 % of a 30P30N mesh picture (journal 2026-12-05b-picture-libs).
+// edges meeting at a vertex cover it) but its arc's vertices are a good part of cairo's stroking and
+// scan conversion of a dense mesh.
 std::size_t draw_edges(Canvas& canvas, const Mesh& mesh, const std::vector<std::pair<int, int>>& edges,
                        double min_edge_world) {
   const double edge_width = 0.6;

@@ -66,10 +66,9 @@ namespace {
 
 // zlib's run-length strategy (matches one byte back only) for a grey band whose sampled rows (every
 // 16th) are at least a quarter pixels equal to their left neighbour; the default strategy below.
-// Measured on whole pictures at level 1: a 30P30N mesh.png (0.81 of pixels equal to their left)
-// 0.55 MB in 8.1 ms under Z_RLE against 0.64 MB in 14.6 ms; a 1M-node mesh.png (0.52) 1.254 MB in
-// 8.8 ms against 1.260 MB in 19.6 ms. Rows without runs (anti-aliased texture repeating at a longer
-// distance) need the default strategy's matches at any distance.
+// Mesh pictures with that many runs come out about as small and compress about twice as fast under
+// Z_RLE (docs/performance.md, the pictures' row). Rows without runs (anti-aliased texture repeating
+// at a longer distance) need the default strategy's matches at any distance.
 int grey_strategy(const unsigned char* data, int width, int height, int stride) {
   std::size_t equal = 0, total = 0;
   for (int y = 0; y < height; y += 16) {
