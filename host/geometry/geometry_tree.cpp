@@ -102,6 +102,16 @@ struct Node {
 
 // Distance from p to the node's capsule axis. Along the unit direction, without point_segment_
 // distance's division: the axis distance is evaluated for most children a search looks at.
+// The query's coordinates kept in two registers: without this barrier the vectorizer packed them into
+// one register by two 8-byte stores and a 16-byte load, a store-forwarding stall in every search.
+inline Vec2 in_registers(Vec2 q) {
+  double x = q.x, y = q.y;
+#if defined(__SSE2__) && defined(__GNUC__)
+  asm("" : "+x"(x), "+x"(y));
+#endif
+  return {x, y};
+}
+
 inline double axis_distance(Vec2 p, const Node& n) {
   const double px = p.x - n.cap_a.x, py = p.y - n.cap_a.y;
   double t = px * n.cap_u.x + py * n.cap_u.y;
@@ -197,13 +207,7 @@ class Quadtree {
   // every segment at least as close as the seed is still examined (the bounds keep their margin and
   // ties go to the lowest index), so only the number of nodes visited changes.
   ClosestHit closest(Vec2 query, int hint = -1) const {
-    double px = query.x, py = query.y;
-#if defined(__SSE2__) && defined(__GNUC__)
-    // The coordinates stay in registers: without this barrier the vectorizer packed them into one
-    // register by two 8-byte stores and a 16-byte load, a store-forwarding stall in every search.
-    asm("" : "+x"(px), "+x"(py));
-#endif
-    const Vec2 p{px, py};
+    const Vec2 p = in_registers(query);
     ClosestHit best;
     best.distance = std::numeric_limits<double>::infinity();
     if (nodes_.empty()) return ClosestHit{};
@@ -352,11 +356,7 @@ class Quadtree {
     const Segment* const segments = segments_->data();
     const int count = leaf.count;
     for (std::size_t k = 0; k < n; ++k) {
-      double px = p[k].x, py = p[k].y;
-#if defined(__SSE2__) && defined(__GNUC__)
-      asm("" : "+x"(px), "+x"(py));  // as in closest(): the coordinates stay in two registers
-#endif
-      const Vec2 q{px, py};
+      const Vec2 q = in_registers(p[k]);
       // The seed's hit first, then every other entry whose box lies within the bound of the moment:
       // closest()'s leaf scan, whose entries skipped by the box could neither beat nor tie the best.
       ClosestHit best;
@@ -445,11 +445,7 @@ class Quadtree {
       }
     }
     for (std::size_t i = 0; i < m; ++i) {
-      double px = p[i].x, py = p[i].y;
-#if defined(__SSE2__) && defined(__GNUC__)
-      asm("" : "+x"(px), "+x"(py));  // as in closest(): the coordinates stay in two registers
-#endif
-      const Vec2 q{px, py};
+      const Vec2 q = in_registers(p[i]);
       ClosestHit best = hint[i];
       double limit = bound(best.distance);
       double limit2 = limit * limit;
