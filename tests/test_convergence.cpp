@@ -18,6 +18,7 @@
 #include "sim/checkpoint.hpp"
 #include "sim/convergence.hpp"
 #include "sim/simulation.hpp"
+#include "convergence_fixtures.hpp"
 
 using namespace pdmesh;
 
@@ -25,16 +26,7 @@ namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
-ConvergenceOptions small_options() {
-  ConvergenceOptions o;
-  o.enabled = true;
-  o.check_every = 10;
-  o.window = 40;
-  o.aspect_tolerance = 5e-4;
-  o.angle_tolerance = 0.25;
-  o.min_iterations = 40;
-  return o;
-}
+ConvergenceOptions small_options() { return pdmesh_test::small_convergence_options(); }
 
 // A mesh that improves until iteration 60 (aspect ratio falling by 0.01 and the smallest angle rising
 // by 1 degree per measurement) and then only wobbles within the tolerances.

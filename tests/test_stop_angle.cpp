@@ -9,16 +9,14 @@
 
 #include "app/config/case_file.hpp"
 #include "app/pipeline/mesh_pipeline.hpp"
+#include "case_texts.hpp"
 
 using namespace pdmesh;
+using namespace pdmesh_test;
 namespace fs = std::filesystem;
 
 namespace {
 
-const fs::path kCase = "/cases/demo/case.toml";
-const std::string kGeometry = "[geometry]\nfiles = [\"a.crv\"]\n";
-const std::string kMetric = "[spacing]\nfield = \"metric\"\nh1 = \"0.1\"\nh2 = \"0.01\"\n";
-const std::string kHessian = "[spacing]\nfield = \"hessian\"\nfunction = \"x*x\"\ncomplexity = 100\n";
 const fs::path kAnisoLinear = fs::path(PDMESH_SOURCE_DIR) / "cases" / "aniso" / "linear" / "case.toml";
 const fs::path kCircles = fs::path(PDMESH_SOURCE_DIR) / "cases" / "circle_circle" / "circles.crv";
 

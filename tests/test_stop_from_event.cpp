@@ -15,19 +15,16 @@
 #include "app/pipeline/smooth_pipeline.hpp"
 #include "core/errors.hpp"
 #include "sim/convergence.hpp"
+#include "case_texts.hpp"
+#include "convergence_fixtures.hpp"
 
 using namespace pdmesh;
+using namespace pdmesh_test;
 
 namespace {
 
 ConvergenceOptions options(bool from_last_event) {
-  ConvergenceOptions o;
-  o.enabled = true;
-  o.check_every = 10;
-  o.window = 40;
-  o.aspect_tolerance = 5e-4;
-  o.angle_tolerance = 0.25;
-  o.min_iterations = 40;
+  ConvergenceOptions o = small_convergence_options();
   o.from_last_event = from_last_event;
   return o;
 }
@@ -52,9 +49,6 @@ int first_converged(ConvergenceMonitor& monitor, int last, int event) {
   return 0;
 }
 
-const std::filesystem::path kCase = "/cases/demo/case.toml";
-const std::string kGeometry = "[geometry]\nfiles = [\"a.crv\"]\n";
-const std::string kMetric = "[spacing]\nfield = \"metric\"\nh1 = \"0.1\"\nh2 = \"0.01\"\n";
 const std::string kLayers =
     "[[boundary_layer]]\ncurves = [\"c0\"]\nfirst_height = 1e-3\ngrowth = 1.2\nthickness = 0.01\n";
 

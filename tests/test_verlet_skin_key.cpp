@@ -10,15 +10,15 @@
 #include "app/pipeline/mesh_pipeline.hpp"
 #include "core/errors.hpp"
 #include "sim/verlet_skin.hpp"
+#include "case_texts.hpp"
 
 using namespace pdmesh;
+using namespace pdmesh_test;
 
 namespace {
 
-const std::string kGeometry = "[geometry]\nfiles = [\"a.crv\"]\n";
-
 CaseConfig parsed(const std::string& text, const std::vector<CaseOverride>& overrides = {}) {
-  return parse_case_text(text, "/cases/demo/case.toml", overrides);
+  return parse_case_text(text, kCase, overrides);
 }
 
 }  // namespace
