@@ -4,6 +4,9 @@
 // tested here is which skin reaches SimOptions.
 #include <catch2/catch.hpp>
 
+#include <filesystem>
+#include <fstream>
+#include <regex>
 #include <string>
 
 #include "app/config/case_file.hpp"
@@ -11,6 +14,9 @@
 #include "core/errors.hpp"
 #include "sim/verlet_skin.hpp"
 #include "case_texts.hpp"
+#include "run_pdmesh.hpp"
+#include "source_dir.hpp"
+#include "temp_files.hpp"
 
 using namespace pdmesh;
 using namespace pdmesh_test;
@@ -67,4 +73,32 @@ TEST_CASE("simulation_options: the case's skin at every size, else the automatic
   const CaseConfig fixed = parsed(kGeometry, {parse_set_option("simulation.verlet_skin=0.7")});
   for (std::size_t n : {std::size_t{14'000}, std::size_t{265'000}, std::size_t{5'300'000}})
     CHECK(simulation_options(fixed, n).verlet_skin == 0.7);
+}
+
+// pdmesh bench without --skin takes a case file's simulation.verlet_skin: at 0 the device run rebuilds
+// its lists every iteration, where the circle_circle case's automatic skin lasts several.
+TEST_CASE("pdmesh bench takes the case file's simulation.verlet_skin", "[app][bench]") {
+  namespace fs = std::filesystem;
+  const fs::path dir = pdmesh_test::fresh_dir("bench_case_skin");
+  const fs::path source = fs::path(pdmesh::test::source_dir()) / "cases" / "circle_circle";
+  for (const char* name : {"automatic", "zero"}) fs::copy(source, dir / name, fs::copy_options::recursive);
+  {
+    std::string text = pdmesh_test::slurp(dir / "zero" / "case.toml");
+    const std::size_t at = text.find("[simulation]\n");
+    REQUIRE(at != std::string::npos);
+    text.insert(at + 13, "verlet_skin = 0\n");
+    std::ofstream(dir / "zero" / "case.toml") << text;
+  }
+  const auto rebuilds = [&](const char* name) {
+    const auto r = pdmesh_test::run_pdmesh("bench --cases " + std::string(name) + " --cases-dir '" + dir.string() +
+                                           "' --warmup 0 --iterations 8 --skip-host");
+    INFO(r.output);
+    REQUIRE(r.status == 0);
+    std::smatch m;  // the first table row's device split: "(N rebuilds, ..."
+    REQUIRE(std::regex_search(r.output, m, std::regex("\\((\\d+) rebuilds,")));
+    return std::stoi(m[1].str());
+  };
+  CHECK(rebuilds("zero") == 8);
+  CHECK(rebuilds("automatic") < 8);
+  fs::remove_all(dir);
 }

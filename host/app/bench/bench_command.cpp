@@ -43,6 +43,7 @@ struct BenchCase {
   const SpacingField* spacing = nullptr;
   NodeSet initial;
   SimOptions options;
+  std::optional<double> verlet_skin;  // a case file's simulation.verlet_skin; empty: automatic
 };
 
 std::unique_ptr<BenchCase> generated_case(std::size_t target) {
@@ -74,6 +75,7 @@ std::unique_ptr<BenchCase> file_case(const std::string& dir, const std::string& 
   c->options.r0_any_direction = config.simulation.r0_any_direction;
   c->options.stability_factor = config.simulation.stability_factor;
   c->options.momentum = config.simulation.momentum;
+  c->verlet_skin = config.simulation.verlet_skin;
   return c;
 }
 
@@ -302,8 +304,9 @@ int run_bench(const BenchArguments& args) {
     SimOptions options = c->options;
     options.iterations = large ? args.large_iterations : args.iterations;
     options.quiet = true;
-    options.verlet_skin =
-        args.verlet_skin == kAutomaticSkin ? auto_verlet_skin(options.momentum, c->initial.size()) : args.verlet_skin;
+    options.verlet_skin = args.verlet_skin != kAutomaticSkin
+                              ? args.verlet_skin
+                              : c->verlet_skin.value_or(auto_verlet_skin(options.momentum, c->initial.size()));
     const std::string suffix =
         args.population_every > 0 ? fmt::format(", population every {}", args.population_every) : std::string();
     options.dt_initial = warm_up(*c, options, large ? args.large_warmup : args.warmup, devices,

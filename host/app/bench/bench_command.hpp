@@ -23,7 +23,7 @@ struct BenchArguments {
   int large_warmup = 20;
   std::string precision = "double";
   // Device runs: Verlet list radius cutoff q (1 + skin); kAutomaticSkin: as pdmesh mesh picks it
-  // for the case's node count (auto_verlet_skin).
+  // (a case file's simulation.verlet_skin, else auto_verlet_skin for the case's node count).
   double verlet_skin = kAutomaticSkin;
   bool skip_host = false;           // devices only
   bool skip_host_large = false;     // the host reference takes seconds per iteration at 1M nodes

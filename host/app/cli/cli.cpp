@@ -416,7 +416,7 @@ void add_bench_options(CLI::App& bench, BenchArguments& a) {
   bench
       .add_option("--skin", a.verlet_skin,
                   "Verlet skin of the device runs (list radius cutoff q (1 + skin)); default as pdmesh mesh picks it "
-                  "for the case's node count (simulation.verlet_skin = \"auto\")")
+                  "(the case file's simulation.verlet_skin, else by the case's node count)")
       ->type_name("S");
   bench
       .add_option("--population", a.population_every,
