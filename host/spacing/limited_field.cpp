@@ -167,19 +167,28 @@ class LimitedField {
   }
 
   // The sum of term(side, corner q's) over the inside leaves whose four corners have a positive q, in
-  // the leaves' order.
+  // the leaves' order: the terms on all cores, then their sum on this thread (the same sum as one loop).
   template <class Term>
   double sum_over_inside_leaves(const std::vector<int>& leaves, const std::vector<std::int32_t>& leaf_corner,
                                 Term term) const {
+    std::vector<double> terms(leaves.size(), 0.0);
+    std::vector<std::uint8_t> counted(leaves.size(), 0);
+    parallel_for(
+        leaves.size(),
+        [&](std::size_t n) {
+          const Cell& c = b_.cells()[static_cast<std::size_t>(leaves[n])];
+          if (c.tag != kTagInside) return;
+          double q[4];
+          for (int a = 0; a < 4; ++a)
+            q[a] = q_[static_cast<std::size_t>(leaf_corner[4 * n + static_cast<std::size_t>(a)])];
+          if (!(q[0] > 0.0 && q[1] > 0.0 && q[2] > 0.0 && q[3] > 0.0)) return;
+          counted[n] = 1;
+          terms[n] = term(b_.side(c.level), q);
+        },
+        4096, b_.options().loop_threads());
     double sum = 0.0;
-    for (std::size_t n = 0; n < leaves.size(); ++n) {
-      const Cell& c = b_.cells()[static_cast<std::size_t>(leaves[n])];
-      if (c.tag != kTagInside) continue;
-      double q[4];
-      for (int a = 0; a < 4; ++a) q[a] = q_[static_cast<std::size_t>(leaf_corner[4 * n + static_cast<std::size_t>(a)])];
-      if (!(q[0] > 0.0 && q[1] > 0.0 && q[2] > 0.0 && q[3] > 0.0)) continue;
-      sum += term(b_.side(c.level), q);
-    }
+    for (std::size_t n = 0; n < leaves.size(); ++n)
+      if (counted[n]) sum += terms[n];
     return sum;
   }
 
