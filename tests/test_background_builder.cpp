@@ -428,3 +428,31 @@ TEST_CASE("spacing pipeline: threaded batches build the same field bit for bit a
   // At least one batch was large enough to be split among two threads (where the machine has them).
   CHECK(counting.largest >= 2 * kPointsPerThread);
 }
+
+TEST_CASE("spacing pipeline: the builder's and the limited field's loops on one thread build the same field",
+          "[spacing]") {
+  // The best preset's pipeline on the 30P30N curves (large enough that every loop of the builder and
+  // of the limited field splits its range among threads where the machine has two): the base field
+  // evaluated serially and every loop capped at one thread (BackgroundOptions::threads), against the
+  // default. The decisions of the base tree, the corner registration, the limit-refine rounds'
+  // candidates and the node counts must not depend on the thread count.
+  const Geometry g = p30n();
+  const GeometryTree tree(g);
+  const BoundarySpacing threaded(tree);
+  const SerialField serial(threaded);
+  SpacingOptions options;
+  options.gradation = 0.2;
+  options.rows_in_gap = 2.0;
+  options.curvature_angle = 10.0;
+  options.input_boundary_floor = kInputBoundaryFloor;
+  options.final_floor = false;
+  options.background.max_nodes = 1e7;  // the node counts of every level and round are taken
+  SpacingOptions one = options;
+  one.background.threads = 1;
+  const SpacingPipeline a(threaded, tree, options);
+  const SpacingPipeline b(serial, tree, one);
+  check_identical(a.background().data(), b.background().data());
+  CHECK(a.stats().rounds == b.stats().rounds);
+  CHECK(a.stats().reduced_corners == b.stats().reduced_corners);
+  CHECK(a.stats().rounds >= 2);  // the later rounds' path (corners known, relimit) is taken
+}

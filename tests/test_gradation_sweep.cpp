@@ -119,3 +119,25 @@ TEST_CASE("gradation: the sweep equals a binary-heap Dijkstra over explicit neig
     REQUIRE(source == source_ref);
   }
 }
+
+TEST_CASE("gradation: a graph whose leaf lists are sorted in two parts sweeps as the reference does", "[spacing]") {
+  // Enough leaves that the graph's corner -> leaf lists are built in two halves of the entries at
+  // once (GradationGraph::kEntriesPerPart); the sweep must still equal the reference bit for bit.
+  std::mt19937_64 rng(23);
+  const Leaves l = random_leaves(rng, 160);
+  REQUIRE(l.leaf_corner.size() >= 2 * GradationGraph::kEntriesPerPart);
+  const std::size_t n = l.pos.size();
+  const double g = 0.2;
+  std::vector<double> q0(n);
+  for (double& v : q0) v = 0.01 + std::ldexp(static_cast<double>(rng() >> 11), -53);
+  const GradationGraph graph(l.pos, l.leaf_corner);
+  std::vector<double> q;
+  std::vector<std::int32_t> source;
+  graph.limit(g, q0, q, source);
+  std::vector<double> q_ref = q0;
+  std::vector<std::int32_t> source_ref(n);
+  for (std::size_t i = 0; i < n; ++i) source_ref[i] = static_cast<std::int32_t>(i);
+  reference_sweep(l, g, q0, q_ref, source_ref, nullptr);
+  REQUIRE(q == q_ref);
+  REQUIRE(source == source_ref);
+}

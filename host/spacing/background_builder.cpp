@@ -6,6 +6,8 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <utility>
+#include <vector>
 
 #include <fmt/format.h>
 
@@ -38,7 +40,19 @@ double BackgroundBuilder::coord(double origin, std::uint32_t lattice) const {
   return origin + root_size_ * (static_cast<double>(lattice) * lattice_unit_);
 }
 
-double BackgroundBuilder::side(int level) const { return std::ldexp(root_size_, -level); }
+double BackgroundBuilder::side(int level) const {
+  // The levels a cell can have come from the table (the same ldexp values, without a libm call per
+  // cell in the per-level decisions and budgets).
+  if (level >= 0 && static_cast<std::size_t>(level) < sides_.size()) return sides_[static_cast<std::size_t>(level)];
+  return std::ldexp(root_size_, -level);
+}
+
+void BackgroundBuilder::set_root_size(double root_size) {
+  root_size_ = root_size;
+  sides_.resize(static_cast<std::size_t>(resolution_) + 1);
+  for (std::size_t level = 0; level < sides_.size(); ++level)
+    sides_[level] = std::ldexp(root_size_, -static_cast<int>(level));
+}
 
 double BackgroundBuilder::sample(std::uint32_t x, std::uint32_t y) const {
   return values_[static_cast<std::size_t>(samples_.at(key(x, y)))];
@@ -93,7 +107,7 @@ void BackgroundBuilder::choose_grid() {
   for (const double v : q) q_max = std::max(q_max, v);
   const double cells = std::ceil(side / (opt_.size_factor * q_max));
   grid_ = cells >= opt_.max_grid ? opt_.max_grid : std::max(1, static_cast<int>(cells));
-  root_size_ = side / grid_;
+  set_root_size(side / grid_);
   origin_x_ = centre.x - 0.5 * side;
   origin_y_ = centre.y - 0.5 * side;
 }
@@ -162,12 +176,20 @@ void BackgroundBuilder::build() {
   make_roots();
   std::vector<int> roots(cells_.size());
   for (std::size_t k = 0; k < roots.size(); ++k) roots[k] = static_cast<int>(k);
-  refine(
-      std::move(roots), [this](const Cell& c, const double q[4]) { return default_decide(c, q); },
-      [this](const Cell&, const double q[4], const double exact[9], const std::int32_t*, int count) {
-        return default_test(q, exact, count);
-      },
-      [this](const Cell&, std::uint32_t, std::uint32_t, std::int32_t id) { return sample_value(id); });
+  // The default rules only read the cell and the samples: their decisions are made on all cores.
+  decide_in_parallel_ = true;
+  try {
+    refine(
+        std::move(roots), [this](const Cell& c, const double q[4]) { return default_decide(c, q); },
+        [this](const Cell&, const double q[4], const double exact[9], const std::int32_t*, int count) {
+          return default_test(q, exact, count);
+        },
+        [this](const Cell&, std::uint32_t, std::uint32_t, std::int32_t id) { return sample_value(id); });
+  } catch (...) {
+    decide_in_parallel_ = false;
+    throw;
+  }
+  decide_in_parallel_ = false;
 }
 
 BackgroundBuilder::Decision BackgroundBuilder::default_decide(const Cell& c, const double q[4]) const {
@@ -204,15 +226,27 @@ void BackgroundBuilder::check_budget(const std::vector<int>& level_cells, const 
     // out (the part of them inside the domain is not known here; counting them whole would refuse a
     // thin domain on its coarse levels).
     const double hex = 2.0 / std::sqrt(3.0);
+    // Each cell's count on all cores (a logarithm each), then the sums in the cells' order: the same
+    // sums as one loop.
+    std::vector<double> cell_nodes(level_cells.size(), 0.0);
+    parallel_for(
+        level_cells.size(),
+        [&](std::size_t n) {
+          const Cell& c = cells_[static_cast<std::size_t>(level_cells[n])];
+          if (c.tag != kTagInside) return;
+          const double* q = &corners[4 * n];
+          if (!(q[0] > 0.0 && q[1] > 0.0 && q[2] > 0.0 && q[3] > 0.0)) return;
+          const double s = side(c.level);
+          cell_nodes[n] = hex * s * s * inverse_square_integral(q[0], q[1], q[2], q[3]);
+        },
+        kTestsPerThread, opt_.loop_threads());
     double splitting = 0.0;
     for (std::size_t n = 0; n < level_cells.size(); ++n) {
       const Cell& c = cells_[static_cast<std::size_t>(level_cells[n])];
       if (c.tag != kTagInside) continue;
       const double* q = &corners[4 * n];
       if (!(q[0] > 0.0 && q[1] > 0.0 && q[2] > 0.0 && q[3] > 0.0)) continue;
-      const double s = side(c.level);
-      const double nodes = hex * s * s * inverse_square_integral(q[0], q[1], q[2], q[3]);
-      (decision[n] == Decision::Split ? splitting : finished_nodes_) += nodes;
+      (decision[n] == Decision::Split ? splitting : finished_nodes_) += cell_nodes[n];
     }
     const double estimate = finished_nodes_ + splitting;
     if (!(estimate <= kEarlyNodeMargin * opt_.max_nodes)) {
@@ -275,7 +309,7 @@ void BackgroundBuilder::decide_level(Level& level, const DecideFn& decide, const
   level.decision.assign(level.cells.size(), Decision::Leaf);
   level.keys.clear();
   level.tested.clear();
-  for (std::size_t n = 0; n < level.cells.size(); ++n) {
+  auto corners_and_decision = [&](std::size_t n) {
     const Cell& c = cells_[static_cast<std::size_t>(level.cells[n])];
     const std::uint32_t s = span(c.level);
     double* q = &level.corners[4 * n];
@@ -284,7 +318,15 @@ void BackgroundBuilder::decide_level(Level& level, const DecideFn& decide, const
     q[2] = corner_value(c, c.x, c.y + s, c.corner[2]);
     q[3] = corner_value(c, c.x + s, c.y + s, c.corner[3]);
     level.decision[n] = decide(c, q);
+  };
+  // Each cell writes only its own corners and decision; with rules that only read (build()), on all
+  // cores, else on this thread in the cells' order, as the caller's rules may keep state.
+  if (decide_in_parallel_) parallel_for(level.cells.size(), corners_and_decision, kTestsPerThread, opt_.loop_threads());
+  for (std::size_t n = 0; n < level.cells.size(); ++n) {
+    if (!decide_in_parallel_) corners_and_decision(n);
     if (level.decision[n] != Decision::Test) continue;
+    const Cell& c = cells_[static_cast<std::size_t>(level.cells[n])];
+    const std::uint32_t s = span(c.level);
     level.tested.push_back(static_cast<int>(n));
     const std::uint32_t quarter = s / 4;
     for (int t = 0; t < kFirstQuarterTest; ++t)
@@ -341,7 +383,7 @@ void BackgroundBuilder::test_level(Level& level, const TestFn& test, const Sampl
           const bool split = test(c, &level.corners[4 * n], &level.exact[9 * m], &level.test_ids[9 * m], count);
           level.decision[n] = split ? Decision::Split : round == 0 ? Decision::Test : Decision::Leaf;
         },
-        kTestsPerThread);
+        kTestsPerThread, opt_.loop_threads());
   }
 }
 
@@ -430,7 +472,7 @@ void BackgroundBuilder::tag_children(const std::vector<int>& next, const std::ve
             child_segments[i].push_back(s);
         if (child_segments[i].empty()) inside[i] = tree_.inside(point(child.x + h / 2, child.y + h / 2)) ? 1 : 0;
       },
-      kChildrenPerThread);
+      kChildrenPerThread, opt_.loop_threads());
   for (std::size_t i = 0; i < next.size(); ++i)
     set_tag(cells_[static_cast<std::size_t>(next[i])], std::move(child_segments[i]), inside[i] != 0);
 }
@@ -508,30 +550,44 @@ BackgroundFieldData BackgroundBuilder::emit(const ValueFn& corner_value) const {
     }
     return id;
   };
+  // Every cell is a node; the leaves' arrays are sized once.
+  std::size_t leaves = 0;
+  for (const Cell& c : cells_) leaves += c.first_child < 0 ? 1 : 0;
+  d.node_child.reserve(cells_.size());
+  d.leaf_tag.reserve(leaves);
+  d.leaf_cell.reserve(4 * leaves);
+  d.leaf_corner.reserve(4 * leaves);
   auto new_node = [&] {
     d.node_child.push_back(-1);
     return static_cast<int>(d.node_child.size()) - 1;
   };
   // Depth first, children numbered when their parent is reached: the numbering of the recursive
-  // builder this one replaced, so the arrays are the same bit for bit.
-  std::function<void(int, int)> visit = [&](int cell, int node) {
-    const Cell& c = cells_[static_cast<std::size_t>(cell)];
-    d.max_depth = std::max(d.max_depth, static_cast<std::int32_t>(c.level));
-    if (c.first_child < 0) {
-      d.node_child[static_cast<std::size_t>(node)] = -1 - static_cast<std::int32_t>(d.leaf_tag.size());
-      d.leaf_tag.push_back(c.tag);
-      d.leaf_cell.push_back(
-          static_cast<std::int32_t>((c.y >> resolution_) * static_cast<std::uint32_t>(grid_) + (c.x >> resolution_)));
-      d.leaf_cell.push_back(c.level);
-      d.leaf_cell.push_back(static_cast<std::int32_t>((c.x & below_root) >> (resolution_ - c.level)));
-      d.leaf_cell.push_back(static_cast<std::int32_t>((c.y & below_root) >> (resolution_ - c.level)));
-      for (const std::int32_t id : c.corner) d.leaf_corner.push_back(corner(id));
-      return;
+  // builder this one replaced, so the arrays are the same bit for bit. The walk keeps its own stack of
+  // (cell, node), the children pushed last to first so that the first is visited first.
+  std::vector<std::pair<int, int>> stack;
+  auto visit = [&](int root, int root_node) {
+    stack.assign(1, {root, root_node});
+    while (!stack.empty()) {
+      const auto [cell, node] = stack.back();
+      stack.pop_back();
+      const Cell& c = cells_[static_cast<std::size_t>(cell)];
+      d.max_depth = std::max(d.max_depth, static_cast<std::int32_t>(c.level));
+      if (c.first_child < 0) {
+        d.node_child[static_cast<std::size_t>(node)] = -1 - static_cast<std::int32_t>(d.leaf_tag.size());
+        d.leaf_tag.push_back(c.tag);
+        d.leaf_cell.push_back(
+            static_cast<std::int32_t>((c.y >> resolution_) * static_cast<std::uint32_t>(grid_) + (c.x >> resolution_)));
+        d.leaf_cell.push_back(c.level);
+        d.leaf_cell.push_back(static_cast<std::int32_t>((c.x & below_root) >> (resolution_ - c.level)));
+        d.leaf_cell.push_back(static_cast<std::int32_t>((c.y & below_root) >> (resolution_ - c.level)));
+        for (const std::int32_t id : c.corner) d.leaf_corner.push_back(corner(id));
+        continue;
+      }
+      const int first = new_node();
+      for (int k = 1; k < 4; ++k) new_node();
+      d.node_child[static_cast<std::size_t>(node)] = first;
+      for (int k = 3; k >= 0; --k) stack.emplace_back(c.first_child + k, first + k);
     }
-    const int first = new_node();
-    for (int k = 1; k < 4; ++k) new_node();
-    d.node_child[static_cast<std::size_t>(node)] = first;
-    for (int k = 0; k < 4; ++k) visit(c.first_child + k, first + k);
   };
   const auto roots = static_cast<std::size_t>(grid_) * static_cast<std::size_t>(grid_);
   d.root_node.resize(roots);

@@ -112,6 +112,8 @@ class BackgroundBuilder {
 
  private:
   double coord(double origin, std::uint32_t lattice) const;
+  // Sets root_size_ and the table of cell sides by level (side()).
+  void set_root_size(double root_size);
   void choose_grid();
   void make_roots();
   // Sets a new cell's tag from its segment list (exact inside test of the centre when empty).
@@ -141,12 +143,14 @@ class BackgroundBuilder {
   const double lattice_unit_;
   int grid_ = 1;
   double origin_x_ = 0.0, origin_y_ = 0.0, root_size_ = 1.0;
+  std::vector<double> sides_;  // side(level) for levels 0 .. resolution_, once root_size_ is set
   std::vector<Cell> cells_;
   std::vector<std::vector<int>> segment_lists_;
   FlatKeyMap<std::int32_t> samples_;  // lattice key -> sample id
   std::vector<double> values_;        // by sample id
   std::size_t batches_ = 0;
-  double finished_nodes_ = 0.0;  // nodes in the inside leaves the running refine() has finished
+  double finished_nodes_ = 0.0;      // nodes in the inside leaves the running refine() has finished
+  bool decide_in_parallel_ = false;  // set by build(): its decide and corner_value only read
 };
 
 }  // namespace pdmesh

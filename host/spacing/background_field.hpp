@@ -83,6 +83,11 @@ struct BackgroundOptions {
   // nodes that the inside cells made so far ask for against max_nodes (0: no limit).
   double max_nodes = 0.0;
   MemoryLimit memory;
+  // At most this many threads in the builder's and the limited field's loops (0: as many as
+  // parallel_for takes). The result is the same for every count; tests compare 1 with the default.
+  std::size_t threads = 0;
+  std::size_t loop_threads() const { return threads > 0 ? threads : kParallelForThreads; }
+  static constexpr std::size_t kParallelForThreads = 8;  // parallel_for's default max_threads
 };
 
 struct BackgroundStats {

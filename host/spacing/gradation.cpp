@@ -14,6 +14,7 @@
 #include <fmt/format.h>
 
 #include "core/errors.hpp"
+#include "core/parallel.hpp"
 
 namespace pdmesh {
 
@@ -27,14 +28,48 @@ GradationGraph::GradationGraph(std::vector<Vec2> corners, const std::vector<std:
   // Each leaf joins its 4 corners pairwise (sides and diagonals): a corner's neighbours are the other
   // corners of its leaves, in the leaves' order. A corner shared by several leaves gets a neighbour
   // twice at most, which costs a repeated relaxation and nothing else.
-  std::vector<std::int32_t> count(n + 1, 0);
-  for (const std::int32_t c : leaf_corner) ++count[static_cast<std::size_t>(c) + 1];
-  for (std::size_t i = 0; i < n; ++i) count[i + 1] += count[i];
-  leaf_start_ = count;
-  leaf_of_.resize(leaf_corner.size());
-  for (std::size_t k = 0; k < leaf_corner.size(); ++k)
-    leaf_of_[static_cast<std::size_t>(count[static_cast<std::size_t>(leaf_corner[k])]++)] =
-        static_cast<std::int32_t>(k);
+  // A counting sort of the entries by corner, keeping k ascending within each corner. Large graphs
+  // are sorted in two halves of the entries at once: each half counts its own entries per corner, the
+  // first half's entries of a corner go before the second's, and each half then writes its own: the
+  // same lists as one pass.
+  const std::size_t m = leaf_corner.size();
+  const std::size_t parts = m >= 2 * kEntriesPerPart ? 2 : 1;
+  std::vector<std::vector<std::int32_t>> count(parts, std::vector<std::int32_t>(n, 0));
+  auto part_range = [&](std::size_t part) {
+    return std::pair<std::size_t, std::size_t>{part * m / parts, (part + 1) * m / parts};
+  };
+  parallel_for(
+      parts,
+      [&](std::size_t part) {
+        const auto [begin, end] = part_range(part);
+        std::vector<std::int32_t>& mine = count[part];
+        for (std::size_t k = begin; k < end; ++k) ++mine[static_cast<std::size_t>(leaf_corner[k])];
+      },
+      1);
+  // leaf_start_[c] is where corner c's list starts; count[part][c] becomes where part's entries of
+  // corner c start in leaf_of_.
+  leaf_start_.assign(n + 1, 0);
+  std::int32_t at = 0;
+  for (std::size_t c = 0; c < n; ++c) {
+    leaf_start_[c] = at;
+    for (std::size_t part = 0; part < parts; ++part) {
+      const std::int32_t here = count[part][c];
+      count[part][c] = at;
+      at += here;
+    }
+  }
+  leaf_start_[n] = at;
+  leaf_of_.resize(m);
+  parallel_for(
+      parts,
+      [&](std::size_t part) {
+        const auto [begin, end] = part_range(part);
+        std::vector<std::int32_t>& next = count[part];
+        for (std::size_t k = begin; k < end; ++k)
+          leaf_of_[static_cast<std::size_t>(next[static_cast<std::size_t>(leaf_corner[k])]++)] =
+              static_cast<std::int32_t>(k);
+      },
+      1);
 }
 
 void GradationGraph::limit(double g, const std::vector<double>& q0, std::vector<double>& q,

@@ -24,6 +24,8 @@ class GradationGraph {
   GradationGraph(std::vector<Vec2> corners, const std::vector<std::int32_t>& leaf_corner);
 
   std::size_t size() const { return corners_.size(); }
+  // From 2 x this many leaf corners the corners' leaf lists are sorted in two halves on two threads.
+  static constexpr std::size_t kEntriesPerPart = 65536;
   const std::vector<Vec2>& corners() const { return corners_; }
 
   // The limited field. In: q0 at every corner. Out: q at every corner and its source: an index < size()

@@ -42,48 +42,69 @@ class LimitedField {
 
   BackgroundFieldData run() {
     segment_sources();
+    std::vector<std::int32_t> leaf_corner;
     for (int round = 1; round <= kMaxRounds; ++round) {
       stats_.rounds = round;
       std::vector<int> leaves = b_.leaves();
-      std::vector<std::int32_t> leaf_corner;
-      leaf_corner.reserve(4 * leaves.size());
-      std::vector<std::uint64_t> keys(4 * leaves.size());
-      std::vector<std::int32_t> ids(4 * leaves.size());
-      // Each leaf's four corner keys and ids written in place into arrays sized once per round.
-      for (std::size_t n = 0; n < leaves.size(); ++n) {
-        const Cell& c = b_.cells()[static_cast<std::size_t>(leaves[n])];
-        const std::uint32_t s = b_.span(c.level);
-        keys[4 * n] = BackgroundBuilder::key(c.x, c.y);
-        keys[4 * n + 1] = BackgroundBuilder::key(c.x + s, c.y);
-        keys[4 * n + 2] = BackgroundBuilder::key(c.x, c.y + s);
-        keys[4 * n + 3] = BackgroundBuilder::key(c.x + s, c.y + s);
-        for (std::size_t a = 0; a < 4; ++a) ids[4 * n + a] = c.corner[a];
+      if (round == 1) {
+        // The base tree's corners, registered in the leaves' order. Later rounds have no new ones: each
+        // cell that refine() made got its corners registered when it asked for their values
+        // (corner_value), and a corner left unregistered would throw in corner_id below.
+        std::vector<std::uint64_t> keys(4 * leaves.size());
+        std::vector<std::int32_t> ids(4 * leaves.size());
+        for (std::size_t n = 0; n < leaves.size(); ++n) {
+          const Cell& c = b_.cells()[static_cast<std::size_t>(leaves[n])];
+          const std::uint32_t s = b_.span(c.level);
+          keys[4 * n] = BackgroundBuilder::key(c.x, c.y);
+          keys[4 * n + 1] = BackgroundBuilder::key(c.x + s, c.y);
+          keys[4 * n + 2] = BackgroundBuilder::key(c.x, c.y + s);
+          keys[4 * n + 3] = BackgroundBuilder::key(c.x + s, c.y + s);
+          for (std::size_t a = 0; a < 4; ++a) ids[4 * n + a] = c.corner[a];
+        }
+        add_corners(keys, ids);
       }
-      add_corners(keys, ids);  // the base tree's corners in round 1; afterwards all known already
-      for (const std::int32_t id : ids) leaf_corner.push_back(corner_id(id));
-      const std::vector<double> before = q_;
+      // Each leaf's four corner ids, written in place by leaf (lookups only: on all cores).
+      leaf_corner.resize(4 * leaves.size());
+      parallel_for(
+          leaves.size(),
+          [&](std::size_t n) {
+            const Cell& c = b_.cells()[static_cast<std::size_t>(leaves[n])];
+            for (std::size_t a = 0; a < 4; ++a) leaf_corner[4 * n + a] = corner_id(c.corner[a]);
+          },
+          4096, b_.options().loop_threads());
+      // The values before this round's limit, which later rounds compare against (round 1 compares
+      // against the base field instead).
+      std::vector<double> before;
+      if (round > 1) before = q_;
       const double tolerance = b_.options().tolerance;
       limit(leaf_corner, round == 1);
       check_nodes(leaves, leaf_corner);
       // Refine the leaves whose corners the limit lowered this round (round 1: below the base field).
+      // Each leaf's test only reads, so the flags are set on all cores and gathered in the leaves' order.
+      std::vector<std::uint8_t> refine_leaf(leaves.size(), 0);
+      parallel_for(
+          leaves.size(),
+          [&](std::size_t n) {
+            bool lowered = false;
+            for (int a = 0; a < 4 && !lowered; ++a) {
+              const auto i = static_cast<std::size_t>(leaf_corner[4 * n + static_cast<std::size_t>(a)]);
+              lowered = round == 1 ? q_[i] < base_[i] : q_[i] < (1.0 - kLowered * tolerance) * before[i];
+            }
+            // Round 1 also takes the boundary leaves where a segment asks for less than the corners do:
+            // a gap or a curve narrower than the leaf may lie between its corners and test points.
+            if (!lowered && round == 1) {
+              const Cell& c = b_.cells()[static_cast<std::size_t>(leaves[n])];
+              double q_max = 0.0;
+              for (int a = 0; a < 4; ++a)
+                q_max = std::max(q_max, q_[static_cast<std::size_t>(leaf_corner[4 * n + static_cast<std::size_t>(a)])]);
+              lowered = segment_minimum(c) < q_max;
+            }
+            refine_leaf[n] = lowered ? 1 : 0;
+          },
+          4096, b_.options().loop_threads());
       std::vector<int> candidates;
-      for (std::size_t n = 0; n < leaves.size(); ++n) {
-        bool lowered = false;
-        for (int a = 0; a < 4 && !lowered; ++a) {
-          const auto i = static_cast<std::size_t>(leaf_corner[4 * n + static_cast<std::size_t>(a)]);
-          lowered = round == 1 ? q_[i] < base_[i] : q_[i] < (1.0 - kLowered * tolerance) * before[i];
-        }
-        // Round 1 also takes the boundary leaves where a segment asks for less than the corners do:
-        // a gap or a curve narrower than the leaf may lie between its corners and test points.
-        if (!lowered && round == 1) {
-          const Cell& c = b_.cells()[static_cast<std::size_t>(leaves[n])];
-          double q_max = 0.0;
-          for (int a = 0; a < 4; ++a)
-            q_max = std::max(q_max, q_[static_cast<std::size_t>(leaf_corner[4 * n + static_cast<std::size_t>(a)])]);
-          lowered = segment_minimum(c) < q_max;
-        }
-        if (lowered) candidates.push_back(leaves[n]);
-      }
+      for (std::size_t n = 0; n < leaves.size(); ++n)
+        if (refine_leaf[n]) candidates.push_back(leaves[n]);
       if (candidates.empty()) break;
       const auto start = Clock::now();
       const std::size_t splits = b_.refine(
@@ -106,7 +127,8 @@ class LimitedField {
       // max of the two still is.
       const auto start = Clock::now();
       parallel_for(
-          q_.size(), [&](std::size_t i) { q_[i] = sources_.floor_at(pos_[i], q_[i]); }, 256);
+          q_.size(), [&](std::size_t i) { q_[i] = sources_.floor_at(pos_[i], q_[i]); }, 256,
+          b_.options().loop_threads());
       stats_.source_seconds += seconds_since(start);
     }
     for (std::size_t i = 0; i < q_.size(); ++i)
@@ -145,19 +167,28 @@ class LimitedField {
   }
 
   // The sum of term(side, corner q's) over the inside leaves whose four corners have a positive q, in
-  // the leaves' order.
+  // the leaves' order: the terms on all cores, then their sum on this thread (the same sum as one loop).
   template <class Term>
   double sum_over_inside_leaves(const std::vector<int>& leaves, const std::vector<std::int32_t>& leaf_corner,
                                 Term term) const {
+    std::vector<double> terms(leaves.size(), 0.0);
+    std::vector<std::uint8_t> counted(leaves.size(), 0);
+    parallel_for(
+        leaves.size(),
+        [&](std::size_t n) {
+          const Cell& c = b_.cells()[static_cast<std::size_t>(leaves[n])];
+          if (c.tag != kTagInside) return;
+          double q[4];
+          for (int a = 0; a < 4; ++a)
+            q[a] = q_[static_cast<std::size_t>(leaf_corner[4 * n + static_cast<std::size_t>(a)])];
+          if (!(q[0] > 0.0 && q[1] > 0.0 && q[2] > 0.0 && q[3] > 0.0)) return;
+          counted[n] = 1;
+          terms[n] = term(b_.side(c.level), q);
+        },
+        4096, b_.options().loop_threads());
     double sum = 0.0;
-    for (std::size_t n = 0; n < leaves.size(); ++n) {
-      const Cell& c = b_.cells()[static_cast<std::size_t>(leaves[n])];
-      if (c.tag != kTagInside) continue;
-      double q[4];
-      for (int a = 0; a < 4; ++a) q[a] = q_[static_cast<std::size_t>(leaf_corner[4 * n + static_cast<std::size_t>(a)])];
-      if (!(q[0] > 0.0 && q[1] > 0.0 && q[2] > 0.0 && q[3] > 0.0)) continue;
-      sum += term(b_.side(c.level), q);
-    }
+    for (std::size_t n = 0; n < leaves.size(); ++n)
+      if (counted[n]) sum += terms[n];
     return sum;
   }
 
@@ -167,6 +198,7 @@ class LimitedField {
 
   // The per-sample arrays cover every sample the builder has taken (new ones: no source, no corner).
   void grow() {
+    if (corner_of_.size() == b_.samples()) return;  // corner_value calls it for every corner it is asked
     source_at_.resize(b_.samples(), std::numeric_limits<double>::quiet_NaN());
     has_source_.resize(b_.samples(), 0);
     corner_of_.resize(b_.samples(), -1);
@@ -198,15 +230,42 @@ class LimitedField {
           source_at_[static_cast<std::size_t>(id)] =
               sources_.at(lattice(b_, keys[fresh[i]]), b_.sample_value(id), &seed.segment);
         },
-        256);
+        256, b_.options().loop_threads());
     stats_.source_seconds += seconds_since(start);
   }
 
   // Registers new corners: position, base sample and min(base, sources); their limited value is set
-  // when a cell first asks for it (corner_value).
+  // when a cell first asks for it (corner_value). The ids go to the new corners in the keys' order
+  // (as add_corner numbers them one by one); their data is then written on all cores, each corner
+  // its own entries.
   void add_corners(const std::vector<std::uint64_t>& keys, const std::vector<std::int32_t>& ids) {
     add_sources(keys, ids);
-    for (std::size_t i = 0; i < keys.size(); ++i) add_corner(keys[i], ids[i]);
+    const std::size_t first = pos_.size();
+    std::vector<std::size_t> fresh;  // positions in keys of the new corners, by corner id - first
+    for (std::size_t i = 0; i < keys.size(); ++i) {
+      std::int32_t& corner = corner_of_[static_cast<std::size_t>(ids[i])];
+      if (corner >= 0) continue;
+      corner = static_cast<std::int32_t>(first + fresh.size());
+      fresh.push_back(i);
+    }
+    const std::size_t total = first + fresh.size();
+    pos_.resize(total);
+    base_.resize(total);
+    q0_.resize(total);
+    q_.resize(total, std::numeric_limits<double>::quiet_NaN());  // NaN: not yet limited
+    source_.resize(total);
+    parallel_for(
+        fresh.size(),
+        [&](std::size_t f) {
+          const std::size_t i = first + f;
+          const std::uint64_t k = keys[fresh[f]];
+          const auto sample = static_cast<std::size_t>(ids[fresh[f]]);
+          pos_[i] = b_.point(static_cast<std::uint32_t>(k >> 32), static_cast<std::uint32_t>(k & 0xffffffffu));
+          base_[i] = b_.sample_value(ids[fresh[f]]);
+          q0_[i] = std::min(base_[i], source_at_[sample]);
+          source_[i] = static_cast<std::int32_t>(i);
+        },
+        4096, b_.options().loop_threads());
   }
   // One corner (a known one is skipped); its sources are computed here only when add_sources has not
   // seen its sample (the builder passes every sample it takes to add_sources, `sampled`, first).
@@ -235,7 +294,7 @@ class LimitedField {
         [&](std::size_t s) {
           segment_q_[s] = sources_.at(0.5 * (segs[s].a + segs[s].b), std::numeric_limits<double>::max());
         },
-        256);
+        256, b_.options().loop_threads());
     stats_.source_seconds += seconds_since(start);
   }
   double segment_minimum(const Cell& c) const {
