@@ -351,6 +351,20 @@ TEST_CASE("triangulate_triangles_from: the set triangulate_triangles makes, or n
   const auto made = triangulate_triangles_from(Triangulation(before), nodes, names);
   REQUIRE(made);
   CHECK(triangle_set(*made) == scratch);
+  // A constrained edge that is no Delaunay edge (a node near its middle on either side): recovered by
+  // flips from either triangulation, the same constrained triangles.
+  {
+    NodeSet near = nodes;
+    const std::vector<Vec2> near_before = near.x;
+    near.add({0.505, 0.402}, 0.1, NodeKind::Interior, -1);  // either side of (0.4, 0.4)-(0.61, 0.41)
+    near.add({0.505, 0.408}, 0.1, NodeKind::Interior, -1);
+    const auto from = triangulate_triangles_from(Triangulation(near_before), near, names);
+    REQUIRE(from);
+    CHECK(triangle_set(*from) == triangle_set(triangulate_triangles(near, names)));
+    Triangulation plain(near.x);
+    REQUIRE(plain.find_edge(plain.vertex_of[160], plain.vertex_of[161])[0] < 0);
+    REQUIRE(plain.find_edge(plain.vertex_of[161], plain.vertex_of[160])[0] < 0);
+  }
   // Nothing appended: the same.
   const auto same = triangulate_triangles_from(Triangulation(nodes.x), nodes, names);
   REQUIRE(same);

@@ -142,6 +142,7 @@ bool Triangulation::unique_inner_triangles() const {
     for (int i = 0; i < 3; ++i) {
       const int u = n[t][i];
       if (u < t) continue;  // each edge between two triangles once (u < 0: the super-triangle's sides)
+      if (is_constrained(tv[next3(i)], tv[prev3(i)])) continue;  // kept whatever the circle says
       const int q = v[u][index_of(n[u], t)];
       const double side = incircle(points[tv[i]], points[tv[next3(i)]], points[tv[prev3(i)]], points[q]);
       if (side > 0.0) return false;  // not Delaunay

@@ -65,9 +65,11 @@ class Triangulation {
   // the one a construction from `input` makes, as far as inner_triangles goes, when
   // unique_inner_triangles().
   bool add_points(const std::vector<Vec2>& input);
-  // Whether every Delaunay triangulation of the points (with the super vertices) has this one's
+  // Whether every (constrained) Delaunay triangulation of the points (with the super vertices and the
+  // constrained edges) has this one's
   // triangles among the input points (inner_triangles, as a set), whatever order of insertion made it:
-  // it is Delaunay, and wherever four or more points are cocircular (an edge whose far vertex is on
+  // it is Delaunay (constrained Delaunay: constrained edges are not judged), and wherever four or more
+  // points are cocircular (an edge whose far vertex is on
   // the circumcircle) the polygon they make has at most two input points and no diagonal between two
   // of them, so that every triangle of every triangulation of it has a super vertex. (Two super
   // vertices are cocircular with two hull points placed symmetrically about the box's centre: such

@@ -109,14 +109,20 @@ std::optional<std::vector<std::array<int, 3>>> triangulate_triangles_from(Triang
   }
   try {
     if (!t.add_points(nodes.x) || !t.unique_inner_triangles()) return std::nullopt;
+    // The same Delaunay triangles as the construction's: recovery starts from the same set, and when
+    // every boundary edge is an edge of it, only marks them. When it flips (a boundary edge that is no
+    // Delaunay edge), the flips and the Lawson pass after them run in another order there; the
+    // constrained Delaunay triangulation they reach is the same when it is the only one, which the
+    // second check says.
     const Chains chains = curve_chains(nodes, curve_names);
+    bool all_edges = true;
     for (const ConstrainedEdge& e : chains.edges) {
       if (e.a < 0 || e.b < 0 || e.a >= t.input_count || e.b >= t.input_count) return std::nullopt;
       const int a = t.vertex_of[static_cast<std::size_t>(e.a)], b = t.vertex_of[static_cast<std::size_t>(e.b)];
-      if (a == b || (t.find_edge(a, b)[0] < 0 && t.find_edge(b, a)[0] < 0)) return std::nullopt;
+      if (t.find_edge(a, b)[0] < 0 && t.find_edge(b, a)[0] < 0) all_edges = false;
     }
-    // Every boundary edge is an edge already: recover_edges only marks them (no flip, no Lawson pass).
     if (!chains.edges.empty()) recover_edges(t, chains.edges);
+    if (!all_edges && !t.unique_inner_triangles()) return std::nullopt;
     return chains.edges.empty() ? t.inner_triangles() : inside_triangles(std::move(t), chains.open_edges);
   } catch (const Interrupted&) {
     throw;

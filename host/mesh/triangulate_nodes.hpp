@@ -30,11 +30,12 @@ std::vector<std::array<int, 3>> triangulate_triangles(const NodeSet& nodes,
 // triangulate_triangles's triangles as a set (not in its order, nor each in its rotation), made from
 // `tri`: the Delaunay triangulation of the nodes' first tri.input_count positions as the Triangulation
 // constructor made it (a population event's, before the event appended nodes). The nodes after them
-// are inserted into it (Triangulation::add_points). Empty when that cannot be shown to give that set:
-// the first positions are not the nodes' (bit for bit), the insertion cannot keep the super-triangle,
-// another Delaunay triangulation has other triangles (Triangulation::unique_inner_triangles), a boundary edge is not
-// an edge of it (its recovery would flip), or an error arises (the caller's triangulate_triangles then
-// meets it, or not, as it would anyway). `tri` is taken over either way.
+// are inserted into it (Triangulation::add_points), then the boundary edges recovered and the outside
+// removed as triangulate_triangles does. Empty when that cannot be shown to give that set: the first
+// positions are not the nodes' (bit for bit), the insertion cannot keep the super-triangle, another
+// Delaunay triangulation, or after the recovery another constrained Delaunay triangulation, has other
+// triangles (Triangulation::unique_inner_triangles), or an error arises (the caller's
+// triangulate_triangles then meets it, or not, as it would anyway). `tri` is taken over either way.
 std::optional<std::vector<std::array<int, 3>>> triangulate_triangles_from(Triangulation tri, const NodeSet& nodes,
                                                                           const std::vector<std::string>& curve_names);
 Mesh mesh_of_triangles(const NodeSet& nodes, const std::vector<std::string>& curve_names,
