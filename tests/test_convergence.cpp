@@ -4,10 +4,14 @@
 // measured iteration) and resumed from its checkpoint stops where the uninterrupted run did.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <cstring>
 #include <functional>
 #include <limits>
+#include <optional>
+#include <random>
 #include <vector>
 
 #include "app/config/case_file.hpp"
@@ -19,6 +23,7 @@
 #include "sim/convergence.hpp"
 #include "sim/simulation.hpp"
 #include "convergence_fixtures.hpp"
+#include "seeded_random.hpp"
 
 using namespace pdmesh;
 
@@ -199,6 +204,75 @@ TEST_CASE(
   CHECK(std::isnan(bad.min_angle));
   CHECK(std::isnan(bad.aspect_ratio));
   CHECK(triangles == direct.triangles);  // left as they were
+}
+
+TEST_CASE("canonical_order: one order for a set of triangles, however laid out and rotated", "[convergence]") {
+  std::mt19937_64 rng(5);
+  std::vector<Vec2> pts;
+  for (int k = 0; k < 500; ++k) pts.push_back({pdmesh_test::unit(rng), pdmesh_test::unit(rng)});
+  const std::vector<std::array<int, 3>> tris = Triangulation(pts).inner_triangles();
+  const auto canonical = [&](const std::vector<std::array<int, 3>>& list) {
+    std::vector<std::array<int, 3>> out;
+    for (const std::uint32_t k : canonical_order(list, pts.size())) {
+      std::array<int, 3> t = list[k];
+      std::rotate(t.begin(), std::min_element(t.begin(), t.end()), t.end());
+      out.push_back(t);
+    }
+    return out;
+  };
+  const std::vector<std::array<int, 3>> first = canonical(tris);
+  REQUIRE(first.size() == tris.size());
+  for (std::size_t k = 1; k < first.size(); ++k) CHECK(first[k - 1] < first[k]);  // sorted, no repeat
+  std::vector<std::array<int, 3>> shuffled = tris;
+  std::shuffle(shuffled.begin(), shuffled.end(), rng);
+  for (auto& t : shuffled) std::rotate(t.begin(), t.begin() + static_cast<std::ptrdiff_t>(rng() % 3), t.end());
+  CHECK(canonical(shuffled) == first);
+}
+
+TEST_CASE("measure_mesh from a population event's triangulation: the same sample, no triangles handed out",
+          "[convergence]") {
+  // A square boundary dense enough that its edges are Delaunay, random interior nodes, then 20 more
+  // appended (as an event's insertions).
+  NodeSet nodes;
+  const int side = 40;
+  for (int k = 0; k < 4 * side; ++k) {
+    const double t = static_cast<double>(k % side) / side;
+    const Vec2 p = k < side ? Vec2{t, 0} : k < 2 * side ? Vec2{1, t} : k < 3 * side ? Vec2{1 - t, 1} : Vec2{0, 1 - t};
+    nodes.add(p, 0.1, NodeKind::Boundary, 0);
+  }
+  std::vector<int> loop(4 * side);
+  for (int k = 0; k < 4 * side; ++k) loop[static_cast<std::size_t>(k)] = k;
+  loop.push_back(0);
+  nodes.curve_nodes = {loop};
+  std::mt19937_64 rng(8);
+  const auto add = [&](int count) {
+    for (int k = 0; k < count; ++k)
+      nodes.add({0.02 + 0.96 * pdmesh_test::unit(rng), 0.02 + 0.96 * pdmesh_test::unit(rng)}, 0.1, NodeKind::Interior,
+                -1);
+  };
+  add(600);
+  const std::vector<Vec2> before = nodes.x;
+  add(20);
+  std::vector<std::array<int, 3>> scratch_triangles;
+  const MeshSample scratch = measure_mesh(nodes, 3, &scratch_triangles);
+  REQUIRE(std::isfinite(scratch.aspect_ratio));
+  REQUIRE_FALSE(scratch_triangles.empty());
+  std::optional<Triangulation> start(Triangulation{before});
+  std::vector<std::array<int, 3>> triangles;
+  const MeshSample s = measure_mesh(nodes, 3, &triangles, &start);
+  CHECK_FALSE(start.has_value());  // taken
+  CHECK(triangles.empty());        // not triangulate_triangles' order: none handed out
+  // Bit for bit.
+  CHECK(std::memcmp(&s.aspect_ratio, &scratch.aspect_ratio, sizeof(double)) == 0);
+  CHECK(std::memcmp(&s.min_angle, &scratch.min_angle, sizeof(double)) == 0);
+  // A start that is not the nodes' (one moved by an ulp): from scratch, with the triangles.
+  std::vector<Vec2> moved = before;
+  moved[300].y = std::nextafter(moved[300].y, 2.0);
+  start.emplace(moved);
+  const MeshSample again = measure_mesh(nodes, 3, &triangles, &start);
+  CHECK_FALSE(start.has_value());
+  CHECK(triangles == scratch_triangles);
+  CHECK(std::memcmp(&again.aspect_ratio, &scratch.aspect_ratio, sizeof(double)) == 0);
 }
 
 namespace {

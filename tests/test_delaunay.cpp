@@ -276,6 +276,115 @@ TEST_CASE("triangulate in two halves: triangulate_triangles then mesh_of_triangl
   CHECK_THROWS_AS(triangulate_triangles(nodes, {}), InputError);
 }
 
+namespace {
+
+// A list of triangles as a set: each rotated to start at its smallest index, sorted.
+std::vector<std::array<int, 3>> triangle_set(std::vector<std::array<int, 3>> tris) {
+  for (auto& t : tris) std::rotate(t.begin(), std::min_element(t.begin(), t.end()), t.end());
+  std::sort(tris.begin(), tris.end());
+  return tris;
+}
+
+}  // namespace
+
+TEST_CASE("add_points: a prefix's triangulation with the rest inserted is the construction's triangles", "[mesh]") {
+  // Random points in a square whose corners come first (the box of every prefix).
+  std::mt19937_64 rng(17);
+  std::vector<Vec2> pts = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+  for (int k = 0; k < 3000; ++k) pts.push_back({unit(rng), unit(rng)});
+  const std::vector<std::array<int, 3>> whole = triangle_set(Triangulation(pts).inner_triangles());
+  for (std::size_t held : {std::size_t{4}, std::size_t{2900}, std::size_t{3004}}) {
+    INFO("held " << held);
+    Triangulation tri(std::vector<Vec2>(pts.begin(), pts.begin() + static_cast<std::ptrdiff_t>(held)));
+    REQUIRE(tri.add_points(pts));
+    CHECK(tri.input_count == static_cast<int>(pts.size()));
+    CHECK(tri.unique_inner_triangles());
+    CHECK(tri.make_delaunay() == 0);
+    CHECK(triangle_set(tri.inner_triangles()) == whole);
+    for (std::size_t i = 0; i < pts.size(); ++i)
+      CHECK(tri.input_index[static_cast<std::size_t>(tri.vertex_of[i])] == static_cast<int>(i));
+  }
+  // A new point outside the held points' box would change the super-triangle: refused, nothing changed.
+  Triangulation tri(std::vector<Vec2>(pts.begin(), pts.begin() + 100));
+  const auto before = tri.inner_triangles();
+  std::vector<Vec2> outside(pts.begin(), pts.begin() + 100);
+  outside.push_back({0.5, 1.0 + 1e-9});
+  CHECK_FALSE(tri.add_points(outside));
+  CHECK(tri.inner_triangles() == before);
+  CHECK(tri.input_count == 100);
+  outside.back() = {0.5, std::nan("")};
+  CHECK_FALSE(tri.add_points(outside));
+  // A new point on a held one.
+  std::vector<Vec2> twice(pts.begin(), pts.begin() + 100);
+  twice.push_back(pts[50]);
+  CHECK_THROWS_AS(tri.add_points(twice), InputError);
+  // A grid's cells are cocircular: its Delaunay triangulations differ inside; random points (whose box
+  // corners tie with two super vertices) have one inside.
+  std::vector<Vec2> grid;
+  for (int i = 0; i < 20; ++i)
+    for (int j = 0; j < 20; ++j) grid.push_back({0.5 * i, 0.5 * j});
+  CHECK_FALSE(Triangulation(grid).unique_inner_triangles());
+  CHECK(Triangulation(pts).unique_inner_triangles());
+}
+
+TEST_CASE("triangulate_triangles_from: the set triangulate_triangles makes, or nothing", "[mesh]") {
+  // Boundary nodes close enough that every boundary edge is a Delaunay edge (no interior node within
+  // its diametral circle): no recovery flip.
+  NodeSet nodes;
+  // (Not an empty hole's square: its cocircular nodes would tie inside it.)
+  add_loop(nodes, square_loop(0, 1, 40, false), 0);
+  add_loop(nodes, {{0.4, 0.4}, {0.61, 0.41}, {0.6, 0.6}, {0.41, 0.58}}, 1);
+  nodes.constraint_curves = {0, 1};
+  std::mt19937_64 rng(31);
+  const auto interior = [&] { return Vec2{0.02 + 0.96 * unit(rng), 0.02 + 0.96 * unit(rng)}; };
+  for (int k = 0; k < 400; ++k) {
+    const Vec2 p = interior();
+    if (!(p.x > 0.3 && p.x < 0.7 && p.y > 0.3 && p.y < 0.7)) nodes.add(p, 0.1, NodeKind::Interior, -1);
+  }
+  const std::vector<std::string> names = {"outer", "inner"};
+  const std::vector<Vec2> before = nodes.x;
+  for (int k = 0; k < 30; ++k) {
+    const Vec2 p = interior();
+    if (!(p.x > 0.3 && p.x < 0.7 && p.y > 0.3 && p.y < 0.7)) nodes.add(p, 0.1, NodeKind::Interior, -1);
+  }
+  const auto scratch = triangle_set(triangulate_triangles(nodes, names));
+  const auto made = triangulate_triangles_from(Triangulation(before), nodes, names);
+  REQUIRE(made);
+  CHECK(triangle_set(*made) == scratch);
+  // A constrained edge that is no Delaunay edge (a node near its middle on either side): recovered by
+  // flips from either triangulation, the same constrained triangles.
+  {
+    NodeSet near = nodes;
+    const std::vector<Vec2> near_before = near.x;
+    near.add({0.505, 0.402}, 0.1, NodeKind::Interior, -1);  // either side of (0.4, 0.4)-(0.61, 0.41)
+    near.add({0.505, 0.408}, 0.1, NodeKind::Interior, -1);
+    const auto from = triangulate_triangles_from(Triangulation(near_before), near, names);
+    REQUIRE(from);
+    CHECK(triangle_set(*from) == triangle_set(triangulate_triangles(near, names)));
+    Triangulation plain(near.x);
+    REQUIRE(plain.find_edge(plain.vertex_of[160], plain.vertex_of[161])[0] < 0);
+    REQUIRE(plain.find_edge(plain.vertex_of[161], plain.vertex_of[160])[0] < 0);
+  }
+  // Nothing appended: the same.
+  const auto same = triangulate_triangles_from(Triangulation(nodes.x), nodes, names);
+  REQUIRE(same);
+  CHECK(triangle_set(*same) == scratch);
+  // A held node that moved since (one ulp), or a prefix that is not the nodes': nothing.
+  std::vector<Vec2> moved = before;
+  moved[200].x = std::nextafter(moved[200].x, 2.0);
+  CHECK_FALSE(triangulate_triangles_from(Triangulation(moved), nodes, names));
+  std::vector<Vec2> other(before.rbegin(), before.rend());
+  CHECK_FALSE(triangulate_triangles_from(Triangulation(other), nodes, names));
+  // Cocircular nodes (a grid): two Delaunay triangulations, so nothing.
+  NodeSet grid;
+  add_loop(grid, square_loop(0, 1, 10, false), 0);
+  for (int i = 1; i < 10; ++i)
+    for (int j = 1; j < 10; ++j) grid.add({0.1 * i, 0.1 * j}, 0.1, NodeKind::Interior, -1);
+  const std::vector<Vec2> grid_before = grid.x;
+  grid.add({0.55, 0.55}, 0.1, NodeKind::Interior, -1);
+  CHECK_FALSE(triangulate_triangles_from(Triangulation(grid_before), grid, {"outer"}));
+}
+
 TEST_CASE("circle in a circle: annulus area, boundary edges present", "[mesh]") {
   NodeSet nodes;
   const auto outer = add_loop(nodes, circle_loop(1.0, 96), 0);

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <random>
 #include <vector>
 
@@ -13,6 +14,7 @@
 #include "geometry/geometry.hpp"
 #include "geometry/geometry_tree.hpp"
 #include "init/initial_distribution.hpp"
+#include "mesh/delaunay.hpp"
 #include "lattice_rhombus.hpp"
 #include "sim/boundary_handling.hpp"
 #include "sim/population.hpp"
@@ -282,6 +284,42 @@ TEST_CASE("population: coincident nodes skip the event without touching the node
   CHECK(counts.skipped);
   CHECK_FALSE(counts.changed());
   CHECK(r.nodes.x == before.x);
+}
+
+TEST_CASE("population: an event asked to keeps its triangulation of the nodes before it", "[population]") {
+  Rhombus r(12);
+  r.fill(0.02, 6, 6);
+  BoundaryHandler boundary(*r.tree, r.nodes);
+  const std::vector<Vec2> before = r.nodes.x;
+  std::optional<Triangulation> kept;
+  const PopulationCounts counts =
+      run_population_event(r.nodes, boundary, r.spacing, first_event(), nullptr, nullptr, &kept);
+  CHECK(counts.inserted() == 1);
+  REQUIRE(kept.has_value());
+  // As the constructor makes it, whole (the graph's own triangulation frees what it does not read).
+  const Triangulation fresh(before);
+  CHECK(kept->input_count == fresh.input_count);
+  CHECK(kept->points == fresh.points);
+  CHECK(kept->input_index == fresh.input_index);
+  CHECK(kept->vertex_of == fresh.vertex_of);
+  CHECK(kept->v == fresh.v);
+  CHECK(kept->n == fresh.n);
+  CHECK(kept->vertex_triangle == fresh.vertex_triangle);
+  // The tracker keeps one only when asked, and an event that skips leaves none.
+  PopulationOptions options;
+  options.enabled = true;
+  PopulationTracker tracker;
+  CHECK(tracker.after_iteration(options, options.start, 1000, r.nodes, boundary, r.spacing));
+  CHECK_FALSE(tracker.triangulation.has_value());
+  tracker.keep_triangulation = true;
+  CHECK(tracker.after_iteration(options, tracker.schedule.next, 1000, r.nodes, boundary, r.spacing));
+  CHECK(tracker.triangulation.has_value());
+  r.nodes.add(r.nodes.x[40], 1.0, NodeKind::Interior, -1);
+  BoundaryHandler coincident(*r.tree, r.nodes);
+  const auto skipped = tracker.after_iteration(options, tracker.schedule.next, 1000, r.nodes, coincident, r.spacing);
+  REQUIRE(skipped);
+  CHECK(skipped->skipped);
+  CHECK_FALSE(tracker.triangulation.has_value());
 }
 
 TEST_CASE("population: the schedule, its ramp and the settled status", "[population]") {

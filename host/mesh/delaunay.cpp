@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 
 #include <cmath>
+#include <cstring>
 
 #include "core/interrupt.hpp"
 #include "core/errors.hpp"
@@ -40,6 +41,16 @@ void check_input(const std::vector<Vec2>& pts) {
                   pts.size(), pts[0].x, pts[0].y, pts[second].x, pts[second].y));
 }
 
+// The super-triangle's vertices for input points with bounding box `box`.
+std::array<Vec2, 3> super_vertices(const Box& box) {
+  const Vec2 c = box.centre();
+  const double m = std::max(box.width(), box.height());
+  // Far enough that the input's hull is (nearly always) reproduced, near enough that the
+  // predicates rarely leave their floating-point filter.
+  const double s = 100.0 * m;
+  return {Vec2{c.x - 2 * s, c.y - s}, Vec2{c.x + 2 * s, c.y - s}, Vec2{c.x, c.y + 2 * s}};
+}
+
 }  // namespace
 
 std::uint64_t Triangulation::edge_key(int a, int b) {
@@ -63,14 +74,7 @@ Triangulation::Triangulation(const std::vector<Vec2>& input) {
 void Triangulation::build() {
   Box box;
   for (const Vec2& p : points) box.add(p);
-  const Vec2 c = box.centre();
-  const double m = std::max(box.width(), box.height());
-  // Far enough that the input's hull is (nearly always) reproduced, near enough that the
-  // predicates rarely leave their floating-point filter.
-  const double s = 100.0 * m;
-  points.push_back({c.x - 2 * s, c.y - s});
-  points.push_back({c.x + 2 * s, c.y - s});
-  points.push_back({c.x, c.y + 2 * s});
+  for (const Vec2& p : super_vertices(box)) points.push_back(p);
   const std::size_t triangle_estimate = 2 * points.size() + 1;
   v.reserve(triangle_estimate);
   n.reserve(triangle_estimate);
@@ -86,6 +90,101 @@ void Triangulation::build() {
   vertex_triangle.assign(points.size(), -1);
   for (int t = 0; t < static_cast<int>(v.size()); ++t)
     for (int vertex : v[t]) vertex_triangle[vertex] = t;
+}
+
+bool Triangulation::add_points(const std::vector<Vec2>& input) {
+  const auto m = static_cast<std::size_t>(input_count);
+  if (input.size() < m || !constrained_.empty() || points.size() != m + 3) return false;
+  if (input.size() == m) return true;
+  if (input.size() > (1u << 29)) throw LimitError(fmt::format("triangulation of {} points is too large", input.size()));
+  // The super-triangle a construction from all of `input` would make: the same, or no insertion.
+  Box box;
+  for (std::size_t k = 0; k < m; ++k) box.add(points[k]);
+  for (std::size_t i = m; i < input.size(); ++i) {
+    if (!std::isfinite(input[i].x) || !std::isfinite(input[i].y)) return false;
+    box.add(input[i]);
+  }
+  const std::array<Vec2, 3> super = super_vertices(box);
+  if (std::memcmp(super.data(), points.data() + m, sizeof(super)) != 0) return false;
+  // The super vertices move behind the new input vertices.
+  const int added = static_cast<int>(input.size() - m);
+  for (auto& tv : v)
+    for (int& vertex : tv)
+      if (vertex >= input_count) vertex += added;
+  points.resize(m);
+  for (std::size_t i = m; i < input.size(); ++i) {
+    points.push_back(input[i]);
+    input_index.push_back(static_cast<int>(i));
+    vertex_of.push_back(static_cast<int>(i));
+  }
+  for (const Vec2& p : super) points.push_back(p);
+  input_count = static_cast<int>(input.size());
+  // As in build: each new vertex located by the walk from the last one's triangle, then inserted.
+  vertex_triangle.clear();
+  int last = 0;
+  for (int vertex = static_cast<int>(m); vertex < input_count; ++vertex) {
+    last = locate(points[vertex], last);
+    insert(vertex, last);
+  }
+  vertex_triangle.assign(points.size(), -1);
+  for (int t = 0; t < static_cast<int>(v.size()); ++t)
+    for (int vertex : v[t]) vertex_triangle[vertex] = t;
+  return true;
+}
+
+bool Triangulation::unique_inner_triangles() const {
+  // The edges whose far vertex lies on the circumcircle (a tie: either diagonal is Delaunay). Each
+  // group of triangles joined by ties triangulates one polygon of cocircular points, and every
+  // triangulation of it is Delaunay; elsewhere every triangulation has these triangles.
+  std::vector<std::array<int, 2>> ties;
+  for (int t = 0; t < static_cast<int>(v.size()); ++t) {
+    const auto& tv = v[t];
+    for (int i = 0; i < 3; ++i) {
+      const int u = n[t][i];
+      if (u < t) continue;  // each edge between two triangles once (u < 0: the super-triangle's sides)
+      if (is_constrained(tv[next3(i)], tv[prev3(i)])) continue;  // kept whatever the circle says
+      const int q = v[u][index_of(n[u], t)];
+      const double side = incircle(points[tv[i]], points[tv[next3(i)]], points[tv[prev3(i)]], points[q]);
+      if (side > 0.0) return false;  // not Delaunay
+      if (side == 0.0) {
+        // A diagonal between two input points: another triangulation of the polygon lacks it.
+        if (!is_super(tv[next3(i)]) && !is_super(tv[prev3(i)])) return false;
+        ties.push_back({t, u});
+      }
+    }
+  }
+  if (ties.empty()) return true;
+  // A polygon with at most two input points has a super vertex in every triangle of every
+  // triangulation: none of its triangles is an input triangle, whichever diagonals are chosen.
+  std::vector<int> group(v.size());
+  for (std::size_t t = 0; t < group.size(); ++t) group[t] = static_cast<int>(t);
+  const auto root = [&](int t) {
+    while (group[static_cast<std::size_t>(t)] != t)
+      t = group[static_cast<std::size_t>(t)] = group[static_cast<std::size_t>(group[static_cast<std::size_t>(t)])];
+    return t;
+  };
+  for (const auto& [t, u] : ties) group[static_cast<std::size_t>(root(t))] = root(u);
+  std::vector<std::array<int, 3>> inputs;  // per group root: its input points (-1: none yet)
+  std::vector<int> slot(v.size(), -1);
+  for (const auto& tie : ties)
+    for (const int t : tie) {
+      const int r = root(t);
+      if (slot[static_cast<std::size_t>(r)] < 0) {
+        slot[static_cast<std::size_t>(r)] = static_cast<int>(inputs.size());
+        inputs.push_back({-1, -1, -1});
+      }
+      auto& seen = inputs[static_cast<std::size_t>(slot[static_cast<std::size_t>(r)])];
+      for (const int vertex : v[static_cast<std::size_t>(t)]) {
+        if (is_super(vertex) || seen[0] == vertex || seen[1] == vertex) continue;
+        if (seen[0] < 0)
+          seen[0] = vertex;
+        else if (seen[1] < 0)
+          seen[1] = vertex;
+        else
+          return false;  // a third input point: some triangulation has an input triangle there
+      }
+    }
+  return true;
 }
 
 // Visibility walk from `start`: step across any edge that has p strictly on its outer side.

@@ -55,6 +55,26 @@ class Triangulation {
   // triangulation just built, which the incremental insertion leaves Delaunay under the same exact
   // incircle test (tests/test_delaunay.cpp checks it; recover_edges relies on it).
   int make_delaunay();
+  // Inserts the points input[input_count..) (the points before them must be the ones the triangulation
+  // holds) as the construction inserts its own: each located by the walk from the last one's triangle,
+  // split in and legalized under the same exact predicates; they become input points input_count.. (the
+  // super vertices follow them). Returns false, changing nothing, when the super-triangle of all of
+  // `input` is not this one (a new point outside the box of the points held), when a new coordinate is
+  // not finite or when edges are constrained. Throws InputError for a new point on a point held; the
+  // triangulation is then unusable. The result is a Delaunay triangulation of all the points; it is
+  // the one a construction from `input` makes, as far as inner_triangles goes, when
+  // unique_inner_triangles().
+  bool add_points(const std::vector<Vec2>& input);
+  // Whether every (constrained) Delaunay triangulation of the points (with the super vertices and the
+  // constrained edges) has this one's
+  // triangles among the input points (inner_triangles, as a set), whatever order of insertion made it:
+  // it is Delaunay (constrained Delaunay: constrained edges are not judged), and wherever four or more
+  // points are cocircular (an edge whose far vertex is on
+  // the circumcircle) the polygon they make has at most two input points and no diagonal between two
+  // of them, so that every triangle of every triangulation of it has a super vertex. (Two super
+  // vertices are cocircular with two hull points placed symmetrically about the box's centre: such
+  // ties are common and harmless. A grid's cells are not.)
+  bool unique_inner_triangles() const;
   // Triangles not touching the super-triangle, in input point indices (unconstrained use).
   std::vector<std::array<int, 3>> inner_triangles() const;
 

@@ -10,6 +10,7 @@
 #include <utility>
 
 #include "core/errors.hpp"
+#include "core/interrupt.hpp"
 #include "mesh/constrain.hpp"
 #include "mesh/delaunay.hpp"
 #include "mesh/metric_delaunay.hpp"
@@ -95,6 +96,39 @@ Mesh triangulate(const NodeSet& nodes, const std::vector<std::string>& curve_nam
 std::vector<std::array<int, 3>> triangulate_triangles(const NodeSet& nodes,
                                                       const std::vector<std::string>& curve_names) {
   return chain_triangles(nodes, curve_chains(nodes, curve_names), nullptr, {}, nullptr);
+}
+
+std::optional<std::vector<std::array<int, 3>>> triangulate_triangles_from(Triangulation tri, const NodeSet& nodes,
+                                                                          const std::vector<std::string>& curve_names) {
+  Triangulation& t = tri;
+  const auto held = static_cast<std::size_t>(t.input_count);
+  if (held > nodes.x.size() || t.points.size() != held + 3 || t.input_index.size() != held) return std::nullopt;
+  for (std::size_t k = 0; k < held; ++k) {
+    const Vec2 a = t.points[k], b = nodes.x[static_cast<std::size_t>(t.input_index[k])];
+    if (std::memcmp(&a, &b, sizeof(Vec2)) != 0) return std::nullopt;
+  }
+  try {
+    if (!t.add_points(nodes.x) || !t.unique_inner_triangles()) return std::nullopt;
+    // The same Delaunay triangles as the construction's: recovery starts from the same set, and when
+    // every boundary edge is an edge of it, only marks them. When it flips (a boundary edge that is no
+    // Delaunay edge), the flips and the Lawson pass after them run in another order there; the
+    // constrained Delaunay triangulation they reach is the same when it is the only one, which the
+    // second check says.
+    const Chains chains = curve_chains(nodes, curve_names);
+    bool all_edges = true;
+    for (const ConstrainedEdge& e : chains.edges) {
+      if (e.a < 0 || e.b < 0 || e.a >= t.input_count || e.b >= t.input_count) return std::nullopt;
+      const int a = t.vertex_of[static_cast<std::size_t>(e.a)], b = t.vertex_of[static_cast<std::size_t>(e.b)];
+      if (t.find_edge(a, b)[0] < 0 && t.find_edge(b, a)[0] < 0) all_edges = false;
+    }
+    if (!chains.edges.empty()) recover_edges(t, chains.edges);
+    if (!all_edges && !t.unique_inner_triangles()) return std::nullopt;
+    return chains.edges.empty() ? t.inner_triangles() : inside_triangles(std::move(t), chains.open_edges);
+  } catch (const Interrupted&) {
+    throw;
+  } catch (const Error&) {
+    return std::nullopt;
+  }
 }
 
 Mesh mesh_of_triangles(const NodeSet& nodes, const std::vector<std::string>& curve_names,

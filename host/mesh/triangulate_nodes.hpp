@@ -1,9 +1,11 @@
 // Node set -> boundary-conforming constrained Delaunay mesh of the domain.
 #pragma once
 #include <array>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "mesh/delaunay.hpp"
 #include "mesh/mesh.hpp"
 #include "mesh/metric_delaunay.hpp"
 #include "spacing/metric_field.hpp"
@@ -25,6 +27,17 @@ Mesh triangulate(const NodeSet& nodes, const std::vector<std::string>& curve_nam
 // triangulate_triangles(nodes, names)) is triangulate(nodes, names).
 std::vector<std::array<int, 3>> triangulate_triangles(const NodeSet& nodes,
                                                       const std::vector<std::string>& curve_names);
+// triangulate_triangles's triangles as a set (not in its order, nor each in its rotation), made from
+// `tri`: the Delaunay triangulation of the nodes' first tri.input_count positions as the Triangulation
+// constructor made it (a population event's, before the event appended nodes). The nodes after them
+// are inserted into it (Triangulation::add_points), then the boundary edges recovered and the outside
+// removed as triangulate_triangles does. Empty when that cannot be shown to give that set: the first
+// positions are not the nodes' (bit for bit), the insertion cannot keep the super-triangle, another
+// Delaunay triangulation, or after the recovery another constrained Delaunay triangulation, has other
+// triangles (Triangulation::unique_inner_triangles), or an error arises (the caller's
+// triangulate_triangles then meets it, or not, as it would anyway). `tri` is taken over either way.
+std::optional<std::vector<std::array<int, 3>>> triangulate_triangles_from(Triangulation tri, const NodeSet& nodes,
+                                                                          const std::vector<std::string>& curve_names);
 Mesh mesh_of_triangles(const NodeSet& nodes, const std::vector<std::string>& curve_names,
                        std::vector<std::array<int, 3>> triangles);
 

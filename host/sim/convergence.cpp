@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdlib>
 #include <limits>
 #include <string>
@@ -42,17 +43,50 @@ std::vector<std::string> chain_names(const NodeSet& nodes) {
 
 }  // namespace
 
-MeshSample measure_mesh(const NodeSet& nodes, int iteration, std::vector<std::array<int, 3>>* triangles_out) {
+std::vector<std::uint32_t> canonical_order(const std::vector<std::array<int, 3>>& triangles, std::size_t points) {
+  // By the smallest index (a counting sort), then within it by the index after it (counter-clockwise):
+  // a directed edge is a side of one triangle at most, so the key is unique.
+  const auto first = [](const std::array<int, 3>& t) { return static_cast<std::size_t>(std::min({t[0], t[1], t[2]})); };
+  const auto second = [](const std::array<int, 3>& t) {
+    const int k = t[0] < t[1] ? (t[0] < t[2] ? 0 : 2) : (t[1] < t[2] ? 1 : 2);
+    return t[(k + 1) % 3];
+  };
+  std::vector<std::uint32_t> start(points + 1, 0);
+  for (const auto& t : triangles) ++start[first(t) + 1];
+  for (std::size_t i = 0; i < points; ++i) start[i + 1] += start[i];
+  std::vector<std::uint32_t> order(triangles.size());
+  for (std::size_t k = 0; k < triangles.size(); ++k)
+    order[start[first(triangles[k])]++] = static_cast<std::uint32_t>(k);
+  // start[i] is now the end of point i's run (the start of i + 1's).
+  for (std::size_t i = 0, lo = 0; i < points; lo = start[i], ++i)
+    for (std::size_t a = lo + 1; a < start[i]; ++a)
+      for (std::size_t b = a; b > lo && second(triangles[order[b - 1]]) > second(triangles[order[b]]); --b)
+        std::swap(order[b - 1], order[b]);
+  return order;
+}
+
+MeshSample measure_mesh(const NodeSet& nodes, int iteration, std::vector<std::array<int, 3>>* triangles_out,
+                        std::optional<Triangulation>* start) {
   constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
   MeshSample s{iteration, kNaN, kNaN};
   try {
     // The triangles only: a Mesh (a copy of the points and kinds) is made for the last measurement
     // alone (measured_mesh), and the triangulation's arrays are freed before the shapes are measured.
-    std::vector<std::array<int, 3>> triangles = triangulate_triangles(nodes, chain_names(nodes));
+    const std::vector<std::string> names = chain_names(nodes);
+    std::optional<std::vector<std::array<int, 3>>> from_start;
+    if (start && *start) {
+      from_start = triangulate_triangles_from(std::move(**start), nodes, names);
+      start->reset();
+    }
+    std::vector<std::array<int, 3>> triangles =
+        from_start ? std::move(*from_start) : triangulate_triangles(nodes, names);
     if (triangles.empty()) return s;
-    // The shapes on every core (the device waits for this check), then the minimum and the sum in
-    // triangle order on this thread: the same bits as one loop. In batches, so that the shapes of a
-    // multi-million-triangle mesh are never all held at once.
+    // Measured in the canonical order and rotation, so that the same set of triangles gives the same
+    // numbers whatever order a triangulation lays them out in. The shapes on every core (the device
+    // waits for this check), then the minimum and the sum in that order on this thread: the same bits
+    // as one loop. In batches, so that the shapes of a multi-million-triangle mesh are never all held
+    // at once.
+    const std::vector<std::uint32_t> order = canonical_order(triangles, nodes.size());
     constexpr std::size_t kBatch = std::size_t{1} << 16;
     std::vector<TriangleShape> shapes;
     const std::vector<Vec2>& p = nodes.x;
@@ -60,8 +94,9 @@ MeshSample measure_mesh(const NodeSet& nodes, int iteration, std::vector<std::ar
     for (std::size_t first = 0; first < triangles.size(); first += kBatch) {
       shapes.resize(std::min(kBatch, triangles.size() - first));
       parallel_for(shapes.size(), [&](std::size_t b) {
-        const auto& t = triangles[first + b];
-        shapes[b] = triangle_shape(p[t[0]], p[t[1]], p[t[2]]);
+        const auto& t = triangles[order[first + b]];
+        const int k = t[0] < t[1] ? (t[0] < t[2] ? 0 : 2) : (t[1] < t[2] ? 1 : 2);
+        shapes[b] = triangle_shape(p[t[k]], p[t[(k + 1) % 3]], p[t[(k + 2) % 3]]);
       });
       for (const TriangleShape& q : shapes) {
         angle = std::min(angle, q.min_angle);
@@ -70,7 +105,9 @@ MeshSample measure_mesh(const NodeSet& nodes, int iteration, std::vector<std::ar
     }
     s.min_angle = angle;
     s.aspect_ratio = aspect / static_cast<double>(triangles.size());
-    if (triangles_out) *triangles_out = std::move(triangles);
+    // The triangles made from `start` are not triangulate_triangles' order: none handed out (a run that
+    // stops here triangulates its nodes again in the mesh stage).
+    if (triangles_out && !from_start) *triangles_out = std::move(triangles);
   } catch (const Interrupted&) {
     throw;  // a stop request, not a measurement
   } catch (const Error&) {

@@ -9,9 +9,12 @@
 #pragma once
 #include <array>
 #include <cstddef>
+#include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "mesh/delaunay.hpp"
 #include "mesh/mesh.hpp"
 #include "nodes/node_set.hpp"
 #include "sim/history.hpp"
@@ -53,7 +56,18 @@ struct MeshSample {
 // not triangulate (coincident nodes in mid-run) gives NaN values, which never count as converged.
 // `triangles` (optional) receives the triangles measured (left as they were when the nodes do not
 // triangulate): a run that stops here has triangulated its final nodes already (measured_mesh).
-MeshSample measure_mesh(const NodeSet& nodes, int iteration, std::vector<std::array<int, 3>>* triangles = nullptr);
+// The numbers are those of the triangles in canonical_order, each rotated to start at its smallest
+// index: they depend on the set of triangles alone. `start` (optional, reset on return) is a Delaunay
+// triangulation of a prefix of the nodes' positions (the population event's of the same iteration,
+// PopulationTracker::triangulation): the triangles are made from it when triangulate_triangles_from
+// can (no triangles are then handed out), else from scratch.
+MeshSample measure_mesh(const NodeSet& nodes, int iteration, std::vector<std::array<int, 3>>* triangles = nullptr,
+                        std::optional<Triangulation>* start = nullptr);
+
+// The order of `triangles` (indices into it) by their smallest point index, then by the index after it
+// counter-clockwise: one order for a set of triangles, however it is laid out. `points`: the number of
+// points the indices refer to.
+std::vector<std::uint32_t> canonical_order(const std::vector<std::array<int, 3>>& triangles, std::size_t points);
 
 // The Mesh of the nodes whose triangles measure_mesh handed out (its curves named c0, c1, ...):
 // triangulate's, made only for the measurement a run stops at.

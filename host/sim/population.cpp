@@ -80,7 +80,7 @@ PopulationStatus population_status(const PopulationOptions& options, const Popul
 
 PopulationCounts run_population_event(NodeSet& nodes, BoundaryHandler& boundary, const SpacingField& spacing,
                                       const PopulationThresholds& thresholds, std::vector<int>* old_of_new,
-                                      const MetricField* metric) {
+                                      const MetricField* metric, std::optional<Triangulation>* kept) {
   const std::size_t n = nodes.size();
   if (old_of_new) {
     old_of_new->resize(n);
@@ -90,7 +90,7 @@ PopulationCounts run_population_event(NodeSet& nodes, BoundaryHandler& boundary,
   try {
     const population_profile::Timer timer("plan");
     plan = metric ? plan_metric_population_event(nodes, boundary.arcs(), boundary.tree(), *metric, thresholds)
-                  : plan_population_event(nodes, boundary.arcs(), boundary.tree(), spacing, thresholds);
+                  : plan_population_event(nodes, boundary.arcs(), boundary.tree(), spacing, thresholds, kept);
   } catch (const InputError&) {
     // Coincident (or all collinear) nodes cannot be triangulated; the forces separate coincident
     // nodes, and a later event sees them. GeometryError is an InputError.
@@ -131,8 +131,10 @@ std::optional<PopulationCounts> PopulationTracker::after_iteration(
     const SpacingField& spacing, std::vector<int>* old_of_new, const MetricField* metric) {
   if (!population_event_due(options, schedule, iteration, iterations)) return std::nullopt;
   const auto start = std::chrono::steady_clock::now();
-  const PopulationCounts counts = run_population_event(
-      nodes, boundary, spacing, population_thresholds(options, iteration, iterations), old_of_new, metric);
+  triangulation.reset();
+  const PopulationCounts counts =
+      run_population_event(nodes, boundary, spacing, population_thresholds(options, iteration, iterations), old_of_new,
+                           metric, keep_triangulation && !metric ? &triangulation : nullptr);
   seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (counts.changed()) trace_row_locality(fmt::format("after the event after iteration {}", iteration).c_str(), nodes);
   ++events;

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "geometry/geometry_tree.hpp"
+#include "mesh/delaunay.hpp"
 #include "nodes/node_set.hpp"
 #include "spacing/spacing_field.hpp"
 
@@ -104,9 +105,12 @@ PopulationThresholds population_thresholds(const PopulationOptions& options, int
 // inserted ones).
 // With `metric` set (a metric run), the plan measures lengths in the metric
 // (plan_metric_population_event, sigma = 1 in metric units); q still comes from `spacing`.
+// With `kept` (not with `metric`), the Delaunay triangulation of the nodes before the event goes there
+// (plan_population_event); it stays empty when the event is skipped.
 PopulationCounts run_population_event(NodeSet& nodes, BoundaryHandler& boundary, const SpacingField& spacing,
                                       const PopulationThresholds& thresholds, std::vector<int>* old_of_new = nullptr,
-                                      const MetricField* metric = nullptr);
+                                      const MetricField* metric = nullptr,
+                                      std::optional<Triangulation>* kept = nullptr);
 
 // The schedule's state between events (a checkpoint stores it): with the options and the run's
 // length it says when the next event comes.
@@ -145,6 +149,11 @@ struct PopulationTracker {
   std::size_t inserted = 0, removed = 0;  // this run's events (not a resumed run's earlier part)
   int events = 0;
   double seconds = 0.0;
+  // Set before an iteration whose mesh is measured after it: an event after that iteration (not a
+  // metric run's) keeps its triangulation of the nodes before it in `triangulation`, from which the
+  // measurement starts (measure_mesh). The measurement takes it; an event without one resets it.
+  bool keep_triangulation = false;
+  std::optional<Triangulation> triangulation;
   // Runs the event due after `iteration` of a run of `iterations`, if one is; see run_population_event.
   std::optional<PopulationCounts> after_iteration(const PopulationOptions& options, int iteration, int iterations,
                                                   NodeSet& nodes, BoundaryHandler& boundary,

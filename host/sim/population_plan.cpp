@@ -41,8 +41,8 @@ class SpacingRuler {
   };
 
   SpacingRuler(const NodeSet& nodes, const std::vector<std::vector<double>>& arcs, const GeometryTree& tree,
-               const SpacingField& spacing)
-      : graph(nodes.x), nodes_(nodes), arcs_(arcs), tree_(tree), spacing_(spacing) {}
+               const SpacingField& spacing, std::optional<Triangulation>* kept)
+      : graph(graph_of(nodes.x, kept)), nodes_(nodes), arcs_(arcs), tree_(tree), spacing_(spacing) {}
 
   double gap_ratio(std::size_t c, std::size_t i, std::size_t j) const {
     const std::vector<int>& list = nodes_.curve_nodes[c];
@@ -94,6 +94,14 @@ class SpacingRuler {
   const DelaunayGraph graph;
 
  private:
+  // The graph of the points' triangulation; with `kept`, the triangulation kept there whole.
+  static DelaunayGraph graph_of(const std::vector<Vec2>& points, std::optional<Triangulation>* kept) {
+    if (!kept) return DelaunayGraph(points);
+    kept->reset();
+    kept->emplace(DelaunayGraph::triangulate(points));
+    return DelaunayGraph(static_cast<const Triangulation&>(**kept));
+  }
+
   double q(int i) const { return nodes_.q[static_cast<std::size_t>(i)]; }
   Vec2 x(int i) const { return nodes_.x[static_cast<std::size_t>(i)]; }
 
@@ -107,8 +115,8 @@ class SpacingRuler {
 
 PopulationPlan plan_population_event(const NodeSet& nodes, const std::vector<std::vector<double>>& arcs,
                                      const GeometryTree& tree, const SpacingField& spacing,
-                                     const PopulationThresholds& thresholds) {
-  const SpacingRuler ruler(nodes, arcs, tree, spacing);
+                                     const PopulationThresholds& thresholds, std::optional<Triangulation>* kept) {
+  const SpacingRuler ruler(nodes, arcs, tree, spacing, kept);
   return population_detail::Planner<SpacingRuler>(nodes, arcs, tree, ruler, thresholds).run();
 }
 

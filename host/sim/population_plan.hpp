@@ -3,6 +3,7 @@
 // boundary gaps, clusters, low-valence nodes and vacancies, each node in at most one operation.
 #pragma once
 #include <cstddef>
+#include <optional>
 #include <vector>
 
 #include "geometry/geometry_tree.hpp"
@@ -29,10 +30,12 @@ struct PopulationPlan {
 
 // Plans one event for `nodes`, whose boundary handler holds the arc positions `arcs` (parallel to
 // curve_nodes). Throws InputError / GeometryError when the nodes cannot be triangulated (coincident
-// or all collinear nodes); the caller then skips the event.
+// or all collinear nodes); the caller then skips the event. With `kept`, the Delaunay triangulation
+// of the nodes the plan is made on goes there (as the Triangulation constructor made it).
 PopulationPlan plan_population_event(const NodeSet& nodes, const std::vector<std::vector<double>>& arcs,
                                      const GeometryTree& tree, const SpacingField& spacing,
-                                     const PopulationThresholds& thresholds);
+                                     const PopulationThresholds& thresholds,
+                                     std::optional<Triangulation>* kept = nullptr);
 
 // The same plan with every length measured in `metric` (sigma = 1 in metric units) on the nodes'
 // Delaunay graph in the metric (mesh/metric_delaunay): boundary gaps by the metric length of their
