@@ -118,9 +118,9 @@ void step_prefetch_spacing(const int a, const int n, __global const int* node_le
 // non-finite moves) are appended to cand_index / cand_rec (x, y, dx, dy) with an integer atomic counter
 // (counters[COUNTER_CANDIDATES]) for the host's exact test (counters[COUNTER_NON_FINITE]: set when a move is not
 // finite); boundary nodes write (x, y, dx, dy) to their slot bslot[i] of brec. beta > 0: the move is momentum's d
-// (carried: each node's previous d, x and y interleaved; any buffer when beta = 0). skin_use: (|x_next - x_build| +
-// cutoff max(0, q_next - q_build)) / (skin cutoff q_build) over the share its skin class allows (skin_use_of),
-// maximised per group (interior nodes the host does not touch; the host covers the rest).
+// (carried: each node's previous d, x and y interleaved, turned towards F by mix > 0; any buffer when beta = 0).
+// skin_use: (|x_next - x_build| + cutoff max(0, q_next - q_build)) / (skin cutoff q_build) over the share its skin
+// class allows (skin_use_of), maximised per group (interior nodes the host does not touch; the host covers the rest).
 __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void device_step(
     const int n, const REAL cutoff, const REAL lj_a, const int r0_any_direction, const REAL stability_factor,
     __global const REAL* dt_gm2_in, const REAL skin_cutoff, __global const REAL2* xy, __global const REAL* q,
@@ -129,8 +129,8 @@ __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void device_step(
     __global const REAL* q_build, __global const uchar* skin_class, __global const int* bslot, __global REAL2* xy_next,
     __global REAL* q_next, __global REAL* budget, __global int* node_leaf, __global REAL* brec,
     __global int* cand_index, __global REAL* cand_rec, __global int* counters, __global REAL* partials,
-    __global const REAL* segs, const int n_segs, const REAL seg_scale, const REAL beta, __global REAL2* carried,
-    BG_ARGS) {
+    __global const REAL* segs, const int n_segs, const REAL seg_scale, const REAL beta, const REAL mix,
+    __global REAL2* carried, BG_ARGS) {
   __local REAL values[STEP_PARTIALS * WG_SIZE];
 #if PDMESH_FORCE_LOOP_VECTOR
   // The packed row entries between the phases of node_forces (kernels/forces.cl, node_forces_scan),
@@ -186,7 +186,7 @@ __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void device_step(
   // reads and writes its carried move, so one buffer serves (no double buffering). Fixed: p = 0.
   if (beta > (REAL)0 && active) {
     if (moving) {
-      const REAL2 d = momentum_move(dx, dy, carried[i], beta, fx, fy, r0);
+      const REAL2 d = momentum_move(dx, dy, carried[i], beta, mix, fx, fy, r0);
       dx = d.x;
       dy = d.y;
     }

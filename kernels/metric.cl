@@ -158,9 +158,9 @@ __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void time_step_and
 
 // StepBackend::apply_momentum in metric mode (reference::momentum_move_metric): the cap |d|_M <= r0 / 3.
 __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void apply_momentum_metric(
-    const int n, const REAL beta, __global const uchar* kind, __global const REAL* fx, __global const REAL* fy,
-    __global const REAL* r0, __global const REAL* m11, __global const REAL* m12, __global const REAL* m22,
-    __global REAL* dx_io, __global REAL* dy_io, __global REAL2* carried) {
+    const int n, const REAL beta, const REAL mix, __global const uchar* kind, __global const REAL* fx,
+    __global const REAL* fy, __global const REAL* r0, __global const REAL* m11, __global const REAL* m12,
+    __global const REAL* m22, __global REAL* dx_io, __global REAL* dy_io, __global REAL2* carried) {
   const int i = get_global_id(0);
   if (i >= n) return;
   if (kind[i] == 0) {
@@ -168,7 +168,7 @@ __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void apply_momentu
     return;
   }
   const REAL gx = dx_io[i], gy = dy_io[i];
-  const REAL2 p = carried[i];
+  const REAL2 p = mix > (REAL)0 ? momentum_steer(carried[i], mix, fx[i], fy[i]) : carried[i];
   REAL dx = gx + beta * p.x;
   REAL dy = gy + beta * p.y;
   if (dx * fx[i] + dy * fy[i] < (REAL)0) {

@@ -33,10 +33,21 @@ __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void time_step_and
   dy_out[i] = REAL_C(0.5) * dt2 * fy[i];
 }
 
+// The carried move turned towards the force (host/sim/reference/time_step.cpp, momentum_steer: the same
+// expressions in the same order): p = (1 - mix) p + mix |p| F / |F|; unchanged where p = 0 or F = 0.
+REAL2 momentum_steer(const REAL2 p, const REAL mix, const REAL fx, const REAL fy) {
+  const REAL pl = force_norm(p.x, p.y);  // double: sqrt(x^2 + y^2), the reference's
+  const REAL fl = force_norm(fx, fy);
+  if (!(pl > (REAL)0) || !(fl > (REAL)0)) return p;
+  return (REAL2)(((REAL)1 - mix) * p.x + mix * pl * fx / fl, ((REAL)1 - mix) * p.y + mix * pl * fy / fl);
+}
+
 // Heavy-ball momentum for one node (host/sim/reference/time_step.cpp, momentum_move: the same
-// expressions in the same order): d = g + beta p; g where d points against F; |d| capped to r0 / 3.
-REAL2 momentum_move(const REAL gx, const REAL gy, const REAL2 p, const REAL beta, const REAL fx, const REAL fy,
-                    const REAL r0) {
+// expressions in the same order): p steered (mix > 0); d = g + beta p; g where d points against F; |d|
+// capped to r0 / 3.
+REAL2 momentum_move(const REAL gx, const REAL gy, const REAL2 carried, const REAL beta, const REAL mix, const REAL fx,
+                    const REAL fy, const REAL r0) {
+  const REAL2 p = mix > (REAL)0 ? momentum_steer(carried, mix, fx, fy) : carried;
   REAL dx = gx + beta * p.x;
   REAL dy = gy + beta * p.y;
   if (dx * fx + dy * fy < (REAL)0) {
@@ -58,15 +69,15 @@ REAL2 momentum_move(const REAL gx, const REAL gy, const REAL2 p, const REAL beta
 // StepBackend::apply_momentum: moves (dx, dy) in = g, out = d; carried (x and y interleaved) in = p,
 // out = d. Fixed nodes: d = p = 0.
 __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void apply_momentum(
-    const int n, const REAL beta, __global const uchar* kind, __global const REAL* fx, __global const REAL* fy,
-    __global const REAL* r0, __global REAL* dx, __global REAL* dy, __global REAL2* carried) {
+    const int n, const REAL beta, const REAL mix, __global const uchar* kind, __global const REAL* fx,
+    __global const REAL* fy, __global const REAL* r0, __global REAL* dx, __global REAL* dy, __global REAL2* carried) {
   const int i = get_global_id(0);
   if (i >= n) return;
   if (kind[i] == 0) {
     carried[i] = (REAL2)((REAL)0, (REAL)0);
     return;
   }
-  const REAL2 d = momentum_move(dx[i], dy[i], carried[i], beta, fx[i], fy[i], r0[i]);
+  const REAL2 d = momentum_move(dx[i], dy[i], carried[i], beta, mix, fx[i], fy[i], r0[i]);
   dx[i] = d.x;
   dy[i] = d.y;
   carried[i] = d;

@@ -82,9 +82,9 @@ class PoisonedMoves : public StepBackend {
     reference_->time_step_and_move(p, forces, dt_gm2, out);
     if (++calls_ == at_call_) out.dx[node_] = HUGE_VAL;
   }
-  void apply_momentum(const SimParticles& p, const ForceResult& forces, double beta, MoveResult& moves,
+  void apply_momentum(const SimParticles& p, const ForceResult& forces, double beta, double mix, MoveResult& moves,
                       MomentumState& carried) override {
-    reference_->apply_momentum(p, forces, beta, moves, carried);
+    reference_->apply_momentum(p, forces, beta, mix, moves, carried);
   }
   StepSums reduce(const SimParticles& p, const ForceResult& forces, const MoveResult& moves) override {
     return reference_->reduce(p, forces, moves);

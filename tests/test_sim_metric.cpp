@@ -330,7 +330,7 @@ struct Trace {
   std::vector<double> sums;
 };
 
-std::vector<Trace> metric_run(StepBackend& backend, SimParticles p, int steps) {
+std::vector<Trace> metric_run(StepBackend& backend, SimParticles p, int steps, double mix = 0.0) {
   std::vector<Trace> out;
   NeighbourList list;
   NeighbourFlags flags;
@@ -342,7 +342,7 @@ std::vector<Trace> metric_run(StepBackend& backend, SimParticles p, int steps) {
     build_neighbours_growing(backend, p, 1.5, list, flags);
     backend.compute_forces(p, list, params, forces);
     backend.time_step_and_move(p, forces, 0.03 * 0.03, moves);
-    backend.apply_momentum(p, forces, 0.9, moves, carried);
+    backend.apply_momentum(p, forces, 0.9, mix, moves, carried);
     const StepSums sums = backend.reduce(p, forces, moves);
     for (std::size_t i = 0; i < p.size(); ++i) {
       p.x[i] += moves.dx[i];
@@ -380,8 +380,11 @@ TEST_CASE("metric mode on the OpenCL backend in double equals the reference bit 
   const SimParticles p = varying_metric_input();
   auto host = make_reference_backend();
   auto device = ocl::make_opencl_backend(pdmesh::test::test_context(), ocl::Precision::Double);
-  const std::vector<Trace> a = metric_run(*host, p, 30);
-  const std::vector<Trace> b = metric_run(*device, p, 30);
+  // Without and with the carried moves steered towards the force (SimOptions::momentum_mix).
+  const double mix = GENERATE(0.0, 0.2);
+  INFO("momentum mix " << mix);
+  const std::vector<Trace> a = metric_run(*host, p, 30, mix);
+  const std::vector<Trace> b = metric_run(*device, p, 30, mix);
   REQUIRE(a.size() == b.size());
   double largest_move = 0.0;
   for (std::size_t step = 0; step < a.size(); ++step) {
@@ -480,7 +483,7 @@ TEST_CASE("nodes relaxed in the linear case's metric sit at unit metric length f
     build_neighbours_growing(*backend, p, 1.5, list, flags);
     backend->compute_forces(p, list, params, forces);
     backend->time_step_and_move(p, forces, 0.03 * 0.03, moves);
-    backend->apply_momentum(p, forces, 0.9, moves, carried);
+    backend->apply_momentum(p, forces, 0.9, 0.0, moves, carried);
     for (std::size_t i = boundary; i < p.size(); ++i) {
       double x = p.x[i] + moves.dx[i], y = p.y[i] + moves.dy[i];
       if (x <= 0.0 || x >= 1.0) x = 0.5 * (p.x[i] + (x <= 0.0 ? 0.0 : 1.0));

@@ -258,7 +258,7 @@ TEST_CASE("momentum: d = g + beta p and the plain step against the force and |d|
   MomentumState carried;
   carried.px = {0.02, -0.1, 0.5, 1.0, 0.25, 0.3};
   carried.py = {0.01, 0.0, 0.0, 0.0, -0.5, 0.3};
-  reference::apply_momentum(p, f, 0.5, m, carried);
+  reference::apply_momentum(p, f, 0.5, 0.0, m, carried);
   // Node 0: the accumulation, exactly the expression of the rule.
   CHECK(m.dx[0] == 0.01 + 0.5 * 0.02);
   CHECK(m.dy[0] == 0.0 + 0.5 * 0.01);
@@ -299,7 +299,7 @@ TEST_CASE("momentum: a constant step accumulates to g (1 - beta^k) / (1 - beta) 
     MoveResult m;
     m.dx = {gx};
     m.dy = {gy};
-    reference::apply_momentum(p, f, beta, m, carried);
+    reference::apply_momentum(p, f, beta, 0.0, m, carried);
     const double sum = (1.0 - std::pow(beta, k)) / (1.0 - beta);
     INFO("iteration " << k);
     CHECK(m.dx[0] == Approx(gx * sum).epsilon(1e-13));
@@ -321,7 +321,7 @@ TEST_CASE("momentum: a constant step accumulates to g (1 - beta^k) / (1 - beta) 
   MomentumState some;
   some.px = {0.3, -0.2, 0.1, 7.0};
   some.py = {-0.3, 0.2, 0.1, 7.0};
-  reference::apply_momentum(q, g, 0.0, with_zero, some);
+  reference::apply_momentum(q, g, 0.0, 0.0, with_zero, some);
   CHECK(with_zero.dx == plain.dx);
   CHECK(with_zero.dy == plain.dy);
 }

@@ -1,7 +1,7 @@
 // The best preset's drift tolerance, population control's stop and the structured start's step per kind
 // of run: 9e-4, 0.15 and 0.016 for an isotropic run, 7e-4, 0.2 and the automatic rule for a metric one
 // (docs/simulation.md, "When a run stops"); a value the case sets wins in both; pdmesh smooth keeps 7e-4
-// and 0.2.
+// and 0.2. The momentum's mix (simulation.momentum_mix) is 0 under every preset.
 #include <catch2/catch.hpp>
 
 #include <filesystem>
@@ -20,6 +20,7 @@ namespace fs = std::filesystem;
 namespace {
 
 const fs::path kAnisoLinear = fs::path(PDMESH_SOURCE_DIR) / "cases" / "aniso" / "linear" / "case.toml";
+const fs::path kNacaLayers = fs::path(PDMESH_SOURCE_DIR) / "examples" / "naca0012_layers" / "case.toml";
 
 CaseConfig parsed(const std::string& text, const std::vector<CaseOverride>& overrides = {}) {
   return parse_case_text(text, kCase, overrides);
@@ -168,6 +169,35 @@ TEST_CASE("pdmesh smooth keeps population control to 0.2 and the drift tolerance
   // Not the best preset's own for a mesh run.
   CHECK(parsed(kGeometry).population.stop != kSmoothPopulationStop);
   CHECK(parsed(kGeometry).simulation.stop_aspect != kSmoothStopAspect);
+}
+
+TEST_CASE("simulation.momentum_mix is 0 under every preset and kind of run, and the run takes a value the case sets",
+          "[app][case]") {
+  for (const std::string& text : {kGeometry, kGeometry + kMetric, "preset = \"thesis\"\n" + kGeometry,
+                                  "preset = \"long\"\n" + kGeometry, "preset = \"fast\"\n" + kGeometry}) {
+    INFO(text);
+    CHECK(parsed(text).simulation.momentum_mix == 0.0);
+    CHECK(simulation_options(parsed(text)).momentum_mix == 0.0);
+  }
+  CHECK(load_case_file(kAnisoLinear).simulation.momentum_mix == 0.0);
+  const CaseConfig layers = load_case_file(kNacaLayers);
+  REQUIRE_FALSE(layers.boundary_layers.empty());
+  CHECK(layers.simulation.momentum_mix == 0.0);
+  CHECK(parsed(kGeometry, smooth_overrides(SmoothField::Case)).simulation.momentum_mix == 0.0);
+  // A value the case or --set gives is the run's, in every kind of run.
+  for (const std::string& text : {kGeometry, kGeometry + kMetric}) {
+    INFO(text);
+    const CaseConfig own = parsed(text + "[simulation]\nmomentum_mix = 0.2\n");
+    CHECK(own.simulation.momentum_mix == 0.2);
+    CHECK(simulation_options(own).momentum_mix == 0.2);
+    CHECK(parsed(text, {parse_set_option("simulation.momentum_mix=0.5")}).simulation.momentum_mix == 0.5);
+  }
+  // The case reader's range.
+  for (const char* bad : {"-0.1", "1", "1.5"}) {
+    INFO(bad);
+    CHECK_THROWS_WITH(parsed(kGeometry + "[simulation]\nmomentum_mix = " + bad + "\n"),
+                      Catch::Contains("simulation.momentum_mix must be in [0, 1)"));
+  }
 }
 
 TEST_CASE("simulation.dt_initial \"auto\" is the automatic rule, also under a preset that sets a step", "[app][case]") {

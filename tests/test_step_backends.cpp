@@ -15,6 +15,7 @@
 #include <algorithm>
 #include <cmath>
 #include <random>
+#include <utility>
 
 #include "core/errors.hpp"
 #include "opencl/opencl_backend.hpp"
@@ -276,8 +277,9 @@ TEMPLATE_TEST_CASE("an invalid node is reported by index", "[opencl][backend]", 
 }
 
 // Heavy-ball momentum (StepBackend::apply_momentum) on every input, from carried moves of all sizes:
-// none, some against the force, some past the r0 / 3 cap. Double: bit for bit (the kernel repeats the
-// reference's expressions, FP_CONTRACT OFF); float: the backend's tolerance.
+// none, some against the force, some past the r0 / 3 cap; without and with the carried move steered
+// towards the force (mix). Double: bit for bit (the kernel repeats the reference's expressions,
+// FP_CONTRACT OFF); float: the backend's tolerance.
 TEMPLATE_TEST_CASE("apply_momentum matches the reference on every input", "[opencl][backend][momentum]", HostReference,
                    OpenclDouble, OpenclFloat) {
   for (const Input& in : all_inputs(TestType::is_float)) {
@@ -304,11 +306,13 @@ TEMPLATE_TEST_CASE("apply_momentum matches the reference on every input", "[open
       for (auto* v : {&start.px, &start.py, &g.dx, &g.dy})
         for (double& x : *v) x = static_cast<double>(static_cast<float>(x));
     auto backend = TestType::make();
-    for (double beta : {0.5, 0.9}) {
+    for (const auto& [beta, mix] :
+         {std::pair{0.5, 0.0}, std::pair{0.9, 0.0}, std::pair{0.9, 0.2}, std::pair{0.5, 0.7}}) {
+      INFO("beta " << beta << ", mix " << mix);
       MoveResult oracle = g, got = g;
       MomentumState oracle_p = start, got_p = start;
-      reference::apply_momentum(in.p, forces, beta, oracle, oracle_p);
-      backend->apply_momentum(in.p, forces, beta, got, got_p);
+      reference::apply_momentum(in.p, forces, beta, mix, oracle, oracle_p);
+      backend->apply_momentum(in.p, forces, beta, mix, got, got_p);
       const double tol = TestType::is_float ? TestType::tol : 0.0;
       const std::vector<double> floor(in.p.q.begin(), in.p.q.end());  // moves relative to the spacing
       require_close("dx", oracle.dx, got.dx, floor, tol);

@@ -83,7 +83,7 @@ void DeviceRun<Real>::enqueue_iteration(int cur) {
       xy_build_)(q_build_)(neighbours_.skin_class())(bslot_)(xy_[next])(q_[next])(
       budget_)(node_leaf_)(brec_)(cand_index_)(cand_rec_)(counters_)(partials_)(device_boundary_.segments())(
       static_cast<cl_int>(device_boundary_.segment_count()))(static_cast<Real>(device_boundary_.segment_scale()))(
-      static_cast<Real>(options_.momentum))(carried_);
+      static_cast<Real>(options_.momentum))(static_cast<Real>(options_.momentum_mix))(carried_);
   bg_args(a);
   launch(ctx_.queue(), program_.device_step, "device_step", n_, program_.work_group);
   ++stats_.launches;

@@ -129,10 +129,10 @@ class OpenclBackend final : public StepBackend {
     out.dt2 = download(dt2_, n);
   }
 
-  void apply_momentum(const SimParticles& p, const ForceResult& forces, double beta, MoveResult& moves,
+  void apply_momentum(const SimParticles& p, const ForceResult& forces, double beta, double mix, MoveResult& moves,
                       MomentumState& carried) override {
     if (p.has_metric()) {
-      apply_momentum_metric(p, forces, beta, moves, carried);
+      apply_momentum_metric(p, forces, beta, mix, moves, carried);
       return;
     }
     const std::size_t n = p.size();
@@ -153,7 +153,8 @@ class OpenclBackend final : public StepBackend {
     }
     carried_.upload(ctx_.queue(), pxy);
     ArgSetter args(program_.apply_momentum, "apply_momentum");
-    args(static_cast<cl_int>(n))(static_cast<Real>(beta))(kind_)(fx_)(fy_)(r0_)(dx_)(dy_)(carried_);
+    args(static_cast<cl_int>(n))(static_cast<Real>(beta))(static_cast<Real>(mix))(
+        kind_)(fx_)(fy_)(r0_)(dx_)(dy_)(carried_);
     launch(ctx_.queue(), program_.apply_momentum, "apply_momentum", n, program_.work_group);
     moves.dx = download(dx_, n);
     moves.dy = download(dy_, n);
@@ -241,8 +242,8 @@ class OpenclBackend final : public StepBackend {
     out.dt2 = download(dt2_, n);
   }
 
-  void apply_momentum_metric(const SimParticles& p, const ForceResult& forces, double beta, MoveResult& moves,
-                             MomentumState& carried) {
+  void apply_momentum_metric(const SimParticles& p, const ForceResult& forces, double beta, double mix,
+                             MoveResult& moves, MomentumState& carried) {
     const std::size_t n = p.size();
     carried.px.resize(n, 0.0);
     carried.py.resize(n, 0.0);
@@ -262,7 +263,8 @@ class OpenclBackend final : public StepBackend {
     }
     carried_.upload(ctx_.queue(), pxy);
     ArgSetter args(program_.apply_momentum_metric, "apply_momentum_metric");
-    args(static_cast<cl_int>(n))(static_cast<Real>(beta))(kind_)(fx_)(fy_)(r0_)(m11_)(m12_)(m22_)(dx_)(dy_)(carried_);
+    args(static_cast<cl_int>(n))(static_cast<Real>(beta))(static_cast<Real>(mix))(
+        kind_)(fx_)(fy_)(r0_)(m11_)(m12_)(m22_)(dx_)(dy_)(carried_);
     launch(ctx_.queue(), program_.apply_momentum_metric, "apply_momentum_metric", n, program_.work_group);
     moves.dx = download(dx_, n);
     moves.dy = download(dy_, n);

@@ -198,7 +198,7 @@ IterationStep HostSteps::compute(int iteration, const GlobalTimeStep& gm) {
   MomentumState next_carried;
   if (with_momentum_) {
     next_carried = carried_;
-    backend_.apply_momentum(particles_, forces_, options_.momentum, moves_, next_carried);
+    backend_.apply_momentum(particles_, forces_, options_.momentum, options_.momentum_mix, moves_, next_carried);
   }
   const StepSums sums = backend_.reduce(particles_, forces_, moves_);
   if (trace_.covers(iteration))

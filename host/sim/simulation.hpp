@@ -53,6 +53,10 @@ struct SimOptions {
   // Heavy-ball beta in [0, 1) (StepBackend::apply_momentum, docs/simulation.md "Momentum"); 0 = off:
   // the thesis' gradient-descent move, and no momentum arithmetic at all.
   double momentum = 0.0;
+  // mix in [0, 1) with momentum > 0: each node's carried move is turned towards its force before it is
+  // added (p = (1 - mix) p + mix |p| F / |F|, StepBackend::apply_momentum); 0 = off, bit for bit the
+  // plain heavy-ball move.
+  double momentum_mix = 0.0;
   bool quiet = false;  // no progress line on stderr
   // false: the per-iteration spacing update reads a BackgroundSpacing built once from the given field
   // (tolerance 1e-3, docs/spacing.md); true: evaluate the given field exactly every iteration.

@@ -131,11 +131,12 @@ class StepBackend {
   // Step 4: local time step and displacement. dt_gm2 is the squared global maximum time step.
   virtual void time_step_and_move(const SimParticles& p, const ForceResult& forces, double dt_gm2, MoveResult& out) = 0;
   // Step 4, heavy-ball momentum (beta in (0, 1); callers skip it for beta = 0): turns moves' g_i =
-  // dt_i^2/2 F_i into d_i = g_i + beta p_i; d_i = g_i where d_i . F_i < 0; then |d_i| capped to r0_i / 3
-  // where r0_i > 0 (metric mode: |d_i| in node i's metric). Fixed nodes: d_i = 0. Sets p_i = d_i
-  // (carried: n entries each, resized with zeros).
-  virtual void apply_momentum(const SimParticles& p, const ForceResult& forces, double beta, MoveResult& moves,
-                              MomentumState& carried) = 0;
+  // dt_i^2/2 F_i into d_i = g_i + beta p_i, where mix in [0, 1) > 0 first turns p_i towards F_i
+  // (p_i = (1 - mix) p_i + mix |p_i| F_i / |F_i|, where p_i and F_i are not zero); d_i = g_i where
+  // d_i . F_i < 0; then |d_i| capped to r0_i / 3 where r0_i > 0 (metric mode: |d_i| in node i's metric).
+  // Fixed nodes: d_i = 0. Sets p_i = d_i (carried: n entries each, resized with zeros).
+  virtual void apply_momentum(const SimParticles& p, const ForceResult& forces, double beta, double mix,
+                              MoveResult& moves, MomentumState& carried) = 0;
   // Reductions for the history and the global time step rule.
   virtual StepSums reduce(const SimParticles& p, const ForceResult& forces, const MoveResult& moves) = 0;
 };

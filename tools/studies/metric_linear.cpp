@@ -143,7 +143,7 @@ int main(int argc, char** argv) {
       build_neighbours_growing(*backend, p, params.cutoff, list, flags);
       backend->compute_forces(p, list, params, forces);
       backend->time_step_and_move(p, forces, dt * dt, moves);
-      if (beta > 0.0) backend->apply_momentum(p, forces, beta, moves, carried);
+      if (beta > 0.0) backend->apply_momentum(p, forces, beta, 0.0, moves, carried);
       const StepSums sums = backend->reduce(p, forces, moves);
       for (std::size_t i = 0; i < p.size(); ++i) {
         if (p.kind[i] == kSimFixed) continue;

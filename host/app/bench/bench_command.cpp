@@ -75,6 +75,7 @@ std::unique_ptr<BenchCase> file_case(const std::string& dir, const std::string& 
   c->options.r0_any_direction = config.simulation.r0_any_direction;
   c->options.stability_factor = config.simulation.stability_factor;
   c->options.momentum = config.simulation.momentum;
+  c->options.momentum_mix = config.simulation.momentum_mix;
   c->verlet_skin = config.simulation.verlet_skin;
   return c;
 }

@@ -296,6 +296,7 @@ const std::vector<std::string>& simulation_keys() {
       "simulation.r0_rule",
       "simulation.stability_factor",
       "simulation.momentum",
+      "simulation.momentum_mix",
       "simulation.verlet_skin",
   };
   return keys;

@@ -218,6 +218,9 @@ struct CaseConfig {
     // thesis' rule exactly; c in (0, 1] keeps every step within the forward-Euler stability limit.
     double stability_factor = 1.0;
     double momentum = 0.0;  // SimOptions::momentum (heavy-ball beta in [0, 1); 0 = off)
+    // SimOptions::momentum_mix in [0, 1): the carried move turned towards the force; 0 = off (every
+    // preset).
+    double momentum_mix = 0.0;
     // SimOptions::verlet_skin of a device run, in [0, 4]; empty = "auto" (auto_verlet_skin: by the
     // momentum and the node count). Never changes a result, only the rebuilds and the rows' memory.
     std::optional<double> verlet_skin;

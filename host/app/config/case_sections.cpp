@@ -318,6 +318,14 @@ void read_simulation_section(const Reader& r, const toml::table& root, CaseConfi
              fmt::format("simulation.momentum must be in [0, 1) (0 = plain gradient descent), got {}", s.momentum));
     }
   }
+  if (const toml::node* n = find(root, "simulation", "momentum_mix")) {
+    s.momentum_mix = r.number("simulation.momentum_mix", *n);
+    if (!(s.momentum_mix >= 0.0 && s.momentum_mix < 1.0)) {
+      r.fail("simulation.momentum_mix", n,
+             fmt::format("simulation.momentum_mix must be in [0, 1) (0 = the plain heavy-ball move), got {}",
+                         s.momentum_mix));
+    }
+  }
   if (const toml::node* n = find(root, "simulation", "verlet_skin")) {
     // "auto": auto_verlet_skin (sim/verlet_skin.hpp), the default.
     if (n->is_string() && n->as_string()->get() == "auto") {

@@ -164,6 +164,9 @@ void add_simulation_identity(const CaseConfig& config, Identity& keys) {
   // Only when on, so that checkpoints of runs without momentum (older files too) identify the same way.
   if (config.simulation.momentum > 0.0)
     keys.emplace_back("simulation.momentum", fmt::format("{}", config.simulation.momentum));
+  // Likewise the mix, which only acts with momentum.
+  if (config.simulation.momentum > 0.0 && config.simulation.momentum_mix > 0.0)
+    keys.emplace_back("simulation.momentum_mix", fmt::format("{}", config.simulation.momentum_mix));
 }
 
 // Population control's schedule and thresholds.

@@ -34,6 +34,7 @@ SimOptions simulation_options(const CaseConfig& config, std::size_t nodes) {
   options.r0_any_direction = config.simulation.r0_any_direction;
   options.stability_factor = config.simulation.stability_factor;
   options.momentum = config.simulation.momentum;
+  options.momentum_mix = config.simulation.momentum_mix;
   options.verlet_skin = config.simulation.verlet_skin.value_or(auto_verlet_skin(options.momentum, nodes));
   options.population = config.population;
   options.quiet = config.quiet;

@@ -23,9 +23,9 @@ class ReferenceBackend final : public StepBackend {
   void time_step_and_move(const SimParticles& p, const ForceResult& forces, double dt_gm2, MoveResult& out) override {
     reference::time_step_and_move(p, forces, dt_gm2, out);
   }
-  void apply_momentum(const SimParticles& p, const ForceResult& forces, double beta, MoveResult& moves,
+  void apply_momentum(const SimParticles& p, const ForceResult& forces, double beta, double mix, MoveResult& moves,
                       MomentumState& carried) override {
-    reference::apply_momentum(p, forces, beta, moves, carried);
+    reference::apply_momentum(p, forces, beta, mix, moves, carried);
   }
   StepSums reduce(const SimParticles& p, const ForceResult& forces, const MoveResult& moves) override {
     return reference::reduce(p, forces, moves);

@@ -34,15 +34,19 @@ void compute_forces_metric(const SimParticles& p, const NeighbourList& list, con
 // Step 4 and the reductions (time_step.cpp).
 void time_step_and_move(const SimParticles& p, const ForceResult& forces, double dt_gm2, MoveResult& out);
 // Heavy-ball momentum on the moves of time_step_and_move (StepBackend::apply_momentum).
-void apply_momentum(const SimParticles& p, const ForceResult& forces, double beta, MoveResult& moves,
+void apply_momentum(const SimParticles& p, const ForceResult& forces, double beta, double mix, MoveResult& moves,
                     MomentumState& carried);
-// d = g + beta p, back to g against the force, capped to r0 / 3: one node's rule (kernels/time_step.cl,
-// momentum_move, has the same expressions in the same order, so that double results agree bit for bit).
-void momentum_move(double gx, double gy, double px, double py, double beta, double fx, double fy, double r0, double& dx,
-                   double& dy);
+// p turned towards the force F: p = (1 - mix) p + mix |p| F / |F| (Euclidean lengths); unchanged where
+// p = 0 or F = 0 (kernels/time_step.cl, momentum_steer).
+void momentum_steer(double& px, double& py, double mix, double fx, double fy);
+// d = g + beta p (p steered first where mix > 0), back to g against the force, capped to r0 / 3: one
+// node's rule (kernels/time_step.cl, momentum_move, has the same expressions in the same order, so that
+// double results agree bit for bit).
+void momentum_move(double gx, double gy, double px, double py, double beta, double mix, double fx, double fy, double r0,
+                   double& dx, double& dy);
 // Metric mode: the same rule with the cap |d|_M <= r0 / 3 in the node's metric M = [[m11, m12], [m12, m22]].
-void momentum_move_metric(double gx, double gy, double px, double py, double beta, double fx, double fy, double r0,
-                          double m11, double m12, double m22, double& dx, double& dy);
+void momentum_move_metric(double gx, double gy, double px, double py, double beta, double mix, double fx, double fy,
+                          double r0, double m11, double m12, double m22, double& dx, double& dy);
 StepSums reduce(const SimParticles& p, const ForceResult& forces, const MoveResult& moves);
 
 // The pair force of eq. 5.11 as a signed magnitude along +r_ij/r_ij (negative = repulsion),

@@ -33,8 +33,20 @@ void time_step_and_move(const SimParticles& p, const ForceResult& forces, double
   }
 }
 
-void momentum_move(double gx, double gy, double px, double py, double beta, double fx, double fy, double r0, double& dx,
-                   double& dy) {
+void momentum_steer(double& px, double& py, double mix, double fx, double fy) {
+  const double pl = std::sqrt(px * px + py * py);
+  const double fl = std::sqrt(fx * fx + fy * fy);
+  // No carried motion or no force: no direction to turn (or to turn towards).
+  if (!(pl > 0.0) || !(fl > 0.0)) return;
+  px = (1.0 - mix) * px + mix * pl * fx / fl;
+  py = (1.0 - mix) * py + mix * pl * fy / fl;
+}
+
+void momentum_move(double gx, double gy, double px, double py, double beta, double mix, double fx, double fy, double r0,
+                   double& dx, double& dy) {
+  // The carried move turned towards today's force (mix > 0 only): motion across the force is damped
+  // while the speed along it is kept.
+  if (mix > 0.0) momentum_steer(px, py, mix, fx, fy);
   dx = gx + beta * px;
   dy = gy + beta * py;
   // Motion carried against today's force would push the node uphill: the plain step instead.
@@ -55,8 +67,9 @@ void momentum_move(double gx, double gy, double px, double py, double beta, doub
   }
 }
 
-void momentum_move_metric(double gx, double gy, double px, double py, double beta, double fx, double fy, double r0,
-                          double m11, double m12, double m22, double& dx, double& dy) {
+void momentum_move_metric(double gx, double gy, double px, double py, double beta, double mix, double fx, double fy,
+                          double r0, double m11, double m12, double m22, double& dx, double& dy) {
+  if (mix > 0.0) momentum_steer(px, py, mix, fx, fy);
   dx = gx + beta * px;
   dy = gy + beta * py;
   if (dx * fx + dy * fy < 0.0) {
@@ -74,7 +87,7 @@ void momentum_move_metric(double gx, double gy, double px, double py, double bet
   }
 }
 
-void apply_momentum(const SimParticles& p, const ForceResult& forces, double beta, MoveResult& moves,
+void apply_momentum(const SimParticles& p, const ForceResult& forces, double beta, double mix, MoveResult& moves,
                     MomentumState& carried) {
   const std::size_t n = p.size();
   const bool metric = p.has_metric();
@@ -87,10 +100,10 @@ void apply_momentum(const SimParticles& p, const ForceResult& forces, double bet
     }
     double dx, dy;
     if (metric)
-      momentum_move_metric(moves.dx[i], moves.dy[i], carried.px[i], carried.py[i], beta, forces.fx[i], forces.fy[i],
-                           forces.r0[i], p.m11[i], p.m12[i], p.m22[i], dx, dy);
+      momentum_move_metric(moves.dx[i], moves.dy[i], carried.px[i], carried.py[i], beta, mix, forces.fx[i],
+                           forces.fy[i], forces.r0[i], p.m11[i], p.m12[i], p.m22[i], dx, dy);
     else
-      momentum_move(moves.dx[i], moves.dy[i], carried.px[i], carried.py[i], beta, forces.fx[i], forces.fy[i],
+      momentum_move(moves.dx[i], moves.dy[i], carried.px[i], carried.py[i], beta, mix, forces.fx[i], forces.fy[i],
                     forces.r0[i], dx, dy);
     moves.dx[i] = carried.px[i] = dx;
     moves.dy[i] = carried.py[i] = dy;
