@@ -42,46 +42,9 @@ SimOptions momentum_options(const Case& c, int iterations, double beta) {
   return o;
 }
 
-}  // namespace
-
-TEST_CASE("momentum 0.9: the device run repeats the host over 300 iterations with population events",
-          "[opencl][device_sim][momentum]") {
-  const Case c = population_case();
-  const SimOptions o = momentum_options(c, 300, 0.9);
-  const Outcome host = test::run_from(c, c.initial, o, false);
-  REQUIRE(host.result.stats.inserted + host.result.stats.removed > 0);
-  REQUIRE(host.result.state.momentum.size() == host.nodes.size());
-  // Momentum changed the run (else this test could not fail on a device that ignores it).
-  const Outcome plain = test::run_from(c, c.initial, momentum_options(c, 300, 0.0), false);
-  CHECK(plain.result.history.back().max_force != host.result.history.back().max_force);
-  CHECK(plain.result.state.momentum.empty());
-  for (const ocl::ForceLoop loop : test::kForceLoops) {
-    INFO(ocl::force_loop_name(loop) << " force loop");
-    const Outcome dev = test::run_from(c, c.initial, o, true, false, loop);
-    REQUIRE(dev.result.history.size() == host.result.history.size());
-    for (std::size_t k = 0; k < host.result.history.size(); ++k) {
-      INFO("iteration " << host.result.history[k].iteration);
-      CHECK(dev.result.history[k].max_force == host.result.history[k].max_force);
-      CHECK(dev.result.history[k].inserted == host.result.history[k].inserted);
-      CHECK(dev.result.history[k].removed == host.result.history[k].removed);
-    }
-    require_identical_nodes(host.nodes, dev.nodes);
-    require_same_momentum(host.result.state, dev.result.state);
-  }
-}
-
-// The carried moves steered towards the force (SimOptions::momentum_mix, the best preset's isotropic
-// runs): the device's step repeats the host's steering operation for operation.
-TEST_CASE("momentum 0.9 with mix 0.2: the device run repeats the host over 300 iterations with population events",
-          "[opencl][device_sim][momentum]") {
-  const Case c = population_case();
-  SimOptions o = momentum_options(c, 300, 0.9);
-  o.momentum_mix = 0.2;
-  const Outcome host = test::run_from(c, c.initial, o, false);
-  REQUIRE(host.result.stats.inserted + host.result.stats.removed > 0);
-  // The mix changed the run (else this test could not fail on a device that ignores it).
-  const Outcome unmixed = test::run_from(c, c.initial, momentum_options(c, 300, 0.9), false);
-  CHECK(unmixed.result.history.back().max_force != host.result.history.back().max_force);
+// Each force loop's device run of `o` repeats the host's run `host`: the history, the nodes and the
+// carried moves.
+void require_device_repeats_host(const Case& c, const SimOptions& o, const Outcome& host) {
   for (const ocl::ForceLoop loop : test::kForceLoops) {
     INFO(ocl::force_loop_name(loop) << " force loop");
     const Outcome dev = test::run_from(c, c.initial, o, true, false, loop);
@@ -96,6 +59,37 @@ TEST_CASE("momentum 0.9 with mix 0.2: the device run repeats the host over 300 i
     require_identical_nodes(host.nodes, dev.nodes);
     require_same_momentum(host.result.state, dev.result.state);
   }
+}
+
+}  // namespace
+
+TEST_CASE("momentum 0.9: the device run repeats the host over 300 iterations with population events",
+          "[opencl][device_sim][momentum]") {
+  const Case c = population_case();
+  const SimOptions o = momentum_options(c, 300, 0.9);
+  const Outcome host = test::run_from(c, c.initial, o, false);
+  REQUIRE(host.result.stats.inserted + host.result.stats.removed > 0);
+  REQUIRE(host.result.state.momentum.size() == host.nodes.size());
+  // Momentum changed the run (else this test could not fail on a device that ignores it).
+  const Outcome plain = test::run_from(c, c.initial, momentum_options(c, 300, 0.0), false);
+  CHECK(plain.result.history.back().max_force != host.result.history.back().max_force);
+  CHECK(plain.result.state.momentum.empty());
+  require_device_repeats_host(c, o, host);
+}
+
+// The carried moves steered towards the force (SimOptions::momentum_mix, an option off in every
+// preset): the device's step repeats the host's steering operation for operation.
+TEST_CASE("momentum 0.9 with mix 0.2: the device run repeats the host over 300 iterations with population events",
+          "[opencl][device_sim][momentum]") {
+  const Case c = population_case();
+  SimOptions o = momentum_options(c, 300, 0.9);
+  o.momentum_mix = 0.2;
+  const Outcome host = test::run_from(c, c.initial, o, false);
+  REQUIRE(host.result.stats.inserted + host.result.stats.removed > 0);
+  // The mix changed the run (else this test could not fail on a device that ignores it).
+  const Outcome unmixed = test::run_from(c, c.initial, momentum_options(c, 300, 0.9), false);
+  CHECK(unmixed.result.history.back().max_force != host.result.history.back().max_force);
+  require_device_repeats_host(c, o, host);
 }
 
 TEST_CASE("momentum 0.9: snaps (interior nodes that become boundary nodes) on the device as on the host",

@@ -77,6 +77,22 @@ void reference_sweep(const Leaves& l, double g, const std::vector<double>& q0, s
   }
 }
 
+// The graph's limit of q0 and the reference sweep's, with their sources.
+struct LimitedBoth {
+  std::vector<double> q, q_ref;
+  std::vector<std::int32_t> source, source_ref;
+};
+
+LimitedBoth limit_both(const GradationGraph& graph, const Leaves& l, double g, const std::vector<double>& q0) {
+  LimitedBoth r;
+  graph.limit(g, q0, r.q, r.source);
+  r.q_ref = q0;
+  r.source_ref.resize(q0.size());
+  for (std::size_t i = 0; i < q0.size(); ++i) r.source_ref[i] = static_cast<std::int32_t>(i);
+  reference_sweep(l, g, q0, r.q_ref, r.source_ref, nullptr);
+  return r;
+}
+
 }  // namespace
 
 TEST_CASE("gradation: the sweep equals a binary-heap Dijkstra over explicit neighbour lists bit for bit", "[spacing]") {
@@ -93,13 +109,8 @@ TEST_CASE("gradation: the sweep equals a binary-heap Dijkstra over explicit neig
     INFO("round " << round << ", " << n << " corners, g " << g);
 
     const GradationGraph graph(l.pos, l.leaf_corner);
-    std::vector<double> q;
-    std::vector<std::int32_t> source;
-    graph.limit(g, q0, q, source);
-    std::vector<double> q_ref = q0;
-    std::vector<std::int32_t> source_ref(n);
-    for (std::size_t i = 0; i < n; ++i) source_ref[i] = static_cast<std::int32_t>(i);
-    reference_sweep(l, g, q0, q_ref, source_ref, nullptr);
+    LimitedBoth limited = limit_both(graph, l, g, q0);
+    auto& [q, q_ref, source, source_ref] = limited;
     REQUIRE(q == q_ref);
     REQUIRE(source == source_ref);
 
@@ -131,13 +142,7 @@ TEST_CASE("gradation: a graph whose leaf lists are sorted in two parts sweeps as
   std::vector<double> q0(n);
   for (double& v : q0) v = 0.01 + std::ldexp(static_cast<double>(rng() >> 11), -53);
   const GradationGraph graph(l.pos, l.leaf_corner);
-  std::vector<double> q;
-  std::vector<std::int32_t> source;
-  graph.limit(g, q0, q, source);
-  std::vector<double> q_ref = q0;
-  std::vector<std::int32_t> source_ref(n);
-  for (std::size_t i = 0; i < n; ++i) source_ref[i] = static_cast<std::int32_t>(i);
-  reference_sweep(l, g, q0, q_ref, source_ref, nullptr);
-  REQUIRE(q == q_ref);
-  REQUIRE(source == source_ref);
+  const LimitedBoth limited = limit_both(graph, l, g, q0);
+  REQUIRE(limited.q == limited.q_ref);
+  REQUIRE(limited.source == limited.source_ref);
 }
