@@ -145,9 +145,10 @@ TEST_CASE("best's drift tolerance, population stop and step: a value the case se
   }
 }
 
-TEST_CASE("pdmesh smooth keeps population control to 0.2, the drift tolerance 7e-4 and no steering, before the "
-          "user's --set",
-          "[smooth][case]") {
+TEST_CASE(
+    "pdmesh smooth keeps population control to 0.2, the drift tolerance 7e-4 and no steering, before the "
+    "user's --set",
+    "[smooth][case]") {
   for (const SmoothField field : {SmoothField::Mesh, SmoothField::Case}) {
     const std::vector<CaseOverride> defaults = smooth_overrides(field);
     const CaseConfig c = parsed(kGeometry, defaults);

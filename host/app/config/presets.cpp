@@ -85,8 +85,8 @@ void apply_momentum_schedule(CaseConfig& c) {
   // mean aspect ratio after the cleanup, which the larger step (below) and the steered momentum (above)
   // make up for: over the 19 calibration runs' ten draws 1.5e-3 with both leaves a lower mean aspect
   // ratio than 9e-4 without the steering, in about a sixth fewer iterations (docs/simulation.md, "When
-  // a run stops"). A metric run keeps 7e-4 (preset_stop_aspect). A start near equilibrium (the hybrid fill at scale) has no drift to wait for:
-  // 150 is the first window after the first two population events.
+  // a run stops"). A metric run keeps 7e-4 (preset_stop_aspect). A start near equilibrium (the hybrid fill at scale)
+  // has no drift to wait for: 150 is the first window after the first two population events.
   c.simulation.stop_aspect = preset_stop_aspect(Preset::Best, c.spacing.metric());
   c.simulation.stop_every = 50;
   c.simulation.stop_window = 100;
