@@ -346,7 +346,8 @@ TEST_CASE("the best preset is long with momentum, a compressed schedule and rule
     CHECK(c->population.insert.last == 0.7);
     CHECK(c->population.settle == 1e-3);
     CHECK(c->population.settle_events == 2);
-    CHECK(c->simulation.stop_aspect == 9e-4);
+    CHECK(c->simulation.stop_aspect == 1.5e-3);
+    CHECK(c->simulation.momentum_mix == 0.2);
     CHECK(c->simulation.stop_every == 50);
     CHECK(c->simulation.stop_window == 100);
     CHECK(c->simulation.stop_min == 150);
@@ -365,6 +366,7 @@ TEST_CASE("the best preset is long with momentum, a compressed schedule and rule
     CHECK(c->population.insert.last == 0.7);
     CHECK(c->population.settle == 0.0);
     CHECK(c->simulation.stop_aspect == 5e-4);
+    CHECK(c->simulation.momentum_mix == 0.0);
     CHECK(c->simulation.stop_every == 100);
     CHECK(c->simulation.stop_window == 400);
     CHECK(c->simulation.stop_min == 400);
@@ -693,7 +695,7 @@ TEST_CASE("simulation.stop: best converges, thesis counts, a key wins over the p
 TEST_CASE("simulation.stop_aspect / stop_angle: the convergence rule's tolerances, checked",
           "[app][case][convergence]") {
   const CaseConfig best = parse_case_text(kMinimal, kCase);
-  CHECK(best.simulation.stop_aspect == 9e-4);
+  CHECK(best.simulation.stop_aspect == 1.5e-3);
   CHECK(best.simulation.stop_angle == 6.0);
   const CaseConfig set =
       parse_case_text(std::string(kMinimal) + "[simulation]\nstop_aspect = 2e-3\nstop_angle = 0.5\n", kCase);

@@ -1,7 +1,7 @@
-// The best preset's drift tolerance, population control's stop and the structured start's step per kind
-// of run: 9e-4, 0.15 and 0.016 for an isotropic run, 7e-4, 0.2 and the automatic rule for a metric one
-// (docs/simulation.md, "When a run stops"); a value the case sets wins in both; pdmesh smooth keeps 7e-4
-// and 0.2. The momentum's mix (simulation.momentum_mix) is 0 under every preset.
+// The best preset's drift tolerance, momentum steering, population control's stop and the structured
+// start's step per kind of run: 1.5e-3, 0.2, 0.15 and 0.016 for an isotropic run, 7e-4, 0, 0.2 and the
+// automatic rule for a metric one (docs/simulation.md, "When a run stops"); a value the case sets wins in
+// both; pdmesh smooth keeps 7e-4, no steering and 0.2.
 #include <catch2/catch.hpp>
 
 #include <filesystem>
@@ -31,8 +31,10 @@ CaseConfig parsed(const std::string& text, const std::vector<CaseOverride>& over
 TEST_CASE("best's drift tolerance, population stop and structured step differ between isotropic and metric runs",
           "[app][case][convergence]") {
   for (const Preset p : {Preset::Best, Preset::Fast}) {
-    CHECK(preset_stop_aspect(p, false) == 9e-4);
+    CHECK(preset_stop_aspect(p, false) == 1.5e-3);
     CHECK(preset_stop_aspect(p, true) == 7e-4);
+    CHECK(preset_momentum_mix(p, false) == 0.2);
+    CHECK(preset_momentum_mix(p, true) == 0.0);
     CHECK(preset_population_stop(p, false) == 0.15);
     CHECK(preset_population_stop(p, true) == 0.2);
     CHECK(preset_dt_structured(p, false) == 0.016);
@@ -42,6 +44,7 @@ TEST_CASE("best's drift tolerance, population stop and structured step differ be
   for (const Preset p : {Preset::Thesis, Preset::Long})
     for (const bool metric : {false, true}) {
       CHECK(preset_stop_aspect(p, metric) == initializers.simulation.stop_aspect);
+      CHECK(preset_momentum_mix(p, metric) == initializers.simulation.momentum_mix);
       CHECK(preset_population_stop(p, metric) == initializers.population.stop);
       CHECK_FALSE(preset_dt_structured(p, metric).has_value());
     }
@@ -49,7 +52,8 @@ TEST_CASE("best's drift tolerance, population stop and structured step differ be
   // Parsed: the kind of run decides where the file leaves the keys out.
   for (const std::string& text : {kGeometry, "preset = \"fast\"\n" + kGeometry}) {
     const CaseConfig c = parsed(text);
-    CHECK(c.simulation.stop_aspect == 9e-4);
+    CHECK(c.simulation.stop_aspect == 1.5e-3);
+    CHECK(c.simulation.momentum_mix == 0.2);
     CHECK(c.population.stop == 0.15);
     CHECK(c.simulation.dt_structured == 0.016);
     CHECK_FALSE(c.simulation.dt_random.has_value());  // a random start keeps the automatic rule
@@ -57,6 +61,7 @@ TEST_CASE("best's drift tolerance, population stop and structured step differ be
   for (const std::string& text : {kGeometry + kMetric, kGeometry + kHessian}) {
     const CaseConfig c = parsed(text);
     CHECK(c.simulation.stop_aspect == 7e-4);
+    CHECK(c.simulation.momentum_mix == 0.0);
     CHECK(c.population.stop == 0.2);
     CHECK_FALSE(c.simulation.dt_structured.has_value());
     // A step for the random start alone leaves the structured start's to the kind of run.
@@ -66,6 +71,7 @@ TEST_CASE("best's drift tolerance, population stop and structured step differ be
   }
   const CaseConfig linear = load_case_file(kAnisoLinear);
   CHECK(linear.simulation.stop_aspect == 7e-4);
+  CHECK(linear.simulation.momentum_mix == 0.0);
   CHECK(linear.population.stop == 0.2);
   CHECK_FALSE(linear.simulation.dt_structured.has_value());
   // A run made metric by --set takes the metric values too.
@@ -73,21 +79,25 @@ TEST_CASE("best's drift tolerance, population stop and structured step differ be
       parsed(kGeometry, {parse_set_option("spacing.field=metric"), parse_set_option("spacing.h1=\"0.1\""),
                          parse_set_option("spacing.h2=\"0.01\"")});
   CHECK(made_metric.simulation.stop_aspect == 7e-4);
+  CHECK(made_metric.simulation.momentum_mix == 0.0);
   CHECK(made_metric.population.stop == 0.2);
   CHECK_FALSE(made_metric.simulation.dt_structured.has_value());
   // The thesis preset keeps its own in either kind of run.
   const CaseConfig thesis = parsed("preset = \"thesis\"\n" + kGeometry + kMetric);
   CHECK(thesis.simulation.stop_aspect == initializers.simulation.stop_aspect);
+  CHECK(thesis.simulation.momentum_mix == 0.0);
   CHECK(thesis.population.stop == initializers.population.stop);
   CHECK_FALSE(thesis.simulation.dt_structured.has_value());
 
   // The run gets them.
   const SimOptions iso = simulation_options(parsed(kGeometry));
-  CHECK(iso.convergence.aspect_tolerance == 9e-4);
+  CHECK(iso.convergence.aspect_tolerance == 1.5e-3);
+  CHECK(iso.momentum_mix == 0.2);
   CHECK(iso.dt_initial == 0.016);
   CHECK(iso.population.stop == 0.15);
   const SimOptions metric = simulation_options(linear);
   CHECK(metric.convergence.aspect_tolerance == 7e-4);
+  CHECK(metric.momentum_mix == 0.0);
   CHECK_FALSE(metric.dt_initial.has_value());
   CHECK(metric.population.stop == 0.2);
 
@@ -96,14 +106,17 @@ TEST_CASE("best's drift tolerance, population stop and structured step differ be
   by_hand.spacing.field = SpacingKind::Metric;
   apply_preset(by_hand, Preset::Best);
   CHECK(by_hand.simulation.stop_aspect == 7e-4);
+  CHECK(by_hand.simulation.momentum_mix == 0.0);
   CHECK_FALSE(by_hand.simulation.dt_structured.has_value());
   by_hand.spacing.field = SpacingKind::Boundary;
   apply_preset(by_hand, Preset::Best);
-  CHECK(by_hand.simulation.stop_aspect == 9e-4);
+  CHECK(by_hand.simulation.stop_aspect == 1.5e-3);
+  CHECK(by_hand.simulation.momentum_mix == 0.2);
   CHECK(by_hand.population.stop == 0.15);
   CHECK(by_hand.simulation.dt_structured == 0.016);
   apply_preset(by_hand, Preset::Long);
   CHECK(by_hand.simulation.stop_aspect == initializers.simulation.stop_aspect);
+  CHECK(by_hand.simulation.momentum_mix == initializers.simulation.momentum_mix);
   CHECK(by_hand.population.stop == initializers.population.stop);
   CHECK_FALSE(by_hand.simulation.dt_structured.has_value());
 }
@@ -132,18 +145,23 @@ TEST_CASE("best's drift tolerance, population stop and step: a value the case se
   }
 }
 
-TEST_CASE("pdmesh smooth keeps population control to 0.2 and the drift tolerance 7e-4, before the user's --set",
-          "[smooth][case]") {
+TEST_CASE(
+    "pdmesh smooth keeps population control to 0.2, the drift tolerance 7e-4 and no steering, before the "
+    "user's --set",
+    "[smooth][case]") {
   for (const SmoothField field : {SmoothField::Mesh, SmoothField::Case}) {
     const std::vector<CaseOverride> defaults = smooth_overrides(field);
     const CaseConfig c = parsed(kGeometry, defaults);
     CHECK(c.population.stop == kSmoothPopulationStop);
     CHECK(c.simulation.stop_aspect == kSmoothStopAspect);
+    CHECK(c.simulation.momentum_mix == 0.0);
     CHECK_FALSE(c.simulation.dt_structured.has_value());
     std::vector<CaseOverride> with_user = defaults;
     with_user.push_back(parse_set_option("population.stop=0.5"));
     with_user.push_back(parse_set_option("simulation.stop_aspect=2e-3"));
+    with_user.push_back(parse_set_option("simulation.momentum_mix=0.3"));
     const CaseConfig u = parsed(kGeometry, with_user);
+    CHECK(u.simulation.momentum_mix == 0.3);
     CHECK(u.population.stop == 0.5);
     CHECK(u.simulation.stop_aspect == 2e-3);
   }
@@ -171,18 +189,24 @@ TEST_CASE("pdmesh smooth keeps population control to 0.2 and the drift tolerance
   CHECK(parsed(kGeometry).simulation.stop_aspect != kSmoothStopAspect);
 }
 
-TEST_CASE("simulation.momentum_mix is 0 under every preset and kind of run, and the run takes a value the case sets",
+TEST_CASE("simulation.momentum_mix: 0.2 in best's isotropic runs, 0 elsewhere, and the run takes a value the case sets",
           "[app][case]") {
-  for (const std::string& text : {kGeometry, kGeometry + kMetric, "preset = \"thesis\"\n" + kGeometry,
-                                  "preset = \"long\"\n" + kGeometry, "preset = \"fast\"\n" + kGeometry}) {
+  for (const std::string& text : {kGeometry, "preset = \"fast\"\n" + kGeometry}) {
+    INFO(text);
+    CHECK(parsed(text).simulation.momentum_mix == 0.2);
+    CHECK(simulation_options(parsed(text)).momentum_mix == 0.2);
+  }
+  for (const std::string& text :
+       {kGeometry + kMetric, "preset = \"thesis\"\n" + kGeometry, "preset = \"long\"\n" + kGeometry}) {
     INFO(text);
     CHECK(parsed(text).simulation.momentum_mix == 0.0);
     CHECK(simulation_options(parsed(text)).momentum_mix == 0.0);
   }
   CHECK(load_case_file(kAnisoLinear).simulation.momentum_mix == 0.0);
+  // A layered run's core is isotropic: it steers too.
   const CaseConfig layers = load_case_file(kNacaLayers);
   REQUIRE_FALSE(layers.boundary_layers.empty());
-  CHECK(layers.simulation.momentum_mix == 0.0);
+  CHECK(layers.simulation.momentum_mix == 0.2);
   CHECK(parsed(kGeometry, smooth_overrides(SmoothField::Case)).simulation.momentum_mix == 0.0);
   // A value the case or --set gives is the run's, in every kind of run.
   for (const std::string& text : {kGeometry, kGeometry + kMetric}) {

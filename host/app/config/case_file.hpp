@@ -218,8 +218,8 @@ struct CaseConfig {
     // thesis' rule exactly; c in (0, 1] keeps every step within the forward-Euler stability limit.
     double stability_factor = 1.0;
     double momentum = 0.0;  // SimOptions::momentum (heavy-ball beta in [0, 1); 0 = off)
-    // SimOptions::momentum_mix in [0, 1): the carried move turned towards the force; 0 = off (every
-    // preset).
+    // SimOptions::momentum_mix in [0, 1): the carried move turned towards the force; 0 = off (the
+    // initializer: thesis and long; best: preset_momentum_mix).
     double momentum_mix = 0.0;
     // SimOptions::verlet_skin of a device run, in [0, 4]; empty = "auto" (auto_verlet_skin: by the
     // momentum and the node count). Never changes a result, only the rebuilds and the rows' memory.
@@ -349,10 +349,12 @@ double preset_relax_scale(Preset preset, InitMethod method);
 // isotropic one (best: 6 degrees isotropic, 3 in a metric; thesis and long: 0.25 for both). A case
 // that sets the key keeps its value.
 double preset_stop_angle(Preset preset, bool metric);
-// simulation.stop_aspect, population.stop and simulation.dt_initial.structured under `preset` for a metric
-// run or an isotropic one (best: 9e-4, 0.15 and 0.016 isotropic; 7e-4, 0.2 and the automatic rule in a
-// metric; thesis and long: CaseConfig's initializers for both). A case that sets the key keeps its value.
+// simulation.stop_aspect, simulation.momentum_mix, population.stop and simulation.dt_initial.structured under
+// `preset` for a metric run or an isotropic one (best: 1.5e-3, 0.2, 0.15 and 0.016 isotropic; 7e-4, 0, 0.2
+// and the automatic rule in a metric; thesis and long: CaseConfig's initializers for both). A case that
+// sets the key keeps its value.
 double preset_stop_aspect(Preset preset, bool metric);
+double preset_momentum_mix(Preset preset, bool metric);
 double preset_population_stop(Preset preset, bool metric);
 std::optional<double> preset_dt_structured(Preset preset, bool metric);
 // simulation.stop_from_event's default under `preset` for a metric run or an isotropic one, with

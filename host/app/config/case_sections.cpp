@@ -558,10 +558,12 @@ void read_case_sections(const Reader& r, const toml::table& root, CaseConfig& c)
   // Likewise stop_angle, set for an isotropic run: a metric case without the key gets the metric value.
   if (find(root, "simulation", "stop_angle") == nullptr)
     c.simulation.stop_angle = preset_stop_angle(c.preset, c.spacing.metric());
-  // And the drift tolerance, population control's stop and the structured start's step, set for an
-  // isotropic run too.
+  // And the drift tolerance, the momentum's steering, population control's stop and the structured
+  // start's step, set for an isotropic run too.
   if (find(root, "simulation", "stop_aspect") == nullptr)
     c.simulation.stop_aspect = preset_stop_aspect(c.preset, c.spacing.metric());
+  if (find(root, "simulation", "momentum_mix") == nullptr)
+    c.simulation.momentum_mix = preset_momentum_mix(c.preset, c.spacing.metric());
   if (find(root, "simulation", "stop_from_event") == nullptr)
     c.simulation.stop_from_event = preset_stop_from_event(c.preset, c.spacing.metric(), !c.boundary_layers.empty());
   if (find(root, "population", "stop") == nullptr)

@@ -182,6 +182,7 @@ std::vector<CaseOverride> smooth_overrides(SmoothField field) {
        .value = fmt::format("{}", kSmoothStopAspect),
        .label = "pdmesh smooth",
        .if_unset = true},
+      {.key = "simulation.momentum_mix", .value = "0", .label = "pdmesh smooth", .if_unset = true},
       {.key = "simulation.dt_initial.structured", .value = "\"auto\"", .label = "pdmesh smooth", .if_unset = true},
       {.key = "simulation.stop_from_event", .value = "false", .label = "pdmesh smooth", .if_unset = true}};
   if (field != SmoothField::Mesh) return out;
