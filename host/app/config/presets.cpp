@@ -83,7 +83,7 @@ void apply_momentum_schedule(CaseConfig& c) {
   // iteration 150, with a mean aspect ratio that moved less than 1.5e-3 over the window. What holds a
   // structured start to its stop is that drift; a looser tolerance stops sooner but leaves a higher
   // mean aspect ratio after the cleanup, which the larger step (below) and the steered momentum (above)
-  // make up for: over the 19 calibration runs' ten draws 1.5e-3 with both leaves a lower mean aspect
+  // make up for: over the 19 calibration runs' eight draws 1.5e-3 with both leaves a lower mean aspect
   // ratio than 9e-4 without the steering, in about a sixth fewer iterations (docs/simulation.md, "When
   // a run stops"). A metric run keeps 7e-4 (preset_stop_aspect). A start near equilibrium (the hybrid fill at scale)
   // has no drift to wait for: 150 is the first window after the first two population events.
