@@ -41,16 +41,16 @@ std::vector<std::string> chain_names(const NodeSet& nodes) {
   return names;
 }
 
+// The corner (0, 1 or 2) of the triangle's smallest point index.
+int smallest_corner(const std::array<int, 3>& t) { return t[0] < t[1] ? (t[0] < t[2] ? 0 : 2) : (t[1] < t[2] ? 1 : 2); }
+
 }  // namespace
 
 std::vector<std::uint32_t> canonical_order(const std::vector<std::array<int, 3>>& triangles, std::size_t points) {
   // By the smallest index (a counting sort), then within it by the index after it (counter-clockwise):
   // a directed edge is a side of one triangle at most, so the key is unique.
-  const auto first = [](const std::array<int, 3>& t) { return static_cast<std::size_t>(std::min({t[0], t[1], t[2]})); };
-  const auto second = [](const std::array<int, 3>& t) {
-    const int k = t[0] < t[1] ? (t[0] < t[2] ? 0 : 2) : (t[1] < t[2] ? 1 : 2);
-    return t[(k + 1) % 3];
-  };
+  const auto first = [](const std::array<int, 3>& t) { return static_cast<std::size_t>(t[smallest_corner(t)]); };
+  const auto second = [](const std::array<int, 3>& t) { return t[(smallest_corner(t) + 1) % 3]; };
   std::vector<std::uint32_t> start(points + 1, 0);
   for (const auto& t : triangles) ++start[first(t) + 1];
   for (std::size_t i = 0; i < points; ++i) start[i + 1] += start[i];
@@ -95,7 +95,7 @@ MeshSample measure_mesh(const NodeSet& nodes, int iteration, std::vector<std::ar
       shapes.resize(std::min(kBatch, triangles.size() - first));
       parallel_for(shapes.size(), [&](std::size_t b) {
         const auto& t = triangles[order[first + b]];
-        const int k = t[0] < t[1] ? (t[0] < t[2] ? 0 : 2) : (t[1] < t[2] ? 1 : 2);
+        const int k = smallest_corner(t);
         shapes[b] = triangle_shape(p[t[k]], p[t[(k + 1) % 3]], p[t[(k + 2) % 3]]);
       });
       for (const TriangleShape& q : shapes) {

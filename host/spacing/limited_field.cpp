@@ -248,24 +248,26 @@ class LimitedField {
       corner = static_cast<std::int32_t>(first + fresh.size());
       fresh.push_back(i);
     }
-    const std::size_t total = first + fresh.size();
+    size_corners(first + fresh.size());
+    parallel_for(
+        fresh.size(), [&](std::size_t f) { set_corner(first + f, keys[fresh[f]], ids[fresh[f]]); }, 4096,
+        b_.options().loop_threads());
+  }
+  // The per-corner arrays at `total` corners; a new corner's q is NaN until it is limited.
+  void size_corners(std::size_t total) {
     pos_.resize(total);
     base_.resize(total);
     q0_.resize(total);
-    q_.resize(total, std::numeric_limits<double>::quiet_NaN());  // NaN: not yet limited
+    q_.resize(total, std::numeric_limits<double>::quiet_NaN());
     source_.resize(total);
-    parallel_for(
-        fresh.size(),
-        [&](std::size_t f) {
-          const std::size_t i = first + f;
-          const std::uint64_t k = keys[fresh[f]];
-          const auto sample = static_cast<std::size_t>(ids[fresh[f]]);
-          pos_[i] = b_.point(static_cast<std::uint32_t>(k >> 32), static_cast<std::uint32_t>(k & 0xffffffffu));
-          base_[i] = b_.sample_value(ids[fresh[f]]);
-          q0_[i] = std::min(base_[i], source_at_[sample]);
-          source_[i] = static_cast<std::int32_t>(i);
-        },
-        4096, b_.options().loop_threads());
+  }
+  // Corner i (its slot sized) at lattice key k with base sample `id`: its position, base value,
+  // min(base, sources) and itself as its source.
+  void set_corner(std::size_t i, std::uint64_t k, std::int32_t id) {
+    pos_[i] = b_.point(static_cast<std::uint32_t>(k >> 32), static_cast<std::uint32_t>(k & 0xffffffffu));
+    base_[i] = b_.sample_value(id);
+    q0_[i] = std::min(base_[i], source_at_[static_cast<std::size_t>(id)]);
+    source_[i] = static_cast<std::int32_t>(i);
   }
   // One corner (a known one is skipped); its sources are computed here only when add_sources has not
   // seen its sample (the builder passes every sample it takes to add_sources, `sampled`, first).
@@ -273,14 +275,10 @@ class LimitedField {
     const auto sample = static_cast<std::size_t>(id);
     if (corner_of_[sample] >= 0) return;
     if (!has_source_[sample]) add_sources({k}, {id});
-    const auto i = static_cast<std::int32_t>(pos_.size());
-    corner_of_[sample] = i;
-    const auto x = static_cast<std::uint32_t>(k >> 32), y = static_cast<std::uint32_t>(k & 0xffffffffu);
-    pos_.push_back(b_.point(x, y));
-    base_.push_back(b_.sample_value(id));
-    q0_.push_back(std::min(base_.back(), source_at_[sample]));
-    q_.push_back(std::numeric_limits<double>::quiet_NaN());  // NaN: not yet limited
-    source_.push_back(i);
+    const std::size_t i = pos_.size();
+    corner_of_[sample] = static_cast<std::int32_t>(i);
+    size_corners(i + 1);
+    set_corner(i, k, id);
   }
 
   // The sources at each segment's midpoint, seen from the boundary (so a gap narrower than the leaves
