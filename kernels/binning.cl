@@ -95,6 +95,30 @@ uint bin_bucket(const REAL xj, const REAL yj, const int L, __global const int* g
 }
 
 // state[BIN_FIRST_INVALID] must start at INT_MAX, the other entries at 0 (the host uploads them).
+#if PDMESH_FORCE_LOOP_VECTOR
+// The CPU shape: work-item 0 takes the group's nodes in a loop, without barriers (a tree reduction's
+// barriers cost PoCL a loop over the group's work-items per region). The same minimum and the same
+// first invalid node.
+__kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void bin_bounds(const int n, const REAL radius_factor,
+                                                                              __global const REAL2* xy,
+                                                                              __global const REAL* q,
+                                                                              __global REAL* partial,
+                                                                              __global int* state) {
+  if (get_local_id(0) != 0) return;
+  const int i0 = (int)get_group_id(0) * WG_SIZE, end = min(i0 + WG_SIZE, n);
+  REAL r = INFINITY;
+  int invalid = INT_MAX;
+  for (int i = i0; i < end; ++i) {
+    const REAL xi = xy[i].x, yi = xy[i].y, qi = q[i];  // positions: x, y interleaved
+    if (!(isfinite(xi) && isfinite(yi) && isfinite(qi) && qi > (REAL)0))
+      invalid = min(invalid, i);
+    else
+      r = fmin(r, radius_factor * qi);
+  }
+  if (invalid < INT_MAX) atomic_min(&state[BIN_FIRST_INVALID], invalid);
+  partial[get_group_id(0)] = r;
+}
+#else
 __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void bin_bounds(const int n, const REAL radius_factor,
                                                                               __global const REAL2* xy,
                                                                               __global const REAL* q,
@@ -118,6 +142,7 @@ __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void bin_bounds(co
   }
   if (l == 0) partial[get_group_id(0)] = m[0];
 }
+#endif
 
 // One work-group: partial[groups] = the minimum of partial[0 .. groups) (R_min).
 __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void bin_rmin(const int groups, __global REAL* partial) {
@@ -138,6 +163,35 @@ __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void bin_rmin(cons
 // The member counts and the top level are tallied per work-group in local memory first, then added
 // with one global atomic per level the group has: a global atomic per node on the same few words had
 // the CPU device's two threads pass their cache line back and forth for every node.
+// The CPU shape computes and tallies the group's levels in work-item 0, without the barrier.
+#if PDMESH_FORCE_LOOP_VECTOR
+__kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void bin_levels(
+    const int n, const int groups, const REAL radius_factor, __global const REAL* q, __global const REAL* partial,
+    __global int* level, __global int* state) {
+  if (get_local_id(0) != 0 || state[BIN_FIRST_INVALID] < n) return;
+  const int i0 = (int)get_group_id(0) * WG_SIZE, end = min(i0 + WG_SIZE, n);
+  const REAL r_min = partial[groups];
+  int count[PDMESH_GRID_LEVELS];
+  for (int k = 0; k < PDMESH_GRID_LEVELS; ++k) count[k] = 0;
+  int top = -1, too_many = 0;
+  for (int i = i0; i < end; ++i) {
+    int e = 0;
+    frexp(radius_factor * q[i] / r_min, &e);
+    int lv = max(0, e - 1);
+    if (lv >= PDMESH_GRID_LEVELS) {
+      too_many = 1;
+      lv = PDMESH_GRID_LEVELS - 1;
+    }
+    level[i] = lv;
+    ++count[lv];
+    top = max(top, lv);
+  }
+  if (too_many) atomic_or(&state[BIN_TOO_MANY_LEVELS], 1);
+  for (int k = 0; k < PDMESH_GRID_LEVELS; ++k)
+    if (count[k] > 0) atomic_add(&state[BIN_LEVEL_COUNT + k], count[k]);
+  if (top >= 0) atomic_max(&state[BIN_TOP], top);
+}
+#else
 __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void bin_levels(
     const int n, const int groups, const REAL radius_factor, __global const REAL* q, __global const REAL* partial,
     __global int* level, __global int* state) {
@@ -172,6 +226,8 @@ __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void bin_levels(
     if (top >= 0) atomic_max(&state[BIN_TOP], top);
   }
 }
+
+#endif
 
 // One work-item: grid L (a level with nodes) gets 2^k buckets, 2^k >= its members / 2, at
 // grid_bucket_offset[L]; levels without nodes get no grid (mask -1: no node scans them). Cell size
@@ -394,6 +450,22 @@ ulong group_inclusive_scan(const ulong v, __local ulong* tmp) {
 }
 
 // Exclusive prefix sum of bucket[0 .. m) in place, per work-group, the group totals to block_total.
+#if PDMESH_FORCE_LOOP_VECTOR
+// The CPU shape sums the group's buckets in work-item 0, without barriers (group_inclusive_scan's
+// two cost PoCL a loop over the group's work-items each): the same integer sums.
+__kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void bucket_scan(const uint m, __global uint* bucket,
+                                                                               __global ulong* block_total) {
+  if (get_local_id(0) != 0) return;
+  const uint i0 = (uint)get_group_id(0) * WG_SIZE, end = min(i0 + WG_SIZE, m);
+  ulong s = 0;
+  for (uint i = i0; i < end; ++i) {
+    const ulong v = bucket[i];
+    bucket[i] = (uint)s;
+    s += v;
+  }
+  block_total[get_group_id(0)] = s;
+}
+#else
 __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void bucket_scan(const uint m, __global uint* bucket,
                                                                                __global ulong* block_total) {
   __local ulong tmp[WG_SIZE];
@@ -403,6 +475,7 @@ __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void bucket_scan(c
   if (i < m) bucket[i] = (uint)(s - v);
   if (get_local_id(0) == WG_SIZE - 1) block_total[get_group_id(0)] = s;
 }
+#endif
 
 __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void bucket_offsets_add(
     const uint m, __global uint* bucket, __global const ulong* block_total) {
