@@ -630,6 +630,35 @@ void sort_row(__global int* entries, const ulong base, const int c) { insertion_
 // max), counters[ROW_WITHIN] = pairs within (interior rows).
 // No row is sorted in a pass the host will run again: its grids were too small (nothing gathered), or
 // more entries spilled than the spill list holds (every run's first build, laid out from a sample).
+#if PDMESH_FORCE_LOOP_VECTOR
+// The CPU shape takes the group's rows in work-item 0, without barriers or local atomics (PoCL runs a
+// group's work-items as one loop per region between barriers): the same sums and maximum.
+__kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void sort_rows(
+    const int n, __global const uchar* kind, __global const ulong* offset, __global const int* count,
+    const ulong entries_size, __global int* entries, __global uint* counters, __global const int* bin_state,
+    const uint spill_capacity) {
+  const int i0 = (int)get_group_id(0) * WG_SIZE, end = min(i0 + WG_SIZE, n);
+  if (get_local_id(0) != 0 || i0 >= n) return;
+  const int sorting = bin_ok(bin_state, n) && counters[ROW_SPILLED] <= spill_capacity;
+  uint within = 0, total = 0, overflow = 0;
+  int largest = 0;
+  for (int i = i0; i < end; ++i) {
+    const int c = count[i];
+    const ulong base = offset[i];
+    if (base + (ulong)c > offset[i + 1] || offset[i + 1] > entries_size)
+      ++overflow;
+    else if (kind[i] == 2 && sorting)
+      sort_row(entries, base, c);
+    if (kind[i] == 2) within += (uint)c;
+    total += (uint)c;
+    largest = max(largest, c);
+  }
+  if (overflow) atomic_add(&counters[ROW_OUTGROWN], overflow);
+  atomic_add(&counters[ROW_ENTRIES], total);
+  atomic_max((__global int*)&counters[ROW_LARGEST], largest);
+  atomic_add(&counters[ROW_WITHIN], within);
+}
+#else
 __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void sort_rows(
     const int n, __global const uchar* kind, __global const ulong* offset, __global const int* count,
     const ulong entries_size, __global int* entries, __global uint* counters, __global const int* bin_state,
@@ -664,6 +693,7 @@ __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void sort_rows(
     atomic_add(&counters[ROW_WITHIN], local_within);
   }
 }
+#endif
 
 // A row that outgrew its capacity (its entries past it in the spill list) moves to the spare region
 // behind the last row, [offset[n], entries_size): relocate_rows copies its kept entries there and
