@@ -538,8 +538,12 @@ typedef int rank_v16si __attribute__((vector_size(64)));
 // A row of up to 32 entries (most rows) is ranked in two registers: its entries loaded by masked
 // loads (the lanes past the row hold INT_MAX, no load past it), each entry broadcast and compared
 // with all 32 lanes at once, each lane's rank counted in its own lane (no popcount chain, no copy of
-// the row into private memory to be read back as vectors). The same ranks, so the same order.
+// the row into private memory to be read back as vectors). The same ranks, so the same order. Each
+// register's entries go to their ranks by one masked scatter (the row's lanes only; ranks are distinct)
+// from the registers, not through private arrays read back lane by lane.
 #define RANK_SORT_REG 32
+#define RANK_SCATTER(out, bits, rank, v) \
+  __builtin_ia32_scattersiv16si((out), (bits), __builtin_astype((rank), rank_v16si), __builtin_astype((v), rank_v16si), 4)
 void sort_row_reg(__global int* entries, const ulong base, const int c) {
   const uint m = c >= 32 ? 0xFFFFFFFFU : (1U << c) - 1U;
   const rank_v16si pad = __builtin_astype((int16)(INT_MAX), rank_v16si);
@@ -553,12 +557,9 @@ void sort_row_reg(__global int* entries, const ulong base, const int c) {
     r0 -= x < v0;  // -1 where true
     r1 -= x < v1;
   }
-  int rank[RANK_SORT_REG], v[RANK_SORT_REG];
-  vstore16(r0, 0, rank);
-  vstore16(r1, 1, rank);
-  vstore16(v0, 0, v);
-  vstore16(v1, 1, v);
-  for (int a = 0; a < c; ++a) entries[base + rank[a]] = v[a];
+  int* out = (int*)(ulong)(entries + base);
+  RANK_SCATTER(out, (ushort)m, r0, v0);
+  RANK_SCATTER(out, (ushort)(m >> 16), r1, v1);
 }
 
 // Rows of 33 to 64 entries the same way in four registers (the device run's lists with the Verlet skin
@@ -581,16 +582,11 @@ void sort_row_reg4(__global int* entries, const ulong base, const int c) {
     r2 -= x < v2;
     r3 -= x < v3;
   }
-  int rank[RANK_SORT_REG4], v[RANK_SORT_REG4];
-  vstore16(r0, 0, rank);
-  vstore16(r1, 1, rank);
-  vstore16(r2, 2, rank);
-  vstore16(r3, 3, rank);
-  vstore16(v0, 0, v);
-  vstore16(v1, 1, v);
-  vstore16(v2, 2, v);
-  vstore16(v3, 3, v);
-  for (int a = 0; a < c; ++a) entries[base + rank[a]] = v[a];
+  int* out = (int*)(ulong)(entries + base);
+  RANK_SCATTER(out, (ushort)m, r0, v0);
+  RANK_SCATTER(out, (ushort)(m >> 16), r1, v1);
+  RANK_SCATTER(out, (ushort)(m >> 32), r2, v2);
+  RANK_SCATTER(out, (ushort)(m >> 48), r3, v3);
 }
 
 void sort_row(__global int* entries, const ulong base, const int c) {
