@@ -542,8 +542,9 @@ typedef int rank_v16si __attribute__((vector_size(64)));
 // register's entries go to their ranks by one masked scatter (the row's lanes only; ranks are distinct)
 // from the registers, not through private arrays read back lane by lane.
 #define RANK_SORT_REG 32
-#define RANK_SCATTER(out, bits, rank, v) \
-  __builtin_ia32_scattersiv16si((out), (bits), __builtin_astype((rank), rank_v16si), __builtin_astype((v), rank_v16si), 4)
+#define RANK_SCATTER(out, bits, rank, v)                                             \
+  __builtin_ia32_scattersiv16si((out), (bits), __builtin_astype((rank), rank_v16si), \
+                                __builtin_astype((v), rank_v16si), 4)
 void sort_row_reg(__global int* entries, const ulong base, const int c) {
   const uint m = c >= 32 ? 0xFFFFFFFFU : (1U << c) - 1U;
   const rank_v16si pad = __builtin_astype((int16)(INT_MAX), rank_v16si);
