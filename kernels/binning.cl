@@ -226,7 +226,6 @@ __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void bin_levels(
     if (top >= 0) atomic_max(&state[BIN_TOP], top);
   }
 }
-
 #endif
 
 // One work-item: grid L (a level with nodes) gets 2^k buckets, 2^k >= its members / 2, at
