@@ -95,6 +95,30 @@ uint bin_bucket(const REAL xj, const REAL yj, const int L, __global const int* g
 }
 
 // state[BIN_FIRST_INVALID] must start at INT_MAX, the other entries at 0 (the host uploads them).
+#if PDMESH_FORCE_LOOP_VECTOR
+// The CPU shape: work-item 0 takes the group's nodes in a loop, without barriers (a tree reduction's
+// barriers cost PoCL a loop over the group's work-items per region). The same minimum and the same
+// first invalid node.
+__kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void bin_bounds(const int n, const REAL radius_factor,
+                                                                              __global const REAL2* xy,
+                                                                              __global const REAL* q,
+                                                                              __global REAL* partial,
+                                                                              __global int* state) {
+  if (get_local_id(0) != 0) return;
+  const int i0 = (int)get_group_id(0) * WG_SIZE, end = min(i0 + WG_SIZE, n);
+  REAL r = INFINITY;
+  int invalid = INT_MAX;
+  for (int i = i0; i < end; ++i) {
+    const REAL xi = xy[i].x, yi = xy[i].y, qi = q[i];  // positions: x, y interleaved
+    if (!(isfinite(xi) && isfinite(yi) && isfinite(qi) && qi > (REAL)0))
+      invalid = min(invalid, i);
+    else
+      r = fmin(r, radius_factor * qi);
+  }
+  if (invalid < INT_MAX) atomic_min(&state[BIN_FIRST_INVALID], invalid);
+  partial[get_group_id(0)] = r;
+}
+#else
 __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void bin_bounds(const int n, const REAL radius_factor,
                                                                               __global const REAL2* xy,
                                                                               __global const REAL* q,
@@ -118,6 +142,7 @@ __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void bin_bounds(co
   }
   if (l == 0) partial[get_group_id(0)] = m[0];
 }
+#endif
 
 // One work-group: partial[groups] = the minimum of partial[0 .. groups) (R_min).
 __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void bin_rmin(const int groups, __global REAL* partial) {
@@ -138,6 +163,35 @@ __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void bin_rmin(cons
 // The member counts and the top level are tallied per work-group in local memory first, then added
 // with one global atomic per level the group has: a global atomic per node on the same few words had
 // the CPU device's two threads pass their cache line back and forth for every node.
+// The CPU shape computes and tallies the group's levels in work-item 0, without the barrier.
+#if PDMESH_FORCE_LOOP_VECTOR
+__kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void bin_levels(
+    const int n, const int groups, const REAL radius_factor, __global const REAL* q, __global const REAL* partial,
+    __global int* level, __global int* state) {
+  if (get_local_id(0) != 0 || state[BIN_FIRST_INVALID] < n) return;
+  const int i0 = (int)get_group_id(0) * WG_SIZE, end = min(i0 + WG_SIZE, n);
+  const REAL r_min = partial[groups];
+  int count[PDMESH_GRID_LEVELS];
+  for (int k = 0; k < PDMESH_GRID_LEVELS; ++k) count[k] = 0;
+  int top = -1, too_many = 0;
+  for (int i = i0; i < end; ++i) {
+    int e = 0;
+    frexp(radius_factor * q[i] / r_min, &e);
+    int lv = max(0, e - 1);
+    if (lv >= PDMESH_GRID_LEVELS) {
+      too_many = 1;
+      lv = PDMESH_GRID_LEVELS - 1;
+    }
+    level[i] = lv;
+    ++count[lv];
+    top = max(top, lv);
+  }
+  if (too_many) atomic_or(&state[BIN_TOO_MANY_LEVELS], 1);
+  for (int k = 0; k < PDMESH_GRID_LEVELS; ++k)
+    if (count[k] > 0) atomic_add(&state[BIN_LEVEL_COUNT + k], count[k]);
+  if (top >= 0) atomic_max(&state[BIN_TOP], top);
+}
+#else
 __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void bin_levels(
     const int n, const int groups, const REAL radius_factor, __global const REAL* q, __global const REAL* partial,
     __global int* level, __global int* state) {
@@ -172,6 +226,7 @@ __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void bin_levels(
     if (top >= 0) atomic_max(&state[BIN_TOP], top);
   }
 }
+#endif
 
 // One work-item: grid L (a level with nodes) gets 2^k buckets, 2^k >= its members / 2, at
 // grid_bucket_offset[L]; levels without nodes get no grid (mask -1: no node scans them). Cell size
@@ -209,43 +264,58 @@ __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void bin_plan(
 #if PDMESH_FORCE_LOOP_VECTOR
 // The CPU shape counts and fills per level and work-group, in work-item 0 alone: no barriers (PoCL
 // runs a group's work-items as one loop per region between barriers), and the buckets of the group's
-// nodes are computed 8 at a time in explicit vectors (bin_group_buckets). It groups the group's buckets and takes each
-// distinct bucket's slots with one atomic_add when the group's nodes fall in at most BIN_GROUP_BUCKETS buckets (the
-// coarse levels, whose few cells every node of the group falls in); otherwise it takes one slot per
-// node. A global atomic per node and level on the few buckets of a coarse grid would have the CPU
-// device's threads pass those cache lines back and forth. Within a bucket the order is the group's (ascending nodes,
-// groups in the atomics' order): the rows the gather makes are sorted.
+// nodes are computed 8 at a time in explicit vectors (bin_group_buckets). The group's nodes take their
+// slots bucket by bucket (bin_group_take): the first node not yet placed names a bucket, a compare of
+// all the group's buckets with it (8 at a time) finds that bucket's nodes, and one atomic_add takes
+// their slots; after BIN_GROUP_BUCKETS buckets the nodes left (a fine level, whose nodes fall in many
+// buckets) take one slot each. A global atomic per node and level on the few buckets of a coarse grid
+// would have the CPU device's threads pass those cache lines back and forth. Within a bucket the order
+// is the group's (ascending nodes, groups in the atomics' order): the rows the gather makes are sorted.
+#if WG_SIZE > 64 || WG_SIZE % 8 != 0
+#error "the CPU shape's binning takes work-groups of at most 64 work-items, a multiple of 8 (one ulong of lanes)"
+#endif
 #define BIN_GROUP_BUCKETS 8
-// Groups b[0 .. WG_SIZE) (BIN_NO_BUCKET: none) by bucket; returns 0 when there are more than
-// BIN_GROUP_BUCKETS distinct ones (nothing done), else takes their slots (one atomic_add per bucket)
-// and, where slot is given, writes each node's slot, in node order.
 #define BIN_NO_BUCKET 0xFFFFFFFFU
-int bin_group_take(const uint* b, __global volatile uint* bucket, uint* slot) {
-  uint distinct[BIN_GROUP_BUCKETS], next[BIN_GROUP_BUCKETS];
-  uchar which[WG_SIZE];  // each node's index in distinct (read only where b[k] is a bucket)
-  int nd = 0, last = 0;
-  for (int k = 0; k < WG_SIZE; ++k) {
-    const uint v = b[k];
-    if (v == BIN_NO_BUCKET) continue;
-    int j = last;  // consecutive nodes mostly share a bucket: the previous node's first
-    if (nd == 0 || distinct[j] != v) {
-      j = 0;
-      while (j < nd && distinct[j] != v) ++j;
-      if (j == nd) {
-        if (nd == BIN_GROUP_BUCKETS) return 0;
-        distinct[nd] = v;
-        next[nd++] = 0;
-      }
-    }
-    last = j;
-    which[k] = (uchar)j;
-    ++next[j];
+// The lanes k < WG_SIZE of b holding v, as bits (bit k: b[k] == v).
+ulong bin_lanes_equal(const uint* b, const uint v) {
+  ulong bits = 0;
+  for (int c = 0; c < WG_SIZE / 8; ++c) {
+    const int8 e = vload8(c, b) == (uint8)(v);  // -1 where equal
+#if defined(PACK_MASK_BITS)
+    bits |= (ulong)(uchar)__builtin_ia32_cvtd2mask256(__builtin_astype(e, pack_v8si)) << (8 * c);
+#else
+    const int8 w = e & (int8)(1, 2, 4, 8, 16, 32, 64, 128);
+    bits |= (ulong)(uint)(w.s0 | w.s1 | w.s2 | w.s3 | w.s4 | w.s5 | w.s6 | w.s7) << (8 * c);
+#endif
   }
-  for (int j = 0; j < nd; ++j) next[j] = atomic_add(&bucket[distinct[j]], next[j]);
-  if (slot)
-    for (int k = 0; k < WG_SIZE; ++k)
-      if (b[k] != BIN_NO_BUCKET) slot[k] = next[which[k]]++;
-  return 1;
+  return bits;
+}
+
+// The lowest set bit's index of a non-zero bits.
+int bin_lowest_lane(const ulong bits) { return (int)popcount((bits & (0UL - bits)) - 1UL); }
+
+// Takes the slots of the group's nodes i0 + k in their buckets b[k] (BIN_NO_BUCKET: none) and, where
+// grid_nodes is given (bin_fill), writes node | tag[k] into each; without it (bin_count) only counts.
+void bin_group_take(const int i0, const uint* b, const uint* tag, __global volatile uint* bucket,
+                    __global int* grid_nodes) {
+  const ulong lanes = WG_SIZE == 64 ? ~0UL : (1UL << WG_SIZE) - 1UL;
+  ulong left = ~bin_lanes_equal(b, BIN_NO_BUCKET) & lanes;
+  for (int round = 0; left && round < BIN_GROUP_BUCKETS; ++round) {
+    const uint v = b[bin_lowest_lane(left)];
+    ulong same = bin_lanes_equal(b, v);
+    left &= ~same;
+    uint s = atomic_add(&bucket[v], (uint)popcount(same));
+    if (grid_nodes)
+      for (; same; same &= same - 1UL) {
+        const int k = bin_lowest_lane(same);
+        grid_nodes[s++] = (int)((uint)(i0 + k) | tag[k]);
+      }
+  }
+  for (; left; left &= left - 1UL) {
+    const int k = bin_lowest_lane(left);
+    const uint s = atomic_inc(&bucket[b[k]]);
+    if (grid_nodes) grid_nodes[s] = (int)((uint)(i0 + k) | tag[k]);
+  }
 }
 
 #if PDMESH_DOUBLE
@@ -329,9 +399,7 @@ __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void bin_count(
   for (int L = first; L <= top; ++L) {
     if (grid_mask[L] < 0) continue;  // a level without a grid
     bin_group_buckets(i0, count, L, xy, level, grid_mask, grid_bucket_offset, grid_inv_cell, b, 0);
-    if (!bin_group_take(b, bucket, 0))
-      for (int k = 0; k < WG_SIZE; ++k)
-        if (b[k] != BIN_NO_BUCKET) atomic_inc(&bucket[b[k]]);
+    bin_group_take(i0, b, 0, bucket, 0);
   }
 }
 #else
@@ -381,6 +449,22 @@ ulong group_inclusive_scan(const ulong v, __local ulong* tmp) {
 }
 
 // Exclusive prefix sum of bucket[0 .. m) in place, per work-group, the group totals to block_total.
+#if PDMESH_FORCE_LOOP_VECTOR
+// The CPU shape sums the group's buckets in work-item 0, without barriers (group_inclusive_scan's
+// two cost PoCL a loop over the group's work-items each): the same integer sums.
+__kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void bucket_scan(const uint m, __global uint* bucket,
+                                                                               __global ulong* block_total) {
+  if (get_local_id(0) != 0) return;
+  const uint i0 = (uint)get_group_id(0) * WG_SIZE, end = min(i0 + WG_SIZE, m);
+  ulong s = 0;
+  for (uint i = i0; i < end; ++i) {
+    const ulong v = bucket[i];
+    bucket[i] = (uint)s;
+    s += v;
+  }
+  block_total[get_group_id(0)] = s;
+}
+#else
 __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void bucket_scan(const uint m, __global uint* bucket,
                                                                                __global ulong* block_total) {
   __local ulong tmp[WG_SIZE];
@@ -390,6 +474,7 @@ __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void bucket_scan(c
   if (i < m) bucket[i] = (uint)(s - v);
   if (get_local_id(0) == WG_SIZE - 1) block_total[get_group_id(0)] = s;
 }
+#endif
 
 __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void bucket_offsets_add(
     const uint m, __global uint* bucket, __global const ulong* block_total) {
@@ -407,14 +492,11 @@ __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void bin_fill(
   const int first = bin_group_range(n, level, state, &i0, &count);
   if (first < 0) return;
   const int top = state[BIN_TOP];
-  uint b[WG_SIZE], tag[WG_SIZE], slot[WG_SIZE];
+  uint b[WG_SIZE], tag[WG_SIZE];
   for (int L = first; L <= top; ++L) {
     if (grid_mask[L] < 0) continue;
     bin_group_buckets(i0, count, L, xy, level, grid_mask, grid_bucket_offset, grid_inv_cell, b, tag);
-    const int grouped = bin_group_take(b, bucket, slot);
-    for (int k = 0; k < WG_SIZE; ++k)
-      if (b[k] != BIN_NO_BUCKET)
-        grid_nodes[grouped ? slot[k] : atomic_inc(&bucket[b[k]])] = (int)((uint)(i0 + k) | tag[k]);
+    bin_group_take(i0, b, tag, bucket, grid_nodes);
   }
 }
 #else

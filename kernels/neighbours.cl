@@ -538,8 +538,13 @@ typedef int rank_v16si __attribute__((vector_size(64)));
 // A row of up to 32 entries (most rows) is ranked in two registers: its entries loaded by masked
 // loads (the lanes past the row hold INT_MAX, no load past it), each entry broadcast and compared
 // with all 32 lanes at once, each lane's rank counted in its own lane (no popcount chain, no copy of
-// the row into private memory to be read back as vectors). The same ranks, so the same order.
+// the row into private memory to be read back as vectors). The same ranks, so the same order. Each
+// register's entries go to their ranks by one masked scatter (the row's lanes only; ranks are distinct)
+// from the registers, not through private arrays read back lane by lane.
 #define RANK_SORT_REG 32
+#define RANK_SCATTER(out, bits, rank, v)                                             \
+  __builtin_ia32_scattersiv16si((out), (bits), __builtin_astype((rank), rank_v16si), \
+                                __builtin_astype((v), rank_v16si), 4)
 void sort_row_reg(__global int* entries, const ulong base, const int c) {
   const uint m = c >= 32 ? 0xFFFFFFFFU : (1U << c) - 1U;
   const rank_v16si pad = __builtin_astype((int16)(INT_MAX), rank_v16si);
@@ -553,12 +558,9 @@ void sort_row_reg(__global int* entries, const ulong base, const int c) {
     r0 -= x < v0;  // -1 where true
     r1 -= x < v1;
   }
-  int rank[RANK_SORT_REG], v[RANK_SORT_REG];
-  vstore16(r0, 0, rank);
-  vstore16(r1, 1, rank);
-  vstore16(v0, 0, v);
-  vstore16(v1, 1, v);
-  for (int a = 0; a < c; ++a) entries[base + rank[a]] = v[a];
+  int* out = (int*)(ulong)(entries + base);
+  RANK_SCATTER(out, (ushort)m, r0, v0);
+  RANK_SCATTER(out, (ushort)(m >> 16), r1, v1);
 }
 
 // Rows of 33 to 64 entries the same way in four registers (the device run's lists with the Verlet skin
@@ -581,16 +583,11 @@ void sort_row_reg4(__global int* entries, const ulong base, const int c) {
     r2 -= x < v2;
     r3 -= x < v3;
   }
-  int rank[RANK_SORT_REG4], v[RANK_SORT_REG4];
-  vstore16(r0, 0, rank);
-  vstore16(r1, 1, rank);
-  vstore16(r2, 2, rank);
-  vstore16(r3, 3, rank);
-  vstore16(v0, 0, v);
-  vstore16(v1, 1, v);
-  vstore16(v2, 2, v);
-  vstore16(v3, 3, v);
-  for (int a = 0; a < c; ++a) entries[base + rank[a]] = v[a];
+  int* out = (int*)(ulong)(entries + base);
+  RANK_SCATTER(out, (ushort)m, r0, v0);
+  RANK_SCATTER(out, (ushort)(m >> 16), r1, v1);
+  RANK_SCATTER(out, (ushort)(m >> 32), r2, v2);
+  RANK_SCATTER(out, (ushort)(m >> 48), r3, v3);
 }
 
 void sort_row(__global int* entries, const ulong base, const int c) {
@@ -630,6 +627,35 @@ void sort_row(__global int* entries, const ulong base, const int c) { insertion_
 // max), counters[ROW_WITHIN] = pairs within (interior rows).
 // No row is sorted in a pass the host will run again: its grids were too small (nothing gathered), or
 // more entries spilled than the spill list holds (every run's first build, laid out from a sample).
+#if PDMESH_FORCE_LOOP_VECTOR
+// The CPU shape takes the group's rows in work-item 0, without barriers or local atomics (PoCL runs a
+// group's work-items as one loop per region between barriers): the same sums and maximum.
+__kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void sort_rows(
+    const int n, __global const uchar* kind, __global const ulong* offset, __global const int* count,
+    const ulong entries_size, __global int* entries, __global uint* counters, __global const int* bin_state,
+    const uint spill_capacity) {
+  const int i0 = (int)get_group_id(0) * WG_SIZE, end = min(i0 + WG_SIZE, n);
+  if (get_local_id(0) != 0 || i0 >= n) return;
+  const int sorting = bin_ok(bin_state, n) && counters[ROW_SPILLED] <= spill_capacity;
+  uint within = 0, total = 0, overflow = 0;
+  int largest = 0;
+  for (int i = i0; i < end; ++i) {
+    const int c = count[i];
+    const ulong base = offset[i];
+    if (base + (ulong)c > offset[i + 1] || offset[i + 1] > entries_size)
+      ++overflow;
+    else if (kind[i] == 2 && sorting)
+      sort_row(entries, base, c);
+    if (kind[i] == 2) within += (uint)c;
+    total += (uint)c;
+    largest = max(largest, c);
+  }
+  if (overflow) atomic_add(&counters[ROW_OUTGROWN], overflow);
+  atomic_add(&counters[ROW_ENTRIES], total);
+  atomic_max((__global int*)&counters[ROW_LARGEST], largest);
+  atomic_add(&counters[ROW_WITHIN], within);
+}
+#else
 __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void sort_rows(
     const int n, __global const uchar* kind, __global const ulong* offset, __global const int* count,
     const ulong entries_size, __global int* entries, __global uint* counters, __global const int* bin_state,
@@ -664,6 +690,7 @@ __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void sort_rows(
     atomic_add(&counters[ROW_WITHIN], local_within);
   }
 }
+#endif
 
 // A row that outgrew its capacity (its entries past it in the spill list) moves to the spare region
 // behind the last row, [offset[n], entries_size): relocate_rows copies its kept entries there and

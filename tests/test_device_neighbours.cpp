@@ -13,6 +13,7 @@
 #include <memory>
 #include <vector>
 
+#include "core/errors.hpp"
 #include "opencl/device_neighbours.hpp"
 #include "opencl/neighbour_grids.hpp"
 #include "sim/reference/reference_backend.hpp"
@@ -419,16 +420,38 @@ TEST_CASE("device binning puts every node in the cells the host binning does", "
   }
 }
 
+// Both program shapes (bin_bounds has a CPU shape of its own): the first invalid node within a
+// work-group and across work-groups (kStepWorkGroup = 64: nodes 150 and 170 share one, 40 another).
 TEST_CASE("a device build names the first invalid node and builds no rows", "[opencl][neighbour]") {
-  Input in = random_input(200, 3, false);
-  in.p.q[150] = -1.0;
-  in.p.x[170] = std::numeric_limits<double>::quiet_NaN();
-  DeviceBuilder b;
-  CHECK(b.build(in.p, in.cutoff).flags.first_invalid == 150);
-  in.p.q[150] = 0.1;
-  CHECK(b.build(in.p, in.cutoff).flags.first_invalid == 170);
-  in.p.x[170] = 0.5;
-  check_rows(in, b.build(in.p, in.cutoff));
+  ocl::StepProgram scalar(test_context(), ocl::Precision::Double, ocl::ForceLoop::Scalar);
+  for (ocl::StepProgram* program : {&test_program(ocl::Precision::Double), &scalar}) {
+    INFO("force loop " << (program == &scalar ? "scalar" : "default"));
+    Input in = random_input(200, 3, false);
+    in.p.q[150] = -1.0;
+    in.p.x[170] = std::numeric_limits<double>::quiet_NaN();
+    DeviceBuilder b(*program);
+    CHECK(b.build(in.p, in.cutoff).flags.first_invalid == 150);
+    in.p.q[150] = 0.1;
+    CHECK(b.build(in.p, in.cutoff).flags.first_invalid == 170);
+    in.p.y[40] = std::numeric_limits<double>::infinity();
+    CHECK(b.build(in.p, in.cutoff).flags.first_invalid == 40);
+    in.p.y[40] = 0.5;
+    in.p.x[170] = 0.5;
+    check_rows(in, b.build(in.p, in.cutoff));
+  }
+}
+
+// Radii spanning more than 2^kBinLevels need more grid levels than the binning has: the build says so
+// (bin_levels' flag, both shapes) instead of binning into a wrong level.
+TEST_CASE("a device build whose radii span more than its grid levels throws", "[opencl][neighbour]") {
+  ocl::StepProgram scalar(test_context(), ocl::Precision::Double, ocl::ForceLoop::Scalar);
+  for (ocl::StepProgram* program : {&test_program(ocl::Precision::Double), &scalar}) {
+    INFO("force loop " << (program == &scalar ? "scalar" : "default"));
+    Input in = random_input(200, 5, false);
+    in.p.q[130] = std::ldexp(in.p.q[130], -(ocl::kBinLevels + 2));
+    DeviceBuilder b(*program);
+    CHECK_THROWS_AS(b.build(in.p, in.cutoff), SimulationError);
+  }
 }
 
 // The device run's lists (pair_skin = s c > 0): row i of an interior node holds every j within
