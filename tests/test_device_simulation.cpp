@@ -464,8 +464,9 @@ TEST_CASE("device run: a whole circle_circle run gives the host's mesh quality",
 // The rows hold every pair the step's forces take, before every step of whole runs (PDMESH_TEST_CHECK_ROWS:
 // the reference's exact rows at the state the step reads, else the run throws): the Verlet skin's
 // rebuild trigger is safe (host/opencl/device_run.hpp). Runs that keep their rows for many iterations,
-// where the nodes move fast: momentum from a random start with population events (circle_circle), and
-// the graded spacing of an airfoil, whose nodes have skin classes above 0 (naca0012).
+// where the nodes move fast: from a random start, whose nodes close its gaps from both sides, with
+// momentum and population events (circle_circle), and the graded spacing of an airfoil, whose nodes
+// have skin classes above 0 (naca0012).
 TEST_CASE("device run: the rows hold every pair within the cut-off before every step", "[opencl][device_sim]") {
   const pdmesh_test::ScopedEnv check("PDMESH_TEST_CHECK_ROWS", "1");
   struct Run {
@@ -476,6 +477,8 @@ TEST_CASE("device run: the rows hold every pair within the cut-off before every 
   };
   const Run runs[] = {
       {"circle_circle, thesis options", test::load_case("circle_circle"), 300, 0.0, 0.3},
+      {"circle_circle, random start, thesis options",
+       test::load_case("circle_circle", {{"init.method", "random", "test"}}), 100, 0.0, 0.3},
       {"circle_circle, random start, momentum, population",
        test::load_case("circle_circle", {{"init.method", "random", "test"},
                                          {"population.enabled", "true", "test"},

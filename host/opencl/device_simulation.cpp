@@ -292,11 +292,11 @@ void DeviceRun<Real>::check_rows_hold(int iteration) {
         const std::int32_t j = exact.index[i * stride + k];
         if (!std::binary_search(begin, end, j))
           throw SimulationError(fmt::format(
-              "iteration {}: node {}'s row ({} entries) lacks node {} at distance {} (cut-off {} q = {}), {} "
-              "iterations after the build",
+              "iteration {}: node {}'s row ({} entries) lacks node {} at distance {}, within its cut-off {} "
+              "({} q, q = {}), {} iterations after the build",
               iteration, i, count[i], j,
               std::hypot(p.x[static_cast<std::size_t>(j)] - p.x[i], p.y[static_cast<std::size_t>(j)] - p.y[i]),
-              options_.cutoff, p.q[i], since_build_));
+              options_.cutoff * p.q[i], options_.cutoff, p.q[i], since_build_));
       }
     }
   }
