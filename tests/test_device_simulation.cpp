@@ -461,6 +461,47 @@ TEST_CASE("device run: a whole circle_circle run gives the host's mesh quality",
   CHECK(dev.stats.rebuilds < 100);
 }
 
+// The rows hold every pair the step's forces take, before every step of whole runs (PDMESH_TEST_CHECK_ROWS:
+// the reference's exact rows at the state the step reads, else the run throws): the Verlet skin's
+// rebuild trigger is safe (host/opencl/device_run.hpp). Runs that keep their rows for many iterations,
+// where the nodes move fast: from a random start, whose nodes close its gaps from both sides, with
+// momentum and population events (circle_circle), and the graded spacing of an airfoil, whose nodes
+// have skin classes above 0 (naca0012).
+TEST_CASE("device run: the rows hold every pair within the cut-off before every step", "[opencl][device_sim]") {
+  const pdmesh_test::ScopedEnv check("PDMESH_TEST_CHECK_ROWS", "1");
+  struct Run {
+    const char* name;
+    Case c;
+    int iterations;
+    double momentum, skin;
+  };
+  const Run runs[] = {
+      {"circle_circle, thesis options", test::load_case("circle_circle"), 300, 0.0, 0.3},
+      {"circle_circle, random start, thesis options",
+       test::load_case("circle_circle", {{"init.method", "random", "test"}}), 100, 0.0, 0.3},
+      {"circle_circle, random start, momentum, population",
+       test::load_case("circle_circle", {{"init.method", "random", "test"},
+                                         {"population.enabled", "true", "test"},
+                                         {"population.start", "20", "test"},
+                                         {"population.every", "10", "test"}}),
+       200, 0.9, 0.6},
+      {"naca0012, momentum", test::load_case("naca0012"), 150, 0.9, 0.6},
+  };
+  for (const Run& r : runs) {
+    INFO(r.name);
+    SimOptions o = options_for(r.c, r.iterations);
+    o.population = r.c.config.population;
+    o.momentum = r.momentum;
+    o.verlet_skin = r.skin;
+    Outcome dev;
+    REQUIRE_NOTHROW(dev = test::run_from(r.c, r.c.initial, o, true));
+    CHECK(dev.stats.iterations == static_cast<std::size_t>(r.iterations));
+    // The rows were kept across iterations (the test's point): built far less often than every iteration.
+    INFO(dev.stats.rebuilds << " builds");
+    CHECK(4 * dev.stats.rebuilds < dev.stats.iterations);
+  }
+}
+
 TEST_CASE("device run refuses the exact spacing field", "[opencl][device_sim]") {
   const Case c = test::load_case("circle_circle");
   NodeSet nodes = c.initial;

@@ -187,6 +187,9 @@ class DeviceRun final : public IterationSteps {
   void take_row_sums(const double* row);
   int window_length() const;
   BoundaryCounts host_boundary(double& skin_use);
+  // PDMESH_TEST_CHECK_ROWS: throws SimulationError when a pair within the cut-off at the state the
+  // next step reads (xy_[cur_], q_[cur_]) is missing from the current rows.
+  void check_rows_hold(int iteration);
   void bg_args(ArgSetter& a) {
     const BackgroundFieldData& d = background_.data();
     a(static_cast<Real>(d.origin_x))(static_cast<Real>(d.origin_y))(static_cast<Real>(d.inv_root_size))(
@@ -300,6 +303,12 @@ class DeviceRun final : public IterationSteps {
   // for bit (else a SimulationError; tests/test_device_momentum.cpp).
   const bool check_restore_ = std::getenv("PDMESH_TEST_CHECK_SAVED_RESTORE") != nullptr;
   NodeSet released_copy_;
+  // PDMESH_TEST_CHECK_ROWS (double runs): before every iteration's step, the rows must hold every pair
+  // the step's forces take (the reference's exact rows at the current positions and q), else a
+  // SimulationError naming the first missing pair: the test that the skin's rebuild trigger is safe
+  // (tests/test_device_simulation.cpp). Windows are one iteration long then and none runs ahead of a
+  // measurement, so that the host sees the state before every step.
+  const bool check_rows_ = std::getenv("PDMESH_TEST_CHECK_ROWS") != nullptr;
   std::size_t saved_tangent_count_ = 0;
   std::size_t saved_rows_ = 0;
   // host_boundary has moved nodes on the host that xy_[cur_] does not hold yet (until the iteration ends).
@@ -318,7 +327,7 @@ class DeviceRun final : public IterationSteps {
   // long, about what the device runs while the host triangulates (6.5 ms for 30P30N's 14k final nodes,
   // bench_triangulation --nodes).
   static constexpr int kAheadIterations = 4;
-  const bool run_ahead_ = std::getenv("PDMESH_TEST_NO_RUN_AHEAD") == nullptr;
+  const bool run_ahead_ = std::getenv("PDMESH_TEST_NO_RUN_AHEAD") == nullptr && !check_rows_;
   bool window_pending_ = false;
   int pending_first_ = 0, pending_length_ = 0;
   Clock::time_point pending_t0_;

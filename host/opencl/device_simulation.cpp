@@ -15,6 +15,7 @@
 #include "core/free_memory.hpp"
 #include "core/interrupt.hpp"
 #include "sim/failure_report.hpp"
+#include "sim/reference/reference_backend.hpp"
 #include "spacing/background_field.hpp"
 
 namespace pdmesh::ocl {
@@ -172,6 +173,7 @@ void DeviceRun<Real>::end_window() {
 // the last window's pace, so that a stop request, acted on at a window's end, waits little at any size.
 template <typename Real>
 int DeviceRun<Real>::window_length() const {
+  if (check_rows_) return 1;
   int most = window_.max_length();
   if (seconds_per_iteration_ > 0.0 && options_.window_seconds > 0.0)
     most = static_cast<int>(
@@ -248,6 +250,56 @@ void DeviceRun<Real>::take_row() {
   // whole, unless the flag stopped it (last_good_state).
   tangents_ahead_ = !boundary_nodes_.empty() && !non_finite_move;
   for (const Vec2 d : moves_) moves_finite_ = moves_finite_ && std::isfinite(d.x) && std::isfinite(d.y);
+}
+
+template <typename Real>
+void DeviceRun<Real>::check_rows_hold(int iteration) {
+  if constexpr (!std::is_same_v<Real, double>) {
+    throw SimulationError("PDMESH_TEST_CHECK_ROWS needs a double run (the test compares distances in double)");
+  } else {
+    if (stats_.rebuilds == 0) return;  // no rows yet: the first iteration builds them
+    finish(ctx_.queue(), "the rows' check");
+    SimParticles p;
+    p.resize(n_);
+    std::vector<Real> xy, q;
+    xy_[cur_].download(ctx_.queue(), xy, 2 * n_);
+    q_[cur_].download(ctx_.queue(), q, n_);
+    std::vector<std::int32_t> count, index;
+    std::vector<std::uint64_t> offset;
+    neighbours_.count().download(ctx_.queue(), count, n_);
+    neighbours_.offset().download(ctx_.queue(), offset, n_ + 1);
+    neighbours_.index().download(ctx_.queue(), index);
+    for (std::size_t i = 0; i < n_; ++i) {
+      p.x[i] = xy[2 * i];
+      p.y[i] = xy[2 * i + 1];
+      p.q[i] = q[i];
+      p.kind[i] = kind_host_[i];
+    }
+    // A stride past every row: a reference row longer than the device's lacks a pair (overflow).
+    NeighbourList exact;
+    exact.stride = 1 + (count.empty() ? 0 : std::max(0, *std::max_element(count.begin(), count.end())));
+    NeighbourFlags flags;
+    reference::build_neighbours(p, options_.cutoff, exact, flags);
+    const auto stride = static_cast<std::size_t>(exact.stride);
+    for (std::size_t i = 0; i < n_; ++i) {
+      if (p.kind[i] != kSimInterior) continue;
+      const auto begin = index.begin() + static_cast<std::ptrdiff_t>(offset[i]);
+      const auto end = begin + count[i];
+      if (exact.count[i] > count[i])
+        throw SimulationError(fmt::format("iteration {}: node {} has {} pairs within the cut-off, its row {} entries",
+                                          iteration, i, exact.count[i], count[i]));
+      for (std::size_t k = 0; k < static_cast<std::size_t>(exact.count[i]); ++k) {
+        const std::int32_t j = exact.index[i * stride + k];
+        if (!std::binary_search(begin, end, j))
+          throw SimulationError(fmt::format(
+              "iteration {}: node {}'s row ({} entries) lacks node {} at distance {}, within its cut-off {} "
+              "({} q, q = {}), {} iterations after the build",
+              iteration, i, count[i], j,
+              std::hypot(p.x[static_cast<std::size_t>(j)] - p.x[i], p.y[static_cast<std::size_t>(j)] - p.y[i]),
+              options_.cutoff * p.q[i], options_.cutoff, p.q[i], since_build_));
+      }
+    }
+  }
 }
 
 template <typename Real>
@@ -388,6 +440,7 @@ IterationStep DeviceRun<Real>::compute(int iteration, const GlobalTimeStep& gm) 
       std::vector<Real>().swap(momentum_at_check_);
       check_momentum_saved_ = false;
     } else if (window_next_ >= window_rows_) {
+      if (check_rows_) check_rows_hold(iteration);
       start_window(iteration, gm);
     }
     take_row();
