@@ -25,8 +25,10 @@ REAL bg_interpolate(const int leaf, const REAL u, const REAL v, __global const i
   return ((REAL)1 - v) * (((REAL)1 - u) * q00 + u * q10) + v * (((REAL)1 - u) * q01 + u * q11);
 }
 
-// Spacing at (px, py); *leaf: the node's cached leaf, updated when the point left it.
-REAL bg_spacing_cached(const REAL px, const REAL py, int* leaf, BG_ARGS) {
+// Spacing at (px, py); *leaf: the node's cached leaf, updated when the point left it. Inlined with
+// bg_locate_cached (device_step and boundary_snap call it once per node): as a call, PoCL's work-item
+// loop passes the leaf and (u, v) through memory and saves and restores registers around it.
+__attribute__((always_inline)) REAL bg_spacing_cached(const REAL px, const REAL py, int* leaf, BG_ARGS) {
   REAL u, v;
   const int found = bg_locate_cached(px, py, leaf, bg_origin_x, bg_origin_y, bg_inv_root, bg_grid, bg_root, bg_child,
                                      bg_cell, &u, &v);

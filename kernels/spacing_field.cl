@@ -60,9 +60,11 @@ int bg_locate(REAL px, REAL py, REAL origin_x, REAL origin_y, REAL inv_root_size
 // The top-grid cell (gx, gy) of the leaf's index gy * grid + gx is tested as the cell of floor(t),
 // floor(s) (gx <= t < gx + 1 holds exactly when floor(t) = gx, gx an integer; on the grid, t >= 0,
 // floor is the conversion to int): a multiplication instead of an integer division, the same test.
-int bg_locate_cached(REAL px, REAL py, int* leaf_io, REAL origin_x, REAL origin_y, REAL inv_root_size, int grid,
-                     __global const int* root_node, __global const int* node_child, __global const int* leaf_cell,
-                     REAL* u_out, REAL* v_out) {
+// Inlined: see bg_spacing_cached (kernels/device_step.cl).
+__attribute__((always_inline)) int bg_locate_cached(REAL px, REAL py, int* leaf_io, REAL origin_x, REAL origin_y,
+                                                    REAL inv_root_size, int grid, __global const int* root_node,
+                                                    __global const int* node_child, __global const int* leaf_cell,
+                                                    REAL* u_out, REAL* v_out) {
   const int guess = *leaf_io;
   const int4 cell = vload4(guess, leaf_cell);
   const REAL t = (px - origin_x) * inv_root_size;
