@@ -25,8 +25,10 @@ REAL bg_interpolate(const int leaf, const REAL u, const REAL v, __global const i
   return ((REAL)1 - v) * (((REAL)1 - u) * q00 + u * q10) + v * (((REAL)1 - u) * q01 + u * q11);
 }
 
-// Spacing at (px, py); *leaf: the node's cached leaf, updated when the point left it.
-REAL bg_spacing_cached(const REAL px, const REAL py, int* leaf, BG_ARGS) {
+// Spacing at (px, py); *leaf: the node's cached leaf, updated when the point left it. Inlined with
+// bg_locate_cached (device_step and boundary_snap call it once per node): as a call, PoCL's work-item
+// loop passes the leaf and (u, v) through memory and saves and restores registers around it.
+__attribute__((always_inline)) REAL bg_spacing_cached(const REAL px, const REAL py, int* leaf, BG_ARGS) {
   REAL u, v;
   const int found = bg_locate_cached(px, py, leaf, bg_origin_x, bg_origin_y, bg_inv_root, bg_grid, bg_root, bg_child,
                                      bg_cell, &u, &v);
@@ -35,13 +37,15 @@ REAL bg_spacing_cached(const REAL px, const REAL py, int* leaf, BG_ARGS) {
 #define BG_PASS bg_origin_x, bg_origin_y, bg_inv_root, bg_grid, bg_root, bg_child, bg_corner, bg_cell, bg_q
 
 // STEP_PHASE: where the CPU shape (PDMESH_FORCE_LOOP_VECTOR) splits device_step into phases with a
-// barrier that changes nothing else (every work-item reaches it; no work-item reads another's data:
-// the force phases pass each work-item's packed row entries through its own slice of local memory).
-// PoCL runs each region between barriers as a loop over the group's work-items: a node's dependency
-// chains (the force's sums and r0: kernels/forces.cl, node_forces_scan; then |F|'s square root, the
-// division of eq. 5.8, momentum's square root and division, each waiting for the one before) then
-// overlap with the next node's instead of waiting behind its row scan (docs/opencl.md, "Kernels
-// written for PoCL's CPU device"). A GPU interleaves work-items in hardware: no barrier there.
+// barrier that changes nothing else (every work-item reaches it; the force phases pass each
+// work-item's packed row entries through its own slice of local memory; the phases of eight nodes at
+// once, step_moves8 and skin_use8, read and write the slots of their eight work-items, in local
+// memory, only between two barriers). PoCL runs each region between barriers as a loop over the
+// group's work-items: a node's dependency chains (the force's sums and r0: kernels/forces.cl,
+// node_forces_scan) then overlap with the next node's instead of waiting behind its row scan, and the
+// square roots and divisions of the time step, momentum and skin use run in vector instructions
+// instead of one node after the other (docs/opencl.md, "Kernels written for PoCL's CPU device"). A GPU
+// interleaves work-items in hardware: no barrier there.
 #if PDMESH_FORCE_LOOP_VECTOR
 #define STEP_PHASE() barrier(CLK_LOCAL_MEM_FENCE)
 #else
@@ -111,6 +115,72 @@ void step_prefetch_spacing(const int a, const int n, __global const int* node_le
 #endif
 }
 
+#if PDMESH_FORCE_LOOP_VECTOR
+// The slots of device_step's local array `values` (free until the partial sums) that carry a node's
+// force, r0, stability bound, state and carried move into step_moves8 (slot-major, WG_SIZE each).
+// State 0: a fixed node (or padding); 1: r0 comes as r0^2 (-1 for r0 = 0: r0_squared_of_lanes) and
+// the bound as the summed pair stiffness (node_forces_lj), so that step_moves8 takes the square root
+// and the bound's division of eight nodes at once; 2: r0 and the bound as node_forces gave them. It
+// writes |F| and the kinetic term to their partial sums' slots (0, 1 and 5) and the move to slots
+// STEP_MOVE_DX, STEP_MOVE_DY, which device_step reads before it writes those partial sums.
+#define STEP_MOVE_FX 0
+#define STEP_MOVE_FY 1
+#define STEP_MOVE_R0 2
+#define STEP_MOVE_LIMIT 3
+#define STEP_MOVE_STATE 4
+#define STEP_MOVE_PX 5
+#define STEP_MOVE_PY 6
+#define STEP_MOVE_DX 2
+#define STEP_MOVE_DY 3
+#if STEP_PARTIALS < 7
+#error "step_moves8 needs 7 slots of device_step's partial sums' array"
+#endif
+
+// Nodes v .. v + 7 of the group (v: the first one's slot 0 entry): the scalar shape's local time step
+// (local_dt2), move, momentum (beta > 0; momentum_move), |F| and kinetic term, by kernels/time_step.cl's
+// eight-lane functions: each lane the scalar shape's value bit for bit. Fixed nodes: all 0.
+void step_moves8(__local REAL* v, const REAL dt_gm2, const REAL beta, const REAL mix, const REAL stability_factor) {
+  const REAL8 zero = (REAL8)((REAL)0);
+  const REAL8 fx = vload8(0, v + STEP_MOVE_FX * WG_SIZE), fy = vload8(0, v + STEP_MOVE_FY * WG_SIZE);
+  const REAL8 state = vload8(0, v + STEP_MOVE_STATE * WG_SIZE);
+  const MASK8 moving = state != zero, from_parts = state == (REAL8)((REAL)1);
+  // State 1: r0 and the bound by r0_of_lanes' and node_forces' expressions; state 2: as they came.
+  const REAL8 r0_in = vload8(0, v + STEP_MOVE_R0 * WG_SIZE), limit_in = vload8(0, v + STEP_MOVE_LIMIT * WG_SIZE);
+  const REAL8 r0 = select(r0_in, select(zero, sqrt(r0_in), r0_in >= zero), from_parts);
+  const MASK8 bounded = (limit_in > zero) & (MASK8)(stability_factor > (REAL)0 ? -1 : 0);
+  const REAL8 limit =
+      select(limit_in, select((REAL8)(INFINITY), (REAL)2 * stability_factor / limit_in, bounded), from_parts);
+  const REAL8 f = force_norm8(fx, fy);
+  const REAL8 dt2 = local_dt2_8(f, r0, dt_gm2, limit);
+  REAL8 dx = select(zero, REAL_C(0.5) * dt2 * fx, moving), dy = select(zero, REAL_C(0.5) * dt2 * fy, moving);
+  if (beta > (REAL)0) {
+    REAL8 mx, my;
+    momentum_move8(dx, dy, vload8(0, v + STEP_MOVE_PX * WG_SIZE), vload8(0, v + STEP_MOVE_PY * WG_SIZE), beta, mix, fx,
+                   fy, r0, &mx, &my);
+    dx = select(dx, mx, moving);
+    dy = select(dy, my, moving);
+  }
+#if PDMESH_DOUBLE
+  const REAL8 kinetic = REAL_C(0.125) * dt2 * (fx * fx + fy * fy);  // the reference's expression
+#else
+  const REAL8 kinetic = REAL_C(0.125) * dt2 * f * f;  // f^2 could overflow in float
+#endif
+  vstore8(select(zero, f, moving), 0, v);
+  vstore8(select(zero, kinetic, moving), 0, v + WG_SIZE);
+  vstore8(select(zero, f, moving), 0, v + 5 * WG_SIZE);
+  vstore8(dx, 0, v + STEP_MOVE_DX * WG_SIZE);
+  vstore8(dy, 0, v + STEP_MOVE_DY * WG_SIZE);
+}
+
+// The skin use of nodes s .. s + 7 from their skin_use_parts in the slots of s (stride WG_SIZE: d2,
+// growth, divisor, factor): skin_use_of's expression on each lane.
+REAL8 skin_use8(__local const REAL* s) {
+  const REAL8 d2 = vload8(0, s), grow = vload8(0, s + WG_SIZE);
+  const REAL8 divisor = vload8(0, s + 2 * WG_SIZE), factor = vload8(0, s + 3 * WG_SIZE);
+  return (sqrt(d2) + grow) / divisor * factor;
+}
+#endif
+
 // Inputs xy (positions, x and y interleaved), q (current), outputs xy_next, q_next. budget[i]: interior node i's
 // clearance budget (host/sim/boundary_handling.hpp, clearance_budget): a move whose cost (the same move_cost formula,
 // with this precision's epsilon) is below it stays inside the domain, exactly; the cost is subtracted. A spent budget
@@ -168,17 +238,35 @@ __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void device_step(
                                 &fy, &r0, &limit, &coincident, &within);
   STEP_PHASE();
   if (split_n[l] >= 0)
-    node_forces_lj(ic, split_n[l], kind_i, qi, tx[ic], ty[ic], lj_a, stability_factor, q, split_j + SPLIT_PACK * l,
-                   split_dx + SPLIT_PACK * l, split_dy + SPLIT_PACK * l, split_r2 + SPLIT_PACK * l, &fx, &fy, &limit);
+    node_forces_lj(ic, split_n[l], kind_i, qi, tx[ic], ty[ic], lj_a, q, split_j + SPLIT_PACK * l,
+                   split_dx + SPLIT_PACK * l, split_dy + SPLIT_PACK * l, split_r2 + SPLIT_PACK * l, &fx, &fy,
+                   &limit);  // the stiffness: step_moves8 divides
   STEP_PHASE();
-  if (split_n[l] >= 0)
-    r0 = node_forces_r0(ic, split_n[l], fx, fy, r0_any_direction, split_j + SPLIT_PACK * l, split_dx + SPLIT_PACK * l,
-                        split_dy + SPLIT_PACK * l, split_r2 + SPLIT_PACK * l);
+  // r0 and the stability bound as node_forces gave them (split_n[l] < 0), or r0's square from the r0
+  // pass and, in `limit`, node_forces_lj's summed stiffness (STEP_MOVE_STATE 1).
+  const int r0_squared = split_n[l] >= 0;
+  if (r0_squared)
+    r0 = node_forces_r0_squared(ic, split_n[l], fx, fy, r0_any_direction, split_j + SPLIT_PACK * l,
+                                split_dx + SPLIT_PACK * l, split_dy + SPLIT_PACK * l, split_r2 + SPLIT_PACK * l);
+  // The local time step, the move and momentum of eight nodes at once (step_moves8), through the
+  // partial sums' array: STEP_MOVE_* slots in; the move, |F| and the kinetic term out.
+  values[STEP_MOVE_FX * WG_SIZE + l] = fx;
+  values[STEP_MOVE_FY * WG_SIZE + l] = fy;
+  values[STEP_MOVE_R0 * WG_SIZE + l] = r0;
+  values[STEP_MOVE_LIMIT * WG_SIZE + l] = limit;
+  values[STEP_MOVE_STATE * WG_SIZE + l] = !moving ? (REAL)0 : r0_squared ? (REAL)1 : (REAL)2;
+  const REAL2 carried_i = beta > (REAL)0 && moving ? carried[i] : (REAL2)((REAL)0, (REAL)0);
+  values[STEP_MOVE_PX * WG_SIZE + l] = carried_i.x;
+  values[STEP_MOVE_PY * WG_SIZE + l] = carried_i.y;
+  STEP_PHASE();
+  if ((l & 7) == 0) step_moves8(values + l, dt_gm2, beta, mix, stability_factor);
+  STEP_PHASE();
+  const REAL dx = values[STEP_MOVE_DX * WG_SIZE + l], dy = values[STEP_MOVE_DY * WG_SIZE + l];
+  // Node i alone reads and writes its carried move (one buffer serves). Fixed: p = 0.
+  if (beta > (REAL)0 && active) carried[i] = (REAL2)(dx, dy);
 #else
   node_forces(ic, (row + 7) & ~7, row, row_start, xi, yi, qi, kind_i, rc * rc, tx[ic], ty[ic], lj_a, r0_any_direction,
               stability_factor, xy, q, index, &fx, &fy, &r0, &limit, &coincident, &within);
-#endif
-  STEP_PHASE();
   const REAL dt2 = local_dt2(fx, fy, r0, dt_gm2, limit);
   REAL dx = moving ? REAL_C(0.5) * dt2 * fx : (REAL)0;
   REAL dy = moving ? REAL_C(0.5) * dt2 * fy : (REAL)0;
@@ -192,14 +280,18 @@ __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void device_step(
     }
     carried[i] = (REAL2)(dx, dy);
   }
-  const REAL f = moving ? force_norm(fx, fy) : (REAL)0;  // reduce.cl: float-safe |F|
+  const REAL f = moving ? force_norm(fx, fy) : (REAL)0;                               // reduce.cl: float-safe |F|
 #if PDMESH_DOUBLE
   const REAL kinetic = moving ? REAL_C(0.125) * dt2 * (fx * fx + fy * fy) : (REAL)0;  // the reference's expression
 #else
   const REAL kinetic = moving ? REAL_C(0.125) * dt2 * f * f : (REAL)0;  // f^2 could overflow in float
 #endif
+#endif
+#if PDMESH_FORCE_LOOP_VECTOR
+  REAL skin_d2 = (REAL)0, skin_grow = (REAL)0, skin_divisor = (REAL)1, skin_factor = (REAL)0;
+#else
   REAL skin_use = (REAL)0;
-  STEP_PHASE();
+#endif
   step_prefetch_spacing(i + STEP_PREFETCH_AHEAD, n, node_leaf, bg_corner, bg_q);
   if (active) {
     const REAL xn = xi + dx, yn = yi + dy;
@@ -251,16 +343,36 @@ __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void device_step(
     // writes nothing, so the state before this step stays whole on the device.
     if (moving && !(isfinite(dx) && isfinite(dy) && isfinite(xn) && isfinite(yn)))
       atomic_or(&counters[COUNTER_NON_FINITE], 1);
+#if PDMESH_FORCE_LOOP_VECTOR
+    // The skin use's operands into the scratch slots of l (split_dx is free after the force phases);
+    // nodes without one get operands that give +0, the scalar shape's value for them.
+    if (!host && kind_i == 2)
+      skin_use_parts((REAL2)(xn, yn), qn, xy_build[i], q_build[i], cutoff, skin_cutoff, skin_class[i], &skin_d2,
+                     &skin_grow, &skin_divisor, &skin_factor);
+#else
     if (!host && kind_i == 2)
       skin_use = skin_use_of((REAL2)(xn, yn), qn, xy_build[i], q_build[i], cutoff, skin_cutoff, skin_class[i]);
+#endif
   }
+#if PDMESH_FORCE_LOOP_VECTOR
+  // step_moves8 wrote slots 0, 1 and 5; the skin use (slot 6) eight nodes at once after a barrier.
+  split_dx[l] = skin_d2;
+  split_dx[WG_SIZE + l] = skin_grow;
+  split_dx[2 * WG_SIZE + l] = skin_divisor;
+  split_dx[3 * WG_SIZE + l] = skin_factor;
+#else
   values[l] = f;
   values[WG_SIZE + l] = kinetic;
+  values[5 * WG_SIZE + l] = f;
+  values[6 * WG_SIZE + l] = skin_use;
+#endif
   values[2 * WG_SIZE + l] = moving ? (REAL)1 : (REAL)0;
   values[3 * WG_SIZE + l] = moving ? (REAL)within : (REAL)0;
   values[4 * WG_SIZE + l] = moving ? (REAL)coincident : (REAL)0;
-  values[5 * WG_SIZE + l] = f;
-  values[6 * WG_SIZE + l] = skin_use;
+#if PDMESH_FORCE_LOOP_VECTOR
+  STEP_PHASE();
+  if ((l & 7) == 0) vstore8(skin_use8(split_dx + l), 0, values + 6 * WG_SIZE + l);
+#endif
   group_reduce(values, STEP_PARTIALS, 5);
   if (l < STEP_PARTIALS) partials[STEP_PARTIALS * get_group_id(0) + l] = values[l * WG_SIZE];
 }

@@ -211,7 +211,8 @@ void lj_chunk(const int8 j, const REAL8 dx, const REAL8 dy, const REAL8 r2, cons
 // gives r0 = INFINITY, as in the reference. The lanes hold r^2 > 0 or INFINITY only (the masks admit
 // r^2 > 0: no NaN, no zero), so the minimum is the same value in any order: a tree of three steps
 // (halves, quarters, pair) rather than a chain of seven dependent compares, which the r0 phase waits on.
-REAL r0_of_lanes(const REAL8 best2, const MASK8 found) {
+// r0_squared_of_lanes: the same minimum without the square root, -1 when no entry counted.
+REAL r0_squared_of_lanes(const REAL8 best2, const MASK8 found) {
   const __typeof__(best2.lo) m4 = select(best2.lo, best2.hi, best2.hi < best2.lo);
   const REAL2 m2 = select(m4.lo, m4.hi, m4.hi < m4.lo);
   const REAL b = m2.y < m2.x ? m2.y : m2.x;
@@ -220,7 +221,11 @@ REAL r0_of_lanes(const REAL8 best2, const MASK8 found) {
 #else
   const int any_found = any(found);
 #endif
-  return any_found ? sqrt(b) : (REAL)0;
+  return any_found ? b : (REAL)-1;
+}
+REAL r0_of_lanes(const REAL8 best2, const MASK8 found) {
+  const REAL b = r0_squared_of_lanes(best2, found);
+  return b >= (REAL)0 ? sqrt(b) : (REAL)0;
 }
 
 // node_forces, vector shape: eight row entries at a time through the packing buffer, only as many
@@ -293,17 +298,19 @@ void node_forces(const int i, const int stride, const int count, const long base
 
 // node_forces in three parts for device_step's CPU shape, which runs them in three phases split by
 // barriers (STEP_PHASE, kernels/device_step.cl): node_forces_scan walks the row and packs the entries
-// that count; node_forces_lj sums their LJ force and stiffness; node_forces_r0 takes r0 from the final
-// force. PoCL runs each phase as a loop over the group's work-items, so the dependency chains of one
-// node's sums (division, square root, the sums in row order) and of its r0 (which waits for the final
-// force, then a minimum and a square root) overlap with the next nodes' instead of holding the core
+// that count; node_forces_lj sums their LJ force and stiffness; node_forces_r0_squared takes r0's square
+// from the final force (device_step takes the stability bound's division and r0's square root later,
+// eight nodes at once). PoCL runs each phase as a loop over the group's work-items, so the dependency
+// chains of one node's sums (division, square root, the sums in row order) and of its r0 (which waits
+// for the final force, then a minimum) overlap with the next nodes' instead of holding the core
 // while the next node's row waits behind them. A node's packed entries cross the barriers in
 // local memory, at most SPLIT_PACK of them (the settled lattice has ~6 within the cut-off; a boundary
 // row has at most 8); a node with more gets node_forces whole in the scan's phase. With device_step's
 // partial sums the group's local memory is 32,512 bytes in double at 64 work-items: within the
 // 32 KiB every OpenCL device offers (Oclgrind's size), so a larger SPLIT_PACK needs a smaller group.
 // The LJ part adds the packed entries in row order, unused lanes adding +0, as node_forces does, and
-// r0 is the same minimum: the results are node_forces' bit for bit.
+// r0's square is the same minimum: with node_forces' division and square root the results are
+// node_forces' bit for bit.
 #define SPLIT_PACK 16
 
 // Returns the packed count (<= SPLIT_PACK: its entries written to lj, ldx, ldy, lr2, the coincident
@@ -339,34 +346,36 @@ int node_forces_scan(const int i, const int stride, const int count, const long 
   return packed;
 }
 
-// The LJ force (tangential for boundary nodes) and the stability bound of the `packed` entries
+// The LJ force (tangential for boundary nodes) and the summed pair stiffness of the `packed` entries
 // node_forces_scan left in local memory; slots past `packed` are masked (their node index becomes i).
+// device_step turns the stiffness into the stability bound for eight nodes at once (step_moves8).
 void node_forces_lj(const int i, const int packed, const int kind_i, const REAL qi, const REAL tx, const REAL ty,
-                    const REAL lj_a, const REAL stability_factor, __global const REAL* q, __local const int* lj,
-                    __local const REAL* ldx, __local const REAL* ldy, __local const REAL* lr2, REAL* fx_out,
-                    REAL* fy_out, REAL* dt2_limit_out) {
+                    const REAL lj_a, __global const REAL* q, __local const int* lj, __local const REAL* ldx,
+                    __local const REAL* ldy, __local const REAL* lr2, REAL* fx_out, REAL* fy_out, REAL* stiffness_out) {
   REAL fx = (REAL)0, fy = (REAL)0, stiffness = (REAL)0;
   for (int k = 0; k < packed; k += 8) {
     PACKED_CHUNK(k, packed - k, lj, ldx, ldy, lr2);
     lj_chunk(pk_j, pk_dx, pk_dy, pk_r2, pk_use, qi, lj_a, q, &fx, &fy, &stiffness);
   }
-  *dt2_limit_out =
-      stability_factor > (REAL)0 && stiffness > (REAL)0 ? (REAL)2 * stability_factor / stiffness : INFINITY;
+  *stiffness_out = stiffness;
   // Boundary nodes slide along their curve: keep the tangential component only.
   const REAL ft = fx * tx + fy * ty;
   *fx_out = kind_i == 1 ? ft * tx : fx;
   *fy_out = kind_i == 1 ? ft * ty : fy;
 }
 
-// r0 over the `packed` entries in local memory, given the node's final force (fx, fy): node_forces' r0 pass.
-REAL node_forces_r0(const int i, const int packed, const REAL fx, const REAL fy, const int r0_any_direction,
-                    __local const int* lj, __local const REAL* ldx, __local const REAL* ldy, __local const REAL* lr2) {
+// r0 over the `packed` entries in local memory, given the node's final force (fx, fy): node_forces' r0 pass,
+// without its square root: r0^2, or -1 where r0 is 0 (no entry counted). device_step takes the square
+// roots of eight nodes at once (step_moves8).
+REAL node_forces_r0_squared(const int i, const int packed, const REAL fx, const REAL fy, const int r0_any_direction,
+                            __local const int* lj, __local const REAL* ldx, __local const REAL* ldy,
+                            __local const REAL* lr2) {
   const REAL8 zero = (REAL8)((REAL)0);
   const MASK8 any_direction = (MASK8)(r0_any_direction && (fx != (REAL)0 || fy != (REAL)0) ? -1 : 0);
   REAL8 best2 = (REAL8)(INFINITY);
   MASK8 found = (MASK8)(0);
   R0_CHUNKS(packed, lj, ldx, ldy, lr2)
-  return r0_of_lanes(best2, found);
+  return r0_squared_of_lanes(best2, found);
 }
 
 #else  // PDMESH_FORCE_LOOP_SCALAR

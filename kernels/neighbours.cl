@@ -504,12 +504,21 @@ __constant REAL skin_class_roots[SKIN_CLASS_STEPS] = {SKIN_CLASS_ROOTS};
 // (less the host's margin). The factor 2^(1 + c / SKIN_CLASS_STEPS) from a table and exact powers of 2,
 // as the host computes it (an exp2 per node and iteration cost a libm call on PoCL). One expression
 // for device_step, refresh_budgets and boundary_snap, so that they agree bit for bit.
+// skin_use_parts: the expression's operands (the squared distance, the growth, the divisor, the factor),
+// for callers that take the square root and division of several nodes at once (device_step's CPU shape).
+void skin_use_parts(const REAL2 p, const REAL qn, const REAL2 pb, const REAL qb, const REAL cutoff,
+                    const REAL skin_cutoff, const uchar skin_class, REAL* d2, REAL* grow, REAL* divisor, REAL* factor) {
+  const REAL ex = p.x - pb.x, ey = p.y - pb.y;
+  *d2 = ex * ex + ey * ey;
+  *grow = qn > qb ? cutoff * (qn - qb) : (REAL)0;
+  *divisor = skin_cutoff * qb;
+  *factor = (REAL)(2 << (skin_class / SKIN_CLASS_STEPS)) * skin_class_roots[skin_class % SKIN_CLASS_STEPS];
+}
 REAL skin_use_of(const REAL2 p, const REAL qn, const REAL2 pb, const REAL qb, const REAL cutoff, const REAL skin_cutoff,
                  const uchar skin_class) {
-  const REAL ex = p.x - pb.x, ey = p.y - pb.y;
-  const REAL grow = qn > qb ? cutoff * (qn - qb) : (REAL)0;
-  const REAL factor = (REAL)(2 << (skin_class / SKIN_CLASS_STEPS)) * skin_class_roots[skin_class % SKIN_CLASS_STEPS];
-  return (sqrt(ex * ex + ey * ey) + grow) / (skin_cutoff * qb) * factor;
+  REAL d2, grow, divisor, factor;
+  skin_use_parts(p, qn, pb, qb, cutoff, skin_cutoff, skin_class, &d2, &grow, &divisor, &factor);
+  return (sqrt(d2) + grow) / divisor * factor;
 }
 
 // Insertion sort of entries[base .. base + c) ascending.
