@@ -94,6 +94,30 @@ uint bin_bucket(const REAL xj, const REAL yj, const int L, __global const int* g
   return grid_bucket_offset[L] + nb_bucket(cx, cy, (ulong)grid_mask[L]);
 }
 
+// A node the binning can place: a finite position and a finite q > 0 (any other is reported).
+int bin_node_valid(const REAL x, const REAL y, const REAL q) {
+  return isfinite(x) && isfinite(y) && isfinite(q) && q > (REAL)0;
+}
+
+// The grid level of a node of list radius R_j = `radius`: floor(log2(R_j / R_min)) as the reference
+// (R_j / R_min = m 2^e with m in [0.5, 1)), clamped to the last level, where *too_many is set.
+int bin_level_of(const REAL radius, const REAL r_min, int* too_many) {
+  int e = 0;
+  frexp(radius / r_min, &e);
+  const int lv = max(0, e - 1);
+  if (lv < PDMESH_GRID_LEVELS) return lv;
+  *too_many = 1;
+  return PDMESH_GRID_LEVELS - 1;
+}
+
+// Adds one work-group's member counts per level and its top level (-1: none) to the build's state,
+// one global atomic per level the group has.
+void bin_add_levels(const int* count, const int top, __global int* state) {
+  for (int k = 0; k < PDMESH_GRID_LEVELS; ++k)
+    if (count[k] > 0) atomic_add(&state[BIN_LEVEL_COUNT + k], count[k]);
+  if (top >= 0) atomic_max(&state[BIN_TOP], top);
+}
+
 // state[BIN_FIRST_INVALID] must start at INT_MAX, the other entries at 0 (the host uploads them).
 #if PDMESH_FORCE_LOOP_VECTOR
 // The CPU shape: work-item 0 takes the group's nodes in a loop, without barriers (a tree reduction's
@@ -110,7 +134,7 @@ __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void bin_bounds(co
   int invalid = INT_MAX;
   for (int i = i0; i < end; ++i) {
     const REAL xi = xy[i].x, yi = xy[i].y, qi = q[i];  // positions: x, y interleaved
-    if (!(isfinite(xi) && isfinite(yi) && isfinite(qi) && qi > (REAL)0))
+    if (!bin_node_valid(xi, yi, qi))
       invalid = min(invalid, i);
     else
       r = fmin(r, radius_factor * qi);
@@ -129,7 +153,7 @@ __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void bin_bounds(co
   REAL r = INFINITY;
   if (i < n) {
     const REAL xi = xy[i].x, yi = xy[i].y, qi = q[i];  // positions: x, y interleaved
-    if (!(isfinite(xi) && isfinite(yi) && isfinite(qi) && qi > (REAL)0))
+    if (!bin_node_valid(xi, yi, qi))
       atomic_min(&state[BIN_FIRST_INVALID], i);
     else
       r = radius_factor * qi;
@@ -159,10 +183,10 @@ __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void bin_rmin(cons
   if (l == 0) partial[groups] = m[0];
 }
 
-// level = floor(log2(R_j / R_min)) as the reference: R_j / R_min = m 2^e with m in [0.5, 1).
-// The member counts and the top level are tallied per work-group in local memory first, then added
-// with one global atomic per level the group has: a global atomic per node on the same few words had
-// the CPU device's two threads pass their cache line back and forth for every node.
+// Each node's level (bin_level_of). The member counts and the top level are tallied per work-group in
+// local memory first, then added with one global atomic per level the group has (bin_add_levels): a
+// global atomic per node on the same few words had the CPU device's two threads pass their cache line
+// back and forth for every node.
 // The CPU shape computes and tallies the group's levels in work-item 0, without the barrier.
 #if PDMESH_FORCE_LOOP_VECTOR
 __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void bin_levels(
@@ -175,21 +199,13 @@ __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void bin_levels(
   for (int k = 0; k < PDMESH_GRID_LEVELS; ++k) count[k] = 0;
   int top = -1, too_many = 0;
   for (int i = i0; i < end; ++i) {
-    int e = 0;
-    frexp(radius_factor * q[i] / r_min, &e);
-    int lv = max(0, e - 1);
-    if (lv >= PDMESH_GRID_LEVELS) {
-      too_many = 1;
-      lv = PDMESH_GRID_LEVELS - 1;
-    }
+    const int lv = bin_level_of(radius_factor * q[i], r_min, &too_many);
     level[i] = lv;
     ++count[lv];
     top = max(top, lv);
   }
   if (too_many) atomic_or(&state[BIN_TOO_MANY_LEVELS], 1);
-  for (int k = 0; k < PDMESH_GRID_LEVELS; ++k)
-    if (count[k] > 0) atomic_add(&state[BIN_LEVEL_COUNT + k], count[k]);
-  if (top >= 0) atomic_max(&state[BIN_TOP], top);
+  bin_add_levels(count, top, state);
 }
 #else
 __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void bin_levels(
@@ -200,13 +216,9 @@ __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void bin_levels(
   const int valid = state[BIN_FIRST_INVALID] >= n;  // uniform: the same word for every work-item
   int lv = -1;
   if (i < n && valid) {
-    int e = 0;
-    frexp(radius_factor * q[i] / partial[groups], &e);
-    lv = max(0, e - 1);
-    if (lv >= PDMESH_GRID_LEVELS) {
-      atomic_or(&state[BIN_TOO_MANY_LEVELS], 1);
-      lv = PDMESH_GRID_LEVELS - 1;
-    }
+    int too_many = 0;
+    lv = bin_level_of(radius_factor * q[i], partial[groups], &too_many);
+    if (too_many) atomic_or(&state[BIN_TOO_MANY_LEVELS], 1);
     level[i] = lv;
   }
   levels[l] = lv;
@@ -221,9 +233,7 @@ __kernel __attribute__((reqd_work_group_size(WG_SIZE, 1, 1))) void bin_levels(
       ++count[v];
       top = max(top, v);
     }
-    for (int k = 0; k < PDMESH_GRID_LEVELS; ++k)
-      if (count[k] > 0) atomic_add(&state[BIN_LEVEL_COUNT + k], count[k]);
-    if (top >= 0) atomic_max(&state[BIN_TOP], top);
+    bin_add_levels(count, top, state);
   }
 }
 #endif
