@@ -234,8 +234,8 @@ ScanCounts host_scan(const Input& in, ocl::DeviceNeighbours<double>& nb, double 
           std::max(std::max(static_cast<double>(cy) * cell - yi, yi - static_cast<double>(cy + 1) * cell) - slack, 0.0);
       std::vector<std::vector<std::int64_t>> ranges;  // the row's probed cells, by range
       for (std::int64_t cx = x0; cx <= x1; ++cx) {
-        const double gx =
-            std::max(std::max(static_cast<double>(cx) * cell - xi, xi - static_cast<double>(cx + 1) * cell) - slack, 0.0);
+        const double gx = std::max(
+            std::max(static_cast<double>(cx) * cell - xi, xi - static_cast<double>(cx + 1) * cell) - slack, 0.0);
         if (gx * gx + gy * gy > r2) continue;
         const std::uint32_t b = bucket_of(cx, cy);
         for (std::uint32_t k = b > 0 ? bucket[b - 1] : 0; k < bucket[b]; ++k) {
