@@ -138,9 +138,9 @@ void row_append_batch(const int r, const int* js, const int k, __global const ul
     row_place(r, s + (ulong)t, js[t], offset, entries_size, entries, spill_capacity, spill, counters);
 }
 
-// The CPU loop walks a bucket 8 entries at a time in vector types (PoCL's CPU device does not
-// vectorise across work-items; forces.cl's GATHER8_XY and compress builtins, which the program places
-// before this file): the tag, distance and cell tests of 8 entries at once, without a branch on
+// The CPU loop walks a range of buckets (gather_node) 8 entries at a time in vector types (PoCL's CPU
+// device does not vectorise across work-items; forces.cl's GATHER8_XY and compress builtins, which the
+// program places before this file): the tag, distance and cell tests of 8 entries at once, without a branch on
 // each entry's outcome (a bucket's entries are in node order, its cells mixed: the scalar loop's
 // branches on them mispredicted at most entries). The accepted pairs (j and d2) are compressed into a
 // private list of GATHER_LIST_CAP; gather_emit appends them to the rows when it is nearly full and
