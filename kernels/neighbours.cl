@@ -138,9 +138,9 @@ void row_append_batch(const int r, const int* js, const int k, __global const ul
     row_place(r, s + (ulong)t, js[t], offset, entries_size, entries, spill_capacity, spill, counters);
 }
 
-// The CPU loop walks a bucket 8 entries at a time in vector types (PoCL's CPU device does not
-// vectorise across work-items; forces.cl's GATHER8_XY and compress builtins, which the program places
-// before this file): the tag, distance and cell tests of 8 entries at once, without a branch on
+// The CPU loop walks a range of buckets (gather_node) 8 entries at a time in vector types (PoCL's CPU
+// device does not vectorise across work-items; forces.cl's GATHER8_XY and compress builtins, which the
+// program places before this file): the tag, distance and cell tests of 8 entries at once, without a branch on
 // each entry's outcome (a bucket's entries are in node order, its cells mixed: the scalar loop's
 // branches on them mispredicted at most entries). The accepted pairs (j and d2) are compressed into a
 // private list of GATHER_LIST_CAP; gather_emit appends them to the rows when it is nearly full and
@@ -256,30 +256,53 @@ void gather_node(const int i, const REAL radius_factor, __global const REAL2* xy
     const int tags_apart = 0;  // GPU-shaped: floor() is cheap there, and this path cost 6 VGPRs (gfx90a)
 #endif
     const REAL inside = r - slack;
+#if PDMESH_FORCE_LOOP_VECTOR
+    // The probed cells of one row of the box inside one 4 x 4 block (at most 4, consecutive in cx) are
+    // consecutive buckets when the block's hash is shared (small_box) and the grid has 16 buckets or
+    // more, so their entries are one range of grid_nodes: it is scanned as one, 8 entries at a time, each
+    // entry tested against the tag of the cell whose bucket holds it (lane index against the buckets'
+    // bounds). The same entries meet the same tests as in a scan per cell (the same candidates, pairs
+    // and `examined`), in fewer and fuller chunks with one bucket lookup per range. Other boxes take
+    // one cell per range (the condition is tags_apart's).
     for (long cy = y0; cy <= y1; ++cy) {
       const REAL gy = fmax(fmax((REAL)cy * cell - yi, yi - (REAL)(cy + 1) * cell) - slack, (REAL)0);
-#if PDMESH_FORCE_LOOP_VECTOR
       const int second_y = ((ulong)cy >> 2) != by0;
-#endif
+      const REAL gy2 = gy * gy;
       for (long cx = x0; cx <= x1; ++cx) {
         const REAL gx = fmax(fmax((REAL)cx * cell - xi, xi - (REAL)(cx + 1) * cell) - slack, (REAL)0);
-        if (gx * gx + gy * gy > r2) continue;
-#if PDMESH_FORCE_LOOP_VECTOR
-        const int second_x = ((ulong)cx >> 2) != bx0;
-        const ulong hb = second_y ? (second_x ? h11 : h01) : (second_x ? h10 : h00);
-        const uint in_block = (uint)((((ulong)cy & 3UL) << 2) | ((ulong)cx & 3UL));
-        const uint b = bucket_base + (small_box ? (uint)(((hb << 4) | in_block) & mask) : nb_bucket(cx, cy, mask));
-#else
-        const uint b = bucket_base + nb_bucket(cx, cy, mask);
-#endif
-        const uint tag = nb_tag(cx, cy);
-        const uint end = bucket[b];
-#if PDMESH_FORCE_LOOP_VECTOR
-        for (uint k0 = b > 0 ? bucket[b - 1] : 0; k0 < end; k0 += 8) {
+        if (gx * gx + gy2 > r2) continue;
+        // The range: cx .. last, the cells of this row and block that the gap test keeps (an interval:
+        // the gap grows away from xi).
+        long last = cx;
+        while (tags_apart && last < x1 && (((ulong)last + 1UL) & 3UL) != 0) {
+          const long nx = last + 1;
+          const REAL nxg = fmax(fmax((REAL)nx * cell - xi, xi - (REAL)(nx + 1) * cell) - slack, (REAL)0);
+          if (nxg * nxg + gy2 > r2) break;
+          last = nx;
+        }
+        const int cells = (int)(last - cx) + 1;
+        uint b;
+        if (small_box) {
+          const int second_x = ((ulong)cx >> 2) != bx0;
+          const ulong hb = second_y ? (second_x ? h11 : h01) : (second_x ? h10 : h00);
+          const uint in_block = (uint)((((ulong)cy & 3UL) << 2) | ((ulong)cx & 3UL));
+          b = bucket_base + (uint)(((hb << 4) | in_block) & mask);
+        } else {
+          b = bucket_base + nb_bucket(cx, cy, mask);
+        }
+        const uint begin = b > 0 ? bucket[b - 1] : 0, end = bucket[b + (uint)cells - 1];
+        // Entry k lies in the bucket of cell cx + (k >= s1) + (k >= s2) + (k >= s3); the bounds past
+        // the range's cells never match.
+        const uint s1 = cells > 1 ? bucket[b] : UINT_MAX, s2 = cells > 2 ? bucket[b + 1] : UINT_MAX;
+        const uint s3 = cells > 3 ? bucket[b + 2] : UINT_MAX;
+        const int tag0 = (int)nb_tag(cx, cy);
+        const int tag1 = cells > 1 ? (int)nb_tag(cx + 1, cy) : 0, tag2 = cells > 2 ? (int)nb_tag(cx + 2, cy) : 0;
+        const int tag3 = cells > 3 ? (int)nb_tag(cx + 3, cy) : 0;
+        for (uint k0 = begin; k0 < end; k0 += 8) {
           int8 e;
           if (k0 + 8 <= end) {
             e = vload8(0, grid_nodes + k0);
-          } else {  // the bucket's last, partial chunk: the lanes past it hold i (never a candidate)
+          } else {  // the range's last, partial chunk: the lanes past it hold i (never a candidate)
 #if defined(PACK_MASK_BITS)
             // A masked load (no fault past the end, no store-to-load stall of lane-by-lane writes).
             e = __builtin_astype(__builtin_ia32_loaddqusi256_mask((const int*)(ulong)(grid_nodes + k0),
@@ -291,12 +314,16 @@ void gather_node(const int i, const REAL radius_factor, __global const REAL2* xy
             for (uint c = 0; k0 + c < end; ++c) ((int*)&e)[c] = grid_nodes[k0 + c];
 #endif
           }
+          const uint8 lane = (uint8)(k0) + (uint8)(0, 1, 2, 3, 4, 5, 6, 7);
+          const int8 in1 = lane >= (uint8)(s1), in2 = lane >= (uint8)(s2), in3 = lane >= (uint8)(s3);
+          const int8 want =
+              select(select(select((int8)(tag0), (int8)(tag1), in1), (int8)(tag2), in2), (int8)(tag3), in3);
           const int8 j = e & (int8)((int)GRID_NODE_MASK);
-          const int8 candidate = ((e & (int8)((int)~GRID_NODE_MASK)) == (int8)((int)tag)) & (j != (int8)(i));
+          const int8 candidate = ((e & (int8)((int)~GRID_NODE_MASK)) == want) & (j != (int8)(i));
           REAL8 px, py;
 #if defined(PACK_MASK_BITS) && PDMESH_DOUBLE
           // A chunk without a candidate loads no position. The others load every lane's x and y by one
-          // 16-byte load each (j is a node whatever its cell: every load is valid; `use` holds candidates
+          // 16-byte load each (j is a node whatever its cell: every load is valid; `bits` holds candidates
           // only): on AVX-512 CPUs such as Zen 5 they cost less than two masked vgatherdpd of the
           // candidates' lanes, in cache and out of it.
           const uchar cand_bits = (uchar)__builtin_ia32_cvtd2mask256(__builtin_astype(candidate, pack_v8si));
@@ -318,33 +345,47 @@ void gather_node(const int i, const REAL radius_factor, __global const REAL2* xy
 #endif
           // -(x[i] - x[j]) exactly, as the GPU-shaped loop below.
           const REAL8 dx = px - (REAL8)(xi), dy = py - (REAL8)(yi), d2 = dx * dx + dy * dy;
+#if defined(PACK_MASK_BITS)
+          // The tests as mask bits (no vector of masks or lane array in private memory): the cell test
+          // near the box's edge (see `tags_apart`) reads the lane's node and position again, rarely.
+          uint bits = (uint)(uchar)__builtin_ia32_cvtd2mask256(__builtin_astype(candidate, pack_v8si)) &
+                      (uint)(uchar)PACK_MASK_BITS(d2 <= (REAL8)(r2));
+          const uint check_bits =
+              tags_apart
+                  ? bits & ~(uint)(uchar)PACK_MASK_BITS((fabs(dx) < (REAL8)(inside)) & (fabs(dy) < (REAL8)(inside)))
+                  : bits;
+          if (check_bits) {
+            for (int c = 0; c < 8; ++c) {
+              if (!((check_bits >> c) & 1U)) continue;
+              const uint k = k0 + (uint)c;
+              const long lane_cx = cx + (long)(k >= s1) + (long)(k >= s2) + (long)(k >= s3);
+              const REAL2 pc = xy[grid_nodes[k] & (int)GRID_NODE_MASK];
+              if (nb_cell_coord(pc.x, inv_cell) != lane_cx || nb_cell_coord(pc.y, inv_cell) != cy) bits &= ~(1U << c);
+            }
+          }
+          vstore8(
+              __builtin_astype(__builtin_ia32_compresssi256_mask(__builtin_astype(j, pack_v8si),
+                                                                 __builtin_astype((int8)(0), pack_v8si), (uchar)bits),
+                               int8),
+              0, list_j + listed);
+          vstore8(__builtin_astype(PACK_COMPRESS_REAL(__builtin_astype(d2, pack_v8real),
+                                                      __builtin_astype((REAL8)((REAL)0), pack_v8real), (uchar)bits),
+                                   REAL8),
+                  0, list_d2 + listed);
+          listed += (int)popcount(bits);
+#else
           MASK8 use = CONVERT_MASK8(candidate) & (d2 <= (REAL8)(r2));
           const MASK8 fast = tags_apart ? (fabs(dx) < (REAL8)(inside)) & (fabs(dy) < (REAL8)(inside)) : (MASK8)(0);
           const MASK8 check = use & ~fast;
-#if defined(PACK_MASK_BITS)
-          // One mask test (any() on a long8 became a chain of four extracts and branches).
-          const uint check_bits = (uint)(uchar)PACK_MASK_BITS(check);
-#else
-          const uint check_bits = any(check) ? 0xFFU : 0U;
-#endif
-          if (check_bits) {  // the cell test near the box's edge (see `tags_apart`)
-            for (int c = 0; c < 8; ++c)
-              if (((GATHER_MASK_T*)&check)[c] &&
-                  (nb_cell_coord(((REAL*)&px)[c], inv_cell) != cx || nb_cell_coord(((REAL*)&py)[c], inv_cell) != cy))
+          if (any(check)) {  // the cell test near the box's edge (see `tags_apart`), against the lane's cell
+            for (int c = 0; c < 8; ++c) {
+              const uint k = k0 + (uint)c;
+              const long lane_cx = cx + (long)(k >= s1) + (long)(k >= s2) + (long)(k >= s3);
+              if (((GATHER_MASK_T*)&check)[c] && (nb_cell_coord(((REAL*)&px)[c], inv_cell) != lane_cx ||
+                                                  nb_cell_coord(((REAL*)&py)[c], inv_cell) != cy))
                 ((GATHER_MASK_T*)&use)[c] = 0;
+            }
           }
-#if defined(PACK_MASK_BITS)
-          const uchar bits = (uchar)PACK_MASK_BITS(use);
-          vstore8(__builtin_astype(__builtin_ia32_compresssi256_mask(__builtin_astype(j, pack_v8si),
-                                                                     __builtin_astype((int8)(0), pack_v8si), bits),
-                                   int8),
-                  0, list_j + listed);
-          vstore8(__builtin_astype(PACK_COMPRESS_REAL(__builtin_astype(d2, pack_v8real),
-                                                      __builtin_astype((REAL8)((REAL)0), pack_v8real), bits),
-                                   REAL8),
-                  0, list_d2 + listed);
-          listed += (int)popcount((uint)bits);
-#else
           for (int c = 0; c < 8; ++c) {
             list_j[listed] = ((int*)&j)[c];
             list_d2[listed] = ((REAL*)&d2)[c];
@@ -357,7 +398,18 @@ void gather_node(const int i, const REAL radius_factor, __global const REAL2* xy
             listed = 0;
           }
         }
+        cx = last;
+      }
+    }
 #else
+    for (long cy = y0; cy <= y1; ++cy) {
+      const REAL gy = fmax(fmax((REAL)cy * cell - yi, yi - (REAL)(cy + 1) * cell) - slack, (REAL)0);
+      for (long cx = x0; cx <= x1; ++cx) {
+        const REAL gx = fmax(fmax((REAL)cx * cell - xi, xi - (REAL)(cx + 1) * cell) - slack, (REAL)0);
+        if (gx * gx + gy * gy > r2) continue;
+        const uint b = bucket_base + nb_bucket(cx, cy, mask);
+        const uint tag = nb_tag(cx, cy);
+        const uint end = bucket[b];
         for (uint k = b > 0 ? bucket[b - 1] : 0; k < end; ++k) {
           const uint e = (uint)grid_nodes[k];
           if ((e & ~GRID_NODE_MASK) != tag) continue;  // another cell (most of them: no position loads)
@@ -388,9 +440,9 @@ void gather_node(const int i, const REAL radius_factor, __global const REAL2* xy
               row_append(j, i, offset, count, entries_size, entries, spill_capacity, spill, counters, counting);
           }
         }
-#endif
       }
     }
+#endif
 #if PDMESH_FORCE_LOOP_VECTOR
     if (listed > 0)
       q_min = gather_emit(i, kind_i, own, qi, list_j, list_d2, listed, q_min, radius_factor, pair_skin, q, kind, level,

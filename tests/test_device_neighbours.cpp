@@ -11,6 +11,8 @@
 #include <limits>
 #include <map>
 #include <memory>
+#include <random>
+#include <string>
 #include <vector>
 
 #include "core/errors.hpp"
@@ -182,6 +184,133 @@ TEST_CASE("cells of one search box sharing a bucket never share a tag", "[opencl
           CHECK(tag(cx, cy) != tag(cx + 4 * a, cy + 4 * b));
         }
     }
+}
+
+// What the gather's scan meets (kernels/neighbours.cl, gather_node), computed on the host from the
+// device's grids: `examined`, the candidates of a scan per probed cell (entries of the cell's bucket with
+// the cell's tag, other than the node), which both program shapes must count; and, for the CPU shape's
+// scan by ranges (the probed cells of one row of a box inside one 4 x 4 block, consecutive buckets),
+// how often a test input meets its cases: ranges of several cells, box rows split into two ranges at a
+// block's edge, entries of another cell in a range's bucket (hash collisions), and among them those
+// carrying the tag of another cell of the same range (a test against any of the range's tags would take
+// them).
+struct ScanCounts {
+  std::uint64_t examined = 0, multi_cell_ranges = 0, split_rows = 0, collisions = 0, foreign_tags = 0;
+};
+
+ScanCounts host_scan(const Input& in, ocl::DeviceNeighbours<double>& nb, double radius_factor) {
+  ocl::Context& ctx = test_context();
+  const std::size_t n = in.p.size();
+  std::vector<std::int32_t> level, mask, nodes;
+  std::vector<std::uint32_t> bucket_offset, bucket;
+  std::vector<double> inv_cell;
+  nb.level().download(ctx.queue(), level, n);
+  nb.grid_mask().download(ctx.queue(), mask);
+  nb.grid_bucket_offset().download(ctx.queue(), bucket_offset);
+  nb.grid_inv_cell().download(ctx.queue(), inv_cell);
+  nb.bucket().download(ctx.queue(), bucket);
+  nb.grid_nodes().download(ctx.queue(), nodes);
+  auto tag = [](std::int64_t cx, std::int64_t cy) {  // binning.cl, nb_tag
+    return static_cast<std::uint32_t>((static_cast<std::uint64_t>(cx) * 0xD6E8FEB86659FD93ULL +
+                                       static_cast<std::uint64_t>(cy) * 0xA0761D6478BD642FULL) >>
+                                      (32 + ocl::kGridNodeBits));
+  };
+  const std::uint32_t node_mask = (1U << ocl::kGridNodeBits) - 1U;
+  ScanCounts counts;
+  for (std::size_t i = 0; i < n; ++i) {
+    const auto own = static_cast<std::size_t>(level[i]);
+    const double ic = inv_cell[own], cell = 1.0 / ic, xi = in.p.x[i], yi = in.p.y[i];
+    const double r = radius_factor * in.p.q[i], r2 = r * r;
+    const double slack = (std::fabs(xi) + std::fabs(yi) + r + cell) * 1e-12;  // the kernel's, in double
+    auto coord = [&](double v) { return static_cast<std::int64_t>(std::floor(v * ic)); };
+    const std::int64_t x0 = coord(xi - r), x1 = coord(xi + r), y0 = coord(yi - r), y1 = coord(yi + r);
+    const auto m = static_cast<std::uint64_t>(static_cast<std::uint32_t>(mask[own]));
+    const bool ranged = x1 - x0 <= 4 && y1 - y0 <= 4 && m >= 15;
+    auto bucket_of = [&](std::int64_t cx, std::int64_t cy) {
+      return bucket_offset[own] + static_cast<std::uint32_t>(ocl::grid_bucket(cx, cy, m));
+    };
+    for (std::int64_t cy = y0; cy <= y1; ++cy) {
+      const double gy =
+          std::max(std::max(static_cast<double>(cy) * cell - yi, yi - static_cast<double>(cy + 1) * cell) - slack, 0.0);
+      std::vector<std::vector<std::int64_t>> ranges;  // the row's probed cells, by range
+      for (std::int64_t cx = x0; cx <= x1; ++cx) {
+        const double gx = std::max(
+            std::max(static_cast<double>(cx) * cell - xi, xi - static_cast<double>(cx + 1) * cell) - slack, 0.0);
+        if (gx * gx + gy * gy > r2) continue;
+        const std::uint32_t b = bucket_of(cx, cy);
+        for (std::uint32_t k = b > 0 ? bucket[b - 1] : 0; k < bucket[b]; ++k) {
+          const auto e = static_cast<std::uint32_t>(nodes[k]);
+          if ((e >> ocl::kGridNodeBits) == tag(cx, cy) && (e & node_mask) != i) ++counts.examined;
+        }
+        const bool joins = ranged && !ranges.empty() && ranges.back().back() == cx - 1 && (cx & 3) != 0;
+        if (joins)
+          ranges.back().push_back(cx);
+        else
+          ranges.push_back({cx});
+      }
+      if (ranged && ranges.size() > 1) ++counts.split_rows;
+      for (const auto& cells : ranges) {
+        if (cells.size() < 2) continue;
+        ++counts.multi_cell_ranges;
+        for (std::int64_t cx : cells) {
+          const std::uint32_t b = bucket_of(cx, cy);
+          for (std::uint32_t k = b > 0 ? bucket[b - 1] : 0; k < bucket[b]; ++k) {
+            const auto j = static_cast<std::size_t>(static_cast<std::uint32_t>(nodes[k]) & node_mask);
+            const std::int64_t jx = coord(in.p.x[j]), jy = coord(in.p.y[j]);
+            if (jx == cx && jy == cy) continue;
+            ++counts.collisions;
+            for (std::int64_t other : cells)
+              if (other != cx && tag(jx, jy) == tag(other, cy)) ++counts.foreign_tags;
+          }
+        }
+      }
+    }
+  }
+  return counts;
+}
+
+// One grid level of 16 buckets (every 4 x 4 block's cells share them, so every bucket holds other
+// blocks' cells) over ~12 x 12 cells, and larger grids: the rows of both program shapes equal the
+// reference, both count the candidates of a scan per probed cell, and the inputs meet the CPU shape's
+// scan by ranges in every case above.
+TEST_CASE("device rows scanned by ranges of cells equal the reference and examine the candidates of each cell",
+          "[opencl][neighbour]") {
+  std::vector<Input> inputs;
+  for (std::uint64_t seed : {3U, 4U, 5U}) {
+    Input in{"one level of 16 buckets, seed " + std::to_string(seed), {}, 1.5};
+    std::mt19937_64 rng(seed);
+    for (int k = 0; k < 30; ++k)  // q 0.06 .. 0.119: one level, cells of 0.09, boxes of 3 to 5 cells
+      pdmesh_test::add(in.p, 1.1 * uniform(rng) - 0.3, 1.1 * uniform(rng) - 0.3, 0.06 + 0.059 * uniform(rng));
+    inputs.push_back(in);
+  }
+  inputs.push_back(random_input(600, 31, false));
+  inputs.push_back(graded_input(false));
+  inputs.push_back(lattice_input());  // nodes on cell edges, pairs on the cut-off: the cell test decides
+  ocl::StepProgram scalar(test_context(), ocl::Precision::Double, ocl::ForceLoop::Scalar);
+  ScanCounts seen;
+  for (const Input& in : inputs) {
+    for (ocl::StepProgram* program : {&test_program(ocl::Precision::Double), &scalar}) {
+      INFO("input " << in.name << ", force loop " << (program == &scalar ? "scalar" : "vector"));
+      DeviceBuilder b(*program);
+      b.build(in.p, in.cutoff);
+      const DeviceRows got = b.build(in.p, in.cutoff);  // from the first build's counts: one gather
+      check_rows(in, got);
+      const ScanCounts counts = host_scan(in, b.neighbours(), in.cutoff);
+      CHECK(got.flags.pairs_examined == counts.examined);
+      if (program == &scalar) continue;
+      seen.multi_cell_ranges += counts.multi_cell_ranges;
+      seen.split_rows += counts.split_rows;
+      seen.collisions += counts.collisions;
+      seen.foreign_tags += counts.foreign_tags;
+    }
+  }
+  INFO("ranges of 2-4 cells " << seen.multi_cell_ranges << ", rows split at a block's edge " << seen.split_rows
+                              << ", other cells' entries in ranges " << seen.collisions << ", of them with another "
+                              << "cell's tag of the range " << seen.foreign_tags);
+  CHECK(seen.multi_cell_ranges > 0);
+  CHECK(seen.split_rows > 0);
+  CHECK(seen.collisions > 0);
+  CHECK(seen.foreign_tags > 0);
 }
 
 TEST_CASE("device neighbour rows with coincident nodes equal the reference", "[opencl][neighbour]") {
