@@ -295,6 +295,8 @@ void note_cleanup_parts(const CleanupStats& stats, RunPhases& phases) {
   phases.note("cleanup_strips", stats.strips);
   phases.note("cleanup_strips_parallel_seconds", stats.strip_seconds);
   phases.note("cleanup_strips_serial_seconds", stats.strip_serial_seconds);
+  phases.note("cleanup_strips_taken", static_cast<double>(stats.strip_taken));
+  phases.note("cleanup_strips_left", static_cast<double>(stats.strip_left));
   phases.note("cleanup_topology_seconds", stats.topology_seconds);
   phases.note("cleanup_lists_seconds", stats.list_seconds);
   phases.note("cleanup_finish_seconds", stats.finish_seconds);
