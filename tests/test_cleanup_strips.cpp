@@ -163,12 +163,15 @@ TEST_CASE("strips narrower than a star leave their vertices to the serial pass, 
   CHECK(one.mesh.triangles == r.mesh.triangles);
 }
 
-TEST_CASE("a small mesh sweeps in kSmallStrips strips, the same mesh on 1 and 2 threads", "[cleanup]") {
+TEST_CASE("with small_strip_vertices a small mesh sweeps in kSmallStrips strips, the same mesh on 1 and 2 threads",
+          "[cleanup]") {
   const Plate p(InitMethod::Random);
-  // The default strip sizes: below kMinStrips x strip_vertices, at least kSmallStrips x small_strip_vertices.
+  // Below kMinStrips x strip_vertices (the default), at least kSmallStrips x small_strip_vertices.
   CleanupOptions o;
   o.min_angle = 40.0;
   o.iterations = 12;
+  CHECK(clean_mesh(p.mesh, p.nodes, p.tree, p.spacing, o).stats.strips == 0);  // off by default
+  o.small_strip_vertices = 1000;
   REQUIRE(p.mesh.points.size() < CleanupOptions::kMinStrips * o.strip_vertices);
   REQUIRE(p.mesh.points.size() >= CleanupOptions::kSmallStrips * o.small_strip_vertices);
   o.threads = 1;
@@ -186,9 +189,8 @@ TEST_CASE("a small mesh sweeps in kSmallStrips strips, the same mesh on 1 and 2 
   for (std::size_t k = 0; k < two.stats.per_iteration.size(); ++k)
     CHECK(two.stats.per_iteration[k].aspect_drop == one.stats.per_iteration[k].aspect_drop);
   // Below kSmallStrips x small_strip_vertices, or with small_strip_vertices 0, the sweeps are serial.
+  // Below kSmallStrips x small_strip_vertices the sweeps are serial.
   o.small_strip_vertices = p.mesh.points.size() / CleanupOptions::kSmallStrips + 1;
-  CHECK(clean_mesh(p.mesh, p.nodes, p.tree, p.spacing, o).stats.strips == 0);
-  o.small_strip_vertices = 0;
   CHECK(clean_mesh(p.mesh, p.nodes, p.tree, p.spacing, o).stats.strips == 0);
 }
 

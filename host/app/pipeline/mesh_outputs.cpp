@@ -50,6 +50,7 @@ CleanupOptions mesh_detail::cleanup_options(const CaseConfig& config) {
   o.sharp_corners = config.cleanup.sharp_corners;
   o.polish = static_cast<int>(config.cleanup.polish);
   o.threads = static_cast<std::size_t>(config.cleanup.threads);
+  o.small_strip_vertices = static_cast<std::size_t>(config.cleanup.small_strip_vertices);
   return o;
 }
 using mesh_detail::kSvgNodeLimit;
