@@ -503,6 +503,11 @@ TEST_CASE("cleanup keys: best cleans, thesis does not, a key wins over the prese
   CHECK(parse_case_text(std::string(kMinimal) + "[cleanup]\nthreads = 3\n", kCase).cleanup.threads == 3);
   CHECK_THAT(error_of(std::string(kMinimal) + "[cleanup]\nthreads = -1\n"),
              Catch::Contains("cleanup.threads must be in 0..256, got -1"));
+  CHECK(best.cleanup.small_strip_vertices == 0);
+  CHECK(parse_case_text(std::string(kMinimal) + "[cleanup]\nsmall_strip_vertices = 1000\n", kCase)
+            .cleanup.small_strip_vertices == 1000);
+  CHECK_THAT(error_of(std::string(kMinimal) + "[cleanup]\nsmall_strip_vertices = -1\n"),
+             Catch::Contains("cleanup.small_strip_vertices must be in 0..1000000, got -1"));
   CHECK_THAT(error_of(std::string(kMinimal) + "[cleanup]\nmin_angle = 60\n"),
              Catch::Contains("case.toml:4:13: cleanup.min_angle must be in (0, 60) degrees, got 60"));
   CHECK_THAT(error_of(kMinimal, {parse_set_option("cleanup.min_angle=0")}),

@@ -1,6 +1,7 @@
 // The cleanup's sweeps in strips (host/cleanup/strip_sweeps.hpp, issue 41): the same mesh on any
-// number of threads, the cleanup's guarantees kept, and the strips doing the work (not the serial pass
-// for the vertices they leave).
+// number of threads, the cleanup's guarantees kept, the strips doing the work (not the serial pass
+// for the vertices they leave), small meshes in kSmallStrips strips, and the independence rule: what a
+// strip may move touches nothing that a strip two or more away reads or writes.
 #include <catch2/catch.hpp>
 
 #include <algorithm>
@@ -8,12 +9,15 @@
 #include <random>
 
 #include "cleanup/cleanup.hpp"
+#include "cleanup/editable_mesh.hpp"
+#include "cleanup/strip_sweeps.hpp"
 #include "geometry/geometry.hpp"
 #include "geometry/geometry_tree.hpp"
 #include "init/initial_distribution.hpp"
 #include "mesh/mesh_check.hpp"
 #include "mesh/quality.hpp"
 #include "mesh/triangulate_nodes.hpp"
+#include "nodes/boundary_arcs.hpp"
 #include "nodes/node_domain.hpp"
 #include "spacing/spacing_field.hpp"
 #include "geometry_fixtures.hpp"
@@ -157,4 +161,94 @@ TEST_CASE("strips narrower than a star leave their vertices to the serial pass, 
   }());
   CHECK(one.mesh.points == r.mesh.points);
   CHECK(one.mesh.triangles == r.mesh.triangles);
+}
+
+TEST_CASE("with small_strip_vertices a small mesh sweeps in kSmallStrips strips, the same mesh on 1 and 2 threads",
+          "[cleanup]") {
+  const Plate p(InitMethod::Random);
+  // Below kMinStrips x strip_vertices (the default), at least kSmallStrips x small_strip_vertices.
+  CleanupOptions o;
+  o.min_angle = 40.0;
+  o.iterations = 12;
+  CHECK(clean_mesh(p.mesh, p.nodes, p.tree, p.spacing, o).stats.strips == 0);  // off by default
+  o.small_strip_vertices = 1000;
+  REQUIRE(p.mesh.points.size() < CleanupOptions::kMinStrips * o.strip_vertices);
+  REQUIRE(p.mesh.points.size() >= CleanupOptions::kSmallStrips * o.small_strip_vertices);
+  o.threads = 1;
+  const CleanupResult one = clean_mesh(p.mesh, p.nodes, p.tree, p.spacing, o);
+  CHECK(one.stats.strips == CleanupOptions::kSmallStrips);
+  CHECK(one.stats.strip_taken > 4 * one.stats.strip_left);
+  CHECK(one.stats.strip_left > 0);
+  check_guarantees(p, one);
+  o.threads = 2;
+  const CleanupResult two = clean_mesh(p.mesh, p.nodes, p.tree, p.spacing, o);
+  CHECK(two.mesh.points == one.mesh.points);  // bit-identical
+  CHECK(two.mesh.triangles == one.mesh.triangles);
+  CHECK(two.stats.moves == one.stats.moves);
+  REQUIRE(two.stats.per_iteration.size() == one.stats.per_iteration.size());
+  for (std::size_t k = 0; k < two.stats.per_iteration.size(); ++k)
+    CHECK(two.stats.per_iteration[k].aspect_drop == one.stats.per_iteration[k].aspect_drop);
+  // Below kSmallStrips x small_strip_vertices, or with small_strip_vertices 0, the sweeps are serial.
+  // Below kSmallStrips x small_strip_vertices the sweeps are serial.
+  o.small_strip_vertices = p.mesh.points.size() / CleanupOptions::kSmallStrips + 1;
+  CHECK(clean_mesh(p.mesh, p.nodes, p.tree, p.spacing, o).stats.strips == 0);
+}
+
+TEST_CASE("what a strip may move touches nothing a strip two or more away reads or writes", "[cleanup]") {
+  // Strips s and t may run at the same time when |s - t| >= 2 (strip_schedule.hpp). A move of a
+  // vertex a writes a's position and the dirty marks and kept data of a's star, so its vertices {a} +
+  // link(a); it reads those, the vertices across its link edges and its curve neighbours. So for every
+  // vertex x, every strip that may write x lies within one strip of every strip that reads or writes x.
+  const Plate p(InitMethod::Random);
+  for (const int strips : {CleanupOptions::kSmallStrips, CleanupOptions::kMaxStrips}) {
+    INFO(strips << " strips");
+    const cleanup::EditableMesh m(p.mesh, p.nodes.curve_nodes, boundary_arcs(p.g, p.nodes), 1);
+    const cleanup::StripSweeps sweeps(m, strips, 1);
+    REQUIRE(sweeps.strips() == strips);
+    const auto n = static_cast<std::size_t>(m.vertex_slots());
+    // Per vertex: the lowest and highest strip that may write it, and that may read or write it.
+    std::vector<int> write_lo(n, strips), write_hi(n, -1), touch_lo(n, strips), touch_hi(n, -1);
+    std::size_t taken = 0, left = 0;
+    std::vector<int> fan, star;
+    for (int a = 0; a < m.vertex_slots(); ++a) {
+      if (m.removed(a) || !m.movable(a)) continue;
+      const int s = sweeps.strip_of_vertex(a);
+      if (!sweeps.inside(m, a, s, fan)) {
+        ++left;
+        continue;
+      }
+      ++taken;
+      std::vector<int> writes = {a}, reads;
+      m.star(a, star);
+      for (int t : star) {
+        const auto& tv = m.v[t];
+        const int k = cleanup::EditableMesh::index_of(tv, a);
+        writes.push_back(tv[cleanup::next3(k)]);
+        writes.push_back(tv[cleanup::prev3(k)]);
+        const int u = m.n[t][k];
+        if (u >= 0) reads.push_back(m.v[u][cleanup::EditableMesh::index_of(m.n[u], t)]);
+      }
+      if (m.prev[a] >= 0) reads.push_back(m.prev[a]);
+      if (m.next[a] >= 0) reads.push_back(m.next[a]);
+      for (int x : writes) {
+        const auto i = static_cast<std::size_t>(x);
+        write_lo[i] = std::min(write_lo[i], s);
+        write_hi[i] = std::max(write_hi[i], s);
+      }
+      reads.insert(reads.end(), writes.begin(), writes.end());
+      for (int x : reads) {
+        const auto i = static_cast<std::size_t>(x);
+        touch_lo[i] = std::min(touch_lo[i], s);
+        touch_hi[i] = std::max(touch_hi[i], s);
+      }
+    }
+    std::size_t clashes = 0;
+    for (std::size_t i = 0; i < n; ++i)
+      if (write_hi[i] >= 0 && (touch_hi[i] - write_lo[i] > 1 || write_hi[i] - touch_lo[i] > 1)) ++clashes;
+    INFO(taken << " vertices the strips may move, " << left << " left to the serial pass");
+    CHECK(clashes == 0);
+    CHECK(taken > 0);  // not an empty check ...
+    CHECK(left > 0);
+    if (strips == CleanupOptions::kSmallStrips) CHECK(taken > 4 * left);  // ... and wide strips take most
+  }
 }

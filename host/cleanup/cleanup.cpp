@@ -135,13 +135,17 @@ void tally_move(bool moved, const cleanup::Smoother& smoother, CleanupIteration&
   cleanup::count_move(record, smoother.last_gain());
 }
 
-// The strips of a mesh of `vertices` vertices (CleanupOptions::strip_vertices); 0: serial sweeps.
+// The strips of a mesh of `vertices` vertices (CleanupOptions::strip_vertices, small_strip_vertices);
+// 0: serial sweeps.
 int strips_for(std::size_t vertices, const CleanupOptions& options) {
   if (options.strip_vertices == 0) return 0;
   const std::size_t strips = vertices / options.strip_vertices;
-  return strips < CleanupOptions::kMinStrips
-             ? 0
-             : static_cast<int>(std::min<std::size_t>(strips, CleanupOptions::kMaxStrips));
+  if (strips >= CleanupOptions::kMinStrips)
+    return static_cast<int>(std::min<std::size_t>(strips, CleanupOptions::kMaxStrips));
+  const auto small = static_cast<std::size_t>(CleanupOptions::kSmallStrips);
+  return options.small_strip_vertices > 0 && vertices >= small * options.small_strip_vertices
+             ? CleanupOptions::kSmallStrips
+             : 0;
 }
 
 // The mesh being cleaned, its smoother and topology operations, and what the outer iterations carry

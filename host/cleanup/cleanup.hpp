@@ -68,16 +68,20 @@ struct CleanupOptions {
   // sweep moves nothing or this many sweeps. 0: none (pdmesh mesh's default).
   int polish = 0;
   // Sweeps in strips (cleanup/strip_sweeps.hpp): a mesh of at least kMinStrips x strip_vertices
-  // vertices is cut into vertices / strip_vertices strips along x (at most kMaxStrips), whose sweeps
-  // run on up to `threads` threads (0: every hardware thread). The strips fix the order of the
-  // moves, so the result is the same for any thread count; it differs from the serial sweeps' (every
-  // vertex in ascending order), which smaller meshes keep: their cleanup is short, and a few wide
-  // strips change their meshes more than many narrow ones (docs/cleanup.md, "Sweeps in strips").
-  // strip_vertices 0: serial sweeps always.
+  // vertices is cut into vertices / strip_vertices strips along x (at most kMaxStrips); with
+  // small_strip_vertices > 0 a smaller one of at least kSmallStrips x small_strip_vertices vertices
+  // into kSmallStrips strips, the fewest with which each colour has a strip for each of two threads.
+  // Their sweeps run on up to `threads` threads (0: every hardware thread). The strips fix the order
+  // of the moves, so the result is the same for any thread count; it differs from the serial sweeps'
+  // (every vertex in ascending order), which smaller meshes keep (docs/cleanup.md, "Sweeps in
+  // strips"). strip_vertices 0: serial sweeps always; small_strip_vertices 0 (the default, case key
+  // cleanup.small_strip_vertices): serial sweeps below kMinStrips x strip_vertices.
   std::size_t strip_vertices = 25000;
+  std::size_t small_strip_vertices = 0;
   std::size_t threads = 0;
   static constexpr std::size_t kMinStrips = 8;
   static constexpr int kMaxStrips = 64;
+  static constexpr int kSmallStrips = 4;
   // Measure the whole mesh after every outer iteration (CleanupIteration's min_angle, aspect_mean): a
   // scan of every triangle per iteration, for bench_cleanup's per-iteration table; off in runs.
   bool measure_iterations = false;

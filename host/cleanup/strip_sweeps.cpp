@@ -36,11 +36,8 @@ void StripSweeps::label_new(const EditableMesh& mesh) {
   for (int a = initial_; a < mesh.vertex_slots(); ++a) label_[a] = strip_of(mesh.p[a].x);
 }
 
-// Whether strip s may move a: its star's vertices are all in s, the vertices across its link edges
-// (the edges opposite a, which Smoother::flips_needed tests) in s or a neighbouring strip, and so are
-// its neighbours along its curve (whose arcs bound its slide). A star's spokes lie between two of its
-// triangles or on the boundary, so what lies across them is in the star already. When a may move and
-// the test reaches the star, `fan` holds a's star afterwards (whatever the answer).
+// A star's spokes lie between two of its triangles or on the boundary, so what lies across them is in
+// the star already.
 bool StripSweeps::inside(const EditableMesh& mesh, int a, int s, std::vector<int>& fan) const {
   if (mesh.removed(a) || !mesh.movable(a)) return true;  // relax() and climb() write nothing then
   auto near = [&](int x) { return std::abs(label_[x] - s) <= 1; };

@@ -64,10 +64,18 @@ class StripSweeps {
   // Wall seconds in the serial pass over the vertices the strips left, over all sweeps.
   double serial_seconds() const { return serial_seconds_; }
 
+  // The strip of vertex a (a slot labelled at construction or by the last sweep).
+  int strip_of_vertex(int a) const { return label_[static_cast<std::size_t>(a)]; }
+  // The independence rule: whether strip s may move a. Its star's vertices are all in s, the vertices
+  // across its link edges (the edges opposite a, which Smoother::flips_needed tests) in s or a
+  // neighbouring strip, and so are its neighbours along its curve (whose arcs bound its slide). Also
+  // true for a vertex no move writes (removed, or fixed). When a may move and the test reaches the
+  // star, `fan` holds a's star afterwards (whatever the answer).
+  bool inside(const EditableMesh& mesh, int a, int s, std::vector<int>& fan) const;
+
  private:
   int strip_of(double x) const;
   void label_new(const EditableMesh& mesh);
-  bool inside(const EditableMesh& mesh, int a, int s, std::vector<int>& fan) const;
 
   std::vector<double> edges_;  // the x of each strip's upper edge, ascending (strips - 1 values)
   std::vector<int> label_;     // per vertex slot: its strip

@@ -6,7 +6,8 @@
 //                      [--repeats N] [--png PREFIX] [--window x0,y0,x1,y1]
 //                      [--spacing EXPRESSION] (default: the boundary spacing, eq. 3.6)
 //                      [--settled-aspect-drop D] (CleanupOptions::settled_aspect_drop)
-//                      [--threads N] [--strip-vertices N] (CleanupOptions::threads, ::strip_vertices)
+//                      [--threads N] [--strip-vertices N] [--small-strip-vertices N]
+//                      (CleanupOptions::threads, ::strip_vertices, ::small_strip_vertices)
 //                      [--per-iteration] (a table of every outer iteration) [--write MESH.msh] (the cleaned mesh)
 //        bench_cleanup --write-graded N FILE.crv   (the graded_N geometry of `pdmesh bench` as a curve file)
 #include <fmt/format.h>
@@ -96,6 +97,8 @@ int main(int argc, char** argv) {
         options.threads = static_cast<std::size_t>(std::stoul(value()));
       else if (arg == "--strip-vertices")
         options.strip_vertices = static_cast<std::size_t>(std::stoul(value()));
+      else if (arg == "--small-strip-vertices")
+        options.small_strip_vertices = static_cast<std::size_t>(std::stoul(value()));
       else if (arg == "--per-iteration")
         options.measure_iterations = true;
       else if (arg == "--write")

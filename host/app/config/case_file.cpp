@@ -316,7 +316,7 @@ const std::vector<std::string>& cleanup_keys() {
       "cleanup.enabled",    "cleanup.min_angle",      "cleanup.iterations",
       "cleanup.topology",   "cleanup.split_boundary", "cleanup.trials_per_triangle",
       "cleanup.min_trials", "cleanup.settle",         "cleanup.sharp_corners",
-      "cleanup.polish",     "cleanup.threads",
+      "cleanup.polish",     "cleanup.threads",        "cleanup.small_strip_vertices",
   };
   return keys;
 }

@@ -251,6 +251,9 @@ struct CaseConfig {
     std::int64_t polish = 0;
     // CleanupOptions::threads: the sweeps' threads (0: the hardware's); the mesh is the same for any.
     std::int64_t threads = 0;
+    // CleanupOptions::small_strip_vertices: meshes of at least 4 x this many vertices and below
+    // 200,000 sweep in 4 strips (0: serial sweeps below 200,000 vertices).
+    std::int64_t small_strip_vertices = 0;
   } cleanup;
 
   // [[boundary_layer]] (docs/boundary-layers.md): layered cells grown from the named wall curves, the

@@ -455,6 +455,12 @@ void read_cleanup_section(const Reader& r, const toml::table& root, CaseConfig& 
     if (k.threads < 0 || k.threads > 256)
       r.fail("cleanup.threads", n, fmt::format("cleanup.threads must be in 0..256, got {}", k.threads));
   }
+  if (const toml::node* n = find(root, "cleanup", "small_strip_vertices")) {
+    k.small_strip_vertices = r.integer("cleanup.small_strip_vertices", *n);
+    if (k.small_strip_vertices < 0 || k.small_strip_vertices > 1000000)
+      r.fail("cleanup.small_strip_vertices", n,
+             fmt::format("cleanup.small_strip_vertices must be in 0..1000000, got {}", k.small_strip_vertices));
+  }
 }
 
 ViewWindow read_view(const Reader& r, const toml::node& entry, std::size_t i) {

@@ -50,6 +50,7 @@ CleanupOptions mesh_detail::cleanup_options(const CaseConfig& config) {
   o.sharp_corners = config.cleanup.sharp_corners;
   o.polish = static_cast<int>(config.cleanup.polish);
   o.threads = static_cast<std::size_t>(config.cleanup.threads);
+  o.small_strip_vertices = static_cast<std::size_t>(config.cleanup.small_strip_vertices);
   return o;
 }
 using mesh_detail::kSvgNodeLimit;
@@ -295,6 +296,8 @@ void note_cleanup_parts(const CleanupStats& stats, RunPhases& phases) {
   phases.note("cleanup_strips", stats.strips);
   phases.note("cleanup_strips_parallel_seconds", stats.strip_seconds);
   phases.note("cleanup_strips_serial_seconds", stats.strip_serial_seconds);
+  phases.note("cleanup_strips_taken", static_cast<double>(stats.strip_taken));
+  phases.note("cleanup_strips_left", static_cast<double>(stats.strip_left));
   phases.note("cleanup_topology_seconds", stats.topology_seconds);
   phases.note("cleanup_lists_seconds", stats.list_seconds);
   phases.note("cleanup_finish_seconds", stats.finish_seconds);
