@@ -6,7 +6,10 @@
 #include <unistd.h>
 
 #include <filesystem>
+#include <algorithm>
+#include <cmath>
 #include <fstream>
+#include <map>
 #include <sstream>
 
 #include "core/errors.hpp"
@@ -463,6 +466,56 @@ TEST_CASE("a mesh picture drawn in bands is the picture one canvas draws, pixel 
     CHECK(differing == 0);
   }
   CHECK(entries(dir) == 2);  // no temporary left behind
+  fs::remove_all(dir);
+}
+
+TEST_CASE("a mesh's edges are stroked in groups whose pixel rows do not meet, as few as the rows need", "[render]") {
+  const fs::path dir = fresh_dir("edge_strokes");
+  // Coarse (every edge drawn) towards x = 1, edges under 2 px towards x = 0.
+  const Mesh m = grid_mesh(60, [](double x, double y) { return Vec2{x * x, y}; });
+  const std::vector<std::pair<int, int>> edges = unique_edges(m);
+  CanvasOptions o;
+  o.window = default_mesh_window(m);
+  o.long_side = 300;
+  const Canvas canvas(o, ImageFormat::Png, dir / "unused.png");
+  const EdgeStrokes plan = plan_edge_strokes(canvas, m, edges);
+  REQUIRE(!plan.ends.empty());
+  CHECK(plan.ends.back() == plan.edges.size());
+  // Every edge once: drawn (2 px or longer) or counted as too short.
+  std::vector<std::pair<int, int>> drawn = plan.edges, expected;
+  for (const auto& [i, j] : edges)
+    if (dist(canvas.to_pixel(m.points[i]), canvas.to_pixel(m.points[j])) >= kMinEdgePixels) expected.emplace_back(i, j);
+  std::sort(drawn.begin(), drawn.end());
+  std::sort(expected.begin(), expected.end());
+  CHECK(drawn == expected);
+  CHECK(plan.too_short == edges.size() - expected.size());
+  CHECK(plan.too_short > 0);
+  // An edge's rows: those its line (0.6 px wide) touches, widened by half a pixel.
+  const auto rows = [&](const std::pair<int, int>& e) {
+    const double ya = canvas.to_pixel(m.points[e.first]).y, yb = canvas.to_pixel(m.points[e.second]).y;
+    return std::pair<double, double>{std::floor(std::min(ya, yb) - 0.5), std::floor(std::max(ya, yb) + 0.5)};
+  };
+  // Within a stroke, no two edges' rows meet.
+  std::size_t begin = 0, shared = 0;
+  for (const std::size_t end : plan.ends) {
+    REQUIRE(end > begin);
+    for (std::size_t a = begin; a < end; ++a)
+      for (std::size_t b = a + 1; b < end; ++b) {
+        const auto ra = rows(plan.edges[a]), rb = rows(plan.edges[b]);
+        shared += !(ra.second < rb.first || rb.second < ra.first);
+      }
+    begin = end;
+  }
+  CHECK(shared == 0);
+  // As many strokes as the most edges in one row.
+  std::map<double, std::size_t> per_row;
+  for (const auto& e : plan.edges) {
+    const auto r = rows(e);
+    for (double y = r.first; y <= r.second; ++y) ++per_row[y];
+  }
+  std::size_t most = 0;
+  for (const auto& [row, count] : per_row) most = std::max(most, count);
+  CHECK(plan.ends.size() == most);
   fs::remove_all(dir);
 }
 
