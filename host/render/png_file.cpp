@@ -95,7 +95,12 @@ DeflatedBand deflate_band(cairo_surface_t* surface, bool last, int level, bool g
   // Raw deflate (no zlib header or trailer: png_from_bands writes them once for all bands).
   z_stream z{};
   const int strategy = grey ? grey_strategy(data, band.width, band.height, stride) : Z_DEFAULT_STRATEGY;
-  if (deflateInit2(&z, level, Z_DEFLATED, -15, 8, strategy) != Z_OK) throw Error("PNG encoder: deflateInit failed");
+  // zlib's memory level: 6 for RGB (a 16 kB hash table, in the core's first-level cache where the
+  // default 8's 64 kB is not: level 1 inserts a hash for every literal), as small a file; 8 for grey
+  // under Z_RLE (no hash table; its larger symbol buffer means fewer, cheaper blocks).
+  const int mem_level = grey ? 8 : 6;
+  if (deflateInit2(&z, level, Z_DEFLATED, -15, mem_level, strategy) != Z_OK)
+    throw Error("PNG encoder: deflateInit failed");
   std::vector<unsigned char> row(1 + channels * static_cast<std::size_t>(band.width));
   std::vector<unsigned char> buffer(1 << 16);
   const auto drain = [&](int flush) {
