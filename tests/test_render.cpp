@@ -519,6 +519,69 @@ TEST_CASE("a mesh's edges are stroked in groups whose pixel rows do not meet, as
   fs::remove_all(dir);
 }
 
+TEST_CASE("a grey canvas draws the picture an RGB one draws, within a level, as a greyscale PNG", "[render]") {
+  const fs::path dir = fresh_dir("grey_canvas");
+  // Everything a picture of greys draws: thin and thick strokes, a filled batch with its seam
+  // hairline (cut), dots, a pixel splat, the title with the scale bar on its white backing in the
+  // plot (a title band too low for it), in one canvas and in bands.
+  const auto draw = [](Canvas& canvas) {
+    {
+      FillBatch shade(canvas, Rgb{0.55, 0.55, 0.55});
+      for (int k = 0; k < 40; ++k) {
+        const double x = 0.05 * k;
+        shade.triangle({x, 0.1}, {x + 0.06, 0.1}, {x + 0.03, 0.5});
+      }
+      shade.flush(true);
+    }
+    {
+      StrokeBatch lines(canvas, colours::kBlack, 0.6, CAIRO_LINE_CAP_BUTT);
+      for (int k = 0; k < 60; ++k) lines.segment({0.03 * k, 0.0}, {2.0 - 0.02 * k, 1.0});
+    }
+    {
+      StrokeBatch thick(canvas, colours::kBlack, 2.0);
+      thick.box(Box{{0.2, 0.2}, {1.8, 0.8}});
+    }
+    {
+      DotBatch dots(canvas, Rgb{0.3, 0.3, 0.3});
+      for (int k = 0; k < 30; ++k) dots.dot({0.06 * k + 0.1, 0.7}, 0.5 + 0.1 * k);
+    }
+    if (canvas.raster()) {
+      PixelSplat splat(canvas, colours::kBlack);
+      for (int k = 0; k < 400; ++k) splat.dot({1.0 + 0.001 * k, 0.3 + 0.0005 * k}, 0.7);
+    }
+    canvas.title("grey 0123456789");
+  };
+  CanvasOptions o;
+  o.window = padded_window(Box{{0, 0}, {2, 1}});
+  o.long_side = 400;
+  o.title_height = 20;
+  for (const int bands : {1, 3}) {
+    INFO("bands " << bands);
+    o.grey = false;
+    render_picture(dir / "rgb.png", o, draw, bands);
+    o.grey = true;
+    render_picture(dir / "grey.png", o, draw, bands);
+    Png rgb(dir / "rgb.png"), grey(dir / "grey.png");
+    REQUIRE(rgb.ok());
+    REQUIRE(grey.ok());
+    REQUIRE(grey.width() == rgb.width());
+    REQUIRE(grey.height() == rgb.height());
+    const std::string bytes = slurp(dir / "grey.png");
+    CHECK(bytes[25] == 0);  // IHDR's colour type: greyscale
+    double most = 0;
+    int inked = 0;
+    for (int y = 0; y < rgb.height(); ++y)
+      for (int x = 0; x < rgb.width(); ++x) {
+        const Rgb a = rgb.pixel(x, y), b = grey.pixel(x, y);
+        most = std::max({most, std::abs(a.r - b.r), std::abs(a.g - b.g), std::abs(a.b - b.b)});
+        inked += a.r < 250;
+      }
+    CHECK(most <= 1);
+    CHECK(inked > 5000);
+  }
+  fs::remove_all(dir);
+}
+
 TEST_CASE("a pixel splat covers a box's pixels and spreads a dot's area over the four pixels around it", "[render]") {
   const fs::path dir = fresh_dir("splat");
   // World [0, 200]^2 on a 200 x 200 plot without a title band: world (x, y) is pixel (x, 200 - y).

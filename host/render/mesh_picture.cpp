@@ -359,6 +359,7 @@ void write_mesh_picture(const std::filesystem::path& path, const Mesh& mesh, con
   layout.window = options.window ? *options.window : default_mesh_window(mesh);
   layout.long_side = options.long_side;
   layout.side_width = values != nullptr ? kColourBarBand : 0;
+  layout.grey = values == nullptr;  // black edges, the grey shade, a black title
 
   // Each edge once (an interior edge belongs to two triangles).
   const std::vector<std::pair<int, int>> edges = unique_edges(mesh);

@@ -36,14 +36,18 @@ void chunk(std::string& out, const char* type, const std::string& data) {
 void check_surface(cairo_surface_t* surface) {
   if (cairo_surface_get_type(surface) != CAIRO_SURFACE_TYPE_IMAGE) throw Error("PNG encoder: not an image surface");
   const cairo_format_t format = cairo_image_surface_get_format(surface);
-  if (format != CAIRO_FORMAT_RGB24 && format != CAIRO_FORMAT_ARGB32)
-    throw Error("PNG encoder: the surface is neither RGB24 nor ARGB32");
+  if (format != CAIRO_FORMAT_RGB24 && format != CAIRO_FORMAT_ARGB32 && format != CAIRO_FORMAT_A8)
+    throw Error("PNG encoder: the surface is neither RGB24, ARGB32 nor A8");
 }
+
+// An A8 surface holds ink (Canvas's grey pictures): its grey is 255 - alpha.
+bool ink_surface(cairo_surface_t* surface) { return cairo_image_surface_get_format(surface) == CAIRO_FORMAT_A8; }
 
 }  // namespace
 
 bool grey_surface(cairo_surface_t* surface) {
   check_surface(surface);
+  if (ink_surface(surface)) return true;
   cairo_surface_flush(surface);
   const int width = cairo_image_surface_get_width(surface);
   const int height = cairo_image_surface_get_height(surface);
@@ -69,11 +73,16 @@ namespace {
 // Mesh pictures with that many runs come out about as small and compress about twice as fast under
 // Z_RLE (docs/performance.md, the pictures' row). Rows without runs (anti-aliased texture repeating
 // at a longer distance) need the default strategy's matches at any distance.
-int grey_strategy(const unsigned char* data, int width, int height, int stride) {
+int grey_strategy(const unsigned char* data, int width, int height, int stride, bool ink) {
   std::size_t equal = 0, total = 0;
   for (int y = 0; y < height; y += 16) {
-    const auto* pixels = reinterpret_cast<const std::uint32_t*>(data + static_cast<std::ptrdiff_t>(y) * stride);
-    for (int x = 1; x < width; ++x) equal += ((pixels[x] ^ pixels[x - 1]) & 0xFFu) == 0 ? 1 : 0;
+    const unsigned char* row = data + static_cast<std::ptrdiff_t>(y) * stride;
+    if (ink) {
+      for (int x = 1; x < width; ++x) equal += row[x] == row[x - 1] ? 1 : 0;
+    } else {
+      const auto* pixels = reinterpret_cast<const std::uint32_t*>(row);
+      for (int x = 1; x < width; ++x) equal += ((pixels[x] ^ pixels[x - 1]) & 0xFFu) == 0 ? 1 : 0;
+    }
     total += static_cast<std::size_t>(width > 1 ? width - 1 : 0);
   }
   return 4 * equal >= total ? Z_RLE : Z_DEFAULT_STRATEGY;
@@ -94,7 +103,8 @@ DeflatedBand deflate_band(cairo_surface_t* surface, bool last, int level, bool g
 
   // Raw deflate (no zlib header or trailer: png_from_bands writes them once for all bands).
   z_stream z{};
-  const int strategy = grey ? grey_strategy(data, band.width, band.height, stride) : Z_DEFAULT_STRATEGY;
+  const bool ink = ink_surface(surface);
+  const int strategy = grey ? grey_strategy(data, band.width, band.height, stride, ink) : Z_DEFAULT_STRATEGY;
   // zlib's memory level: 6 for RGB (a 16 kB hash table, in the core's first-level cache where the
   // default 8's 64 kB is not: level 1 inserts a hash for every literal), as small a file; 8 for grey
   // under Z_RLE (no hash table; its larger symbol buffer means fewer, cheaper blocks).
@@ -118,7 +128,12 @@ DeflatedBand deflate_band(cairo_surface_t* surface, bool last, int level, bool g
   band.adler = adler32(0L, Z_NULL, 0);
   for (int y = 0; y < band.height; ++y) {
     const auto* pixels = reinterpret_cast<const std::uint32_t*>(data + static_cast<std::ptrdiff_t>(y) * stride);
-    if (grey) {
+    const unsigned char* alpha = data + static_cast<std::ptrdiff_t>(y) * stride;
+    if (ink && grey) {
+      for (int x = 0; x < band.width; ++x) row[1 + x] = static_cast<unsigned char>(255 - alpha[x]);
+    } else if (ink) {
+      for (int x = 0; x < band.width; ++x) row[1 + 3 * x] = row[2 + 3 * x] = row[3 + 3 * x] = 255 - alpha[x];
+    } else if (grey) {
       for (int x = 0; x < band.width; ++x) row[1 + x] = static_cast<unsigned char>(pixels[x]);  // blue = red = green
     } else {
       for (int x = 0; x < band.width; ++x) {
