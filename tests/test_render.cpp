@@ -469,53 +469,72 @@ TEST_CASE("a mesh picture drawn in bands is the picture one canvas draws, pixel 
   fs::remove_all(dir);
 }
 
-TEST_CASE("a mesh's edges are stroked in groups whose pixel rows do not meet, as few as the rows need", "[render]") {
+TEST_CASE("a mesh's long edges are stroked in groups whose pixel rows do not meet, as few as the rows need",
+          "[render]") {
   const fs::path dir = fresh_dir("edge_strokes");
-  // Coarse (every edge drawn) towards x = 1, edges under 2 px towards x = 0.
+  // Long edges towards x = 1, short ones in between, edges under 2 px towards x = 0.
   const Mesh m = grid_mesh(60, [](double x, double y) { return Vec2{x * x, y}; });
   const std::vector<std::pair<int, int>> edges = unique_edges(m);
   CanvasOptions o;
   o.window = default_mesh_window(m);
-  o.long_side = 300;
+  o.long_side = 600;
   const Canvas canvas(o, ImageFormat::Png, dir / "unused.png");
   const EdgeStrokes plan = plan_edge_strokes(canvas, m, edges);
   REQUIRE(!plan.ends.empty());
   CHECK(plan.ends.back() == plan.edges.size());
+  const auto length = [&](const std::pair<int, int>& e) {
+    return dist(canvas.to_pixel(m.points[e.first]), canvas.to_pixel(m.points[e.second]));
+  };
   // Every edge once: drawn (2 px or longer) or counted as too short.
   std::vector<std::pair<int, int>> drawn = plan.edges, expected;
-  for (const auto& [i, j] : edges)
-    if (dist(canvas.to_pixel(m.points[i]), canvas.to_pixel(m.points[j])) >= kMinEdgePixels) expected.emplace_back(i, j);
+  std::size_t long_edges = 0;
+  for (const auto& e : edges) {
+    if (length(e) >= kMinEdgePixels) expected.push_back(e);
+    long_edges += length(e) >= kApartEdgePixels;
+  }
   std::sort(drawn.begin(), drawn.end());
   std::sort(expected.begin(), expected.end());
   CHECK(drawn == expected);
   CHECK(plan.too_short == edges.size() - expected.size());
   CHECK(plan.too_short > 0);
+  CHECK(long_edges > 100);
+  CHECK(expected.size() - long_edges > 100);
   // An edge's rows: those its line (0.6 px wide) touches, widened by half a pixel.
   const auto rows = [&](const std::pair<int, int>& e) {
     const double ya = canvas.to_pixel(m.points[e.first]).y, yb = canvas.to_pixel(m.points[e.second]).y;
     return std::pair<double, double>{std::floor(std::min(ya, yb) - 0.5), std::floor(std::max(ya, yb) + 0.5)};
   };
-  // Within a stroke, no two edges' rows meet.
-  std::size_t begin = 0, shared = 0;
+  // The short edges' strokes first (short edges only), then the long ones', within which no two
+  // edges' rows meet.
+  std::size_t begin = 0, shared = 0, long_strokes = 0, mixed = 0;
+  bool long_seen = false;
   for (const std::size_t end : plan.ends) {
     REQUIRE(end > begin);
-    for (std::size_t a = begin; a < end; ++a)
-      for (std::size_t b = a + 1; b < end; ++b) {
+    const bool long_stroke = length(plan.edges[begin]) >= kApartEdgePixels;
+    long_seen = long_seen || long_stroke;
+    long_strokes += long_stroke;
+    for (std::size_t a = begin; a < end; ++a) {
+      mixed += (length(plan.edges[a]) >= kApartEdgePixels) != long_stroke;
+      for (std::size_t b = a + 1; b < end && long_stroke; ++b) {
         const auto ra = rows(plan.edges[a]), rb = rows(plan.edges[b]);
         shared += !(ra.second < rb.first || rb.second < ra.first);
       }
+    }
+    CHECK((long_stroke || !long_seen));
     begin = end;
   }
   CHECK(shared == 0);
-  // As many strokes as the most edges in one row.
+  CHECK(mixed == 0);
+  // As many long strokes as the most long edges in one row.
   std::map<double, std::size_t> per_row;
   for (const auto& e : plan.edges) {
+    if (length(e) < kApartEdgePixels) continue;
     const auto r = rows(e);
     for (double y = r.first; y <= r.second; ++y) ++per_row[y];
   }
   std::size_t most = 0;
   for (const auto& [row, count] : per_row) most = std::max(most, count);
-  CHECK(plan.ends.size() == most);
+  CHECK(long_strokes == most);
   fs::remove_all(dir);
 }
 

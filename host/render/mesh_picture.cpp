@@ -20,6 +20,8 @@ namespace pdmesh {
 namespace {
 
 constexpr int kColourBarBand = 150;
+// Short edges stroked together (the canvas's batch size).
+constexpr std::size_t kTogetherEdges = 4096;
 constexpr Rgb kNoValue{0.75, 0.75, 0.75};  // non-finite values
 // Interior edges shorter than kMinEdgePixels on screen are not drawn; triangles with one are shaded
 // kDenseShade (without a value fill).
@@ -132,11 +134,13 @@ void draw_value_fills(Canvas& canvas, const Mesh& mesh, const std::vector<double
 
 // Edges stroked together in the order of the mesh start and end in nearly every pixel row, so cairo
 // sampled the long edges of a mesh's coarse parts, most of its rows, 15 times a row; stroked apart
-// from the edges in the same rows, they are sampled so in their end rows only. The edges are taken
-// in order of their top row, each into a stroke whose edges all end above it, or into a new stroke
-// when none does (as many strokes as the most edges in one row). No two edges of a stroke share a
-// pixel, so each edge is painted on its own (where edges meet at a vertex, their coverages blend as
-// two strokes' do).
+// from the edges in the same rows, they are sampled so in their end rows only. The long edges are
+// taken in order of their top row, each into a stroke whose edges all end above it, or into a new
+// stroke when none does (as many strokes as the most long edges in one row). No two edges of such a
+// stroke share a pixel, so each is painted on its own (where edges meet at a vertex, their coverages
+// blend as two strokes' do). Short edges gain nothing apart (their rows are all end rows) and stay
+// together: in a dense part, lines a fraction of a pixel apart add their coverages as one stroke's
+// union does, where blending them would paint the part a shade lighter.
 EdgeStrokes plan_edge_strokes(const Canvas& canvas, const Mesh& mesh, const std::vector<std::pair<int, int>>& edges) {
   const double min_edge_world = kMinEdgePixels / canvas.scale();
   // Rows as indices 0 .. rows - 1: the picture's rows, and one above and one below it for the parts
@@ -151,6 +155,7 @@ EdgeStrokes plan_edge_strokes(const Canvas& canvas, const Mesh& mesh, const std:
   };
   std::vector<Item> items;
   items.reserve(edges.size());
+  std::vector<std::size_t> dense;
   EdgeStrokes plan;
   InterruptPoll poll(65536);
   for (std::size_t k = 0; k < edges.size(); ++k) {
@@ -165,8 +170,17 @@ EdgeStrokes plan_edge_strokes(const Canvas& canvas, const Mesh& mesh, const std:
       ++plan.too_short;  // counted over the whole window: every band draws the same title
       continue;
     }
-    const double ya = canvas.to_pixel(a).y, yb = canvas.to_pixel(b).y;
-    items.push_back({k, row_of(std::min(ya, yb) - 0.5), row_of(std::max(ya, yb) + 0.5)});
+    const Vec2 pa = canvas.to_pixel(a), pb = canvas.to_pixel(b);
+    if (dist(pa, pb) < kApartEdgePixels) {
+      dense.push_back(k);
+      continue;
+    }
+    items.push_back({k, row_of(std::min(pa.y, pb.y) - 0.5), row_of(std::max(pa.y, pb.y) + 0.5)});
+  }
+  // The short edges first, in the mesh's order, kTogetherEdges a stroke.
+  for (std::size_t k = 0; k < dense.size(); ++k) {
+    plan.edges.push_back(edges[dense[k]]);
+    if ((k + 1) % kTogetherEdges == 0 || k + 1 == dense.size()) plan.ends.push_back(plan.edges.size());
   }
   // The items by top row (in edge order within a row).
   std::vector<std::size_t> first(static_cast<std::size_t>(rows) + 1, 0);
@@ -203,14 +217,17 @@ EdgeStrokes plan_edge_strokes(const Canvas& canvas, const Mesh& mesh, const std:
       ending[static_cast<std::size_t>(item.bottom)] = s;
     }
   }
-  // The edges stroke by stroke, each stroke's in order of their top rows.
-  plan.ends.assign(static_cast<std::size_t>(strokes), 0);
-  for (std::size_t i : by_top) ++plan.ends[static_cast<std::size_t>(stroke_of[i])];
-  std::size_t end = 0;
-  for (std::size_t& e : plan.ends) e = end += e;
-  std::vector<std::size_t> next(plan.ends.size());
-  for (std::size_t s = 0; s < next.size(); ++s) next[s] = s == 0 ? 0 : plan.ends[s - 1];
-  plan.edges.resize(items.size());
+  // Then the long edges stroke by stroke, each stroke's in order of their top rows.
+  std::vector<std::size_t> sizes(static_cast<std::size_t>(strokes), 0);
+  for (std::size_t i : by_top) ++sizes[static_cast<std::size_t>(stroke_of[i])];
+  std::vector<std::size_t> next(sizes.size());
+  std::size_t end = plan.edges.size();
+  for (std::size_t s = 0; s < sizes.size(); ++s) {
+    next[s] = end;
+    end += sizes[s];
+    plan.ends.push_back(end);
+  }
+  plan.edges.resize(end);
   for (std::size_t i : by_top) plan.edges[next[static_cast<std::size_t>(stroke_of[i])]++] = edges[items[i].edge];
   return plan;
 }
