@@ -4,9 +4,9 @@
 #include <optional>
 
 #include <algorithm>
-#include <mutex>
 #include <array>
 #include <cmath>
+#include <mutex>
 #include <tuple>
 #include <fmt/format.h>
 
@@ -191,26 +191,26 @@ EdgeStrokes plan_edge_strokes(const Canvas& canvas, const Mesh& mesh, const std:
     std::vector<std::size_t> next(first.begin(), first.end() - 1);
     for (std::size_t k = 0; k < items.size(); ++k) by_top[next[static_cast<std::size_t>(items[k].top)]++] = k;
   }
-  // Row by row: the strokes whose last edge ends in the row above become free; each item goes to a
-  // free stroke, or a new one. ending[r]: the strokes whose last edge ends in row r (linked through
+  // Row by row: the strokes whose last edge ends in the row above become idle; each item goes to an
+  // idle stroke, or a new one. ending[r]: the strokes whose last edge ends in row r (linked through
   // `later`).
   constexpr int kNone = -1;
-  std::vector<int> ending(static_cast<std::size_t>(rows), kNone), later, free, stroke_of(items.size());
+  std::vector<int> ending(static_cast<std::size_t>(rows), kNone), later, idle, stroke_of(items.size());
   int strokes = 0;
   for (int r = 0; r < rows; ++r) {
     if (r > 0) {
       for (int s = ending[static_cast<std::size_t>(r - 1)]; s != kNone; s = later[static_cast<std::size_t>(s)])
-        free.push_back(s);
+        idle.push_back(s);
     }
     for (std::size_t i = first[static_cast<std::size_t>(r)]; i < first[static_cast<std::size_t>(r) + 1]; ++i) {
       const Item& item = items[by_top[i]];
       int s = strokes;
-      if (free.empty()) {
+      if (idle.empty()) {
         ++strokes;
         later.push_back(kNone);
       } else {
-        s = free.back();
-        free.pop_back();
+        s = idle.back();
+        idle.pop_back();
       }
       stroke_of[by_top[i]] = s;
       later[static_cast<std::size_t>(s)] = ending[static_cast<std::size_t>(item.bottom)];
