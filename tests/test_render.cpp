@@ -806,14 +806,53 @@ TEST_CASE("a stroke batch with butt ends stops at the segment's ends, a default 
   fs::remove_all(dir);
 }
 
+TEST_CASE("a dot batch draws the dots of its pen radius with cairo's pen as its arcs draw them", "[render]") {
+  const fs::path dir = fresh_dir("pen_dots");
+  // 200 dots of 0.8 px at every quarter-pixel offset, well apart, and 50 of 2 px among them: drawn
+  // as arcs, and with a pen radius of 0.8.
+  const auto draw = [](double pen_radius) {
+    return [pen_radius](Canvas& canvas) {
+      DotBatch dots(canvas, colours::kInteriorNode, pen_radius);
+      for (int k = 0; k < 200; ++k) {
+        const double x = 0.05 + 0.0731 * (k % 25) + 0.0011 * (k % 4), y = 0.05 + 0.11 * (k / 25) + 0.0013 * (k % 3);
+        dots.dot({x, y}, 0.8);
+        if (k % 4 == 0) dots.dot({x + 0.03, y + 0.05}, 2.0);
+      }
+    };
+  };
+  CanvasOptions o;
+  o.window = Box{{0, 0}, {2, 1}};
+  o.long_side = 400;
+  render_picture(dir / "arcs.png", o, draw(0));
+  render_picture(dir / "pen.png", o, draw(0.8));
+  Png arcs(dir / "arcs.png"), pen(dir / "pen.png");
+  REQUIRE(arcs.ok());
+  REQUIRE(pen.ok());
+  double ink_arcs = 0, ink_pen = 0, most = 0;
+  for (int y = 0; y < arcs.height(); ++y)
+    for (int x = 0; x < arcs.width(); ++x) {
+      const Rgb a = arcs.pixel(x, y), b = pen.pixel(x, y);
+      ink_arcs += (255 - a.g) / 255.0;
+      ink_pen += (255 - b.g) / 255.0;
+      most = std::max(most, std::abs(a.g - b.g));
+    }
+  // The same area (200 pi 0.8^2 + 50 pi 2^2 = 1,030 px), each pixel within a fifth of full ink.
+  CHECK(ink_arcs == Approx(200 * M_PI * 0.64 + 50 * M_PI * 4).epsilon(0.05));
+  CHECK(ink_pen == Approx(ink_arcs).epsilon(0.03));
+  CHECK(most <= 51);
+  fs::remove_all(dir);
+}
+
 TEST_CASE("a node dot covers its circle's area", "[render]") {
   const fs::path dir = fresh_dir("small_dots");
   const Geometry g = rectangle_geometry();
   const double scale = 1600 / 2.12;  // the node picture's pixels per unit (see the first test)
-  // Each node alone in the middle of the rectangle.
-  for (const double radius : {0.9, 1.1, 1.6, 3.0}) {
+  // Each node alone in the middle of the rectangle; the one of spacing for 0.5 px is clamped to the
+  // smallest dot, drawn with cairo's pen.
+  for (const double asked : {0.5, 0.9, 1.1, 1.6, 3.0}) {
+    const double radius = std::max(asked, kMinNodeDot);
     NodeSet n;
-    n.add({0.9, 0.4}, radius / (0.12 * scale), NodeKind::Interior, -1);
+    n.add({0.9, 0.4}, asked / (0.12 * scale), NodeKind::Interior, -1);
     REQUIRE(node_dot_radius(n.q[0], scale, false) == Approx(radius));
     write_node_picture(dir / "dot.png", g, n, NodePictureOptions{});
     Png png(dir / "dot.png");

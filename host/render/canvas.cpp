@@ -340,13 +340,20 @@ void FillBatch::flush(bool cut) {
   cairo_restore(cr);
 }
 
-DotBatch::DotBatch(Canvas& canvas, Rgb colour) : canvas_(canvas), colour_(colour) { cairo_new_path(canvas_.context()); }
+DotBatch::DotBatch(Canvas& canvas, Rgb colour, double pen_radius)
+    : canvas_(canvas), colour_(colour), pen_radius_(pen_radius) {
+  cairo_new_path(canvas_.context());
+}
 
 void DotBatch::dot(Vec2 centre, double radius_px) {
   const Vec2 p = canvas_.to_pixel(centre);
-  cairo_t* cr = canvas_.context();
-  cairo_new_sub_path(cr);
-  cairo_arc(cr, p.x, p.y, radius_px, 0, 2 * M_PI);
+  if (pen_radius_ > 0 && radius_px == pen_radius_) {
+    pen_dots_.push_back(p);
+  } else {
+    cairo_t* cr = canvas_.context();
+    cairo_new_sub_path(cr);
+    cairo_arc(cr, p.x, p.y, radius_px, 0, 2 * M_PI);
+  }
   if (++count_ >= kBatchItems) flush();
 }
 
@@ -357,7 +364,17 @@ void DotBatch::flush() {
   // Dots at 4 x 4 samples a pixel (cairo's "fast" anti-aliasing): a dot of a few pixels looks the
   // same as at the default's finer sampling, for much less of the node picture's time.
   cairo_set_antialias(cr, CAIRO_ANTIALIAS_FAST);
-  cairo_fill(cr);
+  cairo_fill(cr);  // an empty path (only pen dots) paints nothing
+  if (!pen_dots_.empty()) {
+    for (const Vec2& p : pen_dots_) {
+      cairo_move_to(cr, p.x, p.y);
+      cairo_line_to(cr, p.x, p.y);  // zero length: a round cap at each end, a disc
+    }
+    cairo_set_line_width(cr, 2 * pen_radius_);
+    cairo_set_line_cap(cr, CAIRO_LINE_CAP_ROUND);  // the canvas's own cap, set again to be sure
+    cairo_stroke(cr);
+    pen_dots_.clear();
+  }
   cairo_set_antialias(cr, CAIRO_ANTIALIAS_DEFAULT);
   count_ = 0;
 }

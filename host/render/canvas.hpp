@@ -182,9 +182,14 @@ class FillBatch {
   bool cut_ = false;
 };
 
+// Many dots of one colour filled as one path at cairo's fast anti-aliasing. With `pen_radius` > 0,
+// the dots of exactly that radius (a node picture's smallest, most of its dots) are drawn instead as
+// zero-length segments with round caps, one stroke of width 2 pen_radius: cairo's pen, a circle's
+// polygon computed once a stroke, in place of an arc's curves built and flattened for every dot.
+// They are painted after the batch's other dots (where the two kinds overlap, they blend).
 class DotBatch {
  public:
-  DotBatch(Canvas& canvas, Rgb colour);
+  DotBatch(Canvas& canvas, Rgb colour, double pen_radius = 0);
   ~DotBatch() {
     if (std::uncaught_exceptions() == 0) flush();
   }
@@ -196,6 +201,8 @@ class DotBatch {
  private:
   Canvas& canvas_;
   Rgb colour_;
+  double pen_radius_ = 0;
+  std::vector<Vec2> pen_dots_;  // pixel centres of the dots drawn with the pen
   int count_ = 0;
 };
 
