@@ -162,9 +162,9 @@ TEST_CASE("PNG encoder: libpng (through cairo) reads back the written pixels, al
 }
 
 TEST_CASE("PNG encoder: other surfaces and unwritable paths are errors", "[render][png]") {
-  cairo_surface_t* alpha = cairo_image_surface_create(CAIRO_FORMAT_A8, 4, 4);
-  CHECK_THROWS_AS(encode_png(alpha), Error);
-  cairo_surface_destroy(alpha);
+  cairo_surface_t* bits = cairo_image_surface_create(CAIRO_FORMAT_A1, 4, 4);
+  CHECK_THROWS_AS(encode_png(bits), Error);
+  cairo_surface_destroy(bits);
   cairo_surface_t* recording = cairo_recording_surface_create(CAIRO_CONTENT_COLOR, nullptr);
   CHECK_THROWS_AS(encode_png(recording), Error);
   cairo_surface_destroy(recording);
@@ -218,6 +218,65 @@ TEST_CASE("PNG encoder: bands deflated apart join into one valid stream of the w
   CHECK_THROWS_AS(png_from_bands({}), Error);
   for (cairo_surface_t* s : parts) cairo_surface_destroy(s);
   cairo_surface_destroy(whole);
+}
+
+TEST_CASE("PNG encoder: an A8 surface of ink is written as 8-bit greyscale, grey 255 - alpha", "[render][png]") {
+  // A 300 x 17 surface of ink (long runs of none, a ramp, runs of one level), alone and as the
+  // bands of one picture.
+  const int width = 300, height = 17;
+  cairo_surface_t* ink = cairo_image_surface_create(CAIRO_FORMAT_A8, width, height);
+  cairo_surface_flush(ink);
+  const auto level = [](int x, int y) { return x < 100 ? 0 : x < 200 ? (x + 3 * y) % 256 : 115; };
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x)
+      cairo_image_surface_get_data(ink)[y * cairo_image_surface_get_stride(ink) + x] =
+          static_cast<unsigned char>(level(x, y));
+  cairo_surface_mark_dirty(ink);
+  CHECK(grey_surface(ink));
+  const std::string png = encode_png(ink);
+  const std::vector<Chunk> parts = chunks(png);
+  REQUIRE(parts.size() == 3);
+  CHECK(parts[0].data[9] == 0);  // colour type: greyscale
+  const auto dir = pdmesh_test::fresh_dir("png_ink");
+  const auto file = dir / "ink.png";
+  write_bytes(file, png);
+  cairo_surface_t* back = cairo_image_surface_create_from_png(file.c_str());
+  REQUIRE(cairo_surface_status(back) == CAIRO_STATUS_SUCCESS);
+  cairo_surface_flush(back);
+  std::size_t differ = 0;
+  for (int y = 0; y < height; ++y) {
+    const auto* b = reinterpret_cast<const std::uint32_t*>(cairo_image_surface_get_data(back) +
+                                                           y * cairo_image_surface_get_stride(back));
+    for (int x = 0; x < width; ++x) {
+      const std::uint32_t g = 255u - static_cast<std::uint32_t>(level(x, y));
+      differ += (b[x] & 0xFFFFFFu) != ((g << 16) | (g << 8) | g);
+    }
+  }
+  CHECK(differ == 0);
+  cairo_surface_destroy(back);
+  // Written as RGB (a band of a picture with colour elsewhere), each pixel's three channels are its grey.
+  const DeflatedBand rgb = deflate_band(ink, true, 1, false);
+  std::vector<unsigned char> raw((1 + 3 * width) * height + 16);
+  uLongf size = static_cast<uLongf>(raw.size());
+  z_stream z{};
+  REQUIRE(inflateInit2(&z, -15) == Z_OK);
+  std::string bytes = rgb.bytes;
+  z.next_in = reinterpret_cast<Bytef*>(bytes.data());
+  z.avail_in = static_cast<uInt>(rgb.bytes.size());
+  z.next_out = raw.data();
+  z.avail_out = static_cast<uInt>(raw.size());
+  CHECK(inflate(&z, Z_FINISH) == Z_STREAM_END);
+  size = z.total_out;
+  inflateEnd(&z);
+  REQUIRE(size == static_cast<uLongf>((1 + 3 * width) * height));
+  differ = 0;
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x)
+      for (int c = 0; c < 3; ++c)
+        differ += raw[static_cast<std::size_t>(y * (1 + 3 * width) + 1 + 3 * x + c)] != 255 - level(x, y);
+  CHECK(differ == 0);
+  cairo_surface_destroy(ink);
+  std::filesystem::remove_all(dir);
 }
 
 TEST_CASE("PNG encoder: a grey picture is written as 8-bit greyscale with the same pixels, a coloured one as RGB",

@@ -6,7 +6,10 @@
 #include <unistd.h>
 
 #include <filesystem>
+#include <algorithm>
+#include <cmath>
 #include <fstream>
+#include <map>
 #include <sstream>
 
 #include "core/errors.hpp"
@@ -466,6 +469,138 @@ TEST_CASE("a mesh picture drawn in bands is the picture one canvas draws, pixel 
   fs::remove_all(dir);
 }
 
+TEST_CASE("a mesh's long edges are stroked in groups whose pixel rows do not meet, as few as the rows need",
+          "[render]") {
+  const fs::path dir = fresh_dir("edge_strokes");
+  // Long edges towards x = 1, short ones in between, edges under 2 px towards x = 0.
+  const Mesh m = grid_mesh(60, [](double x, double y) { return Vec2{x * x, y}; });
+  const std::vector<std::pair<int, int>> edges = unique_edges(m);
+  CanvasOptions o;
+  o.window = default_mesh_window(m);
+  o.long_side = 600;
+  const Canvas canvas(o, ImageFormat::Png, dir / "unused.png");
+  const EdgeStrokes plan = plan_edge_strokes(canvas, m, edges);
+  REQUIRE(!plan.ends.empty());
+  CHECK(plan.ends.back() == plan.edges.size());
+  const auto length = [&](const std::pair<int, int>& e) {
+    return dist(canvas.to_pixel(m.points[e.first]), canvas.to_pixel(m.points[e.second]));
+  };
+  // Every edge once: drawn (2 px or longer) or counted as too short.
+  std::vector<std::pair<int, int>> drawn = plan.edges, expected;
+  std::size_t long_edges = 0;
+  for (const auto& e : edges) {
+    if (length(e) >= kMinEdgePixels) expected.push_back(e);
+    long_edges += length(e) >= kApartEdgePixels;
+  }
+  std::sort(drawn.begin(), drawn.end());
+  std::sort(expected.begin(), expected.end());
+  CHECK(drawn == expected);
+  CHECK(plan.too_short == edges.size() - expected.size());
+  CHECK(plan.too_short > 0);
+  CHECK(long_edges > 100);
+  CHECK(expected.size() - long_edges > 100);
+  // An edge's rows: those its line (0.6 px wide) touches, widened by half a pixel.
+  const auto rows = [&](const std::pair<int, int>& e) {
+    const double ya = canvas.to_pixel(m.points[e.first]).y, yb = canvas.to_pixel(m.points[e.second]).y;
+    return std::pair<double, double>{std::floor(std::min(ya, yb) - 0.5), std::floor(std::max(ya, yb) + 0.5)};
+  };
+  // The short edges' strokes first (short edges only), then the long ones', within which no two
+  // edges' rows meet.
+  std::size_t begin = 0, shared = 0, long_strokes = 0, mixed = 0;
+  bool long_seen = false;
+  for (const std::size_t end : plan.ends) {
+    REQUIRE(end > begin);
+    const bool long_stroke = length(plan.edges[begin]) >= kApartEdgePixels;
+    long_seen = long_seen || long_stroke;
+    long_strokes += long_stroke;
+    for (std::size_t a = begin; a < end; ++a) {
+      mixed += (length(plan.edges[a]) >= kApartEdgePixels) != long_stroke;
+      for (std::size_t b = a + 1; b < end && long_stroke; ++b) {
+        const auto ra = rows(plan.edges[a]), rb = rows(plan.edges[b]);
+        shared += !(ra.second < rb.first || rb.second < ra.first);
+      }
+    }
+    CHECK((long_stroke || !long_seen));
+    begin = end;
+  }
+  CHECK(shared == 0);
+  CHECK(mixed == 0);
+  // As many long strokes as the most long edges in one row.
+  std::map<double, std::size_t> per_row;
+  for (const auto& e : plan.edges) {
+    if (length(e) < kApartEdgePixels) continue;
+    const auto r = rows(e);
+    for (double y = r.first; y <= r.second; ++y) ++per_row[y];
+  }
+  std::size_t most = 0;
+  for (const auto& [row, count] : per_row) most = std::max(most, count);
+  CHECK(long_strokes == most);
+  fs::remove_all(dir);
+}
+
+TEST_CASE("a grey canvas draws the picture an RGB one draws, within a level, as a greyscale PNG", "[render]") {
+  const fs::path dir = fresh_dir("grey_canvas");
+  // Everything a picture of greys draws: thin and thick strokes, a filled batch with its seam
+  // hairline (cut), dots, a pixel splat, the title with the scale bar on its white backing in the
+  // plot (a title band too low for it), in one canvas and in bands.
+  const auto draw = [](Canvas& canvas) {
+    {
+      FillBatch shade(canvas, Rgb{0.55, 0.55, 0.55});
+      for (int k = 0; k < 40; ++k) {
+        const double x = 0.05 * k;
+        shade.triangle({x, 0.1}, {x + 0.06, 0.1}, {x + 0.03, 0.5});
+      }
+      shade.flush(true);
+    }
+    {
+      StrokeBatch lines(canvas, colours::kBlack, 0.6, CAIRO_LINE_CAP_BUTT);
+      for (int k = 0; k < 60; ++k) lines.segment({0.03 * k, 0.0}, {2.0 - 0.02 * k, 1.0});
+    }
+    {
+      StrokeBatch thick(canvas, colours::kBlack, 2.0);
+      thick.box(Box{{0.2, 0.2}, {1.8, 0.8}});
+    }
+    {
+      DotBatch dots(canvas, Rgb{0.3, 0.3, 0.3});
+      for (int k = 0; k < 30; ++k) dots.dot({0.06 * k + 0.1, 0.7}, 0.5 + 0.1 * k);
+    }
+    if (canvas.raster()) {
+      PixelSplat splat(canvas, colours::kBlack);
+      for (int k = 0; k < 400; ++k) splat.dot({1.0 + 0.001 * k, 0.3 + 0.0005 * k}, 0.7);
+    }
+    canvas.title("grey 0123456789");
+  };
+  CanvasOptions o;
+  o.window = padded_window(Box{{0, 0}, {2, 1}});
+  o.long_side = 400;
+  o.title_height = 20;
+  for (const int bands : {1, 3}) {
+    INFO("bands " << bands);
+    o.grey = false;
+    render_picture(dir / "rgb.png", o, draw, bands);
+    o.grey = true;
+    render_picture(dir / "grey.png", o, draw, bands);
+    Png rgb(dir / "rgb.png"), grey(dir / "grey.png");
+    REQUIRE(rgb.ok());
+    REQUIRE(grey.ok());
+    REQUIRE(grey.width() == rgb.width());
+    REQUIRE(grey.height() == rgb.height());
+    const std::string bytes = slurp(dir / "grey.png");
+    CHECK(bytes[25] == 0);  // IHDR's colour type: greyscale
+    double most = 0;
+    int inked = 0;
+    for (int y = 0; y < rgb.height(); ++y)
+      for (int x = 0; x < rgb.width(); ++x) {
+        const Rgb a = rgb.pixel(x, y), b = grey.pixel(x, y);
+        most = std::max({most, std::abs(a.r - b.r), std::abs(a.g - b.g), std::abs(a.b - b.b)});
+        inked += a.r < 250;
+      }
+    CHECK(most <= 1);
+    CHECK(inked > 5000);
+  }
+  fs::remove_all(dir);
+}
+
 TEST_CASE("a pixel splat covers a box's pixels and spreads a dot's area over the four pixels around it", "[render]") {
   const fs::path dir = fresh_dir("splat");
   // World [0, 200]^2 on a 200 x 200 plot without a title band: world (x, y) is pixel (x, 200 - y).
@@ -671,14 +806,53 @@ TEST_CASE("a stroke batch with butt ends stops at the segment's ends, a default 
   fs::remove_all(dir);
 }
 
+TEST_CASE("a dot batch draws the dots of its pen radius with cairo's pen as its arcs draw them", "[render]") {
+  const fs::path dir = fresh_dir("pen_dots");
+  // 200 dots of 0.8 px at every quarter-pixel offset, well apart, and 50 of 2 px among them: drawn
+  // as arcs, and with a pen radius of 0.8.
+  const auto draw = [](double pen_radius) {
+    return [pen_radius](Canvas& canvas) {
+      DotBatch dots(canvas, colours::kInteriorNode, pen_radius);
+      for (int k = 0; k < 200; ++k) {
+        const double x = 0.05 + 0.0731 * (k % 25) + 0.0011 * (k % 4), y = 0.05 + 0.11 * (k / 25) + 0.0013 * (k % 3);
+        dots.dot({x, y}, 0.8);
+        if (k % 4 == 0) dots.dot({x + 0.03, y + 0.05}, 2.0);
+      }
+    };
+  };
+  CanvasOptions o;
+  o.window = Box{{0, 0}, {2, 1}};
+  o.long_side = 400;
+  render_picture(dir / "arcs.png", o, draw(0));
+  render_picture(dir / "pen.png", o, draw(0.8));
+  Png arcs(dir / "arcs.png"), pen(dir / "pen.png");
+  REQUIRE(arcs.ok());
+  REQUIRE(pen.ok());
+  double ink_arcs = 0, ink_pen = 0, most = 0;
+  for (int y = 0; y < arcs.height(); ++y)
+    for (int x = 0; x < arcs.width(); ++x) {
+      const Rgb a = arcs.pixel(x, y), b = pen.pixel(x, y);
+      ink_arcs += (255 - a.g) / 255.0;
+      ink_pen += (255 - b.g) / 255.0;
+      most = std::max(most, std::abs(a.g - b.g));
+    }
+  // The same area (200 pi 0.8^2 + 50 pi 2^2 = 1,030 px), each pixel within a fifth of full ink.
+  CHECK(ink_arcs == Approx(200 * M_PI * 0.64 + 50 * M_PI * 4).epsilon(0.05));
+  CHECK(ink_pen == Approx(ink_arcs).epsilon(0.03));
+  CHECK(most <= 51);
+  fs::remove_all(dir);
+}
+
 TEST_CASE("a node dot covers its circle's area", "[render]") {
   const fs::path dir = fresh_dir("small_dots");
   const Geometry g = rectangle_geometry();
   const double scale = 1600 / 2.12;  // the node picture's pixels per unit (see the first test)
-  // Each node alone in the middle of the rectangle.
-  for (const double radius : {0.9, 1.1, 1.6, 3.0}) {
+  // Each node alone in the middle of the rectangle; the one of spacing for 0.5 px is clamped to the
+  // smallest dot, drawn with cairo's pen.
+  for (const double asked : {0.5, 0.9, 1.1, 1.6, 3.0}) {
+    const double radius = std::max(asked, kMinNodeDot);
     NodeSet n;
-    n.add({0.9, 0.4}, radius / (0.12 * scale), NodeKind::Interior, -1);
+    n.add({0.9, 0.4}, asked / (0.12 * scale), NodeKind::Interior, -1);
     REQUIRE(node_dot_radius(n.q[0], scale, false) == Approx(radius));
     write_node_picture(dir / "dot.png", g, n, NodePictureOptions{});
     Png png(dir / "dot.png");

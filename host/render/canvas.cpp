@@ -68,8 +68,10 @@ Canvas::Canvas(const CanvasOptions& options, ImageFormat format, const fs::path&
     throw Error(fmt::format("cannot draw '{}': only a PNG is drawn in bands", file.string()));
   rows_lo_ = first;
   rows_hi_ = first + count;
-  surface_ = format == ImageFormat::Png ? cairo_image_surface_create(CAIRO_FORMAT_RGB24, width_, std::max(count, 1))
-                                        : cairo_svg_surface_create(file.c_str(), width_, height_);
+  grey_ = options.grey && format == ImageFormat::Png;
+  surface_ = format == ImageFormat::Png
+                 ? cairo_image_surface_create(grey_ ? CAIRO_FORMAT_A8 : CAIRO_FORMAT_RGB24, width_, std::max(count, 1))
+                 : cairo_svg_surface_create(file.c_str(), width_, height_);
   cr_ = cairo_create(surface_);
   // A band draws the whole picture's pixel coordinates shifted up by its first row (an integer, so
   // every pixel's coverage is the one the whole picture gives it).
@@ -82,8 +84,14 @@ Canvas::Canvas(const CanvasOptions& options, ImageFormat format, const fs::path&
     cairo_surface_destroy(surface_);
     throw;
   }
-  cairo_set_source_rgb(cr_, 1, 1, 1);
-  cairo_paint(cr_);
+  if (grey_) {
+    // A new image surface is all zero: no ink, white. Each drawing interpolates from what is there
+    // towards its ink by its coverage (an opaque colour over RGB does the same).
+    cairo_set_operator(cr_, CAIRO_OPERATOR_SOURCE);
+  } else {
+    cairo_set_source_rgb(cr_, 1, 1, 1);
+    cairo_paint(cr_);
+  }
   cairo_set_line_cap(cr_, CAIRO_LINE_CAP_ROUND);
   cairo_set_line_join(cr_, CAIRO_LINE_JOIN_ROUND);
   cairo_select_font_face(cr_, "sans-serif", CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_NORMAL);
@@ -133,9 +141,16 @@ bool Canvas::in_rows(double world_lo_y, double world_hi_y, double slack_px) cons
   return !(bottom < rows_lo_ - slack_px) && !(top > rows_hi_ + slack_px);
 }
 
+void Canvas::set_source(Rgb c) {
+  if (grey_)
+    cairo_set_source_rgba(cr_, 0, 0, 0, 1.0 - (c.r + c.g + c.b) / 3.0);
+  else
+    cairo_set_source_rgb(cr_, c.r, c.g, c.b);
+}
+
 void Canvas::line(Vec2 a, Vec2 b, Rgb c, double width_px) {
   const Vec2 pa = to_pixel(a), pb = to_pixel(b);
-  cairo_set_source_rgb(cr_, c.r, c.g, c.b);
+  set_source(c);
   cairo_set_line_width(cr_, width_px);
   cairo_move_to(cr_, pa.x, pa.y);
   cairo_line_to(cr_, pb.x, pb.y);
@@ -144,7 +159,7 @@ void Canvas::line(Vec2 a, Vec2 b, Rgb c, double width_px) {
 
 void Canvas::dot(Vec2 centre, double radius_px, Rgb c) {
   const Vec2 p = to_pixel(centre);
-  cairo_set_source_rgb(cr_, c.r, c.g, c.b);
+  set_source(c);
   cairo_new_sub_path(cr_);
   cairo_arc(cr_, p.x, p.y, radius_px, 0, 2 * M_PI);
   cairo_fill(cr_);
@@ -152,7 +167,7 @@ void Canvas::dot(Vec2 centre, double radius_px, Rgb c) {
 
 void Canvas::rectangle(const Box& b, Rgb c, double width_px) {
   const Vec2 p0 = to_pixel(b.lo), p1 = to_pixel(b.hi);
-  cairo_set_source_rgb(cr_, c.r, c.g, c.b);
+  set_source(c);
   cairo_set_line_width(cr_, width_px);
   cairo_rectangle(cr_, p0.x, p1.y, p1.x - p0.x, p0.y - p1.y);
   cairo_stroke(cr_);
@@ -160,7 +175,7 @@ void Canvas::rectangle(const Box& b, Rgb c, double width_px) {
 
 void Canvas::fill_triangle(Vec2 a, Vec2 b, Vec2 c, Rgb colour) {
   const Vec2 pa = to_pixel(a), pb = to_pixel(b), pc = to_pixel(c);
-  cairo_set_source_rgb(cr_, colour.r, colour.g, colour.b);
+  set_source(colour);
   cairo_move_to(cr_, pa.x, pa.y);
   cairo_line_to(cr_, pb.x, pb.y);
   cairo_line_to(cr_, pc.x, pc.y);
@@ -172,7 +187,7 @@ void Canvas::fill_triangle(Vec2 a, Vec2 b, Vec2 c, Rgb colour) {
 }
 
 void Canvas::text(double px, double py, const std::string& s, double size, Rgb c) {
-  cairo_set_source_rgb(cr_, c.r, c.g, c.b);
+  set_source(c);
   cairo_set_font_size(cr_, size);
   cairo_move_to(cr_, px, py);
   cairo_show_text(cr_, s.c_str());
@@ -206,11 +221,20 @@ void Canvas::scale_bar(double title_right) {
   const double x0 = in_band ? band_x0 : plot_x0_ + 20;
   const double y0 = in_band ? plot_y0_ - 8 : plot_y0_ + plot_h_ - 20;
   if (!in_band) {
-    cairo_set_source_rgba(cr_, 1, 1, 1, 0.8);
-    cairo_rectangle(cr_, x0 - 8, y0 - 30, px + 16, 40);
-    cairo_fill(cr_);
+    if (grey_) {  // a fifth of the ink left, as white at alpha 0.8 over RGB leaves
+      cairo_save(cr_);
+      cairo_set_operator(cr_, CAIRO_OPERATOR_DEST_OUT);
+      cairo_set_source_rgba(cr_, 0, 0, 0, 0.8);
+      cairo_rectangle(cr_, x0 - 8, y0 - 30, px + 16, 40);
+      cairo_fill(cr_);
+      cairo_restore(cr_);
+    } else {
+      cairo_set_source_rgba(cr_, 1, 1, 1, 0.8);
+      cairo_rectangle(cr_, x0 - 8, y0 - 30, px + 16, 40);
+      cairo_fill(cr_);
+    }
   }
-  cairo_set_source_rgb(cr_, 0, 0, 0);
+  set_source(colours::kBlack);
   cairo_set_line_width(cr_, 2);
   cairo_move_to(cr_, x0, y0 - 6);
   cairo_line_to(cr_, x0, y0);
@@ -269,7 +293,7 @@ void StrokeBatch::flush() {
     count_ = 0;
     return;
   }
-  cairo_set_source_rgb(cr, colour_.r, colour_.g, colour_.b);
+  canvas_.set_source(colour_);
   cairo_set_line_width(cr, width_);
   cairo_set_line_cap(cr, cap_);
   cairo_stroke(cr);                              // also clears the path
@@ -301,7 +325,7 @@ void FillBatch::flush(bool cut) {
   count_ = 0;
   cut_ = cut_ || cut;
   if (!cairo_has_current_point(cr)) return;  // only skipped items since the last flush
-  cairo_set_source_rgb(cr, colour_.r, colour_.g, colour_.b);
+  canvas_.set_source(colour_);
   if (!cut_) {
     cairo_fill(cr);  // the union of every triangle: no seams inside it
     return;
@@ -316,24 +340,41 @@ void FillBatch::flush(bool cut) {
   cairo_restore(cr);
 }
 
-DotBatch::DotBatch(Canvas& canvas, Rgb colour) : canvas_(canvas), colour_(colour) { cairo_new_path(canvas_.context()); }
+DotBatch::DotBatch(Canvas& canvas, Rgb colour, double pen_radius)
+    : canvas_(canvas), colour_(colour), pen_radius_(pen_radius) {
+  cairo_new_path(canvas_.context());
+}
 
 void DotBatch::dot(Vec2 centre, double radius_px) {
   const Vec2 p = canvas_.to_pixel(centre);
-  cairo_t* cr = canvas_.context();
-  cairo_new_sub_path(cr);
-  cairo_arc(cr, p.x, p.y, radius_px, 0, 2 * M_PI);
+  if (pen_radius_ > 0 && radius_px == pen_radius_) {
+    pen_dots_.push_back(p);
+  } else {
+    cairo_t* cr = canvas_.context();
+    cairo_new_sub_path(cr);
+    cairo_arc(cr, p.x, p.y, radius_px, 0, 2 * M_PI);
+  }
   if (++count_ >= kBatchItems) flush();
 }
 
 void DotBatch::flush() {
   if (count_ == 0) return;
   cairo_t* cr = canvas_.context();
-  cairo_set_source_rgb(cr, colour_.r, colour_.g, colour_.b);
+  canvas_.set_source(colour_);
   // Dots at 4 x 4 samples a pixel (cairo's "fast" anti-aliasing): a dot of a few pixels looks the
   // same as at the default's finer sampling, for much less of the node picture's time.
   cairo_set_antialias(cr, CAIRO_ANTIALIAS_FAST);
-  cairo_fill(cr);
+  cairo_fill(cr);  // an empty path (only pen dots) paints nothing
+  if (!pen_dots_.empty()) {
+    for (const Vec2& p : pen_dots_) {
+      cairo_move_to(cr, p.x, p.y);
+      cairo_line_to(cr, p.x, p.y);  // zero length: a round cap at each end, a disc
+    }
+    cairo_set_line_width(cr, 2 * pen_radius_);
+    cairo_set_line_cap(cr, CAIRO_LINE_CAP_ROUND);  // the canvas's own cap, set again to be sure
+    cairo_stroke(cr);
+    pen_dots_.clear();
+  }
   cairo_set_antialias(cr, CAIRO_ANTIALIAS_DEFAULT);
   count_ = 0;
 }
@@ -390,7 +431,7 @@ void PixelSplat::paint() {
   }
   cairo_surface_t* mask = cairo_image_surface_create_for_data(alpha.data(), CAIRO_FORMAT_A8, width_, rows_, stride);
   cairo_t* cr = canvas_.context();
-  cairo_set_source_rgb(cr, colour_.r, colour_.g, colour_.b);
+  canvas_.set_source(colour_);
   // The context is translated up by the canvas' first row: the mask's row 0 is that row.
   cairo_mask_surface(cr, mask, 0, canvas_.first_row());
   cairo_surface_destroy(mask);

@@ -40,6 +40,11 @@ struct CanvasOptions {
   int long_side = 1600;   // pixels on the longer side of the plot area
   int title_height = 40;  // band above the plot for the title
   int side_width = 0;     // band right of the plot (colour bar); 0 = none
+  // Only greys are drawn (a mesh picture without a value fill): a PNG canvas then draws into one
+  // byte a pixel (cairo's A8 format, the ink 1 - grey as alpha, every drawing interpolating towards
+  // its colour by its coverage as an opaque colour does on RGB), a quarter of the bytes to clear,
+  // composite and encode; an SVG draws as usual.
+  bool grey = false;
 };
 
 // The pixel rows [first, first + count) of a picture that one Canvas draws (count < 0: to the
@@ -84,6 +89,10 @@ class Canvas {
   void title(const std::string& text);
   void text(double px, double py, const std::string& s, double size, Rgb colour);
   cairo_t* context() { return cr_; }  // for decorations that need cairo directly (colour bars)
+  // Sets cairo's source to an opaque colour (on a grey canvas: its ink, 1 - the mean of its
+  // channels, as alpha).
+  void set_source(Rgb colour);
+  bool grey() const { return grey_; }
   double plot_right() const { return plot_x0_ + plot_w_; }
   double plot_width() const { return plot_w_; }
   double plot_top() const { return plot_y0_; }
@@ -116,6 +125,7 @@ class Canvas {
   cairo_surface_t* surface_ = nullptr;
   cairo_t* cr_ = nullptr;
   bool clipped_ = false;
+  bool grey_ = false;
 };
 
 // Many segments of one colour and width (or many dots of one colour) drawn as one path: cairo's
@@ -172,9 +182,14 @@ class FillBatch {
   bool cut_ = false;
 };
 
+// Many dots of one colour filled as one path at cairo's fast anti-aliasing. With `pen_radius` > 0,
+// the dots of exactly that radius (a node picture's smallest, most of its dots) are drawn instead as
+// zero-length segments with round caps, one stroke of width 2 pen_radius: cairo's pen, a circle's
+// polygon computed once a stroke, in place of an arc's curves built and flattened for every dot.
+// They are painted after the batch's other dots (where the two kinds overlap, they blend).
 class DotBatch {
  public:
-  DotBatch(Canvas& canvas, Rgb colour);
+  DotBatch(Canvas& canvas, Rgb colour, double pen_radius = 0);
   ~DotBatch() {
     if (std::uncaught_exceptions() == 0) flush();
   }
@@ -186,6 +201,8 @@ class DotBatch {
  private:
   Canvas& canvas_;
   Rgb colour_;
+  double pen_radius_ = 0;
+  std::vector<Vec2> pen_dots_;  // pixel centres of the dots drawn with the pen
   int count_ = 0;
 };
 

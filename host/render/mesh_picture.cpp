@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <mutex>
 #include <tuple>
 #include <fmt/format.h>
 
@@ -19,10 +20,11 @@ namespace pdmesh {
 namespace {
 
 constexpr int kColourBarBand = 150;
+// Short edges stroked together (the canvas's batch size).
+constexpr std::size_t kTogetherEdges = 4096;
 constexpr Rgb kNoValue{0.75, 0.75, 0.75};  // non-finite values
-// Interior edges shorter than this on screen are not drawn; triangles with one are shaded kDenseShade
-// (without a value fill).
-constexpr double kMinEdgePixels = 2.0;
+// Interior edges shorter than kMinEdgePixels on screen are not drawn; triangles with one are shaded
+// kDenseShade (without a value fill).
 constexpr Rgb kDenseShade{0.55, 0.55, 0.55};
 
 // Samples of matplotlib's viridis at t = 0, 1/8, ..., 1, interpolated linearly in between.
@@ -128,33 +130,134 @@ void draw_value_fills(Canvas& canvas, const Mesh& mesh, const std::vector<double
   }
 }
 
-// The edges long enough to draw, thin and black; returns how many in the window were too short.
-// Each edge once (unique_edges), with butt ends: at 0.6 px a round cap adds no ink that reads (the
-// edges meeting at a vertex cover it) but its arc's vertices are a good part of cairo's stroking and
-// scan conversion of a dense mesh.
-std::size_t draw_edges(Canvas& canvas, const Mesh& mesh, const std::vector<std::pair<int, int>>& edges,
-                       double min_edge_world) {
-  const double edge_width = 0.6;
-  StrokeBatch lines(canvas, colours::kBlack, edge_width, CAIRO_LINE_CAP_BUTT);
-  std::size_t skipped = 0;
+}  // namespace
+
+// Edges stroked together in the order of the mesh start and end in nearly every pixel row, so cairo
+// sampled the long edges of a mesh's coarse parts, most of its rows, 15 times a row; stroked apart
+// from the edges in the same rows, they are sampled so in their end rows only. The long edges are
+// taken in order of their top row, each into a stroke whose edges all end above it, or into a new
+// stroke when none does (as many strokes as the most long edges in one row). No two edges of such a
+// stroke share a pixel, so each is painted on its own (where edges meet at a vertex, their coverages
+// blend as two strokes' do). Short edges gain nothing apart (their rows are all end rows) and stay
+// together: in a dense part, lines a fraction of a pixel apart add their coverages as one stroke's
+// union does, where blending them would paint the part a shade lighter.
+EdgeStrokes plan_edge_strokes(const Canvas& canvas, const Mesh& mesh, const std::vector<std::pair<int, int>>& edges) {
+  const double min_edge_world = kMinEdgePixels / canvas.scale();
+  // Rows as indices 0 .. rows - 1: the picture's rows, and one above and one below it for the parts
+  // of edges outside the picture (clipped away: how they group does not matter).
+  const int rows = canvas.height() + 2;
+  const auto row_of = [&](double y) {
+    return static_cast<int>(std::clamp(std::floor(y), -1.0, static_cast<double>(rows - 2))) + 1;
+  };
+  struct Item {
+    std::size_t edge;
+    int top, bottom;
+  };
+  std::vector<Item> items;
+  items.reserve(edges.size());
+  std::vector<std::size_t> dense;
+  EdgeStrokes plan;
   InterruptPoll poll(65536);
-  for (const auto& [i, j] : edges) {
+  for (std::size_t k = 0; k < edges.size(); ++k) {
     poll.tick();
-    const Vec2 a = mesh.points[static_cast<std::size_t>(i)], b = mesh.points[static_cast<std::size_t>(j)];
+    const Vec2 a = mesh.points[static_cast<std::size_t>(edges[k].first)];
+    const Vec2 b = mesh.points[static_cast<std::size_t>(edges[k].second)];
     Box box;
     box.add(a);
     box.add(b);
     if (!canvas.in_window(box)) continue;
     if (!shown(a, b, min_edge_world)) {
-      ++skipped;  // counted over the whole window: every band draws the same title
-    } else if (canvas.visible(box)) {
-      lines.segment(a, b);
-    } else {
-      lines.skip();  // in another band: this band's batches end where the whole picture's do
+      ++plan.too_short;  // counted over the whole window: every band draws the same title
+      continue;
+    }
+    const Vec2 pa = canvas.to_pixel(a), pb = canvas.to_pixel(b);
+    if (dist(pa, pb) < kApartEdgePixels) {
+      dense.push_back(k);
+      continue;
+    }
+    items.push_back({k, row_of(std::min(pa.y, pb.y) - 0.5), row_of(std::max(pa.y, pb.y) + 0.5)});
+  }
+  // The short edges first, in the mesh's order, kTogetherEdges a stroke.
+  for (std::size_t k = 0; k < dense.size(); ++k) {
+    plan.edges.push_back(edges[dense[k]]);
+    if ((k + 1) % kTogetherEdges == 0 || k + 1 == dense.size()) plan.ends.push_back(plan.edges.size());
+  }
+  // The items by top row (in edge order within a row).
+  std::vector<std::size_t> first(static_cast<std::size_t>(rows) + 1, 0);
+  for (const Item& item : items) ++first[static_cast<std::size_t>(item.top) + 1];
+  for (std::size_t r = 1; r < first.size(); ++r) first[r] += first[r - 1];
+  std::vector<std::size_t> by_top(items.size());
+  {
+    std::vector<std::size_t> next(first.begin(), first.end() - 1);
+    for (std::size_t k = 0; k < items.size(); ++k) by_top[next[static_cast<std::size_t>(items[k].top)]++] = k;
+  }
+  // Row by row: the strokes whose last edge ends in the row above become idle; each item goes to an
+  // idle stroke, or a new one. ending[r]: the strokes whose last edge ends in row r (linked through
+  // `later`).
+  constexpr int kNone = -1;
+  std::vector<int> ending(static_cast<std::size_t>(rows), kNone), later, idle, stroke_of(items.size());
+  int strokes = 0;
+  for (int r = 0; r < rows; ++r) {
+    if (r > 0) {
+      for (int s = ending[static_cast<std::size_t>(r - 1)]; s != kNone; s = later[static_cast<std::size_t>(s)])
+        idle.push_back(s);
+    }
+    for (std::size_t i = first[static_cast<std::size_t>(r)]; i < first[static_cast<std::size_t>(r) + 1]; ++i) {
+      const Item& item = items[by_top[i]];
+      int s = strokes;
+      if (idle.empty()) {
+        ++strokes;
+        later.push_back(kNone);
+      } else {
+        s = idle.back();
+        idle.pop_back();
+      }
+      stroke_of[by_top[i]] = s;
+      later[static_cast<std::size_t>(s)] = ending[static_cast<std::size_t>(item.bottom)];
+      ending[static_cast<std::size_t>(item.bottom)] = s;
     }
   }
-  lines.flush();
-  return skipped;
+  // Then the long edges stroke by stroke, each stroke's in order of their top rows.
+  std::vector<std::size_t> sizes(static_cast<std::size_t>(strokes), 0);
+  for (std::size_t i : by_top) ++sizes[static_cast<std::size_t>(stroke_of[i])];
+  std::vector<std::size_t> next(sizes.size());
+  std::size_t end = plan.edges.size();
+  for (std::size_t s = 0; s < sizes.size(); ++s) {
+    next[s] = end;
+    end += sizes[s];
+    plan.ends.push_back(end);
+  }
+  plan.edges.resize(end);
+  for (std::size_t i : by_top) plan.edges[next[static_cast<std::size_t>(stroke_of[i])]++] = edges[items[i].edge];
+  return plan;
+}
+
+namespace {
+
+// The planned edges, thin and black, with butt ends: at 0.6 px a round cap adds no ink that reads
+// (the edges meeting at a vertex cover it) but its arc's vertices are a good part of cairo's
+// stroking and scan conversion of a dense mesh. A band strokes the planned strokes' edges in its
+// rows, so that a banded picture is pixel for pixel the whole one.
+void draw_edges(Canvas& canvas, const Mesh& mesh, const EdgeStrokes& plan) {
+  const double edge_width = 0.6;
+  StrokeBatch lines(canvas, colours::kBlack, edge_width, CAIRO_LINE_CAP_BUTT);
+  InterruptPoll poll(65536);
+  std::size_t k = 0;
+  for (std::size_t end : plan.ends) {
+    for (; k < end; ++k) {
+      poll.tick();
+      const Vec2 a = mesh.points[static_cast<std::size_t>(plan.edges[k].first)];
+      const Vec2 b = mesh.points[static_cast<std::size_t>(plan.edges[k].second)];
+      Box box;
+      box.add(a);
+      box.add(b);
+      if (canvas.visible(box))
+        lines.segment(a, b);
+      else
+        lines.skip();  // in another band
+    }
+    lines.flush();
+  }
 }
 
 }  // namespace
@@ -273,21 +376,29 @@ void write_mesh_picture(const std::filesystem::path& path, const Mesh& mesh, con
   layout.window = options.window ? *options.window : default_mesh_window(mesh);
   layout.long_side = options.long_side;
   layout.side_width = values != nullptr ? kColourBarBand : 0;
+  layout.grey = values == nullptr;  // black edges, the grey shade, a black title
 
   // Each edge once (an interior edge belongs to two triangles).
   const std::vector<std::pair<int, int>> edges = unique_edges(mesh);
+
+  // The edges' strokes, planned by the first band to start (every band's canvas maps the world to
+  // the same pixels).
+  std::once_flag planned;
+  EdgeStrokes strokes;
 
   // Drawn in bands on several threads (PNG; render_picture): everything below only reads the mesh.
   render_picture(
       path, layout,
       [&](Canvas& canvas) {
         const double min_edge_world = kMinEdgePixels / canvas.scale();
+        std::call_once(planned, [&] { strokes = plan_edge_strokes(canvas, mesh, edges); });
         // Value fills first, then the edges on top of them.
         if (values == nullptr)
           draw_dense_shade(canvas, mesh, min_edge_world);
         else
           draw_value_fills(canvas, mesh, *values, lo, hi);
-        const std::size_t skipped = draw_edges(canvas, mesh, edges, min_edge_world);
+        draw_edges(canvas, mesh, strokes);
+        const std::size_t skipped = strokes.too_short;
         {
           StrokeBatch boundary(canvas, colours::kBlack, 2.0);
           for (const BoundaryEdge& e : mesh.boundary_edges) boundary.segment(mesh.points[e.a], mesh.points[e.b]);

@@ -42,6 +42,21 @@ Box default_mesh_window(const Mesh& mesh);
 // Writes a .png or .svg atomically. Throws Error when triangle_values has the wrong size.
 void write_mesh_picture(const std::filesystem::path& path, const Mesh& mesh, const MeshPictureOptions& options);
 
+// A mesh picture's edges long enough to draw (kMinEdgePixels on `canvas`, in its window), in the
+// order and the strokes they are drawn in: first the edges shorter than kApartEdgePixels, in the
+// mesh's order, 4096 a stroke; then the longer ones, each stroke taking edges whose pixel rows,
+// widened by half a pixel, do not meet, as few strokes as the most of them in one such row (cairo's
+// scan converter samples a pixel row once where no polygon edge of a path starts or ends in it, 15
+// times where one does: see mesh_picture.cpp). Every band of a picture draws the same strokes.
+struct EdgeStrokes {
+  std::vector<std::pair<int, int>> edges;  // point indices, in drawing order
+  std::vector<std::size_t> ends;           // the end of each stroke's edges in `edges`
+  std::size_t too_short = 0;               // edges in the window too short to draw
+};
+inline constexpr double kMinEdgePixels = 2.0;
+inline constexpr double kApartEdgePixels = 8.0;
+EdgeStrokes plan_edge_strokes(const Canvas& canvas, const Mesh& mesh, const std::vector<std::pair<int, int>>& edges);
+
 // A close-up for a mesh too dense for its picture: when more than half of the triangles' edges would be
 // shorter than the smallest edge a picture of `window` at `long_side` pixels draws, the window
 // around the triangle with the smallest angle (the lowest index among equals), kCloseUpEdges of

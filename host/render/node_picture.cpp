@@ -13,7 +13,7 @@ namespace pdmesh {
 
 double node_dot_radius(double q, double scale, bool fixed) {
   double r = std::isfinite(q) && q > 0 ? 0.12 * q * scale : 1.5;
-  r = std::clamp(r, 0.8, 5.0);
+  r = std::clamp(r, kMinNodeDot, 5.0);
   return fixed ? 1.5 * r + 0.5 : r;
 }
 
@@ -46,7 +46,8 @@ void write_node_picture(const std::filesystem::path& path, const Geometry& geome
       std::optional<PixelSplat> splat;
       if (pass == NodeKind::Interior && splat_worthwhile(canvas, nodes.count(NodeKind::Interior)))
         splat.emplace(canvas, colour);
-      DotBatch dots(canvas, colour);
+      // The dots at the smallest radius (the dense parts' nodes, most of them) with cairo's pen.
+      DotBatch dots(canvas, colour, kMinNodeDot);
       for (std::size_t i = 0; i < nodes.size(); ++i) {
         if ((i & 65535) == 0) check_interrupt();
         if (nodes.kind[i] != pass) continue;

@@ -19,7 +19,9 @@ struct NodePictureOptions {
 };
 
 // Dot radius in pixels for a node of spacing q drawn at `scale` pixels per unit: proportional to
-// q so that zooming in enlarges dots, clamped so that dense pictures stay readable.
+// q so that zooming in enlarges dots, clamped to [kMinNodeDot, 5] so that dense pictures stay
+// readable (a fixed node's dot larger).
+inline constexpr double kMinNodeDot = 0.8;
 double node_dot_radius(double q, double scale, bool fixed);
 
 // Writes a .png or .svg atomically.

@@ -36,14 +36,18 @@ void chunk(std::string& out, const char* type, const std::string& data) {
 void check_surface(cairo_surface_t* surface) {
   if (cairo_surface_get_type(surface) != CAIRO_SURFACE_TYPE_IMAGE) throw Error("PNG encoder: not an image surface");
   const cairo_format_t format = cairo_image_surface_get_format(surface);
-  if (format != CAIRO_FORMAT_RGB24 && format != CAIRO_FORMAT_ARGB32)
-    throw Error("PNG encoder: the surface is neither RGB24 nor ARGB32");
+  if (format != CAIRO_FORMAT_RGB24 && format != CAIRO_FORMAT_ARGB32 && format != CAIRO_FORMAT_A8)
+    throw Error("PNG encoder: the surface is neither RGB24, ARGB32 nor A8");
 }
+
+// An A8 surface holds ink (Canvas's grey pictures): its grey is 255 - alpha.
+bool ink_surface(cairo_surface_t* surface) { return cairo_image_surface_get_format(surface) == CAIRO_FORMAT_A8; }
 
 }  // namespace
 
 bool grey_surface(cairo_surface_t* surface) {
   check_surface(surface);
+  if (ink_surface(surface)) return true;
   cairo_surface_flush(surface);
   const int width = cairo_image_surface_get_width(surface);
   const int height = cairo_image_surface_get_height(surface);
@@ -64,19 +68,22 @@ bool grey_surface(cairo_surface_t* surface) {
 
 namespace {
 
-// zlib's run-length strategy (matches one byte back only) for a grey band whose sampled rows (every
-// 16th) are at least a quarter pixels equal to their left neighbour; the default strategy below.
-// Mesh pictures with that many runs come out about as small and compress about twice as fast under
-// Z_RLE (docs/performance.md, the pictures' row). Rows without runs (anti-aliased texture repeating
-// at a longer distance) need the default strategy's matches at any distance.
-int grey_strategy(const unsigned char* data, int width, int height, int stride) {
+// The share of the sampled pixels (every 16th row) equal to their left neighbour: the grey (one
+// channel) or the whole RGB pixel.
+double run_share(const unsigned char* data, int width, int height, int stride, bool ink, bool grey) {
   std::size_t equal = 0, total = 0;
   for (int y = 0; y < height; y += 16) {
-    const auto* pixels = reinterpret_cast<const std::uint32_t*>(data + static_cast<std::ptrdiff_t>(y) * stride);
-    for (int x = 1; x < width; ++x) equal += ((pixels[x] ^ pixels[x - 1]) & 0xFFu) == 0 ? 1 : 0;
+    const unsigned char* row = data + static_cast<std::ptrdiff_t>(y) * stride;
+    if (ink) {
+      for (int x = 1; x < width; ++x) equal += row[x] == row[x - 1] ? 1 : 0;
+    } else {
+      const auto* pixels = reinterpret_cast<const std::uint32_t*>(row);
+      const std::uint32_t mask = grey ? 0xFFu : 0xFFFFFFu;
+      for (int x = 1; x < width; ++x) equal += ((pixels[x] ^ pixels[x - 1]) & mask) == 0 ? 1 : 0;
+    }
     total += static_cast<std::size_t>(width > 1 ? width - 1 : 0);
   }
-  return 4 * equal >= total ? Z_RLE : Z_DEFAULT_STRATEGY;
+  return total > 0 ? static_cast<double>(equal) / static_cast<double>(total) : 1.0;
 }
 
 }  // namespace
@@ -94,8 +101,22 @@ DeflatedBand deflate_band(cairo_surface_t* surface, bool last, int level, bool g
 
   // Raw deflate (no zlib header or trailer: png_from_bands writes them once for all bands).
   z_stream z{};
-  const int strategy = grey ? grey_strategy(data, band.width, band.height, stride) : Z_DEFAULT_STRATEGY;
-  if (deflateInit2(&z, level, Z_DEFLATED, -15, 8, strategy) != Z_OK) throw Error("PNG encoder: deflateInit failed");
+  const bool ink = ink_surface(surface);
+  const double runs = run_share(data, band.width, band.height, stride, ink, grey);
+  // zlib's run-length strategy (matches one byte back only) for a grey band with at least a quarter
+  // of its pixels equal to their left neighbour, else the default strategy. Mesh pictures with that
+  // many runs come out about as small and compress about twice as fast under Z_RLE
+  // (docs/performance.md, the pictures' row). Rows without runs (anti-aliased texture repeating at a
+  // longer distance) need the default strategy's matches at any distance.
+  const int strategy = grey && 4 * runs >= 1 ? Z_RLE : Z_DEFAULT_STRATEGY;
+  // zlib's memory level: 6 for an RGB band of at least three quarters runs (a node picture of a
+  // small run: a 16 kB hash table, in the core's first-level cache where the default 8's 64 kB is
+  // not), as small a file; 8 for other RGB bands (a node picture shaded by the nodes' density:
+  // faster and smaller at 8) and for grey ones (under Z_RLE no hash table; 8's larger symbol buffer
+  // means fewer, cheaper blocks).
+  const int mem_level = !grey && 4 * runs >= 3 ? 6 : 8;
+  if (deflateInit2(&z, level, Z_DEFLATED, -15, mem_level, strategy) != Z_OK)
+    throw Error("PNG encoder: deflateInit failed");
   std::vector<unsigned char> row(1 + channels * static_cast<std::size_t>(band.width));
   std::vector<unsigned char> buffer(1 << 16);
   const auto drain = [&](int flush) {
@@ -113,7 +134,12 @@ DeflatedBand deflate_band(cairo_surface_t* surface, bool last, int level, bool g
   band.adler = adler32(0L, Z_NULL, 0);
   for (int y = 0; y < band.height; ++y) {
     const auto* pixels = reinterpret_cast<const std::uint32_t*>(data + static_cast<std::ptrdiff_t>(y) * stride);
-    if (grey) {
+    const unsigned char* alpha = data + static_cast<std::ptrdiff_t>(y) * stride;
+    if (ink && grey) {
+      for (int x = 0; x < band.width; ++x) row[1 + x] = static_cast<unsigned char>(255 - alpha[x]);
+    } else if (ink) {
+      for (int x = 0; x < band.width; ++x) row[1 + 3 * x] = row[2 + 3 * x] = row[3 + 3 * x] = 255 - alpha[x];
+    } else if (grey) {
       for (int x = 0; x < band.width; ++x) row[1 + x] = static_cast<unsigned char>(pixels[x]);  // blue = red = green
     } else {
       for (int x = 0; x < band.width; ++x) {

@@ -11,14 +11,15 @@
 
 namespace pdmesh {
 
-// The PNG bytes of an RGB24 or ARGB32 image surface (alpha dropped), zlib at `level`: 8-bit
+// The PNG bytes of an RGB24 or ARGB32 image surface (alpha dropped), or of an A8 one holding ink
+// (a grey canvas: grey 255 - alpha, always greyscale), zlib at `level`: 8-bit
 // greyscale when every pixel is grey (red = green = blue: a mesh picture without a value fill), one
 // byte a pixel where RGB takes three, so a third of the bytes to deflate for the same pixels, with
 // zlib's run-length strategy where the rows are mostly runs; else 8-bit RGB, zlib's default strategy. Throws Error when
 // the surface is not an image surface of those formats or zlib fails.
 std::string encode_png(cairo_surface_t* surface, int level = 1);
 
-// Whether every pixel of an RGB24 or ARGB32 image surface has red = green = blue.
+// Whether every pixel of an RGB24 or ARGB32 image surface has red = green = blue (true for an A8 one).
 bool grey_surface(cairo_surface_t* surface);
 
 // A picture drawn in horizontal bands (render_picture) is encoded band by band, each on the thread
