@@ -186,6 +186,21 @@ TEST_CASE("cells of one search box sharing a bucket never share a tag", "[opencl
     }
 }
 
+// The device's grids as the gather reads them: each node's level, and per grid its hash mask, bucket
+// offset and inverse cell size; the buckets' ends and their entries.
+void download_grids(ocl::DeviceNeighbours<double>& nb, std::size_t n, std::vector<std::int32_t>& level,
+                    std::vector<std::int32_t>& mask, std::vector<std::uint32_t>& bucket_offset,
+                    std::vector<double>& inv_cell, std::vector<std::uint32_t>& bucket,
+                    std::vector<std::int32_t>& nodes) {
+  ocl::Context& ctx = test_context();
+  nb.level().download(ctx.queue(), level, n);
+  nb.grid_mask().download(ctx.queue(), mask);
+  nb.grid_bucket_offset().download(ctx.queue(), bucket_offset);
+  nb.grid_inv_cell().download(ctx.queue(), inv_cell);
+  nb.bucket().download(ctx.queue(), bucket);
+  nb.grid_nodes().download(ctx.queue(), nodes);
+}
+
 // What the gather's scan meets (kernels/neighbours.cl, gather_node), computed on the host from the
 // device's grids: `examined`, the candidates of a scan per probed cell (entries of the cell's bucket with
 // the cell's tag, other than the node), which both program shapes must count; and, for the CPU shape's
@@ -199,17 +214,11 @@ struct ScanCounts {
 };
 
 ScanCounts host_scan(const Input& in, ocl::DeviceNeighbours<double>& nb, double radius_factor) {
-  ocl::Context& ctx = test_context();
   const std::size_t n = in.p.size();
   std::vector<std::int32_t> level, mask, nodes;
   std::vector<std::uint32_t> bucket_offset, bucket;
   std::vector<double> inv_cell;
-  nb.level().download(ctx.queue(), level, n);
-  nb.grid_mask().download(ctx.queue(), mask);
-  nb.grid_bucket_offset().download(ctx.queue(), bucket_offset);
-  nb.grid_inv_cell().download(ctx.queue(), inv_cell);
-  nb.bucket().download(ctx.queue(), bucket);
-  nb.grid_nodes().download(ctx.queue(), nodes);
+  download_grids(nb, n, level, mask, bucket_offset, inv_cell, bucket, nodes);
   auto tag = [](std::int64_t cx, std::int64_t cy) {  // binning.cl, nb_tag
     return static_cast<std::uint32_t>((static_cast<std::uint64_t>(cx) * 0xD6E8FEB86659FD93ULL +
                                        static_cast<std::uint64_t>(cy) * 0xA0761D6478BD642FULL) >>
@@ -488,17 +497,11 @@ TEST_CASE("device binning puts every node in the cells the host binning does", "
     const std::size_t n = in.p.size();
     ocl::NeighbourGrids host;
     ocl::build_neighbour_grids(in.p.x.data(), in.p.y.data(), in.p.q.data(), n, in.cutoff, host);
-    ocl::Context& ctx = test_context();
     ocl::DeviceNeighbours<double>& nb = b.neighbours();
     std::vector<std::int32_t> level, mask, nodes;
     std::vector<std::uint32_t> bucket_offset, bucket;
     std::vector<double> inv_cell;
-    nb.level().download(ctx.queue(), level, n);
-    nb.grid_mask().download(ctx.queue(), mask);
-    nb.grid_bucket_offset().download(ctx.queue(), bucket_offset);
-    nb.grid_inv_cell().download(ctx.queue(), inv_cell);
-    nb.bucket().download(ctx.queue(), bucket);
-    nb.grid_nodes().download(ctx.queue(), nodes);
+    download_grids(nb, n, level, mask, bucket_offset, inv_cell, bucket, nodes);
     REQUIRE(level == host.level);
     int grids = 0;
     for (int L = 0; L < host.levels; ++L) {

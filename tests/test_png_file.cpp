@@ -81,6 +81,15 @@ cairo_surface_t* pattern(int width, int height, cairo_format_t format = CAIRO_FO
   return s;
 }
 
+// The PNG bytes written to `file` and decoded by libpng (through cairo), ready to read.
+cairo_surface_t* read_back(const std::filesystem::path& file, const std::string& png) {
+  write_bytes(file, png);
+  cairo_surface_t* back = cairo_image_surface_create_from_png(file.c_str());
+  REQUIRE(cairo_surface_status(back) == CAIRO_STATUS_SUCCESS);
+  cairo_surface_flush(back);
+  return back;
+}
+
 }  // namespace
 
 TEST_CASE("PNG encoder: signature, IHDR, CRCs and the inflated rows follow the specification", "[render][png]") {
@@ -239,10 +248,7 @@ TEST_CASE("PNG encoder: an A8 surface of ink is written as 8-bit greyscale, grey
   CHECK(parts[0].data[9] == 0);  // colour type: greyscale
   const auto dir = pdmesh_test::fresh_dir("png_ink");
   const auto file = dir / "ink.png";
-  write_bytes(file, png);
-  cairo_surface_t* back = cairo_image_surface_create_from_png(file.c_str());
-  REQUIRE(cairo_surface_status(back) == CAIRO_STATUS_SUCCESS);
-  cairo_surface_flush(back);
+  cairo_surface_t* back = read_back(file, png);
   std::size_t differ = 0;
   for (int y = 0; y < height; ++y) {
     const auto* b = reinterpret_cast<const std::uint32_t*>(cairo_image_surface_get_data(back) +
@@ -310,10 +316,7 @@ TEST_CASE("PNG encoder: a grey picture is written as 8-bit greyscale with the sa
     CHECK(size == row * height);
     // libpng reads back every pixel as drawn.
     const auto file = dir / "g.png";
-    write_bytes(file, png);
-    cairo_surface_t* back = cairo_image_surface_create_from_png(file.c_str());
-    REQUIRE(cairo_surface_status(back) == CAIRO_STATUS_SUCCESS);
-    cairo_surface_flush(back);
+    cairo_surface_t* back = read_back(file, png);
     std::size_t differ = 0;
     for (int y = 0; y < height; ++y) {
       const auto* a = reinterpret_cast<const std::uint32_t*>(cairo_image_surface_get_data(surface) +
