@@ -20,8 +20,6 @@ namespace pdmesh {
 namespace {
 
 constexpr int kColourBarBand = 150;
-// Short edges stroked together (the canvas's batch size).
-constexpr std::size_t kTogetherEdges = 4096;
 constexpr Rgb kNoValue{0.75, 0.75, 0.75};  // non-finite values
 // Interior edges shorter than kMinEdgePixels on screen are not drawn; triangles with one are shaded
 // kDenseShade (without a value fill).
@@ -177,11 +175,9 @@ EdgeStrokes plan_edge_strokes(const Canvas& canvas, const Mesh& mesh, const std:
     }
     items.push_back({k, row_of(std::min(pa.y, pb.y) - 0.5), row_of(std::max(pa.y, pb.y) + 0.5)});
   }
-  // The short edges first, in the mesh's order, kTogetherEdges a stroke.
-  for (std::size_t k = 0; k < dense.size(); ++k) {
-    plan.edges.push_back(edges[dense[k]]);
-    if ((k + 1) % kTogetherEdges == 0 || k + 1 == dense.size()) plan.ends.push_back(plan.edges.size());
-  }
+  // The short edges first, in the mesh's order, as one group (StrokeBatch strokes it in batches).
+  for (const std::size_t k : dense) plan.edges.push_back(edges[k]);
+  if (!dense.empty()) plan.ends.push_back(plan.edges.size());
   // The items by top row (in edge order within a row).
   std::vector<std::size_t> first(static_cast<std::size_t>(rows) + 1, 0);
   for (const Item& item : items) ++first[static_cast<std::size_t>(item.top) + 1];

@@ -43,14 +43,14 @@ Box default_mesh_window(const Mesh& mesh);
 void write_mesh_picture(const std::filesystem::path& path, const Mesh& mesh, const MeshPictureOptions& options);
 
 // A mesh picture's edges long enough to draw (kMinEdgePixels on `canvas`, in its window), in the
-// order and the strokes they are drawn in: first the edges shorter than kApartEdgePixels, in the
-// mesh's order, 4096 a stroke; then the longer ones, each stroke taking edges whose pixel rows,
-// widened by half a pixel, do not meet, as few strokes as the most of them in one such row (cairo's
-// scan converter samples a pixel row once where no polygon edge of a path starts or ends in it, 15
-// times where one does: see mesh_picture.cpp). Every band of a picture draws the same strokes.
+// order and the groups they are stroked in: first the edges shorter than kApartEdgePixels, in the
+// mesh's order, one group (StrokeBatch strokes it in its batches); then the longer ones, each stroke taking edges whose
+// pixel rows, widened by half a pixel, do not meet, as few strokes as the most of them in one such row (cairo's scan
+// converter samples a pixel row once where no polygon edge of a path starts or ends in it, 15 times where one does: see
+// mesh_picture.cpp). Every band of a picture draws the same strokes.
 struct EdgeStrokes {
   std::vector<std::pair<int, int>> edges;  // point indices, in drawing order
-  std::vector<std::size_t> ends;           // the end of each stroke's edges in `edges`
+  std::vector<std::size_t> ends;           // the end of each group's edges in `edges`
   std::size_t too_short = 0;               // edges in the window too short to draw
 };
 inline constexpr double kMinEdgePixels = 2.0;
