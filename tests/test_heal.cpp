@@ -108,6 +108,35 @@ TEST_CASE("a 30 m island in a km-scale sea is dropped") {
   CHECK(curves.size() == 1);
 }
 
+TEST_CASE("a loop that holds a stated hole point is kept, however small") {
+  std::vector<RawCurve> curves = read_curve_file(data("island.crv"));
+  REQUIRE(curves.size() == 2);
+  Vec2 centre{0.0, 0.0};
+  for (std::size_t k = 0; k + 1 < curves[1].points.size(); ++k) centre = centre + curves[1].points[k];
+  centre = (1.0 / static_cast<double>(curves[1].points.size() - 1)) * centre;
+  HealOptions options;
+  options.holes = {{-1.0e6, -1.0e6}, centre};  // one outside every loop, one in the island
+  const std::vector<RawCurve> before = curves;
+  const HealResult r = heal_curves(curves, options);
+  CHECK(r.count(HealKind::Island) == 0);
+  REQUIRE(curves.size() == 2);
+  CHECK(curves[1].points == before[1].points);
+}
+
+// face.poly's eyes are triangles with a hole point each; at twice its scale they are below the
+// island rule's area, and dropping one left its hole point inside the domain (an input error).
+TEST_CASE("pdmesh mesh on a .poly with small holes at spacing.scale = 2: the holes stay, a valid mesh") {
+  const auto dir = pdmesh_test::fresh_dir("heal_poly_holes");
+  const auto r =
+      pdmesh_test::run_pdmesh("mesh '" + std::string(PDMESH_SOURCE_DIR) +
+                              "/cases/user_corpus/face/case.toml' --set spacing.scale=2 --out '" + dir.string() + "'");
+  INFO(r.output);
+  REQUIRE(r.status == 0);
+  CHECK(r.output.find("islands dropped") == std::string::npos);
+  CHECK(min_angle(pdmesh_test::slurp(dir / "quality.json")) >= 30.0);
+  std::filesystem::remove_all(dir);
+}
+
 TEST_CASE("healing leaves clean inputs alone: every curve file of cases/, a blunt trailing edge, a tiny edge") {
   std::vector<std::string> files = {data("blunt_te.crv"), data("tiny_edge.crv")};
   for (const auto& e : std::filesystem::recursive_directory_iterator(std::string(PDMESH_SOURCE_DIR) + "/cases"))
@@ -122,6 +151,57 @@ TEST_CASE("healing leaves clean inputs alone: every curve file of cases/, a blun
     REQUIRE(curves.size() == before.size());
     for (std::size_t c = 0; c < curves.size(); ++c) CHECK(curves[c].points == before[c].points);
   }
+}
+
+TEST_CASE("a coarser mesh (spacing.scale) merges the same steps and leaves a curve's regular sampling alone") {
+  HealOptions coarse;
+  coarse.scale = 4.0;
+  {
+    std::vector<RawCurve> at_one = read_curve_file(data("merged.crv"));
+    std::vector<RawCurve> at_four = at_one;
+    const HealResult one = heal_curves(at_one);
+    const HealResult four = heal_curves(at_four, coarse);
+    REQUIRE(one.count(HealKind::Merge) >= 4);
+    CHECK(four.count(HealKind::Merge) == one.count(HealKind::Merge));
+    REQUIRE(at_four.size() == at_one.size());
+    for (std::size_t c = 0; c < at_one.size(); ++c) CHECK(at_four[c].points == at_one[c].points);
+  }
+  // At 4x the spacing a quarter of the (scaled) spacing is about a whole segment of a regularly sampled
+  // curve: merges judged by it took about half of the segments for jogs, round after round.
+  for (const std::string& file :
+       {data("blunt_te.crv"), data("tiny_edge.crv"), std::string(PDMESH_SOURCE_DIR) + "/cases/30p30n/airfoil.crv"}) {
+    INFO(file);
+    std::vector<RawCurve> curves = read_curve_file(file);
+    const HealResult r = heal_curves(curves, coarse);
+    CHECK(r.count(HealKind::Merge) == 0);
+  }
+}
+
+// A sharp-trailing-edge airfoil of 61 points (3.9 degree wedge) meshed 4x coarser than its defaults:
+// the same merges as at its own scale (the points next to the trailing edge), so the wedge's two sides
+// stay apart and the run gives a valid mesh.
+TEST_CASE("pdmesh mesh on a UIUC airfoil with spacing.scale = 4: the merges of scale 1, a valid mesh") {
+  const std::string case_file = std::string(PDMESH_SOURCE_DIR) + "/cases/user_corpus/e387/case.toml";
+  const auto merges = [](const std::string& output) {
+    const std::string key = "healing: ";
+    const std::size_t at = output.find(key);
+    if (at == std::string::npos || output.find(" merged vertices", at) == std::string::npos) return 0;
+    return std::stoi(output.substr(at + key.size()));
+  };
+  const auto dir = pdmesh_test::fresh_dir("heal_scale4");
+  const auto one =
+      pdmesh_test::run_pdmesh("mesh '" + case_file + "' --iterations 0 --formats msh --out '" + dir.string() + "'");
+  INFO(one.output);
+  REQUIRE(one.status == 0);
+  REQUIRE(merges(one.output) > 0);
+  std::filesystem::remove_all(dir);
+  const auto four =
+      pdmesh_test::run_pdmesh("mesh '" + case_file + "' --set spacing.scale=4 --out '" + dir.string() + "'");
+  INFO(four.output);
+  REQUIRE(four.status == 0);
+  CHECK(merges(four.output) == merges(one.output));
+  CHECK(min_angle(pdmesh_test::slurp(dir / "quality.json")) >= 30.0);
+  std::filesystem::remove_all(dir);
 }
 
 TEST_CASE("the report: one line per kind with the worst instance, and the JSON object") {
@@ -157,6 +237,21 @@ TEST_CASE("short arcs between critical points get sources of their length") {
       build_geometry(read_curve_file(std::string(PDMESH_SOURCE_DIR) + "/cases/corpus/coastline/coast.crv"));
   const GeometryTree tree(g);
   CHECK(short_arc_sources(g, BoundarySpacing(tree)).empty());
+}
+
+TEST_CASE("short arcs are judged against the field the run places nodes by: spacing.scale times the base") {
+  // A 3 x 0.3 rectangle, its long sides in segments of 1: the short sides (one segment each, between
+  // two corners) are 0.3 beside 1, not short at scale 1 (4 x 0.3 > 1), short at scale 2.
+  RawCurve box;
+  box.points = {{0, 0}, {1, 0}, {2, 0}, {3, 0}, {3, 0.3}, {2, 0.3}, {1, 0.3}, {0, 0.3}, {0, 0}};
+  box.file = "memory";
+  const Geometry g = build_geometry(std::vector<RawCurve>{box});
+  const GeometryTree tree(g);
+  const BoundarySpacing base(tree);
+  CHECK(short_arc_sources(g, base).empty());
+  const std::vector<PointSource> s = short_arc_sources(g, base, 2.0);
+  REQUIRE(s.size() == 4);
+  for (const PointSource& p : s) CHECK(p.q == Approx(0.3));
 }
 
 TEST_CASE("geometry.heal: on in best, off in the thesis preset, a file's value wins, a non-boolean is refused") {

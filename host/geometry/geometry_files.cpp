@@ -123,7 +123,7 @@ Geometry build_read_geometry(RawGeometry raw, const GeometryOptions& options, co
     const Equirectangular p = project_lonlat(raw);
     if (steps.used != nullptr) *steps.used = p;
   }
-  if (steps.prepare) steps.prepare(raw.curves);
+  if (steps.prepare) steps.prepare(raw.curves, raw.holes);
   std::vector<GeometryRegion> regions = std::move(raw.regions);
   std::vector<std::string> notes = std::move(raw.notes);
   Geometry g = build_geometry(std::move(raw), options);

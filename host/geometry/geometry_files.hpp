@@ -11,8 +11,9 @@
 
 namespace pdmesh {
 
-// Called on the named raw curves just before build_geometry (healing, geometry/heal.hpp).
-using PrepareCurves = std::function<void(std::vector<RawCurve>&)>;
+// Called on the named raw curves just before build_geometry (healing, geometry/heal.hpp), with the
+// hole points read with them.
+using PrepareCurves = std::function<void(std::vector<RawCurve>&, const std::vector<RawHolePoint>&)>;
 
 // What reading does beyond the files.
 struct ReadSteps {

@@ -145,8 +145,19 @@ class Healer {
   double global_h_ = 0.0;
   HealResult result_;
 
-  // The local spacing at vertex i of curve c (HealOptions::scale).
-  double h_at(const Work& w, std::size_t i) const {
+  // The local spacing at vertex i of curve c: its sampling spacing times HealOptions::scale, no larger
+  // than the case's stated size.
+  double h_at(const Work& w, std::size_t i) const { return capped(sampling_at(w, i) * o_.scale, w.pts[i].p); }
+
+  // What merges judge by: the sampling spacing without the scale, no larger than the case's stated size
+  // (times the scale, the mesh's spacing there). A merge removes an outlier of the curve's own sampling
+  // (a step, extra points on a line), which eq. 3.6 would follow whatever the scale; with the scale, a
+  // coarser mesh would take a curve's regular sampling for jogs and merge it away round after round,
+  // each merge lengthening the segments the next round's spacing is the median of.
+  double merge_h_at(const Work& w, std::size_t i) const { return capped(sampling_at(w, i), w.pts[i].p); }
+
+  // The median length of the kNeighbourhood segments around vertex i along its curve.
+  double sampling_at(const Work& w, std::size_t i) const {
     const std::size_t n = w.pts.size();
     const std::size_t segs = w.closed ? n : n - 1;
     std::vector<double> l;
@@ -162,7 +173,7 @@ class Healer {
       const int first = std::clamp(static_cast<int>(i) - half, 0, static_cast<int>(segs) - 2 * half);
       for (int s = first; s < first + 2 * half; ++s) l.push_back(dist(w.pts[s].p, w.pts[s + 1].p));
     }
-    return capped(median(std::move(l)) * o_.scale, w.pts[i].p);
+    return median(std::move(l));
   }
 
   // h no larger than the case's stated size at p (HealOptions::size).
@@ -180,7 +191,7 @@ class Healer {
     return ch;
   }
 
-  // Whether the run of short segments (below merge_fraction x h) through segment i -> i+1 is a jog: the
+  // Whether the run of short segments (below merge_fraction x merge_h_at) through segment i -> i+1 is a jog: the
   // boundary leaves it within kJogTurnDeg of the direction it came in (steps where polygons were
   // merged, collinear extra points). A run across which the boundary turns further is a feature (a
   // blunt trailing edge, a chamfer, an inlet's end) that stays; the field follows it
@@ -189,7 +200,7 @@ class Healer {
   bool is_jog(const Work& w, std::size_t i) const {
     const std::size_t n = w.pts.size();
     const auto short_seg = [&](std::size_t k) {
-      return dist(w.pts[k].p, w.pts[(k + 1) % n].p) < o_.merge_fraction * h_at(w, k);
+      return dist(w.pts[k].p, w.pts[(k + 1) % n].p) < o_.merge_fraction * merge_h_at(w, k);
     };
     std::size_t first = i, last = (i + 1) % n;  // the run's end vertices
     for (std::size_t steps = 0; steps < n; ++steps) {
@@ -208,7 +219,7 @@ class Healer {
     return std::atan2(std::fabs(cross(in, out)), dot(in, out)) * 180.0 / kPi < kJogTurnDeg;
   }
 
-  // Consecutive vertices closer than merge_fraction x h become their midpoint where they are a jog;
+  // Consecutive vertices closer than merge_fraction x merge_h_at become their midpoint where they are a jog;
   // an open curve's end points stay (the vertex next to one goes instead).
   bool merge(std::size_t c) {
     Work& w = work_[c];
@@ -220,7 +231,7 @@ class Healer {
       if (i >= pairs || (w.closed && n <= 3) || (!w.closed && n <= 2)) break;
       const std::size_t j = (i + 1) % n;
       const double d = dist(w.pts[i].p, w.pts[j].p);
-      const double h = h_at(w, i);
+      const double h = merge_h_at(w, i);
       if (!(d < o_.merge_fraction * h) || !is_jog(w, i)) {
         ++i;
         continue;
@@ -532,8 +543,24 @@ class Healer {
     return false;
   }
 
+  // Whether a stated hole point (HealOptions::holes) lies inside closed curve c (even-odd).
+  bool holds_hole_point(std::size_t c) const {
+    const Work& w = work_[c];
+    const std::size_t n = w.pts.size();
+    for (const Vec2 q : o_.holes) {
+      bool in = false;
+      for (std::size_t k = 0; k < n; ++k) {
+        const Vec2 a = w.pts[k].p, b = w.pts[(k + 1) % n].p;
+        if ((a.y > q.y) != (b.y > q.y) && q.x < a.x + (q.y - a.y) * (b.x - a.x) / (b.y - a.y)) in = !in;
+      }
+      if (in) return true;
+    }
+    return false;
+  }
+
   // Closed curves with an area below area_fraction x h² (h: the median input segment) that meet no
-  // other curve, except the largest one when no other curve bounds the domain (it is the domain then).
+  // other curve and hold no stated hole point, except the largest one when no other curve bounds the
+  // domain (it is the domain then).
   bool islands() {
     bool open_boundary = false;
     for (const Work& w : work_) open_boundary |= w.healable && !w.closed && !w.dropped;
@@ -551,7 +578,7 @@ class Healer {
     for (std::size_t c = 0; c < work_.size(); ++c) {
       if (c == largest || !work_[c].healable || !work_[c].closed || work_[c].dropped) continue;
       const double h = capped(global_h_, work_[c].pts.front().p);
-      if (!(areas[c] < o_.area_fraction * h * h) || meets_other_curve(c)) continue;
+      if (!(areas[c] < o_.area_fraction * h * h) || meets_other_curve(c) || holds_hole_point(c)) continue;
       HealChange ch = change(HealKind::Island, c, work_[c].pts.front().line, work_[c].pts.front().p, areas[c], h);
       for (const Pt& p : work_[c].pts) ch.removed.push_back(p.p);
       ch.removed.push_back(work_[c].pts.front().p);

@@ -16,10 +16,13 @@ namespace pdmesh {
 struct HealOptions {
   // The local spacing h at a vertex is the median length of the kNeighbourhood input segments around
   // it along its curve, times `scale` (spacing.scale): eq. 3.6's spacing on the raw geometry, without
-  // the outliers that healing is for. An island's h is the median of all input segments.
+  // the outliers that healing is for. An island's h is the median of all input segments (times
+  // `scale`). Merges judge by that median without `scale`: they remove outliers of the curve's own
+  // sampling, which do not depend on the mesh's scale.
   double scale = 1.0;
   // The size the case states at a point (spacing.size, a spacing expression), when it states one:
-  // h is then no larger than it, so that what the case asks to resolve is not healed away.
+  // h is then no larger than it (times `scale`), so that what the case asks to resolve is not healed
+  // away.
   std::function<double(Vec2)> size;
   double merge_fraction = 0.25;  // consecutive vertices closer than this x h merge
   double width_fraction = 0.5;   // inlets and intrusions narrower than this x h are cut off
@@ -27,7 +30,10 @@ struct HealOptions {
   // distance, below the mesh's resolution; a larger one is a hole or island the field resolves.
   double area_fraction = 0.0625;
   double spike_angle_deg = 20.0;  // a vertex sharper than this whose neighbours continue the line is a spike
-  double join_tolerance = 1e-9;   // GeometryOptions::join_tolerance: which curves close on themselves
+  // The hole points the input states (a .poly's holes): a loop that holds one is a hole the file
+  // asks for, not an island, and is never dropped (its hole point would then lie in the domain).
+  std::vector<Vec2> holes;
+  double join_tolerance = 1e-9;  // GeometryOptions::join_tolerance: which curves close on themselves
   static constexpr int kNeighbourhood = 8;
 };
 

@@ -5,7 +5,7 @@
 
 namespace pdmesh {
 
-std::vector<PointSource> short_arc_sources(const Geometry& geometry, const SpacingField& base) {
+std::vector<PointSource> short_arc_sources(const Geometry& geometry, const SpacingField& base, double scale) {
   std::vector<PointSource> sources;
   for (const Curve& c : geometry.curves) {
     if (c.constraint || c.fixed_points) continue;
@@ -28,7 +28,7 @@ std::vector<PointSource> short_arc_sources(const Geometry& geometry, const Spaci
       if (b <= a) arc += c.length();  // the arc through a closed curve's first point
       const Vec2 pa = c.points[static_cast<std::size_t>(a)], pb = c.points[static_cast<std::size_t>(b)];
       const double ref = std::max({seg_len(a - 1), seg_len(b), base.at(pa), base.at(pb), base.at(0.5 * (pa + pb))});
-      if (!(arc * kShortArcRatio < ref)) continue;
+      if (!(arc * kShortArcRatio < scale * ref)) continue;
       sources.push_back({pa, arc});
       sources.push_back({pb, arc});
     }

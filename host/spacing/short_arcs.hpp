@@ -13,10 +13,12 @@
 namespace pdmesh {
 
 // An arc between consecutive critical points of a curve is short when its length times this is below
-// the larger of the segments on either side of it and the base field at its ends and middle.
+// `scale` times the larger of the segments on either side of it and the base field at its ends and
+// middle: the field the run places nodes by there (spacing.scale multiplies it).
 inline constexpr double kShortArcRatio = 4.0;
 
-// One source at each end of every short arc, with q its length.
-std::vector<PointSource> short_arc_sources(const Geometry& geometry, const SpacingField& base);
+// One source at each end of every short arc, with q its length (a source's q is not scaled: the arc's
+// two fixed nodes are that far apart at any scale).
+std::vector<PointSource> short_arc_sources(const Geometry& geometry, const SpacingField& base, double scale = 1.0);
 
 }  // namespace pdmesh

@@ -36,7 +36,7 @@ namespace {
 // the healed geometry. Empty when healing is off.
 PrepareCurves healing_step(const CaseConfig& config, MeshInputs& in) {
   if (!config.geometry.heal) return {};
-  return [&in, &config](std::vector<RawCurve>& curves) {
+  return [&in, &config](std::vector<RawCurve>& curves, const std::vector<RawHolePoint>& holes) {
     std::vector<std::vector<Vec2>> before;
     for (const RawCurve& c : curves) before.push_back(c.points);
     HealOptions heal;
@@ -48,6 +48,7 @@ PrepareCurves healing_step(const CaseConfig& config, MeshInputs& in) {
       heal.size = [expression](Vec2 p) { return expression->at(p); };
     }
     heal.join_tolerance = config.geometry.join_tolerance;
+    for (const RawHolePoint& h : holes) heal.holes.push_back(h.p);
     in.healing = heal_curves(curves, heal);
     if (!in.healing.changes.empty()) in.heal_input = std::move(before);
   };
@@ -181,7 +182,8 @@ MeshInputs::MeshInputs(const CaseConfig& config) {
   // the arc (spacing/short_arcs.hpp). Only where the field places the boundary nodes and spreads
   // sources (gradation): the thesis' field stays eq. 3.6 exactly.
   if (!metric && config.boundary.nodes == BoundaryNodeRule::Spacing && spacing_options.gradation > 0.0)
-    for (const PointSource& s : short_arc_sources(geometry, *spacing)) spacing_options.points.push_back(s);
+    for (const PointSource& s : short_arc_sources(geometry, *spacing, config.spacing.scale))
+      spacing_options.points.push_back(s);
   spacing_summary = spacing_summary_line(config, *this, spacing_start);
   // Before anything else uses them: with unresolvable coordinates the node estimate's tree could
   // refine without end.
