@@ -259,3 +259,33 @@ TEST_CASE("FeatureSize::width_many (grouped searches) equals width point by poin
     if (name != "square of four sides") CHECK(found_any > 100);
   }
 }
+
+TEST_CASE("SizeSources::at_many equals at point by point", "[spacing][feature]") {
+  for (const auto& [name, g] : group_geometries()) {
+    INFO(name);
+    const GeometryTree tree(g);
+    const std::vector<Vec2> p = group_points(g, 43);
+    const double size = std::max(g.extents.width(), g.extents.height());
+    std::vector<double> limit(p.size());
+    for (std::size_t i = 0; i < p.size(); ++i) limit[i] = size * (0.01 + 0.3 * static_cast<double>(i % 17) / 17.0);
+    for (int variant = 0; variant < 3; ++variant) {
+      SizeSourceOptions options;
+      options.rows_in_gap = variant == 1 ? 0.0 : 2.0;
+      options.curvature_angle = variant == 0 ? 0.0 : 10.0;
+      options.input_boundary_floor = variant == 2 ? 0.5 : 0.0;
+      options.final_floor = variant != 2;
+      options.scale = variant == 2 ? 1.1 : 1.0;
+      INFO("variant " << variant);
+      const SizeSources sources(tree, options);
+      std::vector<double> q(p.size());
+      int seed = -1;
+      for (std::size_t first = 0; first < p.size(); first += 64)
+        sources.at_many(&p[first], &limit[first], std::min<std::size_t>(64, p.size() - first), &q[first], &seed);
+      for (std::size_t i = 0; i < p.size(); ++i) {
+        const double one = sources.at(p[i], limit[i]);
+        INFO("point " << i << " (" << p[i].x << ", " << p[i].y << "): " << q[i] << ", point by point " << one);
+        REQUIRE(std::bit_cast<std::uint64_t>(q[i]) == std::bit_cast<std::uint64_t>(one));
+      }
+    }
+  }
+}
