@@ -201,11 +201,11 @@ TEST_CASE("FeatureSize::closest_many (grouped searches) equals closest point by 
     if (name.starts_with("tie"))
       for (int i = 0; i <= 40; ++i) p.push_back({0.0, -0.95 + 1.9 * i / 40.0});
     std::vector<ClosestHit> hit(p.size());
-    int seed = -1;
+    FeatureSize::SearchSeed seed;
     // In batches of uneven lengths (a batch's last group is short).
     for (std::size_t first = 0; first < p.size(); first += 61)
-      fs.closest_many(&p[first], std::min<std::size_t>(61, p.size() - first), &hit[first], &seed);
-    REQUIRE(seed == hit.back().segment);
+      fs.closest_many(&p[first], std::min<std::size_t>(61, p.size() - first), &hit[first], seed);
+    REQUIRE(seed.segment == hit.back().segment);
     for (std::size_t i = 0; i < p.size(); ++i) {
       INFO("point " << i);
       require_same(hit[i], fs.closest(p[i]), p[i]);
@@ -278,9 +278,9 @@ TEST_CASE("SizeSources::at_many equals at point by point", "[spacing][feature]")
       INFO("variant " << variant);
       const SizeSources sources(tree, options);
       std::vector<double> q(p.size());
-      int seed = -1;
+      FeatureSize::SearchSeed seed;
       for (std::size_t first = 0; first < p.size(); first += 64)
-        sources.at_many(&p[first], &limit[first], std::min<std::size_t>(64, p.size() - first), &q[first], &seed);
+        sources.at_many(&p[first], &limit[first], std::min<std::size_t>(64, p.size() - first), &q[first], seed);
       for (std::size_t i = 0; i < p.size(); ++i) {
         const double one = sources.at(p[i], limit[i]);
         INFO("point " << i << " (" << p[i].x << ", " << p[i].y << "): " << q[i] << ", point by point " << one);

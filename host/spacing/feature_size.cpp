@@ -241,21 +241,28 @@ ClosestHit FeatureSize::closest(Vec2 x, int hint) const {
   return best;
 }
 
-void FeatureSize::closest_many(const Vec2* p, std::size_t n, ClosestHit* hit, int* seed) const {
-  int s = *seed;
+void FeatureSize::closest_many(const Vec2* p, std::size_t n, ClosestHit* hit, SearchSeed& seed) const {
+  int s = seed.segment;
   const auto segments = static_cast<int>(geometry_.segments.size());
   for (std::size_t first = 0; first < n; first += kGroup) {
     const std::size_t m = std::min(kGroup, n - first);
-    if (s >= 0 && s < segments && m > 1 && closest_group(p + first, m, hit + first, s)) {
-      s = hit[first + m - 1].segment;
-      continue;
+    if (seed.skip > 0) {
+      --seed.skip;
+    } else if (s >= 0 && s < segments && m > 1) {
+      if (closest_group(p + first, m, hit + first, s)) {
+        seed.backoff = 0;
+        s = hit[first + m - 1].segment;
+        continue;
+      }
+      seed.backoff = std::min(2 * seed.backoff + 1, 15);
+      seed.skip = seed.backoff;
     }
     for (std::size_t i = first; i < first + m; ++i) {
       hit[i] = closest(p[i], s);
       s = hit[i].segment;
     }
   }
-  *seed = s;
+  seed.segment = s;
 }
 
 namespace {

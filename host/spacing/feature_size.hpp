@@ -49,10 +49,20 @@ class FeatureSize {
   // from them. hint >= 0: a segment measured first, whose distance prunes most of the hierarchy at once
   // (the answer for a nearby point); the answer does not depend on it.
   ClosestHit closest(Vec2 x, int hint = -1) const;
-  // closest(p[i], seed) for i in [0, n), each seeded by the previous answer (*seed first; left at the
-  // last answer): the same hits bit for bit. Consecutive points are searched in groups of kGroup (see
-  // closest_group).
-  void closest_many(const Vec2* p, std::size_t n, ClosestHit* hit, int* seed) const;
+  // A caller's state between closest_many calls: the last answer (the next search's seed) and how
+  // many groups to search point by point before trying a group again.
+  struct SearchSeed {
+    int segment = -1;
+    int skip = 0;
+    int backoff = 0;
+  };
+  // closest(p[i], seed) for i in [0, n), each seeded by the previous answer (seed.segment first; left
+  // at the last answer): the same hits bit for bit. Consecutive points are searched in groups of
+  // kGroup (see closest_group); after groups that gathered too much, the next 1, 3, 7, then 15 groups
+  // are searched point by point without trying (such groups come in runs: points seen from inside a
+  // ring-like curve, where most segment boxes near the bound's circle lie within it), and each try
+  // costs the seed's distances and a descent.
+  void closest_many(const Vec2* p, std::size_t n, ClosestHit* hit, SearchSeed& seed) const;
 
   // Points per group of closest_many and width_many.
   static constexpr std::size_t kGroup = 16;

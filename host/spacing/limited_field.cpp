@@ -33,9 +33,7 @@ constexpr double kLowered = 0.25;
 constexpr std::size_t kSourceBlock = 64;
 
 // A thread's seed for the sources' closest-segment search (parallel_for_scratch).
-struct Seed {
-  int segment = -1;
-};
+using Seed = FeatureSize::SearchSeed;
 
 class LimitedField {
  public:
@@ -239,7 +237,7 @@ class LimitedField {
             p[i] = lattice(b_, keys[fresh[first + i]]);
             limit[i] = b_.sample_value(ids[fresh[first + i]]);
           }
-          sources_.at_many(p, limit, n, q, &seed.segment);
+          sources_.at_many(p, limit, n, q, seed);
           for (std::size_t i = 0; i < n; ++i) source_at_[static_cast<std::size_t>(ids[fresh[first + i]])] = q[i];
         },
         256 / kSourceBlock, b_.options().loop_threads());
@@ -311,7 +309,7 @@ class LimitedField {
             p[i] = 0.5 * (segs[first + i].a + segs[first + i].b);
             limit[i] = std::numeric_limits<double>::max();
           }
-          sources_.at_many(p, limit, n, &segment_q_[first], &seed.segment);
+          sources_.at_many(p, limit, n, &segment_q_[first], seed);
         },
         256 / kSourceBlock, b_.options().loop_threads());
     stats_.source_seconds += seconds_since(start);

@@ -69,7 +69,8 @@ double SizeSources::at(Vec2 p, double limit, int* seed) const {
   return options_.scale * q;
 }
 
-void SizeSources::at_many(const Vec2* p, const double* limit, std::size_t n, double* q, int* seed) const {
+void SizeSources::at_many(const Vec2* p, const double* limit, std::size_t n, double* q,
+                          FeatureSize::SearchSeed& seed) const {
   constexpr double kNone = std::numeric_limits<double>::infinity();
   if (!options_.active()) {
     std::fill(q, q + n, kNone);
@@ -82,10 +83,9 @@ void SizeSources::at_many(const Vec2* p, const double* limit, std::size_t n, dou
   double floor[kChunk], width[kChunk];
   bool apart[kChunk];
   FeatureSize::WidthQuery query[kChunk];
-  int s = seed ? *seed : -1;
   for (std::size_t first = 0; first < n; first += kChunk) {
     const std::size_t m = std::min(kChunk, n - first);
-    feature_->closest_many(p + first, m, hit, &s);
+    feature_->closest_many(p + first, m, hit, seed);
     for (std::size_t i = 0; i < m; ++i) {
       query[i] = FeatureSize::WidthQuery{};  // no search where no segment was found
       if (hit[i].segment >= 0) q[first + i] = before_gap(p[first + i], hit[i], limit[first + i], floor[i], query[i]);
@@ -100,7 +100,6 @@ void SizeSources::at_many(const Vec2* p, const double* limit, std::size_t n, dou
       q[first + i] = options_.scale * q[first + i];
     }
   }
-  if (seed) *seed = s;
 }
 
 bool SizeSources::inside(Vec2 p, const ClosestHit& hit) const {

@@ -38,10 +38,10 @@ class SizeSources {
   // point, which starts this point's search (faster for a nearby point; the same value), and is set
   // to this point's.
   double at(Vec2 p, double limit, int* seed = nullptr) const;
-  // at(p[i], limit[i], seed) for i in [0, n) into q[i], the same values bit for bit, each point's
-  // closest segment seeding the next point's search. The points should come in spatial order:
-  // consecutive points are searched in groups (FeatureSize::closest_many, width_many).
-  void at_many(const Vec2* p, const double* limit, std::size_t n, double* q, int* seed) const;
+  // at(p[i], limit[i]) for i in [0, n) into q[i], the same values bit for bit, each point's closest
+  // segment seeding the next point's search (seed: the caller's state between calls). The points should come in spatial
+  // order: consecutive points are searched in groups (FeatureSize::closest_many, width_many).
+  void at_many(const Vec2* p, const double* limit, std::size_t n, double* q, FeatureSize::SearchSeed& seed) const;
   // The input-boundary floor at p (see input_boundary_floor) when it exceeds `q`, else q. Thread-safe.
   double floor_at(Vec2 p, double q) const;
   bool has_floor() const { return options_.input_boundary_floor > 0.0 && options_.final_floor; }
