@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <limits>
 
 #include <fmt/format.h>
@@ -205,6 +206,8 @@ void FeatureSize::traverse(Vec2 x, const Skip& skip, const Visit& segment) const
   }
 }
 
+double FeatureSize::margin(Vec2 x) const { return 1e-11 * std::max({scale_, std::fabs(x.x), std::fabs(x.y)}); }
+
 ClosestHit FeatureSize::closest(Vec2 x, int hint) const {
   ClosestHit best;
   double best2 = std::numeric_limits<double>::infinity();
@@ -214,7 +217,7 @@ ClosestHit FeatureSize::closest(Vec2 x, int hint) const {
   // strictly larger and they could neither win nor tie. Every segment that could is measured,
   // whatever the order, so the answer is the least squared distance, then the lowest index, whichever
   // segment seeds the search.
-  const double margin = 1e-11 * std::max({scale_, std::fabs(x.x), std::fabs(x.y)});
+  const double margin = this->margin(x);
   double skip2 = std::numeric_limits<double>::infinity();
   const auto& segs = geometry_.segments;
   const auto measure = [&](std::int32_t si) {
@@ -236,6 +239,111 @@ ClosestHit FeatureSize::closest(Vec2 x, int hint) const {
         measure(si);
       });
   return best;
+}
+
+void FeatureSize::closest_many(const Vec2* p, std::size_t n, ClosestHit* hit, SearchSeed& seed) const {
+  int s = seed.segment;
+  const auto segments = static_cast<int>(geometry_.segments.size());
+  for (std::size_t first = 0; first < n; first += kGroup) {
+    const std::size_t m = std::min(kGroup, n - first);
+    if (seed.skip > 0) {
+      --seed.skip;
+    } else if (s >= 0 && s < segments && m > 1) {
+      if (closest_group(p + first, m, hit + first, s)) {
+        seed.backoff = 0;
+        s = hit[first + m - 1].segment;
+        continue;
+      }
+      seed.backoff = std::min(2 * seed.backoff + 1, 15);
+      seed.skip = seed.backoff;
+    }
+    for (std::size_t i = first; i < first + m; ++i) {
+      hit[i] = closest(p[i], s);
+      s = hit[i].segment;
+    }
+  }
+  seed.segment = s;
+}
+
+namespace {
+
+// Segments a closest_group may gather before it gives up (its points are searched one by one).
+constexpr int kGroupSegments = 64;
+// Leaves a gap_group may gather before it gives up.
+constexpr int kGroupLeaves = 32;
+
+bool finite(Vec2 p) { return std::isfinite(p.x) && std::isfinite(p.y); }
+
+}  // namespace
+
+// closest() at the m points p[0 .. m) at once: the seed segment's distance from each point plus that
+// point's margin bounds what closest() would measure there (D, the largest over the group). One
+// descent gathers the segments whose boxes lie within D of the group's bounding box (a lower bound on
+// their distance from every point of the group, in floating point too: each operation of
+// box_box_distance2 rounds a difference at least as large as box_distance2's does for a point in
+// the box), and each point scans those alone, with closest()'s own skip test and comparison. A
+// segment left out lies farther than the point's bound, so closest() would skip it too: every
+// answer is the least (squared distance, index) over the same closest_on_segment values, closest()'s
+// bits. Returns false (nothing written) for a group with a point not finite, or that gathers more than
+// kGroupSegments segments (spread out, or far from fine segments).
+bool FeatureSize::closest_group(const Vec2* p, std::size_t m, ClosestHit* hit, int seed) const {
+  const auto& segs = geometry_.segments;
+  const Segment& s0 = segs[static_cast<std::size_t>(seed)];
+  double best2[kGroup], skip2[kGroup], margins[kGroup];
+  Box group;
+  double reach = 0.0;
+  for (std::size_t i = 0; i < m; ++i) {
+    if (!finite(p[i])) return false;
+    const ClosestHit h = detail::closest_on_segment_inline(p[i], s0, seed);
+    hit[i] = h;
+    best2[i] = h.distance * h.distance;
+    margins[i] = margin(p[i]);
+    skip2[i] = (h.distance + margins[i]) * (h.distance + margins[i]);
+    reach = std::max(reach, h.distance + margins[i]);
+    group.add(p[i]);
+  }
+  if (!(reach < std::numeric_limits<double>::infinity())) return false;
+  const double reach2 = reach * reach;
+  std::int32_t candidates[kGroupSegments];
+  Box boxes[kGroupSegments];
+  int found = 0;
+  std::int32_t stack[64];
+  int top = 0;
+  if (box_box_distance2(group, nodes_[0].box) <= reach2) stack[top++] = 0;
+  while (top > 0) {
+    const Node& node = nodes_[static_cast<std::size_t>(stack[--top])];
+    if (node.count == 0) {
+      for (std::int32_t c = node.first; c < node.first + 2; ++c)
+        if (box_box_distance2(group, nodes_[static_cast<std::size_t>(c)].box) <= reach2) stack[top++] = c;
+      continue;
+    }
+    for (std::int32_t k = node.first; k < node.first + node.count; ++k) {
+      const std::int32_t si = order_[static_cast<std::size_t>(k)];
+      const Box& box = segment_box_[static_cast<std::size_t>(si)];
+      if (si == seed || box_box_distance2(group, box) > reach2) continue;
+      if (found == kGroupSegments) return false;
+      boxes[found] = box;
+      candidates[found++] = si;
+    }
+  }
+  for (std::size_t i = 0; i < m; ++i) {
+    const Vec2 x = p[i];
+    ClosestHit best = hit[i];
+    double b2 = best2[i], s2 = skip2[i];
+    for (int k = 0; k < found; ++k) {
+      if (box_distance2(x, boxes[k]) > s2) continue;
+      const std::int32_t si = candidates[k];
+      const ClosestHit h = detail::closest_on_segment_inline(x, segs[static_cast<std::size_t>(si)], si);
+      const double d2 = h.distance * h.distance;
+      if (d2 < b2 || (d2 == b2 && si < best.segment)) {
+        b2 = d2;
+        best = h;
+        s2 = (h.distance + margins[i]) * (h.distance + margins[i]);
+      }
+    }
+    hit[i] = best;
+  }
+  return true;
 }
 
 double FeatureSize::segment_envelope(Vec2 x, double fraction, double slope, double at_least) const {
@@ -263,65 +371,210 @@ double FeatureSize::segment_lower_envelope(Vec2 x, double fraction, double slope
   return best;
 }
 
+namespace {
+
+// The part of segment s strictly ahead of a gap search's `from` (ahead . (a + t (b - a) - from) > 0):
+// false when there is none; else its point p2 nearest to from (t along s) and d2 = |p2 - from|^2.
+inline bool ahead_point(const Segment& s, Vec2 from, Vec2 ahead, Vec2& p2, double& t, double& d2) {
+  const double ha = dot(ahead, s.a - from), hb = dot(ahead, s.b - from);
+  if (ha <= 0.0 && hb <= 0.0) return false;
+  double t0 = 0.0, t1 = 1.0;
+  if (ha <= 0.0) t0 = ha / (ha - hb);
+  if (hb <= 0.0) t1 = ha / (ha - hb);
+  const Vec2 d = s.b - s.a;
+  const double len2 = norm2(d);
+  t = std::clamp(len2 > 0.0 ? dot(from - s.a, d) / len2 : 0.0, t0, t1);
+  p2 = s.a + t * d;
+  d2 = norm2(p2 - from);
+  return true;
+}
+
+}  // namespace
+
+bool FeatureSize::gap_setup(Vec2 x, const ClosestHit& nearest, bool inside, double max_width, GapSearch& g) const {
+  if (nearest.segment < 0 || !(max_width > 0.0)) return false;
+  g.p1 = nearest.point;
+  g.segment = nearest.segment;
+  // Ahead: inside, away from p1 through x; otherwise from p1 along its segment's inward normal.
+  g.from = x;
+  g.d1 = 0.0;
+  if (inside && nearest.distance > 0.0) {
+    g.d1 = nearest.distance;
+    g.ahead = (1.0 / g.d1) * (x - g.p1);
+  } else {
+    g.from = g.p1;
+    g.ahead = normal_[static_cast<std::size_t>(nearest.segment)];
+  }
+  g.radius = max_width - g.d1;
+  if (!(g.radius > 0.0)) return false;
+  g.loop1 = loop_[static_cast<std::size_t>(nearest.segment)];
+  g.arc1 = loop_arc(nearest.segment, nearest.t);
+  g.length1 = loop_length_[static_cast<std::size_t>(g.loop1)];
+  return true;
+}
+
+bool FeatureSize::faces(const GapSearch& g, std::int32_t si, Vec2 p2, double t) const {
+  const std::int32_t loop2 = loop_[static_cast<std::size_t>(si)];
+  if (loop2 != g.loop1 && !junctions_.empty() && junction_corner(g.loop1, loop2, g.p1, p2, dist(g.p1, p2)))
+    return false;
+  if (loop2 == g.loop1) {
+    // p2 == p1 (a neighbour segment's shared vertex) is no gap, however the two arc positions round.
+    const double chord = dist(g.p1, p2);
+    const double along = std::fabs(loop_arc(si, t) - g.arc1);
+    const double arc = std::min(along, g.length1 - along);
+    if (!(chord > 0.0) || !(arc > kArcRatio * chord)) return false;
+  }
+  return true;
+}
+
+bool FeatureSize::gap_search(const GapSearch& g, double& best2, std::int32_t& loop) const {
+  const auto& segs = geometry_.segments;
+  best2 = g.radius * g.radius;
+  bool found = false;
+  // Pruned by distance and by the half-plane.
+  traverse(
+      g.from, [&](const Node& n, double d2) { return d2 >= best2 || box_behind(n.box, g.from, g.ahead); },
+      [&](std::int32_t si) {
+        if (si == g.segment) return;  // a straight segment never faces itself
+        Vec2 p2;
+        double t = 0.0, d2 = 0.0;
+        if (!ahead_point(segs[static_cast<std::size_t>(si)], g.from, g.ahead, p2, t, d2)) return;
+        if (d2 >= best2) return;
+        // Facing: another loop, or far enough along this one (decided at the candidate point).
+        if (!faces(g, si, p2, t)) return;
+        best2 = d2;
+        found = true;
+        loop = loop_[static_cast<std::size_t>(si)];
+      });
+  return found;
+}
+
 double FeatureSize::width(Vec2 x, const ClosestHit& nearest, bool inside, double max_width, bool* apart) const {
   constexpr double kNone = std::numeric_limits<double>::infinity();
   if (apart) *apart = false;
-  if (nearest.segment < 0 || !(max_width > 0.0)) return kNone;
-  const Vec2 p1 = nearest.point;
-  // Ahead: inside, away from p1 through x; otherwise from p1 along its segment's inward normal.
-  Vec2 from = x, ahead;
-  double d1 = 0.0;
-  if (inside && nearest.distance > 0.0) {
-    d1 = nearest.distance;
-    ahead = (1.0 / d1) * (x - p1);
-  } else {
-    from = p1;
-    ahead = normal_[static_cast<std::size_t>(nearest.segment)];
-  }
-  const double radius = max_width - d1;
-  if (!(radius > 0.0)) return kNone;
-  const std::int32_t loop1 = loop_[static_cast<std::size_t>(nearest.segment)];
-  const double arc1 = loop_arc(nearest.segment, nearest.t);
-  const double length1 = loop_length_[static_cast<std::size_t>(loop1)];
-  const auto& segs = geometry_.segments;
-  double best2 = radius * radius;
-  bool found = false;
+  GapSearch g;
+  if (!gap_setup(x, nearest, inside, max_width, g)) return kNone;
+  double best2 = 0.0;
   std::int32_t found_loop = -1;
-  // Pruned by distance and by the half-plane.
-  traverse(
-      from, [&](const Node& n, double d2) { return d2 >= best2 || box_behind(n.box, from, ahead); },
-      [&](std::int32_t si) {
-        if (si == nearest.segment) return;  // a straight segment never faces itself
-        const Segment& s = segs[static_cast<std::size_t>(si)];
-        // The part of the segment strictly ahead: h(t) = ahead . (a + t (b - a) - from) > 0.
-        const double ha = dot(ahead, s.a - from), hb = dot(ahead, s.b - from);
-        if (ha <= 0.0 && hb <= 0.0) return;
-        double t0 = 0.0, t1 = 1.0;
-        if (ha <= 0.0) t0 = ha / (ha - hb);
-        if (hb <= 0.0) t1 = ha / (ha - hb);
-        const Vec2 d = s.b - s.a;
-        const double len2 = norm2(d);
-        const double t = std::clamp(len2 > 0.0 ? dot(from - s.a, d) / len2 : 0.0, t0, t1);
-        const Vec2 p2 = s.a + t * d;
-        const double d2 = norm2(p2 - from);
-        if (d2 >= best2) return;
-        // Facing: another loop, or far enough along this one (decided at the candidate point).
+  if (!gap_search(g, best2, found_loop)) return kNone;
+  if (apart) *apart = found_loop != g.loop1 && !touch(g.loop1, found_loop);
+  return g.d1 + std::sqrt(best2);
+}
+
+// gap_search for m searches at once. One descent gathers the leaves whose boxes lie within
+// R = max(radius + margin) of the bounding box of the searches' `from` points (a leaf farther holds no
+// segment nearer than a search's radius, the margin covering the rounding). Each search then scans
+// those leaves alone, skipping a leaf behind its half-plane (none of its segments has a part ahead:
+// box_behind's rounded sum is at least each endpoint's) or beyond its best + margin (none of its
+// segments can get within best). So each search finds m*, the least squared distance of all the
+// segments that pass gap_search's tests, whatever the order; gap_search finds the same m* unless
+// its pruning, which compares a leaf's box with the best exactly, skips the segment that gives it:
+// possible only where rounding puts that segment's candidate point nearer than its leaf's box
+// (`anomalous`). Both answers are then the same when some segment giving m* is not anomalous, and
+// the loops of all the segments giving m* agree (gap_search keeps the first it meets, in its own
+// order): exact[i] says so, and the caller searches the others again with gap_search. Returns false
+// (nothing written) for a group with a `from` not finite, or that gathers more than kGroupLeaves.
+bool FeatureSize::gap_group(const GapSearch* g, std::size_t m, double* best2, std::int32_t* loop, bool* found,
+                            bool* exact) const {
+  const auto& segs = geometry_.segments;
+  double margins[kGroup];
+  Box group;
+  double reach = 0.0;
+  for (std::size_t i = 0; i < m; ++i) {
+    if (!finite(g[i].from)) return false;
+    margins[i] = margin(g[i].from);
+    reach = std::max(reach, g[i].radius + margins[i]);
+    group.add(g[i].from);
+  }
+  if (!(reach < std::numeric_limits<double>::infinity())) return false;
+  const double reach2 = reach * reach;
+  std::int32_t leaves[kGroupLeaves];
+  int count = 0;
+  std::int32_t stack[64];
+  int top = 0;
+  if (box_box_distance2(group, nodes_[0].box) <= reach2) stack[top++] = 0;
+  while (top > 0) {
+    const std::int32_t n = stack[--top];
+    const Node& node = nodes_[static_cast<std::size_t>(n)];
+    if (node.count == 0) {
+      for (std::int32_t c = node.first; c < node.first + 2; ++c)
+        if (box_box_distance2(group, nodes_[static_cast<std::size_t>(c)].box) <= reach2) stack[top++] = c;
+      continue;
+    }
+    if (count == kGroupLeaves) return false;
+    leaves[count++] = n;
+  }
+  for (std::size_t i = 0; i < m; ++i) {
+    const GapSearch& s = g[i];
+    double b2 = s.radius * s.radius;
+    double skip2 = (s.radius + margins[i]) * (s.radius + margins[i]);
+    bool any = false, tie = false, sound = false;
+    std::int32_t best_loop = -1;
+    for (int l = 0; l < count; ++l) {
+      const Node& node = nodes_[static_cast<std::size_t>(leaves[l])];
+      const double box2 = box_distance2(s.from, node.box);
+      if (box2 > skip2 || box_behind(node.box, s.from, s.ahead)) continue;
+      for (std::int32_t k = node.first; k < node.first + node.count; ++k) {
+        const std::int32_t si = order_[static_cast<std::size_t>(k)];
+        if (si == s.segment) continue;
+        Vec2 p2;
+        double t = 0.0, d2 = 0.0;
+        if (!ahead_point(segs[static_cast<std::size_t>(si)], s.from, s.ahead, p2, t, d2)) continue;
+        // A tie with the best found is examined too (its loop may differ); radius^2 itself is not a gap.
+        if (d2 > b2 || (d2 == b2 && !any)) continue;
+        if (!faces(s, si, p2, t)) continue;
         const std::int32_t loop2 = loop_[static_cast<std::size_t>(si)];
-        if (loop2 != loop1 && !junctions_.empty() && junction_corner(loop1, loop2, p1, p2, dist(p1, p2))) return;
-        if (loop2 == loop1) {
-          // p2 == p1 (a neighbour segment's shared vertex) is no gap, however the two arc positions round.
-          const double chord = dist(p1, p2);
-          const double along = std::fabs(loop_arc(si, t) - arc1);
-          const double arc = std::min(along, length1 - along);
-          if (!(chord > 0.0) || !(arc > kArcRatio * chord)) return;
+        const bool anomalous = d2 < box2;
+        if (d2 < b2) {
+          b2 = d2;
+          any = true;
+          best_loop = loop2;
+          tie = false;
+          sound = !anomalous;
+          const double r = std::sqrt(b2) + margins[i];
+          skip2 = r * r;
+        } else {
+          tie = tie || loop2 != best_loop;
+          sound = sound || !anomalous;
         }
-        best2 = d2;
-        found = true;
-        found_loop = loop2;
-      });
-  if (!found) return kNone;
-  if (apart) *apart = found_loop != loop1 && !touch(loop1, found_loop);
-  return d1 + std::sqrt(best2);
+      }
+    }
+    best2[i] = b2;
+    loop[i] = best_loop;
+    found[i] = any;
+    exact[i] = !any || (sound && !tie);
+  }
+  return true;
+}
+
+void FeatureSize::width_many(const WidthQuery* q, std::size_t n, double* width, bool* apart) const {
+  constexpr double kNone = std::numeric_limits<double>::infinity();
+  GapSearch g[kGroup];
+  std::size_t at[kGroup];
+  std::size_t m = 0;
+  // The pending searches g[0 .. m) of queries at[0 .. m): grouped where gap_group answers exactly,
+  // the rest one by one.
+  const auto run = [&] {
+    double best2[kGroup];
+    std::int32_t loop[kGroup];
+    bool found[kGroup], exact[kGroup];
+    const bool grouped = m > 1 && gap_group(g, m, best2, loop, found, exact);
+    for (std::size_t k = 0; k < m; ++k) {
+      if (!grouped || !exact[k]) found[k] = gap_search(g[k], best2[k], loop[k]);
+      if (!found[k]) continue;
+      apart[at[k]] = loop[k] != g[k].loop1 && !touch(g[k].loop1, loop[k]);
+      width[at[k]] = g[k].d1 + std::sqrt(best2[k]);
+    }
+    m = 0;
+  };
+  for (std::size_t i = 0; i < n; ++i) {
+    width[i] = kNone;
+    apart[i] = false;
+    if (!gap_setup(q[i].x, q[i].nearest, q[i].inside, q[i].max_width, g[m])) continue;
+    at[m++] = i;
+    if (m == kGroup) run();
+  }
+  if (m > 0) run();
 }
 
 }  // namespace pdmesh

@@ -1,6 +1,7 @@
 // Local feature size: the width of the gap through a point, between the closest boundary point and the
 // closest boundary point that faces it (docs/spacing.md, "Feature size").
 #pragma once
+#include <cstddef>
 #include <cstdint>
 #include <utility>
 #include <vector>
@@ -31,11 +32,40 @@ class FeatureSize {
   // point in common with it): then W is at least the two loops' distance, and cannot shrink to 0.
   double width(Vec2 x, const ClosestHit& nearest, bool inside, double max_width, bool* apart = nullptr) const;
 
+  // One width() query.
+  struct WidthQuery {
+    Vec2 x;
+    ClosestHit nearest;
+    bool inside = false;
+    double max_width = 0.0;
+  };
+  // width(q[i].x, q[i].nearest, q[i].inside, q[i].max_width, &apart[i]) for i in [0, n), the same
+  // values bit for bit. Consecutive queries are searched in groups of kGroup when they lie close
+  // together (see gap_group).
+  void width_many(const WidthQuery* q, std::size_t n, double* width, bool* apart) const;
+
   // The closest boundary point to x (the least squared distance, then the lowest segment index), by
   // this hierarchy, which prunes far-away segments faster than the geometry quadtree for points far
   // from them. hint >= 0: a segment measured first, whose distance prunes most of the hierarchy at once
   // (the answer for a nearby point); the answer does not depend on it.
   ClosestHit closest(Vec2 x, int hint = -1) const;
+  // A caller's state between closest_many calls: the last answer (the next search's seed) and how
+  // many groups to search point by point before trying a group again.
+  struct SearchSeed {
+    int segment = -1;
+    int skip = 0;
+    int backoff = 0;
+  };
+  // closest(p[i], seed) for i in [0, n), each seeded by the previous answer (seed.segment first; left
+  // at the last answer): the same hits bit for bit. Consecutive points are searched in groups of
+  // kGroup (see closest_group); after groups that gathered too much, the next 1, 3, 7, then 15 groups
+  // are searched point by point without trying (such groups come in runs: points seen from inside a
+  // ring-like curve, where most segment boxes near the bound's circle lie within it), and each try
+  // costs the seed's distances and a descent.
+  void closest_many(const Vec2* p, std::size_t n, ClosestHit* hit, SearchSeed& seed) const;
+
+  // Points per group of closest_many and width_many.
+  static constexpr std::size_t kGroup = 16;
 
   // max over segments s of (fraction * length(s) - slope * distance(x, s)), or 0 if all are below: the
   // upper envelope of one cone per segment, so it is slope-Lipschitz (no jump where the closest
@@ -60,6 +90,28 @@ class FeatureSize {
     double min_length = 0.0;  // shortest segment below
   };
   void build(std::int32_t node, std::int32_t begin, std::int32_t end);
+  // The pruning margin of closest() and of the grouped searches at x: far more than the rounding of
+  // any distance they compare (see closest()).
+  double margin(Vec2 x) const;
+  bool closest_group(const Vec2* p, std::size_t m, ClosestHit* hit, int seed) const;
+
+  // A width() search once its start is known: from, the direction ahead, the radius searched, p1 and
+  // its segment, loop and arc position.
+  struct GapSearch {
+    Vec2 from, ahead, p1;
+    double d1 = 0.0, radius = 0.0, arc1 = 0.0, length1 = 0.0;
+    std::int32_t segment = -1, loop1 = -1;
+  };
+  // Fills g for width()'s arguments; false where W is +inf without a search.
+  bool gap_setup(Vec2 x, const ClosestHit& nearest, bool inside, double max_width, GapSearch& g) const;
+  // The search of width() through the hierarchy: the least squared distance ahead that faces p1
+  // (best2, below radius^2) and its loop (the first found in the traversal's order), or false.
+  bool gap_search(const GapSearch& g, double& best2, std::int32_t& loop) const;
+  // Whether p2, at t along segment si, faces g's p1 (another loop, or far enough along p1's).
+  bool faces(const GapSearch& g, std::int32_t si, Vec2 p2, double t) const;
+  // gap_search for the m searches g[0 .. m) at once (see the definition); false (nothing written)
+  // where the group gathers too much. exact[i] false: that search must be done by gap_search.
+  bool gap_group(const GapSearch* g, std::size_t m, double* best2, std::int32_t* loop, bool* found, bool* exact) const;
   template <class Skip, class Visit>
   void traverse(Vec2 x, const Skip& skip, const Visit& segment) const;
 

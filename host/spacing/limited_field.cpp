@@ -29,10 +29,11 @@ constexpr int kMaxRounds = 12;
 // the interpolation tolerance (smaller changes cannot change a refinement decision much).
 constexpr double kLowered = 0.25;
 
+// Points per SizeSources::at_many call of the sources' loops.
+constexpr std::size_t kSourceBlock = 64;
+
 // A thread's seed for the sources' closest-segment search (parallel_for_scratch).
-struct Seed {
-  int segment = -1;
-};
+using Seed = FeatureSize::SearchSeed;
 
 class LimitedField {
  public:
@@ -222,15 +223,24 @@ class LimitedField {
       fresh.push_back(i);
     }
     const auto start = Clock::now();
-    // Each thread's last closest segment seeds its next search (the keys come in spatial order).
+    // Blocks of consecutive keys (they come in spatial order) through at_many; each thread's last
+    // closest segment seeds its next search.
+    const std::size_t blocks = (fresh.size() + kSourceBlock - 1) / kSourceBlock;
     parallel_for_scratch<Seed>(
-        fresh.size(),
-        [&](Seed& seed, std::size_t i) {
-          const auto id = ids[fresh[i]];
-          source_at_[static_cast<std::size_t>(id)] =
-              sources_.at(lattice(b_, keys[fresh[i]]), b_.sample_value(id), &seed.segment);
+        blocks,
+        [&](Seed& seed, std::size_t b) {
+          const std::size_t first = b * kSourceBlock;
+          const std::size_t n = std::min(kSourceBlock, fresh.size() - first);
+          Vec2 p[kSourceBlock];
+          double limit[kSourceBlock] = {}, q[kSourceBlock];
+          for (std::size_t i = 0; i < n; ++i) {
+            p[i] = lattice(b_, keys[fresh[first + i]]);
+            limit[i] = b_.sample_value(ids[fresh[first + i]]);
+          }
+          sources_.at_many(p, limit, n, q, seed);
+          for (std::size_t i = 0; i < n; ++i) source_at_[static_cast<std::size_t>(ids[fresh[first + i]])] = q[i];
         },
-        256, b_.options().loop_threads());
+        256 / kSourceBlock, b_.options().loop_threads());
     stats_.source_seconds += seconds_since(start);
   }
 
@@ -287,12 +297,21 @@ class LimitedField {
     const auto& segs = b_.geometry().segments;
     segment_q_.resize(segs.size());
     const auto start = Clock::now();
-    parallel_for(
-        segs.size(),
-        [&](std::size_t s) {
-          segment_q_[s] = sources_.at(0.5 * (segs[s].a + segs[s].b), std::numeric_limits<double>::max());
+    const std::size_t blocks = (segs.size() + kSourceBlock - 1) / kSourceBlock;
+    parallel_for_scratch<Seed>(
+        blocks,
+        [&](Seed& seed, std::size_t b) {
+          const std::size_t first = b * kSourceBlock;
+          const std::size_t n = std::min(kSourceBlock, segs.size() - first);
+          Vec2 p[kSourceBlock];
+          double limit[kSourceBlock];
+          for (std::size_t i = 0; i < n; ++i) {
+            p[i] = 0.5 * (segs[first + i].a + segs[first + i].b);
+            limit[i] = std::numeric_limits<double>::max();
+          }
+          sources_.at_many(p, limit, n, &segment_q_[first], seed);
         },
-        256, b_.options().loop_threads());
+        256 / kSourceBlock, b_.options().loop_threads());
     stats_.source_seconds += seconds_since(start);
   }
   double segment_minimum(const Cell& c) const {

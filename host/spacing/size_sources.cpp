@@ -17,17 +17,13 @@ SizeSources::SizeSources(const GeometryTree& tree, const SizeSourceOptions& opti
   }
 }
 
-double SizeSources::at(Vec2 p, double limit, int* seed) const {
+double SizeSources::before_gap(Vec2 p, const ClosestHit& hit, double limit, double& floor,
+                               FeatureSize::WidthQuery& query) const {
   constexpr double kNone = std::numeric_limits<double>::infinity();
-  if (!options_.active()) return kNone;
-  const ClosestHit hit = feature_->closest(p, seed ? *seed : -1);
-  if (seed) *seed = hit.segment;
-  if (hit.segment < 0) return kNone;
   const double s = options_.scale;
   // With input boundary points, no source asks for less than (a fraction of) the closest segment:
   // the first node row could not match the boundary row.
-  const double floor =
-      options_.input_boundary_floor * tree_.geometry().segments[static_cast<std::size_t>(hit.segment)].length;
+  floor = options_.input_boundary_floor * tree_.geometry().segments[static_cast<std::size_t>(hit.segment)].length;
   double q = kNone;
   if (theta_ > 0.0) {
     // The concentric circle at distance d from a curve of radius R has radius R + d: the same angle
@@ -36,17 +32,74 @@ double SizeSources::at(Vec2 p, double limit, int* seed) const {
     if (std::isfinite(r)) q = std::max(theta_ * (r + hit.distance), floor / s);
   }
   if (options_.rows_in_gap > 0.0) {
-    const double k = options_.rows_in_gap;
     // Only gaps narrower than k * limit / scale can ask for less than the limit.
-    bool apart = false;
-    const double w = feature_->width(p, hit, inside(p, hit), k * std::min(limit, q * s) / s, &apart);
-    // Across a gap between two loops that never meet, boundary nodes placed by the field need no
-    // floor: W is bounded below by the loops' distance (no sharp V tip asks for q -> 0 there), and a
-    // floor of the closest segment's length would leave a gap beside a long segment unresolved.
-    const bool floored = options_.final_floor || !apart;
-    if (std::isfinite(w)) q = std::min(q, floored ? std::max(w / k, floor / s) : w / k);
+    query.x = p;
+    query.nearest = hit;
+    query.inside = inside(p, hit);
+    query.max_width = options_.rows_in_gap * std::min(limit, q * s) / s;
   }
-  return s * q;
+  return q;
+}
+
+double SizeSources::after_gap(double q, double floor, double w, bool apart) const {
+  const double s = options_.scale;
+  const double k = options_.rows_in_gap;
+  // Across a gap between two loops that never meet, boundary nodes placed by the field need no
+  // floor: W is bounded below by the loops' distance (no sharp V tip asks for q -> 0 there), and a
+  // floor of the closest segment's length would leave a gap beside a long segment unresolved.
+  const bool floored = options_.final_floor || !apart;
+  if (std::isfinite(w)) q = std::min(q, floored ? std::max(w / k, floor / s) : w / k);
+  return q;
+}
+
+double SizeSources::at(Vec2 p, double limit, int* seed) const {
+  constexpr double kNone = std::numeric_limits<double>::infinity();
+  if (!options_.active()) return kNone;
+  const ClosestHit hit = feature_->closest(p, seed ? *seed : -1);
+  if (seed) *seed = hit.segment;
+  if (hit.segment < 0) return kNone;
+  double floor = 0.0;
+  FeatureSize::WidthQuery query;
+  double q = before_gap(p, hit, limit, floor, query);
+  if (options_.rows_in_gap > 0.0) {
+    bool apart = false;
+    const double w = feature_->width(query.x, query.nearest, query.inside, query.max_width, &apart);
+    q = after_gap(q, floor, w, apart);
+  }
+  return options_.scale * q;
+}
+
+void SizeSources::at_many(const Vec2* p, const double* limit, std::size_t n, double* q,
+                          FeatureSize::SearchSeed& seed) const {
+  constexpr double kNone = std::numeric_limits<double>::infinity();
+  if (!options_.active()) {
+    std::fill(q, q + n, kNone);
+    return;
+  }
+  // A chunk at a time: the closest segments of its points, what comes before the gap searches, the
+  // gap searches, the rest.
+  constexpr std::size_t kChunk = 64;
+  ClosestHit hit[kChunk];
+  double floor[kChunk], width[kChunk];
+  bool apart[kChunk];
+  FeatureSize::WidthQuery query[kChunk];
+  for (std::size_t first = 0; first < n; first += kChunk) {
+    const std::size_t m = std::min(kChunk, n - first);
+    feature_->closest_many(p + first, m, hit, seed);
+    for (std::size_t i = 0; i < m; ++i) {
+      query[i] = FeatureSize::WidthQuery{};  // no search where no segment was found
+      if (hit[i].segment >= 0) q[first + i] = before_gap(p[first + i], hit[i], limit[first + i], floor[i], query[i]);
+    }
+    if (options_.rows_in_gap > 0.0) feature_->width_many(query, m, width, apart);
+    for (std::size_t i = 0; i < m; ++i) {
+      if (hit[i].segment < 0) {
+        q[first + i] = kNone;
+        continue;
+      }
+      if (options_.rows_in_gap > 0.0) q[first + i] = after_gap(q[first + i], floor[i], width[i], apart[i]);
+      q[first + i] = options_.scale * q[first + i];
+    }
+  }
 }
 
 bool SizeSources::inside(Vec2 p, const ClosestHit& hit) const {

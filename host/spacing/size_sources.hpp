@@ -38,6 +38,10 @@ class SizeSources {
   // point, which starts this point's search (faster for a nearby point; the same value), and is set
   // to this point's.
   double at(Vec2 p, double limit, int* seed = nullptr) const;
+  // at(p[i], limit[i]) for i in [0, n) into q[i], the same values bit for bit, each point's closest
+  // segment seeding the next point's search (seed: the caller's state between calls). The points should come in spatial
+  // order: consecutive points are searched in groups (FeatureSize::closest_many, width_many).
+  void at_many(const Vec2* p, const double* limit, std::size_t n, double* q, FeatureSize::SearchSeed& seed) const;
   // The input-boundary floor at p (see input_boundary_floor) when it exceeds `q`, else q. Thread-safe.
   double floor_at(Vec2 p, double q) const;
   bool has_floor() const { return options_.input_boundary_floor > 0.0 && options_.final_floor; }
@@ -53,6 +57,11 @@ class SizeSources {
   // Whether p, whose closest boundary point is `hit`, is in the domain: the side of the segment's inward
   // normal when the closest point is inside the segment, the exact test at a vertex.
   bool inside(Vec2 p, const ClosestHit& hit) const;
+  // at()'s value from p's closest segment `hit` (found) before the gap search: the curvature's q
+  // (+inf when none) and the floor; sets query to the gap search's arguments (when rows_in_gap > 0).
+  double before_gap(Vec2 p, const ClosestHit& hit, double limit, double& floor, FeatureSize::WidthQuery& query) const;
+  // at()'s value from before_gap's q and floor and the gap search's answer (width w, apart).
+  double after_gap(double q, double floor, double w, bool apart) const;
 };
 
 }  // namespace pdmesh
