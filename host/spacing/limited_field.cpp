@@ -222,23 +222,34 @@ class LimitedField {
       has = 1;
       fresh.push_back(i);
     }
+    // Consecutive keys come in spatial order, so each thread's last closest segment seeds its next
+    // search well.
+    sources_in_blocks(
+        fresh.size(),
+        [&](std::size_t i, Vec2& p, double& limit) {
+          p = lattice(b_, keys[fresh[i]]);
+          limit = b_.sample_value(ids[fresh[i]]);
+        },
+        [&](std::size_t i, double q) { source_at_[static_cast<std::size_t>(ids[fresh[i]])] = q; });
+  }
+
+  // The sources at `count` points, in blocks of kSourceBlock through SizeSources::at_many on all
+  // cores, each thread's last closest segment seeding its next search: at(i, p, limit) gives point
+  // i and how far its search need look, put(i, q) takes its value.
+  template <class At, class Put>
+  void sources_in_blocks(std::size_t count, const At& at, const Put& put) {
     const auto start = Clock::now();
-    // Blocks of consecutive keys (they come in spatial order) through at_many; each thread's last
-    // closest segment seeds its next search.
-    const std::size_t blocks = (fresh.size() + kSourceBlock - 1) / kSourceBlock;
+    const std::size_t blocks = (count + kSourceBlock - 1) / kSourceBlock;
     parallel_for_scratch<Seed>(
         blocks,
         [&](Seed& seed, std::size_t b) {
           const std::size_t first = b * kSourceBlock;
-          const std::size_t n = std::min(kSourceBlock, fresh.size() - first);
+          const std::size_t n = std::min(kSourceBlock, count - first);
           Vec2 p[kSourceBlock];
           double limit[kSourceBlock] = {}, q[kSourceBlock];
-          for (std::size_t i = 0; i < n; ++i) {
-            p[i] = lattice(b_, keys[fresh[first + i]]);
-            limit[i] = b_.sample_value(ids[fresh[first + i]]);
-          }
+          for (std::size_t i = 0; i < n; ++i) at(first + i, p[i], limit[i]);
           sources_.at_many(p, limit, n, q, seed);
-          for (std::size_t i = 0; i < n; ++i) source_at_[static_cast<std::size_t>(ids[fresh[first + i]])] = q[i];
+          for (std::size_t i = 0; i < n; ++i) put(first + i, q[i]);
         },
         256 / kSourceBlock, b_.options().loop_threads());
     stats_.source_seconds += seconds_since(start);
@@ -296,23 +307,13 @@ class LimitedField {
   void segment_sources() {
     const auto& segs = b_.geometry().segments;
     segment_q_.resize(segs.size());
-    const auto start = Clock::now();
-    const std::size_t blocks = (segs.size() + kSourceBlock - 1) / kSourceBlock;
-    parallel_for_scratch<Seed>(
-        blocks,
-        [&](Seed& seed, std::size_t b) {
-          const std::size_t first = b * kSourceBlock;
-          const std::size_t n = std::min(kSourceBlock, segs.size() - first);
-          Vec2 p[kSourceBlock];
-          double limit[kSourceBlock];
-          for (std::size_t i = 0; i < n; ++i) {
-            p[i] = 0.5 * (segs[first + i].a + segs[first + i].b);
-            limit[i] = std::numeric_limits<double>::max();
-          }
-          sources_.at_many(p, limit, n, &segment_q_[first], seed);
+    sources_in_blocks(
+        segs.size(),
+        [&](std::size_t i, Vec2& p, double& limit) {
+          p = 0.5 * (segs[i].a + segs[i].b);
+          limit = std::numeric_limits<double>::max();
         },
-        256 / kSourceBlock, b_.options().loop_threads());
-    stats_.source_seconds += seconds_since(start);
+        [&](std::size_t i, double q) { segment_q_[i] = q; });
   }
   double segment_minimum(const Cell& c) const {
     double m = std::numeric_limits<double>::infinity();

@@ -29,9 +29,14 @@ Needs numpy and scipy (Delaunay triangulation, k-d tree).
 """
 
 import argparse
+import os
+import sys
 
 import numpy as np
 from scipy.spatial import Delaunay, cKDTree
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "eval"))
+from pdmesh_eval.meshfiles import read_node_file  # noqa: E402
 
 RADIAL_BANDS = [0, 0.3, 0.5, 0.7, 1, 1.4, 2, 2.8, 4, 5.6, 8, 11, 16, 1e300]
 WALL_BANDS = [0, 1.5, 3, 5, 8, 12, 20, 40, 1e300]
@@ -39,13 +44,10 @@ WALL_BANDS = [0, 1.5, 3, 5, 8, 12, 20, 40, 1e300]
 
 def read_nodes(path):
     """x, y (n x 2), kind (strings), q of a pdmesh node file."""
-    with open(path) as f:
-        lines = f.read().splitlines()
-    n = int(lines[1])
-    rows = [line.split() for line in lines[2:2 + n]]
-    xy = np.array([[float(r[0]), float(r[1])] for r in rows])
-    kind = np.array([r[2] for r in rows])
-    q = np.array([float(r[4]) for r in rows])
+    nodes, _ = read_node_file(path)
+    xy = np.array([[n[0], n[1]] for n in nodes])
+    kind = np.array([n[2] for n in nodes])
+    q = np.array([n[4] for n in nodes])
     return xy, kind, q
 
 
