@@ -304,18 +304,22 @@ class Healer {
 
   // Whether q is inside an odd number of the boundary curves other than c.
   bool inside_others(std::size_t c, Vec2 q) const {
-    int crossings = 0;
-    for (std::size_t o = 0; o < work_.size(); ++o) {
-      if (o == c || work_[o].dropped || curves_[o].constraint) continue;
-      const Work& w = work_[o];
-      const std::size_t n = w.pts.size();
-      const std::size_t segs = w.closed ? n : n - 1;
-      for (std::size_t k = 0; k < segs; ++k) {
-        const Vec2 a = w.pts[k].p, b = w.pts[(k + 1) % n].p;
-        if ((a.y > q.y) != (b.y > q.y) && q.x < a.x + (q.y - a.y) * (b.x - a.x) / (b.y - a.y)) ++crossings;
-      }
+    int count = 0;
+    for (std::size_t o = 0; o < work_.size(); ++o)
+      if (o != c && !work_[o].dropped && !curves_[o].constraint) count += crossings(work_[o], q);
+    return count % 2 == 0;
+  }
+
+  // How many segments of curve w a ray from q in +x crosses (the even-odd rule's count).
+  static int crossings(const Work& w, Vec2 q) {
+    int count = 0;
+    const std::size_t n = w.pts.size();
+    const std::size_t segs = w.closed ? n : n - 1;
+    for (std::size_t k = 0; k < segs; ++k) {
+      const Vec2 a = w.pts[k].p, b = w.pts[(k + 1) % n].p;
+      if ((a.y > q.y) != (b.y > q.y) && q.x < a.x + (q.y - a.y) * (b.x - a.x) / (b.y - a.y)) ++count;
     }
-    return crossings % 2 == 0;
+    return count;
   }
 
   struct Cut {
@@ -545,17 +549,7 @@ class Healer {
 
   // Whether a stated hole point (HealOptions::holes) lies inside closed curve c (even-odd).
   bool holds_hole_point(std::size_t c) const {
-    const Work& w = work_[c];
-    const std::size_t n = w.pts.size();
-    for (const Vec2 q : o_.holes) {
-      bool in = false;
-      for (std::size_t k = 0; k < n; ++k) {
-        const Vec2 a = w.pts[k].p, b = w.pts[(k + 1) % n].p;
-        if ((a.y > q.y) != (b.y > q.y) && q.x < a.x + (q.y - a.y) * (b.x - a.x) / (b.y - a.y)) in = !in;
-      }
-      if (in) return true;
-    }
-    return false;
+    return std::any_of(o_.holes.begin(), o_.holes.end(), [&](Vec2 q) { return crossings(work_[c], q) % 2 == 1; });
   }
 
   // Closed curves with an area below area_fraction x h² (h: the median input segment) that meet no
