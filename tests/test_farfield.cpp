@@ -1,6 +1,7 @@
 // The far field (geometry/farfield.hpp, --farfield, [farfield]): the curve's count, radius and
 // closure, the smallest size, the airfoil meshed in its far field with the named group in the
-// outputs, and the errors (exit 2, nothing written).
+// outputs, and the errors (exit 2, nothing written); a body with nested loops, constraints, points
+// and regions is solid (left out, one note per kind) unless farfield.cavities = "mesh".
 #include <catch2/catch.hpp>
 
 #include <cmath>
@@ -31,6 +32,29 @@ Box unit_box() {
 }
 
 std::string airfoil() { return pdmesh::test::source_dir() + "/cases/naca0012/airfoil.crv"; }
+
+// A closed square curve [lo, hi]^2, counter-clockwise, named `name`.
+RawCurve square(const std::string& name, double lo, double hi, bool constraint = false) {
+  RawCurve c;
+  c.name = name;
+  c.file = name + ".crv";
+  c.line = 1;
+  c.points = {{lo, lo}, {hi, lo}, {hi, hi}, {lo, hi}, {lo, lo}};
+  c.constraint = constraint;
+  return c;
+}
+
+// The area of the far field's circle polygon at `size` around a body of largest extent `extent`.
+double circle_polygon_area(double size, double extent) {
+  const double n = 71.0, r = size * extent;
+  return 0.5 * n * r * r * std::sin(2.0 * std::numbers::pi / n);
+}
+
+bool has_note(const Geometry& g, const std::string& part) {
+  return std::any_of(g.notes.begin(), g.notes.end(), [&](const std::string& n) { return n.find(part) != n.npos; });
+}
+
+const Farfield kCircle20{FarfieldShape::Circle, 20.0, "test"};
 
 }  // namespace
 
@@ -210,4 +234,118 @@ TEST_CASE("a checkpoint of a far-field run resumes only with the same far field"
   CHECK(r.status == 2);
   CHECK(r.output.find("farfield is 'circle 20' there and 'circle 30'") != std::string::npos);
   std::filesystem::remove_all(out);
+}
+
+TEST_CASE("a far field around a body with a hole and its hole point: the body is solid, the hole left out") {
+  RawGeometry raw;
+  raw.curves = {square("outer", 0.0, 4.0), square("cavity", 1.0, 3.0)};
+  raw.holes = {{{2.0, 2.0}, "body.poly", 9}};
+  const Geometry body = build_geometry(raw);
+  REQUIRE(body.hole_points.size() == 1);
+  const Geometry g = with_farfield(body, kCircle20, 0.2, {});
+  REQUIRE(g.loops.size() == 2);
+  REQUIRE(g.curves.size() == 2);
+  CHECK(g.curves[0].name == "outer");
+  CHECK(g.curves[1].name == "farfield");
+  CHECK(g.hole_points.empty());
+  CHECK(g.area == Approx(circle_polygon_area(20.0, 4.0) - 16.0).epsilon(1e-12));
+  REQUIRE(g.notes.size() == 2);
+  CHECK(has_note(g, "leaves out 1 loop nested inside the body"));
+  CHECK(has_note(g, "curve 'cavity' (cavity.crv:1)"));
+  CHECK(has_note(g, "leaves out 1 hole point inside the body"));
+  CHECK(has_note(g, "(2, 2)"));
+}
+
+TEST_CASE("a far field around a body with an embedded constraint, point and region: they are left out") {
+  RawGeometry raw;
+  raw.curves = {square("outer", 0.0, 4.0)};
+  RawCurve line;
+  line.name = "web";
+  line.file = "body.crv";
+  line.line = 12;
+  line.points = {{1.0, 1.0}, {3.0, 1.0}};
+  line.constraint = true;
+  raw.curves.push_back(line);
+  raw.curves.push_back(square("inner", 2.0, 3.0, true));
+  raw.points = {{{2.5, 3.5}, "body.poly", 20}, {{0.5, 3.0}, "body.poly", 21}};
+  Geometry body = build_geometry(raw);
+  REQUIRE(body.embedded_points.size() == 2);
+  body.regions = {{{0.5, 0.5}, 3.0, -1.0, "body.poly", 30}, {{50.0, 50.0}, 4.0, -1.0, "body.poly", 31}};
+  const Geometry g = with_farfield(body, kCircle20, 0.2, {});
+  REQUIRE(g.curves.size() == 2);
+  CHECK(std::none_of(g.curves.begin(), g.curves.end(), [](const Curve& c) { return c.constraint; }));
+  CHECK(g.embedded_points.empty());
+  // The region point outside the body lies in the flow domain: kept.
+  REQUIRE(g.regions.size() == 1);
+  CHECK(g.regions[0].attribute == 4.0);
+  CHECK(g.loops.size() == 2);
+  REQUIRE(g.notes.size() == 3);
+  CHECK(has_note(g, "leaves out 2 embedded constraint curves inside the body, the first: curve 'web' (body.crv:12)"));
+  CHECK(has_note(g, "leaves out 2 embedded points inside the body, the first: (2.5, 3.5)"));
+  CHECK(has_note(g, "leaves out 1 region point inside the body, the first: (0.5, 0.5) (body.poly:30)"));
+}
+
+TEST_CASE("a far field around a body whose cavity holds an island: the island is inside the body, solid too") {
+  const Geometry body =
+      build_geometry({square("outer", 0.0, 6.0), square("cavity", 1.0, 5.0), square("island", 2.0, 4.0)});
+  REQUIRE(body.loops.size() == 3);
+  const Geometry g = with_farfield(body, kCircle20, 0.2, {});
+  REQUIRE(g.loops.size() == 2);
+  CHECK(g.curves[0].name == "outer");
+  CHECK(g.area == Approx(circle_polygon_area(20.0, 6.0) - 36.0).epsilon(1e-12));
+  REQUIRE(g.notes.size() == 1);
+  CHECK(has_note(g, "leaves out 2 loops nested inside the body"));
+  CHECK(has_note(g, "the first: curve 'cavity'"));
+}
+
+TEST_CASE("farfield.cavities = mesh keeps every loop: the even-odd rule and its checks as given") {
+  const Farfield mesh{FarfieldShape::Circle, 20.0, "test", FarfieldCavities::Mesh};
+  const Geometry nested =
+      build_geometry({square("outer", 0.0, 6.0), square("cavity", 1.0, 5.0), square("island", 2.0, 4.0)});
+  const Geometry g = with_farfield(nested, mesh, 0.2, {});
+  CHECK(g.loops.size() == 4);
+  CHECK(g.notes.empty());
+  CHECK(g.area == Approx(circle_polygon_area(20.0, 6.0) - 36.0 + 16.0 - 4.0).epsilon(1e-12));
+  RawGeometry raw;
+  raw.curves = {square("outer", 0.0, 4.0), square("cavity", 1.0, 3.0)};
+  raw.holes = {{{2.0, 2.0}, "body.poly", 9}};
+  CHECK_THROWS_WITH(with_farfield(build_geometry(raw), mesh, 0.2, {}), Catch::Contains("lies inside the domain"));
+}
+
+TEST_CASE("a far field around bodies without nested loops: both modes give the geometry of the plain rule") {
+  const Geometry body = build_geometry({square("left", 0.0, 1.0), square("right", 2.0, 3.0)});
+  const Geometry solid = with_farfield(body, kCircle20, 0.2, {});
+  const Geometry mesh = with_farfield(body, {FarfieldShape::Circle, 20.0, "test", FarfieldCavities::Mesh}, 0.2, {});
+  CHECK(solid.notes.empty());
+  REQUIRE(solid.curves.size() == 3);
+  REQUIRE(mesh.curves.size() == 3);
+  for (std::size_t c = 0; c < 3; ++c) {
+    CHECK(solid.curves[c].name == mesh.curves[c].name);
+    CHECK(solid.curves[c].points == mesh.curves[c].points);
+    if (c < 2) CHECK(solid.curves[c].points == body.curves[c].points);
+  }
+  CHECK(solid.loops.size() == 3);
+  CHECK(solid.area == mesh.area);
+}
+
+TEST_CASE("pdmesh mesh of a .poly with a hole and a hole point and a far field: meshed around, the note said") {
+  const auto dir = pdmesh_test::fresh_dir("farfield_holes");
+  const auto out = dir / "out";
+  const std::string poly = pdmesh::test::source_dir() + "/cases/user_corpus/A/A.poly";
+  const std::string run = "mesh '" + poly + "' --iterations 0 --formats msh -q --out '" + out.string() + "'";
+  auto r = run_pdmesh(run + " --farfield circle:5");
+  INFO(r.output);
+  REQUIRE(r.status == 0);
+  CHECK(r.output.find("note: --farfield circle:5: farfield.size = 5: the far field leaves out 1 loop nested") !=
+        std::string::npos);
+  CHECK(r.output.find("leaves out 1 hole point inside the body") != std::string::npos);
+  std::filesystem::remove_all(out);
+  r = run_pdmesh(run + " --farfield circle:5 --set farfield.cavities=mesh");
+  CHECK(r.status == 2);
+  CHECK(r.output.find("lies inside the domain, not in a hole") != std::string::npos);
+  r = run_pdmesh(run + " --farfield circle:5 --set farfield.cavities=hollow");
+  CHECK(r.status == 2);
+  CHECK(r.output.find("farfield.cavities must be one of solid, mesh, got 'hollow'") != std::string::npos);
+  CHECK_FALSE(std::filesystem::exists(out));
+  std::filesystem::remove_all(dir);
 }

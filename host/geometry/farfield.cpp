@@ -3,11 +3,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <numbers>
 
 #include <fmt/format.h>
 
 #include "core/errors.hpp"
+#include "geometry/geometry_detail.hpp"
 
 namespace pdmesh {
 
@@ -93,10 +95,32 @@ RawCurve farfield_curve(const Box& extents, const Farfield& f, double body_spaci
   return c;
 }
 
+namespace {
+
+// What with_farfield leaves out of the body, kind by kind, for its notes.
+struct LeftOut {
+  int count = 0;
+  std::string first;  // the first one: a curve's name and file:line, or a point
+  void add(const std::string& what) {
+    if (count++ == 0) first = what;
+  }
+};
+
+std::string curve_label(const Curve& c) {
+  return fmt::format("curve '{}' ({})", c.name, detail::where(c.file, c.line));
+}
+
+// One note per kind left out, after `label` (where the far field was given).
+void note_left_out(std::vector<std::string>& notes, const std::string& label, const LeftOut& what, const char* singular,
+                   const char* plural, const char* why) {
+  if (what.count == 0) return;
+  notes.push_back(fmt::format("{}: the far field leaves out {} {} inside the body{}, the first: {}", label, what.count,
+                              what.count == 1 ? singular : plural, why, what.first));
+}
+
+}  // namespace
+
 Geometry with_farfield(const Geometry& body, const Farfield& f, double gradation, const GeometryOptions& options) {
-  std::vector<RawCurve> raw;
-  double length = 0.0;
-  std::size_t segments = 0;
   for (const Curve& c : body.curves) {
     if (c.name == kFarfieldName) {
       throw InputError(
@@ -104,6 +128,45 @@ Geometry with_farfield(const Geometry& body, const Farfield& f, double gradation
                       "or leave out {}",
                       c.file, c.line, c.name, f.label));
     }
+  }
+  // The body is solid with FarfieldCavities::Solid: the curves of nested loops (depth >= 1) and the
+  // embedded constraints (inside the body's domain, so inside the body) are left out; a point is
+  // inside the body when it lies inside one of the outermost loops (they do not nest, so an odd count
+  // of crossings of their segments).
+  const bool solid = f.cavities == FarfieldCavities::Solid;
+  std::vector<std::uint8_t> keep(body.curves.size(), 1);
+  std::vector<int> outer;  // the segments of the outermost loops
+  LeftOut loops, constraints, holes_out, points_out, regions_out;
+  if (solid) {
+    for (const Loop& loop : body.loops) {
+      if (loop.depth > 0) {
+        for (const int c : loop.curves) keep[static_cast<std::size_t>(c)] = 0;
+        loops.add(curve_label(body.curves[static_cast<std::size_t>(loop.curves[0])]));
+        continue;
+      }
+      for (const int c : loop.curves) {
+        const Curve& curve = body.curves[static_cast<std::size_t>(c)];
+        for (int k = 0; k < curve.segment_count(); ++k) outer.push_back(curve.first_segment + k);
+      }
+    }
+    for (std::size_t c = 0; c < body.curves.size(); ++c) {
+      if (!body.curves[c].constraint) continue;
+      keep[c] = 0;
+      constraints.add(curve_label(body.curves[c]));
+    }
+  }
+  const auto inside_body = [&](Vec2 p) { return solid && detail::ray_crossings(body.segments, outer, p) % 2 == 1; };
+
+  std::vector<RawCurve> raw;
+  double length = 0.0;
+  std::size_t segments = 0;
+  for (std::size_t k = 0; k < body.curves.size(); ++k) {
+    const Curve& c = body.curves[k];
+    if (!c.constraint) {
+      length += c.length();
+      segments += static_cast<std::size_t>(c.segment_count());
+    }
+    if (!keep[k]) continue;
     RawCurve r;
     r.name = c.name;
     r.points = c.points;
@@ -111,20 +174,44 @@ Geometry with_farfield(const Geometry& body, const Farfield& f, double gradation
     r.line = c.line;
     r.fixed_points = c.fixed_points;
     r.constraint = c.constraint;
-    if (!c.constraint) {
-      length += c.length();
-      segments += static_cast<std::size_t>(c.segment_count());
-    }
     raw.push_back(std::move(r));
   }
   const double body_spacing = segments > 0 ? length / static_cast<double>(segments) : 0.0;
   raw.push_back(farfield_curve(body.extents, f, body_spacing, gradation));
   std::vector<RawHolePoint> holes;
-  for (const Vec2 p : body.hole_points) holes.push_back({p, f.label, 0});
-  Geometry g = build_geometry(std::move(raw), holes, options);
-  g.embedded_points = body.embedded_points;
-  g.regions = body.regions;
+  for (const Vec2 p : body.hole_points) {
+    if (inside_body(p)) {
+      holes_out.add(detail::format_point(p));
+      continue;
+    }
+    holes.push_back({p, f.label, 0});
+  }
+  // Embedded points lie in the body's domain, so inside the body; with the cavities meshed, the
+  // even-odd rule of the new geometry checks them again.
+  std::vector<RawPoint> points;
+  for (const Vec2 p : body.embedded_points) {
+    if (solid) {
+      points_out.add(detail::format_point(p));
+      continue;
+    }
+    points.push_back({p, f.label, 0});
+  }
+  Geometry g = points.empty() ? build_geometry(std::move(raw), holes, options)
+                              : build_geometry(RawGeometry{std::move(raw), holes, std::move(points), {}, {}}, options);
+  for (const GeometryRegion& r : body.regions) {
+    if (inside_body(r.p)) {
+      regions_out.add(fmt::format("{} ({})", detail::format_point(r.p), detail::where(r.file, r.line)));
+      continue;
+    }
+    g.regions.push_back(r);
+  }
   g.notes = body.notes;
+  const char* meshed = " (farfield.cavities = \"mesh\" meshes them)";
+  note_left_out(g.notes, f.label, loops, "loop nested", "loops nested", meshed);
+  note_left_out(g.notes, f.label, holes_out, "hole point", "hole points", "");
+  note_left_out(g.notes, f.label, constraints, "embedded constraint curve", "embedded constraint curves", "");
+  note_left_out(g.notes, f.label, points_out, "embedded point", "embedded points", "");
+  note_left_out(g.notes, f.label, regions_out, "region point", "region points", "");
   return g;
 }
 

@@ -1,6 +1,6 @@
 // The far field: a closed curve named "farfield" around everything given (a circle or a square,
-// centred on the input's bounding box), so that a body given alone becomes a hole in a flow domain
-// by the even-odd rule (docs/geometry-input.md, "Far field").
+// centred on the input's bounding box), so that a body given alone becomes a hole in a flow domain,
+// solid with what it encloses unless farfield.cavities = "mesh" (docs/geometry-input.md, "Far field").
 #pragma once
 #include <string>
 
@@ -10,6 +10,18 @@ namespace pdmesh {
 
 enum class FarfieldShape { Circle, Box };
 
+// What the far field does with the input's nested loops (farfield.cavities).
+enum class FarfieldCavities {
+  // The body is solid, with everything it encloses: the loops nested inside another input loop
+  // (cavities, and islands inside them) and the hole points, embedded constraints, embedded points and
+  // regions inside the body are left out; the domain is the region between the far field and the
+  // body's outer loops.
+  Solid,
+  // Every loop is kept and the even-odd rule decides: the cavities are meshed too (the input's
+  // holes become domain again), with the checks on hole points and constraints as given.
+  Mesh,
+};
+
 // [farfield] / --farfield SHAPE:SIZE. size = 0: no far field.
 struct Farfield {
   FarfieldShape shape = FarfieldShape::Circle;
@@ -18,6 +30,7 @@ struct Farfield {
   double size = 0.0;
   // Where it was given ("--farfield circle:20", "case.toml:7:8"), for messages and as the curve's file.
   std::string label;
+  FarfieldCavities cavities = FarfieldCavities::Solid;
   bool given() const { return size > 0.0; }
 };
 
@@ -48,8 +61,13 @@ double farfield_min_size(const Box& extents, const Farfield& farfield, double se
 RawCurve farfield_curve(const Box& extents, const Farfield& farfield, double body_spacing, double gradation);
 
 // `body` with the far field added around its extents: its curves (flags, names and sources kept),
-// hole points and embedded points, and the far field's curve last, built again with `options`.
-// InputError when a curve of `body` is already named kFarfieldName.
+// hole points, embedded points and regions, and the far field's curve last, built again with
+// `options`. With FarfieldCavities::Solid, what lies inside the body (the union of the interiors of
+// its outermost loops, depth 0) is left out: the loops of depth >= 1, the embedded constraints and
+// embedded points (all inside the body's domain, so inside it), and the hole points and regions
+// whose point lies inside; one note per kind left out (Geometry::notes, after the body's) names the
+// count and the first. Without nested loops, constraints, embedded points or regions inside, the
+// result is the same for both modes. InputError when a curve of `body` is already named kFarfieldName.
 Geometry with_farfield(const Geometry& body, const Farfield& farfield, double gradation,
                        const GeometryOptions& options);
 

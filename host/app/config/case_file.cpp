@@ -113,7 +113,7 @@ bool is_string_key(const std::string& key) {
          key == "spacing.m11" || key == "spacing.m12" || key == "spacing.m22" || key == "spacing.sol" ||
          key == "spacing.function" || key == "init.method" || key == "simulation.device" ||
          key == "simulation.precision" || key == "simulation.r0_rule" || key == "simulation.stop" ||
-         key == "output.color_by" || key == "farfield.shape" || key == "motion.rotate";
+         key == "output.color_by" || key == "farfield.shape" || key == "farfield.cavities" || key == "motion.rotate";
 }
 
 // Parses an override's value as TOML; a bare word that is not TOML (random, a.crv) is a string.
@@ -342,6 +342,7 @@ const std::vector<std::string>& farfield_keys() {
   static const std::vector<std::string> keys = {
       "farfield.shape",
       "farfield.size",
+      "farfield.cavities",
   };
   return keys;
 }

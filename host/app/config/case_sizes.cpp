@@ -95,6 +95,10 @@ void read_size_sections(const Reader& r, const toml::table& root, CaseConfig& c)
     c.farfield.shape = choose<FarfieldShape>(r, "farfield.shape", *s,
                                              {{"circle", FarfieldShape::Circle}, {"box", FarfieldShape::Box}});
   }
+  if (const toml::node* s = find(root, "farfield", "cavities")) {
+    c.farfield.cavities = choose<FarfieldCavities>(
+        r, "farfield.cavities", *s, {{"solid", FarfieldCavities::Solid}, {"mesh", FarfieldCavities::Mesh}});
+  }
   const toml::node* far = find(root, "farfield", "size");
   if (far != nullptr) {
     c.farfield.size = r.positive("farfield.size", *far);

@@ -106,6 +106,9 @@ void add_region_identity(const CaseConfig& config, Identity& keys) {
   if (config.farfield.given())
     keys.emplace_back("farfield", fmt::format("{} {}", config.farfield.shape == FarfieldShape::Box ? "box" : "circle",
                                               config.farfield.size));
+  // The cavities meshed: only when asked, so that the default identifies as before.
+  if (config.farfield.given() && config.farfield.cavities == FarfieldCavities::Mesh)
+    keys.emplace_back("farfield.cavities", "mesh");
   if (config.spacing.size > 0.0) keys.emplace_back("spacing.size", fmt::format("{}", config.spacing.size));
   for (std::size_t k = 0; k < config.spacing.regions.size(); ++k) {
     const RefineRegion& r = config.spacing.regions[k];
