@@ -181,10 +181,10 @@ TEST_CASE("diverging rays: the wall is refined so that the front is as dense as 
 
 TEST_CASE("a wall segment between two fans: its columns merge in pairs, no half front edge", "[layers]") {
   // A hexagon of side 0.013: a fan at each corner (60 degrees), parallel rays along each side. The
-  // last layer of 0.02 is thin (1.3e-3, a third of the one below), so each side is split into parts
-  // of at most 1.6 last layers and the columns merge in pairs under the layers below. Seven parts
-  // left one front edge of a single part, half its neighbours, beside a fan (the core's triangles on
-  // it had 35 degrees on a UIUC E387 nose).
+  // last layer of 0.01997 is thin (a third of the one below), so each side is split into parts of at
+  // most 1.6 last layers and the columns merge in pairs under the layers below. An odd number of
+  // parts would leave one front edge of a single part, half its neighbours, beside a fan, and the
+  // core's triangles on such an edge are flat.
   RawCurve hexagon{"wall", {}, "test", 1, {}};
   for (int k = 0; k <= 6; ++k)
     hexagon.points.push_back({0.013 * std::cos(kPi * (k % 6) / 3.0), 0.013 * std::sin(kPi * (k % 6) / 3.0)});
@@ -212,7 +212,7 @@ TEST_CASE("a wall segment between two fans: its columns merge in pairs, no half 
       shortest = std::min(shortest, dist(m.nodes[a], m.nodes[b]));
       longest = std::max(longest, dist(m.nodes[a], m.nodes[b]));
     }
-    CHECK(shortest >= 0.9 * longest);  // 0.5 with seven parts a side
+    CHECK(shortest >= 0.9 * longest);  // a single-part edge would be half the others
     const LayerMeasures q = measure_layers(m, s.first_height);
     CHECK(q.inverted_cells == 0);
     CHECK(q.first_height_within_2pct == 1.0);
@@ -290,8 +290,8 @@ TEST_CASE("NACA 0012 with layers: the core's triangles on the front and the junc
 TEST_CASE("UIUC E387 with triangle layers: the core at the nose's fans as good as with quads", "[app][layers]") {
   // The user corpus' E387 (61 points, a sharp nose) with a y+ = 1 layer: split quads keep their
   // rays within 5 degrees of the wall normals, so the nose's corners get fans with straight stretches
-  // of parallel rays between them. Their columns used to leave a half front edge beside a fan, and
-  // the core's triangles on it had 35 degrees (43.5 with quads).
+  // of parallel rays between them; their columns merge in pairs up to the fans, and the core's
+  // first row on the even front is as good as the rest of the core.
   const std::string dat = pdmesh::test::source_dir() + "/cases/user_corpus/e387/e387.dat";
   const fs::path out = fs::temp_directory_path() / "pdmesh_test_layer_junction_e387";
   fs::remove_all(out);
