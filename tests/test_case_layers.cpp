@@ -145,6 +145,40 @@ TEST_CASE("a run with an unknown layer curve writes nothing", "[app][layers]") {
   CHECK_FALSE(fs::exists(out));
 }
 
+TEST_CASE("a run whose wall chain is open names the curve to add and writes nothing", "[app][layers]") {
+  // The circle cut into an upper and a lower half; layers on the upper half only: the chain's ends
+  // continue along "lower".
+  std::vector<RawCurve> curves = circle_in_square();
+  RawCurve upper{"upper", {}, "memory", 1, {}}, lower{"lower", {}, "memory", 1, {}};
+  const std::vector<Vec2>& circle = curves[1].points;
+  for (std::size_t k = 0; k < circle.size(); ++k) {
+    if (k <= circle.size() / 2) upper.points.push_back(circle[k]);
+    if (k >= circle.size() / 2) lower.points.push_back(circle[k]);
+  }
+  CaseConfig c =
+      case_for_curves({curves[0], upper, lower}, "halves",
+                      {parse_set_option("simulation.iterations=60"), parse_set_option("simulation.device=host")});
+  CaseConfig::BoundaryLayer b;
+  b.curves = {"upper"};
+  b.first_height = 1e-3;
+  b.growth = 1.2;
+  b.thickness = 0.05;
+  c.boundary_layers.push_back(b);
+  const fs::path out = fs::temp_directory_path() / "pdmesh_test_layers_open";
+  fs::remove_all(out);
+  c.out_dir = out;
+  c.quiet = true;
+  CHECK_THROWS_AS(run_mesh(c), InputError);
+  CHECK_THROWS_WITH(run_mesh(c), Catch::Contains("the wall chain of curve \"upper\" is open") &&
+                                     Catch::Contains("continues along curve \"lower\"") &&
+                                     Catch::Contains("add it to boundary_layer.curves"));
+  CHECK_FALSE(fs::exists(out));
+  // With both halves the chain closes and the run goes through.
+  c.boundary_layers[0].curves = {"upper", "lower"};
+  REQUIRE(run_mesh(c) == 0);
+  fs::remove_all(out);
+}
+
 TEST_CASE("a run with layers writes one mesh of layer quads and core triangles", "[app][layers]") {
   const fs::path out = fs::temp_directory_path() / "pdmesh_test_layers_run";
   fs::remove_all(out);

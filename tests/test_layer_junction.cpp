@@ -179,6 +179,47 @@ TEST_CASE("diverging rays: the wall is refined so that the front is as dense as 
   CHECK(cell_area(m) == Approx(std::abs(front_area(m)) - std::abs(polygon_area(g.curves[1].points))).epsilon(1e-9));
 }
 
+TEST_CASE("a wall segment between two fans: its columns merge in pairs, no half front edge", "[layers]") {
+  // A hexagon of side 0.013: a fan at each corner (60 degrees), parallel rays along each side. The
+  // last layer of 0.01997 is thin (a third of the one below), so each side is split into parts of at
+  // most 1.6 last layers and the columns merge in pairs under the layers below. An odd number of
+  // parts would leave one front edge of a single part, half its neighbours, beside a fan, and the
+  // core's triangles on such an edge are flat.
+  RawCurve hexagon{"wall", {}, "test", 1, {}};
+  for (int k = 0; k <= 6; ++k)
+    hexagon.points.push_back({0.013 * std::cos(kPi * (k % 6) / 3.0), 0.013 * std::sin(kPi * (k % 6) / 3.0)});
+  const Geometry g = build_geometry({square(5.0, "far"), hexagon});
+  for (const bool split : {false, true}) {
+    LayerSettings s;
+    s.first_height = 1e-4;
+    s.growth = 1.2;
+    s.thickness = 0.01997;
+    s.split_quads = split;
+    s.max_ray_tilt_deg = split ? 5.0 : 0.0;
+    const LayerMesh m = build_boundary_layers(g, curves_by_name(g, {"wall"}, "test"), s);
+    REQUIRE(m.fan_sizes.size() == 6);
+    int merged = 0;
+    for (const LayerRay& r : m.rays) merged += r.merged ? 1 : 0;
+    REQUIRE(merged > 0);
+    // The front edges between two wall nodes (not inside a fan): all of one length.
+    std::vector<int> wall_of(m.nodes.size(), -1);
+    for (const LayerRay& r : m.rays) wall_of[r.nodes.back()] = r.wall_node;
+    double shortest = 1e9, longest = 0.0;
+    const std::vector<int>& front = m.fronts.at(0).nodes;
+    for (std::size_t i = 0; i < front.size(); ++i) {
+      const int a = front[i], b = front[(i + 1) % front.size()];
+      if (wall_of[a] == wall_of[b]) continue;
+      shortest = std::min(shortest, dist(m.nodes[a], m.nodes[b]));
+      longest = std::max(longest, dist(m.nodes[a], m.nodes[b]));
+    }
+    CHECK(shortest >= 0.9 * longest);  // a single-part edge would be half the others
+    const LayerMeasures q = measure_layers(m, s.first_height);
+    CHECK(q.inverted_cells == 0);
+    CHECK(q.first_height_within_2pct == 1.0);
+    CHECK(m.repairs == 0);
+  }
+}
+
 TEST_CASE("the wall is refined for the graded thickness where a collision thins the layer", "[layers]") {
   // The nose of the test above with a small obstacle 0.02 off its wall: the ray facing it stops at
   // 0.4 x 0.02, and the grading thins its neighbours too (jumps of at most 1.3). Their front edges
@@ -243,6 +284,31 @@ TEST_CASE("NACA 0012 with layers: the core's triangles on the front and the junc
   const std::size_t j = json.find("\"junction\"");
   REQUIRE(j != std::string::npos);
   CHECK(json_number(json.substr(j), "max") <= 1.5);
+  fs::remove_all(out);
+}
+
+TEST_CASE("UIUC E387 with triangle layers: the core at the nose's fans as good as with quads", "[app][layers]") {
+  // The user corpus' E387 (61 points, a sharp nose) with a y+ = 1 layer: split quads keep their
+  // rays within 5 degrees of the wall normals, so the nose's corners get fans with straight stretches
+  // of parallel rays between them; their columns merge in pairs up to the fans, and the core's
+  // first row on the even front is as good as the rest of the core.
+  const std::string dat = pdmesh::test::source_dir() + "/cases/user_corpus/e387/e387.dat";
+  const fs::path out = fs::temp_directory_path() / "pdmesh_test_layer_junction_e387";
+  fs::remove_all(out);
+  CaseConfig c = parse_case_text("[geometry]\nfiles = [\"" + dat +
+                                     "\"]\n[farfield]\nshape = \"circle\"\nsize = 20\n"
+                                     "[simulation]\ndevice = \"host\"\n[output]\nformats = [\"msh\"]\n"
+                                     "[[boundary_layer]]\ncurves = [\"upper\", \"lower\"]\ny_plus = 1\n"
+                                     "reynolds = 6e6\nreference_length = 1\ngrowth = 1.2\nthickness = 0.02\n"
+                                     "elements = \"triangles\"\n",
+                                 out / "case.toml");
+  c.out_dir = out;
+  c.quiet = true;
+  REQUIRE(run_mesh(c) == 0);
+  const std::string json = read(out / "quality.json");
+  CHECK(json_number(json, "core_min_angle") >= 42.0);
+  CHECK(json_number(json, "inverted_cells") == 0.0);
+  CHECK(json_number(json, "max_angle") <= 96.0);
   fs::remove_all(out);
 }
 

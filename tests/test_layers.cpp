@@ -13,6 +13,7 @@
 #include "error_message.hpp"
 #include "geometry/geometry.hpp"
 #include "layers/boundary_layers.hpp"
+#include "layers/front_geometry.hpp"
 #include "layers/layer_measures.hpp"
 
 using namespace pdmesh;
@@ -292,6 +293,12 @@ TEST_CASE("open wall chain: the end rays run along the curves that continue the 
   CHECK_FALSE(m.fronts[0].closed);
   CHECK(m.fronts[0].nodes.front() == m.rays.front().wall_node);
   CHECK(m.fronts[0].nodes.back() == m.rays.back().wall_node);
+  // The core's boundary from an open front is not made: the error names the curves that continue
+  // the chain at its ends, to be added to the wall curves.
+  CHECK_THROWS_WITH(front_curves(g, curves_by_name(g, {"bottom"}, "test"), m),
+                    Catch::Contains("the wall chain of curve \"bottom\" is open") &&
+                        Catch::Contains("continues along curves \"inlet\" and \"outlet\"") &&
+                        Catch::Contains("add them to boundary_layer.curves"));
 }
 
 TEST_CASE("jagged star-shaped walls: valid layers whatever the collisions", "[layers]") {

@@ -10,7 +10,8 @@ namespace pdmesh {
 
 // The curves of the core's geometry, for build_geometry: the non-wall curves of `geometry` as they
 // are, then one closed curve "<first wall curve's name>_front" per chain of `layers`. Throws
-// InputError for an open chain (its front would have to cut the curves that continue it: not done).
+// InputError for an open chain (its front would have to cut the curves that continue it: not done),
+// naming the curves that continue it at its ends, to be added to the wall curves.
 std::vector<RawCurve> front_curves(const Geometry& geometry, const std::vector<int>& wall_curves,
                                    const LayerMesh& layers);
 

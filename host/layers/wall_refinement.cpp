@@ -23,6 +23,16 @@ double last_layer(double t, const LayerSettings& s) {
   return last;
 }
 
+// The largest layer of a stack of thickness t: the last or the one below it (as layer_counts makes
+// them), the layers the columns merge under.
+double top_layer(double t, const LayerSettings& s) {
+  const double h1 = s.first_height, g = s.growth;
+  if (t < h1) return 0.0;
+  int n = 1;
+  while (stack_height(h1, g, n) < t * (1.0 - 1e-12)) ++n;
+  return std::max(last_layer(t, s), n >= 2 ? h1 * std::pow(g, n - 2) : 0.0);
+}
+
 Vec2 chain_point(const WallChain& chain, std::size_t k) { return chain.points[k % chain.points.size()]; }
 
 // Each wall point's first and last ray in chain c (a fan has several); n: the chain's points.
@@ -49,6 +59,11 @@ bool split_chain(WallChain& chain, const PointRays& rays, const RaySet& set, con
     return set.wall_points[ray.wall_node] + (allowed[r] / ray.correction) * ray.direction;
   };
   const int n = static_cast<int>(chain.points.size());
+  // Whether ray r (of chain point i) keeps its column to its top (column_merge.cpp): a fan ray, a
+  // sliding end ray or an open chain's end.
+  const auto fixed_column = [&](int r, int i) {
+    return set.rays[r].fan || set.rays[r].slide_segment >= 0 || (!chain.closed && (i == 0 || i == n - 1));
+  };
   bool split = false;
   WallChain out;
   out.closed = chain.closed;
@@ -63,7 +78,16 @@ bool split_chain(WallChain& chain, const PointRays& rays, const RaySet& set, con
     const double gap = dist(top(a), top(b));
     const double span = settings.split_span * h;
     if (h <= 0.0 || gap <= span) continue;
-    const int parts = static_cast<int>(std::ceil(gap / span));
+    int parts = static_cast<int>(std::ceil(gap / span));
+    // Between two rays whose columns never merge (fan rays, an open chain's ends: plan_columns),
+    // the new rays' columns merge in pairs from one end where two parts fit under a layer
+    // (merge_span). An odd number of parts would leave one front edge of a single part, half as
+    // long as its neighbours, beside the fan: the core's triangles on it are flat. With an even
+    // number the pairs fill the segment.
+    if (parts % 2 == 1 && fixed_column(a, i) && fixed_column(b, j) &&
+        2.0 * gap / parts <=
+            settings.merge_span * std::min(top_layer(allowed[a], settings), top_layer(allowed[b], settings)))
+      ++parts;
     for (int k = 1; k < parts; ++k) {
       const double t = static_cast<double>(k) / parts;
       out.points.push_back(chain.points[i] + t * (chain.points[j] - chain.points[i]));
