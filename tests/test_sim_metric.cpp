@@ -274,6 +274,25 @@ TEST_CASE("the metric neighbour search finds exactly the pairs within the metric
       set_sizes(p, i, h, h, 0.0);
     }
   }
+  bool layer = false;
+  SECTION("a thin layer at slope 0.1, aspect 1000, among isotropic nodes and bubbles across it") {
+    layer = true;
+    // Most nodes in a band 0.01 wide along y = 0.1 x + 0.45 with sizes 0.2 along it and 0.0002 across
+    // (the search's frame follows the layer), the rest isotropic (0.02 to 0.2) or stretched across
+    // the layer (aspect 100 at 90 degrees to it), so that pairs of very different bubbles are found.
+    const double along = std::atan(0.1);
+    for (std::size_t i = 0; i < n; ++i) {
+      if (i % 3 != 0) {
+        p.y[i] = 0.45 + 0.1 * p.x[i] + 0.01 * (uniform(rng) - 0.5);
+        set_sizes(p, i, 0.2, 0.0002, along);
+      } else if (i % 9 == 0) {
+        set_sizes(p, i, 0.1, 0.001, along + 0.5 * M_PI);
+      } else {
+        const double h = 0.02 + 0.18 * uniform(rng);
+        set_sizes(p, i, h, h, 0.0);
+      }
+    }
+  }
   NeighbourList brute, fast, cached;
   NeighbourFlags fb, ff, fc;
   brute.stride = fast.stride = 1024;
@@ -283,6 +302,10 @@ TEST_CASE("the metric neighbour search finds exactly the pairs within the metric
   REQUIRE(fb.overflow == 0);
   REQUIRE(fb.pairs_within > n);
   REQUIRE(fast.count == brute.count);
+  // The layer's bubbles search strips along it: few candidates per pair found (the square of their long
+  // axis would hold the layer's whole width).
+  INFO("candidates " << ff.pairs_examined << " for " << ff.pairs_within << " pairs");
+  if (layer) REQUIRE(ff.pairs_examined < 25 * ff.pairs_within);
   auto backend = make_reference_backend();
   build_neighbours_growing(*backend, p, 1.5, cached, fc);
   REQUIRE(fc.pairs_within == fb.pairs_within);

@@ -24,7 +24,13 @@ int LevelGrids::Grid::find(std::int64_t cx, std::int64_t cy) const {
 }
 
 void LevelGrids::Grid::build(const SimParticles& p, const std::vector<std::int32_t>& members, double cell_size) {
-  inv_cell = 1.0 / cell_size;
+  build(p.x, p.y, members, cell_size, cell_size);
+}
+
+void LevelGrids::Grid::build(const std::vector<double>& x, const std::vector<double>& y,
+                             const std::vector<std::int32_t>& members, double cell_x, double cell_y) {
+  inv_cell = 1.0 / cell_x;
+  inv_cell_y = 1.0 / cell_y;
   std::size_t cap = 16;
   while (cap < 2 * members.size() + 1) cap *= 2;
   key_x.resize(cap);
@@ -35,7 +41,7 @@ void LevelGrids::Grid::build(const SimParticles& p, const std::vector<std::int32
   std::int32_t cells = 0;
   for (std::size_t m = 0; m < members.size(); ++m) {
     const auto j = static_cast<std::size_t>(members[m]);
-    const std::int64_t cx = cell_coord(p.x[j], inv_cell), cy = cell_coord(p.y[j], inv_cell);
+    const std::int64_t cx = cell_coord(x[j], inv_cell), cy = cell_coord(y[j], inv_cell_y);
     std::size_t s = cell_hash(cx, cy) & mask;
     while (slot_id[s] >= 0 && !(key_x[s] == cx && key_y[s] == cy)) s = (s + 1) & mask;
     if (slot_id[s] < 0) {

@@ -18,19 +18,39 @@ class LevelGrids {
   // Cells live in an open-addressing hash keyed by integer cell coordinates (empty cells cost
   // nothing); nodes are grouped by counting sort, ascending within a cell. Storage is reused.
   struct Grid {
-    double inv_cell = 1.0;
-    std::vector<std::int64_t> key_x, key_y;  // hash slots: cell coordinates
-    std::vector<std::int32_t> slot_id;       // hash slots: dense cell id, -1 = empty
+    double inv_cell = 1.0, inv_cell_y = 1.0;  // cells are 1 / inv_cell along x, 1 / inv_cell_y along y
+    std::vector<std::int64_t> key_x, key_y;   // hash slots: cell coordinates
+    std::vector<std::int32_t> slot_id;        // hash slots: dense cell id, -1 = empty
     std::size_t mask = 0;
     std::vector<std::int32_t> start;  // cells + 1 offsets into nodes
     std::vector<std::int32_t> nodes;
     std::vector<std::int32_t> cell_of;  // scratch
     bool empty() const { return nodes.empty(); }
     void build(const SimParticles& p, const std::vector<std::int32_t>& members, double cell_size);
+    // Cells of cell_x by cell_y over the points (x[j], y[j]) of the members.
+    void build(const std::vector<double>& x, const std::vector<double>& y, const std::vector<std::int32_t>& members,
+               double cell_x, double cell_y);
     int find(std::int64_t cx, std::int64_t cy) const;
     // Calls visit(j) for every node in the cells overlapping the box around (x, y) of half-width r.
     template <class Visit>
-    void for_each_near(double x, double y, double r, Visit&& visit) const;
+    void for_each_near(double x, double y, double r, Visit&& visit) const {
+      for_each_in_box(x, y, r, r, visit);
+    }
+    // Calls visit(j) for every node in the cells overlapping the box [x - rx, x + rx] x [y - ry, y + ry].
+    template <class Visit>
+    void for_each_in_box(double x, double y, double rx, double ry, Visit&& visit) const;
+    // As for_each_in_box, or every node of the grid when the box spans more cells than the grid has
+    // (a box far wider than the cells: fewer visits than the empty cells' lookups).
+    template <class Visit>
+    void for_each_in_box_or_all(double x, double y, double rx, double ry, Visit&& visit) const {
+      if (nodes.empty()) return;
+      const double across = (2.0 * rx * inv_cell + 2.0) * (2.0 * ry * inv_cell_y + 2.0);
+      if (across > static_cast<double>(start.size())) {
+        for (const std::int32_t j : nodes) visit(j);
+        return;
+      }
+      for_each_in_box(x, y, rx, ry, visit);
+    }
   };
 
   // radius[j] > 0 and finite for every node (the caller checked validity).
@@ -49,6 +69,13 @@ class LevelGrids {
     for (std::size_t m = l + 1; m < exact_.size(); ++m)
       if (!exact_[m].empty()) exact_[m].for_each_near(x, y, reach(m), visit);
   }
+  // As for_each_near with a box of half-widths reach_x(M) along x and reach_y(M) along y.
+  template <class ReachX, class ReachY, class Visit>
+  void for_each_in_box(double x, double y, std::size_t l, ReachX&& reach_x, ReachY&& reach_y, Visit&& visit) const {
+    cumulative_[l].for_each_in_box(x, y, reach_x(l), reach_y(l), visit);
+    for (std::size_t m = l + 1; m < exact_.size(); ++m)
+      if (!exact_[m].empty()) exact_[m].for_each_in_box(x, y, reach_x(m), reach_y(m), visit);
+  }
 
  private:
   double r_min_ = 0.0;
@@ -61,10 +88,10 @@ class LevelGrids {
 std::int64_t cell_coord(double v, double inv_cell);
 
 template <class Visit>
-void LevelGrids::Grid::for_each_near(double x, double y, double r, Visit&& visit) const {
+void LevelGrids::Grid::for_each_in_box(double x, double y, double rx, double ry, Visit&& visit) const {
   if (nodes.empty()) return;
-  const std::int64_t x0 = cell_coord(x - r, inv_cell), x1 = cell_coord(x + r, inv_cell);
-  const std::int64_t y0 = cell_coord(y - r, inv_cell), y1 = cell_coord(y + r, inv_cell);
+  const std::int64_t x0 = cell_coord(x - rx, inv_cell), x1 = cell_coord(x + rx, inv_cell);
+  const std::int64_t y0 = cell_coord(y - ry, inv_cell_y), y1 = cell_coord(y + ry, inv_cell_y);
   for (std::int64_t cy = y0; cy <= y1; ++cy) {
     for (std::int64_t cx = x0; cx <= x1; ++cx) {
       const int id = find(cx, cy);
