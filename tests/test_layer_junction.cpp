@@ -264,7 +264,7 @@ TEST_CASE("a coarse polygon in triangles: each fan has one front edge, as long a
   // quads: the 5 degree ray tilt limit gives every vertex a fan of two elements. The core's spacing
   // at a front node follows the node's front edges, so the fan's front should be about as long as
   // the edges of the wall segments beside it: its middle column ends at the last layer and the fan
-  // has one front edge (two half-length edges made the core fine along every segment). Below, the
+  // has one front edge (two half-length edges would make the core fine along every segment). Below, the
   // fan keeps its two elements' angles.
   const Geometry g = build_geometry({square(5.0, "far"), circle(0.2, 32, "wall")});
   for (const bool split : {false, true}) {

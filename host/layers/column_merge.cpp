@@ -86,8 +86,8 @@ class ChainMerger {
   // The middle ray of a fan of two elements (a vertex that the triangles' ray tilt limit fans)
   // ends at its last layer where the fan's edge rays' tops are at most fan_span x the last layer
   // apart: the fan then has one front edge, about as long as the front edges beside it, while its
-  // cells below keep the two elements' angles. Two half-length edges there made the core's spacing
-  // at the front half that of the wall segments beside the fan.
+  // cells below keep the two elements' angles. Two half-length edges there would make the core's
+  // spacing at the front half that of the wall segments beside the fan.
   bool fan_middle_merges(int l, int r, int x, int k) const {
     const int node = set_.rays[r].wall_node;
     if (fan_span_ <= 0.0 || k + 1 != layers(r)) return false;
