@@ -259,6 +259,50 @@ TEST_CASE("the wall is refined for the graded thickness where a collision thins 
   CHECK(q.max_thickness_jump <= 1.3 + 1e-9);
 }
 
+TEST_CASE("a coarse polygon in triangles: each fan has one front edge, as long as those beside it", "[layers]") {
+  // A bolt hole as a 32-gon (radius 0.2, vertices turning by 11.25 degrees) with 8 layers of split
+  // quads: the 5 degree ray tilt limit gives every vertex a fan of two elements. The core's spacing
+  // at a front node follows the node's front edges, so the fan's front should be about as long as
+  // the edges of the wall segments beside it: its middle column ends at the last layer and the fan
+  // has one front edge (two half-length edges would make the core fine along every segment). Below, the
+  // fan keeps its two elements' angles.
+  const Geometry g = build_geometry({square(5.0, "far"), circle(0.2, 32, "wall")});
+  for (const bool split : {false, true}) {
+    LayerSettings s = settings(0.002, 1.2, 8);
+    s.split_quads = split;
+    s.max_ray_tilt_deg = split ? 5.0 : 0.0;
+    s.fan_elements_per_pi = fan_elements_matching_core(s.growth);
+    const LayerMesh m = build_boundary_layers(g, curves_by_name(g, {"wall"}, "test"), s);
+    const LayerMeasures q = measure_layers(m, s.first_height);
+    CHECK(q.inverted_cells == 0);
+    CHECK(q.first_height_within_2pct == 1.0);
+    if (!split) {  // quads: no fan below 45 degrees, the rays smoothed across the vertices
+      CHECK(m.fan_sizes.empty());
+      continue;
+    }
+    REQUIRE(m.fan_sizes.size() == 32);
+    for (const int f : m.fan_sizes) CHECK(f == 2);
+    std::vector<int> wall_of(m.nodes.size(), -1);
+    for (const LayerRay& r : m.rays) wall_of[r.nodes.back()] = r.wall_node;
+    double in_fans = 1e9, between = 0.0;
+    int fan_edges = 0;
+    const std::vector<int>& front = m.fronts.at(0).nodes;
+    for (std::size_t i = 0; i < front.size(); ++i) {
+      const int a = front[i], b = front[(i + 1) % front.size()];
+      const double length = dist(m.nodes[a], m.nodes[b]);
+      if (wall_of[a] == wall_of[b]) {
+        in_fans = std::min(in_fans, length);
+        ++fan_edges;
+      } else {
+        between = std::max(between, length);
+      }
+    }
+    CHECK(fan_edges == 32);
+    CHECK(in_fans >= 0.6 * between);
+    CHECK(q.max_angle_deg <= 96.0);  // 90 + half the ray tilt limit's 10 degrees, or of a fan element
+  }
+}
+
 TEST_CASE("NACA 0012 with layers: the core's triangles on the front and the junction", "[app][layers]") {
   // cases/naca0012's geometry with the default settings (the best preset) and the issue's layers.
   const std::string dir = pdmesh::test::source_dir() + "/cases/naca0012/";

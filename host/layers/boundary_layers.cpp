@@ -227,7 +227,10 @@ LayerMesh assemble(const RaySet& set, const std::vector<int>& count, const std::
   m.fan_sizes = set.fan_sizes;
   owner.assign(m.nodes.size(), -1);
   std::vector<std::vector<double>> height = ray_heights(count, top, settings);
-  const ColumnPlan plan = plan_columns(set, height, settings.merge_span);
+  // Fans of two elements come from the ray tilt limit (the triangles' small fans); their middle ray
+  // may end at its last layer where the front is as dense as the wall refinement makes it.
+  const double fan_span = settings.max_ray_tilt_deg > 0.0 ? settings.split_span : 0.0;
+  const ColumnPlan plan = plan_columns(set, height, settings.merge_span, fan_span);
   place_ray_nodes(m, count, top, plan.end, settings, height, owner);
   for (const ColumnPair& p : plan.pairs)
     zip_columns(m, settings.split_quads, p.a, p.b, height[p.a], height[p.b], p.from, p.to);

@@ -14,8 +14,9 @@ namespace {
 // plan.pairs) whose b / a is ray r.
 class ChainMerger {
  public:
-  ChainMerger(const RaySet& set, const std::vector<std::vector<double>>& height, double merge_span, ColumnPlan& plan)
-      : set_(set), height_(height), merge_span_(merge_span), plan_(plan) {}
+  ChainMerger(const RaySet& set, const std::vector<std::vector<double>>& height, double merge_span, double fan_span,
+              ColumnPlan& plan)
+      : set_(set), height_(height), merge_span_(merge_span), fan_span_(fan_span), plan_(plan) {}
 
   void run(int b, int e, bool closed) {
     const int n = e - b;
@@ -73,26 +74,47 @@ class ChainMerger {
   // Whether r's column ends at layer k between l and x.
   bool merges(int l, int r, int x, int k) const {
     const LayerRay& ray = set_.rays[r];
-    if (ray.fan || ray.slide_segment >= 0) return false;
+    if (ray.slide_segment >= 0) return false;
     // Every layer up to k + 1 of the three is on the settings' stack (below their tops).
     if (k >= layers(r) || k >= layers(l) || k >= layers(x)) return false;
+    if (ray.fan) return fan_middle_merges(l, r, x, k);
     const double layer = std::min(height_[l][k + 1] - height_[l][k], height_[x][k + 1] - height_[x][k]);
     // The edge the merge makes between the neighbours' next nodes (diverging rays widen it).
     return dist(node_at(l, k + 1), node_at(x, k + 1)) <= merge_span_ * layer;
   }
 
+  // The middle ray of a fan of two elements (a vertex that the triangles' ray tilt limit fans)
+  // ends at its last layer where the fan's edge rays' tops are at most fan_span x the last layer
+  // apart: the fan then has one front edge, about as long as the front edges beside it, while its
+  // cells below keep the two elements' angles. Two half-length edges there would make the core's
+  // spacing at the front half that of the wall segments beside the fan.
+  bool fan_middle_merges(int l, int r, int x, int k) const {
+    const int node = set_.rays[r].wall_node;
+    if (fan_span_ <= 0.0 || k + 1 != layers(r)) return false;
+    if (set_.rays[l].wall_node != node || set_.rays[x].wall_node != node) return false;
+    if (r - l != 1 || x - r != 1) return false;  // the neighbours in the chain, not across its start
+    if ((l > 0 && set_.rays[l - 1].wall_node == node) ||
+        (x + 1 < static_cast<int>(set_.rays.size()) && set_.rays[x + 1].wall_node == node))
+      return false;
+    if (k + 1 != layers(l) || k + 1 != layers(x)) return false;
+    const double layer = std::min(height_[l][k + 1] - height_[l][k], height_[x][k + 1] - height_[x][k]);
+    return dist(node_at(l, k + 1), node_at(x, k + 1)) <= fan_span_ * layer;
+  }
+
   const RaySet& set_;
   const std::vector<std::vector<double>>& height_;
   double merge_span_;
+  double fan_span_;
   ColumnPlan& plan_;
 };
 
 }  // namespace
 
-ColumnPlan plan_columns(const RaySet& set, const std::vector<std::vector<double>>& height, double merge_span) {
+ColumnPlan plan_columns(const RaySet& set, const std::vector<std::vector<double>>& height, double merge_span,
+                        double fan_span) {
   ColumnPlan plan;
   plan.end.assign(set.rays.size(), -1);
-  ChainMerger merger(set, height, merge_span, plan);
+  ChainMerger merger(set, height, merge_span, fan_span, plan);
   for (std::size_t c = 0; c + 1 < set.ray_begin.size(); ++c)
     merger.run(set.ray_begin[c], set.ray_begin[c + 1], set.closed[c] != 0);
   return plan;

@@ -129,7 +129,10 @@ struct ColumnPlan {
 // The columns of every chain: ray r's column ends at layer k where its current neighbours' nodes
 // at layer k + 1 are at most merge_span x their layer's height apart (not at fans, sliding end rays,
 // the ends of an open chain, or layers that are not on the settings' stack for all three; never
-// two neighbours at one layer). height[r]: ray r's node heights over the wall (0 first).
-ColumnPlan plan_columns(const RaySet& set, const std::vector<std::vector<double>>& height, double merge_span);
+// two neighbours at one layer). The middle ray of a fan of two elements ends at its last layer
+// where the fan's edge rays' tops are at most fan_span x that layer apart (0: never).
+// height[r]: ray r's node heights over the wall (0 first).
+ColumnPlan plan_columns(const RaySet& set, const std::vector<std::vector<double>>& height, double merge_span,
+                        double fan_span);
 
 }  // namespace pdmesh::layers_detail
