@@ -77,9 +77,7 @@ void build_neighbours_metric(const SimParticles& p, double cutoff, NeighbourList
   std::vector<int> level(n);
   int top = 0;
   for (std::size_t j = 0; j < n; ++j) {
-    int e = 0;
-    std::frexp(half_u[j] / u_min, &e);  // ratio = m 2^e, m in [0.5, 1): floor(log2) = e - 1
-    level[j] = std::max(0, e - 1);
+    level[j] = size_level(half_u[j] / u_min);
     top = std::max(top, level[j]);
   }
   const auto levels = static_cast<std::size_t>(top) + 1;

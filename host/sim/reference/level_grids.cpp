@@ -63,6 +63,12 @@ void LevelGrids::Grid::build(const std::vector<double>& x, const std::vector<dou
   start.back() = static_cast<std::int32_t>(members.size());
 }
 
+int size_level(double ratio) {
+  int e = 0;
+  std::frexp(ratio, &e);  // ratio = m 2^e, m in [0.5, 1): floor(log2) = e - 1
+  return std::max(0, e - 1);
+}
+
 void LevelGrids::build(const SimParticles& p, const std::vector<double>& radius) {
   const std::size_t n = p.size();
   double r_min = HUGE_VAL;
@@ -71,9 +77,7 @@ void LevelGrids::build(const SimParticles& p, const std::vector<double>& radius)
   level_.resize(n);
   int top = 0;
   for (std::size_t j = 0; j < n; ++j) {
-    int e = 0;
-    std::frexp(radius[j] / r_min, &e);  // ratio = m 2^e, m in [0.5, 1): floor(log2) = e - 1
-    level_[j] = std::max(0, e - 1);
+    level_[j] = size_level(radius[j] / r_min);
     top = std::max(top, level_[j]);
   }
   const std::size_t levels = n == 0 ? 0 : static_cast<std::size_t>(top) + 1;

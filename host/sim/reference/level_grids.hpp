@@ -102,6 +102,9 @@ void LevelGrids::Grid::for_each_in_box(double x, double y, double rx, double ry,
   }
 }
 
+// The level of a size `ratio` = size / smallest size >= 1: floor(log2(ratio)), exactly (frexp).
+int size_level(double ratio);
+
 // Finite position and finite positive spacing; in metric mode finite position and a finite SPD metric
 // (q is not read).
 bool valid_node(const SimParticles& p, std::size_t i);
