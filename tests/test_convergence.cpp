@@ -17,7 +17,6 @@
 #include "app/config/case_file.hpp"
 #include "app/pipeline/mesh_pipeline.hpp"
 #include "core/errors.hpp"
-#include "mesh/metric_quality.hpp"
 #include "mesh/quality.hpp"
 #include "mesh/triangulate_nodes.hpp"
 #include "sim/checkpoint.hpp"
@@ -478,51 +477,4 @@ TEST_CASE("the best preset converges a geometry alone in a fraction of long's it
   CHECK(long_options.momentum == 0.0);
   CHECK_FALSE(long_run.converged);
   CHECK(long_run.state.iterations_done == 1000);
-}
-
-TEST_CASE("measure_mesh_in_metric: the inverse of the mean Q, which one sliver moves by less than the tolerance",
-          "[convergence][metric]") {
-  // A square of side 1 with 60 boundary nodes a side and an interior lattice of spacing 1/60, in the
-  // metric I * 60^2 (a unit mesh), so that about 7,000 triangles have Q near 1.
-  const int side = 60;
-  const double h = 1.0 / side;
-  NodeSet nodes;
-  for (int k = 0; k < 4 * side; ++k) {
-    const double t = static_cast<double>(k % side) / side;
-    const Vec2 p = k < side ? Vec2{t, 0} : k < 2 * side ? Vec2{1, t} : k < 3 * side ? Vec2{1 - t, 1} : Vec2{0, 1 - t};
-    nodes.add(p, h, NodeKind::Boundary, 0);
-  }
-  std::vector<int> chain(4 * side);
-  for (int k = 0; k < 4 * side; ++k) chain[static_cast<std::size_t>(k)] = k;
-  chain.push_back(0);
-  nodes.curve_nodes = {chain};
-  for (int j = 1; j < side; ++j)
-    for (int i = 1; i < side; ++i) nodes.add({(i + 0.5 * (j % 2)) * h, j * h}, h, NodeKind::Interior, -1);
-  const ConstantMetricField field(Metric{1.0 / (h * h), 0.0, 1.0 / (h * h)});
-  const MeshSample before = measure_mesh_in_metric(nodes, 100, field);
-
-  // The sample against the mesh's own Q: 1 / mean Q, and 60 Q_min.
-  const auto qualities = [&field](const NodeSet& n) {
-    const std::vector<Metric> metrics(n.size(), field.at({0, 0}));
-    const Mesh mesh = triangulate_in_metric(n, {"c0"}, metrics);
-    return metric_qualities(mesh.points, mesh.triangles, metrics);
-  };
-  const std::vector<double> q = qualities(nodes);
-  REQUIRE(q.size() > 6000);
-  double sum = 0.0;
-  for (const double v : q) sum += v;
-  CHECK(before.aspect_ratio == Approx(static_cast<double>(q.size()) / sum).epsilon(1e-12));
-  CHECK(before.min_angle == Approx(60.0 * *std::min_element(q.begin(), q.end())).epsilon(1e-12));
-
-  // One interior node moved most of the way to its neighbour: slivers with Q below 0.1 appear (the
-  // mean of 1 / Q moves by more than 2e-3), but the mesh as a whole is the same.
-  NodeSet sliver = nodes;
-  const std::size_t moved = 4 * side + 30 * (side - 1) + 30;
-  sliver.x[moved].x += 0.97 * h;
-  sliver.x[moved].y += 0.02 * h;
-  const std::vector<double> qs = qualities(sliver);
-  REQUIRE(*std::min_element(qs.begin(), qs.end()) < 0.1);
-  const MeshSample after = measure_mesh_in_metric(sliver, 200, field);
-  CHECK(std::abs(after.aspect_ratio - before.aspect_ratio) < ConvergenceOptions{}.aspect_tolerance);
-  CHECK(after.min_angle < 6.0);
 }

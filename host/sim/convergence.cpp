@@ -131,18 +131,15 @@ MeshSample measure_mesh_in_metric(const NodeSet& nodes, int iteration, const Met
     const Mesh mesh = triangulate_in_metric(nodes, names, metrics);
     if (mesh.triangles.empty()) return s;
     const std::vector<double> q = metric_qualities(mesh.points, mesh.triangles, metrics);
-    double q_min = HUGE_VAL, sum = 0.0;
+    double q_min = HUGE_VAL, inverse = 0.0;
     for (const double v : q) {
       q_min = std::min(q_min, v);
-      sum += v;
+      inverse += 1.0 / v;
     }
     // An inverted triangle (Q <= 0) is no measurement of a settled mesh.
     if (!(q_min > 0.0)) return s;
     s.min_angle = 60.0 * q_min;
-    // The inverse of the mean Q, not the mean of 1 / Q: a few slivers that keep flipping in a layer
-    // (Q 0.02 to 0.5) move a mean of 1 / Q by more than the tolerance at every measurement, while the
-    // mesh as a whole has settled; Q_min watches the worst triangles.
-    s.aspect_ratio = static_cast<double>(q.size()) / sum;
+    s.aspect_ratio = inverse / static_cast<double>(q.size());
   } catch (const Interrupted&) {
     throw;
   } catch (const Error&) {

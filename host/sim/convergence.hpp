@@ -75,7 +75,7 @@ Mesh measured_mesh(const NodeSet& nodes, std::vector<std::array<int, 3>> triangl
 
 // A metric run's measurement: the constrained Delaunay mesh in the metric (triangulate_in_metric with
 // metric.at(node)), measured in the metric (mesh/metric_quality: the mean-ratio Q, 1 = equilateral in
-// the metric). aspect_ratio is 1 / (mean Q) (1 for a unit mesh, like R / 2r) and min_angle is
+// the metric). aspect_ratio is the mean of 1 / Q (1 for a unit mesh, like R / 2r) and min_angle is
 // 60 Q_min (60 for a unit mesh, on the scale of the smallest angle), so the rule and its tolerances
 // apply unchanged. The physical shapes a metric run aims at are far from equilateral, so the
 // isotropic measures never settle there. No mesh is handed back (the mesh stage triangulates a metric
