@@ -144,8 +144,7 @@ void layer_counts(const RaySet& set, const LayerSettings& settings, const std::v
     const double a = allowed[r];
     if (a < h1 * (1.0 - 1e-12)) continue;
     // The fewest layers of the settings' stack that reach a; the last one ends at a.
-    int n = 1;
-    while (stack_height(h1, g, n) < a * (1.0 - 1e-12)) ++n;
+    int n = layers_reaching(h1, g, a);
     const double last = a - stack_height(h1, g, n - 1);
     // A last layer thinner than a quarter of the one below joins it (growth <= 1.25 g there), except
     // the first layer, whose height is the settings'.

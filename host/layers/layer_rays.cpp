@@ -158,4 +158,10 @@ double stack_height(double h1, double g, int n) {
   return h1 * (std::pow(g, n) - 1.0) / (g - 1.0);
 }
 
+int layers_reaching(double h1, double g, double t) {
+  int n = 1;
+  while (stack_height(h1, g, n) < t * (1.0 - 1e-12)) ++n;
+  return n;
+}
+
 }  // namespace pdmesh::layers_detail

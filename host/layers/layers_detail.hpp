@@ -89,6 +89,9 @@ RaySet make_rays(const std::vector<WallChain>& chains, const Geometry& geometry,
 // Cumulative height of n layers: h1 (g^n - 1) / (g - 1) (n h1 for g = 1).
 double stack_height(double h1, double g, int n);
 
+// The fewest layers (at least 1) whose stack_height reaches t, up to a relative 1e-12.
+int layers_reaching(double h1, double g, double t);
+
 // The thickness each ray may have (layer_heights.cpp): the free thickness (settings, core spacing),
 // cut where a ray meets a curve of the geometry or another ray.
 void free_and_collision_limits(RaySet& set, const Geometry& geometry, const LayerSettings& settings,

@@ -16,8 +16,7 @@ namespace {
 double last_layer(double t, const LayerSettings& s) {
   const double h1 = s.first_height, g = s.growth;
   if (t < h1) return 0.0;
-  int n = 1;
-  while (stack_height(h1, g, n) < t * (1.0 - 1e-12)) ++n;
+  const int n = layers_reaching(h1, g, t);
   double last = t - stack_height(h1, g, n - 1);
   if (n >= 3 && last < 0.25 * h1 * std::pow(g, n - 2)) last += h1 * std::pow(g, n - 2);
   return last;
@@ -28,8 +27,7 @@ double last_layer(double t, const LayerSettings& s) {
 double top_layer(double t, const LayerSettings& s) {
   const double h1 = s.first_height, g = s.growth;
   if (t < h1) return 0.0;
-  int n = 1;
-  while (stack_height(h1, g, n) < t * (1.0 - 1e-12)) ++n;
+  const int n = layers_reaching(h1, g, t);
   return std::max(last_layer(t, s), n >= 2 ? h1 * std::pow(g, n - 2) : 0.0);
 }
 

@@ -72,14 +72,17 @@ void read_case_geometry(const CaseConfig& config, MeshInputs& in) {
   if (config.geometry.projection == ProjectionKind::Equirectangular) in.projection = used;
   // What the readers did beyond the plain reading (a .poly's loops read as subdomains, vertices kept
   // or dropped): always said, also when quiet, since the mesh differs from what the file may suggest.
-  for (const std::string& note : in.geometry.notes) fmt::print(stderr, "pdmesh: note: {}\n", note);
+  const auto say_notes_from = [&](std::size_t first) {
+    for (std::size_t k = first; k < in.geometry.notes.size(); ++k)
+      fmt::print(stderr, "pdmesh: note: {}\n", in.geometry.notes[k]);
+  };
+  say_notes_from(0);
   // The far field around everything given: the body becomes a hole; what it leaves out of the body
   // (farfield.cavities) is said in notes after the readers', also when quiet.
   if (config.farfield.given()) {
     const std::size_t said = in.geometry.notes.size();
     in.geometry = with_farfield(in.geometry, config.farfield, config.spacing.gradation, options);
-    for (std::size_t k = said; k < in.geometry.notes.size(); ++k)
-      fmt::print(stderr, "pdmesh: note: {}\n", in.geometry.notes[k]);
+    say_notes_from(said);
   }
 }
 

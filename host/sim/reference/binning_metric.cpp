@@ -133,20 +133,13 @@ void build_neighbours_metric(const SimParticles& p, double cutoff, NeighbourList
         std::sort(found.begin(), found.end());
         examined[i] = visited;
         // Each row has its own slots in the list; the flags are summed below, in node order.
-        const auto count = static_cast<std::int32_t>(found.size());
-        list.count[i] = count;
-        const std::size_t base = i * static_cast<std::size_t>(list.stride);
-        const std::size_t kept = std::min(found.size(), static_cast<std::size_t>(list.stride));
-        std::copy_n(found.begin(), kept, list.index.begin() + static_cast<std::ptrdiff_t>(base));
+        store_row(i, found, list);
       },
       256);
   for (std::size_t i = 0; i < n; ++i) {
     if (p.kind[i] != kSimInterior) continue;
     flags.pairs_examined += examined[i];
-    const std::int32_t count = list.count[i];
-    flags.max_count = std::max(flags.max_count, count);
-    flags.pairs_within += static_cast<std::uint64_t>(count);
-    if (count > list.stride) flags.overflow = 1;
+    add_row_flags(list.count[i], list, flags);
   }
 }
 

@@ -127,15 +127,22 @@ void start_list(const SimParticles& p, NeighbourList& list, NeighbourFlags& flag
   }
 }
 
-void store_sorted(std::size_t i, const std::vector<std::int32_t>& found, NeighbourList& list, NeighbourFlags& flags) {
-  const auto count = static_cast<std::int32_t>(found.size());
-  list.count[i] = count;
-  flags.max_count = std::max(flags.max_count, count);
-  flags.pairs_within += found.size();
-  if (count > list.stride) flags.overflow = 1;
+void store_row(std::size_t i, const std::vector<std::int32_t>& found, NeighbourList& list) {
+  list.count[i] = static_cast<std::int32_t>(found.size());
   const std::size_t base = i * static_cast<std::size_t>(list.stride);
   const std::size_t kept = std::min(found.size(), static_cast<std::size_t>(list.stride));
   std::copy_n(found.begin(), kept, list.index.begin() + static_cast<std::ptrdiff_t>(base));
+}
+
+void add_row_flags(std::int32_t count, const NeighbourList& list, NeighbourFlags& flags) {
+  flags.max_count = std::max(flags.max_count, count);
+  flags.pairs_within += static_cast<std::uint64_t>(count);
+  if (count > list.stride) flags.overflow = 1;
+}
+
+void store_sorted(std::size_t i, const std::vector<std::int32_t>& found, NeighbourList& list, NeighbourFlags& flags) {
+  store_row(i, found, list);
+  add_row_flags(list.count[i], list, flags);
 }
 
 }  // namespace pdmesh::reference

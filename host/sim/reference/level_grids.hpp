@@ -69,13 +69,6 @@ class LevelGrids {
     for (std::size_t m = l + 1; m < exact_.size(); ++m)
       if (!exact_[m].empty()) exact_[m].for_each_near(x, y, reach(m), visit);
   }
-  // As for_each_near with a box of half-widths reach_x(M) along x and reach_y(M) along y.
-  template <class ReachX, class ReachY, class Visit>
-  void for_each_in_box(double x, double y, std::size_t l, ReachX&& reach_x, ReachY&& reach_y, Visit&& visit) const {
-    cumulative_[l].for_each_in_box(x, y, reach_x(l), reach_y(l), visit);
-    for (std::size_t m = l + 1; m < exact_.size(); ++m)
-      if (!exact_[m].empty()) exact_[m].for_each_in_box(x, y, reach_x(m), reach_y(m), visit);
-  }
 
  private:
   double r_min_ = 0.0;
@@ -113,7 +106,14 @@ bool valid_node(const SimParticles& p, std::size_t i);
 // fills Boundary nodes' {prev, next}.
 void start_list(const SimParticles& p, NeighbourList& list, NeighbourFlags& flags);
 
-// Stores node i's neighbours (sorted ascending by the caller) into the padded list; updates flags.
+// Stores node i's neighbours (sorted ascending by the caller) into the padded list: its count and
+// the first list.stride of them. Rows of different nodes can be stored concurrently.
+void store_row(std::size_t i, const std::vector<std::int32_t>& found, NeighbourList& list);
+
+// Adds a stored row of `count` neighbours to the flags (largest count, pairs within, overflow).
+void add_row_flags(std::int32_t count, const NeighbourList& list, NeighbourFlags& flags);
+
+// store_row, then add_row_flags.
 void store_sorted(std::size_t i, const std::vector<std::int32_t>& found, NeighbourList& list, NeighbourFlags& flags);
 
 }  // namespace pdmesh::reference
