@@ -32,7 +32,7 @@ void free_and_collision_limits(RaySet& set, const Geometry& geometry, const Laye
                                const CoreSpacing& core_spacing, std::vector<double>& allowed) {
   const int nr = static_cast<int>(set.rays.size());
   allowed.assign(nr, 0.0);
-  std::vector<Vec2> end(nr);
+  std::vector<Vec2> end(nr), probe(nr);
   Box box;
   double longest = 0.0;
   for (int r = 0; r < nr; ++r) {
@@ -45,8 +45,12 @@ void free_and_collision_limits(RaySet& set, const Geometry& geometry, const Laye
     }
     allowed[r] = ray.free_thickness;
     end[r] = p + (ray.free_thickness / ray.correction) * ray.direction;
+    // A curve at distance L cuts the ray to gap_fraction x L: every curve nearer than the free
+    // thickness over gap_fraction does, also one the free layer would not reach (two facing walls
+    // between one and two thicknesses apart, whose layers would otherwise overlap).
+    probe[r] = p + (ray.free_thickness / (settings.gap_fraction * ray.correction)) * ray.direction;
     box.add(p);
-    box.add(end[r]);
+    box.add(probe[r]);
     longest = std::max(longest, ray.free_thickness / ray.correction);
   }
   if (nr == 0) return;
@@ -58,7 +62,7 @@ void free_and_collision_limits(RaySet& set, const Geometry& geometry, const Laye
   // First the curves: a ray that meets a curve at distance L stops at gap_fraction x L.
   for (int r = 0; r < nr; ++r) {
     const LayerRay& ray = set.rays[r];
-    const Vec2 p = set.wall_points[ray.wall_node], e = end[r];
+    const Vec2 p = set.wall_points[ray.wall_node], e = probe[r];
     const double length = norm(e - p);
     grid.query(p, e, [&](int id) {
       if (id >= ns) return;
