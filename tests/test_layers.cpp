@@ -199,6 +199,34 @@ TEST_CASE("two close circles: the layers shrink in the gap, no crossing, jumps <
   REQUIRE(m.fronts.size() == 2);
 }
 
+TEST_CASE("two plates between one and two thicknesses apart: both layers stop at gap_fraction of the gap", "[layers]") {
+  // Neither free layer reaches the other plate and the facing rays are parallel (they never cross),
+  // but together the layers would fill the gap: each ray must see the plate it faces (within
+  // thickness / gap_fraction) and stop at gap_fraction of the distance, the fronts leaving
+  // (1 - 2 gap_fraction) of the gap to the core, found by the collision limits (no repair round).
+  const double gap = 0.45, thickness = 0.3;
+  const Geometry g =
+      build_geometry({box({-6, -5}, {6, 5}, 4, "far"), box({-2, -gap / 2 - 0.5}, {2, -gap / 2}, 40, "low"),
+                      box({-2, gap / 2}, {2, gap / 2 + 0.5}, 40, "high")});
+  const LayerSettings s = settings(1e-3, 1.2, thickness);
+  const LayerMesh m = build_boundary_layers(g, curves_by_name(g, {"low", "high"}, "test"), s);
+  const LayerMeasures q = measure_layers(m, s.first_height);
+  CHECK(m.repairs == 0);
+  CHECK(q.inverted_cells == 0);
+  CHECK(crossing_edges(m) == 0);
+  CHECK(q.max_thickness_jump <= 1.3 + 1e-12);
+  CHECK(q.max_thickness == Approx(thickness).epsilon(1e-9));  // away from the gap
+  int facing = 0;
+  for (const LayerRay& r : m.rays) {
+    const Vec2 p = m.nodes[r.wall_node];
+    if (std::abs(std::abs(p.y) - gap / 2) < 1e-12 && std::abs(p.x) <= 1.0) {
+      CHECK(r.thickness == Approx(s.gap_fraction * gap).epsilon(1e-9));
+      ++facing;
+    }
+  }
+  CHECK(facing == 2 * 21);
+}
+
 TEST_CASE("the core spacing stops the layers where the growth into the core is at most the growth", "[layers]") {
   const Geometry g = build_geometry({box({-5, -5}, {5, 5}, 4, "far"), circle({0, 0}, 1.0, 64, "wall")});
   const LayerSettings s = settings(1e-3, 1.2, 1.0);

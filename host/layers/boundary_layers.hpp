@@ -36,8 +36,9 @@ struct LayerSettings {
   // against the wall, so that dense wall nodes do not let the front drop along the rays.
   double max_slope = 0.3;
   // A ray that meets another curve at distance L stops at gap_fraction x L (the front opposite
-  // stops there too, leaving (1 - 2 gap_fraction) L to the core); rays that cross stop at
-  // cross_fraction of the crossing distance.
+  // stops there too, leaving (1 - 2 gap_fraction) L to the core): a curve without layers where the
+  // free layer reaches it, a wall of these layers up to the free thickness over gap_fraction. Rays
+  // that cross stop at cross_fraction of the crossing distance.
   double gap_fraction = 0.4;
   double cross_fraction = 0.5;
   bool split_quads = false;  // write each quad as 2 triangles (the diagonal with the smaller max angle)

@@ -32,7 +32,7 @@ void free_and_collision_limits(RaySet& set, const Geometry& geometry, const Laye
                                const CoreSpacing& core_spacing, std::vector<double>& allowed) {
   const int nr = static_cast<int>(set.rays.size());
   allowed.assign(nr, 0.0);
-  std::vector<Vec2> end(nr);
+  std::vector<Vec2> end(nr), probe(nr);
   Box box;
   double longest = 0.0;
   for (int r = 0; r < nr; ++r) {
@@ -45,8 +45,12 @@ void free_and_collision_limits(RaySet& set, const Geometry& geometry, const Laye
     }
     allowed[r] = ray.free_thickness;
     end[r] = p + (ray.free_thickness / ray.correction) * ray.direction;
+    // A wall at distance L cuts the ray to gap_fraction x L also where the free layer would not
+    // reach it (L up to the free thickness over gap_fraction): two facing walls between one and two
+    // thicknesses apart would otherwise both grow their full layers into the gap.
+    probe[r] = p + (ray.free_thickness / (settings.gap_fraction * ray.correction)) * ray.direction;
     box.add(p);
-    box.add(end[r]);
+    box.add(probe[r]);
     longest = std::max(longest, ray.free_thickness / ray.correction);
   }
   if (nr == 0) return;
@@ -55,17 +59,21 @@ void free_and_collision_limits(RaySet& set, const Geometry& geometry, const Laye
   SegmentGrid grid(box, cell > 0.0 ? cell : 1.0);
   for (int k = 0; k < ns; ++k) grid.insert(k, geometry.segments[k].a, geometry.segments[k].b);
   for (int r = 0; r < nr; ++r) grid.insert(ns + r, set.wall_points[set.rays[r].wall_node], end[r]);
-  // First the curves: a ray that meets a curve at distance L stops at gap_fraction x L.
+  std::vector<std::uint8_t> wall(geometry.curves.size(), 0);
+  for (const int c : set.wall_curve) wall[c] = 1;
+  // First the curves: a ray that meets a curve at distance L stops at gap_fraction x L (a curve
+  // without layers only where the free layer reaches it, a wall of these layers up to the probe).
   for (int r = 0; r < nr; ++r) {
     const LayerRay& ray = set.rays[r];
-    const Vec2 p = set.wall_points[ray.wall_node], e = end[r];
-    const double length = norm(e - p);
+    const Vec2 p = set.wall_points[ray.wall_node], e = probe[r];
+    const double length = norm(e - p), reach = norm(end[r] - p);
     grid.query(p, e, [&](int id) {
       if (id >= ns) return;
       const Segment& s = geometry.segments[id];
       if (s.a == p || s.b == p || !segments_intersect(p, e, s.a, s.b)) return;
-      const double t = intersection_parameter(p, e, s.a, s.b);
-      allowed[r] = std::min(allowed[r], settings.gap_fraction * t * length * ray.correction);
+      const double at = intersection_parameter(p, e, s.a, s.b) * length;
+      if (!wall[s.curve] && at > reach) return;
+      allowed[r] = std::min(allowed[r], settings.gap_fraction * at * ray.correction);
     });
   }
   // Then the rays as cut there: of two rays that cross at X, the one whose wall node is farther from
