@@ -85,6 +85,9 @@ TEST_CASE("[[boundary_layer]] tables are read into CaseConfig", "[app][case][lay
   CHECK(a.thickness == 0.02);
   CHECK(a.layers == 0);
   CHECK(a.quads);
+  // Where the curves were given (line 5, the value's column), for the errors of names only the
+  // geometry files can check.
+  CHECK(a.curves_where == kCase.string() + ":5:10");
   const auto& b = c.boundary_layers[1];
   CHECK(b.layers == 4);
   CHECK(b.thickness == 0.0);
@@ -140,8 +143,10 @@ TEST_CASE("bad [[boundary_layer]] settings are input errors naming the key and t
 TEST_CASE("a run with an unknown layer curve writes nothing", "[app][layers]") {
   const fs::path out = fs::temp_directory_path() / "pdmesh_test_layers_unknown";
   fs::remove_all(out);
-  const CaseConfig c = layered_case(out, "wing", true);
-  CHECK_THROWS_WITH(run_mesh(c), Catch::Contains("boundary_layer.curves") && Catch::Contains("wing"));
+  CaseConfig c = layered_case(out, "wing", true);
+  c.boundary_layers[0].curves_where = "demo.toml:7:10";
+  CHECK_THROWS_WITH(run_mesh(c), Catch::StartsWith("demo.toml:7:10: boundary_layer.curves: unknown curve 'wing' "
+                                                   "(the geometry's curves: far, wall)"));
   CHECK_FALSE(fs::exists(out));
 }
 

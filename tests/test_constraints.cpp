@@ -119,7 +119,10 @@ TEST_CASE("constraints: embedded points inside, on a curve, duplicated", "[geome
   raw.curves = {unit_square(), curve({{0.2, 0.5}, {0.8, 0.5}}, "bar", true)};
   raw.points = {{{0.25, 0.75}, "pts", 3}, {{0.25, 0.75}, "pts", 4}, {{0.6, 0.5}, "pts", 5}};
   const Geometry g = build_geometry(raw);
-  CHECK(g.embedded_points == std::vector<Vec2>{{0.25, 0.75}});
+  REQUIRE(g.embedded_points.size() == 1);
+  CHECK(g.embedded_points[0].p == Vec2{0.25, 0.75});
+  CHECK(g.embedded_points[0].file == "pts");
+  CHECK(g.embedded_points[0].line == 3);
   CHECK(has_vertex(g.curves[1], {0.6, 0.5}));
   REQUIRE(critical_at(g, {0.6, 0.5}) != nullptr);
 }

@@ -253,7 +253,7 @@ TEST_CASE("a far field around a body with a hole and its hole point: the body is
   CHECK(has_note(g, "leaves out 1 loop nested inside the body"));
   CHECK(has_note(g, "curve 'cavity' (cavity.crv:1)"));
   CHECK(has_note(g, "leaves out 1 hole point inside the body"));
-  CHECK(has_note(g, "(2, 2)"));
+  CHECK(has_note(g, "the first: (2, 2) (body.poly:9)"));
 }
 
 TEST_CASE("a far field around a body with an embedded constraint, point and region: they are left out") {
@@ -281,7 +281,7 @@ TEST_CASE("a far field around a body with an embedded constraint, point and regi
   CHECK(g.loops.size() == 2);
   REQUIRE(g.notes.size() == 3);
   CHECK(has_note(g, "leaves out 2 embedded constraint curves inside the body, the first: curve 'web' (body.crv:12)"));
-  CHECK(has_note(g, "leaves out 2 embedded points inside the body, the first: (2.5, 3.5)"));
+  CHECK(has_note(g, "leaves out 2 embedded points inside the body, the first: (2.5, 3.5) (body.poly:20)"));
   CHECK(has_note(g, "leaves out 1 region point inside the body, the first: (0.5, 0.5) (body.poly:30)"));
 }
 
@@ -309,7 +309,14 @@ TEST_CASE("farfield.cavities = mesh keeps every loop: the even-odd rule and its 
   RawGeometry raw;
   raw.curves = {square("outer", 0.0, 4.0), square("cavity", 1.0, 3.0)};
   raw.holes = {{{2.0, 2.0}, "body.poly", 9}};
-  CHECK_THROWS_WITH(with_farfield(build_geometry(raw), mesh, 0.2, {}), Catch::Contains("lies inside the domain"));
+  // The error names where the hole point was read, not the far field.
+  CHECK_THROWS_WITH(with_farfield(build_geometry(raw), mesh, 0.2, {}),
+                    Catch::StartsWith("body.poly:9: hole point (2, 2) lies inside the domain"));
+  RawGeometry with_point;
+  with_point.curves = {square("outer", 0.0, 4.0), square("cavity", 1.0, 3.0)};
+  with_point.points = {{{0.5, 0.5}, "body.poly", 14}};
+  CHECK_THROWS_WITH(with_farfield(build_geometry(with_point), mesh, 0.2, {}),
+                    Catch::StartsWith("body.poly:14: point (0.5, 0.5) lies outside the domain"));
 }
 
 TEST_CASE("a far field around bodies without nested loops: both modes give the geometry of the plain rule") {
@@ -336,13 +343,13 @@ TEST_CASE("pdmesh mesh of a .poly with a hole and a hole point and a far field: 
   auto r = run_pdmesh(run + " --farfield circle:5");
   INFO(r.output);
   REQUIRE(r.status == 0);
-  CHECK(r.output.find("note: --farfield circle:5: farfield.size = 5: the far field leaves out 1 loop nested") !=
-        std::string::npos);
+  CHECK(r.output.find("note: --farfield circle:5: the far field leaves out 1 loop nested") != std::string::npos);
   CHECK(r.output.find("leaves out 1 hole point inside the body") != std::string::npos);
   std::filesystem::remove_all(out);
   r = run_pdmesh(run + " --farfield circle:5 --set farfield.cavities=mesh");
   CHECK(r.status == 2);
-  CHECK(r.output.find("lies inside the domain, not in a hole") != std::string::npos);
+  CHECK(r.output.find("error: " + poly + ":62: hole point (0.47, -0.5) lies inside the domain, not in a hole") !=
+        std::string::npos);
   r = run_pdmesh(run + " --farfield circle:5 --set farfield.cavities=hollow");
   CHECK(r.status == 2);
   CHECK(r.output.find("farfield.cavities must be one of solid, mesh, got 'hollow'") != std::string::npos);

@@ -286,7 +286,7 @@ TEST_CASE("bad layer settings are input errors naming the value", "[layers]") {
   CHECK_THAT(error_message<InputError>([&] {
                curves_by_name(g, {"wall", "flap"}, "boundary_layer.curves");
              }),
-             Catch::Contains("boundary_layer.curves: unknown curve \"flap\" (the curves are: far, wall)"));
+             Catch::Contains("boundary_layer.curves: unknown curve 'flap' (the geometry's curves: far, wall)"));
   CHECK_THAT(msg(settings(1e-12, 1.000001, 1.0)), Catch::Contains("(at most 10000)"));
   CHECK(msg(settings(1e-3, 1.2, 0.05)).empty());  // good settings pass
 }

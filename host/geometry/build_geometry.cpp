@@ -351,7 +351,7 @@ void check_holes(Geometry& g, const std::vector<RawHolePoint>& holes) {
                       "of the loops)",
                       where(h.file, h.line), format_point(h.p)));
     }
-    g.hole_points.push_back(h.p);
+    g.hole_points.push_back(h);
   }
 }
 
@@ -392,7 +392,7 @@ void check_points_inside(Geometry& g, const std::vector<int>& walls_ids, const s
           "inside the domain",
           where(rp.file, rp.line), format_point(rp.p)));
     }
-    g.embedded_points.push_back(rp.p);
+    g.embedded_points.push_back(rp);
   }
 }
 

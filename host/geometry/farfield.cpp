@@ -106,6 +106,10 @@ struct LeftOut {
   }
 };
 
+std::string point_label(Vec2 p, const std::string& file, int line) {
+  return fmt::format("{} ({})", detail::format_point(p), detail::where(file, line));
+}
+
 std::string curve_label(const Curve& c) {
   return fmt::format("curve '{}' ({})", c.name, detail::where(c.file, c.line));
 }
@@ -179,28 +183,28 @@ Geometry with_farfield(const Geometry& body, const Farfield& f, double gradation
   const double body_spacing = segments > 0 ? length / static_cast<double>(segments) : 0.0;
   raw.push_back(farfield_curve(body.extents, f, body_spacing, gradation));
   std::vector<RawHolePoint> holes;
-  for (const Vec2 p : body.hole_points) {
-    if (inside_body(p)) {
-      holes_out.add(detail::format_point(p));
+  for (const RawHolePoint& h : body.hole_points) {
+    if (inside_body(h.p)) {
+      holes_out.add(point_label(h.p, h.file, h.line));
       continue;
     }
-    holes.push_back({p, f.label, 0});
+    holes.push_back(h);
   }
   // Embedded points lie in the body's domain, so inside the body; with the cavities meshed, the
   // even-odd rule of the new geometry checks them again.
   std::vector<RawPoint> points;
-  for (const Vec2 p : body.embedded_points) {
+  for (const RawPoint& p : body.embedded_points) {
     if (solid) {
-      points_out.add(detail::format_point(p));
+      points_out.add(point_label(p.p, p.file, p.line));
       continue;
     }
-    points.push_back({p, f.label, 0});
+    points.push_back(p);
   }
   Geometry g = points.empty() ? build_geometry(std::move(raw), holes, options)
                               : build_geometry(RawGeometry{std::move(raw), holes, std::move(points), {}, {}}, options);
   for (const GeometryRegion& r : body.regions) {
     if (inside_body(r.p)) {
-      regions_out.add(fmt::format("{} ({})", detail::format_point(r.p), detail::where(r.file, r.line)));
+      regions_out.add(point_label(r.p, r.file, r.line));
       continue;
     }
     g.regions.push_back(r);

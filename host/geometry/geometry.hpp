@@ -120,9 +120,10 @@ struct Geometry {
   Box extents;
   double area = 0.0;  // even-odd interior area of all loops
   // Hole points from .poly files: accepted, checked to lie in a hole, otherwise unused (even-odd rule).
-  std::vector<Vec2> hole_points;
-  // Embedded points (RawPoint): nodes the mesh must have inside the domain.
-  std::vector<Vec2> embedded_points;
+  // With the file and line they came from, for the errors of a geometry built around them (a far field).
+  std::vector<RawHolePoint> hole_points;
+  // Embedded points: nodes the mesh must have inside the domain, with the file and line they came from.
+  std::vector<RawPoint> embedded_points;
   // Regional attributes (.poly files): the outputs tag each triangle with the attribute of the
   // region it lies in (mesh/region_tags.hpp), 0 outside every region.
   std::vector<GeometryRegion> regions;

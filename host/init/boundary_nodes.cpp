@@ -82,7 +82,7 @@ NodeSet assemble_boundary_nodes(const Geometry& geometry, const SpacingField& sp
     }
   }
   // 3. The embedded points (Geometry::embedded_points): Fixed nodes on no curve.
-  for (const Vec2 p : geometry.embedded_points) fixed_node(p, -1);
+  for (const RawPoint& p : geometry.embedded_points) fixed_node(p.p, -1);
   return nodes;
 }
 

@@ -11,6 +11,7 @@
 #include <unordered_set>
 
 #include "core/errors.hpp"
+#include "core/input_file.hpp"
 #include "core/predicates.hpp"
 #include "layers/layers_detail.hpp"
 
@@ -74,7 +75,8 @@ std::vector<int> curves_by_name(const Geometry& geometry, const std::vector<std:
     if (found < 0) {
       std::string known;
       for (const Curve& c : geometry.curves) known += (known.empty() ? "" : ", ") + c.name;
-      throw InputError(fmt::format("{}: unknown curve \"{}\" (the curves are: {})", what, name, known));
+      throw InputError(
+          fmt::format("{}: unknown curve '{}' (the geometry's curves: {})", what, quote_input(name), known));
     }
     out.push_back(found);
   }

@@ -106,7 +106,7 @@ class Mesh:
         names = list(self.boundary_edges)
         for name in open_boundaries:
             if name not in names:
-                raise InputError(f"open_boundaries: unknown curve '{name}' (the curves are: {', '.join(names)})")
+                raise InputError(f"open_boundaries: unknown curve '{name}' (the geometry's curves: {', '.join(names)})")
         return list(self._core.write(path, format, [str(n) for n in open_boundaries]))
 
     def picture(self, path: str | os.PathLike, color_by: str | None = None, title: str | None = None,

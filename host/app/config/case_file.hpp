@@ -260,6 +260,7 @@ struct CaseConfig {
   // particle core meshed on their fronts. None by default (the outputs are then those of the core alone).
   struct BoundaryLayer {
     std::vector<std::string> curves;  // names from geometry.curve_names (or the files' curve names)
+    std::string curves_where;         // where curves was given ("case.toml:12:10", "--set ..."), for errors
     double first_height = 0.0;        // given, or from y_plus (flat-plate estimate, first_height_for_y_plus)
     double y_plus = 0.0, reynolds = 0.0, reference_length = 0.0;  // 0 unless y_plus is given
     double growth = 1.2;

@@ -34,6 +34,7 @@ CaseConfig::BoundaryLayer read_one(const Reader& r, const toml::table& t, const 
   };
   const toml::node& curves = required("curves");
   b.curves = r.strings("boundary_layer.curves", curves);
+  b.curves_where = r.where("boundary_layer.curves", &curves.source());
   if (b.curves.empty()) r.fail("boundary_layer.curves", &curves, "boundary_layer.curves must name at least one curve");
   // Names the case file gives are checked here; names from the geometry files once they are read.
   if (!c.geometry.curve_names.empty()) {

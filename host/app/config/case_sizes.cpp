@@ -102,7 +102,11 @@ void read_size_sections(const Reader& r, const toml::table& root, CaseConfig& c)
   const toml::node* far = find(root, "farfield", "size");
   if (far != nullptr) {
     c.farfield.size = r.positive("farfield.size", *far);
-    c.farfield.label = fmt::format("{}: farfield.size = {}", r.where("farfield.size", &far->source()), c.farfield.size);
+    // An option or setting names the far field itself ("--farfield circle:5"); a case file by its line.
+    const std::string* option = r.override_label("farfield.size");
+    c.farfield.label = option != nullptr ? *option
+                                         : fmt::format("{}: farfield.size = {}",
+                                                       r.where("farfield.size", &far->source()), c.farfield.size);
   }
   if (r.partial()) return;  // how the keys agree: the whole configuration decides
   if (find(root, "farfield", "shape") != nullptr && far == nullptr)

@@ -113,7 +113,7 @@ LayerMotion::LayerMotion(const CaseConfig& config, std::unique_ptr<MeshInputs> i
   // The core's curves at rest: a step's pose applied to a moving front's points here gives exactly
   // the layer nodes that pose gives (the same arithmetic on the same numbers), which the join needs.
   core_rest_ = core_inputs_->geometry;
-  embedded_ = core_rest_.embedded_points;
+  for (const RawPoint& p : core_rest_.embedded_points) embedded_.push_back(p.p);
   for (Curve& c : core_rest_.curves) {
     const bool moves = named(motion_curves, c.name) || named(moving_fronts, c.name);
     core_moving_.push_back(moves ? 1 : 0);

@@ -144,7 +144,7 @@ std::unique_ptr<LayeredCase> build_layers(const CaseConfig& config, const MeshIn
     s.settings.fan_elements_per_pi = fan_elements_matching_core(b.growth);
     check_layer_settings(s.settings);
     s.geometry = geometry;
-    s.walls = curves_by_name(*geometry, b.curves, "boundary_layer.curves");
+    s.walls = curves_by_name(*geometry, b.curves, b.curves_where + ": boundary_layer.curves");
     s.mesh = build_boundary_layers(*geometry, s.walls, s.settings, core_spacing);
     // Each front node's mean edge length along the front and the longest front edge at it. The core's
     // spacing there is growth x the last layer where the front's edges agree with it; where the front
