@@ -523,9 +523,12 @@ Mesh mesh_layered_core(const CaseConfig& config, const MeshInputs& inputs, const
   if (dropped > 0)
     progress(config, "boundary layers: {} node(s) the simulation snapped onto a layer front left out", dropped);
   Mesh mesh = mesh_and_measure(core, inputs, spacing, core_nodes, phases, dropped ? nullptr : triangulated);
-  // Only with the cleanup, which makes the triangles around a moved node good again.
-  const std::vector<Vec2> steep =
-      config.cleanup.enabled ? steep_junctions(layered, mesh, kSteepJunction) : std::vector<Vec2>{};
+  // Only with the cleanup, which makes the triangles around a moved node good again, and not under a
+  // metric field: there the core's first row follows the metric, whose unit step along a ray is not
+  // growth x the last layer (the layer stops where it reaches it).
+  const std::vector<Vec2> steep = config.cleanup.enabled && spacing.metric() == nullptr
+                                      ? steep_junctions(layered, mesh, kSteepJunction)
+                                      : std::vector<Vec2>{};
   if (!steep.empty()) {
     const std::size_t moved = place_first_row(core_nodes, layered, &steep);
     progress(config, "boundary layers: {} steep junction(s), {} core node(s) pinned on their rays", steep.size(),
