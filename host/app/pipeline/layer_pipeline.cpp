@@ -288,8 +288,14 @@ std::unique_ptr<LayeredCase> build_layers(const CaseConfig& config, const MeshIn
       // each ray.
       const double offset =
           b.layers > 0 ? b.first_height * (std::pow(b.growth, b.layers) - 1.0) / (b.growth - 1.0) : b.thickness;
-      geometry = std::make_shared<const Geometry>(
-          metric_wall_geometry(*geometry, s.walls, *inputs.tree, *inputs.metric, offset, options));
+      try {
+        geometry = std::make_shared<const Geometry>(
+            metric_wall_geometry(*geometry, s.walls, *inputs.tree, *inputs.metric, offset, options));
+      } catch (const GeometryError& e) {
+        // A chord that meets another curve (a narrow gap): the wall keeps the input's points.
+        progress(config, "boundary layers: the wall curves {} keep their input points under the metric ({})",
+                 fmt::join(b.curves, ", "), e.what());
+      }
       s.walls = curves_by_name(*geometry, b.curves, "boundary_layer.curves");
       s.settings.split_span = 0.0;
       const MetricSizeAlongRay along_ray(*geometry, s.walls, *inputs.metric);
