@@ -102,7 +102,7 @@ constexpr double kCoreStopSlack = 1.5;
 constexpr double kSplitRayTilt = 5.0;
 
 // Under a metric field the wall nodes follow the metric along the wall: a wall curve keeps those of
-// its points that make chords of at most this metric length (its critical points always), so that
+// its points that make chords of about this metric length (its critical points always), so that
 // the layer's front, whose edges are about its wall edges, is near the unit-mesh window along the
 // wall instead of at the input's spacing.
 constexpr double kWallChordMetricLength = 1.0;
