@@ -5,7 +5,9 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <map>
+#include <numbers>
 #include <fmt/format.h>
 
 #include "app/pipeline/mesh_pipeline.hpp"
@@ -16,8 +18,10 @@
 #include "io/quality_report.hpp"
 #include "layers/front_geometry.hpp"
 #include "layers/layer_measures.hpp"
+#include "mesh/metric_quality.hpp"
 #include "mesh/quality.hpp"
 #include "render/mesh_picture.hpp"
+#include "spacing/metric_complexity.hpp"
 
 namespace pdmesh {
 
@@ -97,6 +101,139 @@ constexpr double kCoreStopSlack = 1.5;
 // (LayerSettings::max_ray_tilt_deg), so that the split wall cells stay within about 90 + this.
 constexpr double kSplitRayTilt = 5.0;
 
+// Under a metric field the wall nodes follow the metric along the wall: a wall curve keeps those of
+// its points that make chords of about this metric length (its critical points always), so that
+// the layer's front, whose edges are about its wall edges, is near the unit-mesh window along the
+// wall instead of at the input's spacing.
+constexpr double kWallChordMetricLength = 1.0;
+// A chord may be up to this much longer where that brings it nearer to kWallChordMetricLength than
+// the chord a point shorter.
+constexpr double kWallChordStretch = 1.25;
+// ... as far as the wall's curvature allows: a chord turns from the chord before it, and from each
+// input segment it replaces, by at most this many degrees (below the 10 at which a triangle layer's
+// vertex gets a fan), and the points it drops lie within this metric distance of it.
+constexpr double kWallChordTurnDeg = 8.0;
+constexpr double kWallChordSagitta = 0.1;
+
+// The points of a wall curve under `metric`: those of `curve`'s points that make chords of about unit
+// metric length (its first and last point and its critical points always), and input segments longer
+// than that split into equal parts of about unit length. A chord's
+// metric length is the sum of the input segments it replaces, each measured in the metric at the wall
+// and at `offset` along its normal into the domain (`domain`: where the layer's front will be), the
+// longer of the two, so that a metric that changes across the layer (a solution's shear layer along the wall)
+// is seen at the front too.
+std::vector<Vec2> wall_stations(const Curve& curve, const GeometryTree& domain, const MetricField& metric,
+                                double offset) {
+  const std::vector<Vec2>& p = curve.points;
+  const std::size_t n = p.size();
+  std::vector<Metric> m(n);
+  for (std::size_t i = 0; i < n; ++i) m[i] = metric.at(p[i]);
+  // segment[i]: the metric length of the input segment i -> i + 1.
+  std::vector<double> segment(n > 0 ? n - 1 : 0);
+  for (std::size_t i = 0; i + 1 < n; ++i) {
+    const Vec2 v = p[i + 1] - p[i];
+    const Vec2 unit_normal = Vec2{-v.y, v.x} * (1.0 / std::hypot(v.x, v.y));
+    // The normal towards the domain (the side the layer grows into), probed a hundredth of the
+    // segment off its midpoint.
+    const Vec2 probe = (p[i] + p[i + 1]) * 0.5 + unit_normal * (0.01 * std::hypot(v.x, v.y));
+    const Vec2 normal = unit_normal * (domain.inside(probe) ? offset : -offset);
+    segment[i] = std::max(edge_length(m[i], m[i + 1], v),
+                          edge_length(metric.at(p[i] + normal), metric.at(p[i + 1] + normal), v));
+  }
+  const double max_turn = kWallChordTurnDeg * std::numbers::pi / 180.0;
+  const auto turn = [](Vec2 a, Vec2 b) { return std::fabs(std::atan2(cross(a, b), dot(a, b))); };
+  Vec2 before{0.0, 0.0};  // the chord before (none at the curve's start)
+  // Whether the chord k -> j may replace the input points between them.
+  const auto fits = [&](std::size_t k, std::size_t j) {
+    const Vec2 c = p[j] - p[k];
+    const double lc = std::hypot(c.x, c.y);
+    double length = 0.0;
+    for (std::size_t i = k; i < j; ++i) length += segment[i];
+    if (length > kWallChordMetricLength * kWallChordStretch) return false;
+    if ((before.x != 0.0 || before.y != 0.0) && turn(before, c) > max_turn) return false;
+    for (std::size_t i = k + 1; i <= j; ++i) {
+      if (turn(c, p[i] - p[i - 1]) > max_turn) return false;
+      if (i == j) break;
+      // p[i]'s offset from the chord, across it, in the metric at p[i].
+      const Vec2 d = p[i] - p[k];
+      const double across = cross(c, d) / lc;
+      if (m[i].length(Vec2{-c.y / lc, c.x / lc} * across) > kWallChordSagitta) return false;
+    }
+    return true;
+  };
+  std::vector<Vec2> kept{p[0]};
+  std::size_t k = 0;
+  while (k + 1 < n) {
+    std::size_t j = k + 1;
+    // The longest chord within unit length, or one a little longer where that is nearer to 1.
+    double length = segment[k];
+    while (j + 1 < n && curve.critical[j] == 0 && fits(k, j + 1) &&
+           (length + segment[j] <= kWallChordMetricLength ||
+            length + segment[j] - kWallChordMetricLength < kWallChordMetricLength - length)) {
+      length += segment[j];
+      ++j;
+    }
+    // An input segment longer than that in the metric is split into equal parts of about unit length.
+    const int parts = j == k + 1 ? std::max(1, static_cast<int>(std::lround(segment[k] / kWallChordMetricLength))) : 1;
+    for (int q = 1; q < parts; ++q) kept.push_back(p[k] + (p[j] - p[k]) * (static_cast<double>(q) / parts));
+    kept.push_back(p[j]);
+    before = p[j] - p[k];
+    k = j;
+  }
+  return kept;
+}
+
+// The geometry with each of `walls` reduced to its wall_stations under `metric` (`offset`: the
+// layer's thickness; the other curves as they are): what the layers of a table under a metric field grow from.
+Geometry metric_wall_geometry(const Geometry& geometry, const std::vector<int>& walls, const GeometryTree& domain,
+                              const MetricField& metric, double offset, const GeometryOptions& options) {
+  std::vector<RawCurve> raw;
+  for (std::size_t c = 0; c < geometry.curves.size(); ++c) {
+    const Curve& curve = geometry.curves[c];
+    RawCurve r{curve.name, {}, curve.file, curve.line, {}, curve.fixed_points};
+    r.constraint = curve.constraint;
+    if (std::find(walls.begin(), walls.end(), static_cast<int>(c)) != walls.end()) {
+      r.points = wall_stations(curve, domain, metric, offset);
+    } else {
+      r.points = curve.points;
+    }
+    raw.push_back(std::move(r));
+  }
+  return build_geometry(std::move(raw), options);
+}
+
+// Under a metric field, what the layers stop at (CoreSpacing): the metric's size at p along the
+// direction from the nearest point of the wall segments to p, i.e. along the ray for a point up a ray
+// (a layer stops where growth x its height reaches the metric's length along its ray).
+class MetricSizeAlongRay {
+ public:
+  MetricSizeAlongRay(const Geometry& geometry, const std::vector<int>& walls, const MetricField& metric)
+      : metric_(metric) {
+    for (const Segment& s : geometry.segments)
+      if (std::find(walls.begin(), walls.end(), s.curve) != walls.end()) segments_.push_back(s);
+  }
+  double operator()(Vec2 p) const {
+    double best = std::numeric_limits<double>::infinity();
+    Vec2 foot = p;
+    for (const Segment& s : segments_) {
+      const Vec2 ab = s.b - s.a;
+      const double t = std::clamp(dot(p - s.a, ab) / dot(ab, ab), 0.0, 1.0);
+      const Vec2 f = s.a + ab * t;
+      if (const double d = dist(p, f); d < best) best = d, foot = f;
+    }
+    const Metric m = metric_.at(p);
+    if (!(best > 0.0)) {  // on the wall: the smaller of the metric's sizes
+      return 1.0 / std::sqrt(eigen(m).lambda1);
+    }
+    const Vec2 u = (p - foot) * (1.0 / best);
+    return 1.0 / m.length(u);
+  }
+
+ private:
+  const MetricField& metric_;
+  std::vector<Segment> segments_;
+};
+
 void check_formats(const CaseConfig& config) {
   for (const std::string& f : config.output.formats)
     if (f == "msh22" || f == "triangle")
@@ -143,9 +280,31 @@ std::unique_ptr<LayeredCase> build_layers(const CaseConfig& config, const MeshIn
     if (s.settings.split_quads) s.settings.max_ray_tilt_deg = kSplitRayTilt;
     s.settings.fan_elements_per_pi = fan_elements_matching_core(b.growth);
     check_layer_settings(s.settings);
-    s.geometry = geometry;
     s.walls = curves_by_name(*geometry, b.curves, b.curves_where + ": boundary_layer.curves");
-    s.mesh = build_boundary_layers(*geometry, s.walls, s.settings, core_spacing);
+    if (inputs.metric) {
+      // Under a metric field the layer follows the metric: wall nodes at about unit metric length
+      // along the wall (where its curvature allows; the wall refinement, which splits the wall by
+      // the last layer's height, is off) and the thickness stopped by the metric's length along
+      // each ray.
+      const double offset =
+          b.layers > 0 ? b.first_height * (std::pow(b.growth, b.layers) - 1.0) / (b.growth - 1.0) : b.thickness;
+      try {
+        geometry = std::make_shared<const Geometry>(
+            metric_wall_geometry(*geometry, s.walls, *inputs.tree, *inputs.metric, offset, options));
+      } catch (const GeometryError& e) {
+        // A chord that meets another curve (a narrow gap): the wall keeps the input's points.
+        progress(config, "boundary layers: the wall curves {} keep their input points under the metric ({})",
+                 fmt::join(b.curves, ", "), e.what());
+      }
+      s.walls = curves_by_name(*geometry, b.curves, b.curves_where + ": boundary_layer.curves");
+      s.settings.split_span = 0.0;
+      const MetricSizeAlongRay along_ray(*geometry, s.walls, *inputs.metric);
+      s.geometry = geometry;
+      s.mesh = build_boundary_layers(*geometry, s.walls, s.settings, along_ray);
+    } else {
+      s.geometry = geometry;
+      s.mesh = build_boundary_layers(*geometry, s.walls, s.settings, core_spacing);
+    }
     // Each front node's mean edge length along the front and the longest front edge at it. The core's
     // spacing there is growth x the last layer where the front's edges agree with it; where the front
     // is denser (a trailing edge whose columns could not all merge) it is the mean edge, and where it
@@ -370,9 +529,12 @@ Mesh mesh_layered_core(const CaseConfig& config, const MeshInputs& inputs, const
   if (dropped > 0)
     progress(config, "boundary layers: {} node(s) the simulation snapped onto a layer front left out", dropped);
   Mesh mesh = mesh_and_measure(core, inputs, spacing, core_nodes, phases, dropped ? nullptr : triangulated);
-  // Only with the cleanup, which makes the triangles around a moved node good again.
-  const std::vector<Vec2> steep =
-      config.cleanup.enabled ? steep_junctions(layered, mesh, kSteepJunction) : std::vector<Vec2>{};
+  // Only with the cleanup, which makes the triangles around a moved node good again, and not under a
+  // metric field: there the core's first row follows the metric, whose unit step along a ray is not
+  // growth x the last layer (the layer stops where it reaches it).
+  const std::vector<Vec2> steep = config.cleanup.enabled && spacing.metric() == nullptr
+                                      ? steep_junctions(layered, mesh, kSteepJunction)
+                                      : std::vector<Vec2>{};
   if (!steep.empty()) {
     const std::size_t moved = place_first_row(core_nodes, layered, &steep);
     progress(config, "boundary layers: {} steep junction(s), {} core node(s) pinned on their rays", steep.size(),
@@ -450,14 +612,21 @@ MixedMesh merge(const MeshInputs& inputs, const LayeredCase& layered, const Mesh
 }
 
 // Growth across the junction: for each front edge, the height of the core triangle on it over the
-// mean last layer height of its two nodes' rays.
-std::vector<double> junction_growth(const LayeredCase& layered, const Mesh& core) {
+// mean last layer height of its two nodes' rays. Under a metric field (`metric` not null) both in the
+// metric: the last layer's metric length along its ray, and the triangle's height in the metric at the
+// edge's midpoint (twice its metric area over the edge's metric length).
+std::vector<double> junction_growth(const LayeredCase& layered, const Mesh& core, const MetricField* metric) {
   std::map<std::pair<double, double>, double> last;  // top node -> last layer height
   for (const LayerSection& s : layered.sections)
     for (const LayerRay& ray : s.mesh.rays)
       if (const double h = last_height(s.mesh, ray); h > 0.0) {
         const Vec2 p = s.mesh.nodes[static_cast<std::size_t>(ray.nodes.back())];
-        last[{p.x, p.y}] = h;
+        if (metric != nullptr) {
+          const Vec2 below = s.mesh.nodes[static_cast<std::size_t>(ray.nodes[ray.nodes.size() - 2])];
+          last[{p.x, p.y}] = edge_length(metric->at(below), metric->at(p), p - below);
+        } else {
+          last[{p.x, p.y}] = h;
+        }
       }
   std::vector<double> ratios;
   for (const auto& t : core.triangles)
@@ -469,7 +638,12 @@ std::vector<double> junction_growth(const LayeredCase& layered, const Mesh& core
       if (ha == last.end() || hb == last.end()) continue;
       // Only edges of the front: both nodes consecutive on it is not known here, so the edge must
       // be a boundary edge of the core (its other side is the layer).
-      const double height = std::fabs(cross(b - a, c - a)) / dist(a, b);
+      double height = std::fabs(cross(b - a, c - a)) / dist(a, b);
+      if (metric != nullptr) {
+        const Metric m = metric->at((a + b) * 0.5);
+        const double det = m.m11 * m.m22 - m.m12 * m.m12;
+        height = std::fabs(cross(b - a, c - a)) * std::sqrt(det) / m.length(b - a);
+      }
       ratios.push_back(height / (0.5 * (ha->second + hb->second)));
     }
   return ratios;
@@ -500,6 +674,53 @@ Mesh front_triangles(const MeshInputs& core_inputs, const Mesh& core_mesh) {
     if (on) front_only.triangles.push_back(t);
   }
   return front_only;
+}
+
+// Under a metric field: how the layers' fronts sit in the case's metric. The front edges (the core's
+// boundary edges on a front) by their metric length against the unit-mesh window, and each front
+// node's last layer (its top two nodes along the ray) by its metric length, which a layer that
+// continues into a unit mesh of the metric has at about 1 / growth.
+struct FrontInMetric {
+  std::size_t edges = 0;
+  double window_percent = 0.0;
+  double length_min = 0.0, length_median = 0.0, length_max = 0.0;
+  std::size_t rays = 0;
+  double last_min = 0.0, last_median = 0.0, last_max = 0.0;
+};
+
+FrontInMetric front_in_metric(const LayeredCase& layered, const MeshInputs& core_inputs, const Mesh& core_mesh,
+                              const MetricField& metric) {
+  FrontInMetric f;
+  std::vector<double> lengths;
+  for (const BoundaryEdge& e : core_mesh.boundary_edges) {
+    if (!core_inputs.geometry.curves[static_cast<std::size_t>(e.curve)].fixed_points) continue;
+    const Vec2 a = core_mesh.points[static_cast<std::size_t>(e.a)], b = core_mesh.points[static_cast<std::size_t>(e.b)];
+    lengths.push_back(edge_length(metric.at(a), metric.at(b), b - a));
+  }
+  f.edges = lengths.size();
+  if (!lengths.empty()) {
+    const auto in = std::count_if(lengths.begin(), lengths.end(),
+                                  [](double l) { return l >= kMetricWindowLo && l <= kMetricWindowHi; });
+    f.window_percent = 100.0 * static_cast<double>(in) / static_cast<double>(lengths.size());
+    f.length_min = *std::min_element(lengths.begin(), lengths.end());
+    f.length_max = *std::max_element(lengths.begin(), lengths.end());
+    f.length_median = quantile(lengths, 0.5);
+  }
+  std::vector<double> last;
+  for (const LayerSection& s : layered.sections)
+    for (const LayerRay& ray : s.mesh.rays) {
+      if (ray.nodes.size() < 2 || ray.merged) continue;
+      const Vec2 top = s.mesh.nodes[static_cast<std::size_t>(ray.nodes.back())];
+      const Vec2 below = s.mesh.nodes[static_cast<std::size_t>(ray.nodes[ray.nodes.size() - 2])];
+      last.push_back(edge_length(metric.at(below), metric.at(top), top - below));
+    }
+  f.rays = last.size();
+  if (!last.empty()) {
+    f.last_min = *std::min_element(last.begin(), last.end());
+    f.last_max = *std::max_element(last.begin(), last.end());
+    f.last_median = quantile(last, 0.5);
+  }
+  return f;
 }
 
 // The mixed mesh in the mesh-file formats the case asks for; returns the files written.
@@ -555,8 +776,23 @@ void write_layered_outputs(const CaseConfig& config, const MeshInputs& inputs, c
   timer = phases.phase("quality");
   QualitySummary core_summary = summarize_quality(core_mesh);
   core_summary.points = core_mesh.points.size();
-  const std::vector<double> junction = junction_growth(layered, front_triangles(core_inputs, core_mesh));
-  std::string table = format_quality_table(core_summary, config.name + " core");
+  // Under a metric field the core is measured in the case's metric (the `metric` section of a metric
+  // run, over the core's triangles), and the fronts with it; its angles are those of an anisotropic
+  // mesh in physical space.
+  const MetricField* metric = inputs.metric.get();
+  FrontInMetric front;
+  if (metric != nullptr) {
+    std::vector<Metric> metrics;
+    metrics.reserve(core_mesh.points.size());
+    for (const Vec2& p : core_mesh.points) metrics.push_back(metric->at(p));
+    core_summary.has_metric = true;
+    core_summary.metric =
+        metric_quality(core_mesh, metrics, complexity_on_mesh(core_mesh.points, core_mesh.triangles, metrics));
+    front = front_in_metric(layered, core_inputs, core_mesh, *metric);
+  }
+  const std::vector<double> junction = junction_growth(layered, front_triangles(core_inputs, core_mesh), metric);
+  std::string table = format_quality_table(
+      core_summary, config.name + (metric != nullptr ? " core (angles in physical space)" : " core"));
   std::string json_layers;
   for (std::size_t k = 0; k < layered.sections.size(); ++k) {
     const LayerSection& s = layered.sections[k];
@@ -582,20 +818,40 @@ void write_layered_outputs(const CaseConfig& config, const MeshInputs& inputs, c
   const double j50 = quantile(junction, 0.5), j95 = quantile(junction, 0.95);
   const double jmax = junction.empty() ? 0.0 : *std::max_element(junction.begin(), junction.end());
   table += fmt::format(
-      "junction (core triangle height on a front edge / last layer height), {} edges: median {:.3f}, "
+      "junction (core triangle height on a front edge / last layer height{}), {} edges: median {:.3f}, "
       "p95 {:.3f}, max {:.3f}\nmerged mesh: {} points, {} cells ({} quads)\n",
-      junction.size(), j50, j95, jmax, mixed.points.size(), mixed.cells.size(), mixed.quads());
+      metric != nullptr ? ", both in the metric" : "", junction.size(), j50, j95, jmax, mixed.points.size(),
+      mixed.cells.size(), mixed.quads());
+  std::string json_front;
+  if (metric != nullptr) {
+    table += fmt::format(
+        "fronts in the metric: {} edges, {:.1f} % in [1/sqrt2, sqrt2], length min {:.3g} median {:.3g} max "
+        "{:.3g}; last layer along its ray ({} rays): min {:.3g} median {:.3g} max {:.3g}\n",
+        front.edges, front.window_percent, front.length_min, front.length_median, front.length_max, front.rays,
+        front.last_min, front.last_median, front.last_max);
+    json_front = fmt::format(
+        "  \"front_in_metric\": {{\"edges\": {}, \"window_percent\": {}, \"length_min\": {}, "
+        "\"length_median\": {}, \"length_max\": {}, \"rays\": {}, \"last_layer_min\": {}, "
+        "\"last_layer_median\": {}, \"last_layer_max\": {}}},\n",
+        front.edges, front.window_percent, front.length_min, front.length_median, front.length_max, front.rays,
+        front.last_min, front.last_median, front.last_max);
+  }
   timer.stop();
   if (!config.quiet) fmt::print("{}", table);
   {
     const auto json_timer = phases.phase("quality.json");
     std::string json = quality_json(core_summary, config.name);
     const auto close = json.find_last_of('}');
+    // Under a metric the core's isotropic min angle says nothing about how it honours the metric (its
+    // `metric` section does): `core_min_angle` is null there, the angle kept as core_min_angle_physical.
+    const std::string angle = metric != nullptr
+                                  ? fmt::format("null,\n  \"core_min_angle_physical\": {}", core_summary.min_angle)
+                                  : fmt::format("{}", core_summary.min_angle);
     json.insert(close,
                 fmt::format(",\n  \"boundary_layer\": {{\n  \"tables\": [\n{}\n  ],\n  \"junction\": {{\"edges\": {}, "
-                            "\"median\": {}, \"p95\": {}, \"max\": {}}},\n  \"core_min_angle\": {},\n  "
+                            "\"median\": {}, \"p95\": {}, \"max\": {}}},\n{}  \"core_min_angle\": {},\n  "
                             "\"points\": {}, \"cells\": {}, \"quads\": {}\n  }}\n",
-                            json_layers, junction.size(), j50, j95, jmax, core_summary.min_angle, mixed.points.size(),
+                            json_layers, junction.size(), j50, j95, jmax, json_front, angle, mixed.points.size(),
                             mixed.cells.size(), mixed.quads()));
     write_file_atomically(config.out_dir / "quality.json", json);
   }

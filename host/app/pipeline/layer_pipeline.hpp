@@ -3,7 +3,10 @@
 // core is the case again on the layer fronts: the fronts as curves whose every point is a fixed node,
 // and the case's field lowered near the fronts to growth x the last layer's height (graded). After
 // the core's stage mesh, the layer cells and the core triangles are one mesh (mixed cells or all
-// triangles) in the mesh files, the table and quality.json gain the layer measures.
+// triangles) in the mesh files, the table and quality.json gain the layer measures. Under a metric
+// field the wall curves are reduced to points about one metric unit apart, the layers stop at the
+// metric's size along their rays, and the core and the fronts are measured in the metric
+// (docs/boundary-layers.md, "Under a metric field").
 #pragma once
 #include <memory>
 #include <string>
