@@ -17,6 +17,7 @@
 #include "app/config/case_file.hpp"
 #include "app/pipeline/mesh_pipeline.hpp"
 #include "core/errors.hpp"
+#include "mesh/metric_quality.hpp"
 #include "mesh/quality.hpp"
 #include "mesh/triangulate_nodes.hpp"
 #include "sim/checkpoint.hpp"
@@ -477,4 +478,141 @@ TEST_CASE("the best preset converges a geometry alone in a fraction of long's it
   CHECK(long_options.momentum == 0.0);
   CHECK_FALSE(long_run.converged);
   CHECK(long_run.state.iterations_done == 1000);
+}
+
+namespace {
+
+// A square of side 1 with `side` boundary nodes a side and an interior lattice of spacing 1/side, in the
+// metric I * side^2 (a unit mesh): about 2 side^2 triangles with Q near 1.
+constexpr int kLatticeSide = 60;
+NodeSet unit_lattice() {
+  const double h = 1.0 / kLatticeSide;
+  NodeSet nodes;
+  for (int k = 0; k < 4 * kLatticeSide; ++k) {
+    const double t = static_cast<double>(k % kLatticeSide) / kLatticeSide;
+    const int edge = k / kLatticeSide;
+    const Vec2 p = edge == 0 ? Vec2{t, 0} : edge == 1 ? Vec2{1, t} : edge == 2 ? Vec2{1 - t, 1} : Vec2{0, 1 - t};
+    nodes.add(p, h, NodeKind::Boundary, 0);
+  }
+  std::vector<int> chain(4 * kLatticeSide);
+  for (int k = 0; k < 4 * kLatticeSide; ++k) chain[static_cast<std::size_t>(k)] = k;
+  chain.push_back(0);
+  nodes.curve_nodes = {chain};
+  for (int j = 1; j < kLatticeSide; ++j)
+    for (int i = 1; i < kLatticeSide; ++i) nodes.add({(i + 0.5 * (j % 2)) * h, j * h}, h, NodeKind::Interior, -1);
+  return nodes;
+}
+
+ConstantMetricField unit_lattice_metric() {
+  const double m = static_cast<double>(kLatticeSide) * kLatticeSide;
+  return ConstantMetricField(Metric{m, 0.0, m});
+}
+
+// The interior node of lattice row j, column i (1-based, as unit_lattice adds them).
+std::size_t lattice_node(int i, int j) {
+  return static_cast<std::size_t>(4 * kLatticeSide + (j - 1) * (kLatticeSide - 1) + (i - 1));
+}
+
+// The lattice with `count` interior nodes, spread over it, each moved `fraction` of the spacing towards
+// its right-hand neighbour (fraction near 1: slivers).
+NodeSet lattice_with_moved_nodes(int count, double fraction) {
+  NodeSet nodes = unit_lattice();
+  const double h = 1.0 / kLatticeSide;
+  for (int k = 0; k < count; ++k) {
+    const std::size_t n = lattice_node(5 + 7 * (k % 7), 5 + 7 * (k / 7));
+    nodes.x[n].x += fraction * h;
+    nodes.x[n].y += 0.02 * h;
+  }
+  return nodes;
+}
+
+// The best preset's rule for a metric run (presets.cpp: measured every 50 iterations over a window of
+// 100 from 150, tolerances 7e-4 and 3).
+ConvergenceOptions metric_best_options() {
+  ConvergenceOptions o;
+  o.enabled = true;
+  o.check_every = 50;
+  o.window = 100;
+  o.min_iterations = 150;
+  o.aspect_tolerance = 7e-4;
+  o.angle_tolerance = 3.0;
+  return o;
+}
+
+}  // namespace
+
+TEST_CASE("metric_worst_count: 1 % of the triangles, rounded up, at least one", "[convergence][metric]") {
+  CHECK(metric_worst_count(0) == 0);
+  CHECK(metric_worst_count(1) == 1);
+  CHECK(metric_worst_count(100) == 1);
+  CHECK(metric_worst_count(101) == 2);
+  CHECK(metric_worst_count(7000) == 70);
+}
+
+TEST_CASE("measure_mesh_in_metric: 60 x the worst 1 %'s mean Q and the others' mean of 1 / Q",
+          "[convergence][metric]") {
+  const ConstantMetricField field = unit_lattice_metric();
+  const NodeSet nodes = lattice_with_moved_nodes(3, 0.97);
+  const MeshSample sample = measure_mesh_in_metric(nodes, 100, field);
+  // The sample against the mesh's own Q.
+  const std::vector<Metric> metrics(nodes.size(), field.at({0, 0}));
+  const Mesh mesh = triangulate_in_metric(nodes, {"c0"}, metrics);
+  std::vector<double> q = metric_qualities(mesh.points, mesh.triangles, metrics);
+  REQUIRE(q.size() > 6000);
+  std::sort(q.begin(), q.end());
+  const std::size_t worst = (q.size() + 99) / 100;
+  double worst_sum = 0.0, inverse = 0.0;
+  for (std::size_t i = 0; i < q.size(); ++i) (i < worst ? worst_sum : inverse) += i < worst ? q[i] : 1.0 / q[i];
+  CHECK(sample.iteration == 100);
+  CHECK(sample.min_angle == Approx(60.0 * worst_sum / static_cast<double>(worst)).epsilon(1e-12));
+  CHECK(sample.aspect_ratio == Approx(inverse / static_cast<double>(q.size() - worst)).epsilon(1e-12));
+  // Not Q_min's: the slivers are among the worst, but do not make the measure.
+  CHECK(q.front() < 0.1);
+  CHECK(sample.min_angle > 60.0 * 0.5);
+}
+
+TEST_CASE("measure_mesh_in_metric: a few slivers move neither measure by the best preset's tolerances",
+          "[convergence][metric]") {
+  // One node moved most of the way to a neighbour: slivers with Q below 0.1 among about 7,000 unit
+  // triangles. A mean of 1 / Q over all triangles moves by several times the tolerance and Q_min drops
+  // to below a tenth; the bulk and the worst 1 % move by less than the tolerances.
+  const ConstantMetricField field = unit_lattice_metric();
+  const MeshSample lattice = measure_mesh_in_metric(unit_lattice(), 100, field);
+  const MeshSample slivers = measure_mesh_in_metric(lattice_with_moved_nodes(1, 0.97), 150, field);
+  const ConvergenceOptions o = metric_best_options();
+  CHECK(std::abs(slivers.aspect_ratio - lattice.aspect_ratio) < o.aspect_tolerance);
+  CHECK(std::abs(slivers.min_angle - lattice.min_angle) < o.angle_tolerance);
+}
+
+TEST_CASE("convergence of a metric run: slivers that keep flipping do not hold it, worst triangles that improve do",
+          "[convergence][metric]") {
+  const ConstantMetricField field = unit_lattice_metric();
+  const ConvergenceOptions o = metric_best_options();
+  SECTION("slivers that come and go at every measurement: converged one window after the earliest stop") {
+    ConvergenceMonitor monitor(o);
+    int stopped = 0;
+    for (int it = 50; it <= 400 && stopped == 0; it += 50) {
+      const NodeSet nodes = (it / 50) % 2 == 0 ? lattice_with_moved_nodes(1, 0.97) : unit_lattice();
+      const MeshSample sample = measure_mesh_in_metric(nodes, it, field);
+      HistoryRow row;
+      row.iteration = it;
+      if (monitor.observe(row, &sample)) stopped = it;
+    }
+    CHECK(stopped == 150);
+  }
+  SECTION("displaced nodes that move back a little at every measurement: the worst 1 % still improves") {
+    // Eight displaced nodes make the worst triangles; their mean Q rises by more than the tolerance
+    // from one window to the next, while the bulk moves by less than its tolerance.
+    ConvergenceMonitor monitor(o);
+    bool stopped = false;
+    for (int it = 50; it <= 250 && !stopped; it += 50) {
+      const NodeSet nodes = lattice_with_moved_nodes(8, 0.97 - 0.08 * (it / 50 - 1));
+      const MeshSample sample = measure_mesh_in_metric(nodes, it, field);
+      HistoryRow row;
+      row.iteration = it;
+      stopped = monitor.observe(row, &sample);
+    }
+    CHECK_FALSE(stopped);
+    CHECK_THAT(monitor.not_converged_reason(250), Catch::Matchers::Contains("smallest angle reached a new best"));
+  }
 }

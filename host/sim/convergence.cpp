@@ -120,6 +120,11 @@ Mesh measured_mesh(const NodeSet& nodes, std::vector<std::array<int, 3>> triangl
   return mesh_of_triangles(nodes, chain_names(nodes), std::move(triangles));
 }
 
+std::size_t metric_worst_count(std::size_t triangles) {
+  if (triangles == 0) return 0;
+  return std::max<std::size_t>(1, (triangles + kMetricWorstPer - 1) / kMetricWorstPer);
+}
+
 MeshSample measure_mesh_in_metric(const NodeSet& nodes, int iteration, const MetricField& metric) {
   constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
   MeshSample s{iteration, kNaN, kNaN};
@@ -130,16 +135,19 @@ MeshSample measure_mesh_in_metric(const NodeSet& nodes, int iteration, const Met
     for (std::size_t i = 0; i < nodes.size(); ++i) metrics[i] = metric.at(nodes.x[i]);
     const Mesh mesh = triangulate_in_metric(nodes, names, metrics);
     if (mesh.triangles.empty()) return s;
-    const std::vector<double> q = metric_qualities(mesh.points, mesh.triangles, metrics);
-    double q_min = HUGE_VAL, inverse = 0.0;
-    for (const double v : q) {
-      q_min = std::min(q_min, v);
-      inverse += 1.0 / v;
-    }
+    std::vector<double> q = metric_qualities(mesh.points, mesh.triangles, metrics);
+    // In ascending Q: the worst triangles first, and both sums in one order for the same triangles.
+    std::sort(q.begin(), q.end());
+    const std::size_t worst = metric_worst_count(q.size());
+    const auto split = q.begin() + static_cast<std::ptrdiff_t>(worst);
     // An inverted triangle (Q <= 0) is no measurement of a settled mesh.
-    if (!(q_min > 0.0)) return s;
-    s.min_angle = 60.0 * q_min;
-    s.aspect_ratio = inverse / static_cast<double>(q.size());
+    if (!(q.front() > 0.0)) return s;
+    double worst_sum = 0.0;
+    for (auto it = q.begin(); it != split; ++it) worst_sum += *it;
+    double inverse = 0.0;
+    for (auto it = split; it != q.end(); ++it) inverse += 1.0 / *it;
+    s.min_angle = 60.0 * worst_sum / static_cast<double>(worst);
+    s.aspect_ratio = q.size() > worst ? inverse / static_cast<double>(q.size() - worst) : 1.0 / q.front();
   } catch (const Interrupted&) {
     throw;
   } catch (const Error&) {

@@ -103,9 +103,9 @@ void apply_momentum_schedule(CaseConfig& c) {
   // measurements of a settled lattice, while the 40-degree cleanup lifts the final meshes to 43-44
   // degrees whatever the stop: a rise of up to 6 degrees over the earlier best counts as such a move,
   // not as progress to wait for; on the lattice's 4 levels (below) the seams anneal with rises of
-  // 2-5 degrees. A metric run keeps 3 (preset_stop_angle): its cleanup works in the metric on the
-  // nodes as they stopped, and a 6-degree tolerance stops issue 37's polar-2 case before its cleanup can
-  // reach the metric quality test_metric_case asks (docs/simulation.md, "When a run stops").
+  // 2-5 degrees. A metric run keeps 3 (preset_stop_angle): its "smallest angle" is 60 x the mean Q of
+  // its worst 1 % of triangles, not one triangle's, and its cleanup works in the metric on the nodes as
+  // they stopped, which must have settled first (docs/simulation.md, "When a run stops").
   c.simulation.stop_angle = preset_stop_angle(Preset::Best, c.spacing.metric());
   // A structured (or hybrid) start's lattice takes larger steps where nothing nearer limits them (dt_GM
   // binds where the forces are small, late in a run): it reaches a given mean aspect ratio sooner, so
