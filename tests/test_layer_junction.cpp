@@ -6,9 +6,6 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
-#include <fstream>
-#include <regex>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -19,10 +16,12 @@
 #include "geometry/geometry.hpp"
 #include "layers/boundary_layers.hpp"
 #include "layers/layer_measures.hpp"
+#include "quality_json.hpp"
 #include "source_dir.hpp"
 
 namespace fs = std::filesystem;
 using namespace pdmesh;
+using pdmesh_test::read_quality_json;
 
 namespace {
 
@@ -87,19 +86,6 @@ double front_area(const LayerMesh& m) {
   std::vector<Vec2> p;
   for (const int n : m.fronts.at(0).nodes) p.push_back(m.nodes[n]);
   return polygon_area(p);
-}
-
-std::string read(const fs::path& p) {
-  std::ifstream in(p);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-double json_number(const std::string& json, const std::string& key) {
-  std::smatch m;
-  REQUIRE(std::regex_search(json, m, std::regex("\"" + key + "\": ([-0-9.eE+]+)")));
-  return std::stod(m[1]);
 }
 
 }  // namespace
@@ -318,16 +304,14 @@ TEST_CASE("NACA 0012 with layers: the core's triangles on the front and the junc
   c.out_dir = out;
   c.quiet = true;
   REQUIRE(run_mesh(c) == 0);
-  const std::string json = read(out / "quality.json");
+  const nlohmann::json layer = read_quality_json(out / "quality.json")["boundary_layer"];
   // Every core triangle, those on the front included (26 degrees with 5 fan elements, unmerged
   // columns and the nose's sparse front).
-  CHECK(json_number(json, "core_min_angle") >= 34.0);
-  CHECK(json_number(json, "first_height_within_2pct") == 1.0);
-  CHECK(json_number(json, "max_angle") <= 110.0);
+  CHECK(layer["core_min_angle"].get<double>() >= 34.0);
+  CHECK(layer["tables"][0]["first_height_within_2pct"].get<double>() == 1.0);
+  CHECK(layer["tables"][0]["max_angle"].get<double>() <= 110.0);
   // The junction: the core triangle's height on each front edge over the last layer's.
-  const std::size_t j = json.find("\"junction\"");
-  REQUIRE(j != std::string::npos);
-  CHECK(json_number(json.substr(j), "max") <= 1.5);
+  CHECK(layer["junction"]["max"].get<double>() <= 1.5);
   fs::remove_all(out);
 }
 
@@ -349,10 +333,10 @@ TEST_CASE("UIUC E387 with triangle layers: the core at the nose's fans as good a
   c.out_dir = out;
   c.quiet = true;
   REQUIRE(run_mesh(c) == 0);
-  const std::string json = read(out / "quality.json");
-  CHECK(json_number(json, "core_min_angle") >= 42.0);
-  CHECK(json_number(json, "inverted_cells") == 0.0);
-  CHECK(json_number(json, "max_angle") <= 96.0);
+  const nlohmann::json layer = read_quality_json(out / "quality.json")["boundary_layer"];
+  CHECK(layer["core_min_angle"].get<double>() >= 42.0);
+  CHECK(layer["tables"][0]["inverted_cells"].get<int>() == 0);
+  CHECK(layer["tables"][0]["max_angle"].get<double>() <= 96.0);
   fs::remove_all(out);
 }
 

@@ -5,30 +5,17 @@
 
 #include <filesystem>
 #include <fstream>
-#include <regex>
-#include <sstream>
 #include <string>
 
 #include "app/config/case_file.hpp"
 #include "app/pipeline/mesh_pipeline.hpp"
+#include "quality_json.hpp"
 
 namespace fs = std::filesystem;
 using namespace pdmesh;
+using pdmesh_test::read_quality_json;
 
 namespace {
-
-std::string read(const fs::path& p) {
-  std::ifstream in(p);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-double json_number(const std::string& json, const std::string& key) {
-  std::smatch m;
-  REQUIRE(std::regex_search(json, m, std::regex("\"" + key + "\": ([-0-9.eE+]+)")));
-  return std::stod(m[1]);
-}
 
 // A flat plate [0, 1] x [-0.01, 0.01] (one closed curve "plate", its long sides with a point every
 // 0.005) inside a box "outer" [-0.5, 1.5] x [-0.3, 0.3], as a curve file.
@@ -70,29 +57,28 @@ TEST_CASE("a flat plate's layer under a constant anisotropic metric: the front i
   c.out_dir = out / "run";
   c.quiet = true;
   REQUIRE(run_mesh(c) == 0);
-  const std::string json = read(out / "run" / "quality.json");
+  const nlohmann::json q = read_quality_json(out / "run" / "quality.json");
   // The core's measures in the metric, as a metric run without layers reports them.
-  const std::size_t metric = json.find("\"metric\": {");
-  REQUIRE(metric != std::string::npos);
-  CHECK(json_number(json.substr(metric), "window_percent") >= 90.0);
-  CHECK(json_number(json.substr(metric), "q_mean") >= 0.8);
+  REQUIRE(q.contains("metric"));
+  CHECK(q["metric"]["window_percent"].get<double>() >= 90.0);
+  CHECK(q["metric"]["q_mean"].get<double>() >= 0.8);
   // No isotropic min angle for the anisotropic core.
-  CHECK(json.find("\"core_min_angle\": null") != std::string::npos);
+  const nlohmann::json& layer = q["boundary_layer"];
+  CHECK(layer["core_min_angle"].is_null());
   // The fronts in the metric.
-  const std::size_t front = json.find("\"front_in_metric\"");
-  REQUIRE(front != std::string::npos);
-  const std::string f = json.substr(front);
+  REQUIRE(layer.contains("front_in_metric"));
+  const nlohmann::json& f = layer["front_in_metric"];
   // The sides' front edges are at unit length (the input's wall points at 0.05), none is longer than
   // the window; the corners' fans (elements of equal angle, most of the front's edges) have edges
   // down to 0.1 where they turn along the plate, so the median and the share in the window are lower.
-  CHECK(json_number(f, "length_max") <= std::sqrt(2.0));
-  CHECK(json_number(f, "length_median") >= 0.5);
-  CHECK(json_number(f, "window_percent") >= 40.0);
-  CHECK(json_number(f, "last_layer_median") >= 0.6);
-  CHECK(json_number(f, "last_layer_median") <= 1.0);
+  CHECK(f["length_max"].get<double>() <= std::sqrt(2.0));
+  CHECK(f["length_median"].get<double>() >= 0.5);
+  CHECK(f["window_percent"].get<double>() >= 40.0);
+  CHECK(f["last_layer_median"].get<double>() >= 0.6);
+  CHECK(f["last_layer_median"].get<double>() <= 1.0);
   // The layer itself as without a metric: the first height exact, nothing inverted.
-  CHECK(json_number(json, "first_height_within_2pct") == 1.0);
-  CHECK(json_number(json, "inverted_cells") == 0.0);
+  CHECK(layer["tables"][0]["first_height_within_2pct"].get<double>() == 1.0);
+  CHECK(layer["tables"][0]["inverted_cells"].get<int>() == 0);
   fs::remove_all(out);
 }
 
@@ -105,11 +91,11 @@ TEST_CASE("the same plate without a metric keeps the input's wall points and rep
   c.out_dir = out / "run";
   c.quiet = true;
   REQUIRE(run_mesh(c) == 0);
-  const std::string json = read(out / "run" / "quality.json");
-  CHECK(json.find("\"metric\"") == std::string::npos);
-  CHECK(json.find("\"front_in_metric\"") == std::string::npos);
-  CHECK(json_number(json, "core_min_angle") > 20.0);
+  const nlohmann::json q = read_quality_json(out / "run" / "quality.json");
+  CHECK_FALSE(q.contains("metric"));
+  CHECK_FALSE(q["boundary_layer"].contains("front_in_metric"));
+  CHECK(q["boundary_layer"]["core_min_angle"].get<double>() > 20.0);
   // Every input point of the plate is a wall node: 402 wall cells (400 along the sides, 2 at the ends).
-  CHECK(json_number(json, "wall_cells") >= 402.0);
+  CHECK(q["boundary_layer"]["tables"][0]["wall_cells"].get<int>() >= 402);
   fs::remove_all(out);
 }
