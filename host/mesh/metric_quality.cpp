@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "spacing/metric_complexity.hpp"
+#include "spacing/metric_field.hpp"
 #include "spacing/metric_gradation.hpp"
 
 namespace pdmesh {
@@ -80,6 +81,13 @@ MetricQualitySummary metric_quality(const Mesh& mesh, const std::vector<Metric>&
     s.n_over_ideal = static_cast<double>(s.triangles) / s.ideal_triangles;
   }
   return s;
+}
+
+MetricQualitySummary metric_quality(const Mesh& mesh, const MetricField& field) {
+  std::vector<Metric> metrics;
+  metrics.reserve(mesh.points.size());
+  for (const Vec2& p : mesh.points) metrics.push_back(field.at(p));
+  return metric_quality(mesh, metrics, complexity_on_mesh(mesh.points, mesh.triangles, metrics));
 }
 
 }  // namespace pdmesh

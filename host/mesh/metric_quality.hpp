@@ -52,4 +52,9 @@ std::vector<double> metric_qualities(const std::vector<Vec2>& points, const std:
 // triangles' unique edges. complexity <= 0 leaves the element-count figures at 0.
 MetricQualitySummary metric_quality(const Mesh& mesh, const std::vector<Metric>& metrics, double complexity = 0.0);
 
+class MetricField;
+// How `mesh` honours a case's metric field: every measure with the field's metric at each point and
+// the complexity by the P1 rule on the mesh (spacing/metric_complexity's complexity_on_mesh).
+MetricQualitySummary metric_quality(const Mesh& mesh, const MetricField& field);
+
 }  // namespace pdmesh

@@ -17,7 +17,6 @@
 #include "mesh/mesh_topology.hpp"
 #include "mesh/metric_quality.hpp"
 #include "mesh/quality.hpp"
-#include "spacing/metric_complexity.hpp"
 #include "io/quality_report.hpp"
 #include "render/mesh_picture.hpp"
 #include "spacing/spacing_field.hpp"
@@ -89,12 +88,8 @@ int run_quality(const std::string& mesh_path, const std::optional<std::string>& 
   // A case with a metric field: the mesh measured in it too (mesh/metric_quality), C by the P1 rule
   // on the mesh.
   if (geometry_path && spacing.spacing->metric() != nullptr) {
-    const MetricField& field = *spacing.spacing->metric();
-    std::vector<Metric> metrics;
-    metrics.reserve(mesh.points.size());
-    for (const Vec2& p : mesh.points) metrics.push_back(field.at(p));
     summary.has_metric = true;
-    summary.metric = metric_quality(mesh, metrics, complexity_on_mesh(mesh.points, mesh.triangles, metrics));
+    summary.metric = metric_quality(mesh, *spacing.spacing->metric());
   }
   out << format_quality_table(summary, std::filesystem::path(mesh_path).filename().string());
 

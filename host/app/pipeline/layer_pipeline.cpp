@@ -20,7 +20,6 @@
 #include "mesh/metric_quality.hpp"
 #include "mesh/quality.hpp"
 #include "render/mesh_picture.hpp"
-#include "spacing/metric_complexity.hpp"
 
 namespace pdmesh {
 
@@ -69,6 +68,14 @@ double last_height(const LayerMesh& m, const LayerRay& ray) {
   if (ray.nodes.size() < 2 || ray.merged) return 0.0;
   return ray.correction * dist(m.nodes[static_cast<std::size_t>(ray.nodes.back())],
                                m.nodes[static_cast<std::size_t>(ray.nodes[ray.nodes.size() - 2])]);
+}
+
+// The same last layer by its metric length under `metric` (0 where last_height is 0).
+double last_metric_length(const LayerMesh& m, const LayerRay& ray, const MetricField& metric) {
+  if (ray.nodes.size() < 2 || ray.merged) return 0.0;
+  const Vec2 top = m.nodes[static_cast<std::size_t>(ray.nodes.back())];
+  const Vec2 below = m.nodes[static_cast<std::size_t>(ray.nodes[ray.nodes.size() - 2])];
+  return edge_length(metric.at(below), metric.at(top), top - below);
 }
 
 // The core's spacing at a front node is at least this share of the longest front edge at it: where
@@ -487,12 +494,7 @@ std::vector<double> junction_growth(const LayeredCase& layered, const Mesh& core
     for (const LayerRay& ray : s.mesh.rays)
       if (const double h = last_height(s.mesh, ray); h > 0.0) {
         const Vec2 p = s.mesh.nodes[static_cast<std::size_t>(ray.nodes.back())];
-        if (metric != nullptr) {
-          const Vec2 below = s.mesh.nodes[static_cast<std::size_t>(ray.nodes[ray.nodes.size() - 2])];
-          last[{p.x, p.y}] = edge_length(metric->at(below), metric->at(p), p - below);
-        } else {
-          last[{p.x, p.y}] = h;
-        }
+        last[{p.x, p.y}] = metric != nullptr ? last_metric_length(s.mesh, ray, *metric) : h;
       }
   std::vector<double> ratios;
   for (const auto& t : core.triangles)
@@ -574,12 +576,8 @@ FrontInMetric front_in_metric(const LayeredCase& layered, const MeshInputs& core
   }
   std::vector<double> last;
   for (const LayerSection& s : layered.sections)
-    for (const LayerRay& ray : s.mesh.rays) {
-      if (ray.nodes.size() < 2 || ray.merged) continue;
-      const Vec2 top = s.mesh.nodes[static_cast<std::size_t>(ray.nodes.back())];
-      const Vec2 below = s.mesh.nodes[static_cast<std::size_t>(ray.nodes[ray.nodes.size() - 2])];
-      last.push_back(edge_length(metric.at(below), metric.at(top), top - below));
-    }
+    for (const LayerRay& ray : s.mesh.rays)
+      if (ray.nodes.size() >= 2 && !ray.merged) last.push_back(last_metric_length(s.mesh, ray, metric));
   f.rays = last.size();
   if (!last.empty()) {
     f.last_min = *std::min_element(last.begin(), last.end());
@@ -648,12 +646,8 @@ void write_layered_outputs(const CaseConfig& config, const MeshInputs& inputs, c
   const MetricField* metric = inputs.metric.get();
   FrontInMetric front;
   if (metric != nullptr) {
-    std::vector<Metric> metrics;
-    metrics.reserve(core_mesh.points.size());
-    for (const Vec2& p : core_mesh.points) metrics.push_back(metric->at(p));
     core_summary.has_metric = true;
-    core_summary.metric =
-        metric_quality(core_mesh, metrics, complexity_on_mesh(core_mesh.points, core_mesh.triangles, metrics));
+    core_summary.metric = metric_quality(core_mesh, *metric);
     front = front_in_metric(layered, core_inputs, core_mesh, *metric);
   }
   const std::vector<double> junction = junction_growth(layered, front_triangles(core_inputs, core_mesh), metric);
