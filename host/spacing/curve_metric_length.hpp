@@ -3,8 +3,10 @@
 // boundary stations of a metric run are placed at unit steps of this integral (init/metric_fill's
 // CurveMetricSpacing through spacing_stations); measured between two boundary nodes it tells how
 // many unit steps the curve between them holds, also where the metric varies so much along the
-// stretch that the chord's two end metrics miss it (a layer's inflection, where the Hessian's metric
-// is large, at a curve node; docs/metric-fields.md, "Boundary gaps in the metric").
+// stretch that the chord's two end metrics miss (a curve node on a layer's inflection line, where a
+// Hessian metric's sizes are far larger than beside it). Population control's boundary gaps and the
+// cleanup's boundary edges go by it (docs/metric-fields.md, "Population control in the metric" and
+// "Cleanup in the metric").
 #pragma once
 #include "geometry/geometry.hpp"
 #include "spacing/metric_field.hpp"
