@@ -3,7 +3,8 @@
 // [1/√2, √2]; no triangle is ever inverted in physical space; boundary nodes stay on their own
 // curves in curve order and fixed nodes stay put; flips raise the smallest metric quality Q; the
 // case's cleanup settings act; the result is deterministic; a boundary node's collapse into its curve
-// neighbour keeps the chains and is undone by the journal.
+// neighbour keeps the chains and is undone by the journal; a boundary edge is measured along its curve
+// too, so that one whose end metrics miss small sizes between them is split.
 #include <catch2/catch.hpp>
 
 #include <algorithm>
@@ -110,7 +111,55 @@ Cleaned clean_and_verify(const Geometry& g, const GeometryTree& tree, const Node
   return c;
 }
 
+// Isotropic size h except near `centre`, where the sizes shrink by 1 + depth e^(-|p - c|²/w²).
+class NarrowSmall final : public MetricField {
+ public:
+  NarrowSmall(double h, Vec2 centre, double depth, double width) : h_(h), c_(centre), depth_(depth), w_(width) {}
+  Metric at(Vec2 p) const override {
+    const double s = (1.0 + depth_ * std::exp(-norm2(p - c_) / (w_ * w_))) / h_;
+    return {s * s, 0.0, s * s};
+  }
+
+ private:
+  double h_;
+  Vec2 c_;
+  double depth_, w_;
+};
+
+// The metric length along the side y = 0 from x = a to x = b, by the midpoint rule on 4000 steps.
+double along_bottom(const MetricField& field, double a, double b) {
+  const int n = 4000;
+  double total = 0.0;
+  for (int k = 0; k < n; ++k) total += field.at({a + (k + 0.5) / n * (b - a), 0.0}).length({(b - a) / n, 0.0});
+  return std::fabs(total);
+}
+
 }  // namespace
+
+TEST_CASE("metric cleanup: a boundary edge is split where the curve between its ends is long in the metric",
+          "[metric_cleanup]") {
+  // Nodes 0.25 apart in a metric of size 0.25, but sizes 21 times smaller within about 0.04 of
+  // (0.375, 0), between two boundary nodes of the side y = 0: that boundary edge is about 1 long by its
+  // end metrics and about 6.7 along the curve.
+  const Geometry g = unit_square(4);
+  const GeometryTree tree(g);
+  const NodeSet nodes = square_nodes(tree, 0.25);
+  const NarrowSmall field(0.25, {0.375, 0.0}, 20.0, 0.04);
+  REQUIRE(edge_length(field.at({0.25, 0}), field.at({0.5, 0}), {0.25, 0}) < 1.01);
+  REQUIRE(along_bottom(field, 0.25, 0.5) > 6.0);
+  const Cleaned c = clean_and_verify(g, tree, nodes, field);
+  CHECK(c.result.stats.counts.boundary_splits >= 4);
+  // Every boundary edge of the side y = 0 is at most √2 long along it, and the ones around the narrow
+  // place are no shorter than collapse_below would leave.
+  std::vector<double> xs;
+  for (const Vec2& p : c.result.mesh.points)
+    if (p.y == 0.0) xs.push_back(p.x);
+  std::sort(xs.begin(), xs.end());
+  double longest = 0.0;
+  for (std::size_t k = 1; k < xs.size(); ++k) longest = std::max(longest, along_bottom(field, xs[k - 1], xs[k]));
+  INFO("nodes on y = 0: " << xs.size() << ", the longest edge along it " << longest);
+  CHECK(longest <= cleanup::kMetricLong * (1.0 + 1e-3));
+}
 
 TEST_CASE("metric cleanup: collapses bring edges too short in a constant anisotropic metric into the window",
           "[metric_cleanup]") {

@@ -2,7 +2,8 @@
 // hexagonal lattice of unit metric spacing in a constant anisotropic metric (a rhombus of the lattice
 // mapped by x -> A x, M = A^-T A^-1), the perfect lattice is left alone, a missing node comes back near
 // the hole, an extra node goes, and a boundary gap of metric length 2 gets a node; the isotropic
-// planner on the same nodes does otherwise.
+// planner on the same nodes does otherwise. A hole of the metric at a boundary node (sizes far larger
+// there) does not make the gaps beside it short: they are measured along the curve too.
 #include <catch2/catch.hpp>
 
 #include <cmath>
@@ -62,13 +63,32 @@ struct MappedRhombus {
         if (i != skip_i || j != skip_j) nodes.add(lattice(i, j), kShort, NodeKind::Interior, -1);
   }
 
-  PopulationCounts event(bool in_metric) {
+  // One event in `field` (the constant metric when null), or isotropic when !in_metric.
+  PopulationCounts event(bool in_metric, const MetricField* field = nullptr) {
     PopulationOptions o;
     o.enabled = true;
     BoundaryHandler boundary(*tree, nodes);
     return run_population_event(nodes, boundary, spacing, population_thresholds(o, o.start, 2000), nullptr,
-                                in_metric ? &metric : nullptr);
+                                in_metric ? (field ? field : &metric) : nullptr);
   }
+};
+
+// The rhombus' metric with a hole at `centre`: the metric times s² with s = 1 - (1 - floor) e^(-|p - c|²/w²),
+// sizes up to 1/floor times larger within about w of c (as a Hessian's metric is where the function's
+// curvature vanishes).
+class HoleMetric final : public MetricField {
+ public:
+  HoleMetric(const Metric& base, Vec2 centre, double floor, double width)
+      : base_(base), c_(centre), floor_(floor), w_(width) {}
+  Metric at(Vec2 p) const override {
+    const double s = 1.0 - (1.0 - floor_) * std::exp(-norm2(p - c_) / (w_ * w_));
+    return (s * s) * base_;
+  }
+
+ private:
+  Metric base_;
+  Vec2 c_;
+  double floor_, w_;
 };
 
 }  // namespace
@@ -113,6 +133,21 @@ TEST_CASE("metric population control splits a boundary gap of metric length 2", 
   r.fill();
   const PopulationCounts c = r.event(true);
   CHECK(c.inserted_boundary > 0);
+}
+
+TEST_CASE("metric population control keeps the boundary nodes beside a hole of the metric at one of them",
+          "[population][metric]") {
+  // A hole of the metric (sizes 200 times larger, within 0.01 of it) at boundary node (4, 0): the chords
+  // to it measured by their end metrics are about 0.19 long, under merge; the curve between the nodes
+  // is about 0.96 long in the metric, so no gap beside the hole is short.
+  MappedRhombus r(8);
+  r.fill();
+  const HoleMetric hole(r.metric.at({0, 0}), lattice(4, 0), 0.005, 0.01);
+  const Vec2 a = lattice(3, 0), b = lattice(4, 0);
+  REQUIRE(edge_length(hole.at(a), hole.at(b), b - a) < 0.3);
+  const PopulationCounts c = r.event(true, &hole);
+  CHECK(c.removed_boundary == 0);
+  CHECK(c.inserted_boundary == 0);
 }
 
 TEST_CASE("the isotropic planner on the stretched lattice is not the metric one", "[population][metric]") {

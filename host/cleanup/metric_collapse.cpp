@@ -24,7 +24,7 @@ std::size_t MetricOps::collapse_short() {
   std::size_t made = 0;
   for (const Edge& e : edges) {
     if (m_.removed(e.a) || m_.removed(e.b)) continue;
-    if (!(metric_.length(e.a, e.b) < below)) continue;  // an earlier edit lengthened it
+    if (!(measure_between(e.a, e.b) < below)) continue;  // an earlier edit lengthened it
     made += collapse_edge(e.a, e.b) ? 1 : 0;
   }
   return made;

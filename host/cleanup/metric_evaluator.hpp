@@ -26,6 +26,7 @@ class MetricEvaluator final : public TriangleScore {
   const Metric& at(int a) const;
   // The field's metric at any point.
   Metric at(Vec2 p) const { return field_.at(p); }
+  const MetricField& field() const { return field_; }
   // The metric length of edge a-b.
   double length(int a, int b) const;
   double length(Vec2 pa, const Metric& ma, Vec2 pb, const Metric& mb) const;

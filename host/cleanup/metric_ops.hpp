@@ -67,7 +67,13 @@ class MetricOps {
     double length;
     int a, b;
   };
-  // The edges (each once) whose metric length is above `above` or below `below`.
+  // The length splits and collapses go by for the edge opposite v[t][i]: its metric length, or for a
+  // boundary edge of a curve chain the longer of that and the curve's metric length between its ends
+  // (spacing/curve_metric_length), which sees a metric that varies along the curve between them.
+  double measure(int t, int i) const;
+  // The same for the edge a-b (its metric length when it is not an edge of the mesh).
+  double measure_between(int a, int b) const;
+  // The edges (each once) whose measure is above `above` or below `below`.
   std::vector<Edge> edges_where(double above, double below) const;
   bool keep_edit() const;
   bool split_edge(int a, int b);

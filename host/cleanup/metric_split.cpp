@@ -1,11 +1,14 @@
 // Edge splits of the cleanup in a metric: an edge longer than √2 in the metric gets a node at its
-// metric midpoint; a boundary edge's node goes on its curve, at the same fraction of the arc.
+// metric midpoint; a boundary edge's node goes on its curve, at the same fraction of the arc, or at the
+// curve's metric middle where the curve is longer in the metric than the chord (a boundary edge is
+// measured by the longer of the two, MetricOps::measure).
 #include <algorithm>
 #include <tuple>
 
 #include "cleanup/metric_ops.hpp"
 #include "core/predicates.hpp"
 #include "geometry/curve_projection.hpp"
+#include "spacing/curve_metric_length.hpp"
 
 namespace pdmesh::cleanup {
 
@@ -17,7 +20,7 @@ std::size_t MetricOps::split_long() {
   std::size_t made = 0;
   for (const Edge& e : edges) {
     if (m_.removed(e.a) || m_.removed(e.b)) continue;
-    if (!(metric_.length(e.a, e.b) > kMetricLong)) continue;  // an earlier edit shortened it
+    if (!(measure_between(e.a, e.b) > kMetricLong)) continue;  // an earlier edit shortened it
     made += split_edge(e.a, e.b) ? 1 : 0;
   }
   return made;
@@ -42,7 +45,11 @@ bool MetricOps::split_edge(int a, int b) {
     if (!m_.boundary_edge_arcs(t, i, c, arc_a, arc_b)) return false;
     const Curve& curve = geometry_.curves[c];
     if (curve.fixed_points) return false;  // a layer front: the layer cells share its edges
-    const double at_arc = arc_a + metric_.half_fraction(ea, eb) * (arc_b - arc_a);
+    // The curve's metric middle where the curve is longer in the metric than the chord, else the
+    // chord's metric midpoint carried to the arc.
+    const double along = curve_metric_length(curve, metric_.field(), arc_a, arc_b);
+    const double at_arc = along > metric_.length(ea, eb) ? curve_metric_half(curve, metric_.field(), arc_a, arc_b)
+                                                         : arc_a + metric_.half_fraction(ea, eb) * (arc_b - arc_a);
     if (!(at_arc > std::min(arc_a, arc_b) && at_arc < std::max(arc_a, arc_b))) return false;
     const Vec2 at = closest_on_curve_range(curve, {}, at_arc, at_arc).p;
     const Vec2 x = m_.p[m_.v[t][i]];

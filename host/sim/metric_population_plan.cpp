@@ -1,6 +1,7 @@
 // Population-control planning in a metric field (sim/population_plan.hpp, plan_metric_population_event):
 // the four rules of sim/population_rules.hpp with every length measured in the metric, sigma = 1 in
 // metric units, on the nodes' Delaunay graph in the metric (mesh/metric_delaunay).
+#include <algorithm>
 #include <cmath>
 #include <optional>
 #include <utility>
@@ -10,6 +11,7 @@
 #include "sim/delaunay_graph.hpp"
 #include "sim/population_plan.hpp"
 #include "sim/population_rules.hpp"
+#include "spacing/curve_metric_length.hpp"
 #include "spacing/metric_field.hpp"
 
 namespace pdmesh {
@@ -37,8 +39,11 @@ void metric_circumcircle(const Metric& m, Vec2 a, Vec2 b, Vec2 c, Vec2& centre, 
 }
 
 // Lengths in the metric, sigma = 1: between two nodes the metric length of their edge
-// (spacing/metric.hpp, edge_length), at a point the length in the metric there. The graph is the
-// nodes' Delaunay graph flipped in the metric.
+// (spacing/metric.hpp, edge_length), at a point the length in the metric there; a boundary gap is the
+// longer of its chord's length and the curve's metric length between its nodes
+// (spacing/curve_metric_length), so that a stretch the chord's end metrics miss (the metric large at
+// one end, small along the curve between) is split, and one is closed only when both are short. The
+// graph is the nodes' Delaunay graph flipped in the metric.
 class MetricRuler {
  public:
   struct At {
@@ -46,13 +51,21 @@ class MetricRuler {
     double unit = 1.0;
   };
 
-  MetricRuler(const NodeSet& nodes, const GeometryTree& tree, const MetricField& metric)
-      : m_(metrics(nodes, metric)), graph(metric_graph(nodes.x, m_)), nodes_(nodes), tree_(tree), metric_(metric) {}
+  MetricRuler(const NodeSet& nodes, const std::vector<std::vector<double>>& arcs, const GeometryTree& tree,
+              const MetricField& metric)
+      : m_(metrics(nodes, metric)),
+        graph(metric_graph(nodes.x, m_)),
+        nodes_(nodes),
+        arcs_(arcs),
+        tree_(tree),
+        metric_(metric) {}
 
-  // The metric length of the chord between curve_nodes[c][i] and [j].
+  // The longer of the chord's metric length and the curve's between curve_nodes[c][i] and [j].
   double gap_ratio(std::size_t c, std::size_t i, std::size_t j) const {
     const std::vector<int>& list = nodes_.curve_nodes[c];
-    return length(list[i], list[j]);
+    const double chord = length(list[i], list[j]);
+    const double along = curve_metric_length(tree_.geometry().curves[c], metric_, arcs_[c][i], arcs_[c][j]);
+    return std::max(chord, along);
   }
   double edge_ratio(int a, int b) const { return length(a, b); }
   double edge_length(int a, int b) const { return length(a, b); }
@@ -116,6 +129,7 @@ class MetricRuler {
 
  private:
   const NodeSet& nodes_;
+  const std::vector<std::vector<double>>& arcs_;  // per curve, its nodes' arc positions
   const GeometryTree& tree_;
   const MetricField& metric_;
 };
@@ -125,7 +139,7 @@ class MetricRuler {
 PopulationPlan plan_metric_population_event(const NodeSet& nodes, const std::vector<std::vector<double>>& arcs,
                                             const GeometryTree& tree, const MetricField& metric,
                                             const PopulationThresholds& thresholds) {
-  const MetricRuler ruler(nodes, tree, metric);
+  const MetricRuler ruler(nodes, arcs, tree, metric);
   return population_detail::Planner<MetricRuler>(nodes, arcs, tree, ruler, thresholds).run();
 }
 
