@@ -13,9 +13,10 @@ default here k = 50), with f = -Δu and u on the boundary. Each loop
 3. prints the vertex count N_v, e_L2 = ||u_h - u||_L2 against the exact solution and e_L2·N_v.
 The first adapted mesh starts from scratch (the uniform start mesh is no guess at the metric's nodes);
 from the second on, each re-mesh starts warm from the previous mesh's points
-(pdmesh.generate(initial=points), the case key init.file): its interior points are the initial
+(pdmesh.Mesher(initial=points), the case key init.file): its interior points are the initial
 interior nodes, and the relaxation's population control fixes their density. --cold re-meshes every
-loop from scratch, for comparison. Each loop's line also gives the re-mesh's time.
+loop from scratch, for comparison. Each loop's line also gives the re-mesh's time, its iterations and
+whether its stopping rule ended it ("settled") or the iteration maximum did ("maximum").
 
     .venv/bin/python examples/adapt_poisson.py [--k 50] [--complexity 1000] [--loops 5] [--cold]
 
@@ -89,38 +90,44 @@ def solve(points: np.ndarray, triangles: np.ndarray, layer: Layer) -> tuple[np.n
 
 def remesh(points, triangles, u, complexity, directory, seed, warm=False):
     """pdmesh's mesh of the square in the Hessian metric of the data u on (points, triangles); with
-    warm, started from the points."""
+    warm, started from the points. Also returns the re-mesh's iterations and whether its stopping rule
+    ended it (its nodes had settled) rather than the iteration maximum."""
     path = os.path.join(directory, "u.vtu")
     write_vtu(path, points, triangles, {"u": u})
-    mesh = pdmesh.generate(SQUARE, device="host", seed=seed, initial=points if warm else None,
+    mesher = pdmesh.Mesher(SQUARE, device="host", seed=seed, initial=points if warm else None,
                            spacing={"field": "hessian", "file": path, "array": "u", "complexity": complexity,
                                     "hmin": 1e-5, "hmax": 0.3})
-    return np.array(mesh.points), np.array(mesh.triangles)
+    mesher.run()
+    mesh = mesher.triangulate()
+    return np.array(mesh.points), np.array(mesh.triangles), mesher.iteration, mesher.converged
 
 
 def adapt(layer: Layer, complexity: float, loops: int, tolerance: float = 0.1, start: float = 0.05, seed: int = 1,
           report=print, warm: bool = True) -> list[dict]:
-    """The adaptation loop; returns one row per loop (vertices, e_L2, e_L2·N_v, and the seconds of the
-    re-mesh that made its mesh), the first on the uniform start mesh of size `start`. With warm, the
-    re-meshes from the second on start from the previous mesh's points."""
+    """The adaptation loop; returns one row per loop (vertices, e_L2, e_L2·N_v, and the seconds, the
+    iterations and whether the stopping rule ended the re-mesh that made its mesh), the first on the
+    uniform start mesh of size `start`. With warm, the re-meshes from the second on start from the
+    previous mesh's points."""
     mesh = pdmesh.generate(SQUARE, size=start, device="host", seed=seed)
     points, triangles = np.array(mesh.points), np.array(mesh.triangles)
     rows = []
-    seconds = 0.0
+    seconds, iterations, settled = 0.0, 0, False
     with tempfile.TemporaryDirectory(prefix="pdmesh-adapt-") as directory:
         for loop in range(loops + 1):
             u, error = solve(points, triangles, layer)
             rows.append({"loop": loop, "vertices": len(points), "e_L2": error, "e_L2_Nv": error * len(points),
-                         "remesh_s": seconds})
+                         "remesh_s": seconds, "remesh_iterations": iterations, "remesh_settled": settled})
             report(f"loop {loop}: N_v = {len(points):6d}   e_L2 = {error:.3e}   e_L2*N_v = {error * len(points):.3f}"
-                   f"   re-mesh {seconds:.2f} s")
+                   + (f"   re-mesh {seconds:.2f} s, {iterations} iterations ({'settled' if settled else 'maximum'})"
+                      if loop else ""))
             if loop >= 2 and all(abs(rows[-1][key] / rows[-2][key] - 1.0) < tolerance
                                  for key in ("vertices", "e_L2_Nv")):
                 report(f"converged after {loop} adaptations (N_v and e_L2*N_v within {tolerance:.0%})")
                 break
             if loop < loops:
                 began = time.perf_counter()
-                points, triangles = remesh(points, triangles, u, complexity, directory, seed, warm=warm and loop >= 1)
+                points, triangles, iterations, settled = remesh(points, triangles, u, complexity, directory, seed,
+                                                                warm=warm and loop >= 1)
                 seconds = time.perf_counter() - began
     return rows
 

@@ -13,6 +13,7 @@
 
 #include "app/config/case_file.hpp"
 #include "app/pipeline/mesh_inputs.hpp"
+#include "app/pipeline/mesh_pipeline.hpp"
 #include "app/pipeline/resume.hpp"
 #include "core/errors.hpp"
 #include "error_message.hpp"
@@ -366,4 +367,18 @@ TEST_CASE("an output that would replace the metric file is refused", "[metric][c
   CHECK_THAT(r.output, Contains("would replace the input"));
   CHECK(pdmesh_test::slurp(dir / "out" / "mesh.vtu") == "the metric\n");
   fs::remove_all(dir);
+}
+
+TEST_CASE("simulation.metric_anneal: 0.995 by default, a case's value in [0.5, 1] reaches the run, others refused",
+          "[metric][case]") {
+  CHECK(parse("field = \"metric\"\nh1 = \"0.1\"\nh2 = \"0.01\"\n").simulation.metric_anneal ==
+        SimOptions{}.metric_anneal);
+  CHECK(SimOptions{}.metric_anneal == 0.995);
+  const CaseConfig off = parse_case_text(
+      kGeometry + "[spacing]\nfield = \"metric\"\nh1 = \"0.1\"\nh2 = \"0.01\"\n[simulation]\nmetric_anneal = 1\n",
+      kCase);
+  CHECK(off.simulation.metric_anneal == 1.0);
+  CHECK(simulation_options(off).metric_anneal == 1.0);
+  for (const char* bad : {"0.4", "1.01", "0", "\"fast\""})
+    CHECK_THROWS_AS(parse_case_text(kGeometry + "[simulation]\nmetric_anneal = " + bad + "\n", kCase), InputError);
 }

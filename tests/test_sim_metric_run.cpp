@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "core/errors.hpp"
+#include "core/interrupt.hpp"
 #include "geometry/geometry_tree.hpp"
 #include "geometry_fixtures.hpp"
 #include "init/initial_distribution.hpp"
@@ -283,4 +284,102 @@ TEST_CASE("the device-resident simulator refuses a metric run with an InputError
   // Without the metric the same run goes ahead.
   o.metric = nullptr;
   REQUIRE(simulator.run(nodes, tree, spacing, o).history.size() == 10);
+}
+
+TEST_CASE("a metric run under the stopping rule anneals dt_GM from twice population control's last event",
+          "[sim][metric][convergence]") {
+  const LinearMetric metric;
+  SimOptions o;
+  o.iterations = 2000;
+  REQUIRE(metric_anneal_from(o) == 0);  // isotropic
+  o.metric = &metric;
+  REQUIRE(metric_anneal_from(o) == 0);  // no stopping rule
+  o.convergence.enabled = true;
+  o.convergence.min_iterations = 150;
+  o.convergence.window = 100;
+  o.convergence.check_every = 50;
+  REQUIRE(metric_anneal_from(o) == 250);  // no population control: the earliest stop plus one window
+  o.population.enabled = true;
+  o.population.stop = 0.2;
+  REQUIRE(metric_anneal_from(o) == 800);
+  o.iterations = 500;
+  REQUIRE(metric_anneal_from(o) == 250);
+  o.metric_anneal = 1.0;
+  REQUIRE(metric_anneal_from(o) == 0);
+}
+
+TEST_CASE("annealing settles a metric run the dt_GM rule keeps moving, and only after its start",
+          "[sim][metric][convergence]") {
+  // The linear case from a random start under a bulk tolerance of 2e-5: at the rule's step its nodes
+  // still move the mesh's mean 1/Q by more than that over every window up to the maximum.
+  const Geometry geometry = fixtures::square(1.0, 4);
+  const GeometryTree tree(geometry);
+  const LinearLargestSize spacing;
+  const LinearMetric metric;
+  SimOptions o = linear_options(metric, 1500);
+  o.convergence.enabled = true;
+  o.convergence.aspect_tolerance = 2e-5;
+  o.convergence.check_every = 50;
+  o.convergence.window = 100;
+  o.convergence.min_iterations = 150;
+  const int from = metric_anneal_from(o);
+  REQUIRE(from == 250);
+  NodeSet annealed = linear_case_nodes(), plain = annealed;
+  const SimResult a = run_simulation(annealed, tree, spacing, o);
+  o.metric_anneal = 1.0;
+  const SimResult b = run_simulation(plain, tree, spacing, o);
+  // The same run up to the start.
+  REQUIRE(a.history.size() > static_cast<std::size_t>(from));
+  for (std::size_t k = 0; k < static_cast<std::size_t>(from); ++k) REQUIRE(a.history[k].dt_gm == b.history[k].dt_gm);
+  // After it each step is the rule's (x 1, 1.01 or 0.99) times 0.995.
+  for (std::size_t k = static_cast<std::size_t>(from); k < a.history.size(); ++k) {
+    INFO("iteration " << a.history[k].iteration);
+    const double ratio = a.history[k].dt_gm / a.history[k - 1].dt_gm / 0.995;
+    const bool rule = ratio == Approx(1.0).epsilon(1e-12) || ratio == Approx(1.01).epsilon(1e-12) ||
+                      ratio == Approx(0.99).epsilon(1e-12);
+    REQUIRE(rule);
+  }
+  INFO("annealed: " << a.history.size() << " iterations; plain: " << b.history.size());
+  REQUIRE(a.converged);
+  REQUIRE(!b.converged);
+  REQUIRE(b.history.size() == 1500);
+}
+
+TEST_CASE("a metric run stopped while annealing and resumed ends as the uninterrupted run",
+          "[sim][metric][convergence]") {
+  const Geometry geometry = fixtures::square(1.0, 4);
+  const GeometryTree tree(geometry);
+  const LinearLargestSize spacing;
+  const LinearMetric metric;
+  SimOptions o = linear_options(metric, 400);
+  o.convergence.enabled = true;
+  o.convergence.aspect_tolerance = 0.0;  // never converged: both runs go to 400
+  o.convergence.check_every = 50;
+  o.convergence.window = 100;
+  o.convergence.min_iterations = 150;
+  REQUIRE(metric_anneal_from(o) == 250);
+  const NodeSet start = linear_case_nodes();
+  NodeSet whole = start, parts = start;
+  const SimResult a = run_simulation(whole, tree, spacing, o);
+  SimCallbacks callbacks;
+  callbacks.on_iteration = [](const HistoryRow& row) {
+    if (row.iteration == 300) interrupt_flag().store(true);
+  };
+  const SimResult b = run_simulation(parts, tree, spacing, o, callbacks);
+  interrupt_flag().store(false);
+  REQUIRE(b.stopped);
+  REQUIRE(b.state.iterations_done == 300);
+  SimOptions again = o;
+  again.resume = &b.state;
+  const SimResult c = run_simulation(parts, tree, spacing, again);
+  REQUIRE(c.state.iterations_done == 400);
+  REQUIRE(c.state.time_step.dt == a.state.time_step.dt);
+  // Annealed over iterations 251-400: at most 0.995^150 x 1.01^30 = 0.64 x what it was (the rule alone:
+  // at least 0.99^30 = 0.74).
+  REQUIRE(a.history[399].dt_gm < 0.7 * a.history[249].dt_gm);
+  REQUIRE(parts.size() == whole.size());
+  std::size_t differ = 0;
+  for (std::size_t i = 0; i < whole.size(); ++i)
+    differ += (parts.x[i].x != whole.x[i].x || parts.x[i].y != whole.x[i].y);
+  REQUIRE(differ == 0);
 }

@@ -36,6 +36,8 @@ class GlobalTimeStep {
   // an equal value breaks the run and is not an increase. Both counters reset after each change.
   // Returns +1 when dt grew, -1 when it shrank, 0 otherwise.
   int update(double max_force);
+  // Multiplies dt by `factor` (SimOptions::metric_anneal), the counters and the last max |F| kept.
+  void scale(double factor) { dt_ *= factor; }
 
  private:
   double dt_;

@@ -43,7 +43,8 @@ IterationLoop::IterationLoop(const NodeSet& nodes, const SimOptions& options)
       result_(initial_result(nodes, options)),
       gm_(options.resume ? GlobalTimeStep(options.resume->time_step) : GlobalTimeStep(result_.stats.dt_initial)),
       convergence_(options.convergence, options.resume ? options.resume->convergence : std::vector<MeshSample>{}),
-      done_(options.resume ? options.resume->iterations_done : 0) {
+      done_(options.resume ? options.resume->iterations_done : 0),
+      anneal_from_(metric_anneal_from(options)) {
   if (options.resume) population_.schedule = options.resume->population;
 }
 
@@ -111,6 +112,8 @@ void IterationLoop::resume_checks() {
 // with Interrupted, and the run stops after the previous one; once the nodes move the iteration runs
 // whole (the shield) and the request is acted on after it (go_on).
 bool IterationLoop::run_iteration(IterationSteps& steps, int iteration) {
+  // In the global step's state, so that a checkpoint after this iteration resumes with it.
+  if (anneal_from_ > 0 && iteration > anneal_from_) gm_.scale(options_.metric_anneal);
   const double dt_gm = gm_.dt();
   IterationStep step;
   try {

@@ -121,6 +121,7 @@ class IterationLoop {
   ConvergenceMonitor convergence_;
   std::optional<ProgressLine> progress_;  // from the start of run()
   int done_ = 0;
+  int anneal_from_ = 0;  // metric_anneal_from(options_)
   int iteration_ = 0;    // the iteration under way (for a failure's message)
   bool in_loop_ = true;  // false once the iterations are done (the final read-back)
 };

@@ -112,6 +112,12 @@ std::size_t history_reserve(int iterations) {
   return static_cast<std::size_t>(std::clamp(iterations, 0, 1 << 20));
 }
 
+int metric_anneal_from(const SimOptions& options) {
+  if (!options.metric || !options.convergence.enabled || !(options.metric_anneal < 1.0)) return 0;
+  return std::max(2 * population_last_event(options.population, options.iterations),
+                  options.convergence.min_iterations + options.convergence.window);
+}
+
 double default_dt_initial(const NodeSet& nodes, double lj_a) {
   std::vector<double> q;
   for (std::size_t i = 0; i < nodes.size(); ++i)

@@ -87,7 +87,19 @@ struct SimOptions {
   // Simulator has no metric mode and refuses one (InputError). Null: isotropic.
   // The field is read from the driver's thread only (ExpressionMetricField is not thread-safe).
   const MetricField* metric = nullptr;
+  // A metric run under the stopping rule (convergence.enabled) that has not stopped by
+  // metric_anneal_from(options) multiplies dt_GM by this factor before every later iteration, so that
+  // its nodes come to rest (docs/simulation.md, "Annealing a metric run"); 1 = off. A small re-mesh in
+  // a metric that varies over its own element sizes (an adaptation loop's Hessian metric on a few
+  // hundred vertices) does not settle at the step the dt_GM rule keeps: its nodes creep on through
+  // configurations of about the same quality, and the rule's window never closes.
+  double metric_anneal = 0.995;
 };
+
+// The iteration after which a metric run's dt_GM decays (SimOptions::metric_anneal): twice population
+// control's last event (population_last_event), and no earlier than the earliest stop plus one window;
+// 0 (none) for an isotropic run, a run without the stopping rule, or metric_anneal = 1.
+int metric_anneal_from(const SimOptions& options);
 
 struct SimCallbacks {
   // After every iteration, with that iteration's history row.

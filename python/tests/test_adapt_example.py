@@ -1,5 +1,6 @@
 """examples/adapt_poisson.py, short: the adaptation loop (scikit-fem's P1 solution, pdmesh's Hessian
-metric of it, re-mesh) converges within 5 loops and gains on the uniform start. Skipped without
+metric of it, re-mesh) converges within 5 loops, gains on the uniform start, and every re-mesh stops
+on a settled mesh. Skipped without
 scikit-fem (an optional test dependency: the extra "adapt")."""
 
 from __future__ import annotations
@@ -45,3 +46,12 @@ def test_adaptation_converges_within_five_loops(warm):
     assert last["e_L2"] < 0.5 * first["e_L2"]
     assert 0.6 < last["vertices"] / (2 / np.sqrt(3) * 150.0) < 2.5
     assert all(np.isfinite(r["e_L2_Nv"]) for r in rows)
+    # Every re-mesh stopped on a settled mesh (its stopping rule, not the iteration maximum): the
+    # metric run anneals its step once it has run twice as long as population control
+    # (docs/simulation.md, "Annealing a metric run").
+    assert all(r["remesh_settled"] for r in rows[1:]), "\n".join(lines)
+    assert all(0 < r["remesh_iterations"] < 2000 for r in rows[1:]), "\n".join(lines)
+    # Once adapted, e_L2·N_v stays within a band: the last two adaptations within 25 % of each other
+    # and of the best of the adapted meshes (the criterion above asks 10 % of the last two).
+    adapted = [r["e_L2_Nv"] for r in rows[2:]]
+    assert max(adapted[-2:]) < 1.25 * min(adapted), "\n".join(lines)

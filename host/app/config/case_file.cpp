@@ -286,6 +286,7 @@ const std::vector<std::string>& simulation_keys() {
       "simulation.stop_window",
       "simulation.stop_min",
       "simulation.stop_from_event",
+      "simulation.metric_anneal",
       "simulation.dt_initial",
       "simulation.dt_initial.structured",
       "simulation.dt_initial.random",

@@ -204,6 +204,9 @@ struct CaseConfig {
     // ConvergenceOptions::from_last_event: the drift window starts no earlier than the first measurement
     // after population control's last event.
     bool stop_from_event = false;
+    // SimOptions::metric_anneal: a metric run under the stopping rule multiplies dt_GM by this before
+    // every iteration from twice population control's last event on; 1 = off.
+    double metric_anneal = 0.995;
     // Initial global maximum time step per init method; empty = the automatic rule.
     std::optional<double> dt_structured;
     std::optional<double> dt_random;

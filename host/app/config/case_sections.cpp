@@ -263,6 +263,12 @@ void read_simulation_section(const Reader& r, const toml::table& root, CaseConfi
     }
   if (const toml::node* n = find(root, "simulation", "stop_from_event"))
     s.stop_from_event = r.boolean("simulation.stop_from_event", *n);
+  if (const toml::node* n = find(root, "simulation", "metric_anneal")) {
+    s.metric_anneal = r.number("simulation.metric_anneal", *n);
+    if (!(s.metric_anneal >= 0.5 && s.metric_anneal <= 1.0))
+      r.fail("simulation.metric_anneal", n,
+             fmt::format("simulation.metric_anneal must be in [0.5, 1], got {}", s.metric_anneal));
+  }
   if (s.stop_window % s.stop_every != 0) {
     const toml::node* n = find(root, "simulation", "stop_window");
     if (!n) n = find(root, "simulation", "stop_every");

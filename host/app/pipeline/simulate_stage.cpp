@@ -28,6 +28,7 @@ SimOptions simulation_options(const CaseConfig& config, std::size_t nodes) {
   options.convergence.window = config.simulation.stop_window;
   options.convergence.min_iterations = config.simulation.stop_min;
   options.convergence.from_last_event = config.simulation.stop_from_event;
+  options.metric_anneal = config.simulation.metric_anneal;
   options.dt_initial = config.simulation.dt_for(config.init.method);
   options.cutoff = config.simulation.cutoff;
   options.lj_a = config.simulation.lj_a;
