@@ -1,6 +1,7 @@
 // Boundary layers under a metric field (docs/boundary-layers.md, "Under a metric field"): the core
-// is measured in the case's metric, and the layer's front follows the metric (wall nodes at about
-// unit metric length along the wall, the thickness stopped by the metric's length along the rays).
+// is measured in the metric, the layer's front follows the metric (wall nodes at about unit metric
+// length along the wall, the thickness stopped by the metric's length along the rays), and a layer
+// thinner than the metric across the wall meets a core whose metric is graded down to it.
 #include <catch2/catch.hpp>
 
 #include <filesystem>
@@ -29,15 +30,17 @@ void write_plate(const fs::path& file) {
   out << "5\n-0.5 -0.3\n1.5 -0.3\n1.5 0.3\n-0.5 0.3\n-0.5 -0.3\n";
 }
 
-// The plate's layer (h1 1e-4, growth 1.2, thickness 0.1, triangles) under `spacing`.
-std::string plate_case(const fs::path& crv, const std::string& spacing) {
+// The plate's layer (h1 1e-4, growth 1.2, `thickness`, triangles) under `spacing`.
+std::string plate_case(const fs::path& crv, const std::string& spacing, const std::string& thickness = "0.1") {
   return "[geometry]\nfiles = [\"" + crv.string() +
          "\"]\ncurve_names = [\"plate\", \"outer\"]\n"
          "[simulation]\ndevice = \"host\"\n[output]\nformats = [\"msh\"]\n" +
          spacing +
-         "[[boundary_layer]]\ncurves = [\"plate\"]\nfirst_height = 1e-4\ngrowth = 1.2\nthickness = 0.1\n"
-         "elements = \"triangles\"\n";
+         "[[boundary_layer]]\ncurves = [\"plate\"]\nfirst_height = 1e-4\ngrowth = 1.2\nthickness = " + thickness +
+         "\nelements = \"triangles\"\n";
 }
+
+const std::string kPlateMetric = "[spacing]\nfield = \"metric\"\nh1 = \"0.1\"\nh2 = \"0.01\"\nangle = \"0\"\n";
 
 }  // namespace
 
@@ -51,9 +54,7 @@ TEST_CASE("a flat plate's layer under a constant anisotropic metric: the front i
   fs::remove_all(out);
   fs::create_directories(out);
   write_plate(out / "plate.crv");
-  CaseConfig c = parse_case_text(
-      plate_case(out / "plate.crv", "[spacing]\nfield = \"metric\"\nh1 = \"0.1\"\nh2 = \"0.01\"\nangle = \"0\"\n"),
-      out / "case.toml");
+  CaseConfig c = parse_case_text(plate_case(out / "plate.crv", kPlateMetric), out / "case.toml");
   c.out_dir = out / "run";
   c.quiet = true;
   REQUIRE(run_mesh(c) == 0);
@@ -77,6 +78,40 @@ TEST_CASE("a flat plate's layer under a constant anisotropic metric: the front i
   CHECK(f["last_layer_median"].get<double>() >= 0.6);
   CHECK(f["last_layer_median"].get<double>() <= 1.0);
   // The layer itself as without a metric: the first height exact, nothing inverted.
+  CHECK(layer["tables"][0]["first_height_within_2pct"].get<double>() == 1.0);
+  CHECK(layer["tables"][0]["inverted_cells"].get<int>() == 0);
+  fs::remove_all(out);
+}
+
+TEST_CASE("a layer thinner than the metric across the wall meets a core graded down to it", "[app][layers][metric]") {
+  // The same plate and metric with a thickness of 0.002: the layer ends (about 9 layers, the last
+  // about 4.3e-4) far below the metric's 0.01 across the wall, at about 0.05 metric units. The core's
+  // metric is graded from growth x the last layer at the front, so the core triangle on a front edge
+  // is about as high as the next layer would be: the junction (both heights in the case's metric)
+  // near growth, not the metric's 0.01 over the last layer (about 20). The core is measured in the
+  // graded metric it was meshed in.
+  const fs::path out = fs::temp_directory_path() / "pdmesh_test_layer_metric_thin";
+  fs::remove_all(out);
+  fs::create_directories(out);
+  write_plate(out / "plate.crv");
+  CaseConfig c = parse_case_text(plate_case(out / "plate.crv", kPlateMetric, "0.002"), out / "case.toml");
+  c.out_dir = out / "run";
+  c.quiet = true;
+  REQUIRE(run_mesh(c) == 0);
+  const nlohmann::json q = read_quality_json(out / "run" / "quality.json");
+  const nlohmann::json& layer = q["boundary_layer"];
+  // The layer as given: its thickness not stopped by the metric, its last layer far below one unit.
+  CHECK(layer["tables"][0]["max_thickness"].get<double>() <= 0.0021);
+  CHECK(layer["front_in_metric"]["last_layer_median"].get<double>() <= 0.1);
+  // The step from the last layer into the core.
+  const double junction = layer["junction"]["median"].get<double>();
+  CHECK(junction >= 0.5);
+  CHECK(junction <= 2.0);
+  CHECK(layer["junction"]["p95"].get<double>() <= 4.0);
+  // The core follows its graded metric as well as a core in the plain metric does.
+  REQUIRE(q.contains("metric"));
+  CHECK(q["metric"]["window_percent"].get<double>() >= 90.0);
+  CHECK(q["metric"]["q_mean"].get<double>() >= 0.8);
   CHECK(layer["tables"][0]["first_height_within_2pct"].get<double>() == 1.0);
   CHECK(layer["tables"][0]["inverted_cells"].get<int>() == 0);
   fs::remove_all(out);

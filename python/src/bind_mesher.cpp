@@ -214,7 +214,7 @@ class Mesher {
     l->layers = build_layers(l->config, *l->inputs, *l->spacing);
     c = l->layers->core;
     session_->layered = std::move(l);
-    session_->inputs = std::make_unique<MeshInputs>(c);
+    session_->inputs = layered_core_inputs(*session_->layered->layers, *session_->layered->inputs);
     session_->spacing = std::make_unique<SpacingStage>(c, *session_->inputs);
   }
 

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <utility>
 
 #include "spacing/metric.hpp"
 
@@ -129,6 +130,52 @@ double MetricSizeAlongRay::operator()(Vec2 p) const {
   }
   const Vec2 u = (p - foot) * (1.0 / best);
   return 1.0 / m.length(u);
+}
+
+FrontGradedMetric::FrontGradedMetric(const MetricField& base, std::vector<FrontMetricSource> sources, double gradation)
+    : base_(base), sources_(std::move(sources)), gradation_(gradation) {
+  std::sort(sources_.begin(), sources_.end(), [](const FrontMetricSource& a, const FrontMetricSource& b) {
+    return a.p.x < b.p.x || (a.p.x == b.p.x && a.p.y < b.p.y);
+  });
+}
+
+namespace {
+
+// m intersected with the metric of size `size` along u (a unit vector) and none across it (the slab
+// |u . x| <= size): m + c u uᵀ with c = 1 / size² - 1 / (uᵀ m⁻¹ u), which is what the simultaneous
+// reduction of the two gives (docs/metric-fields.md), where m's unit ball reaches farther along u
+// than `size`; m itself where it does not (c <= 0), from which it grows continuously as size falls.
+Metric within_along(const Metric& m, Vec2 u, double size) {
+  const double extent2 = (m.m22 * u.x * u.x - 2.0 * m.m12 * u.x * u.y + m.m11 * u.y * u.y) / m.det();
+  const double c = 1.0 / (size * size) - 1.0 / extent2;
+  if (!(c > 0.0)) return m;
+  return {m.m11 + c * u.x * u.x, m.m12 + c * u.x * u.y, m.m22 + c * u.y * u.y};
+}
+
+}  // namespace
+
+Metric FrontGradedMetric::at(Vec2 p) const {
+  const Metric m = base_.at(p);
+  // sqrt(trace / det) >= 1 / sqrt(lambda2), the base metric's largest size: a source whose size
+  // across its front at p is above it asks for nothing there. Sources farther than the best size so
+  // far / gradation in x cannot lower it: scan outwards from p.x until then.
+  double best = std::sqrt((m.m11 + m.m22) / m.det());
+  const FrontMetricSource* source = nullptr;
+  const auto consider = [&](const FrontMetricSource& s) {
+    if (const double size = s.across + gradation_ * dist(p, s.p); size < best) best = size, source = &s;
+  };
+  const auto mid = std::lower_bound(sources_.begin(), sources_.end(), p.x,
+                                    [](const FrontMetricSource& s, double x) { return s.p.x < x; });
+  for (auto it = mid; it != sources_.end() && gradation_ * (it->p.x - p.x) < best; ++it) consider(*it);
+  for (auto it = mid; it != sources_.begin();) {
+    --it;
+    if (gradation_ * (p.x - it->p.x) >= best) break;
+    consider(*it);
+  }
+  if (source == nullptr) return m;
+  const Metric across = within_along(m, source->u, best);
+  if (!(source->along > 0.0)) return across;
+  return within_along(across, Vec2{-source->u.y, source->u.x}, source->along + gradation_ * dist(p, source->p));
 }
 
 }  // namespace pdmesh

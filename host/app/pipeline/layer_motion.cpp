@@ -107,7 +107,7 @@ LayerMotion::LayerMotion(const CaseConfig& config, std::unique_ptr<MeshInputs> i
       moving_fronts.push_back(s.geometry->curves[static_cast<std::size_t>(first.curve)].name + "_front");
     }
   }
-  core_inputs_ = std::make_unique<MeshInputs>(layered_->core);
+  core_inputs_ = layered_core_inputs(*layered_, *inputs_);
   core_inputs_->projection = inputs_->projection;
   core_spacing_ = std::make_unique<SpacingStage>(layered_->core, *core_inputs_);
   // The core's curves at rest: a step's pose applied to a moving front's points here gives exactly

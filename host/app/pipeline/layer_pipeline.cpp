@@ -103,6 +103,13 @@ std::vector<double> longest_front_edge(const LayerMesh& m) {
 // spacing is below growth x the layer height / this.
 constexpr double kCoreStopSlack = 1.5;
 
+// Under a metric field: a ray whose last layer is below 1 / this metric units gets a source of the
+// core's graded metric (FrontGradedMetric); above it the core's unit step continues the layer.
+constexpr double kGradedJunction = 2.0;
+// ... if its layers reached this share of the table's thickness (not stopped by the metric or a
+// collision before it).
+constexpr double kFullThicknessShare = 0.99;
+
 // With elements = "triangles": the largest tilt (degrees) of a ray from its wall segments' normals
 // (LayerSettings::max_ray_tilt_deg), so that the split wall cells stay within about 90 + this.
 constexpr double kSplitRayTilt = 5.0;
@@ -140,6 +147,8 @@ std::unique_ptr<LayeredCase> build_layers(const CaseConfig& config, const MeshIn
   options.join_tolerance = config.geometry.join_tolerance;
   options.corner_angle_deg = config.geometry.corner_angle;
   std::vector<FrontSpacing::Source> sources;
+  // The core's field (and under a metric its metric) grows from the fronts at this rate.
+  out->gradation = config.spacing.gradation > 0.0 ? config.spacing.gradation : 0.2;
   for (const CaseConfig::BoundaryLayer& b : config.boundary_layers) {
     LayerSection s;
     s.config = b;
@@ -154,13 +163,15 @@ std::unique_ptr<LayeredCase> build_layers(const CaseConfig& config, const MeshIn
     s.settings.fan_elements_per_pi = fan_elements_matching_core(b.growth);
     check_layer_settings(s.settings);
     s.walls = curves_by_name(*geometry, b.curves, b.curves_where + ": boundary_layer.curves");
+    // The table's thickness where nothing limits it: `thickness`, or that of `layers` layers.
+    const double full_thickness =
+        b.layers > 0 ? b.first_height * (std::pow(b.growth, b.layers) - 1.0) / (b.growth - 1.0) : b.thickness;
     if (inputs.metric) {
       // Under a metric field the layer follows the metric: wall nodes at about unit metric length
       // along the wall (where its curvature allows; the wall refinement, which splits the wall by
       // the last layer's height, is off) and the thickness stopped by the metric's length along
       // each ray.
-      const double offset =
-          b.layers > 0 ? b.first_height * (std::pow(b.growth, b.layers) - 1.0) / (b.growth - 1.0) : b.thickness;
+      const double offset = full_thickness;
       try {
         geometry = std::make_shared<const Geometry>(
             metric_wall_geometry(*geometry, s.walls, *inputs.tree, *inputs.metric, offset, options));
@@ -186,12 +197,14 @@ std::unique_ptr<LayeredCase> build_layers(const CaseConfig& config, const MeshIn
     // flat slivers of the layer's size.
     const std::vector<double> longest = longest_front_edge(s.mesh);
     std::map<int, double> front_edge;
+    std::map<int, Vec2> front_chord;  // from the front node before to the one after
     for (const LayerFront& f : s.mesh.fronts) {
       const std::size_t n = f.nodes.size();
       for (std::size_t i = 0; i < n; ++i) {
         if (!f.closed && (i == 0 || i + 1 == n)) continue;
         const auto at = [&](std::size_t k) { return s.mesh.nodes[static_cast<std::size_t>(f.nodes[k % n])]; };
         front_edge[f.nodes[i]] = 0.5 * (dist(at(i + n - 1), at(i)) + dist(at(i), at(i + 1)));
+        front_chord[f.nodes[i]] = at(i + 1) - at(i + n - 1);
       }
     }
     for (const LayerRay& ray : s.mesh.rays)
@@ -205,6 +218,25 @@ std::unique_ptr<LayeredCase> build_layers(const CaseConfig& config, const MeshIn
         // field: divided by it, the core's first rows relax at q as they did at relax_scale 1 (the
         // junction's limits were measured so).
         sources.push_back({s.mesh.nodes[top], q / spacing.relax_scale()});
+        if (inputs.metric && ray.thickness >= kFullThicknessShare * full_thickness &&
+            kGradedJunction * last_metric_length(s.mesh, ray, *inputs.metric) < 1.0) {
+          // A ray whose layers reached the table's thickness (which is the user's: it is kept) with a
+          // last layer so far below the metric's unit along it that the step into a core of unit
+          // length would be above kGradedJunction last layers: the core's metric continues the
+          // layer's growth from its last layer across the front, and at a fan's top has the fan's
+          // front edges along it. Across the front is the normal of the chord through its
+          // neighbours (towards the core): both front edges at the top are as near to along the
+          // front as they can be, which a metric as thin as the last layer needs (the ray's
+          // direction can be a few degrees off it); the ray where the front ends.
+          const Vec2 below = s.mesh.nodes[static_cast<std::size_t>(ray.nodes[ray.nodes.size() - 2])];
+          const double last = dist(s.mesh.nodes[top], below);
+          Vec2 u = (s.mesh.nodes[top] - below) * (1.0 / last);
+          if (const auto c = front_chord.find(ray.nodes.back()); c != front_chord.end() && norm(c->second) > 0.0) {
+            const Vec2 normal = Vec2{-c->second.y, c->second.x} * (1.0 / norm(c->second));
+            u = dot(normal, u) >= 0.0 ? normal : normal * -1.0;
+          }
+          out->front_metric.push_back({s.mesh.nodes[top], u, b.growth * last, ray.fan ? longest[top] : 0.0});
+        }
       }
     curves = front_curves(*geometry, s.walls, s.mesh);
     geometry = std::make_shared<const Geometry>(build_geometry(curves, options));
@@ -224,8 +256,7 @@ std::unique_ptr<LayeredCase> build_layers(const CaseConfig& config, const MeshIn
   core.geometry.projection = ProjectionKind::None;
   // The case's final field as asked (already scaled by spacing.scale) is the core's base field, lowered
   // at the fronts; the core keeps the case's relax_scale.
-  const double gradation = config.spacing.gradation > 0.0 ? config.spacing.gradation : 0.2;
-  core.spacing.given = std::make_shared<FrontSpacing>(field, std::move(sources), gradation);
+  core.spacing.given = std::make_shared<FrontSpacing>(field, std::move(sources), out->gradation);
   core.spacing.scale = 1.0;
   out->seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   std::size_t cells = 0;
@@ -233,6 +264,15 @@ std::unique_ptr<LayeredCase> build_layers(const CaseConfig& config, const MeshIn
   progress(config, "boundary layers: {} table(s), {} cells, {:.3f} s; the core is meshed on their fronts",
            out->sections.size(), cells, out->seconds);
   return out;
+}
+
+std::unique_ptr<MeshInputs> layered_core_inputs(const LayeredCase& layered, const MeshInputs& inputs) {
+  auto core = std::make_unique<MeshInputs>(layered.core);
+  // The core's spacing is its case's given field (FrontSpacing), which does not refer to the metric
+  // replaced here.
+  if (inputs.metric)
+    core->metric = std::make_unique<FrontGradedMetric>(*inputs.metric, layered.front_metric, layered.gradation);
+  return core;
 }
 
 NodeSet without_front_nodes(const NodeSet& nodes, const Geometry& core_geometry, std::size_t& dropped) {
@@ -640,14 +680,15 @@ void write_layered_outputs(const CaseConfig& config, const MeshInputs& inputs, c
   timer = phases.phase("quality");
   QualitySummary core_summary = summarize_quality(core_mesh);
   core_summary.points = core_mesh.points.size();
-  // Under a metric field the core is measured in the case's metric (the `metric` section of a metric
-  // run, over the core's triangles), and the fronts with it; its angles are those of an anisotropic
-  // mesh in physical space.
+  // Under a metric field the core is measured in the metric it was meshed in (the `metric` section
+  // of a metric run, over the core's triangles): the case's, graded down to the layers at the fronts
+  // (layered_core_inputs). The fronts and the junction are measured in the case's metric; the core's
+  // angles are those of an anisotropic mesh in physical space.
   const MetricField* metric = inputs.metric.get();
   FrontInMetric front;
   if (metric != nullptr) {
     core_summary.has_metric = true;
-    core_summary.metric = metric_quality(core_mesh, *metric);
+    core_summary.metric = metric_quality(core_mesh, core_inputs.metric ? *core_inputs.metric : *metric);
     front = front_in_metric(layered, core_inputs, core_mesh, *metric);
   }
   const std::vector<double> junction = junction_growth(layered, front_triangles(core_inputs, core_mesh), metric);

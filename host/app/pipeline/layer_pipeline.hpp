@@ -5,7 +5,8 @@
 // the core's stage mesh, the layer cells and the core triangles are one mesh (mixed cells or all
 // triangles) in the mesh files, the table and quality.json gain the layer measures. Under a metric
 // field the wall curves are reduced to points about one metric unit apart, the layers stop at the
-// metric's size along their rays, and the core and the fronts are measured in the metric
+// metric's size along their rays, the core's metric is the case's graded down to the layers' last
+// heights at the fronts, and the core and the fronts are measured in the metric
 // (docs/boundary-layers.md, "Under a metric field").
 #pragma once
 #include <memory>
@@ -13,6 +14,7 @@
 #include <vector>
 
 #include "app/config/case_file.hpp"
+#include "app/pipeline/layer_metric.hpp"
 #include "app/pipeline/mesh_inputs.hpp"
 #include "app/pipeline/run_phases.hpp"
 #include "io/mixed_mesh.hpp"
@@ -33,6 +35,10 @@ struct LayerSection {
 struct LayeredCase {
   std::vector<LayerSection> sections;
   CaseConfig core;  // the core's case: the front curves, their field, no [[boundary_layer]]
+  // Under a metric field: each ray's top, direction and growth x its last layer, from which the
+  // core's metric is graded (FrontGradedMetric, layered_core_inputs), at the core's gradation.
+  std::vector<FrontMetricSource> front_metric;
+  double gradation = 0.2;
   double seconds = 0.0;
 };
 
@@ -41,6 +47,11 @@ struct LayeredCase {
 // and for --resume. Keeps a reference to `spacing`'s field in the core's case: it must outlive it.
 std::unique_ptr<LayeredCase> build_layers(const CaseConfig& config, const MeshInputs& inputs,
                                           const SpacingStage& spacing);
+
+// The core's inputs: layered.core's, and under a metric field (`inputs.metric`, the case's) the case's
+// metric graded down to the layers at their fronts (FrontGradedMetric over inputs.metric, which must
+// outlive them) instead of the metric the core's case would build. The projection is the caller's to set.
+std::unique_ptr<MeshInputs> layered_core_inputs(const LayeredCase& layered, const MeshInputs& inputs);
 
 // The core's nodes without the Boundary nodes on a front: interior nodes that the simulation snapped onto
 // a front curve (its points are the layer's nodes; one between them would hang on a layer cell's edge).

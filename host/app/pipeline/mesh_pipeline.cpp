@@ -239,7 +239,7 @@ void run_stages(const CaseConfig& config, RunPhases& phases) {
     layered = build_layers(config, inputs, case_spacing);
     timer.stop();
     timer = phases.phase("core spacing");
-    core_inputs = std::make_unique<MeshInputs>(layered->core);
+    core_inputs = layered_core_inputs(*layered, inputs);
     core_inputs->projection = inputs.projection;
     core_spacing = std::make_unique<SpacingStage>(layered->core, *core_inputs);
     timer.stop();
