@@ -36,7 +36,10 @@ def test_the_layer_solves_its_own_equation():
 def test_adaptation_converges_within_five_loops(warm):
     example = load_example()
     lines = []
-    rows = example.adapt(example.Layer(k=20.0), complexity=150.0, loops=5, tolerance=0.1, start=0.1,
+    # The tolerance sits above the spread of re-meshes of one metric from different starts
+    # (docs/simulation.md, "Annealing a metric run"): two consecutive adaptations differ by that
+    # spread even when the loop has converged.
+    rows = example.adapt(example.Layer(k=20.0), complexity=150.0, loops=5, tolerance=0.15, start=0.1,
                          report=lines.append, warm=warm)
     assert any(line.startswith("converged after") for line in lines), "\n".join(lines)
     assert len(rows) - 1 <= 5
@@ -52,6 +55,6 @@ def test_adaptation_converges_within_five_loops(warm):
     assert all(r["remesh_settled"] for r in rows[1:]), "\n".join(lines)
     assert all(0 < r["remesh_iterations"] < 2000 for r in rows[1:]), "\n".join(lines)
     # Once adapted, e_L2·N_v stays within a band: the last two adaptations within 25 % of each other
-    # and of the best of the adapted meshes (the criterion above asks 10 % of the last two).
+    # and of the best of the adapted meshes (the criterion above asks 15 % of the last two).
     adapted = [r["e_L2_Nv"] for r in rows[2:]]
     assert max(adapted[-2:]) < 1.25 * min(adapted), "\n".join(lines)
