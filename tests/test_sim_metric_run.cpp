@@ -308,6 +308,22 @@ TEST_CASE("a metric run under the stopping rule anneals dt_GM from twice populat
   REQUIRE(metric_anneal_from(o) == 0);
 }
 
+namespace {
+
+// linear_options under the stopping rule (a measurement every 50 iterations, a window of 100, the
+// earliest stop at 150) with the given bulk tolerance.
+SimOptions stopping_linear_options(const MetricField& metric, int iterations, double aspect_tolerance) {
+  SimOptions o = linear_options(metric, iterations);
+  o.convergence.enabled = true;
+  o.convergence.aspect_tolerance = aspect_tolerance;
+  o.convergence.check_every = 50;
+  o.convergence.window = 100;
+  o.convergence.min_iterations = 150;
+  return o;
+}
+
+}  // namespace
+
 TEST_CASE("annealing settles a metric run the dt_GM rule keeps moving, and only after its start",
           "[sim][metric][convergence]") {
   // The linear case from a random start under a bulk tolerance of 2e-5: at the rule's step its nodes
@@ -316,12 +332,7 @@ TEST_CASE("annealing settles a metric run the dt_GM rule keeps moving, and only 
   const GeometryTree tree(geometry);
   const LinearLargestSize spacing;
   const LinearMetric metric;
-  SimOptions o = linear_options(metric, 1500);
-  o.convergence.enabled = true;
-  o.convergence.aspect_tolerance = 2e-5;
-  o.convergence.check_every = 50;
-  o.convergence.window = 100;
-  o.convergence.min_iterations = 150;
+  SimOptions o = stopping_linear_options(metric, 1500, 2e-5);
   const int from = metric_anneal_from(o);
   REQUIRE(from == 250);
   NodeSet annealed = linear_case_nodes(), plain = annealed;
@@ -351,12 +362,7 @@ TEST_CASE("a metric run stopped while annealing and resumed ends as the uninterr
   const GeometryTree tree(geometry);
   const LinearLargestSize spacing;
   const LinearMetric metric;
-  SimOptions o = linear_options(metric, 400);
-  o.convergence.enabled = true;
-  o.convergence.aspect_tolerance = 0.0;  // never converged: both runs go to 400
-  o.convergence.check_every = 50;
-  o.convergence.window = 100;
-  o.convergence.min_iterations = 150;
+  SimOptions o = stopping_linear_options(metric, 400, 0.0);  // never converged: both runs go to 400
   REQUIRE(metric_anneal_from(o) == 250);
   const NodeSet start = linear_case_nodes();
   NodeSet whole = start, parts = start;
