@@ -12,6 +12,7 @@
 #include "app/pipeline/interrupt.hpp"
 #include "app/pipeline/mesh_handover.hpp"
 #include "app/pipeline/layer_pipeline.hpp"
+#include "app/pipeline/periodic_pipeline.hpp"
 #include "app/pipeline/pipeline_detail.hpp"
 #include "app/pipeline/output_guard.hpp"
 #include "app/pipeline/resume.hpp"
@@ -213,6 +214,7 @@ void run_stages(const CaseConfig& config, RunPhases& phases) {
   start_workers();
   if (config.resume && !config.boundary_layers.empty())
     throw InputError(fmt::format("{}: --resume is not supported with [[boundary_layer]]", config.source.string()));
+  check_periodic_case(config);  // refusals that need no geometry, before the spacing phase
   if (config.resume) {
     resume_mesh(config, inputs, phases);
     return;
@@ -243,6 +245,17 @@ void run_stages(const CaseConfig& config, RunPhases& phases) {
     core_inputs->projection = inputs.projection;
     core_spacing = std::make_unique<SpacingStage>(layered->core, *core_inputs);
     timer.stop();
+  }
+  if (!config.periodic.empty()) {
+    // With [[periodic]] the later stages mesh the case on the periodic nodes, fixed.
+    timer = phases.phase("periodic");
+    const std::unique_ptr<PeriodicCase> periodic = build_periodic(config, inputs, case_spacing);
+    for (const std::string& line : periodic->notes) progress(config, "{}", line);
+    const std::unique_ptr<MeshInputs> periodic_inputs = periodic_core_inputs(*periodic, inputs);
+    const SpacingStage periodic_spacing(periodic->core, *periodic_inputs);
+    timer.stop();
+    run_core(periodic->core, *periodic_inputs, periodic_spacing, prepared, phases, nullptr);
+    return;
   }
   if (!layered) {
     run_core(config, inputs, case_spacing, prepared, phases, nullptr);
