@@ -19,8 +19,8 @@ std::string format_quality_table(const QualitySummary& summary, const std::strin
 // Non-finite numbers (degenerate triangles) are written as null.
 // `healing` (geometry/heal_report.hpp's heal_json) is written as the "healing" object when not empty,
 // `periodic` (periodic_json) as the "periodic" array.
-std::string quality_json(const QualitySummary& summary, const std::string& source = "",
-                         const std::string& healing = "", const std::string& periodic = "");
+std::string quality_json(const QualitySummary& summary, const std::string& source = "", const std::string& healing = "",
+                         const std::string& periodic = "");
 
 // Writes DIR/quality.json atomically and returns its path.
 std::filesystem::path write_quality_json(const QualitySummary& summary, const std::filesystem::path& dir,

@@ -20,7 +20,9 @@ struct PointKey {
   bool operator==(const PointKey&) const = default;
 };
 struct PointKeyHash {
-  std::size_t operator()(const PointKey& k) const { return std::hash<std::uint64_t>()(k.x * 0x9e3779b97f4a7c15ULL ^ k.y); }
+  std::size_t operator()(const PointKey& k) const {
+    return std::hash<std::uint64_t>()(k.x * 0x9e3779b97f4a7c15ULL ^ k.y);
+  }
 };
 PointKey key_of(Vec2 p) { return {std::bit_cast<std::uint64_t>(p.x), std::bit_cast<std::uint64_t>(p.y)}; }
 

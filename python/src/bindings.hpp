@@ -44,7 +44,7 @@ struct PeriodicSession {
 };
 
 struct Session {
-  std::unique_ptr<LayeredSession> layered;  // first: the core's field below refers to its field
+  std::unique_ptr<LayeredSession> layered;    // first: the core's field below refers to its field
   std::unique_ptr<PeriodicSession> periodic;  // the same
   CaseConfig config;
   std::unique_ptr<MeshInputs> inputs;

@@ -78,8 +78,7 @@ void check_keys(const Reader& r, const toml::table& t, const std::string& prefix
         check_keys(r, *node.as_table(), key);
       } else if (node.is_array()) {
         for (const toml::node& e : *node.as_array()) {
-          if (!e.is_table())
-            r.wrong_type(key, e, fmt::format("a table ([[{}]])", key).c_str());
+          if (!e.is_table()) r.wrong_type(key, e, fmt::format("a table ([[{}]])", key).c_str());
           check_keys(r, *e.as_table(), key);
         }
       } else {
@@ -378,9 +377,10 @@ bool CaseConfig::Output::wants(const std::string& format) const {
 const std::vector<std::string>& case_file_keys() {
   static const std::vector<std::string> keys = [] {
     std::vector<std::string> all;
-    for (const auto* section : {&top_level_keys(), &geometry_keys(), &spacing_keys(), &boundary_keys(), &init_keys(),
-                                &simulation_keys(), &population_keys(), &cleanup_keys(), &output_keys(),
-                                &boundary_layer_keys(), &farfield_keys(), &refine_keys(), &motion_keys(), &periodic_keys()}) {
+    for (const auto* section :
+         {&top_level_keys(), &geometry_keys(), &spacing_keys(), &boundary_keys(), &init_keys(), &simulation_keys(),
+          &population_keys(), &cleanup_keys(), &output_keys(), &boundary_layer_keys(), &farfield_keys(), &refine_keys(),
+          &motion_keys(), &periodic_keys()}) {
       all.insert(all.end(), section->begin(), section->end());
     }
     return all;

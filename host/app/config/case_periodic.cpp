@@ -30,12 +30,11 @@ CaseConfig::Periodic read_one(const Reader& r, const toml::table& t, const toml:
   p.source = names[0];
   p.image = names[1];
   if (p.source == p.image)
-    r.fail("periodic.curves", curves, fmt::format("periodic.curves: curve '{}' cannot be periodic with itself",
-                                                  quote_input(p.source)));
+    r.fail("periodic.curves", curves,
+           fmt::format("periodic.curves: curve '{}' cannot be periodic with itself", quote_input(p.source)));
   if (!c.geometry.curve_names.empty())
     for (const std::string& name : names)
-      if (std::find(c.geometry.curve_names.begin(), c.geometry.curve_names.end(), name) ==
-          c.geometry.curve_names.end())
+      if (std::find(c.geometry.curve_names.begin(), c.geometry.curve_names.end(), name) == c.geometry.curve_names.end())
         r.fail("periodic.curves", curves,
                fmt::format("periodic.curves: unknown curve '{}' (geometry.curve_names: {})", quote_input(name),
                            fmt::join(c.geometry.curve_names, ", ")));
@@ -84,9 +83,10 @@ void read_periodic_sections(const Reader& r, const toml::table& root, CaseConfig
     for (std::size_t j = 0; j < i; ++j)
       for (const std::string& name : {c.periodic[i].source, c.periodic[i].image})
         if (name == c.periodic[j].source || name == c.periodic[j].image)
-          throw InputError(fmt::format("{}: [[periodic]]: curve '{}' is in two tables (also at {}); a curve can be "
-                                       "in one periodic pair only",
-                                       c.periodic[i].where, quote_input(name), c.periodic[j].where));
+          throw InputError(
+              fmt::format("{}: [[periodic]]: curve '{}' is in two tables (also at {}); a curve can be "
+                          "in one periodic pair only",
+                          c.periodic[i].where, quote_input(name), c.periodic[j].where));
 }
 
 }  // namespace pdmesh::case_detail

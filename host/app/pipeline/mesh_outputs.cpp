@@ -441,8 +441,8 @@ std::vector<std::string> queue_mesh_pictures(const CaseConfig& config, const Mes
 std::string periodic_json(const Mesh& mesh, const std::vector<PeriodicLink>& links) {
   std::string out;
   for (const PeriodicLink& l : links) {
-    out += fmt::format("{}{{\"source\": {}, \"image\": {}, \"pairs\": {}, \"max_mismatch\": ",
-                       out.empty() ? "" : ", ", json_string(mesh.curve_names[static_cast<std::size_t>(l.source_curve)]),
+    out += fmt::format("{}{{\"source\": {}, \"image\": {}, \"pairs\": {}, \"max_mismatch\": ", out.empty() ? "" : ", ",
+                       json_string(mesh.curve_names[static_cast<std::size_t>(l.source_curve)]),
                        json_string(mesh.curve_names[static_cast<std::size_t>(l.curve)]), l.nodes.size());
     append_g17(out, l.max_mismatch);
     out += '}';

@@ -205,6 +205,7 @@ void run_stages(const CaseConfig& config, RunPhases& phases) {
   const MeshInputs inputs(config);
   check_interrupt();  // a stop while reading is acted on here at the latest
   timer.stop();
+  check_periodic(config, inputs);  // a bad [[periodic]] table is said before anything else
   read_stage_report(config, inputs);
   // An explicit OpenCL device that is not there is bad input: refuse it before anything is written.
   if (config.simulation.iterations > 0 && config.simulation.device != "host" && config.simulation.device != "auto")
@@ -214,7 +215,6 @@ void run_stages(const CaseConfig& config, RunPhases& phases) {
   start_workers();
   if (config.resume && !config.boundary_layers.empty())
     throw InputError(fmt::format("{}: --resume is not supported with [[boundary_layer]]", config.source.string()));
-  check_periodic_case(config);  // refusals that need no geometry, before the spacing phase
   if (config.resume) {
     resume_mesh(config, inputs, phases);
     return;

@@ -43,7 +43,8 @@ class FieldReference final : public SpacingField {
 
 std::string describe(const PeriodicTransform& t) {
   if (t.is_rotation())
-    return fmt::format("the rotation by {} deg about ({}, {})", t.angle_rad * 180.0 / M_PI, t.center.x, t.center.y);
+    return fmt::format("the rotation by {:.12g} deg about ({}, {})", t.angle_rad * 180.0 / M_PI, t.center.x,
+                       t.center.y);
   return fmt::format("the translation ({}, {})", t.shift.x, t.shift.y);
 }
 
@@ -51,18 +52,62 @@ int curve_index(const Geometry& g, const CaseConfig::Periodic& p, const std::str
   for (std::size_t c = 0; c < g.curves.size(); ++c)
     if (g.curves[c].name == name) {
       if (g.curves[c].constraint)
-        throw InputError(fmt::format("{}: [[periodic]] curves = [\"{}\", \"{}\"]: '{}' is an embedded constraint, not a "
-                                     "boundary curve",
-                                     p.where, quote_input(p.source), quote_input(p.image), quote_input(name)));
+        throw InputError(
+            fmt::format("{}: [[periodic]] curves = [\"{}\", \"{}\"]: '{}' is an embedded constraint, not a "
+                        "boundary curve",
+                        p.where, quote_input(p.source), quote_input(p.image), quote_input(name)));
       return static_cast<int>(c);
     }
   std::vector<std::string> names;
   for (const Curve& c : g.curves) names.push_back(c.name);
-  throw InputError(fmt::format("{}: [[periodic]] curves = [\"{}\", \"{}\"]: unknown curve '{}' (the curves: {})", p.where,
-                               quote_input(p.source), quote_input(p.image), quote_input(name), fmt::join(names, ", ")));
+  throw InputError(fmt::format("{}: [[periodic]] curves = [\"{}\", \"{}\"]: unknown curve '{}' (the curves: {})",
+                               p.where, quote_input(p.source), quote_input(p.image), quote_input(name),
+                               fmt::join(names, ", ")));
+}
+
+// One table against the geometry: its curves' indices and transform, checked.
+struct Resolved {
+  int source = 0, image = 0;
+  PeriodicTransform transform;
+  double miss = 0.0;
+};
+
+Resolved resolve(const CaseConfig::Periodic& p, const Geometry& on) {
+  const double diagonal = std::hypot(on.extents.hi.x - on.extents.lo.x, on.extents.hi.y - on.extents.lo.y);
+  const double tolerance = kMatchTolerance * diagonal;
+  Resolved r;
+  r.source = curve_index(on, p, p.source);
+  r.image = curve_index(on, p, p.image);
+  const Curve& source = on.curves[static_cast<std::size_t>(r.source)];
+  const Curve& image = on.curves[static_cast<std::size_t>(r.image)];
+  switch (p.kind) {
+    case CaseConfig::Periodic::Kind::Translate:
+      r.transform = PeriodicTransform::translation({p.translate[0], p.translate[1]});
+      break;
+    case CaseConfig::Periodic::Kind::Rotate:
+      r.transform = PeriodicTransform::rotation({p.center[0], p.center[1]}, p.angle_deg);
+      break;
+    case CaseConfig::Periodic::Kind::Infer:
+      r.transform = PeriodicTransform::translation(inferred_translation(source, image));
+      break;
+  }
+  const PeriodicMiss miss = periodic_miss(source, image, r.transform);
+  if (!(miss.distance <= tolerance))
+    throw InputError(fmt::format(
+        "{}: [[periodic]] curves = [\"{}\", \"{}\"]: {} does not map '{}' onto '{}': they are {:.6g} apart at "
+        "({:.9g}, {:.9g}), above the tolerance {:.3g} (1e-6 of the geometry's diagonal)",
+        p.where, quote_input(p.source), quote_input(p.image), describe(r.transform), quote_input(p.source),
+        quote_input(p.image), miss.distance, miss.at.x, miss.at.y, tolerance));
+  r.miss = miss.distance;
+  return r;
 }
 
 }  // namespace
+
+void check_periodic(const CaseConfig& config, const MeshInputs& inputs) {
+  check_periodic_case(config);
+  for (const CaseConfig::Periodic& p : config.periodic) (void)resolve(p, inputs.node_geometry());
+}
 
 void check_periodic_case(const CaseConfig& config) {
   if (config.periodic.empty()) return;
@@ -71,27 +116,26 @@ void check_periodic_case(const CaseConfig& config) {
     for (const CaseConfig::BoundaryLayer& b : config.boundary_layers)
       for (const std::string& name : {p.source, p.image})
         if (std::find(b.curves.begin(), b.curves.end(), name) != b.curves.end())
-          throw InputError(fmt::format("{}: [[periodic]]: curve '{}' is also a boundary-layer wall ({}); a periodic "
-                                       "curve cannot carry layers",
-                                       p.where, quote_input(name), b.curves_where));
+          throw InputError(
+              fmt::format("{}: [[periodic]]: curve '{}' is also a boundary-layer wall ({}); a periodic "
+                          "curve cannot carry layers",
+                          p.where, quote_input(name), b.curves_where));
   if (!config.boundary_layers.empty())
     throw InputError(fmt::format("{}: [[periodic]] is not supported together with [[boundary_layer]]", where));
-  if (config.motion.enabled)
-    throw InputError(fmt::format("{}: [[periodic]] is not supported with [motion]", where));
+  if (config.motion.enabled) throw InputError(fmt::format("{}: [[periodic]] is not supported with [motion]", where));
   if (config.spacing.metric())
     throw InputError(
         fmt::format("{}: [[periodic]] is not supported with spacing.field = \"metric\" or \"hessian\"", where));
   if (config.resume) throw InputError(fmt::format("{}: --resume is not supported with [[periodic]]", where));
   if (config.init.kept || !config.init.file.empty())
-    throw InputError(fmt::format("{}: [[periodic]] is not supported with a warm start (init.file, pdmesh smooth)", where));
+    throw InputError(
+        fmt::format("{}: [[periodic]] is not supported with a warm start (init.file, pdmesh smooth)", where));
 }
 
 std::unique_ptr<PeriodicCase> build_periodic(const CaseConfig& config, const MeshInputs& inputs,
                                              const SpacingStage& spacing) {
   check_periodic_case(config);
   const Geometry& on = inputs.node_geometry();
-  const double diagonal = std::hypot(on.extents.hi.x - on.extents.lo.x, on.extents.hi.y - on.extents.lo.y);
-  const double tolerance = kMatchTolerance * diagonal;
   auto out = std::make_unique<PeriodicCase>();
   std::vector<RawCurve> curves;
   for (const Curve& c : on.curves) {
@@ -104,28 +148,11 @@ std::unique_ptr<PeriodicCase> build_periodic(const CaseConfig& config, const Mes
   PlacementOptions placement;
   placement.max_nodes = config.max_nodes;
   for (const CaseConfig::Periodic& p : config.periodic) {
-    const int s = curve_index(on, p, p.source), i = curve_index(on, p, p.image);
+    const Resolved resolved = resolve(p, on);
+    const int s = resolved.source, i = resolved.image;
     const Curve& source = on.curves[static_cast<std::size_t>(s)];
     const Curve& image = on.curves[static_cast<std::size_t>(i)];
-    PeriodicTransform t;
-    switch (p.kind) {
-      case CaseConfig::Periodic::Kind::Translate:
-        t = PeriodicTransform::translation({p.translate[0], p.translate[1]});
-        break;
-      case CaseConfig::Periodic::Kind::Rotate:
-        t = PeriodicTransform::rotation({p.center[0], p.center[1]}, p.angle_deg);
-        break;
-      case CaseConfig::Periodic::Kind::Infer:
-        t = PeriodicTransform::translation(inferred_translation(source, image));
-        break;
-    }
-    const PeriodicMiss miss = periodic_miss(source, image, t);
-    if (!(miss.distance <= tolerance))
-      throw InputError(fmt::format(
-          "{}: [[periodic]] curves = [\"{}\", \"{}\"]: {} does not map '{}' onto '{}': they are {:.6g} apart at "
-          "({:.9g}, {:.9g}), above the tolerance {:.3g} (1e-6 of the geometry's diagonal)",
-          p.where, quote_input(p.source), quote_input(p.image), describe(t), quote_input(p.source),
-          quote_input(p.image), miss.distance, miss.at.x, miss.at.y, tolerance));
+    const PeriodicTransform& t = resolved.transform;
     std::vector<Vec2> nodes;
     if (inputs.dense || inputs.boundary_rule == BoundaryNodeRule::Spacing) {
       const PairedSpacing paired(spacing.field(), t);
@@ -153,10 +180,10 @@ std::unique_ptr<PeriodicCase> build_periodic(const CaseConfig& config, const Mes
     if (reversed) std::reverse(image_points.begin(), image_points.end());
     curves[static_cast<std::size_t>(i)].points = std::move(image_points);
     curves[static_cast<std::size_t>(i)].fixed_points = true;
-    out->notes.push_back(fmt::format("periodic: '{}' -> '{}' by {}{}, {} node pairs (largest miss of the curves {:.3g})",
-                                     p.source, p.image, describe(t),
-                                     p.kind == CaseConfig::Periodic::Kind::Infer ? " (inferred from the curves' ends)" : "",
-                                     nodes.size(), miss.distance));
+    out->notes.push_back(fmt::format(
+        "periodic: '{}' -> '{}' by {}{}, {} node pairs (largest miss of the curves {:.3g})", p.source, p.image,
+        describe(t), p.kind == CaseConfig::Periodic::Kind::Infer ? " (inferred from the curves' ends)" : "",
+        nodes.size(), resolved.miss));
     out->pairs.push_back(std::move(pair));
   }
   CaseConfig& core = out->core;

@@ -13,9 +13,9 @@
 namespace pdmesh {
 
 struct PeriodicCase {
-  CaseConfig core;                    // the case on the fixed-node curves, its field the case's
-  std::vector<PeriodicNodes> pairs;   // per [[periodic]] table, in the core's curve indices
-  std::vector<std::string> notes;     // one line per table for the progress output
+  CaseConfig core;                   // the case on the fixed-node curves, its field the case's
+  std::vector<PeriodicNodes> pairs;  // per [[periodic]] table, in the core's curve indices
+  std::vector<std::string> notes;    // one line per table for the progress output
 };
 
 // Checks the tables against the geometry and the case (InputError naming the case file, the table
@@ -31,5 +31,7 @@ std::unique_ptr<MeshInputs> periodic_core_inputs(const PeriodicCase& periodic, c
 
 // The refusals of build_periodic that need no geometry (also for runs that do not reach it: motion).
 void check_periodic_case(const CaseConfig& config);
+// Every refusal of build_periodic, right after reading (before the progress lines and the spacing).
+void check_periodic(const CaseConfig& config, const MeshInputs& inputs);
 
 }  // namespace pdmesh
