@@ -199,25 +199,36 @@ TEST_CASE("the MSH 2.2 writer's $Periodic section gives the transform on an Affi
   CHECK(pdmesh::msh41_string(mesh).find("$Periodic") == std::string::npos);
 }
 
-TEST_CASE("a periodic node that is not a mesh point is an error naming the curve", "[periodic]") {
+TEST_CASE("a periodic node lost or a node without a partner is an error naming the curve", "[periodic]") {
   pdmesh::PeriodicNodes pair;
-  pair.source_curve = 0;
+  pair.source_curve = 3;
   pair.image_curve = 1;
   pair.transform = pdmesh::PeriodicTransform::translation({1.0, 0.0});
   pair.source = {{0.0, 0.0}, {0.0, 1.0}};
   pair.image = {{1.0, 0.0}, {1.0, 1.0}};
-  const std::vector<Vec2> points = {{0.0, 0.0}, {0.0, 1.0}, {1.0, 0.0}, {1.0, 1.0 + 1e-15}};
-  CHECK_THROWS_AS(pdmesh::link_periodic_nodes(points, {pair}, {"left", "right"}), pdmesh::SimulationError);
-  try {
-    pdmesh::link_periodic_nodes(points, {pair}, {"left", "right"});
-  } catch (const pdmesh::SimulationError& e) {
-    CHECK(std::string(e.what()).find("periodic curve 'right'") != std::string::npos);
-  }
-  const std::vector<Vec2> exact = {{0.0, 0.0}, {0.0, 1.0}, {1.0, 0.0}, {1.0, 1.0}};
-  const auto links = pdmesh::link_periodic_nodes(exact, {pair}, {"left", "right"});
+  pdmesh::Mesh mesh;
+  mesh.points = {{0.0, 0.0}, {1.0, 0.0}, {1.0, 1.0}, {0.0, 1.0}};
+  mesh.triangles = {{0, 1, 2}, {0, 2, 3}};
+  mesh.boundary_edges = {{0, 1, 0}, {1, 2, 1}, {2, 3, 2}, {3, 0, 3}};
+  mesh.curve_names = {"bottom", "right", "top", "left"};
+  const auto links = pdmesh::link_periodic_nodes(mesh, {pair});
   REQUIRE(links.size() == 1);
-  CHECK(links[0].nodes == std::vector<std::array<int, 2>>{{2, 0}, {3, 1}});
+  CHECK(links[0].curve == 1);
+  CHECK(links[0].source_curve == 3);
+  CHECK(links[0].nodes == std::vector<std::array<int, 2>>{{1, 0}, {2, 3}});
   CHECK(links[0].max_mismatch == 0.0);
+  // An image node off by an ulp is not the transform's.
+  pdmesh::Mesh moved = mesh;
+  moved.points[2].y = std::nextafter(1.0, 2.0);
+  CHECK_THROWS_WITH(pdmesh::link_periodic_nodes(moved, {pair}),
+                    Catch::Contains("periodic curve 'right': its node (1, 1) is not a point of the mesh"));
+  // A node the cleanup would have put on the image curve, with no partner on the source.
+  pdmesh::Mesh split = mesh;
+  split.points.push_back({1.0, 0.5});
+  split.boundary_edges = {{0, 1, 0}, {1, 4, 1}, {4, 2, 1}, {2, 3, 2}, {3, 0, 3}};
+  split.triangles = {{0, 1, 4}, {0, 4, 2}, {0, 2, 3}};
+  CHECK_THROWS_WITH(pdmesh::link_periodic_nodes(split, {pair}),
+                    Catch::Contains("periodic curve 'right': its mesh node (1, 0.5) has no partner on 'left'"));
 }
 
 TEST_CASE("malformed [[periodic]] tables exit 2 naming the table and write nothing", "[periodic][cli][bad]") {

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <bit>
 #include <cstdint>
+#include <set>
 #include <string>
 #include <unordered_map>
 
@@ -28,8 +29,9 @@ PointKey key_of(Vec2 p) { return {std::bit_cast<std::uint64_t>(p.x), std::bit_ca
 
 }  // namespace
 
-std::vector<PeriodicLink> link_periodic_nodes(const std::vector<Vec2>& points, const std::vector<PeriodicNodes>& pairs,
-                                              const std::vector<std::string>& curve_names) {
+std::vector<PeriodicLink> link_periodic_nodes(const Mesh& mesh, const std::vector<PeriodicNodes>& pairs) {
+  const std::vector<Vec2>& points = mesh.points;
+  const std::vector<std::string>& curve_names = mesh.curve_names;
   std::vector<PeriodicLink> links;
   if (pairs.empty()) return links;
   std::unordered_map<PointKey, int, PointKeyHash> index;
@@ -53,6 +55,20 @@ std::vector<PeriodicLink> link_periodic_nodes(const std::vector<Vec2>& points, c
       link.nodes.push_back({i, s});
       const Vec2 mapped = pair.transform.apply(points[static_cast<std::size_t>(s)]);
       link.max_mismatch = std::max(link.max_mismatch, dist(mapped, points[static_cast<std::size_t>(i)]));
+    }
+    // Every node on either curve's boundary edges is one of the pairs'.
+    std::set<int> paired;
+    for (const auto& [i, s] : link.nodes) paired.insert({i, s});
+    for (const BoundaryEdge& e : mesh.boundary_edges) {
+      if (e.curve != pair.source_curve && e.curve != pair.image_curve) continue;
+      for (const int v : {e.a, e.b})
+        if (paired.count(v) == 0)
+          throw SimulationError(fmt::format(
+              "periodic curve '{}': its mesh node ({}, {}) has no partner on '{}'",
+              curve_names.at(static_cast<std::size_t>(e.curve)), points[static_cast<std::size_t>(v)].x,
+              points[static_cast<std::size_t>(v)].y,
+              curve_names.at(
+                  static_cast<std::size_t>(e.curve == pair.source_curve ? pair.image_curve : pair.source_curve))));
     }
     links.push_back(std::move(link));
   }

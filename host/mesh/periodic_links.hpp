@@ -8,6 +8,7 @@
 
 #include "core/vec2.hpp"
 #include "geometry/periodic.hpp"
+#include "mesh/mesh.hpp"
 
 namespace pdmesh {
 
@@ -29,10 +30,10 @@ struct PeriodicLink {
   double max_mismatch = 0.0;
 };
 
-// The links of every table: each node is found among `points` by its exact coordinates. Throws
-// SimulationError naming the curve and the node when one is not a mesh point (a step moved or
-// removed a node it had to keep).
-std::vector<PeriodicLink> link_periodic_nodes(const std::vector<Vec2>& points, const std::vector<PeriodicNodes>& pairs,
-                                              const std::vector<std::string>& curve_names);
+// The links of every table: each node is found among the mesh's points by its exact coordinates.
+// Throws SimulationError naming the curve and the node when one is not a mesh point, or when a curve's
+// boundary edges hold a node that is not one of its pair nodes (a step moved, removed or added a
+// node it had to keep).
+std::vector<PeriodicLink> link_periodic_nodes(const Mesh& mesh, const std::vector<PeriodicNodes>& pairs);
 
 }  // namespace pdmesh

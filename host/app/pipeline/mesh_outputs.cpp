@@ -547,7 +547,7 @@ Mesh mesh_stage(const CaseConfig& config, const MeshInputs& inputs, const Spacin
   }
   mesh.region = region_tags(mesh, inputs.geometry.regions, inputs.node_geometry());
   // [[periodic]]: every pair's nodes must have come through the stages exactly.
-  const std::vector<PeriodicLink> periodic = link_periodic_nodes(mesh.points, inputs.periodic, mesh.curve_names);
+  const std::vector<PeriodicLink> periodic = link_periodic_nodes(mesh, inputs.periodic);
   if (!config.write_outputs) return mesh;  // the Python API measures on demand (Mesh.quality())
   auto quality_timer = phases.phase("quality");
   QualitySummary summary = cleanup ? std::move(cleaned.quality) : summarize_quality_of(mesh);
