@@ -59,9 +59,9 @@ std::vector<std::filesystem::path> write_mesh(const Mesh& mesh, const std::files
   };
   for (const auto& f : formats) {
     if (f == "msh") {
-      stream(".msh", [&](TextSink& sink) { write_msh41(mesh, sink); });
+      stream(".msh", [&](TextSink& sink) { write_msh41(mesh, sink, options.periodic); });
     } else if (f == "msh22") {
-      stream(".msh", [&](TextSink& sink) { write_msh22(mesh, sink); });
+      stream(".msh", [&](TextSink& sink) { write_msh22(mesh, sink, options.periodic); });
     } else if (f == "vtu") {
       stream(".vtu", [&](TextSink& sink) { write_vtu(mesh, sink); });
     } else if (f == "su2") {

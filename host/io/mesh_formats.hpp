@@ -8,6 +8,7 @@
 
 #include "io/mesh_io_common.hpp"
 #include "mesh/mesh.hpp"
+#include "mesh/periodic_links.hpp"
 
 namespace pdmesh {
 
@@ -20,6 +21,8 @@ bool is_mesh_format(const std::string& name);
 // boundary curve is land).
 struct MeshWriteOptions {
   std::vector<std::string> open_boundaries;
+  // [[periodic]]: the msh formats write them as $Periodic; the others carry no pairing.
+  const std::vector<PeriodicLink>* periodic = nullptr;
 };
 
 // Writes DIR/STEM.msh (msh and msh22 cannot both be asked for: same file), .vtu, .su2, .14, .2dm or

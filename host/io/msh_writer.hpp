@@ -6,6 +6,7 @@
 
 #include "core/text_sink.hpp"
 #include "mesh/mesh.hpp"
+#include "mesh/periodic_links.hpp"
 
 namespace pdmesh {
 
@@ -13,9 +14,11 @@ namespace pdmesh {
 // order -> number of curves + 1 + j (surface entity j + 1). Node tags are point index + 1.
 // The write_* forms append the file's text to `sink` in pieces (a bound sink writes it out as it
 // goes); the *_string forms return it whole.
-void write_msh41(const Mesh& mesh, TextSink& sink);
-void write_msh22(const Mesh& mesh, TextSink& sink);
-std::string msh41_string(const Mesh& mesh);
-std::string msh22_string(const Mesh& mesh);
+// `periodic` (when not null or empty) adds the $Periodic section: per link the image curve's entity
+// (dim 1, tag curve + 1), the source's, the affine transform's 16 values and the node pairs.
+void write_msh41(const Mesh& mesh, TextSink& sink, const std::vector<PeriodicLink>* periodic = nullptr);
+void write_msh22(const Mesh& mesh, TextSink& sink, const std::vector<PeriodicLink>* periodic = nullptr);
+std::string msh41_string(const Mesh& mesh, const std::vector<PeriodicLink>* periodic = nullptr);
+std::string msh22_string(const Mesh& mesh, const std::vector<PeriodicLink>* periodic = nullptr);
 
 }  // namespace pdmesh

@@ -217,7 +217,8 @@ std::string json_string(const std::string& text) {
   return out + "\"";
 }
 
-std::string quality_json(const QualitySummary& s, const std::string& source, const std::string& healing) {
+std::string quality_json(const QualitySummary& s, const std::string& source, const std::string& healing,
+                         const std::string& periodic) {
   std::string spacing = "null";
   if (s.has_spacing) {
     const auto& c = s.spacing;
@@ -268,6 +269,8 @@ std::string quality_json(const QualitySummary& s, const std::string& source, con
   }
   // Only when healing changed the geometry, so that every other quality.json stays as it was.
   if (!healing.empty()) out += fmt::format("  \"healing\": {},\n", healing);
+  // Only with [[periodic]] tables, so that other runs' files stay as they were.
+  if (!periodic.empty()) out += fmt::format("  \"periodic\": {},\n", periodic);
   if (!s.constraints.empty()) {
     // Only with embedded constraints, so that other runs' files stay as they were.
     std::string list;
@@ -281,9 +284,10 @@ std::string quality_json(const QualitySummary& s, const std::string& source, con
 }
 
 std::filesystem::path write_quality_json(const QualitySummary& summary, const std::filesystem::path& dir,
-                                         const std::string& source, const std::string& healing) {
+                                         const std::string& source, const std::string& healing,
+                                         const std::string& periodic) {
   const auto path = dir / "quality.json";
-  write_text_file(path, quality_json(summary, source, healing));
+  write_text_file(path, quality_json(summary, source, healing, periodic));
   return path;
 }
 

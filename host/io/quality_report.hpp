@@ -17,13 +17,15 @@ std::string format_quality_table(const QualitySummary& summary, const std::strin
 
 // The summary as a JSON document; `source` (e.g. the mesh file) is recorded under "source".
 // Non-finite numbers (degenerate triangles) are written as null.
-// `healing` (geometry/heal_report.hpp's heal_json) is written as the "healing" object when not empty.
-std::string quality_json(const QualitySummary& summary, const std::string& source = "",
-                         const std::string& healing = "");
+// `healing` (geometry/heal_report.hpp's heal_json) is written as the "healing" object when not empty,
+// `periodic` (periodic_json) as the "periodic" array.
+std::string quality_json(const QualitySummary& summary, const std::string& source = "", const std::string& healing = "",
+                         const std::string& periodic = "");
 
 // Writes DIR/quality.json atomically and returns its path.
 std::filesystem::path write_quality_json(const QualitySummary& summary, const std::filesystem::path& dir,
-                                         const std::string& source = "", const std::string& healing = "");
+                                         const std::string& source = "", const std::string& healing = "",
+                                         const std::string& periodic = "");
 
 // A JSON string literal (quotes included) with ", \ and control characters escaped.
 std::string json_string(const std::string& text);

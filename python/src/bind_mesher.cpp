@@ -59,7 +59,9 @@ class Mesher {
     if (c.simulation.iterations > 0 && c.simulation.device != "host" && c.simulation.device != "auto")
       (void)ocl::select_device(c.simulation.device);
     session_->spacing = std::make_unique<SpacingStage>(c, *session_->inputs);
+    check_periodic_case(c);  // with the case's own tables ([[boundary_layer]] among them)
     if (!c.boundary_layers.empty()) run_on_core(c);
+    if (!c.periodic.empty()) run_on_periodic(c);
     const MeshInputs& inputs = *session_->inputs;
     const SpacingStage& spacing = *session_->spacing;
     estimate_ = check_node_limit(c, inputs, spacing);
@@ -215,6 +217,20 @@ class Mesher {
     c = l->layers->core;
     session_->layered = std::move(l);
     session_->inputs = layered_core_inputs(*session_->layered->layers, *session_->layered->inputs);
+    session_->spacing = std::make_unique<SpacingStage>(c, *session_->inputs);
+  }
+
+  // As `pdmesh mesh` with [[periodic]]: the case's stages move to session_->periodic, and `c` and the
+  // session's stages become the case on the periodic nodes, which the steps then run (the mesh stage
+  // writes the pairs as the command does).
+  void run_on_periodic(CaseConfig& c) {
+    auto p = std::make_unique<PeriodicSession>();
+    p->inputs = std::move(session_->inputs);
+    p->spacing = std::move(session_->spacing);
+    p->periodic = build_periodic(c, *p->inputs, *p->spacing);
+    c = p->periodic->core;
+    session_->inputs = periodic_core_inputs(*p->periodic, *p->inputs);
+    session_->periodic = std::move(p);
     session_->spacing = std::make_unique<SpacingStage>(c, *session_->inputs);
   }
 

@@ -14,6 +14,7 @@
 #include "app/config/case_file.hpp"
 #include "app/pipeline/layer_pipeline.hpp"
 #include "app/pipeline/mesh_inputs.hpp"
+#include "app/pipeline/periodic_pipeline.hpp"
 #include "app/pipeline/motion_stepper.hpp"
 #include "io/mixed_mesh.hpp"
 #include "mesh/mesh.hpp"
@@ -34,8 +35,17 @@ struct LayeredSession {
   std::unique_ptr<LayeredCase> layers;
 };
 
+// With [[periodic]]: the case as given and its stages; `inputs` and `spacing` of the Session are the
+// case on the periodic nodes (PeriodicCase::core), whose field refers to this one's.
+struct PeriodicSession {
+  std::unique_ptr<MeshInputs> inputs;
+  std::unique_ptr<SpacingStage> spacing;
+  std::unique_ptr<PeriodicCase> periodic;
+};
+
 struct Session {
-  std::unique_ptr<LayeredSession> layered;  // first: the core's field below refers to its field
+  std::unique_ptr<LayeredSession> layered;    // first: the core's field below refers to its field
+  std::unique_ptr<PeriodicSession> periodic;  // the same
   CaseConfig config;
   std::unique_ptr<MeshInputs> inputs;
   std::unique_ptr<SpacingStage> spacing;  // over *inputs

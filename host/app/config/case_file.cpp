@@ -71,19 +71,18 @@ void check_keys(const Reader& r, const toml::table& t, const std::string& prefix
       check_keys(r, *node.as_table(), key);
       continue;
     }
-    if (key == "boundary_layer" || key == "refine") {
+    if (key == "boundary_layer" || key == "refine" || key == "periodic") {
       // [boundary_layer] once or [[boundary_layer]] per curve set (the same for [[refine]]): each
       // table's keys are checked.
       if (node.is_table()) {
         check_keys(r, *node.as_table(), key);
       } else if (node.is_array()) {
         for (const toml::node& e : *node.as_array()) {
-          if (!e.is_table())
-            r.wrong_type(key, e, key == "refine" ? "a table ([[refine]])" : "a table ([[boundary_layer]])");
+          if (!e.is_table()) r.wrong_type(key, e, fmt::format("a table ([[{}]])", key).c_str());
           check_keys(r, *e.as_table(), key);
         }
       } else {
-        r.wrong_type(key, node, key == "refine" ? "a table ([[refine]])" : "a table ([[boundary_layer]])");
+        r.wrong_type(key, node, fmt::format("a table ([[{}]])", key).c_str());
       }
       continue;
     }
@@ -355,6 +354,12 @@ const std::vector<std::string>& refine_keys() {
   return keys;
 }
 
+// periodic.rotate is an inline table whose keys (center, angle_deg) app/config/case_periodic.cpp checks.
+const std::vector<std::string>& periodic_keys() {
+  static const std::vector<std::string> keys = {"periodic.curves", "periodic.translate", "periodic.rotate"};
+  return keys;
+}
+
 const std::vector<std::string>& motion_keys() {
   static const std::vector<std::string> keys = {
       "motion.curves", "motion.rotate",     "motion.pivot", "motion.translate",
@@ -372,9 +377,10 @@ bool CaseConfig::Output::wants(const std::string& format) const {
 const std::vector<std::string>& case_file_keys() {
   static const std::vector<std::string> keys = [] {
     std::vector<std::string> all;
-    for (const auto* section : {&top_level_keys(), &geometry_keys(), &spacing_keys(), &boundary_keys(), &init_keys(),
-                                &simulation_keys(), &population_keys(), &cleanup_keys(), &output_keys(),
-                                &boundary_layer_keys(), &farfield_keys(), &refine_keys(), &motion_keys()}) {
+    for (const auto* section :
+         {&top_level_keys(), &geometry_keys(), &spacing_keys(), &boundary_keys(), &init_keys(), &simulation_keys(),
+          &population_keys(), &cleanup_keys(), &output_keys(), &boundary_layer_keys(), &farfield_keys(), &refine_keys(),
+          &motion_keys(), &periodic_keys()}) {
       all.insert(all.end(), section->begin(), section->end());
     }
     return all;

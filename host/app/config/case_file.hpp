@@ -273,6 +273,18 @@ struct CaseConfig {
   };
   std::vector<BoundaryLayer> boundary_layers;
 
+  // [[periodic]] (docs/geometry-input.md, "Periodic curves"): the image curve carries the source
+  // curve's boundary nodes under a translation or a rotation (app/pipeline/periodic_pipeline).
+  struct Periodic {
+    std::string source, image;  // curves = [source, image]: names from geometry.curve_names or the files'
+    std::string where;          // where the table was given ("case.toml:12:1"), for errors
+    enum class Kind { Infer, Translate, Rotate } kind = Kind::Infer;
+    std::array<double, 2> translate{0.0, 0.0};
+    std::array<double, 2> center{0.0, 0.0};
+    double angle_deg = 0.0;  // counter-clockwise, source to image
+  };
+  std::vector<Periodic> periodic;
+
   // [motion] (docs/motion.md): the named curves move rigidly, the mesh follows them in `steps` steps.
   // Absent (enabled false) by default: a normal run.
   struct Motion {

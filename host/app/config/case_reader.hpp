@@ -175,6 +175,9 @@ T choose(const Reader& r, const std::string& key, const toml::node& n,
 
 // The [[boundary_layer]] tables into c.boundary_layers (case_layers.cpp).
 void read_boundary_layer_sections(const Reader& r, const toml::table& root, CaseConfig& c);
+// The [[periodic]] tables into c.periodic (case_periodic.cpp): names, transform values; the curves
+// and the transform are checked against the geometry once it is read (app/pipeline/periodic_pipeline).
+void read_periodic_sections(const Reader& r, const toml::table& root, CaseConfig& c);
 // The [motion] section into c.motion (case_motion.cpp): expressions parsed, steps and ranges checked;
 // the curve names are checked against the geometry once it is read (app/pipeline/motion_pipeline.cpp).
 void read_motion_section(const Reader& r, const toml::table& root, CaseConfig& c);

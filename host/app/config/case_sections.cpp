@@ -563,6 +563,7 @@ void read_case_sections(const Reader& r, const toml::table& root, CaseConfig& c)
   read_boundary_layer_sections(r, root, c);
   read_size_sections(r, root, c);
   read_motion_section(r, root, c);
+  read_periodic_sections(r, root, c);
   // The preset set relax_scale for the structured fill; a case that names another fill and not the
   // key gets that fill's value.
   if (find(root, "spacing", "relax_scale") == nullptr)

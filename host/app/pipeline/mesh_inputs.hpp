@@ -16,6 +16,7 @@
 #include "geometry/projection.hpp"
 #include "geometry/smooth_curve.hpp"
 #include "init/initial_distribution.hpp"
+#include "mesh/periodic_links.hpp"
 #include "nodes/node_set.hpp"
 #include "spacing/background_field.hpp"
 #include "spacing/metric_field.hpp"
@@ -71,6 +72,9 @@ struct MeshInputs {
   // geometry.projection = "equirectangular": the projection the geometry was read through; the mesh
   // and node files map their coordinates back with it (app/pipeline/mesh_outputs.cpp).
   std::optional<Equirectangular> projection;
+  // [[periodic]]: per table the nodes of its two curves (set on the core's inputs by
+  // periodic_core_inputs; empty otherwise). The mesh stage finds them among the mesh's points.
+  std::vector<PeriodicNodes> periodic;
 
   const Geometry& node_geometry() const { return dense ? dense->geometry : geometry; }
   const GeometryTree& node_tree() const { return dense ? *dense_tree : *tree; }

@@ -15,6 +15,7 @@
 #include "cleanup/strip_sweeps.hpp"
 #include "core/atomic_file.hpp"
 #include "core/errors.hpp"
+#include "core/g17.hpp"
 #include "core/parallel.hpp"
 #include "io/mesh_formats.hpp"
 #include "mesh/mesh_check.hpp"
@@ -435,9 +436,24 @@ std::vector<std::string> queue_mesh_pictures(const CaseConfig& config, const Mes
 }
 
 // The quality table, DIR/quality.json, the mesh files, mesh.nodes and the pictures of the mesh stage.
+// quality.json's "periodic" array: per [[periodic]] table its curves, node pairs and the largest
+// distance between a source node's transform and its image node.
+std::string periodic_json(const Mesh& mesh, const std::vector<PeriodicLink>& links) {
+  std::string out;
+  for (const PeriodicLink& l : links) {
+    out += fmt::format("{}{{\"source\": {}, \"image\": {}, \"pairs\": {}, \"max_mismatch\": ", out.empty() ? "" : ", ",
+                       json_string(mesh.curve_names[static_cast<std::size_t>(l.source_curve)]),
+                       json_string(mesh.curve_names[static_cast<std::size_t>(l.curve)]), l.nodes.size());
+    append_g17(out, l.max_mismatch);
+    out += '}';
+  }
+  return links.empty() ? std::string() : "[" + out + "]";
+}
+
 void write_mesh_outputs(const CaseConfig& config, const MeshInputs& inputs, const SpacingField& spacing,
                         const Mesh& mesh, const NodeSet& mesh_nodes, QualitySummary& summary, RunPhases& phases,
-                        const std::vector<double>* metric_q, const std::vector<Metric>* metrics) {
+                        const std::vector<double>* metric_q, const std::vector<Metric>* metrics,
+                        const std::vector<PeriodicLink>& periodic) {
   // The pictures are drawn on the background thread while the quality is measured and the files are
   // written; the mesh and the values stay alive until the wait below (also when something throws).
   std::vector<double> values;
@@ -456,8 +472,13 @@ void write_mesh_outputs(const CaseConfig& config, const MeshInputs& inputs, cons
   {
     const auto json_timer = phases.phase("quality.json");
     write_quality_json(summary, dir, config.name,
-                       inputs.healing.changes.empty() ? std::string() : heal_json(inputs.healing));
+                       inputs.healing.changes.empty() ? std::string() : heal_json(inputs.healing),
+                       periodic_json(mesh, periodic));
   }
+  for (const PeriodicLink& l : periodic)
+    progress(config, "periodic: '{}' -> '{}': {} node pairs, largest mismatch {:.3g}",
+             mesh.curve_names[static_cast<std::size_t>(l.source_curve)],
+             mesh.curve_names[static_cast<std::size_t>(l.curve)], l.nodes.size(), l.max_mismatch);
   if (!inputs.healing.changes.empty() && config.output.wants("png")) {
     const auto heal_timer = phases.phase("healing.png");
     write_heal_picture(dir / "healing.png", inputs.heal_input, inputs.healing, config.name);
@@ -468,7 +489,7 @@ void write_mesh_outputs(const CaseConfig& config, const MeshInputs& inputs, cons
   for (const std::string& f : config.output.formats) {
     if (!is_mesh_format(f)) continue;
     const auto writer_timer = phases.phase(fmt::format("mesh {}", f));
-    for (fs::path& p : write_mesh(mesh_out, dir, "mesh", {f}, {config.output.open_boundaries}))
+    for (fs::path& p : write_mesh(mesh_out, dir, "mesh", {f}, {config.output.open_boundaries, &periodic}))
       written.push_back(std::move(p));
   }
   {
@@ -525,6 +546,8 @@ Mesh mesh_stage(const CaseConfig& config, const MeshInputs& inputs, const Spacin
     field.at_many(mesh.points, mesh.spacing);
   }
   mesh.region = region_tags(mesh, inputs.geometry.regions, inputs.node_geometry());
+  // [[periodic]]: every pair's nodes must have come through the stages exactly.
+  const std::vector<PeriodicLink> periodic = link_periodic_nodes(mesh, inputs.periodic);
   if (!config.write_outputs) return mesh;  // the Python API measures on demand (Mesh.quality())
   auto quality_timer = phases.phase("quality");
   QualitySummary summary = cleanup ? std::move(cleaned.quality) : summarize_quality_of(mesh);
@@ -541,7 +564,7 @@ Mesh mesh_stage(const CaseConfig& config, const MeshInputs& inputs, const Spacin
   }
   quality_timer.stop();
   write_mesh_outputs(config, inputs, field, mesh, mesh_nodes, summary, phases, metric != nullptr ? &metric_q : nullptr,
-                     metric != nullptr ? &metrics : nullptr);
+                     metric != nullptr ? &metrics : nullptr, periodic);
   return mesh;
 }
 

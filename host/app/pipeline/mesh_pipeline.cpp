@@ -12,6 +12,7 @@
 #include "app/pipeline/interrupt.hpp"
 #include "app/pipeline/mesh_handover.hpp"
 #include "app/pipeline/layer_pipeline.hpp"
+#include "app/pipeline/periodic_pipeline.hpp"
 #include "app/pipeline/pipeline_detail.hpp"
 #include "app/pipeline/output_guard.hpp"
 #include "app/pipeline/resume.hpp"
@@ -204,6 +205,7 @@ void run_stages(const CaseConfig& config, RunPhases& phases) {
   const MeshInputs inputs(config);
   check_interrupt();  // a stop while reading is acted on here at the latest
   timer.stop();
+  check_periodic(config, inputs);  // a bad [[periodic]] table is said before anything else
   read_stage_report(config, inputs);
   // An explicit OpenCL device that is not there is bad input: refuse it before anything is written.
   if (config.simulation.iterations > 0 && config.simulation.device != "host" && config.simulation.device != "auto")
@@ -243,6 +245,17 @@ void run_stages(const CaseConfig& config, RunPhases& phases) {
     core_inputs->projection = inputs.projection;
     core_spacing = std::make_unique<SpacingStage>(layered->core, *core_inputs);
     timer.stop();
+  }
+  if (!config.periodic.empty()) {
+    // With [[periodic]] the later stages mesh the case on the periodic nodes, fixed.
+    timer = phases.phase("periodic");
+    const std::unique_ptr<PeriodicCase> periodic = build_periodic(config, inputs, case_spacing);
+    for (const std::string& line : periodic->notes) progress(config, "{}", line);
+    const std::unique_ptr<MeshInputs> periodic_inputs = periodic_core_inputs(*periodic, inputs);
+    const SpacingStage periodic_spacing(periodic->core, *periodic_inputs);
+    timer.stop();
+    run_core(periodic->core, *periodic_inputs, periodic_spacing, prepared, phases, nullptr);
+    return;
   }
   if (!layered) {
     run_core(config, inputs, case_spacing, prepared, phases, nullptr);

@@ -12,6 +12,7 @@
 #include "app/pipeline/interrupt.hpp"
 #include "app/pipeline/mesh_pipeline.hpp"
 #include "app/pipeline/output_guard.hpp"
+#include "app/pipeline/periodic_pipeline.hpp"
 #include "app/pipeline/pipeline_detail.hpp"
 #include "core/atomic_file.hpp"
 #include "core/g17.hpp"
@@ -158,6 +159,7 @@ int run_motion(const CaseConfig& config) {
     ~Notes() { set_progress_sink({}); }
   } notes(config.quiet);
   InterruptGuard interrupt;
+  check_periodic_case(config);
   check_outputs(config);
   try {
     run_motion_steps(config);

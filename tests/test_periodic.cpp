@@ -1,0 +1,272 @@
+// [[periodic]] (docs/geometry-input.md, "Periodic curves"): a unit cell periodic in x and y and a
+// 60-degree annulus sector periodic by rotation mesh with the image curves' nodes the exact
+// transforms of the source curves' (read back from mesh.msh's $Periodic section), quality.json
+// reports the pairs, and every malformed table exits 2 with a message and writes nothing.
+#include <catch2/catch.hpp>
+
+#include <array>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <regex>
+#include <set>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "core/errors.hpp"
+#include "geometry/periodic.hpp"
+#include "io/mesh_formats.hpp"
+#include "io/msh_writer.hpp"
+#include "mesh/periodic_links.hpp"
+#include "run_pdmesh.hpp"
+#include "temp_files.hpp"
+
+namespace fs = std::filesystem;
+using pdmesh::Vec2;
+
+namespace {
+
+const fs::path kData = fs::path(PDMESH_SOURCE_DIR) / "tests/data/periodic";
+
+struct Link {
+  int dim = 0, curve = 0, source = 0;
+  std::array<double, 16> affine{};
+  std::vector<std::array<int, 2>> nodes;  // (image tag, source tag)
+};
+
+// The $Periodic section of an MSH 4.1 or 2.2 file.
+std::vector<Link> periodic_section(const std::string& text) {
+  std::vector<Link> links;
+  const auto at = text.find("$Periodic\n");
+  if (at == std::string::npos) return links;
+  std::istringstream in(text.substr(at + 10));
+  std::size_t n = 0;
+  in >> n;
+  for (std::size_t k = 0; k < n; ++k) {
+    Link l;
+    std::size_t pairs = 0;
+    std::string values;  // MSH 4.1: the count 16; MSH 2.2: "Affine"
+    in >> l.dim >> l.curve >> l.source >> values;
+    REQUIRE((values == "16" || values == "Affine"));
+    for (double& v : l.affine) in >> v;
+    in >> pairs;
+    l.nodes.resize(pairs);
+    for (auto& p : l.nodes) in >> p[0] >> p[1];
+    links.push_back(l);
+  }
+  std::string end;
+  in >> end;
+  CHECK(end == "$EndPeriodic");
+  return links;
+}
+
+Vec2 apply(const std::array<double, 16>& a, Vec2 p) {
+  return {a[0] * p.x + a[1] * p.y + a[3], a[4] * p.x + a[5] * p.y + a[7]};
+}
+
+struct Run {
+  pdmesh::Mesh mesh;
+  std::vector<Link> links;
+  std::string quality;
+  std::string output;
+};
+
+Run mesh_case(const fs::path& case_file, const std::string& tag, const std::string& format) {
+  const fs::path out = pdmesh_test::fresh_path(tag);
+  Run run;
+  const auto r = pdmesh_test::run_pdmesh("mesh '" + case_file.string() + "' --out '" + out.string() +
+                                         "' --device host --formats " + format);
+  run.output = r.output;
+  INFO(r.output);
+  REQUIRE(r.status == 0);
+  run.mesh = pdmesh::read_mesh(out / "mesh.msh");
+  run.links = periodic_section(pdmesh_test::slurp(out / "mesh.msh"));
+  run.quality = pdmesh_test::slurp(out / "quality.json");
+  return run;
+}
+
+int curve_of(const pdmesh::Mesh& mesh, const std::string& name) {
+  for (std::size_t c = 0; c < mesh.curve_names.size(); ++c)
+    if (mesh.curve_names[c] == name) return static_cast<int>(c);
+  FAIL("no curve " << name);
+  return -1;
+}
+
+// The mesh nodes on a curve (ends included), from its boundary edges.
+std::set<int> nodes_on(const pdmesh::Mesh& mesh, int curve) {
+  std::set<int> out;
+  for (const auto& e : mesh.boundary_edges)
+    if (e.curve == curve) out.insert({e.a, e.b});
+  return out;
+}
+
+// Every link pairs each node of its image curve with a node of its source curve, once, and the
+// image node is the source node's transform to 1e-12 of the geometry's size.
+void check_links(const Run& run, const std::vector<std::array<std::string, 2>>& pairs, double size) {
+  REQUIRE(run.links.size() == pairs.size());
+  for (std::size_t k = 0; k < pairs.size(); ++k) {
+    const Link& l = run.links[k];
+    const int source = curve_of(run.mesh, pairs[k][0]), image = curve_of(run.mesh, pairs[k][1]);
+    INFO(pairs[k][0] << " -> " << pairs[k][1]);
+    CHECK(l.dim == 1);
+    CHECK(l.curve == image + 1);
+    CHECK(l.source == source + 1);
+    std::set<int> image_nodes, source_nodes;
+    double worst = 0.0;
+    for (const auto& [i, s] : l.nodes) {
+      image_nodes.insert(i - 1);
+      source_nodes.insert(s - 1);
+      const Vec2 mapped = apply(l.affine, run.mesh.points[static_cast<std::size_t>(s - 1)]);
+      worst = std::max(worst, pdmesh::dist(mapped, run.mesh.points[static_cast<std::size_t>(i - 1)]));
+    }
+    CHECK(worst <= 1e-12 * size);
+    CHECK(l.nodes.size() >= 3);
+    CHECK(image_nodes == nodes_on(run.mesh, image));
+    CHECK(source_nodes == nodes_on(run.mesh, source));
+  }
+}
+
+double max_mismatch(const std::string& quality, std::size_t tables) {
+  const std::regex re("\"max_mismatch\": ([-+0-9.eE]+)");
+  double worst = -1.0;
+  std::size_t found = 0;
+  for (auto it = std::sregex_iterator(quality.begin(), quality.end(), re); it != std::sregex_iterator(); ++it, ++found)
+    worst = std::max(worst, std::stod((*it)[1]));
+  CHECK(found == tables);
+  return worst;
+}
+
+}  // namespace
+
+TEST_CASE("a unit cell periodic in x and y: the opposite sides carry the same nodes", "[periodic][cli]") {
+  const Run run = mesh_case(kData / "cell.toml", "periodic_cell", "msh");
+  INFO(run.output);
+  check_links(run, {{"left", "right"}, {"bottom", "top"}}, 1.0);
+  // x: translation (1, 0), inferred and said so; y: (0, 1) as given.
+  CHECK(run.links[0].affine[3] == 1.0);
+  CHECK(run.links[0].affine[7] == 0.0);
+  CHECK(run.links[1].affine[3] == 0.0);
+  CHECK(run.links[1].affine[7] == 1.0);
+  CHECK(run.output.find("inferred from the curves' ends") != std::string::npos);
+  // The corners are shared: (0, 0) is a source node of both tables, (1, 1) an image of both.
+  std::map<std::pair<double, double>, int> corner;
+  for (std::size_t i = 0; i < run.mesh.points.size(); ++i)
+    corner[{run.mesh.points[i].x, run.mesh.points[i].y}] = int(i);
+  const int origin = corner.at({0.0, 0.0}) + 1, far = corner.at({1.0, 1.0}) + 1;
+  for (const Link& l : run.links) {
+    bool has_origin = false, has_far = false;
+    for (const auto& [i, s] : l.nodes) {
+      has_origin = has_origin || s == origin;
+      has_far = has_far || i == far;
+    }
+    CHECK(has_origin);
+    CHECK(has_far);
+  }
+  CHECK(run.quality.find("\"periodic\": [") != std::string::npos);
+  CHECK(max_mismatch(run.quality, 2) <= 1e-12);
+}
+
+TEST_CASE("a 60-degree sector of an annulus periodic by rotation (written as MSH 2.2)", "[periodic][cli]") {
+  const Run run = mesh_case(kData / "sector.toml", "periodic_sector", "msh22");
+  check_links(run, {{"r0", "r60"}}, 2.0);
+  const auto& a = run.links[0].affine;
+  CHECK(a[0] == Approx(0.5).margin(1e-15));
+  CHECK(a[4] == Approx(std::sqrt(3.0) / 2).margin(1e-15));
+  CHECK(max_mismatch(run.quality, 1) <= 2e-12);
+}
+
+TEST_CASE("the MSH 2.2 writer's $Periodic section gives the transform on an Affine line", "[periodic][io]") {
+  pdmesh::Mesh mesh;
+  mesh.points = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+  mesh.triangles = {{0, 1, 2}, {0, 2, 3}};
+  mesh.boundary_edges = {{0, 1, 0}, {1, 2, 1}, {2, 3, 2}, {3, 0, 3}};
+  mesh.curve_names = {"bottom", "right", "top", "left"};
+  pdmesh::PeriodicLink link;
+  link.curve = 1;
+  link.source_curve = 3;
+  link.affine = pdmesh::PeriodicTransform::translation({1.0, 0.0}).affine();
+  link.nodes = {{1, 0}, {2, 3}};
+  const std::vector<pdmesh::PeriodicLink> links{link};
+  const std::string v22 = pdmesh::msh22_string(mesh, &links);
+  CHECK(v22.find("$Periodic\n1\n1 2 4\nAffine 1 0 0 1 0 1 0 0 0 0 1 0 0 0 0 1\n2\n2 1\n3 4\n$EndPeriodic\n") !=
+        std::string::npos);
+  const std::string v41 = pdmesh::msh41_string(mesh, &links);
+  CHECK(v41.find("$Periodic\n1\n1 2 4\n16 1 0 0 1 0 1 0 0 0 0 1 0 0 0 0 1\n2\n2 1\n3 4\n$EndPeriodic\n") !=
+        std::string::npos);
+  // Without links: no section (every other run's files stay as they were).
+  CHECK(pdmesh::msh41_string(mesh).find("$Periodic") == std::string::npos);
+}
+
+TEST_CASE("a periodic node lost or a node without a partner is an error naming the curve", "[periodic]") {
+  pdmesh::PeriodicNodes pair;
+  pair.source_curve = 3;
+  pair.image_curve = 1;
+  pair.transform = pdmesh::PeriodicTransform::translation({1.0, 0.0});
+  pair.source = {{0.0, 0.0}, {0.0, 1.0}};
+  pair.image = {{1.0, 0.0}, {1.0, 1.0}};
+  pdmesh::Mesh mesh;
+  mesh.points = {{0.0, 0.0}, {1.0, 0.0}, {1.0, 1.0}, {0.0, 1.0}};
+  mesh.triangles = {{0, 1, 2}, {0, 2, 3}};
+  mesh.boundary_edges = {{0, 1, 0}, {1, 2, 1}, {2, 3, 2}, {3, 0, 3}};
+  mesh.curve_names = {"bottom", "right", "top", "left"};
+  const auto links = pdmesh::link_periodic_nodes(mesh, {pair});
+  REQUIRE(links.size() == 1);
+  CHECK(links[0].curve == 1);
+  CHECK(links[0].source_curve == 3);
+  CHECK(links[0].nodes == std::vector<std::array<int, 2>>{{1, 0}, {2, 3}});
+  CHECK(links[0].max_mismatch == 0.0);
+  // An image node off by an ulp is not the transform's.
+  pdmesh::Mesh moved = mesh;
+  moved.points[2].y = std::nextafter(1.0, 2.0);
+  CHECK_THROWS_WITH(pdmesh::link_periodic_nodes(moved, {pair}),
+                    Catch::Contains("periodic curve 'right': its node (1, 1) is not a point of the mesh"));
+  // A node the cleanup would have put on the image curve, with no partner on the source.
+  pdmesh::Mesh split = mesh;
+  split.points.push_back({1.0, 0.5});
+  split.boundary_edges = {{0, 1, 0}, {1, 4, 1}, {4, 2, 1}, {2, 3, 2}, {3, 0, 3}};
+  split.triangles = {{0, 1, 4}, {0, 4, 2}, {0, 2, 3}};
+  CHECK_THROWS_WITH(pdmesh::link_periodic_nodes(split, {pair}),
+                    Catch::Contains("periodic curve 'right': its mesh node (1, 0.5) has no partner on 'left'"));
+}
+
+TEST_CASE("malformed [[periodic]] tables exit 2 naming the table and write nothing", "[periodic][cli][bad]") {
+  const fs::path dir = pdmesh_test::fresh_dir("periodic_bad");
+  const std::string head = "preset = \"best\"\n[geometry]\nfiles = [\"" + (kData / "cell.crv").string() +
+                           "\"]\ncurve_names = [\"bottom\", \"right\", \"top\", \"left\", \"hole\"]\n"
+                           "[spacing]\nsize = 0.1\n";
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"[[periodic]]\ncurves = [\"left\", \"nowhere\"]\n", "unknown curve 'nowhere'"},
+      {"[[periodic]]\ncurves = [\"left\", \"left\"]\n", "cannot be periodic with itself"},
+      {"[[periodic]]\ncurves = [\"left\", \"right\"]\ntranslate = [0.9, 0]\n",
+       "the translation (0.9, 0) does not map 'left' onto 'right': they are 0.1 apart at"},
+      {"[[periodic]]\ncurves = [\"left\", \"right\"]\nrotate = { center = [0.5, 0.5], angle_deg = 90 }\n",
+       "does not map 'left' onto 'right'"},
+      {"[[periodic]]\ncurves = [\"left\", \"right\"]\n[[periodic]]\ncurves = [\"right\", \"top\"]\n",
+       "curve 'right' is in two tables"},
+      {"[[periodic]]\ncurves = [\"left\", \"right\"]\n[[boundary_layer]]\ncurves = [\"left\"]\nfirst_height = "
+       "0.001\nlayers = 3\n",
+       "curve 'left' is also a boundary-layer wall"},
+      {"[[periodic]]\ncurves = [\"left\", \"right\"]\n[motion]\ncurves = [\"hole\"]\nrotate = \"10 * t\"\nsteps = 2\n",
+       "[[periodic]] is not supported with [motion]"},
+      {"[[periodic]]\ncurves = [\"left\", \"right\"]\nrotate = { centre = [0, 0], angle_deg = 90 }\n",
+       "unknown key 'periodic.rotate.centre'"},
+      {"[[periodic]]\ncurves = [\"left\", \"right\", \"top\"]\n", "must name 2 curves"},
+      {"[[periodic]]\ncurves = [\"left\", \"hole\"]\n", "does not map 'left' onto 'hole'"},
+  };
+  int k = 0;
+  for (const auto& [table, expected] : cases) {
+    const fs::path file = dir / ("case" + std::to_string(k++) + ".toml");
+    std::ofstream(file) << head << table;
+    const fs::path out = dir / ("out" + std::to_string(k));
+    const auto r = pdmesh_test::run_pdmesh("mesh '" + file.string() + "' --out '" + out.string() + "'");
+    INFO(table);
+    INFO(r.output);
+    CHECK(r.status == 2);
+    CHECK(r.output.rfind("pdmesh: error: ", 0) == 0);
+    CHECK(r.output.find(expected) != std::string::npos);
+    CHECK(r.output.find(file.string()) != std::string::npos);  // names the case file
+    CHECK_FALSE(fs::exists(out));
+  }
+}
