@@ -143,6 +143,17 @@ TEST_CASE("TOML syntax errors name file, line and column", "[app][case]") {
   CHECK(m.rfind("/cases/demo/case.toml:4:", 0) == 0);
 }
 
+TEST_CASE("geometry.join_tolerance out of (0, 1) is refused at its line", "[app][case]") {
+  // build_geometry refuses these too, but without the key or the file (docs/geometry-input.md, "Errors").
+  CHECK(error_of(std::string(kMinimal) + "join_tolerance = 2\n") ==
+        "/cases/demo/case.toml:3:18: geometry.join_tolerance must be in (0, 1), got 2");
+  CHECK_THAT(error_of(std::string(kMinimal) + "join_tolerance = 1\n"),
+             Catch::Contains("geometry.join_tolerance must be in (0, 1), got 1"));
+  CHECK_THAT(error_of(std::string(kMinimal) + "join_tolerance = 0\n"),
+             Catch::Contains("geometry.join_tolerance must be in (0, 1), got 0"));
+  CHECK(parse_case_text(std::string(kMinimal) + "join_tolerance = 0.5\n", kCase).geometry.join_tolerance == 0.5);
+}
+
 TEST_CASE("unknown keys are reported with the nearest valid key", "[app][case]") {
   std::string m = error_of(std::string(kMinimal) + "\n[simulaton]\niterations = 5\n");
   CHECK(m == "/cases/demo/case.toml:5:1: unknown key 'simulaton.iterations'; did you mean 'simulation.iterations'?");

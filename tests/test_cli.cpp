@@ -74,6 +74,15 @@ TEST_CASE("command-line errors exit with status 2", "[cli]") {
   CHECK(run("frobnicate").status == 2);         // no such command
   CHECK(run("mesh x.crv").status == 2);         // --out missing
   CHECK(run("mesh --out /tmp/x").status == 2);  // INPUT missing
+  // Parse errors carry the prefix of every other input error.
+  for (const char* arguments :
+       {"", "mesh x.crv", "mesh --out /tmp/x", "quality", "mesh x.toml --out /tmp/x --iterations abc"}) {
+    INFO(arguments);
+    const Result r = run(arguments);
+    CHECK(r.status == 2);
+    CHECK(r.output.rfind("pdmesh: error: ", 0) == 0);
+  }
+  CHECK(run("mesh x.crv").output.rfind("pdmesh: error: --out is required\n", 0) == 0);
 }
 
 TEST_CASE("a missing input file exits 2 naming the file and writes nothing", "[cli]") {

@@ -2,17 +2,19 @@
 verdict: domain angles at input corners, mesh file reading, the worst-angle analysis, the Gmsh
 background view. Run by ctest (eval_tools) with tools/eval/ on the module path."""
 
+import base64
 import importlib.machinery
 import importlib.util
 import math
 import os
+import struct
 import tempfile
 import unittest
 
 from pdmesh_eval.angles import angle_report, has_triangle
 from pdmesh_eval.geometry import domain_corners, sharpest_corner
 from pdmesh_eval.gmsh import write_geo, write_pos
-from pdmesh_eval.meshfiles import boundary_loops, corner_angles, read_msh
+from pdmesh_eval.meshfiles import boundary_loops, corner_angles, read_msh, vtu_arrays
 
 TOOLS = os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "tools")
 
@@ -89,6 +91,35 @@ class MeshFiles(Files):
         b = read_msh(self.write("b.msh", msh22))
         self.assertEqual(a, b)
         self.assertEqual(a[1], [(0, 1, 2), (0, 2, 3)])
+
+    def test_vtu_arrays_read_binary_as_pdmesh_writes_it_and_ascii_alike(self):
+        # pdmesh's default .vtu: each array inline, base64 of a UInt64 byte count and the data.
+        points = [0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.25, 0.5, 0.0]
+        connectivity = [0, 1, 2]
+        kind = [0, 1, 2]
+
+        def binary(code, values):
+            data = struct.pack(f"<{len(values)}{code}", *values)
+            return base64.b64encode(struct.pack("<Q", len(data)) + data).decode()
+
+        def vtu(fmt, point_text, cell_text, kind_text):
+            return ('<?xml version="1.0"?>\n<VTKFile type="UnstructuredGrid" version="1.0" '
+                    'byte_order="LittleEndian" header_type="UInt64">\n<UnstructuredGrid><Piece>\n'
+                    f'<PointData><DataArray type="UInt8" Name="kind" format="{fmt}">{kind_text}</DataArray>'
+                    f'</PointData>\n<Points><DataArray type="Float64" Name="Points" NumberOfComponents="3" '
+                    f'format="{fmt}">\n  {point_text}\n</DataArray></Points>\n<Cells><DataArray type="Int64" '
+                    f'Name="connectivity" format="{fmt}">{cell_text}</DataArray></Cells>\n'
+                    '</Piece></UnstructuredGrid></VTKFile>\n')
+
+        b = vtu_arrays(self.write("b.vtu", vtu("binary", binary("d", points), binary("q", connectivity),
+                                                binary("B", kind))))
+        a = vtu_arrays(self.write("a.vtu", vtu("ascii", " ".join(map(repr, points)),
+                                               " ".join(map(str, connectivity)), " ".join(map(str, kind)))))
+        self.assertEqual(b["Points"], points)
+        self.assertEqual(b["connectivity"], connectivity)
+        self.assertEqual(b["kind"], kind)
+        for name in ("Points", "connectivity", "kind"):
+            self.assertEqual([float(v) for v in a[name]], [float(v) for v in b[name]])
 
     def test_corner_angles_of_a_right_isosceles_triangle(self):
         self.assertEqual([round(a, 9) for a in corner_angles([(0, 0), (1, 0), (0, 1)], (0, 1, 2))], [90, 45, 45])

@@ -479,6 +479,11 @@ Cli::Cli()
       bench_(std::make_unique<BenchArguments>()),
       smooth_(std::make_unique<SmoothArguments>()) {
   app_->set_version_flag("--version", std::string("pdmesh ") + PDMESH_VERSION);
+  // Parse errors start like every other input error (docs/cli.md, "Exit status"), so that a script
+  // or a user finds them by the same prefix.
+  app_->failure_message([](const CLI::App*, const CLI::Error& e) {
+    return fmt::format("pdmesh: error: {}\nRun with --help for more information.\n", e.what());
+  });
   app_->require_subcommand(1);
   CLI::App* mesh = app_->add_subcommand("mesh", "Distribute nodes for a case and write them and their pictures");
   add_mesh_options(*mesh, *mesh_);

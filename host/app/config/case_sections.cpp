@@ -50,7 +50,13 @@ void read_geometry_section(const Reader& r, const toml::table& root, CaseConfig&
     }
   }
   if (const toml::node* n = find(root, "geometry", "join_tolerance")) {
-    c.geometry.join_tolerance = r.positive("geometry.join_tolerance", *n);
+    // A fraction of the extents' diagonal: checked here so that a bad value is reported at its line,
+    // not later by build_geometry without the key or the file.
+    const double t = r.number("geometry.join_tolerance", *n);
+    if (!(t > 0 && t < 1)) {
+      r.fail("geometry.join_tolerance", n, fmt::format("geometry.join_tolerance must be in (0, 1), got {}", t));
+    }
+    c.geometry.join_tolerance = t;
   }
   if (const toml::node* n = find(root, "geometry", "corner_angle")) {
     const double a = r.number("geometry.corner_angle", *n);

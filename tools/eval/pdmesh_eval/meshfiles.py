@@ -1,8 +1,10 @@
 """pdmesh node files (docs/node-file.md) and triangle meshes (.msh 4.1 / 2.2 ASCII, .vtu data
-arrays) read into plain lists, and the angles of their triangles."""
+arrays, ASCII or binary) read into plain lists, and the angles of their triangles."""
 
+import base64
 import math
 import re
+import struct
 
 
 def read_node_file(path):
@@ -36,13 +38,35 @@ def boundary_loops(curves):
     return loops
 
 
+_VTU_TYPES = {"Float64": "d", "Float32": "f", "Int64": "q", "Int32": "i", "Int16": "h", "Int8": "b",
+              "UInt64": "Q", "UInt32": "I", "UInt16": "H", "UInt8": "B"}
+
+
 def vtu_arrays(path):
-    """Every DataArray of an ASCII .vtu file, by name, as lists of strings."""
+    """Every inline DataArray of a .vtu file, by name, as a list: an ASCII array's values as strings,
+    a binary one's (base64 of a byte count and the data, uncompressed: pdmesh's default) as numbers."""
     with open(path) as f:
         text = f.read()
+    head = re.search(r"<VTKFile[^>]*>", text)
+    head = head.group(0) if head else ""
+    if "compressor=" in head:
+        raise ValueError(f"{path}: compressed .vtu arrays are not read")
+    order = ">" if 'byte_order="BigEndian"' in head else "<"
+    count = order + ("Q" if 'header_type="UInt64"' in head else "I")  # VTK's default header is UInt32
     arrays = {}
-    for m in re.finditer(r'<DataArray[^>]*Name="([^"]+)"[^>]*>(.*?)</DataArray>', text, re.S):
-        arrays[m.group(1)] = m.group(2).split()
+    for m in re.finditer(r"<DataArray([^>]*)>(.*?)</DataArray>", text, re.S):
+        attributes, body = m.group(1), m.group(2)
+        name = re.search(r'Name="([^"]+)"', attributes)
+        if not name:
+            continue
+        if 'format="binary"' in attributes:
+            code = _VTU_TYPES[re.search(r'type="(\w+)"', attributes).group(1)]
+            raw = base64.b64decode("".join(body.split()))
+            (size,) = struct.unpack_from(count, raw)
+            values = size // struct.calcsize(code)
+            arrays[name.group(1)] = list(struct.unpack_from(f"{order}{values}{code}", raw, struct.calcsize(count)))
+        else:
+            arrays[name.group(1)] = body.split()
     return arrays
 
 
