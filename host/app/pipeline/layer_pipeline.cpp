@@ -87,7 +87,8 @@ constexpr double kFrontEdgeShare = 0.8;
 // Per layer node: the longest front edge at it (0 off the fronts).
 std::vector<double> longest_front_edge(const LayerMesh& m) {
   std::vector<double> longest(m.nodes.size(), 0.0);
-  for (const LayerFront& f : m.fronts) {
+  for (std::size_t chain = 0; chain < m.fronts.size(); ++chain) {
+    const LayerFront f = core_front(m, chain);
     const std::size_t n = f.nodes.size();
     for (std::size_t k = 0; k + (f.closed ? 0 : 1) < n; ++k) {
       const auto a = static_cast<std::size_t>(f.nodes[k]), b = static_cast<std::size_t>(f.nodes[(k + 1) % n]);
@@ -198,7 +199,8 @@ std::unique_ptr<LayeredCase> build_layers(const CaseConfig& config, const MeshIn
     const std::vector<double> longest = longest_front_edge(s.mesh);
     std::map<int, double> front_edge;
     std::map<int, Vec2> front_chord;  // from the front node before to the one after
-    for (const LayerFront& f : s.mesh.fronts) {
+    for (std::size_t chain = 0; chain < s.mesh.fronts.size(); ++chain) {
+      const LayerFront f = core_front(s.mesh, chain);
       const std::size_t n = f.nodes.size();
       for (std::size_t i = 0; i < n; ++i) {
         if (!f.closed && (i == 0 || i + 1 == n)) continue;
@@ -485,8 +487,8 @@ MixedMesh merge(const MeshInputs& inputs, const LayeredCase& layered, const Mesh
   for (const LayerSection& s : layered.sections) {
     const LayerMesh& lm = s.mesh;
     std::vector<int> index(lm.nodes.size(), -1);
-    for (const LayerFront& f : lm.fronts)
-      for (const int n : f.nodes) {
+    for (std::size_t chain = 0; chain < lm.fronts.size(); ++chain)
+      for (const int n : core_front(lm, chain).nodes) {
         const Vec2 p = lm.nodes[static_cast<std::size_t>(n)];
         const auto it = at.find({p.x, p.y});
         if (it == at.end())
@@ -518,6 +520,18 @@ MixedMesh merge(const MeshInputs& inputs, const LayeredCase& layered, const Mesh
         const std::string& name = s.geometry->curves[static_cast<std::size_t>(b.curve)].name;
         m.boundary_edges.push_back({index[static_cast<std::size_t>(a.wall_node)],
                                     index[static_cast<std::size_t>(b.wall_node)], original(name)});
+      }
+      // An open chain's end ray along the curve that continues the boundary: its column is that
+      // curve's from the wall node to the top (the core's copy of the curve starts at the top).
+      if (closed || end <= begin) continue;
+      for (const int r : {begin, end - 1}) {
+        const LayerRay& ray = lm.rays[static_cast<std::size_t>(r)];
+        if (ray.slide_segment < 0) continue;
+        const Segment& seg = s.geometry->segments[static_cast<std::size_t>(ray.slide_segment)];
+        const int curve = original(s.geometry->curves[static_cast<std::size_t>(seg.curve)].name);
+        for (std::size_t j = 0; j + 1 < ray.nodes.size(); ++j)
+          m.boundary_edges.push_back({index[static_cast<std::size_t>(ray.nodes[j])],
+                                      index[static_cast<std::size_t>(ray.nodes[j + 1])], curve});
       }
     }
   }
@@ -705,16 +719,34 @@ void write_layered_outputs(const CaseConfig& config, const MeshInputs& inputs, c
                          s.config.quads ? "quads" : "triangles", format_layer_measures(lm, names));
     std::string fans;
     for (const int f : lm.fan_sizes) fans += (fans.empty() ? "" : ", ") + std::to_string(f);
+    // Rays below the table's thickness, by what stopped them: the core's spacing (or an end ray's
+    // segment) before any collision, a collision (or a repair round) below that; and those left with
+    // no layer or one. Merged columns count as their neighbours do (they end below the front).
+    const double full =
+        s.config.layers > 0
+            ? s.config.first_height * (std::pow(s.config.growth, s.config.layers) - 1.0) / (s.config.growth - 1.0)
+            : s.config.thickness;
+    std::size_t by_core = 0, by_collision = 0, few_layers = 0;
+    for (const LayerRay& ray : s.mesh.rays) {
+      if (ray.free_thickness < kFullThicknessShare * full)
+        ++by_core;
+      else if (ray.thickness < kFullThicknessShare * full)
+        ++by_collision;
+      if (!ray.merged && ray.nodes.size() <= 2) ++few_layers;
+    }
+    // JSON has no infinity: a ray without layer beside one with layers makes the jump infinite.
+    const std::string jump = std::isfinite(lm.max_thickness_jump) ? fmt::format("{}", lm.max_thickness_jump) : "null";
     json_layers += fmt::format(
         "{}    {{\"curves\": [\"{}\"], \"first_height\": {}, \"growth\": {}, \"cells\": {}, \"quads\": {}, "
         "\"triangles\": {}, \"wall_cells\": {}, \"first_height_within_2pct\": {}, \"first_height_max_error\": {}, "
         "\"growth_median\": {}, \"growth_p95\": {}, \"growth_max\": {}, \"max_angle\": {}, \"angles_above_150\": {}, "
         "\"inverted_cells\": {}, \"fan_sizes\": [{}], \"max_thickness_jump\": {}, \"min_thickness\": {}, "
-        "\"max_thickness\": {}, \"max_layers\": {}}}",
+        "\"max_thickness\": {}, \"max_layers\": {}, \"rays\": {}, \"rays_stopped_by_core_spacing\": {}, "
+        "\"rays_cut_by_collision\": {}, \"rays_with_at_most_one_layer\": {}}}",
         k ? ",\n" : "", fmt::join(s.config.curves, "\", \""), s.settings.first_height, s.settings.growth, lm.cells,
         lm.quads, lm.triangles, lm.wall_cells, lm.first_height_within_2pct, lm.first_height_max_error, lm.growth_median,
-        lm.growth_p95, lm.growth_max, lm.max_angle_deg, lm.angles_above_150, lm.inverted_cells, fans,
-        lm.max_thickness_jump, lm.min_thickness, lm.max_thickness, lm.max_layers);
+        lm.growth_p95, lm.growth_max, lm.max_angle_deg, lm.angles_above_150, lm.inverted_cells, fans, jump,
+        lm.min_thickness, lm.max_thickness, lm.max_layers, s.mesh.rays.size(), by_core, by_collision, few_layers);
   }
   const double j50 = quantile(junction, 0.5), j95 = quantile(junction, 0.95);
   const double jmax = junction.empty() ? 0.0 : *std::max_element(junction.begin(), junction.end());
