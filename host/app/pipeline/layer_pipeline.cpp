@@ -220,16 +220,18 @@ std::unique_ptr<LayeredCase> build_layers(const CaseConfig& config, const MeshIn
         // field: divided by it, the core's first rows relax at q as they did at relax_scale 1 (the
         // junction's limits were measured so).
         sources.push_back({s.mesh.nodes[top], q / spacing.relax_scale()});
-        if (inputs.metric && ray.thickness >= kFullThicknessShare * full_thickness &&
+        if (inputs.metric && ray.free_thickness >= kFullThicknessShare * full_thickness &&
             kGradedJunction * last_metric_length(s.mesh, ray, *inputs.metric) < 1.0) {
-          // A ray whose layers reached the table's thickness (which is the user's: it is kept) with a
-          // last layer so far below the metric's unit along it that the step into a core of unit
-          // length would be above kGradedJunction last layers: the core's metric continues the
-          // layer's growth from its last layer across the front, and at a fan's top has the fan's
-          // front edges along it. Across the front is the normal of the chord through its
-          // neighbours (towards the core): both front edges at the top are as near to along the
-          // front as they can be, which a metric as thin as the last layer needs (the ray's
-          // direction can be a few degrees off it); the ray where the front ends.
+          // A ray not stopped by the metric (its layers reached the table's thickness, which is the
+          // user's and is kept, or a collision cut them below it: a slot between two elements, far
+          // narrower than the metric's unit) with a last layer so far below the metric's unit along
+          // it that the step into a core of unit length would be above kGradedJunction last layers:
+          // the core's metric continues the layer's growth from its last layer across the front,
+          // and at a fan's top has the fan's front edges along it. Across the front is the normal
+          // of the chord through its neighbours (towards the core): both front edges at the top
+          // are as near to along the front as they can be, which a metric as thin as the last
+          // layer needs (the ray's direction can be a few degrees off it); the ray where the front
+          // ends. A ray the metric stopped has its last layer at 1 / growth to 1 unit already.
           const Vec2 below = s.mesh.nodes[static_cast<std::size_t>(ray.nodes[ray.nodes.size() - 2])];
           const double last = dist(s.mesh.nodes[top], below);
           Vec2 u = (s.mesh.nodes[top] - below) * (1.0 / last);
