@@ -177,6 +177,11 @@ TEST_CASE("a run whose wall chain is open meshes the layer up to the curves that
   REQUIRE(run_mesh(c) == 0);
   const std::string json = read(out / "quality.json");
   CHECK_THAT(json, Catch::Contains("\"inverted_cells\": 0") && Catch::Contains("\"first_height_within_2pct\": 1"));
+  // The core meets the end columns (their edges the layers' heights, from 1e-3 at the wall) at their
+  // length: no core node fans out to their nodes in slivers.
+  const auto at = json.find("\"core_min_angle\": ");
+  REQUIRE(at != std::string::npos);
+  CHECK(std::stod(json.substr(at + 18)) >= 30.0);
   // One marker per curve, the wall's and the lower half's edges in them.
   const std::string su2 = read(out / "mesh.su2");
   CHECK_THAT(su2, Catch::Contains("MARKER_TAG= upper\nMARKER_ELEMS= ") &&

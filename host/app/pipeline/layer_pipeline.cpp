@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cmath>
 #include <map>
+#include <set>
 #include <fmt/format.h>
 
 #include "app/pipeline/layer_metric.hpp"
@@ -242,6 +243,29 @@ std::unique_ptr<LayeredCase> build_layers(const CaseConfig& config, const MeshIn
           out->front_metric.push_back({s.mesh.nodes[top], u, b.growth * last, ray.fan ? longest[top] : 0.0});
         }
       }
+    // An open chain's end column inside the domain (its end ray off the curve that continues the
+    // boundary) is part of the front from the wall node up: its edges are the layers' heights, from
+    // h1 at the wall, and the core meets them at their length (else a core node fans out to the
+    // column's dense nodes in slivers).
+    std::set<int> tops;
+    for (const LayerRay& ray : s.mesh.rays) tops.insert(ray.nodes.back());
+    for (std::size_t chain = 0; chain < s.mesh.fronts.size(); ++chain) {
+      const LayerFront f = core_front(s.mesh, chain);
+      if (f.closed) continue;
+      const std::size_t n = f.nodes.size();
+      for (std::size_t i = 0; i < n; ++i) {
+        if (tops.count(f.nodes[i]) > 0) continue;
+        const Vec2 p = s.mesh.nodes[static_cast<std::size_t>(f.nodes[i])];
+        double sum = 0.0;
+        int edges = 0;
+        for (const std::size_t j : {i - 1, i + 1})
+          if (j < n) {  // i - 1 wraps past n at i = 0
+            sum += dist(p, s.mesh.nodes[static_cast<std::size_t>(f.nodes[j])]);
+            ++edges;
+          }
+        if (edges > 0) sources.push_back({p, sum / edges / spacing.relax_scale()});
+      }
+    }
     curves = front_curves(*geometry, s.walls, s.mesh);
     geometry = std::make_shared<const Geometry>(build_geometry(curves, options));
     out->sections.push_back(std::move(s));
