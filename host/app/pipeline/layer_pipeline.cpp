@@ -210,8 +210,24 @@ std::unique_ptr<LayeredCase> build_layers(const CaseConfig& config, const MeshIn
         front_chord[f.nodes[i]] = at(i + 1) - at(i + n - 1);
       }
     }
-    for (const LayerRay& ray : s.mesh.rays)
-      if (const double h = last_height(s.mesh, ray); h > 0.0) {
+    // Under a metric field: per ray, whether the metric stopped a ray of its chain (then the
+    // grading along the wall lowers that ray's neighbours below their own stop, and only rays that
+    // reached the thickness are sources; a chain the metric stops nowhere has its cut rays cut by
+    // collisions, which are sources too).
+    std::vector<char> chain_stopped(s.mesh.rays.size(), 0);
+    for (std::size_t c = 0; c + 1 < s.mesh.chain_ray_begin.size(); ++c) {
+      const auto begin = static_cast<std::size_t>(s.mesh.chain_ray_begin[c]);
+      const auto end = static_cast<std::size_t>(s.mesh.chain_ray_begin[c + 1]);
+      const bool stopped = std::any_of(s.mesh.rays.begin() + static_cast<std::ptrdiff_t>(begin),
+                                       s.mesh.rays.begin() + static_cast<std::ptrdiff_t>(end), [&](const LayerRay& r) {
+                                         return r.free_thickness < kFullThicknessShare * full_thickness;
+                                       });
+      std::fill(chain_stopped.begin() + static_cast<std::ptrdiff_t>(begin),
+                chain_stopped.begin() + static_cast<std::ptrdiff_t>(end), stopped ? 1 : 0);
+    }
+    for (std::size_t r = 0; r < s.mesh.rays.size(); ++r)
+      if (const double h = last_height(s.mesh, s.mesh.rays[r]); h > 0.0) {
+        const LayerRay& ray = s.mesh.rays[r];
         const auto top = static_cast<std::size_t>(ray.nodes.back());
         double q = b.growth * h;
         const auto e = front_edge.find(ray.nodes.back());
@@ -221,18 +237,21 @@ std::unique_ptr<LayeredCase> build_layers(const CaseConfig& config, const MeshIn
         // field: divided by it, the core's first rows relax at q as they did at relax_scale 1 (the
         // junction's limits were measured so).
         sources.push_back({s.mesh.nodes[top], q / spacing.relax_scale()});
-        if (inputs.metric && ray.free_thickness >= kFullThicknessShare * full_thickness &&
-            kGradedJunction * last_metric_length(s.mesh, ray, *inputs.metric) < 1.0) {
-          // A ray not stopped by the metric (its layers reached the table's thickness, which is the
-          // user's and is kept, or a collision cut them below it: a slot between two elements, far
-          // narrower than the metric's unit) with a last layer so far below the metric's unit along
-          // it that the step into a core of unit length would be above kGradedJunction last layers:
-          // the core's metric continues the layer's growth from its last layer across the front,
-          // and at a fan's top has the fan's front edges along it. Across the front is the normal
-          // of the chord through its neighbours (towards the core): both front edges at the top
-          // are as near to along the front as they can be, which a metric as thin as the last
-          // layer needs (the ray's direction can be a few degrees off it); the ray where the front
-          // ends. A ray the metric stopped has its last layer at 1 / growth to 1 unit already.
+        const bool full = ray.thickness >= kFullThicknessShare * full_thickness;
+        const bool cut = ray.free_thickness >= kFullThicknessShare * full_thickness && chain_stopped[r] == 0;
+        if (inputs.metric && (full || cut) && kGradedJunction * last_metric_length(s.mesh, ray, *inputs.metric) < 1.0) {
+          // A ray whose layers reached the table's thickness (which is the user's: it is kept), or
+          // on a chain the metric stops nowhere, cut below it by a collision (a slot between two
+          // elements, far narrower than the metric's unit), with a last layer so far below the
+          // metric's unit along it that the step into a core of unit length would be above
+          // kGradedJunction last layers: the core's metric continues the layer's growth from its
+          // last layer across the front, and at a fan's top has the fan's front edges along it.
+          // Across the front is the normal of the chord through its neighbours (towards the core):
+          // both front edges at the top are as near to along the front as they can be, which a
+          // metric as thin as the last layer needs (the ray's direction can be a few degrees off
+          // it); the ray where the front ends. A ray the metric stopped has its last layer at 1 / growth to 1 unit
+          // already; its neighbours lowered by the grading are left out (under the Hessian cases' strongly anisotropic
+          // band the slab across their front shrinks the metric along the wall).
           const Vec2 below = s.mesh.nodes[static_cast<std::size_t>(ray.nodes[ray.nodes.size() - 2])];
           const double last = dist(s.mesh.nodes[top], below);
           Vec2 u = (s.mesh.nodes[top] - below) * (1.0 / last);
