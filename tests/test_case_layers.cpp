@@ -150,9 +150,9 @@ TEST_CASE("a run with an unknown layer curve writes nothing", "[app][layers]") {
   CHECK_FALSE(fs::exists(out));
 }
 
-TEST_CASE("a run whose wall chain is open names the curve to add and writes nothing", "[app][layers]") {
+TEST_CASE("a run whose wall chain is open meshes the layer up to the curves that continue it", "[app][layers]") {
   // The circle cut into an upper and a lower half; layers on the upper half only: the chain's ends
-  // continue along "lower".
+  // continue along "lower", in line with the wall, so the front runs up the end rays.
   std::vector<RawCurve> curves = circle_in_square();
   RawCurve upper{"upper", {}, "memory", 1, {}}, lower{"lower", {}, "memory", 1, {}};
   const std::vector<Vec2>& circle = curves[1].points;
@@ -162,7 +162,8 @@ TEST_CASE("a run whose wall chain is open names the curve to add and writes noth
   }
   CaseConfig c =
       case_for_curves({curves[0], upper, lower}, "halves",
-                      {parse_set_option("simulation.iterations=60"), parse_set_option("simulation.device=host")});
+                      {parse_set_option("simulation.iterations=60"), parse_set_option("simulation.device=host"),
+                       parse_set_option("output.formats=[\"msh\",\"su2\"]")});
   CaseConfig::BoundaryLayer b;
   b.curves = {"upper"};
   b.first_height = 1e-3;
@@ -173,14 +174,87 @@ TEST_CASE("a run whose wall chain is open names the curve to add and writes noth
   fs::remove_all(out);
   c.out_dir = out;
   c.quiet = true;
-  CHECK_THROWS_AS(run_mesh(c), InputError);
-  CHECK_THROWS_WITH(run_mesh(c), Catch::Contains("the wall chain of curve \"upper\" is open") &&
-                                     Catch::Contains("continues along curve \"lower\"") &&
-                                     Catch::Contains("add it to boundary_layer.curves"));
-  CHECK_FALSE(fs::exists(out));
-  // With both halves the chain closes and the run goes through.
-  c.boundary_layers[0].curves = {"upper", "lower"};
   REQUIRE(run_mesh(c) == 0);
+  const std::string json = read(out / "quality.json");
+  CHECK_THAT(json, Catch::Contains("\"inverted_cells\": 0") && Catch::Contains("\"first_height_within_2pct\": 1"));
+  // The core meets the end columns (their edges the layers' heights, from 1e-3 at the wall) at their
+  // length: no core node fans out to their nodes in slivers.
+  const auto at = json.find("\"core_min_angle\": ");
+  REQUIRE(at != std::string::npos);
+  CHECK(std::stod(json.substr(at + 18)) >= 30.0);
+  // One marker per curve, the wall's and the lower half's edges in them.
+  const std::string su2 = read(out / "mesh.su2");
+  CHECK_THAT(su2, Catch::Contains("MARKER_TAG= upper\nMARKER_ELEMS= ") &&
+                      Catch::Contains("MARKER_TAG= lower\nMARKER_ELEMS= "));
+  CHECK_THAT(su2, !Catch::Contains("MARKER_ELEMS= 0\n"));
+  fs::remove_all(out);
+}
+
+TEST_CASE("a channel with layers on its walls: the inlet and outlet hold the layers' sides", "[app][layers]") {
+  // A channel [0,2] x [0,1], walls bottom and top, inlet and outlet of 4 segments each: the end rays
+  // run along the inlet and outlet, whose markers then hold the layer's side edges and the core's.
+  const auto line = [](Vec2 a, Vec2 b, int n) {
+    std::vector<Vec2> p;
+    for (int i = 0; i <= n; ++i) p.push_back(a + (b - a) * (static_cast<double>(i) / n));
+    return p;
+  };
+  const std::vector<RawCurve> curves{{"bottom", line({0, 0}, {2, 0}, 40), "memory", 1, {}},
+                                     {"outlet", line({2, 0}, {2, 1}, 4), "memory", 1, {}},
+                                     {"top", line({2, 1}, {0, 1}, 40), "memory", 1, {}},
+                                     {"inlet", line({0, 1}, {0, 0}, 4), "memory", 1, {}}};
+  CaseConfig c =
+      case_for_curves(curves, "channel",
+                      {parse_set_option("simulation.iterations=60"), parse_set_option("simulation.device=host"),
+                       parse_set_option("output.formats=[\"msh\",\"su2\"]")});
+  CaseConfig::BoundaryLayer b;
+  b.curves = {"bottom", "top"};
+  b.first_height = 2e-3;
+  b.growth = 1.2;
+  b.thickness = 0.1;
+  b.quads = true;
+  c.boundary_layers.push_back(b);
+  const fs::path out = fs::temp_directory_path() / "pdmesh_test_layers_channel";
+  fs::remove_all(out);
+  c.out_dir = out;
+  c.quiet = true;
+  REQUIRE(run_mesh(c) == 0);
+  const std::string json = read(out / "quality.json");
+  CHECK_THAT(json, Catch::Contains("\"inverted_cells\": 0") && Catch::Contains("\"first_height_within_2pct\": 1"));
+  // The inlet's marker: from (0, 0) to (0, 1) without a gap, the two layers' sides and the core's
+  // edges between them; their lengths add up to the inlet's.
+  const std::string su2 = read(out / "mesh.su2");
+  std::vector<Vec2> points;
+  {
+    std::istringstream in(su2.substr(su2.find("NPOIN=")));
+    std::string key;
+    std::size_t n = 0;
+    in >> key >> n;
+    for (std::size_t i = 0; i < n; ++i) {
+      double x = 0, y = 0;
+      std::size_t id = 0;
+      in >> x >> y >> id;
+      points.push_back({x, y});
+    }
+  }
+  for (const std::string name : {"inlet", "outlet"}) {
+    std::istringstream in(su2.substr(su2.find("MARKER_TAG= " + name)));
+    std::string key, tag;
+    std::size_t n = 0;
+    in >> key >> tag >> key >> n;
+    double length = 0.0;
+    std::size_t side = 0;  // edges below y = 0.1 or above 0.9: the layers'
+    for (std::size_t i = 0; i < n; ++i) {
+      int type = 0;
+      std::size_t a = 0, e = 0;
+      in >> type >> a >> e;
+      CHECK(points[a].x == Approx(name == "inlet" ? 0.0 : 2.0).margin(1e-12));
+      CHECK(points[e].x == Approx(name == "inlet" ? 0.0 : 2.0).margin(1e-12));
+      length += dist(points[a], points[e]);
+      if (std::max(points[a].y, points[e].y) <= 0.1 + 1e-9 || std::min(points[a].y, points[e].y) >= 0.9 - 1e-9) ++side;
+    }
+    CHECK(length == Approx(1.0).epsilon(1e-9));
+    CHECK(side >= 2 * 10);  // both layers' columns: at least 10 layers each (h1 2e-3, growth 1.2, 0.1)
+  }
   fs::remove_all(out);
 }
 

@@ -9,6 +9,7 @@
 #include <string>
 
 #include "app/config/case_file.hpp"
+#include "app/pipeline/layer_pipeline.hpp"
 #include "app/pipeline/mesh_pipeline.hpp"
 #include "quality_json.hpp"
 
@@ -114,6 +115,50 @@ TEST_CASE("a layer thinner than the metric across the wall meets a core graded d
   CHECK(q["metric"]["q_mean"].get<double>() >= 0.8);
   CHECK(layer["tables"][0]["first_height_within_2pct"].get<double>() == 1.0);
   CHECK(layer["tables"][0]["inverted_cells"].get<int>() == 0);
+  fs::remove_all(out);
+}
+
+TEST_CASE("a layer cut by a facing wall meets a core graded down to it as a full one does", "[app][layers][metric]") {
+  // Two plates 0.0045 apart under the plate's metric (0.01 across the wall), layers of 0.002: the
+  // facing sides' rays see the other plate within their thickness over gap_fraction and stop at
+  // 0.4 of the gap (0.0018), their last layers about 0.03 metric units. The metric stops no ray.
+  // A ray cut so is as far below the metric's unit as a full one: its top is a source of the core's
+  // graded metric too (a slot's core is not sized by the metric's 0.01 across it).
+  const fs::path out = fs::temp_directory_path() / "pdmesh_test_layer_metric_slot";
+  fs::remove_all(out);
+  fs::create_directories(out);
+  {
+    std::ofstream crv(out / "plates.crv");
+    const int n = 200;
+    for (const double y0 : {-0.01, 0.0145}) {
+      crv << 2 * (n + 1) + 1 << "\n";
+      for (int i = 0; i <= n; ++i) crv << 0.005 * i << " " << y0 << "\n";
+      for (int i = n; i >= 0; --i) crv << 0.005 * i << " " << y0 + 0.02 << "\n";
+      crv << "0 " << y0 << "\n";
+    }
+    crv << "5\n-0.5 -0.3\n1.5 -0.3\n1.5 0.3\n-0.5 0.3\n-0.5 -0.3\n";
+  }
+  const std::string text = "[geometry]\nfiles = [\"" + (out / "plates.crv").string() +
+                           "\"]\ncurve_names = [\"lower\", \"upper\", \"outer\"]\n"
+                           "[simulation]\ndevice = \"host\"\n[output]\nformats = [\"msh\"]\n" +
+                           kPlateMetric +
+                           "[[boundary_layer]]\ncurves = [\"lower\", \"upper\"]\nfirst_height = 1e-4\ngrowth = "
+                           "1.2\nthickness = 0.002\nelements = \"triangles\"\n";
+  const CaseConfig c = parse_case_text(text, out / "case.toml");
+  const MeshInputs inputs(c);
+  const SpacingStage spacing(c, inputs);
+  const auto layered = build_layers(c, inputs, spacing);
+  const LayerMesh& m = layered->sections.at(0).mesh;
+  std::size_t cut = 0, tops = 0;
+  for (const LayerRay& ray : m.rays) {
+    CHECK(ray.free_thickness >= 0.99 * 0.002);  // the metric stops none
+    if (ray.merged || ray.nodes.size() < 2) continue;
+    ++tops;
+    if (ray.thickness < 0.99 * 0.002) ++cut;
+  }
+  CHECK(cut >= 10);  // the facing sides (wall nodes about 0.1 apart: a metric unit along the wall)
+  // Every top is a source: the cut ones as the full ones.
+  CHECK(layered->front_metric.size() == tops);
   fs::remove_all(out);
 }
 

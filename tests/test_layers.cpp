@@ -321,12 +321,28 @@ TEST_CASE("open wall chain: the end rays run along the curves that continue the 
   CHECK_FALSE(m.fronts[0].closed);
   CHECK(m.fronts[0].nodes.front() == m.rays.front().wall_node);
   CHECK(m.fronts[0].nodes.back() == m.rays.back().wall_node);
-  // The core's boundary from an open front is not made: the error names the curves that continue
-  // the chain at its ends, to be added to the wall curves.
-  CHECK_THROWS_WITH(front_curves(g, curves_by_name(g, {"bottom"}, "test"), m),
-                    Catch::Contains("the wall chain of curve \"bottom\" is open") &&
-                        Catch::Contains("continues along curves \"inlet\" and \"outlet\"") &&
-                        Catch::Contains("add them to boundary_layer.curves"));
+  // The core's boundary: the inlet and outlet start at the end rays' tops (the layer's sides cover
+  // them below), the front runs from the first ray's top along the tops to the last ray's top, and
+  // together with the top they close one loop.
+  const std::vector<RawCurve> core = front_curves(g, curves_by_name(g, {"bottom"}, "test"), m);
+  const auto curve = [&](const std::string& name) {
+    for (const RawCurve& c : core)
+      if (c.name == name) return c;
+    FAIL("no curve " << name);
+    return RawCurve{};
+  };
+  const Vec2 first_top = m.nodes[m.rays.front().nodes.back()], last_top = m.nodes[m.rays.back().nodes.back()];
+  CHECK(first_top.y == Approx(0.1));
+  CHECK(curve("inlet").points.back() == first_top);
+  CHECK(curve("inlet").points.front() == Vec2{0, 1});
+  CHECK(curve("outlet").points.front() == last_top);
+  const RawCurve front = curve("bottom_front");
+  CHECK(front.fixed_points);
+  CHECK(front.points.front() == first_top);
+  CHECK(front.points.back() == last_top);
+  for (const Vec2 p : front.points) CHECK(p.y == Approx(0.1));
+  const Geometry core_geometry = build_geometry(core);
+  CHECK(core_geometry.curves.size() == 4);
 }
 
 TEST_CASE("jagged star-shaped walls: valid layers whatever the collisions", "[layers]") {

@@ -153,6 +153,24 @@ TEST_CASE("motion with boundary layers: a front driven into a fixed curve is a r
   CHECK(done == 2);  // steps 0 and 1 finished
 }
 
+TEST_CASE("motion with boundary layers: a moving table whose wall chain is open is refused by name") {
+  // Layers on the ellipse's upper half alone, which moves: the chain ends where the lower half, which
+  // stays, continues it; the layers cannot move rigidly with a curve that does not.
+  const fs::path dir = pdmesh_test::fresh_dir("motion_layers_open");
+  write_body(dir);
+  std::string text = layered_case("[motion]\ncurves = [\"upper\"]\nrotate = \"5*t\"\nsteps = 1\n");
+  const std::string both = "curves = [\"upper\", \"lower\"]\nfirst_height";
+  text.replace(text.find(both), both.size(), "curves = [\"upper\"]\nfirst_height");
+  CaseConfig c = parse_case_text(text, dir / "case.toml", {});
+  c.quiet = true;
+  c.write_outputs = false;
+  c.out_dir = dir / "out";
+  CHECK_THROWS_AS(run_motion_steps(c, [](const MotionStep&) {}), InputError);
+  CHECK_THROWS_WITH(run_motion_steps(c, [](const MotionStep&) {}),
+                    Catch::Contains("the moving wall chain of curve \"upper\" is open (it ends at (") &&
+                        Catch::Contains("add the curves that close its loop to the table and to [motion] curves"));
+}
+
 TEST_CASE("pdmesh mesh with [motion] and [[boundary_layer]]: step files with node_id and the layer cells") {
   const fs::path dir = pdmesh_test::fresh_dir("motion_layers_cli");
   write_body(dir);

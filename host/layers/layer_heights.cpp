@@ -3,6 +3,7 @@
 // the layer count and growth that give that thickness with the first height exact.
 #include <algorithm>
 #include <cmath>
+#include <map>
 
 #include "core/predicates.hpp"
 #include "layers/layers_detail.hpp"
@@ -35,13 +36,19 @@ void free_and_collision_limits(RaySet& set, const Geometry& geometry, const Laye
   std::vector<Vec2> end(nr), probe(nr);
   Box box;
   double longest = 0.0;
+  // End rays per segment they run along: a segment between two open chains' ends (a one-segment
+  // inlet between two walls) carries two, which share it.
+  std::map<int, int> sliding;
+  for (const LayerRay& ray : set.rays)
+    if (ray.slide_segment >= 0) ++sliding[ray.slide_segment];
   for (int r = 0; r < nr; ++r) {
     LayerRay& ray = set.rays[r];
     const Vec2 p = set.wall_points[ray.wall_node];
     ray.free_thickness = free_thickness(ray, p, settings, core_spacing);
     if (ray.slide_segment >= 0) {  // stay on the first segment of the curve it runs along
       const Segment& s = geometry.segments[ray.slide_segment];
-      ray.free_thickness = std::min(ray.free_thickness, 0.9 * s.length * ray.correction);
+      const double share = sliding[ray.slide_segment] > 1 ? 0.45 : 0.9;
+      ray.free_thickness = std::min(ray.free_thickness, share * s.length * ray.correction);
     }
     allowed[r] = ray.free_thickness;
     end[r] = p + (ray.free_thickness / ray.correction) * ray.direction;

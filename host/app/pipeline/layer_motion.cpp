@@ -11,6 +11,7 @@
 #include "core/errors.hpp"
 #include "core/predicates.hpp"
 #include "io/mesh_formats.hpp"
+#include "layers/front_geometry.hpp"
 #include "layers/layer_measures.hpp"
 #include "nodes/node_ids.hpp"
 #include "render/mesh_picture.hpp"
@@ -72,8 +73,8 @@ std::optional<Vec2> first_meeting(const std::vector<Vec2>& m, const std::vector<
 // Per layer node of `m`: 1 on a front (a node the core mesh shares).
 std::vector<char> front_flags(const LayerMesh& m) {
   std::vector<char> on(m.nodes.size(), 0);
-  for (const LayerFront& f : m.fronts)
-    for (const int n : f.nodes) on[static_cast<std::size_t>(n)] = 1;
+  for (std::size_t chain = 0; chain < m.fronts.size(); ++chain)
+    for (const int n : core_front(m, chain).nodes) on[static_cast<std::size_t>(n)] = 1;
   return on;
 }
 
@@ -98,6 +99,19 @@ LayerMotion::LayerMotion(const CaseConfig& config, std::unique_ptr<MeshInputs> i
           "{}: [[boundary_layer]] table {}: its curves {} move ([motion] curves) and {} do not; the layers of one "
           "table move as one body: put the moving walls in a table of their own",
           config.source.string(), k + 1, fmt::join(moves, ", "), fmt::join(stays, ", ")));
+    for (std::size_t c = 0; !moves.empty() && c < s.mesh.chain_closed.size(); ++c)
+      if (s.mesh.chain_closed[c] == 0) {
+        const LayerRay& first = s.mesh.rays[static_cast<std::size_t>(s.mesh.chain_ray_begin[c])];
+        const LayerRay& last = s.mesh.rays[static_cast<std::size_t>(s.mesh.chain_ray_begin[c + 1] - 1)];
+        const Vec2 a = s.mesh.nodes[static_cast<std::size_t>(first.wall_node)];
+        const Vec2 b = s.mesh.nodes[static_cast<std::size_t>(last.wall_node)];
+        throw InputError(fmt::format(
+            "{}: [[boundary_layer]] table {}: the moving wall chain of curve \"{}\" is open (it ends at ({}, {}) "
+            "and ({}, {})); a moving body's layers must go round it: add the curves that close its loop to the "
+            "table and to [motion] curves",
+            config.source.string(), k + 1, s.geometry->curves[static_cast<std::size_t>(first.curve)].name, a.x, a.y,
+            b.x, b.y));
+      }
     section_moves_.push_back(moves.empty() ? 0 : 1);
     rest_nodes_.push_back(s.mesh.nodes);
     if (moves.empty()) continue;

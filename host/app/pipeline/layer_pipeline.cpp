@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cmath>
 #include <map>
+#include <set>
 #include <fmt/format.h>
 
 #include "app/pipeline/layer_metric.hpp"
@@ -87,7 +88,8 @@ constexpr double kFrontEdgeShare = 0.8;
 // Per layer node: the longest front edge at it (0 off the fronts).
 std::vector<double> longest_front_edge(const LayerMesh& m) {
   std::vector<double> longest(m.nodes.size(), 0.0);
-  for (const LayerFront& f : m.fronts) {
+  for (std::size_t chain = 0; chain < m.fronts.size(); ++chain) {
+    const LayerFront f = core_front(m, chain);
     const std::size_t n = f.nodes.size();
     for (std::size_t k = 0; k + (f.closed ? 0 : 1) < n; ++k) {
       const auto a = static_cast<std::size_t>(f.nodes[k]), b = static_cast<std::size_t>(f.nodes[(k + 1) % n]);
@@ -198,7 +200,8 @@ std::unique_ptr<LayeredCase> build_layers(const CaseConfig& config, const MeshIn
     const std::vector<double> longest = longest_front_edge(s.mesh);
     std::map<int, double> front_edge;
     std::map<int, Vec2> front_chord;  // from the front node before to the one after
-    for (const LayerFront& f : s.mesh.fronts) {
+    for (std::size_t chain = 0; chain < s.mesh.fronts.size(); ++chain) {
+      const LayerFront f = core_front(s.mesh, chain);
       const std::size_t n = f.nodes.size();
       for (std::size_t i = 0; i < n; ++i) {
         if (!f.closed && (i == 0 || i + 1 == n)) continue;
@@ -207,8 +210,24 @@ std::unique_ptr<LayeredCase> build_layers(const CaseConfig& config, const MeshIn
         front_chord[f.nodes[i]] = at(i + 1) - at(i + n - 1);
       }
     }
-    for (const LayerRay& ray : s.mesh.rays)
-      if (const double h = last_height(s.mesh, ray); h > 0.0) {
+    // Under a metric field: per ray, whether the metric stopped a ray of its chain (then the
+    // grading along the wall lowers that ray's neighbours below their own stop, and only rays that
+    // reached the thickness are sources; a chain the metric stops nowhere has its cut rays cut by
+    // collisions, which are sources too).
+    std::vector<char> chain_stopped(s.mesh.rays.size(), 0);
+    for (std::size_t c = 0; c + 1 < s.mesh.chain_ray_begin.size(); ++c) {
+      const auto begin = static_cast<std::size_t>(s.mesh.chain_ray_begin[c]);
+      const auto end = static_cast<std::size_t>(s.mesh.chain_ray_begin[c + 1]);
+      const bool stopped = std::any_of(s.mesh.rays.begin() + static_cast<std::ptrdiff_t>(begin),
+                                       s.mesh.rays.begin() + static_cast<std::ptrdiff_t>(end), [&](const LayerRay& r) {
+                                         return r.free_thickness < kFullThicknessShare * full_thickness;
+                                       });
+      std::fill(chain_stopped.begin() + static_cast<std::ptrdiff_t>(begin),
+                chain_stopped.begin() + static_cast<std::ptrdiff_t>(end), stopped ? 1 : 0);
+    }
+    for (std::size_t r = 0; r < s.mesh.rays.size(); ++r)
+      if (const double h = last_height(s.mesh, s.mesh.rays[r]); h > 0.0) {
+        const LayerRay& ray = s.mesh.rays[r];
         const auto top = static_cast<std::size_t>(ray.nodes.back());
         double q = b.growth * h;
         const auto e = front_edge.find(ray.nodes.back());
@@ -218,16 +237,21 @@ std::unique_ptr<LayeredCase> build_layers(const CaseConfig& config, const MeshIn
         // field: divided by it, the core's first rows relax at q as they did at relax_scale 1 (the
         // junction's limits were measured so).
         sources.push_back({s.mesh.nodes[top], q / spacing.relax_scale()});
-        if (inputs.metric && ray.thickness >= kFullThicknessShare * full_thickness &&
-            kGradedJunction * last_metric_length(s.mesh, ray, *inputs.metric) < 1.0) {
-          // A ray whose layers reached the table's thickness (which is the user's: it is kept) with a
-          // last layer so far below the metric's unit along it that the step into a core of unit
-          // length would be above kGradedJunction last layers: the core's metric continues the
-          // layer's growth from its last layer across the front, and at a fan's top has the fan's
-          // front edges along it. Across the front is the normal of the chord through its
-          // neighbours (towards the core): both front edges at the top are as near to along the
-          // front as they can be, which a metric as thin as the last layer needs (the ray's
-          // direction can be a few degrees off it); the ray where the front ends.
+        const bool full = ray.thickness >= kFullThicknessShare * full_thickness;
+        const bool cut = ray.free_thickness >= kFullThicknessShare * full_thickness && chain_stopped[r] == 0;
+        if (inputs.metric && (full || cut) && kGradedJunction * last_metric_length(s.mesh, ray, *inputs.metric) < 1.0) {
+          // A ray whose layers reached the table's thickness (which is the user's: it is kept), or
+          // on a chain the metric stops nowhere, cut below it by a collision (a slot between two
+          // elements, far narrower than the metric's unit), with a last layer so far below the
+          // metric's unit along it that the step into a core of unit length would be above
+          // kGradedJunction last layers: the core's metric continues the layer's growth from its
+          // last layer across the front, and at a fan's top has the fan's front edges along it.
+          // Across the front is the normal of the chord through its neighbours (towards the core):
+          // both front edges at the top are as near to along the front as they can be, which a
+          // metric as thin as the last layer needs (the ray's direction can be a few degrees off
+          // it); the ray where the front ends. A ray the metric stopped has its last layer at 1 / growth to 1 unit
+          // already; its neighbours lowered by the grading are left out (under the Hessian cases' strongly anisotropic
+          // band the slab across their front shrinks the metric along the wall).
           const Vec2 below = s.mesh.nodes[static_cast<std::size_t>(ray.nodes[ray.nodes.size() - 2])];
           const double last = dist(s.mesh.nodes[top], below);
           Vec2 u = (s.mesh.nodes[top] - below) * (1.0 / last);
@@ -238,6 +262,29 @@ std::unique_ptr<LayeredCase> build_layers(const CaseConfig& config, const MeshIn
           out->front_metric.push_back({s.mesh.nodes[top], u, b.growth * last, ray.fan ? longest[top] : 0.0});
         }
       }
+    // An open chain's end column inside the domain (its end ray off the curve that continues the
+    // boundary) is part of the front from the wall node up: its edges are the layers' heights, from
+    // h1 at the wall, and the core meets them at their length (else a core node fans out to the
+    // column's dense nodes in slivers).
+    std::set<int> tops;
+    for (const LayerRay& ray : s.mesh.rays) tops.insert(ray.nodes.back());
+    for (std::size_t chain = 0; chain < s.mesh.fronts.size(); ++chain) {
+      const LayerFront f = core_front(s.mesh, chain);
+      if (f.closed) continue;
+      const std::size_t n = f.nodes.size();
+      for (std::size_t i = 0; i < n; ++i) {
+        if (tops.count(f.nodes[i]) > 0) continue;
+        const Vec2 p = s.mesh.nodes[static_cast<std::size_t>(f.nodes[i])];
+        double sum = 0.0;
+        int edges = 0;
+        for (const std::size_t j : {i - 1, i + 1})
+          if (j < n) {  // i - 1 wraps past n at i = 0
+            sum += dist(p, s.mesh.nodes[static_cast<std::size_t>(f.nodes[j])]);
+            ++edges;
+          }
+        if (edges > 0) sources.push_back({p, sum / edges / spacing.relax_scale()});
+      }
+    }
     curves = front_curves(*geometry, s.walls, s.mesh);
     geometry = std::make_shared<const Geometry>(build_geometry(curves, options));
     out->sections.push_back(std::move(s));
@@ -485,8 +532,8 @@ MixedMesh merge(const MeshInputs& inputs, const LayeredCase& layered, const Mesh
   for (const LayerSection& s : layered.sections) {
     const LayerMesh& lm = s.mesh;
     std::vector<int> index(lm.nodes.size(), -1);
-    for (const LayerFront& f : lm.fronts)
-      for (const int n : f.nodes) {
+    for (std::size_t chain = 0; chain < lm.fronts.size(); ++chain)
+      for (const int n : core_front(lm, chain).nodes) {
         const Vec2 p = lm.nodes[static_cast<std::size_t>(n)];
         const auto it = at.find({p.x, p.y});
         if (it == at.end())
@@ -518,6 +565,18 @@ MixedMesh merge(const MeshInputs& inputs, const LayeredCase& layered, const Mesh
         const std::string& name = s.geometry->curves[static_cast<std::size_t>(b.curve)].name;
         m.boundary_edges.push_back({index[static_cast<std::size_t>(a.wall_node)],
                                     index[static_cast<std::size_t>(b.wall_node)], original(name)});
+      }
+      // An open chain's end ray along the curve that continues the boundary: its column is that
+      // curve's from the wall node to the top (the core's copy of the curve starts at the top).
+      if (closed || end <= begin) continue;
+      for (const int r : {begin, end - 1}) {
+        const LayerRay& ray = lm.rays[static_cast<std::size_t>(r)];
+        if (ray.slide_segment < 0) continue;
+        const Segment& seg = s.geometry->segments[static_cast<std::size_t>(ray.slide_segment)];
+        const int curve = original(s.geometry->curves[static_cast<std::size_t>(seg.curve)].name);
+        for (std::size_t j = 0; j + 1 < ray.nodes.size(); ++j)
+          m.boundary_edges.push_back({index[static_cast<std::size_t>(ray.nodes[j])],
+                                      index[static_cast<std::size_t>(ray.nodes[j + 1])], curve});
       }
     }
   }
@@ -705,16 +764,34 @@ void write_layered_outputs(const CaseConfig& config, const MeshInputs& inputs, c
                          s.config.quads ? "quads" : "triangles", format_layer_measures(lm, names));
     std::string fans;
     for (const int f : lm.fan_sizes) fans += (fans.empty() ? "" : ", ") + std::to_string(f);
+    // Rays below the table's thickness, by what stopped them: the core's spacing (or an end ray's
+    // segment) before any collision, a collision (or a repair round) below that; and those left with
+    // no layer or one. Merged columns count as their neighbours do (they end below the front).
+    const double full =
+        s.config.layers > 0
+            ? s.config.first_height * (std::pow(s.config.growth, s.config.layers) - 1.0) / (s.config.growth - 1.0)
+            : s.config.thickness;
+    std::size_t by_core = 0, by_collision = 0, few_layers = 0;
+    for (const LayerRay& ray : s.mesh.rays) {
+      if (ray.free_thickness < kFullThicknessShare * full)
+        ++by_core;
+      else if (ray.thickness < kFullThicknessShare * full)
+        ++by_collision;
+      if (!ray.merged && ray.nodes.size() <= 2) ++few_layers;
+    }
+    // JSON has no infinity: a ray without layer beside one with layers makes the jump infinite.
+    const std::string jump = std::isfinite(lm.max_thickness_jump) ? fmt::format("{}", lm.max_thickness_jump) : "null";
     json_layers += fmt::format(
         "{}    {{\"curves\": [\"{}\"], \"first_height\": {}, \"growth\": {}, \"cells\": {}, \"quads\": {}, "
         "\"triangles\": {}, \"wall_cells\": {}, \"first_height_within_2pct\": {}, \"first_height_max_error\": {}, "
         "\"growth_median\": {}, \"growth_p95\": {}, \"growth_max\": {}, \"max_angle\": {}, \"angles_above_150\": {}, "
         "\"inverted_cells\": {}, \"fan_sizes\": [{}], \"max_thickness_jump\": {}, \"min_thickness\": {}, "
-        "\"max_thickness\": {}, \"max_layers\": {}}}",
+        "\"max_thickness\": {}, \"max_layers\": {}, \"rays\": {}, \"rays_stopped_by_core_spacing\": {}, "
+        "\"rays_cut_by_collision\": {}, \"rays_with_at_most_one_layer\": {}}}",
         k ? ",\n" : "", fmt::join(s.config.curves, "\", \""), s.settings.first_height, s.settings.growth, lm.cells,
         lm.quads, lm.triangles, lm.wall_cells, lm.first_height_within_2pct, lm.first_height_max_error, lm.growth_median,
-        lm.growth_p95, lm.growth_max, lm.max_angle_deg, lm.angles_above_150, lm.inverted_cells, fans,
-        lm.max_thickness_jump, lm.min_thickness, lm.max_thickness, lm.max_layers);
+        lm.growth_p95, lm.growth_max, lm.max_angle_deg, lm.angles_above_150, lm.inverted_cells, fans, jump,
+        lm.min_thickness, lm.max_thickness, lm.max_layers, s.mesh.rays.size(), by_core, by_collision, few_layers);
   }
   const double j50 = quantile(junction, 0.5), j95 = quantile(junction, 0.95);
   const double jmax = junction.empty() ? 0.0 : *std::max_element(junction.begin(), junction.end());

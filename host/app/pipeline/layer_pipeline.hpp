@@ -42,9 +42,9 @@ struct LayeredCase {
   double seconds = 0.0;
 };
 
-// InputError (before anything is written) for an unknown curve name, an open wall chain, settings
-// the generator refuses, or an output format that cannot hold the layer cells (msh22, triangle),
-// and for --resume. Keeps a reference to `spacing`'s field in the core's case: it must outlive it.
+// InputError (before anything is written) for an unknown curve name, settings the generator refuses, or an output
+// format that cannot hold the layer cells (msh22, triangle), and for --resume. Keeps a reference to `spacing`'s field
+// in the core's case: it must outlive it.
 std::unique_ptr<LayeredCase> build_layers(const CaseConfig& config, const MeshInputs& inputs,
                                           const SpacingStage& spacing);
 
