@@ -14,6 +14,7 @@
 #include "app/pipeline/layer_pipeline.hpp"
 #include "app/pipeline/mesh_pipeline.hpp"
 #include "core/errors.hpp"
+#include "temp_files.hpp"
 
 namespace fs = std::filesystem;
 using namespace pdmesh;
@@ -141,7 +142,7 @@ TEST_CASE("bad [[boundary_layer]] settings are input errors naming the key and t
 }
 
 TEST_CASE("a run with an unknown layer curve writes nothing", "[app][layers]") {
-  const fs::path out = fs::temp_directory_path() / "pdmesh_test_layers_unknown";
+  const fs::path out = pdmesh_test::fresh_path("layers_unknown");
   fs::remove_all(out);
   CaseConfig c = layered_case(out, "wing", true);
   c.boundary_layers[0].curves_where = "demo.toml:7:10";
@@ -170,7 +171,7 @@ TEST_CASE("a run whose wall chain is open meshes the layer up to the curves that
   b.growth = 1.2;
   b.thickness = 0.05;
   c.boundary_layers.push_back(b);
-  const fs::path out = fs::temp_directory_path() / "pdmesh_test_layers_open";
+  const fs::path out = pdmesh_test::fresh_path("layers_open");
   fs::remove_all(out);
   c.out_dir = out;
   c.quiet = true;
@@ -213,7 +214,7 @@ TEST_CASE("a channel with layers on its walls: the inlet and outlet hold the lay
   b.thickness = 0.1;
   b.quads = true;
   c.boundary_layers.push_back(b);
-  const fs::path out = fs::temp_directory_path() / "pdmesh_test_layers_channel";
+  const fs::path out = pdmesh_test::fresh_path("layers_channel");
   fs::remove_all(out);
   c.out_dir = out;
   c.quiet = true;
@@ -259,7 +260,7 @@ TEST_CASE("a channel with layers on its walls: the inlet and outlet hold the lay
 }
 
 TEST_CASE("a run with layers writes one mesh of layer quads and core triangles", "[app][layers]") {
-  const fs::path out = fs::temp_directory_path() / "pdmesh_test_layers_run";
+  const fs::path out = pdmesh_test::fresh_path("layers_run");
   fs::remove_all(out);
   REQUIRE(run_mesh(layered_case(out, "wall", true)) == 0);
   const std::string msh = read(out / "mesh.msh");
@@ -305,7 +306,7 @@ TEST_CASE("nodes the simulation snapped onto a layer front are left out of the c
 
 TEST_CASE("the stages driven directly refuse a case with layers", "[app][layers]") {
   // A caller driving the stages (as the Python Mesher does) must run them on the core's case.
-  const CaseConfig c = layered_case(fs::temp_directory_path() / "pdmesh_test_layers_stages", "wall", true);
+  const CaseConfig c = layered_case(pdmesh_test::fresh_path("layers_stages"), "wall", true);
   const MeshInputs inputs(c);
   const SpacingStage spacing(c, inputs);
   CHECK_THROWS_WITH(make_initial(c, inputs, spacing), Catch::Contains("the stages mesh the core's case"));
@@ -314,7 +315,7 @@ TEST_CASE("the stages driven directly refuse a case with layers", "[app][layers]
 TEST_CASE("the core's spacing at a front node is at least 0.8 of its longest front edge", "[app][layers]") {
   // The circle's last layer (about 0.008) is far below its front edges (about 0.054): the core must
   // not be sized by the last layer alone there, or it meets those edges with flat triangles.
-  const CaseConfig c = layered_case(fs::temp_directory_path() / "pdmesh_test_layers_front", "wall", true);
+  const CaseConfig c = layered_case(pdmesh_test::fresh_path("layers_front"), "wall", true);
   const MeshInputs inputs(c);
   const SpacingStage spacing(c, inputs);
   const auto layered = build_layers(c, inputs, spacing);
@@ -333,7 +334,7 @@ TEST_CASE("triangles keep the rays within 5 degrees of their walls' normals, qua
   // A split wall cell has an angle of 90 degrees + its ray's tilt from the segment's normal
   // (LayerSettings::max_ray_tilt_deg); quads keep the smoothed rays as they are.
   for (const bool quads : {false, true}) {
-    const CaseConfig c = layered_case(fs::temp_directory_path() / "pdmesh_test_layers_tilt", "wall", quads);
+    const CaseConfig c = layered_case(pdmesh_test::fresh_path("layers_tilt"), "wall", quads);
     const MeshInputs inputs(c);
     const SpacingStage spacing(c, inputs);
     const auto layered = build_layers(c, inputs, spacing);
