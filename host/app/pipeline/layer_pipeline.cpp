@@ -289,22 +289,11 @@ std::unique_ptr<LayeredCase> build_layers(const CaseConfig& config, const MeshIn
     geometry = std::make_shared<const Geometry>(build_geometry(curves, options));
     out->sections.push_back(std::move(s));
   }
-  CaseConfig& core = out->core;
-  core = config;
-  core.boundary_layers.clear();
-  core.geometry.files.clear();
-  core.geometry.curve_names.clear();
-  core.geometry.given_curves = std::move(curves);
-  core.geometry.curves = CurveKind::Polyline;  // the fronts are polylines of layer nodes
-  core.farfield = {};                          // the case's far field is among the curves already
-  core.spacing.regions.clear();                // and its regions in the case's field, `field`
-  // The fronts are in the meshing plane already (geometry.projection); the caller hands the core
-  // the case's projection for its outputs.
-  core.geometry.projection = ProjectionKind::None;
-  // The case's final field as asked (already scaled by spacing.scale) is the core's base field, lowered
-  // at the fronts; the core keeps the case's relax_scale.
-  core.spacing.given = std::make_shared<FrontSpacing>(field, std::move(sources), out->gradation);
-  core.spacing.scale = 1.0;
+  // The core: the fronts are polylines of layer nodes in the meshing plane (the caller hands the core
+  // the case's projection for its outputs), its base field the case's lowered at the fronts.
+  out->core = mesh_detail::core_case_on_curves(
+      config, std::move(curves), std::make_shared<FrontSpacing>(field, std::move(sources), out->gradation));
+  out->core.boundary_layers.clear();
   out->seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   std::size_t cells = 0;
   for (const LayerSection& s : out->sections) cells += s.mesh.cells.size();

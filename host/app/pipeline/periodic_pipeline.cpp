@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
+#include "app/pipeline/pipeline_detail.hpp"
 #include "core/errors.hpp"
 #include "core/input_file.hpp"
 #include "init/boundary_placement.hpp"
@@ -186,22 +187,13 @@ std::unique_ptr<PeriodicCase> build_periodic(const CaseConfig& config, const Mes
         nodes.size(), resolved.miss));
     out->pairs.push_back(std::move(pair));
   }
-  CaseConfig& core = out->core;
-  core = config;
-  core.periodic.clear();
-  core.geometry.files.clear();
-  core.geometry.curve_names.clear();
-  core.geometry.given_curves = std::move(curves);
-  core.geometry.given_points = on.embedded_points;
-  core.geometry.curves = CurveKind::Polyline;  // the node geometry's polylines (dense for smooth curves)
-  core.geometry.heal = false;                  // healed already
-  core.farfield = {};                          // among the curves already
-  core.spacing.regions.clear();                // and in the case's field
-  core.geometry.projection = ProjectionKind::None;
-  // The case's final field as asked is the core's base field, as with [[boundary_layer]]; the core
-  // keeps the case's relax_scale.
-  core.spacing.given = std::make_shared<FieldReference>(spacing.asked());
-  core.spacing.scale = 1.0;
+  // The core: the node geometry's polylines (dense for smooth curves, healed already) and its embedded
+  // points, the case's field as asked its base field, as with [[boundary_layer]].
+  out->core = mesh_detail::core_case_on_curves(config, std::move(curves),
+                                               std::make_shared<FieldReference>(spacing.asked()));
+  out->core.periodic.clear();
+  out->core.geometry.given_points = on.embedded_points;
+  out->core.geometry.heal = false;
   return out;
 }
 

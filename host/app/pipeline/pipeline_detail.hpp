@@ -1,5 +1,6 @@
-// What the stages of `pdmesh mesh` share (app/pipeline/mesh_pipeline.cpp, simulate_stage.cpp, mesh_outputs.cpp):
-// the progress lines, the SVG size limit and the node outputs of a stage. Internal to those files.
+// What the stages of `pdmesh mesh` share (app/pipeline/mesh_pipeline.cpp, simulate_stage.cpp, mesh_outputs.cpp,
+// and the layer and periodic pipelines): the progress lines, the SVG size limit, the node outputs of a
+// stage and the case of a core meshed on curves of its own. Internal to those files.
 #pragma once
 #include <cstddef>
 #include <cstdio>
@@ -53,5 +54,24 @@ void write_node_outputs(const CaseConfig& config, const MeshInputs& inputs, cons
 // The cleanup's options as the case's [cleanup] keys give them (mesh_outputs.cpp); the motion's steps
 // start from them too.
 CleanupOptions cleanup_options(const CaseConfig& config);
+
+// The case of a core meshed on curves the run built from the case's (the layers' fronts, the periodic
+// curves' nodes): `config` with `curves` as its geometry, given polylines already in the meshing plane,
+// without its far field and regions (among the curves and in `field` already), and `field` (made from
+// the case's field as asked, already scaled) as its base field; the case's relax_scale is kept.
+inline CaseConfig core_case_on_curves(const CaseConfig& config, std::vector<RawCurve> curves,
+                                      std::shared_ptr<const SpacingField> field) {
+  CaseConfig core = config;
+  core.geometry.files.clear();
+  core.geometry.curve_names.clear();
+  core.geometry.given_curves = std::move(curves);
+  core.geometry.curves = CurveKind::Polyline;
+  core.geometry.projection = ProjectionKind::None;
+  core.farfield = {};
+  core.spacing.regions.clear();
+  core.spacing.given = std::move(field);
+  core.spacing.scale = 1.0;
+  return core;
+}
 
 }  // namespace pdmesh::mesh_detail
