@@ -189,8 +189,8 @@ std::unique_ptr<PeriodicCase> build_periodic(const CaseConfig& config, const Mes
   }
   // The core: the node geometry's polylines (dense for smooth curves, healed already) and its embedded
   // points, the case's field as asked its base field, as with [[boundary_layer]].
-  out->core = mesh_detail::core_case_on_curves(config, std::move(curves),
-                                               std::make_shared<FieldReference>(spacing.asked()));
+  out->core =
+      mesh_detail::core_case_on_curves(config, std::move(curves), std::make_shared<FieldReference>(spacing.asked()));
   out->core.periodic.clear();
   out->core.geometry.given_points = on.embedded_points;
   out->core.geometry.heal = false;
