@@ -4,6 +4,7 @@
 // reports the pairs, and every malformed table exits 2 with a message and writes nothing.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <filesystem>
@@ -267,6 +268,84 @@ TEST_CASE("malformed [[periodic]] tables exit 2 naming the table and write nothi
     CHECK(r.output.rfind("pdmesh: error: ", 0) == 0);
     CHECK(r.output.find(expected) != std::string::npos);
     CHECK(r.output.find(file.string()) != std::string::npos);  // names the case file
+    CHECK_FALSE(fs::exists(out));
+  }
+}
+
+TEST_CASE("a periodic channel with layers on both walls: the layers' end columns are paired too",
+          "[periodic][layers][cli]") {
+  const Run run = mesh_case(kData / "channel.toml", "periodic_channel", "msh");
+  INFO(run.output);
+  check_links(run, {{"inlet", "outlet"}}, 2.0);
+  CHECK(run.links[0].affine[3] == 2.0);
+  CHECK(run.links[0].affine[7] == 0.0);
+  CHECK(max_mismatch(run.quality, 1) == 0.0);
+  CHECK(run.quality.find("\"boundary_layer\"") != std::string::npos);
+  // Both walls' layers (thickness 0.08 from h1 = 0.002) end on the inlet and the outlet: their
+  // column nodes are pairs, the first at h1 over each wall, and the outlet carries the inlet's
+  // heights exactly.
+  std::vector<double> inlet, outlet;
+  for (const auto& [i, s] : run.links[0].nodes) {
+    const Vec2 si = run.mesh.points[static_cast<std::size_t>(s - 1)];
+    const Vec2 im = run.mesh.points[static_cast<std::size_t>(i - 1)];
+    CHECK(si.x == 0.0);
+    CHECK(im.x == 2.0);
+    CHECK(im.y == si.y);
+    inlet.push_back(si.y);
+    outlet.push_back(im.y);
+  }
+  std::sort(inlet.begin(), inlet.end());
+  const auto count_in = [&](double lo, double hi) {
+    return std::count_if(inlet.begin(), inlet.end(), [&](double y) { return y >= lo && y <= hi; });
+  };
+  CHECK(count_in(0.0, 0.08) >= 10);  // the bottom layer's column, wall node included
+  CHECK(count_in(0.92, 1.0) >= 10);  // the top's
+  REQUIRE(inlet.size() >= 3);
+  CHECK(inlet[0] == 0.0);
+  CHECK(inlet[1] == Approx(0.002).epsilon(1e-9));
+  CHECK(inlet.back() == 1.0);
+}
+
+TEST_CASE("[[periodic]] with layers: walls that are not periodic, or layers at one end only, exit 2",
+          "[periodic][layers][cli][bad]") {
+  const fs::path dir = pdmesh_test::fresh_dir("periodic_layers_bad");
+  const auto write_geometry = [&](const std::string& name, const std::vector<std::vector<Vec2>>& curves) {
+    std::ofstream out(dir / name);
+    for (const auto& c : curves) {
+      out << c.size() << "\n";
+      for (const Vec2 p : c) out << p.x << " " << p.y << "\n";
+    }
+  };
+  // The bottom wall turns down 0.2 before the outlet: it meets the inlet at about 87 deg and the
+  // outlet at about 63 deg, so its layer's end columns differ although the sides are periodic.
+  write_geometry("bent.crv", {{{0, 0}, {1.8, 0.1}, {2, 0}}, {{2, 0}, {2, 1}}, {{2, 1}, {0, 1}}, {{0, 1}, {0, 0}}});
+  // The bottom in two curves, layers on the first only: they end on the inlet, not on the outlet.
+  write_geometry("split.crv",
+                 {{{0, 0}, {1, 0}}, {{1, 0}, {2, 0}}, {{2, 0}, {2, 1}}, {{2, 1}, {0, 1}}, {{0, 1}, {0, 0}}});
+  const std::string tail = "[[periodic]]\ncurves = [\"inlet\", \"outlet\"]\n[spacing]\nsize = 0.1\n";
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"[geometry]\nfiles = [\"bent.crv\"]\ncurve_names = [\"bottom\", \"outlet\", \"top\", \"inlet\"]\n"
+       "[[boundary_layer]]\ncurves = [\"bottom\"]\nfirst_height = 0.002\nthickness = 0.05\n" +
+           tail,
+       "the walls are not periodic: wall 'bottom' meets 'inlet' at (0, 0) at 86.8"},
+      {"[geometry]\nfiles = [\"split.crv\"]\ncurve_names = [\"bottom_a\", \"bottom_b\", \"outlet\", \"top\", "
+       "\"inlet\"]\n[[boundary_layer]]\ncurves = [\"bottom_a\"]\nfirst_height = 0.002\nthickness = 0.05\n" +
+           tail,
+       "end on 'inlet' at (0, 0) (wall 'bottom_a') but not on 'outlet' at its periodic image (2, 0) (curve "
+       "'bottom_b' meets it there)"},
+  };
+  int k = 0;
+  for (const auto& [body, expected] : cases) {
+    const fs::path file = dir / ("case" + std::to_string(k++) + ".toml");
+    std::ofstream(file) << "preset = \"best\"\n" << body;
+    const fs::path out = dir / ("out" + std::to_string(k));
+    const auto r = pdmesh_test::run_pdmesh("mesh '" + file.string() + "' --out '" + out.string() + "'");
+    INFO(body);
+    INFO(r.output);
+    CHECK(r.status == 2);
+    CHECK(r.output.find("pdmesh: error: ") != std::string::npos);  // after the spacing's progress line
+    CHECK(r.output.find(expected) != std::string::npos);
+    CHECK(r.output.find(file.string()) != std::string::npos);
     CHECK_FALSE(fs::exists(out));
   }
 }

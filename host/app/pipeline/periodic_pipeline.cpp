@@ -66,17 +66,13 @@ int curve_index(const Geometry& g, const CaseConfig::Periodic& p, const std::str
                                fmt::join(names, ", ")));
 }
 
-// One table against the geometry: its curves' indices and transform, checked.
-struct Resolved {
-  int source = 0, image = 0;
-  PeriodicTransform transform;
-  double miss = 0.0;
-};
+}  // namespace
 
-Resolved resolve(const CaseConfig::Periodic& p, const Geometry& on) {
+ResolvedPeriodic resolve_periodic(const CaseConfig::Periodic& p, const Geometry& on) {
   const double diagonal = std::hypot(on.extents.hi.x - on.extents.lo.x, on.extents.hi.y - on.extents.lo.y);
   const double tolerance = kMatchTolerance * diagonal;
-  Resolved r;
+  ResolvedPeriodic r;
+  r.tolerance = tolerance;
   r.source = curve_index(on, p, p.source);
   r.image = curve_index(on, p, p.image);
   const Curve& source = on.curves[static_cast<std::size_t>(r.source)];
@@ -103,11 +99,9 @@ Resolved resolve(const CaseConfig::Periodic& p, const Geometry& on) {
   return r;
 }
 
-}  // namespace
-
 void check_periodic(const CaseConfig& config, const MeshInputs& inputs) {
   check_periodic_case(config);
-  for (const CaseConfig::Periodic& p : config.periodic) (void)resolve(p, inputs.node_geometry());
+  for (const CaseConfig::Periodic& p : config.periodic) (void)resolve_periodic(p, inputs.node_geometry());
 }
 
 void check_periodic_case(const CaseConfig& config) {
@@ -121,8 +115,6 @@ void check_periodic_case(const CaseConfig& config) {
               fmt::format("{}: [[periodic]]: curve '{}' is also a boundary-layer wall ({}); a periodic "
                           "curve cannot carry layers",
                           p.where, quote_input(name), b.curves_where));
-  if (!config.boundary_layers.empty())
-    throw InputError(fmt::format("{}: [[periodic]] is not supported together with [[boundary_layer]]", where));
   if (config.motion.enabled) throw InputError(fmt::format("{}: [[periodic]] is not supported with [motion]", where));
   if (config.spacing.metric())
     throw InputError(
@@ -149,7 +141,7 @@ std::unique_ptr<PeriodicCase> build_periodic(const CaseConfig& config, const Mes
   PlacementOptions placement;
   placement.max_nodes = config.max_nodes;
   for (const CaseConfig::Periodic& p : config.periodic) {
-    const Resolved resolved = resolve(p, on);
+    const ResolvedPeriodic resolved = resolve_periodic(p, on);
     const int s = resolved.source, i = resolved.image;
     const Curve& source = on.curves[static_cast<std::size_t>(s)];
     const Curve& image = on.curves[static_cast<std::size_t>(i)];
@@ -183,7 +175,8 @@ std::unique_ptr<PeriodicCase> build_periodic(const CaseConfig& config, const Mes
     curves[static_cast<std::size_t>(i)].fixed_points = true;
     out->notes.push_back(fmt::format(
         "periodic: '{}' -> '{}' by {}{}, {} node pairs (largest miss of the curves {:.3g})", p.source, p.image,
-        describe(t), p.kind == CaseConfig::Periodic::Kind::Infer ? " (inferred from the curves' ends)" : "",
+        describe(t),
+        p.kind == CaseConfig::Periodic::Kind::Infer || p.inferred ? " (inferred from the curves' ends)" : "",
         nodes.size(), resolved.miss));
     out->pairs.push_back(std::move(pair));
   }
