@@ -19,6 +19,7 @@
 #include "core/errors.hpp"
 #include "geometry/periodic.hpp"
 #include "io/mesh_formats.hpp"
+#include "io/msh_reader.hpp"
 #include "io/msh_writer.hpp"
 #include "mesh/periodic_links.hpp"
 #include "run_pdmesh.hpp"
@@ -348,4 +349,85 @@ TEST_CASE("[[periodic]] with layers: walls that are not periodic, or layers at o
     CHECK(r.output.find(file.string()) != std::string::npos);
     CHECK_FALSE(fs::exists(out));
   }
+}
+
+TEST_CASE("the MSH reader reads $Periodic back (4.1 and 2.2) with the largest mismatch", "[periodic][io]") {
+  pdmesh::Mesh mesh;
+  mesh.points = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+  mesh.triangles = {{0, 1, 2}, {0, 2, 3}};
+  mesh.boundary_edges = {{0, 1, 0}, {1, 2, 1}, {2, 3, 2}, {3, 0, 3}};
+  mesh.curve_names = {"bottom", "right", "top", "left"};
+  pdmesh::PeriodicLink link;
+  link.curve = 1;
+  link.source_curve = 3;
+  link.affine = pdmesh::PeriodicTransform::translation({1.0, 0.0}).affine();
+  link.nodes = {{1, 0}, {2, 3}};
+  const std::vector<pdmesh::PeriodicLink> links{link};
+  for (const bool v41 : {true, false}) {
+    INFO((v41 ? "MSH 4.1" : "MSH 2.2"));
+    pdmesh::MeshReadReport report;
+    const pdmesh::Mesh back = pdmesh::parse_msh(
+        "cell.msh", v41 ? pdmesh::msh41_string(mesh, &links) : pdmesh::msh22_string(mesh, &links), report);
+    REQUIRE(report.periodic.size() == 1);
+    const pdmesh::PeriodicLink& l = report.periodic[0];
+    CHECK(back.curve_names[static_cast<std::size_t>(l.curve)] == "right");
+    CHECK(back.curve_names[static_cast<std::size_t>(l.source_curve)] == "left");
+    CHECK(l.affine == link.affine);
+    REQUIRE(l.nodes.size() == 2);
+    for (const auto& [i, s] : l.nodes)
+      CHECK(back.points[static_cast<std::size_t>(i)] == back.points[static_cast<std::size_t>(s)] + Vec2{1.0, 0.0});
+    CHECK(l.max_mismatch == 0.0);
+  }
+  // A Gmsh-style 2.2 section: a link of points (skipped, with a note), a curve link without an affine
+  // line, and one whose image node is 1e-3 off its transform.
+  const std::string head =
+      "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n5\n1 0 0 0\n2 1 0 0\n3 1 1 0\n4 0 1 0\n5 1.001 0.5 0\n$EndNodes\n"
+      "$Elements\n5\n1 1 2 0 1 1 2\n2 1 2 0 2 2 5\n3 1 2 0 2 5 3\n4 1 2 0 4 4 1\n5 2 2 0 1 1 2 3\n$EndElements\n";
+  pdmesh::MeshReadReport gmsh;
+  const pdmesh::Mesh g =
+      pdmesh::parse_msh("g.msh",
+                        head +
+                            "$Periodic\n3\n0 2 1\n1\n2 1\n1 2 4\nAffine 1 0 0 1 0 1 0 0 0 0 1 0 0 0 0 1\n2\n2 1\n3 4\n"
+                            "1 2 4\n1\n5 4\n$EndPeriodic\n",
+                        gmsh);
+  REQUIRE(gmsh.periodic.size() == 2);
+  CHECK(g.curve_names[static_cast<std::size_t>(gmsh.periodic[0].curve)] == "entity2");
+  CHECK(gmsh.periodic[0].max_mismatch == 0.0);
+  CHECK(std::isnan(gmsh.periodic[1].max_mismatch));  // no transform to measure by
+  CHECK(std::find_if(gmsh.notes.begin(), gmsh.notes.end(), [](const std::string& n) {
+          return n.find("skipped 1 $Periodic links of points or surfaces") != std::string::npos;
+        }) != gmsh.notes.end());
+  pdmesh::MeshReadReport off;
+  (void)pdmesh::parse_msh(
+      "off.msh", head + "$Periodic\n1\n1 2 4\nAffine 1 0 0 1 0 1 0 0 0 0 1 0 0 0 0 1\n1\n5 4\n$EndPeriodic\n", off);
+  REQUIRE(off.periodic.size() == 1);
+  // Node 5 (1.001, 0.5) against T(node 4) = (1, 1).
+  CHECK(off.periodic[0].max_mismatch == Approx(std::hypot(0.001, 0.5)));
+  pdmesh::MeshReadReport bad;
+  CHECK_THROWS_WITH(pdmesh::parse_msh("bad.msh", head + "$Periodic\n1\n1 2 4\n1\n9 4\n$EndPeriodic\n", bad),
+                    Catch::Contains("bad.msh:") && Catch::Contains("$Periodic refers to unknown node tag 9"));
+}
+
+TEST_CASE("pdmesh quality reports a mesh file's periodic pairs as the mesh run's quality.json does",
+          "[periodic][cli]") {
+  const fs::path out = pdmesh_test::fresh_path("periodic_quality");
+  const auto r = pdmesh_test::run_pdmesh("mesh '" + (kData / "cell.toml").string() + "' --out '" + out.string() +
+                                         "' --device host --formats msh -q");
+  REQUIRE(r.status == 0);
+  const auto q = pdmesh_test::run_pdmesh("quality '" + (out / "mesh.msh").string() + "' --json -");
+  INFO(q.output);
+  REQUIRE(q.status == 0);
+  CHECK(q.output.find("periodic: 'left' -> 'right': ") != std::string::npos);
+  CHECK(q.output.find("periodic: 'bottom' -> 'top': ") != std::string::npos);
+  CHECK(max_mismatch(q.output, 2) == 0.0);
+  // The same pair counts as the run's own report.
+  const std::regex pairs("\"pairs\": ([0-9]+)");
+  std::vector<std::string> run_counts, read_counts;
+  const std::string run_json = pdmesh_test::slurp(out / "quality.json");
+  for (auto it = std::sregex_iterator(run_json.begin(), run_json.end(), pairs); it != std::sregex_iterator(); ++it)
+    run_counts.push_back((*it)[1]);
+  for (auto it = std::sregex_iterator(q.output.begin(), q.output.end(), pairs); it != std::sregex_iterator(); ++it)
+    read_counts.push_back((*it)[1]);
+  CHECK(run_counts.size() == 2);
+  CHECK(read_counts == run_counts);
 }

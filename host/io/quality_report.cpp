@@ -298,7 +298,10 @@ std::string periodic_json(const std::vector<std::string>& curve_names, const std
     out += fmt::format("{}{{\"source\": {}, \"image\": {}, \"pairs\": {}, \"max_mismatch\": ", out.empty() ? "" : ", ",
                        json_string(curve_names[static_cast<std::size_t>(l.source_curve)]),
                        json_string(curve_names[static_cast<std::size_t>(l.curve)]), l.nodes.size());
-    append_g17(out, l.max_mismatch);
+    if (std::isfinite(l.max_mismatch))
+      append_g17(out, l.max_mismatch);
+    else
+      out += "null";  // a link read without an affine transform
     out += '}';
   }
   return links.empty() ? std::string() : "[" + out + "]";
