@@ -431,3 +431,21 @@ TEST_CASE("pdmesh quality reports a mesh file's periodic pairs as the mesh run's
   CHECK(run_counts.size() == 2);
   CHECK(read_counts == run_counts);
 }
+
+TEST_CASE("a periodic square under an anisotropic metric: the pairs in the metric run", "[periodic][metric][cli]") {
+  const Run run = mesh_case(kData / "metric.toml", "periodic_metric", "msh");
+  INFO(run.output);
+  check_links(run, {{"left", "right"}, {"bottom", "top"}}, 1.0);
+  CHECK(max_mismatch(run.quality, 2) == 0.0);
+  CHECK(run.quality.find("\"metric\"") != std::string::npos);
+  // The left side's nodes follow the metric's band (h_y from 0.06 at the corners to 0.01 at
+  // y = 0.5): more of them near the middle than near the ends.
+  const int left = curve_of(run.mesh, "left");
+  int middle = 0, ends = 0;
+  for (const int v : nodes_on(run.mesh, left)) {
+    const double y = run.mesh.points[static_cast<std::size_t>(v)].y;
+    middle += std::abs(y - 0.5) < 0.1;
+    ends += y < 0.2;
+  }
+  CHECK(middle > 2 * ends);
+}

@@ -11,6 +11,7 @@
 #include "core/errors.hpp"
 #include "core/input_file.hpp"
 #include "init/boundary_placement.hpp"
+#include "init/metric_fill.hpp"
 
 namespace pdmesh {
 
@@ -29,6 +30,17 @@ class PairedSpacing final : public SpacingField {
  private:
   const SpacingField& q_;
   PeriodicTransform t_;
+};
+
+// The case's metric by reference for the core (which outlives it, as the field above): the core's
+// stages run in the metric the source's stations were placed by.
+class MetricReference final : public MetricField {
+ public:
+  explicit MetricReference(const MetricField& m) : m_(m) {}
+  Metric at(Vec2 p) const override { return m_.at(p); }
+
+ private:
+  const MetricField& m_;
 };
 
 // A field by reference: the case's, which outlives the core's stages (build_periodic's contract).
@@ -116,9 +128,6 @@ void check_periodic_case(const CaseConfig& config) {
                           "curve cannot carry layers",
                           p.where, quote_input(name), b.curves_where));
   if (config.motion.enabled) throw InputError(fmt::format("{}: [[periodic]] is not supported with [motion]", where));
-  if (config.spacing.metric())
-    throw InputError(
-        fmt::format("{}: [[periodic]] is not supported with spacing.field = \"metric\" or \"hessian\"", where));
   if (config.resume) throw InputError(fmt::format("{}: --resume is not supported with [[periodic]]", where));
   if (config.init.kept || !config.init.file.empty())
     throw InputError(
@@ -147,7 +156,14 @@ std::unique_ptr<PeriodicCase> build_periodic(const CaseConfig& config, const Mes
     const Curve& image = on.curves[static_cast<std::size_t>(i)];
     const PeriodicTransform& t = resolved.transform;
     std::vector<Vec2> nodes;
-    if (inputs.dense || inputs.boundary_rule == BoundaryNodeRule::Spacing) {
+    if (inputs.metric) {
+      // A metric run's stations are unit metric lengths apart along the curve (make_metric_initial):
+      // here the shorter of the unit step at a point and at its image, along the curve there.
+      const CurveMetricSpacing along(inputs.node_tree(), *inputs.metric);
+      const PairedSpacing paired(along, t);
+      const CurveStations stations = spacing_stations(on, paired, placement);
+      for (const BoundaryStation& st : stations[static_cast<std::size_t>(s)]) nodes.push_back(st.p);
+    } else if (inputs.dense || inputs.boundary_rule == BoundaryNodeRule::Spacing) {
       const PairedSpacing paired(spacing.field(), t);
       const CurveStations stations = inputs.boundary_rule == BoundaryNodeRule::Spacing
                                          ? spacing_stations(on, paired, placement)
@@ -195,6 +211,9 @@ std::unique_ptr<MeshInputs> periodic_core_inputs(const PeriodicCase& periodic, c
   core->projection = inputs.projection;
   core->geometry.regions = inputs.geometry.regions;
   core->periodic = periodic.pairs;
+  // A metric run: the core's metric is the case's (with layers the layered core's, graded to the fronts),
+  // the one the source's stations were placed by.
+  if (inputs.metric) core->metric = std::make_unique<MetricReference>(*inputs.metric);
   return core;
 }
 
