@@ -449,3 +449,30 @@ TEST_CASE("a periodic square under an anisotropic metric: the pairs in the metri
   }
   CHECK(middle > 2 * ends);
 }
+
+TEST_CASE("a rotor sector with layers on hub and shroud: the columns are paired by the rotation",
+          "[periodic][layers][cli]") {
+  const Run run = mesh_case(kData / "sector_layers.toml", "periodic_sector_layers", "msh");
+  INFO(run.output);
+  check_links(run, {{"r0", "r60"}}, 2.0);
+  CHECK(max_mismatch(run.quality, 1) <= 2e-12);
+  // The side at 0 degrees holds both columns: nodes within the layers' 0.06 of r = 1 and of r = 2,
+  // the first at h1 = 0.002 from each wall.
+  std::vector<double> radii;
+  for (const auto& [i, s] : run.links[0].nodes) {
+    const Vec2 p = run.mesh.points[static_cast<std::size_t>(s - 1)];
+    CHECK(p.y == 0.0);
+    radii.push_back(p.x);
+  }
+  std::sort(radii.begin(), radii.end());
+  const auto within = [&](double lo, double hi) {
+    return std::count_if(radii.begin(), radii.end(), [&](double r) { return r >= lo && r <= hi; });
+  };
+  CHECK(within(1.0, 1.06 + 1e-12) >= 8);
+  CHECK(within(2.0 - 0.06 - 1e-12, 2.0) >= 8);
+  // Along the radius: h1 over the arc's first polygon segment, which the radial side meets a little
+  // off its normal (h1 / cos of half the segment's turn).
+  REQUIRE(radii.size() >= 4);
+  CHECK(radii[1] - radii[0] == Approx(0.002).epsilon(1e-3));
+  CHECK(radii.back() - radii[radii.size() - 2] == Approx(0.002).epsilon(1e-3));
+}

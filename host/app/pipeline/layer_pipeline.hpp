@@ -64,8 +64,9 @@ std::unique_ptr<LayeredCase> build_layers(const CaseConfig& config, const MeshIn
 // outlive them) instead of the metric the core's case would build. The projection is the caller's to set.
 std::unique_ptr<MeshInputs> layered_core_inputs(const LayeredCase& layered, const MeshInputs& inputs);
 
-// The core's nodes without the Boundary nodes on a front: interior nodes that the simulation snapped onto
-// a front curve (its points are the layer's nodes; one between them would hang on a layer cell's edge).
+// The core's nodes without the Boundary nodes on a curve of fixed points: interior nodes that the simulation
+// snapped onto a front curve (its points are the layer's nodes; one between them would hang on a layer cell's
+// edge) or, with [[periodic]], onto a periodic curve (it would have no partner).
 NodeSet without_front_nodes(const NodeSet& nodes, const Geometry& core_geometry, std::size_t& dropped);
 
 // A layer top whose core cell above reaches more than this many last layers up its ray gets a pinned
