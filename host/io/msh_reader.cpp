@@ -43,8 +43,8 @@ struct MshData {
   std::vector<Vec2> points;
   std::vector<RawElement> lines, triangles;
   std::map<int, std::size_t> skipped;  // element type -> count
-  std::vector<RawPeriodic> periodic;
   std::vector<long long> node_tags;    // per point, for messages about point data
+  std::vector<RawPeriodic> periodic;   // $Periodic, resolved in assemble
   // Point data: the wanted $NodeData (the last block of that name: the latest time step).
   MeshPointData* data = nullptr;
   bool have_values = false;
