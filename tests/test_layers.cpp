@@ -410,3 +410,38 @@ TEST_CASE("max_ray_tilt: split wall cells of a 12-gon stay right-angled outside 
   CHECK_THAT(pdmesh_test::error_message<InputError>([&] { build_boundary_layers(g, {1}, s); }),
              Catch::Contains("max_ray_tilt = 45 must be in [0, 45) degrees"));
 }
+
+TEST_CASE("tied open chain ends get the same layers where the core spacing differs at them", "[layers][periodic]") {
+  // A channel [0,2] x [0,1] with the bottom as the wall; the core's spacing is fine near the outlet,
+  // so that the layer stops lower there than at the inlet. Tied, both end columns get the lower one.
+  std::vector<RawCurve> raw;
+  auto add = [&](std::vector<Vec2> pts, const std::string& name) { raw.push_back({name, pts, "test", 1, {}}); };
+  std::vector<Vec2> bottom;
+  for (int i = 0; i <= 40; ++i) bottom.push_back({0.05 * i, 0.0});
+  add(bottom, "bottom");
+  add({{2, 0}, {2, 1}}, "outlet");
+  add({{2, 1}, {0, 1}}, "top");
+  add({{0, 1}, {0, 0}}, "inlet");
+  const Geometry g = build_geometry(raw);
+  const LayerSettings s = settings(1e-3, 1.2, 0.1);
+  const CoreSpacing core = [](Vec2 p) { return p.x > 1.5 ? 0.01 : 1.0; };
+  const std::vector<int> walls = curves_by_name(g, {"bottom"}, "test");
+  const LayerMesh free = build_boundary_layers(g, walls, s, core);
+  const LayerMesh tied = build_boundary_layers(g, walls, s, core, {{{0.0, 0.0}, {2.0, 0.0}}});
+  const auto column = [](const LayerMesh& m, Vec2 wall) {
+    const int r = end_ray_at(m, wall);
+    REQUIRE(r >= 0);
+    std::vector<double> heights;
+    for (const int node : m.rays[static_cast<std::size_t>(r)].nodes) heights.push_back(m.nodes[node].y);
+    return heights;
+  };
+  // Untied, the inlet's column is higher (the case the tie is for).
+  CHECK(column(free, {0, 0}).size() > column(free, {2, 0}).size());
+  CHECK(column(tied, {0, 0}) == column(tied, {2, 0}));
+  CHECK(column(tied, {2, 0}) == column(free, {2, 0}));
+  CHECK(measure_layers(tied, s.first_height).inverted_cells == 0);
+  CHECK(crossing_edges(tied) == 0);
+  CHECK(end_ray_at(tied, {1.0, 0.0}) == -1);  // not a chain's end
+  CHECK_THROWS_WITH(build_boundary_layers(g, walls, s, core, {{{0.0, 0.0}, {1.0, 0.0}}}),
+                    Catch::Contains("no open wall chain ends at (1, 0)"));
+}

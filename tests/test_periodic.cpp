@@ -4,6 +4,7 @@
 // reports the pairs, and every malformed table exits 2 with a message and writes nothing.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <filesystem>
@@ -18,6 +19,7 @@
 #include "core/errors.hpp"
 #include "geometry/periodic.hpp"
 #include "io/mesh_formats.hpp"
+#include "io/msh_reader.hpp"
 #include "io/msh_writer.hpp"
 #include "mesh/periodic_links.hpp"
 #include "run_pdmesh.hpp"
@@ -269,4 +271,208 @@ TEST_CASE("malformed [[periodic]] tables exit 2 naming the table and write nothi
     CHECK(r.output.find(file.string()) != std::string::npos);  // names the case file
     CHECK_FALSE(fs::exists(out));
   }
+}
+
+TEST_CASE("a periodic channel with layers on both walls: the layers' end columns are paired too",
+          "[periodic][layers][cli]") {
+  const Run run = mesh_case(kData / "channel.toml", "periodic_channel", "msh");
+  INFO(run.output);
+  check_links(run, {{"inlet", "outlet"}}, 2.0);
+  CHECK(run.links[0].affine[3] == 2.0);
+  CHECK(run.links[0].affine[7] == 0.0);
+  CHECK(max_mismatch(run.quality, 1) == 0.0);
+  CHECK(run.quality.find("\"boundary_layer\"") != std::string::npos);
+  // Both walls' layers (thickness 0.08 from h1 = 0.002) end on the inlet and the outlet: their
+  // column nodes are pairs, the first at h1 over each wall, and the outlet carries the inlet's
+  // heights exactly.
+  std::vector<double> inlet, outlet;
+  for (const auto& [i, s] : run.links[0].nodes) {
+    const Vec2 si = run.mesh.points[static_cast<std::size_t>(s - 1)];
+    const Vec2 im = run.mesh.points[static_cast<std::size_t>(i - 1)];
+    CHECK(si.x == 0.0);
+    CHECK(im.x == 2.0);
+    CHECK(im.y == si.y);
+    inlet.push_back(si.y);
+    outlet.push_back(im.y);
+  }
+  std::sort(inlet.begin(), inlet.end());
+  const auto count_in = [&](double lo, double hi) {
+    return std::count_if(inlet.begin(), inlet.end(), [&](double y) { return y >= lo && y <= hi; });
+  };
+  CHECK(count_in(0.0, 0.08) >= 10);  // the bottom layer's column, wall node included
+  CHECK(count_in(0.92, 1.0) >= 10);  // the top's
+  REQUIRE(inlet.size() >= 3);
+  CHECK(inlet[0] == 0.0);
+  CHECK(inlet[1] == Approx(0.002).epsilon(1e-9));
+  CHECK(inlet.back() == 1.0);
+}
+
+TEST_CASE("[[periodic]] with layers: walls that are not periodic, or layers at one end only, exit 2",
+          "[periodic][layers][cli][bad]") {
+  const fs::path dir = pdmesh_test::fresh_dir("periodic_layers_bad");
+  const auto write_geometry = [&](const std::string& name, const std::vector<std::vector<Vec2>>& curves) {
+    std::ofstream out(dir / name);
+    for (const auto& c : curves) {
+      out << c.size() << "\n";
+      for (const Vec2 p : c) out << p.x << " " << p.y << "\n";
+    }
+  };
+  // The bottom wall turns down 0.2 before the outlet: it meets the inlet at about 87 deg and the
+  // outlet at about 63 deg, so its layer's end columns differ although the sides are periodic.
+  write_geometry("bent.crv", {{{0, 0}, {1.8, 0.1}, {2, 0}}, {{2, 0}, {2, 1}}, {{2, 1}, {0, 1}}, {{0, 1}, {0, 0}}});
+  // The bottom in two curves, layers on the first only: they end on the inlet, not on the outlet.
+  write_geometry("split.crv",
+                 {{{0, 0}, {1, 0}}, {{1, 0}, {2, 0}}, {{2, 0}, {2, 1}}, {{2, 1}, {0, 1}}, {{0, 1}, {0, 0}}});
+  const std::string tail = "[[periodic]]\ncurves = [\"inlet\", \"outlet\"]\n[spacing]\nsize = 0.1\n";
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"[geometry]\nfiles = [\"bent.crv\"]\ncurve_names = [\"bottom\", \"outlet\", \"top\", \"inlet\"]\n"
+       "[[boundary_layer]]\ncurves = [\"bottom\"]\nfirst_height = 0.002\nthickness = 0.05\n" +
+           tail,
+       "the walls are not periodic: wall 'bottom' meets 'inlet' at (0, 0) at 86.8"},
+      {"[geometry]\nfiles = [\"split.crv\"]\ncurve_names = [\"bottom_a\", \"bottom_b\", \"outlet\", \"top\", "
+       "\"inlet\"]\n[[boundary_layer]]\ncurves = [\"bottom_a\"]\nfirst_height = 0.002\nthickness = 0.05\n" +
+           tail,
+       "end on 'inlet' at (0, 0) (wall 'bottom_a') but not on 'outlet' at its periodic image (2, 0) (curve "
+       "'bottom_b' meets it there)"},
+  };
+  int k = 0;
+  for (const auto& [body, expected] : cases) {
+    const fs::path file = dir / ("case" + std::to_string(k++) + ".toml");
+    std::ofstream(file) << "preset = \"best\"\n" << body;
+    const fs::path out = dir / ("out" + std::to_string(k));
+    const auto r = pdmesh_test::run_pdmesh("mesh '" + file.string() + "' --out '" + out.string() + "'");
+    INFO(body);
+    INFO(r.output);
+    CHECK(r.status == 2);
+    CHECK(r.output.find("pdmesh: error: ") != std::string::npos);  // after the spacing's progress line
+    CHECK(r.output.find(expected) != std::string::npos);
+    CHECK(r.output.find(file.string()) != std::string::npos);
+    CHECK_FALSE(fs::exists(out));
+  }
+}
+
+TEST_CASE("the MSH reader reads $Periodic back (4.1 and 2.2) with the largest mismatch", "[periodic][io]") {
+  pdmesh::Mesh mesh;
+  mesh.points = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+  mesh.triangles = {{0, 1, 2}, {0, 2, 3}};
+  mesh.boundary_edges = {{0, 1, 0}, {1, 2, 1}, {2, 3, 2}, {3, 0, 3}};
+  mesh.curve_names = {"bottom", "right", "top", "left"};
+  pdmesh::PeriodicLink link;
+  link.curve = 1;
+  link.source_curve = 3;
+  link.affine = pdmesh::PeriodicTransform::translation({1.0, 0.0}).affine();
+  link.nodes = {{1, 0}, {2, 3}};
+  const std::vector<pdmesh::PeriodicLink> links{link};
+  for (const bool v41 : {true, false}) {
+    INFO((v41 ? "MSH 4.1" : "MSH 2.2"));
+    pdmesh::MeshReadReport report;
+    const pdmesh::Mesh back = pdmesh::parse_msh(
+        "cell.msh", v41 ? pdmesh::msh41_string(mesh, &links) : pdmesh::msh22_string(mesh, &links), report);
+    REQUIRE(report.periodic.size() == 1);
+    const pdmesh::PeriodicLink& l = report.periodic[0];
+    CHECK(back.curve_names[static_cast<std::size_t>(l.curve)] == "right");
+    CHECK(back.curve_names[static_cast<std::size_t>(l.source_curve)] == "left");
+    CHECK(l.affine == link.affine);
+    REQUIRE(l.nodes.size() == 2);
+    for (const auto& [i, s] : l.nodes)
+      CHECK(back.points[static_cast<std::size_t>(i)] == back.points[static_cast<std::size_t>(s)] + Vec2{1.0, 0.0});
+    CHECK(l.max_mismatch == 0.0);
+  }
+  // A Gmsh-style 2.2 section: a link of points (skipped, with a note), a curve link without an affine
+  // line, and one whose image node is 1e-3 off its transform.
+  const std::string head =
+      "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n5\n1 0 0 0\n2 1 0 0\n3 1 1 0\n4 0 1 0\n5 1.001 0.5 0\n$EndNodes\n"
+      "$Elements\n5\n1 1 2 0 1 1 2\n2 1 2 0 2 2 5\n3 1 2 0 2 5 3\n4 1 2 0 4 4 1\n5 2 2 0 1 1 2 3\n$EndElements\n";
+  pdmesh::MeshReadReport gmsh;
+  const pdmesh::Mesh g =
+      pdmesh::parse_msh("g.msh",
+                        head +
+                            "$Periodic\n3\n0 2 1\n1\n2 1\n1 2 4\nAffine 1 0 0 1 0 1 0 0 0 0 1 0 0 0 0 1\n2\n2 1\n3 4\n"
+                            "1 2 4\n1\n5 4\n$EndPeriodic\n",
+                        gmsh);
+  REQUIRE(gmsh.periodic.size() == 2);
+  CHECK(g.curve_names[static_cast<std::size_t>(gmsh.periodic[0].curve)] == "entity2");
+  CHECK(gmsh.periodic[0].max_mismatch == 0.0);
+  CHECK(std::isnan(gmsh.periodic[1].max_mismatch));  // no transform to measure by
+  CHECK(std::find_if(gmsh.notes.begin(), gmsh.notes.end(), [](const std::string& n) {
+          return n.find("skipped 1 $Periodic links of points or surfaces") != std::string::npos;
+        }) != gmsh.notes.end());
+  pdmesh::MeshReadReport off;
+  (void)pdmesh::parse_msh(
+      "off.msh", head + "$Periodic\n1\n1 2 4\nAffine 1 0 0 1 0 1 0 0 0 0 1 0 0 0 0 1\n1\n5 4\n$EndPeriodic\n", off);
+  REQUIRE(off.periodic.size() == 1);
+  // Node 5 (1.001, 0.5) against T(node 4) = (1, 1).
+  CHECK(off.periodic[0].max_mismatch == Approx(std::hypot(0.001, 0.5)));
+  pdmesh::MeshReadReport bad;
+  CHECK_THROWS_WITH(pdmesh::parse_msh("bad.msh", head + "$Periodic\n1\n1 2 4\n1\n9 4\n$EndPeriodic\n", bad),
+                    Catch::Contains("bad.msh:") && Catch::Contains("$Periodic refers to unknown node tag 9"));
+}
+
+TEST_CASE("pdmesh quality reports a mesh file's periodic pairs as the mesh run's quality.json does",
+          "[periodic][cli]") {
+  const fs::path out = pdmesh_test::fresh_path("periodic_quality");
+  const auto r = pdmesh_test::run_pdmesh("mesh '" + (kData / "cell.toml").string() + "' --out '" + out.string() +
+                                         "' --device host --formats msh -q");
+  REQUIRE(r.status == 0);
+  const auto q = pdmesh_test::run_pdmesh("quality '" + (out / "mesh.msh").string() + "' --json -");
+  INFO(q.output);
+  REQUIRE(q.status == 0);
+  CHECK(q.output.find("periodic: 'left' -> 'right': ") != std::string::npos);
+  CHECK(q.output.find("periodic: 'bottom' -> 'top': ") != std::string::npos);
+  CHECK(max_mismatch(q.output, 2) == 0.0);
+  // The same pair counts as the run's own report.
+  const std::regex pairs("\"pairs\": ([0-9]+)");
+  std::vector<std::string> run_counts, read_counts;
+  const std::string run_json = pdmesh_test::slurp(out / "quality.json");
+  for (auto it = std::sregex_iterator(run_json.begin(), run_json.end(), pairs); it != std::sregex_iterator(); ++it)
+    run_counts.push_back((*it)[1]);
+  for (auto it = std::sregex_iterator(q.output.begin(), q.output.end(), pairs); it != std::sregex_iterator(); ++it)
+    read_counts.push_back((*it)[1]);
+  CHECK(run_counts.size() == 2);
+  CHECK(read_counts == run_counts);
+}
+
+TEST_CASE("a periodic square under an anisotropic metric: the pairs in the metric run", "[periodic][metric][cli]") {
+  const Run run = mesh_case(kData / "metric.toml", "periodic_metric", "msh");
+  INFO(run.output);
+  check_links(run, {{"left", "right"}, {"bottom", "top"}}, 1.0);
+  CHECK(max_mismatch(run.quality, 2) == 0.0);
+  CHECK(run.quality.find("\"metric\"") != std::string::npos);
+  // The left side's nodes follow the metric's band (h_y from 0.06 at the corners to 0.01 at
+  // y = 0.5): more of them near the middle than near the ends.
+  const int left = curve_of(run.mesh, "left");
+  int middle = 0, ends = 0;
+  for (const int v : nodes_on(run.mesh, left)) {
+    const double y = run.mesh.points[static_cast<std::size_t>(v)].y;
+    middle += std::abs(y - 0.5) < 0.1;
+    ends += y < 0.2;
+  }
+  CHECK(middle > 2 * ends);
+}
+
+TEST_CASE("a rotor sector with layers on hub and shroud: the columns are paired by the rotation",
+          "[periodic][layers][cli]") {
+  const Run run = mesh_case(kData / "sector_layers.toml", "periodic_sector_layers", "msh");
+  INFO(run.output);
+  check_links(run, {{"r0", "r60"}}, 2.0);
+  CHECK(max_mismatch(run.quality, 1) <= 2e-12);
+  // The side at 0 degrees holds both columns: nodes within the layers' 0.06 of r = 1 and of r = 2,
+  // the first at h1 = 0.002 from each wall.
+  std::vector<double> radii;
+  for (const auto& [i, s] : run.links[0].nodes) {
+    const Vec2 p = run.mesh.points[static_cast<std::size_t>(s - 1)];
+    CHECK(p.y == 0.0);
+    radii.push_back(p.x);
+  }
+  std::sort(radii.begin(), radii.end());
+  const auto within = [&](double lo, double hi) {
+    return std::count_if(radii.begin(), radii.end(), [&](double r) { return r >= lo && r <= hi; });
+  };
+  CHECK(within(1.0, 1.06 + 1e-12) >= 8);
+  CHECK(within(2.0 - 0.06 - 1e-12, 2.0) >= 8);
+  // Along the radius: h1 over the arc's first polygon segment, which the radial side meets a little
+  // off its normal (h1 / cos of half the segment's turn).
+  REQUIRE(radii.size() >= 4);
+  CHECK(radii[1] - radii[0] == Approx(0.002).epsilon(1e-3));
+  CHECK(radii.back() - radii[radii.size() - 2] == Approx(0.002).epsilon(1e-3));
 }

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "mesh/mesh.hpp"
+#include "mesh/periodic_links.hpp"
 
 namespace pdmesh {
 
@@ -20,6 +21,9 @@ struct MeshReadReport {
   // all of one orientation has inverted ones (pdmesh smooth names the first).
   std::vector<std::size_t> reoriented;
   std::vector<std::string> notes;  // one line each, e.g. "skipped 4 elements of type 3 (quadrangle)"
+  // An MSH file's $Periodic links between curves (dimension 1), in the mesh's curve and point
+  // indices, each with the largest |A p_source - p_image| by its affine transform (NaN without one).
+  std::vector<PeriodicLink> periodic;
 };
 
 // A point-data array read beside a mesh: `components` values per point, point-major. An MSH

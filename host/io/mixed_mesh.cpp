@@ -11,6 +11,7 @@
 #include "core/errors.hpp"
 #include "core/g17.hpp"
 #include "io/mesh_io_common.hpp"
+#include "io/msh_writer.hpp"
 
 namespace pdmesh {
 
@@ -62,7 +63,7 @@ std::size_t MixedMesh::quads() const {
   return n;
 }
 
-std::string mixed_msh41_string(const MixedMesh& mesh) {
+std::string mixed_msh41_string(const MixedMesh& mesh, const std::vector<PeriodicLink>* periodic) {
   const Mesh curves = curves_of(mesh);
   const std::size_t nc = mesh.curve_names.size();
   std::string out = "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n";
@@ -125,6 +126,7 @@ std::string mixed_msh41_string(const MixedMesh& mesh) {
     }
   }
   out += "$EndElements\n";
+  append_msh_periodic(out, periodic, true);
   return out;
 }
 
@@ -192,12 +194,13 @@ std::string mixed_su2_string(const MixedMesh& mesh) {
 }
 
 std::vector<std::filesystem::path> write_mixed_mesh(const MixedMesh& mesh, const std::filesystem::path& dir,
-                                                    const std::string& stem, const std::vector<std::string>& formats) {
+                                                    const std::string& stem, const std::vector<std::string>& formats,
+                                                    const std::vector<PeriodicLink>* periodic) {
   std::vector<std::filesystem::path> written;
   for (const std::string& f : formats) {
     std::string text;
     if (f == "msh")
-      text = mixed_msh41_string(mesh);
+      text = mixed_msh41_string(mesh, periodic);
     else if (f == "vtu")
       text = mixed_vtu_string(mesh);
     else if (f == "su2")
@@ -209,6 +212,12 @@ std::vector<std::filesystem::path> write_mixed_mesh(const MixedMesh& mesh, const
     written.push_back(path);
   }
   return written;
+}
+
+Mesh boundary_of(const MixedMesh& mesh) {
+  Mesh out = curves_of(mesh);
+  out.points = mesh.points;
+  return out;
 }
 
 Mesh triangulated(const MixedMesh& mesh) {

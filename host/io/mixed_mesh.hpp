@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "mesh/mesh.hpp"
+#include "mesh/periodic_links.hpp"
 
 namespace pdmesh {
 
@@ -29,7 +30,8 @@ inline constexpr const char* kCoreRegion = "domain";
 
 // Physical groups: one per curve (dimension 1, tag c + 1), "domain" and "boundary_layer" (dimension
 // 2, surface entities 1 and 2). The layer's triangles and quadrangles are separate element blocks.
-std::string mixed_msh41_string(const MixedMesh& mesh);
+// `periodic` (not null or empty): the $Periodic section after the elements, as msh_writer writes it.
+std::string mixed_msh41_string(const MixedMesh& mesh, const std::vector<PeriodicLink>* periodic = nullptr);
 // Cell data "boundary_layer" (1 in the layer, 0 in the core), the point data when there is some; no
 // boundary edges.
 std::string mixed_vtu_string(const MixedMesh& mesh);
@@ -37,9 +39,14 @@ std::string mixed_vtu_string(const MixedMesh& mesh);
 std::string mixed_su2_string(const MixedMesh& mesh);
 
 // DIR/STEM.msh, .vtu, .su2 for the formats of `formats` among msh, vtu, su2, each atomic; returns
-// the paths written. Throws InputError for another mesh format (msh22, triangle).
+// the paths written (the msh file with `periodic`'s $Periodic section). Throws InputError for another
+// mesh format (msh22, triangle).
 std::vector<std::filesystem::path> write_mixed_mesh(const MixedMesh& mesh, const std::filesystem::path& dir,
-                                                    const std::string& stem, const std::vector<std::string>& formats);
+                                                    const std::string& stem, const std::vector<std::string>& formats,
+                                                    const std::vector<PeriodicLink>* periodic = nullptr);
+
+// The curves, boundary edges and points of `mesh` as a Mesh without cells (for link_periodic_nodes).
+Mesh boundary_of(const MixedMesh& mesh);
 
 // The mesh as triangles (each quad split along its shorter diagonal), for the pictures.
 Mesh triangulated(const MixedMesh& mesh);

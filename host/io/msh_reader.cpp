@@ -4,6 +4,7 @@
 #include "io/msh_reader.hpp"
 
 #include <algorithm>
+#include <array>
 #include <charconv>
 #include <limits>
 #include <map>
@@ -25,6 +26,15 @@ struct RawElement {
   long long entity = 0;
 };
 
+// A $Periodic link as read: entity tags and node tags, resolved once all nodes are known.
+struct RawPeriodic {
+  long long dim = 0, entity = 0, master = 0;
+  bool has_affine = false;
+  std::array<double, 16> affine{};
+  std::vector<std::array<long long, 2>> nodes;  // (node, master node)
+  int line = 0;
+};
+
 struct MshData {
   bool v41 = true;
   std::map<long long, std::string> line_names;       // dim-1 physical tag -> name
@@ -34,6 +44,7 @@ struct MshData {
   std::vector<RawElement> lines, triangles;
   std::map<int, std::size_t> skipped;  // element type -> count
   std::vector<long long> node_tags;    // per point, for messages about point data
+  std::vector<RawPeriodic> periodic;   // $Periodic, resolved in assemble
   // Point data: the wanted $NodeData (the last block of that name: the latest time step).
   MeshPointData* data = nullptr;
   bool have_values = false;
@@ -343,6 +354,43 @@ void assemble_point_data(MshData& d) {
   out.array = std::move(a);
 }
 
+// $Periodic: per link the dimension, the entity and its master, the affine transform (4.1: a count
+// and that many values; 2.2: an optional line "Affine" and 16 values), the node pairs.
+void read_periodic(LineScanner& s, MshData& d) {
+  const std::size_t n = count(s, "number of periodic links", 8);
+  for (std::size_t k = 0; k < n; ++k) {
+    RawPeriodic p;
+    p.line = s.line() + 1;
+    p.dim = s.to_index(s.token("periodic entity dimension"), 0, 3, "periodic entity dimension");
+    p.entity = s.to_int(s.token("periodic entity tag"), "periodic entity tag");
+    p.master = s.to_int(s.token("periodic master entity tag"), "periodic master entity tag");
+    std::string_view next = s.token("periodic affine transform or node count");
+    std::size_t values = 0;
+    if (d.v41) {
+      values = static_cast<std::size_t>(s.to_index(next, 0, 16, "number of affine values"));
+      next = {};
+    } else if (next == "Affine") {
+      values = 16;
+      next = {};
+    }
+    if (values != 0 && values != 16) s.fail("an affine transform has 16 values", fmt::format("{}", values));
+    for (std::size_t j = 0; j < values; ++j)
+      p.affine[j] = s.to_double(s.token("affine transform value"), "affine transform value");
+    p.has_affine = values == 16;
+    const long long pairs =
+        s.to_int(next.empty() ? s.token("number of periodic nodes") : next, "number of periodic nodes");
+    if (pairs < 0) s.fail("negative number of periodic nodes", fmt::format("{}", pairs));
+    s.check_count(pairs, 4, "number of periodic nodes");
+    p.nodes.resize(static_cast<std::size_t>(pairs));
+    for (auto& [node, master] : p.nodes) {
+      node = s.to_int(s.token("periodic node tag"), "periodic node tag");
+      master = s.to_int(s.token("periodic master node tag"), "periodic master node tag");
+    }
+    d.periodic.push_back(std::move(p));
+  }
+  expect_end(s, "Periodic");
+}
+
 int resolve(const MshData& d, const std::string& file, const RawElement& e, long long tag) {
   const auto it = d.node_index.find(tag);
   if (it == d.node_index.end())
@@ -376,6 +424,46 @@ Mesh assemble(const std::string& file, MshData& d, MeshReadReport& report) {
     mesh.triangles.push_back(
         {resolve(d, file, e, e.nodes[0]), resolve(d, file, e, e.nodes[1]), resolve(d, file, e, e.nodes[2])});
   }
+  // $Periodic: the curves' links, their entities resolved as the lines' (physical group, else entity).
+  std::map<long long, long long> entity_phys;  // curve entity -> the physical tag of its lines
+  for (const auto& e : d.lines) entity_phys.emplace(e.entity, e.physical);
+  const auto curve_of_entity = [&](long long entity) {
+    const auto it = entity_phys.find(entity);
+    const auto key = it != entity_phys.end() && it->second > 0 ? std::pair<int, long long>{0, it->second}
+                                                               : std::pair<int, long long>{1, entity};
+    const auto c = curve_of.find(key);
+    return c == curve_of.end() ? -1 : c->second;
+  };
+  std::size_t other_links = 0;
+  for (const RawPeriodic& p : d.periodic) {
+    if (p.dim != 1) {
+      ++other_links;
+      continue;
+    }
+    PeriodicLink link;
+    link.curve = curve_of_entity(p.entity);
+    link.source_curve = curve_of_entity(p.master);
+    if (link.curve < 0 || link.source_curve < 0)
+      throw InputError(fmt::format("{}:{}: $Periodic links curve entity {} to {}, one of which has no line elements",
+                                   file, p.line, p.entity, p.master));
+    link.affine = p.affine;
+    link.max_mismatch = p.has_affine ? 0.0 : std::numeric_limits<double>::quiet_NaN();
+    for (const auto& [node, master] : p.nodes) {
+      const auto i = d.node_index.find(node), m = d.node_index.find(master);
+      if (i == d.node_index.end() || m == d.node_index.end())
+        throw InputError(fmt::format("{}:{}: $Periodic refers to unknown node tag {}", file, p.line,
+                                     i == d.node_index.end() ? node : master));
+      link.nodes.push_back({i->second, m->second});
+      if (!p.has_affine) continue;
+      const Vec2 q = mesh.points[static_cast<std::size_t>(m->second)];
+      const Vec2 mapped{p.affine[0] * q.x + p.affine[1] * q.y + p.affine[3],
+                        p.affine[4] * q.x + p.affine[5] * q.y + p.affine[7]};
+      link.max_mismatch = std::max(link.max_mismatch, dist(mapped, mesh.points[static_cast<std::size_t>(i->second)]));
+    }
+    report.periodic.push_back(std::move(link));
+  }
+  if (other_links > 0)
+    report.notes.push_back(fmt::format("{}: skipped {} $Periodic links of points or surfaces", file, other_links));
   for (const auto& [type, n] : d.skipped) {
     report.skipped_elements += n;
     report.notes.push_back(fmt::format("{}: skipped {} elements of type {} ({})", file, n, type, element_name(type)));
@@ -406,6 +494,8 @@ Mesh parse_msh(const std::string& file_label, std::string content, MeshReadRepor
       read_nodes(s, d);
     } else if (section == "$Elements") {
       read_elements(s, d);
+    } else if (section == "$Periodic") {
+      read_periodic(s, d);
     } else if (section == "$NodeData" && d.data != nullptr) {
       read_node_data(s, d);
     } else if ((section == "$ElementData" || section == "$ElementNodeData") && d.data != nullptr) {

@@ -12,7 +12,9 @@ namespace pdmesh {
 
 // Curves: the dimension-1 physical groups in tag order (named from $PhysicalNames, else
 // "physical<tag>"), then lines without a physical group per elementary entity ("entity<tag>").
-// Other element types are skipped and counted in `report`. Throws InputError "FILE:LINE: ..."
+// Other element types are skipped and counted in `report`. $Periodic links of curves go into
+// report.periodic (their entities resolved to curves as their lines are; links of points and
+// surfaces are skipped with a note). Throws InputError "FILE:LINE: ..."
 // on truncation, bad counts, unknown node tags, binary files and unsupported versions.
 // With `data`, the $NodeData view named data->wanted (its first string tag; of several blocks of
 // that name, the last: the latest time step) is read into data->array, with the node tag of every

@@ -59,24 +59,6 @@ std::string physical_names(const Mesh& mesh, const Surfaces& surfaces) {
   return out;
 }
 
-// Gmsh's $Periodic section: 4.1 gives the affine transform as a count and 16 values, 2.2 as a line
-// "Affine" and 16 values.
-void append_periodic(std::string& out, const std::vector<PeriodicLink>* periodic, bool msh41) {
-  if (periodic == nullptr || periodic->empty()) return;
-  out += fmt::format("$Periodic\n{}\n", periodic->size());
-  for (const PeriodicLink& link : *periodic) {
-    out += fmt::format("1 {} {}\n", link.curve + 1, link.source_curve + 1);
-    out += msh41 ? "16" : "Affine";
-    for (const double v : link.affine) {
-      out += ' ';
-      append_g17(out, v);
-    }
-    out += fmt::format("\n{}\n", link.nodes.size());
-    for (const auto& [image, source] : link.nodes) out += fmt::format("{} {}\n", image + 1, source + 1);
-  }
-  out += "$EndPeriodic\n";
-}
-
 }  // namespace
 
 void write_msh41(const Mesh& mesh, TextSink& sink, const std::vector<PeriodicLink>* periodic) {
@@ -169,7 +151,7 @@ void write_msh41(const Mesh& mesh, TextSink& sink, const std::vector<PeriodicLin
     tag += per_surface[j];
   }
   out += "$EndElements\n";
-  append_periodic(out, periodic, true);
+  append_msh_periodic(out, periodic, true);
   append_msh_spacing_node_data(sink, mesh);
 }
 
@@ -200,7 +182,7 @@ void write_msh22(const Mesh& mesh, TextSink& sink, const std::vector<PeriodicLin
                    t[1] + 1, t[2] + 1);
   });
   out += "$EndElements\n";
-  append_periodic(out, periodic, false);
+  append_msh_periodic(out, periodic, false);
   append_msh_spacing_node_data(sink, mesh);
 }
 
@@ -214,6 +196,24 @@ std::string msh22_string(const Mesh& mesh, const std::vector<PeriodicLink>* peri
   TextSink sink;
   write_msh22(mesh, sink, periodic);
   return sink.take();
+}
+
+// Gmsh's $Periodic section: 4.1 gives the affine transform as a count and 16 values, 2.2 as a line
+// "Affine" and 16 values.
+void append_msh_periodic(std::string& out, const std::vector<PeriodicLink>* periodic, bool msh41) {
+  if (periodic == nullptr || periodic->empty()) return;
+  out += fmt::format("$Periodic\n{}\n", periodic->size());
+  for (const PeriodicLink& link : *periodic) {
+    out += fmt::format("1 {} {}\n", link.curve + 1, link.source_curve + 1);
+    out += msh41 ? "16" : "Affine";
+    for (const double v : link.affine) {
+      out += ' ';
+      append_g17(out, v);
+    }
+    out += fmt::format("\n{}\n", link.nodes.size());
+    for (const auto& [image, source] : link.nodes) out += fmt::format("{} {}\n", image + 1, source + 1);
+  }
+  out += "$EndPeriodic\n";
 }
 
 }  // namespace pdmesh

@@ -21,4 +21,9 @@ void write_msh22(const Mesh& mesh, TextSink& sink, const std::vector<PeriodicLin
 std::string msh41_string(const Mesh& mesh, const std::vector<PeriodicLink>* periodic = nullptr);
 std::string msh22_string(const Mesh& mesh, const std::vector<PeriodicLink>* periodic = nullptr);
 
+// The $Periodic section alone (nothing when `periodic` is null or empty), appended to `out`: MSH 4.1
+// gives the affine transform as a count and 16 values, 2.2 on a line "Affine" (the mixed-cell writer
+// of a layered run shares it).
+void append_msh_periodic(std::string& out, const std::vector<PeriodicLink>* periodic, bool msh41);
+
 }  // namespace pdmesh

@@ -7,6 +7,7 @@
 
 #include <fmt/format.h>
 
+#include "core/g17.hpp"
 #include "io/text_file.hpp"
 
 namespace pdmesh {
@@ -289,6 +290,21 @@ std::filesystem::path write_quality_json(const QualitySummary& summary, const st
   const auto path = dir / "quality.json";
   write_text_file(path, quality_json(summary, source, healing, periodic));
   return path;
+}
+
+std::string periodic_json(const std::vector<std::string>& curve_names, const std::vector<PeriodicLink>& links) {
+  std::string out;
+  for (const PeriodicLink& l : links) {
+    out += fmt::format("{}{{\"source\": {}, \"image\": {}, \"pairs\": {}, \"max_mismatch\": ", out.empty() ? "" : ", ",
+                       json_string(curve_names[static_cast<std::size_t>(l.source_curve)]),
+                       json_string(curve_names[static_cast<std::size_t>(l.curve)]), l.nodes.size());
+    if (std::isfinite(l.max_mismatch))
+      append_g17(out, l.max_mismatch);
+    else
+      out += "null";  // a link read without an affine transform
+    out += '}';
+  }
+  return links.empty() ? std::string() : "[" + out + "]";
 }
 
 }  // namespace pdmesh

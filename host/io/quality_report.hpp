@@ -6,6 +6,7 @@
 #include <utility>
 #include <vector>
 
+#include "mesh/periodic_links.hpp"
 #include "mesh/quality.hpp"
 
 namespace pdmesh {
@@ -26,6 +27,10 @@ std::string quality_json(const QualitySummary& summary, const std::string& sourc
 std::filesystem::path write_quality_json(const QualitySummary& summary, const std::filesystem::path& dir,
                                          const std::string& source = "", const std::string& healing = "",
                                          const std::string& periodic = "");
+
+// quality.json's "periodic" array: per [[periodic]] table its curves (names from `curve_names`), node
+// pairs and the largest distance between a source node's transform and its image node; "" without links.
+std::string periodic_json(const std::vector<std::string>& curve_names, const std::vector<PeriodicLink>& links);
 
 // A JSON string literal (quotes included) with ", \ and control characters escaped.
 std::string json_string(const std::string& text);

@@ -340,8 +340,52 @@ std::vector<int> check(const LayerMesh& m, const std::vector<int>& owner, const 
 
 }  // namespace
 
+namespace {
+
+// The end rays of open chains at the tied wall nodes, as pairs of ray indices.
+std::vector<std::array<int, 2>> tied_rays(const RaySet& set, const std::vector<TiedEnds>& tied) {
+  const auto at = [&set](Vec2 p) {
+    for (std::size_t c = 0; c + 1 < set.ray_begin.size(); ++c) {
+      if (set.closed[c] != 0 || set.ray_begin[c + 1] <= set.ray_begin[c]) continue;
+      for (const int r : {set.ray_begin[c], set.ray_begin[c + 1] - 1})
+        if (set.wall_points[static_cast<std::size_t>(set.rays[static_cast<std::size_t>(r)].wall_node)] == p) return r;
+    }
+    throw Error(fmt::format("boundary layer: no open wall chain ends at ({}, {}) (a tied end)", p.x, p.y));
+  };
+  std::vector<std::array<int, 2>> out;
+  for (const TiedEnds& t : tied) out.push_back({at(t.a), at(t.b)});
+  return out;
+}
+
+// Grades the thicknesses and gives each tied pair the smaller of its two, until neither changes them.
+void grade_tied(const RaySet& set, const LayerSettings& settings, const std::vector<std::array<int, 2>>& ties,
+                std::vector<double>& allowed) {
+  for (int round = 0; round < 8; ++round) {
+    grade_thickness(set, settings.max_jump, settings.max_slope, allowed);
+    bool changed = false;
+    for (const auto& [a, b] : ties) {
+      const double t = std::min(allowed[static_cast<std::size_t>(a)], allowed[static_cast<std::size_t>(b)]);
+      changed = changed || allowed[static_cast<std::size_t>(a)] != t || allowed[static_cast<std::size_t>(b)] != t;
+      allowed[static_cast<std::size_t>(a)] = allowed[static_cast<std::size_t>(b)] = t;
+    }
+    if (!changed) return;
+  }
+}
+
+}  // namespace
+
+int end_ray_at(const LayerMesh& layers, Vec2 p) {
+  for (std::size_t c = 0; c + 1 < layers.chain_ray_begin.size(); ++c) {
+    if (layers.chain_closed[c] != 0 || layers.chain_ray_begin[c + 1] <= layers.chain_ray_begin[c]) continue;
+    for (const int r : {layers.chain_ray_begin[c], layers.chain_ray_begin[c + 1] - 1})
+      if (layers.nodes[static_cast<std::size_t>(layers.rays[static_cast<std::size_t>(r)].wall_node)] == p) return r;
+  }
+  return -1;
+}
+
 LayerMesh build_boundary_layers(const Geometry& geometry, const std::vector<int>& wall_curves,
-                                const LayerSettings& settings, const CoreSpacing& core_spacing) {
+                                const LayerSettings& settings, const CoreSpacing& core_spacing,
+                                const std::vector<TiedEnds>& tied) {
   check_layer_settings(settings);
   if (wall_curves.empty()) throw InputError("boundary layer: the list of wall curves is empty");
   for (const int c : wall_curves)
@@ -353,11 +397,12 @@ LayerMesh build_boundary_layers(const Geometry& geometry, const std::vector<int>
   std::vector<double> allowed;
   free_and_collision_limits(set, geometry, settings, core_spacing, allowed);
   refine_sparse_walls(chains, geometry, settings, core_spacing, set, allowed);
+  const std::vector<std::array<int, 2>> ties = tied_rays(set, tied);
   std::vector<int> count, owner;
   std::vector<double> top;
   constexpr int kMaxRepairs = 60;
   for (int round = 0; round <= kMaxRepairs; ++round) {
-    grade_thickness(set, settings.max_jump, settings.max_slope, allowed);
+    grade_tied(set, settings, ties, allowed);
     layer_counts(set, settings, allowed, count, top);
     LayerMesh m = assemble(set, count, top, settings, owner);
     const std::vector<int> bad = check(m, owner, geometry);

@@ -111,12 +111,25 @@ struct LayerMesh {
   int repairs = 0;                         // rounds of shrinking that the final checks needed
 };
 
+// Two open chain ends whose end rays must have the same layers (the two ends of a periodic
+// channel's wall, docs/geometry-input.md "Periodic curves"): the wall nodes they start from.
+struct TiedEnds {
+  Vec2 a, b;
+};
+
 // Advances layers from the named wall curves of `geometry` (indices into geometry.curves) into the
 // domain. Curves that join end to end form one chain; a loop made only of wall curves is a closed
-// chain. Every curve of the geometry stops the layers (gap_fraction). Throws InputError for bad
-// settings or an empty or out-of-range curve list; throws Error when no valid layer can be made.
+// chain. Every curve of the geometry stops the layers (gap_fraction). The end rays of each pair of
+// `tied` ends get the smaller of their two thicknesses (so the same layer heights). Throws InputError
+// for bad settings or an empty or out-of-range curve list; throws Error when no valid layer can be
+// made or a tied wall node is not an open chain's end.
 LayerMesh build_boundary_layers(const Geometry& geometry, const std::vector<int>& wall_curves,
-                                const LayerSettings& settings, const CoreSpacing& core_spacing = {});
+                                const LayerSettings& settings, const CoreSpacing& core_spacing = {},
+                                const std::vector<TiedEnds>& tied = {});
+
+// The ray of `layers` that starts an open chain at wall node position p (its first or last ray), -1
+// when no open chain ends there.
+int end_ray_at(const LayerMesh& layers, Vec2 p);
 
 // Fan elements per pi whose top edges match the core there: a fan of thickness t turning by theta
 // has a top arc of theta t, and the core continuing its growth wants about growth x the last layer,

@@ -43,3 +43,19 @@ def test_a_translation_that_misses_the_image_is_an_input_error(tmp_path):
     case.write_text(text)
     with pytest.raises(pdmesh.InputError, match=r"case\.toml.*does not map 'bottom' onto 'top'"):
         pdmesh.Case.from_toml(case).run(device="host")
+
+
+CHANNEL = SOURCE_DIR / "tests" / "data" / "periodic" / "channel.toml"
+
+
+def test_a_channel_with_layers_carries_the_inlets_nodes_on_the_outlet(tmp_path, command):
+    # [[periodic]] with [[boundary_layer]]: the layers' end columns on the inlet and the outlet are
+    # the same, and so are the core's nodes above them.
+    mesh = pdmesh.Case.from_toml(CHANNEL).run(device="host")
+    inlet, outlet = side_coordinates(mesh.points, 0, 0.0), side_coordinates(mesh.points, 0, 2.0)
+    assert len(inlet) > 20
+    assert np.array_equal(inlet, outlet)
+    assert inlet[1] == pytest.approx(0.002)  # the first layer's height over the bottom wall
+    command("mesh", CHANNEL, "--out", tmp_path / "out", "--quiet", "--formats", "msh", "--device", "host")
+    written = pdmesh.Mesh.read(tmp_path / "out" / "mesh.msh")
+    assert np.array_equal(np.sort(mesh.points, axis=0), np.sort(written.points, axis=0))

@@ -92,14 +92,20 @@ int run_quality(const std::string& mesh_path, const std::optional<std::string>& 
     summary.metric = metric_quality(mesh, *spacing.spacing->metric());
   }
   out << format_quality_table(summary, std::filesystem::path(mesh_path).filename().string());
+  // An MSH file's $Periodic pairs, as the mesh run reports them.
+  for (const PeriodicLink& l : report.periodic)
+    out << fmt::format("periodic: '{}' -> '{}': {} node pairs, largest mismatch {:.3g}\n",
+                       mesh.curve_names[static_cast<std::size_t>(l.source_curve)],
+                       mesh.curve_names[static_cast<std::size_t>(l.curve)], l.nodes.size(), l.max_mismatch);
+  const std::string periodic = periodic_json(mesh.curve_names, report.periodic);
 
   if (out_json) {
     if (*out_json == "-") {
-      out << quality_json(summary, mesh_path);
+      out << quality_json(summary, mesh_path, "", periodic);
     } else if (std::filesystem::is_directory(*out_json)) {
-      err << "wrote " << write_quality_json(summary, *out_json, mesh_path).string() << '\n';
+      err << "wrote " << write_quality_json(summary, *out_json, mesh_path, "", periodic).string() << '\n';
     } else {
-      write_text_file(*out_json, quality_json(summary, mesh_path));
+      write_text_file(*out_json, quality_json(summary, mesh_path, "", periodic));
       err << "wrote " << *out_json << '\n';
     }
   }

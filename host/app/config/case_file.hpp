@@ -282,6 +282,9 @@ struct CaseConfig {
     std::array<double, 2> translate{0.0, 0.0};
     std::array<double, 2> center{0.0, 0.0};
     double angle_deg = 0.0;  // counter-clockwise, source to image
+    // Kind::Translate by the translation inferred from the input's curves (the layered core's case,
+    // whose trimmed curves keep the transform the layers were tied by).
+    bool inferred = false;
   };
   std::vector<Periodic> periodic;
 

@@ -116,6 +116,10 @@ constexpr double kFullThicknessShare = 0.99;
 // (LayerSettings::max_ray_tilt_deg), so that the split wall cells stay within about 90 + this.
 constexpr double kSplitRayTilt = 5.0;
 
+void append_columns(std::vector<PeriodicColumn>& to, std::vector<PeriodicColumn> more) {
+  to.insert(to.end(), std::make_move_iterator(more.begin()), std::make_move_iterator(more.end()));
+}
+
 void check_formats(const CaseConfig& config) {
   for (const std::string& f : config.output.formats)
     if (f == "msh22" || f == "triangle")
@@ -151,6 +155,12 @@ std::unique_ptr<LayeredCase> build_layers(const CaseConfig& config, const MeshIn
   std::vector<FrontSpacing::Source> sources;
   // The core's field (and under a metric its metric) grows from the fronts at this rate.
   out->gradation = config.spacing.gradation > 0.0 ? config.spacing.gradation : 0.2;
+  // [[periodic]]: each table's transform from the input's curves, for every layer table and the core.
+  out->periodic.reserve(config.periodic.size());
+  for (const CaseConfig::Periodic& p : config.periodic) {
+    const ResolvedPeriodic r = resolve_periodic(p, inputs.geometry);
+    out->periodic.push_back({&p, r.transform, r.tolerance});
+  }
   for (const CaseConfig::BoundaryLayer& b : config.boundary_layers) {
     LayerSection s;
     s.config = b;
@@ -186,10 +196,14 @@ std::unique_ptr<LayeredCase> build_layers(const CaseConfig& config, const MeshIn
       s.settings.split_span = 0.0;
       const MetricSizeAlongRay along_ray(*geometry, s.walls, *inputs.metric);
       s.geometry = geometry;
-      s.mesh = build_boundary_layers(*geometry, s.walls, s.settings, along_ray);
+      const PeriodicLayerEnds ends = periodic_layer_ends(out->periodic, *geometry, s.walls, b);
+      s.mesh = build_boundary_layers(*geometry, s.walls, s.settings, along_ray, ends.tied);
+      append_columns(out->periodic_columns, match_periodic_columns(s.mesh, *geometry, ends, b));
     } else {
       s.geometry = geometry;
-      s.mesh = build_boundary_layers(*geometry, s.walls, s.settings, core_spacing);
+      const PeriodicLayerEnds ends = periodic_layer_ends(out->periodic, *geometry, s.walls, b);
+      s.mesh = build_boundary_layers(*geometry, s.walls, s.settings, core_spacing, ends.tied);
+      append_columns(out->periodic_columns, match_periodic_columns(s.mesh, *geometry, ends, b));
     }
     // Each front node's mean edge length along the front and the longest front edge at it. The core's
     // spacing there is growth x the last layer where the front's edges agree with it; where the front
@@ -286,6 +300,9 @@ std::unique_ptr<LayeredCase> build_layers(const CaseConfig& config, const MeshIn
       }
     }
     curves = front_curves(*geometry, s.walls, s.mesh);
+    // front_curves puts the fronts last, one per chain.
+    for (std::size_t k = curves.size() - s.mesh.fronts.size(); k < curves.size(); ++k)
+      out->fronts.insert(curves[k].name);
     geometry = std::make_shared<const Geometry>(build_geometry(curves, options));
     out->sections.push_back(std::move(s));
   }
@@ -294,6 +311,15 @@ std::unique_ptr<LayeredCase> build_layers(const CaseConfig& config, const MeshIn
   out->core = mesh_detail::core_case_on_curves(
       config, std::move(curves), std::make_shared<FrontSpacing>(field, std::move(sources), out->gradation));
   out->core.boundary_layers.clear();
+  // The core's periodic curves start at the layers' tops: an inferred translation stays the one the
+  // layers were tied by (inferred from the input's curves), not one inferred again from the trimmed ones.
+  for (std::size_t k = 0; k < out->periodic.size(); ++k) {
+    CaseConfig::Periodic& p = out->core.periodic[k];
+    if (p.kind != CaseConfig::Periodic::Kind::Infer) continue;
+    p.kind = CaseConfig::Periodic::Kind::Translate;
+    p.translate = {out->periodic[k].transform.shift.x, out->periodic[k].transform.shift.y};
+    p.inferred = true;
+  }
   out->seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   std::size_t cells = 0;
   for (const LayerSection& s : out->sections) cells += s.mesh.cells.size();
@@ -512,7 +538,7 @@ MixedMesh merge(const MeshInputs& inputs, const LayeredCase& layered, const Mesh
   }
   for (const BoundaryEdge& e : core.boundary_edges) {
     const Curve& c = core_inputs.geometry.curves[static_cast<std::size_t>(e.curve)];
-    if (c.fixed_points) continue;  // a front: inside the merged mesh
+    if (layered.is_front(c)) continue;  // inside the merged mesh
     m.boundary_edges.push_back({e.a, e.b, original(c.name)});
   }
   std::map<std::pair<double, double>, int> at;
@@ -612,13 +638,13 @@ double quantile(std::vector<double> v, double q) {
       std::min<double>(static_cast<double>(v.size()) - 1, q * static_cast<double>(v.size())))];
 }
 
-// The core triangles with an edge on the front (a core boundary edge on a curve of fixed points,
-// i.e. whose nodes are layer tops): the junction is measured on them only.
-Mesh front_triangles(const MeshInputs& core_inputs, const Mesh& core_mesh) {
+// The core triangles with an edge on the front (a core boundary edge on a front curve, whose nodes
+// are layer tops): the junction is measured on them only.
+Mesh front_triangles(const LayeredCase& layered, const MeshInputs& core_inputs, const Mesh& core_mesh) {
   Mesh front_only = core_mesh;
   std::map<std::pair<int, int>, bool> front_edge;
   for (const BoundaryEdge& e : core_mesh.boundary_edges)
-    if (core_inputs.geometry.curves[static_cast<std::size_t>(e.curve)].fixed_points)
+    if (layered.is_front(core_inputs.geometry.curves[static_cast<std::size_t>(e.curve)]))
       front_edge[{std::min(e.a, e.b), std::max(e.a, e.b)}] = true;
   front_only.triangles.clear();
   for (const auto& t : core_mesh.triangles) {
@@ -649,7 +675,7 @@ FrontInMetric front_in_metric(const LayeredCase& layered, const MeshInputs& core
   FrontInMetric f;
   std::vector<double> lengths;
   for (const BoundaryEdge& e : core_mesh.boundary_edges) {
-    if (!core_inputs.geometry.curves[static_cast<std::size_t>(e.curve)].fixed_points) continue;
+    if (!layered.is_front(core_inputs.geometry.curves[static_cast<std::size_t>(e.curve)])) continue;
     const Vec2 a = core_mesh.points[static_cast<std::size_t>(e.a)], b = core_mesh.points[static_cast<std::size_t>(e.b)];
     lengths.push_back(edge_length(metric.at(a), metric.at(b), b - a));
   }
@@ -677,7 +703,8 @@ FrontInMetric front_in_metric(const LayeredCase& layered, const MeshInputs& core
 
 // The mixed mesh in the mesh-file formats the case asks for; returns the files written.
 std::vector<fs::path> write_layered_mesh_files(const CaseConfig& config, const MeshInputs& inputs,
-                                               const MixedMesh& mixed, RunPhases& phases) {
+                                               const MixedMesh& mixed, RunPhases& phases,
+                                               const std::vector<PeriodicLink>& periodic) {
   std::vector<std::string> formats;
   for (const std::string& f : config.output.formats)
     if (f == "msh" || f == "vtu" || f == "su2") formats.push_back(f);
@@ -688,7 +715,7 @@ std::vector<fs::path> write_layered_mesh_files(const CaseConfig& config, const M
     lonlat = mixed;
     inputs.projection->inverse(lonlat.points);
   }
-  return write_mixed_mesh(inputs.projection ? lonlat : mixed, config.out_dir, "mesh", formats);
+  return write_mixed_mesh(inputs.projection ? lonlat : mixed, config.out_dir, "mesh", formats, &periodic);
 }
 
 // mesh.png and one picture per output view, when the case asks for png; returns the file names.
@@ -724,6 +751,9 @@ void write_layered_outputs(const CaseConfig& config, const MeshInputs& inputs, c
                            const MeshInputs& core_inputs, const Mesh& core_mesh, RunPhases& phases) {
   auto timer = phases.phase("merge layers");
   const MixedMesh mixed = merge(inputs, layered, core_inputs, core_mesh);
+  // [[periodic]]: the core's pairs and the layers' end columns, found in the merged mesh.
+  const std::vector<PeriodicLink> periodic =
+      link_periodic_nodes(boundary_of(mixed), merged_periodic_pairs(mixed, layered.periodic_columns, core_inputs));
   timer.stop();
   timer = phases.phase("quality");
   QualitySummary core_summary = summarize_quality(core_mesh);
@@ -739,7 +769,8 @@ void write_layered_outputs(const CaseConfig& config, const MeshInputs& inputs, c
     core_summary.metric = metric_quality(core_mesh, core_inputs.metric ? *core_inputs.metric : *metric);
     front = front_in_metric(layered, core_inputs, core_mesh, *metric);
   }
-  const std::vector<double> junction = junction_growth(layered, front_triangles(core_inputs, core_mesh), metric);
+  const std::vector<double> junction =
+      junction_growth(layered, front_triangles(layered, core_inputs, core_mesh), metric);
   std::string table = format_quality_table(
       core_summary, config.name + (metric != nullptr ? " core (angles in physical space)" : " core"));
   std::string json_layers;
@@ -807,7 +838,7 @@ void write_layered_outputs(const CaseConfig& config, const MeshInputs& inputs, c
   if (!config.quiet) fmt::print("{}", table);
   {
     const auto json_timer = phases.phase("quality.json");
-    std::string json = quality_json(core_summary, config.name);
+    std::string json = quality_json(core_summary, config.name, "", periodic_json(mixed.curve_names, periodic));
     const auto close = json.find_last_of('}');
     // Under a metric the core's isotropic min angle says nothing about how it honours the metric (its
     // `metric` section does): `core_min_angle` is null there, the angle kept as core_min_angle_physical.
@@ -822,7 +853,11 @@ void write_layered_outputs(const CaseConfig& config, const MeshInputs& inputs, c
                             mixed.cells.size(), mixed.quads()));
     write_file_atomically(config.out_dir / "quality.json", json);
   }
-  const std::vector<fs::path> written = write_layered_mesh_files(config, inputs, mixed, phases);
+  for (const PeriodicLink& l : periodic)
+    progress(config, "periodic: '{}' -> '{}': {} node pairs, largest mismatch {:.3g}",
+             mixed.curve_names[static_cast<std::size_t>(l.source_curve)],
+             mixed.curve_names[static_cast<std::size_t>(l.curve)], l.nodes.size(), l.max_mismatch);
+  const std::vector<fs::path> written = write_layered_mesh_files(config, inputs, mixed, phases, periodic);
   const std::vector<std::string> pictures = write_layered_pictures(config, mixed, core_mesh, phases);
   std::string names;
   for (const auto& p : written) names += ", " + p.filename().string();

@@ -10,11 +10,13 @@
 // (docs/boundary-layers.md, "Under a metric field").
 #pragma once
 #include <memory>
+#include <set>
 #include <string>
 #include <vector>
 
 #include "app/config/case_file.hpp"
 #include "app/pipeline/layer_metric.hpp"
+#include "app/pipeline/layer_periodic.hpp"
 #include "app/pipeline/mesh_inputs.hpp"
 #include "app/pipeline/run_phases.hpp"
 #include "io/mixed_mesh.hpp"
@@ -40,11 +42,20 @@ struct LayeredCase {
   std::vector<FrontMetricSource> front_metric;
   double gradation = 0.2;
   double seconds = 0.0;
+  // The core's curves that are layer fronts (the core's other curves of fixed points are periodic).
+  std::set<std::string> fronts;
+  // With [[periodic]]: the tables' transforms, and the layers' end columns on periodic curves.
+  std::vector<PeriodicTable> periodic;
+  std::vector<PeriodicColumn> periodic_columns;
+  bool is_front(const Curve& c) const { return fronts.count(c.name) > 0; }
 };
 
 // InputError (before anything is written) for an unknown curve name, settings the generator refuses, or an output
-// format that cannot hold the layer cells (msh22, triangle), and for --resume. Keeps a reference to `spacing`'s field
-// in the core's case: it must outlive it.
+// format that cannot hold the layer cells (msh22, triangle), and for --resume. With [[periodic]]: a wall chain that
+// ends on a periodic curve must end on its image too, in the same table; the two end columns are tied and the image's
+// made the exact transform of the source's (InputError where the walls are not periodic there), and the core's case
+// keeps the tables with the transforms resolved on the input. Keeps a reference to `spacing`'s field in the core's
+// case: it must outlive it.
 std::unique_ptr<LayeredCase> build_layers(const CaseConfig& config, const MeshInputs& inputs,
                                           const SpacingStage& spacing);
 
@@ -53,8 +64,9 @@ std::unique_ptr<LayeredCase> build_layers(const CaseConfig& config, const MeshIn
 // outlive them) instead of the metric the core's case would build. The projection is the caller's to set.
 std::unique_ptr<MeshInputs> layered_core_inputs(const LayeredCase& layered, const MeshInputs& inputs);
 
-// The core's nodes without the Boundary nodes on a front: interior nodes that the simulation snapped onto
-// a front curve (its points are the layer's nodes; one between them would hang on a layer cell's edge).
+// The core's nodes without the Boundary nodes on a curve of fixed points: interior nodes that the simulation
+// snapped onto a front curve (its points are the layer's nodes; one between them would hang on a layer cell's
+// edge) or, with [[periodic]], onto a periodic curve (it would have no partner).
 NodeSet without_front_nodes(const NodeSet& nodes, const Geometry& core_geometry, std::size_t& dropped);
 
 // A layer top whose core cell above reaches more than this many last layers up its ray gets a pinned

@@ -436,20 +436,6 @@ std::vector<std::string> queue_mesh_pictures(const CaseConfig& config, const Mes
 }
 
 // The quality table, DIR/quality.json, the mesh files, mesh.nodes and the pictures of the mesh stage.
-// quality.json's "periodic" array: per [[periodic]] table its curves, node pairs and the largest
-// distance between a source node's transform and its image node.
-std::string periodic_json(const Mesh& mesh, const std::vector<PeriodicLink>& links) {
-  std::string out;
-  for (const PeriodicLink& l : links) {
-    out += fmt::format("{}{{\"source\": {}, \"image\": {}, \"pairs\": {}, \"max_mismatch\": ", out.empty() ? "" : ", ",
-                       json_string(mesh.curve_names[static_cast<std::size_t>(l.source_curve)]),
-                       json_string(mesh.curve_names[static_cast<std::size_t>(l.curve)]), l.nodes.size());
-    append_g17(out, l.max_mismatch);
-    out += '}';
-  }
-  return links.empty() ? std::string() : "[" + out + "]";
-}
-
 void write_mesh_outputs(const CaseConfig& config, const MeshInputs& inputs, const SpacingField& spacing,
                         const Mesh& mesh, const NodeSet& mesh_nodes, QualitySummary& summary, RunPhases& phases,
                         const std::vector<double>* metric_q, const std::vector<Metric>* metrics,
@@ -473,7 +459,7 @@ void write_mesh_outputs(const CaseConfig& config, const MeshInputs& inputs, cons
     const auto json_timer = phases.phase("quality.json");
     write_quality_json(summary, dir, config.name,
                        inputs.healing.changes.empty() ? std::string() : heal_json(inputs.healing),
-                       periodic_json(mesh, periodic));
+                       periodic_json(mesh.curve_names, periodic));
   }
   for (const PeriodicLink& l : periodic)
     progress(config, "periodic: '{}' -> '{}': {} node pairs, largest mismatch {:.3g}",

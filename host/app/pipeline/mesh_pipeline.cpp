@@ -247,14 +247,23 @@ void run_stages(const CaseConfig& config, RunPhases& phases) {
     timer.stop();
   }
   if (!config.periodic.empty()) {
-    // With [[periodic]] the later stages mesh the case on the periodic nodes, fixed.
+    // With [[periodic]] the later stages mesh the case (with layers: the core's case) on the periodic
+    // nodes, fixed; the layers' end columns on the periodic curves are paired already.
+    const CaseConfig& on = layered ? layered->core : config;
+    const MeshInputs& on_inputs = layered ? *core_inputs : inputs;
     timer = phases.phase("periodic");
-    const std::unique_ptr<PeriodicCase> periodic = build_periodic(config, inputs, case_spacing);
+    const std::unique_ptr<PeriodicCase> periodic =
+        build_periodic(on, on_inputs, layered ? *core_spacing : case_spacing);
     for (const std::string& line : periodic->notes) progress(config, "{}", line);
-    const std::unique_ptr<MeshInputs> periodic_inputs = periodic_core_inputs(*periodic, inputs);
+    const std::unique_ptr<MeshInputs> periodic_inputs = periodic_core_inputs(*periodic, on_inputs);
     const SpacingStage periodic_spacing(periodic->core, *periodic_inputs);
     timer.stop();
-    run_core(periodic->core, *periodic_inputs, periodic_spacing, prepared, phases, nullptr);
+    if (!layered) {
+      run_core(periodic->core, *periodic_inputs, periodic_spacing, prepared, phases, nullptr);
+      return;
+    }
+    const LayeredRun layered_run{config, inputs, *layered};
+    run_core(periodic->core, *periodic_inputs, periodic_spacing, prepared, phases, &layered_run);
     return;
   }
   if (!layered) {

@@ -11,6 +11,7 @@
 #include "core/errors.hpp"
 #include "core/input_file.hpp"
 #include "init/boundary_placement.hpp"
+#include "init/metric_fill.hpp"
 
 namespace pdmesh {
 
@@ -29,6 +30,17 @@ class PairedSpacing final : public SpacingField {
  private:
   const SpacingField& q_;
   PeriodicTransform t_;
+};
+
+// The case's metric by reference for the core (which outlives it, as the field above): the core's
+// stages run in the metric the source's stations were placed by.
+class MetricReference final : public MetricField {
+ public:
+  explicit MetricReference(const MetricField& m) : m_(m) {}
+  Metric at(Vec2 p) const override { return m_.at(p); }
+
+ private:
+  const MetricField& m_;
 };
 
 // A field by reference: the case's, which outlives the core's stages (build_periodic's contract).
@@ -66,17 +78,13 @@ int curve_index(const Geometry& g, const CaseConfig::Periodic& p, const std::str
                                fmt::join(names, ", ")));
 }
 
-// One table against the geometry: its curves' indices and transform, checked.
-struct Resolved {
-  int source = 0, image = 0;
-  PeriodicTransform transform;
-  double miss = 0.0;
-};
+}  // namespace
 
-Resolved resolve(const CaseConfig::Periodic& p, const Geometry& on) {
+ResolvedPeriodic resolve_periodic(const CaseConfig::Periodic& p, const Geometry& on) {
   const double diagonal = std::hypot(on.extents.hi.x - on.extents.lo.x, on.extents.hi.y - on.extents.lo.y);
   const double tolerance = kMatchTolerance * diagonal;
-  Resolved r;
+  ResolvedPeriodic r;
+  r.tolerance = tolerance;
   r.source = curve_index(on, p, p.source);
   r.image = curve_index(on, p, p.image);
   const Curve& source = on.curves[static_cast<std::size_t>(r.source)];
@@ -103,11 +111,9 @@ Resolved resolve(const CaseConfig::Periodic& p, const Geometry& on) {
   return r;
 }
 
-}  // namespace
-
 void check_periodic(const CaseConfig& config, const MeshInputs& inputs) {
   check_periodic_case(config);
-  for (const CaseConfig::Periodic& p : config.periodic) (void)resolve(p, inputs.node_geometry());
+  for (const CaseConfig::Periodic& p : config.periodic) (void)resolve_periodic(p, inputs.node_geometry());
 }
 
 void check_periodic_case(const CaseConfig& config) {
@@ -121,12 +127,7 @@ void check_periodic_case(const CaseConfig& config) {
               fmt::format("{}: [[periodic]]: curve '{}' is also a boundary-layer wall ({}); a periodic "
                           "curve cannot carry layers",
                           p.where, quote_input(name), b.curves_where));
-  if (!config.boundary_layers.empty())
-    throw InputError(fmt::format("{}: [[periodic]] is not supported together with [[boundary_layer]]", where));
   if (config.motion.enabled) throw InputError(fmt::format("{}: [[periodic]] is not supported with [motion]", where));
-  if (config.spacing.metric())
-    throw InputError(
-        fmt::format("{}: [[periodic]] is not supported with spacing.field = \"metric\" or \"hessian\"", where));
   if (config.resume) throw InputError(fmt::format("{}: --resume is not supported with [[periodic]]", where));
   if (config.init.kept || !config.init.file.empty())
     throw InputError(
@@ -149,13 +150,20 @@ std::unique_ptr<PeriodicCase> build_periodic(const CaseConfig& config, const Mes
   PlacementOptions placement;
   placement.max_nodes = config.max_nodes;
   for (const CaseConfig::Periodic& p : config.periodic) {
-    const Resolved resolved = resolve(p, on);
+    const ResolvedPeriodic resolved = resolve_periodic(p, on);
     const int s = resolved.source, i = resolved.image;
     const Curve& source = on.curves[static_cast<std::size_t>(s)];
     const Curve& image = on.curves[static_cast<std::size_t>(i)];
     const PeriodicTransform& t = resolved.transform;
     std::vector<Vec2> nodes;
-    if (inputs.dense || inputs.boundary_rule == BoundaryNodeRule::Spacing) {
+    if (inputs.metric) {
+      // A metric run's stations are unit metric lengths apart along the curve (make_metric_initial):
+      // here the shorter of the unit step at a point and at its image, along the curve there.
+      const CurveMetricSpacing along(inputs.node_tree(), *inputs.metric);
+      const PairedSpacing paired(along, t);
+      const CurveStations stations = spacing_stations(on, paired, placement);
+      for (const BoundaryStation& st : stations[static_cast<std::size_t>(s)]) nodes.push_back(st.p);
+    } else if (inputs.dense || inputs.boundary_rule == BoundaryNodeRule::Spacing) {
       const PairedSpacing paired(spacing.field(), t);
       const CurveStations stations = inputs.boundary_rule == BoundaryNodeRule::Spacing
                                          ? spacing_stations(on, paired, placement)
@@ -183,7 +191,8 @@ std::unique_ptr<PeriodicCase> build_periodic(const CaseConfig& config, const Mes
     curves[static_cast<std::size_t>(i)].fixed_points = true;
     out->notes.push_back(fmt::format(
         "periodic: '{}' -> '{}' by {}{}, {} node pairs (largest miss of the curves {:.3g})", p.source, p.image,
-        describe(t), p.kind == CaseConfig::Periodic::Kind::Infer ? " (inferred from the curves' ends)" : "",
+        describe(t),
+        p.kind == CaseConfig::Periodic::Kind::Infer || p.inferred ? " (inferred from the curves' ends)" : "",
         nodes.size(), resolved.miss));
     out->pairs.push_back(std::move(pair));
   }
@@ -202,6 +211,9 @@ std::unique_ptr<MeshInputs> periodic_core_inputs(const PeriodicCase& periodic, c
   core->projection = inputs.projection;
   core->geometry.regions = inputs.geometry.regions;
   core->periodic = periodic.pairs;
+  // A metric run: the core's metric is the case's (with layers the layered core's, graded to the fronts),
+  // the one the source's stations were placed by.
+  if (inputs.metric) core->metric = std::make_unique<MetricReference>(*inputs.metric);
   return core;
 }
 
