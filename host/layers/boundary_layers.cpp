@@ -353,11 +353,12 @@ LayerMesh build_boundary_layers(const Geometry& geometry, const std::vector<int>
   std::vector<double> allowed;
   free_and_collision_limits(set, geometry, settings, core_spacing, allowed);
   refine_sparse_walls(chains, geometry, settings, core_spacing, set, allowed);
+  leave_room_for_the_core(set, geometry, settings, allowed);
   std::vector<int> count, owner;
   std::vector<double> top;
   constexpr int kMaxRepairs = 60;
   for (int round = 0; round <= kMaxRepairs; ++round) {
-    grade_thickness(set, settings.max_jump, settings.max_slope, allowed);
+    grade_thickness(set, settings, allowed);
     layer_counts(set, settings, allowed, count, top);
     LayerMesh m = assemble(set, count, top, settings, owner);
     const std::vector<int> bad = check(m, owner, geometry);

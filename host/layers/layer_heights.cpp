@@ -3,6 +3,7 @@
 // the layer count and growth that give that thickness with the first height exact.
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 
 #include "core/predicates.hpp"
@@ -109,7 +110,84 @@ void free_and_collision_limits(RaySet& set, const Geometry& geometry, const Laye
   allowed = std::move(limit);
 }
 
-void grade_thickness(const RaySet& set, double max_jump, double max_slope, std::vector<double>& allowed) {
+void leave_room_for_the_core(const RaySet& set, const Geometry& geometry, const LayerSettings& settings,
+                             std::vector<double>& allowed) {
+  const int nr = static_cast<int>(set.rays.size());
+  if (nr == 0) return;
+  // Each ray's distance to the first curve along it, within the reach the collision limits probe
+  // (the free thickness over gap_fraction), and whether that curve carries these layers.
+  std::vector<double> facing(nr, std::numeric_limits<double>::infinity());
+  std::vector<std::uint8_t> shared(nr, 0);
+  std::vector<Vec2> probe(nr);
+  Box box;
+  double longest = 0.0;
+  for (int r = 0; r < nr; ++r) {
+    const LayerRay& ray = set.rays[r];
+    const Vec2 p = set.wall_points[ray.wall_node];
+    probe[r] = p + (ray.free_thickness / (settings.gap_fraction * ray.correction)) * ray.direction;
+    box.add(p);
+    box.add(probe[r]);
+    longest = std::max(longest, dist(p, probe[r]));
+  }
+  const int ns = static_cast<int>(geometry.segments.size());
+  const double cell = std::max(longest, box.diagonal() / std::sqrt(static_cast<double>(nr) + ns) * 0.5);
+  SegmentGrid grid(box, cell > 0.0 ? cell : 1.0);
+  for (int k = 0; k < ns; ++k) grid.insert(k, geometry.segments[k].a, geometry.segments[k].b);
+  std::vector<std::uint8_t> wall(geometry.curves.size(), 0);
+  for (const int c : set.wall_curve) wall[c] = 1;
+  for (int r = 0; r < nr; ++r) {
+    const LayerRay& ray = set.rays[r];
+    if (ray.slide_segment >= 0) continue;  // its side lies on the curve it runs along
+    const Vec2 p = set.wall_points[ray.wall_node], e = probe[r];
+    const double length = norm(e - p);
+    grid.query(p, e, [&](int id) {
+      const Segment& s = geometry.segments[id];
+      if (s.a == p || s.b == p || !segments_intersect(p, e, s.a, s.b)) return;
+      // A wall node inserted by the refinement lies on its own segment.
+      const Vec2 d = s.b - s.a;
+      if (std::abs(cross(d, p - s.a)) <= 1e-12 * dot(d, d)) return;
+      const double at = intersection_parameter(p, e, s.a, s.b) * length;
+      if (at < facing[r]) {
+        facing[r] = at;
+        shared[r] = wall[s.curve];
+      }
+    });
+  }
+  // The front's edge at each ray: the longer of the distances from its top to its neighbours'
+  // tops in the chain, at the thickness the grading will leave. Two rounds: a thinner layer moves
+  // the tops of converging or diverging rays.
+  for (int round = 0; round < 2; ++round) {
+    std::vector<double> graded = allowed;
+    grade_thickness(set, settings, graded);
+    const auto top = [&](int r) {
+      const LayerRay& ray = set.rays[r];
+      return set.wall_points[ray.wall_node] + (graded[r] / ray.correction) * ray.direction;
+    };
+    for (std::size_t c = 0; c + 1 < set.ray_begin.size(); ++c) {
+      const int b = set.ray_begin[c], e = set.ray_begin[c + 1], n = e - b;
+      const bool closed = set.closed[c] != 0;
+      for (int k = 0; k < n; ++k) {
+        const int r = b + k;
+        if (!std::isfinite(facing[r])) continue;
+        double edge = 0.0;
+        for (const int j : {k - 1, k + 1}) {
+          if (!closed && (j < 0 || j >= n)) continue;
+          edge = std::max(edge, dist(top(r), top(b + (j + n) % n)));
+        }
+        const double gap = facing[r] * set.rays[r].correction;
+        // A facing layer of these settings takes its share of the gap from the other side.
+        const double room = shared[r] ? 0.5 * (gap - edge) : gap - edge;
+        allowed[r] = std::min(allowed[r], room < settings.first_height ? 0.0 : room);
+      }
+    }
+  }
+}
+
+void grade_thickness(const RaySet& set, const LayerSettings& settings, std::vector<double>& allowed) {
+  const double max_jump = settings.max_jump, max_slope = settings.max_slope;
+  // A ray without a layer (below the first height) lets its neighbour have one layer: a stair of
+  // one layer where the layer ends, not a ramp of many thin rays up from a tiny thickness.
+  const double floor = settings.first_height / max_jump;
   for (std::size_t c = 0; c + 1 < set.ray_begin.size(); ++c) {
     const int b = set.ray_begin[c], e = set.ray_begin[c + 1], n = e - b;
     if (n < 2) continue;
@@ -134,7 +212,7 @@ void grade_thickness(const RaySet& set, double max_jump, double max_slope, std::
         const double turn = std::acos(std::clamp(dot(a.direction, o.direction), -1.0, 1.0));
         const double d = dist(set.wall_points[a.wall_node], set.wall_points[o.wall_node]) +
                          turn * std::min(allowed[r], allowed[from]);
-        const double cap = std::min(max_jump * allowed[from], allowed[from] + max_slope * d);
+        const double cap = std::min(max_jump * std::max(allowed[from], floor), allowed[from] + max_slope * d);
         if (allowed[r] > cap) {
           allowed[r] = cap;
           changed = true;

@@ -149,7 +149,7 @@ bool refine_sparse_walls(std::vector<WallChain>& chains, const Geometry& geometr
   // The tops where the layer will end: the limits graded along the chains as build_boundary_layers
   // grades them (collisions thin a whole stretch of the layer, not only the colliding rays).
   std::vector<double> graded = allowed;
-  grade_thickness(set, settings.max_jump, settings.max_slope, graded);
+  grade_thickness(set, settings, graded);
   for (std::size_t c = 0; c < chains.size(); ++c) {
     old_rays.push_back(point_rays(set, c, chains[c].points.size()));
     split = split_chain(chains[c], old_rays[c], set, graded, settings, source[c]) || split;
