@@ -240,8 +240,9 @@ void layer_counts(const RaySet& set, const LayerSettings& settings, const std::v
     int n = layers_reaching(h1, g, a);
     const double last = a - stack_height(h1, g, n - 1);
     // A last layer thinner than a quarter of the one below joins it (growth <= 1.25 g there), except
-    // the first layer, whose height is the settings'.
-    if (n >= 3 && last < 0.25 * h1 * std::pow(g, n - 2)) --n;
+    // the first layer, whose height is the settings': above it such a layer is left out (the ray's
+    // top is h1, below its allowed thickness; a layer's end steps down to it).
+    if (n >= 2 && last < 0.25 * h1 * std::pow(g, n - 2)) --n;
     count[r] = n;
     top[r] = std::abs(stack_height(h1, g, n) - a) <= 1e-9 * a ? stack_height(h1, g, n) : (n == 1 ? h1 : a);
   }
