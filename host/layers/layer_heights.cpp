@@ -113,7 +113,7 @@ void free_and_collision_limits(RaySet& set, const Geometry& geometry, const Laye
 void leave_room_for_the_core(const RaySet& set, const Geometry& geometry, const LayerSettings& settings,
                              std::vector<double>& allowed) {
   const int nr = static_cast<int>(set.rays.size());
-  if (nr == 0) return;
+  if (nr == 0 || settings.core_room <= 0.0) return;
   // Each ray's distance to the first curve along it, within the reach the collision limits probe
   // (the free thickness over gap_fraction), and whether that curve carries these layers.
   std::vector<double> facing(nr, std::numeric_limits<double>::infinity());
@@ -176,7 +176,7 @@ void leave_room_for_the_core(const RaySet& set, const Geometry& geometry, const 
         }
         const double gap = facing[r] * set.rays[r].correction;
         // A facing layer of these settings takes its share of the gap from the other side.
-        const double room = shared[r] ? 0.5 * (gap - edge) : gap - edge;
+        const double room = shared[r] ? 0.5 * (gap - settings.core_room * edge) : gap - settings.core_room * edge;
         allowed[r] = std::min(allowed[r], room < settings.first_height ? 0.0 : room);
       }
     }

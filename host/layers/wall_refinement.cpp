@@ -166,10 +166,9 @@ bool refine_sparse_walls(std::vector<WallChain>& chains, const Geometry& geometr
   }
   if (!split) return false;
   RaySet refined = make_rays(chains, geometry, settings, core_spacing);
-  // The new rays' tilt limit: the settings' (split quads), else 45 degrees (a right-angled concave
-  // corner's bisector).
-  const double max_tilt =
-      (settings.max_ray_tilt_deg > 0.0 ? settings.max_ray_tilt_deg : 45.0) * std::numbers::pi / 180.0;
+  // The new rays' tilt limit: 45 degrees, a right-angled concave corner's bisector (whose neighbours
+  // lean with it so that their columns do not cross its column), sharper corners' not beyond.
+  const double max_tilt = 0.25 * std::numbers::pi;
   std::vector<double> limits(refined.rays.size(), 0.0);
   for (std::size_t c = 0; c < chains.size(); ++c) {
     interpolate_new_rays(refined, c, chains[c], source[c], max_tilt);
