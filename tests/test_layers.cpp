@@ -317,6 +317,9 @@ TEST_CASE("bad layer settings are input errors naming the value", "[layers]") {
              }),
              Catch::Contains("boundary_layer.curves: unknown curve 'flap' (the geometry's curves: far, wall)"));
   CHECK_THAT(msg(settings(1e-12, 1.000001, 1.0)), Catch::Contains("(at most 10000)"));
+  LayerSettings room = settings(1e-3, 1.2, 0.05);
+  room.core_room = -1.0;
+  CHECK_THAT(msg(room), Catch::Contains("core_room = -1 must be in [0, 10]"));
   CHECK(msg(settings(1e-3, 1.2, 0.05)).empty());  // good settings pass
 }
 

@@ -246,6 +246,22 @@ void layer_counts(const RaySet& set, const LayerSettings& settings, const std::v
     count[r] = n;
     top[r] = std::abs(stack_height(h1, g, n) - a) <= 1e-9 * a ? stack_height(h1, g, n) : (n == 1 ? h1 : a);
   }
+  // A column whose neighbours both have no layer is a spike where a layer ended (an acute corner's
+  // ray, whose cells with its neighbours' wall nodes would be as flat as the corner): none either.
+  std::vector<int> spike;
+  for (std::size_t c = 0; c + 1 < set.ray_begin.size(); ++c) {
+    const int b = set.ray_begin[c], e = set.ray_begin[c + 1], n = e - b;
+    if (n < 3) continue;
+    for (int k = 0; k < n; ++k) {
+      if (set.closed[c] == 0 && (k == 0 || k == n - 1)) continue;
+      const int r = b + k;
+      if (count[r] > 0 && count[b + (k + n - 1) % n] == 0 && count[b + (k + 1) % n] == 0) spike.push_back(r);
+    }
+  }
+  for (const int r : spike) {
+    count[r] = 0;
+    top[r] = 0.0;
+  }
 }
 
 }  // namespace pdmesh::layers_detail
