@@ -201,8 +201,7 @@ TEST_CASE("two close circles: the layers shrink in the gap, no crossing, jumps <
   REQUIRE(m.fronts.size() == 2);
   // With 96 wall nodes (0.065 apart) that strip would be a third of the front's edges: the facing
   // rays stop lower, leaving the core at least the front edge beside their tops.
-  const Geometry coarse = build_geometry({box({-6, -5}, {6, 5}, 4, "far"),
-                                          circle({-1.0 - gap / 2, 0}, 1.0, 96, "left"),
+  const Geometry coarse = build_geometry({box({-6, -5}, {6, 5}, 4, "far"), circle({-1.0 - gap / 2, 0}, 1.0, 96, "left"),
                                           circle({1.0 + gap / 2, 0}, 1.0, 96, "right")});
   const LayerMesh c = build_boundary_layers(coarse, curves_by_name(coarse, {"left", "right"}, "test"), s);
   CHECK(measure_layers(c, s.first_height).inverted_cells == 0);
@@ -465,52 +464,55 @@ TEST_CASE("a narrow wedge with layers on both walls: the fronts leave the core r
   // walls' layers collide along the whole wedge and each stops at a share of the gap; towards the
   // tip the gap falls below the front's edges (the wall's spacing), and a core strip narrower than
   // the edges it lies between holds only slivers. Every front node on the lower wall's layer must
-  // lie at least about its front edges away from the upper wall's front (the layer ends first).
+  // lie at least about its front edges away from the upper wall's front (the layer ends first), in
+  // triangles and in quads.
   const double angle = 12.0 * kPi / 180.0;
   const int n = 60;
   RawCurve lower{"lower", {}, "test", 1, {}}, upper{"upper", {}, "test", 1, {}};
   for (int i = 0; i <= n; ++i) lower.points.push_back({static_cast<double>(i) / n, 0.0});
-  for (int i = n; i >= 0; --i)
-    upper.points.push_back({std::cos(angle) * i / n, std::sin(angle) * i / n});
+  for (int i = n; i >= 0; --i) upper.points.push_back({std::cos(angle) * i / n, std::sin(angle) * i / n});
   const RawCurve mouth{"mouth", {{1.0, 0.0}, {std::cos(angle), std::sin(angle)}}, "test", 1, {}};
   const Geometry g = build_geometry({lower, mouth, upper});
-  LayerSettings s;  // the library's defaults (wall refinement and column merging on), split quads
-  s.first_height = 1e-3;
-  s.growth = 1.2;
-  s.thickness = 0.04;
-  s.split_quads = true;
-  s.max_ray_tilt_deg = 5.0;
-  const LayerMesh m = build_boundary_layers(g, curves_by_name(g, {"lower", "upper"}, "test"), s);
-  const LayerMeasures q = measure_layers(m, s.first_height);
-  CHECK(q.inverted_cells == 0);
-  CHECK(crossing_edges(m) == 0);
-  CHECK(q.first_height_within_2pct == 1.0);
-  CHECK(q.max_thickness == Approx(0.04).epsilon(1e-9));  // at the mouth
-  REQUIRE(m.fronts.size() == 1);
-  const std::vector<int>& front = m.fronts[0].nodes;
-  std::vector<int> owner(m.nodes.size(), -1);
-  for (std::size_t r = 0; r < m.rays.size(); ++r)
-    for (const int v : m.rays[r].nodes) owner[v] = static_cast<int>(r);
-  const int lower_curve = curves_by_name(g, {"lower"}, "test")[0];
-  auto on = [&](int node, bool lower_wall) {
-    const int r = owner[node];
-    return r >= 0 && node >= m.wall_nodes && (m.rays[r].curve == lower_curve) == lower_wall &&
-           m.nodes[m.rays[r].wall_node] != Vec2{0.0, 0.0};
-  };
-  int checked = 0;
-  double worst = 1e300;
-  for (std::size_t i = 1; i + 1 < front.size(); ++i) {
-    if (!on(front[i], true)) continue;
-    const Vec2 p = m.nodes[front[i]];
-    const double edge = std::max(dist(p, m.nodes[front[i - 1]]), dist(p, m.nodes[front[i + 1]]));
-    double room = 1e300;
-    for (std::size_t j = 0; j + 1 < front.size(); ++j)
-      if (on(front[j], false) || on(front[j + 1], false))
-        room = std::min(room, segment_distance(p, m.nodes[front[j]], m.nodes[front[j + 1]]));
-    worst = std::min(worst, room / edge);
-    ++checked;
+  for (const bool quads : {false, true}) {
+    LayerSettings s;  // the library's defaults (wall refinement and column merging on)
+    s.first_height = 1e-3;
+    s.growth = 1.2;
+    s.thickness = 0.04;
+    s.split_quads = !quads;  // as the pipeline sets triangles
+    s.max_ray_tilt_deg = quads ? 0.0 : 5.0;
+    INFO((quads ? "quads" : "triangles"));
+    const LayerMesh m = build_boundary_layers(g, curves_by_name(g, {"lower", "upper"}, "test"), s);
+    const LayerMeasures q = measure_layers(m, s.first_height);
+    CHECK(q.inverted_cells == 0);
+    CHECK(crossing_edges(m) == 0);
+    CHECK(q.first_height_within_2pct == 1.0);
+    CHECK(q.max_thickness == Approx(0.04).epsilon(1e-9));  // at the mouth
+    REQUIRE(m.fronts.size() == 1);
+    const std::vector<int>& front = m.fronts[0].nodes;
+    std::vector<int> owner(m.nodes.size(), -1);
+    for (std::size_t r = 0; r < m.rays.size(); ++r)
+      for (const int v : m.rays[r].nodes) owner[v] = static_cast<int>(r);
+    const int lower_curve = curves_by_name(g, {"lower"}, "test")[0];
+    auto on = [&](int node, bool lower_wall) {
+      const int r = owner[node];
+      return r >= 0 && node >= m.wall_nodes && (m.rays[r].curve == lower_curve) == lower_wall &&
+             m.nodes[m.rays[r].wall_node] != Vec2{0.0, 0.0};
+    };
+    int checked = 0;
+    double worst = 1e300;
+    for (std::size_t i = 1; i + 1 < front.size(); ++i) {
+      if (!on(front[i], true)) continue;
+      const Vec2 p = m.nodes[front[i]];
+      const double edge = std::max(dist(p, m.nodes[front[i - 1]]), dist(p, m.nodes[front[i + 1]]));
+      double room = 1e300;
+      for (std::size_t j = 0; j + 1 < front.size(); ++j)
+        if (on(front[j], false) || on(front[j + 1], false))
+          room = std::min(room, segment_distance(p, m.nodes[front[j]], m.nodes[front[j + 1]]));
+      worst = std::min(worst, room / edge);
+      ++checked;
+    }
+    INFO("front nodes on the lower wall's layer: " << checked << ", smallest room over front edge " << worst);
+    CHECK(checked > 20);
+    CHECK(worst >= 0.8);
   }
-  INFO("front nodes on the lower wall's layer: " << checked << ", smallest room over front edge " << worst);
-  CHECK(checked > 20);
-  CHECK(worst >= 0.8);
 }

@@ -55,8 +55,7 @@ void check_layer_settings(const LayerSettings& s) {
     fail(fmt::format("gap_fraction = {} must be in (0, 0.5]", s.gap_fraction));
   if (!(s.cross_fraction > 0.0 && s.cross_fraction < 1.0))
     fail(fmt::format("cross_fraction = {} must be in (0, 1)", s.cross_fraction));
-  if (!(s.core_room >= 0.0 && s.core_room <= 10.0))
-    fail(fmt::format("core_room = {} must be in [0, 10]", s.core_room));
+  if (!(s.core_room >= 0.0 && s.core_room <= 10.0)) fail(fmt::format("core_room = {} must be in [0, 10]", s.core_room));
   if (!(s.merge_span >= 0.0 && s.merge_span <= 100.0))
     fail(fmt::format("merge_span = {} must be in [0, 100]", s.merge_span));
   if (!(s.split_span == 0.0 || (s.split_span >= 1.0 && s.split_span <= 100.0)))
