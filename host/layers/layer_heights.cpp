@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <numbers>
 
 #include "core/predicates.hpp"
 #include "layers/layers_detail.hpp"
@@ -117,6 +118,7 @@ void leave_room_for_the_core(const RaySet& set, const Geometry& geometry, const 
   // Each ray's distance to the first curve along it, within the reach the collision limits probe
   // (the free thickness over gap_fraction), and whether that curve carries these layers.
   std::vector<double> facing(nr, std::numeric_limits<double>::infinity());
+  // 0: not facing it (an oblique hit), 1: a curve without layers, 2: a wall of these layers.
   std::vector<std::uint8_t> shared(nr, 0);
   std::vector<Vec2> probe(nr);
   Box box;
@@ -147,10 +149,14 @@ void leave_room_for_the_core(const RaySet& set, const Geometry& geometry, const 
       const Vec2 d = s.b - s.a;
       if (std::abs(cross(d, p - s.a)) <= 1e-12 * dot(d, d)) return;
       const double at = intersection_parameter(p, e, s.a, s.b) * length;
-      if (at < facing[r]) {
-        facing[r] = at;
-        shared[r] = wall[s.curve];
-      }
+      if (at >= facing[r]) return;
+      facing[r] = at;
+      // Only a curve met within 45 degrees of head-on faces the ray's front (a wedge, a slot): at
+      // a concave corner the rays lean towards its bisector and meet the other wall obliquely,
+      // beside that wall's layer rather than opposite it.
+      shared[r] = std::abs(cross(normalized(d), ray.direction)) >= std::cos(0.25 * std::numbers::pi)
+                      ? (wall[s.curve] ? 2 : 1)
+                      : 0;
     });
   }
   // The front's edge at each ray: the longer of the distances from its top to its neighbours'
@@ -168,7 +174,7 @@ void leave_room_for_the_core(const RaySet& set, const Geometry& geometry, const 
       const bool closed = set.closed[c] != 0;
       for (int k = 0; k < n; ++k) {
         const int r = b + k;
-        if (!std::isfinite(facing[r])) continue;
+        if (!std::isfinite(facing[r]) || shared[r] == 0) continue;
         double edge = 0.0;
         for (const int j : {k - 1, k + 1}) {
           if (!closed && (j < 0 || j >= n)) continue;
@@ -176,7 +182,8 @@ void leave_room_for_the_core(const RaySet& set, const Geometry& geometry, const 
         }
         const double gap = facing[r] * set.rays[r].correction;
         // A facing layer of these settings takes its share of the gap from the other side.
-        const double room = shared[r] ? 0.5 * (gap - settings.core_room * edge) : gap - settings.core_room * edge;
+        const double room =
+            shared[r] == 2 ? 0.5 * (gap - settings.core_room * edge) : gap - settings.core_room * edge;
         allowed[r] = std::min(allowed[r], room < settings.first_height ? 0.0 : room);
       }
     }
