@@ -104,9 +104,9 @@ bool split_chain(WallChain& chain, const PointRays& rays, const RaySet& set, con
 
 // A new point's ray: the directions of its segment's end rays interpolated (the smoothing would
 // tilt a ray on a straight segment as far as its neighbours' mean, and the thin cells beside it
-// would be skewed), its correction over the segment's normal. Beside an end ray more than 45
-// degrees off the segment's normal it is kept within max_tilt of that normal: an end ray at an
-// acute concave vertex (a wedge's tip, whose ray runs along its
+// would be skewed), its correction over the segment's normal. Beside an end ray more than 75
+// degrees off the segment's normal it is kept within max_tilt of that normal: an end ray at a
+// sharp concave vertex (a wedge's tip, whose ray runs along its
 // bisector, far off both walls' normals) would otherwise tilt the rays along a long segment with
 // it, and their cells would be sheared flat.
 void interpolate_new_rays(RaySet& refined, std::size_t c, const WallChain& chain,
@@ -124,10 +124,10 @@ void interpolate_new_rays(RaySet& refined, std::size_t c, const WallChain& chain
     LayerRay& ray = refined.rays[rays.first[p]];
     ray.direction = normalized((1.0 - t) * da + t * db);
     const Vec2 normal = left_normal(chain_point(chain, pi), chain_point(chain, pj));
-    // Only beside an end ray more than 45 degrees off the segment's normal (an acute corner): at a
-    // right-angled concave corner the new rays lean with its bisector ray, so that their columns
-    // do not cross its column.
-    const double acute = std::cos(0.25 * std::numbers::pi) - 1e-9;
+    // Only beside an end ray more than 75 degrees off the segment's normal (a corner sharper than
+    // 30 degrees): beside blunter concave corners the new rays lean with the corner's ray, so that
+    // their columns do not cross its column.
+    const double acute = std::cos(75.0 * std::numbers::pi / 180.0);
     const bool steep_end = dot(da, normal) < acute || dot(db, normal) < acute;
     if (steep_end && dot(ray.direction, normal) < std::cos(max_tilt))
       ray.direction = rotated(normal, cross(normal, ray.direction) < 0.0 ? -max_tilt : max_tilt);
