@@ -101,7 +101,8 @@ void free_and_collision_limits(RaySet& set, const Geometry& geometry, const Laye
 // first_height / max_jump for the ratio, so that its neighbour may have one layer.
 void grade_thickness(const RaySet& set, const LayerSettings& settings, std::vector<double>& allowed);
 // Where fronts close in (a wedge, a strait, a slot's tip): a ray that meets a curve at distance L
-// (within the collision limits' probe) leaves the core at least core_room x the front's edge e
+// (within the collision limits' probe, within 45 degrees of head-on) leaves the core at least
+// core_room x the front's edge e
 // there: its thickness is at most (L - core_room e) / 2 facing a wall of these layers (whose layer
 // takes as much), L - core_room e facing another curve, and 0 (no layer) where that is below the
 // first height. e is the longer distance from its top to its neighbours' tops at the graded
