@@ -182,8 +182,7 @@ void leave_room_for_the_core(const RaySet& set, const Geometry& geometry, const 
         }
         const double gap = facing[r] * set.rays[r].correction;
         // A facing layer of these settings takes its share of the gap from the other side.
-        const double room =
-            shared[r] == 2 ? 0.5 * (gap - settings.core_room * edge) : gap - settings.core_room * edge;
+        const double room = shared[r] == 2 ? 0.5 * (gap - settings.core_room * edge) : gap - settings.core_room * edge;
         allowed[r] = std::min(allowed[r], room < settings.first_height ? 0.0 : room);
       }
     }
