@@ -343,3 +343,53 @@ TEST_CASE("triangles keep the rays within 5 degrees of their walls' normals, qua
     CHECK(s.settings.max_ray_tilt_deg == (quads ? 0.0 : 5.0));
   }
 }
+
+TEST_CASE("a narrow wedge with layers on both walls: the core keeps about the angles it has without layers",
+          "[app][layers]") {
+  // A 15-degree wedge (walls of 30 segments) closed by a mouth without layers. The two walls'
+  // layers collide along the wedge; where the gap is narrower than the fronts' edges leave room for,
+  // the layer ends on a stair, so the core there meets the walls as it would without layers
+  // instead of filling a strip between the fronts, narrower than their edges, with slivers.
+  const double angle = 15.0 * std::numbers::pi / 180.0;
+  const int n = 30;
+  RawCurve lower{"lower", {}, "memory", 1, {}}, upper{"upper", {}, "memory", 1, {}};
+  for (int i = 0; i <= n; ++i) lower.points.push_back({static_cast<double>(i) / n, 0.0});
+  for (int i = n; i >= 0; --i) upper.points.push_back({std::cos(angle) * i / n, std::sin(angle) * i / n});
+  const RawCurve mouth{"mouth", {{1.0, 0.0}, {std::cos(angle), std::sin(angle)}}, "memory", 1, {}};
+  const auto min_angle = [](const std::string& json, const std::string& key) {
+    const auto at = json.find("\"" + key + "\"");
+    REQUIRE(at != std::string::npos);
+    const auto colon = json.find(':', at);
+    return std::stod(json.substr(colon + 1));
+  };
+  double plain = 0.0, layered = 0.0;
+  for (const bool layers : {false, true}) {
+    CaseConfig c =
+        case_for_curves({lower, mouth, upper}, "wedge",
+                        {parse_set_option("simulation.iterations=60"), parse_set_option("simulation.device=host"),
+                         parse_set_option("output.formats=[\"msh\"]")});
+    if (layers) {
+      CaseConfig::BoundaryLayer b;
+      b.curves = {"lower", "upper"};
+      b.first_height = 1e-3;
+      b.growth = 1.2;
+      b.thickness = 0.04;
+      c.boundary_layers.push_back(b);
+    }
+    const fs::path out = pdmesh_test::fresh_path(layers ? "layers_wedge" : "layers_wedge_plain");
+    fs::remove_all(out);
+    c.out_dir = out;
+    c.quiet = true;
+    REQUIRE(run_mesh(c) == 0);
+    const std::string json = read(out / "quality.json");
+    if (layers) {
+      CHECK_THAT(json, Catch::Contains("\"inverted_cells\": 0") && Catch::Contains("\"first_height_within_2pct\": 1"));
+      layered = min_angle(json, "core_min_angle");
+    } else {
+      plain = min_angle(json.substr(json.find("\"included_angle\"")), "min");
+    }
+    fs::remove_all(out);
+  }
+  INFO("core min angle without layers " << plain << ", with layers " << layered);
+  CHECK(layered >= plain - 2.5);
+}

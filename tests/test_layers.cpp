@@ -172,9 +172,11 @@ TEST_CASE("square box with a square hole: concave corners without crossing, fans
 }
 
 TEST_CASE("two close circles: the layers shrink in the gap, no crossing, jumps <= 1.3", "[layers]") {
+  // 384 wall nodes (0.016 apart): the core's strip between the fronts (0.2 x the gap, 0.02) is wider
+  // than the front's edges, and the facing rays stop at gap_fraction of the gap.
   const double gap = 0.1;
-  const Geometry g = build_geometry({box({-6, -5}, {6, 5}, 4, "far"), circle({-1.0 - gap / 2, 0}, 1.0, 96, "left"),
-                                     circle({1.0 + gap / 2, 0}, 1.0, 96, "right")});
+  const Geometry g = build_geometry({box({-6, -5}, {6, 5}, 4, "far"), circle({-1.0 - gap / 2, 0}, 1.0, 384, "left"),
+                                     circle({1.0 + gap / 2, 0}, 1.0, 384, "right")});
   const LayerSettings s = settings(1e-3, 1.2, 0.3);
   const LayerMesh m = build_boundary_layers(g, curves_by_name(g, {"left", "right"}, "test"), s);
   const LayerMeasures q = measure_layers(m, s.first_height);
@@ -197,6 +199,30 @@ TEST_CASE("two close circles: the layers shrink in the gap, no crossing, jumps <
   }
   CHECK(facing == 2);
   REQUIRE(m.fronts.size() == 2);
+  // With 96 wall nodes (0.065 apart) that strip would be a third of the front's edges: the facing
+  // rays stop lower, leaving the core at least the front edge beside their tops.
+  const Geometry coarse = build_geometry({box({-6, -5}, {6, 5}, 4, "far"), circle({-1.0 - gap / 2, 0}, 1.0, 96, "left"),
+                                          circle({1.0 + gap / 2, 0}, 1.0, 96, "right")});
+  const LayerMesh c = build_boundary_layers(coarse, curves_by_name(coarse, {"left", "right"}, "test"), s);
+  CHECK(measure_layers(c, s.first_height).inverted_cells == 0);
+  CHECK(crossing_edges(c) == 0);
+  facing = 0;
+  for (std::size_t r = 0; r < c.rays.size(); ++r) {
+    const LayerRay& ray = c.rays[r];
+    const Vec2 p = c.nodes[ray.wall_node];
+    if (std::abs(p.y) < 1e-12 && std::abs(p.x) < 0.1) {
+      // Its neighbours in its closed chain.
+      const auto chain = std::upper_bound(c.chain_ray_begin.begin(), c.chain_ray_begin.end(), static_cast<int>(r));
+      const int b = *(chain - 1), n = *chain - b, k = static_cast<int>(r) - b;
+      double edge = 0.0;
+      for (const int j : {(k + 1) % n, (k + n - 1) % n})
+        edge = std::max(edge, dist(c.nodes[ray.nodes.back()], c.nodes[c.rays[b + j].nodes.back()]));
+      CHECK(ray.thickness > s.first_height);
+      CHECK(gap - 2.0 * ray.thickness >= edge * (1.0 - 1e-9));
+      ++facing;
+    }
+  }
+  CHECK(facing == 2);
 }
 
 TEST_CASE("two plates between one and two thicknesses apart: both layers stop at gap_fraction of the gap", "[layers]") {
@@ -204,10 +230,12 @@ TEST_CASE("two plates between one and two thicknesses apart: both layers stop at
   // but together the layers would fill the gap: each ray must see the plate it faces (within
   // thickness / gap_fraction) and stop at gap_fraction of the distance, the fronts leaving
   // (1 - 2 gap_fraction) of the gap to the core, found by the collision limits (no repair round).
+  // The plates' wall nodes are 0.05 apart, below the core's strip of 0.09 (with nodes as far apart
+  // as the strip is wide the layers would end earlier: the narrow wedge below).
   const double gap = 0.45, thickness = 0.3;
   const Geometry g =
-      build_geometry({box({-6, -5}, {6, 5}, 4, "far"), box({-2, -gap / 2 - 0.5}, {2, -gap / 2}, 40, "low"),
-                      box({-2, gap / 2}, {2, gap / 2 + 0.5}, 40, "high")});
+      build_geometry({box({-6, -5}, {6, 5}, 4, "far"), box({-2, -gap / 2 - 0.5}, {2, -gap / 2}, 80, "low"),
+                      box({-2, gap / 2}, {2, gap / 2 + 0.5}, 80, "high")});
   const LayerSettings s = settings(1e-3, 1.2, thickness);
   const LayerMesh m = build_boundary_layers(g, curves_by_name(g, {"low", "high"}, "test"), s);
   const LayerMeasures q = measure_layers(m, s.first_height);
@@ -224,7 +252,7 @@ TEST_CASE("two plates between one and two thicknesses apart: both layers stop at
       ++facing;
     }
   }
-  CHECK(facing == 2 * 21);
+  CHECK(facing == 2 * 41);
 }
 
 TEST_CASE("the core spacing stops the layers where the growth into the core is at most the growth", "[layers]") {
@@ -288,6 +316,9 @@ TEST_CASE("bad layer settings are input errors naming the value", "[layers]") {
              }),
              Catch::Contains("boundary_layer.curves: unknown curve 'flap' (the geometry's curves: far, wall)"));
   CHECK_THAT(msg(settings(1e-12, 1.000001, 1.0)), Catch::Contains("(at most 10000)"));
+  LayerSettings room = settings(1e-3, 1.2, 0.05);
+  room.core_room = -1.0;
+  CHECK_THAT(msg(room), Catch::Contains("core_room = -1 must be in [0, 10]"));
   CHECK(msg(settings(1e-3, 1.2, 0.05)).empty());  // good settings pass
 }
 
@@ -370,7 +401,13 @@ TEST_CASE("jagged star-shaped walls: valid layers whatever the collisions", "[la
     INFO("shape " << shape << ", " << n << " vertices, " << m.repairs << " repair rounds");
     CHECK(q.inverted_cells == 0);
     CHECK(crossing_edges(m) == 0);
-    CHECK(q.max_thickness_jump <= 1.3 + 1e-12);
+    // Between rays with layers (a notch narrower than its wall's spacing has none at its tip).
+    for (std::size_t r = 0; r < m.rays.size(); ++r) {
+      const LayerRay& a = m.rays[r];
+      const LayerRay& b = m.rays[(r + 1) % m.rays.size()];
+      if (a.thickness > 0.0 && b.thickness > 0.0)
+        CHECK(std::max(a.thickness, b.thickness) <= (1.3 + 1e-12) * std::min(a.thickness, b.thickness));
+    }
     CHECK(q.first_height_within_2pct == 1.0);
     CHECK(q.max_thickness > 0.1);
   }
@@ -444,4 +481,73 @@ TEST_CASE("tied open chain ends get the same layers where the core spacing diffe
   CHECK(end_ray_at(tied, {1.0, 0.0}) == -1);  // not a chain's end
   CHECK_THROWS_WITH(build_boundary_layers(g, walls, s, core, {{{0.0, 0.0}, {1.0, 0.0}}}),
                     Catch::Contains("no open wall chain ends at (1, 0)"));
+}
+
+namespace {
+
+// The distance from p to the segment a -> b.
+double segment_distance(Vec2 p, Vec2 a, Vec2 b) {
+  const Vec2 d = b - a;
+  const double t = std::clamp(dot(p - a, d) / dot(d, d), 0.0, 1.0);
+  return norm(p - (a + t * d));
+}
+
+}  // namespace
+
+TEST_CASE("a narrow wedge with layers on both walls: the fronts leave the core room for their edges", "[layers]") {
+  // A 12-degree wedge, its two walls meeting at the tip, closed by a mouth without layers. The
+  // walls' layers collide along the whole wedge and each stops at a share of the gap; towards the
+  // tip the gap falls below the front's edges (the wall's spacing), and a core strip narrower than
+  // the edges it lies between holds only slivers. Every front node on the lower wall's layer must
+  // lie at least about its front edges away from the upper wall's front (the layer ends first), in
+  // triangles and in quads.
+  const double angle = 12.0 * kPi / 180.0;
+  const int n = 60;
+  RawCurve lower{"lower", {}, "test", 1, {}}, upper{"upper", {}, "test", 1, {}};
+  for (int i = 0; i <= n; ++i) lower.points.push_back({static_cast<double>(i) / n, 0.0});
+  for (int i = n; i >= 0; --i) upper.points.push_back({std::cos(angle) * i / n, std::sin(angle) * i / n});
+  const RawCurve mouth{"mouth", {{1.0, 0.0}, {std::cos(angle), std::sin(angle)}}, "test", 1, {}};
+  const Geometry g = build_geometry({lower, mouth, upper});
+  for (const bool quads : {false, true}) {
+    LayerSettings s;  // the library's defaults (wall refinement and column merging on)
+    s.first_height = 1e-3;
+    s.growth = 1.2;
+    s.thickness = 0.04;
+    s.split_quads = !quads;  // as the pipeline sets triangles
+    s.max_ray_tilt_deg = quads ? 0.0 : 5.0;
+    INFO((quads ? "quads" : "triangles"));
+    const LayerMesh m = build_boundary_layers(g, curves_by_name(g, {"lower", "upper"}, "test"), s);
+    const LayerMeasures q = measure_layers(m, s.first_height);
+    CHECK(q.inverted_cells == 0);
+    CHECK(crossing_edges(m) == 0);
+    CHECK(q.first_height_within_2pct == 1.0);
+    CHECK(q.max_thickness == Approx(0.04).epsilon(1e-9));  // at the mouth
+    REQUIRE(m.fronts.size() == 1);
+    const std::vector<int>& front = m.fronts[0].nodes;
+    std::vector<int> owner(m.nodes.size(), -1);
+    for (std::size_t r = 0; r < m.rays.size(); ++r)
+      for (const int v : m.rays[r].nodes) owner[v] = static_cast<int>(r);
+    const int lower_curve = curves_by_name(g, {"lower"}, "test")[0];
+    auto on = [&](int node, bool lower_wall) {
+      const int r = owner[node];
+      return r >= 0 && node >= m.wall_nodes && (m.rays[r].curve == lower_curve) == lower_wall &&
+             m.nodes[m.rays[r].wall_node] != Vec2{0.0, 0.0};
+    };
+    int checked = 0;
+    double worst = 1e300;
+    for (std::size_t i = 1; i + 1 < front.size(); ++i) {
+      if (!on(front[i], true)) continue;
+      const Vec2 p = m.nodes[front[i]];
+      const double edge = std::max(dist(p, m.nodes[front[i - 1]]), dist(p, m.nodes[front[i + 1]]));
+      double room = 1e300;
+      for (std::size_t j = 0; j + 1 < front.size(); ++j)
+        if (on(front[j], false) || on(front[j + 1], false))
+          room = std::min(room, segment_distance(p, m.nodes[front[j]], m.nodes[front[j + 1]]));
+      worst = std::min(worst, room / edge);
+      ++checked;
+    }
+    INFO("front nodes on the lower wall's layer: " << checked << ", smallest room over front edge " << worst);
+    CHECK(checked > 20);
+    CHECK(worst >= 0.8);
+  }
 }

@@ -55,6 +55,7 @@ void check_layer_settings(const LayerSettings& s) {
     fail(fmt::format("gap_fraction = {} must be in (0, 0.5]", s.gap_fraction));
   if (!(s.cross_fraction > 0.0 && s.cross_fraction < 1.0))
     fail(fmt::format("cross_fraction = {} must be in (0, 1)", s.cross_fraction));
+  if (!(s.core_room >= 0.0 && s.core_room <= 10.0)) fail(fmt::format("core_room = {} must be in [0, 10]", s.core_room));
   if (!(s.merge_span >= 0.0 && s.merge_span <= 100.0))
     fail(fmt::format("merge_span = {} must be in [0, 100]", s.merge_span));
   if (!(s.split_span == 0.0 || (s.split_span >= 1.0 && s.split_span <= 100.0)))
@@ -361,7 +362,7 @@ std::vector<std::array<int, 2>> tied_rays(const RaySet& set, const std::vector<T
 void grade_tied(const RaySet& set, const LayerSettings& settings, const std::vector<std::array<int, 2>>& ties,
                 std::vector<double>& allowed) {
   for (int round = 0; round < 8; ++round) {
-    grade_thickness(set, settings.max_jump, settings.max_slope, allowed);
+    grade_thickness(set, settings, allowed);
     bool changed = false;
     for (const auto& [a, b] : ties) {
       const double t = std::min(allowed[static_cast<std::size_t>(a)], allowed[static_cast<std::size_t>(b)]);
@@ -397,6 +398,7 @@ LayerMesh build_boundary_layers(const Geometry& geometry, const std::vector<int>
   std::vector<double> allowed;
   free_and_collision_limits(set, geometry, settings, core_spacing, allowed);
   refine_sparse_walls(chains, geometry, settings, core_spacing, set, allowed);
+  leave_room_for_the_core(set, geometry, settings, allowed);
   const std::vector<std::array<int, 2>> ties = tied_rays(set, tied);
   std::vector<int> count, owner;
   std::vector<double> top;

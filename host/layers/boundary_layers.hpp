@@ -41,6 +41,11 @@ struct LayerSettings {
   // that cross stop at cross_fraction of the crossing distance.
   double gap_fraction = 0.4;
   double cross_fraction = 0.5;
+  // Where fronts close in, a ray that meets a curve keeps at least core_room x its front edge
+  // between its front and the facing one (the layer ends where the gap is narrower): a core strip
+  // narrower than the edges it lies between holds only slivers. 0: no such limit (an anisotropic
+  // core under a metric field, whose thin rows are what the metric asks for).
+  double core_room = 1.0;
   bool split_quads = false;  // write each quad as 2 triangles (the diagonal with the smaller max angle)
   // Columns merge where the rays are dense for their layers' height: a ray's column ends at layer k
   // (its two neighbours close over it with three triangles) where the span between its neighbours'

@@ -97,8 +97,18 @@ int layers_reaching(double h1, double g, double t);
 void free_and_collision_limits(RaySet& set, const Geometry& geometry, const LayerSettings& settings,
                                const CoreSpacing& core_spacing, std::vector<double>& allowed);
 // Limits neighbouring rays of each chain to thickness ratios <= max_jump and thickness changes
-// <= max_slope x their distance (only lowers).
-void grade_thickness(const RaySet& set, double max_jump, double max_slope, std::vector<double>& allowed);
+// <= max_slope x their distance (only lowers); a ray below the first height (no layer) counts as
+// first_height / max_jump for the ratio, so that its neighbour may have one layer.
+void grade_thickness(const RaySet& set, const LayerSettings& settings, std::vector<double>& allowed);
+// Where fronts close in (a wedge, a strait, a slot's tip): a ray that meets a curve at distance L
+// (within the collision limits' probe, within 45 degrees of head-on) leaves the core at least
+// core_room x the front's edge e
+// there: its thickness is at most (L - core_room e) / 2 facing a wall of these layers (whose layer
+// takes as much), L - core_room e facing another curve, and 0 (no layer) where that is below the
+// first height. e is the longer distance from its top to its neighbours' tops at the graded
+// thickness. Nothing with core_room 0.
+void leave_room_for_the_core(const RaySet& set, const Geometry& geometry, const LayerSettings& settings,
+                             std::vector<double>& allowed);
 // The layer count and top height of each ray for its allowed thickness: every layer but the last
 // of the settings' stack (first height and growth exact, so that neighbouring rays' layers match),
 // the last ending at the allowed thickness (1/4 to 1.25 times the stack's next layer).

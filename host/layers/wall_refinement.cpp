@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <numbers>
 
 #include "layers/layers_detail.hpp"
 
@@ -19,6 +20,7 @@ double last_layer(double t, const LayerSettings& s) {
   const int n = layers_reaching(h1, g, t);
   double last = t - stack_height(h1, g, n - 1);
   if (n >= 3 && last < 0.25 * h1 * std::pow(g, n - 2)) last += h1 * std::pow(g, n - 2);
+  if (n == 2 && last < 0.25 * h1) last = h1;  // the first layer alone
   return last;
 }
 
@@ -72,7 +74,9 @@ bool split_chain(WallChain& chain, const PointRays& rays, const RaySet& set, con
     const int j = i + 1 < n ? i + 1 : (chain.closed ? 0 : -1);
     if (j < 0 || rays.first[i] < 0 || rays.first[j] < 0) continue;
     const int a = rays.last[i], b = rays.first[j];
-    const double h = std::min(last_layer(allowed[a], settings), last_layer(allowed[b], settings));
+    // The thinner last layer; where one end has no layer (a layer's end), the other's.
+    const double la = last_layer(allowed[a], settings), lb = last_layer(allowed[b], settings);
+    const double h = la > 0.0 && lb > 0.0 ? std::min(la, lb) : std::max(la, lb);
     const double gap = dist(top(a), top(b));
     const double span = settings.split_span * h;
     if (h <= 0.0 || gap <= span) continue;
@@ -100,9 +104,13 @@ bool split_chain(WallChain& chain, const PointRays& rays, const RaySet& set, con
 
 // A new point's ray: the directions of its segment's end rays interpolated (the smoothing would
 // tilt a ray on a straight segment as far as its neighbours' mean, and the thin cells beside it
-// would be skewed), its correction over the segment's normal.
+// would be skewed), its correction over the segment's normal. Beside an end ray more than 75
+// degrees off the segment's normal it is kept within max_tilt of that normal: an end ray at a
+// sharp concave vertex (a wedge's tip, whose ray runs along its
+// bisector, far off both walls' normals) would otherwise tilt the rays along a long segment with
+// it, and their cells would be sheared flat.
 void interpolate_new_rays(RaySet& refined, std::size_t c, const WallChain& chain,
-                          const std::vector<std::array<int, 2>>& source) {
+                          const std::vector<std::array<int, 2>>& source, double max_tilt) {
   const std::size_t n = source.size();
   const PointRays rays = point_rays(refined, c, n);
   for (std::size_t p = 0; p < n; ++p) {
@@ -115,7 +123,15 @@ void interpolate_new_rays(RaySet& refined, std::size_t c, const WallChain& chain
     const Vec2 db = refined.rays[rays.first[pj % n]].direction;
     LayerRay& ray = refined.rays[rays.first[p]];
     ray.direction = normalized((1.0 - t) * da + t * db);
-    ray.correction = std::max(0.2, dot(ray.direction, left_normal(chain_point(chain, pi), chain_point(chain, pj))));
+    const Vec2 normal = left_normal(chain_point(chain, pi), chain_point(chain, pj));
+    // Only beside an end ray more than 75 degrees off the segment's normal (a corner sharper than
+    // 30 degrees): beside blunter concave corners the new rays lean with the corner's ray, so that
+    // their columns do not cross its column.
+    const double acute = std::cos(75.0 * std::numbers::pi / 180.0);
+    const bool steep_end = dot(da, normal) < acute || dot(db, normal) < acute;
+    if (steep_end && dot(ray.direction, normal) < std::cos(max_tilt))
+      ray.direction = rotated(normal, cross(normal, ray.direction) < 0.0 ? -max_tilt : max_tilt);
+    ray.correction = std::max(0.2, dot(ray.direction, normal));
   }
 }
 
@@ -149,16 +165,19 @@ bool refine_sparse_walls(std::vector<WallChain>& chains, const Geometry& geometr
   // The tops where the layer will end: the limits graded along the chains as build_boundary_layers
   // grades them (collisions thin a whole stretch of the layer, not only the colliding rays).
   std::vector<double> graded = allowed;
-  grade_thickness(set, settings.max_jump, settings.max_slope, graded);
+  grade_thickness(set, settings, graded);
   for (std::size_t c = 0; c < chains.size(); ++c) {
     old_rays.push_back(point_rays(set, c, chains[c].points.size()));
     split = split_chain(chains[c], old_rays[c], set, graded, settings, source[c]) || split;
   }
   if (!split) return false;
   RaySet refined = make_rays(chains, geometry, settings, core_spacing);
+  // The new rays' tilt limit beside an acute corner: the settings' (split quads), else 45 degrees.
+  const double max_tilt =
+      (settings.max_ray_tilt_deg > 0.0 ? settings.max_ray_tilt_deg : 45.0) * std::numbers::pi / 180.0;
   std::vector<double> limits(refined.rays.size(), 0.0);
   for (std::size_t c = 0; c < chains.size(); ++c) {
-    interpolate_new_rays(refined, c, chains[c], source[c]);
+    interpolate_new_rays(refined, c, chains[c], source[c], max_tilt);
     carry_limits(set, allowed, old_rays[c], refined, c, source[c], limits);
   }
   set = std::move(refined);

@@ -194,6 +194,7 @@ std::unique_ptr<LayeredCase> build_layers(const CaseConfig& config, const MeshIn
       }
       s.walls = curves_by_name(*geometry, b.curves, b.curves_where + ": boundary_layer.curves");
       s.settings.split_span = 0.0;
+      s.settings.core_room = 0.0;  // the core is anisotropic: thin rows between fronts are the metric's
       const MetricSizeAlongRay along_ray(*geometry, s.walls, *inputs.metric);
       s.geometry = geometry;
       const PeriodicLayerEnds ends = periodic_layer_ends(out->periodic, *geometry, s.walls, b);
