@@ -41,7 +41,7 @@ bool legalize_everything(EditableMesh& m) {
   std::vector<cleanup::EdgeRef> edges;
   for (int t = 0; t < m.triangle_slots(); ++t)
     if (m.alive(t))
-      for (int i = 0; i < 3; ++i) edges.push_back({m.v[t][cleanup::next3(i)], m.v[t][cleanup::prev3(i)], t});
+      for (int i = 0; i < 3; ++i) edges.push_back({m.v[t][pdmesh::next3(i)], m.v[t][pdmesh::prev3(i)], t});
   m.legalize(edges);
   return m.v != before;
 }
@@ -56,12 +56,12 @@ TEST_CASE("the editable mesh's neighbours and vertex records on 1 and 2 threads 
   const auto& tri = h.mesh.triangles;
   std::unordered_map<std::uint64_t, int> half_edges;
   for (int t = 0; t < static_cast<int>(tri.size()); ++t)
-    for (int i = 0; i < 3; ++i) half_edges.emplace(key(tri[t][cleanup::next3(i)], tri[t][cleanup::prev3(i)]), t);
+    for (int i = 0; i < 3; ++i) half_edges.emplace(key(tri[t][pdmesh::next3(i)], tri[t][pdmesh::prev3(i)]), t);
   std::vector<std::array<int, 3>> n(tri.size(), {-1, -1, -1});
   std::vector<int> vt(h.mesh.points.size(), -1);
   for (int t = 0; t < static_cast<int>(tri.size()); ++t) {
     for (int i = 0; i < 3; ++i) {
-      const auto it = half_edges.find(key(tri[t][cleanup::prev3(i)], tri[t][cleanup::next3(i)]));
+      const auto it = half_edges.find(key(tri[t][pdmesh::prev3(i)], tri[t][pdmesh::next3(i)]));
       if (it != half_edges.end()) n[t][i] = it->second;
     }
     for (int a : tri[t]) vt[a] = t;

@@ -223,8 +223,8 @@ TEST_CASE("what a strip may move touches nothing a strip two or more away reads 
       for (int t : star) {
         const auto& tv = m.v[t];
         const int k = cleanup::EditableMesh::index_of(tv, a);
-        writes.push_back(tv[cleanup::next3(k)]);
-        writes.push_back(tv[cleanup::prev3(k)]);
+        writes.push_back(tv[pdmesh::next3(k)]);
+        writes.push_back(tv[pdmesh::prev3(k)]);
         const int u = m.n[t][k];
         if (u >= 0) reads.push_back(m.v[u][cleanup::EditableMesh::index_of(m.n[u], t)]);
       }

@@ -400,7 +400,7 @@ void CleanupRun::legalize_all() {
   std::vector<cleanup::EdgeRef> edges;
   for (int t = 0; t < m_.triangle_slots(); ++t)
     if (m_.alive(t))
-      for (int i = 0; i < 3; ++i) edges.push_back({m_.v[t][cleanup::next3(i)], m_.v[t][cleanup::prev3(i)], t});
+      for (int i = 0; i < 3; ++i) edges.push_back({m_.v[t][pdmesh::next3(i)], m_.v[t][pdmesh::prev3(i)], t});
   m_.legalize(edges);
 }
 

@@ -12,11 +12,9 @@
 #include "cleanup/measures.hpp"
 #include "core/vec2.hpp"
 #include "mesh/mesh.hpp"
+#include "mesh/triangle_corners.hpp"
 
 namespace pdmesh::cleanup {
-
-inline int next3(int i) { return i == 2 ? 0 : i + 1; }
-inline int prev3(int i) { return i == 0 ? 2 : i - 1; }
 
 class EditableMesh;
 
@@ -97,7 +95,7 @@ class EditableMesh {
   // Triangle t and local index i with edge a -> b counter-clockwise in t, opposite v[t][i];
   // {-1, -1} when there is no such edge.
   std::array<int, 2> find_edge(int a, int b) const;
-  static int index_of(const std::array<int, 3>& tv, int value) { return tv[0] == value ? 0 : (tv[1] == value ? 1 : 2); }
+  static int index_of(const std::array<int, 3>& tv, int value) { return pdmesh::index_of(tv, value); }
 
   // Edits. Each keeps the adjacency consistent; with a transaction open each saves what it changes.
   void flip(int t, int i);

@@ -28,8 +28,6 @@ constexpr std::array<signed char, 256> kBase64Values = [] {
 }();
 int base64_value(char c) { return kBase64Values[static_cast<unsigned char>(c)]; }
 
-bool is_space(char c) { return c == ' ' || c == '\n' || c == '\r' || c == '\t'; }
-
 // An unsigned integer of `bytes` bytes in the file's byte order.
 std::uint64_t load_unsigned(const unsigned char* p, int bytes, bool big_endian) {
   std::uint64_t v = 0;
@@ -144,7 +142,7 @@ bool VtuBytes::next_group() {
   int padding = 0;
   while (n < 4 && pos_ < text_.size()) {
     const char c = text_[pos_++];
-    if (is_space(c)) continue;
+    if (is_xml_space(c)) continue;
     if (c == '=') {
       ++padding;
       values[n++] = 0;

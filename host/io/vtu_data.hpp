@@ -14,6 +14,9 @@
 
 namespace pdmesh {
 
+// XML's white space (the S production: space, tab, carriage return, line feed).
+inline bool is_xml_space(char c) { return c == ' ' || c == '\n' || c == '\r' || c == '\t'; }
+
 enum class VtuCompressor { None, ZLib };
 
 // File-wide attributes of <VTKFile> that decide how binary arrays are laid out.

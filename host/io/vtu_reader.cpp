@@ -31,8 +31,6 @@ struct ArrayInfo {
   std::size_t pos = 0;             // of the tag, for line numbers
 };
 
-bool is_space(char c) { return c == ' ' || c == '\n' || c == '\t' || c == '\r'; }
-
 constexpr long long kMaxCount = 2'147'483'647;  // points and cells: a Mesh indexes them with int
 constexpr long long kMaxComponents = 1000;      // VTK writes up to 9 (a tensor)
 
@@ -41,17 +39,17 @@ std::map<std::string, std::string> attributes(std::string_view tag) {
   std::map<std::string, std::string> out;
   std::size_t i = tag.find_first_of(" \t\r\n");
   while (i < tag.size()) {
-    while (i < tag.size() && is_space(tag[i])) ++i;
+    while (i < tag.size() && is_xml_space(tag[i])) ++i;
     const std::size_t key_begin = i;
-    while (i < tag.size() && tag[i] != '=' && !is_space(tag[i]) && tag[i] != '>' && tag[i] != '/') ++i;
+    while (i < tag.size() && tag[i] != '=' && !is_xml_space(tag[i]) && tag[i] != '>' && tag[i] != '/') ++i;
     const std::string key(tag.substr(key_begin, i - key_begin));
-    while (i < tag.size() && is_space(tag[i])) ++i;
+    while (i < tag.size() && is_xml_space(tag[i])) ++i;
     if (key.empty() || i >= tag.size() || tag[i] != '=') {
       ++i;
       continue;
     }
     ++i;
-    while (i < tag.size() && is_space(tag[i])) ++i;
+    while (i < tag.size() && is_xml_space(tag[i])) ++i;
     if (i >= tag.size() || (tag[i] != '"' && tag[i] != '\'')) continue;
     const char quote = tag[i++];
     const std::size_t value_end = std::min(tag.find(quote, i), tag.size());
@@ -269,10 +267,10 @@ class VtuFile {
     std::vector<double> out;
     std::size_t i = a.begin;
     while (i < a.end) {
-      while (i < a.end && is_space(text_[i])) ++i;
+      while (i < a.end && is_xml_space(text_[i])) ++i;
       if (i >= a.end) break;
       std::size_t j = i;
-      while (j < a.end && !is_space(text_[j])) ++j;
+      while (j < a.end && !is_xml_space(text_[j])) ++j;
       double v = 0.0;
       const auto [p, ec] = std::from_chars(text_.data() + i, text_.data() + j, v);
       if (ec != std::errc() || p != text_.data() + j) {

@@ -9,12 +9,10 @@
 #include "core/interrupt.hpp"
 #include "core/errors.hpp"
 #include "core/predicates.hpp"
+#include "mesh/triangle_corners.hpp"
 
 namespace pdmesh {
 namespace {
-
-// Local index of `value`, which the caller knows is in the triangle.
-int index_of(const std::array<int, 3>& a, int value) { return a[0] == value ? 0 : (a[1] == value ? 1 : 2); }
 
 // Index of the vertex of a triangle that is neither x nor y.
 int third_index(const std::array<int, 3>& tv, int x, int y) {

@@ -11,15 +11,10 @@
 #include "core/errors.hpp"
 #include "core/predicates.hpp"
 #include "geometry/hilbert.hpp"
+#include "mesh/triangle_corners.hpp"
 
 namespace pdmesh {
 namespace {
-
-inline int next3(int i) { return i == 2 ? 0 : i + 1; }
-inline int prev3(int i) { return i == 0 ? 2 : i - 1; }
-
-// Local index of `value`, which the caller knows is in the triangle.
-int index_of(const std::array<int, 3>& a, int value) { return a[0] == value ? 0 : (a[1] == value ? 1 : 2); }
 
 void check_input(const std::vector<Vec2>& pts) {
   if (pts.size() < 3) throw InputError(fmt::format("triangulation needs at least 3 points, got {}", pts.size()));

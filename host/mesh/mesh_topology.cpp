@@ -10,7 +10,7 @@
 namespace pdmesh {
 namespace {
 
-struct EdgeUse {
+struct KeyedEdgeUse {
   std::uint64_t key;  // (smaller point << 32) | larger point
   int triangle;
   bool forward;  // the triangle runs from the smaller point to the larger
@@ -19,7 +19,7 @@ struct EdgeUse {
 }  // namespace
 
 std::optional<std::string> find_fold_or_nonmanifold_edge(const Mesh& mesh) {
-  std::vector<EdgeUse> uses;
+  std::vector<KeyedEdgeUse> uses;
   uses.reserve(3 * mesh.triangles.size());
   for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
     const auto& v = mesh.triangles[t];
@@ -30,7 +30,7 @@ std::optional<std::string> find_fold_or_nonmanifold_edge(const Mesh& mesh) {
       uses.push_back({lo << 32 | hi, static_cast<int>(t), a < b});
     }
   }
-  std::sort(uses.begin(), uses.end(), [](const EdgeUse& x, const EdgeUse& y) {
+  std::sort(uses.begin(), uses.end(), [](const KeyedEdgeUse& x, const KeyedEdgeUse& y) {
     return x.key != y.key ? x.key < y.key : x.triangle < y.triangle;
   });
   // The conflict to report: the one whose second triangle is earliest in the file.

@@ -10,13 +10,10 @@
 #include "core/errors.hpp"
 #include "core/interrupt.hpp"
 #include "core/predicates.hpp"
+#include "mesh/triangle_corners.hpp"
 
 namespace pdmesh {
 namespace {
-
-inline int next3(int i) { return i == 2 ? 0 : i + 1; }
-inline int prev3(int i) { return i == 0 ? 2 : i - 1; }
-int index_of(const std::array<int, 3>& a, int value) { return a[0] == value ? 0 : (a[1] == value ? 1 : 2); }
 
 // |vᵀ M| v with every term taken by its magnitude: the bound on vᵀMv's rounding.
 double abs_quad(const Metric& m, Vec2 v) {

@@ -19,7 +19,7 @@ namespace pdmesh {
 
 namespace {
 
-constexpr int kColourBarBand = 150;
+constexpr int kMeshBarBand = 150;
 constexpr Rgb kNoValue{0.75, 0.75, 0.75};  // non-finite values
 // Interior edges shorter than kMinEdgePixels on screen are not drawn; triangles with one are shaded
 // kDenseShade (without a value fill).
@@ -371,7 +371,7 @@ void write_mesh_picture(const std::filesystem::path& path, const Mesh& mesh, con
   CanvasOptions layout;
   layout.window = options.window ? *options.window : default_mesh_window(mesh);
   layout.long_side = options.long_side;
-  layout.side_width = values != nullptr ? kColourBarBand : 0;
+  layout.side_width = values != nullptr ? kMeshBarBand : 0;
   layout.grey = values == nullptr;  // black edges, the grey shade, a black title
 
   // Each edge once (an interior edge belongs to two triangles).

@@ -17,7 +17,7 @@ namespace pdmesh {
 
 namespace {
 
-constexpr int kColourBarBand = 170;
+constexpr int kSpacingBarBand = 170;
 
 // Ticks at 1, 2 and 5 times powers of ten inside [lo, hi]; decades only when those are too many.
 std::vector<double> log_ticks(double lo, double hi) {
@@ -58,7 +58,7 @@ void write_spacing_picture(const std::filesystem::path& path, const GeometryTree
   CanvasOptions layout;
   layout.window = options.window ? *options.window : padded_window(g.extents);
   layout.long_side = options.long_side;
-  layout.side_width = kColourBarBand;
+  layout.side_width = kSpacingBarBand;
   render_picture(path, layout, [&](Canvas& canvas) {
     // The pixels the window maps to; each is sampled at its centre.
     const Box& w = canvas.window();

@@ -23,8 +23,8 @@ namespace {
 
 const toml::node* get(const toml::table& t, std::string_view key) { return t.get(key); }
 
-CaseConfig::BoundaryLayer read_one(const Reader& r, const toml::table& t, const toml::node& table_node,
-                                   const CaseConfig& c) {
+CaseConfig::BoundaryLayer read_layer_table(const Reader& r, const toml::table& t, const toml::node& table_node,
+                                           const CaseConfig& c) {
   CaseConfig::BoundaryLayer b;
   const auto required = [&](std::string_view key) -> const toml::node& {
     const toml::node* n = get(t, key);
@@ -98,10 +98,10 @@ void read_boundary_layer_sections(const Reader& r, const toml::table& root, Case
   const toml::node* node = root.get("boundary_layer");
   if (node == nullptr) return;
   if (node->is_table()) {
-    c.boundary_layers.push_back(read_one(r, *node->as_table(), *node, c));
+    c.boundary_layers.push_back(read_layer_table(r, *node->as_table(), *node, c));
     return;
   }
-  for (const toml::node& e : *node->as_array()) c.boundary_layers.push_back(read_one(r, *e.as_table(), e, c));
+  for (const toml::node& e : *node->as_array()) c.boundary_layers.push_back(read_layer_table(r, *e.as_table(), e, c));
   // One wall curve in two sections would get two layers.
   for (std::size_t i = 0; i < c.boundary_layers.size(); ++i)
     for (std::size_t j = 0; j < i; ++j)

@@ -17,8 +17,8 @@ std::array<double, 2> pair_of_numbers(const Reader& r, const std::string& key, c
   return {r.number(fmt::format("{}[0]", key), *a.get(0)), r.number(fmt::format("{}[1]", key), *a.get(1))};
 }
 
-CaseConfig::Periodic read_one(const Reader& r, const toml::table& t, const toml::node& table_node,
-                              const CaseConfig& c) {
+CaseConfig::Periodic read_periodic_table(const Reader& r, const toml::table& t, const toml::node& table_node,
+                                         const CaseConfig& c) {
   CaseConfig::Periodic p;
   p.where = r.where("periodic", &table_node.source());
   const toml::node* curves = t.get("curves");
@@ -74,9 +74,9 @@ void read_periodic_sections(const Reader& r, const toml::table& root, CaseConfig
   const toml::node* node = root.get("periodic");
   if (node == nullptr) return;
   if (node->is_table()) {
-    c.periodic.push_back(read_one(r, *node->as_table(), *node, c));
+    c.periodic.push_back(read_periodic_table(r, *node->as_table(), *node, c));
   } else {
-    for (const toml::node& e : *node->as_array()) c.periodic.push_back(read_one(r, *e.as_table(), e, c));
+    for (const toml::node& e : *node->as_array()) c.periodic.push_back(read_periodic_table(r, *e.as_table(), e, c));
   }
   // A curve in two tables would be asked to carry two node sets (or the same one twice).
   for (std::size_t i = 0; i < c.periodic.size(); ++i)

@@ -32,7 +32,6 @@ using mesh_detail::progress;
 namespace {
 
 using Clock = std::chrono::steady_clock;
-double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
 std::string step_name(int k) { return fmt::format("step_{:04d}", k); }
 
@@ -118,7 +117,7 @@ void MotionWriter::write(const MotionStep& step, MotionStepRecord& record) {
     write_step_files(config_, record, step.mesh);
   else
     LayerMotion::write_step_files(config_, config_.out_dir / step_name(record.step), step.mixed, step.mesh, record);
-  record.wall_s += since(write_start);
+  record.wall_s += std::chrono::duration<double>(Clock::now() - write_start).count();
   record.cpu_s += static_cast<double>(std::clock() - c0) / CLOCKS_PER_SEC;
   records_.push_back(record);
   pvd_.push_back({record.t, step_name(record.step) + "/mesh.vtu"});
