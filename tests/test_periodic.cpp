@@ -14,6 +14,7 @@
 #include <set>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/errors.hpp"
@@ -140,6 +141,22 @@ double max_mismatch(const std::string& quality, std::size_t tables) {
   return worst;
 }
 
+// The unit square in two triangles, its right side linked to its left by the translation (1, 0).
+std::pair<pdmesh::Mesh, std::vector<pdmesh::PeriodicLink>> unit_square_with_link() {
+  pdmesh::Mesh mesh;
+  mesh.points = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+  mesh.triangles = {{0, 1, 2}, {0, 2, 3}};
+  mesh.boundary_edges = {{0, 1, 0}, {1, 2, 1}, {2, 3, 2}, {3, 0, 3}};
+  mesh.curve_names = {"bottom", "right", "top", "left"};
+  pdmesh::PeriodicLink link;
+  link.curve = 1;
+  link.source_curve = 3;
+  link.affine = pdmesh::PeriodicTransform::translation({1.0, 0.0}).affine();
+  link.nodes = {{1, 0}, {2, 3}};
+  const std::vector<pdmesh::PeriodicLink> links{link};
+  return {mesh, links};
+}
+
 }  // namespace
 
 TEST_CASE("a unit cell periodic in x and y: the opposite sides carry the same nodes", "[periodic][cli]") {
@@ -180,17 +197,7 @@ TEST_CASE("a 60-degree sector of an annulus periodic by rotation (written as MSH
 }
 
 TEST_CASE("the MSH 2.2 writer's $Periodic section gives the transform on an Affine line", "[periodic][io]") {
-  pdmesh::Mesh mesh;
-  mesh.points = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
-  mesh.triangles = {{0, 1, 2}, {0, 2, 3}};
-  mesh.boundary_edges = {{0, 1, 0}, {1, 2, 1}, {2, 3, 2}, {3, 0, 3}};
-  mesh.curve_names = {"bottom", "right", "top", "left"};
-  pdmesh::PeriodicLink link;
-  link.curve = 1;
-  link.source_curve = 3;
-  link.affine = pdmesh::PeriodicTransform::translation({1.0, 0.0}).affine();
-  link.nodes = {{1, 0}, {2, 3}};
-  const std::vector<pdmesh::PeriodicLink> links{link};
+  const auto [mesh, links] = unit_square_with_link();
   const std::string v22 = pdmesh::msh22_string(mesh, &links);
   CHECK(v22.find("$Periodic\n1\n1 2 4\nAffine 1 0 0 1 0 1 0 0 0 0 1 0 0 0 0 1\n2\n2 1\n3 4\n$EndPeriodic\n") !=
         std::string::npos);
@@ -352,17 +359,7 @@ TEST_CASE("[[periodic]] with layers: walls that are not periodic, or layers at o
 }
 
 TEST_CASE("the MSH reader reads $Periodic back (4.1 and 2.2) with the largest mismatch", "[periodic][io]") {
-  pdmesh::Mesh mesh;
-  mesh.points = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
-  mesh.triangles = {{0, 1, 2}, {0, 2, 3}};
-  mesh.boundary_edges = {{0, 1, 0}, {1, 2, 1}, {2, 3, 2}, {3, 0, 3}};
-  mesh.curve_names = {"bottom", "right", "top", "left"};
-  pdmesh::PeriodicLink link;
-  link.curve = 1;
-  link.source_curve = 3;
-  link.affine = pdmesh::PeriodicTransform::translation({1.0, 0.0}).affine();
-  link.nodes = {{1, 0}, {2, 3}};
-  const std::vector<pdmesh::PeriodicLink> links{link};
+  const auto [mesh, links] = unit_square_with_link();
   for (const bool v41 : {true, false}) {
     INFO((v41 ? "MSH 4.1" : "MSH 2.2"));
     pdmesh::MeshReadReport report;
@@ -372,7 +369,7 @@ TEST_CASE("the MSH reader reads $Periodic back (4.1 and 2.2) with the largest mi
     const pdmesh::PeriodicLink& l = report.periodic[0];
     CHECK(back.curve_names[static_cast<std::size_t>(l.curve)] == "right");
     CHECK(back.curve_names[static_cast<std::size_t>(l.source_curve)] == "left");
-    CHECK(l.affine == link.affine);
+    CHECK(l.affine == links[0].affine);
     REQUIRE(l.nodes.size() == 2);
     for (const auto& [i, s] : l.nodes)
       CHECK(back.points[static_cast<std::size_t>(i)] == back.points[static_cast<std::size_t>(s)] + Vec2{1.0, 0.0});
