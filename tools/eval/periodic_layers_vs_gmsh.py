@@ -27,10 +27,9 @@ import math
 import os
 import re
 import sys
-import time
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from periodic_vs_gmsh import measure, run_pdmesh  # noqa: E402
+from periodic_vs_gmsh import generate_and_write, measure, run_pdmesh  # noqa: E402
 
 REPO = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 CASE = os.path.join(REPO, "examples", "periodic_hill", "case.toml")
@@ -144,15 +143,7 @@ def gmsh_channel(gmsh, curves, size, out):
     gmsh.model.mesh.field.setNumber(f, "Quads", 0)
     gmsh.model.mesh.field.setNumbers(f, "PointsList", [bp[0], bp[-1], top_left, top_right])
     gmsh.model.mesh.field.setAsBoundaryLayer(f)
-    gmsh.option.setNumber("Mesh.MeshSizeMax", size)
-    gmsh.option.setNumber("Mesh.Algorithm", 6)
-    start = time.perf_counter()
-    gmsh.model.mesh.generate(2)
-    seconds = time.perf_counter() - start
-    gmsh.option.setNumber("Mesh.MshFileVersion", 4.1)
-    gmsh.write(out)
-    gmsh.model.remove()
-    return seconds
+    return generate_and_write(gmsh, size, out)
 
 
 def main():

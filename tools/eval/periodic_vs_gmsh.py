@@ -92,6 +92,20 @@ def free_case(work):
     return path
 
 
+def generate_and_write(gmsh, size, out):
+    """Meshes the current model with Frontal-Delaunay at MeshSizeMax = size, writes MSH 4.1 to out,
+    removes the model; returns the meshing seconds."""
+    gmsh.option.setNumber("Mesh.MeshSizeMax", size)
+    gmsh.option.setNumber("Mesh.Algorithm", 6)
+    start = time.perf_counter()
+    gmsh.model.mesh.generate(2)
+    seconds = time.perf_counter() - start
+    gmsh.option.setNumber("Mesh.MshFileVersion", 4.1)
+    gmsh.write(out)
+    gmsh.model.remove()
+    return seconds
+
+
 def gmsh_cell(gmsh, periodic, out, size):
     gmsh.model.add("cell")
     geo = gmsh.model.geo
@@ -111,15 +125,7 @@ def gmsh_cell(gmsh, periodic, out, size):
     if periodic:
         gmsh.model.mesh.setPeriodic(1, [right], [left], [1, 0, 0, 1, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1])
         gmsh.model.mesh.setPeriodic(1, [top], [bottom], [1, 0, 0, 0, 0, 1, 0, 1, 0, 0, 1, 0, 0, 0, 0, 1])
-    gmsh.option.setNumber("Mesh.MeshSizeMax", size)
-    gmsh.option.setNumber("Mesh.Algorithm", 6)
-    start = time.perf_counter()
-    gmsh.model.mesh.generate(2)
-    seconds = time.perf_counter() - start
-    gmsh.option.setNumber("Mesh.MshFileVersion", 4.1)
-    gmsh.write(out)
-    gmsh.model.remove()
-    return seconds
+    return generate_and_write(gmsh, size, out)
 
 
 def main():
