@@ -14,11 +14,7 @@ namespace pdmesh {
 
 namespace {
 
-int curve_named(const Geometry& g, const std::string& name) {
-  for (std::size_t c = 0; c < g.curves.size(); ++c)
-    if (g.curves[c].name == name) return static_cast<int>(c);
-  throw Error(fmt::format("periodic layers: no curve '{}' in the layers' geometry", name));
-}
+int curve_named(const Geometry& g, const std::string& name) { return curves_by_name(g, {name}, "periodic layers")[0]; }
 
 // The curve among `curves` (all of the geometry's when null) other than `not_this` with an end at p;
 // -1 when none.
