@@ -54,25 +54,33 @@ LayerSettings settings(double h1, double g, double thickness, int layers = 0) {
   return s;
 }
 
-// Every pair of cell edges that meet other than at a shared node, by brute force (independent of
-// the generator's grid): 0 for a valid layer.
+// Every pair of cell edges that meet other than at a shared node, each pair whose bounding boxes
+// overlap tested exactly (a sweep over the boxes sorted by their left side, independent of the
+// generator's grid): 0 for a valid layer.
 int crossing_edges(const LayerMesh& m) {
-  std::vector<std::array<int, 2>> edges;
+  struct Edge {
+    int a, b;
+    double x0, x1, y0, y1;  // the bounding box
+  };
+  std::vector<Edge> edges;
   for (const LayerCell& c : m.cells) {
     const int k = c.triangle() ? 3 : 4;
-    for (int i = 0; i < k; ++i) edges.push_back({c.v[i], c.v[(i + 1) % k]});
+    for (int i = 0; i < k; ++i) {
+      const Vec2 p = m.nodes[c.v[i]], q = m.nodes[c.v[(i + 1) % k]];
+      edges.push_back(
+          {c.v[i], c.v[(i + 1) % k], std::min(p.x, q.x), std::max(p.x, q.x), std::min(p.y, q.y), std::max(p.y, q.y)});
+    }
   }
+  std::sort(edges.begin(), edges.end(), [](const Edge& e, const Edge& f) { return e.x0 < f.x0; });
   int bad = 0;
   for (std::size_t i = 0; i < edges.size(); ++i)
-    for (std::size_t j = i + 1; j < edges.size(); ++j) {
-      const auto& a = edges[i];
-      const auto& b = edges[j];
-      if (a[0] == b[0] || a[0] == b[1] || a[1] == b[0] || a[1] == b[1]) continue;
-      const Vec2 p = m.nodes[a[0]], q = m.nodes[a[1]], u = m.nodes[b[0]], v = m.nodes[b[1]];
-      if (std::max(p.x, q.x) < std::min(u.x, v.x) || std::max(u.x, v.x) < std::min(p.x, q.x) ||
-          std::max(p.y, q.y) < std::min(u.y, v.y) || std::max(u.y, v.y) < std::min(p.y, q.y))
-        continue;  // the boxes are apart
-      if (segments_intersect(m.nodes[a[0]], m.nodes[a[1]], m.nodes[b[0]], m.nodes[b[1]])) ++bad;
+    // Boxes that overlap in x: those after i whose left side is not right of i's right side.
+    for (std::size_t j = i + 1; j < edges.size() && edges[j].x0 <= edges[i].x1; ++j) {
+      const Edge& a = edges[i];
+      const Edge& b = edges[j];
+      if (a.a == b.a || a.a == b.b || a.b == b.a || a.b == b.b) continue;
+      if (a.y1 < b.y0 || b.y1 < a.y0) continue;  // the boxes are apart
+      if (segments_intersect(m.nodes[a.a], m.nodes[a.b], m.nodes[b.a], m.nodes[b.b])) ++bad;
     }
   return bad;
 }
@@ -84,6 +92,22 @@ int cells_of(const LayerMesh& m, LayerCellKind kind) {
 }
 
 }  // namespace
+
+TEST_CASE("the crossing check counts edges that cross, not edges that share a node", "[layers]") {
+  // Two quads side by side share an edge; a third, tilted over the second's far side, crosses it.
+  LayerMesh m;
+  m.nodes = {{0, 0}, {1, 0}, {1, 1}, {0, 1}, {2, 0}, {2, 1}, {1.5, 0.5}, {2.5, 0.4}, {2.5, 0.6}, {1.5, 0.6}};
+  LayerCell left, right, over;
+  left.v = {0, 1, 2, 3};
+  right.v = {1, 4, 5, 2};
+  CHECK(crossing_edges(m) == 0);
+  m.cells = {left, right};
+  CHECK(crossing_edges(m) == 0);
+  over.v = {6, 7, 8, 9};
+  m.cells.push_back(over);
+  // Its bottom and top edges cross the right quad's side x = 2.
+  CHECK(crossing_edges(m) == 2);
+}
 
 TEST_CASE("circle: the first height and the growth are exact, no fan", "[layers]") {
   const Geometry g = build_geometry({box({-5, -5}, {5, 5}, 4, "far"), circle({0, 0}, 1.0, 128, "wall")});
