@@ -23,7 +23,7 @@ _PICTURES = (".png", ".svg")
 _SVG_REPR_LIMIT = 20_000
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False, repr=False)
 class PeriodicPairs:
     """One periodic curve pair of a mesh (a ``[[periodic]]`` table, or a curve link of a file's
     ``$Periodic`` section): ``nodes[k] = (image point, source point)``, point indices into
@@ -43,6 +43,15 @@ class PeriodicPairs:
     angle_deg: float | None
     affine: np.ndarray | None
     max_mismatch: float
+
+    def __repr__(self) -> str:
+        if self.kind == "translate":
+            how = f"translate {self.translate}"
+        elif self.kind == "rotate":
+            how = f"rotate {self.angle_deg:g} deg about {self.center}"
+        else:
+            how = "no affine"
+        return f"<pdmesh.PeriodicPairs {self.source!r} -> {self.image!r}: {len(self.nodes)} pairs, {how}>"
 
     @classmethod
     def _from_core(cls, d: dict[str, Any]) -> "PeriodicPairs":
