@@ -175,11 +175,15 @@ class Mesher {
       }
       // The pairs as the command writes them into mesh.msh: with layers, the core's and the layers'
       // end columns in the merged mesh (write_layered_outputs), else the core's (mesh_and_measure).
-      const std::vector<PeriodicNodes> pairs =
+      const std::vector<PeriodicNodes> merged =
           layers ? merged_periodic_pairs(layers->mixed, session_->layered->layers->periodic_columns, *session_->inputs)
-                 : session_->inputs->periodic;
-      periodic->links = link_periodic_nodes(layers ? boundary_of(layers->mixed) : mesh, pairs);
-      for (const PeriodicNodes& p : pairs) periodic->transforms.push_back(p.transform);
+                 : std::vector<PeriodicNodes>{};
+      const std::vector<PeriodicNodes>& pairs = layers ? merged : session_->inputs->periodic;
+      if (!pairs.empty()) {
+        periodic->links =
+            layers ? link_periodic_nodes(boundary_of(layers->mixed), pairs) : link_periodic_nodes(mesh, pairs);
+        for (const PeriodicNodes& p : pairs) periodic->transforms.push_back(p.transform);
+      }
     }
     return MeshHandle{std::make_shared<const Mesh>(std::move(mesh)), session_, config.name, std::move(layers),
                       std::move(periodic)};
