@@ -14,7 +14,7 @@ from . import _core, size
 from ._progress import Progress
 from .errors import Cancelled, DeviceError, Error, GeometryError, InputError, LimitError, SimulationError
 from .geometry import Geometry
-from .mesh import Mesh
+from .mesh import Mesh, PeriodicPairs
 from .mesher import Case, Mesher, State, generate
 from ._smooth import smooth
 from .motion import MotionStep, MovingMesher, run_motion, transfer
@@ -29,6 +29,6 @@ def case_keys() -> list[str]:
 
 __all__ = [
     "Cancelled", "Case", "DeviceError", "Error", "Geometry", "GeometryError", "InputError", "LimitError", "Mesh",
-    "Mesher", "MotionStep", "MovingMesher", "Progress", "SimulationError", "State", "case_keys", "generate", "run_motion", "size",
+    "Mesher", "MotionStep", "MovingMesher", "PeriodicPairs", "Progress", "SimulationError", "State", "case_keys", "generate", "run_motion", "size",
     "smooth", "transfer", "__version__",
 ]

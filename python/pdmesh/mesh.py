@@ -4,9 +4,11 @@ quality, the command's writers and pictures, and adapters to meshio and matplotl
 from __future__ import annotations
 
 import json
+import math
 import os
 import tempfile
-from typing import Any, Sequence
+from dataclasses import dataclass
+from typing import Any, Literal, Sequence
 
 import numpy as np
 
@@ -21,6 +23,61 @@ _PICTURES = (".png", ".svg")
 _SVG_REPR_LIMIT = 20_000
 
 
+@dataclass(frozen=True, eq=False, repr=False)
+class PeriodicPairs:
+    """One periodic curve pair of a mesh (a ``[[periodic]]`` table, or a curve link of a file's
+    ``$Periodic`` section): ``nodes[k] = (image point, source point)``, point indices into
+    ``Mesh.points`` with the image point the transform of the source point. ``kind`` is "translate"
+    (``translate`` = (dx, dy)) or "rotate" (``center``, ``angle_deg``, counter-clockwise); for a mesh
+    a run made they are the table's transform as the run applied it, for a mesh read from a file they
+    are read off ``affine`` (None when the file gives no affine matrix). ``affine`` is the 4 x 4 matrix
+    of ``$Periodic`` (row-major, image = affine @ (x, y, 0, 1)); ``max_mismatch`` the largest distance
+    between a transformed source point and its image point (0 for pdmesh's pairs)."""
+
+    source: str
+    image: str
+    nodes: np.ndarray
+    kind: Literal["translate", "rotate"] | None
+    translate: tuple[float, float] | None
+    center: tuple[float, float] | None
+    angle_deg: float | None
+    affine: np.ndarray | None
+    max_mismatch: float
+
+    def __repr__(self) -> str:
+        if self.kind == "translate":
+            how = f"translate {self.translate}"
+        elif self.kind == "rotate":
+            how = f"rotate {self.angle_deg:g} deg about {self.center}"
+        else:
+            how = "no affine"
+        return f"<pdmesh.PeriodicPairs {self.source!r} -> {self.image!r}: {len(self.nodes)} pairs, {how}>"
+
+    @classmethod
+    def _from_core(cls, d: dict[str, Any]) -> "PeriodicPairs":
+        affine = d["affine"]
+        transform = d["transform"]
+        kind: Literal["translate", "rotate"] | None = None
+        translate = center = angle = None
+        if transform is None and affine is not None:
+            # A file's link: the affine matrix's rotation block and translation column.
+            r, t = affine[:2, :2], affine[:2, 3]
+            if np.array_equal(r, np.eye(2)):
+                transform = {"translate": (float(t[0]), float(t[1]))}
+            else:
+                # x -> R x + t is the rotation about c with (I - R) c = t.
+                c = np.linalg.solve(np.eye(2) - r, t)
+                transform = {"rotate": {"center": (float(c[0]), float(c[1])),
+                                        "angle_deg": math.degrees(math.atan2(r[1, 0], r[0, 0]))}}
+        if transform is not None and "translate" in transform:
+            kind, translate = "translate", tuple(transform["translate"])
+        elif transform is not None:
+            kind = "rotate"
+            center, angle = tuple(transform["rotate"]["center"]), float(transform["rotate"]["angle_deg"])
+        return cls(source=d["source"], image=d["image"], nodes=d["nodes"], kind=kind, translate=translate,
+                   center=center, angle_deg=angle, affine=affine, max_mismatch=float(d["max_mismatch"]))
+
+
 class Mesh:
     """A triangle mesh. ``points`` (N, 2) float64 and ``triangles`` (M, 3) int32 (0-based,
     counter-clockwise) are read-only views of the mesh's own memory: no copy is made. A mesh with
@@ -30,6 +87,7 @@ class Mesh:
     def __init__(self, core: Any):
         self._core = core
         self._edges = None
+        self._periodic: list[PeriodicPairs] | None = None
 
     @classmethod
     def read(cls, path: str | os.PathLike) -> "Mesh":
@@ -76,6 +134,22 @@ class Mesh:
         if self._edges is None:
             self._edges = self._core.boundary_edges()
         return self._edges
+
+    @property
+    def periodic(self) -> list[PeriodicPairs]:
+        """The periodic pairs, one ``PeriodicPairs`` per ``[[periodic]]`` table in the case's order
+        (the ``$Periodic`` section of the run's mesh.msh), or per curve link of a ``.msh`` file read
+        with ``Mesh.read``; an empty list for a mesh without them."""
+        if self._periodic is None:
+            self._periodic = [PeriodicPairs._from_core(d) for d in self._core.periodic_links()]
+        return list(self._periodic)
+
+    @property
+    def periodic_nodes(self) -> np.ndarray:
+        """(K, 2) int32: every (image point, source point) pair of ``periodic``, table after table;
+        (0, 2) for a mesh without periodic pairs (not an error)."""
+        pairs = [np.asarray(p.nodes) for p in self.periodic if len(p.nodes)]
+        return np.concatenate(pairs) if pairs else np.zeros((0, 2), dtype=np.int32)
 
     def quality(self, per_triangle: bool = True) -> dict[str, Any]:
         """The quality.json content (thesis tables 6.2-6.6 measures, histograms and spacing

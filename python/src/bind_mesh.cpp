@@ -1,6 +1,8 @@
 // pdmesh._core.Mesh: a triangle mesh with zero-copy numpy views, its boundary edges by curve name,
 // the quality measures of `pdmesh quality`, and the command's writers and pictures.
+#include <cmath>
 #include <filesystem>
+#include <numbers>
 #include <fmt/format.h>
 #include <nanobind/stl/optional.h>
 #include <nanobind/stl/string.h>
@@ -99,11 +101,55 @@ std::vector<std::string> write(const MeshHandle& h, const std::string& path, con
   {
     nb::gil_scoped_release release;
     // With layers the mixed-cell writers (msh, vtu, su2; InputError for the others).
-    written = h.layers ? write_mixed_mesh(h.layers->mixed, dir, p.stem().string(), {format})
-                       : write_mesh(*h.mesh, dir, p.stem().string(), {format}, {open_boundaries});
+    // The msh formats carry the pairs ($Periodic), as the run's mesh.msh.
+    const std::vector<PeriodicLink>* periodic = h.periodic->links.empty() ? nullptr : &h.periodic->links;
+    written = h.layers ? write_mixed_mesh(h.layers->mixed, dir, p.stem().string(), {format}, periodic)
+                       : write_mesh(*h.mesh, dir, p.stem().string(), {format}, {open_boundaries, periodic});
   }
   std::vector<std::string> out;
   for (const fs::path& w : written) out.push_back(w.string());
+  return out;
+}
+
+// One dict per periodic link: the curves' names, the (image, source) point pairs (K, 2) int32, the
+// 4 x 4 affine matrix (row-major, image = A source; None for a file's link without one), the largest
+// |A p_source - p_image| (NaN without an affine), and for a run's mesh the table's transform as the run
+// applied it ({"translate": (dx, dy)} or {"rotate": {"center": (x, y), "angle_deg": a}}; None when read).
+nb::list periodic_links(const MeshHandle& h) {
+  const Mesh& mesh = *h.mesh;
+  const PeriodicPairs& pairs = *h.periodic;
+  nb::list out;
+  for (std::size_t k = 0; k < pairs.links.size(); ++k) {
+    const PeriodicLink& l = pairs.links[k];
+    nb::dict d;
+    d["source"] = nb::str(mesh.curve_names.at(static_cast<std::size_t>(l.source_curve)).c_str());
+    d["image"] = nb::str(mesh.curve_names.at(static_cast<std::size_t>(l.curve)).c_str());
+    static_assert(sizeof(l.nodes[0]) == 2 * sizeof(int));
+    d["nodes"] = shared_view<int, 2>(l.nodes.empty() ? nullptr : l.nodes[0].data(), l.nodes.size(), h.periodic);
+    const bool has_affine = !std::isnan(l.max_mismatch);
+    if (has_affine) {
+      d["affine"] = shared_view<double, 4>(l.affine.data(), 4, h.periodic);
+    } else {
+      d["affine"] = nb::none();
+    }
+    d["max_mismatch"] = l.max_mismatch;
+    if (k < pairs.transforms.size()) {
+      const PeriodicTransform& t = pairs.transforms[k];
+      nb::dict transform;
+      if (t.is_rotation()) {
+        nb::dict rotate;
+        rotate["center"] = nb::make_tuple(t.center.x, t.center.y);
+        rotate["angle_deg"] = t.angle_rad * 180.0 / std::numbers::pi;
+        transform["rotate"] = rotate;
+      } else {
+        transform["translate"] = nb::make_tuple(t.shift.x, t.shift.y);
+      }
+      d["transform"] = transform;
+    } else {
+      d["transform"] = nb::none();
+    }
+    out.append(d);
+  }
   return out;
 }
 
@@ -185,6 +231,7 @@ void bind_mesh(nb::module_& m) {
       .def_prop_ro("curve_names", [](const MeshHandle& h) { return h.mesh->curve_names; })
       .def_prop_ro("name", [](const MeshHandle& h) { return h.name; })
       .def("boundary_edges", &boundary_edges, "Boundary edges by curve name, (K, 2) int32 each.")
+      .def("periodic_links", &periodic_links, "The periodic pairs, one dict per link (image, source).")
       .def("quality_json", &quality_json_of, "The quality.json document of this mesh.")
       .def("triangle_metrics", &triangle_metrics, "Per-triangle quality arrays.")
       .def("write", &write, nb::arg("path"), nb::arg("format"), nb::arg("open_boundaries"),
@@ -196,12 +243,15 @@ void bind_mesh(nb::module_& m) {
       "read_mesh",
       [](const std::string& path) {
         Mesh mesh;
+        auto periodic = std::make_shared<PeriodicPairs>();
         {
           nb::gil_scoped_release release;
-          mesh = read_mesh(path);
+          MeshReadReport report;
+          mesh = read_mesh(path, report);
+          periodic->links = std::move(report.periodic);  // an MSH file's $Periodic curve links
         }
         return MeshHandle{std::make_shared<const Mesh>(std::move(mesh)), nullptr, fs::path(path).stem().string(),
-                          nullptr};
+                          nullptr, std::move(periodic)};
       },
       nb::arg("path"), "Reads a .msh (2.2/4.1), .vtu, .su2 or Triangle .ele mesh.");
 }

@@ -16,6 +16,7 @@
 
 #include "app/config/environment.hpp"
 #include "app/pipeline/backend_choice.hpp"
+#include "app/pipeline/layer_periodic.hpp"
 #include "app/pipeline/layer_pipeline.hpp"
 #include "app/pipeline/mesh_pipeline.hpp"
 #include "bindings.hpp"
@@ -163,6 +164,7 @@ class Mesher {
     std::shared_ptr<const NodeSet> nodes = nodes_;
     Mesh mesh;
     std::shared_ptr<const LayerParts> layers;
+    auto periodic = std::make_shared<PeriodicPairs>();
     {
       nb::gil_scoped_release release;
       std::lock_guard lock(session_->mutex);
@@ -171,8 +173,20 @@ class Mesher {
       } else {
         mesh = mesh_and_measure(config, *session_->inputs, *session_->spacing, *nodes);
       }
+      // The pairs as the command writes them into mesh.msh: with layers, the core's and the layers'
+      // end columns in the merged mesh (write_layered_outputs), else the core's (mesh_and_measure).
+      const std::vector<PeriodicNodes> merged =
+          layers ? merged_periodic_pairs(layers->mixed, session_->layered->layers->periodic_columns, *session_->inputs)
+                 : std::vector<PeriodicNodes>{};
+      const std::vector<PeriodicNodes>& pairs = layers ? merged : session_->inputs->periodic;
+      if (!pairs.empty()) {
+        periodic->links =
+            layers ? link_periodic_nodes(boundary_of(layers->mixed), pairs) : link_periodic_nodes(mesh, pairs);
+        for (const PeriodicNodes& p : pairs) periodic->transforms.push_back(p.transform);
+      }
     }
-    return MeshHandle{std::make_shared<const Mesh>(std::move(mesh)), session_, config.name, std::move(layers)};
+    return MeshHandle{std::make_shared<const Mesh>(std::move(mesh)), session_, config.name, std::move(layers),
+                      std::move(periodic)};
   }
 
   int iterations_done() const { return state_ ? state_->iterations_done : 0; }

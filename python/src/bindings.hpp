@@ -63,6 +63,14 @@ struct LayerParts {
   Mesh core;
 };
 
+// A mesh's periodic pairs, one link per [[periodic]] table (or per curve link of a file's $Periodic
+// section), as mesh.msh's $Periodic holds them; for a mesh a run made also each table's transform as
+// the run applied it (empty for a mesh read from a file: a file holds the affine matrix only).
+struct PeriodicPairs {
+  std::vector<PeriodicLink> links;
+  std::vector<PeriodicTransform> transforms;
+};
+
 // A finished mesh and the session it came from (nullptr for a mesh read from a file). With layers,
 // `mesh` holds every point and every triangle (core and layer), and `layers` the rest.
 struct MeshHandle {
@@ -70,6 +78,8 @@ struct MeshHandle {
   std::shared_ptr<Session> session;
   std::string name;  // picture titles
   std::shared_ptr<const LayerParts> layers;
+  // Never null: no links without [[periodic]] (a motion step, a file without $Periodic).
+  std::shared_ptr<const PeriodicPairs> periodic = std::make_shared<const PeriodicPairs>();
 };
 
 // A read-only numpy view of `count` rows of `Cols` values at `data`, kept alive by `keep` (a

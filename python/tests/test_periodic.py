@@ -1,6 +1,7 @@
 """Case files with [[periodic]] tables through the Python API: the image curve carries the source's
 nodes, transformed exactly, as the command's mesh does; a table whose transform does not map the
-curves onto each other is an InputError naming the case file."""
+curves onto each other is an InputError naming the case file; Mesh.periodic holds the pairs that the
+run's mesh.msh writes into its $Periodic section (read back here by meshio, a reader of its own)."""
 
 from __future__ import annotations
 
@@ -10,7 +11,7 @@ import numpy as np
 import pytest
 
 import pdmesh
-from conftest import SOURCE_DIR
+from conftest import SOURCE_DIR, circle_in_square
 
 CELL = SOURCE_DIR / "tests" / "data" / "periodic" / "cell.toml"
 
@@ -59,3 +60,106 @@ def test_a_channel_with_layers_carries_the_inlets_nodes_on_the_outlet(tmp_path, 
     command("mesh", CHANNEL, "--out", tmp_path / "out", "--quiet", "--formats", "msh", "--device", "host")
     written = pdmesh.Mesh.read(tmp_path / "out" / "mesh.msh")
     assert np.array_equal(np.sort(mesh.points, axis=0), np.sort(written.points, axis=0))
+
+
+SECTOR = SOURCE_DIR / "tests" / "data" / "periodic" / "sector.toml"
+
+
+def msh_periodic(path):
+    """The $Periodic links of an MSH 4.1 file as meshio reads them: (image entity tag, source entity
+    tag), the 16 affine values and the (image, source) node tags less one, in file order."""
+    meshio = pytest.importorskip("meshio")
+    m = meshio.read(path)
+    assert m.gmsh_periodic is not None, f"{path} has no $Periodic section"
+    return m, [((int(tags[0]), int(tags[1])), np.asarray(affine), np.asarray(pairs))
+               for _dim, tags, affine, pairs in m.gmsh_periodic]
+
+
+def check_pairs_against_msh(mesh, path):
+    """Mesh.periodic is what the run's mesh.msh holds, bit for bit: the same points, the same pairs
+    in the same order, the same affine values; each pair's image point is the transform of its
+    source point exactly, and the pairs cover every node of both curves."""
+    written, links = msh_periodic(path)
+    # meshio's node indices are the file's tags less one; the points are the file's (17 digits).
+    assert np.array_equal(written.points[:, :2], mesh.points)
+    assert len(mesh.periodic) == len(links)
+    names = mesh.curve_names
+    for p, ((image_tag, source_tag), affine, pairs) in zip(mesh.periodic, links):
+        # The writer's curve entity tags are the curve indices plus one.
+        assert (names[image_tag - 1], names[source_tag - 1]) == (p.image, p.source)
+        assert p.nodes.dtype == np.int32 and p.nodes.shape == pairs.shape
+        assert np.array_equal(p.nodes, pairs)
+        assert p.affine.shape == (4, 4)
+        assert np.array_equal(p.affine.ravel(), affine)
+        assert p.max_mismatch == 0.0
+        image, source = mesh.points[p.nodes[:, 0]], mesh.points[p.nodes[:, 1]]
+        mapped = source @ p.affine[:2, :2].T + p.affine[:2, 3]
+        assert np.allclose(mapped, image, rtol=0, atol=1e-14)
+        for curve, column in ((p.image, 0), (p.source, 1)):
+            on_curve = np.unique(mesh.boundary_edges[curve])
+            assert np.array_equal(np.sort(p.nodes[:, column]), on_curve)
+    assert np.array_equal(mesh.periodic_nodes, np.concatenate([p.nodes for p in mesh.periodic]))
+
+
+def test_the_pairs_of_a_translated_cell_are_the_msh_files(tmp_path):
+    mesh = pdmesh.Case.from_toml(CELL).run(device="host", out=tmp_path / "out", formats=["msh"])
+    pairs = {(p.source, p.image): p for p in mesh.periodic}
+    assert list(pairs) == [("left", "right"), ("bottom", "top")]
+    # left -> right is inferred from the curves' ends, bottom -> top given.
+    assert pairs["left", "right"].kind == "translate" and pairs["left", "right"].translate == (1.0, 0.0)
+    assert pairs["bottom", "top"].kind == "translate" and pairs["bottom", "top"].translate == (0.0, 1.0)
+    assert pairs["left", "right"].center is None and pairs["left", "right"].angle_deg is None
+    for p in mesh.periodic:
+        image, source = mesh.points[p.nodes[:, 0]], mesh.points[p.nodes[:, 1]]
+        assert len(p.nodes) > 8
+        assert np.array_equal(image, source + np.array(p.translate))
+    check_pairs_against_msh(mesh, tmp_path / "out" / "mesh.msh")
+
+
+def test_the_pairs_of_a_rotated_sector_are_the_msh_files(tmp_path):
+    mesh = pdmesh.Case.from_toml(SECTOR).run(device="host", out=tmp_path / "out", formats=["msh"])
+    (p,) = mesh.periodic
+    assert (p.source, p.image, p.kind) == ("r0", "r60", "rotate")
+    assert p.center == (0.0, 0.0) and p.angle_deg == pytest.approx(60.0, abs=1e-12) and p.translate is None
+    source = mesh.points[p.nodes[:, 1]]
+    assert np.array_equal(source[:, 1], np.zeros(len(source)))  # the side at 0 degrees
+    check_pairs_against_msh(mesh, tmp_path / "out" / "mesh.msh")
+
+
+def test_pairs_written_by_mesh_write_and_read_back(tmp_path):
+    mesh = pdmesh.Case.from_toml(SECTOR).run(device="host")
+    # Mesh.write's msh files carry the pairs as the run's mesh.msh does.
+    mesh.write(tmp_path / "sector.msh")
+    check_pairs_against_msh(mesh, tmp_path / "sector.msh")
+    # Mesh.read gives them back, the transform read off the file's affine matrix.
+    read = pdmesh.Mesh.read(tmp_path / "sector.msh")
+    (p,), (q,) = mesh.periodic, read.periodic
+    assert (q.source, q.image, q.kind) == (p.source, p.image, "rotate")
+    assert np.array_equal(q.nodes, p.nodes) and np.array_equal(q.affine, p.affine)
+    assert q.angle_deg == pytest.approx(60.0, abs=1e-12)
+    assert q.center == pytest.approx((0.0, 0.0), abs=1e-12)
+    # MSH 2.2 ($Periodic with an "Affine" line) as well.
+    mesh.write(tmp_path / "sector22.msh", format="msh22")
+    (q22,) = pdmesh.Mesh.read(tmp_path / "sector22.msh").periodic
+    assert np.array_equal(q22.nodes, p.nodes) and np.array_equal(q22.affine, p.affine)
+
+
+def test_a_channel_with_layers_has_the_columns_among_its_pairs(tmp_path):
+    mesh = pdmesh.Case.from_toml(CHANNEL).run(device="host", out=tmp_path / "out", formats=["msh"])
+    (p,) = mesh.periodic
+    assert (p.source, p.image, p.kind, p.translate) == ("inlet", "outlet", "translate", (2.0, 0.0))
+    image, source = mesh.points[p.nodes[:, 0]], mesh.points[p.nodes[:, 1]]
+    assert np.array_equal(image[:, 1], source[:, 1])
+    # The first layer's node above the bottom wall is paired, as every layer node on the inlet.
+    assert np.any(np.isclose(source[:, 1], 0.002, rtol=0, atol=1e-12))
+    check_pairs_against_msh(mesh, tmp_path / "out" / "mesh.msh")
+
+
+def test_a_mesh_without_tables_has_no_pairs_and_no_error(tmp_path):
+    square, circle = circle_in_square()
+    mesh = pdmesh.generate([square, circle], iterations=20, seed=1)
+    assert mesh.periodic == []
+    assert mesh.periodic_nodes.shape == (0, 2) and mesh.periodic_nodes.dtype == np.int32
+    mesh.write(tmp_path / "plain.msh")
+    assert "$Periodic" not in (tmp_path / "plain.msh").read_text()
+    assert pdmesh.Mesh.read(tmp_path / "plain.msh").periodic == []

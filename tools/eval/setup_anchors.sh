@@ -30,5 +30,8 @@ venv=$PWD/tools/.venv-anchors
 # shapely for the user corpus: tools/cases/make_user_corpus.py (the GSHHS clip) and
 # tools/eval/corpus_anchors.py (the inputs' domains for Gmsh and the constraint check).
 "$venv/bin/python" -m pip install -q --disable-pip-version-check "shapely==2.2.0"
+# scikit-fem (with scipy) for tools/eval/periodic_homogenization.py: the periodic cell's effective
+# conductivity on pdmesh's and Gmsh's periodic meshes, the pairs tying the periodic DOFs.
+"$venv/bin/python" -m pip install -q --disable-pip-version-check "scikit-fem==12.0.2"
 ls "$venv/bin/mmg2d_O3" >/dev/null
 echo "setup_anchors: FreeFem++ $(command -v FreeFem++), gmsh $("$venv/bin/python" -c 'import gmsh; print(gmsh.__version__)'), mmg2d $venv/bin/mmg2d_O3"
