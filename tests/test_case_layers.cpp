@@ -279,6 +279,30 @@ TEST_CASE("a run with layers writes one mesh of layer quads and core triangles",
   fs::remove_all(out);
 }
 
+TEST_CASE("a layered run draws its mesh pictures on the background thread", "[app][layers]") {
+  const fs::path out = pdmesh_test::fresh_path("layers_pictures");
+  CaseConfig c = layered_case(out, "wall", true);
+  c.output.formats = {"msh", "png"};
+  ViewWindow view;
+  view.name = "wall";
+  view.window.add({0.4, -0.1});
+  view.window.add({0.6, 0.1});
+  c.output.views = {view};
+  c.timings_file = out.string() + ".timings.json";
+  pdmesh_test::temp_paths().add(*c.timings_file);
+  REQUIRE(run_mesh(c) == 0);
+  CHECK(fs::file_size(out / "mesh.png") > 0);
+  CHECK(fs::file_size(out / "mesh_wall.png") > 0);
+  // Queued as the run's other pictures are (one background job each, waited for at the end), not
+  // drawn in one phase of the run's own thread.
+  const std::string timings = read(*c.timings_file);
+  CHECK_THAT(timings, Catch::Contains("{\"name\": \"mesh.png\"") && Catch::Contains("\"waiting for pictures\""));
+  CHECK_THAT(timings, !Catch::Contains("\"mesh pictures\""));
+  const auto job = timings.find("{\"name\": \"mesh_wall.png\"");
+  REQUIRE(job != std::string::npos);
+  CHECK_THAT(timings.substr(job, timings.find('}', job) - job), Catch::Contains("\"background\": true"));
+}
+
 TEST_CASE("nodes the simulation snapped onto a layer front are left out of the core", "[app][layers]") {
   // A front (fixed points) and a plain curve; node 3 was snapped onto the front between its points.
   RawCurve far{"far", {{-2, -2}, {2, -2}, {2, 2}, {-2, 2}, {-2, -2}}, "memory", 1, {}};
