@@ -354,6 +354,28 @@ TEST_CASE("the core's spacing at a front node is at least 0.8 of its longest fro
   }
 }
 
+TEST_CASE("the core's field lowered at the fronts gives at()'s values in batches", "[app][layers]") {
+  // The core's inputs sample it with at_many (on several threads): every value must be at()'s.
+  const CaseConfig c = layered_case(pdmesh_test::fresh_path("layers_front_batch"), "wall", true);
+  const MeshInputs inputs(c);
+  const SpacingStage spacing(c, inputs);
+  const auto layered = build_layers(c, inputs, spacing);
+  const SpacingField& field = *layered->core.spacing.given;
+  std::vector<Vec2> points;
+  for (int i = 0; i <= 150; ++i)
+    for (int j = 0; j <= 150; ++j) points.push_back({-2.0 + 4.0 * i / 150, -2.0 + 4.0 * j / 150});
+  for (const Vec2 p : layered->sections.at(0).mesh.nodes) points.push_back(p);
+  std::vector<double> q;
+  field.at_many(points, q);
+  REQUIRE(q.size() == points.size());
+  std::size_t lowered = 0;
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    REQUIRE(q[i] == field.at(points[i]));  // bit for bit
+    lowered += q[i] < spacing.asked().at(points[i]);
+  }
+  CHECK(lowered > 1000);  // the fronts' sources lower the case's field near the wall
+}
+
 TEST_CASE("triangles keep the rays within 5 degrees of their walls' normals, quads do not", "[app][layers]") {
   // A split wall cell has an angle of 90 degrees + its ray's tilt from the segment's normal
   // (LayerSettings::max_ray_tilt_deg); quads keep the smoothed rays as they are.

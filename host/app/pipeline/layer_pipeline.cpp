@@ -14,6 +14,7 @@
 #include "app/pipeline/pipeline_detail.hpp"
 #include "core/atomic_file.hpp"
 #include "core/errors.hpp"
+#include "core/parallel.hpp"
 #include "io/mixed_mesh.hpp"
 #include "io/quality_report.hpp"
 #include "layers/front_geometry.hpp"
@@ -55,6 +56,13 @@ class FrontSpacing final : public SpacingField {
       q = std::min(q, it->q + gradation_ * dist(p, it->p));
     }
     return q;
+  }
+  // The core's inputs sample this field into their base tree in large batches (a quadtree's corners):
+  // the points are shared out to the cores, each value at()'s whatever the thread (the base field
+  // and the sources are only read).
+  void at_many(const std::vector<Vec2>& p, std::vector<double>& q) const override {
+    q.resize(p.size());
+    parallel_for(p.size(), [&](std::size_t i) { q[i] = at(p[i]); }, 1024);
   }
 
  private:
