@@ -54,7 +54,8 @@ std::vector<std::string> lines_of(const std::string& text) {
 
 }  // namespace
 
-TEST_CASE("the mixed-mesh SU2 text: the core's cells, then the layer's, the points, a marker per curve", "[io][layers]") {
+TEST_CASE("the mixed-mesh SU2 text: the core's cells, then the layer's, the points, a marker per curve",
+          "[io][layers]") {
   CHECK(mixed_su2_string(small_mixed_mesh()) ==
         "NDIME= 2\nNELEM= 4\n5 3 4 6 0\n5 4 5 6 1\n9 0 1 4 3 2\n9 1 2 5 4 3\nNPOIN= 7\n0 0 0\n1 0 1\n2 0 2\n0 0.5 3\n"
         "1 0.5 4\n2 0.5 5\n1 1 6\nNMARK= 2\nMARKER_TAG= wall\nMARKER_ELEMS= 2\n3 0 1\n3 1 2\nMARKER_TAG= far\n"
@@ -68,8 +69,7 @@ TEST_CASE("the mixed-mesh writers keep the items' order across the blocks format
   const std::vector<std::string> su2 = lines_of(mixed_su2_string(m));
   REQUIRE(su2.size() > static_cast<std::size_t>(3 + n + 2 * (n + 1)));
   for (int k = 0; k < n; ++k)
-    REQUIRE(su2[static_cast<std::size_t>(2 + k)] ==
-            fmt::format("9 {} {} {} {} {}", k, k + 1, n + 2 + k, n + 1 + k, k));
+    REQUIRE(su2[static_cast<std::size_t>(2 + k)] == fmt::format("9 {} {} {} {} {}", k, k + 1, n + 2 + k, n + 1 + k, k));
   REQUIRE(su2[static_cast<std::size_t>(2 + n)] == fmt::format("NPOIN= {}", 2 * (n + 1)));
   for (int i = 0; i < 2 * (n + 1); ++i)
     REQUIRE(su2[static_cast<std::size_t>(3 + n + i)] == fmt::format("{} {} {}", i % (n + 1), i > n ? 1 : 0, i));
@@ -79,7 +79,8 @@ TEST_CASE("the mixed-mesh writers keep the items' order across the blocks format
   for (int k = 0; k < n; ++k)  // tags after the 2n boundary lines
     REQUIRE(*(quads + 1 + k) == fmt::format("{} {} {} {} {}", 2 * n + 1 + k, k + 1, k + 2, n + 3 + k, n + 2 + k));
   const std::vector<std::string> vtu = lines_of(mixed_vtu_string(m));
-  const auto offsets = std::find(vtu.begin(), vtu.end(), "<DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">");
+  const auto offsets =
+      std::find(vtu.begin(), vtu.end(), "<DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">");
   REQUIRE(offsets != vtu.end());
   for (int k = 0; k < n; ++k) REQUIRE(*(offsets + 1 + k) == std::to_string(4 * (k + 1)));
 }

@@ -133,7 +133,8 @@ void write_mixed_msh41(const MixedMesh& mesh, TextSink& sink, const std::vector<
     append_items(sink, b.cells.size(), [&](std::string& line, std::size_t k) {
       const auto& c = mesh.cells[b.cells[k]];
       fmt::format_to(std::back_inserter(line), "{}", first_tag + k);
-      for (int i = 0; i < size_of(c); ++i) fmt::format_to(std::back_inserter(line), " {}", c[static_cast<std::size_t>(i)] + 1);
+      for (int i = 0; i < size_of(c); ++i)
+        fmt::format_to(std::back_inserter(line), " {}", c[static_cast<std::size_t>(i)] + 1);
       line += '\n';
     });
     tag += b.cells.size();
@@ -165,9 +166,11 @@ void write_mixed_vtu(const MixedMesh& mesh, TextSink& sink) {
   out += "</DataArray>\n<DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">\n";
   std::vector<std::size_t> offsets(mesh.cells.size());
   std::size_t offset = 0;
-  for (std::size_t k = 0; k < mesh.cells.size(); ++k) offsets[k] = offset += static_cast<std::size_t>(size_of(mesh.cells[k]));
-  append_items(sink, offsets.size(),
-               [&offsets](std::string& line, std::size_t k) { fmt::format_to(std::back_inserter(line), "{}\n", offsets[k]); });
+  for (std::size_t k = 0; k < mesh.cells.size(); ++k)
+    offsets[k] = offset += static_cast<std::size_t>(size_of(mesh.cells[k]));
+  append_items(sink, offsets.size(), [&offsets](std::string& line, std::size_t k) {
+    fmt::format_to(std::back_inserter(line), "{}\n", offsets[k]);
+  });
   out += "</DataArray>\n<DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\">\n";
   append_items(sink, mesh.cells.size(),
                [&mesh](std::string& line, std::size_t k) { line += size_of(mesh.cells[k]) == 4 ? "9\n" : "5\n"; });
@@ -175,7 +178,8 @@ void write_mixed_vtu(const MixedMesh& mesh, TextSink& sink) {
       "</DataArray>\n</Cells>\n<CellData Scalars=\"{0}\">\n"
       "<DataArray type=\"UInt8\" Name=\"{0}\" format=\"ascii\">\n",
       kLayerRegion);
-  append_items(sink, mesh.layer.size(), [&mesh](std::string& line, std::size_t k) { line += mesh.layer[k] ? "1\n" : "0\n"; });
+  append_items(sink, mesh.layer.size(),
+               [&mesh](std::string& line, std::size_t k) { line += mesh.layer[k] ? "1\n" : "0\n"; });
   out += "</DataArray>\n</CellData>\n</Piece>\n</UnstructuredGrid>\n</VTKFile>\n";
 }
 

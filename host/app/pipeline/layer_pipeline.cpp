@@ -62,7 +62,8 @@ class FrontSpacing final : public SpacingField {
   // and the sources are only read).
   void at_many(const std::vector<Vec2>& p, std::vector<double>& q) const override {
     q.resize(p.size());
-    parallel_for(p.size(), [&](std::size_t i) { q[i] = at(p[i]); }, 1024);
+    parallel_for(
+        p.size(), [&](std::size_t i) { q[i] = at(p[i]); }, 1024);
   }
 
  private:

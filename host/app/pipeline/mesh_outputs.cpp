@@ -161,7 +161,8 @@ std::vector<std::string> mesh_detail::queue_mesh_views(const CaseConfig& config,
   std::vector<std::string> pictures;
   if (!config.output.wants("png")) return pictures;
   const auto draw = [&](const std::string& file, const MeshPictureOptions& options) {
-    run.picture(file, [&mesh, options, keep, path = config.out_dir / file] { write_mesh_picture(path, mesh, options); });
+    run.picture(file,
+                [&mesh, options, keep, path = config.out_dir / file] { write_mesh_picture(path, mesh, options); });
     pictures.push_back(file);
   };
   draw("mesh.png", picture);
