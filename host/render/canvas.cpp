@@ -258,12 +258,6 @@ namespace {
 // Items per stroke or fill: large enough that cairo's per-call cost vanishes, small enough that the
 // path it tessellates at once stays in cache.
 constexpr int kBatchItems = 4096;
-// Triangles per fill: one fill is their union, seamless, so as many as memory allows (a cairo path
-// holds ~100 bytes a triangle); more only in meshes of over ~64k tiny triangles. Those with a known
-// count up to FillBatch::kSingleFillItems are one fill: the hairline stroke that closes the seams
-// between batches takes several times the fill's time and memory (cairo strokes every triangle's
-// outline).
-constexpr std::size_t kFillBatchItems = std::size_t{1} << 16;
 }  // namespace
 
 StrokeBatch::StrokeBatch(Canvas& canvas, Rgb colour, double width_px, cairo_line_cap_t cap)
@@ -307,8 +301,12 @@ void StrokeBatch::flush() {
 FillBatch::FillBatch(Canvas& canvas, Rgb colour, std::size_t items)
     : canvas_(canvas),
       colour_(colour),
-      // One past the count: the last item does not cut a batch that holds them all.
-      limit_(items > kFillBatchItems && items <= kSingleFillItems ? items + 1 : kFillBatchItems) {
+      // Triangles per fill: one fill is their union, seamless, so as many as memory allows (a cairo
+      // path holds ~100 bytes a triangle). A known count up to kSingleFillItems is one fill: the
+      // hairline stroke that closes the seams between batches takes several times the fill's time
+      // and memory (cairo strokes every triangle's outline). One past the count: the last item does
+      // not cut a batch that holds them all.
+      limit_(items > kBatchItems && items <= kSingleFillItems ? items + 1 : kBatchItems) {
   cairo_new_path(canvas_.context());
 }
 

@@ -169,6 +169,8 @@ class StrokeBatch {
 // same triangles.
 class FillBatch {
  public:
+  // Items per batch when they are more than kSingleFillItems or not known.
+  static constexpr std::size_t kBatchItems = std::size_t{1} << 16;
   static constexpr std::size_t kSingleFillItems = std::size_t{1} << 18;
   FillBatch(Canvas& canvas, Rgb colour, std::size_t items = 0);
   ~FillBatch() {

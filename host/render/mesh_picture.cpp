@@ -104,8 +104,8 @@ void draw_dense_shade(Canvas& canvas, const Mesh& mesh, double min_edge_world) {
     for (int v : tri) box.add(mesh.points[v]);
     return canvas.in_window(box);
   };
-  std::size_t items = 0;
-  {
+  std::size_t items = 0;  // not counted where they cannot fill more than one batch
+  if (mesh.triangles.size() > FillBatch::kBatchItems) {
     InterruptPoll poll(65536);
     for (const auto& tri : mesh.triangles) {
       poll.tick();
