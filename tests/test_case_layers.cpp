@@ -279,6 +279,30 @@ TEST_CASE("a run with layers writes one mesh of layer quads and core triangles",
   fs::remove_all(out);
 }
 
+TEST_CASE("a layered run draws its mesh pictures on the background thread", "[app][layers]") {
+  const fs::path out = pdmesh_test::fresh_path("layers_pictures");
+  CaseConfig c = layered_case(out, "wall", true);
+  c.output.formats = {"msh", "png"};
+  ViewWindow view;
+  view.name = "wall";
+  view.window.add({0.4, -0.1});
+  view.window.add({0.6, 0.1});
+  c.output.views = {view};
+  c.timings_file = out.string() + ".timings.json";
+  pdmesh_test::temp_paths().add(*c.timings_file);
+  REQUIRE(run_mesh(c) == 0);
+  CHECK(fs::file_size(out / "mesh.png") > 0);
+  CHECK(fs::file_size(out / "mesh_wall.png") > 0);
+  // Queued as the run's other pictures are (one background job each, waited for at the end), not
+  // drawn in one phase of the run's own thread.
+  const std::string timings = read(*c.timings_file);
+  CHECK_THAT(timings, Catch::Contains("{\"name\": \"mesh.png\"") && Catch::Contains("\"waiting for pictures\""));
+  CHECK_THAT(timings, !Catch::Contains("\"mesh pictures\""));
+  const auto job = timings.find("{\"name\": \"mesh_wall.png\"");
+  REQUIRE(job != std::string::npos);
+  CHECK_THAT(timings.substr(job, timings.find('}', job) - job), Catch::Contains("\"background\": true"));
+}
+
 TEST_CASE("nodes the simulation snapped onto a layer front are left out of the core", "[app][layers]") {
   // A front (fixed points) and a plain curve; node 3 was snapped onto the front between its points.
   RawCurve far{"far", {{-2, -2}, {2, -2}, {2, 2}, {-2, 2}, {-2, -2}}, "memory", 1, {}};
@@ -328,6 +352,28 @@ TEST_CASE("the core's spacing at a front node is at least 0.8 of its longest fro
     const double longest = std::max(dist(p, m.nodes[f.nodes[(k + 1) % n]]), dist(p, m.nodes[f.nodes[(k + n - 1) % n]]));
     CHECK(layered->core.spacing.given->at(p) >= std::min(spacing.field().at(p), 0.8 * longest) - 1e-12);
   }
+}
+
+TEST_CASE("the core's field lowered at the fronts gives at()'s values in batches", "[app][layers]") {
+  // The core's inputs sample it with at_many (on several threads): every value must be at()'s.
+  const CaseConfig c = layered_case(pdmesh_test::fresh_path("layers_front_batch"), "wall", true);
+  const MeshInputs inputs(c);
+  const SpacingStage spacing(c, inputs);
+  const auto layered = build_layers(c, inputs, spacing);
+  const SpacingField& field = *layered->core.spacing.given;
+  std::vector<Vec2> points;
+  for (int i = 0; i <= 150; ++i)
+    for (int j = 0; j <= 150; ++j) points.push_back({-2.0 + 4.0 * i / 150, -2.0 + 4.0 * j / 150});
+  for (const Vec2 p : layered->sections.at(0).mesh.nodes) points.push_back(p);
+  std::vector<double> q;
+  field.at_many(points, q);
+  REQUIRE(q.size() == points.size());
+  std::size_t lowered = 0;
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    REQUIRE(q[i] == field.at(points[i]));  // bit for bit
+    lowered += q[i] < spacing.asked().at(points[i]);
+  }
+  CHECK(lowered > 1000);  // the fronts' sources lower the case's field near the wall
 }
 
 TEST_CASE("triangles keep the rays within 5 degrees of their walls' normals, quads do not", "[app][layers]") {

@@ -745,6 +745,66 @@ TEST_CASE("a mesh denser than a quarter of its pixels is shaded without seams, t
   fs::remove_all(dir);
 }
 
+TEST_CASE("a fill batch told it holds up to 2^18 triangles fills them at once, without the seams' hairline",
+          "[render]") {
+  const fs::path dir = fresh_dir("single_fill");
+  // World [0, 200]^2 on a 200 x 200 plot without a title band: world (x, y) is pixel (x, 200 - y).
+  CanvasOptions options;
+  options.window = Box{{0, 0}, {200, 200}};
+  options.long_side = 200;
+  options.title_height = 0;
+  const auto grey = [](Canvas& c, int x, int y) {  // the red channel of picture pixel (x, y), 0-255
+    cairo_surface_flush(c.surface());
+    const unsigned char* row =
+        cairo_image_surface_get_data(c.surface()) + (y - c.first_row()) * cairo_image_surface_get_stride(c.surface());
+    return static_cast<int>((*reinterpret_cast<const std::uint32_t*>(row + 4 * x) >> 16) & 255);
+  };
+  // The square [50, 150]^2 (pixels 50-149) as 72,200 triangles: more than one batch of 65,536.
+  const int k = 190;
+  const auto at = [&](int i, int j) { return Vec2{50.0 + 100.0 * i / k, 50.0 + 100.0 * j / k}; };
+  const std::size_t items = 2 * static_cast<std::size_t>(k) * k;
+  REQUIRE(items > 65536);
+  REQUIRE(items <= FillBatch::kSingleFillItems);
+  Canvas canvas(options, ImageFormat::Png, dir / "a.png");
+  REQUIRE(canvas.scale() == 1.0);
+  {
+    FillBatch fill(canvas, colours::kBlack, items);
+    for (int j = 0; j < k; ++j)
+      for (int i = 0; i < k; ++i) {
+        fill.triangle(at(i, j), at(i + 1, j), at(i + 1, j + 1));
+        fill.triangle(at(i, j), at(i + 1, j + 1), at(i, j + 1));
+      }
+  }
+  // Their union, filled once: full inside, nothing beyond the square's edges (a hairline stroke of
+  // the batches' outlines would put a quarter pixel of ink on the pixels around it).
+  for (const int y : {50, 100, 149}) {
+    CHECK(grey(canvas, 50, y) == 0);
+    CHECK(grey(canvas, 100, y) == 0);
+    CHECK(grey(canvas, 149, y) == 0);
+    CHECK(grey(canvas, 49, y) == 255);
+    CHECK(grey(canvas, 150, y) == 255);
+  }
+  for (const int x : {50, 100, 149}) {
+    CHECK(grey(canvas, x, 49) == 255);
+    CHECK(grey(canvas, x, 150) == 255);
+  }
+  // The same in a mesh picture whose shade is one such fill: drawn in bands, it is the picture one
+  // canvas draws (every band counts the same items).
+  Mesh m = grid_mesh(k, [](double x, double y) { return Vec2{0.1 * x, 0.1 * y}; });
+  MeshPictureOptions o;
+  o.window = Box{{-0.5, -0.5}, {0.6, 0.6}};
+  o.long_side = 1000;  // a quarter of its pixels is more than the triangles: no pixel splat
+  o.bands = 1;
+  write_mesh_picture(dir / "one.png", m, o);
+  o.bands = 4;
+  write_mesh_picture(dir / "bands.png", m, o);
+  Png one(dir / "one.png"), banded(dir / "bands.png");
+  REQUIRE(one.ok());
+  REQUIRE(banded.ok());
+  CHECK(differing_pixels(one, banded) == 0);
+  fs::remove_all(dir);
+}
+
 TEST_CASE("a banded picture with colour in some bands only is one RGB PNG, pixel for pixel one canvas' picture",
           "[render]") {
   const fs::path dir = fresh_dir("mixed_bands");

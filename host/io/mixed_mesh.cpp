@@ -10,6 +10,8 @@
 #include "core/atomic_file.hpp"
 #include "core/errors.hpp"
 #include "core/g17.hpp"
+#include "core/text_blocks.hpp"
+#include "core/text_sink.hpp"
 #include "io/mesh_io_common.hpp"
 #include "io/msh_writer.hpp"
 
@@ -63,10 +65,17 @@ std::size_t MixedMesh::quads() const {
   return n;
 }
 
-std::string mixed_msh41_string(const MixedMesh& mesh, const std::vector<PeriodicLink>* periodic) {
+namespace {
+
+// The writers append to a TextSink as the triangle meshes' do (io/msh_writer.cpp): the long sections
+// (points, cells) are formatted in blocks on the worker threads and appended in order
+// (core/text_blocks.hpp), the same text a loop over the items appends; a sink bound to the file writes
+// it in pieces.
+void write_mixed_msh41(const MixedMesh& mesh, TextSink& sink, const std::vector<PeriodicLink>* periodic) {
   const Mesh curves = curves_of(mesh);
   const std::size_t nc = mesh.curve_names.size();
-  std::string out = "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n";
+  std::string& out = sink.text();
+  out += "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n";
   out += fmt::format("$PhysicalNames\n{}\n", nc + 2);
   for (std::size_t c = 0; c < nc; ++c) out += fmt::format("1 {} \"{}\"\n", c + 1, curve_label(curves, c));
   out += fmt::format("2 {} \"{}\"\n2 {} \"{}\"\n$EndPhysicalNames\n", nc + 1, kCoreRegion, nc + 2, kLayerRegion);
@@ -81,12 +90,12 @@ std::string mixed_msh41_string(const MixedMesh& mesh, const std::vector<Periodic
   out += fmt::format("1 {} 1 {} 0\n2 {} 1 {} 0\n$EndEntities\n", box(all), nc + 1, box(all), nc + 2);
   const std::size_t n = mesh.points.size();
   out += fmt::format("$Nodes\n1 {} 1 {}\n2 1 0 {}\n", n, n, n);
-  auto to = std::back_inserter(out);
-  for (std::size_t i = 0; i < n; ++i) fmt::format_to(to, "{}\n", i + 1);
-  for (const Vec2 p : mesh.points) {
-    append_point(out, p);
-    out += " 0\n";
-  }
+  append_items(sink, n,
+               [](std::string& line, std::size_t i) { fmt::format_to(std::back_inserter(line), "{}\n", i + 1); });
+  append_items(sink, n, [&mesh](std::string& line, std::size_t i) {
+    append_point(line, mesh.points[i]);
+    line += " 0\n";
+  });
   out += "$EndNodes\n";
   // Blocks: the lines of each curve, then (surface, type) = (1, 2), (2, 2), (2, 3) where not empty.
   std::vector<std::size_t> per_curve(nc, 0);
@@ -112,74 +121,90 @@ std::string mixed_msh41_string(const MixedMesh& mesh, const std::vector<Periodic
     out += fmt::format("1 {} 1 {}\n", c + 1, per_curve[c]);
     for (std::size_t k = 0; k < per_curve[c]; ++k, ++next) {
       const auto& e = mesh.boundary_edges[order[next]];
-      fmt::format_to(to, "{} {} {}\n", tag++, e.a + 1, e.b + 1);
+      fmt::format_to(std::back_inserter(out), "{} {} {}\n", tag++, e.a + 1, e.b + 1);
+      sink.piece_done();
     }
   }
   for (const Block& b : blocks) {
     if (b.cells.empty()) continue;
     out += fmt::format("2 {} {} {}\n", b.entity, b.type, b.cells.size());
-    for (const std::size_t k : b.cells) {
-      const auto& c = mesh.cells[k];
-      fmt::format_to(to, "{}", tag++);
-      for (int i = 0; i < size_of(c); ++i) fmt::format_to(to, " {}", c[static_cast<std::size_t>(i)] + 1);
-      out += '\n';
-    }
+    // Cell k of the block gets the tag first_tag + k: tags run on from the elements before.
+    const std::size_t first_tag = tag;
+    append_items(sink, b.cells.size(), [&](std::string& line, std::size_t k) {
+      const auto& c = mesh.cells[b.cells[k]];
+      fmt::format_to(std::back_inserter(line), "{}", first_tag + k);
+      for (int i = 0; i < size_of(c); ++i)
+        fmt::format_to(std::back_inserter(line), " {}", c[static_cast<std::size_t>(i)] + 1);
+      line += '\n';
+    });
+    tag += b.cells.size();
   }
   out += "$EndElements\n";
   append_msh_periodic(out, periodic, true);
-  return out;
 }
 
-std::string mixed_vtu_string(const MixedMesh& mesh) {
-  std::string out = fmt::format(
+void write_mixed_vtu(const MixedMesh& mesh, TextSink& sink) {
+  std::string& out = sink.text();
+  out += fmt::format(
       "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\">\n"
       "<UnstructuredGrid>\n<Piece NumberOfPoints=\"{}\" NumberOfCells=\"{}\">\n<Points>\n"
       "<DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">\n",
       mesh.points.size(), mesh.cells.size());
-  for (const Vec2 p : mesh.points) {
-    append_point(out, p);
-    out += " 0\n";
-  }
+  append_items(sink, mesh.points.size(), [&mesh](std::string& line, std::size_t i) {
+    append_point(line, mesh.points[i]);
+    line += " 0\n";
+  });
   out += "</DataArray>\n</Points>\n";
-  auto to = std::back_inserter(out);
   if (!mesh.point_data.empty()) append_point_data(out, mesh);
   out += "<Cells>\n<DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">\n";
-  for (const auto& c : mesh.cells) {
-    for (int i = 0; i < size_of(c); ++i) fmt::format_to(to, "{}{}", i ? " " : "", c[static_cast<std::size_t>(i)]);
-    out += '\n';
-  }
+  append_items(sink, mesh.cells.size(), [&mesh](std::string& line, std::size_t k) {
+    const auto& c = mesh.cells[k];
+    for (int i = 0; i < size_of(c); ++i)
+      fmt::format_to(std::back_inserter(line), "{}{}", i ? " " : "", c[static_cast<std::size_t>(i)]);
+    line += '\n';
+  });
   out += "</DataArray>\n<DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">\n";
+  std::vector<std::size_t> offsets(mesh.cells.size());
   std::size_t offset = 0;
-  for (const auto& c : mesh.cells) fmt::format_to(to, "{}\n", offset += static_cast<std::size_t>(size_of(c)));
+  for (std::size_t k = 0; k < mesh.cells.size(); ++k)
+    offsets[k] = offset += static_cast<std::size_t>(size_of(mesh.cells[k]));
+  append_items(sink, offsets.size(), [&offsets](std::string& line, std::size_t k) {
+    fmt::format_to(std::back_inserter(line), "{}\n", offsets[k]);
+  });
   out += "</DataArray>\n<DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\">\n";
-  for (const auto& c : mesh.cells) out += size_of(c) == 4 ? "9\n" : "5\n";
+  append_items(sink, mesh.cells.size(),
+               [&mesh](std::string& line, std::size_t k) { line += size_of(mesh.cells[k]) == 4 ? "9\n" : "5\n"; });
   out += fmt::format(
       "</DataArray>\n</Cells>\n<CellData Scalars=\"{0}\">\n"
       "<DataArray type=\"UInt8\" Name=\"{0}\" format=\"ascii\">\n",
       kLayerRegion);
-  for (const auto l : mesh.layer) out += l ? "1\n" : "0\n";
+  append_items(sink, mesh.layer.size(),
+               [&mesh](std::string& line, std::size_t k) { line += mesh.layer[k] ? "1\n" : "0\n"; });
   out += "</DataArray>\n</CellData>\n</Piece>\n</UnstructuredGrid>\n</VTKFile>\n";
-  return out;
 }
 
-std::string mixed_su2_string(const MixedMesh& mesh) {
+void write_mixed_su2(const MixedMesh& mesh, TextSink& sink) {
   const Mesh curves = curves_of(mesh);
-  std::string out = fmt::format("NDIME= 2\nNELEM= {}\n", mesh.cells.size());
-  auto to = std::back_inserter(out);
-  std::size_t id = 0;
+  std::string& out = sink.text();
+  out += fmt::format("NDIME= 2\nNELEM= {}\n", mesh.cells.size());
+  // The core's cells, then the layer's, each in mesh order; element k of that order has the id k.
+  std::vector<std::size_t> order;
+  order.reserve(mesh.cells.size());
   for (int region = 0; region < 2; ++region)
-    for (std::size_t k = 0; k < mesh.cells.size(); ++k) {
-      if (mesh.layer[k] != region) continue;
-      const auto& c = mesh.cells[k];
-      fmt::format_to(to, "{}", size_of(c) == 4 ? 9 : 5);
-      for (int i = 0; i < size_of(c); ++i) fmt::format_to(to, " {}", c[static_cast<std::size_t>(i)]);
-      fmt::format_to(to, " {}\n", id++);
-    }
+    for (std::size_t k = 0; k < mesh.cells.size(); ++k)
+      if (mesh.layer[k] == region) order.push_back(k);
+  append_items(sink, order.size(), [&](std::string& line, std::size_t id) {
+    const auto& c = mesh.cells[order[id]];
+    auto to = std::back_inserter(line);
+    fmt::format_to(to, "{}", size_of(c) == 4 ? 9 : 5);
+    for (int i = 0; i < size_of(c); ++i) fmt::format_to(to, " {}", c[static_cast<std::size_t>(i)]);
+    fmt::format_to(to, " {}\n", id);
+  });
   out += fmt::format("NPOIN= {}\n", mesh.points.size());
-  for (std::size_t i = 0; i < mesh.points.size(); ++i) {
-    append_point(out, mesh.points[i]);
-    fmt::format_to(to, " {}\n", i);
-  }
+  append_items(sink, mesh.points.size(), [&mesh](std::string& line, std::size_t i) {
+    append_point(line, mesh.points[i]);
+    fmt::format_to(std::back_inserter(line), " {}\n", i);
+  });
   const std::size_t nc = mesh.curve_names.size();
   std::vector<std::vector<std::size_t>> per_curve(nc);
   for (std::size_t k = 0; k < mesh.boundary_edges.size(); ++k)
@@ -187,28 +212,50 @@ std::string mixed_su2_string(const MixedMesh& mesh) {
   out += fmt::format("NMARK= {}\n", nc);
   for (std::size_t c = 0; c < nc; ++c) {
     out += fmt::format("MARKER_TAG= {}\nMARKER_ELEMS= {}\n", curve_label(curves, c, true), per_curve[c].size());
-    for (const std::size_t k : per_curve[c])
-      fmt::format_to(to, "3 {} {}\n", mesh.boundary_edges[k].a, mesh.boundary_edges[k].b);
+    for (const std::size_t k : per_curve[c]) {
+      fmt::format_to(std::back_inserter(out), "3 {} {}\n", mesh.boundary_edges[k].a, mesh.boundary_edges[k].b);
+      sink.piece_done();
+    }
   }
-  return out;
+}
+
+}  // namespace
+
+std::string mixed_msh41_string(const MixedMesh& mesh, const std::vector<PeriodicLink>* periodic) {
+  TextSink sink;
+  write_mixed_msh41(mesh, sink, periodic);
+  return sink.take();
+}
+
+std::string mixed_vtu_string(const MixedMesh& mesh) {
+  TextSink sink;
+  write_mixed_vtu(mesh, sink);
+  return sink.take();
+}
+
+std::string mixed_su2_string(const MixedMesh& mesh) {
+  TextSink sink;
+  write_mixed_su2(mesh, sink);
+  return sink.take();
 }
 
 std::vector<std::filesystem::path> write_mixed_mesh(const MixedMesh& mesh, const std::filesystem::path& dir,
                                                     const std::string& stem, const std::vector<std::string>& formats,
                                                     const std::vector<PeriodicLink>* periodic) {
+  for (const std::string& f : formats)
+    if (f != "msh" && f != "vtu" && f != "su2")
+      throw InputError(fmt::format("output.formats: '{}' cannot hold a boundary-layer mesh (msh, vtu and su2 can)", f));
   std::vector<std::filesystem::path> written;
   for (const std::string& f : formats) {
-    std::string text;
-    if (f == "msh")
-      text = mixed_msh41_string(mesh, periodic);
-    else if (f == "vtu")
-      text = mixed_vtu_string(mesh);
-    else if (f == "su2")
-      text = mixed_su2_string(mesh);
-    else
-      throw InputError(fmt::format("output.formats: '{}' cannot hold a boundary-layer mesh (msh, vtu and su2 can)", f));
     const std::filesystem::path path = dir / (stem + "." + f);
-    write_file_atomically(path, text);
+    write_text_atomically(path, [&](TextSink& sink) {
+      if (f == "msh")
+        write_mixed_msh41(mesh, sink, periodic);
+      else if (f == "vtu")
+        write_mixed_vtu(mesh, sink);
+      else
+        write_mixed_su2(mesh, sink);
+    });
     written.push_back(path);
   }
   return written;

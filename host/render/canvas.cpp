@@ -258,9 +258,6 @@ namespace {
 // Items per stroke or fill: large enough that cairo's per-call cost vanishes, small enough that the
 // path it tessellates at once stays in cache.
 constexpr int kBatchItems = 4096;
-// Triangles per fill: one fill is their union, seamless, so as many as memory allows (a cairo path
-// holds ~100 bytes a triangle); more only in meshes of over ~64k tiny triangles.
-constexpr int kFillBatchItems = 1 << 16;
 }  // namespace
 
 StrokeBatch::StrokeBatch(Canvas& canvas, Rgb colour, double width_px, cairo_line_cap_t cap)
@@ -301,7 +298,15 @@ void StrokeBatch::flush() {
   count_ = 0;
 }
 
-FillBatch::FillBatch(Canvas& canvas, Rgb colour) : canvas_(canvas), colour_(colour) {
+FillBatch::FillBatch(Canvas& canvas, Rgb colour, std::size_t items)
+    : canvas_(canvas),
+      colour_(colour),
+      // Triangles per fill: one fill is their union, seamless, so as many as memory allows (a cairo
+      // path holds ~100 bytes a triangle). A known count up to kSingleFillItems is one fill: the
+      // hairline stroke that closes the seams between batches takes several times the fill's time
+      // and memory (cairo strokes every triangle's outline). One past the count: the last item does
+      // not cut a batch that holds them all.
+      limit_(items > kBatchItems && items <= kSingleFillItems ? items + 1 : kBatchItems) {
   cairo_new_path(canvas_.context());
 }
 
@@ -312,11 +317,11 @@ void FillBatch::triangle(Vec2 a, Vec2 b, Vec2 c) {
   cairo_line_to(cr, pb.x, pb.y);
   cairo_line_to(cr, pc.x, pc.y);
   cairo_close_path(cr);
-  if (++count_ >= kFillBatchItems) flush(true);
+  if (++count_ >= limit_) flush(true);
 }
 
 void FillBatch::skip() {
-  if (++count_ >= kFillBatchItems) flush(true);
+  if (++count_ >= limit_) flush(true);
 }
 
 void FillBatch::flush(bool cut) {

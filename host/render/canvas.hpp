@@ -1,6 +1,7 @@
 // A drawing surface for pdmesh pictures (cairo, PNG or SVG): a world window mapped to pixels with
 // the aspect ratio preserved, a title band on top, an optional side band (colour bars) and a scale bar.
 #pragma once
+#include <cstddef>
 #include <exception>
 #include <cairo.h>
 
@@ -162,10 +163,16 @@ class StrokeBatch {
 // Many triangles of one colour filled as one path: their union, without the anti-aliasing seams that
 // separate fills leave between neighbours (Canvas::fill_triangle closes them with a hairline stroke
 // per triangle, which cost most of a 30P30N mesh picture). A mesh with more triangles than one batch
-// holds gets the hairline once per batch, where batches meet.
+// holds gets the hairline once per batch, where batches meet. `items` (0: not known), the triangles
+// and skips the caller will give: up to kSingleFillItems they are one batch, one fill without the
+// hairline. Every band of a picture must be given the same count, so that each cuts its batches at the
+// same triangles.
 class FillBatch {
  public:
-  FillBatch(Canvas& canvas, Rgb colour);
+  // Items per batch when they are more than kSingleFillItems or not known.
+  static constexpr std::size_t kBatchItems = std::size_t{1} << 16;
+  static constexpr std::size_t kSingleFillItems = std::size_t{1} << 18;
+  FillBatch(Canvas& canvas, Rgb colour, std::size_t items = 0);
   ~FillBatch() {
     if (std::uncaught_exceptions() == 0) flush();
   }
@@ -178,7 +185,8 @@ class FillBatch {
  private:
   Canvas& canvas_;
   Rgb colour_;
-  int count_ = 0;
+  std::size_t limit_;  // items per batch
+  std::size_t count_ = 0;
   bool cut_ = false;
 };
 

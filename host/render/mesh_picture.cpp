@@ -92,20 +92,39 @@ bool shown(Vec2 a, Vec2 b, double min_edge_world) { return dist(a, b) >= min_edg
 void draw_dense_shade(Canvas& canvas, const Mesh& mesh, double min_edge_world) {
   std::optional<PixelSplat> splat;
   if (splat_worthwhile(canvas, mesh.triangles.size())) splat.emplace(canvas, kDenseShade);
-  FillBatch dense(canvas, kDenseShade);
+  // The triangles in the window with an edge too short to draw, but for those the splat takes: the fill
+  // batch's items, the same count in every band (FillBatch). `shaded` also gives the triangle's box
+  // and whether all three of its edges are too short.
+  const auto shaded = [&](const std::array<int, 3>& tri, Box& box, bool& all_short) {
+    const Vec2 a = mesh.points[tri[0]], b = mesh.points[tri[1]], c = mesh.points[tri[2]];
+    const bool ab = shown(a, b, min_edge_world), bc = shown(b, c, min_edge_world), ca = shown(c, a, min_edge_world);
+    all_short = !ab && !bc && !ca;
+    if (ab && bc && ca) return false;
+    box = Box{};
+    for (int v : tri) box.add(mesh.points[v]);
+    return canvas.in_window(box);
+  };
+  std::size_t items = 0;  // not counted where they cannot fill more than one batch
+  if (mesh.triangles.size() > FillBatch::kBatchItems) {
+    InterruptPoll poll(65536);
+    for (const auto& tri : mesh.triangles) {
+      poll.tick();
+      Box box;
+      bool all_short = false;
+      items += shaded(tri, box, all_short) && !(splat && all_short);
+    }
+  }
+  FillBatch dense(canvas, kDenseShade, items);
   InterruptPoll poll(65536);
   for (const auto& tri : mesh.triangles) {
     poll.tick();
-    const Vec2 a = mesh.points[tri[0]], b = mesh.points[tri[1]], c = mesh.points[tri[2]];
-    const bool ab = shown(a, b, min_edge_world), bc = shown(b, c, min_edge_world), ca = shown(c, a, min_edge_world);
-    if (ab && bc && ca) continue;
     Box box;
-    for (int v : tri) box.add(mesh.points[v]);
-    if (!canvas.in_window(box)) continue;
-    if (splat && !ab && !bc && !ca) {
+    bool all_short = false;
+    if (!shaded(tri, box, all_short)) continue;
+    if (splat && all_short) {
       if (canvas.visible(box)) splat->box(box);
     } else if (canvas.visible(box)) {
-      dense.triangle(a, b, c);
+      dense.triangle(mesh.points[tri[0]], mesh.points[tri[1]], mesh.points[tri[2]]);
     } else {
       dense.skip();  // in another band (see draw_edges)
     }

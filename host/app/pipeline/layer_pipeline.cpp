@@ -14,6 +14,7 @@
 #include "app/pipeline/pipeline_detail.hpp"
 #include "core/atomic_file.hpp"
 #include "core/errors.hpp"
+#include "core/parallel.hpp"
 #include "io/mixed_mesh.hpp"
 #include "io/quality_report.hpp"
 #include "layers/front_geometry.hpp"
@@ -55,6 +56,14 @@ class FrontSpacing final : public SpacingField {
       q = std::min(q, it->q + gradation_ * dist(p, it->p));
     }
     return q;
+  }
+  // The core's inputs sample this field into their base tree in large batches (a quadtree's corners):
+  // the points are shared out to the cores, each value at()'s whatever the thread (the base field
+  // and the sources are only read).
+  void at_many(const std::vector<Vec2>& p, std::vector<double>& q) const override {
+    q.resize(p.size());
+    parallel_for(
+        p.size(), [&](std::size_t i) { q[i] = at(p[i]); }, 1024);
   }
 
  private:
@@ -719,28 +728,6 @@ std::vector<fs::path> write_layered_mesh_files(const CaseConfig& config, const M
   return write_mixed_mesh(inputs.projection ? lonlat : mixed, config.out_dir, "mesh", formats, &periodic);
 }
 
-// mesh.png and one picture per output view, when the case asks for png; returns the file names.
-std::vector<std::string> write_layered_pictures(const CaseConfig& config, const MixedMesh& mixed, const Mesh& core_mesh,
-                                                RunPhases& phases) {
-  std::vector<std::string> pictures;
-  if (!config.output.wants("png")) return pictures;
-  const auto picture_timer = phases.phase("mesh pictures");
-  const Mesh drawn = triangulated(mixed);
-  MeshPictureOptions picture;
-  picture.title = fmt::format("{} - mesh ({} cells, {} in the boundary layer)", config.name, mixed.cells.size(),
-                              mixed.cells.size() - core_mesh.triangles.size());
-  write_mesh_picture(config.out_dir / "mesh.png", drawn, picture);
-  pictures.push_back("mesh.png");
-  for (const ViewWindow& view : config.output.views) {
-    MeshPictureOptions zoomed = picture;
-    zoomed.title += " - " + view.name;
-    zoomed.window = view.window;
-    write_mesh_picture(config.out_dir / fmt::format("mesh_{}.png", view.name), drawn, zoomed);
-    pictures.push_back(fmt::format("mesh_{}.png", view.name));
-  }
-  return pictures;
-}
-
 }  // namespace
 
 MixedMesh merged_layer_mesh(const MeshInputs& inputs, const LayeredCase& layered, const MeshInputs& core_inputs,
@@ -755,7 +742,16 @@ void write_layered_outputs(const CaseConfig& config, const MeshInputs& inputs, c
   // [[periodic]]: the core's pairs and the layers' end columns, found in the merged mesh.
   const std::vector<PeriodicLink> periodic =
       link_periodic_nodes(boundary_of(mixed), merged_periodic_pairs(mixed, layered.periodic_columns, core_inputs));
+  // The pictures (the quads drawn split) are drawn on the background thread while the quality is
+  // measured and the files are written; `drawn` stays alive until the wait below (also when something
+  // throws).
+  const Mesh drawn = config.output.wants("png") ? triangulated(mixed) : Mesh{};
   timer.stop();
+  const PictureGuard guard(phases);
+  MeshPictureOptions picture;
+  picture.title = fmt::format("{} - mesh ({} cells, {} in the boundary layer)", config.name, mixed.cells.size(),
+                              mixed.cells.size() - core_mesh.triangles.size());
+  const std::vector<std::string> pictures = mesh_detail::queue_mesh_views(config, drawn, picture, phases);
   timer = phases.phase("quality");
   QualitySummary core_summary = summarize_quality(core_mesh);
   core_summary.points = core_mesh.points.size();
@@ -859,7 +855,10 @@ void write_layered_outputs(const CaseConfig& config, const MeshInputs& inputs, c
              mixed.curve_names[static_cast<std::size_t>(l.source_curve)],
              mixed.curve_names[static_cast<std::size_t>(l.curve)], l.nodes.size(), l.max_mismatch);
   const std::vector<fs::path> written = write_layered_mesh_files(config, inputs, mixed, phases, periodic);
-  const std::vector<std::string> pictures = write_layered_pictures(config, mixed, core_mesh, phases);
+  {
+    const auto wait_timer = phases.phase("waiting for pictures");
+    phases.wait_pictures();
+  }
   std::string names;
   for (const auto& p : written) names += ", " + p.filename().string();
   for (const auto& p : pictures) names += ", " + p;

@@ -154,6 +154,27 @@ void write_spacing_picture(const CaseConfig& config, const MeshInputs& inputs, c
            config.output.views.empty() ? "" : fmt::format(" and {} view(s)", config.output.views.size()));
 }
 
+// Declared in pipeline_detail.hpp (the layered run queues its merged mesh's pictures with it).
+std::vector<std::string> mesh_detail::queue_mesh_views(const CaseConfig& config, const Mesh& mesh,
+                                                       const MeshPictureOptions& picture, RunPhases& run,
+                                                       const std::shared_ptr<const void>& keep) {
+  std::vector<std::string> pictures;
+  if (!config.output.wants("png")) return pictures;
+  const auto draw = [&](const std::string& file, const MeshPictureOptions& options) {
+    run.picture(file,
+                [&mesh, options, keep, path = config.out_dir / file] { write_mesh_picture(path, mesh, options); });
+    pictures.push_back(file);
+  };
+  draw("mesh.png", picture);
+  for (const ViewWindow& view : config.output.views) {
+    MeshPictureOptions zoomed = picture;
+    zoomed.title += " - " + view.name;
+    zoomed.window = view.window;
+    draw(fmt::format("mesh_{}.png", view.name), zoomed);
+  }
+  return pictures;
+}
+
 namespace {
 
 // The initial distribution's outputs, the pictures queued on `run` holding `keep` (if set).
@@ -393,19 +414,12 @@ std::vector<std::string> queue_mesh_pictures(const CaseConfig& config, const Mes
     picture.value_label = config.output.color_by;
   }
   const fs::path& dir = config.out_dir;
-  std::vector<std::string> pictures;
+  std::vector<std::string> pictures = mesh_detail::queue_mesh_views(config, mesh, picture, phases);
   const auto draw = [&](const std::string& file, const MeshPictureOptions& options) {
     phases.picture(file, [&mesh, options, path = dir / file] { write_mesh_picture(path, mesh, options); });
     pictures.push_back(file);
   };
   if (config.output.wants("png")) {
-    draw("mesh.png", picture);
-    for (const ViewWindow& view : config.output.views) {
-      MeshPictureOptions zoomed = picture;
-      zoomed.title += " - " + view.name;
-      zoomed.window = view.window;
-      draw(fmt::format("mesh_{}.png", view.name), zoomed);
-    }
     // A mesh.png too dense to show edges (millions of nearly uniform triangles) gets a close-up that does.
     if (const std::optional<CloseUp> close_up =
             dense_mesh_close_up(mesh, default_mesh_window(mesh), picture.long_side)) {

@@ -1,6 +1,6 @@
 // What the stages of `pdmesh mesh` share (app/pipeline/mesh_pipeline.cpp, simulate_stage.cpp, mesh_outputs.cpp,
 // and the layer and periodic pipelines): the progress lines, the SVG size limit, the node outputs of a
-// stage and the case of a core meshed on curves of its own. Internal to those files.
+// stage, the mesh pictures and the case of a core meshed on curves of its own. Internal to those files.
 #pragma once
 #include <cstddef>
 #include <cstdio>
@@ -17,6 +17,7 @@
 #include "core/progress_notes.hpp"
 #include "geometry/geometry.hpp"
 #include "nodes/node_set.hpp"
+#include "render/mesh_picture.hpp"
 
 namespace pdmesh::mesh_detail {
 
@@ -50,6 +51,13 @@ void progress(const CaseConfig& config, fmt::format_string<Args...> format, Args
 void write_node_outputs(const CaseConfig& config, const MeshInputs& inputs, const NodeSet& nodes,
                         const std::string& stage, const std::string& title, const std::vector<Box>* tree_quads,
                         RunPhases& run, const std::shared_ptr<const void>& keep = nullptr);
+
+// mesh.png and mesh_<view>.png, one per output view (the view's name added to the title), as
+// output.formats asks for png, queued on `run`'s background thread with `picture`'s options; returns
+// their names (mesh_outputs.cpp). `mesh` and what `picture` points to must stay unchanged until
+// run.wait_pictures(), or, when `keep` owns them, until the pictures are drawn.
+std::vector<std::string> queue_mesh_views(const CaseConfig& config, const Mesh& mesh, const MeshPictureOptions& picture,
+                                          RunPhases& run, const std::shared_ptr<const void>& keep = nullptr);
 
 // The cleanup's options as the case's [cleanup] keys give them (mesh_outputs.cpp); the motion's steps
 // start from them too.
