@@ -78,7 +78,7 @@ struct RaySet {
   std::vector<int> ray_begin;
   std::vector<std::uint8_t> closed;
   std::vector<int> fan_sizes;
-  // Per ray: 1 at a mitre corner (a concave vertex turning by 60 to 120 degrees, layer_rays.cpp),
+  // Per ray: 1 at a mitre corner (a concave vertex turning by 60 to 100 degrees, layer_rays.cpp),
   // whose ray runs along the bisector while its neighbours keep their walls' normals.
   std::vector<std::uint8_t> mitre;
   // Per ray: the mitre corner's ray whose bisector it meets within 1.5 x the thickness (the
