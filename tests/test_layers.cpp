@@ -195,48 +195,6 @@ TEST_CASE("square box with a square hole: concave corners without crossing, fans
   }
 }
 
-TEST_CASE("right-angled concave corners with quads: the walls' layers meet on the corners' bisectors", "[layers]") {
-  // The box's corners turn its walls towards the domain by 90 degrees. The rays beside a corner
-  // keep their walls' normals and their columns end where they reach the corner's bisector, so no
-  // quad has an angle above the bisector quads' 135 degrees and the layer keeps its thickness into
-  // the corner. Smoothed towards the corner, the neighbours' rays converged and their columns met
-  // higher up in quads far above that, or crossed and were cut.
-  const Geometry g = build_geometry({box({0, 0}, {1, 1}, 20, "box")});
-  LayerSettings plain = settings(3e-4, 1.2, 0.06);
-  LayerSettings merged = plain;  // the library's column merging and wall refinement
-  merged.merge_span = LayerSettings{}.merge_span;
-  merged.split_span = LayerSettings{}.split_span;
-  for (const LayerSettings& s : {plain, merged}) {
-    const LayerMesh m = build_boundary_layers(g, curves_by_name(g, {"box"}, "test"), s);
-    const LayerMeasures q = measure_layers(m, s.first_height);
-    CHECK(q.quads > 0);
-    CHECK(q.max_angle_deg <= 135.0 + 1e-6);
-    CHECK(q.inverted_cells == 0);
-    CHECK(crossing_edges(m) == 0);
-    CHECK(q.first_height_within_2pct == 1.0);
-    CHECK(m.repairs == 0);
-    int corners = 0;
-    for (const LayerRay& r : m.rays) {
-      const Vec2 p = m.nodes[r.wall_node];
-      if ((p.x == 0.0 || p.x == 1.0) && (p.y == 0.0 || p.y == 1.0)) {
-        ++corners;
-        CHECK(r.thickness == Approx(s.thickness));  // not notched at the corner
-        // Along the bisector: 45 degrees off both walls.
-        CHECK(std::abs(r.direction.x) == Approx(std::sqrt(0.5)));
-        CHECK(std::abs(r.direction.y) == Approx(std::sqrt(0.5)));
-      }
-    }
-    CHECK(corners == 4);
-    // The front is the box shrunk by the thickness: every front node on its boundary.
-    for (const LayerFront& f : m.fronts)
-      for (const int v : f.nodes) {
-        const Vec2 p = m.nodes[v];
-        const double off = std::min({std::abs(p.x - 0.06), std::abs(p.x - 0.94), std::abs(p.y - 0.06), std::abs(p.y - 0.94)});
-        CHECK(off < 1e-9);
-      }
-  }
-}
-
 TEST_CASE("a blunt edge with thick layers: the column between its two fans ends", "[layers]") {
   // A plate with blunt ends 0.0012 high (clarky's trailing edge) and layers of 0.1: each end is one
   // wall segment between two right-angled convex corners with fans of the pipeline's size

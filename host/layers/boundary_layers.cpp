@@ -241,26 +241,11 @@ LayerMesh assemble(const RaySet& set, const std::vector<int>& count, const std::
   for (const ColumnMerge& g : plan.merges) {
     const auto node = [&](int ray, int k) { return m.rays[ray].nodes[static_cast<std::size_t>(k)]; };
     const int k = g.layer, curve = m.rays[g.ray].curve;
-    const auto triangle = [&](int a, int b, int c) {
-      add_cell(m, false, {a, b, c, -1}, LayerCellKind::Transition, curve, k);
-    };
-    if (g.apex < 0) {
-      triangle(node(g.left, k), node(g.ray, k), node(g.left, k + 1));
-      triangle(node(g.ray, k), node(g.right, k), node(g.right, k + 1));
-      triangle(node(g.ray, k), node(g.right, k + 1), node(g.left, k + 1));
-    } else if (g.apex_left) {  // the corner before it: its left neighbour's node and the apex
-      triangle(node(g.left, k), node(g.ray, k), node(g.apex, k + 1));
-      if (g.right >= 0) {
-        triangle(node(g.ray, k), node(g.right, k), node(g.right, k + 1));
-        triangle(node(g.ray, k), node(g.right, k + 1), node(g.apex, k + 1));
-      }
-    } else {
-      triangle(node(g.ray, k), node(g.right, k), node(g.apex, k + 1));
-      if (g.left >= 0) {
-        triangle(node(g.left, k), node(g.ray, k), node(g.left, k + 1));
-        triangle(node(g.ray, k), node(g.apex, k + 1), node(g.left, k + 1));
-      }
-    }
+    add_cell(m, false, {node(g.left, k), node(g.ray, k), node(g.left, k + 1), -1}, LayerCellKind::Transition, curve, k);
+    add_cell(m, false, {node(g.ray, k), node(g.right, k), node(g.right, k + 1), -1}, LayerCellKind::Transition, curve,
+             k);
+    add_cell(m, false, {node(g.ray, k), node(g.right, k + 1), node(g.left, k + 1), -1}, LayerCellKind::Transition,
+             curve, k);
   }
   for (std::size_t c = 0; c + 1 < set.ray_begin.size(); ++c)
     m.fronts.push_back(chain_front(m, set.ray_begin[c], set.ray_begin[c + 1], set.closed[c] != 0));
@@ -419,9 +404,7 @@ LayerMesh build_boundary_layers(const Geometry& geometry, const std::vector<int>
   std::vector<double> top;
   constexpr int kMaxRepairs = 60;
   for (int round = 0; round <= kMaxRepairs; ++round) {
-    cap_mitre_zones(set, allowed);
     grade_tied(set, settings, ties, allowed);
-    cap_mitre_zones(set, allowed);
     layer_counts(set, settings, allowed, count, top);
     LayerMesh m = assemble(set, count, top, settings, owner);
     const std::vector<int> bad = check(m, owner, geometry);

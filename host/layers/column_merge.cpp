@@ -26,9 +26,7 @@ class ChainMerger {
       pair_right[a] = pair_left[c] = static_cast<int>(plan_.pairs.size());
       plan_.pairs.push_back({a, c, 0, -1});
     }
-    bool mitre = false;
-    for (int r = b; r < e; ++r) mitre = mitre || set_.mitre[r];
-    if ((merge_span_ <= 0.0 && !mitre) || n < 4) return;
+    if (merge_span_ <= 0.0 || n < 4) return;
     std::vector<int> active;  // the rays whose columns reach the current layer, in chain order
     int top = 0;
     for (int r = b; r < e; ++r) {
@@ -47,25 +45,9 @@ class ChainMerger {
         const int l = active[(p + m - 1) % m], r = active[p], x = active[(p + 1) % m];
         plan_.end[r] = k;
         plan_.pairs[pair_left[r]].to = plan_.pairs[pair_right[r]].to = k;
-        if (ends[p] == 1) {
-          plan_.merges.push_back({r, l, x, k});
-          pair_right[l] = pair_left[x] = static_cast<int>(plan_.pairs.size());
-          plan_.pairs.push_back({l, x, k + 1, -1});
-          continue;
-        }
-        // A run of columns reaching a mitre corner's bisector (2: the corner before them, 3:
-        // after): each closes under the corner's next node; the outermost one with its outer
-        // neighbour, which then pairs with the corner.
-        const bool left = ends[p] == 2;
-        const int corner = set_.mitre_zone[r];
-        const int outer_p = left ? (p + 1) % m : (p + m - 1) % m;
-        const int outer = ends[outer_p] ? -1 : active[outer_p];
-        plan_.merges.push_back({r, left ? l : (outer < 0 ? -1 : l), left ? (outer < 0 ? -1 : x) : x, k, corner, left});
-        if (outer >= 0) {
-          const int a = left ? corner : outer, c = left ? outer : corner;
-          pair_right[a] = pair_left[c] = static_cast<int>(plan_.pairs.size());
-          plan_.pairs.push_back({a, c, k + 1, -1});
-        }
+        plan_.merges.push_back({r, l, x, k});
+        pair_right[l] = pair_left[x] = static_cast<int>(plan_.pairs.size());
+        plan_.pairs.push_back({l, x, k + 1, -1});
       }
       active = std::move(kept);
     }
@@ -79,37 +61,12 @@ class ChainMerger {
   }
   // Which of the active rays' columns end at layer k: never two neighbours (the merge's triangles
   // use both neighbours' nodes at k and k + 1).
-  // 1: a plain merge; 2, 3: in a run reaching a mitre corner's bisector, the corner before (2) or
-  // after (3) it in chain order. The runs first, walking out from each corner, then the plain
-  // merges beside no ending column.
   std::vector<char> ending(const std::vector<int>& active, int k, bool closed) const {
     const int m = static_cast<int>(active.size());
     std::vector<char> ends(m, 0);
-    for (int p = 0; p < m; ++p) {
-      const int corner = active[p];
-      if (!set_.mitre[corner] || k >= layers(corner)) continue;
-      for (const int step : {1, -1}) {
-        std::vector<int> run;
-        for (int q = p + step; closed || (q >= 0 && q < m); q += step) {
-          const int at = (q % m + m) % m;
-          if (at == p || ends[at] || set_.mitre_zone[active[at]] != corner) break;
-          if (k >= layers(active[at]) || !reaches_bisector(active[at], corner, k)) break;
-          run.push_back(at);
-        }
-        // The outer neighbour closes the run with its node at k + 1: drop members until it has one.
-        while (!run.empty()) {
-          const int outer = ((run.back() + step) % m + m) % m;
-          if (outer != p && !ends[outer] && k < layers(active[outer]) && (closed || (run.back() + step >= 0 && run.back() + step < m)))
-            break;
-          run.pop_back();
-        }
-        for (const int at : run) ends[at] = step > 0 ? 2 : 3;
-      }
-    }
-    if (merge_span_ <= 0.0) return ends;
     for (int p = closed ? 0 : 1; p < (closed ? m : m - 1); ++p) {
       const int pl = (p + m - 1) % m, pr = (p + 1) % m;
-      if (ends[p] || ends[pl] || ends[pr] || (closed && p == m - 1 && ends[0])) continue;
+      if (ends[pl] || (closed && p == m - 1 && ends[0])) continue;
       ends[p] = merges(active[pl], active[p], active[pr], k) ? 1 : 0;
     }
     return ends;
@@ -121,21 +78,9 @@ class ChainMerger {
     // Every layer up to k + 1 of the three is on the settings' stack (below their tops).
     if (k >= layers(r) || k >= layers(l) || k >= layers(x)) return false;
     if (ray.fan && !fan_edge_between_fans(l, r, x)) return fan_middle_merges(l, r, x, k);
-    // A mitre corner's column runs up its bisector; the rays beside it end there (ending()).
-    if (set_.mitre[r] || (set_.mitre_zone[r] >= 0 && (l == set_.mitre_zone[r] || x == set_.mitre_zone[r])))
-      return false;
     const double layer = std::min(height_[l][k + 1] - height_[l][k], height_[x][k + 1] - height_[x][k]);
     // The edge the merge makes between the neighbours' next nodes (diverging rays widen it).
     return dist(node_at(l, k + 1), node_at(x, k + 1)) <= merge_span_ * layer;
-  }
-
-  // Whether ray r's node at layer k + 1 lies within one step (its distance from the node at k,
-  // across the bisector) of its mitre corner's bisector, or beyond it.
-  bool reaches_bisector(int r, int corner, int k) const {
-    const Vec2 p = set_.wall_points[set_.rays[corner].wall_node], d = set_.rays[corner].direction;
-    const double side = cross(d, set_.wall_points[set_.rays[r].wall_node] - p) > 0.0 ? 1.0 : -1.0;
-    const double now = side * cross(d, node_at(r, k) - p), next = side * cross(d, node_at(r, k + 1) - p);
-    return next <= now - next;
   }
 
   // Whether r is the edge ray of a fan whose neighbour across the wall segment is the edge ray of

@@ -102,9 +102,6 @@ void free_and_collision_limits(RaySet& set, const Geometry& geometry, const Laye
       const LayerRay& other = set.rays[o];
       const Vec2 q = set.wall_points[other.wall_node];
       if (other.wall_node == ray.wall_node || q == p) return;
-      // The rays of a mitre corner meet on its bisector, where their columns end (plan_columns).
-      const int zr = set.mitre_zone[r], zo = set.mitre_zone[o];
-      if ((zr >= 0 && (zr == zo || zr == o)) || (zo >= 0 && zo == r)) return;
       if (!segments_cross_properly(p, e, q, cut[o])) return;
       const double a = intersection_parameter(p, e, q, cut[o]) * length;
       const double b = intersection_parameter(q, cut[o], p, e) * norm(cut[o] - q);
@@ -112,11 +109,6 @@ void free_and_collision_limits(RaySet& set, const Geometry& geometry, const Laye
     });
   }
   allowed = std::move(limit);
-}
-
-void cap_mitre_zones(const RaySet& set, std::vector<double>& allowed) {
-  for (std::size_t r = 0; r < set.rays.size(); ++r)
-    if (set.mitre_zone[r] >= 0) allowed[r] = std::min(allowed[r], allowed[static_cast<std::size_t>(set.mitre_zone[r])]);
 }
 
 void leave_room_for_the_core(const RaySet& set, const Geometry& geometry, const LayerSettings& settings,

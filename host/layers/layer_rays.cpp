@@ -1,6 +1,5 @@
 // The rays of the layer generator: one per wall vertex along the smoothed normal, a fan of rays at
-// a sharp convex vertex (a trailing edge), a mitre at a right-angled concave one, and each ray's
-// height correction.
+// a sharp convex vertex (a trailing edge), and each ray's height correction.
 #include <algorithm>
 #include <cmath>
 #include <numbers>
@@ -14,23 +13,11 @@ namespace {
 // The most elements a fan gets from the core spacing rule below.
 constexpr int kMaxFanElements = 32;
 
-// A concave vertex turning by an angle in this range (degrees; the domain's angle there 80 to 120
-// degrees: a step, a bracket's or a cavity's corner) is a mitre corner: its ray runs along the
-// bisector and its neighbours' rays stay on their walls' normals (the smoothing offers them the
-// wall's normal for the corner's ray), and their columns end where they reach the bisector
-// (plan_columns), so the two walls' layers meet there as the offsets of the two walls do.
-// Smoothed towards the corner, the neighbours' rays converged on it, and quads where the two
-// walls' converging columns met had angles far above the bisector quads' (135 degrees at a right
-// angle).
-constexpr double kMitreMinTurnDeg = 60.0;
-constexpr double kMitreMaxTurnDeg = 100.0;
-
 struct Vertex {
   Vec2 n_in, n_out;  // left normals of the segments arriving and leaving (equal at an open end)
   bool has_in = false, has_out = false;
   double turn = 0.0;  // > 0 turning left (towards the domain: concave), < 0 convex
   int fan = 0;        // fan elements (0: a single ray)
-  bool mitre = false; // a mitre corner (kMitreMinTurnDeg)
 };
 
 }  // namespace
@@ -56,38 +43,6 @@ int slide_segment(const Geometry& geometry, Vec2 p, Vec2 n, const std::vector<in
   return best;
 }
 
-// The rays that meet a mitre corner's bisector within 1.5 x the target thickness, walking from
-// the corner along its chain in both directions (RaySet::mitre_zone).
-void mitre_zones(RaySet& set, double target) {
-  set.mitre_zone.assign(set.rays.size(), -1);
-  std::vector<double> reach(set.rays.size(), 0.0);
-  for (std::size_t c = 0; c + 1 < set.ray_begin.size(); ++c) {
-    const int b = set.ray_begin[c], e = set.ray_begin[c + 1], n = e - b;
-    for (int corner = b; corner < e; ++corner) {
-      if (!set.mitre[corner]) continue;
-      const Vec2 p = set.wall_points[set.rays[corner].wall_node], d = set.rays[corner].direction;
-      for (const int step : {1, -1})
-        for (int k = 1; k < n; ++k) {
-          const int j = corner - b + step * k;
-          if (!set.closed[c] && (j < 0 || j >= n)) break;
-          const int r = b + (j + n) % n;
-          const LayerRay& ray = set.rays[r];
-          if (ray.fan || set.mitre[r] || ray.slide_segment >= 0) break;
-          // Where the ray meets the bisector's line: t along the ray, ahead of the corner.
-          const Vec2 q = set.wall_points[ray.wall_node];
-          const double across = cross(d, ray.direction);
-          if (across == 0.0) break;
-          const double t = -cross(d, q - p) / across;
-          if (!(t > 0.0) || t > 1.5 * target || dot(q + t * ray.direction - p, d) <= 0.0) break;
-          if (set.mitre_zone[r] < 0 || t < reach[r]) {
-            set.mitre_zone[r] = corner;
-            reach[r] = t;
-          }
-        }
-    }
-  }
-}
-
 }  // namespace
 
 RaySet make_rays(const std::vector<WallChain>& chains, const Geometry& geometry, const LayerSettings& settings,
@@ -95,8 +50,6 @@ RaySet make_rays(const std::vector<WallChain>& chains, const Geometry& geometry,
   RaySet set;
   const double fan_turn = settings.fan_angle_deg * std::numbers::pi / 180.0;
   const double max_tilt = settings.max_ray_tilt_deg * std::numbers::pi / 180.0;
-  const double mitre_min = kMitreMinTurnDeg * std::numbers::pi / 180.0;
-  const double mitre_max = kMitreMaxTurnDeg * std::numbers::pi / 180.0;
   // Both normals of a ray's segments within max_tilt: the cosine to each at least this.
   const double min_cos = max_tilt > 0.0 ? std::max(0.3, std::cos(max_tilt)) : 0.3;
   const double target =
@@ -124,7 +77,6 @@ RaySet make_rays(const std::vector<WallChain>& chains, const Geometry& geometry,
       if (v.has_in && v.has_out) {
         // The turn from the arriving to the leaving direction equals the turn of the normals.
         v.turn = std::atan2(cross(v.n_in, v.n_out), dot(v.n_in, v.n_out));
-        v.mitre = v.turn >= mitre_min && v.turn <= mitre_max;
         if (-v.turn > fan_turn || (max_tilt > 0.0 && -v.turn > 2.0 * max_tilt)) {
           v.fan = std::max(
               2, static_cast<int>(std::ceil(settings.fan_elements_per_pi * -v.turn / std::numbers::pi - 1e-9)));
@@ -140,47 +92,21 @@ RaySet make_rays(const std::vector<WallChain>& chains, const Geometry& geometry,
         }
       }
     }
-    // A mitre corner needs straight walls beside it for its neighbours' columns to end on its
-    // bisector: within twice the thickness of a fan (whose edge ray already runs along the wall's
-    // normal, its column never ending), another such corner (a short wall between two corners,
-    // whose rays converge across a few columns) or an open chain's end it is a plain vertex.
-    // Points on a straight segment (the wall refinement's) do not end the walk, so the corners are
-    // the same before and after the refinement.
-    std::vector<char> lone(n, 0);
-    for (int i = 0; i < n; ++i) {
-      if (!vx[i].mitre) continue;
-      lone[i] = 1;
-      for (const int step : {1, -1}) {
-        double along = 0.0;
-        for (int k = 1; k < n && lone[i]; ++k) {
-          const int j = i + step * k, at = (j % n + n) % n, before = ((j - step) % n + n) % n;
-          if (!chain.closed && (j < 0 || j >= n)) {
-            lone[i] = 0;
-            break;
-          }
-          along += dist(chain.points[at], chain.points[before]);
-          if (along >= 2.0 * target) break;
-          if (vx[at].fan > 0 || vx[at].mitre) lone[i] = 0;
-          if (std::abs(vx[at].turn) > 1e-6) break;
-        }
-      }
-    }
-    for (int i = 0; i < n; ++i) vx[i].mitre = lone[i] != 0;
-    // Directions: fans and mitre corners fixed, the others the bisector, then smoothed (Jacobi
-    // passes over the neighbours' rays; a fan or a mitre corner offers its nearer segment's normal).
+    // Directions: fans fixed, the others the bisector, then smoothed (Jacobi passes over the
+    // neighbours' rays; a fan neighbour offers its nearer edge ray).
     std::vector<Vec2> dir(n);
     for (int i = 0; i < n; ++i) dir[i] = normalized(vx[i].n_in + vx[i].n_out);
     std::vector<int> slide(n, -1);
     if (!chain.closed)
       for (const int i : {0, n - 1}) slide[i] = slide_segment(geometry, chain.points[i], dir[i], chain.curve, dir[i]);
     auto near_ray = [&](int j, bool from_before) {  // neighbour j's ray seen from its side
-      if (vx[j].fan == 0 && !vx[j].mitre) return dir[j];
+      if (vx[j].fan == 0) return dir[j];
       return from_before ? vx[j].n_out : vx[j].n_in;
     };
     for (int pass = 0; pass < settings.smoothing_passes; ++pass) {
       std::vector<Vec2> next_dir = dir;
       for (int i = 0; i < n; ++i) {
-        if (vx[i].fan > 0 || vx[i].mitre || !vx[i].has_in || !vx[i].has_out) continue;
+        if (vx[i].fan > 0 || !vx[i].has_in || !vx[i].has_out) continue;
         const int prev = (i + n - 1) % n, next = (i + 1) % n;
         if (!chain.closed && (i == 0 || i == n - 1)) continue;
         const Vec2 s = normalized(2.0 * dir[i] + near_ray(prev, true) + near_ray(next, false));
@@ -212,7 +138,6 @@ RaySet make_rays(const std::vector<WallChain>& chains, const Geometry& geometry,
         ray.direction = dir[i];
         ray.correction = std::max(0.2, 0.5 * (dot(dir[i], v.n_in) + dot(dir[i], v.n_out)));
         set.rays.push_back(ray);
-        set.mitre.push_back(v.mitre ? 1 : 0);
         continue;
       }
       ray.fan = true;
@@ -221,12 +146,10 @@ RaySet make_rays(const std::vector<WallChain>& chains, const Geometry& geometry,
         ray.direction = normalized(rotated(v.n_in, v.turn * j / v.fan));
         ray.correction = 1.0;
         set.rays.push_back(ray);
-        set.mitre.push_back(0);
       }
     }
   }
   set.ray_begin.push_back(static_cast<int>(set.rays.size()));
-  mitre_zones(set, target);
   return set;
 }
 

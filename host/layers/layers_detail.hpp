@@ -78,14 +78,6 @@ struct RaySet {
   std::vector<int> ray_begin;
   std::vector<std::uint8_t> closed;
   std::vector<int> fan_sizes;
-  // Per ray: 1 at a mitre corner (a concave vertex turning by 60 to 100 degrees, layer_rays.cpp),
-  // whose ray runs along the bisector while its neighbours keep their walls' normals.
-  std::vector<std::uint8_t> mitre;
-  // Per ray: the mitre corner's ray whose bisector it meets within 1.5 x the thickness (the
-  // nearest such corner along its chain, no fan or other corner between), -1 for none. Its
-  // column ends where it reaches the bisector (plan_columns), and it does not cut, and is not cut
-  // by, the corner's ray or the other rays of that corner.
-  std::vector<int> mitre_zone;
 };
 // An open chain's end ray runs along the first segment of the curve that continues the boundary
 // there (when that segment leaves into the domain side, more than acos 0.2 from the wall), else along
@@ -108,10 +100,6 @@ void free_and_collision_limits(RaySet& set, const Geometry& geometry, const Laye
 // <= max_slope x their distance (only lowers); a ray below the first height (no layer) counts as
 // first_height / max_jump for the ratio, so that its neighbour may have one layer.
 void grade_thickness(const RaySet& set, const LayerSettings& settings, std::vector<double>& allowed);
-// A mitre corner's rays are no thicker than the corner's ray: their columns end where they reach
-// its bisector under the corner's nodes, and one reaching it above the corner's top would cross
-// the other wall's columns, or leave a notch in the front between the corner's top and its own.
-void cap_mitre_zones(const RaySet& set, std::vector<double>& allowed);
 // Where fronts close in (a wedge, a strait, a slot's tip): a ray that meets a curve at distance L
 // (within the collision limits' probe, within 45 degrees of head-on) leaves the core at least
 // core_room x the front's edge e
@@ -145,12 +133,6 @@ struct ColumnPair {
 struct ColumnMerge {
   int ray = -1, left = -1, right = -1;  // the ray whose column ends, its neighbours there
   int layer = 0;                        // its last node's layer
-  // At a mitre corner: the corner's ray, whose node at layer + 1 closes over the column instead of
-  // the neighbour towards the corner's (left or right, that neighbour's node at `layer` is used);
-  // the neighbour away from the corner is -1 where it ends at the same layer (a run of columns
-  // reaching the bisector in one layer). -1: a plain merge.
-  int apex = -1;
-  bool apex_left = true;  // the corner lies on the left (before the ray in chain order)
 };
 struct ColumnPlan {
   std::vector<ColumnPair> pairs;    // every chain's neighbouring rays in chain order, then the pairs merges make
@@ -160,9 +142,7 @@ struct ColumnPlan {
 // The columns of every chain: ray r's column ends at layer k where its current neighbours' nodes
 // at layer k + 1 are at most merge_span x their layer's height apart (not at fans, sliding end rays,
 // the ends of an open chain, or layers that are not on the settings' stack for all three; never
-// two neighbours at one layer; not with merge_span 0). A mitre corner's rays end where they reach
-// its bisector (within one step of it: the two walls' layers meet there), several neighbours in
-// one layer where needed, the corner's node above closing over them. The middle ray of a fan of two elements ends at its last layer
+// two neighbours at one layer). The middle ray of a fan of two elements ends at its last layer
 // where the fan's edge rays' tops are at most fan_span x that layer apart (0: never).
 // height[r]: ray r's node heights over the wall (0 first).
 ColumnPlan plan_columns(const RaySet& set, const std::vector<std::vector<double>>& height, double merge_span,

@@ -119,13 +119,11 @@ void interpolate_new_rays(RaySet& refined, std::size_t c, const WallChain& chain
     while (source[pi][0] != source[pi][1]) --pi;
     while (source[pj % n][0] != source[pj % n][1]) ++pj;
     const double t = static_cast<double>(p - pi) / static_cast<double>(pj - pi);
-    const Vec2 normal = left_normal(chain_point(chain, pi), chain_point(chain, pj));
-    // A mitre corner's ray offers the segment's normal, as it does to the smoothing.
-    const int ra = rays.last[pi], rb = rays.first[pj % n];
-    const Vec2 da = refined.mitre[ra] ? normal : refined.rays[ra].direction;
-    const Vec2 db = refined.mitre[rb] ? normal : refined.rays[rb].direction;
+    const Vec2 da = refined.rays[rays.last[pi]].direction;
+    const Vec2 db = refined.rays[rays.first[pj % n]].direction;
     LayerRay& ray = refined.rays[rays.first[p]];
     ray.direction = normalized((1.0 - t) * da + t * db);
+    const Vec2 normal = left_normal(chain_point(chain, pi), chain_point(chain, pj));
     // Only beside an end ray more than 75 degrees off the segment's normal (a corner sharper than
     // 30 degrees): beside blunter concave corners the new rays lean with the corner's ray, so that
     // their columns do not cross its column.
