@@ -195,6 +195,39 @@ TEST_CASE("square box with a square hole: concave corners without crossing, fans
   }
 }
 
+TEST_CASE("a blunt edge with thick layers: the column between its two fans ends", "[layers]") {
+  // A plate with blunt ends 0.0012 high (clarky's trailing edge) and layers of 0.1: each end is one
+  // wall segment between two right-angled convex corners with fans of the pipeline's size
+  // (theta / (g - 1) elements). The fans' edge rays over the end run parallel, 0.0012 apart, up
+  // to the top, where the core met that short front edge between the fans' edges of about 0.02
+  // with flat triangles. The column ends where its neighbours come within merge_span of a layer,
+  // like any other column, and no front edge is that short any more.
+  RawCurve plate{"plate", {}, "test", 1, {}};
+  const double h = 0.0012;
+  for (int i = 0; i <= 20; ++i) plate.points.push_back({0.05 * i, 0.0});
+  for (int i = 20; i >= 0; --i) plate.points.push_back({0.05 * i, h});
+  plate.points.push_back(plate.points.front());
+  const Geometry g = build_geometry({box({-3, -3}, {4, 3}, 4, "far"), plate});
+  LayerSettings s;
+  s.first_height = 1e-4;
+  s.growth = 1.2;
+  s.thickness = 0.1;
+  s.fan_elements_per_pi = std::numbers::pi / (s.growth - 1.0);
+  const LayerMesh m = build_boundary_layers(g, curves_by_name(g, {"plate"}, "test"), s);
+  const LayerMeasures q = measure_layers(m, s.first_height);
+  CHECK(q.inverted_cells == 0);
+  CHECK(crossing_edges(m) == 0);
+  CHECK(q.first_height_within_2pct == 1.0);
+  int merged_fan_rays = 0;
+  for (const LayerRay& r : m.rays) merged_fan_rays += r.fan && r.merged ? 1 : 0;
+  CHECK(merged_fan_rays == 2);  // one at each end
+  REQUIRE(m.fronts.size() == 1);
+  const std::vector<int>& f = m.fronts[0].nodes;
+  double shortest = 1.0;
+  for (std::size_t i = 0; i < f.size(); ++i) shortest = std::min(shortest, dist(m.nodes[f[i]], m.nodes[f[(i + 1) % f.size()]]));
+  CHECK(shortest > 4.0 * h);
+}
+
 TEST_CASE("two close circles: the layers shrink in the gap, no crossing, jumps <= 1.3", "[layers]") {
   // 384 wall nodes (0.016 apart): the core's strip between the fronts (0.2 x the gap, 0.02) is wider
   // than the front's edges, and the facing rays stop at gap_fraction of the gap.

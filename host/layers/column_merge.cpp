@@ -77,10 +77,23 @@ class ChainMerger {
     if (ray.slide_segment >= 0) return false;
     // Every layer up to k + 1 of the three is on the settings' stack (below their tops).
     if (k >= layers(r) || k >= layers(l) || k >= layers(x)) return false;
-    if (ray.fan) return fan_middle_merges(l, r, x, k);
+    if (ray.fan && !fan_edge_between_fans(l, r, x)) return fan_middle_merges(l, r, x, k);
     const double layer = std::min(height_[l][k + 1] - height_[l][k], height_[x][k + 1] - height_[x][k]);
     // The edge the merge makes between the neighbours' next nodes (diverging rays widen it).
     return dist(node_at(l, k + 1), node_at(x, k + 1)) <= merge_span_ * layer;
+  }
+
+  // Whether r is the edge ray of a fan whose neighbour across the wall segment is the edge ray of
+  // another fan (a blunt trailing edge: a short wall segment between two convex corners). The two
+  // edge rays are parallel, so their column keeps the segment's width up to the top however far
+  // apart the fans' other rays are there, and the core met its short top edge between the fans'
+  // long ones with flat triangles. That column ends as any other where its neighbours' nodes come
+  // within merge_span of a layer.
+  bool fan_edge_between_fans(int l, int r, int x) const {
+    const int node = set_.rays[r].wall_node;
+    const bool l_same = set_.rays[l].wall_node == node, x_same = set_.rays[x].wall_node == node;
+    if (l_same == x_same) return false;  // a middle ray of its fan
+    return set_.rays[l_same ? x : l].fan;
   }
 
   // The middle ray of a fan of two elements (a vertex that the triangles' ray tilt limit fans)
