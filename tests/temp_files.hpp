@@ -1,5 +1,6 @@
 // File helpers of the tests that write outputs: a fresh per-process temporary path or directory, a
-// file's whole content, and the number of entries in a directory (to see that no temporaries are left).
+// file's whole content, a text's lines, and the number of entries in a directory (to see that no
+// temporaries are left).
 #pragma once
 #include <unistd.h>
 
@@ -54,6 +55,13 @@ inline std::string slurp(const std::filesystem::path& p) {
   std::ostringstream s;
   s << in.rdbuf();
   return s.str();
+}
+
+inline std::vector<std::string> lines_of(const std::string& text) {
+  std::vector<std::string> out;
+  std::istringstream in(text);
+  for (std::string line; std::getline(in, line);) out.push_back(line);
+  return out;
 }
 
 inline std::size_t entries(const std::filesystem::path& d) {

@@ -9,8 +9,10 @@
 #include "io/boundary_strings.hpp"
 #include "io/fort14_writer.hpp"
 #include "io/sms2dm_writer.hpp"
+#include "temp_files.hpp"
 
 using namespace pdmesh;
+using pdmesh_test::lines_of;
 
 namespace {
 
@@ -26,13 +28,6 @@ Mesh island_mesh() {
   m.boundary_edges = {{1, 2, 0}, {2, 3, 1}, {3, 0, 1}, {0, 1, 1}, {4, 5, 2},
                       {5, 6, 2}, {6, 7, 2}, {7, 4, 2}, {0, 5, 3}};
   return m;
-}
-
-std::vector<std::string> lines_of(const std::string& text) {
-  std::vector<std::string> out;
-  std::istringstream in(text);
-  for (std::string line; std::getline(in, line);) out.push_back(line);
-  return out;
 }
 
 }  // namespace

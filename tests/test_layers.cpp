@@ -224,7 +224,8 @@ TEST_CASE("a blunt edge with thick layers: the column between its two fans ends"
   REQUIRE(m.fronts.size() == 1);
   const std::vector<int>& f = m.fronts[0].nodes;
   double shortest = 1.0;
-  for (std::size_t i = 0; i < f.size(); ++i) shortest = std::min(shortest, dist(m.nodes[f[i]], m.nodes[f[(i + 1) % f.size()]]));
+  for (std::size_t i = 0; i < f.size(); ++i)
+    shortest = std::min(shortest, dist(m.nodes[f[i]], m.nodes[f[(i + 1) % f.size()]]));
   CHECK(shortest > 4.0 * h);
 }
 

@@ -16,6 +16,7 @@
 
 namespace fs = std::filesystem;
 using namespace pdmesh;
+using pdmesh_test::lines_of;
 
 namespace {
 
@@ -43,13 +44,6 @@ MixedMesh quad_strip(int n) {
   }
   m.curve_names = {"wall", "top"};
   return m;
-}
-
-std::vector<std::string> lines_of(const std::string& text) {
-  std::vector<std::string> out;
-  std::istringstream in(text);
-  for (std::string line; std::getline(in, line);) out.push_back(line);
-  return out;
 }
 
 }  // namespace

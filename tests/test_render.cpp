@@ -104,6 +104,23 @@ Mesh grid_mesh(int k, Map map) {
   return m;
 }
 
+// World [0, 200]^2 on a 200 x 200 plot without a title band: world (x, y) is pixel (x, 200 - y).
+CanvasOptions plot_200() {
+  CanvasOptions options;
+  options.window = Box{{0, 0}, {200, 200}};
+  options.long_side = 200;
+  options.title_height = 0;
+  return options;
+}
+
+// The red channel of picture pixel (x, y) of a canvas, 0-255.
+int red_at(Canvas& c, int x, int y) {
+  cairo_surface_flush(c.surface());
+  const unsigned char* row =
+      cairo_image_surface_get_data(c.surface()) + (y - c.first_row()) * cairo_image_surface_get_stride(c.surface());
+  return static_cast<int>((*reinterpret_cast<const std::uint32_t*>(row + 4 * x) >> 16) & 255);
+}
+
 }  // namespace
 
 TEST_CASE("padded windows add 3% of the longer side", "[render]") {
@@ -603,17 +620,7 @@ TEST_CASE("a grey canvas draws the picture an RGB one draws, within a level, as 
 
 TEST_CASE("a pixel splat covers a box's pixels and spreads a dot's area over the four pixels around it", "[render]") {
   const fs::path dir = fresh_dir("splat");
-  // World [0, 200]^2 on a 200 x 200 plot without a title band: world (x, y) is pixel (x, 200 - y).
-  CanvasOptions options;
-  options.window = Box{{0, 0}, {200, 200}};
-  options.long_side = 200;
-  options.title_height = 0;
-  const auto grey = [](Canvas& c, int x, int y) {  // the red channel of picture pixel (x, y), 0-255
-    cairo_surface_flush(c.surface());
-    const unsigned char* row =
-        cairo_image_surface_get_data(c.surface()) + (y - c.first_row()) * cairo_image_surface_get_stride(c.surface());
-    return static_cast<int>((*reinterpret_cast<const std::uint32_t*>(row + 4 * x) >> 16) & 255);
-  };
+  const CanvasOptions options = plot_200();
   {
     Canvas canvas(options, ImageFormat::Png, dir / "a.png");
     REQUIRE(canvas.scale() == 1.0);
@@ -627,19 +634,19 @@ TEST_CASE("a pixel splat covers a box's pixels and spreads a dot's area over the
       splat.dot({30.5, 149.5}, 2.0);                  // area 4pi at one pixel's centre: full, not more
     }
     for (int y = 14; y <= 19; ++y)
-      for (int x = 10; x <= 12; ++x) CHECK(grey(canvas, x, y) == 0);
-    CHECK(grey(canvas, 9, 16) == 255);
-    CHECK(grey(canvas, 13, 16) == 255);
-    CHECK(grey(canvas, 11, 13) == 255);
-    CHECK(grey(canvas, 11, 20) == 255);
-    CHECK(grey(canvas, 50, 50) == 0);
-    CHECK(grey(canvas, 51, 50) == 255);
-    CHECK(grey(canvas, 50, 49) == 255);
-    CHECK(std::abs(grey(canvas, 70, 50) - 128) <= 1);
-    CHECK(std::abs(grey(canvas, 71, 50) - 128) <= 1);
-    CHECK(grey(canvas, 72, 50) == 255);
-    CHECK(grey(canvas, 30, 50) == 0);
-    CHECK(grey(canvas, 31, 50) == 255);
+      for (int x = 10; x <= 12; ++x) CHECK(red_at(canvas, x, y) == 0);
+    CHECK(red_at(canvas, 9, 16) == 255);
+    CHECK(red_at(canvas, 13, 16) == 255);
+    CHECK(red_at(canvas, 11, 13) == 255);
+    CHECK(red_at(canvas, 11, 20) == 255);
+    CHECK(red_at(canvas, 50, 50) == 0);
+    CHECK(red_at(canvas, 51, 50) == 255);
+    CHECK(red_at(canvas, 50, 49) == 255);
+    CHECK(std::abs(red_at(canvas, 70, 50) - 128) <= 1);
+    CHECK(std::abs(red_at(canvas, 71, 50) - 128) <= 1);
+    CHECK(red_at(canvas, 72, 50) == 255);
+    CHECK(red_at(canvas, 30, 50) == 0);
+    CHECK(red_at(canvas, 31, 50) == 255);
   }
   {
     // A band of rows 40-69 covers only its own rows, at the picture's pixel positions.
@@ -650,9 +657,9 @@ TEST_CASE("a pixel splat covers a box's pixels and spreads a dot's area over the
       splat.dot({50.5, 189.5}, 1 / std::sqrt(M_PI));  // row 10: another band's
       splat.box(Box{{20, 120}, {21, 170}});           // rows 30-80: the band's part only
     }
-    CHECK(grey(band, 50, 50) == 0);
-    CHECK(grey(band, 50, 40) == 255);
-    for (int y = 40; y < 70; ++y) CHECK(grey(band, 20, y) == 0);
+    CHECK(red_at(band, 50, 50) == 0);
+    CHECK(red_at(band, 50, 40) == 255);
+    for (int y = 40; y < 70; ++y) CHECK(red_at(band, 20, y) == 0);
   }
   // Dense enough: more items than a quarter of the plot's 200 x 200 pixels, and a PNG.
   Canvas png(options, ImageFormat::Png, dir / "c.png");
@@ -748,17 +755,7 @@ TEST_CASE("a mesh denser than a quarter of its pixels is shaded without seams, t
 TEST_CASE("a fill batch told it holds up to 2^18 triangles fills them at once, without the seams' hairline",
           "[render]") {
   const fs::path dir = fresh_dir("single_fill");
-  // World [0, 200]^2 on a 200 x 200 plot without a title band: world (x, y) is pixel (x, 200 - y).
-  CanvasOptions options;
-  options.window = Box{{0, 0}, {200, 200}};
-  options.long_side = 200;
-  options.title_height = 0;
-  const auto grey = [](Canvas& c, int x, int y) {  // the red channel of picture pixel (x, y), 0-255
-    cairo_surface_flush(c.surface());
-    const unsigned char* row =
-        cairo_image_surface_get_data(c.surface()) + (y - c.first_row()) * cairo_image_surface_get_stride(c.surface());
-    return static_cast<int>((*reinterpret_cast<const std::uint32_t*>(row + 4 * x) >> 16) & 255);
-  };
+  const CanvasOptions options = plot_200();
   // The square [50, 150]^2 (pixels 50-149) as 72,200 triangles: more than one batch of 65,536.
   const int k = 190;
   const auto at = [&](int i, int j) { return Vec2{50.0 + 100.0 * i / k, 50.0 + 100.0 * j / k}; };
@@ -778,15 +775,15 @@ TEST_CASE("a fill batch told it holds up to 2^18 triangles fills them at once, w
   // Their union, filled once: full inside, nothing beyond the square's edges (a hairline stroke of
   // the batches' outlines would put a quarter pixel of ink on the pixels around it).
   for (const int y : {50, 100, 149}) {
-    CHECK(grey(canvas, 50, y) == 0);
-    CHECK(grey(canvas, 100, y) == 0);
-    CHECK(grey(canvas, 149, y) == 0);
-    CHECK(grey(canvas, 49, y) == 255);
-    CHECK(grey(canvas, 150, y) == 255);
+    CHECK(red_at(canvas, 50, y) == 0);
+    CHECK(red_at(canvas, 100, y) == 0);
+    CHECK(red_at(canvas, 149, y) == 0);
+    CHECK(red_at(canvas, 49, y) == 255);
+    CHECK(red_at(canvas, 150, y) == 255);
   }
   for (const int x : {50, 100, 149}) {
-    CHECK(grey(canvas, x, 49) == 255);
-    CHECK(grey(canvas, x, 150) == 255);
+    CHECK(red_at(canvas, x, 49) == 255);
+    CHECK(red_at(canvas, x, 150) == 255);
   }
   // The same in a mesh picture whose shade is one such fill: drawn in bands, it is the picture one
   // canvas draws (every band counts the same items).
