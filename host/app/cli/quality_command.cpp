@@ -182,10 +182,12 @@ int run_quality(const std::string& mesh_path, const std::optional<std::string>& 
                        read.region_found ? "boundary layer (the file's \"boundary_layer\" group)"
                                          : "quads (no \"boundary_layer\" group)",
                        cell_angles_text(mm.layer));
+    // Before the closing brace's line, so that the object reads as the others do.
+    std::size_t at = json.find_last_of('}');
+    if (at > 0 && json[at - 1] == '\n') --at;
     json.insert(
-        json.find_last_of('}'),
-        fmt::format(",\n  \"cells\": {{\"points\": {}, \"all\": {}, \"layer_cells\": \"{}\", \"layer\": {}}}\n",
-                    read.mixed->points.size(), cell_angles_json(mm.all), layer_name, cell_angles_json(mm.layer)));
+        at, fmt::format(",\n  \"cells\": {{\"points\": {}, \"all\": {}, \"layer_cells\": \"{}\", \"layer\": {}}}",
+                        read.mixed->points.size(), cell_angles_json(mm.all), layer_name, cell_angles_json(mm.layer)));
   }
 
   if (out_json) {
