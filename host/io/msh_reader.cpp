@@ -20,7 +20,7 @@ namespace {
 
 // An element as read, resolved into point indices once all nodes are known.
 struct RawElement {
-  long long nodes[3] = {0, 0, 0};
+  long long nodes[4] = {0, 0, 0, 0};
   int line = 0;
   long long physical = 0;  // 0 = none
   long long entity = 0;
@@ -37,11 +37,14 @@ struct RawPeriodic {
 
 struct MshData {
   bool v41 = true;
-  std::map<long long, std::string> line_names;       // dim-1 physical tag -> name
-  std::map<long long, long long> curve_entity_phys;  // 4.1 curve entity -> first physical tag (0 none)
-  std::unordered_map<long long, int> node_index;     // node tag -> point index
+  std::map<long long, std::string> line_names;         // dim-1 physical tag -> name
+  std::map<long long, long long> curve_entity_phys;    // 4.1 curve entity -> first physical tag (0 none)
+  std::map<long long, std::string> surface_names;      // dim-2 physical tag -> name
+  std::map<long long, long long> surface_entity_phys;  // 4.1 surface entity -> first physical tag (0 none)
+  MshSurfaceCells* cells = nullptr;                    // quads wanted (parse_msh's `cells`)
+  std::unordered_map<long long, int> node_index;       // node tag -> point index
   std::vector<Vec2> points;
-  std::vector<RawElement> lines, triangles;
+  std::vector<RawElement> lines, triangles, quads;
   std::map<int, std::size_t> skipped;  // element type -> count
   std::vector<long long> node_tags;    // per point, for messages about point data
   std::vector<RawPeriodic> periodic;   // $Periodic, resolved in assemble
@@ -112,6 +115,7 @@ void read_physical_names(LineScanner& s, MshData& d) {
     std::string_view name = s.rest_of_line();
     if (name.size() < 2 || name.front() != '"' || name.back() != '"') s.fail("expected a quoted physical name", name);
     if (dim == 1) d.line_names[tag] = std::string(name.substr(1, name.size() - 2));
+    if (dim == 2) d.surface_names[tag] = std::string(name.substr(1, name.size() - 2));
   }
   expect_end(s, "PhysicalNames");
 }
@@ -131,6 +135,7 @@ void read_entities(LineScanner& s, MshData& d) {
         if (k == 0) first = p;
       }
       if (dim == 1) d.curve_entity_phys[tag] = first;
+      if (dim == 2) d.surface_entity_phys[tag] = first;
       if (dim > 0) {
         const std::size_t nb = count(s, "number of bounding entities");
         for (std::size_t k = 0; k < nb; ++k) s.to_int(s.token("bounding entity tag"), "bounding entity tag");
@@ -188,9 +193,10 @@ void read_nodes(LineScanner& s, MshData& d) {
   expect_end(s, "Nodes");
 }
 
-// One element: `nodes` is the rest of its line; type 1 and 2 are kept, the rest counted.
+// One element: `nodes` is the rest of its line; type 1 and 2 are kept (and 3 when quads are wanted),
+// the rest counted.
 void add_element(LineScanner& s, MshData& d, int type, std::string_view nodes, long long physical, long long entity) {
-  const std::size_t need = type == 1 ? 2 : type == 2 ? 3 : 0;
+  const std::size_t need = type == 1 ? 2 : type == 2 ? 3 : type == 3 && d.cells != nullptr ? 4 : 0;
   if (need == 0) {
     d.skipped[type]++;
     return;
@@ -204,7 +210,7 @@ void add_element(LineScanner& s, MshData& d, int type, std::string_view nodes, l
   e.physical = physical;
   e.entity = entity;
   for (std::size_t k = 0; k < need; ++k) e.nodes[k] = s.to_int(toks[k], "node tag");
-  (type == 1 ? d.lines : d.triangles).push_back(e);
+  (type == 1 ? d.lines : type == 2 ? d.triangles : d.quads).push_back(e);
 }
 
 void read_elements(LineScanner& s, MshData& d) {
@@ -241,9 +247,10 @@ void read_elements(LineScanner& s, MshData& d) {
     const auto type = static_cast<int>(s.to_int(s.token("element type"), "element type"));
     const std::size_t n = count(s, "number of elements in block", 4);
     long long physical = 0;
-    if (dim == 1) {
-      const auto it = d.curve_entity_phys.find(entity);
-      physical = it == d.curve_entity_phys.end() ? 0 : it->second;
+    if (dim == 1 || dim == 2) {
+      const auto& phys = dim == 1 ? d.curve_entity_phys : d.surface_entity_phys;
+      const auto it = phys.find(entity);
+      physical = it == phys.end() ? 0 : it->second;
     }
     for (std::size_t i = 0; i < n; ++i) {
       s.to_int(s.token("element tag"), "element tag");
@@ -398,6 +405,36 @@ int resolve(const MshData& d, const std::string& file, const RawElement& e, long
   return it->second;
 }
 
+// The quads and the region flags of parse_msh's `cells`.
+void assemble_cells(const std::string& file, const MshData& d, const Mesh& mesh, MeshReadReport& report) {
+  MshSurfaceCells& out = *d.cells;
+  long long region = 0;
+  for (const auto& [tag, name] : d.surface_names)
+    if (name == out.region && region == 0) region = tag;
+  out.region_found = region != 0;
+  const auto in_region = [&](const RawElement& e) { return std::uint8_t(region != 0 && e.physical == region); };
+  out.triangle_in_region.clear();
+  for (const auto& e : d.triangles) out.triangle_in_region.push_back(in_region(e));
+  out.quads.clear();
+  out.quad_in_region.clear();
+  std::size_t flipped = 0;
+  for (const auto& e : d.quads) {
+    std::array<int, 4> q{};
+    for (int k = 0; k < 4; ++k) q[static_cast<std::size_t>(k)] = resolve(d, file, e, e.nodes[k]);
+    // The signed area (shoelace): a clockwise quad is turned, as orient_triangles_ccw turns triangles.
+    double area = 0.0;
+    for (std::size_t k = 0; k < 4; ++k) area += cross(mesh.points[q[k]], mesh.points[q[(k + 1) % 4]]);
+    if (area < 0.0) {
+      std::swap(q[1], q[3]);
+      ++flipped;
+    }
+    out.quads.push_back(q);
+    out.quad_in_region.push_back(in_region(e));
+  }
+  if (flipped > 0)
+    report.notes.push_back(fmt::format("{}: turned {} clockwise quadrangles counter-clockwise", file, flipped));
+}
+
 Mesh assemble(const std::string& file, MshData& d, MeshReadReport& report) {
   Mesh mesh;
   mesh.points = std::move(d.points);
@@ -469,15 +506,18 @@ Mesh assemble(const std::string& file, MshData& d, MeshReadReport& report) {
     report.notes.push_back(fmt::format("{}: skipped {} elements of type {} ({})", file, n, type, element_name(type)));
   }
   orient_triangles_ccw(mesh, report);
+  if (d.cells != nullptr) assemble_cells(file, d, mesh, report);
   return mesh;
 }
 
 }  // namespace
 
-Mesh parse_msh(const std::string& file_label, std::string content, MeshReadReport& report, MeshPointData* data) {
+Mesh parse_msh(const std::string& file_label, std::string content, MeshReadReport& report, MeshPointData* data,
+               MshSurfaceCells* cells) {
   LineScanner s(file_label, std::move(content));
   MshData d;
   d.data = data;
+  d.cells = cells;
   const auto first = s.token("$MeshFormat");
   if (first != "$MeshFormat") s.fail("an MSH file starts with $MeshFormat", first);
   read_format(s, d);
@@ -518,8 +558,8 @@ Mesh parse_msh(const std::string& file_label, std::string content, MeshReadRepor
   return assemble(file_label, d, report);
 }
 
-Mesh read_msh(const std::filesystem::path& path, MeshReadReport& report, MeshPointData* data) {
-  return parse_msh(path.string(), read_text_file(path, InputKind::Mesh), report, data);
+Mesh read_msh(const std::filesystem::path& path, MeshReadReport& report, MeshPointData* data, MshSurfaceCells* cells) {
+  return parse_msh(path.string(), read_text_file(path, InputKind::Mesh), report, data, cells);
 }
 
 }  // namespace pdmesh

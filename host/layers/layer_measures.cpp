@@ -27,6 +27,23 @@ double height_over(Vec2 a, Vec2 b, Vec2 x) { return std::abs(cross(b - a, x - a)
 
 }  // namespace
 
+void add_cell_angles(const std::vector<Vec2>& x, const std::array<int, 4>& v, CellAngles& out) {
+  const int k = v[3] < 0 ? 3 : 4;
+  ++out.cells;
+  (k == 3 ? out.triangles : out.quads) += 1;
+  bool inverted = false;
+  for (int i = 0; i < k; ++i) {
+    const Vec2 p = x[v[(i + k - 1) % k]], c = x[v[i]], n = x[v[(i + 1) % k]];
+    if (orient2d(p, c, n) <= 0.0) inverted = true;
+    double a = std::atan2(cross(n - c, p - c), dot(n - c, p - c));
+    if (a < 0) a += 2.0 * std::numbers::pi;
+    const double deg = a * 180.0 / std::numbers::pi;
+    out.max_angle_deg = std::max(out.max_angle_deg, deg);
+    if (deg > 150.0) ++out.angles_above_150;
+  }
+  out.inverted_cells += inverted ? 1 : 0;
+}
+
 LayerMeasures measure_layers(const LayerMesh& mesh, double first_height, const CoreSpacing& core_spacing) {
   LayerMeasures out;
   out.nodes = static_cast<int>(mesh.nodes.size());
@@ -34,20 +51,10 @@ LayerMeasures measure_layers(const LayerMesh& mesh, double first_height, const C
   out.fan_sizes = mesh.fan_sizes;
   const auto& x = mesh.nodes;
   int within = 0;
+  CellAngles angles;
   for (const LayerCell& cell : mesh.cells) {
     const int k = cell.triangle() ? 3 : 4;
-    (cell.triangle() ? out.triangles : out.quads) += 1;
-    bool inverted = false;
-    for (int i = 0; i < k; ++i) {
-      const Vec2 p = x[cell.v[(i + k - 1) % k]], v = x[cell.v[i]], n = x[cell.v[(i + 1) % k]];
-      if (orient2d(p, v, n) <= 0.0) inverted = true;
-      double a = std::atan2(cross(n - v, p - v), dot(n - v, p - v));
-      if (a < 0) a += 2.0 * std::numbers::pi;
-      const double deg = a * 180.0 / std::numbers::pi;
-      out.max_angle_deg = std::max(out.max_angle_deg, deg);
-      if (deg > 150.0) ++out.angles_above_150;
-    }
-    out.inverted_cells += inverted ? 1 : 0;
+    add_cell_angles(x, cell.v, angles);
     // A wall cell: an edge between two wall nodes; its other corners' heights over that edge.
     for (int i = 0; i < k; ++i) {
       const int a = cell.v[i], b = cell.v[(i + 1) % k];
@@ -64,6 +71,11 @@ LayerMeasures measure_layers(const LayerMesh& mesh, double first_height, const C
       break;
     }
   }
+  out.quads = angles.quads;
+  out.triangles = angles.triangles;
+  out.max_angle_deg = angles.max_angle_deg;
+  out.angles_above_150 = angles.angles_above_150;
+  out.inverted_cells = angles.inverted_cells;
   out.first_height_within_2pct = out.wall_cells ? static_cast<double>(within) / out.wall_cells : 0.0;
 
   std::vector<double> inside, junction;

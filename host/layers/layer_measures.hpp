@@ -1,6 +1,7 @@
 // Measures of a boundary layer (docs/boundary-layers.md): first height of the wall cells, growth
 // along each ray and into the core, angles, fans, thickness jumps between neighbouring wall nodes.
 #pragma once
+#include <array>
 #include <string>
 #include <vector>
 
@@ -27,6 +28,17 @@ struct LayerMeasures {
   int max_layers = 0;
   double min_thickness = 0, max_thickness = 0;
 };
+
+// The angle measures of cells given by their corners (counter-clockwise; v[3] = -1 for a triangle):
+// the counts by kind, the largest angle, the angles above 150 degrees and the inverted cells. One
+// definition for the layers' measures below and for `pdmesh quality` on a mesh file with quads.
+struct CellAngles {
+  int cells = 0, quads = 0, triangles = 0;
+  double max_angle_deg = 0;
+  int angles_above_150 = 0;
+  int inverted_cells = 0;  // cells with a corner whose orientation is not counter-clockwise (exact test)
+};
+void add_cell_angles(const std::vector<Vec2>& points, const std::array<int, 4>& v, CellAngles& out);
 
 LayerMeasures measure_layers(const LayerMesh& mesh, double first_height, const CoreSpacing& core_spacing = {});
 

@@ -12,12 +12,15 @@
 #include "geometry/geometry_files.hpp"
 #include "geometry/geometry_tree.hpp"
 #include "io/mesh_formats.hpp"
+#include "io/mixed_mesh.hpp"
+#include "io/msh_reader.hpp"
 #include "io/text_file.hpp"
 #include "core/errors.hpp"
 #include "mesh/mesh_topology.hpp"
 #include "mesh/metric_quality.hpp"
 #include "mesh/quality.hpp"
 #include "io/quality_report.hpp"
+#include "layers/layer_measures.hpp"
 #include "render/mesh_picture.hpp"
 #include "spacing/spacing_field.hpp"
 
@@ -43,10 +46,78 @@ CaseSpacing load_spacing(const std::filesystem::path& path) {
   return loaded;
 }
 
-void write_picture(const Mesh& mesh, const std::string& mesh_path, const QualityPicture& picture) {
+// A mesh file as read: its triangles (the Mesh every measure of the table takes) and, for an MSH
+// file with quadrangles, the mixed mesh of all its cells with the cells of the "boundary_layer"
+// group marked, as a layered run writes it (io/mixed_mesh.hpp).
+struct ReadMesh {
+  Mesh mesh;
+  std::optional<MixedMesh> mixed;
+  bool region_found = false;
+};
+
+ReadMesh read_cells(const std::string& mesh_path, MeshReadReport& report) {
+  std::string ext = std::filesystem::path(mesh_path).extension().string();
+  for (auto& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  ReadMesh read;
+  if (ext != ".msh") {
+    read.mesh = read_mesh(mesh_path, report);
+    return read;
+  }
+  MshSurfaceCells cells;
+  cells.region = kLayerRegion;
+  read.mesh = read_msh(mesh_path, report, nullptr, &cells);
+  if (cells.quads.empty()) return read;
+  MixedMesh& m = read.mixed.emplace();
+  m.points = read.mesh.points;
+  m.boundary_edges = read.mesh.boundary_edges;
+  m.curve_names = read.mesh.curve_names;
+  for (std::size_t i = 0; i < read.mesh.triangles.size(); ++i) {
+    const auto& t = read.mesh.triangles[i];
+    m.cells.push_back({t[0], t[1], t[2], -1});
+    m.layer.push_back(cells.triangle_in_region[i]);
+  }
+  m.cells.insert(m.cells.end(), cells.quads.begin(), cells.quads.end());
+  m.layer.insert(m.layer.end(), cells.quad_in_region.begin(), cells.quad_in_region.end());
+  read.region_found = cells.region_found;
+  return read;
+}
+
+// The mixed mesh's measures: the counts and angles of all its cells and of its boundary-layer cells
+// (those of the "boundary_layer" group; every quad where the file names no such group), by the
+// layered run's own cell measures (layers/layer_measures.hpp). The first heights and the growth need
+// the case and are not measured here (docs/quality.md).
+struct MixedMeasures {
+  CellAngles all, layer;
+};
+
+MixedMeasures measure_mixed(const MixedMesh& m, bool region_found) {
+  MixedMeasures out;
+  for (std::size_t i = 0; i < m.cells.size(); ++i) {
+    add_cell_angles(m.points, m.cells[i], out.all);
+    if (region_found ? m.layer[i] != 0 : m.cells[i][3] >= 0) add_cell_angles(m.points, m.cells[i], out.layer);
+  }
+  return out;
+}
+
+std::string cell_angles_json(const CellAngles& a) {
+  return fmt::format(
+      "{{\"cells\": {}, \"quads\": {}, \"triangles\": {}, \"max_angle\": {}, \"angles_above_150\": {}, "
+      "\"inverted_cells\": {}}}",
+      a.cells, a.quads, a.triangles, a.max_angle_deg, a.angles_above_150, a.inverted_cells);
+}
+
+std::string cell_angles_text(const CellAngles& a) {
+  return fmt::format(
+      "{} cells ({} quads, {} triangles): largest angle {:.2f} deg, {} angles above 150 deg, {} inverted", a.cells,
+      a.quads, a.triangles, a.max_angle_deg, a.angles_above_150, a.inverted_cells);
+}
+
+// `title_note`: after the file name (the cells of a mesh with quads, which are drawn split).
+void write_picture(const Mesh& mesh, const std::string& mesh_path, const QualityPicture& picture,
+                   const std::string& title_note = "") {
   std::vector<double> values;
   MeshPictureOptions options;
-  options.title = std::filesystem::path(mesh_path).filename().string();
+  options.title = std::filesystem::path(mesh_path).filename().string() + title_note;
   if (picture.window) {
     const auto& w = *picture.window;
     Box box;
@@ -69,7 +140,8 @@ int run_quality(const std::string& mesh_path, const std::optional<std::string>& 
                 const std::optional<std::string>& out_json, std::ostream& out, std::ostream& err,
                 const std::optional<QualityPicture>& picture) {
   MeshReadReport report;
-  const Mesh mesh = read_mesh(mesh_path, report);
+  const ReadMesh read = read_cells(mesh_path, report);
+  const Mesh& mesh = read.mesh;
   for (const auto& note : report.notes) err << note << '\n';
   // Measuring a folded or non-manifold mesh would report numbers of a mesh that is not there.
   if (const auto problem = find_fold_or_nonmanifold_edge(mesh)) {
@@ -98,19 +170,46 @@ int run_quality(const std::string& mesh_path, const std::optional<std::string>& 
                        mesh.curve_names[static_cast<std::size_t>(l.source_curve)],
                        mesh.curve_names[static_cast<std::size_t>(l.curve)], l.nodes.size(), l.max_mismatch);
   const std::string periodic = periodic_json(mesh.curve_names, report.periodic);
+  std::string json = quality_json(summary, mesh_path, "", periodic);
+  if (read.mixed) {
+    // The table above is the triangles'; the quads and the boundary-layer cells as the layered run's
+    // quality.json counts and measures them ("boundary_layer": its tables' cells, quads, angles).
+    const MixedMeasures mm = measure_mixed(*read.mixed, read.region_found);
+    const char* layer_name = read.region_found ? "boundary_layer" : "quads";
+    out << fmt::format("mixed mesh: {} points, {} cells ({} quads, {} triangles)\n  all cells: {}\n  {}: {}\n",
+                       read.mixed->points.size(), mm.all.cells, mm.all.quads, mm.all.triangles,
+                       cell_angles_text(mm.all),
+                       read.region_found ? "boundary layer (the file's \"boundary_layer\" group)"
+                                         : "quads (no \"boundary_layer\" group)",
+                       cell_angles_text(mm.layer));
+    // Before the closing brace's line, so that the object reads as the others do.
+    std::size_t at = json.find_last_of('}');
+    if (at > 0 && json[at - 1] == '\n') --at;
+    json.insert(
+        at, fmt::format(",\n  \"cells\": {{\"points\": {}, \"all\": {}, \"layer_cells\": \"{}\", \"layer\": {}}}",
+                        read.mixed->points.size(), cell_angles_json(mm.all), layer_name, cell_angles_json(mm.layer)));
+  }
 
   if (out_json) {
     if (*out_json == "-") {
-      out << quality_json(summary, mesh_path, "", periodic);
+      out << json;
     } else if (std::filesystem::is_directory(*out_json)) {
-      err << "wrote " << write_quality_json(summary, *out_json, mesh_path, "", periodic).string() << '\n';
+      const auto path = std::filesystem::path(*out_json) / "quality.json";
+      write_text_file(path, json);
+      err << "wrote " << path.string() << '\n';
     } else {
-      write_text_file(*out_json, quality_json(summary, mesh_path, "", periodic));
+      write_text_file(*out_json, json);
       err << "wrote " << *out_json << '\n';
     }
   }
   if (picture) {
-    write_picture(mesh, mesh_path, *picture);
+    // Quads are drawn as the layered run's mesh.png draws them: split (io/mixed_mesh.hpp triangulated).
+    if (read.mixed) {
+      write_picture(triangulated(*read.mixed), mesh_path, *picture,
+                    fmt::format(" ({} cells, {} quads, drawn split)", read.mixed->cells.size(), read.mixed->quads()));
+    } else {
+      write_picture(mesh, mesh_path, *picture);
+    }
     err << "wrote " << picture->path << '\n';
   }
   return 0;
