@@ -219,7 +219,7 @@ std::string json_string(const std::string& text) {
 }
 
 std::string quality_json(const QualitySummary& s, const std::string& source, const std::string& healing,
-                         const std::string& periodic) {
+                         const std::string& periodic, const std::string& trailing) {
   std::string spacing = "null";
   if (s.has_spacing) {
     const auto& c = s.spacing;
@@ -280,6 +280,7 @@ std::string quality_json(const QualitySummary& s, const std::string& source, con
     out += fmt::format("  \"constraints\": [{}],\n", list);
   }
   out += fmt::format("  \"cleanup\": {}\n", cleanup);
+  out += trailing;
   out += "}\n";
   return out;
 }

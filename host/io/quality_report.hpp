@@ -19,9 +19,11 @@ std::string format_quality_table(const QualitySummary& summary, const std::strin
 // The summary as a JSON document; `source` (e.g. the mesh file) is recorded under "source".
 // Non-finite numbers (degenerate triangles) are written as null.
 // `healing` (geometry/heal_report.hpp's heal_json) is written as the "healing" object when not empty,
-// `periodic` (periodic_json) as the "periodic" array.
+// `periodic` (periodic_json) as the "periodic" array. `trailing`: further members of the caller's own
+// (a layered mesh's "boundary_layer", a mesh file's "cells"), as text that starts with a comma,
+// appended after the last member's line, before the closing brace.
 std::string quality_json(const QualitySummary& summary, const std::string& source = "", const std::string& healing = "",
-                         const std::string& periodic = "");
+                         const std::string& periodic = "", const std::string& trailing = "");
 
 // Writes DIR/quality.json atomically and returns its path.
 std::filesystem::path write_quality_json(const QualitySummary& summary, const std::filesystem::path& dir,

@@ -170,7 +170,7 @@ int run_quality(const std::string& mesh_path, const std::optional<std::string>& 
                        mesh.curve_names[static_cast<std::size_t>(l.source_curve)],
                        mesh.curve_names[static_cast<std::size_t>(l.curve)], l.nodes.size(), l.max_mismatch);
   const std::string periodic = periodic_json(mesh.curve_names, report.periodic);
-  std::string json = quality_json(summary, mesh_path, "", periodic);
+  std::string cells_member;
   if (read.mixed) {
     // The table above is the triangles'; the quads and the boundary-layer cells as the layered run's
     // quality.json counts and measures them ("boundary_layer": its tables' cells, quads, angles).
@@ -182,13 +182,11 @@ int run_quality(const std::string& mesh_path, const std::optional<std::string>& 
                        read.region_found ? "boundary layer (the file's \"boundary_layer\" group)"
                                          : "quads (no \"boundary_layer\" group)",
                        cell_angles_text(mm.layer));
-    // Before the closing brace's line, so that the object reads as the others do.
-    std::size_t at = json.find_last_of('}');
-    if (at > 0 && json[at - 1] == '\n') --at;
-    json.insert(
-        at, fmt::format(",\n  \"cells\": {{\"points\": {}, \"all\": {}, \"layer_cells\": \"{}\", \"layer\": {}}}",
-                        read.mixed->points.size(), cell_angles_json(mm.all), layer_name, cell_angles_json(mm.layer)));
+    cells_member =
+        fmt::format(",\n  \"cells\": {{\"points\": {}, \"all\": {}, \"layer_cells\": \"{}\", \"layer\": {}}}\n",
+                    read.mixed->points.size(), cell_angles_json(mm.all), layer_name, cell_angles_json(mm.layer));
   }
+  const std::string json = quality_json(summary, mesh_path, "", periodic, cells_member);
 
   if (out_json) {
     if (*out_json == "-") {

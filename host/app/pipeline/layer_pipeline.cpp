@@ -835,19 +835,18 @@ void write_layered_outputs(const CaseConfig& config, const MeshInputs& inputs, c
   if (!config.quiet) fmt::print("{}", table);
   {
     const auto json_timer = phases.phase("quality.json");
-    std::string json = quality_json(core_summary, config.name, "", periodic_json(mixed.curve_names, periodic));
-    const auto close = json.find_last_of('}');
     // Under a metric the core's isotropic min angle says nothing about how it honours the metric (its
     // `metric` section does): `core_min_angle` is null there, the angle kept as core_min_angle_physical.
     const std::string angle = metric != nullptr
                                   ? fmt::format("null,\n  \"core_min_angle_physical\": {}", core_summary.min_angle)
                                   : fmt::format("{}", core_summary.min_angle);
-    json.insert(close,
-                fmt::format(",\n  \"boundary_layer\": {{\n  \"tables\": [\n{}\n  ],\n  \"junction\": {{\"edges\": {}, "
-                            "\"median\": {}, \"p95\": {}, \"max\": {}}},\n{}  \"core_min_angle\": {},\n  "
-                            "\"points\": {}, \"cells\": {}, \"quads\": {}\n  }}\n",
-                            json_layers, junction.size(), j50, j95, jmax, json_front, angle, mixed.points.size(),
-                            mixed.cells.size(), mixed.quads()));
+    const std::string json = quality_json(
+        core_summary, config.name, "", periodic_json(mixed.curve_names, periodic),
+        fmt::format(",\n  \"boundary_layer\": {{\n  \"tables\": [\n{}\n  ],\n  \"junction\": {{\"edges\": {}, "
+                    "\"median\": {}, \"p95\": {}, \"max\": {}}},\n{}  \"core_min_angle\": {},\n  "
+                    "\"points\": {}, \"cells\": {}, \"quads\": {}\n  }}\n",
+                    json_layers, junction.size(), j50, j95, jmax, json_front, angle, mixed.points.size(),
+                    mixed.cells.size(), mixed.quads()));
     write_file_atomically(config.out_dir / "quality.json", json);
   }
   for (const PeriodicLink& l : periodic)
