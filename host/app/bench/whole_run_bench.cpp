@@ -15,6 +15,7 @@
 #include <sstream>
 
 #include <fmt/format.h>
+#include <nlohmann/json.hpp>
 
 #include "app/bench/annulus_case.hpp"
 #include "app/bench/bench_floor.hpp"
@@ -26,6 +27,7 @@
 
 namespace pdmesh {
 namespace fs = std::filesystem;
+using json = nlohmann::json;
 namespace {
 
 struct RunRecord {
@@ -44,6 +46,31 @@ double load_average() {
   double one = 0.0;
   f >> one;
   return one;
+}
+
+// A run's timings file (app/pipeline/run_phases.cpp, docs/cli.md "The timings file") into r: every
+// numeric top-level member as a note, the backend, the phases (background ones summed as pictures).
+void read_timings(const fs::path& timings, RunRecord& r) {
+  json t;
+  try {
+    t = json::parse(read_text_file(timings));
+    for (const auto& [key, value] : t.items())
+      if (value.is_number()) r.notes[key] = value.get<double>();
+    r.backend = t.value("backend", std::string());
+    for (const json& p : t.at("phases")) {
+      const double wall = p.at("wall").get<double>(), cpu = p.at("cpu").get<double>();
+      if (p.at("background").get<bool>()) {
+        r.pictures += wall;
+        r.picture_cpu += cpu;
+      } else {
+        const std::string name = p.at("name").get<std::string>();
+        r.phases.emplace_back(name, wall);
+        r.phase_cpu[name] += cpu;
+      }
+    }
+  } catch (const json::exception& e) {
+    throw Error(fmt::format("bench: the timings file '{}' of a run: {}", timings.string(), e.what()));
+  }
 }
 
 // Runs `pdmesh ARGS...` (this executable) and waits for it; CPU time and peak memory from wait4.
@@ -73,29 +100,7 @@ RunRecord run_process(const std::vector<std::string>& args, const fs::path& timi
   r.cpu = static_cast<double>(usage.ru_utime.tv_sec + usage.ru_stime.tv_sec) +
           1e-6 * static_cast<double>(usage.ru_utime.tv_usec + usage.ru_stime.tv_usec);
   r.peak_rss = 1024.0 * static_cast<double>(usage.ru_maxrss);
-  // The timings file (app/pipeline/run_phases.cpp writes one phase per line).
-  const std::string text = read_text_file(timings);
-  static const std::regex phase(
-      R"re(\{"name": "([^"]*)", "wall": ([-0-9.eE+]+), "cpu": ([-0-9.eE+]+), "background": (true|false)\})re");
-  static const std::regex note(R"re(^  "([a-z_]+)": ([-0-9.eE+]+),$)re");
-  static const std::regex backend(R"re(^  "backend": "(.*)",$)re");
-  std::istringstream in(text);
-  for (std::string line; std::getline(in, line);) {
-    std::smatch m;
-    if (std::regex_search(line, m, phase)) {
-      if (m[4] == "true") {
-        r.pictures += std::stod(m[2].str());
-        r.picture_cpu += std::stod(m[3].str());
-      } else {
-        r.phases.emplace_back(m[1].str(), std::stod(m[2].str()));
-        r.phase_cpu[m[1].str()] += std::stod(m[3].str());
-      }
-    } else if (std::regex_match(line, m, note)) {
-      r.notes[m[1].str()] = std::stod(m[2].str());
-    } else if (std::regex_match(line, m, backend)) {
-      r.backend = m[1].str();
-    }
-  }
+  read_timings(timings, r);
   return r;
 }
 
