@@ -117,6 +117,14 @@ def test_the_mixed_files_load_in_meshio(rings, tmp_path):
     m = mesh.to_meshio()
     assert [c.type for c in m.cells][:2] == ["triangle", "quad"]
     assert int(m.cell_data["boundary_layer"][1].sum()) == quads
+    # meshio's msh writer takes it (it needs the Gmsh tags): the quads in the "boundary_layer" group.
+    meshio.write(tmp_path / "via_meshio.msh", m, file_format="gmsh")
+    back = meshio.read(tmp_path / "via_meshio.msh")
+    assert count(back, "triangle") == triangles and count(back, "quad") == quads
+    assert {"box", "hole", "domain", "boundary_layer"} <= set(back.field_data)
+    for c, tags in zip(back.cells, back.cell_data["gmsh:physical"]):
+        if c.type == "quad":
+            assert set(tags.tolist()) == {back.field_data["boundary_layer"][0]}
 
 
 def test_formats_that_cannot_hold_quads_are_refused(rings, tmp_path):
