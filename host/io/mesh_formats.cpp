@@ -80,13 +80,13 @@ std::vector<std::filesystem::path> write_mesh(const Mesh& mesh, const std::files
   return written;
 }
 
-Mesh read_mesh(const std::filesystem::path& path, MeshReadReport& report) {
+Mesh read_mesh(const std::filesystem::path& path, MeshReadReport& report, SurfaceCells* cells) {
   std::string ext = path.extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(),
                  [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  if (ext == ".msh") return read_msh(path, report);
-  if (ext == ".vtu") return read_vtu(path, report);
-  if (ext == ".su2") return read_su2(path, report);
+  if (ext == ".msh") return read_msh(path, report, nullptr, cells);
+  if (ext == ".vtu") return read_vtu(path, report, nullptr, cells);
+  if (ext == ".su2") return read_su2(path, report, cells);
   if (ext == ".ele" || ext == ".node" || ext == ".poly") {
     auto ele = path;
     ele.replace_extension(".ele");

@@ -33,8 +33,10 @@ std::vector<std::filesystem::path> write_mesh(const Mesh& mesh, const std::files
                                               const MeshWriteOptions& options = {});
 
 // Reads a mesh by extension: .msh (2.2 or 4.1, from $MeshFormat), .vtu, .su2, .ele (with its
-// .node and optional .poly; a .node or .poly path is taken to mean the same stem).
-Mesh read_mesh(const std::filesystem::path& path, MeshReadReport& report);
+// .node and optional .poly; a .node or .poly path is taken to mean the same stem). With `cells`, the
+// quads of an .msh, .vtu or .su2 file too, and which cells are in cells->region (SurfaceCells,
+// io/mesh_io_common.hpp); Triangle's files hold triangles only.
+Mesh read_mesh(const std::filesystem::path& path, MeshReadReport& report, SurfaceCells* cells = nullptr);
 Mesh read_mesh(const std::filesystem::path& path);
 
 }  // namespace pdmesh

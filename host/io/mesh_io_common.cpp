@@ -83,4 +83,19 @@ void orient_triangles_ccw(Mesh& mesh, MeshReadReport& report) {
   if (flipped > 0) report.notes.push_back(fmt::format("turned {} clockwise triangles counter-clockwise", flipped));
 }
 
+void orient_quads_ccw(const std::vector<Vec2>& points, std::vector<std::array<int, 4>>& quads, const std::string& file,
+                      MeshReadReport& report) {
+  std::size_t flipped = 0;
+  for (auto& q : quads) {
+    double area = 0.0;
+    for (std::size_t k = 0; k < 4; ++k) area += cross(points[q[k]], points[q[(k + 1) % 4]]);
+    if (area < 0.0) {
+      std::swap(q[1], q[3]);
+      ++flipped;
+    }
+  }
+  if (flipped > 0)
+    report.notes.push_back(fmt::format("{}: turned {} clockwise quadrangles counter-clockwise", file, flipped));
+}
+
 }  // namespace pdmesh

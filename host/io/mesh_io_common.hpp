@@ -1,6 +1,7 @@
 // Pieces every mesh writer and reader shares: curve labels as files can hold them, the checks
 // a mesh passes before it is written, and what a reader reports besides the mesh.
 #pragma once
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <optional>
@@ -48,6 +49,19 @@ struct MeshPointData {
                                           // tag); empty for VTU (points by index, ParaView's point id)
 };
 
+// The quadrangles a reader takes beside the Mesh's triangles when it is handed one (only `pdmesh
+// quality` does; every other caller reads triangles alone and the quads are skipped with a note), and
+// which cells lie in the region named `region` (a layered run's "boundary_layer"): in an MSH file the
+// 2-D physical group of that name, in a VTU file the cell-data array of that name (1 in it, 0 not);
+// SU2 has no volume markers, so an SU2 reader never finds it. The quads are counter-clockwise
+// (orient_quads_ccw); triangle_in_region follows Mesh::triangles, quad_in_region follows quads.
+struct SurfaceCells {
+  std::string region;                                            // in
+  std::vector<std::array<int, 4>> quads;                         // out
+  std::vector<std::uint8_t> triangle_in_region, quad_in_region;  // out: 1 in the region
+  bool region_found = false;                                     // out: the file names the region
+};
+
 // The name of curve c as written: its name, or "curve<c>" when empty; double quotes and line
 // breaks become '_' (MSH quotes names), and with `no_blanks` also spaces and tabs (SU2 markers).
 std::string curve_label(const Mesh& mesh, std::size_t c, bool no_blanks = false);
@@ -65,5 +79,9 @@ std::string coord(double v);
 // Reader post-processing: turns clockwise triangles counter-clockwise (exact orientation test),
 // counting them in `report`.
 void orient_triangles_ccw(Mesh& mesh, MeshReadReport& report);
+// The same for quadrangles, by the sign of their area (shoelace), with the note "FILE: turned N
+// clockwise quadrangles counter-clockwise".
+void orient_quads_ccw(const std::vector<Vec2>& points, std::vector<std::array<int, 4>>& quads, const std::string& file,
+                      MeshReadReport& report);
 
 }  // namespace pdmesh

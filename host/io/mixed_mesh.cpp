@@ -267,6 +267,24 @@ Mesh boundary_of(const MixedMesh& mesh) {
   return out;
 }
 
+MixedMesh mixed_mesh_of(const Mesh& mesh, const SurfaceCells& cells) {
+  MixedMesh m;
+  m.points = mesh.points;
+  m.boundary_edges = mesh.boundary_edges;
+  m.curve_names = mesh.curve_names;
+  m.cells.reserve(mesh.triangles.size() + cells.quads.size());
+  for (std::size_t i = 0; i < mesh.triangles.size(); ++i) {
+    const auto& t = mesh.triangles[i];
+    m.cells.push_back({t[0], t[1], t[2], -1});
+    m.layer.push_back(cells.region_found ? cells.triangle_in_region[i] : 0);
+  }
+  for (std::size_t i = 0; i < cells.quads.size(); ++i) {
+    m.cells.push_back(cells.quads[i]);
+    m.layer.push_back(cells.region_found ? cells.quad_in_region[i] : 1);
+  }
+  return m;
+}
+
 Mesh triangulated(const MixedMesh& mesh) {
   Mesh out;
   out.points = mesh.points;

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "io/mesh_io_common.hpp"
 #include "mesh/mesh.hpp"
 #include "mesh/periodic_links.hpp"
 
@@ -48,6 +49,11 @@ std::vector<std::filesystem::path> write_mixed_mesh(const MixedMesh& mesh, const
 
 // The curves, boundary edges and points of `mesh` as a Mesh without cells (for link_periodic_nodes).
 Mesh boundary_of(const MixedMesh& mesh);
+
+// The mixed mesh of a file's cells as a reader gives them (read_mesh with SurfaceCells): the points,
+// curves and triangles of `mesh`, then the quads; `layer` marks the cells of the file's region, or
+// every quad where the file does not name the region (cells.region_found false, always for SU2).
+MixedMesh mixed_mesh_of(const Mesh& mesh, const SurfaceCells& cells);
 
 // The mesh as triangles (each quad split along its shorter diagonal), for the pictures.
 Mesh triangulated(const MixedMesh& mesh);

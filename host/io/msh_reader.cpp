@@ -41,7 +41,7 @@ struct MshData {
   std::map<long long, long long> curve_entity_phys;    // 4.1 curve entity -> first physical tag (0 none)
   std::map<long long, std::string> surface_names;      // dim-2 physical tag -> name
   std::map<long long, long long> surface_entity_phys;  // 4.1 surface entity -> first physical tag (0 none)
-  MshSurfaceCells* cells = nullptr;                    // quads wanted (parse_msh's `cells`)
+  SurfaceCells* cells = nullptr;                       // quads wanted (parse_msh's `cells`)
   std::unordered_map<long long, int> node_index;       // node tag -> point index
   std::vector<Vec2> points;
   std::vector<RawElement> lines, triangles, quads;
@@ -407,7 +407,7 @@ int resolve(const MshData& d, const std::string& file, const RawElement& e, long
 
 // The quads and the region flags of parse_msh's `cells`.
 void assemble_cells(const std::string& file, const MshData& d, const Mesh& mesh, MeshReadReport& report) {
-  MshSurfaceCells& out = *d.cells;
+  SurfaceCells& out = *d.cells;
   long long region = 0;
   for (const auto& [tag, name] : d.surface_names)
     if (name == out.region && region == 0) region = tag;
@@ -417,22 +417,13 @@ void assemble_cells(const std::string& file, const MshData& d, const Mesh& mesh,
   for (const auto& e : d.triangles) out.triangle_in_region.push_back(in_region(e));
   out.quads.clear();
   out.quad_in_region.clear();
-  std::size_t flipped = 0;
   for (const auto& e : d.quads) {
     std::array<int, 4> q{};
     for (int k = 0; k < 4; ++k) q[static_cast<std::size_t>(k)] = resolve(d, file, e, e.nodes[k]);
-    // The signed area (shoelace): a clockwise quad is turned, as orient_triangles_ccw turns triangles.
-    double area = 0.0;
-    for (std::size_t k = 0; k < 4; ++k) area += cross(mesh.points[q[k]], mesh.points[q[(k + 1) % 4]]);
-    if (area < 0.0) {
-      std::swap(q[1], q[3]);
-      ++flipped;
-    }
     out.quads.push_back(q);
     out.quad_in_region.push_back(in_region(e));
   }
-  if (flipped > 0)
-    report.notes.push_back(fmt::format("{}: turned {} clockwise quadrangles counter-clockwise", file, flipped));
+  orient_quads_ccw(mesh.points, out.quads, file, report);
 }
 
 Mesh assemble(const std::string& file, MshData& d, MeshReadReport& report) {
@@ -513,7 +504,7 @@ Mesh assemble(const std::string& file, MshData& d, MeshReadReport& report) {
 }  // namespace
 
 Mesh parse_msh(const std::string& file_label, std::string content, MeshReadReport& report, MeshPointData* data,
-               MshSurfaceCells* cells) {
+               SurfaceCells* cells) {
   LineScanner s(file_label, std::move(content));
   MshData d;
   d.data = data;
@@ -558,7 +549,7 @@ Mesh parse_msh(const std::string& file_label, std::string content, MeshReadRepor
   return assemble(file_label, d, report);
 }
 
-Mesh read_msh(const std::filesystem::path& path, MeshReadReport& report, MeshPointData* data, MshSurfaceCells* cells) {
+Mesh read_msh(const std::filesystem::path& path, MeshReadReport& report, MeshPointData* data, SurfaceCells* cells) {
   return parse_msh(path.string(), read_text_file(path, InputKind::Mesh), report, data, cells);
 }
 

@@ -1,9 +1,7 @@
 // Gmsh MSH reader (ASCII 4.1 and 2.2, detected from $MeshFormat): nodes, 2-node lines as
 // boundary edges grouped into curves by physical group, 3-node triangles, and on request one
-// $NodeData view (point data) and the 4-node quadrangles (MshSurfaceCells).
+// $NodeData view (point data) and the 4-node quadrangles (SurfaceCells).
 #pragma once
-#include <array>
-#include <cstdint>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -23,20 +21,11 @@ namespace pdmesh {
 // that name, the last: the latest time step) is read into data->array, with the node tag of every
 // point in data->point_ids, and the names of all views are listed.
 //
-// With `cells`, 4-node quadrangles (type 3) are read too instead of skipped: into cells->quads,
-// counter-clockwise (a clockwise one is turned, as the triangles are, with a note), and for every
-// triangle of the Mesh and every quad whether it lies in the 2-D physical group named
-// cells->region (a layered run's "boundary_layer"); cells->region_found says whether the file
-// names that group.
-struct MshSurfaceCells {
-  std::string region;
-  std::vector<std::array<int, 4>> quads;
-  std::vector<std::uint8_t> triangle_in_region, quad_in_region;
-  bool region_found = false;
-};
+// With `cells`, 4-node quadrangles (type 3) are read too instead of skipped (io/mesh_io_common.hpp
+// SurfaceCells: the region is the 2-D physical group of that name).
 Mesh parse_msh(const std::string& file_label, std::string content, MeshReadReport& report,
-               MeshPointData* data = nullptr, MshSurfaceCells* cells = nullptr);
+               MeshPointData* data = nullptr, SurfaceCells* cells = nullptr);
 Mesh read_msh(const std::filesystem::path& path, MeshReadReport& report, MeshPointData* data = nullptr,
-              MshSurfaceCells* cells = nullptr);
+              SurfaceCells* cells = nullptr);
 
 }  // namespace pdmesh

@@ -279,8 +279,9 @@ std::string quality_json(const QualitySummary& s, const std::string& source, con
       list += fmt::format("{}{{\"curve\": {}, \"edges\": {}}}", list.empty() ? "" : ", ", json_string(name), edges);
     out += fmt::format("  \"constraints\": [{}],\n", list);
   }
-  out += fmt::format("  \"cleanup\": {}\n", cleanup);
-  out += trailing;
+  // The caller's members follow "cleanup" on its line: `trailing` starts with the comma.
+  out += fmt::format("  \"cleanup\": {}", cleanup);
+  out += trailing.empty() ? "\n" : trailing;
   out += "}\n";
   return out;
 }

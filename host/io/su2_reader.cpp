@@ -52,7 +52,8 @@ std::string_view keyed(LineScanner& s, std::string_view line, std::string_view k
 // the points and put into the mesh.
 class Su2Parser {
  public:
-  Su2Parser(const std::string& file, std::string content) : file_(file), s_(file, std::move(content)) {}
+  Su2Parser(const std::string& file, std::string content, SurfaceCells* cells)
+      : file_(file), s_(file, std::move(content)), cells_(cells) {}
 
   Mesh parse(MeshReadReport& report) {
     std::string_view line;
@@ -78,14 +79,20 @@ class Su2Parser {
       report.notes.push_back(fmt::format("{}: skipped {} elements of SU2 type {}", file_, n, type));
     }
     orient_triangles_ccw(mesh_, report);
+    if (cells_ != nullptr) {
+      cells_->region_found = false;
+      cells_->triangle_in_region.assign(mesh_.triangles.size(), 0);
+      cells_->quad_in_region.assign(cells_->quads.size(), 0);
+      orient_quads_ccw(mesh_.points, cells_->quads, file_, report);
+    }
     return std::move(mesh_);
   }
 
  private:
   struct Element {
-    std::array<long long, 3> v;
+    std::array<long long, 4> v;
     int line;
-    bool triangle;
+    int nodes;  // 2 a boundary line, 3 a triangle, 4 a quadrilateral
     int curve;
   };
 
@@ -102,7 +109,7 @@ class Su2Parser {
     return false;
   }
 
-  // Reads one element line; keeps lines (when `curve` >= 0) and triangles.
+  // Reads one element line; keeps lines (when `curve` >= 0), triangles and, when asked for, quads.
   void read_element(int curve) {
     const auto toks = s_.expect_tokens("an element", '%');
     const auto type = static_cast<int>(s_.to_int(toks.at(0), "element type"));
@@ -110,12 +117,12 @@ class Su2Parser {
     if (n == 0) s_.fail("unknown SU2 element type", toks[0]);
     if (static_cast<int>(toks.size()) < 1 + n)
       s_.fail(fmt::format("element of type {} needs {} point indices", type, n));
-    const bool keep = curve >= 0 ? type == 3 : type == 5;
+    const bool keep = curve >= 0 ? type == 3 : type == 5 || (type == 9 && cells_ != nullptr);
     if (!keep) {
       skipped_[type]++;
       return;
     }
-    Element e{{0, 0, 0}, s_.line(), type == 5, curve};
+    Element e{{0, 0, 0, 0}, s_.line(), n, curve};
     for (int k = 0; k < n; ++k)
       e.v[static_cast<std::size_t>(k)] = s_.to_int(toks[static_cast<std::size_t>(1 + k)], "point index");
     elements_.push_back(e);
@@ -157,10 +164,11 @@ class Su2Parser {
     }
   }
 
-  // The kept elements, their point indices checked, as triangles and boundary edges.
+  // The kept elements, their point indices checked, as triangles, quads and boundary edges.
   void add_elements() {
+    if (cells_ != nullptr) cells_->quads.clear();
     for (const auto& e : elements_) {
-      for (int k = 0; k < (e.triangle ? 3 : 2); ++k) {
+      for (int k = 0; k < e.nodes; ++k) {
         if (e.v[static_cast<std::size_t>(k)] < 0 ||
             e.v[static_cast<std::size_t>(k)] >= static_cast<long long>(mesh_.points.size())) {
           throw InputError(fmt::format("{}:{}: point index {} outside 0..{}", file_, e.line,
@@ -168,7 +176,10 @@ class Su2Parser {
                                        static_cast<long long>(mesh_.points.size()) - 1));
         }
       }
-      if (e.triangle) {
+      if (e.nodes == 4) {
+        cells_->quads.push_back(
+            {static_cast<int>(e.v[0]), static_cast<int>(e.v[1]), static_cast<int>(e.v[2]), static_cast<int>(e.v[3])});
+      } else if (e.nodes == 3) {
         mesh_.triangles.push_back({static_cast<int>(e.v[0]), static_cast<int>(e.v[1]), static_cast<int>(e.v[2])});
       } else {
         mesh_.boundary_edges.push_back({static_cast<int>(e.v[0]), static_cast<int>(e.v[1]), e.curve});
@@ -180,18 +191,19 @@ class Su2Parser {
   LineScanner s_;
   Mesh mesh_;
   std::vector<Element> elements_;
+  SurfaceCells* cells_;
   std::map<int, std::size_t> skipped_;
   bool have_dim_ = false;
 };
 
 }  // namespace
 
-Mesh parse_su2(const std::string& file, std::string content, MeshReadReport& report) {
-  return Su2Parser(file, std::move(content)).parse(report);
+Mesh parse_su2(const std::string& file, std::string content, MeshReadReport& report, SurfaceCells* cells) {
+  return Su2Parser(file, std::move(content), cells).parse(report);
 }
 
-Mesh read_su2(const std::filesystem::path& path, MeshReadReport& report) {
-  return parse_su2(path.string(), read_text_file(path, InputKind::Mesh), report);
+Mesh read_su2(const std::filesystem::path& path, MeshReadReport& report, SurfaceCells* cells) {
+  return parse_su2(path.string(), read_text_file(path, InputKind::Mesh), report, cells);
 }
 
 }  // namespace pdmesh

@@ -301,7 +301,14 @@ int as_index(double v, long long n, const ArrayInfo& a, const VtuFile& f) {
   return static_cast<int>(v);
 }
 
-void read_cells(const VtuFile& f, Mesh& mesh, MeshReadReport& report, const std::string& file) {
+// The triangles into `mesh`; with `cells` the quads into cells->quads, and the cell index of each
+// triangle and quad into the index lists (for the region flags).
+struct CellIndex {
+  std::vector<long long> triangles, quads;
+};
+
+void read_cells(const VtuFile& f, Mesh& mesh, MeshReadReport& report, const std::string& file, SurfaceCells* cells,
+                CellIndex& index) {
   const ArrayInfo& conn_info = f.need("Cells", "connectivity");
   const ArrayInfo& offs_info = f.need("Cells", "offsets");
   const ArrayInfo& types_info = f.need("Cells", "types");
@@ -328,6 +335,13 @@ void read_cells(const VtuFile& f, Mesh& mesh, MeshReadReport& report, const std:
       std::array<int, 3> t{};
       for (int k = 0; k < 3; ++k) t[k] = as_index(conn[start + k], npoints, conn_info, f);
       mesh.triangles.push_back(t);
+      if (cells != nullptr) index.triangles.push_back(c);
+    } else if (type == 9 && cells != nullptr) {
+      if (stop - start != 4) f.fail(offs_info.pos, fmt::format("quad cell {} has {} points", c, stop - start));
+      std::array<int, 4> q{};
+      for (int k = 0; k < 4; ++k) q[k] = as_index(conn[start + k], npoints, conn_info, f);
+      cells->quads.push_back(q);
+      index.quads.push_back(c);
     } else {
       skipped[type]++;
     }
@@ -337,6 +351,27 @@ void read_cells(const VtuFile& f, Mesh& mesh, MeshReadReport& report, const std:
     report.skipped_elements += n;
     report.notes.push_back(fmt::format("{}: skipped {} cells of VTK type {}", file, n, type));
   }
+}
+
+// The region flags of `cells` from the cell-data array named cells->region (0 or 1 per cell).
+void read_region(const VtuFile& f, SurfaceCells& cells, const CellIndex& index) {
+  cells.triangle_in_region.assign(index.triangles.size(), 0);
+  cells.quad_in_region.assign(index.quads.size(), 0);
+  const ArrayInfo* a = f.find("CellData", cells.region);
+  cells.region_found = a != nullptr;
+  if (a == nullptr) return;
+  const std::vector<double> v = f.values(*a);
+  if (static_cast<long long>(v.size()) != f.cells())
+    f.fail(a->pos,
+           fmt::format("cell data '{}' holds {} values for {} cells", quote_input(a->name), v.size(), f.cells()));
+  for (std::size_t c = 0; c < v.size(); ++c) {
+    if (!(v[c] == 0 || v[c] == 1))
+      f.fail(a->pos, fmt::format("cell data '{}' holds {} at cell {} (0 or 1)", quote_input(a->name), v[c], c));
+  }
+  for (std::size_t i = 0; i < index.triangles.size(); ++i)
+    cells.triangle_in_region[i] = v[static_cast<std::size_t>(index.triangles[i])] != 0;
+  for (std::size_t i = 0; i < index.quads.size(); ++i)
+    cells.quad_in_region[i] = v[static_cast<std::size_t>(index.quads[i])] != 0;
 }
 
 // pdmesh's own arrays: the node kind (PointData) and the curves (FieldData).
@@ -401,7 +436,8 @@ void read_point_data(const VtuFile& f, MeshPointData& data) {
 
 }  // namespace
 
-Mesh parse_vtu(const std::string& file, const std::string& content, MeshReadReport& report, MeshPointData* data) {
+Mesh parse_vtu(const std::string& file, const std::string& content, MeshReadReport& report, MeshPointData* data,
+               SurfaceCells* cells) {
   VtuFile f(file, content);
   f.scan();
   Mesh mesh;
@@ -417,15 +453,21 @@ Mesh parse_vtu(const std::string& file, const std::string& content, MeshReadRepo
   }
   mesh.points.reserve(static_cast<std::size_t>(npoints));
   for (long long i = 0; i < npoints; ++i) mesh.points.push_back({pts[3 * i], pts[3 * i + 1]});
-  read_cells(f, mesh, report, file);
+  if (cells != nullptr) cells->quads.clear();
+  CellIndex index;
+  read_cells(f, mesh, report, file, cells, index);
   read_pdmesh_arrays(f, mesh);
   if (data != nullptr) read_point_data(f, *data);
   orient_triangles_ccw(mesh, report);
+  if (cells != nullptr) {
+    read_region(f, *cells, index);
+    orient_quads_ccw(mesh.points, cells->quads, file, report);
+  }
   return mesh;
 }
 
-Mesh read_vtu(const std::filesystem::path& path, MeshReadReport& report, MeshPointData* data) {
-  return parse_vtu(path.string(), read_text_file(path, InputKind::Mesh), report, data);
+Mesh read_vtu(const std::filesystem::path& path, MeshReadReport& report, MeshPointData* data, SurfaceCells* cells) {
+  return parse_vtu(path.string(), read_text_file(path, InputKind::Mesh), report, data, cells);
 }
 
 }  // namespace pdmesh

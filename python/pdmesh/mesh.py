@@ -91,7 +91,9 @@ class Mesh:
 
     @classmethod
     def read(cls, path: str | os.PathLike) -> "Mesh":
-        """Reads a mesh file (.msh 2.2/4.1, .vtu, .su2, Triangle .ele), as ``pdmesh quality`` does."""
+        """Reads a mesh file (.msh 2.2/4.1, .vtu, .su2, Triangle .ele), as ``pdmesh quality`` does:
+        a layered run's quads too (``quads``; ``triangle_layer`` from the .msh file's
+        "boundary_layer" group or the .vtu file's cell data, all 0 from .su2, which cannot say)."""
         return cls(_core.read_mesh(os.fspath(path)))
 
     @property
@@ -105,13 +107,13 @@ class Mesh:
     @property
     def quads(self) -> np.ndarray:
         """(K, 4) int32 counter-clockwise quadrangles: the boundary layers' cells with
-        ``elements="quads"`` (empty otherwise)."""
+        ``elements="quads"``, or a file's quads (empty otherwise)."""
         return self._core.quads
 
     @property
     def triangle_layer(self) -> np.ndarray:
         """(M,) uint8 per triangle: 1 for a boundary-layer cell, 0 for the core (empty without
-        boundary layers)."""
+        boundary layers or quads)."""
         return self._core.triangle_layer
 
     @property
@@ -195,7 +197,12 @@ class Mesh:
     def to_meshio(self):
         """A meshio.Mesh (the ``io`` extra): triangles, the quads of boundary layers, and one "line"
         block per boundary curve with a cell set named after the curve; with boundary layers, cell
-        data "boundary_layer" (1 for a layer cell)."""
+        data "boundary_layer" (1 for a layer cell). The Gmsh tags of the command's mesh.msh come
+        along, so that ``meshio.write("m.msh", m, file_format="gmsh")`` works and keeps the curves and
+        the periodic pairs: "gmsh:physical" and "gmsh:geometrical" cell data (curve c: entity and
+        physical group c + 1; triangles surface 1, physical "domain"; quads surface 2, physical
+        "boundary_layer"), "gmsh:dim_tags" point data (``_gmsh_dim_tags``), field_data naming the
+        groups, and ``gmsh_periodic`` with the pairs of ``periodic``."""
         try:
             import meshio
         except ImportError as e:
@@ -212,13 +219,47 @@ class Mesh:
         for k, name in enumerate(edges):
             sets[name] = [np.arange(len(c[1])) if j == areas + k else np.zeros(0, dtype=int)
                           for j, c in enumerate(cells)]
-        data = None
+        data: dict[str, list[np.ndarray]] = {}
         if layered:
             layer = [np.asarray(self.triangle_layer, dtype=np.int32)]
             if len(self.quads):
                 layer.append(np.ones(len(self.quads), dtype=np.int32))
-            data = {"boundary_layer": layer + [np.zeros(len(e), dtype=np.int32) for e in edges.values()]}
-        return meshio.Mesh(np.asarray(self.points), cells, cell_sets=sets, cell_data=data)
+            data["boundary_layer"] = layer + [np.zeros(len(e), dtype=np.int32) for e in edges.values()]
+        # The tags mesh.msh gives (io/msh_writer, io/mixed_mesh): curve c is entity c + 1 of dimension
+        # 1 with physical tag c + 1, which $Periodic names; the surfaces' groups follow the curves'.
+        curve_tag = {name: k + 1 for k, name in enumerate(self.curve_names)}
+        ncurves = len(self.curve_names)
+        entity = [1, 2][:areas] + [curve_tag[name] for name in edges]
+        physical = [ncurves + 1, ncurves + 2][:areas] + [curve_tag[name] for name in edges]
+        data["gmsh:physical"] = [np.full(len(c[1]), t, dtype=np.int32) for c, t in zip(cells, physical)]
+        data["gmsh:geometrical"] = [np.full(len(c[1]), t, dtype=np.int32) for c, t in zip(cells, entity)]
+        field = {name: np.array([tag, 1]) for name, tag in curve_tag.items()}
+        field["domain"] = np.array([ncurves + 1, 2])
+        if len(self.quads):
+            field["boundary_layer"] = np.array([ncurves + 2, 2])
+        dim_tags = self._gmsh_dim_tags(edges, curve_tag)
+        periodic = [[1, (curve_tag[p.image], curve_tag[p.source]),
+                     None if p.affine is None else np.asarray(p.affine, dtype=float).ravel(),
+                     np.asarray(p.nodes, dtype=np.int64)] for p in self.periodic]
+        return meshio.Mesh(np.asarray(self.points), cells, point_data={"gmsh:dim_tags": dim_tags}, cell_sets=sets,
+                           cell_data=data, field_data=field, gmsh_periodic=periodic or None)
+
+    def _gmsh_dim_tags(self, edges: dict[str, np.ndarray], curve_tag: dict[str, int]) -> np.ndarray:
+        """(N, 2) int32 (dimension, entity) per point for meshio's msh writer, which declares in
+        $Entities (with their physical groups) only the entities that hold a point: a point on a curve
+        lies in that curve's entity (a corner in the later curve's; a curve left without a point then
+        takes its first one), a point of a quad in surface 2, the others in surface 1."""
+        dim_tags = np.tile(np.array([2, 1], dtype=np.int32), (len(self.points), 1))
+        if len(self.quads):
+            dim_tags[np.unique(np.asarray(self.quads)), 1] = 2
+        on_curve = {name: np.unique(e) for name, e in edges.items()}
+        for name, nodes in on_curve.items():
+            dim_tags[nodes] = (1, curve_tag[name])
+        for name, nodes in on_curve.items():
+            held = (dim_tags[nodes, 0] == 1) & (dim_tags[nodes, 1] == curve_tag[name])
+            if len(nodes) and not held.any():
+                dim_tags[nodes[0]] = (1, curve_tag[name])
+        return dim_tags
 
     def plot(self, ax: Any = None, color_by: str | None = None, boundary: bool = True, **triplot: Any):
         """Draws the mesh with matplotlib (the ``plot`` extra) into ``ax`` (a new one if None):

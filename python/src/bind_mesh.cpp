@@ -244,16 +244,29 @@ void bind_mesh(nb::module_& m) {
       [](const std::string& path) {
         Mesh mesh;
         auto periodic = std::make_shared<PeriodicPairs>();
+        std::shared_ptr<LayerParts> layers;
         {
           nb::gil_scoped_release release;
           MeshReadReport report;
-          mesh = read_mesh(path, report);
+          SurfaceCells cells;
+          cells.region = kLayerRegion;
+          mesh = read_mesh(path, report, &cells);
           periodic->links = std::move(report.periodic);  // an MSH file's $Periodic curve links
+          // A file with quads (a layered run's, in any of its formats) as `pdmesh quality` reads it:
+          // the quads and the layer flags beside the triangles; its quality is the triangles' table.
+          if (!cells.quads.empty()) {
+            layers = std::make_shared<LayerParts>();
+            layers->mixed = mixed_mesh_of(mesh, cells);
+            layers->quads = std::move(cells.quads);
+            layers->triangle_layer.assign(layers->mixed.layer.begin(),
+                                          layers->mixed.layer.begin() + static_cast<long>(mesh.triangles.size()));
+            layers->core = mesh;
+          }
         }
         return MeshHandle{std::make_shared<const Mesh>(std::move(mesh)), nullptr, fs::path(path).stem().string(),
-                          nullptr, std::move(periodic)};
+                          std::move(layers), std::move(periodic)};
       },
-      nb::arg("path"), "Reads a .msh (2.2/4.1), .vtu, .su2 or Triangle .ele mesh.");
+      nb::arg("path"), "Reads a .msh (2.2/4.1), .vtu, .su2 or Triangle .ele mesh, with the quads of the first three.");
 }
 
 }  // namespace pdmesh::py

@@ -117,6 +117,14 @@ def test_the_mixed_files_load_in_meshio(rings, tmp_path):
     m = mesh.to_meshio()
     assert [c.type for c in m.cells][:2] == ["triangle", "quad"]
     assert int(m.cell_data["boundary_layer"][1].sum()) == quads
+    # meshio's msh writer takes it (it needs the Gmsh tags): the quads in the "boundary_layer" group.
+    meshio.write(tmp_path / "via_meshio.msh", m, file_format="gmsh")
+    back = meshio.read(tmp_path / "via_meshio.msh")
+    assert count(back, "triangle") == triangles and count(back, "quad") == quads
+    assert {"box", "hole", "domain", "boundary_layer"} <= set(back.field_data)
+    for c, tags in zip(back.cells, back.cell_data["gmsh:physical"]):
+        if c.type == "quad":
+            assert set(tags.tolist()) == {back.field_data["boundary_layer"][0]}
 
 
 def test_formats_that_cannot_hold_quads_are_refused(rings, tmp_path):
@@ -138,3 +146,24 @@ def test_a_mesher_with_out_writes_the_command_s_layered_outputs(rings, tmp_path)
     assert quality["boundary_layer"]["tables"][0]["first_height_within_2pct"] == 1
     assert "MARKER_TAG= hole" in (tmp_path / "mesh.su2").read_text()
     assert (tmp_path / "mesh.msh").exists() and (tmp_path / "initial.nodes").exists()
+
+
+def test_mesh_read_gives_the_quads_of_each_format(rings, tmp_path):
+    # Mesh.read of the mixed files takes the quads (as `pdmesh quality` does) beside the triangles:
+    # the same cells from msh, vtu and su2; the layer's triangles where the format names the layer
+    # (msh's group, vtu's cell data), every quad a layer cell in all three.
+    def rows(a):
+        return sorted(map(tuple, np.asarray(a).tolist()))
+
+    mesh = run(rings, layer(["hole"]))
+    assert len(mesh.quads) > 0
+    for suffix in ("msh", "vtu", "su2"):
+        mesh.write(tmp_path / f"m.{suffix}")
+        back = pdmesh.Mesh.read(tmp_path / f"m.{suffix}")
+        assert np.array_equal(back.points, mesh.points)
+        assert np.array_equal(back.quads, mesh.quads), suffix
+        assert rows(back.triangles) == rows(mesh.triangles)
+        if suffix == "su2":
+            assert not back.triangle_layer.any()
+        else:
+            assert rows(back.triangles[back.triangle_layer == 1]) == rows(mesh.triangles[mesh.triangle_layer == 1])

@@ -20,6 +20,7 @@
 #include "geometry/poly_reader.hpp"
 #include "io/medit_reader.hpp"
 #include "io/mesh_formats.hpp"
+#include "io/mixed_mesh.hpp"
 #include "io/metric_mesh_file.hpp"
 #include "nodes/node_file.hpp"
 #include "sim/checkpoint.hpp"
@@ -110,6 +111,15 @@ inline void read_mesh_file(const std::filesystem::path& path) {
   try {
     MeshReadReport report;
     read_mesh(path, report);
+  } catch (const InputError&) {
+  }
+  // As `pdmesh quality` and Python's Mesh.read read it: the quads and the boundary-layer region too.
+  try {
+    MeshReadReport report;
+    SurfaceCells cells;
+    cells.region = kLayerRegion;
+    const Mesh mesh = read_mesh(path, report, &cells);
+    (void)mixed_mesh_of(mesh, cells);
   } catch (const InputError&) {
   }
   // .vtu and .msh are also background meshes of data fields: point data, binary arrays, the

@@ -11,6 +11,7 @@
 #include "fuzz_entries.hpp"
 #include "init/initial_distribution.hpp"
 #include "io/mesh_formats.hpp"
+#include "io/mixed_mesh.hpp"
 #include "mesh/mesh.hpp"
 #include "nodes/node_file.hpp"
 #include "../temp_files.hpp"
@@ -36,6 +37,18 @@ Mesh small_mesh() {
   m.triangles = {{{0, 1, 4}}, {{1, 2, 4}}, {{2, 3, 4}}, {{3, 0, 4}}};
   m.boundary_edges = {{0, 1, 0}, {1, 2, 0}, {2, 3, 1}, {3, 0, 1}};
   m.curve_names = {"bottom_right", "top \"left\""};
+  return m;
+}
+
+// A boundary layer's quad under two core triangles, as a layered run writes it (quads, and the
+// "boundary_layer" region), for the readers' quad path (`pdmesh quality`).
+MixedMesh small_mixed_mesh() {
+  MixedMesh m;
+  m.points = {{0, 0}, {1, 0}, {1, 0.2}, {0, 0.2}, {1, 1}, {0, 1}};
+  m.cells = {{0, 1, 2, 3}, {3, 2, 4, -1}, {3, 4, 5, -1}};
+  m.layer = {1, 0, 0};
+  m.boundary_edges = {{0, 1, 0}, {1, 2, 1}, {2, 4, 1}, {4, 5, 1}, {5, 3, 1}, {3, 0, 1}};
+  m.curve_names = {"wall", "outer"};
   return m;
 }
 
@@ -96,6 +109,10 @@ int main(int argc, char** argv) {
     const std::string poly = slurp(work / "a" / "m.poly");
     put(corpus / "fuzz_mesh_reader_triangle" / "square_with_poly", node + '\f' + ele + '\f' + poly);
     put(corpus / "fuzz_mesh_reader_triangle" / "square_no_poly", node + '\f' + ele);
+    const MixedMesh mixed = small_mixed_mesh();
+    put(corpus / "fuzz_mesh_reader_msh" / "layer_quads_41.msh", mixed_msh41_string(mixed));
+    put(corpus / "fuzz_mesh_reader_vtu" / "layer_quads.vtu", mixed_vtu_string(mixed));
+    put(corpus / "fuzz_mesh_reader_su2" / "layer_quads.su2", mixed_su2_string(mixed));
     put(corpus / "fuzz_node_file" / "square.nodes", format_node_file(small_nodes(), {"bottom_right", "top_left"}));
     checkpoint_seeds(corpus);
   } catch (const Error& e) {

@@ -13,7 +13,6 @@
 #include "geometry/geometry_tree.hpp"
 #include "io/mesh_formats.hpp"
 #include "io/mixed_mesh.hpp"
-#include "io/msh_reader.hpp"
 #include "io/text_file.hpp"
 #include "core/errors.hpp"
 #include "mesh/mesh_topology.hpp"
@@ -46,57 +45,54 @@ CaseSpacing load_spacing(const std::filesystem::path& path) {
   return loaded;
 }
 
-// A mesh file as read: its triangles (the Mesh every measure of the table takes) and, for an MSH
-// file with quadrangles, the mixed mesh of all its cells with the cells of the "boundary_layer"
-// group marked, as a layered run writes it (io/mixed_mesh.hpp).
+// A mesh file as read: its triangles (the Mesh every measure of the table takes) and, for a file with
+// quadrilaterals (.msh, .vtu, .su2), the mixed mesh of all its cells with the cells of the
+// "boundary_layer" region marked, as a layered run writes it (io/mixed_mesh.hpp). `region` says where
+// the file names that region, for the text ("group", "cell data"); empty where the format cannot.
 struct ReadMesh {
   Mesh mesh;
   std::optional<MixedMesh> mixed;
   bool region_found = false;
+  std::string region;
 };
 
 ReadMesh read_cells(const std::string& mesh_path, MeshReadReport& report) {
   std::string ext = std::filesystem::path(mesh_path).extension().string();
   for (auto& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
   ReadMesh read;
-  if (ext != ".msh") {
-    read.mesh = read_mesh(mesh_path, report);
-    return read;
-  }
-  MshSurfaceCells cells;
+  read.region = ext == ".msh" ? "group" : ext == ".vtu" ? "cell data" : "";
+  SurfaceCells cells;
   cells.region = kLayerRegion;
-  read.mesh = read_msh(mesh_path, report, nullptr, &cells);
+  read.mesh = read_mesh(mesh_path, report, &cells);
   if (cells.quads.empty()) return read;
-  MixedMesh& m = read.mixed.emplace();
-  m.points = read.mesh.points;
-  m.boundary_edges = read.mesh.boundary_edges;
-  m.curve_names = read.mesh.curve_names;
-  for (std::size_t i = 0; i < read.mesh.triangles.size(); ++i) {
-    const auto& t = read.mesh.triangles[i];
-    m.cells.push_back({t[0], t[1], t[2], -1});
-    m.layer.push_back(cells.triangle_in_region[i]);
-  }
-  m.cells.insert(m.cells.end(), cells.quads.begin(), cells.quads.end());
-  m.layer.insert(m.layer.end(), cells.quad_in_region.begin(), cells.quad_in_region.end());
+  read.mixed = mixed_mesh_of(read.mesh, cells);
   read.region_found = cells.region_found;
   return read;
 }
 
 // The mixed mesh's measures: the counts and angles of all its cells and of its boundary-layer cells
-// (those of the "boundary_layer" group; every quad where the file names no such group), by the
-// layered run's own cell measures (layers/layer_measures.hpp). The first heights and the growth need
-// the case and are not measured here (docs/quality.md).
+// (those of the file's "boundary_layer" region; every quad where the file names none: mixed_mesh_of),
+// by the layered run's own cell measures (layers/layer_measures.hpp). The first heights and the
+// growth need the case and are not measured here (docs/quality.md).
 struct MixedMeasures {
   CellAngles all, layer;
 };
 
-MixedMeasures measure_mixed(const MixedMesh& m, bool region_found) {
+MixedMeasures measure_mixed(const MixedMesh& m) {
   MixedMeasures out;
   for (std::size_t i = 0; i < m.cells.size(); ++i) {
     add_cell_angles(m.points, m.cells[i], out.all);
-    if (region_found ? m.layer[i] != 0 : m.cells[i][3] >= 0) add_cell_angles(m.points, m.cells[i], out.layer);
+    if (m.layer[i] != 0) add_cell_angles(m.points, m.cells[i], out.layer);
   }
   return out;
+}
+
+// The text's name of the layer cells: the file's region, or every quad where the file names none
+// (SU2 cannot: it has no volume markers).
+std::string layer_label(const ReadMesh& read) {
+  if (read.region_found) return fmt::format("boundary layer (the file's \"{}\" {})", kLayerRegion, read.region);
+  if (read.region.empty()) return "quads (the format names no boundary layer)";
+  return fmt::format("quads (no \"{}\" {})", kLayerRegion, read.region);
 }
 
 std::string cell_angles_json(const CellAngles& a) {
@@ -174,14 +170,11 @@ int run_quality(const std::string& mesh_path, const std::optional<std::string>& 
   if (read.mixed) {
     // The table above is the triangles'; the quads and the boundary-layer cells as the layered run's
     // quality.json counts and measures them ("boundary_layer": its tables' cells, quads, angles).
-    const MixedMeasures mm = measure_mixed(*read.mixed, read.region_found);
+    const MixedMeasures mm = measure_mixed(*read.mixed);
     const char* layer_name = read.region_found ? "boundary_layer" : "quads";
     out << fmt::format("mixed mesh: {} points, {} cells ({} quads, {} triangles)\n  all cells: {}\n  {}: {}\n",
                        read.mixed->points.size(), mm.all.cells, mm.all.quads, mm.all.triangles,
-                       cell_angles_text(mm.all),
-                       read.region_found ? "boundary layer (the file's \"boundary_layer\" group)"
-                                         : "quads (no \"boundary_layer\" group)",
-                       cell_angles_text(mm.layer));
+                       cell_angles_text(mm.all), layer_label(read), cell_angles_text(mm.layer));
     cells_member =
         fmt::format(",\n  \"cells\": {{\"points\": {}, \"all\": {}, \"layer_cells\": \"{}\", \"layer\": {}}}\n",
                     read.mixed->points.size(), cell_angles_json(mm.all), layer_name, cell_angles_json(mm.layer));

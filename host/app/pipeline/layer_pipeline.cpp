@@ -799,7 +799,7 @@ void write_layered_outputs(const CaseConfig& config, const MeshInputs& inputs, c
     // JSON has no infinity: a ray without layer beside one with layers makes the jump infinite.
     const std::string jump = std::isfinite(lm.max_thickness_jump) ? fmt::format("{}", lm.max_thickness_jump) : "null";
     json_layers += fmt::format(
-        "{}    {{\"curves\": [\"{}\"], \"first_height\": {}, \"growth\": {}, \"cells\": {}, \"quads\": {}, "
+        "{}      {{\"curves\": [\"{}\"], \"first_height\": {}, \"growth\": {}, \"cells\": {}, \"quads\": {}, "
         "\"triangles\": {}, \"wall_cells\": {}, \"first_height_within_2pct\": {}, \"first_height_max_error\": {}, "
         "\"growth_median\": {}, \"growth_p95\": {}, \"growth_max\": {}, \"max_angle\": {}, \"angles_above_150\": {}, "
         "\"inverted_cells\": {}, \"fan_sizes\": [{}], \"max_thickness_jump\": {}, \"min_thickness\": {}, "
@@ -825,7 +825,7 @@ void write_layered_outputs(const CaseConfig& config, const MeshInputs& inputs, c
         front.edges, front.window_percent, front.length_min, front.length_median, front.length_max, front.rays,
         front.last_min, front.last_median, front.last_max);
     json_front = fmt::format(
-        "  \"front_in_metric\": {{\"edges\": {}, \"window_percent\": {}, \"length_min\": {}, "
+        "    \"front_in_metric\": {{\"edges\": {}, \"window_percent\": {}, \"length_min\": {}, "
         "\"length_median\": {}, \"length_max\": {}, \"rays\": {}, \"last_layer_min\": {}, "
         "\"last_layer_median\": {}, \"last_layer_max\": {}}},\n",
         front.edges, front.window_percent, front.length_min, front.length_median, front.length_max, front.rays,
@@ -838,12 +838,12 @@ void write_layered_outputs(const CaseConfig& config, const MeshInputs& inputs, c
     // Under a metric the core's isotropic min angle says nothing about how it honours the metric (its
     // `metric` section does): `core_min_angle` is null there, the angle kept as core_min_angle_physical.
     const std::string angle = metric != nullptr
-                                  ? fmt::format("null,\n  \"core_min_angle_physical\": {}", core_summary.min_angle)
+                                  ? fmt::format("null,\n    \"core_min_angle_physical\": {}", core_summary.min_angle)
                                   : fmt::format("{}", core_summary.min_angle);
     const std::string json = quality_json(
         core_summary, config.name, "", periodic_json(mixed.curve_names, periodic),
-        fmt::format(",\n  \"boundary_layer\": {{\n  \"tables\": [\n{}\n  ],\n  \"junction\": {{\"edges\": {}, "
-                    "\"median\": {}, \"p95\": {}, \"max\": {}}},\n{}  \"core_min_angle\": {},\n  "
+        fmt::format(",\n  \"boundary_layer\": {{\n    \"tables\": [\n{}\n    ],\n    \"junction\": {{\"edges\": {}, "
+                    "\"median\": {}, \"p95\": {}, \"max\": {}}},\n{}    \"core_min_angle\": {},\n    "
                     "\"points\": {}, \"cells\": {}, \"quads\": {}\n  }}\n",
                     json_layers, junction.size(), j50, j95, jmax, json_front, angle, mixed.points.size(),
                     mixed.cells.size(), mixed.quads()));
