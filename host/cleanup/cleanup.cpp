@@ -242,13 +242,23 @@ void CleanupRun::sweeps(const std::vector<std::uint8_t>& dirty, InterruptPoll& p
     }
     return;
   }
+  // A vertex whose last move of the same kind left it where it was, with no mark since, is skipped too
+  // (EditableMesh::set_unmoved): within an iteration and across them, so a vertex whose star changed
+  // before its failed try in the previous iteration, and not after it, is not tried again.
+  constexpr std::uint8_t kRelax = 1, kClimb = 2;
   for (int a : bad_vertices(limits_.smooth)) {
     poll.tick();
-    if (worth(a)) tally_move(smoother_.relax(a), smoother_, record);
+    if (!worth(a) || m_.unmoved(a, kRelax)) continue;
+    const bool moved = smoother_.relax(a);
+    if (!moved) m_.set_unmoved(a, kRelax);
+    tally_move(moved, smoother_, record);
   }
   for (int a : bad_vertices(limits_.topology)) {
     poll.tick();
-    if (worth(a)) tally_move(smoother_.climb(a), smoother_, record);
+    if (!worth(a) || m_.unmoved(a, kClimb)) continue;
+    const bool moved = smoother_.climb(a);
+    if (!moved) m_.set_unmoved(a, kClimb);
+    tally_move(moved, smoother_, record);
   }
 }
 

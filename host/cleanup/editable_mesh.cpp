@@ -41,6 +41,7 @@ EditableMesh::EditableMesh(const Mesh& mesh, const std::vector<std::vector<int>>
   vert_stamp_.assign(np, 0);
   dirty_.assign(np, 1);
   marked_at_.assign(np, epoch_);
+  unmoved_.assign(np, 0);
   // Nodes on a curve that the kinds do not mark (a mesh read without kinds) must not move either.
   // An embedded constraint (Mesh::constraint_curves) has triangles on both sides: the mesh is cut
   // along it (no neighbours across its edges, so no flip crosses it) and its nodes are pinned, so
@@ -342,6 +343,7 @@ void EditableMesh::rollback() {
   vert_stamp_.resize(vert_size0_);
   dirty_.resize(vert_size0_);
   marked_at_.resize(vert_size0_);
+  unmoved_.resize(vert_size0_);
   tri_log_.clear();
   vert_log_.clear();
   open_ = false;
@@ -452,6 +454,7 @@ int EditableMesh::new_vertex(Vec2 at) {
   vert_stamp_.push_back(0);
   dirty_.push_back(1);
   marked_at_.push_back(epoch_);
+  unmoved_.push_back(0);
   return vertex_slots() - 1;
 }
 

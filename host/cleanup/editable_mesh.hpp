@@ -172,6 +172,11 @@ class EditableMesh {
   bool marked_in(int a, std::uint32_t e) const { return marked_at_[a] >= e; }
   // Marks triangle t's vertices as if their stars had changed, so the next sweeps try them again.
   void mark_changed(int t) { mark_dirty(t); }
+  // Sweep moves that left vertex a where it was, with no mark of a since: one bit per kind of move
+  // (the caller's numbering, at most 8). Every mark of a clears them, so a set bit says that a's star is
+  // the one that move was tried on, and trying it again would make the same proposal and find the same.
+  void set_unmoved(int a, std::uint8_t move) { unmoved_[a] |= move; }
+  bool unmoved(int a, std::uint8_t move) const { return (unmoved_[a] & move) != 0; }
   // Vertices created by the open transaction (or since the last begin()).
   int first_new_vertex() const { return vert_size0_; }
 
@@ -214,10 +219,12 @@ class EditableMesh {
   std::vector<std::uint8_t> sharp_;       // per vertex: a sharp corner (set_sharp_corners); empty: none
   std::vector<std::uint8_t> dirty_;       // per vertex: see take_dirty()
   std::vector<std::uint32_t> marked_at_;  // per vertex: the epoch of its last mark
+  std::vector<std::uint8_t> unmoved_;     // per vertex: see set_unmoved()
   std::uint32_t epoch_ = 1;
   void mark_vertex(int a) {
     dirty_[a] = 1;
     marked_at_[a] = epoch_;
+    unmoved_[a] = 0;
   }
   void mark_dirty(int t);
   int sharp_corner_in(int t) const;  // sharp_corner_of() once some corner is sharp
