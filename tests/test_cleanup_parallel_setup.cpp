@@ -5,6 +5,7 @@
 // still has against trying that move again.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cstdint>
 #include <random>
 #include <unordered_map>
@@ -122,7 +123,9 @@ TEST_CASE("a sweep move given the star the strips' test walked is the move that 
   CHECK(walked.v == given.v);
 }
 
-TEST_CASE("the marks' epochs: a vertex is marked in an epoch when its star changed since it began", "[cleanup]") {
+TEST_CASE(
+    "the marks' epochs: a vertex is marked when its star changed since the epoch began, a triangle when its points did",
+    "[cleanup]") {
   const Holed h;
   EditableMesh m = h.editable(2);
   // Every vertex is new to the first epoch; none is marked in the next one until an edit marks it.
@@ -143,6 +146,14 @@ TEST_CASE("the marks' epochs: a vertex is marked in an epoch when its star chang
   CHECK(m.marked_in(a, e));
   for (int b : ring) CHECK(m.marked_in(b, e));
   CHECK(marked == 1 + static_cast<int>(ring.size()));
+  // Of the triangle slots, exactly the star's are marked (the only ones whose points changed).
+  CHECK(m.any_marked_in(e));
+  std::vector<int> marked_slots;
+  for (int t = 0; t < m.triangle_slots(); ++t)
+    if (m.triangle_marked_in(t, e)) marked_slots.push_back(t);
+  std::vector<int> sorted_star = star;
+  std::sort(sorted_star.begin(), sorted_star.end());
+  CHECK(marked_slots == sorted_star);
   // take_dirty() clears the dirty flags, not the epochs' marks.
   m.take_dirty();
   CHECK(m.marked_in(a, e));
@@ -153,11 +164,28 @@ TEST_CASE("the marks' epochs: a vertex is marked in an epoch when its star chang
   m.move(a, m.p[a] + Vec2{1e-6, 0.0}, m.arc[a]);
   m.rollback();
   for (int b = 0; b < m.vertex_slots(); ++b) REQUIRE_FALSE(m.marked_in(b, e2));
+  for (int t = 0; t < m.triangle_slots(); ++t) REQUIRE_FALSE(m.triangle_marked_in(t, e2));
+  // Nor does an insertion rolled back (its new slots and vertex are gone).
+  m.begin();
+  m.insert_in_triangle(star[0], (1.0 / 3.0) * (m.p[m.v[star[0]][0]] + m.p[m.v[star[0]][1]] + m.p[m.v[star[0]][2]]));
+  m.rollback();
+  CHECK_FALSE(m.any_marked_in(e2));
   m.begin();
   m.move(a, m.p[a] + Vec2{1e-6, 0.0}, m.arc[a]);
   m.commit();
+  CHECK(m.any_marked_in(e2));
   CHECK(m.marked_in(a, e2));
   for (int b : ring) CHECK(m.marked_in(b, e2));
+  for (int t : star) CHECK(m.triangle_marked_in(t, e2));
+  // An insertion outside a transaction: its triangle's slot and the new ones are marked.
+  m.next_epoch();
+  const std::uint32_t e3 = m.epoch();
+  const int slots = m.triangle_slots();
+  const int t0 = star[0];
+  m.insert_in_triangle(t0, (1.0 / 3.0) * (m.p[m.v[t0][0]] + m.p[m.v[t0][1]] + m.p[m.v[t0][2]]));
+  CHECK(m.any_marked_in(e3));
+  CHECK(m.triangle_marked_in(t0, e3));
+  for (int t = slots; t < m.triangle_slots(); ++t) CHECK(m.triangle_marked_in(t, e3));
 }
 
 TEST_CASE("a sweep move's unmoved bit stays until a mark of its vertex, and trying the move again finds nothing",

@@ -119,6 +119,7 @@ EditableMesh::EditableMesh(const Mesh& mesh, const std::vector<std::vector<int>>
         for (int a : {v[t][next3(i)], v[t][prev3(i)]})
           if (kind[a] == NodeKind::Interior) kind[a] = NodeKind::Fixed;
   tri_stamp_.assign(v.size(), 0);
+  tri_marked_at_.assign(v.size(), epoch_);
 }
 
 int EditableMesh::sharp_corner_in(int t) const {
@@ -270,6 +271,7 @@ bool EditableMesh::star_valid(int a) const {
 
 void EditableMesh::mark_dirty(int t) {
   if (t < 0 || !alive(t)) return;
+  tri_marked_at_[t] = epoch_;
   for (int a : v[t]) mark_vertex(a);
 }
 
@@ -335,6 +337,7 @@ void EditableMesh::rollback() {
   v.resize(tri_size0_);
   n.resize(tri_size0_);
   tri_stamp_.resize(tri_size0_);
+  tri_marked_at_.resize(tri_size0_);
   for (auto* field : {&curve, &prev, &next, &vt}) field->resize(vert_size0_);
   p.resize(vert_size0_);
   kind.resize(vert_size0_);
@@ -439,6 +442,8 @@ int EditableMesh::new_triangle(std::array<int, 3> tv, std::array<int, 3> tn) {
   v.push_back(tv);
   n.push_back(tn);
   tri_stamp_.push_back(0);
+  tri_marked_at_.push_back(epoch_);
+  if (!open_) last_mark_ = epoch_;  // a commit marks the transaction's new slots
   return triangle_slots() - 1;
 }
 
@@ -454,6 +459,7 @@ int EditableMesh::new_vertex(Vec2 at) {
   vert_stamp_.push_back(0);
   dirty_.push_back(1);
   marked_at_.push_back(epoch_);
+  if (!open_) last_mark_ = epoch_;
   unmoved_.push_back(0);
   return vertex_slots() - 1;
 }
