@@ -24,10 +24,10 @@ using cleanup::EditableMesh;
 
 namespace {
 
-// The scores of the live triangles, for the sweeps' candidate lists. A triangle none of whose vertices
-// was marked since the last call (the journal marks the vertices of every changed triangle and of every
-// moved vertex's star, each mark with the mesh's epoch, which each call ends by advancing) keeps the
-// score computed then, which is the score quality() would give: the same triangle, the same points.
+// The scores of the live triangles, for the sweeps' candidate lists. A triangle slot not marked since the
+// last call (the journal marks every changed triangle, those of every moved vertex's star among them,
+// each mark with the mesh's epoch, which each call ends by advancing) keeps the score computed then,
+// which is the score quality() would give: the same triangle, the same points.
 // Late iterations change little of a large mesh, and the calls within one iteration (two sweeps, the
 // topology pass, settling) score again only what changed in between.
 class Scores {
@@ -35,11 +35,9 @@ class Scores {
   explicit Scores(std::size_t threads) : threads_(cleanup::sweep_thread_limit(threads)) {}
   const std::vector<double>& update(EditableMesh& m) {
     const std::uint32_t since = since_;
-    auto changed = [&](int a) { return m.marked_in(a, since); };
-    // No new slot and no vertex marked since the last call (the sweeps' first list after settling's
-    // scan, or settling's scan after a topology pass that changed nothing): every kept score stands.
-    // The vertices' marks are a fraction of what the triangles' pass reads.
-    if (m.triangle_slots() == known_ && !any_marked(m, since)) return score_;
+    // No new slot and no mark since the last call (the sweeps' first list after settling's scan, or
+    // settling's scan after a topology pass that changed nothing): every kept score stands.
+    if (m.triangle_slots() == known_ && !m.any_marked_in(since)) return score_;
     score_.resize(m.triangle_slots(), 0.0);
     // Each index writes only its own score: the same scores on any number of threads.
     parallel_for(
@@ -47,8 +45,7 @@ class Scores {
         [&](std::size_t slot) {
           const int t = static_cast<int>(slot);
           if (!m.alive(t)) return;
-          const auto& tv = m.v[t];
-          if (t >= known_ || changed(tv[0]) || changed(tv[1]) || changed(tv[2])) score_[t] = m.quality(t);
+          if (t >= known_ || m.triangle_marked_in(t, since)) score_[t] = m.quality(t);
         },
         16384, threads_);
     known_ = m.triangle_slots();
@@ -58,21 +55,6 @@ class Scores {
   }
 
  private:
-  bool any_marked(const EditableMesh& m, std::uint32_t since) const {
-    const auto vertices = static_cast<std::size_t>(m.vertex_slots());
-    constexpr std::size_t kBlock = 65536;
-    std::vector<std::uint8_t> marked((vertices + kBlock - 1) / kBlock, 0);
-    parallel_for(
-        marked.size(),
-        [&](std::size_t b) {
-          const std::size_t end = std::min(vertices, (b + 1) * kBlock);
-          for (std::size_t a = b * kBlock; a < end && !marked[b]; ++a)
-            if (m.marked_in(static_cast<int>(a), since)) marked[b] = 1;
-        },
-        1, threads_);
-    return std::find(marked.begin(), marked.end(), 1) != marked.end();
-  }
-
   std::vector<double> score_;
   int known_ = 0;            // slots scored by the last update
   std::uint32_t since_ = 0;  // the epoch begun by the last update: marks from then on are new
@@ -242,13 +224,23 @@ void CleanupRun::sweeps(const std::vector<std::uint8_t>& dirty, InterruptPoll& p
     }
     return;
   }
+  // A vertex whose last move of the same kind left it where it was, with no mark since, is skipped too
+  // (EditableMesh::set_unmoved): within an iteration and across them, so a vertex whose star changed
+  // before its failed try in the previous iteration, and not after it, is not tried again.
+  constexpr std::uint8_t kRelax = 1, kClimb = 2;
   for (int a : bad_vertices(limits_.smooth)) {
     poll.tick();
-    if (worth(a)) tally_move(smoother_.relax(a), smoother_, record);
+    if (!worth(a) || m_.unmoved(a, kRelax)) continue;
+    const bool moved = smoother_.relax(a);
+    if (!moved) m_.set_unmoved(a, kRelax);
+    tally_move(moved, smoother_, record);
   }
   for (int a : bad_vertices(limits_.topology)) {
     poll.tick();
-    if (worth(a)) tally_move(smoother_.climb(a), smoother_, record);
+    if (!worth(a) || m_.unmoved(a, kClimb)) continue;
+    const bool moved = smoother_.climb(a);
+    if (!moved) m_.set_unmoved(a, kClimb);
+    tally_move(moved, smoother_, record);
   }
 }
 

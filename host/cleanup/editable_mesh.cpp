@@ -41,6 +41,7 @@ EditableMesh::EditableMesh(const Mesh& mesh, const std::vector<std::vector<int>>
   vert_stamp_.assign(np, 0);
   dirty_.assign(np, 1);
   marked_at_.assign(np, epoch_);
+  unmoved_.assign(np, 0);
   // Nodes on a curve that the kinds do not mark (a mesh read without kinds) must not move either.
   // An embedded constraint (Mesh::constraint_curves) has triangles on both sides: the mesh is cut
   // along it (no neighbours across its edges, so no flip crosses it) and its nodes are pinned, so
@@ -118,6 +119,7 @@ EditableMesh::EditableMesh(const Mesh& mesh, const std::vector<std::vector<int>>
         for (int a : {v[t][next3(i)], v[t][prev3(i)]})
           if (kind[a] == NodeKind::Interior) kind[a] = NodeKind::Fixed;
   tri_stamp_.assign(v.size(), 0);
+  tri_marked_at_.assign(v.size(), epoch_);
 }
 
 int EditableMesh::sharp_corner_in(int t) const {
@@ -269,6 +271,7 @@ bool EditableMesh::star_valid(int a) const {
 
 void EditableMesh::mark_dirty(int t) {
   if (t < 0 || !alive(t)) return;
+  tri_marked_at_[t] = epoch_;
   for (int a : v[t]) mark_vertex(a);
 }
 
@@ -334,6 +337,7 @@ void EditableMesh::rollback() {
   v.resize(tri_size0_);
   n.resize(tri_size0_);
   tri_stamp_.resize(tri_size0_);
+  tri_marked_at_.resize(tri_size0_);
   for (auto* field : {&curve, &prev, &next, &vt}) field->resize(vert_size0_);
   p.resize(vert_size0_);
   kind.resize(vert_size0_);
@@ -342,6 +346,7 @@ void EditableMesh::rollback() {
   vert_stamp_.resize(vert_size0_);
   dirty_.resize(vert_size0_);
   marked_at_.resize(vert_size0_);
+  unmoved_.resize(vert_size0_);
   tri_log_.clear();
   vert_log_.clear();
   open_ = false;
@@ -437,6 +442,8 @@ int EditableMesh::new_triangle(std::array<int, 3> tv, std::array<int, 3> tn) {
   v.push_back(tv);
   n.push_back(tn);
   tri_stamp_.push_back(0);
+  tri_marked_at_.push_back(epoch_);
+  if (!open_) last_mark_ = epoch_;  // a commit marks the transaction's new slots
   return triangle_slots() - 1;
 }
 
@@ -452,6 +459,8 @@ int EditableMesh::new_vertex(Vec2 at) {
   vert_stamp_.push_back(0);
   dirty_.push_back(1);
   marked_at_.push_back(epoch_);
+  if (!open_) last_mark_ = epoch_;
+  unmoved_.push_back(0);
   return vertex_slots() - 1;
 }
 

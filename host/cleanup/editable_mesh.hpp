@@ -170,8 +170,19 @@ class EditableMesh {
   std::uint32_t epoch() const { return epoch_; }
   void next_epoch() { ++epoch_; }
   bool marked_in(int a, std::uint32_t e) const { return marked_at_[a] >= e; }
+  // The same for triangle slots: slot t is marked with the epoch whenever its vertices, their positions or
+  // its neighbours change (outside a transaction, or in one committed), and a new slot with the epoch it
+  // was made in. So a live triangle not marked in e has had the same points since e began. any_marked_in(e):
+  // whether any vertex or triangle was marked since e began.
+  bool triangle_marked_in(int t, std::uint32_t e) const { return tri_marked_at_[t] >= e; }
+  bool any_marked_in(std::uint32_t e) const { return last_mark_ >= e; }
   // Marks triangle t's vertices as if their stars had changed, so the next sweeps try them again.
   void mark_changed(int t) { mark_dirty(t); }
+  // Sweep moves that left vertex a where it was, with no mark of a since: one bit per kind of move
+  // (the caller's numbering, at most 8). Every mark of a clears them, so a set bit says that a's star is
+  // the one that move was tried on, and trying it again would make the same proposal and find the same.
+  void set_unmoved(int a, std::uint8_t move) { unmoved_[a] |= move; }
+  bool unmoved(int a, std::uint8_t move) const { return (unmoved_[a] & move) != 0; }
   // Vertices created by the open transaction (or since the last begin()).
   int first_new_vertex() const { return vert_size0_; }
 
@@ -210,14 +221,19 @@ class EditableMesh {
   std::vector<SavedTriangle> tri_log_;
   std::vector<SavedVertex> vert_log_;
   int tri_size0_ = 0, vert_size0_ = 0;
-  std::vector<std::uint8_t> gone_;        // per vertex: removed by a collapse
-  std::vector<std::uint8_t> sharp_;       // per vertex: a sharp corner (set_sharp_corners); empty: none
-  std::vector<std::uint8_t> dirty_;       // per vertex: see take_dirty()
-  std::vector<std::uint32_t> marked_at_;  // per vertex: the epoch of its last mark
+  std::vector<std::uint8_t> gone_;            // per vertex: removed by a collapse
+  std::vector<std::uint8_t> sharp_;           // per vertex: a sharp corner (set_sharp_corners); empty: none
+  std::vector<std::uint8_t> dirty_;           // per vertex: see take_dirty()
+  std::vector<std::uint32_t> marked_at_;      // per vertex: the epoch of its last mark
+  std::vector<std::uint8_t> unmoved_;         // per vertex: see set_unmoved()
+  std::vector<std::uint32_t> tri_marked_at_;  // per triangle slot: the epoch of its last mark
   std::uint32_t epoch_ = 1;
+  std::uint32_t last_mark_ = 1;  // the epoch of the last mark of any vertex or triangle
   void mark_vertex(int a) {
     dirty_[a] = 1;
     marked_at_[a] = epoch_;
+    unmoved_[a] = 0;
+    last_mark_ = epoch_;
   }
   void mark_dirty(int t);
   int sharp_corner_in(int t) const;  // sharp_corner_of() once some corner is sharp
