@@ -118,7 +118,7 @@ void check_same_cells(const nlohmann::json& a, const nlohmann::json& b) {
 
 }  // namespace
 
-TEST_CASE("quality of one layered run's mesh in msh, vtu and su2: the same cells and angles",
+TEST_CASE("quality of one layered run's mesh in msh, vtu and su2: the same cells and angles, and its quality.json's layout",
           "[quality][layers][vtu][su2]") {
   const fs::path out = fs::temp_directory_path() / "pdmesh_test_quality_formats";
   fs::remove_all(out);
@@ -128,6 +128,13 @@ TEST_CASE("quality of one layered run's mesh in msh, vtu and su2: the same cells
   c.output.formats = {"msh", "vtu", "su2"};
   REQUIRE(run_mesh(c) == 0);
   const nlohmann::json run = read_quality_json(out / "quality.json")["boundary_layer"];
+  {  // The run's own quality.json: its boundary_layer member follows cleanup's value on its line.
+    const std::string json = read_text_file(out / "quality.json");
+    INFO(json.substr(json.find("\"cleanup\"")));
+    CHECK(json.find("  \"cleanup\": null,\n  \"boundary_layer\": {\n    \"tables\": [\n      {\"curves\"") !=
+          std::string::npos);
+    CHECK(json.find("\n,") == std::string::npos);
+  }
   const Measured msh = measure(out / "mesh.msh"), vtu = measure(out / "mesh.vtu"), su2 = measure(out / "mesh.su2");
   for (const Measured* m : {&msh, &vtu, &su2}) {
     INFO(m->text + m->err);
@@ -152,23 +159,6 @@ TEST_CASE("quality of one layered run's mesh in msh, vtu and su2: the same cells
   CHECK(su2.q["cells"]["layer"]["quads"].get<long long>() == run["quads"].get<long long>());
   CHECK(su2.q["cells"]["layer"]["triangles"].get<long long>() == 0);
   CHECK(su2.text.find("quads (the format names no boundary layer)") != std::string::npos);
-  fs::remove_all(out);
-}
-
-TEST_CASE("a layered run's quality.json: its boundary_layer member follows cleanup's value on its line",
-          "[quality][layers]") {
-  const fs::path out = fs::temp_directory_path() / "pdmesh_test_quality_layout";
-  fs::remove_all(out);
-  CaseConfig c = load_case_file(pdmesh::test::source_dir() + "/tests/data/layers_naca/case.toml");
-  c.out_dir = out;
-  c.quiet = true;
-  c.output.formats = {"msh"};
-  REQUIRE(run_mesh(c) == 0);
-  const std::string json = read_text_file(out / "quality.json");
-  INFO(json.substr(json.find("\"cleanup\"")));
-  CHECK(json.find("  \"cleanup\": null,\n  \"boundary_layer\": {\n    \"tables\": [\n      {\"curves\"") !=
-        std::string::npos);
-  CHECK(json.find("\n,") == std::string::npos);
   fs::remove_all(out);
 }
 
