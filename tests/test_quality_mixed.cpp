@@ -118,8 +118,9 @@ void check_same_cells(const nlohmann::json& a, const nlohmann::json& b) {
 
 }  // namespace
 
-TEST_CASE("quality of one layered run's mesh in msh, vtu and su2: the same cells and angles, and its quality.json's layout",
-          "[quality][layers][vtu][su2]") {
+TEST_CASE(
+    "quality of one layered run's mesh in msh, vtu and su2: the same cells and angles, and its quality.json's layout",
+    "[quality][layers][vtu][su2]") {
   const fs::path out = fs::temp_directory_path() / "pdmesh_test_quality_formats";
   fs::remove_all(out);
   CaseConfig c = load_case_file(pdmesh::test::source_dir() + "/tests/data/layers_naca/case.toml");
