@@ -288,9 +288,9 @@ std::string quality_json(const QualitySummary& s, const std::string& source, con
 
 std::filesystem::path write_quality_json(const QualitySummary& summary, const std::filesystem::path& dir,
                                          const std::string& source, const std::string& healing,
-                                         const std::string& periodic) {
+                                         const std::string& periodic, const std::string& trailing) {
   const auto path = dir / "quality.json";
-  write_text_file(path, quality_json(summary, source, healing, periodic));
+  write_text_file(path, quality_json(summary, source, healing, periodic, trailing));
   return path;
 }
 

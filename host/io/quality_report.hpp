@@ -25,10 +25,10 @@ std::string format_quality_table(const QualitySummary& summary, const std::strin
 std::string quality_json(const QualitySummary& summary, const std::string& source = "", const std::string& healing = "",
                          const std::string& periodic = "", const std::string& trailing = "");
 
-// Writes DIR/quality.json atomically and returns its path.
+// Writes DIR/quality.json (quality_json's text) atomically and returns its path.
 std::filesystem::path write_quality_json(const QualitySummary& summary, const std::filesystem::path& dir,
                                          const std::string& source = "", const std::string& healing = "",
-                                         const std::string& periodic = "");
+                                         const std::string& periodic = "", const std::string& trailing = "");
 
 // quality.json's "periodic" array: per [[periodic]] table its curves (names from `curve_names`), node
 // pairs and the largest distance between a source node's transform and its image node; "" without links.

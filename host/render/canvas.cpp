@@ -255,9 +255,9 @@ void Canvas::finish() {
 }
 
 namespace {
-// Items per stroke or fill: large enough that cairo's per-call cost vanishes, small enough that the
-// path it tessellates at once stays in cache.
-constexpr int kBatchItems = 4096;
+// Items per stroke or dot batch (FillBatch has its own, kBatchItems): large enough that cairo's
+// per-call cost vanishes, small enough that the path it tessellates at once stays in cache.
+constexpr int kPathBatchItems = 4096;
 }  // namespace
 
 StrokeBatch::StrokeBatch(Canvas& canvas, Rgb colour, double width_px, cairo_line_cap_t cap)
@@ -270,17 +270,17 @@ void StrokeBatch::segment(Vec2 a, Vec2 b) {
   cairo_t* cr = canvas_.context();
   cairo_move_to(cr, pa.x, pa.y);
   cairo_line_to(cr, pb.x, pb.y);
-  if (++count_ >= kBatchItems) flush();
+  if (++count_ >= kPathBatchItems) flush();
 }
 
 void StrokeBatch::box(const Box& b) {
   const Vec2 p0 = canvas_.to_pixel(b.lo), p1 = canvas_.to_pixel(b.hi);
   cairo_rectangle(canvas_.context(), p0.x, p1.y, p1.x - p0.x, p0.y - p1.y);
-  if (++count_ >= kBatchItems) flush();
+  if (++count_ >= kPathBatchItems) flush();
 }
 
 void StrokeBatch::skip() {
-  if (++count_ >= kBatchItems) flush();
+  if (++count_ >= kPathBatchItems) flush();
 }
 
 void StrokeBatch::flush() {
@@ -359,7 +359,7 @@ void DotBatch::dot(Vec2 centre, double radius_px) {
     cairo_new_sub_path(cr);
     cairo_arc(cr, p.x, p.y, radius_px, 0, 2 * M_PI);
   }
-  if (++count_ >= kBatchItems) flush();
+  if (++count_ >= kPathBatchItems) flush();
 }
 
 void DotBatch::flush() {

@@ -179,17 +179,13 @@ int run_quality(const std::string& mesh_path, const std::optional<std::string>& 
         fmt::format(",\n  \"cells\": {{\"points\": {}, \"all\": {}, \"layer_cells\": \"{}\", \"layer\": {}}}\n",
                     read.mixed->points.size(), cell_angles_json(mm.all), layer_name, cell_angles_json(mm.layer));
   }
-  const std::string json = quality_json(summary, mesh_path, "", periodic, cells_member);
-
   if (out_json) {
     if (*out_json == "-") {
-      out << json;
+      out << quality_json(summary, mesh_path, "", periodic, cells_member);
     } else if (std::filesystem::is_directory(*out_json)) {
-      const auto path = std::filesystem::path(*out_json) / "quality.json";
-      write_text_file(path, json);
-      err << "wrote " << path.string() << '\n';
+      err << "wrote " << write_quality_json(summary, *out_json, mesh_path, "", periodic, cells_member).string() << '\n';
     } else {
-      write_text_file(*out_json, json);
+      write_text_file(*out_json, quality_json(summary, mesh_path, "", periodic, cells_member));
       err << "wrote " << *out_json << '\n';
     }
   }

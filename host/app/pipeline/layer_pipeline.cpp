@@ -12,7 +12,6 @@
 #include "app/pipeline/layer_metric.hpp"
 #include "app/pipeline/mesh_pipeline.hpp"
 #include "app/pipeline/pipeline_detail.hpp"
-#include "core/atomic_file.hpp"
 #include "core/errors.hpp"
 #include "core/parallel.hpp"
 #include "io/mixed_mesh.hpp"
@@ -840,14 +839,13 @@ void write_layered_outputs(const CaseConfig& config, const MeshInputs& inputs, c
     const std::string angle = metric != nullptr
                                   ? fmt::format("null,\n    \"core_min_angle_physical\": {}", core_summary.min_angle)
                                   : fmt::format("{}", core_summary.min_angle);
-    const std::string json = quality_json(
-        core_summary, config.name, "", periodic_json(mixed.curve_names, periodic),
+    write_quality_json(
+        core_summary, config.out_dir, config.name, "", periodic_json(mixed.curve_names, periodic),
         fmt::format(",\n  \"boundary_layer\": {{\n    \"tables\": [\n{}\n    ],\n    \"junction\": {{\"edges\": {}, "
                     "\"median\": {}, \"p95\": {}, \"max\": {}}},\n{}    \"core_min_angle\": {},\n    "
                     "\"points\": {}, \"cells\": {}, \"quads\": {}\n  }}\n",
                     json_layers, junction.size(), j50, j95, jmax, json_front, angle, mixed.points.size(),
                     mixed.cells.size(), mixed.quads()));
-    write_file_atomically(config.out_dir / "quality.json", json);
   }
   for (const PeriodicLink& l : periodic)
     progress(config, "periodic: '{}' -> '{}': {} node pairs, largest mismatch {:.3g}",
