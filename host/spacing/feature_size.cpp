@@ -438,7 +438,7 @@ bool FeatureSize::faces(const GapSearch& g, std::int32_t si, Vec2 p2, double t, 
     const bool up = (arc2 > g.arc1) == (along <= g.length1 - along);
     const double between = up ? arc - g.rest_up1 - (arc2 - std::min(arc_a_[s2], other_end))
                               : arc - g.rest_down1 - (std::max(arc_a_[s2], other_end) - arc2);
-    strait = between > kStraitArcs * std::max(g.segment_length1, length2);
+    strait = between > kStraitArcs * std::max(g.segment_length1, length2) && between > kStraitRatio * chord;
   }
   return true;
 }

@@ -20,10 +20,13 @@ class FeatureSize {
   static constexpr double kArcRatio = 2.0;
   // Two facing points of one loop lie across a strait, not near a V tip, when the loop between their
   // two segments (the shorter way between the points less the parts of the two segments it runs
-  // along) is longer than kStraitArcs times the longer of the two segments: the sides of a V that are
-  // single segments meet at a vertex (nothing between them), finely sampled sides within a segment or
-  // two of the tip, while a strait's sides connect only far around the loop.
+  // along) is longer than kStraitArcs times the longer of the two segments and than kStraitRatio
+  // times the points' distance: the sides of a V that are single segments meet at a vertex (nothing
+  // between them); between finely sampled sides of a V of angle alpha the loop is about
+  // 1 / sin(alpha/2) times the distance (20 at 5.7 degrees), while a strait's sides connect only far
+  // around the loop.
   static constexpr double kStraitArcs = 1.0;
+  static constexpr double kStraitRatio = 20.0;
 
   // Needs the loops of build_geometry (the inward side of each segment and arc positions along loops).
   explicit FeatureSize(const Geometry& geometry);
