@@ -126,6 +126,20 @@ class SharpestCorner(unittest.TestCase):
         inp.domain = Polygon([(0, 0), (4, 0), (2, h)])
         self.assertAlmostEqual(corpus.sharpest_corner(inp), math.degrees(math.atan2(h, 2)), places=9)
 
+    def test_from_the_mesh_after_healing(self):
+        # The unit square's input with a 10-deg spike on its top side; a mesh of the square alone (the
+        # spike healed away, a node added on the bottom side, 180 deg there): the corner is the
+        # mesh's 90 deg, not the spike's.
+        from shapely.geometry import Polygon
+        inp = corpus.Input("pslg")
+        t = math.tan(math.radians(5))
+        inp.domain = Polygon([(0, 0), (1, 0), (1, 1), (0.5 + 0.05 * t, 1), (0.5, 1.05), (0.5 - 0.05 * t, 1), (0, 1)])
+        self.assertLess(corpus.sharpest_corner(inp), 11.0)
+        points = [(0, 0), (0.5, 0), (1, 0), (1, 1), (0, 1), (9, 9)]
+        triangles = [(0, 1, 4), (1, 3, 4), (1, 2, 3)]
+        self.assertAlmostEqual(corpus.sharpest_mesh_corner(points, triangles), 90.0, places=9)
+        self.assertAlmostEqual(corpus.sharpest_corner(inp, mesh=(points, triangles)), 90.0, places=9)
+
 
 class Projection(unittest.TestCase):
     def test_lonlat_square_at_60_degrees_is_half_as_wide(self):

@@ -124,6 +124,31 @@ TEST_CASE("A gap that narrows to a tip within one loop keeps the sources' floor"
   }
 }
 
+TEST_CASE("A strait between two sides of one loop gets W / k beside long segments", "[spacing][feature]") {
+  // A channel 0.1 wide between two single segments 10 long, whose ends connect only around a 4 x 4
+  // square: k = 2 spacings of 0.05 across it, from mouth to mouth, when the boundary nodes are placed
+  // by the field.
+  const Geometry g = gap_geometry("strait");
+  for (const Vec2 p : {Vec2{9.0, 2.0}, Vec2{4.1, 1.96}, Vec2{6.0, 2.04}, Vec2{13.9, 2.0}, Vec2{11.0, 1.95}}) {
+    INFO("at (" << p.x << ", " << p.y << ")");
+    CHECK(source_at(g, p, false) == Approx(0.05).epsilon(1e-9));
+    // With the input points as boundary nodes the sources keep to the closest segment's length.
+    CHECK(source_at(g, p, true) >= 10.0);
+  }
+}
+
+TEST_CASE("A V inlet of long segments keeps the sources' floor though its sides connect far around too",
+          "[spacing][feature]") {
+  // The inlet's sides (8.02 long) meet at its 7.2 degree tip: the shorter way between two facing
+  // points runs through the tip, however far the other way round the square is.
+  const Geometry g = gap_geometry("inlet");
+  for (const Vec2 p : {Vec2{5.0, 17.5}, Vec2{5.0, 14.0}, Vec2{5.2, 11.0}, Vec2{4.6, 10.2}}) {
+    INFO("at (" << p.x << ", " << p.y << ")");
+    CHECK(source_at(g, p, false, 0.0) < 1.0);  // the gap is seen
+    CHECK(source_at(g, p, false) >= 8.0);
+  }
+}
+
 namespace {
 
 // Point sets for the grouped searches, in the order the background field's batches give them (runs
@@ -174,7 +199,7 @@ Geometry tie_geometry(double side) {
 std::vector<std::pair<std::string, Geometry>> group_geometries() {
   std::vector<std::pair<std::string, Geometry>> out;
   out.emplace_back("square of four sides", fixtures::square(2.0, 7));
-  for (const std::string name : {"constraint_gap", "hole_gap", "wedge"})
+  for (const std::string name : {"constraint_gap", "hole_gap", "wedge", "strait", "inlet"})
     out.emplace_back(name, read_geometry({std::string(PDMESH_SOURCE_DIR) + "/tests/data/gap/" + name + ".poly"}, {}));
   out.emplace_back("plate", read_geometry({std::string(PDMESH_SOURCE_DIR) + "/cases/corpus/plate/plate.poly"}, {}));
   // An annulus of fine circles (a gap all round, the groups' bounds reaching across it).

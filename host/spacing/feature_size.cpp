@@ -410,24 +410,40 @@ bool FeatureSize::gap_setup(Vec2 x, const ClosestHit& nearest, bool inside, doub
   g.loop1 = loop_[static_cast<std::size_t>(nearest.segment)];
   g.arc1 = loop_arc(nearest.segment, nearest.t);
   g.length1 = loop_length_[static_cast<std::size_t>(g.loop1)];
+  const auto s1 = static_cast<std::size_t>(nearest.segment);
+  g.segment_length1 = geometry_.segments[s1].length;
+  const double other_end = arc_a_[s1] + arc_sign_[s1] * g.segment_length1;
+  g.rest_up1 = std::max(arc_a_[s1], other_end) - g.arc1;
+  g.rest_down1 = g.arc1 - std::min(arc_a_[s1], other_end);
   return true;
 }
 
-bool FeatureSize::faces(const GapSearch& g, std::int32_t si, Vec2 p2, double t) const {
+bool FeatureSize::faces(const GapSearch& g, std::int32_t si, Vec2 p2, double t, bool& strait) const {
+  strait = false;
   const std::int32_t loop2 = loop_[static_cast<std::size_t>(si)];
   if (loop2 != g.loop1 && !junctions_.empty() && junction_corner(g.loop1, loop2, g.p1, p2, dist(g.p1, p2)))
     return false;
   if (loop2 == g.loop1) {
     // p2 == p1 (a neighbour segment's shared vertex) is no gap, however the two arc positions round.
     const double chord = dist(g.p1, p2);
-    const double along = std::fabs(loop_arc(si, t) - g.arc1);
+    const double arc2 = loop_arc(si, t);
+    const double along = std::fabs(arc2 - g.arc1);
     const double arc = std::min(along, g.length1 - along);
     if (!(chord > 0.0) || !(arc > kArcRatio * chord)) return false;
+    // The shorter way leaves p1 toward higher arc when it runs directly to a higher arc2 or across
+    // the loop's start to a lower one; it then enters p2's segment at its lower end.
+    const auto s2 = static_cast<std::size_t>(si);
+    const double length2 = geometry_.segments[s2].length;
+    const double other_end = arc_a_[s2] + arc_sign_[s2] * length2;
+    const bool up = (arc2 > g.arc1) == (along <= g.length1 - along);
+    const double between = up ? arc - g.rest_up1 - (arc2 - std::min(arc_a_[s2], other_end))
+                              : arc - g.rest_down1 - (std::max(arc_a_[s2], other_end) - arc2);
+    strait = between > kStraitArcs * std::max(g.segment_length1, length2) && between > kStraitRatio * chord;
   }
   return true;
 }
 
-bool FeatureSize::gap_search(const GapSearch& g, double& best2, std::int32_t& loop) const {
+bool FeatureSize::gap_search(const GapSearch& g, double& best2, std::int32_t& loop, bool& strait) const {
   const auto& segs = geometry_.segments;
   best2 = g.radius * g.radius;
   bool found = false;
@@ -441,10 +457,12 @@ bool FeatureSize::gap_search(const GapSearch& g, double& best2, std::int32_t& lo
         if (!ahead_point(segs[static_cast<std::size_t>(si)], g.from, g.ahead, p2, t, d2)) return;
         if (d2 >= best2) return;
         // Facing: another loop, or far enough along this one (decided at the candidate point).
-        if (!faces(g, si, p2, t)) return;
+        bool across = false;
+        if (!faces(g, si, p2, t, across)) return;
         best2 = d2;
         found = true;
         loop = loop_[static_cast<std::size_t>(si)];
+        strait = across;
       });
   return found;
 }
@@ -456,8 +474,9 @@ double FeatureSize::width(Vec2 x, const ClosestHit& nearest, bool inside, double
   if (!gap_setup(x, nearest, inside, max_width, g)) return kNone;
   double best2 = 0.0;
   std::int32_t found_loop = -1;
-  if (!gap_search(g, best2, found_loop)) return kNone;
-  if (apart) *apart = found_loop != g.loop1 && !touch(g.loop1, found_loop);
+  bool strait = false;
+  if (!gap_search(g, best2, found_loop, strait)) return kNone;
+  if (apart) *apart = found_loop != g.loop1 ? !touch(g.loop1, found_loop) : strait;
   return g.d1 + std::sqrt(best2);
 }
 
@@ -471,11 +490,12 @@ double FeatureSize::width(Vec2 x, const ClosestHit& nearest, bool inside, double
 // its pruning, which compares a leaf's box with the best exactly, skips the segment that gives it:
 // possible only where rounding puts that segment's candidate point nearer than its leaf's box
 // (`anomalous`). Both answers are then the same when some segment giving m* is not anomalous, and
-// the loops of all the segments giving m* agree (gap_search keeps the first it meets, in its own
-// order): exact[i] says so, and the caller searches the others again with gap_search. Returns false
-// (nothing written) for a group with a `from` not finite, or that gathers more than kGroupLeaves.
-bool FeatureSize::gap_group(const GapSearch* g, std::size_t m, double* best2, std::int32_t* loop, bool* found,
-                            bool* exact) const {
+// the loops and strait flags of all the segments giving m* agree (gap_search keeps the first it
+// meets, in its own order): exact[i] says so, and the caller searches the others again with
+// gap_search. Returns false (nothing written) for a group with a `from` not finite, or that gathers
+// more than kGroupLeaves.
+bool FeatureSize::gap_group(const GapSearch* g, std::size_t m, double* best2, std::int32_t* loop, bool* strait,
+                            bool* found, bool* exact) const {
   const auto& segs = geometry_.segments;
   double margins[kGroup];
   Box group;
@@ -508,7 +528,7 @@ bool FeatureSize::gap_group(const GapSearch* g, std::size_t m, double* best2, st
     const GapSearch& s = g[i];
     double b2 = s.radius * s.radius;
     double skip2 = (s.radius + margins[i]) * (s.radius + margins[i]);
-    bool any = false, tie = false, sound = false;
+    bool any = false, tie = false, sound = false, best_strait = false;
     std::int32_t best_loop = -1;
     for (int l = 0; l < count; ++l) {
       const Node& node = nodes_[static_cast<std::size_t>(leaves[l])];
@@ -520,27 +540,31 @@ bool FeatureSize::gap_group(const GapSearch* g, std::size_t m, double* best2, st
         Vec2 p2;
         double t = 0.0, d2 = 0.0;
         if (!ahead_point(segs[static_cast<std::size_t>(si)], s.from, s.ahead, p2, t, d2)) continue;
-        // A tie with the best found is examined too (its loop may differ); radius^2 itself is not a gap.
+        // A tie with the best found is examined too (its loop or strait flag may differ); radius^2
+        // itself is not a gap.
         if (d2 > b2 || (d2 == b2 && !any)) continue;
-        if (!faces(s, si, p2, t)) continue;
+        bool across = false;
+        if (!faces(s, si, p2, t, across)) continue;
         const std::int32_t loop2 = loop_[static_cast<std::size_t>(si)];
         const bool anomalous = d2 < box2;
         if (d2 < b2) {
           b2 = d2;
           any = true;
           best_loop = loop2;
+          best_strait = across;
           tie = false;
           sound = !anomalous;
           const double r = std::sqrt(b2) + margins[i];
           skip2 = r * r;
         } else {
-          tie = tie || loop2 != best_loop;
+          tie = tie || loop2 != best_loop || across != best_strait;
           sound = sound || !anomalous;
         }
       }
     }
     best2[i] = b2;
     loop[i] = best_loop;
+    strait[i] = best_strait;
     found[i] = any;
     exact[i] = !any || (sound && !tie);
   }
@@ -557,12 +581,12 @@ void FeatureSize::width_many(const WidthQuery* q, std::size_t n, double* width, 
   const auto run = [&] {
     double best2[kGroup];
     std::int32_t loop[kGroup];
-    bool found[kGroup], exact[kGroup];
-    const bool grouped = m > 1 && gap_group(g, m, best2, loop, found, exact);
+    bool strait[kGroup], found[kGroup], exact[kGroup];
+    const bool grouped = m > 1 && gap_group(g, m, best2, loop, strait, found, exact);
     for (std::size_t k = 0; k < m; ++k) {
-      if (!grouped || !exact[k]) found[k] = gap_search(g[k], best2[k], loop[k]);
+      if (!grouped || !exact[k]) found[k] = gap_search(g[k], best2[k], loop[k], strait[k]);
       if (!found[k]) continue;
-      apart[at[k]] = loop[k] != g[k].loop1 && !touch(g[k].loop1, loop[k]);
+      apart[at[k]] = loop[k] != g[k].loop1 ? !touch(g[k].loop1, loop[k]) : strait[k];
       width[at[k]] = g[k].d1 + std::sqrt(best2[k]);
     }
     m = 0;

@@ -18,6 +18,15 @@ class FeatureSize {
   // arc/chord = cot(alpha/2) for points at equal distance from it, so corners of 53 degrees and more
   // (cot 26.6 deg = 2) are never gaps, while a slot of width w, deeper than w/2, is.
   static constexpr double kArcRatio = 2.0;
+  // Two facing points of one loop lie across a strait, not near a V tip, when the loop between their
+  // two segments (the shorter way between the points less the parts of the two segments it runs
+  // along) is longer than kStraitArcs times the longer of the two segments and than kStraitRatio
+  // times the points' distance: the sides of a V that are single segments meet at a vertex (nothing
+  // between them); between finely sampled sides of a V of angle alpha the loop is about
+  // 1 / sin(alpha/2) times the distance (20 at 5.7 degrees), while a strait's sides connect only far
+  // around the loop.
+  static constexpr double kStraitArcs = 1.0;
+  static constexpr double kStraitRatio = 20.0;
 
   // Needs the loops of build_geometry (the inward side of each segment and arc positions along loops).
   explicit FeatureSize(const Geometry& geometry);
@@ -28,8 +37,9 @@ class FeatureSize {
   // x - p1) that faces p1. On the boundary or outside, x is replaced by p1 and "ahead" is along the
   // inward normal of p1's segment, so W = |p1 - p2|. Returns +inf when no such p2 makes W < max_width
   // (max_width bounds the search: wider gaps do not matter to the caller).
-  // apart (optional): set to whether p2 lies on a loop that never meets p1's (another loop with no
-  // point in common with it): then W is at least the two loops' distance, and cannot shrink to 0.
+  // apart (optional): set to whether the gap cannot narrow to nothing near p1: p2 lies on a loop that
+  // never meets p1's (another loop with no point in common with it; W is then at least the two loops'
+  // distance), or on p1's own loop across a strait (kStraitArcs).
   double width(Vec2 x, const ClosestHit& nearest, bool inside, double max_width, bool* apart = nullptr) const;
 
   // One width() query.
@@ -100,18 +110,23 @@ class FeatureSize {
   struct GapSearch {
     Vec2 from, ahead, p1;
     double d1 = 0.0, radius = 0.0, arc1 = 0.0, length1 = 0.0;
+    // p1's segment: its length, and the loop arc from p1 to its end of higher and of lower arc.
+    double segment_length1 = 0.0, rest_up1 = 0.0, rest_down1 = 0.0;
     std::int32_t segment = -1, loop1 = -1;
   };
   // Fills g for width()'s arguments; false where W is +inf without a search.
   bool gap_setup(Vec2 x, const ClosestHit& nearest, bool inside, double max_width, GapSearch& g) const;
   // The search of width() through the hierarchy: the least squared distance ahead that faces p1
-  // (best2, below radius^2) and its loop (the first found in the traversal's order), or false.
-  bool gap_search(const GapSearch& g, double& best2, std::int32_t& loop) const;
-  // Whether p2, at t along segment si, faces g's p1 (another loop, or far enough along p1's).
-  bool faces(const GapSearch& g, std::int32_t si, Vec2 p2, double t) const;
+  // (best2, below radius^2), its loop and whether it lies across a strait from p1 (faces' strait),
+  // both of the first found in the traversal's order; or false.
+  bool gap_search(const GapSearch& g, double& best2, std::int32_t& loop, bool& strait) const;
+  // Whether p2, at t along segment si, faces g's p1 (another loop, or far enough along p1's); strait:
+  // set to whether p2 is on p1's loop across a strait from it (kStraitArcs).
+  bool faces(const GapSearch& g, std::int32_t si, Vec2 p2, double t, bool& strait) const;
   // gap_search for the m searches g[0 .. m) at once (see the definition); false (nothing written)
   // where the group gathers too much. exact[i] false: that search must be done by gap_search.
-  bool gap_group(const GapSearch* g, std::size_t m, double* best2, std::int32_t* loop, bool* found, bool* exact) const;
+  bool gap_group(const GapSearch* g, std::size_t m, double* best2, std::int32_t* loop, bool* strait, bool* found,
+                 bool* exact) const;
   template <class Skip, class Visit>
   void traverse(Vec2 x, const Skip& skip, const Visit& segment) const;
 

@@ -44,9 +44,10 @@ double SizeSources::before_gap(Vec2 p, const ClosestHit& hit, double limit, doub
 double SizeSources::after_gap(double q, double floor, double w, bool apart) const {
   const double s = options_.scale;
   const double k = options_.rows_in_gap;
-  // Across a gap between two loops that never meet, boundary nodes placed by the field need no
-  // floor: W is bounded below by the loops' distance (no sharp V tip asks for q -> 0 there), and a
-  // floor of the closest segment's length would leave a gap beside a long segment unresolved.
+  // Across a gap between two loops that never meet, or across a strait between two sides of one loop
+  // that meet only far around it (FeatureSize::width's apart), boundary nodes placed by the field
+  // need no floor: no sharp V tip asks for q -> 0 there, and a floor of the closest segment's length
+  // would leave a gap beside a long segment unresolved.
   const bool floored = options_.final_floor || !apart;
   if (std::isfinite(w)) q = std::min(q, floored ? std::max(w / k, floor / s) : w / k);
   return q;

@@ -8,9 +8,11 @@ own boundary nodes; constraints as embedded curves, isolated vertices as embedde
 spacing field as its only size source (a background view of mesh.nodes' q on pdmesh's mesh, as
 tools/eval/compare does); both meshes measured by one evaluator (pdmesh_eval.corpus.measures, in the
 projected plane for lon/lat data). Prints a Markdown table: nodes, min angle, share of triangles
-below 30 deg, mean aspect ratio, constraint segments and points present, wall time, and a check of
-pdmesh's mesh against issue 39's targets (min angle >= 30 deg on clean data, >= 20 deg on GIS data;
-every constraint present). An input pdmesh refuses gets a row with pdmesh's message (the reader or
+below 30 deg, mean aspect ratio, constraint segments and points present, wall time, the sharpest
+corner of the domain pdmesh meshed (its mesh's boundary corners, after healing; the input's where
+pdmesh made no mesh), and a check of pdmesh's mesh against issue 39's targets (min angle >= 30 deg on
+clean data, >= 20 deg on GIS data; every constraint present; a miss names that corner when it is
+sharper than the target). An input pdmesh refuses gets a row with pdmesh's message (the reader or
 option it lacks) and no Gmsh run unless --gmsh-own-sizes.
 
     tools/eval/setup_anchors.sh
@@ -94,6 +96,7 @@ def one_input(args, name):
         if inp is not None:
             xy = project_points(points, inp)
             row["pdmesh"].update(measures(xy, triangles))
+            row["sharpest_corner"] = sharpest_corner(inp, mesh=(xy, triangles))
             row["pdmesh"]["constraints"] = constraint_check(inp, xy, triangles)
             nodes, _ = read_node_file(os.path.join(pd_out, "mesh.nodes"))
             if len(nodes) == len(points) and all((n[0], n[1]) == p for n, p in zip(nodes, points)):
@@ -134,7 +137,7 @@ def check(row, inp):
     target = TARGET_DEG[row["kind"]]
     if pd["min_angle"] < target:
         corner = row.get("sharpest_corner")
-        kept = f" (input corner {corner:.2f}°)" if corner is not None and corner < target else ""
+        kept = f" (domain corner {corner:.2f}°)" if corner is not None and corner < target else ""
         problems.append(f"min angle < {target:.0f}°{kept}")
     present, missing = pd.get("constraints", (0, 0))
     if missing:
@@ -163,7 +166,7 @@ def table(rows):
             ("< 30° %", pair("share_below_30", 2, 100.0)), ("mean AR", pair("mean_aspect_ratio", 3)),
             ("constraints", lambda r: f"{constraints_cell(r['pdmesh'])} / {constraints_cell(r['gmsh'])}"),
             ("wall s", pair("wall_seconds", 2)),
-            ("sharpest input corner °", lambda r: fmt(r.get("sharpest_corner"), 2)),
+            ("sharpest corner °", lambda r: fmt(r.get("sharpest_corner"), 2)),
             ("target", lambda r: f"≥ {TARGET_DEG[r['kind']]:.0f}°"), ("check (pdmesh)", lambda r: r["check"])]
     out = ["| " + " | ".join(c for c, _ in cols) + " |", "|" + "---|" * len(cols)]
     for r in rows:

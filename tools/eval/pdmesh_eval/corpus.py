@@ -359,11 +359,14 @@ def which_surface(inp, p):
     return 1
 
 
-def sharpest_corner(inp):
+def sharpest_corner(inp, mesh=None):
     """The smallest angle of the domain at an input vertex (degrees, measured on the domain side: a
     sharp trailing edge seen from the flow is about 345 deg), between boundary segments and, where
     embedded constraints meet a vertex, between any two segments there whose wedge lies in the
-    domain: a mesh that keeps every input vertex and segment cannot have a larger minimum angle."""
+    domain: a mesh that keeps every input vertex and segment cannot have a larger minimum angle.
+    mesh: (points, triangles) of a mesh of the input in the same plane: the boundary's corners are
+    then the mesh's (sharpest_mesh_corner), those of the domain after pdmesh's healing, which may
+    have removed the input's sharpest ones (a spike, an inlet)."""
     from shapely.geometry.polygon import orient
     best = 360.0
     rings = []
@@ -377,7 +380,31 @@ def sharpest_corner(inp):
                 u, v = (c[0] - b[0], c[1] - b[1]), (a[0] - b[0], a[1] - b[1])
                 angle = math.degrees(math.atan2(u[0] * v[1] - u[1] * v[0], u[0] * v[0] + u[1] * v[1])) % 360.0
                 best = min(best, angle)
+    if mesh is not None:
+        best = sharpest_mesh_corner(*mesh)
     return min(best, sharpest_constraint_wedge(inp, rings))
+
+
+def sharpest_mesh_corner(points, triangles):
+    """The smallest angle of a mesh's domain at a boundary vertex (degrees): the sum of the angles
+    of its triangles at a vertex of an edge that only one triangle has (360 when there is none)."""
+    p, t = used_mesh(points, triangles)
+    if len(t) == 0:
+        return 360.0
+    a, b, c = p[t[:, 0]], p[t[:, 1]], p[t[:, 2]]
+    la, lb, lc = (np.linalg.norm(b - c, axis=1), np.linalg.norm(c - a, axis=1), np.linalg.norm(a - b, axis=1))
+
+    def angle(u, v, w):  # at the vertex opposite w, between sides u and v
+        return np.degrees(np.arccos(np.clip((u * u + v * v - w * w) / (2 * u * v), -1.0, 1.0)))
+
+    total = np.zeros(len(p))
+    with np.errstate(divide="ignore", invalid="ignore"):
+        for k, at in enumerate((angle(lb, lc, la), angle(lc, la, lb), angle(la, lb, lc))):
+            np.add.at(total, t[:, k], np.nan_to_num(at))
+    edges = np.sort(np.concatenate([t[:, [0, 1]], t[:, [1, 2]], t[:, [2, 0]]]), axis=1)
+    unique, count = np.unique(edges, axis=0, return_counts=True)
+    boundary = np.unique(unique[count == 1])
+    return float(total[boundary].min()) if len(boundary) else 360.0
 
 
 def sharpest_constraint_wedge(inp, rings):
