@@ -13,7 +13,8 @@ namespace pdmesh::case_detail {
 
 namespace {
 
-const std::vector<std::string> kFormats = {"msh", "msh22", "vtu", "su2", "triangle", "fort14", "2dm", "png", "svg"};
+const std::vector<std::string> kFormats = {"msh",    "msh22", "vtu",  "su2", "triangle",
+                                           "fort14", "2dm",   "mesh", "png", "svg"};
 
 // A loop, not std::regex: libstdc++'s matcher recurses once per character, so a long name would
 // overflow the stack.
@@ -231,7 +232,7 @@ void read_init_section(const Reader& r, const toml::table& root, CaseConfig& c) 
                    [](unsigned char ch) { return static_cast<char>(std::tolower(ch)); });
     if (!is_warm_points_extension(ext))
       r.fail("init.file", n,
-             fmt::format("init.file '{}' must be a .nodes, .msh, .vtu, .su2 or .ele file", quote_input(f)));
+             fmt::format("init.file '{}' must be a .nodes, .msh, .vtu, .su2, .mesh or .ele file", quote_input(f)));
     c.init.file = r.resolve("init.file", f);
   }
 }

@@ -281,7 +281,8 @@ int run_smooth(CaseConfig config, const std::filesystem::path& mesh_file, Smooth
   std::transform(ext.begin(), ext.end(), ext.begin(),
                  [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
   if (!is_warm_points_extension(ext) || ext == ".nodes")
-    throw InputError(fmt::format("{}: not a .msh, .vtu, .su2 or Triangle .ele/.node mesh", mesh_file.string()));
+    throw InputError(
+        fmt::format("{}: not a .msh, .vtu, .su2, Medit .mesh or Triangle .ele/.node mesh", mesh_file.string()));
   const Mesh mesh = read_smooth_mesh(mesh_file);
   make_smooth_config(config, mesh, mesh_file, mesh_file.string(), field);
   return run_mesh(config);
