@@ -5,10 +5,10 @@
 
 DIR holds `pdmesh mesh ... --formats mesh`'s mesh.mesh. meshio reads it to the counts pdmesh's
 quality.json in DIR gives. mmg2d (the mmg2d_O3 of the interpreter's mmgpy) remeshes it with -hmax
-half the mean boundary edge length, keeping the corners (Corners) and the curves' references (Edges);
-PDMESH's `pdmesh quality` reads mmg2d's output to the point and triangle counts and the minimum angle
-meshio's reading of the same file gives, and mmg2d's output keeps every reference pdmesh wrote on its
-Edges. Exit status 0 when every check passed, 1 otherwise, 77 when meshio, numpy or mmg2d is missing
+half the mean boundary edge length; its output keeps pdmesh's Corners (the fixed nodes) and every
+reference pdmesh wrote on its Edges (the curves). PDMESH's `pdmesh quality` reads mmg2d's output to
+the point and triangle counts and the minimum angle meshio's reading of the same file gives. Exit
+status 0 when every check passed, 1 otherwise, 77 when meshio, numpy or mmg2d is missing
 (ctest's skip)."""
 import json
 import os
@@ -20,6 +20,15 @@ def check(ok, what, failures):
     print(f"{'ok  ' if ok else 'FAIL'} {what}")
     if not ok:
         failures.append(what)
+
+
+def corners(path):
+    """The 0-based vertex numbers of a .mesh file's Corners section (meshio reads it over)."""
+    tokens = [t for line in open(path, encoding="utf-8") if not line.lstrip().startswith("#") for t in line.split()]
+    if "Corners" not in tokens:
+        return []
+    k = tokens.index("Corners")
+    return [int(t) - 1 for t in tokens[k + 2:k + 2 + int(tokens[k + 1])]]
 
 
 def min_angle(np, points, triangles):
@@ -73,6 +82,10 @@ def main():
     refs = sorted(set(int(x) for k, c in enumerate(a.cells) if c.type == "line" for x in a.cell_data["medit:ref"][k]))
     check(refs == ours_refs, f"mmg2d kept the edge references {ours_refs} (has {refs})", failures)
     check(len(tri) > triangles, f"mmg2d refined {triangles} triangles to {len(tri)}", failures)
+    kept = {tuple(a.points[i, :2]) for i in corners(adapted)}
+    fixed = [tuple(m.points[i, :2]) for i in corners(ours)]
+    check(len(fixed) > 0 and all(p in kept for p in fixed),
+          f"mmg2d kept pdmesh's {len(fixed)} Corners among its {len(kept)}", failures)
     quality = os.path.join(directory, "mmg2d_quality.json")
     q = subprocess.run([pdmesh, "quality", adapted, "--json", quality], capture_output=True, text=True)
     check(q.returncode == 0, f"pdmesh quality {adapted}: exit {q.returncode}", failures)
