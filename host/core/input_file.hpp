@@ -14,7 +14,7 @@ namespace pdmesh {
 enum class InputKind {
   Geometry,    // .crv, .dat, .poly geometry: 1 GiB
   Case,        // case.toml: 1 MiB
-  Mesh,        // .msh, .vtu, .su2, Triangle .node/.ele/.poly, also as a spacing data field: 8 GiB
+  Mesh,        // .msh, .vtu, .su2, Medit .mesh/.sol, Triangle .node/.ele/.poly, also as a spacing data field: 8 GiB
   NodeFile,    // pdmesh node files: 8 GiB
   Checkpoint,  // checkpoint.pdmesh: 8 GiB
   Text,        // anything else pdmesh reads back (timings, tables): 1 GiB
