@@ -31,6 +31,10 @@ std::uint64_t input_size_limit(InputKind kind);
 // when it is larger than input_size_limit(kind), and when a read fails.
 std::string read_input_file(const std::filesystem::path& path, InputKind kind);
 
+// The extension of `path` with its dot, in lower case (".msh" for "A.MSH"); "" without one. Readers
+// are chosen by it.
+std::string lower_extension(const std::filesystem::path& path);
+
 // Removes a UTF-8 byte-order mark (EF BB BF) at the start of `text`, as some editors write it.
 void skip_utf8_bom(std::string& text);
 

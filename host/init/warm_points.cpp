@@ -9,21 +9,11 @@
 #include <fmt/format.h>
 
 #include "core/errors.hpp"
+#include "core/input_file.hpp"
 #include "io/mesh_formats.hpp"
 #include "nodes/node_file.hpp"
 
 namespace pdmesh {
-
-namespace {
-
-std::string lower_extension(const std::filesystem::path& path) {
-  std::string ext = path.extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(),
-                 [](unsigned char ch) { return static_cast<char>(std::tolower(ch)); });
-  return ext;
-}
-
-}  // namespace
 
 bool is_warm_points_extension(const std::string& extension) {
   return extension == ".nodes" || extension == ".msh" || extension == ".vtu" || extension == ".su2" ||

@@ -80,13 +80,6 @@ void header_keyword(LineScanner& s, std::string_view keyword) {
   if (keyword == "MeshVersionFormatted" && (v < 1 || v > 4)) s.fail("MeshVersionFormatted must be 1 to 4", tok);
 }
 
-std::string lower_extension(const std::filesystem::path& file) {
-  std::string ext = file.extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return ext;
-}
-
 void refuse_binary(const std::filesystem::path& file, const std::string& ext, const char* want) {
   if (ext == std::string(want) + "b")
     throw InputError(

@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 
 #include "core/errors.hpp"
+#include "core/input_file.hpp"
 #include "core/text_sink.hpp"
 #include "io/fort14_writer.hpp"
 #include "io/medit_reader.hpp"
@@ -85,9 +86,7 @@ std::vector<std::filesystem::path> write_mesh(const Mesh& mesh, const std::files
 }
 
 Mesh read_mesh(const std::filesystem::path& path, MeshReadReport& report, SurfaceCells* cells) {
-  std::string ext = path.extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  const std::string ext = lower_extension(path);
   if (ext == ".msh") return read_msh(path, report, nullptr, cells);
   if (ext == ".vtu") return read_vtu(path, report, nullptr, cells);
   if (ext == ".su2") return read_su2(path, report, cells);

@@ -26,6 +26,7 @@
 #include "app/cli/transfer_command.hpp"
 #include "app/pipeline/motion_pipeline.hpp"
 #include "core/errors.hpp"
+#include "core/input_file.hpp"
 #include "core/interrupt.hpp"
 #include "core/memory_budget.hpp"
 #include "mesh/quality.hpp"
@@ -193,12 +194,6 @@ std::vector<CaseOverride> overrides_from(const MeshArguments& a) {
   if (a.plot_spacing) out.push_back({"output.spacing_picture", "true", "--plot-spacing"});
   for (const std::string& v : a.views) out.push_back({"output.views", view_value(v), "--view " + v, true});
   return out;
-}
-
-std::string lower_extension(const fs::path& p) {
-  std::string ext = p.extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
-  return ext;
 }
 
 bool is_geometry_extension(const std::string& ext) {

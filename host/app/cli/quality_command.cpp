@@ -9,6 +9,7 @@
 
 #include "app/config/case_file.hpp"
 #include "app/pipeline/mesh_inputs.hpp"
+#include "core/input_file.hpp"
 #include "geometry/geometry_files.hpp"
 #include "geometry/geometry_tree.hpp"
 #include "io/mesh_formats.hpp"
@@ -35,8 +36,7 @@ struct CaseSpacing {
 };
 
 CaseSpacing load_spacing(const std::filesystem::path& path) {
-  std::string ext = path.extension().string();
-  for (auto& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  const std::string ext = lower_extension(path);
   CaseConfig config = ext == ".toml" ? load_case_file(path) : case_for_geometry_file(path);
   config.quiet = true;
   CaseSpacing loaded;
@@ -57,8 +57,7 @@ struct ReadMesh {
 };
 
 ReadMesh read_cells(const std::string& mesh_path, MeshReadReport& report) {
-  std::string ext = std::filesystem::path(mesh_path).extension().string();
-  for (auto& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  const std::string ext = lower_extension(std::filesystem::path(mesh_path));
   ReadMesh read;
   read.region = ext == ".msh" ? "group" : ext == ".vtu" ? "cell data" : ext == ".mesh" ? "reference" : "";
   SurfaceCells cells;
