@@ -82,8 +82,9 @@ TEST_CASE("fuzz corpus: every target has seeds and a libFuzzer source", "[fuzz]"
 // inputs that reach deep into each reader (a seed rejected on line 1 teaches the fuzzer little).
 TEST_CASE("fuzz corpus: the well-formed seeds parse", "[fuzz]") {
   const fs::path corpus = kFuzzDir / "corpus";
-  for (const char* msh : {"fuzz_mesh_reader_msh/square_41.msh", "fuzz_mesh_reader_msh/square_22.msh",
-                          "fuzz_mesh_reader_vtu/square.vtu", "fuzz_mesh_reader_su2/square.su2"}) {
+  for (const char* msh :
+       {"fuzz_mesh_reader_msh/square_41.msh", "fuzz_mesh_reader_msh/square_22.msh", "fuzz_mesh_reader_vtu/square.vtu",
+        "fuzz_mesh_reader_su2/square.su2", "fuzz_mesh_reader_medit/square.mesh"}) {
     INFO(msh);
     const pdmesh::Mesh m = pdmesh::read_mesh(corpus / msh);
     CHECK(m.points.size() == 5);
@@ -136,6 +137,7 @@ TEST_CASE("fuzz corpus: node file", "[fuzz][nodes]") { CHECK(replay("fuzz_node_f
 TEST_CASE("fuzz corpus: Gmsh reader", "[fuzz][io]") { CHECK(replay("fuzz_mesh_reader_msh") >= 2); }
 TEST_CASE("fuzz corpus: VTU reader", "[fuzz][io]") { CHECK(replay("fuzz_mesh_reader_vtu") >= 1); }
 TEST_CASE("fuzz corpus: SU2 reader", "[fuzz][io]") { CHECK(replay("fuzz_mesh_reader_su2") >= 1); }
+TEST_CASE("fuzz corpus: Medit reader", "[fuzz][io]") { CHECK(replay("fuzz_mesh_reader_medit") >= 2); }
 TEST_CASE("fuzz corpus: Triangle reader", "[fuzz][io]") { CHECK(replay("fuzz_mesh_reader_triangle") >= 2); }
 TEST_CASE("fuzz corpus: Medit metric reader", "[fuzz][io]") { CHECK(replay("fuzz_metric_reader_medit") >= 2); }
 TEST_CASE("fuzz corpus: checkpoint reader, fit check and resumed simulation", "[fuzz][resume]") {

@@ -119,14 +119,15 @@ void check_same_cells(const nlohmann::json& a, const nlohmann::json& b) {
 }  // namespace
 
 TEST_CASE(
-    "quality of one layered run's mesh in msh, vtu and su2: the same cells and angles, and its quality.json's layout",
-    "[quality][layers][vtu][su2]") {
+    "quality of one layered run's mesh in msh, vtu, su2 and mesh: the same cells and angles, and its quality.json's "
+    "layout",
+    "[quality][layers][vtu][su2][medit]") {
   const fs::path out = fs::temp_directory_path() / "pdmesh_test_quality_formats";
   fs::remove_all(out);
   CaseConfig c = load_case_file(pdmesh::test::source_dir() + "/tests/data/layers_naca/case.toml");
   c.out_dir = out;
   c.quiet = true;
-  c.output.formats = {"msh", "vtu", "su2"};
+  c.output.formats = {"msh", "vtu", "su2", "mesh"};
   REQUIRE(run_mesh(c) == 0);
   const nlohmann::json run = read_quality_json(out / "quality.json")["boundary_layer"];
   {  // The run's own quality.json: its boundary_layer member follows cleanup's value on its line.
@@ -136,8 +137,9 @@ TEST_CASE(
           std::string::npos);
     CHECK(json.find("\n,") == std::string::npos);
   }
-  const Measured msh = measure(out / "mesh.msh"), vtu = measure(out / "mesh.vtu"), su2 = measure(out / "mesh.su2");
-  for (const Measured* m : {&msh, &vtu, &su2}) {
+  const Measured msh = measure(out / "mesh.msh"), vtu = measure(out / "mesh.vtu"), su2 = measure(out / "mesh.su2"),
+                 medit = measure(out / "mesh.mesh");
+  for (const Measured* m : {&msh, &vtu, &su2, &medit}) {
     INFO(m->text + m->err);
     CHECK(m->err.find("skipped") == std::string::npos);
     REQUIRE(m->q.contains("cells"));
@@ -156,6 +158,10 @@ TEST_CASE(
   CHECK(vtu.q["cells"]["layer_cells"].get<std::string>() == "boundary_layer");
   check_same_cells(vtu.q["cells"]["layer"], msh.q["cells"]["layer"]);
   CHECK(vtu.text.find("boundary layer (the file's \"boundary_layer\" cell data)") != std::string::npos);
+  // Medit names it by a reference (its "# ref 1: region boundary_layer" comment).
+  CHECK(medit.q["cells"]["layer_cells"].get<std::string>() == "boundary_layer");
+  check_same_cells(medit.q["cells"]["layer"], msh.q["cells"]["layer"]);
+  CHECK(medit.text.find("boundary layer (the file's \"boundary_layer\" reference)") != std::string::npos);
   CHECK(su2.q["cells"]["layer_cells"].get<std::string>() == "quads");
   CHECK(su2.q["cells"]["layer"]["quads"].get<long long>() == run["quads"].get<long long>());
   CHECK(su2.q["cells"]["layer"]["triangles"].get<long long>() == 0);

@@ -14,7 +14,7 @@ namespace pdmesh {
 enum class InputKind {
   Geometry,    // .crv, .dat, .poly geometry: 1 GiB
   Case,        // case.toml: 1 MiB
-  Mesh,        // .msh, .vtu, .su2, Triangle .node/.ele/.poly, also as a spacing data field: 8 GiB
+  Mesh,        // .msh, .vtu, .su2, Medit .mesh/.sol, Triangle .node/.ele/.poly, also as a spacing data field: 8 GiB
   NodeFile,    // pdmesh node files: 8 GiB
   Checkpoint,  // checkpoint.pdmesh: 8 GiB
   Text,        // anything else pdmesh reads back (timings, tables): 1 GiB
@@ -30,6 +30,10 @@ std::uint64_t input_size_limit(InputKind kind);
 // decided with stat() before opening, and the file is opened non-blocking, so a pipe never hangs),
 // when it is larger than input_size_limit(kind), and when a read fails.
 std::string read_input_file(const std::filesystem::path& path, InputKind kind);
+
+// The extension of `path` with its dot, in lower case (".msh" for "A.MSH"); "" without one. Readers
+// are chosen by it.
+std::string lower_extension(const std::filesystem::path& path);
 
 // Removes a UTF-8 byte-order mark (EF BB BF) at the start of `text`, as some editors write it.
 void skip_utf8_bom(std::string& text);

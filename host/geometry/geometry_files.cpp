@@ -10,6 +10,7 @@
 #include <fmt/format.h>
 
 #include "core/errors.hpp"
+#include "core/input_file.hpp"
 #include "core/progress_notes.hpp"
 #include "geometry/airfoil_reader.hpp"
 #include "geometry/curve_reader.hpp"
@@ -65,8 +66,7 @@ RawGeometry read_geometry_files(const std::vector<std::string>& paths, PolyHull 
   std::vector<std::string> airfoil_paths;
   std::string counts;  // "a.crv: 4 curves, b.poly: 1 curve", for the names message
   for (const std::string& path : paths) {
-    std::string ext = std::filesystem::path(path).extension().string();
-    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+    const std::string ext = lower_extension(std::filesystem::path(path));
     const std::size_t before = raw.curves.size();
     if (ext == ".crv") {
       for (RawCurve& c : read_curve_file(path)) raw.curves.push_back(std::move(c));

@@ -9,25 +9,15 @@
 #include <fmt/format.h>
 
 #include "core/errors.hpp"
+#include "core/input_file.hpp"
 #include "io/mesh_formats.hpp"
 #include "nodes/node_file.hpp"
 
 namespace pdmesh {
 
-namespace {
-
-std::string lower_extension(const std::filesystem::path& path) {
-  std::string ext = path.extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(),
-                 [](unsigned char ch) { return static_cast<char>(std::tolower(ch)); });
-  return ext;
-}
-
-}  // namespace
-
 bool is_warm_points_extension(const std::string& extension) {
   return extension == ".nodes" || extension == ".msh" || extension == ".vtu" || extension == ".su2" ||
-         extension == ".ele" || extension == ".node";
+         extension == ".mesh" || extension == ".ele" || extension == ".node";
 }
 
 std::vector<Vec2> read_warm_points(const std::filesystem::path& path) {
@@ -41,7 +31,7 @@ std::vector<Vec2> read_warm_points(const std::filesystem::path& path) {
   } else if (is_warm_points_extension(ext)) {
     points = read_mesh(path).points;
   } else {
-    throw InputError(fmt::format("init.file '{}': not a .nodes, .msh, .vtu, .su2 or .ele file", path.string()));
+    throw InputError(fmt::format("init.file '{}': not a .nodes, .msh, .vtu, .su2, .mesh or .ele file", path.string()));
   }
   if (points.empty()) throw InputError(fmt::format("init.file '{}': the file has no points", path.string()));
   for (std::size_t i = 0; i < points.size(); ++i)

@@ -11,7 +11,7 @@
 namespace pdmesh {
 
 // The points of `path`: a node file (.nodes, docs/node-file.md) or a mesh read by extension (.msh,
-// .vtu, .su2, .ele/.node; io/mesh_formats.hpp). Throws InputError naming the file on a missing or
+// .vtu, .su2, .mesh, .ele/.node; io/mesh_formats.hpp). Throws InputError naming the file on a missing or
 // malformed file, a file without points, or a non-finite coordinate (with its index and value).
 std::vector<Vec2> read_warm_points(const std::filesystem::path& path);
 

@@ -1,10 +1,10 @@
-// Medit .mesh + .sol (ASCII) as metric data on a background mesh.
+// Medit .mesh (ASCII) as a mesh, and with its .sol as metric data on a background mesh.
 #include "io/medit_reader.hpp"
 
 #include <fmt/format.h>
 
-#include <algorithm>
-#include <cctype>
+#include <map>
+#include <optional>
 
 #include "core/errors.hpp"
 #include "core/input_file.hpp"
@@ -14,19 +14,49 @@
 namespace pdmesh {
 namespace {
 
-// The next token, skipping '#' comments to the end of their line.
-std::string_view next_token(LineScanner& s, std::string_view what) {
-  for (;;) {
-    const std::string_view tok = s.token(what);
-    if (tok.front() != '#') return tok;
-    s.rest_of_line();
+// What the comments of a .mesh say: the names pdmesh's writer gives the references
+// ("# ref N: curve NAME", "# ref N: region NAME").
+struct RefNames {
+  std::map<long long, std::string> curves, regions;
+};
+
+// Reads one '#' comment whose first token `tok` was just read, keeping a reference's name.
+void read_comment(LineScanner& s, std::string_view tok, RefNames* names) {
+  const std::string_view rest = s.rest_of_line();
+  if (names == nullptr) return;
+  std::string text = std::string(tok.substr(1)) + " " + std::string(rest);
+  const auto first = text.find_first_not_of(' ');
+  text.erase(0, first == std::string::npos ? text.size() : first);
+  if (text.rfind("ref ", 0) != 0) return;
+  const auto colon = text.find(':');
+  if (colon == std::string::npos) return;
+  long long ref = 0;
+  try {
+    ref = s.to_int(std::string_view(text).substr(4, colon - 4), "reference");
+  } catch (const InputError&) {
+    return;  // not ours: an ordinary comment
+  }
+  const std::string what = text.substr(colon + 1);
+  for (const char* kind : {" curve ", " region "}) {
+    const std::string k(kind);
+    if (what.rfind(k, 0) == 0 && what.size() > k.size())
+      (k == " curve " ? names->curves : names->regions)[ref] = what.substr(k.size());
   }
 }
 
-// Reads the next token; nullopt-like empty view at the end of the file (End is optional).
-bool next_keyword(LineScanner& s, std::string_view& keyword) {
+// The next token, reading '#' comments to the end of their line.
+std::string_view next_token(LineScanner& s, std::string_view what, RefNames* names = nullptr) {
+  for (;;) {
+    const std::string_view tok = s.token(what);
+    if (tok.front() != '#') return tok;
+    read_comment(s, tok, names);
+  }
+}
+
+// Reads the next keyword; false at the end of the file (End is optional).
+bool next_keyword(LineScanner& s, std::string_view& keyword, RefNames& names) {
   try {
-    keyword = next_token(s, "a keyword or End");
+    keyword = next_token(s, "a keyword or End", &names);
   } catch (const InputError&) {
     return false;  // end of file
   }
@@ -48,82 +78,118 @@ void header_keyword(LineScanner& s, std::string_view keyword) {
   if (keyword == "MeshVersionFormatted" && (v < 1 || v > 4)) s.fail("MeshVersionFormatted must be 1 to 4", tok);
 }
 
-void check_extension(const std::filesystem::path& file, const char* want) {
-  std::string ext = file.extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+void refuse_binary(const std::filesystem::path& file, const std::string& ext, const char* want) {
   if (ext == std::string(want) + "b")
     throw InputError(
         fmt::format("{}: binary Medit files ({}b) are not read; write the ASCII {}", file.string(), want, want));
+}
+
+void check_extension(const std::filesystem::path& file, const char* want) {
+  const std::string ext = lower_extension(file);
+  refuse_binary(file, ext, want);
   if (ext != want)
     throw InputError(fmt::format("{}: a Medit metric needs a {} file (got '{}')", file.string(), want, ext));
 }
 
-Mesh parse_mesh(LineScanner& s) {
-  Mesh mesh;
+// A .mesh file's sections as written: 0-based indices, the references beside them.
+struct MeditData {
+  std::vector<Vec2> points;
+  std::vector<std::array<int, 3>> triangles;
+  std::vector<long long> triangle_refs;
+  std::vector<std::array<int, 4>> quads;
+  std::vector<long long> quad_refs;
+  std::vector<std::array<long long, 3>> edges;  // a, b, reference
+  RefNames names;
+};
+
+// Reads `per` vertex indices of a cell or edge and its reference.
+template <std::size_t N>
+long long read_record(LineScanner& s, const char* what, long long nv, std::array<int, N>& v, std::size_t per) {
+  for (std::size_t k = 0; k < per; ++k)
+    v[k] = static_cast<int>(
+        s.to_index(next_token(s, fmt::format("a {} vertex", what)), 1, nv, fmt::format("{} vertex", what)) - 1);
+  return s.to_int(next_token(s, fmt::format("a {} reference", what)), fmt::format("{} reference", what));
+}
+
+MeditData parse_sections(LineScanner& s) {
+  MeditData d;
   bool has_vertices = false;
   std::string_view kw;
-  while (next_keyword(s, kw) && kw != "End") {
+  const auto need_vertices = [&](std::string_view section) {
+    if (!has_vertices) s.fail(fmt::format("{} before Vertices", section), section);
+    return static_cast<long long>(d.points.size());
+  };
+  while (next_keyword(s, kw, d.names) && kw != "End") {
     if (kw == "MeshVersionFormatted" || kw == "Dimension") {
       header_keyword(s, kw);
     } else if (kw == "Vertices") {
       if (has_vertices) s.fail("a second Vertices section", kw);
       has_vertices = true;
       const long long n = read_count(s, kw, 6);
-      mesh.points.resize(static_cast<std::size_t>(n));
-      for (auto& p : mesh.points) {
+      d.points.resize(static_cast<std::size_t>(n));
+      for (auto& p : d.points) {
         p.x = s.to_double(next_token(s, "a vertex x"), "for a vertex x");
         p.y = s.to_double(next_token(s, "a vertex y"), "for a vertex y");
         s.to_int(next_token(s, "a vertex reference"), "vertex reference");
       }
     } else if (kw == "Triangles") {
-      if (!has_vertices) s.fail("Triangles before Vertices", kw);
+      const long long nv = need_vertices(kw);
       const long long n = read_count(s, kw, 8);
-      const auto nv = static_cast<long long>(mesh.points.size());
       for (long long k = 0; k < n; ++k) {
         std::array<int, 3> t{};
-        for (int& v : t)
-          v = static_cast<int>(s.to_index(next_token(s, "a triangle vertex"), 1, nv, "triangle vertex") - 1);
-        s.to_int(next_token(s, "a triangle reference"), "triangle reference");
-        mesh.triangles.push_back(t);
+        d.triangle_refs.push_back(read_record(s, "triangle", nv, t, 3));
+        d.triangles.push_back(t);
       }
+    } else if (kw == "Quadrilaterals") {
+      const long long nv = need_vertices(kw);
+      const long long n = read_count(s, kw, 10);
+      for (long long k = 0; k < n; ++k) {
+        std::array<int, 4> q{};
+        d.quad_refs.push_back(read_record(s, "quadrilateral", nv, q, 4));
+        d.quads.push_back(q);
+      }
+    } else if (kw == "Edges") {
+      const long long nv = need_vertices(kw);
+      const long long n = read_count(s, kw, 6);
+      for (long long k = 0; k < n; ++k) {
+        std::array<int, 2> e{};
+        const long long ref = read_record(s, "edge", nv, e, 2);
+        d.edges.push_back({e[0], e[1], ref});
+      }
+    } else if (kw == "Corners" || kw == "RequiredVertices") {
+      const long long nv = need_vertices(kw);
+      const std::string section(kw);
+      const long long n = read_count(s, section, 2);
+      for (long long k = 0; k < n; ++k) s.to_index(next_token(s, section), 1, nv, fmt::format("{} vertex", section));
     } else {
-      // Sections read over, with their numbers per record.
-      int per = 0;
-      if (kw == "Edges")
-        per = 3;
-      else if (kw == "Quadrilaterals")
-        per = 5;
-      else if (kw == "Corners" || kw == "RequiredVertices" || kw == "Ridges" || kw == "RequiredEdges" ||
-               kw == "RequiredTriangles" || kw == "RequiredQuadrilaterals")
-        per = 1;
-      if (per == 0)
+      // Sections read over: lists of edge, triangle or quadrilateral numbers.
+      if (kw != "Ridges" && kw != "RequiredEdges" && kw != "RequiredTriangles" && kw != "RequiredQuadrilaterals")
         s.fail(
             "unknown Medit keyword (known: MeshVersionFormatted, Dimension, Vertices, Triangles, Edges, "
-            "Quadrilaterals, "
-            "Corners, Ridges, RequiredVertices, RequiredEdges, RequiredTriangles, RequiredQuadrilaterals, End)",
+            "Quadrilaterals, Corners, Ridges, RequiredVertices, RequiredEdges, RequiredTriangles, "
+            "RequiredQuadrilaterals, End)",
             kw);
       const std::string section(kw);
-      const long long n = read_count(s, section, 2 * static_cast<std::size_t>(per));
-      for (long long k = 0; k < n * per; ++k) s.to_int(next_token(s, section), fmt::format("in {}", section));
+      const long long n = read_count(s, section, 2);
+      for (long long k = 0; k < n; ++k) s.to_int(next_token(s, section), fmt::format("in {}", section));
     }
   }
   if (!has_vertices) s.fail("no Vertices section");
-  if (mesh.triangles.empty()) s.fail("no Triangles: a metric background mesh needs triangles");
-  return mesh;
+  return d;
 }
 
-std::vector<Metric> parse_sol(LineScanner& s, const Mesh& mesh, const std::string& mesh_label) {
+std::vector<Metric> parse_sol(LineScanner& s, const std::vector<Vec2>& points, const std::string& mesh_label) {
   std::string_view kw;
-  while (next_keyword(s, kw) && kw != "End") {
+  RefNames none;
+  while (next_keyword(s, kw, none) && kw != "End") {
     if (kw == "MeshVersionFormatted" || kw == "Dimension") {
       header_keyword(s, kw);
       continue;
     }
     if (kw != "SolAtVertices") s.fail("expected SolAtVertices (pdmesh reads metrics at the vertices)", kw);
     const long long n = read_count(s, kw, 6);
-    if (n != static_cast<long long>(mesh.points.size()))
-      s.fail(fmt::format("SolAtVertices has {} values for the {} vertices of {}", n, mesh.points.size(), mesh_label),
+    if (n != static_cast<long long>(points.size()))
+      s.fail(fmt::format("SolAtVertices has {} values for the {} vertices of {}", n, points.size(), mesh_label),
              fmt::format("{}", n));
     const std::string_view count_tok = next_token(s, "the number of solutions");
     if (s.to_int(count_tok, "number of solutions") != 1)
@@ -144,7 +210,7 @@ std::vector<Metric> parse_sol(LineScanner& s, const Mesh& mesh, const std::strin
       m.m11 = s.to_double(next_token(s, "m11"), "for m11");
       m.m12 = s.to_double(next_token(s, "m12"), "for m12");
       m.m22 = s.to_double(next_token(s, "m22"), "for m22");
-      const Vec2 p = mesh.points[i];
+      const Vec2 p = points[i];
       check_metric(m, fmt::format("{}:{}: vertex {} ({}, {})", s.file(), s.line(), i + 1, p.x, p.y));
     }
     return metrics;
@@ -154,17 +220,66 @@ std::vector<Metric> parse_sol(LineScanner& s, const Mesh& mesh, const std::strin
 
 }  // namespace
 
+Mesh parse_medit_mesh(const std::string& file_label, std::string content, MeshReadReport& report, SurfaceCells* cells) {
+  LineScanner s(file_label, std::move(content));
+  MeditData d = parse_sections(s);
+  Mesh mesh;
+  mesh.points = std::move(d.points);
+  mesh.triangles = std::move(d.triangles);
+  // Curves: one per edge reference (and per reference a comment names), in the order of the numbers.
+  std::map<long long, int> curve_of;
+  for (const auto& [ref, name] : d.names.curves) curve_of[ref] = 0;
+  for (const auto& e : d.edges) curve_of[e[2]] = 0;
+  for (auto& [ref, index] : curve_of) {
+    index = static_cast<int>(mesh.curve_names.size());
+    const auto named = d.names.curves.find(ref);
+    mesh.curve_names.push_back(named != d.names.curves.end() ? named->second : fmt::format("ref{}", ref));
+  }
+  for (const auto& e : d.edges)
+    mesh.boundary_edges.push_back({static_cast<int>(e[0]), static_cast<int>(e[1]), curve_of[e[2]]});
+  orient_triangles_ccw(mesh, report);
+  if (cells == nullptr) {
+    if (!d.quads.empty()) {
+      report.skipped_elements += d.quads.size();
+      report.notes.push_back(fmt::format("{}: skipped {} quadrilaterals", file_label, d.quads.size()));
+    }
+    return mesh;
+  }
+  // The region: the reference a "# ref N: region NAME" comment gives cells->region.
+  std::optional<long long> region_ref;
+  for (const auto& [ref, name] : d.names.regions)
+    if (name == cells->region) region_ref = ref;
+  cells->region_found = region_ref.has_value();
+  const auto in_region = [&](long long ref) -> std::uint8_t { return region_ref && ref == *region_ref ? 1 : 0; };
+  cells->triangle_in_region.assign(mesh.triangles.size(), 0);
+  for (std::size_t t = 0; t < mesh.triangles.size(); ++t) cells->triangle_in_region[t] = in_region(d.triangle_refs[t]);
+  cells->quads = std::move(d.quads);
+  cells->quad_in_region.resize(cells->quads.size());
+  for (std::size_t q = 0; q < cells->quads.size(); ++q) cells->quad_in_region[q] = in_region(d.quad_refs[q]);
+  orient_quads_ccw(mesh.points, cells->quads, file_label, report);
+  return mesh;
+}
+
+Mesh read_medit_mesh(const std::filesystem::path& path, MeshReadReport& report, SurfaceCells* cells) {
+  refuse_binary(path, lower_extension(path), ".mesh");
+  return parse_medit_mesh(path.string(), read_text_file(path, InputKind::Mesh), report, cells);
+}
+
 MetricMeshData parse_medit_metric(const std::string& mesh_label, std::string mesh_text, const std::string& sol_label,
                                   std::string sol_text) {
   LineScanner ms(mesh_label, std::move(mesh_text));
-  Mesh mesh = parse_mesh(ms);
+  MeditData mesh = parse_sections(ms);
+  if (mesh.triangles.empty()) ms.fail("no Triangles: a metric background mesh needs triangles");
   LineScanner ss(sol_label, std::move(sol_text));
-  std::vector<Metric> metrics = parse_sol(ss, mesh, mesh_label);
+  std::vector<Metric> metrics = parse_sol(ss, mesh.points, mesh_label);
+  Mesh m;
+  m.points = std::move(mesh.points);
+  m.triangles = std::move(mesh.triangles);
   MeshReadReport report;
-  orient_triangles_ccw(mesh, report);
+  orient_triangles_ccw(m, report);
   MetricMeshData d;
-  d.points = std::move(mesh.points);
-  d.triangles = std::move(mesh.triangles);
+  d.points = std::move(m.points);
+  d.triangles = std::move(m.triangles);
   d.metrics = std::move(metrics);
   d.what = fmt::format("{} with {}", mesh_label, sol_label);
   return d;

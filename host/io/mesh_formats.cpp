@@ -7,8 +7,11 @@
 #include <fmt/format.h>
 
 #include "core/errors.hpp"
+#include "core/input_file.hpp"
 #include "core/text_sink.hpp"
 #include "io/fort14_writer.hpp"
+#include "io/medit_reader.hpp"
+#include "io/medit_writer.hpp"
 #include "io/msh_reader.hpp"
 #include "io/msh_writer.hpp"
 #include "io/su2_reader.hpp"
@@ -23,7 +26,7 @@
 namespace pdmesh {
 
 const std::vector<std::string>& mesh_format_names() {
-  static const std::vector<std::string> names = {"msh", "msh22", "vtu", "su2", "triangle", "fort14", "2dm"};
+  static const std::vector<std::string> names = {"msh", "msh22", "vtu", "su2", "triangle", "fort14", "2dm", "mesh"};
   return names;
 }
 
@@ -70,6 +73,8 @@ std::vector<std::filesystem::path> write_mesh(const Mesh& mesh, const std::files
       stream(".14", [&](TextSink& sink) { write_fort14(mesh, options.open_boundaries, sink); });
     } else if (f == "2dm") {
       stream(".2dm", [&](TextSink& sink) { write_sms2dm(mesh, sink); });
+    } else if (f == "mesh") {
+      stream(".mesh", [&](TextSink& sink) { write_medit(mesh, sink); });
     } else if (f == "triangle") {
       const auto files = triangle_strings(mesh);
       put(".node", files.node);
@@ -81,19 +86,18 @@ std::vector<std::filesystem::path> write_mesh(const Mesh& mesh, const std::files
 }
 
 Mesh read_mesh(const std::filesystem::path& path, MeshReadReport& report, SurfaceCells* cells) {
-  std::string ext = path.extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  const std::string ext = lower_extension(path);
   if (ext == ".msh") return read_msh(path, report, nullptr, cells);
   if (ext == ".vtu") return read_vtu(path, report, nullptr, cells);
   if (ext == ".su2") return read_su2(path, report, cells);
+  if (ext == ".mesh" || ext == ".meshb") return read_medit_mesh(path, report, cells);
   if (ext == ".ele" || ext == ".node" || ext == ".poly") {
     auto ele = path;
     ele.replace_extension(".ele");
     return read_triangle(ele, report);
   }
   throw InputError(
-      fmt::format("{}: unknown mesh file extension '{}' (known: .msh, .vtu, .su2, .ele)", path.string(), ext));
+      fmt::format("{}: unknown mesh file extension '{}' (known: .msh, .vtu, .su2, .mesh, .ele)", path.string(), ext));
 }
 
 Mesh read_mesh(const std::filesystem::path& path) {

@@ -1,6 +1,6 @@
 // Mesh file formats by name (writing) and by extension (reading): msh (Gmsh 4.1), msh22
 // (Gmsh 2.2), vtu (VTK XML), su2 (SU2 native), triangle (.node/.ele/.poly), fort14 (ADCIRC/SCHISM,
-// STEM.14) and 2dm (SMS).
+// STEM.14), 2dm (SMS) and mesh (Medit, mmg's format).
 #pragma once
 #include <filesystem>
 #include <string>
@@ -25,17 +25,17 @@ struct MeshWriteOptions {
   const std::vector<PeriodicLink>* periodic = nullptr;
 };
 
-// Writes DIR/STEM.msh (msh and msh22 cannot both be asked for: same file), .vtu, .su2, .14, .2dm or
-// STEM.node/.ele/.poly, each atomically, and returns the paths written. Throws InputError on an
+// Writes DIR/STEM.msh (msh and msh22 cannot both be asked for: same file), .vtu, .su2, .14, .2dm, .mesh
+// or STEM.node/.ele/.poly, each atomically, and returns the paths written. Throws InputError on an
 // unknown format name (listing the known ones) or an unwritable directory.
 std::vector<std::filesystem::path> write_mesh(const Mesh& mesh, const std::filesystem::path& dir,
                                               const std::string& stem, const std::vector<std::string>& formats,
                                               const MeshWriteOptions& options = {});
 
-// Reads a mesh by extension: .msh (2.2 or 4.1, from $MeshFormat), .vtu, .su2, .ele (with its
-// .node and optional .poly; a .node or .poly path is taken to mean the same stem). With `cells`, the
-// quads of an .msh, .vtu or .su2 file too, and which cells are in cells->region (SurfaceCells,
-// io/mesh_io_common.hpp); Triangle's files hold triangles only.
+// Reads a mesh by extension: .msh (2.2 or 4.1, from $MeshFormat), .vtu, .su2, .mesh (Medit ASCII; .meshb
+// is refused), .ele (with its .node and optional .poly; a .node or .poly path is taken to mean the same
+// stem). With `cells`, the quads of an .msh, .vtu, .su2 or .mesh file too, and which cells are in cells->region
+// (SurfaceCells, io/mesh_io_common.hpp); Triangle's files hold triangles only.
 Mesh read_mesh(const std::filesystem::path& path, MeshReadReport& report, SurfaceCells* cells = nullptr);
 Mesh read_mesh(const std::filesystem::path& path);
 

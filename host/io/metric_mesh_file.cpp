@@ -9,15 +9,14 @@
 #include <cmath>
 
 #include "core/errors.hpp"
+#include "core/input_file.hpp"
 #include "io/msh_reader.hpp"
 #include "io/vtu_reader.hpp"
 
 namespace pdmesh {
 
 MetricMeshData load_metric_mesh(const std::filesystem::path& file, const std::string& array) {
-  std::string ext = file.extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  const std::string ext = lower_extension(file);
   if (ext != ".vtu" && ext != ".msh") {
     throw InputError(
         fmt::format("{}: a metric background mesh must be a .vtu or .msh file, or a Medit .mesh with its .sol "
@@ -77,9 +76,7 @@ MetricMeshData load_metric_mesh(const std::filesystem::path& file, const std::st
 }
 
 ScalarMeshData load_scalar_mesh(const std::filesystem::path& file, const std::string& array) {
-  std::string ext = file.extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  const std::string ext = lower_extension(file);
   if (ext != ".vtu" && ext != ".msh") {
     throw InputError(
         fmt::format("{}: data for a Hessian metric must be on a .vtu or .msh mesh (got '{}')", file.string(), ext));

@@ -12,6 +12,7 @@
 #include "core/g17.hpp"
 #include "core/text_blocks.hpp"
 #include "core/text_sink.hpp"
+#include "io/medit_writer.hpp"
 #include "io/mesh_io_common.hpp"
 #include "io/msh_writer.hpp"
 
@@ -243,8 +244,9 @@ std::vector<std::filesystem::path> write_mixed_mesh(const MixedMesh& mesh, const
                                                     const std::string& stem, const std::vector<std::string>& formats,
                                                     const std::vector<PeriodicLink>* periodic) {
   for (const std::string& f : formats)
-    if (f != "msh" && f != "vtu" && f != "su2")
-      throw InputError(fmt::format("output.formats: '{}' cannot hold a boundary-layer mesh (msh, vtu and su2 can)", f));
+    if (f != "msh" && f != "vtu" && f != "su2" && f != "mesh")
+      throw InputError(
+          fmt::format("output.formats: '{}' cannot hold a boundary-layer mesh (msh, vtu, su2 and mesh can)", f));
   std::vector<std::filesystem::path> written;
   for (const std::string& f : formats) {
     const std::filesystem::path path = dir / (stem + "." + f);
@@ -253,6 +255,8 @@ std::vector<std::filesystem::path> write_mixed_mesh(const MixedMesh& mesh, const
         write_mixed_msh41(mesh, sink, periodic);
       else if (f == "vtu")
         write_mixed_vtu(mesh, sink);
+      else if (f == "mesh")
+        write_mixed_medit(mesh, sink);
       else
         write_mixed_su2(mesh, sink);
     });

@@ -1,7 +1,7 @@
 // A mesh of triangles and quadrilaterals in two regions (the particle core and a boundary layer,
 // docs/boundary-layers.md), and its writers: Gmsh MSH 4.1 (triangles type 2, quadrangles type 3),
-// VTK XML unstructured grid (VTK_TRIANGLE 5, VTK_QUAD 9) and SU2 (5, 9). Only the boundary-layer
-// runs write it; Mesh (mesh/mesh.hpp) stays the triangle mesh every other stage uses.
+// VTK XML unstructured grid (VTK_TRIANGLE 5, VTK_QUAD 9), SU2 (5, 9) and Medit (io/medit_writer.hpp). Only the
+// boundary-layer runs write it; Mesh (mesh/mesh.hpp) stays the triangle mesh every other stage uses.
 #pragma once
 #include <array>
 #include <cstdint>
@@ -39,7 +39,7 @@ std::string mixed_vtu_string(const MixedMesh& mesh);
 // Core cells first, then the layer's; one marker per curve (SU2 has no volume markers).
 std::string mixed_su2_string(const MixedMesh& mesh);
 
-// DIR/STEM.msh, .vtu, .su2 for the formats of `formats` among msh, vtu, su2, each atomic and written in
+// DIR/STEM.msh, .vtu, .su2, .mesh for the formats of `formats` among msh, vtu, su2, mesh, each atomic and written in
 // pieces (core/text_sink.hpp), its points and cells formatted on the worker threads as the triangle
 // meshes' writers do; returns the paths written (the msh file with `periodic`'s $Periodic section).
 // Throws InputError for another mesh format (msh22, triangle), before any file is written.

@@ -8,15 +8,14 @@
 #include <fmt/ranges.h>
 
 #include "core/errors.hpp"
+#include "core/input_file.hpp"
 #include "io/msh_reader.hpp"
 #include "io/vtu_reader.hpp"
 
 namespace pdmesh {
 
 std::unique_ptr<MeshSpacing> load_mesh_spacing(const std::filesystem::path& file, const std::string& array) {
-  std::string ext = file.extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  const std::string ext = lower_extension(file);
   if (ext != ".vtu" && ext != ".msh") {
     throw InputError(
         fmt::format("{}: a spacing background mesh must be a .vtu or .msh file (got '{}')", file.string(), ext));

@@ -60,7 +60,7 @@ def smooth(mesh: Any, geometry: Any, *, field: str = "mesh", device: str | None 
            max_nodes: int | None = None, **keywords: Any) -> Mesh:
     """Improves a triangle mesh made elsewhere, keeping its sizing (the command ``pdmesh smooth``).
 
-    ``mesh``: a mesh file (.msh, .vtu, .su2, Triangle .ele/.node), a pdmesh.Mesh, or a
+    ``mesh``: a mesh file (.msh, .vtu, .su2, Medit .mesh, Triangle .ele/.node), a pdmesh.Mesh, or a
     ``(points, triangles)`` pair of arrays ((N, 2) floats, (M, 3) 0-based node indices).
     ``geometry``: the domain, as ``generate`` takes it (a Geometry, rings, a Case, a case or geometry
     file path). ``field``: "mesh" (the spacing is the mesh's own local edge lengths) or "case" (the

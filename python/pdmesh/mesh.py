@@ -17,7 +17,7 @@ from .errors import InputError
 
 # Mesh formats by file suffix (the command's writers); .msh is Gmsh 4.1, format="msh22" for 2.2.
 _SUFFIX_FORMATS = {".msh": "msh", ".vtu": "vtu", ".su2": "su2", ".node": "triangle", ".ele": "triangle",
-                   ".poly": "triangle", ".14": "fort14", ".2dm": "2dm"}
+                   ".poly": "triangle", ".14": "fort14", ".2dm": "2dm", ".mesh": "mesh"}
 _PICTURES = (".png", ".svg")
 # Jupyter: SVG for meshes up to this many triangles (each is an element), PNG beyond.
 _SVG_REPR_LIMIT = 20_000
@@ -91,9 +91,10 @@ class Mesh:
 
     @classmethod
     def read(cls, path: str | os.PathLike) -> "Mesh":
-        """Reads a mesh file (.msh 2.2/4.1, .vtu, .su2, Triangle .ele), as ``pdmesh quality`` does:
-        a layered run's quads too (``quads``; ``triangle_layer`` from the .msh file's
-        "boundary_layer" group or the .vtu file's cell data, all 0 from .su2, which cannot say)."""
+        """Reads a mesh file (.msh 2.2/4.1, .vtu, .su2, Medit .mesh, Triangle .ele), as ``pdmesh
+        quality`` does: a layered run's quads too (``quads``; ``triangle_layer`` from the .msh file's
+        "boundary_layer" group, the .vtu file's cell data or the .mesh file's reference named
+        "boundary_layer", all 0 from .su2, which cannot say)."""
         return cls(_core.read_mesh(os.fspath(path)))
 
     @property
@@ -165,9 +166,9 @@ class Mesh:
     def write(self, path: str | os.PathLike, format: str | None = None,
               open_boundaries: Sequence[str] = ()) -> list[str]:
         """Writes the mesh with the command's writers, the format from the suffix (.msh Gmsh 4.1,
-        .vtu, .su2, .node/.ele/.poly Triangle, .14 ADCIRC/SCHISM, .2dm SMS; .png/.svg a picture) or
-        ``format`` (msh, msh22, vtu, su2, triangle, fort14, 2dm). ``open_boundaries``: the curves
-        fort14 writes as open boundaries (the others are land). Atomic, as the command's files.
+        .vtu, .su2, .node/.ele/.poly Triangle, .14 ADCIRC/SCHISM, .2dm SMS, .mesh Medit; .png/.svg a
+        picture) or ``format`` (msh, msh22, vtu, su2, triangle, fort14, 2dm, mesh). ``open_boundaries``:
+        the curves fort14 writes as open boundaries (the others are land). Atomic, as the command's files.
         Returns the paths written."""
         path = os.fspath(path)
         suffix = os.path.splitext(path)[1].lower()
@@ -177,7 +178,7 @@ class Mesh:
         if format is None:
             if suffix not in _SUFFIX_FORMATS:
                 raise InputError(f"{path}: unknown mesh suffix '{suffix}' (.msh, .vtu, .su2, .node/.ele/.poly, "
-                                 ".14, .2dm, .png, .svg; or give format=)")
+                                 ".14, .2dm, .mesh, .png, .svg; or give format=)")
             format = _SUFFIX_FORMATS[suffix]
         names = list(self.boundary_edges)
         for name in open_boundaries:

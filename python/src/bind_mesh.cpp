@@ -91,7 +91,7 @@ nb::dict boundary_edges(const MeshHandle& h) {
   return d;
 }
 
-// `format` is a write_mesh name (msh, msh22, vtu, su2, triangle, fort14, 2dm); the file is
+// `format` is a write_mesh name (msh, msh22, vtu, su2, triangle, fort14, 2dm, mesh); the file is
 // DIR/STEM.<ext>. `open_boundaries`: the curves fort14 writes as open boundaries.
 std::vector<std::string> write(const MeshHandle& h, const std::string& path, const std::string& format,
                                const std::vector<std::string>& open_boundaries) {
@@ -100,7 +100,7 @@ std::vector<std::string> write(const MeshHandle& h, const std::string& path, con
   std::vector<fs::path> written;
   {
     nb::gil_scoped_release release;
-    // With layers the mixed-cell writers (msh, vtu, su2; InputError for the others).
+    // With layers the mixed-cell writers (msh, vtu, su2, mesh; InputError for the others).
     // The msh formats carry the pairs ($Periodic), as the run's mesh.msh.
     const std::vector<PeriodicLink>* periodic = h.periodic->links.empty() ? nullptr : &h.periodic->links;
     written = h.layers ? write_mixed_mesh(h.layers->mixed, dir, p.stem().string(), {format}, periodic)
@@ -266,7 +266,8 @@ void bind_mesh(nb::module_& m) {
         return MeshHandle{std::make_shared<const Mesh>(std::move(mesh)), nullptr, fs::path(path).stem().string(),
                           std::move(layers), std::move(periodic)};
       },
-      nb::arg("path"), "Reads a .msh (2.2/4.1), .vtu, .su2 or Triangle .ele mesh, with the quads of the first three.");
+      nb::arg("path"),
+      "Reads a .msh (2.2/4.1), .vtu, .su2, Medit .mesh or Triangle .ele mesh, with the quads of the first four.");
 }
 
 }  // namespace pdmesh::py

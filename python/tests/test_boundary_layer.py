@@ -150,14 +150,14 @@ def test_a_mesher_with_out_writes_the_command_s_layered_outputs(rings, tmp_path)
 
 def test_mesh_read_gives_the_quads_of_each_format(rings, tmp_path):
     # Mesh.read of the mixed files takes the quads (as `pdmesh quality` does) beside the triangles:
-    # the same cells from msh, vtu and su2; the layer's triangles where the format names the layer
-    # (msh's group, vtu's cell data), every quad a layer cell in all three.
+    # the same cells from msh, vtu, su2 and mesh; the layer's triangles where the format names the
+    # layer (msh's group, vtu's cell data, mesh's named reference), every quad a layer cell in all four.
     def rows(a):
         return sorted(map(tuple, np.asarray(a).tolist()))
 
     mesh = run(rings, layer(["hole"]))
     assert len(mesh.quads) > 0
-    for suffix in ("msh", "vtu", "su2"):
+    for suffix in ("msh", "vtu", "su2", "mesh"):
         mesh.write(tmp_path / f"m.{suffix}")
         back = pdmesh.Mesh.read(tmp_path / f"m.{suffix}")
         assert np.array_equal(back.points, mesh.points)

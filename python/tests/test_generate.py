@@ -115,11 +115,16 @@ def test_quality_write_and_read_back(rings, tmp_path):
     assert per["min_angle"].shape == (len(mesh.triangles),)
     assert per["min_angle"].min() == pytest.approx(q["included_angle"]["min"])
     assert 0.5 < q["spacing_conformance"]["mean"] < 1.5
-    for name in ("m.msh", "m.vtu", "m.su2", "m.ele"):
+    for name in ("m.msh", "m.vtu", "m.su2", "m.ele", "m.mesh"):
         mesh.write(tmp_path / name)
         back = pdmesh.Mesh.read(tmp_path / name)
         assert np.allclose(back.points, mesh.points, rtol=0, atol=1e-12)
         assert np.array_equal(back.triangles, mesh.triangles)
+    # Medit .mesh: the curves by name (its "# ref N: curve NAME" comments) with their edges.
+    back = pdmesh.Mesh.read(tmp_path / "m.mesh")
+    assert list(back.boundary_edges) == list(mesh.boundary_edges)
+    for name, edges in mesh.boundary_edges.items():
+        assert np.array_equal(back.boundary_edges[name], edges), name
     mesh.write(tmp_path / "m22.msh", format="msh22")
     assert (tmp_path / "m22.msh").read_text().startswith("$MeshFormat\n2.2")
     mesh.write(tmp_path / "m.png")

@@ -152,6 +152,10 @@ inline void mesh_reader_su2(const std::uint8_t* data, std::size_t size) {
   read_mesh_file(write_scratch("input.su2", as_text(data, size)));
 }
 
+inline void mesh_reader_medit(const std::uint8_t* data, std::size_t size) {
+  read_mesh_file(write_scratch("input.mesh", as_text(data, size)));
+}
+
 // Triangle needs several files: the input is split at form feeds ('\f') into STEM.node, STEM.ele
 // and, when a third part is present, STEM.poly. Missing parts are empty files (or no .poly).
 inline constexpr char kTriangleSeparator = '\f';
@@ -261,6 +265,7 @@ inline const std::vector<Target>& targets() {
       {"fuzz_mesh_reader_msh", mesh_reader_msh},
       {"fuzz_mesh_reader_vtu", mesh_reader_vtu},
       {"fuzz_mesh_reader_su2", mesh_reader_su2},
+      {"fuzz_mesh_reader_medit", mesh_reader_medit},
       {"fuzz_mesh_reader_triangle", mesh_reader_triangle},
       {"fuzz_checkpoint", checkpoint_reader},
       {"fuzz_metric_reader_medit", metric_reader_medit},

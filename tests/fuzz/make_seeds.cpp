@@ -10,6 +10,7 @@
 #include "core/errors.hpp"
 #include "fuzz_entries.hpp"
 #include "init/initial_distribution.hpp"
+#include "io/medit_writer.hpp"
 #include "io/mesh_formats.hpp"
 #include "io/mixed_mesh.hpp"
 #include "mesh/mesh.hpp"
@@ -99,12 +100,13 @@ int main(int argc, char** argv) {
   fs::create_directories(work / "b");
   try {
     const Mesh mesh = small_mesh();
-    write_mesh(mesh, work / "a", "m", {"msh", "vtu", "su2", "triangle"});
+    write_mesh(mesh, work / "a", "m", {"msh", "vtu", "su2", "triangle", "mesh"});
     write_mesh(mesh, work / "b", "m", {"msh22"});
     put(corpus / "fuzz_mesh_reader_msh" / "square_41.msh", slurp(work / "a" / "m.msh"));
     put(corpus / "fuzz_mesh_reader_msh" / "square_22.msh", slurp(work / "b" / "m.msh"));
     put(corpus / "fuzz_mesh_reader_vtu" / "square.vtu", slurp(work / "a" / "m.vtu"));
     put(corpus / "fuzz_mesh_reader_su2" / "square.su2", slurp(work / "a" / "m.su2"));
+    put(corpus / "fuzz_mesh_reader_medit" / "square.mesh", slurp(work / "a" / "m.mesh"));
     const std::string node = slurp(work / "a" / "m.node"), ele = slurp(work / "a" / "m.ele");
     const std::string poly = slurp(work / "a" / "m.poly");
     put(corpus / "fuzz_mesh_reader_triangle" / "square_with_poly", node + '\f' + ele + '\f' + poly);
@@ -113,6 +115,7 @@ int main(int argc, char** argv) {
     put(corpus / "fuzz_mesh_reader_msh" / "layer_quads_41.msh", mixed_msh41_string(mixed));
     put(corpus / "fuzz_mesh_reader_vtu" / "layer_quads.vtu", mixed_vtu_string(mixed));
     put(corpus / "fuzz_mesh_reader_su2" / "layer_quads.su2", mixed_su2_string(mixed));
+    put(corpus / "fuzz_mesh_reader_medit" / "layer_quads.mesh", mixed_medit_string(mixed));
     put(corpus / "fuzz_node_file" / "square.nodes", format_node_file(small_nodes(), {"bottom_right", "top_left"}));
     checkpoint_seeds(corpus);
   } catch (const Error& e) {

@@ -26,6 +26,7 @@
 #include "app/cli/transfer_command.hpp"
 #include "app/pipeline/motion_pipeline.hpp"
 #include "core/errors.hpp"
+#include "core/input_file.hpp"
 #include "core/interrupt.hpp"
 #include "core/memory_budget.hpp"
 #include "mesh/quality.hpp"
@@ -195,12 +196,6 @@ std::vector<CaseOverride> overrides_from(const MeshArguments& a) {
   return out;
 }
 
-std::string lower_extension(const fs::path& p) {
-  std::string ext = p.extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
-  return ext;
-}
-
 bool is_geometry_extension(const std::string& ext) {
   return ext == ".crv" || ext == ".dat" || ext == ".poly" || ext == ".geojson" || ext == ".json" || ext == ".shp";
 }
@@ -309,7 +304,7 @@ void add_run_options(CLI::App& mesh, MeshArguments& a) {
       ->type_name("METRIC");
   mesh.add_option(
           "--formats", a.formats,
-          "output.formats, comma-separated: msh,msh22,vtu,su2,triangle,fort14,2dm,png,svg (no png and no svg: no "
+          "output.formats, comma-separated: msh,msh22,vtu,su2,triangle,fort14,2dm,mesh,png,svg (no png and no svg: no "
           "pictures at all)")
       ->type_name("LIST");
   mesh.add_option("--view", a.views,
@@ -343,9 +338,10 @@ void add_mesh_options(CLI::App& mesh, MeshArguments& a) {
       ->required()
       ->type_name("FILE...");
   add_run_options(mesh, a);
-  mesh.add_option("--start", a.start,
-                  "init.file: start warm from this node file or mesh (.nodes, .msh, .vtu, .su2, .ele); its interior "
-                  "points are the initial interior nodes (pdmesh smooth: docs/smoothing.md)")
+  mesh.add_option(
+          "--start", a.start,
+          "init.file: start warm from this node file or mesh (.nodes, .msh, .vtu, .su2, .mesh, .ele); its interior "
+          "points are the initial interior nodes (pdmesh smooth: docs/smoothing.md)")
       ->type_name("FILE");
   mesh.add_option("--resume", a.resume,
                   "Continue an interrupted run from its checkpoint: DIR/checkpoint.pdmesh (or that file); the case "
@@ -360,8 +356,9 @@ void add_mesh_options(CLI::App& mesh, MeshArguments& a) {
 
 void add_smooth_options(CLI::App& smooth, SmoothArguments& a) {
   smooth
-      .add_option("MESH", a.mesh,
-                  "The triangle mesh to smooth: .msh (Gmsh 2.2 or 4.1), .vtu, .su2, or Triangle .ele/.node")
+      .add_option(
+          "MESH", a.mesh,
+          "The triangle mesh to smooth: .msh (Gmsh 2.2 or 4.1), .vtu, .su2, Medit .mesh, or Triangle .ele/.node")
       ->required()
       ->type_name("FILE");
   smooth
@@ -380,7 +377,8 @@ void add_smooth_options(CLI::App& smooth, SmoothArguments& a) {
 }
 
 void add_quality_options(CLI::App& quality, QualityArguments& a) {
-  quality.add_option("MESH", a.mesh, "Mesh file: .msh (Gmsh 2.2 or 4.1), .vtu, .su2, or Triangle .ele/.node")
+  quality
+      .add_option("MESH", a.mesh, "Mesh file: .msh (Gmsh 2.2 or 4.1), .vtu, .su2, Medit .mesh, or Triangle .ele/.node")
       ->required()
       ->type_name("FILE");
   quality

@@ -9,6 +9,7 @@
 
 #include "app/config/case_file.hpp"
 #include "app/pipeline/mesh_inputs.hpp"
+#include "core/input_file.hpp"
 #include "geometry/geometry_files.hpp"
 #include "geometry/geometry_tree.hpp"
 #include "io/mesh_formats.hpp"
@@ -35,8 +36,7 @@ struct CaseSpacing {
 };
 
 CaseSpacing load_spacing(const std::filesystem::path& path) {
-  std::string ext = path.extension().string();
-  for (auto& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  const std::string ext = lower_extension(path);
   CaseConfig config = ext == ".toml" ? load_case_file(path) : case_for_geometry_file(path);
   config.quiet = true;
   CaseSpacing loaded;
@@ -46,9 +46,9 @@ CaseSpacing load_spacing(const std::filesystem::path& path) {
 }
 
 // A mesh file as read: its triangles (the Mesh every measure of the table takes) and, for a file with
-// quadrilaterals (.msh, .vtu, .su2), the mixed mesh of all its cells with the cells of the
+// quadrilaterals (.msh, .vtu, .su2, .mesh), the mixed mesh of all its cells with the cells of the
 // "boundary_layer" region marked, as a layered run writes it (io/mixed_mesh.hpp). `region` says where
-// the file names that region, for the text ("group", "cell data"); empty where the format cannot.
+// the file names that region, for the text ("group", "cell data", "reference"); empty where the format cannot.
 struct ReadMesh {
   Mesh mesh;
   std::optional<MixedMesh> mixed;
@@ -57,10 +57,9 @@ struct ReadMesh {
 };
 
 ReadMesh read_cells(const std::string& mesh_path, MeshReadReport& report) {
-  std::string ext = std::filesystem::path(mesh_path).extension().string();
-  for (auto& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  const std::string ext = lower_extension(std::filesystem::path(mesh_path));
   ReadMesh read;
-  read.region = ext == ".msh" ? "group" : ext == ".vtu" ? "cell data" : "";
+  read.region = ext == ".msh" ? "group" : ext == ".vtu" ? "cell data" : ext == ".mesh" ? "reference" : "";
   SurfaceCells cells;
   cells.region = kLayerRegion;
   read.mesh = read_mesh(mesh_path, report, &cells);

@@ -8,6 +8,7 @@
 
 #include "core/atomic_file.hpp"
 #include "core/errors.hpp"
+#include "core/input_file.hpp"
 #include "io/mesh_formats.hpp"
 #include "io/msh_reader.hpp"
 #include "io/vtu_reader.hpp"
@@ -20,16 +21,10 @@ namespace fs = std::filesystem;
 
 namespace {
 
-std::string extension(const fs::path& p) {
-  std::string e = p.extension().string();
-  std::transform(e.begin(), e.end(), e.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return e;
-}
-
 // The mesh of a .vtu or .msh file with point array `wanted` (when the file has it) and the names of all.
 Mesh read_with_data(const fs::path& path, MeshPointData& data) {
   MeshReadReport report;
-  const std::string e = extension(path);
+  const std::string e = lower_extension(path);
   if (e == ".vtu") return read_vtu(path, report, &data);
   if (e == ".msh") return read_msh(path, report, &data);
   throw InputError(fmt::format("{}: transfer reads point data from .vtu or .msh files only", path.string()));
@@ -39,7 +34,7 @@ Mesh read_with_data(const fs::path& path, MeshPointData& data) {
 
 int run_transfer(const std::string& from, const std::string& to, const std::string& out,
                  const std::vector<std::string>& arrays, bool quiet) {
-  if (extension(out) != ".vtu") throw InputError(fmt::format("--out {}: the output must be a .vtu file", out));
+  if (lower_extension(out) != ".vtu") throw InputError(fmt::format("--out {}: the output must be a .vtu file", out));
   MeshPointData listing;
   const Mesh source = read_with_data(from, listing);
   std::vector<std::string> names = arrays;
@@ -59,7 +54,7 @@ int run_transfer(const std::string& from, const std::string& to, const std::stri
   MeshReadReport report;
   Mesh target = read_mesh(to, report);
   // A motion step's own ids stay with its points.
-  if (extension(to) == ".vtu") {
+  if (lower_extension(to) == ".vtu") {
     MeshPointData ids;
     ids.wanted = "node_id";
     (void)read_vtu(to, report, &ids);

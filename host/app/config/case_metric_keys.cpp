@@ -16,13 +16,6 @@ const std::array<const char*, 3> kSizeKeys = {"h1", "h2", "angle"};
 const std::array<const char*, 3> kComponentKeys = {"m11", "m12", "m22"};
 const std::array<const char*, 5> kHessianKeys = {"function", "complexity", "hmin", "hmax", "max_anisotropy"};
 
-std::string lower_extension(const fs::path& p) {
-  std::string ext = p.extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(),
-                 [](unsigned char ch) { return static_cast<char>(std::tolower(ch)); });
-  return ext;
-}
-
 // The first of `keys` the [spacing] section sets, or null.
 const char* first_given(const toml::table& root, const auto& keys) {
   for (const char* k : keys)

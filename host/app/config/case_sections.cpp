@@ -13,7 +13,8 @@ namespace pdmesh::case_detail {
 
 namespace {
 
-const std::vector<std::string> kFormats = {"msh", "msh22", "vtu", "su2", "triangle", "fort14", "2dm", "png", "svg"};
+const std::vector<std::string> kFormats = {"msh",    "msh22", "vtu",  "su2", "triangle",
+                                           "fort14", "2dm",   "mesh", "png", "svg"};
 
 // A loop, not std::regex: libstdc++'s matcher recurses once per character, so a long name would
 // overflow the stack.
@@ -95,9 +96,7 @@ void read_spacing_section(const Reader& r, const toml::table& root, CaseConfig& 
   if (expression != nullptr) c.spacing.expression = r.string("spacing.expression", *expression);
   if (file != nullptr) {
     const std::string f = r.string("spacing.file", *file);
-    std::string ext = fs::path(f).extension().string();
-    std::transform(ext.begin(), ext.end(), ext.begin(),
-                   [](unsigned char ch) { return static_cast<char>(std::tolower(ch)); });
+    const std::string ext = lower_extension(fs::path(f));
     // .mesh (Medit, with its .sol) is metric data only: read_metric_keys refuses it for other fields.
     if (ext != ".vtu" && ext != ".msh" && ext != ".mesh") {
       r.fail("spacing.file", file,
@@ -226,12 +225,10 @@ void read_init_section(const Reader& r, const toml::table& root, CaseConfig& c) 
   }
   if (const toml::node* n = find(root, "init", "file")) {
     const std::string f = r.string("init.file", *n);
-    std::string ext = fs::path(f).extension().string();
-    std::transform(ext.begin(), ext.end(), ext.begin(),
-                   [](unsigned char ch) { return static_cast<char>(std::tolower(ch)); });
+    const std::string ext = lower_extension(fs::path(f));
     if (!is_warm_points_extension(ext))
       r.fail("init.file", n,
-             fmt::format("init.file '{}' must be a .nodes, .msh, .vtu, .su2 or .ele file", quote_input(f)));
+             fmt::format("init.file '{}' must be a .nodes, .msh, .vtu, .su2, .mesh or .ele file", quote_input(f)));
     c.init.file = r.resolve("init.file", f);
   }
 }

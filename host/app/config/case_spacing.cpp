@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 
 #include "core/errors.hpp"
+#include "core/input_file.hpp"
 #include "io/medit_reader.hpp"
 #include "io/metric_mesh_file.hpp"
 #include "io/spacing_mesh_file.hpp"
@@ -58,9 +59,7 @@ std::unique_ptr<SpacingField> make_case_spacing(const CaseConfig& config, const 
 namespace {
 
 bool is_medit(const std::filesystem::path& file) {
-  std::string ext = file.extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(),
-                 [](unsigned char ch) { return static_cast<char>(std::tolower(ch)); });
+  const std::string ext = lower_extension(file);
   return ext == ".mesh";
 }
 

@@ -132,8 +132,8 @@ void check_formats(const CaseConfig& config) {
   for (const std::string& f : config.output.formats)
     if (f == "msh22" || f == "triangle")
       throw InputError(
-          fmt::format("{}: output.formats: '{}' cannot hold the cells of [[boundary_layer]] (msh, vtu and "
-                      "su2 can)",
+          fmt::format("{}: output.formats: '{}' cannot hold the cells of [[boundary_layer]] (msh, vtu, "
+                      "su2 and mesh can)",
                       config.source.string(), f));
 }
 
@@ -716,7 +716,7 @@ std::vector<fs::path> write_layered_mesh_files(const CaseConfig& config, const M
                                                const std::vector<PeriodicLink>& periodic) {
   std::vector<std::string> formats;
   for (const std::string& f : config.output.formats)
-    if (f == "msh" || f == "vtu" || f == "su2") formats.push_back(f);
+    if (f == "msh" || f == "vtu" || f == "su2" || f == "mesh") formats.push_back(f);
   const auto writer_timer = phases.phase("mesh files");
   // geometry.projection: the files get lon/lat, like the triangle meshes' (mesh_outputs.cpp).
   MixedMesh lonlat;

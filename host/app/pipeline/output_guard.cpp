@@ -43,6 +43,7 @@ std::vector<fs::path> planned_outputs(const CaseConfig& config) {
     if (f == "su2") names.emplace_back("mesh.su2");
     if (f == "fort14") names.emplace_back("mesh.14");
     if (f == "2dm") names.emplace_back("mesh.2dm");
+    if (f == "mesh") names.emplace_back("mesh.mesh");
     if (f == "triangle")
       for (const char* ext : {".node", ".ele", ".poly"}) names.push_back(std::string("mesh") + ext);
   }

@@ -12,6 +12,7 @@
 
 #include "app/pipeline/mesh_pipeline.hpp"
 #include "core/errors.hpp"
+#include "core/input_file.hpp"
 #include "core/predicates.hpp"
 #include "geometry/geometry_files.hpp"
 #include "init/kept_nodes.hpp"
@@ -277,11 +278,10 @@ void make_smooth_config(CaseConfig& config, const Mesh& mesh, const std::filesys
 }
 
 int run_smooth(CaseConfig config, const std::filesystem::path& mesh_file, SmoothField field) {
-  std::string ext = mesh_file.extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  const std::string ext = lower_extension(mesh_file);
   if (!is_warm_points_extension(ext) || ext == ".nodes")
-    throw InputError(fmt::format("{}: not a .msh, .vtu, .su2 or Triangle .ele/.node mesh", mesh_file.string()));
+    throw InputError(
+        fmt::format("{}: not a .msh, .vtu, .su2, Medit .mesh or Triangle .ele/.node mesh", mesh_file.string()));
   const Mesh mesh = read_smooth_mesh(mesh_file);
   make_smooth_config(config, mesh, mesh_file, mesh_file.string(), field);
   return run_mesh(config);

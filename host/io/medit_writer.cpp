@@ -1,0 +1,113 @@
+// Medit .mesh writer.
+// Format: Frey, "MEDIT: an interactive mesh visualization software", INRIA RT-0253, appendix (the .mesh
+// keywords); mmgtools.org (mmg2d reads and writes it).
+#include "io/medit_writer.hpp"
+
+#include <iterator>
+#include <vector>
+
+#include <fmt/format.h>
+
+#include "core/g17.hpp"
+#include "core/text_blocks.hpp"
+#include "io/mesh_io_common.hpp"
+
+namespace pdmesh {
+namespace {
+
+// What the two writers share: the points, the curves and their edges, the fixed nodes.
+struct MeditBoundary {
+  const std::vector<Vec2>& points;
+  const Mesh& curves;  // boundary_edges and curve_names
+  const std::vector<NodeKind>& kind;
+};
+
+void write_head(TextSink& sink, const MeditBoundary& b, const char* region_comment) {
+  std::string& out = sink.text();
+  out += "MeshVersionFormatted 2\n# Written by pdmesh\nDimension 2\n";
+  for (std::size_t c = 0; c < b.curves.curve_names.size(); ++c)
+    out += fmt::format("# ref {}: curve {}\n", c + 1, curve_label(b.curves, c));
+  out += region_comment;
+  // A vertex's reference: its first boundary edge's curve.
+  std::vector<int> ref(b.points.size(), 0);
+  for (const BoundaryEdge& e : b.curves.boundary_edges)
+    for (const int v : {e.a, e.b})
+      if (ref[static_cast<std::size_t>(v)] == 0) ref[static_cast<std::size_t>(v)] = e.curve + 1;
+  out += fmt::format("Vertices\n{}\n", b.points.size());
+  append_items(sink, b.points.size(), [&](std::string& line, std::size_t i) {
+    append_g17(line, b.points[i].x);
+    line += ' ';
+    append_g17(line, b.points[i].y);
+    fmt::format_to(std::back_inserter(line), " {}\n", ref[i]);
+  });
+  const std::vector<std::size_t> edges = boundary_edges_by_curve(b.curves);
+  out += fmt::format("Edges\n{}\n", edges.size());
+  append_items(sink, edges.size(), [&](std::string& line, std::size_t k) {
+    const BoundaryEdge& e = b.curves.boundary_edges[edges[k]];
+    fmt::format_to(std::back_inserter(line), "{} {} {}\n", e.a + 1, e.b + 1, e.curve + 1);
+  });
+}
+
+void write_tail(TextSink& sink, const MeditBoundary& b) {
+  std::string& out = sink.text();
+  std::vector<std::size_t> corners;
+  for (std::size_t i = 0; i < b.kind.size(); ++i)
+    if (b.kind[i] == NodeKind::Fixed) corners.push_back(i);
+  if (!corners.empty()) {
+    out += fmt::format("Corners\n{}\n", corners.size());
+    append_items(sink, corners.size(), [&](std::string& line, std::size_t k) {
+      fmt::format_to(std::back_inserter(line), "{}\n", corners[k] + 1);
+    });
+  }
+  out += "End\n";
+}
+
+}  // namespace
+
+void write_medit(const Mesh& mesh, TextSink& sink) {
+  check_mesh_for_writing(mesh, "Medit writer");
+  const MeditBoundary b{mesh.points, mesh, mesh.kind};
+  write_head(sink, b, "");
+  sink.text() += fmt::format("Triangles\n{}\n", mesh.triangles.size());
+  append_items(sink, mesh.triangles.size(), [&](std::string& line, std::size_t t) {
+    const auto& v = mesh.triangles[t];
+    fmt::format_to(std::back_inserter(line), "{} {} {} 0\n", v[0] + 1, v[1] + 1, v[2] + 1);
+  });
+  write_tail(sink, b);
+}
+
+std::string medit_string(const Mesh& mesh) {
+  TextSink sink;
+  write_medit(mesh, sink);
+  return sink.take();
+}
+
+void write_mixed_medit(const MixedMesh& mesh, TextSink& sink) {
+  Mesh curves;
+  curves.boundary_edges = mesh.boundary_edges;
+  curves.curve_names = mesh.curve_names;
+  const std::vector<NodeKind> no_kind;
+  const MeditBoundary b{mesh.points, curves, no_kind};
+  write_head(sink, b, fmt::format("# ref 1: region {}\n", kLayerRegion).c_str());
+  for (const int size : {3, 4}) {
+    std::vector<std::size_t> cells;
+    for (std::size_t k = 0; k < mesh.cells.size(); ++k)
+      if ((mesh.cells[k][3] < 0 ? 3 : 4) == size) cells.push_back(k);
+    sink.text() += fmt::format("{}\n{}\n", size == 3 ? "Triangles" : "Quadrilaterals", cells.size());
+    append_items(sink, cells.size(), [&](std::string& line, std::size_t i) {
+      const auto& c = mesh.cells[cells[i]];
+      auto to = std::back_inserter(line);
+      for (int k = 0; k < size; ++k) fmt::format_to(to, "{} ", c[static_cast<std::size_t>(k)] + 1);
+      fmt::format_to(to, "{}\n", mesh.layer[cells[i]] != 0 ? 1 : 0);
+    });
+  }
+  write_tail(sink, b);
+}
+
+std::string mixed_medit_string(const MixedMesh& mesh) {
+  TextSink sink;
+  write_mixed_medit(mesh, sink);
+  return sink.take();
+}
+
+}  // namespace pdmesh
