@@ -5,6 +5,7 @@
 
 #include <map>
 #include <optional>
+#include <type_traits>
 
 #include "core/errors.hpp"
 #include "core/input_file.hpp"
@@ -119,6 +120,18 @@ MeditData parse_sections(LineScanner& s) {
     if (!has_vertices) s.fail(fmt::format("{} before Vertices", section), section);
     return static_cast<long long>(d.points.size());
   };
+  // A section of cells (std::array of their vertex indices) and a reference each; min_bytes: the
+  // least text one record takes.
+  const auto read_cells = [&](std::string_view section, const char* what, std::size_t min_bytes, auto& cells,
+                              auto& refs) {
+    const long long nv = need_vertices(section);
+    const long long n = read_count(s, section, min_bytes);
+    for (long long k = 0; k < n; ++k) {
+      typename std::remove_reference_t<decltype(cells)>::value_type c{};
+      refs.push_back(read_record(s, what, nv, c, c.size()));
+      cells.push_back(c);
+    }
+  };
   while (next_keyword(s, kw, d.names) && kw != "End") {
     if (kw == "MeshVersionFormatted" || kw == "Dimension") {
       header_keyword(s, kw);
@@ -133,21 +146,9 @@ MeditData parse_sections(LineScanner& s) {
         s.to_int(next_token(s, "a vertex reference"), "vertex reference");
       }
     } else if (kw == "Triangles") {
-      const long long nv = need_vertices(kw);
-      const long long n = read_count(s, kw, 8);
-      for (long long k = 0; k < n; ++k) {
-        std::array<int, 3> t{};
-        d.triangle_refs.push_back(read_record(s, "triangle", nv, t, 3));
-        d.triangles.push_back(t);
-      }
+      read_cells(kw, "triangle", 8, d.triangles, d.triangle_refs);
     } else if (kw == "Quadrilaterals") {
-      const long long nv = need_vertices(kw);
-      const long long n = read_count(s, kw, 10);
-      for (long long k = 0; k < n; ++k) {
-        std::array<int, 4> q{};
-        d.quad_refs.push_back(read_record(s, "quadrilateral", nv, q, 4));
-        d.quads.push_back(q);
-      }
+      read_cells(kw, "quadrilateral", 10, d.quads, d.quad_refs);
     } else if (kw == "Edges") {
       const long long nv = need_vertices(kw);
       const long long n = read_count(s, kw, 6);
