@@ -184,4 +184,15 @@ TEST_CASE("bad Medit .mesh files exit 2 naming the file and the line, and nothin
   CHECK(r.status == 2);
   CHECK(r.output.find("dim3.mesh:2: pdmesh reads 2-D Medit files") != std::string::npos);
   CHECK_FALSE(fs::exists(out));
+  // A binary file gets the binary file's message from smooth and from a warm start too.
+  for (const std::string& args : {"smooth '" + (dir / "binary.meshb").string() +
+                                      "' -g '" PDMESH_SOURCE_DIR "/cases/square200' --out '" + out.string() + "'",
+                                  std::string("mesh '" PDMESH_SOURCE_DIR "/cases/square200' --start '") +
+                                      (dir / "binary.meshb").string() + "' --out '" + out.string() + "'"}) {
+    const auto rb = pdmesh_test::run_pdmesh(args);
+    INFO(rb.output);
+    CHECK(rb.status == 2);
+    CHECK(rb.output.find("binary.meshb: binary Medit files (.meshb) are not read") != std::string::npos);
+    CHECK_FALSE(fs::exists(out));
+  }
 }

@@ -16,8 +16,9 @@
 namespace pdmesh {
 
 bool is_warm_points_extension(const std::string& extension) {
+  // .meshb is taken so that read_mesh refuses it with the binary Medit file's own message.
   return extension == ".nodes" || extension == ".msh" || extension == ".vtu" || extension == ".su2" ||
-         extension == ".mesh" || extension == ".ele" || extension == ".node";
+         extension == ".mesh" || extension == ".meshb" || extension == ".ele" || extension == ".node";
 }
 
 std::vector<Vec2> read_warm_points(const std::filesystem::path& path) {
