@@ -151,6 +151,20 @@ TEST_CASE("a run with an unknown layer curve writes nothing", "[app][layers]") {
   CHECK_FALSE(fs::exists(out));
 }
 
+TEST_CASE("a layered run refuses every mesh format that cannot hold quads, before writing", "[app][layers]") {
+  for (const char* format : {"msh22", "triangle", "fort14", "2dm"}) {
+    INFO(format);
+    const fs::path out = pdmesh_test::fresh_path("layers_format");
+    fs::remove_all(out);
+    CaseConfig c = layered_case(out, "wall", true);
+    c.output.formats = {"msh", format, "png"};
+    CHECK_THROWS_WITH(run_mesh(c), Catch::Contains(fmt::format("output.formats: '{}' cannot hold the cells of "
+                                                               "[[boundary_layer]] (msh, vtu, su2, mesh can)",
+                                                               format)));
+    CHECK_FALSE(fs::exists(out));
+  }
+}
+
 TEST_CASE("a run whose wall chain is open meshes the layer up to the curves that continue it", "[app][layers]") {
   // The circle cut into an upper and a lower half; layers on the upper half only: the chain's ends
   // continue along "lower", in line with the wall, so the front runs up the end rays.

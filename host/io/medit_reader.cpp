@@ -99,14 +99,15 @@ struct MeditData {
   std::vector<long long> triangle_refs;
   std::vector<std::array<int, 4>> quads;
   std::vector<long long> quad_refs;
-  std::vector<std::array<long long, 3>> edges;  // a, b, reference
+  std::vector<std::array<int, 2>> edges;
+  std::vector<long long> edge_refs;
   RefNames names;
 };
 
-// Reads `per` vertex indices of a cell or edge and its reference.
+// Reads the N vertex indices of a cell or edge and its reference.
 template <std::size_t N>
-long long read_record(LineScanner& s, const char* what, long long nv, std::array<int, N>& v, std::size_t per) {
-  for (std::size_t k = 0; k < per; ++k)
+long long read_record(LineScanner& s, const char* what, long long nv, std::array<int, N>& v) {
+  for (std::size_t k = 0; k < N; ++k)
     v[k] = static_cast<int>(
         s.to_index(next_token(s, fmt::format("a {} vertex", what)), 1, nv, fmt::format("{} vertex", what)) - 1);
   return s.to_int(next_token(s, fmt::format("a {} reference", what)), fmt::format("{} reference", what));
@@ -120,15 +121,15 @@ MeditData parse_sections(LineScanner& s) {
     if (!has_vertices) s.fail(fmt::format("{} before Vertices", section), section);
     return static_cast<long long>(d.points.size());
   };
-  // A section of cells (std::array of their vertex indices) and a reference each; min_bytes: the
-  // least text one record takes.
+  // A section of cells or edges (std::array of their vertex indices) and a reference each;
+  // min_bytes: the least text one record takes.
   const auto read_cells = [&](std::string_view section, const char* what, std::size_t min_bytes, auto& cells,
                               auto& refs) {
     const long long nv = need_vertices(section);
     const long long n = read_count(s, section, min_bytes);
     for (long long k = 0; k < n; ++k) {
       typename std::remove_reference_t<decltype(cells)>::value_type c{};
-      refs.push_back(read_record(s, what, nv, c, c.size()));
+      refs.push_back(read_record(s, what, nv, c));
       cells.push_back(c);
     }
   };
@@ -150,13 +151,7 @@ MeditData parse_sections(LineScanner& s) {
     } else if (kw == "Quadrilaterals") {
       read_cells(kw, "quadrilateral", 10, d.quads, d.quad_refs);
     } else if (kw == "Edges") {
-      const long long nv = need_vertices(kw);
-      const long long n = read_count(s, kw, 6);
-      for (long long k = 0; k < n; ++k) {
-        std::array<int, 2> e{};
-        const long long ref = read_record(s, "edge", nv, e, 2);
-        d.edges.push_back({e[0], e[1], ref});
-      }
+      read_cells(kw, "edge", 6, d.edges, d.edge_refs);
     } else if (kw == "Corners" || kw == "RequiredVertices") {
       const long long nv = need_vertices(kw);
       const std::string section(kw);
@@ -230,14 +225,14 @@ Mesh parse_medit_mesh(const std::string& file_label, std::string content, MeshRe
   // Curves: one per edge reference (and per reference a comment names), in the order of the numbers.
   std::map<long long, int> curve_of;
   for (const auto& [ref, name] : d.names.curves) curve_of[ref] = 0;
-  for (const auto& e : d.edges) curve_of[e[2]] = 0;
+  for (const long long ref : d.edge_refs) curve_of[ref] = 0;
   for (auto& [ref, index] : curve_of) {
     index = static_cast<int>(mesh.curve_names.size());
     const auto named = d.names.curves.find(ref);
     mesh.curve_names.push_back(named != d.names.curves.end() ? named->second : fmt::format("ref{}", ref));
   }
-  for (const auto& e : d.edges)
-    mesh.boundary_edges.push_back({static_cast<int>(e[0]), static_cast<int>(e[1]), curve_of[e[2]]});
+  for (std::size_t k = 0; k < d.edges.size(); ++k)
+    mesh.boundary_edges.push_back({d.edges[k][0], d.edges[k][1], curve_of[d.edge_refs[k]]});
   orient_triangles_ccw(mesh, report);
   if (cells == nullptr) {
     if (!d.quads.empty()) {

@@ -2,10 +2,12 @@
 // quadrilaterals beside the triangles and the boundary layer as a region of its own.
 #include "io/mixed_mesh.hpp"
 
+#include <algorithm>
 #include <cstdint>
 #include <iterator>
 #include <string>
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include "core/atomic_file.hpp"
 #include "core/errors.hpp"
@@ -240,13 +242,23 @@ std::string mixed_su2_string(const MixedMesh& mesh) {
   return sink.take();
 }
 
+const std::vector<std::string>& mixed_mesh_format_names() {
+  static const std::vector<std::string> names = {"msh", "vtu", "su2", "mesh"};
+  return names;
+}
+
+bool is_mixed_mesh_format(const std::string& format) {
+  const auto& names = mixed_mesh_format_names();
+  return std::find(names.begin(), names.end(), format) != names.end();
+}
+
 std::vector<std::filesystem::path> write_mixed_mesh(const MixedMesh& mesh, const std::filesystem::path& dir,
                                                     const std::string& stem, const std::vector<std::string>& formats,
                                                     const std::vector<PeriodicLink>* periodic) {
   for (const std::string& f : formats)
-    if (f != "msh" && f != "vtu" && f != "su2" && f != "mesh")
-      throw InputError(
-          fmt::format("output.formats: '{}' cannot hold a boundary-layer mesh (msh, vtu, su2 and mesh can)", f));
+    if (!is_mixed_mesh_format(f))
+      throw InputError(fmt::format("output.formats: '{}' cannot hold a boundary-layer mesh ({} can)", f,
+                                   fmt::join(mixed_mesh_format_names(), ", ")));
   std::vector<std::filesystem::path> written;
   for (const std::string& f : formats) {
     const std::filesystem::path path = dir / (stem + "." + f);

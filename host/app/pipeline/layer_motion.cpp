@@ -249,7 +249,7 @@ void LayerMotion::write_step_files(const CaseConfig& config, const fs::path& dir
   fs::create_directories(dir);
   std::vector<std::string> formats{"vtu"};
   for (const std::string& f : config.output.formats)
-    if (f == "msh" || f == "su2" || f == "mesh") formats.push_back(f);
+    if (f != "vtu" && is_mixed_mesh_format(f)) formats.push_back(f);
   write_mixed_mesh(mixed, dir, "mesh", formats);
   if (!config.output.wants("png")) return;
   MeshPictureOptions picture;

@@ -8,12 +8,14 @@
 #include <map>
 #include <set>
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include "app/pipeline/layer_metric.hpp"
 #include "app/pipeline/mesh_pipeline.hpp"
 #include "app/pipeline/pipeline_detail.hpp"
 #include "core/errors.hpp"
 #include "core/parallel.hpp"
+#include "io/mesh_formats.hpp"
 #include "io/mixed_mesh.hpp"
 #include "io/quality_report.hpp"
 #include "layers/front_geometry.hpp"
@@ -128,13 +130,14 @@ void append_columns(std::vector<PeriodicColumn>& to, std::vector<PeriodicColumn>
   to.insert(to.end(), std::make_move_iterator(more.begin()), std::make_move_iterator(more.end()));
 }
 
+// Every mesh format asked for must hold the layer's quadrilaterals (the pictures' png and svg are no
+// mesh formats).
 void check_formats(const CaseConfig& config) {
+  const auto& mesh_formats = mesh_format_names();
   for (const std::string& f : config.output.formats)
-    if (f == "msh22" || f == "triangle")
-      throw InputError(
-          fmt::format("{}: output.formats: '{}' cannot hold the cells of [[boundary_layer]] (msh, vtu, "
-                      "su2 and mesh can)",
-                      config.source.string(), f));
+    if (std::find(mesh_formats.begin(), mesh_formats.end(), f) != mesh_formats.end() && !is_mixed_mesh_format(f))
+      throw InputError(fmt::format("{}: output.formats: '{}' cannot hold the cells of [[boundary_layer]] ({} can)",
+                                   config.source.string(), f, fmt::join(mixed_mesh_format_names(), ", ")));
 }
 
 }  // namespace
@@ -716,7 +719,7 @@ std::vector<fs::path> write_layered_mesh_files(const CaseConfig& config, const M
                                                const std::vector<PeriodicLink>& periodic) {
   std::vector<std::string> formats;
   for (const std::string& f : config.output.formats)
-    if (f == "msh" || f == "vtu" || f == "su2" || f == "mesh") formats.push_back(f);
+    if (is_mixed_mesh_format(f)) formats.push_back(f);
   const auto writer_timer = phases.phase("mesh files");
   // geometry.projection: the files get lon/lat, like the triangle meshes' (mesh_outputs.cpp).
   MixedMesh lonlat;
