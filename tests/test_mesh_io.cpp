@@ -406,6 +406,21 @@ TEST_CASE("VTU binary and ASCII forms hold the same mesh, and binary is what wri
   std::filesystem::remove_all(dir);
 }
 
+TEST_CASE("each mesh format writes the files its extensions name, and no other", "[mesh_io]") {
+  for (const std::string& format : mesh_format_names()) {
+    INFO(format);
+    const auto dir = fresh_dir("extensions_" + format);
+    const auto written = write_mesh(grid_mesh(), dir, "m", {format});
+    std::vector<std::filesystem::path> expected;
+    for (const std::string& ext : mesh_format_extensions(format)) expected.push_back(dir / ("m" + ext));
+    CHECK(written == expected);
+    CHECK(pdmesh_test::entries(dir) == expected.size());
+    std::filesystem::remove_all(dir);
+  }
+  CHECK(mesh_format_extensions("fort14") == std::vector<std::string>{".14"});
+  CHECK_THROWS_AS(mesh_format_extensions("stl"), InputError);
+}
+
 TEST_CASE("format dispatch rejects unknown names and extensions", "[mesh_io]") {
   const auto dir = fresh_dir("dispatch");
   message_has([&] { write_mesh(grid_mesh(), dir, "g", {"stl"}); }, "unknown mesh format 'stl'");

@@ -8,9 +8,13 @@
 #include <sys/file.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <string>
 
+#include "app/config/case_file.hpp"
+#include "app/pipeline/output_guard.hpp"
+#include "io/mesh_formats.hpp"
 #include "run_pdmesh.hpp"
 #include "temp_files.hpp"
 
@@ -92,5 +96,41 @@ TEST_CASE("a second run into an --out that another run holds is refused, a relea
   CHECK(fs::exists(dir / "mesh.msh"));
   for (const auto& e : fs::directory_iterator(dir))
     CHECK(e.path().filename().string().find("lock") == std::string::npos);
+  fs::remove_all(dir);
+}
+
+TEST_CASE("every file a run writes, in every output format, is one the guard checked before the run",
+          "[cli][outputs]") {
+  const fs::path dir = pdmesh_test::fresh_dir("guard_planned");
+  const fs::path input = kCases / "square200" / "square.crv";
+  // Every format (msh22 writes mesh.msh as msh does: the two cannot be asked for together).
+  std::string formats;
+  for (const std::string& f : pdmesh::CaseConfig::Output::format_names())
+    if (f != "msh22") formats += (formats.empty() ? "" : ",") + f;
+  const auto r = run_pdmesh("mesh '" + input.string() + "' --out '" + dir.string() + "' --formats " + formats +
+                            " --iterations 5 --device host -q");
+  INFO(r.output);
+  REQUIRE(r.status == 0);
+  pdmesh::CaseConfig config = pdmesh::case_for_geometry_file(input);
+  config.output.formats.clear();
+  for (const std::string& f : pdmesh::CaseConfig::Output::format_names())
+    if (f != "msh22") config.output.formats.push_back(f);
+  config.out_dir = dir;
+  const std::vector<fs::path> planned = pdmesh::planned_outputs(config);
+  std::size_t files = 0;
+  for (const auto& entry : fs::directory_iterator(dir)) {
+    INFO(entry.path().string());
+    CHECK(std::find(planned.begin(), planned.end(), entry.path()) != planned.end());
+    ++files;
+  }
+  // Each mesh format's files are there, named by its extensions.
+  for (const std::string& f : pdmesh::mesh_format_names()) {
+    if (f == "msh22") continue;
+    for (const std::string& ext : pdmesh::mesh_format_extensions(f)) {
+      INFO(f << ext);
+      CHECK(fs::exists(dir / ("mesh" + ext)));
+    }
+  }
+  CHECK(files >= 14);
   fs::remove_all(dir);
 }

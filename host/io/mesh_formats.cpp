@@ -25,9 +25,43 @@
 
 namespace pdmesh {
 
+namespace {
+
+struct MeshFormat {
+  std::string name;
+  std::vector<std::string> extensions;
+};
+
+// Every format write_mesh knows, in documentation order, with the files it writes.
+const std::vector<MeshFormat>& mesh_formats() {
+  static const std::vector<MeshFormat> formats = {
+      {"msh", {".msh"}},
+      {"msh22", {".msh"}},
+      {"vtu", {".vtu"}},
+      {"su2", {".su2"}},
+      {"triangle", {".node", ".ele", ".poly"}},
+      {"fort14", {".14"}},
+      {"2dm", {".2dm"}},
+      {"mesh", {".mesh"}},
+  };
+  return formats;
+}
+
+}  // namespace
+
 const std::vector<std::string>& mesh_format_names() {
-  static const std::vector<std::string> names = {"msh", "msh22", "vtu", "su2", "triangle", "fort14", "2dm", "mesh"};
+  static const std::vector<std::string> names = [] {
+    std::vector<std::string> n;
+    for (const MeshFormat& f : mesh_formats()) n.push_back(f.name);
+    return n;
+  }();
   return names;
+}
+
+const std::vector<std::string>& mesh_format_extensions(const std::string& name) {
+  for (const MeshFormat& f : mesh_formats())
+    if (f.name == name) return f.extensions;
+  throw InputError(fmt::format("unknown mesh format '{}' (known: {})", name, fmt::join(mesh_format_names(), ", ")));
 }
 
 bool is_mesh_format(const std::string& name) {
@@ -61,25 +95,27 @@ std::vector<std::filesystem::path> write_mesh(const Mesh& mesh, const std::files
     written.push_back(path);
   };
   for (const auto& f : formats) {
+    const std::string& ext = mesh_format_extensions(f).front();
     if (f == "msh") {
-      stream(".msh", [&](TextSink& sink) { write_msh41(mesh, sink, options.periodic); });
+      stream(ext, [&](TextSink& sink) { write_msh41(mesh, sink, options.periodic); });
     } else if (f == "msh22") {
-      stream(".msh", [&](TextSink& sink) { write_msh22(mesh, sink, options.periodic); });
+      stream(ext, [&](TextSink& sink) { write_msh22(mesh, sink, options.periodic); });
     } else if (f == "vtu") {
-      stream(".vtu", [&](TextSink& sink) { write_vtu(mesh, sink); });
+      stream(ext, [&](TextSink& sink) { write_vtu(mesh, sink); });
     } else if (f == "su2") {
-      stream(".su2", [&](TextSink& sink) { write_su2(mesh, sink); });
+      stream(ext, [&](TextSink& sink) { write_su2(mesh, sink); });
     } else if (f == "fort14") {
-      stream(".14", [&](TextSink& sink) { write_fort14(mesh, options.open_boundaries, sink); });
+      stream(ext, [&](TextSink& sink) { write_fort14(mesh, options.open_boundaries, sink); });
     } else if (f == "2dm") {
-      stream(".2dm", [&](TextSink& sink) { write_sms2dm(mesh, sink); });
+      stream(ext, [&](TextSink& sink) { write_sms2dm(mesh, sink); });
     } else if (f == "mesh") {
-      stream(".mesh", [&](TextSink& sink) { write_medit(mesh, sink); });
+      stream(ext, [&](TextSink& sink) { write_medit(mesh, sink); });
     } else if (f == "triangle") {
       const auto files = triangle_strings(mesh);
-      put(".node", files.node);
-      put(".ele", files.ele);
-      put(".poly", files.poly);
+      const auto& exts = mesh_format_extensions(f);
+      put(exts[0], files.node);
+      put(exts[1], files.ele);
+      put(exts[2], files.poly);
     }
   }
   return written;

@@ -15,6 +15,7 @@
 #include "core/text_blocks.hpp"
 #include "core/text_sink.hpp"
 #include "io/medit_writer.hpp"
+#include "io/mesh_formats.hpp"
 #include "io/mesh_io_common.hpp"
 #include "io/msh_writer.hpp"
 
@@ -261,7 +262,7 @@ std::vector<std::filesystem::path> write_mixed_mesh(const MixedMesh& mesh, const
                                    fmt::join(mixed_mesh_format_names(), ", ")));
   std::vector<std::filesystem::path> written;
   for (const std::string& f : formats) {
-    const std::filesystem::path path = dir / (stem + "." + f);
+    const std::filesystem::path path = dir / (stem + mesh_format_extensions(f).front());
     write_text_atomically(path, [&](TextSink& sink) {
       if (f == "msh")
         write_mixed_msh41(mesh, sink, periodic);

@@ -15,9 +15,19 @@ import numpy as np
 from . import _core
 from .errors import InputError
 
-# Mesh formats by file suffix (the command's writers); .msh is Gmsh 4.1, format="msh22" for 2.2.
-_SUFFIX_FORMATS = {".msh": "msh", ".vtu": "vtu", ".su2": "su2", ".node": "triangle", ".ele": "triangle",
-                   ".poly": "triangle", ".14": "fort14", ".2dm": "2dm", ".mesh": "mesh"}
+
+
+def _suffix_formats() -> dict[str, str]:
+    """Mesh formats by file suffix, from the command's writers; a suffix two formats share goes to the
+    first (.msh is Gmsh 4.1, format="msh22" for 2.2)."""
+    table: dict[str, str] = {}
+    for name, extensions in _core.mesh_formats():
+        for extension in extensions:
+            table.setdefault(extension, name)
+    return table
+
+
+_SUFFIX_FORMATS = _suffix_formats()
 _PICTURES = (".png", ".svg")
 # Jupyter: SVG for meshes up to this many triangles (each is an element), PNG beyond.
 _SVG_REPR_LIMIT = 20_000
@@ -177,8 +187,8 @@ class Mesh:
             return [path]
         if format is None:
             if suffix not in _SUFFIX_FORMATS:
-                raise InputError(f"{path}: unknown mesh suffix '{suffix}' (.msh, .vtu, .su2, .node/.ele/.poly, "
-                                 ".14, .2dm, .mesh, .png, .svg; or give format=)")
+                known = ", ".join([*_SUFFIX_FORMATS, *_PICTURES])
+                raise InputError(f"{path}: unknown mesh suffix '{suffix}' ({known}; or give format=)")
             format = _SUFFIX_FORMATS[suffix]
         names = list(self.boundary_edges)
         for name in open_boundaries:

@@ -5,6 +5,7 @@
 #include <numbers>
 #include <fmt/format.h>
 #include <nanobind/stl/optional.h>
+#include <nanobind/stl/pair.h>
 #include <nanobind/stl/string.h>
 #include <nanobind/stl/vector.h>
 
@@ -239,6 +240,14 @@ void bind_mesh(nb::module_& m) {
       .def("picture", &picture, nb::arg("path"), nb::arg("color_by") = "none", nb::arg("title") = "",
            nb::arg("window").none() = nb::none(), nb::arg("long_side") = 1600, "Draws the mesh into a .png or .svg.");
 
+  m.def(
+      "mesh_formats",
+      [] {
+        std::vector<std::pair<std::string, std::vector<std::string>>> formats;
+        for (const std::string& name : mesh_format_names()) formats.emplace_back(name, mesh_format_extensions(name));
+        return formats;
+      },
+      "The writers' formats in documentation order: (name, the extensions of the files it writes).");
   m.def(
       "read_mesh",
       [](const std::string& path) {

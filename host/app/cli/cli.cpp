@@ -10,6 +10,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <optional>
 #include <sstream>
 #include <toml++/toml.h>
@@ -302,10 +303,9 @@ void add_run_options(CLI::App& mesh, MeshArguments& a) {
                   "output.color_by: fill mesh.png by a quality metric: none | min_angle | max_angle | aspect_ratio | "
                   "skewness | condition_number | min_jacobian")
       ->type_name("METRIC");
-  mesh.add_option(
-          "--formats", a.formats,
-          "output.formats, comma-separated: msh,msh22,vtu,su2,triangle,fort14,2dm,mesh,png,svg (no png and no svg: no "
-          "pictures at all)")
+  mesh.add_option("--formats", a.formats,
+                  fmt::format("output.formats, comma-separated: {} (no png and no svg: no pictures at all)",
+                              fmt::join(CaseConfig::Output::format_names(), ",")))
       ->type_name("LIST");
   mesh.add_option("--view", a.views,
                   "Extra zoomed picture initial_NAME.png of the window x0,y0,x1,y1 (NAME defaults to viewK). "

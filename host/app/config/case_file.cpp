@@ -10,6 +10,7 @@
 #include "app/config/case_reader.hpp"
 #include "core/errors.hpp"
 #include "core/input_file.hpp"
+#include "io/mesh_formats.hpp"
 
 namespace pdmesh {
 
@@ -372,6 +373,16 @@ const std::vector<std::string>& motion_keys() {
 
 bool CaseConfig::Output::wants(const std::string& format) const {
   return std::find(formats.begin(), formats.end(), format) != formats.end();
+}
+
+const std::vector<std::string>& CaseConfig::Output::format_names() {
+  static const std::vector<std::string> names = [] {
+    std::vector<std::string> n = mesh_format_names();
+    n.emplace_back("png");
+    n.emplace_back("svg");
+    return n;
+  }();
+  return names;
 }
 
 const std::vector<std::string>& case_file_keys() {

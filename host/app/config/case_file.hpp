@@ -310,6 +310,8 @@ struct CaseConfig {
     // Curves written as open boundaries in fort14 (the rest are land); checked against the curve names.
     std::vector<std::string> open_boundaries;
     bool wants(const std::string& format) const;
+    // Every name output.formats accepts: the mesh formats (io/mesh_formats.hpp), then png and svg.
+    static const std::vector<std::string>& format_names();
   } output;
 
   // Command-line only (not case-file keys).

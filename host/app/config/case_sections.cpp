@@ -13,9 +13,6 @@ namespace pdmesh::case_detail {
 
 namespace {
 
-const std::vector<std::string> kFormats = {"msh",    "msh22", "vtu",  "su2", "triangle",
-                                           "fort14", "2dm",   "mesh", "png", "svg"};
-
 // A loop, not std::regex: libstdc++'s matcher recurses once per character, so a long name would
 // overflow the stack.
 bool is_plain_name(const std::string& s) {
@@ -511,11 +508,12 @@ ViewWindow read_view(const Reader& r, const toml::node& entry, std::size_t i) {
 void read_output_section(const Reader& r, const toml::table& root, CaseConfig& c) {
   if (const toml::node* n = find(root, "output", "formats")) {
     c.output.formats = r.strings("output.formats", *n);
+    const auto& known = CaseConfig::Output::format_names();
     for (const std::string& f : c.output.formats) {
-      if (std::find(kFormats.begin(), kFormats.end(), f) == kFormats.end()) {
+      if (std::find(known.begin(), known.end(), f) == known.end()) {
         r.fail("output.formats", n,
                fmt::format("output.formats: unknown format '{}'; valid formats are {}", quote_input(f),
-                           fmt::join(kFormats, ", ")));
+                           fmt::join(known, ", ")));
       }
     }
     if (c.output.wants("msh") && c.output.wants("msh22"))

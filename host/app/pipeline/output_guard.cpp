@@ -37,16 +37,9 @@ std::vector<fs::path> planned_outputs(const CaseConfig& config) {
     names.emplace_back("spacing.png");
     for (const ViewWindow& view : config.output.views) names.push_back(fmt::format("spacing_{}.png", view.name));
   }
-  for (const std::string& f : config.output.formats) {
-    if (f == "msh" || f == "msh22") names.emplace_back("mesh.msh");
-    if (f == "vtu") names.emplace_back("mesh.vtu");
-    if (f == "su2") names.emplace_back("mesh.su2");
-    if (f == "fort14") names.emplace_back("mesh.14");
-    if (f == "2dm") names.emplace_back("mesh.2dm");
-    if (f == "mesh") names.emplace_back("mesh.mesh");
-    if (f == "triangle")
-      for (const char* ext : {".node", ".ele", ".poly"}) names.push_back(std::string("mesh") + ext);
-  }
+  for (const std::string& f : config.output.formats)
+    if (is_mesh_format(f))
+      for (const std::string& ext : mesh_format_extensions(f)) names.push_back("mesh" + ext);
   std::vector<fs::path> out;
   for (const std::string& n : names) out.push_back(config.out_dir / n);
   if (config.timings_file) out.push_back(*config.timings_file);
