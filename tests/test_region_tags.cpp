@@ -6,6 +6,7 @@
 
 #include <catch2/catch.hpp>
 
+#include "io/medit_writer.hpp"
 #include "io/msh_writer.hpp"
 #include "io/triangle_writer.hpp"
 #include "io/vtu_writer.hpp"
@@ -80,11 +81,16 @@ TEST_CASE("region tags in the mesh files", "[mesh][io]") {
   const TriangleFiles tri = triangle_strings(m);
   CHECK_THAT(tri.ele, Contains("4 3 1\n1 1 2 5 1\n"));
   CHECK_THAT(tri.ele, Contains("3 2 3 6 2.5\n"));
+  // Medit: the triangle references are the regions' (1 and 2 in ascending attribute order), named.
+  const std::string medit = medit_string(m);
+  CHECK_THAT(medit, Contains("# ref 1: region region_1\n# ref 2: region region_2.5\n"));
+  CHECK_THAT(medit, Contains("Triangles\n4\n1 2 5 1\n1 5 4 1\n2 3 6 2\n2 6 5 2\n"));
   // Without regions: one "domain" surface, no region array, no attribute.
   m.region.clear();
   CHECK_THAT(msh41_string(m), Contains("2 2 \"domain\"\n") && Contains("$Entities\n0 1 1 0\n"));
   CHECK_THAT(vtu_string(m, VtuFormat::Ascii), !Contains("Name=\"region\""));
   CHECK_THAT(triangle_strings(m).ele, Contains("4 3 0\n1 1 2 5\n"));
+  CHECK_THAT(medit_string(m), Contains("Triangles\n4\n1 2 5 0\n") && !Contains("region"));
 }
 
 TEST_CASE("pdmesh mesh on a .poly with a regional attribute writes its tag", "[cli]") {
@@ -94,9 +100,10 @@ TEST_CASE("pdmesh mesh on a .poly with a regional attribute writes its tag", "[c
                                         "1\n1 0.5 0.5 7 0.01\n";
   const fs::path out = dir / "out";
   const auto r = pdmesh_test::run_pdmesh("mesh '" + (dir / "square.poly").string() + "' --out '" + out.string() +
-                                         "' --iterations 0 --formats msh,vtu --quiet");
+                                         "' --iterations 0 --formats msh,vtu,mesh --quiet");
   CHECK(r.status == 0);
   CHECK_THAT(r.output,
              Contains("pdmesh: note: ") && Contains("square.poly:13: 1 region gives a maximum triangle area"));
   CHECK_THAT(pdmesh_test::slurp(out / "mesh.msh"), Contains("\"region_7\"") && !Contains("\"domain\""));
+  CHECK_THAT(pdmesh_test::slurp(out / "mesh.mesh"), Contains("# ref 1: region region_7\n"));
 }

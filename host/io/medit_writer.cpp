@@ -67,11 +67,19 @@ void write_tail(TextSink& sink, const MeditBoundary& b) {
 void write_medit(const Mesh& mesh, TextSink& sink) {
   check_mesh_for_writing(mesh, "Medit writer");
   const MeditBoundary b{mesh.points, mesh, mesh.kind};
-  write_head(sink, b, "");
+  // With regional attributes a triangle's reference is its region's: j + 1 for the j-th attribute in
+  // ascending order (the MSH writer's physical surfaces), named in a comment; without them 0.
+  const RegionSurfaces surfaces = region_surfaces(mesh);
+  std::string region_comments;
+  if (surfaces.regions())
+    for (std::size_t j = 0; j < surfaces.names.size(); ++j)
+      region_comments += fmt::format("# ref {}: region {}\n", j + 1, surfaces.names[j]);
+  write_head(sink, b, region_comments.c_str());
   sink.text() += fmt::format("Triangles\n{}\n", mesh.triangles.size());
   append_items(sink, mesh.triangles.size(), [&](std::string& line, std::size_t t) {
     const auto& v = mesh.triangles[t];
-    fmt::format_to(std::back_inserter(line), "{} {} {} 0\n", v[0] + 1, v[1] + 1, v[2] + 1);
+    const int ref = surfaces.regions() ? surfaces.of_triangle[t] + 1 : 0;
+    fmt::format_to(std::back_inserter(line), "{} {} {} {}\n", v[0] + 1, v[1] + 1, v[2] + 1, ref);
   });
   write_tail(sink, b);
 }

@@ -54,6 +54,23 @@ void check_mesh_for_writing(const Mesh& mesh, const std::string& what) {
                                    d.values.size(), n, d.components));
 }
 
+RegionSurfaces region_surfaces(const Mesh& mesh) {
+  RegionSurfaces s;
+  s.of_triangle.assign(mesh.triangles.size(), 0);
+  if (mesh.region.size() != mesh.triangles.size() || mesh.triangles.empty()) {
+    s.names = {"domain"};
+    return s;
+  }
+  std::vector<double> attributes = mesh.region;
+  std::sort(attributes.begin(), attributes.end());
+  attributes.erase(std::unique(attributes.begin(), attributes.end()), attributes.end());
+  for (const double a : attributes) s.names.push_back(fmt::format("region_{}", a));
+  for (std::size_t i = 0; i < mesh.triangles.size(); ++i)
+    s.of_triangle[i] =
+        static_cast<int>(std::lower_bound(attributes.begin(), attributes.end(), mesh.region[i]) - attributes.begin());
+  return s;
+}
+
 std::vector<std::size_t> boundary_edges_by_curve(const Mesh& mesh) {
   std::vector<std::size_t> order(mesh.boundary_edges.size());
   std::iota(order.begin(), order.end(), std::size_t{0});

@@ -70,6 +70,16 @@ std::string curve_label(const Mesh& mesh, std::size_t c, bool no_blanks = false)
 // `kind` is neither empty nor one per point. Every writer calls this first.
 void check_mesh_for_writing(const Mesh& mesh, const std::string& what);
 
+// The triangles' subdomains as the writers name them: one "domain" without regional attributes
+// (Mesh::region empty), otherwise one "region_<attribute>" per distinct attribute, ascending, and per
+// triangle the index of its attribute there (MSH physical surfaces, Medit triangle references).
+struct RegionSurfaces {
+  std::vector<std::string> names;
+  std::vector<int> of_triangle;  // index into names per triangle
+  bool regions() const { return names.size() != 1 || names.front() != "domain"; }
+};
+RegionSurfaces region_surfaces(const Mesh& mesh);
+
 // Boundary edge indices grouped by curve (stable: curve order, then file order within a curve).
 std::vector<std::size_t> boundary_edges_by_curve(const Mesh& mesh);
 

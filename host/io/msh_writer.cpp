@@ -25,31 +25,7 @@ Box box_of(const Mesh& mesh) {
   return b;
 }
 
-// The physical surfaces: one "domain" without regional attributes, otherwise one "region_<attribute>"
-// per distinct attribute (ascending), surface entity j + 1 with physical tag curves + 1 + j.
-struct Surfaces {
-  std::vector<std::string> names;
-  std::vector<int> of_triangle;  // surface index per triangle
-};
-
-Surfaces surfaces_of(const Mesh& mesh) {
-  Surfaces s;
-  s.of_triangle.assign(mesh.triangles.size(), 0);
-  if (mesh.region.size() != mesh.triangles.size() || mesh.triangles.empty()) {
-    s.names = {"domain"};
-    return s;
-  }
-  std::vector<double> attributes = mesh.region;
-  std::sort(attributes.begin(), attributes.end());
-  attributes.erase(std::unique(attributes.begin(), attributes.end()), attributes.end());
-  for (const double a : attributes) s.names.push_back(fmt::format("region_{}", a));
-  for (std::size_t i = 0; i < mesh.triangles.size(); ++i)
-    s.of_triangle[i] =
-        static_cast<int>(std::lower_bound(attributes.begin(), attributes.end(), mesh.region[i]) - attributes.begin());
-  return s;
-}
-
-std::string physical_names(const Mesh& mesh, const Surfaces& surfaces) {
+std::string physical_names(const Mesh& mesh, const RegionSurfaces& surfaces) {
   const std::size_t curves = mesh.curve_names.size();
   std::string out = fmt::format("$PhysicalNames\n{}\n", curves + surfaces.names.size());
   for (std::size_t c = 0; c < curves; ++c) out += fmt::format("1 {} \"{}\"\n", c + 1, curve_label(mesh, c));
@@ -67,7 +43,7 @@ void write_msh41(const Mesh& mesh, TextSink& sink, const std::vector<PeriodicLin
   const std::size_t n = mesh.points.size();
   std::string& out = sink.text();
   out += "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n";
-  const Surfaces surfaces = surfaces_of(mesh);
+  const RegionSurfaces surfaces = region_surfaces(mesh);
   const std::size_t ns = surfaces.names.size();
   out += physical_names(mesh, surfaces);
 
@@ -160,7 +136,7 @@ void write_msh22(const Mesh& mesh, TextSink& sink, const std::vector<PeriodicLin
   const std::size_t curves = mesh.curve_names.size();
   std::string& out = sink.text();
   out += "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n";
-  const Surfaces surfaces = surfaces_of(mesh);
+  const RegionSurfaces surfaces = region_surfaces(mesh);
   out += physical_names(mesh, surfaces);
   out += fmt::format("$Nodes\n{}\n", mesh.points.size());
   append_point_lines(sink, mesh, "");
