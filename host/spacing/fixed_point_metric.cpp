@@ -32,28 +32,32 @@ Metric graded_from_around(const MetricField& field, const GeometryTree& tree, Ve
   const Metric own = field.at(p);
   const MetricEigen e = eigen(own);
   const double largest = 1.0 / std::sqrt(e.lambda2);
-  // The sample at ring k along ray d, or nothing where it lies outside the domain or out of sight.
-  const auto sample = [&](int k, int d, Metric& span) {
+  // The point at ring k along ray d, where it lies in the domain and is seen from p.
+  const auto point = [&](int k, int d, Vec2& q) {
     const double r = largest * std::pow(0.5, 0.5 * k);
     const double a = (d + 0.5) * (2.0 * M_PI / kRays);
-    const Vec2 q{p.x + r * std::cos(a), p.y + r * std::sin(a)};
-    if ((q.x == p.x && q.y == p.y) || !tree.inside(q) || tree.crosses_boundary(p, q)) return false;
-    span = span_metric(field.at(q), p - q, beta, 0.0);
-    return true;
+    q = Vec2{p.x + r * std::cos(a), p.y + r * std::sin(a)};
+    return !(q.x == p.x && q.y == p.y) && tree.inside(q) && !tree.crosses_boundary(p, q);
   };
-  // Where the field just beside p (the innermost ring, where a span grows by a few 1e-8) asks for no
-  // smaller sizes than at p, the field is continuous at p and p keeps its own metric.
-  bool singular = false;
-  for (int d = 0; d < kRays && !singular; ++d) {
-    Metric span;
-    singular = sample(kRings - 1, d, span) && largest_metric_ratio(own, span) > kTaken;
+  // The field just beside p (the innermost ring, where a span grows by a few 1e-8): where its mean asks
+  // for sizes no smaller than 1/beta of p's in any direction, the field is continuous at p (up to the
+  // rounding noise of a Hessian by differences where u is nearly flat) and p keeps its own metric.
+  std::vector<Metric> beside;
+  for (int d = 0; d < kRays; ++d) {
+    Vec2 q;
+    if (point(kRings - 1, d, q)) beside.push_back(field.at(q));
   }
+  const bool singular =
+      !beside.empty() &&
+      largest_metric_ratio(own, log_euclidean_mean(beside, std::vector<double>(beside.size(), 1.0))) > beta * beta;
   if (!singular) return own;
   Metric m = own;
   for (int k = 0; k < kRings; ++k)
     for (int d = 0; d < kRays; ++d) {
-      Metric span;
-      if (sample(k, d, span) && largest_metric_ratio(m, span) > kTaken) m = intersect(m, span);
+      Vec2 q;
+      if (!point(k, d, q)) continue;
+      const Metric span = span_metric(field.at(q), p - q, beta, 0.0);
+      if (largest_metric_ratio(m, span) > kTaken) m = intersect(m, span);
     }
   return m;
 }

@@ -25,10 +25,10 @@ constexpr double kFixedPointGradation = 1.3;
 // The largest ratio |v|_b² / |v|_a² over all directions v: the largest eigenvalue of a⁻¹b.
 double largest_metric_ratio(const Metric& a, const Metric& b);
 
-// The metric at p graded from the field around it, where the field is not continuous at p: where a
-// point of the innermost ring below (about 1e-7 of the largest size from p) asks for sizes at least 1 %
-// smaller in some direction than field.at(p), field.at(p) intersected, in turn, with
-// span_metric(field.at(q), p - q, beta, 0) for the points q on 16 rays from p at distances
+// The metric at p graded from the field around it, where the field is not continuous at p: where the
+// log-Euclidean mean of the field on the innermost ring below (about 1e-7 of the largest size from p)
+// asks for sizes smaller than 1/beta of field.at(p)'s in some direction, field.at(p) intersected, in
+// turn, with span_metric(field.at(q), p - q, beta, 0) for the points q on 16 rays from p at distances
 // R 2^(-k/2), k = 0 .. 47 (R the largest size of field.at(p)), that lie in the domain and are seen
 // from p (tree.inside, not crosses_boundary), each taken where it asks for sizes at least 1 % smaller
 // than the metric so far. Elsewhere field.at(p) bit for bit, however steep the field around p: the
