@@ -19,6 +19,7 @@
 #include "error_message.hpp"
 #include "render/metric_picture.hpp"
 #include "run_pdmesh.hpp"
+#include "spacing/fixed_point_metric.hpp"
 #include "spacing/hessian_metric.hpp"
 #include "spacing/metric.hpp"
 #include "spacing/metric_size_field.hpp"
@@ -432,4 +433,18 @@ TEST_CASE("a fixed node on a Hessian metric's inflection line gets the field's m
     CHECK(a.m22 == b.m22);
   }
   fs::remove_all(dir);
+}
+
+TEST_CASE("largest_metric_ratio is the largest |v|_b^2 / |v|_a^2 over the directions", "[metric]") {
+  const Metric a = metric_from_sizes(0.3, 0.01, 0.4), b = metric_from_sizes(0.05, 0.02, -1.1);
+  double brute = 0.0;
+  for (int k = 0; k < 36000; ++k) {
+    const Vec2 v{std::cos(k * M_PI / 36000), std::sin(k * M_PI / 36000)};
+    brute = std::max(brute, b.quad(v) / a.quad(v));
+  }
+  // The sampled directions miss the largest by a step of pi/36000: brute is below it, by a few 1e-6.
+  CHECK(largest_metric_ratio(a, b) == Approx(brute).epsilon(1e-5));
+  CHECK(brute <= largest_metric_ratio(a, b) * (1.0 + 1e-12));
+  CHECK(largest_metric_ratio(a, a) == Approx(1.0).epsilon(1e-12));
+  CHECK(largest_metric_ratio(a, 4.0 * a) == Approx(4.0).epsilon(1e-12));
 }
