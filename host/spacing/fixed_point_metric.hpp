@@ -2,10 +2,10 @@
 // field around them. A fixed node samples the field at one place for the whole run; where that place
 // is singular in the field, every pair, gap and triangle at the node is measured by a value the field
 // has nowhere else. The case: a Hessian metric's inflection line (u'' = 0, the metric isotropic at
-// hmax) through an airfoil's leading edge, with sizes across the line 1000 times smaller a few
-// thousandths beside it. The node's metric is then graded from the field around it, as mesh adapters
-// grade a metric along the edges at a vertex (Alauzet's gradation, mmg's -hgrad): the field at the
-// point intersected with the span that the field at each point around it lets the node have.
+// hmax) through an airfoil's leading edge, with sizes across the line far smaller just beside it.
+// The node's metric is then graded from the field around it, as mesh adapters grade a metric along
+// the edges at a vertex (Alauzet's gradation, mmg's -hgrad): the field at the point intersected with
+// the span that the field at each point around it lets the node have.
 #pragma once
 #include <memory>
 #include <utility>
