@@ -19,6 +19,7 @@
 #include "error_message.hpp"
 #include "render/metric_picture.hpp"
 #include "run_pdmesh.hpp"
+#include "spacing/fixed_point_metric.hpp"
 #include "spacing/hessian_metric.hpp"
 #include "spacing/metric.hpp"
 #include "spacing/metric_size_field.hpp"
@@ -381,4 +382,69 @@ TEST_CASE("simulation.metric_anneal: 0.995 by default, a case's value in [0.5, 1
   CHECK(simulation_options(off).metric_anneal == 1.0);
   for (const char* bad : {"0.4", "1.01", "0", "\"fast\""})
     CHECK_THROWS_AS(parse_case_text(kGeometry + "[simulation]\nmetric_anneal = " + bad + "\n", kCase), InputError);
+}
+
+namespace {
+
+// The size of metric m along the unit vector at `angle` (radians): 1 / |(cos, sin)|_m.
+double size_along(const Metric& m, double angle) { return 1.0 / m.length({std::cos(angle), std::sin(angle)}); }
+
+}  // namespace
+
+TEST_CASE("a fixed node on a Hessian metric's inflection line gets the field's metric around it",
+          "[metric][case][hessian]") {
+  // u = tanh(20 (y - x/2)): u'' = 0 on the line y = x/2 through the unit square's corner (0, 0), a
+  // fixed node. There the exact Hessian vanishes and the metric is isotropic at hmax; 0.005 beside
+  // the line its size across the line is a few thousandths. The corner's metric is graded from the
+  // field around it, so the pairs, gaps and triangles at the corner are not measured by hmax.
+  const fs::path dir = pdmesh_test::fresh_path("metric_case_corner");
+  fs::create_directories(dir);
+  {
+    std::ofstream f(dir / "case.toml");
+    f << "[geometry]\nfiles = ['" << (fs::path(PDMESH_SOURCE_DIR) / "cases/aniso/linear/domain.crv").string()
+      << "']\n[spacing]\nfield = 'hessian'\nfunction = 'tanh(20*(y - 0.5*x))'\n"
+         "complexity = 2000\nhmax = 1\ngradation = 0\n";
+  }
+  const CaseConfig c = load_case_file(dir / "case.toml");
+  const MeshInputs inputs(c);
+  REQUIRE(inputs.metric != nullptr);
+  HessianMetricOptions o;
+  o.complexity = 2000;
+  o.hmax = 1;
+  const HessianMetricField exact(c.spacing.function, Box{{0, 0}, {1, 1}}, o, 1e-5, 1024);
+  const double across = std::atan2(1.0, -0.5);  // the line's normal
+  // The field at distance d from the line, beside its point (0.2, 0.1).
+  const auto off_line = [&](double d) { return exact.at({0.2 + d * std::cos(across), 0.1 + d * std::sin(across)}); };
+  // The field itself: hmax at the corner, small beside the line.
+  CHECK(size_along(exact.at({0, 0}), across) == Approx(1.0).epsilon(1e-9));
+  const double near = size_along(off_line(1e-4), across), far = size_along(off_line(5e-3), across);
+  CHECK(near < 0.01);
+  CHECK(far < near);
+  // The case's metric at the corner: between the field's sizes 1e-4 and 5e-3 beside the line.
+  const double corner = size_along(inputs.metric->at({0, 0}), across);
+  CHECK(corner < near);
+  CHECK(corner > far);
+  // Elsewhere the field as it is: the other corners (no steeper grading around them), and a point on
+  // the line that is no fixed node.
+  for (const Vec2 p : {Vec2{1, 0}, Vec2{1, 1}, Vec2{0, 1}, Vec2{0.5, 0.25}, Vec2{0.3, 0.7}}) {
+    const Metric a = inputs.metric->at(p), b = exact.at(p);
+    CHECK(a.m11 == b.m11);
+    CHECK(a.m12 == b.m12);
+    CHECK(a.m22 == b.m22);
+  }
+  fs::remove_all(dir);
+}
+
+TEST_CASE("largest_metric_ratio is the largest |v|_b^2 / |v|_a^2 over the directions", "[metric]") {
+  const Metric a = metric_from_sizes(0.3, 0.01, 0.4), b = metric_from_sizes(0.05, 0.02, -1.1);
+  double brute = 0.0;
+  for (int k = 0; k < 36000; ++k) {
+    const Vec2 v{std::cos(k * M_PI / 36000), std::sin(k * M_PI / 36000)};
+    brute = std::max(brute, b.quad(v) / a.quad(v));
+  }
+  // The sampled directions miss the largest by a step of pi/36000: brute is below it, by a few 1e-6.
+  CHECK(largest_metric_ratio(a, b) == Approx(brute).epsilon(1e-5));
+  CHECK(brute <= largest_metric_ratio(a, b) * (1.0 + 1e-12));
+  CHECK(largest_metric_ratio(a, a) == Approx(1.0).epsilon(1e-12));
+  CHECK(largest_metric_ratio(a, 4.0 * a) == Approx(4.0).epsilon(1e-12));
 }

@@ -12,6 +12,7 @@
 #include "io/metric_mesh_file.hpp"
 #include "io/spacing_mesh_file.hpp"
 #include "spacing/background_field.hpp"
+#include "spacing/fixed_point_metric.hpp"
 #include "spacing/hessian_metric.hpp"
 #include "spacing/mesh_spacing.hpp"
 #include "spacing/refine_regions.hpp"
@@ -89,9 +90,8 @@ std::unique_ptr<MetricField> graded(const CaseConfig& config, const GeometryTree
   return mesh_field(config, std::move(data));
 }
 
-}  // namespace
-
-std::unique_ptr<MetricField> make_case_metric(const CaseConfig& config, const GeometryTree& tree) {
+// The case's metric field as its keys give it.
+std::unique_ptr<MetricField> case_metric_field(const CaseConfig& config, const GeometryTree& tree) {
   const auto& s = config.spacing;
   if (s.field == SpacingKind::Metric) {
     if (!s.file.empty()) {
@@ -134,6 +134,18 @@ std::unique_ptr<MetricField> make_case_metric(const CaseConfig& config, const Ge
   metric.triangles = std::move(data.triangles);
   metric.what = data.what;
   return mesh_field(config, std::move(metric));
+}
+
+}  // namespace
+
+std::unique_ptr<MetricField> make_case_metric(const CaseConfig& config, const GeometryTree& tree) {
+  std::unique_ptr<MetricField> field = case_metric_field(config, tree);
+  if (!field) return nullptr;
+  // A fixed node samples the field at one place for the whole run: its metric is graded from the
+  // field around it, so that a place singular in the field (a Hessian metric's inflection line
+  // through a leading edge) does not size every pair and edge at the node (spacing/fixed_point_metric).
+  const double beta = config.spacing.metric_gradation > 0.0 ? config.spacing.metric_gradation : kFixedPointGradation;
+  return with_fixed_point_metrics(std::move(field), tree, beta);
 }
 
 }  // namespace pdmesh

@@ -26,8 +26,9 @@ std::unique_ptr<SpacingField> make_case_spacing(const CaseConfig& config, const 
 // Medit .mesh + .sol) or "hessian" (the L2-optimal metric of spacing.function, or of the scalar data
 // spacing.array on spacing.file, over the geometry's extents), with spacing.metric_gradation applied
 // along the background mesh's edges (expressions and functions: sampled on a grid over the extents
-// first); null for the isotropic fields. Throws InputError naming the
-// file, key or expression and the value.
+// first), and at the tree's fixed points where the field is not continuous its value graded from the
+// field around them (with_fixed_point_metrics, at spacing.metric_gradation or kFixedPointGradation);
+// null for the isotropic fields. Throws InputError naming the file, key or expression and the value.
 std::unique_ptr<MetricField> make_case_metric(const CaseConfig& config, const GeometryTree& tree);
 
 }  // namespace pdmesh
