@@ -144,6 +144,20 @@ TEST_CASE("the isotropic size of a metric is sqrt(h1 h2)", "[metric][case]") {
 
 namespace {
 
+// The case file of cases/aniso/linear's unit square with the given [spacing] lines, written into a
+// fresh directory named by `tag`, loaded.
+CaseConfig unit_square_case(const std::string& tag, const std::string& spacing) {
+  const fs::path dir = pdmesh_test::fresh_path(tag);
+  fs::create_directories(dir);
+  {
+    std::ofstream f(dir / "case.toml");
+    f << "[geometry]\nfiles = ['" << (fs::path(PDMESH_SOURCE_DIR) / "cases/aniso/linear/domain.crv").string()
+      << "']\n[spacing]\n"
+      << spacing;
+  }
+  return load_case_file(dir / "case.toml");
+}
+
 // ∫ sqrt(det M) dy across the tanh layer y = 0.5 + 0.25 sin 2πx at x, over ±0.03: the metric's node
 // density through the layer.
 double density_across(const MetricField& m, double x) {
@@ -161,15 +175,10 @@ TEST_CASE("spacing.hessian_step at the 1024 grid's scale leaves no hole at a cur
   // vanishes with it, and so does det|H|^(1/3), the L2-optimal metric's node density. Differences at
   // the scale of the 1024 grid (hessian_step = 2/1024) keep the density there comparable to the rest
   // of the layer; the default step (1e-5, the exact Hessian) has the hole.
-  const fs::path dir = pdmesh_test::fresh_path("metric_case_tanh");
-  fs::create_directories(dir);
-  {
-    std::ofstream f(dir / "case.toml");
-    f << "[geometry]\nfiles = ['" << (fs::path(PDMESH_SOURCE_DIR) / "cases/aniso/linear/domain.crv").string()
-      << "']\n[spacing]\nfield = 'hessian'\nfunction = 'tanh(100*(y - 0.5 - 0.25*sin(2*pi*x)))'\n"
-         "complexity = 4000\nhmin = 1e-5\nhmax = 0.3\ngradation = 0\nhessian_step = 0.001953125\n";
-  }
-  const CaseConfig c = load_case_file(dir / "case.toml");
+  const CaseConfig c = unit_square_case("metric_case_tanh",
+                                        "field = 'hessian'\nfunction = 'tanh(100*(y - 0.5 - 0.25*sin(2*pi*x)))'\n"
+                                        "complexity = 4000\nhmin = 1e-5\nhmax = 0.3\ngradation = 0\n"
+                                        "hessian_step = 0.001953125\n");
   CHECK(c.spacing.hessian_step == 0.001953125);
   const MeshInputs inputs(c);
   REQUIRE(inputs.metric != nullptr);
@@ -183,7 +192,7 @@ TEST_CASE("spacing.hessian_step at the 1024 grid's scale leaves no hole at a cur
   o.hmax = 0.3;
   const HessianMetricField exact(c.spacing.function, Box{{0, 0}, {1, 1}}, o, 1e-5, 1024);
   CHECK(density_across(exact, 0.5) < 0.2 * density_across(exact, 0.25));
-  fs::remove_all(dir);
+  fs::remove_all(c.source.parent_path());
 }
 
 TEST_CASE("pdmesh mesh triangulates in the metric and measures in it", "[metric][case][cli]") {
@@ -397,15 +406,9 @@ TEST_CASE("a fixed node on a Hessian metric's inflection line gets the field's m
   // fixed node. There the exact Hessian vanishes and the metric is isotropic at hmax; 0.005 beside
   // the line its size across the line is a few thousandths. The corner's metric is graded from the
   // field around it, so the pairs, gaps and triangles at the corner are not measured by hmax.
-  const fs::path dir = pdmesh_test::fresh_path("metric_case_corner");
-  fs::create_directories(dir);
-  {
-    std::ofstream f(dir / "case.toml");
-    f << "[geometry]\nfiles = ['" << (fs::path(PDMESH_SOURCE_DIR) / "cases/aniso/linear/domain.crv").string()
-      << "']\n[spacing]\nfield = 'hessian'\nfunction = 'tanh(20*(y - 0.5*x))'\n"
-         "complexity = 2000\nhmax = 1\ngradation = 0\n";
-  }
-  const CaseConfig c = load_case_file(dir / "case.toml");
+  const CaseConfig c = unit_square_case(
+      "metric_case_corner",
+      "field = 'hessian'\nfunction = 'tanh(20*(y - 0.5*x))'\ncomplexity = 2000\nhmax = 1\ngradation = 0\n");
   const MeshInputs inputs(c);
   REQUIRE(inputs.metric != nullptr);
   HessianMetricOptions o;
@@ -432,7 +435,7 @@ TEST_CASE("a fixed node on a Hessian metric's inflection line gets the field's m
     CHECK(a.m12 == b.m12);
     CHECK(a.m22 == b.m22);
   }
-  fs::remove_all(dir);
+  fs::remove_all(c.source.parent_path());
 }
 
 TEST_CASE("largest_metric_ratio is the largest |v|_b^2 / |v|_a^2 over the directions", "[metric]") {
