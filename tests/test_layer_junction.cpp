@@ -18,6 +18,7 @@
 #include "layers/layer_measures.hpp"
 #include "quality_json.hpp"
 #include "source_dir.hpp"
+#include "temp_files.hpp"
 
 namespace fs = std::filesystem;
 using namespace pdmesh;
@@ -292,7 +293,7 @@ TEST_CASE("a coarse polygon in triangles: each fan has one front edge, as long a
 TEST_CASE("NACA 0012 with layers: the core's triangles on the front and the junction", "[app][layers]") {
   // cases/naca0012's geometry with the default settings (the best preset) and the issue's layers.
   const std::string dir = pdmesh::test::source_dir() + "/cases/naca0012/";
-  const fs::path out = fs::temp_directory_path() / "pdmesh_test_layer_junction";
+  const fs::path out = pdmesh_test::fresh_path("layer_junction");
   fs::remove_all(out);
   CaseConfig c = parse_case_text(
       "[geometry]\nfiles = [\"" + dir + "airfoil.crv\", \"" + dir +
@@ -321,7 +322,7 @@ TEST_CASE("UIUC E387 with triangle layers: the core at the nose's fans as good a
   // of parallel rays between them; their columns merge in pairs up to the fans, and the core's
   // first row on the even front is as good as the rest of the core.
   const std::string dat = pdmesh::test::source_dir() + "/cases/user_corpus/e387/e387.dat";
-  const fs::path out = fs::temp_directory_path() / "pdmesh_test_layer_junction_e387";
+  const fs::path out = pdmesh_test::fresh_path("layer_junction_e387");
   fs::remove_all(out);
   CaseConfig c = parse_case_text("[geometry]\nfiles = [\"" + dat +
                                      "\"]\n[farfield]\nshape = \"circle\"\nsize = 20\n"

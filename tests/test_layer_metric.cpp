@@ -12,6 +12,7 @@
 #include "app/pipeline/layer_pipeline.hpp"
 #include "app/pipeline/mesh_pipeline.hpp"
 #include "quality_json.hpp"
+#include "temp_files.hpp"
 
 namespace fs = std::filesystem;
 using namespace pdmesh;
@@ -51,7 +52,7 @@ TEST_CASE("a flat plate's layer under a constant anisotropic metric: the front i
   // wall points are 0.005 apart (metric length 0.05 along the plate); the front's edges follow the
   // metric along the wall, and the layers stop where growth x their height reaches 0.01 (their
   // length along the ray is 1), so that the last layer is about 1 / growth in the metric.
-  const fs::path out = fs::temp_directory_path() / "pdmesh_test_layer_metric";
+  const fs::path out = pdmesh_test::fresh_path("layer_metric");
   fs::remove_all(out);
   fs::create_directories(out);
   write_plate(out / "plate.crv");
@@ -91,7 +92,7 @@ TEST_CASE("a layer thinner than the metric across the wall meets a core graded d
   // is about as high as the next layer would be: the junction (both heights in the case's metric)
   // near growth, not the metric's 0.01 over the last layer (about 20). The core is measured in the
   // graded metric it was meshed in.
-  const fs::path out = fs::temp_directory_path() / "pdmesh_test_layer_metric_thin";
+  const fs::path out = pdmesh_test::fresh_path("layer_metric_thin");
   fs::remove_all(out);
   fs::create_directories(out);
   write_plate(out / "plate.crv");
@@ -124,7 +125,7 @@ TEST_CASE("a layer cut by a facing wall meets a core graded down to it as a full
   // 0.4 of the gap (0.0018), their last layers about 0.03 metric units. The metric stops no ray.
   // A ray cut so is as far below the metric's unit as a full one: its top is a source of the core's
   // graded metric too (a slot's core is not sized by the metric's 0.01 across it).
-  const fs::path out = fs::temp_directory_path() / "pdmesh_test_layer_metric_slot";
+  const fs::path out = pdmesh_test::fresh_path("layer_metric_slot");
   fs::remove_all(out);
   fs::create_directories(out);
   {
@@ -163,7 +164,7 @@ TEST_CASE("a layer cut by a facing wall meets a core graded down to it as a full
 }
 
 TEST_CASE("the same plate without a metric keeps the input's wall points and reports no metric", "[app][layers]") {
-  const fs::path out = fs::temp_directory_path() / "pdmesh_test_layer_metric_iso";
+  const fs::path out = pdmesh_test::fresh_path("layer_metric_iso");
   fs::remove_all(out);
   fs::create_directories(out);
   write_plate(out / "plate.crv");

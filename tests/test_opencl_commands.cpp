@@ -27,6 +27,7 @@
 #include "opencl/context.hpp"
 #include "opencl/step_program.hpp"
 #include "selftest_axpy.hpp"
+#include "temp_files.hpp"
 
 using namespace pdmesh;
 using namespace pdmesh::ocl;
@@ -212,7 +213,7 @@ TEST_CASE("the program carries exactly one force-loop define, and the kernels re
 }
 
 TEST_CASE("bench reports the force loop and the commands per iteration", "[opencl][bench]") {
-  const std::filesystem::path out = std::filesystem::temp_directory_path() / "pdmesh_test_bench_commands.md";
+  const std::filesystem::path out = pdmesh_test::fresh_path("bench_commands.md");
   BenchArguments args;
   args.cases = {"circle_circle"};
   args.cases_dir = pdmesh::test::source_dir() + "/cases";

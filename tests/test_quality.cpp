@@ -20,6 +20,7 @@
 #include "mesh/quality_sum.hpp"
 #include "io/quality_report.hpp"
 #include "seeded_random.hpp"
+#include "temp_files.hpp"
 
 using namespace pdmesh;
 
@@ -262,7 +263,7 @@ TEST_CASE("quality.json holds the documented keys and is written atomically", "[
   m.points.push_back({2.0, 0.0});
   m.triangles.push_back({1, 4, 4});  // degenerate: non-finite maxima become null
   const auto s = summarize_quality(m, [](Vec2) { return 1.0; });
-  const auto dir = std::filesystem::temp_directory_path() / "pdmesh_test_quality_json";
+  const auto dir = pdmesh_test::fresh_path("quality_json");
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   const auto path = write_quality_json(s, dir, "dir/\"mesh\".msh");
@@ -307,7 +308,7 @@ TEST_CASE("a cleaned mesh's summary reports the cleanup in quality.json and in t
 }
 
 TEST_CASE("quality command reads a mesh file, prints the table and writes the JSON", "[quality]") {
-  const auto dir = std::filesystem::temp_directory_path() / "pdmesh_test_quality_command";
+  const auto dir = pdmesh_test::fresh_path("quality_command");
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   // Unit square split along its diagonal; the geometry is the square as four one-segment curves,

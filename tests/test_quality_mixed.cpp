@@ -14,13 +14,14 @@
 #include "io/text_file.hpp"
 #include "quality_json.hpp"
 #include "source_dir.hpp"
+#include "temp_files.hpp"
 
 namespace fs = std::filesystem;
 using namespace pdmesh;
 using pdmesh_test::read_quality_json;
 
 TEST_CASE("quality of a layered run's mesh.msh: its quads and angles as the run's quality.json", "[quality][layers]") {
-  const fs::path out = fs::temp_directory_path() / "pdmesh_test_quality_mixed";
+  const fs::path out = pdmesh_test::fresh_path("quality_mixed");
   fs::remove_all(out);
   CaseConfig c = load_case_file(pdmesh::test::source_dir() + "/tests/data/layers_naca/case.toml");
   c.out_dir = out;
@@ -65,7 +66,7 @@ TEST_CASE("quality of a layered run's mesh.msh: its quads and angles as the run'
 }
 
 TEST_CASE("quality of an MSH 2.2 file with quads: counts, angles, a clockwise quad turned", "[quality]") {
-  const fs::path dir = fs::temp_directory_path() / "pdmesh_test_quality_mixed22";
+  const fs::path dir = pdmesh_test::fresh_path("quality_mixed22");
   fs::remove_all(dir);
   fs::create_directories(dir);
   // A unit square (counter-clockwise), beside it a trapezoid with corners of 90, 135, 45 and 90
@@ -122,7 +123,7 @@ TEST_CASE(
     "quality of one layered run's mesh in msh, vtu, su2 and mesh: the same cells and angles, and its quality.json's "
     "layout",
     "[quality][layers][vtu][su2][medit]") {
-  const fs::path out = fs::temp_directory_path() / "pdmesh_test_quality_formats";
+  const fs::path out = pdmesh_test::fresh_path("quality_formats");
   fs::remove_all(out);
   CaseConfig c = load_case_file(pdmesh::test::source_dir() + "/tests/data/layers_naca/case.toml");
   c.out_dir = out;
@@ -171,7 +172,7 @@ TEST_CASE(
 
 TEST_CASE("quality of VTU and SU2 files with quads: counts, angles, a clockwise quad turned, the region",
           "[quality][vtu][su2]") {
-  const fs::path dir = fs::temp_directory_path() / "pdmesh_test_quality_formats_small";
+  const fs::path dir = pdmesh_test::fresh_path("quality_formats_small");
   fs::remove_all(dir);
   fs::create_directories(dir);
   // The MSH 2.2 test's cells: a unit square, a trapezoid (corners 90, 135, 45, 90 degrees) written
