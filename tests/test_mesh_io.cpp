@@ -397,7 +397,7 @@ TEST_CASE("VTU binary and ASCII forms hold the same mesh, and binary is what wri
   REQUIRE(qa.array);
   CHECK(qb.array->values == mesh.spacing);  // bit for bit
   CHECK(qa.array->values == mesh.spacing);
-  const auto dir = std::filesystem::temp_directory_path() / "pdmesh_vtu_binary";
+  const auto dir = pdmesh_test::fresh_path("vtu_binary");
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   write_mesh(mesh, dir, "m", {"vtu"});

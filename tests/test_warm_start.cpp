@@ -17,6 +17,7 @@
 #include "init/warm_points.hpp"
 #include "spacing/metric.hpp"
 #include "spacing/metric_field.hpp"
+#include "temp_files.hpp"
 
 using namespace pdmesh;
 namespace fs = std::filesystem;
@@ -36,10 +37,14 @@ NodeSet square_boundary(const GeometryTree& tree, const SpacingField& along) {
   return assemble_boundary_nodes(tree.geometry(), along, spacing_stations(tree.geometry(), along));
 }
 
+// This process's directory for the files the tests write.
+const fs::path& scratch_dir() {
+  static const fs::path dir = pdmesh_test::fresh_dir("warm_start");
+  return dir;
+}
+
 fs::path write_file(const std::string& name, const std::string& text) {
-  const fs::path dir = fs::temp_directory_path() / "pdmesh-test-warm-start";
-  fs::create_directories(dir);
-  const fs::path path = dir / name;
+  const fs::path path = scratch_dir() / name;
   std::ofstream(path) << text;
   return path;
 }
@@ -128,7 +133,7 @@ TEST_CASE("read_warm_points reads a node file's points and refuses bad files by 
   REQUIRE(points.size() == 2);
   CHECK(points[0].x == 0.25);
   CHECK(points[1].x == 0.75);
-  const fs::path missing = fs::temp_directory_path() / "pdmesh-test-warm-start" / "missing.nodes";
+  const fs::path missing = scratch_dir() / "missing.nodes";
   CHECK_THROWS_WITH(read_warm_points(missing), Catch::Contains("missing.nodes") && Catch::Contains("no such file"));
   const fs::path nan = write_file("nan.nodes", "# pdmesh nodes v1\n1\nnan 0.5 interior -1 1\ncurves 0\n");
   CHECK_THROWS_AS(read_warm_points(nan), InputError);
