@@ -20,14 +20,6 @@ bool before(Vec2 a, Vec2 b) { return a.x < b.x || (a.x == b.x && a.y < b.y); }
 
 }  // namespace
 
-double largest_metric_ratio(const Metric& a, const Metric& b) {
-  // The roots of det(b - l a) = 0: det(a) l² - t l + det(b) = 0 with t = tr(adj(a) b).
-  const double t = a.m22 * b.m11 + a.m11 * b.m22 - 2.0 * a.m12 * b.m12;
-  const double da = a.det();
-  const double disc = std::max(0.0, t * t - 4.0 * da * b.det());
-  return (t + std::sqrt(disc)) / (2.0 * da);
-}
-
 Metric graded_from_around(const MetricField& field, const GeometryTree& tree, Vec2 p, double beta) {
   const Metric own = field.at(p);
   const MetricEigen e = eigen(own);

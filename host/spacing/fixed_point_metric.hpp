@@ -22,9 +22,6 @@ namespace pdmesh {
 // mmg's default -hgrad.
 constexpr double kFixedPointGradation = 1.3;
 
-// The largest ratio |v|_b² / |v|_a² over all directions v: the largest eigenvalue of a⁻¹b.
-double largest_metric_ratio(const Metric& a, const Metric& b);
-
 // The metric at p graded from the field around it, where the field is not continuous at p: where the
 // log-Euclidean mean of the field on the innermost ring below (about 1e-7 of the largest size from p)
 // asks for sizes smaller than 1/beta of field.at(p)'s in some direction, field.at(p) intersected, in

@@ -136,6 +136,14 @@ Metric intersect(const Metric& a, const Metric& b) {
           u21 * s.m12 + u22 * s.m22};
 }
 
+double largest_metric_ratio(const Metric& a, const Metric& b) {
+  // The roots of det(b - l a) = 0: det(a) l² - t l + det(b) = 0 with t = tr(adj(a) b).
+  const double t = a.m22 * b.m11 + a.m11 * b.m22 - 2.0 * a.m12 * b.m12;
+  const double da = a.det();
+  const double disc = std::max(0.0, t * t - 4.0 * da * b.det());
+  return (t + std::sqrt(disc)) / (2.0 * da);
+}
+
 Metric span_metric(const Metric& m, Vec2 v, double beta, double t) {
   const double log_beta = std::log(beta);
   const double eta0 = std::pow(1.0 + m.length(v) * log_beta, 1.0 - t);

@@ -82,6 +82,9 @@ Metric log_euclidean_mean(const std::vector<Metric>& m, const std::vector<double
 // up to rounding, with equality along the two common eigenvectors. Computed in the basis
 // a^(-1/2) b a^(-1/2), which keeps every step symmetric.
 Metric intersect(const Metric& a, const Metric& b);
+// The largest ratio |v|_b² / |v|_a² over all directions v: the largest eigenvalue of a⁻¹b (1 or less:
+// b asks for no smaller size than a in any direction).
+double largest_metric_ratio(const Metric& a, const Metric& b);
 
 // Metric gradation (Alauzet 2010, "Size gradation control of anisotropic meshes"; the mixed form of
 // Alauzet & Frazza 2021). span_metric(m, v, beta, t) is the metric that m at one end of v lets the

@@ -133,9 +133,8 @@ void append_columns(std::vector<PeriodicColumn>& to, std::vector<PeriodicColumn>
 // Every mesh format asked for must hold the layer's quadrilaterals (the pictures' png and svg are no
 // mesh formats).
 void check_formats(const CaseConfig& config) {
-  const auto& mesh_formats = mesh_format_names();
   for (const std::string& f : config.output.formats)
-    if (std::find(mesh_formats.begin(), mesh_formats.end(), f) != mesh_formats.end() && !is_mixed_mesh_format(f))
+    if (is_mesh_format(f) && !is_mixed_mesh_format(f))
       throw InputError(fmt::format("{}: output.formats: '{}' cannot hold the cells of [[boundary_layer]] ({} can)",
                                    config.source.string(), f, fmt::join(mixed_mesh_format_names(), ", ")));
 }
