@@ -276,6 +276,25 @@ bool finite(Vec2 p) { return std::isfinite(p.x) && std::isfinite(p.y); }
 
 }  // namespace
 
+int FeatureSize::leaves_near(const Box& group, double reach2, std::int32_t* leaves, int capacity) const {
+  int count = 0;
+  std::int32_t stack[64];
+  int top = 0;
+  if (box_box_distance2(group, nodes_[0].box) <= reach2) stack[top++] = 0;
+  while (top > 0) {
+    const std::int32_t n = stack[--top];
+    const Node& node = nodes_[static_cast<std::size_t>(n)];
+    if (node.count == 0) {
+      for (std::int32_t c = node.first; c < node.first + 2; ++c)
+        if (box_box_distance2(group, nodes_[static_cast<std::size_t>(c)].box) <= reach2) stack[top++] = c;
+      continue;
+    }
+    if (count == capacity) return -1;
+    leaves[count++] = n;
+  }
+  return count;
+}
+
 // closest() at the m points p[0 .. m) at once: the seed segment's distance from each point plus that
 // point's margin bounds what closest() would measure there (D, the largest over the group). One
 // descent gathers the segments whose boxes lie within D of the group's bounding box (a lower bound on
@@ -285,7 +304,7 @@ bool finite(Vec2 p) { return std::isfinite(p.x) && std::isfinite(p.y); }
 // segment left out lies farther than the point's bound, so closest() would skip it too: every
 // answer is the least (squared distance, index) over the same closest_on_segment values, closest()'s
 // bits. Returns false (nothing written) for a group with a point not finite, or that gathers more than
-// kGroupSegments segments (spread out, or far from fine segments).
+// kGroupSegments leaves or segments (spread out, or far from fine segments).
 bool FeatureSize::closest_group(const Vec2* p, std::size_t m, ClosestHit* hit, int seed) const {
   const auto& segs = geometry_.segments;
   const Segment& s0 = segs[static_cast<std::size_t>(seed)];
@@ -304,19 +323,14 @@ bool FeatureSize::closest_group(const Vec2* p, std::size_t m, ClosestHit* hit, i
   }
   if (!(reach < std::numeric_limits<double>::infinity())) return false;
   const double reach2 = reach * reach;
+  std::int32_t leaves[kGroupSegments];
+  const int count = leaves_near(group, reach2, leaves, kGroupSegments);
+  if (count < 0) return false;
   std::int32_t candidates[kGroupSegments];
   Box boxes[kGroupSegments];
   int found = 0;
-  std::int32_t stack[64];
-  int top = 0;
-  if (box_box_distance2(group, nodes_[0].box) <= reach2) stack[top++] = 0;
-  while (top > 0) {
-    const Node& node = nodes_[static_cast<std::size_t>(stack[--top])];
-    if (node.count == 0) {
-      for (std::int32_t c = node.first; c < node.first + 2; ++c)
-        if (box_box_distance2(group, nodes_[static_cast<std::size_t>(c)].box) <= reach2) stack[top++] = c;
-      continue;
-    }
+  for (int l = 0; l < count; ++l) {
+    const Node& node = nodes_[static_cast<std::size_t>(leaves[l])];
     for (std::int32_t k = node.first; k < node.first + node.count; ++k) {
       const std::int32_t si = order_[static_cast<std::size_t>(k)];
       const Box& box = segment_box_[static_cast<std::size_t>(si)];
@@ -509,21 +523,8 @@ bool FeatureSize::gap_group(const GapSearch* g, std::size_t m, double* best2, st
   if (!(reach < std::numeric_limits<double>::infinity())) return false;
   const double reach2 = reach * reach;
   std::int32_t leaves[kGroupLeaves];
-  int count = 0;
-  std::int32_t stack[64];
-  int top = 0;
-  if (box_box_distance2(group, nodes_[0].box) <= reach2) stack[top++] = 0;
-  while (top > 0) {
-    const std::int32_t n = stack[--top];
-    const Node& node = nodes_[static_cast<std::size_t>(n)];
-    if (node.count == 0) {
-      for (std::int32_t c = node.first; c < node.first + 2; ++c)
-        if (box_box_distance2(group, nodes_[static_cast<std::size_t>(c)].box) <= reach2) stack[top++] = c;
-      continue;
-    }
-    if (count == kGroupLeaves) return false;
-    leaves[count++] = n;
-  }
+  const int count = leaves_near(group, reach2, leaves, kGroupLeaves);
+  if (count < 0) return false;
   for (std::size_t i = 0; i < m; ++i) {
     const GapSearch& s = g[i];
     double b2 = s.radius * s.radius;

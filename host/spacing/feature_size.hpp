@@ -104,6 +104,10 @@ class FeatureSize {
   // any distance they compare (see closest()).
   double margin(Vec2 x) const;
   bool closest_group(const Vec2* p, std::size_t m, ClosestHit* hit, int seed) const;
+  // The leaves whose boxes lie within sqrt(reach2) of the box `group` (box_box_distance2), into
+  // leaves[0 .. capacity); the count, or -1 where there are more than capacity. The descent of the
+  // grouped searches.
+  int leaves_near(const Box& group, double reach2, std::int32_t* leaves, int capacity) const;
 
   // A width() search once its start is known: from, the direction ahead, the radius searched, p1 and
   // its segment, loop and arc position.
