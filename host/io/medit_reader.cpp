@@ -214,6 +214,30 @@ std::vector<Metric> parse_sol(LineScanner& s, const std::vector<Vec2>& points, c
   s.fail("no SolAtVertices section");
 }
 
+// Per triangle, its region's attribute (Mesh::region): the writer's references are j + 1 for the
+// j-th region, named "region_<a>" in a comment, so the comment gives the attribute; a reference no
+// comment names (mmg2d writes none) is taken as the attribute, which the writer then names
+// "region_<N>". Empty when every reference is 0, and for a file whose comments name a region of
+// another kind (a layered run's "boundary_layer": its cells are read as SurfaceCells).
+std::vector<double> triangle_regions(const MeditData& d) {
+  std::map<long long, double> attribute;
+  for (const auto& [ref, name] : d.names.regions) {
+    const std::optional<double> a = region_attribute(name);
+    if (!a) return {};
+    attribute[ref] = *a;
+  }
+  bool any = !attribute.empty();
+  for (const long long ref : d.triangle_refs) any = any || ref != 0;
+  if (!any) return {};
+  std::vector<double> region;
+  region.reserve(d.triangle_refs.size());
+  for (const long long ref : d.triangle_refs) {
+    const auto named = attribute.find(ref);
+    region.push_back(named != attribute.end() ? named->second : static_cast<double>(ref));
+  }
+  return region;
+}
+
 }  // namespace
 
 Mesh parse_medit_mesh(const std::string& file_label, std::string content, MeshReadReport& report, SurfaceCells* cells) {
@@ -233,6 +257,7 @@ Mesh parse_medit_mesh(const std::string& file_label, std::string content, MeshRe
   }
   for (std::size_t k = 0; k < d.edges.size(); ++k)
     mesh.boundary_edges.push_back({d.edges[k][0], d.edges[k][1], curve_of[d.edge_refs[k]]});
+  mesh.region = triangle_regions(d);
   orient_triangles_ccw(mesh, report);
   if (cells == nullptr) {
     if (!d.quads.empty()) {
