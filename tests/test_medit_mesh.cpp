@@ -74,6 +74,10 @@ TEST_CASE("a mesh written as Medit .mesh reads back to the same points, triangle
   CHECK(same_edges(back.boundary_edges, m.boundary_edges));
   CHECK(report.reoriented_triangles == 0);
   CHECK(report.skipped_elements == 0);
+  // The Corners are the fixed nodes again, the edges' other vertices boundary nodes: written again,
+  // the file has the same Corners.
+  CHECK(back.kind == m.kind);
+  CHECK(medit_string(back) == text);
   // The warm start (pdmesh mesh --start, init.file) takes its points.
   CHECK(same_points(read_warm_points(dir / "m.mesh"), m.points));
 }
@@ -138,6 +142,14 @@ TEST_CASE("a Medit .mesh as mmg2d writes it: sections in its order, references w
   CHECK(m.triangles[1] == std::array<int, 3>{0, 2, 3});
   REQUIRE(cells.quads.size() == 1);
   CHECK_FALSE(cells.region_found);
+  // Corners and RequiredVertices are fixed nodes, the edges' other vertices boundary nodes.
+  using K = NodeKind;
+  CHECK(m.kind == std::vector<NodeKind>{K::Fixed, K::Fixed, K::Boundary, K::Boundary, K::Fixed});
+  // Without either section the kinds stay unknown.
+  const std::string plain =
+      "MeshVersionFormatted 2\nDimension 2\nVertices\n3\n0 0 0\n1 0 0\n0 1 0\n"
+      "Edges\n1\n1 2 1\nTriangles\n1\n1 2 3 0\nEnd\n";
+  CHECK(parse_medit_mesh("plain.mesh", plain, report).kind.empty());
 }
 
 TEST_CASE("bad Medit .mesh files exit 2 naming the file and the line, and nothing is written", "[io][medit][cli]") {

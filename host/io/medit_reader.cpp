@@ -101,6 +101,7 @@ struct MeditData {
   std::vector<long long> quad_refs;
   std::vector<std::array<int, 2>> edges;
   std::vector<long long> edge_refs;
+  std::vector<int> corners;  // Corners and RequiredVertices, in file order
   RefNames names;
 };
 
@@ -156,7 +157,9 @@ MeditData parse_sections(LineScanner& s) {
       const long long nv = need_vertices(kw);
       const std::string section(kw);
       const long long n = read_count(s, section, 2);
-      for (long long k = 0; k < n; ++k) s.to_index(next_token(s, section), 1, nv, fmt::format("{} vertex", section));
+      for (long long k = 0; k < n; ++k)
+        d.corners.push_back(
+            static_cast<int>(s.to_index(next_token(s, section), 1, nv, fmt::format("{} vertex", section)) - 1));
     } else {
       // Sections read over: lists of edge, triangle or quadrilateral numbers.
       if (kw != "Ridges" && kw != "RequiredEdges" && kw != "RequiredTriangles" && kw != "RequiredQuadrilaterals")
@@ -238,6 +241,18 @@ std::vector<double> triangle_regions(const MeditData& d) {
   return region;
 }
 
+// Per point, its kind where the file marks corners (Corners, RequiredVertices: pdmesh writes its
+// fixed nodes there, mmg2d keeps them and adds the corners it finds): those Fixed, the other
+// vertices of edges Boundary, the rest Interior. Empty (unknown) without either section.
+std::vector<NodeKind> node_kinds(const MeditData& d, const Mesh& mesh) {
+  if (d.corners.empty()) return {};
+  std::vector<NodeKind> kind(mesh.points.size(), NodeKind::Interior);
+  for (const BoundaryEdge& e : mesh.boundary_edges)
+    for (const int v : {e.a, e.b}) kind[static_cast<std::size_t>(v)] = NodeKind::Boundary;
+  for (const int v : d.corners) kind[static_cast<std::size_t>(v)] = NodeKind::Fixed;
+  return kind;
+}
+
 }  // namespace
 
 Mesh parse_medit_mesh(const std::string& file_label, std::string content, MeshReadReport& report, SurfaceCells* cells) {
@@ -258,6 +273,7 @@ Mesh parse_medit_mesh(const std::string& file_label, std::string content, MeshRe
   for (std::size_t k = 0; k < d.edges.size(); ++k)
     mesh.boundary_edges.push_back({d.edges[k][0], d.edges[k][1], curve_of[d.edge_refs[k]]});
   mesh.region = triangle_regions(d);
+  mesh.kind = node_kinds(d, mesh);
   orient_triangles_ccw(mesh, report);
   if (cells == nullptr) {
     if (!d.quads.empty()) {
