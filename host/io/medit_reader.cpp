@@ -71,12 +71,17 @@ long long read_count(LineScanner& s, std::string_view keyword, std::size_t min_b
   return n;
 }
 
-// Checks MeshVersionFormatted's and Dimension's values.
-void header_keyword(LineScanner& s, std::string_view keyword) {
+// Checks MeshVersionFormatted's and Dimension's values and returns the value. A mesh may have
+// Dimension 3 (`planar`): Gmsh and meshio write a 2-D mesh so, its vertices at z = 0.
+long long header_keyword(LineScanner& s, std::string_view keyword, bool planar = false) {
   const std::string_view tok = next_token(s, keyword);
   const long long v = s.to_int(tok, keyword);
-  if (keyword == "Dimension" && v != 2) s.fail("pdmesh reads 2-D Medit files: Dimension must be 2", tok);
+  if (keyword == "Dimension" && v != 2 && !(planar && v == 3))
+    s.fail(planar ? "pdmesh reads 2-D Medit files: Dimension must be 2, or 3 with every vertex at z = 0"
+                  : "pdmesh reads 2-D Medit files: Dimension must be 2",
+           tok);
   if (keyword == "MeshVersionFormatted" && (v < 1 || v > 4)) s.fail("MeshVersionFormatted must be 1 to 4", tok);
+  return v;
 }
 
 void refuse_binary(const std::filesystem::path& file, const std::string& ext, const char* want) {
@@ -103,6 +108,7 @@ struct MeditData {
   std::vector<long long> edge_refs;
   std::vector<int> corners;  // Corners and RequiredVertices, in file order
   RefNames names;
+  int dimension = 2;
 };
 
 // Reads the N vertex indices of a cell or edge and its reference.
@@ -114,7 +120,8 @@ long long read_record(LineScanner& s, const char* what, long long nv, std::array
   return s.to_int(next_token(s, fmt::format("a {} reference", what)), fmt::format("{} reference", what));
 }
 
-MeditData parse_sections(LineScanner& s) {
+// `planar`: a Dimension 3 file is read when its vertices lie at z = 0.
+MeditData parse_sections(LineScanner& s, bool planar) {
   MeditData d;
   bool has_vertices = false;
   std::string_view kw;
@@ -136,7 +143,8 @@ MeditData parse_sections(LineScanner& s) {
   };
   while (next_keyword(s, kw, d.names) && kw != "End") {
     if (kw == "MeshVersionFormatted" || kw == "Dimension") {
-      header_keyword(s, kw);
+      const long long v = header_keyword(s, kw, planar);
+      if (kw == "Dimension") d.dimension = static_cast<int>(v);
     } else if (kw == "Vertices") {
       if (has_vertices) s.fail("a second Vertices section", kw);
       has_vertices = true;
@@ -145,6 +153,13 @@ MeditData parse_sections(LineScanner& s) {
       for (auto& p : d.points) {
         p.x = s.to_double(next_token(s, "a vertex x"), "for a vertex x");
         p.y = s.to_double(next_token(s, "a vertex y"), "for a vertex y");
+        if (d.dimension == 3) {
+          const std::string_view z = next_token(s, "a vertex z");
+          if (s.to_double(z, "for a vertex z") != 0.0)
+            s.fail(
+                fmt::format("vertex {} is off the plane z = 0: pdmesh reads planar meshes", &p - d.points.data() + 1),
+                z);
+        }
         s.to_int(next_token(s, "a vertex reference"), "vertex reference");
       }
     } else if (kw == "Triangles") {
@@ -257,7 +272,7 @@ std::vector<NodeKind> node_kinds(const MeditData& d, const Mesh& mesh) {
 
 Mesh parse_medit_mesh(const std::string& file_label, std::string content, MeshReadReport& report, SurfaceCells* cells) {
   LineScanner s(file_label, std::move(content));
-  MeditData d = parse_sections(s);
+  MeditData d = parse_sections(s, true);
   Mesh mesh;
   mesh.points = std::move(d.points);
   mesh.triangles = std::move(d.triangles);
@@ -305,7 +320,7 @@ Mesh read_medit_mesh(const std::filesystem::path& path, MeshReadReport& report, 
 MetricMeshData parse_medit_metric(const std::string& mesh_label, std::string mesh_text, const std::string& sol_label,
                                   std::string sol_text) {
   LineScanner ms(mesh_label, std::move(mesh_text));
-  MeditData mesh = parse_sections(ms);
+  MeditData mesh = parse_sections(ms, false);
   if (mesh.triangles.empty()) ms.fail("no Triangles: a metric background mesh needs triangles");
   LineScanner ss(sol_label, std::move(sol_text));
   std::vector<Metric> metrics = parse_sol(ss, mesh.points, mesh_label);
