@@ -17,7 +17,8 @@ the bottom). Each step prints ok/FAIL.
 - gmsh (the gmsh module, 4.15.2): RUN/mesh.msh opens with the physical groups (curves, regions),
   element types and Gmsh's quality measures; a mesh Gmsh makes of the same geometry, with named
   physical groups (and quads by recombination), reads in `pdmesh quality`, `transfer` and `smooth`
-  with the physical names as curve names and the surfaces as regions.
+  with the physical names as curve names and the surfaces as regions; so do the Medit .mesh files
+  Gmsh and meshio write of it (Dimension 3, the vertices at z = 0).
 - formats: RUN/mesh.su2 against the SU2 native format's rules, and RUN/mesh.vtu in VTK's own XML
   reader (pyvista's vtk).
 
@@ -71,6 +72,8 @@ def read_medit(path):
         kw = tokens[k]
         k += 1
         if kw in ("MeshVersionFormatted", "Dimension"):
+            if kw == "Dimension":
+                width["Vertices"] = int(tokens[k]) + 1
             k += 1
         elif kw == "End":
             break
@@ -81,9 +84,9 @@ def read_medit(path):
             rows = [tokens[k + i * w:k + (i + 1) * w] for i in range(n)]
             k += n * w
             if kw == "Vertices":
-                out[kw] = [(float(r[0]), float(r[1]), int(r[2])) for r in rows]
-            elif kw in width:
-                out[kw] = [tuple(int(x) - 1 for x in r[:-1]) + (int(r[-1]),) for r in rows]
+                out[kw] = [(float(r[0]), float(r[1]), int(r[-1])) for r in rows]
+            elif kw in width:  # meshio writes a section per cell block: they add up
+                out[kw] = out.get(kw, []) + [tuple(int(x) - 1 for x in r[:-1]) + (int(r[-1]),) for r in rows]
             else:
                 out[kw] = out.get(kw, []) + [int(r[0]) - 1 for r in rows]
     return out
@@ -303,6 +306,27 @@ def gmsh_checks(pdmesh, run_dir, case, layered, tmp):
             check(region == want, f"{label}: the triangles' physical surfaces are regions {region} (want {want})")
         if not recombine:
             smooth(pdmesh, path, case, tmp)
+        if recombine or version != 4.1:
+            continue
+        # The same mesh as a Medit .mesh, by Gmsh and by meshio: Dimension 3, every vertex at z = 0.
+        medit = {"Gmsh": os.path.join(tmp, "gmsh.mesh"), "meshio": os.path.join(tmp, "meshio.mesh")}
+        gmsh.write(medit["Gmsh"])
+        g = meshio.read(path)
+        cells = [(c.type, c.data) for c in g.cells if c.type in ("line", "triangle")]
+        refs = [g.cell_data["gmsh:physical"][k] for k, c in enumerate(g.cells) if c.type in ("line", "triangle")]
+        meshio.write(medit["meshio"], meshio.Mesh(g.points, cells, cell_data={"medit:ref": refs}))
+        for writer, mesh in medit.items():
+            q = quality_json(pdmesh, mesh, tmp)
+            if q is not None:
+                check(q["points"] == made["nodes"] and q["triangles"] == made["triangles"],
+                      f"{writer}'s .mesh: pdmesh quality reads {q['points']} points, {q['triangles']} triangles")
+            vtu = transfer(pdmesh, run_dir, mesh, tmp)
+            if vtu is not None:
+                m = meshio.read(vtu)
+                region = sorted({int(x) for x in m.cell_data["region"][0]}) if "region" in m.cell_data else []
+                lines = read_medit(mesh)["Edges"]
+                check(len(region) == 2 and len(vtu_curve_names(m)) == len({e[2] for e in lines}),
+                      f"{writer}'s .mesh: regions {region}, curves {vtu_curve_names(m)}")
     gmsh.finalize()
 
 
