@@ -152,6 +152,28 @@ TEST_CASE("a Medit .mesh as mmg2d writes it: sections in its order, references w
   CHECK(parse_medit_mesh("plain.mesh", plain, report).kind.empty());
 }
 
+TEST_CASE("Medit edges of reference 0 between two cells, as mmg2d writes a layer's top, are not curves",
+          "[io][medit][layers]") {
+  // A square of two triangles beside a quad; the edge 2-3 between them and the boundary edge 1-2 have
+  // reference 0, the quad's far side 5-6 reference 3.
+  const std::string text =
+      "MeshVersionFormatted 2\nDimension 2\nVertices\n6\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n2 0 0\n2 1 0\n"
+      "Edges\n3\n2 3 0\n1 2 0\n5 6 3\nTriangles\n2\n1 2 3 0\n1 3 4 0\nQuadrilaterals\n1\n2 5 6 3 1\nEnd\n";
+  for (const bool with_cells : {false, true}) {
+    INFO(with_cells);
+    MeshReadReport report;
+    SurfaceCells cells;
+    const Mesh m = parse_medit_mesh("mmg.mesh", text, report, with_cells ? &cells : nullptr);
+    CHECK(m.curve_names == std::vector<std::string>{"ref0", "ref3"});
+    REQUIRE(m.boundary_edges.size() == 2);
+    CHECK(m.boundary_edges[0].a == 0);
+    CHECK(m.boundary_edges[0].b == 1);
+    CHECK(m.boundary_edges[1].curve == 1);
+    REQUIRE_FALSE(report.notes.empty());
+    CHECK(report.notes[0] == "mmg.mesh: 1 edges of reference 0 between two cells are not curves");
+  }
+}
+
 TEST_CASE("a Medit .mesh of Dimension 3 with every vertex at z = 0, as Gmsh and meshio write a 2-D mesh, is read",
           "[io][medit]") {
   // Gmsh's layout: the keyword and its value on separate lines, blanks before them, x y z ref.

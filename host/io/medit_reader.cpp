@@ -3,9 +3,13 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <cstdint>
 #include <map>
 #include <optional>
 #include <type_traits>
+#include <unordered_map>
+#include <utility>
 
 #include "core/errors.hpp"
 #include "core/input_file.hpp"
@@ -268,11 +272,40 @@ std::vector<NodeKind> node_kinds(const MeditData& d, const Mesh& mesh) {
   return kind;
 }
 
+// Drops the edges of reference 0 (no comment naming it) that lie between two cells: mmg2d writes the
+// edges between a mesh's triangles and quadrilaterals (a layered run's layer top) so, as required
+// edges without a reference, and they bound no domain. Said in a note.
+void drop_inner_unreferenced_edges(MeditData& d, const std::string& file, MeshReadReport& report) {
+  if (d.names.curves.count(0) != 0 || std::find(d.edge_refs.begin(), d.edge_refs.end(), 0) == d.edge_refs.end()) return;
+  const auto key = [](int a, int b) {
+    if (a > b) std::swap(a, b);
+    return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(a)) << 32) | static_cast<std::uint32_t>(b);
+  };
+  std::unordered_map<std::uint64_t, int> cells_at;
+  for (const auto& t : d.triangles)
+    for (std::size_t k = 0; k < 3; ++k) ++cells_at[key(t[k], t[(k + 1) % 3])];
+  for (const auto& q : d.quads)
+    for (std::size_t k = 0; k < 4; ++k) ++cells_at[key(q[k], q[(k + 1) % 4])];
+  std::size_t kept = 0;
+  for (std::size_t k = 0; k < d.edges.size(); ++k) {
+    const auto it = cells_at.find(key(d.edges[k][0], d.edges[k][1]));
+    if (d.edge_refs[k] == 0 && it != cells_at.end() && it->second == 2) continue;
+    d.edges[kept] = d.edges[k];
+    d.edge_refs[kept++] = d.edge_refs[k];
+  }
+  if (kept == d.edges.size()) return;
+  report.notes.push_back(
+      fmt::format("{}: {} edges of reference 0 between two cells are not curves", file, d.edges.size() - kept));
+  d.edges.resize(kept);
+  d.edge_refs.resize(kept);
+}
+
 }  // namespace
 
 Mesh parse_medit_mesh(const std::string& file_label, std::string content, MeshReadReport& report, SurfaceCells* cells) {
   LineScanner s(file_label, std::move(content));
   MeditData d = parse_sections(s, true);
+  drop_inner_unreferenced_edges(d, file_label, report);
   Mesh mesh;
   mesh.points = std::move(d.points);
   mesh.triangles = std::move(d.triangles);
