@@ -224,6 +224,13 @@ def mmg2d_checks(pdmesh, run_dir, case, layered, tmp):
         if q is not None:
             check(q["points"] == len(a["Vertices"]) and q["triangles"] == len(a["Triangles"]),
                   f"layered {name}: pdmesh quality reads {q['points']} points, {q['triangles']} triangles")
+        # mmg2d adds the layer's top as edges of reference 0 between quads and triangles: not a curve.
+        inner = sum(1 for e in a["Edges"] if e[2] == 0)
+        vtu = transfer(pdmesh, run_dir, path, tmp)
+        if vtu is not None:
+            names = vtu_curve_names(meshio.read(vtu))
+            check(names == [f"ref{k}" for k in sorted({e[2] for e in lay["Edges"]})],
+                  f"layered {name}: curves {names} ({inner} edges of reference 0 in mmg2d's file)")
 
 
 def gmsh_mesh(gmsh, path, recombine, version):
