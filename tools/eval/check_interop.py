@@ -5,6 +5,9 @@
     tools/.venv-anchors/bin/python tools/eval/check_interop.py gmsh    PDMESH RUN CASE [LAYERED]
     tools/.venv-anchors/bin/python tools/eval/check_interop.py formats PDMESH RUN [LAYERED]
 
+With --python-path DIR (a build's python folder) the mmg2d and gmsh checks also read the files with
+pdmesh.Mesh.read.
+
 RUN is a `pdmesh mesh CASE` directory of tests/data/interop/two_regions.toml (two regions beside a
 constraint, a curve per segment: CURVES); LAYERED one of layered.toml (quad layers on
 the bottom). Each step prints ok/FAIL.
@@ -30,6 +33,7 @@ import sys
 import tempfile
 
 FAILURES = []
+PDMESH_PY = None  # the pdmesh Python module, with --python-path DIR
 CURVES = ["bottom_left", "bottom_right", "right", "top_right", "top_left", "left", "middle"]
 LAYERED_CURVES = ["bottom", "right", "top", "left"]
 
@@ -123,6 +127,20 @@ def smooth(pdmesh, mesh, case, tmp):
     return out
 
 
+def python_read(label, path, regions, curves, quads=0, fixed=None):
+    """pdmesh.Mesh.read of PATH (with --python-path): the regions' values, the curve names, the
+    number of quads and of fixed nodes."""
+    if PDMESH_PY is None:
+        return
+    m = PDMESH_PY.Mesh.read(path)
+    got = sorted({float(r) for r in m.regions})
+    check(got == [float(r) for r in regions] and list(m.curve_names) == curves and len(m.quads) == quads,
+          f"{label}: Mesh.read: regions {got}, curves {list(m.curve_names)}, {len(m.quads)} quads")
+    if fixed is not None:
+        n = int((m.kinds == 0).sum()) if len(m.kinds) else 0
+        check(n == fixed, f"{label}: Mesh.read: {n} fixed nodes (want {fixed})")
+
+
 def at(mesh, i):
     """Vertex i's coordinates to 12 digits: mmg2d writes 15 significant digits, pdmesh 17."""
     return tuple(round(c, 12) for c in mesh["Vertices"][i][:2])
@@ -192,6 +210,8 @@ def mmg2d_checks(pdmesh, run_dir, case, layered, tmp):
             fixed = sorted(i for i, k in enumerate(kind) if k == 0)
             check(fixed == sorted(set(a["Corners"] + a["RequiredVertices"])),
                   f"{name}: {len(fixed)} fixed nodes, mmg2d's Corners and RequiredVertices")
+        python_read(f"{name}", path, refs, [f"ref{k}" for k in edge_refs],
+                    fixed=len(set(a["Corners"] + a["RequiredVertices"])))
         out = smooth(pdmesh, path, case, tmp)
         s = os.path.join(out, "mesh.mesh")
         if os.path.exists(s):
@@ -231,6 +251,8 @@ def mmg2d_checks(pdmesh, run_dir, case, layered, tmp):
             names = vtu_curve_names(meshio.read(vtu))
             check(names == [f"ref{k}" for k in sorted({e[2] for e in lay["Edges"]})],
                   f"layered {name}: curves {names} ({inner} edges of reference 0 in mmg2d's file)")
+        python_read(f"layered {name}", path, [], [f"ref{k}" for k in sorted({e[2] for e in lay["Edges"]})],
+                    quads=len(want))
 
 
 def gmsh_mesh(gmsh, path, recombine, version):
@@ -311,6 +333,7 @@ def gmsh_checks(pdmesh, run_dir, case, layered, tmp):
             # Recombined, the triangles all lie in "solid": one group that names no region, no regions.
             want = [] if recombine else [made["fluid"], made["solid"]]
             check(region == want, f"{label}: the triangles' physical surfaces are regions {region} (want {want})")
+        python_read(label, path, [] if recombine else [made["fluid"], made["solid"]], CURVES, quads=made["quads"])
         if not recombine:
             smooth(pdmesh, path, case, tmp)
         if recombine or version != 4.1:
@@ -426,6 +449,13 @@ def formats_checks(pdmesh, run_dir, layered, tmp):
 
 
 def main():
+    global PDMESH_PY
+    if "--python-path" in sys.argv:
+        k = sys.argv.index("--python-path")
+        sys.path.insert(0, sys.argv[k + 1])
+        del sys.argv[k:k + 2]
+        import pdmesh
+        PDMESH_PY = pdmesh
     if len(sys.argv) < 4:
         print(__doc__)
         return 2
