@@ -9,19 +9,20 @@ With --python-path DIR (a build's python folder) the mmg2d and gmsh checks also 
 pdmesh.Mesh.read.
 
 RUN is a `pdmesh mesh CASE` directory of tests/data/interop/two_regions.toml (two regions beside a
-constraint, a curve per segment: CURVES); LAYERED one of layered.toml (quad layers on
-the bottom). Each step prints ok/FAIL.
+constraint, a curve per segment: CURVES); LAYERED one of layered.toml (quad layers on the bottom).
+Each step prints ok/FAIL.
 
 - mmg2d (mmgpy's mmg2d_O3): RUN/mesh.mesh through a pass that changes nothing (-noinsert -noswap
   -nomove) and a remesh (-hmax); mmg2d keeps the triangle references (regions), the edge references
   (curves) and pdmesh's Corners; `pdmesh quality`, `pdmesh transfer` (onto mmg2d's mesh: the VTU it
   writes holds the regions and the fixed nodes as pdmesh reads them) and `pdmesh smooth` read its
-  output. With LAYERED, what mmg2d does to a file with quadrilaterals.
+  output. With LAYERED, what mmg2d does to a file with quadrilaterals (kept; the layer's top added
+  as edges of reference 0, which are no curve when read back).
 - gmsh (the gmsh module, 4.15.2): RUN/mesh.msh opens with the physical groups (curves, regions),
-  element types and Gmsh's quality measures; a mesh Gmsh makes of the same geometry, with named
-  physical groups (and quads by recombination), reads in `pdmesh quality`, `transfer` and `smooth`
-  with the physical names as curve names and the surfaces as regions; so do the Medit .mesh files
-  Gmsh and meshio write of it (Dimension 3, the vertices at z = 0).
+  element types and Gmsh's quality measures, and saved again by Gmsh reads back in pdmesh. A mesh
+  Gmsh makes of the same geometry, with named physical groups (and quads by recombination), reads in
+  `pdmesh quality`, `transfer` and `smooth` with the physical names as curve names and the surfaces
+  as regions; so do the Medit .mesh files Gmsh and meshio write of it (Dimension 3, z = 0).
 - formats: RUN/mesh.su2 against the SU2 native format's rules, and RUN/mesh.vtu in VTK's own XML
   reader (pyvista's vtk).
 
@@ -311,6 +312,20 @@ def gmsh_checks(pdmesh, run_dir, case, layered, tmp):
                   f"{label}: Gmsh's minSICN of {len(tags)} elements of type {etype}: min {min(q):.3f}, all valid")
         lines = gmsh.model.mesh.getElementsByType(1)[0]
         check(len(lines) > 0, f"{label}: {len(lines)} boundary lines")
+        # Saved again by Gmsh, the file reads back in pdmesh with its curves, regions and layer.
+        resaved = os.path.join(tmp, f"{label}_resaved.msh")
+        gmsh.write(resaved)
+        if label == "two_regions":
+            vtu = transfer(pdmesh, run_dir, resaved, tmp)
+            if vtu is not None:
+                m = meshio.read(vtu)
+                region = sorted({float(x) for x in m.cell_data["region"][0]}) if "region" in m.cell_data else []
+                check(region == [1.0, 2.0] and vtu_curve_names(m) == CURVES,
+                      f"{label} saved by Gmsh: regions {region}, curves {vtu_curve_names(m)}")
+        else:
+            q = quality_json(pdmesh, resaved, tmp)
+            layer = q.get("cells", {}).get("layer_cells") if q else None
+            check(layer == "boundary_layer", f"{label} saved by Gmsh: pdmesh quality's layer cells: {layer}")
     # Gmsh's meshes in pdmesh.
     for recombine, version in [(False, 4.1), (False, 2.2), (True, 4.1)]:
         label = f"gmsh {version}{' recombined' if recombine else ''}"
