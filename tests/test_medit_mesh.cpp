@@ -74,6 +74,10 @@ TEST_CASE("a mesh written as Medit .mesh reads back to the same points, triangle
   CHECK(same_edges(back.boundary_edges, m.boundary_edges));
   CHECK(report.reoriented_triangles == 0);
   CHECK(report.skipped_elements == 0);
+  // The Corners are the fixed nodes again, the edges' other vertices boundary nodes: written again,
+  // the file has the same Corners.
+  CHECK(back.kind == m.kind);
+  CHECK(medit_string(back) == text);
   // The warm start (pdmesh mesh --start, init.file) takes its points.
   CHECK(same_points(read_warm_points(dir / "m.mesh"), m.points));
 }
@@ -138,6 +142,55 @@ TEST_CASE("a Medit .mesh as mmg2d writes it: sections in its order, references w
   CHECK(m.triangles[1] == std::array<int, 3>{0, 2, 3});
   REQUIRE(cells.quads.size() == 1);
   CHECK_FALSE(cells.region_found);
+  // Corners and RequiredVertices are fixed nodes, the edges' other vertices boundary nodes.
+  using K = NodeKind;
+  CHECK(m.kind == std::vector<NodeKind>{K::Fixed, K::Fixed, K::Boundary, K::Boundary, K::Fixed});
+  // Without either section the kinds stay unknown.
+  const std::string plain =
+      "MeshVersionFormatted 2\nDimension 2\nVertices\n3\n0 0 0\n1 0 0\n0 1 0\n"
+      "Edges\n1\n1 2 1\nTriangles\n1\n1 2 3 0\nEnd\n";
+  CHECK(parse_medit_mesh("plain.mesh", plain, report).kind.empty());
+}
+
+TEST_CASE("Medit edges of reference 0 between two cells, as mmg2d writes a layer's top, are not curves",
+          "[io][medit][layers]") {
+  // A square of two triangles beside a quad; the edge 2-3 between them and the boundary edge 1-2 have
+  // reference 0, the quad's far side 5-6 reference 3.
+  const std::string text =
+      "MeshVersionFormatted 2\nDimension 2\nVertices\n6\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n2 0 0\n2 1 0\n"
+      "Edges\n3\n2 3 0\n1 2 0\n5 6 3\nTriangles\n2\n1 2 3 0\n1 3 4 0\nQuadrilaterals\n1\n2 5 6 3 1\nEnd\n";
+  for (const bool with_cells : {false, true}) {
+    INFO(with_cells);
+    MeshReadReport report;
+    SurfaceCells cells;
+    const Mesh m = parse_medit_mesh("mmg.mesh", text, report, with_cells ? &cells : nullptr);
+    CHECK(m.curve_names == std::vector<std::string>{"ref0", "ref3"});
+    REQUIRE(m.boundary_edges.size() == 2);
+    CHECK(m.boundary_edges[0].a == 0);
+    CHECK(m.boundary_edges[0].b == 1);
+    CHECK(m.boundary_edges[1].curve == 1);
+    REQUIRE_FALSE(report.notes.empty());
+    CHECK(report.notes[0] == "mmg.mesh: 1 edges of reference 0 between two cells are not curves");
+  }
+}
+
+TEST_CASE("a Medit .mesh of Dimension 3 with every vertex at z = 0, as Gmsh and meshio write a 2-D mesh, is read",
+          "[io][medit]") {
+  // Gmsh's layout: the keyword and its value on separate lines, blanks before them, x y z ref.
+  const std::string text =
+      " MeshVersionFormatted 2\n Dimension\n 3\n Vertices\n 4\n 0 0 0 1\n 1 0 0 2\n 1 1 0 3\n 0 1 0 4\n"
+      " Edges\n 2\n 1 2 5\n 2 3 6\n Triangles\n 2\n 1 2 3 7\n 1 3 4 7\n End\n";
+  MeshReadReport report;
+  const Mesh m = parse_medit_mesh("gmsh.mesh", text, report);
+  CHECK(m.points.size() == 4);
+  CHECK(m.points[2].x == 1.0);
+  CHECK(m.points[2].y == 1.0);
+  CHECK(m.triangles.size() == 2);
+  CHECK(m.curve_names == std::vector<std::string>{"ref5", "ref6"});
+  CHECK(m.region == std::vector<double>{7, 7});
+  // A metric background mesh stays 2-D: its .sol would hold 3-D tensors.
+  CHECK_THAT(error_message<InputError>([&] { parse_medit_metric("m.mesh", text, "m.sol", "SolAtVertices\n"); }),
+             Catch::Contains("m.mesh:3: pdmesh reads 2-D Medit files: Dimension must be 2 (got '3')"));
 }
 
 TEST_CASE("bad Medit .mesh files exit 2 naming the file and the line, and nothing is written", "[io][medit][cli]") {
@@ -150,8 +203,10 @@ TEST_CASE("bad Medit .mesh files exit 2 naming the file and the line, and nothin
   };
   const std::vector<Bad> bad = {
       {"binary.meshb", head, "binary.meshb: binary Medit files (.meshb) are not read; write the ASCII .mesh"},
-      {"dim3.mesh", "MeshVersionFormatted 2\nDimension 3\n",
-       "dim3.mesh:2: pdmesh reads 2-D Medit files: Dimension must be 2 (got '3')"},
+      {"dim4.mesh", "MeshVersionFormatted 2\nDimension 4\n",
+       "dim4.mesh:2: pdmesh reads 2-D Medit files: Dimension must be 2, or 3 with every vertex at z = 0 (got '4')"},
+      {"dim3.mesh", "MeshVersionFormatted 2\nDimension 3\nVertices\n3\n0 0 0 0\n1 0 0.5 0\n0 1 0 0\n",
+       "dim3.mesh:6: vertex 2 is off the plane z = 0: pdmesh reads planar meshes (got '0.5')"},
       {"index.mesh", head + "Triangles\n2\n1 2 3 0\n1 3 9 0\nEnd\n",
        "index.mesh:12: triangle vertex 9 is out of range [1, 4] (got '9')"},
       {"edge.mesh", head + "Edges\n1\n0 1 1\nTriangles\n1\n1 2 3 0\nEnd\n",
@@ -182,7 +237,7 @@ TEST_CASE("bad Medit .mesh files exit 2 naming the file and the line, and nothin
                                          "' -g '" PDMESH_SOURCE_DIR "/cases/square200' --out '" + out.string() + "'");
   INFO(r.output);
   CHECK(r.status == 2);
-  CHECK(r.output.find("dim3.mesh:2: pdmesh reads 2-D Medit files") != std::string::npos);
+  CHECK(r.output.find("dim3.mesh:6: vertex 2 is off the plane z = 0") != std::string::npos);
   CHECK_FALSE(fs::exists(out));
   // A binary file gets the binary file's message from smooth and from a warm start too.
   for (const std::string& args : {"smooth '" + (dir / "binary.meshb").string() +

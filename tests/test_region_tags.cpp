@@ -1,12 +1,19 @@
-// Regional attributes on the mesh (mesh/region_tags.cpp) and in the mesh files (MSH physical
-// surfaces, VTU cell data, Triangle .ele attribute), and end to end from a .poly file.
+// Regional attributes on the mesh (mesh/region_tags.cpp), in the mesh files (MSH physical surfaces,
+// VTU cell data, Triangle .ele attribute, Medit triangle references) and read back from each, and
+// end to end from a .poly file.
+#include <algorithm>
+#include <array>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <string>
 
 #include <catch2/catch.hpp>
 
+#include "io/medit_reader.hpp"
 #include "io/medit_writer.hpp"
+#include "io/mesh_formats.hpp"
+#include "io/msh_reader.hpp"
 #include "io/msh_writer.hpp"
 #include "io/triangle_writer.hpp"
 #include "io/vtu_writer.hpp"
@@ -28,6 +35,17 @@ Mesh two_squares() {
   m.curve_names = {"outer"};
   m.boundary_edges = {{0, 1, 0}, {1, 2, 0}, {2, 5, 0}, {5, 4, 0}, {4, 3, 0}, {3, 0, 0}};
   return m;
+}
+
+// Each triangle's region by its sorted vertices: MSH 4.1 writes the triangles grouped by region.
+std::map<std::array<int, 3>, double> region_of_triangles(const Mesh& m) {
+  std::map<std::array<int, 3>, double> out;
+  for (std::size_t t = 0; t < m.triangles.size(); ++t) {
+    std::array<int, 3> v = m.triangles[t];
+    std::sort(v.begin(), v.end());
+    out[v] = t < m.region.size() ? m.region[t] : -1.0;
+  }
+  return out;
 }
 
 Geometry segments(const std::vector<std::pair<Vec2, Vec2>>& list) {
@@ -91,6 +109,58 @@ TEST_CASE("region tags in the mesh files", "[mesh][io]") {
   CHECK_THAT(vtu_string(m, VtuFormat::Ascii), !Contains("Name=\"region\""));
   CHECK_THAT(triangle_strings(m).ele, Contains("4 3 0\n1 1 2 5\n"));
   CHECK_THAT(medit_string(m), Contains("Triangles\n4\n1 2 5 0\n") && !Contains("region"));
+}
+
+TEST_CASE("region tags read back from every format that writes them", "[mesh][io]") {
+  const fs::path dir = pdmesh_test::fresh_dir("region_read_back");
+  Mesh m = two_squares();
+  m.region = {7, 7, 2.5, 2.5};
+  for (const std::string format : {"msh", "msh22", "vtu", "triangle", "mesh"}) {
+    INFO(format);
+    const auto written = write_mesh(m, dir, format, {format});
+    MeshReadReport report;
+    const Mesh back = read_mesh(format == "triangle" ? dir / "triangle.ele" : written.front(), report);
+    CHECK(back.region.size() == m.region.size());
+    CHECK(region_of_triangles(back) == region_of_triangles(m));
+    // Written again, the regions carry the same names.
+    CHECK(region_surfaces(back).names == std::vector<std::string>{"region_2.5", "region_7"});
+  }
+  // Without regions nothing is read as one.
+  m.region.clear();
+  for (const std::string format : {"msh", "vtu", "triangle", "mesh"}) {
+    INFO(format);
+    const auto written = write_mesh(m, dir, "plain_" + format, {format});
+    MeshReadReport report;
+    CHECK(read_mesh(format == "triangle" ? dir / "plain_triangle.ele" : written.front(), report).region.empty());
+  }
+}
+
+TEST_CASE("regions of files pdmesh did not write: Medit references without names, Gmsh's physical surfaces",
+          "[mesh][io]") {
+  // mmg2d writes the triangle references back without pdmesh's comments: the reference is the
+  // attribute, which the writer names region_<N>.
+  const std::string medit =
+      "MeshVersionFormatted 2\nDimension 2\nVertices\n6\n0 0 1\n1 0 1\n2 0 1\n0 1 1\n1 1 1\n2 1 1\n"
+      "Triangles\n4\n1 2 5 3\n1 5 4 3\n2 3 6 0\n2 6 5 0\nEnd\n";
+  MeshReadReport report;
+  const Mesh mm = parse_medit_mesh("mmg.mesh", medit, report);
+  CHECK(mm.region == std::vector<double>{3, 3, 0, 0});
+  CHECK(region_surfaces(mm).names == std::vector<std::string>{"region_0", "region_3"});
+  // A layered run's file names its reference boundary_layer: no regions (its cells are SurfaceCells').
+  const std::string layered = "MeshVersionFormatted 2\nDimension 2\n# ref 1: region boundary_layer\n" +
+                              medit.substr(std::string("MeshVersionFormatted 2\nDimension 2\n").size());
+  CHECK(parse_medit_mesh("layer.mesh", layered, report).region.empty());
+  // Gmsh: two named physical surfaces; a group's attribute is its tag (the name is not region_<a>).
+  const std::string msh =
+      "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$PhysicalNames\n2\n2 5 \"fluid\"\n2 9 \"solid\"\n"
+      "$EndPhysicalNames\n$Nodes\n6\n1 0 0 0\n2 1 0 0\n3 2 0 0\n4 0 1 0\n5 1 1 0\n6 2 1 0\n$EndNodes\n"
+      "$Elements\n4\n1 2 2 5 1 1 2 5\n2 2 2 5 1 1 5 4\n3 2 2 9 2 2 3 6\n4 2 2 9 2 2 6 5\n$EndElements\n";
+  CHECK(parse_msh("g.msh", msh, report).region == std::vector<double>{5, 5, 9, 9});
+  // One Gmsh surface group is the whole domain: no regions.
+  std::string one = msh;
+  one.replace(one.find("2 2 9 2 2 3 6"), 13, "2 2 5 1 2 3 6");
+  one.replace(one.find("2 2 9 2 2 6 5"), 13, "2 2 5 1 2 6 5");
+  CHECK(parse_msh("one.msh", one, report).region.empty());
 }
 
 TEST_CASE("pdmesh mesh on a .poly with a regional attribute writes its tag", "[cli]") {

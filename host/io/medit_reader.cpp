@@ -3,9 +3,13 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <cstdint>
 #include <map>
 #include <optional>
 #include <type_traits>
+#include <unordered_map>
+#include <utility>
 
 #include "core/errors.hpp"
 #include "core/input_file.hpp"
@@ -71,12 +75,17 @@ long long read_count(LineScanner& s, std::string_view keyword, std::size_t min_b
   return n;
 }
 
-// Checks MeshVersionFormatted's and Dimension's values.
-void header_keyword(LineScanner& s, std::string_view keyword) {
+// Checks MeshVersionFormatted's and Dimension's values and returns the value. A mesh may have
+// Dimension 3 (`planar`): Gmsh and meshio write a 2-D mesh so, its vertices at z = 0.
+long long header_keyword(LineScanner& s, std::string_view keyword, bool planar = false) {
   const std::string_view tok = next_token(s, keyword);
   const long long v = s.to_int(tok, keyword);
-  if (keyword == "Dimension" && v != 2) s.fail("pdmesh reads 2-D Medit files: Dimension must be 2", tok);
+  if (keyword == "Dimension" && v != 2 && !(planar && v == 3))
+    s.fail(planar ? "pdmesh reads 2-D Medit files: Dimension must be 2, or 3 with every vertex at z = 0"
+                  : "pdmesh reads 2-D Medit files: Dimension must be 2",
+           tok);
   if (keyword == "MeshVersionFormatted" && (v < 1 || v > 4)) s.fail("MeshVersionFormatted must be 1 to 4", tok);
+  return v;
 }
 
 void refuse_binary(const std::filesystem::path& file, const std::string& ext, const char* want) {
@@ -101,7 +110,9 @@ struct MeditData {
   std::vector<long long> quad_refs;
   std::vector<std::array<int, 2>> edges;
   std::vector<long long> edge_refs;
+  std::vector<int> corners;  // Corners and RequiredVertices, in file order
   RefNames names;
+  int dimension = 2;
 };
 
 // Reads the N vertex indices of a cell or edge and its reference.
@@ -113,7 +124,8 @@ long long read_record(LineScanner& s, const char* what, long long nv, std::array
   return s.to_int(next_token(s, fmt::format("a {} reference", what)), fmt::format("{} reference", what));
 }
 
-MeditData parse_sections(LineScanner& s) {
+// `planar`: a Dimension 3 file is read when its vertices lie at z = 0.
+MeditData parse_sections(LineScanner& s, bool planar) {
   MeditData d;
   bool has_vertices = false;
   std::string_view kw;
@@ -135,7 +147,8 @@ MeditData parse_sections(LineScanner& s) {
   };
   while (next_keyword(s, kw, d.names) && kw != "End") {
     if (kw == "MeshVersionFormatted" || kw == "Dimension") {
-      header_keyword(s, kw);
+      const long long v = header_keyword(s, kw, planar);
+      if (kw == "Dimension") d.dimension = static_cast<int>(v);
     } else if (kw == "Vertices") {
       if (has_vertices) s.fail("a second Vertices section", kw);
       has_vertices = true;
@@ -144,6 +157,13 @@ MeditData parse_sections(LineScanner& s) {
       for (auto& p : d.points) {
         p.x = s.to_double(next_token(s, "a vertex x"), "for a vertex x");
         p.y = s.to_double(next_token(s, "a vertex y"), "for a vertex y");
+        if (d.dimension == 3) {
+          const std::string_view z = next_token(s, "a vertex z");
+          if (s.to_double(z, "for a vertex z") != 0.0)
+            s.fail(
+                fmt::format("vertex {} is off the plane z = 0: pdmesh reads planar meshes", &p - d.points.data() + 1),
+                z);
+        }
         s.to_int(next_token(s, "a vertex reference"), "vertex reference");
       }
     } else if (kw == "Triangles") {
@@ -156,7 +176,9 @@ MeditData parse_sections(LineScanner& s) {
       const long long nv = need_vertices(kw);
       const std::string section(kw);
       const long long n = read_count(s, section, 2);
-      for (long long k = 0; k < n; ++k) s.to_index(next_token(s, section), 1, nv, fmt::format("{} vertex", section));
+      for (long long k = 0; k < n; ++k)
+        d.corners.push_back(
+            static_cast<int>(s.to_index(next_token(s, section), 1, nv, fmt::format("{} vertex", section)) - 1));
     } else {
       // Sections read over: lists of edge, triangle or quadrilateral numbers.
       if (kw != "Ridges" && kw != "RequiredEdges" && kw != "RequiredTriangles" && kw != "RequiredQuadrilaterals")
@@ -214,11 +236,76 @@ std::vector<Metric> parse_sol(LineScanner& s, const std::vector<Vec2>& points, c
   s.fail("no SolAtVertices section");
 }
 
+// Per triangle, its region's attribute (Mesh::region): the writer's references are j + 1 for the
+// j-th region, named "region_<a>" in a comment, so the comment gives the attribute; a reference no
+// comment names (mmg2d writes none) is taken as the attribute, which the writer then names
+// "region_<N>". Empty when every reference is 0, and for a file whose comments name a region of
+// another kind (a layered run's "boundary_layer": its cells are read as SurfaceCells).
+std::vector<double> triangle_regions(const MeditData& d) {
+  std::map<long long, double> attribute;
+  for (const auto& [ref, name] : d.names.regions) {
+    const std::optional<double> a = region_attribute(name);
+    if (!a) return {};
+    attribute[ref] = *a;
+  }
+  bool any = !attribute.empty();
+  for (const long long ref : d.triangle_refs) any = any || ref != 0;
+  if (!any) return {};
+  std::vector<double> region;
+  region.reserve(d.triangle_refs.size());
+  for (const long long ref : d.triangle_refs) {
+    const auto named = attribute.find(ref);
+    region.push_back(named != attribute.end() ? named->second : static_cast<double>(ref));
+  }
+  return region;
+}
+
+// Per point, its kind where the file marks corners (Corners, RequiredVertices: pdmesh writes its
+// fixed nodes there, mmg2d keeps them and adds the corners it finds): those Fixed, the other
+// vertices of edges Boundary, the rest Interior. Empty (unknown) without either section.
+std::vector<NodeKind> node_kinds(const MeditData& d, const Mesh& mesh) {
+  if (d.corners.empty()) return {};
+  std::vector<NodeKind> kind(mesh.points.size(), NodeKind::Interior);
+  for (const BoundaryEdge& e : mesh.boundary_edges)
+    for (const int v : {e.a, e.b}) kind[static_cast<std::size_t>(v)] = NodeKind::Boundary;
+  for (const int v : d.corners) kind[static_cast<std::size_t>(v)] = NodeKind::Fixed;
+  return kind;
+}
+
+// Drops the edges of reference 0 (no comment naming it) that lie between two cells: mmg2d writes the
+// edges between a mesh's triangles and quadrilaterals (a layered run's layer top) so, as required
+// edges without a reference, and they bound no domain. Said in a note.
+void drop_inner_unreferenced_edges(MeditData& d, const std::string& file, MeshReadReport& report) {
+  if (d.names.curves.count(0) != 0 || std::find(d.edge_refs.begin(), d.edge_refs.end(), 0) == d.edge_refs.end()) return;
+  const auto key = [](int a, int b) {
+    if (a > b) std::swap(a, b);
+    return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(a)) << 32) | static_cast<std::uint32_t>(b);
+  };
+  std::unordered_map<std::uint64_t, int> cells_at;
+  for (const auto& t : d.triangles)
+    for (std::size_t k = 0; k < 3; ++k) ++cells_at[key(t[k], t[(k + 1) % 3])];
+  for (const auto& q : d.quads)
+    for (std::size_t k = 0; k < 4; ++k) ++cells_at[key(q[k], q[(k + 1) % 4])];
+  std::size_t kept = 0;
+  for (std::size_t k = 0; k < d.edges.size(); ++k) {
+    const auto it = cells_at.find(key(d.edges[k][0], d.edges[k][1]));
+    if (d.edge_refs[k] == 0 && it != cells_at.end() && it->second == 2) continue;
+    d.edges[kept] = d.edges[k];
+    d.edge_refs[kept++] = d.edge_refs[k];
+  }
+  if (kept == d.edges.size()) return;
+  report.notes.push_back(
+      fmt::format("{}: {} edges of reference 0 between two cells are not curves", file, d.edges.size() - kept));
+  d.edges.resize(kept);
+  d.edge_refs.resize(kept);
+}
+
 }  // namespace
 
 Mesh parse_medit_mesh(const std::string& file_label, std::string content, MeshReadReport& report, SurfaceCells* cells) {
   LineScanner s(file_label, std::move(content));
-  MeditData d = parse_sections(s);
+  MeditData d = parse_sections(s, true);
+  drop_inner_unreferenced_edges(d, file_label, report);
   Mesh mesh;
   mesh.points = std::move(d.points);
   mesh.triangles = std::move(d.triangles);
@@ -233,6 +320,8 @@ Mesh parse_medit_mesh(const std::string& file_label, std::string content, MeshRe
   }
   for (std::size_t k = 0; k < d.edges.size(); ++k)
     mesh.boundary_edges.push_back({d.edges[k][0], d.edges[k][1], curve_of[d.edge_refs[k]]});
+  mesh.region = triangle_regions(d);
+  mesh.kind = node_kinds(d, mesh);
   orient_triangles_ccw(mesh, report);
   if (cells == nullptr) {
     if (!d.quads.empty()) {
@@ -264,7 +353,7 @@ Mesh read_medit_mesh(const std::filesystem::path& path, MeshReadReport& report, 
 MetricMeshData parse_medit_metric(const std::string& mesh_label, std::string mesh_text, const std::string& sol_label,
                                   std::string sol_text) {
   LineScanner ms(mesh_label, std::move(mesh_text));
-  MeditData mesh = parse_sections(ms);
+  MeditData mesh = parse_sections(ms, false);
   if (mesh.triangles.empty()) ms.fail("no Triangles: a metric background mesh needs triangles");
   LineScanner ss(sol_label, std::move(sol_text));
   std::vector<Metric> metrics = parse_sol(ss, mesh.points, mesh_label);

@@ -1,6 +1,6 @@
 // Medit's ASCII .mesh, the format of mmg (mmg2d, mmgpy) and its users: a 2-D .mesh (MeshVersionFormatted,
-// Dimension 2, Vertices, Triangles, Quadrilaterals, Edges; Corners and RequiredVertices checked and read
-// over, the Ridges and Required* lists read over) as a mesh (read_mesh's .mesh), and the same .mesh with
+// Dimension 2, Vertices, Triangles, Quadrilaterals, Edges, Corners and RequiredVertices; the Ridges and
+// other Required* lists read over) as a mesh (read_mesh's .mesh), and the same .mesh with
 // a .sol whose SolAtVertices block holds one solution of type 3, a symmetric tensor per vertex, in 2-D
 // the order m11 m12 m22, as metric data. Indices are 1-based; '#' starts a comment; End ends the file.
 // Binary .meshb/.solb are refused. One parser serves both.
@@ -17,12 +17,15 @@ namespace pdmesh {
 
 // The mesh of a .mesh file: its points, triangles (clockwise ones turned) and, per edge reference N,
 // a curve named by the comment "# ref N: curve NAME" where the file has one (io/medit_writer.hpp
-// writes them), else "refN", the curves in the order of their numbers. Vertex and triangle references
-// are not kept. With `cells`, the quadrilaterals too (counter-clockwise), and the cells whose
-// reference a comment "# ref N: region NAME" names cells->region are in it (region_found: the file has
-// that comment); without `cells` the quadrilaterals are skipped with a note. Throws InputError
-// "FILE:LINE: what (got 'TEXT')" on a keyword it does not know, Dimension other than 2, a vertex index
-// out of range, a truncated file, and for a .meshb path.
+// writes them), else "refN", the curves in the order of their numbers. Triangle references are the
+// regions (Mesh::region: the attribute a of a comment "# ref N: region region_<a>", else N; none
+// when all are 0). With Corners or RequiredVertices the node kinds (those Fixed, the edges' other
+// vertices Boundary, the rest Interior), else none. Vertex references are not kept. With `cells`,
+// the quadrilaterals too (counter-clockwise), and the cells whose reference a comment
+// "# ref N: region NAME" names cells->region are in it (region_found: the file has that comment);
+// without `cells` the quadrilaterals are skipped with a note. Throws InputError
+// "FILE:LINE: what (got 'TEXT')" on a keyword it does not know, Dimension other than 2, a vertex
+// index out of range, a truncated file, and for a .meshb path.
 Mesh parse_medit_mesh(const std::string& file_label, std::string content, MeshReadReport& report,
                       SurfaceCells* cells = nullptr);
 Mesh read_medit_mesh(const std::filesystem::path& path, MeshReadReport& report, SurfaceCells* cells = nullptr);

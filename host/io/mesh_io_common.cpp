@@ -2,7 +2,10 @@
 #include "io/mesh_io_common.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <cstdlib>
 #include <numeric>
+#include <optional>
 
 #include <fmt/format.h>
 
@@ -69,6 +72,18 @@ RegionSurfaces region_surfaces(const Mesh& mesh) {
     s.of_triangle[i] =
         static_cast<int>(std::lower_bound(attributes.begin(), attributes.end(), mesh.region[i]) - attributes.begin());
   return s;
+}
+
+std::optional<double> region_attribute(std::string_view name) {
+  constexpr std::string_view prefix = "region_";
+  if (name.substr(0, prefix.size()) != prefix || name.size() == prefix.size()) return std::nullopt;
+  const std::string number(name.substr(prefix.size()));
+  // fmt's shortest form of a finite double: digits, '-', '.', 'e', '+'.
+  if (number.find_first_not_of("0123456789-+.e") != std::string::npos) return std::nullopt;
+  char* end = nullptr;
+  const double a = std::strtod(number.c_str(), &end);
+  if (end != number.c_str() + number.size() || !std::isfinite(a)) return std::nullopt;
+  return a;
 }
 
 std::vector<std::size_t> boundary_edges_by_curve(const Mesh& mesh) {

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "mesh/mesh.hpp"
@@ -79,6 +80,9 @@ struct RegionSurfaces {
   bool regions() const { return names.size() != 1 || names.front() != "domain"; }
 };
 RegionSurfaces region_surfaces(const Mesh& mesh);
+// The attribute a region_surfaces name "region_<a>" stands for (the readers take regions back by it);
+// nullopt for any other name ("domain", "boundary_layer", a name a user gave).
+std::optional<double> region_attribute(std::string_view name);
 
 // Boundary edge indices grouped by curve (stable: curve order, then file order within a curve).
 std::vector<std::size_t> boundary_edges_by_curve(const Mesh& mesh);

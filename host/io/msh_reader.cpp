@@ -8,11 +8,13 @@
 #include <charconv>
 #include <limits>
 #include <map>
+#include <optional>
 #include <unordered_map>
 
 #include <fmt/format.h>
 
 #include "core/errors.hpp"
+#include "io/mixed_mesh.hpp"
 #include "io/text_file.hpp"
 
 namespace pdmesh {
@@ -426,6 +428,29 @@ void assemble_cells(const std::string& file, const MshData& d, const Mesh& mesh,
   orient_quads_ccw(mesh.points, out.quads, file, report);
 }
 
+// Per triangle, its region's attribute (Mesh::region), from its 2-D physical group: a group named
+// "region_<a>" (the writer's names) gives a, any other group its tag, none 0. Empty when the
+// triangles lie in one group that names no region (the writer's "domain", a Gmsh surface) or in
+// none, and for a layered run's file (a group named boundary_layer: its cells are SurfaceCells').
+std::vector<double> triangle_regions(const MshData& d) {
+  std::map<long long, double> attribute;  // physical tag -> attribute
+  bool named_region = false;
+  for (const auto& e : d.triangles) {
+    if (attribute.count(e.physical) != 0) continue;
+    const auto name = d.surface_names.find(e.physical);
+    if (name != d.surface_names.end() && name->second == kLayerRegion) return {};
+    const std::optional<double> a =
+        name != d.surface_names.end() ? region_attribute(name->second) : std::optional<double>();
+    named_region = named_region || a.has_value();
+    attribute[e.physical] = a ? *a : static_cast<double>(e.physical);
+  }
+  if (attribute.size() < 2 && !named_region) return {};
+  std::vector<double> region;
+  region.reserve(d.triangles.size());
+  for (const auto& e : d.triangles) region.push_back(attribute[e.physical]);
+  return region;
+}
+
 Mesh assemble(const std::string& file, MshData& d, MeshReadReport& report) {
   Mesh mesh;
   mesh.points = std::move(d.points);
@@ -452,6 +477,7 @@ Mesh assemble(const std::string& file, MshData& d, MeshReadReport& report) {
     mesh.triangles.push_back(
         {resolve(d, file, e, e.nodes[0]), resolve(d, file, e, e.nodes[1]), resolve(d, file, e, e.nodes[2])});
   }
+  mesh.region = triangle_regions(d);
   // $Periodic: the curves' links, their entities resolved as the lines' (physical group, else entity).
   std::map<long long, long long> entity_phys;  // curve entity -> the physical tag of its lines
   for (const auto& e : d.lines) entity_phys.emplace(e.entity, e.physical);

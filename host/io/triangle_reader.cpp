@@ -84,6 +84,9 @@ Mesh parse_triangle(const std::string& node_label, std::string node, const std::
     if (count < 0) s.fail("negative triangle count", head[0]);
     if (per != 3 && per != 6) s.fail("nodes per triangle must be 3 or 6", head[1]);
     s.check_count(count, static_cast<std::size_t>(2 * (1 + per)), "triangle count");
+    // The first triangle attribute is the region's (triangle -A writes it, and so does pdmesh).
+    const long long attributes = head.size() > 2 ? s.to_int(head[2], "attribute count") : 0;
+    if (attributes < 0) s.fail("negative attribute count", head[2]);
     mesh.triangles.reserve(static_cast<std::size_t>(count));
     for (long long i = 0; i < count; ++i) {
       const auto t = s.expect_tokens("a triangle", '#');
@@ -94,6 +97,10 @@ Mesh parse_triangle(const std::string& node_label, std::string node, const std::
             static_cast<int>(s.to_index(t[static_cast<std::size_t>(1 + k)], base, base + n - 1, "point index") - base);
       }
       mesh.triangles.push_back(tri);
+      if (attributes > 0) {
+        if (static_cast<long long>(t.size()) < 2 + per) s.fail(fmt::format("a triangle needs {} fields", 2 + per));
+        mesh.region.push_back(s.to_double(t[static_cast<std::size_t>(1 + per)], "for a triangle attribute"));
+      }
     }
   }
   if (!poly.empty()) {

@@ -1,5 +1,6 @@
 // Triangle (Shewchuk) file reader: STEM.ele with STEM.node, and STEM.poly when present for the
-// boundary segments (curves by segment marker, named from "# pdmesh curve" comments).
+// boundary segments (curves by segment marker, named from "# pdmesh curve" comments); the .ele's first
+// triangle attribute is the triangle's region.
 #pragma once
 #include <filesystem>
 #include <string>

@@ -301,8 +301,8 @@ int as_index(double v, long long n, const ArrayInfo& a, const VtuFile& f) {
   return static_cast<int>(v);
 }
 
-// The triangles into `mesh`; with `cells` the quads into cells->quads, and the cell index of each
-// triangle and quad into the index lists (for the region flags).
+// The triangles into `mesh`; with `cells` the quads into cells->quads; the cell index of each
+// triangle and quad into the index lists (for the regions and the region flags).
 struct CellIndex {
   std::vector<long long> triangles, quads;
 };
@@ -335,7 +335,7 @@ void read_cells(const VtuFile& f, Mesh& mesh, MeshReadReport& report, const std:
       std::array<int, 3> t{};
       for (int k = 0; k < 3; ++k) t[k] = as_index(conn[start + k], npoints, conn_info, f);
       mesh.triangles.push_back(t);
-      if (cells != nullptr) index.triangles.push_back(c);
+      index.triangles.push_back(c);
     } else if (type == 9 && cells != nullptr) {
       if (stop - start != 4) f.fail(offs_info.pos, fmt::format("quad cell {} has {} points", c, stop - start));
       std::array<int, 4> q{};
@@ -374,8 +374,16 @@ void read_region(const VtuFile& f, SurfaceCells& cells, const CellIndex& index) 
     cells.quad_in_region[i] = v[static_cast<std::size_t>(index.quads[i])] != 0;
 }
 
-// pdmesh's own arrays: the node kind (PointData) and the curves (FieldData).
-void read_pdmesh_arrays(const VtuFile& f, Mesh& mesh) {
+// pdmesh's own arrays: the node kind (PointData), the triangles' regions (CellData "region", the
+// regional attribute of each cell) and the curves (FieldData).
+void read_pdmesh_arrays(const VtuFile& f, Mesh& mesh, const CellIndex& index) {
+  if (const ArrayInfo* a = f.find("CellData", "region")) {
+    const std::vector<double> v = f.values(*a);
+    if (static_cast<long long>(v.size()) != f.cells())
+      f.fail(a->pos, fmt::format("cell data 'region' holds {} values for {} cells", v.size(), f.cells()));
+    mesh.region.reserve(index.triangles.size());
+    for (const long long c : index.triangles) mesh.region.push_back(v[static_cast<std::size_t>(c)]);
+  }
   const auto npoints = static_cast<long long>(mesh.points.size());
   if (const ArrayInfo* a = f.find("PointData", "kind")) {
     const std::vector<double> k = f.values(*a);
@@ -456,7 +464,7 @@ Mesh parse_vtu(const std::string& file, const std::string& content, MeshReadRepo
   if (cells != nullptr) cells->quads.clear();
   CellIndex index;
   read_cells(f, mesh, report, file, cells, index);
-  read_pdmesh_arrays(f, mesh);
+  read_pdmesh_arrays(f, mesh, index);
   if (data != nullptr) read_point_data(f, *data);
   orient_triangles_ccw(mesh, report);
   if (cells != nullptr) {

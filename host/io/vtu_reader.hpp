@@ -1,6 +1,6 @@
-// VTK XML UnstructuredGrid (.vtu) reader: points, triangle cells, the node kind and the boundary
-// edges / curve names that our writer stores as FieldData, and on request one point-data array and
-// the quads (SurfaceCells).
+// VTK XML UnstructuredGrid (.vtu) reader: points, triangle cells, the node kind, the triangles'
+// region (cell data "region") and the boundary edges / curve names that our writer stores as
+// FieldData, and on request one point-data array and the quads (SurfaceCells).
 #pragma once
 #include <filesystem>
 #include <string>

@@ -129,8 +129,19 @@ class Mesh:
 
     @property
     def kinds(self) -> np.ndarray:
-        """(N,) uint8 per point: 0 fixed (a critical point), 1 boundary, 2 interior (empty when read)."""
+        """(N,) uint8 per point: 0 fixed (a critical point), 1 boundary, 2 interior. Read from a
+        file: a .vtu's ``kind``, or a Medit .mesh's ``Corners`` and ``RequiredVertices`` (fixed) and
+        edges (boundary); empty where the file gives neither."""
         return self._core.kinds
+
+    @property
+    def regions(self) -> np.ndarray:
+        """(M,) float64 per triangle: the regional attribute of its region (a .poly's regions), empty
+        without regions. ``write`` writes them (MSH physical surfaces ``region_<a>``, VTU cell data
+        ``region``, the .ele attribute, Medit triangle references) and ``read`` takes them back, a
+        Medit reference no comment names (mmg2d's output) as the attribute itself
+        (docs/mesh-formats.md, "Regions")."""
+        return self._core.regions
 
     @property
     def spacing(self) -> np.ndarray:

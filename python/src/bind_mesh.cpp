@@ -204,7 +204,14 @@ void bind_mesh(nb::module_& m) {
             return shared_view<std::uint8_t, 1>(k, h.mesh->kind.size(), h.mesh);
           },
           nb::rv_policy::automatic,
-          "(N,) uint8 point kinds (0 fixed, 1 boundary, 2 interior); empty for a mesh read from a file.")
+          "(N,) uint8 point kinds (0 fixed, 1 boundary, 2 interior); empty where a file does not give them.")
+      .def_prop_ro(
+          "regions",
+          [](const MeshHandle& h) {
+            const auto& r = h.mesh->region;
+            return shared_view<double, 1>(r.data(), r.size(), h.mesh);
+          },
+          nb::rv_policy::automatic, "(M,) float64 per triangle: its region's attribute (empty without regions).")
       .def_prop_ro(
           "spacing",
           [](const MeshHandle& h) {

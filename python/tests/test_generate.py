@@ -170,3 +170,24 @@ def test_geo_interface_round_trip(rings):
     both = pdmesh.Geometry.from_geo_interface(two)
     assert both.area == pytest.approx(geo.area + 1.0)
     assert both.__geo_interface__["type"] == "MultiPolygon"
+
+
+def test_read_keeps_regions_and_corners(tmp_path):
+    # A .mesh as mmg2d writes pdmesh's back: triangle references without pdmesh's comments, Corners.
+    (tmp_path / "mmg.mesh").write_text(
+        "MeshVersionFormatted 2\nDimension 2\nVertices\n6\n0 0 1\n1 0 1\n2 0 1\n0 1 1\n1 1 1\n2 1 1\n"
+        "Corners\n4\n1\n3\n4\n6\nEdges\n6\n1 2 1\n2 3 1\n3 6 2\n6 5 3\n5 4 3\n4 1 4\n"
+        "Triangles\n4\n1 2 5 1\n1 5 4 1\n2 3 6 2\n2 6 5 2\nEnd\n")
+    mesh = pdmesh.Mesh.read(tmp_path / "mmg.mesh")
+    assert mesh.regions.tolist() == [1, 1, 2, 2]
+    assert mesh.kinds.tolist() == [0, 1, 0, 0, 1, 0]
+    assert mesh.curve_names == ["ref1", "ref2", "ref3", "ref4"]
+    # Written and read again in every format that carries regions: the same regions per triangle.
+    for name in ("m.msh", "m.vtu", "m.ele", "m.mesh"):
+        mesh.write(tmp_path / name)
+        back = pdmesh.Mesh.read(tmp_path / name)
+        by_triangle = {tuple(sorted(t)): r for t, r in zip(back.triangles.tolist(), back.regions.tolist())}
+        assert by_triangle == {tuple(sorted(t)): r for t, r in zip(mesh.triangles.tolist(), mesh.regions.tolist())}
+    assert '"region_1"' in (tmp_path / "m.msh").read_text()
+    assert "Corners\n4\n1\n3\n4\n6\n" in (tmp_path / "m.mesh").read_text()
+    assert pdmesh.Mesh.read(tmp_path / "m.vtu").kinds.tolist() == mesh.kinds.tolist()
