@@ -14,6 +14,7 @@
 #include <fmt/format.h>
 
 #include "core/errors.hpp"
+#include "geometry/geometry_detail.hpp"
 #include "geometry/geometry_tree.hpp"
 
 namespace pdmesh {
@@ -36,11 +37,9 @@ double chord_param(Vec2 a, Vec2 b, Vec2 p) {
   return std::clamp(dot(p - a, d) / norm2(d), 0.0, 1.0);
 }
 
-std::string point_text(Vec2 p) { return fmt::format("({:.9g}, {:.9g})", p.x, p.y); }
+using detail::where;
 
-std::string where(const std::string& file, int line) {
-  return file.empty() ? std::string("curve input") : fmt::format("{}:{}", file, line);
-}
+std::string point_text(Vec2 p) { return detail::format_point(p); }
 
 // One curve of a meeting point: vertex `index` of input curve `curve`.
 struct Member {
