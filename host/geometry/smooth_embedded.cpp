@@ -167,7 +167,8 @@ class EmbeddedSmoothing {
 
   // The curves through their kept points, flagged for SmoothCurves: an interior point is a corner
   // where the curve turns more than the corner angle there (or on a fixed_points curve); curve ends
-  // join where ends of the same kind (boundary or constraint) meet, as two and no more.
+  // join where ends of the same kind (boundary or constraint) meet, as two and no more, constraint
+  // ends only away from the boundary curves.
   void build_skeleton() {
     const std::size_t curves = in_.curves.size();
     skeleton_index_.resize(curves);
@@ -197,7 +198,12 @@ class EmbeddedSmoothing {
             curve.fixed_points || turning_angle(s.points[i - 1], s.points[i], s.points[i + 1]) > limit_ ? 1 : 0;
     }
     for (const CriticalPoint& cp : in_.critical) {
+      const bool on_boundary = std::any_of(cp.curves.begin(), cp.curves.end(),
+                                           [&](int c) { return !in_.curves[static_cast<std::size_t>(c)].constraint; });
       for (const bool constraint : {false, true}) {
+        // Constraint ends that meet on a boundary curve are free ends (two borders between regions
+        // that reach the coast there are not one line), so that each meets it at its own angle.
+        if (constraint && on_boundary) continue;
         CriticalPoint part{cp.p, {}, {}};
         for (std::size_t j = 0; j < cp.curves.size(); ++j) {
           const auto c = static_cast<std::size_t>(cp.curves[j]);
