@@ -167,6 +167,20 @@ TEST_CASE("smooth embedded: two constraints crossing mid-segment cross at a shar
   CHECK(cp->curves.size() == 2);
 }
 
+TEST_CASE("smooth embedded: constraint ends that meet on the boundary are free ends",
+          "[geometry][smooth][constraints]") {
+  // Two straight borders meet the bottom of the square end to end at (0.5, 0), turning by 21 degrees
+  // there. Joined as one smooth line their common tangent would point up at P, the first border
+  // dipping below y = 0 before it; as free ends each stays its own straight line.
+  RawGeometry raw;
+  raw.curves = {curve({{0, 0}, {1, 0}, {1, 1}, {0, 1}, {0, 0}}, "box"), curve({{0.1, 0.05}, {0.5, 0.0}}, "left", true),
+                curve({{0.5, 0.0}, {0.9, 0.1}}, "right", true)};
+  const Geometry g = build_geometry(raw);
+  const DenseGeometry d = make_dense_embedded(g, 30.0, [](Vec2) { return 0.05; });
+  CHECK(d.geometry.curves[1].points == g.curves[1].points);
+  CHECK(d.geometry.curves[2].points == g.curves[2].points);
+}
+
 TEST_CASE("smooth embedded: without constraints and points it is make_dense_geometry", "[geometry][smooth]") {
   const Geometry g = build_geometry(
       std::vector<RawCurve>{curve(circle({0, 0}, 1.0, 12), "wall"), curve(circle({0, 0}, 0.3, 8, 0.1), "hole")});
