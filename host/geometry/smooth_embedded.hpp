@@ -20,9 +20,9 @@ namespace pdmesh {
 // nearest it where one curve got it (a constraint's end on a curve, a point put on a curve), to the
 // crossing of the two smooth curves where two did; the curves that had it as an input point (the
 // constraint's end) end there. Meeting points that were input points of every curve stay where they
-// are. A joint of constraint ends is smooth like a joint of boundary curves (turning angle up to
-// the corner angle); a constraint's end on a curve is a free end; a meeting point is a corner only
-// where its own curve turns more than the corner angle there.
+// are. A joint of constraint ends off the boundary curves is smooth like a joint of boundary curves
+// (turning angle up to the corner angle); a constraint's end on a curve is a free end; a meeting
+// point is a corner only where its own curve turns more than the corner angle there.
 //
 // Throws GeometryError where the smooth curves meet where the polylines do not (a constraint now
 // crossing another curve), an embedded point is outside the smooth domain or within the dense
