@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <map>
+#include <numbers>
 #include <set>
 #include <string>
 #include <vector>
@@ -112,6 +113,29 @@ TEST_CASE("constraints: a levee from the boundary splits the boundary curve ther
   REQUIRE(critical_at(near, {1e-12, 0.5}) != nullptr);
   CHECK(critical_at(near, {1e-12, 0.5})->curves.size() == 2);
   CHECK(has_vertex(near.curves[0], {1e-12, 0.5}));
+}
+
+TEST_CASE("constraints: a crossing a rounding away from a vertex is at the vertex", "[geometry][constraints]") {
+  // An end computed in the middle of a rotated boundary segment lies a rounding beyond it: the end
+  // is the meeting point, with no sliver segment past it.
+  std::vector<Vec2> ring;
+  for (int i = 0; i < 12; ++i) ring.push_back({std::cos(std::numbers::pi * i / 6), std::sin(std::numbers::pi * i / 6)});
+  ring.push_back(ring.front());
+  const Vec2 mid = 0.5 * (ring[0] + ring[1]);
+  RawGeometry raw;
+  raw.curves = {curve(ring, "wall"), curve({0.6 * mid, mid}, "spoke", true)};
+  const Geometry g = build_geometry(raw);
+  CHECK(g.curves[1].points == std::vector<Vec2>{0.6 * mid, mid});
+  CHECK(has_vertex(g.curves[0], mid));
+  // A line through a constraint's vertex that rounding puts a hair off it meets it at the vertex.
+  Vec2 v = Vec2{0.6, 0.6} + 0.5 * (Vec2{0.9, 0.9} - Vec2{0.6, 0.6});
+  v.x = std::nextafter(v.x, 1.0);
+  raw.curves = {unit_square(), curve({{0.75, 0.25}, v, {0.25, 0.75}}, "roof", true),
+                curve({{0.6, 0.6}, {0.9, 0.9}}, "ray", true)};
+  const Geometry h = build_geometry(raw);
+  CHECK(h.curves[1].points.size() == 3);
+  CHECK(h.curves[2].points.size() == 3);
+  CHECK(h.curves[2].points[1] == h.curves[1].points[1]);
 }
 
 TEST_CASE("constraints: embedded points inside, on a curve, duplicated", "[geometry][constraints]") {

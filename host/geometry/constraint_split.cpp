@@ -262,6 +262,20 @@ class Splitter {
         if (u->a.x == u->b.x) p.x = u->a.x;
         if (u->a.y == u->b.y) p.y = u->a.y;
       }
+      // A crossing within the tolerance of a vertex of either segment (a constraint's end that
+      // rounding puts a hair beyond the other segment, a line drawn through a vertex) is at that
+      // vertex, as an end that stops short joins the segment at the end itself: a point of its own
+      // would leave a sliver segment beside the vertex.
+      double nearest = tolerance_;
+      Vec2 vertex = p;
+      for (const Vec2 v : {s.a, s.b, t.a, t.b}) {
+        const double d = dist(p, v);
+        if (d <= nearest) {
+          nearest = d;
+          vertex = v;
+        }
+      }
+      p = vertex;
     }
     add(s.curve, s.index, s.a, s.b, p);
     add(t.curve, t.index, t.a, t.b, p);

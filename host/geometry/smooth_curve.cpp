@@ -80,28 +80,6 @@ Vec2 corner_tangent(Vec2 chord, Vec2 neighbour_derivative) {
   return norm(chord) * (2.0 * dot(c, t) * c - t);
 }
 
-// Recursive subdivision of piece k of curve c over [u0, u1] until the chord is within `tol` of the
-// curve (tested at the quarter points) or shorter than `min_len`; appends the points after p0.
-void subdivide(const SmoothCurves& s, int c, int k, double u0, Vec2 p0, double u1, Vec2 p1, double tol, double min_len,
-               int depth, std::vector<Vec2>& out) {
-  const Vec2 d = p1 - p0;
-  const double len2 = norm2(d);
-  double err = 0.0;
-  for (const double f : {0.25, 0.5, 0.75}) {
-    const Vec2 p = s.at(c, k, u0 + f * (u1 - u0));
-    const double t = len2 > 0.0 ? std::clamp(dot(p - p0, d) / len2, 0.0, 1.0) : 0.0;
-    err = std::max(err, dist(p, p0 + t * d));
-  }
-  if (err > tol && std::sqrt(len2) > min_len && depth < 40) {
-    const double um = 0.5 * (u0 + u1);
-    const Vec2 pm = s.at(c, k, um);
-    subdivide(s, c, k, u0, p0, um, pm, tol, min_len, depth + 1, out);
-    subdivide(s, c, k, um, pm, u1, p1, tol, min_len, depth + 1, out);
-    return;
-  }
-  out.push_back(p1);
-}
-
 }  // namespace
 
 SmoothCurves::SmoothCurves(const Geometry& geometry, double corner_angle_deg) : geometry_(geometry) {
@@ -165,6 +143,26 @@ Vec2 SmoothCurves::derivative(int curve, int piece, double u) const {
   return d00 * p[k] + d10 * start_[c][k] + d01 * p[k + 1] + d11 * end_[c][k];
 }
 
+void subdivide_piece(const SmoothCurves& s, int c, int k, double u0, Vec2 p0, double u1, Vec2 p1, double tol,
+                     double min_len, int depth, std::vector<Vec2>& out) {
+  const Vec2 d = p1 - p0;
+  const double len2 = norm2(d);
+  double err = 0.0;
+  for (const double f : {0.25, 0.5, 0.75}) {
+    const Vec2 p = s.at(c, k, u0 + f * (u1 - u0));
+    const double t = len2 > 0.0 ? std::clamp(dot(p - p0, d) / len2, 0.0, 1.0) : 0.0;
+    err = std::max(err, dist(p, p0 + t * d));
+  }
+  if (err > tol && std::sqrt(len2) > min_len && depth < 40) {
+    const double um = 0.5 * (u0 + u1);
+    const Vec2 pm = s.at(c, k, um);
+    subdivide_piece(s, c, k, u0, p0, um, pm, tol, min_len, depth + 1, out);
+    subdivide_piece(s, c, k, um, pm, u1, p1, tol, min_len, depth + 1, out);
+    return;
+  }
+  out.push_back(p1);
+}
+
 DenseGeometry make_dense_geometry(const SmoothCurves& curves, const std::function<double(Vec2)>& size,
                                   const DenseOptions& options) {
   const Geometry& in = curves.geometry();
@@ -188,8 +186,8 @@ DenseGeometry make_dense_geometry(const SmoothCurves& curves, const std::functio
       if (q_prev > 0.0 && std::isfinite(q_prev)) h = std::min(h, q_prev);
       if (q_next > 0.0 && std::isfinite(q_next)) h = std::min(h, q_next);
       q_prev = q_next;
-      subdivide(curves, static_cast<int>(c), k, 0.0, a, 1.0, b, options.tolerance * h, options.min_fraction * h, 0,
-                r.points);
+      subdivide_piece(curves, static_cast<int>(c), k, 0.0, a, 1.0, b, options.tolerance * h, options.min_fraction * h,
+                      0, r.points);
       r.lines.resize(r.points.size(), curve.line + k);
       out.vertex[c].push_back(static_cast<int>(r.points.size()) - 1);
     }

@@ -36,6 +36,12 @@ class SmoothCurves {
   std::vector<std::vector<Vec2>> start_, end_;
 };
 
+// Appends to `out` the dense points of piece k of curve c over [u0, u1] after p0 (p0 and p1 are the
+// points at u0 and u1): the piece is bisected until each chord is within `tol` of the curve (tested
+// at its quarter points) or shorter than `min_len`.
+void subdivide_piece(const SmoothCurves& s, int c, int k, double u0, Vec2 p0, double u1, Vec2 p1, double tol,
+                     double min_len, int depth, std::vector<Vec2>& out);
+
 struct DenseOptions {
   // Chord tolerance: each dense segment deviates from the smooth curve by at most tolerance x h,
   // h = min(q at both ends of the input segment, its length), q the run's spacing field (`size`).

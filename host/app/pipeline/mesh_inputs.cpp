@@ -15,6 +15,7 @@
 #include "core/memory_budget.hpp"
 #include "geometry/farfield.hpp"
 #include "geometry/geometry_files.hpp"
+#include "geometry/smooth_embedded.hpp"
 #include "init/kept_nodes.hpp"
 #include "init/metric_fill.hpp"
 #include "layers/boundary_layers.hpp"
@@ -142,19 +143,14 @@ std::string spacing_summary_line(const CaseConfig& config, const MeshInputs& in,
 // geometry.curves = "smooth": the dense polyline of the smooth curves and its tree, or the reason
 // the polylines are meshed instead (in.smooth_fallback).
 void build_smooth_curves(const CaseConfig& config, MeshInputs& in) {
-  const Geometry& geometry = in.geometry;
-  const bool embedded = !geometry.embedded_points.empty() || std::any_of(geometry.curves.begin(), geometry.curves.end(),
-                                                                         [](const Curve& c) { return c.constraint; });
-  if (config.geometry.curves == CurveKind::Smooth && embedded) {
-    // The dense curves would have to meet where the polylines do; the polylines are meshed instead.
-    in.smooth_fallback = "smooth curves do not support embedded constraints and points yet";
-  } else if (config.geometry.curves == CurveKind::Smooth) {
+  if (config.geometry.curves == CurveKind::Smooth) {
     DenseOptions dense_options;
     dense_options.join_tolerance = config.geometry.join_tolerance;
     try {
-      in.dense = std::make_unique<DenseGeometry>(make_dense_geometry(
-          SmoothCurves(geometry, config.geometry.corner_angle), [&](Vec2 p) { return in.spacing->at(p); },
-          dense_options));
+      // Constraints are smoothed too, their meeting points kept on the smooth curves
+      // (geometry/smooth_embedded.hpp); without them this is make_dense_geometry.
+      in.dense = std::make_unique<DenseGeometry>(make_dense_embedded(
+          in.geometry, config.geometry.corner_angle, [&](Vec2 p) { return in.spacing->at(p); }, dense_options));
     } catch (const GeometryError& e) {
       // Smooth curves through coarse points can cross where the polylines pass close to each other.
       in.smooth_fallback = e.what();
