@@ -163,6 +163,30 @@ void subdivide_piece(const SmoothCurves& s, int c, int k, double u0, Vec2 p0, do
   out.push_back(p1);
 }
 
+void carry_input_marks(const Geometry& input, DenseGeometry& out) {
+  Geometry& g = out.geometry;
+  for (std::size_t c = 0; c < input.curves.size(); ++c) {
+    const Curve& curve = input.curves[c];
+    std::vector<std::uint8_t>& flags = g.curves[c].critical;
+    std::fill(flags.begin(), flags.end(), std::uint8_t{0});
+    for (std::size_t i = 0; i < curve.points.size(); ++i)
+      flags[static_cast<std::size_t>(out.vertex[c][i])] = i < curve.critical.size() ? curve.critical[i] : 0;
+  }
+  g.critical = input.critical;
+  for (CriticalPoint& cp : g.critical) {
+    for (std::size_t k = 0; k < cp.curves.size(); ++k)
+      cp.indices[k] = out.vertex[static_cast<std::size_t>(cp.curves[k])][static_cast<std::size_t>(cp.indices[k])];
+    cp.p = g.curves[static_cast<std::size_t>(cp.curves[0])].points[static_cast<std::size_t>(cp.indices[0])];
+  }
+  out.source.resize(g.segments.size());
+  for (std::size_t c = 0; c < input.curves.size(); ++c) {
+    const int first = g.curves[c].first_segment;
+    for (std::size_t k = 0; k + 1 < out.vertex[c].size(); ++k)
+      for (int j = out.vertex[c][k]; j < out.vertex[c][k + 1]; ++j)
+        out.source[static_cast<std::size_t>(first + j)] = input.curves[c].first_segment + static_cast<int>(k);
+  }
+}
+
 DenseGeometry make_dense_geometry(const SmoothCurves& curves, const std::function<double(Vec2)>& size,
                                   const DenseOptions& options) {
   const Geometry& in = curves.geometry();
@@ -203,25 +227,7 @@ DenseGeometry make_dense_geometry(const SmoothCurves& curves, const std::functio
     throw GeometryError(std::string("the smooth curves through the input points (geometry.curves = \"smooth\") ") +
                         "are not a valid geometry: " + e.what());
   }
-  Geometry& g = out.geometry;
-  for (std::size_t c = 0; c < g.curves.size(); ++c) {
-    const Curve& curve = in.curves[c];
-    std::vector<std::uint8_t>& flags = g.curves[c].critical;
-    std::fill(flags.begin(), flags.end(), std::uint8_t{0});
-    for (std::size_t i = 0; i < curve.points.size(); ++i)
-      flags[static_cast<std::size_t>(out.vertex[c][i])] = i < curve.critical.size() ? curve.critical[i] : 0;
-  }
-  g.critical = in.critical;
-  for (CriticalPoint& cp : g.critical)
-    for (std::size_t k = 0; k < cp.curves.size(); ++k)
-      cp.indices[k] = out.vertex[static_cast<std::size_t>(cp.curves[k])][static_cast<std::size_t>(cp.indices[k])];
-  out.source.resize(g.segments.size());
-  for (std::size_t c = 0; c < g.curves.size(); ++c) {
-    const int first = g.curves[c].first_segment;
-    for (std::size_t k = 0; k + 1 < out.vertex[c].size(); ++k)
-      for (int j = out.vertex[c][k]; j < out.vertex[c][k + 1]; ++j)
-        out.source[static_cast<std::size_t>(first + j)] = in.curves[c].first_segment + static_cast<int>(k);
-  }
+  carry_input_marks(in, out);
   return out;
 }
 

@@ -63,6 +63,11 @@ struct DenseGeometry {
   std::vector<int> source;
 };
 
+// Marks a built dense geometry (out.geometry, out.vertex) with the input's: each curve's critical
+// flags and the critical points at the dense vertices of their input points (cp.p the dense
+// vertex), and each dense segment's source.
+void carry_input_marks(const Geometry& input, DenseGeometry& out);
+
 // Builds the dense geometry; size(p) is the spacing field's q at p (the geometry layer knows no
 // spacing field: the caller passes its at()). Throws GeometryError when the smooth curves intersect
 // themselves or each other (build_geometry's checks; the caller may fall back to the polylines).

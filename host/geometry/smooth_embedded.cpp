@@ -432,26 +432,7 @@ DenseGeometry EmbeddedSmoothing::dense(const std::function<double(Vec2)>& size, 
     }
   }
   // The input's critical flags and points, at the dense vertices (moved meeting points included).
-  for (std::size_t c = 0; c < curves; ++c) {
-    const Curve& curve = in_.curves[c];
-    std::vector<std::uint8_t>& flags = g.curves[c].critical;
-    std::fill(flags.begin(), flags.end(), std::uint8_t{0});
-    for (std::size_t i = 0; i < curve.points.size(); ++i)
-      flags[static_cast<std::size_t>(out.vertex[c][i])] = i < curve.critical.size() ? curve.critical[i] : 0;
-  }
-  g.critical = in_.critical;
-  for (CriticalPoint& cp : g.critical) {
-    for (std::size_t k = 0; k < cp.curves.size(); ++k)
-      cp.indices[k] = out.vertex[static_cast<std::size_t>(cp.curves[k])][static_cast<std::size_t>(cp.indices[k])];
-    cp.p = g.curves[static_cast<std::size_t>(cp.curves[0])].points[static_cast<std::size_t>(cp.indices[0])];
-  }
-  out.source.resize(g.segments.size());
-  for (std::size_t c = 0; c < curves; ++c) {
-    const int first = g.curves[c].first_segment;
-    for (std::size_t k = 0; k + 1 < out.vertex[c].size(); ++k)
-      for (int j = out.vertex[c][k]; j < out.vertex[c][k + 1]; ++j)
-        out.source[static_cast<std::size_t>(first + j)] = in_.curves[c].first_segment + static_cast<int>(k);
-  }
+  carry_input_marks(in_, out);
   return out;
 }
 
