@@ -245,9 +245,8 @@ void find_critical_points(Geometry& g, const std::vector<Vec2>& joints, const st
         g.critical.push_back(std::move(cp));
         continue;
       }
-      const Vec2 in = curve.points[k] - curve.points[k - 1];
-      const Vec2 out = curve.points[k + 1] - curve.points[k];
-      const double turn = std::atan2(std::fabs(cross(in, out)), dot(in, out));
+      const double turn =
+          detail::turning_angle(curve.points[k] - curve.points[k - 1], curve.points[k + 1] - curve.points[k]);
       if (turn > limit || curve.fixed_points) {
         curve.critical[k] = 1;
         g.critical.push_back({curve.points[k], {c}, {k}});
@@ -271,9 +270,8 @@ void find_grouped_critical_points(Geometry& g, const std::vector<std::vector<std
       // Every input vertex of a constraint is kept (a node of the mesh), like a critical point.
       bool critical = k == 0 || k == n - 1 || curve.fixed_points || curve.constraint || forced[c][k];
       if (!critical) {
-        const Vec2 in = curve.points[k] - curve.points[k - 1];
-        const Vec2 out = curve.points[k + 1] - curve.points[k];
-        critical = std::atan2(std::fabs(cross(in, out)), dot(in, out)) > limit;
+        critical =
+            detail::turning_angle(curve.points[k] - curve.points[k - 1], curve.points[k + 1] - curve.points[k]) > limit;
       }
       if (!critical) continue;
       curve.critical[k] = 1;

@@ -1,6 +1,9 @@
 // Internal helpers shared by the build_geometry source files (not part of the public interface):
-// source locations for messages, the even-odd crossing test and the intersection check.
+// source locations for messages, polyline angles and distances, the even-odd crossing test and the
+// intersection check.
 #pragma once
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -16,6 +19,18 @@ using PointLines = std::vector<std::vector<int>>;
 std::string where(const std::string& file, int line);
 // "(x, y)" with the shortest round-trip representation of each coordinate.
 std::string format_point(Vec2 p);
+
+// The angle (radians, [0, pi]) by which a polyline turns from direction `in` to direction `out`;
+// a vertex is a corner where it exceeds the corner angle.
+inline double turning_angle(Vec2 in, Vec2 out) { return std::atan2(std::fabs(cross(in, out)), dot(in, out)); }
+// The parameter in [0, 1] of the point of segment ab nearest p (0 for a point segment), and that
+// point's distance from p.
+inline double chord_param(Vec2 a, Vec2 b, Vec2 p) {
+  const Vec2 d = b - a;
+  const double len2 = norm2(d);
+  return len2 > 0.0 ? std::clamp(dot(p - a, d) / len2, 0.0, 1.0) : 0.0;
+}
+inline double distance_to_chord(Vec2 a, Vec2 b, Vec2 p) { return dist(p, a + chord_param(a, b, p) * (b - a)); }
 
 // Number of boundary segments crossed by the ray from p towards +x (exact, via orient2d).
 // Only meaningful when p lies on no segment; odd means inside the even-odd domain.

@@ -9,6 +9,7 @@
 #include <string>
 
 #include "core/errors.hpp"
+#include "geometry/geometry_detail.hpp"
 
 namespace pdmesh {
 namespace {
@@ -27,8 +28,6 @@ Vec2 knot_derivative(Vec2 a, Vec2 p, Vec2 b) {
   const double d0 = knot(a, p), d1 = knot(p, b);
   return (1.0 / d0) * (p - a) - (1.0 / (d0 + d1)) * (b - a) + (1.0 / d1) * (b - p);
 }
-
-double turning_angle(Vec2 in, Vec2 out) { return std::atan2(std::fabs(cross(in, out)), dot(in, out)); }
 
 // One end of a curve: end 0 is its first point, end 1 its last.
 struct CurveEnd {
@@ -67,8 +66,8 @@ const Vec2* joint_neighbour(const Geometry& g, int c, int end, CurveEnd partner,
   const Vec2* across = partner.end == 0 ? &other.points[1] : &other.points[on - 2];
   const Vec2 here = end == 0 ? curve.points[0] : curve.points[n - 1];
   const Vec2 inner = end == 0 ? curve.points[1] : curve.points[n - 2];
-  const double turn =
-      end == 0 ? turning_angle(here - *across, inner - here) : turning_angle(here - inner, *across - here);
+  const double turn = end == 0 ? detail::turning_angle(here - *across, inner - here)
+                               : detail::turning_angle(here - inner, *across - here);
   return turn <= limit ? across : nullptr;
 }
 
@@ -145,15 +144,10 @@ Vec2 SmoothCurves::derivative(int curve, int piece, double u) const {
 
 void subdivide_piece(const SmoothCurves& s, int c, int k, double u0, Vec2 p0, double u1, Vec2 p1, double tol,
                      double min_len, int depth, std::vector<Vec2>& out) {
-  const Vec2 d = p1 - p0;
-  const double len2 = norm2(d);
   double err = 0.0;
-  for (const double f : {0.25, 0.5, 0.75}) {
-    const Vec2 p = s.at(c, k, u0 + f * (u1 - u0));
-    const double t = len2 > 0.0 ? std::clamp(dot(p - p0, d) / len2, 0.0, 1.0) : 0.0;
-    err = std::max(err, dist(p, p0 + t * d));
-  }
-  if (err > tol && std::sqrt(len2) > min_len && depth < 40) {
+  for (const double f : {0.25, 0.5, 0.75})
+    err = std::max(err, detail::distance_to_chord(p0, p1, s.at(c, k, u0 + f * (u1 - u0))));
+  if (err > tol && dist(p0, p1) > min_len && depth < 40) {
     const double um = 0.5 * (u0 + u1);
     const Vec2 pm = s.at(c, k, um);
     subdivide_piece(s, c, k, u0, p0, um, pm, tol, min_len, depth + 1, out);
@@ -161,6 +155,13 @@ void subdivide_piece(const SmoothCurves& s, int c, int k, double u0, Vec2 p0, do
     return;
   }
   out.push_back(p1);
+}
+
+double piece_scale(Vec2 a, Vec2 b, double qa, double qb) {
+  double h = dist(a, b);
+  for (const double q : {qa, qb})
+    if (q > 0.0 && std::isfinite(q)) h = std::min(h, q);
+  return h;
 }
 
 void carry_input_marks(const Geometry& input, DenseGeometry& out) {
@@ -206,9 +207,7 @@ DenseGeometry make_dense_geometry(const SmoothCurves& curves, const std::functio
     for (int k = 0; k + 1 < static_cast<int>(curve.points.size()); ++k) {
       const Vec2 a = curve.points[static_cast<std::size_t>(k)], b = curve.points[static_cast<std::size_t>(k) + 1];
       const double q_next = size(b);
-      double h = dist(a, b);
-      if (q_prev > 0.0 && std::isfinite(q_prev)) h = std::min(h, q_prev);
-      if (q_next > 0.0 && std::isfinite(q_next)) h = std::min(h, q_next);
+      const double h = piece_scale(a, b, q_prev, q_next);
       q_prev = q_next;
       subdivide_piece(curves, static_cast<int>(c), k, 0.0, a, 1.0, b, options.tolerance * h, options.min_fraction * h,
                       0, r.points);

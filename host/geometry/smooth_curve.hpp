@@ -63,6 +63,11 @@ struct DenseGeometry {
   std::vector<int> source;
 };
 
+// The length that scales a piece's chord tolerance and shortest chord (DenseOptions): the input
+// segment ab's length, or q at an end where that is smaller (a q that is not positive and finite
+// is left out).
+double piece_scale(Vec2 a, Vec2 b, double qa, double qb);
+
 // Marks a built dense geometry (out.geometry, out.vertex) with the input's: each curve's critical
 // flags and the critical points at the dense vertices of their input points (cp.p the dense
 // vertex), and each dense segment's source.

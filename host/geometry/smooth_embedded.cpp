@@ -20,22 +20,8 @@
 namespace pdmesh {
 namespace {
 
-double turning_angle(Vec2 a, Vec2 p, Vec2 b) {
-  const Vec2 in = p - a, out = b - p;
-  return std::atan2(std::fabs(cross(in, out)), dot(in, out));
-}
-
-double distance_to_segment(Vec2 a, Vec2 b, Vec2 p) {
-  const Vec2 d = b - a;
-  const double len2 = norm2(d);
-  const double t = len2 > 0.0 ? std::clamp(dot(p - a, d) / len2, 0.0, 1.0) : 0.0;
-  return dist(p, a + t * d);
-}
-
-double chord_param(Vec2 a, Vec2 b, Vec2 p) {
-  const Vec2 d = b - a;
-  return std::clamp(dot(p - a, d) / norm2(d), 0.0, 1.0);
-}
+// The turn of the polyline a-p-b at p.
+double turning_angle(Vec2 a, Vec2 p, Vec2 b) { return detail::turning_angle(p - a, b - p); }
 
 using detail::where;
 
@@ -128,7 +114,7 @@ class EmbeddedSmoothing {
           }
           std::size_t b = i + 1;
           while (b + 1 < n && candidate_[c][b]) ++b;
-          if (distance_to_segment(p[a], p[b], p[i]) <= tolerance_)
+          if (detail::distance_to_chord(p[a], p[b], p[i]) <= tolerance_)
             drop_[c][i] = 1;
           else
             a = i;
@@ -232,8 +218,8 @@ class EmbeddedSmoothing {
     const auto [c2, k2] = piece_of(m.onto[1]);
     const auto& s1 = skeleton_.curves[static_cast<std::size_t>(c1)].points;
     const auto& s2 = skeleton_.curves[static_cast<std::size_t>(c2)].points;
-    double u1 = chord_param(s1[static_cast<std::size_t>(k1)], s1[static_cast<std::size_t>(k1) + 1], p0);
-    double u2 = chord_param(s2[static_cast<std::size_t>(k2)], s2[static_cast<std::size_t>(k2) + 1], p0);
+    double u1 = detail::chord_param(s1[static_cast<std::size_t>(k1)], s1[static_cast<std::size_t>(k1) + 1], p0);
+    double u2 = detail::chord_param(s2[static_cast<std::size_t>(k2)], s2[static_cast<std::size_t>(k2) + 1], p0);
     // Newton's method on at1(u1) = at2(u2): the smooth pieces lie close to their chords, which cross
     // at p0, so the crossing is near the chord parameters.
     bool converged = false;
@@ -336,9 +322,7 @@ DenseGeometry EmbeddedSmoothing::dense(const std::function<double(Vec2)>& size, 
     out.vertex[c][0] = 0;
     for (std::size_t k = 0; k + 1 < sp.size(); ++k) {
       const Vec2 a = sp[k], b = sp[k + 1];
-      double h = dist(a, b);
-      for (const double q : {size(a), size(b)})
-        if (q > 0.0 && std::isfinite(q)) h = std::min(h, q);
+      const double h = piece_scale(a, b, size(a), size(b));
       const double tol = options.tolerance * h, min_len = options.min_fraction * h;
       std::vector<PieceInsert> list = inserts[c][k];
       std::sort(list.begin(), list.end(), [](const PieceInsert& x, const PieceInsert& y) { return x.u < y.u; });
