@@ -115,6 +115,9 @@ struct CaseConfig {
     // field == Hessian: the L2-optimal metric of a function, given as an expression `function` in x and
     // y or as scalar data `array` (default "u") at the points of `file`, of complexity C = `complexity`,
     // clipped to sizes in [hmin, hmax] and to max_anisotropy (spacing/hessian_metric.hpp).
+    // `spacing.array = ["a", "b"]` (Hessian with `file` only): every name, `array` the first; their
+    // metrics intersected (intersected_hessian_metrics_on_mesh). Empty when spacing.array is one string.
+    std::vector<std::string> arrays;
     std::string function;
     double complexity = 0.0;  // required for Hessian
     double hmin = 0.0;

@@ -106,6 +106,11 @@ void check_metric_keys(const Reader& r, const toml::table& root, CaseConfig& c, 
   for (const char* k : kHessianKeys) refuse_unless(hessian, k);
   refuse_unless(metric, "sol");
   refuse_unless(metric || hessian, "metric_gradation");
+  if (!c.spacing.arrays.empty() && !(hessian && file != nullptr))
+    r.fail("spacing.array", array,
+           fmt::format("spacing.array is a list, which only spacing.field = 'hessian' with spacing.file takes "
+                       "(spacing.field is '{}'{})",
+                       name, file == nullptr ? ", no spacing.file" : ""));
   refuse_unless(hessian && !s.function.empty(), "hessian_step");
   const bool medit = file != nullptr && lower_extension(s.file) == ".mesh";
   if (medit && !metric) {
