@@ -89,8 +89,8 @@ int run_adapt(const CaseConfig& config, const AdaptOptions& options) {
   const std::vector<std::string> present = point_arrays_of(solution);
   for (const std::string& name : options.arrays)
     if (std::find(present.begin(), present.end(), name) == present.end())
-      throw InputError(fmt::format("--array {}: {} has no point array '{}' (point arrays: {})", name,
-                                   options.solution, name, present.empty() ? "none" : fmt::format("{}", fmt::join(present, ", "))));
+      throw InputError(fmt::format("--array {}: {} has no point array '{}' (point arrays: {})", name, options.solution,
+                                   name, present.empty() ? "none" : fmt::format("{}", fmt::join(present, ", "))));
   const std::optional<fs::path> mesh_file = written_mesh(config);
   const fs::path out = adapted_solution_path(config);
   if (options.transfer) {
@@ -100,8 +100,8 @@ int run_adapt(const CaseConfig& config, const AdaptOptions& options) {
           "follow: add one, or give --no-transfer",
           fmt::join(config.output.formats, ", ")));
     if (fs::equivalent(solution, out, ec))
-      throw InputError(fmt::format("--solution {} is {}, which this run writes: give another --out",
-                                   options.solution, out.string()));
+      throw InputError(fmt::format("--solution {} is {}, which this run writes: give another --out", options.solution,
+                                   out.string()));
   }
   const int status = run_mesh(config);
   if (status != kExitOk || !options.transfer) return status;
