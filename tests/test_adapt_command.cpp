@@ -87,8 +87,8 @@ TEST_CASE("pdmesh adapt refines at the solution's layer and carries the solution
   const fs::path dir = pdmesh_test::fresh_dir("adapt_layer");
   const fs::path sol = write_solution(dir);
   const fs::path out = dir / "out";
-  const auto r = pdmesh_test::run_pdmesh(
-      adapt_command(kSquare, sol, "--array u --complexity 300 --hmax 0.3 --formats msh", out));
+  const auto r =
+      pdmesh_test::run_pdmesh(adapt_command(kSquare, sol, "--array u --complexity 300 --hmax 0.3 --formats msh", out));
   INFO(r.output);
   REQUIRE(r.status == 0);
   const Mesh mesh = read_mesh(out / "mesh.msh");
