@@ -144,6 +144,27 @@ TEST_CASE("pdmesh adapt is pdmesh mesh on the case with field = hessian, bit for
   CHECK_FALSE(fs::exists(dir / "m" / "solution.vtu"));
 }
 
+TEST_CASE("pdmesh adapt --norm sets the L^p exponent: another norm, another mesh", "[adapt][cli]") {
+  const fs::path dir = pdmesh_test::fresh_dir("adapt_norm");
+  const fs::path sol = write_solution(dir);
+  std::vector<std::string> meshes;
+  for (const char* norm : {"2", "4"}) {
+    const auto r = pdmesh_test::run_pdmesh(adapt_command(
+        kSquare, sol, fmt::format("--array u --complexity 300 --norm {} --formats msh --no-transfer", norm),
+        dir / norm));
+    INFO(r.output);
+    REQUIRE(r.status == 0);
+    CHECK_FALSE(fs::exists(dir / norm / "solution.vtu"));
+    meshes.push_back(pdmesh_test::slurp(dir / norm / "mesh.msh"));
+  }
+  // --norm 2 is the default.
+  const auto d = pdmesh_test::run_pdmesh(
+      adapt_command(kSquare, sol, "--array u --complexity 300 --formats msh --no-transfer", dir / "default"));
+  REQUIRE(d.status == 0);
+  CHECK(pdmesh_test::slurp(dir / "default" / "mesh.msh") == meshes[0]);
+  CHECK(meshes[0] != meshes[1]);
+}
+
 TEST_CASE("several arrays: one scale over the intersection of their unscaled metrics", "[adapt][metric][hessian]") {
   const Mesh g = unit_grid(41);
   const std::vector<double> u = values_at(g.points, [](Vec2 p) { return std::tanh(10.0 * (p.y - 0.3)); });
@@ -249,6 +270,17 @@ TEST_CASE("spacing.array as a list: only for a Hessian metric of a file, each na
                   kSquare),
       dir / "case.toml", {{"spacing.array", "[\"rho\", \"mach\"]", "--set spacing.array=[\"rho\", \"mach\"]"}});
   CHECK(c.spacing.arrays == std::vector<std::string>{"rho", "mach"});
+  CHECK(c.spacing.norm == 2.0);
+  // spacing.norm: the L^p exponent of a Hessian metric.
+  const CaseConfig p4 = parse_case_text(
+      fmt::format("[geometry]\nfiles = [\"{}\"]\n[spacing]\nfield = \"hessian\"\nfunction = \"x*x\"\ncomplexity = 10\n"
+                  "norm = 4\n",
+                  kSquare),
+      dir / "case.toml");
+  CHECK(p4.spacing.norm == 4.0);
+  CHECK_THAT(error_of("field = \"hessian\"\nfunction = \"x*x\"\ncomplexity = 10\nnorm = 0.5\n"),
+             Contains("spacing.norm must be a finite number >= 1, got 0.5"));
+  CHECK_THAT(error_of("size = 0.1\nnorm = 2\n"), Contains("spacing.norm is set but spacing.field is 'boundary'"));
 }
 
 TEST_CASE("pdmesh adapt refuses bad inputs naming the option, and writes nothing", "[adapt][cli]") {
@@ -271,6 +303,7 @@ TEST_CASE("pdmesh adapt refuses bad inputs naming the option, and writes nothing
   refused(sol, "--array u --complexity 100 --hmin 0.5 --hmax 0.1", "spacing.hmax must be larger than spacing.hmin");
   refused(sol, "--array u --complexity 100 --gradation 0.5", "--gradation 0.5");
   refused(sol, "--array u --complexity 100 --max-anisotropy 0.5", "--max-anisotropy 0.5");
+  refused(sol, "--array u --complexity 100 --norm 0.5", "--norm 0.5");
   refused(sol, "--array u --complexity 100 --formats png", "--no-transfer");
   // The solution where solution.vtu would go.
   fs::create_directories(dir / "loop");

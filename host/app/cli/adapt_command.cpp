@@ -75,6 +75,7 @@ std::vector<CaseOverride> adapt_overrides(const AdaptOptions& o) {
   optional(o.hmin, "--hmin", "spacing.hmin");
   optional(o.hmax, "--hmax", "spacing.hmax");
   optional(o.max_anisotropy, "--max-anisotropy", "spacing.max_anisotropy");
+  optional(o.norm, "--norm", "spacing.norm");
   optional(o.gradation, "--gradation", "spacing.metric_gradation");
   return out;
 }

@@ -19,13 +19,13 @@ struct AdaptOptions {
   // The metric's keys as the user wrote them (TOML values; the case validator checks them and names
   // the option in its messages).
   std::string complexity;
-  std::optional<std::string> hmin, hmax, gradation, max_anisotropy;
+  std::optional<std::string> hmin, hmax, gradation, max_anisotropy, norm;
   bool transfer = true;  // --no-transfer: no solution.vtu
 };
 
 // The case keys the command sets before the user's --set: the case's [spacing] table replaced by
 // spacing.field = "hessian", spacing.file = SOL, spacing.array (a list for several arrays),
-// spacing.complexity and the optional hmin, hmax, max_anisotropy and metric_gradation (--gradation).
+// spacing.complexity and the optional hmin, hmax, max_anisotropy, norm and metric_gradation (--gradation).
 std::vector<CaseOverride> adapt_overrides(const AdaptOptions& options);
 
 // The file solution.vtu in `config`'s output directory.

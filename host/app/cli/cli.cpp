@@ -416,6 +416,10 @@ void add_adapt_options(CLI::App& adapt, AdaptArguments& a) {
       .add_option("--max-anisotropy", a.options.max_anisotropy,
                   "spacing.max_anisotropy: largest ratio of a metric's two sizes (>= 1; default: none)")
       ->type_name("A");
+  adapt
+      .add_option("--norm", a.options.norm,
+                  "spacing.norm: p of the L^p norm of the interpolation error the metric minimises (>= 1; default 2)")
+      ->type_name("P");
   adapt.add_flag("--no-transfer", a.no_transfer, "Do not write DIR/solution.vtu (SOL's point data on the new mesh)");
   add_run_options(adapt, a.run);
   adapt

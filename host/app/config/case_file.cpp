@@ -260,6 +260,7 @@ const std::vector<std::string>& spacing_keys() {
       "spacing.max_anisotropy",
       "spacing.metric_gradation",
       "spacing.hessian_step",
+      "spacing.norm",
       "spacing.size",
   };
   return keys;

@@ -123,6 +123,9 @@ struct CaseConfig {
     double hmin = 0.0;
     double hmax = std::numeric_limits<double>::infinity();
     double max_anisotropy = std::numeric_limits<double>::infinity();
+    // field == Hessian: p of the L^p norm of the interpolation error the metric minimises (>= 1; 2 the
+    // L2 norm; larger p puts more nodes where the error is largest, on steep features).
+    double norm = 2.0;
     // The metric gradation beta (> 1, the size ratio per unit metric length; 0 = off), in metric space,
     // along a background mesh's edges: the file's, or a grid's for expressions and functions
     // (spacing/metric_gradation.hpp, app/config/case_spacing.cpp).

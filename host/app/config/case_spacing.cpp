@@ -115,6 +115,7 @@ std::unique_ptr<MetricField> case_metric_field(const CaseConfig& config, const G
   options.hmin = s.hmin;
   options.hmax = s.hmax;
   options.max_anisotropy = s.max_anisotropy;
+  options.p = s.norm;
   if (s.file.empty()) {
     // The Hessian by central differences of a step of spacing.hessian_step times the geometry's extent
     // (default 1e-5: the function's own curvature, rounding noise ~1e-16 |u| / step² far below it),

@@ -99,6 +99,8 @@ void add_spacing_field_identity(const CaseConfig& config, Identity& keys) {
     keys.emplace_back("spacing.hmax", fmt::format("{}", s.hmax));
     keys.emplace_back("spacing.max_anisotropy", fmt::format("{}", s.max_anisotropy));
     keys.emplace_back("spacing.metric_gradation", fmt::format("{}", s.metric_gradation));
+    // Only when not the L2 norm, so that checkpoints of earlier Hessian runs identify the same way.
+    if (s.norm != 2.0) keys.emplace_back("spacing.norm", fmt::format("{}", s.norm));
   }
 }
 
