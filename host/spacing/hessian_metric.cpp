@@ -2,6 +2,7 @@
 #include "spacing/hessian_metric.hpp"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <algorithm>
 #include <cmath>
@@ -68,6 +69,57 @@ std::vector<Metric> hessian_metrics_on_mesh(const std::vector<Vec2>& points,
   const double scale = o.complexity / integral;
   std::vector<Metric> m(points.size());
   for (std::size_t i = 0; i < points.size(); ++i) m[i] = lp_optimal_metric(h[i], scale, o);
+  return m;
+}
+
+Metric lp_unscaled_metric(const Hessian& h, const HessianMetricOptions& o) {
+  const Metric a = abs_hessian(h, o.floor);
+  return std::pow(a.det(), -1.0 / (2.0 * o.p + 2.0)) * a;
+}
+
+double complexity_scale(const std::vector<Vec2>& points, const std::vector<std::array<int, 3>>& triangles,
+                        const std::vector<Metric>& m, double complexity, std::string_view what) {
+  std::vector<double> density(points.size());
+  for (std::size_t i = 0; i < points.size(); ++i) density[i] = std::sqrt(m[i].det());
+  double integral = 0.0;
+  for (const auto& t : triangles) {
+    const double area = 0.5 * std::fabs(cross(points[t[1]] - points[t[0]], points[t[2]] - points[t[0]]));
+    integral += area * (density[t[0]] + density[t[1]] + density[t[2]]) / 3.0;
+  }
+  if (!(integral > 0.0))
+    throw InputError(fmt::format("{}: the mesh has no area to spread complexity {} over", what, complexity));
+  return complexity / integral;
+}
+
+std::vector<double> divided_by_range(const std::vector<double>& u) {
+  if (u.empty()) return {};
+  const auto [lo, hi] = std::minmax_element(u.begin(), u.end());
+  const double range = *hi - *lo;
+  const double by = range > 0.0 ? range : 1.0;
+  std::vector<double> out(u.size());
+  for (std::size_t i = 0; i < u.size(); ++i) out[i] = u[i] / by;
+  return out;
+}
+
+std::vector<Metric> intersected_hessian_metrics_on_mesh(const std::vector<Vec2>& points,
+                                                        const std::vector<std::array<int, 3>>& triangles,
+                                                        const std::vector<std::vector<double>>& arrays,
+                                                        const HessianMetricOptions& o,
+                                                        const std::vector<std::string>& what) {
+  if (arrays.empty() || what.size() != arrays.size())
+    throw InputError(fmt::format("hessian metric: {} arrays with {} names", arrays.size(), what.size()));
+  if (arrays.size() == 1) return hessian_metrics_on_mesh(points, triangles, arrays[0], o, what[0]);
+  check_hessian_metric_options(o);
+  std::vector<Metric> m(points.size());
+  for (std::size_t k = 0; k < arrays.size(); ++k) {
+    const std::vector<Hessian> h = recover_hessians(points, triangles, divided_by_range(arrays[k]), what[k]);
+    for (std::size_t i = 0; i < points.size(); ++i) {
+      const Metric mk = lp_unscaled_metric(h[i], o);
+      m[i] = k == 0 ? mk : intersect(m[i], mk);
+    }
+  }
+  const double scale = complexity_scale(points, triangles, m, o.complexity, fmt::format("{}", fmt::join(what, ", ")));
+  for (Metric& mi : m) mi = clip_metric(scale * mi, o.hmin, o.hmax, o.max_anisotropy);
   return m;
 }
 

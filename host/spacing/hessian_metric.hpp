@@ -8,6 +8,8 @@
 #include <array>
 #include <limits>
 #include <memory>
+#include <string>
+#include <string_view>
 #include <vector>
 
 #include "core/vec2.hpp"
@@ -49,6 +51,28 @@ std::vector<Metric> hessian_metrics_on_mesh(const std::vector<Vec2>& points,
                                             const std::vector<std::array<int, 3>>& triangles,
                                             const std::vector<double>& u, const HessianMetricOptions& o,
                                             std::string_view what);
+
+// Several arrays at the points of one mesh (multi-variable adaptation, Loseille & Alauzet): each array
+// divided by its range max - min (1 where it is constant), so that each is resolved to the same error
+// relative to its own variation whatever its units; each one's L^p metric before its scale,
+// det|H_k|^(-1/(2p+2)) |H_k| (lp_unscaled_metric); their intersection at each point; then one scale
+// D = C / ∫ sqrt(det M) (complexity_scale) over the intersection, and clip_metric. The intersection
+// comes before the scale because each array's own D would spread C over its feature alone; the one
+// D puts the intersected metric at complexity C. One array is hessian_metrics_on_mesh, whose D makes
+// the division by the range cancel. `what` names each array in messages (as many as `arrays`).
+std::vector<Metric> intersected_hessian_metrics_on_mesh(const std::vector<Vec2>& points,
+                                                        const std::vector<std::array<int, 3>>& triangles,
+                                                        const std::vector<std::vector<double>>& arrays,
+                                                        const HessianMetricOptions& o,
+                                                        const std::vector<std::string>& what);
+// det|H|^(-1/(2p+2)) |H| with |H| = abs_hessian(h, o.floor): lp_optimal_metric before its scale and clip.
+Metric lp_unscaled_metric(const Hessian& h, const HessianMetricOptions& o);
+// C / ∫ sqrt(det m) by the P1 rule on the triangles (the mean of the corners times the area): the
+// factor that gives the metrics m complexity C. Throws InputError naming `what` when the integral is 0.
+double complexity_scale(const std::vector<Vec2>& points, const std::vector<std::array<int, 3>>& triangles,
+                        const std::vector<Metric>& m, double complexity, std::string_view what);
+// An array divided by its range max - min (by 1 where the range is 0).
+std::vector<double> divided_by_range(const std::vector<double>& u);
 
 // The metric field of a function u given as an expression: the Hessian by central differences of
 // step `step` (hessian_by_differences), D from the midpoint rule of the density on a grid x grid

@@ -20,6 +20,7 @@
 #include "app/pipeline/exit_codes.hpp"
 #include "app/bench/bench_command.hpp"
 #include "app/bench/whole_run_bench.hpp"
+#include "app/cli/adapt_command.hpp"
 #include "app/cli/devices_command.hpp"
 #include "app/pipeline/mesh_pipeline.hpp"
 #include "app/pipeline/smooth_pipeline.hpp"
@@ -67,6 +68,14 @@ struct SmoothArguments {
   std::string mesh;
   std::string geometry;
   std::string field = "mesh";
+};
+
+// pdmesh adapt DOMAIN --solution SOL ...: the run's options are pdmesh mesh's (inputs = {DOMAIN}).
+struct AdaptArguments {
+  MeshArguments run;
+  std::string domain;
+  AdaptOptions options;
+  bool no_transfer = false;
 };
 
 namespace {
@@ -376,6 +385,53 @@ void add_smooth_options(CLI::App& smooth, SmoothArguments& a) {
       "those of pdmesh mesh.");
 }
 
+void add_adapt_options(CLI::App& adapt, AdaptArguments& a) {
+  adapt
+      .add_option("DOMAIN", a.domain,
+                  "Case file (.toml), case directory or geometry file of the domain; the case's settings are kept "
+                  "but for its [spacing]")
+      ->required()
+      ->type_name("FILE");
+  adapt.add_option("--solution", a.options.solution, "spacing.file: the solution, a .vtu or .msh with point data")
+      ->required()
+      ->type_name("SOL");
+  adapt
+      .add_option("--array", a.options.arrays,
+                  "spacing.array: the point array(s) of SOL to adapt to; several: their metrics intersected")
+      ->required()
+      ->delimiter(',')
+      ->type_name("NAME[,NAME...]");
+  adapt
+      .add_option("--complexity", a.options.complexity,
+                  "spacing.complexity: the metric's complexity C (> 0; about 1.15 C vertices)")
+      ->required()
+      ->type_name("C");
+  adapt.add_option("--hmin", a.options.hmin, "spacing.hmin: smallest size (default 0: none)")->type_name("H");
+  adapt.add_option("--hmax", a.options.hmax, "spacing.hmax: largest size (default: none)")->type_name("H");
+  adapt
+      .add_option("--gradation", a.options.gradation,
+                  "spacing.metric_gradation: size ratio per unit metric length, in (1, 100] (default 0: off)")
+      ->type_name("B");
+  adapt
+      .add_option("--max-anisotropy", a.options.max_anisotropy,
+                  "spacing.max_anisotropy: largest ratio of a metric's two sizes (>= 1; default: none)")
+      ->type_name("A");
+  adapt
+      .add_option("--norm", a.options.norm,
+                  "spacing.norm: p of the L^p norm of the interpolation error the metric minimises (>= 1; default 2)")
+      ->type_name("P");
+  adapt.add_flag("--no-transfer", a.no_transfer, "Do not write DIR/solution.vtu (SOL's point data on the new mesh)");
+  add_run_options(adapt, a.run);
+  adapt
+      .add_option("--start", a.run.start,
+                  "init.file: start warm from this node file or mesh (e.g. SOL's mesh); docs/smoothing.md")
+      ->type_name("FILE");
+  adapt.footer(
+      "The run is pdmesh mesh's on DOMAIN with spacing.field = \"hessian\" on SOL (docs/metric-fields.md);\n"
+      "its options and --set keys are those of pdmesh mesh. DIR/solution.vtu holds SOL's point arrays\n"
+      "interpolated onto the new mesh's points.");
+}
+
 void add_quality_options(CLI::App& quality, QualityArguments& a) {
   quality
       .add_option("MESH", a.mesh, "Mesh file: .msh (Gmsh 2.2 or 4.1), .vtu, .su2, Medit .mesh, or Triangle .ele/.node")
@@ -468,6 +524,16 @@ int run_smooth_command(SmoothArguments& a) {
   return run_smooth(config_from(a.run), fs::path(a.mesh), field);
 }
 
+int run_adapt_command(AdaptArguments& a) {
+  a.options.transfer = !a.no_transfer;
+  a.run.inputs = {a.domain};
+  a.run.defaults = adapt_overrides(a.options);
+  const CaseConfig config = config_from(a.run);
+  if (config.motion.enabled)
+    throw InputError(fmt::format("{}: pdmesh adapt meshes one domain; the case has [motion]", a.domain));
+  return run_adapt(config, a.options);
+}
+
 }  // namespace
 
 Cli::Cli()
@@ -475,7 +541,8 @@ Cli::Cli()
       mesh_(std::make_unique<MeshArguments>()),
       quality_(std::make_unique<QualityArguments>()),
       bench_(std::make_unique<BenchArguments>()),
-      smooth_(std::make_unique<SmoothArguments>()) {
+      smooth_(std::make_unique<SmoothArguments>()),
+      adapt_(std::make_unique<AdaptArguments>()) {
   app_->set_version_flag("--version", std::string("pdmesh ") + PDMESH_VERSION);
   // Parse errors start like every other input error (docs/cli.md, "Exit status"), so that a script
   // or a user finds them by the same prefix.
@@ -494,6 +561,11 @@ Cli::Cli()
       app_->add_subcommand("smooth", "Improve a triangle mesh made elsewhere: its nodes relaxed, its sizing kept");
   add_smooth_options(*smooth, *smooth_);
   commands_.emplace_back(smooth, [this] { return run_smooth_command(*smooth_); });
+
+  CLI::App* adapt = app_->add_subcommand(
+      "adapt", "Re-mesh a domain to a solution: the Hessian metric of its point arrays, the solution carried over");
+  add_adapt_options(*adapt, *adapt_);
+  commands_.emplace_back(adapt, [this] { return run_adapt_command(*adapt_); });
 
   CLI::App* quality = app_->add_subcommand("quality", "Print the quality table of an existing mesh file");
   add_quality_options(*quality, *quality_);
@@ -540,6 +612,7 @@ Cli::~Cli() = default;
 void Cli::parse(int argc, const char* const* argv) {
   mesh_->command_line.assign(argv, argv + argc);
   smooth_->run.command_line.assign(argv, argv + argc);
+  adapt_->run.command_line.assign(argv, argv + argc);
   app_->parse(argc, argv);
 }
 

@@ -16,6 +16,7 @@ struct MeshArguments;
 struct QualityArguments;
 struct BenchArguments;
 struct SmoothArguments;
+struct AdaptArguments;
 
 class Cli {
  public:
@@ -38,6 +39,7 @@ class Cli {
   std::unique_ptr<QualityArguments> quality_;
   std::unique_ptr<BenchArguments> bench_;
   std::unique_ptr<SmoothArguments> smooth_;
+  std::unique_ptr<AdaptArguments> adapt_;
   bool devices_check_ = false;
 };
 

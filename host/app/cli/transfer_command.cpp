@@ -32,9 +32,8 @@ Mesh read_with_data(const fs::path& path, MeshPointData& data) {
 
 }  // namespace
 
-int run_transfer(const std::string& from, const std::string& to, const std::string& out,
-                 const std::vector<std::string>& arrays, bool quiet) {
-  if (lower_extension(out) != ".vtu") throw InputError(fmt::format("--out {}: the output must be a .vtu file", out));
+TransferredArrays transfer_point_arrays(const std::string& from, const std::vector<std::string>& arrays, Mesh& target,
+                                        TransferCounts& counts) {
   MeshPointData listing;
   const Mesh source = read_with_data(from, listing);
   std::vector<std::string> names = arrays;
@@ -51,6 +50,22 @@ int run_transfer(const std::string& from, const std::string& to, const std::stri
       throw InputError(
           fmt::format("{}: no point array '{}' (point arrays: {})", from, n, fmt::join(listing.point_arrays, ", ")));
   if (source.triangles.empty()) throw InputError(fmt::format("{}: the mesh has no triangles", from));
+  std::vector<PointValues> values;
+  for (const std::string& n : names) {
+    MeshPointData data;
+    data.wanted = n;
+    (void)read_with_data(from, data);
+    const PointDataArray& a = *data.array;
+    values.push_back(
+        {n, a.components, transfer_point_values(source, a.values, a.components, target.points, &counts), false});
+  }
+  for (PointValues& v : values) target.point_data.push_back(std::move(v));
+  return {names, source.points.size()};
+}
+
+int run_transfer(const std::string& from, const std::string& to, const std::string& out,
+                 const std::vector<std::string>& arrays, bool quiet) {
+  if (lower_extension(out) != ".vtu") throw InputError(fmt::format("--out {}: the output must be a .vtu file", out));
   MeshReadReport report;
   Mesh target = read_mesh(to, report);
   // A motion step's own ids stay with its points.
@@ -61,21 +76,13 @@ int run_transfer(const std::string& from, const std::string& to, const std::stri
     if (ids.array && ids.array->components == 1) target.point_data.push_back({"node_id", 1, ids.array->values, true});
   }
   TransferCounts counts;
-  for (const std::string& n : names) {
-    MeshPointData data;
-    data.wanted = n;
-    (void)read_with_data(from, data);
-    const PointDataArray& a = *data.array;
-    PointValues v{n, a.components, transfer_point_values(source, a.values, a.components, target.points, &counts),
-                  false};
-    target.point_data.push_back(std::move(v));
-  }
+  const TransferredArrays moved = transfer_point_arrays(from, arrays, target, counts);
   write_file_atomically(out, vtu_string(target));
   if (!quiet)
     fmt::print(stderr,
                "transfer: {} ({}) from {} ({} points) onto {} ({} points): {} points in a triangle, {} outside the "
                "mesh (nearest triangle, at most {:.3g} away); wrote {}\n",
-               fmt::join(names, ", "), names.size(), from, source.points.size(), to, target.points.size(),
+               fmt::join(moved.names, ", "), moved.names.size(), from, moved.source_points, to, target.points.size(),
                counts.inside, counts.outside, counts.max_distance, out);
   return 0;
 }

@@ -120,7 +120,11 @@ bool is_string_key(const std::string& key) {
 toml::table override_value(const CaseOverride& o) {
   try {
     toml::table t = toml::parse("v = " + o.value, o.label);
-    if (t.size() == 1 && t.contains("v") && (t.get("v")->is_string() || !is_string_key(o.key))) return t;
+    // spacing.array may also be a list of names (several arrays of a Hessian metric).
+    const toml::node* v = t.get("v");
+    if (t.size() == 1 && v != nullptr &&
+        (v->is_string() || !is_string_key(o.key) || (o.key == "spacing.array" && v->is_array())))
+      return t;
   } catch (const toml::parse_error&) {
   }
   toml::table t;
@@ -256,6 +260,7 @@ const std::vector<std::string>& spacing_keys() {
       "spacing.max_anisotropy",
       "spacing.metric_gradation",
       "spacing.hessian_step",
+      "spacing.norm",
       "spacing.size",
   };
   return keys;

@@ -115,11 +115,17 @@ struct CaseConfig {
     // field == Hessian: the L2-optimal metric of a function, given as an expression `function` in x and
     // y or as scalar data `array` (default "u") at the points of `file`, of complexity C = `complexity`,
     // clipped to sizes in [hmin, hmax] and to max_anisotropy (spacing/hessian_metric.hpp).
+    // `spacing.array = ["a", "b"]` (Hessian with `file` only): every name, `array` the first; their
+    // metrics intersected (intersected_hessian_metrics_on_mesh). Empty when spacing.array is one string.
+    std::vector<std::string> arrays;
     std::string function;
     double complexity = 0.0;  // required for Hessian
     double hmin = 0.0;
     double hmax = std::numeric_limits<double>::infinity();
     double max_anisotropy = std::numeric_limits<double>::infinity();
+    // field == Hessian: p of the L^p norm of the interpolation error the metric minimises (>= 1; 2 the
+    // L2 norm; larger p puts more nodes where the error is largest, on steep features).
+    double norm = 2.0;
     // The metric gradation beta (> 1, the size ratio per unit metric length; 0 = off), in metric space,
     // along a background mesh's edges: the file's, or a grid's for expressions and functions
     // (spacing/metric_gradation.hpp, app/config/case_spacing.cpp).

@@ -14,7 +14,7 @@ namespace {
 
 const std::array<const char*, 3> kSizeKeys = {"h1", "h2", "angle"};
 const std::array<const char*, 3> kComponentKeys = {"m11", "m12", "m22"};
-const std::array<const char*, 5> kHessianKeys = {"function", "complexity", "hmin", "hmax", "max_anisotropy"};
+const std::array<const char*, 6> kHessianKeys = {"function", "complexity", "hmin", "hmax", "max_anisotropy", "norm"};
 
 // The first of `keys` the [spacing] section sets, or null.
 const char* first_given(const toml::table& root, const auto& keys) {
@@ -76,6 +76,11 @@ void read_metric_values(const Reader& r, const toml::table& root, CaseConfig& c)
     if (!(s.max_anisotropy >= 1.0))
       r.fail("spacing.max_anisotropy", n, fmt::format("spacing.max_anisotropy must be >= 1, got {}", s.max_anisotropy));
   }
+  if (const toml::node* n = find(root, "spacing", "norm")) {
+    s.norm = r.number("spacing.norm", *n);
+    if (!std::isfinite(s.norm) || !(s.norm >= 1.0))
+      r.fail("spacing.norm", n, fmt::format("spacing.norm must be a finite number >= 1, got {}", s.norm));
+  }
   if (const toml::node* n = find(root, "spacing", "metric_gradation")) {
     s.metric_gradation = r.number("spacing.metric_gradation", *n);
     if (!(s.metric_gradation == 0.0 || (s.metric_gradation > 1.0 && s.metric_gradation <= 100.0)))
@@ -106,6 +111,11 @@ void check_metric_keys(const Reader& r, const toml::table& root, CaseConfig& c, 
   for (const char* k : kHessianKeys) refuse_unless(hessian, k);
   refuse_unless(metric, "sol");
   refuse_unless(metric || hessian, "metric_gradation");
+  if (!c.spacing.arrays.empty() && !(hessian && file != nullptr))
+    r.fail("spacing.array", array,
+           fmt::format("spacing.array is a list, which only spacing.field = 'hessian' with spacing.file takes "
+                       "(spacing.field is '{}'{})",
+                       name, file == nullptr ? ", no spacing.file" : ""));
   refuse_unless(hessian && !s.function.empty(), "hessian_step");
   const bool medit = file != nullptr && lower_extension(s.file) == ".mesh";
   if (medit && !metric) {

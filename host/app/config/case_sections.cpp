@@ -101,7 +101,18 @@ void read_spacing_section(const Reader& r, const toml::table& root, CaseConfig& 
     }
     c.spacing.file = r.resolve("spacing.file", f);
   }
-  if (array != nullptr) {
+  if (array != nullptr && array->is_array()) {
+    // Several arrays (spacing.field = "hessian" with a file; check_metric_keys refuses the rest).
+    for (const toml::node& n : *array->as_array()) {
+      const std::string name = r.string("spacing.array", n);
+      if (name.empty()) r.fail("spacing.array", &n, "spacing.array must not hold an empty name");
+      if (std::find(c.spacing.arrays.begin(), c.spacing.arrays.end(), name) != c.spacing.arrays.end())
+        r.fail("spacing.array", &n, fmt::format("spacing.array names '{}' twice", quote_input(name)));
+      c.spacing.arrays.push_back(name);
+    }
+    if (c.spacing.arrays.empty()) r.fail("spacing.array", array, "spacing.array must not be an empty list");
+    c.spacing.array = c.spacing.arrays.front();
+  } else if (array != nullptr) {
     c.spacing.array = r.string("spacing.array", *array);
     if (c.spacing.array.empty()) r.fail("spacing.array", array, "spacing.array must not be empty");
   }

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cctype>
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include "core/errors.hpp"
 #include "core/input_file.hpp"
@@ -114,6 +115,7 @@ std::unique_ptr<MetricField> case_metric_field(const CaseConfig& config, const G
   options.hmin = s.hmin;
   options.hmax = s.hmax;
   options.max_anisotropy = s.max_anisotropy;
+  options.p = s.norm;
   if (s.file.empty()) {
     // The Hessian by central differences of a step of spacing.hessian_step times the geometry's extent
     // (default 1e-5: the function's own curvature, rounding noise ~1e-16 |u| / step² far below it),
@@ -129,7 +131,19 @@ std::unique_ptr<MetricField> case_metric_field(const CaseConfig& config, const G
   }
   ScalarMeshData data = load_scalar_mesh(s.file, s.array);
   MetricMeshData metric;
-  metric.metrics = hessian_metrics_on_mesh(data.points, data.triangles, data.values, options, data.what);
+  if (s.arrays.size() > 1) {
+    std::vector<std::vector<double>> values{std::move(data.values)};
+    std::vector<std::string> what{data.what};
+    for (std::size_t k = 1; k < s.arrays.size(); ++k) {
+      ScalarMeshData more = load_scalar_mesh(s.file, s.arrays[k]);
+      values.push_back(std::move(more.values));
+      what.push_back(std::move(more.what));
+    }
+    metric.metrics = intersected_hessian_metrics_on_mesh(data.points, data.triangles, values, options, what);
+    data.what = fmt::format("{} (intersected)", fmt::join(what, ", "));
+  } else {
+    metric.metrics = hessian_metrics_on_mesh(data.points, data.triangles, data.values, options, data.what);
+  }
   metric.points = std::move(data.points);
   metric.triangles = std::move(data.triangles);
   metric.what = data.what;

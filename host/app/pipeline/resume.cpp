@@ -3,6 +3,7 @@
 
 #include <cstdint>
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include "core/errors.hpp"
 #include "io/text_file.hpp"
@@ -76,6 +77,8 @@ void add_spacing_field_identity(const CaseConfig& config, Identity& keys) {
     file_identity("spacing.file", config.spacing.file);
     if (!config.spacing.sol.empty())
       file_identity("spacing.sol", config.spacing.sol);
+    else if (config.spacing.arrays.size() > 1)
+      keys.emplace_back("spacing.array", fmt::format("{}", fmt::join(config.spacing.arrays, ", ")));
     else
       keys.emplace_back("spacing.array", config.spacing.array);
   }
@@ -96,6 +99,8 @@ void add_spacing_field_identity(const CaseConfig& config, Identity& keys) {
     keys.emplace_back("spacing.hmax", fmt::format("{}", s.hmax));
     keys.emplace_back("spacing.max_anisotropy", fmt::format("{}", s.max_anisotropy));
     keys.emplace_back("spacing.metric_gradation", fmt::format("{}", s.metric_gradation));
+    // Only when not the L2 norm, so that checkpoints of earlier Hessian runs identify the same way.
+    if (s.norm != 2.0) keys.emplace_back("spacing.norm", fmt::format("{}", s.norm));
   }
 }
 

@@ -1,0 +1,123 @@
+// The adapt command (adapt_command.hpp).
+#include "app/cli/adapt_command.hpp"
+
+#include <algorithm>
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+#include <toml++/toml.h>
+
+#include "app/cli/transfer_command.hpp"
+#include "app/pipeline/exit_codes.hpp"
+#include "app/pipeline/mesh_pipeline.hpp"
+#include "core/atomic_file.hpp"
+#include "core/errors.hpp"
+#include "core/input_file.hpp"
+#include "io/mesh_formats.hpp"
+#include "io/msh_reader.hpp"
+#include "io/vtu_reader.hpp"
+#include "io/vtu_writer.hpp"
+
+namespace pdmesh {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string toml_text(const toml::node& n) {
+  std::ostringstream s;
+  n.visit([&](const auto& v) { s << v; });
+  return s.str();
+}
+
+// The point arrays SOL holds; InputError when SOL is not a .vtu or .msh or cannot be read.
+std::vector<std::string> point_arrays_of(const fs::path& solution) {
+  MeshReadReport report;
+  MeshPointData listing;
+  const std::string e = lower_extension(solution);
+  if (e == ".vtu")
+    (void)read_vtu(solution, report, &listing);
+  else if (e == ".msh")
+    (void)read_msh(solution, report, &listing);
+  else
+    throw InputError(fmt::format("--solution {}: expected a .vtu or .msh mesh with point data", solution.string()));
+  return listing.point_arrays;
+}
+
+// The first mesh file the run writes that holds every point: the one solution.vtu is made on.
+std::optional<fs::path> written_mesh(const CaseConfig& config) {
+  for (const std::string& f : config.output.formats) {
+    if (!is_mesh_format(f) || f == "fort14" || f == "2dm") continue;
+    const auto& ext = mesh_format_extensions(f);
+    return config.out_dir / ("mesh" + (f == "triangle" ? std::string(".ele") : ext.front()));
+  }
+  return std::nullopt;
+}
+
+}  // namespace
+
+std::vector<CaseOverride> adapt_overrides(const AdaptOptions& o) {
+  const std::string arrays = fmt::format("{}", fmt::join(o.arrays, ","));
+  std::vector<CaseOverride> out;
+  out.push_back({"spacing", "{}", "pdmesh adapt (the case's [spacing] is replaced)"});
+  out.push_back({"spacing.field", "\"hessian\"", "pdmesh adapt"});
+  out.push_back({"spacing.file", toml_text(toml::value<std::string>(o.solution)), "--solution " + o.solution});
+  if (o.arrays.size() == 1) {
+    out.push_back({"spacing.array", toml_text(toml::value<std::string>(o.arrays.front())), "--array " + arrays});
+  } else {
+    toml::array list;
+    for (const std::string& a : o.arrays) list.push_back(a);
+    out.push_back({"spacing.array", toml_text(list), "--array " + arrays});
+  }
+  out.push_back({"spacing.complexity", o.complexity, "--complexity " + o.complexity});
+  const auto optional = [&](const std::optional<std::string>& v, const char* option, const char* key) {
+    if (v) out.push_back({key, *v, fmt::format("{} {}", option, *v)});
+  };
+  optional(o.hmin, "--hmin", "spacing.hmin");
+  optional(o.hmax, "--hmax", "spacing.hmax");
+  optional(o.max_anisotropy, "--max-anisotropy", "spacing.max_anisotropy");
+  optional(o.norm, "--norm", "spacing.norm");
+  optional(o.gradation, "--gradation", "spacing.metric_gradation");
+  return out;
+}
+
+fs::path adapted_solution_path(const CaseConfig& config) { return config.out_dir / "solution.vtu"; }
+
+int run_adapt(const CaseConfig& config, const AdaptOptions& options) {
+  const fs::path solution = config.spacing.file;
+  std::error_code ec;
+  if (!fs::is_regular_file(solution, ec))
+    throw InputError(fmt::format("--solution {}: cannot read '{}': no such file", options.solution, solution.string()));
+  const std::vector<std::string> present = point_arrays_of(solution);
+  for (const std::string& name : options.arrays)
+    if (std::find(present.begin(), present.end(), name) == present.end())
+      throw InputError(fmt::format("--array {}: {} has no point array '{}' (point arrays: {})", name, options.solution,
+                                   name, present.empty() ? "none" : fmt::format("{}", fmt::join(present, ", "))));
+  const std::optional<fs::path> mesh_file = written_mesh(config);
+  const fs::path out = adapted_solution_path(config);
+  if (options.transfer) {
+    if (!mesh_file)
+      throw InputError(fmt::format(
+          "output.formats = [{}] writes no mesh file (msh, msh22, vtu, su2, mesh or triangle) for solution.vtu to "
+          "follow: add one, or give --no-transfer",
+          fmt::join(config.output.formats, ", ")));
+    if (fs::equivalent(solution, out, ec))
+      throw InputError(fmt::format("--solution {} is {}, which this run writes: give another --out", options.solution,
+                                   out.string()));
+  }
+  const int status = run_mesh(config);
+  if (status != kExitOk || !options.transfer) return status;
+  Mesh target = read_mesh(*mesh_file);
+  target.point_data.clear();
+  TransferCounts counts;
+  const TransferredArrays moved = transfer_point_arrays(solution.string(), {}, target, counts);
+  write_file_atomically(out, vtu_string(target));
+  if (!config.quiet)
+    fmt::print(stderr,
+               "adapt: {} from {} ({} points) onto {} ({} points; {} outside the old mesh, at most {:.3g} away): "
+               "wrote {}\n",
+               fmt::join(moved.names, ", "), options.solution, moved.source_points, mesh_file->string(),
+               target.points.size(), counts.outside, counts.max_distance, out.string());
+  return status;
+}
+
+}  // namespace pdmesh

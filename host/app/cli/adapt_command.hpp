@@ -1,0 +1,41 @@
+// `pdmesh adapt DOMAIN --solution SOL --array NAME --complexity C --out DIR` (docs/cli.md, "pdmesh adapt"):
+// one step of the solve-adapt loop. The case of DOMAIN (resolved as pdmesh mesh and pdmesh smooth
+// resolve their input) has its [spacing] replaced by the Hessian metric of SOL's point arrays, the
+// `spacing.field = "hessian"` keys (docs/metric-fields.md), and is meshed by run_mesh; then SOL's point
+// arrays are interpolated onto the new mesh's points (pdmesh transfer's code) as DIR/solution.vtu.
+#pragma once
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "app/config/case_file.hpp"
+
+namespace pdmesh {
+
+struct AdaptOptions {
+  std::string solution;             // SOL: a .vtu or .msh with point data
+  std::vector<std::string> arrays;  // --array: one or more of SOL's point arrays
+  // The metric's keys as the user wrote them (TOML values; the case validator checks them and names
+  // the option in its messages).
+  std::string complexity;
+  std::optional<std::string> hmin, hmax, gradation, max_anisotropy, norm;
+  bool transfer = true;  // --no-transfer: no solution.vtu
+};
+
+// The case keys the command sets before the user's --set: the case's [spacing] table replaced by
+// spacing.field = "hessian", spacing.file = SOL, spacing.array (a list for several arrays),
+// spacing.complexity and the optional hmin, hmax, max_anisotropy, norm and metric_gradation (--gradation).
+std::vector<CaseOverride> adapt_overrides(const AdaptOptions& options);
+
+// The file solution.vtu in `config`'s output directory.
+std::filesystem::path adapted_solution_path(const CaseConfig& config);
+
+// The command on a case built with adapt_overrides: checks, before anything is written, that SOL has
+// every array (InputError listing those it has), that the run writes a mesh file solution.vtu can
+// follow (unless --no-transfer) and that solution.vtu is not SOL; then run_mesh; then, when the run
+// succeeded, SOL's point arrays (all but kind, q and node_id) interpolated onto the written mesh's
+// points, written atomically as DIR/solution.vtu. Returns the exit status.
+int run_adapt(const CaseConfig& config, const AdaptOptions& options);
+
+}  // namespace pdmesh
