@@ -77,7 +77,8 @@ Geometry read_as_geometry(const std::string& path) {
 
 double triangle_area(const Mesh& m) {
   double sum = 0.0;
-  for (const auto& t : m.triangles) sum += 0.5 * cross(m.points[t[1]] - m.points[t[0]], m.points[t[2]] - m.points[t[0]]);
+  for (const auto& t : m.triangles)
+    sum += 0.5 * cross(m.points[t[1]] - m.points[t[0]], m.points[t[2]] - m.points[t[0]]);
   return sum;
 }
 
@@ -109,7 +110,8 @@ TEST_CASE("a name on separate stretches: NAME, NAME_2 and a group that selects b
   const Geometry g = built(raw);
   const std::vector<int> walls = curves_by_name(g, {"wall"}, "test");
   REQUIRE(walls.size() == 2);
-  for (const int c : walls) CHECK(g.curves[static_cast<std::size_t>(c)].points.front().y == g.curves[c].points.back().y);
+  for (const int c : walls)
+    CHECK(g.curves[static_cast<std::size_t>(c)].points.front().y == g.curves[c].points.back().y);
   CHECK(curves_by_name(g, {"wall_2"}, "test").size() == 1);
   CHECK_THROWS_WITH(curves_by_name(g, {"walls"}, "test"), Contains("unknown curve 'walls'"));
   bool noted = false;
@@ -164,8 +166,7 @@ TEST_CASE("refusals: no cells, a pinched boundary, an edge of three cells, a zer
   Mesh pinched;
   pinched.points = {{0, 0}, {1, 0}, {1, 1}, {2, 1}, {2, 2}, {0, 1}};
   pinched.triangles = {{0, 1, 2}, {2, 3, 4}};
-  CHECK_THROWS_WITH(mesh_as_geometry(pinched, {}, "p.msh"),
-                    Contains("p.msh: the boundary pinches at point 2 (1, 1)"));
+  CHECK_THROWS_WITH(mesh_as_geometry(pinched, {}, "p.msh"), Contains("p.msh: the boundary pinches at point 2 (1, 1)"));
   Mesh fin;
   fin.points = {{0, 0}, {1, 0}, {0, 1}, {1, 1}, {0.5, -1}};
   fin.triangles = {{0, 1, 2}, {1, 3, 2}, {0, 4, 1}, {0, 1, 3}};
