@@ -151,9 +151,10 @@ class MeshGeometryBuilder {
         } else if (e.count == 2) {
           e.second_cell = c;
         } else {
-          throw InputError(fmt::format("{}: the edge from point {} to point {} is a side of {} cells; an edge of a 2-D "
-                                       "mesh is a side of one or two",
-                                       file_, point_text(a), point_text(b), e.count));
+          throw InputError(
+              fmt::format("{}: the edge from point {} to point {} is a side of {} cells; an edge of a 2-D "
+                          "mesh is a side of one or two",
+                          file_, point_text(a), point_text(b), e.count));
         }
       }
     }
@@ -193,10 +194,11 @@ class MeshGeometryBuilder {
       const EdgeInfo& e = edges_[key];
       if (e.count != 1) continue;
       if (!next.emplace(e.first.a, e.first.b).second)
-        throw InputError(fmt::format("{}: the boundary pinches at point {}: two boundary loops pass through it; a mesh "
-                                     "used as a geometry must have a boundary of separate loops (move the cells apart "
-                                     "or join them with a cell)",
-                                     file_, point_text(e.first.a)));
+        throw InputError(
+            fmt::format("{}: the boundary pinches at point {}: two boundary loops pass through it; a mesh "
+                        "used as a geometry must have a boundary of separate loops (move the cells apart "
+                        "or join them with a cell)",
+                        file_, point_text(e.first.a)));
       starts.push_back(key);
     }
     std::set<int> done;
@@ -209,9 +211,10 @@ class MeshGeometryBuilder {
         done.insert(v);
         const auto to = next.find(v);
         if (to == next.end())
-          throw InputError(fmt::format("{}: the boundary does not close at point {}: the cells there overlap or are "
-                                       "inverted",
-                                       file_, point_text(v)));
+          throw InputError(
+              fmt::format("{}: the boundary does not close at point {}: the cells there overlap or are "
+                          "inverted",
+                          file_, point_text(v)));
         v = to->second;
         if (v == start) break;
       }
@@ -362,8 +365,9 @@ class MeshGeometryBuilder {
         names.push_back(candidate);
       }
       raw_.groups.push_back({name, names});
-      raw_.notes.push_back(fmt::format("{}: '{}' names {} separate curves: {} (a selection of curves by '{}' takes them all)",
-                                       file_, name, curves.size(), fmt::join(names, ", "), name));
+      raw_.notes.push_back(
+          fmt::format("{}: '{}' names {} separate curves: {} (a selection of curves by '{}' takes them all)", file_,
+                      name, curves.size(), fmt::join(names, ", "), name));
     }
   }
 
