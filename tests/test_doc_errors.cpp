@@ -126,6 +126,8 @@ std::map<std::string, Input> inputs() {
        {{{"f.msh", msh22("5\n1 0 0 0\n2 1 0 0\n3 0 1 0\n4 1 1 0\n5 0.5 -1 0\n",
                          "1 2 2 0 1 1 2 3\n2 2 2 0 1 2 4 3\n3 2 2 0 1 1 5 2\n4 2 2 0 1 1 2 4\n", 4)}},
         "f.msh"}},
+      {"3-D mesh file (a point off z = 0)",
+       {{{"z.msh", msh22("3\n1 0 0 0\n2 1 0 0.5\n3 0 1 0\n", "1 2 2 0 1 1 2 3\n", 1)}}, "z.msh"}},
       {"mesh file with an inverted triangle",
        {{{"v.msh", msh22("4\n1 0 0 0\n2 1 0 0\n3 1 1 0\n4 2 0 0\n", "1 2 2 0 1 1 2 3\n2 2 2 0 1 2 3 4\n", 2)}},
         "v.msh"}},

@@ -180,6 +180,18 @@ TEST_CASE("refusals: no cells, a pinched boundary, an edge of three cells, a zer
   CHECK_THROWS_WITH(check_mesh_triangles(degenerate, {}, "d.msh"), Contains("d.msh: triangle 0"));
 }
 
+TEST_CASE("a mesh file off the plane z = 0 is refused as a geometry, naming the node") {
+  const fs::path dir = pdmesh_test::fresh_dir("mesh_geometry_3d");
+  std::ofstream(dir / "tilted.msh") << "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n3\n1 0 0 0\n2 1 0 0\n"
+                                       "3 0 1 0.25\n$EndNodes\n$Elements\n1\n1 2 2 0 1 1 2 3\n$EndElements\n";
+  CHECK_THROWS_WITH(read_mesh_geometry((dir / "tilted.msh").string()),
+                    Contains("must lie in the plane z = 0") && Contains("tilted.msh:8: node 3 has z = 0.25"));
+  // The same mesh in the plane reads.
+  std::ofstream(dir / "flat.msh") << "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n3\n1 0 0 0\n2 1 0 0\n"
+                                     "3 0 1 0\n$EndNodes\n$Elements\n1\n1 2 2 0 1 1 2 3\n$EndElements\n";
+  CHECK(read_mesh_geometry((dir / "flat.msh").string()).curves.size() == 1);
+}
+
 TEST_CASE("a run's mesh files in every format read back as its geometry") {
   const fs::path out = pdmesh_test::fresh_path("mesh_geometry_formats");
   const auto run = run_pdmesh("mesh '" + kData + "hole_two_regions.toml' --out '" + out.string() + "' -q");

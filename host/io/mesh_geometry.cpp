@@ -391,6 +391,9 @@ RawGeometry read_mesh_geometry(const std::string& path) {
   MeshReadReport report;
   SurfaceCells cells;
   const Mesh mesh = read_mesh(path, report, &cells);
+  if (!report.off_plane.empty())
+    throw InputError(fmt::format("{}: a mesh used as a geometry must lie in the plane z = 0 (a 2-D mesh); {}", path,
+                                 report.off_plane));
   if (mesh.triangles.empty() && cells.quads.empty())
     throw InputError(fmt::format("{}: the mesh has no triangles or quadrangles", path));
   if (!mesh.triangles.empty()) check_mesh_triangles(mesh, report.reoriented, path);

@@ -45,8 +45,9 @@ void check_mesh_triangles(const Mesh& mesh, const std::vector<std::size_t>& reor
 // the boundary pinches (two loops through it: its index and coordinates).
 RawGeometry mesh_as_geometry(const Mesh& mesh, const std::vector<std::array<int, 4>>& quads, const std::string& file);
 
-// Reads `path` with read_mesh (triangles and quads), refuses inverted and zero-area triangles
-// (check_mesh_triangles) and returns mesh_as_geometry.
+// Reads `path` with read_mesh (triangles and quads), refuses a point off the plane z = 0 (a 3-D
+// mesh: MeshReadReport::off_plane), inverted and zero-area triangles (check_mesh_triangles) and
+// returns mesh_as_geometry.
 RawGeometry read_mesh_geometry(const std::string& path);
 
 // The reader read_geometry takes for mesh files (ReadSteps::other_files); their groups are handed on.
