@@ -25,8 +25,6 @@ namespace pdmesh {
 
 namespace {
 
-std::string node_text(const Mesh& mesh, int i) { return mesh_node_text(mesh, i); }
-
 std::uint64_t edge_key(int a, int b) {
   if (a > b) std::swap(a, b);
   return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(a)) << 32) | static_cast<std::uint32_t>(b);
@@ -58,7 +56,7 @@ void check_smooth_mesh(Mesh& mesh, const std::string& label) {
   }
   for (std::size_t i = 0; i < mesh.points.size(); ++i)
     if (!std::isfinite(mesh.points[i].x) || !std::isfinite(mesh.points[i].y))
-      throw InputError(fmt::format("{}: node {} is not finite", label, node_text(mesh, static_cast<int>(i))));
+      throw InputError(fmt::format("{}: node {} is not finite", label, mesh_node_text(mesh, static_cast<int>(i))));
   check_mesh_triangles(mesh, reoriented, label);
 }
 
@@ -134,7 +132,7 @@ void check_mesh_on_geometry(const Mesh& mesh, const std::string& label, const Ge
     throw InputError(fmt::format(
         "{}: boundary node {} lies {:.6g} from the geometry's curves (nearest: '{}'); allowed {:.3g} ({} x the mean "
         "length of its boundary edges): a mesh of another geometry, or nodes off the curves",
-        label, node_text(mesh, static_cast<int>(i)), hit.distance, curve, allowed, kSmoothBoundaryTolerance));
+        label, mesh_node_text(mesh, static_cast<int>(i)), hit.distance, curve, allowed, kSmoothBoundaryTolerance));
   }
 }
 
