@@ -33,6 +33,12 @@ const std::string kSquare4 = "2\n0 0\n1 0\n2\n1 0\n1 1\n2\n1 1\n0 1\n2\n0 1\n0 0
 const std::string kPolySquare = "4 2 0 0\n1 0 0\n2 2 0\n3 2 2\n4 0 2\n4 0\n1 1 2\n2 2 3\n3 3 4\n4 4 1\n";
 const std::string kPolyTriangle = "3 2 0 0\n1 0 0\n2 1 0\n3 0 1\n3 0\n1 1 2\n2 2 3\n3 3 1\n0\n";
 
+// A Gmsh 2.2 file of these points and triangles (1-based node numbers).
+std::string msh22(const std::string& nodes, const std::string& triangles, int count) {
+  return "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n" + nodes + "$EndNodes\n$Elements\n" + std::to_string(count) +
+         "\n" + triangles + "$EndElements\n";
+}
+
 Input crv(const std::string& text) { return {{{"a.crv", text}}, "a.crv"}; }
 Input poly(const std::string& text) { return {{{"a.poly", text}}, "a.poly"}; }
 Input json(const std::string& text) { return {{{"a.geojson", text}}, "a.geojson"}; }
@@ -113,6 +119,18 @@ std::map<std::string, Input> inputs() {
       {"`.poly` malformed region line", poly(kPolyTriangle + "1\n1 0.2 0.2 x 0\n")},
       {"`.poly` region point on a segment", poly(kPolyTriangle + "1\n1 0.5 0 1 0\n")},
       {"`.poly` text after the regions", poly(kPolySquare + "0\n1\n1 0.5 0.5 1 0\nmore\n")},
+      {"mesh file whose boundary pinches",
+       {{{"p.msh", msh22("5\n1 0 0 0\n2 1 0 0\n3 1 1 0\n4 2 1 0\n5 2 2 0\n", "1 2 2 0 1 1 2 3\n2 2 2 0 1 3 4 5\n", 2)}},
+        "p.msh"}},
+      {"mesh file with an edge of three cells",
+       {{{"f.msh", msh22("5\n1 0 0 0\n2 1 0 0\n3 0 1 0\n4 1 1 0\n5 0.5 -1 0\n",
+                         "1 2 2 0 1 1 2 3\n2 2 2 0 1 2 4 3\n3 2 2 0 1 1 5 2\n4 2 2 0 1 1 2 4\n", 4)}},
+        "f.msh"}},
+      {"3-D mesh file (a point off z = 0)",
+       {{{"z.msh", msh22("3\n1 0 0 0\n2 1 0 0.5\n3 0 1 0\n", "1 2 2 0 1 1 2 3\n", 1)}}, "z.msh"}},
+      {"mesh file with an inverted triangle",
+       {{{"v.msh", msh22("4\n1 0 0 0\n2 1 0 0\n3 1 1 0\n4 2 0 0\n", "1 2 2 0 1 1 2 3\n2 2 2 0 1 2 3 4\n", 2)}},
+        "v.msh"}},
       {"bad options", with_case({{"a.crv", kSquare4}}, "[geometry]\nfiles = [\"a.crv\"]\njoin_tolerance = 2\n")},
   };
 }

@@ -300,7 +300,7 @@ TEST_CASE("equirectangular projection: metres about the centre, and back", "[geo
   // Through read_geometry: the box is about 7.2 km by 11.1 km.
   Equirectangular used;
   const Geometry g =
-      read_geometry({data("gis/lonlat_square.geojson")}, {}, {}, {ProjectionKind::Equirectangular, &used, {}});
+      read_geometry({data("gis/lonlat_square.geojson")}, {}, {}, {ProjectionKind::Equirectangular, &used, {}, {}});
   CHECK(used.lat0 == p.lat0);
   CHECK(g.extents.hi.x - g.extents.lo.x == Approx(R * std::cos(50.05 * deg) * 0.1 * deg));
 }
@@ -312,7 +312,7 @@ TEST_CASE("equirectangular projection of data that is not lon/lat is refused nam
                                 "{\"type\": \"Polygon\",\n \"coordinates\": [[[500000, 5500000], [501000, 5500000], "
                                 "[501000, 5501000], [500000, 5500000]]]}");
   CHECK_NOTHROW(read_geometry({utm}, {}));  // projected data is taken as given
-  CHECK_THROWS_WITH(read_geometry({utm}, {}, {}, {ProjectionKind::Equirectangular, nullptr, {}}),
+  CHECK_THROWS_WITH(read_geometry({utm}, {}, {}, {ProjectionKind::Equirectangular, nullptr, {}, {}}),
                     Contains("utm.geojson:1: point (500000, 5500000) is not longitude/latitude"));
   const std::string msg = error_message<InputError>([] {
     RawGeometry raw = read_geometry_files({data("airfoils/naca2412.dat")});

@@ -475,7 +475,7 @@ Geometry build_geometry(std::vector<RawCurve> raw, const std::vector<RawHolePoin
                         const GeometryOptions& options) {
   if (raw.empty()) throw GeometryError("the geometry has no curves");
   if (std::any_of(raw.begin(), raw.end(), [](const RawCurve& c) { return c.constraint; }))
-    return build_geometry(RawGeometry{std::move(raw), holes, {}, {}, {}}, options);
+    return build_geometry(RawGeometry{std::move(raw), holes, {}, {}, {}, {}}, options);
   check_options(options);
   PointLines lines;
   check_points(raw, lines);

@@ -200,8 +200,9 @@ Geometry with_farfield(const Geometry& body, const Farfield& f, double gradation
     }
     points.push_back(p);
   }
-  Geometry g = points.empty() ? build_geometry(std::move(raw), holes, options)
-                              : build_geometry(RawGeometry{std::move(raw), holes, std::move(points), {}, {}}, options);
+  Geometry g = points.empty()
+                   ? build_geometry(std::move(raw), holes, options)
+                   : build_geometry(RawGeometry{std::move(raw), holes, std::move(points), {}, {}, {}}, options);
   for (const GeometryRegion& r : body.regions) {
     if (inside_body(r.p)) {
       regions_out.add(point_label(r.p, r.file, r.line));
@@ -210,6 +211,7 @@ Geometry with_farfield(const Geometry& body, const Farfield& f, double gradation
     g.regions.push_back(r);
   }
   g.notes = body.notes;
+  g.groups = body.groups;
   const char* meshed = " (farfield.cavities = \"mesh\" meshes them)";
   note_left_out(g.notes, f.label, loops, "loop nested", "loops nested", meshed);
   note_left_out(g.notes, f.label, holes_out, "hole point", "hole points", "");

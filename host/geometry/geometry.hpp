@@ -52,6 +52,14 @@ struct GeometryRegion {
   int line = 0;
 };
 
+// A name that stands for several curves (a mesh file's boundary name on separate stretches, which
+// become curves NAME, NAME_2, ...: io/mesh_geometry.hpp): selections of curves by name
+// (curves_by_name, layers/boundary_layers.hpp) take it for all of them.
+struct CurveGroup {
+  std::string name;
+  std::vector<std::string> curves;
+};
+
 // One validated segmented boundary curve: an ordered polyline of >= 2 distinct consecutive points.
 struct Curve {
   std::string name;
@@ -130,17 +138,21 @@ struct Geometry {
   // Remarks of the readers (a .poly read differently from the even-odd rule, vertices kept or
   // dropped): printed on stderr by the command.
   std::vector<std::string> notes;
+  // Names that stand for several curves (mesh files as geometry).
+  std::vector<CurveGroup> groups;
 };
 
 // Everything a geometry reader hands on: curves (boundaries and constraints), hole points and
-// embedded points, before validation; with .poly files also the regions and the readers' notes, which
-// build_geometry leaves to the caller (read_geometry copies them onto the Geometry).
+// embedded points, before validation; with .poly files also the regions and the readers' notes, and
+// with mesh files the curve groups, which build_geometry leaves to the caller (read_geometry copies
+// them onto the Geometry).
 struct RawGeometry {
   std::vector<RawCurve> curves;
   std::vector<RawHolePoint> holes;
   std::vector<RawPoint> points;
   std::vector<GeometryRegion> regions;
   std::vector<std::string> notes;
+  std::vector<CurveGroup> groups;  // handed on like regions and notes
 };
 
 // Validates raw curves and derives everything else. Throws GeometryError naming the file, line,

@@ -59,7 +59,8 @@ std::string plain_stem(const std::string& path) {
 
 }  // namespace
 
-RawGeometry read_geometry_files(const std::vector<std::string>& paths, PolyHull hull, std::string* per_file) {
+RawGeometry read_geometry_files(const std::vector<std::string>& paths, PolyHull hull, std::string* per_file,
+                                const OtherGeometryFile& other) {
   if (paths.empty()) throw InputError("no geometry files given");
   RawGeometry raw;
   std::vector<std::pair<std::size_t, std::size_t>> airfoils;  // [first, last) curves of each airfoil file
@@ -92,10 +93,11 @@ RawGeometry read_geometry_files(const std::vector<std::string>& paths, PolyHull 
       RawGeometry part = ext == ".shp" ? read_shapefile(path) : read_geojson_file(path);
       for (RawCurve& c : part.curves) raw.curves.push_back(std::move(c));
       for (RawPoint& p : part.points) raw.points.push_back(std::move(p));
-    } else {
-      throw InputError(fmt::format(
-          "{}: unsupported geometry file extension '{}' (supported: .crv, .dat, .poly, .geojson, .json, .shp)", path,
-          ext));
+    } else if (!other || !other(path, ext, raw)) {
+      throw InputError(
+          fmt::format("{}: unsupported geometry file extension '{}' (supported: .crv, .dat, .poly, "
+                      ".geojson, .json, .shp{})",
+                      path, ext, other ? ", and the mesh files .msh, .vtu, .su2, .mesh, .ele" : ""));
     }
     const std::size_t n = raw.curves.size() - before;
     counts += fmt::format("{}{}: {} curve{}", counts.empty() ? "" : ", ", path, n, n == 1 ? "" : "s");
@@ -116,8 +118,8 @@ RawGeometry read_geometry_files(const std::vector<std::string>& paths, PolyHull 
 
 namespace {
 
-// The steps after the naming: projection, the prepare step, build_geometry; the regions and notes
-// copied onto the result.
+// The steps after the naming: projection, the prepare step, build_geometry; the regions, notes and
+// curve groups copied onto the result.
 Geometry build_read_geometry(RawGeometry raw, const GeometryOptions& options, const ReadSteps& steps) {
   if (steps.projection == ProjectionKind::Equirectangular) {
     const Equirectangular p = project_lonlat(raw);
@@ -126,9 +128,11 @@ Geometry build_read_geometry(RawGeometry raw, const GeometryOptions& options, co
   if (steps.prepare) steps.prepare(raw.curves, raw.holes);
   std::vector<GeometryRegion> regions = std::move(raw.regions);
   std::vector<std::string> notes = std::move(raw.notes);
+  std::vector<CurveGroup> groups = std::move(raw.groups);
   Geometry g = build_geometry(std::move(raw), options);
   g.regions = std::move(regions);
   g.notes = std::move(notes);
+  g.groups = std::move(groups);
   return g;
 }
 
@@ -137,7 +141,7 @@ Geometry build_read_geometry(RawGeometry raw, const GeometryOptions& options, co
 Geometry read_geometry(const std::vector<std::string>& paths, const std::vector<std::string>& curve_names,
                        const GeometryOptions& options, const ReadSteps& steps) {
   std::string per_file;
-  RawGeometry raw = read_geometry_files(paths, options.hull, &per_file);
+  RawGeometry raw = read_geometry_files(paths, options.hull, &per_file, steps.other_files);
   name_curves(raw.curves, curve_names, per_file);
   return build_read_geometry(std::move(raw), options, steps);
 }

@@ -15,6 +15,11 @@ namespace pdmesh {
 // hole points read with them.
 using PrepareCurves = std::function<void(std::vector<RawCurve>&, const std::vector<RawHolePoint>&)>;
 
+// Reads a geometry file of an extension the readers here do not know into `into` (curves, points,
+// regions, notes appended): a mesh file, read by io/mesh_geometry, which this layer cannot include.
+// Returns false when it does not take the extension `ext` (lower case, with the dot).
+using OtherGeometryFile = std::function<bool(const std::string& path, const std::string& ext, RawGeometry& into)>;
+
 // What reading does beyond the files.
 struct ReadSteps {
   // geometry.projection: for Equirectangular the curves and points are checked to be lon/lat and
@@ -23,21 +28,24 @@ struct ReadSteps {
   ProjectionKind projection = ProjectionKind::None;
   Equirectangular* used = nullptr;
   PrepareCurves prepare;  // after the projection, before build_geometry
+  // Files of other extensions (mesh files: io/mesh_geometry.hpp's mesh_geometry_files); empty: none.
+  OtherGeometryFile other_files;
 };
 
 // Reads every file into one RawGeometry, curves in file order: by extension (case-insensitive) .crv,
 // .dat (the count format, or a Selig/Lednicer airfoil as its first line says), .poly (Triangle's
 // semantics, with `hull`), .geojson/.json, .shp. Repairs a reader made (repeated airfoil points) are
 // noted on the progress sink. With more than one airfoil file, each one's curve names get its file
-// stem as prefix ("s1223_upper"). per_file (if given) receives "a.crv: 4 curves, b.poly: 1 curve" for
-// messages. InputError for an unsupported extension; reader errors pass through.
+// stem as prefix ("s1223_upper"); any other extension by `other` (if given). per_file (if given)
+// receives "a.crv: 4 curves, b.poly: 1 curve" for messages. InputError for an unsupported extension;
+// reader errors pass through.
 RawGeometry read_geometry_files(const std::vector<std::string>& paths, PolyHull hull = PolyHull::Automatic,
-                                std::string* per_file = nullptr);
+                                std::string* per_file = nullptr, const OtherGeometryFile& other = {});
 
 // Reads every file (read_geometry_files), names the curves from curve_names (empty: default names
-// "curve<k>"), applies `steps` and builds the geometry with its constraints, points, regions and
-// notes. InputError for an unsupported extension, a wrong number of names or a repeated name;
-// reader and build_geometry errors pass through.
+// "curve<k>"), applies `steps` (steps.other_files reads the extensions the readers here do not) and builds the geometry
+// with its constraints, points, regions and notes. InputError for an unsupported extension, a wrong number of names or
+// a repeated name; reader and build_geometry errors pass through.
 Geometry read_geometry(const std::vector<std::string>& paths, const std::vector<std::string>& curve_names,
                        const GeometryOptions& options = {}, const ReadSteps& steps = {});
 

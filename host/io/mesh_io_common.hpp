@@ -26,6 +26,10 @@ struct MeshReadReport {
   // An MSH file's $Periodic links between curves (dimension 1), in the mesh's curve and point
   // indices, each with the largest |A p_source - p_image| by its affine transform (NaN without one).
   std::vector<PeriodicLink> periodic;
+  // Where the first point off the plane z = 0 is ("FILE:LINE: node 7 has z = 0.5" for MSH, "FILE:
+  // point 6 has z = 0.5" for VTU), empty when every point is at z = 0 (the readers keep x and y): a
+  // mesh as the geometry must be planar (io/mesh_geometry.hpp). SU2 and Medit refuse such files.
+  std::string off_plane;
 };
 
 // A point-data array read beside a mesh: `components` values per point, point-major. An MSH

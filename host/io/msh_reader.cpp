@@ -48,6 +48,7 @@ struct MshData {
   std::vector<Vec2> points;
   std::vector<RawElement> lines, triangles, quads;
   std::map<int, std::size_t> skipped;  // element type -> count
+  std::string off_plane;               // MeshReadReport::off_plane
   std::vector<long long> node_tags;    // per point, for messages about point data
   std::vector<RawPeriodic> periodic;   // $Periodic, resolved in assemble
   // Point data: the wanted $NodeData (the last block of that name: the latest time step).
@@ -155,6 +156,12 @@ void add_node(LineScanner& s, MshData& d, long long tag, double x, double y) {
   d.node_tags.push_back(tag);
 }
 
+// The first node off the plane z = 0, for MeshReadReport::off_plane.
+void note_off_plane(const LineScanner& s, MshData& d, long long tag, double z) {
+  if (z != 0.0 && d.off_plane.empty())
+    d.off_plane = fmt::format("{}:{}: node {} has z = {}", s.file(), s.line(), tag, z);
+}
+
 void read_nodes(LineScanner& s, MshData& d) {
   if (!d.v41) {
     const std::size_t n = count(s, "number of nodes", 8);  // "1 0 0 0\n"
@@ -162,7 +169,7 @@ void read_nodes(LineScanner& s, MshData& d) {
       const long long tag = s.to_int(s.token("node tag"), "node tag");
       const double x = s.to_double(s.token("x"), "x");
       const double y = s.to_double(s.token("y"), "y");
-      s.to_double(s.token("z"), "z");
+      note_off_plane(s, d, tag, s.to_double(s.token("z"), "z"));
       add_node(s, d, tag, x, y);
     }
     expect_end(s, "Nodes");
@@ -185,7 +192,7 @@ void read_nodes(LineScanner& s, MshData& d) {
     for (std::size_t i = 0; i < n; ++i) {
       const double x = s.to_double(s.token("x"), "x");
       const double y = s.to_double(s.token("y"), "y");
-      s.to_double(s.token("z"), "z");
+      note_off_plane(s, d, tags[i], s.to_double(s.token("z"), "z"));
       for (long long k = 0; k < extra; ++k) s.to_double(s.token("parametric coordinate"), "parametric coordinate");
       add_node(s, d, tags[i], x, y);
     }
@@ -522,6 +529,7 @@ Mesh assemble(const std::string& file, MshData& d, MeshReadReport& report) {
     report.skipped_elements += n;
     report.notes.push_back(fmt::format("{}: skipped {} elements of type {} ({})", file, n, type, element_name(type)));
   }
+  report.off_plane = std::move(d.off_plane);
   orient_triangles_ccw(mesh, report);
   if (d.cells != nullptr) assemble_cells(file, d, mesh, report);
   return mesh;

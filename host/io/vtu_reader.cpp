@@ -460,7 +460,11 @@ Mesh parse_vtu(const std::string& file, const std::string& content, MeshReadRepo
     f.fail(points_it->pos, fmt::format("Points holds {} values, expected 3 x {} points", pts.size(), npoints));
   }
   mesh.points.reserve(static_cast<std::size_t>(npoints));
-  for (long long i = 0; i < npoints; ++i) mesh.points.push_back({pts[3 * i], pts[3 * i + 1]});
+  for (long long i = 0; i < npoints; ++i) {
+    mesh.points.push_back({pts[3 * i], pts[3 * i + 1]});
+    if (pts[3 * i + 2] != 0.0 && report.off_plane.empty())
+      report.off_plane = fmt::format("{}: point {} has z = {}", file, i, pts[3 * i + 2]);
+  }
   if (cells != nullptr) cells->quads.clear();
   CellIndex index;
   read_cells(f, mesh, report, file, cells, index);

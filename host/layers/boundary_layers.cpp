@@ -73,6 +73,15 @@ std::vector<int> curves_by_name(const Geometry& geometry, const std::vector<std:
     int found = -1;
     for (std::size_t c = 0; c < geometry.curves.size(); ++c)
       if (geometry.curves[c].name == name) found = static_cast<int>(c);
+    // A group's name (a mesh file's name on several curves) stands for all of them.
+    const auto group = std::find_if(geometry.groups.begin(), geometry.groups.end(),
+                                    [&](const CurveGroup& g) { return g.name == name; });
+    if (group != geometry.groups.end()) {
+      for (const std::string& member : group->curves)
+        for (std::size_t c = 0; c < geometry.curves.size(); ++c)
+          if (geometry.curves[c].name == member) out.push_back(static_cast<int>(c));
+      continue;
+    }
     if (found < 0) {
       std::string known;
       for (const Curve& c : geometry.curves) known += (known.empty() ? "" : ", ") + c.name;

@@ -141,7 +141,8 @@ int end_ray_at(const LayerMesh& layers, Vec2 p);
 // (g - 1) t for a stack of growth g, so theta / (g - 1) elements; never fewer than `at_least` per pi.
 double fan_elements_matching_core(double growth, double at_least = 5.0);
 
-// The curve indices of the given names; InputError naming an unknown one (and `what`, e.g. the key).
+// The curve indices of the given names, a group's name (Geometry::groups) standing for every curve of
+// the group; InputError naming an unknown one (and `what`, e.g. the key).
 std::vector<int> curves_by_name(const Geometry& geometry, const std::vector<std::string>& names,
                                 const std::string& what);
 

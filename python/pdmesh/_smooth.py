@@ -55,7 +55,7 @@ def _mesh_file(mesh: Any, directory: str) -> tuple[str, str]:
                      f"got {type(mesh).__name__}")
 
 
-def smooth(mesh: Any, geometry: Any, *, field: str = "mesh", device: str | None = None, seed: int | None = None,
+def smooth(mesh: Any, geometry: Any = None, *, field: str = "mesh", device: str | None = None, seed: int | None = None,
            progress: Any = False, settings: Mapping[str, Any] | None = None, out: str | os.PathLike | None = None,
            max_nodes: int | None = None, **keywords: Any) -> Mesh:
     """Improves a triangle mesh made elsewhere, keeping its sizing (the command ``pdmesh smooth``).
@@ -63,7 +63,8 @@ def smooth(mesh: Any, geometry: Any, *, field: str = "mesh", device: str | None 
     ``mesh``: a mesh file (.msh, .vtu, .su2, Medit .mesh, Triangle .ele/.node), a pdmesh.Mesh, or a
     ``(points, triangles)`` pair of arrays ((N, 2) floats, (M, 3) 0-based node indices).
     ``geometry``: the domain, as ``generate`` takes it (a Geometry, rings, a Case, a case or geometry
-    file path). ``field``: "mesh" (the spacing is the mesh's own local edge lengths) or "case" (the
+    file path); None (the default): the mesh's own cells are the domain, its boundary names the curves
+    (docs/geometry-input.md, "A mesh as the geometry"). ``field``: "mesh" (the spacing is the mesh's own local edge lengths) or "case" (the
     case's field). The mesh is checked first: an inverted or zero-area triangle, a boundary node off
     the curves or a mesh of another geometry is an InputError naming the first offending element.
     The other arguments are ``generate``'s; settings apply after the smoothing defaults
@@ -76,15 +77,17 @@ def smooth(mesh: Any, geometry: Any, *, field: str = "mesh", device: str | None 
         if os.path.isdir(path):
             path = os.path.join(path, "case.toml")
         geometry = Case.from_toml(path) if path.lower().endswith(".toml") else Geometry.from_file(path)
-    elif not isinstance(geometry, (Case, Geometry)):
+    elif geometry is not None and not isinstance(geometry, (Case, Geometry)):
         geometry = Geometry(geometry)
     if max_nodes is not None and int(max_nodes) < 1:
         raise InputError(f"max_nodes must be >= 1, got {max_nodes}")
     overrides, sampler = _settings_for(None, device, seed, settings, keywords)
     pairs = [tuple(s) for s in _core.smooth_settings(by_mesh)] + overrides
-    config = geometry._with(pairs) if isinstance(geometry, Case) else geometry._config(pairs)
     with _metric.temporary_directory() as directory:
         path, label = _mesh_file(mesh, directory)
+        if geometry is None:
+            geometry = Geometry.from_file(path)
+        config = geometry._with(pairs) if isinstance(geometry, Case) else geometry._config(pairs)
         config = config.for_smoothing(path, label, by_mesh)
         mesher = Mesher.__new__(Mesher)
         mesher._core = _core.Mesher(config, os.fspath(out) if out is not None else "", int(max_nodes or 0))

@@ -86,7 +86,7 @@ class Geometry:
     @classmethod
     def from_file(cls, *paths: str | os.PathLike, names: Sequence[str] | None = None) -> "Geometry":
         """Curves read from .crv/.dat/.poly/.geojson/.json/.shp files, in file order (the command's
-        readers)."""
+        readers); a .msh/.vtu/.su2/.mesh/.ele mesh file's cells are a domain (docs/geometry-input.md)."""
         if not paths:
             raise InputError("Geometry.from_file: no geometry file given")
         g = cls.__new__(cls)

@@ -12,6 +12,7 @@
 #include "core/errors.hpp"
 #include "geometry/geometry_files.hpp"
 #include "init/initial_distribution.hpp"
+#include "io/mesh_geometry.hpp"
 
 namespace pdmesh::py {
 
@@ -46,9 +47,10 @@ nb::dict geometry_of(const CaseConfig& c) {
     std::vector<std::string> files;
     for (const auto& f : c.geometry.files) files.push_back(f.string());
     g = c.geometry.given_curves.empty()
-            ? read_geometry(files, c.geometry.curve_names, options, {c.geometry.projection, nullptr, {}})
+            ? read_geometry(files, c.geometry.curve_names, options,
+                            {c.geometry.projection, nullptr, {}, mesh_geometry_files()})
             : geometry_from_curves(c.geometry.given_curves, c.geometry.curve_names, options, c.geometry.given_points,
-                                   {c.geometry.projection, nullptr, {}});
+                                   {c.geometry.projection, nullptr, {}, {}});
   }
   nb::list names, curves, loops;
   for (const Curve& curve : g.curves) {

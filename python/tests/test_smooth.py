@@ -92,3 +92,16 @@ def test_smooth_refuses_an_inverted_triangle_and_a_node_off_the_curves():
         pdmesh.smooth((points, triangles), SQUARE, device="host")
     with pytest.raises(pdmesh.InputError, match="field must be"):
         pdmesh.smooth((points, triangles), SQUARE, field="other")
+
+
+def test_smooth_without_a_geometry_takes_the_mesh_itself_as_its_domain(tmp_path):
+    points, triangles = square_mesh(12, 0.3)
+    mesh = pdmesh.smooth((points, triangles), device="host")
+    assert min_angle(mesh) >= 38.0
+    p = mesh.points[mesh.triangles]
+    u, v = p[:, 1] - p[:, 0], p[:, 2] - p[:, 0]
+    assert abs(0.5 * float(np.sum(u[:, 0] * v[:, 1] - u[:, 1] * v[:, 0])) - 1.0) < 1e-12
+    path = tmp_path / "input.msh"
+    mesh.write(path)
+    again = pdmesh.smooth(str(path), device="host")
+    assert 0.95 <= len(again.points) / len(mesh.points) <= 1.05

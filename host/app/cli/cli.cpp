@@ -31,6 +31,7 @@
 #include "core/input_file.hpp"
 #include "core/interrupt.hpp"
 #include "core/memory_budget.hpp"
+#include "io/mesh_geometry.hpp"
 #include "mesh/quality.hpp"
 
 namespace pdmesh {
@@ -206,8 +207,10 @@ std::vector<CaseOverride> overrides_from(const MeshArguments& a) {
   return out;
 }
 
+// Curve files, and mesh files whose cells are the domain (io/mesh_geometry.hpp).
 bool is_geometry_extension(const std::string& ext) {
-  return ext == ".crv" || ext == ".dat" || ext == ".poly" || ext == ".geojson" || ext == ".json" || ext == ".shp";
+  return ext == ".crv" || ext == ".dat" || ext == ".poly" || ext == ".geojson" || ext == ".json" || ext == ".shp" ||
+         is_mesh_geometry_extension(ext);
 }
 
 CaseConfig config_from(const MeshArguments& a) {
@@ -242,7 +245,8 @@ CaseConfig config_from(const MeshArguments& a) {
       const std::string e = lower_extension(fs::path(name));
       if (!is_geometry_extension(e) || fs::is_directory(fs::path(name), ec)) {
         throw InputError(
-            fmt::format("{}: expected a .crv, .dat, .poly, .geojson, .json or .shp geometry file after '{}', got '{}'",
+            fmt::format("{}: expected a .crv, .dat, .poly, .geojson, .json or .shp geometry file or a .msh, .vtu, "
+                        ".su2, .mesh or .ele mesh after '{}', got '{}'",
                         name, a.inputs.front(), e.empty() ? name : e));
       }
       files.emplace_back(name);
@@ -251,7 +255,8 @@ CaseConfig config_from(const MeshArguments& a) {
   } else {
     throw InputError(
         fmt::format("{}: unknown input type '{}' (expected a case .toml, a case directory or a .crv, "
-                    ".dat, .poly, .geojson, .json or .shp geometry file)",
+                    ".dat, .poly, .geojson, .json or .shp geometry file, or a .msh, .vtu, .su2, .mesh or .ele mesh "
+                    "as the geometry)",
                     a.inputs.front(), ext));
   }
   config.out_dir = a.out;
@@ -343,7 +348,8 @@ void add_run_options(CLI::App& mesh, MeshArguments& a) {
 void add_mesh_options(CLI::App& mesh, MeshArguments& a) {
   mesh.add_option("INPUT", a.inputs,
                   "Case file (.toml), case directory (holding case.toml), or one or more geometry files (.crv, .dat, "
-                  ".poly) that together make one geometry, meshed with the best settings (preset = \"best\")")
+                  ".poly, .geojson, .json, .shp, or a .msh, .vtu, .su2, .mesh or .ele mesh whose cells are the domain) "
+                  "that together make one geometry, meshed with the best settings (preset = \"best\")")
       ->required()
       ->type_name("FILE...");
   add_run_options(mesh, a);
@@ -372,8 +378,8 @@ void add_smooth_options(CLI::App& smooth, SmoothArguments& a) {
       ->type_name("FILE");
   smooth
       .add_option("--geometry,-g", a.geometry,
-                  "Case file (.toml), case directory or geometry file (.crv, .dat, .poly) of the mesh's domain")
-      ->required()
+                  "Case file (.toml), case directory or geometry file (.crv, .dat, .poly) of the mesh's domain; "
+                  "without it the mesh's own cells are the domain (docs/geometry-input.md)")
       ->type_name("FILE");
   smooth
       .add_option("--field", a.field,
@@ -516,7 +522,8 @@ SmoothField smooth_field(const std::string& name) {
 
 int run_smooth_command(SmoothArguments& a) {
   const SmoothField field = smooth_field(a.field);
-  a.run.inputs = {a.geometry};
+  // Without --geometry the mesh is its own geometry, as `pdmesh mesh MESH` reads it.
+  a.run.inputs = {a.geometry.empty() ? a.mesh : a.geometry};
   a.run.defaults = smooth_overrides(field);
   std::error_code ec;
   if (!fs::exists(fs::path(a.mesh), ec))

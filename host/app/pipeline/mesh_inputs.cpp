@@ -19,6 +19,7 @@
 #include "init/kept_nodes.hpp"
 #include "init/metric_fill.hpp"
 #include "layers/boundary_layers.hpp"
+#include "io/mesh_geometry.hpp"
 #include "spacing/short_arcs.hpp"
 #include "init/node_estimate.hpp"
 #include "init/warm_points.hpp"
@@ -65,7 +66,7 @@ void read_case_geometry(const CaseConfig& config, MeshInputs& in) {
   options.corner_angle_deg = config.geometry.corner_angle;
   options.hull = config.geometry.hull;
   Equirectangular used;
-  const ReadSteps steps{config.geometry.projection, &used, healing_step(config, in)};
+  const ReadSteps steps{config.geometry.projection, &used, healing_step(config, in), mesh_geometry_files()};
   in.geometry = config.geometry.given_curves.empty()
                     ? read_geometry(files, config.geometry.curve_names, options, steps)
                     : geometry_from_curves(config.geometry.given_curves, config.geometry.curve_names, options,

@@ -18,22 +18,12 @@
 #include "init/kept_nodes.hpp"
 #include "init/warm_points.hpp"
 #include "io/mesh_formats.hpp"
+#include "io/mesh_geometry.hpp"
 #include "spacing/mesh_spacing.hpp"
 
 namespace pdmesh {
 
 namespace {
-
-std::string node_text(const Mesh& mesh, int i) {
-  const Vec2 p = mesh.points[static_cast<std::size_t>(i)];
-  return fmt::format("{} ({}, {})", i, p.x, p.y);
-}
-
-std::string triangle_text(const Mesh& mesh, std::size_t t) {
-  const auto& v = mesh.triangles[t];
-  return fmt::format("triangle {} (nodes {}, {}, {})", t, node_text(mesh, v[0]), node_text(mesh, v[1]),
-                     node_text(mesh, v[2]));
-}
 
 std::uint64_t edge_key(int a, int b) {
   if (a > b) std::swap(a, b);
@@ -47,30 +37,6 @@ std::unordered_map<std::uint64_t, int> edge_counts(const Mesh& mesh) {
   for (const auto& t : mesh.triangles)
     for (int k = 0; k < 3; ++k) ++count[edge_key(t[k], t[(k + 1) % 3])];
   return count;
-}
-
-// Degenerate triangles and, where the reader turned some triangles but not all, the inverted ones:
-// those of the smaller orientation class (the first of them named).
-void check_triangles(const Mesh& mesh, const std::vector<std::size_t>& reoriented, const std::string& label) {
-  if (mesh.triangles.empty()) throw InputError(fmt::format("{}: the mesh has no triangles", label));
-  for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
-    const auto& v = mesh.triangles[t];
-    if (v[0] == v[1] || v[1] == v[2] || v[0] == v[2] ||
-        orient2d(mesh.points[v[0]], mesh.points[v[1]], mesh.points[v[2]]) == 0.0)
-      throw InputError(fmt::format("{}: {} has zero area", label, triangle_text(mesh, t)));
-  }
-  const std::size_t n = mesh.triangles.size();
-  if (reoriented.empty() || reoriented.size() == n) return;
-  std::size_t first = 0;
-  if (2 * reoriented.size() <= n) {
-    first = reoriented.front();
-  } else {
-    std::vector<std::uint8_t> turned(n, 0);
-    for (const std::size_t t : reoriented) turned[t] = 1;
-    while (turned[first]) ++first;
-  }
-  throw InputError(fmt::format("{}: {} is inverted (its orientation is the opposite of {} of the {} triangles)", label,
-                               triangle_text(mesh, first), n - std::min(reoriented.size(), n - reoriented.size()), n));
 }
 
 }  // namespace
@@ -90,14 +56,14 @@ void check_smooth_mesh(Mesh& mesh, const std::string& label) {
   }
   for (std::size_t i = 0; i < mesh.points.size(); ++i)
     if (!std::isfinite(mesh.points[i].x) || !std::isfinite(mesh.points[i].y))
-      throw InputError(fmt::format("{}: node {} is not finite", label, node_text(mesh, static_cast<int>(i))));
-  check_triangles(mesh, reoriented, label);
+      throw InputError(fmt::format("{}: node {} is not finite", label, mesh_node_text(mesh, static_cast<int>(i))));
+  check_mesh_triangles(mesh, reoriented, label);
 }
 
 Mesh read_smooth_mesh(const std::filesystem::path& file, const std::string& label) {
   MeshReadReport report;
   Mesh mesh = read_mesh(file, report);
-  check_triangles(mesh, report.reoriented, label.empty() ? file.string() : label);
+  check_mesh_triangles(mesh, report.reoriented, label.empty() ? file.string() : label);
   return mesh;
 }
 
@@ -166,7 +132,7 @@ void check_mesh_on_geometry(const Mesh& mesh, const std::string& label, const Ge
     throw InputError(fmt::format(
         "{}: boundary node {} lies {:.6g} from the geometry's curves (nearest: '{}'); allowed {:.3g} ({} x the mean "
         "length of its boundary edges): a mesh of another geometry, or nodes off the curves",
-        label, node_text(mesh, static_cast<int>(i)), hit.distance, curve, allowed, kSmoothBoundaryTolerance));
+        label, mesh_node_text(mesh, static_cast<int>(i)), hit.distance, curve, allowed, kSmoothBoundaryTolerance));
   }
 }
 
@@ -204,7 +170,8 @@ Geometry case_geometry(const CaseConfig& config) {
   options.join_tolerance = config.geometry.join_tolerance;
   options.corner_angle_deg = config.geometry.corner_angle;
   return config.geometry.given_curves.empty()
-             ? read_geometry(files, config.geometry.curve_names, options)
+             ? read_geometry(files, config.geometry.curve_names, options,
+                             {ProjectionKind::None, nullptr, {}, mesh_geometry_files()})
              : geometry_from_curves(config.geometry.given_curves, config.geometry.curve_names, options);
 }
 
