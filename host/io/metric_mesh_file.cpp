@@ -28,8 +28,8 @@ MetricMeshData load_metric_mesh(const std::filesystem::path& file, const std::st
   pd.wanted = array;
   MeshReadReport report;
   SurfaceCells cells;
-  Mesh mesh = with_quads_split(ext == ".vtu" ? read_vtu(file, report, &pd, &cells) : read_msh(file, report, &pd, &cells),
-                               cells);
+  Mesh mesh = with_quads_split(
+      ext == ".vtu" ? read_vtu(file, report, &pd, &cells) : read_msh(file, report, &pd, &cells), cells);
   const std::string name = file.string();
   if (mesh.triangles.empty()) {
     throw InputError(fmt::format(
@@ -88,8 +88,8 @@ ScalarMeshData load_scalar_mesh(const std::filesystem::path& file, const std::st
   pd.wanted = array;
   MeshReadReport report;
   SurfaceCells cells;
-  Mesh mesh = with_quads_split(ext == ".vtu" ? read_vtu(file, report, &pd, &cells) : read_msh(file, report, &pd, &cells),
-                               cells);
+  Mesh mesh = with_quads_split(
+      ext == ".vtu" ? read_vtu(file, report, &pd, &cells) : read_msh(file, report, &pd, &cells), cells);
   const std::string name = file.string();
   if (mesh.triangles.empty())
     throw InputError(

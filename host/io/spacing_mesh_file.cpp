@@ -25,8 +25,8 @@ std::unique_ptr<MeshSpacing> load_mesh_spacing(const std::filesystem::path& file
   pd.wanted = array;
   MeshReadReport report;
   SurfaceCells cells;
-  Mesh mesh = with_quads_split(ext == ".vtu" ? read_vtu(file, report, &pd, &cells) : read_msh(file, report, &pd, &cells),
-                               cells);
+  Mesh mesh = with_quads_split(
+      ext == ".vtu" ? read_vtu(file, report, &pd, &cells) : read_msh(file, report, &pd, &cells), cells);
   MeshFieldData d;
   d.file = file.string();
   d.array = array;

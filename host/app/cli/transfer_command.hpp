@@ -13,8 +13,8 @@ namespace pdmesh {
 // The point arrays `arrays` of FROM (a .vtu or .msh; empty: every point array but kind, q and
 // node_id) interpolated at the points of `target` and appended to its point_data: linearly in FROM's
 // triangles and in its quads split along their shorter diagonal. Throws InputError (before `target`
-// changes) on a missing array (listing FROM's), FROM without point data or without cells. Returns the names transferred and FROM's point count; `counts` adds up where the points
-// were found.
+// changes) on a missing array (listing FROM's), FROM without point data or without cells. Returns the names transferred
+// and FROM's point count; `counts` adds up where the points were found.
 struct TransferredArrays {
   std::vector<std::string> names;
   std::size_t source_points = 0;
