@@ -16,6 +16,7 @@
 #include "core/errors.hpp"
 #include "error_message.hpp"
 #include "io/mesh_formats.hpp"
+#include "io/mixed_mesh.hpp"
 #include "io/vtu_reader.hpp"
 #include "io/vtu_writer.hpp"
 #include "run_pdmesh.hpp"
@@ -75,6 +76,28 @@ double density(const std::vector<Vec2>& points, const std::function<bool(Vec2)>&
     for (int i = 0; i < 400; ++i) cells += in({(i + 0.5) / 400.0, (j + 0.5) / 400.0}) ? 1 : 0;
   REQUIRE(cells > 0);
   return static_cast<double>(count) / (cells / 160000.0);
+}
+
+// An n x n grid of the unit square as a layered mesh's file holds it: the rows below y = `quads_below`
+// quadrilaterals (the layer), the rest two triangles per cell; point data `name` = f.
+MixedMesh mixed_grid(int n, double quads_below, const std::string& name, const std::function<double(Vec2)>& f) {
+  MixedMesh m;
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) m.points.push_back({i / (n - 1.0), j / (n - 1.0)});
+  for (int j = 0; j + 1 < n; ++j)
+    for (int i = 0; i + 1 < n; ++i) {
+      const int a = j * n + i;
+      if ((j + 1) / (n - 1.0) <= quads_below) {
+        m.cells.push_back({a, a + 1, a + n + 1, a + n});
+        m.layer.push_back(1);
+      } else {
+        m.cells.push_back({a, a + 1, a + n + 1, -1});
+        m.cells.push_back({a, a + n + 1, a + n, -1});
+        m.layer.insert(m.layer.end(), {0, 0});
+      }
+    }
+  m.point_data.push_back({name, 1, values_at(m.points, f), false});
+  return m;
 }
 
 std::string adapt_command(const fs::path& domain, const fs::path& sol, const std::string& rest, const fs::path& out) {
@@ -314,4 +337,46 @@ TEST_CASE("pdmesh adapt refuses bad inputs naming the option, and writes nothing
   CHECK(r.status == 2);
   CHECK_THAT(r.output, Contains("give another --out"));
   CHECK(pdmesh_test::entries(dir / "loop") == 1);
+}
+
+TEST_CASE("a layered solution: transfer and adapt interpolate in its quads, and a layered target keeps them",
+          "[adapt][cli]") {
+  const fs::path dir = pdmesh_test::fresh_dir("adapt_quads");
+  // transfer: a linear function from a mesh whose lower half is quads onto another such mesh is exact
+  // at every point, those inside the quads included, and the written mesh has the target's quads.
+  const auto linear = [](Vec2 p) { return 2.0 * p.x - 3.0 * p.y + 0.5; };
+  const fs::path from = dir / "from.vtu", to = dir / "to.vtu", moved = dir / "moved.vtu";
+  write_file_atomically(from, mixed_vtu_string(mixed_grid(21, 0.5, "f", linear)));
+  const MixedMesh target = mixed_grid(13, 0.6, "g", [](Vec2) { return 0.0; });
+  write_file_atomically(to, mixed_vtu_string(target));
+  const auto t = pdmesh_test::run_pdmesh(
+      fmt::format("transfer '{}' '{}' --arrays f --out '{}'", from.string(), to.string(), moved.string()));
+  INFO(t.output);
+  REQUIRE(t.status == 0);
+  MeshReadReport report;
+  MeshPointData f;
+  f.wanted = "f";
+  SurfaceCells cells;
+  const Mesh got = read_vtu(moved, report, &f, &cells);
+  REQUIRE(got.points.size() == target.points.size());
+  CHECK(cells.quads.size() == target.quads());
+  CHECK(got.triangles.size() == target.cells.size() - target.quads());
+  REQUIRE(f.array);
+  for (std::size_t i = 0; i < got.points.size(); ++i) {
+    INFO("point " << i << " (" << got.points[i].x << ", " << got.points[i].y << ")");
+    CHECK(f.array->values[i] == Approx(linear(got.points[i])).margin(1e-12));
+  }
+  // adapt: the layer's lower half lies in the solution's quads (y < 0.5), and is refined there too.
+  const fs::path sol = dir / "sol.vtu", out = dir / "out";
+  write_file_atomically(sol, mixed_vtu_string(mixed_grid(81, 0.5, "u", [](Vec2 p) { return layer_u(p, 20.0); })));
+  const auto r =
+      pdmesh_test::run_pdmesh(adapt_command(kSquare, sol, "--array u --complexity 300 --hmax 0.3 --formats msh", out));
+  INFO(r.output);
+  REQUIRE(r.status == 0);
+  const Mesh mesh = read_mesh(out / "mesh.msh");
+  const auto low = [](Vec2 p) { return p.x > 0.55 && p.x < 0.95; };  // where the curve is below y = 0.4
+  const double near = density(mesh.points, [&](Vec2 p) { return low(p) && std::fabs(p.y - curve(p.x)) < 0.02; });
+  const double far = density(mesh.points, [&](Vec2 p) { return low(p) && std::fabs(p.y - curve(p.x)) > 0.15; });
+  INFO("near " << near << " far " << far);
+  CHECK(near > 8.0 * far);
 }

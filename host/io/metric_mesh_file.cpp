@@ -10,6 +10,7 @@
 
 #include "core/errors.hpp"
 #include "core/input_file.hpp"
+#include "io/mixed_mesh.hpp"
 #include "io/msh_reader.hpp"
 #include "io/vtu_reader.hpp"
 
@@ -26,7 +27,9 @@ MetricMeshData load_metric_mesh(const std::filesystem::path& file, const std::st
   MeshPointData pd;
   pd.wanted = array;
   MeshReadReport report;
-  Mesh mesh = ext == ".vtu" ? read_vtu(file, report, &pd) : read_msh(file, report, &pd);
+  SurfaceCells cells;
+  Mesh mesh = with_quads_split(
+      ext == ".vtu" ? read_vtu(file, report, &pd, &cells) : read_msh(file, report, &pd, &cells), cells);
   const std::string name = file.string();
   if (mesh.triangles.empty()) {
     throw InputError(fmt::format(
@@ -84,7 +87,9 @@ ScalarMeshData load_scalar_mesh(const std::filesystem::path& file, const std::st
   MeshPointData pd;
   pd.wanted = array;
   MeshReadReport report;
-  Mesh mesh = ext == ".vtu" ? read_vtu(file, report, &pd) : read_msh(file, report, &pd);
+  SurfaceCells cells;
+  Mesh mesh = with_quads_split(
+      ext == ".vtu" ? read_vtu(file, report, &pd, &cells) : read_msh(file, report, &pd, &cells), cells);
   const std::string name = file.string();
   if (mesh.triangles.empty())
     throw InputError(

@@ -325,4 +325,13 @@ Mesh triangulated(const MixedMesh& mesh) {
   return out;
 }
 
+Mesh with_quads_split(Mesh mesh, const SurfaceCells& cells) {
+  if (cells.quads.empty()) return mesh;
+  MixedMesh quads;
+  quads.points = mesh.points;
+  quads.cells = cells.quads;
+  for (const auto& t : triangulated(quads).triangles) mesh.triangles.push_back(t);
+  return mesh;
+}
+
 }  // namespace pdmesh

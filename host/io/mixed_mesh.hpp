@@ -63,4 +63,9 @@ MixedMesh mixed_mesh_of(const Mesh& mesh, const SurfaceCells& cells);
 // The mesh as triangles (each quad split along its shorter diagonal), for the pictures.
 Mesh triangulated(const MixedMesh& mesh);
 
+// `mesh` (read_mesh's triangles) with the file's quads `cells` split as `triangulated` splits them,
+// appended after its triangles: every cell of a layered mesh, for interpolating data on it. The
+// points, triangles, curves and point data of `mesh` are kept as they are.
+Mesh with_quads_split(Mesh mesh, const SurfaceCells& cells);
+
 }  // namespace pdmesh

@@ -9,6 +9,7 @@
 
 #include "core/errors.hpp"
 #include "core/input_file.hpp"
+#include "io/mixed_mesh.hpp"
 #include "io/msh_reader.hpp"
 #include "io/vtu_reader.hpp"
 
@@ -23,7 +24,9 @@ std::unique_ptr<MeshSpacing> load_mesh_spacing(const std::filesystem::path& file
   MeshPointData pd;
   pd.wanted = array;
   MeshReadReport report;
-  Mesh mesh = ext == ".vtu" ? read_vtu(file, report, &pd) : read_msh(file, report, &pd);
+  SurfaceCells cells;
+  Mesh mesh = with_quads_split(
+      ext == ".vtu" ? read_vtu(file, report, &pd, &cells) : read_msh(file, report, &pd, &cells), cells);
   MeshFieldData d;
   d.file = file.string();
   d.array = array;

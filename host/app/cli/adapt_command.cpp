@@ -15,7 +15,6 @@
 #include "io/mesh_formats.hpp"
 #include "io/msh_reader.hpp"
 #include "io/vtu_reader.hpp"
-#include "io/vtu_writer.hpp"
 
 namespace pdmesh {
 
@@ -106,11 +105,13 @@ int run_adapt(const CaseConfig& config, const AdaptOptions& options) {
   }
   const int status = run_mesh(config);
   if (status != kExitOk || !options.transfer) return status;
-  Mesh target = read_mesh(*mesh_file);
+  MeshReadReport report;
+  SurfaceCells cells;
+  Mesh target = read_mesh(*mesh_file, report, &cells);
   target.point_data.clear();
   TransferCounts counts;
   const TransferredArrays moved = transfer_point_arrays(solution.string(), {}, target, counts);
-  write_file_atomically(out, vtu_string(target));
+  write_file_atomically(out, transferred_vtu_string(target, cells));
   if (!config.quiet)
     fmt::print(stderr,
                "adapt: {} from {} ({} points) onto {} ({} points; {} outside the old mesh, at most {:.3g} away): "

@@ -10,6 +10,7 @@
 #include "core/errors.hpp"
 #include "core/input_file.hpp"
 #include "io/mesh_formats.hpp"
+#include "io/mixed_mesh.hpp"
 #include "io/msh_reader.hpp"
 #include "io/vtu_reader.hpp"
 #include "io/vtu_writer.hpp"
@@ -21,13 +22,22 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// The mesh of a .vtu or .msh file with point array `wanted` (when the file has it) and the names of all.
-Mesh read_with_data(const fs::path& path, MeshPointData& data) {
+// The mesh of a .vtu or .msh file with point array `wanted` (when the file has it) and the names of all;
+// with `cells`, its quads too.
+Mesh read_with_data(const fs::path& path, MeshPointData& data, SurfaceCells* cells = nullptr) {
   MeshReadReport report;
   const std::string e = lower_extension(path);
-  if (e == ".vtu") return read_vtu(path, report, &data);
-  if (e == ".msh") return read_msh(path, report, &data);
+  if (e == ".vtu") return read_vtu(path, report, &data, cells);
+  if (e == ".msh") return read_msh(path, report, &data, cells);
   throw InputError(fmt::format("{}: transfer reads point data from .vtu or .msh files only", path.string()));
+}
+
+// The source's cells as triangles: a layered mesh's quads split (with_quads_split), so that a point
+// inside a quad is interpolated there, not taken from the nearest triangle.
+Mesh read_source(const fs::path& path, MeshPointData& data) {
+  SurfaceCells cells;
+  Mesh mesh = read_with_data(path, data, &cells);
+  return with_quads_split(std::move(mesh), cells);
 }
 
 }  // namespace
@@ -35,7 +45,7 @@ Mesh read_with_data(const fs::path& path, MeshPointData& data) {
 TransferredArrays transfer_point_arrays(const std::string& from, const std::vector<std::string>& arrays, Mesh& target,
                                         TransferCounts& counts) {
   MeshPointData listing;
-  const Mesh source = read_with_data(from, listing);
+  const Mesh source = read_source(from, listing);
   std::vector<std::string> names = arrays;
   if (names.empty()) {
     for (const std::string& n : listing.point_arrays)
@@ -49,7 +59,7 @@ TransferredArrays transfer_point_arrays(const std::string& from, const std::vect
     if (std::find(listing.point_arrays.begin(), listing.point_arrays.end(), n) == listing.point_arrays.end())
       throw InputError(
           fmt::format("{}: no point array '{}' (point arrays: {})", from, n, fmt::join(listing.point_arrays, ", ")));
-  if (source.triangles.empty()) throw InputError(fmt::format("{}: the mesh has no triangles", from));
+  if (source.triangles.empty()) throw InputError(fmt::format("{}: the mesh has no cells", from));
   std::vector<PointValues> values;
   for (const std::string& n : names) {
     MeshPointData data;
@@ -63,11 +73,19 @@ TransferredArrays transfer_point_arrays(const std::string& from, const std::vect
   return {names, source.points.size()};
 }
 
+std::string transferred_vtu_string(const Mesh& target, const SurfaceCells& cells) {
+  if (cells.quads.empty()) return vtu_string(target);
+  MixedMesh mixed = mixed_mesh_of(target, cells);
+  mixed.point_data = target.point_data;
+  return mixed_vtu_string(mixed);
+}
+
 int run_transfer(const std::string& from, const std::string& to, const std::string& out,
                  const std::vector<std::string>& arrays, bool quiet) {
   if (lower_extension(out) != ".vtu") throw InputError(fmt::format("--out {}: the output must be a .vtu file", out));
   MeshReadReport report;
-  Mesh target = read_mesh(to, report);
+  SurfaceCells cells;
+  Mesh target = read_mesh(to, report, &cells);
   // A motion step's own ids stay with its points.
   if (lower_extension(to) == ".vtu") {
     MeshPointData ids;
@@ -77,7 +95,7 @@ int run_transfer(const std::string& from, const std::string& to, const std::stri
   }
   TransferCounts counts;
   const TransferredArrays moved = transfer_point_arrays(from, arrays, target, counts);
-  write_file_atomically(out, vtu_string(target));
+  write_file_atomically(out, transferred_vtu_string(target, cells));
   if (!quiet)
     fmt::print(stderr,
                "transfer: {} ({}) from {} ({} points) onto {} ({} points): {} points in a triangle, {} outside the "
