@@ -38,19 +38,29 @@ double layer_u(Vec2 p, double k) { return std::tanh(k * (p.y - curve(p.x))); }
 // A second array in other units: 100 tanh(k (x - 0.7)), a layer across x = 0.7.
 double across_v(Vec2 p, double k) { return 100.0 * std::tanh(k * (p.x - 0.7)); }
 
-// An n x n grid of points on the unit square, two triangles per cell.
-Mesh unit_grid(int n) {
-  Mesh m;
+// An n x n grid of the unit square as a layered mesh's file holds it: the rows below y = `quads_below`
+// quadrilaterals (the layer), the rest two triangles per cell.
+MixedMesh mixed_grid(int n, double quads_below) {
+  MixedMesh m;
   for (int j = 0; j < n; ++j)
     for (int i = 0; i < n; ++i) m.points.push_back({i / (n - 1.0), j / (n - 1.0)});
   for (int j = 0; j + 1 < n; ++j)
     for (int i = 0; i + 1 < n; ++i) {
       const int a = j * n + i;
-      m.triangles.push_back({a, a + 1, a + n + 1});
-      m.triangles.push_back({a, a + n + 1, a + n});
+      if ((j + 1) / (n - 1.0) <= quads_below) {
+        m.cells.push_back({a, a + 1, a + n + 1, a + n});
+        m.layer.push_back(1);
+      } else {
+        m.cells.push_back({a, a + 1, a + n + 1, -1});
+        m.cells.push_back({a, a + n + 1, a + n, -1});
+        m.layer.insert(m.layer.end(), {0, 0});
+      }
     }
   return m;
 }
+
+// An n x n grid of points on the unit square, two triangles per cell.
+Mesh unit_grid(int n) { return triangulated(mixed_grid(n, -1.0)); }
 
 std::vector<double> values_at(const std::vector<Vec2>& points, const std::function<double(Vec2)>& f) {
   std::vector<double> out;
@@ -78,24 +88,9 @@ double density(const std::vector<Vec2>& points, const std::function<bool(Vec2)>&
   return static_cast<double>(count) / (cells / 160000.0);
 }
 
-// An n x n grid of the unit square as a layered mesh's file holds it: the rows below y = `quads_below`
-// quadrilaterals (the layer), the rest two triangles per cell; point data `name` = f.
+// mixed_grid with point data `name` = f.
 MixedMesh mixed_grid(int n, double quads_below, const std::string& name, const std::function<double(Vec2)>& f) {
-  MixedMesh m;
-  for (int j = 0; j < n; ++j)
-    for (int i = 0; i < n; ++i) m.points.push_back({i / (n - 1.0), j / (n - 1.0)});
-  for (int j = 0; j + 1 < n; ++j)
-    for (int i = 0; i + 1 < n; ++i) {
-      const int a = j * n + i;
-      if ((j + 1) / (n - 1.0) <= quads_below) {
-        m.cells.push_back({a, a + 1, a + n + 1, a + n});
-        m.layer.push_back(1);
-      } else {
-        m.cells.push_back({a, a + 1, a + n + 1, -1});
-        m.cells.push_back({a, a + n + 1, a + n, -1});
-        m.layer.insert(m.layer.end(), {0, 0});
-      }
-    }
+  MixedMesh m = mixed_grid(n, quads_below);
   m.point_data.push_back({name, 1, values_at(m.points, f), false});
   return m;
 }
