@@ -12,6 +12,7 @@
 
 #include "core/errors.hpp"
 #include "io/mixed_mesh.hpp"
+#include "io/vtu_reader.hpp"
 #include "temp_files.hpp"
 
 namespace fs = std::filesystem;
@@ -88,6 +89,23 @@ TEST_CASE("the mixed-mesh files are each format's text", "[io][layers]") {
   CHECK(pdmesh_test::slurp(dir / "mesh.vtu") == mixed_vtu_string(m));
   CHECK(pdmesh_test::slurp(dir / "mesh.su2") == mixed_su2_string(m));
   CHECK(pdmesh_test::entries(dir) == 3);  // no temporaries left beside them
+}
+
+TEST_CASE("the mixed-mesh .vtu carries the curves: read back, its boundary edges and names are the mesh's",
+          "[io][layers]") {
+  const MixedMesh m = small_mixed_mesh();
+  MeshReadReport report;
+  SurfaceCells cells;
+  const Mesh back = parse_vtu("mesh.vtu", mixed_vtu_string(m), report, nullptr, &cells);
+  CHECK(back.curve_names == m.curve_names);
+  REQUIRE(back.boundary_edges.size() == m.boundary_edges.size());
+  for (std::size_t k = 0; k < m.boundary_edges.size(); ++k) {
+    CHECK(back.boundary_edges[k].a == m.boundary_edges[k].a);
+    CHECK(back.boundary_edges[k].b == m.boundary_edges[k].b);
+    CHECK(back.boundary_edges[k].curve == m.boundary_edges[k].curve);
+  }
+  CHECK(back.triangles.size() == 2);
+  CHECK(cells.quads.size() == 2);
 }
 
 TEST_CASE("a format the mixed mesh cannot hold is refused before any file is written", "[io][layers]") {

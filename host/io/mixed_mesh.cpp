@@ -18,6 +18,7 @@
 #include "io/mesh_formats.hpp"
 #include "io/mesh_io_common.hpp"
 #include "io/msh_writer.hpp"
+#include "io/vtu_writer.hpp"
 
 namespace pdmesh {
 
@@ -149,9 +150,12 @@ void write_mixed_msh41(const MixedMesh& mesh, TextSink& sink, const std::vector<
 
 void write_mixed_vtu(const MixedMesh& mesh, TextSink& sink) {
   std::string& out = sink.text();
-  out += fmt::format(
+  out +=
       "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\">\n"
-      "<UnstructuredGrid>\n<Piece NumberOfPoints=\"{}\" NumberOfCells=\"{}\">\n<Points>\n"
+      "<UnstructuredGrid>\n";
+  write_vtu_curves(curves_of(mesh), sink, VtuFormat::Ascii, "");
+  out += fmt::format(
+      "<Piece NumberOfPoints=\"{}\" NumberOfCells=\"{}\">\n<Points>\n"
       "<DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">\n",
       mesh.points.size(), mesh.cells.size());
   append_items(sink, mesh.points.size(), [&mesh](std::string& line, std::size_t i) {

@@ -33,8 +33,8 @@ inline constexpr const char* kCoreRegion = "domain";
 // 2, surface entities 1 and 2). The layer's triangles and quadrangles are separate element blocks.
 // `periodic` (not null or empty): the $Periodic section after the elements, as msh_writer writes it.
 std::string mixed_msh41_string(const MixedMesh& mesh, const std::vector<PeriodicLink>* periodic = nullptr);
-// Cell data "boundary_layer" (1 in the layer, 0 in the core), the point data when there is some; no
-// boundary edges.
+// Cell data "boundary_layer" (1 in the layer, 0 in the core), the point data when there is some, and
+// the curves as field data (write_vtu_curves), as a triangle mesh's .vtu holds them.
 std::string mixed_vtu_string(const MixedMesh& mesh);
 // Core cells first, then the layer's; one marker per curve (SU2 has no volume markers).
 std::string mixed_su2_string(const MixedMesh& mesh);

@@ -148,23 +148,18 @@ void data_array(TextSink& sink, VtuFormat format, std::string_view indent, std::
 
 }  // namespace
 
-void write_vtu(const Mesh& mesh, TextSink& sink, VtuFormat format) {
-  check_mesh_for_writing(mesh, "VTU writer");
-  const auto quality = triangle_qualities(mesh);
-  // The binary arrays are in this machine's byte order, which the file declares.
-  std::string& out = sink.text();
-  out += "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"";
-  out += std::endian::native == std::endian::big ? "BigEndian" : "LittleEndian";
-  out += "\" header_type=\"UInt64\">\n  <UnstructuredGrid>\n";
-  // FieldData: boundary edges (point a, point b, curve) and the curve names as bytes, each name
-  // followed by a 0 byte; plain numeric arrays so that every VTK reader accepts them.
+void write_vtu_curves(const Mesh& mesh, TextSink& sink, VtuFormat format, std::string_view indent) {
+  // Boundary edges (point a, point b, curve) and the curve names as bytes, each name followed by a 0
+  // byte; plain numeric arrays so that every VTK reader accepts them.
   std::string names;
   for (std::size_t c = 0; c < mesh.curve_names.size(); ++c) {
     names += curve_label(mesh, c);
     names += '\0';
   }
-  const std::string_view field = "      ";
-  out += "    <FieldData>\n";
+  const std::string field = std::string(indent) + "  ";
+  std::string& out = sink.text();
+  out += indent;
+  out += "<FieldData>\n";
   const auto edge_tuples = " NumberOfTuples=\"" + std::to_string(mesh.boundary_edges.size()) + '"';
   data_array<std::int64_t>(sink, format, field, "boundary_edges", edge_tuples, mesh.boundary_edges.size(), 3,
                            [&](std::size_t i, int c) -> std::int64_t {
@@ -174,7 +169,19 @@ void write_vtu(const Mesh& mesh, TextSink& sink, VtuFormat format) {
   const auto name_tuples = " NumberOfTuples=\"" + std::to_string(names.size()) + '"';
   data_array<std::uint8_t>(sink, format, field, "curve_names", name_tuples, names.size(), 1,
                            [&](std::size_t i, int) { return static_cast<unsigned char>(names[i]); });
-  out += "    </FieldData>\n";
+  out += indent;
+  out += "</FieldData>\n";
+}
+
+void write_vtu(const Mesh& mesh, TextSink& sink, VtuFormat format) {
+  check_mesh_for_writing(mesh, "VTU writer");
+  const auto quality = triangle_qualities(mesh);
+  // The binary arrays are in this machine's byte order, which the file declares.
+  std::string& out = sink.text();
+  out += "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"";
+  out += std::endian::native == std::endian::big ? "BigEndian" : "LittleEndian";
+  out += "\" header_type=\"UInt64\">\n  <UnstructuredGrid>\n";
+  write_vtu_curves(mesh, sink, format, "    ");
 
   out += "    <Piece NumberOfPoints=\"" + std::to_string(mesh.points.size()) + "\" NumberOfCells=\"" +
          std::to_string(mesh.triangles.size()) + "\">\n";
