@@ -15,6 +15,7 @@
 #include "core/errors.hpp"
 #include "core/input_file.hpp"
 #include "core/predicates.hpp"
+#include "geometry/gis_features.hpp"
 #include "io/mesh_formats.hpp"
 
 namespace pdmesh {
@@ -65,17 +66,6 @@ namespace {
 std::uint64_t edge_key(int a, int b) {
   if (a > b) std::swap(a, b);
   return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(a)) << 32) | static_cast<std::uint32_t>(b);
-}
-
-// A name as a curve name: characters other than letters, digits and _ . + - become '_'.
-std::string plain_name(const std::string& name) {
-  std::string out = name;
-  for (char& ch : out) {
-    const bool plain = (ch >= 'A' && ch <= 'Z') || (ch >= 'a' && ch <= 'z') || (ch >= '0' && ch <= '9') || ch == '_' ||
-                       ch == '.' || ch == '+' || ch == '-';
-    if (!plain) ch = '_';
-  }
-  return out;
 }
 
 // One side of a cell: the cell, and the edge's direction in it (counter-clockwise, domain on the left).
@@ -166,7 +156,7 @@ class MeshGeometryBuilder {
 
   // The name a stretch of edges carries in the file, "" when none.
   std::string file_name(int name) const {
-    return name < 0 ? std::string() : plain_name(mesh_.curve_names[static_cast<std::size_t>(name)]);
+    return name < 0 ? std::string() : gis::plain_name(mesh_.curve_names[static_cast<std::size_t>(name)]);
   }
 
   void add_curve(const std::vector<int>& vertices, int name, bool constraint) {
