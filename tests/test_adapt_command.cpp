@@ -137,6 +137,30 @@ TEST_CASE("pdmesh adapt refines at the solution's layer and carries the solution
   CHECK(carried.triangles.size() == mesh.triangles.size());
 }
 
+TEST_CASE("pdmesh adapt with the solution's own mesh as the domain", "[adapt][cli]") {
+  // DOMAIN = SOL: the grid's cells are the domain (a mesh as the geometry, io/mesh_geometry).
+  const fs::path dir = pdmesh_test::fresh_dir("adapt_own_mesh");
+  const fs::path sol = write_solution(dir);
+  const fs::path out = dir / "out";
+  const auto r =
+      pdmesh_test::run_pdmesh(adapt_command(sol, sol, "--array u --complexity 300 --hmax 0.3 --formats msh", out));
+  INFO(r.output);
+  REQUIRE(r.status == 0);
+  const Mesh mesh = read_mesh(out / "mesh.msh");
+  double area = 0.0;
+  for (const auto& t : mesh.triangles) {
+    const Vec2 a = mesh.points[static_cast<std::size_t>(t[0])], b = mesh.points[static_cast<std::size_t>(t[1])],
+               c = mesh.points[static_cast<std::size_t>(t[2])];
+    area += 0.5 * ((b.x - a.x) * (c.y - a.y) - (c.x - a.x) * (b.y - a.y));
+  }
+  CHECK(area == Approx(1.0).epsilon(1e-12));
+  const double near = density(mesh.points, [](Vec2 p) { return std::fabs(p.y - curve(p.x)) < 0.02; });
+  const double far = density(mesh.points, [](Vec2 p) { return std::fabs(p.y - curve(p.x)) > 0.15; });
+  INFO("near " << near << " far " << far);
+  CHECK(near > 8.0 * far);
+  CHECK(fs::exists(out / "solution.vtu"));
+}
+
 TEST_CASE("pdmesh adapt is pdmesh mesh on the case with field = hessian, bit for bit", "[adapt][cli]") {
   const fs::path dir = pdmesh_test::fresh_dir("adapt_same");
   const fs::path sol = write_solution(dir);
