@@ -1,5 +1,5 @@
 // Measures of a mesh read back from a run's output, for the tests of sizes and far fields: the
-// smallest angle and the mean length of the edges whose midpoint satisfies a predicate.
+// smallest angle, the mean length of the edges whose midpoint satisfies a predicate, the area.
 #pragma once
 #include <algorithm>
 #include <array>
@@ -25,6 +25,14 @@ inline double min_angle_deg(const pdmesh::Mesh& m) {
     }
   }
   return least;
+}
+
+// The sum of the triangles' signed areas (the domain's area for a counter-clockwise mesh).
+inline double mesh_area(const pdmesh::Mesh& m) {
+  double sum = 0.0;
+  for (const auto& t : m.triangles)
+    sum += 0.5 * pdmesh::cross(m.points[t[1]] - m.points[t[0]], m.points[t[2]] - m.points[t[0]]);
+  return sum;
 }
 
 struct EdgeMean {

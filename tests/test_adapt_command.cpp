@@ -19,6 +19,7 @@
 #include "io/mixed_mesh.hpp"
 #include "io/vtu_reader.hpp"
 #include "io/vtu_writer.hpp"
+#include "mesh_measures.hpp"
 #include "run_pdmesh.hpp"
 #include "spacing/hessian.hpp"
 #include "spacing/hessian_metric.hpp"
@@ -88,6 +89,17 @@ double density(const std::vector<Vec2>& points, const std::function<bool(Vec2)>&
   return static_cast<double>(count) / (cells / 160000.0);
 }
 
+// The node density near the layer's curve (within 0.02 of it, vertically) and far from it (beyond
+// 0.15), where `where` holds.
+struct AroundCurve {
+  double near = 0.0, far = 0.0;
+};
+AroundCurve around_curve(
+    const Mesh& mesh, const std::function<bool(Vec2)>& where = [](Vec2) { return true; }) {
+  return {density(mesh.points, [&](Vec2 p) { return where(p) && std::fabs(p.y - curve(p.x)) < 0.02; }),
+          density(mesh.points, [&](Vec2 p) { return where(p) && std::fabs(p.y - curve(p.x)) > 0.15; })};
+}
+
 // mixed_grid with point data `name` = f.
 MixedMesh mixed_grid(int n, double quads_below, const std::string& name, const std::function<double(Vec2)>& f) {
   MixedMesh m = mixed_grid(n, quads_below);
@@ -104,61 +116,40 @@ std::string adapt_command(const fs::path& domain, const fs::path& sol, const std
 TEST_CASE("pdmesh adapt refines at the solution's layer and carries the solution onto the new mesh", "[adapt][cli]") {
   const fs::path dir = pdmesh_test::fresh_dir("adapt_layer");
   const fs::path sol = write_solution(dir);
-  const fs::path out = dir / "out";
-  const auto r =
-      pdmesh_test::run_pdmesh(adapt_command(kSquare, sol, "--array u --complexity 300 --hmax 0.3 --formats msh", out));
-  INFO(r.output);
-  REQUIRE(r.status == 0);
-  const Mesh mesh = read_mesh(out / "mesh.msh");
-  // Nodes within 0.02 of the curve (vertically) against those more than 0.15 from it.
-  const double near = density(mesh.points, [](Vec2 p) { return std::fabs(p.y - curve(p.x)) < 0.02; });
-  const double far = density(mesh.points, [](Vec2 p) { return std::fabs(p.y - curve(p.x)) > 0.15; });
-  INFO("near " << near << " far " << far);
-  CHECK(near > 8.0 * far);
-  CHECK_THAT(pdmesh_test::slurp(out / "quality.json"), Contains("\"metric\": {\"edges\": "));
-  // solution.vtu: the mesh's points, each with u (and v) interpolated from the 81 x 81 grid.
-  MeshReadReport report;
-  MeshPointData u;
-  u.wanted = "u";
-  const Mesh carried = read_vtu(out / "solution.vtu", report, &u);
-  // kind is the writer's own (-1: not known), as in every pdmesh .vtu.
-  CHECK(u.point_arrays == std::vector<std::string>{"kind", "u", "v"});
-  REQUIRE(carried.points.size() == mesh.points.size());
-  REQUIRE(u.array);
-  REQUIRE(u.array->values.size() == mesh.points.size());
-  double worst = 0.0;
-  for (std::size_t i = 0; i < mesh.points.size(); ++i) {
-    CHECK(carried.points[i].x == mesh.points[i].x);
-    CHECK(carried.points[i].y == mesh.points[i].y);
-    worst = std::max(worst, std::fabs(u.array->values[i] - layer_u(mesh.points[i], 20.0)));
+  // The domain as a curve file, and as the solution's own mesh (its cells: io/mesh_geometry).
+  for (const fs::path& domain : {fs::path(kSquare), sol}) {
+    INFO("domain " << domain);
+    const fs::path out = dir / ("out_" + domain.extension().string().substr(1));
+    const auto r =
+        pdmesh_test::run_pdmesh(adapt_command(domain, sol, "--array u --complexity 300 --hmax 0.3 --formats msh", out));
+    INFO(r.output);
+    REQUIRE(r.status == 0);
+    const Mesh mesh = read_mesh(out / "mesh.msh");
+    CHECK(pdmesh_test::mesh_area(mesh) == Approx(1.0).epsilon(1e-12));
+    const AroundCurve d = around_curve(mesh);
+    INFO("near " << d.near << " far " << d.far);
+    CHECK(d.near > 8.0 * d.far);
+    CHECK_THAT(pdmesh_test::slurp(out / "quality.json"), Contains("\"metric\": {\"edges\": "));
+    // solution.vtu: the mesh's points, each with u (and v) interpolated from the 81 x 81 grid.
+    MeshReadReport report;
+    MeshPointData u;
+    u.wanted = "u";
+    const Mesh carried = read_vtu(out / "solution.vtu", report, &u);
+    // kind is the writer's own (-1: not known), as in every pdmesh .vtu.
+    CHECK(u.point_arrays == std::vector<std::string>{"kind", "u", "v"});
+    REQUIRE(carried.points.size() == mesh.points.size());
+    REQUIRE(u.array);
+    REQUIRE(u.array->values.size() == mesh.points.size());
+    double worst = 0.0;
+    for (std::size_t i = 0; i < mesh.points.size(); ++i) {
+      CHECK(carried.points[i].x == mesh.points[i].x);
+      CHECK(carried.points[i].y == mesh.points[i].y);
+      worst = std::max(worst, std::fabs(u.array->values[i] - layer_u(mesh.points[i], 20.0)));
+    }
+    // P1 interpolation on the grid of step 1/80: |u''| h² / 8 is at most about 0.03 here.
+    CHECK(worst < 0.05);
+    CHECK(carried.triangles.size() == mesh.triangles.size());
   }
-  // P1 interpolation on the grid of step 1/80: |u''| h² / 8 is at most about 0.03 here.
-  CHECK(worst < 0.05);
-  CHECK(carried.triangles.size() == mesh.triangles.size());
-}
-
-TEST_CASE("pdmesh adapt with the solution's own mesh as the domain", "[adapt][cli]") {
-  // DOMAIN = SOL: the grid's cells are the domain (a mesh as the geometry, io/mesh_geometry).
-  const fs::path dir = pdmesh_test::fresh_dir("adapt_own_mesh");
-  const fs::path sol = write_solution(dir);
-  const fs::path out = dir / "out";
-  const auto r =
-      pdmesh_test::run_pdmesh(adapt_command(sol, sol, "--array u --complexity 300 --hmax 0.3 --formats msh", out));
-  INFO(r.output);
-  REQUIRE(r.status == 0);
-  const Mesh mesh = read_mesh(out / "mesh.msh");
-  double area = 0.0;
-  for (const auto& t : mesh.triangles) {
-    const Vec2 a = mesh.points[static_cast<std::size_t>(t[0])], b = mesh.points[static_cast<std::size_t>(t[1])],
-               c = mesh.points[static_cast<std::size_t>(t[2])];
-    area += 0.5 * ((b.x - a.x) * (c.y - a.y) - (c.x - a.x) * (b.y - a.y));
-  }
-  CHECK(area == Approx(1.0).epsilon(1e-12));
-  const double near = density(mesh.points, [](Vec2 p) { return std::fabs(p.y - curve(p.x)) < 0.02; });
-  const double far = density(mesh.points, [](Vec2 p) { return std::fabs(p.y - curve(p.x)) > 0.15; });
-  INFO("near " << near << " far " << far);
-  CHECK(near > 8.0 * far);
-  CHECK(fs::exists(out / "solution.vtu"));
 }
 
 TEST_CASE("pdmesh adapt is pdmesh mesh on the case with field = hessian, bit for bit", "[adapt][cli]") {
@@ -393,9 +384,8 @@ TEST_CASE("a layered solution: transfer and adapt interpolate in its quads, and 
   INFO(r.output);
   REQUIRE(r.status == 0);
   const Mesh mesh = read_mesh(out / "mesh.msh");
-  const auto low = [](Vec2 p) { return p.x > 0.55 && p.x < 0.95; };  // where the curve is below y = 0.4
-  const double near = density(mesh.points, [&](Vec2 p) { return low(p) && std::fabs(p.y - curve(p.x)) < 0.02; });
-  const double far = density(mesh.points, [&](Vec2 p) { return low(p) && std::fabs(p.y - curve(p.x)) > 0.15; });
-  INFO("near " << near << " far " << far);
-  CHECK(near > 8.0 * far);
+  // Where the curve is below y = 0.4, in the solution's quads.
+  const AroundCurve d = around_curve(mesh, [](Vec2 p) { return p.x > 0.55 && p.x < 0.95; });
+  INFO("near " << d.near << " far " << d.far);
+  CHECK(d.near > 8.0 * d.far);
 }

@@ -18,6 +18,7 @@
 #include "io/mesh_formats.hpp"
 #include "io/mesh_geometry.hpp"
 #include "layers/boundary_layers.hpp"
+#include "mesh_measures.hpp"
 #include "run_pdmesh.hpp"
 #include "temp_files.hpp"
 
@@ -73,13 +74,6 @@ Geometry built(RawGeometry raw) {
 
 Geometry read_as_geometry(const std::string& path) {
   return read_geometry({path}, {}, {}, {ProjectionKind::None, nullptr, {}, mesh_geometry_files()});
-}
-
-double triangle_area(const Mesh& m) {
-  double sum = 0.0;
-  for (const auto& t : m.triangles)
-    sum += 0.5 * cross(m.points[t[1]] - m.points[t[0]], m.points[t[2]] - m.points[t[0]]);
-  return sum;
 }
 
 std::set<double> attributes(const Mesh& m) { return {m.region.begin(), m.region.end()}; }
@@ -221,8 +215,8 @@ TEST_CASE("pdmesh mesh MESH re-meshes the domain: area, names, regions and the i
   REQUIRE(run.status == 0);
   const Mesh before = read_mesh(first / "mesh.msh");
   const Mesh after = read_mesh(again / "mesh.msh");
-  CHECK(triangle_area(after) == Approx(triangle_area(before)).epsilon(1e-12));
-  CHECK(triangle_area(after) == Approx(15.0).epsilon(1e-12));
+  CHECK(pdmesh_test::mesh_area(after) == Approx(pdmesh_test::mesh_area(before)).epsilon(1e-12));
+  CHECK(pdmesh_test::mesh_area(after) == Approx(15.0).epsilon(1e-12));
   CHECK(std::set<std::string>(after.curve_names.begin(), after.curve_names.end()) ==
         std::set<std::string>(before.curve_names.begin(), before.curve_names.end()));
   CHECK(attributes(after) == std::set<double>{1.0, 2.0});
@@ -242,7 +236,7 @@ TEST_CASE("pdmesh smooth MESH without --geometry uses the mesh's own domain") {
   INFO(run.output);
   REQUIRE(run.status == 0);
   const Mesh after = read_mesh(out / "mesh.msh");
-  CHECK(triangle_area(after) == Approx(15.0).epsilon(1e-12));
+  CHECK(pdmesh_test::mesh_area(after) == Approx(15.0).epsilon(1e-12));
   CHECK(attributes(after) == std::set<double>{1.0, 2.0});
 }
 

@@ -15,6 +15,7 @@
 #include "geometry/airfoil_reader.hpp"
 #include "geometry/curve_reader.hpp"
 #include "geometry/geojson_reader.hpp"
+#include "geometry/gis_features.hpp"
 #include "geometry/poly_reader.hpp"
 #include "geometry/reader_text.hpp"
 #include "geometry/shapefile_reader.hpp"
@@ -45,19 +46,25 @@ void name_curves(std::vector<RawCurve>& curves, const std::vector<std::string>& 
   }
 }
 
-// A file name's stem as a plain curve-name prefix: characters other than letters, digits, _ . + -
-// become '_'.
+// A file name's stem as a plain curve-name prefix (gis::plain_name).
 std::string plain_stem(const std::string& path) {
-  std::string stem = std::filesystem::path(path).stem().string();
-  for (char& ch : stem) {
-    const bool plain = (ch >= 'A' && ch <= 'Z') || (ch >= 'a' && ch <= 'z') || (ch >= '0' && ch <= '9') || ch == '_' ||
-                       ch == '.' || ch == '+' || ch == '-';
-    if (!plain) ch = '_';
-  }
+  const std::string stem = gis::plain_name(std::filesystem::path(path).stem().string());
   return stem.empty() ? std::string("airfoil") : stem;
 }
 
 }  // namespace
+
+void append_geometry(RawGeometry& into, RawGeometry part) {
+  const auto append = [](auto& to, auto& from) {
+    for (auto& x : from) to.push_back(std::move(x));
+  };
+  append(into.curves, part.curves);
+  append(into.holes, part.holes);
+  append(into.points, part.points);
+  append(into.regions, part.regions);
+  append(into.notes, part.notes);
+  append(into.groups, part.groups);
+}
 
 RawGeometry read_geometry_files(const std::vector<std::string>& paths, PolyHull hull, std::string* per_file,
                                 const OtherGeometryFile& other) {
@@ -90,10 +97,10 @@ RawGeometry read_geometry_files(const std::vector<std::string>& paths, PolyHull 
       for (GeometryRegion& r : poly.regions) raw.regions.push_back(std::move(r));
       for (std::string& n : poly.notes) raw.notes.push_back(std::move(n));
     } else if (ext == ".geojson" || ext == ".json" || ext == ".shp") {
-      RawGeometry part = ext == ".shp" ? read_shapefile(path) : read_geojson_file(path);
-      for (RawCurve& c : part.curves) raw.curves.push_back(std::move(c));
-      for (RawPoint& p : part.points) raw.points.push_back(std::move(p));
-    } else if (!other || !other(path, ext, raw)) {
+      append_geometry(raw, ext == ".shp" ? read_shapefile(path) : read_geojson_file(path));
+    } else if (std::optional<RawGeometry> part = other ? other(path, ext) : std::nullopt) {
+      append_geometry(raw, std::move(*part));
+    } else {
       throw InputError(
           fmt::format("{}: unsupported geometry file extension '{}' (supported: .crv, .dat, .poly, "
                       ".geojson, .json, .shp{})",

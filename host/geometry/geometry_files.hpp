@@ -3,6 +3,7 @@
 // processed by build_geometry().
 #pragma once
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -15,10 +16,13 @@ namespace pdmesh {
 // hole points read with them.
 using PrepareCurves = std::function<void(std::vector<RawCurve>&, const std::vector<RawHolePoint>&)>;
 
-// Reads a geometry file of an extension the readers here do not know into `into` (curves, points,
-// regions, notes appended): a mesh file, read by io/mesh_geometry, which this layer cannot include.
-// Returns false when it does not take the extension `ext` (lower case, with the dot).
-using OtherGeometryFile = std::function<bool(const std::string& path, const std::string& ext, RawGeometry& into)>;
+// Reads a geometry file of an extension the readers here do not know: a mesh file, read by
+// io/mesh_geometry, which this layer cannot include. nullopt when it does not take the extension
+// `ext` (lower case, with the dot).
+using OtherGeometryFile = std::function<std::optional<RawGeometry>(const std::string& path, const std::string& ext)>;
+
+// Appends everything `part` holds (curves, holes, points, regions, notes, curve groups) to `into`.
+void append_geometry(RawGeometry& into, RawGeometry part);
 
 // What reading does beyond the files.
 struct ReadSteps {

@@ -15,6 +15,7 @@
 #include "core/errors.hpp"
 #include "core/input_file.hpp"
 #include "core/predicates.hpp"
+#include "geometry/geometry_detail.hpp"
 #include "geometry/gis_features.hpp"
 #include "io/mesh_formats.hpp"
 
@@ -172,10 +173,7 @@ class MeshGeometryBuilder {
   }
 
   // The turning angle at b of a -> b -> c (0 straight on).
-  double turn(int a, int b, int c) const {
-    const Vec2 in = at(b) - at(a), out = at(c) - at(b);
-    return std::atan2(std::fabs(cross(in, out)), dot(in, out));
-  }
+  double turn(int a, int b, int c) const { return detail::turning_angle(at(b) - at(a), at(c) - at(b)); }
 
   void trace_boundary() {
     std::unordered_map<int, int> next;  // boundary point -> the end of its boundary edge
@@ -391,15 +389,9 @@ RawGeometry read_mesh_geometry(const std::string& path) {
 }
 
 OtherGeometryFile mesh_geometry_files() {
-  return [](const std::string& path, const std::string& ext, RawGeometry& into) {
-    if (!is_mesh_geometry_extension(ext)) return false;
-    RawGeometry part = read_mesh_geometry(path);
-    for (RawCurve& c : part.curves) into.curves.push_back(std::move(c));
-    for (RawPoint& p : part.points) into.points.push_back(std::move(p));
-    for (GeometryRegion& r : part.regions) into.regions.push_back(std::move(r));
-    for (std::string& n : part.notes) into.notes.push_back(std::move(n));
-    for (CurveGroup& g : part.groups) into.groups.push_back(std::move(g));
-    return true;
+  return [](const std::string& path, const std::string& ext) -> std::optional<RawGeometry> {
+    if (!is_mesh_geometry_extension(ext)) return std::nullopt;
+    return read_mesh_geometry(path);
   };
 }
 

@@ -51,6 +51,23 @@ Metric lp_optimal_metric(const Hessian& h, double scale, const HessianMetricOpti
   return clip_metric(m, o.hmin, o.hmax, o.max_anisotropy);
 }
 
+namespace {
+
+// C / ∫ density by the P1 rule on the triangles (the mean of the corners times the area).
+double density_scale(const std::vector<Vec2>& points, const std::vector<std::array<int, 3>>& triangles,
+                     const std::vector<double>& density, double complexity, std::string_view what) {
+  double integral = 0.0;
+  for (const auto& t : triangles) {
+    const double area = 0.5 * std::fabs(cross(points[t[1]] - points[t[0]], points[t[2]] - points[t[0]]));
+    integral += area * (density[t[0]] + density[t[1]] + density[t[2]]) / 3.0;
+  }
+  if (!(integral > 0.0))
+    throw InputError(fmt::format("{}: the mesh has no area to spread complexity {} over", what, complexity));
+  return complexity / integral;
+}
+
+}  // namespace
+
 std::vector<Metric> hessian_metrics_on_mesh(const std::vector<Vec2>& points,
                                             const std::vector<std::array<int, 3>>& triangles,
                                             const std::vector<double>& u, const HessianMetricOptions& o,
@@ -59,14 +76,7 @@ std::vector<Metric> hessian_metrics_on_mesh(const std::vector<Vec2>& points,
   const std::vector<Hessian> h = recover_hessians(points, triangles, u, what);
   std::vector<double> density(points.size());
   for (std::size_t i = 0; i < points.size(); ++i) density[i] = hessian_density(h[i], o);
-  double integral = 0.0;
-  for (const auto& t : triangles) {
-    const double area = 0.5 * std::fabs(cross(points[t[1]] - points[t[0]], points[t[2]] - points[t[0]]));
-    integral += area * (density[t[0]] + density[t[1]] + density[t[2]]) / 3.0;
-  }
-  if (!(integral > 0.0))
-    throw InputError(fmt::format("{}: the mesh has no area to spread complexity {} over", what, o.complexity));
-  const double scale = o.complexity / integral;
+  const double scale = density_scale(points, triangles, density, o.complexity, what);
   std::vector<Metric> m(points.size());
   for (std::size_t i = 0; i < points.size(); ++i) m[i] = lp_optimal_metric(h[i], scale, o);
   return m;
@@ -81,14 +91,7 @@ double complexity_scale(const std::vector<Vec2>& points, const std::vector<std::
                         const std::vector<Metric>& m, double complexity, std::string_view what) {
   std::vector<double> density(points.size());
   for (std::size_t i = 0; i < points.size(); ++i) density[i] = std::sqrt(m[i].det());
-  double integral = 0.0;
-  for (const auto& t : triangles) {
-    const double area = 0.5 * std::fabs(cross(points[t[1]] - points[t[0]], points[t[2]] - points[t[0]]));
-    integral += area * (density[t[0]] + density[t[1]] + density[t[2]]) / 3.0;
-  }
-  if (!(integral > 0.0))
-    throw InputError(fmt::format("{}: the mesh has no area to spread complexity {} over", what, complexity));
-  return complexity / integral;
+  return density_scale(points, triangles, density, complexity, what);
 }
 
 std::vector<double> divided_by_range(const std::vector<double>& u) {

@@ -6,6 +6,7 @@
 #include <fmt/ranges.h>
 #include <toml++/toml.h>
 
+#include "app/cli/option_overrides.hpp"
 #include "app/cli/transfer_command.hpp"
 #include "app/pipeline/exit_codes.hpp"
 #include "app/pipeline/mesh_pipeline.hpp"
@@ -13,34 +14,12 @@
 #include "core/errors.hpp"
 #include "core/input_file.hpp"
 #include "io/mesh_formats.hpp"
-#include "io/msh_reader.hpp"
-#include "io/vtu_reader.hpp"
 
 namespace pdmesh {
 
 namespace fs = std::filesystem;
 
 namespace {
-
-std::string toml_text(const toml::node& n) {
-  std::ostringstream s;
-  n.visit([&](const auto& v) { s << v; });
-  return s.str();
-}
-
-// The point arrays SOL holds; InputError when SOL is not a .vtu or .msh or cannot be read.
-std::vector<std::string> point_arrays_of(const fs::path& solution) {
-  MeshReadReport report;
-  MeshPointData listing;
-  const std::string e = lower_extension(solution);
-  if (e == ".vtu")
-    (void)read_vtu(solution, report, &listing);
-  else if (e == ".msh")
-    (void)read_msh(solution, report, &listing);
-  else
-    throw InputError(fmt::format("--solution {}: expected a .vtu or .msh mesh with point data", solution.string()));
-  return listing.point_arrays;
-}
 
 // The first mesh file the run writes that holds every point: the one solution.vtu is made on.
 std::optional<fs::path> written_mesh(const CaseConfig& config) {
@@ -59,23 +38,20 @@ std::vector<CaseOverride> adapt_overrides(const AdaptOptions& o) {
   std::vector<CaseOverride> out;
   out.push_back({"spacing", "{}", "pdmesh adapt (the case's [spacing] is replaced)"});
   out.push_back({"spacing.field", "\"hessian\"", "pdmesh adapt"});
-  out.push_back({"spacing.file", toml_text(toml::value<std::string>(o.solution)), "--solution " + o.solution});
+  out.push_back({"spacing.file", toml_string(o.solution), "--solution " + o.solution});
   if (o.arrays.size() == 1) {
-    out.push_back({"spacing.array", toml_text(toml::value<std::string>(o.arrays.front())), "--array " + arrays});
+    out.push_back({"spacing.array", toml_string(o.arrays.front()), "--array " + arrays});
   } else {
     toml::array list;
     for (const std::string& a : o.arrays) list.push_back(a);
     out.push_back({"spacing.array", toml_text(list), "--array " + arrays});
   }
   out.push_back({"spacing.complexity", o.complexity, "--complexity " + o.complexity});
-  const auto optional = [&](const std::optional<std::string>& v, const char* option, const char* key) {
-    if (v) out.push_back({key, *v, fmt::format("{} {}", option, *v)});
-  };
-  optional(o.hmin, "--hmin", "spacing.hmin");
-  optional(o.hmax, "--hmax", "spacing.hmax");
-  optional(o.max_anisotropy, "--max-anisotropy", "spacing.max_anisotropy");
-  optional(o.norm, "--norm", "spacing.norm");
-  optional(o.gradation, "--gradation", "spacing.metric_gradation");
+  add_option_override(out, o.hmin, "--hmin", "spacing.hmin");
+  add_option_override(out, o.hmax, "--hmax", "spacing.hmax");
+  add_option_override(out, o.max_anisotropy, "--max-anisotropy", "spacing.max_anisotropy");
+  add_option_override(out, o.norm, "--norm", "spacing.norm");
+  add_option_override(out, o.gradation, "--gradation", "spacing.metric_gradation");
   return out;
 }
 
@@ -86,7 +62,7 @@ int run_adapt(const CaseConfig& config, const AdaptOptions& options) {
   std::error_code ec;
   if (!fs::is_regular_file(solution, ec))
     throw InputError(fmt::format("--solution {}: cannot read '{}': no such file", options.solution, solution.string()));
-  const std::vector<std::string> present = point_arrays_of(solution);
+  const std::vector<std::string> present = point_array_names(solution.string());
   for (const std::string& name : options.arrays)
     if (std::find(present.begin(), present.end(), name) == present.end())
       throw InputError(fmt::format("--array {}: {} has no point array '{}' (point arrays: {})", name, options.solution,

@@ -22,6 +22,7 @@
 #include "app/bench/whole_run_bench.hpp"
 #include "app/cli/adapt_command.hpp"
 #include "app/cli/devices_command.hpp"
+#include "app/cli/option_overrides.hpp"
 #include "app/pipeline/mesh_pipeline.hpp"
 #include "app/pipeline/smooth_pipeline.hpp"
 #include "app/cli/quality_command.hpp"
@@ -80,12 +81,6 @@ struct AdaptArguments {
 };
 
 namespace {
-
-std::string toml_text(const toml::node& n) {
-  std::ostringstream s;
-  n.visit([&](const auto& v) { s << v; });
-  return s.str();
-}
 
 // "--formats png,svg" as the TOML array ["png", "svg"].
 std::string formats_value(const std::string& list) {
@@ -173,8 +168,8 @@ std::optional<QualityPicture> quality_picture(const QualityArguments& a) {
 std::vector<CaseOverride> overrides_from(const MeshArguments& a) {
   std::vector<CaseOverride> out = a.defaults;
   for (const std::string& s : a.sets) out.push_back(parse_set_option(s));
-  auto direct = [&](const std::optional<std::string>& v, const char* option, const char* key) {
-    if (v) out.push_back({key, *v, fmt::format("{} {}", option, *v)});
+  const auto direct = [&](const std::optional<std::string>& v, const char* option, const char* key) {
+    add_option_override(out, v, option, key);
   };
   direct(a.iterations, "--iterations", "simulation.iterations");
   direct(a.stop, "--stop", "simulation.stop");
@@ -189,7 +184,7 @@ std::vector<CaseOverride> overrides_from(const MeshArguments& a) {
   direct(a.stability, "--stability", "simulation.stability_factor");
   direct(a.momentum, "--momentum", "simulation.momentum");
   direct(a.color_by, "--color-by", "output.color_by");
-  if (a.start) out.push_back({"init.file", toml_text(toml::value<std::string>(*a.start)), "--start " + *a.start});
+  if (a.start) out.push_back({"init.file", toml_string(*a.start), "--start " + *a.start});
   direct(a.size, "--size", "spacing.size");
   if (a.farfield) {
     // SHAPE:SIZE as farfield.shape and farfield.size; the validator checks both values.
@@ -394,8 +389,8 @@ void add_smooth_options(CLI::App& smooth, SmoothArguments& a) {
 void add_adapt_options(CLI::App& adapt, AdaptArguments& a) {
   adapt
       .add_option("DOMAIN", a.domain,
-                  "Case file (.toml), case directory or geometry file of the domain; the case's settings are kept "
-                  "but for its [spacing]")
+                  "Case file (.toml), case directory, or geometry or mesh file of the domain (SOL's own mesh too); the "
+                  "case's settings are kept but for its [spacing]")
       ->required()
       ->type_name("FILE");
   adapt.add_option("--solution", a.options.solution, "spacing.file: the solution, a .vtu or .msh with point data")

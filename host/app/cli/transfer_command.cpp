@@ -29,7 +29,7 @@ Mesh read_with_data(const fs::path& path, MeshPointData& data, SurfaceCells* cel
   const std::string e = lower_extension(path);
   if (e == ".vtu") return read_vtu(path, report, &data, cells);
   if (e == ".msh") return read_msh(path, report, &data, cells);
-  throw InputError(fmt::format("{}: transfer reads point data from .vtu or .msh files only", path.string()));
+  throw InputError(fmt::format("{}: point data is read from .vtu or .msh files only", path.string()));
 }
 
 // The source's cells as triangles: a layered mesh's quads split (with_quads_split), so that a point
@@ -41,6 +41,12 @@ Mesh read_source(const fs::path& path, MeshPointData& data) {
 }
 
 }  // namespace
+
+std::vector<std::string> point_array_names(const std::string& from) {
+  MeshPointData listing;
+  (void)read_with_data(from, listing);
+  return listing.point_arrays;
+}
 
 TransferredArrays transfer_point_arrays(const std::string& from, const std::vector<std::string>& arrays, Mesh& target,
                                         TransferCounts& counts) {
