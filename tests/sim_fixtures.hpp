@@ -1,4 +1,4 @@
-// Shared fixtures of the simulation tests: appending a particle to SimParticles, and the thesis'
+// Shared fixtures of the simulation tests: appending a particle to SimParticles, setting its metric, and the thesis'
 // circle-in-circle geometry (outer radius 10, inner 0.5, four semicircles of 31 equally spaced points).
 #pragma once
 #include <cmath>
@@ -24,6 +24,22 @@ inline void add(pdmesh::SimParticles& p, double x, double y, double q, std::uint
   p.next.push_back(-1);
   p.tx.push_back(0.0);
   p.ty.push_back(0.0);
+}
+
+// Node i's metric (metric mode): the arrays are first extended to the nodes added since.
+inline void set_metric(pdmesh::SimParticles& p, std::size_t i, double m11, double m12, double m22) {
+  p.m11.resize(p.size(), 0.0);
+  p.m12.resize(p.size(), 0.0);
+  p.m22.resize(p.size(), 0.0);
+  p.m11[i] = m11;
+  p.m12[i] = m12;
+  p.m22[i] = m22;
+}
+
+// Node i's metric M = R(a) diag(1/h1^2, 1/h2^2) R(a)^T: size h1 along the direction at angle a, h2 across.
+inline void set_sizes(pdmesh::SimParticles& p, std::size_t i, double h1, double h2, double a) {
+  const double c = std::cos(a), s = std::sin(a), l1 = 1.0 / (h1 * h1), l2 = 1.0 / (h2 * h2);
+  set_metric(p, i, l1 * c * c + l2 * s * s, (l1 - l2) * c * s, l1 * s * s + l2 * c * c);
 }
 
 // Two semicircle curves (upper, lower) of `points` equally spaced points, end points exactly on the x axis.

@@ -20,25 +20,11 @@
 
 using namespace pdmesh;
 using pdmesh_test::add;
+using pdmesh_test::set_metric;
+using pdmesh_test::set_sizes;
 using pdmesh_test::uniform;
 
 namespace {
-
-void set_metric(SimParticles& p, std::size_t i, double m11, double m12, double m22) {
-  // Nodes added since (sim_fixtures' add) get their entries here.
-  p.m11.resize(p.size(), 0.0);
-  p.m12.resize(p.size(), 0.0);
-  p.m22.resize(p.size(), 0.0);
-  p.m11[i] = m11;
-  p.m12[i] = m12;
-  p.m22[i] = m22;
-}
-
-// M = R(a) diag(1/h1^2, 1/h2^2) R(a)^T.
-void set_sizes(SimParticles& p, std::size_t i, double h1, double h2, double a) {
-  const double c = std::cos(a), s = std::sin(a), l1 = 1.0 / (h1 * h1), l2 = 1.0 / (h2 * h2);
-  set_metric(p, i, l1 * c * c + l2 * s * s, (l1 - l2) * c * s, l1 * s * s + l2 * c * c);
-}
 
 std::vector<int> row(const NeighbourList& list, std::size_t i) {
   const auto s = static_cast<std::size_t>(list.stride);

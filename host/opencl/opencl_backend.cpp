@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 
 #include "core/errors.hpp"
+#include "sim/reference/metric_neighbour_cache.hpp"
 #include "sim/reference/reference_backend.hpp"
 #include "opencl/device_neighbours.hpp"
 #include "opencl/step_program.hpp"
@@ -27,9 +28,9 @@ class OpenclBackend final : public StepBackend {
 
   void build_neighbours(const SimParticles& p, double cutoff, NeighbourList& list, NeighbourFlags& flags) override {
     if (p.has_metric()) {
-      // Metric mode: the exact list of the host reference (the contract's rows); the device's
-      // multi-level binning has no elliptic search yet.
-      reference::build_neighbours(p, cutoff, list, flags);
+      // Metric mode: the exact list of the host reference (the contract's rows), through its Verlet
+      // candidates; the device's multi-level binning has no elliptic search yet.
+      metric_rows_.build(p, cutoff, list, flags);
       return;
     }
     upload_particles(p);
@@ -351,6 +352,7 @@ class OpenclBackend final : public StepBackend {
   Context& ctx_;
   StepProgram program_;
   DeviceNeighbours<Real> neighbours_;
+  reference::MetricNeighbourCache metric_rows_;
   Buffer<Real> xy_, q_, tx_, ty_, fx_, fy_, r0_, limit_, dx_, dy_, dt2_, partials_, carried_;
   Buffer<Real> m11_, m12_, m22_, norm_, kinetic_;  // metric mode only
   Buffer<std::uint8_t> kind_;

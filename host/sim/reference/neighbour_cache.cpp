@@ -104,9 +104,8 @@ void NeighbourCache::rebuild(const SimParticles& p, double cutoff, NeighbourFlag
 
 void NeighbourCache::build(const SimParticles& p, double cutoff, NeighbourList& list, NeighbourFlags& flags) {
   if (p.has_metric()) {
-    // Metric mode has no candidate lists yet: the exact build every time.
     valid_ = false;
-    build_neighbours(p, cutoff, list, flags);
+    metric_.build(p, cutoff, list, flags);
     return;
   }
   start_list(p, list, flags);

@@ -1,10 +1,12 @@
 // Verlet (skin) candidate lists for the reference neighbour search: candidates are gathered with a
-// margin and re-filtered exactly on every call, so the lists equal reference::build_neighbours'.
+// margin and re-filtered exactly on every call, so the lists equal reference::build_neighbours'. Particles
+// with a metric go to the metric cache (metric_neighbour_cache.hpp).
 #pragma once
 #include <cstdint>
 #include <vector>
 
 #include "sim/reference/level_grids.hpp"
+#include "sim/reference/metric_neighbour_cache.hpp"
 #include "sim/step_backend.hpp"
 
 namespace pdmesh::reference {
@@ -18,6 +20,7 @@ class NeighbourCache {
   // the candidates re-filtered, plus the pairs examined by a rebuild).
   void build(const SimParticles& p, double cutoff, NeighbourList& list, NeighbourFlags& flags);
   std::uint64_t rebuilds() const { return rebuilds_; }
+  const MetricNeighbourCache& metric() const { return metric_; }
 
  private:
   bool same_structure(const SimParticles& p, double cutoff) const;
@@ -41,6 +44,7 @@ class NeighbourCache {
   LevelGrids grids_;
   std::vector<double> radius_, level_allowed_, cumulative_allowed_;
   std::vector<std::int32_t> found_;
+  MetricNeighbourCache metric_;
 };
 
 }  // namespace pdmesh::reference
