@@ -3,11 +3,13 @@
 // (spacing/mesh_metric_field.hpp) against log-Euclidean interpolation; and the complexity
 // C = ∫ sqrt(det M) (spacing/metric_complexity.hpp) against closed forms and the Python evaluator.
 #include <catch2/catch.hpp>
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
 #include "core/errors.hpp"
 #include "error_message.hpp"
+#include "spacing/hessian_metric.hpp"
 #include "spacing/mesh_metric_field.hpp"
 #include "spacing/metric_complexity.hpp"
 #include "spacing/metric_field.hpp"
@@ -131,6 +133,50 @@ TEST_CASE("MeshMetricField interpolates log-Euclidean inside and along the neare
   const MeshMetricField same_everywhere(points, triangles, std::vector<Metric>(4, m[1]), "x");
   for (Vec2 p : {Vec2{0.3, 0.1}, Vec2{0.1, 0.9}, Vec2{0.5, 0.5}, Vec2{3.0, 3.0}})
     check_same(same_everywhere.at(p), m[1], 1e-13);
+}
+
+TEST_CASE("MeshMetricField::at_many gives at()'s metrics bit for bit, whatever its guesses", "[metric_field]") {
+  // A 40 x 40 grid of a turning, stretching metric; points inside cells, on edges, at corners and
+  // outside, moved a little between calls so that the guesses of the last call are right, wrong
+  // (another cell), out of range, or stale after the points were reordered.
+  const ExpressionMetricField field =
+      ExpressionMetricField::from_sizes("0.1", "0.001 + 0.2*abs(y - 0.5 - 0.2*sin(6*x))", "30*x + 40*y");
+  std::vector<Vec2> points;
+  std::vector<std::array<int, 3>> triangles;
+  std::vector<Metric> metrics;
+  sample_metric_grid(field, kUnitSquare, 40, points, triangles, metrics);
+  const MeshMetricField f(points, triangles, metrics, "grid");
+  std::vector<Vec2> p;
+  for (int k = 0; k < 3000; ++k) {
+    const double u = std::fmod(0.6180339887 * k, 1.0), v = std::fmod(0.7548776662 * k, 1.0);
+    p.push_back({1.2 * u - 0.1, 1.2 * v - 0.1});
+  }
+  for (std::size_t k = 0; k < 40; ++k) p.push_back(points[k * 37 % points.size()]);  // grid points
+  for (std::size_t k = 0; k + 1 < 40; ++k)                                           // midpoints of grid edges
+    p.push_back({0.5 * (points[k].x + points[k + 1].x), 0.5 * (points[k].y + points[k + 1].y)});
+  std::vector<int> guesses;
+  std::vector<Metric> out;
+  for (int call = 0; call < 4; ++call) {
+    INFO("call " << call);
+    if (call == 2) guesses.assign(p.size(), static_cast<int>(triangles.size()) + 5);
+    if (call == 3) std::reverse(p.begin(), p.end());
+    f.at_many(p, out, guesses);
+    REQUIRE(out.size() == p.size());
+    REQUIRE(guesses.size() == p.size());
+    for (std::size_t i = 0; i < p.size(); ++i) {
+      const Metric m = f.at(p[i]);
+      INFO("point " << i << " (" << p[i].x << ", " << p[i].y << ")");
+      REQUIRE(out[i].m11 == m.m11);
+      REQUIRE(out[i].m12 == m.m12);
+      REQUIRE(out[i].m22 == m.m22);
+    }
+    for (Vec2& q : p) q = {q.x + 0.004, q.y - 0.003};
+  }
+  // The base class's at_many is at() in order, for any field.
+  std::vector<Metric> plain;
+  field.at_many(p, plain, guesses);
+  REQUIRE(plain.size() == p.size());
+  for (std::size_t i = 0; i < p.size(); i += 97) CHECK(plain[i].m12 == field.at(p[i]).m12);
 }
 
 TEST_CASE("MeshMetricField refuses bad data naming it", "[metric_field]") {

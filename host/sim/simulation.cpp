@@ -39,8 +39,9 @@ void load_particles(const NodeSet& nodes, const BoundaryHandler& boundary, SimPa
   }
 }
 
-// Metric mode: every node's metric at its position (the arrays cleared otherwise: isotropic mode).
-void load_metric(const NodeSet& nodes, const MetricField* metric, SimParticles& p) {
+// Metric mode: every node's metric at its position (the arrays cleared otherwise: isotropic mode);
+// `guesses` is the field's memory of where the nodes were.
+void load_metric(const NodeSet& nodes, const MetricField* metric, std::vector<int>& guesses, SimParticles& p) {
   if (!metric) {
     p.m11.clear();
     p.m12.clear();
@@ -48,14 +49,15 @@ void load_metric(const NodeSet& nodes, const MetricField* metric, SimParticles& 
     return;
   }
   const std::size_t n = nodes.size();
+  std::vector<Metric> m;
+  metric->at_many(nodes.x, m, guesses);
   p.m11.resize(n);
   p.m12.resize(n);
   p.m22.resize(n);
   for (std::size_t i = 0; i < n; ++i) {
-    const Metric m = metric->at(nodes.x[i]);
-    p.m11[i] = m.m11;
-    p.m12[i] = m.m12;
-    p.m22[i] = m.m22;
+    p.m11[i] = m[i].m11;
+    p.m12[i] = m[i].m12;
+    p.m22[i] = m[i].m22;
   }
 }
 
@@ -187,6 +189,7 @@ class HostSteps final : public IterationSteps {
   const bool with_momentum_ = options_.momentum > 0.0;
   MomentumState carried_;
   SimParticles particles_;
+  std::vector<int> metric_guesses_;
   NeighbourList list_;
   NeighbourFlags flags_;
   ForceResult forces_;
@@ -196,7 +199,7 @@ class HostSteps final : public IterationSteps {
 IterationStep HostSteps::compute(int iteration, const GlobalTimeStep& gm) {
   load_particles(nodes_, boundary_, particles_);
   // Every step: the nodes moved (and population control may have changed the set) since the last.
-  load_metric(nodes_, options_.metric, particles_);
+  load_metric(nodes_, options_.metric, metric_guesses_, particles_);
   build_neighbours_growing(backend_, particles_, options_.cutoff, list_, flags_);
   backend_.compute_forces(particles_, list_, params_, forces_);
   backend_.time_step_and_move(particles_, forces_, gm.dt2(), moves_);

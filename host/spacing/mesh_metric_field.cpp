@@ -7,7 +7,9 @@
 #include <cmath>
 
 #include "core/errors.hpp"
+#include "core/parallel.hpp"
 #include "core/predicates.hpp"
+#include "spacing/spacing_field.hpp"
 
 namespace pdmesh {
 
@@ -55,24 +57,51 @@ MeshMetricField::MeshMetricField(std::vector<Vec2> points, std::vector<std::arra
   }
 }
 
-Metric MeshMetricField::at(Vec2 p) const {
-  const Located l = locator_->locate(p);
-  if (l.triangle >= 0) {
-    const auto& v = triangles_[static_cast<std::size_t>(l.triangle)];
-    const double sum = l.w[0] + l.w[1] + l.w[2];
-    // At a corner (one weight holds everything) the corner's metric itself, without exp(log()).
-    for (int k = 0; k < 3; ++k)
-      if (l.w[k] == sum) return metrics_[static_cast<std::size_t>(v[k])];
-    Metric s{0.0, 0.0, 0.0};
-    for (int k = 0; k < 3; ++k) s = s + (l.w[k] / sum) * logs_[static_cast<std::size_t>(v[k])];
-    return exp_metric(s);
-  }
+Metric MeshMetricField::interpolated(const Located& l) const {
+  const auto& v = triangles_[static_cast<std::size_t>(l.triangle)];
+  const double sum = l.w[0] + l.w[1] + l.w[2];
+  // At a corner (one weight holds everything) the corner's metric itself, without exp(log()).
+  for (int k = 0; k < 3; ++k)
+    if (l.w[k] == sum) return metrics_[static_cast<std::size_t>(v[k])];
+  Metric s{0.0, 0.0, 0.0};
+  for (int k = 0; k < 3; ++k) s = s + (l.w[k] / sum) * logs_[static_cast<std::size_t>(v[k])];
+  return exp_metric(s);
+}
+
+Metric MeshMetricField::outside(Vec2 p) const {
   const BoundaryHit hit = locator_->nearest_boundary(p);
   const auto& e = locator_->boundary_edges()[static_cast<std::size_t>(hit.edge)];
   const double t = std::clamp(hit.t, 0.0, 1.0);
   if (t == 0.0) return metrics_[static_cast<std::size_t>(e[0])];
   if (t == 1.0) return metrics_[static_cast<std::size_t>(e[1])];
   return exp_metric((1.0 - t) * logs_[static_cast<std::size_t>(e[0])] + t * logs_[static_cast<std::size_t>(e[1])]);
+}
+
+Metric MeshMetricField::at(Vec2 p) const {
+  const Located l = locator_->locate(p);
+  return l.triangle >= 0 ? interpolated(l) : outside(p);
+}
+
+void MeshMetricField::at_many(const std::vector<Vec2>& p, std::vector<Metric>& out, std::vector<int>& guesses) const {
+  out.resize(p.size());
+  guesses.resize(p.size(), -1);
+  parallel_for(
+      p.size(),
+      [&](std::size_t i) {
+        // Strictly inside the guessed triangle: no other triangle holds the point, so at() would pick it
+        // too, with the same weights.
+        Located l;
+        const int guess = guesses[i];
+        if (guess >= 0 && static_cast<std::size_t>(guess) < triangles_.size() &&
+            locator_->strictly_inside(guess, p[i], l)) {
+          out[i] = interpolated(l);
+          return;
+        }
+        l = locator_->locate(p[i]);
+        guesses[i] = l.position;
+        out[i] = l.triangle >= 0 ? interpolated(l) : outside(p[i]);
+      },
+      kPointsPerThread);
 }
 
 }  // namespace pdmesh

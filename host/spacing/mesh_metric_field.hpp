@@ -30,6 +30,9 @@ class MeshMetricField final : public MetricField {
   // at a corner. Outside: the interpolation of the nearest boundary edge's two metrics at the
   // nearest point. Thread-safe.
   Metric at(Vec2 p) const override;
+  // On every core; a guess is the triangle (locator position) that held the point last time, tried
+  // first.
+  void at_many(const std::vector<Vec2>& p, std::vector<Metric>& out, std::vector<int>& guesses) const override;
 
  private:
   std::vector<Vec2> points_;
@@ -37,6 +40,9 @@ class MeshMetricField final : public MetricField {
   std::vector<Metric> metrics_;
   std::vector<Metric> logs_;  // log_metric of each point's metric
   std::string what_;
+  Metric interpolated(const Located& l) const;
+  Metric outside(Vec2 p) const;
+
   std::unique_ptr<TriangleLocator> locator_;  // refers to points_ and triangles_
 };
 

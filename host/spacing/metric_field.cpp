@@ -11,6 +11,12 @@
 
 namespace pdmesh {
 
+void MetricField::at_many(const std::vector<Vec2>& p, std::vector<Metric>& out, std::vector<int>& guesses) const {
+  out.resize(p.size());
+  guesses.resize(p.size());
+  for (std::size_t i = 0; i < p.size(); ++i) out[i] = at(p[i]);
+}
+
 ConstantMetricField::ConstantMetricField(const Metric& m) : m_(m) { check_metric(m, "constant metric field"); }
 
 // As ExpressionSpacing: muParser binds x and y by address and evaluates through internal state, so

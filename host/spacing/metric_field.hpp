@@ -4,6 +4,7 @@
 #pragma once
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "core/vec2.hpp"
 #include "spacing/metric.hpp"
@@ -15,6 +16,10 @@ class MetricField {
   virtual ~MetricField() = default;
   // The metric at p; throws InputError naming the field's source and the value where it is not SPD.
   virtual Metric at(Vec2 p) const = 0;
+  // at() at every point of p, into out (resized). `guesses` is the caller's per-point memory for the
+  // field (resized to p.size(); kept between calls for the same moving points, it saves searches).
+  // This one calls at() in order; a field may do better with the same values.
+  virtual void at_many(const std::vector<Vec2>& p, std::vector<Metric>& out, std::vector<int>& guesses) const;
 };
 
 // The same metric everywhere (checked on construction).
