@@ -523,6 +523,87 @@ void check_cached_locate(ocl::Context& ctx, const BackgroundSpacing& bg, const s
 
 }  // namespace
 
+namespace {
+
+// Points for the guessed leaf lookups: random points over the grid and beyond, the corners and edge
+// midpoints of their leaves (on the faces between leaves, where a rounding error would pick the wrong
+// one), off-grid and non-finite points; and a guess for each: the right leaf, a wrong one, or the leaf
+// of the previous point (often a neighbour).
+void guessed_lookups(const BackgroundFieldData& d, const std::vector<Vec2>& random, std::vector<Vec2>& points,
+                     std::vector<std::int32_t>& guesses) {
+  points.clear();
+  for (const Vec2 p : random) {
+    const Box b = background_leaf_box(d, p);
+    const Vec2 m = b.centre();
+    for (const Vec2 s :
+         {p, b.lo, b.hi, Vec2{b.lo.x, b.hi.y}, Vec2{b.hi.x, b.lo.y}, Vec2{m.x, b.lo.y}, Vec2{b.lo.x, m.y}})
+      points.push_back(s);
+  }
+  points.push_back({NAN, NAN});
+  points.push_back({1e300, -1e300});
+  std::mt19937_64 rng(kSeed + 6);
+  guesses.assign(points.size(), 0);
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    double u, v;
+    const int right = background_locate(d, points[i], u, v);
+    const int previous = background_locate(d, points[i > 0 ? i - 1 : 0], u, v);
+    const auto wrong = static_cast<std::int32_t>(rng() % d.leaves());
+    guesses[i] = i % 3 == 0 ? right : i % 3 == 1 ? wrong : previous;
+  }
+}
+
+Box lookup_square(const BackgroundFieldData& d) {
+  Box square;
+  square.add({d.origin_x - 0.5, d.origin_y - 0.5});
+  square.add({d.origin_x + d.root_size * d.grid + 0.5, d.origin_y + d.root_size * d.grid + 0.5});
+  return square;
+}
+
+}  // namespace
+
+TEST_CASE("background field: the host's guessed leaf lookup equals the descent bit for bit", "[spacing]") {
+  for (const Geometry& g : {circle_circle(), naca_graded()}) {
+    const GeometryTree tree(g);
+    const BoundarySpacing exact(tree);
+    const BackgroundSpacing bg(exact, tree);
+    const auto& d = bg.data();
+    std::vector<Vec2> points;
+    std::vector<std::int32_t> guesses;
+    guessed_lookups(d, random_points(lookup_square(d), 3000, kSeed + 5), points, guesses);
+    // Some guesses name no leaf at all (a caller's fresh or stale memory).
+    for (std::size_t i = 0; i < guesses.size(); i += 101) guesses[i] = i % 2 == 0 ? -1 : static_cast<int>(d.leaves());
+    std::size_t kept = 0;
+    for (std::size_t i = 0; i < points.size(); ++i) {
+      INFO("point " << i << " (" << points[i].x << ", " << points[i].y << "), guess " << guesses[i]);
+      double u, v, gu, gv;
+      const int leaf = background_locate(d, points[i], u, v);
+      int guess = guesses[i];
+      REQUIRE(background_locate_guessed(d, points[i], guess, gu, gv) == leaf);
+      REQUIRE(guess == leaf);
+      REQUIRE(gu == u);
+      REQUIRE(gv == v);
+      if (guesses[i] == leaf) ++kept;
+    }
+    CHECK(kept > points.size() / 3);  // the right guesses are taken without a descent
+    // at_many_guessed: at()'s values, with the guesses carried from one call to the next.
+    std::vector<double> q, guessed;
+    std::vector<int> memory;
+    for (int call = 0; call < 3; ++call) {
+      bg.at_many(points, q);
+      bg.at_many_guessed(points, guessed, memory);
+      REQUIRE(memory.size() == points.size());
+      for (std::size_t i = 0; i < points.size(); ++i) {
+        if (std::isnan(q[i])) {
+          REQUIRE(std::isnan(guessed[i]));
+        } else {
+          REQUIRE(guessed[i] == q[i]);
+        }
+      }
+      for (Vec2& p : points) p = {p.x + 1e-3, p.y - 2e-3};
+    }
+  }
+}
+
 TEST_CASE("background field: the cached leaf lookup equals the descent bit for bit", "[spacing][opencl]") {
   auto device = ocl::select_device("auto");
   REQUIRE(device.has_value());
@@ -533,32 +614,10 @@ TEST_CASE("background field: the cached leaf lookup equals the descent bit for b
     const BackgroundSpacing bg(exact, tree);
     const auto& d = bg.data();
     REQUIRE(d.leaf_cell.size() == 4 * d.leaves());
-    Box square;
-    square.add({d.origin_x - 0.5, d.origin_y - 0.5});
-    square.add({d.origin_x + d.root_size * d.grid + 0.5, d.origin_y + d.root_size * d.grid + 0.5});
-    const auto random = random_points(square, 3000, kSeed + 5);
-    // Random points, the corners and edge midpoints of their leaves (on the faces between leaves,
-    // where a rounding error would pick the wrong one), off-grid and non-finite points.
+    const auto random = random_points(lookup_square(d), 3000, kSeed + 5);
     std::vector<Vec2> points;
-    for (const Vec2 p : random) {
-      const Box b = background_leaf_box(d, p);
-      const Vec2 m = b.centre();
-      for (const Vec2 s :
-           {p, b.lo, b.hi, Vec2{b.lo.x, b.hi.y}, Vec2{b.hi.x, b.lo.y}, Vec2{m.x, b.lo.y}, Vec2{b.lo.x, m.y}})
-        points.push_back(s);
-    }
-    points.push_back({NAN, NAN});
-    points.push_back({1e300, -1e300});
-    // Guesses: the right leaf, a wrong one, the leaf of the previous point (often a neighbour).
-    std::mt19937_64 rng(kSeed + 6);
-    std::vector<std::int32_t> guesses(points.size());
-    for (std::size_t i = 0; i < points.size(); ++i) {
-      double u, v;
-      const int right = background_locate(d, points[i], u, v);
-      const int previous = background_locate(d, points[i > 0 ? i - 1 : 0], u, v);
-      const auto wrong = static_cast<std::int32_t>(rng() % d.leaves());
-      guesses[i] = i % 3 == 0 ? right : i % 3 == 1 ? wrong : previous;
-    }
+    std::vector<std::int32_t> guesses;
+    guessed_lookups(d, random, points, guesses);
     // The host's leaf cells describe the leaf boxes.
     for (std::size_t i = 0; i < random.size(); ++i) {
       double u, v;

@@ -64,8 +64,8 @@ SimParticles curved_layer(std::mt19937_64& rng, std::size_t n, std::vector<Bubbl
 // Every free node moves by up to `step` of its sizes along its axes, its bubble turns by up to `turn`
 // and its sizes change by up to `stretch` (relative); `jumps` nodes jump by 10 sizes and have their
 // sizes halved or doubled.
-void stir(SimParticles& p, std::vector<Bubble>& bubbles, std::mt19937_64& rng, double step, double turn,
-          double stretch, int jumps) {
+void stir(SimParticles& p, std::vector<Bubble>& bubbles, std::mt19937_64& rng, double step, double turn, double stretch,
+          int jumps) {
   for (std::size_t i = 0; i < p.size(); ++i) {
     if (p.kind[i] == kSimFixed) continue;
     Bubble& b = bubbles[i];

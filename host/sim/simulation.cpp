@@ -189,7 +189,7 @@ class HostSteps final : public IterationSteps {
   const bool with_momentum_ = options_.momentum > 0.0;
   MomentumState carried_;
   SimParticles particles_;
-  std::vector<int> metric_guesses_;
+  std::vector<int> metric_guesses_, spacing_guesses_;
   NeighbourList list_;
   NeighbourFlags flags_;
   ForceResult forces_;
@@ -240,7 +240,7 @@ IterationMoves HostSteps::apply(int iteration) {
   if (with_momentum_ && out.boundary.snapped > 0)
     for (std::size_t i = 0; i < particles_.size(); ++i)
       if (static_cast<std::uint8_t>(nodes_.kind[i]) != particles_.kind[i]) carried_.px[i] = carried_.py[i] = 0.0;
-  spacing_.at_many(nodes_.x, nodes_.q);
+  spacing_.at_many_guessed(nodes_.x, nodes_.q, spacing_guesses_);
   // Population control between iterations: the next iteration loads the changed node set.
   out.event = loop_.population().after_iteration(options_.population, iteration, options_.iterations, nodes_, boundary_,
                                                  spacing_, nullptr, options_.metric);

@@ -46,6 +46,30 @@ int background_locate(const BackgroundFieldData& d, Vec2 p, double& u, double& v
   return -1 - child;
 }
 
+int background_locate_guessed(const BackgroundFieldData& d, Vec2 p, int& guess, double& u, double& v) {
+  if (guess >= 0 && static_cast<std::size_t>(guess) < d.leaves()) {
+    const std::int32_t* cell = &d.leaf_cell[4 * static_cast<std::size_t>(guess)];
+    const double t = (p.x - d.origin_x) * d.inv_root_size;
+    const double s = (p.y - d.origin_y) * d.inv_root_size;
+    // Only a point on the grid converts to int (NaN and points off it compare false and never match).
+    if (t >= 0.0 && t < static_cast<double>(d.grid) && s >= 0.0 && s < static_cast<double>(d.grid)) {
+      const int gx = static_cast<int>(t), gy = static_cast<int>(s);
+      // 2^L (t - gx) - ix is the descent's u after L levels: t - gx is exact, the doublings and the
+      // subtractions of the bits taken are too.
+      const double cells = std::ldexp(1.0, cell[1]);
+      const double wu = (t - gx) * cells, wv = (s - gy) * cells;
+      const double ix = cell[2], iy = cell[3];
+      if (gy * d.grid + gx == cell[0] && wu >= ix && wu < ix + 1.0 && wv >= iy && wv < iy + 1.0) {
+        u = wu - ix;
+        v = wv - iy;
+        return guess;
+      }
+    }
+  }
+  guess = background_locate(d, p, u, v);
+  return guess;
+}
+
 Box background_leaf_box(const BackgroundFieldData& d, Vec2 p) {
   // The descent of background_locate, tracking the cell's position and side in root-cell units.
   const double t = (p.x - d.origin_x) * d.inv_root_size, s = (p.y - d.origin_y) * d.inv_root_size;
@@ -139,6 +163,20 @@ void BackgroundSpacing::at_many(const std::vector<Vec2>& p, std::vector<double>&
   // Each value is at()'s whatever the thread.
   parallel_for(
       p.size(), [&](std::size_t i) { q[i] = at(p[i]); }, 8192);
+}
+
+void BackgroundSpacing::at_many_guessed(const std::vector<Vec2>& p, std::vector<double>& q,
+                                        std::vector<int>& guesses) const {
+  q.resize(p.size());
+  guesses.resize(p.size(), 0);
+  parallel_for(
+      p.size(),
+      [&](std::size_t i) {
+        double u, v;
+        const int leaf = background_locate_guessed(data_, p[i], guesses[i], u, v);
+        q[i] = background_interpolate(data_, leaf, u, v);
+      },
+      8192);
 }
 
 int BackgroundSpacing::tag_at(Vec2 p) const {

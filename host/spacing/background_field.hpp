@@ -106,6 +106,10 @@ void check_background_options(const BackgroundOptions& options);
 
 // Locates p: the leaf index and the local coordinates (u, v) in [0, 1]^2 within it.
 int background_locate(const BackgroundFieldData& data, Vec2 p, double& u, double& v);
+// background_locate, first trying the leaf `guess` (kernels/spacing_field.cl's bg_locate_cached): when p
+// lies in that leaf's cell its (u, v) are computed directly, the same values as the descent's; otherwise
+// the descent, and guess becomes the leaf found.
+int background_locate_guessed(const BackgroundFieldData& data, Vec2 p, int& guess, double& u, double& v);
 // The box of the leaf holding p (for tests and drawing; the same descent as background_locate).
 Box background_leaf_box(const BackgroundFieldData& data, Vec2 p);
 // Bilinear value in a leaf at (u, v), the same expression as the kernel's.
@@ -123,6 +127,8 @@ class BackgroundSpacing final : public SpacingField {
   BackgroundSpacing(BackgroundFieldData data, const BackgroundStats& stats);
   double at(Vec2 p) const override;
   void at_many(const std::vector<Vec2>& p, std::vector<double>& q) const override;
+  // A guess is the leaf that held the point last time.
+  void at_many_guessed(const std::vector<Vec2>& p, std::vector<double>& q, std::vector<int>& guesses) const override;
   // The DomainTag of the leaf holding p. Points outside the top grid are clamped onto it; the grid
   // has a margin around the geometry, so they land in a boundary or outside leaf.
   int tag_at(Vec2 p) const;

@@ -8,4 +8,10 @@ void SpacingField::at_many(const std::vector<Vec2>& p, std::vector<double>& q) c
   for (std::size_t i = 0; i < p.size(); ++i) q[i] = at(p[i]);
 }
 
+void SpacingField::at_many_guessed(const std::vector<Vec2>& p, std::vector<double>& q,
+                                   std::vector<int>& guesses) const {
+  guesses.resize(p.size());
+  at_many(p, q);
+}
+
 }  // namespace pdmesh

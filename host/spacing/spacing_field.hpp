@@ -18,6 +18,9 @@ class SpacingField {
   virtual double at(Vec2 p) const = 0;
   // Evaluates many points (the simulation's spacing update); the default loops over at().
   virtual void at_many(const std::vector<Vec2>& p, std::vector<double>& q) const;
+  // at_many for points that move a little between calls: `guesses` is the caller's per-point memory
+  // for the field (resized to p.size(), kept between calls). The same values; the default ignores it.
+  virtual void at_many_guessed(const std::vector<Vec2>& p, std::vector<double>& q, std::vector<int>& guesses) const;
 };
 
 // The fewest lookups worth a thread in a thread-safe field's at_many (parallel_for's min_chunk):

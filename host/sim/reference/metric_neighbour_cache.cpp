@@ -76,8 +76,7 @@ double MetricNeighbourCache::bound2(double cutoff) const {
   return r * r * cutoff * cutoff * (1.0 + kMargin);
 }
 
-std::vector<std::size_t> MetricNeighbourCache::outgrown(const SimParticles& p, double cutoff,
-                                                        std::size_t limit) const {
+std::vector<std::size_t> MetricNeighbourCache::outgrown(const SimParticles& p, double cutoff, std::size_t limit) const {
   std::vector<std::size_t> out;
   const double move = skin_ * cutoff, move2 = move * move * (1.0 - kMargin);
   const double shrink = (1.0 + kMargin) / ((1.0 + growth_) * (1.0 + growth_));
@@ -144,8 +143,7 @@ void MetricNeighbourCache::rebuild(const SimParticles& p, double cutoff, Neighbo
   for (std::size_t i = 0; i < n; ++i) flags.pairs_examined += examined[i];
 }
 
-void MetricNeighbourCache::rebase(const SimParticles& p, const std::vector<std::size_t>& nodes,
-                                  NeighbourFlags& flags) {
+void MetricNeighbourCache::rebase(const SimParticles& p, const std::vector<std::size_t>& nodes, NeighbourFlags& flags) {
   rebased_ += nodes.size();
   for (const std::size_t k : nodes) store_state(p, k);
   const double b2 = bound2(cutoff_);

@@ -4,7 +4,6 @@
 #include <algorithm>
 #include <cmath>
 
-
 namespace pdmesh::reference {
 
 MetricFrame MetricFrame::of(const SimParticles& p, const std::vector<Sym2>& s) {
