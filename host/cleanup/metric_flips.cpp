@@ -2,6 +2,8 @@
 // physical space (exact orient2d) is flipped when the two new triangles' smallest Q is above the two
 // old ones', unless the new edge's metric length is outside the window [1/√2, √2] and the old one's
 // inside. Each flip raises the smallest Q of its quadrilateral, so no flip is undone and the passes end.
+// A pass tests only the edges whose triangles changed since the pass before (the editable mesh's
+// triangle marks).
 #include <algorithm>
 #include <cmath>
 
@@ -40,11 +42,21 @@ bool MetricOps::flip_if_better(int t, int i) {
 std::size_t MetricOps::flip_all(int max_rounds) {
   std::size_t made = 0;
   for (int round = 0; round < max_rounds; ++round) {
+    // Every pass tests each edge or knows its answer: an edge whose two triangles were not marked since
+    // the last pass began (same points, metrics, scores and neighbours) was found not to flip then or
+    // later, and would be again. So only the changed edges are tested, with the same flips as testing all.
+    const std::uint32_t since = flip_pass_epoch_;
+    m_.next_epoch();
+    flip_pass_epoch_ = m_.epoch();
     std::size_t now = 0;
     for (int t = 0; t < m_.triangle_slots(); ++t) {
       if (!m_.alive(t)) continue;
-      for (int i = 0; i < 3; ++i)
-        if (m_.n[t][i] > t && flip_if_better(t, i)) ++now;
+      const bool t_changed = m_.triangle_marked_in(t, since);
+      for (int i = 0; i < 3; ++i) {
+        const int u = m_.n[t][i];
+        if (u <= t || (!t_changed && !m_.triangle_marked_in(u, since))) continue;
+        if (flip_if_better(t, i)) ++now;
+      }
     }
     made += now;
     if (now == 0) break;

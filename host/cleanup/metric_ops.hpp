@@ -100,6 +100,8 @@ class MetricOps {
   MetricOpsCounts counts_;
   std::vector<int> fan_, ring_;
   std::vector<std::uint8_t> smooth_pending_, climb_pending_;
+  // The epoch the last flip pass began (0: none yet, every edge is tested).
+  std::uint32_t flip_pass_epoch_ = 0;
 };
 
 }  // namespace pdmesh::cleanup
