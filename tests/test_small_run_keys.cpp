@@ -1,5 +1,5 @@
 // The best preset's drift tolerance, momentum steering, population control's stop and the structured
-// start's step per kind of run: 1.5e-3, 0.2, 0.15 and 0.016 for an isotropic run, 7e-4, 0, 0.2 and the
+// start's step per kind of run: 1.5e-3, 0.2, 0.15 and 0.016 for an isotropic run, 7e-4, 0, 0.15 and the
 // automatic rule for a metric one (docs/simulation.md, "When a run stops"); a value the case sets wins in
 // both; pdmesh smooth keeps 7e-4, no steering and 0.2.
 #include <catch2/catch.hpp>
@@ -28,7 +28,7 @@ CaseConfig parsed(const std::string& text, const std::vector<CaseOverride>& over
 
 }  // namespace
 
-TEST_CASE("best's drift tolerance, population stop and structured step differ between isotropic and metric runs",
+TEST_CASE("best's drift tolerance, steering, population stop and structured step per kind of run",
           "[app][case][convergence]") {
   for (const Preset p : {Preset::Best, Preset::Fast}) {
     CHECK(preset_stop_aspect(p, false) == 1.5e-3);
@@ -36,7 +36,7 @@ TEST_CASE("best's drift tolerance, population stop and structured step differ be
     CHECK(preset_momentum_mix(p, false) == 0.2);
     CHECK(preset_momentum_mix(p, true) == 0.0);
     CHECK(preset_population_stop(p, false) == 0.15);
-    CHECK(preset_population_stop(p, true) == 0.2);
+    CHECK(preset_population_stop(p, true) == 0.15);
     CHECK(preset_dt_structured(p, false) == 0.016);
     CHECK_FALSE(preset_dt_structured(p, true).has_value());
   }
@@ -62,7 +62,7 @@ TEST_CASE("best's drift tolerance, population stop and structured step differ be
     const CaseConfig c = parsed(text);
     CHECK(c.simulation.stop_aspect == 7e-4);
     CHECK(c.simulation.momentum_mix == 0.0);
-    CHECK(c.population.stop == 0.2);
+    CHECK(c.population.stop == 0.15);
     CHECK_FALSE(c.simulation.dt_structured.has_value());
     // A step for the random start alone leaves the structured start's to the kind of run.
     const CaseConfig random_only = parsed(text + "[simulation]\ndt_initial = { random = 0.025 }\n");
@@ -72,7 +72,7 @@ TEST_CASE("best's drift tolerance, population stop and structured step differ be
   const CaseConfig linear = load_case_file(kAnisoLinear);
   CHECK(linear.simulation.stop_aspect == 7e-4);
   CHECK(linear.simulation.momentum_mix == 0.0);
-  CHECK(linear.population.stop == 0.2);
+  CHECK(linear.population.stop == 0.15);
   CHECK_FALSE(linear.simulation.dt_structured.has_value());
   // A run made metric by --set takes the metric values too.
   const CaseConfig made_metric =
@@ -80,7 +80,7 @@ TEST_CASE("best's drift tolerance, population stop and structured step differ be
                          parse_set_option("spacing.h2=\"0.01\"")});
   CHECK(made_metric.simulation.stop_aspect == 7e-4);
   CHECK(made_metric.simulation.momentum_mix == 0.0);
-  CHECK(made_metric.population.stop == 0.2);
+  CHECK(made_metric.population.stop == 0.15);
   CHECK_FALSE(made_metric.simulation.dt_structured.has_value());
   // The thesis preset keeps its own in either kind of run.
   const CaseConfig thesis = parsed("preset = \"thesis\"\n" + kGeometry + kMetric);
@@ -99,7 +99,7 @@ TEST_CASE("best's drift tolerance, population stop and structured step differ be
   CHECK(metric.convergence.aspect_tolerance == 7e-4);
   CHECK(metric.momentum_mix == 0.0);
   CHECK_FALSE(metric.dt_initial.has_value());
-  CHECK(metric.population.stop == 0.2);
+  CHECK(metric.population.stop == 0.15);
 
   // apply_preset on a CaseConfig built in code looks at its field as it is then, and long leaves nothing.
   CaseConfig by_hand;

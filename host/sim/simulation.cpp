@@ -116,7 +116,9 @@ std::size_t history_reserve(int iterations) {
 
 int metric_anneal_from(const SimOptions& options) {
   if (!options.metric || !options.convergence.enabled || !(options.metric_anneal < 1.0)) return 0;
-  return std::max(2 * population_last_event(options.population, options.iterations),
+  // From population control's last event on the node set is final: what is left is the creep the
+  // decay ends (docs/simulation.md, "Annealing a metric run").
+  return std::max(population_last_event(options.population, options.iterations),
                   options.convergence.min_iterations + options.convergence.window);
 }
 

@@ -93,10 +93,10 @@ struct SimOptions {
   // a metric that varies over its own element sizes (an adaptation loop's Hessian metric on a few
   // hundred vertices) does not settle at the step the dt_GM rule keeps: its nodes creep on through
   // configurations of about the same quality, and the rule's window never closes.
-  double metric_anneal = 0.995;
+  double metric_anneal = 0.99;
 };
 
-// The iteration after which a metric run's dt_GM decays (SimOptions::metric_anneal): twice population
+// The iteration after which a metric run's dt_GM decays (SimOptions::metric_anneal): population
 // control's last event (population_last_event), and no earlier than the earliest stop plus one window;
 // 0 (none) for an isotropic run, a run without the stopping rule, or metric_anneal = 1.
 int metric_anneal_from(const SimOptions& options);

@@ -50,8 +50,8 @@ def test_adaptation_converges_within_five_loops(warm):
     assert 0.6 < last["vertices"] / (2 / np.sqrt(3) * 150.0) < 2.5
     assert all(np.isfinite(r["e_L2_Nv"]) for r in rows)
     # Every re-mesh stopped on a settled mesh (its stopping rule, not the iteration maximum): the
-    # metric run anneals its step once it has run twice as long as population control
-    # (docs/simulation.md, "Annealing a metric run").
+    # metric run anneals its step from population control's last event on (docs/simulation.md,
+    # "Annealing a metric run").
     assert all(r["remesh_settled"] for r in rows[1:]), "\n".join(lines)
     assert all(0 < r["remesh_iterations"] < 2000 for r in rows[1:]), "\n".join(lines)
     # Once adapted, e_L2·N_v stays within a band: the last two adaptations within 25 % of each other

@@ -211,8 +211,8 @@ struct CaseConfig {
     // after population control's last event.
     bool stop_from_event = false;
     // SimOptions::metric_anneal: a metric run under the stopping rule multiplies dt_GM by this before
-    // every iteration from twice population control's last event on; 1 = off.
-    double metric_anneal = 0.995;
+    // every iteration from population control's last event on (metric_anneal_from); 1 = off.
+    double metric_anneal = 0.99;
     // Initial global maximum time step per init method; empty = the automatic rule.
     std::optional<double> dt_structured;
     std::optional<double> dt_random;
