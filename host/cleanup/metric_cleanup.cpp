@@ -1,7 +1,10 @@
 // The driver of the cleanup in a metric (metric_cleanup.hpp).
 #include "cleanup/metric_cleanup.hpp"
 
+#include <algorithm>
 #include <chrono>
+#include <cmath>
+#include <limits>
 
 #include "cleanup/cleaned_nodes.hpp"
 #include "cleanup/editable_mesh.hpp"
@@ -17,6 +20,28 @@ namespace {
 constexpr int kFlipRounds = 8;
 // The climb works on the nodes of the triangles below this Q.
 constexpr double kClimbBelow = 0.8;
+// An outer iteration without splits or collapses that leaves the smallest Q where it was and moves the
+// mean Q by less than this has settled the mesh: the later ones only shave the edges' lengths.
+constexpr double kSettledMeanQ = 1e-4;
+
+// The smallest and the mean Q of the live triangles.
+struct QualityLevel {
+  double min = 0.0, mean = 0.0;
+};
+
+QualityLevel quality_level(const cleanup::EditableMesh& m) {
+  QualityLevel out{std::numeric_limits<double>::infinity(), 0.0};
+  std::size_t count = 0;
+  for (int t = 0; t < m.triangle_slots(); ++t) {
+    if (!m.alive(t)) continue;
+    const double q = m.quality(t);
+    out.min = std::min(out.min, q);
+    out.mean += q;
+    ++count;
+  }
+  if (count > 0) out.mean /= static_cast<double>(count);
+  return out;
+}
 
 }  // namespace
 
@@ -33,15 +58,16 @@ MetricCleanupResult clean_mesh_in_metric(const Mesh& mesh, const NodeSet& nodes,
   MetricCleanupResult result;
   // A stop request ends the cleanup between two iterations (each leaves a valid mesh).
   InterruptPoll poll(1);
+  QualityLevel level = quality_level(m);
   for (int iteration = 0; iteration < options.iterations; ++iteration) {
     poll.tick();
-    std::size_t changes = 0;
+    std::size_t changes = 0, edits = 0;
     if (options.topology) {
-      changes += ops.split_long();
+      edits += ops.split_long();
       changes += ops.flip_all(kFlipRounds);
-      changes += ops.collapse_short();
+      edits += ops.collapse_short();
     }
-    changes += ops.flip_all(kFlipRounds);
+    changes += edits + ops.flip_all(kFlipRounds);
     for (int sweep = 0; sweep < options.smoothing_sweeps; ++sweep) {
       const std::size_t moved = ops.smooth();
       changes += moved + ops.flip_all(kFlipRounds);
@@ -54,6 +80,10 @@ MetricCleanupResult clean_mesh_in_metric(const Mesh& mesh, const NodeSet& nodes,
     }
     result.stats.iterations_run = iteration + 1;
     if (changes == 0) break;
+    const QualityLevel now = quality_level(m);
+    const bool settled = edits == 0 && !(now.min > level.min) && std::fabs(now.mean - level.mean) < kSettledMeanQ;
+    level = now;
+    if (settled) break;
   }
   cleanup::cleaned_mesh_and_nodes(m, mesh, nodes, spacing, result.mesh, result.nodes);
   result.metrics.reserve(result.mesh.points.size());
