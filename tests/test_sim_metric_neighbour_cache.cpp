@@ -147,10 +147,27 @@ TEST_CASE("metric neighbour cache: pairs closing by just under the skin while th
   require_same(p, cutoff, cache, 8);
   CHECK(cache.rebuilds() == 1);
   CHECK(cache.rebased() == 1);
-  // Every node moves past the skin: a rebuild.
-  for (std::size_t i = 0; i < p.size(); ++i) p.x[i] += 2.0 * skin * cutoff * q * (i % 2 == 0 ? 1.0 : -1.0);
+  // Every node moves past the skin after the candidates served 4 calls: a rebuild.
+  require_same(p, cutoff, cache, 8);
+  const auto move_all = [&] {
+    for (std::size_t i = 0; i < p.size(); ++i) p.x[i] += 2.0 * skin * cutoff * q * (i % 2 == 0 ? 1.0 : -1.0);
+  };
+  move_all();
   require_same(p, cutoff, cache, 8);
   CHECK(cache.rebuilds() == 2);
+  // Past the skin again at once: that rebuild did not pay, so this call builds exactly and the next
+  // one tries candidates again; after a second such rebuild, two calls build exactly.
+  move_all();
+  require_same(p, cutoff, cache, 8);
+  CHECK(cache.rebuilds() == 2);
+  require_same(p, cutoff, cache, 8);
+  CHECK(cache.rebuilds() == 3);
+  move_all();
+  require_same(p, cutoff, cache, 8);
+  require_same(p, cutoff, cache, 8);
+  CHECK(cache.rebuilds() == 3);
+  require_same(p, cutoff, cache, 8);
+  CHECK(cache.rebuilds() == 4);
 }
 
 TEST_CASE("metric neighbour cache follows count, kind and cutoff changes and badly conditioned metrics",

@@ -13,12 +13,14 @@
 // Then for a pair within the cut-off now: by (b), A_i + A_j <= (1 + growth)^2 (A0_i + A0_j), so with
 // |v|_P^2 = v^T (A0_i + A0_j)^-1 v, |d|_P <= (1 + growth) c / sqrt 2; P <= M0_i and P <= M0_j, so by (a)
 // each node's move is at most skin c in |.|_P, and |d0|_P <= |d|_P + 2 skin c <= R c: j is a candidate.
-// The argument is per node, so the stored states need not be of one step: a few nodes that break (a)
-// or (b) are rebased (their state stored anew, their pairs with every node tested again, both ways),
-// which keeps the invariant; candidates that no longer pass stay, costing only their exact test. More
-// of them rebuild: every state stored, and the candidates found by metric_search.hpp's box search at
-// reach sqrt 2 R (the support of the ellipse |d0|_P <= R c along any axis is
-// R c sqrt(e^T (A0_i + A0_j) e) <= sqrt 2 R max(E_i, E_j)).
+// The argument is per node, so the stored states need not be of one step: nodes that break (a) or (b)
+// (up to a quarter of them) are rebased: their states stored anew, the box search of metric_search.hpp
+// rebuilt over the stored states (reach sqrt 2 R: the support of the ellipse |d0|_P <= R c along any
+// axis is R c sqrt(e^T (A0_i + A0_j) e) <= sqrt 2 R max(E_i, E_j)) and searched from each of them, and
+// their pairs that pass the bound added both ways, which keeps the invariant; candidates that no longer
+// pass stay, costing only their exact test. More of them rebuild: every state stored and searched from.
+// A rebuild whose candidates served fewer than 4 calls did not pay, and the calls after it build the
+// exact list (1, 2, 4, ... up to 16 of them) before candidates are tried again.
 //
 // Rounding. Each test is a quadratic form or a 2x2 determinant of the metrics, whose relative error is
 // at most a few ulps times the metric's condition number; every test carries a relative margin of
@@ -44,8 +46,12 @@ constexpr double kMaxCondition = 1e9;
 // S0 M S0 larger than this (a bubble shrunk to less than half its stored size in some direction) also
 // rebases the node: the current metrics' condition numbers stay within 5x the stored ones (rounding).
 constexpr double kMaxRelativeGrowth = 4.0;
-// At most this many nodes are rebased in one call (each tests its pairs with every node); more rebuild.
-constexpr std::size_t kMaxRebased = 32;
+// At most this fraction of the nodes is rebased in one call; more rebuild.
+constexpr std::size_t kRebasedFraction = 4;
+// A rebuild whose candidates served fewer calls than this did not pay (the nodes move too fast for
+// the skin): the calls after it build exactly, 1, 2, 4, ... up to kMostPause calls in a row.
+constexpr int kPaying = 4;
+constexpr int kMostPause = 16;
 
 // The eigenvalues of the symmetric [[a, b], [b, c]], smallest first.
 void eigenvalues(double a, double b, double c, double& low, double& high) {
@@ -71,9 +77,9 @@ bool MetricNeighbourCache::same_structure(const SimParticles& p, double cutoff) 
   return p.size() == kind0_.size() && cutoff == cutoff_ && p.kind == kind0_;
 }
 
-double MetricNeighbourCache::bound2(double cutoff) const {
+double MetricNeighbourCache::bound2() const {
   const double r = (1.0 + growth_) / std::sqrt(2.0) + 2.0 * skin_;
-  return r * r * cutoff * cutoff * (1.0 + kMargin);
+  return r * r * cutoff_ * cutoff_ * (1.0 + kMargin);
 }
 
 std::vector<std::size_t> MetricNeighbourCache::outgrown(const SimParticles& p, double cutoff, std::size_t limit) const {
@@ -81,8 +87,8 @@ std::vector<std::size_t> MetricNeighbourCache::outgrown(const SimParticles& p, d
   const double move = skin_ * cutoff, move2 = move * move * (1.0 - kMargin);
   const double shrink = (1.0 + kMargin) / ((1.0 + growth_) * (1.0 + growth_));
   for (std::size_t j = 0; j < p.size() && out.size() <= limit; ++j) {
-    const double dx = p.x[j] - x0_[j], dy = p.y[j] - y0_[j];
-    bool keep = metric_norm2(m11_[j], m12_[j], m22_[j], dx, dy) <= move2;
+    const double dx = p.x[j] - stored_.x[j], dy = p.y[j] - stored_.y[j];
+    bool keep = metric_norm2(stored_.m11[j], stored_.m12[j], stored_.m22[j], dx, dy) <= move2;
     if (keep) {
       // K = S0 M S0, S0 = [[a, b], [b, c]].
       const SizeTensor& s = s0_[j];
@@ -100,11 +106,11 @@ std::vector<std::size_t> MetricNeighbourCache::outgrown(const SimParticles& p, d
 
 void MetricNeighbourCache::store_state(const SimParticles& p, std::size_t j) {
   const double m11 = p.m11[j], m12 = p.m12[j], m22 = p.m22[j], det = m11 * m22 - m12 * m12;
-  x0_[j] = p.x[j];
-  y0_[j] = p.y[j];
-  m11_[j] = m11;
-  m12_[j] = m12;
-  m22_[j] = m22;
+  stored_.x[j] = p.x[j];
+  stored_.y[j] = p.y[j];
+  stored_.m11[j] = m11;
+  stored_.m12[j] = m12;
+  stored_.m22[j] = m22;
   a11_[j] = m22 / det;
   a12_[j] = -m12 / det;
   a22_[j] = m11 / det;
@@ -114,19 +120,24 @@ void MetricNeighbourCache::store_state(const SimParticles& p, std::size_t j) {
 // d0^T (A0_i + A0_j)^-1 d0 <= bound2, as d0^T adj(S) d0 <= bound2 det(S), S = A0_i + A0_j.
 bool MetricNeighbourCache::candidate(std::size_t i, std::size_t j, double bound2) const {
   const double s11 = a11_[i] + a11_[j], s12 = a12_[i] + a12_[j], s22 = a22_[i] + a22_[j];
-  const double dx = x0_[j] - x0_[i], dy = y0_[j] - y0_[i];
+  const double dx = stored_.x[j] - stored_.x[i], dy = stored_.y[j] - stored_.y[i];
   return metric_norm2(s22, -s12, s11, dx, dy) <= bound2 * (s11 * s22 - s12 * s12);
 }
 
-void MetricNeighbourCache::rebuild(const SimParticles& p, double cutoff, NeighbourFlags& flags) {
+void MetricNeighbourCache::index() {
+  const double reach = std::sqrt(2.0 * bound2()) / cutoff_ * (1.0 + kMargin);
+  search_.build(stored_, MetricFrame::of(stored_, pair_factors(stored_)), cutoff_, reach);
+}
+
+void MetricNeighbourCache::rebuild(const SimParticles& p, NeighbourFlags& flags) {
   ++rebuilds_;
+  served_ = 0;
   const std::size_t n = p.size();
-  for (auto* v : {&x0_, &y0_, &m11_, &m12_, &m22_, &a11_, &a12_, &a22_}) v->resize(n);
+  for (auto* v : {&stored_.x, &stored_.y, &stored_.m11, &stored_.m12, &stored_.m22, &a11_, &a12_, &a22_}) v->resize(n);
   s0_.resize(n);
   for (std::size_t j = 0; j < n; ++j) store_state(p, j);
-  const double b2 = bound2(cutoff);
-  const double reach = std::sqrt(2.0 * b2) / cutoff * (1.0 + kMargin);
-  search_.build(p, MetricFrame::of(p, pair_factors(p)), cutoff, reach);
+  index();
+  const double b2 = bound2();
   rows_.assign(n, {});
   std::vector<std::uint64_t> examined(n, 0);
   parallel_for(
@@ -146,21 +157,24 @@ void MetricNeighbourCache::rebuild(const SimParticles& p, double cutoff, Neighbo
 void MetricNeighbourCache::rebase(const SimParticles& p, const std::vector<std::size_t>& nodes, NeighbourFlags& flags) {
   rebased_ += nodes.size();
   for (const std::size_t k : nodes) store_state(p, k);
-  const double b2 = bound2(cutoff_);
-  const std::size_t n = p.size();
+  // The box search over the states as they are now finds every node that passes the bound with a
+  // rebased one (the bound and the box are symmetric in the two nodes).
+  index();
+  const double b2 = bound2();
   for (const std::size_t k : nodes) {
     check_interrupt();
     const bool interior = p.kind[k] == kSimInterior;
     if (interior) rows_[k].clear();
-    for (std::size_t j = 0; j < n; ++j) {
-      if (j == k || !candidate(k, j, b2)) continue;
-      if (interior) rows_[k].push_back(static_cast<std::int32_t>(j));
-      if (p.kind[j] != kSimInterior) continue;
-      std::vector<std::int32_t>& row = rows_[j];
+    flags.pairs_examined += search_.for_each_in_box(k, [&](std::int32_t j) {
+      const auto uj = static_cast<std::size_t>(j);
+      if (!candidate(k, uj, b2)) return;
+      if (interior) rows_[k].push_back(j);
+      if (p.kind[uj] != kSimInterior) return;
+      std::vector<std::int32_t>& row = rows_[uj];
       const auto at = std::lower_bound(row.begin(), row.end(), static_cast<std::int32_t>(k));
       if (at == row.end() || *at != static_cast<std::int32_t>(k)) row.insert(at, static_cast<std::int32_t>(k));
-    }
-    flags.pairs_examined += n;
+    });
+    if (interior) std::sort(rows_[k].begin(), rows_[k].end());
   }
 }
 
@@ -181,26 +195,42 @@ void MetricNeighbourCache::build(const SimParticles& p, double cutoff, Neighbour
     build_neighbours_metric(p, cutoff, list, flags);
     return;
   }
+  if (pause_ > 0) {
+    --pause_;
+    build_neighbours_metric(p, cutoff, list, flags);
+    return;
+  }
   if (!valid_) {
     if (!well_conditioned(p)) {
       build_neighbours_metric(p, cutoff, list, flags);
       return;
     }
-    rebuild(p, cutoff, flags);
+    rebuild(p, flags);
     valid_ = true;
   } else {
-    const std::vector<std::size_t> out = outgrown(p, cutoff, kMaxRebased);
+    const std::size_t most = std::max<std::size_t>(1, n / kRebasedFraction);
+    const std::vector<std::size_t> out = outgrown(p, cutoff, most);
     if (!out.empty() && !well_conditioned(p)) {
       valid_ = false;
       build_neighbours_metric(p, cutoff, list, flags);
       return;
     }
-    if (out.size() > kMaxRebased) {
-      rebuild(p, cutoff, flags);
+    if (out.size() > most) {
+      if (served_ < kPaying) {
+        // The nodes outran the skin before the candidates paid: build exactly for a while.
+        valid_ = false;
+        pause_ = next_pause_ - 1;
+        next_pause_ = std::min(2 * next_pause_, kMostPause);
+        build_neighbours_metric(p, cutoff, list, flags);
+        return;
+      }
+      next_pause_ = 1;
+      rebuild(p, flags);
     } else if (!out.empty()) {
       rebase(p, out, flags);
     }
   }
+  ++served_;
   // The exact filter, written as reference::build_neighbours_metric writes it (same rounding); the
   // candidates are ascending, so each row is too.
   const std::vector<Sym2> s = pair_factors(p);

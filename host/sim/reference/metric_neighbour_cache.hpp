@@ -28,17 +28,23 @@ class MetricNeighbourCache {
   std::vector<std::size_t> outgrown(const SimParticles& p, double cutoff, std::size_t limit) const;
   void store_state(const SimParticles& p, std::size_t j);
   bool candidate(std::size_t i, std::size_t j, double bound2) const;
-  void rebuild(const SimParticles& p, double cutoff, NeighbourFlags& flags);
+  // The box search over the stored states.
+  void index();
+  void rebuild(const SimParticles& p, NeighbourFlags& flags);
   void rebase(const SimParticles& p, const std::vector<std::size_t>& nodes, NeighbourFlags& flags);
-  double bound2(double cutoff) const;
+  double bound2() const;
 
   double skin_, growth_;
   bool valid_ = false;
   double cutoff_ = 0.0;
   std::uint64_t rebuilds_ = 0, rebased_ = 0;
-  // Each node's state when it was last stored (at a rebuild, or when rebased): position, metric M0,
-  // M0^-1 and M0^(-1/2).
-  std::vector<double> x0_, y0_, m11_, m12_, m22_, a11_, a12_, a22_;
+  // Calls served by the candidates since the last rebuild; calls left to build exactly (after a
+  // rebuild that did not pay), and the next such pause.
+  int served_ = 0, pause_ = 0, next_pause_ = 1;
+  // Each node's state when it was last stored (at a rebuild, or when rebased): position and metric M0
+  // (the x, y, m11, m12, m22 of stored_), M0^-1 and M0^(-1/2).
+  SimParticles stored_;
+  std::vector<double> a11_, a12_, a22_;
   std::vector<SizeTensor> s0_;
   std::vector<std::uint8_t> kind0_;
   // Candidates of interior node i, ascending, i excluded.
