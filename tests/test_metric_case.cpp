@@ -32,6 +32,20 @@ using Catch::Matchers::Contains;
 
 namespace {
 
+// The number after "key": in a quality.json's text.
+double json_number(const std::string& json, const std::string& key) {
+  const auto at = json.find("\"" + key + "\": ");
+  REQUIRE(at != std::string::npos);
+  return std::stod(json.substr(at + key.size() + 4));
+}
+
+// The integer after `said` in a run's output.
+int count_after(const std::string& output, const std::string& said) {
+  const auto at = output.find(said);
+  REQUIRE(at != std::string::npos);
+  return std::stoi(output.substr(at + said.size()));
+}
+
 const fs::path kCase = "/cases/demo/case.toml";
 const std::string kGeometry = "[geometry]\nfiles = [\"a.crv\"]\n";
 
@@ -238,12 +252,16 @@ TEST_CASE("cleanup.enabled = false leaves a metric run's triangulation in the me
   fs::remove_all(out);
 }
 
-TEST_CASE("the cleanup in the metric reaches issue 37's targets on the linear and polar-2 cases, and settles early",
-          "[metric][case][cli]") {
+TEST_CASE(
+    "linear and polar-2 stop soon after population control's last event, and the cleanup in the metric "
+    "settles early at issue 37's targets",
+    "[metric][case][cli][convergence]") {
   // With the particles' nodes as they are, 98.9 % / Q min 0.561 (linear) and 82.1 % / 0.086
   // (polar-2); the targets: >= 99.5 % of the edges in [1/sqrt2, sqrt2], Q min >= 0.75 and the
-  // element count within 10 % of 4C/sqrt3.
-  for (const char* name : {"linear", "polar2"}) {
+  // element count within 10 % of 4C/sqrt3. Population control ends at iteration 300 and the step
+  // anneals from there (metric_anneal_from), so the nodes settle within a few measurements of it; the
+  // bounds leave two measurements or more of margin over where the two cases stop.
+  for (const auto& [name, most] : {std::pair{"linear", 450}, std::pair{"polar2", 700}}) {
     INFO(name);
     const fs::path out = pdmesh_test::fresh_path(std::string("metric_cleanup_") + name);
     const auto r = pdmesh_test::run_pdmesh(fmt::format(
@@ -253,54 +271,19 @@ TEST_CASE("the cleanup in the metric reaches issue 37's targets on the linear an
     // --check: all but the isotropic Delaunay test, on the triangulation and on the cleaned mesh.
     CHECK_THAT(r.output, Contains("mesh check (triangulation in the metric): passed"));
     CHECK_THAT(r.output, Contains("mesh check (mesh cleaned in the metric): passed"));
+    const int iterations = count_after(r.output, "simulation: converged after ");
+    CHECK(iterations > 300);  // not before population control's last event
+    CHECK(iterations <= most);
     // The cleanup ends once settled (no split or collapse, Q min not raised, the mean Q still), well
-    // before the best preset's cap of 32 iterations.
+    // before the best preset's cap of 32 iterations: "cleanup in the metric: T s, N iterations".
     const std::string said = "cleanup in the metric: ";
     const auto at = r.output.find(said);
     REQUIRE(at != std::string::npos);
-    const auto comma = r.output.find(", ", at);
-    REQUIRE(comma != std::string::npos);
-    CHECK(std::stoi(r.output.substr(comma + 2)) <= 16);
+    CHECK(count_after(r.output.substr(at), " s, ") <= 16);
     const std::string json = pdmesh_test::slurp(out / "quality.json");
-    const auto number_after = [&json](const std::string& key) {
-      const auto at = json.find("\"" + key + "\": ");
-      REQUIRE(at != std::string::npos);
-      return std::stod(json.substr(at + key.size() + 4));
-    };
-    CHECK(number_after("window_percent") >= 99.5);
-    CHECK(number_after("q_min") >= 0.75);
-    CHECK(std::abs(number_after("n_over_ideal") - 1.0) <= 0.1);
-    fs::remove_all(out);
-  }
-}
-
-TEST_CASE("a best-preset metric run stops soon after population control's last event, at issue 37's targets",
-          "[metric][case][cli][convergence]") {
-  // Population control ends at iteration 300 and the step anneals from there (metric_anneal_from), so
-  // the nodes settle within a few measurements of it; the bounds leave two measurements or more of
-  // margin over where the two cases stop.
-  for (const auto& [name, most] : {std::pair{"linear", 450}, std::pair{"polar2", 700}}) {
-    INFO(name);
-    const fs::path out = pdmesh_test::fresh_path(std::string("metric_stop_") + name);
-    const auto r = pdmesh_test::run_pdmesh(fmt::format("mesh '{}/cases/aniso/{}/case.toml' --out '{}' --formats msh",
-                                                       PDMESH_SOURCE_DIR, name, out.string()));
-    INFO(r.output);
-    REQUIRE(r.status == 0);
-    const std::string said = "simulation: converged after ";
-    const auto at = r.output.find(said);
-    REQUIRE(at != std::string::npos);
-    const int iterations = std::stoi(r.output.substr(at + said.size()));
-    CHECK(iterations > 300);  // not before population control's last event
-    CHECK(iterations <= most);
-    const std::string json = pdmesh_test::slurp(out / "quality.json");
-    const auto number_after = [&json](const std::string& key) {
-      const auto found = json.find("\"" + key + "\": ");
-      REQUIRE(found != std::string::npos);
-      return std::stod(json.substr(found + key.size() + 4));
-    };
-    CHECK(number_after("window_percent") >= 99.5);
-    CHECK(number_after("q_min") >= 0.75);
-    CHECK(std::abs(number_after("n_over_ideal") - 1.0) <= 0.1);
+    CHECK(json_number(json, "window_percent") >= 99.5);
+    CHECK(json_number(json, "q_min") >= 0.75);
+    CHECK(std::abs(json_number(json, "n_over_ideal") - 1.0) <= 0.1);
     fs::remove_all(out);
   }
 }
@@ -316,14 +299,9 @@ TEST_CASE("the nodes relax in the metric: the linear case's edges have unit metr
   REQUIRE(r.status == 0);
   CHECK_THAT(r.output, Contains("population control: 5 events"));
   const std::string json = pdmesh_test::slurp(out / "quality.json");
-  const auto number_after = [&json](const std::string& key) {
-    const auto at = json.find("\"" + key + "\": ");
-    REQUIRE(at != std::string::npos);
-    return std::stod(json.substr(at + key.size() + 4));
-  };
-  CHECK(number_after("window_percent") > 99.5);
-  CHECK(number_after("q_min") > 0.7);
-  CHECK(std::abs(number_after("n_over_ideal") - 1.0) < 0.1);
+  CHECK(json_number(json, "window_percent") > 99.5);
+  CHECK(json_number(json, "q_min") > 0.7);
+  CHECK(std::abs(json_number(json, "n_over_ideal") - 1.0) < 0.1);
   fs::remove_all(out);
 }
 

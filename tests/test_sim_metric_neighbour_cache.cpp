@@ -8,6 +8,7 @@
 
 #include "sim/reference/metric_neighbour_cache.hpp"
 #include "sim/reference/reference_backend.hpp"
+#include "neighbour_list_checks.hpp"
 #include "sim_fixtures.hpp"
 
 using namespace pdmesh;
@@ -17,20 +18,8 @@ using pdmesh_test::uniform;
 
 namespace {
 
-// Both builders at the same stride; lists, counts and flags (but pairs_examined, a cost) equal.
 void require_same(const SimParticles& p, double cutoff, reference::MetricNeighbourCache& cache, int stride) {
-  NeighbourList exact, cached;
-  exact.stride = cached.stride = stride;
-  NeighbourFlags ef, cf;
-  reference::build_neighbours_metric(p, cutoff, exact, ef);
-  cache.build(p, cutoff, cached, cf);
-  REQUIRE(cached.stride == exact.stride);
-  REQUIRE(cached.count == exact.count);
-  REQUIRE(cached.index == exact.index);
-  REQUIRE(cf.overflow == ef.overflow);
-  REQUIRE(cf.max_count == ef.max_count);
-  REQUIRE(cf.first_invalid == ef.first_invalid);
-  REQUIRE(cf.pairs_within == ef.pairs_within);
+  pdmesh_test::require_same_lists(p, cutoff, cache, stride, reference::build_neighbours_metric);
 }
 
 // A node's sizes and direction, from which its metric is set.

@@ -8,6 +8,7 @@
 
 #include "sim/reference/neighbour_cache.hpp"
 #include "sim/reference/reference_backend.hpp"
+#include "neighbour_list_checks.hpp"
 #include "sim_fixtures.hpp"
 
 using namespace pdmesh;
@@ -18,20 +19,8 @@ using pdmesh_test::uniform;
 
 using pdmesh_test::add;
 
-// Both builders at the same stride; lists, counts and flags (but pairs_examined, a cost) equal.
 void require_same(const SimParticles& p, double cutoff, reference::NeighbourCache& cache, int stride) {
-  NeighbourList exact, cached;
-  exact.stride = cached.stride = stride;
-  NeighbourFlags ef, cf;
-  reference::build_neighbours(p, cutoff, exact, ef);
-  cache.build(p, cutoff, cached, cf);
-  REQUIRE(cached.stride == exact.stride);
-  REQUIRE(cached.count == exact.count);
-  REQUIRE(cached.index == exact.index);
-  REQUIRE(cf.overflow == ef.overflow);
-  REQUIRE(cf.max_count == ef.max_count);
-  REQUIRE(cf.first_invalid == ef.first_invalid);
-  REQUIRE(cf.pairs_within == ef.pairs_within);
+  pdmesh_test::require_same_lists(p, cutoff, cache, stride, reference::build_neighbours);
 }
 
 // Moves every node by a random step of up to `step` times its spacing (some nodes 10x more) and
