@@ -7,8 +7,7 @@
 #include <nanobind/stl/tuple.h>
 #include <nanobind/stl/vector.h>
 
-#include "app/cli/adapt_command.hpp"
-#include "app/cli/transfer_command.hpp"
+#include "app/config/adapt_keys.hpp"
 #include "app/pipeline/smooth_pipeline.hpp"
 #include "bindings.hpp"
 #include "callable_spacing.hpp"
@@ -16,6 +15,7 @@
 #include "geometry/geometry_files.hpp"
 #include "init/initial_distribution.hpp"
 #include "io/mesh_geometry.hpp"
+#include "io/point_data_file.hpp"
 
 namespace pdmesh::py {
 
