@@ -147,15 +147,15 @@ def adapt_mesher(domain: Any, solution: Any, array: str | Sequence[str] | None =
         for key, value, _ in keys:
             argument = _ARGUMENTS.get(key)
             if argument is None:
-                pairs.append((key, value, "pdmesh.adapt (the case's [spacing] is replaced)"))
+                shown = "pdmesh.adapt (the case's [spacing] is replaced)"
+            elif argument == "solution":
+                shown = f"solution={label}" if file_given else "solution"
             else:
-                if argument != "solution":
-                    pairs.append((key, value, f"{argument}={value}"))
-                else:
-                    pairs.append((key, value, f"solution={label}" if file_given else "solution"))
+                shown = f"{argument}={value}"
+            pairs.append((key, value, shown))
         if initial is not None:
-            settings = {**(dict(settings) if settings is not None else {}), "init.file": _write_initial(initial,
-                                                                                                      directory)}
+            warm = _write_initial(initial, directory)
+            settings = {**(dict(settings) if settings is not None else {}), "init.file": warm}
         overrides, _ = _settings_for(None, device, seed, settings, keywords)
         config = geo._with(pairs + overrides) if isinstance(geo, Case) else geo._config(pairs + overrides)
         if config.motion["enabled"]:
