@@ -5,15 +5,15 @@ scikit-fem, re-meshed by pdmesh in the L2-optimal metric of the solution's Hessi
 The exact solution is issue 37's layer, u = tanh(k (y - 0.5 - 0.25 sin 2πx)) (k = 100 in the issue;
 default here k = 50), with f = -Δu and u on the boundary. Each loop
 1. solves for the P1 solution u_h on the current mesh (scikit-fem),
-2. writes u_h to a .vtu (pdmesh.metric.write_vtu) and re-meshes with pdmesh's Hessian metric of that
-   data (case keys spacing.field = "hessian", spacing.file, spacing.array = "u",
-   spacing.complexity = C: the Hessian by a least-squares quadratic fit at every vertex, the
+2. re-meshes with pdmesh's Hessian metric of u_h (pdmesh.adapt_mesher, the command pdmesh adapt from
+   Python: u_h on the mesh as values={"u": u_h}, complexity = C: the Hessian by a least-squares
+   quadratic fit at every vertex, the
    L2-optimal metric M = D det|H|^(-1/6) |H| whose unit mesh has about 2C/√3 vertices, clipped
-   to sizes in [1e-5, 0.3]; the other keys at their defaults),
+   to sizes in [1e-5, 0.3] by hmin and hmax; the other keys at their defaults),
 3. prints the vertex count N_v, e_L2 = ||u_h - u||_L2 against the exact solution and e_L2·N_v.
 The first adapted mesh starts from scratch (the uniform start mesh is no guess at the metric's nodes);
 from the second on, each re-mesh starts warm from the previous mesh's points
-(pdmesh.Mesher(initial=points), the case key init.file): its interior points are the initial
+(initial=points, the case key init.file): its interior points are the initial
 interior nodes, and the relaxation's population control fixes their density. --cold re-meshes every
 loop from scratch, for comparison. Each loop's line also gives the re-mesh's time, its iterations and
 whether its stopping rule ended it ("settled") or the iteration maximum did ("maximum").
@@ -27,15 +27,12 @@ N_v and e_L2·N_v change by less than --tolerance (default 10 %) from one loop t
 from __future__ import annotations
 
 import argparse
-import os
-import tempfile
 import time
 from dataclasses import dataclass
 
 import numpy as np
 
 import pdmesh
-from pdmesh.metric import write_vtu
 
 SQUARE = [np.array([[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]])]
 
@@ -88,15 +85,12 @@ def solve(points: np.ndarray, triangles: np.ndarray, layer: Layer) -> tuple[np.n
     return u, error
 
 
-def remesh(points, triangles, u, complexity, directory, seed, warm=False):
+def remesh(points, triangles, u, complexity, seed, warm=False):
     """pdmesh's mesh of the square in the Hessian metric of the data u on (points, triangles); with
     warm, started from the points. Also returns the re-mesh's iterations and whether its stopping rule
     ended it (its nodes had settled) rather than the iteration maximum."""
-    path = os.path.join(directory, "u.vtu")
-    write_vtu(path, points, triangles, {"u": u})
-    mesher = pdmesh.Mesher(SQUARE, device="host", seed=seed, initial=points if warm else None,
-                           spacing={"field": "hessian", "file": path, "array": "u", "complexity": complexity,
-                                    "hmin": 1e-5, "hmax": 0.3})
+    mesher = pdmesh.adapt_mesher(SQUARE, (points, triangles), "u", values=u, complexity=complexity, hmin=1e-5,
+                                 hmax=0.3, device="host", seed=seed, initial=points if warm else None)
     mesher.run()
     mesh = mesher.triangulate()
     return np.array(mesh.points), np.array(mesh.triangles), mesher.iteration, mesher.converged
@@ -112,23 +106,22 @@ def adapt(layer: Layer, complexity: float, loops: int, tolerance: float = 0.1, s
     points, triangles = np.array(mesh.points), np.array(mesh.triangles)
     rows = []
     seconds, iterations, settled = 0.0, 0, False
-    with tempfile.TemporaryDirectory(prefix="pdmesh-adapt-") as directory:
-        for loop in range(loops + 1):
-            u, error = solve(points, triangles, layer)
-            rows.append({"loop": loop, "vertices": len(points), "e_L2": error, "e_L2_Nv": error * len(points),
-                         "remesh_s": seconds, "remesh_iterations": iterations, "remesh_settled": settled})
-            report(f"loop {loop}: N_v = {len(points):6d}   e_L2 = {error:.3e}   e_L2*N_v = {error * len(points):.3f}"
-                   + (f"   re-mesh {seconds:.2f} s, {iterations} iterations ({'settled' if settled else 'maximum'})"
-                      if loop else ""))
-            if loop >= 2 and all(abs(rows[-1][key] / rows[-2][key] - 1.0) < tolerance
-                                 for key in ("vertices", "e_L2_Nv")):
-                report(f"converged after {loop} adaptations (N_v and e_L2*N_v within {tolerance:.0%})")
-                break
-            if loop < loops:
-                began = time.perf_counter()
-                points, triangles, iterations, settled = remesh(points, triangles, u, complexity, directory, seed,
-                                                                warm=warm and loop >= 1)
-                seconds = time.perf_counter() - began
+    for loop in range(loops + 1):
+        u, error = solve(points, triangles, layer)
+        rows.append({"loop": loop, "vertices": len(points), "e_L2": error, "e_L2_Nv": error * len(points),
+                     "remesh_s": seconds, "remesh_iterations": iterations, "remesh_settled": settled})
+        report(f"loop {loop}: N_v = {len(points):6d}   e_L2 = {error:.3e}   e_L2*N_v = {error * len(points):.3f}"
+               + (f"   re-mesh {seconds:.2f} s, {iterations} iterations ({'settled' if settled else 'maximum'})"
+                  if loop else ""))
+        if loop >= 2 and all(abs(rows[-1][key] / rows[-2][key] - 1.0) < tolerance
+                             for key in ("vertices", "e_L2_Nv")):
+            report(f"converged after {loop} adaptations (N_v and e_L2*N_v within {tolerance:.0%})")
+            break
+        if loop < loops:
+            began = time.perf_counter()
+            points, triangles, iterations, settled = remesh(points, triangles, u, complexity, seed,
+                                                            warm=warm and loop >= 1)
+            seconds = time.perf_counter() - began
     return rows
 
 

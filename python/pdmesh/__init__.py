@@ -17,6 +17,7 @@ from .geometry import Geometry
 from .mesh import Mesh, PeriodicPairs
 from .mesher import Case, Mesher, State, generate
 from ._smooth import smooth
+from ._adapt import adapt, adapt_mesher
 from .motion import MotionStep, MovingMesher, run_motion, transfer
 
 __version__ = _core.version
@@ -29,6 +30,6 @@ def case_keys() -> list[str]:
 
 __all__ = [
     "Cancelled", "Case", "DeviceError", "Error", "Geometry", "GeometryError", "InputError", "LimitError", "Mesh",
-    "Mesher", "MotionStep", "MovingMesher", "PeriodicPairs", "Progress", "SimulationError", "State", "case_keys", "generate", "run_motion", "size",
-    "smooth", "transfer", "__version__",
+    "Mesher", "MotionStep", "MovingMesher", "PeriodicPairs", "Progress", "SimulationError", "State", "adapt",
+    "adapt_mesher", "case_keys", "generate", "run_motion", "size", "smooth", "transfer", "__version__",
 ]

@@ -2,10 +2,12 @@
 // in memory, with settings applied through the same validator as the command's --set.
 #include <algorithm>
 #include <fmt/format.h>
+#include <nanobind/stl/optional.h>
 #include <nanobind/stl/string.h>
 #include <nanobind/stl/tuple.h>
 #include <nanobind/stl/vector.h>
 
+#include "app/config/adapt_keys.hpp"
 #include "app/pipeline/smooth_pipeline.hpp"
 #include "bindings.hpp"
 #include "callable_spacing.hpp"
@@ -13,6 +15,7 @@
 #include "geometry/geometry_files.hpp"
 #include "init/initial_distribution.hpp"
 #include "io/mesh_geometry.hpp"
+#include "io/point_data_file.hpp"
 
 namespace pdmesh::py {
 
@@ -147,6 +150,32 @@ void bind_config(nb::module_& m) {
         return out;
       },
       nb::arg("by_mesh"), "The case keys pdmesh smooth sets before the caller's settings.");
+  m.def(
+      "adapt_settings",
+      [](const std::string& solution, const std::vector<std::string>& arrays, const std::string& complexity,
+         const std::optional<std::string>& hmin, const std::optional<std::string>& hmax,
+         const std::optional<std::string>& gradation, const std::optional<std::string>& max_anisotropy,
+         const std::optional<std::string>& norm) {
+        AdaptOptions o;
+        o.solution = solution;
+        o.arrays = arrays;
+        o.complexity = complexity;
+        o.hmin = hmin;
+        o.hmax = hmax;
+        o.gradation = gradation;
+        o.max_anisotropy = max_anisotropy;
+        o.norm = norm;
+        std::vector<Setting> out;
+        for (const CaseOverride& c : adapt_overrides(o)) out.emplace_back(c.key, c.value, c.label);
+        return out;
+      },
+      nb::arg("solution"), nb::arg("arrays"), nb::arg("complexity"), nb::arg("hmin").none(), nb::arg("hmax").none(),
+      nb::arg("gradation").none(), nb::arg("max_anisotropy").none(), nb::arg("norm").none(),
+      "The case keys pdmesh adapt sets before the caller's settings (its [spacing] replaced); the metric's "
+      "values as TOML text.");
+  m.def(
+      "point_array_names", [](const std::string& path) { return point_array_names(path); }, nb::arg("path"),
+      "The point arrays of a .vtu or .msh file, as pdmesh adapt and pdmesh transfer list them.");
   m.def(
       "case_keys", [] { return case_file_keys(); }, "Every valid dotted case-file key.");
   m.def(

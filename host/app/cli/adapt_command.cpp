@@ -4,9 +4,7 @@
 #include <algorithm>
 #include <fmt/format.h>
 #include <fmt/ranges.h>
-#include <toml++/toml.h>
 
-#include "app/cli/option_overrides.hpp"
 #include "app/cli/transfer_command.hpp"
 #include "app/pipeline/exit_codes.hpp"
 #include "app/pipeline/mesh_pipeline.hpp"
@@ -14,6 +12,7 @@
 #include "core/errors.hpp"
 #include "core/input_file.hpp"
 #include "io/mesh_formats.hpp"
+#include "io/point_data_file.hpp"
 
 namespace pdmesh {
 
@@ -32,28 +31,6 @@ std::optional<fs::path> written_mesh(const CaseConfig& config) {
 }
 
 }  // namespace
-
-std::vector<CaseOverride> adapt_overrides(const AdaptOptions& o) {
-  const std::string arrays = fmt::format("{}", fmt::join(o.arrays, ","));
-  std::vector<CaseOverride> out;
-  out.push_back({"spacing", "{}", "pdmesh adapt (the case's [spacing] is replaced)"});
-  out.push_back({"spacing.field", "\"hessian\"", "pdmesh adapt"});
-  out.push_back({"spacing.file", toml_string(o.solution), "--solution " + o.solution});
-  if (o.arrays.size() == 1) {
-    out.push_back({"spacing.array", toml_string(o.arrays.front()), "--array " + arrays});
-  } else {
-    toml::array list;
-    for (const std::string& a : o.arrays) list.push_back(a);
-    out.push_back({"spacing.array", toml_text(list), "--array " + arrays});
-  }
-  out.push_back({"spacing.complexity", o.complexity, "--complexity " + o.complexity});
-  add_option_override(out, o.hmin, "--hmin", "spacing.hmin");
-  add_option_override(out, o.hmax, "--hmax", "spacing.hmax");
-  add_option_override(out, o.max_anisotropy, "--max-anisotropy", "spacing.max_anisotropy");
-  add_option_override(out, o.norm, "--norm", "spacing.norm");
-  add_option_override(out, o.gradation, "--gradation", "spacing.metric_gradation");
-  return out;
-}
 
 fs::path adapted_solution_path(const CaseConfig& config) { return config.out_dir / "solution.vtu"; }
 

@@ -5,28 +5,11 @@
 // arrays are interpolated onto the new mesh's points (pdmesh transfer's code) as DIR/solution.vtu.
 #pragma once
 #include <filesystem>
-#include <optional>
-#include <string>
-#include <vector>
 
+#include "app/config/adapt_keys.hpp"
 #include "app/config/case_file.hpp"
 
 namespace pdmesh {
-
-struct AdaptOptions {
-  std::string solution;             // SOL: a .vtu or .msh with point data
-  std::vector<std::string> arrays;  // --array: one or more of SOL's point arrays
-  // The metric's keys as the user wrote them (TOML values; the case validator checks them and names
-  // the option in its messages).
-  std::string complexity;
-  std::optional<std::string> hmin, hmax, gradation, max_anisotropy, norm;
-  bool transfer = true;  // --no-transfer: no solution.vtu
-};
-
-// The case keys the command sets before the user's --set: the case's [spacing] table replaced by
-// spacing.field = "hessian", spacing.file = SOL, spacing.array (a list for several arrays),
-// spacing.complexity and the optional hmin, hmax, max_anisotropy, norm and metric_gradation (--gradation).
-std::vector<CaseOverride> adapt_overrides(const AdaptOptions& options);
 
 // The file solution.vtu in `config`'s output directory.
 std::filesystem::path adapted_solution_path(const CaseConfig& config);

@@ -22,7 +22,7 @@
 #include "app/bench/whole_run_bench.hpp"
 #include "app/cli/adapt_command.hpp"
 #include "app/cli/devices_command.hpp"
-#include "app/cli/option_overrides.hpp"
+#include "app/config/option_overrides.hpp"
 #include "app/pipeline/mesh_pipeline.hpp"
 #include "app/pipeline/smooth_pipeline.hpp"
 #include "app/cli/quality_command.hpp"

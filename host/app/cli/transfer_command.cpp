@@ -11,7 +11,7 @@
 #include "core/input_file.hpp"
 #include "io/mesh_formats.hpp"
 #include "io/mixed_mesh.hpp"
-#include "io/msh_reader.hpp"
+#include "io/point_data_file.hpp"
 #include "io/vtu_reader.hpp"
 #include "io/vtu_writer.hpp"
 #include "mesh/transfer.hpp"
@@ -22,31 +22,15 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// The mesh of a .vtu or .msh file with point array `wanted` (when the file has it) and the names of all;
-// with `cells`, its quads too.
-Mesh read_with_data(const fs::path& path, MeshPointData& data, SurfaceCells* cells = nullptr) {
-  MeshReadReport report;
-  const std::string e = lower_extension(path);
-  if (e == ".vtu") return read_vtu(path, report, &data, cells);
-  if (e == ".msh") return read_msh(path, report, &data, cells);
-  throw InputError(fmt::format("{}: point data is read from .vtu or .msh files only", path.string()));
-}
-
 // The source's cells as triangles: a layered mesh's quads split (with_quads_split), so that a point
 // inside a quad is interpolated there, not taken from the nearest triangle.
 Mesh read_source(const fs::path& path, MeshPointData& data) {
   SurfaceCells cells;
-  Mesh mesh = read_with_data(path, data, &cells);
+  Mesh mesh = read_mesh_with_point_data(path, data, &cells);
   return with_quads_split(std::move(mesh), cells);
 }
 
 }  // namespace
-
-std::vector<std::string> point_array_names(const std::string& from) {
-  MeshPointData listing;
-  (void)read_with_data(from, listing);
-  return listing.point_arrays;
-}
 
 TransferredArrays transfer_point_arrays(const std::string& from, const std::vector<std::string>& arrays, Mesh& target,
                                         TransferCounts& counts) {
@@ -70,7 +54,7 @@ TransferredArrays transfer_point_arrays(const std::string& from, const std::vect
   for (const std::string& n : names) {
     MeshPointData data;
     data.wanted = n;
-    (void)read_with_data(from, data);
+    (void)read_mesh_with_point_data(from, data);
     const PointDataArray& a = *data.array;
     values.push_back(
         {n, a.components, transfer_point_values(source, a.values, a.components, target.points, &counts), false});

@@ -10,9 +10,6 @@
 
 namespace pdmesh {
 
-// The names of the point arrays of FROM (a .vtu or .msh; InputError for another file).
-std::vector<std::string> point_array_names(const std::string& from);
-
 // The point arrays `arrays` of FROM (a .vtu or .msh; empty: every point array but kind, q and
 // node_id) interpolated at the points of `target` and appended to its point_data: linearly in FROM's
 // triangles and in its quads split along their shorter diagonal. Throws InputError (before `target`

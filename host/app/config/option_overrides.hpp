@@ -1,5 +1,5 @@
 // Command-line options as case-file overrides (app/config/case_file.hpp, CaseOverride), shared by the
-// commands that translate their options into case keys (cli.cpp, adapt_command.cpp).
+// commands that translate their options into case keys (app/cli/cli.cpp, app/config/adapt_keys.cpp).
 #pragma once
 #include <optional>
 #include <sstream>

@@ -1,0 +1,193 @@
+"""``adapt()``: one step of a solve-adapt loop, the domain re-meshed in the Hessian metric of a solution
+(the command ``pdmesh adapt``, docs/metric-fields.md, "Adaptation to a solution")."""
+
+from __future__ import annotations
+
+import os
+from typing import Any, Mapping, Sequence
+
+import numpy as np
+
+from . import _core, _settings, metric as _metric
+from .errors import InputError
+from .geometry import Geometry
+from .mesh import Mesh
+from .mesher import Case, Mesher, _settings_for, _write_initial
+
+# How messages name each key the command sets: by the argument of adapt() that gives it.
+_ARGUMENTS = {
+    "spacing.file": "solution",
+    "spacing.array": "array",
+    "spacing.complexity": "complexity",
+    "spacing.hmin": "hmin",
+    "spacing.hmax": "hmax",
+    "spacing.max_anisotropy": "max_anisotropy",
+    "spacing.norm": "norm",
+    "spacing.metric_gradation": "gradation",
+}
+
+
+def _domain(domain: Any) -> Case | Geometry:
+    """The domain as generate() takes it: a Case, a Geometry, rings, or a path (a case file, a case
+    directory, a geometry or mesh file)."""
+    if isinstance(domain, (str, os.PathLike)):
+        path = os.fspath(domain)
+        if os.path.isdir(path):
+            path = os.path.join(path, "case.toml")
+        return Case.from_toml(path) if path.lower().endswith(".toml") else Geometry.from_file(path)
+    if isinstance(domain, (Case, Geometry)):
+        return domain
+    return Geometry(domain)
+
+
+def _names(array: str | Sequence[str] | None, values: Any) -> list[str]:
+    """The arrays to adapt to: ``array`` as a list, or the keys of ``values`` without it."""
+    if array is None:
+        if isinstance(values, Mapping) and values:
+            return [str(k) for k in values]
+        raise InputError("array: name the solution's point array(s) to adapt to (array='u' or array=['u', 'v'])")
+    names = [array] if isinstance(array, str) else list(array)
+    if not names or not all(isinstance(n, str) and n for n in names):
+        raise InputError(f"array: expected a point array's name or a list of names, got {array!r}")
+    return names
+
+
+def _solution_arrays(points: np.ndarray, values: Any, array: str | Sequence[str] | None) -> dict[str, np.ndarray]:
+    """``values`` as name -> (N,) float64 arrays for the N points; InputError naming a wrong shape or length."""
+    if values is None:
+        raise InputError("values: a solution given as a Mesh or (points, triangles) needs its point values "
+                         "(values={'u': u} or values=u with array='u')")
+    if not isinstance(values, Mapping):
+        if not isinstance(array, str):
+            raise InputError(f"values: one array of values needs its name as array='NAME', got array={array!r}")
+        values = {array: values}
+    out = {}
+    for name, v in values.items():
+        try:
+            a = np.asarray(v, dtype=np.float64)
+        except (TypeError, ValueError) as e:
+            raise InputError(f"values['{name}']: not an array of numbers: {e}") from None
+        if a.shape != (len(points),):
+            raise InputError(f"values['{name}']: one value per point, shape ({len(points)},), is needed; got shape "
+                             f"{a.shape}")
+        out[str(name)] = a
+    return out
+
+
+def _solution_mesh(solution: Any) -> tuple[np.ndarray, np.ndarray]:
+    """The points and triangles of a Mesh or a (points, triangles) pair; InputError naming a wrong shape."""
+    if isinstance(solution, Mesh):
+        return np.asarray(solution.points, dtype=np.float64), np.asarray(solution.triangles)
+    try:
+        p = np.asarray(solution[0], dtype=np.float64)
+        t = np.asarray(solution[1])
+    except (TypeError, ValueError) as e:
+        raise InputError(f"solution: (points, triangles) must be arrays: {e}") from None
+    if p.ndim != 2 or p.shape[1] != 2 or p.shape[0] < 3:
+        raise InputError(f"solution: points must be an (N, 2) array with N >= 3, got shape {p.shape}")
+    if t.ndim != 2 or t.shape[1] != 3 or t.shape[0] < 1 or not np.issubdtype(t.dtype, np.integer):
+        raise InputError(f"solution: triangles must be an (M, 3) integer array with M >= 1, got shape {t.shape}")
+    bad = np.flatnonzero(((t < 0) | (t >= len(p))).any(axis=1))
+    if bad.size:
+        k = int(bad[0])
+        raise InputError(f"solution: triangle {k} {t[k].tolist()} names a node that is not one of the {len(p)} "
+                         "points")
+    return p, t
+
+
+def _solution_file(solution: Any, values: Any, array: Any, directory: str) -> tuple[str, list[str], list[str]]:
+    """The solution file the core reads, the arrays to adapt to, and the file's point arrays."""
+    if isinstance(solution, (str, os.PathLike)):
+        path = os.fspath(solution)
+        if values is not None:
+            raise InputError(f"values: a solution file ({path}) brings its own point data; give values only with a "
+                             "Mesh or (points, triangles)")
+        if not os.path.isfile(path):
+            raise InputError(f"solution: cannot read '{path}': no such file")
+        return path, _names(array, None), list(_core.point_array_names(path))
+    if not isinstance(solution, Mesh) and not (isinstance(solution, tuple) and len(solution) == 2):
+        raise InputError("solution: expected a .vtu or .msh file with point data, a pdmesh.Mesh or a "
+                         f"(points, triangles) pair of arrays, got {type(solution).__name__}")
+    points, triangles = _solution_mesh(solution)
+    arrays = _solution_arrays(points, values, array)
+    path = os.path.join(directory, "solution.vtu")
+    _metric.write_vtu(path, points, triangles, arrays)
+    return path, _names(array, arrays), list(arrays)
+
+
+def _text(value: Any, argument: str) -> str | None:
+    return None if value is None else _settings.toml_value(value, argument)
+
+
+def adapt_mesher(domain: Any, solution: Any, array: str | Sequence[str] | None = None, *, complexity: Any,
+                 values: Any = None, hmin: Any = None, hmax: Any = None, gradation: Any = None,
+                 max_anisotropy: Any = None, norm: Any = None, device: str | None = None, seed: int | None = None,
+                 settings: Mapping[str, Any] | None = None, max_nodes: int | None = None, initial: Any = None,
+                 **keywords: Any) -> Mesher:
+    """The Mesher of ``adapt()`` before it runs (its arguments less ``progress``): to step or watch the
+    re-mesh, or read its ``iteration`` and ``converged`` after ``run()``."""
+    if complexity is None:
+        raise InputError("complexity: the metric's complexity C (> 0) is needed")
+    geo = _domain(domain)
+    if max_nodes is not None and int(max_nodes) < 1:
+        raise InputError(f"max_nodes must be >= 1, got {max_nodes}")
+    with _metric.temporary_directory() as directory:
+        path, names, present = _solution_file(solution, values, array, directory)
+        file_given = isinstance(solution, (str, os.PathLike))
+        label = os.fspath(solution) if file_given else "the solution"
+        for name in names:
+            if name not in present:
+                raise InputError(f"array={name!r}: {label} has no point array '{name}' (point arrays: "
+                                 f"{', '.join(present) if present else 'none'})")
+        keys = _core.adapt_settings(path, names, _text(complexity, "complexity"), _text(hmin, "hmin"),
+                                    _text(hmax, "hmax"), _text(gradation, "gradation"),
+                                    _text(max_anisotropy, "max_anisotropy"), _text(norm, "norm"))
+        # The command's keys, in its order, labelled by the arguments that gave them; then the caller's.
+        pairs = []
+        for key, value, _ in keys:
+            argument = _ARGUMENTS.get(key)
+            if argument is None:
+                shown = "pdmesh.adapt (the case's [spacing] is replaced)"
+            elif argument == "solution":
+                shown = f"solution={label}" if file_given else "solution"
+            else:
+                shown = f"{argument}={value}"
+            pairs.append((key, value, shown))
+        if initial is not None:
+            warm = _write_initial(initial, directory)
+            settings = {**(dict(settings) if settings is not None else {}), "init.file": warm}
+        overrides, _ = _settings_for(None, device, seed, settings, keywords)
+        config = geo._with(pairs + overrides) if isinstance(geo, Case) else geo._config(pairs + overrides)
+        if config.motion["enabled"]:
+            raise InputError(f"{domain}: pdmesh.adapt meshes one domain; the case has [motion]")
+        # The core reads the solution and the warm start while it sets the run up; the files go after.
+        mesher = Mesher.__new__(Mesher)
+        mesher._core = _core.Mesher(config, "", int(max_nodes or 0))
+    return mesher
+
+
+def adapt(domain: Any, solution: Any, array: str | Sequence[str] | None = None, *, complexity: Any,
+          values: Any = None, hmin: Any = None, hmax: Any = None, gradation: Any = None, max_anisotropy: Any = None,
+          norm: Any = None, device: str | None = None, seed: int | None = None, progress: Any = False,
+          settings: Mapping[str, Any] | None = None, max_nodes: int | None = None, initial: Any = None,
+          **keywords: Any) -> Mesh:
+    """Re-meshes a domain in the Hessian metric of a solution (the command ``pdmesh adapt``).
+
+    ``domain``: what ``generate`` takes (a Geometry, rings, a Case, a case file, a case directory, a
+    geometry or mesh file); its case's ``[spacing]`` is replaced, as the command replaces it, by
+    ``spacing.field = "hessian"`` on the solution with the metric's keys below; its other settings stay.
+    ``solution``: a .vtu or .msh file with point data, or a pdmesh.Mesh or ``(points, triangles)`` pair
+    with ``values``: a dict name -> (N,) array, or one (N,) array named by ``array``.
+    ``array``: the point array to adapt to, or a list of them (their metrics intersected, as
+    ``--array u,v``); default: the keys of ``values``. ``complexity`` (C > 0: about 1.15 C vertices),
+    ``hmin``, ``hmax``, ``gradation`` (spacing.metric_gradation), ``max_anisotropy`` and ``norm``
+    are the command's options of those names. The other arguments are ``generate``'s; settings and
+    keywords apply after the command's keys, as ``--set`` does. The same inputs give the command's
+    mesh.msh. Returns the new Mesh; the solution's values on its points are
+    ``pdmesh.transfer(old_mesh, u, new.points)`` (the command's solution.vtu).
+    """
+    mesher = adapt_mesher(domain, solution, array, complexity=complexity, values=values, hmin=hmin, hmax=hmax,
+                          gradation=gradation, max_anisotropy=max_anisotropy, norm=norm, device=device, seed=seed,
+                          settings=settings, max_nodes=max_nodes, initial=initial, **keywords)
+    mesher.run(progress=progress)
+    return mesher.triangulate()
