@@ -9,6 +9,7 @@ from typing import Any, Mapping, Sequence
 import numpy as np
 
 from . import _core, _settings, metric as _metric
+from ._arrays import mesh_arrays
 from .errors import InputError
 from .geometry import Geometry
 from .mesh import Mesh
@@ -79,20 +80,10 @@ def _solution_mesh(solution: Any) -> tuple[np.ndarray, np.ndarray]:
     if isinstance(solution, Mesh):
         return np.asarray(solution.points, dtype=np.float64), np.asarray(solution.triangles)
     try:
-        p = np.asarray(solution[0], dtype=np.float64)
-        t = np.asarray(solution[1])
-    except (TypeError, ValueError) as e:
-        raise InputError(f"solution: (points, triangles) must be arrays: {e}") from None
-    if p.ndim != 2 or p.shape[1] != 2 or p.shape[0] < 3:
-        raise InputError(f"solution: points must be an (N, 2) array with N >= 3, got shape {p.shape}")
-    if t.ndim != 2 or t.shape[1] != 3 or t.shape[0] < 1 or not np.issubdtype(t.dtype, np.integer):
-        raise InputError(f"solution: triangles must be an (M, 3) integer array with M >= 1, got shape {t.shape}")
-    bad = np.flatnonzero(((t < 0) | (t >= len(p))).any(axis=1))
-    if bad.size:
-        k = int(bad[0])
-        raise InputError(f"solution: triangle {k} {t[k].tolist()} names a node that is not one of the {len(p)} "
-                         "points")
-    return p, t
+        points, triangles = solution[0], solution[1]
+    except (TypeError, IndexError, KeyError) as e:
+        raise InputError(f"solution: expected a (points, triangles) pair: {e}") from None
+    return mesh_arrays(points, triangles, "solution")
 
 
 def _solution_file(solution: Any, values: Any, array: Any, directory: str) -> tuple[str, list[str], list[str]]:

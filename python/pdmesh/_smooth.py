@@ -9,6 +9,7 @@ from typing import Any, Mapping
 import numpy as np
 
 from . import _core, metric as _metric
+from ._arrays import mesh_arrays
 from .errors import InputError
 from .mesh import Mesh
 from .mesher import Case, Mesher, _settings_for
@@ -17,19 +18,7 @@ from .geometry import Geometry
 
 def _write_msh(points: Any, triangles: Any, path: str) -> None:
     """(points, triangles) arrays as a Gmsh 2.2 ASCII file; InputError naming a wrong shape or index."""
-    try:
-        p = np.asarray(points, dtype=float)
-        t = np.asarray(triangles)
-    except (TypeError, ValueError) as e:
-        raise InputError(f"mesh: (points, triangles) must be arrays: {e}") from None
-    if p.ndim != 2 or p.shape[1] != 2 or p.shape[0] < 3:
-        raise InputError(f"mesh: points must be an (N, 2) array with N >= 3, got shape {p.shape}")
-    if t.ndim != 2 or t.shape[1] != 3 or t.shape[0] < 1 or not np.issubdtype(t.dtype, np.integer):
-        raise InputError(f"mesh: triangles must be an (M, 3) integer array with M >= 1, got shape {t.shape}")
-    bad = np.flatnonzero(((t < 0) | (t >= len(p))).any(axis=1))
-    if bad.size:
-        k = int(bad[0])
-        raise InputError(f"mesh: triangle {k} {t[k].tolist()} names a node that is not one of the {len(p)} points")
+    p, t = mesh_arrays(points, triangles, "mesh")
     with open(path, "w", encoding="ascii") as f:
         f.write("$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n")
         f.write(f"{len(p)}\n")
