@@ -60,12 +60,16 @@ void eigenvalues(double a, double b, double c, double& low, double& high) {
   high = mean + r;
 }
 
+// Node j's metric has a condition number within kMaxCondition.
+bool well_conditioned(const SimParticles& p, std::size_t j) {
+  double low = 0.0, high = 0.0;
+  eigenvalues(p.m11[j], p.m12[j], p.m22[j], low, high);
+  return high <= kMaxCondition * low;
+}
+
 bool well_conditioned(const SimParticles& p) {
-  for (std::size_t j = 0; j < p.size(); ++j) {
-    double low = 0.0, high = 0.0;
-    eigenvalues(p.m11[j], p.m12[j], p.m22[j], low, high);
-    if (!(high <= kMaxCondition * low)) return false;
-  }
+  for (std::size_t j = 0; j < p.size(); ++j)
+    if (!well_conditioned(p, j)) return false;
   return true;
 }
 
@@ -210,7 +214,12 @@ void MetricNeighbourCache::build(const SimParticles& p, double cutoff, Neighbour
   } else {
     const std::size_t most = std::max<std::size_t>(1, n / kRebasedFraction);
     const std::vector<std::size_t> out = outgrown(p, cutoff, most);
-    if (!out.empty() && !well_conditioned(p)) {
+    // The states about to be stored must be well conditioned: every node's for a rebuild, the
+    // rebased ones' otherwise (the others keep theirs).
+    const bool stored_well =
+        out.size() > most ? well_conditioned(p)
+                          : std::all_of(out.begin(), out.end(), [&p](std::size_t j) { return well_conditioned(p, j); });
+    if (!stored_well) {
       valid_ = false;
       build_neighbours_metric(p, cutoff, list, flags);
       return;
