@@ -59,11 +59,21 @@ PointMetricField::PointMetricField(std::unique_ptr<MetricField> field, std::vect
   std::sort(points_.begin(), points_.end(), [](const auto& a, const auto& b) { return before(a.first, b.first); });
 }
 
-Metric PointMetricField::at(Vec2 p) const {
+const Metric* PointMetricField::given(Vec2 p) const {
   const auto it = std::lower_bound(points_.begin(), points_.end(), p,
                                    [](const auto& entry, Vec2 v) { return before(entry.first, v); });
-  if (it != points_.end() && it->first.x == p.x && it->first.y == p.y) return it->second;
-  return field_->at(p);
+  return it != points_.end() && it->first.x == p.x && it->first.y == p.y ? &it->second : nullptr;
+}
+
+Metric PointMetricField::at(Vec2 p) const {
+  const Metric* m = given(p);
+  return m != nullptr ? *m : field_->at(p);
+}
+
+void PointMetricField::at_many(const std::vector<Vec2>& p, std::vector<Metric>& out, std::vector<int>& guesses) const {
+  field_->at_many(p, out, guesses);
+  for (std::size_t i = 0; i < p.size(); ++i)
+    if (const Metric* m = given(p[i])) out[i] = *m;
 }
 
 std::unique_ptr<MetricField> with_fixed_point_metrics(std::unique_ptr<MetricField> field, const GeometryTree& tree,

@@ -37,9 +37,13 @@ class PointMetricField final : public MetricField {
  public:
   PointMetricField(std::unique_ptr<MetricField> field, std::vector<std::pair<Vec2, Metric>> points);
   Metric at(Vec2 p) const override;
+  // The field's at_many (its threads and guesses), then the given points' metrics.
+  void at_many(const std::vector<Vec2>& p, std::vector<Metric>& out, std::vector<int>& guesses) const override;
   const std::vector<std::pair<Vec2, Metric>>& points() const { return points_; }
 
  private:
+  const Metric* given(Vec2 p) const;  // the metric given at exactly p, or null
+
   std::unique_ptr<MetricField> field_;
   std::vector<std::pair<Vec2, Metric>> points_;  // sorted by x, then y
 };

@@ -8,6 +8,8 @@
 #include <cmath>
 
 #include "core/errors.hpp"
+#include "core/parallel.hpp"
+#include "spacing/spacing_field.hpp"
 
 namespace pdmesh {
 
@@ -128,19 +130,30 @@ std::vector<Metric> intersected_hessian_metrics_on_mesh(const std::vector<Vec2>&
 
 HessianMetricField::HessianMetricField(const std::string& expression, const Box& box, const HessianMetricOptions& o,
                                        double step, int grid)
-    : u_(expression), options_(o), step_(step) {
+    : u_(expression),
+      parsers_([expression] { return std::make_unique<ScalarExpression>(expression); }),
+      options_(o),
+      step_(step) {
   check_hessian_metric_options(o);
   if (!std::isfinite(step) || !(step > 0.0))
     throw InputError(
         fmt::format("hessian metric of '{}': step = {} must be a finite positive number", expression, step));
   if (!(box.width() > 0.0) || !(box.height() > 0.0) || grid < 1)
     throw InputError(fmt::format("hessian metric of '{}': an empty box or grid ({})", expression, grid));
+  // The cells' densities on all threads, then their sum in row order, as one thread would add them.
+  const std::size_t side = static_cast<std::size_t>(grid);
+  std::vector<double> density(side * side);
+  parallel_for_scratch<LeasePool<ScalarExpression>::Lease>(
+      density.size(),
+      [&](LeasePool<ScalarExpression>::Lease& u, std::size_t c) {
+        if (!u) u = parsers_.take();
+        const double i = static_cast<double>(c % side), j = static_cast<double>(c / side);
+        const Vec2 p{box.lo.x + (i + 0.5) / grid * box.width(), box.lo.y + (j + 0.5) / grid * box.height()};
+        density[c] = hessian_density(hessian_by_differences([&u](Vec2 q) { return (*u)(q); }, p, step_), options_);
+      },
+      kExpressionPointsPerThread);
   double total = 0.0;
-  for (int j = 0; j < grid; ++j)
-    for (int i = 0; i < grid; ++i) {
-      const Vec2 p{box.lo.x + (i + 0.5) / grid * box.width(), box.lo.y + (j + 0.5) / grid * box.height()};
-      total += hessian_density(hessian(p), options_);
-    }
+  for (const double d : density) total += d;
   const double integral = total * box.width() * box.height() / (static_cast<double>(grid) * grid);
   scale_ = options_.complexity / integral;
 }
@@ -150,6 +163,20 @@ Hessian HessianMetricField::hessian(Vec2 p) const {
 }
 
 Metric HessianMetricField::at(Vec2 p) const { return lp_optimal_metric(hessian(p), scale_, options_); }
+
+void HessianMetricField::at_many(const std::vector<Vec2>& p, std::vector<Metric>& out,
+                                 std::vector<int>& guesses) const {
+  out.resize(p.size());
+  guesses.resize(p.size());
+  parallel_for_scratch<LeasePool<ScalarExpression>::Lease>(
+      p.size(),
+      [&](LeasePool<ScalarExpression>::Lease& u, std::size_t i) {
+        if (!u) u = parsers_.take();
+        const Hessian h = hessian_by_differences([&u](Vec2 q) { return (*u)(q); }, p[i], step_);
+        out[i] = lp_optimal_metric(h, scale_, options_);
+      },
+      kExpressionPointsPerThread);
+}
 
 void sample_metric_grid(const MetricField& field, const Box& box, int n, std::vector<Vec2>& points,
                         std::vector<std::array<int, 3>>& triangles, std::vector<Metric>& metrics) {
@@ -171,8 +198,8 @@ void sample_metric_grid(const MetricField& field, const Box& box, int n, std::ve
       triangles.push_back({a, a + 1, a + row + 1});
       triangles.push_back({a, a + row + 1, a + row});
     }
-  metrics.reserve(points.size());
-  for (const Vec2 p : points) metrics.push_back(field.at(p));
+  std::vector<int> guesses;
+  field.at_many(points, metrics, guesses);
 }
 
 }  // namespace pdmesh

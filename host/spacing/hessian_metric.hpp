@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "core/vec2.hpp"
+#include "core/lease_pool.hpp"
 #include "spacing/hessian.hpp"
 #include "spacing/metric.hpp"
 #include "spacing/metric_field.hpp"
@@ -76,17 +77,20 @@ std::vector<double> divided_by_range(const std::vector<double>& u);
 
 // The metric field of a function u given as an expression: the Hessian by central differences of
 // step `step` (hessian_by_differences), D from the midpoint rule of the density on a grid x grid
-// grid over `box` (as metric.py's l2_optimal_scale). Not thread-safe (muParser).
+// grid over `box` (as metric.py's l2_optimal_scale). at() is not thread-safe (one muParser instance);
+// at_many() gives at()'s values on several threads, each with its own parser.
 class HessianMetricField final : public MetricField {
  public:
   HessianMetricField(const std::string& expression, const Box& box, const HessianMetricOptions& o, double step,
                      int grid = 1024);
   Metric at(Vec2 p) const override;
+  void at_many(const std::vector<Vec2>& p, std::vector<Metric>& out, std::vector<int>& guesses) const override;
   Hessian hessian(Vec2 p) const;
   double scale() const { return scale_; }
 
  private:
   ScalarExpression u_;
+  mutable LeasePool<ScalarExpression> parsers_;  // at_many's, one per thread
   HessianMetricOptions options_;
   double step_;
   double scale_ = 1.0;

@@ -39,13 +39,15 @@ class ConstantMetricField final : public MetricField {
 // The constructor throws InputError naming the expression on a syntax error or an unknown name;
 // at() throws InputError naming the expression, the point and the value when a size is not a finite
 // positive number, the angle is not finite, or the components are not a finite SPD matrix.
-// Not thread-safe: at() drives muParser instances (give each thread its own field).
+// at() is not thread-safe (it drives one set of muParser instances); at_many() gives at()'s values on
+// several threads, each with parsers of its own.
 class ExpressionMetricField final : public MetricField {
  public:
   enum class Form { sizes, components };
   ExpressionMetricField(Form form, const std::string& e1, const std::string& e2, const std::string& e3);
   ~ExpressionMetricField() override;
   Metric at(Vec2 p) const override;
+  void at_many(const std::vector<Vec2>& p, std::vector<Metric>& out, std::vector<int>& guesses) const override;
 
   static ExpressionMetricField from_sizes(const std::string& h1, const std::string& h2, const std::string& angle_deg) {
     return ExpressionMetricField(Form::sizes, h1, h2, angle_deg);

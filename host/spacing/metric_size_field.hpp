@@ -7,6 +7,7 @@
 #pragma once
 #include <memory>
 #include <mutex>
+#include <vector>
 
 #include "spacing/metric_field.hpp"
 #include "spacing/spacing_field.hpp"
@@ -16,12 +17,14 @@ namespace pdmesh {
 // det m^(-1/4), from the eigenvalues (accurate for very anisotropic metrics).
 double isotropic_size(const Metric& m);
 
-// at() is thread-safe: the metric field (an expression field is not) is evaluated under a lock.
-// Keeps a reference to `metric`, which must outlive it.
+// at() and at_many() are thread-safe: the metric field (an expression field is not) is evaluated under
+// a lock; at_many() through the field's at_many (its threads). Keeps a reference to `metric`, which
+// must outlive it.
 class MetricSizeField final : public SpacingField {
  public:
   explicit MetricSizeField(const MetricField& metric) : metric_(metric) {}
   double at(Vec2 p) const override;
+  void at_many(const std::vector<Vec2>& p, std::vector<double>& q) const override;
 
  private:
   const MetricField& metric_;

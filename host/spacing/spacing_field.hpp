@@ -26,6 +26,9 @@ class SpacingField {
 // The fewest lookups worth a thread in a thread-safe field's at_many (parallel_for's min_chunk):
 // below that a thread costs more than it saves.
 inline constexpr std::size_t kPointsPerThread = 4096;
+// The same for fields that evaluate muParser expressions: an evaluation costs more than a lookup, so
+// fewer points repay a thread.
+inline constexpr std::size_t kExpressionPointsPerThread = 256;
 
 // q(x) = sum_s (l_s / d_s) / sum_s (1 / d_s) over the closest segment s of each curve (eq. 3.6);
 // on the boundary (some d_s == 0 exactly) the limit: the mean l_s of the curves at distance 0.
@@ -44,12 +47,14 @@ class BoundarySpacing final : public SpacingField {
 
 // q(x, y) from an expression; throws InputError naming the expression on a syntax error
 // or when it does not evaluate to a finite positive number. Variables x, y; constant pi.
-// Not thread-safe: at() drives one muParser instance (give each thread its own field).
+// at() is not thread-safe (it drives one muParser instance); at_many() gives at()'s values on several
+// threads, each with a parser of its own.
 class ExpressionSpacing final : public SpacingField {
  public:
   explicit ExpressionSpacing(const std::string& expression);
   ~ExpressionSpacing() override;
   double at(Vec2 p) const override;
+  void at_many(const std::vector<Vec2>& p, std::vector<double>& q) const override;
 
  private:
   struct Impl;
