@@ -169,6 +169,7 @@ void BackgroundSpacing::at_many_guessed(const std::vector<Vec2>& p, std::vector<
                                         std::vector<int>& guesses) const {
   q.resize(p.size());
   guesses.resize(p.size(), 0);
+  // Every step of a host run waits on this update: a few thousand nodes already use a second core.
   parallel_for(
       p.size(),
       [&](std::size_t i) {
@@ -176,7 +177,7 @@ void BackgroundSpacing::at_many_guessed(const std::vector<Vec2>& p, std::vector<
         const int leaf = background_locate_guessed(data_, p[i], guesses[i], u, v);
         q[i] = background_interpolate(data_, leaf, u, v);
       },
-      8192);
+      2048);
 }
 
 int BackgroundSpacing::tag_at(Vec2 p) const {

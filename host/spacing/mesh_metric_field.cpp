@@ -82,6 +82,10 @@ Metric MeshMetricField::at(Vec2 p) const {
   return l.triangle >= 0 ? interpolated(l) : outside(p);
 }
 
+// The fewest lookups worth a thread in at_many: an interpolated metric (logarithms in, an exponential
+// out) costs several spacing lookups, so a metric run of a few thousand nodes uses every core.
+constexpr std::size_t kMetricPointsPerThread = 1024;
+
 void MeshMetricField::at_many(const std::vector<Vec2>& p, std::vector<Metric>& out, std::vector<int>& guesses) const {
   out.resize(p.size());
   guesses.resize(p.size(), -1);
@@ -101,7 +105,7 @@ void MeshMetricField::at_many(const std::vector<Vec2>& p, std::vector<Metric>& o
         guesses[i] = l.position;
         out[i] = l.triangle >= 0 ? interpolated(l) : outside(p[i]);
       },
-      kPointsPerThread);
+      kMetricPointsPerThread);
 }
 
 }  // namespace pdmesh
