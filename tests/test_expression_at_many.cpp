@@ -44,8 +44,7 @@ void require_same(const MetricField& field, const std::vector<Vec2>& p, const st
 }  // namespace
 
 TEST_CASE("ExpressionMetricField::at_many gives at()'s metrics bit for bit, call after call", "[metric_field]") {
-  const auto sizes =
-      ExpressionMetricField::from_sizes("0.1", "0.001 + 0.2*abs(y - 0.5 - 0.2*sin(6*x))", "30*x + 40*y");
+  const auto sizes = ExpressionMetricField::from_sizes("0.1", "0.001 + 0.2*abs(y - 0.5 - 0.2*sin(6*x))", "30*x + 40*y");
   const auto components = ExpressionMetricField::from_components("100 + 50*x", "10*x*y", "400 + 30*y");
   std::vector<Vec2> p = scattered(5000);
   std::vector<Metric> out;
