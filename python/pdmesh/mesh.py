@@ -28,6 +28,17 @@ def _suffix_formats() -> dict[str, str]:
 
 
 _SUFFIX_FORMATS = _suffix_formats()
+
+
+def _point_arrays(pairs: Any) -> dict[str, np.ndarray]:
+    """The core's [(name, (N, k) values)] as name -> read-only (N,) (one component) or (N, k) arrays."""
+    out = {}
+    for name, values in pairs:
+        a = np.asarray(values)
+        a = a[:, 0] if a.shape[1] == 1 else a
+        a.flags.writeable = False
+        out[str(name)] = a
+    return out
 _PICTURES = (".png", ".svg")
 # Jupyter: SVG for meshes up to this many triangles (each is an element), PNG beyond.
 _SVG_REPR_LIMIT = 20_000
@@ -98,6 +109,7 @@ class Mesh:
         self._core = core
         self._edges = None
         self._periodic: list[PeriodicPairs] | None = None
+        self._point_data: dict[str, np.ndarray] | None = None
 
     @classmethod
     def read(cls, path: str | os.PathLike) -> "Mesh":
@@ -147,6 +159,15 @@ class Mesh:
     def spacing(self) -> np.ndarray:
         """(N,) float64: the spacing field q at each point, written as point data "q" (empty when read)."""
         return self._core.spacing
+
+    @property
+    def point_data(self) -> dict[str, np.ndarray]:
+        """Point arrays by name, (N,) float64 or (N, k) for k components, read-only: the solution
+        carried over by ``pdmesh.adapt`` (its ``transfer``), a motion step's ``node_id``; empty
+        otherwise (a mesh read from a file too). ``write`` writes them into a .vtu as point data."""
+        if self._point_data is None:
+            self._point_data = _point_arrays(self._core.point_data)
+        return dict(self._point_data)
 
     @property
     def curve_names(self) -> list[str]:

@@ -12,10 +12,11 @@ from typing import Any, Callable, Mapping, Sequence
 
 import numpy as np
 
-from . import _core
+from . import _core, metric as _metric
+from ._arrays import mesh_arrays
 from .errors import InputError
 from .geometry import Geometry
-from .mesh import Mesh
+from .mesh import Mesh, _point_arrays
 from .mesher import Case, _settings_for
 
 
@@ -189,13 +190,92 @@ class MovingMesher:
         return f"<pdmesh.MovingMesher: step {self._last.step}, {len(self._last.node_id)} nodes>"
 
 
-def transfer(source: Mesh, values: Any, points: Any) -> np.ndarray:
-    """Point values of ``source`` ((N,) or (N, k)) interpolated linearly at ``points`` (M, 2): in the
-    triangle that holds each point, or at the nearest boundary point for a point outside the mesh
-    (where the body was). The same as ``pdmesh transfer``; returns (M,) or (M, k)."""
-    v = np.ascontiguousarray(values, dtype=float)
-    flat = v.ndim == 1
-    v2 = v.reshape(-1, 1) if flat else v
-    p = np.ascontiguousarray(points, dtype=float).reshape(-1, 2)
-    out = np.asarray(_core.transfer(source._core, v2, p), dtype=float).reshape(len(p), v2.shape[1])
-    return out[:, 0] if flat else out
+def _transfer_points(points: Any) -> np.ndarray:
+    """The target points: a Mesh's, or an (M, 2) array; InputError naming ``points`` otherwise."""
+    if isinstance(points, Mesh):
+        points = points.points
+    try:
+        p = np.ascontiguousarray(points, dtype=np.float64)
+    except (TypeError, ValueError) as e:
+        raise InputError(f"points: not an (M, 2) array of numbers: {e}") from None
+    if p.ndim != 2 or p.shape[1] != 2:
+        raise InputError(f"points: an (M, 2) array of points (or a Mesh) is needed, got shape {p.shape}")
+    return p
+
+
+def _value_rows(values: Any, n: int, name: str) -> np.ndarray:
+    """values as a contiguous (n,) or (n, k) float64 array; InputError naming ``name`` otherwise."""
+    try:
+        v = np.ascontiguousarray(values, dtype=np.float64)
+    except (TypeError, ValueError) as e:
+        raise InputError(f"{name}: not an array of numbers: {e}") from None
+    if v.ndim not in (1, 2) or v.shape[0] != n or (v.ndim == 2 and v.shape[1] < 1):
+        raise InputError(f"{name}: one row per point of the source, shape ({n},) or ({n}, k), is needed; got shape "
+                         f"{v.shape}")
+    return v
+
+
+def transfer(source: Any, values: Any, points: Any) -> Any:
+    """Point values of ``source`` interpolated linearly at ``points``: in the triangle that holds each
+    point, or at the nearest boundary point for a point outside the mesh (where the body was). The
+    same code as ``pdmesh transfer`` and the solution.vtu of ``pdmesh adapt``.
+
+    ``source``: a Mesh, a ``(points, triangles)`` pair, or a .vtu or .msh file with point data.
+    ``values``: an (N,) or (N, k) array of values at the source's N points (returns (M,) or (M, k));
+    a dict name -> such arrays (returns a dict); or names of the source's own point arrays (a file's,
+    or a Mesh's ``point_data``): one name returns its array, a list of names or None (all: a file's
+    but kind, q and node_id) a dict. ``points``: an (M, 2) array, or a Mesh (its points)."""
+    p = _transfer_points(points)
+    if isinstance(source, (str, os.PathLike)):
+        path = os.fspath(source)
+        if not os.path.isfile(path):
+            raise InputError(f"source: cannot read '{path}': no such file")
+        if values is not None and not isinstance(values, str) and not _names_only(values):
+            raise InputError(f"values: a source file ({path}) brings its own point data; give the names of its "
+                             "arrays (a name, a list of names, or None for all)")
+        names = [] if values is None else [values] if isinstance(values, str) else list(values)
+        arrays = _point_arrays(_core.transfer_file(path, names, p))
+        return arrays[values] if isinstance(values, str) else arrays
+    if isinstance(source, Mesh):
+        if values is None or isinstance(values, str) or _names_only(values):
+            own = source.point_data
+            names = list(own) if values is None else [values] if isinstance(values, str) else list(values)
+            if not names:
+                raise InputError("values: the source Mesh has no point_data; give the values at its points")
+            for name in names:
+                if name not in own:
+                    raise InputError(f"values={name!r}: the source Mesh has no point array '{name}' (point_data: "
+                                     f"{', '.join(own) if own else 'none'})")
+            values = own[values] if isinstance(values, str) else {name: own[name] for name in names}
+        n = len(source.points)
+
+        def one(v: Any, name: str) -> np.ndarray:
+            v = _value_rows(v, n, name)
+            v2 = v.reshape(-1, 1) if v.ndim == 1 else v
+            out = np.asarray(_core.transfer(source._core, v2, p), dtype=float).reshape(len(p), v2.shape[1])
+            return out[:, 0] if v.ndim == 1 else out
+
+        if isinstance(values, Mapping):
+            return {str(k): one(v, f"values[{k!r}]") for k, v in values.items()}
+        return one(values, "values")
+    if not (isinstance(source, tuple) and len(source) == 2):
+        raise InputError("source: expected a pdmesh.Mesh, a (points, triangles) pair of arrays or a .vtu or .msh "
+                         f"file with point data, got {type(source).__name__}")
+    points0, triangles = mesh_arrays(source[0], source[1], "source")
+    if values is None or isinstance(values, str) or _names_only(values):
+        raise InputError("values: a (points, triangles) source needs the values at its points (an (N,) or (N, k) "
+                         "array, or a dict name -> array)")
+    named = dict(values) if isinstance(values, Mapping) else {"values": values}
+    arrays = {str(k): _value_rows(v, len(points0), f"values[{k!r}]" if isinstance(values, Mapping) else "values")
+              for k, v in named.items()}
+    # Through a .vtu, as pdmesh.adapt carries a solution in memory: the same code and values.
+    with _metric.temporary_directory() as directory:
+        path = os.path.join(directory, "source.vtu")
+        _metric.write_vtu(path, points0, triangles, arrays)
+        moved = _point_arrays(_core.transfer_file(path, list(arrays), p))
+    return moved if isinstance(values, Mapping) else moved["values"]
+
+
+def _names_only(values: Any) -> bool:
+    """Whether values is a non-empty list or tuple of strings (names of point arrays)."""
+    return isinstance(values, (list, tuple)) and len(values) > 0 and all(isinstance(v, str) for v in values)

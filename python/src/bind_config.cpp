@@ -9,6 +9,7 @@
 
 #include "app/config/adapt_keys.hpp"
 #include "app/pipeline/smooth_pipeline.hpp"
+#include "app/pipeline/solution_transfer.hpp"
 #include "bindings.hpp"
 #include "callable_spacing.hpp"
 #include "core/errors.hpp"
@@ -173,6 +174,34 @@ void bind_config(nb::module_& m) {
       nb::arg("gradation").none(), nb::arg("max_anisotropy").none(), nb::arg("norm").none(),
       "The case keys pdmesh adapt sets before the caller's settings (its [spacing] replaced); the metric's "
       "values as TOML text.");
+  m.def(
+      "adapt_mesh_file",
+      [](const CaseConfig& c, const std::string& out_dir) -> std::optional<std::string> {
+        CaseConfig config = c;
+        config.out_dir = out_dir;
+        const std::optional<std::filesystem::path> file = adapted_mesh_file(config);
+        if (!file) return std::nullopt;
+        return file->string();
+      },
+      nb::arg("config"), nb::arg("out_dir"),
+      "The mesh file in out_dir that pdmesh adapt makes solution.vtu on (None: output.formats writes none).");
+  m.def(
+      "write_adapted_solution",
+      [](const CaseConfig& c, const std::string& out_dir, const std::string& solution) {
+        CaseConfig config = c;
+        config.out_dir = out_dir;
+        const std::optional<std::filesystem::path> file = adapted_mesh_file(config);
+        if (!file) throw InputError(fmt::format("{}: output.formats writes no mesh file", out_dir));
+        AdaptedSolution a;
+        {
+          nb::gil_scoped_release release;
+          a = write_adapted_solution(config, solution, *file);
+        }
+        return point_value_list(a.target.point_data);
+      },
+      nb::arg("config"), nb::arg("out_dir"), nb::arg("solution"),
+      "After the run wrote its files in out_dir: out_dir/solution.vtu as pdmesh adapt writes it; returns its "
+      "arrays [(name, (N, k) values)].");
   m.def(
       "point_array_names", [](const std::string& path) { return point_array_names(path); }, nb::arg("path"),
       "The point arrays of a .vtu or .msh file, as pdmesh adapt and pdmesh transfer list them.");

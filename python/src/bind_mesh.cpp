@@ -23,6 +23,8 @@ namespace fs = std::filesystem;
 
 namespace {
 
+using Values2 = nb::ndarray<const double, nb::ndim<2>, nb::c_contig, nb::device::cpu>;
+
 // The per-triangle measures by their names (docs/quality.md; the command's --color-by names).
 const std::vector<std::pair<const char*, double TriangleQuality::*>> kMetrics = {
     {"min_angle", &TriangleQuality::min_angle},
@@ -178,6 +180,29 @@ void picture(const MeshHandle& h, const std::string& path, const std::string& co
   write_mesh_picture(path, mesh, options);
 }
 
+// A copy of `h` whose mesh holds the point arrays `arrays` ((N, k) float64 each, N its points) as its
+// point data, which its .vtu then writes (with layers, the merged mesh's too).
+MeshHandle with_point_data(const MeshHandle& h, const std::vector<std::pair<std::string, Values2>>& arrays) {
+  std::vector<PointValues> data;
+  for (const auto& [name, a] : arrays) {
+    if (a.shape(0) != h.mesh->points.size())
+      throw InputError(
+          fmt::format("point data '{}': {} rows for a mesh of {} points", name, a.shape(0), h.mesh->points.size()));
+    data.push_back(
+        {name, static_cast<int>(a.shape(1)), std::vector<double>(a.data(), a.data() + a.shape(0) * a.shape(1)), false});
+  }
+  MeshHandle out = h;
+  auto mesh = std::make_shared<Mesh>(*h.mesh);
+  mesh->point_data = data;
+  out.mesh = std::move(mesh);
+  if (h.layers) {
+    auto layers = std::make_shared<LayerParts>(*h.layers);
+    layers->mixed.point_data = std::move(data);
+    out.layers = std::move(layers);
+  }
+  return out;
+}
+
 }  // namespace
 
 void bind_mesh(nb::module_& m) {
@@ -237,6 +262,11 @@ void bind_mesh(nb::module_& m) {
           },
           nb::rv_policy::automatic, "(M,) uint8 per triangle: 1 in a boundary layer (empty without layers).")
       .def_prop_ro("curve_names", [](const MeshHandle& h) { return h.mesh->curve_names; })
+      .def_prop_ro(
+          "point_data", [](const MeshHandle& h) { return point_value_list(h.mesh->point_data); },
+          "The mesh's point arrays as [(name, (N, k) float64)], copies.")
+      .def("with_point_data", &with_point_data, nb::arg("arrays"),
+           "A copy of the mesh with these point arrays [(name, (N, k) float64)] as its point data.")
       .def_prop_ro("name", [](const MeshHandle& h) { return h.name; })
       .def("boundary_edges", &boundary_edges, "Boundary edges by curve name, (K, 2) int32 each.")
       .def("periodic_links", &periodic_links, "The periodic pairs, one dict per link (image, source).")

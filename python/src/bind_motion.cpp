@@ -1,11 +1,13 @@
 // pdmesh._core.motion_steps and transfer: a [motion] case's steps (app/pipeline/motion_pipeline), each
 // handed to a Python callable with its mesh and persistent node ids, and the solution transfer between
-// two meshes (mesh/transfer); pdmesh.motion wraps them (docs/motion.md, "From Python").
+// two meshes (mesh/transfer), from a mesh in memory or from a file's point arrays as pdmesh transfer
+// and pdmesh adapt carry them; pdmesh.motion wraps them (docs/motion.md, "From Python").
 #include <fmt/format.h>
 #include <nanobind/stl/string.h>
 #include <nanobind/stl/vector.h>
 
 #include "app/pipeline/motion_pipeline.hpp"
+#include "app/pipeline/solution_transfer.hpp"
 #include "bindings.hpp"
 #include "core/errors.hpp"
 #include "mesh/transfer.hpp"
@@ -18,6 +20,18 @@ using Values = nb::ndarray<const double, nb::ndim<2>, nb::c_contig, nb::device::
 using Points = nb::ndarray<const double, nb::shape<-1, 2>, nb::c_contig, nb::device::cpu>;
 
 }  // namespace
+
+nb::list point_value_list(const std::vector<PointValues>& data) {
+  nb::list out;
+  for (const PointValues& d : data) {
+    auto* v = new std::vector<double>(d.values);
+    nb::capsule owner(v, [](void* p) noexcept { delete static_cast<std::vector<double>*>(p); });
+    const std::size_t k = static_cast<std::size_t>(d.components);
+    out.append(
+        nb::make_tuple(nb::str(d.name.c_str()), nb::ndarray<nb::numpy, double>(v->data(), {v->size() / k, k}, owner)));
+  }
+  return out;
+}
 
 void bind_motion(nb::module_& m) {
   m.def(
@@ -61,6 +75,22 @@ void bind_motion(nb::module_& m) {
       },
       nb::arg("mesh"), nb::arg("values"), nb::arg("points"),
       "Point values (N, k) of `mesh` interpolated linearly at points (M, 2); a flat list of M * k values.");
+  m.def(
+      "transfer_file",
+      [](const std::string& from, const std::vector<std::string>& arrays, Points at) {
+        Mesh target;
+        target.points.resize(at.shape(0));
+        for (std::size_t i = 0; i < target.points.size(); ++i) target.points[i] = {at(i, 0), at(i, 1)};
+        {
+          nb::gil_scoped_release release;
+          TransferCounts counts;
+          (void)transfer_point_arrays(from, arrays, target, counts);
+        }
+        return point_value_list(target.point_data);
+      },
+      nb::arg("path"), nb::arg("arrays"), nb::arg("points"),
+      "The point arrays of a .vtu or .msh file (empty: all but kind, q and node_id) interpolated at points "
+      "(M, 2), as pdmesh transfer and pdmesh adapt carry them: [(name, (M, k) values)].");
 }
 
 }  // namespace pdmesh::py

@@ -95,6 +95,10 @@ nb::ndarray<nb::numpy, const T> shared_view(const T* data, std::size_t count, st
   }
 }
 
+// Point arrays as (name, (N, components) float64 array) pairs, copied: the transferred values that
+// pdmesh.transfer and pdmesh.adapt return and Mesh.point_data holds (bind_motion.cpp).
+nb::list point_value_list(const std::vector<PointValues>& data);
+
 // Python's pdmesh.errors module (imported on first use).
 nb::object errors_module();
 

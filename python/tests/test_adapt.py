@@ -145,3 +145,154 @@ def test_adapt_names_the_bad_argument(problem, tmp_path):
         pdmesh.adapt(case, solution, "u", complexity=0)
     with pytest.raises(pdmesh.InputError, match=r"complexity=-5.0: spacing.complexity"):
         pdmesh.adapt(case, solution, "u", complexity=-5.0)
+
+
+@pytest.mark.parametrize("transfer", [True, False], ids=["transfer", "no-transfer"])
+def test_out_writes_the_commands_files(problem, tmp_path, command, transfer):
+    case, solution, _, _ = problem
+    flags = [] if transfer else ["--no-transfer"]
+    command("adapt", case, "--solution", solution, "--array", "u,v", "--complexity", 120, "--out", tmp_path / "cmd",
+            "--quiet", *flags)
+    mesh = pdmesh.adapt(case, solution, "u,v", complexity=120, transfer=transfer, out=tmp_path / "py")
+    written = sorted(p.name for p in (tmp_path / "cmd").iterdir())
+    assert ("solution.vtu" in written) == transfer and "mesh.msh" in written and "quality.json" in written
+    assert sorted(p.name for p in (tmp_path / "py").iterdir()) == written
+    # Every file byte for byte: the same run, the same writers (quality.json holds no timings).
+    for name in written:
+        assert (tmp_path / "py" / name).read_bytes() == (tmp_path / "cmd" / name).read_bytes(), name
+    assert np.array_equal(mesh.points, pdmesh.Mesh.read(tmp_path / "cmd" / "mesh.msh").points)
+    assert sorted(mesh.point_data) == (["u", "v"] if transfer else [])
+
+
+def test_the_transferred_values_are_the_commands_solution_vtu(problem, tmp_path, command):
+    case, solution, coarse, data = problem
+    command("adapt", case, "--solution", solution, "--array", "v", "--complexity", 100, "--out", tmp_path / "cmd",
+            "--quiet", "--formats", "vtu")
+    written = pdmesh.adapt(case, solution, "v", complexity=100, out=tmp_path / "py", output={"formats": ["vtu"]})
+    assert (tmp_path / "py" / "solution.vtu").read_bytes() == (tmp_path / "cmd" / "solution.vtu").read_bytes()
+    # Without out, the values on the mesh in memory are those of solution.vtu (whose mesh is the run's
+    # mesh file read back) bit for bit; the file's arrays all come over (u too), one component each.
+    mesh = pdmesh.adapt(case, solution, "v", complexity=100)
+    assert np.array_equal(mesh.points, written.points)
+    assert sorted(mesh.point_data) == ["u", "v"]
+    for name in ("u", "v"):
+        assert mesh.point_data[name].shape == (len(mesh.points),)
+        assert np.array_equal(mesh.point_data[name], written.point_data[name])
+        assert not mesh.point_data[name].flags.writeable
+        # pdmesh.transfer from the file, from the solution's Mesh and from its arrays: the same values.
+        assert np.array_equal(pdmesh.transfer(solution, name, mesh), mesh.point_data[name])
+        assert np.array_equal(pdmesh.transfer(coarse, data[name], mesh.points), mesh.point_data[name])
+        assert np.array_equal(pdmesh.transfer((coarse.points, coarse.triangles), data[name], mesh.points),
+                              mesh.point_data[name])
+    # A solution in memory comes over the same way, its values' keys as the arrays.
+    pair = pdmesh.adapt(case, (coarse.points, coarse.triangles), "v", values=data, complexity=100)
+    assert np.array_equal(pair.points, mesh.points)
+    assert all(np.array_equal(pair.point_data[k], mesh.point_data[k]) for k in ("u", "v"))
+    one = pdmesh.adapt(case, coarse, "v", values=data["v"], complexity=100)
+    assert list(one.point_data) == ["v"] and np.array_equal(one.point_data["v"], mesh.point_data["v"])
+    # A .vtu of the mesh holds them as point data.
+    mesh.write(tmp_path / "m.vtu")
+    assert {"u", "v"} <= set(pdmesh._core.point_array_names(str(tmp_path / "m.vtu")))
+
+
+def test_transfer_takes_what_adapt_takes(problem):
+    _, solution, coarse, data = problem
+    at = coarse.points[::7] * 0.9
+    both = np.c_[data["u"], data["v"]]
+    pair = (coarse.points, coarse.triangles)
+    from_mesh = pdmesh.transfer(coarse, both, at)
+    assert from_mesh.shape == (len(at), 2)
+    assert np.array_equal(pdmesh.transfer(pair, both, at), from_mesh)
+    # Names of a file's arrays: all (None) or a list give a dict, one name its array.
+    assert sorted(pdmesh.transfer(solution, None, at)) == ["u", "v"]
+    moved = pdmesh.transfer(solution, ["v", "u"], at)
+    assert np.array_equal(moved["u"], from_mesh[:, 0]) and np.array_equal(moved["v"], from_mesh[:, 1])
+    # A dict of values gives a dict, from a Mesh and from a pair.
+    for source in (coarse, pair):
+        d = pdmesh.transfer(source, data, at)
+        assert np.array_equal(d["u"], from_mesh[:, 0]) and np.array_equal(d["v"], from_mesh[:, 1])
+    # A Mesh's own point_data by name.
+    carried = pdmesh.Mesh(coarse._core.with_point_data([("u", data["u"].reshape(-1, 1))]))
+    assert np.array_equal(pdmesh.transfer(carried, "u", at), from_mesh[:, 0])
+    assert np.array_equal(pdmesh.transfer(carried, None, at)["u"], from_mesh[:, 0])
+
+
+def test_array_is_split_at_commas(problem):
+    case, solution, coarse, data = problem
+    listed = pdmesh.adapt(case, solution, ["u", "v"], complexity=100, transfer=False)
+    joined = pdmesh.adapt(case, solution, "u,v", complexity=100, transfer=False)
+    assert np.array_equal(joined.points, listed.points) and np.array_equal(joined.triangles, listed.triangles)
+    assert joined.point_data == {}
+    pair = pdmesh.adapt(case, coarse, "u,v", values=data, complexity=100, transfer=False)
+    assert np.array_equal(pair.points, listed.points)
+    for bad in ("u,,v", "u,", ",v"):
+        with pytest.raises(pdmesh.InputError, match=rf"array='{bad}': has an empty name between or beside its commas"):
+            pdmesh.adapt(case, solution, bad, complexity=100)
+    with pytest.raises(pdmesh.InputError, match=r"array='': is empty"):
+        pdmesh.adapt(case, solution, "", complexity=100)
+    with pytest.raises(pdmesh.InputError, match=r"values: one array of values needs its name as array='NAME', got "
+                                                r"array='u,v'"):
+        pdmesh.adapt(case, coarse, "u,v", values=data["u"], complexity=100)
+
+
+def test_out_and_transfer_errors_name_the_argument(problem, tmp_path):
+    case, solution, coarse, data = problem
+    # Refused before anything is written, as the command refuses them.
+    out = tmp_path / "out"
+    with pytest.raises(pdmesh.InputError, match=r"output.formats = \[png\] writes no mesh file .* give transfer=False"):
+        pdmesh.adapt(case, solution, "u", complexity=100, out=out, output={"formats": ["png"]})
+    assert not out.exists()
+    (tmp_path / "again").mkdir()
+    again = tmp_path / "again" / "solution.vtu"
+    again.write_bytes(solution.read_bytes())
+    with pytest.raises(pdmesh.InputError, match=r"solution=.*again/solution\.vtu is .*again/solution\.vtu, which this "
+                                                r"run writes: give another out"):
+        pdmesh.adapt(case, again, "u", complexity=100, out=tmp_path / "again")
+    assert [p.name for p in (tmp_path / "again").iterdir()] == ["solution.vtu"]
+    mesh_only = tmp_path / "mesh.vtu"
+    coarse.write(mesh_only)
+    with pytest.raises(pdmesh.InputError, match=r"solution: .*mesh\.vtu has no point data to transfer \(point arrays: "
+                                                r"kind, q; .*give transfer=False"):
+        pdmesh.adapt(case, mesh_only, "q", complexity=100)
+    at = coarse.points[:5]
+    with pytest.raises(pdmesh.InputError, match=r"no point array 'w' \(point arrays: u, v\)"):
+        pdmesh.transfer(solution, "w", at)
+    with pytest.raises(pdmesh.InputError, match=r"source: cannot read '.*missing\.vtu': no such file"):
+        pdmesh.transfer(tmp_path / "missing.vtu", "u", at)
+    with pytest.raises(pdmesh.InputError, match=r"values: a source file .* brings its own point data"):
+        pdmesh.transfer(solution, data["u"], at)
+    n = len(coarse.points)
+    with pytest.raises(pdmesh.InputError, match=rf"values: one row per point of the source, shape \({n},\) .*got shape "
+                                                rf"\({n - 1},\)"):
+        pdmesh.transfer((coarse.points, coarse.triangles), data["u"][:-1], at)
+    with pytest.raises(pdmesh.InputError, match=rf"values\['v'\]: one row per point .*got shape \(3,\)"):
+        pdmesh.transfer(coarse, {"u": data["u"], "v": [1.0, 2.0, 3.0]}, at)
+    with pytest.raises(pdmesh.InputError, match=r"values='u': the source Mesh has no point array 'u' \(point_data: "
+                                                r"none\)"):
+        pdmesh.transfer(coarse, "u", at)
+    with pytest.raises(pdmesh.InputError, match=r"values: a \(points, triangles\) source needs the values"):
+        pdmesh.transfer((coarse.points, coarse.triangles), "u", at)
+    with pytest.raises(pdmesh.InputError, match=r"source: expected a pdmesh.Mesh, a \(points, triangles\) pair .*got "
+                                                r"dict"):
+        pdmesh.transfer({"u": 1}, data["u"], at)
+    with pytest.raises(pdmesh.InputError, match=r"points: an \(M, 2\) array of points \(or a Mesh\) is needed, got "
+                                                r"shape \(5, 3\)"):
+        pdmesh.transfer(coarse, data["u"], np.c_[at, at[:, :1]])
+
+
+def test_a_layered_mesh_carries_the_solution_too(problem, tmp_path, command):
+    # With [[boundary_layer]] the command's solution.vtu is made on the mixed mesh (quads too).
+    case, solution, _, _ = problem
+    layered = tmp_path / "layered.toml"
+    layered.write_text(case.read_text() + '[[boundary_layer]]\ncurves = ["hole"]\nfirst_height = 0.01\n'
+                       'growth = 1.3\nthickness = 0.06\nelements = "quads"\n')
+    command("adapt", layered, "--solution", solution, "--array", "u", "--complexity", 120, "--out", tmp_path / "cmd",
+            "--quiet")
+    written = pdmesh.adapt(layered, solution, "u", complexity=120, out=tmp_path / "py")
+    assert len(written.quads) > 0
+    names = sorted(p.name for p in (tmp_path / "cmd").iterdir())
+    assert "solution.vtu" in names and sorted(p.name for p in (tmp_path / "py").iterdir()) == names
+    for name in names:
+        assert (tmp_path / "py" / name).read_bytes() == (tmp_path / "cmd" / name).read_bytes(), name
+    mesh = pdmesh.adapt(layered, solution, "u", complexity=120)
+    assert all(np.array_equal(mesh.point_data[k], written.point_data[k]) for k in ("u", "v"))

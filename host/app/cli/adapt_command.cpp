@@ -5,34 +5,15 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
-#include "app/cli/transfer_command.hpp"
 #include "app/pipeline/exit_codes.hpp"
 #include "app/pipeline/mesh_pipeline.hpp"
-#include "core/atomic_file.hpp"
 #include "core/errors.hpp"
 #include "core/input_file.hpp"
-#include "io/mesh_formats.hpp"
 #include "io/point_data_file.hpp"
 
 namespace pdmesh {
 
 namespace fs = std::filesystem;
-
-namespace {
-
-// The first mesh file the run writes that holds every point: the one solution.vtu is made on.
-std::optional<fs::path> written_mesh(const CaseConfig& config) {
-  for (const std::string& f : config.output.formats) {
-    if (!is_mesh_format(f) || f == "fort14" || f == "2dm") continue;
-    const auto& ext = mesh_format_extensions(f);
-    return config.out_dir / ("mesh" + (f == "triangle" ? std::string(".ele") : ext.front()));
-  }
-  return std::nullopt;
-}
-
-}  // namespace
-
-fs::path adapted_solution_path(const CaseConfig& config) { return config.out_dir / "solution.vtu"; }
 
 int run_adapt(const CaseConfig& config, const AdaptOptions& options) {
   const fs::path solution = config.spacing.file;
@@ -44,7 +25,7 @@ int run_adapt(const CaseConfig& config, const AdaptOptions& options) {
     if (std::find(present.begin(), present.end(), name) == present.end())
       throw InputError(fmt::format("--array {}: {} has no point array '{}' (point arrays: {})", name, options.solution,
                                    name, present.empty() ? "none" : fmt::format("{}", fmt::join(present, ", "))));
-  const std::optional<fs::path> mesh_file = written_mesh(config);
+  const std::optional<fs::path> mesh_file = adapted_mesh_file(config);
   const fs::path out = adapted_solution_path(config);
   if (options.transfer) {
     if (!mesh_file)
@@ -58,19 +39,13 @@ int run_adapt(const CaseConfig& config, const AdaptOptions& options) {
   }
   const int status = run_mesh(config);
   if (status != kExitOk || !options.transfer) return status;
-  MeshReadReport report;
-  SurfaceCells cells;
-  Mesh target = read_mesh(*mesh_file, report, &cells);
-  target.point_data.clear();
-  TransferCounts counts;
-  const TransferredArrays moved = transfer_point_arrays(solution.string(), {}, target, counts);
-  write_file_atomically(out, transferred_vtu_string(target, cells));
+  const AdaptedSolution a = write_adapted_solution(config, solution.string(), *mesh_file);
   if (!config.quiet)
     fmt::print(stderr,
                "adapt: {} from {} ({} points) onto {} ({} points; {} outside the old mesh, at most {:.3g} away): "
                "wrote {}\n",
-               fmt::join(moved.names, ", "), options.solution, moved.source_points, mesh_file->string(),
-               target.points.size(), counts.outside, counts.max_distance, out.string());
+               fmt::join(a.moved.names, ", "), options.solution, a.moved.source_points, mesh_file->string(),
+               a.target.points.size(), a.counts.outside, a.counts.max_distance, out.string());
   return status;
 }
 
