@@ -10,10 +10,10 @@
 // whose smallest Q is below MetricOpsOptions::repair_below: there a rise of that minimum is enough,
 // even when edges leave the window, since near a curved wall whose metric is much finer across it
 // than along it no chord can keep every edge in the window, and the guard would freeze the worst
-// triangle of the mesh there). A node is
-// tried again only when its ball changed since its last try (the editable mesh's dirty marks): with
-// the same ball it would make the same proposal and be refused again, so the sweeps end when nothing
-// is left to gain, and the result is the same as trying every node every time.
+// triangle of the mesh there). A node is tried again only when its ball changed since its last try
+// (the editable mesh's dirty marks): with the same ball it would make the same proposal and be
+// refused again, so the sweeps end when nothing is left to gain, and the result is the same as
+// trying every node every time.
 #include <cmath>
 #include <limits>
 
