@@ -293,7 +293,7 @@ TEST_CASE("polar-1 reaches issue 37's targets under the step's decay factors aro
   // polar-1's worst triangles lie in the first rows off its curved wall, where no tangential edge can be
   // in the window (docs/metric-fields.md, "Cases"); where the nodes stand when the step freezes
   // depends on the decay factor. The climb lifts a ball whose worst Q is below 0.35 even when edges
-  // leave the window, so that Q min clears 0.30 whatever the decay; >= 95 % of the edges stay in it.
+  // leave the window, so that Q min clears 0.30 at these decays; >= 95 % of the edges stay in it.
   for (const char* decay : {"0.985", "0.99", "0.995"}) {
     INFO(decay);
     const fs::path out = pdmesh_test::fresh_path(std::string("metric_polar1_") + decay);
