@@ -288,6 +288,33 @@ TEST_CASE(
   }
 }
 
+TEST_CASE("polar-1 reaches issue 37's targets under the step's decay factors around the default",
+          "[metric][case][cli][convergence]") {
+  // polar-1's worst triangles lie in the first rows off its curved wall, where no tangential edge can be
+  // in the window (docs/metric-fields.md, "Cases"); where the nodes stand when the step freezes
+  // depends on the decay factor. The climb lifts a ball whose worst Q is below 0.35 even when edges
+  // leave the window, so that Q min clears 0.30 at these decays; >= 95 % of the edges stay in it.
+  for (const char* decay : {"0.985", "0.99", "0.995"}) {
+    INFO(decay);
+    const fs::path out = pdmesh_test::fresh_path(std::string("metric_polar1_") + decay);
+    const auto r =
+        pdmesh_test::run_pdmesh(fmt::format("mesh '{}/cases/aniso/polar1/case.toml' --out '{}' --formats msh --check "
+                                            "--set simulation.metric_anneal={}",
+                                            PDMESH_SOURCE_DIR, out.string(), decay));
+    INFO(r.output);
+    REQUIRE(r.status == 0);
+    CHECK_THAT(r.output, Contains("mesh check (mesh cleaned in the metric): passed"));
+    const std::string said = "cleanup in the metric: ";
+    const auto at = r.output.find(said);
+    REQUIRE(at != std::string::npos);
+    CHECK(count_after(r.output.substr(at), " s, ") < 32);  // ended before the cap
+    const std::string json = pdmesh_test::slurp(out / "quality.json");
+    CHECK(json_number(json, "q_min") >= 0.30);
+    CHECK(json_number(json, "window_percent") >= 95.0);
+    fs::remove_all(out);
+  }
+}
+
 TEST_CASE("the nodes relax in the metric: the linear case's edges have unit metric length", "[metric][case][cli]") {
   // Nodes started isotropically at sqrt(h1 h2) and relaxed in the metric gave 98.9 % in the window and
   // Q min 0.56; started at unit metric length (init/metric_fill) and relaxed with population control in

@@ -260,6 +260,41 @@ TEST_CASE("metric cleanup: flips raise the smallest metric quality and never inv
   CHECK(c.result.nodes.size() == nodes.size());
 }
 
+TEST_CASE("metric cleanup: the climb lifts a ball's worst triangle even when edges leave the window",
+          "[metric_cleanup]") {
+  // Node 4 sits just above the long side 0-1 (2.8) of a fixed trapezoid, in the unit metric: its
+  // triangle on that side is flat (Q 0.08) and its edges to 0 and 1 are just inside the window
+  // (1.404 < sqrt2). Lifting it raises that triangle's Q (0.16 at y = 0.2, 0.36 at y = 0.45) but takes
+  // both edges out of the window from y = 0.2 on, which the window guard alone never allows.
+  Mesh mesh;
+  mesh.points = {{-1.4, 0.0}, {1.4, 0.0}, {0.7, 1.0}, {-0.7, 1.0}, {0.0, 0.1}};
+  mesh.kind = {NodeKind::Fixed, NodeKind::Fixed, NodeKind::Fixed, NodeKind::Fixed, NodeKind::Interior};
+  mesh.triangles = {{0, 1, 4}, {1, 2, 4}, {2, 3, 4}, {3, 0, 4}};
+  const ConstantMetricField unit(Metric{1.0, 0.0, 1.0});
+  const Geometry none;
+  const auto climbed = [&](double repair_below) {
+    cleanup::EditableMesh m(mesh, {}, {});
+    const cleanup::MetricEvaluator evaluator(m, unit);
+    m.set_score(&evaluator);
+    cleanup::MetricOpsOptions options;
+    options.repair_below = repair_below;
+    cleanup::MetricOps ops(m, evaluator, none, options);
+    for (int sweep = 0; sweep < 40 && ops.climb(0.8) > 0; ++sweep) {
+    }
+    double lowest = 1.0;
+    for (int t = 0; t < 4; ++t) {
+      CHECK(orient2d(m.p[m.v[t][0]], m.p[m.v[t][1]], m.p[m.v[t][2]]) > 0.0);
+      lowest = std::min(lowest, m.quality(t));
+    }
+    return lowest;
+  };
+  // With the guard everywhere (no repair) the node stops where its edges reach sqrt2.
+  CHECK(climbed(0.0) < 0.17);
+  // By default a ball whose worst Q is below 0.35 climbs past the window: clear of keep_floor's 0.3.
+  CHECK(cleanup::MetricOpsOptions{}.repair_below == 0.35);
+  CHECK(climbed(cleanup::MetricOpsOptions{}.repair_below) >= 0.33);
+}
+
 TEST_CASE("a boundary node collapses into its curve neighbour, and the journal undoes it", "[metric_cleanup]") {
   const Geometry g = unit_square(6);
   const GeometryTree tree(g);

@@ -23,6 +23,10 @@ constexpr double kClimbBelow = 0.8;
 // An outer iteration without splits or collapses that leaves the smallest Q where it was and moves the
 // mean Q by less than this has settled the mesh: the later ones only shave the edges' lengths.
 constexpr double kSettledMeanQ = 1e-4;
+// So many outer iterations in a row that leave the smallest Q where it was end the cleanup even with
+// edits left: near a curved wall a few splits and collapses can undo each other every iteration, and
+// would otherwise run it to its cap without changing the worst triangle.
+constexpr int kStalledIterations = 8;
 
 // The smallest and the mean Q of the live triangles.
 struct QualityLevel {
@@ -59,6 +63,7 @@ MetricCleanupResult clean_mesh_in_metric(const Mesh& mesh, const NodeSet& nodes,
   // A stop request ends the cleanup between two iterations (each leaves a valid mesh).
   InterruptPoll poll(1);
   QualityLevel level = quality_level(m);
+  int stalled = 0;  // iterations in a row that did not raise the smallest Q
   for (int iteration = 0; iteration < options.iterations; ++iteration) {
     poll.tick();
     std::size_t changes = 0, edits = 0;
@@ -81,9 +86,11 @@ MetricCleanupResult clean_mesh_in_metric(const Mesh& mesh, const NodeSet& nodes,
     result.stats.iterations_run = iteration + 1;
     if (changes == 0) break;
     const QualityLevel now = quality_level(m);
-    const bool settled = edits == 0 && !(now.min > level.min) && std::fabs(now.mean - level.mean) < kSettledMeanQ;
+    const bool raised = now.min > level.min;
+    stalled = raised ? 0 : stalled + 1;
+    const bool settled = edits == 0 && !raised && std::fabs(now.mean - level.mean) < kSettledMeanQ;
     level = now;
-    if (settled) break;
+    if (settled || stalled >= kStalledIterations) break;
   }
   cleanup::cleaned_mesh_and_nodes(m, mesh, nodes, spacing, result.mesh, result.nodes);
   result.metrics.reserve(result.mesh.points.size());

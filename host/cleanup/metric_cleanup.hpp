@@ -4,8 +4,9 @@
 // on its curve for a boundary edge), edge collapses (L < MetricOpsOptions::collapse_below, 0.8),
 // flips that raise the smallest metric quality Q, and node smoothing and climbing in the metric,
 // until an iteration changes nothing or has settled the mesh (no split or collapse, the smallest Q not
-// raised, the mean Q still), or the iteration cap. It works on the isotropic cleanup's EditableMesh and its
-// edits (mesh_edits.cpp), scored by a MetricEvaluator; the metric at every node, new or moved, is the field's there.
+// raised, the mean Q still), eight iterations in a row have not raised the smallest Q, or the
+// iteration cap. It works on the isotropic cleanup's EditableMesh and its edits (mesh_edits.cpp),
+// scored by a MetricEvaluator; the metric at every node, new or moved, is the field's there.
 // Triangles stay strictly counter-clockwise in physical space (exact orient2d); fixed nodes never
 // move or go; boundary nodes slide and are inserted or removed only along their own curve.
 #pragma once

@@ -35,6 +35,10 @@ struct MetricOpsOptions {
   double collapse_max_length = kMetricLong;
   // Smoothing: step lengths tried per move (the proposal, then halved).
   int line_search = 4;
+  // The climb moves a node whose ball's smallest Q is below this whenever that minimum rises, even
+  // when edges of its ball leave the window [1/√2, √2]; above it no move takes an edge out of the
+  // window. Above keep_floor, so that the worst triangles are lifted clear of it.
+  double repair_below = 0.35;
 };
 
 struct MetricOpsCounts {
@@ -86,7 +90,8 @@ class MetricOps {
   bool move_vertex(int a, bool climb);
   Vec2 proposal(int a) const;
   Vec2 ascent(int a) const;
-  bool try_position(int a, Vec2 to, double to_arc, double old_min, double old_error, int old_outside);
+  // repair: the window guard yields to a rise of the ball's smallest Q (repair_below).
+  bool try_position(int a, Vec2 to, double to_arc, double old_min, double old_error, int old_outside, bool repair);
 
   // The nodes whose ball changed since the smoothing (climb) last tried them: the editable mesh's
   // dirty marks, taken by absorb_changes() before each sweep.

@@ -6,10 +6,14 @@
 // orient2d), the ball's smallest Q does not drop, no more of its edges than before lie outside the
 // window [1/√2, √2], and either that minimum rises or the ball's edges come nearer unit length (the
 // sum of ln² L drops). The metric at the new place is the field's. The climb moves the nodes of the
-// triangles below a Q up the gradient of their ball's worst Q instead (the same guards). A node is
-// tried again only when its ball changed since its last try (the editable mesh's dirty marks): with
-// the same ball it would make the same proposal and be refused again, so the sweeps end when nothing
-// is left to gain, and the result is the same as trying every node every time.
+// triangles below a Q up the gradient of their ball's worst Q instead (the same guards, but for a ball
+// whose smallest Q is below MetricOpsOptions::repair_below: there a rise of that minimum is enough,
+// even when edges leave the window, since near a curved wall whose metric is much finer across it
+// than along it no chord can keep every edge in the window, and the guard would freeze the worst
+// triangle of the mesh there). A node is tried again only when its ball changed since its last try
+// (the editable mesh's dirty marks): with the same ball it would make the same proposal and be
+// refused again, so the sweeps end when nothing is left to gain, and the result is the same as
+// trying every node every time.
 #include <cmath>
 #include <limits>
 
@@ -42,7 +46,8 @@ Vec2 MetricOps::proposal(int a) const {
   return (1.0 / static_cast<double>(ring_.size())) * sum;
 }
 
-bool MetricOps::try_position(int a, Vec2 to, double to_arc, double old_min, double old_error, int old_outside) {
+bool MetricOps::try_position(int a, Vec2 to, double to_arc, double old_min, double old_error, int old_outside,
+                             bool repair) {
   const Metric ma = metric_.at(to);
   double new_min = std::numeric_limits<double>::infinity();
   for (int t : fan_) {
@@ -61,8 +66,8 @@ bool MetricOps::try_position(int a, Vec2 to, double to_arc, double old_min, doub
     new_error += std::log(l) * std::log(l);
     new_outside += outside_window(l) ? 1 : 0;
   }
-  if (new_outside > old_outside) return false;
   const bool rises = new_min > old_min + kMoveGain * std::fabs(old_min);
+  if (new_outside > old_outside && !(repair && rises)) return false;
   const bool nearer = new_error < old_error * (1.0 - kMoveGain);
   if (!rises && !(nearer && new_min >= old_min)) return false;
   m_.move(a, to, to_arc, fan_);
@@ -112,6 +117,7 @@ bool MetricOps::move_vertex(int a, bool climb) {
     old_error += std::log(l) * std::log(l);
     old_outside += outside_window(l) ? 1 : 0;
   }
+  const bool repair = climb && old_min < options_.repair_below;
   const Vec2 from = m_.p[a];
   Vec2 step = climb ? ascent(a) : proposal(a) - from;
   double lo = 0.0, hi = 0.0;
@@ -129,7 +135,7 @@ bool MetricOps::move_vertex(int a, bool climb) {
       to_arc = cp.arc;
     }
     if (to == from) return false;
-    if (try_position(a, to, to_arc, old_min, old_error, old_outside)) return true;
+    if (try_position(a, to, to_arc, old_min, old_error, old_outside, repair)) return true;
   }
   return false;
 }
