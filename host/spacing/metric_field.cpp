@@ -112,11 +112,11 @@ void ExpressionMetricField::at_many(const std::vector<Vec2>& p, std::vector<Metr
                                     std::vector<int>& guesses) const {
   out.resize(p.size());
   guesses.resize(p.size());
-  const Impl& impl = *impl_;
+  Impl& impl = *impl_;
   parallel_for_scratch<LeasePool<Parsers>::Lease>(
       p.size(),
       [&](LeasePool<Parsers>::Lease& parsers, std::size_t i) {
-        if (!parsers) parsers = impl_->pool.take();
+        if (!parsers) parsers = impl.pool.take();
         out[i] = impl.evaluate(*parsers, p[i]);
       },
       kExpressionPointsPerThread);

@@ -28,6 +28,9 @@ def _suffix_formats() -> dict[str, str]:
 
 
 _SUFFIX_FORMATS = _suffix_formats()
+_PICTURES = (".png", ".svg")
+# Jupyter: SVG for meshes up to this many triangles (each is an element), PNG beyond.
+_SVG_REPR_LIMIT = 20_000
 
 
 def _point_arrays(pairs: Any) -> dict[str, np.ndarray]:
@@ -39,9 +42,6 @@ def _point_arrays(pairs: Any) -> dict[str, np.ndarray]:
         a.flags.writeable = False
         out[str(name)] = a
     return out
-_PICTURES = (".png", ".svg")
-# Jupyter: SVG for meshes up to this many triangles (each is an element), PNG beyond.
-_SVG_REPR_LIMIT = 20_000
 
 
 @dataclass(frozen=True, eq=False, repr=False)
