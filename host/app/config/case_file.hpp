@@ -82,6 +82,13 @@ struct CaseConfig {
   struct Geometry {
     std::vector<std::filesystem::path> files;  // resolved relative to the case file
     std::vector<std::string> curve_names;      // optional, in file/curve order
+    // geometry.region_names: names of the geometry's regional attributes, ascending by attribute
+    // (GeometryRegion::name); `where` is the case file's "FILE:LINE" of each, for the geometry's check.
+    struct RegionName {
+      double attribute = 0.0;
+      std::string name, where;
+    };
+    std::vector<RegionName> region_names;
     double join_tolerance = 1e-9;
     double corner_angle = 30.0;  // degrees
     // geometry.hull (bool; absent: automatic): .poly files mesh the convex hull of their vertices.
