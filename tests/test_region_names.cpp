@@ -36,8 +36,8 @@ std::map<double, std::string> names_of(const Mesh& m) {
 // `left_tag`, the right one's in `right_tag`, the outline in the line group 1 "wall"; MSH 2.2 as Gmsh
 // writes it, with the 2-D names given by `surface_names` ("TAG \"NAME\"" lines).
 std::string two_squares_msh(int left_tag, int right_tag, const std::map<int, std::string>& surface_names) {
-  std::string s = "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$PhysicalNames\n" +
-                  std::to_string(1 + surface_names.size()) + "\n1 1 \"wall\"\n";
+  std::string s = "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$PhysicalNames\n" + std::to_string(1 + surface_names.size()) +
+                  "\n1 1 \"wall\"\n";
   for (const auto& [tag, name] : surface_names) s += "2 " + std::to_string(tag) + " \"" + name + "\"\n";
   s += "$EndPhysicalNames\n$Nodes\n6\n1 0 0 0\n2 1 0 0\n3 2 0 0\n4 0 1 0\n5 1 1 0\n6 2 1 0\n$EndNodes\n";
   s += "$Elements\n10\n";
@@ -60,9 +60,7 @@ Mesh parsed(const std::string& text) {
   return parse_msh("gmsh.msh", text, report);
 }
 
-void write_text(const fs::path& p, const std::string& text) {
-  std::ofstream(p, std::ios::binary) << text;
-}
+void write_text(const fs::path& p, const std::string& text) { std::ofstream(p, std::ios::binary) << text; }
 
 }  // namespace
 
@@ -138,7 +136,8 @@ TEST_CASE("a VTU file's region names must match their attributes") {
 TEST_CASE("geometry.region_names names a .poly's regions in the mesh files") {
   const fs::path dir = pdmesh_test::fresh_dir("region_names_case");
   std::string toml = pdmesh_test::slurp(kData + "hole_two_regions.toml");
-  toml.replace(toml.find("files = [\"hole_two_regions.poly\"]"), std::string("files = [\"hole_two_regions.poly\"]").size(),
+  toml.replace(toml.find("files = [\"hole_two_regions.poly\"]"),
+               std::string("files = [\"hole_two_regions.poly\"]").size(),
                "files = [\"" + kData + "hole_two_regions.poly\"]\nregion_names = { 1 = \"steel\", 2 = \"copper\" }");
   write_text(dir / "case.toml", toml);
   const fs::path out = dir / "out";

@@ -98,6 +98,9 @@ struct CaseConfig {
     // Embedded points given in memory (the Python API): nodes the mesh must have
     // (docs/geometry-input.md, "Embedded constraints").
     std::vector<RawPoint> given_points;
+    // Regional attributes given in memory (the Python API), each with its point, name and a label
+    // for messages (GeometryRegion::file and line).
+    std::vector<GeometryRegion> given_regions;
     CurveKind curves = CurveKind::Polyline;  // the same in both presets (docs/initialization.md, "Measured")
     // Healing at the mesh's resolution (geometry/heal.hpp); the preset sets it (off in the thesis).
     bool heal = true;
