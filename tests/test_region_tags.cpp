@@ -156,11 +156,15 @@ TEST_CASE("regions of files pdmesh did not write: Medit references without names
       "$EndPhysicalNames\n$Nodes\n6\n1 0 0 0\n2 1 0 0\n3 2 0 0\n4 0 1 0\n5 1 1 0\n6 2 1 0\n$EndNodes\n"
       "$Elements\n4\n1 2 2 5 1 1 2 5\n2 2 2 5 1 1 5 4\n3 2 2 9 2 2 3 6\n4 2 2 9 2 2 6 5\n$EndElements\n";
   CHECK(parse_msh("g.msh", msh, report).region == std::vector<double>{5, 5, 9, 9});
-  // One Gmsh surface group is the whole domain: no regions.
+  // One named Gmsh surface group is one region, so that its name is kept (test_region_names.cpp);
+  // without a name it is the whole domain: no regions.
   std::string one = msh;
   one.replace(one.find("2 2 9 2 2 3 6"), 13, "2 2 5 1 2 3 6");
   one.replace(one.find("2 2 9 2 2 6 5"), 13, "2 2 5 1 2 6 5");
-  CHECK(parse_msh("one.msh", one, report).region.empty());
+  CHECK(parse_msh("one.msh", one, report).region == std::vector<double>{5, 5, 5, 5});
+  std::string unnamed = one;
+  unnamed.replace(unnamed.find("$PhysicalNames"), unnamed.find("$Nodes") - unnamed.find("$PhysicalNames"), "");
+  CHECK(parse_msh("unnamed.msh", unnamed, report).region.empty());
 }
 
 TEST_CASE("pdmesh mesh on a .poly with a regional attribute writes its tag", "[cli]") {

@@ -50,6 +50,9 @@ struct GeometryRegion {
   double max_area = -1.0;  // <= 0: no cap
   std::string file;
   int line = 0;
+  // The attribute's name (a mesh file's physical surface or reference name, geometry.region_names);
+  // empty: the writers call it "region_<attribute>".
+  std::string name;
 };
 
 // A name that stands for several curves (a mesh file's boundary name on separate stretches, which

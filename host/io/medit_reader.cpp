@@ -14,6 +14,7 @@
 #include "core/errors.hpp"
 #include "core/input_file.hpp"
 #include "io/mesh_io_common.hpp"
+#include "io/mixed_mesh.hpp"
 #include "io/text_file.hpp"
 
 namespace pdmesh {
@@ -237,25 +238,29 @@ std::vector<Metric> parse_sol(LineScanner& s, const std::vector<Vec2>& points, c
 }
 
 // Per triangle, its region's attribute (Mesh::region): the writer's references are j + 1 for the
-// j-th region, named "region_<a>" in a comment, so the comment gives the attribute; a reference no
-// comment names (mmg2d writes none) is taken as the attribute, which the writer then names
-// "region_<N>". Empty when every reference is 0, and for a file whose comments name a region of
-// another kind (a layered run's "boundary_layer": its cells are read as SurfaceCells).
-std::vector<double> triangle_regions(const MeditData& d) {
+// j-th region, named "region_<a>" in a comment, so the comment gives the attribute; a reference a
+// comment gives another name is its own attribute, the name in `names`; a reference no comment names
+// (mmg2d writes none) is taken as the attribute, which the writer then names "region_<N>". Empty
+// when every reference is 0, and for a file whose comments name a layered run's "boundary_layer" (its
+// cells are read as SurfaceCells).
+std::vector<double> triangle_regions(const MeditData& d, std::vector<RegionName>& names) {
   std::map<long long, double> attribute;
+  std::map<double, std::string> named;
   for (const auto& [ref, name] : d.names.regions) {
+    if (name == kLayerRegion) return {};
     const std::optional<double> a = region_attribute(name);
-    if (!a) return {};
-    attribute[ref] = *a;
+    attribute[ref] = a ? *a : static_cast<double>(ref);
+    if (!a) named[static_cast<double>(ref)] = name;
   }
   bool any = !attribute.empty();
   for (const long long ref : d.triangle_refs) any = any || ref != 0;
   if (!any) return {};
+  for (const auto& [a, name] : named) names.push_back({a, name});
   std::vector<double> region;
   region.reserve(d.triangle_refs.size());
   for (const long long ref : d.triangle_refs) {
-    const auto named = attribute.find(ref);
-    region.push_back(named != attribute.end() ? named->second : static_cast<double>(ref));
+    const auto known = attribute.find(ref);
+    region.push_back(known != attribute.end() ? known->second : static_cast<double>(ref));
   }
   return region;
 }
@@ -320,7 +325,7 @@ Mesh parse_medit_mesh(const std::string& file_label, std::string content, MeshRe
   }
   for (std::size_t k = 0; k < d.edges.size(); ++k)
     mesh.boundary_edges.push_back({d.edges[k][0], d.edges[k][1], curve_of[d.edge_refs[k]]});
-  mesh.region = triangle_regions(d);
+  mesh.region = triangle_regions(d, mesh.region_names);
   mesh.kind = node_kinds(d, mesh);
   orient_triangles_ccw(mesh, report);
   if (cells == nullptr) {

@@ -18,10 +18,10 @@ namespace pdmesh {
 // The mesh of a .mesh file: its points, triangles (clockwise ones turned) and, per edge reference N,
 // a curve named by the comment "# ref N: curve NAME" where the file has one (io/medit_writer.hpp
 // writes them), else "refN", the curves in the order of their numbers. Triangle references are the
-// regions (Mesh::region: the attribute a of a comment "# ref N: region region_<a>", else N; none
-// when all are 0). With Corners or RequiredVertices the node kinds (those Fixed, the edges' other
-// vertices Boundary, the rest Interior), else none. Vertex references are not kept. With `cells`,
-// the quadrilaterals too (counter-clockwise), and the cells whose reference a comment
+// regions (Mesh::region: the attribute a of a comment "# ref N: region region_<a>", else N, and
+// Mesh::region_names the names other comments give; none when all are 0). With Corners or RequiredVertices the node
+// kinds (those Fixed, the edges' other vertices Boundary, the rest Interior), else none. Vertex references are not
+// kept. With `cells`, the quadrilaterals too (counter-clockwise), and the cells whose reference a comment
 // "# ref N: region NAME" names cells->region are in it (region_found: the file has that comment);
 // without `cells` the quadrilaterals are skipped with a note. Throws InputError
 // "FILE:LINE: what (got 'TEXT')" on a keyword it does not know, Dimension other than 2, a vertex

@@ -57,6 +57,17 @@ void check_mesh_for_writing(const Mesh& mesh, const std::string& what) {
                                    d.values.size(), n, d.components));
 }
 
+std::string region_label(const Mesh& mesh, double attribute) {
+  const auto named = std::lower_bound(mesh.region_names.begin(), mesh.region_names.end(), attribute,
+                                      [](const RegionName& r, double a) { return r.attribute < a; });
+  if (named == mesh.region_names.end() || named->attribute != attribute || named->name.empty())
+    return fmt::format("region_{}", attribute);
+  std::string name = named->name;
+  for (char& ch : name)
+    if (ch == '"' || ch == '\n' || ch == '\r') ch = '_';
+  return name;
+}
+
 RegionSurfaces region_surfaces(const Mesh& mesh) {
   RegionSurfaces s;
   s.of_triangle.assign(mesh.triangles.size(), 0);
@@ -67,7 +78,7 @@ RegionSurfaces region_surfaces(const Mesh& mesh) {
   std::vector<double> attributes = mesh.region;
   std::sort(attributes.begin(), attributes.end());
   attributes.erase(std::unique(attributes.begin(), attributes.end()), attributes.end());
-  for (const double a : attributes) s.names.push_back(fmt::format("region_{}", a));
+  for (const double a : attributes) s.names.push_back(region_label(mesh, a));
   for (std::size_t i = 0; i < mesh.triangles.size(); ++i)
     s.of_triangle[i] =
         static_cast<int>(std::lower_bound(attributes.begin(), attributes.end(), mesh.region[i]) - attributes.begin());

@@ -75,8 +75,12 @@ std::string curve_label(const Mesh& mesh, std::size_t c, bool no_blanks = false)
 // `kind` is neither empty nor one per point. Every writer calls this first.
 void check_mesh_for_writing(const Mesh& mesh, const std::string& what);
 
+// The name of regional attribute `attribute` as written: its Mesh::region_names entry (double quotes
+// and line breaks as '_'), else "region_<attribute>".
+std::string region_label(const Mesh& mesh, double attribute);
+
 // The triangles' subdomains as the writers name them: one "domain" without regional attributes
-// (Mesh::region empty), otherwise one "region_<attribute>" per distinct attribute, ascending, and per
+// (Mesh::region empty), otherwise one region_label per distinct attribute, ascending, and per
 // triangle the index of its attribute there (MSH physical surfaces, Medit triangle references).
 struct RegionSurfaces {
   std::vector<std::string> names;
@@ -86,6 +90,8 @@ struct RegionSurfaces {
 RegionSurfaces region_surfaces(const Mesh& mesh);
 // The attribute a region_surfaces name "region_<a>" stands for (the readers take regions back by it);
 // nullopt for any other name ("domain", "boundary_layer", a name a user gave).
+// A reader's group or reference names other than these stand for their own attribute (the group's tag,
+// the reference) and go into Mesh::region_names.
 std::optional<double> region_attribute(std::string_view name);
 
 // Boundary edge indices grouped by curve (stable: curve order, then file order within a curve).

@@ -436,11 +436,13 @@ void assemble_cells(const std::string& file, const MshData& d, const Mesh& mesh,
 }
 
 // Per triangle, its region's attribute (Mesh::region), from its 2-D physical group: a group named
-// "region_<a>" (the writer's names) gives a, any other group its tag, none 0. Empty when the
-// triangles lie in one group that names no region (the writer's "domain", a Gmsh surface) or in
-// none, and for a layered run's file (a group named boundary_layer: its cells are SurfaceCells').
-std::vector<double> triangle_regions(const MshData& d) {
+// "region_<a>" (the writer's names) gives a, any other group its tag, none 0; a group with another
+// name (not the writer's "domain") is a named region, its name in `names`. Empty when the triangles
+// lie in one group that names no region (the writer's "domain", an unnamed Gmsh surface) or in none,
+// and for a layered run's file (a group named boundary_layer: its cells are SurfaceCells').
+std::vector<double> triangle_regions(const MshData& d, std::vector<RegionName>& names) {
   std::map<long long, double> attribute;  // physical tag -> attribute
+  std::map<double, std::string> named;    // attribute -> a user's name
   bool named_region = false;
   for (const auto& e : d.triangles) {
     if (attribute.count(e.physical) != 0) continue;
@@ -448,10 +450,14 @@ std::vector<double> triangle_regions(const MshData& d) {
     if (name != d.surface_names.end() && name->second == kLayerRegion) return {};
     const std::optional<double> a =
         name != d.surface_names.end() ? region_attribute(name->second) : std::optional<double>();
-    named_region = named_region || a.has_value();
+    const bool user_name =
+        e.physical != 0 && !a && name != d.surface_names.end() && !name->second.empty() && name->second != kCoreRegion;
+    named_region = named_region || a.has_value() || user_name;
     attribute[e.physical] = a ? *a : static_cast<double>(e.physical);
+    if (user_name) named[attribute[e.physical]] = name->second;
   }
   if (attribute.size() < 2 && !named_region) return {};
+  for (const auto& [a, name] : named) names.push_back({a, name});
   std::vector<double> region;
   region.reserve(d.triangles.size());
   for (const auto& e : d.triangles) region.push_back(attribute[e.physical]);
@@ -484,7 +490,7 @@ Mesh assemble(const std::string& file, MshData& d, MeshReadReport& report) {
     mesh.triangles.push_back(
         {resolve(d, file, e, e.nodes[0]), resolve(d, file, e, e.nodes[1]), resolve(d, file, e, e.nodes[2])});
   }
-  mesh.region = triangle_regions(d);
+  mesh.region = triangle_regions(d, mesh.region_names);
   // $Periodic: the curves' links, their entities resolved as the lines' (physical group, else entity).
   std::map<long long, long long> entity_phys;  // curve entity -> the physical tag of its lines
   for (const auto& e : d.lines) entity_phys.emplace(e.entity, e.physical);

@@ -16,8 +16,9 @@ namespace pdmesh {
 // Other element types are skipped and counted in `report`. $Periodic links of curves go into
 // report.periodic (their entities resolved to curves as their lines are; links of points and
 // surfaces are skipped with a note). The triangles' 2-D physical groups are their regions
-// (Mesh::region: a group "region_<a>" gives a, another its tag; none when all lie in one group that
-// names no region, or for a layered run's file). Throws InputError "FILE:LINE: ..."
+// (Mesh::region: a group "region_<a>" gives a, another its tag, and a name other than "domain" goes
+// into Mesh::region_names; none when all lie in one group that names no region, or for a layered
+// run's file). Throws InputError "FILE:LINE: ..."
 // on truncation, bad counts, unknown node tags, binary files and unsupported versions.
 // With `data`, the $NodeData view named data->wanted (its first string tag; of several blocks of
 // that name, the last: the latest time step) is read into data->array, with the node tag of every

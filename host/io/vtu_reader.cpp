@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <charconv>
+#include <cmath>
 #include <cstring>
 #include <map>
 
@@ -374,6 +375,23 @@ void read_region(const VtuFile& f, SurfaceCells& cells, const CellIndex& index) 
     cells.quad_in_region[i] = v[static_cast<std::size_t>(index.quads[i])] != 0;
 }
 
+// The names of a FieldData array of character codes, each name ended by a 0 (vtu_writer's curve and
+// region names).
+std::vector<std::string> names_of(const VtuFile& f, const ArrayInfo& a) {
+  std::vector<std::string> names;
+  std::string name;
+  for (double v : f.values(a)) {
+    if (v == 0) {
+      names.push_back(name);
+      name.clear();
+    } else {
+      if (!(v >= 1 && v <= 255)) f.fail(a.pos, fmt::format("{} holds {}, not a character code", a.name, v));
+      name += static_cast<char>(static_cast<unsigned char>(v));
+    }
+  }
+  return names;
+}
+
 // pdmesh's own arrays: the node kind (PointData), the triangles' regions (CellData "region", the
 // regional attribute of each cell) and the curves (FieldData).
 void read_pdmesh_arrays(const VtuFile& f, Mesh& mesh, const CellIndex& index) {
@@ -396,16 +414,19 @@ void read_pdmesh_arrays(const VtuFile& f, Mesh& mesh, const CellIndex& index) {
       }
     }
   }
-  if (const ArrayInfo* a = f.find("FieldData", "curve_names")) {
-    std::string name;
-    for (double v : f.values(*a)) {
-      if (v == 0) {
-        mesh.curve_names.push_back(name);
-        name.clear();
-      } else {
-        if (!(v >= 1 && v <= 255)) f.fail(a->pos, fmt::format("curve_names holds {}, not a character code", v));
-        name += static_cast<char>(static_cast<unsigned char>(v));
-      }
+  if (const ArrayInfo* a = f.find("FieldData", "curve_names")) mesh.curve_names = names_of(f, *a);
+  if (const ArrayInfo* names = f.find("FieldData", "region_names")) {
+    const ArrayInfo* attributes = f.find("FieldData", "region_name_attributes");
+    if (attributes == nullptr) f.fail(names->pos, "region_names without region_name_attributes");
+    const std::vector<double> a = f.values(*attributes);
+    std::vector<std::string> read = names_of(f, *names);
+    if (read.size() != a.size())
+      f.fail(names->pos, fmt::format("region_names holds {} names for {} attributes", read.size(), a.size()));
+    for (std::size_t k = 0; k < a.size(); ++k) {
+      if (!std::isfinite(a[k])) f.fail(attributes->pos, fmt::format("region attribute {} is not finite", a[k]));
+      if (k > 0 && !(a[k] > a[k - 1]))
+        f.fail(attributes->pos, fmt::format("region attributes are not ascending: {} after {}", a[k], a[k - 1]));
+      mesh.region_names.push_back({a[k], std::move(read[k])});
     }
   }
   if (const ArrayInfo* a = f.find("FieldData", "boundary_edges")) {

@@ -169,6 +169,20 @@ void write_vtu_curves(const Mesh& mesh, TextSink& sink, VtuFormat format, std::s
   const auto name_tuples = " NumberOfTuples=\"" + std::to_string(names.size()) + '"';
   data_array<std::uint8_t>(sink, format, field, "curve_names", name_tuples, names.size(), 1,
                            [&](std::size_t i, int) { return static_cast<unsigned char>(names[i]); });
+  if (!mesh.region.empty() && !mesh.region_names.empty()) {
+    // The regions' names the same way, with the attribute each names.
+    std::string regions;
+    for (const RegionName& r : mesh.region_names) {
+      regions += region_label(mesh, r.attribute);
+      regions += '\0';
+    }
+    const auto attribute_tuples = " NumberOfTuples=\"" + std::to_string(mesh.region_names.size()) + '"';
+    data_array<double>(sink, format, field, "region_name_attributes", attribute_tuples, mesh.region_names.size(), 1,
+                       [&](std::size_t i, int) { return mesh.region_names[i].attribute; });
+    const auto region_tuples = " NumberOfTuples=\"" + std::to_string(regions.size()) + '"';
+    data_array<std::uint8_t>(sink, format, field, "region_names", region_tuples, regions.size(), 1,
+                             [&](std::size_t i, int) { return static_cast<unsigned char>(regions[i]); });
+  }
   out += indent;
   out += "</FieldData>\n";
 }

@@ -17,6 +17,13 @@ struct BoundaryEdge {
 
 // A point-data array beside a mesh's own (a motion run's "node_id", the arrays `pdmesh transfer`
 // interpolates): `components` values per point, point-major; `integer` writes them as integers.
+// The name of a regional attribute (Mesh::region): the writers call its region `name` instead of
+// "region_<attribute>" (io/mesh_io_common.hpp, region_surfaces).
+struct RegionName {
+  double attribute = 0.0;
+  std::string name;
+};
+
 struct PointValues {
   std::string name;
   int components = 1;
@@ -40,6 +47,9 @@ struct Mesh {
   // region it lies in, 0 outside every region (mesh/region_tags.hpp). Written as the physical surface
   // of each triangle (MSH), cell data "region" (VTU) and the triangle attribute (Triangle .ele).
   std::vector<double> region;
+  // Names of attributes of `region`, ascending by attribute, at most one per attribute (from the
+  // geometry's regions or a mesh file's group names); an attribute without one is "region_<a>".
+  std::vector<RegionName> region_names;
   // More point data, written by the VTU writer after "kind" and "q" (empty for a normal run).
   std::vector<PointValues> point_data;
 };

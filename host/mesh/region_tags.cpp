@@ -5,6 +5,8 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <map>
+#include <string>
 #include <unordered_map>
 #include <utility>
 
@@ -137,6 +139,15 @@ std::vector<double> region_tags(const Mesh& mesh, const std::vector<GeometryRegi
     }
   }
   return tag;
+}
+
+std::vector<RegionName> region_names_of(const std::vector<GeometryRegion>& regions) {
+  std::map<double, std::string> names;
+  for (const GeometryRegion& r : regions)
+    if (!r.name.empty()) names.emplace(r.attribute, r.name);
+  std::vector<RegionName> out;
+  for (auto& [attribute, name] : names) out.push_back({attribute, std::move(name)});
+  return out;
 }
 
 }  // namespace pdmesh

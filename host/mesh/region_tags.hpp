@@ -15,4 +15,8 @@ namespace pdmesh {
 // curved boundary) starts from the triangle with the nearest centroid.
 std::vector<double> region_tags(const Mesh& mesh, const std::vector<GeometryRegion>& regions, const Geometry& geometry);
 
+// The names of the regions' attributes (Mesh::region_names): per attribute the first region's name
+// that is not empty, ascending by attribute.
+std::vector<RegionName> region_names_of(const std::vector<GeometryRegion>& regions);
+
 }  // namespace pdmesh

@@ -13,6 +13,32 @@ from . import _settings
 from .errors import InputError
 
 
+def _region_rows(regions: Any) -> tuple[np.ndarray, list[str]]:
+    """(K, 3) x, y, attribute rows and their names (empty: none) of ``regions=``: a mapping name ->
+    point (attributes 1, 2, ... in its order) or rows of x, y, attribute."""
+    if isinstance(regions, Mapping):
+        names = [str(k) for k in regions]
+        for name in names:
+            reserved = name in ("domain", "boundary_layer") or name.startswith("region_")
+            if not name or any(c.isspace() or c == '"' for c in name) or reserved:
+                raise InputError(f"regions: '{name}' is not a plain name (no blanks or quotes; not domain, "
+                                 f"boundary_layer or region_...)")
+        points = _as_xy([regions[k] for k in regions] if regions else np.zeros((0, 2)), "regions")
+        rows = np.column_stack([points, np.arange(1, len(points) + 1, dtype=np.float64)])
+        return rows, names
+    rows = np.asarray(regions, dtype=np.float64)
+    if rows.ndim == 1 and rows.shape[0] == 3:
+        rows = rows[None, :]  # one region
+    if rows.ndim != 2 or (len(rows) and rows.shape[1] != 3):
+        raise InputError(f"regions: expected a mapping name -> (x, y) or (K, 3) rows of x, y, attribute; "
+                         f"got shape {rows.shape}")
+    if not np.all(np.isfinite(rows)):
+        raise InputError("regions: the rows hold a value that is not finite")
+    if np.any(rows[:, 2] == 0):
+        raise InputError("regions: attribute 0 means no region")
+    return rows.reshape(-1, 3), []
+
+
 def _as_xy(a: Any, what: str) -> np.ndarray:
     try:
         xy = np.ascontiguousarray(np.asarray(a, dtype=np.float64))
@@ -40,15 +66,21 @@ class Geometry:
     edges (roads, levees, cracks, material interfaces; a closed one bounds a subdomain, not a hole);
     ``points=`` an (M, 2) array of points that become mesh nodes. ``names`` then names the boundary
     curves first, then the constraints (docs/geometry-input.md, "Embedded constraints").
+
+    Regions: ``regions={"steel": (x, y), "copper": (x, y)}`` tags the part of the domain that holds
+    each point (bounded by the boundary and closed constraints) with attributes 1, 2, ... in that
+    order, named by the keys; or a (K, 3) array of x, y, attribute rows without names. The mesh's
+    ``regions`` and ``region_names`` give them per triangle, and the mesh files carry them
+    (docs/mesh-formats.md, "Regions"). A point outside the domain or on a curve is an InputError.
     """
 
     def __init__(self, rings: Iterable[Any] | Any, names: Sequence[str] | None = None, *,
-                 constraints: Iterable[Any] | None = None, points: Any = None):
+                 constraints: Iterable[Any] | None = None, points: Any = None, regions: Any = None):
         # A GeoJSON-like mapping ({"type": "Polygon", "coordinates": ...}) as a shapely polygon.
         if hasattr(rings, "__geo_interface__") or isinstance(rings, Mapping):
             other = Geometry.from_geo_interface(rings, names)
             self._init(other._files, other._curves, other._names, other._label)
-            self._embed(constraints, points)
+            self._embed(constraints, points, regions)
             return
         if isinstance(rings, np.ndarray) and rings.ndim == 2:
             rings = [rings]  # one ring given as an (N, 2) array
@@ -59,7 +91,7 @@ class Geometry:
                 xy = np.vstack([xy, xy[:1]])
             curves.append(xy)
         self._init(None, curves, names, "rings")
-        self._embed(constraints, points)
+        self._embed(constraints, points, regions)
 
     def _init(self, files, curves, names, label) -> None:
         self._files = files
@@ -69,8 +101,10 @@ class Geometry:
         self._info = None
         self._constraints: list[np.ndarray] = []
         self._points = np.zeros((0, 2))
+        self._regions = np.zeros((0, 3))
+        self._region_names: list[str] = []
 
-    def _embed(self, constraints: Iterable[Any] | None, points: Any) -> None:
+    def _embed(self, constraints: Iterable[Any] | None, points: Any, regions: Any = None) -> None:
         if constraints is not None:
             if isinstance(constraints, np.ndarray) and constraints.ndim == 2:
                 constraints = [constraints]  # one polyline given as an (N, 2) array
@@ -80,8 +114,11 @@ class Geometry:
             if xy.ndim == 1 and xy.shape[0] in (2, 3):
                 xy = xy[None, :]  # one point
             self._points = _as_xy(xy if len(xy) else np.zeros((0, 2)), "points")
-        if (self._constraints or len(self._points)) and self._files is not None:
-            raise InputError("constraints= and points= go with curves given in memory, not with geometry files")
+        if regions is not None:
+            self._regions, self._region_names = _region_rows(regions)
+        if (self._constraints or len(self._points) or len(self._regions)) and self._files is not None:
+            raise InputError("constraints=, points= and regions= go with curves given in memory, not with geometry "
+                             "files")
 
     @classmethod
     def from_file(cls, *paths: str | os.PathLike, names: Sequence[str] | None = None) -> "Geometry":
@@ -95,12 +132,12 @@ class Geometry:
 
     @classmethod
     def from_curves(cls, curves: Iterable[Any], names: Sequence[str] | None = None, *,
-                    constraints: Iterable[Any] | None = None, points: Any = None) -> "Geometry":
+                    constraints: Iterable[Any] | None = None, points: Any = None, regions: Any = None) -> "Geometry":
         """Open polylines, (N, 2) arrays, joined where their end points coincide (like a .crv file);
-        ``constraints`` and ``points`` as in the constructor."""
+        ``constraints``, ``points`` and ``regions`` as in the constructor."""
         g = cls.__new__(cls)
         g._init(None, [_as_xy(c, f"curves[{k}]") for k, c in enumerate(curves)], names, "curves")
-        g._embed(constraints, points)
+        g._embed(constraints, points, regions)
         return g
 
     @classmethod
@@ -133,7 +170,8 @@ class Geometry:
         labels += [f"constraints[{k}]" for k in range(len(self._constraints))]
         flags = [0] * len(self._curves) + [1] * len(self._constraints)
         return _core.case_for_curves(self._curves + self._constraints, labels, self._label, extra + settings, flags,
-                                     np.ascontiguousarray(self._points, dtype=np.float64), "points")
+                                     np.ascontiguousarray(self._points, dtype=np.float64), "points",
+                                     np.ascontiguousarray(self._regions, dtype=np.float64), self._region_names)
 
     def _geometry(self) -> dict:
         if self._info is None:

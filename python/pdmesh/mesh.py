@@ -156,6 +156,14 @@ class Mesh:
         return self._core.regions
 
     @property
+    def region_names(self) -> dict[float, str]:
+        """The names of ``regions``' attributes that have one: a mesh file's named regions (MSH
+        physical surfaces, Medit reference comments, the VTU field data ``region_names``) or the
+        case's ``geometry.region_names``. ``write`` names those regions so; an attribute without a
+        name is written as ``region_<a>``."""
+        return dict(self._core.region_names)
+
+    @property
     def spacing(self) -> np.ndarray:
         """(N,) float64: the spacing field q at each point, written as point data "q" (empty when read)."""
         return self._core.spacing

@@ -25,6 +25,8 @@ namespace {
 // (key, TOML value, label) as the Python layer (pdmesh/_settings.py) writes them.
 using Setting = std::tuple<std::string, std::string, std::string>;
 using Ring = nb::ndarray<const double, nb::shape<-1, 2>, nb::c_contig, nb::device::cpu>;
+// Rows of x, y, attribute (regions given in memory).
+using RegionRows = nb::ndarray<const double, nb::shape<-1, 3>, nb::c_contig, nb::device::cpu>;
 
 std::vector<CaseOverride> overrides_from(const std::vector<Setting>& settings) {
   std::vector<CaseOverride> out;
@@ -224,7 +226,7 @@ void bind_config(nb::module_& m) {
       "case_for_curves",
       [](const std::vector<Ring>& curves, const std::vector<std::string>& labels, const std::string& source,
          const std::vector<Setting>& settings, const std::vector<int>& constraint, const Ring& points,
-         const std::string& points_label) {
+         const std::string& points_label, const RegionRows& regions, const std::vector<std::string>& region_names) {
         if (labels.size() != curves.size())
           throw InputError(fmt::format("{} curves but {} labels", curves.size(), labels.size()));
         if (!constraint.empty() && constraint.size() != curves.size())
@@ -244,12 +246,24 @@ void bind_config(nb::module_& m) {
         CaseConfig config = case_for_curves(std::move(raw), source, overrides_from(settings));
         for (std::size_t i = 0; i < points.shape(0); ++i)  // messages say "POINTS_LABEL:i" for point i
           config.geometry.given_points.push_back({{points(i, 0), points(i, 1)}, points_label, static_cast<int>(i)});
+        if (!region_names.empty() && region_names.size() != regions.shape(0))
+          throw InputError(fmt::format("{} regions but {} region names", regions.shape(0), region_names.size()));
+        for (std::size_t i = 0; i < regions.shape(0); ++i) {  // messages say "regions:i" for region i
+          GeometryRegion r;
+          r.p = {regions(i, 0), regions(i, 1)};
+          r.attribute = regions(i, 2);
+          r.file = "regions";
+          r.line = static_cast<int>(i);
+          if (!region_names.empty()) r.name = region_names[i];
+          config.geometry.given_regions.push_back(std::move(r));
+        }
         return config;
       },
       nb::arg("curves"), nb::arg("labels"), nb::arg("source"), nb::arg("settings"), nb::arg("constraint"),
-      nb::arg("points"), nb::arg("points_label"),
-      "A case for curves given as (N, 2) arrays (constraint[k]: curve k is an embedded constraint) and embedded "
-      "points given as an (M, 2) array; labels name each in messages.");
+      nb::arg("points"), nb::arg("points_label"), nb::arg("regions"), nb::arg("region_names"),
+      "A case for curves given as (N, 2) arrays (constraint[k]: curve k is an embedded constraint), embedded "
+      "points given as an (M, 2) array and regions as a (K, 3) array of x, y, attribute with their names (empty: "
+      "none); labels name each in messages.");
 }
 
 }  // namespace pdmesh::py

@@ -238,6 +238,14 @@ void bind_mesh(nb::module_& m) {
           },
           nb::rv_policy::automatic, "(M,) float64 per triangle: its region's attribute (empty without regions).")
       .def_prop_ro(
+          "region_names",
+          [](const MeshHandle& h) {
+            nb::dict names;
+            for (const RegionName& r : h.mesh->region_names) names[nb::float_(r.attribute)] = r.name;
+            return names;
+          },
+          "dict attribute -> name of the regions that have a name (the others are region_<attribute>).")
+      .def_prop_ro(
           "spacing",
           [](const MeshHandle& h) {
             const auto& q = h.mesh->spacing;

@@ -41,3 +41,38 @@ def test_constraint_outside_is_refused():
     g = pdmesh.Geometry([SQUARE], points=[[2.0, 2.0]])
     with pytest.raises(pdmesh.InputError, match="points:0.*lies outside the domain"):
         pdmesh.generate(g, **SETTINGS)
+
+
+def test_regions_tag_the_parts_a_closed_constraint_bounds(tmp_path):
+    # A closed constraint (an inclusion) inside the square: its inside is "steel", the rest "matrix".
+    inclusion = np.array([[0.3, 0.3], [0.7, 0.3], [0.7, 0.7], [0.3, 0.7], [0.3, 0.3]])
+    g = pdmesh.Geometry([SQUARE], names=["square", "interface"], constraints=[inclusion],
+                        regions={"matrix": (0.1, 0.1), "steel": (0.5, 0.5)})
+    mesh = pdmesh.generate(g, **SETTINGS)
+    assert mesh.region_names == {1.0: "matrix", 2.0: "steel"}
+    centroids = mesh.points[mesh.triangles].mean(axis=1)
+    inside = np.all((centroids > 0.3) & (centroids < 0.7), axis=1)
+    assert inside.any() and (~inside).any()
+    assert np.all(mesh.regions[inside] == 2.0) and np.all(mesh.regions[~inside] == 1.0)
+    mesh.write(tmp_path / "m.msh")
+    back = pdmesh.Mesh.read(tmp_path / "m.msh")
+    assert sorted(back.region_names.values()) == ["matrix", "steel"]
+    # Rows of x, y, attribute: regions without names.
+    rows = pdmesh.generate(pdmesh.Geometry([SQUARE], constraints=[inclusion], regions=[[0.5, 0.5, 7.0]]),
+                           **SETTINGS)
+    assert set(rows.regions.tolist()) == {0.0, 7.0} and rows.region_names == {}
+
+
+def test_region_points_outside_or_on_a_curve_are_refused():
+    inclusion = np.array([[0.3, 0.3], [0.7, 0.3], [0.7, 0.7], [0.3, 0.7], [0.3, 0.3]])
+    with pytest.raises(pdmesh.InputError, match=r"regions:0: region point \(2, 2\) lies outside the domain"):
+        pdmesh.generate(pdmesh.Geometry([SQUARE], regions={"steel": (2.0, 2.0)}), **SETTINGS)
+    with pytest.raises(pdmesh.InputError, match=r"regions:1: region point \(0.5, 0.3\) lies on curve"):
+        pdmesh.generate(pdmesh.Geometry([SQUARE], constraints=[inclusion],
+                                        regions={"a": (0.1, 0.1), "b": (0.5, 0.3)}), **SETTINGS)
+    with pytest.raises(pdmesh.InputError, match="not a plain name"):
+        pdmesh.Geometry([SQUARE], regions={"two words": (0.5, 0.5)})
+    with pytest.raises(pdmesh.InputError, match="attribute 0"):
+        pdmesh.Geometry([SQUARE], regions=[[0.5, 0.5, 0.0]])
+    with pytest.raises(pdmesh.InputError, match="not with geometry files"):
+        pdmesh.Geometry.from_file("a.crv")._embed(None, None, {"a": (0, 0)})

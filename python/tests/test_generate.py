@@ -191,3 +191,23 @@ def test_read_keeps_regions_and_corners(tmp_path):
     assert '"region_1"' in (tmp_path / "m.msh").read_text()
     assert "Corners\n4\n1\n3\n4\n6\n" in (tmp_path / "m.mesh").read_text()
     assert pdmesh.Mesh.read(tmp_path / "m.vtu").kinds.tolist() == mesh.kinds.tolist()
+    assert mesh.region_names == {}
+
+
+def test_read_keeps_region_names(tmp_path):
+    # A .mesh whose comments name its references, as pdmesh writes them: the names come back per
+    # attribute and are written again by the formats that carry them.
+    (tmp_path / "named.mesh").write_text(
+        "MeshVersionFormatted 2\nDimension 2\n# ref 1: region fluid\n# ref 2: region solid\n"
+        "Vertices\n6\n0 0 1\n1 0 1\n2 0 1\n0 1 1\n1 1 1\n2 1 1\n"
+        "Edges\n6\n1 2 1\n2 3 1\n3 6 2\n6 5 3\n5 4 3\n4 1 4\n"
+        "Triangles\n4\n1 2 5 1\n1 5 4 1\n2 3 6 2\n2 6 5 2\nEnd\n")
+    mesh = pdmesh.Mesh.read(tmp_path / "named.mesh")
+    assert mesh.regions.tolist() == [1, 1, 2, 2]
+    assert mesh.region_names == {1.0: "fluid", 2.0: "solid"}
+    for name in ("m.msh", "m.vtu", "m.mesh"):
+        mesh.write(tmp_path / name)
+        back = pdmesh.Mesh.read(tmp_path / name)
+        named = [back.region_names[r] for r in back.regions.tolist()]
+        assert named == ["fluid", "fluid", "solid", "solid"], name
+    assert '"fluid"' in (tmp_path / "m.msh").read_text()

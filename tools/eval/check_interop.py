@@ -345,10 +345,12 @@ def gmsh_checks(pdmesh, run_dir, case, layered, tmp):
             names = vtu_curve_names(m)
             check(names == CURVES, f"{label}: the physical names are the curves {names}")
             region = sorted({int(x) for x in m.cell_data["region"][0]}) if "region" in m.cell_data else []
-            # Recombined, the triangles all lie in "solid": one group that names no region, no regions.
+            # Recombined, transfer writes the quads and triangles as a mixed VTU, which carries no regions.
             want = [] if recombine else [made["fluid"], made["solid"]]
             check(region == want, f"{label}: the triangles' physical surfaces are regions {region} (want {want})")
-        python_read(label, path, [] if recombine else [made["fluid"], made["solid"]], CURVES, quads=made["quads"])
+        # Mesh.read: the recombined file's triangles all lie in the named group "solid", one named region.
+        python_read(label, path, [made["solid"]] if recombine else [made["fluid"], made["solid"]], CURVES,
+                    quads=made["quads"])
         if not recombine:
             smooth(pdmesh, path, case, tmp)
         if recombine or version != 4.1:

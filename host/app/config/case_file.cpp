@@ -226,8 +226,8 @@ const std::vector<std::string>& top_level_keys() {
 
 const std::vector<std::string>& geometry_keys() {
   static const std::vector<std::string> keys = {
-      "geometry.files", "geometry.curve_names", "geometry.join_tolerance", "geometry.corner_angle",
-      "geometry.hull",  "geometry.curves",      "geometry.heal",           "geometry.projection",
+      "geometry.files",  "geometry.curve_names", "geometry.join_tolerance", "geometry.corner_angle", "geometry.hull",
+      "geometry.curves", "geometry.heal",        "geometry.projection",     "geometry.region_names",
   };
   return keys;
 }

@@ -82,6 +82,13 @@ struct CaseConfig {
   struct Geometry {
     std::vector<std::filesystem::path> files;  // resolved relative to the case file
     std::vector<std::string> curve_names;      // optional, in file/curve order
+    // geometry.region_names: names of the geometry's regional attributes, ascending by attribute
+    // (GeometryRegion::name); `where` is the case file's "FILE:LINE" of each, for the geometry's check.
+    struct RegionName {
+      double attribute = 0.0;
+      std::string name, where;
+    };
+    std::vector<RegionName> region_names;
     double join_tolerance = 1e-9;
     double corner_angle = 30.0;  // degrees
     // geometry.hull (bool; absent: automatic): .poly files mesh the convex hull of their vertices.
@@ -91,6 +98,9 @@ struct CaseConfig {
     // Embedded points given in memory (the Python API): nodes the mesh must have
     // (docs/geometry-input.md, "Embedded constraints").
     std::vector<RawPoint> given_points;
+    // Regional attributes given in memory (the Python API), each with its point, name and a label
+    // for messages (GeometryRegion::file and line).
+    std::vector<GeometryRegion> given_regions;
     CurveKind curves = CurveKind::Polyline;  // the same in both presets (docs/initialization.md, "Measured")
     // Healing at the mesh's resolution (geometry/heal.hpp); the preset sets it (off in the thesis).
     bool heal = true;

@@ -2,12 +2,17 @@
 // [population], [cleanup] and [output] checked and put into CaseConfig (app/config/case_file.cpp parses the
 // file, applies the overrides and checks the key names first).
 #include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <map>
 #include <regex>
+#include <set>
 #include <fmt/ranges.h>
 
 #include "app/config/case_reader.hpp"
 #include "core/input_file.hpp"
 #include "init/warm_points.hpp"
+#include "io/mixed_mesh.hpp"
 
 namespace pdmesh::case_detail {
 
@@ -20,6 +25,34 @@ bool is_plain_name(const std::string& s) {
     return (ch >= 'A' && ch <= 'Z') || (ch >= 'a' && ch <= 'z') || (ch >= '0' && ch <= '9') || ch == '_' || ch == '.' ||
            ch == '+' || ch == '-';
   });
+}
+
+// geometry.region_names = { 1 = "steel", "2.5" = "copper" }: the keys are the attributes (a .poly's
+// regional attributes, a mesh file's regions), the values plain names that the writers use for them.
+void read_region_names(const Reader& r, const toml::node& n, CaseConfig& c) {
+  const std::string key = "geometry.region_names";
+  if (!n.is_table()) r.fail(key, &n, fmt::format("{} must be a table of attribute = \"name\"", key));
+  std::map<double, CaseConfig::Geometry::RegionName> names;
+  std::set<std::string> used;
+  for (const auto& [k, v] : *n.as_table()) {
+    const std::string text(k.str());
+    char* end = nullptr;
+    const double a = std::strtod(text.c_str(), &end);
+    if (text.empty() || end != text.c_str() + text.size() || !std::isfinite(a) || a == 0.0)
+      r.fail_at_key(
+          key, k, fmt::format("{}: '{}' is not a regional attribute (a number other than 0)", key, quote_input(text)));
+    const std::string name = r.string(key + "." + text, v);
+    if (!is_plain_name(name) || name == kCoreRegion || name == kLayerRegion || region_attribute(name))
+      r.fail(key, &v,
+             fmt::format("{}: '{}' is not a plain name (letters, digits, _ . + -; not domain, boundary_layer "
+                         "or region_<number>)",
+                         key, quote_input(name)));
+    if (!used.insert(name).second) r.fail(key, &v, fmt::format("{}: '{}' names two attributes", key, name));
+    if (names.count(a) != 0) r.fail(key, &v, fmt::format("{}: attribute {} is named twice", key, a));
+    names[a] = {a, name, fmt::format("{}:{}", r.file(), v.source().begin.line)};
+  }
+  c.geometry.region_names.clear();
+  for (auto& [a, entry] : names) c.geometry.region_names.push_back(std::move(entry));
 }
 
 void read_geometry_section(const Reader& r, const toml::table& root, CaseConfig& c) {
@@ -47,6 +80,7 @@ void read_geometry_section(const Reader& r, const toml::table& root, CaseConfig&
       }
     }
   }
+  if (const toml::node* n = find(root, "geometry", "region_names")) read_region_names(r, *n, c);
   if (const toml::node* n = find(root, "geometry", "join_tolerance")) {
     // A fraction of the extents' diagonal: checked here so that a bad value is reported at its line,
     // not later by build_geometry without the key or the file.

@@ -7,14 +7,17 @@
 #include <cmath>
 #include <filesystem>
 #include <memory>
+#include <set>
 #include <string_view>
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include "app/config/case_spacing.hpp"
 #include "core/errors.hpp"
 #include "core/memory_budget.hpp"
 #include "geometry/farfield.hpp"
 #include "geometry/geometry_files.hpp"
+#include "geometry/geometry_tree.hpp"
 #include "geometry/smooth_embedded.hpp"
 #include "init/kept_nodes.hpp"
 #include "init/metric_fill.hpp"
@@ -56,6 +59,44 @@ PrepareCurves healing_step(const CaseConfig& config, MeshInputs& in) {
   };
 }
 
+// The regions given in memory (the Python API) into the geometry: each point inside the domain and on
+// no curve (a point on a curve lies between two regions), else InputError naming it by its label.
+void add_given_regions(const CaseConfig& config, Geometry& geometry) {
+  if (config.geometry.given_regions.empty()) return;
+  const GeometryTree tree(geometry);
+  for (const GeometryRegion& r : config.geometry.given_regions) {
+    const std::string where = fmt::format("{}:{}: region point ({}, {})", r.file, r.line, r.p.x, r.p.y);
+    if (!tree.inside(r.p)) throw InputError(where + " lies outside the domain");
+    for (const Segment& s : geometry.segments) {
+      if (!point_on_segment(r.p, s.a, s.b)) continue;
+      throw InputError(fmt::format("{} lies on curve '{}', between two regions; move it inside the region it tags",
+                                   where, geometry.curves[static_cast<std::size_t>(s.curve)].name));
+    }
+    geometry.regions.push_back(r);
+  }
+}
+
+// geometry.region_names onto the regions of those attributes (over the names a mesh file gave them).
+// Throws InputError at the key's line for an attribute that no region of the geometry has.
+void name_regions(const CaseConfig& config, Geometry& geometry) {
+  for (const CaseConfig::Geometry::RegionName& named : config.geometry.region_names) {
+    bool found = false;
+    for (GeometryRegion& r : geometry.regions) {
+      if (r.attribute != named.attribute) continue;
+      r.name = named.name;
+      found = true;
+    }
+    if (found) continue;
+    std::set<double> attributes;
+    for (const GeometryRegion& r : geometry.regions) attributes.insert(r.attribute);
+    throw InputError(fmt::format(
+        "{}: geometry.region_names: attribute {} is no region's of the geometry ({})", named.where, named.attribute,
+        attributes.empty() ? std::string("it has no regions: a .poly file's regional attributes or a mesh file's "
+                                         "regions give them")
+                           : fmt::format("its attributes: {}", fmt::join(attributes, ", "))));
+  }
+}
+
 // The case's geometry into in.geometry: read from the files or the given curves (healed, projected),
 // the readers' notes printed, and the far field put around it.
 void read_case_geometry(const CaseConfig& config, MeshInputs& in) {
@@ -72,6 +113,8 @@ void read_case_geometry(const CaseConfig& config, MeshInputs& in) {
                     : geometry_from_curves(config.geometry.given_curves, config.geometry.curve_names, options,
                                            config.geometry.given_points, steps);
   if (config.geometry.projection == ProjectionKind::Equirectangular) in.projection = used;
+  add_given_regions(config, in.geometry);
+  name_regions(config, in.geometry);
   // What the readers did beyond the plain reading (a .poly's loops read as subdomains, vertices kept
   // or dropped): always said, also when quiet, since the mesh differs from what the file may suggest.
   const auto say_notes_from = [&](std::size_t first) {

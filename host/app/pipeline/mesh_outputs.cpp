@@ -546,6 +546,7 @@ Mesh mesh_stage(const CaseConfig& config, const MeshInputs& inputs, const Spacin
     field.at_many(mesh.points, mesh.spacing);
   }
   mesh.region = region_tags(mesh, inputs.geometry.regions, inputs.node_geometry());
+  if (!mesh.region.empty()) mesh.region_names = region_names_of(inputs.geometry.regions);
   // [[periodic]]: every pair's nodes must have come through the stages exactly.
   const std::vector<PeriodicLink> periodic = link_periodic_nodes(mesh, inputs.periodic);
   if (!config.write_outputs) return mesh;  // the Python API measures on demand (Mesh.quality())
