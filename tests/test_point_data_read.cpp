@@ -158,8 +158,7 @@ TEST_CASE("a malformed point array names the file, the line or array, and the va
   // A bad number: the view, the line and the token.
   const std::string bad = msh + "$NodeData\n1\n\"u\"\n1\n0\n3\n0\n1\n2\n1 0.5\n2 0.5x\n$EndNodeData\n";
   CHECK_THROWS_WITH(parse_msh("m.msh", bad, report, &all),
-                    Contains(fmt::format("m.msh:{}:", lines + 11)) && Contains("$NodeData 'u'") &&
-                        Contains("'0.5x'"));
+                    Contains(fmt::format("m.msh:{}:", lines + 11)) && Contains("$NodeData 'u'") && Contains("'0.5x'"));
   // Fewer values than the view says: the end marker where a node tag should be.
   const std::string short_view = msh + "$NodeData\n1\n\"u\"\n1\n0\n3\n0\n1\n3\n1 0.5\n2 0.5\n$EndNodeData\n";
   CHECK_THROWS_WITH(parse_msh("m.msh", short_view, report, &all),
@@ -172,8 +171,8 @@ TEST_CASE("a malformed point array names the file, the line or array, and the va
   const auto at = vtu.find("Name=\"w\"");
   REQUIRE(at != std::string::npos);
   const auto first = vtu.find('\n', at) + 1;
-  vtu.erase(vtu.find_first_not_of(' ', first), vtu.find(' ', vtu.find_first_not_of(' ', first)) -
-                                                   vtu.find_first_not_of(' ', first) + 1);
+  vtu.erase(vtu.find_first_not_of(' ', first),
+            vtu.find(' ', vtu.find_first_not_of(' ', first)) - vtu.find_first_not_of(' ', first) + 1);
   CHECK_THROWS_WITH(parse_vtu("m.vtu", vtu, report, &all),
                     Contains("m.vtu:") && Contains("'w' holds 71 values, expected 2 components x 36 points"));
 }
