@@ -121,10 +121,10 @@ std::vector<std::filesystem::path> write_mesh(const Mesh& mesh, const std::files
   return written;
 }
 
-Mesh read_mesh(const std::filesystem::path& path, MeshReadReport& report, SurfaceCells* cells) {
+Mesh read_mesh(const std::filesystem::path& path, MeshReadReport& report, SurfaceCells* cells, MeshPointData* data) {
   const std::string ext = lower_extension(path);
-  if (ext == ".msh") return read_msh(path, report, nullptr, cells);
-  if (ext == ".vtu") return read_vtu(path, report, nullptr, cells);
+  if (ext == ".msh") return read_msh(path, report, data, cells);
+  if (ext == ".vtu") return read_vtu(path, report, data, cells);
   if (ext == ".su2") return read_su2(path, report, cells);
   if (ext == ".mesh" || ext == ".meshb") return read_medit_mesh(path, report, cells);
   if (ext == ".ele" || ext == ".node" || ext == ".poly") {

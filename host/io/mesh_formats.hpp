@@ -38,8 +38,10 @@ std::vector<std::filesystem::path> write_mesh(const Mesh& mesh, const std::files
 // Reads a mesh by extension: .msh (2.2 or 4.1, from $MeshFormat), .vtu, .su2, .mesh (Medit ASCII; .meshb
 // is refused), .ele (with its .node and optional .poly; a .node or .poly path is taken to mean the same
 // stem). With `cells`, the quads of an .msh, .vtu, .su2 or .mesh file too, and which cells are in cells->region
-// (SurfaceCells, io/mesh_io_common.hpp); Triangle's files hold triangles only.
-Mesh read_mesh(const std::filesystem::path& path, MeshReadReport& report, SurfaceCells* cells = nullptr);
+// (SurfaceCells, io/mesh_io_common.hpp); Triangle's files hold triangles only. With `data`, the point
+// arrays it asks for from an .msh ($NodeData) or .vtu (PointData) file; the other formats carry none.
+Mesh read_mesh(const std::filesystem::path& path, MeshReadReport& report, SurfaceCells* cells = nullptr,
+               MeshPointData* data = nullptr);
 Mesh read_mesh(const std::filesystem::path& path);
 
 }  // namespace pdmesh

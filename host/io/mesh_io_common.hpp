@@ -1,6 +1,7 @@
 // Pieces every mesh writer and reader shares: curve labels as files can hold them, the checks
 // a mesh passes before it is written, and what a reader reports besides the mesh.
 #pragma once
+#include <algorithm>
 #include <array>
 #include <cstddef>
 #include <cstdint>
@@ -43,15 +44,25 @@ struct PointDataArray {
   std::string where;  // "FILE:LINE" of the array, for messages
 };
 
-// What a reader found besides the mesh, for data fields (spacing.field = "mesh"). The caller names
-// the array it wants; the reader decodes only that one and lists the names of the others.
+// What a reader found besides the mesh, for data fields (spacing.field = "mesh"), solution transfer
+// and Python's Mesh.read. The caller names the arrays it wants; the reader decodes only those, in the
+// one pass that reads the mesh, and lists the names of the others.
 struct MeshPointData {
-  std::string wanted;                     // in: the point-data array to decode
-  std::optional<PointDataArray> array;    // out: that array, when the file has it
+  std::string wanted;                   // in: a point-data array to decode into `array`
+  std::optional<PointDataArray> array;  // out: that array, when the file has it
+  // in: the point-data arrays to decode into `arrays`, by name, or every one with decode_all.
+  std::vector<std::string> decode;
+  bool decode_all = false;
+  // out: those the file has, each name once, in file order (an MSH view given in several $NodeData
+  // blocks, the time steps of a solution, from the last of them).
+  std::vector<PointDataArray> arrays;
   std::vector<std::string> point_arrays;  // out: the name of every point-data array, in file order
   std::vector<std::string> other_arrays;  // out: other data ("NAME (cell data)"), for messages
   std::vector<long long> point_ids;       // out: MSH node tag of each point (messages name nodes by
                                           // tag); empty for VTU (points by index, ParaView's point id)
+  bool decodes(std::string_view name) const {
+    return decode_all || std::find(decode.begin(), decode.end(), name) != decode.end();
+  }
 };
 
 // The quadrangles a reader takes beside the Mesh's triangles when it is handed one (only `pdmesh

@@ -37,6 +37,14 @@ struct RawPeriodic {
   int line = 0;
 };
 
+// A $NodeData block as read: node tags and their values, resolved once all nodes are known.
+struct RawView {
+  int components = 1;
+  std::string where;  // FILE:LINE of its $NodeData
+  std::vector<long long> tags;
+  std::vector<double> values;  // components per entry of tags
+};
+
 struct MshData {
   bool v41 = true;
   std::map<long long, std::string> line_names;         // dim-1 physical tag -> name
@@ -51,13 +59,10 @@ struct MshData {
   std::string off_plane;               // MeshReadReport::off_plane
   std::vector<long long> node_tags;    // per point, for messages about point data
   std::vector<RawPeriodic> periodic;   // $Periodic, resolved in assemble
-  // Point data: the wanted $NodeData (the last block of that name: the latest time step).
+  // Point data: the wanted $NodeData views by name (of several blocks of a name, the last: the latest
+  // time step).
   MeshPointData* data = nullptr;
-  bool have_values = false;
-  int components = 1;
-  std::string values_where;
-  std::vector<long long> value_tags;
-  std::vector<double> values;  // components per entry of value_tags
+  std::map<std::string, RawView> views;
 };
 
 const char* element_name(int type) {
@@ -321,53 +326,61 @@ void read_node_data(LineScanner& s, MshData& d) {
   if (std::find(d.data->point_arrays.begin(), d.data->point_arrays.end(), h.name) == d.data->point_arrays.end()) {
     d.data->point_arrays.push_back(h.name);
   }
-  if (h.name != d.data->wanted) {
+  if (h.name != d.data->wanted && !d.data->decodes(h.name)) {
     skip_to_end(s, "$NodeData");
     return;
   }
-  d.have_values = true;
-  d.components = static_cast<int>(h.ints[1]);
-  d.values_where = fmt::format("{}:{}", s.file(), line);
-  d.value_tags.clear();
-  d.values.clear();
-  s.check_count(h.ints[2], 2 + 2 * static_cast<std::size_t>(d.components), "number of values");
+  RawView& v = d.views[h.name];
+  v.components = static_cast<int>(h.ints[1]);
+  v.where = fmt::format("{}:{}", s.file(), line);
+  v.tags.clear();
+  v.values.clear();
+  s.check_count(h.ints[2], 2 + 2 * static_cast<std::size_t>(v.components), "number of values");
   for (long long i = 0; i < h.ints[2]; ++i) {
-    d.value_tags.push_back(s.to_int(s.token("node tag"), "node tag"));
-    for (int c = 0; c < d.components; ++c) {
+    v.tags.push_back(s.to_int(s.token("node tag"), "node tag"));
+    for (int c = 0; c < v.components; ++c) {
       const std::string_view tok = s.token("node value");
-      double v = 0.0;
-      const auto [p, ec] = std::from_chars(tok.data(), tok.data() + tok.size(), v);
-      if (ec != std::errc() || p != tok.data() + tok.size()) s.fail("expected a number as node value", tok);
-      d.values.push_back(v);
+      double x = 0.0;
+      const auto [p, ec] = std::from_chars(tok.data(), tok.data() + tok.size(), x);
+      if (ec != std::errc() || p != tok.data() + tok.size())
+        s.fail(fmt::format("expected a number as node value of $NodeData '{}'", quote_input(h.name)), tok);
+      v.values.push_back(x);
     }
   }
   expect_end(s, "NodeData");
 }
 
-void assemble_point_data(MshData& d) {
-  MeshPointData& out = *d.data;
-  out.point_ids = d.node_tags;
-  if (!d.have_values) return;
+// View `name` (read_node_data's) as values per point: NaN, and `given` 0, at the points it skips.
+PointDataArray view_values(const MshData& d, const std::string& name) {
+  const RawView& v = d.views.at(name);
   PointDataArray a;
-  a.name = d.data->wanted;
-  a.components = d.components;
-  a.where = d.values_where;
+  a.name = name;
+  a.components = v.components;
+  a.where = v.where;
   const std::size_t n = d.points.size();
-  a.values.assign(n * static_cast<std::size_t>(d.components), std::numeric_limits<double>::quiet_NaN());
+  const auto nc = static_cast<std::size_t>(v.components);
+  a.values.assign(n * nc, std::numeric_limits<double>::quiet_NaN());
   a.given.assign(n, 0);
-  for (std::size_t i = 0; i < d.value_tags.size(); ++i) {
-    const auto it = d.node_index.find(d.value_tags[i]);
+  for (std::size_t i = 0; i < v.tags.size(); ++i) {
+    const auto it = d.node_index.find(v.tags[i]);
     if (it == d.node_index.end()) {
       throw InputError(fmt::format("{}: $NodeData '{}' gives a value for node {}, which is not in $Nodes", a.where,
-                                   quote_input(a.name), d.value_tags[i]));
+                                   quote_input(a.name), v.tags[i]));
     }
     const auto p = static_cast<std::size_t>(it->second);
-    const auto nc = static_cast<std::size_t>(d.components);
-    std::copy_n(d.values.begin() + static_cast<long>(i * nc), nc, a.values.begin() + static_cast<long>(p * nc));
+    std::copy_n(v.values.begin() + static_cast<long>(i * nc), nc, a.values.begin() + static_cast<long>(p * nc));
     a.given[p] = 1;
   }
   if (std::all_of(a.given.begin(), a.given.end(), [](std::uint8_t g) { return g != 0; })) a.given.clear();
-  out.array = std::move(a);
+  return a;
+}
+
+void assemble_point_data(MshData& d) {
+  MeshPointData& out = *d.data;
+  out.point_ids = d.node_tags;
+  if (d.views.count(out.wanted) != 0) out.array = view_values(d, out.wanted);
+  for (const std::string& name : out.point_arrays)
+    if (out.decodes(name)) out.arrays.push_back(view_values(d, name));
 }
 
 // $Periodic: per link the dimension, the entity and its master, the affine transform (4.1: a count

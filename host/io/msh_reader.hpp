@@ -1,6 +1,6 @@
 // Gmsh MSH reader (ASCII 4.1 and 2.2, detected from $MeshFormat): nodes, 2-node lines as
-// boundary edges grouped into curves by physical group, 3-node triangles, and on request one
-// $NodeData view (point data) and the 4-node quadrangles (SurfaceCells).
+// boundary edges grouped into curves by physical group, 3-node triangles, and on request $NodeData
+// views (point data) and the 4-node quadrangles (SurfaceCells).
 #pragma once
 #include <filesystem>
 #include <string>
@@ -21,8 +21,9 @@ namespace pdmesh {
 // run's file). Throws InputError "FILE:LINE: ..."
 // on truncation, bad counts, unknown node tags, binary files and unsupported versions.
 // With `data`, the $NodeData view named data->wanted (its first string tag; of several blocks of
-// that name, the last: the latest time step) is read into data->array, with the node tag of every
-// point in data->point_ids, and the names of all views are listed.
+// that name, the last: the latest time step) is read into data->array, those data->decodes() into
+// data->arrays, with the node tag of every point in data->point_ids, and the names of all views are
+// listed.
 //
 // With `cells`, 4-node quadrangles (type 3) are read too instead of skipped (io/mesh_io_common.hpp
 // SurfaceCells: the region is the 2-D physical group of that name).

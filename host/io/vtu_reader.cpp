@@ -440,27 +440,32 @@ void read_pdmesh_arrays(const VtuFile& f, Mesh& mesh, const CellIndex& index) {
   }
 }
 
+// Point-data array `a` decoded, one value per component and point.
+PointDataArray point_array(const VtuFile& f, const ArrayInfo& a) {
+  PointDataArray out;
+  out.name = a.name;
+  out.components = a.components;
+  out.where = f.location(a.pos);
+  out.values = f.values(a);
+  if (static_cast<long long>(out.values.size()) != f.points() * a.components) {
+    f.fail(a.pos, fmt::format("point-data array '{}' holds {} values, expected {} components x {} points",
+                              quote_input(a.name), out.values.size(), a.components, f.points()));
+  }
+  return out;
+}
+
 void read_point_data(const VtuFile& f, MeshPointData& data) {
   for (const ArrayInfo& a : f.arrays()) {
     if (a.section == "PointData") {
       data.point_arrays.push_back(a.name);
+      // A name given twice is taken once, its first array, as `find` takes it.
+      if (data.decodes(a.name) && &a == f.find("PointData", a.name)) data.arrays.push_back(point_array(f, a));
     } else if (a.section == "CellData" || a.section == "FieldData") {
       data.other_arrays.push_back(
           fmt::format("{} ({})", quote_input(a.name), a.section == "CellData" ? "cell data" : "field data"));
     }
   }
-  const ArrayInfo* a = f.find("PointData", data.wanted);
-  if (a == nullptr) return;
-  PointDataArray out;
-  out.name = a->name;
-  out.components = a->components;
-  out.where = f.location(a->pos);
-  out.values = f.values(*a);
-  if (static_cast<long long>(out.values.size()) != f.points() * a->components) {
-    f.fail(a->pos, fmt::format("point-data array '{}' holds {} values, expected {} components x {} points",
-                               quote_input(a->name), out.values.size(), a->components, f.points()));
-  }
-  data.array = std::move(out);
+  if (const ArrayInfo* a = f.find("PointData", data.wanted)) data.array = point_array(f, *a);
 }
 
 }  // namespace

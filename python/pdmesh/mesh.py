@@ -116,7 +116,13 @@ class Mesh:
         """Reads a mesh file (.msh 2.2/4.1, .vtu, .su2, Medit .mesh, Triangle .ele), as ``pdmesh
         quality`` does: a layered run's quads too (``quads``; ``triangle_layer`` from the .msh file's
         "boundary_layer" group, the .vtu file's cell data or the .mesh file's reference named
-        "boundary_layer", all 0 from .su2, which cannot say)."""
+        "boundary_layer", all 0 from .su2, which cannot say).
+
+        A .vtu's point arrays (every encoding the reader takes) and a .msh's ``$NodeData`` views (2.2
+        and 4.1; of several blocks of one name, the time steps of a solution, the last) come with it:
+        ``q`` with one value per point is ``spacing`` (pdmesh writes its spacing field there), a
+        .vtu's ``kind`` is ``kinds``, and every other array is in ``point_data`` by name, float64,
+        in file order (a view that skips some nodes has NaN there). The other formats carry none."""
         return cls(_core.read_mesh(os.fspath(path)))
 
     @property
@@ -165,14 +171,18 @@ class Mesh:
 
     @property
     def spacing(self) -> np.ndarray:
-        """(N,) float64: the spacing field q at each point, written as point data "q" (empty when read)."""
+        """(N,) float64: the spacing field q at each point, written as point data "q" (.vtu, .msh) and
+        read back from it by ``read``; empty where a file has no one-component array "q"."""
         return self._core.spacing
 
     @property
     def point_data(self) -> dict[str, np.ndarray]:
         """Point arrays by name, (N,) float64 or (N, k) for k components, read-only: the solution
-        carried over by ``pdmesh.adapt`` (its ``transfer``), a motion step's ``node_id``; empty
-        otherwise (a mesh read from a file too). ``write`` writes them into a .vtu as point data."""
+        carried over by ``pdmesh.adapt`` (its ``transfer``), a motion step's ``node_id``, a file's
+        point arrays (``read``: all but ``q`` and a .vtu's ``kind``); empty otherwise. ``write``
+        writes them into a .vtu as point data, which ``read`` gives back bit for bit (a non-finite
+        value is written as +-1e300, as the .vtu writer writes every value VTK's reader could not
+        take)."""
         if self._point_data is None:
             self._point_data = _point_arrays(self._core.point_data)
         return dict(self._point_data)

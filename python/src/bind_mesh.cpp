@@ -11,6 +11,7 @@
 
 #include "bindings.hpp"
 #include "core/errors.hpp"
+#include "core/input_file.hpp"
 #include "io/mesh_formats.hpp"
 #include "io/mixed_mesh.hpp"
 #include "mesh/quality.hpp"
@@ -203,6 +204,25 @@ MeshHandle with_point_data(const MeshHandle& h, const std::vector<std::pair<std:
   return out;
 }
 
+// A file's point arrays (read_mesh's `data`, every array decoded) as Mesh.read hands them on: "q"
+// with one value at every point is the spacing field the writers write from Mesh::spacing; a .vtu's
+// "kind" is Mesh::kind, which the reader took from it; every other array is point data, in file
+// order. `layered` gets q among them, as the mixed-cell writers write no spacing.
+void take_point_arrays(const std::string& path, MeshPointData& data, Mesh& mesh, MixedMesh* layered) {
+  const bool vtu = lower_extension(path) == ".vtu";
+  for (PointDataArray& a : data.arrays) {
+    if (vtu && a.name == "kind") continue;
+    PointValues v{a.name, a.components, std::move(a.values), false};
+    if (v.name == "q" && v.components == 1 && a.given.empty() && mesh.spacing.empty()) {
+      if (layered != nullptr) layered->point_data.push_back(v);
+      mesh.spacing = std::move(v.values);
+      continue;
+    }
+    if (layered != nullptr) layered->point_data.push_back(v);
+    mesh.point_data.push_back(std::move(v));
+  }
+}
+
 }  // namespace
 
 void bind_mesh(nb::module_& m) {
@@ -251,7 +271,8 @@ void bind_mesh(nb::module_& m) {
             const auto& q = h.mesh->spacing;
             return shared_view<double, 1>(q.data(), q.size(), h.mesh);
           },
-          nb::rv_policy::automatic, "(N,) float64 spacing field q at each point (empty for a mesh read from a file).")
+          nb::rv_policy::automatic,
+          "(N,) float64 spacing field q at each point (read from a file: its point array q; empty without one).")
       .def_prop_ro(
           "quads",
           [](const MeshHandle& h) {
@@ -304,7 +325,9 @@ void bind_mesh(nb::module_& m) {
           MeshReadReport report;
           SurfaceCells cells;
           cells.region = kLayerRegion;
-          mesh = read_mesh(path, report, &cells);
+          MeshPointData data;
+          data.decode_all = true;
+          mesh = read_mesh(path, report, &cells, &data);
           periodic->links = std::move(report.periodic);  // an MSH file's $Periodic curve links
           // A file with quads (a layered run's, in any of its formats) as `pdmesh quality` reads it:
           // the quads and the layer flags beside the triangles; its quality is the triangles' table.
@@ -314,14 +337,16 @@ void bind_mesh(nb::module_& m) {
             layers->quads = std::move(cells.quads);
             layers->triangle_layer.assign(layers->mixed.layer.begin(),
                                           layers->mixed.layer.begin() + static_cast<long>(mesh.triangles.size()));
-            layers->core = mesh;
           }
+          take_point_arrays(path, data, mesh, layers ? &layers->mixed : nullptr);
+          if (layers) layers->core = mesh;
         }
         return MeshHandle{std::make_shared<const Mesh>(std::move(mesh)), nullptr, fs::path(path).stem().string(),
                           std::move(layers), std::move(periodic)};
       },
       nb::arg("path"),
-      "Reads a .msh (2.2/4.1), .vtu, .su2, Medit .mesh or Triangle .ele mesh, with the quads of the first four.");
+      "Reads a .msh (2.2/4.1), .vtu, .su2, Medit .mesh or Triangle .ele mesh, with the quads of the first four "
+      "and the point arrays of .msh ($NodeData) and .vtu files (q as the spacing).");
 }
 
 }  // namespace pdmesh::py

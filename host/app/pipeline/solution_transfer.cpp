@@ -30,30 +30,31 @@ Mesh read_source(const fs::path& path, MeshPointData& data) {
 
 TransferredArrays transfer_point_arrays(const std::string& from, const std::vector<std::string>& arrays, Mesh& target,
                                         TransferCounts& counts) {
-  MeshPointData listing;
-  const Mesh source = read_source(from, listing);
+  // One read decodes every array asked for; with none named, all of them, the excluded ones dropped below.
+  MeshPointData data;
+  data.decode = arrays;
+  data.decode_all = arrays.empty();
+  const Mesh source = read_source(from, data);
   std::vector<std::string> names = arrays;
   if (names.empty()) {
-    for (const std::string& n : listing.point_arrays)
+    for (const std::string& n : data.point_arrays)
       if (n != "kind" && n != "q" && n != "node_id") names.push_back(n);
     if (names.empty())
-      throw InputError(fmt::format(
-          "{}: no point data to transfer (point arrays: {})", from,
-          listing.point_arrays.empty() ? "none" : fmt::format("{}", fmt::join(listing.point_arrays, ", "))));
+      throw InputError(
+          fmt::format("{}: no point data to transfer (point arrays: {})", from,
+                      data.point_arrays.empty() ? "none" : fmt::format("{}", fmt::join(data.point_arrays, ", "))));
   }
   for (const std::string& n : names)
-    if (std::find(listing.point_arrays.begin(), listing.point_arrays.end(), n) == listing.point_arrays.end())
+    if (std::find(data.point_arrays.begin(), data.point_arrays.end(), n) == data.point_arrays.end())
       throw InputError(
-          fmt::format("{}: no point array '{}' (point arrays: {})", from, n, fmt::join(listing.point_arrays, ", ")));
+          fmt::format("{}: no point array '{}' (point arrays: {})", from, n, fmt::join(data.point_arrays, ", ")));
   if (source.triangles.empty()) throw InputError(fmt::format("{}: the mesh has no cells", from));
   std::vector<PointValues> values;
   for (const std::string& n : names) {
-    MeshPointData data;
-    data.wanted = n;
-    (void)read_mesh_with_point_data(from, data);
-    const PointDataArray& a = *data.array;
+    const auto a =
+        std::find_if(data.arrays.begin(), data.arrays.end(), [&n](const PointDataArray& d) { return d.name == n; });
     values.push_back(
-        {n, a.components, transfer_point_values(source, a.values, a.components, target.points, &counts), false});
+        {n, a->components, transfer_point_values(source, a->values, a->components, target.points, &counts), false});
   }
   for (PointValues& v : values) target.point_data.push_back(std::move(v));
   return {names, source.points.size()};
