@@ -270,7 +270,7 @@ TEST_CASE("a far field around a body with an embedded constraint, point and regi
   raw.points = {{{2.5, 3.5}, "body.poly", 20}, {{0.5, 3.0}, "body.poly", 21}};
   Geometry body = build_geometry(raw);
   REQUIRE(body.embedded_points.size() == 2);
-  body.regions = {{{0.5, 0.5}, 3.0, -1.0, "body.poly", 30}, {{50.0, 50.0}, 4.0, -1.0, "body.poly", 31}};
+  body.regions = {{{0.5, 0.5}, 3.0, -1.0, "body.poly", 30, ""}, {{50.0, 50.0}, 4.0, -1.0, "body.poly", 31, ""}};
   const Geometry g = with_farfield(body, kCircle20, 0.2, {});
   REQUIRE(g.curves.size() == 2);
   CHECK(std::none_of(g.curves.begin(), g.curves.end(), [](const Curve& c) { return c.constraint; }));
