@@ -1,6 +1,7 @@
 // Point arrays read with a mesh (MeshPointData::decode, decode_all): every array asked for in the one
 // pass that reads a .vtu (its encodings) or .msh (2.2 and 4.1, the last block of a view), bit for bit;
-// malformed arrays named with file, line and value; solution transfer from one read.
+// malformed arrays named with file, line and value; solution transfer from one read; the .msh writer's
+// point-data views (MeshWriteOptions::msh_point_data) read back.
 #include <catch2/catch.hpp>
 
 #include <cmath>
@@ -201,4 +202,41 @@ TEST_CASE("transfer_point_arrays moves every named array from one read, as one a
   CHECK(all.names == std::vector<std::string>{"u", "w"});  // all but kind, q and node_id
   CHECK(every.point_data[0].values == target.point_data[1].values);
   CHECK_THROWS_WITH(transfer_point_arrays(from, {"v"}, every, counts), Contains("no point array 'v'"));
+}
+
+TEST_CASE("write_mesh writes point data as $NodeData views only when asked, and they read back", "[point_data]") {
+  Mesh mesh = mesh_with_data();
+  mesh.point_data[0].values[4] = std::nan("");
+  const auto dir = pdmesh_test::fresh_path("point_data_msh");
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  const auto text_of = [](const std::filesystem::path& p) {
+    std::ifstream in(p, std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(in), {});
+  };
+  for (const char* format : {"msh", "msh22"}) {
+    // As the commands write it: the spacing alone, the file msh41_string/msh22_string gives.
+    write_mesh(mesh, dir, "plain", {format});
+    const std::string plain = text_of(dir / "plain.msh");
+    CHECK(plain == (std::string(format) == "msh" ? msh41_string(mesh) : msh22_string(mesh)));
+    MeshWriteOptions options;
+    options.msh_point_data = true;
+    write_mesh(mesh, dir, "data", {format}, options);
+    const std::string data = text_of(dir / "data.msh");
+    CHECK(data.substr(0, plain.size()) == plain);  // the views follow the commands' file
+    MeshReadReport report;
+    MeshPointData all;
+    all.decode_all = true;
+    (void)parse_msh("data.msh", data, report, &all);
+    REQUIRE(names_of(all) == std::vector<std::string>{"q", "u", "w"});
+    CHECK(std::isnan(array_named(all, "u").values[4]));
+    for (std::size_t i = 0; i < mesh.points.size(); ++i)
+      if (i != 4) CHECK(array_named(all, "u").values[i] == mesh.point_data[0].values[i]);
+    CHECK(array_named(all, "w").components == 2);
+    CHECK(array_named(all, "w").values == mesh.point_data[1].values);
+  }
+  MeshWriteOptions options;
+  options.msh_point_data = true;
+  mesh.point_data.push_back({"wide", 10, std::vector<double>(10 * mesh.points.size(), 1.0), false});
+  CHECK_THROWS_WITH(write_mesh(mesh, dir, "wide", {"msh"}, options), Contains("'wide' has 10 components"));
 }

@@ -12,6 +12,7 @@
 #include "io/fort14_writer.hpp"
 #include "io/medit_reader.hpp"
 #include "io/medit_writer.hpp"
+#include "io/mesh_text.hpp"
 #include "io/msh_reader.hpp"
 #include "io/msh_writer.hpp"
 #include "io/su2_reader.hpp"
@@ -97,9 +98,15 @@ std::vector<std::filesystem::path> write_mesh(const Mesh& mesh, const std::files
   for (const auto& f : formats) {
     const std::string& ext = mesh_format_extensions(f).front();
     if (f == "msh") {
-      stream(ext, [&](TextSink& sink) { write_msh41(mesh, sink, options.periodic); });
+      stream(ext, [&](TextSink& sink) {
+        write_msh41(mesh, sink, options.periodic);
+        if (options.msh_point_data) append_msh_point_data(sink, mesh);
+      });
     } else if (f == "msh22") {
-      stream(ext, [&](TextSink& sink) { write_msh22(mesh, sink, options.periodic); });
+      stream(ext, [&](TextSink& sink) {
+        write_msh22(mesh, sink, options.periodic);
+        if (options.msh_point_data) append_msh_point_data(sink, mesh);
+      });
     } else if (f == "vtu") {
       stream(ext, [&](TextSink& sink) { write_vtu(mesh, sink); });
     } else if (f == "su2") {

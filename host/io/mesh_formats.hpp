@@ -26,6 +26,9 @@ struct MeshWriteOptions {
   std::vector<std::string> open_boundaries;
   // [[periodic]]: the msh formats write them as $Periodic; the others carry no pairing.
   const std::vector<PeriodicLink>* periodic = nullptr;
+  // The msh formats write Mesh::point_data as $NodeData views after "q" (Python's Mesh.write); the
+  // commands leave it off, so their .msh files hold the spacing alone.
+  bool msh_point_data = false;
 };
 
 // Writes DIR/STEM.msh (msh and msh22 cannot both be asked for: same file), .vtu, .su2, .14, .2dm, .mesh

@@ -14,4 +14,10 @@ void append_point_lines(TextSink& sink, const Mesh& mesh, const char* prefix);
 // the mesh has no spacing values.
 void append_msh_spacing_node_data(TextSink& sink, const Mesh& mesh);
 
+// One $NodeData view per mesh.point_data array (the same layout as "q": time 0, node tag = point
+// index + 1, its components, 17 digits); a '"' or line break in a name becomes '_'. Throws
+// InputError for an array of more than 9 components (Gmsh's and the reader's limit) or of the
+// wrong length.
+void append_msh_point_data(TextSink& sink, const Mesh& mesh);
+
 }  // namespace pdmesh

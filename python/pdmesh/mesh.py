@@ -180,9 +180,9 @@ class Mesh:
         """Point arrays by name, (N,) float64 or (N, k) for k components, read-only: the solution
         carried over by ``pdmesh.adapt`` (its ``transfer``), a motion step's ``node_id``, a file's
         point arrays (``read``: all but ``q`` and a .vtu's ``kind``); empty otherwise. ``write``
-        writes them into a .vtu as point data, which ``read`` gives back bit for bit (a non-finite
-        value is written as +-1e300, as the .vtu writer writes every value VTK's reader could not
-        take)."""
+        writes them into a .vtu as point data and into a .msh as ``$NodeData`` views (not a layered
+        mesh's), which ``read`` gives back bit for bit (but for a non-finite value in a .vtu,
+        written as +-1e300, as the .vtu writer writes every value VTK's reader could not take)."""
         if self._point_data is None:
             self._point_data = _point_arrays(self._core.point_data)
         return dict(self._point_data)

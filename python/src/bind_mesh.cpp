@@ -105,10 +105,11 @@ std::vector<std::string> write(const MeshHandle& h, const std::string& path, con
   {
     nb::gil_scoped_release release;
     // With layers the mixed-cell writers (msh, vtu, su2, mesh; InputError for the others).
-    // The msh formats carry the pairs ($Periodic), as the run's mesh.msh.
+    // The msh formats carry the pairs ($Periodic), as the run's mesh.msh, and the point data as
+    // $NodeData views, which Mesh.read takes back.
     const std::vector<PeriodicLink>* periodic = h.periodic->links.empty() ? nullptr : &h.periodic->links;
     written = h.layers ? write_mixed_mesh(h.layers->mixed, dir, p.stem().string(), {format}, periodic)
-                       : write_mesh(*h.mesh, dir, p.stem().string(), {format}, {open_boundaries, periodic});
+                       : write_mesh(*h.mesh, dir, p.stem().string(), {format}, {open_boundaries, periodic, true});
   }
   std::vector<std::string> out;
   for (const fs::path& w : written) out.push_back(w.string());

@@ -47,13 +47,24 @@ def problem(tmp_path):
 
 
 def assert_same_mesh(mesh: pdmesh.Mesh, out: Path, tmp_path: Path) -> None:
-    """mesh is the command's output in `out`: its nodes bit for bit and its mesh.msh byte for byte."""
+    """mesh is the command's output in `out`: its nodes bit for bit and its mesh.msh byte for byte,
+    followed in Python's file by one $NodeData view per transferred array (the command writes the
+    solution to solution.vtu instead)."""
     assert np.array_equal(mesh.points, read_nodes(out / "mesh.nodes"))
     written = pdmesh.Mesh.read(out / "mesh.msh")
     assert np.array_equal(mesh.points, written.points)
     assert np.array_equal(mesh.triangles, written.triangles)
     mesh.write(tmp_path / "python.msh")
-    assert (tmp_path / "python.msh").read_bytes() == (out / "mesh.msh").read_bytes()
+    ours, command = (tmp_path / "python.msh").read_bytes(), (out / "mesh.msh").read_bytes()
+    assert ours[:len(command)] == command
+    views = ours[len(command):].decode().split("$EndNodeData\n")
+    assert views[-1] == "" and len(views) - 1 == len(mesh.point_data)
+    for view, name in zip(views, mesh.point_data):
+        assert view.startswith(f'$NodeData\n1\n"{name}"\n')
+    back = pdmesh.Mesh.read(tmp_path / "python.msh")
+    assert back.point_data.keys() == mesh.point_data.keys()
+    for name, values in mesh.point_data.items():
+        assert np.array_equal(back.point_data[name], values)
 
 
 @pytest.mark.parametrize("spacing", list(SPACINGS))
