@@ -18,6 +18,7 @@
 #include "geometry/geometry_detail.hpp"
 #include "geometry/gis_features.hpp"
 #include "io/mesh_formats.hpp"
+#include "io/mesh_io_common.hpp"
 
 namespace pdmesh {
 
@@ -284,13 +285,6 @@ class MeshGeometryBuilder {
       if (used.count(key) == 0) walk(edges_[key].first.a, key);
   }
 
-  // The name the file gives an attribute (Mesh::region_names), else empty.
-  std::string region_name(double attribute) const {
-    for (const RegionName& r : mesh_.region_names)
-      if (r.attribute == attribute) return r.name;
-    return {};
-  }
-
   // A seed per part of the domain between constraints, at a triangle's centroid, with its attribute
   // and name.
   void seed_regions() {
@@ -319,7 +313,7 @@ class MeshGeometryBuilder {
       GeometryRegion r;
       r.p = (at(t[0]) + at(t[1]) + at(t[2])) * (1.0 / 3.0);
       r.attribute = attribute;
-      r.name = region_name(attribute);
+      r.name = region_name(mesh_, attribute);
       r.file = file_;
       raw_.regions.push_back(r);
     }

@@ -15,13 +15,17 @@
 
 namespace pdmesh {
 
-std::string curve_label(const Mesh& mesh, std::size_t c, bool no_blanks) {
-  std::string name = c < mesh.curve_names.size() ? mesh.curve_names[c] : std::string();
-  if (name.empty()) name = fmt::format("curve{}", c);
+std::string writable_name(std::string name, bool no_blanks) {
   for (char& ch : name) {
     if (ch == '"' || ch == '\n' || ch == '\r' || (no_blanks && (ch == ' ' || ch == '\t'))) ch = '_';
   }
   return name;
+}
+
+std::string curve_label(const Mesh& mesh, std::size_t c, bool no_blanks) {
+  std::string name = c < mesh.curve_names.size() ? mesh.curve_names[c] : std::string();
+  if (name.empty()) name = fmt::format("curve{}", c);
+  return writable_name(std::move(name), no_blanks);
 }
 
 void check_mesh_for_writing(const Mesh& mesh, const std::string& what) {
@@ -57,15 +61,16 @@ void check_mesh_for_writing(const Mesh& mesh, const std::string& what) {
                                    d.values.size(), n, d.components));
 }
 
-std::string region_label(const Mesh& mesh, double attribute) {
+std::string_view region_name(const Mesh& mesh, double attribute) {
   const auto named = std::lower_bound(mesh.region_names.begin(), mesh.region_names.end(), attribute,
                                       [](const RegionName& r, double a) { return r.attribute < a; });
-  if (named == mesh.region_names.end() || named->attribute != attribute || named->name.empty())
-    return fmt::format("region_{}", attribute);
-  std::string name = named->name;
-  for (char& ch : name)
-    if (ch == '"' || ch == '\n' || ch == '\r') ch = '_';
-  return name;
+  if (named == mesh.region_names.end() || named->attribute != attribute) return {};
+  return named->name;
+}
+
+std::string region_label(const Mesh& mesh, double attribute) {
+  const std::string_view name = region_name(mesh, attribute);
+  return name.empty() ? fmt::format("region_{}", attribute) : writable_name(std::string(name));
 }
 
 RegionSurfaces region_surfaces(const Mesh& mesh) {

@@ -78,16 +78,22 @@ struct SurfaceCells {
   bool region_found = false;                                     // out: the file names the region
 };
 
-// The name of curve c as written: its name, or "curve<c>" when empty; double quotes and line
-// breaks become '_' (MSH quotes names), and with `no_blanks` also spaces and tabs (SU2 markers).
+// The name of curve c as written: its name, or "curve<c>" when empty, as writable_name makes it.
 std::string curve_label(const Mesh& mesh, std::size_t c, bool no_blanks = false);
 
 // Throws InputError naming the triangle/edge/curve when an index is out of range or when
 // `kind` is neither empty nor one per point. Every writer calls this first.
 void check_mesh_for_writing(const Mesh& mesh, const std::string& what);
 
-// The name of regional attribute `attribute` as written: its Mesh::region_names entry (double quotes
-// and line breaks as '_'), else "region_<attribute>".
+// A name as a file can hold it: double quotes and line breaks become '_' (MSH quotes names), and with
+// `no_blanks` also spaces and tabs (SU2 markers).
+std::string writable_name(std::string name, bool no_blanks = false);
+
+// The name Mesh::region_names gives regional attribute `attribute`; empty when it has none.
+std::string_view region_name(const Mesh& mesh, double attribute);
+
+// The name of regional attribute `attribute` as written: its region_name (writable_name), else
+// "region_<attribute>".
 std::string region_label(const Mesh& mesh, double attribute);
 
 // The triangles' subdomains as the writers name them: one "domain" without regional attributes
