@@ -16,6 +16,7 @@
 #include "mesh/quality.hpp"
 #include "render/canvas.hpp"
 #include "render/mesh_picture.hpp"
+#include "render/metric_picture.hpp"
 #include "render/node_picture.hpp"
 #include "temp_files.hpp"
 
@@ -426,6 +427,45 @@ TEST_CASE("a mesh too dense for its picture gets a close-up around its smallest 
   CHECK_FALSE(dense_mesh_close_up(m, whole, 4000).has_value());
   CHECK_FALSE(dense_mesh_close_up(unit_square_mesh(), whole, 400).has_value());
   CHECK_FALSE(dense_mesh_close_up(Mesh{}, whole, 400).has_value());
+}
+
+TEST_CASE("a metric picture drawn in bands is the picture one canvas draws, pixel for pixel", "[render]") {
+  const fs::path dir = fresh_dir("metric_bands");
+  // Ellipses from a few pixels to a tenth of the picture, stretched and turned, so that the bands
+  // cut through ellipses of every size and the polygons have from the fewest to the most sides.
+  const Mesh m = grid_mesh(24, [](double x, double y) { return Vec2{x, y}; });
+  std::vector<Metric> metrics(m.points.size());
+  for (std::size_t i = 0; i < metrics.size(); ++i) {
+    const Vec2 p = m.points[i];
+    const double h1 = 0.002 + 0.1 * p.x, h2 = h1 * (1.0 + 3.0 * p.y), a = 3.0 * p.x + p.y;
+    const double c = std::cos(a), s = std::sin(a), l1 = 1.0 / (h1 * h1), l2 = 1.0 / (h2 * h2);
+    metrics[i] = Metric{l1 * c * c + l2 * s * s, (l1 - l2) * c * s, l1 * s * s + l2 * c * c};
+  }
+  MetricPictureOptions o;
+  o.title = "metric bands";
+  o.long_side = 500;
+  o.bands = 1;
+  write_metric_picture(dir / "one.png", m, metrics, o);
+  for (const int bands : {2, 3, 7}) {
+    o.bands = bands;
+    write_metric_picture(dir / "bands.png", m, metrics, o);
+    Png one(dir / "one.png"), banded(dir / "bands.png");
+    REQUIRE(one.ok());
+    REQUIRE(banded.ok());
+    REQUIRE(banded.width() == one.width());
+    REQUIRE(banded.height() == one.height());
+    INFO("bands " << bands);
+    CHECK(differing_pixels(one, banded) == 0);
+  }
+  // The ellipses are there: red pixels in the plot.
+  Png one(dir / "one.png");
+  int red = 0;
+  for (int y = 40; y < one.height(); ++y)
+    for (int x = 0; x < one.width(); ++x) {
+      const Rgb p = one.pixel(x, y);
+      red += p.r > 150 && p.g < 100 && p.b < 100;
+    }
+  CHECK(red > 2000);
 }
 
 TEST_CASE("a mesh picture drawn in bands is the picture one canvas draws, pixel for pixel", "[render]") {

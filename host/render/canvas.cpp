@@ -279,6 +279,19 @@ void StrokeBatch::box(const Box& b) {
   if (++count_ >= kPathBatchItems) flush();
 }
 
+void StrokeBatch::closed_path(const std::vector<Vec2>& points) {
+  if (points.empty()) return;
+  cairo_t* cr = canvas_.context();
+  const Vec2 p0 = canvas_.to_pixel(points.front());
+  cairo_move_to(cr, p0.x, p0.y);
+  for (std::size_t k = 1; k < points.size(); ++k) {
+    const Vec2 p = canvas_.to_pixel(points[k]);
+    cairo_line_to(cr, p.x, p.y);
+  }
+  cairo_close_path(cr);
+  if (++count_ >= kPathBatchItems) flush();
+}
+
 void StrokeBatch::skip() {
   if (++count_ >= kPathBatchItems) flush();
 }

@@ -146,6 +146,9 @@ class StrokeBatch {
   StrokeBatch& operator=(const StrokeBatch&) = delete;
   void segment(Vec2 a, Vec2 b);  // world coordinates
   void box(const Box& b);        // the outline of a world box
+  // A closed polygon through world points as one item: one subpath whose corners join, cheaper for
+  // cairo to stroke than its sides as separate segments (each with its two caps).
+  void closed_path(const std::vector<Vec2>& points);
   // An item that this canvas does not draw (outside its band) but the whole picture does: counted
   // as drawn, so that every band flushes its batches after the same items as the whole picture and
   // overlapping items blend the same way in every band.

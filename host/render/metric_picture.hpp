@@ -18,6 +18,7 @@ struct MetricPictureOptions {
   std::string title;
   std::optional<Box> window;  // default: the mesh's extents + 3%
   int long_side = 1600;
+  int bands = 4;  // horizontal bands shared out to the cores (PNG only; render_picture)
 };
 
 // Writes a .png or .svg atomically; metrics[i] is the metric at mesh.points[i]. Throws Error when the
