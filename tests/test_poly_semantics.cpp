@@ -81,10 +81,11 @@ TEST_CASE("poly semantics: a loop without a hole point is a constraint, regions 
 TEST_CASE("poly semantics: a loop with a hole point stays a hole", "[geometry]") {
   const PolyFile poly = read_poly_file(data("geometry/square_with_hole.poly"));
   CHECK(count_constraints(poly, true) == 0);
-  // Only the region's maximum area is noted (not applied), with the spacing it stands for.
+  // Only the region's maximum area is noted, with the spacing that sizes its subdomain.
   REQUIRE(poly.notes.size() == 1);
   CHECK_THAT(poly.notes[0], Contains("square_with_hole.poly:24: 1 region gives a maximum triangle area (the first: "
-                                     "0.1, the area of equilateral triangles of side 0.4806)"));
+                                     "0.1); each such subdomain is sized so that its largest triangles have about "
+                                     "that area (the first: spacing 0.3697)"));
   REQUIRE(poly.regions.size() == 1);
   CHECK(poly.regions[0].p == Vec2{3, 3});
   const Geometry g = read_geometry({data("geometry/square_with_hole.poly")}, {});

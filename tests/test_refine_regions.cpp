@@ -140,7 +140,7 @@ TEST_CASE("bad sizes and regions in a case file exit 2 naming the key and the va
             "refine[0].box = [0.7, 0.3, 0.3, 0.7]"},
            {"[[refine]]\nshape = \"disc\"\ncentre = [0.5, 0.5]\nradius = 0.2\nsize = -1\n", "refine[0].size = -1"},
            {"[[refine]]\nshape = \"star\"\nsize = 1\n",
-            "refine[0].shape must be one of box, disc, points, polyline, got 'star'"},
+            "refine[0].shape must be one of box, disc, points, polyline, region, got 'star'"},
            {"[[refine]]\nshape = \"disc\"\ncentre = [0.5, 0.5]\nsize = 0.1\n", "refine[0].radius is required"},
            {"[[refine]]\nshape = \"box\"\nbox = [0, 0, 1, 1]\nradius = 1\nsize = 0.1\n",
             "refine[0].radius does not go with"},

@@ -2,6 +2,7 @@
 // closed loops, critical points, segments, arc lengths, extents and the even-odd domain area.
 // Plain data: readers fill RawCurve lists, build_geometry() validates them and derives the rest.
 #pragma once
+#include <cmath>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -54,6 +55,16 @@ struct GeometryRegion {
   // empty: the writers call it "region_<attribute>".
   std::string name;
 };
+
+// The spacing that sizes a subdomain whose triangles should not exceed the area `max_area`
+// (GeometryRegion::max_area; spacing/refine_regions.hpp, max_area_regions): the side of the
+// equilateral triangle of that area over kMaxAreaSpacingMargin, since a settled mesh's largest
+// triangles are about 1.6 times the area of the equilateral one of its spacing (the mean about
+// 1.1 times): the largest then stay near the maximum area.
+inline constexpr double kMaxAreaSpacingMargin = 1.3;
+inline double max_area_spacing(double max_area) {
+  return std::sqrt(4.0 * max_area / std::sqrt(3.0)) / kMaxAreaSpacingMargin;
+}
 
 // A name that stands for several curves (a mesh file's boundary name on separate stretches, which
 // become curves NAME, NAME_2, ...: io/mesh_geometry.hpp): selections of curves by name

@@ -258,8 +258,8 @@ class PolySemantics {
     }
   }
 
-  // Triangle's maximum areas (its -a): pdmesh sizes by spacing, so they are said, with the spacing
-  // of equilateral triangles of that area, q = sqrt(4 A / sqrt(3)), not applied.
+  // Triangle's maximum areas (its -a): pdmesh sizes by spacing, so each such region's subdomain is
+  // sized (spacing/refine_regions.hpp, max_area_regions); the note says how.
   void note_max_areas() {
     const auto capped = std::count_if(result_.regions.begin(), result_.regions.end(),
                                       [](const GeometryRegion& r) { return r.max_area > 0; });
@@ -267,10 +267,10 @@ class PolySemantics {
     const auto first = std::find_if(result_.regions.begin(), result_.regions.end(),
                                     [](const GeometryRegion& r) { return r.max_area > 0; });
     result_.notes.push_back(fmt::format(
-        "{}:{}: {} region{} give{} a maximum triangle area (the first: {}, the area of equilateral triangles of side "
-        "{:.4g}); pdmesh does not apply regional maximum areas: set the size with the spacing options",
+        "{}:{}: {} region{} give{} a maximum triangle area (the first: {}); each such subdomain is sized so that "
+        "its largest triangles have about that area (the first: spacing {:.4g}), unless the spacing field is a metric",
         path_, first->line, capped, capped == 1 ? "" : "s", capped == 1 ? "s" : "", first->max_area,
-        std::sqrt(4.0 * first->max_area / std::sqrt(3.0))));
+        max_area_spacing(first->max_area)));
   }
 
   // Each edge's kind from the faces on its sides, and the vertices' degrees (input and kept edges).

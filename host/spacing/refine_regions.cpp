@@ -4,9 +4,13 @@
 #include <algorithm>
 #include <cmath>
 
+#include <set>
+
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include "core/errors.hpp"
+#include "core/parallel.hpp"
 
 namespace pdmesh {
 
@@ -39,6 +43,8 @@ double region_size(const RefineRegion& r, Vec2 p) {
       for (std::size_t k = 0; k + 1 < r.points.size(); ++k)
         if (distance_to_segment(p, r.points[k], r.points[k + 1]) <= r.radius) return r.size;
       return kInfinity;
+    case RegionShape::Subdomain:
+      return kInfinity;
   }
   return kInfinity;
 }
@@ -56,6 +62,19 @@ void check_refine_region(const RefineRegion& r) {
       if (!finite(r.centre))
         throw InputError(fmt::format("{}.centre = [{}, {}]: must be finite", r.label, r.centre.x, r.centre.y));
       break;
+    case RegionShape::Subdomain: {
+      const int given = (r.attribute ? 1 : 0) + (r.region_name.empty() ? 0 : 1) + (r.at ? 1 : 0);
+      if (given != 1)
+        throw InputError(
+            fmt::format("{}: a region is given by exactly one of region (an attribute or a name) and "
+                        "point, got {}",
+                        r.label, given));
+      if (r.attribute && !std::isfinite(*r.attribute))
+        throw InputError(fmt::format("{}.region = {}: must be finite", r.label, *r.attribute));
+      if (r.at && !finite(*r.at))
+        throw InputError(fmt::format("{}.point = [{}, {}]: must be finite", r.label, r.at->x, r.at->y));
+      return;
+    }
     case RegionShape::Points:
     case RegionShape::Polyline: {
       const std::size_t least = r.shape == RegionShape::Points ? 1 : 2;
@@ -74,14 +93,85 @@ void check_refine_region(const RefineRegion& r) {
     throw InputError(fmt::format("{}.radius = {}: must be a finite number > 0", r.label, r.radius));
 }
 
-RegionSpacing::RegionSpacing(std::unique_ptr<SpacingField> base, std::vector<RefineRegion> regions)
+std::vector<RefineRegion> max_area_regions(const std::vector<GeometryRegion>& regions) {
+  std::vector<RefineRegion> out;
+  for (const GeometryRegion& g : regions) {
+    if (!(g.max_area > 0.0)) continue;
+    RefineRegion r;
+    r.shape = RegionShape::Subdomain;
+    r.size = max_area_spacing(g.max_area);
+    r.at = g.p;
+    r.label = g.file.empty() ? fmt::format("the region at ({}, {})", g.p.x, g.p.y)
+                             : fmt::format("{}:{}: the region's maximum area {}", g.file, g.line, g.max_area);
+    out.push_back(std::move(r));
+  }
+  return out;
+}
+
+namespace {
+
+std::string attributes_of(const std::vector<GeometryRegion>& regions) {
+  std::set<double> attributes;
+  for (const GeometryRegion& r : regions) attributes.insert(r.attribute);
+  if (attributes.empty())
+    return "the geometry has no regions: a .poly file's regional attributes, a mesh file's regions or "
+           "geometry.regions give them";
+  std::vector<std::string> names;
+  for (const double a : attributes) {
+    std::string name;
+    for (const GeometryRegion& r : regions)
+      if (r.attribute == a && !r.name.empty()) name = r.name;
+    names.push_back(name.empty() ? fmt::format("{}", a) : fmt::format("{} \"{}\"", a, name));
+  }
+  return fmt::format("its regions: {}", fmt::join(names, ", "));
+}
+
+}  // namespace
+
+RegionSpacing::RegionSpacing(std::unique_ptr<SpacingField> base, std::vector<RefineRegion> regions,
+                             const Geometry* geometry)
     : base_(std::move(base)), regions_(std::move(regions)) {
-  for (const RefineRegion& r : regions_) check_refine_region(r);
+  faces_.resize(regions_.size());
+  for (std::size_t k = 0; k < regions_.size(); ++k) {
+    const RefineRegion& r = regions_[k];
+    check_refine_region(r);
+    if (r.shape != RegionShape::Subdomain) continue;
+    if (geometry == nullptr) throw InputError(fmt::format("{}: a region's size needs the geometry", r.label));
+    if (!subdomains_) subdomains_ = std::make_unique<Subdomains>(*geometry);
+    std::vector<int>& faces = faces_[k];
+    if (r.attribute) {
+      faces = subdomains_->faces_with_attribute(*r.attribute);
+      if (faces.empty())
+        throw InputError(fmt::format("{}.region = {}: no region of the geometry has this attribute ({})", r.label,
+                                     *r.attribute, attributes_of(geometry->regions)));
+    } else if (!r.region_name.empty()) {
+      faces = subdomains_->faces_named(r.region_name);
+      if (faces.empty())
+        throw InputError(fmt::format("{}.region = \"{}\": no region of the geometry has this name ({})", r.label,
+                                     r.region_name, attributes_of(geometry->regions)));
+    } else {
+      const int f = subdomains_->face_at(*r.at);
+      if (f < 0)
+        throw InputError(
+            fmt::format("{}: the point ({}, {}) lies on a curve or outside every loop; give a point "
+                        "inside the subdomain to size",
+                        r.label, r.at->x, r.at->y));
+      faces = {f};
+    }
+  }
 }
 
 double RegionSpacing::regions_at(Vec2 p) const {
   double q = kInfinity;
-  for (const RefineRegion& r : regions_) q = std::min(q, region_size(r, p));
+  for (std::size_t k = 0; k < regions_.size(); ++k) {
+    const RefineRegion& r = regions_[k];
+    if (r.size >= q) continue;
+    if (r.shape == RegionShape::Subdomain) {
+      if (subdomains_->in_any(faces_[k], p)) q = r.size;
+    } else {
+      q = std::min(q, region_size(r, p));
+    }
+  }
   return q;
 }
 
@@ -89,6 +179,11 @@ double RegionSpacing::at(Vec2 p) const { return std::min(base_->at(p), regions_a
 
 void RegionSpacing::at_many(const std::vector<Vec2>& p, std::vector<double>& q) const {
   base_->at_many(p, q);
+  // A subdomain's test walks its faces' boundaries: on all cores (each point writes its own value).
+  if (subdomains_) {
+    parallel_for(p.size(), [&](std::size_t i) { q[i] = std::min(q[i], regions_at(p[i])); }, 1024);
+    return;
+  }
   for (std::size_t i = 0; i < p.size(); ++i) q[i] = std::min(q[i], regions_at(p[i]));
 }
 

@@ -63,6 +63,20 @@ def test_regions_tag_the_parts_a_closed_constraint_bounds(tmp_path):
     assert set(rows.regions.tolist()) == {0.0, 7.0} and rows.region_names == {}
 
 
+def test_a_region_sized_by_its_name(tmp_path):
+    # The inclusion "steel" at a tenth of the matrix's size: its triangles small, the matrix's corners coarse.
+    inclusion = np.array([[0.3, 0.3], [0.7, 0.3], [0.7, 0.7], [0.3, 0.7], [0.3, 0.3]])
+    g = pdmesh.Geometry([SQUARE], constraints=[inclusion], regions={"matrix": (0.1, 0.1), "steel": (0.5, 0.5)})
+    mesh = pdmesh.generate(g, settings={"spacing.size": 0.1}, refine=[{"shape": "region", "region": "steel",
+                                                                       "size": 0.01}], device="host", seed=1)
+    edges = np.linalg.norm(mesh.points[mesh.triangles] - mesh.points[np.roll(mesh.triangles, 1, axis=1)], axis=2)
+    steel, matrix = mesh.regions == 2.0, mesh.regions == 1.0
+    assert 0.007 < edges[steel].mean() < 0.013
+    assert edges[matrix].max() > 0.06
+    with pytest.raises(pdmesh.InputError, match=r'refine\[0\]\.region = "iron": no region of the geometry'):
+        pdmesh.generate(g, refine=[{"shape": "region", "region": "iron", "size": 0.01}], iterations=0)
+
+
 def test_region_points_outside_or_on_a_curve_are_refused():
     inclusion = np.array([[0.3, 0.3], [0.7, 0.3], [0.7, 0.7], [0.3, 0.7], [0.3, 0.3]])
     with pytest.raises(pdmesh.InputError, match=r"regions:0: region point \(2, 2\) lies outside the domain"):

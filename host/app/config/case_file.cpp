@@ -355,7 +355,8 @@ const std::vector<std::string>& farfield_keys() {
 
 const std::vector<std::string>& refine_keys() {
   static const std::vector<std::string> keys = {
-      "refine.shape", "refine.size", "refine.box", "refine.centre", "refine.radius", "refine.points",
+      "refine.shape",  "refine.size",   "refine.box",    "refine.centre",
+      "refine.radius", "refine.points", "refine.region", "refine.point",
   };
   return keys;
 }

@@ -30,21 +30,46 @@ RefineRegion read_region(const Reader& r, const toml::table& t, const toml::node
                                 {{"box", RegionShape::Box},
                                  {"disc", RegionShape::Disc},
                                  {"points", RegionShape::Points},
-                                 {"polyline", RegionShape::Polyline}});
+                                 {"polyline", RegionShape::Polyline},
+                                 {"region", RegionShape::Subdomain}});
   const toml::node& size = required("size");
   g.size = r.number(key("size"), size);
   // Each shape's own keys; a key of another shape is a mistake worth naming.
   const bool boxed = g.shape == RegionShape::Box;
   const bool disc = g.shape == RegionShape::Disc;
   const bool listed = g.shape == RegionShape::Points || g.shape == RegionShape::Polyline;
-  for (const auto& [k, want] :
-       {std::pair<const char*, bool>{"box", boxed}, {"centre", disc}, {"radius", !boxed}, {"points", listed}}) {
+  const bool subdomain = g.shape == RegionShape::Subdomain;
+  for (const auto& [k, want] : {std::pair<const char*, bool>{"box", boxed},
+                                {"centre", disc},
+                                {"radius", !boxed && !subdomain},
+                                {"points", listed},
+                                {"region", subdomain},
+                                {"point", subdomain}}) {
     const toml::node* n = t.get(k);
     if (n != nullptr && !want)
       r.fail(key(k), n, fmt::format("{} does not go with shape = \"{}\"", key(k), r.string(key("shape"), shape)));
   }
   const toml::node* checked = &size;
-  if (boxed) {
+  if (subdomain) {
+    // A regional attribute (a number), a region's name, or a point in the subdomain.
+    const toml::node* region = t.get("region");
+    const toml::node* point = t.get("point");
+    if ((region == nullptr) == (point == nullptr))
+      r.fail(key("region"), region != nullptr ? region : &table_node,
+             fmt::format("{} takes one of region (a regional attribute or a region's name) and point ([x, y] in the "
+                         "subdomain)",
+                         base));
+    if (region != nullptr && region->is_string()) {
+      g.region_name = r.string(key("region"), *region);
+      if (g.region_name.empty()) r.fail(key("region"), region, fmt::format("{} is an empty name", key("region")));
+    } else if (region != nullptr) {
+      g.attribute = r.number(key("region"), *region);
+      if (g.size > 0.0) checked = region;
+    } else {
+      g.at = read_point(r, key("point"), *point);
+      if (g.size > 0.0) checked = point;
+    }
+  } else if (boxed) {
     const toml::node& b = required("box");
     const toml::array& a = r.array(key("box"), b);
     if (a.size() != 4)
@@ -73,6 +98,9 @@ RefineRegion read_region(const Reader& r, const toml::table& t, const toml::node
   } catch (const InputError& e) {
     r.fail(base, checked, e.what());
   }
+  // A subdomain is found in the geometry later (spacing/refine_regions.hpp): its messages then name
+  // the table's line.
+  if (subdomain) g.label = fmt::format("{}: {}", r.where(base, &table_node.source()), base);
   return g;
 }
 

@@ -53,9 +53,14 @@ std::unique_ptr<SpacingField> base_spacing(const CaseConfig& config, const Geome
 std::unique_ptr<SpacingField> make_case_spacing(const CaseConfig& config, const GeometryTree& tree,
                                                 const MetricField* metric) {
   std::unique_ptr<SpacingField> base = base_spacing(config, tree, metric);
-  // Refinement regions lower the base field inside them; the pipeline's sources and gradation apply after.
-  if (config.spacing.regions.empty()) return base;
-  return std::make_unique<RegionSpacing>(std::move(base), config.spacing.regions);
+  // Refinement regions lower the base field inside them; the pipeline's sources and gradation apply
+  // after. A .poly file's maximum areas size their subdomains (not under a metric, which sets the sizes).
+  std::vector<RefineRegion> regions = config.spacing.regions;
+  if (!config.spacing.metric()) {
+    for (RefineRegion& r : max_area_regions(tree.geometry().regions)) regions.push_back(std::move(r));
+  }
+  if (regions.empty()) return base;
+  return std::make_unique<RegionSpacing>(std::move(base), std::move(regions), &tree.geometry());
 }
 
 namespace {

@@ -119,10 +119,16 @@ void add_region_identity(const CaseConfig& config, Identity& keys) {
     const RefineRegion& r = config.spacing.regions[k];
     std::string points;
     for (const Vec2 p : r.points) points += fmt::format(" {} {}", p.x, p.y);
-    keys.emplace_back(
-        fmt::format("refine.{}", k),
-        fmt::format("{} {} box {} {} {} {} centre {} {} radius {} points{}", static_cast<int>(r.shape), r.size,
-                    r.box.lo.x, r.box.lo.y, r.box.hi.x, r.box.hi.y, r.centre.x, r.centre.y, r.radius, points));
+    // A subdomain's selector only for that shape, so that the other shapes identify as before.
+    std::string subdomain;
+    if (r.shape == RegionShape::Subdomain)
+      subdomain = r.attribute ? fmt::format(" region {}", *r.attribute)
+                  : r.at      ? fmt::format(" point {} {}", r.at->x, r.at->y)
+                              : fmt::format(" name {}", r.region_name);
+    keys.emplace_back(fmt::format("refine.{}", k),
+                      fmt::format("{} {} box {} {} {} {} centre {} {} radius {} points{}{}", static_cast<int>(r.shape),
+                                  r.size, r.box.lo.x, r.box.lo.y, r.box.hi.x, r.box.hi.y, r.centre.x, r.centre.y,
+                                  r.radius, points, subdomain));
   }
 }
 
