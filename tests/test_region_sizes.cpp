@@ -157,8 +157,8 @@ TEST_CASE("[[refine]] shape = \"region\": the region's triangles at its size, th
   REQUIRE(base.status == 0);
   const auto before = stats_by_region(base.mesh);
   // By attribute, by name and by a point in it: the same subdomain.
-  for (const std::string& selector : {std::string("region = 2"), std::string("point = [3.5, 2.0]"),
-                                      std::string("region = \"copper\"")}) {
+  for (const std::string& selector :
+       {std::string("region = 2"), std::string("point = [3.5, 2.0]"), std::string("region = \"copper\"")}) {
     const bool named = selector.find("copper") != std::string::npos;
     std::string extra = "[[refine]]\nshape = \"region\"\n" + selector + "\nsize = 0.1\n";
     if (named) extra = "[geometry.region_names]\n2 = \"copper\"\n\n" + extra;

@@ -47,8 +47,8 @@ class Subdomains {
   std::vector<Vec2> vertices_;
   std::vector<std::array<int, 2>> edges_;
   PlanarFaces faces_;
-  std::vector<IndexedCycle> cycles_;                  // per face, its outer boundary
-  std::vector<std::optional<std::size_t>> region_;    // per face, the index in `regions_` of its region
+  std::vector<IndexedCycle> cycles_;                // per face, its outer boundary
+  std::vector<std::optional<std::size_t>> region_;  // per face, the index in `regions_` of its region
   std::vector<GeometryRegion> regions_;
 };
 
