@@ -76,9 +76,10 @@ TEST_CASE("the region legend names each attribute's region, in ascending order, 
   CHECK(fill.ends == std::vector<std::size_t>{1, 3, 4});
   CHECK(fill.has_regions());
   // More regions than colours: the palette cycles.
-  CHECK(near({255 * region_palette_colour(region_palette_size()).r, 255 * region_palette_colour(region_palette_size()).g,
-              255 * region_palette_colour(region_palette_size()).b},
-             region_palette_colour(0)));
+  CHECK(
+      near({255 * region_palette_colour(region_palette_size()).r, 255 * region_palette_colour(region_palette_size()).g,
+            255 * region_palette_colour(region_palette_size()).b},
+           region_palette_colour(0)));
   // A mesh without regions: one grey "no region" entry of every triangle.
   m.region.clear();
   const RegionFill none = region_fill(m);
@@ -203,7 +204,7 @@ TEST_CASE("output.color_by takes region beside the metrics and refuses other nam
   }
 }
 
-TEST_CASE("pdmesh mesh --color-by region fills mesh.png by the .poly's regions; quality draws a file's regions",
+TEST_CASE("pdmesh mesh --color-by region fills mesh.png by the .poly's regions, and quality by a file's",
           "[render][region][cli]") {
   const fs::path dir = pdmesh_test::fresh_dir("region_run");
   const fs::path case_file = fs::path(pdmesh::test::source_dir()) / "tests/data/interop/two_regions.toml";
@@ -217,9 +218,8 @@ TEST_CASE("pdmesh mesh --color-by region fills mesh.png by the .poly's regions; 
     CHECK(pixels_of(png, region_palette_colour(0)) > 1000);
     CHECK(pixels_of(png, region_palette_colour(1)) > 1000);
   }
-  const pdmesh_test::Result quality = pdmesh_test::run_pdmesh("quality '" + (dir / "mesh.msh").string() +
-                                                              "' --picture '" + (dir / "q.png").string() +
-                                                              "' --color-by region");
+  const pdmesh_test::Result quality = pdmesh_test::run_pdmesh(
+      "quality '" + (dir / "mesh.msh").string() + "' --picture '" + (dir / "q.png").string() + "' --color-by region");
   INFO(quality.output);
   REQUIRE(quality.status == 0);
   {
@@ -228,13 +228,13 @@ TEST_CASE("pdmesh mesh --color-by region fills mesh.png by the .poly's regions; 
     CHECK(pixels_of(png, region_palette_colour(0)) > 1000);
     CHECK(pixels_of(png, region_palette_colour(1)) > 1000);
   }
-  const pdmesh_test::Result bad = pdmesh_test::run_pdmesh("quality '" + (dir / "mesh.msh").string() +
-                                                          "' --picture '" + (dir / "r.png").string() +
-                                                          "' --color-by region --color-range 0,1");
+  const pdmesh_test::Result bad =
+      pdmesh_test::run_pdmesh("quality '" + (dir / "mesh.msh").string() + "' --picture '" + (dir / "r.png").string() +
+                              "' --color-by region --color-range 0,1");
   CHECK(bad.status == 2);
   CHECK(bad.output.find("--color-range needs --color-by METRIC") != std::string::npos);
-  const pdmesh_test::Result unknown = pdmesh_test::run_pdmesh("mesh '" + case_file.string() + "' --out '" +
-                                                              dir.string() + "/x' --color-by regions -q");
+  const pdmesh_test::Result unknown =
+      pdmesh_test::run_pdmesh("mesh '" + case_file.string() + "' --out '" + dir.string() + "/x' --color-by regions -q");
   CHECK(unknown.status == 2);
   CHECK(unknown.output.find("got 'regions'") != std::string::npos);
   fs::remove_all(dir);

@@ -109,9 +109,8 @@ std::vector<std::pair<int, int>> region_interfaces(const Mesh& mesh) {
   std::vector<std::pair<int, int>> out;
   if (mesh.region.size() != mesh.triangles.size() || mesh.triangles.empty()) return out;
   const double first = mesh.region[0];
-  const bool one_region = std::all_of(mesh.region.begin(), mesh.region.end(), [&](double a) {
-    return a == first || (!in_a_region(a) && !in_a_region(first));
-  });
+  const bool one_region = std::all_of(mesh.region.begin(), mesh.region.end(),
+                                      [&](double a) { return a == first || (!in_a_region(a) && !in_a_region(first)); });
   if (one_region) return out;
   // Every triangle's edges by key, with the triangle's attribute (non-finite ones as 0, as the
   // fills show them): an edge whose two entries differ lies between regions.
