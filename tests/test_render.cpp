@@ -18,6 +18,7 @@
 #include "render/mesh_picture.hpp"
 #include "render/metric_picture.hpp"
 #include "render/node_picture.hpp"
+#include "png_pixels.hpp"
 #include "temp_files.hpp"
 
 namespace fs = std::filesystem;
@@ -29,21 +30,7 @@ fs::path fresh_dir(const std::string& tag) { return pdmesh_test::fresh_dir("rend
 using pdmesh_test::entries;
 using pdmesh_test::slurp;
 
-// A PNG read back through cairo; pixel() gives 0-255 channels.
-struct Png {
-  cairo_surface_t* s;
-  explicit Png(const fs::path& p) : s(cairo_image_surface_create_from_png(p.c_str())) {}
-  ~Png() { cairo_surface_destroy(s); }
-  bool ok() const { return cairo_surface_status(s) == CAIRO_STATUS_SUCCESS; }
-  int width() const { return cairo_image_surface_get_width(s); }
-  int height() const { return cairo_image_surface_get_height(s); }
-  Rgb pixel(int x, int y) const {
-    cairo_surface_flush(s);
-    const unsigned char* row = cairo_image_surface_get_data(s) + y * cairo_image_surface_get_stride(s);
-    const auto v = *reinterpret_cast<const std::uint32_t*>(row + 4 * x);
-    return {static_cast<double>((v >> 16) & 255), static_cast<double>((v >> 8) & 255), static_cast<double>(v & 255)};
-  }
-};
+using pdmesh_test::Png;
 
 // How many pixels of two pictures of the same size differ in any channel.
 int differing_pixels(const Png& one, const Png& other) {

@@ -329,6 +329,17 @@ Mesh triangulated(const MixedMesh& mesh) {
   return out;
 }
 
+void add_layer_regions(const MixedMesh& mesh, Mesh& drawn) {
+  drawn.region.clear();
+  drawn.region.reserve(drawn.triangles.size());
+  for (std::size_t k = 0; k < mesh.cells.size(); ++k) {
+    const double attribute = mesh.layer[k] != 0 ? 2.0 : 1.0;
+    drawn.region.push_back(attribute);
+    if (mesh.cells[k][3] >= 0) drawn.region.push_back(attribute);  // a quad is two triangles
+  }
+  drawn.region_names = {{1.0, kCoreRegion}, {2.0, kLayerRegion}};
+}
+
 Mesh with_quads_split(Mesh mesh, const SurfaceCells& cells) {
   if (cells.quads.empty()) return mesh;
   MixedMesh quads;

@@ -62,6 +62,9 @@ MixedMesh mixed_mesh_of(const Mesh& mesh, const SurfaceCells& cells);
 
 // The mesh as triangles (each quad split along its shorter diagonal), for the pictures.
 Mesh triangulated(const MixedMesh& mesh);
+// Mesh::region and region_names of `triangulated(mesh)`, for a picture filled by region: the core's
+// triangles attribute 1 (kCoreRegion), the layer's 2 (kLayerRegion), the MSH file's surface entities.
+void add_layer_regions(const MixedMesh& mesh, Mesh& drawn);
 
 // `mesh` (read_mesh's triangles) with the file's quads `cells` split as `triangulated` splits them,
 // appended after its triangles: every cell of a layered mesh, for interpolating data on it. The

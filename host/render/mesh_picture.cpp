@@ -1,4 +1,5 @@
-// Mesh pictures: value fill, edges, boundary edges, then the colour bar in a band on the right.
+// Mesh pictures: value or region fill, edges, boundary edges and region interfaces, then the colour
+// bar or the region legend in a band on the right.
 #include "render/mesh_picture.hpp"
 
 #include <optional>
@@ -14,6 +15,7 @@
 #include "core/interrupt.hpp"
 #include "core/parallel.hpp"
 #include "mesh/quality.hpp"
+#include "render/region_fill.hpp"
 
 namespace pdmesh {
 
@@ -385,13 +387,17 @@ Box default_mesh_window(const Mesh& mesh) {
 void write_mesh_picture(const std::filesystem::path& path, const Mesh& mesh, const MeshPictureOptions& options) {
   const std::vector<double>* values = options.triangle_values;
   check_picture_inputs(path, mesh, values);
+  if (values != nullptr && options.fill_regions)
+    throw Error(fmt::format("mesh picture '{}': a fill by value and by region both asked for", path.string()));
   const std::pair<double, double> range = ramp_range(values, options);
   const double lo = range.first, hi = range.second;
+  const RegionFill regions = options.fill_regions ? region_fill(mesh) : RegionFill{};
+  const std::vector<std::pair<int, int>> interfaces = region_interfaces(mesh);
   CanvasOptions layout;
   layout.window = options.window ? *options.window : default_mesh_window(mesh);
   layout.long_side = options.long_side;
-  layout.side_width = values != nullptr ? kMeshBarBand : 0;
-  layout.grey = values == nullptr;  // black edges, the grey shade, a black title
+  layout.side_width = values != nullptr ? kMeshBarBand : options.fill_regions ? region_legend_width(regions) : 0;
+  layout.grey = values == nullptr && !options.fill_regions;  // black edges, the grey shade, a black title
 
   // Each edge once (an interior edge belongs to two triangles).
   const std::vector<std::pair<int, int>> edges = unique_edges(mesh);
@@ -407,8 +413,10 @@ void write_mesh_picture(const std::filesystem::path& path, const Mesh& mesh, con
       [&](Canvas& canvas) {
         const double min_edge_world = kMinEdgePixels / canvas.scale();
         std::call_once(planned, [&] { strokes = plan_edge_strokes(canvas, mesh, edges); });
-        // Value fills first, then the edges on top of them.
-        if (values == nullptr)
+        // Value or region fills first, then the edges on top of them.
+        if (options.fill_regions)
+          draw_region_fills(canvas, mesh, regions);
+        else if (values == nullptr)
           draw_dense_shade(canvas, mesh, min_edge_world);
         else
           draw_value_fills(canvas, mesh, *values, lo, hi);
@@ -417,6 +425,8 @@ void write_mesh_picture(const std::filesystem::path& path, const Mesh& mesh, con
         {
           StrokeBatch boundary(canvas, colours::kBlack, 2.0);
           for (const BoundaryEdge& e : mesh.boundary_edges) boundary.segment(mesh.points[e.a], mesh.points[e.b]);
+          for (const auto& [a, b] : interfaces)
+            boundary.segment(mesh.points[static_cast<std::size_t>(a)], mesh.points[static_cast<std::size_t>(b)]);
         }
         canvas.title(
             fmt::format("{}   {} points, {} triangles{}", options.title, mesh.points.size(), mesh.triangles.size(),
@@ -424,6 +434,7 @@ void write_mesh_picture(const std::filesystem::path& path, const Mesh& mesh, con
         if (values != nullptr) {
           draw_colour_bar(canvas, std::isfinite(lo) ? lo : 0.0, std::isfinite(hi) ? hi : 0.0, options.value_label);
         }
+        if (options.fill_regions) draw_region_legend(canvas, regions);
       },
       options.bands);
 }

@@ -1,5 +1,6 @@
-// Pictures of triangle meshes: edges in thin black, boundary edges thicker, optionally each
-// triangle filled by a value (a quality measure) with a viridis-like colour bar.
+// Pictures of triangle meshes: edges in thin black, boundary edges and the interfaces between regions
+// thicker, optionally each triangle filled by a value (a quality measure) with a viridis-like colour
+// bar, or by its region with a legend.
 #pragma once
 #include <filesystem>
 #include <optional>
@@ -20,6 +21,10 @@ struct MeshPictureOptions {
   // Values mapped to the two ends of the colour ramp (others clamped); default: the values'
   // finite minimum and maximum. A fixed range makes pictures of different meshes comparable.
   std::optional<std::pair<double, double>> value_range;
+  // Each triangle filled by its region (Mesh::region) in a categorical palette, with a legend of the
+  // regions' names (render/region_fill.hpp); a mesh without regions is filled grey as "no region".
+  // Not with triangle_values.
+  bool fill_regions = false;
   int long_side = 1600;
   // Horizontal bands shared out to the cores (PNG only; render_picture): a mesh picture drawn after
   // the cleanup is on the run's critical path. More bands than cores even out a mesh's dense parts.
@@ -39,7 +44,9 @@ ColourBarBox draw_colour_ramp_bar(Canvas& canvas);
 // The window a mesh picture shows unless told otherwise: the points' extents, padded (padded_window).
 Box default_mesh_window(const Mesh& mesh);
 
-// Writes a .png or .svg atomically. Throws Error when triangle_values has the wrong size.
+// Writes a .png or .svg atomically. Edges between triangles of different regions (region_interfaces)
+// are drawn as thick as the boundary edges. Throws Error when triangle_values or Mesh::region (for
+// fill_regions) has the wrong size, or when both fills are asked for.
 void write_mesh_picture(const std::filesystem::path& path, const Mesh& mesh, const MeshPictureOptions& options);
 
 // A mesh picture's edges long enough to draw (kMinEdgePixels on `canvas`, in its window), in the

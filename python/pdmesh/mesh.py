@@ -249,7 +249,8 @@ class Mesh:
     def picture(self, path: str | os.PathLike, color_by: str | None = None, title: str | None = None,
                 window: Sequence[float] | None = None, long_side: int = 1600) -> None:
         """Draws the mesh (the command's mesh.png/.svg): boundary edges thicker, triangles filled by
-        a quality metric with ``color_by``; ``window`` = (x0, y0, x1, y1) zooms."""
+        a quality metric with ``color_by``, or by region with a legend (``color_by="region"``);
+        ``window`` = (x0, y0, x1, y1) zooms."""
         if title is None:
             title = f"{self._core.name} - mesh ({len(self.triangles)} triangles)"
         self._core.picture(os.fspath(path), color_by or "none", title,

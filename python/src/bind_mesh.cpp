@@ -48,7 +48,7 @@ double TriangleQuality::*metric_named(const std::string& name) {
     if (name == n) return member;
     names += (names.empty() ? "" : ", ") + std::string(n);
   }
-  throw InputError(fmt::format("color_by: unknown metric '{}' ({})", name, names));
+  throw InputError(fmt::format("color_by: unknown metric '{}' ({}; or region)", name, names));
 }
 
 // With layers, the core's triangles (as the command's table and quality.json).
@@ -168,10 +168,14 @@ void picture(const MeshHandle& h, const std::string& path, const std::string& co
       throw InputError("window must be [x0, y0, x1, y1] with x0 < x1 and y0 < y1");
     options.window = Box{{(*window)[0], (*window)[1]}, {(*window)[2], (*window)[3]}};
   }
-  double TriangleQuality::*member = color_by == "none" ? nullptr : metric_named(color_by);
+  // "region": the triangles filled by their regions with a legend (with layers, the core's cells and
+  // the layer's, as the command's mesh.png).
+  options.fill_regions = color_by == "region";
+  double TriangleQuality::*member = color_by == "none" || options.fill_regions ? nullptr : metric_named(color_by);
   nb::gil_scoped_release release;
   // With layers, the quads drawn split (as the command's mesh.png); coloured, the triangles alone.
-  const Mesh drawn = h.layers && member == nullptr ? triangulated(h.layers->mixed) : Mesh{};
+  Mesh drawn = h.layers && member == nullptr ? triangulated(h.layers->mixed) : Mesh{};
+  if (h.layers && options.fill_regions) add_layer_regions(h.layers->mixed, drawn);
   const Mesh& mesh = h.layers && member == nullptr ? drawn : *h.mesh;
   std::vector<double> values;
   if (member != nullptr) {

@@ -131,6 +131,9 @@ def test_quality_write_and_read_back(rings, tmp_path):
     assert (tmp_path / "m.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
     mesh.picture(tmp_path / "q.png", color_by="min_angle", window=(-0.5, -0.5, 0.5, 0.5))
     assert (tmp_path / "q.png").stat().st_size > 1000
+    # A mesh without regions filled by region: every triangle grey as "no region", not an error.
+    mesh.picture(tmp_path / "r.png", color_by="region")
+    assert (tmp_path / "r.png").stat().st_size > 1000
     with pytest.raises(pdmesh.InputError, match="unknown metric 'angle'"):
         mesh.picture(tmp_path / "bad.png", color_by="angle")
     assert mesh._repr_png_()[:4] == b"\x89PNG"

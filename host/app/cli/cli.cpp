@@ -153,13 +153,14 @@ std::optional<QualityPicture> quality_picture(const QualityArguments& a) {
     p.window = std::array<double, 4>{w[0], w[1], w[2], w[3]};
   }
   if (a.color_by) {
-    metric_values({}, *a.color_by == "none" ? "min_angle" : *a.color_by);  // throws for unknown names
+    // Throws for unknown names; "region" fills by the mesh's regions.
+    if (*a.color_by != "region") metric_values({}, *a.color_by == "none" ? "min_angle" : *a.color_by);
     p.color_by = *a.color_by;
   }
   if (a.color_range) {
     const auto r = number_list("--color-range", *a.color_range, 2, "LO,HI");
     if (!(r[0] < r[1])) throw InputError(fmt::format("--color-range {}: needs LO < HI", *a.color_range));
-    if (p.color_by == "none") throw InputError("--color-range needs --color-by METRIC");
+    if (p.color_by == "none" || p.color_by == "region") throw InputError("--color-range needs --color-by METRIC");
     p.color_range = std::pair<double, double>(r[0], r[1]);
   }
   return p;
@@ -309,8 +310,8 @@ void add_run_options(CLI::App& mesh, MeshArguments& a) {
                   "gradation still refine it)")
       ->type_name("H");
   mesh.add_option("--color-by", a.color_by,
-                  "output.color_by: fill mesh.png by a quality metric: none | min_angle | max_angle | aspect_ratio | "
-                  "skewness | condition_number | min_jacobian")
+                  "output.color_by: fill mesh.png by a quality metric (none | min_angle | max_angle | aspect_ratio | "
+                  "skewness | condition_number | min_jacobian) or by region, with a legend of the region names")
       ->type_name("METRIC");
   mesh.add_option("--formats", a.formats,
                   fmt::format("output.formats, comma-separated: {} (no png and no svg: no pictures at all)",
@@ -448,8 +449,8 @@ void add_quality_options(CLI::App& quality, QualityArguments& a) {
   quality.add_option("--view", a.view, "Window of the picture (default: the whole mesh)")->type_name("x0,y0,x1,y1");
   quality
       .add_option("--color-by", a.color_by,
-                  "Fill the picture's triangles by a metric: none | min_angle | max_angle | aspect_ratio | "
-                  "skewness | condition_number | min_jacobian")
+                  "Fill the picture's triangles by a metric (none | min_angle | max_angle | aspect_ratio | "
+                  "skewness | condition_number | min_jacobian) or by the file's regions (region)")
       ->type_name("METRIC");
   quality
       .add_option("--color-range", a.color_range,

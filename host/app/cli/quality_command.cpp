@@ -120,7 +120,8 @@ void write_picture(const Mesh& mesh, const std::string& mesh_path, const Quality
     box.add({w[2], w[3]});
     options.window = box;
   }
-  if (picture.color_by != "none") {
+  options.fill_regions = picture.color_by == "region";
+  if (picture.color_by != "none" && !options.fill_regions) {
     values = metric_values(triangle_qualities(mesh), picture.color_by);
     options.triangle_values = &values;
     options.value_label = picture.color_by;
@@ -191,7 +192,9 @@ int run_quality(const std::string& mesh_path, const std::optional<std::string>& 
   if (picture) {
     // Quads are drawn as the layered run's mesh.png draws them: split (io/mixed_mesh.hpp triangulated).
     if (read.mixed) {
-      write_picture(triangulated(*read.mixed), mesh_path, *picture,
+      Mesh drawn = triangulated(*read.mixed);
+      if (picture->color_by == "region") add_layer_regions(*read.mixed, drawn);
+      write_picture(drawn, mesh_path, *picture,
                     fmt::format(" ({} cells, {} quads, drawn split)", read.mixed->cells.size(), read.mixed->quads()));
     } else {
       write_picture(mesh, mesh_path, *picture);

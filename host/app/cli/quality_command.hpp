@@ -14,7 +14,7 @@ namespace pdmesh {
 struct QualityPicture {
   std::string path;                                      // .png or .svg
   std::optional<std::array<double, 4>> window;           // x0, y0, x1, y1; default the mesh's extents + 3%
-  std::string color_by = "none";                         // none or a metric name (metric_values)
+  std::string color_by = "none";                         // none, a metric name (metric_values) or region
   std::optional<std::pair<double, double>> color_range;  // colour scale; default the values' range
 };
 

@@ -321,8 +321,9 @@ struct CaseConfig {
     std::vector<std::string> formats{"msh", "vtu", "png"};
     bool tree_overlay = false;
     std::vector<ViewWindow> views;
-    std::string color_by = "none";  // mesh.png fill: none or a per-triangle quality metric
-    bool spacing_picture = false;   // DIR/spacing.png: the final spacing field (--plot-spacing)
+    // mesh.png fill: none, a per-triangle quality metric, or "region" (the regions with a legend)
+    std::string color_by = "none";
+    bool spacing_picture = false;  // DIR/spacing.png: the final spacing field (--plot-spacing)
     // Curves written as open boundaries in fort14 (the rest are land); checked against the curve names.
     std::vector<std::string> open_boundaries;
     bool wants(const std::string& format) const;

@@ -572,7 +572,8 @@ void read_output_section(const Reader& r, const toml::table& root, CaseConfig& c
                                              {"aspect_ratio", "aspect_ratio"},
                                              {"skewness", "skewness"},
                                              {"condition_number", "condition_number"},
-                                             {"min_jacobian", "min_jacobian"}});
+                                             {"min_jacobian", "min_jacobian"},
+                                             {"region", "region"}});
   }
   if (const toml::node* n = find(root, "output", "open_boundaries"))
     c.output.open_boundaries = r.strings("output.open_boundaries", *n);

@@ -746,12 +746,17 @@ void write_layered_outputs(const CaseConfig& config, const MeshInputs& inputs, c
   // The pictures (the quads drawn split) are drawn on the background thread while the quality is
   // measured and the files are written; `drawn` stays alive until the wait below (also when something
   // throws).
-  const Mesh drawn = config.output.wants("png") ? triangulated(mixed) : Mesh{};
+  // output.color_by = region fills the core's cells and the layer's as the mesh files' two regions
+  // ("domain", "boundary_layer"); a quality metric is not drawn on the cells of a mixed mesh.
+  const bool by_region = config.output.color_by == "region";
+  Mesh drawn = config.output.wants("png") ? triangulated(mixed) : Mesh{};
+  if (by_region && config.output.wants("png")) add_layer_regions(mixed, drawn);
   timer.stop();
   const PictureGuard guard(phases);
   MeshPictureOptions picture;
   picture.title = fmt::format("{} - mesh ({} cells, {} in the boundary layer)", config.name, mixed.cells.size(),
                               mixed.cells.size() - core_mesh.triangles.size());
+  picture.fill_regions = by_region;
   const std::vector<std::string> pictures = mesh_detail::queue_mesh_views(config, drawn, picture, phases);
   timer = phases.phase("quality");
   QualitySummary core_summary = summarize_quality(core_mesh);

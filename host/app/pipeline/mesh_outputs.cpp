@@ -413,6 +413,11 @@ std::vector<std::string> queue_mesh_pictures(const CaseConfig& config, const Mes
     picture.triangle_values = values;
     picture.value_label = config.output.color_by;
   }
+  picture.fill_regions = config.output.color_by == "region";
+  if (picture.fill_regions && mesh.region.empty())
+    progress(config,
+             "output.color_by = region: the geometry has no regions; the mesh pictures show every triangle "
+             "as \"no region\"");
   const fs::path& dir = config.out_dir;
   std::vector<std::string> pictures = mesh_detail::queue_mesh_views(config, mesh, picture, phases);
   const auto draw = [&](const std::string& file, const MeshPictureOptions& options) {
@@ -434,6 +439,7 @@ std::vector<std::string> queue_mesh_pictures(const CaseConfig& config, const Mes
     MeshPictureOptions q = picture;
     q.title = fmt::format("{} - quality Q in the metric ({} triangles)", config.name, mesh.triangles.size());
     q.triangle_values = metric_q;
+    q.fill_regions = false;
     q.value_label = "metric Q";
     q.value_range = std::pair{0.0, 1.0};
     draw("mesh_metric_q.png", q);
@@ -458,9 +464,10 @@ void write_mesh_outputs(const CaseConfig& config, const MeshInputs& inputs, cons
   // written; the mesh and the values stay alive until the wait below (also when something throws).
   std::vector<double> values;
   const PictureGuard guard(phases);
-  if (config.output.color_by != "none") values = mesh_metric_values(mesh, config.output.color_by);
-  const std::vector<std::string> pictures = queue_mesh_pictures(
-      config, mesh, config.output.color_by != "none" ? &values : nullptr, phases, metric_q, metrics);
+  const bool by_metric = config.output.color_by != "none" && config.output.color_by != "region";
+  if (by_metric) values = mesh_metric_values(mesh, config.output.color_by);
+  const std::vector<std::string> pictures =
+      queue_mesh_pictures(config, mesh, by_metric ? &values : nullptr, phases, metric_q, metrics);
   {
     const auto conformance_timer = phases.phase("spacing conformance");
     summary.has_spacing = true;
