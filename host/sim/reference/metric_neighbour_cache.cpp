@@ -19,8 +19,8 @@
 // axis is R c sqrt(e^T (A0_i + A0_j) e) <= sqrt 2 R max(E_i, E_j)) and searched from each of them (for
 // up to kScanRebased of them, every stored state tested instead: the same pairs pass, without the
 // search's rebuild), and their pairs that pass the bound added both ways, which keeps the invariant;
-// candidates that no longer pass stay, costing only their exact test. More of them rebuild: every state stored and searched from.
-// A rebuild whose candidates served fewer than 4 calls did not pay, and the calls after it build the
+// candidates that no longer pass stay, costing only their exact test. More of them rebuild: every state stored and
+// searched from. A rebuild whose candidates served fewer than 4 calls did not pay, and the calls after it build the
 // exact list (1, 2, 4, ... up to 16 of them) before candidates are tried again.
 //
 // Rounding. Each test is a quadratic form or a 2x2 determinant of the metrics, whose relative error is
