@@ -4,6 +4,7 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <cstdint>
 #include <random>
 
 #include "sim/reference/metric_neighbour_cache.hpp"
@@ -98,6 +99,30 @@ TEST_CASE("metric neighbour cache equals the exact build: a curved layer moving,
   CHECK(cache.rebuilds() >= 4);
   CHECK(cache.rebuilds() < 80);
   CHECK(cache.rebased() > 0);
+}
+
+TEST_CASE("metric neighbour cache equals the exact build with a few nodes rebased and with many",
+          "[sim][metric][neighbours]") {
+  // A few rebased nodes scan every stored state for their candidates; more than kScanRebased (32)
+  // search the rebuilt box search: both must keep the lists exact.
+  std::mt19937_64 rng(5);
+  std::vector<Bubble> bubbles;
+  SimParticles p = curved_layer(rng, 1500, bubbles);
+  reference::MetricNeighbourCache cache;
+  require_same(p, 1.5, cache, 64);
+  require_same(p, 1.5, cache, 64);
+  REQUIRE(cache.rebuilds() == 1);
+  std::uint64_t rebased = 0;
+  for (const int jumps : {2, 40, 1, 100, 5, 60}) {
+    INFO("jumps " << jumps);
+    stir(p, bubbles, rng, 0.005, 1e-5, 1e-4, jumps);
+    require_same(p, 1.5, cache, 64);
+    CHECK(cache.rebuilds() == 1);
+    // Each jumping node is rebased (a node may jump twice, and a quiet one may not need it).
+    CHECK(cache.rebased() - rebased > 0);
+    CHECK(cache.rebased() - rebased <= static_cast<std::uint64_t>(jumps));
+    rebased = cache.rebased();
+  }
 }
 
 TEST_CASE("metric neighbour cache: pairs closing by just under the skin while their bubbles grow stay exact",

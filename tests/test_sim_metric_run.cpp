@@ -6,6 +6,7 @@
 #include <catch2/catch.hpp>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <random>
 #include <vector>
@@ -202,6 +203,53 @@ TEST_CASE("run_simulation in the linear metric relaxes the nodes to unit metric 
       const Vec2 a = nodes.x[static_cast<std::size_t>(side[k - 1])], b = nodes.x[static_cast<std::size_t>(side[k])];
       REQUIRE(edge_length(linear_metric(a.y), linear_metric(b.y), b - a) == Approx(1.0).margin(0.25));
     }
+}
+
+namespace {
+
+// The linear metric's largest size, counting its look-ups.
+class CountingSize final : public SpacingField {
+ public:
+  double at(Vec2 p) const override {
+    ++calls;
+    return size_.at(p);
+  }
+  mutable std::atomic<std::size_t> calls{0};
+
+ private:
+  LinearLargestSize size_;
+};
+
+}  // namespace
+
+TEST_CASE("a metric run looks q up when it hands its nodes back, an isotropic run after every iteration",
+          "[sim][metric]") {
+  // The metric step never reads q; the node set handed back still has every node's q at its position.
+  const Geometry geometry = fixtures::square(1.0, 4);
+  const GeometryTree tree(geometry);
+  const LinearMetric metric;
+  const NodeSet start = linear_case_nodes();
+  const std::size_t n = start.size();
+  for (const bool with_metric : {true, false}) {
+    INFO((with_metric ? "metric run" : "isotropic run"));
+    const CountingSize spacing;
+    NodeSet nodes = start;
+    // A few isotropic iterations: q (the metric's largest size) is far too large for the layer's nodes.
+    const int iterations = with_metric ? 40 : 4;
+    SimOptions o = linear_options(metric, iterations);
+    if (!with_metric) o.metric = nullptr;
+    const SimResult r = run_simulation(nodes, tree, spacing, o);
+    REQUIRE(r.history.size() == static_cast<std::size_t>(iterations));
+    REQUIRE(nodes.size() == n);
+    if (with_metric)
+      CHECK(spacing.calls.load() <= 2 * n);
+    else
+      CHECK(spacing.calls.load() >= static_cast<std::size_t>(iterations) * n);
+    const LinearLargestSize exact;
+    std::size_t stale = 0;
+    for (std::size_t i = 0; i < n; ++i) stale += nodes.q[i] != exact.at(nodes.x[i]);
+    CHECK(stale == 0);
+  }
 }
 
 TEST_CASE("the stopping rule of a metric run measures the mesh in the metric and stops the linear run",

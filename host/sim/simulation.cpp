@@ -167,7 +167,13 @@ class HostSteps final : public IterationSteps {
   std::string backend_name() const override { return backend_.name(); }
   IterationStep compute(int iteration, const GlobalTimeStep& gm) override;
   IterationMoves apply(int iteration) override;
-  SimState failure_state() override { return state(); }
+  SimState failure_state() override {
+    if (options_.metric) refresh_spacing();
+    return state();
+  }
+  void after_iterations() override {
+    if (options_.metric) refresh_spacing();
+  }
   void end_run(SimResult& result) override { result.state = state(); }
 
  private:
@@ -177,6 +183,8 @@ class HostSteps final : public IterationSteps {
     if (with_momentum_) s.momentum = momentum_to_state(carried_, nodes_.size());
     return s;
   }
+  // Every node's q from the spacing field at its position.
+  void refresh_spacing() { spacing_.at_many_guessed(nodes_.x, nodes_.q, spacing_guesses_); }
   // Throws SimulationError naming the first node with a non-finite force or move, or the sums.
   void check_finite(int iteration, const StepSums& sums) const;
 
@@ -242,7 +250,9 @@ IterationMoves HostSteps::apply(int iteration) {
   if (with_momentum_ && out.boundary.snapped > 0)
     for (std::size_t i = 0; i < particles_.size(); ++i)
       if (static_cast<std::uint8_t>(nodes_.kind[i]) != particles_.kind[i]) carried_.px[i] = carried_.py[i] = 0.0;
-  spacing_.at_many_guessed(nodes_.x, nodes_.q, spacing_guesses_);
+  // A metric run's step reads the metric, not q (q only has to stay finite and positive, which the
+  // last value is): its q is brought up to date once, when the run hands the nodes back.
+  if (!options_.metric) refresh_spacing();
   // Population control between iterations: the next iteration loads the changed node set.
   out.event = loop_.population().after_iteration(options_.population, iteration, options_.iterations, nodes_, boundary_,
                                                  spacing_, nullptr, options_.metric);

@@ -16,10 +16,11 @@
 // The argument is per node, so the stored states need not be of one step: nodes that break (a) or (b)
 // (up to a quarter of them) are rebased: their states stored anew, the box search of metric_search.hpp
 // rebuilt over the stored states (reach sqrt 2 R: the support of the ellipse |d0|_P <= R c along any
-// axis is R c sqrt(e^T (A0_i + A0_j) e) <= sqrt 2 R max(E_i, E_j)) and searched from each of them, and
-// their pairs that pass the bound added both ways, which keeps the invariant; candidates that no longer
-// pass stay, costing only their exact test. More of them rebuild: every state stored and searched from.
-// A rebuild whose candidates served fewer than 4 calls did not pay, and the calls after it build the
+// axis is R c sqrt(e^T (A0_i + A0_j) e) <= sqrt 2 R max(E_i, E_j)) and searched from each of them (for
+// up to kScanRebased of them, every stored state tested instead: the same pairs pass, without the
+// search's rebuild), and their pairs that pass the bound added both ways, which keeps the invariant;
+// candidates that no longer pass stay, costing only their exact test. More of them rebuild: every state stored and
+// searched from. A rebuild whose candidates served fewer than 4 calls did not pay, and the calls after it build the
 // exact list (1, 2, 4, ... up to 16 of them) before candidates are tried again.
 //
 // Rounding. Each test is a quadratic form or a 2x2 determinant of the metrics, whose relative error is
@@ -52,6 +53,9 @@ constexpr std::size_t kRebasedFraction = 4;
 // the skin): the calls after it build exactly, 1, 2, 4, ... up to kMostPause calls in a row.
 constexpr int kPaying = 4;
 constexpr int kMostPause = 16;
+// Up to this many rebased nodes scan every stored state for their candidates instead of rebuilding
+// the box search (MetricNeighbourCache::rebase).
+constexpr std::size_t kScanRebased = 32;
 
 // The eigenvalues of the symmetric [[a, b], [b, c]], smallest first.
 void eigenvalues(double a, double b, double c, double& low, double& high) {
@@ -162,14 +166,18 @@ void MetricNeighbourCache::rebase(const SimParticles& p, const std::vector<std::
   rebased_ += nodes.size();
   for (const std::size_t k : nodes) store_state(p, k);
   // The box search over the states as they are now finds every node that passes the bound with a
-  // rebased one (the bound and the box are symmetric in the two nodes).
-  index();
+  // rebased one (the bound and the box are symmetric in the two nodes). Building it costs as much as
+  // testing the bound against every stored state for a few dozen nodes, so a few rebased nodes scan
+  // the states instead: the same nodes pass, and the search is built again by the next call that uses it.
+  const bool scan = nodes.size() <= kScanRebased;
+  if (!scan) index();
   const double b2 = bound2();
+  const std::size_t n = p.size();
   for (const std::size_t k : nodes) {
     check_interrupt();
     const bool interior = p.kind[k] == kSimInterior;
     if (interior) rows_[k].clear();
-    flags.pairs_examined += search_.for_each_in_box(k, [&](std::int32_t j) {
+    const auto visit = [&](std::int32_t j) {
       const auto uj = static_cast<std::size_t>(j);
       if (!candidate(k, uj, b2)) return;
       if (interior) rows_[k].push_back(j);
@@ -177,7 +185,14 @@ void MetricNeighbourCache::rebase(const SimParticles& p, const std::vector<std::
       std::vector<std::int32_t>& row = rows_[uj];
       const auto at = std::lower_bound(row.begin(), row.end(), static_cast<std::int32_t>(k));
       if (at == row.end() || *at != static_cast<std::int32_t>(k)) row.insert(at, static_cast<std::int32_t>(k));
-    });
+    };
+    if (scan) {
+      for (std::size_t j = 0; j < n; ++j)
+        if (j != k) visit(static_cast<std::int32_t>(j));
+      flags.pairs_examined += n - 1;
+    } else {
+      flags.pairs_examined += search_.for_each_in_box(k, visit);
+    }
     if (interior) std::sort(rows_[k].begin(), rows_[k].end());
   }
 }
