@@ -115,7 +115,7 @@ std::string attributes_of(const std::vector<GeometryRegion>& regions) {
   for (const GeometryRegion& r : regions) attributes.insert(r.attribute);
   if (attributes.empty())
     return "the geometry has no regions: a .poly file's regional attributes, a mesh file's regions or "
-           "geometry.regions give them";
+           "Python's Geometry(regions=...) give them";
   std::vector<std::string> names;
   for (const double a : attributes) {
     std::string name;
