@@ -41,7 +41,8 @@ struct PointDataArray {
   int components = 1;
   std::vector<double> values;
   std::vector<std::uint8_t> given;
-  std::string where;  // "FILE:LINE" of the array, for messages
+  std::string where;     // "FILE:LINE" of the array, for messages
+  bool integer = false;  // stored as integers in the file (a .vtu's Int32, UInt8, ...): exact in `values`
 };
 
 // What a reader found besides the mesh, for data fields (spacing.field = "mesh"), solution transfer

@@ -447,6 +447,7 @@ PointDataArray point_array(const VtuFile& f, const ArrayInfo& a) {
   out.components = a.components;
   out.where = f.location(a.pos);
   out.values = f.values(a);
+  out.integer = !a.type.is_float;
   if (static_cast<long long>(out.values.size()) != f.points() * a.components) {
     f.fail(a.pos, fmt::format("point-data array '{}' holds {} values, expected {} components x {} points",
                               quote_input(a.name), out.values.size(), a.components, f.points()));

@@ -121,8 +121,9 @@ class Mesh:
         A .vtu's point arrays (every encoding the reader takes) and a .msh's ``$NodeData`` views (2.2
         and 4.1; of several blocks of one name, the time steps of a solution, the last) come with it:
         ``q`` with one value per point is ``spacing`` (pdmesh writes its spacing field there), a
-        .vtu's ``kind`` is ``kinds``, and every other array is in ``point_data`` by name, float64,
-        in file order (a view that skips some nodes has NaN there). The other formats carry none."""
+        .vtu's ``kind`` is ``kinds``, and every other array is in ``point_data`` by name, float64
+        (int64 for a .vtu's integer arrays), in file order (a view that skips some nodes has NaN
+        there). The other formats carry none."""
         return cls(_core.read_mesh(os.fspath(path)))
 
     @property
@@ -177,7 +178,8 @@ class Mesh:
 
     @property
     def point_data(self) -> dict[str, np.ndarray]:
-        """Point arrays by name, (N,) float64 or (N, k) for k components, read-only: the solution
+        """Point arrays by name, (N,) or (N, k) for k components, float64 or int64 (a file's integer
+        arrays, a motion step's ``node_id``), read-only: the solution
         carried over by ``pdmesh.adapt`` (its ``transfer``), a motion step's ``node_id``, a file's
         point arrays (``read``: all but ``q`` and a .vtu's ``kind``); empty otherwise. ``write``
         writes them into a .vtu as point data and into a .msh as ``$NodeData`` views (not a layered

@@ -217,7 +217,7 @@ void take_point_arrays(const std::string& path, MeshPointData& data, Mesh& mesh,
   const bool vtu = lower_extension(path) == ".vtu";
   for (PointDataArray& a : data.arrays) {
     if (vtu && a.name == "kind") continue;
-    PointValues v{a.name, a.components, std::move(a.values), false};
+    PointValues v{a.name, a.components, std::move(a.values), a.integer};
     if (v.name == "q" && v.components == 1 && a.given.empty() && mesh.spacing.empty()) {
       if (layered != nullptr) layered->point_data.push_back(v);
       mesh.spacing = std::move(v.values);

@@ -24,9 +24,17 @@ using Points = nb::ndarray<const double, nb::shape<-1, 2>, nb::c_contig, nb::dev
 nb::list point_value_list(const std::vector<PointValues>& data) {
   nb::list out;
   for (const PointValues& d : data) {
+    const std::size_t k = static_cast<std::size_t>(d.components);
+    // Integers as the file stored them (a .vtu's node ids, markers): int64, exact.
+    if (d.integer) {
+      auto* v = new std::vector<std::int64_t>(d.values.begin(), d.values.end());
+      nb::capsule owner(v, [](void* p) noexcept { delete static_cast<std::vector<std::int64_t>*>(p); });
+      out.append(nb::make_tuple(nb::str(d.name.c_str()),
+                                nb::ndarray<nb::numpy, std::int64_t>(v->data(), {v->size() / k, k}, owner)));
+      continue;
+    }
     auto* v = new std::vector<double>(d.values);
     nb::capsule owner(v, [](void* p) noexcept { delete static_cast<std::vector<double>*>(p); });
-    const std::size_t k = static_cast<std::size_t>(d.components);
     out.append(
         nb::make_tuple(nb::str(d.name.c_str()), nb::ndarray<nb::numpy, double>(v->data(), {v->size() / k, k}, owner)));
   }

@@ -54,6 +54,30 @@ def test_vtu_written_by_meshio(tmp_path, binary):
         np.testing.assert_allclose(m.point_data["w"], w, rtol=1e-11, atol=1e-300)
 
 
+@pytest.mark.parametrize("binary", [False, True])
+def test_integer_arrays_stay_integers(tmp_path, binary):
+    # A solver's integer point arrays (markers, ids) come back as int64, exact, and are written back
+    # as integers: meshio reads them again with an integer type.
+    meshio = pytest.importorskip("meshio")
+    points = np.array([[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [1.0, 1.0, 0.0], [0.0, 1.0, 0.0], [0.5, 0.5, 0.0]])
+    triangles = np.array([[0, 1, 4], [1, 2, 4], [2, 3, 4], [3, 0, 4]])
+    marker = np.array([3, 1, 4, 1, -5], dtype=np.int32)
+    ids = np.array([2**40, 7, 0, 1, 2**40 + 1], dtype=np.int64)
+    path = tmp_path / "solver.vtu"
+    meshio.write(path, meshio.Mesh(points, [("triangle", triangles)],
+                                   point_data={"marker": marker, "id": ids, "u": points[:, 0] * 0.5}), binary=binary)
+    m = pdmesh.Mesh.read(path)
+    assert m.point_data["marker"].dtype == np.int64 and m.point_data["id"].dtype == np.int64
+    assert m.point_data["u"].dtype == np.float64
+    np.testing.assert_array_equal(m.point_data["marker"], marker)
+    np.testing.assert_array_equal(m.point_data["id"], ids)
+    m.write(tmp_path / "back.vtu")
+    back = meshio.read(tmp_path / "back.vtu")
+    assert np.issubdtype(back.point_data["marker"].dtype, np.integer)
+    np.testing.assert_array_equal(back.point_data["id"], ids)
+    np.testing.assert_array_equal(pdmesh.Mesh.read(tmp_path / "back.vtu").point_data["marker"], marker)
+
+
 def node_data(name: str, time: float, values: np.ndarray) -> str:
     """A $NodeData view as Gmsh writes it (node tag = point index + 1), values with 17 digits."""
     rows = values.reshape(len(values), -1)
