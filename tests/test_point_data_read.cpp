@@ -99,6 +99,24 @@ TEST_CASE("a .vtu's point arrays, every one or those named, bit for bit in both 
   }
 }
 
+TEST_CASE("a .vtu's integer point arrays are read as integers, its float arrays as floats", "[point_data]") {
+  Mesh mesh = mesh_with_data();
+  PointValues marker{"marker", 1, {}, true};
+  for (std::size_t i = 0; i < mesh.points.size(); ++i) marker.values.push_back(static_cast<double>(i % 5) - 2.0);
+  mesh.point_data.push_back(marker);
+  for (const VtuFormat format : {VtuFormat::Binary, VtuFormat::Ascii}) {
+    MeshReadReport report;
+    MeshPointData all;
+    all.decode_all = true;
+    (void)parse_vtu("m.vtu", vtu_string(mesh, format), report, &all);
+    CHECK(array_named(all, "marker").integer);
+    CHECK(array_named(all, "marker").values == marker.values);
+    CHECK(array_named(all, "kind").integer);
+    CHECK_FALSE(array_named(all, "u").integer);
+    CHECK_FALSE(array_named(all, "q").integer);
+  }
+}
+
 TEST_CASE("an .msh's $NodeData views: several components, the last time step of a name", "[point_data]") {
   const Mesh mesh = mesh_with_data();
   std::vector<double> old_u = mesh.point_data[0].values;
