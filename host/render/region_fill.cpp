@@ -4,10 +4,12 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <string_view>
 #include <fmt/format.h>
 
 #include "core/errors.hpp"
 #include "core/interrupt.hpp"
+#include "io/mesh_io_common.hpp"
 
 namespace pdmesh {
 
@@ -72,9 +74,8 @@ RegionFill region_fill(const Mesh& mesh) {
     RegionLegendEntry e;
     e.attribute = attributes[k];
     e.colour = region_palette_colour(k);
-    e.label = fmt::format("attribute {}", attributes[k]);
-    for (const RegionName& name : mesh.region_names)
-      if (name.attribute == attributes[k]) e.label = name.name;
+    const std::string_view name = region_name(mesh, attributes[k]);
+    e.label = name.empty() ? fmt::format("attribute {}", attributes[k]) : std::string(name);
     fill.entries.push_back(std::move(e));
   }
   // Each triangle's entry: its attribute's, or the "no region" entry after them.

@@ -179,13 +179,9 @@ double RegionSpacing::at(Vec2 p) const { return std::min(base_->at(p), regions_a
 
 void RegionSpacing::at_many(const std::vector<Vec2>& p, std::vector<double>& q) const {
   base_->at_many(p, q);
-  // A subdomain's test walks its faces' boundaries: on all cores (each point writes its own value).
-  if (subdomains_) {
-    parallel_for(
-        p.size(), [&](std::size_t i) { q[i] = std::min(q[i], regions_at(p[i])); }, 1024);
-    return;
-  }
-  for (std::size_t i = 0; i < p.size(); ++i) q[i] = std::min(q[i], regions_at(p[i]));
+  // On all cores (each point writes its own value): a subdomain's test walks its faces' boundaries.
+  parallel_for(
+      p.size(), [&](std::size_t i) { q[i] = std::min(q[i], regions_at(p[i])); }, 1024);
 }
 
 }  // namespace pdmesh
