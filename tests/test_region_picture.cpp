@@ -72,8 +72,9 @@ TEST_CASE("the region legend names each attribute's region, in ascending order, 
   CHECK(fill.entries[2].attribute == 0.0);
   CHECK(near({255 * fill.entries[1].colour.r, 255 * fill.entries[1].colour.g, 255 * fill.entries[1].colour.b},
              region_palette_colour(1)));
-  CHECK(fill.order == std::vector<std::uint32_t>{2, 0, 3, 1});
-  CHECK(fill.ends == std::vector<std::size_t>{1, 3, 4});
+  CHECK(fill.groups.order == std::vector<std::uint32_t>{2, 0, 3, 1});
+  CHECK(fill.groups.ends == std::vector<std::size_t>{1, 3, 4});
+  CHECK(fill.groups.colours.size() == 3);
   CHECK(fill.has_regions());
   // More regions than colours: the palette cycles.
   CHECK(

@@ -353,6 +353,42 @@ TEST_CASE("mesh pictures shade triangles too small to draw instead of painting t
   fs::remove_all(dir);
 }
 
+TEST_CASE("a value fill too dense for its edges blends its triangles' colours, never the paper's", "[render]") {
+  const fs::path dir = fresh_dir("dense_values");
+  // 180,000 triangles of 1.3 px cells, the two of each cell at the ramp's two ends: where the fill
+  // left seams, the white paper would show between them, off the line between the two colours.
+  const Mesh m = grid_mesh(300, [](double x, double y) { return Vec2{x, y}; });
+  std::vector<double> values(m.triangles.size());
+  for (std::size_t t = 0; t < values.size(); ++t) values[t] = static_cast<double>(t % 2);
+  MeshPictureOptions o;
+  o.long_side = 400;
+  o.triangle_values = &values;
+  write_mesh_picture(dir / "dense.png", m, o);
+  Png png(dir / "dense.png");
+  REQUIRE(png.ok());
+  const Rgb lo = colour_ramp(0), hi = colour_ramp(1);
+  // Each pixel's distance in RGB from the segment between the two colours, and where along it it
+  // lies (w = 0 at hi, 1 at lo). The paper (white) is over 150 levels off the segment.
+  const double dr = 255 * (lo.r - hi.r), dg = 255 * (lo.g - hi.g), db = 255 * (lo.b - hi.b);
+  const double length2 = dr * dr + dg * dg + db * db;
+  double worst = 0, w_min = 1, w_max = 0;
+  for (int y = 200; y < 240; ++y)
+    for (int x = 180; x < 220; ++x) {
+      const Rgb p = png.pixel(x, y);
+      const double pr = p.r - 255 * hi.r, pg = p.g - 255 * hi.g, pb = p.b - 255 * hi.b;
+      const double w = (pr * dr + pg * dg + pb * db) / length2;
+      const double er = pr - w * dr, eg = pg - w * dg, eb = pb - w * db;
+      worst = std::max(worst, std::sqrt(er * er + eg * eg + eb * eb));
+      w_min = std::min(w_min, w);
+      w_max = std::max(w_max, w);
+    }
+  CHECK(worst <= 8);
+  CHECK(w_min >= -0.02);
+  CHECK(w_max <= 1.02);
+  CHECK(w_max - w_min > 0.1);  // the two colours both show
+  fs::remove_all(dir);
+}
+
 TEST_CASE("a mesh too dense for its picture gets a close-up around its smallest angle", "[render]") {
   // The unit square as a 300 x 300 grid (1.3 px cells at 400 px): one node moved towards its right
   // neighbour makes the smallest angles next to it.

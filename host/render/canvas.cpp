@@ -173,19 +173,6 @@ void Canvas::rectangle(const Box& b, Rgb c, double width_px) {
   cairo_stroke(cr_);
 }
 
-void Canvas::fill_triangle(Vec2 a, Vec2 b, Vec2 c, Rgb colour) {
-  const Vec2 pa = to_pixel(a), pb = to_pixel(b), pc = to_pixel(c);
-  set_source(colour);
-  cairo_move_to(cr_, pa.x, pa.y);
-  cairo_line_to(cr_, pb.x, pb.y);
-  cairo_line_to(cr_, pc.x, pc.y);
-  cairo_close_path(cr_);
-  // A hairline stroke in the fill colour closes the anti-aliasing seams between neighbours.
-  cairo_fill_preserve(cr_);
-  cairo_set_line_width(cr_, 0.5);
-  cairo_stroke(cr_);
-}
-
 void Canvas::text(double px, double py, const std::string& s, double size, Rgb c) {
   set_source(c);
   cairo_set_font_size(cr_, size);
@@ -311,7 +298,7 @@ void StrokeBatch::flush() {
   count_ = 0;
 }
 
-FillBatch::FillBatch(Canvas& canvas, Rgb colour, std::size_t items)
+FillBatch::FillBatch(Canvas& canvas, Rgb colour, std::size_t items, bool close_seams)
     : canvas_(canvas),
       colour_(colour),
       // Triangles per fill: one fill is their union, seamless, so as many as memory allows (a cairo
@@ -319,7 +306,8 @@ FillBatch::FillBatch(Canvas& canvas, Rgb colour, std::size_t items)
       // hairline stroke that closes the seams between batches takes several times the fill's time
       // and memory (cairo strokes every triangle's outline). One past the count: the last item does
       // not cut a batch that holds them all.
-      limit_(items > kBatchItems && items <= kSingleFillItems ? items + 1 : kBatchItems) {
+      limit_(items > kBatchItems && items <= kSingleFillItems ? items + 1 : kBatchItems),
+      close_seams_(close_seams) {
   cairo_new_path(canvas_.context());
 }
 
@@ -344,11 +332,11 @@ void FillBatch::flush(bool cut) {
   cut_ = cut_ || cut;
   if (!cairo_has_current_point(cr)) return;  // only skipped items since the last flush
   canvas_.set_source(colour_);
-  if (!cut_) {
+  if (!cut_ || !close_seams_) {
     cairo_fill(cr);  // the union of every triangle: no seams inside it
     return;
   }
-  // Several batches: a hairline stroke in the fill colour closes the anti-aliasing seams where two
+  // Several anti-aliased batches: a hairline stroke in the fill colour closes the anti-aliasing seams where two
   // batches meet (bevel joins: round ones cost most of the stroke at these sizes).
   cairo_fill_preserve(cr);
   cairo_save(cr);

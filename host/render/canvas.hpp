@@ -81,7 +81,6 @@ class Canvas {
   void line(Vec2 a, Vec2 b, Rgb colour, double width_px);
   void dot(Vec2 centre, double radius_px, Rgb colour);
   void rectangle(const Box& b, Rgb colour, double width_px);
-  void fill_triangle(Vec2 a, Vec2 b, Vec2 c, Rgb colour);
 
   // Pixel-space decorations. The title goes in the band above the plot, and a scale bar of 1, 2 or 5
   // times a power of ten world units at the band's right end, beside the title, so that it hides
@@ -164,9 +163,9 @@ class StrokeBatch {
 };
 
 // Many triangles of one colour filled as one path: their union, without the anti-aliasing seams that
-// separate fills leave between neighbours (Canvas::fill_triangle closes them with a hairline stroke
-// per triangle, which cost most of a 30P30N mesh picture). A mesh with more triangles than one batch
-// holds gets the hairline once per batch, where batches meet. `items` (0: not known), the triangles
+// separate fills leave between neighbours (closing them costs a hairline stroke of every outline). A
+// mesh with more triangles than one batch holds gets the hairline once per batch, where batches meet,
+// unless `close_seams` is false (the caller has covered the seams otherwise). `items` (0: not known), the triangles
 // and skips the caller will give: up to kSingleFillItems they are one batch, one fill without the
 // hairline. Every band of a picture must be given the same count, so that each cuts its batches at the
 // same triangles.
@@ -175,7 +174,7 @@ class FillBatch {
   // Items per batch when they are more than kSingleFillItems or not known.
   static constexpr std::size_t kBatchItems = std::size_t{1} << 16;
   static constexpr std::size_t kSingleFillItems = std::size_t{1} << 18;
-  FillBatch(Canvas& canvas, Rgb colour, std::size_t items = 0);
+  FillBatch(Canvas& canvas, Rgb colour, std::size_t items = 0, bool close_seams = true);
   ~FillBatch() {
     if (std::uncaught_exceptions() == 0) flush();
   }
@@ -191,6 +190,7 @@ class FillBatch {
   std::size_t limit_;  // items per batch
   std::size_t count_ = 0;
   bool cut_ = false;
+  bool close_seams_;
 };
 
 // Many dots of one colour filled as one path at cairo's fast anti-aliasing. With `pen_radius` > 0,

@@ -15,6 +15,7 @@
 #include "core/interrupt.hpp"
 #include "core/parallel.hpp"
 #include "mesh/quality.hpp"
+#include "render/fill_groups.hpp"
 #include "render/region_fill.hpp"
 
 namespace pdmesh {
@@ -133,20 +134,24 @@ void draw_dense_shade(Canvas& canvas, const Mesh& mesh, double min_edge_world) {
   }
 }
 
-// Each visible triangle filled with the ramp's colour of its value (lo and hi at the ramp's ends).
-void draw_value_fills(Canvas& canvas, const Mesh& mesh, const std::vector<double>& values, double lo, double hi) {
-  InterruptPoll poll(65536);
-  for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
-    poll.tick();
-    const auto& tri = mesh.triangles[t];
-    Box box;
-    for (int v : tri) box.add(mesh.points[v]);
-    if (!canvas.visible(box)) continue;
-    // Equal extremes: every triangle has the same value; show it mid-ramp.
+// The colour ramp's levels a value fill uses: more than an 8-bit channel tells apart along viridis.
+constexpr std::uint32_t kRampLevels = 256;
+
+// Each triangle's value as one of kRampLevels levels of the ramp between lo and hi (equal extremes:
+// every triangle has the same value, shown mid-ramp), or a last group, kNoValue, for non-finite ones.
+FillGroups value_fill_groups(const std::vector<double>& values, double lo, double hi) {
+  std::vector<std::uint32_t> group_of(values.size());
+  for (std::size_t t = 0; t < values.size(); ++t) {
     const double v = values[t];
-    const double u = hi > lo ? (v - lo) / (hi - lo) : (std::isfinite(v) ? 0.5 : NAN);
-    canvas.fill_triangle(mesh.points[tri[0]], mesh.points[tri[1]], mesh.points[tri[2]], colour_ramp(u));
+    const double u = hi > lo ? (v - lo) / (hi - lo) : 0.5;
+    group_of[t] = std::isfinite(v) && std::isfinite(u)
+                      ? static_cast<std::uint32_t>(std::lround(std::clamp(u, 0.0, 1.0) * (kRampLevels - 1)))
+                      : kRampLevels;
   }
+  std::vector<Rgb> colours;
+  for (std::uint32_t k = 0; k < kRampLevels; ++k) colours.push_back(colour_ramp(k / double(kRampLevels - 1)));
+  colours.push_back(kNoValue);
+  return group_fills(group_of, std::move(colours));
 }
 
 }  // namespace
@@ -392,6 +397,7 @@ void write_mesh_picture(const std::filesystem::path& path, const Mesh& mesh, con
   const std::pair<double, double> range = ramp_range(values, options);
   const double lo = range.first, hi = range.second;
   const RegionFill regions = options.fill_regions ? region_fill(mesh) : RegionFill{};
+  const FillGroups value_groups = values != nullptr ? value_fill_groups(*values, lo, hi) : FillGroups{};
   const std::vector<std::pair<int, int>> interfaces = region_interfaces(mesh);
   CanvasOptions layout;
   layout.window = options.window ? *options.window : default_mesh_window(mesh);
@@ -415,11 +421,11 @@ void write_mesh_picture(const std::filesystem::path& path, const Mesh& mesh, con
         std::call_once(planned, [&] { strokes = plan_edge_strokes(canvas, mesh, edges); });
         // Value or region fills first, then the edges on top of them.
         if (options.fill_regions)
-          draw_region_fills(canvas, mesh, regions);
+          draw_fill_groups(canvas, mesh, regions.groups);
         else if (values == nullptr)
           draw_dense_shade(canvas, mesh, min_edge_world);
         else
-          draw_value_fills(canvas, mesh, *values, lo, hi);
+          draw_fill_groups_seamless(canvas, mesh, value_groups);
         draw_edges(canvas, mesh, strokes);
         const std::size_t skipped = strokes.too_short;
         {

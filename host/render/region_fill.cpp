@@ -8,7 +8,6 @@
 #include <fmt/format.h>
 
 #include "core/errors.hpp"
-#include "core/interrupt.hpp"
 #include "io/mesh_io_common.hpp"
 
 namespace pdmesh {
@@ -94,15 +93,12 @@ RegionFill region_fill(const Mesh& mesh) {
     e.colour = kNoRegion;
     fill.entries.push_back(std::move(e));
   }
-  for (std::size_t k = 0; k < fill.entries.size(); ++k) fill.entries[k].triangles = counts[k];
-  // The triangles entry by entry (a counting sort keeps the mesh's order within an entry).
-  std::vector<std::size_t> next(fill.entries.size(), 0);
+  std::vector<Rgb> colours;
   for (std::size_t k = 0; k < fill.entries.size(); ++k) {
-    if (k > 0) next[k] = next[k - 1] + counts[k - 1];
-    fill.ends.push_back(next[k] + counts[k]);
+    fill.entries[k].triangles = counts[k];
+    colours.push_back(fill.entries[k].colour);
   }
-  fill.order.resize(n);
-  for (std::size_t t = 0; t < n; ++t) fill.order[next[entry_of[t]]++] = static_cast<std::uint32_t>(t);
+  fill.groups = group_fills(entry_of, std::move(colours));
   return fill;
 }
 
@@ -136,25 +132,6 @@ std::vector<std::pair<int, int>> region_interfaces(const Mesh& mesh) {
     i = j;
   }
   return out;
-}
-
-void draw_region_fills(Canvas& canvas, const Mesh& mesh, const RegionFill& fill) {
-  InterruptPoll poll(65536);
-  std::size_t k = 0;
-  for (std::size_t e = 0; e < fill.entries.size(); ++e) {
-    FillBatch batch(canvas, fill.entries[e].colour, fill.entries[e].triangles);
-    for (; k < fill.ends[e]; ++k) {
-      poll.tick();
-      const auto& tri = mesh.triangles[fill.order[k]];
-      Box box;
-      for (int v : tri) box.add(mesh.points[static_cast<std::size_t>(v)]);
-      if (canvas.visible(box))
-        batch.triangle(mesh.points[static_cast<std::size_t>(tri[0])], mesh.points[static_cast<std::size_t>(tri[1])],
-                       mesh.points[static_cast<std::size_t>(tri[2])]);
-      else
-        batch.skip();  // in another band
-    }
-  }
 }
 
 int region_legend_width(const RegionFill& fill) {

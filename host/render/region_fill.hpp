@@ -9,6 +9,7 @@
 
 #include "mesh/mesh.hpp"
 #include "render/canvas.hpp"
+#include "render/fill_groups.hpp"
 
 namespace pdmesh {
 
@@ -31,11 +32,10 @@ struct RegionLegendEntry {
 // The legend of a mesh's regions and each triangle's entry in it. Entries: the nonzero finite
 // attributes of Mesh::region in ascending order (palette colours 0, 1, ...), then "no region" when
 // a triangle has attribute 0 (or a non-finite one) or the mesh has no regions (Mesh::region empty).
-// `order` lists the triangles entry by entry (in mesh order within one), `ends` each entry's end in it.
+// `groups` has one group per entry, in the entry's colour, for draw_fill_groups.
 struct RegionFill {
   std::vector<RegionLegendEntry> entries;
-  std::vector<std::uint32_t> order;
-  std::vector<std::size_t> ends;
+  FillGroups groups;
   bool has_regions() const { return entries.size() > 1 || (entries.size() == 1 && entries[0].attribute != 0.0); }
 };
 // Throws Error when Mesh::region is neither empty nor one attribute per triangle.
@@ -46,10 +46,6 @@ RegionFill region_fill(const Mesh& mesh);
 // the interfaces of regions whose common curve is not a constraint of the mesh, e.g. those of a mesh
 // file's physical surfaces. Empty for a mesh with one region or none.
 std::vector<std::pair<int, int>> region_interfaces(const Mesh& mesh);
-
-// Fills each visible triangle in its entry's colour, one FillBatch per entry (a band skips the others'
-// triangles as the whole picture does, so banded pictures are one canvas' picture).
-void draw_region_fills(Canvas& canvas, const Mesh& mesh, const RegionFill& fill);
 
 // The side band's width for the legend: its longest label at the legend's font size, and the swatch.
 int region_legend_width(const RegionFill& fill);
