@@ -15,6 +15,7 @@
 #include "io/mesh_text.hpp"
 #include "io/msh_reader.hpp"
 #include "io/msh_writer.hpp"
+#include "io/openfoam_writer.hpp"
 #include "io/su2_reader.hpp"
 #include "io/sms2dm_writer.hpp"
 #include "io/su2_writer.hpp"
@@ -44,6 +45,7 @@ const std::vector<MeshFormat>& mesh_formats() {
       {"fort14", {".14"}},
       {"2dm", {".2dm"}},
       {"mesh", {".mesh"}},
+      {"openfoam", {"_openfoam"}},
   };
   return formats;
 }
@@ -117,6 +119,9 @@ std::vector<std::filesystem::path> write_mesh(const Mesh& mesh, const std::files
       stream(ext, [&](TextSink& sink) { write_sms2dm(mesh, sink); });
     } else if (f == "mesh") {
       stream(ext, [&](TextSink& sink) { write_medit(mesh, sink); });
+    } else if (f == "openfoam") {
+      for (auto& p : write_openfoam(mixed_mesh_of(mesh, SurfaceCells{}), dir, stem, options.walls))
+        written.push_back(std::move(p));
     } else if (f == "triangle") {
       const auto files = triangle_strings(mesh);
       const auto& exts = mesh_format_extensions(f);

@@ -1,6 +1,7 @@
 // Mesh file formats by name (writing) and by extension (reading): msh (Gmsh 4.1), msh22
 // (Gmsh 2.2), vtu (VTK XML), su2 (SU2 native), triangle (.node/.ele/.poly), fort14 (ADCIRC/SCHISM,
-// STEM.14), 2dm (SMS) and mesh (Medit, mmg's format).
+// STEM.14), 2dm (SMS), mesh (Medit, mmg's format) and openfoam (an OpenFOAM case directory,
+// STEM_openfoam).
 #pragma once
 #include <filesystem>
 #include <string>
@@ -29,10 +30,13 @@ struct MeshWriteOptions {
   // The msh formats write Mesh::point_data as $NodeData views after "q" (Python's Mesh.write); the
   // commands leave it off, so their .msh files hold the spacing alone.
   bool msh_point_data = false;
+  // openfoam: the curves whose patches are of type wall (the others are of type patch).
+  std::vector<std::string> walls;
 };
 
-// Writes DIR/STEM.msh (msh and msh22 cannot both be asked for: same file), .vtu, .su2, .14, .2dm, .mesh
-// or STEM.node/.ele/.poly, each atomically, and returns the paths written. Throws InputError on an
+// Writes DIR/STEM.msh (msh and msh22 cannot both be asked for: same file), .vtu, .su2, .14, .2dm, .mesh,
+// STEM.node/.ele/.poly or the files of STEM_openfoam (io/openfoam_writer.hpp), each atomically, and
+// returns the paths written. Throws InputError on an
 // unknown format name (listing the known ones) or an unwritable directory.
 std::vector<std::filesystem::path> write_mesh(const Mesh& mesh, const std::filesystem::path& dir,
                                               const std::string& stem, const std::vector<std::string>& formats,

@@ -18,6 +18,7 @@
 #include "io/mesh_formats.hpp"
 #include "io/mesh_io_common.hpp"
 #include "io/msh_writer.hpp"
+#include "io/openfoam_writer.hpp"
 #include "io/vtu_writer.hpp"
 
 namespace pdmesh {
@@ -248,7 +249,7 @@ std::string mixed_su2_string(const MixedMesh& mesh) {
 }
 
 const std::vector<std::string>& mixed_mesh_format_names() {
-  static const std::vector<std::string> names = {"msh", "vtu", "su2", "mesh"};
+  static const std::vector<std::string> names = {"msh", "vtu", "su2", "mesh", "openfoam"};
   return names;
 }
 
@@ -259,13 +260,18 @@ bool is_mixed_mesh_format(const std::string& format) {
 
 std::vector<std::filesystem::path> write_mixed_mesh(const MixedMesh& mesh, const std::filesystem::path& dir,
                                                     const std::string& stem, const std::vector<std::string>& formats,
-                                                    const std::vector<PeriodicLink>* periodic) {
+                                                    const std::vector<PeriodicLink>* periodic,
+                                                    const std::vector<std::string>& walls) {
   for (const std::string& f : formats)
     if (!is_mixed_mesh_format(f))
       throw InputError(fmt::format("output.formats: '{}' cannot hold a boundary-layer mesh ({} can)", f,
                                    fmt::join(mixed_mesh_format_names(), ", ")));
   std::vector<std::filesystem::path> written;
   for (const std::string& f : formats) {
+    if (f == "openfoam") {
+      for (auto& p : write_openfoam(mesh, dir, stem, walls)) written.push_back(std::move(p));
+      continue;
+    }
     const std::filesystem::path path = dir / (stem + mesh_format_extensions(f).front());
     write_text_atomically(path, [&](TextSink& sink) {
       if (f == "msh")

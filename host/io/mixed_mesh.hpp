@@ -40,17 +40,19 @@ std::string mixed_vtu_string(const MixedMesh& mesh);
 std::string mixed_su2_string(const MixedMesh& mesh);
 
 // The mesh formats (io/mesh_formats.hpp's names) whose files hold quadrilaterals, as write_mixed_mesh
-// writes them: msh, vtu, su2, mesh.
+// writes them: msh, vtu, su2, mesh, openfoam.
 const std::vector<std::string>& mixed_mesh_format_names();
 bool is_mixed_mesh_format(const std::string& format);
 
-// DIR/STEM.msh, .vtu, .su2, .mesh for the formats of `formats` among mixed_mesh_format_names(), each atomic and written
+// DIR/STEM.msh, .vtu, .su2, .mesh and STEM_openfoam (its patches of `walls`' curves of type wall) for the formats of
+// `formats` among mixed_mesh_format_names(), each atomic and written
 // in pieces (core/text_sink.hpp), its points and cells formatted on the worker threads as the triangle meshes' writers
 // do; returns the paths written (the msh file with `periodic`'s $Periodic section). Throws InputError for another
 // format (msh22, triangle, fort14, 2dm), before any file is written.
 std::vector<std::filesystem::path> write_mixed_mesh(const MixedMesh& mesh, const std::filesystem::path& dir,
                                                     const std::string& stem, const std::vector<std::string>& formats,
-                                                    const std::vector<PeriodicLink>* periodic = nullptr);
+                                                    const std::vector<PeriodicLink>* periodic = nullptr,
+                                                    const std::vector<std::string>& walls = {});
 
 // The curves, boundary edges and points of `mesh` as a Mesh without cells (for link_periodic_nodes).
 Mesh boundary_of(const MixedMesh& mesh);

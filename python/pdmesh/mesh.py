@@ -226,12 +226,13 @@ class Mesh:
         return summary
 
     def write(self, path: str | os.PathLike, format: str | None = None,
-              open_boundaries: Sequence[str] = ()) -> list[str]:
+              open_boundaries: Sequence[str] = (), walls: Sequence[str] = ()) -> list[str]:
         """Writes the mesh with the command's writers, the format from the suffix (.msh Gmsh 4.1,
         .vtu, .su2, .node/.ele/.poly Triangle, .14 ADCIRC/SCHISM, .2dm SMS, .mesh Medit; .png/.svg a
-        picture) or ``format`` (msh, msh22, vtu, su2, triangle, fort14, 2dm, mesh). ``open_boundaries``:
-        the curves fort14 writes as open boundaries (the others are land). Atomic, as the command's files.
-        Returns the paths written."""
+        picture) or ``format`` (msh, msh22, vtu, su2, triangle, fort14, 2dm, mesh, openfoam: the
+        directory ``STEM_openfoam/constant/polyMesh`` beside ``path``). ``open_boundaries``: the curves
+        fort14 writes as open boundaries (the others are land); ``walls``: the curves whose OpenFOAM
+        patches are of type wall (a layered mesh's wall curves are walls too). Atomic, as the command's files. Returns the paths written."""
         path = os.fspath(path)
         suffix = os.path.splitext(path)[1].lower()
         if format is None and suffix in _PICTURES:
@@ -243,10 +244,11 @@ class Mesh:
                 raise InputError(f"{path}: unknown mesh suffix '{suffix}' ({known}; or give format=)")
             format = _SUFFIX_FORMATS[suffix]
         names = list(self.boundary_edges)
-        for name in open_boundaries:
-            if name not in names:
-                raise InputError(f"open_boundaries: unknown curve '{name}' (the geometry's curves: {', '.join(names)})")
-        return list(self._core.write(path, format, [str(n) for n in open_boundaries]))
+        for key, given in (("open_boundaries", open_boundaries), ("walls", walls)):
+            for name in given:
+                if name not in names:
+                    raise InputError(f"{key}: unknown curve '{name}' (the geometry's curves: {', '.join(names)})")
+        return list(self._core.write(path, format, [str(n) for n in open_boundaries], [str(n) for n in walls]))
 
     def picture(self, path: str | os.PathLike, color_by: str | None = None, title: str | None = None,
                 window: Sequence[float] | None = None, long_side: int = 1600) -> None:

@@ -95,21 +95,28 @@ nb::dict boundary_edges(const MeshHandle& h) {
   return d;
 }
 
-// `format` is a write_mesh name (msh, msh22, vtu, su2, triangle, fort14, 2dm, mesh); the file is
-// DIR/STEM.<ext>. `open_boundaries`: the curves fort14 writes as open boundaries.
+// `format` is a write_mesh name (msh, msh22, vtu, su2, triangle, fort14, 2dm, mesh, openfoam); the file is
+// DIR/STEM.<ext> (openfoam: the directory DIR/STEM_openfoam). `open_boundaries`: the curves fort14 writes
+// as open boundaries; `walls`: the curves whose openfoam patches are walls.
 std::vector<std::string> write(const MeshHandle& h, const std::string& path, const std::string& format,
-                               const std::vector<std::string>& open_boundaries) {
+                               const std::vector<std::string>& open_boundaries, const std::vector<std::string>& walls) {
   const fs::path p(path);
   const fs::path dir = p.parent_path().empty() ? fs::path(".") : p.parent_path();
   std::vector<fs::path> written;
   {
     nb::gil_scoped_release release;
-    // With layers the mixed-cell writers (msh, vtu, su2, mesh; InputError for the others).
+    // With layers the mixed-cell writers (msh, vtu, su2, mesh, openfoam; InputError for the others).
     // The msh formats carry the pairs ($Periodic), as the run's mesh.msh, and the point data as
     // $NodeData views, which Mesh.read takes back.
     const std::vector<PeriodicLink>* periodic = h.periodic->links.empty() ? nullptr : &h.periodic->links;
-    written = h.layers ? write_mixed_mesh(h.layers->mixed, dir, p.stem().string(), {format}, periodic)
-                       : write_mesh(*h.mesh, dir, p.stem().string(), {format}, {open_boundaries, periodic, true});
+    MeshWriteOptions options;
+    options.open_boundaries = open_boundaries;
+    options.periodic = periodic;
+    options.msh_point_data = true;
+    options.walls = walls;
+    if (h.layers) options.walls.insert(options.walls.end(), h.layers->walls.begin(), h.layers->walls.end());
+    written = h.layers ? write_mixed_mesh(h.layers->mixed, dir, p.stem().string(), {format}, periodic, options.walls)
+                       : write_mesh(*h.mesh, dir, p.stem().string(), {format}, options);
   }
   std::vector<std::string> out;
   for (const fs::path& w : written) out.push_back(w.string());
@@ -306,7 +313,7 @@ void bind_mesh(nb::module_& m) {
       .def("periodic_links", &periodic_links, "The periodic pairs, one dict per link (image, source).")
       .def("quality_json", &quality_json_of, "The quality.json document of this mesh.")
       .def("triangle_metrics", &triangle_metrics, "Per-triangle quality arrays.")
-      .def("write", &write, nb::arg("path"), nb::arg("format"), nb::arg("open_boundaries"),
+      .def("write", &write, nb::arg("path"), nb::arg("format"), nb::arg("open_boundaries"), nb::arg("walls"),
            "Writes the mesh; returns the paths written.")
       .def("picture", &picture, nb::arg("path"), nb::arg("color_by") = "none", nb::arg("title") = "",
            nb::arg("window").none() = nb::none(), nb::arg("long_side") = 1600, "Draws the mesh into a .png or .svg.");

@@ -262,6 +262,7 @@ class Mesher {
       write_layered_outputs(outer, *l.inputs, *l.layers, *session_->inputs, parts->core, phases);
     }
     parts->mixed = merged_layer_mesh(*l.inputs, *l.layers, *session_->inputs, parts->core);
+    parts->walls = wall_curves(l.config);
     const MixedMesh& m = parts->mixed;
     mesh.points = m.points;
     mesh.boundary_edges = m.boundary_edges;

@@ -61,6 +61,7 @@ struct LayerParts {
   std::vector<std::array<int, 4>> quads;
   std::vector<std::uint8_t> triangle_layer;  // per triangle of MeshHandle::mesh: 1 in the layer
   Mesh core;
+  std::vector<std::string> walls;  // the layers' wall curves (wall_curves): walls of an OpenFOAM mesh
 };
 
 // A mesh's periodic pairs, one link per [[periodic]] table (or per curve link of a file's $Periodic

@@ -5,6 +5,7 @@ settings as typed errors. A circle of 24 segments in a square; few iterations on
 from __future__ import annotations
 
 import json
+import os
 
 import numpy as np
 import pytest
@@ -167,3 +168,35 @@ def test_mesh_read_gives_the_quads_of_each_format(rings, tmp_path):
             assert not back.triangle_layer.any()
         else:
             assert rows(back.triangles[back.triangle_layer == 1]) == rows(mesh.triangles[mesh.triangle_layer == 1])
+
+
+def _foam_list(path):
+    """An OpenFOAM list file's entries (after the FoamFile header's count and its parenthesis)."""
+    body = path.read_text().split("}\n", 1)[1].split()
+    count = int(body[0])
+    return count, " ".join(body[1:])
+
+
+def test_openfoam_polymesh_of_a_layered_mesh(rings, tmp_path):
+    mesh = run(rings, layer(["hole"]))
+    written = mesh.write(tmp_path / "wing", format="openfoam", walls=["box"])
+    poly = tmp_path / "wing_openfoam" / "constant" / "polyMesh"
+    assert sorted(os.path.basename(p) for p in written) == ["boundary", "faces", "neighbour", "owner", "points"]
+    cells = len(mesh.triangles) + len(mesh.quads)
+    n_points, _ = _foam_list(poly / "points")
+    n_faces, faces = _foam_list(poly / "faces")
+    n_owner, _ = _foam_list(poly / "owner")
+    n_internal, _ = _foam_list(poly / "neighbour")
+    assert n_points == 2 * len(mesh.points)
+    assert n_owner == n_faces
+    boundary = sum(len(e) for e in mesh.boundary_edges.values())
+    assert n_faces == n_internal + boundary + 2 * cells
+    # Every quad a hexahedron's two 4-point caps, every triangle a prism's two 3-point caps.
+    assert faces.count("3(") == 2 * len(mesh.triangles)
+    text = (poly / "boundary").read_text()
+    # The layer's wall and the named wall are walls; the front and back one empty patch.
+    for name, kind in (("box", "wall"), ("hole", "wall"), ("frontAndBack", "empty")):
+        assert f"    {name}\n    {{\n        type            {kind};" in text
+    with pytest.raises(pdmesh.InputError, match="walls: unknown curve 'nose'"):
+        mesh.write(tmp_path / "bad", format="openfoam", walls=["nose"])
+    assert not (tmp_path / "bad_openfoam").exists()

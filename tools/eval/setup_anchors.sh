@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Installs the anisotropic anchors that tools/eval/aniso_anchors.py runs, apart from the product's
-# dependencies: BAMG inside FreeFem++ (Debian `freefem++`) and, in the virtual environment
+# dependencies: BAMG inside FreeFem++ (Debian `freefem++`), OpenFOAM's checkMesh (Debian `openfoam`) and, in the virtual environment
 # tools/.venv-anchors, Gmsh 4.15.2 and mmg2d (PyPI `mmgpy`, whose wheel ships the mmg2d_O3 binary)
 # with numpy for the evaluator, the coastal formats' third-party readers, and those
 # tools/eval/motion_check.py opens a motion run's .pvd with (pyvista with its vtk wheel, meshio). Idempotent.
@@ -10,12 +10,13 @@
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 
-# Debian `time` gives tools/bench/scale_vs_gmsh.py each command's peak RSS (/usr/bin/time -v).
-if ! command -v FreeFem++ >/dev/null || [ ! -x /usr/bin/time ]; then
+# Debian `time` gives tools/bench/scale_vs_gmsh.py each command's peak RSS (/usr/bin/time -v); Debian
+# `openfoam` gives tools/eval/check_openfoam.sh OpenFOAM's checkMesh.
+if ! command -v FreeFem++ >/dev/null || [ ! -x /usr/bin/time ] || ! command -v checkMesh >/dev/null; then
   sudo_cmd=()
   [ "$(id -u)" -eq 0 ] || sudo_cmd=(sudo)
   "${sudo_cmd[@]}" apt-get update -qq
-  DEBIAN_FRONTEND=noninteractive "${sudo_cmd[@]}" apt-get install -y -qq --no-install-recommends freefem++ time
+  DEBIAN_FRONTEND=noninteractive "${sudo_cmd[@]}" apt-get install -y -qq --no-install-recommends freefem++ time openfoam
 fi
 
 venv=$PWD/tools/.venv-anchors

@@ -329,8 +329,8 @@ const std::vector<std::string>& cleanup_keys() {
 
 const std::vector<std::string>& output_keys() {
   static const std::vector<std::string> keys = {
-      "output.formats",  "output.tree_overlay",    "output.views",
-      "output.color_by", "output.spacing_picture", "output.open_boundaries",
+      "output.formats",         "output.tree_overlay",    "output.views", "output.color_by",
+      "output.spacing_picture", "output.open_boundaries", "output.walls",
   };
   return keys;
 }
@@ -379,6 +379,13 @@ const std::vector<std::string>& motion_keys() {
 
 bool CaseConfig::Output::wants(const std::string& format) const {
   return std::find(formats.begin(), formats.end(), format) != formats.end();
+}
+
+std::vector<std::string> wall_curves(const CaseConfig& config) {
+  std::vector<std::string> walls = config.output.walls;
+  for (const CaseConfig::BoundaryLayer& layer : config.boundary_layers)
+    walls.insert(walls.end(), layer.curves.begin(), layer.curves.end());
+  return walls;
 }
 
 const std::vector<std::string>& CaseConfig::Output::format_names() {

@@ -326,6 +326,9 @@ struct CaseConfig {
     bool spacing_picture = false;  // DIR/spacing.png: the final spacing field (--plot-spacing)
     // Curves written as open boundaries in fort14 (the rest are land); checked against the curve names.
     std::vector<std::string> open_boundaries;
+    // Curves whose OpenFOAM patches are of type wall; checked against the curve names. A layered run's
+    // wall curves ([[boundary_layer]] curves) are walls too (wall_curves()).
+    std::vector<std::string> walls;
     bool wants(const std::string& format) const;
     // Every name output.formats accepts: the mesh formats (io/mesh_formats.hpp), then png and svg.
     static const std::vector<std::string>& format_names();
@@ -371,6 +374,9 @@ CaseConfig case_for_geometry_file(const std::filesystem::path& geometry_file,
 // the case is named after the first file's stem.
 CaseConfig case_for_geometry_files(const std::vector<std::filesystem::path>& geometry_files,
                                    const std::vector<CaseOverride>& overrides = {});
+
+// The curves an OpenFOAM mesh's patches of type wall hold: output.walls and every [[boundary_layer]]'s curves.
+std::vector<std::string> wall_curves(const CaseConfig& config);
 
 // A case for curves given in memory (the Python API) with every key at its default but those the
 // overrides set; `source` names the geometry in messages and the case (its name) unless `name` is set.

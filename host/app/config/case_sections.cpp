@@ -577,6 +577,7 @@ void read_output_section(const Reader& r, const toml::table& root, CaseConfig& c
   }
   if (const toml::node* n = find(root, "output", "open_boundaries"))
     c.output.open_boundaries = r.strings("output.open_boundaries", *n);
+  if (const toml::node* n = find(root, "output", "walls")) c.output.walls = r.strings("output.walls", *n);
   if (const toml::node* n = find(root, "output", "tree_overlay"))
     c.output.tree_overlay = r.boolean("output.tree_overlay", *n);
   if (const toml::node* n = find(root, "output", "spacing_picture"))

@@ -250,7 +250,7 @@ void LayerMotion::write_step_files(const CaseConfig& config, const fs::path& dir
   std::vector<std::string> formats{"vtu"};
   for (const std::string& f : config.output.formats)
     if (f != "vtu" && is_mixed_mesh_format(f)) formats.push_back(f);
-  write_mixed_mesh(mixed, dir, "mesh", formats);
+  write_mixed_mesh(mixed, dir, "mesh", formats, nullptr, wall_curves(config));
   if (!config.output.wants("png")) return;
   MeshPictureOptions picture;
   picture.title = fmt::format("{} - step {} t = {:.4g} ({} cells, {} in the boundary layer)", config.name, rec.step,

@@ -726,7 +726,8 @@ std::vector<fs::path> write_layered_mesh_files(const CaseConfig& config, const M
     lonlat = mixed;
     inputs.projection->inverse(lonlat.points);
   }
-  return write_mixed_mesh(inputs.projection ? lonlat : mixed, config.out_dir, "mesh", formats, &periodic);
+  return write_mixed_mesh(inputs.projection ? lonlat : mixed, config.out_dir, "mesh", formats, &periodic,
+                          wall_curves(config));
 }
 
 }  // namespace

@@ -213,6 +213,7 @@ MeshInputs::MeshInputs(const CaseConfig& config) {
   check_curve_names(geometry);
   // Checked here, before the run, so that a misspelt name writes nothing.
   curves_by_name(geometry, config.output.open_boundaries, config.source.string() + ": output.open_boundaries");
+  curves_by_name(geometry, config.output.walls, config.source.string() + ": output.walls");
   // The geometry's quadtree and the queries' per-segment arrays, before they are made (the
   // geometry itself is read: its size was the file's).
   check_memory(

@@ -496,8 +496,11 @@ void write_mesh_outputs(const CaseConfig& config, const MeshInputs& inputs, cons
   for (const std::string& f : config.output.formats) {
     if (!is_mesh_format(f)) continue;
     const auto writer_timer = phases.phase(fmt::format("mesh {}", f));
-    for (fs::path& p : write_mesh(mesh_out, dir, "mesh", {f}, {config.output.open_boundaries, &periodic}))
-      written.push_back(std::move(p));
+    MeshWriteOptions write_options;
+    write_options.open_boundaries = config.output.open_boundaries;
+    write_options.periodic = &periodic;
+    write_options.walls = wall_curves(config);
+    for (fs::path& p : write_mesh(mesh_out, dir, "mesh", {f}, write_options)) written.push_back(std::move(p));
   }
   {
     // The nodes of the mesh with their q, kinds and curve chains (final.nodes after the cleanup; the

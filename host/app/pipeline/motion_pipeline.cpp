@@ -86,7 +86,9 @@ void write_step_files(const CaseConfig& config, const MotionStepRecord& rec, con
   std::vector<std::string> formats{"vtu"};
   for (const std::string& f : config.output.formats)
     if (is_mesh_format(f) && f != "vtu") formats.push_back(f);
-  write_mesh(mesh, dir, "mesh", formats);
+  MeshWriteOptions write_options;
+  write_options.walls = wall_curves(config);
+  write_mesh(mesh, dir, "mesh", formats, write_options);
   if (config.output.wants("png")) {
     MeshPictureOptions picture;
     picture.title =

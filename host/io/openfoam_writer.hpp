@@ -1,0 +1,32 @@
+// OpenFOAM polyMesh writer: the 2-D mesh extruded one cell thick in z (a triangle becomes a prism, a
+// quadrilateral a hexahedron), as OpenFOAM's solvers take a two-dimensional case, with the front and
+// back faces in one patch of type `empty` and one patch per curve.
+#pragma once
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "io/mixed_mesh.hpp"
+
+namespace pdmesh {
+
+// The directory's files as text, in the order `write_openfoam` writes them.
+struct OpenFoamFiles {
+  std::string points, faces, owner, neighbour, boundary;
+};
+
+// The polyMesh of `mesh` between z = 0 and z = thickness. Faces: the internal faces in OpenFOAM's
+// upper-triangular order (by owner, then neighbour; owner the lower cell, the normal towards the
+// neighbour), then the boundary faces patch by patch with outward normals: one patch per curve, in
+// curve order, named as SU2 names its markers (blanks as '_'), of type `wall` for the curves named
+// in `walls` and `patch` otherwise, then `frontAndBack` (type `empty`).
+// Throws InputError when a cell side on the mesh's border is no curve's boundary edge, or when a
+// side is shared by more than two cells.
+OpenFoamFiles openfoam_files(const MixedMesh& mesh, const std::vector<std::string>& walls, double thickness = 1.0);
+
+// DIR/STEM_openfoam/constant/polyMesh/{points,faces,owner,neighbour,boundary}, each atomically (a
+// solver's case takes the polyMesh directory beside its own system/ settings); returns their paths.
+std::vector<std::filesystem::path> write_openfoam(const MixedMesh& mesh, const std::filesystem::path& dir,
+                                                  const std::string& stem, const std::vector<std::string>& walls);
+
+}  // namespace pdmesh
