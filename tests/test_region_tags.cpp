@@ -123,7 +123,7 @@ TEST_CASE("region tags read back from every format that writes them", "[mesh][io
     CHECK(back.region.size() == m.region.size());
     CHECK(region_of_triangles(back) == region_of_triangles(m));
     // Written again, the regions carry the same names.
-    CHECK(region_surfaces(back).names == std::vector<std::string>{"region_2.5", "region_7"});
+    CHECK(region_surfaces(back, 1).names == std::vector<std::string>{"region_2.5", "region_7"});
   }
   // Without regions nothing is read as one.
   m.region.clear();
@@ -145,7 +145,7 @@ TEST_CASE("regions of files pdmesh did not write: Medit references without names
   MeshReadReport report;
   const Mesh mm = parse_medit_mesh("mmg.mesh", medit, report);
   CHECK(mm.region == std::vector<double>{3, 3, 0, 0});
-  CHECK(region_surfaces(mm).names == std::vector<std::string>{"region_0", "region_3"});
+  CHECK(region_surfaces(mm, 1).names == std::vector<std::string>{"region_0", "region_3"});
   // A layered run's file names its reference boundary_layer: no regions (its cells are SurfaceCells').
   const std::string layered = "MeshVersionFormatted 2\nDimension 2\n# ref 1: region boundary_layer\n" +
                               medit.substr(std::string("MeshVersionFormatted 2\nDimension 2\n").size());
