@@ -82,7 +82,7 @@ void check_read_back(const Mesh& m) {
 }  // namespace
 
 TEST_CASE("a re-meshed Gmsh file keeps its physical tags and names in MSH 4.1 and reads back the same") {
-  const fs::path out = remeshed("msh,su2,mesh");
+  const fs::path out = remeshed("msh,su2,mesh,vtu");
   const std::string msh = pdmesh_test::slurp(out / "mesh.msh");
   CHECK(physical_names(msh) == std::vector<std::string>{"3", "1 5 \"walls\"", "2 11 \"steel\"", "2 22 \"copper\""});
   const Mesh back = read_mesh(out / "mesh.msh");
@@ -99,6 +99,17 @@ TEST_CASE("a re-meshed Gmsh file keeps its physical tags and names in MSH 4.1 an
     const std::string su2 = pdmesh_test::slurp(out / "mesh.su2");
     CHECK(su2.find("NMARK= 1\nMARKER_TAG= walls\nMARKER_ELEMS= " + std::to_string(back.boundary_edges.size()) + "\n") !=
           std::string::npos);
+  }
+  SECTION("VTU: the curves' group tag and name as field data, read back as the group") {
+    const Mesh m = read_mesh(out / "mesh.vtu");
+    CHECK(m.curve_names == std::vector<std::string>{"walls", "walls_2"});
+    REQUIRE(m.curve_groups.size() == 1);
+    CHECK(m.curve_groups[0].tag == 5);
+    CHECK(m.curve_groups[0].name == "walls");
+    CHECK(m.curve_groups[0].curves == std::vector<int>{0, 1});
+    CHECK(std::set<double>(m.region.begin(), m.region.end()) == std::set<double>{11.0, 22.0});
+    // Written again as MSH: one group 5 over both curves.
+    CHECK(physical_names(msh41_string(m)) == physical_names(msh));
   }
   SECTION("Medit: edge references 5, triangle references 11 and 22, read back as the regions") {
     const std::string medit = pdmesh_test::slurp(out / "mesh.mesh");
