@@ -87,19 +87,22 @@ TEST_CASE("region tags in the mesh files", "[mesh][io]") {
   Mesh m = two_squares();
   m.region = {1, 1, 2.5, 2.5};
   const std::string msh = msh41_string(m);
-  CHECK_THAT(msh, Contains("2 2 \"region_1\"\n2 3 \"region_2.5\"\n"));
+  // A whole attribute is its own tag; 2.5 takes the number after the curves and its index (1 + 1 + 1).
+  CHECK_THAT(msh, Contains("2 1 \"region_1\"\n2 3 \"region_2.5\"\n"));
+  CHECK_THAT(msh, Contains(" 1 1 0\n2 0 0 0 2 1 0 1 3 0\n$EndEntities"));
   CHECK_THAT(msh, Contains("$Entities\n0 1 2 0\n"));
   CHECK_THAT(msh, Contains("2 1 2 2\n7 1 2 5\n8 1 5 4\n"));  // surface 1 holds the left triangles
   CHECK_THAT(msh, Contains("2 2 2 2\n9 2 3 6\n10 2 6 5\n"));
   CHECK_THAT(msh, !Contains("domain"));
   const std::string msh22 = msh22_string(m);
-  CHECK_THAT(msh22, Contains("7 2 2 2 1 1 2 5\n"));
+  CHECK_THAT(msh22, Contains("7 2 2 1 1 1 2 5\n"));
   CHECK_THAT(msh22, Contains("9 2 2 3 2 2 3 6\n"));
   CHECK_THAT(vtu_string(m, VtuFormat::Ascii), Contains("Name=\"region\""));
   const TriangleFiles tri = triangle_strings(m);
   CHECK_THAT(tri.ele, Contains("4 3 1\n1 1 2 5 1\n"));
   CHECK_THAT(tri.ele, Contains("3 2 3 6 2.5\n"));
-  // Medit: the triangle references are the regions' (1 and 2 in ascending attribute order), named.
+  // Medit: the triangle references are the regions' (1 its own, 2.5 the second in ascending attribute
+  // order), named.
   const std::string medit = medit_string(m);
   CHECK_THAT(medit, Contains("# ref 1: region region_1\n# ref 2: region region_2.5\n"));
   CHECK_THAT(medit, Contains("Triangles\n4\n1 2 5 1\n1 5 4 1\n2 3 6 2\n2 6 5 2\n"));
@@ -123,7 +126,7 @@ TEST_CASE("region tags read back from every format that writes them", "[mesh][io
     CHECK(back.region.size() == m.region.size());
     CHECK(region_of_triangles(back) == region_of_triangles(m));
     // Written again, the regions carry the same names.
-    CHECK(region_surfaces(back).names == std::vector<std::string>{"region_2.5", "region_7"});
+    CHECK(region_surfaces(back, 1).names == std::vector<std::string>{"region_2.5", "region_7"});
   }
   // Without regions nothing is read as one.
   m.region.clear();
@@ -145,7 +148,7 @@ TEST_CASE("regions of files pdmesh did not write: Medit references without names
   MeshReadReport report;
   const Mesh mm = parse_medit_mesh("mmg.mesh", medit, report);
   CHECK(mm.region == std::vector<double>{3, 3, 0, 0});
-  CHECK(region_surfaces(mm).names == std::vector<std::string>{"region_0", "region_3"});
+  CHECK(region_surfaces(mm, 1).names == std::vector<std::string>{"region_0", "region_3"});
   // A layered run's file names its reference boundary_layer: no regions (its cells are SurfaceCells').
   const std::string layered = "MeshVersionFormatted 2\nDimension 2\n# ref 1: region boundary_layer\n" +
                               medit.substr(std::string("MeshVersionFormatted 2\nDimension 2\n").size());
@@ -179,5 +182,6 @@ TEST_CASE("pdmesh mesh on a .poly with a regional attribute writes its tag", "[c
   CHECK_THAT(r.output,
              Contains("pdmesh: note: ") && Contains("square.poly:13: 1 region gives a maximum triangle area"));
   CHECK_THAT(pdmesh_test::slurp(out / "mesh.msh"), Contains("\"region_7\"") && !Contains("\"domain\""));
-  CHECK_THAT(pdmesh_test::slurp(out / "mesh.mesh"), Contains("# ref 1: region region_7\n"));
+  CHECK_THAT(pdmesh_test::slurp(out / "mesh.msh"), Contains("2 7 \"region_7\"\n"));
+  CHECK_THAT(pdmesh_test::slurp(out / "mesh.mesh"), Contains("# ref 7: region region_7\n"));
 }

@@ -68,10 +68,13 @@ inline double max_area_spacing(double max_area) {
 
 // A name that stands for several curves (a mesh file's boundary name on separate stretches, which
 // become curves NAME, NAME_2, ...: io/mesh_geometry.hpp): selections of curves by name
-// (curves_by_name, layers/boundary_layers.hpp) take it for all of them.
+// (curves_by_name, layers/boundary_layers.hpp) take it for all of them. A group with a tag is a mesh
+// file's physical group (one or more curves): the outputs write its curves as one group with that tag
+// and name (Mesh::curve_groups).
 struct CurveGroup {
   std::string name;
   std::vector<std::string> curves;
+  long long tag = 0;  // 0: a name only
 };
 
 // One validated segmented boundary curve: an ordered polyline of >= 2 distinct consecutive points.

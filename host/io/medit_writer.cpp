@@ -25,14 +25,17 @@ struct MeditBoundary {
 void write_head(TextSink& sink, const MeditBoundary& b, const char* region_comment) {
   std::string& out = sink.text();
   out += "MeshVersionFormatted 2\n# Written by pdmesh\nDimension 2\n";
-  for (std::size_t c = 0; c < b.curves.curve_names.size(); ++c)
-    out += fmt::format("# ref {}: curve {}\n", c + 1, curve_label(b.curves, c));
+  // An edge's reference is its curve's tag (curve_tags: c + 1, or its physical group's tag).
+  const CurveTags tags = curve_tags(b.curves);
+  for (const CurveTags::Group& g : tags.groups)
+    out += fmt::format("# ref {}: curve {}\n", g.tag, writable_name(g.name));
   out += region_comment;
-  // A vertex's reference: its first boundary edge's curve.
-  std::vector<int> ref(b.points.size(), 0);
+  // A vertex's reference: its first boundary edge's curve's.
+  std::vector<long long> ref(b.points.size(), 0);
   for (const BoundaryEdge& e : b.curves.boundary_edges)
     for (const int v : {e.a, e.b})
-      if (ref[static_cast<std::size_t>(v)] == 0) ref[static_cast<std::size_t>(v)] = e.curve + 1;
+      if (ref[static_cast<std::size_t>(v)] == 0)
+        ref[static_cast<std::size_t>(v)] = tags.of_curve[static_cast<std::size_t>(e.curve)];
   out += fmt::format("Vertices\n{}\n", b.points.size());
   append_items(sink, b.points.size(), [&](std::string& line, std::size_t i) {
     append_g17(line, b.points[i].x);
@@ -44,7 +47,8 @@ void write_head(TextSink& sink, const MeditBoundary& b, const char* region_comme
   out += fmt::format("Edges\n{}\n", edges.size());
   append_items(sink, edges.size(), [&](std::string& line, std::size_t k) {
     const BoundaryEdge& e = b.curves.boundary_edges[edges[k]];
-    fmt::format_to(std::back_inserter(line), "{} {} {}\n", e.a + 1, e.b + 1, e.curve + 1);
+    fmt::format_to(std::back_inserter(line), "{} {} {}\n", e.a + 1, e.b + 1,
+                   tags.of_curve[static_cast<std::size_t>(e.curve)]);
   });
 }
 
@@ -67,18 +71,19 @@ void write_tail(TextSink& sink, const MeditBoundary& b) {
 void write_medit(const Mesh& mesh, TextSink& sink) {
   check_mesh_for_writing(mesh, "Medit writer");
   const MeditBoundary b{mesh.points, mesh, mesh.kind};
-  // With regional attributes a triangle's reference is its region's: j + 1 for the j-th attribute in
-  // ascending order (the MSH writer's physical surfaces), named in a comment; without them 0.
-  const RegionSurfaces surfaces = region_surfaces(mesh);
+  // With regional attributes a triangle's reference is its region's tag as region_surfaces gives it
+  // from 1: the attribute when it is a positive integer, else j + 1 for the j-th attribute in ascending
+  // order or the next free number; named in a comment. Without them 0.
+  const RegionSurfaces surfaces = region_surfaces(mesh, 1);
   std::string region_comments;
   if (surfaces.regions())
     for (std::size_t j = 0; j < surfaces.names.size(); ++j)
-      region_comments += fmt::format("# ref {}: region {}\n", j + 1, surfaces.names[j]);
+      region_comments += fmt::format("# ref {}: region {}\n", surfaces.tags[j], surfaces.names[j]);
   write_head(sink, b, region_comments.c_str());
   sink.text() += fmt::format("Triangles\n{}\n", mesh.triangles.size());
   append_items(sink, mesh.triangles.size(), [&](std::string& line, std::size_t t) {
     const auto& v = mesh.triangles[t];
-    const int ref = surfaces.regions() ? surfaces.of_triangle[t] + 1 : 0;
+    const long long ref = surfaces.regions() ? surfaces.tags[static_cast<std::size_t>(surfaces.of_triangle[t])] : 0;
     fmt::format_to(std::back_inserter(line), "{} {} {} {}\n", v[0] + 1, v[1] + 1, v[2] + 1, ref);
   });
   write_tail(sink, b);

@@ -171,6 +171,7 @@ class MeshGeometryBuilder {
     r.file = file_;
     r.constraint = constraint;
     raw_.curves.push_back(std::move(r));
+    source_.push_back(name);
   }
 
   // The turning angle at b of a -> b -> c (0 straight on).
@@ -336,7 +337,16 @@ class MeshGeometryBuilder {
     }
   }
 
-  // A name given twice: NAME, NAME_2, NAME_3, ..., each with the group NAME.
+  // The physical group (Mesh::curve_groups) of the file's curve `name`; null for none.
+  const CurveGroupTag* group_of(int name) const {
+    if (name < 0) return nullptr;
+    for (const CurveGroupTag& g : mesh_.curve_groups)
+      if (std::find(g.curves.begin(), g.curves.end(), name) != g.curves.end()) return &g;
+    return nullptr;
+  }
+
+  // A name given twice: NAME, NAME_2, NAME_3, ..., each with the group NAME. A physical group of the
+  // file becomes a group with its tag over the curves made from it (the outputs write them as one).
   void unique_names() {
     std::map<std::string, std::vector<std::size_t>> by_name;
     std::set<std::string> taken;
@@ -356,9 +366,33 @@ class MeshGeometryBuilder {
         names.push_back(candidate);
       }
       raw_.groups.push_back({name, names});
-      raw_.notes.push_back(
-          fmt::format("{}: '{}' names {} separate curves: {} (a selection of curves by '{}' takes them all)", file_,
-                      name, curves.size(), fmt::join(names, ", "), name));
+      // One physical group: the outputs keep it whole, so the note says only how to select its parts.
+      const CurveGroupTag* group = group_of(source_[curves.front()]);
+      for (const std::size_t c : curves)
+        if (group_of(source_[c]) != group) group = nullptr;
+      if (group != nullptr)
+        raw_.notes.push_back(fmt::format(
+            "{}: the physical group '{}' (tag {}) is on {} separate curves: {} (a selection of curves by '{}' takes "
+            "them all; the mesh files write them as one group '{}' with tag {})",
+            file_, name, group->tag, curves.size(), fmt::join(names, ", "), name, name, group->tag));
+      else
+        raw_.notes.push_back(
+            fmt::format("{}: '{}' names {} separate curves: {} (a selection of curves by '{}' takes them all)", file_,
+                        name, curves.size(), fmt::join(names, ", "), name));
+    }
+    for (const CurveGroupTag& g : mesh_.curve_groups) {
+      std::vector<std::string> names;
+      for (std::size_t c = 0; c < raw_.curves.size(); ++c)
+        if (group_of(source_[c]) == &g) names.push_back(raw_.curves[c].name);
+      if (names.empty()) continue;
+      const std::string name = gis::plain_name(g.name);
+      const auto same = std::find_if(raw_.groups.begin(), raw_.groups.end(), [&](const CurveGroup& other) {
+        return other.tag == 0 && other.name == name && other.curves == names;
+      });
+      if (same != raw_.groups.end())
+        same->tag = g.tag;
+      else
+        raw_.groups.push_back({name, names, g.tag});
     }
   }
 
@@ -367,6 +401,7 @@ class MeshGeometryBuilder {
   std::string file_;
   std::unordered_map<std::uint64_t, EdgeInfo> edges_;
   std::vector<std::uint64_t> order_;  // edges in the order of their first cell, for a stable output
+  std::vector<int> source_;           // per raw curve, the file's curve it came from (-1 none)
   std::set<int> on_boundary_, curve_ends_;
   int unnamed_boundaries_ = 0, unnamed_constraints_ = 0;
   RawGeometry raw_;

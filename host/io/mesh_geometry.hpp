@@ -36,6 +36,9 @@ void check_mesh_triangles(const Mesh& mesh, const std::vector<std::size_t>& reor
 //    "interface<k>".
 //  - a name given to more than one curve: the later ones become NAME_2, NAME_3, ... and a CurveGroup
 //    NAME lists them all (a note says so), which selects them all by NAME.
+//  - a physical group of the file (mesh.curve_groups): a CurveGroup with its tag over the curves made
+//    from it (the same group as above where its name is on several curves), which the outputs write
+//    as one group with that tag.
 //  - regions: with mesh.region, a seed at a triangle's centroid per part of the domain the
 //    constraints enclose, with that triangle's attribute (none for attribute 0).
 //  - points: mesh.kind's Fixed nodes (Medit corners and required vertices) that are on the boundary

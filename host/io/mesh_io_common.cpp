@@ -4,8 +4,10 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <map>
 #include <numeric>
 #include <optional>
+#include <set>
 
 #include <fmt/format.h>
 
@@ -49,6 +51,14 @@ void check_mesh_for_writing(const Mesh& mesh, const std::string& what) {
                                    be.curve, curves));
     }
   }
+  for (const CurveGroupTag& g : mesh.curve_groups) {
+    if (g.tag <= 0)
+      throw InputError(fmt::format("{}: curve group '{}' has tag {}; tags are positive", what, g.name, g.tag));
+    for (const int c : g.curves)
+      if (c < 0 || c >= curves)
+        throw InputError(fmt::format("{}: curve group '{}' lists curve {} but the mesh has {} curve names", what,
+                                     g.name, c, curves));
+  }
   if (!mesh.kind.empty() && mesh.kind.size() != mesh.points.size()) {
     throw InputError(fmt::format("{}: {} node kinds for {} points", what, mesh.kind.size(), n));
   }
@@ -73,17 +83,39 @@ std::string region_label(const Mesh& mesh, double attribute) {
   return name.empty() ? fmt::format("region_{}", attribute) : writable_name(std::string(name));
 }
 
-RegionSurfaces region_surfaces(const Mesh& mesh) {
+namespace {
+
+// A regional attribute that is a positive integer a physical tag can hold.
+bool whole_tag(double a) { return a >= 1.0 && a <= 2147483647.0 && a == std::floor(a); }
+
+}  // namespace
+
+RegionSurfaces region_surfaces(const Mesh& mesh, long long first) {
   RegionSurfaces s;
   s.of_triangle.assign(mesh.triangles.size(), 0);
   if (mesh.region.size() != mesh.triangles.size() || mesh.triangles.empty()) {
     s.names = {"domain"};
+    s.tags = {first};
     return s;
   }
   std::vector<double> attributes = mesh.region;
   std::sort(attributes.begin(), attributes.end());
   attributes.erase(std::unique(attributes.begin(), attributes.end()), attributes.end());
-  for (const double a : attributes) s.names.push_back(region_label(mesh, a));
+  std::set<long long> taken;
+  for (const double a : attributes)
+    if (whole_tag(a)) taken.insert(static_cast<long long>(a));
+  for (std::size_t j = 0; j < attributes.size(); ++j) {
+    const double a = attributes[j];
+    s.names.push_back(region_label(mesh, a));
+    if (whole_tag(a)) {
+      s.tags.push_back(static_cast<long long>(a));
+      continue;
+    }
+    long long tag = first + static_cast<long long>(j);
+    while (taken.count(tag) != 0) ++tag;
+    taken.insert(tag);
+    s.tags.push_back(tag);
+  }
   for (std::size_t i = 0; i < mesh.triangles.size(); ++i)
     s.of_triangle[i] =
         static_cast<int>(std::lower_bound(attributes.begin(), attributes.end(), mesh.region[i]) - attributes.begin());
@@ -100,6 +132,39 @@ std::optional<double> region_attribute(std::string_view name) {
   const double a = std::strtod(number.c_str(), &end);
   if (end != number.c_str() + number.size() || !std::isfinite(a)) return std::nullopt;
   return a;
+}
+
+CurveTags curve_tags(const Mesh& mesh) {
+  CurveTags t;
+  const std::size_t curves = mesh.curve_names.size();
+  t.of_curve.assign(curves, 0);
+  std::map<long long, CurveTags::Group> by_tag;
+  for (const CurveGroupTag& g : mesh.curve_groups)
+    for (const int c : g.curves) {
+      if (t.of_curve[static_cast<std::size_t>(c)] != 0) continue;
+      t.of_curve[static_cast<std::size_t>(c)] = g.tag;
+      CurveTags::Group& group = by_tag[g.tag];
+      if (group.curves.empty()) group = {g.tag, g.name, {}};
+      group.curves.push_back(c);
+    }
+  long long next = 1;
+  for (std::size_t c = 0; c < curves; ++c) {
+    if (t.of_curve[c] != 0) continue;
+    while (by_tag.count(next) != 0) ++next;
+    t.of_curve[c] = next;
+    by_tag[next] = {next, curve_label(mesh, c), {static_cast<int>(c)}};
+  }
+  for (auto& [tag, group] : by_tag) {
+    std::sort(group.curves.begin(), group.curves.end());
+    t.groups.push_back(std::move(group));
+  }
+  return t;
+}
+
+std::size_t CurveTags::group_of_tag(long long tag) const {
+  return static_cast<std::size_t>(
+      std::lower_bound(groups.begin(), groups.end(), tag, [](const Group& g, long long v) { return g.tag < v; }) -
+      groups.begin());
 }
 
 std::vector<std::size_t> boundary_edges_by_curve(const Mesh& mesh) {

@@ -100,17 +100,38 @@ std::string region_label(const Mesh& mesh, double attribute);
 // The triangles' subdomains as the writers name them: one "domain" without regional attributes
 // (Mesh::region empty), otherwise one region_label per distinct attribute, ascending, and per
 // triangle the index of its attribute there (MSH physical surfaces, Medit triangle references).
+// Each has a tag (MSH dimension-2 physical tag, Medit triangle reference): an attribute that is a
+// positive integer (at most 2^31 - 1: a mesh file's physical tag or reference, a .poly's whole
+// attribute) is its own tag; any other (0 outside every region, a fraction, a negative number) and
+// "domain" take `first` + its index in `names`, or the next number up no other surface takes.
 struct RegionSurfaces {
   std::vector<std::string> names;
+  std::vector<long long> tags;   // per name
   std::vector<int> of_triangle;  // index into names per triangle
   bool regions() const { return names.size() != 1 || names.front() != "domain"; }
 };
-RegionSurfaces region_surfaces(const Mesh& mesh);
+RegionSurfaces region_surfaces(const Mesh& mesh, long long first);
 // The attribute a region_surfaces name "region_<a>" stands for (the readers take regions back by it);
 // nullopt for any other name ("domain", "boundary_layer", a name a user gave).
 // A reader's group or reference names other than these stand for their own attribute (the group's tag,
 // the reference) and go into Mesh::region_names.
 std::optional<double> region_attribute(std::string_view name);
+
+// The tags the writers give the curves (MSH dimension-1 physical tags, Medit edge references, SU2
+// markers, Triangle segment markers): a curve in a physical group (Mesh::curve_groups, the first that
+// lists it) has its group's tag; the others, in curve order, the smallest numbers from 1 that no group
+// and no earlier curve takes (curve c has c + 1 when there are no groups).
+struct CurveTags {
+  struct Group {
+    long long tag = 0;
+    std::string name;         // the group's name, or the curve's curve_label (not yet writable_name'd)
+    std::vector<int> curves;  // ascending
+  };
+  std::vector<long long> of_curve;                // per curve
+  std::vector<Group> groups;                      // one per tag, ascending by tag; a curve in no group is a group alone
+  std::size_t group_of_tag(long long tag) const;  // index into groups
+};
+CurveTags curve_tags(const Mesh& mesh);
 
 // Boundary edge indices grouped by curve (stable: curve order, then file order within a curve).
 std::vector<std::size_t> boundary_edges_by_curve(const Mesh& mesh);

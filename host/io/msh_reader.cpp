@@ -493,6 +493,8 @@ Mesh assemble(const std::string& file, MshData& d, MeshReadReport& report) {
     mesh.curve_names.push_back(named != d.line_names.end() ? named->second
                                : key.first == 0            ? fmt::format("physical{}", key.second)
                                                            : fmt::format("entity{}", key.second));
+    // A physical group keeps its tag: a solver's input refers to the group by it.
+    if (key.first == 0 && key.second > 0) mesh.curve_groups.push_back({key.second, mesh.curve_names.back(), {index}});
   }
   for (const auto& e : d.lines) {
     const int c =

@@ -12,7 +12,8 @@
 namespace pdmesh {
 
 // Curves: the dimension-1 physical groups in tag order (named from $PhysicalNames, else
-// "physical<tag>"), then lines without a physical group per elementary entity ("entity<tag>").
+// "physical<tag>"), each with its tag in Mesh::curve_groups, then lines without a physical group per
+// elementary entity ("entity<tag>").
 // Other element types are skipped and counted in `report`. $Periodic links of curves go into
 // report.periodic (their entities resolved to curves as their lines are; links of points and
 // surfaces are skipped with a note). The triangles' 2-D physical groups are their regions

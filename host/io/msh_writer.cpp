@@ -25,12 +25,11 @@ Box box_of(const Mesh& mesh) {
   return b;
 }
 
-std::string physical_names(const Mesh& mesh, const RegionSurfaces& surfaces) {
-  const std::size_t curves = mesh.curve_names.size();
-  std::string out = fmt::format("$PhysicalNames\n{}\n", curves + surfaces.names.size());
-  for (std::size_t c = 0; c < curves; ++c) out += fmt::format("1 {} \"{}\"\n", c + 1, curve_label(mesh, c));
+std::string physical_names(const CurveTags& lines, const RegionSurfaces& surfaces) {
+  std::string out = fmt::format("$PhysicalNames\n{}\n", lines.groups.size() + surfaces.names.size());
+  for (const CurveTags::Group& g : lines.groups) out += fmt::format("1 {} \"{}\"\n", g.tag, writable_name(g.name));
   for (std::size_t j = 0; j < surfaces.names.size(); ++j)
-    out += fmt::format("2 {} \"{}\"\n", curves + 1 + j, surfaces.names[j]);
+    out += fmt::format("2 {} \"{}\"\n", surfaces.tags[j], surfaces.names[j]);
   out += "$EndPhysicalNames\n";
   return out;
 }
@@ -43,12 +42,13 @@ void write_msh41(const Mesh& mesh, TextSink& sink, const std::vector<PeriodicLin
   const std::size_t n = mesh.points.size();
   std::string& out = sink.text();
   out += "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n";
-  const RegionSurfaces surfaces = region_surfaces(mesh);
+  const RegionSurfaces surfaces = region_surfaces(mesh, static_cast<long long>(curves) + 1);
   const std::size_t ns = surfaces.names.size();
-  out += physical_names(mesh, surfaces);
+  const CurveTags lines = curve_tags(mesh);
+  out += physical_names(lines, surfaces);
 
-  // Entities: no points; curve entity c + 1 carries physical tag c + 1; surface j + 1 carries tag
-  // curves + 1 + j. Bounding boxes are per curve (its edges) and the mesh box for the surfaces.
+  // Entities: no points; curve entity c + 1 carries its curve's physical tag; surface j + 1 carries
+  // surfaces.tags[j]. Bounding boxes are per curve (its edges) and the mesh box for the surfaces.
   std::vector<Box> curve_box(curves);
   for (const auto& e : mesh.boundary_edges) {
     curve_box[static_cast<std::size_t>(e.curve)].add(mesh.points[static_cast<std::size_t>(e.a)]);
@@ -59,11 +59,11 @@ void write_msh41(const Mesh& mesh, TextSink& sink, const std::vector<PeriodicLin
   for (std::size_t c = 0; c < curves; ++c) {
     const Box b = curve_box[c].lo.x <= curve_box[c].hi.x ? curve_box[c] : all;
     out += fmt::format("{} {} {} 0 {} {} 0 1 {} 0\n", c + 1, coord(b.lo.x), coord(b.lo.y), coord(b.hi.x), coord(b.hi.y),
-                       c + 1);
+                       lines.of_curve[c]);
   }
   for (std::size_t j = 0; j < ns; ++j) {
     out += fmt::format("{} {} {} 0 {} {} 0 1 {} 0\n", j + 1, coord(all.lo.x), coord(all.lo.y), coord(all.hi.x),
-                       coord(all.hi.y), curves + 1 + j);
+                       coord(all.hi.y), surfaces.tags[j]);
   }
   out += "$EndEntities\n";
 
@@ -136,26 +136,29 @@ void write_msh22(const Mesh& mesh, TextSink& sink, const std::vector<PeriodicLin
   const std::size_t curves = mesh.curve_names.size();
   std::string& out = sink.text();
   out += "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n";
-  const RegionSurfaces surfaces = region_surfaces(mesh);
-  out += physical_names(mesh, surfaces);
+  const RegionSurfaces surfaces = region_surfaces(mesh, static_cast<long long>(curves) + 1);
+  const CurveTags lines = curve_tags(mesh);
+  out += physical_names(lines, surfaces);
   out += fmt::format("$Nodes\n{}\n", mesh.points.size());
   append_point_lines(sink, mesh, "");
   out += "$EndNodes\n";
-  // Each element: tag, type, 2 tags (physical, elementary), nodes. Curve c is elementary entity c + 1,
-  // surface j (msh41_string) elementary entity j + 1 with physical tag curves + 1 + j.
+  // Each element: tag, type, 2 tags (physical, elementary), nodes. Curve c is elementary entity c + 1
+  // with its curve's physical tag, surface j (msh41_string) elementary entity j + 1 with physical tag
+  // surfaces.tags[j].
   out += fmt::format("$Elements\n{}\n", mesh.boundary_edges.size() + mesh.triangles.size());
   std::size_t tag = 1;
   for (auto k : boundary_edges_by_curve(mesh)) {
     const auto& e = mesh.boundary_edges[k];
-    out += fmt::format("{} 1 2 {} {} {} {}\n", tag++, e.curve + 1, e.curve + 1, e.a + 1, e.b + 1);
+    out += fmt::format("{} 1 2 {} {} {} {}\n", tag++, lines.of_curve[static_cast<std::size_t>(e.curve)], e.curve + 1,
+                       e.a + 1, e.b + 1);
     sink.piece_done();
   }
   const std::size_t first_tag = tag;
   append_items(sink, mesh.triangles.size(), [&](std::string& line, std::size_t i) {
     const auto& t = mesh.triangles[i];
     const int j = surfaces.of_triangle[i];
-    fmt::format_to(std::back_inserter(line), "{} 2 2 {} {} {} {} {}\n", first_tag + i, curves + 1 + j, j + 1, t[0] + 1,
-                   t[1] + 1, t[2] + 1);
+    fmt::format_to(std::back_inserter(line), "{} 2 2 {} {} {} {} {}\n", first_tag + i,
+                   surfaces.tags[static_cast<std::size_t>(j)], j + 1, t[0] + 1, t[1] + 1, t[2] + 1);
   });
   out += "$EndElements\n";
   append_msh_periodic(out, periodic, false);

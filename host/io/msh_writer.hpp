@@ -1,6 +1,7 @@
 // Gmsh MSH writers: version 4.1 ASCII (default) and legacy 2.2 ASCII, with one physical line
-// group per boundary curve (named after the curve) and one physical surface "domain", or with
-// regional attributes (Mesh::region) one physical surface "region_<attribute>" per attribute.
+// group per boundary curve (named after the curve) or per kept physical group (Mesh::curve_groups:
+// its tag and name over all its curves), and one physical surface "domain", or with regional
+// attributes (Mesh::region) one physical surface per attribute (its name or "region_<attribute>").
 #pragma once
 #include <string>
 
@@ -10,8 +11,11 @@
 
 namespace pdmesh {
 
-// Physical tags: curve c -> c + 1; "domain" -> number of curves + 1, or the j-th attribute in ascending
-// order -> number of curves + 1 + j (surface entity j + 1). Node tags are point index + 1.
+// Physical tags (io/mesh_io_common.hpp): dimension 1 as curve_tags gives them (curve c -> c + 1 when
+// no curve is in a group; curve entity c + 1); dimension 2 as region_surfaces gives them from number
+// of curves + 1: "domain" -> number of curves + 1, the j-th attribute in ascending order -> the
+// attribute when it is a positive integer, else number of curves + 1 + j or the next free number
+// (surface entity j + 1). Node tags are point index + 1.
 // The write_* forms append the file's text to `sink` in pieces (a bound sink writes it out as it
 // goes); the *_string forms return it whole.
 // `periodic` (when not null or empty) adds the $Periodic section: per link the image curve's entity

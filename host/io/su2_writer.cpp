@@ -31,14 +31,19 @@ void write_su2(const Mesh& mesh, TextSink& sink) {
     fmt::format_to(to, "{:.17g} {:.17g} {}\n", mesh.points[i].x, mesh.points[i].y, i);
     sink.piece_done();
   }
-  std::vector<std::vector<std::size_t>> per_curve(mesh.curve_names.size());
+  // One marker per curve, or per kept physical group over all its curves' edges (SU2 marker names
+  // must be unique), in the order of their tags (curve_tags).
+  const CurveTags tags = curve_tags(mesh);
+  std::vector<std::vector<std::size_t>> per_group(tags.groups.size());
   for (std::size_t e = 0; e < mesh.boundary_edges.size(); ++e) {
-    per_curve[static_cast<std::size_t>(mesh.boundary_edges[e].curve)].push_back(e);
+    const long long tag = tags.of_curve[static_cast<std::size_t>(mesh.boundary_edges[e].curve)];
+    per_group[tags.group_of_tag(tag)].push_back(e);
   }
-  out += fmt::format("NMARK= {}\n", mesh.curve_names.size());
-  for (std::size_t c = 0; c < per_curve.size(); ++c) {
-    out += fmt::format("MARKER_TAG= {}\nMARKER_ELEMS= {}\n", curve_label(mesh, c, true), per_curve[c].size());
-    for (auto e : per_curve[c]) {
+  out += fmt::format("NMARK= {}\n", tags.groups.size());
+  for (std::size_t g = 0; g < per_group.size(); ++g) {
+    out += fmt::format("MARKER_TAG= {}\nMARKER_ELEMS= {}\n", writable_name(tags.groups[g].name, true),
+                       per_group[g].size());
+    for (auto e : per_group[g]) {
       out += fmt::format("3 {} {}\n", mesh.boundary_edges[e].a, mesh.boundary_edges[e].b);
       sink.piece_done();
     }

@@ -45,14 +45,15 @@ TriangleFiles triangle_strings(const Mesh& mesh) {
   }
 
   f.poly = "# Written by pdmesh (Triangle .poly format); the points are in the .node file\n";
-  for (std::size_t c = 0; c < mesh.curve_names.size(); ++c) {
-    f.poly += fmt::format("# pdmesh curve {} {}\n", c + 1, curve_label(mesh, c));
-  }
+  // A segment's boundary marker is its curve's tag (curve_tags: c + 1, or its physical group's tag).
+  const CurveTags tags = curve_tags(mesh);
+  for (const CurveTags::Group& g : tags.groups)
+    f.poly += fmt::format("# pdmesh curve {} {}\n", g.tag, writable_name(g.name));
   f.poly += fmt::format("0 2 0 1\n{} 1\n", mesh.boundary_edges.size());
   std::size_t k = 1;
   for (auto e : boundary_edges_by_curve(mesh)) {
     const auto& be = mesh.boundary_edges[e];
-    f.poly += fmt::format("{} {} {} {}\n", k++, be.a + 1, be.b + 1, be.curve + 1);
+    f.poly += fmt::format("{} {} {} {}\n", k++, be.a + 1, be.b + 1, tags.of_curve[static_cast<std::size_t>(be.curve)]);
   }
   f.poly += "0\n";
   return f;

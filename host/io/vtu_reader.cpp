@@ -415,6 +415,26 @@ void read_pdmesh_arrays(const VtuFile& f, Mesh& mesh, const CellIndex& index) {
     }
   }
   if (const ArrayInfo* a = f.find("FieldData", "curve_names")) mesh.curve_names = names_of(f, *a);
+  if (const ArrayInfo* tags = f.find("FieldData", "curve_tags")) {
+    // The curves' physical groups: per curve a tag (0: none) and its group's name.
+    const std::vector<double> t = f.values(*tags);
+    const ArrayInfo* names = f.find("FieldData", "curve_group_names");
+    if (names == nullptr) f.fail(tags->pos, "curve_tags without curve_group_names");
+    const std::vector<std::string> read = names_of(f, *names);
+    if (t.size() != mesh.curve_names.size() || read.size() != t.size())
+      f.fail(tags->pos, fmt::format("curve_tags holds {} tags and curve_group_names {} names for {} curves", t.size(),
+                                    read.size(), mesh.curve_names.size()));
+    std::map<long long, std::size_t> group;  // tag -> index in curve_groups
+    for (std::size_t c = 0; c < t.size(); ++c) {
+      if (t[c] == 0) continue;
+      if (!(t[c] >= 1 && t[c] <= 9.2e18 && t[c] == std::floor(t[c])))
+        f.fail(tags->pos, fmt::format("curve tag {} is not a positive integer", t[c]));
+      const auto tag = static_cast<long long>(t[c]);
+      const auto [at, added] = group.emplace(tag, mesh.curve_groups.size());
+      if (added) mesh.curve_groups.push_back({tag, read[c], {}});
+      mesh.curve_groups[at->second].curves.push_back(static_cast<int>(c));
+    }
+  }
   if (const ArrayInfo* names = f.find("FieldData", "region_names")) {
     const ArrayInfo* attributes = f.find("FieldData", "region_name_attributes");
     if (attributes == nullptr) f.fail(names->pos, "region_names without region_name_attributes");

@@ -169,6 +169,27 @@ void write_vtu_curves(const Mesh& mesh, TextSink& sink, VtuFormat format, std::s
   const auto name_tuples = " NumberOfTuples=\"" + std::to_string(names.size()) + '"';
   data_array<std::uint8_t>(sink, format, field, "curve_names", name_tuples, names.size(), 1,
                            [&](std::size_t i, int) { return static_cast<unsigned char>(names[i]); });
+  if (!mesh.curve_groups.empty()) {
+    // The curves' physical groups (Mesh::curve_groups): per curve its group's tag (0 for none) and
+    // name (empty for none), the names as bytes like curve_names.
+    const CurveTags tags = curve_tags(mesh);
+    std::vector<std::int64_t> group_tag(mesh.curve_names.size(), 0);
+    std::string group_names;
+    for (const CurveGroupTag& g : mesh.curve_groups)
+      for (const int c : g.curves)
+        if (group_tag[static_cast<std::size_t>(c)] == 0 && tags.of_curve[static_cast<std::size_t>(c)] == g.tag)
+          group_tag[static_cast<std::size_t>(c)] = g.tag;
+    for (std::size_t c = 0; c < group_tag.size(); ++c) {
+      if (group_tag[c] != 0) group_names += writable_name(tags.groups[tags.group_of_tag(group_tag[c])].name);
+      group_names += '\0';
+    }
+    const auto curve_tuples = " NumberOfTuples=\"" + std::to_string(group_tag.size()) + '"';
+    data_array<std::int64_t>(sink, format, field, "curve_tags", curve_tuples, group_tag.size(), 1,
+                             [&](std::size_t i, int) { return group_tag[i]; });
+    const auto group_tuples = " NumberOfTuples=\"" + std::to_string(group_names.size()) + '"';
+    data_array<std::uint8_t>(sink, format, field, "curve_group_names", group_tuples, group_names.size(), 1,
+                             [&](std::size_t i, int) { return static_cast<unsigned char>(group_names[i]); });
+  }
   if (!mesh.region.empty() && !mesh.region_names.empty()) {
     // The regions' names the same way, with the attribute each names.
     std::string regions;

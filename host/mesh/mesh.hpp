@@ -24,6 +24,14 @@ struct RegionName {
   std::string name;
 };
 
+// A physical group of curves with the tag a mesh file gave it (a Gmsh physical line): the writers
+// give the edges of all its curves that tag and name (io/mesh_io_common.hpp, curve_tags).
+struct CurveGroupTag {
+  long long tag = 0;  // > 0
+  std::string name;
+  std::vector<int> curves;  // indices into Mesh::curve_names
+};
+
 struct PointValues {
   std::string name;
   int components = 1;
@@ -50,6 +58,10 @@ struct Mesh {
   // Names of attributes of `region`, ascending by attribute, at most one per attribute (from the
   // geometry's regions or a mesh file's group names); an attribute without one is "region_<a>".
   std::vector<RegionName> region_names;
+  // The curves' physical groups where a mesh file gave them (read from an MSH file, or kept from a
+  // mesh file used as the geometry); a curve in none is numbered by its index (curve_tags). Empty for
+  // geometry from curve, .poly and GIS files.
+  std::vector<CurveGroupTag> curve_groups;
   // More point data, written by the VTU writer after "kind" and "q" (empty for a normal run).
   std::vector<PointValues> point_data;
 };

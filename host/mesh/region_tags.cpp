@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <map>
 #include <string>
@@ -147,6 +148,23 @@ std::vector<RegionName> region_names_of(const std::vector<GeometryRegion>& regio
     if (!r.name.empty()) names.emplace(r.attribute, r.name);
   std::vector<RegionName> out;
   for (auto& [attribute, name] : names) out.push_back({attribute, std::move(name)});
+  return out;
+}
+
+std::vector<CurveGroupTag> curve_groups_of(const std::vector<CurveGroup>& groups,
+                                           const std::vector<std::string>& curve_names) {
+  std::vector<CurveGroupTag> out;
+  std::vector<std::uint8_t> grouped(curve_names.size(), 0);
+  for (const CurveGroup& g : groups) {
+    if (g.tag <= 0) continue;
+    CurveGroupTag kept{g.tag, g.name, {}};
+    for (std::size_t c = 0; c < curve_names.size(); ++c)
+      if (!grouped[c] && std::find(g.curves.begin(), g.curves.end(), curve_names[c]) != g.curves.end()) {
+        kept.curves.push_back(static_cast<int>(c));
+        grouped[c] = 1;
+      }
+    if (!kept.curves.empty()) out.push_back(std::move(kept));
+  }
   return out;
 }
 

@@ -19,4 +19,10 @@ std::vector<double> region_tags(const Mesh& mesh, const std::vector<GeometryRegi
 // that is not empty, ascending by attribute.
 std::vector<RegionName> region_names_of(const std::vector<GeometryRegion>& regions);
 
+// The geometry's physical groups (CurveGroup with a tag) on the mesh's curves (Mesh::curve_groups):
+// each group's curves found by name in `curve_names`; a group none of whose curves the mesh has is
+// left out, and a curve is in the first group that lists it.
+std::vector<CurveGroupTag> curve_groups_of(const std::vector<CurveGroup>& groups,
+                                           const std::vector<std::string>& curve_names);
+
 }  // namespace pdmesh

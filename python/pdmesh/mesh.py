@@ -171,6 +171,14 @@ class Mesh:
         return dict(self._core.region_names)
 
     @property
+    def curve_groups(self) -> dict[int, tuple[str, list[str]]]:
+        """The curves' physical groups by tag: (name, curve names), from a mesh file's groups (MSH
+        physical lines, the VTU field data ``curve_tags``) or kept from a mesh file used as the
+        geometry. ``write`` writes each as one group with that tag (docs/mesh-formats.md, "Physical
+        tags"); empty for geometry from curve files."""
+        return {tag: (name, list(curves)) for tag, (name, curves) in self._core.curve_groups.items()}
+
+    @property
     def spacing(self) -> np.ndarray:
         """(N,) float64: the spacing field q at each point, written as point data "q" (.vtu, .msh) and
         read back from it by ``read``; empty where a file has no one-component array "q"."""

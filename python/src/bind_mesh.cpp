@@ -278,6 +278,19 @@ void bind_mesh(nb::module_& m) {
           },
           "dict attribute -> name of the regions that have a name (the others are region_<attribute>).")
       .def_prop_ro(
+          "curve_groups",
+          [](const MeshHandle& h) {
+            nb::dict groups;
+            for (const CurveGroupTag& g : h.mesh->curve_groups) {
+              nb::list curves;
+              for (const int c : g.curves)
+                curves.append(nb::str(h.mesh->curve_names[static_cast<std::size_t>(c)].c_str()));
+              groups[nb::int_(g.tag)] = nb::make_tuple(nb::str(g.name.c_str()), curves);
+            }
+            return groups;
+          },
+          "dict physical tag -> (name, [curve names]) of the curves' physical groups a mesh file gave.")
+      .def_prop_ro(
           "spacing",
           [](const MeshHandle& h) {
             const auto& q = h.mesh->spacing;

@@ -557,6 +557,7 @@ Mesh mesh_stage(const CaseConfig& config, const MeshInputs& inputs, const Spacin
   }
   mesh.region = region_tags(mesh, inputs.geometry.regions, inputs.node_geometry());
   if (!mesh.region.empty()) mesh.region_names = region_names_of(inputs.geometry.regions);
+  mesh.curve_groups = curve_groups_of(inputs.geometry.groups, mesh.curve_names);
   // [[periodic]]: every pair's nodes must have come through the stages exactly.
   const std::vector<PeriodicLink> periodic = link_periodic_nodes(mesh, inputs.periodic);
   if (!config.write_outputs) return mesh;  // the Python API measures on demand (Mesh.quality())
