@@ -66,7 +66,7 @@ MixedMesh square() {
 TEST_CASE("an OpenFOAM polyMesh: closed cells, normals from owner to neighbour, upper-triangular order",
           "[io][openfoam]") {
   const MixedMesh m = square();
-  const OpenFoamFiles f = openfoam_files(m, {"bottom"}, 0.25);
+  const OpenFoamFiles f = openfoam_files(m, {"bottom"}, {}, 0.25);
   std::vector<V3> points;
   for (const std::string& p : entries(f.points)) {
     const auto v = numbers(p);
@@ -135,4 +135,21 @@ TEST_CASE("the OpenFOAM writer refuses a border side on no curve and a side of t
   m = square();
   m.cells.push_back({1, 4, 3, -1});  // a third cell on the side 1-4... and on 3-4, 1-3
   CHECK_THROWS_AS(openfoam_files(m, {}), InputError);
+}
+
+TEST_CASE("an OpenFOAM patch per physical group of curves, in the order of their tags", "[io][openfoam]") {
+  const MixedMesh m = square();
+  // right and left in one group of tag 5; bottom and top take the free tags 1 and 2.
+  const OpenFoamFiles f = openfoam_files(m, {"left"}, {{5, "sides", {1, 3}}});
+  const std::string& b = f.boundary;
+  const auto at = [&](const std::string& name) { return b.find("    " + name + "\n    {"); };
+  REQUIRE(at("bottom") != std::string::npos);
+  REQUIRE(at("top") != std::string::npos);
+  REQUIRE(at("sides") != std::string::npos);
+  CHECK(at("bottom") < at("top"));
+  CHECK(at("top") < at("sides"));
+  CHECK(b.find("4\n(") != std::string::npos);  // three groups and frontAndBack
+  CHECK(b.find("    sides\n    {\n        type            wall;\n        inGroups        1(wall);\n"
+               "        nFaces          2;\n        startFace       6;") != std::string::npos);
+  CHECK(b.find("right") == std::string::npos);
 }

@@ -120,7 +120,7 @@ std::vector<std::filesystem::path> write_mesh(const Mesh& mesh, const std::files
     } else if (f == "mesh") {
       stream(ext, [&](TextSink& sink) { write_medit(mesh, sink); });
     } else if (f == "openfoam") {
-      for (auto& p : write_openfoam(mixed_mesh_of(mesh, SurfaceCells{}), dir, stem, options.walls))
+      for (auto& p : write_openfoam(mixed_mesh_of(mesh, SurfaceCells{}), dir, stem, options.walls, mesh.curve_groups))
         written.push_back(std::move(p));
     } else if (f == "triangle") {
       const auto files = triangle_strings(mesh);

@@ -50,10 +50,13 @@ void side_face(std::string& out, int a, int b, std::size_t n) {
 
 }  // namespace
 
-OpenFoamFiles openfoam_files(const MixedMesh& mesh, const std::vector<std::string>& walls, double thickness) {
+OpenFoamFiles openfoam_files(const MixedMesh& mesh, const std::vector<std::string>& walls,
+                             const std::vector<CurveGroupTag>& groups, double thickness) {
   const std::size_t n = mesh.points.size();
-  const Mesh curves = boundary_of(mesh);
+  Mesh curves = boundary_of(mesh);
+  curves.curve_groups = groups;
   check_mesh_for_writing(curves, "OpenFOAM writer");
+  const CurveTags tags = curve_tags(curves);
   for (std::size_t c = 0; c < mesh.cells.size(); ++c)
     for (int k = 0; k < corners(mesh.cells[c]); ++k)
       if (mesh.cells[c][k] < 0 || static_cast<std::size_t>(mesh.cells[c][k]) >= n)
@@ -85,7 +88,7 @@ OpenFoamFiles openfoam_files(const MixedMesh& mesh, const std::vector<std::strin
   }
   std::sort(edge_order.begin(), edge_order.end(),
             [&](std::size_t x, std::size_t y) { return edge_keys[x] < edge_keys[y]; });
-  std::vector<std::vector<Side>> per_curve(mesh.curve_names.size());
+  std::vector<std::vector<Side>> per_patch(tags.groups.size());
   for (std::size_t i = 0; i < sides.size();) {
     std::size_t j = i + 1;
     while (j < sides.size() && sides[j].key == sides[i].key) ++j;
@@ -103,14 +106,15 @@ OpenFoamFiles openfoam_files(const MixedMesh& mesh, const std::vector<std::strin
             fmt::format("OpenFOAM writer: the side {}-{} of cell {} is on the mesh's border but on no curve",
                         sides[i].a, sides[i].b, sides[i].cell));
       }
-      per_curve[static_cast<std::size_t>(mesh.boundary_edges[*it].curve)].push_back(sides[i]);
+      const long long tag = tags.of_curve[static_cast<std::size_t>(mesh.boundary_edges[*it].curve)];
+      per_patch[tags.group_of_tag(tag)].push_back(sides[i]);
     }
     i = j;
   }
   std::sort(internal.begin(), internal.end(), [](const Internal& x, const Internal& y) {
     return x.owner != y.owner ? x.owner < y.owner : x.neighbour < y.neighbour;
   });
-  for (auto& list : per_curve)
+  for (auto& list : per_patch)
     std::sort(list.begin(), list.end(), [](const Side& x, const Side& y) { return x.cell < y.cell; });
 
   OpenFoamFiles files;
@@ -126,7 +130,7 @@ OpenFoamFiles openfoam_files(const MixedMesh& mesh, const std::vector<std::strin
   files.points += ")\n";
 
   std::size_t boundary_faces = 2 * mesh.cells.size();
-  for (const auto& list : per_curve) boundary_faces += list.size();
+  for (const auto& list : per_patch) boundary_faces += list.size();
   const std::size_t faces = internal.size() + boundary_faces;
   const std::string note = fmt::format("nPoints: {} nCells: {} nFaces: {} nInternalFaces: {}", 2 * n, mesh.cells.size(),
                                        faces, internal.size());
@@ -146,7 +150,7 @@ OpenFoamFiles openfoam_files(const MixedMesh& mesh, const std::vector<std::strin
   }
   files.neighbour += ")\n";
 
-  // The patches: one per curve, then the front and back.
+  // The patches: one per curve or group, then the front and back.
   std::string patches;
   std::size_t start = internal.size();
   const auto patch = [&](const std::string& name, const char* type, std::size_t count) {
@@ -156,13 +160,19 @@ OpenFoamFiles openfoam_files(const MixedMesh& mesh, const std::vector<std::strin
                    name, type, type, count, start);
     start += count;
   };
-  for (std::size_t c = 0; c < per_curve.size(); ++c) {
-    for (const Side& s : per_curve[c]) {
+  const auto named = [&](const std::string& name) {
+    return std::find(walls.begin(), walls.end(), name) != walls.end();
+  };
+  for (std::size_t g = 0; g < per_patch.size(); ++g) {
+    for (const Side& s : per_patch[g]) {
       side_face(files.faces, s.a, s.b, n);
       fmt::format_to(owner, "{}\n", s.cell);
     }
-    const bool wall = std::find(walls.begin(), walls.end(), mesh.curve_names[c]) != walls.end();
-    patch(curve_label(curves, c, true), wall ? "wall" : "patch", per_curve[c].size());
+    const CurveTags::Group& group = tags.groups[g];
+    const bool wall = named(group.name) || std::any_of(group.curves.begin(), group.curves.end(), [&](int c) {
+                        return named(mesh.curve_names[static_cast<std::size_t>(c)]);
+                      });
+    patch(writable_name(group.name, true), wall ? "wall" : "patch", per_patch[g].size());
   }
   // Front (z = 0, normal -z: the cell's corners clockwise) and back (z = thickness, counter-clockwise).
   auto face_out = std::back_inserter(files.faces);
@@ -185,13 +195,14 @@ OpenFoamFiles openfoam_files(const MixedMesh& mesh, const std::vector<std::strin
   patch("frontAndBack", "empty", 2 * mesh.cells.size());
   files.faces += ")\n";
   files.owner += ")\n";
-  files.boundary = header("polyBoundaryMesh", "boundary") + fmt::format("{}\n(\n{})\n", per_curve.size() + 1, patches);
+  files.boundary = header("polyBoundaryMesh", "boundary") + fmt::format("{}\n(\n{})\n", per_patch.size() + 1, patches);
   return files;
 }
 
 std::vector<std::filesystem::path> write_openfoam(const MixedMesh& mesh, const std::filesystem::path& dir,
-                                                  const std::string& stem, const std::vector<std::string>& walls) {
-  const OpenFoamFiles files = openfoam_files(mesh, walls);
+                                                  const std::string& stem, const std::vector<std::string>& walls,
+                                                  const std::vector<CurveGroupTag>& groups) {
+  const OpenFoamFiles files = openfoam_files(mesh, walls, groups);
   const std::filesystem::path root = dir / (stem + "_openfoam");
   const std::filesystem::path poly = root / "constant" / "polyMesh";
   std::error_code ec;

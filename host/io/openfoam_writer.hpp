@@ -17,16 +17,19 @@ struct OpenFoamFiles {
 
 // The polyMesh of `mesh` between z = 0 and z = thickness. Faces: the internal faces in OpenFOAM's
 // upper-triangular order (by owner, then neighbour; owner the lower cell, the normal towards the
-// neighbour), then the boundary faces patch by patch with outward normals: one patch per curve, in
-// curve order, named as SU2 names its markers (blanks as '_'), of type `wall` for the curves named
-// in `walls` and `patch` otherwise, then `frontAndBack` (type `empty`).
+// neighbour), then the boundary faces patch by patch with outward normals: one patch per curve, or
+// per physical group of curves (`groups`, Mesh::curve_groups), in the order of their tags (curve_tags,
+// as the SU2 markers), named as the SU2 markers (blanks as '_'), of type `wall` where `walls` names
+// the group or one of its curves and `patch` otherwise; then `frontAndBack` (type `empty`).
 // Throws InputError when a cell side on the mesh's border is no curve's boundary edge, or when a
 // side is shared by more than two cells.
-OpenFoamFiles openfoam_files(const MixedMesh& mesh, const std::vector<std::string>& walls, double thickness = 1.0);
+OpenFoamFiles openfoam_files(const MixedMesh& mesh, const std::vector<std::string>& walls,
+                             const std::vector<CurveGroupTag>& groups = {}, double thickness = 1.0);
 
 // DIR/STEM_openfoam/constant/polyMesh/{points,faces,owner,neighbour,boundary}, each atomically (a
 // solver's case takes the polyMesh directory beside its own system/ settings); returns their paths.
 std::vector<std::filesystem::path> write_openfoam(const MixedMesh& mesh, const std::filesystem::path& dir,
-                                                  const std::string& stem, const std::vector<std::string>& walls);
+                                                  const std::string& stem, const std::vector<std::string>& walls,
+                                                  const std::vector<CurveGroupTag>& groups = {});
 
 }  // namespace pdmesh
