@@ -80,7 +80,8 @@ RegionSurfaces region_surfaces(const Mesh& mesh) {
     s.names = {"domain"};
     return s;
   }
-  std::vector<double> attributes = mesh.region;
+  std::vector<double>& attributes = s.attributes;
+  attributes = mesh.region;
   std::sort(attributes.begin(), attributes.end());
   attributes.erase(std::unique(attributes.begin(), attributes.end()), attributes.end());
   for (const double a : attributes) s.names.push_back(region_label(mesh, a));

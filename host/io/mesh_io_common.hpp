@@ -102,7 +102,8 @@ std::string region_label(const Mesh& mesh, double attribute);
 // triangle the index of its attribute there (MSH physical surfaces, Medit triangle references).
 struct RegionSurfaces {
   std::vector<std::string> names;
-  std::vector<int> of_triangle;  // index into names per triangle
+  std::vector<double> attributes;  // the attribute each name stands for; empty for the one "domain"
+  std::vector<int> of_triangle;    // index into names per triangle
   bool regions() const { return names.size() != 1 || names.front() != "domain"; }
 };
 RegionSurfaces region_surfaces(const Mesh& mesh);
