@@ -98,7 +98,8 @@ RegionSurfaces region_surfaces(const Mesh& mesh, long long first) {
     s.tags = {first};
     return s;
   }
-  std::vector<double> attributes = mesh.region;
+  std::vector<double>& attributes = s.attributes;
+  attributes = mesh.region;
   std::sort(attributes.begin(), attributes.end());
   attributes.erase(std::unique(attributes.begin(), attributes.end()), attributes.end());
   std::set<long long> taken;

@@ -106,8 +106,9 @@ std::string region_label(const Mesh& mesh, double attribute);
 // "domain" take `first` + its index in `names`, or the next number up no other surface takes.
 struct RegionSurfaces {
   std::vector<std::string> names;
-  std::vector<long long> tags;   // per name
-  std::vector<int> of_triangle;  // index into names per triangle
+  std::vector<long long> tags;     // per name
+  std::vector<double> attributes;  // the attribute each name stands for; empty for the one "domain"
+  std::vector<int> of_triangle;    // index into names per triangle
   bool regions() const { return names.size() != 1 || names.front() != "domain"; }
 };
 RegionSurfaces region_surfaces(const Mesh& mesh, long long first);

@@ -135,6 +135,47 @@ std::string histogram_json(const Histogram& h) {
                      counts, h.overflow);
 }
 
+// The members of a summary's per-triangle figures and spacing conformance, from "triangles" to
+// "spacing_conformance", one per line at `indent`, without a comma after the last: the top level of
+// quality.json and each entry of its "regions".
+std::string figures_json(const QualitySummary& s, const std::string& indent) {
+  std::string spacing = "null";
+  if (s.has_spacing) {
+    const auto& c = s.spacing;
+    spacing = fmt::format(
+        "{{\"edges\": {}, \"mean\": {}, \"stddev\": {}, \"p05\": {}, \"p95\": {}, \"min\": {}, \"max\": {}}}", c.edges,
+        num(c.mean), num(c.stddev), num(c.p05), num(c.p95), num(c.min), num(c.max));
+  }
+  const std::string& i = indent;
+  std::string out;
+  out += fmt::format("{}\"triangles\": {},\n{}\"points\": {},\n", i, s.triangles, i, s.points);
+  out += fmt::format("{}\"included_angle\": {{\"min\": {}, \"max\": {}}},\n", i, num(s.min_angle), num(s.max_angle));
+  out += fmt::format("{}\"aspect_ratio\": {{\"average\": {}, \"max\": {}}},\n", i, num(s.aspect_ratio_avg),
+                     num(s.aspect_ratio_max));
+  out +=
+      fmt::format("{}\"skewness\": {{\"average\": {}, \"max\": {}}},\n", i, num(s.skewness_avg), num(s.skewness_max));
+  out += fmt::format("{}\"weighted_condition_number\": {{\"average\": {}, \"max\": {}}},\n", i,
+                     num(s.condition_number_avg), num(s.condition_number_max));
+  out += fmt::format("{}\"minimum_corner_jacobian\": {},\n", i, num(s.min_jacobian));
+  out += fmt::format("{}\"small_angle\": {{\"threshold_deg\": {}, \"triangles\": {}, \"share\": {}}},\n", i,
+                     num(s.small_angle_deg), s.small_angle_triangles, num(s.small_angle_share));
+  out += fmt::format("{}\"histograms\": {{\n{}  \"min_angle\": {},\n{}  \"aspect_ratio\": {}\n{}}},\n", i, i,
+                     histogram_json(s.min_angle_histogram), i, histogram_json(s.aspect_ratio_histogram), i);
+  out += fmt::format("{}\"spacing_conformance\": {}", i, spacing);
+  return out;
+}
+
+// quality.json's "regions" array (summary.regions), one object per region over several lines.
+std::string regions_json(const std::vector<RegionQuality>& regions) {
+  std::string out = "[\n";
+  for (std::size_t k = 0; k < regions.size(); ++k) {
+    const RegionQuality& r = regions[k];
+    out += fmt::format("    {{\n      \"attribute\": {},\n      \"name\": {},\n{}\n    }}{}\n", num(r.attribute),
+                       json_string(r.name), figures_json(r.quality, "      "), k + 1 < regions.size() ? "," : "");
+  }
+  return out + "  ]";
+}
+
 }  // namespace
 
 std::string format_quality_table(const std::vector<std::pair<std::string, QualitySummary>>& columns) {
@@ -181,6 +222,58 @@ std::string format_quality_table(const QualitySummary& summary, const std::strin
   return format_quality_table({{label, summary}});
 }
 
+std::string format_region_table(const QualitySummary& summary) {
+  if (summary.regions.size() < 2) return {};
+  // Columns: the table's rows above, one row per region; the name last, as it may be long.
+  struct Column {
+    std::string head;
+    std::function<std::string(const QualitySummary&)> value;
+  };
+  std::vector<Column> columns = {
+      {"triangles", [](const QualitySummary& s) { return fmt::format("{}", s.triangles); }},
+      {"points", [](const QualitySummary& s) { return fmt::format("{}", s.points); }},
+      {"angle MIN", fixed(&QualitySummary::min_angle, 2)},
+      {"angle MAX", fixed(&QualitySummary::max_angle, 2)},
+      {"AR avg", fixed(&QualitySummary::aspect_ratio_avg, 3)},
+      {"AR MAX", fixed(&QualitySummary::aspect_ratio_max, 3)},
+      {"skew avg", fixed(&QualitySummary::skewness_avg, 3)},
+      {"skew MAX", fixed(&QualitySummary::skewness_max, 3)},
+      {"K_W avg", fixed(&QualitySummary::condition_number_avg, 3)},
+      {"K_W MAX", fixed(&QualitySummary::condition_number_max, 3)},
+      {"Jacobian", fixed(&QualitySummary::min_jacobian, 3)},
+      {fmt::format("<{:g}deg", summary.small_angle_deg),
+       [](const QualitySummary& s) { return fmt::format("{}", s.small_angle_triangles); }},
+  };
+  if (summary.has_spacing) {
+    columns.push_back({"h/q mean", spacing_cell(&SpacingConformance::mean)});
+    columns.push_back({"h/q P05", spacing_cell(&SpacingConformance::p05)});
+    columns.push_back({"h/q P95", spacing_cell(&SpacingConformance::p95)});
+  }
+  std::vector<std::vector<std::string>> cells;
+  std::vector<std::size_t> widths;
+  for (const Column& c : columns) widths.push_back(c.head.size());
+  std::size_t attribute_width = std::string("attribute").size();
+  for (const RegionQuality& r : summary.regions) {
+    std::vector<std::string> row;
+    for (std::size_t c = 0; c < columns.size(); ++c) {
+      row.push_back(columns[c].value(r.quality));
+      widths[c] = std::max(widths[c], row.back().size());
+    }
+    cells.push_back(std::move(row));
+    attribute_width = std::max(attribute_width, fmt::format("{}", r.attribute).size());
+  }
+  std::string out =
+      fmt::format("Per region ({} regions):\n{:>{}}", summary.regions.size(), "attribute", attribute_width);
+  for (std::size_t c = 0; c < columns.size(); ++c) out += fmt::format("  {:>{}}", columns[c].head, widths[c]);
+  out += "  region\n";
+  for (std::size_t k = 0; k < summary.regions.size(); ++k) {
+    out += fmt::format("{:>{}}", fmt::format("{}", summary.regions[k].attribute), attribute_width);
+    for (std::size_t c = 0; c < columns.size(); ++c) out += fmt::format("  {:>{}}", cells[k][c], widths[c]);
+    out += fmt::format("  {}\n", summary.regions[k].name);
+  }
+  return out;
+}
+
 std::string json_string(const std::string& text) {
   std::string out = "\"";
   for (const char ch : text) {
@@ -220,29 +313,10 @@ std::string json_string(const std::string& text) {
 
 std::string quality_json(const QualitySummary& s, const std::string& source, const std::string& healing,
                          const std::string& periodic, const std::string& trailing) {
-  std::string spacing = "null";
-  if (s.has_spacing) {
-    const auto& c = s.spacing;
-    spacing = fmt::format(
-        "{{\"edges\": {}, \"mean\": {}, \"stddev\": {}, \"p05\": {}, \"p95\": {}, \"min\": {}, \"max\": {}}}", c.edges,
-        num(c.mean), num(c.stddev), num(c.p05), num(c.p95), num(c.min), num(c.max));
-  }
   std::string out = "{\n";
   out += "  \"format\": \"pdmesh-quality\",\n  \"version\": 1,\n";
   out += fmt::format("  \"source\": {},\n", json_string(source));
-  out += fmt::format("  \"triangles\": {},\n  \"points\": {},\n", s.triangles, s.points);
-  out += fmt::format("  \"included_angle\": {{\"min\": {}, \"max\": {}}},\n", num(s.min_angle), num(s.max_angle));
-  out += fmt::format("  \"aspect_ratio\": {{\"average\": {}, \"max\": {}}},\n", num(s.aspect_ratio_avg),
-                     num(s.aspect_ratio_max));
-  out += fmt::format("  \"skewness\": {{\"average\": {}, \"max\": {}}},\n", num(s.skewness_avg), num(s.skewness_max));
-  out += fmt::format("  \"weighted_condition_number\": {{\"average\": {}, \"max\": {}}},\n",
-                     num(s.condition_number_avg), num(s.condition_number_max));
-  out += fmt::format("  \"minimum_corner_jacobian\": {},\n", num(s.min_jacobian));
-  out += fmt::format("  \"small_angle\": {{\"threshold_deg\": {}, \"triangles\": {}, \"share\": {}}},\n",
-                     num(s.small_angle_deg), s.small_angle_triangles, num(s.small_angle_share));
-  out += fmt::format("  \"histograms\": {{\n    \"min_angle\": {},\n    \"aspect_ratio\": {}\n  }},\n",
-                     histogram_json(s.min_angle_histogram), histogram_json(s.aspect_ratio_histogram));
-  out += fmt::format("  \"spacing_conformance\": {},\n", spacing);
+  out += figures_json(s, "  ") + ",\n";
   std::string cleanup = "null";
   if (s.has_cleanup) {
     const CleanupEffect& e = s.cleanup;
@@ -279,6 +353,8 @@ std::string quality_json(const QualitySummary& s, const std::string& source, con
       list += fmt::format("{}{{\"curve\": {}, \"edges\": {}}}", list.empty() ? "" : ", ", json_string(name), edges);
     out += fmt::format("  \"constraints\": [{}],\n", list);
   }
+  // Only for a mesh with regions, so that every other quality.json stays as it was.
+  if (!s.regions.empty()) out += fmt::format("  \"regions\": {},\n", regions_json(s.regions));
   // The caller's members follow "cleanup" on its line: `trailing` starts with the comma.
   out += fmt::format("  \"cleanup\": {}", cleanup);
   out += trailing.empty() ? "\n" : trailing;

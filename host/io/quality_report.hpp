@@ -16,12 +16,19 @@ namespace pdmesh {
 std::string format_quality_table(const std::vector<std::pair<std::string, QualitySummary>>& columns);
 std::string format_quality_table(const QualitySummary& summary, const std::string& label = "mesh");
 
+// The figures of each region (summary.regions) as a table of one row per region, the quality table's
+// rows as its columns (the spacing conformance's only when the summary has it), the region's name
+// last; empty for fewer than two regions.
+std::string format_region_table(const QualitySummary& summary);
+
 // The summary as a JSON document; `source` (e.g. the mesh file) is recorded under "source".
 // Non-finite numbers (degenerate triangles) are written as null.
 // `healing` (geometry/heal_report.hpp's heal_json) is written as the "healing" object when not empty,
-// `periodic` (periodic_json) as the "periodic" array. `trailing`: further members of the caller's own
-// (a layered mesh's "boundary_layer", a mesh file's "cells"), as text that starts with a comma and
-// ends with a line break, appended right after the last member's value, before the closing brace.
+// `periodic` (periodic_json) as the "periodic" array; summary.regions, when not empty, as the
+// "regions" array (each entry the top level's figures of the region's triangles). `trailing`:
+// further members of the caller's own (a layered mesh's "boundary_layer", a mesh file's "cells"), as
+// text that starts with a comma and ends with a line break, appended right after the last member's
+// value, before the closing brace.
 std::string quality_json(const QualitySummary& summary, const std::string& source = "", const std::string& healing = "",
                          const std::string& periodic = "", const std::string& trailing = "");
 

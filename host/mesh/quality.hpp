@@ -93,6 +93,8 @@ struct CleanupEffect {
   double seconds = 0.0;  // printed on stderr only: quality.json stays identical across runs
 };
 
+struct RegionQuality;
+
 // Summary over a mesh: the rows of thesis tables 6.2-6.6 and our extra rows.
 struct QualitySummary {
   std::size_t triangles = 0;
@@ -116,6 +118,18 @@ struct QualitySummary {
   MetricQualitySummary metric;
   // The embedded constraint curves (Mesh::constraint_curves), each with its number of mesh edges.
   std::vector<std::pair<std::string, std::size_t>> constraints;
+  // Per regional attribute of a mesh with regions (io/region_quality.hpp), ascending; empty otherwise.
+  std::vector<RegionQuality> regions;
+};
+
+// The summary of one region's triangles: the figures summarize_quality gives a mesh, measured on the
+// region's triangles and the points they use (no constraints, cleanup, metric or nested regions). Its
+// spacing conformance counts every edge of the region's triangles, so an interface edge counts in
+// both regions it separates.
+struct RegionQuality {
+  double attribute = 0.0;
+  std::string name;  // as the mesh files name the region (io's region_label)
+  QualitySummary quality;
 };
 
 using SpacingCallback = std::function<double(Vec2)>;

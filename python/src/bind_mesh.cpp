@@ -16,6 +16,7 @@
 #include "io/mixed_mesh.hpp"
 #include "mesh/quality.hpp"
 #include "io/quality_report.hpp"
+#include "io/region_quality.hpp"
 #include "render/mesh_picture.hpp"
 
 namespace pdmesh::py {
@@ -55,10 +56,18 @@ double TriangleQuality::*metric_named(const std::string& name) {
 std::string quality_json_of(const MeshHandle& h) {
   nb::gil_scoped_release release;
   const Mesh& mesh = h.layers ? h.layers->core : *h.mesh;
-  if (!h.session) return quality_json(summarize_quality(mesh), h.name);
+  if (!h.session) {
+    QualitySummary summary = summarize_quality(mesh);
+    if (!h.layers) add_region_quality(mesh, summary);
+    return quality_json(summary, h.name);
+  }
   std::lock_guard lock(h.session->mutex);
   const SpacingField& spacing = h.session->spacing->asked();
-  return quality_json(summarize_quality(mesh, [&spacing](Vec2 p) { return spacing.at(p); }), h.name);
+  const SpacingCallback q = [&spacing](Vec2 p) { return spacing.at(p); };
+  QualitySummary summary = summarize_quality(mesh, q);
+  // A layered mesh's regions are its core and its layer (the "boundary_layer" member), as the command's.
+  if (!h.layers) add_region_quality(mesh, summary, q);
+  return quality_json(summary, h.name);
 }
 
 nb::dict triangle_metrics(const MeshHandle& h) {

@@ -20,6 +20,7 @@
 #include "mesh/metric_quality.hpp"
 #include "mesh/quality.hpp"
 #include "io/quality_report.hpp"
+#include "io/region_quality.hpp"
 #include "layers/layer_measures.hpp"
 #include "render/mesh_picture.hpp"
 #include "spacing/spacing_field.hpp"
@@ -159,7 +160,11 @@ int run_quality(const std::string& mesh_path, const std::optional<std::string>& 
     summary.has_metric = true;
     summary.metric = metric_quality(mesh, *spacing.spacing->metric());
   }
-  out << format_quality_table(summary, std::filesystem::path(mesh_path).filename().string());
+  // A mesh with regions (materials): each region's triangles measured alone, for the JSON and, with two
+  // or more, a row each after the table.
+  add_region_quality(mesh, summary, q);
+  out << format_quality_table(summary, std::filesystem::path(mesh_path).filename().string())
+      << format_region_table(summary);
   // An MSH file's $Periodic pairs, as the mesh run reports them.
   for (const PeriodicLink& l : report.periodic)
     out << fmt::format("periodic: '{}' -> '{}': {} node pairs, largest mismatch {:.3g}\n",

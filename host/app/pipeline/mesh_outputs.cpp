@@ -20,6 +20,7 @@
 #include "io/mesh_formats.hpp"
 #include "mesh/mesh_check.hpp"
 #include "io/quality_report.hpp"
+#include "io/region_quality.hpp"
 #include "mesh/metric_delaunay.hpp"
 #include "mesh/metric_quality.hpp"
 #include "mesh/quality_sum.hpp"
@@ -468,13 +469,17 @@ void write_mesh_outputs(const CaseConfig& config, const MeshInputs& inputs, cons
   if (by_metric) values = mesh_metric_values(mesh, config.output.color_by);
   const std::vector<std::string> pictures =
       queue_mesh_pictures(config, mesh, by_metric ? &values : nullptr, phases, metric_q, metrics);
+  const SpacingBatch q = [&spacing](const std::vector<Vec2>& p, std::vector<double>& out) { spacing.at_many(p, out); };
   {
     const auto conformance_timer = phases.phase("spacing conformance");
     summary.has_spacing = true;
-    summary.spacing = spacing_conformance(
-        mesh, [&spacing](const std::vector<Vec2>& p, std::vector<double>& q) { spacing.at_many(p, q); });
+    summary.spacing = spacing_conformance(mesh, q);
   }
-  if (!config.quiet) fmt::print("{}", format_quality_table(summary, config.name));
+  if (has_regions(mesh)) {
+    const auto regions_timer = phases.phase("quality per region");
+    add_region_quality(mesh, summary, q);
+  }
+  if (!config.quiet) fmt::print("{}{}", format_quality_table(summary, config.name), format_region_table(summary));
   const fs::path& dir = config.out_dir;
   {
     const auto json_timer = phases.phase("quality.json");
