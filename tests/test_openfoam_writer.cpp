@@ -66,7 +66,7 @@ MixedMesh square() {
 TEST_CASE("an OpenFOAM polyMesh: closed cells, normals from owner to neighbour, upper-triangular order",
           "[io][openfoam]") {
   const MixedMesh m = square();
-  const OpenFoamFiles f = openfoam_files(m, {"bottom"}, {}, 0.25);
+  const OpenFoamFiles f = openfoam_files(m, {"bottom"}, {}, nullptr, 0.25);
   std::vector<V3> points;
   for (const std::string& p : entries(f.points)) {
     const auto v = numbers(p);
@@ -152,4 +152,18 @@ TEST_CASE("an OpenFOAM patch per physical group of curves, in the order of their
   CHECK(b.find("    sides\n    {\n        type            wall;\n        inGroups        1(wall);\n"
                "        nFaces          2;\n        startFace       6;") != std::string::npos);
   CHECK(b.find("right") == std::string::npos);
+}
+
+TEST_CASE("OpenFOAM cellZones list each zone's cells, and a mesh without zones has none", "[io][openfoam]") {
+  const MixedMesh m = square();
+  CHECK(openfoam_files(m, {}).cell_zones.empty());
+  const OpenFoamZones zones{{"steel", "copper wire"}, {1, 0, 1}};
+  const std::string z = openfoam_files(m, {}, {}, &zones).cell_zones;
+  CHECK(z.find("object      cellZones;") != std::string::npos);
+  CHECK(z.find("2\n(\nsteel\n{\n    type cellZone;\ncellLabels      List<label> \n1\n(\n1\n)\n;\n}\n") !=
+        std::string::npos);
+  CHECK(z.find("copper_wire\n{\n    type cellZone;\ncellLabels      List<label> \n2\n(\n0\n2\n)\n;\n}\n") !=
+        std::string::npos);
+  const OpenFoamZones short_list{{"steel"}, {0, 0}};
+  CHECK_THROWS_AS(openfoam_files(m, {}, {}, &short_list), InputError);
 }

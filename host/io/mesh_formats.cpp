@@ -120,7 +120,11 @@ std::vector<std::filesystem::path> write_mesh(const Mesh& mesh, const std::files
     } else if (f == "mesh") {
       stream(ext, [&](TextSink& sink) { write_medit(mesh, sink); });
     } else if (f == "openfoam") {
-      for (auto& p : write_openfoam(mixed_mesh_of(mesh, SurfaceCells{}), dir, stem, options.walls, mesh.curve_groups))
+      // The regions as cellZones, named as the other formats name them.
+      const RegionSurfaces surfaces = region_surfaces(mesh, 1);
+      const OpenFoamZones zones{surfaces.names, surfaces.of_triangle};
+      for (auto& p : write_openfoam(mixed_mesh_of(mesh, SurfaceCells{}), dir, stem, options.walls, mesh.curve_groups,
+                                    surfaces.regions() ? &zones : nullptr))
         written.push_back(std::move(p));
     } else if (f == "triangle") {
       const auto files = triangle_strings(mesh);

@@ -18,7 +18,8 @@ const std::vector<std::string>& mesh_format_names();
 // True for a name write_mesh accepts.
 bool is_mesh_format(const std::string& name);
 // The files a format writes, as the extensions that follow the stem: {".msh"} for msh and msh22, {".14"}
-// for fort14, {".node", ".ele", ".poly"} for triangle. Throws InputError on an unknown name.
+// for fort14, {".node", ".ele", ".poly"} for triangle, {"_openfoam"} (a directory) for openfoam. Throws InputError on
+// an unknown name.
 const std::vector<std::string>& mesh_format_extensions(const std::string& name);
 
 // What some formats need beyond the mesh: the curves that are open boundaries in fort14 (every other

@@ -51,7 +51,7 @@ void side_face(std::string& out, int a, int b, std::size_t n) {
 }  // namespace
 
 OpenFoamFiles openfoam_files(const MixedMesh& mesh, const std::vector<std::string>& walls,
-                             const std::vector<CurveGroupTag>& groups, double thickness) {
+                             const std::vector<CurveGroupTag>& groups, const OpenFoamZones* zones, double thickness) {
   const std::size_t n = mesh.points.size();
   Mesh curves = boundary_of(mesh);
   curves.curve_groups = groups;
@@ -196,13 +196,35 @@ OpenFoamFiles openfoam_files(const MixedMesh& mesh, const std::vector<std::strin
   files.faces += ")\n";
   files.owner += ")\n";
   files.boundary = header("polyBoundaryMesh", "boundary") + fmt::format("{}\n(\n{})\n", per_patch.size() + 1, patches);
+  if (zones != nullptr) {
+    if (zones->of_cell.size() != mesh.cells.size())
+      throw InputError(
+          fmt::format("OpenFOAM writer: {} zone indices for {} cells", zones->of_cell.size(), mesh.cells.size()));
+    std::vector<std::vector<std::size_t>> members(zones->names.size());
+    for (std::size_t c = 0; c < mesh.cells.size(); ++c) {
+      const int z = zones->of_cell[c];
+      if (z < 0 || static_cast<std::size_t>(z) >= members.size())
+        throw InputError(fmt::format("OpenFOAM writer: cell {} in zone {} of {}", c, z, members.size()));
+      members[static_cast<std::size_t>(z)].push_back(c);
+    }
+    files.cell_zones = header("regIOobject", "cellZones") + fmt::format("{}\n(\n", members.size());
+    auto out = std::back_inserter(files.cell_zones);
+    for (std::size_t z = 0; z < members.size(); ++z) {
+      fmt::format_to(out, "{}\n{{\n    type cellZone;\ncellLabels      List<label> \n{}\n(\n",
+                     writable_name(zones->names[z], true), members[z].size());
+      for (std::size_t c : members[z]) fmt::format_to(out, "{}\n", c);
+      files.cell_zones += ")\n;\n}\n\n";
+    }
+    files.cell_zones += ")\n";
+  }
   return files;
 }
 
 std::vector<std::filesystem::path> write_openfoam(const MixedMesh& mesh, const std::filesystem::path& dir,
                                                   const std::string& stem, const std::vector<std::string>& walls,
-                                                  const std::vector<CurveGroupTag>& groups) {
-  const OpenFoamFiles files = openfoam_files(mesh, walls, groups);
+                                                  const std::vector<CurveGroupTag>& groups,
+                                                  const OpenFoamZones* zones) {
+  const OpenFoamFiles files = openfoam_files(mesh, walls, groups, zones);
   const std::filesystem::path root = dir / (stem + "_openfoam");
   const std::filesystem::path poly = root / "constant" / "polyMesh";
   std::error_code ec;
@@ -218,6 +240,7 @@ std::vector<std::filesystem::path> write_openfoam(const MixedMesh& mesh, const s
   put(poly / "owner", files.owner);
   put(poly / "neighbour", files.neighbour);
   put(poly / "boundary", files.boundary);
+  if (!files.cell_zones.empty()) put(poly / "cellZones", files.cell_zones);
   return written;
 }
 

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
-# OpenFOAM's checkMesh on pdmesh's polyMesh (output format `openfoam`): a triangle mesh and a layered
-# mesh of prisms and hexahedra must both pass every check ("Mesh OK."), with the patches and types
-# the case asks for. Exit 77 (skipped) without checkMesh (Debian `openfoam`, tools/eval/setup_anchors.sh).
+# OpenFOAM's checkMesh on pdmesh's polyMesh (output format `openfoam`): a triangle mesh, a layered
+# mesh of prisms and hexahedra and a two-material mesh must pass every check ("Mesh OK."), with the
+# patches, types and cellZones the case asks for. Exit 77 (skipped) without checkMesh (Debian `openfoam`, tools/eval/setup_anchors.sh).
 #
 #   tools/eval/check_openfoam.sh PDMESH OUT_DIR
 set -euo pipefail
@@ -44,5 +44,13 @@ done
 check layered "$root/tests/data/interop/layered.toml"
 grep -c "type            wall;" "$out/layered/mesh_openfoam/constant/polyMesh/boundary" | grep -qv '^0$' \
   || { echo "check_openfoam: layered: no wall patch"; exit 1; }
-grep -q "prisms:\|hexahedra:" "$out/layered.log"
+grep -q "hexahedra: *[1-9]" "$out/layered.log" || { echo "check_openfoam: layered: no hexahedra"; exit 1; }
+# Two materials from a Gmsh file: one patch for the physical group 'walls' (two curves), the
+# materials as cellZones.
+check regions "$root/tests/data/keep_tags/two_materials.msh" --set 'output.walls=["walls"]'
+poly="$out/regions/mesh_openfoam/constant/polyMesh"
+grep -c "type            wall;" "$poly/boundary" | grep -q '^1$' || { echo "check_openfoam: regions: not one wall patch"; exit 1; }
+for zone in steel copper; do
+  grep -q "^$zone\$" "$poly/cellZones" || { echo "check_openfoam: regions: no cellZone $zone"; exit 1; }
+done
 echo "check_openfoam: passed"
