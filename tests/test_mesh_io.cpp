@@ -420,8 +420,12 @@ TEST_CASE("each mesh format writes the files its extensions name, and no other",
       CHECK(written == std::vector<std::filesystem::path>{poly / "points", poly / "faces", poly / "owner",
                                                           poly / "neighbour", poly / "boundary"});
       CHECK(pdmesh_test::entries(poly) == written.size());
+      CHECK(written_names(dir, written) == std::vector<std::string>{"m_openfoam/"});
     } else {
       CHECK(written == expected);
+      std::vector<std::string> names;
+      for (const auto& p : expected) names.push_back(p.filename().string());
+      CHECK(written_names(dir, written) == names);
     }
     CHECK(pdmesh_test::entries(dir) == expected.size());
     std::filesystem::remove_all(dir);

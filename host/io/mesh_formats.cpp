@@ -2,6 +2,7 @@
 #include "io/mesh_formats.hpp"
 
 #include <algorithm>
+#include <iterator>
 #include <functional>
 
 #include <fmt/format.h>
@@ -135,6 +136,18 @@ std::vector<std::filesystem::path> write_mesh(const Mesh& mesh, const std::files
     }
   }
   return written;
+}
+
+std::vector<std::string> written_names(const std::filesystem::path& dir,
+                                       const std::vector<std::filesystem::path>& written) {
+  std::vector<std::string> names;
+  for (const std::filesystem::path& p : written) {
+    const std::filesystem::path relative = p.lexically_relative(dir);
+    const bool nested = std::distance(relative.begin(), relative.end()) > 1;
+    const std::string name = nested ? relative.begin()->string() + "/" : p.filename().string();
+    if (std::find(names.begin(), names.end(), name) == names.end()) names.push_back(name);
+  }
+  return names;
 }
 
 Mesh read_mesh(const std::filesystem::path& path, MeshReadReport& report, SurfaceCells* cells, MeshPointData* data) {

@@ -43,6 +43,11 @@ std::vector<std::filesystem::path> write_mesh(const Mesh& mesh, const std::files
                                               const std::string& stem, const std::vector<std::string>& formats,
                                               const MeshWriteOptions& options = {});
 
+// The files write_mesh or write_mixed_mesh wrote into `dir`, as a progress line names them: each file
+// by its name, a directory format's files (openfoam) once, by their directory ("mesh_openfoam/").
+std::vector<std::string> written_names(const std::filesystem::path& dir,
+                                       const std::vector<std::filesystem::path>& written);
+
 // Reads a mesh by extension: .msh (2.2 or 4.1, from $MeshFormat), .vtu, .su2, .mesh (Medit ASCII; .meshb
 // is refused), .ele (with its .node and optional .poly; a .node or .poly path is taken to mean the same
 // stem). With `cells`, the quads of an .msh, .vtu, .su2 or .mesh file too, and which cells are in cells->region

@@ -865,7 +865,7 @@ void write_layered_outputs(const CaseConfig& config, const MeshInputs& inputs, c
     phases.wait_pictures();
   }
   std::string names;
-  for (const auto& p : written) names += ", " + p.filename().string();
+  for (const std::string& name : written_names(config.out_dir, written)) names += ", " + name;
   for (const auto& p : pictures) names += ", " + p;
   progress(config, "mesh: {} cells ({} core triangles, {} layer cells); wrote {}/quality.json{}", mixed.cells.size(),
            core_mesh.triangles.size(), mixed.cells.size() - core_mesh.triangles.size(), config.out_dir.string(), names);

@@ -519,7 +519,7 @@ void write_mesh_outputs(const CaseConfig& config, const MeshInputs& inputs, cons
     phases.wait_pictures();
   }
   std::string names;
-  for (const auto& p : written) names += (names.empty() ? "" : ", ") + p.filename().string();
+  for (const std::string& name : written_names(dir, written)) names += (names.empty() ? "" : ", ") + name;
   progress(config, "mesh: {} triangles; wrote {}/quality.json, mesh.nodes{}{}{}", mesh.triangles.size(), dir.string(),
            names.empty() ? "" : ", ", names, pictures.empty() ? "" : fmt::format(", {}", fmt::join(pictures, ", ")));
 }
