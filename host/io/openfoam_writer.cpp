@@ -312,6 +312,15 @@ OpenFoamFiles openfoam_files(const MixedMesh& mesh, const std::vector<std::strin
   return files;
 }
 
+std::filesystem::path openfoam_polymesh_dir(const std::filesystem::path& dir, const std::string& stem) {
+  return dir / (stem + "_openfoam") / "constant" / "polyMesh";
+}
+
+const std::vector<std::string>& openfoam_file_names() {
+  static const std::vector<std::string> names = {"points", "faces", "owner", "neighbour", "boundary", "cellZones"};
+  return names;
+}
+
 std::vector<std::filesystem::path> write_openfoam(const MixedMesh& mesh, const std::filesystem::path& dir,
                                                   const std::string& stem, const std::vector<std::string>& walls,
                                                   const std::vector<CurveGroupTag>& groups,
@@ -319,7 +328,7 @@ std::vector<std::filesystem::path> write_openfoam(const MixedMesh& mesh, const s
   // Every check before the first file: a refused mesh writes nothing.
   const FoamTopology t = foam_topology(mesh, groups);
   const auto members = zones != nullptr ? zone_members(mesh, *zones) : std::vector<std::vector<std::size_t>>{};
-  const std::filesystem::path poly = dir / (stem + "_openfoam") / "constant" / "polyMesh";
+  const std::filesystem::path poly = openfoam_polymesh_dir(dir, stem);
   std::error_code ec;
   std::filesystem::create_directories(poly, ec);
   if (ec) throw InputError(fmt::format("cannot create '{}': {}", poly.string(), ec.message()));

@@ -36,6 +36,11 @@ OpenFoamFiles openfoam_files(const MixedMesh& mesh, const std::vector<std::strin
                              const std::vector<CurveGroupTag>& groups = {}, const OpenFoamZones* zones = nullptr,
                              double thickness = 1.0);
 
+// DIR/STEM_openfoam/constant/polyMesh, where write_openfoam writes.
+std::filesystem::path openfoam_polymesh_dir(const std::filesystem::path& dir, const std::string& stem);
+// The files write_openfoam may write there: points, faces, owner, neighbour, boundary, cellZones.
+const std::vector<std::string>& openfoam_file_names();
+
 // DIR/STEM_openfoam/constant/polyMesh/{points,faces,owner,neighbour,boundary} and, with zones,
 // cellZones, each atomically (a solver's case takes the polyMesh directory beside its own system/
 // settings); returns their paths.

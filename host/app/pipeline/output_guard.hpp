@@ -8,8 +8,8 @@
 
 namespace pdmesh {
 
-// Every file a run of `config` may write (the formats, views and pictures it asks for), in out_dir,
-// and the --timings file.
+// Every file a run of `config` may write (the formats, views and pictures it asks for), in out_dir
+// (or, for the openfoam format, in the directories below it that it makes), and the --timings file.
 std::vector<std::filesystem::path> planned_outputs(const CaseConfig& config);
 
 // Before anything runs: throws InputError (exit 2) naming both paths when an output would replace
