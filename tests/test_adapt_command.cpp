@@ -152,6 +152,26 @@ TEST_CASE("pdmesh adapt refines at the solution's layer and carries the solution
   }
 }
 
+TEST_CASE("pdmesh adapt carries the solution onto the first format it reads back, past openfoam", "[adapt][cli]") {
+  const fs::path dir = pdmesh_test::fresh_dir("adapt_openfoam");
+  const fs::path sol = write_solution(dir);
+  const fs::path out = dir / "out";
+  const auto r = pdmesh_test::run_pdmesh(
+      adapt_command(kSquare, sol, "--array u --complexity 300 --hmax 0.3 --formats openfoam,msh", out));
+  INFO(r.output);
+  REQUIRE(r.status == 0);
+  CHECK(fs::exists(out / "mesh_openfoam" / "constant" / "polyMesh" / "faces"));
+  // solution.vtu is on the msh file's points, u carried onto each.
+  MeshReadReport report;
+  MeshPointData u;
+  u.wanted = "u";
+  const Mesh carried = read_vtu(out / "solution.vtu", report, &u);
+  CHECK(carried.points.size() == read_mesh(out / "mesh.msh").points.size());
+  REQUIRE(u.array);
+  CHECK(u.array->values.size() == carried.points.size());
+  fs::remove_all(dir);
+}
+
 TEST_CASE("pdmesh adapt is pdmesh mesh on the case with field = hessian, bit for bit", "[adapt][cli]") {
   const fs::path dir = pdmesh_test::fresh_dir("adapt_same");
   const fs::path sol = write_solution(dir);

@@ -431,6 +431,11 @@ TEST_CASE("each mesh format writes the files its extensions name, and no other",
     std::filesystem::remove_all(dir);
   }
   CHECK(mesh_format_extensions("fort14") == std::vector<std::string>{".14"});
+  CHECK(mesh_format_files("triangle", "m") == std::vector<std::filesystem::path>{"m.node", "m.ele", "m.poly"});
+  CHECK(mesh_format_files("openfoam", "m").front() == std::filesystem::path("m_openfoam/constant/polyMesh/points"));
+  CHECK(mesh_format_is_read("msh"));
+  CHECK_FALSE(mesh_format_is_read("openfoam"));
+  CHECK_FALSE(mesh_format_is_read("fort14"));
   CHECK_THROWS_AS(mesh_format_extensions("stl"), InputError);
 }
 

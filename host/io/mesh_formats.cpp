@@ -68,6 +68,20 @@ const std::vector<std::string>& mesh_format_extensions(const std::string& name) 
   throw InputError(fmt::format("unknown mesh format '{}' (known: {})", name, fmt::join(mesh_format_names(), ", ")));
 }
 
+std::vector<std::filesystem::path> mesh_format_files(const std::string& name, const std::string& stem) {
+  std::vector<std::filesystem::path> files;
+  if (name == "openfoam") {
+    for (const std::string& file : openfoam_file_names()) files.push_back(openfoam_polymesh_dir("", stem) / file);
+    return files;
+  }
+  for (const std::string& ext : mesh_format_extensions(name)) files.emplace_back(stem + ext);
+  return files;
+}
+
+bool mesh_format_is_read(const std::string& name) {
+  return is_mesh_format(name) && name != "fort14" && name != "2dm" && name != "openfoam";
+}
+
 bool is_mesh_format(const std::string& name) {
   const auto& n = mesh_format_names();
   return std::find(n.begin(), n.end(), name) != n.end();

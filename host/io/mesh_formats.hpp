@@ -21,6 +21,11 @@ bool is_mesh_format(const std::string& name);
 // for fort14, {".node", ".ele", ".poly"} for triangle, {"_openfoam"} (a directory) for openfoam. Throws InputError on
 // an unknown name.
 const std::vector<std::string>& mesh_format_extensions(const std::string& name);
+// The files write_mesh may write for a format, relative to its directory: STEM + each extension, or the
+// openfoam format's polyMesh files below STEM_openfoam. Throws InputError on an unknown name.
+std::vector<std::filesystem::path> mesh_format_files(const std::string& name, const std::string& stem);
+// True for a format whose files read_mesh reads back: all but fort14, 2dm and openfoam.
+bool mesh_format_is_read(const std::string& name);
 
 // What some formats need beyond the mesh: the curves that are open boundaries in fort14 (every other
 // boundary curve is land).

@@ -15,7 +15,6 @@
 #include "app/pipeline/resume.hpp"
 #include "core/errors.hpp"
 #include "io/mesh_formats.hpp"
-#include "io/openfoam_writer.hpp"
 
 namespace pdmesh {
 
@@ -38,15 +37,11 @@ std::vector<fs::path> planned_outputs(const CaseConfig& config) {
     names.emplace_back("spacing.png");
     for (const ViewWindow& view : config.output.views) names.push_back(fmt::format("spacing_{}.png", view.name));
   }
-  for (const std::string& f : config.output.formats)
-    if (is_mesh_format(f) && f != "openfoam")
-      for (const std::string& ext : mesh_format_extensions(f)) names.push_back("mesh" + ext);
   std::vector<fs::path> out;
   for (const std::string& n : names) out.push_back(config.out_dir / n);
-  // A directory format: its files, in the directories it makes.
-  if (config.output.wants("openfoam"))
-    for (const std::string& file : openfoam_file_names())
-      out.push_back(openfoam_polymesh_dir(config.out_dir, "mesh") / file);
+  for (const std::string& f : config.output.formats)
+    if (is_mesh_format(f))
+      for (const fs::path& file : mesh_format_files(f, "mesh")) out.push_back(config.out_dir / file);
   if (config.timings_file) out.push_back(*config.timings_file);
   return out;
 }

@@ -69,7 +69,7 @@ std::string transferred_vtu_string(const Mesh& target, const SurfaceCells& cells
 
 std::optional<fs::path> adapted_mesh_file(const CaseConfig& config) {
   for (const std::string& f : config.output.formats) {
-    if (!is_mesh_format(f) || f == "fort14" || f == "2dm") continue;
+    if (!mesh_format_is_read(f)) continue;
     const auto& ext = mesh_format_extensions(f);
     return config.out_dir / ("mesh" + (f == "triangle" ? std::string(".ele") : ext.front()));
   }

@@ -34,7 +34,7 @@ std::string transferred_vtu_string(const Mesh& target, const SurfaceCells& cells
 // The file solution.vtu in `config`'s output directory.
 std::filesystem::path adapted_solution_path(const CaseConfig& config);
 
-// The first mesh file of `config`'s output.formats that holds every point (not fort14 or 2dm), in its
+// The first mesh file of `config`'s output.formats that pdmesh reads back (mesh_format_is_read), in its
 // output directory: the mesh pdmesh adapt makes solution.vtu on; nullopt when the run writes none.
 std::optional<std::filesystem::path> adapted_mesh_file(const CaseConfig& config);
 
