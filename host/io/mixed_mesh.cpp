@@ -399,14 +399,20 @@ Mesh triangulated(const MixedMesh& mesh) {
 }
 
 void add_layer_regions(const MixedMesh& mesh, Mesh& drawn) {
+  // Attribute j + 1 for the j-th of the mixed_surfaces' core surfaces ("domain" without regions), the
+  // next for the layer, named as the MSH file names them.
+  const MixedSurfaces surfaces = mixed_surfaces(mesh, 1);
   drawn.region.clear();
   drawn.region.reserve(drawn.triangles.size());
   for (std::size_t k = 0; k < mesh.cells.size(); ++k) {
-    const double attribute = mesh.layer[k] != 0 ? 2.0 : 1.0;
+    const double attribute = surfaces.of_cell[k] + 1.0;
     drawn.region.push_back(attribute);
     if (mesh.cells[k][3] >= 0) drawn.region.push_back(attribute);  // a quad is two triangles
   }
-  drawn.region_names = {{1.0, kCoreRegion}, {2.0, kLayerRegion}};
+  drawn.region_names.clear();
+  for (std::size_t j = 0; j < surfaces.core.names.size(); ++j)
+    drawn.region_names.push_back({static_cast<double>(j) + 1.0, surfaces.core.names[j]});
+  drawn.region_names.push_back({static_cast<double>(surfaces.core.names.size()) + 1.0, kLayerRegion});
 }
 
 Mesh with_quads_split(Mesh mesh, const SurfaceCells& cells) {

@@ -89,8 +89,9 @@ MixedMesh mixed_mesh_of(const Mesh& mesh, const SurfaceCells& cells);
 
 // The mesh as triangles (each quad split along its shorter diagonal), for the pictures.
 Mesh triangulated(const MixedMesh& mesh);
-// Mesh::region and region_names of `triangulated(mesh)`, for a picture filled by region: the core's
-// triangles attribute 1 (kCoreRegion), the layer's 2 (kLayerRegion), the MSH file's surface entities.
+// Mesh::region and region_names of `triangulated(mesh)`, for a picture filled by region: the MSH
+// file's surfaces (mixed_surfaces), the core's regions (without regions attribute 1, kCoreRegion), then
+// the layer (kLayerRegion).
 void add_layer_regions(const MixedMesh& mesh, Mesh& drawn);
 
 // `mesh` (read_mesh's triangles) with the file's quads `cells` split as `triangulated` splits them,

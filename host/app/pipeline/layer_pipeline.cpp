@@ -764,8 +764,8 @@ void write_layered_outputs(const CaseConfig& config, const MeshInputs& inputs, c
   // The pictures (the quads drawn split) are drawn on the background thread while the quality is
   // measured and the files are written; `drawn` stays alive until the wait below (also when something
   // throws).
-  // output.color_by = region fills the core's cells and the layer's as the mesh files' two regions
-  // ("domain", "boundary_layer"); a quality metric is not drawn on the cells of a mixed mesh.
+  // output.color_by = region fills the cells as the mesh files' surfaces (the core's regions, or
+  // "domain", and "boundary_layer"); a quality metric is not drawn on the cells of a mixed mesh.
   const bool by_region = config.output.color_by == "region";
   Mesh drawn = config.output.wants("png") ? triangulated(mixed) : Mesh{};
   if (by_region && config.output.wants("png")) add_layer_regions(mixed, drawn);
