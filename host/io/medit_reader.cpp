@@ -242,8 +242,9 @@ std::vector<Metric> parse_sol(LineScanner& s, const std::vector<Vec2>& points, c
 // comment gives another name is its own attribute, the name in `names`; a reference no comment names
 // (mmg2d writes none) is taken as the attribute, which the writer then names "region_<N>". Empty
 // when every reference is 0. The reference a comment names a layered run's "boundary_layer" is the
-// layer's (its cells are read as SurfaceCells), no region: its triangles have attribute 0, and a file
-// whose other triangles all have reference 0 (a layered run without regions) has none.
+// layer's (its cells are read as SurfaceCells): a file whose other triangles all have reference 0 (a
+// layered run without regions) has none; otherwise the layer's triangles are one more region,
+// attribute the reference, named boundary_layer.
 std::vector<double> triangle_regions(const MeditData& d, std::vector<RegionName>& names) {
   std::map<long long, double> attribute;
   std::map<double, std::string> named;
@@ -260,14 +261,14 @@ std::vector<double> triangle_regions(const MeditData& d, std::vector<RegionName>
   bool any = !attribute.empty();
   for (const long long ref : d.triangle_refs) any = any || (ref != 0 && ref != layer);
   if (!any) return {};
+  if (layer) {
+    attribute[*layer] = static_cast<double>(*layer);
+    named[static_cast<double>(*layer)] = kLayerRegion;
+  }
   for (const auto& [a, name] : named) names.push_back({a, name});
   std::vector<double> region;
   region.reserve(d.triangle_refs.size());
   for (const long long ref : d.triangle_refs) {
-    if (ref == layer) {
-      region.push_back(0.0);
-      continue;
-    }
     const auto known = attribute.find(ref);
     region.push_back(known != attribute.end() ? known->second : static_cast<double>(ref));
   }

@@ -453,9 +453,9 @@ void assemble_cells(const std::string& file, const MshData& d, const Mesh& mesh,
 // "region_<a>" (the writer's names) gives a, any other group its tag, none 0; a group with another
 // name (not the writer's "domain") is a named region, its name in `names`. Empty when the triangles
 // lie in one group that names no region (the writer's "domain", an unnamed Gmsh surface) or in none.
-// A layered run's group named boundary_layer is the layer's (its cells are SurfaceCells'), no region:
-// its triangles have attribute 0, and the other groups decide as above (a file without regions has
-// none).
+// A layered run's group named boundary_layer is the layer's (its cells are SurfaceCells'): the other
+// groups decide as above whether there are regions (a layered file without them has none); where
+// there are, the layer's triangles are one more region, attribute its tag, named boundary_layer.
 std::vector<double> triangle_regions(const MshData& d, std::vector<RegionName>& names) {
   std::map<long long, double> attribute;  // physical tag -> attribute
   std::map<double, std::string> named;    // attribute -> a user's name
@@ -477,10 +477,14 @@ std::vector<double> triangle_regions(const MshData& d, std::vector<RegionName>& 
     if (user_name) named[attribute[e.physical]] = name->second;
   }
   if (attribute.size() < 2 && !named_region) return {};
+  for (const long long tag : layer) {
+    attribute[tag] = static_cast<double>(tag);
+    named[static_cast<double>(tag)] = kLayerRegion;
+  }
   for (const auto& [a, name] : named) names.push_back({a, name});
   std::vector<double> region;
   region.reserve(d.triangles.size());
-  for (const auto& e : d.triangles) region.push_back(layer.count(e.physical) != 0 ? 0.0 : attribute[e.physical]);
+  for (const auto& e : d.triangles) region.push_back(attribute[e.physical]);
   return region;
 }
 
