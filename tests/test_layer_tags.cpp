@@ -58,7 +58,8 @@ std::vector<std::string> lines_starting(const std::string& text, const std::stri
 const fs::path& layered_run() {
   static const fs::path out = [] {
     const fs::path dir = pdmesh_test::fresh_path("layer_tags");
-    const auto run = run_pdmesh("mesh '" + kData + "layer_tags/case.toml' --out '" + dir.string() + "' --device host -q");
+    const auto run =
+        run_pdmesh("mesh '" + kData + "layer_tags/case.toml' --out '" + dir.string() + "' --device host -q");
     INFO(run.output);
     REQUIRE(run.status == 0);
     return dir;
@@ -111,8 +112,8 @@ TEST_CASE("a layered run of a Gmsh file keeps its groups and regions in MSH 4.1,
   const std::vector<std::string> names = physical_names(msh);
   REQUIRE(names.size() == 7);
   CHECK(std::vector<std::string>(names.begin(), names.begin() + 6) ==
-        std::vector<std::string>{"1 5 \"wall\"", "1 7 \"farfield\"", "1 8 \"slip\"", "1 9 \"block\"",
-                                 "2 11 \"fluid\"", "2 22 \"solid\""});
+        std::vector<std::string>{"1 5 \"wall\"", "1 7 \"farfield\"", "1 8 \"slip\"", "1 9 \"block\"", "2 11 \"fluid\"",
+                                 "2 22 \"solid\""});
   // The layer: 6 curves + 1 + 2 core surfaces.
   CHECK(names[6] == "2 9 \"boundary_layer\"");
 
@@ -163,7 +164,8 @@ TEST_CASE("a layered run of a Gmsh file keeps its groups in SU2, VTU and Medit")
   SECTION("Medit: edge references are the group tags, cells the region tags and the layer's own") {
     const std::string medit = pdmesh_test::slurp(layered_run() / "mesh.mesh");
     CHECK(medit.find("# ref 5: curve wall\n# ref 7: curve farfield\n# ref 8: curve slip\n# ref 9: curve block\n"
-                     "# ref 11: region fluid\n# ref 22: region solid\n# ref 3: region boundary_layer\n") != std::string::npos);
+                     "# ref 11: region fluid\n# ref 22: region solid\n# ref 3: region boundary_layer\n") !=
+          std::string::npos);
     const std::vector<std::string> layer = lines_starting(medit, "# ref ");
     REQUIRE(layer.size() == 7);
     CHECK(layer[6].find(": region boundary_layer") != std::string::npos);
@@ -196,9 +198,9 @@ MixedMesh small_mixed(bool groups, bool regions) {
 
 TEST_CASE("mixed writers without groups or regions number as before: curve c + 1, domain, boundary_layer") {
   const MixedMesh m = small_mixed(false, false);
-  CHECK(physical_names(mixed_msh41_string(m)) ==
-        std::vector<std::string>{"1 1 \"wall\"", "1 2 \"side\"", "1 3 \"side_2\"", "1 4 \"top\"", "2 5 \"domain\"",
-                                 "2 6 \"boundary_layer\""});
+  CHECK(physical_names(mixed_msh41_string(m)) == std::vector<std::string>{"1 1 \"wall\"", "1 2 \"side\"",
+                                                                          "1 3 \"side_2\"", "1 4 \"top\"",
+                                                                          "2 5 \"domain\"", "2 6 \"boundary_layer\""});
   const std::string medit = mixed_medit_string(m);
   CHECK(medit.find("# ref 1: curve wall\n# ref 2: curve side\n# ref 3: curve side_2\n# ref 4: curve top\n"
                    "# ref 1: region boundary_layer\n") != std::string::npos);
@@ -214,8 +216,8 @@ TEST_CASE("mixed writers with groups and regions: the group tags, the region's t
   // Curves: wall 4, sides 12 over two curves, top the first free number, 1. Surfaces from 5: the core's
   // region 3 is its own tag, the layer takes 5 + 1.
   const std::string msh = mixed_msh41_string(m);
-  CHECK(physical_names(msh) == std::vector<std::string>{"1 1 \"top\"", "1 4 \"wall\"", "1 12 \"sides\"",
-                                                        "2 3 \"core\"", "2 6 \"boundary_layer\""});
+  CHECK(physical_names(msh) == std::vector<std::string>{"1 1 \"top\"", "1 4 \"wall\"", "1 12 \"sides\"", "2 3 \"core\"",
+                                                        "2 6 \"boundary_layer\""});
   CHECK(msh.find("$Entities\n0 4 2 0\n") != std::string::npos);
   const MixedSurfaces s = mixed_surfaces(m, 5);
   CHECK(s.core.tags == std::vector<long long>{3});
