@@ -149,10 +149,19 @@ TEST_CASE("regions of files pdmesh did not write: Medit references without names
   const Mesh mm = parse_medit_mesh("mmg.mesh", medit, report);
   CHECK(mm.region == std::vector<double>{3, 3, 0, 0});
   CHECK(region_surfaces(mm, 1).names == std::vector<std::string>{"region_0", "region_3"});
-  // A layered run's file names its reference boundary_layer: no regions (its cells are SurfaceCells').
-  const std::string layered = "MeshVersionFormatted 2\nDimension 2\n# ref 1: region boundary_layer\n" +
-                              medit.substr(std::string("MeshVersionFormatted 2\nDimension 2\n").size());
-  CHECK(parse_medit_mesh("layer.mesh", layered, report).region.empty());
+  // A layered run's file names the layer's reference boundary_layer (its cells are SurfaceCells'): the
+  // other references decide whether there are regions; where there are, the layer's triangles are one
+  // more, attribute its reference, named boundary_layer.
+  const std::string body = medit.substr(std::string("MeshVersionFormatted 2\nDimension 2\n").size());
+  std::string layered = "MeshVersionFormatted 2\nDimension 2\n# ref 1: region boundary_layer\n" + body;
+  layered.replace(layered.find("2 3 6 0\n"), 8, "2 3 6 1\n");
+  const Mesh with_layer = parse_medit_mesh("layer.mesh", layered, report);
+  CHECK(with_layer.region == std::vector<double>{3, 3, 1, 0});
+  CHECK(region_label(with_layer, 1.0) == "boundary_layer");
+  // Without regions (the core's references 0, the layer's 1): none.
+  std::string plain = "MeshVersionFormatted 2\nDimension 2\n# ref 1: region boundary_layer\n" + body;
+  plain.replace(plain.find("1 2 5 3\n1 5 4 3\n"), 16, "1 2 5 1\n1 5 4 1\n");
+  CHECK(parse_medit_mesh("layer.mesh", plain, report).region.empty());
   // Gmsh: two named physical surfaces; a group's attribute is its tag (the name is not region_<a>).
   const std::string msh =
       "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$PhysicalNames\n2\n2 5 \"fluid\"\n2 9 \"solid\"\n"

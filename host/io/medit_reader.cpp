@@ -241,20 +241,30 @@ std::vector<Metric> parse_sol(LineScanner& s, const std::vector<Vec2>& points, c
 // j-th region, named "region_<a>" in a comment, so the comment gives the attribute; a reference a
 // comment gives another name is its own attribute, the name in `names`; a reference no comment names
 // (mmg2d writes none) is taken as the attribute, which the writer then names "region_<N>". Empty
-// when every reference is 0, and for a file whose comments name a layered run's "boundary_layer" (its
-// cells are read as SurfaceCells).
+// when every reference is 0. The reference a comment names a layered run's "boundary_layer" is the
+// layer's (its cells are read as SurfaceCells): a file whose other triangles all have reference 0 (a
+// layered run without regions) has none; otherwise the layer's triangles are one more region,
+// attribute the reference, named boundary_layer.
 std::vector<double> triangle_regions(const MeditData& d, std::vector<RegionName>& names) {
   std::map<long long, double> attribute;
   std::map<double, std::string> named;
+  std::optional<long long> layer;
   for (const auto& [ref, name] : d.names.regions) {
-    if (name == kLayerRegion) return {};
+    if (name == kLayerRegion) {
+      layer = ref;
+      continue;
+    }
     const std::optional<double> a = region_attribute(name);
     attribute[ref] = a ? *a : static_cast<double>(ref);
     if (!a) named[static_cast<double>(ref)] = name;
   }
   bool any = !attribute.empty();
-  for (const long long ref : d.triangle_refs) any = any || ref != 0;
+  for (const long long ref : d.triangle_refs) any = any || (ref != 0 && ref != layer);
   if (!any) return {};
+  if (layer) {
+    attribute[*layer] = static_cast<double>(*layer);
+    named[static_cast<double>(*layer)] = kLayerRegion;
+  }
   for (const auto& [a, name] : named) names.push_back({a, name});
   std::vector<double> region;
   region.reserve(d.triangle_refs.size());

@@ -99,9 +99,26 @@ void write_mixed_medit(const MixedMesh& mesh, TextSink& sink) {
   Mesh curves;
   curves.boundary_edges = mesh.boundary_edges;
   curves.curve_names = mesh.curve_names;
+  curves.curve_groups = mesh.curve_groups;
   const std::vector<NodeKind> no_kind;
   const MeditBoundary b{mesh.points, curves, no_kind};
-  write_head(sink, b, fmt::format("# ref 1: region {}\n", kLayerRegion).c_str());
+  // A cell's reference: without regions 0 in the core and 1 in the layer; with regions the core's
+  // triangles have their region's tag (mixed_surfaces from 1, as write_medit numbers them) and the
+  // layer's cells the next free one, each named in a comment.
+  const MixedSurfaces surfaces = mixed_surfaces(mesh, 1);
+  const bool regions = surfaces.core.regions();
+  std::string region_comments;
+  if (regions)
+    for (std::size_t j = 0; j < surfaces.core.names.size(); ++j)
+      region_comments += fmt::format("# ref {}: region {}\n", surfaces.core.tags[j], surfaces.core.names[j]);
+  const long long layer_ref = regions ? surfaces.layer_tag : 1;
+  region_comments += fmt::format("# ref {}: region {}\n", layer_ref, kLayerRegion);
+  write_head(sink, b, region_comments.c_str());
+  const auto ref = [&](std::size_t k) -> long long {
+    const auto j = static_cast<std::size_t>(surfaces.of_cell[k]);
+    if (j == surfaces.core.names.size()) return layer_ref;
+    return regions ? surfaces.core.tags[j] : 0;
+  };
   for (const int size : {3, 4}) {
     std::vector<std::size_t> cells;
     for (std::size_t k = 0; k < mesh.cells.size(); ++k)
@@ -111,7 +128,7 @@ void write_mixed_medit(const MixedMesh& mesh, TextSink& sink) {
       const auto& c = mesh.cells[cells[i]];
       auto to = std::back_inserter(line);
       for (int k = 0; k < size; ++k) fmt::format_to(to, "{} ", c[static_cast<std::size_t>(k)] + 1);
-      fmt::format_to(to, "{}\n", mesh.layer[cells[i]] != 0 ? 1 : 0);
+      fmt::format_to(to, "{}\n", ref(cells[i]));
     });
   }
   write_tail(sink, b);

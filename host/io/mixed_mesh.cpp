@@ -30,6 +30,7 @@ Mesh curves_of(const MixedMesh& m) {
   Mesh out;
   out.boundary_edges = m.boundary_edges;
   out.curve_names = m.curve_names;
+  out.curve_groups = m.curve_groups;
   return out;
 }
 
@@ -80,20 +81,26 @@ namespace {
 void write_mixed_msh41(const MixedMesh& mesh, TextSink& sink, const std::vector<PeriodicLink>* periodic) {
   const Mesh curves = curves_of(mesh);
   const std::size_t nc = mesh.curve_names.size();
+  const CurveTags lines = curve_tags(curves);
+  const MixedSurfaces surfaces = mixed_surfaces(mesh, static_cast<long long>(nc) + 1);
+  const std::size_t ns = surfaces.core.names.size();  // the layer is surface entity ns + 1
   std::string& out = sink.text();
   out += "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n";
-  out += fmt::format("$PhysicalNames\n{}\n", nc + 2);
-  for (std::size_t c = 0; c < nc; ++c) out += fmt::format("1 {} \"{}\"\n", c + 1, curve_label(curves, c));
-  out += fmt::format("2 {} \"{}\"\n2 {} \"{}\"\n$EndPhysicalNames\n", nc + 1, kCoreRegion, nc + 2, kLayerRegion);
+  out += fmt::format("$PhysicalNames\n{}\n", lines.groups.size() + ns + 1);
+  for (const CurveTags::Group& g : lines.groups) out += fmt::format("1 {} \"{}\"\n", g.tag, writable_name(g.name));
+  for (std::size_t j = 0; j < ns; ++j)
+    out += fmt::format("2 {} \"{}\"\n", surfaces.core.tags[j], surfaces.core.names[j]);
+  out += fmt::format("2 {} \"{}\"\n$EndPhysicalNames\n", surfaces.layer_tag, kLayerRegion);
   Box all;
   for (const Vec2 p : mesh.points) all.add(p);
   if (mesh.points.empty()) all.add({0.0, 0.0});
   const auto box = [&](const Box& b) {
     return fmt::format("{} {} 0 {} {} 0", coord(b.lo.x), coord(b.lo.y), coord(b.hi.x), coord(b.hi.y));
   };
-  out += fmt::format("$Entities\n0 {} 2 0\n", nc);
-  for (std::size_t c = 0; c < nc; ++c) out += fmt::format("{} {} 1 {} 0\n", c + 1, box(all), c + 1);
-  out += fmt::format("1 {} 1 {} 0\n2 {} 1 {} 0\n$EndEntities\n", box(all), nc + 1, box(all), nc + 2);
+  out += fmt::format("$Entities\n0 {} {} 0\n", nc, ns + 1);
+  for (std::size_t c = 0; c < nc; ++c) out += fmt::format("{} {} 1 {} 0\n", c + 1, box(all), lines.of_curve[c]);
+  for (std::size_t j = 0; j < ns; ++j) out += fmt::format("{} {} 1 {} 0\n", j + 1, box(all), surfaces.core.tags[j]);
+  out += fmt::format("{} {} 1 {} 0\n$EndEntities\n", ns + 1, box(all), surfaces.layer_tag);
   const std::size_t n = mesh.points.size();
   out += fmt::format("$Nodes\n1 {} 1 {}\n2 1 0 {}\n", n, n, n);
   append_items(sink, n,
@@ -103,17 +110,22 @@ void write_mixed_msh41(const MixedMesh& mesh, TextSink& sink, const std::vector<
     line += " 0\n";
   });
   out += "$EndNodes\n";
-  // Blocks: the lines of each curve, then (surface, type) = (1, 2), (2, 2), (2, 3) where not empty.
+  // Blocks: the lines of each curve, then (surface, type) = (j + 1, 2) per core surface j and
+  // (ns + 1, 2), (ns + 1, 3) for the layer, where not empty.
   std::vector<std::size_t> per_curve(nc, 0);
   for (const auto& e : mesh.boundary_edges) per_curve[static_cast<std::size_t>(e.curve)]++;
   struct Block {
     int entity, type;
     std::vector<std::size_t> cells;
   };
-  std::vector<Block> blocks = {{1, 2, {}}, {2, 2, {}}, {2, 3, {}}};
+  std::vector<Block> blocks;
+  for (std::size_t j = 0; j < ns; ++j) blocks.push_back({static_cast<int>(j + 1), 2, {}});
+  blocks.push_back({static_cast<int>(ns + 1), 2, {}});
+  blocks.push_back({static_cast<int>(ns + 1), 3, {}});
   for (std::size_t k = 0; k < mesh.cells.size(); ++k) {
     const bool quad = size_of(mesh.cells[k]) == 4;
-    blocks[mesh.layer[k] ? (quad ? 2 : 1) : 0].cells.push_back(k);
+    const auto j = static_cast<std::size_t>(surfaces.of_cell[k]);
+    blocks[j < ns ? j : (quad ? ns + 1 : ns)].cells.push_back(k);
   }
   std::size_t block_count = 0;
   for (auto k : per_curve) block_count += k > 0;
@@ -154,7 +166,14 @@ void write_mixed_vtu(const MixedMesh& mesh, TextSink& sink) {
   out +=
       "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\">\n"
       "<UnstructuredGrid>\n";
-  write_vtu_curves(curves_of(mesh), sink, VtuFormat::Ascii, "");
+  // The region names go with the field data where there are regions (write_vtu_curves writes them for
+  // a mesh with regional attributes).
+  Mesh curves = curves_of(mesh);
+  if (!mesh.region.empty()) {
+    curves.region = mesh.region;
+    curves.region_names = mesh.region_names;
+  }
+  write_vtu_curves(curves, sink, VtuFormat::Ascii, "");
   out += fmt::format(
       "<Piece NumberOfPoints=\"{}\" NumberOfCells=\"{}\">\n<Points>\n"
       "<DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">\n",
@@ -189,7 +208,18 @@ void write_mixed_vtu(const MixedMesh& mesh, TextSink& sink) {
       kLayerRegion);
   append_items(sink, mesh.layer.size(),
                [&mesh](std::string& line, std::size_t k) { line += mesh.layer[k] ? "1\n" : "0\n"; });
-  out += "</DataArray>\n</CellData>\n</Piece>\n</UnstructuredGrid>\n</VTKFile>\n";
+  out += "</DataArray>\n";
+  if (mesh.region.size() == mesh.cells.size() && !mesh.region.empty()) {
+    // Every cell's regional attribute, as a triangle mesh's .vtu has it: the layer's cells that of the
+    // region they lie in (the "boundary_layer" array above tells them apart).
+    out += "<DataArray type=\"Float64\" Name=\"region\" format=\"ascii\">\n";
+    append_items(sink, mesh.region.size(), [&mesh](std::string& line, std::size_t k) {
+      append_g17(line, mesh.region[k]);
+      line += '\n';
+    });
+    out += "</DataArray>\n";
+  }
+  out += "</CellData>\n</Piece>\n</UnstructuredGrid>\n</VTKFile>\n";
 }
 
 void write_mixed_su2(const MixedMesh& mesh, TextSink& sink) {
@@ -214,14 +244,19 @@ void write_mixed_su2(const MixedMesh& mesh, TextSink& sink) {
     append_point(line, mesh.points[i]);
     fmt::format_to(std::back_inserter(line), " {}\n", i);
   });
-  const std::size_t nc = mesh.curve_names.size();
-  std::vector<std::vector<std::size_t>> per_curve(nc);
-  for (std::size_t k = 0; k < mesh.boundary_edges.size(); ++k)
-    per_curve[static_cast<std::size_t>(mesh.boundary_edges[k].curve)].push_back(k);
-  out += fmt::format("NMARK= {}\n", nc);
-  for (std::size_t c = 0; c < nc; ++c) {
-    out += fmt::format("MARKER_TAG= {}\nMARKER_ELEMS= {}\n", curve_label(curves, c, true), per_curve[c].size());
-    for (const std::size_t k : per_curve[c]) {
+  // One marker per curve or kept group over all its curves' edges (su2_writer), in the order of their
+  // tags; the edges of a marker in mesh order.
+  const CurveTags tags = curve_tags(curves);
+  std::vector<std::vector<std::size_t>> per_group(tags.groups.size());
+  for (std::size_t k = 0; k < mesh.boundary_edges.size(); ++k) {
+    const long long tag = tags.of_curve[static_cast<std::size_t>(mesh.boundary_edges[k].curve)];
+    per_group[tags.group_of_tag(tag)].push_back(k);
+  }
+  out += fmt::format("NMARK= {}\n", tags.groups.size());
+  for (std::size_t g = 0; g < per_group.size(); ++g) {
+    out += fmt::format("MARKER_TAG= {}\nMARKER_ELEMS= {}\n", writable_name(tags.groups[g].name, true),
+                       per_group[g].size());
+    for (const std::size_t k : per_group[g]) {
       fmt::format_to(std::back_inserter(out), "3 {} {}\n", mesh.boundary_edges[k].a, mesh.boundary_edges[k].b);
       sink.piece_done();
     }
@@ -229,6 +264,27 @@ void write_mixed_su2(const MixedMesh& mesh, TextSink& sink) {
 }
 
 }  // namespace
+
+MixedSurfaces mixed_surfaces(const MixedMesh& mesh, long long first) {
+  // The core's cells as a triangle mesh with their attributes, for region_surfaces' names and tags.
+  Mesh core;
+  std::vector<std::size_t> core_cells;
+  for (std::size_t k = 0; k < mesh.cells.size(); ++k) {
+    if (mesh.layer[k] != 0) continue;
+    core_cells.push_back(k);
+    core.triangles.push_back({mesh.cells[k][0], mesh.cells[k][1], mesh.cells[k][2]});
+    if (mesh.region.size() == mesh.cells.size()) core.region.push_back(mesh.region[k]);
+  }
+  core.region_names = mesh.region_names;
+  MixedSurfaces s;
+  s.core = region_surfaces(core, first);
+  const std::size_t ns = s.core.names.size();
+  s.layer_tag = first + static_cast<long long>(ns);
+  while (std::find(s.core.tags.begin(), s.core.tags.end(), s.layer_tag) != s.core.tags.end()) ++s.layer_tag;
+  s.of_cell.assign(mesh.cells.size(), static_cast<int>(ns));
+  for (std::size_t i = 0; i < core_cells.size(); ++i) s.of_cell[core_cells[i]] = s.core.of_triangle[i];
+  return s;
+}
 
 std::string mixed_msh41_string(const MixedMesh& mesh, const std::vector<PeriodicLink>* periodic) {
   TextSink sink;
@@ -269,7 +325,13 @@ std::vector<std::filesystem::path> write_mixed_mesh(const MixedMesh& mesh, const
   std::vector<std::filesystem::path> written;
   for (const std::string& f : formats) {
     if (f == "openfoam") {
-      for (auto& p : write_openfoam(mesh, dir, stem, walls)) written.push_back(std::move(p));
+      // With regions, the cells' subdomains as cellZones, named as the MSH file names them.
+      const MixedSurfaces surfaces = mixed_surfaces(mesh, 1);
+      OpenFoamZones zones{surfaces.core.names, surfaces.of_cell};
+      zones.names.push_back(kLayerRegion);
+      for (auto& p :
+           write_openfoam(mesh, dir, stem, walls, mesh.curve_groups, surfaces.core.regions() ? &zones : nullptr))
+        written.push_back(std::move(p));
       continue;
     }
     const std::filesystem::path path = dir / (stem + mesh_format_extensions(f).front());
@@ -299,6 +361,7 @@ MixedMesh mixed_mesh_of(const Mesh& mesh, const SurfaceCells& cells) {
   m.points = mesh.points;
   m.boundary_edges = mesh.boundary_edges;
   m.curve_names = mesh.curve_names;
+  m.curve_groups = mesh.curve_groups;
   m.cells.reserve(mesh.triangles.size() + cells.quads.size());
   for (std::size_t i = 0; i < mesh.triangles.size(); ++i) {
     const auto& t = mesh.triangles[i];
@@ -336,14 +399,20 @@ Mesh triangulated(const MixedMesh& mesh) {
 }
 
 void add_layer_regions(const MixedMesh& mesh, Mesh& drawn) {
+  // Attribute j + 1 for the j-th of the mixed_surfaces' core surfaces ("domain" without regions), the
+  // next for the layer, named as the MSH file names them.
+  const MixedSurfaces surfaces = mixed_surfaces(mesh, 1);
   drawn.region.clear();
   drawn.region.reserve(drawn.triangles.size());
   for (std::size_t k = 0; k < mesh.cells.size(); ++k) {
-    const double attribute = mesh.layer[k] != 0 ? 2.0 : 1.0;
+    const double attribute = surfaces.of_cell[k] + 1.0;
     drawn.region.push_back(attribute);
     if (mesh.cells[k][3] >= 0) drawn.region.push_back(attribute);  // a quad is two triangles
   }
-  drawn.region_names = {{1.0, kCoreRegion}, {2.0, kLayerRegion}};
+  drawn.region_names.clear();
+  for (std::size_t j = 0; j < surfaces.core.names.size(); ++j)
+    drawn.region_names.push_back({static_cast<double>(j) + 1.0, surfaces.core.names[j]});
+  drawn.region_names.push_back({static_cast<double>(surfaces.core.names.size()) + 1.0, kLayerRegion});
 }
 
 Mesh with_quads_split(Mesh mesh, const SurfaceCells& cells) {

@@ -22,6 +22,13 @@ struct MixedMesh {
   std::vector<BoundaryEdge> boundary_edges;
   std::vector<std::string> curve_names;
   std::vector<PointValues> point_data;  // written as VTU point data (a motion run's node_id); usually none
+  // The curves' physical groups kept from the input (Mesh::curve_groups): every writer numbers and
+  // names the curves by them (curve_tags) as the triangle meshes' writers do. Empty: curve c is c + 1.
+  std::vector<CurveGroupTag> curve_groups;
+  // Per cell, when the geometry has regions: the attribute of the region the cell lies in (Mesh::region,
+  // 0 outside every region), the layer's cells included; empty without regions. Named by region_names.
+  std::vector<double> region;
+  std::vector<RegionName> region_names;
   std::size_t quads() const;
 };
 
@@ -29,14 +36,31 @@ struct MixedMesh {
 inline constexpr const char* kLayerRegion = "boundary_layer";
 inline constexpr const char* kCoreRegion = "domain";
 
-// Physical groups: one per curve (dimension 1, tag c + 1), "domain" and "boundary_layer" (dimension
-// 2, surface entities 1 and 2). The layer's triangles and quadrangles are separate element blocks.
+// The cells' subdomains as the MSH and Medit writers give them: the core's triangles by region as
+// region_surfaces gives them from `first` (one "domain" without regions), then every layer cell in
+// kLayerRegion, whatever region it lies in, with the tag first + core.names.size() or the next number
+// up that no core surface takes. A file holds one subdomain per cell, and a solver or `pdmesh quality`
+// finds the layer by its name.
+struct MixedSurfaces {
+  RegionSurfaces core;
+  long long layer_tag = 0;
+  std::vector<int> of_cell;  // index into core.names, or core.names.size() for a layer cell
+};
+MixedSurfaces mixed_surfaces(const MixedMesh& mesh, long long first);
+
+// Physical groups: dimension 1 as curve_tags gives them (one per curve with tag c + 1 without kept
+// groups, else one per group over its curves' entities), the core's surfaces and "boundary_layer"
+// (dimension 2, mixed_surfaces from the number of curves + 1: without regions "domain" and
+// "boundary_layer" on surface entities 1 and 2). The layer's triangles and quadrangles are separate
+// element blocks.
 // `periodic` (not null or empty): the $Periodic section after the elements, as msh_writer writes it.
 std::string mixed_msh41_string(const MixedMesh& mesh, const std::vector<PeriodicLink>* periodic = nullptr);
-// Cell data "boundary_layer" (1 in the layer, 0 in the core), the point data when there is some, and
-// the curves as field data (write_vtu_curves), as a triangle mesh's .vtu holds them.
+// Cell data "boundary_layer" (1 in the layer, 0 in the core) and, with regions, "region" (every cell's
+// attribute, the layer's included), the point data when there is some, and the curves, their groups
+// and the region names as field data (write_vtu_curves), as a triangle mesh's .vtu holds them.
 std::string mixed_vtu_string(const MixedMesh& mesh);
-// Core cells first, then the layer's; one marker per curve (SU2 has no volume markers).
+// Core cells first, then the layer's; one marker per curve or kept group, as su2_writer writes them
+// (SU2 has no volume markers).
 std::string mixed_su2_string(const MixedMesh& mesh);
 
 // The mesh formats (io/mesh_formats.hpp's names) whose files hold quadrilaterals, as write_mixed_mesh
@@ -44,7 +68,8 @@ std::string mixed_su2_string(const MixedMesh& mesh);
 const std::vector<std::string>& mixed_mesh_format_names();
 bool is_mixed_mesh_format(const std::string& format);
 
-// DIR/STEM.msh, .vtu, .su2, .mesh and STEM_openfoam (its patches of `walls`' curves of type wall) for the formats of
+// DIR/STEM.msh, .vtu, .su2, .mesh and STEM_openfoam (its patches of `walls`' curves of type wall, one per
+// curve or kept group, and with regions the mixed_surfaces as cellZones) for the formats of
 // `formats` among mixed_mesh_format_names(), each atomic and written
 // in pieces (core/text_sink.hpp), its points and cells formatted on the worker threads as the triangle meshes' writers
 // do; returns the paths written (the msh file with `periodic`'s $Periodic section). Throws InputError for another
@@ -58,14 +83,15 @@ std::vector<std::filesystem::path> write_mixed_mesh(const MixedMesh& mesh, const
 Mesh boundary_of(const MixedMesh& mesh);
 
 // The mixed mesh of a file's cells as a reader gives them (read_mesh with SurfaceCells): the points,
-// curves and triangles of `mesh`, then the quads; `layer` marks the cells of the file's region, or
+// curves, curve groups and triangles of `mesh`, then the quads; `layer` marks the cells of the file's region, or
 // every quad where the file does not name the region (cells.region_found false, always for SU2).
 MixedMesh mixed_mesh_of(const Mesh& mesh, const SurfaceCells& cells);
 
 // The mesh as triangles (each quad split along its shorter diagonal), for the pictures.
 Mesh triangulated(const MixedMesh& mesh);
-// Mesh::region and region_names of `triangulated(mesh)`, for a picture filled by region: the core's
-// triangles attribute 1 (kCoreRegion), the layer's 2 (kLayerRegion), the MSH file's surface entities.
+// Mesh::region and region_names of `triangulated(mesh)`, for a picture filled by region: the MSH
+// file's surfaces (mixed_surfaces), the core's regions (without regions attribute 1, kCoreRegion), then
+// the layer (kLayerRegion).
 void add_layer_regions(const MixedMesh& mesh, Mesh& drawn);
 
 // `mesh` (read_mesh's triangles) with the file's quads `cells` split as `triangulated` splits them,

@@ -8,6 +8,7 @@
 #include <charconv>
 #include <limits>
 #include <map>
+#include <set>
 #include <optional>
 #include <unordered_map>
 
@@ -451,16 +452,22 @@ void assemble_cells(const std::string& file, const MshData& d, const Mesh& mesh,
 // Per triangle, its region's attribute (Mesh::region), from its 2-D physical group: a group named
 // "region_<a>" (the writer's names) gives a, any other group its tag, none 0; a group with another
 // name (not the writer's "domain") is a named region, its name in `names`. Empty when the triangles
-// lie in one group that names no region (the writer's "domain", an unnamed Gmsh surface) or in none,
-// and for a layered run's file (a group named boundary_layer: its cells are SurfaceCells').
+// lie in one group that names no region (the writer's "domain", an unnamed Gmsh surface) or in none.
+// A layered run's group named boundary_layer is the layer's (its cells are SurfaceCells'): the other
+// groups decide as above whether there are regions (a layered file without them has none); where
+// there are, the layer's triangles are one more region, attribute its tag, named boundary_layer.
 std::vector<double> triangle_regions(const MshData& d, std::vector<RegionName>& names) {
   std::map<long long, double> attribute;  // physical tag -> attribute
   std::map<double, std::string> named;    // attribute -> a user's name
+  std::set<long long> layer;              // the layer group's tag
   bool named_region = false;
   for (const auto& e : d.triangles) {
-    if (attribute.count(e.physical) != 0) continue;
+    if (attribute.count(e.physical) != 0 || layer.count(e.physical) != 0) continue;
     const auto name = d.surface_names.find(e.physical);
-    if (name != d.surface_names.end() && name->second == kLayerRegion) return {};
+    if (name != d.surface_names.end() && name->second == kLayerRegion) {
+      layer.insert(e.physical);
+      continue;
+    }
     const std::optional<double> a =
         name != d.surface_names.end() ? region_attribute(name->second) : std::optional<double>();
     const bool user_name =
@@ -470,6 +477,10 @@ std::vector<double> triangle_regions(const MshData& d, std::vector<RegionName>& 
     if (user_name) named[attribute[e.physical]] = name->second;
   }
   if (attribute.size() < 2 && !named_region) return {};
+  for (const long long tag : layer) {
+    attribute[tag] = static_cast<double>(tag);
+    named[static_cast<double>(tag)] = kLayerRegion;
+  }
   for (const auto& [a, name] : named) names.push_back({a, name});
   std::vector<double> region;
   region.reserve(d.triangles.size());

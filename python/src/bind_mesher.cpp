@@ -267,6 +267,10 @@ class Mesher {
     mesh.points = m.points;
     mesh.boundary_edges = m.boundary_edges;
     mesh.curve_names = m.curve_names;
+    // The input's curve groups and regions, as the command's layered files keep them (Mesh.curve_groups,
+    // Mesh.regions per triangle, the layer's included).
+    mesh.curve_groups = m.curve_groups;
+    mesh.region_names = m.region_names;
     for (std::size_t k = 0; k < m.cells.size(); ++k) {
       const auto& v = m.cells[k];
       if (v[3] >= 0) {
@@ -274,8 +278,10 @@ class Mesher {
       } else {
         mesh.triangles.push_back({v[0], v[1], v[2]});
         parts->triangle_layer.push_back(m.layer[k]);
+        if (!m.region.empty()) mesh.region.push_back(m.region[k]);
       }
     }
+    if (mesh.region.empty()) mesh.region_names.clear();
     return parts;
   }
 

@@ -22,6 +22,7 @@
 #include "layers/layer_measures.hpp"
 #include "mesh/metric_quality.hpp"
 #include "mesh/quality.hpp"
+#include "mesh/region_tags.hpp"
 #include "render/mesh_picture.hpp"
 
 namespace pdmesh {
@@ -606,6 +607,22 @@ MixedMesh merge(const MeshInputs& inputs, const LayeredCase& layered, const Mesh
       }
     }
   }
+  // The input's physical groups on the merged mesh's curves (its curve names are the input's).
+  m.curve_groups = curve_groups_of(inputs.geometry.groups, m.curve_names);
+  // The geometry's regions, flooded over the merged cells (each quad as its two triangles) across the
+  // edges on no curve of the input: the fronts are no input curves, so a layer cell lies in the region
+  // of the core it grows into.
+  if (!inputs.geometry.regions.empty()) {
+    const std::vector<double> per_triangle =
+        region_tags(triangulated(m), inputs.geometry.regions, inputs.node_geometry());
+    m.region.reserve(m.cells.size());
+    std::size_t t = 0;
+    for (const auto& c : m.cells) {
+      m.region.push_back(per_triangle[t]);
+      t += c[3] < 0 ? 1 : 2;
+    }
+    m.region_names = region_names_of(inputs.geometry.regions);
+  }
   return m;
 }
 
@@ -747,8 +764,8 @@ void write_layered_outputs(const CaseConfig& config, const MeshInputs& inputs, c
   // The pictures (the quads drawn split) are drawn on the background thread while the quality is
   // measured and the files are written; `drawn` stays alive until the wait below (also when something
   // throws).
-  // output.color_by = region fills the core's cells and the layer's as the mesh files' two regions
-  // ("domain", "boundary_layer"); a quality metric is not drawn on the cells of a mixed mesh.
+  // output.color_by = region fills the cells as the mesh files' surfaces (the core's regions, or
+  // "domain", and "boundary_layer"); a quality metric is not drawn on the cells of a mixed mesh.
   const bool by_region = config.output.color_by == "region";
   Mesh drawn = config.output.wants("png") ? triangulated(mixed) : Mesh{};
   if (by_region && config.output.wants("png")) add_layer_regions(mixed, drawn);
