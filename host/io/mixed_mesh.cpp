@@ -14,6 +14,7 @@
 #include "core/g17.hpp"
 #include "core/text_blocks.hpp"
 #include "core/text_sink.hpp"
+#include "io/cgns_writer.hpp"
 #include "io/medit_writer.hpp"
 #include "io/mesh_formats.hpp"
 #include "io/mesh_io_common.hpp"
@@ -249,7 +250,7 @@ std::string mixed_su2_string(const MixedMesh& mesh) {
 }
 
 const std::vector<std::string>& mixed_mesh_format_names() {
-  static const std::vector<std::string> names = {"msh", "vtu", "su2", "mesh", "openfoam"};
+  static const std::vector<std::string> names = {"msh", "vtu", "su2", "mesh", "openfoam", "cgns"};
   return names;
 }
 
@@ -270,6 +271,12 @@ std::vector<std::filesystem::path> write_mixed_mesh(const MixedMesh& mesh, const
   for (const std::string& f : formats) {
     if (f == "openfoam") {
       for (auto& p : write_openfoam(mesh, dir, stem, walls)) written.push_back(std::move(p));
+      continue;
+    }
+    if (f == "cgns") {
+      const std::filesystem::path path = dir / (stem + mesh_format_extensions(f).front());
+      write_cgns(mesh, path, walls);
+      written.push_back(path);
       continue;
     }
     const std::filesystem::path path = dir / (stem + mesh_format_extensions(f).front());
