@@ -159,16 +159,16 @@ CgnsLayout cgns_layout(const MixedMesh& mesh, const std::vector<std::string>& wa
   std::vector<CgnsLayout::Boundary> group_bcs;
   for (std::size_t g = 0; g < tags.groups.size(); ++g) {
     const CurveTags::Group& group = tags.groups[g];
-    layout.families.push_back(group_node[g]);
-    if (per_group[g].empty()) continue;
     const bool wall = named_wall(group.name) || std::any_of(group.curves.begin(), group.curves.end(), [&](int c) {
                         return named_wall(mesh.curve_names[static_cast<std::size_t>(c)]);
                       });
+    layout.families.push_back({group_node[g], wall});
+    if (per_group[g].empty()) continue;
     group_bcs.push_back({group_node[g], group_node[g], wall, false, layout.sections.size(), 1, 0});
     layout.sections.push_back({group_node[g], true, 2, per_group[g]});
   }
   for (std::size_t r = 0; r < region_names.size(); ++r)
-    if (!region_node[r].empty()) layout.families.push_back(region_node[r]);
+    if (!region_node[r].empty()) layout.families.push_back({region_node[r], false});
   // The curve groups' BCs first: the boundary conditions a solver looks for.
   group_bcs.insert(group_bcs.end(), layout.boundaries.begin(), layout.boundaries.end());
   layout.boundaries = std::move(group_bcs);
@@ -275,10 +275,9 @@ void write_cgns(const MixedMesh& mesh, const std::filesystem::path& path, const 
       f.check(cg_goto(fn, base, "Zone_t", zone, "ZoneBC_t", 1, "BC_t", index, "end"), what);
       f.check(cg_famname_write(b.family.c_str()), what);
     }
-    for (const std::string& name : layout.families) {
-      const auto bc = std::find_if(layout.boundaries.begin(), layout.boundaries.end(),
-                                   [&](const CgnsLayout::Boundary& b) { return b.family == name; });
-      const bool wall = bc != layout.boundaries.end() && bc->wall;
+    for (const CgnsLayout::Family& family_of : layout.families) {
+      const std::string& name = family_of.name;
+      const bool wall = family_of.wall;
       const std::string what = fmt::format("writing the family '{}'", name);
       int family = 0, fambc = 0;
       f.check(cg_family_write(fn, base, name.c_str(), &family), what);

@@ -35,7 +35,11 @@ struct CgnsLayout {
   };
   std::vector<Section> sections;
   std::vector<Boundary> boundaries;
-  std::vector<std::string> families;  // one per curve group (also those without edges), then per region
+  struct Family {
+    std::string name;
+    bool wall = false;  // FamilyBC BCWall, else BCTypeNull
+  };
+  std::vector<Family> families;  // one per curve group (also those without edges), then per region
 };
 
 // The file's layout: per region (`regions`, or "domain" and "boundary_layer" by MixedMesh::layer when
