@@ -158,9 +158,10 @@ TEST_CASE("a layered run refuses every mesh format that cannot hold quads, befor
     fs::remove_all(out);
     CaseConfig c = layered_case(out, "wall", true);
     c.output.formats = {"msh", format, "png"};
-    CHECK_THROWS_WITH(run_mesh(c), Catch::Contains(fmt::format("output.formats: '{}' cannot hold the cells of "
-                                                               "[[boundary_layer]] (msh, vtu, su2, mesh, openfoam can)",
-                                                               format)));
+    CHECK_THROWS_WITH(run_mesh(c),
+                      Catch::Contains(fmt::format("output.formats: '{}' cannot hold the cells of "
+                                                  "[[boundary_layer]] (msh, vtu, su2, mesh, openfoam, cgns can)",
+                                                  format)));
     CHECK_FALSE(fs::exists(out));
   }
 }

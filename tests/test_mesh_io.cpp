@@ -436,6 +436,8 @@ TEST_CASE("each mesh format writes the files its extensions name, and no other",
   CHECK(mesh_format_is_read("msh"));
   CHECK_FALSE(mesh_format_is_read("openfoam"));
   CHECK_FALSE(mesh_format_is_read("fort14"));
+  CHECK(mesh_format_files("cgns", "m") == std::vector<std::filesystem::path>{"m.cgns"});
+  CHECK_FALSE(mesh_format_is_read("cgns"));
   CHECK_THROWS_AS(mesh_format_extensions("stl"), InputError);
 }
 

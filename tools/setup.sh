@@ -5,7 +5,7 @@
 # the Python package into .venv from that same build. Idempotent and quick when nothing changed.
 #
 #   tools/setup.sh            what the main job needs: build/pdmesh and the Python package
-#   tools/setup.sh --tests    also the test suite: its Debian packages (Catch2, GMP, Oclgrind, clang-format), pytest
+#   tools/setup.sh --tests    also the test suite: its Debian packages (Catch2, GMP, Oclgrind, clang-format, the CGNS tools), pytest
 #                             and the optional Python extras, and every test executable and tool
 #
 # PDMESH_NO_PYTHON=1 leaves Python out (the command and the C++ tests never need it);
@@ -25,9 +25,9 @@ done
 packages=(cmake g++ make pkg-config python3
           ocl-icd-opencl-dev opencl-headers opencl-clhpp-headers pocl-opencl-icd clinfo
           libfmt-dev libcli11-dev libtomlplusplus-dev libmuparser-dev libcairo2-dev zlib1g-dev
-          nlohmann-json3-dev libshp-dev)
+          nlohmann-json3-dev libshp-dev libcgns-dev)
 [ -n "${PDMESH_NO_PYTHON:-}" ] || packages+=(python3-venv python3-dev)
-[ -z "$tests" ] || packages+=(catch2 libgmp-dev oclgrind hyperfine clang-format-14 libbenchmark-dev)
+[ -z "$tests" ] || packages+=(catch2 libgmp-dev oclgrind hyperfine clang-format-14 libbenchmark-dev cgns-convert)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -10,6 +10,7 @@
 #include "core/errors.hpp"
 #include "core/input_file.hpp"
 #include "core/text_sink.hpp"
+#include "io/cgns_writer.hpp"
 #include "io/fort14_writer.hpp"
 #include "io/medit_reader.hpp"
 #include "io/medit_writer.hpp"
@@ -47,6 +48,7 @@ const std::vector<MeshFormat>& mesh_formats() {
       {"2dm", {".2dm"}},
       {"mesh", {".mesh"}},
       {"openfoam", {"_openfoam"}},
+      {"cgns", {".cgns"}},
   };
   return formats;
 }
@@ -79,7 +81,7 @@ std::vector<std::filesystem::path> mesh_format_files(const std::string& name, co
 }
 
 bool mesh_format_is_read(const std::string& name) {
-  return is_mesh_format(name) && name != "fort14" && name != "2dm" && name != "openfoam";
+  return is_mesh_format(name) && name != "fort14" && name != "2dm" && name != "openfoam" && name != "cgns";
 }
 
 bool is_mesh_format(const std::string& name) {
@@ -141,6 +143,14 @@ std::vector<std::filesystem::path> write_mesh(const Mesh& mesh, const std::files
       for (auto& p : write_openfoam(mixed_mesh_of(mesh, SurfaceCells{}), dir, stem, options.walls, mesh.curve_groups,
                                     surfaces.regions() ? &zones : nullptr))
         written.push_back(std::move(p));
+    } else if (f == "cgns") {
+      check_mesh_for_writing(mesh, "CGNS writer");
+      // The regions as sections, BCs and families, named as the other formats name them.
+      const RegionSurfaces surfaces = region_surfaces(mesh, 1);
+      const CgnsRegions regions{surfaces.names, surfaces.of_triangle};
+      const auto path = dir / (stem + ext);
+      write_cgns(mixed_mesh_of(mesh, SurfaceCells{}), path, options.walls, mesh.curve_groups, &regions);
+      written.push_back(path);
     } else if (f == "triangle") {
       const auto files = triangle_strings(mesh);
       const auto& exts = mesh_format_extensions(f);

@@ -1,7 +1,7 @@
 // Mesh file formats by name (writing) and by extension (reading): msh (Gmsh 4.1), msh22
 // (Gmsh 2.2), vtu (VTK XML), su2 (SU2 native), triangle (.node/.ele/.poly), fort14 (ADCIRC/SCHISM,
-// STEM.14), 2dm (SMS), mesh (Medit, mmg's format) and openfoam (an OpenFOAM case directory,
-// STEM_openfoam).
+// STEM.14), 2dm (SMS), mesh (Medit, mmg's format), openfoam (an OpenFOAM case directory,
+// STEM_openfoam) and cgns (CGNS, HDF5-based; written, not read).
 #pragma once
 #include <filesystem>
 #include <string>
@@ -24,7 +24,7 @@ const std::vector<std::string>& mesh_format_extensions(const std::string& name);
 // The files write_mesh may write for a format, relative to its directory: STEM + each extension, or the
 // openfoam format's polyMesh files below STEM_openfoam. Throws InputError on an unknown name.
 std::vector<std::filesystem::path> mesh_format_files(const std::string& name, const std::string& stem);
-// True for a format whose files read_mesh reads back: all but fort14, 2dm and openfoam.
+// True for a format whose files read_mesh reads back: all but fort14, 2dm, openfoam and cgns.
 bool mesh_format_is_read(const std::string& name);
 
 // What some formats need beyond the mesh: the curves that are open boundaries in fort14 (every other
@@ -36,14 +36,15 @@ struct MeshWriteOptions {
   // The msh formats write Mesh::point_data as $NodeData views after "q" (Python's Mesh.write); the
   // commands leave it off, so their .msh files hold the spacing alone.
   bool msh_point_data = false;
-  // openfoam: the curves whose patches are of type wall (the others are of type patch).
+  // openfoam and cgns: the curves whose patches are of type wall (the others are of type patch) and
+  // whose CGNS boundary conditions are BCWall (the others BCTypeNull).
   std::vector<std::string> walls;
 };
 
 // Writes DIR/STEM.msh (msh and msh22 cannot both be asked for: same file), .vtu, .su2, .14, .2dm, .mesh,
-// STEM.node/.ele/.poly or the files of STEM_openfoam (io/openfoam_writer.hpp), each atomically, and
-// returns the paths written. Throws InputError on an
-// unknown format name (listing the known ones) or an unwritable directory.
+// .cgns (io/cgns_writer.hpp), STEM.node/.ele/.poly or the files of STEM_openfoam (io/openfoam_writer.hpp), each
+// atomically, and returns the paths written. Throws InputError on an unknown format name (listing the known ones) or an
+// unwritable directory.
 std::vector<std::filesystem::path> write_mesh(const Mesh& mesh, const std::filesystem::path& dir,
                                               const std::string& stem, const std::vector<std::string>& formats,
                                               const MeshWriteOptions& options = {});

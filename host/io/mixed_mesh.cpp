@@ -14,6 +14,7 @@
 #include "core/g17.hpp"
 #include "core/text_blocks.hpp"
 #include "core/text_sink.hpp"
+#include "io/cgns_writer.hpp"
 #include "io/medit_writer.hpp"
 #include "io/mesh_formats.hpp"
 #include "io/mesh_io_common.hpp"
@@ -305,7 +306,7 @@ std::string mixed_su2_string(const MixedMesh& mesh) {
 }
 
 const std::vector<std::string>& mixed_mesh_format_names() {
-  static const std::vector<std::string> names = {"msh", "vtu", "su2", "mesh", "openfoam"};
+  static const std::vector<std::string> names = {"msh", "vtu", "su2", "mesh", "openfoam", "cgns"};
   return names;
 }
 
@@ -332,6 +333,15 @@ std::vector<std::filesystem::path> write_mixed_mesh(const MixedMesh& mesh, const
       for (auto& p :
            write_openfoam(mesh, dir, stem, walls, mesh.curve_groups, surfaces.core.regions() ? &zones : nullptr))
         written.push_back(std::move(p));
+      continue;
+    }
+    if (f == "cgns") {
+      const std::filesystem::path path = dir / (stem + mesh_format_extensions(f).front());
+      const MixedSurfaces surfaces = mixed_surfaces(mesh, 1);
+      CgnsRegions regions{surfaces.core.names, surfaces.of_cell};
+      regions.names.push_back(kLayerRegion);
+      write_cgns(mesh, path, walls, mesh.curve_groups, surfaces.core.regions() ? &regions : nullptr);
+      written.push_back(path);
       continue;
     }
     const std::filesystem::path path = dir / (stem + mesh_format_extensions(f).front());

@@ -1,6 +1,7 @@
 // A mesh of triangles and quadrilaterals in two regions (the particle core and a boundary layer,
 // docs/boundary-layers.md), and its writers: Gmsh MSH 4.1 (triangles type 2, quadrangles type 3),
-// VTK XML unstructured grid (VTK_TRIANGLE 5, VTK_QUAD 9), SU2 (5, 9) and Medit (io/medit_writer.hpp). Only the
+// VTK XML unstructured grid (VTK_TRIANGLE 5, VTK_QUAD 9), SU2 (5, 9), Medit (io/medit_writer.hpp) and CGNS
+// (io/cgns_writer.hpp: TRI_3, QUAD_4). Only the
 // boundary-layer runs write it; Mesh (mesh/mesh.hpp) stays the triangle mesh every other stage uses.
 #pragma once
 #include <array>
@@ -64,13 +65,14 @@ std::string mixed_vtu_string(const MixedMesh& mesh);
 std::string mixed_su2_string(const MixedMesh& mesh);
 
 // The mesh formats (io/mesh_formats.hpp's names) whose files hold quadrilaterals, as write_mixed_mesh
-// writes them: msh, vtu, su2, mesh, openfoam.
+// writes them: msh, vtu, su2, mesh, openfoam, cgns.
 const std::vector<std::string>& mixed_mesh_format_names();
 bool is_mixed_mesh_format(const std::string& format);
 
-// DIR/STEM.msh, .vtu, .su2, .mesh and STEM_openfoam (its patches of `walls`' curves of type wall, one per
-// curve or kept group, and with regions the mixed_surfaces as cellZones) for the formats of
-// `formats` among mixed_mesh_format_names(), each atomic and written
+// DIR/STEM.msh, .vtu, .su2, .mesh, .cgns and STEM_openfoam for the formats of `formats` among
+// mixed_mesh_format_names(): OpenFOAM's patches of `walls`' curves of type wall and CGNS's BCs of them
+// BCWall, one per curve or kept group; with regions the mixed_surfaces as OpenFOAM's cellZones and
+// CGNS's regions, else CGNS's regions "domain" and "boundary_layer". Each file is atomic and written
 // in pieces (core/text_sink.hpp), its points and cells formatted on the worker threads as the triangle meshes' writers
 // do; returns the paths written (the msh file with `periodic`'s $Periodic section). Throws InputError for another
 // format (msh22, triangle, fort14, 2dm), before any file is written.

@@ -236,11 +236,12 @@ class Mesh:
     def write(self, path: str | os.PathLike, format: str | None = None,
               open_boundaries: Sequence[str] = (), walls: Sequence[str] = ()) -> list[str]:
         """Writes the mesh with the command's writers, the format from the suffix (.msh Gmsh 4.1,
-        .vtu, .su2, .node/.ele/.poly Triangle, .14 ADCIRC/SCHISM, .2dm SMS, .mesh Medit; .png/.svg a
-        picture) or ``format`` (msh, msh22, vtu, su2, triangle, fort14, 2dm, mesh, openfoam: the
-        directory ``STEM_openfoam/constant/polyMesh`` beside ``path``). ``open_boundaries``: the curves
-        fort14 writes as open boundaries (the others are land); ``walls``: the curves whose OpenFOAM
-        patches are of type wall (a layered mesh's wall curves are walls too). Atomic, as the command's files. Returns the paths written."""
+        .vtu, .su2, .node/.ele/.poly Triangle, .14 ADCIRC/SCHISM, .2dm SMS, .mesh Medit, .cgns CGNS;
+        .png/.svg a picture) or ``format`` (msh, msh22, vtu, su2, triangle, fort14, 2dm, mesh, cgns,
+        openfoam: the directory ``STEM_openfoam/constant/polyMesh`` beside ``path``). ``open_boundaries``:
+        the curves fort14 writes as open boundaries (the others are land); ``walls``: the curves whose
+        OpenFOAM patches are of type wall and whose CGNS boundary conditions are BCWall (a layered
+        mesh's wall curves are walls too). Atomic, as the command's files. Returns the paths written."""
         path = os.fspath(path)
         suffix = os.path.splitext(path)[1].lower()
         if format is None and suffix in _PICTURES:

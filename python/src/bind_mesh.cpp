@@ -104,7 +104,7 @@ nb::dict boundary_edges(const MeshHandle& h) {
   return d;
 }
 
-// `format` is a write_mesh name (msh, msh22, vtu, su2, triangle, fort14, 2dm, mesh, openfoam); the file is
+// `format` is a write_mesh name (msh, msh22, vtu, su2, triangle, fort14, 2dm, mesh, openfoam, cgns); the file is
 // DIR/STEM.<ext> (openfoam: the directory DIR/STEM_openfoam). `open_boundaries`: the curves fort14 writes
 // as open boundaries; `walls`: the curves whose openfoam patches are walls.
 std::vector<std::string> write(const MeshHandle& h, const std::string& path, const std::string& format,
@@ -114,7 +114,7 @@ std::vector<std::string> write(const MeshHandle& h, const std::string& path, con
   std::vector<fs::path> written;
   {
     nb::gil_scoped_release release;
-    // With layers the mixed-cell writers (msh, vtu, su2, mesh, openfoam; InputError for the others).
+    // With layers the mixed-cell writers (msh, vtu, su2, mesh, openfoam, cgns; InputError for the others).
     // The msh formats carry the pairs ($Periodic), as the run's mesh.msh, and the point data as
     // $NodeData views, which Mesh.read takes back.
     const std::vector<PeriodicLink>* periodic = h.periodic->links.empty() ? nullptr : &h.periodic->links;

@@ -200,3 +200,16 @@ def test_openfoam_polymesh_of_a_layered_mesh(rings, tmp_path):
     with pytest.raises(pdmesh.InputError, match="walls: unknown curve 'nose'"):
         mesh.write(tmp_path / "bad", format="openfoam", walls=["nose"])
     assert not (tmp_path / "bad_openfoam").exists()
+
+
+def test_cgns_of_a_layered_mesh(rings, tmp_path):
+    # The suffix picks the CGNS writer; the file is HDF5 (its signature), written atomically.
+    mesh = run(rings, layer(["hole"]))
+    written = mesh.write(tmp_path / "wing.cgns", walls=["box"])
+    assert written == [str(tmp_path / "wing.cgns")]
+    assert (tmp_path / "wing.cgns").read_bytes()[:8] == b"\x89HDF\r\n\x1a\n"
+    assert sorted(os.listdir(tmp_path)) == ["wing.cgns"]
+    # The wall names are checked as for OpenFOAM, before anything is written.
+    with pytest.raises(pdmesh.InputError, match="walls: unknown curve 'nose'"):
+        mesh.write(tmp_path / "bad.cgns", walls=["nose"])
+    assert not (tmp_path / "bad.cgns").exists()
