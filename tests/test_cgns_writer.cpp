@@ -303,6 +303,31 @@ TEST_CASE("a layered mesh's CGNS file: TRI_3 and QUAD_4 sections, the layer a re
   CHECK(c.boco("boundary_layer").location == CellCenter);
 }
 
+TEST_CASE("a layered mesh with kept groups and regions: one BC per group, the core's region and the layer's",
+          "[io][cgns]") {
+  const fs::path dir = pdmesh_test::fresh_dir("cgns_layer_tags");
+  MixedMesh m = layered();
+  m.curve_groups = {{12, "sides", {1, 3}}, {4, "floor", {0}}};
+  m.region = {3.0, 3.0, 3.0};
+  m.region_names = {{3.0, "core"}};
+  write_mixed_mesh(m, dir, "m", {"cgns"}, nullptr, {"floor"});
+  const CgnsContent c = read_cgns(dir / "m.cgns");
+  REQUIRE(c.sections.size() >= 2);
+  CHECK(c.sections[0].name == "core");
+  CHECK(c.sections[0].type == TRI_3);
+  CHECK(c.sections[1].name == "boundary_layer");
+  CHECK(c.sections[1].type == QUAD_4);
+  // The groups in tag order, then the curve in no group; 'sides' holds both of its curves' edges.
+  CHECK(c.section("floor").conn == one_based({0, 1, 1, 2}));
+  CHECK(c.section("sides").conn.size() == 4);
+  CHECK(c.section("top").conn.size() == 4);
+  for (const auto& section : c.sections) CHECK(section.name != "right");
+  CHECK(c.family("floor").bc == BCWall);
+  CHECK(c.family("sides").bc == BCTypeNull);
+  CHECK(c.region == std::vector<double>{0, 0, 1});  // file order: the core's triangles, then the layer's quad
+  CHECK(c.boco("core").location == CellCenter);
+}
+
 TEST_CASE("CGNS names: at most 32 characters, no '/', unique among siblings", "[io][cgns]") {
   MixedMesh m = layered();
   m.curve_names = {"a/very/long/curve/name/that/goes/on/and/on", "a/very/long/curve/name/that/goes/on/and/on/too",
