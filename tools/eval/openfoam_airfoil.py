@@ -7,7 +7,8 @@ nodes (gmshToFoam), with the same solver settings; lift, drag and the wall's y+ 
 Setup (once): tools/eval/setup_anchors.sh (Gmsh 4.15.2 and Debian's openfoam). From the repository root:
     tools/.venv-anchors/bin/python tools/eval/openfoam_airfoil.py --pdmesh build/pdmesh --work W
         [--alpha 0 10] [--iterations 4000] [--points 161] [--first-height 2e-6] [--growth 1.15]
-        [--thickness 0.03] [--gmsh-sizes field|boundary] [--meshes pdmesh,gmsh] [--json FILE]
+        [--thickness 0.03] [--gmsh-sizes field|boundary] [--meshes pdmesh,gmsh] [--set KEY=VALUE]
+        [--json FILE]
 
 The airfoil is the resource's revised NACA 0012 formula (closed at chord 1), --points per surface on a
 cosine distribution, written as a Selig .dat file; pdmesh meshes it with its defaults, a circle far
@@ -416,6 +417,8 @@ def main():
     ap.add_argument("--meshes", default="pdmesh,gmsh", help="which meshes to run: pdmesh, gmsh or both")
     ap.add_argument("--gmsh-sizes", choices=["field", "boundary"], default="field",
                     help="Gmsh's core sizes: pdmesh's field q (default) or Gmsh's from the boundary points")
+    ap.add_argument("--set", action="append", default=[], metavar="KEY=VALUE",
+                    help="passed to pdmesh mesh as --set (e.g. spacing.scale=0.7 for a refinement study)")
     ap.add_argument("--json")
     args = ap.parse_args()
     for tool in ("simpleFoam", "checkMesh", "gmshToFoam"):
@@ -435,8 +438,8 @@ def main():
 
     case_toml = write_pdmesh_case(work, args)
     start = time.perf_counter()
-    subprocess.run([os.path.abspath(args.pdmesh), "mesh", case_toml, "--out", os.path.join(work, "pdmesh"), "-q"],
-                   check=True)
+    subprocess.run([os.path.abspath(args.pdmesh), "mesh", case_toml, "--out", os.path.join(work, "pdmesh"), "-q"]
+                   + [a for kv in args.set for a in ("--set", kv)], check=True)
     meshes = {"pdmesh": {"poly": os.path.join(work, "pdmesh", "mesh_openfoam", "constant", "polyMesh"),
                          "seconds": round(time.perf_counter() - start, 2)}}
     if "gmsh" in args.meshes:
@@ -455,7 +458,7 @@ def main():
         set_patch_types(poly, {"airfoil": "wall", "frontAndBack": "empty", "farfield": "patch"})
         meshes["gmsh"] = {"poly": poly, **info}
 
-    results = {"re": RE, "gmsh_sizes": args.gmsh_sizes, "first_height": args.first_height, "growth": args.growth, "thickness": args.thickness,
+    results = {"re": RE, "gmsh_sizes": args.gmsh_sizes, "set": args.set, "first_height": args.first_height, "growth": args.growth, "thickness": args.thickness,
                "points": args.points, "iterations": args.iterations, "meshes": {}}
     for name, mesh in meshes.items():
         if name not in args.meshes:
