@@ -14,6 +14,7 @@
 #include "io/mesh_formats.hpp"
 #include "io/mixed_mesh.hpp"
 #include "run_pdmesh.hpp"
+#include "mixed_square.hpp"
 #include "temp_files.hpp"
 
 using namespace pdmesh;
@@ -176,18 +177,6 @@ Mesh two_regions() {
   return m;
 }
 
-// A unit square split into a quad (left half, the layer) and two triangles (right half); curves:
-// bottom (two edges), right, top (two edges), left.
-MixedMesh layered() {
-  MixedMesh m;
-  m.points = {{0, 0}, {0.5, 0}, {1, 0}, {1, 1}, {0.5, 1}, {0, 1}};
-  m.cells = {{0, 1, 4, 5}, {1, 2, 3, -1}, {1, 3, 4, -1}};
-  m.layer = {1, 0, 0};
-  m.curve_names = {"bottom", "right", "top", "left"};
-  m.boundary_edges = {{0, 1, 0}, {1, 2, 0}, {2, 3, 1}, {3, 4, 2}, {4, 5, 2}, {5, 0, 3}};
-  return m;
-}
-
 }  // namespace
 
 TEST_CASE("a triangle mesh's CGNS file reads back with the CGNS library: points, cells, regions, boundary conditions",
@@ -278,7 +267,7 @@ TEST_CASE("a mesh without regions is one section 'domain', and kept physical gro
 
 TEST_CASE("a layered mesh's CGNS file: TRI_3 and QUAD_4 sections, the layer a region, wall BCs", "[io][cgns]") {
   const fs::path dir = pdmesh_test::fresh_dir("cgns_layers");
-  const MixedMesh m = layered();
+  const MixedMesh m = pdmesh_test::mixed_square();
   const auto written = write_mixed_mesh(m, dir, "m", {"cgns"}, nullptr, {"bottom"});
   REQUIRE(written == std::vector<fs::path>{dir / "m.cgns"});
   const CgnsContent c = read_cgns(dir / "m.cgns");
@@ -306,7 +295,7 @@ TEST_CASE("a layered mesh's CGNS file: TRI_3 and QUAD_4 sections, the layer a re
 TEST_CASE("a layered mesh with kept groups and regions: one BC per group, the core's region and the layer's",
           "[io][cgns]") {
   const fs::path dir = pdmesh_test::fresh_dir("cgns_layer_tags");
-  MixedMesh m = layered();
+  MixedMesh m = pdmesh_test::mixed_square();
   m.curve_groups = {{12, "sides", {1, 3}}, {4, "floor", {0}}};
   m.region = {3.0, 3.0, 3.0};
   m.region_names = {{3.0, "core"}};
@@ -329,7 +318,7 @@ TEST_CASE("a layered mesh with kept groups and regions: one BC per group, the co
 }
 
 TEST_CASE("CGNS names: at most 32 characters, no '/', unique among siblings", "[io][cgns]") {
-  MixedMesh m = layered();
+  MixedMesh m = pdmesh_test::mixed_square();
   m.curve_names = {"a/very/long/curve/name/that/goes/on/and/on", "a/very/long/curve/name/that/goes/on/and/on/too",
                    "domain", "ZoneBC"};
   const CgnsLayout layout = cgns_layout(m, {});
@@ -346,7 +335,7 @@ TEST_CASE("a CGNS write that fails names the file and the library's message and 
   // the rename fails) or, in a missing directory, cannot open it.
   const fs::path missing = dir / "no_such_dir" / "m.cgns";
   try {
-    write_cgns(layered(), missing, {});
+    write_cgns(pdmesh_test::mixed_square(), missing, {});
     FAIL("no error");
   } catch (const InputError& e) {
     const std::string what = e.what();
@@ -354,7 +343,7 @@ TEST_CASE("a CGNS write that fails names the file and the library's message and 
   }
   CHECK(pdmesh_test::entries(dir) == 0);
   // A cell with a point out of range is refused before the file is opened.
-  MixedMesh bad = layered();
+  MixedMesh bad = pdmesh_test::mixed_square();
   bad.cells[1][2] = 9;
   CHECK_THROWS_WITH(write_cgns(bad, dir / "m.cgns", {}), Catch::Contains("point 9 (of 6)"));
   CHECK(pdmesh_test::entries(dir) == 0);

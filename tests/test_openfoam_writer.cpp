@@ -10,6 +10,7 @@
 
 #include "core/errors.hpp"
 #include "io/openfoam_writer.hpp"
+#include "mixed_square.hpp"
 
 using namespace pdmesh;
 
@@ -49,23 +50,11 @@ std::vector<double> numbers(std::string s) {
   return out;
 }
 
-// A unit square split into a quad (left half) and two triangles (right half); curves: bottom (two
-// edges), right, top (two edges), left.
-MixedMesh square() {
-  MixedMesh m;
-  m.points = {{0, 0}, {0.5, 0}, {1, 0}, {1, 1}, {0.5, 1}, {0, 1}};
-  m.cells = {{0, 1, 4, 5}, {1, 2, 3, -1}, {1, 3, 4, -1}};
-  m.layer = {1, 0, 0};
-  m.curve_names = {"bottom", "right", "top", "left"};
-  m.boundary_edges = {{0, 1, 0}, {1, 2, 0}, {2, 3, 1}, {3, 4, 2}, {4, 5, 2}, {5, 0, 3}};
-  return m;
-}
-
 }  // namespace
 
 TEST_CASE("an OpenFOAM polyMesh: closed cells, normals from owner to neighbour, upper-triangular order",
           "[io][openfoam]") {
-  const MixedMesh m = square();
+  const MixedMesh m = pdmesh_test::mixed_square();
   const OpenFoamFiles f = openfoam_files(m, {"bottom"}, {}, nullptr, 0.25);
   std::vector<V3> points;
   for (const std::string& p : entries(f.points)) {
@@ -129,16 +118,16 @@ TEST_CASE("an OpenFOAM polyMesh: closed cells, normals from owner to neighbour, 
 }
 
 TEST_CASE("the OpenFOAM writer refuses a border side on no curve and a side of three cells", "[io][openfoam]") {
-  MixedMesh m = square();
+  MixedMesh m = pdmesh_test::mixed_square();
   m.boundary_edges.pop_back();  // the left side
   CHECK_THROWS_AS(openfoam_files(m, {}), InputError);
-  m = square();
+  m = pdmesh_test::mixed_square();
   m.cells.push_back({1, 4, 3, -1});  // a third cell on the side 1-4... and on 3-4, 1-3
   CHECK_THROWS_AS(openfoam_files(m, {}), InputError);
 }
 
 TEST_CASE("an OpenFOAM patch per physical group of curves, in the order of their tags", "[io][openfoam]") {
-  const MixedMesh m = square();
+  const MixedMesh m = pdmesh_test::mixed_square();
   // right and left in one group of tag 5; bottom and top take the free tags 1 and 2.
   const OpenFoamFiles f = openfoam_files(m, {"left"}, {{5, "sides", {1, 3}}});
   const std::string& b = f.boundary;
@@ -155,7 +144,7 @@ TEST_CASE("an OpenFOAM patch per physical group of curves, in the order of their
 }
 
 TEST_CASE("OpenFOAM cellZones list each zone's cells, and a mesh without zones has none", "[io][openfoam]") {
-  const MixedMesh m = square();
+  const MixedMesh m = pdmesh_test::mixed_square();
   CHECK(openfoam_files(m, {}).cell_zones.empty());
   const OpenFoamZones zones{{"steel", "copper wire"}, {1, 0, 1}};
   const std::string z = openfoam_files(m, {}, {}, &zones).cell_zones;
