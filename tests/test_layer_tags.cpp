@@ -139,6 +139,15 @@ TEST_CASE("a layered run of a Gmsh file keeps its groups and regions in MSH 4.1,
   CHECK(core > 100);
   CHECK(region_label(back, 11.0) == "fluid");
   CHECK(region_label(back, 22.0) == "solid");
+  // A picture of the file filled by region (pdmesh quality --color-by region) shows its surfaces.
+  MixedMesh mixed = mixed_mesh_of(back, cells);
+  add_file_regions(mixed, back);
+  Mesh drawn = triangulated(mixed);
+  add_layer_regions(mixed, drawn);
+  std::vector<std::string> drawn_names;
+  for (const auto& r : drawn.region_names) drawn_names.push_back(r.name);
+  CHECK(drawn_names == std::vector<std::string>{"fluid", "solid", "boundary_layer"});
+  REQUIRE(drawn.region.size() == drawn.triangles.size());
 }
 
 TEST_CASE("a layered run of a Gmsh file keeps its groups in SU2, VTU and Medit") {

@@ -385,6 +385,13 @@ MixedMesh mixed_mesh_of(const Mesh& mesh, const SurfaceCells& cells) {
   return m;
 }
 
+void add_file_regions(MixedMesh& mixed, const Mesh& mesh) {
+  if (mesh.region.empty() || mesh.region.size() != mesh.triangles.size()) return;
+  mixed.region = mesh.region;
+  mixed.region.resize(mixed.cells.size(), 0.0);
+  mixed.region_names = mesh.region_names;
+}
+
 Mesh triangulated(const MixedMesh& mesh) {
   Mesh out;
   out.points = mesh.points;

@@ -88,6 +88,10 @@ Mesh boundary_of(const MixedMesh& mesh);
 // curves, curve groups and triangles of `mesh`, then the quads; `layer` marks the cells of the file's region, or
 // every quad where the file does not name the region (cells.region_found false, always for SU2).
 MixedMesh mixed_mesh_of(const Mesh& mesh, const SurfaceCells& cells);
+// The regions of the file `mesh` was read from (Mesh::region per triangle) on its mixed mesh
+// (mixed_mesh_of): the triangles keep their attributes and names, the quads take 0, for a picture
+// filled by region (add_layer_regions puts every layer cell in one surface). No regions: unchanged.
+void add_file_regions(MixedMesh& mixed, const Mesh& mesh);
 
 // The mesh as triangles (each quad split along its shorter diagonal), for the pictures.
 Mesh triangulated(const MixedMesh& mesh);

@@ -137,7 +137,7 @@ int run_quality(const std::string& mesh_path, const std::optional<std::string>& 
                 const std::optional<std::string>& out_json, std::ostream& out, std::ostream& err,
                 const std::optional<QualityPicture>& picture) {
   MeshReadReport report;
-  const ReadMesh read = read_cells(mesh_path, report);
+  ReadMesh read = read_cells(mesh_path, report);
   const Mesh& mesh = read.mesh;
   for (const auto& note : report.notes) err << note << '\n';
   // Measuring a folded or non-manifold mesh would report numbers of a mesh that is not there.
@@ -198,7 +198,10 @@ int run_quality(const std::string& mesh_path, const std::optional<std::string>& 
     // Quads are drawn as the layered run's mesh.png draws them: split (io/mixed_mesh.hpp triangulated).
     if (read.mixed) {
       Mesh drawn = triangulated(*read.mixed);
-      if (picture->color_by == "region") add_layer_regions(*read.mixed, drawn);
+      if (picture->color_by == "region") {
+        add_file_regions(*read.mixed, mesh);
+        add_layer_regions(*read.mixed, drawn);
+      }
       write_picture(drawn, mesh_path, *picture,
                     fmt::format(" ({} cells, {} quads, drawn split)", read.mixed->cells.size(), read.mixed->quads()));
     } else {
