@@ -8,6 +8,7 @@ Setup (once): tools/eval/setup_anchors.sh (Gmsh 4.15.2 and Debian's openfoam). F
     tools/.venv-anchors/bin/python tools/eval/openfoam_airfoil.py --pdmesh build/pdmesh --work W
         [--alpha 0 10] [--iterations 4000] [--points 161] [--first-height 2e-6] [--growth 1.15]
         [--thickness 0.03] [--gmsh-sizes field|boundary] [--meshes pdmesh,gmsh] [--set KEY=VALUE]
+        [--correctors N]
         [--json FILE]
 
 The airfoil is the resource's revised NACA 0012 formula (closed at chord 1), --points per surface on a
@@ -263,7 +264,7 @@ def set_patch_types(poly, types):
         f.write(text)
 
 
-def write_case(case, poly_src, alpha, iterations):
+def write_case(case, poly_src, alpha, iterations, correctors=0):
     """An OpenFOAM case at `case` around the polyMesh `poly_src`, the flow at `alpha` degrees."""
     if os.path.exists(case):
         shutil.rmtree(case)
@@ -325,8 +326,8 @@ wallDist { method meshWave; }""")
     p { solver GAMG; smoother GaussSeidel; tolerance 1e-10; relTol 0.05; }
     "(U|nuTilda)" { solver smoothSolver; smoother symGaussSeidel; tolerance 1e-12; relTol 0.1; }
 }
-SIMPLE { nNonOrthogonalCorrectors 0; consistent yes; }
-relaxationFactors { equations { U 0.9; nuTilda 0.9; } }""")
+SIMPLE { nNonOrthogonalCorrectors %d; consistent yes; }
+relaxationFactors { equations { U 0.9; nuTilda 0.9; } }""" % correctors)
     return walls
 
 
@@ -417,6 +418,8 @@ def main():
     ap.add_argument("--meshes", default="pdmesh,gmsh", help="which meshes to run: pdmesh, gmsh or both")
     ap.add_argument("--gmsh-sizes", choices=["field", "boundary"], default="field",
                     help="Gmsh's core sizes: pdmesh's field q (default) or Gmsh's from the boundary points")
+    ap.add_argument("--correctors", type=int, default=0,
+                    help="SIMPLE's nNonOrthogonalCorrectors (0; OpenFOAM's guides ask for some above 70 degrees)")
     ap.add_argument("--set", action="append", default=[], metavar="KEY=VALUE",
                     help="passed to pdmesh mesh as --set (e.g. spacing.scale=0.7 for a refinement study)")
     ap.add_argument("--json")
@@ -458,7 +461,8 @@ def main():
         set_patch_types(poly, {"airfoil": "wall", "frontAndBack": "empty", "farfield": "patch"})
         meshes["gmsh"] = {"poly": poly, **info}
 
-    results = {"re": RE, "gmsh_sizes": args.gmsh_sizes, "set": args.set, "first_height": args.first_height, "growth": args.growth, "thickness": args.thickness,
+    results = {"re": RE, "gmsh_sizes": args.gmsh_sizes, "set": args.set, "correctors": args.correctors,
+               "first_height": args.first_height, "growth": args.growth, "thickness": args.thickness,
                "points": args.points, "iterations": args.iterations, "meshes": {}}
     for name, mesh in meshes.items():
         if name not in args.meshes:
@@ -466,7 +470,7 @@ def main():
         entry = {k: v for k, v in mesh.items() if k != "poly"}
         for alpha in args.alpha:
             case = os.path.join(work, f"{name}_a{alpha:g}")
-            write_case(case, mesh["poly"], alpha, args.iterations)
+            write_case(case, mesh["poly"], alpha, args.iterations, args.correctors)
             if "check" not in entry:
                 entry["check"] = check_mesh(case)
                 if name == "pdmesh" and not entry["check"]["ok"]:
