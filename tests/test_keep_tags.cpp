@@ -14,30 +14,18 @@
 #include "io/mesh_geometry.hpp"
 #include "io/mesh_io_common.hpp"
 #include "io/msh_writer.hpp"
+#include "msh_physical_names.hpp"
 #include "run_pdmesh.hpp"
 #include "temp_files.hpp"
 
 using namespace pdmesh;
 namespace fs = std::filesystem;
+using pdmesh_test::physical_names;
 using pdmesh_test::run_pdmesh;
 
 namespace {
 
 const std::string kData = std::string(PDMESH_SOURCE_DIR) + "/tests/data/";
-
-// The lines between $PhysicalNames and $EndPhysicalNames, the count line included.
-std::vector<std::string> physical_names(const std::string& msh) {
-  std::istringstream in(msh);
-  std::vector<std::string> out;
-  std::string line;
-  bool inside = false;
-  while (std::getline(in, line)) {
-    if (line == "$EndPhysicalNames") break;
-    if (inside) out.push_back(line);
-    inside = inside || line == "$PhysicalNames";
-  }
-  return out;
-}
 
 // The two-material file re-meshed into `formats` (once per process and format list).
 fs::path remeshed(const std::string& formats) {

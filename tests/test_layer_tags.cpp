@@ -18,31 +18,18 @@
 #include "io/mesh_io_common.hpp"
 #include "io/mixed_mesh.hpp"
 #include "io/openfoam_writer.hpp"
+#include "msh_physical_names.hpp"
 #include "run_pdmesh.hpp"
 #include "temp_files.hpp"
 
 using namespace pdmesh;
 namespace fs = std::filesystem;
+using pdmesh_test::physical_names;
 using pdmesh_test::run_pdmesh;
 
 namespace {
 
 const std::string kData = std::string(PDMESH_SOURCE_DIR) + "/tests/data/";
-
-// The lines between $PhysicalNames and $EndPhysicalNames, the count line left out.
-std::vector<std::string> physical_names(const std::string& msh) {
-  std::istringstream in(msh);
-  std::vector<std::string> out;
-  std::string line;
-  bool inside = false, counted = false;
-  while (std::getline(in, line)) {
-    if (line == "$EndPhysicalNames") break;
-    if (inside && counted) out.push_back(line);
-    if (inside) counted = true;
-    inside = inside || line == "$PhysicalNames";
-  }
-  return out;
-}
 
 // The lines of `text` that start with `prefix`.
 std::vector<std::string> lines_starting(const std::string& text, const std::string& prefix) {
@@ -110,12 +97,13 @@ void check_edges_in_groups(const Mesh& m) {
 TEST_CASE("a layered run of a Gmsh file keeps its groups and regions in MSH 4.1, read back the same") {
   const std::string msh = pdmesh_test::slurp(layered_run() / "mesh.msh");
   const std::vector<std::string> names = physical_names(msh);
-  REQUIRE(names.size() == 7);
-  CHECK(std::vector<std::string>(names.begin(), names.begin() + 6) ==
+  REQUIRE(names.size() == 8);
+  CHECK(names[0] == "7");
+  CHECK(std::vector<std::string>(names.begin() + 1, names.begin() + 7) ==
         std::vector<std::string>{"1 5 \"wall\"", "1 7 \"farfield\"", "1 8 \"slip\"", "1 9 \"block\"", "2 11 \"fluid\"",
                                  "2 22 \"solid\""});
   // The layer: 6 curves + 1 + 2 core surfaces.
-  CHECK(names[6] == "2 9 \"boundary_layer\"");
+  CHECK(names[7] == "2 9 \"boundary_layer\"");
 
   MeshReadReport report;
   SurfaceCells cells;
@@ -207,7 +195,7 @@ MixedMesh small_mixed(bool groups, bool regions) {
 
 TEST_CASE("mixed writers without groups or regions number as before: curve c + 1, domain, boundary_layer") {
   const MixedMesh m = small_mixed(false, false);
-  CHECK(physical_names(mixed_msh41_string(m)) == std::vector<std::string>{"1 1 \"wall\"", "1 2 \"side\"",
+  CHECK(physical_names(mixed_msh41_string(m)) == std::vector<std::string>{"6", "1 1 \"wall\"", "1 2 \"side\"",
                                                                           "1 3 \"side_2\"", "1 4 \"top\"",
                                                                           "2 5 \"domain\"", "2 6 \"boundary_layer\""});
   const std::string medit = mixed_medit_string(m);
@@ -225,8 +213,8 @@ TEST_CASE("mixed writers with groups and regions: the group tags, the region's t
   // Curves: wall 4, sides 12 over two curves, top the first free number, 1. Surfaces from 5: the core's
   // region 3 is its own tag, the layer takes 5 + 1.
   const std::string msh = mixed_msh41_string(m);
-  CHECK(physical_names(msh) == std::vector<std::string>{"1 1 \"top\"", "1 4 \"wall\"", "1 12 \"sides\"", "2 3 \"core\"",
-                                                        "2 6 \"boundary_layer\""});
+  CHECK(physical_names(msh) == std::vector<std::string>{"5", "1 1 \"top\"", "1 4 \"wall\"", "1 12 \"sides\"",
+                                                        "2 3 \"core\"", "2 6 \"boundary_layer\""});
   CHECK(msh.find("$Entities\n0 4 2 0\n") != std::string::npos);
   const MixedSurfaces s = mixed_surfaces(m, 5);
   CHECK(s.core.tags == std::vector<long long>{3});
